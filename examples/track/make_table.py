@@ -1,5 +1,5 @@
 """Writes table.csv: a 600 mm cut across the far side of the positioner's table of
-track-cell.toml, for `compensate --path` with `--free-positioner-deg`.
+track-cell.toml, for `compensate --path` with `--free positioner=-R..R/STEP`.
 
 The line runs along the cell's x from 2700 to 3300 mm at y = 2200 mm (400 mm beyond the table's
 centre, on the side away from the rail), z = 900 mm (the table's top), 25 mm between points, the

@@ -1,5 +1,7 @@
 //! The `stiffid` command: robot kinematics, joint stiffness identification, posture selection
-//! and the paper's study. Bad input prints one line naming the file, line or field and exits 2.
+//! and the paper's study. Bad input prints one line naming the file, line or field and exits 2;
+//! a gate the result fails (`compensate --max-error-mm`, `calibrate --update`'s drift check)
+//! prints one line and exits 1.
 //!
 //! The command's code is this library, and `main.rs` only checks the standard streams and calls
 //! [`run`]: a library crate is compiled as soon as the `stiffid` library's metadata is ready,
@@ -11,6 +13,7 @@ mod feasibility;
 mod load;
 mod output;
 mod progress;
+mod renamed;
 mod report;
 
 use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
@@ -22,7 +25,7 @@ use std::process::ExitCode;
     name = "stiffid",
     version,
     about,
-    after_help = "Input files are read up to 256 MiB (UTF-8). Bad input: one 'error:' line, exit code 2, nothing written. Every count option states its limit in its help; docs/reference.md, 'Limits and safety', lists them all."
+    after_help = "Input files are read up to 256 MiB (UTF-8). Bad input: one 'error:' line, exit code 2, nothing written. A gate the result fails (--max-error-mm, calibrate --update's drift check): one 'error:' line, exit code 1. Every count option states its limit in its help; docs/reference.md, 'Limits and safety', lists them all."
 )]
 struct Cli {
     #[command(subcommand)]
@@ -91,11 +94,31 @@ enum Command {
 /// Runs the command on the process's arguments: the exit code (0 success, 2 bad input with one
 /// `error:` line on stderr). The binary calls it once the standard streams are checked.
 pub fn run() -> ExitCode {
+    ExitCode::from(run_from(std::env::args_os()))
+}
+
+/// Runs the command on `args` (the program's name first, as `std::env::args_os` gives it): the
+/// exit code of [`run`] as a number. The Python package's `stiffid` script calls it with `sys.argv`.
+pub fn run_from<I, T>(args: I) -> u8
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
     if let Err(message) = stiffid_core::common::threads::start() {
-        return fail(&message);
+        return report(&message);
+    }
+    let args: Vec<std::ffi::OsString> = args.into_iter().map(Into::into).collect();
+    let words: Vec<String> = (args.iter().skip(1))
+        .filter_map(|a| a.to_str().map(str::to_owned))
+        .collect();
+    if let Some(message) = renamed::refused(&words) {
+        return report(&message);
+    }
+    if let Some(message) = commands::compensate::retired(args.iter().cloned()) {
+        return report(&message);
     }
     let cli = match command()
-        .try_get_matches()
+        .try_get_matches_from(args)
         .and_then(|m| Cli::from_arg_matches(&m))
     {
         Ok(cli) => cli,
@@ -103,13 +126,13 @@ pub fn run() -> ExitCode {
         Err(e) => {
             // --help, --version: their text on stdout.
             return match output::print(&e.render().to_string()) {
-                Ok(()) => ExitCode::SUCCESS,
-                Err(e) => fail(&output::one_line_chain(&e)),
+                Ok(()) => 0,
+                Err(e) => report(&output::one_line_chain(&e)),
             };
         }
     };
     if cli.package_path.len() > stiffid_core::setup::MAX_PACKAGE_PATHS {
-        return fail(&format!(
+        return report(&format!(
             "--package-path: {} given, at most {}",
             cli.package_path.len(),
             stiffid_core::setup::MAX_PACKAGE_PATHS
@@ -139,11 +162,25 @@ pub fn run() -> ExitCode {
         Command::Schema(args) => commands::schema::run(&args),
     };
     match result.and_then(|()| output::staged::commit()) {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(()) => 0,
         Err(e) => {
             output::staged::discard();
-            fail(&(output::one_line_chain(&e) + hint(&e)))
+            let message = output::one_line_chain(&e) + hint(&e);
+            report_with(&message, exit_code(&e))
         }
+    }
+}
+
+/// The exit code of a failed run: 1 for a gate the user set that the result failed
+/// ([`stiffid_core::Error::is_gate`]: `compensate --max-error-mm`, `calibrate --update`'s drift
+/// check), 2 for every other error (bad input, no answer).
+fn exit_code(e: &anyhow::Error) -> u8 {
+    let error = e
+        .chain()
+        .find_map(|c| c.downcast_ref::<stiffid_core::Error>());
+    match error.is_some_and(stiffid_core::Error::is_gate) {
+        true => 1,
+        false => 2,
     }
 }
 
@@ -181,7 +218,7 @@ fn command() -> clap::Command {
 
 /// A usage error of the command line, whole as clap words it (the missing arguments, the similar
 /// option, the usage line), on the one `error: ` line every error gets; exit code 2.
-fn usage_error(e: &clap::Error) -> ExitCode {
+fn usage_error(e: &clap::Error) -> u8 {
     let text = e.render().to_string();
     let mut line = String::new();
     for part in text.lines().map(str::trim).filter(|l| !l.is_empty()) {
@@ -190,7 +227,7 @@ fn usage_error(e: &clap::Error) -> ExitCode {
         }
         line += part;
     }
-    fail(&line)
+    report(&line)
 }
 
 /// Prints `message` as one `error: ` line on stderr (long words cut) and returns exit code 2. A
@@ -214,9 +251,19 @@ fn hint(e: &anyhow::Error) -> &'static str {
 
 /// Prints `error: MESSAGE` (one line) on stderr: exit code 2.
 pub fn fail(message: &str) -> ExitCode {
+    ExitCode::from(report(message))
+}
+
+/// Prints `error: MESSAGE` (one line) on stderr and returns exit code 2.
+fn report(message: &str) -> u8 {
+    report_with(message, 2)
+}
+
+/// Prints `error: MESSAGE` (one line) on stderr and returns `code`.
+fn report_with(message: &str, code: u8) -> u8 {
     use std::io::Write;
     let message = message.strip_prefix("error: ").unwrap_or(message);
     let line = output::one_line(message);
     let _ = writeln!(std::io::stderr().lock(), "error: {line}");
-    ExitCode::from(2)
+    code
 }

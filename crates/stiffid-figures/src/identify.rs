@@ -17,11 +17,10 @@ use statrs::distribution::{ContinuousCDF, Normal};
 /// # Errors
 /// When `doc` is not an identify document.
 pub fn figures(doc: &Value) -> Result<Vec<Figure>> {
-    if doc.get("models").is_some() {
-        return Ok(vec![models(doc)]);
-    }
-    if doc.get("residuals").is_none() && doc.get("fit").is_none() {
-        bail!("not an identify document: no `residuals`, `fit` or `models`");
+    match doc.get("kind").and_then(Value::as_str) {
+        Some("identify-comparison") => return Ok(vec![models(doc)]),
+        Some("identify-drives" | "identify-springs") => {}
+        kind => bail!("not an identify document: its `kind` is {kind:?}"),
     }
     let mut all = Vec::new();
     all.extend(measured(doc));
@@ -232,7 +231,7 @@ fn prediction(doc: &Value) -> Option<Figure> {
         colour: colour(2),
         bars,
     }];
-    let q = number(p, "score_q95_percent");
+    let q = number(p, "score_q95_pct");
     if let Some(q) = q {
         marks.push(Mark::Line {
             label: format!("95% quantile: {} %", short(q)),

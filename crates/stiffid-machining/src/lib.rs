@@ -11,11 +11,14 @@
 //!    one without a selector), its mean force and moment over a revolution, turned from the feed
 //!    frame into the base frame along the path's own feed direction (the TCP's motion from the
 //!    previous point; the first point takes the second's) and the tool axis
-//!    ([`Operation::base_wrench`]). Rapid moves (`G0`) and points no operation covers cut nothing,
-//!    but for the start of a drilling cycle's feed (the `R` level, a peck's re-approach), which
-//!    takes the feed's wrench: both ends of the feed are then compensated under the same thrust,
-//!    and the drill runs along the compensated hole axis instead of sliding sideways while it
-//!    cuts; a milling point fed along the tool axis (a plunge) gets no force and is counted. With the
+//!    ([`Operation::base_wrench`]). Where the tool cuts is one rule for every language
+//!    ([`cutting`]): joint moves (G-code `G0`, `PTP`, `MoveJ`, `MoveAbsJ`, `J`, `MOVJ`), a
+//!    drill's retracts and moves across its axis, and points no operation covers cut nothing. A
+//!    drilling cycle's feed cuts from where the drill meets material (the part's surface, the
+//!    depth a peck reached: [`gcode::Cycle`]) to its end, both compensated under the thrust, so
+//!    the drill runs along the compensated hole axis while it cuts; its `R` level and a peck's
+//!    re-approach are unloaded. A milling point fed along the tool axis (a plunge) gets no force
+//!    and is counted. With the
 //!    setup's `[tool] mass_kg` and `centre_of_mass_mm`, the tool's weight joins every point's
 //!    wrench ([`stiffid_core::setup::Payload::wrench`]).
 //! 3. [`compensate::path_with_exits`] compensates every point (with
@@ -30,8 +33,8 @@
 //!    angles (Cartesian targets: the pose the controller must be told, with the configuration
 //!    data of the compensated posture) and every other byte as read (their external axes' values too: a robot program's
 //!    targets are compensated with the external axes as they give them); G-code with the compensated TCP positions in the part
-//!    frame (the nominal position of the compensated posture: where the controller must be sent
-//!    so that the loaded tool lands on the programmed one). With a free station or positioner
+//!    frame (the controller's forward kinematics of the compensated posture, [`compensate_for`]:
+//!    where the controller must be sent so that the loaded tool lands on the programmed one). With a free station or positioner
 //!    ([`compensate::Options::free_station`], [`compensate::Options::free_positioner`]) the
 //!    values chosen replace the program's in every target (G-code: every point written carries
 //!    all its mapped external axes, [`gcode::GCode::write_with_external`]), and the targets are
@@ -51,6 +54,7 @@
 pub mod app;
 pub mod cell;
 pub mod compensate;
+pub mod cutting;
 pub mod dynamics;
 pub mod gcode;
 pub mod path;
@@ -60,7 +64,7 @@ mod text;
 pub mod weight;
 
 use crate::compensate::{Compensated, Compliance, PathPoint, Target};
-use crate::gcode::{GCode, Motion};
+use crate::gcode::GCode;
 use crate::process::{Kind, Operation, Process};
 use crate::program::{Dialect, JointProgram};
 use nalgebra::{Isometry3, Vector3, Vector6};
@@ -282,6 +286,24 @@ pub fn compensate(
     process: &Process,
     options: &compensate::Options,
 ) -> Result<Report> {
+    let at = (arm, workpiece, compliance);
+    compensate_for(arm.robot(), at, program, process, options)
+}
+
+/// [`compensate()`] for a controller that runs the kinematics of `controller`
+/// ([`stiffid_core::Setup::controller_robot`]): a G-code program's positions are written as the
+/// controller's forward kinematics of the compensated axis angles (its inverse kinematics then
+/// returns them), in the part frame; robot programs' joint targets are the angles themselves.
+///
+/// # Errors
+/// Those of [`compensate()`].
+pub fn compensate_for(
+    controller: &stiffid_core::Robot,
+    (arm, workpiece, compliance): (&Arm, Option<&Isometry3<f64>>, &Compliance),
+    program: &Program,
+    process: &Process,
+    options: &compensate::Options,
+) -> Result<Report> {
     if let Program::Robot(p) = program {
         if let Some(t) = p
             .targets
@@ -296,15 +318,17 @@ pub fn compensate(
     }
     let placements = cell::placements(arm, workpiece, program)?;
     let poses = poses(arm, workpiece, program, placements.as_deref())?;
-    let operations = operations(program, process)?;
+    let on_part = on_part(&poses, placements.as_deref());
+    let joint = cutting::joint_moves(program);
+    let operations = cutting::cutting(&joint, &on_part, operations(program, process)?);
+    let tool = weight::tool_load(arm, compliance);
     let weight = |pose: &Isometry3<f64>| {
-        arm.payload().map_or(Vector6::zeros(), |p| {
+        tool.map_or(Vector6::zeros(), |p| {
             p.wrench(&pose.rotation, &arm.tool().tcp)
         })
     };
-    let starts = feed_starts(program);
     let (points, warnings) =
-        path_points(&poses, placements.as_deref(), &operations, &starts, weight);
+        path_points(&poses, &on_part, placements.as_deref(), &operations, weight);
     let indices: Vec<Option<usize>> = operations.iter().map(|o| o.map(|(i, _)| i)).collect();
     let nominal: Vec<Isometry3<f64>> = poses.iter().map(|p| p.2).collect();
     let thrusts = dynamics::exit_thrusts(process, &nominal, &indices);
@@ -329,7 +353,7 @@ pub fn compensate(
                 compensate::path_in_cones(arm, compliance, points, at, options)
             }
             true => {
-                let weighted = arm.payload().is_some();
+                let weighted = tool.is_some();
                 compensate::on_track(arm, compliance, points, (&own[n], weighted, cones), options)
             }
         }
@@ -337,7 +361,7 @@ pub fn compensate(
     let (mut results, configurations) = match options.free_configuration {
         None => (evaluate(0, &points, options)?, None),
         Some(_) => {
-            let starts = compensate::starts(&joint_moves(program));
+            let starts = compensate::starts(&joint);
             let at = (points.as_slice(), starts.as_slice());
             let (results, c) = compensate::choose(arm, compliance, at, options, evaluate)?;
             (results, Some(c))
@@ -372,7 +396,7 @@ pub fn compensate(
                 .iter()
                 .enumerate()
                 .map(|(i, r)| {
-                    let pose = tool_pose(&arm.robot().frames(&r.q_compensated), tcp);
+                    let pose = tool_pose(&controller.frames(&r.q_compensated), tcp);
                     let part = placements.as_ref().map_or(part, |p| p[i].part);
                     part * nalgebra::Point3::from(pose.translation.vector)
                 })
@@ -442,7 +466,8 @@ fn poses(
     }
 }
 
-/// The operation of each point (module docs), `None` where nothing cuts.
+/// The operation covering each point (module docs), whether or not the tool cuts there
+/// ([`cutting::cutting`] decides).
 fn operations<'a>(
     program: &Program,
     process: &'a Process,
@@ -457,9 +482,6 @@ fn operations<'a>(
             .points
             .iter()
             .map(|p| {
-                if p.motion == Motion::Rapid {
-                    return Ok(None);
-                }
                 let op = match &p.operation {
                     Some(name) => Some(
                         ops.iter()
@@ -511,61 +533,33 @@ fn operations<'a>(
     }
 }
 
-/// Whether each point is reached by a joint move: a G-code rapid move (`G0`), a robot
-/// program's joint motion ([`JointProgram::joint_moves`]).
-fn joint_moves(program: &Program) -> Vec<bool> {
-    match program {
-        Program::GCode(g) => g.points.iter().map(|p| p.motion == Motion::Rapid).collect(),
-        Program::Robot(r) => r.joint_moves(),
-    }
-}
-
-/// Whether each point starts a drilling cycle's feed: a rapid move of a canned cycle (to the `R`
-/// level, or a `G83` peck's re-approach) followed by a feed of the same cycle. Such a point takes
-/// the feed's wrench, so that both ends of the feed are compensated under the same thrust and
-/// the controller's straight line between them runs along the compensated hole axis: a start
-/// compensated unloaded would slide the drill sideways by the thrust's deflection while it cuts.
-fn feed_starts(program: &Program) -> Vec<bool> {
-    match program {
-        Program::GCode(g) => {
-            let p = &g.points;
-            (0..p.len())
-                .map(|i| {
-                    p.get(i + 1).is_some_and(|next| {
-                        p[i].cycle.is_some()
-                            && p[i].motion == Motion::Rapid
-                            && next.motion == Motion::Feed
-                            && next.cycle == p[i].cycle
-                    })
-                })
-                .collect()
-        }
-        Program::Robot(r) => vec![false; r.targets.len()],
-    }
-}
-
-/// The path points with their base-frame wrenches, and the warnings. A feed's start
-/// ([`feed_starts`]) takes the process wrench of the feed it starts. With `placements` (a
-/// program that moves the cell's external axes, [`cell`]) the feed is the tool's motion over
-/// the part and the weight pulls along the cell's `-z`, each turned into the arm's frame.
-fn path_points(
+/// The TCP poses the feed is measured in: over the part, `placement.part * pose`, when the
+/// program moves the cell's external axes (`placements`, [`cell`]); else the base frame's.
+fn on_part(
     poses: &[(u64, Target, Isometry3<f64>)],
     placements: Option<&[cell::Placement]>,
+) -> Vec<Isometry3<f64>> {
+    match placements {
+        None => poses.iter().map(|p| p.2).collect(),
+        Some(placed) => (poses.iter().zip(placed))
+            .map(|((_, _, pose), p)| p.part * pose)
+            .collect(),
+    }
+}
+
+/// The path points with their base-frame wrenches, and the warnings. With `placements` (a
+/// program that moves the cell's external axes, [`cell`]) the feed is the tool's motion over
+/// the part (`on_part`, [`on_part`]) and the weight pulls along the cell's `-z`, each turned
+/// into the arm's frame.
+fn path_points(
+    poses: &[(u64, Target, Isometry3<f64>)],
+    on_part: &[Isometry3<f64>],
+    placements: Option<&[cell::Placement]>,
     operations: &[Option<(usize, &Operation)>],
-    starts: &[bool],
     weight: impl Fn(&Isometry3<f64>) -> Vector6<f64>,
 ) -> (Vec<PathPoint>, Vec<String>) {
-    let (mut process, warnings) = match placements {
-        None => process_wrenches(poses, operations),
-        Some(placed) => {
-            let on_part: Vec<_> = poses
-                .iter()
-                .zip(placed)
-                .map(|((line, target, pose), p)| (*line, target.clone(), p.part * pose))
-                .collect();
-            process_wrenches(&on_part, operations)
-        }
-    };
+    let lines: Vec<u64> = poses.iter().map(|p| p.0).collect();
+    let (mut process, warnings) = process_wrenches(&lines, on_part, operations);
     if let Some(placed) = placements {
         for (w, p) in process.iter_mut().zip(placed) {
             *w = cell::turned(&p.part.rotation.inverse().to_rotation_matrix(), w);
@@ -585,10 +579,7 @@ fn path_points(
         .iter()
         .enumerate()
         .map(|(i, (line, target, pose))| {
-            let wrench = match starts[i] {
-                true => process[i + 1],
-                false => process[i],
-            };
+            let wrench = process[i];
             PathPoint {
                 line: *line,
                 target: target.clone(),
@@ -601,36 +592,28 @@ fn path_points(
     (points, warnings)
 }
 
-/// Each point's process wrench (base frame), and the warnings.
+/// Each point's process wrench (base frame), and the warnings: `lines` each point's line,
+/// `poses` its TCP pose in the frame the feed is measured in ([`on_part`]).
 fn process_wrenches(
-    poses: &[(u64, Target, Isometry3<f64>)],
+    lines: &[u64],
+    poses: &[Isometry3<f64>],
     operations: &[Option<(usize, &Operation)>],
 ) -> (Vec<Vector6<f64>>, Vec<String>) {
     let mut plunges = Vec::new();
     let mut uncovered = 0;
-    let mut previous_feed: Option<Vector3<f64>> = None;
-    let wrenches = poses
-        .iter()
-        .enumerate()
-        .map(|(i, (line, _, pose))| {
-            let here = pose.translation.vector;
-            let feed = match i {
-                0 => poses.get(1).map(|p| p.2.translation.vector - here),
-                _ => Some(here - poses[i - 1].2.translation.vector),
-            }
-            .filter(|f| f.norm() > 1e-12)
-            .or(previous_feed);
-            previous_feed = feed;
-            let tool_z = pose.rotation * Vector3::z();
+    let feeds = cutting::feeds(poses);
+    let wrenches = (0..poses.len())
+        .map(|i| {
+            let tool_z = poses[i].rotation * Vector3::z();
             match operations[i] {
                 None => {
                     uncovered += 1;
                     Vector6::zeros()
                 }
-                Some((_, op)) => match feed.and_then(|f| op.base_wrench(&f, &tool_z)) {
+                Some((_, op)) => match feeds[i].and_then(|f| op.base_wrench(&f, &tool_z)) {
                     Some(w) => w,
                     None => {
-                        plunges.push(*line);
+                        plunges.push(lines[i]);
                         Vector6::zeros()
                     }
                 },
@@ -650,7 +633,7 @@ fn process_wrenches(
     }
     if uncovered > 0 {
         warnings.push(format!(
-            "{uncovered} of {} {} in a rapid move or in no operation: no process force there",
+            "{uncovered} of {} {} where the tool does not cut (a joint or rapid move, a drill not fed into the part, no operation): no process force there",
             count(poses.len(), "point"),
             is_are(uncovered)
         ));

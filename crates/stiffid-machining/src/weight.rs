@@ -7,10 +7,18 @@
 //! robot commanded to `q` then stands at `q + dq_g(q)` before any process force, so compensation
 //! solves `loaded_pose(q_c) = T_target` with the sag in the loaded pose; without it the program
 //! would carry the whole sag as an error (the geometry fitted without it).
+//!
+//! The calibrated robot file carries the terms (`[gravity]`, [`stiffid_core::Robot::own_weight`]), so any
+//! stiffness file combines with it; a stiffness file written before carries them in its `gravity`
+//! section, read when the robot has none ([`Weight::of`]). The tool's weight enters once: with
+//! `masses` the setup's tool joins link 6 ([`gravity::with_tool`]), lumped terms hold the tool the
+//! robot carried in the calibration; either way the process compliance does not carry it again
+//! ([`tool_load`]).
 
 use nalgebra::{DVector, Vector6};
-use stiffid_core::model::OwnWeight;
+use stiffid_core::model::{Compliance, OwnWeight};
 use stiffid_core::robot::kinematics::Coordinates;
+use stiffid_core::setup::{Arm, Payload};
 use stiffid_core::{Error, Result, Robot};
 use stiffid_metrology::calibration::gravity::{self, Gravity};
 
@@ -22,16 +30,22 @@ pub struct Weight {
 }
 
 impl Weight {
-    /// The deflection of `robot` (springs in `springs`) under its weight as `own` gives it: the
-    /// model named `own.gravity` built on `robot` (with [`Gravity::Masses`] its link masses),
-    /// whose terms must be `own`'s, in order.
+    /// The deflection of `robot` (springs in `springs`) carrying `tool` under its weight as
+    /// `own` gives it: the model named `own.gravity` built on `robot` (with [`Gravity::Masses`]
+    /// its link masses, `tool` joined to link 6), whose terms must be `own`'s, in order.
     ///
     /// # Errors
     /// [`Error::InvalidField`] (`gravity.model`) for a model name that is not `masses`,
     /// `lumped` or `lumped-links`; those of [`gravity::Terms::of`] (a robot without masses for
     /// `masses`); (`gravity.terms`) when the terms differ from the model's (another robot's
-    /// file, or other springs).
-    pub fn new(robot: &Robot, springs: Coordinates, own: &OwnWeight) -> Result<Self> {
+    /// file, or other springs); (`tool.mass_kg`) when lumped terms hold a tool of another mass
+    /// than `tool`'s.
+    pub fn new(
+        robot: &Robot,
+        springs: Coordinates,
+        own: &OwnWeight,
+        tool: Option<&Payload>,
+    ) -> Result<Self> {
         let kind: Gravity = match own.gravity.parse() {
             Ok(Gravity::None) | Err(_) => {
                 return Err(Error::InvalidField {
@@ -44,7 +58,14 @@ impl Weight {
             }
             Ok(g) => g,
         };
-        let model = gravity::Terms::of(robot, kind, springs, Vector6::zeros())?;
+        let weighed = match kind {
+            Gravity::Masses => gravity::with_tool(robot, tool.map(Payload::body)),
+            _ => {
+                check_tool(own, tool)?;
+                robot.clone()
+            }
+        };
+        let model = gravity::Terms::of(&weighed, kind, springs, Vector6::zeros())?;
         let names: Vec<String> = model.terms().iter().map(|t| t.name()).collect();
         let given: Vec<&str> = own.terms.iter().map(|(n, _)| n.as_str()).collect();
         if names != given {
@@ -69,5 +90,56 @@ impl Weight {
     /// The deflection in axis angles (rad) of the robot commanded to `q` (rad).
     pub fn deflection(&self, q: &Vector6<f64>) -> Vector6<f64> {
         self.model.deflection(&self.values.as_view(), q)
+    }
+}
+
+impl Weight {
+    /// The sag of `arm` under its own weight: the gravity terms of its calibrated robot
+    /// ([`stiffid_core::Robot::own_weight`]), else those of `compliance` (a stiffness file written
+    /// before the robot file carried them); `None` without either.
+    ///
+    /// # Errors
+    /// Those of [`Weight::new`]; [`Error::InvalidField`] (`gravity`) when both carry terms and
+    /// they differ, naming both.
+    pub fn of(arm: &Arm, compliance: &Compliance) -> Result<Option<Self>> {
+        let own = match (arm.robot().own_weight(), &compliance.own_weight) {
+            (Some(r), Some(s)) if (&r.gravity, &r.terms) != (&s.gravity, &s.terms) => {
+                return Err(Error::InvalidField {
+                    field: "gravity".into(),
+                    message: format!(
+                        "the calibrated robot file's [gravity] ({} terms) and the stiffness file's gravity section ({} terms) differ: the robot file carries the calibration's sag, give a stiffness file without one",
+                        r.gravity, s.gravity
+                    ),
+                })
+            }
+            (Some(r), _) => r,
+            (None, Some(s)) => s,
+            (None, None) => return Ok(None),
+        };
+        Self::new(arm.robot(), arm.springs(), own, arm.payload()).map(Some)
+    }
+}
+
+/// The tool whose weight the process compliance carries at every point (its wrench joins the
+/// process's): the setup's tool, unless the sag under the robot's own weight already holds it
+/// ([`Weight::of`]: with `masses` the tool joins link 6, lumped terms hold it).
+pub fn tool_load<'a>(arm: &'a Arm, compliance: &Compliance) -> Option<&'a Payload> {
+    let sagging = arm.robot().own_weight().is_some() || compliance.own_weight.is_some();
+    arm.payload().filter(|_| !sagging)
+}
+
+/// Refuses a setup's `tool` whose mass differs from the one lumped terms `own` hold.
+fn check_tool(own: &OwnWeight, tool: Option<&Payload>) -> Result<()> {
+    match (own.tool_mass, tool) {
+        (Some(m), Some(t)) if (m - t.mass).abs() > 1e-9 * m.max(t.mass) => {
+            Err(Error::InvalidField {
+                field: "tool.mass_kg".into(),
+                message: format!(
+                    "{} kg in the setup, where the calibrated robot's {} gravity terms hold a tool of {} kg ([gravity] tool_mass_kg in its file): its weight would count twice or wrong; calibrate with this tool, or give the tool of the calibration",
+                    t.mass, own.gravity, m
+                ),
+            })
+        }
+        _ => Ok(()),
     }
 }

@@ -80,8 +80,8 @@ pub fn calibrate<'py>(
     validate: Option<PathBuf>,
     reregister: bool,
     cross_validate: bool,
-    tolerance_mm: Option<f64>,
-    tolerance_deg: Option<f64>,
+    tolerance_mm: Option<&Bound<'py, PyAny>>,
+    tolerance_deg: Option<&Bound<'py, PyAny>>,
     maps: &str,
     error_motions: &str,
     level: Option<f64>,
@@ -93,7 +93,11 @@ pub fn calibrate<'py>(
     stiffness_out: Option<PathBuf>,
     force: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let priors = match (tolerance_mm, tolerance_deg) {
+    let tolerances = (
+        crate::count::real("tolerance_mm", tolerance_mm)?,
+        crate::count::real("tolerance_deg", tolerance_deg)?,
+    );
+    let priors = match tolerances {
         (Some(l), Some(a)) => Some(Tolerances::from_mm_deg(l, a).map_err(raise)?),
         (None, None) => None,
         _ => return Err(value("tolerance_mm, tolerance_deg: give both or neither")),

@@ -14,8 +14,7 @@ use stiffid_core::observation::deflection::Frame;
 use stiffid_machining::app::compensate::document::{values, Document, Names, Row, DYNAMICS};
 use stiffid_machining::app::compensate::{self as job, Input, Request};
 use stiffid_machining::compensate::{
-    Aggregate, Compensated, FreeConfiguration, FreeLeadTilt, FreePositioner, FreeStation,
-    FreeToolAxis, MapVariable, Objective, Options, PathPoint, Scope,
+    free, Aggregate, Compensated, Free, Freedom, MapVariable, Objective, Options, PathPoint,
 };
 use stiffid_machining::dynamics::Dynamics;
 use stiffid_machining::process::file;
@@ -33,45 +32,34 @@ use stiffid_machining::Language;
 /// RAPID ``.mod``, FANUC LS ``.ls``; G-code arcs split to ``chord_tolerance_mm``, its part frame
 /// the setup's ``[workpiece]``) with the process file ``process`` that gives each point its
 /// cutting force. Inverse kinematics starts at ``q0_deg`` (shape ``(6,)``, deg; default the
-/// setup's first test posture); ``free_tool_axis=True`` turns each pose about its tool z within
-/// ``+-tool_axis_range_deg`` (at most ``max_step_deg`` between points) to the least deflection, or
-/// with ``free_tool_axis_objective="surge"`` to the least breakthrough surge at the drilling exits
-/// of a program (the robot must give its masses; ``surge_before_mm_s``: the surge at the path's
-/// own rotation), or ``"bound"`` to the least error bound, summed along the path
-/// (``objective="sum"``) or at its worst point (``"max"``). Every point's error budget at
-/// ``level``: ``bound_mm`` (``(n,)``) and its parts ``bound_left_mm``,
+/// setup's first test posture). ``free`` lists the free variables, each moved from the path's
+/// own value at every point (the texts of ``compensate --free``, or dicts
+/// ``{"variable": "station", "range": 500, "step": 10}``): ``"tool-rotation=-R..R/STEP"`` (the
+/// rotation about tool z, deg, default ``-90..90/2``), ``"station=-R..R/STEP"`` (a track's
+/// station, mm, step default 10), ``"positioner=-R..R/STEP"`` (the positioner's last axis, deg,
+/// step default 5), ``"tilt=-R..R/STEP"`` (a two-axis positioner's first axis), an external
+/// axis by its name in the cell file, ``"lead-tilt=-CONE..CONE/STEP"`` (the tool axis leaned
+/// within a cone, deg, step default 2; a program's cone, without a range, its process file's;
+/// ``lead_deg`` and ``tilt_deg`` (``(n,)``) hold the lean chosen), ``"configuration"`` (the
+/// arm's configuration, up to 8; ``"configuration=run"``: one per run, the ``document``'s
+/// ``configurations``). They are chosen jointly to the least ``minimise`` (``"bound"``, the
+/// default: the error bound the document reports; ``"deflection"``; ``"surge"``: the
+/// breakthrough surge at the drilling exits of a program, the tool rotation alone, the robot
+/// giving its masses), summed along the path (``objective="sum"``) or at its worst point
+/// (``"max"``), no point worse than at the path's own values; each step is also the most a
+/// variable changes between points. A moved posture keeps ``margin_deg`` (0 to 90, default 5)
+/// from the joint limits, a TCP Jacobian condition number of at most ``max_condition``
+/// (default 1000) and, with the setup's ``[cell]``, clear of the floor, the obstacles and
+/// itself (the ``document``'s ``feasibility`` counts the states each check removed);
+/// ``refine=L`` (0 to 4) refines the grid ``L`` times around the line chosen on it, each level
+/// halving every step (the ``document``'s ``refine``). ``minimise``, ``objective``,
+/// ``margin_deg``, ``max_condition`` and ``refine`` without ``free`` are refused
+/// (``ValueError``), as are the keywords ``free`` replaced, with how to write them. Every
+/// point's error budget at ``level``: ``bound_mm`` (``(n,)``) and its parts ``bound_left_mm``,
 /// ``bound_compensation_mm``, ``bound_calibration_mm``, ``bound_force_mm`` (the force model's
-/// relative error ``force_tolerance_percent``) and ``bound_model_form_mm`` (``(n,)``, ``nan``
+/// relative error ``force_tolerance_pct``) and ``bound_model_form_mm`` (``(n,)``, ``nan``
 /// where absent); ``max_error_mm`` refuses (``ValueError``) a path whose bound exceeds it
-/// anywhere, naming its worst points and what dominates their bound. On a robot on a track,
-/// ``free_station_mm=R`` moves the track up to ``+-R`` mm from a path file's own ``e1_mm`` at
-/// every point (or a program's target, written back with the stations chosen), in
-/// ``station_step_mm`` steps (also the most it moves between points), chosen with the free tool
-/// axis by one dynamic programme (as ``compensate --free-station-mm``); on a cell with a
-/// positioner, ``free_positioner_deg=R`` turns its last axis up to ``+-R`` deg from the path's
-/// own angle in ``positioner_step_deg`` steps, jointly (as ``--free-positioner-deg``), and on
-/// a two-axis positioner ``free_tilt_deg=R`` its first axis (the tilt) in ``tilt_step_deg``
-/// steps (as ``--free-tilt-deg``).
-/// ``free_lead_tilt=True`` leans the tool axis within a cone about the path's own (ball-end
-/// milling, deburring; as ``--free-lead-tilt``): the lead (towards the feed) and the tilt
-/// (across it) on a grid of ``lead_tilt_step_deg`` (also the most each changes between points),
-/// the TCP on the path's point, jointly with the other free variables; a path's cone is
-/// ``cone_deg`` (0 to 30 deg), a program's its process file's (``[tool_axis] cone_deg``), written
-/// as a robot program (``output=``); ``lead_deg`` and ``tilt_deg`` (``(n,)``) hold the lean chosen.
-/// A moved posture keeps ``margin_deg`` (0 to 90) from the joint limits, a TCP Jacobian condition
-/// number of at most ``max_condition`` and, with the setup's ``[cell]``, clear of the floor, the
-/// obstacles and itself, an arm on a track on its carriage at the station chosen (as
-/// ``--margin-deg``, ``--max-condition``; the
-/// ``document``'s ``feasibility`` counts the states each check removed).
-/// ``refine=L`` (0 to 4) refines the free variables' grid ``L`` times around the line chosen
-/// on it, each level halving every step (as ``--refine``; the ``document``'s ``refine``).
-/// ``free_configuration=True`` compensates the whole path in every configuration of the arm
-/// (shoulder, elbow and wrist branches, up to 8) and keeps the one of least ``objective`` of the
-/// bound (of the deflection with the free tool axis' ``"deflection"``), every point reached and
-/// every posture feasible in it, jointly with the other free variables (as
-/// ``--free-configuration``; the ``document``'s ``configurations``); ``configuration_per="run"``
-/// gives each run (a cut and the rapid or joint moves that lead to it) its own (as
-/// ``--configuration-per run``; the ``configurations``' ``runs``).
+/// anywhere, naming its worst points and what dominates their bound.
 /// ``map=True`` (or ``"rotation"``) adds ``map``:
 /// the free variable's map, every point at every rotation about tool z of the free tool axis'
 /// grid (else 5 deg steps within +-90 deg): ``line`` (``(n,)``), ``tool_rotation_deg``
@@ -106,7 +94,7 @@ use stiffid_machining::Language;
 /// (default the controller's: KRL 24, RAPID 32, LS 8), as ``stiffid compensate`` does. Points
 /// without a process force are warned about (``UserWarning``) as the command does.
 #[pyfunction]
-#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free_tool_axis=false, max_step_deg=2.0, tool_axis_range_deg=90.0, free_tool_axis_objective=None, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_percent=20.0, objective="sum", map=None, free_station_mm=None, station_step_mm=10.0, free_positioner_deg=None, positioner_step_deg=5.0, free_lead_tilt=false, cone_deg=None, lead_tilt_step_deg=2.0, free_tilt_deg=None, tilt_step_deg=5.0, margin_deg=5.0, max_condition=1000.0, refine=0, free_configuration=false, configuration_per="program", figures=false))]
+#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free=None, minimise=None, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_pct=20.0, objective=None, map=None, margin_deg=None, max_condition=None, refine=None, figures=false, **retired))]
 #[allow(clippy::too_many_arguments)]
 pub fn compensate<'py>(
     py: Python<'py>,
@@ -119,10 +107,8 @@ pub fn compensate<'py>(
     chord_tolerance_mm: f64,
     frame: &str,
     q0_deg: Option<&Bound<'py, PyAny>>,
-    free_tool_axis: bool,
-    max_step_deg: f64,
-    tool_axis_range_deg: f64,
-    free_tool_axis_objective: Option<&str>,
+    free: Option<&Bound<'py, PyAny>>,
+    minimise: Option<&str>,
     program_name: Option<String>,
     targets: &str,
     max_tcp_speed_mm_s: f64,
@@ -130,25 +116,16 @@ pub fn compensate<'py>(
     moves_per_file: i64,
     level: f64,
     max_error_mm: Option<f64>,
-    force_tolerance_percent: f64,
-    objective: &str,
+    force_tolerance_pct: f64,
+    objective: Option<&str>,
     map: Option<&Bound<'py, PyAny>>,
-    free_station_mm: Option<f64>,
-    station_step_mm: f64,
-    free_positioner_deg: Option<f64>,
-    positioner_step_deg: f64,
-    free_lead_tilt: bool,
-    cone_deg: Option<f64>,
-    lead_tilt_step_deg: f64,
-    free_tilt_deg: Option<f64>,
-    tilt_step_deg: f64,
-    margin_deg: f64,
-    max_condition: f64,
-    refine: i64,
-    free_configuration: bool,
-    configuration_per: &str,
+    margin_deg: Option<f64>,
+    max_condition: Option<f64>,
+    refine: Option<i64>,
     figures: bool,
+    retired: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    refuse_retired(retired)?;
     let name_length = crate::count::optional("name_length", name_length)?;
     let moves_per_file = crate::count::count("moves_per_file", moves_per_file)?;
     let s = &setup.inner;
@@ -157,55 +134,26 @@ pub fn compensate<'py>(
     })?;
     let compliance = crate::stiffness::compliance(s, stiffness, None, "stiffness")?;
     let frame = frame.parse::<Frame>().map_err(raise)?;
-    let free = free_tool_axis.then_some((max_step_deg, tool_axis_range_deg));
-    let mut options = options(py, s, q0_deg, free, free_tool_axis_objective)?;
+    let mut options = options(py, s, q0_deg)?;
     options.level = level;
     options.max_error = max_error_mm.map(|m| m * 1e-3);
-    options.force_tolerance = force_tolerance_percent / 100.0;
+    options.force_tolerance = force_tolerance_pct / 100.0;
     (options.map, options.map_over) = map_over(map)?;
-    options.feasible.margin = margin_deg.to_radians();
-    options.feasible.max_condition = max_condition;
-    options.refine = crate::count::count("refine", refine)?;
-    let aggregate = objective.parse::<Aggregate>().map_err(raise)?;
-    if let Some(free) = options.free_tool_axis.as_mut() {
-        free.aggregate = aggregate;
-    }
-    if let Some(range) = free_station_mm {
-        let free = options.free_tool_axis.as_ref();
-        options.free_station =
-            Some(FreeStation::try_with(range, station_step_mm, free, aggregate).map_err(raise)?);
-    }
-    if let Some(range) = free_positioner_deg {
-        let free = options.free_tool_axis.as_ref();
-        options.free_positioner = Some(
-            FreePositioner::try_with(range, positioner_step_deg, free, aggregate).map_err(raise)?,
-        );
-    }
-    if free_lead_tilt {
-        let free = options.free_tool_axis.as_ref();
-        options.free_lead_tilt = Some(
-            FreeLeadTilt::try_with(cone_deg, lead_tilt_step_deg, free, aggregate).map_err(raise)?,
-        );
-    } else if cone_deg.is_some() {
-        return Err(error::value("cone_deg: only with free_lead_tilt=True"));
-    }
-    if let Some(range) = free_tilt_deg {
-        let free = options.free_tool_axis.as_ref();
-        options.free_tilt =
-            Some(FreePositioner::try_tilt(range, tilt_step_deg, free, aggregate).map_err(raise)?);
-    }
-    let per = configuration_per.parse::<Scope>().map_err(raise)?;
-    if free_configuration {
-        let free = options.free_tool_axis.as_ref();
-        options.free_configuration = Some(FreeConfiguration {
-            per,
-            ..FreeConfiguration::with(free, aggregate)
-        });
-    } else if per != Scope::Program {
-        return Err(error::value(
-            "configuration_per: only with free_configuration=True",
-        ));
-    }
+    let freedom = Freedom {
+        free: free_variables(free)?,
+        minimise: minimise
+            .map(str::parse::<Objective>)
+            .transpose()
+            .map_err(raise)?,
+        objective: objective
+            .map(str::parse::<Aggregate>)
+            .transpose()
+            .map_err(raise)?,
+        margin_deg,
+        max_condition,
+        refine: crate::count::optional("refine", refine)?,
+    };
+    freedom.apply(s, &mut options).map_err(raise)?;
     let (name, file_path) = match (&path, &program) {
         (Some(p), None) | (None, Some(p)) => (p.display().to_string(), p.clone()),
         _ => {
@@ -368,8 +316,6 @@ pub(crate) fn options(
     py: Python<'_>,
     s: &stiffid_core::Setup,
     q0_deg: Option<&Bound<'_, PyAny>>,
-    free_tool_axis: Option<(f64, f64)>,
-    objective: Option<&str>,
 ) -> PyResult<Options> {
     let mut options = Options::for_setup(s);
     if let Some(q) = q0_deg {
@@ -379,23 +325,76 @@ pub(crate) fn options(
         let warning = stiffid_core::setup::plausibility::radians_in_option("q0_deg", &options.q0);
         warn(py, &Vec::from_iter(warning))?;
     }
-    let objective = objective.map(str::parse::<Objective>).transpose();
-    match (free_tool_axis, objective.map_err(raise)?) {
-        (Some((max_step_deg, range_deg)), objective) => {
-            let free = FreeToolAxis::try_from_degrees(max_step_deg, range_deg).map_err(raise)?;
-            options.free_tool_axis = Some(FreeToolAxis {
-                objective: objective.unwrap_or_default(),
-                ..free
-            });
-        }
-        (None, Some(_)) => {
-            return Err(error::value(
-                "free_tool_axis_objective: only with free_tool_axis=True",
-            ))
-        }
-        (None, None) => {}
-    }
     Ok(options)
+}
+
+/// `free=`: a list of the texts of `compensate --free` (`"tool-rotation=-90..90/5"`) or of dicts
+/// (`{"variable": "station", "range": 500, "step": 10}`, `range` and `step` optional).
+fn free_variables(free: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<Free>> {
+    let Some(free) = free else {
+        return Ok(Vec::new());
+    };
+    let expected = "free: expected a list of str (\"tool-rotation=-90..90/5\") or of dicts ({\"variable\": ..., \"range\": ..., \"step\": ...})";
+    if free.is_instance_of::<pyo3::types::PyString>() || free.is_instance_of::<PyDict>() {
+        return Err(error::value(expected));
+    }
+    let items: Vec<Bound<'_, PyAny>> = free.extract().map_err(|_| error::value(expected))?;
+    items
+        .iter()
+        .map(|item| free_variable(item, expected))
+        .collect()
+}
+
+/// One item of `free=`.
+fn free_variable(item: &Bound<'_, PyAny>, expected: &str) -> PyResult<Free> {
+    if let Ok(text) = item.extract::<String>() {
+        return Free::parse(&text).map_err(raise);
+    }
+    let dict = item.cast::<PyDict>().map_err(|_| error::value(expected))?;
+    for key in dict.keys() {
+        let key: String = key.extract().map_err(|_| error::value(expected))?;
+        if !["variable", "range", "step"].contains(&key.as_str()) {
+            return Err(error::value(format!(
+                "free: `{key}`: expected the keys variable, range and step"
+            )));
+        }
+    }
+    let number = |key: &str| -> PyResult<Option<f64>> {
+        match dict.get_item(key)? {
+            None => Ok(None),
+            Some(v) if v.is_instance_of::<pyo3::types::PyBool>() => {
+                Err(error::value(format!("free: {key}: expected a number")))
+            }
+            Some(v) => v
+                .extract::<f64>()
+                .map(Some)
+                .map_err(|_| error::value(format!("free: {key}: expected a number"))),
+        }
+    };
+    let variable: String = dict
+        .get_item("variable")?
+        .ok_or_else(|| error::value("free: a dict needs its variable"))?
+        .extract()
+        .map_err(|_| error::value("free: variable: expected a str"))?;
+    Free::from_parts(&variable, number("range")?, number("step")?).map_err(raise)
+}
+
+/// Refuses a keyword that `free=` or `minimise=` replaced, saying how to write it.
+fn refuse_retired(retired: Option<&Bound<'_, PyDict>>) -> PyResult<()> {
+    let Some(key) = retired.and_then(|r| r.keys().into_iter().next()) else {
+        return Ok(());
+    };
+    let key: String = key.extract()?;
+    let Some((option, value)) = free::retired(&key.replace('_', "-")) else {
+        return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+            "compensate() got an unexpected keyword argument '{key}'"
+        )));
+    };
+    let how = match option {
+        "free" => format!("free=[\"{value}\"]"),
+        _ => format!("{option}=\"{value}\""),
+    };
+    Err(error::value(format!("{key}: removed; write {how}")))
 }
 
 /// The per-point results as arrays (see [`compensate`]).

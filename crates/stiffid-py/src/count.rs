@@ -1,8 +1,10 @@
 //! Integer arguments that cannot be negative (counts, budgets, seeds): taken as `i64`, so that a
 //! negative one is an `InputError` (a `ValueError`) naming the argument, where an unsigned
-//! argument would raise an `OverflowError` that does not.
+//! argument would raise an `OverflowError` that does not; and numbers where a bool is no number.
 
 use crate::error::value;
+use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyIterator, PyString};
 use pyo3::{PyErr, PyResult};
 
 /// The count `given` as the argument `name`; an `InputError` naming it when it is negative.
@@ -24,4 +26,48 @@ fn negative(name: &str, given: i64) -> PyErr {
     value(format!(
         "{name}: {given} is negative: expected a whole number, 0 or more"
     ))
+}
+
+/// The number argument `name`, which may be left out: an `InputError` naming it for a bool
+/// (`True` is not 1 here) or anything but an int or a float.
+pub fn real(name: &str, given: Option<&Bound<'_, PyAny>>) -> PyResult<Option<f64>> {
+    let Some(v) = given else {
+        return Ok(None);
+    };
+    if v.is_instance_of::<PyBool>() {
+        return Err(value(format!("{name}: {v} is a bool: expected a number")));
+    }
+    let got = || value(format!("{name}: expected a number, got {}", v.get_type()));
+    v.extract::<f64>().map(Some).map_err(|_| got())
+}
+
+/// Rows of numbers (a list of lists, or a 2-D array) as the argument `name`, none when left out:
+/// an `InputError` naming the argument for a text or anything but rows, naming the element
+/// (`name[i][j]`) for a bool or a non-number.
+pub fn real_rows(name: &str, given: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<Vec<f64>>> {
+    let Some(rows) = given else {
+        return Ok(Vec::new());
+    };
+    (items(name, rows)?.enumerate())
+        .map(|(i, row)| -> PyResult<Vec<f64>> {
+            (items(name, &row?)?.enumerate())
+                .map(|(j, v)| -> PyResult<f64> {
+                    Ok(real(&format!("{name}[{i}][{j}]"), Some(&v?))?.unwrap_or(0.0))
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// The items of `o`, a sequence of the argument `name` (a text is none).
+fn items<'py>(name: &str, o: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyIterator>> {
+    let not_rows = || {
+        value(format!(
+            "{name}: expected rows of numbers, one list per row"
+        ))
+    };
+    match o.is_instance_of::<PyString>() {
+        true => Err(not_rows()),
+        false => o.try_iter().map_err(|_| not_rows()),
+    }
 }

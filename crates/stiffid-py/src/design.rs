@@ -77,7 +77,8 @@ pub fn evaluate<'py>(
 
 /// The arguments of `Setup.select`, the shapes of the arrays checked.
 pub struct Request<'a> {
-    pub criterion: &'a str,
+    /// The stiffness criterion; relative-a when `None`.
+    pub criterion: Option<&'a str>,
     pub method: Option<&'a str>,
     /// Checked against the setup's bounds.
     pub start: Option<Vec<Vector6<f64>>>,
@@ -147,9 +148,16 @@ pub fn select<'py>(py: Python<'py>, setup: &Setup, r: Request) -> PyResult<Bound
     options.max_evals = r.max_evals.unwrap_or(options.max_evals);
     options.margin = r.margin_mm.map(|m| m * 1e-3);
     let (purpose, calibration) = r.purpose.parse()?;
+    let given = select::Given {
+        criterion: r.criterion.is_some(),
+        starts: r.starts.is_some(),
+        screen_steps: r.screen_steps.is_some(),
+        polished: r.polished.is_some(),
+    };
+    select::check_given(purpose, method, given).map_err(raise)?;
     let request = select::Request {
         setup,
-        criterion: r.criterion.parse().map_err(raise)?,
+        criterion: r.criterion.unwrap_or("relative-a").parse().map_err(raise)?,
         purpose,
         calibration,
         method,

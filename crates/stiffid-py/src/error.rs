@@ -34,6 +34,13 @@ create_exception!(
     "Data or a design that cannot identify every parameter (the message names them)."
 );
 
+create_exception!(
+    stiffid,
+    GateError,
+    StiffidError,
+    "A gate the caller set that the result fails (compensate's max_error_mm): the computation ran, and its result lies beyond the bound (the command's exit code 1)."
+);
+
 /// Adds the exception classes to the module: `Error` (a `ValueError`) and its subclasses.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
@@ -41,13 +48,15 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("InputError", py.get_type::<InputError>())?;
     m.add("InfeasibleError", py.get_type::<InfeasibleError>())?;
     m.add("UnidentifiableError", py.get_type::<UnidentifiableError>())?;
+    m.add("GateError", py.get_type::<GateError>())?;
     Ok(())
 }
 
 /// The library's error as `stiffid.Error`'s subclass for its kind ([`Error::root`]):
 /// `InfeasibleError` for a computation that found no answer (no feasible group, a pose out of
-/// reach), `UnidentifiableError` for data that cannot identify every parameter, `InputError` for
-/// everything else (the input is wrong), with the library's message.
+/// reach), `UnidentifiableError` for data that cannot identify every parameter, `GateError` for
+/// a result beyond a bound the caller set ([`Error::Gate`]), `InputError` for everything else
+/// (the input is wrong), with the library's message.
 pub fn raise(e: Error) -> PyErr {
     exception(&e, e.to_string())
 }
@@ -63,6 +72,7 @@ fn exception(e: &Error, message: String) -> PyErr {
         Error::Unidentifiable { .. } | Error::TooFewRows { .. } | Error::Inseparable { .. } => {
             UnidentifiableError::new_err(message)
         }
+        Error::Gate { .. } => GateError::new_err(message),
         _ => InputError::new_err(message),
     }
 }

@@ -8,6 +8,7 @@ use crate::scene::plan_postures;
 use crate::setup::Setup;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use serde_json::Value;
 use stiffid_figures::Drawing;
 use stiffid_view::MAX_POSTURES;
 
@@ -31,8 +32,8 @@ use stiffid_view::MAX_POSTURES;
 ///
 /// A compensation's figures come with it (``compensate(..., figures=True)``), and so do the
 /// study's (``reproduce(..., figures=True)``). Show one in Jupyter with
-/// ``IPython.display.SVG(svg)``. ``InputError`` when ``document`` is none of these, for a plan
-/// without its ``setup`` or of more than 500 postures.
+/// ``IPython.display.SVG(svg)``. The document's ``kind`` says which it is. ``InputError`` when
+/// ``document`` is none of these, for a plan without its ``setup`` or of more than 500 postures.
 #[pyfunction]
 #[pyo3(signature = (document, setup=None))]
 pub fn figures<'py>(
@@ -41,7 +42,8 @@ pub fn figures<'py>(
     setup: Option<&Setup>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let doc = json(document)?;
-    if doc.get("criterion").is_some() && doc["postures"].is_array() {
+    let kind = doc.get("kind").and_then(Value::as_str).unwrap_or_default();
+    if kind == "plan" {
         let setup = setup.ok_or_else(|| {
             value("setup: a plan's figures draw its robot in its cell: give the plan's setup")
         })?;
@@ -54,9 +56,10 @@ pub fn figures<'py>(
         }
         return svgs(py, &stiffid_figures::postures::each(&setup.inner, &group));
     }
-    let drawn = match doc.get("geometry").is_some() && doc.get("errors").is_some() {
-        true => stiffid_figures::calibrate::figures(&doc),
-        false => stiffid_figures::identify::figures(&doc),
+    let drawn = match kind {
+        "calibrate" => stiffid_figures::calibrate::figures(&doc),
+        _ if kind.starts_with("identify-") => stiffid_figures::identify::figures(&doc),
+        _ => return Err(value(format!("document: its `kind` is {kind:?}; expected \"calibrate\", \"plan\" or \"identify-drives\", \"identify-springs\", \"identify-comparison\""))),
     }
     .map_err(|e| value(format!("document: {e}")))?;
     let drawings: Vec<Drawing> = (drawn.iter())

@@ -10,6 +10,7 @@
 mod arrays;
 mod calibrate;
 mod cartesian;
+mod cli;
 mod compare;
 mod compensate;
 mod count;
@@ -65,5 +66,6 @@ fn _stiffid(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scene::scene, m)?)?;
     m.add_class::<scene::Scene>()?;
     m.add_function(wrap_pyfunction!(setups_new::setups_new, m)?)?;
+    m.add_function(wrap_pyfunction!(cli::_cli, m)?)?;
     Ok(())
 }

@@ -32,11 +32,11 @@ use stiffid_machining::Language;
 /// placements (``seed``) and ``starts`` local searches: the same ``seed``, the same placement.
 /// Returns the document of ``stiffid place --json`` (``placed``, ``own``, ``reach_only``: each
 /// with ``xyz_mm``, ``rpy_deg``, ``peak_bound_mm``, ``mean_bound_mm``, ``worst_line``,
-/// ``min_limit_margin_deg``, ``max_condition``, ``min_clearance_mm``; ``gain_vs_own_percent``,
-/// ``gain_vs_reach_only_percent``, ``evaluations``) and ``setup_text``: the setup file's text
+/// ``min_limit_margin_deg``, ``max_condition``, ``min_clearance_mm``; ``gain_vs_own_pct``,
+/// ``gain_vs_reach_only_pct``, ``evaluations``) and ``setup_text``: the setup file's text
 /// with the chosen ``[workpiece]``, as ``stiffid place --out`` writes it.
 #[pyfunction]
-#[pyo3(signature = (setup, stiffness, *, program=None, process=None, path=None, frame="base", region_mm, rotation_deg=(-180.0, 180.0), free=false, z_mm=None, tilt_deg=10.0, objective="max", margin_deg=5.0, max_condition=1000.0, seed=1, grid=5, samples=32, starts=3, chord_tolerance_mm=0.01, level=0.95, force_tolerance_percent=20.0, q0_deg=None))]
+#[pyo3(signature = (setup, stiffness, *, program=None, process=None, path=None, frame="base", region_mm, rotation_deg=(-180.0, 180.0), free=false, z_mm=None, tilt_deg=10.0, objective="max", margin_deg=5.0, max_condition=1000.0, seed=1, grid=5, samples=32, starts=3, chord_tolerance_mm=0.01, level=0.95, force_tolerance_pct=20.0, q0_deg=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn place<'py>(
     py: Python<'py>,
@@ -54,22 +54,22 @@ pub fn place<'py>(
     objective: &str,
     margin_deg: f64,
     max_condition: f64,
-    seed: u64,
+    seed: i64,
     grid: i64,
     samples: i64,
     starts: i64,
     chord_tolerance_mm: f64,
     level: f64,
-    force_tolerance_percent: f64,
+    force_tolerance_pct: f64,
     q0_deg: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let setup_text = error::read(&setup)?;
     let s = Setup::from_file(py, setup, Vec::new())?;
     let s = &s.inner;
     let compliance = crate::stiffness::compliance(s, stiffness, None, "stiffness")?;
-    let mut options = crate::compensate::options(py, s, q0_deg, None, None)?;
+    let mut options = crate::compensate::options(py, s, q0_deg)?;
     options.level = level;
-    options.force_tolerance = force_tolerance_percent / 100.0;
+    options.force_tolerance = force_tolerance_pct / 100.0;
     let (read, parsed, points);
     let work = match (&program, &process, &path) {
         (Some(program), Some(process_path), None) => {
@@ -118,7 +118,7 @@ pub fn place<'py>(
             grid: crate::count::count("grid", grid)?,
             samples: crate::count::count("samples", samples)?,
             starts: crate::count::count("starts", starts)?,
-            seed,
+            seed: crate::count::seed("seed", seed)?,
         },
     };
     let report = py.detach(|| job::run(&request)).map_err(raise)?;

@@ -24,10 +24,11 @@ use stiffid_design::app::plan::{self as job, Request};
 /// predicted deviation rate if that posture could not be measured (leave-one-out).
 /// With external axes, ``external`` (shape ``(n, k)``, mm for a linear axis and deg for a rotary
 /// one, the cell's order) says where each posture is read, as the postures file's ``e1_mm``..
-/// columns do for the command: the plan works each posture out there and gives its values.
+/// columns do for the command: the plan works each posture out there and gives its values; it is
+/// required then (without it every posture would stand at every axis 0).
 /// ``InputError`` for a setup without a nominal stiffness, a robot whose meshes were not found
 /// with a ``[cell]``, or ``external`` not one row per posture of values within the axes' travel
-/// (or given for a robot without external axes); ``ValueError`` for a row of another length.
+/// (or given for a robot without external axes, or left out for one with them); ``ValueError`` for a row of another length.
 #[pyfunction]
 #[pyo3(signature = (setup, postures_deg, *, criterion="relative-a", target_pct=None, external=None))]
 pub fn plan<'py>(
@@ -36,12 +37,12 @@ pub fn plan<'py>(
     postures_deg: &Bound<'py, PyAny>,
     criterion: &str,
     target_pct: Option<f64>,
-    external: Option<Vec<Vec<f64>>>,
+    external: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let s = &setup.inner;
     let within = (s.robot().limits(), "the joint limits");
     let (group, _) = postures(postures_deg, "postures_deg", within, job::MAX_POSTURES)?;
-    let external = in_si(s, external.unwrap_or_default())?;
+    let external = in_si(s, crate::count::real_rows("external", external)?)?;
     let request = Request {
         setup: s,
         criterion: criterion.parse().map_err(raise)?,

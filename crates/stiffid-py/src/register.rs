@@ -45,30 +45,38 @@ fn with_request<T>(
 /// explains (a mirror image, a residual beyond the larger of 10 mm and 1000 times the tracker
 /// noise); angles that look like radians raise a ``UserWarning``.
 ///
-/// With ``postures=N`` instead of ``readings``: proposes the N registration postures (1 to 60)
+/// With ``count=N`` instead of ``readings``: proposes the N registration postures (1 to 60)
 /// inside the setup's bounds that pass the cell's checks without the load and minimise the
 /// predicted standard deviation of the transform's rotation, from ``candidates`` postures drawn
 /// with ``seed`` (default 20000) and ``restarts`` exchange runs (default 8). Returns the document
-/// of ``stiffid register --postures N --json``: ``postures`` (``posture``, ``q_deg``), the
+/// of ``stiffid register --count N --json``: ``postures`` (``posture``, ``q_deg``), the
 /// predicted ``translation_std_mm``, ``rotation_std_deg`` and ``rotation_std_total_deg``, the
 /// ``random_median_rotation_std_total_deg`` of random feasible groups, ``readings_template``
 /// (the readings CSV to fill in), ``candidates``, ``feasible``, ``checks``, ``method``,
-/// ``evaluations``. ``InputError`` when both or neither of ``readings`` and ``postures`` are
-/// given, or too few candidates pass the cell's checks.
+/// ``evaluations``. ``InputError`` when both or neither of ``readings`` and ``count`` are
+/// given, or too few candidates pass the cell's checks, and for ``postures=`` (renamed
+/// ``count``; ``postures`` is a postures file everywhere else).
 #[pyfunction]
-#[pyo3(signature = (setup, readings=None, *, postures=None, seed=1, candidates=None, restarts=None, force=false))]
+#[pyo3(signature = (setup, readings=None, *, count=None, seed=1, candidates=None, restarts=None, force=false, postures=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn register<'py>(
     py: Python<'py>,
     setup: &Setup,
     readings: Option<PathBuf>,
-    postures: Option<i64>,
+    count: Option<i64>,
     seed: i64,
     candidates: Option<i64>,
     restarts: Option<i64>,
     force: bool,
+    postures: Option<Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let postures = count::optional("postures", postures)?;
+    if postures.is_some() {
+        return Err(raise(stiffid_core::Error::InvalidField {
+            field: "postures".into(),
+            message: "renamed count (the number of registration postures to propose)".into(),
+        }));
+    }
+    let postures = count::optional("count", count)?;
     let seed = count::seed("seed", seed)?;
     let candidates = count::optional("candidates", candidates)?;
     let restarts = count::optional("restarts", restarts)?;
@@ -95,7 +103,7 @@ pub fn register<'py>(
         _ => {
             return Err(raise(stiffid_core::Error::InvalidField {
                 field: "readings".into(),
-                message: "give the readings to register from, or postures=N to propose, not both"
+                message: "give the readings to register from, or count=N to propose, not both"
                     .into(),
             }))
         }

@@ -342,7 +342,7 @@ impl Robot {
         let axes = match axes {
             None => None,
             Some(a) => {
-                let text: String = py.import("json")?.call_method1("dumps", (a,))?.extract()?;
+                let text = tables_json(py, a, "axes")?;
                 stiffid_core::robot::external::file::from_json(&text, "external_axes")
                     .map_err(raise)?
             }
@@ -354,6 +354,25 @@ impl Robot {
 
     fn __repr__(&self) -> String {
         format!("Robot({:?})", self.inner.name())
+    }
+}
+
+/// `tables` (the argument `name`: dicts, lists, strings and numbers, NumPy arrays and numbers
+/// among them) as JSON text; an `InputError` naming the argument for anything else, NaN or an
+/// infinity.
+fn tables_json(py: Python<'_>, tables: &Bound<'_, PyAny>, name: &str) -> PyResult<String> {
+    let kwargs = PyDict::new(py);
+    kwargs.set_item("allow_nan", false)?;
+    kwargs.set_item("default", py.eval(c"lambda o: o.tolist()", None, None)?)?;
+    let dumped = py
+        .import("json")?
+        .call_method("dumps", (tables,), Some(&kwargs));
+    match dumped {
+        Ok(text) => text.extract(),
+        Err(e) => Err(error::value(format!(
+            "{name}: expected tables of names, numbers and lists of numbers (finite; NumPy arrays taken as lists), got {}",
+            limits::short(&e.value(py).to_string())
+        ))),
     }
 }
 

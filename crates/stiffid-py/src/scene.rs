@@ -76,9 +76,9 @@ impl Scene {
 ///   sampled path coloured by its predicted error (the document's ``summary.scene``), as
 ///   ``compensate --report`` draws it; ``InputError`` for an empty path.
 ///
-/// ``InputError`` for a setup without a nominal stiffness (plans), a posture count out of
-/// range or not the document's, postures given with a document that holds its own, or another
-/// document.
+/// The document's ``kind`` says which it is. ``InputError`` for a setup without a nominal
+/// stiffness (plans), a posture count out of range or not the document's, postures given with a
+/// document that holds its own, or another document.
 #[pyfunction]
 #[pyo3(signature = (setup, postures_deg=None, *, document=None))]
 pub fn scene(
@@ -96,47 +96,45 @@ pub fn scene(
         };
         postures(p, "postures_deg", within, MAX_POSTURES).map(|(g, _)| g)
     };
+    let kind = (doc.as_ref()).and_then(|d| d.get("kind")?.as_str().map(str::to_string));
+    let kind = kind.unwrap_or_default();
     let inner = match doc {
         None => plan_scene(py, s, &given(postures_deg)?, &[])?,
-        Some(d) if d.get("residuals").is_some() => {
+        Some(d) if kind == "identify-drives" || kind == "identify-springs" => {
             let group = given(postures_deg)?;
             let text = d.to_string();
             py.detach(|| stiffid_identify::app::identify::document::scene::scene(s, &group, &[], &text))
                 .map_err(raise)?
         }
-        Some(_) if postures_deg.is_some() && own(doc.as_ref()) => {
+        Some(_) if postures_deg.is_some() && own(&kind) => {
             return Err(value("postures_deg: the document's postures are its own"));
         }
-        Some(d) if d.get("criterion").is_some() && d["postures"].is_array() => {
+        Some(d) if kind == "plan" => {
             plan_scene(py, s, &plan_postures(&d)?, &plan_external(s, &d)?)?
         }
-        Some(d) if d.get("errors").is_some() && d["postures"].is_array() => {
+        Some(d) if kind == "calibrate" => {
             let text = d.to_string();
             py.detach(|| stiffid_calibrate::app::calibrate::scene::scene(s, &text))
                 .map_err(raise)?
         }
-        Some(d) if d["summary"].get("scene").is_some() => {
+        Some(d) if kind == "compensate" => {
             let text = d.to_string();
             py.detach(|| stiffid_machining::app::compensate::scene::of_document(s, &text))
                 .map_err(raise)?
                 .ok_or_else(|| value("document: the compensation's path is empty: no scene"))?
         }
         Some(_) => {
-            return Err(value(
-                "document: expected a plan, an identification, a calibration or a compensation (the dict stiffid.plan, stiffid.identify, stiffid.calibrate or stiffid.compensate returns as its document)",
-            ))
+            return Err(value(format!(
+                "document: its `kind` is {kind:?}; expected a plan, an identification, a calibration or a compensation (the dict stiffid.plan, stiffid.identify, stiffid.calibrate or stiffid.compensate returns as its document)",
+            )))
         }
     };
     Ok(Scene { inner })
 }
 
-/// Whether `doc` holds its own postures: a plan, a calibration or a compensation.
-fn own(doc: Option<&Value>) -> bool {
-    doc.is_some_and(|d| {
-        d.get("criterion").is_some()
-            || d.get("errors").is_some()
-            || d["summary"].get("scene").is_some()
-    })
+/// Whether a document of `kind` holds its own postures: a plan, a calibration or a compensation.
+fn own(kind: &str) -> bool {
+    matches!(kind, "plan" | "calibrate" | "compensate")
 }
 
 /// The plan's scene of `group` ([`job::document::scene`]) at the external values `external`

@@ -312,8 +312,9 @@ impl Setup {
 
     /// The group of ``n`` postures (2 to 100; default 6, or as many as ``start``) that minimises
     /// ``criterion`` (``"classical"``, ``"zhang2021"``, ``"scaled-cond"``, ``"d-optimal"``,
-    /// ``"relative-a"``, ``"test-pose"``) within the setup's bounds and cell checks: the select
-    /// job of ``stiffid select``, run the same way.
+    /// ``"relative-a"``, the default, ``"test-pose"``; with ``purpose`` ``"stiffness"`` or
+    /// ``"both"`` only) within the setup's bounds and cell checks: the select job of
+    /// ``stiffid select``, run the same way.
     ///
     /// - ``method="global"`` (default): ``starts`` local searches from seeded Latin-hypercube
     ///   groups (default 32; ``screen_steps`` SQP steps each, default 60, then the best
@@ -361,12 +362,12 @@ impl Setup {
     /// ``start_value`` (None for a pool), ``evaluations``, ``termination`` and ``terminations``
     /// (why the searches stopped), ``criteria``, and ``pool``, ``target``, ``unconstrained`` where
     /// they apply. ``stiffid.InfeasibleError`` when no feasible group is found.
-    #[pyo3(signature = (criterion="relative-a", method=None, start=None, n=None, seed=1, *, starts=None, screen_steps=None, polished=None, max_evals=None, gradient="exact", solver="auto", pool=None, restarts=None, target_pct=None, margin_mm=None, for_candidates=false, candidates=None, distinct=false, distinct_deg=None, distinct_mm=None, purpose="stiffness", calibration_criterion=None, geometry=None, gravity=None, weight=None, stations=None))]
+    #[pyo3(signature = (criterion=None, method=None, start=None, n=None, seed=1, *, starts=None, screen_steps=None, polished=None, max_evals=None, gradient="exact", solver="auto", pool=None, restarts=None, target_pct=None, margin_mm=None, for_candidates=false, candidates=None, distinct=false, distinct_deg=None, distinct_mm=None, purpose="stiffness", calibration_criterion=None, geometry=None, gravity=None, weight=None, stations=None))]
     #[allow(clippy::too_many_arguments)]
     fn select<'py>(
         &self,
         py: Python<'py>,
-        criterion: &str,
+        criterion: Option<&str>,
         method: Option<&str>,
         start: Option<&Bound<'py, PyAny>>,
         n: Option<i64>,
@@ -391,7 +392,7 @@ impl Setup {
         geometry: Option<&str>,
         gravity: Option<&str>,
         weight: Option<f64>,
-        stations: Option<Vec<Vec<f64>>>,
+        stations: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         use crate::count::optional;
         let start = start.map(|s| self.group(s, "start")).transpose()?;
@@ -420,7 +421,7 @@ impl Setup {
             distinct,
             distinct_deg,
             distinct_mm,
-            stations: stations.unwrap_or_default(),
+            stations: crate::count::real_rows("stations", stations)?,
             purpose: design::For {
                 purpose,
                 calibration_criterion,

@@ -26,10 +26,11 @@ pub fn setups_new(
     py: Python<'_>,
     robot: PathBuf,
     tip: Option<&str>,
-    payload_kg: Option<f64>,
+    payload_kg: Option<&Bound<'_, PyAny>>,
     out: Option<PathBuf>,
     package_paths: Vec<PathBuf>,
 ) -> PyResult<String> {
+    let payload_kg = crate::count::real("payload_kg", payload_kg)?;
     crate::robot::check_package_paths(&package_paths)?;
     let robot = &*robot.to_string_lossy();
     let meshes = |package_paths| Meshes {

@@ -29,9 +29,9 @@ def column(points, *keys):
 
 @pytest.mark.parametrize("free", [False, True])
 def test_compensate_equals_the_command(milling, cli, tmp_path, free):
-    extra = ["--free-tool-axis"] if free else []
+    extra = ["--free", "tool-rotation"] if free else []
     theirs = command(cli, tmp_path, *extra)
-    mine = stiffid.compensate(milling, PATH, STIFFNESS, free_tool_axis=free)
+    mine = stiffid.compensate(milling, PATH, STIFFNESS, free=["tool-rotation"] if free else None)
     assert mine["line"].dtype == np.int64 and mine["iterations"].dtype == np.int64
     assert mine["line"].tolist() == [p["line"] for p in theirs]
     assert mine["iterations"].tolist() == [p["iterations"] for p in theirs]
@@ -57,10 +57,32 @@ def test_stiffness_as_numbers_has_no_std(milling):
 
 
 def test_bad_free_axis_and_start_are_refused(milling):
-    with pytest.raises(ValueError, match=r"max_step_deg: 0: expected a number > 0 and <= 90"):
-        stiffid.compensate(milling, PATH, STIFFNESS, free_tool_axis=True, max_step_deg=0.0)
-    with pytest.raises(ValueError, match=r"^tool_axis_range_deg: 1e308: expected a number > 0 and <= 180$"):
-        stiffid.compensate(milling, PATH, STIFFNESS, free_tool_axis=True, tool_axis_range_deg=1e308)
+    with pytest.raises(ValueError, match=r"free tool-rotation step: 0: expected a number > 0 and <= 90"):
+        stiffid.compensate(milling, PATH, STIFFNESS, free=["tool-rotation=-90..90/0"])
+    with pytest.raises(ValueError, match=r"^free tool-rotation range: 1e308: expected a number > 0 and <= 180$"):
+        stiffid.compensate(milling, PATH, STIFFNESS, free=[{"variable": "tool-rotation", "range": 1e308}])
+    with pytest.raises(ValueError, match=r"^free: tool-rotation=-90..80: `-90..80`: expected a range -R..R"):
+        stiffid.compensate(milling, PATH, STIFFNESS, free=["tool-rotation=-90..80"])
+    with pytest.raises(ValueError, match=r"^free: spindle: unknown variable: expected tool-rotation"):
+        stiffid.compensate(milling, PATH, STIFFNESS, free=["spindle"])
+    with pytest.raises(ValueError, match=r"^free: expected a list"):
+        stiffid.compensate(milling, PATH, STIFFNESS, free="tool-rotation")
+    with pytest.raises(ValueError, match=r"^free: `ranges`: expected the keys"):
+        stiffid.compensate(milling, PATH, STIFFNESS, free=[{"variable": "station", "ranges": 5}])
+    with pytest.raises(ValueError, match=r"^free: tool-rotation: given twice"):
+        stiffid.compensate(milling, PATH, STIFFNESS, free=["tool-rotation", "tool-rotation=-10..10"])
+    # The keywords free= replaced are refused saying how to write them; the options of the free
+    # variables mean nothing without one.
+    with pytest.raises(ValueError, match=r'^free_tool_axis: removed; write free=\["tool-rotation=-90..90/2"\]$'):
+        stiffid.compensate(milling, PATH, STIFFNESS, free_tool_axis=True)
+    with pytest.raises(ValueError, match=r'^free_tool_axis_objective: removed; write minimise='):
+        stiffid.compensate(milling, PATH, STIFFNESS, free_tool_axis_objective="bound")
+    with pytest.raises(TypeError, match=r"unexpected keyword argument 'free_axis'"):
+        stiffid.compensate(milling, PATH, STIFFNESS, free_axis=True)
+    for option in [dict(minimise="bound"), dict(objective="max"), dict(margin_deg=3.0),
+                   dict(max_condition=100.0), dict(refine=1)]:
+        with pytest.raises(ValueError, match=rf"^{next(iter(option))}: only with free"):
+            stiffid.compensate(milling, PATH, STIFFNESS, **option)
     with pytest.raises(ValueError, match=r"q0_deg"):
         stiffid.compensate(milling, PATH, STIFFNESS, q0_deg=[0, 0, 0, 0, 0, 0, 0])
     with pytest.raises(FileNotFoundError, match=r"nope.csv"):
@@ -69,13 +91,13 @@ def test_bad_free_axis_and_start_are_refused(milling):
 
 def test_the_feasibility_checks_are_the_commands(milling, cli, tmp_path):
     with pytest.raises(ValueError, match=r"^margin_deg: 91: expected 0 to 90$"):
-        stiffid.compensate(milling, PATH, STIFFNESS, free_tool_axis=True, margin_deg=91.0)
+        stiffid.compensate(milling, PATH, STIFFNESS, free=["tool-rotation"], margin_deg=91.0)
     with pytest.raises(ValueError, match=r"^max_condition: 0.5: expected a finite number >= 1$"):
-        stiffid.compensate(milling, PATH, STIFFNESS, free_tool_axis=True, max_condition=0.5)
-    extra = ["--free-tool-axis", "--margin-deg", "15", "--max-condition", "500"]
+        stiffid.compensate(milling, PATH, STIFFNESS, free=["tool-rotation"], max_condition=0.5)
+    extra = ["--free", "tool-rotation", "--margin-deg", "15", "--max-condition", "500"]
     args = ["compensate", "--setup", SETUP, "--stiffness", STIFFNESS, "--path", PATH]
     theirs = cli(*args, "--out", tmp_path / "c.csv", "--json", *extra)
-    mine = stiffid.compensate(milling, PATH, STIFFNESS, free_tool_axis=True, margin_deg=15.0, max_condition=500.0)
+    mine = stiffid.compensate(milling, PATH, STIFFNESS, free=["tool-rotation"], margin_deg=15.0, max_condition=500.0)
     assert mine["document"]["feasibility"] == theirs["feasibility"]
     assert theirs["feasibility"]["max_condition"] == 500.0
     assert mine["tool_rotation_deg"].tolist() == [p["tool_rotation_deg"] for p in theirs["points"]]
@@ -98,14 +120,13 @@ def test_the_error_budget_equals_the_command_and_refuses_above_the_largest_error
     np.testing.assert_allclose(mine["bound_force_mm"], 0.2 * np.linalg.norm(mine["deflection_mm"], axis=1), rtol=1e-12)
     worst = mine["document"]["summary"]["budget"]["max_bound_mm"]
     assert worst == pytest.approx(mine["bound_mm"].max(), rel=1e-12)
-    with pytest.raises(ValueError, match=r"max_error_mm: .*the worst points: line \d+: .* mostly \w+"):
+    with pytest.raises(stiffid.GateError, match=r"max_error_mm: .*the worst points: line \d+: .* mostly \w+"):
         stiffid.compensate(milling, PATH, STIFFNESS, max_error_mm=worst / 2)
     assert stiffid.compensate(milling, PATH, STIFFNESS, max_error_mm=worst * 2)["bound_mm"].max() == pytest.approx(worst)
 
 
 def test_the_map_holds_every_point_at_every_rotation_and_the_line_chosen(milling):
-    out = stiffid.compensate(milling, PATH, STIFFNESS, free_tool_axis=True, max_step_deg=10.0,
-                             tool_axis_range_deg=30.0, free_tool_axis_objective="bound", objective="max", map=True)
+    out = stiffid.compensate(milling, PATH, STIFFNESS, free=["tool-rotation=-30..30/10"], objective="max", map=True)
     m = out["map"]
     n, g = len(out["line"]), len(m["tool_rotation_deg"])
     np.testing.assert_allclose(m["tool_rotation_deg"], np.linspace(-30, 30, g))
@@ -148,42 +169,41 @@ def test_a_free_track_station_equals_the_command(cli, tmp_path):
     setup = REPO / "examples" / "track" / "track-cell.toml"
     stiffness = REPO / "examples" / "milling" / "kuka-stiffness.json"
     path = REPO / "examples" / "track" / "trim.csv"
-    options = ["--free-station-mm", "1500", "--station-step-mm", "50", "--objective", "max"]
+    options = ["--free", "station=-1500..1500/50", "--objective", "max"]
     out = tmp_path / "trim.csv"
     theirs = cli("compensate", "--setup", setup, "--stiffness", stiffness, "--path", path,
                  "--out", out, "--json", *options)["points"]
     cell = stiffid.Setup.from_file(setup)
-    mine = stiffid.compensate(cell, path, stiffness, free_station_mm=1500.0, station_step_mm=50.0,
+    mine = stiffid.compensate(cell, path, stiffness, free=[{"variable": "station", "range": 1500, "step": 50}],
                               objective="max")
     np.testing.assert_allclose(mine["bound_mm"], [p["bound_mm"] for p in theirs], rtol=1e-12)
     np.testing.assert_allclose(mine["q_compensated_deg"],
                                column(theirs, *[f"qc{i}_deg" for i in range(1, 7)]), atol=1e-12)
-    own = stiffid.compensate(cell, path, stiffness, objective="max")
+    own = stiffid.compensate(cell, path, stiffness)
     assert mine["bound_mm"].max() < 0.7 * own["bound_mm"].max()
-    with pytest.raises(ValueError, match="station-step-mm|station_step_mm"):
-        stiffid.compensate(cell, path, stiffness, free_station_mm=100.0, station_step_mm=0.0)
+    with pytest.raises(ValueError, match="free station step"):
+        stiffid.compensate(cell, path, stiffness, free=["station=-100..100/0"])
 
 
 def test_a_free_table_angle_equals_the_command(cli, tmp_path):
     """The cut across the table's far side of the track example: the table's angle free within
-    +-180 deg in 5 deg steps, the worst bound minimised, as `compensate --free-positioner-deg`
+    +-180 deg in 5 deg steps, the worst bound minimised, as `compensate --free positioner=-180..180/5`
     chooses it: the same bounds and angles, none worse than at the table at rest."""
     setup = REPO / "examples" / "track" / "track-cell.toml"
     stiffness = REPO / "examples" / "milling" / "kuka-stiffness.json"
     path = REPO / "examples" / "track" / "table.csv"
-    options = ["--free-positioner-deg", "180", "--positioner-step-deg", "5", "--objective", "max"]
+    options = ["--free", "positioner=-180..180/5", "--objective", "max"]
     theirs = cli("compensate", "--setup", setup, "--stiffness", stiffness, "--path", path,
                  "--out", tmp_path / "table.csv", "--json", *options)["points"]
     cell = stiffid.Setup.from_file(setup)
-    mine = stiffid.compensate(cell, path, stiffness, free_positioner_deg=180.0, positioner_step_deg=5.0,
-                              objective="max")
+    mine = stiffid.compensate(cell, path, stiffness, free=["positioner=-180..180/5"], objective="max")
     np.testing.assert_allclose(mine["bound_mm"], [p["bound_mm"] for p in theirs], rtol=1e-12)
     assert mine["document"]["free_positioner"]["range_deg"] == pytest.approx(180.0)
-    own = stiffid.compensate(cell, path, stiffness, objective="max")
+    own = stiffid.compensate(cell, path, stiffness)
     assert (mine["bound_mm"] <= own["bound_mm"] * (1 + 1e-9)).all()
     assert mine["bound_mm"].max() < 0.6 * own["bound_mm"].max()
-    with pytest.raises(ValueError, match="positioner-step-deg|positioner_step_deg"):
-        stiffid.compensate(cell, path, stiffness, free_positioner_deg=10.0, positioner_step_deg=20.0)
+    with pytest.raises(ValueError, match="free positioner step"):
+        stiffid.compensate(cell, path, stiffness, free=["positioner=-10..10/20"])
 
 
 def test_the_track_map_holds_every_station_and_the_one_chosen():
@@ -192,8 +212,7 @@ def test_the_track_map_holds_every_station_and_the_one_chosen():
     setup = stiffid.Setup.from_file(REPO / "examples" / "track" / "track-cell.toml")
     stiffness = REPO / "examples" / "milling" / "kuka-stiffness.json"
     path = REPO / "examples" / "track" / "trim.csv"
-    out = stiffid.compensate(setup, path, stiffness, free_station_mm=200.0, station_step_mm=100.0,
-                             objective="max", map="track")
+    out = stiffid.compensate(setup, path, stiffness, free=["station=-200..200/100"], objective="max", map="track")
     m = out["map"]
     np.testing.assert_allclose(m["station_offset_mm"], [-200, -100, 0, 100, 200], atol=1e-9)
     n = len(out["line"])
@@ -207,17 +226,17 @@ def test_the_track_map_holds_every_station_and_the_one_chosen():
 
 
 def test_lead_and_tilt_equal_the_command(milling, cli, tmp_path):
-    extra = ["--free-lead-tilt", "--cone-deg", "6", "--lead-tilt-step-deg", "3", "--objective", "max"]
+    extra = ["--free", "lead-tilt=-6..6/3", "--objective", "max"]
     theirs = command(cli, tmp_path, *extra)
-    mine = stiffid.compensate(milling, PATH, STIFFNESS, free_lead_tilt=True, cone_deg=6, lead_tilt_step_deg=3, objective="max")
+    mine = stiffid.compensate(milling, PATH, STIFFNESS, free=["lead-tilt=-6..6/3"], objective="max")
     for key in ["lead_deg", "tilt_deg", "bound_mm"]:
         np.testing.assert_allclose(mine[key], [p[key] for p in theirs], rtol=1e-12, atol=1e-12)
     assert np.hypot(mine["lead_deg"], mine["tilt_deg"]).max() <= 6 + 1e-9
     assert np.abs(mine["lead_deg"]).max() > 0
     assert mine["document"]["free_lead_tilt"]["step_deg"] == pytest.approx(3)
-    with pytest.raises(ValueError, match="cone_deg"):
-        stiffid.compensate(milling, PATH, STIFFNESS, free_lead_tilt=True, cone_deg=45)
-    with pytest.raises(ValueError, match="cone_deg"):
+    with pytest.raises(ValueError, match="free lead-tilt range"):
+        stiffid.compensate(milling, PATH, STIFFNESS, free=["lead-tilt=-45..45"])
+    with pytest.raises(ValueError, match="cone_deg: removed"):
         stiffid.compensate(milling, PATH, STIFFNESS, cone_deg=5)
 
 
@@ -226,28 +245,28 @@ def test_one_configuration_per_run_equals_the_command(milling, cli, tmp_path):
     program, process = milling_dir / "panel.nc", milling_dir / "drilling.toml"
     out = tmp_path / "panel.ls"
     args = ["compensate", "--setup", SETUP, "--stiffness", STIFFNESS, "--program", program, "--process", process]
-    theirs = cli(*args, "--out", out, "--json", "--free-configuration", "--configuration-per", "run")["configurations"]
+    theirs = cli(*args, "--out", out, "--json", "--free", "configuration=run")["configurations"]
     mine = stiffid.compensate(milling, stiffness=STIFFNESS, program=program, process=process, output="ls",
-                              free_configuration=True, configuration_per="run")["document"]["configurations"]
+                              free=["configuration=run"])["document"]["configurations"]
     assert mine == theirs
     # 20 holes, 20 runs; on the FANUC's own limits each keeps the program's own configuration.
     assert (mine["per"], len(mine["runs"])) == ("run", 20)
     assert all(r["chosen_own"] for r in mine["runs"])
-    with pytest.raises(ValueError, match="configuration_per"):
+    with pytest.raises(ValueError, match="configuration_per: removed"):
         stiffid.compensate(milling, PATH, STIFFNESS, configuration_per="run")
-    with pytest.raises(ValueError, match="configuration_per"):
-        stiffid.compensate(milling, PATH, STIFFNESS, free_configuration=True, configuration_per="hole")
+    with pytest.raises(ValueError, match="free: configuration=hole: `hole`: expected program or run"):
+        stiffid.compensate(milling, PATH, STIFFNESS, free=["configuration=hole"])
 
 
 def test_refine_never_rises_and_bad_values_are_refused(milling):
-    free = dict(free_tool_axis=True, max_step_deg=5, free_tool_axis_objective="bound", objective="max")
+    free = dict(free=["tool-rotation=-90..90/5"], objective="max")
     grid = stiffid.compensate(milling, PATH, STIFFNESS, **free)
     refined = stiffid.compensate(milling, PATH, STIFFNESS, refine=1, **free)
     assert (grid["document"]["refine"], refined["document"]["refine"]) == (0, 1)
     assert refined["bound_mm"].max() <= grid["bound_mm"].max() * (1 + 1e-9)
     assert refined["bound_mm"].sum() < grid["bound_mm"].sum()
     assert np.all(np.abs(np.diff(refined["tool_rotation_deg"])) <= 5 + 1e-9)
-    with pytest.raises(ValueError, match="refine: 1: .*none is free"):
+    with pytest.raises(ValueError, match="refine: only with free: .*none is free"):
         stiffid.compensate(milling, PATH, STIFFNESS, refine=1)
     with pytest.raises(ValueError, match="refine: 5: expected 0 to 4"):
         stiffid.compensate(milling, PATH, STIFFNESS, refine=5, **free)

@@ -65,7 +65,7 @@ def test_the_select_documents_equal_the_command(paper, cli, tmp_path):
          dict(method="global", seed=3, starts=4, polished=2, max_evals=1000), "active-set"),
         (["--global", "--seed", 3, "--starts", 4, "--polished", 2, "--max-evals", 1000, "--solver", "slsqp"],
          dict(method="global", seed=3, starts=4, polished=2, max_evals=1000, solver="slsqp"), "slsqp"),
-        (["--pool", pool_csv, "--postures", 6], dict(pool=pool, n=6), None),
+        (["--pool", pool_csv, "--count", 6], dict(pool=pool, n=6), None),
         (["--pool", pool_csv, "--target-pct", 6], dict(pool=pool, target_pct=6), None),
     ]:
         mine = paper.select(**kwargs)
@@ -85,7 +85,7 @@ def test_a_distinct_pool_choice_equals_the_command(paper, cli, tmp_path):
     pool_csv = write_postures(tmp_path / "pool.csv", pool)
     mine = paper.select(pool=pool, n=6, distinct=True, distinct_deg=3, distinct_mm=20)
     theirs = cli("select", "--setup", "zhang2021-comau-nj165", "--out", tmp_path / "out.csv", "--json",
-                 "--pool", pool_csv, "--postures", 6, "--distinct", "--distinct-deg", 3, "--distinct-mm", 20)
+                 "--pool", pool_csv, "--count", 6, "--distinct", "--distinct-deg", 3, "--distinct-mm", 20)
     assert timeless(plain(mine)) == timeless(theirs)
     assert mine["pool"]["not_distinct"] == [[11, 3], [12, 7]]
     with pytest.raises(ValueError, match="distinct_deg: 1e9 is outside"):
@@ -216,7 +216,7 @@ def test_the_candidates_documents_equal_the_command(paper, cli, tmp_path):
     assert mine["candidates"]["candidates"][-1]["needs_load_steps"]
     chosen = paper.select(method="global", n=8, starts=4, for_candidates=True, candidates=["tilt", "bend"])
     theirs = cli("select", "--setup", "zhang2021-comau-nj165", "--out", tmp_path / "out.csv", "--json",
-                 "--global", "--postures", 8, "--starts", 4, "--for-candidates", "--candidates", "tilt,bend")
+                 "--global", "--count", 8, "--starts", 4, "--for-candidates", "--candidates", "tilt,bend")
     assert timeless(plain(chosen)) == timeless(theirs)
     c = chosen["candidates"]
     assert c["together"] and c["designed"] == c["designable"] and c["nonlinear"] == []
@@ -248,7 +248,7 @@ def test_evaluate_and_select_for_the_calibration_equal_the_command(paper, cli, t
         assert plain(mine) == cli("evaluate", *setup, "--postures", path, "--json", *flags), flags
         assert mine["calibration"]["predicted_rms_mm"] > 0
     chosen = paper.select(method="global", n=8, starts=2, polished=1, max_evals=300, purpose="both")
-    theirs = cli("select", *setup, "--out", tmp_path / "out.csv", "--json", "--global", "--postures", 8,
+    theirs = cli("select", *setup, "--out", tmp_path / "out.csv", "--json", "--global", "--count", 8,
                  "--starts", 2, "--polished", 1, "--max-evals", 300, "--for", "both")
     assert timeless(plain(chosen)) == timeless(theirs)
     # A check campaign: 10 postures by default, designed for the update's offsets.

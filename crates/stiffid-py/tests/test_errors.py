@@ -8,9 +8,11 @@ import stiffid
 
 def test_the_hierarchy():
     assert issubclass(stiffid.Error, ValueError)
-    for kind in (stiffid.InputError, stiffid.InfeasibleError, stiffid.UnidentifiableError):
+    for kind in (stiffid.InputError, stiffid.InfeasibleError, stiffid.UnidentifiableError, stiffid.GateError):
         assert issubclass(kind, stiffid.Error)
     assert not issubclass(stiffid.InfeasibleError, stiffid.InputError)
+    # A failed gate is no bad input (the command's exit code 1, not 2).
+    assert not issubclass(stiffid.GateError, stiffid.InputError)
 
 
 def test_bad_input_is_an_input_error(paper):
@@ -74,7 +76,7 @@ def test_a_model_no_group_can_separate_is_unidentifiable(paper):
         ("runs", lambda s: stiffid.simulate(s, [s.random_group()], runs=-1)),
         ("seed", lambda s: stiffid.simulate(s, [s.random_group()], seed=-1)),
         ("trials", lambda s: stiffid.reproduce(s, trials=-1)),
-        ("postures", lambda s: stiffid.register(s, postures=-3)),
+        ("count", lambda s: stiffid.register(s, count=-3)),
         ("folds", lambda s: stiffid.identify(s, q_deg=np.zeros((6, 6)), wrench=np.zeros((6, 6)),
                                              displacement_mm=np.zeros((6, 3)), folds=-1)),
     ],

@@ -51,10 +51,13 @@ def test_identification_figures_are_the_reports(fanuc, cli, tmp_path):
 
 
 def test_other_documents_are_refused():
-    with pytest.raises(stiffid.InputError, match="document: not an identify document"):
-        stiffid.figures({"setup": "x"})
+    # Which document it is, its `kind` says: no guess from its keys.
+    with pytest.raises(stiffid.InputError, match="document: its `kind` is \"\""):
+        stiffid.figures({"setup": "x", "errors": [], "geometry": "full"})
+    with pytest.raises(stiffid.InputError, match="document: its `kind` is \"predict\""):
+        stiffid.figures({"kind": "predict", "residuals": []})
     with pytest.raises(stiffid.InputError, match="is not part of a document"):
-        stiffid.figures({"errors": [object()], "geometry": "full"})
+        stiffid.figures({"kind": "calibrate", "errors": [object()], "geometry": "full"})
 
 
 def report_figures(directory):
@@ -67,7 +70,7 @@ def test_plan_figures_are_the_reports(cli, tmp_path):
     postures drawn are the document's (one numbered label per posture)."""
     (tmp_path / "cell.toml").write_text(CELL)
     cell = stiffid.Setup.from_file(tmp_path / "cell.toml")
-    chosen, plan = command_plan(cli, tmp_path, tmp_path / "cell.toml", "--postures", 6)
+    chosen, plan = command_plan(cli, tmp_path, tmp_path / "cell.toml", "--count", 6)
     figures = stiffid.figures(plan, setup=cell)
     assert list(figures) == ["postures"] + [f"posture_{i:02}" for i in range(1, 7)]
     assert figures == report_figures(tmp_path / "plan")
@@ -82,8 +85,8 @@ def test_compensation_figures_are_the_reports(cli, tmp_path):
     path with the free tool axis and its map, and on a program with its process."""
     milling = stiffid.Setup.from_file(MILLING)
     cli("compensate", "--setup", MILLING, "--stiffness", MILLING_STIFFNESS, "--path", MILLING_PATH,
-        "--free-tool-axis", "--map", "--out", tmp_path / "c.csv", "--report", tmp_path / "r", parse=False)
-    mine = stiffid.compensate(milling, MILLING_PATH, MILLING_STIFFNESS, free_tool_axis=True, map=True, figures=True)
+        "--free", "tool-rotation", "--map", "--out", tmp_path / "c.csv", "--report", tmp_path / "r", parse=False)
+    mine = stiffid.compensate(milling, MILLING_PATH, MILLING_STIFFNESS, free=["tool-rotation"], map=True, figures=True)
     assert list(mine["figures"]) == ["deflection", "path", "map"]
     assert mine["figures"] == report_figures(tmp_path / "r")
     assert "figures" not in stiffid.compensate(milling, MILLING_PATH, MILLING_STIFFNESS)

@@ -341,3 +341,6 @@ def test_the_scene_of_an_identification_draws_its_displacements(paper):
         stiffid.scene(paper, q[:3], document=doc)
     with pytest.raises(stiffid.InputError, match="document"):
         stiffid.scene(paper, q, document={"setup": "x"})
+    # Which document it is, its `kind` says: the residuals alone make no identification.
+    with pytest.raises(stiffid.InputError, match='document: its `kind` is ""'):
+        stiffid.scene(paper, q, document={k: v for k, v in doc.items() if k != "kind"})

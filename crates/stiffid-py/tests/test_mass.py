@@ -53,7 +53,7 @@ def test_predict_gives_the_commands_modes_and_surge(tmp_path, cli):
 
 def test_masses_known_to_a_percentage_widen_the_surge_as_the_command_says(tmp_path, cli):
     path = files(tmp_path)
-    path.write_text(path.read_text() + "\n[masses]\nsd_percent = 10\n")
+    path.write_text(path.read_text() + "\n[masses]\nsd_pct = 10\n")
     setup = stiffid.Setup.from_file(path)
     doc = stiffid.predict(setup, Q, [200, -100, -1500, 0, 0, 0])
     command = cli("predict", "--setup", path, "--q-deg", ",".join(map(str, Q)), "--wrench", "200,-100,-1500", "--json")
@@ -126,27 +126,27 @@ def test_the_free_tool_axis_minimises_the_surge_as_the_command_does(tmp_path, cl
     # A spindle 120 mm off the flange axis: a turn about the drill moves the whole arm.
     path, program, process, stiffness = drilling(tmp_path, [120, 0, 250])
     setup = stiffid.Setup.from_file(path)
-    free = dict(free_tool_axis=True, max_step_deg=20.0, tool_axis_range_deg=90.0)
+    free = dict(free=["tool-rotation=-90..90/20"])
     mine = stiffid.compensate(setup, stiffness=stiffness, program=program, process=process,
-                              free_tool_axis_objective="surge", **free)
+                              minimise="surge", **free)
     assert mine["document"]["free_tool_axis"]["objective"] == "surge"
     exits = ~np.isnan(mine["surge_mm_s"])
     assert exits.sum() == 2
     assert np.all(mine["surge_mm_s"][exits] <= mine["surge_before_mm_s"][exits])
     command = cli("compensate", "--setup", path, "--stiffness", stiffness, "--program", program, "--process", process,
-                  "--free-tool-axis", "--max-step-deg", 20, "--tool-axis-range-deg", 90,
-                  "--free-tool-axis-objective", "surge", "--out", tmp_path / "out.nc", "--json")
+                  "--free", "tool-rotation=-90..90/20", "--minimise", "surge", "--out", tmp_path / "out.nc", "--json")
     rows = command["points"]
     for key in ["tool_rotation_deg", "surge_mm_s", "surge_before_mm_s"]:
         theirs = np.array([np.nan if r[key] is None else r[key] for r in rows])
         np.testing.assert_array_equal(mine[key], theirs)
     assert mine["document"]["program"]["dynamics"] == command["program"]["dynamics"]
-    # The default objective is the deflection; the objective means nothing without the free axis.
-    deflection = stiffid.compensate(setup, stiffness=stiffness, program=program, process=process, **free)
-    assert deflection["document"]["free_tool_axis"]["objective"] == "deflection"
-    with pytest.raises(ValueError, match=r"free_tool_axis_objective: only with free_tool_axis=True"):
+    # The default objective is the bound the document reports; the objective means nothing
+    # without a free variable.
+    bound = stiffid.compensate(setup, stiffness=stiffness, program=program, process=process, **free)
+    assert bound["document"]["free_tool_axis"]["objective"] == "bound"
+    with pytest.raises(ValueError, match=r"minimise: only with free"):
         stiffid.compensate(setup, stiffness=stiffness, program=program, process=process,
-                           free_tool_axis_objective="surge")
-    with pytest.raises(ValueError, match=r"free_tool_axis_objective: unknown value 'speed'"):
+                           minimise="surge")
+    with pytest.raises(ValueError, match=r"minimise: unknown value 'speed'"):
         stiffid.compensate(setup, stiffness=stiffness, program=program, process=process,
-                           free_tool_axis_objective="speed", **free)
+                           minimise="speed", **free)

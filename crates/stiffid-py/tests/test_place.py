@@ -24,7 +24,7 @@ def test_place_equals_the_command(cli, tmp_path):
     assert mine["setup_text"] == out.read_text()
     del mine["setup_text"]
     assert mine == theirs
-    assert mine["gain_vs_own_percent"] > 25 and mine["gain_vs_reach_only_percent"] > 0
+    assert mine["gain_vs_own_pct"] > 25 and mine["gain_vs_reach_only_pct"] > 0
 
 
 def test_place_a_path_file_equals_the_command(cli, tmp_path):
@@ -46,7 +46,7 @@ def test_place_a_path_file_equals_the_command(cli, tmp_path):
     mine = stiffid.place(SETUP, stiffness, path=part, region_mm=(500, 2000, -1500, 500),
                          grid=3, samples=8, starts=1)
     assert mine.pop("setup_text") == out.read_text()
-    assert mine == theirs and mine["gain_vs_own_percent"] > 0
+    assert mine == theirs and mine["gain_vs_own_pct"] > 0
     with pytest.raises(ValueError, match="line 13: the program's tool .* is not the setup's"):
         stiffid.place(SETUP, stiffness, program=MILLING / "pocket.src",
                       process=MILLING / "aluminium.toml", region_mm=(500, 2000, -1500, 500))

@@ -29,7 +29,7 @@ def command_plan(cli, tmp_path, setup, *flags):
 def test_the_plan_equals_the_commands_plan_json(cli, tmp_path):
     (tmp_path / "cell.toml").write_text(CELL)
     cell = stiffid.Setup.from_file(tmp_path / "cell.toml")
-    chosen, theirs = command_plan(cli, tmp_path, tmp_path / "cell.toml", "--postures", 6, "--criterion", "zhang2021")
+    chosen, theirs = command_plan(cli, tmp_path, tmp_path / "cell.toml", "--count", 6, "--criterion", "zhang2021")
     mine = stiffid.plan(cell, chosen, criterion="zhang2021")
     assert mine == theirs
     assert mine["bodies"]["link_radii_mm"] is not None and len(mine["postures"]) == 6
@@ -65,7 +65,7 @@ def test_a_target_is_named_and_a_plan_needs_the_nominal_stiffness(paper, cli, tm
 def test_the_scene_is_the_plans_in_3d_and_the_commands_glb(cli, tmp_path):
     (tmp_path / "cell.toml").write_text(CELL)
     cell = stiffid.Setup.from_file(tmp_path / "cell.toml")
-    chosen, plan = command_plan(cli, tmp_path, tmp_path / "cell.toml", "--postures", 6)
+    chosen, plan = command_plan(cli, tmp_path, tmp_path / "cell.toml", "--count", 6)
     scene = stiffid.scene(cell, chosen)
     doc = scene.document()
     assert len(doc["postures"]) == 6
@@ -115,3 +115,6 @@ def test_a_plan_at_external_values_works_each_posture_out_there():
         stiffid.plan(setup, q, external=[[3000, 0, 0], [3500, 10]])
     with pytest.raises(stiffid.InputError, match="external"):
         stiffid.plan(setup, q, external=[[3000, 0, 0], [9000, 0, 0]])
+    # Without them it is refused, as the kinematics refuse it: every posture would stand at 0.
+    with pytest.raises(stiffid.InputError, match=r"^external: none given: the robot has external axes"):
+        stiffid.plan(setup, q)

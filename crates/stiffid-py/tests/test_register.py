@@ -78,11 +78,11 @@ def test_mirrored_readings_are_refused_unless_forced(paper, tmp_path):
 
 def test_proposed_postures_equal_the_command_and_register_when_read(cli, tmp_path):
     cell = stiffid.Setup.from_file(REPO / "examples" / "cell" / "zhang2021-tracker.toml")
-    doc = stiffid.register(cell, postures=3, candidates=500)
+    doc = stiffid.register(cell, count=3, candidates=500)
     assert len(doc["postures"]) == 3
     assert doc["rotation_std_total_deg"] < doc["random_median_rotation_std_total_deg"]
     command = cli("register", "--setup", REPO / "examples" / "cell" / "zhang2021-tracker.toml",
-                  "--postures", "3", "--candidates", "500", "--json")
+                  "--count", "3", "--candidates", "500", "--json")
     assert {k: v for k, v in doc.items() if k != "setup"} == {k: v for k, v in command.items() if k != "setup"}
     assert_valid("register-postures", doc)
     # The template filled with what a tracker at the cell's position, turned by 90 deg, reads.
@@ -100,4 +100,7 @@ def test_proposed_postures_equal_the_command_and_register_when_read(cli, tmp_pat
     fit = stiffid.register(cell, path)
     np.testing.assert_allclose(fit["xyz_mm"], TRANSLATION_MM, atol=1e-6)
     with pytest.raises(stiffid.InputError, match="not both"):
-        stiffid.register(cell, path, postures=3)
+        stiffid.register(cell, path, count=3)
+    # `postures` is a postures file everywhere else: the count's old keyword names the new one.
+    with pytest.raises(stiffid.InputError, match="postures: renamed count"):
+        stiffid.register(cell, postures=3)

@@ -134,7 +134,7 @@ def test_identify_validate_and_compensate(cli, tmp_path):
 
     c = cli("compensate", "--setup", example("milling/fanuc-milling.toml"), "--stiffness", stiffness,
             "--path", example("milling/path.csv"), "--out", tmp_path / "compensated.csv",
-            "--free-tool-axis", "--json")
+            "--free", "tool-rotation", "--json")
     assert isinstance(c["points"][0]["dx_std_mm"], float)
     assert_valid("compensate", c)
 

@@ -1,14 +1,18 @@
 """The type stubs (`python/stiffid/_stiffid.pyi`) describe the compiled module as it is: every
 public name of the module is stubbed and every stub exists, with the same methods per class and,
-where the module gives a signature, the same parameter names in the same order."""
+where the module gives a signature, the same parameter names in the same order. The documents'
+types (`python/stiffid/_documents.pyi`) are those `tools/stubs.py` generates from docs/schemas."""
 
 import ast
+import importlib.util
 import inspect
 from pathlib import Path
 
 import stiffid._stiffid as module
 
-STUBS = Path(__file__).resolve().parents[1] / "python" / "stiffid" / "_stiffid.pyi"
+CRATE = Path(__file__).resolve().parents[1]
+STUBS = CRATE / "python" / "stiffid" / "_stiffid.pyi"
+DOCUMENTS = CRATE / "python" / "stiffid" / "_documents.pyi"
 
 
 def overloads():
@@ -71,7 +75,7 @@ def test_every_public_name_is_stubbed_and_every_stub_exists():
 
 def test_classes_have_the_stubbed_methods():
     for name, node in stubbed().items():
-        if not isinstance(node, ast.ClassDef) or issubclass(getattr(module, name), BaseException):
+        if not isinstance(node, ast.ClassDef) or name.startswith("_") or issubclass(getattr(module, name), BaseException):
             continue
         cls = getattr(module, name)
         functions = [n for n in node.body if isinstance(n, ast.FunctionDef) and not n.name.startswith("_")]
@@ -95,7 +99,7 @@ def test_signatures_agree_where_the_module_gives_them():
         targets = []
         if isinstance(node, ast.FunctionDef) and len(overloads()[name]) == 1:
             targets.append((name, node, getattr(module, name)))
-        elif isinstance(node, ast.ClassDef):
+        elif isinstance(node, ast.ClassDef) and not name.startswith("_"):
             cls = getattr(module, name)
             if issubclass(cls, BaseException):
                 continue
@@ -111,3 +115,23 @@ def test_signatures_agree_where_the_module_gives_them():
             assert parameters(stub) == real, label
             checked += 1
     assert checked >= 20, f"only {checked} signatures compared"
+
+
+def generator():
+    spec = importlib.util.spec_from_file_location("stubs", CRATE / "tools" / "stubs.py")
+    tool = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(tool)
+    return tool
+
+
+def test_the_document_types_are_generated_from_the_schemas():
+    assert DOCUMENTS.read_text() == generator().generate(), \
+        "_documents.pyi is not what the schemas give: python3 crates/stiffid-py/tools/stubs.py"
+
+
+def test_the_module_returns_defined_document_types():
+    documents = ast.parse(DOCUMENTS.read_text())
+    defined = {t.id for node in documents.body if isinstance(node, ast.Assign) for t in node.targets}
+    imported = {a.name for node in ast.parse(STUBS.read_text()).body
+                if isinstance(node, ast.ImportFrom) and node.module == "_documents" for a in node.names}
+    assert len(imported) >= 8 and imported <= defined, sorted(imported - defined)

@@ -209,7 +209,13 @@ pub fn run(args: &Args) -> Result<()> {
         calibration::write(dir, &setup, &document)?;
     }
     output::warnings(&document.warnings);
-    print_json_or(args.common.json, &document, text_of)
+    print_json_or(args.common.json, &document, text_of)?;
+    // A drifted robot fails the check's gate, after its update is written.
+    if let Some(check) = &document.check {
+        output::staged::commit()?;
+        check.gate()?;
+    }
+    Ok(())
 }
 
 fn prepare(path: &Option<PathBuf>, option: &str) -> Result<Option<OutFile>> {
@@ -277,7 +283,7 @@ fn text_of(d: &Document) -> String {
                 100.0 * i.level,
                 i.method,
                 i.folds,
-                i.coverage_percent,
+                i.coverage_pct,
                 i.coordinates,
                 i.median_width_mm
                     .map_or(String::new(), |w| format!(", median width {w:.4} mm"))

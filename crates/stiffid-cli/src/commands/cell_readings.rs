@@ -23,7 +23,7 @@ pub struct Args {
     #[arg(long)]
     pub data: Option<PathBuf>,
     /// Write the fragment of the setup file here (TOML; never over an input); with `register
-    /// --postures`, the readings CSV to fill in.
+    /// --count`, the readings CSV to fill in.
     #[arg(long)]
     pub out: Option<PathBuf>,
     /// Fit readings that no rigid transform explains (a mirror image of the robot's points, or a

@@ -22,8 +22,7 @@ use stiffid_machining::app::compensate::dynamics::OperationDynamics;
 use stiffid_machining::app::compensate::stream::Points;
 use stiffid_machining::app::compensate::{self as job, Input, Report, Request};
 use stiffid_machining::compensate::{
-    Aggregate, Compensated, Feasible, FreeConfiguration, FreeLeadTilt, FreePositioner, FreeStation,
-    FreeToolAxis, MapVariable, Objective, Options, PathPoint, Scope,
+    Aggregate, Compensated, Free, Freedom, MapVariable, Objective, Options, PathPoint,
 };
 use stiffid_machining::dynamics::Dynamics;
 use stiffid_machining::process::file;
@@ -95,104 +94,52 @@ pub struct Args {
     /// The frame of the wrench in rows without a `frame` column value.
     #[arg(long, value_parser = choice::<Frame>(), default_value = "base")]
     frame: Frame,
-    /// Choose the rotation about the tool z axis of every point to minimise the TCP deflection
-    /// (or, with --free-tool-axis-objective, the drilling surge or the error bound).
+    /// A free variable, moved from the path's or the program's own value at every point
+    /// (repeatable, one of each): `tool-rotation=-R..R/STEP` (the rotation about tool z, deg;
+    /// default -90..90/2), `station=-R..R/STEP` (a track's station, mm, step default 10),
+    /// `positioner=-R..R/STEP` (the positioner's last axis, the table's turn, deg, step default 5),
+    /// `tilt=-R..R/STEP` (a two-axis positioner's first axis), an external axis by its name in
+    /// the cell file (the carrier's first: the station), `lead-tilt=-CONE..CONE/STEP` (the tool
+    /// axis leaned within a cone, deg, step default 2; a program's cone, without a range, is its
+    /// process file's; written as a robot program), `configuration` (the arm's configuration, up
+    /// to 8, one per program; `configuration=run`: one per run between rapid or joint moves).
+    /// The step is the grid's spacing and the most the variable changes between consecutive
+    /// points; the variables are chosen jointly by one dynamic programme, every moved posture
+    /// feasible (--margin-deg, --max-condition, the cell's collisions), and no point's --minimise
+    /// worse than at the path's own values.
+    #[arg(long, value_name = "VARIABLE=-R..R/STEP")]
+    free: Vec<String>,
+    /// With --free: what a point costs: the error bound the document reports (`bound_mm`, the
+    /// default), the TCP deflection, or the breakthrough surge at every drilling exit of a
+    /// program (tool-rotation alone; the robot must give its masses).
+    #[arg(long, value_parser = choice::<Objective>())]
+    minimise: Option<Objective>,
+    /// With --free: how the points' costs add up along the path: their sum (the default), or the
+    /// worst point's (ties broken by the sum).
+    #[arg(long, value_parser = choice::<Aggregate>())]
+    objective: Option<Aggregate>,
+    /// With --free: every moved posture keeps at least this distance to the joint limits, deg (0
+    /// to 90; default 5); the path's own posture stays as it is.
     #[arg(long)]
-    free_tool_axis: bool,
-    /// With --free-tool-axis: what the rotation minimises: the TCP deflection at every point, the
-    /// breakthrough surge at every drilling exit of a program (the robot must give its masses),
-    /// or the error bound at every point (`bound_mm`).
-    #[arg(long, value_parser = choice::<Objective>(), default_value = "deflection", requires = "free_tool_axis")]
-    free_tool_axis_objective: Objective,
-    /// Compensate the whole path in every configuration of the arm (shoulder, elbow and wrist
-    /// branches, up to 8) and keep the one of least --objective (of the error bound, or of the
-    /// deflection with --free-tool-axis), every point reached and every posture feasible in it
-    /// (--margin-deg, --max-condition, the cell's collisions), jointly with the other free
-    /// variables; one configuration per path file or program (at most 100000 points), or per
-    /// run with --configuration-per run.
+    margin_deg: Option<f64>,
+    /// With --free: a moved posture's TCP Jacobian condition number stays at most this (finite,
+    /// >= 1; default 1000): away from singularities.
     #[arg(long)]
-    free_configuration: bool,
-    /// With --free-configuration: what one configuration holds: the whole program, or each run
-    /// (a cut and the rapid or joint moves that lead to it: G-code G0, PTP, MoveJ, MoveAbsJ, J,
-    /// MOVJ), each run then compensated alone in each configuration (the other free variables'
-    /// step limits start afresh at each run) and the runs' choices minimising --objective over
-    /// the program; a program written as G-code must keep one configuration in every run.
-    #[arg(long, value_parser = choice::<Scope>(), default_value = "program", requires = "free_configuration")]
-    configuration_per: Scope,
-    /// With --free-tool-axis, --free-station-mm, --free-positioner-deg, --free-tilt-deg, --free-lead-tilt or --free-configuration: how the points' costs
-    /// add up along the path: their sum, or the worst point's (ties broken by the sum).
-    #[arg(long, value_parser = choice::<Aggregate>(), default_value = "sum")]
-    objective: Aggregate,
-    /// On a robot on a track: move the track station (the carrier's first axis) from the path's
-    /// or the program's own by up to +- this at every point, within its travel, mm (0 < value
-    /// <= 20000), jointly with the tool rotation with --free-tool-axis; it minimises the error
-    /// bound (or with --free-tool-axis, its objective: the deflection or the bound). A program
-    /// is written back with the stations chosen in every target.
+    max_condition: Option<f64>,
+    /// With --free (not configuration alone): refine the grid this many times around the line
+    /// chosen on it (0 to 4): each level halves every free variable's step and chooses again
+    /// within +-1 previous step of the previous line; the steps given stay the largest change
+    /// between points.
     #[arg(long)]
-    free_station_mm: Option<f64>,
-    /// With --free-station-mm: the largest change of the station's offset from the path's own
-    /// between consecutive points, and the grid's spacing, mm (0.1 <= value <= --free-station-mm).
-    #[arg(long, default_value_t = 10.0, requires = "free_station_mm")]
-    station_step_mm: f64,
-    /// With a free variable (--free-tool-axis, --free-station-mm, --free-positioner-deg, --free-tilt-deg, --free-lead-tilt, --free-configuration): every moved posture keeps at least this
-    /// distance to the joint limits, deg (0 to 90); the path's own posture stays as it is.
-    #[arg(long, default_value_t = Feasible::DEFAULT_MARGIN_DEG)]
-    margin_deg: f64,
-    /// With a free variable (--free-tool-axis, --free-station-mm, --free-positioner-deg, --free-tilt-deg, --free-lead-tilt, --free-configuration): a moved posture's TCP Jacobian condition
-    /// number stays at most this (finite, >= 1): away from singularities.
-    #[arg(long, default_value_t = Feasible::DEFAULT_MAX_CONDITION)]
-    max_condition: f64,
-    /// With a free variable (--free-tool-axis, --free-station-mm, --free-positioner-deg, --free-tilt-deg, --free-lead-tilt): refine its grid this many times around the line chosen on
-    /// it (0 to 4): each level halves every free variable's step and chooses again within +-1
-    /// previous step of the previous line; the steps given stay the largest change between
-    /// points.
-    #[arg(long, default_value_t = 0)]
-    refine: usize,
-    /// On a cell with a positioner: turn its last axis (the table's turn) from the path's or the
-    /// program's own angle by up to +- this at every point, within its travel, deg (0 < value
-    /// <= 360), jointly with the station and the tool rotation when they are free too; it
-    /// minimises what the station does. A program is written back with the angles chosen.
-    #[arg(long)]
-    free_positioner_deg: Option<f64>,
-    /// With --free-positioner-deg: the largest change of the angle's offset from the path's own
-    /// between consecutive points, and the grid's spacing, deg (0.01 <= value <=
-    /// --free-positioner-deg).
-    #[arg(long, default_value_t = 5.0, requires = "free_positioner_deg")]
-    positioner_step_deg: f64,
-    /// Lean the tool axis (ball-end milling, deburring) from the path's or the program's own
-    /// within a cone: the lead (towards the feed) and the tilt (across it) chosen at every point,
-    /// the TCP on the path's point, jointly with the tool rotation, the station and the
-    /// positioner when they are free too; it minimises what they do (the bound alone). A path's
-    /// cone is --cone-deg; a program's, its process file's operations' ([tool_axis] cone_deg),
-    /// written as a robot program (--out X.ls|.src|.mod: G-code has no words for the axis).
-    #[arg(long)]
-    free_lead_tilt: bool,
-    /// With --free-lead-tilt and a --path: the cone's half angle, deg (0 < value <= 30).
-    #[arg(long, requires = "free_lead_tilt")]
-    cone_deg: Option<f64>,
-    /// With --free-lead-tilt: the largest change of the lead, and of the tilt, between
-    /// consecutive points, and the grid's spacing, deg (0.1 <= value <= the cone).
-    #[arg(long, default_value_t = 2.0, requires = "free_lead_tilt")]
-    lead_tilt_step_deg: f64,
-    /// On a cell with a two-axis positioner: turn its first axis (the tilt) from the path's or
-    /// the program's own angle by up to +- this at every point, within its travel, deg (0 <
-    /// value <= 360), jointly with the table, the station and the tool rotation when they are
-    /// free too; it minimises what the station does. A program is written back with the angles
-    /// chosen.
-    #[arg(long)]
-    free_tilt_deg: Option<f64>,
-    /// With --free-tilt-deg: the largest change of the tilt's offset from the path's own between
-    /// consecutive points, and the grid's spacing, deg (0.01 <= value <= --free-tilt-deg).
-    #[arg(long, default_value_t = 5.0, requires = "free_tilt_deg")]
-    tilt_step_deg: f64,
-    /// Refuse (exit 2, nothing written) a path or program whose error bound (`bound_mm`, at
+    refine: Option<usize>,
+    /// Refuse (a failed gate: exit 1, nothing written) a path or program whose error bound (`bound_mm`, at
     /// --level) exceeds this anywhere, mm (> 0), naming its worst points and what dominates
     /// their bound.
     #[arg(long)]
     max_error_mm: Option<f64>,
     /// With --report: also the map of a free variable: `rotation` (the default: the rotation
-    /// about tool z, on the --free-tool-axis grid, else 5 deg steps within +-90 deg) or `track`
-    /// (the track station, on the --free-station-mm grid, else 50 mm steps within +-1000 mm):
+    /// about tool z, on the --free tool-rotation grid, else 5 deg steps within +-90 deg) or `track`
+    /// (the track station, on the --free station grid, else 50 mm steps within +-1000 mm):
     /// every point's error bound, deflection, condition number, distance to the joint limits and,
     /// with a [cell] floor or obstacles, to them, at every value, every other free variable at
     /// the value chosen at the point, with the value chosen (map.csv and the figure map).
@@ -201,14 +148,7 @@ pub struct Args {
     /// The process force model's relative error in the error budget, percent (0 to 100): the
     /// bound's force part is this share of the deflection.
     #[arg(long, default_value_t = 20.0)]
-    force_tolerance_percent: f64,
-    /// With --free-tool-axis: the largest change of that rotation between consecutive points, deg
-    /// (0 < value <= 90).
-    #[arg(long, default_value_t = 2.0, requires = "free_tool_axis")]
-    max_step_deg: f64,
-    /// With --free-tool-axis: the rotation stays within +- this of the path's, deg (0 < value <= 180).
-    #[arg(long, default_value_t = 90.0, requires = "free_tool_axis")]
-    tool_axis_range_deg: f64,
+    force_tolerance_pct: f64,
     /// The level of the error bound (`bound_mm`) and of the deflection's prediction intervals
     /// (0.5 to 0.999; the CSV's `d*_lower_mm`, `d*_upper_mm`, when the stiffness file holds the
     /// held-out residuals of its identification, `identify --cross-validate`).
@@ -327,6 +267,9 @@ fn input<'t>(args: &Args, name: String, text: &'t str) -> Result<Input<'t>> {
     let out = args.out.display().to_string();
     let (output, out_name) =
         Language::output(language, Some(&out), None, "").map_err(|e| anyhow!("--out {e}"))?;
+    if let (Language::GCode, Language::Robot(_)) = (language, output) {
+        check_subprogram_files(&args.out)?;
+    }
     let process_name = process.display().to_string();
     let parsed = file::parse(&load::read(process)?, &process_name)?;
     Ok(Input::Program {
@@ -416,6 +359,39 @@ fn finish(
     }
 }
 
+/// Refuses, before anything is computed, a file beside `out` named as one of the sub-programs a
+/// split program writes there (`NAME_01.EXT`, ..: the stem upper case, `out`'s extension) that
+/// `out` does not call: only an earlier run's sub-programs of the same `out` are replaced.
+fn check_subprogram_files(out: &Path) -> Result<()> {
+    let name = |p: Option<&std::ffi::OsStr>| p.and_then(|s| s.to_str()).unwrap_or("").to_string();
+    let (stem, extension) = (name(out.file_stem()), name(out.extension()));
+    let dir = match out.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Ok(());
+    };
+    let main = std::fs::read_to_string(out).unwrap_or_default();
+    let prefix = format!("{}_", stem.to_ascii_uppercase());
+    for entry in entries.flatten() {
+        let file = name(Some(&entry.file_name()));
+        let Some(sub) = file.strip_suffix(&format!(".{extension}")) else {
+            continue;
+        };
+        let number = sub.strip_prefix(&prefix).unwrap_or("");
+        let numbered = !number.is_empty() && number.bytes().all(|b| b.is_ascii_digit());
+        if numbered && !main.contains(sub) {
+            bail!(
+                "--out {}: {file} beside it is named as one of its sub-programs (a program of more than --moves-per-file moves is split into {prefix}01.{extension}, ..), and {} does not call it as an earlier run's: move it away or choose another --out",
+                out.display(),
+                out.display()
+            );
+        }
+    }
+    Ok(())
+}
+
 /// A split program's sub-programs, each beside the main program in a file of its name with the
 /// main program's extension.
 fn write_subprograms(
@@ -437,66 +413,45 @@ fn write_subprograms(
     Ok(())
 }
 
+/// The message refusing a retired option of `stiffid compensate` among the process's arguments
+/// `args`, saying how to write it with `--free`.
+pub fn retired(args: impl Iterator<Item = std::ffi::OsString>) -> Option<String> {
+    let args: Vec<String> = args.map(|a| a.to_string_lossy().into_owned()).collect();
+    if !args.iter().any(|a| a == "compensate") {
+        return None;
+    }
+    args.iter().find_map(|a| {
+        let name = a.strip_prefix("--")?.split('=').next()?;
+        let (option, value) = stiffid_machining::compensate::free::retired(name)?;
+        Some(format!("--{name}: removed; write --{option} {value}"))
+    })
+}
+
 fn options(args: &Args, setup: &Setup) -> Result<Options> {
     let mut options = Options::for_setup(setup);
     stiffid_core::model::prediction::check_level("--level", args.level)?;
     options.level = args.level;
-    options.force_tolerance = args.force_tolerance_percent / 100.0;
+    options.force_tolerance = args.force_tolerance_pct / 100.0;
     options.max_error = args.max_error_mm.map(|m| m * 1e-3);
     options.map = args.map.is_some();
     options.map_over = args.map.unwrap_or_default();
-    options.feasible.margin = args.margin_deg.to_radians();
-    options.feasible.max_condition = args.max_condition;
-    options.refine = args.refine;
     if let Some(text) = &args.q0_deg {
         options.q0 = load::posture(text, "--q0-deg", setup.robot())?.1;
     }
-    if args.free_tool_axis {
-        let free = FreeToolAxis::try_from_degrees(args.max_step_deg, args.tool_axis_range_deg)?;
-        options.free_tool_axis = Some(FreeToolAxis {
-            objective: args.free_tool_axis_objective,
-            aggregate: args.objective,
-            ..free
-        });
-    }
-    if let Some(range) = args.free_station_mm {
-        let free = options.free_tool_axis.as_ref();
-        options.free_station = Some(FreeStation::try_with(
-            range,
-            args.station_step_mm,
-            free,
-            args.objective,
-        )?);
-    }
-    if args.free_configuration {
-        let free = options.free_tool_axis.as_ref();
-        options.free_configuration = Some(FreeConfiguration {
-            per: args.configuration_per,
-            ..FreeConfiguration::with(free, args.objective)
-        });
-    }
-    if let Some(range) = args.free_positioner_deg {
-        let free = options.free_tool_axis.as_ref();
-        options.free_positioner = Some(FreePositioner::try_with(
-            range,
-            args.positioner_step_deg,
-            free,
-            args.objective,
-        )?);
-    }
-    if args.free_lead_tilt {
-        options.free_lead_tilt = Some(FreeLeadTilt::try_with(
-            args.cone_deg,
-            args.lead_tilt_step_deg,
-            options.free_tool_axis.as_ref(),
-            args.objective,
-        )?);
-    }
-    if let Some(range) = args.free_tilt_deg {
-        let free = options.free_tool_axis.as_ref();
-        let tilt = FreePositioner::try_tilt(range, args.tilt_step_deg, free, args.objective)?;
-        options.free_tilt = Some(tilt);
-    }
+    let free = args
+        .free
+        .iter()
+        .map(|f| Free::parse(f.as_str()))
+        .collect::<stiffid_core::Result<Vec<_>>>()?;
+    let freedom = Freedom {
+        free,
+        minimise: args.minimise,
+        objective: args.objective,
+        margin_deg: args.margin_deg,
+        max_condition: args.max_condition,
+        refine: args.refine,
+    };
+    freedom.apply(setup, &mut options)?;
     Ok(options)
 }
 
@@ -560,7 +515,7 @@ fn human(args: &Args, setup: &Setup, report: &Report, names: &Names) -> String {
             o.objective,
             f.mean_deflection_before_mm,
             f.mean_deflection_after_mm,
-            f.mean_change_percent,
+            f.mean_change_pct,
         );
     }
     if let Some(l) = &d.free_lead_tilt {
@@ -647,7 +602,7 @@ fn dynamics_line(o: &OperationDynamics) -> String {
         line += &format!("first natural frequency {lo:.1}-{hi:.1} Hz");
         if let (Some(t), Some(p), Some(k)) = (
             o.tooth_passing_hz,
-            o.nearest_harmonic_percent,
+            o.nearest_harmonic_pct,
             o.nearest_harmonic_order,
         ) {
             line += &format!(", tooth passing {t:.1} Hz (nearest: {p:.1}% from harmonic {k})");

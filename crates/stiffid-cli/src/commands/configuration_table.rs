@@ -1,4 +1,4 @@
-//! The text table of `stiffid compensate --free-configuration`: every configuration of the arm, its
+//! The text table of `stiffid compensate --free configuration`: every configuration of the arm, its
 //! objective or why it cannot take the path, and the one chosen; per run, each run's choice.
 
 use stiffid_machining::app::compensate::configurations::{ConfigurationsDocument, RunRow};

@@ -34,8 +34,8 @@ pub struct Args {
     #[arg(long, allow_hyphen_values = true, default_value = "0,0,0")]
     point_mm: String,
     /// The characteristic length L of the dexterity index k(J_N) (Eq. 20), mm [1 to 100000]
-    /// (default: derived from the robot, the length that minimises the point's median dexterity
-    /// over its joint limits; a setup's `characteristic_length_mm` is the one to give).
+    /// (default: with --setup, the setup's `characteristic_length_mm`; else derived from the
+    /// robot, the length that minimises the point's median dexterity over its joint limits).
     #[arg(long)]
     characteristic_length_mm: Option<f64>,
     /// The joint coordinates of the Jacobian's columns.
@@ -54,12 +54,14 @@ pub struct Args {
 
 /// Prints the kinematics of one posture.
 pub fn run(args: &Args) -> Result<()> {
-    let (robot, workpiece) = match (&args.setup, &args.robot) {
+    // A setup's characteristic length is the one to use unless one is given.
+    let (robot, workpiece, length) = match (&args.setup, &args.robot) {
         (Some(s), _) => {
             let setup = load::setup(s)?;
-            (setup.robot().clone(), setup.workpiece().copied())
+            let length = setup.characteristic_length();
+            (setup.robot().clone(), setup.workpiece().copied(), length)
         }
-        (None, Some(r)) => (load::robot(r, args.tip.as_deref())?, None),
+        (None, Some(r)) => (load::robot(r, args.tip.as_deref())?, None, None),
         (None, None) => anyhow::bail!("give --robot or --setup"),
     };
     let (_, q) = load::posture(&args.q_deg, "--q-deg", &robot)?;
@@ -73,7 +75,7 @@ pub fn run(args: &Args) -> Result<()> {
         robot: &robot,
         q,
         point,
-        characteristic_length: args.characteristic_length_mm.map(|l| l * 1e-3),
+        characteristic_length: (args.characteristic_length_mm.map(|l| l * 1e-3)).or(length),
         coordinates: args.coordinates,
         stiffness,
         external,

@@ -93,7 +93,7 @@ pub struct Args {
     level: f64,
     /// The process force model's relative error in the error budget, percent (0 to 100).
     #[arg(long, default_value_t = 20.0)]
-    force_tolerance_percent: f64,
+    force_tolerance_pct: f64,
     /// Where inverse kinematics starts for the first point, axis angles q1..q6, deg; default
     /// the setup's first test posture.
     #[arg(long, allow_hyphen_values = true)]
@@ -143,7 +143,7 @@ pub fn run(args: &Args) -> Result<()> {
     let mut options = Options::for_setup(&setup);
     stiffid_core::model::prediction::check_level("--level", args.level)?;
     options.level = args.level;
-    options.force_tolerance = args.force_tolerance_percent / 100.0;
+    options.force_tolerance = args.force_tolerance_pct / 100.0;
     if let Some(text) = &args.q0_deg {
         options.q0 = load::posture(text, "--q0-deg", setup.robot())?.1;
     }
@@ -260,14 +260,14 @@ fn human(d: &Document, out: &Path) -> String {
     s += &line("placed", &d.placed);
     s += &line("own", &d.own);
     s += &line("reach-only", &d.reach_only);
-    if let Some(g) = d.gain_vs_own_percent {
+    if let Some(g) = d.gain_vs_own_pct {
         s += &format!("gain: {g:.1}% against the own placement, ");
     } else {
         s += "gain: ";
     }
     s += &format!(
         "{:.1}% against the reach-only placement\nwritten: {}\n",
-        d.gain_vs_reach_only_percent,
+        d.gain_vs_reach_only_pct,
         out.display()
     );
     s

@@ -1,7 +1,7 @@
 //! `stiffid register`: the laser tracker's transform to the robot base from measuring points read
 //! by the tracker at known axis angles ([`stiffid_calibrate::app::register`]: Umeyama's least-squares rigid
 //! transform), its residuals and standard deviation, and the `[tracker]` fragment of the setup
-//! file; or, with `--postures N`, the registration postures to read
+//! file; or, with `--count N`, the registration postures to read
 //! ([`stiffid_calibrate::app::register::propose`]).
 
 use crate::commands::cell_readings::{self, three, Outcome};
@@ -14,10 +14,10 @@ use stiffid_core::Progress;
 use stiffid_design::registration as design;
 
 /// Arguments of `stiffid register`: `--data` holds at least 3 points not on one line; `--out`
-/// gets the `[tracker] base_from_tracker` fragment. Or `--postures N` proposes the postures to
+/// gets the `[tracker] base_from_tracker` fragment. Or `--count N` proposes the postures to
 /// read, and `--out` gets the readings CSV to fill in.
 #[derive(clap::Args)]
-#[command(group(clap::ArgGroup::new("readings").required(true).args(["data", "postures"])))]
+#[command(group(clap::ArgGroup::new("readings").required(true).args(["data", "count"])))]
 pub struct Args {
     #[command(flatten)]
     readings: cell_readings::Args,
@@ -26,15 +26,15 @@ pub struct Args {
     /// minimise the predicted standard deviation of the transform's rotation (the root of its
     /// three variances at the setup's tracker noise), chosen from --candidates seeded postures.
     #[arg(long, conflicts_with = "data", value_parser = clap::value_parser!(u64).range(1..=design::MAX_POSTURES as u64))]
-    postures: Option<u64>,
-    /// Seed of --postures' candidates and exchange runs.
-    #[arg(long, default_value_t = 1, requires = "postures")]
+    count: Option<u64>,
+    /// Seed of --count's candidates and exchange runs.
+    #[arg(long, default_value_t = 1, requires = "count")]
     seed: u64,
-    /// Candidate postures drawn in the bounds for --postures [default: 20000; 1 to 100000].
-    #[arg(long, requires = "postures", value_parser = clap::value_parser!(u64).range(1..=design::MAX_CANDIDATES as u64))]
+    /// Candidate postures drawn in the bounds for --count [default: 20000; 1 to 100000].
+    #[arg(long, requires = "count", value_parser = clap::value_parser!(u64).range(1..=design::MAX_CANDIDATES as u64))]
     candidates: Option<u64>,
-    /// Exchange runs of --postures, 1 to 50 [default: 8].
-    #[arg(long, requires = "postures", value_parser = clap::value_parser!(u64).range(1..=stiffid_core::common::limits::MAX_POOL_RESTARTS))]
+    /// Exchange runs of --count, 1 to 50 [default: 8].
+    #[arg(long, requires = "count", value_parser = clap::value_parser!(u64).range(1..=stiffid_core::common::limits::MAX_POOL_RESTARTS))]
     restarts: Option<u64>,
 }
 
@@ -42,7 +42,7 @@ pub struct Args {
 pub fn run(args: &Args) -> Result<()> {
     let setup = args.readings.setup()?;
     let name = &args.readings.common.setup;
-    if let Some(n) = args.postures {
+    if let Some(n) = args.count {
         return propose(args, &setup, n as usize);
     }
     let job = |request: &job::Request<'_>| {
@@ -57,7 +57,7 @@ pub fn run(args: &Args) -> Result<()> {
     args.readings.run(&setup, job, text_of)
 }
 
-/// `--postures N`: the proposal, and the readings template written with `--out`.
+/// `--count N`: the proposal, and the readings template written with `--out`.
 fn propose(args: &Args, setup: &stiffid_core::Setup, n: usize) -> Result<()> {
     let out = args.readings.prepare_out()?;
     let defaults = design::Options::default();

@@ -39,7 +39,7 @@ const DOCUMENTS: [(&str, &str); 16] = [
     ),
     ("reproduce", "stiffid reproduce: summary.json"),
     ("register", "stiffid register --json"),
-    ("register-postures", "stiffid register --postures N --json"),
+    ("register-postures", "stiffid register --count N --json"),
     ("calibrate-cell", "stiffid calibrate-cell --json"),
     ("calibrate", "stiffid calibrate --json"),
     ("place", "stiffid place --json"),

@@ -96,7 +96,7 @@ fn human(r: &Document) -> String {
         r.mean_measured_mm,
         r.max_measured_mm,
         r.rms_measured_mm,
-        r.explained_percent
+        r.explained_pct
     );
     s += &match &r.prediction_intervals {
         Some(p) => format!(
@@ -104,7 +104,7 @@ fn human(r: &Document) -> String {
 ",
             p.method,
             100.0 * p.level,
-            p.coverage_percent,
+            p.coverage_pct,
             p.coordinates,
             p.coordinates - p.covered
         ),

@@ -129,13 +129,23 @@ impl Writer {
     }
 }
 
+impl Writer {
+    /// `e` naming the file it was writing (a full device's error names no file).
+    fn named(&self, e: std::io::Error) -> std::io::Error {
+        std::io::Error::new(
+            e.kind(),
+            format!("{}: cannot write: {e}", self.target.display()),
+        )
+    }
+}
+
 impl Write for Writer {
     fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
-        self.file.write(buf)
+        self.file.write(buf).map_err(|e| self.named(e))
     }
 
     fn flush(&mut self) -> std::io::Result<()> {
-        self.file.flush()
+        self.file.flush().map_err(|e| self.named(e))
     }
 }
 
@@ -150,4 +160,28 @@ impl Drop for Writer {
 /// The directory of a resolved (absolute) target.
 fn dir_of(target: &Path) -> &Path {
     target.parent().unwrap_or(Path::new("/"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A full device's error names the file being written (`/dev/full` answers every write with
+    /// "No space left on device").
+    #[test]
+    fn a_full_device_names_the_file() {
+        let full = std::fs::OpenOptions::new().write(true).open("/dev/full");
+        let mut w = Writer {
+            file: BufWriter::with_capacity(16, full.unwrap()),
+            tmp: PathBuf::from("/nonexistent/stiffid-tmp"),
+            target: PathBuf::from("o/PK.csv"),
+            new_only: false,
+            done: false,
+        };
+        let e = (0..100)
+            .try_for_each(|_| writeln!(w, "1,2,3,4,5,6"))
+            .unwrap_err();
+        assert_eq!(e.kind(), std::io::ErrorKind::StorageFull);
+        assert!(e.to_string().starts_with("o/PK.csv: cannot write: "), "{e}");
+    }
 }

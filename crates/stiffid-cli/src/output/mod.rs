@@ -108,9 +108,10 @@ pub fn one_line_chain(e: &anyhow::Error) -> String {
 /// One error of a chain in words; a job option's as the command names it ([`flag`]).
 fn named(e: &(dyn std::error::Error + 'static)) -> String {
     match e.downcast_ref::<stiffid_core::Error>() {
-        Some(stiffid_core::Error::InvalidOption { option, message }) => {
-            format!("{}: {message}", flag(*option))
-        }
+        Some(
+            stiffid_core::Error::InvalidOption { option, message }
+            | stiffid_core::Error::Gate { option, message },
+        ) => format!("{}: {message}", flag(*option)),
         Some(stiffid_core::Error::OptionCombination {
             option,
             with,
@@ -121,7 +122,7 @@ fn named(e: &(dyn std::error::Error + 'static)) -> String {
     }
 }
 
-/// A job option as the command names it: `--max-step-deg`; the program's name comes from `--out`.
+/// A job option as the command names it: `--margin-deg`, `--free station range`; the program's name comes from `--out`.
 pub fn flag(option: JobOption) -> String {
     match option {
         JobOption::ProgramName => "--out: program name".into(),

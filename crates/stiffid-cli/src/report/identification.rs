@@ -77,7 +77,7 @@ fn compose(w: &mut dyn Writer, doc: &Value, figures: &[Figure], scene: Option<&S
     for warning in doc["warnings"].as_array().into_iter().flatten() {
         w.paragraph(&format!("Warning: {}", text(&warning["message"])));
     }
-    if doc.get("models").is_some() {
+    if doc["kind"] == "identify-comparison" {
         w.heading(2, "The compared models");
         w.table(&models_table(doc));
     }
@@ -101,12 +101,12 @@ fn compose(w: &mut dyn Writer, doc: &Value, figures: &[Figure], scene: Option<&S
         w.paragraph(&format!(
             "Cross-validation over {} folds: held out, the model explains {} % ± {} % of the measured displacement (RMS prediction error {} mm).",
             text(&cv["folds"]),
-            text(&cv["explained_percent"]),
-            text(&cv["explained_std_error_percent"]),
+            text(&cv["explained_pct"]),
+            text(&cv["explained_std_error_pct"]),
             text(&cv["rms_delta_b_mm"])
         ));
     }
-    if let Some(q) = doc["prediction"]["score_q95_percent"].as_f64() {
+    if let Some(q) = doc["prediction"]["score_q95_pct"].as_f64() {
         w.paragraph(&format!(
             "Prediction intervals ({}): 95% of the held-out errors are within {} % of the predicted displacement plus {} mm; `predict --stiffness` gives them for any posture.",
             text(&doc["prediction"]["method"]),
@@ -129,7 +129,7 @@ fn compose(w: &mut dyn Writer, doc: &Value, figures: &[Figure], scene: Option<&S
 
 /// Each parameter's stiffness with its 95% interval and, for the drives, its standard error.
 fn parameters_table(doc: &Value, parameters: &[Value]) -> Table {
-    let se = doc["std_error_percent"].as_array();
+    let se = doc["std_error_pct"].as_array();
     let drives = doc["ci95_nm_per_rad"].as_array();
     let header = [
         "parameter",

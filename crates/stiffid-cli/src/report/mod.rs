@@ -3,6 +3,7 @@
 //! (SVG and PNG).
 
 pub mod calibration;
+pub mod campaign;
 pub mod compensation;
 mod content;
 pub mod document;

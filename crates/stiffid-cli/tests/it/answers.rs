@@ -217,10 +217,10 @@ fn a_stiffness_files_prediction_data_and_its_two_stiffness_keys_are_checked() {
         "{e}"
     );
     let mut rho = doc.clone();
-    rho["prediction"]["model_error_percent"] = 1e9.into();
+    rho["prediction"]["model_error_pct"] = 1e9.into();
     let e = parse(&rho).unwrap_err().to_string();
     assert!(
-        e.starts_with("prediction.model_error_percent: 1e9: expected a share in [0, 10000]"),
+        e.starts_with("prediction.model_error_pct: 1e9: expected a share in [0, 10000]"),
         "{e}"
     );
     let mut score = doc.clone();
@@ -241,7 +241,7 @@ fn a_stiffness_files_prediction_data_and_its_two_stiffness_keys_are_checked() {
     alone["prediction"]
         .as_object_mut()
         .unwrap()
-        .remove("model_error_percent");
+        .remove("model_error_pct");
     let old = parse(&alone).unwrap().prediction.unwrap().calibration();
     assert!(old.deflection.is_none());
     let h = old.folds[0].compliance.clone();

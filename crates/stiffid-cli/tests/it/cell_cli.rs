@@ -112,7 +112,7 @@ fn select_in_a_cell_is_feasible_and_shows_the_unconstrained_optimum() {
     // What the checks cost, in %: the feasible value over the unconstrained one, and the mean
     // of each group's predicted deviation rates (levels x joints) over the other's.
     let value = |d: &serde_json::Value| d["value"].as_f64().unwrap();
-    let cost = free["cost_percent"].as_f64().unwrap();
+    let cost = free["cost_pct"].as_f64().unwrap();
     assert!((cost - 100.0 * (value(&doc) / value(free) - 1.0)).abs() < 1e-9);
     let mean = |c: &serde_json::Value| {
         let rows = c["predicted_deviation_pct"].as_array().unwrap();
@@ -124,7 +124,7 @@ fn select_in_a_cell_is_feasible_and_shows_the_unconstrained_optimum() {
     assert!((pct("feasible_predicted_average_pct") - feasible).abs() < 1e-12 * feasible);
     assert!((pct("predicted_average_pct") - unconstrained).abs() < 1e-12 * unconstrained);
     let change = 100.0 * (feasible / unconstrained - 1.0);
-    assert!((pct("predicted_average_change_percent") - change).abs() < 1e-9);
+    assert!((pct("predicted_average_change_pct") - change).abs() < 1e-9);
     let eval = json(&stiffid(&[
         "evaluate",
         "--setup",
@@ -216,7 +216,7 @@ fn a_search_ending_on_its_constraints_keeps_its_result() {
         "--calibration-criterion",
         "d-optimality",
         "--global",
-        "--postures",
+        "--count",
         "36",
         "--starts",
         "1",

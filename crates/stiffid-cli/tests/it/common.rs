@@ -42,8 +42,20 @@ pub fn json(out: &Output) -> Value {
 /// no panic, and one stderr line starting with `error: ` that contains every part of
 /// `must_mention`. Returns that line.
 pub fn assert_usage_error(out: &Output, must_mention: &[&str]) -> String {
+    assert_error_line(out, 2, must_mention)
+}
+
+/// As [`assert_usage_error`] for a gate the result failed (`--max-error-mm`, a drifted check):
+/// exit code 1.
+pub fn assert_failed_gate(out: &Output, must_mention: &[&str]) -> String {
+    assert_error_line(out, 1, must_mention)
+}
+
+/// One `error: ` line on stderr mentioning each of `must_mention`, nothing on stdout, exit code
+/// `code`.
+fn assert_error_line(out: &Output, code: i32, must_mention: &[&str]) -> String {
     let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
-    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert_eq!(out.status.code(), Some(code), "{stderr}");
     assert!(out.stdout.is_empty(), "printed {:?}", out.stdout);
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert_eq!(stderr.lines().count(), 1, "not one line: {stderr}");

@@ -1,5 +1,6 @@
-//! The free variables' options of `compensate` (`--free-lead-tilt`, `--cone-deg`,
-//! `--lead-tilt-step-deg`, `--free-tilt-deg`, `--tilt-step-deg`, `--free-configuration`) and
+//! The free variables' options of `compensate` (`--free lead-tilt=-CONE..CONE/STEP`,
+//! `--free tilt=-R..R/STEP`, `--free configuration`, the texts of `--free`, the options of the
+//! free variables given without one and the options `--free` replaced) and
 //! `place`'s region (`--region-mm`, `--rotation-deg`), given hostile values: one test per class
 //! of problem (not finite, negative or zero, too large or too small, empty, combinations that
 //! make no sense), each refused with exit code 2 in one line naming the option, no panic,
@@ -9,7 +10,7 @@ use crate::common::example;
 use crate::common::{refused, temp_dir};
 use std::path::Path;
 
-/// `compensate` of the milling example's path (`--free-lead-tilt` given) or of the track's
+/// `compensate` of the milling example's path or of the track's
 /// table cut (a two-axis positioner), output into `{dir}`.
 fn compensate(track: bool) -> Vec<String> {
     let (setup, stiffness, path) = match track {
@@ -45,51 +46,81 @@ fn place() -> Vec<String> {
     args
 }
 
-/// Each value of `values` given to `option` (after `base` and `extra`) is refused naming
-/// `names` (the option by default).
-fn each_refused(dir: &Path, (base, extra): (&[String], &[&str]), option: &str, values: &[&str]) {
+/// One option given hostile values: its base command, what it needs beside it, how a value
+/// `v` is written (the arguments) and the names its refusal must hold.
+struct Given {
+    base: Vec<String>,
+    extra: Vec<&'static str>,
+    write: fn(&str) -> Vec<String>,
+    names: Vec<&'static str>,
+}
+
+/// Each value of `values` written by `given` is refused naming its names.
+fn each_refused(dir: &Path, given: &Given, values: &[&str]) {
     for v in values {
-        let mut args: Vec<&str> = base.iter().map(String::as_str).collect();
-        args.extend(extra);
-        let given = format!("{option}={v}");
-        args.push(&given);
-        refused(dir, &args, &[option]);
+        let mut args: Vec<String> = given.base.clone();
+        args.extend(given.extra.iter().map(|s| s.to_string()));
+        args.extend((given.write)(v));
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        refused(dir, &args, &given.names);
     }
 }
 
-/// Every option with its base command and what it needs beside it.
-fn options() -> Vec<(Vec<String>, Vec<&'static str>, &'static str)> {
-    let lean = vec!["--free-lead-tilt"];
-    let cone = vec!["--free-lead-tilt", "--cone-deg", "5"];
-    let tilt = vec!["--free-tilt-deg", "10"];
+/// A `--free` of `text`.
+fn free(text: String) -> Vec<String> {
+    vec!["--free".into(), text]
+}
+
+/// The lean's cone, the lean's step, the tilt's range and step, the place region and rotation.
+fn options() -> Vec<Given> {
     let region = vec!["--region-mm", "500,2000,-1500,500"];
+    let lean = ["--free", "lead-tilt"];
+    let tilt = ["--free", "tilt"];
     vec![
-        (compensate(false), lean, "--cone-deg"),
-        (compensate(false), cone, "--lead-tilt-step-deg"),
-        (compensate(true), vec![], "--free-tilt-deg"),
-        (compensate(true), tilt, "--tilt-step-deg"),
-        (place(), vec![], "--region-mm"),
-        (place(), region, "--rotation-deg"),
+        Given {
+            base: compensate(false),
+            extra: vec![],
+            write: |v| free(format!("lead-tilt=-{v}..{v}")),
+            names: lean.to_vec(),
+        },
+        Given {
+            base: compensate(false),
+            extra: vec![],
+            write: |v| free(format!("lead-tilt=-5..5/{v}")),
+            names: lean.to_vec(),
+        },
+        Given {
+            base: compensate(true),
+            extra: vec![],
+            write: |v| free(format!("tilt=-{v}..{v}")),
+            names: tilt.to_vec(),
+        },
+        Given {
+            base: compensate(true),
+            extra: vec![],
+            write: |v| free(format!("tilt=-10..10/{v}")),
+            names: tilt.to_vec(),
+        },
+        Given {
+            base: place(),
+            extra: vec![],
+            write: |v| vec![format!("--region-mm={}", [v; 4].join(","))],
+            names: vec!["--region-mm"],
+        },
+        Given {
+            base: place(),
+            extra: region,
+            write: |v| vec![format!("--rotation-deg={}", [v; 2].join(","))],
+            names: vec!["--rotation-deg"],
+        },
     ]
 }
 
-/// The value `v` repeated as many times as `option` takes numbers.
-fn spread(option: &str, v: &str) -> String {
-    let n = match option {
-        "--region-mm" => 4,
-        "--rotation-deg" => 2,
-        _ => 1,
-    };
-    vec![v; n].join(",")
-}
-
-/// Runs `values` (each spread over the option's numbers) through every option.
+/// Runs `values` through every option.
 fn through_every_option(name: &str, values: &[&str]) {
     let dir = temp_dir(name);
-    for (base, extra, option) in options() {
-        let values: Vec<String> = values.iter().map(|v| spread(option, v)).collect();
-        let values: Vec<&str> = values.iter().map(String::as_str).collect();
-        each_refused(&dir, (&base, &extra), option, &values);
+    for given in options() {
+        each_refused(&dir, &given, values);
     }
 }
 
@@ -100,16 +131,23 @@ fn values_that_are_not_finite_are_refused_naming_the_option() {
 
 #[test]
 fn negative_and_zero_values_are_refused_naming_the_option() {
-    // Zero is a valid coordinate of the region: its ranges are refused reversed instead.
     let dir = temp_dir("hostile-negative");
-    for (base, extra, option) in options() {
-        let values: Vec<String> = match option {
-            "--region-mm" => vec!["0,-1,0,1".into(), "0,1,0,-1".into()],
-            "--rotation-deg" => vec!["0,-1".into()],
-            _ => vec!["-1".into(), "0".into(), "-0".into()],
-        };
-        let values: Vec<&str> = values.iter().map(String::as_str).collect();
-        each_refused(&dir, (&base, &extra), option, &values);
+    for given in options().into_iter().take(4) {
+        each_refused(&dir, &given, &["-1", "0", "-0"]);
+    }
+    // Zero is a valid coordinate of the region: its ranges are refused reversed instead.
+    for (option, value) in [
+        ("--region-mm", "0,-1,0,1"),
+        ("--region-mm", "0,1,0,-1"),
+        ("--rotation-deg", "0,-1"),
+    ] {
+        let mut args = place();
+        if option == "--rotation-deg" {
+            args.extend(["--region-mm".into(), "500,2000,-1500,500".into()]);
+        }
+        args.push(format!("{option}={value}"));
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        refused(&dir, &args, &[option]);
     }
 }
 
@@ -118,39 +156,38 @@ fn huge_and_tiny_values_are_refused_naming_the_option() {
     through_every_option("hostile-huge", &["1e308", "1e9"]);
     // A range below the smallest step names the range, not the step it was given.
     let dir = temp_dir("hostile-tiny");
-    let tiny = [
-        (compensate(false), vec!["--free-lead-tilt"], "--cone-deg"),
-        (compensate(true), vec![], "--free-tilt-deg"),
-    ];
-    for (base, extra, option) in tiny {
-        each_refused(&dir, (&base, &extra), option, &["1e-300", "0.001"]);
-    }
-    let steps = [
-        (
-            compensate(false),
-            vec!["--free-lead-tilt", "--cone-deg", "5"],
-            "--lead-tilt-step-deg",
-        ),
-        (
-            compensate(true),
-            vec!["--free-tilt-deg", "10"],
-            "--tilt-step-deg",
-        ),
-    ];
-    for (base, extra, option) in steps {
-        each_refused(&dir, (&base, &extra), option, &["1e-300", "0.001"]);
+    for given in options().into_iter().take(4) {
+        each_refused(&dir, &given, &["1e-300", "0.001"]);
     }
 }
 
 #[test]
 fn empty_and_malformed_values_are_refused_naming_the_option() {
     let dir = temp_dir("hostile-empty");
-    for (base, extra, option) in options() {
-        let mut values = vec!["", " ", "x"];
-        if matches!(option, "--region-mm" | "--rotation-deg") {
-            values.extend([",", "1,2,3,4,5", "1,,2,3"]);
-        }
-        each_refused(&dir, (&base, &extra), option, &values);
+    for given in options() {
+        each_refused(&dir, &given, &["", " ", "x"]);
+    }
+    let place_region = &options()[4];
+    each_refused(&dir, place_region, &[",", "1,2,3,4,5", "1,,2,3"]);
+    // The --free texts themselves.
+    let malformed = [
+        "tool-rotation=90",
+        "tool-rotation=-90..80",
+        "tool-rotation=..90",
+        "tool-rotation=-90..90/",
+        "=-90..90",
+        "spindle=-90..90",
+        "configuration=each",
+    ];
+    for text in malformed {
+        let mut args = compensate(false);
+        args.extend(free(text.into()));
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        // A name is checked against the cell's axes: its refusal names the name.
+        let named = text
+            .strip_prefix("spindle")
+            .map_or(text, |_| "spindle: unknown variable");
+        refused(&dir, &args, &["--free", named]);
     }
 }
 
@@ -174,53 +211,88 @@ fn combinations_that_make_no_sense_are_refused_naming_the_option() {
     // A tilt on a robot without a positioner; a step without its range.
     run(
         compensate(false),
-        &["--free-tilt-deg", "10"],
-        &["--free-tilt-deg", "positioner"],
+        &["--free", "tilt=-10..10"],
+        &["--free tilt", "positioner"],
     );
     run(
         compensate(true),
-        &["--tilt-step-deg", "5"],
-        &["--free-tilt-deg"],
+        &["--free", "tilt=/5"],
+        &["--free", "tilt"],
     );
     // A cone without the lean; a program's cone given as an option; a process without a cone.
     run(
-        compensate(false),
-        &["--cone-deg", "5"],
-        &["--free-lead-tilt"],
+        program(&["--free", "lead-tilt=-5..5"]),
+        &[],
+        &["--free lead-tilt range", "process file"],
     );
     run(
-        program(&["--free-lead-tilt", "--cone-deg", "5"]),
+        program(&["--free", "lead-tilt"]),
         &[],
-        &["--cone-deg", "process file"],
-    );
-    run(
-        program(&["--free-lead-tilt"]),
-        &[],
-        &["--cone-deg", "allows no lean"],
+        &["--free lead-tilt range", "allows no lean"],
     );
     // The surge minimised by the lean or the configuration.
-    let surge = ["--free-tool-axis", "--free-tool-axis-objective", "surge"];
-    let lean_surge: Vec<&str> = ["--free-lead-tilt", "--cone-deg", "5"]
+    let surge = ["--free", "tool-rotation", "--minimise", "surge"];
+    let lean_surge: Vec<&str> = ["--free", "lead-tilt=-5..5"]
         .into_iter()
         .chain(surge)
         .collect();
+    run(compensate(false), &lean_surge, &["--minimise"]);
+    let config_surge: Vec<&str> = ["--free", "configuration"]
+        .into_iter()
+        .chain(surge)
+        .collect();
+    run(compensate(false), &config_surge, &["--free configuration"]);
     run(
         compensate(false),
-        &lean_surge,
-        &["--free-tool-axis-objective"],
+        &["--free", "configuration", "--free", "configuration=run"],
+        &["--free", "configuration", "twice"],
     );
-    let config_surge: Vec<&str> = ["--free-configuration"].into_iter().chain(surge).collect();
-    run(compensate(false), &config_surge, &["--free-configuration"]);
+    // An axis by its name and by its keyword is one variable; a name the cell does not have.
     run(
-        compensate(false),
-        &["--free-configuration", "--free-configuration"],
-        &["--free-configuration"],
+        compensate(true),
+        &["--free", "rotate=-10..10", "--free", "positioner=-10..10"],
+        &["--free", "positioner", "twice"],
     );
+    run(
+        compensate(true),
+        &["--free", "turn=-10..10"],
+        &["--free", "turn: unknown variable", "track, tilt, rotate"],
+    );
+    // The options of the free variables without one.
+    for option in [
+        ["--minimise", "bound"],
+        ["--objective", "max"],
+        ["--margin-deg", "3"],
+        ["--max-condition", "100"],
+        ["--refine", "1"],
+    ] {
+        run(compensate(false), &option, &[option[0], "only with --free"]);
+    }
+    // The options --free replaced, each refused saying how to write it.
+    for (option, how) in [
+        (vec!["--free-tool-axis"], "--free tool-rotation=-90..90/2"),
+        (
+            vec!["--max-step-deg", "2"],
+            "--free tool-rotation=-R..R/STEP",
+        ),
+        (vec!["--free-station-mm=200"], "--free station=-R..R/STEP"),
+        (vec!["--free-tool-axis-objective", "bound"], "--minimise"),
+        (
+            vec!["--configuration-per", "run"],
+            "--free configuration=run",
+        ),
+        (vec!["--cone-deg", "5"], "--free lead-tilt=-CONE..CONE/STEP"),
+    ] {
+        run(
+            compensate(false),
+            &option,
+            &[option[0].split('=').next().unwrap(), "removed", how],
+        );
+    }
     // A map of the track on a fixed base, with the lean free.
     let track_map = [
-        "--free-lead-tilt",
-        "--cone-deg",
-        "5",
+        "--free",
+        "lead-tilt=-5..5",
         "--map",
         "track",
         "--report",
@@ -228,18 +300,11 @@ fn combinations_that_make_no_sense_are_refused_naming_the_option() {
     ];
     run(compensate(false), &track_map, &["--map", "carrier"]);
     // A lean grid beyond the cells a path may take.
-    let fine = [
-        "--free-lead-tilt",
-        "--cone-deg",
-        "30",
-        "--lead-tilt-step-deg",
-        "0.1",
-        "--free-tool-axis",
-    ];
+    let fine = ["--free", "lead-tilt=-30..30/0.1", "--free", "tool-rotation"];
     run(
         compensate(false),
         &fine,
-        &["--lead-tilt-step-deg", "at most 5e6"],
+        &["--free lead-tilt step", "at most 5e6"],
     );
     // A region that holds no feasible placement; --z-mm without --free.
     run(

@@ -264,7 +264,7 @@ fn every_count_has_a_limit_named_in_the_message() {
         (&reproduce, "--trials", "1000000000", "0..=2000"),
         (&reproduce, "--starts", "1000000000", "1..=10000"),
         (&global, "--starts", "1000000000", "1000000000"),
-        (&random, "--postures", "1000000000", "2..=100"),
+        (&random, "--count", "1000000000", "2..=100"),
         (&random, "--max-evals", "99999999999", "99999999999"),
         (&random, "--seed", "-1", "-1"),
     ];

@@ -108,7 +108,7 @@ fn out_file_feeds_validate_and_predict() {
     assert!((rms - id["residual_rms_mm"].as_f64().unwrap() * 3f64.sqrt()).abs() < 1e-9);
     // The explained share in %, as the text prints it.
     let explained = 1.0 - rms / v["rms_measured_mm"].as_f64().unwrap();
-    let percent = v["explained_percent"].as_f64().unwrap();
+    let percent = v["explained_pct"].as_f64().unwrap();
     assert!((percent - 100.0 * explained).abs() < 1e-9, "{percent}");
     let text = String::from_utf8(validate_fanuc(&result, &[]).stdout).unwrap();
     let shown = format!("1 - RMS(delta_b)/RMS(|delta_m|): {percent:.1}%\n");
@@ -126,7 +126,7 @@ fn out_file_feeds_validate_and_predict() {
         p["covered"].as_f64().unwrap(),
         p["coordinates"].as_f64().unwrap(),
     );
-    let coverage = p["coverage_percent"].as_f64().unwrap();
+    let coverage = p["coverage_pct"].as_f64().unwrap();
     assert!(
         (coverage - 100.0 * covered / all).abs() < 1e-9,
         "{coverage}"
@@ -505,7 +505,7 @@ fn text_figures_of_the_cross_validation_are_the_documents() {
         numbers(&cv["stiffness_std_nm_per_rad"]),
         numbers(&doc["stiffness_nm_per_rad"]),
     );
-    let percent = numbers(&cv["stiffness_std_percent"]);
+    let percent = numbers(&cv["stiffness_std_pct"]);
     let spread = text.split("spread across folds:\n").nth(1).unwrap();
     for j in 0..6 {
         assert!((percent[j] - 100.0 * std[j] / full[j].abs()).abs() < 1e-9 * percent[j]);
@@ -525,10 +525,10 @@ fn text_figures_of_the_cross_validation_are_the_documents() {
         scores[(0.95 * scores.len() as f64).ceil() as usize - 1]
     );
     assert!(q95 > scores[0] && q95 < scores[scores.len() - 1]);
-    assert_eq!(p["score_q95_percent"].as_f64().unwrap(), 100.0 * q95);
+    assert_eq!(p["score_q95_pct"].as_f64().unwrap(), 100.0 * q95);
     let within = format!(
         "95% of the held-out errors are within {:.1}% of the predicted displacement",
-        p["score_q95_percent"].as_f64().unwrap()
+        p["score_q95_pct"].as_f64().unwrap()
     );
     assert!(text.contains(&within), "{within} not in\n{text}");
 }
@@ -546,7 +546,7 @@ fn text_relative_errors_and_largest_residuals_are_the_documents() {
     for (t, intervals) in [&doc, &doc["tracker_noise"]].into_iter().enumerate() {
         let (se, percent) = (
             numbers(&intervals["std_error_nm_per_rad"]),
-            numbers(&intervals["std_error_percent"]),
+            numbers(&intervals["std_error_pct"]),
         );
         for j in 0..6 {
             assert!((percent[j] - 100.0 * se[j] / k[j].abs()).abs() < 1e-12 * percent[j]);
@@ -555,7 +555,7 @@ fn text_relative_errors_and_largest_residuals_are_the_documents() {
             assert_eq!(shown, format!("{:.1}%", percent[j]), "joint {}", j + 1);
         }
     }
-    assert_eq!(doc["poorly_determined_above_percent"], 25.0);
+    assert_eq!(doc["poorly_determined_above_pct"], 25.0);
     // The five longest of the 43 residuals, the longest first, as the text lists them.
     let all = doc["residuals"].as_array().unwrap();
     let norm = |r: &Value| {
@@ -591,7 +591,7 @@ fn text_relative_errors_and_largest_residuals_are_the_documents() {
     // The held-out share and its standard error in %.
     let cv = &doc["cross_validation"];
     let explained = cv["explained"].as_f64().unwrap();
-    assert_eq!(cv["explained_percent"].as_f64().unwrap(), 100.0 * explained);
+    assert_eq!(cv["explained_pct"].as_f64().unwrap(), 100.0 * explained);
     let shown = format!(
         "the model explains {:.1}% (standard error {:.1},",
         100.0 * explained,

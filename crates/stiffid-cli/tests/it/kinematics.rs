@@ -476,14 +476,7 @@ fn a_group_on_a_track_is_designed_at_each_station_and_written_with_its_columns()
     let cell = track_cell();
     let run = |stations: &[&str]| {
         let mut args = vec![
-            "select",
-            "--setup",
-            &cell,
-            "--global",
-            "--postures",
-            "8",
-            "--starts",
-            "4",
+            "select", "--setup", &cell, "--global", "--count", "8", "--starts", "4",
         ];
         for s in stations {
             args.extend(["--station", s]);
@@ -517,14 +510,7 @@ fn a_group_on_a_track_is_designed_at_each_station_and_written_with_its_columns()
     // along the rail by e1, the external values the station's (SI).
     let report = dir.join("plan");
     let (o, r) = (out.to_str().unwrap(), report.to_str().unwrap());
-    let args = [
-        "select",
-        "--setup",
-        &cell,
-        "--start-random",
-        "--postures",
-        "6",
-    ];
+    let args = ["select", "--setup", &cell, "--start-random", "--count", "6"];
     let more = ["--station", "3000,20,45", "--out", o, "--report", r];
     assert!(stiffid(&[&args[..], &more[..]].concat()).status.success());
     let html = std::fs::read_to_string(report.join("plan.html")).unwrap();

@@ -1,4 +1,4 @@
-//! `stiffid compensate --free-lead-tilt`: a path file leans within `--cone-deg` (the CSV's and
+//! `stiffid compensate --free lead-tilt`: a path file leans within its cone (the CSV's and
 //! the JSON's `lead_deg`, `tilt_deg`), no point worse than at its own axis; a G-code program
 //! leans within its process file's cone and its robot program's joint targets are the leaned
 //! compensated postures; written back as G-code it is refused, as are bad values, naming the
@@ -51,11 +51,8 @@ fn a_path_leans_within_its_cone_and_no_point_rises() {
     let dir = temp_dir("lead-tilt-path");
     assert_success(&milling(&dir, "own.csv", &[]));
     let flags = [
-        "--free-lead-tilt",
-        "--cone-deg",
-        "6",
-        "--lead-tilt-step-deg",
-        "3",
+        "--free",
+        "lead-tilt=-6..6/3",
         "--objective",
         "max",
         "--json",
@@ -162,7 +159,7 @@ fn a_program_leans_within_its_process_cone_into_its_joint_targets() {
         (std::fs::read_to_string(out).unwrap(), csv)
     };
     let (_, own_csv) = run("OWN", &[]);
-    let lean = ["--free-lead-tilt", "--lead-tilt-step-deg", "2"];
+    let lean = ["--free", "lead-tilt=/2"];
     let (ls, csv) = run("LEAN", &lean);
     let names = [
         "lead_deg", "tilt_deg", "qc1_deg", "qc2_deg", "qc3_deg", "qc4_deg", "qc5_deg",
@@ -211,23 +208,17 @@ fn bad_lean_options_and_gcode_written_as_gcode_are_refused() {
         &path,
         "--out",
         "{dir}/out.csv",
-        "--free-lead-tilt",
+        "--free",
     ];
-    for (extra, option) in [
-        (vec!["--cone-deg", "40"], "--cone-deg"),
-        (vec!["--cone-deg", "-2"], "--cone-deg"),
-        (vec!["--cone-deg", "NaN"], "--cone-deg"),
-        (
-            vec!["--cone-deg", "5", "--lead-tilt-step-deg", "0"],
-            "--lead-tilt-step-deg",
-        ),
-        (
-            vec!["--cone-deg", "5", "--lead-tilt-step-deg", "6"],
-            "--lead-tilt-step-deg",
-        ),
-        (vec![], "--cone-deg"),
+    for (text, option) in [
+        ("lead-tilt=-40..40", "--free lead-tilt range"),
+        ("lead-tilt=2..-2", "--free: lead-tilt=2..-2"),
+        ("lead-tilt=-NaN..NaN", "--free: lead-tilt=-NaN..NaN"),
+        ("lead-tilt=-5..5/0", "--free lead-tilt step"),
+        ("lead-tilt=-5..5/6", "--free lead-tilt step"),
+        ("lead-tilt", "--free lead-tilt range"),
     ] {
-        let args: Vec<&str> = base.iter().copied().chain(extra).collect();
+        let args: Vec<&str> = base.iter().copied().chain([text]).collect();
         refused(&dir, &args, &[option]);
     }
     let process = std::fs::read_to_string(example("milling/trim.toml")).unwrap();
@@ -249,7 +240,8 @@ fn bad_lean_options_and_gcode_written_as_gcode_are_refused() {
         "{dir}/trim.toml",
         "--out",
         "{dir}/trim.nc",
-        "--free-lead-tilt",
+        "--free",
+        "lead-tilt",
     ];
-    refused(&dir, &args, &["--free-lead-tilt", "robot program"]);
+    refused(&dir, &args, &["--free lead-tilt", "robot program"]);
 }

@@ -79,11 +79,10 @@ fn a_tiny_tool_axis_step_is_refused_naming_the_option() {
                 &format!("{MILLING}/path.csv"),
                 "--out",
                 "{dir}/o.csv",
-                "--free-tool-axis",
-                "--max-step-deg",
-                step,
+                "--free",
+                &format!("tool-rotation=-90..90/{step}"),
             ],
-            &["--max-step-deg", "cells", "at most"],
+            &["--free tool-rotation step", "cells", "at most"],
         );
     }
 }

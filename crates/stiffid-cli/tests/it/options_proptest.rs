@@ -118,7 +118,7 @@ proptest! {
     fn select_counts(evals in count(40), postures in count(12), starts in value()) {
         let dir = common::temp_dir("options-select");
         let out = dir.join("out.csv");
-        let args = [format!("--max-evals={evals}"), format!("--postures={postures}"), format!("--starts={starts}")];
+        let args = [format!("--max-evals={evals}"), format!("--count={postures}"), format!("--starts={starts}")];
         static TALLY: Tally = Tally::new("select counts", CASES, LEAST_SELECT);
         TALLY.count(assert_clean(&["select", "--setup", "zhang2021-comau-nj165", "--criterion", "classical", "--start-random", &args[0], &args[1], "--out", out.to_str().unwrap(), "--json"]));
         // --starts only with --global: anything but a small count is refused before searching.

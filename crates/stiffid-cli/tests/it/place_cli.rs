@@ -32,12 +32,9 @@ fn the_panel_is_placed_better_than_its_own_and_the_reach_only_placement() {
         "500,2000,-1500,500",
     ];
     let d = json(&stiffid(&args(&setup, &out, &rest)));
-    let gain = d["gain_vs_own_percent"].as_f64().unwrap();
+    let gain = d["gain_vs_own_pct"].as_f64().unwrap();
     assert!(gain >= 25.0, "{d}");
-    assert!(
-        d["gain_vs_reach_only_percent"].as_f64().unwrap() > 0.0,
-        "{d}"
-    );
+    assert!(d["gain_vs_reach_only_pct"].as_f64().unwrap() > 0.0, "{d}");
     assert!(d["own"]["feasible"].as_bool().unwrap());
     // The setup written holds the placement the document names, and compensating the panel
     // there gives the peak bound the document states.
@@ -123,7 +120,7 @@ fn a_path_file_is_placed_and_compensating_it_there_gives_the_bound_stated() {
         "1",
     ];
     let d = json(&stiffid(&args(&setup, &out, &rest)));
-    assert!(d["gain_vs_own_percent"].as_f64().unwrap() > 0.0, "{d}");
+    assert!(d["gain_vs_own_pct"].as_f64().unwrap() > 0.0, "{d}");
     // The rows carried to the placement, in the base frame as compensate reads them.
     let xyz: Vec<f64> = (d["placed"]["xyz_mm"].as_array().unwrap().iter())
         .map(|v| v.as_f64().unwrap())

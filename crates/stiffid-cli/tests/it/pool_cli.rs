@@ -115,7 +115,7 @@ fn pool_choice_is_the_enumerated_optimum_and_skips_postures_outside_the_bounds()
     let too_many = select(&[
         "--pool",
         pool.to_str().unwrap(),
-        "--postures",
+        "--count",
         "13",
         "--out",
         out.to_str().unwrap(),
@@ -149,7 +149,7 @@ fn pool_postures_that_fail_the_cells_checks_are_skipped() {
             setup.to_str().unwrap(),
             "--pool",
             pool.to_str().unwrap(),
-            "--postures",
+            "--count",
             n,
             "--out",
             d.join("best.csv").to_str().unwrap(),
@@ -272,7 +272,7 @@ fn report_and_plot_write_figures_that_decode() {
     json(&select(&[
         "--pool",
         pool.to_str().unwrap(),
-        "--postures",
+        "--count",
         "4",
         "--out",
         d.join("best.csv").to_str().unwrap(),
@@ -341,7 +341,7 @@ fn a_plan_with_load_steps_lists_them_and_predicts_with_them() {
             setup,
             "--pool",
             pool.to_str().unwrap(),
-            "--postures",
+            "--count",
             "4",
             "--json",
         ];

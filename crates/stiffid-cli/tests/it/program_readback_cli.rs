@@ -2,7 +2,7 @@
 //! track, the part on a tilt-rotate positioner) and read back: KRL `E1..E6`, RAPID `extjoint`
 //! (`9E9` unused), LS `E1=` with a `GP2` positioner group and INFORM base (`BC`, pulses) and
 //! station (`EC`, angles) axes. Every external value written equals the one given (or the
-//! station chosen with `--free-station-mm`), every target the CSV's compensated axis angles;
+//! station chosen with `--free station`), every target the CSV's compensated axis angles;
 //! with the free station, every station within `+-R` of the given and within the travel,
 //! consecutive stations at most a step apart, and no point's bound above its bound at the
 //! given station.
@@ -271,19 +271,26 @@ fn free_axis_is_written(free: &[&str], axis: usize, (range, step): (f64, f64)) {
 
 #[test]
 fn a_free_station_is_written_into_every_target_of_a_program() {
-    let free = ["--free-station-mm", "200", "--station-step-mm", "50"];
+    let free = ["--free", "station=-200..200/50"];
     free_axis_is_written(&free, 0, (200.0, 50.0));
 }
 
 #[test]
 fn a_free_table_angle_is_written_into_every_target_of_a_program() {
-    let free = ["--free-positioner-deg", "20", "--positioner-step-deg", "5"];
+    let free = ["--free", "positioner=-20..20/5"];
     free_axis_is_written(&free, 2, (20.0, 5.0));
+}
+
+/// The positioner's axes by their names in the cell file: `rotate` is the table's turn, `tilt`
+/// its tilt.
+#[test]
+fn a_free_axis_named_as_the_cell_names_it_is_that_axis() {
+    free_axis_is_written(&["--free", "rotate=-20..20/5"], 2, (20.0, 5.0));
 }
 
 #[test]
 fn a_free_tilt_is_written_into_every_target_of_a_program() {
-    let free = ["--free-tilt-deg", "10", "--tilt-step-deg", "5"];
+    let free = ["--free", "tilt=-10..10/5"];
     free_axis_is_written(&free, 1, (10.0, 5.0));
 }
 
@@ -301,7 +308,7 @@ fn the_track_map_holds_every_station_and_the_one_chosen() {
     let (out, report) = (dir.join("trim.csv"), dir.join("report"));
     let mut args = vec!["compensate", "--setup", &setup, "--stiffness", &stiffness];
     args.extend(["--path", &path, "--out", out.to_str().unwrap()]);
-    args.extend(["--free-station-mm", "200", "--station-step-mm", "100"]);
+    args.extend(["--free", "station=-200..200/100"]);
     args.extend(["--map", "track", "--report", report.to_str().unwrap()]);
     assert_success(&stiffid(&args));
     let map = std::fs::read_to_string(report.join("map.csv")).unwrap();

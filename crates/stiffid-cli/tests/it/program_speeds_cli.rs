@@ -35,7 +35,8 @@ fn compensated(dir: &Path, speed: &str) -> std::process::Output {
         &example("milling/aluminium.toml"),
         "--out",
         out.to_str().unwrap(),
-        "--free-tool-axis",
+        "--free",
+        "tool-rotation",
     ])
 }
 

@@ -1,6 +1,6 @@
 //! `stiffid compensate --refine`: the free tool axis' grid refined around the line chosen on it
 //! (the document's `refine`), the peak and the sum of the bound never above the grid's, every
-//! rotation on the halved steps and within `--max-step-deg` of the previous point's; bad values
+//! rotation on the halved steps and within the step of the previous point's; bad values
 //! refused naming `--refine`, nothing written.
 
 use crate::common::example;
@@ -28,13 +28,10 @@ fn bounds(doc: &serde_json::Value) -> (f64, f64, Vec<f64>) {
 fn the_refined_rotation_never_rises_and_keeps_its_step() {
     let dir = temp_dir("refine-cli");
     let free = [
-        "--free-tool-axis",
-        "--free-tool-axis-objective",
-        "bound",
+        "--free",
+        "tool-rotation=-90..90/5",
         "--objective",
         "max",
-        "--max-step-deg",
-        "5",
         "--json",
     ];
     let grid = json(&milling(
@@ -89,8 +86,11 @@ fn bad_refine_values_are_refused() {
         "{dir}/out.csv",
     ];
     for (extra, words) in [
-        (vec!["--free-tool-axis", "--refine", "5"], "expected 0 to 4"),
-        (vec!["--refine", "1"], "none is free"),
+        (
+            vec!["--free", "tool-rotation", "--refine", "5"],
+            "expected 0 to 4",
+        ),
+        (vec!["--refine", "1"], "only with --free"),
     ] {
         let args: Vec<&str> = base.iter().copied().chain(extra).collect();
         refused(&dir, &args, &["--refine", words]);

@@ -151,7 +151,7 @@ fn proposed_postures_filled_in_register_the_tracker() {
         "register",
         "--setup",
         cell.to_str().unwrap(),
-        "--postures",
+        "--count",
         "3",
         "--candidates",
         "500",
@@ -215,7 +215,7 @@ fn proposed_postures_filled_in_register_the_tracker() {
         "register",
         "--setup",
         "zhang2021-comau-nj165",
-        "--postures",
+        "--count",
         "0",
     ]);
     assert_eq!(out.status.code(), Some(2));

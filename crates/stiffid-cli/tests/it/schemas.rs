@@ -55,6 +55,43 @@ fn the_shipped_schemas_are_the_generated_ones() {
     );
 }
 
+/// Every document says what it is: its schema requires `kind`, one name per document (the
+/// schema's name; each of identify's three forms its own), so no union is told apart by its
+/// keys. The stiffness file, read rather than written, has none.
+#[test]
+fn every_document_has_a_kind() {
+    let mut kinds = Vec::new();
+    for name in names().iter().filter(|n| *n != "stiffness") {
+        let text = std::fs::read_to_string(schema_path(name)).unwrap();
+        let schema: serde_json::Value = serde_json::from_str(&text).unwrap();
+        let forms: Vec<&serde_json::Value> = match schema["anyOf"].as_array() {
+            Some(forms) => (forms.iter())
+                .map(|f| {
+                    &schema["$defs"][f["$ref"].as_str().unwrap().trim_start_matches("#/$defs/")]
+                })
+                .collect(),
+            None => vec![&schema],
+        };
+        for form in forms {
+            let kind = form["properties"]["kind"]["const"].as_str();
+            let kind = kind
+                .unwrap_or_else(|| panic!("{name}: no kind"))
+                .to_string();
+            assert!(
+                kind == *name || kind.starts_with(&format!("{name}-")),
+                "{name}: {kind}"
+            );
+            assert_eq!(form["required"][0], "kind", "{name}");
+            kinds.push(kind);
+        }
+    }
+    let mut unique = kinds.clone();
+    unique.sort();
+    unique.dedup();
+    assert_eq!(unique.len(), kinds.len(), "{kinds:?}");
+    assert_eq!(kinds.len(), 17, "{kinds:?}");
+}
+
 /// The top-level keys of the shipped schema `name`, or of its definition `def`.
 fn keys(name: &str, def: Option<&str>) -> std::collections::BTreeSet<String> {
     let text = std::fs::read_to_string(schema_path(name)).unwrap();

@@ -74,7 +74,7 @@ fn select_from_a_start_file_improves_it_and_evaluate_agrees() {
 fn select_random_and_global_write_postures_within_bounds() {
     let d = temp_dir("select-global");
     for extra in [
-        &["--start-random", "--postures", "4"][..],
+        &["--start-random", "--count", "4"][..],
         &["--global", "--starts", "2", "--max-evals", "300"][..],
     ] {
         let out = d.join("g.csv");
@@ -317,7 +317,7 @@ fn select_for_calibration_and_both_and_evaluate_agree() {
         "--for",
         "calibration",
         "--start-random",
-        "--postures",
+        "--count",
         "14",
         "--max-evals",
         "200",
@@ -359,7 +359,7 @@ fn select_for_calibration_and_both_and_evaluate_agree() {
         "--for",
         "both",
         "--start-random",
-        "--postures",
+        "--count",
         "14",
         "--max-evals",
         "200",
@@ -403,7 +403,7 @@ fn select_for_calibration_refuses_a_group_that_cannot_separate_it() {
             "zhang2021-comau-nj165",
             "--for",
             "calibration",
-            "--postures",
+            "--count",
             n,
             "--start-random",
             "--out",
@@ -431,7 +431,7 @@ fn select_for_candidates_refuses_and_reports() {
     let base = [
         "select", "--setup", setup, "--global", "--starts", "2", "--out", out_s,
     ];
-    let few = stiffid(&[&base[..], &["--for-candidates", "--postures", "4"]].concat());
+    let few = stiffid(&[&base[..], &["--for-candidates", "--count", "4"]].concat());
     assert_usage_error(&few, &["--for-candidates:", "at least 5 postures"]);
     assert!(!out.exists());
     let calibration = stiffid(&[&base[..], &["--for-candidates", "--for", "calibration"]].concat());

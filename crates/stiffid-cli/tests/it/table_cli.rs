@@ -1,6 +1,7 @@
 //! `stiffid select --for calibration` on the example track cell with reflectors on its table:
 //! `--out` and the document give every posture its positioner angles for the table's readings,
-//! within the travel, at the station asked for; the plan (`--report`) writes them too.
+//! within the travel, at the station asked for; the campaign's plan (`--report`) writes them
+//! with what to read.
 
 use crate::common;
 
@@ -25,7 +26,7 @@ fn select_gives_each_posture_the_positioners_angles() {
         "--for",
         "calibration",
         "--start-random",
-        "--postures",
+        "--count",
         "12",
         "--station",
         "3000,0,0",
@@ -58,27 +59,27 @@ fn select_gives_each_posture_the_positioners_angles() {
     assert!(rows
         .iter()
         .any(|r| r[1] != rows[0][1] || r[2] != rows[0][2]));
-    // The plan's table gives each reading the same values as the postures file, after q6.
+    // The plan is the campaign's: the postures file as its table, what to read (the tool's
+    // reflectors and the table's T1-T3) and where, no load test.
     let plan = std::fs::read_to_string(dir.join("plan/plan.csv")).unwrap();
-    let cells = |text: &str, columns: std::ops::Range<usize>| -> Vec<Vec<String>> {
-        (text.lines())
-            .map(|l| l.split(',').map(String::from).collect::<Vec<_>>()[columns.clone()].to_vec())
-            .collect()
-    };
-    assert_eq!(cells(&plan, 0..10), cells(&csv, 0..10));
-    assert_eq!(cells(&plan, 10..11)[0], ["rope_x"]);
-    // And `plan.json` each posture's, as the document's stations.
+    assert_eq!(plan, csv);
+    let page = std::fs::read_to_string(dir.join("plan/plan.html")).unwrap();
+    assert!(page.contains("Calibration campaign: 12 postures"), "{page}");
+    for reflector in ["T1", "T2", "T3", "Tool reflector 1"] {
+        assert!(page.contains(reflector), "{reflector}");
+    }
+    for column in ["e1_mm", "e2_deg", "e3_deg", "q6_deg"] {
+        assert!(page.contains(column), "{column}");
+    }
+    for load_test in ["rope_length_mm", "a load of", "relative-a", "the rope"] {
+        assert!(
+            !page.contains(load_test),
+            "{load_test} in the campaign's plan"
+        );
+    }
     let text = std::fs::read_to_string(dir.join("plan/plan.json")).unwrap();
     let planned: serde_json::Value = serde_json::from_str(&text).unwrap();
-    for (p, station) in planned["postures"].as_array().unwrap().iter().zip(stations) {
-        for column in ["e1_mm", "e2_deg", "e3_deg"] {
-            let (got, want) = (
-                p[column].as_f64().unwrap(),
-                station[column].as_f64().unwrap(),
-            );
-            assert!((got - want).abs() < 1e-9, "{column}: {got} {want}");
-        }
-    }
+    assert_eq!(planned["posture_stations"], doc["posture_stations"]);
     // The value minimised is the group's predicted error with the table read at its angles.
     let predicted = doc["calibration"]["predicted_rms_mm"].as_f64().unwrap();
     let value = doc["value"].as_f64().unwrap() * 1e3;

@@ -1,4 +1,4 @@
-//! `stiffid compensate --free-station-mm` on the example trim line along the rail
+//! `stiffid compensate --free station` on the example trim line along the rail
 //! (`examples/track/trim.csv`): the CSV carries the station chosen (`e1_mm`) and the path's own
 //! values without it; the redundancy lowers the path's peak bound by at least 30% with no point
 //! worse; a robot without a track is refused naming the option, nothing written.
@@ -42,14 +42,7 @@ fn the_free_station_lowers_the_trim_lines_peak_bound_by_30_percent() {
     );
     let free = trim(
         &dir.join("free.csv"),
-        &[
-            "--free-station-mm",
-            "1500",
-            "--station-step-mm",
-            "50",
-            "--objective",
-            "max",
-        ],
+        &["--free", "station=-1500..1500/50", "--objective", "max"],
     );
     assert_eq!(own.len(), free.len());
     let peak = |rows: &[(f64, f64)]| rows.iter().map(|r| r.0).fold(0.0, f64::max);
@@ -87,15 +80,15 @@ fn a_free_station_on_a_fixed_base_is_refused_naming_the_option() {
         &stiffness,
         "--path",
         &path,
-        "--free-station-mm",
-        "100",
+        "--free",
+        "station=-100..100",
         "--out",
         out.to_str().unwrap(),
     ]);
     assert!(!o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
-        err.contains("--free-station-mm") && err.contains("carrier"),
+        err.contains("--free station") && err.contains("carrier"),
         "{err}"
     );
     assert!(!out.exists());
@@ -113,7 +106,7 @@ fn a_calibration_campaign_refuses_a_station_given_twice_naming_it() {
         "--for",
         "calibration",
         "--global",
-        "--postures",
+        "--count",
         "6",
         "--station",
         "500,0,0",

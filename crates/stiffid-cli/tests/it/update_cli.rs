@@ -1,6 +1,7 @@
 //! `select --for check` and `calibrate --update` on the calibrated robot file: a check campaign
-//! designed on it, the drifted robot found drifted and updated to rounding, the updated file
-//! written beside the input; the options an update does not take refused.
+//! designed on it, the drifted robot found drifted (the check's gate failed, exit code 1) and
+//! updated to rounding, the updated file written beside the input; the options an update does
+//! not take refused.
 
 use crate::calibrate_cli::{model, postures, readings, truth, SETUP};
 use crate::common::{json, numbers, refused, stiffid, temp_dir, write_file};
@@ -89,7 +90,7 @@ fn the_check_finds_the_drift_and_the_update_recovers_it() {
         &readings(&model, &drifted, &moved, &postures(8, 3)),
     );
     let updated = d.join("updated.toml");
-    let doc = json(&stiffid(&[
+    let o = stiffid(&[
         "calibrate",
         "--setup",
         &arg(&setup),
@@ -101,7 +102,15 @@ fn the_check_finds_the_drift_and_the_update_recovers_it() {
         "--out",
         &arg(&updated),
         "--json",
-    ]));
+    ]);
+    // The drifted robot fails the check's gate: exit code 1 (2 is bad input), one line, the
+    // document printed and the update written.
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{stderr}");
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    let gate = "error: --update: the robot drifted beyond its intervals: ";
+    assert!(stderr.starts_with(gate), "{stderr}");
+    let doc: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(doc["geometry"], "offsets");
     assert_eq!(doc["check"]["drifted"], true);
     assert_eq!(doc["check"]["readings"], 40);

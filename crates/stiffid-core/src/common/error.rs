@@ -33,12 +33,23 @@ pub enum Error {
     },
     /// An option of a job's request has a value outside what it may hold. A front end names the
     /// option its own way: Python by its keyword (`max_step_deg`, as this error's text does),
-    /// the command by its option (`--max-step-deg`).
+    /// the command by its option (`--margin-deg`).
     #[error("{option}: {message}")]
     InvalidOption {
         /// The option.
         option: JobOption,
         /// What was expected.
+        message: String,
+    },
+    /// A gate the caller set failed: the job ran and its result lies beyond the bound an option
+    /// gave (`compensate`'s `max_error_mm`, a calibration check that finds the robot drifted).
+    /// Not bad input: the command exits with code 1 (2 for every other error), Python raises
+    /// `GateError`. The option is named as for [`Error::InvalidOption`].
+    #[error("{option}: {message}")]
+    Gate {
+        /// The option that set the gate.
+        option: JobOption,
+        /// What the result was and the bound it failed.
         message: String,
     },
     /// Options of a job's request set together that cannot go together, or an option set
@@ -474,6 +485,12 @@ impl Error {
             Error::Input { error, .. } => error.root(),
             other => other,
         }
+    }
+
+    /// Whether this is a failed gate ([`Error::Gate`]) rather than bad input or a computation
+    /// without an answer: the command's exit code 1.
+    pub fn is_gate(&self) -> bool {
+        matches!(self.root(), Error::Gate { .. })
     }
 }
 

@@ -8,6 +8,10 @@
 pub enum JobOption {
     /// select: the stations (external axis values) of a robot with external axes.
     Station,
+    /// compensate: a free variable (`--free`, Python's `free=`).
+    Free,
+    /// compensate, place: how the points' costs add up along the path (sum or max).
+    Objective,
     /// compensate: the free tool axis' largest change between consecutive points, deg.
     MaxStepDeg,
     /// compensate: how far the free tool axis may turn from the path's rotation, deg.
@@ -55,12 +59,23 @@ pub enum JobOption {
     ChordToleranceMm,
     /// compensate: the robot's largest TCP speed, mm/s.
     MaxTcpSpeedMmS,
+    /// compensate: what the targets of a robot program written from G-code are (Cartesian or
+    /// joint).
+    Targets,
     /// compensate: the longest program name the controller takes.
     NameLength,
     /// compensate: the most moves in one program file.
     MovesPerFile,
     /// compensate: the name of the robot program written (from the output file's name).
     ProgramName,
+    /// select: the stiffness design criterion to minimise.
+    Criterion,
+    /// select: the local searches of a global search.
+    Starts,
+    /// select: the SQP steps of every global start before the best continue.
+    ScreenSteps,
+    /// select: the global starts that continue after the screening.
+    Polished,
     /// select: the target predicted deviation rate, %.
     TargetPct,
     /// select: the group a local search starts from.
@@ -122,35 +137,43 @@ pub enum JobOption {
 }
 
 impl JobOption {
-    /// The option's name as the library and Python spell it (`max_step_deg`).
+    /// The option's name as the library and Python spell it (`max_condition`); a free
+    /// variable's range or step as `free station range`.
     pub fn name(self) -> &'static str {
         match self {
             JobOption::Station => "station",
-            JobOption::MaxStepDeg => "max_step_deg",
-            JobOption::ToolAxisRangeDeg => "tool_axis_range_deg",
-            JobOption::FreeToolAxisObjective => "free_tool_axis_objective",
-            JobOption::FreeStationMm => "free_station_mm",
-            JobOption::StationStepMm => "station_step_mm",
-            JobOption::FreePositionerDeg => "free_positioner_deg",
-            JobOption::PositionerStepDeg => "positioner_step_deg",
-            JobOption::FreeLeadTilt => "free_lead_tilt",
-            JobOption::ConeDeg => "cone_deg",
-            JobOption::LeadTiltStepDeg => "lead_tilt_step_deg",
-            JobOption::FreeTiltDeg => "free_tilt_deg",
-            JobOption::TiltStepDeg => "tilt_step_deg",
-            JobOption::FreeConfiguration => "free_configuration",
-            JobOption::ConfigurationPer => "configuration_per",
+            JobOption::Free => "free",
+            JobOption::Objective => "objective",
+            JobOption::MaxStepDeg => "free tool-rotation step",
+            JobOption::ToolAxisRangeDeg => "free tool-rotation range",
+            JobOption::FreeToolAxisObjective => "minimise",
+            JobOption::FreeStationMm => "free station range",
+            JobOption::StationStepMm => "free station step",
+            JobOption::FreePositionerDeg => "free positioner range",
+            JobOption::PositionerStepDeg => "free positioner step",
+            JobOption::FreeLeadTilt => "free lead-tilt",
+            JobOption::ConeDeg => "free lead-tilt range",
+            JobOption::LeadTiltStepDeg => "free lead-tilt step",
+            JobOption::FreeTiltDeg => "free tilt range",
+            JobOption::TiltStepDeg => "free tilt step",
+            JobOption::FreeConfiguration => "free configuration",
+            JobOption::ConfigurationPer => "free configuration",
             JobOption::Map => "map",
             JobOption::MaxErrorMm => "max_error_mm",
             JobOption::MarginDeg => "margin_deg",
             JobOption::MaxCondition => "max_condition",
             JobOption::Refine => "refine",
-            JobOption::ForceTolerancePercent => "force_tolerance_percent",
+            JobOption::ForceTolerancePercent => "force_tolerance_pct",
             JobOption::ChordToleranceMm => "chord_tolerance_mm",
             JobOption::MaxTcpSpeedMmS => "max_tcp_speed_mm_s",
+            JobOption::Targets => "targets",
             JobOption::NameLength => "name_length",
             JobOption::MovesPerFile => "moves_per_file",
             JobOption::ProgramName => "name",
+            JobOption::Criterion => "criterion",
+            JobOption::Starts => "starts",
+            JobOption::ScreenSteps => "screen_steps",
+            JobOption::Polished => "polished",
             JobOption::TargetPct => "target_pct",
             JobOption::Start => "start",
             JobOption::DistinctDeg => "distinct_deg",

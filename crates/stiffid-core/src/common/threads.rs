@@ -10,12 +10,18 @@ use crate::common::limits::short;
 pub const MAX_THREADS: usize = 256;
 
 /// Starts the worker threads `RAYON_NUM_THREADS` asks for (0 or unset: one per core, started by
-/// the first parallel job).
+/// the first parallel job). Once per process: a later call returns the first one's result (the
+/// Python package starts them on import, and its `stiffid` script runs the command after it).
 ///
 /// # Errors
 /// A message naming the setting: a value that is not a number from 0 to [`MAX_THREADS`], or
 /// threads that could not start.
 pub fn start() -> Result<(), String> {
+    static STARTED: std::sync::OnceLock<Result<(), String>> = std::sync::OnceLock::new();
+    STARTED.get_or_init(start_once).clone()
+}
+
+fn start_once() -> Result<(), String> {
     let Some(value) = std::env::var_os("RAYON_NUM_THREADS") else {
         return Ok(());
     };

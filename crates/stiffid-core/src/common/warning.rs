@@ -68,6 +68,9 @@ pub enum WarningKind {
     /// A robot program's linear moves whose programmed speed stiffid does not read: the axes'
     /// speed limits are not checked there (`stiffid_machining::program::speed`).
     Speed,
+    /// A setup field that repeats what a calibrated robot file holds (its mount): taken from the
+    /// calibration, not applied twice.
+    Calibrated,
 }
 
 impl WarningKind {
@@ -94,6 +97,7 @@ impl WarningKind {
             WarningKind::Configuration => "configuration",
             WarningKind::Extrapolation => "extrapolation",
             WarningKind::Speed => "speed",
+            WarningKind::Calibrated => "calibrated",
         }
     }
 }

@@ -3,6 +3,7 @@
 
 use super::prediction::Calibration;
 use super::Model;
+use super::OwnWeight;
 use crate::{Error, Result};
 use nalgebra::{DMatrix, DVector, Matrix6, Vector6};
 
@@ -17,8 +18,10 @@ pub struct Compliance {
     /// From an identification cross-validated over postures: what its prediction intervals are
     /// built from ([`crate::model::prediction`]).
     pub prediction: Option<Calibration>,
-    /// From a calibration that fitted the robot's own weight: the gravity terms it fitted
-    /// ([`OwnWeight`]); compensation then adds the sag under the robot's weight.
+    /// From a stiffness file written before the calibrated robot file carried them: the gravity
+    /// terms a calibration fitted ([`OwnWeight`]). The calibrated robot's own
+    /// ([`crate::Robot::own_weight`]) take their place; compensation refuses the two when they
+    /// differ.
     pub own_weight: Option<OwnWeight>,
     /// The postures it was identified from, as the region a prediction stays inside
     /// ([`crate::model::region`]).
@@ -26,20 +29,6 @@ pub struct Compliance {
     /// From a model comparison's posture bootstrap: the models the data support and their
     /// resampled parameter sets ([`super::ModelForm`]), the error budget's model-form part.
     pub model_form: Option<super::ModelForm>,
-}
-
-/// The deflection under the robot's own weight as a calibration fitted it
-/// (`stiffid calibrate --gravity`, `stiffid_metrology::calibration::gravity`): the gravity model
-/// and the value of each of its terms. A calibration with gravity describes the robot without its
-/// sag, so compensation adds it (docs/model.md, "Compensation").
-#[derive(Debug, Clone, PartialEq)]
-pub struct OwnWeight {
-    /// The gravity model: `masses`, `lumped` or `lumped-links`.
-    pub gravity: String,
-    /// Each term's name (`gravity.c2`, `gravity.c2.link3.mx`) and value, SI (rad/(N m) for a
-    /// compliance, rad kg/(N m) for a lumped mass, rad kg/N for a lumped first moment), in the
-    /// model's term order.
-    pub terms: Vec<(String, f64)>,
 }
 
 impl Compliance {

@@ -177,3 +177,48 @@ impl Family {
         }
     }
 }
+
+/// Whether `name` is one of the names of the model comparison's candidates of the families
+/// (`stiffid_identify::compare::pool`'s module docs), on any robot.
+pub fn is_family_name(name: &str) -> bool {
+    let index = |s: &str, most: u8| s.len() == 1 && (b'1'..=b'0' + most).contains(&s.as_bytes()[0]);
+    let at = |prefix: &str, most: u8| {
+        name.strip_prefix(prefix)
+            .and_then(|r| r.split_once('_'))
+            .is_some_and(|(k, a)| index(k, most) && matches!(a, "x" | "y" | "z"))
+    };
+    let joint = |prefix: &str| name.strip_prefix(prefix).is_some_and(|k| index(k, 6));
+    let fixed = [
+        "carriage_x",
+        "carriage_rx",
+        "carriage_ry",
+        "base_x",
+        "base_y",
+        "base_z",
+        "base_rx",
+        "base_ry",
+        "base_rz",
+        "tool_x",
+        "tool_y",
+        "tool_z",
+    ];
+    at("tilt", 6) || at("bend", 5) || joint("lost") || joint("load") || fixed.contains(&name)
+}
+
+/// Refuses a declared candidate named like a family's candidate ([`is_family_name`]): the two
+/// would be one name in the comparison, `--candidates` and the reports.
+///
+/// # Errors
+/// [`crate::Error::InvalidField`] (`model.spring`) naming the spring.
+pub fn check_declared_names(declared: &[Spring]) -> crate::Result<()> {
+    match declared.iter().find(|s| is_family_name(&s.name)) {
+        Some(s) => Err(crate::Error::InvalidField {
+            field: "model.spring".into(),
+            message: format!(
+                "{:?}: a declared candidate named like a built-in candidate of the model comparison (tilt<k>_x, bend<k>_y, base_z, tool_x, lost<j>, load<j>, ..); give it a name of its own",
+                crate::common::limits::short(&s.name)
+            ),
+        }),
+        None => Ok(()),
+    }
+}

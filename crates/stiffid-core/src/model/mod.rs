@@ -30,8 +30,9 @@ mod law;
 pub mod prediction;
 pub mod region;
 
-pub use compliance::{Compliance, OwnWeight};
-pub use family::{Family, FAMILIES};
+pub use crate::robot::OwnWeight;
+pub use compliance::Compliance;
+pub use family::{check_declared_names, is_family_name, Family, FAMILIES};
 pub use file::{fragment, parse as parse_fragment};
 pub use form::{FormModel, ModelForm};
 pub use law::{Law, DEFAULT_SMOOTHING};

@@ -42,6 +42,9 @@
 //! [held_out]                            # optional (stiffid calibrate --out writes it): the
 //! source = "validate"                   #   calibration's held-out position errors, "validate"
 //! errors_mm = [0.012, 0.019, 0.031]     #   or "cross-validate", each |error| in mm (1 to 1e6)
+//! [gravity]                             # optional (stiffid calibrate --out writes it): the
+//! model = "masses"                      #   sag under the robot's own weight and its tool's
+//! terms = [{ name = "gravity.c2", value_si = 1.1e-7 }]   # ([`super::weight_file`])
 //! [[external_axis]]                     # optional, one per axis: a carrier under the arm (a
 //! name = "track"                        #   track) or a positioner under the workpiece
 //! role = "carrier"                      #   ([`super::external::file`] has the format)
@@ -74,6 +77,7 @@ struct RobotFile {
     #[serde(default)]
     external_axis: Vec<super::external::file::AxisFile>,
     held_out: Option<HeldOutFile>,
+    gravity: Option<super::weight_file::GravityFile>,
 }
 
 /// A calibrated robot's `[held_out]`: its calibration's held-out position errors.
@@ -191,6 +195,42 @@ impl TransformFile {
     }
 }
 
+/// The fixed-axis roll, pitch and yaw of `rotation` (rad, `R = Rz(yaw) Ry(pitch) Rx(roll)`) that
+/// give it back to rounding, for the files stiffid writes. Near pitch +-90 degrees (a
+/// ROS-Industrial `tool0`) the closed form loses half the digits (the arcsine of a number near
+/// 1); three Gauss-Newton steps on the rotation's error, solved by the SVD (the angles'
+/// Jacobian is singular at the gimbal lock, where only the sum or difference of roll and yaw
+/// matters), restore them.
+pub fn rpy(rotation: &UnitQuaternion<f64>) -> [f64; 3] {
+    let (r, p, y) = rotation.euler_angles();
+    let mut a = nalgebra::Vector3::new(r, p, y);
+    for _ in 0..3 {
+        let at = UnitQuaternion::from_euler_angles(a.x, a.y, a.z);
+        let e = (rotation * at.inverse()).scaled_axis();
+        let (z, y_turned) = (
+            UnitQuaternion::from_euler_angles(0.0, 0.0, a.z),
+            UnitQuaternion::from_euler_angles(0.0, a.y, a.z),
+        );
+        let j = nalgebra::Matrix3::from_columns(&[
+            y_turned * nalgebra::Vector3::x(),
+            z * nalgebra::Vector3::y(),
+            nalgebra::Vector3::z(),
+        ]);
+        match j.svd(true, true).solve(&e, 1e-12) {
+            Ok(d) if d.iter().all(|v| v.is_finite()) => a += d,
+            _ => break,
+        }
+    }
+    a.into()
+}
+
+/// The angle of the rotation from `a` to `b`, rad, to rounding even when tiny (`2 atan2(|v|, |w|)`
+/// of the quaternion between them; the arccosine of `w` loses half the digits there).
+pub fn angle_between(a: &UnitQuaternion<f64>, b: &UnitQuaternion<f64>) -> f64 {
+    let d = a.inverse() * b;
+    2.0 * d.imag().norm().atan2(d.w.abs())
+}
+
 /// Parses a robot TOML file; `source_name` (the file name) is used in error messages.
 ///
 /// # Errors
@@ -267,6 +307,7 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
     let flange = transform(file.flange, "flange", source_name)?;
     let bodies = bodies(file.robot_geometry, source_name)?;
     let held = held_out(file.held_out, source_name)?;
+    let own_weight = super::weight_file::build(file.gravity, source_name)?;
     let speeds = max_speeds(file.max_speed_deg_s.as_ref(), source_name)?;
     let external = super::external::file::build(&file.external_axis, source_name)?;
     let axis_map = match file.axis_map {
@@ -283,6 +324,7 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
                 .with_masses(masses)
                 .with_error_maps(maps)
                 .with_held_out(held)
+                .with_own_weight(own_weight)
                 .with_external(external)
         })
         .map_err(|e| match e {
@@ -362,7 +404,12 @@ fn error_maps(joints: &[JointRow], source_name: &str) -> Result<[super::ErrorMap
     let mut maps: [super::ErrorMap; 6] = Default::default();
     for (i, j) in joints.iter().enumerate() {
         if let Some(m) = &j.error_map {
-            let rad = |v: &[f64]| v.iter().map(|d| d.to_radians()).collect();
+            // Each list is optional: one left out holds zeros, as many as the other.
+            let n = m.cos_deg.len().max(m.sin_deg.len());
+            let rad = |v: &[f64]| match v.is_empty() {
+                true => vec![0.0; n],
+                false => v.iter().map(|d| d.to_radians()).collect(),
+            };
             let map = super::ErrorMap::new(rad(&m.cos_deg), rad(&m.sin_deg))
                 .and_then(|map| map.with_backlash(m.half_backlash_deg.to_radians()));
             maps[i] = map.map_err(|e| {
@@ -430,4 +477,33 @@ fn axis_map(m: &AxisMapFile, source_name: &str) -> Result<AxisMap> {
     let matrix = Matrix6::from_fn(|r, c| m.matrix[r][c]);
     let offset = Vector6::from_iterator(m.offset_deg.iter().map(|d| d.to_radians()));
     Ok(AxisMap { matrix, offset })
+}
+
+#[cfg(test)]
+mod rpy_tests {
+    use super::{angle_between, rpy};
+    use nalgebra::UnitQuaternion;
+
+    /// Near and at pitch -90 and +90 degrees the written angles give the rotation back to 1e-14
+    /// rad, where the closed form misses by more than 1e-9 rad at least once.
+    #[test]
+    fn roll_pitch_yaw_give_the_rotation_back_at_the_gimbal_lock() {
+        let mut closed: f64 = 0.0;
+        for pitch in [-90.0f64, 90.0] {
+            for off in [0.0, 1e-12, 1e-9, 1e-7, 1e-4, 0.3] {
+                for (roll, yaw) in [(0.0, 0.0), (0.7, -1.9), (-2.5, 3.0)] {
+                    let p = pitch.to_radians() - pitch.signum() * off;
+                    let q = UnitQuaternion::from_euler_angles(roll, p, yaw);
+                    let [r, p2, y] = rpy(&q);
+                    let back = UnitQuaternion::from_euler_angles(r, p2, y);
+                    let miss = angle_between(&back, &q);
+                    assert!(miss < 1e-14, "{pitch} {off}: {miss:e}");
+                    let (r, p2, y) = q.euler_angles();
+                    let back = UnitQuaternion::from_euler_angles(r, p2, y);
+                    closed = closed.max(angle_between(&back, &q));
+                }
+            }
+        }
+        assert!(closed > 1e-9, "{closed}");
+    }
 }

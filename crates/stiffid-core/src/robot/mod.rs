@@ -17,11 +17,13 @@ pub mod parts;
 pub mod presets;
 pub mod urdf;
 pub mod urdf_write;
+pub mod weight_file;
 
 mod axis_map;
 pub use axis_map::AxisMap;
 pub use error_map::ErrorMap;
 pub use external::ExternalAxes;
+pub use weight_file::OwnWeight;
 
 use nalgebra::{Isometry3, Matrix3, Unit, Vector3, Vector6};
 use std::sync::Arc;
@@ -72,6 +74,9 @@ pub struct Robot {
     external: Option<Arc<ExternalAxes>>,
     /// A calibrated robot's held-out position errors ([`HeldOut`]), when its file carries them.
     held_out: Option<Arc<HeldOut>>,
+    /// A calibrated robot's sag under its own weight ([`OwnWeight`]), when its
+    /// file carries it.
+    own_weight: Option<Arc<OwnWeight>>,
     /// Each axis's largest speed, rad/s; infinite: no limit.
     max_speeds: Vector6<f64>,
 }
@@ -175,6 +180,7 @@ impl Robot {
             error_maps: None,
             external: None,
             held_out: None,
+            own_weight: None,
             max_speeds: Vector6::repeat(f64::INFINITY),
         }
         .with_limits(limits)
@@ -294,6 +300,15 @@ impl Robot {
         }
     }
 
+    /// The robot carrying a calibration's gravity terms ([`OwnWeight`]): the sag
+    /// under its own weight that compensation adds.
+    pub fn with_own_weight(self, own_weight: Option<OwnWeight>) -> Self {
+        Self {
+            own_weight: own_weight.map(Arc::new),
+            ..self
+        }
+    }
+
     /// The robot with these largest axis speeds (rad/s, axis coordinates; infinite: no limit),
     /// as a robot file's `max_speed_deg_s` or a URDF's `<limit velocity>` give them.
     ///
@@ -324,6 +339,12 @@ impl Robot {
     /// A calibrated robot's held-out position errors, when its file carries them.
     pub fn held_out(&self) -> Option<&HeldOut> {
         self.held_out.as_deref()
+    }
+
+    /// A calibrated robot's sag under its own weight (its file's `[gravity]`), when it carries
+    /// one.
+    pub fn own_weight(&self) -> Option<&OwnWeight> {
+        self.own_weight.as_deref()
     }
 
     /// The axes' error maps, when any axis has one.

@@ -70,7 +70,7 @@ fn origin_edit(
 /// An `<origin>` element of `t` (xyz in m, rpy the fixed-axis roll, pitch, yaw in rad).
 pub fn origin_xml(t: &Isometry3<f64>) -> String {
     let p = t.translation.vector;
-    let (r, pi, y) = t.rotation.euler_angles();
+    let [r, pi, y] = super::file::rpy(&t.rotation);
     format!(
         "<origin xyz=\"{:?} {:?} {:?}\" rpy=\"{r:?} {pi:?} {y:?}\"/>",
         p.x, p.y, p.z

@@ -125,7 +125,7 @@ impl Arm {
         self.payload.as_ref()
     }
 
-    /// The relative standard deviation of every body's mass and inertia (`[masses] sd_percent`
+    /// The relative standard deviation of every body's mass and inertia (`[masses] sd_pct`
     /// as a fraction; 0: the masses taken as exact), independent between bodies: the mass
     /// model's share of a surge's uncertainty ([`crate::observation::dynamics`]).
     pub fn mass_sd(&self) -> f64 {

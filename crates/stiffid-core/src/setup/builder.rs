@@ -379,6 +379,7 @@ impl SetupBuilder {
         }
         let model = Model::new(self.springs, self.virtual_springs)?;
         model.with(&self.candidate_springs)?;
+        crate::model::check_declared_names(&self.candidate_springs)?;
         let tool = Tool {
             loading_point,
             measuring_points: self.measuring_points,
@@ -432,7 +433,7 @@ impl SetupBuilder {
             &limits::FRAME_SD,
         )?;
         limits::check(
-            "masses.sd_percent",
+            "masses.sd_pct",
             &[self.mass_sd * 1e2],
             &limits::MASS_SD_PERCENT,
         )?;

@@ -61,7 +61,9 @@ struct RobotAccuracyFile {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct MassesFile {
-    sd_percent: f64,
+    /// Spelt `sd_percent` before every percentage's key ended in `_pct`: still read.
+    #[serde(alias = "sd_percent")]
+    sd_pct: f64,
 }
 
 /// `[controller]`: the kinematics of the controller that runs a generated program.
@@ -289,11 +291,13 @@ where
         package_paths: &file.package_paths,
         field: "robot",
     })?;
+    let mount_note = calibrated_mount(&robot, &file, source_name)?;
     let robot = mounted(robot, &file, source_name)?;
     let mut controller = match file.controller.take() {
         None => super::Controller::default(),
         Some(c) => controller(c, &file, source_name, &mut resolve_robot)?,
     };
+    same_robot(&robot, controller.robot.as_ref(), &file.robot, source_name)?;
     controller.world = transform(file.robot_base, "robot_base", source_name)?;
     controller.adapter = transform(file.robot_flange, "robot_flange", source_name)?;
     let steps = !file.loading.steps_n.is_empty();
@@ -306,7 +310,64 @@ where
         .and_then(SetupBuilder::build)
         .map_err(|e| in_file(e, source_name))?;
     setup.notes.extend(note);
+    setup.notes.extend(mount_note);
     Ok(setup)
+}
+
+/// What a setup pointing at a calibrated robot repeats of it: `[robot_base]` (the calibration
+/// fitted the mount into the file's `[base]`: a note, the mount not applied again, the field
+/// still the controller's world) and `[[external_axis]]` tables beside the file's calibrated
+/// ones (refused).
+///
+/// # Errors
+/// [`Error::InvalidField`] (`external_axis`) naming both places.
+fn calibrated_mount(robot: &Robot, f: &SetupFile, src: &str) -> Result<Option<Warning>> {
+    if !robot.is_calibrated() {
+        return Ok(None);
+    }
+    if let (Some(_), Some(axes)) = (&f.external_axis, robot.external()) {
+        let names: Vec<&str> = axes.axes().iter().map(|a| a.name.as_str()).collect();
+        return Err(Error::InvalidField {
+            field: format!("{src}: external_axis"),
+            message: format!(
+                "the calibrated robot file '{}' holds the calibrated external axes ({}): the setup's [[external_axis]] tables would replace them; leave them out of the setup",
+                f.robot,
+                names.join(", ")
+            ),
+        });
+    }
+    Ok(f.robot_base.is_some().then(|| {
+        Warning::new(
+            WarningKind::Calibrated,
+            format!(
+                "{src}: [robot_base] with the calibrated robot file '{}': its [base] holds the mount the calibration fitted, so [robot_base] is not applied to it again (it still places the controller's world frame)",
+                f.robot
+            ),
+        )
+    }))
+}
+
+/// Refuses `[controller] robot` naming another robot than the calibrated `robot` was
+/// calibrated from (its name without [`crate::robot::CALIBRATED`]).
+///
+/// # Errors
+/// [`Error::InvalidField`] (`controller.robot`) naming both robots.
+fn same_robot(robot: &Robot, controller: Option<&Robot>, reference: &str, src: &str) -> Result<()> {
+    let Some(c) = controller.filter(|_| robot.is_calibrated()) else {
+        return Ok(());
+    };
+    let calibrated = robot.name().trim_end_matches(crate::robot::CALIBRATED);
+    match c.name().trim_end_matches(crate::robot::CALIBRATED) == calibrated {
+        true => Ok(()),
+        false => Err(Error::InvalidField {
+            field: format!("{src}: controller.robot"),
+            message: format!(
+                "'{}' where the setup's robot '{reference}' is '{}' calibrated: the controller runs the nominal robot of the one calibrated",
+                c.name(),
+                calibrated
+            ),
+        }),
+    }
 }
 
 /// `[controller]`: its kinematics and the robot file it runs (resolved as `robot` is, with the
@@ -396,7 +457,8 @@ fn in_file(e: Error, source_name: &str) -> Error {
 ///
 /// The setup's `[[external_axis]]` tables, when it has any, replace the robot file's
 /// (`external_axis = []` takes them away: the arm on a fixed base); its `max_speed_deg_s`
-/// replaces the robot's axis speeds.
+/// replaces the robot's axis speeds. A calibrated robot file holds its mount: `[robot_base]`
+/// does not move it again ([`calibrated_mount`]).
 fn mounted(mut robot: Robot, f: &SetupFile, src: &str) -> Result<Robot> {
     if let Some(v) = &f.max_speed_deg_s {
         robot = robot.with_max_speeds(crate::robot::file::max_speeds(Some(v), src)?)?;
@@ -404,7 +466,7 @@ fn mounted(mut robot: Robot, f: &SetupFile, src: &str) -> Result<Robot> {
     if let Some(tables) = &f.external_axis {
         robot = robot.with_external(crate::robot::external::file::build(tables, src)?);
     }
-    if f.robot_base.is_some() {
+    if f.robot_base.is_some() && !robot.is_calibrated() {
         let base = transform(f.robot_base, "robot_base", src)? * robot.base();
         robot = robot.with_base(base)?;
     }
@@ -484,7 +546,7 @@ fn builder(f: SetupFile, robot: Robot, reading_variance: f64) -> Result<SetupBui
         b = b.with_frame_sd(a.frame_sd_mm * 1e-3, a.frame_sd_mrad * 1e-3);
     }
     if let Some(m) = &f.masses {
-        b = b.with_mass_sd(m.sd_percent * 1e-2);
+        b = b.with_mass_sd(m.sd_pct * 1e-2);
     }
     if let Some(t) = f.test {
         b = b.with_test_postures(t.postures_deg.iter().map(deg6).collect());

@@ -23,7 +23,7 @@ pub fn deflection(results: &[Compensated]) -> Drawing<'_> {
          compensation removes the predicted deflection, not the stiffness's uncertainty); without \
          a covariance it cannot be predicted and is not drawn. The compensated axis angles \
          reproduce the model itself to below 0.1 um (the summary gives the largest residual). \
-         Orange dashed (--free-tool-axis): before the tool-axis optimisation.",
+         Orange dashed (--free tool-rotation): before the tool-axis optimisation.",
         Deflection(results),
     )
 }

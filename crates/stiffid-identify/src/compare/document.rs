@@ -11,6 +11,8 @@ use stiffid_core::model::Parameter;
 /// `stiffid identify --compare-models --json`.
 #[derive(Debug, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(tag = "kind", rename = "identify-comparison")]
+#[cfg_attr(feature = "schema", schemars(transform = stiffid_core::app::document::schema::Kind("identify-comparison")))]
 pub struct Document {
     /// The setup as given.
     pub setup: String,

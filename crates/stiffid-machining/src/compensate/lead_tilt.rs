@@ -23,7 +23,7 @@ pub(crate) fn cones(
     let cones = match (free.cone, process) {
         (Some(c), None) => vec![c; points],
         (None, Some(p)) => p.to_vec(),
-        (None, None) => return Err(refuse(JobOption::ConeDeg, "missing: a path file has no process file to allow a lean; give the cone's half angle (--cone-deg, cone_deg=)".into())),
+        (None, None) => return Err(refuse(JobOption::ConeDeg, "missing: a path file has no process file to allow a lean; give the cone's half angle (--free lead-tilt=-CONE..CONE, free=[\"lead-tilt=-CONE..CONE\"])".into())),
         (Some(_), Some(_)) => return Err(refuse(JobOption::ConeDeg, "a program's cone is its process file's ([tool_axis] cone_deg of a milling operation), not an option".into())),
     };
     let largest = cones.iter().copied().fold(0.0, f64::max);

@@ -49,11 +49,12 @@ pub struct Newton {
 
 impl<'a> Model<'a> {
     /// The model of `arm` (its TCP, drive springs and virtual springs) with the compliance
-    /// `compliance` of every parameter of the arm's model; with the compliance's
-    /// [`stiffid_core::model::OwnWeight`], the sag under the robot's own weight ([`Weight`]).
+    /// `compliance` of every parameter of the arm's model; with the calibrated robot's
+    /// [`stiffid_core::model::OwnWeight`] (or the compliance's), the sag under the robot's own weight
+    /// ([`Weight::of`]).
     ///
     /// # Errors
-    /// Those of [`Compliance::check`] and [`Weight::new`]; [`Error::InvalidField`] when the
+    /// Those of [`Compliance::check`] and [`Weight::of`]; [`Error::InvalidField`] when the
     /// springs are kinematic and the robot's axis map is singular.
     pub fn new(arm: &'a Arm, compliance: &'a Compliance) -> Result<Self> {
         compliance.check(arm.model())?;
@@ -70,9 +71,7 @@ impl<'a> Model<'a> {
                     })?
                 }
             };
-        let weight = (compliance.own_weight.as_ref())
-            .map(|w| Weight::new(arm.robot(), arm.springs(), w))
-            .transpose()?;
+        let weight = Weight::of(arm, compliance)?;
         Ok(Self {
             arm,
             compliance,

@@ -62,7 +62,7 @@ pub enum Objective {
 }
 
 impl stiffid_core::common::choice::Choice for Objective {
-    const FIELD: &'static str = "free_tool_axis_objective";
+    const FIELD: &'static str = "minimise";
     const ALL: &'static [Self] = &[Objective::Deflection, Objective::Surge, Objective::Bound];
     fn name(self) -> &'static str {
         match self {
@@ -213,7 +213,7 @@ impl FreeStation {
             return Err(Error::InvalidOption {
                 option: JobOption::StationStepMm,
                 message: format!(
-                    "{}: expected a number >= {} and <= --free-station-mm ({})",
+                    "{}: expected a number >= {} and <= the range ({})",
                     number(station_step_mm),
                     Self::MIN_STEP_MM,
                     number(free_station_mm)
@@ -230,7 +230,7 @@ impl FreeStation {
 
     /// [`FreeStation::try_from_mm`] minimising what the free tool axis `free` given with it
     /// minimises (the bound without one), its points' costs added up by `aggregate`: the options
-    /// of `compensate --free-station-mm` and Python's `free_station_mm=`.
+    /// of `compensate --free station` and Python's `free=["station=..."]`.
     ///
     /// # Errors
     /// Those of [`FreeStation::try_from_mm`].
@@ -357,10 +357,9 @@ impl FreePositioner {
             return Err(Error::InvalidOption {
                 option: step_option,
                 message: format!(
-                    "{}: expected a number >= {} and <= --{} ({})",
+                    "{}: expected a number >= {} and <= the range ({})",
                     number(step),
                     Self::MIN_STEP_DEG,
-                    range_option.name().replace('_', "-"),
                     number(range)
                 ),
             });
@@ -385,7 +384,7 @@ impl FreePositioner {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FreeLeadTilt {
     /// The cone's half angle, rad, in (0, [`FreeLeadTilt::MAX_CONE_DEG`]]: `Some` for a path
-    /// file's points (`--cone-deg`); `None` for a program's, whose process file gives each
+    /// file's points (`--free lead-tilt=-CONE..CONE`); `None` for a program's, whose process file gives each
     /// operation's cone ([`crate::process::Operation::cone`]).
     pub cone: Option<f64>,
     /// The largest change of the lead, and of the tilt, between consecutive points (rad, at
@@ -398,7 +397,7 @@ pub struct FreeLeadTilt {
     pub aggregate: Aggregate,
 }
 
-/// The free configuration (`compensate --free-configuration`): what the path's objective is
+/// The free configuration (`compensate --free configuration`): what the path's objective is
 /// and how its points' costs add up, those of the other free variables given with it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FreeConfiguration {
@@ -413,7 +412,7 @@ pub struct FreeConfiguration {
 }
 
 impl FreeLeadTilt {
-    /// The largest cone's half angle, deg: of `--cone-deg` and of a process file's
+    /// The largest cone's half angle, deg: of `--free lead-tilt=-CONE..CONE` and of a process file's
     /// `[tool_axis] cone_deg`.
     pub const MAX_CONE_DEG: f64 = 30.0;
     /// The smallest accepted `max_step`, deg.
@@ -491,7 +490,7 @@ impl FreeLeadTilt {
                     Self::MIN_STEP_DEG,
                     number(most),
                     match cone_deg {
-                        Some(_) => "--cone-deg",
+                        Some(_) => "the cone",
                         None => "the largest cone",
                     }
                 ),
@@ -521,7 +520,7 @@ impl FreeConfiguration {
 
     /// The free configuration minimising what the free tool axis `free` minimises (the bound
     /// without one), its points' costs added up by `aggregate`: the option
-    /// `compensate --free-configuration` and Python's `free_configuration=True`; one
+    /// `compensate --free configuration` and Python's `free=["configuration"]`; one
     /// configuration per program ([`FreeConfiguration::per`] to change it).
     pub fn with(free: Option<&FreeToolAxis>, aggregate: Aggregate) -> Self {
         Self {
@@ -534,7 +533,7 @@ impl FreeConfiguration {
     /// Refuses the surge objective and a path of more than [`Self::MAX_POINTS`] points.
     ///
     /// # Errors
-    /// [`Error::OptionCombination`] (`free_configuration` not with `free_tool_axis_objective`)
+    /// [`Error::OptionCombination`] (`free configuration` not with `minimise`)
     /// for the surge; [`Error::InvalidOption`] ([`JobOption::FreeConfiguration`]) for too many
     /// points.
     pub fn check(&self, points: usize) -> Result<()> {

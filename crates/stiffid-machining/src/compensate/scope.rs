@@ -1,7 +1,7 @@
 //! What one configuration of the free configuration holds: the whole program, or each run
-//! between rapid moves (`--configuration-per`).
+//! between rapid moves (`--free configuration=run`).
 
-/// What one configuration of the free configuration holds (`--configuration-per`).
+/// What one configuration of the free configuration holds (`--free configuration=run`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Scope {
     /// The whole path or program: no change of configuration anywhere.

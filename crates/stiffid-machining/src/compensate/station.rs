@@ -279,7 +279,7 @@ pub(super) fn free_axes<'a>(
         if positioners < 2 {
             return Err(Error::InvalidOption {
                 option: JobOption::FreeTiltDeg,
-                message: format!("the robot's positioner has {positioners} axis(es): a free tilt turns a two-axis positioner's first axis (the table's turn, its last, is --free-positioner-deg), which the robot file's [[external_axis]] with role = \"positioner\" give"),
+                message: format!("the robot's positioner has {positioners} axis(es): a free tilt turns a two-axis positioner's first axis (the table's turn, its last, is --free positioner), which the robot file's [[external_axis]] with role = \"positioner\" give"),
             });
         }
         out.push(FreeAxis {

@@ -91,6 +91,9 @@ pub(super) fn block(
                 if !s.rotary {
                     return Err(at(line, format!("{}: rotary words need the header comment (stiffid: rotary = abc)", w.letter)));
                 }
+                if !(-360.0..=360.0).contains(&v) {
+                    return Err(at(line, format!("{}{}: expected a tool angle from -360 to 360 deg", w.letter, stiffid_core::common::words::number(v))));
+                }
                 s.abc[(w.letter as u8 - b'A') as usize] = v;
                 abc_given = true;
             }

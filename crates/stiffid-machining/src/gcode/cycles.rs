@@ -8,10 +8,13 @@
 //! `R`, feed to `Z` (`G83`: pecks of `Q`, each followed by a rapid out to `R` and a rapid back to
 //! [`PECK_CLEARANCE_MM`] above the depth reached), dwell `P` (`G82`), rapid out to the clearance
 //! level (`G98`, the default: the higher of `R` and the level the cycle started from; `G99`: `R`).
-//! `Z`, `R`, `Q` and `P` stay in force within a cycle. Refused naming the line: a cycle under
+//! Each feed has a point where the drill meets material, the part's surface (`Z = 0` of the part
+//! frame, or `(stiffid: surface_mm = Z)`) when below `R`, or the depth a peck reached: the feed
+//! from there to its end cuts, the rest of the cycle moves in the air or in the hole drilled
+//! ([`crate::cutting`]). `Z`, `R`, `Q` and `P` stay in force within a cycle. Refused naming the line: a cycle under
 //! `G91` (controllers differ on what an incremental `R` and `Z` count from), outside the `G17`
 //! plane, with the tool not pointing along the part's `-Z`, with `I J K` or rotary words, without
-//! `Z` or `R`, a bottom not below `R`, a `G83` without a positive `Q`, `P` outside `G82` and `Q`
+//! `Z` or `R` or a feed rate `F` in force, a bottom not below `R` or not below the part's surface, a `G83` without a positive `Q`, `P` outside `G82` and `Q`
 //! outside `G83`, and a block of `R`, `Q` or `P` alone (controllers differ on whether it drills).
 
 use super::{at, may_move, Block, GCode, Motion, Point, State, MAX_POINTS};
@@ -135,6 +138,12 @@ pub(super) fn block(
     if depth >= retract {
         return refuse("the bottom Z must lie below the retract level R");
     }
+    if s.feed.is_none() {
+        return refuse("a canned cycle feeds to Z at the feed rate F in force, and none is: give F in this block or before");
+    }
+    if depth >= s.surface {
+        return refuse(&format!("the bottom Z must lie below the part's surface (Z = {} mm of the part frame; state it with the comment (stiffid: surface_mm = Z))", s.surface * 1e3));
+    }
     let peck = match (code, s.cycle.peck) {
         (83, Some(q)) if q > 0.0 => Some(q),
         (83, _) => return refuse("a peck depth Q above 0 is needed"),
@@ -178,20 +187,26 @@ pub(super) fn block(
     );
     go(at_xy(above), Motion::Rapid, &mut moves);
     go(at_xy(retract), Motion::Rapid, &mut moves);
-    let mut reached = retract;
+    let (mut reached, surface) = (retract, s.surface);
     let bottom_index = loop {
         // A peck too small to change the level in floating point goes to the bottom.
         let next = peck
             .map(|q| (reached - q).max(depth))
             .filter(|n| *n < reached)
             .unwrap_or(depth);
-        if reached < retract {
-            go(at_xy(retract), Motion::Rapid, &mut moves);
-            go(
-                at_xy((reached + PECK_CLEARANCE_MM * 1e-3).min(retract)),
-                Motion::Rapid,
-                &mut moves,
-            );
+        let from = match reached < retract {
+            true => {
+                go(at_xy(retract), Motion::Rapid, &mut moves);
+                let z = (reached + PECK_CLEARANCE_MM * 1e-3).min(retract);
+                go(at_xy(z), Motion::Rapid, &mut moves);
+                z
+            }
+            false => retract,
+        };
+        // Where the drill meets material: the part's surface, or the depth a peck reached.
+        let entry = reached.min(surface);
+        if entry < from && entry > next {
+            go(at_xy(entry), Motion::Feed, &mut moves);
         }
         go(at_xy(next), Motion::Feed, &mut moves);
         reached = next;

@@ -20,8 +20,10 @@
 //!   named `NAME` from there on. Header comments state the tool orientation:
 //!   `(stiffid: tool_rpy_deg = 180 0 0)`, the tool frame in the part frame as fixed-axis
 //!   roll-pitch-yaw (`180 0 0` points the tool z axis down, along the part's -Z); and, to allow
-//!   rotary words, `(stiffid: rotary = abc)`: `A B C` (deg, absolute) then turn the tool by
-//!   `Rz(C) Ry(B) Rx(A)` in the part frame before the header's orientation.
+//!   rotary words, `(stiffid: rotary = abc)`: `A B C` (deg, absolute, -360 to 360) then turn the tool by
+//!   `Rz(C) Ry(B) Rx(A)` in the part frame before the header's orientation. A canned cycle
+//!   drills into the part's surface at `Z = 0` of the part frame, or at the level
+//!   `(stiffid: surface_mm = Z)` states (mm whatever the program's units, from there on).
 //! - Arcs are split into chords whose sagitta is at most the chord tolerance.
 //!
 //! Any other G code or letter is refused naming its line (cutter radius compensation `G41`/`G42`
@@ -157,6 +159,9 @@ struct State {
     retract_to_r: bool,
     /// The canned cycle's words in force.
     cycle: cycles::Modal,
+    /// The part's surface a canned cycle drills into, part frame `Z`, m (`(stiffid: surface_mm
+    /// = Z)`, default 0).
+    surface: f64,
 }
 
 fn at(line: u64, message: String) -> Error {
@@ -195,6 +200,7 @@ pub fn parse(text: &str, chord_tolerance: f64) -> Result<GCode> {
         feed_line: 0,
         retract_to_r: false,
         cycle: Default::default(),
+        surface: 0.0,
     };
     let mut out = GCode {
         points: Vec::new(),

@@ -96,6 +96,12 @@ pub(super) fn comment(line: u64, text: &str, s: &mut State) -> Result<()> {
                 v[2].to_radians(),
             ));
         }
+        "surface_mm" => {
+            s.surface = match value.trim().parse::<f64>() {
+                Ok(z) if z.is_finite() && z.abs() <= 1e5 => z * 1e-3,
+                _ => return Err(at(line, "surface_mm: expected the part's surface, the Z (mm, part frame) a canned cycle drills into, within +-100000 mm".into())),
+            };
+        }
         "rotary" if value.trim().eq_ignore_ascii_case("abc") => {
             if let Some(l) = s.external.0.iter().find(|l| matches!(l, 'A' | 'B' | 'C')) {
                 return Err(at(line, format!("rotary = abc: {l} drives an external axis (line {}); a letter turns the tool or drives an axis, not both", s.external.1)));
@@ -129,7 +135,7 @@ pub(super) fn comment(line: u64, text: &str, s: &mut State) -> Result<()> {
             return Err(at(
                 line,
                 format!(
-                    "stiffid header: unknown '{}' (expected tool_rpy_deg = R P Y, rotary = abc or external = LETTERS)",
+                    "stiffid header: unknown '{}' (expected tool_rpy_deg = R P Y, rotary = abc, external = LETTERS or surface_mm = Z)",
                     stiffid_core::common::limits::short(other)
                 ),
             ))

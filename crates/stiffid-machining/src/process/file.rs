@@ -23,7 +23,7 @@
 //! `[tool] diameter_mm`, `[cut] feed_per_rev_mm` and `[coefficients] specific_energy_n_per_mm2,
 //! specific_thrust_n_per_mm2`.
 //! A milling operation may let the tool axis lean from the program's own within a cone (ball-end
-//! milling, deburring), which `compensate --free-lead-tilt` uses
+//! milling, deburring), which `compensate --free lead-tilt` uses
 //! ([`crate::compensate::FreeLeadTilt`]):
 //! ```toml
 //! [tool_axis]

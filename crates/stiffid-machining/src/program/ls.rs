@@ -276,12 +276,14 @@ fn positions(text: &str) -> Result<(HashMap<u64, JointTarget>, Vec<String>, Unit
                 cartesian::POSE.iter().position(|(n, _)| *n == name),
             ) {
                 let (v, span, _) = value(l, offset + eq + 1, line, name, &[cartesian::POSE[k].1])?;
+                once(line, o.index, name, o.pose[k].is_some())?;
                 o.pose[k] = Some((v, start + span.start..start + span.end));
                 continue;
             }
             let (values, k) = match (o.group, number('J'), number('E')) {
                 (1, Some(k @ 1..=6), _) => {
                     let (v, span, _) = value(l, offset + eq + 1, line, name, &["deg"])?;
+                    once(line, o.index, name, o.found[k - 1].is_some())?;
                     o.found[k - 1] = Some((v, start + span.start..start + span.end));
                     continue;
                 }
@@ -297,6 +299,7 @@ fn positions(text: &str) -> Result<(HashMap<u64, JointTarget>, Vec<String>, Unit
             if values.len() < k {
                 values.resize(k, None);
             }
+            once(line, o.index, name, values[k - 1].is_some())?;
             values[k - 1] = Some((v, start + span.start..start + span.end));
         }
         if o.group == 1 {
@@ -336,6 +339,15 @@ fn positions(text: &str) -> Result<(HashMap<u64, JointTarget>, Vec<String>, Unit
     let keys = (1..=n1).map(|k| (1, k)).chain((1..=n2).map(|k| (2, k)));
     let units = keys.map(|key| units.get(&key).copied()).collect();
     Ok((out, axes.collect(), units))
+}
+
+/// Refuses a value of a position given a second time (`given`): which one the controller takes
+/// is not the file's to say.
+fn once(line: u64, index: u64, name: &str, given: bool) -> Result<()> {
+    match given {
+        true => Err(at(line, format!("{name}: given twice in P[{index}]"))),
+        false => Ok(()),
+    }
 }
 
 /// The number after the `=` at byte `from` of `l` and its unit, one of `units`.

@@ -118,7 +118,8 @@ fn without_comments(text: &str) -> String {
             '!' if !in_string => in_comment = true,
             _ => {}
         }
-        match in_comment {
+        // A byte-order mark is blank, as a comment (the byte offsets kept).
+        match in_comment || c == '\u{feff}' {
             true => out.extend(std::iter::repeat_n(' ', c.len_utf8())),
             false => out.push(c),
         }

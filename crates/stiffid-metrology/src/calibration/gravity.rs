@@ -98,6 +98,20 @@ stiffid_core::common::choice::by_name!(Gravity);
 
 pub use stiffid_core::robot::LinkMass;
 
+/// `robot` with `tool` (a body in the flange frame: the setup's [`stiffid_core::setup::Payload::body`])
+/// joined to link 6, when the robot gives link masses: the bodies [`Gravity::Masses`] weighs;
+/// `robot` itself without a tool or without masses.
+pub fn with_tool(robot: &Robot, tool: Option<LinkMass>) -> Robot {
+    match (robot.masses(), tool) {
+        (Some(m), Some(t)) => {
+            let mut m = *m;
+            m[5] = m[5].plus(&t.moved(robot.flange()));
+            robot.clone().with_masses(Some(m))
+        }
+        _ => robot.clone(),
+    }
+}
+
 /// One gravity term.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]

@@ -41,7 +41,8 @@ pub use error_model::{
 use error_model::MeasuredIn;
 use stiffid_core::{Result, Setup};
 
-/// The error model of `setup` for readings in `measured_in`.
+/// The error model of `setup` for readings in `measured_in`; with [`gravity::Gravity::Masses`] the
+/// setup's tool (`[tool] mass_kg`, `centre_of_mass_mm`) joins link 6 ([`gravity::with_tool`]).
 ///
 /// # Errors
 /// [`stiffid_core::Error::InvalidField`] (`gravity`) for [`gravity::Gravity::Masses`] with a robot without masses; those
@@ -54,7 +55,8 @@ pub fn model(
 ) -> Result<ErrorModel> {
     let robot = setup.robot();
     let nominal = setup.nominal_compliance().unwrap_or_default();
-    let g = gravity::Terms::of(robot, gravity, setup.springs(), nominal)?;
+    let weighed = gravity::with_tool(robot, setup.payload().map(|p| p.body()));
+    let g = gravity::Terms::of(&weighed, gravity, setup.springs(), nominal)?;
     ErrorModel::new(
         robot,
         &setup.tool().measuring_points,

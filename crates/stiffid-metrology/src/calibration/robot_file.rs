@@ -13,6 +13,7 @@
 //! into the first and the flange into a fixed joint to the `flange` link.
 
 use super::error_model::{ErrorModel, Estimate, MeasuredIn};
+use super::gravity::Term;
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 use std::fmt::Write;
 use stiffid_core::robot::dh::{self, Convention};
@@ -134,15 +135,7 @@ pub fn urdf_leaves_out(model: &ErrorModel, estimate: &Estimate) -> Option<String
 /// about y after the common normal) or the file read back misses the calibrated robot.
 pub fn robot_toml(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
     let nominal = model.robot();
-    let robot = calibrated(model, estimate)?;
-    let tolerance = DH_TOLERANCE * robot.size();
-    let convention = convention(nominal, tolerance);
-    let Some(table) = dh::table(&robot, convention, tolerance) else {
-        return Err(not_dh(
-            "a joint's transform has no DH row (consecutive axes at 90 degrees about y): write a URDF instead",
-        ));
-    };
-    let written = table_robot(&robot, &table)?;
+    let (robot, convention, table, written) = tabled(model, estimate)?;
     let mut t = String::new();
     let name = format!(
         "{}{CALIBRATED}",
@@ -228,6 +221,70 @@ pub fn robot_toml(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
     Ok(t)
 }
 
+/// The calibrated robot, the notation of its table, the DH table and the robot of the table.
+fn tabled(
+    model: &ErrorModel,
+    estimate: &Estimate,
+) -> Result<(Robot, Convention, dh::Table, Robot)> {
+    let robot = calibrated(model, estimate)?;
+    let tolerance = DH_TOLERANCE * robot.size();
+    let convention = convention(model.robot(), tolerance);
+    let Some(table) = dh::table(&robot, convention, tolerance) else {
+        return Err(not_dh(
+            "a joint's transform has no DH row (consecutive axes at 90 degrees about y): write a URDF instead",
+        ));
+    };
+    let written = table_robot(&robot, &table)?;
+    Ok((robot, convention, table, written))
+}
+
+/// `own`, the gravity terms of `model` at `estimate`, in the link frames of the robot file's DH
+/// table ([`robot_toml`]), as the file carries them: a lumped term's first moment, fixed in its
+/// link's frame, moves with the frame as the masses' centres do, `c m s' = R (c m s) + t (c m)`
+/// for each spring and link (`(R, t)` from the link's frame to the table's); compliances stay.
+///
+/// # Errors
+/// Those of [`robot_toml`]'s table.
+pub fn own_weight_in_table(
+    model: &ErrorModel,
+    estimate: &Estimate,
+    own: &stiffid_core::model::OwnWeight,
+) -> Result<stiffid_core::model::OwnWeight> {
+    let (robot, _, _, written) = tabled(model, estimate)?;
+    let (at, table_at) = (
+        robot.frames(&Vector6::zeros()),
+        written.frames(&Vector6::zeros()),
+    );
+    let terms = model.gravity().terms();
+    let mut moved = own.clone();
+    for (i, t) in terms.iter().enumerate() {
+        let Term::Lumped {
+            joint,
+            link,
+            moment: 0,
+        } = *t
+        else {
+            continue;
+        };
+        let at_moment = |k: usize| {
+            let want = Term::Lumped {
+                joint,
+                link,
+                moment: k,
+            };
+            terms.iter().position(|t| *t == want)
+        };
+        let (Some(x), Some(y), Some(z)) = (at_moment(1), at_moment(2), at_moment(3)) else {
+            continue;
+        };
+        let to = table_at.joints[link].inverse() * at.joints[link];
+        let first = Vector3::new(own.terms[x].1, own.terms[y].1, own.terms[z].1);
+        let first = to.rotation * first + to.translation.vector * own.terms[i].1;
+        (moved.terms[x].1, moved.terms[y].1, moved.terms[z].1) = (first.x, first.y, first.z);
+    }
+    Ok(moved)
+}
+
 /// Whether `back`, a written file read back, has `robot`'s flange at the same axis angles
 /// within [`READ_BACK`] of the robot's size (m) and [`READ_BACK`] rad, at three postures.
 fn read_back(robot: &Robot, back: &Robot) -> std::result::Result<(), String> {
@@ -240,7 +297,10 @@ fn read_back(robot: &Robot, back: &Robot) -> std::result::Result<(), String> {
     for q in &q {
         let (a, b) = (robot.frames(q).flange, back.frames(q).flange);
         distance = distance.max((a.translation.vector - b.translation.vector).norm());
-        angle = angle.max(a.rotation.angle_to(&b.rotation));
+        angle = angle.max(stiffid_core::robot::file::angle_between(
+            &a.rotation,
+            &b.rotation,
+        ));
     }
     let tolerance = READ_BACK * robot.size();
     match distance <= tolerance && angle <= READ_BACK {
@@ -413,7 +473,7 @@ fn edited_urdf(nominal: &Robot, calibrated: &Robot, source: &UrdfSource) -> Resu
 }
 
 fn transform(t: &Isometry3<f64>) -> String {
-    let (r, p, y) = t.rotation.euler_angles();
+    let [r, p, y] = stiffid_core::robot::file::rpy(&t.rotation);
     format!(
         "xyz_mm = {}\nrpy_deg = [{:?}, {:?}, {:?}]\n",
         list(&(t.translation.vector * 1e3)),

@@ -17,7 +17,8 @@ doi:10.1109/ACCESS.2021.3073671 (equation numbers in the docstrings are that pap
 
 Errors are ``stiffid.Error`` (a ``ValueError``) with the library's message, as one of its
 subclasses: ``InputError`` (bad input), ``InfeasibleError`` (a search that finds no feasible group,
-a pose out of reach) or ``UnidentifiableError`` (data that cannot identify every parameter).
+a pose out of reach), ``UnidentifiableError`` (data that cannot identify every parameter) or
+``GateError`` (a result beyond a bound the caller set, such as ``compensate``'s ``max_error_mm``).
 Missing files raise ``FileNotFoundError``. Results to look at before trusting them (a stiffness
 that is not physical, a likely unit mistake) raise ``UserWarning``, as the command prints
 ``warning: ...``.
@@ -25,6 +26,7 @@ that is not physical, a likely unit mistake) raise ``UserWarning``, as the comma
 
 from ._stiffid import (
     Error,
+    GateError,
     InfeasibleError,
     InputError,
     Robot,
@@ -55,6 +57,7 @@ from ._stiffid import (
 
 __all__ = [
     "Error",
+    "GateError",
     "InfeasibleError",
     "InputError",
     "Robot",

@@ -6,6 +6,17 @@ from typing import Any, Literal, Optional, Sequence, Union, final, overload
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ._documents import (
+    CalibrateCellDocument,
+    CalibrateDocument,
+    KinematicsDocument,
+    PlaceDocument,
+    PlanDocument,
+    PredictDocument,
+    RegisterDocument,
+    RegisterPosturesDocument,
+)
+
 __version__: str
 __all__: list[str]
 
@@ -17,6 +28,11 @@ _CriterionName = Literal[
 _PathLike = Union[str, "os.PathLike[str]"]
 _Array = NDArray[np.float64]
 _Ints = NDArray[np.int64]
+
+class _Placed(PlaceDocument):
+    """`place`'s document and the setup with the chosen ``[workpiece]``."""
+
+    setup_text: str
 
 @final
 class Error(ValueError):
@@ -30,6 +46,9 @@ class InfeasibleError(Error):
 
 class UnidentifiableError(Error):
     """Data that cannot identify every parameter."""
+
+class GateError(Error):
+    """A result beyond a bound the caller set (``compensate``'s ``max_error_mm``)."""
 
 class Robot:
     """A 6-axis serial robot (immutable); postures in deg, (6,) or (n, 6)."""
@@ -81,7 +100,7 @@ class Robot:
         coordinates: _Coordinates = "axis",
         stiffness_nm_per_rad: Optional[ArrayLike] = None,
         external: Optional[ArrayLike] = None,
-    ) -> dict[str, Any]:
+    ) -> KinematicsDocument:
         """The kinematics document (docs/schemas/kinematics.schema.json), equal to `stiffid kinematics --json`; `external` (mm/deg, the cell's order) for a robot with external axes."""
     @property
     def external_axes(self) -> list[dict[str, Any]]:
@@ -181,7 +200,7 @@ class Setup:
         """The evaluate document: criteria (floats), relative_std (6,), predicted_deviation_pct (levels, 6), feasibility, parameters, unidentifiable, candidates, calibration (with purpose calibration or both); None where the setup lacks the field."""
     def select(
         self,
-        criterion: _CriterionName = "relative-a",
+        criterion: Optional[_CriterionName] = None,
         method: Optional[Literal["global", "local", "pool"]] = None,
         start: Optional[ArrayLike] = None,
         n: Optional[int] = None,
@@ -276,10 +295,8 @@ def compensate(
     chord_tolerance_mm: float = 0.01,
     frame: Literal["base", "tool"] = "base",
     q0_deg: Optional[ArrayLike] = None,
-    free_tool_axis: bool = False,
-    max_step_deg: float = 2.0,
-    tool_axis_range_deg: float = 90.0,
-    free_tool_axis_objective: Optional[Literal["deflection", "surge", "bound"]] = None,
+    free: Optional[list[Union[str, dict[str, Any]]]] = None,
+    minimise: Optional[Literal["bound", "deflection", "surge"]] = None,
     program_name: Optional[str] = None,
     targets: Literal["cartesian", "joint"] = "cartesian",
     max_tcp_speed_mm_s: float = 2000.0,
@@ -287,26 +304,15 @@ def compensate(
     moves_per_file: int = 10000,
     level: float = 0.95,
     max_error_mm: Optional[float] = None,
-    force_tolerance_percent: float = 20.0,
-    objective: Literal["sum", "max"] = "sum",
+    force_tolerance_pct: float = 20.0,
+    objective: Optional[Literal["sum", "max"]] = None,
     map: Union[bool, Literal["rotation", "track"], None] = None,
-    free_station_mm: Optional[float] = None,
-    station_step_mm: float = 10.0,
-    free_positioner_deg: Optional[float] = None,
-    positioner_step_deg: float = 5.0,
-    free_lead_tilt: bool = False,
-    cone_deg: Optional[float] = None,
-    lead_tilt_step_deg: float = 2.0,
-    free_tilt_deg: Optional[float] = None,
-    tilt_step_deg: float = 5.0,
-    margin_deg: float = 5.0,
-    max_condition: float = 1000.0,
-    refine: int = 0,
-    free_configuration: bool = False,
-    configuration_per: Literal["program", "run"] = "program",
+    margin_deg: Optional[float] = None,
+    max_condition: Optional[float] = None,
+    refine: Optional[int] = None,
     figures: bool = False,
 ) -> dict[str, Any]:
-    """line (n,) int64, q_deg, q_compensated_deg (n, 6), deflection_mm, deflection_mrad, force_n (n, 3), residual_um, residual_urad (n,), iterations (n,) int64, tool_rotation_deg, lead_deg, tilt_deg (n,); surge_mm_s, surge_std_mm_s, effective_mass_kg, surge_before_mm_s (n,; the last with free_tool_axis) at drilling exits and first_frequency_hz, tooth_passing_hz (n,) at milling points of a program (NaN elsewhere or without masses); bound_mm, bound_left_mm, bound_compensation_mm, bound_calibration_mm, bound_force_mm, bound_model_form_mm (n,; NaN where a part is absent); map (with map=True or "rotation": line, tool_rotation_deg, chosen_deg, bound_mm, deflection_mm, condition, limit_distance_deg (n, g); with map="track": station_offset_mm and chosen_mm for the first two; collision_distance_mm (n, g) with a cell floor or obstacles); deflection_std_mm with a covariance; document (the command's JSON); program (text) and subprograms (name: text, in call order) with program=; figures (with figures=True: the report's figures as SVG strings keyed by name)."""
+    """line (n,) int64, q_deg, q_compensated_deg (n, 6), deflection_mm, deflection_mrad, force_n (n, 3), residual_um, residual_urad (n,), iterations (n,) int64, tool_rotation_deg, lead_deg, tilt_deg (n,); surge_mm_s, surge_std_mm_s, effective_mass_kg, surge_before_mm_s (n,; the last with a free tool-rotation) at drilling exits and first_frequency_hz, tooth_passing_hz (n,) at milling points of a program (NaN elsewhere or without masses); bound_mm, bound_left_mm, bound_compensation_mm, bound_calibration_mm, bound_force_mm, bound_model_form_mm (n,; NaN where a part is absent); map (with map=True or "rotation": line, tool_rotation_deg, chosen_deg, bound_mm, deflection_mm, condition, limit_distance_deg (n, g); with map="track": station_offset_mm and chosen_mm for the first two; collision_distance_mm (n, g) with a cell floor or obstacles); deflection_std_mm with a covariance; document (the command's JSON); program (text) and subprograms (name: text, in call order) with program=; figures (with figures=True: the report's figures as SVG strings keyed by name)."""
 
 def process_force(
     process: Union[str, os.PathLike[str]],
@@ -344,10 +350,10 @@ def place(
     starts: int = 3,
     chord_tolerance_mm: float = 0.01,
     level: float = 0.95,
-    force_tolerance_percent: float = 20.0,
+    force_tolerance_pct: float = 20.0,
     q0_deg: Optional[ArrayLike] = None,
-) -> dict[str, Any]:
-    """The document of `stiffid place --json` (placed, own, reach_only, gain_vs_own_percent, gain_vs_reach_only_percent, evaluations) and setup_text (the setup with the chosen [workpiece])."""
+) -> _Placed:
+    """The document of `stiffid place --json` (placed, own, reach_only, gain_vs_own_pct, gain_vs_reach_only_pct, evaluations) and setup_text (the setup with the chosen [workpiece])."""
 
 def cartesian_compliance(
     setup: Setup,
@@ -377,7 +383,7 @@ def predict(
     stiffness_nm_per_rad: Optional[Union[ArrayLike, _PathLike]] = None,
     compliance_covariance_rad2_per_nm2: Optional[ArrayLike] = None,
     level: Optional[float] = None,
-) -> dict[str, Any]:
+) -> PredictDocument:
     """The predict document (docs/schemas/predict.schema.json), equal to `stiffid predict --json`."""
 
 def deflection(
@@ -400,15 +406,16 @@ def register(
     setup: Setup,
     readings: Optional[Union[str, os.PathLike[str]]] = None,
     *,
-    postures: Optional[int] = None,
+    count: Optional[int] = None,
     seed: int = 1,
     candidates: Optional[int] = None,
     restarts: Optional[int] = None,
     force: bool = False,
-) -> dict[str, Any]:
-    """The document of `stiffid register --json`: setup, data, xyz_mm, rpy_deg, translation_std_mm, rotation_std_deg, residual_rms_mm, noise_std_mm, points, fragment. With postures=N instead of readings, that of `stiffid register --postures N --json`: setup, seed, postures (posture, q_deg), measuring_points, noise_std_mm, translation_std_mm, rotation_std_deg, rotation_std_total_deg, random_median_rotation_std_total_deg, candidates, feasible, checks, method, evaluations, readings_template."""
+    postures: None = None,
+) -> Union[RegisterDocument, RegisterPosturesDocument]:
+    """The document of `stiffid register --json`: setup, data, xyz_mm, rpy_deg, translation_std_mm, rotation_std_deg, residual_rms_mm, noise_std_mm, points, fragment. With count=N instead of readings, that of `stiffid register --count N --json` (`postures=` is refused: renamed count): setup, seed, postures (posture, q_deg), measuring_points, noise_std_mm, translation_std_mm, rotation_std_deg, rotation_std_total_deg, random_median_rotation_std_total_deg, candidates, feasible, checks, method, evaluations, readings_template."""
 
-def calibrate_cell(setup: Setup, readings: Union[str, os.PathLike[str]], *, force: bool = False) -> dict[str, Any]:
+def calibrate_cell(setup: Setup, readings: Union[str, os.PathLike[str]], *, force: bool = False) -> CalibrateCellDocument:
     """The document of `stiffid calibrate-cell --json`: the transform as for register, points (setup_mm, fitted_mm, shift_mm, std_mm), absolute_error_rms_mm, noise_std_mm, readings, iterations, fragment."""
 def calibrate(
     setup: Setup,
@@ -431,7 +438,7 @@ def calibrate(
     urdf_out: Optional[_PathLike] = None,
     stiffness_out: Optional[_PathLike] = None,
     force: bool = False,
-) -> dict[str, Any]:
+) -> CalibrateDocument:
     """The document of `stiffid calibrate --json` (update=True: a calibrated robot updated from check readings, check: whether it drifted beyond its intervals; update_parameters "offsets,base,tool,gravity,external" what it refits (external: a cell's external axes' zero offsets), stiffness the calibration's stiffness file whose gravity terms it keeps, held what it kept): parameters (name, kind, unit, nominal, value, sd, identified), merged, rank, condition, residual_rms_mm, noise_ratio, maps (auto, none or "J1,J3:16": the joint error maps chosen by cross-validation and their nested held-out gain), validation (with level: the held-out readings' jackknife+ prediction intervals, interval_mm per reading, and their coverage), cross_validation, robot_file (or robot_file_error), urdf (or urdf_error), fragment; out and urdf_out write the calibrated robot file and URDF (urdf_out refused, saying why, for an axis map that couples axes)."""
 def plan(
     setup: Setup,
@@ -440,7 +447,7 @@ def plan(
     criterion: _CriterionName = "relative-a",
     target_pct: Optional[float] = None,
     external: Optional[Sequence[Sequence[float]]] = None,
-) -> dict[str, Any]:
+) -> PlanDocument:
     """The measurement plan of a group, the plan.json of `stiffid select --report`: the setup's load and bodies, predicted_deviation_pct, parameters, and per posture the rope, the loading point's height, the expected displacements, the cell's checks and the leave-one-out rates; external (n, k) mm/deg, the cell's order: where each posture is read (its e1_mm.. in the document)."""
 class Scene:
     """The 3D scene of a plan or an identification (`scene`): the robot at each posture in the cell, lines of sight, rope, compliance ellipsoids, displacements; shown inline by Jupyter."""

@@ -1,6 +1,6 @@
 //! `calibrate --update` keeps what the calibration found and refits what its list names: a
 //! calibrated robot that sags under its own weight (the calibration's gravity terms, from its
-//! stiffness file) drifts in its joint offsets; the update predicts the sag and recovers the
+//! robot file or an older stiffness file) drifts in its joint offsets; the update predicts the sag and recovers the
 //! offsets, or refits the gravity terms too with `gravity` in its list, and refuses a list the
 //! check readings cannot identify.
 
@@ -26,6 +26,7 @@ fn weight(scale: f64) -> (Terms, OwnWeight) {
         terms: (terms.terms().iter().map(|t| t.name()))
             .zip(values)
             .collect(),
+        tool_mass: None,
     };
     (terms, own)
 }
@@ -100,16 +101,42 @@ fn the_update_keeps_the_calibrations_sag() {
         .merged
         .iter()
         .all(|m| !m.name.starts_with("gravity.")));
-    let kept = report.compliance.as_ref().unwrap().as_ref().ok();
-    let kept = kept.and_then(|c| c.own_weight.clone());
-    // Without a nominal stiffness there is no stiffness file; the terms themselves are checked.
-    if let Some(kept) = kept {
-        assert_eq!(kept, own);
+    // The updated robot file carries the terms, unchanged.
+    let written = report.robot_toml.as_ref().unwrap();
+    let written = stiffid::robot::file::parse(written, "updated.toml").unwrap();
+    let carried = written.own_weight().unwrap();
+    assert_eq!(carried.gravity, own.gravity);
+    for ((n, v), (m, w)) in carried.terms.iter().zip(&own.terms) {
+        assert!(
+            n == m && (v - w).abs() <= 1e-9 * w.abs().max(1e-9),
+            "{n} {v:e} {w:e}"
+        );
     }
     let start = report.model.gravity_start();
     for (i, (_, v)) in own.terms.iter().enumerate() {
         assert_eq!(report.fit.estimate.values[start + i], *v);
     }
+    // The calibrated robot file carrying the terms gives the same update without the stiffness
+    // file; a stiffness file with other terms is refused naming both.
+    let carried = setup
+        .to_builder()
+        .with_robot(setup.robot().clone().with_own_weight(Some(own.clone())))
+        .build()
+        .unwrap();
+    let from_robot = update_with(&carried, &data, &held, "offsets,base,tool", None).unwrap();
+    assert!(
+        offset_miss(&from_robot) < 1e-9,
+        "{:e}",
+        offset_miss(&from_robot)
+    );
+    let (_, other) = weight(1.1);
+    let e = update_with(&carried, &data, &held, "offsets,base,tool", Some(other))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("[gravity]") && e.contains("stiffness file"),
+        "{e}"
+    );
     // Today's update, the sag dropped: the offsets take part of it.
     let dropped = update_with(&setup, &data, &held, "offsets,base,tool", None).unwrap();
     assert!(offset_miss(&dropped) > 1e-3, "{:e}", offset_miss(&dropped));

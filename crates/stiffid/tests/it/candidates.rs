@@ -272,3 +272,39 @@ fn a_lost_motion_is_recovered_from_load_steps() {
     assert_eq!(c.load_levels, 3);
     assert!(c.nonlinear_separation().unwrap().contains("3 load levels"));
 }
+
+/// A declared candidate named like a family's candidate is refused naming it (it used to
+/// replace the family's without a word); every family candidate of the default pool, kept or
+/// dropped, has a name the check knows, and a name of the user's own passes.
+#[test]
+fn a_declared_candidate_named_like_a_family_is_refused() {
+    use stiffid::model::is_family_name;
+    let named = ELBOW
+        .replace("elbow_z", "tilt3_z")
+        .replace("rotation\"", "rotation\"\ncandidate = true");
+    let text = format!(
+        "{}\n{named}",
+        stiffid::setup::builtin_text("zhang2021-comau-nj165").unwrap()
+    );
+    let parsed = stiffid::setup::parse(&text, "test setup", |r, _| stiffid::robot::presets::get(r));
+    let Err(e) = parsed else {
+        panic!("not refused")
+    };
+    let e = e.to_string();
+    assert!(
+        e.contains("\"tilt3_z\": a declared candidate named like a built-in"),
+        "{e}"
+    );
+    let declared = paper_with(&ELBOW.replace("rotation\"", "rotation\"\ncandidate = true"));
+    let pool = default_pool(&declared);
+    assert_eq!(pool.candidates[0].name, "elbow_z");
+    let families = pool.candidates[1..].iter().map(|c| &c.name);
+    for name in families.chain(pool.dropped.iter().map(|d| &d.name)) {
+        assert!(is_family_name(name), "{name}");
+    }
+    for own in [
+        "elbow_z", "tilt7_z", "bend6_x", "lost0", "tool_w", "tilt3_z2",
+    ] {
+        assert!(!is_family_name(own), "{own}");
+    }
+}

@@ -87,8 +87,12 @@ fn compensate_with(
             process_name: "p.toml".into(),
             process: file::parse(process, "p.toml").unwrap(),
             chord_tolerance: 1e-5,
-            output: Language::GCode,
-            out_name: String::new(),
+            // A rotation about the tool axis reaches the controller in a robot program only.
+            output: match options.free_tool_axis {
+                Some(_) => Language::Robot(stiffid::machining::program::Dialect::Krl),
+                None => Language::GCode,
+            },
+            out_name: "p.src".into(),
             settings: Settings::default(),
         },
         options,
@@ -208,7 +212,7 @@ fn milling_points_get_their_first_frequency_and_a_chatter_warning_near_a_harmoni
     );
     let op = &report.program.as_ref().unwrap().dynamics[0];
     assert_eq!(op.nearest_harmonic_order, Some(1));
-    assert!(op.nearest_harmonic_percent.unwrap() <= 10.0);
+    assert!(op.nearest_harmonic_pct.unwrap() <= 10.0);
     // Far from every harmonic (300 Hz): no warning.
     let (report, _) = compensate(&s, &text, &process(6000.0));
     assert!(report

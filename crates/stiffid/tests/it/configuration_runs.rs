@@ -1,4 +1,4 @@
-//! One configuration per run (`--configuration-per run`): a path of two runs whose best
+//! One configuration per run (`--free configuration=run`): a path of two runs whose best
 //! configurations differ, the runs' choice equal to the exhaustive best over every pair of
 //! configurations compensated alone and better than one configuration for the whole path; a
 //! G-code program's runs (its rapid moves), its robot program written with each run's

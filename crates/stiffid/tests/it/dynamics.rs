@@ -554,16 +554,19 @@ fn the_mass_models_uncertainty_matches_draws_of_the_masses() {
     assert!((speed_sd - at.speed * mass_sd / (2.0 * at.mass)).abs() < 1e-12 * speed_sd);
 }
 
-/// `[masses] sd_percent` is a percentage from 0 to 100, named with its value when it is not.
+/// `[masses] sd_pct` is a percentage from 0 to 100, named with its value when it is not.
 #[test]
 fn the_masses_sd_is_read_as_a_percentage_and_range_checked() {
-    let setup = crate::common::paper_with("[masses]\nsd_percent = 12.5\n").unwrap();
+    let setup = crate::common::paper_with("[masses]\nsd_pct = 12.5\n").unwrap();
     assert_eq!(setup.arm().mass_sd(), 0.125);
     for bad in ["-1.0", "100.5", "nan", "inf"] {
-        let e = crate::common::paper_with(&format!("[masses]\nsd_percent = {bad}\n"));
+        let e = crate::common::paper_with(&format!("[masses]\nsd_pct = {bad}\n"));
         let e = e.unwrap_err().to_string();
-        assert!(e.contains("masses.sd_percent"), "{bad}: {e}");
+        assert!(e.contains("masses.sd_pct"), "{bad}: {e}");
     }
+    // The key's former spelling still reads.
+    let former = crate::common::paper_with("[masses]\nsd_percent = 12.5\n").unwrap();
+    assert_eq!(former.arm().mass_sd(), 0.125);
     let e = crate::common::paper_with("[masses]\nsd = 1.0\n").unwrap_err();
     assert!(e.to_string().contains("sd"), "{e}");
 }

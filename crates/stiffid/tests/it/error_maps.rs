@@ -104,6 +104,44 @@ fn the_kinematics_with_maps_turn_each_axis_by_its_error() {
     }
 }
 
+/// Each list of a map is optional: one left out holds zeros, the kinematics those of both lists
+/// with zeros written out.
+#[test]
+fn a_map_of_one_list_is_that_list_and_zeros() {
+    let zeros = [0.0; 3];
+    let cases = [
+        (
+            "error_map = { cos_deg = [0.01, -0.004, 0.002] }",
+            (&COS1, &zeros),
+        ),
+        (
+            "error_map = { sin_deg = [0.003, 0.0, -0.001] }",
+            (&zeros, &SIN1),
+        ),
+    ];
+    for (given, (cos, sin)) in cases {
+        let one = TABLE.replace("ERROR1", given).replace("ERROR3", "");
+        let both = TABLE
+            .replace(
+                "ERROR1",
+                &format!(
+                    "error_map = {{ cos_deg = {}, sin_deg = {} }}",
+                    list(cos),
+                    list(sin)
+                ),
+            )
+            .replace("ERROR3", "");
+        let (one, both) = (
+            file::parse(&one, "one.toml").unwrap(),
+            file::parse(&both, "both.toml").unwrap(),
+        );
+        let q = Vector6::new(0.3, -0.4, 0.5, -0.6, 0.7, -0.8);
+        let tool = Vector3::new(0.05, -0.02, 0.2);
+        let (a, b) = (one.frames(&q).point(&tool), both.frames(&q).point(&tool));
+        assert_eq!(a, b, "{given}");
+    }
+}
+
 #[test]
 fn a_bad_error_map_is_refused_naming_the_joint() {
     let bad = TABLE

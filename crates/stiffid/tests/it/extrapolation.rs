@@ -204,6 +204,22 @@ fn a_region_out_of_shape_is_refused_naming_the_field() {
         }
         other => panic!("{other:?}"),
     }
+    // An angle's documented range, -10 000 to 10 000 deg, holds at its edges.
+    let mut file = stiffness_file(&setup);
+    file["region"]["upper_deg"][4] = serde_json::json!(1e308);
+    match stiffness::parse(&file.to_string()) {
+        Err(Error::InvalidField { field, message }) => {
+            assert_eq!(field, "region.upper_deg[5]");
+            assert_eq!(message, "1e308 is outside [-10000, 10000] deg");
+        }
+        other => panic!("{other:?}"),
+    }
+    let mut file = stiffness_file(&setup);
+    file["region"]["upper_deg"][4] = serde_json::json!(10000.0);
+    file["region"]["lower_deg"][0] = serde_json::json!(-10000.0);
+    assert!(stiffness::parse(&file.to_string()).is_ok());
+    file["region"]["lower_deg"][0] = serde_json::json!(-10000.5);
+    assert!(stiffness::parse(&file.to_string()).is_err());
 }
 
 fn validated(setup: &Setup, c: &Compliance, text: &str) -> validate::Report {
@@ -306,4 +322,95 @@ fn compensate_flags_each_path_point_beyond_the_identification_range() {
     let doc = CompensateDocument::new(&report, &Names::default(), Vec::new());
     assert_eq!(doc.summary.extrapolated, Some(1));
     assert_eq!(doc.region.map(|r| r.postures), Some(43));
+}
+
+/// A fold's scores are three per held-out measurement (x, y, z): identify's own file reads,
+/// and the same file with one score more, or one less, in a fold is refused naming the fold.
+#[test]
+fn a_fold_with_a_score_more_or_less_is_refused_naming_it() {
+    let setup = fanuc();
+    let request = identify::Request {
+        setup: &setup,
+        data: Data::File {
+            name: "measurements.csv".into(),
+            reader: DATA.as_bytes(),
+        },
+        options: Options {
+            folds: Some(4),
+            ..Options::default()
+        },
+    };
+    let report = identify::run(request).unwrap();
+    let file = serde_json::to_value(report.document("fanuc", &setup)).unwrap();
+    assert!(stiffness::parse(&file.to_string()).is_ok());
+    let scores = file["prediction"]["folds"][1]["scores"]
+        .as_array()
+        .unwrap()
+        .clone();
+    assert_eq!(scores.len() % 3, 0);
+    let (mut more, mut less) = (file.clone(), file.clone());
+    more["prediction"]["folds"][1]["scores"]
+        .as_array_mut()
+        .unwrap()
+        .push(serde_json::json!(0.5));
+    less["prediction"]["folds"][1]["scores"]
+        .as_array_mut()
+        .unwrap()
+        .pop();
+    for bad in [more, less] {
+        match stiffness::parse(&bad.to_string()) {
+            Err(Error::InvalidField { field, message }) => {
+                assert_eq!(field, "prediction.folds[2].scores");
+                assert!(
+                    message.contains("expected three per measurement"),
+                    "{message}"
+                );
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+}
+
+/// identify's stiffness file of the FANUC data, computed once for the property test.
+fn shared_file() -> &'static serde_json::Value {
+    static FILE: std::sync::OnceLock<serde_json::Value> = std::sync::OnceLock::new();
+    FILE.get_or_init(|| stiffness_file(&fanuc()))
+}
+
+/// A hostile number for a region's field: huge, tiny, negative, the edges and just past them.
+fn hostile() -> impl proptest::strategy::Strategy<Value = f64> {
+    use proptest::prelude::*;
+    prop_oneof![
+        -2e4..2e4f64,
+        prop::sample::select(vec![
+            1e308, -1e308, 1e4, -1e4, 10000.5, 360.0, 360.5, -0.0, 5e-324
+        ]),
+        any::<f64>(),
+    ]
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+    /// A region with any of its numbers mutated is either refused or read within its documented
+    /// ranges: angles within [-10 000, 10 000] deg, each lower at most its upper, the margin
+    /// within [0, 360] deg.
+    #[test]
+    fn a_mutated_region_never_reads_outside_its_ranges(
+        axis in 0usize..6,
+        lower in hostile(),
+        upper in hostile(),
+        margin in hostile(),
+    ) {
+        let mut file = shared_file().clone();
+        file["region"]["lower_deg"][axis] = serde_json::json!(lower);
+        file["region"]["upper_deg"][axis] = serde_json::json!(upper);
+        file["region"]["margin_deg"] = serde_json::json!(margin);
+        if let Ok(parsed) = stiffness::parse(&file.to_string()) {
+            let Some(r) = parsed.region.as_ref() else { panic!("the region was dropped") };
+            for (lo, hi) in r.lower_deg.iter().zip(&r.upper_deg) {
+                proptest::prop_assert!(lo.abs() <= 1e4 && hi.abs() <= 1e4 && lo <= hi, "{lo} {hi}");
+            }
+            proptest::prop_assert!((0.0..=360.0).contains(&r.margin_deg), "{}", r.margin_deg);
+        }
+    }
 }

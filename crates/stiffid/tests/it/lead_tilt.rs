@@ -246,7 +246,7 @@ fn bad_cones_and_steps_are_refused_naming_the_option() {
     o.free_lead_tilt.as_mut().unwrap().cone = None;
     let e = compensate::path(s.arm(), &compliance, &line(3), &o).unwrap_err();
     assert!(
-        matches!(&e, Error::InvalidOption { option: JobOption::ConeDeg, message } if message.contains("--cone-deg")),
+        matches!(&e, Error::InvalidOption { option: JobOption::ConeDeg, message } if message.contains("--free lead-tilt=-CONE..CONE")),
         "{e}"
     );
     o.free_lead_tilt.as_mut().unwrap().cone = Some(1.0);

@@ -13,26 +13,38 @@ const SETUP: &str = "zhang2021-comau-nj165";
 
 /// The paper's setup with a TCP, its robot with link masses ([`crate::true_robot::dh_robot_text`]).
 fn heavy_setup(extra: &str) -> stiffid::Setup {
-    let robot_text = crate::true_robot::dh_robot_text();
+    heavy_on(extra, "", &crate::true_robot::dh_robot_text()).unwrap()
+}
+
+/// The paper's setup with a TCP and `tool` in its `[tool]`, `extra` before it, its robot
+/// `robot_text`.
+pub(crate) fn heavy_on(
+    extra: &str,
+    tool: &str,
+    robot_text: &str,
+) -> stiffid::Result<stiffid::Setup> {
     let text = setup::builtin_text(SETUP)
         .unwrap()
-        .replacen("\n[tool]\n", "\n[tool]\ntcp_mm = [0.0, 0.0, 300.0]\n", 1)
+        .replacen(
+            "\n[tool]\n",
+            &format!("\n[tool]\ntcp_mm = [0.0, 0.0, 300.0]\n{tool}"),
+            1,
+        )
         .replacen("\n[tool]", &format!("\n{extra}\n[tool]"), 1);
     setup::parse(&text, "heavy.toml", |name, _| match name {
-        "comau-smart5-nj165-3.0" => stiffid::robot::file::parse(&robot_text, "robot.toml"),
+        "comau-smart5-nj165-3.0" => stiffid::robot::file::parse(robot_text, "robot.toml"),
         other => stiffid::robot::presets::get(other),
     })
-    .unwrap()
 }
 
 /// A stiffness file of the setup's nominal stiffness with `gravity`.
-fn file_with(gravity: &str) -> String {
+pub(crate) fn file_with(gravity: &str) -> String {
     format!(
         r#"{{"stiffness_nm_per_rad": [950000.0, 3000000.0, 900000.0, 250000.0, 200000.0, 150000.0], "gravity": {gravity}}}"#
     )
 }
 
-fn masses_section() -> String {
+pub(crate) fn masses_section() -> String {
     let k = [950000.0, 3000000.0, 900000.0, 250000.0, 200000.0, 150000.0];
     let terms: Vec<String> = (0..6)
         .map(|j| {
@@ -48,7 +60,7 @@ fn masses_section() -> String {
 
 /// The sag of the joints under the link masses, from the potential energy `V(q) = -sum m_l g .
 /// p_l(q)` by central differences: `dq = c .* (-dV/dq)`.
-fn sag(robot: &stiffid::Robot, c: &Vector6<f64>, q: &Vector6<f64>) -> Vector6<f64> {
+pub(crate) fn sag(robot: &stiffid::Robot, c: &Vector6<f64>, q: &Vector6<f64>) -> Vector6<f64> {
     let masses = robot.masses().unwrap();
     let g = Vector3::new(0.0, 0.0, -stiffid::metrology::calibration::gravity::G);
     let energy = |q: &Vector6<f64>| {

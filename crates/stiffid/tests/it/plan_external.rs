@@ -32,7 +32,21 @@ fn a_plans_postures_stand_where_they_are_read() {
         })
         .unwrap()
     };
-    let (there, at_zero) = (run(&e), run(&[]));
+    let (there, at_zero) = (run(&e), run(&vec![vec![0.0; 3]; 3]));
+    // Without the values the plan is refused: it would stand every posture at every axis 0.
+    let none = plan::run(&Request {
+        setup: &setup,
+        criterion: stiffid::design::Criterion::RelativeA,
+        postures: &q,
+        target_pct: None,
+        external: &[],
+    });
+    let Err(e0) = none else { panic!("not refused") };
+    let e0 = e0.to_string();
+    assert!(
+        e0.contains("external: none given: the robot has external axes (e1_mm, "),
+        "{e0}"
+    );
     let plate = &setup.cell().unwrap().obstacles[0];
     for (i, (p, e)) in there.postures.iter().zip(&e).enumerate() {
         assert_eq!(&p.external, e);

@@ -123,6 +123,24 @@ fn malformed_programs_are_refused_naming_the_line() {
             1,
             "no motion to a joint target",
         ),
+        (
+            LS.replace(
+                "J6=     5.000 deg\n};\nP[2",
+                "J6=     5.000 deg,\tJ1= 12 deg\n};\nP[2",
+            ),
+            Dialect::FanucLs,
+            12,
+            "J1: given twice in P[1]",
+        ),
+        (
+            LS.replace(
+                "\tUF : 0, UT : 1,\n\tJ1=    11.000",
+                "\tUF : 0, UT : 1,\n\tJ1=    11.000 deg,\tJ1=    11.000",
+            ),
+            Dialect::FanucLs,
+            17,
+            "J1: given twice in P[2]",
+        ),
     ];
     for (text, dialect, line, word) in cases {
         match program::parse(&text, dialect) {
@@ -209,6 +227,21 @@ fn malformed_gcode_is_refused_naming_the_line() {
         (format!("{HEADER}G2 X10 Y0 R2\n"), 2, "shorter than half"),
         (format!("{HEADER}M3 S1000\n"), 1, "no motion"),
         (format!("{HEADER}G1 X10 X20\n"), 2, "X given twice"),
+        (
+            format!("{HEADER}G0 X0 Y0 Z5\nG81 X10 Y0 Z-5 R2\n"),
+            3,
+            "G81: a canned cycle feeds to Z at the feed rate F in force, and none is",
+        ),
+        (
+            format!("(stiffid: rotary = abc)\n{HEADER}G1 X10 C100000\n"),
+            3,
+            "C100000: expected a tool angle from -360 to 360 deg",
+        ),
+        (
+            format!("(stiffid: rotary = abc)\n{HEADER}G1 X10 A-360.5\n"),
+            3,
+            "A-360.5: expected a tool angle",
+        ),
         (
             format!("{HEADER}G1 X10 F0\n"),
             2,
@@ -563,4 +596,27 @@ fn a_linear_move_between_compensated_targets_stays_within_the_chord_tolerance() 
     }
     assert!(largest < tolerance, "{largest} m");
     assert!(largest > 0.0);
+}
+
+/// A program name no file can take (a Windows device name: `CON`, `NUL`, `COM1`, ..) is
+/// refused in every dialect, and so is KRL's `BAS` (the standard `BAS.SRC` every generated KRL
+/// program calls); names that only begin like them are taken.
+#[test]
+fn device_names_and_krl_bas_are_refused_as_program_names() {
+    use stiffid::machining::program::generate::check_name;
+    for dialect in [Dialect::Krl, Dialect::Rapid, Dialect::FanucLs] {
+        for name in ["CON", "con", "Nul", "AUX", "PRN", "COM1", "lpt9"] {
+            let e = check_name(dialect, name, 24).unwrap_err().to_string();
+            assert!(
+                e.contains("a device name of Windows"),
+                "{dialect:?} {name}: {e}"
+            );
+        }
+        for name in ["COM", "COM10", "CONE", "NULL1", "LPTX"] {
+            assert!(check_name(dialect, name, 24).is_ok(), "{dialect:?} {name}");
+        }
+    }
+    let e = check_name(Dialect::Krl, "bas", 24).unwrap_err().to_string();
+    assert!(e.contains("reserved word of KUKA KRL"), "{e}");
+    assert!(check_name(Dialect::Rapid, "BAS", 24).is_ok());
 }

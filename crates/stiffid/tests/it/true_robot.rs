@@ -213,7 +213,7 @@ impl Truth {
 
     /// Readings of every measuring point at `qs` (axis angles, rad), unloaded and under
     /// `wrenches` (base frame, at the loading point), with the tracker's noise.
-    fn readings(
+    pub(crate) fn readings(
         &self,
         qs: &[Vector6<f64>],
         wrenches: &[Vector6<f64>],
@@ -388,6 +388,14 @@ fn cartesian_targets(krl: &str) -> Vec<(Isometry3<f64>, u8, u8)> {
         .collect()
 }
 
+/// The load steps of the campaign's readings (base frame, at the loading point, N): none, then
+/// two.
+pub(crate) const WRENCHES: [Vector6<f64>; 3] = [
+    Vector6::new(0.0, 0.0, 0.0, 0.0, 0.0, 0.0),
+    Vector6::new(800.0, -300.0, -1200.0, 0.0, 0.0, 0.0),
+    Vector6::new(-500.0, 900.0, 400.0, 0.0, 0.0, 0.0),
+];
+
 /// The campaign on one robot and the table of what each program does on the true robot.
 struct Outcome {
     nominal: Row,
@@ -444,10 +452,14 @@ pub(crate) fn calibrated(
             .unwrap()
             .compliance(setup.model())
             .unwrap();
-        assert_eq!(compliance.own_weight.is_some(), gravity != Gravity::None);
+        // The calibrated robot file carries the sag, the stiffness file only the compliance.
+        assert!(compliance.own_weight.is_none());
         compliance
     });
-    let robot = robot_file::calibrated(&report.model, &report.fit.estimate).unwrap();
+    // The calibrated robot as its file gives it: the one model of the robot.
+    let robot = stiffid::robot::file::parse(report.robot_toml.as_ref().unwrap(), "calibrated.toml")
+        .unwrap();
+    assert_eq!(robot.own_weight().is_some(), gravity != Gravity::None);
     let controller = Controller {
         kinematics: Kinematics::Nominal,
         robot: Some(setup.robot().clone()),
@@ -462,9 +474,8 @@ pub(crate) fn calibrated(
         .unwrap();
     let held_rms = report.validation.as_ref().unwrap().calibrated.rms;
     // The calibrated robot file carries the held-out errors the error budget reads.
-    if let Ok(toml) = &report.robot_toml {
-        let carried = stiffid::robot::file::parse(toml, "calibrated.toml").unwrap();
-        let h = carried.held_out().unwrap();
+    {
+        let h = calibrated.robot().held_out().unwrap();
         let v = &report.validation.as_ref().unwrap().calibrated;
         assert_eq!(
             (h.source.as_str(), h.errors.len()),
@@ -498,6 +509,22 @@ fn program(
     q0: &Vector6<f64>,
     targets: Targets,
 ) -> (String, Vec<Compensated>) {
+    written(
+        setup,
+        compliance,
+        q0,
+        (Language::Robot(Dialect::Krl), targets),
+    )
+}
+
+/// Compensates [`rectangle`] on `setup` (its part frame set) to `output` with `targets`: the
+/// program and every point's result.
+fn written(
+    setup: &Setup,
+    compliance: &stiffid::model::Compliance,
+    q0: &Vector6<f64>,
+    (output, targets): (Language, Targets),
+) -> (String, Vec<Compensated>) {
     let process = stiffid::machining::process::file::parse(
         include_str!("../../../../examples/milling/aluminium.toml"),
         "aluminium.toml",
@@ -516,8 +543,11 @@ fn program(
             process_name: "aluminium.toml".into(),
             process,
             chord_tolerance: 1e-5,
-            output: Language::Robot(Dialect::Krl),
-            out_name: "rectangle.src".into(),
+            output,
+            out_name: match output {
+                Language::GCode => "rectangle-compensated.nc".into(),
+                _ => "rectangle.src".into(),
+            },
             settings: Settings {
                 targets,
                 ..Settings::default()
@@ -534,46 +564,53 @@ fn program(
     (report.program.unwrap().text, results)
 }
 
-fn campaign(case: &Case, seed: u64) -> Outcome {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let truth = Truth::new(&case.setup, &mut rng);
-    let wrenches = [
-        Vector6::zeros(),
-        Vector6::new(800.0, -300.0, -1200.0, 0.0, 0.0, 0.0),
-        Vector6::new(-500.0, 900.0, 400.0, 0.0, 0.0, 0.0),
-    ];
-    let fit = postures(30, &mut rng, case.angles);
-    let data = truth.readings(&fit, &wrenches, &mut rng);
-    let held_postures = postures(12, &mut rng, case.angles);
-    let held = truth.readings(&held_postures, &wrenches[..1], &mut rng);
-    let (setup, compliance, frame, held_rms, nominal_frame) =
-        calibrated(case, case.gravity, &data, &held);
-    let compliance = compliance.unwrap();
-    // The part where the calibrated robot's tool stands at q0, the tool along its -z.
-    let q0 = (case.angles)(&Vector6::from_fn(|i, _| {
+/// The axis angles the part is placed at on `case`'s robot.
+pub(crate) fn q0(case: &Case) -> Vector6<f64> {
+    (case.angles)(&Vector6::from_fn(|i, _| {
         [10.0f64, 10.0, -110.0, 20.0, -50.0, 40.0][i].to_radians()
-    }));
-    let at = ik::tool_pose(&setup.robot().frames(&q0), &setup.tool().tcp);
+    }))
+}
+
+/// The part where `setup`'s robot puts its tool at `q0`, the tool along its -z: `setup` with
+/// that part frame, and the frame.
+pub(crate) fn with_part(setup: &Setup, q0: &Vector6<f64>) -> (Setup, Isometry3<f64>) {
+    let at = ik::tool_pose(&setup.robot().frames(q0), &setup.tool().tcp);
     let part = at * UnitQuaternion::from_euler_angles(std::f64::consts::PI, 0.0, 0.0);
-    let setup = setup.to_builder().with_workpiece(part).build().unwrap();
-    let error =
-        |frame: &Isometry3<f64>, target: &Isometry3<f64>, q: &Vector6<f64>, w: &Vector6<f64>| {
-            let want = frame.inverse() * Point3::from(target.translation.vector);
-            (truth.tcp_at(q, w) - want.coords).norm()
-        };
+    (
+        setup.to_builder().with_workpiece(part).build().unwrap(),
+        part,
+    )
+}
+
+/// What the program compensated on `setup` (its part set, its tracker registered at `frame`)
+/// with `compliance` does on the true robot: joint targets, Cartesian targets run by the
+/// nominal controller's inverse kinematics (`nominal`, checked to return the compensated
+/// angles), the Cartesian run's results and the mean predicted standard deviation of the
+/// deflection's length (m).
+pub(crate) fn landing(
+    truth: &Truth,
+    nominal: &Robot,
+    (setup, compliance): (&Setup, &stiffid::model::Compliance),
+    q0: &Vector6<f64>,
+    frame: &Isometry3<f64>,
+) -> (Row, Row, Vec<Compensated>, f64) {
+    let part = *setup.workpiece().unwrap();
+    let error = |target: &Isometry3<f64>, q: &Vector6<f64>, w: &Vector6<f64>| {
+        let want = frame.inverse() * Point3::from(target.translation.vector);
+        (truth.tcp_at(q, w) - want.coords).norm()
+    };
     // Joint targets.
-    let (krl, results) = program(&setup, &compliance, &q0, Targets::Joint);
+    let (krl, results) = program(setup, compliance, q0, Targets::Joint);
     let qs = joint_targets(&krl);
     assert_eq!(qs.len(), results.len());
     let joint: Vec<f64> = (qs.iter().zip(&results))
         .map(|(q, r)| {
             assert!((q - r.q_compensated).amax() < 1e-8);
-            error(&frame, &r.pose, q, &r.wrench)
+            error(&r.pose, q, &r.wrench)
         })
         .collect();
     // Cartesian targets, run by the controller's nominal inverse kinematics.
-    let nominal = case.setup.robot();
-    let (krl, results) = program(&setup, &compliance, &q0, Targets::Cartesian);
+    let (krl, results) = program(setup, compliance, q0, Targets::Cartesian);
     let poses = cartesian_targets(&krl);
     assert_eq!(poses.len(), results.len());
     let mut previous = results[0].q;
@@ -596,9 +633,66 @@ fn campaign(case: &Case, seed: u64) -> Outcome {
             "{}",
             (q - r.q_compensated).amax()
         );
-        cartesian.push(error(&frame, &r.pose, &q, &r.wrench));
+        cartesian.push(error(&r.pose, &q, &r.wrench));
         previous = q;
     }
+    let std: Vec<f64> = results
+        .iter()
+        .filter_map(|r| r.translation_norm_std)
+        .collect();
+    let std = std.iter().sum::<f64>() / std.len().max(1) as f64;
+    (row(&joint), row(&cartesian), results, std)
+}
+
+/// What the compensated G-code, written back as G-code for the controller's kinematics, does on
+/// the true robot: the controller (`nominal`) runs its inverse kinematics of each point in the
+/// part frame, the orientation as programmed.
+pub(crate) fn gcode_landing(
+    truth: &Truth,
+    nominal: &Robot,
+    (setup, compliance): (&Setup, &stiffid::model::Compliance),
+    q0: &Vector6<f64>,
+    frame: &Isometry3<f64>,
+) -> Row {
+    let part = *setup.workpiece().unwrap();
+    let (text, results) = written(setup, compliance, q0, (Language::GCode, Targets::Joint));
+    let g = stiffid::machining::gcode::parse(&text, 1e-5).unwrap();
+    assert_eq!(g.points.len(), results.len());
+    let mut previous = results[0].q;
+    let errors: Vec<f64> = (g.points.iter().zip(&results))
+        .map(|(p, r)| {
+            let target =
+                part * Isometry3::from_parts(Translation3::from(p.position), p.orientation);
+            let tcp = &setup.tool().tcp;
+            let q = ik::solve(nominal, tcp, &target, &previous, &ik::Options::default());
+            previous = q.unwrap().q;
+            let want = frame.inverse() * Point3::from(r.pose.translation.vector);
+            (truth.tcp_at(&previous, &r.wrench) - want.coords).norm()
+        })
+        .collect();
+    row(&errors)
+}
+
+fn campaign(case: &Case, seed: u64) -> Outcome {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let truth = Truth::new(&case.setup, &mut rng);
+    let fit = postures(30, &mut rng, case.angles);
+    let data = truth.readings(&fit, &WRENCHES, &mut rng);
+    let held_postures = postures(12, &mut rng, case.angles);
+    let held = truth.readings(&held_postures, &WRENCHES[..1], &mut rng);
+    let (setup, compliance, frame, held_rms, nominal_frame) =
+        calibrated(case, case.gravity, &data, &held);
+    let compliance = compliance.unwrap();
+    let q0 = q0(case);
+    let (setup, part) = with_part(&setup, &q0);
+    let nominal = case.setup.robot();
+    let (joint, cartesian, results, _) =
+        landing(&truth, nominal, (&setup, &compliance), &q0, &frame);
+    let error =
+        |frame: &Isometry3<f64>, target: &Isometry3<f64>, q: &Vector6<f64>, w: &Vector6<f64>| {
+            let want = frame.inverse() * Point3::from(target.translation.vector);
+            (truth.tcp_at(q, w) - want.coords).norm()
+        };
     // The nominal controller without stiffid: its inverse kinematics of the part's targets, the
     // part located through the tracker registered on the nominal robot.
     let mut previous = results[0].q;
@@ -633,8 +727,8 @@ fn campaign(case: &Case, seed: u64) -> Outcome {
         .collect();
     Outcome {
         nominal: row(&nominal_errors),
-        joint: row(&joint),
-        cartesian: row(&cartesian),
+        joint,
+        cartesian,
         geometry_only: row(&geometry_only),
         expected: held_rms + std.iter().sum::<f64>() / std.len().max(1) as f64,
     }

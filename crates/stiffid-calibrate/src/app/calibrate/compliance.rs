@@ -1,5 +1,6 @@
 //! The compliance a calibration fits, as `identify` writes it: every parameter of the setup's
-//! model with its covariance, and the own weight's fitted gravity terms.
+//! model with its covariance; and the own weight's fitted gravity terms, as the calibrated robot
+//! file carries them.
 
 use nalgebra::{DMatrix, DVector};
 use stiffid_core::Setup;
@@ -22,8 +23,6 @@ pub struct FittedCompliance {
     pub covariance: DMatrix<f64>,
     /// Whether the calibration fitted each (the others keep the setup's nominal stiffness).
     pub fitted: Vec<bool>,
-    /// With gravity terms fitted: the robot's own weight as fitted (what `compensate` adds).
-    pub own_weight: Option<stiffid_core::model::OwnWeight>,
 }
 
 /// The compliance of a calibration that fits compliances: with known masses
@@ -31,8 +30,7 @@ pub struct FittedCompliance {
 /// ([`ErrorModel::with_loads`]) every parameter of the setup's model. Each parameter the
 /// readings determine at its fitted value, every other (a vertical joint 1, the virtual springs
 /// without loaded readings, a merged compliance) at the setup's nominal stiffness with zero
-/// variance. With gravity terms (any [`stiffid_metrology::calibration::gravity::Gravity`] but none), their fitted values as
-/// [`FittedCompliance::own_weight`].
+/// variance.
 ///
 /// # Errors
 /// Why there is none, in words: the setup gives no nominal stiffness, or a fitted compliance is
@@ -72,19 +70,29 @@ pub fn fitted_compliance(
             covariance[(m, other)] = fit.covariance[(i, k)];
         }
     }
-    let g = model.gravity();
-    let values = fit.estimate.values.rows(model.gravity_start(), g.len());
-    let own_weight = (!g.is_empty()).then(|| stiffid_core::model::OwnWeight {
-        gravity: stiffid_core::common::choice::Choice::name(g.kind()).into(),
-        terms: (g.terms().iter().map(|t| t.name()))
-            .zip(values.iter().copied())
-            .collect(),
-    });
     Ok(FittedCompliance {
         parameters,
         h,
         covariance,
         fitted,
-        own_weight,
+    })
+}
+
+/// The gravity terms of `model` at their values in `fit` (fitted or held), the tool of mass
+/// `tool_mass` (kg) in them; `None` without gravity terms. The calibrated robot file carries them
+/// (`[gravity]`, [`stiffid_core::robot::weight_file`]).
+pub fn own_weight(
+    model: &ErrorModel,
+    fit: &Fit,
+    tool_mass: Option<f64>,
+) -> Option<stiffid_core::model::OwnWeight> {
+    let g = model.gravity();
+    let values = fit.estimate.values.rows(model.gravity_start(), g.len());
+    (!g.is_empty()).then(|| stiffid_core::model::OwnWeight {
+        gravity: stiffid_core::common::choice::Choice::name(g.kind()).into(),
+        terms: (g.terms().iter().map(|t| t.name()))
+            .zip(values.iter().copied())
+            .collect(),
+        tool_mass,
     })
 }

@@ -15,6 +15,8 @@ use stiffid_view as scene;
 /// readings determine, the residual and held-out errors, the calibrated robot's files.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(tag = "kind", rename = "calibrate")]
+#[cfg_attr(feature = "schema", schemars(transform = stiffid_core::app::document::schema::Kind("calibrate")))]
 pub struct Document {
     /// The setup as given.
     pub setup: String,
@@ -211,10 +213,6 @@ pub struct StiffnessSection {
     pub compliance_covariance_si: Vec<Vec<f64>>,
     /// Whether the calibration fitted each parameter (the others are the setup's nominal).
     pub fitted: Vec<bool>,
-    /// With gravity terms fitted: the robot's own weight, which `compensate` adds to the
-    /// program (the calibrated robot is the robot without its sag).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub gravity: Option<stiffid_core::io::stiffness::GravitySection>,
     /// The region of axis angles the fitted readings' postures span, widened by a margin:
     /// what `predict`, `validate` and `compensate` flag a posture outside of
     /// ([`stiffid_core::io::stiffness::RegionSection`]).
@@ -328,7 +326,7 @@ pub struct IntervalsDocument {
     /// held-out postures are like the fitted ones.
     pub coverage: f64,
     /// `coverage`, %.
-    pub coverage_percent: f64,
+    pub coverage_pct: f64,
     /// Held-out coordinates inside their intervals.
     pub covered: usize,
     /// Held-out coordinates (three per reading).
@@ -465,10 +463,6 @@ impl Document {
                         .map(|r| r.iter().copied().collect())
                         .collect(),
                     fitted: c.fitted.clone(),
-                    gravity: c
-                        .own_weight
-                        .as_ref()
-                        .map(stiffid_core::io::stiffness::GravitySection::new),
                     region: stiffid_core::model::PostureRange::of(&report.postures)
                         .map(|r| stiffid_core::io::stiffness::RegionSection::new(&r)),
                 }),
@@ -524,7 +518,7 @@ fn held(h: &Held) -> ValidationDocument {
             level: c.level,
             folds: c.folds,
             coverage: c.coverage(),
-            coverage_percent: 100.0 * c.coverage(),
+            coverage_pct: 100.0 * c.coverage(),
             covered: c.covered,
             coordinates: c.coordinates,
             median_width_mm: widths.get(widths.len() / 2).map(|w| mm(*w)),

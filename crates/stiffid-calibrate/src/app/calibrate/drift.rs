@@ -11,8 +11,9 @@
 //! one-sided binomial test: a false alarm in at most 1 % of checks of an undrifted robot).
 
 use serde::Serialize;
+use stiffid_core::common::error::JobOption;
 use stiffid_core::common::warning::{Warning, WarningKind};
-use stiffid_core::Robot;
+use stiffid_core::{Error, Result, Robot};
 use stiffid_metrology::calibration::validation::Validation;
 
 /// The false-alarm rate of the drift verdict on an undrifted robot.
@@ -167,6 +168,24 @@ impl CheckDocument {
                     outside,
                 })
                 .collect(),
+        }
+    }
+
+    /// The check as a gate: a robot that drifted beyond its intervals fails it. The update's
+    /// outputs stand (the command writes them, then exits with code 1).
+    ///
+    /// # Errors
+    /// [`Error::Gate`] ([`JobOption::Update`]) when [`CheckDocument::drifted`].
+    pub fn gate(&self) -> Result<()> {
+        match self.drifted {
+            false => Ok(()),
+            true => Err(Error::Gate {
+                option: JobOption::Update,
+                message: format!(
+                    "the robot drifted beyond its intervals: {} of {} check readings beyond {:.4} mm, an undrifted robot explains up to {}",
+                    self.outside, self.readings, self.bound_mm, self.allowed
+                ),
+            }),
         }
     }
 }

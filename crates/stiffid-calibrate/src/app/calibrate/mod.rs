@@ -139,10 +139,11 @@ pub struct Request<'a> {
     pub update: bool,
     /// With `update`: what it refits ([`update::Refits`], default `offsets,base,tool`).
     pub refit: update::Refits,
-    /// With `update`: the robot's own weight as its calibration fitted it (the calibration's
-    /// stiffness file, [`stiffid_core::model::Compliance::own_weight`]), kept in the update's forward
-    /// model (refitted from there with [`update::Refit::Gravity`]); `None` for a calibration
-    /// without gravity terms.
+    /// With `update`: the robot's own weight as a stiffness file written before the calibrated
+    /// robot file carried it holds it ([`stiffid_core::model::Compliance::own_weight`]); the robot
+    /// file's (`[gravity]`) take its place, and the two must agree ([`update::weight`]). Kept in
+    /// the update's forward model (refitted from there with [`update::Refit::Gravity`]); `None`
+    /// for a calibration without gravity terms or a robot file carrying them.
     pub weight: Option<stiffid_core::model::OwnWeight>,
 }
 
@@ -402,20 +403,19 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     if let Some(w) = warnings.iter_mut().find(|w| w.kind == WarningKind::Misfit) {
         w.message += &largest_residual(&data, &fitted.residuals);
     }
-    let robot_toml = robot_file::robot_toml(&model, &fitted.estimate)
-        .map(|t| {
-            t + &update::held_out(
-                request,
-                setup,
-                validation.as_ref(),
-                cross_validation.as_ref(),
-            )
-        })
-        .map_err(|e| e.to_string());
+    let own_weight = compliance::own_weight(&model, &fitted, update::tool_mass(request)?);
+    let held = (validation.as_ref(), cross_validation.as_ref());
+    let robot_toml = update::robot_file(
+        request,
+        (&model, &fitted.estimate),
+        held,
+        own_weight.as_ref(),
+    );
     let urdf = robot_file::urdf(&model, &fitted.estimate).map_err(|e| e.to_string());
     if let (Ok(_), Some(note)) = (&urdf, robot_file::urdf_leaves_out(&model, &fitted.estimate)) {
         warnings.push(Warning::new(WarningKind::LeftOut, note));
     }
+    warnings.extend(update::urdf_rigid(urdf.is_ok(), own_weight.as_ref()));
     let tcp = tcp(setup, &model, &fitted.estimate.values);
     let fragment = fragment(&model, &fitted, tcp.as_ref());
     let compliance = (gravity != Gravity::None || model.has_loads())

@@ -33,12 +33,13 @@
 use super::Request;
 use stiffid_core::common::choice::{self, Choice};
 use stiffid_core::common::error::JobOption;
+use stiffid_core::model::OwnWeight;
 use stiffid_core::{Error, Result, Setup};
 use stiffid_metrology::calibration::error_model::Observation;
 use stiffid_metrology::calibration::gravity::Gravity;
 use stiffid_metrology::calibration::identifiability;
 use stiffid_metrology::calibration::maps::Spec;
-use stiffid_metrology::calibration::{ErrorModel, Geometry};
+use stiffid_metrology::calibration::{robot_file, ErrorModel, Geometry};
 
 /// The fewest distinct postures an update reads (the readings must separate the six offsets
 /// from the frame and the points).
@@ -197,13 +198,13 @@ pub(super) fn settings(
             postures.len()
         ));
     }
-    let gravity = match &request.weight {
+    let gravity = match weight(request)? {
         Some(w) => choice::parse::<Gravity>(&w.gravity).map_err(|e| Error::InvalidOption {
             option: JobOption::Update,
             message: format!("the stiffness file's gravity terms: {e}"),
         })?,
         None if request.refit.contains(Refit::Gravity) => {
-            return refuse("gravity: the update refits the calibration's gravity terms from its stiffness file (--stiffness, as calibrate --stiffness-out wrote it)".into())
+            return refuse("gravity: the update refits the calibration's gravity terms, and neither the calibrated robot file ([gravity]) nor a stiffness file (--stiffness) holds any".into())
         }
         None => Gravity::None,
     };
@@ -263,9 +264,9 @@ pub(super) fn external(
     Ok((model.map_err(|e| super::in_data(name, e))?, None))
 }
 
-/// The stiffness file's value of each gravity term of `model`: `(index, value)`, SI.
+/// The calibration's value of each gravity term of `model` ([`weight`]): `(index, value)`, SI.
 fn gravity_values(request: &Request<'_>, model: &ErrorModel) -> Result<Vec<(usize, f64)>> {
-    let Some(weight) = &request.weight else {
+    let Some(weight) = weight(request)? else {
         return Ok(Vec::new());
     };
     let start = model.gravity_start();
@@ -276,7 +277,7 @@ fn gravity_values(request: &Request<'_>, model: &ErrorModel) -> Result<Vec<(usiz
             value.map(|v| (c, v)).ok_or_else(|| Error::InvalidOption {
                 option: JobOption::Update,
                 message: format!(
-                    "the stiffness file's {} gravity terms lack {name}: give the stiffness file of the robot's calibration",
+                    "the calibration's {} gravity terms lack {name}: give the robot file and the stiffness file of the robot's calibration",
                     weight.gravity
                 ),
             })
@@ -448,4 +449,79 @@ pub(super) fn held_out(
         }
         _ => super::document::held_out_table(validation, cross_validation),
     }
+}
+
+/// With `update`: the gravity terms of the robot's calibration, the calibrated robot file's
+/// (`[gravity]`, [`stiffid_core::Robot::own_weight`]) or, from a robot file without them, those of the
+/// calibration's stiffness file ([`Request::weight`]); `None` without `update` or without either.
+///
+/// # Errors
+/// [`Error::InvalidOption`] ([`JobOption::Update`]) when both hold gravity terms and they differ,
+/// naming both.
+pub(super) fn weight<'r>(request: &'r Request<'_>) -> Result<Option<&'r OwnWeight>> {
+    if !request.update {
+        return Ok(None);
+    }
+    match (request.readings.setup.robot().own_weight(), &request.weight) {
+        (Some(r), Some(s)) if (&r.gravity, &r.terms) != (&s.gravity, &s.terms) => {
+            Err(Error::InvalidOption {
+                option: JobOption::Update,
+                message: format!(
+                    "the calibrated robot file's [gravity] ({} terms) and the stiffness file's gravity section ({} terms) differ: the robot file carries the calibration's sag, leave out --stiffness",
+                    r.gravity, s.gravity
+                ),
+            })
+        }
+        (Some(r), _) => Ok(Some(r)),
+        (None, s) => Ok(s.as_ref()),
+    }
+}
+
+/// The tool's mass (kg) the calibrated robot file's gravity terms hold: the setup's
+/// (`[tool] mass_kg`), or with `update` of lumped terms the calibration's (the terms are kept).
+///
+/// # Errors
+/// Those of [`weight`].
+pub(super) fn tool_mass(request: &Request<'_>) -> Result<Option<f64>> {
+    let payload = request.readings.setup.payload().map(|p| p.mass);
+    Ok(match weight(request)? {
+        Some(w) if w.gravity != "masses" => w.tool_mass,
+        _ => payload,
+    })
+}
+
+/// The calibrated robot file's text ([`robot_file::robot_toml`]): the robot, its `[held_out]`
+/// ([`held_out`]) and its sag `own` in the file's link frames
+/// ([`robot_file::own_weight_in_table`]); or why there is none.
+pub(super) fn robot_file(
+    request: &Request<'_>,
+    (model, estimate): (&ErrorModel, &stiffid_metrology::calibration::Estimate),
+    (validation, cross_validation): (Option<&super::Held>, Option<&super::Held>),
+    own: Option<&OwnWeight>,
+) -> std::result::Result<String, String> {
+    let setup = request.readings.setup;
+    robot_file::robot_toml(model, estimate)
+        .and_then(|t| {
+            let sag = own
+                .map(|w| robot_file::own_weight_in_table(model, estimate, w))
+                .transpose()?;
+            let sag = sag.map_or(String::new(), |w| {
+                stiffid_core::robot::weight_file::toml(&w)
+            });
+            Ok(t + &held_out(request, setup, validation, cross_validation) + &sag)
+        })
+        .map_err(|e| e.to_string())
+}
+
+/// The warning that a URDF written (`written`) of a robot with the gravity terms `own` leaves
+/// its sag out; none without either.
+pub(super) fn urdf_rigid(
+    written: bool,
+    own: Option<&OwnWeight>,
+) -> Option<stiffid_core::common::warning::Warning> {
+    let own = own.filter(|_| written)?;
+    Some(stiffid_core::common::warning::Warning::new(
+        stiffid_core::common::warning::WarningKind::LeftOut,
+        format!("the URDF leaves out the sag under the robot's own weight (the {} gravity terms: a URDF has no place for them): a robot read from it is rigid; use the robot file", own.gravity),
+    ))
 }

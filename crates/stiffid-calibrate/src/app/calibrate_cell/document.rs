@@ -10,6 +10,8 @@ use stiffid_core::app::document::{mm, mm3};
 /// absolute error.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(tag = "kind", rename = "calibrate-cell")]
+#[cfg_attr(feature = "schema", schemars(transform = stiffid_core::app::document::schema::Kind("calibrate-cell")))]
 pub struct Calibration {
     /// The setup as given.
     pub setup: String,

@@ -1,5 +1,5 @@
 //! The documents of the register job ([`crate::app::register`]): `stiffid register --json`,
-//! `stiffid register --postures N --json`, Python's `register(...)`.
+//! `stiffid register --count N --json`, Python's `register(...)`.
 
 use crate::app::register;
 use serde::Serialize;
@@ -9,6 +9,8 @@ use stiffid_core::app::document::{degrees, mm, mm3};
 /// The register document: the tracker's transform, its quality and uncertainty.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(tag = "kind", rename = "register")]
+#[cfg_attr(feature = "schema", schemars(transform = stiffid_core::app::document::schema::Kind("register")))]
 pub struct Document {
     /// The setup as given.
     pub setup: String,
@@ -89,10 +91,12 @@ impl Document {
     }
 }
 
-/// The registration postures proposed (`stiffid register --postures N --json`, Python's
+/// The registration postures proposed (`stiffid register --count N --json`, Python's
 /// `register(setup, postures=N)`).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(tag = "kind", rename = "register-postures")]
+#[cfg_attr(feature = "schema", schemars(transform = stiffid_core::app::document::schema::Kind("register-postures")))]
 pub struct Proposal {
     /// The setup as given.
     pub setup: String,

@@ -59,7 +59,7 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     })
 }
 
-/// Registration postures to propose: `stiffid register --postures N`.
+/// Registration postures to propose: `stiffid register --count N`.
 pub struct DesignRequest<'a> {
     /// The setup: robot, tool (its measuring points), bounds, cell, tracker, noise.
     pub setup: &'a Setup,

@@ -134,7 +134,7 @@ pub fn run(args: &Args) -> Result<()> {
     let report = report?;
     output::warnings(report.warnings());
     let name = &args.common.setup;
-    // The document's JSON is its form's (the document is untagged).
+    // The document's JSON is its form's (each form names itself in `kind`).
     let (json_text, text) = match &report {
         Report::Comparison(r) => {
             if let Some(out) = &out {

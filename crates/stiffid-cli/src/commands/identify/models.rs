@@ -240,8 +240,8 @@ fn cross_validation_text(cv: &CrossValidationDoc) -> String {
         "held out: RMS delta_b {:.4} mm of RMS {:.4} mm measured: {:.1}% explained (standard error {:.1}, over the postures)\n",
         cv.rms_delta_b_mm,
         cv.rms_measured_mm,
-        cv.explained_percent,
-        cv.explained_std_error_percent
+        cv.explained_pct,
+        cv.explained_std_error_pct
     );
     s
 }

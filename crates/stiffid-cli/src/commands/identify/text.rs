@@ -217,7 +217,7 @@ impl<'a> Columns<'a> {
     fn residual(doc: &'a Document) -> Option<Self> {
         Some(Columns {
             std_error: doc.std_error_nm_per_rad.as_ref()?,
-            percent: doc.std_error_percent.as_ref()?,
+            percent: doc.std_error_pct.as_ref()?,
             ci95: doc.ci95_nm_per_rad.as_ref()?,
             ci95_from_compliance: doc.ci95_from_compliance_nm_per_rad.as_ref()?,
         })
@@ -227,7 +227,7 @@ impl<'a> Columns<'a> {
     fn noise(iv: &'a Intervals) -> Self {
         Columns {
             std_error: &iv.std_error_nm_per_rad,
-            percent: &iv.std_error_percent,
+            percent: &iv.std_error_pct,
             ci95: &iv.ci95_nm_per_rad,
             ci95_from_compliance: &iv.ci95_from_compliance_nm_per_rad,
         }
@@ -265,7 +265,7 @@ fn table(doc: &Document, iv: Columns, poor: Option<[bool; 6]>) -> String {
         s += &format!(
             "poorly determined (std error > {:.0}% of the value): {}; the delta-method interval \
              is unreliable there, trust the 1/compliance interval and measure postures that load these joints more\n",
-            doc.poorly_determined_above_percent,
+            doc.poorly_determined_above_pct,
             joint_list(poor)
         );
     }
@@ -372,7 +372,7 @@ fn cross_validation(doc: &Document, cv: &CrossValidation) -> String {
             opt(doc.stiffness_nm_per_rad[j], 0),
             opt(cv.stiffness_mean_nm_per_rad[j], 0),
             opt(cv.stiffness_std_nm_per_rad[j], 0),
-            opt(cv.stiffness_std_percent[j], 1),
+            opt(cv.stiffness_std_pct[j], 1),
             opt(cv.stiffness_min_nm_per_rad[j], 0),
             opt(cv.stiffness_max_nm_per_rad[j], 0)
         );
@@ -381,8 +381,8 @@ fn cross_validation(doc: &Document, cv: &CrossValidation) -> String {
         "held out: RMS delta_b {:.4} mm against measured deflections of RMS {:.4} mm: the model explains {:.1}% (standard error {:.1}, over the postures) of the held-out deflection\n",
         cv.rms_delta_b_mm,
         cv.rms_measured_mm,
-        cv.explained_percent,
-        cv.explained_std_error_percent
+        cv.explained_pct,
+        cv.explained_std_error_pct
     );
     if let Some(p) = &doc.prediction {
         s += &self::prediction(p);
@@ -413,7 +413,7 @@ pub fn model_error_dominates() -> String {
 /// The calibration of the prediction intervals (a document's `prediction`), in one line.
 pub fn prediction(p: &PredictionSection) -> String {
     let scores: usize = p.folds.iter().map(|f| f.scores.len()).sum();
-    let model = p.model_error_percent.map_or(String::new(), |r| {
+    let model = p.model_error_pct.map_or(String::new(), |r| {
         format!("; the model's error beyond the noise and the estimate: {r:.1}% of the predicted displacement (the deflection intervals of predict and compensate)")
     });
     format!(
@@ -421,7 +421,7 @@ pub fn prediction(p: &PredictionSection) -> String {
         p.method,
         scores,
         stiffid_core::common::words::count(p.postures, "posture"),
-        opt(p.score_q95_percent, 1),
+        opt(p.score_q95_pct, 1),
         p.noise_floor_mm
     )
 }

@@ -10,7 +10,7 @@ use crate::commands::common::Common;
 use crate::load;
 use crate::output::{self, json, OutFile};
 use crate::progress::Bars;
-use crate::report::plan;
+use crate::report::{campaign, plan};
 use anyhow::{bail, Result};
 use std::path::PathBuf;
 use stiffid_core::common::limits::{self, short};
@@ -32,8 +32,8 @@ pub struct Args {
     /// ranks groups of postures as their measured accuracy does (in `stiffid reproduce`,
     /// Spearman's rho +1.00 against the simulated deviation rates); the paper's zhang2021 does not
     /// (rho -0.10): see docs/guide.md, "The paper's study".
-    #[arg(long, default_value = "relative-a")]
-    criterion: Criterion,
+    #[arg(long)]
+    criterion: Option<Criterion>,
     #[command(flatten)]
     purpose: ForArgs,
     /// Start group (posture,q1_deg,...,q6_deg) of a local search.
@@ -45,7 +45,7 @@ pub struct Args {
     /// Global search: local searches from --starts seeded start groups, the best kept.
     #[arg(long)]
     global: bool,
-    /// Choose the best --postures of the postures in this file (posture,q1_deg,...,q6_deg; at
+    /// Choose the best --count of the postures in this file (posture,q1_deg,...,q6_deg; at
     /// most 10000), e.g. postures taught on the pendant: exact by enumeration when there are at
     /// most 100000 groups, else the best of --restarts seeded exchange runs. Postures outside the
     /// setup's bounds are reported and skipped.
@@ -75,12 +75,12 @@ pub struct Args {
     /// level multiple 1 is at most this many percent on every joint (with --pool or --global);
     /// prints the group size against the worst joint's rate and plots it (into --report, else
     /// beside --out as OUT.target.svg and .png).
-    #[arg(long, conflicts_with = "postures")]
+    #[arg(long, conflicts_with = "count")]
     target_pct: Option<f64>,
     /// Number of postures (random or global starts, pool) [default: 6, 10 with --for check; 2
     /// to 100].
     #[arg(long, value_parser = clap::value_parser!(u64).range(2..=limits::MAX_SEARCH_POSTURES), conflicts_with = "start")]
-    postures: Option<u64>,
+    count: Option<u64>,
     /// Seed of the random start group, of the global starts or of the pool's exchange runs.
     #[arg(long, default_value_t = 1)]
     seed: u64,
@@ -89,10 +89,10 @@ pub struct Args {
     starts: Option<u64>,
     /// SQP steps of every global start before the best --polished continue; 0 runs every start
     /// to convergence [default: 60; 0 to 10000000].
-    #[arg(long, requires = "global", value_parser = clap::value_parser!(u64).range(0..=limits::MAX_EVALS))]
+    #[arg(long, value_parser = clap::value_parser!(u64).range(0..=limits::MAX_EVALS))]
     screen_steps: Option<u64>,
     /// Global starts that continue after the screening [default: 8; 1 to 10000].
-    #[arg(long, requires = "global", value_parser = clap::value_parser!(u64).range(1..=limits::MAX_STARTS))]
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=limits::MAX_STARTS))]
     polished: Option<u64>,
     /// Most criterion evaluations per local search (a value with its exact gradient counts as one,
     /// each finite-difference probe as one) [default: 6000; 1 to 10000000].
@@ -165,21 +165,33 @@ pub fn run(args: &Args) -> Result<()> {
         (Some(_), None) => Some(target::files(&args.out)?),
         _ => None,
     };
+    let campaign = args.purpose.purpose.calibration_only();
     let report_dir = args
         .report
         .as_deref()
-        .map(|dir| plan::stiffness(&setup).and_then(|_| plan::open(dir, args.force)))
+        .map(|dir| match campaign {
+            true => plan::open(dir, args.force),
+            false => plan::stiffness(&setup).and_then(|_| plan::open(dir, args.force)),
+        })
         .transpose()?;
+    let method = method(args, pool.is_some())?;
+    let given = job::Given {
+        criterion: args.criterion.is_some(),
+        starts: args.starts.is_some(),
+        screen_steps: args.screen_steps.is_some(),
+        polished: args.polished.is_some(),
+    };
+    job::check_given(args.purpose.purpose, method, given)?;
     let bars = Bars::new(false);
     let request = Request {
         setup: &setup,
-        criterion: args.criterion,
+        criterion: criterion(args),
         purpose: args.purpose.purpose,
         calibration: args.purpose.options(),
-        method: method(args, pool.is_some())?,
+        method,
         start,
         pool,
-        postures: (args.postures).map_or(args.purpose.purpose.default_postures(), |n| n as usize),
+        postures: (args.count).map_or(args.purpose.purpose.default_postures(), |n| n as usize),
         target_pct: args.target_pct,
         options: options(args),
         restarts: args.restarts.map(|r| r as usize),
@@ -205,6 +217,17 @@ pub fn run(args: &Args) -> Result<()> {
     if let (Some(files), Some(t)) = (&target_files, &report.target) {
         target::write_figure(files, t)?;
     }
+    let mut doc = Document::new(&report, &setup);
+    doc.out = Some(args.out.display().to_string());
+    doc.report = args.report.as_ref().map(|d| d.display().to_string());
+    let report_dir = match (report_dir, campaign) {
+        (Some(dir), true) => {
+            let command = crate::commands::common::command_line();
+            campaign::write(dir, &setup, &doc, &csv, &command)?;
+            None
+        }
+        (dir, _) => dir,
+    };
     if let Some(dir) = report_dir {
         let t = report.target.as_ref();
         let provenance = plan::Provenance {
@@ -219,16 +242,13 @@ pub fn run(args: &Args) -> Result<()> {
         plan::write(
             dir,
             &setup,
-            args.criterion,
+            criterion(args),
             &report.postures,
             &external,
             t,
             &provenance,
         )?;
     }
-    let mut doc = Document::new(&report, &setup);
-    doc.out = Some(args.out.display().to_string());
-    doc.report = args.report.as_ref().map(|d| d.display().to_string());
     match args.common.json {
         true => output::print(&json(&doc)?),
         false => output::print(&text(args, &setup, &report, &doc)),
@@ -238,6 +258,11 @@ pub fn run(args: &Args) -> Result<()> {
 /// The distances of `--distinct`: the flagging's defaults, overridden by the arguments.
 fn distinctness(args: &Args) -> stiffid_core::Result<Distinctness> {
     Distinctness::try_from_deg_mm(args.distinct_deg, args.distinct_mm)
+}
+
+/// The stiffness criterion: the one given, else relative-a.
+fn criterion(args: &Args) -> Criterion {
+    args.criterion.unwrap_or(Criterion::RelativeA)
 }
 
 /// The method the arguments ask for.
@@ -361,7 +386,7 @@ fn cost_text(criterion: &str, r: &Report, free_value: f64, free: &Free) -> Strin
         "what the cell's checks cost (the same search without them):\n  {criterion}: {} feasible vs {} unconstrained ({}%)\n",
         number(shown(r, r.value)),
         number(shown(r, free_value)),
-        percent(free.cost_percent),
+        percent(free.cost_pct),
     );
     // None only for a setup without a nominal stiffness (stiffid_design::Evaluation).
     if let (Some(feasible), Some(unconstrained)) = (
@@ -370,7 +395,7 @@ fn cost_text(criterion: &str, r: &Report, free_value: f64, free: &Free) -> Strin
     ) {
         text += &format!(
             "  predicted mean deviation rate: {feasible:.3}% feasible vs {unconstrained:.3}% unconstrained ({}%)\n",
-            percent(free.predicted_average_change_percent)
+            percent(free.predicted_average_change_pct)
         );
     }
     text

@@ -15,6 +15,8 @@ use serde::Serialize;
 /// for the Jacobian, rows `[v; omega]`; base frame.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(tag = "kind", rename = "kinematics")]
+#[cfg_attr(feature = "schema", schemars(transform = crate::app::document::schema::Kind("kinematics")))]
 pub struct Document {
     /// The robot's name.
     pub robot: String,

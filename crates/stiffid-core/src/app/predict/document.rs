@@ -14,6 +14,8 @@ use serde::Serialize;
 /// The forward model of one posture under one wrench.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(tag = "kind", rename = "predict")]
+#[cfg_attr(feature = "schema", schemars(transform = crate::app::document::schema::Kind("predict")))]
 pub struct Document {
     /// The setup as given.
     pub setup: String,
@@ -76,7 +78,7 @@ pub struct Document {
     /// The effective mass along the wrench's force with the other five directions held (a drill
     /// in its hole), `u^T Lambda_vv u`, kg; `null` without masses or a force.
     pub effective_mass_kg: Option<f64>,
-    /// Its standard deviation from the setup's `[masses] sd_percent`, kg; `null` without it.
+    /// Its standard deviation from the setup's `[masses] sd_pct`, kg; `null` without it.
     pub effective_mass_std_kg: Option<f64>,
     /// The effective mass along the force with the point free, `1 / (u^T (J M^-1 J^T)_vv u)`, kg.
     pub effective_mass_free_kg: Option<f64>,
@@ -88,7 +90,7 @@ pub struct Document {
     /// `F sqrt(c / m)` with `m` the held effective mass, mm/s.
     pub surge_mm_s: Option<f64>,
     /// Its standard deviation from the compliance covariance and the setup's `[masses]
-    /// sd_percent` (first order), mm/s; `null` with neither.
+    /// sd_pct` (first order), mm/s; `null` with neither.
     pub surge_std_mm_s: Option<f64>,
     /// Whether the posture lies outside the region the stiffness was identified from (an axis
     /// beyond the identification postures' range widened by its margin): the prediction

@@ -137,7 +137,7 @@ pub const AXIS: Range = Range::new(-1e6, 1e6, "");
 /// A tool's mass (`[tool] mass_kg`).
 pub const TOOL_MASS_KG: Range = Range::new(1e-3, 1e4, "kg");
 
-/// The relative standard deviation of the robot's and the tool's masses (`[masses] sd_percent`).
+/// The relative standard deviation of the robot's and the tool's masses (`[masses] sd_pct`).
 pub const MASS_SD_PERCENT: Range = Range::new(0.0, 100.0, "%");
 
 /// How far each frame of the robot model may be from the true robot's, per coordinate
@@ -208,7 +208,7 @@ pub const MAX_STARTS: u64 = 10_000;
 /// searches each (about 20 ms of CPU: 2000 take about 20 s on two cores).
 pub const MAX_TRIALS: u64 = 2000;
 
-/// Most postures a search chooses (`--postures`): 6 variables each, and SQP's memory grows with
+/// Most postures a search chooses (`select --count`): 6 variables each, and SQP's memory grows with
 /// their square.
 pub const MAX_SEARCH_POSTURES: u64 = 100;
 

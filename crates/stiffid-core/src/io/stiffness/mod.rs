@@ -67,6 +67,7 @@ use serde::{Deserialize, Serialize};
 /// [`StiffnessFile`]'s: read and ignored. Any other key is refused ([`parse`]): a misspelt key would otherwise be dropped
 /// silently.
 pub const DOCUMENT_KEYS: &[&str] = &[
+    "kind",
     "setup",
     "data",
     "springs",
@@ -79,8 +80,8 @@ pub const DOCUMENT_KEYS: &[&str] = &[
     "nonnegative_stop_reason",
     "intervals_from",
     "std_error_nm_per_rad",
-    "std_error_percent",
-    "poorly_determined_above_percent",
+    "std_error_pct",
+    "poorly_determined_above_pct",
     "poorly_determined",
     "fitted",
     "ci95_nm_per_rad",
@@ -110,6 +111,10 @@ pub const DOCUMENT_KEYS: &[&str] = &[
     "model_check",
     "warnings",
 ];
+
+/// The keys of [`DOCUMENT_KEYS`] as files written before every percentage's key ended in `_pct`
+/// spelt them: read and ignored alike, so those files still read.
+pub const FORMER_KEYS: &[&str] = &["std_error_percent", "poorly_determined_above_percent"];
 
 /// What a stiffness file holds, as its JSON keys (the identify document's others,
 /// [`DOCUMENT_KEYS`], are ignored).
@@ -264,9 +269,9 @@ pub fn parse(text: &str) -> Result<StiffnessFile> {
         "region",
         "model_form",
     ];
-    if let Some(key) =
-        (keys.keys()).find(|k| !ours.contains(&k.as_str()) && !DOCUMENT_KEYS.contains(&k.as_str()))
-    {
+    let known =
+        |k: &str| ours.contains(&k) || DOCUMENT_KEYS.contains(&k) || FORMER_KEYS.contains(&k);
+    if let Some(key) = (keys.keys()).find(|k| !known(k)) {
         return Err(invalid(
             limits::short(key),
             format!("unknown key: expected {EXPECTED} (and the other keys of identify's document)"),

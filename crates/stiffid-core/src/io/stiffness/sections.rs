@@ -11,9 +11,7 @@ use crate::Result;
 use nalgebra::{DVector, Vector6};
 use serde::{Deserialize, Serialize};
 
-/// The most gravity terms a stiffness file holds: four mass moments of six links for each of
-/// the six springs.
-pub const MAX_GRAVITY_TERMS: usize = 144;
+pub use crate::robot::weight_file::MAX_GRAVITY_TERMS;
 
 /// The gravity terms a calibration fitted ([`crate::model::OwnWeight`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -72,6 +70,7 @@ impl GravitySection {
             terms: (self.terms.iter())
                 .map(|t| (t.name.clone(), t.value_si))
                 .collect(),
+            tool_mass: None,
         }
     }
 }
@@ -97,14 +96,14 @@ pub struct PredictionSection {
     #[serde(default)]
     pub score_q95: Option<f64>,
     /// `score_q95` in %. Written for the reader, ignored when read.
-    #[serde(default)]
-    pub score_q95_percent: Option<f64>,
+    #[serde(default, alias = "score_q95_percent")]
+    pub score_q95_pct: Option<f64>,
     /// `rho` of the deflection intervals ([`prediction::Deflection::model_error`], P4) in %: the
     /// model's held-out error relative to the predicted displacement, the tracker noise and the
     /// estimate's variance taken out; in [0, 10 000]. With `deflection_scores`; a file without
     /// them gives the measurement intervals (wider) for the deflection.
-    #[serde(default)]
-    pub model_error_percent: Option<f64>,
+    #[serde(default, alias = "model_error_percent")]
+    pub model_error_pct: Option<f64>,
     /// The studentised held-out scores of the deflection intervals
     /// ([`prediction::Deflection::scores`]), one per held-out coordinate; finite, >= 0.
     #[serde(default)]
@@ -125,7 +124,8 @@ pub struct FoldSection {
     /// `parameters`; finite.
     pub compliance_si: Vec<f64>,
     /// The score of each held-out coordinate: `|measured - predicted|` over `|predicted| +
-    /// noise_floor_mm`, the prediction the fold's (three per measurement, x, y, z); finite, >= 0.
+    /// noise_floor_mm`, the prediction the fold's (three per measurement, x, y, z, at least one
+    /// measurement per posture held out); finite, >= 0.
     pub scores: Vec<f64>,
 }
 
@@ -137,8 +137,8 @@ impl PredictionSection {
             postures: calibration.postures,
             noise_floor_mm: calibration.noise_floor * 1e3,
             score_q95: calibration.score_quantile(0.95),
-            score_q95_percent: calibration.score_quantile(0.95).map(|q| 100.0 * q),
-            model_error_percent: (calibration.deflection.as_ref()).map(|d| 100.0 * d.model_error),
+            score_q95_pct: calibration.score_quantile(0.95).map(|q| 100.0 * q),
+            model_error_pct: (calibration.deflection.as_ref()).map(|d| 100.0 * d.model_error),
             deflection_scores: (calibration.deflection.as_ref()).map(|d| d.scores.clone()),
             folds: calibration
                 .folds
@@ -171,7 +171,7 @@ impl PredictionSection {
 
     /// The deflection intervals' data, when the file has them.
     fn deflection(&self, folds: &[HeldOut]) -> Option<prediction::Deflection> {
-        let (rho, scores) = (self.model_error_percent?, self.deflection_scores.as_ref()?);
+        let (rho, scores) = (self.model_error_pct?, self.deflection_scores.as_ref()?);
         let mut scores = scores.clone();
         scores.sort_by(f64::total_cmp);
         Some(prediction::Deflection {
@@ -181,11 +181,11 @@ impl PredictionSection {
         })
     }
 
-    /// Checks `model_error_percent` and `deflection_scores`: both or neither, within their
+    /// Checks `model_error_pct` and `deflection_scores`: both or neither, within their
     /// ranges, at most [`prediction::MAX_SCORES`] scores.
     fn check_deflection(&self) -> Result<()> {
-        let field = "prediction.model_error_percent";
-        match (self.model_error_percent, &self.deflection_scores) {
+        let field = "prediction.model_error_pct";
+        match (self.model_error_pct, &self.deflection_scores) {
             (None, None) => Ok(()),
             (Some(r), _) if !(0.0..=1e4).contains(&r) => Err(invalid(
                 field.into(),
@@ -216,7 +216,7 @@ impl PredictionSection {
             )),
             _ => Err(invalid(
                 field.into(),
-                "expected model_error_percent and deflection_scores together, or neither".into(),
+                "expected model_error_pct and deflection_scores together, or neither".into(),
             )),
         }
     }
@@ -278,6 +278,13 @@ impl PredictionSection {
                     "expected at least one finite number >= 0".into(),
                 ));
             }
+            let (scores, held_out) = (f.scores.len(), f.postures.len());
+            if scores % 3 != 0 || held_out == 0 || scores < 3 * held_out {
+                return Err(invalid(
+                    format!("{field}.scores"),
+                    format!("{scores} scores for {held_out} postures held out: expected three per measurement (x, y, z), at least one measurement per posture"),
+                ));
+            }
             total = total.saturating_add(f.scores.len());
         }
         limits::check_count("prediction scores", total, 1, prediction::MAX_SCORES)
@@ -293,9 +300,11 @@ impl PredictionSection {
 pub struct RegionSection {
     /// The postures the stiffness was identified from (at least 1).
     pub postures: usize,
-    /// Per axis, the smallest angle of those postures, deg; finite.
+    /// Per axis, the smallest angle of those postures, deg; within
+    /// [`crate::common::limits::ANGLE_DEG`] (-10 000 to 10 000).
     pub lower_deg: [f64; 6],
-    /// Per axis, the largest, deg; finite, at least `lower_deg`.
+    /// Per axis, the largest, deg; within [`crate::common::limits::ANGLE_DEG`], at least
+    /// `lower_deg`.
     pub upper_deg: [f64; 6],
     /// The margin that widens every axis' range at both ends, deg, within
     /// [0, [`crate::model::region::MAX_MARGIN_DEG`]] (written as
@@ -341,6 +350,8 @@ impl RegionSection {
                 "0: expected at least 1 posture".into(),
             ));
         }
+        limits::check("region.lower_deg", &self.lower_deg, &limits::ANGLE_DEG)?;
+        limits::check("region.upper_deg", &self.upper_deg, &limits::ANGLE_DEG)?;
         for i in 0..6 {
             let (lo, hi) = (self.lower_deg[i], self.upper_deg[i]);
             if !(lo.is_finite() && hi.is_finite() && lo <= hi) {

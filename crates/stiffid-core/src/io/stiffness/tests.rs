@@ -173,3 +173,16 @@ fn errors_name_the_key_and_position() {
     c[(1, 0)] = 0.5e-12;
     assert!(check_covariance(&c).is_ok());
 }
+
+#[test]
+fn a_file_written_with_the_former_percent_keys_still_reads() {
+    let old = format!(
+        r#"{{"kind": "identify-drives", "stiffness_nm_per_rad": {K}, "std_error_percent": [1, 2, 3, 4, 5, 6], "poorly_determined_above_percent": 10}}"#
+    );
+    let new = old.replace("_percent", "_pct");
+    assert_eq!(parse(&old).unwrap(), parse(&new).unwrap());
+    // Any other spelling is still an unknown key.
+    let wrong = old.replace("std_error_percent", "std_error_per_cent");
+    let e = parse(&wrong).unwrap_err().to_string();
+    assert!(e.contains("std_error_per_cent: unknown key"), "{e}");
+}

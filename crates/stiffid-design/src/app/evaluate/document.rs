@@ -13,6 +13,8 @@ use stiffid_core::Setup;
 /// group identifies each parameter.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(tag = "kind", rename = "evaluate")]
+#[cfg_attr(feature = "schema", schemars(transform = stiffid_core::app::document::schema::Kind("evaluate")))]
 pub struct Document {
     /// The criteria.
     #[serde(flatten)]

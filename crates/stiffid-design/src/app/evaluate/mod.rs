@@ -13,9 +13,10 @@ use crate::{evaluate, unidentifiable, Evaluation};
 use nalgebra::Vector6;
 use stiffid_core::app::Warning;
 use stiffid_core::cell::{Checker, Feasibility};
+use stiffid_core::common::error::JobOption;
 use stiffid_core::math::lsq::Factor;
 use stiffid_core::observation::rope_observation_matrix;
-use stiffid_core::{Result, Setup};
+use stiffid_core::{Error, Result, Setup};
 
 /// The group to evaluate.
 pub struct Request<'a> {
@@ -60,11 +61,18 @@ pub struct Report {
 /// For the drives alone and a purpose with the stiffness, [`Error::Unidentifiable`] naming the
 /// joints when the group's observation matrix cannot identify every joint (a model with virtual
 /// springs reports what it cannot separate in [`Report::unidentifiable`] instead); those of
-/// [`purpose::check`] (options that mean nothing for the purpose), [`purpose::design`] and
+/// [`purpose::check`] (options that mean nothing for the purpose), [`Error::InvalidOption`]
+/// ([`JobOption::Candidates`]) for candidates with for = calibration or check, [`purpose::design`] and
 /// [`crate::observability::CalibrationDesign::evaluate`]; [`pool`]'s for the candidates; [`verdicts`]'.
 pub fn run(request: &Request) -> Result<Report> {
     let (setup, postures) = (request.setup, request.postures);
     purpose::check(request.purpose, &request.calibration)?;
+    if request.candidates.is_some() && request.purpose.calibration_only() {
+        return Err(Error::InvalidOption {
+            option: JobOption::Candidates,
+            message: "springs of the stiffness model, judged with for = stiffness or both: a group for the calibration alone identifies no spring".into(),
+        });
+    }
     setup.check_bodies()?;
     if setup.model().is_drives_only() && !request.purpose.calibration_only() {
         Factor::try_new(rope_observation_matrix(setup, postures))?;

@@ -16,6 +16,8 @@ use stiffid_view as scene;
 /// posture asks of the operator.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(tag = "kind", rename = "plan")]
+#[cfg_attr(feature = "schema", schemars(transform = stiffid_core::app::document::schema::Kind("plan")))]
 pub struct Document {
     /// The setup's name.
     pub setup: String,

@@ -90,12 +90,21 @@ pub struct Report {
 /// # Errors
 /// [`stiffid_core::Error::InvalidField`] (`postures`) for none or more than [`MAX_POSTURES`];
 /// external values (field `external`) not one list per posture of values within the axes'
-/// limits; [`stiffid_core::Error::MissingField`] for a setup without a nominal stiffness; the errors
+/// limits, or none for a robot with external axes; [`stiffid_core::Error::MissingField`] for a setup without a nominal stiffness; the errors
 /// of [`Setup::check_bodies`].
 pub fn run(request: &Request) -> Result<Report> {
     let (setup, postures) = (request.setup, request.postures);
     stiffid_core::common::limits::check_count("postures", postures.len(), 1, MAX_POSTURES)?;
     stiffid_view::check_external(setup, postures.len(), request.external)?;
+    if let (Some(axes), true) = (setup.robot().external(), request.external.is_empty()) {
+        return Err(stiffid_core::Error::InvalidField {
+            field: "external".into(),
+            message: format!(
+                "none given: the robot has external axes ({}): give where each posture is read, one row per posture (the postures file's columns), as the kinematics needs them",
+                axes.column_names().join(", ")
+            ),
+        });
+    }
     let k = setup.try_nominal_stiffness(NEEDED_BY)?;
     setup.check_bodies()?;
     let evaluator = Evaluator::new(setup);

@@ -162,7 +162,19 @@ fn search(
         stations: Vec::new(),
         ..r.clone()
     };
-    choose(&sub, &goal, &setup, None, size)
+    choose(&sub, &goal, &setup, None, size).map_err(|e| at_station(e, k, size, self::size(r)))
+}
+
+/// A group-size error of station `k`'s search (`size` of the campaign's `n` postures) said as
+/// one station's share, not as the group asked for.
+fn at_station(e: Error, k: usize, size: usize, n: usize) -> Error {
+    match e {
+        Error::InvalidField { field, message } if field == "postures" => Error::InvalidField {
+            field,
+            message: format!("station {}: {message}; the campaign deals its {n} postures over its stations, {size} at this one: give more postures or fewer stations", k + 1),
+        },
+        e => e,
+    }
 }
 
 /// The report of the campaign `groups` (one per station, `all` placed), its `value` and each

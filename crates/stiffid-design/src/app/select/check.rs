@@ -59,6 +59,7 @@ pub(super) fn check(r: &Request) -> Result<()> {
         limits::check_integer("restarts", restarts as u64, 1, limits::MAX_POOL_RESTARTS)
             .map_err(|e| e.for_option(JobOption::Restarts))?;
     }
+    r.options.validate()?;
     if r.options.margin.is_some() && !Checker::new(r.setup).constrains() {
         return invalid_option(
             JobOption::MarginMm,
@@ -112,4 +113,52 @@ pub(super) fn check(r: &Request) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// Which of the request's options with a default a front end was given (the request holds them
+/// as values): each is refused where it means nothing ([`check_given`]).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Given {
+    /// The stiffness criterion ([`Request::criterion`]).
+    pub criterion: bool,
+    /// The global search's starts ([`crate::SearchOptions::starts`]).
+    pub starts: bool,
+    /// The global search's screening steps ([`crate::SearchOptions::screen_steps`]).
+    pub screen_steps: bool,
+    /// The global starts polished ([`crate::SearchOptions::polished`]).
+    pub polished: bool,
+}
+
+/// Refuses the options `given` that mean nothing for `purpose` and `method`: the stiffness
+/// criterion for a design for the calibration alone ([`Purpose::calibration_only`]), and the
+/// global search's starts, screening steps and polished starts for any other method.
+///
+/// # Errors
+/// [`Error::InvalidOption`] naming the option ([`JobOption::Criterion`], [`JobOption::Starts`],
+/// [`JobOption::ScreenSteps`], [`JobOption::Polished`]).
+pub fn check_given(purpose: Purpose, method: Method, given: Given) -> Result<()> {
+    let refuse = |option, message: &str| {
+        Err(Error::InvalidOption {
+            option,
+            message: message.into(),
+        })
+    };
+    if given.criterion && purpose.calibration_only() {
+        return refuse(
+            JobOption::Criterion,
+            "a stiffness criterion: only with for = stiffness or both (the group is designed for the calibration, by the calibration's criterion)",
+        );
+    }
+    let global = [
+        (given.starts, JobOption::Starts),
+        (given.screen_steps, JobOption::ScreenSteps),
+        (given.polished, JobOption::Polished),
+    ];
+    match global.into_iter().find(|(g, _)| *g) {
+        Some((_, option)) if method != Method::Global => refuse(
+            option,
+            "only for the global search (local searches from seeded starts)",
+        ),
+        _ => Ok(()),
+    }
 }

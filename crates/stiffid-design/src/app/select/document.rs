@@ -15,6 +15,8 @@ use stiffid_core::Setup;
 /// The select document: the group found, how, why the search stopped, and its criteria.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(tag = "kind", rename = "select")]
+#[cfg_attr(feature = "schema", schemars(transform = stiffid_core::app::document::schema::Kind("select")))]
 pub struct Document {
     /// The setup's name.
     pub setup: String,
@@ -234,14 +236,14 @@ pub struct Free {
     pub criteria: Criteria,
     /// What the cell's checks cost: the feasible group's minimised value over the unconstrained
     /// one's, minus 1, % (`null` unless finite).
-    pub cost_percent: Option<f64>,
+    pub cost_pct: Option<f64>,
     /// The feasible group's predicted mean deviation rate (over the noise levels and joints), %;
     /// `null` for a setup without a nominal stiffness.
     pub feasible_predicted_average_pct: Option<f64>,
     /// The unconstrained group's, %.
     pub predicted_average_pct: Option<f64>,
     /// `feasible_predicted_average_pct` over `predicted_average_pct`, minus 1, %.
-    pub predicted_average_change_percent: Option<f64>,
+    pub predicted_average_change_pct: Option<f64>,
 }
 
 impl Document {
@@ -378,10 +380,10 @@ impl Free {
             termination: u.termination.name(),
             postures_deg: degrees(&u.postures),
             criteria: Criteria::from(&u.evaluation),
-            cost_percent: finite(100.0 * (r.value / u.value - 1.0)),
+            cost_pct: finite(100.0 * (r.value / u.value - 1.0)),
             feasible_predicted_average_pct: finite(feasible),
             predicted_average_pct: finite(free),
-            predicted_average_change_percent: finite(100.0 * (feasible / free - 1.0)),
+            predicted_average_change_pct: finite(100.0 * (feasible / free - 1.0)),
         }
     }
 }

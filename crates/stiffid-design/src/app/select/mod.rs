@@ -11,10 +11,11 @@ mod pool;
 mod station;
 mod table;
 
+use check::check;
+pub use check::{check_given, Given};
 pub use station::{Station, MAX_STATIONS};
 pub use table::CANDIDATE_ANGLES;
 
-use check::check;
 use choose::{choose, smallest, unconstrained, Found};
 use pool::{in_pool, Candidates};
 

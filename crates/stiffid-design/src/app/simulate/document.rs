@@ -32,6 +32,8 @@ impl From<&Parameter> for Named {
 /// The simulate document.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(tag = "kind", rename = "simulate")]
+#[cfg_attr(feature = "schema", schemars(transform = stiffid_core::app::document::schema::Kind("simulate")))]
 pub struct Document {
     /// The setup's name.
     pub setup: String,

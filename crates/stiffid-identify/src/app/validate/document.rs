@@ -11,6 +11,8 @@ use stiffid_core::Setup;
 /// Measured against predicted displacements (Eq. 22), mm.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(tag = "kind", rename = "validate")]
+#[cfg_attr(feature = "schema", schemars(transform = stiffid_core::app::document::schema::Kind("validate")))]
 pub struct Document {
     /// The setup as given.
     pub setup: String,
@@ -35,7 +37,7 @@ pub struct Document {
     /// `1 - rms_delta_b_mm / rms_measured_mm`.
     pub explained: f64,
     /// `explained`, %.
-    pub explained_percent: f64,
+    pub explained_pct: f64,
     /// With a stiffness file that holds held-out residuals (`identify --cross-validate`): the
     /// coverage of the prediction intervals; else `null`.
     pub prediction_intervals: Option<PredictionIntervals>,
@@ -57,7 +59,7 @@ pub struct PredictionIntervals {
     /// The share of the measured displacement coordinates inside their intervals.
     pub coverage: f64,
     /// `coverage`, %.
-    pub coverage_percent: f64,
+    pub coverage_pct: f64,
     /// Measured coordinates inside their intervals.
     pub covered: usize,
     /// Measured coordinates (three per measurement).
@@ -123,12 +125,12 @@ impl Document {
             max_measured_mm: mm(v.measured[1]),
             rms_measured_mm: mm(v.measured[2]),
             explained: v.explained,
-            explained_percent: 100.0 * v.explained,
+            explained_pct: 100.0 * v.explained,
             prediction_intervals: v.prediction.as_ref().map(|p| PredictionIntervals {
                 method: p.method,
                 level: p.level,
                 coverage: p.coverage(),
-                coverage_percent: 100.0 * p.coverage(),
+                coverage_pct: 100.0 * p.coverage(),
                 covered: p.covered,
                 coordinates: p.coordinates,
             }),

@@ -117,7 +117,7 @@ impl Worst {
     /// the part that dominates each bound.
     ///
     /// # Errors
-    /// [`Error::InvalidOption`] ([`JobOption::MaxErrorMm`]).
+    /// [`Error::Gate`] ([`JobOption::MaxErrorMm`]).
     pub fn refuse_above(&self, max_error: f64) -> Result<()> {
         let above: Vec<String> = (self.points.iter())
             .filter(|w| w.0 > max_error || w.0.is_nan())
@@ -134,7 +134,7 @@ impl Worst {
         if above.is_empty() {
             return Ok(());
         }
-        Err(Error::InvalidOption {
+        Err(Error::Gate {
             option: JobOption::MaxErrorMm,
             message: format!(
                 "{} mm: the program's error bound exceeds it (largest {} mm); the worst points: {}; nothing written (a stiffer posture, a placement nearer the robot, a better calibration or a larger limit)",
@@ -173,6 +173,6 @@ pub struct BudgetSummary {
     pub absent: Vec<&'static str>,
     /// The points of largest bound (at most 10), largest first.
     pub worst: Vec<WorstPoint>,
-    /// With `--free-tool-axis`: the largest bound at the path's own rotation, mm; else `null`.
+    /// With `--free tool-rotation`: the largest bound at the path's own rotation, mm; else `null`.
     pub max_bound_before_mm: Option<f64>,
 }

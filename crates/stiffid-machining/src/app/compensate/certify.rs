@@ -9,6 +9,9 @@
 //! - FANUC LS: the position's comment in `/POS`, `P[i:"0.0123 mm"]` (a position comment is at
 //!   most 16 characters on the pendant; a position that already has one keeps it, and a position
 //!   visited twice takes the larger bound).
+//!
+//! A program compensated again takes the new bounds in the place of the ones an earlier
+//! compensation wrote (a bound comment of its form), never beside them.
 
 use crate::program::Dialect;
 use std::collections::HashMap;
@@ -56,7 +59,7 @@ pub fn at_lines(dialect: Dialect, text: &str, lines: &[(u64, f64)], level: f64) 
                 let ends = dialect == Dialect::Krl || code.contains(';');
                 match pending.filter(|_| ends) {
                     Some(b) => {
-                        out.push_str(body);
+                        out.push_str(without_bound(body, marker));
                         out.push_str(&format!(" {marker} {}", words(b, level)));
                         out.push_str(&line[body.len()..]);
                         pending = None;
@@ -92,6 +95,28 @@ pub fn generated(dialect: Dialect, texts: &[String], bounds: &[f64], level: f64)
         .collect()
 }
 
+/// Whether `comment` (after its marker and blanks) is a bound [`words`] wrote: a program
+/// compensated again takes the new bound in its place.
+fn is_bound(comment: &str) -> bool {
+    let c = comment.trim();
+    c.starts_with("bound ") && (c.ends_with('%') || c.ends_with("(too few held-out values)"))
+}
+
+/// `body` (a KRL or RAPID line) without the bound comment an earlier compensation put at its end.
+fn without_bound(body: &str, marker: char) -> &str {
+    match body.rfind(&format!(" {marker} bound ")) {
+        Some(at) if is_bound(&body[at + 3..]) => &body[..at],
+        _ => body,
+    }
+}
+
+/// Whether an LS position comment is a bound [`ls_words`] wrote (`0.0123 mm`, `inf mm`).
+fn is_ls_bound(comment: &str) -> bool {
+    comment
+        .strip_suffix(" mm")
+        .is_some_and(|v| v.parse::<f64>().is_ok())
+}
+
 /// Whether a generated program's line (trimmed at its start) is a motion.
 fn is_motion(dialect: Dialect, t: &str, in_mn: bool) -> bool {
     match dialect {
@@ -112,6 +137,10 @@ fn is_motion(dialect: Dialect, t: &str, in_mn: bool) -> bool {
 fn inform(text: &str, by_line: &HashMap<u64, f64>, level: f64) -> String {
     let mut out = String::with_capacity(text.len() + 40 * by_line.len());
     for (i, line) in text.split_inclusive('\n').enumerate() {
+        let old = line.trim_start().strip_prefix('\'').is_some_and(is_bound);
+        if old && by_line.contains_key(&(i as u64 + 2)) {
+            continue;
+        }
         if let Some(b) = by_line.get(&(i as u64 + 1)) {
             let indent = &line[..line.len() - line.trim_start().len()];
             let end = if line.ends_with("\r\n") { "\r\n" } else { "\n" };
@@ -148,7 +177,13 @@ fn ls(text: &str, by_line: &HashMap<u64, f64>) -> String {
         }
         let index = (t.strip_prefix("P["))
             .and_then(|r| r.split_once("]{"))
-            .filter(|(i, _)| !i.contains(':'))
+            .map(|(i, _)| i.split_once(':').unwrap_or((i, "")))
+            .filter(|(_, c)| {
+                c.is_empty()
+                    || c.strip_prefix('"')
+                        .and_then(|c| c.strip_suffix('"'))
+                        .is_some_and(is_ls_bound)
+            })
             .map(|(i, _)| i.trim().to_string());
         match (
             in_pos,
@@ -178,6 +213,26 @@ mod tests {
             out.contains("LIN {A1 1} ; bound 0.0200 mm at 95%\n"),
             "{out}"
         );
+        // Compensated again: the new bound in the old one's place, the user's comment kept.
+        let again = at_lines(Dialect::Krl, &out, &[(2, 3e-5), (3, f64::INFINITY)], 0.95);
+        assert!(
+            again.contains("; start ; bound 0.0300 mm at 95%\n"),
+            "{again}"
+        );
+        let infinite = "LIN {A1 1} ; bound infinite at 95% (too few held-out values)\n";
+        assert!(again.contains(infinite), "{again}");
+        let third = at_lines(Dialect::Krl, &again, &[(3, 1e-5)], 0.95);
+        assert!(
+            third.contains("LIN {A1 1} ; bound 0.0100 mm at 95%\n"),
+            "{third}"
+        );
+        let inform = "NOP\nMOVJ C00000 VJ=10.00\nEND\n";
+        let once = at_lines(Dialect::Inform, inform, &[(2, 1e-5)], 0.95);
+        let twice = at_lines(Dialect::Inform, &once, &[(3, 2e-5)], 0.95);
+        assert_eq!(
+            twice,
+            "NOP\n'bound 0.0200 mm at 95%\nMOVJ C00000 VJ=10.00\nEND\n"
+        );
         let rapid = "  MoveAbsJ [[1,2,3,\n 4,5,6],[9E9]], v10, fine, tool0;\n";
         let out = at_lines(Dialect::Rapid, rapid, &[(1, 1e-5)], 0.9);
         assert!(
@@ -185,10 +240,20 @@ mod tests {
                 && out.starts_with("  MoveAbsJ [[1,2,3,\n"),
             "{out}"
         );
+        let again = at_lines(Dialect::Rapid, &out, &[(1, 2e-5)], 0.9);
+        assert!(
+            again.ends_with("tool0; ! bound 0.0200 mm at 90%\n"),
+            "{again}"
+        );
         let ls = "/MN\n   1:J P[1] 100% FINE ;\n   2:L P[2] 5mm/sec FINE ;\n/POS\nP[1]{\n J1= 1 deg\n};\nP[2:\"HOME\"]{\n};\n/END\n";
         let out = at_lines(Dialect::FanucLs, ls, &[(2, 3e-5), (3, 4e-5)], 0.95);
         assert!(out.contains("P[1:\"0.0300 mm\"]{\n"), "{out}");
         assert!(out.contains("P[2:\"HOME\"]{\n"), "{out}");
+        let again = at_lines(Dialect::FanucLs, &out, &[(2, 7e-5), (3, 4e-5)], 0.95);
+        assert!(
+            again.contains("P[1:\"0.0700 mm\"]{\n") && !again.contains("0.0300"),
+            "{again}"
+        );
         let generated = generated(Dialect::FanucLs, &[ls.to_string()], &[5e-5, 6e-5], 0.95);
         assert!(
             generated[0].contains("P[1:\"0.0500 mm\"]{"),

@@ -1,7 +1,7 @@
-//! The document's part of the free configuration (`--free-configuration`,
+//! The document's part of the free configuration (`--free configuration`,
 //! [`crate::compensate::FreeConfiguration`]): every configuration of the arm found
 //! at the path's first point, whether it takes the path or why not, its objective, and the one
-//! chosen; with one configuration per run (`--configuration-per run`), each run's.
+//! chosen; with one configuration per run (`--free configuration=run`), each run's.
 
 use crate::compensate::{Aggregate, Branch, Configurations, Run};
 use serde::Serialize;
@@ -35,7 +35,7 @@ pub struct ConfigurationsDocument {
     pub runs: Vec<RunRow>,
 }
 
-/// One run's configuration (`--configuration-per run`).
+/// One run's configuration (`--free configuration=run`).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct RunRow {

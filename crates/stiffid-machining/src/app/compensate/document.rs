@@ -29,6 +29,8 @@ pub const GENERATOR: &str = "stiffid compensate";
 /// The compensate document. Units in the key names.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(tag = "kind", rename = "compensate")]
+#[cfg_attr(feature = "schema", schemars(transform = stiffid_core::app::document::schema::Kind("compensate")))]
 pub struct Document {
     /// `stiffid compensate`: marks a report directory as ours.
     pub generator: &'static str,
@@ -59,9 +61,9 @@ pub struct Document {
     /// extrapolates: the CSV's `extrapolates`, the summary's `extrapolated`); `null` when the
     /// stiffness records none.
     pub region: Option<RegionSection>,
-    /// With `--free-tool-axis`: its options; else `null`.
+    /// With `--free tool-rotation`: its options; else `null`.
     pub free_tool_axis: Option<FreeToolAxis>,
-    /// With `--free-station-mm`: its options; else `null`.
+    /// With `--free station`: its options; else `null`.
     pub free_station: Option<FreeStation>,
     /// With a free variable: the feasibility checks of its moved postures and the states each
     /// removed; else `null`.
@@ -70,18 +72,18 @@ pub struct Document {
     /// checked against them, and each axis's highest share of its largest speed along the path
     /// at the path's own values and at those chosen.
     pub speed_limits: super::speed::SpeedLimits,
-    /// With `--free-positioner-deg`: its options; else `null`.
+    /// With `--free positioner`: its options; else `null`.
     pub free_positioner: Option<FreePositioner>,
-    /// With `--free-lead-tilt`: its options; else `null`. The lead and tilt chosen are every
+    /// With `--free lead-tilt`: its options; else `null`. The lead and tilt chosen are every
     /// point's `lead_deg` and `tilt_deg`.
     pub free_lead_tilt: Option<FreeLeadTilt>,
-    /// With `--free-tilt-deg`: its options (a two-axis positioner's first axis); else `null`.
+    /// With `--free tilt`: its options (a two-axis positioner's first axis); else `null`.
     pub free_tilt: Option<FreePositioner>,
     /// With a free variable: the levels its grid was refined around the line chosen on it
     /// (`--refine`, 0 to 4: each halves every free variable's step in a band around the
     /// previous level's line); else `null`.
     pub refine: Option<usize>,
-    /// With `--free-configuration`: every configuration of the arm evaluated over the path and
+    /// With `--free configuration`: every configuration of the arm evaluated over the path and
     /// the one chosen; else `null`.
     pub configurations: Option<super::configurations::ConfigurationsDocument>,
     /// With a program: the program, its process and each segment's force and deflection; else
@@ -190,9 +192,9 @@ pub struct SummaryDocument {
     /// With prediction intervals: the widest interval of a TCP deflection coordinate along the
     /// path (`upper - lower`), mm; `null` without intervals or when one is unbounded.
     pub max_interval_width_mm: Option<f64>,
-    /// With `--free-tool-axis`: what the rotation about tool z gained; else `null`.
+    /// With `--free tool-rotation`: what the rotation about tool z gained; else `null`.
     pub free_tool_axis: Option<FreeSummary>,
-    /// With `--free-lead-tilt`: the leans chosen; else `null`.
+    /// With `--free lead-tilt`: the leans chosen; else `null`.
     pub free_lead_tilt: Option<LeanSummary>,
     /// The error budget along the path: the largest and mean bound at the level, the parts
     /// absent, the worst points and what dominates their bound (the points' `bound_*` columns).
@@ -223,10 +225,10 @@ pub struct FreeSummary {
     pub mean_deflection_after_mm: f64,
     /// How much the rotations chosen change the mean TCP deflection, %: negative when they
     /// lower it.
-    pub mean_change_percent: f64,
+    pub mean_change_pct: f64,
 }
 
-/// The leans of the tool axis chosen along the path (`--free-lead-tilt`): the points'
+/// The leans of the tool axis chosen along the path (`--free lead-tilt`): the points'
 /// `lead_deg` and `tilt_deg`.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
@@ -281,7 +283,7 @@ impl schemars::JsonSchema for Row {
             })
             .collect();
         schemars::json_schema!({
-            "description": "One path point: the columns of the CSV by name (units in the names; `null` for an empty cell: the standard deviations without a covariance, `d_norm_before_mm` without --free-tool-axis, `extrapolates` (1 outside the region the stiffness was identified from, else 0) when the stiffness records no region, the dynamics columns `surge_mm_s` .. `tooth_passing_hz` except at drilling exits and milling points of a program whose robot gives masses, `surge_before_mm_s` also without --free-tool-axis).",
+            "description": "One path point: the columns of the CSV by name (units in the names; `null` for an empty cell: the standard deviations without a covariance, `d_norm_before_mm` without --free tool-rotation, `extrapolates` (1 outside the region the stiffness was identified from, else 0) when the stiffness records no region, the dynamics columns `surge_mm_s` .. `tooth_passing_hz` except at drilling exits and milling points of a program whose robot gives masses, `surge_before_mm_s` also without --free tool-rotation).",
             "type": "object",
             "properties": properties,
             "required": columns,
@@ -677,7 +679,7 @@ impl Summary {
                         tool_rotation_range_deg: [lo.to_degrees(), hi.to_degrees()],
                         mean_deflection_before_mm: mm(mean_before),
                         mean_deflection_after_mm: mm(mean_after),
-                        mean_change_percent: 100.0 * (mean_after / mean_before - 1.0),
+                        mean_change_pct: 100.0 * (mean_after / mean_before - 1.0),
                     }
                 }),
         }

@@ -38,7 +38,7 @@ pub struct OperationDynamics {
     pub tooth_passing_hz: Option<f64>,
     /// The point nearest a harmonic of it: the relative distance of its first frequency to the
     /// harmonic, %.
-    pub nearest_harmonic_percent: Option<f64>,
+    pub nearest_harmonic_pct: Option<f64>,
     /// That harmonic's order (1 the tooth-passing frequency itself).
     pub nearest_harmonic_order: Option<u32>,
     /// That point's program line.
@@ -75,7 +75,7 @@ pub fn operations(
             max_surge_before_mm_s: None,
             first_frequency_hz: None,
             tooth_passing_hz: None,
-            nearest_harmonic_percent: None,
+            nearest_harmonic_pct: None,
             nearest_harmonic_order: None,
             nearest_harmonic_line: None,
         };
@@ -111,7 +111,7 @@ pub fn operations(
                     .filter_map(|(l, d)| d.harmonic.zip(d.first_frequency).map(|(h, f)| (l, h, f)))
                     .min_by(|a, b| a.1.distance.total_cmp(&b.1.distance));
                 if let Some((line, h, f)) = nearest {
-                    doc.nearest_harmonic_percent = finite(h.distance * 100.0);
+                    doc.nearest_harmonic_pct = finite(h.distance * 100.0);
                     doc.nearest_harmonic_order = Some(h.order);
                     doc.nearest_harmonic_line = Some(line);
                     if h.distance <= CLOSE {

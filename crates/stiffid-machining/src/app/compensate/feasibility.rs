@@ -4,8 +4,8 @@
 use crate::compensate::{Options, Removed};
 use serde::Serialize;
 
-/// The feasibility of the moved postures of the free variables (`--free-tool-axis`,
-/// `--free-station-mm`, `--free-positioner-deg`, `--free-tilt-deg`, `--free-lead-tilt`; with `--free-configuration` a configuration whose posture
+/// The feasibility of the moved postures of the free variables (`--free tool-rotation`,
+/// `--free station`, `--free positioner`, `--free tilt`, `--free lead-tilt`; with `--free configuration` a configuration whose posture
 /// fails a check at a point is refused): a state (a value of the
 /// free variables at a path point) that inverse kinematics reaches with a cost no larger than
 /// the path's own is removed when its posture fails a check; each removed state is counted

@@ -12,7 +12,8 @@ use stiffid_core::{Result, Setup};
 /// `None` for a path file.
 ///
 /// # Errors
-/// Those of [`output::check_output`], [`output::check_lean`], [`Settings::validate`],
+/// Those of [`output::check_output`], [`output::check_lean`], [`output::check_tool_axis`],
+/// [`Settings::validate`], [`output::check_settings`],
 /// [`generate::check_payload`], [`machining::read`] and [`machining::resolve`] (the program's
 /// as [`Error::Input`] naming its file).
 pub(super) fn read_checked(
@@ -35,7 +36,9 @@ pub(super) fn read_checked(
     let (language, output) = (*language, *output);
     output::check_output(language, output).map_err(|e| in_input(name, e))?;
     output::check_lean(options, output)?;
+    output::check_tool_axis(options, output)?;
     settings.validate()?;
+    output::check_settings(language, output, settings)?;
     if let (Language::GCode, Language::Robot(d)) = (language, output) {
         generate::check_payload(d, settings.targets, &program_tool(setup))?;
     }

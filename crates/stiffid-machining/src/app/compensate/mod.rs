@@ -313,15 +313,15 @@ where
             };
             // Every name and setting of the output before the compensation, which can be long.
             let written_name = written_name(&program, output, &out_name, &settings)?;
-            let compensated = machining::compensate(
-                setup.arm(),
-                setup.workpiece(),
-                &compliance,
-                &program,
-                &process,
-                &options,
-            )
-            .map_err(|e| in_input(&name, e))?;
+            // A G-code program is written for the controller's kinematics.
+            let controller = match (&program, output) {
+                (Program::GCode(_), Language::GCode) => setup.controller_robot()?,
+                _ => setup.robot(),
+            };
+            let at = (setup.arm(), setup.workpiece(), &compliance);
+            let compensated =
+                machining::compensate_for(controller, at, &program, &process, &options)
+                    .map_err(|e| in_input(&name, e))?;
             output::check_runs(compensated.configurations.as_ref(), output)?;
             if options.map {
                 mapped = Some(match &compensated.configurations {
@@ -437,7 +437,8 @@ where
                 ..options.clone()
             };
             // A program's wrenches hold the tool's weight (machining::compensate).
-            let weighted = program.is_some() && setup.arm().payload().is_some();
+            let weighted =
+                program.is_some() && crate::weight::tool_load(setup.arm(), &compliance).is_some();
             let at = (&in_chosen, setup.cell());
             let map = compensate::map(setup.arm(), &compliance, points, at, (&chosen, weighted));
             Some(map.map_err(|e| in_input(&name, e))?)

@@ -1,8 +1,9 @@
 //! What a compensated program may be written as: the output language a program takes, and
-//! a lean or runs' configurations G-code cannot carry.
+//! a lean, a tool axis' rotation or runs' configurations G-code cannot carry.
 
 use super::configurations::name;
 use crate::compensate::{Configurations, Options, Run};
+use crate::program::generate::Settings;
 use crate::Language;
 #[cfg(doc)]
 use stiffid_core::JobOption;
@@ -24,6 +25,54 @@ pub(super) fn check_output(language: Language, output: Language) -> Result<()> {
     }
 }
 
+/// Refuses the settings of a generated robot program where none is generated: the targets and
+/// the moves per file for a robot program written back (it keeps its own targets, in one file),
+/// the targets and the name length for a program written as G-code. A setting at its default
+/// changes nothing and passes.
+///
+/// # Errors
+/// [`Error::InvalidOption`] ([`JobOption::Targets`], [`JobOption::MovesPerFile`],
+/// [`JobOption::NameLength`]).
+pub(super) fn check_settings(
+    language: Language,
+    output: Language,
+    settings: &Settings,
+) -> Result<()> {
+    let default = Settings::default();
+    let given = [
+        (
+            settings.targets != default.targets,
+            stiffid_core::JobOption::Targets,
+        ),
+        (
+            settings.moves_per_file != default.moves_per_file,
+            stiffid_core::JobOption::MovesPerFile,
+        ),
+        (
+            settings.name_length.is_some(),
+            stiffid_core::JobOption::NameLength,
+        ),
+    ];
+    let (unused, why): (&[stiffid_core::JobOption], _) = match (language, output) {
+        (Language::GCode, Language::Robot(_)) => return Ok(()),
+        (Language::Robot(_), _) => (
+            &[stiffid_core::JobOption::Targets, stiffid_core::JobOption::MovesPerFile],
+            "only for a G-code program written as a robot program: a robot program is written back with its own targets, in one file",
+        ),
+        (_, Language::GCode) => (
+            &[stiffid_core::JobOption::Targets, stiffid_core::JobOption::MovesPerFile, stiffid_core::JobOption::NameLength],
+            "only for a G-code program written as a robot program (--out X.ls, .src or .mod; Python output=): G-code carries positions and no program name",
+        ),
+    };
+    match given.iter().find(|(g, o)| *g && unused.contains(o)) {
+        Some((_, option)) => Err(Error::InvalidOption {
+            option: *option,
+            message: why.into(),
+        }),
+        None => Ok(()),
+    }
+}
+
 /// Refuses a free lead and tilt for a program written as G-code: its blocks carry positions
 /// only, so the leaned postures would be lost.
 ///
@@ -34,6 +83,22 @@ pub(super) fn check_lean(options: &Options, output: Language) -> Result<()> {
         (Some(_), Language::GCode) => Err(Error::InvalidOption {
             option: stiffid_core::JobOption::FreeLeadTilt,
             message: "a program written as G-code carries the tool's positions only (a 3-axis program has no words for its axis), so the leaned postures would be lost: write it as a robot program (--out X.ls, .src or .mod; Python output=), whose targets carry them".into(),
+        }),
+        _ => Ok(()),
+    }
+}
+
+/// Refuses a free tool axis for a program written as G-code: its blocks carry positions only,
+/// so the rotation chosen about the tool's axis would not reach the controller (it would run the
+/// program's own posture).
+///
+/// # Errors
+/// [`Error::InvalidOption`] ([`JobOption::ToolAxisRangeDeg`]).
+pub(super) fn check_tool_axis(options: &Options, output: Language) -> Result<()> {
+    match (&options.free_tool_axis, output) {
+        (Some(_), Language::GCode) => Err(Error::InvalidOption {
+            option: stiffid_core::JobOption::ToolAxisRangeDeg,
+            message: "a program written as G-code carries the tool's positions only (a 3-axis program has no word for the rotation about the tool's axis), so the rotation chosen would be lost: write it as a robot program (--out X.ls, .src or .mod; Python output=), whose targets carry it".into(),
         }),
         _ => Ok(()),
     }

@@ -9,6 +9,8 @@ use stiffid_core::common::choice::Choice;
 /// The place document.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(tag = "kind", rename = "place")]
+#[cfg_attr(feature = "schema", schemars(transform = stiffid_core::app::document::schema::Kind("place")))]
 pub struct Document {
     /// What the placement minimised: `max` (the path's largest error bound) or `sum`.
     pub objective: String,
@@ -21,10 +23,10 @@ pub struct Document {
     pub reach_only: Placement,
     /// The objective's fall from the own placement to the chosen one, percent of the own
     /// (positive: better); `null` when the own placement is not feasible.
-    pub gain_vs_own_percent: Option<f64>,
+    pub gain_vs_own_pct: Option<f64>,
     /// The objective's fall from the reach-only placement to the chosen one, percent of the
     /// reach-only one (positive: better).
-    pub gain_vs_reach_only_percent: f64,
+    pub gain_vs_reach_only_pct: f64,
     /// Placements evaluated (the program compensated at each).
     pub evaluations: usize,
 }
@@ -103,8 +105,8 @@ impl Document {
             placed: Placement::feasible(&report.placed),
             own: own_placement,
             reach_only: Placement::feasible(&report.reach),
-            gain_vs_own_percent: report.own.as_ref().ok().map(gain),
-            gain_vs_reach_only_percent: gain(&report.reach),
+            gain_vs_own_pct: report.own.as_ref().ok().map(gain),
+            gain_vs_reach_only_pct: gain(&report.reach),
             evaluations: report.evaluations,
         }
     }

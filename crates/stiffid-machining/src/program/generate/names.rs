@@ -139,6 +139,9 @@ pub fn check_name(dialect: Dialect, name: &str, longest: usize) -> Result<()> {
             "a reserved word of {} (rename the file)",
             dialect_name(dialect)
         )
+    } else if is_device_name(name) {
+        "a device name of Windows, which no controller's or PC's file takes (rename the file)"
+            .to_string()
     } else {
         return Ok(());
     };
@@ -146,6 +149,18 @@ pub fn check_name(dialect: Dialect, name: &str, longest: usize) -> Result<()> {
         option: JobOption::ProgramName,
         message: format!("{name:?}: {message}"),
     })
+}
+
+/// `CON`, `PRN`, `AUX`, `NUL`, `COM0`..`COM9`, `LPT0`..`LPT9` in any case: names Windows keeps
+/// for devices, whatever the extension (the controllers' and their PCs' file systems).
+fn is_device_name(name: &str) -> bool {
+    let upper = name.to_ascii_uppercase();
+    let numbered = |prefix: &str| {
+        upper
+            .strip_prefix(prefix)
+            .is_some_and(|d| d.len() == 1 && d.as_bytes()[0].is_ascii_digit())
+    };
+    matches!(upper.as_str(), "CON" | "PRN" | "AUX" | "NUL") || numbered("COM") || numbered("LPT")
 }
 
 fn dialect_name(d: Dialect) -> &'static str {
@@ -170,6 +185,7 @@ fn reserved_words(dialect: Dialect) -> &'static [&'static str] {
             "B_EXOR",
             "B_NOT",
             "B_OR",
+            "BAS",
             "BOOL",
             "BRAKE",
             "C_DIS",

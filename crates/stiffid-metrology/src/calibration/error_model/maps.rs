@@ -172,7 +172,8 @@ impl ErrorModel {
             let fitted = ErrorMap::new(
                 values.rows(s, h).iter().copied().collect(),
                 values.rows(s + h, h).iter().copied().collect(),
-            )?;
+            )
+            .map_err(|e| diverged(joint, e))?;
             let beyond = |v: &[f64]| {
                 (0..v.len())
                     .map(|i| if i < h { 0.0 } else { v[i] })
@@ -217,5 +218,18 @@ impl ErrorModel {
                 );
             }
         }
+    }
+}
+
+/// A fitted map out of its range ([`ErrorMap::new`]'s error `e`) said as what it is: the fit's
+/// coefficients, not the input's, left the range, the readings not determining the map.
+fn diverged(joint: usize, e: stiffid_core::Error) -> stiffid_core::Error {
+    let message = match e {
+        stiffid_core::Error::InvalidField { message, .. } => message,
+        other => other.to_string(),
+    };
+    stiffid_core::Error::InvalidField {
+        field: format!("joint[{}].error_map", joint + 1),
+        message: format!("the fit's coefficients left their range ({message}): the readings do not determine this joint's map; fit without maps, or read postures spread over the axis' travel, approached from both directions"),
     }
 }

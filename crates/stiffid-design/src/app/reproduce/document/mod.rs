@@ -32,6 +32,8 @@ fn deg(q: &Vector6<f64>) -> [f64; 6] {
 /// postures, criteria and deviation rates (keys in alphabetical order in the file).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(tag = "kind", rename = "reproduce")]
+#[cfg_attr(feature = "schema", schemars(transform = stiffid_core::app::document::schema::Kind("reproduce")))]
 pub struct Summary<'a> {
     /// `stiffid reproduce`: marks the directory as a report of ours.
     pub generator: &'static str,

@@ -33,7 +33,7 @@ pub const LARGEST_RESIDUALS: usize = 5;
 
 /// The relative standard error of each stiffness of `id` in `u`: the standard error over the
 /// stiffness's magnitude, %, `None` unless finite.
-fn std_error_percent(id: &Identification, u: &Uncertainty) -> [Option<f64>; 6] {
+fn std_error_pct(id: &Identification, u: &Uncertainty) -> [Option<f64>; 6] {
     std::array::from_fn(|j| finite(100.0 * (u.stiffness_std_error[j] / id.stiffness[j].abs())))
 }
 
@@ -42,6 +42,8 @@ fn std_error_percent(id: &Identification, u: &Uncertainty) -> [Option<f64>; 6] {
 /// freedom.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(tag = "kind", rename = "identify-drives")]
+#[cfg_attr(feature = "schema", schemars(transform = stiffid_core::app::document::schema::Kind("identify-drives")))]
 pub struct Document {
     /// The setup as given.
     pub setup: String,
@@ -80,10 +82,10 @@ pub struct Document {
     pub std_error_nm_per_rad: Option<[Option<f64>; 6]>,
     /// The relative standard error of each stiffness: `std_error_nm_per_rad` over the
     /// stiffness's magnitude, %; `null` unless finite, or without degrees of freedom.
-    pub std_error_percent: Option<[Option<f64>; 6]>,
+    pub std_error_pct: Option<[Option<f64>; 6]>,
     /// The relative standard error above which a stiffness is poorly determined
     /// ([`POORLY_DETERMINED`]), %.
-    pub poorly_determined_above_percent: f64,
+    pub poorly_determined_above_pct: f64,
     /// Whether each stiffness is poorly determined: `std_error_nm_per_rad` above
     /// [`POORLY_DETERMINED`] (0.25) times its magnitude ([`poorly_determined`]); measure postures
     /// that load these joints more. `null` without degrees of freedom.
@@ -207,7 +209,7 @@ pub struct Intervals {
     pub ci95_from_compliance_nm_per_rad: [[Option<f64>; 2]; 6],
     /// The relative standard error of each stiffness: `std_error_nm_per_rad` over the
     /// stiffness's magnitude, %; `null` unless finite.
-    pub std_error_percent: [Option<f64>; 6],
+    pub std_error_pct: [Option<f64>; 6],
     /// Standard error of each compliance, rad/Nm.
     pub compliance_std_error_rad_per_nm: [f64; 6],
     /// 95% confidence interval of each compliance, rad/Nm.
@@ -325,7 +327,7 @@ pub struct CrossValidation {
     pub stiffness_max_nm_per_rad: [Option<f64>; 6],
     /// `stiffness_std_nm_per_rad` as a percentage of the full fit's stiffness (its magnitude),
     /// %; `null` unless finite.
-    pub stiffness_std_percent: [Option<f64>; 6],
+    pub stiffness_std_pct: [Option<f64>; 6],
     /// RMS prediction error of the left-out measurements (Eq. 22), mm.
     pub rms_delta_b_mm: f64,
     /// RMS of the measured displacements, mm.
@@ -336,9 +338,9 @@ pub struct CrossValidation {
     /// postures as independent units).
     pub explained_std_error: f64,
     /// `explained`, %.
-    pub explained_percent: f64,
+    pub explained_pct: f64,
     /// `explained_std_error`, %.
-    pub explained_std_error_percent: f64,
+    pub explained_std_error_pct: f64,
     /// Folds whose removal moves a stiffness by more than its standard error in the full fit.
     pub influential_postures: Vec<Influential>,
     /// Every fold.
@@ -377,7 +379,7 @@ impl Intervals {
             ci95_from_compliance_nm_per_rad: u
                 .stiffness_ci95_from_compliance
                 .map(|i| i.map(finite)),
-            std_error_percent: std_error_percent(id, u),
+            std_error_pct: std_error_pct(id, u),
             compliance_std_error_rad_per_nm: u.compliance_std_error.into(),
             compliance_ci95_rad_per_nm: u.compliance_ci95,
             quantile: u.t_quantile,
@@ -416,8 +418,8 @@ impl Document {
             nonnegative_stop_reason: id.nonnegative_stop,
             intervals_from: "residual variance",
             std_error_nm_per_rad: u.map(|u| finite_each(u.stiffness_std_error)),
-            std_error_percent: u.map(|u| std_error_percent(id, u)),
-            poorly_determined_above_percent: 100.0 * POORLY_DETERMINED,
+            std_error_pct: u.map(|u| std_error_pct(id, u)),
+            poorly_determined_above_pct: 100.0 * POORLY_DETERMINED,
             poorly_determined: u.map(|u| poorly_determined(id, u)),
             ci95_nm_per_rad: u.map(|u| u.stiffness_ci95.map(|i| i.map(finite))),
             ci95_from_compliance_nm_per_rad: u
@@ -581,15 +583,15 @@ fn cross_validation(report: &Report) -> Option<CrossValidation> {
         stiffness_std_nm_per_rad: six(cv.stiffness_std.as_slice()),
         stiffness_min_nm_per_rad: six(cv.stiffness_range[0].as_slice()),
         stiffness_max_nm_per_rad: six(cv.stiffness_range[1].as_slice()),
-        stiffness_std_percent: std::array::from_fn(|j| {
+        stiffness_std_pct: std::array::from_fn(|j| {
             finite(100.0 * cv.stiffness_std[j] / report.identification.stiffness[j].abs())
         }),
         rms_delta_b_mm: mm(cv.rms_delta_b),
         rms_measured_mm: mm(cv.rms_measured),
         explained: cv.explained(),
         explained_std_error: cv.explained_std_error,
-        explained_percent: 100.0 * cv.explained(),
-        explained_std_error_percent: 100.0 * cv.explained_std_error,
+        explained_pct: 100.0 * cv.explained(),
+        explained_std_error_pct: 100.0 * cv.explained_std_error,
         influential_postures: report
             .influential
             .iter()

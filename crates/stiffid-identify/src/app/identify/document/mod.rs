@@ -2,7 +2,8 @@
 //! `--out`), whatever the model and the options. One document with one schema
 //! (`docs/schemas/identify.schema.json`), in one of three forms by what was asked: the six drive
 //! springs ([`drives`]), a model with virtual springs ([`springs`]) or the model comparison
-//! ([`Comparison`]); each form is written as it is, without a tag.
+//! ([`Comparison`]); each form names itself in its `kind` (`identify-drives`, `identify-springs`,
+//! `identify-comparison`), so the schema's union is told apart by that key.
 
 pub mod drives;
 pub mod scene;
@@ -12,6 +13,7 @@ pub use crate::compare::Document as Comparison;
 use serde::Serialize;
 
 /// `stiffid identify --json`: the identification of the setup's model or the model comparison.
+/// Each form carries its own `kind` (its struct's tag), so the union needs none of its own.
 #[derive(Debug, Serialize)]
 #[serde(untagged)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]

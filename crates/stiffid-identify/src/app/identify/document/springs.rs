@@ -19,6 +19,8 @@ use stiffid_core::Setup;
 /// stiffness file holds ([`stiffid_core::io::stiffness`]).
 #[derive(Debug, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(tag = "kind", rename = "identify-springs")]
+#[cfg_attr(feature = "schema", schemars(transform = stiffid_core::app::document::schema::Kind("identify-springs")))]
 pub struct Document {
     /// The setup as given.
     pub setup: String,
@@ -82,9 +84,9 @@ pub struct CrossValidationDoc {
     /// postures as independent units).
     pub explained_std_error: f64,
     /// `explained`, %.
-    pub explained_percent: f64,
+    pub explained_pct: f64,
     /// `explained_std_error`, %.
-    pub explained_std_error_percent: f64,
+    pub explained_std_error_pct: f64,
     /// Every fold.
     pub per_fold: Vec<FoldDoc>,
 }
@@ -196,8 +198,8 @@ fn cross_validation(report: &Report, cv: &CrossValidation) -> CrossValidationDoc
         rms_measured_mm: mm(cv.rms_measured),
         explained: cv.explained(),
         explained_std_error: cv.explained_std_error,
-        explained_percent: 100.0 * cv.explained(),
-        explained_std_error_percent: 100.0 * cv.explained_std_error,
+        explained_pct: 100.0 * cv.explained(),
+        explained_std_error_pct: 100.0 * cv.explained_std_error,
         per_fold: cv
             .folds
             .iter()

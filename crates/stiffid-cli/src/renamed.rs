@@ -1,0 +1,64 @@
+//! Options renamed so that each name means one thing in every command and each unit is spelt
+//! one way: the old spelling is refused with a message naming the new one (exit code 2), before
+//! clap, which would only call it unknown.
+
+/// Each renamed option: the command, the old spelling, the new one and why.
+const RENAMED: [(&str, &str, &str, &str); 4] = [
+    ("select", "--postures", "--count", "the number of postures; --postures is a postures file in evaluate, plot and simulate"),
+    ("register", "--postures", "--count", "the number of postures to propose; --postures is a postures file in evaluate, plot and simulate"),
+    ("compensate", "--force-tolerance-percent", "--force-tolerance-pct", "every percentage ends in -pct"),
+    ("place", "--force-tolerance-percent", "--force-tolerance-pct", "every percentage ends in -pct"),
+];
+
+/// The message refusing the first renamed option of `args` (the command line after the
+/// program's name), if it holds one.
+pub fn refused<S: AsRef<str>>(args: &[S]) -> Option<String> {
+    let args: Vec<&str> = args.iter().map(AsRef::as_ref).collect();
+    let at = command(&args)?;
+    let (command, options) = (args[at], &args[at + 1..]);
+    let given =
+        |old: &str, a: &str| a == old || a.strip_prefix(old).is_some_and(|r| r.starts_with('='));
+    RENAMED.iter().find_map(|&(c, old, new, why)| {
+        (c == command && options.iter().any(|a| given(old, a)))
+            .then(|| format!("{old}: renamed {new} in `stiffid {command}` ({why})"))
+    })
+}
+
+/// The index of the subcommand in `args`: the first word that is neither an option nor the
+/// value of the global `--package-path DIR`.
+fn command(args: &[&str]) -> Option<usize> {
+    let mut i = 0;
+    while i < args.len() {
+        match args[i] {
+            "--package-path" => i += 2,
+            a if a.starts_with('-') => i += 1,
+            _ => return Some(i),
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::refused;
+
+    #[test]
+    fn the_old_spelling_is_refused_in_its_command_only() {
+        let message = refused(&["select", "--setup", "s", "--postures", "6"]).unwrap();
+        assert_eq!(
+            message,
+            "--postures: renamed --count in `stiffid select` (the number of postures; --postures is a postures file in evaluate, plot and simulate)"
+        );
+        let at = ["--package-path", "select", "register", "--postures=4"];
+        assert!(refused(&at).unwrap().contains("`stiffid register`"));
+        let tolerance = ["compensate", "--force-tolerance-percent", "20"];
+        assert!(refused(&tolerance)
+            .unwrap()
+            .starts_with("--force-tolerance-percent: renamed --force-tolerance-pct"));
+        // A postures file where --postures means one, and the new spellings, pass.
+        assert_eq!(refused(&["evaluate", "--postures", "p.csv"]), None);
+        assert_eq!(refused(&["select", "--count", "6"]), None);
+        assert_eq!(refused(&["select", "--postures-file"]), None);
+        assert_eq!(refused(&["--package-path", "select"]), None);
+    }
+}

@@ -1,0 +1,168 @@
+//! The `[gravity]` table of a calibrated robot file: the sag under the robot's own weight (and
+//! its tool's) as the calibration fitted it ([`crate::model::OwnWeight`]), so that every command
+//! reading the robot adds it and any stiffness file combines with it.
+//!
+//! ```toml
+//! [gravity]
+//! model = "lumped"                      # masses, lumped or lumped-links
+//! tool_mass_kg = 12.5                   # optional: the calibration's [tool] mass_kg
+//! terms = [                             # in the model's order, at most 144
+//!   { name = "gravity.c2.link2.m", value_si = 6.1e-7 },
+//! ]
+//! ```
+
+use crate::common::limits::{self, check_in};
+use crate::{Error, Result};
+use serde::Deserialize;
+use std::fmt::Write;
+
+/// The most gravity terms a robot or stiffness file holds: four mass moments of six links for
+/// each of the six springs.
+pub const MAX_GRAVITY_TERMS: usize = 144;
+
+/// The deflection under the robot's own weight as a calibration fitted it
+/// (`stiffid calibrate --gravity`, `stiffid_metrology::calibration::gravity`): the gravity model
+/// and the value of each of its terms. A calibration with gravity describes the robot without its
+/// sag, so compensation adds it (docs/model.md, "Compensation"). The calibrated robot file
+/// carries it (`[gravity]`, [`crate::Robot::own_weight`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct OwnWeight {
+    /// The gravity model: `masses`, `lumped` or `lumped-links`.
+    pub gravity: String,
+    /// Each term's name (`gravity.c2`, `gravity.c2.link3.mx`) and value, SI (rad/(N m) for a
+    /// compliance, rad kg/(N m) for a lumped mass, rad kg/N for a lumped first moment), in the
+    /// model's term order.
+    pub terms: Vec<(String, f64)>,
+    /// The tool's mass (kg) the calibration's setup gave (`[tool] mass_kg`), `None` without:
+    /// with `masses` the tool joined link 6 in the fit (compensation joins the setup's tool the
+    /// same way); lumped terms hold the weight of the tool the robot carried, so compensation
+    /// refuses a setup whose tool's mass differs from it.
+    pub tool_mass: Option<f64>,
+}
+
+/// One term of a `[gravity]` table.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TermFile {
+    name: String,
+    value_si: f64,
+}
+
+/// A robot file's `[gravity]` table.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct GravityFile {
+    model: String,
+    tool_mass_kg: Option<f64>,
+    terms: Vec<TermFile>,
+}
+
+/// The own weight of a `[gravity]` table, checked: the model `masses`, `lumped` or
+/// `lumped-links`, 1 to [`MAX_GRAVITY_TERMS`] terms with finite values, a tool mass within
+/// [`limits::TOOL_MASS_KG`].
+///
+/// # Errors
+/// [`Error::InvalidField`] naming the file and the field.
+pub(super) fn build(file: Option<GravityFile>, source_name: &str) -> Result<Option<OwnWeight>> {
+    let Some(g) = file else { return Ok(None) };
+    let invalid = |field: String, message: String| Error::InvalidField {
+        field: format!("{source_name}: gravity.{field}"),
+        message,
+    };
+    if !matches!(g.model.as_str(), "masses" | "lumped" | "lumped-links") {
+        return Err(invalid(
+            "model".into(),
+            format!(
+                "'{}': expected masses, lumped or lumped-links",
+                limits::short(&g.model)
+            ),
+        ));
+    }
+    let n = g.terms.len();
+    if n == 0 || n > MAX_GRAVITY_TERMS {
+        return Err(invalid(
+            "terms".into(),
+            format!("{n} terms: expected 1 to {MAX_GRAVITY_TERMS}"),
+        ));
+    }
+    if let Some(i) = g.terms.iter().position(|t| !t.value_si.is_finite()) {
+        return Err(invalid(
+            format!("terms[{}].value_si", i + 1),
+            "expected a finite number".into(),
+        ));
+    }
+    if let Some(m) = g.tool_mass_kg {
+        check_in(
+            source_name,
+            "gravity.tool_mass_kg",
+            &[m],
+            &limits::TOOL_MASS_KG,
+        )?;
+    }
+    Ok(Some(OwnWeight {
+        gravity: g.model,
+        terms: g.terms.into_iter().map(|t| (t.name, t.value_si)).collect(),
+        tool_mass: g.tool_mass_kg,
+    }))
+}
+
+/// The `[gravity]` table of `own` (values in full, shortest round-trip), with a comment saying
+/// what it is.
+pub fn toml(own: &OwnWeight) -> String {
+    let mut t = String::from(
+        "\n# The sag under the robot's own weight and its tool's, as the calibration fitted it:\n# every command that reads this robot adds it.\n[gravity]\n",
+    );
+    let _ = writeln!(t, "model = \"{}\"", own.gravity);
+    if let Some(m) = own.tool_mass {
+        let _ = writeln!(t, "tool_mass_kg = {m:?}");
+    }
+    t += "terms = [\n";
+    for (name, v) in &own.terms {
+        let _ = writeln!(t, "  {{ name = \"{name}\", value_si = {v:?} }},");
+    }
+    t += "]\n";
+    t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn own() -> OwnWeight {
+        OwnWeight {
+            gravity: "lumped".into(),
+            terms: vec![
+                ("gravity.c2.link2.m".into(), 6.1e-7),
+                ("gravity.c3.link3.mx".into(), -1.25e-8),
+            ],
+            tool_mass: Some(12.5),
+        }
+    }
+
+    fn read(text: &str) -> Result<Option<OwnWeight>> {
+        #[derive(Deserialize)]
+        struct F {
+            gravity: Option<GravityFile>,
+        }
+        let f: F = toml::from_str(text).expect("TOML");
+        build(f.gravity, "robot.toml")
+    }
+
+    #[test]
+    fn round_trip_is_exact() {
+        assert_eq!(read(&toml(&own())).unwrap(), Some(own()));
+    }
+
+    #[test]
+    fn bad_tables_name_the_field() {
+        let bad = toml(&own()).replace("lumped\"", "none\"");
+        let e = read(&bad).unwrap_err().to_string();
+        assert!(e.contains("robot.toml: gravity.model"), "{e}");
+        let bad = toml(&own()).replace("12.5", "-1.0");
+        let e = read(&bad).unwrap_err().to_string();
+        assert!(e.contains("gravity.tool_mass_kg"), "{e}");
+        let bad = toml(&own()).replace("6.1e-7", "nan");
+        let e = read(&bad).unwrap_err().to_string();
+        assert!(e.contains("gravity.terms[1].value_si"), "{e}");
+    }
+}

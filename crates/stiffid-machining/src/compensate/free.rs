@@ -1,0 +1,497 @@
+//! What a compensation may move, in one place: each free variable ([`Free`]: the variable, its
+//! range and its step) and the run's one objective ([`Freedom`]), parsed and checked here for the
+//! command line (`--free tool-rotation=-90..90/5`) and Python (`free=["tool-rotation=-90..90/5"]`).
+
+use super::options::{
+    Aggregate, FreeConfiguration, FreeLeadTilt, FreePositioner, FreeStation, FreeToolAxis,
+    Objective, Options,
+};
+use super::Scope;
+use stiffid_core::common::error::JobOption;
+use stiffid_core::common::words::number;
+use stiffid_core::robot::external::{ExternalAxes, Role};
+use stiffid_core::{Error, Result, Setup};
+
+/// A variable a compensation may move from the path's own value at every point.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Variable {
+    /// The rotation about the tool z axis (`tool-rotation`, deg).
+    ToolRotation,
+    /// The lead and the tilt of the tool axis within a cone (`lead-tilt`, deg).
+    LeadTilt,
+    /// The track station: the carrier's first axis (`station`, mm).
+    Station,
+    /// The positioner's last axis, the table's turn (`positioner`, deg).
+    Positioner,
+    /// A two-axis positioner's first axis (`tilt`, deg).
+    Tilt,
+    /// The configuration of the arm (`configuration`, `configuration=run`: one per run).
+    Configuration(Scope),
+    /// An external axis named as the setup's cell names it: the carrier's first axis is the
+    /// station, the positioner's last the table's turn, a two-axis positioner's first the tilt.
+    Axis(String),
+}
+
+/// One free variable: what moves, how far from the path's own value (`range`, `-range..range`)
+/// and on which grid step (also the most it changes between consecutive points), in the units
+/// of the command line: mm for the station, deg otherwise; `None` for the default.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Free {
+    /// What moves.
+    pub variable: Variable,
+    /// The half range about the path's own value, mm or deg.
+    pub range: Option<f64>,
+    /// The grid step, mm or deg.
+    pub step: Option<f64>,
+}
+
+/// The free variables of one run and what they minimise together: the options of
+/// `compensate --free`, `--minimise`, `--objective`, `--margin-deg`, `--max-condition`,
+/// `--refine` and of Python's keywords of the same names; `None` for the default.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Freedom {
+    /// The free variables, at most one of each.
+    pub free: Vec<Free>,
+    /// What a point costs; default the error bound the document reports.
+    pub minimise: Option<Objective>,
+    /// How the points' costs add up; default their sum.
+    pub objective: Option<Aggregate>,
+    /// The joint-limit margin of a moved posture, deg.
+    pub margin_deg: Option<f64>,
+    /// The largest condition number of a moved posture.
+    pub max_condition: Option<f64>,
+    /// Levels of refinement of the grid.
+    pub refine: Option<usize>,
+}
+
+/// The most `--free` options of one run.
+pub const MAX_FREE: usize = 8;
+
+/// The options that `free` replaced (command-line spelling, without `--`), each with the option
+/// that replaces it (`free` or `minimise`) and how to write its value there.
+pub const RETIRED: &[(&str, &str, &str)] = &[
+    ("free-tool-axis", "free", "tool-rotation=-90..90/2"),
+    ("max-step-deg", "free", "tool-rotation=-R..R/STEP"),
+    ("tool-axis-range-deg", "free", "tool-rotation=-R..R/STEP"),
+    (
+        "free-tool-axis-objective",
+        "minimise",
+        "deflection|surge|bound",
+    ),
+    ("free-station-mm", "free", "station=-R..R/STEP (mm)"),
+    ("station-step-mm", "free", "station=-R..R/STEP (mm)"),
+    ("free-positioner-deg", "free", "positioner=-R..R/STEP"),
+    ("positioner-step-deg", "free", "positioner=-R..R/STEP"),
+    ("free-tilt-deg", "free", "tilt=-R..R/STEP"),
+    ("tilt-step-deg", "free", "tilt=-R..R/STEP"),
+    (
+        "free-lead-tilt",
+        "free",
+        "lead-tilt (a program's cone) or lead-tilt=-CONE..CONE/STEP",
+    ),
+    ("cone-deg", "free", "lead-tilt=-CONE..CONE/STEP"),
+    ("lead-tilt-step-deg", "free", "lead-tilt=-CONE..CONE/STEP"),
+    ("free-configuration", "free", "configuration"),
+    ("configuration-per", "free", "configuration=run"),
+];
+
+/// The option replacing the retired option `name` (command-line spelling, without `--`) and how
+/// to write its value ([`RETIRED`]).
+pub fn retired(name: &str) -> Option<(&'static str, &'static str)> {
+    RETIRED
+        .iter()
+        .find(|(n, _, _)| *n == name)
+        .map(|(_, option, value)| (*option, *value))
+}
+
+impl Variable {
+    /// The variable's name as [`Free::parse`] reads it.
+    pub fn name(&self) -> &str {
+        match self {
+            Variable::ToolRotation => "tool-rotation",
+            Variable::LeadTilt => "lead-tilt",
+            Variable::Station => "station",
+            Variable::Positioner => "positioner",
+            Variable::Tilt => "tilt",
+            Variable::Configuration(_) => "configuration",
+            Variable::Axis(name) => name,
+        }
+    }
+}
+
+impl Free {
+    /// Parses `NAME`, `NAME=LO..HI`, `NAME=LO..HI/STEP` or `NAME=/STEP` (`LO = -HI`: the range
+    /// is symmetric about the path's own value), or `configuration=program|run`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidOption`] ([`JobOption::Free`]) naming the text and what was expected.
+    pub fn parse(text: &str) -> Result<Self> {
+        let (name, value) = text.split_once('=').unwrap_or((text, ""));
+        let name = name.trim();
+        if name == "configuration" {
+            let per = match value.trim() {
+                "" | "program" => Scope::Program,
+                "run" => Scope::Run,
+                v => return Err(invalid(text, &format!("`{v}`: expected program or run"))),
+            };
+            return Ok(Free::new(Variable::Configuration(per), None, None));
+        }
+        let variable = match name {
+            "tool-rotation" => Variable::ToolRotation,
+            "lead-tilt" => Variable::LeadTilt,
+            "station" => Variable::Station,
+            "positioner" => Variable::Positioner,
+            "tilt" => Variable::Tilt,
+            "" => return Err(invalid(text, "expected a variable before `=`")),
+            n => Variable::Axis(n.to_string()),
+        };
+        let (range, step) = value.split_once('/').unwrap_or((value, ""));
+        let step = match step.trim() {
+            "" if value.contains('/') => return Err(invalid(text, "expected a step after `/`")),
+            "" => None,
+            s => Some(parse_number(text, s)?),
+        };
+        Ok(Free::new(variable, half_range(text, range.trim())?, step))
+    }
+
+    /// The free variable `variable` (a name of [`Free::parse`]) with its range and step: the
+    /// parts of a Python dict (`{"variable": "station", "range": 500, "step": 10}`).
+    ///
+    /// # Errors
+    /// Those of [`Free::parse`].
+    pub fn from_parts(variable: &str, range: Option<f64>, step: Option<f64>) -> Result<Self> {
+        let free = Free::parse(variable)?;
+        if variable.contains('=') {
+            return Err(invalid(variable, "expected a variable's name alone"));
+        }
+        let positive = |v: f64| v.is_finite() && v > 0.0;
+        if let Some(r) = range.filter(|r| !positive(*r)) {
+            return Err(invalid(
+                variable,
+                &format!("range {}: expected a number > 0", number(r)),
+            ));
+        }
+        Ok(Free {
+            range,
+            step,
+            ..free
+        })
+    }
+
+    fn new(variable: Variable, range: Option<f64>, step: Option<f64>) -> Self {
+        Free {
+            variable,
+            range,
+            step,
+        }
+    }
+
+    /// The variable with an axis name resolved against the cell's external axes.
+    fn resolve(&self, axes: Option<&ExternalAxes>) -> Result<Variable> {
+        let Variable::Axis(name) = &self.variable else {
+            return Ok(self.variable.clone());
+        };
+        let all = axes.map_or(&[][..], |a| a.axes());
+        let known = || -> String {
+            let names: Vec<&str> = all.iter().map(|a| a.name.as_str()).collect();
+            format!(
+                "tool-rotation, lead-tilt, station, positioner, tilt, configuration{}{}",
+                if names.is_empty() {
+                    ""
+                } else {
+                    " or an axis of the cell: "
+                },
+                names.join(", ")
+            )
+        };
+        let Some(i) = all.iter().position(|a| a.name == *name) else {
+            return Err(invalid(
+                name,
+                &format!("unknown variable: expected {}", known()),
+            ));
+        };
+        let positioner: Vec<usize> = (0..all.len())
+            .filter(|&k| all[k].role == Role::Positioner)
+            .collect();
+        match all[i].role {
+            Role::Carrier if i == 0 => Ok(Variable::Station),
+            Role::Positioner if positioner.last() == Some(&i) => Ok(Variable::Positioner),
+            Role::Positioner => Ok(Variable::Tilt),
+            Role::Carrier => Err(invalid(
+                name,
+                "only the carrier's first axis (the station) is free",
+            )),
+        }
+    }
+}
+
+/// `-R..R` (or empty: `None`) as `R`.
+fn half_range(text: &str, range: &str) -> Result<Option<f64>> {
+    if range.is_empty() {
+        return Ok(None);
+    }
+    let Some((lo, hi)) = range.split_once("..") else {
+        return Err(invalid(text, &format!("`{range}`: expected a range -R..R")));
+    };
+    let (lo, hi) = (parse_number(text, lo)?, parse_number(text, hi)?);
+    if !(hi > 0.0 && lo == -hi) {
+        return Err(invalid(
+            text,
+            &format!("`{range}`: expected a range -R..R about the path's own value, R > 0"),
+        ));
+    }
+    Ok(Some(hi))
+}
+
+fn parse_number(text: &str, s: &str) -> Result<f64> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        _ => Err(invalid(text, &format!("`{}`: expected a number", s.trim()))),
+    }
+}
+
+fn invalid(text: &str, why: &str) -> Error {
+    Error::InvalidOption {
+        option: JobOption::Free,
+        message: format!("{text}: {why}"),
+    }
+}
+
+impl Freedom {
+    /// Sets the free variables of `options` (all of them minimising [`Freedom::minimise`], their
+    /// costs added up by [`Freedom::objective`]) and the feasibility and refinement they use,
+    /// the axis names resolved against `setup`'s cell. Without a free variable, the options that
+    /// only mean something with one are refused.
+    ///
+    /// # Errors
+    /// [`Error::InvalidOption`] ([`JobOption::Free`]) for more than [`MAX_FREE`] variables, one
+    /// given twice or an unknown name; those of each variable's range and step
+    /// ([`FreeToolAxis::try_from_degrees`], [`FreeStation::try_from_mm`],
+    /// [`FreePositioner::try_with`], [`FreePositioner::try_tilt`], [`FreeLeadTilt::try_with`]);
+    /// [`Error::OptionCombination`] for `minimise`, `objective`, `margin_deg`, `max_condition` or
+    /// `refine` without a free variable.
+    pub fn apply(&self, setup: &Setup, options: &mut Options) -> Result<()> {
+        self.check_alone()?;
+        if self.free.len() > MAX_FREE {
+            return Err(invalid(
+                &format!("{} variables", self.free.len()),
+                &format!("at most {MAX_FREE}"),
+            ));
+        }
+        let minimise = self.minimise.unwrap_or(Objective::Bound);
+        let aggregate = self.objective.unwrap_or_default();
+        let axes = setup.robot().external();
+        let mut seen: Vec<Variable> = Vec::new();
+        for free in &self.free {
+            let variable = free.resolve(axes)?;
+            let key = match &variable {
+                Variable::Configuration(_) => Variable::Configuration(Scope::Program),
+                v => v.clone(),
+            };
+            if seen.contains(&key) {
+                return Err(invalid(
+                    key.name(),
+                    "given twice: at most one of each variable",
+                ));
+            }
+            seen.push(key);
+            set(options, &variable, free, minimise, aggregate)?;
+        }
+        if let Some(m) = self.margin_deg {
+            options.feasible.margin = m.to_radians();
+        }
+        if let Some(c) = self.max_condition {
+            options.feasible.max_condition = c;
+        }
+        options.refine = self.refine.unwrap_or(0);
+        Ok(())
+    }
+
+    /// Refuses the options that only mean something with a free variable when none is given.
+    fn check_alone(&self) -> Result<()> {
+        if !self.free.is_empty() {
+            return Ok(());
+        }
+        let given = [
+            (self.minimise.is_some(), JobOption::FreeToolAxisObjective),
+            (self.objective.is_some(), JobOption::Objective),
+            (self.margin_deg.is_some(), JobOption::MarginDeg),
+            (self.max_condition.is_some(), JobOption::MaxCondition),
+            (self.refine.is_some(), JobOption::Refine),
+        ];
+        match given.iter().find(|(g, _)| *g) {
+            Some((_, option)) => Err(Error::OptionCombination {
+                option: *option,
+                with: vec![JobOption::Free],
+                needs: true,
+                reason: "it applies to the free variables; none is free".into(),
+            }),
+            None => Ok(()),
+        }
+    }
+}
+
+/// Sets the one engine field of `variable` in `options`.
+fn set(
+    options: &mut Options,
+    variable: &Variable,
+    free: &Free,
+    minimise: Objective,
+    aggregate: Aggregate,
+) -> Result<()> {
+    let (range, step) = (free.range, free.step);
+    match variable {
+        Variable::ToolRotation => {
+            let f = FreeToolAxis::try_from_degrees(step.unwrap_or(2.0), range.unwrap_or(90.0))?;
+            options.free_tool_axis = Some(FreeToolAxis {
+                objective: minimise,
+                aggregate,
+                ..f
+            });
+        }
+        Variable::Station => {
+            let range = need_range(free, "station", "mm")?;
+            let s = FreeStation::try_from_mm(range, step.unwrap_or(10.0))?;
+            options.free_station = Some(FreeStation {
+                objective: minimise,
+                aggregate,
+                ..s
+            });
+        }
+        Variable::Positioner | Variable::Tilt => {
+            let tilt = *variable == Variable::Tilt;
+            let range = need_range(free, if tilt { "tilt" } else { "positioner" }, "deg")?;
+            let mut p = match tilt {
+                true => FreePositioner::try_tilt(range, step.unwrap_or(5.0), None, aggregate)?,
+                false => FreePositioner::try_with(range, step.unwrap_or(5.0), None, aggregate)?,
+            };
+            p.objective = minimise;
+            *(if tilt {
+                &mut options.free_tilt
+            } else {
+                &mut options.free_positioner
+            }) = Some(p);
+        }
+        Variable::LeadTilt => {
+            let mut l = FreeLeadTilt::try_with(range, step.unwrap_or(2.0), None, aggregate)?;
+            l.objective = minimise;
+            l.validate()?;
+            options.free_lead_tilt = Some(l);
+        }
+        Variable::Configuration(per) => {
+            let c = FreeConfiguration {
+                objective: minimise,
+                aggregate,
+                per: *per,
+            };
+            c.check(0)?;
+            options.free_configuration = Some(c);
+        }
+        Variable::Axis(name) => return Err(invalid(name, "unknown variable")),
+    }
+    Ok(())
+}
+
+/// The range of a variable that has no default.
+fn need_range(free: &Free, name: &str, unit: &str) -> Result<f64> {
+    free.range.ok_or_else(|| {
+        invalid(
+            name,
+            &format!("expected its range, {name}=-R..R/STEP ({unit})"),
+        )
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_texts_of_free_parse_to_their_variable_range_and_step() {
+        let cases = [
+            (
+                "tool-rotation=-90..90/5",
+                Variable::ToolRotation,
+                Some(90.0),
+                Some(5.0),
+            ),
+            ("tool-rotation", Variable::ToolRotation, None, None),
+            ("station=-500..500", Variable::Station, Some(500.0), None),
+            ("lead-tilt=/2.5", Variable::LeadTilt, None, Some(2.5)),
+            ("tilt = -10..10/5", Variable::Tilt, Some(10.0), Some(5.0)),
+            (
+                "E2=-30..30/5",
+                Variable::Axis("E2".into()),
+                Some(30.0),
+                Some(5.0),
+            ),
+            (
+                "configuration=run",
+                Variable::Configuration(Scope::Run),
+                None,
+                None,
+            ),
+            (
+                "configuration",
+                Variable::Configuration(Scope::Program),
+                None,
+                None,
+            ),
+        ];
+        for (text, variable, range, step) in cases {
+            let free = Free::parse(text).unwrap();
+            assert_eq!(
+                (free.variable, free.range, free.step),
+                (variable, range, step),
+                "{text}"
+            );
+        }
+    }
+
+    #[test]
+    fn malformed_texts_are_refused_naming_free_and_the_text() {
+        for text in [
+            "tool-rotation=90",
+            "tool-rotation=-90..80",
+            "tool-rotation=90..-90",
+            "tool-rotation=-0..0",
+            "tool-rotation=-nan..nan",
+            "tool-rotation=-90..90/",
+            "tool-rotation=-90..90/x",
+            "=-5..5",
+            "configuration=each",
+        ] {
+            match Free::parse(text) {
+                Err(Error::InvalidOption {
+                    option: JobOption::Free,
+                    message,
+                }) => {
+                    assert!(message.starts_with(text), "{message}")
+                }
+                other => panic!("{text}: {other:?}"),
+            }
+        }
+        assert!(Free::from_parts("station=-5..5", None, None).is_err());
+        assert!(Free::from_parts("station", Some(-5.0), None).is_err());
+    }
+
+    #[test]
+    fn every_retired_option_says_how_to_write_it() {
+        for (name, option, value) in RETIRED {
+            assert!(["free", "minimise"].contains(option), "{name}");
+            if *option == "free" {
+                let text = value.split([' ', '|']).next().unwrap();
+                let text = text
+                    .replace("-R..R", "-1..1")
+                    .replace("-CONE..CONE", "-1..1");
+                let text = text.replace("STEP", "1");
+                Free::parse(&text).unwrap_or_else(|e| panic!("{name}: {text}: {e}"));
+            }
+        }
+        assert_eq!(
+            retired("free-tool-axis"),
+            Some(("free", "tool-rotation=-90..90/2"))
+        );
+        assert!(retired("free").is_none());
+    }
+}

@@ -1,0 +1,89 @@
+//! Where the tool cuts: the one rule that decides which points of a program carry the process's
+//! wrench, whatever language the program is written in, so that the same program as G-code, KRL,
+//! RAPID, LS or INFORM gets the same wrench at the same points.
+//!
+//! A point cuts when an operation covers it ([`super::Operation`]'s selector) and
+//! 1. it is reached by a feed move, not a joint move ([`joint_moves`]: G-code `G0`, KRL `PTP`,
+//!    RAPID `MoveJ` and `MoveAbsJ`, LS `J`, INFORM `MOVJ`): a joint move approaches, retracts or
+//!    moves between cuts;
+//! 2. for a drilling operation, it is fed into the part: its feed ([`feeds`]) points towards the
+//!    tool's tip, within [`DRILL_CONE_DEG`] of the tool axis. A drill's retract, or a move across
+//!    its axis, cuts nothing.
+//!
+//! A milling point fed along the tool axis (a plunge or a linear retract) keeps its operation but
+//! takes no force ([`super::Operation::base_wrench`]: the feed frame needs a feed across the axis).
+
+use crate::gcode::Motion;
+use crate::process::{Kind, Operation};
+use crate::Program;
+use nalgebra::{Isometry3, Vector3};
+
+/// The largest angle between a drilling point's feed and the tool axis (towards the tip) at
+/// which the drill cuts, deg.
+pub const DRILL_CONE_DEG: f64 = 45.0;
+
+/// Whether each point is reached by a joint move: a G-code rapid move (`G0`), a robot
+/// program's joint motion ([`crate::program::JointProgram::joint_moves`]).
+pub fn joint_moves(program: &Program) -> Vec<bool> {
+    match program {
+        Program::GCode(g) => g.points.iter().map(|p| p.motion == Motion::Rapid).collect(),
+        Program::Robot(r) => r.joint_moves(),
+    }
+}
+
+/// Each point's feed: the TCP's motion from the previous point (the first point takes the
+/// second's), in the frame of `poses`; a point that does not move (a dwell) keeps the feed
+/// before it; `None` where no point has moved yet.
+pub fn feeds(poses: &[Isometry3<f64>]) -> Vec<Option<Vector3<f64>>> {
+    let mut previous = None;
+    (0..poses.len())
+        .map(|i| {
+            let here = poses[i].translation.vector;
+            let feed = match i {
+                0 => poses.get(1).map(|p| p.translation.vector - here),
+                _ => Some(here - poses[i - 1].translation.vector),
+            }
+            .filter(|f| f.norm() > 1e-12)
+            .or(previous);
+            previous = feed;
+            feed
+        })
+        .collect()
+}
+
+/// The operation each point cuts under (module docs), from `covered`, the operation covering
+/// each point: `None` at a joint move (`joint`) and at a drilling point not fed into the part;
+/// `poses` the TCP poses in the frame the feed is measured in (the part's when the part moves).
+///
+/// # Panics
+/// If `joint`, `poses` and `covered` differ in length.
+pub fn cutting<'a>(
+    joint: &[bool],
+    poses: &[Isometry3<f64>],
+    covered: Vec<Option<(usize, &'a Operation)>>,
+) -> Vec<Option<(usize, &'a Operation)>> {
+    assert!(joint.len() == poses.len() && poses.len() == covered.len());
+    let feeds = feeds(poses);
+    let cos = DRILL_CONE_DEG.to_radians().cos();
+    covered
+        .into_iter()
+        .enumerate()
+        .map(|(i, op)| {
+            let (_, o) = op?;
+            if joint[i] {
+                return None;
+            }
+            match o.kind {
+                Kind::Milling(_) => op,
+                Kind::Drilling(_) => {
+                    let tip = poses[i].rotation * Vector3::z();
+                    let f = feeds[i]?;
+                    match f.dot(&tip) > cos * f.norm() {
+                        true => op,
+                        false => None,
+                    }
+                }
+            }
+        })
+        .collect()
+}

@@ -1,0 +1,63 @@
+"""Hostile arguments through Python: each an InputError naming the argument, and what is
+accepted is what the command accepts."""
+
+import numpy as np
+import pytest
+
+import stiffid
+from conftest import REPO
+
+MILLING = REPO / "examples" / "milling"
+TRACK = {"name": "track", "role": "carrier", "direction": [0, 1, 0], "limits_mm": [0, 4000]}
+
+
+def test_external_axes_take_numpy_arrays_and_refuse_nan_naming_the_argument():
+    robot = stiffid.Robot.preset("kuka-kr210-robond")
+    as_arrays = dict(TRACK, direction=np.array([0.0, 1.0, 0.0]), limits_mm=np.array([0, 4000]))
+    assert robot.with_external_axes([as_arrays]).external_axes == robot.with_external_axes(
+        [TRACK]
+    ).external_axes
+    with pytest.raises(stiffid.InputError, match=r"^axes: expected tables of names, numbers"):
+        robot.with_external_axes([dict(TRACK, direction=np.array([0.0, np.nan, 1.0]))])
+    with pytest.raises(stiffid.InputError, match=r"^axes: .*\{1, 2\}|^axes: .*set"):
+        robot.with_external_axes([dict(TRACK, direction={1, 2})])
+
+
+def test_a_negative_seed_of_place_names_the_argument():
+    with pytest.raises(stiffid.InputError, match=r"^seed: -1 is negative"):
+        stiffid.place(
+            MILLING / "fanuc-milling.toml",
+            MILLING / "stiffness.json",
+            program=MILLING / "pocket.nc",
+            process=MILLING / "aluminium.toml",
+            region_mm=(500, 2000, -1500, 500),
+            seed=-1,
+        )
+
+
+def test_program_settings_without_a_generated_program_are_refused_as_by_the_command(tmp_path):
+    setup = stiffid.Setup.from_file(MILLING / "fanuc-milling.toml")
+    common = dict(stiffness=MILLING / "stiffness.json", process=MILLING / "aluminium.toml")
+    with pytest.raises(stiffid.InputError, match=r"^targets: only for a G-code program written as a robot program"):
+        stiffid.compensate(setup, program=MILLING / "pocket.nc", targets="joint", **common)
+    with pytest.raises(stiffid.InputError, match=r"^moves_per_file: only for a G-code program written as a robot program: a robot program is written back"):
+        stiffid.compensate(setup, program=MILLING / "pocket.ls", moves_per_file=100, **common)
+
+
+def test_a_bool_is_no_number(paper, tmp_path):
+    with pytest.raises(stiffid.InputError, match=r"^tolerance_mm: True is a bool: expected a number"):
+        stiffid.calibrate(paper, tmp_path / "readings.csv", tolerance_mm=True, tolerance_deg=0.1)
+    with pytest.raises(stiffid.InputError, match=r"^tolerance_deg: expected a number, got <class 'str'>"):
+        stiffid.calibrate(paper, tmp_path / "readings.csv", tolerance_mm=0.1, tolerance_deg="0.1")
+    with pytest.raises(stiffid.InputError, match=r"^payload_kg: False is a bool"):
+        stiffid.setups_new(tmp_path / "robot.urdf", payload_kg=False)
+
+
+def test_rows_of_numbers_refuse_text_and_bools_naming_the_element(paper):
+    with pytest.raises(stiffid.InputError, match=r"^stations: expected rows of numbers"):
+        paper.select(stations="1000")
+    track = stiffid.Setup.from_file(REPO / "examples" / "track" / "track-cell.toml")
+    with pytest.raises(stiffid.InputError, match=r"^stations\[0\]\[0\]: True is a bool"):
+        track.select(stations=[[True, 0, 0]])
+    with pytest.raises(stiffid.InputError, match=r"^external\[1\]\[2\]: expected a number"):
+        stiffid.plan(track, [[0, 0, 0, 0, 0, 0], [0, 10, 0, 0, 0, 0]], external=[[0, 0, 0], [0, 0, "x"]])
