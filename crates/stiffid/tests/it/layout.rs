@@ -448,11 +448,21 @@ fn other_jobs(code: &str) -> Vec<String> {
     for name in CRATES {
         let root = format!("{}::app::", name.replace('-', "_"));
         for (at, _) in code.match_indices(&root) {
-            let job: String = (code[at + root.len()..].chars())
-                .take_while(|c| c.is_alphanumeric() || *c == '_')
-                .collect();
-            if job_folder(name, &format!("app/{job}")).is_some() {
-                found.push(format!("{name}: {job}"));
+            let tail = &code[at + root.len()..];
+            // `app::{a, b::c}`: each member's first name; `app::a`: its name.
+            let names: Vec<String> = match tail.strip_prefix('{') {
+                Some(group) => expand(&format!("{{{}}}", &group[..group.find('}').unwrap_or(0)]))
+                    .into_iter()
+                    .map(|p| p.split("::").next().unwrap_or("").to_string())
+                    .collect(),
+                None => vec![(tail.chars())
+                    .take_while(|c| c.is_alphanumeric() || *c == '_')
+                    .collect()],
+            };
+            for job in names.into_iter().filter(|j| !j.is_empty()) {
+                if job_folder(name, &format!("app/{job}")).is_some() {
+                    found.push(format!("{name}: {job}"));
+                }
             }
         }
     }

@@ -1,7 +1,6 @@
 //! Where each quantity sits in a measurement file's rows: the header's columns, and one row turned
 //! into a [`Measurement`].
 
-use super::problem;
 use crate::common::error::{ColumnProblem, MeasurementField};
 use crate::common::limits;
 use crate::observation::deflection::Frame;
@@ -399,5 +398,15 @@ impl Layout {
         };
         let line = line_of(number).unwrap_or(0);
         self.at(line, column, ColumnProblem::Measurement { message })
+    }
+}
+
+/// The error of a column `problem` at `line` (and `column`, 1-based, where known).
+pub(super) fn problem(line: u64, column: Option<usize>, problem: ColumnProblem) -> Error {
+    Error::Column {
+        line,
+        column,
+        name: String::new(),
+        problem,
     }
 }

@@ -37,7 +37,7 @@ use crate::observation::deflection::Frame;
 use crate::observation::frames::{self, DisplacementFrame};
 use crate::observation::Measurement;
 use crate::{Error, Result, Setup};
-use columns::expected_header;
+use columns::{expected_header, problem};
 use rayon::prelude::*;
 use std::collections::hash_map::{Entry, HashMap};
 use std::hash::{BuildHasherDefault, Hasher};
@@ -623,15 +623,6 @@ fn fx_hash(bytes: &[u8]) -> u64 {
     h ^= h >> 33;
     h = h.wrapping_mul(0xc4ce_b9fe_1a85_ec53);
     h ^ (h >> 33)
-}
-
-fn problem(line: u64, column: Option<usize>, problem: ColumnProblem) -> Error {
-    Error::Column {
-        line,
-        column,
-        name: String::new(),
-        problem,
-    }
 }
 
 fn unreadable(line: u64, message: &str) -> Error {
