@@ -12,7 +12,7 @@ use serde::Serialize;
 #[derive(Debug, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(tag = "kind", rename = "identify-comparison")]
-#[cfg_attr(feature = "schema", schemars(transform = crate::app::document::schema::Kind("identify-comparison")))]
+#[cfg_attr(feature = "schema", schemars(transform = crate::common::kind::Kind("identify-comparison")))]
 pub struct Document {
     /// The setup as given.
     pub setup: String,
