@@ -169,7 +169,7 @@ fn a_campaigns_station_with_too_few_postures_says_it_per_station() {
         "--for",
         "calibration",
         "--start-random",
-        "--postures",
+        "--count",
         "6",
         "--station",
         "500,0,0",

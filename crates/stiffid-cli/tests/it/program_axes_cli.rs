@@ -51,7 +51,9 @@ fn an_inform_job_is_written_back_in_pulses_under_its_new_name() {
         match k {
             // The job is named as its file; the positions are compensated, in whole pulses.
             1 => assert_eq!(*b, "//NAME CUT_C"),
-            7 | 8 => {
+            // C00000 is reached by a joint move (MOVJ): the tool cuts nothing there.
+            7 => assert_eq!(a, b),
+            8 => {
                 let before: Vec<i64> = a[7..].split(',').map(|v| v.parse().unwrap()).collect();
                 let after: Vec<i64> = b[7..].split(',').map(|v| v.parse().unwrap()).collect();
                 assert_eq!(&a[..7], &b[..7]);

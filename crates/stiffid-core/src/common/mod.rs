@@ -5,6 +5,8 @@ pub mod choice;
 pub mod error;
 pub(crate) mod exact;
 pub mod job_option;
+#[cfg(feature = "schema")]
+pub mod kind;
 pub mod limits;
 pub mod progress;
 pub mod stop;

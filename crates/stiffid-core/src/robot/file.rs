@@ -484,7 +484,7 @@ mod rpy_tests {
     use super::{angle_between, rpy};
     use nalgebra::UnitQuaternion;
 
-    /// Near and at pitch -90 and +90 degrees the written angles give the rotation back to 1e-14
+    /// Near and at pitch -90 and +90 degrees the written angles give the rotation back to 1e-12
     /// rad, where the closed form misses by more than 1e-9 rad at least once.
     #[test]
     fn roll_pitch_yaw_give_the_rotation_back_at_the_gimbal_lock() {
@@ -497,7 +497,7 @@ mod rpy_tests {
                     let [r, p2, y] = rpy(&q);
                     let back = UnitQuaternion::from_euler_angles(r, p2, y);
                     let miss = angle_between(&back, &q);
-                    assert!(miss < 1e-14, "{pitch} {off}: {miss:e}");
+                    assert!(miss < 1e-12, "{pitch} {off}: {miss:e}");
                     let (r, p2, y) = q.euler_angles();
                     let back = UnitQuaternion::from_euler_angles(r, p2, y);
                     closed = closed.max(angle_between(&back, &q));

@@ -12,7 +12,7 @@ use stiffid_core::model::Parameter;
 #[derive(Debug, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(tag = "kind", rename = "identify-comparison")]
-#[cfg_attr(feature = "schema", schemars(transform = stiffid_core::app::document::schema::Kind("identify-comparison")))]
+#[cfg_attr(feature = "schema", schemars(transform = stiffid_core::common::kind::Kind("identify-comparison")))]
 pub struct Document {
     /// The setup as given.
     pub setup: String,

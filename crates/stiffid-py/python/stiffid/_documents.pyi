@@ -110,16 +110,6 @@ CalibrateCorrelation = TypedDict("CalibrateCorrelation", {
     "rho": float,
 })
 
-CalibrateGravitySection = TypedDict("CalibrateGravitySection", {
-    "model": str,
-    "terms": list[CalibrateGravityTerm],
-})
-
-CalibrateGravityTerm = TypedDict("CalibrateGravityTerm", {
-    "name": str,
-    "value_si": float,
-})
-
 CalibrateIntervalsDocument = TypedDict("CalibrateIntervalsDocument", {
     "coordinates": int,
     "coverage": float,
@@ -205,7 +195,6 @@ CalibrateStance = TypedDict("CalibrateStance", {
 CalibrateStiffnessSection = TypedDict("CalibrateStiffnessSection", {
     "compliance_covariance_si": list[list[float]],
     "fitted": list[bool],
-    "gravity": NotRequired[Optional[CalibrateGravitySection]],
     "parameters": list[CalibrateParameterStiffness],
     "region": NotRequired[Optional[CalibrateRegionSection]],
 })
@@ -227,7 +216,7 @@ CalibrateWarning = TypedDict("CalibrateWarning", {
     "message": str,
 })
 
-CalibrateWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed"]
+CalibrateWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed", "calibrated"]
 
 # compensate: docs/schemas/compensate.schema.json
 
@@ -549,7 +538,7 @@ CompensateWarning = TypedDict("CompensateWarning", {
     "message": str,
 })
 
-CompensateWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed"]
+CompensateWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed", "calibrated"]
 
 CompensateWorstPoint = TypedDict("CompensateWorstPoint", {
     "bound_mm": Optional[float],
@@ -923,7 +912,7 @@ IdentifyWarning = TypedDict("IdentifyWarning", {
     "message": str,
 })
 
-IdentifyWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed"]
+IdentifyWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed", "calibrated"]
 
 IdentifyComparisonDocument = TypedDict("IdentifyComparisonDocument", {
     "bootstrap": NotRequired[Optional[IdentifyBootstrapDoc]],
@@ -1065,7 +1054,7 @@ KinematicsWarning = TypedDict("KinematicsWarning", {
     "message": str,
 })
 
-KinematicsWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed"]
+KinematicsWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed", "calibrated"]
 
 # place: docs/schemas/place.schema.json
 
@@ -1246,7 +1235,7 @@ PredictWarning = TypedDict("PredictWarning", {
     "message": str,
 })
 
-PredictWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed"]
+PredictWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed", "calibrated"]
 
 # register-postures: docs/schemas/register-postures.schema.json
 

@@ -215,7 +215,7 @@ fn a_bound_above_the_largest_error_accepted_is_refused_naming_the_worst_points()
         Ok::<(), Error>(())
     })
     .unwrap_err();
-    let Error::InvalidOption { option, message } = &e else {
+    let Error::Gate { option, message } = &e else {
         panic!("{e}")
     };
     assert_eq!(*option, JobOption::MaxErrorMm);

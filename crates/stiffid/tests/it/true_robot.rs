@@ -548,9 +548,13 @@ fn written(
                 Language::GCode => "rectangle-compensated.nc".into(),
                 _ => "rectangle.src".into(),
             },
-            settings: Settings {
-                targets,
-                ..Settings::default()
+            // G-code output carries positions only: the targets' form is a robot program's.
+            settings: match output {
+                Language::GCode => Settings::default(),
+                _ => Settings {
+                    targets,
+                    ..Settings::default()
+                },
             },
         },
         options,

@@ -22,29 +22,11 @@ pub mod schema {
     use crate::common::choice::{names, Choice};
     use schemars::{json_schema, Schema};
 
+    pub use crate::common::kind::Kind;
+
     /// A string that is one of `T`'s names.
     pub fn one_of<T: Choice>() -> Schema {
         json_schema!({ "type": "string", "enum": names::<T>() })
-    }
-
-    /// The `kind` key a document carries first (serde's `tag` on its struct, which schemars
-    /// leaves out): a required string, always this name.
-    pub struct Kind(pub &'static str);
-
-    impl schemars::transform::Transform for Kind {
-        fn transform(&mut self, schema: &mut Schema) {
-            let kind = json_schema!({
-                "description": "What the document is (one name per document and schema).",
-                "type": "string",
-                "const": self.0,
-            });
-            if let Some(p) = schema.get_mut("properties").and_then(|p| p.as_object_mut()) {
-                p.insert("kind".into(), kind.into());
-            }
-            if let Some(r) = schema.get_mut("required").and_then(|r| r.as_array_mut()) {
-                r.insert(0, "kind".into());
-            }
-        }
     }
 }
 
