@@ -126,7 +126,8 @@ def test_the_free_tool_axis_minimises_the_surge_as_the_command_does(tmp_path, cl
     # A spindle 120 mm off the flange axis: a turn about the drill moves the whole arm.
     path, program, process, stiffness = drilling(tmp_path, [120, 0, 250])
     setup = stiffid.Setup.from_file(path)
-    free = dict(free=["tool-rotation=-90..90/20"])
+    # Written as KRL: a G-code program has no word for the rotation chosen.
+    free = dict(free=["tool-rotation=-90..90/20"], output="krl")
     mine = stiffid.compensate(setup, stiffness=stiffness, program=program, process=process,
                               minimise="surge", **free)
     assert mine["document"]["free_tool_axis"]["objective"] == "surge"
@@ -134,7 +135,7 @@ def test_the_free_tool_axis_minimises_the_surge_as_the_command_does(tmp_path, cl
     assert exits.sum() == 2
     assert np.all(mine["surge_mm_s"][exits] <= mine["surge_before_mm_s"][exits])
     command = cli("compensate", "--setup", path, "--stiffness", stiffness, "--program", program, "--process", process,
-                  "--free", "tool-rotation=-90..90/20", "--minimise", "surge", "--out", tmp_path / "out.nc", "--json")
+                  "--free", "tool-rotation=-90..90/20", "--minimise", "surge", "--out", tmp_path / "out.src", "--json")
     rows = command["points"]
     for key in ["tool_rotation_deg", "surge_mm_s", "surge_before_mm_s"]:
         theirs = np.array([np.nan if r[key] is None else r[key] for r in rows])

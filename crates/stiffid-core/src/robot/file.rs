@@ -196,32 +196,28 @@ impl TransformFile {
 }
 
 /// The fixed-axis roll, pitch and yaw of `rotation` (rad, `R = Rz(yaw) Ry(pitch) Rx(roll)`) that
-/// give it back to rounding, for the files stiffid writes. Near pitch +-90 degrees (a
-/// ROS-Industrial `tool0`) the closed form loses half the digits (the arcsine of a number near
-/// 1); three Gauss-Newton steps on the rotation's error, solved by the SVD (the angles'
-/// Jacobian is singular at the gimbal lock, where only the sum or difference of roll and yaw
-/// matters), restore them.
+/// give it back to rounding, for the files stiffid writes, at any pitch. The pitch is the
+/// arctangent of the first column (the arcsine of a number near 1 loses half the digits near
+/// pitch +-90 degrees, a ROS-Industrial `tool0`). Roll and yaw are carried by elements that
+/// shrink with the cosine of the pitch, except one combination of them: `roll - yaw` (pitch >= 0)
+/// is `atan2(m01 - m12, m11 + m02)`, `roll + yaw` (pitch < 0) `atan2(-(m01 + m12), m11 - m02)`,
+/// exactly and from elements of size 1 to 2; that one is taken from them, the other from the
+/// small elements, whose error the rotation feels only through that cosine.
 pub fn rpy(rotation: &UnitQuaternion<f64>) -> [f64; 3] {
-    let (r, p, y) = rotation.euler_angles();
-    let mut a = nalgebra::Vector3::new(r, p, y);
-    for _ in 0..3 {
-        let at = UnitQuaternion::from_euler_angles(a.x, a.y, a.z);
-        let e = (rotation * at.inverse()).scaled_axis();
-        let (z, y_turned) = (
-            UnitQuaternion::from_euler_angles(0.0, 0.0, a.z),
-            UnitQuaternion::from_euler_angles(0.0, a.y, a.z),
-        );
-        let j = nalgebra::Matrix3::from_columns(&[
-            y_turned * nalgebra::Vector3::x(),
-            z * nalgebra::Vector3::y(),
-            nalgebra::Vector3::z(),
-        ]);
-        match j.svd(true, true).solve(&e, 1e-12) {
-            Ok(d) if d.iter().all(|v| v.is_finite()) => a += d,
-            _ => break,
-        }
-    }
-    a.into()
+    use std::f64::consts::TAU;
+    let m = rotation.to_rotation_matrix().into_inner();
+    let pitch = (-m[(2, 0)]).atan2(m[(0, 0)].hypot(m[(1, 0)]));
+    let (roll, yaw) = (m[(2, 1)].atan2(m[(2, 2)]), m[(1, 0)].atan2(m[(0, 0)]));
+    let sign = if pitch >= 0.0 { 1.0 } else { -1.0 };
+    let exact = match sign > 0.0 {
+        true => (m[(0, 1)] - m[(1, 2)]).atan2(m[(1, 1)] + m[(0, 2)]),
+        false => (-(m[(0, 1)] + m[(1, 2)])).atan2(m[(1, 1)] - m[(0, 2)]),
+    };
+    // The same combination from the small elements picks the turn (roll and yaw stay in
+    // -pi..pi of the closed form's branch).
+    let exact = exact + ((roll - sign * yaw - exact) / TAU).round() * TAU;
+    let r = 0.5 * (roll + sign * yaw + exact);
+    [r, pitch, sign * (r - exact)]
 }
 
 /// The angle of the rotation from `a` to `b`, rad, to rounding even when tiny (`2 atan2(|v|, |w|)`
@@ -484,7 +480,7 @@ mod rpy_tests {
     use super::{angle_between, rpy};
     use nalgebra::UnitQuaternion;
 
-    /// Near and at pitch -90 and +90 degrees the written angles give the rotation back to 1e-12
+    /// Near and at pitch -90 and +90 degrees the written angles give the rotation back to 1e-14
     /// rad, where the closed form misses by more than 1e-9 rad at least once.
     #[test]
     fn roll_pitch_yaw_give_the_rotation_back_at_the_gimbal_lock() {
@@ -497,7 +493,7 @@ mod rpy_tests {
                     let [r, p2, y] = rpy(&q);
                     let back = UnitQuaternion::from_euler_angles(r, p2, y);
                     let miss = angle_between(&back, &q);
-                    assert!(miss < 1e-12, "{pitch} {off}: {miss:e}");
+                    assert!(miss < 1e-14, "{pitch} {off}: {miss:e}");
                     let (r, p2, y) = q.euler_angles();
                     let back = UnitQuaternion::from_euler_angles(r, p2, y);
                     closed = closed.max(angle_between(&back, &q));

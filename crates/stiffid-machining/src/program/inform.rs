@@ -186,8 +186,18 @@ pub(crate) fn targets(text: &str) -> Result<Read> {
                 return Err(at(m.line, format!("{} {}{index:05}: a position in Cartesian form (line {}); stiffid reads base and station axes in pulses or ANGLE", m.word, kind.prefix(), p.line)));
             }
             for (k, (v, span)) in p.values.iter().enumerate() {
-                external[offset + k] =
-                    Some((v / pulses[6 + offset + k].unwrap_or(1.0), span.clone()));
+                let v = v / pulses[6 + offset + k].unwrap_or(1.0);
+                if !v.is_finite() {
+                    return Err(at(
+                        p.line,
+                        format!(
+                            "{}{index:05}: axis {}: {v} is not a finite value",
+                            kind.prefix(),
+                            k + 1
+                        ),
+                    ));
+                }
+                external[offset + k] = Some((v, span.clone()));
             }
         }
         let mut target = six(m.line, found, "C")?.with_external(external);
@@ -427,12 +437,12 @@ fn directive(line: u64, comment: &str, directives: &mut Directives) -> Result<()
         .map_err(|_| at(line, format!("'stiffid: {}: expected numbers", key.trim())))?;
     if numbers
         .iter()
-        .any(|n: &f64| !(n.is_finite() && *n != 0.0 && n.abs() <= 1e9))
+        .any(|n: &f64| !(n.is_finite() && (1e-6..=1e9).contains(&n.abs())))
     {
         return Err(at(
             line,
             format!(
-                "'stiffid: {}: expected pulses per unit, non-zero and at most 1e9 in size",
+                "'stiffid: {}: expected pulses per unit, from 1e-6 to 1e9 in size",
                 key.trim()
             ),
         ));

@@ -394,6 +394,16 @@ pub(crate) fn six(
                 format!("joint target without axis {} ({names}{})", k + 1, k + 1),
             )
         })?;
+        if !v.is_finite() {
+            return Err(at(
+                line,
+                format!(
+                    "axis {} ({names}{}): {v} is not a finite angle",
+                    k + 1,
+                    k + 1
+                ),
+            ));
+        }
         q_deg[k] = v;
         spans[k] = s;
     }

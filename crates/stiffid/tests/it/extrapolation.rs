@@ -390,7 +390,11 @@ fn hostile() -> impl proptest::strategy::Strategy<Value = f64> {
 }
 
 proptest::proptest! {
-    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+    #![proptest_config(proptest::prelude::ProptestConfig {
+        // A fixed seed: every run tries the same cases (set another to explore).
+        rng_seed: proptest::test_runner::RngSeed::Fixed(20_211_126),
+        ..proptest::prelude::ProptestConfig::with_cases(64)
+    })]
     /// A region with any of its numbers mutated is either refused or read within its documented
     /// ranges: angles within [-10 000, 10 000] deg, each lower at most its upper, the margin
     /// within [0, 360] deg.

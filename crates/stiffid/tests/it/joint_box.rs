@@ -39,6 +39,11 @@ fn first_violation_table() {
 }
 
 proptest! {
+    #![proptest_config(ProptestConfig {
+        // A fixed seed: every run tries the same cases (set another to explore).
+        rng_seed: proptest::test_runner::RngSeed::Fixed(20_211_126),
+        ..ProptestConfig::default()
+    })]
     #[test]
     fn contains_first_violation_check_and_clamp_agree(
         lower in prop::array::uniform6(-4.0f64..0.0),

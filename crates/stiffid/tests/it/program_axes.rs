@@ -249,6 +249,31 @@ fn malformed_external_axes_and_inform_jobs_are_refused_naming_the_line() {
             "pulses_per_deg",
         ),
         (
+            INFORM.replace(
+                "= 100 100 100 100 100 100",
+                "= 100 -3.03707932596608e-309 100 100 100 100",
+            ),
+            Dialect::Inform,
+            20,
+            "from 1e-6 to 1e9",
+        ),
+        (
+            INFORM
+                .replace("= 100 100 100 100 100 100", "= 1e-6 100 100 100 100 100")
+                .replace("C00000=1000,", &format!("C00000=1{},", "0".repeat(303))),
+            Dialect::Inform,
+            23,
+            "not a finite angle",
+        ),
+        (
+            INFORM
+                .replace("external_pulses = 100", "external_pulses = 1e-6")
+                .replace("BC00000=150050", &format!("BC00000=1{}", "0".repeat(303))),
+            Dialect::Inform,
+            10,
+            "not a finite value",
+        ),
+        (
             INFORM.replace("'stiffid: external_pulses = 100\r\n", ""),
             Dialect::Inform,
             22,
