@@ -22,7 +22,7 @@
 //!    setup's `[tool] mass_kg` and `centre_of_mass_mm`, the tool's weight joins every point's
 //!    wrench ([`stiffid_core::setup::Payload::wrench`]).
 //! 3. [`compensate::path_with_exits`] compensates every point (with
-//!    [`compensate::Options::free_lead_tilt`], each point's cone its operation's
+//!    [`compensate::FreeVariables::lead_tilt`], each point's cone its operation's
 //!    [`Operation::cone`]; a rapid move, a point no operation covers and a drilling point none), refusing any whose compensated
 //!    axis angles leave the joint limits (naming its line); the free tool axis may minimise the
 //!    surge at the drilling exits ([`dynamics::exit_thrusts`]).
@@ -35,12 +35,12 @@
 //!    targets are compensated with the external axes as they give them); G-code with the compensated TCP positions in the part
 //!    frame (the controller's forward kinematics of the compensated posture, [`compensate_for`]:
 //!    where the controller must be sent so that the loaded tool lands on the programmed one). With a free station or positioner
-//!    ([`compensate::Options::free_station`], [`compensate::Options::free_positioner`]) the
+//!    ([`compensate::FreeVariables::station`], [`compensate::FreeVariables::positioner`]) the
 //!    values chosen replace the program's in every target (G-code: every point written carries
 //!    all its mapped external axes, [`gcode::GCode::write_with_external`]), and the targets are
 //!    the compensated postures there. With a free configuration
-//!    ([`compensate::Options::free_configuration`]) the whole program is compensated in every
-//!    configuration of the arm and the best kept ([`compensate::FreeConfiguration`]): one
+//!    ([`compensate::FreeVariables::configuration`]) the whole program is compensated in every
+//!    configuration of the arm and the best kept ([`compensate::FreeVariables::configuration`]): one
 //!    configuration per program, or with [`compensate::Scope::Run`] one per run
 //!    ([`compensate::starts`]: a cut and the joint moves that lead to it, G-code `G0`, robot
 //!    programs' `PTP`, `MoveJ`, `MoveAbsJ`, `J`, `MOVJ`); a joint program's targets are solved
@@ -262,7 +262,7 @@ pub struct Report {
     pub program: String,
     /// What the user should know: plunges without a milling force, points no operation covers.
     pub warnings: Vec<String>,
-    /// With a free configuration ([`compensate::Options::free_configuration`]): every
+    /// With a free configuration ([`compensate::FreeVariables::configuration`]): every
     /// configuration of the arm evaluated over the whole program, the one chosen.
     pub configurations: Option<compensate::Configurations>,
 }
@@ -332,8 +332,8 @@ pub fn compensate_for(
     let indices: Vec<Option<usize>> = operations.iter().map(|o| o.map(|(i, _)| i)).collect();
     let nominal: Vec<Isometry3<f64>> = poses.iter().map(|p| p.2).collect();
     let thrusts = dynamics::exit_thrusts(process, &nominal, &indices);
-    let free = options.frees_external();
-    let cones = match &options.free_lead_tilt {
+    let free = options.free.frees_external();
+    let cones = match &options.free.lead_tilt {
         Some(l) => {
             let allowed: Vec<f64> = (operations.iter())
                 .map(|o| o.map_or(0.0, |(_, op)| op.cone))
@@ -358,7 +358,7 @@ pub fn compensate_for(
             }
         }
     };
-    let (mut results, configurations) = match options.free_configuration {
+    let (mut results, configurations) = match options.free.configuration {
         None => (evaluate(0, &points, options)?, None),
         Some(_) => {
             let starts = compensate::starts(&joint);

@@ -73,12 +73,7 @@ fn benches(c: &mut Criterion) {
     let options = Options {
         q0: q,
         ik: ik::Options::default(),
-        free_tool_axis: None,
-        free_station: None,
-        free_positioner: None,
-        free_lead_tilt: None,
-        free_tilt: None,
-        free_configuration: None,
+        free: compensate::FreeVariables::default(),
         level: 0.95,
         max_iterations: compensate::MAX_ITERATIONS,
         force_tolerance: compensate::budget::DEFAULT_FORCE_TOLERANCE,
@@ -124,13 +119,15 @@ fn benches(c: &mut Criterion) {
     );
     // One free variable: the rotation about the spindle, +-30 deg on a 5 deg grid (13 angles),
     // chosen by dynamic programming to minimise the worst point's error bound.
-    let free = compensate::FreeToolAxis {
-        objective: compensate::Objective::Bound,
+    let rotation = compensate::FreeRange::checked(&compensate::Variable::ToolRotation, 30.0, 5.0);
+    let free = compensate::FreeVariables {
+        tool_rotation: rotation.ok(),
+        minimise: compensate::Objective::Bound,
         aggregate: compensate::Aggregate::Max,
-        ..compensate::FreeToolAxis::try_from_degrees(5.0, 30.0).unwrap()
+        ..compensate::FreeVariables::default()
     };
     let free_options = Options {
-        free_tool_axis: Some(free),
+        free,
         ..options.clone()
     };
     group.bench_function(
@@ -150,7 +147,7 @@ fn benches(c: &mut Criterion) {
 /// minimising the worst point's bound.
 fn track(group: &mut criterion::BenchmarkGroup<criterion::measurement::WallTime>) {
     use nalgebra::{Isometry3, UnitQuaternion, Vector3};
-    use stiffid::machining::compensate::{Aggregate, FreeStation, FreeToolAxis, Objective};
+    use stiffid::machining::compensate::{Aggregate, FreeRange, FreeVariables, Variable};
     use stiffid::robot::external::ExternalValues;
     let text = include_str!("../../../examples/track/track-cell.toml");
     let s = setup::parse(text, "track-cell.toml", |name, _| {
@@ -172,12 +169,12 @@ fn track(group: &mut criterion::BenchmarkGroup<criterion::measurement::WallTime>
             external: e,
         })
         .collect();
-    let station = FreeStation {
-        aggregate: Aggregate::Max,
-        ..FreeStation::try_from_mm(60.0, 10.0).unwrap()
-    };
     let alone = Options {
-        free_station: Some(station),
+        free: FreeVariables {
+            station: FreeRange::checked(&Variable::Station, 60.0, 10.0).ok(),
+            aggregate: Aggregate::Max,
+            ..FreeVariables::default()
+        },
         ..Options::for_setup(&s)
     };
     group.bench_function(
@@ -188,15 +185,8 @@ fn track(group: &mut criterion::BenchmarkGroup<criterion::measurement::WallTime>
             })
         },
     );
-    let rotation = FreeToolAxis {
-        objective: Objective::Bound,
-        aggregate: Aggregate::Max,
-        ..FreeToolAxis::try_from_degrees(5.0, 30.0).unwrap()
-    };
-    let both = Options {
-        free_tool_axis: Some(rotation),
-        ..alone
-    };
+    let mut both = alone.clone();
+    both.free.tool_rotation = FreeRange::checked(&Variable::ToolRotation, 30.0, 5.0).ok();
     group.bench_function(
         "track, station and rotation (13 x 13 states), worst bound",
         |b| {

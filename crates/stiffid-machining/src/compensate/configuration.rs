@@ -3,13 +3,14 @@
 //! objective kept (module docs of [`super`], "The free configuration").
 
 use super::feasible::Checks;
-use super::{Aggregate, Compensated, Compliance, FreeConfiguration, Model, Objective, Options};
+use super::{Aggregate, Compensated, Compliance, FreeVariables, Model, Objective, Options};
 use super::{PathPoint, Removed, Target};
 use nalgebra::{Isometry3, Vector6};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use std::ops::Range;
+use stiffid_core::common::error::JobOption;
 use stiffid_core::robot::configuration::Configuration;
 use stiffid_core::robot::ik::{self, tool_pose};
 use stiffid_core::setup::Arm;
@@ -135,18 +136,15 @@ pub(super) fn choose_one(
     (options, floor): (&Options, f64),
     evaluate: impl Fn(&[PathPoint], &Options) -> Result<Vec<Compensated>>,
 ) -> Result<(Vec<Compensated>, Configurations)> {
-    let free = free_configuration(options)?;
-    free.check(points.len())?;
+    let free = free_configuration(options, points.len())?;
     let Some(first) = points.first() else {
         return Err(Error::InvalidField {
             field: "path".into(),
             message: "no path points".into(),
         });
     };
-    let alone = Options {
-        free_configuration: None,
-        ..options.clone()
-    };
+    let mut alone = options.clone();
+    alone.free.configuration = None;
     let own_start = own_start(arm, first, options);
     let starts = starts(arm, first, own_start, options);
     let model = Model::new(arm, compliance)?;
@@ -206,7 +204,7 @@ pub(super) fn choose_one(
                 }
             }
             Ok(results) => {
-                let costs: Vec<f64> = results.iter().map(|r| cost(free.objective, r)).collect();
+                let costs: Vec<f64> = results.iter().map(|r| cost(free.minimise, r)).collect();
                 branch.peak = Some(costs.iter().copied().fold(0.0, f64::max));
                 branch.sum = Some(costs.iter().sum());
                 branch.refused = refusal(arm.robot(), &configuration, (points, &results), &checks);
@@ -252,7 +250,7 @@ fn finish(
     branches: Vec<Branch>,
     best: Option<(usize, Vec<Compensated>)>,
     own_error: Option<Error>,
-    free: FreeConfiguration,
+    free: FreeVariables,
 ) -> Result<(Vec<Compensated>, Configurations)> {
     let Some((chosen, results)) = best else {
         return Err(own_error.unwrap_or_else(|| Error::InvalidField {
@@ -281,7 +279,7 @@ fn finish(
         ));
     }
     let configurations = Configurations {
-        objective: free.objective,
+        objective: free.minimise,
         aggregate: free.aggregate,
         branches,
         chosen,
@@ -302,10 +300,8 @@ pub(super) fn evaluate_branch(
     (options, branch): (&Options, &Branch),
     evaluate: impl Fn(&[PathPoint], &Options) -> Result<Vec<Compensated>>,
 ) -> Result<Vec<Compensated>> {
-    let alone = Options {
-        free_configuration: None,
-        ..options.clone()
-    };
+    let mut alone = options.clone();
+    alone.free.configuration = None;
     match branch.own {
         true => evaluate(points, &alone),
         false => evaluate(
@@ -386,7 +382,7 @@ fn key(c: &Configuration) -> u8 {
 
 /// One posture per configuration that reaches the first point's pose, ordered by [`key`]: the
 /// path's own, and for each other the solution nearest to it (else to the start posture) among
-/// inverse kinematics from [`FreeConfiguration::SEEDS`] seeded random starts and the own
+/// inverse kinematics from [`super::CONFIGURATION_SEEDS`] seeded random starts and the own
 /// posture with its wrist turned over.
 fn starts(
     arm: &Arm,
@@ -402,7 +398,7 @@ fn starts(
     };
     let near = own.unwrap_or(options.q0);
     let mut rng = ChaCha8Rng::seed_from_u64(options.ik.seed);
-    let mut seeds: Vec<Vector6<f64>> = (0..FreeConfiguration::SEEDS)
+    let mut seeds: Vec<Vector6<f64>> = (0..super::CONFIGURATION_SEEDS)
         .map(|_| ik::random_posture(robot, &mut rng))
         .collect();
     let pi = std::f64::consts::PI;
@@ -428,15 +424,26 @@ fn starts(
     best.iter().flatten().map(|b| b.1).collect()
 }
 
-/// The free configuration of `options`.
+/// The free variables of `options` with a free configuration, for a path of `points` points.
 ///
 /// # Errors
-/// [`Error::InvalidField`] (`free_configuration`) without one.
-pub(super) fn free_configuration(options: &Options) -> Result<FreeConfiguration> {
-    options
-        .free_configuration
-        .ok_or_else(|| Error::InvalidField {
+/// [`Error::InvalidField`] (`free_configuration`) without one; [`Error::InvalidOption`]
+/// ([`JobOption::FreeConfiguration`]) for more than [`super::MAX_CONFIGURATION_POINTS`] points.
+pub(super) fn free_configuration(options: &Options, points: usize) -> Result<FreeVariables> {
+    if options.free.configuration.is_none() {
+        return Err(Error::InvalidField {
             field: "free_configuration".into(),
             message: "missing: the configurations are evaluated for a free configuration".into(),
-        })
+        });
+    }
+    if points > super::MAX_CONFIGURATION_POINTS {
+        return Err(Error::InvalidOption {
+            option: JobOption::FreeConfiguration,
+            message: format!(
+                "{points} path points: at most {} (every configuration holds the whole path)",
+                super::MAX_CONFIGURATION_POINTS
+            ),
+        });
+    }
+    Ok(options.free)
 }

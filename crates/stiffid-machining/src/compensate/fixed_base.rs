@@ -6,7 +6,7 @@ use super::feasible::Checks;
 use super::lead_tilt::Leaning;
 use super::refine::{refine, Evaluate, Layout};
 use super::tool_axis::{choose, column, lean_axes, rotation_axis, Column, Cost, Grid, Move};
-use super::{Aggregate, FreeToolAxis, Model, Options, Removed};
+use super::{Aggregate, FreeRange, Model, Options, Removed};
 use nalgebra::Vector6;
 use rayon::prelude::*;
 use stiffid_core::robot::external::ExternalValues;
@@ -23,12 +23,12 @@ pub(super) fn optimise_tool_axis(
     model: &Model,
     (nominal, own): (&[Vector6<f64>], &[ExternalValues]),
     wrenches: &[Vector6<f64>],
-    (rotation, leaning, aggregate): (Option<&FreeToolAxis>, &Leaning, Aggregate),
+    (rotation, leaning, aggregate): (Option<&FreeRange>, &Leaning, Aggregate),
     (cost, checks): (&Cost, &Checks),
     options: &Options,
 ) -> Picked {
     let ik_options = &options.ik;
-    let angles = rotation.map_or(vec![0.0], FreeToolAxis::angles);
+    let angles = rotation.map_or(vec![0.0], FreeRange::angles);
     let a = angles.len();
     let columns: Vec<Column> = (0..leaning.len() * a)
         .into_par_iter()

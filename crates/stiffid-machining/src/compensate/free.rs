@@ -2,35 +2,13 @@
 //! range and its step) and the run's one objective ([`Freedom`]), parsed and checked here for the
 //! command line (`--free tool-rotation=-90..90/5`) and Python (`free=["tool-rotation=-90..90/5"]`).
 
-use super::options::{
-    Aggregate, FreeConfiguration, FreeLeadTilt, FreePositioner, FreeStation, FreeToolAxis,
-    Objective, Options,
-};
+use super::options::Options;
+use super::variables::{Aggregate, FreeRange, FreeVariables, LeadTilt, Objective, Variable};
 use super::Scope;
 use stiffid_core::common::error::JobOption;
 use stiffid_core::common::words::number;
 use stiffid_core::robot::external::{ExternalAxes, Role};
 use stiffid_core::{Error, Result, Setup};
-
-/// A variable a compensation may move from the path's own value at every point.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub enum Variable {
-    /// The rotation about the tool z axis (`tool-rotation`, deg).
-    ToolRotation,
-    /// The lead and the tilt of the tool axis within a cone (`lead-tilt`, deg).
-    LeadTilt,
-    /// The track station: the carrier's first axis (`station`, mm).
-    Station,
-    /// The positioner's last axis, the table's turn (`positioner`, deg).
-    Positioner,
-    /// A two-axis positioner's first axis (`tilt`, deg).
-    Tilt,
-    /// The configuration of the arm (`configuration`, `configuration=run`: one per run).
-    Configuration(Scope),
-    /// An external axis named as the setup's cell names it: the carrier's first axis is the
-    /// station, the positioner's last the table's turn, a two-axis positioner's first the tilt.
-    Axis(String),
-}
 
 /// One free variable: what moves, how far from the path's own value (`range`, `-range..range`)
 /// and on which grid step (also the most it changes between consecutive points), in the units
@@ -102,21 +80,6 @@ pub fn retired(name: &str) -> Option<(&'static str, &'static str)> {
         .iter()
         .find(|(n, _, _)| *n == name)
         .map(|(_, option, value)| (*option, *value))
-}
-
-impl Variable {
-    /// The variable's name as [`Free::parse`] reads it.
-    pub fn name(&self) -> &str {
-        match self {
-            Variable::ToolRotation => "tool-rotation",
-            Variable::LeadTilt => "lead-tilt",
-            Variable::Station => "station",
-            Variable::Positioner => "positioner",
-            Variable::Tilt => "tilt",
-            Variable::Configuration(_) => "configuration",
-            Variable::Axis(name) => name,
-        }
-    }
 }
 
 impl Free {
@@ -258,16 +221,15 @@ fn invalid(text: &str, why: &str) -> Error {
 }
 
 impl Freedom {
-    /// Sets the free variables of `options` (all of them minimising [`Freedom::minimise`], their
-    /// costs added up by [`Freedom::objective`]) and the feasibility and refinement they use,
-    /// the axis names resolved against `setup`'s cell. Without a free variable, the options that
-    /// only mean something with one are refused.
+    /// Sets the free variables of `options` ([`Options::free`]: all of them minimising
+    /// [`Freedom::minimise`], their costs added up by [`Freedom::objective`]) and the
+    /// feasibility and refinement they use, the axis names resolved against `setup`'s cell.
+    /// Without a free variable, the options that only mean something with one are refused.
     ///
     /// # Errors
     /// [`Error::InvalidOption`] ([`JobOption::Free`]) for more than [`MAX_FREE`] variables, one
     /// given twice or an unknown name; those of each variable's range and step
-    /// ([`FreeToolAxis::try_from_degrees`], [`FreeStation::try_from_mm`],
-    /// [`FreePositioner::try_with`], [`FreePositioner::try_tilt`], [`FreeLeadTilt::try_with`]);
+    /// ([`FreeRange::checked`], [`LeadTilt::checked`], [`FreeVariables::validate`]);
     /// [`Error::OptionCombination`] for `minimise`, `objective`, `margin_deg`, `max_condition` or
     /// `refine` without a free variable.
     pub fn apply(&self, setup: &Setup, options: &mut Options) -> Result<()> {
@@ -278,12 +240,15 @@ impl Freedom {
                 &format!("at most {MAX_FREE}"),
             ));
         }
-        let minimise = self.minimise.unwrap_or(Objective::Bound);
-        let aggregate = self.objective.unwrap_or_default();
+        let mut free = FreeVariables {
+            minimise: self.minimise.unwrap_or_default(),
+            aggregate: self.objective.unwrap_or_default(),
+            ..FreeVariables::default()
+        };
         let axes = setup.robot().external();
         let mut seen: Vec<Variable> = Vec::new();
-        for free in &self.free {
-            let variable = free.resolve(axes)?;
+        for given in &self.free {
+            let variable = given.resolve(axes)?;
             let key = match &variable {
                 Variable::Configuration(_) => Variable::Configuration(Scope::Program),
                 v => v.clone(),
@@ -295,8 +260,10 @@ impl Freedom {
                 ));
             }
             seen.push(key);
-            set(options, &variable, free, minimise, aggregate)?;
+            set(&mut free, &variable, given)?;
         }
+        free.validate()?;
+        options.free = free;
         if let Some(m) = self.margin_deg {
             options.feasible.margin = m.to_radians();
         }
@@ -331,75 +298,34 @@ impl Freedom {
     }
 }
 
-/// Sets the one engine field of `variable` in `options`.
-fn set(
-    options: &mut Options,
-    variable: &Variable,
-    free: &Free,
-    minimise: Objective,
-    aggregate: Aggregate,
-) -> Result<()> {
-    let (range, step) = (free.range, free.step);
+/// Sets the one field of `variable` in `free`, the range and step of `given` (the variable's
+/// defaults where it gives none, [`Variable::limits`]).
+fn set(free: &mut FreeVariables, variable: &Variable, given: &Free) -> Result<()> {
+    let l = variable.limits();
+    let step = given.step.unwrap_or(l.step);
+    let range = || {
+        given.range.or(l.range).ok_or_else(|| {
+            let name = variable.name();
+            invalid(
+                name,
+                &format!("expected its range, {name}=-R..R/STEP ({})", l.unit),
+            )
+        })
+    };
     match variable {
         Variable::ToolRotation => {
-            let f = FreeToolAxis::try_from_degrees(step.unwrap_or(2.0), range.unwrap_or(90.0))?;
-            options.free_tool_axis = Some(FreeToolAxis {
-                objective: minimise,
-                aggregate,
-                ..f
-            });
+            free.tool_rotation = Some(FreeRange::checked(variable, range()?, step)?)
         }
-        Variable::Station => {
-            let range = need_range(free, "station", "mm")?;
-            let s = FreeStation::try_from_mm(range, step.unwrap_or(10.0))?;
-            options.free_station = Some(FreeStation {
-                objective: minimise,
-                aggregate,
-                ..s
-            });
+        Variable::Station => free.station = Some(FreeRange::checked(variable, range()?, step)?),
+        Variable::Positioner => {
+            free.positioner = Some(FreeRange::checked(variable, range()?, step)?)
         }
-        Variable::Positioner | Variable::Tilt => {
-            let tilt = *variable == Variable::Tilt;
-            let range = need_range(free, if tilt { "tilt" } else { "positioner" }, "deg")?;
-            let mut p = match tilt {
-                true => FreePositioner::try_tilt(range, step.unwrap_or(5.0), None, aggregate)?,
-                false => FreePositioner::try_with(range, step.unwrap_or(5.0), None, aggregate)?,
-            };
-            p.objective = minimise;
-            *(if tilt {
-                &mut options.free_tilt
-            } else {
-                &mut options.free_positioner
-            }) = Some(p);
-        }
-        Variable::LeadTilt => {
-            let mut l = FreeLeadTilt::try_with(range, step.unwrap_or(2.0), None, aggregate)?;
-            l.objective = minimise;
-            l.validate()?;
-            options.free_lead_tilt = Some(l);
-        }
-        Variable::Configuration(per) => {
-            let c = FreeConfiguration {
-                objective: minimise,
-                aggregate,
-                per: *per,
-            };
-            c.check(0)?;
-            options.free_configuration = Some(c);
-        }
+        Variable::Tilt => free.tilt = Some(FreeRange::checked(variable, range()?, step)?),
+        Variable::LeadTilt => free.lead_tilt = Some(LeadTilt::checked(given.range, step)?),
+        Variable::Configuration(per) => free.configuration = Some(*per),
         Variable::Axis(name) => return Err(invalid(name, "unknown variable")),
     }
     Ok(())
-}
-
-/// The range of a variable that has no default.
-fn need_range(free: &Free, name: &str, unit: &str) -> Result<f64> {
-    free.range.ok_or_else(|| {
-        invalid(
-            name,
-            &format!("expected its range, {name}=-R..R/STEP ({unit})"),
-        )
-    })
 }
 
 #[cfg(test)]

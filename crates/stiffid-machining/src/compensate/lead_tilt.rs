@@ -1,24 +1,21 @@
 //! The tool axis' lead and tilt as free variables: the axis leaned from the path's own within a
 //! cone, the TCP on the path's point (module docs of [`super`], "Lead and tilt").
 
-use super::options::{offsets, FreeLeadTilt, FreeToolAxis, Options};
+use super::options::Options;
+use super::variables::{offsets, LeadTilt, MAX_GRID_CELLS};
 use nalgebra::{Isometry3, UnitQuaternion, Vector3};
 use stiffid_core::common::error::JobOption;
 use stiffid_core::common::words::number;
 use stiffid_core::{Error, Result};
 
-/// Each of `points` points' cone of `free`, rad: the path file's ([`FreeLeadTilt::cone`]) at every
+/// Each of `points` points' cone of `free`, rad: the path file's ([`LeadTilt::cone`]) at every
 /// point, else `process` (one per point: its operation's), checked.
 ///
 /// # Errors
 /// [`Error::InvalidOption`] ([`JobOption::ConeDeg`]) for a path file's points without a cone
 /// or a program's with one (the process file gives it), and for a process whose operations
 /// allow no lean; ([`JobOption::LeadTiltStepDeg`]) for a step above the largest cone.
-pub(crate) fn cones(
-    free: &FreeLeadTilt,
-    points: usize,
-    process: Option<&[f64]>,
-) -> Result<Vec<f64>> {
+pub(crate) fn cones(free: &LeadTilt, points: usize, process: Option<&[f64]>) -> Result<Vec<f64>> {
     let refuse = |option, message: String| Error::InvalidOption { option, message };
     let cones = match (free.cone, process) {
         (Some(c), None) => vec![c; points],
@@ -34,12 +31,12 @@ pub(crate) fn cones(
                 .into(),
         ));
     }
-    if free.max_step > largest * (1.0 + 1e-12) {
+    if free.step > largest * (1.0 + 1e-12) {
         return Err(refuse(
             JobOption::LeadTiltStepDeg,
             format!(
                 "{}: expected at most the largest cone, {} deg",
-                number(free.max_step.to_degrees()),
+                number(free.step.to_degrees()),
                 number(largest.to_degrees())
             ),
         ));
@@ -47,38 +44,36 @@ pub(crate) fn cones(
     Ok(cones)
 }
 
-/// Refuses a fixed-base grid of more than [`FreeToolAxis::MAX_GRID_CELLS`] cells (leans x
+/// Refuses a fixed-base grid of more than [`MAX_GRID_CELLS`] cells (leans x
 /// rotations x `points`) with cones up to `largest` (rad); without a free lean, the free tool
-/// axis' own check ([`FreeToolAxis::check_grid`]).
+/// rotation's own check ([`super::FreeRange::check_rotation_grid`]).
 ///
 /// # Errors
 /// [`Error::InvalidOption`] ([`JobOption::LeadTiltStepDeg`]) with the grid's size and what to
-/// change; those of [`FreeToolAxis::check_grid`].
+/// change; those of [`super::FreeRange::check_rotation_grid`].
 pub(super) fn check_cells(options: &Options, points: usize, largest: f64) -> Result<()> {
-    let Some(l) = &options.free_lead_tilt else {
-        return options
-            .free_tool_axis
-            .map_or(Ok(()), |f| f.check_grid(points));
+    let Some(l) = &options.free.lead_tilt else {
+        return (options.free.tool_rotation).map_or(Ok(()), |f| f.check_rotation_grid(points));
     };
     let per = lean_count(l, largest);
-    let angles = options.free_tool_axis.map_or(1.0, |f| f.angle_count());
+    let angles = options.free.tool_rotation.map_or(1.0, |f| f.angle_count());
     let cells = per * angles * points as f64;
-    if cells <= FreeToolAxis::MAX_GRID_CELLS {
+    if cells <= MAX_GRID_CELLS {
         return Ok(());
     }
     Err(Error::InvalidOption {
         option: JobOption::LeadTiltStepDeg,
         message: format!(
             "{} deg within a cone of {} deg makes {per} leans x {angles} rotations x {points} path points = {cells:.3e} cells; at most {:.0e} (a larger step, a smaller cone, a coarser rotation grid or a shorter path)",
-            number(l.max_step.to_degrees()),
+            number(l.step.to_degrees()),
             number(largest.to_degrees()),
-            FreeToolAxis::MAX_GRID_CELLS
+            MAX_GRID_CELLS
         ),
     })
 }
 
 /// [`check_cells`] while a path streams in, `read` points read so far (its length unknown):
-/// refuses a grid past [`FreeToolAxis::MAX_GRID_CELLS`] naming the states per path point
+/// refuses a grid past [`MAX_GRID_CELLS`] naming the states per path point
 /// (leans x rotations) and the most path points the limit allows, never a count of the path's
 /// points.
 ///
@@ -89,13 +84,13 @@ pub(super) fn check_streaming(options: &Options, read: usize, largest: f64) -> R
     if check_cells(options, read, largest).is_ok() {
         return Ok(());
     }
-    let angles = options.free_tool_axis.map_or(1.0, |f| f.angle_count());
-    let (option, grid, per, change) = match (&options.free_lead_tilt, &options.free_tool_axis) {
+    let angles = options.free.tool_rotation.map_or(1.0, |f| f.angle_count());
+    let (option, grid, per, change) = match (&options.free.lead_tilt, &options.free.tool_rotation) {
         (Some(l), _) => (
             JobOption::LeadTiltStepDeg,
             format!(
                 "{} deg within a cone of {} deg makes {} leans x {angles} rotations",
-                number(l.max_step.to_degrees()),
+                number(l.step.to_degrees()),
                 number(largest.to_degrees()),
                 lean_count(l, largest)
             ),
@@ -106,7 +101,7 @@ pub(super) fn check_streaming(options: &Options, read: usize, largest: f64) -> R
             JobOption::MaxStepDeg,
             format!(
                 "{} deg with a range of +-{} deg makes {angles} rotations",
-                number(f.max_step.to_degrees()),
+                number(f.step.to_degrees()),
                 number(f.range.to_degrees())
             ),
             1.0,
@@ -115,7 +110,7 @@ pub(super) fn check_streaming(options: &Options, read: usize, largest: f64) -> R
         (None, None) => return Ok(()),
     };
     let states = per * angles;
-    let limit = FreeToolAxis::MAX_GRID_CELLS;
+    let limit = MAX_GRID_CELLS;
     let most = match (limit / states).floor() {
         0.0 => "not one path point".to_string(),
         n => format!("at most {n} path points"),
@@ -130,8 +125,8 @@ pub(super) fn check_streaming(options: &Options, read: usize, largest: f64) -> R
 
 /// The number of `(lead, tilt)` states of `free` within cones up to `largest` (rad), as a
 /// float: `(2 floor(largest / max_step) + 1)^2`.
-pub(super) fn lean_count(free: &FreeLeadTilt, largest: f64) -> f64 {
-    (2.0 * (largest / free.max_step + 1e-9).floor() + 1.0).powi(2)
+pub(super) fn lean_count(free: &LeadTilt, largest: f64) -> f64 {
+    (2.0 * (largest / free.step + 1e-9).floor() + 1.0).powi(2)
 }
 
 /// The lean states of the grid over cones whose largest is `largest` (rad): the offsets of lead
@@ -149,7 +144,7 @@ struct Leans {
 impl Leans {
     /// The leans of `free` within cones up to `largest`, rad; `None` without `free`: the one
     /// state `(0, 0)`.
-    pub fn new(free: Option<&FreeLeadTilt>, largest: f64) -> Self {
+    pub fn new(free: Option<&LeadTilt>, largest: f64) -> Self {
         let Some(free) = free else {
             return Leans {
                 offsets: Vec::new(),
@@ -157,13 +152,13 @@ impl Leans {
                 states: vec![(0.0, 0.0)],
             };
         };
-        let offsets = offsets(largest, free.max_step);
+        let offsets = offsets(largest, free.step);
         let states = (offsets.iter())
             .flat_map(|&l| offsets.iter().map(move |&t| (l, t)))
             .collect();
         Leans {
             offsets,
-            step: free.max_step,
+            step: free.step,
             states,
         }
     }
@@ -206,7 +201,7 @@ pub(super) struct Leaning {
 impl Leaning {
     /// The leaning of `free` for points at `poses` (their nominal TCP poses, in one frame) with
     /// their `cones` (rad, one per point); the one state of no lean without `free`.
-    pub fn new(free: Option<&FreeLeadTilt>, poses: &[Isometry3<f64>], cones: Vec<f64>) -> Self {
+    pub fn new(free: Option<&LeadTilt>, poses: &[Isometry3<f64>], cones: Vec<f64>) -> Self {
         let largest = cones.iter().copied().fold(0.0, f64::max);
         Leaning {
             leans: Leans::new(free, largest),

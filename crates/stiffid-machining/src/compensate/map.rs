@@ -17,7 +17,7 @@ use super::lead_tilt::{lean, lean_frames};
 use super::station::{Own, Station};
 use super::stream::nominal_postures;
 use super::tool_axis::{column, Cost, Move};
-use super::{Compliance, FreeStation, FreeToolAxis, MapVariable, Model, Options, PathPoint};
+use super::{Compliance, FreeRange, MapVariable, Model, Options, PathPoint, Variable};
 use nalgebra::{DMatrix, Isometry3, Translation3, UnitQuaternion, Vector3, Vector6};
 use rayon::prelude::*;
 use stiffid_core::cell::{bodies, body_box, body_floor, Part};
@@ -159,13 +159,15 @@ pub fn map(
     let leans = leans(&at.poses, chosen);
     let (angles, stations, cells) = match options.map_over {
         MapVariable::Rotation => {
-            let free = match options.free_tool_axis {
+            let free = match options.free.tool_rotation {
                 Some(f) => f,
-                None => {
-                    FreeToolAxis::try_from_degrees(Map::DEFAULT_STEP_DEG, Map::DEFAULT_RANGE_DEG)?
-                }
+                None => FreeRange::checked(
+                    &Variable::ToolRotation,
+                    Map::DEFAULT_RANGE_DEG,
+                    Map::DEFAULT_STEP_DEG,
+                )?,
             };
-            free.check_grid(points.len())?;
+            free.check_rotation_grid(points.len())?;
             let angles = free.angles();
             let values = chosen.iter().map(|c| c.external.as_slice().to_vec());
             let st = moved(arm, &at, values);
@@ -274,11 +276,13 @@ fn track(
     at: &Own,
     (chosen, leans): (&[ChosenValues], &[Option<UnitQuaternion<f64>>]),
 ) -> Result<(Vec<f64>, Vec<Cells>)> {
-    let station = match mapped.options.free_station {
+    let station = match mapped.options.free.station {
         Some(s) => s,
-        None => {
-            FreeStation::try_from_mm(Map::DEFAULT_STATION_RANGE_MM, Map::DEFAULT_STATION_STEP_MM)?
-        }
+        None => FreeRange::checked(
+            &Variable::Station,
+            Map::DEFAULT_STATION_RANGE_MM,
+            Map::DEFAULT_STATION_STEP_MM,
+        )?,
     };
     if arm.robot().external().is_none_or(|c| c.carrier_len() == 0) {
         return Err(Error::InvalidOption {
@@ -287,12 +291,8 @@ fn track(
         });
     }
     let offsets = station.offsets();
-    let only = Options {
-        free_station: Some(station),
-        free_positioner: None,
-        free_tilt: None,
-        ..mapped.options.clone()
-    };
+    let mut only = mapped.options.clone();
+    (only.free.station, only.free.positioner, only.free.tilt) = (Some(station), None, None);
     super::station::check_grid(&only, offsets.len() as f64, at.values.len())?;
     let rotations: Vec<f64> = chosen.iter().map(|c| c.rotation).collect();
     let cells = (offsets.par_iter())

@@ -23,9 +23,9 @@
 //!
 //! ## The free tool axis
 //! In 5-axis milling and drilling the rotation about the spindle (tool z) is free. With
-//! [`FreeToolAxis`], every path point's pose is turned about its tool z by the angle that minimises
+//! [`FreeVariables::tool_rotation`], every path point's pose is turned about its tool z by the angle that minimises
 //! the TCP translation deflection, within the joint limits and with at most
-//! [`FreeToolAxis::max_step`] between consecutive points: dynamic programming over a grid of
+//! its step ([`FreeRange::step`]) between consecutive points: dynamic programming over a grid of
 //! angles, each angle's postures continued along the path by inverse kinematics; a point only takes
 //! an angle whose deflection is no larger than at the nominal angle (so the nominal path is always
 //! feasible and no point's deflection rises); the sum of the deflections is minimised, plus a
@@ -49,7 +49,7 @@
 //! deflection, condition number and distance to the joint limits at every angle of the grid.
 //!
 //! ## The free station
-//! On a robot on a track the station is free too: with [`FreeStation`], [`path_on_track`] moves
+//! On a robot on a track the station is free too: with [`FreeVariables::station`], [`path_on_track`] moves
 //! the carrier's first axis at every point of a path file (and [`crate::compensate()`]
 //! at every target of a program, written back with the stations chosen) by an offset from the
 //! path's own station on a grid of `max_step` spacing within `+-range` (and the axis's travel), jointly
@@ -110,7 +110,7 @@
 //! ([`Removed::speed`]).
 //!
 //! ## The free positioner
-//! With [`FreePositioner`] the positioner's last axis (the table's turn; a turntable's only
+//! With [`FreeVariables::positioner`] the positioner's last axis (the table's turn; a turntable's only
 //! axis) is a variable of the same grid, with its own range and step (deg), alone or jointly
 //! with the station and the rotation (the states are their combinations). Turning the table
 //! turns the part, so each point's target in the arm's frame moves by
@@ -118,13 +118,13 @@
 //! `P(e') = P(e)`), the process force turns with the part (the cut follows it: a path file's
 //! wrench too), and a program's tool weight stays along the cell's `-z` at the turned tool. The
 //! same rules hold: the axis's travel, one grid step at most between points, no point worse
-//! than at the path's own values. With [`Options::free_tilt`] a two-axis positioner's first
+//! than at the path's own values. With [`FreeVariables::tilt`] a two-axis positioner's first
 //! axis (the tilt, which carries the table's axis) is a variable of the grid too, by the same
 //! shift with both angles in `P(e')`.
 //!
 //! ## Lead and tilt
 //! In ball-end milling and deburring the tool's axis may lean from the program's within a cone
-//! the process allows (never in drilling: a drill's axis is the hole's). With [`FreeLeadTilt`]
+//! the process allows (never in drilling: a drill's axis is the hole's). With [`FreeVariables::lead_tilt`]
 //! the lead and the tilt are two more variables of the same grid, alone or jointly with the
 //! rotation, the station and the positioner (the states are their combinations). At every point
 //! the lean's frame is `f`, the feed direction across the tool axis (the TCP's motion from the
@@ -148,10 +148,10 @@
 //!
 //! ## The free configuration
 //! A pose is reached in up to eight configurations of the arm (the shoulder, elbow and wrist
-//! choices, [`stiffid_core::robot::configuration`]). With [`FreeConfiguration`] the whole path is
+//! choices, [`stiffid_core::robot::configuration`]). With [`FreeVariables::configuration`] the whole path is
 //! compensated in each ([`path_configurations`], [`crate::compensate()`]): the path's
 //! own as given, every other from its posture at the first point (inverse kinematics from
-//! [`FreeConfiguration::SEEDS`] seeded starts, the solution nearest to the path's own posture in
+//! [`CONFIGURATION_SEEDS`] seeded starts, the solution nearest to the path's own posture in
 //! each configuration), continued point by point, a joint target solved from its nominal pose;
 //! the other free variables are chosen in each by their dynamic programming. A configuration
 //! cannot change along a continuous cut, so one holds the whole path ([`Scope::Program`]), or,
@@ -198,19 +198,17 @@ mod station;
 mod stream;
 mod tool_axis;
 mod validate;
+mod variables;
 
 pub use budget::Budget;
 pub use configuration::{posed, Branch, Configurations, Run};
 pub use feasible::{Feasible, Removed};
-pub use free::{Free, Freedom, Variable};
+pub use free::{Free, Freedom};
 pub(crate) use lead_tilt::cones;
 pub use lead_tilt::lean;
 pub use map::{map, ChosenValues, Map};
 pub use model::{Model, Newton};
-pub use options::{
-    Aggregate, FreeConfiguration, FreeLeadTilt, FreePositioner, FreeStation, FreeToolAxis,
-    MapVariable, Objective, Options,
-};
+pub use options::{MapVariable, Options};
 pub(crate) use runs::choose;
 pub use runs::{path_configurations, path_runs, starts};
 pub use scope::Scope;
@@ -219,7 +217,10 @@ pub(crate) use station::on_track;
 pub use station::path_on_track;
 pub(crate) use stream::path_in_cones;
 pub use stream::{path, path_with_exits, stream, CHUNK};
-
+pub use variables::{
+    Aggregate, FreeRange, FreeVariables, LeadTilt, Limits, Objective, Variable,
+    CONFIGURATION_SEEDS, LEAD_TILT_MAX_CONE_DEG, MAX_CONFIGURATION_POINTS, MAX_GRID_CELLS,
+};
 /// The residual the Newton steps aim at, m.
 pub const TOLERANCE_M: f64 = 1e-10;
 /// The residual rotation the Newton steps aim at, rad.
@@ -294,17 +295,17 @@ pub struct Compensated {
     pub iterations: usize,
     /// Why the Newton steps stopped ([`Newton::stop`]).
     pub stop: Stop,
-    /// The rotation about tool z chosen by [`FreeToolAxis`] (0 without), rad.
+    /// The rotation about tool z chosen by [`FreeVariables::tool_rotation`] (0 without), rad.
     pub tool_rotation: f64,
-    /// The lead chosen by [`FreeLeadTilt`] (0 without), rad: the tool axis leaned towards the
+    /// The lead chosen by [`FreeVariables::lead_tilt`] (0 without), rad: the tool axis leaned towards the
     /// feed ([`lean`]).
     pub lead: f64,
-    /// The tilt chosen by [`FreeLeadTilt`] (0 without), rad: the tool axis leaned across the
+    /// The tilt chosen by [`FreeVariables::lead_tilt`] (0 without), rad: the tool axis leaned across the
     /// feed ([`lean`]).
     pub tilt: f64,
-    /// With [`FreeToolAxis`]: the deflection at the path's own rotation, before optimisation.
+    /// With [`FreeVariables::tool_rotation`]: the deflection at the path's own rotation, before optimisation.
     pub deflection_before: Option<Vector6<f64>>,
-    /// With [`FreeToolAxis`]: the nominal axis angles at the path's own rotation, before
+    /// With [`FreeVariables::tool_rotation`]: the nominal axis angles at the path's own rotation, before
     /// optimisation, rad.
     pub q_before: Option<Vector6<f64>>,
     /// The axes of `q` outside the region the compliance was identified from
@@ -312,11 +313,11 @@ pub struct Compensated {
     pub outside_region: Option<Vec<stiffid_core::common::limits::Violation>>,
     /// The error budget at [`Options::level`] ([`Budget`]).
     pub budget: Budget,
-    /// With [`FreeToolAxis`]: the bound at the path's own rotation, before optimisation, with
+    /// With [`FreeVariables::tool_rotation`]: the bound at the path's own rotation, before optimisation, with
     /// this point's residual, m.
     pub bound_before: Option<f64>,
     /// The values of the cell's external axes at the point (SI, the cell's order): the station
-    /// and table angle chosen by [`FreeStation`] and [`FreePositioner`], else the path's or the
+    /// and table angle chosen by [`FreeVariables::station`] and [`FreeVariables::positioner`], else the path's or the
     /// program's own; empty for a robot without external axes.
     pub external: stiffid_core::robot::external::ExternalValues,
     /// With a free variable: the states of its grid at this point that the feasibility checks

@@ -69,7 +69,7 @@ pub(super) struct Line {
 }
 
 /// Refuses more than [`MAX_LEVELS`] levels, and a band of more cells than
-/// [`super::FreeToolAxis::MAX_GRID_CELLS`] or more transitions than [`MAX_TRANSITIONS`] on a
+/// [`super::MAX_GRID_CELLS`] or more transitions than [`MAX_TRANSITIONS`] on a
 /// grid of `axes` axes over `points` points.
 ///
 /// # Errors
@@ -86,9 +86,8 @@ pub fn check(levels: usize, axes: usize, points: usize) -> Result<()> {
     }
     let states = ((4 * BAND + 1) as f64).powi(axes as i32);
     let (cells, transitions) = (states * points as f64, states * states * points as f64);
-    if levels > 0 && (cells > super::FreeToolAxis::MAX_GRID_CELLS || transitions > MAX_TRANSITIONS)
-    {
-        return refuse(format!("{levels}: {axes} free axes make {states} band states x {points} path points ({cells:.3e} cells, {transitions:.3e} transitions); at most {:.0e} cells and {MAX_TRANSITIONS:.0e} transitions (fewer free variables or a shorter path)", super::FreeToolAxis::MAX_GRID_CELLS));
+    if levels > 0 && (cells > super::MAX_GRID_CELLS || transitions > MAX_TRANSITIONS) {
+        return refuse(format!("{levels}: {axes} free axes make {states} band states x {points} path points ({cells:.3e} cells, {transitions:.3e} transitions); at most {:.0e} cells and {MAX_TRANSITIONS:.0e} transitions (fewer free variables or a shorter path)", super::MAX_GRID_CELLS));
     }
     Ok(())
 }

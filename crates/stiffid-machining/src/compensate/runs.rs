@@ -31,8 +31,8 @@ pub fn starts(joint: &[bool]) -> Vec<usize> {
 /// `options` ([`super::path_on_track`]'s dynamic programming): [`path_runs`] with one run.
 ///
 /// # Errors
-/// Those of [`super::FreeConfiguration::check`]; [`Error::InvalidField`] (`free_configuration`)
-/// without [`Options::free_configuration`]; when no configuration takes the path, the error of
+/// [`Error::InvalidOption`] for more than [`super::MAX_CONFIGURATION_POINTS`] points; [`Error::InvalidField`] (`free_configuration`)
+/// without [`super::FreeVariables::configuration`]; when no configuration takes the path, the error of
 /// the path's own (those of [`super::path`] and [`super::path_on_track`]).
 pub fn path_configurations(
     arm: &Arm,
@@ -56,7 +56,7 @@ pub fn path_runs(
     options: &Options,
 ) -> Result<(Vec<Compensated>, Configurations)> {
     let own: Vec<ExternalValues> = placed.iter().map(|p| p.external).collect();
-    let cones = match &options.free_lead_tilt {
+    let cones = match &options.free.lead_tilt {
         Some(l) => super::lead_tilt::cones(l, placed.len(), None)?,
         None => Vec::new(),
     };
@@ -84,13 +84,12 @@ pub(crate) fn choose(
     options: &Options,
     evaluate: impl Fn(usize, &[PathPoint], &Options) -> Result<Vec<Compensated>>,
 ) -> Result<(Vec<Compensated>, Configurations)> {
-    let free = super::configuration::free_configuration(options)?;
-    if free.per == super::Scope::Program {
+    let free = super::configuration::free_configuration(options, points.len())?;
+    if free.configuration == Some(super::Scope::Program) {
         return choose_one(arm, compliance, points, (options, 0.0), |p, o| {
             evaluate(0, p, o)
         });
     }
-    free.check(points.len())?;
     let ranges = ranges(starts, points.len());
     let mut start = options.q0;
     let mut chosen = Vec::with_capacity(ranges.len());

@@ -10,7 +10,7 @@ use super::refine::{refine, Evaluate, Layout};
 use super::stream::{compensate_chosen, nominal_postures, path_in_cones, Chosen};
 use super::tool_axis::{choose, column, lean_axes, rotation_axis, Axis, Column, Cost, Grid, Move};
 use super::PathPoint;
-use super::{Compensated, Compliance, FreeToolAxis, Model, Objective, Options};
+use super::{Compensated, Compliance, FreeRange, Model, Objective, Options, MAX_GRID_CELLS};
 use crate::cell::{on_carriage, turned};
 use nalgebra::{Isometry3, Vector3, Vector6};
 use rayon::prelude::*;
@@ -23,8 +23,8 @@ use stiffid_core::{Error, Result};
 
 /// Compensates the points of a path file of a cell with a carrier (a track), as
 /// [`crate::path::points`] gives them (a pose is a point of the part, each point with
-/// its external values), with the track station free ([`Options::free_station`]) and, with
-/// [`Options::free_tool_axis`], the tool rotation too; each result's
+/// its external values), with the track station free ([`super::FreeVariables::station`]) and, with
+/// [`super::FreeVariables::tool_rotation`], the tool rotation too; each result's
 /// [`Compensated::external`] holds the station chosen. The results are in the arm's frame on
 /// its carriage at that station ([`crate::cell::path_to_cell`] takes them to the
 /// cell). Without a free station the points are compensated at their own values.
@@ -32,7 +32,7 @@ use stiffid_core::{Error, Result};
 /// # Errors
 /// Those of [`super::path`]; those of [`on_carriage`] for a point's external values;
 /// [`Error::InvalidOption`] ([`JobOption::FreeStationMm`]) for a robot without a carrier axis
-/// and for a grid of more than [`FreeToolAxis::MAX_GRID_CELLS`] cells (stations x rotations x
+/// and for a grid of more than [`MAX_GRID_CELLS`] cells (stations x rotations x
 /// points).
 pub fn path_on_track(
     arm: &Arm,
@@ -46,7 +46,7 @@ pub fn path_on_track(
         .map(|p| on_carriage(robot, p.clone()))
         .collect::<Result<_>>()?;
     let own: Vec<ExternalValues> = points.iter().map(|p| p.external).collect();
-    let cones = match &options.free_lead_tilt {
+    let cones = match &options.free.lead_tilt {
         Some(l) => cones(l, points.len(), None)?,
         None => Vec::new(),
     };
@@ -55,10 +55,10 @@ pub fn path_on_track(
 
 /// Compensates `placed`, points in the arm's frame on its carriage at their own external values
 /// `own` (a path file's points placed by [`on_carriage`], a program's placed by
-/// [`crate::compensate()`]), with the station free ([`Options::free_station`]), the
-/// positioner's angles free ([`Options::free_positioner`], [`Options::free_tilt`]) and the tool
+/// [`crate::compensate()`]), with the station free ([`super::FreeVariables::station`]), the
+/// positioner's angles free ([`super::FreeVariables::positioner`], [`super::FreeVariables::tilt`]) and the tool
 /// rotation with
-/// [`Options::free_tool_axis`]; each result's [`Compensated::external`] holds the values chosen,
+/// [`super::FreeVariables::tool_rotation`]; each result's [`Compensated::external`] holds the values chosen,
 /// its postures in the arm's frame on the carriage at them. `weighted`: the points' wrenches
 /// hold the tool's weight ([`stiffid_core::setup::Payload::wrench`] at the nominal pose, a program's),
 /// which stays along the cell's `-z` when the positioner turns the tool with the part. Without
@@ -77,28 +77,25 @@ pub(crate) fn on_track(
 ) -> Result<Vec<Compensated>> {
     options.validate()?;
     let robot = arm.robot();
-    let Some((objective, aggregate)) = options.external_objective() else {
-        let plain = Options {
-            free_station: None,
-            free_positioner: None,
-            free_tilt: None,
-            ..options.clone()
-        };
+    let (objective, aggregate) = (options.free.minimise, options.free.aggregate);
+    if !options.free.frees_external() {
+        let mut plain = options.clone();
+        (plain.free.station, plain.free.positioner, plain.free.tilt) = (None, None, None);
         let results = path_in_cones(arm, compliance, placed, (&[], cones), &plain)?;
         return given(results, own);
-    };
+    }
     let (cell, free) = free_axes(robot.external(), options)?;
-    let angles = options.free_tool_axis.map_or(vec![0.0], |f| f.angles());
+    let angles = options.free.tool_rotation.map_or(vec![0.0], |f| f.angles());
     let states = states(&free);
     let largest = cones.iter().copied().fold(0.0, f64::max);
-    let leans = (options.free_lead_tilt.as_ref()).map_or(1.0, |l| lean_count(l, largest));
+    let leans = (options.free.lead_tilt.as_ref()).map_or(1.0, |l| lean_count(l, largest));
     check_grid(
         options,
         (states.len() * angles.len()) as f64 * leans,
         placed.len(),
     )?;
-    let lean_axes_count = 2 * usize::from(options.free_lead_tilt.is_some());
-    let axes = free.len() + lean_axes_count + usize::from(options.free_tool_axis.is_some());
+    let lean_axes_count = 2 * usize::from(options.free.lead_tilt.is_some());
+    let axes = free.len() + lean_axes_count + usize::from(options.free.tool_rotation.is_some());
     super::refine::check(options.refine, axes, placed.len())?;
     let model = Model::new(arm, compliance)?
         .at_level(options.level)
@@ -120,7 +117,7 @@ pub(crate) fn on_track(
     let stations: Vec<Station> = (states.par_iter())
         .map(|moves| Station::new(cell, &at, moves))
         .collect();
-    let leaning = Leaning::new(options.free_lead_tilt.as_ref(), &at.poses, cones.to_vec());
+    let leaning = Leaning::new(options.free.lead_tilt.as_ref(), &at.poses, cones.to_vec());
     let (a, per_station) = (angles.len(), leaning.len() * angles.len());
     let cost = match objective {
         Objective::Deflection => Cost::Deflection,
@@ -155,7 +152,7 @@ pub(crate) fn on_track(
         .collect();
     let mut axes: Vec<Axis> = free.iter().map(FreeAxis::axis).collect();
     axes.extend(lean_axes(&leaning));
-    if let Some(f) = &options.free_tool_axis {
+    if let Some(f) = &options.free.tool_rotation {
         axes.push(rotation_axis(f, &angles));
     }
     let checks = Checks::new(&model, &options.feasible);
@@ -164,7 +161,7 @@ pub(crate) fn on_track(
         .collect();
     let grid = Grid { axes };
     let (chosen, mut removed) = choose((&columns, &external), &grid, (&cost, &checks), aggregate);
-    let layout = Layout::new(free.len(), &leaning, options.free_tool_axis.is_some());
+    let layout = Layout::new(free.len(), &leaning, options.free.tool_rotation.is_some());
     let along = |values: &[Vec<f64>]| {
         let moves: Vec<Vec<(usize, f64)>> = (values.iter())
             .map(|v| free.iter().zip(v).map(|(f, &d)| (f.index, d)).collect())
@@ -261,7 +258,7 @@ pub(super) fn free_axes<'a>(
     let carriers = cell.map_or(0, ExternalAxes::carrier_len);
     let positioners = cell.map_or(0, ExternalAxes::len) - carriers;
     let mut out = Vec::new();
-    if let Some(s) = &options.free_station {
+    if let Some(s) = &options.free.station {
         if carriers == 0 {
             return Err(Error::InvalidOption {
                 option: JobOption::FreeStationMm,
@@ -272,10 +269,10 @@ pub(super) fn free_axes<'a>(
             index: 0,
             offsets: s.offsets(),
             range: s.range,
-            max_step: s.max_step,
+            max_step: s.step,
         });
     }
-    if let Some(p) = &options.free_tilt {
+    if let Some(p) = &options.free.tilt {
         if positioners < 2 {
             return Err(Error::InvalidOption {
                 option: JobOption::FreeTiltDeg,
@@ -286,10 +283,10 @@ pub(super) fn free_axes<'a>(
             index: carriers,
             offsets: p.offsets(),
             range: p.range,
-            max_step: p.max_step,
+            max_step: p.step,
         });
     }
-    if let Some(p) = &options.free_positioner {
+    if let Some(p) = &options.free.positioner {
         if positioners == 0 {
             return Err(Error::InvalidOption {
                 option: JobOption::FreePositionerDeg,
@@ -300,7 +297,7 @@ pub(super) fn free_axes<'a>(
             index: carriers + positioners - 1,
             offsets: p.offsets(),
             range: p.range,
-            max_step: p.max_step,
+            max_step: p.step,
         });
     }
     match cell {
@@ -328,23 +325,23 @@ pub(super) fn states(free: &[FreeAxis]) -> Vec<Vec<(usize, f64)>> {
     })
 }
 
-/// Refuses a grid of more than [`FreeToolAxis::MAX_GRID_CELLS`] cells.
+/// Refuses a grid of more than [`MAX_GRID_CELLS`] cells.
 pub(super) fn check_grid(options: &Options, states: f64, points: usize) -> Result<()> {
     let cells = states * points as f64;
-    if cells <= FreeToolAxis::MAX_GRID_CELLS {
+    if cells <= MAX_GRID_CELLS {
         return Ok(());
     }
-    let degrees = |p: &super::FreePositioner| {
-        let (range, step) = (p.range.to_degrees(), p.max_step.to_degrees());
+    let degrees = |p: &FreeRange| {
+        let (range, step) = (p.range.to_degrees(), p.step.to_degrees());
         format!("+-{range} deg in steps of {step} deg")
     };
-    let (option, what) = match (&options.free_station, &options.free_positioner) {
+    let (option, what) = match (&options.free.station, &options.free.positioner) {
         (Some(s), _) => (
             JobOption::FreeStationMm,
-            format!("+-{} mm in steps of {} mm", s.range * 1e3, s.max_step * 1e3),
+            format!("+-{} mm in steps of {} mm", s.range * 1e3, s.step * 1e3),
         ),
         (None, Some(p)) => (JobOption::FreePositionerDeg, degrees(p)),
-        (None, None) => match &options.free_tilt {
+        (None, None) => match &options.free.tilt {
             Some(p) => (JobOption::FreeTiltDeg, degrees(p)),
             None => (JobOption::FreeStationMm, String::new()),
         },
@@ -353,7 +350,7 @@ pub(super) fn check_grid(options: &Options, states: f64, points: usize) -> Resul
         option,
         message: format!(
             "{what} makes {states} states (stations x tilts x table angles x leans x rotations) x {points} path points = {cells:.3e} cells; at most {:.0e} (a larger step, a smaller range, a coarser rotation grid or a shorter path)",
-            FreeToolAxis::MAX_GRID_CELLS
+            MAX_GRID_CELLS
         ),
     })
 }

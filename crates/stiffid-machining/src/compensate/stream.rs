@@ -23,7 +23,7 @@ use stiffid_core::{Error, Result};
 ///
 /// # Errors
 /// [`Error::InvalidField`] for `options` outside their limits ([`Options::validate`]) or a free
-/// tool axis grid beyond [`super::FreeToolAxis::MAX_GRID_CELLS`] ([`super::FreeToolAxis::check_grid`]);
+/// tool axis grid beyond [`super::MAX_GRID_CELLS`] ([`super::FreeRange::check_rotation_grid`]);
 /// [`Error::InvalidOption`] ([`JobOption::FreeToolAxisObjective`]) for the surge objective, which
 /// needs a drilling program ([`path_with_exits`]);
 /// [`Error::Column`] naming the line of the first point (in path order) that fails: axis angles
@@ -60,7 +60,7 @@ pub fn path_with_exits(
     options: &Options,
 ) -> Result<Vec<Compensated>> {
     options.validate()?;
-    let cones = match &options.free_lead_tilt {
+    let cones = match &options.free.lead_tilt {
         Some(l) => cones(l, points.len(), None)?,
         None => Vec::new(),
     };
@@ -68,7 +68,7 @@ pub fn path_with_exits(
 }
 
 /// [`path_with_exits`] with each point's cone of the free lead and tilt (rad, one per point
-/// with [`Options::free_lead_tilt`], [`super::lead_tilt::cones`]; a program's from its
+/// with [`super::FreeVariables::lead_tilt`], [`super::lead_tilt::cones`]; a program's from its
 /// process).
 ///
 /// # Errors
@@ -82,24 +82,26 @@ pub(crate) fn path_in_cones(
 ) -> Result<Vec<Compensated>> {
     options.validate()?;
     assert!(thrusts.is_empty() || thrusts.len() == points.len());
-    if options.frees_external() {
+    if options.free.frees_external() {
         return Err(Error::InvalidOption {
             option: JobOption::FreeStationMm,
             message: "a free station, positioner or tilt is chosen for points with their external values (compensate::path_on_track for a path file's, machining::compensate for a program's); these points have none".into(),
         });
     }
     let (rotation, lean) = (
-        options.free_tool_axis.as_ref(),
-        options.free_lead_tilt.as_ref(),
+        options.free.tool_rotation.as_ref(),
+        options.free.lead_tilt.as_ref(),
     );
     let largest = cones.iter().copied().fold(0.0, f64::max);
     check_cells(options, points.len(), largest)?;
     let axes = 2 * usize::from(lean.is_some()) + usize::from(rotation.is_some());
     super::refine::check(options.refine, axes, points.len())?;
-    let free = match (rotation, lean) {
-        (Some(f), _) => Some((cost(arm, f.objective, thrusts)?, f.aggregate)),
-        (None, Some(l)) => Some((cost(arm, l.objective, thrusts)?, l.aggregate)),
-        (None, None) => None,
+    let free = match options.free.frees_tool_axis() {
+        true => Some((
+            cost(arm, options.free.minimise, thrusts)?,
+            options.free.aggregate,
+        )),
+        false => None,
     };
     let model = Model::new(arm, compliance)?
         .at_level(options.level)
@@ -194,8 +196,8 @@ pub const CHUNK: usize = 4096;
 /// iterator, e.g. a file's rows as they are parsed) and are compensated [`CHUNK`] at a time (in
 /// parallel within a chunk, inverse kinematics continued from the previous chunk's last
 /// posture); `sink` gets each chunk's points and results, in path order, before the next chunk is
-/// read. With [`super::FreeToolAxis`] or [`super::FreeLeadTilt`] the whole path is one problem (dynamic programming over the
-/// path): its points are collected (at most [`super::FreeToolAxis::MAX_GRID_CELLS`] grid cells) and
+/// read. With [`super::FreeVariables::tool_rotation`] or [`super::FreeVariables::lead_tilt`] the whole path is one problem (dynamic programming over the
+/// path): its points are collected (at most [`super::MAX_GRID_CELLS`] grid cells) and
 /// compensated by [`path`], then given to `sink` chunk by chunk. The results equal [`path`]'s.
 /// Returns the number of points.
 ///
@@ -217,8 +219,8 @@ where
 {
     options.validate()?;
     let mut points = points.into_iter();
-    if options.free_tool_axis.is_some() || options.free_lead_tilt.is_some() {
-        let cone = options.free_lead_tilt.and_then(|l| l.cone).unwrap_or(0.0);
+    if options.free.tool_rotation.is_some() || options.free.lead_tilt.is_some() {
+        let cone = options.free.lead_tilt.and_then(|l| l.cone).unwrap_or(0.0);
         let mut all = Vec::new();
         for p in points {
             all.push(p?);

@@ -3,7 +3,7 @@
 
 use super::feasible::Checks;
 use super::lead_tilt::{lean, Lean, Leaning};
-use super::{Aggregate, FreeToolAxis, Model, Removed, TIE_BREAK};
+use super::{Aggregate, FreeRange, Model, Removed, TIE_BREAK};
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 use rayon::prelude::*;
 use std::cell::Cell;
@@ -63,13 +63,13 @@ impl Cost<'_> {
     }
 }
 
-/// The grid's axis of the rotation of `free` over its `angles` ([`FreeToolAxis::angles`]).
-pub(super) fn rotation_axis<'a>(free: &FreeToolAxis, angles: &'a [f64]) -> Axis<'a> {
+/// The grid's axis of the rotation of `free` over its `angles` ([`FreeRange::angles`]).
+pub(super) fn rotation_axis<'a>(free: &FreeRange, angles: &'a [f64]) -> Axis<'a> {
     Axis {
         values: angles,
-        reach: free.grid().1,
+        reach: free.cells().1,
         range: free.range,
-        max_step: free.max_step,
+        max_step: free.step,
         zero: angles.len() / 2,
     }
 }

@@ -1,7 +1,7 @@
 //! The checks of [`Options`]: every field within its range, and the free variables minimising
 //! one objective with one aggregate.
 
-use super::options::{FreePositioner, FreeStation, FreeToolAxis, Objective, Options};
+use super::options::Options;
 #[cfg(doc)]
 use super::path;
 use stiffid_core::common::error::JobOption;
@@ -12,19 +12,13 @@ use stiffid_core::{common::limits, Error, Result};
 
 impl Options {
     /// Checks every field: `q0` within [`limits::ANGLE_RAD`] (finite), `ik`
-    /// ([`ik::Options::validate`]), `max_iterations` 1 to [`super::MAX_ITERATIONS`], a free tool axis' `max_step` in (0, 90] deg and `range` in
-    /// (0, 180] deg as [`FreeToolAxis::try_from_degrees`] gives them, a free station's as
-    /// [`FreeStation::try_from_mm`] and a free positioner's and tilt's as
-    /// [`FreePositioner::try_with`] and [`FreePositioner::try_tilt`] give them, minimising the deflection or the bound with the free tool axis' objective and
-    /// aggregate. [`path`] calls it.
+    /// ([`ik::Options::validate`]), `max_iterations` 1 to [`super::MAX_ITERATIONS`], the free
+    /// variables ([`super::FreeVariables::validate`]). [`path`] calls it.
     ///
     /// # Errors
     /// [`Error::InvalidField`] naming the field, the value and the range;
-    /// [`Error::InvalidOption`] for a free station's or positioner's
-    /// ([`JobOption::FreeStationMm`], [`JobOption::StationStepMm`],
-    /// [`JobOption::FreePositionerDeg`], [`JobOption::PositionerStepDeg`],
-    /// [`JobOption::FreeTiltDeg`], [`JobOption::TiltStepDeg`],
-    /// [`JobOption::FreeToolAxisObjective`]) and the feasibility's ([`super::Feasible::validate`]);
+    /// [`Error::InvalidOption`] for the free variables' ranges, steps and objective
+    /// ([`super::FreeVariables::validate`]) and the feasibility's ([`super::Feasible::validate`]);
     /// ([`JobOption::Refine`]) for more than [`super::refine::MAX_LEVELS`] levels, or levels
     /// without a free variable whose grid they refine.
     pub fn validate(&self) -> Result<()> {
@@ -56,91 +50,23 @@ impl Options {
                 ),
             });
         }
-        self.validate_station()?;
-        if let Some(l) = &self.free_lead_tilt {
-            l.validate()?;
-        }
+        self.free.validate()?;
         self.validate_configuration()?;
         self.feasible.validate()?;
         super::refine::check(self.refine, 0, 0)?;
-        let free = self.free_tool_axis.is_some() || self.free_lead_tilt.is_some();
-        if self.refine > 0 && !(free || self.frees_external()) {
+        let free = self.free.frees_tool_axis() || self.free.frees_external();
+        if self.refine > 0 && !free {
             return Err(Error::InvalidOption {
                 option: JobOption::Refine,
                 message: format!("{}: it refines the grid of a free variable (the tool axis, the station, the positioner, the tilt or the lead and tilt); none is free", self.refine),
             });
         }
-        let Some(free) = &self.free_tool_axis else {
-            return Ok(());
-        };
-        let fields = [
-            ("max_step", free.max_step, FreeToolAxis::MAX_STEP_DEG),
-            ("range", free.range, FreeToolAxis::MAX_RANGE_DEG),
-        ];
-        for (field, value, most) in fields {
-            if !(value > 0.0 && value <= most.to_radians()) {
-                return Err(Error::InvalidField {
-                    field: format!("FreeToolAxis.{field}"),
-                    message: format!(
-                        "{} rad: expected a number > 0 and <= {most} deg",
-                        number(value)
-                    ),
-                });
-            }
-        }
         Ok(())
     }
 
-    /// A free station's range and step as [`FreeStation::try_from_mm`] gives them, a free
-    /// positioner's and tilt's as [`FreePositioner::try_with`] and [`FreePositioner::try_tilt`],
-    /// and their objective and aggregate those of a free tool axis given with them and of each
-    /// other.
-    fn validate_station(&self) -> Result<()> {
-        if let Some(s) = &self.free_station {
-            FreeStation::try_from_mm(s.range * 1e3, s.max_step * 1e3)?;
-        }
-        if let Some(p) = &self.free_positioner {
-            FreePositioner::try_with(
-                p.range.to_degrees(),
-                p.max_step.to_degrees(),
-                None,
-                p.aggregate,
-            )?;
-        }
-        if let Some(p) = &self.free_tilt {
-            let (range, step) = (p.range.to_degrees(), p.max_step.to_degrees());
-            FreePositioner::try_tilt(range, step, None, p.aggregate)?;
-        }
-        let station = self.free_station.map(|s| (s.objective, s.aggregate));
-        let positioner = self.free_positioner.map(|p| (p.objective, p.aggregate));
-        let tilt = self.free_tilt.map(|p| (p.objective, p.aggregate));
-        let tool = self.free_tool_axis.map(|f| (f.objective, f.aggregate));
-        let lean = self.free_lead_tilt.map(|l| (l.objective, l.aggregate));
-        let Some(own) = station.or(positioner).or(tilt).or(lean) else {
-            return Ok(());
-        };
-        let agree = [station, positioner, tilt, tool, lean]
-            .iter()
-            .flatten()
-            .all(|c| *c == own);
-        if own.0 == Objective::Surge || !agree {
-            return Err(Error::InvalidOption {
-                option: JobOption::FreeToolAxisObjective,
-                message: format!("{}: the free station, positioner axes, lead and tilt minimise the deflection or the bound, the same objective and aggregate as the free tool axis given with them", stiffid_core::common::choice::Choice::name(own.0)),
-            });
-        }
-        Ok(())
-    }
-
-    /// A free configuration's objective not the surge ([`FreeConfiguration::check`]), one per
-    /// run not with a map, and its objective and aggregate those of the other free variables
-    /// given with it.
+    /// One configuration per run not with a map.
     fn validate_configuration(&self) -> Result<()> {
-        let Some(c) = &self.free_configuration else {
-            return Ok(());
-        };
-        c.check(0)?;
-        if c.per == super::Scope::Run && self.map {
+        if self.free.configuration == Some(super::Scope::Run) && self.map {
             return Err(Error::OptionCombination {
                 option: JobOption::ConfigurationPer,
                 with: vec![JobOption::Map],
@@ -148,14 +74,6 @@ impl Options {
                 reason: "run: a map is drawn over the whole program in one configuration".into(),
             });
         }
-        let tool = self.free_tool_axis.map(|f| (f.objective, f.aggregate));
-        let lean = self.free_lead_tilt.map(|l| (l.objective, l.aggregate));
-        match self.external_objective().or(tool).or(lean) {
-            Some(other) if other != (c.objective, c.aggregate) => Err(Error::InvalidOption {
-                option: JobOption::FreeConfiguration,
-                message: "the free configuration minimises the same objective and aggregate as the other free variables given with it".into(),
-            }),
-            _ => Ok(()),
-        }
+        Ok(())
     }
 }

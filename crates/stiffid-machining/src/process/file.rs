@@ -24,7 +24,7 @@
 //! specific_thrust_n_per_mm2`.
 //! A milling operation may let the tool axis lean from the program's own within a cone (ball-end
 //! milling, deburring), which `compensate --free lead-tilt` uses
-//! ([`crate::compensate::FreeLeadTilt`]):
+//! ([`crate::compensate::FreeVariables::lead_tilt`]):
 //! ```toml
 //! [tool_axis]
 //! cone_deg = 10                    # the cone's half angle, [0, 30] deg
@@ -40,7 +40,7 @@
 //! cutting coefficients and specific energies [0, 20000] N/mm^2 (`k_ac` [-20000, 20000]); edge
 //! coefficients [0, 1000] N/mm (`k_ae` [-1000, 1000]); at most [`MAX_OPERATIONS`] operations;
 //! `lines` two 1-based line numbers, first <= last; `tool_axis.cone_deg` [0, 30]
-//! ([`crate::compensate::FreeLeadTilt::MAX_CONE_DEG`]).
+//! ([`crate::compensate::LEAD_TILT_MAX_CONE_DEG`]).
 //!
 //! # Ambiguity
 //! Two operations with the same name, the same `tool_number`, overlapping `lines`, or both
@@ -68,7 +68,7 @@ const CUTTING_SIGNED: Range = Range::new(-2e4, 2e4, "N/mm^2");
 const SPINDLE: Range = Range::new(1.0, 1e5, "rpm");
 const EDGE: Range = Range::new(0.0, 1e3, "N/mm");
 const EDGE_SIGNED: Range = Range::new(-1e3, 1e3, "N/mm");
-const CONE: Range = Range::new(0.0, crate::compensate::FreeLeadTilt::MAX_CONE_DEG, "deg");
+const CONE: Range = Range::new(0.0, crate::compensate::LEAD_TILT_MAX_CONE_DEG, "deg");
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -52,7 +52,7 @@ pub struct Operation {
     pub kind: Kind,
     /// The half angle of the cone the tool axis may lean within about the program's own, rad
     /// (`[tool_axis] cone_deg`, [`mod@file`]; 0: no lean, always for drilling), which
-    /// `compensate --free lead-tilt` uses ([`crate::compensate::FreeLeadTilt`]).
+    /// `compensate --free lead-tilt` uses ([`crate::compensate::FreeVariables::lead_tilt`]).
     pub cone: f64,
 }
 

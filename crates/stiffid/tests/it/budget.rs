@@ -9,7 +9,7 @@ use rand_distr::StandardNormal;
 use stiffid::app::compensate::{run, Input, Request};
 use stiffid::common::error::JobOption;
 use stiffid::machining::compensate::{
-    self, Aggregate, Compliance, FreeToolAxis, Objective, Options, PathPoint, Target,
+    self, Aggregate, Compliance, FreeVariables, Objective, Options, PathPoint, Target,
 };
 use stiffid::observation::deflection::{Frame, Points};
 use stiffid::robot::ik::tool_pose;
@@ -151,13 +151,14 @@ fn the_free_tool_axis_minimising_the_bound_raises_no_point() {
     let (s, compliance, _) = setup_and_compliance();
     let path = line_path(&s, 20);
     for aggregate in [Aggregate::Sum, Aggregate::Max] {
-        let free = FreeToolAxis {
-            objective: Objective::Bound,
+        let free = FreeVariables {
+            tool_rotation: Some(crate::compensate::rotation(60.0, 5.0)),
+            minimise: Objective::Bound,
             aggregate,
-            ..FreeToolAxis::try_from_degrees(5.0, 60.0).unwrap()
+            ..FreeVariables::default()
         };
         let options = Options {
-            free_tool_axis: Some(free),
+            free,
             ..Options::for_setup(&s)
         };
         let out = compensate::path(s.arm(), &compliance, &path, &options).unwrap();

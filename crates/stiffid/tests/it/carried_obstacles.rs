@@ -8,7 +8,9 @@
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3, Vector6};
 use stiffid::cell::{bodies, body_box, capsule_box, capsules, Capsule, CheckKind, Checker, Part};
 use stiffid::machining::compensate::PathPoint;
-use stiffid::machining::compensate::{self, Aggregate, Compensated, FreePositioner, Options};
+use stiffid::machining::compensate::{
+    self, Compensated, FreeRange, FreeVariables, Options, Variable,
+};
 use stiffid::robot::external::{ExternalAxes, ExternalAxis, ExternalValues};
 use stiffid::robot::presets;
 use stiffid::setup::Obstacle;
@@ -186,9 +188,12 @@ fn line(n: usize) -> Vec<PathPoint> {
 
 /// The free table +-20 deg in 10 deg steps, the bound summed.
 fn options(s: &Setup) -> Options {
-    let table = FreePositioner::try_with(20.0, 10.0, None, Aggregate::Sum).unwrap();
+    let table = FreeRange::checked(&Variable::Positioner, 20.0, 10.0).ok();
     Options {
-        free_positioner: Some(table),
+        free: FreeVariables {
+            positioner: table,
+            ..FreeVariables::default()
+        },
         ..Options::for_setup(s)
     }
 }

@@ -8,7 +8,9 @@ use nalgebra::{
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
-use stiffid::machining::compensate::{self, FreeToolAxis, Options, PathPoint, Target};
+use stiffid::machining::compensate::{
+    self, FreeRange, FreeVariables, Objective, Options, PathPoint, Target, Variable,
+};
 use stiffid::observation::deflection::{base_wrench, Frame, Points};
 use stiffid::robot::ik::{self, pose_error, tool_pose};
 use stiffid::robot::kinematics::Coordinates;
@@ -232,16 +234,32 @@ pub(crate) fn line_path(s: &Setup, n: usize) -> Vec<PathPoint> {
         .collect()
 }
 
-pub(crate) fn options(s: &Setup, free: Option<FreeToolAxis>) -> Options {
+/// The free tool rotation within `+-range_deg` in steps of `step_deg`.
+pub(crate) fn rotation(range_deg: f64, step_deg: f64) -> FreeRange {
+    FreeRange::checked(&Variable::ToolRotation, range_deg, step_deg).unwrap()
+}
+
+/// The free track station within `+-range_mm` in steps of `step_mm`.
+pub(crate) fn station(range_mm: f64, step_mm: f64) -> FreeRange {
+    FreeRange::checked(&Variable::Station, range_mm, step_mm).unwrap()
+}
+
+/// The free positioner (its last axis) within `+-range_deg` in steps of `step_deg`.
+pub(crate) fn positioner(range_deg: f64, step_deg: f64) -> FreeRange {
+    FreeRange::checked(&Variable::Positioner, range_deg, step_deg).unwrap()
+}
+
+/// The options of `s` with the tool rotation free (`free`, minimising the deflection) or
+/// nothing free.
+pub(crate) fn options(s: &Setup, free: Option<FreeRange>) -> Options {
     Options {
         q0: s.test_postures()[0],
         ik: ik::Options::default(),
-        free_tool_axis: free,
-        free_station: None,
-        free_positioner: None,
-        free_lead_tilt: None,
-        free_tilt: None,
-        free_configuration: None,
+        free: FreeVariables {
+            tool_rotation: free,
+            minimise: Objective::Deflection,
+            ..FreeVariables::default()
+        },
         level: 0.95,
         max_iterations: compensate::MAX_ITERATIONS,
         force_tolerance: compensate::budget::DEFAULT_FORCE_TOLERANCE,
@@ -288,7 +306,7 @@ fn the_free_tool_axis_never_raises_the_deflection_and_keeps_the_constraints() {
     let s = loaded_at_tcp("fanuc-r2000ic-165f");
     let compliance = s.model_compliance("test").unwrap();
     let path = line_path(&s, 30);
-    let free = FreeToolAxis::try_from_degrees(3.0, 60.0).unwrap();
+    let free = crate::compensate::rotation(60.0, 3.0);
     let out = compensate::path(s.arm(), &compliance, &path, &options(&s, Some(free))).unwrap();
     let norm = |d: &Vector6<f64>| d.fixed_rows::<3>(0).norm();
     let (mut before, mut after) = (0.0, 0.0);
@@ -299,7 +317,7 @@ fn the_free_tool_axis_never_raises_the_deflection_and_keeps_the_constraints() {
         assert!(c.tool_rotation.abs() <= free.range + 1e-12);
         if i > 0 {
             let step = (c.tool_rotation - out[i - 1].tool_rotation).abs();
-            assert!(step <= free.max_step + 1e-12, "point {i}: step {step}");
+            assert!(step <= free.step + 1e-12, "point {i}: step {step}");
         }
         // The pose is the path's, turned about tool z.
         let Target::Pose(t) = &p.target else {
@@ -329,13 +347,13 @@ fn the_free_tool_axis_keeps_the_path_angle_when_every_angle_ties() {
         .unwrap();
     let compliance = s.model_compliance("test").unwrap();
     let path = line_path(&s, 12);
-    let free = FreeToolAxis::try_from_degrees(2.0, 90.0).unwrap();
+    let free = crate::compensate::rotation(90.0, 2.0);
     let out = compensate::path(s.arm(), &compliance, &path, &options(&s, Some(free))).unwrap();
     for (i, c) in out.iter().enumerate() {
         assert_eq!(c.tool_rotation, 0.0, "point {i}");
     }
     for step in [1e-300, 1e-9, 1e-4] {
-        let tiny = FreeToolAxis::try_from_degrees(step, 90.0).unwrap();
+        let tiny = crate::compensate::rotation(90.0, step);
         let e =
             compensate::path(s.arm(), &compliance, &path, &options(&s, Some(tiny))).unwrap_err();
         assert!(e.to_string().contains("free tool-rotation step"), "{e}");

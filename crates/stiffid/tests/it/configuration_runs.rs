@@ -12,7 +12,8 @@ use stiffid::app::compensate::configurations::ConfigurationsDocument;
 use stiffid::app::compensate::{self as job, Input};
 use stiffid::common::limits::JointBox;
 use stiffid::machining::compensate::{
-    self, path_runs, Aggregate, Compensated, FreeConfiguration, Options, PathPoint, Scope, Target,
+    self, path_runs, Aggregate, Compensated, FreeVariables, Objective, Options, PathPoint, Scope,
+    Target,
 };
 use stiffid::machining::program::generate::Settings;
 use stiffid::machining::program::Dialect;
@@ -44,10 +45,12 @@ fn two_runs(s: &Setup) -> Vec<PathPoint> {
 /// The options of `s` with the free configuration held per `per`.
 fn per(s: &Setup, aggregate: Aggregate, per: Scope) -> Options {
     Options {
-        free_configuration: Some(FreeConfiguration {
-            per,
-            ..FreeConfiguration::with(None, aggregate)
-        }),
+        free: FreeVariables {
+            configuration: Some(per),
+            minimise: Objective::Bound,
+            aggregate,
+            ..FreeVariables::default()
+        },
         ..options(s, None)
     }
 }

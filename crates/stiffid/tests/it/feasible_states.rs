@@ -5,7 +5,7 @@
 use crate::compensate::{line_path, options};
 use nalgebra::{Vector3, Vector6};
 use stiffid::cell::{capsules, CheckKind, Checker, Part};
-use stiffid::machining::compensate::{self, Compensated, FreeToolAxis, Removed};
+use stiffid::machining::compensate::{self, Compensated, Removed};
 use stiffid::robot::kinematics::Coordinates;
 use stiffid::robot::presets;
 use stiffid::{setup, Setup};
@@ -59,7 +59,7 @@ fn boxed(centre: &Vector3<f64>, half: f64) -> String {
 
 #[test]
 fn the_free_tool_axis_never_takes_a_colliding_posture() {
-    let free = FreeToolAxis::try_from_degrees(3.0, 90.0).unwrap();
+    let free = crate::compensate::rotation(90.0, 3.0);
     let open = with_cell("\n[cell]\nclearance_mm = 10.0\n");
     let path = line_path(&open, 20);
     let compliance = open.model_compliance("test").unwrap();
@@ -105,7 +105,7 @@ fn every_moved_posture_keeps_the_margin_and_the_condition_number() {
     let s = with_cell("");
     let compliance = s.model_compliance("test").unwrap();
     let path = line_path(&s, 20);
-    let free = FreeToolAxis::try_from_degrees(3.0, 90.0).unwrap();
+    let free = crate::compensate::rotation(90.0, 3.0);
     let mut o = options(&s, Some(free));
     let loose = compensate::path(s.arm(), &compliance, &path, &o).unwrap();
     // A margin as large as the tightest the free path keeps, plus one degree: some states go.

@@ -8,8 +8,8 @@ use crate::compensate::{line_path, options};
 use nalgebra::{Translation3, UnitQuaternion, Vector3, Vector6};
 use stiffid::common::limits::JointBox;
 use stiffid::machining::compensate::{
-    self, path_configurations, posed, Aggregate, Compensated, Configurations, FreeConfiguration,
-    FreeToolAxis, Objective, Options, PathPoint, Target,
+    self, path_configurations, posed, Aggregate, Compensated, Configurations, FreeVariables,
+    Objective, Options, PathPoint, Scope, Target,
 };
 use stiffid::robot::ik::tool_pose;
 use stiffid::{setup, Coordinates, Error, JobOption, Setup};
@@ -40,7 +40,12 @@ pub(crate) const WIDE: [(f64, f64); 6] = [(-300.0, 300.0); 6];
 
 fn free_options(s: &Setup, aggregate: Aggregate) -> Options {
     Options {
-        free_configuration: Some(FreeConfiguration::with(None, aggregate)),
+        free: FreeVariables {
+            configuration: Some(Scope::Program),
+            minimise: Objective::Bound,
+            aggregate,
+            ..FreeVariables::default()
+        },
         ..options(s, None)
     }
 }
@@ -60,10 +65,8 @@ fn alone(
     c: &Configurations,
 ) -> Vec<Option<Vec<Compensated>>> {
     let compliance = s.model_compliance("test").unwrap();
-    let plain = Options {
-        free_configuration: None,
-        ..o.clone()
-    };
+    let mut plain = o.clone();
+    plain.free.configuration = None;
     let moved = posed(s.arm(), path);
     (c.branches.iter())
         .map(|b| {
@@ -240,24 +243,22 @@ fn a_configuration_that_fails_a_point_is_refused_naming_it_and_the_path_own_is_k
 #[test]
 fn the_free_configuration_refuses_the_surge_and_too_long_paths_naming_itself() {
     let s = fanuc(WIDE);
-    let surge = FreeToolAxis {
-        objective: Objective::Surge,
-        ..FreeToolAxis::try_from_degrees(2.0, 90.0).unwrap()
-    };
-    let o = Options {
-        free_configuration: Some(FreeConfiguration::with(Some(&surge), Aggregate::Sum)),
-        ..options(&s, Some(surge))
-    };
+    let mut o = options(&s, Some(crate::compensate::rotation(90.0, 2.0)));
+    o.free.minimise = Objective::Surge;
+    o.validate().unwrap();
+    o.free.configuration = Some(Scope::Program);
     match o.validate().unwrap_err() {
-        Error::OptionCombination { option, with, .. } => {
-            assert_eq!(option, JobOption::FreeConfiguration);
-            assert_eq!(with, vec![JobOption::FreeToolAxisObjective]);
+        Error::InvalidOption { option, message } => {
+            assert_eq!(option, JobOption::FreeToolAxisObjective);
+            assert!(message.contains("configuration"), "{message}");
         }
         e => panic!("{e}"),
     }
-    let free = FreeConfiguration::with(None, Aggregate::Max);
-    assert!(free.check(FreeConfiguration::MAX_POINTS).is_ok());
-    match free.check(FreeConfiguration::MAX_POINTS + 1).unwrap_err() {
+    let o = free_options(&s, Aggregate::Max);
+    let compliance = s.model_compliance("test").unwrap();
+    let one = line_path(&s, 1);
+    let long = vec![one[0].clone(); compensate::MAX_CONFIGURATION_POINTS + 1];
+    match path_configurations(s.arm(), &compliance, &long, &o).unwrap_err() {
         Error::InvalidOption { option, message } => {
             assert_eq!(option, JobOption::FreeConfiguration);
             assert!(message.contains("100000"), "{message}");

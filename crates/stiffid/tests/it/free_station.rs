@@ -5,8 +5,8 @@
 
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 use stiffid::machining::compensate::{
-    self, Aggregate, Compensated, FreeStation, FreeToolAxis, Model, Objective, Options, PathPoint,
-    Target,
+    self, Aggregate, Compensated, FreeRange, FreeVariables, Model, Objective, Options, PathPoint,
+    Target, Variable,
 };
 use stiffid::observation::deflection::Frame;
 use stiffid::robot::external::{ErrorMotions, ExternalAxes, ExternalAxis, ExternalValues};
@@ -50,18 +50,15 @@ fn moved(i: usize, phi: f64) -> Isometry3<f64> {
 /// The free station +-100 mm in 100 mm steps and the free tool axis +-10 deg in 5 deg steps.
 fn free(aggregate: Aggregate) -> (Options, Setup) {
     let s = on_track();
-    let tool = FreeToolAxis {
-        objective: Objective::Bound,
+    let free = FreeVariables {
+        tool_rotation: Some(crate::compensate::rotation(10.0, 5.0)),
+        station: FreeRange::checked(&Variable::Station, 100.0, 100.0).ok(),
+        minimise: Objective::Bound,
         aggregate,
-        ..FreeToolAxis::try_from_degrees(5.0, 10.0).unwrap()
-    };
-    let station = FreeStation {
-        aggregate,
-        ..FreeStation::try_from_mm(100.0, 100.0).unwrap()
+        ..FreeVariables::default()
     };
     let options = Options {
-        free_tool_axis: Some(tool),
-        free_station: Some(station),
+        free,
         ..Options::for_setup(&s)
     };
     (options, s)

@@ -6,8 +6,8 @@
 
 use nalgebra::{Isometry3, Rotation3, UnitQuaternion, Vector3, Vector6};
 use stiffid::machining::compensate::{
-    self, Aggregate, Compensated, FreePositioner, FreeToolAxis, Model, Objective, Options,
-    PathPoint, Target,
+    self, Aggregate, Compensated, FreeRange, FreeVariables, Model, Objective, Options, PathPoint,
+    Target, Variable,
 };
 use stiffid::observation::deflection::Frame;
 use stiffid::robot::external::{ExternalAxes, ExternalAxis, ExternalValues};
@@ -85,15 +85,15 @@ fn moved(i: usize, phi: f64) -> Isometry3<f64> {
 
 /// The free tilt +-10 deg in 10 deg steps and the free tool axis +-10 deg in 5 deg steps.
 fn free(s: &Setup, aggregate: Aggregate) -> Options {
-    let tool = FreeToolAxis {
-        objective: Objective::Bound,
+    let free = FreeVariables {
+        tool_rotation: Some(crate::compensate::rotation(10.0, 5.0)),
+        tilt: FreeRange::checked(&Variable::Tilt, 10.0, 10.0).ok(),
+        minimise: Objective::Bound,
         aggregate,
-        ..FreeToolAxis::try_from_degrees(5.0, 10.0).unwrap()
+        ..FreeVariables::default()
     };
-    let tilt = FreePositioner::try_tilt(10.0, 10.0, Some(&tool), aggregate).unwrap();
     Options {
-        free_tool_axis: Some(tool),
-        free_tilt: Some(tilt),
+        free,
         ..Options::for_setup(s)
     }
 }

@@ -1,4 +1,4 @@
-//! The free lead and tilt of the tool axis ([`FreeLeadTilt`]): the dynamic programming's
+//! The free lead and tilt of the tool axis ([`FreeVariables::lead_tilt`]): the dynamic programming's
 //! optimum equals an exhaustive search over every path of leans on a small grid (each lean's
 //! bound computed independently, at the pose leaned by hand); no point's bound rises; every
 //! chosen axis lies within the cone at the lead and tilt stated; the loaded tool lands on the
@@ -7,7 +7,7 @@
 
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 use stiffid::machining::compensate::{
-    self, Aggregate, FreeLeadTilt, FreeToolAxis, Model, Objective, Options, PathPoint, Target,
+    self, Aggregate, FreeVariables, LeadTilt, Model, Objective, Options, PathPoint, Target,
 };
 use stiffid::machining::{self, process, Language};
 use stiffid::observation::deflection::Frame;
@@ -60,9 +60,13 @@ fn leaned(p: &PathPoint, lead: f64, tilt: f64) -> Isometry3<f64> {
 
 /// Lead and tilt free within `cone_deg` in `step_deg` steps, minimising the bound.
 fn options(s: &Setup, cone_deg: f64, step_deg: f64, aggregate: Aggregate) -> Options {
-    let free = FreeLeadTilt::try_with(Some(cone_deg), step_deg, None, aggregate).unwrap();
+    let free = FreeVariables {
+        lead_tilt: Some(LeadTilt::checked(Some(cone_deg), step_deg).unwrap()),
+        aggregate,
+        ..FreeVariables::default()
+    };
     Options {
-        free_lead_tilt: Some(free),
+        free,
         ..Options::for_setup(s)
     }
 }
@@ -132,14 +136,8 @@ fn the_axis_chosen_lies_in_the_cone_and_the_tool_lands_on_it() {
     let points = line(12);
     let compliance = s.model_compliance("test").unwrap();
     let (cone, step) = (8f64.to_radians(), 2f64.to_radians());
-    let options = Options {
-        free_tool_axis: Some(FreeToolAxis {
-            objective: Objective::Bound,
-            aggregate: Aggregate::Max,
-            ..FreeToolAxis::try_from_degrees(10.0, 20.0).unwrap()
-        }),
-        ..options(&s, 8.0, 2.0, Aggregate::Max)
-    };
+    let mut options = options(&s, 8.0, 2.0, Aggregate::Max);
+    options.free.tool_rotation = Some(crate::compensate::rotation(20.0, 10.0));
     let results = compensate::path(s.arm(), &compliance, &points, &options).unwrap();
     let model = Model::new(s.arm(), &compliance).unwrap();
     let z_own = down() * Vector3::z();
@@ -207,12 +205,7 @@ fn the_lean_turns_the_axis_towards_the_feed_and_across_it() {
 /// A path file's lean needs its cone; bad values are refused naming the option.
 #[test]
 fn bad_cones_and_steps_are_refused_naming_the_option() {
-    let refused = |cone: Option<f64>, step: f64| match FreeLeadTilt::try_with(
-        cone,
-        step,
-        None,
-        Aggregate::Sum,
-    ) {
+    let refused = |cone: Option<f64>, step: f64| match LeadTilt::checked(cone, step) {
         Err(Error::InvalidOption { option, .. }) => option,
         other => panic!("{cone:?} {step}: {other:?}"),
     };
@@ -227,11 +220,13 @@ fn bad_cones_and_steps_are_refused_naming_the_option() {
         );
     }
     assert_eq!(refused(None, 31.0), JobOption::LeadTiltStepDeg);
-    let surge = FreeToolAxis {
-        objective: Objective::Surge,
-        ..FreeToolAxis::try_from_degrees(5.0, 10.0).unwrap()
+    let surge = FreeVariables {
+        tool_rotation: Some(crate::compensate::rotation(10.0, 5.0)),
+        lead_tilt: LeadTilt::checked(Some(10.0), 2.0).ok(),
+        minimise: Objective::Surge,
+        ..FreeVariables::default()
     };
-    let e = FreeLeadTilt::try_with(Some(10.0), 2.0, Some(&surge), Aggregate::Sum);
+    let e = surge.validate();
     assert!(matches!(
         e,
         Err(Error::InvalidOption {
@@ -243,13 +238,13 @@ fn bad_cones_and_steps_are_refused_naming_the_option() {
     let s = milling();
     let compliance = s.model_compliance("test").unwrap();
     let mut o = options(&s, 10.0, 2.0, Aggregate::Sum);
-    o.free_lead_tilt.as_mut().unwrap().cone = None;
+    o.free.lead_tilt.as_mut().unwrap().cone = None;
     let e = compensate::path(s.arm(), &compliance, &line(3), &o).unwrap_err();
     assert!(
         matches!(&e, Error::InvalidOption { option: JobOption::ConeDeg, message } if message.contains("--free lead-tilt=-CONE..CONE")),
         "{e}"
     );
-    o.free_lead_tilt.as_mut().unwrap().cone = Some(1.0);
+    o.free.lead_tilt.as_mut().unwrap().cone = Some(1.0);
     let e = compensate::path(s.arm(), &compliance, &line(3), &o).unwrap_err();
     assert!(
         matches!(
@@ -294,13 +289,8 @@ fn a_streamed_grid_too_large_names_its_states_per_point() {
     }
     assert!(!message.contains("x 14 path points"), "{message}");
     // With the rotation free in 1 deg steps over +-180 deg (361 rotations): 1.3e8 states.
-    let o = Options {
-        free_tool_axis: Some(FreeToolAxis {
-            objective: Objective::Bound,
-            ..FreeToolAxis::try_from_degrees(1.0, 180.0).unwrap()
-        }),
-        ..options(&s, 30.0, 0.1, Aggregate::Sum)
-    };
+    let mut o = options(&s, 30.0, 0.1, Aggregate::Sum);
+    o.free.tool_rotation = Some(crate::compensate::rotation(180.0, 1.0));
     let (_, message) = refused(&o);
     assert!(
         message.contains("361201 leans x 361 rotations = 130393561 states per path point"),
@@ -311,10 +301,8 @@ fn a_streamed_grid_too_large_names_its_states_per_point() {
         "{message}"
     );
     // The rotation alone in 0.1 deg steps: 3601 rotations, at most 1388 points.
-    let o = Options {
-        free_tool_axis: Some(FreeToolAxis::try_from_degrees(0.1, 180.0).unwrap()),
-        ..Options::for_setup(&s)
-    };
+    let mut o = Options::for_setup(&s);
+    o.free.tool_rotation = Some(crate::compensate::rotation(180.0, 0.1));
     let points = line(1400).into_iter().map(Ok);
     let e = compensate::stream(s.arm(), &compliance, points, &o, |_, _| Ok::<(), Error>(()));
     let Err(Error::InvalidOption { option, message }) = e else {
@@ -364,7 +352,7 @@ fn a_program_leans_within_its_operations_cone() {
     let process =
         process::file::parse(&format!("{MILLING}[tool_axis]\ncone_deg = 6\n"), "p.toml").unwrap();
     let mut o = options(&s, 6.0, 3.0, Aggregate::Max);
-    o.free_lead_tilt.as_mut().unwrap().cone = None;
+    o.free.lead_tilt.as_mut().unwrap().cone = None;
     let report =
         machining::compensate(s.arm(), s.workpiece(), &compliance, &program, &process, &o).unwrap();
     for (r, op) in report.results.iter().zip(&report.operations) {
@@ -375,7 +363,7 @@ fn a_program_leans_within_its_operations_cone() {
         }
         assert!(r.budget.bound <= r.bound_before.unwrap() * (1.0 + 1e-9));
     }
-    o.free_lead_tilt.as_mut().unwrap().cone = Some(6f64.to_radians());
+    o.free.lead_tilt.as_mut().unwrap().cone = Some(6f64.to_radians());
     let e = machining::compensate(s.arm(), s.workpiece(), &compliance, &program, &process, &o)
         .unwrap_err();
     assert!(

@@ -8,8 +8,8 @@ use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 use stiffid::app::compensate::{run, Input, Request};
 use stiffid::machining::cell::on_carriage;
 use stiffid::machining::compensate::{
-    self, Aggregate, ChosenValues, Compensated, FreeLeadTilt, FreeStation, FreeToolAxis,
-    MapVariable, Objective, Options, PathPoint, Target,
+    self, Aggregate, ChosenValues, Compensated, FreeVariables, LeadTilt, MapVariable, Objective,
+    Options, PathPoint, Target,
 };
 use stiffid::observation::deflection::Frame;
 use stiffid::robot::external::{ExternalAxes, ExternalAxis, ExternalValues};
@@ -31,12 +31,15 @@ fn milling(track: bool) -> Setup {
 /// The rotation (5 deg steps within +-30 deg) and the lean (a 10 deg cone, 2.5 deg steps)
 /// free, minimising the summed bound.
 fn free(s: &Setup) -> Options {
-    let mut rotation = FreeToolAxis::try_from_degrees(5.0, 30.0).unwrap();
-    rotation.objective = Objective::Bound;
-    let lean = FreeLeadTilt::try_with(Some(10.0), 2.5, Some(&rotation), Aggregate::Sum).unwrap();
+    let free = FreeVariables {
+        tool_rotation: Some(crate::compensate::rotation(30.0, 5.0)),
+        lead_tilt: LeadTilt::checked(Some(10.0), 2.5).ok(),
+        minimise: Objective::Bound,
+        aggregate: Aggregate::Sum,
+        ..FreeVariables::default()
+    };
     Options {
-        free_tool_axis: Some(rotation),
-        free_lead_tilt: Some(lean),
+        free,
         map: true,
         ..Options::for_setup(s)
     }
@@ -115,9 +118,7 @@ fn the_track_map_holds_the_chosen_rotation_and_lean_and_its_chosen_cells_are_the
         })
         .collect();
     let mut options = free(&s);
-    let mut station = FreeStation::try_from_mm(100.0, 50.0).unwrap();
-    station.aggregate = Aggregate::Sum;
-    options.free_station = Some(station);
+    options.free.station = Some(crate::compensate::station(100.0, 50.0));
     options.map_over = MapVariable::Track;
     let results = compensate::path_on_track(s.arm(), &compliance, &points, &options).unwrap();
     assert!(results

@@ -4,7 +4,7 @@
 
 use nalgebra::{Isometry3, Vector3};
 use stiffid::design::{self, Criterion, Pool, PoolOptions, SearchOptions};
-use stiffid::machining::compensate::{self, FreeToolAxis};
+use stiffid::machining::compensate::{self, FreeRange, Variable};
 use stiffid::observation::stiffness::joint_torques;
 use stiffid::observation::{point_rows, posture_block};
 use stiffid::{robot::ik, setup, study, study::simulate, Error, Setup};
@@ -196,13 +196,17 @@ fn ik_and_compensate_options_out_of_range_are_refused() {
     options.q0[3] = f64::NAN;
     rejected(options.validate(), "compensate::Options.q0[4]", "NaN");
     let mut options = compensate::Options::for_setup(&setup);
-    options.free_tool_axis = Some(FreeToolAxis {
-        max_step: 0.0,
+    options.free.tool_rotation = Some(FreeRange {
+        step: 0.0,
         range: 1.0,
-        objective: compensate::Objective::Deflection,
-        aggregate: compensate::Aggregate::Sum,
     });
-    rejected(options.validate(), "FreeToolAxis.max_step", "0 rad");
+    match options.validate() {
+        Err(Error::InvalidOption { option, message }) => {
+            assert_eq!(option, stiffid::JobOption::MaxStepDeg);
+            assert!(message.starts_with("0: expected a number > 0"), "{message}");
+        }
+        other => panic!("expected an option error, got {other:?}"),
+    }
     // The error budget's options: the force model's error within 0 to 100%, the largest error > 0.
     let mut budget = compensate::Options::for_setup(&setup);
     budget.force_tolerance = 1.5;
@@ -219,7 +223,7 @@ fn ik_and_compensate_options_out_of_range_are_refused() {
         "{e}"
     );
     // 5e-324 deg is 0 rad: refused by the degrees' own check, naming the option.
-    match FreeToolAxis::try_from_degrees(5e-324, 90.0) {
+    match FreeRange::checked(&Variable::ToolRotation, 90.0, 5e-324) {
         Err(Error::InvalidOption { option, message }) => {
             assert_eq!(option, stiffid::JobOption::MaxStepDeg);
             assert!(message.contains("5e-324"), "{message}");
@@ -227,14 +231,14 @@ fn ik_and_compensate_options_out_of_range_are_refused() {
         other => panic!("expected an option error, got {other:?}"),
     }
     assert!(matches!(
-        FreeToolAxis::try_from_degrees(10.0, 181.0),
+        FreeRange::checked(&Variable::ToolRotation, 181.0, 10.0),
         Err(Error::InvalidOption {
             option: stiffid::JobOption::ToolAxisRangeDeg,
             ..
         })
     ));
-    let free = FreeToolAxis::try_from_degrees(90.0, 180.0).unwrap();
-    options.free_tool_axis = Some(free);
+    let free = crate::compensate::rotation(180.0, 90.0);
+    options.free.tool_rotation = Some(free);
     assert!(options.validate().is_ok());
 }
 

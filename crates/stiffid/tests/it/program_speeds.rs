@@ -8,7 +8,7 @@
 
 use nalgebra::Vector6;
 use stiffid::app::compensate::{self, Input, Report};
-use stiffid::machining::compensate::{Compensated, FreeToolAxis, Options, PathPoint};
+use stiffid::machining::compensate::{Compensated, FreeVariables, Objective, Options, PathPoint};
 use stiffid::machining::dynamics::Dynamics;
 use stiffid::machining::gcode::{self, Motion};
 use stiffid::machining::program::speed::Speed;
@@ -105,7 +105,11 @@ type Postures = [Vec<Vector6<f64>>; 2];
 /// between points): the report and the nominal postures of every point.
 fn rotated(case: &Case, s: &Setup) -> Result<(Report, Postures), Error> {
     let options = Options {
-        free_tool_axis: Some(FreeToolAxis::try_from_degrees(2.0, 30.0).unwrap()),
+        free: FreeVariables {
+            tool_rotation: Some(crate::compensate::rotation(30.0, 2.0)),
+            minimise: Objective::Deflection,
+            ..FreeVariables::default()
+        },
         ..Options::for_setup(s)
     };
     let (text, dialect, name) = &case.program;

@@ -4,7 +4,7 @@
 //! optimum of a uniform grid of the halved step; bad values refused naming the option.
 
 use stiffid::machining::compensate::{
-    self, refine, Aggregate, Compensated, FreeStation, FreeToolAxis, Objective, Options, PathPoint,
+    self, refine, Aggregate, Compensated, FreeVariables, Objective, Options, PathPoint,
 };
 use stiffid::machining::path;
 use stiffid::observation::deflection::Frame;
@@ -22,13 +22,14 @@ fn total(results: &[Compensated], aggregate: Aggregate) -> f64 {
 /// The free tool axis minimising the bound in `max_step_deg` steps within +-90 deg (a hair
 /// more, so that a 2.5 deg grid reaches 90 too).
 fn rotation(s: &Setup, max_step_deg: f64, aggregate: Aggregate, refine: usize) -> Options {
-    let free = FreeToolAxis {
-        objective: Objective::Bound,
+    let free = FreeVariables {
+        tool_rotation: Some(crate::compensate::rotation(90.002, max_step_deg)),
+        minimise: Objective::Bound,
         aggregate,
-        ..FreeToolAxis::try_from_degrees(max_step_deg, 90.002).unwrap()
+        ..FreeVariables::default()
     };
     Options {
-        free_tool_axis: Some(free),
+        free,
         refine,
         ..Options::for_setup(s)
     }
@@ -102,13 +103,10 @@ fn the_refined_station_and_rotation_never_rise_and_keep_the_step() {
     let compliance = s.model_compliance("test").unwrap();
     let points = crate::free_station::line(8);
     for aggregate in [Aggregate::Sum, Aggregate::Max] {
-        let station = FreeStation {
-            aggregate,
-            ..FreeStation::try_from_mm(100.0, 50.0).unwrap()
-        };
-        let options = |refine| Options {
-            free_station: Some(station),
-            ..rotation(&s, 5.0, aggregate, refine)
+        let options = |refine| {
+            let mut o = rotation(&s, 5.0, aggregate, refine);
+            o.free.station = Some(crate::compensate::station(100.0, 50.0));
+            o
         };
         let run =
             |o: &Options| compensate::path_on_track(s.arm(), &compliance, &points, o).unwrap();

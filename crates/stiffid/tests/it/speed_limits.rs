@@ -10,8 +10,8 @@ use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 use std::sync::Arc;
 use stiffid::app::compensate::{self, document::Document, Input};
 use stiffid::machining::compensate::{
-    self as comp, speed_shares, Aggregate, Compensated, FreeStation, FreeToolAxis, Objective,
-    Options, PathPoint, Target,
+    self as comp, speed_shares, Aggregate, Compensated, FreeVariables, Objective, Options,
+    PathPoint, Target,
 };
 use stiffid::machining::dynamics::Dynamics;
 use stiffid::observation::deflection::Frame;
@@ -56,10 +56,11 @@ fn trim(feed: f64) -> (String, Vec<f64>) {
 /// bound): the document and each point's station chosen, mm.
 fn on_track(s: &Setup, text: &str) -> (Document, Vec<f64>) {
     let options = Options {
-        free_station: Some(FreeStation {
+        free: FreeVariables {
+            station: Some(crate::compensate::station(1500.0, 50.0)),
             aggregate: Aggregate::Max,
-            ..FreeStation::try_from_mm(1500.0, 50.0).unwrap()
-        }),
+            ..FreeVariables::default()
+        },
         ..Options::for_setup(s)
     };
     let request = compensate::Request {
@@ -149,10 +150,11 @@ fn line() -> Vec<PathPoint> {
 /// between points.
 fn rotated(s: &Setup) -> Vec<Compensated> {
     let mut options = Options {
-        free_tool_axis: Some(FreeToolAxis {
-            objective: Objective::Deflection,
-            ..FreeToolAxis::try_from_degrees(5.0, 30.0).unwrap()
-        }),
+        free: FreeVariables {
+            tool_rotation: Some(crate::compensate::rotation(30.0, 5.0)),
+            minimise: Objective::Deflection,
+            ..FreeVariables::default()
+        },
         ..Options::for_setup(s)
     };
     let times: Vec<Option<f64>> = (0..8).map(|i| (i > 0).then_some(1.0)).collect();

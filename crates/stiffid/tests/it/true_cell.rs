@@ -15,7 +15,7 @@ use rand_distr::{Distribution, Normal};
 use stiffid::app::compensate::{self, Input};
 use stiffid::identify::svd::fit;
 use stiffid::machining::compensate::{
-    Aggregate, Compensated, FreeStation, FreeToolAxis, Objective, Options, PathPoint,
+    Aggregate, Compensated, FreeVariables, Objective, Options, PathPoint,
 };
 use stiffid::metrology::calibration::error_model::Observation;
 use stiffid::metrology::calibration::gravity::Gravity;
@@ -308,11 +308,13 @@ fn a_path_along_the_track_lands_on_the_true_cell() {
     eprintln!("track: held out {:.4} mm", held_rms * 1e3);
     check(own, own_nominal);
     // The station (+-500 mm) and the tool rotation (+-30 deg) chosen for the least deflection.
-    let mut free = FreeToolAxis::try_from_degrees(10.0, 30.0).unwrap();
-    (free.objective, free.aggregate) = (Objective::Deflection, Aggregate::Max);
-    options.free_station =
-        Some(FreeStation::try_with(500.0, 100.0, Some(&free), Aggregate::Max).unwrap());
-    options.free_tool_axis = Some(free);
+    options.free = FreeVariables {
+        tool_rotation: Some(crate::compensate::rotation(30.0, 10.0)),
+        station: Some(crate::compensate::station(500.0, 100.0)),
+        minimise: Objective::Deflection,
+        aggregate: Aggregate::Max,
+        ..FreeVariables::default()
+    };
     let (points, results) = compensated(&setup, &compliance, &options, &text);
     let moved = (points.iter().zip(&results))
         .filter(|(p, r)| (p.external.as_slice()[0] - r.external.as_slice()[0]).abs() > 1e-9)

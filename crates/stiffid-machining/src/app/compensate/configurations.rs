@@ -1,5 +1,5 @@
 //! The document's part of the free configuration (`--free configuration`,
-//! [`crate::compensate::FreeConfiguration`]): every configuration of the arm found
+//! [`crate::compensate::FreeVariables::configuration`]): every configuration of the arm found
 //! at the path's first point, whether it takes the path or why not, its objective, and the one
 //! chosen; with one configuration per run (`--free configuration=run`), each run's.
 

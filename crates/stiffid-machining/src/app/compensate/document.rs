@@ -15,7 +15,6 @@ use stiffid_core::app::document::parameters::{stiffness, ParameterStiffness};
 use stiffid_core::common::limits::Violation;
 use stiffid_core::common::stop::Stop;
 use stiffid_core::common::warning::{Warning, WarningKind};
-use stiffid_core::common::words::as_given;
 use stiffid_core::io::stiffness::RegionSection;
 use stiffid_core::model::region::{self, Region};
 use stiffid_core::robot::external::{ExternalAxes, ExternalValues};
@@ -319,29 +318,14 @@ impl Document {
             has_covariance: report.compliance.covariance.is_some(),
             prediction_level: report.prediction_level,
             region: RegionSection::of(&report.compliance.region),
-            free_tool_axis: report.free_tool_axis.map(|f| FreeToolAxis {
-                max_step_deg: as_given(f.max_step.to_degrees()),
-                range_deg: as_given(f.range.to_degrees()),
-                objective: stiffid_core::common::choice::Choice::name(f.objective),
-                aggregate: stiffid_core::common::choice::Choice::name(f.aggregate),
-            }),
-            free_station: report.free_station.map(|f| FreeStation {
-                range_mm: as_given(f.range * 1e3),
-                step_mm: as_given(f.max_step * 1e3),
-                objective: stiffid_core::common::choice::Choice::name(f.objective),
-                aggregate: stiffid_core::common::choice::Choice::name(f.aggregate),
-            }),
+            free_tool_axis: FreeToolAxis::new(&report.free),
+            free_station: FreeStation::new(&report.free),
             feasibility: report.feasibility.clone(),
             speed_limits: report.speed_limits.clone(),
-            free_positioner: report.free_positioner.map(FreePositioner::new),
-            free_tilt: report.free_tilt.map(FreePositioner::new),
+            free_positioner: FreePositioner::new(report.free.positioner, &report.free),
+            free_tilt: FreePositioner::new(report.free.tilt, &report.free),
             refine: report.refine,
-            free_lead_tilt: report.free_lead_tilt.map(|f| FreeLeadTilt {
-                cone_deg: f.cone.map(|c| as_given(c.to_degrees())),
-                step_deg: as_given(f.max_step.to_degrees()),
-                objective: stiffid_core::common::choice::Choice::name(f.objective),
-                aggregate: stiffid_core::common::choice::Choice::name(f.aggregate),
-            }),
+            free_lead_tilt: FreeLeadTilt::new(&report.free),
             configurations: (report.configurations.as_ref())
                 .map(super::configurations::ConfigurationsDocument::new),
             program: report.program.as_ref().map(|p| Program {

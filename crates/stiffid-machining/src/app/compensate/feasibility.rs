@@ -37,10 +37,10 @@ impl Feasibility {
     /// The feasibility of `options` with the states `removed` over the path; `None` without a
     /// free variable.
     pub fn new(options: &Options, removed: Removed) -> Option<Self> {
-        if options.free_tool_axis.is_none()
-            && options.free_lead_tilt.is_none()
-            && options.free_configuration.is_none()
-            && !options.frees_external()
+        if options.free.tool_rotation.is_none()
+            && options.free.lead_tilt.is_none()
+            && options.free.configuration.is_none()
+            && !options.free.frees_external()
         {
             return None;
         }

@@ -2,7 +2,9 @@
 //! units of the command line (`free_tool_axis`, `free_station`, `free_positioner`, `free_tilt`,
 //! `free_lead_tilt`).
 
+use crate::compensate::{FreeRange, FreeVariables};
 use serde::Serialize;
+use stiffid_core::common::choice::Choice;
 use stiffid_core::common::words::as_given;
 
 /// The options of the free tool axis.
@@ -66,14 +68,60 @@ pub struct FreeLeadTilt {
     pub aggregate: &'static str,
 }
 
-impl FreePositioner {
-    /// The options of `f` in degrees.
-    pub(super) fn new(f: crate::compensate::FreePositioner) -> Self {
-        FreePositioner {
+/// The names of what `free`'s variables minimise and how their costs add up.
+fn objective(free: &FreeVariables) -> (&'static str, &'static str) {
+    (free.minimise.name(), free.aggregate.name())
+}
+
+impl FreeToolAxis {
+    /// The free tool rotation of `free` in degrees, if free.
+    pub(super) fn new(free: &FreeVariables) -> Option<Self> {
+        let (objective, aggregate) = objective(free);
+        free.tool_rotation.map(|f| FreeToolAxis {
+            max_step_deg: as_given(f.step.to_degrees()),
             range_deg: as_given(f.range.to_degrees()),
-            step_deg: as_given(f.max_step.to_degrees()),
-            objective: stiffid_core::common::choice::Choice::name(f.objective),
-            aggregate: stiffid_core::common::choice::Choice::name(f.aggregate),
-        }
+            objective,
+            aggregate,
+        })
+    }
+}
+
+impl FreeStation {
+    /// The free station of `free` in mm, if free.
+    pub(super) fn new(free: &FreeVariables) -> Option<Self> {
+        let (objective, aggregate) = objective(free);
+        free.station.map(|f| FreeStation {
+            range_mm: as_given(f.range * 1e3),
+            step_mm: as_given(f.step * 1e3),
+            objective,
+            aggregate,
+        })
+    }
+}
+
+impl FreePositioner {
+    /// The free positioner axis `f` (the positioner's or the tilt's of `free`) in degrees, if
+    /// free.
+    pub(super) fn new(f: Option<FreeRange>, free: &FreeVariables) -> Option<Self> {
+        let (objective, aggregate) = objective(free);
+        f.map(|f| FreePositioner {
+            range_deg: as_given(f.range.to_degrees()),
+            step_deg: as_given(f.step.to_degrees()),
+            objective,
+            aggregate,
+        })
+    }
+}
+
+impl FreeLeadTilt {
+    /// The free lead and tilt of `free` in degrees, if free.
+    pub(super) fn new(free: &FreeVariables) -> Option<Self> {
+        let (objective, aggregate) = objective(free);
+        free.lead_tilt.map(|f| FreeLeadTilt {
+            cone_deg: f.cone.map(|c| as_given(c.to_degrees())),
+            step_deg: as_given(f.step.to_degrees()),
+            objective,
+            aggregate,
+        })
     }
 }

@@ -31,7 +31,7 @@ pub mod speed;
 pub mod stream;
 
 use crate::app::compensate::document::Summary;
-use crate::compensate::{self, Compensated, Compliance, FreeToolAxis, Options, PathPoint, CHUNK};
+use crate::compensate::{self, Compensated, Compliance, Options, PathPoint, CHUNK};
 use crate::dynamics::Dynamics;
 use crate::process::Process;
 use crate::program::generate::{self, generate, moves, Plan, Settings, Target, Tool};
@@ -154,22 +154,14 @@ pub struct Report {
     /// The level of the deflection's prediction intervals, when the compliance carries a
     /// prediction calibration ([`stiffid_core::model::prediction`]).
     pub prediction_level: Option<f64>,
-    /// The free tool axis, if asked.
-    pub free_tool_axis: Option<FreeToolAxis>,
-    /// The free track station, if asked.
-    pub free_station: Option<compensate::FreeStation>,
+    /// The free variables and what they minimise ([`Options::free`]).
+    pub free: compensate::FreeVariables,
     /// With a free variable: the feasibility checks of its moved postures and the states each
     /// removed.
     pub feasibility: Option<feasibility::Feasibility>,
     /// The axes' speed limits at the program's feed: whether checked, each axis's highest
     /// share of its largest speed at the path's own values and at those chosen.
     pub speed_limits: speed::SpeedLimits,
-    /// The free positioner, if asked.
-    pub free_positioner: Option<compensate::FreePositioner>,
-    /// The free lead and tilt of the tool axis, if asked.
-    pub free_lead_tilt: Option<compensate::FreeLeadTilt>,
-    /// The free tilt, if asked.
-    pub free_tilt: Option<compensate::FreePositioner>,
     /// With a free variable: the levels of its grid's refinement ([`Options::refine`]).
     pub refine: Option<usize>,
     /// The largest and mean values along the path, a sample, the ten largest deflections.
@@ -179,7 +171,7 @@ pub struct Report {
     /// With [`Options::map`]: the map of the free variable with the rotations chosen
     /// ([`compensate::Map`]).
     pub map: Option<compensate::Map>,
-    /// With [`Options::free_configuration`]: every configuration of the arm evaluated over the
+    /// With [`super::FreeVariables::configuration`]: every configuration of the arm evaluated over the
     /// path, the one chosen ([`compensate::Configurations`]).
     pub configurations: Option<compensate::Configurations>,
     /// Points without a process force (plunges, rapid moves, blocks no operation covers).
@@ -220,11 +212,11 @@ where
     }
     let read = read_checked(setup, &input, &options)?;
     let (options, mut speeds) = speed::prepare(setup, &input, read.as_ref(), options)?;
-    let external = options.frees_external();
-    let free = options.free_tool_axis.is_some() || options.free_lead_tilt.is_some() || external;
+    let external = options.free.frees_external();
+    let free = options.free.tool_rotation.is_some() || options.free.lead_tilt.is_some() || external;
     let axes = setup.robot().external();
     let mut summary = Summary::new(free, options.level, axes);
-    if options.free_lead_tilt.is_some() {
+    if options.free.lead_tilt.is_some() {
         summary = summary.with_lean();
     }
     let mut chosen: Vec<compensate::ChosenValues> = Vec::new();
@@ -257,7 +249,7 @@ where
                 let points: Result<Vec<PathPoint>> = points.collect();
                 mapped = Some(points.map_err(|e| in_input(&name, e))?);
             }
-            if options.free_configuration.is_some() {
+            if options.free.configuration.is_some() {
                 let points = placed(text).map_err(|e| in_input(&name, e))?;
                 let points: Result<Vec<PathPoint>> = points.collect();
                 let points = points.map_err(|e| in_input(&name, e))?;
@@ -429,13 +421,11 @@ where
     }
     let map = match &mapped {
         Some(points) => {
-            let in_chosen = Options {
-                q0: (chosen_configurations.as_ref())
-                    .and_then(compensate::Configurations::start)
-                    .unwrap_or(options.q0),
-                free_configuration: None,
-                ..options.clone()
-            };
+            let mut in_chosen = options.clone();
+            in_chosen.q0 = (chosen_configurations.as_ref())
+                .and_then(compensate::Configurations::start)
+                .unwrap_or(options.q0);
+            in_chosen.free.configuration = None;
             // A program's wrenches hold the tool's weight (machining::compensate).
             let weighted =
                 program.is_some() && crate::weight::tool_load(setup.arm(), &compliance).is_some();
@@ -456,13 +446,9 @@ where
     Ok(Report {
         input: name,
         springs: setup.springs(),
-        free_tool_axis: options.free_tool_axis,
-        free_station: options.free_station,
+        free: options.free,
         feasibility: feasibility::Feasibility::new(&options, summary.removed),
         speed_limits: speeds.document(),
-        free_positioner: options.free_positioner,
-        free_lead_tilt: options.free_lead_tilt,
-        free_tilt: options.free_tilt,
         refine: free.then_some(options.refine),
         parameters: setup.model().parameters(),
         prediction_level: compliance.prediction.as_ref().map(|_| options.level),
