@@ -118,7 +118,10 @@ impl Language {
             .unwrap_or("");
         Self::from_extension(extension).ok_or_else(|| Error::InvalidField {
             field: name.into(),
-            message: "expected a program ending in .nc, .ngc, .gcode, .tap, .cnc or .g (G-code), .src or .dat (KUKA KRL), .mod, .modx or .prg (ABB RAPID), .ls (FANUC LS), .jbi (Yaskawa INFORM)".into(),
+            message: format!(
+                "expected a program ending in .nc, .ngc, .gcode, .tap, .cnc or .g (G-code), {}",
+                Dialect::ALL.map(robot_extensions).join(", ")
+            ),
         })
     }
 
@@ -165,6 +168,13 @@ impl Language {
             }
         }
     }
+}
+
+/// A dialect's extensions and name in words: `.src or .dat (KUKA KRL)`.
+fn robot_extensions(d: Dialect) -> String {
+    let c = d.controller();
+    let dotted: Vec<String> = c.extensions().iter().map(|e| format!(".{e}")).collect();
+    format!("{} ({})", text::or_list(&dotted), c.title())
 }
 
 impl stiffid_core::common::choice::Choice for Language {

@@ -165,11 +165,7 @@ fn generated() -> String {
         .filter(|d| d.controller().generator().is_some())
         .map(|d| d.controller().key().to_ascii_uppercase())
         .collect();
-    match keys.split_last() {
-        Some((last, [])) => last.clone(),
-        Some((last, rest)) => format!("{} or {last}", rest.join(", ")),
-        None => String::new(),
-    }
+    crate::text::or_list(&keys)
 }
 
 /// The words a program may not be named (module docs; docs/reference.md cites the lists), and
