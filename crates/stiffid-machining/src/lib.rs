@@ -118,7 +118,10 @@ impl Language {
             .unwrap_or("");
         Self::from_extension(extension).ok_or_else(|| Error::InvalidField {
             field: name.into(),
-            message: "expected a program ending in .nc, .ngc, .gcode, .tap, .cnc or .g (G-code), .src or .dat (KUKA KRL), .mod, .modx or .prg (ABB RAPID), .ls (FANUC LS), .jbi (Yaskawa INFORM)".into(),
+            message: format!(
+                "expected a program ending in .nc, .ngc, .gcode, .tap, .cnc or .g (G-code), {}",
+                Dialect::ALL.map(robot_extensions).join(", ")
+            ),
         })
     }
 
@@ -126,10 +129,7 @@ impl Language {
     pub fn name(self) -> &'static str {
         match self {
             Language::GCode => "gcode",
-            Language::Robot(Dialect::Krl) => "krl",
-            Language::Robot(Dialect::Rapid) => "rapid",
-            Language::Robot(Dialect::FanucLs) => "ls",
-            Language::Robot(Dialect::Inform) => "inform",
+            Language::Robot(d) => d.controller().key(),
         }
     }
 
@@ -139,10 +139,7 @@ impl Language {
     pub fn extension(self) -> &'static str {
         match self {
             Language::GCode => "nc",
-            Language::Robot(Dialect::Krl) => "src",
-            Language::Robot(Dialect::Rapid) => "mod",
-            Language::Robot(Dialect::FanucLs) => "ls",
-            Language::Robot(Dialect::Inform) => "jbi",
+            Language::Robot(d) => d.controller().extensions()[0],
         }
     }
 
@@ -173,15 +170,24 @@ impl Language {
     }
 }
 
+/// A dialect's extensions and name in words: `.src or .dat (KUKA KRL)`.
+fn robot_extensions(d: Dialect) -> String {
+    let c = d.controller();
+    let dotted: Vec<String> = c.extensions().iter().map(|e| format!(".{e}")).collect();
+    format!("{} ({})", text::or_list(&dotted), c.title())
+}
+
 impl stiffid_core::common::choice::Choice for Language {
     const FIELD: &'static str = "output";
-    const ALL: &'static [Self] = &[
-        Language::GCode,
-        Language::Robot(Dialect::Krl),
-        Language::Robot(Dialect::Rapid),
-        Language::Robot(Dialect::FanucLs),
-        Language::Robot(Dialect::Inform),
-    ];
+    const ALL: &'static [Self] = &{
+        let mut all = [Language::GCode; 1 + Dialect::ALL.len()];
+        let mut i = 0;
+        while i < Dialect::ALL.len() {
+            all[i + 1] = Language::Robot(Dialect::ALL[i]);
+            i += 1;
+        }
+        all
+    };
 
     fn name(self) -> &'static str {
         Language::name(self)
@@ -190,10 +196,7 @@ impl stiffid_core::common::choice::Choice for Language {
     fn help(self) -> &'static str {
         match self {
             Language::GCode => "G-code",
-            Language::Robot(Dialect::Krl) => "KUKA KRL",
-            Language::Robot(Dialect::Rapid) => "ABB RAPID",
-            Language::Robot(Dialect::FanucLs) => "FANUC LS",
-            Language::Robot(Dialect::Inform) => "Yaskawa INFORM",
+            Language::Robot(d) => d.controller().title(),
         }
     }
 }

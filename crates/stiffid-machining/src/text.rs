@@ -52,3 +52,12 @@ pub(crate) fn lines(text: &str) -> impl Iterator<Item = (u64, usize, &str)> {
         (i as u64 + 1, s, l.trim_end_matches(['\n', '\r']))
     })
 }
+
+/// `items` in words: `a`, `a or b`, `a, b or c`.
+pub(crate) fn or_list(items: &[String]) -> String {
+    match items.split_last() {
+        Some((last, [])) => last.clone(),
+        Some((last, rest)) => format!("{} or {last}", rest.join(", ")),
+        None => String::new(),
+    }
+}

@@ -18,7 +18,7 @@
 //! - an axis written in the unit of the other kind (LS `E1= 1500 deg` for a linear axis, `mm`
 //!   for a rotary one: the controller takes the unit of the axis it drives).
 
-use super::{Dialect, JointProgram, JointTarget};
+use super::{JointProgram, JointTarget};
 use stiffid_core::robot::ExternalAxes;
 use stiffid_core::{Error, Result};
 
@@ -57,7 +57,7 @@ fn target_values(
     };
     for (k, value) in t.external.iter().enumerate().skip(n) {
         let Some(v) = value else { continue };
-        if program.dialect == Dialect::Krl && *v == 0.0 {
+        if program.dialect.controller().zero_is_no_axis() && *v == 0.0 {
             continue;
         }
         return Err(Error::Program {
@@ -80,17 +80,14 @@ fn target_values(
             .axes
             .get(k)
             .cloned()
-            .unwrap_or_else(|| unnamed(program.dialect, k));
+            .unwrap_or_else(|| program.dialect.controller().external_axis(k));
         let display = t.external.get(k).copied().flatten().ok_or_else(|| Error::Program {
             line: t.line,
             message: format!(
                 "{named}: no value for the cell's external axis {} ({}){}: the controller would keep the axis where it is, which the program does not say; give its value in every target",
                 k + 1,
                 axis.name,
-                match program.dialect {
-                    Dialect::Rapid => " (9E9: not used)",
-                    _ => "",
-                }
+                program.dialect.controller().unused_axis()
             ),
         })?;
         let si = axis.to_si(display);
@@ -137,16 +134,6 @@ fn check_units(program: &JointProgram, cell: Option<&ExternalAxes>) -> Result<()
         });
     }
     Ok(())
-}
-
-/// The name of the program's `k`-th external axis where the program gives none.
-fn unnamed(dialect: Dialect, k: usize) -> String {
-    match dialect {
-        Dialect::Krl => format!("E{}", k + 1),
-        Dialect::Rapid => format!("eax_{}", (b'a' + k as u8) as char),
-        Dialect::FanucLs => format!("E{}", k + 1),
-        Dialect::Inform => format!("external axis {}", k + 1),
-    }
 }
 
 /// Each target's external values in the program's order (mm or deg) from the cell's SI values

@@ -14,6 +14,12 @@
 //! - [`inform`]: `MOVJ`/`MOVL` to `C` teaching positions in pulses, with base (`BC`) and station
 //!   (`EC`) positions; the pulses per degree from a `'stiffid:` comment of the job.
 //!
+//! Each language is a folder ([`krl`], [`rapid`], [`ls`], [`inform`]: its reader, its Cartesian
+//! targets, its program writer and its names) implementing [`Controller`], what a controller
+//! language does; [`Dialect::controller`] is the one place a dialect maps to its folder, and
+//! everything else here (the targets and their writing back, [`speed`], [`cartesian`]'s solve,
+//! [`external`], [`rename`], [`generate`]'s shared part) asks the trait.
+//!
 //! A target's external axes are the cell's in the cell's order ([`external`]).
 //!
 //! Cartesian targets (KRL `E6POS`/`POS`/`FRAME` aggregates and points, RAPID `MoveL`/`MoveJ` to
@@ -39,6 +45,7 @@
 //! a point visited twice takes one value, so the two visits' compensations must agree.
 
 pub mod cartesian;
+mod controller;
 pub mod external;
 pub mod generate;
 pub mod inform;
@@ -49,6 +56,7 @@ pub mod rename;
 pub mod speed;
 
 pub(crate) use super::text::{lines, number_at};
+pub use controller::{BoundComment, Controller, Generator, Read};
 use std::ops::Range;
 use stiffid_core::{Error, Result};
 
@@ -73,15 +81,30 @@ pub enum Dialect {
 }
 
 impl Dialect {
+    /// Every dialect, in the order options and messages list them.
+    pub const ALL: [Dialect; 4] = [
+        Dialect::Krl,
+        Dialect::Rapid,
+        Dialect::FanucLs,
+        Dialect::Inform,
+    ];
+
+    /// The controller language that reads and writes the dialect: the one place a dialect
+    /// maps to its code (a new controller adds its variant here and its folder).
+    pub fn controller(self) -> &'static dyn Controller {
+        match self {
+            Dialect::Krl => &krl::Krl,
+            Dialect::Rapid => &rapid::Rapid,
+            Dialect::FanucLs => &ls::FanucLs,
+            Dialect::Inform => &inform::Inform,
+        }
+    }
+
     /// The dialect of a file name's extension (case-insensitive), if it is one of ours.
     pub fn from_extension(extension: &str) -> Option<Self> {
-        match extension.to_ascii_lowercase().as_str() {
-            "src" | "dat" => Some(Dialect::Krl),
-            "mod" | "modx" | "prg" => Some(Dialect::Rapid),
-            "ls" => Some(Dialect::FanucLs),
-            "jbi" => Some(Dialect::Inform),
-            _ => None,
-        }
+        let extension = extension.to_ascii_lowercase();
+        (Dialect::ALL.into_iter())
+            .find(|d| d.controller().extensions().contains(&extension.as_str()))
     }
 }
 
@@ -170,7 +193,7 @@ pub struct JointProgram {
     pulses: Vec<Option<f64>>,
     /// Per external axis, the unit the program writes it in and the line of its first value,
     /// where the language says (LS: `mm` or `deg`); empty for the others.
-    units: ls::Units,
+    units: Units,
     /// What writes the Cartesian targets back, once resolved ([`cartesian::resolve`]).
     writer: Option<Box<cartesian::Writer>>,
     text: String,
@@ -184,28 +207,18 @@ pub struct JointProgram {
 /// missing or malformed member or configuration data ([`cartesian`]), no motion to a target
 /// at all, or more than [`MAX_TARGETS`].
 pub fn parse(text: &str, dialect: Dialect) -> Result<JointProgram> {
-    let mut units = Vec::new();
-    let (mut targets, axes, pulses) = match dialect {
-        Dialect::Krl => with_decimals(krl::targets(text)?),
-        Dialect::Rapid => with_decimals(rapid::targets(text)?),
-        Dialect::FanucLs => {
-            let (targets, axes, written) = ls::targets(text)?;
-            units = written;
-            with_decimals((targets, axes))
-        }
-        Dialect::Inform => inform::targets(text)?,
-    };
+    let Read {
+        mut targets,
+        axes,
+        pulses,
+        units,
+    } = dialect.controller().read(text)?;
     for t in &mut targets {
         t.external.resize(axes.len(), None);
         t.external_spans.resize(axes.len(), None);
     }
     if targets.is_empty() {
-        let hint = match dialect {
-            Dialect::Krl => "PTP or LIN to {A1 .., A6 ..} or {X .., .., C .., S .., T ..}, or to an E6AXIS or E6POS declared in the file; a .dat holds declarations only: give the .src",
-            Dialect::Rapid => "MoveAbsJ to a jointtarget, MoveL or MoveJ to a robtarget",
-            Dialect::FanucLs => "J or L to a P[i] of /POS",
-            Dialect::Inform => "MOVJ or MOVL to a C-variable of //POS in pulses",
-        };
+        let hint = dialect.controller().motions();
         return Err(at(
             1,
             format!("no motion to a joint target found (expected {hint})"),
@@ -228,12 +241,9 @@ pub fn parse(text: &str, dialect: Dialect) -> Result<JointProgram> {
     })
 }
 
-/// A dialect's targets and axes, every value written with decimals.
-pub(crate) type Read = (Vec<JointTarget>, Vec<String>, Vec<Option<f64>>);
-
-fn with_decimals((targets, axes): (Vec<JointTarget>, Vec<String>)) -> Read {
-    (targets, axes, Vec::new())
-}
+/// Per external axis of a program (its order), the unit its values are written in (`mm` or
+/// `deg`) and the line of the first, where the language says (LS).
+pub type Units = Vec<Option<(&'static str, u64)>>;
 
 impl JointProgram {
     /// The program with the axis angles of target `i` replaced by `q_deg[i]` (deg) where they

@@ -18,24 +18,8 @@ use super::Dialect;
 /// assert_eq!(renamed(ls, Dialect::FanucLs, "POCKET_C"), "/PROG  POCKET_C\n/ATTR\n");
 /// ```
 pub fn renamed(text: &str, dialect: Dialect, name: &str) -> String {
-    let span = match dialect {
-        Dialect::Krl => declared(text, |line| {
-            let upper = line.to_ascii_uppercase();
-            let rest = upper
-                .strip_prefix("GLOBAL")
-                .map_or(upper.as_str(), str::trim_start);
-            rest.strip_prefix("DEF")
-                .filter(|r| r.starts_with(char::is_whitespace))
-                .map(|r| line.len() - r.len())
-        }),
-        Dialect::FanucLs => declared(text, |line| {
-            line.strip_prefix("/PROG").map(|r| line.len() - r.len())
-        }),
-        Dialect::Inform => declared(text, |line| {
-            line.strip_prefix("//NAME").map(|r| line.len() - r.len())
-        }),
-        Dialect::Rapid => None,
-    };
+    let controller = dialect.controller();
+    let span = declared(text, |line| controller.declares_name(line));
     match span {
         Some((start, end)) => format!("{}{name}{}", &text[..start], &text[end..]),
         None => text.to_string(),

@@ -21,6 +21,7 @@ mod common;
 mod compensate;
 mod compensate_dynamics;
 mod configuration_runs;
+mod controllers;
 mod criteria;
 mod design_candidates;
 mod distinct_postures;

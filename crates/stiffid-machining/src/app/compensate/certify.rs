@@ -13,7 +13,7 @@
 //! A program compensated again takes the new bounds in the place of the ones an earlier
 //! compensation wrote (a bound comment of its form), never beside them.
 
-use crate::program::Dialect;
+use crate::program::{BoundComment, Dialect};
 use std::collections::HashMap;
 
 /// The comment of a bound `bound` (m) at `level`.
@@ -43,11 +43,10 @@ pub fn at_lines(dialect: Dialect, text: &str, lines: &[(u64, f64)], level: f64) 
         let b = by_line.entry(line).or_insert(bound);
         *b = b.max(bound);
     }
-    match dialect {
-        Dialect::FanucLs => ls(text, &by_line),
-        Dialect::Inform => inform(text, &by_line, level),
-        Dialect::Krl | Dialect::Rapid => {
-            let marker = if dialect == Dialect::Krl { ';' } else { '!' };
+    match dialect.controller().bound_comment() {
+        BoundComment::PositionComment => ls(text, &by_line),
+        BoundComment::LineBefore { marker } => inform(text, &by_line, level, marker),
+        BoundComment::EndOfLine { marker, statement } => {
             let mut out = String::with_capacity(text.len() + 40 * lines.len());
             let mut pending: Option<f64> = None;
             for (i, line) in text.split_inclusive('\n').enumerate() {
@@ -56,7 +55,7 @@ pub fn at_lines(dialect: Dialect, text: &str, lines: &[(u64, f64)], level: f64) 
                 }
                 let body = line.trim_end_matches(['\n', '\r']);
                 let code = body.split(marker).next().unwrap_or("");
-                let ends = dialect == Dialect::Krl || code.contains(';');
+                let ends = statement.is_none_or(|end| code.contains(end));
                 match pending.filter(|_| ends) {
                     Some(b) => {
                         out.push_str(without_bound(body, marker));
@@ -79,16 +78,8 @@ pub fn generated(dialect: Dialect, texts: &[String], bounds: &[f64], level: f64)
     texts
         .iter()
         .map(|text| {
-            let mut in_mn = false;
-            let lines: Vec<(u64, f64)> = (text.lines().enumerate())
-                .filter(|(_, l)| {
-                    let t = l.trim_start();
-                    if t.starts_with('/') {
-                        in_mn = t.starts_with("/MN");
-                    }
-                    is_motion(dialect, t, in_mn)
-                })
-                .filter_map(|(i, _)| next.next().map(|b| (i as u64 + 1, b)))
+            let lines: Vec<(u64, f64)> = (dialect.controller().motion_lines(text).into_iter())
+                .filter_map(|line| next.next().map(|b| (line, b)))
                 .collect();
             at_lines(dialect, text, &lines, level)
         })
@@ -117,34 +108,19 @@ fn is_ls_bound(comment: &str) -> bool {
         .is_some_and(|v| v.parse::<f64>().is_ok())
 }
 
-/// Whether a generated program's line (trimmed at its start) is a motion.
-fn is_motion(dialect: Dialect, t: &str, in_mn: bool) -> bool {
-    match dialect {
-        Dialect::Krl => t.starts_with("PTP ") || t.starts_with("LIN "),
-        Dialect::Rapid => ["MoveJ ", "MoveL ", "MoveAbsJ "]
-            .iter()
-            .any(|m| t.starts_with(m)),
-        Dialect::FanucLs => {
-            let body = t.split_once(':').map_or("", |(_, b)| b);
-            in_mn && (body.starts_with("J P[") || body.starts_with("L P["))
-        }
-        Dialect::Inform => t.starts_with("MOVJ ") || t.starts_with("MOVL "),
-    }
-}
-
 /// An INFORM job with a comment line naming the bound before each motion line of `by_line`,
 /// indented as the motion.
-fn inform(text: &str, by_line: &HashMap<u64, f64>, level: f64) -> String {
+fn inform(text: &str, by_line: &HashMap<u64, f64>, level: f64, marker: char) -> String {
     let mut out = String::with_capacity(text.len() + 40 * by_line.len());
     for (i, line) in text.split_inclusive('\n').enumerate() {
-        let old = line.trim_start().strip_prefix('\'').is_some_and(is_bound);
+        let old = line.trim_start().strip_prefix(marker).is_some_and(is_bound);
         if old && by_line.contains_key(&(i as u64 + 2)) {
             continue;
         }
         if let Some(b) = by_line.get(&(i as u64 + 1)) {
             let indent = &line[..line.len() - line.trim_start().len()];
             let end = if line.ends_with("\r\n") { "\r\n" } else { "\n" };
-            out.push_str(&format!("{indent}'{}{end}", words(*b, level)));
+            out.push_str(&format!("{indent}{marker}{}{end}", words(*b, level)));
         }
         out.push_str(line);
     }

@@ -483,10 +483,11 @@ fn written_name(
     let Language::Robot(dialect) = output else {
         return Ok(None);
     };
-    if dialect == Dialect::Krl && extension.eq_ignore_ascii_case("dat") {
+    let controller = dialect.controller();
+    if let Some(why) = controller.refuses_output(&extension.to_ascii_lowercase()) {
         return Err(Error::InvalidField {
             field: "out".into(),
-            message: format!("{out_name}: a KRL program (DEF) is written to a .src file; its .dat holds only data (DEFDAT)"),
+            message: format!("{out_name}: {why}"),
         });
     }
     match program {
@@ -499,11 +500,10 @@ fn written_name(
             generate::check_plan(dialect, &name, settings, g.points.len())?;
             Ok(Some(name))
         }
-        Program::Robot(_) if stem.is_empty() || dialect == Dialect::Rapid => Ok(None),
+        Program::Robot(_) if stem.is_empty() => Ok(None),
         Program::Robot(_) => {
-            let name = match dialect {
-                Dialect::FanucLs | Dialect::Inform => stem.to_ascii_uppercase(),
-                _ => stem.to_string(),
+            let Some(name) = controller.program_name(stem) else {
+                return Ok(None);
             };
             let longest = (settings.name_length).unwrap_or(generate::max_name_length(dialect));
             generate::check_name(dialect, &name, longest)?;

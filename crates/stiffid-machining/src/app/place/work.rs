@@ -128,7 +128,7 @@ impl Work<'_> {
 /// [`Error::InvalidField`] (`program`) naming the language, its joint targets and what to give.
 pub fn check_language(language: Language) -> Result<()> {
     match language {
-        Language::Robot(d @ Dialect::Inform) => Err(Error::InvalidField {
+        Language::Robot(d) if d.controller().part_forms().is_none() => Err(Error::InvalidField {
             field: "program".into(),
             message: format!("a {} program's targets are joint targets ({}), and axis angles do not move with the part: give the program as G-code, or its TCP poses in the part frame as a path file", language.help(), joint_form(d)),
         }),
@@ -138,12 +138,7 @@ pub fn check_language(language: Language) -> Result<()> {
 
 /// Where a dialect's Cartesian targets are in the part frame.
 fn part_form(d: Dialect) -> &'static str {
-    match d {
-        Dialect::Krl => "E6POS with $BASE equal to [workpiece]",
-        Dialect::Rapid => "robtargets with a wobjdata equal to [workpiece]",
-        Dialect::FanucLs => "Cartesian positions in a user frame UF : n, n >= 1",
-        Dialect::Inform => "none",
-    }
+    d.controller().part_forms().unwrap_or("none")
 }
 
 /// The points of a path file with the part at `base_from_part`: each pose and each `base`
@@ -168,12 +163,7 @@ pub(super) fn placed(points: &[PathPoint], base_from_part: &Isometry3<f64>) -> V
 }
 
 fn joint_form(d: Dialect) -> &'static str {
-    match d {
-        Dialect::Krl => "E6AXIS, AXIS",
-        Dialect::Rapid => "jointtarget",
-        Dialect::FanucLs => "positions in joint representation",
-        Dialect::Inform => "pulse positions",
-    }
+    d.controller().joint_forms()
 }
 
 /// Refuses a path file on a robot with external axes (module docs of [`Work::Path`]).

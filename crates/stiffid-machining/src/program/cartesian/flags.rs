@@ -16,17 +16,11 @@ pub enum Flags {
 }
 
 impl Flags {
-    /// The data of the posture `arm` in `dialect` (KRL for INFORM, which has no Cartesian
-    /// targets here).
+    /// The data of the posture `arm` in `dialect` (its controller's
+    /// [`crate::program::Controller::flags`]; KRL's for INFORM, which has no Cartesian targets
+    /// here).
     pub fn of(dialect: Dialect, arm: &Configuration) -> Self {
-        match dialect {
-            Dialect::Rapid => Flags::Abb(arm.abb()),
-            Dialect::FanucLs => Flags::Fanuc(arm.fanuc()),
-            _ => {
-                let (s, t) = arm.kuka();
-                Flags::Kuka(s, t)
-            }
-        }
+        dialect.controller().flags(arm)
     }
 
     /// The shoulder, elbow and wrist the data name, as [`stiffid_core::robot::configuration`] reads

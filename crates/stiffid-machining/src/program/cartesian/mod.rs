@@ -17,7 +17,7 @@
 //!   frame `UF : n` (n >= 1) a remark `! stiffid: user_frame = n ;` names the part frame (the
 //!   setup's `[workpiece]`), all in one tool frame `UT : n` that must hold the setup's tool (a
 //!   remark `! stiffid: tool_frame = n ;` names it, else the first position's): an LS program
-//!   cannot state either frame ([`numbered`]).
+//!   cannot state either frame (the LS reader's `numbered` rule).
 //!
 //! A target without configuration data (a KRL `FRAME`, or `POS` without `S` and `T`) and a KRL
 //! `LIN` (whose `S` and `T` a KUKA controller ignores) keep the configuration of the previous
@@ -36,12 +36,8 @@
 //! target's frame) with the configuration data of the compensated posture, as the programs
 //! written from G-code state it ([`super::generate`]).
 
-mod flags;
-pub(crate) mod krl;
+pub(crate) mod flags;
 pub(crate) mod literal;
-pub(crate) mod ls;
-pub(crate) mod numbered;
-pub(crate) mod rapid;
 mod resolve;
 mod solve;
 
@@ -104,16 +100,7 @@ impl Cartesian {
     /// position (mm) then the orientation (KRL A, B, C deg; RAPID a quaternion; LS W, P, R deg).
     pub(crate) fn new(dialect: Dialect, numbers: &[(f64, Range<usize>)]) -> Self {
         let n: Vec<f64> = numbers.iter().map(|(v, _)| *v).collect();
-        let r = |a: f64, b: f64, c: f64| {
-            UnitQuaternion::from_euler_angles(c.to_radians(), b.to_radians(), a.to_radians())
-        };
-        let rotation = match dialect {
-            Dialect::Rapid => {
-                UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(n[3], n[4], n[5], n[6]))
-            }
-            Dialect::FanucLs => r(n[5], n[4], n[3]),
-            _ => r(n[3], n[4], n[5]),
-        };
+        let rotation = dialect.controller().rotation(&n);
         Cartesian {
             position_mm: Vector3::new(n[0], n[1], n[2]),
             rotation,
@@ -142,16 +129,7 @@ impl Cartesian {
         arm: &Configuration,
     ) -> Vec<(Range<usize>, String)> {
         let p = pose.translation.vector * 1e3;
-        let [a, b, c] = zyx_deg(&pose.rotation);
-        let values: Vec<f64> = match dialect {
-            Dialect::Rapid => {
-                let q = pose.rotation.quaternion();
-                let s = if q.w < 0.0 { -1.0 } else { 1.0 };
-                vec![p.x, p.y, p.z, s * q.w, s * q.i, s * q.j, s * q.k]
-            }
-            Dialect::FanucLs => vec![p.x, p.y, p.z, c, b, a],
-            _ => vec![p.x, p.y, p.z, a, b, c],
-        };
+        let values = dialect.controller().pose_numbers(&p, &pose.rotation);
         let mut out: Vec<(Range<usize>, String)> = (self.spans.iter().cloned())
             .zip(values.iter().map(|x| v(*x)))
             .collect();

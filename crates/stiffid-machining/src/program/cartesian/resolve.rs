@@ -171,11 +171,7 @@ fn resolve_in(
         let frame = base_frame(&c.frame, line, controller, placed)?;
         let target = frame * c.pose();
         let kept = previous_arm.filter(|_| c.follows || c.flags.is_none());
-        let wanted = c.flags.clone().or(flags.clone()).ok_or_else(|| at(line, format!("a Cartesian target without configuration data ({}), and no target before it to keep the configuration of: the pose has up to eight solutions; give them", match dialect {
-            Dialect::Rapid => "confdata",
-            Dialect::FanucLs => "CONFIG",
-            _ => "S and T",
-        })))?;
+        let wanted = c.flags.clone().or(flags.clone()).ok_or_else(|| at(line, format!("a Cartesian target without configuration data ({}), and no target before it to keep the configuration of: the pose has up to eight solutions; give them", dialect.controller().flags_name())))?;
         let accept = |arm: &Configuration| match (&kept, placed) {
             (Some(before), _) => arm.change_from(before).is_none(),
             (None, Some(_)) => Flags::of(dialect, arm).branch() == wanted.branch(),

@@ -55,10 +55,7 @@
 //! Each program written reads back ([`super::parse`], joint targets) or states its targets to
 //! `10^-DECIMALS` mm and deg.
 
-mod krl;
-mod ls;
 mod names;
-mod rapid;
 
 pub use names::{
     check_name, check_plan, default_name_length, max_name_length, moves_per_file, LS_MAX_LINES,
@@ -323,6 +320,7 @@ pub fn moves(points: &[Point], max_tcp_speed: f64) -> Result<Vec<Move>> {
 /// cannot state (naming the target's 1-based index as its line).
 pub fn generate(plan: &Plan) -> Result<Written> {
     let names = check_plan(plan.dialect, plan.name, &plan.settings, plan.targets.len())?;
+    let generator = names::generator(plan.dialect)?;
     check_targets(plan)?;
     let per_file = moves_per_file(plan.dialect, &plan.settings);
     let chunks: Vec<&[Target]> = plan.targets.chunks(per_file).collect();
@@ -342,30 +340,28 @@ pub fn generate(plan: &Plan) -> Result<Written> {
             moves: &plan.moves[first..first + chunk.len()],
             last: first + chunk.len() == plan.targets.len(),
         };
-        bodies.push((name.clone(), body(plan, &part, &mut written.warnings)?));
+        bodies.push((
+            name.clone(),
+            generator.body(plan, &part, &mut written.warnings)?,
+        ));
         first += chunk.len();
     }
-    let header = header(plan, &names[0], &names[1..]);
+    let header = generator.header(plan, &names[0], &names[1..]);
     if chunks.len() == 1 {
         let (name, text) = bodies.pop().unwrap_or_default();
         written.files.push(File {
-            text: wrap(plan, &name, &header, &text, true),
+            text: generator.wrap(&name, &header, &text, true),
             name,
         });
     } else {
+        let calls = generator.calls(&names[1..]);
         written.files.push(File {
             name: names[0].clone(),
-            text: wrap(
-                plan,
-                &names[0],
-                &header,
-                &calls(plan.dialect, &names[1..]),
-                true,
-            ),
+            text: generator.wrap(&names[0], &header, &calls, true),
         });
         for (name, text) in bodies {
             written.files.push(File {
-                text: wrap(plan, &name, "", &text, false),
+                text: generator.wrap(&name, "", &text, false),
                 name,
             });
         }
@@ -374,49 +370,16 @@ pub fn generate(plan: &Plan) -> Result<Written> {
 }
 
 /// A run of targets written into one file.
-pub(crate) struct Part<'a> {
+#[derive(Debug, Clone, Copy)]
+pub struct Part<'a> {
     /// The 0-based index of its first target in the whole program.
     pub first: usize,
+    /// Its targets.
     pub targets: &'a [Target],
+    /// How to move to each of its targets.
     pub moves: &'a [Move],
     /// Whether it ends the whole program (its last point exact).
     pub last: bool,
-}
-
-fn body(plan: &Plan, part: &Part, warnings: &mut Vec<String>) -> Result<String> {
-    Ok(match plan.dialect {
-        Dialect::Krl => krl::body(plan, part),
-        Dialect::Rapid => rapid::body(plan, part),
-        Dialect::FanucLs => ls::body(plan, part, warnings)?,
-        Dialect::Inform => String::new(),
-    })
-}
-
-fn header(plan: &Plan, main: &str, subs: &[String]) -> String {
-    match plan.dialect {
-        Dialect::Krl => krl::header(plan),
-        Dialect::Rapid => rapid::header(plan, main, subs),
-        Dialect::FanucLs => ls::header(plan),
-        Dialect::Inform => String::new(),
-    }
-}
-
-fn calls(dialect: Dialect, subs: &[String]) -> String {
-    match dialect {
-        Dialect::Krl => krl::calls(subs),
-        Dialect::Rapid => rapid::calls(subs),
-        Dialect::FanucLs => ls::calls(subs),
-        Dialect::Inform => String::new(),
-    }
-}
-
-fn wrap(plan: &Plan, name: &str, header: &str, body: &str, main: bool) -> String {
-    match plan.dialect {
-        Dialect::Krl => krl::wrap(name, header, body),
-        Dialect::Rapid => rapid::wrap(name, header, body, main),
-        Dialect::FanucLs => ls::wrap(name, header, body),
-        Dialect::Inform => String::new(),
-    }
 }
 
 fn invalid(field: &str, message: String) -> Error {
@@ -463,7 +426,7 @@ fn check_targets(plan: &Plan) -> Result<()> {
 /// # Errors
 /// [`Error::InvalidField`] (`tool.mass_kg`) when the program needs them and `tool` has none.
 pub fn check_payload(dialect: Dialect, targets: Targets, tool: &Tool) -> Result<()> {
-    let needs_mass = dialect == Dialect::Rapid && targets == Targets::Cartesian;
+    let needs_mass = (dialect.controller().generator()).is_some_and(|g| g.needs_mass(targets));
     if needs_mass && tool.payload.is_none() {
         return Err(invalid("tool.mass_kg", "a RAPID tooldata needs the tool's mass and centre of mass (the controller refuses a tool of no mass): [tool] mass_kg and centre_of_mass_mm in the setup".into()));
     }

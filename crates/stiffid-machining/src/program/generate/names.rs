@@ -6,6 +6,7 @@
 //! computed.
 
 use super::{Dialect, Settings};
+use crate::program::Generator;
 use stiffid_core::common::error::JobOption;
 use stiffid_core::{Error, Result};
 
@@ -16,38 +17,24 @@ pub const MAX_FILES: usize = 9999;
 /// digits (FANUC's line numbers run 1 to 9999).
 pub const LS_MAX_LINES: usize = 9999;
 
-/// The lines an LS main program's header adds before its moves or calls (`! set UTOOL`, six
-/// remarks of the tool frame's values, `UFRAME_NUM`, `UTOOL_NUM`).
-pub(super) const LS_HEADER_LINES: usize = 9;
-
 /// The longest program name of a dialect's controller and language: KRL 24 (KUKA System
 /// Software 8), RAPID 32 (RAPID identifiers), FANUC LS 36 (R-30iB Plus; R-30iA takes 8, the
 /// default, [`default_name_length`]). [`Settings::name_length`] may lower it, never raise it.
 pub fn max_name_length(dialect: Dialect) -> usize {
-    match dialect {
-        Dialect::Krl => 24,
-        Dialect::Rapid => 32,
-        Dialect::FanucLs => 36,
-        Dialect::Inform => 32,
-    }
+    dialect.controller().max_name_length()
 }
 
 /// The longest program name written by default: KRL 24, RAPID 32, LS 8 (R-30iA; later
 /// controllers take longer names: raise [`Settings::name_length`] up to [`max_name_length`]).
 pub fn default_name_length(dialect: Dialect) -> usize {
-    match dialect {
-        Dialect::FanucLs => 8,
-        d => max_name_length(d),
-    }
+    dialect.controller().default_name_length()
 }
 
 /// The most moves one file of `dialect` holds with `settings`: [`Settings::moves_per_file`],
 /// and for LS what fits [`LS_MAX_LINES`] numbered lines with the main program's header.
 pub fn moves_per_file(dialect: Dialect, settings: &Settings) -> usize {
-    match dialect {
-        Dialect::FanucLs => settings.moves_per_file.min(LS_MAX_LINES - LS_HEADER_LINES),
-        _ => settings.moves_per_file,
-    }
+    let most = (dialect.controller().generator()).and_then(|g| g.lines_per_file());
+    most.map_or(settings.moves_per_file, |n| settings.moves_per_file.min(n))
 }
 
 /// Checks, before any computation, that a program `name` of `targets` targets can be written in
@@ -68,12 +55,7 @@ pub fn check_plan(
     targets: usize,
 ) -> Result<Vec<String>> {
     settings.validate()?;
-    if dialect == Dialect::Inform {
-        return Err(Error::InvalidField {
-            field: "out".into(),
-            message: "a G-code path is written as a new robot program in KRL, RAPID or LS; INFORM jobs are read and written back compensated, not generated".into(),
-        });
-    }
+    let generator = generator(dialect)?;
     let most = max_name_length(dialect);
     if let Some(n) = settings.name_length.filter(|&n| n > most) {
         return Err(Error::InvalidOption {
@@ -85,10 +67,7 @@ pub fn check_plan(
         });
     }
     let files = targets.div_ceil(moves_per_file(dialect, settings)).max(1);
-    let max_files = match dialect {
-        Dialect::FanucLs => MAX_FILES.min(LS_MAX_LINES - LS_HEADER_LINES),
-        _ => MAX_FILES,
-    };
+    let max_files = (generator.lines_per_file()).map_or(MAX_FILES, |n| MAX_FILES.min(n));
     if files > max_files {
         return Err(Error::InvalidOption {
             option: JobOption::MovesPerFile,
@@ -110,8 +89,9 @@ fn names(dialect: Dialect, name: &str, settings: &Settings, files: usize) -> Res
         let width = files.to_string().len().max(2);
         for i in 1..=files {
             let sub = format!("{name}_{i:0width$}");
-            // A RAPID sub-program's routine is its module's name after an `r`.
-            if sub.len() + usize::from(dialect == Dialect::Rapid) > longest {
+            // A sub-program's routine may take a prefix (RAPID: its module's name after an `r`).
+            let prefix = (dialect.controller().generator()).map_or(0, |g| g.routine_prefix().len());
+            if sub.len() + prefix > longest {
                 return Err(Error::InvalidOption { option: JobOption::ProgramName, message: format!("{name:?}: the sub-programs' names ({sub} for {files} sub-programs) would be longer than {longest} characters, the controller's longest name (a setting: name_length): name the program shorter or raise moves_per_file") });
             }
             names.push(sub);
@@ -164,182 +144,32 @@ fn is_device_name(name: &str) -> bool {
 }
 
 fn dialect_name(d: Dialect) -> &'static str {
-    match d {
-        Dialect::Krl => "KUKA KRL",
-        Dialect::Rapid => "ABB RAPID",
-        Dialect::FanucLs => "FANUC LS",
-        Dialect::Inform => "Yaskawa INFORM",
-    }
+    d.controller().title()
+}
+
+/// What writes new programs of `dialect`.
+///
+/// # Errors
+/// [`Error::InvalidField`] (`out`) for a language whose programs are read and written back,
+/// never generated (INFORM).
+pub(crate) fn generator(dialect: Dialect) -> Result<&'static dyn Generator> {
+    dialect.controller().generator().ok_or_else(|| Error::InvalidField {
+        field: "out".into(),
+        message: format!("a G-code path is written as a new robot program in {}; {} programs are read and written back compensated, not generated", generated(), dialect.controller().key().to_ascii_uppercase()),
+    })
+}
+
+/// The languages programs are generated in, for messages: `KRL, RAPID or LS`.
+fn generated() -> String {
+    let keys: Vec<String> = (Dialect::ALL.iter())
+        .filter(|d| d.controller().generator().is_some())
+        .map(|d| d.controller().key().to_ascii_uppercase())
+        .collect();
+    crate::text::or_list(&keys)
 }
 
 /// The words a program may not be named (module docs; docs/reference.md cites the lists), and
 /// the names of the data stiffid declares in it.
 fn reserved_words(dialect: Dialect) -> &'static [&'static str] {
-    match dialect {
-        Dialect::Krl => &[
-            "AND",
-            "ANIN",
-            "ANOUT",
-            "AXIS",
-            "B_AND",
-            "B_EXOR",
-            "B_NOT",
-            "B_OR",
-            "BAS",
-            "BOOL",
-            "BRAKE",
-            "C_DIS",
-            "C_ORI",
-            "C_PTP",
-            "C_SPL",
-            "C_VEL",
-            "CASE",
-            "CAST_FROM",
-            "CAST_TO",
-            "CHAR",
-            "CIRC",
-            "CIRC_REL",
-            "CONST",
-            "CONTINUE",
-            "DECL",
-            "DEF",
-            "DEFAULT",
-            "DEFDAT",
-            "DEFFCT",
-            "DELAY",
-            "DO",
-            "E6AXIS",
-            "E6POS",
-            "ELSE",
-            "END",
-            "ENDDAT",
-            "ENDFCT",
-            "ENDFOR",
-            "ENDIF",
-            "ENDLOOP",
-            "ENDSPLINE",
-            "ENDSWITCH",
-            "ENDWHILE",
-            "ENUM",
-            "EXIT",
-            "EXOR",
-            "EXT",
-            "EXTFCT",
-            "FALSE",
-            "FOR",
-            "FRAME",
-            "GLOBAL",
-            "GOTO",
-            "HALT",
-            "IF",
-            "IMPORT",
-            "INTERRUPT",
-            "INT",
-            "IS",
-            "LIN",
-            "LIN_REL",
-            "LOOP",
-            "MAXIMUM",
-            "MINIMUM",
-            "NOT",
-            "OR",
-            "POS",
-            "PRIO",
-            "PTP",
-            "PTP_REL",
-            "PUBLIC",
-            "REAL",
-            "REPEAT",
-            "RESUME",
-            "RETURN",
-            "SCIRC",
-            "SEC",
-            "SIGNAL",
-            "SLIN",
-            "SPL",
-            "SPLINE",
-            "SPTP",
-            "STEP",
-            "STRUC",
-            "SWITCH",
-            "THEN",
-            "TO",
-            "TRIGGER",
-            "TRUE",
-            "UNTIL",
-            "WAIT",
-            "WHEN",
-            "WHILE",
-        ],
-        Dialect::Rapid => &[
-            "ALIAS",
-            "AND",
-            "BACKWARD",
-            "CASE",
-            "CONNECT",
-            "CONST",
-            "DEFAULT",
-            "DIV",
-            "DO",
-            "ELSE",
-            "ELSEIF",
-            "ENDFOR",
-            "ENDFUNC",
-            "ENDIF",
-            "ENDMODULE",
-            "ENDPROC",
-            "ENDRECORD",
-            "ENDTEST",
-            "ENDTRAP",
-            "ENDWHILE",
-            "ERROR",
-            "EXIT",
-            "FALSE",
-            "FOR",
-            "FROM",
-            "FUNC",
-            "GOTO",
-            "IF",
-            "INOUT",
-            "LOCAL",
-            "MOD",
-            "MODULE",
-            "NOSTEPIN",
-            "NOT",
-            "NOVIEW",
-            "OR",
-            "PERS",
-            "PROC",
-            "RAISE",
-            "READONLY",
-            "RECORD",
-            "RETRY",
-            "RETURN",
-            "STEP",
-            "SYSMODULE",
-            "TEST",
-            "THEN",
-            "TO",
-            "TRAP",
-            "TRUE",
-            "TRYNEXT",
-            "UNDO",
-            "VAR",
-            "VIEWONLY",
-            "WHILE",
-            "WITH",
-            "XOR",
-            "main",
-            "tspindle",
-            "wpart",
-            "vrapid",
-            "zpath",
-        ],
-        Dialect::FanucLs => &[
-            "ABORT", "AND", "CALL", "CNT", "CONFIG", "ELSE", "END", "ENDFOR", "ENDIF", "FINE",
-            "FOR", "IF", "JMP", "LBL", "MOD", "NOT", "OFF", "ON", "OR", "PAUSE", "RUN", "SELECT",
-            "THEN", "TO", "WAIT",
-        ],
-        Dialect::Inform => &[],
-    }
+    dialect.controller().reserved_words()
 }

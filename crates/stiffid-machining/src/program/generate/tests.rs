@@ -1,4 +1,5 @@
 use super::*;
+use crate::program::ls::generate as ls;
 use nalgebra::{Translation3, UnitQuaternion};
 use stiffid_core::robot::presets;
 
@@ -388,7 +389,7 @@ fn a_million_moves_are_split_into_called_sub_programs() {
     let w = generate(&p).unwrap();
     // 10 000 moves per file, but an LS file numbers at most 9999 lines, nine of them the
     // header's: 9990 moves each.
-    let per_file = LS_MAX_LINES - names::LS_HEADER_LINES;
+    let per_file = LS_MAX_LINES - ls::LS_HEADER_LINES;
     let subs = 1_000_000_usize.div_ceil(per_file);
     assert_eq!((per_file, subs), (9990, 101));
     assert_eq!(w.files.len(), subs + 1);
@@ -505,7 +506,7 @@ fn an_ls_file_never_numbers_more_lines_than_the_pendant() {
         assert!(last <= LS_MAX_LINES as u32, "{}: {last} lines", file.name);
     }
     assert_eq!(
-        names::LS_HEADER_LINES,
+        ls::LS_HEADER_LINES,
         ls::header(&plan(Dialect::FanucLs, "P", &t, &m))
             .lines()
             .count()

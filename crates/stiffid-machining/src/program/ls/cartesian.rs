@@ -1,8 +1,8 @@
 //! FANUC LS positions in Cartesian representation (module docs of [`super`]): `UF : n`,
 //! `UT : n`, `CONFIG : '..'`, `X = .. mm` to `R = .. deg`.
 
-use super::flags::Part;
-use super::{Cartesian, Flags, Frame};
+use crate::program::cartesian::flags::Part;
+use crate::program::cartesian::{Cartesian, Flags, Frame};
 use crate::program::{at, Dialect};
 use std::ops::Range;
 use stiffid_core::Result;

@@ -32,10 +32,14 @@
 //!   differs from `///NPOS`, pulses that are not whole numbers, a pulse position without the
 //!   `stiffid:` comment that converts it, and a group's positions in two forms.
 
+use super::cartesian::Flags;
+use super::controller::{lines_starting, BoundComment, Controller, Generator};
 use super::{at, number_at, six, Read};
+use nalgebra::{UnitQuaternion, Vector3};
 use std::collections::HashMap;
 use std::ops::Range;
 use stiffid_core::common::limits::short;
+use stiffid_core::robot::configuration::Configuration;
 use stiffid_core::Result;
 
 /// How a block of positions is written.
@@ -207,7 +211,12 @@ pub(crate) fn targets(text: &str) -> Result<Read> {
     }
     let axes = (1..=nb).map(|k| format!("BC{k}"));
     let axes = axes.chain((1..=ne).map(|k| format!("EC{k}"))).collect();
-    Ok((out, axes, pulses))
+    Ok(Read {
+        targets: out,
+        axes,
+        pulses,
+        units: Vec::new(),
+    })
 }
 
 /// The `//POS` section's teaching positions by kind and number, and `///NPOS`'s line and counts.
@@ -470,4 +479,87 @@ fn directive(line: u64, comment: &str, directives: &mut Directives) -> Result<()
         }
     }
     Ok(())
+}
+
+/// Yaskawa INFORM (module docs).
+#[derive(Debug, Clone, Copy)]
+pub struct Inform;
+
+impl Controller for Inform {
+    fn key(&self) -> &'static str {
+        "inform"
+    }
+    fn title(&self) -> &'static str {
+        "Yaskawa INFORM"
+    }
+    fn extensions(&self) -> &'static [&'static str] {
+        &["jbi"]
+    }
+    fn refuses_output(&self, _extension: &str) -> Option<&'static str> {
+        None
+    }
+    fn read(&self, text: &str) -> Result<Read> {
+        targets(text)
+    }
+    fn motions(&self) -> &'static str {
+        "MOVJ or MOVL to a C-variable of //POS in pulses"
+    }
+    fn joint_forms(&self) -> &'static str {
+        "pulse positions"
+    }
+    /// None: its rectangular positions are not read.
+    fn part_forms(&self) -> Option<&'static str> {
+        None
+    }
+    fn external_axis(&self, k: usize) -> String {
+        format!("external axis {}", k + 1)
+    }
+    fn unused_axis(&self) -> &'static str {
+        ""
+    }
+    fn zero_is_no_axis(&self) -> bool {
+        false
+    }
+    /// No Cartesian target is read from a job: KUKA's A, B, C order, never used.
+    fn rotation(&self, n: &[f64]) -> UnitQuaternion<f64> {
+        UnitQuaternion::from_euler_angles(n[5].to_radians(), n[4].to_radians(), n[3].to_radians())
+    }
+    /// No Cartesian target is written to a job: KUKA's order, never used.
+    fn pose_numbers(&self, p: &Vector3<f64>, r: &UnitQuaternion<f64>) -> Vec<f64> {
+        let [a, b, c] = super::generate::zyx_deg(r);
+        vec![p.x, p.y, p.z, a, b, c]
+    }
+    /// No Cartesian target is read from a job: KUKA's data, never used.
+    fn flags(&self, arm: &Configuration) -> Flags {
+        let (s, t) = arm.kuka();
+        Flags::Kuka(s, t)
+    }
+    fn flags_name(&self) -> &'static str {
+        "S and T"
+    }
+    fn declares_name(&self, line: &str) -> Option<usize> {
+        line.strip_prefix("//NAME").map(|r| line.len() - r.len())
+    }
+    fn program_name(&self, stem: &str) -> Option<String> {
+        Some(stem.to_ascii_uppercase())
+    }
+    fn max_name_length(&self) -> usize {
+        32
+    }
+    fn default_name_length(&self) -> usize {
+        32
+    }
+    fn reserved_words(&self) -> &'static [&'static str] {
+        &[]
+    }
+    fn bound_comment(&self) -> BoundComment {
+        BoundComment::LineBefore { marker: '\'' }
+    }
+    fn motion_lines(&self, text: &str) -> Vec<u64> {
+        lines_starting(text, &["MOVJ ", "MOVL "])
+    }
+    /// None: jobs are read and written back compensated, never generated.
+    fn generator(&self) -> Option<&'static dyn Generator> {
+        None
+    }
 }

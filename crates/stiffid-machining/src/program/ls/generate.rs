@@ -1,6 +1,10 @@
-//! FANUC LS (`.ls`): `/PROG NAME`, `/ATTR`, `/MN`, `/POS`, `/END` (module docs of [`super`]).
+//! FANUC LS (`.ls`): `/PROG NAME`, `/ATTR`, `/MN`, `/POS`, `/END` (module docs of [`crate::program::generate`]).
 
-use super::{in_world, number, v, zyx_deg, Move, Part, Plan, Targets, RAPID_PERCENT};
+use crate::program::generate::LS_MAX_LINES;
+use crate::program::generate::{
+    in_world, number, v, zyx_deg, Move, Part, Plan, Targets, RAPID_PERCENT,
+};
+use crate::program::Generator;
 use std::fmt::Write;
 use stiffid_core::{Error, Result};
 
@@ -10,7 +14,7 @@ pub const COMMENT: &str = "stiffid";
 /// The frames set up at the top of the main program: user frame 0 (the world), tool frame 1,
 /// whose values (the tool frame from the controller's flange) the remarks state, one per line
 /// (a remark is at most 32 characters on the pendant).
-pub(super) fn header(plan: &Plan) -> String {
+pub(crate) fn header(plan: &Plan) -> String {
     let t = &plan.tool.frame;
     let p = t.translation.vector * 1e3;
     let [r, pitch, w] = zyx_deg(&t.rotation);
@@ -45,7 +49,7 @@ pub(crate) fn speed(feed: f64) -> Option<(String, bool)> {
 }
 
 /// The moves (`/MN` lines, unnumbered) and positions of one file, `/POS` between them.
-pub(super) fn body(plan: &Plan, part: &Part, warnings: &mut Vec<String>) -> Result<String> {
+pub(crate) fn body(plan: &Plan, part: &Part, warnings: &mut Vec<String>) -> Result<String> {
     let mut mn = String::with_capacity(part.targets.len() * 30);
     let mut pos = String::with_capacity(part.targets.len() * 200);
     let n = part.targets.len();
@@ -100,7 +104,7 @@ pub(super) fn body(plan: &Plan, part: &Part, warnings: &mut Vec<String>) -> Resu
 }
 
 /// The main program's calls of its sub-programs.
-pub(super) fn calls(subs: &[String]) -> String {
+pub(crate) fn calls(subs: &[String]) -> String {
     subs.iter()
         .map(|n| format!("CALL {n} ;\n"))
         .collect::<String>()
@@ -108,7 +112,7 @@ pub(super) fn calls(subs: &[String]) -> String {
 }
 
 /// A whole `.ls` file: the `/MN` lines numbered.
-pub(super) fn wrap(name: &str, header: &str, body: &str) -> String {
+pub(crate) fn wrap(name: &str, header: &str, body: &str) -> String {
     let (mn, pos) = body.split_once("/POS\n").unwrap_or((body, ""));
     let mut s = format!(
         "/PROG  {name}\n/ATTR\nCOMMENT\t\t= \"{COMMENT}\";\nDEFAULT_GROUP\t= 1,*,*,*,*;\n/MN\n"
@@ -123,3 +127,32 @@ pub(super) fn wrap(name: &str, header: &str, body: &str) -> String {
     }
     s + "/POS\n" + pos + "/END\n"
 }
+
+impl Generator for super::FanucLs {
+    fn header(&self, plan: &Plan, _main: &str, _subs: &[String]) -> String {
+        header(plan)
+    }
+    fn body(&self, plan: &Plan, part: &Part, warnings: &mut Vec<String>) -> Result<String> {
+        body(plan, part, warnings)
+    }
+    fn calls(&self, subs: &[String]) -> String {
+        calls(subs)
+    }
+    fn wrap(&self, name: &str, header: &str, body: &str, _main: bool) -> String {
+        wrap(name, header, body)
+    }
+    /// [`LS_MAX_LINES`] numbered lines, the main program's header included.
+    fn lines_per_file(&self) -> Option<usize> {
+        Some(LS_MAX_LINES - LS_HEADER_LINES)
+    }
+    fn routine_prefix(&self) -> &'static str {
+        ""
+    }
+    fn needs_mass(&self, _targets: Targets) -> bool {
+        false
+    }
+}
+
+/// The lines an LS main program's header adds before its moves or calls (`! set UTOOL`, six
+/// remarks of the tool frame's values, `UFRAME_NUM`, `UTOOL_NUM`).
+pub(crate) const LS_HEADER_LINES: usize = 9;

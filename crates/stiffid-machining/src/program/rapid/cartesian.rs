@@ -1,9 +1,9 @@
 //! ABB RAPID's Cartesian targets (module docs of [`super`]): `MoveL`/`MoveJ` to a `robtarget`
 //! with its `tooldata` and `\WObj:=` `wobjdata`, each a literal or declared in the module.
 
-use super::flags::Part;
-use super::literal::{self, Node};
-use super::{Cartesian, Flags, Frame};
+use crate::program::cartesian::flags::Part;
+use crate::program::cartesian::literal::{self, Node};
+use crate::program::cartesian::{Cartesian, Flags, Frame};
 use crate::program::{at, Dialect, JointTarget};
 use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion};
 use std::collections::HashMap;

@@ -9,10 +9,19 @@
 //! representation (`CONFIG : '..'`, `X = .. mm` to `R = .. deg`, in its `UF` and `UT`) is a
 //! Cartesian target ([`super::cartesian`]); an `INC` motion to one is refused.
 
-use super::cartesian::ls::{self as cartesian, Value};
+mod cartesian;
+pub(crate) mod generate;
+mod names;
+mod numbered;
+
 use super::cartesian::Flags;
-use super::{at, number_at, six, Found, JointTarget};
+use super::controller::{BoundComment, Controller, Generator, Read};
+use super::generate::zyx_deg;
+use super::{at, number_at, six, Found, JointTarget, Units};
+use cartesian::Value;
+use nalgebra::{UnitQuaternion, Vector3};
 use std::collections::HashMap;
+use stiffid_core::robot::configuration::Configuration;
 use stiffid_core::Result;
 
 /// Every joint target of `text`, in the order of the `/MN` motions (module docs), and the
@@ -104,7 +113,7 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>, Unit
     if let (Some((line, word)), false) = (control, out.is_empty()) {
         return Err(at(line, format!("{word}: a jump, call, loop or branch in a program with motions; the order the controller runs them would not be the file's: write the path as straight-line motions")));
     }
-    super::cartesian::numbered::apply(text, &mut out)?;
+    numbered::apply(text, &mut out)?;
     Ok((out, axes, units))
 }
 
@@ -188,10 +197,6 @@ struct Open {
     config: Option<(Flags, std::ops::Range<usize>)>,
     frames: (Option<u32>, Option<u32>),
 }
-
-/// Per external axis of the program (its order), the unit its values are written in (`mm` or
-/// `deg`) and the line of the first.
-pub(crate) type Units = Vec<Option<(&'static str, u64)>>;
 
 /// The `/POS` section's positions by index (module docs), the program's external axes: group 1's
 /// `E1`.. then group 2's `J1`.. (`GP2 J1`), and their units.
@@ -382,4 +387,101 @@ fn split_keeping_offsets(l: &str) -> Vec<(usize, &str)> {
     }
     out.push((from, &l[from..]));
     out
+}
+
+/// FANUC LS (module docs).
+#[derive(Debug, Clone, Copy)]
+pub struct FanucLs;
+
+impl Controller for FanucLs {
+    fn key(&self) -> &'static str {
+        "ls"
+    }
+    fn title(&self) -> &'static str {
+        "FANUC LS"
+    }
+    fn extensions(&self) -> &'static [&'static str] {
+        &["ls"]
+    }
+    fn refuses_output(&self, _extension: &str) -> Option<&'static str> {
+        None
+    }
+    fn read(&self, text: &str) -> Result<Read> {
+        let (targets, axes, units) = targets(text)?;
+        Ok(Read {
+            targets,
+            axes,
+            pulses: Vec::new(),
+            units,
+        })
+    }
+    fn motions(&self) -> &'static str {
+        "J or L to a P[i] of /POS"
+    }
+    fn joint_forms(&self) -> &'static str {
+        "positions in joint representation"
+    }
+    fn part_forms(&self) -> Option<&'static str> {
+        Some("Cartesian positions in a user frame UF : n, n >= 1")
+    }
+    fn external_axis(&self, k: usize) -> String {
+        format!("E{}", k + 1)
+    }
+    fn unused_axis(&self) -> &'static str {
+        ""
+    }
+    fn zero_is_no_axis(&self) -> bool {
+        false
+    }
+    /// `R = Rz(R) Ry(P) Rx(W)`.
+    fn rotation(&self, n: &[f64]) -> UnitQuaternion<f64> {
+        UnitQuaternion::from_euler_angles(n[3].to_radians(), n[4].to_radians(), n[5].to_radians())
+    }
+    fn pose_numbers(&self, p: &Vector3<f64>, r: &UnitQuaternion<f64>) -> Vec<f64> {
+        let [a, b, c] = zyx_deg(r);
+        vec![p.x, p.y, p.z, c, b, a]
+    }
+    fn flags(&self, arm: &Configuration) -> Flags {
+        Flags::Fanuc(arm.fanuc())
+    }
+    fn flags_name(&self) -> &'static str {
+        "CONFIG"
+    }
+    fn declares_name(&self, line: &str) -> Option<usize> {
+        line.strip_prefix("/PROG").map(|r| line.len() - r.len())
+    }
+    fn program_name(&self, stem: &str) -> Option<String> {
+        Some(stem.to_ascii_uppercase())
+    }
+    fn max_name_length(&self) -> usize {
+        36
+    }
+    /// R-30iA's; later controllers take longer names.
+    fn default_name_length(&self) -> usize {
+        8
+    }
+    fn reserved_words(&self) -> &'static [&'static str] {
+        names::RESERVED
+    }
+    fn bound_comment(&self) -> BoundComment {
+        BoundComment::PositionComment
+    }
+    /// The `J P[..]` and `L P[..]` lines of `/MN`.
+    fn motion_lines(&self, text: &str) -> Vec<u64> {
+        let mut in_mn = false;
+        (text.lines().enumerate())
+            .filter(|(_, l)| {
+                let t = l.trim_start();
+                if t.starts_with('/') {
+                    in_mn = t.starts_with("/MN");
+                }
+                let body = t.split_once(':').map_or("", |(_, b)| b);
+                in_mn && (body.starts_with("J P[") || body.starts_with("L P["))
+            })
+            .map(|(i, _)| i as u64 + 1)
+            .collect()
+    }
+    fn generator(&self) -> Option<&'static dyn Generator> {
+        Some(&FanucLs)
+    }
 }

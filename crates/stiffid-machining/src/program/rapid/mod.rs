@@ -11,10 +11,18 @@
 //! Cartesian targets, with their `tooldata` and `\WObj:=` `wobjdata` declared in the module
 //! ([`super::cartesian`]).
 
-use super::cartesian::{self, Frame};
+mod cartesian;
+mod generate;
+mod names;
+
+use super::cartesian::Flags;
+use super::cartesian::{literal, Frame};
+use super::controller::{lines_starting, BoundComment, Controller, Generator, Read};
 use super::speed::{self, RapidSpeeds};
 use super::{at, number_at, six, JointTarget};
+use nalgebra::{UnitQuaternion, Vector3};
 use std::collections::HashMap;
+use stiffid_core::robot::configuration::Configuration;
 use stiffid_core::Result;
 
 /// A `jointtarget` or `robtarget` declared in the module: its target, or why it is none.
@@ -248,7 +256,7 @@ fn declarations(code: &str, statements: &[Statement]) -> Result<Data> {
             ["const" | "var" | "pers", "speeddata", name, ..] => {
                 let name = name.trim_end_matches(';');
                 let v_tcp = (body.find(":=").filter(|_| !name.contains('{')))
-                    .and_then(|eq| cartesian::literal::parse(code, s.span.start + eq + 2))
+                    .and_then(|eq| literal::parse(code, s.span.start + eq + 2))
                     .and_then(|(node, _)| node.numbers(4))
                     .map(|v| (v[0].0, s.line));
                 let why = || {
@@ -256,7 +264,7 @@ fn declarations(code: &str, statements: &[Statement]) -> Result<Data> {
                 };
                 speeds.insert(name.to_string(), v_tcp.ok_or_else(why));
             }
-            ["const" | "var" | "pers", kind, name, ..] if cartesian::rapid::is_data(kind) => {
+            ["const" | "var" | "pers", kind, name, ..] if cartesian::is_data(kind) => {
                 let name = name.trim_end_matches(';');
                 let Some(eq) = body.find(":=").filter(|_| !name.contains('{')) else {
                     let why = format!("{kind} {name} is declared on line {} without a value or as an array: declare each with its value", s.line);
@@ -269,11 +277,11 @@ fn declarations(code: &str, statements: &[Statement]) -> Result<Data> {
                 let from = s.span.start + eq + 2;
                 match *kind {
                     "robtarget" => {
-                        let target = cartesian::rapid::robtarget(s.line, code, from)?;
+                        let target = cartesian::robtarget(s.line, code, from)?;
                         declared.insert(name.to_string(), Ok(target));
                     }
                     _ => {
-                        let frame = cartesian::rapid::frame(kind, name, s.line, code, from);
+                        let frame = cartesian::frame(kind, name, s.line, code, from);
                         frames.insert(name.to_string(), frame);
                     }
                 }
@@ -427,16 +435,14 @@ fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Option<
     if cartesian {
         let end = s.span.end - usize::from(code[..s.span.end].ends_with(';'));
         let args = &code[from..end];
-        let argument = cartesian::rapid::top_level(args)
-            .get(1)
-            .map(|r| &args[r.clone()]);
-        let mut target = cartesian::rapid::motion(line, (code, from, args), &named, &data.frames)
+        let argument = cartesian::top_level(args).get(1).map(|r| &args[r.clone()]);
+        let mut target = cartesian::motion(line, (code, from, args), &named, &data.frames)
             .map_err(|e| match e {
-            stiffid_core::Error::Program { line, message } if !message.starts_with(name) => {
-                at(line, format!("{name}: {message}"))
-            }
-            other => other,
-        })?;
+                stiffid_core::Error::Program { line, message } if !message.starts_with(name) => {
+                    at(line, format!("{name}: {message}"))
+                }
+                other => other,
+            })?;
         target.speed = speed::rapid(line, first, argument, &data.speeds)?;
         return Ok(Some(target));
     }
@@ -460,5 +466,93 @@ fn joint(target: JointTarget) -> JointTarget {
     JointTarget {
         speed: speed::Speed::Joint,
         ..target
+    }
+}
+
+/// ABB RAPID (module docs).
+#[derive(Debug, Clone, Copy)]
+pub struct Rapid;
+
+impl Controller for Rapid {
+    fn key(&self) -> &'static str {
+        "rapid"
+    }
+    fn title(&self) -> &'static str {
+        "ABB RAPID"
+    }
+    fn extensions(&self) -> &'static [&'static str] {
+        &["mod", "modx", "prg"]
+    }
+    fn refuses_output(&self, _extension: &str) -> Option<&'static str> {
+        None
+    }
+    fn read(&self, text: &str) -> Result<Read> {
+        let (targets, axes) = targets(text)?;
+        Ok(Read {
+            targets,
+            axes,
+            ..Read::default()
+        })
+    }
+    fn motions(&self) -> &'static str {
+        "MoveAbsJ to a jointtarget, MoveL or MoveJ to a robtarget"
+    }
+    fn joint_forms(&self) -> &'static str {
+        "jointtarget"
+    }
+    fn part_forms(&self) -> Option<&'static str> {
+        Some("robtargets with a wobjdata equal to [workpiece]")
+    }
+    fn external_axis(&self, k: usize) -> String {
+        format!("eax_{}", (b'a' + k as u8) as char)
+    }
+    fn unused_axis(&self) -> &'static str {
+        " (9E9: not used)"
+    }
+    fn zero_is_no_axis(&self) -> bool {
+        false
+    }
+    fn rotation(&self, n: &[f64]) -> UnitQuaternion<f64> {
+        UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(n[3], n[4], n[5], n[6]))
+    }
+    /// The quaternion with a non-negative `q1`.
+    fn pose_numbers(&self, p: &Vector3<f64>, r: &UnitQuaternion<f64>) -> Vec<f64> {
+        let q = r.quaternion();
+        let s = if q.w < 0.0 { -1.0 } else { 1.0 };
+        vec![p.x, p.y, p.z, s * q.w, s * q.i, s * q.j, s * q.k]
+    }
+    fn flags(&self, arm: &Configuration) -> Flags {
+        Flags::Abb(arm.abb())
+    }
+    fn flags_name(&self) -> &'static str {
+        "confdata"
+    }
+    /// None: a module's name is not its file's.
+    fn declares_name(&self, _line: &str) -> Option<usize> {
+        None
+    }
+    fn program_name(&self, _stem: &str) -> Option<String> {
+        None
+    }
+    fn max_name_length(&self) -> usize {
+        32
+    }
+    fn default_name_length(&self) -> usize {
+        32
+    }
+    fn reserved_words(&self) -> &'static [&'static str] {
+        names::RESERVED
+    }
+    fn bound_comment(&self) -> BoundComment {
+        BoundComment::EndOfLine {
+            marker: '!',
+            statement: Some(';'),
+        }
+    }
+    fn motion_lines(&self, text: &str) -> Vec<u64> {
+        lines_starting(text, &["MoveJ ", "MoveL ", "MoveAbsJ "])
+    }
+    fn generator(&self) -> Option<&'static dyn Generator> {
+        Some(&Rapid)
     }
 }

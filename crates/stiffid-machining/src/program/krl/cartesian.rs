@@ -1,8 +1,8 @@
 //! KUKA KRL's Cartesian targets and frames (module docs of [`super`]): the members `X`, `Y`,
 //! `Z`, `A`, `B`, `C`, `S`, `T` of an aggregate, and the `$BASE` and `$TOOL` a program sets.
 
-use super::flags::Part;
-use super::{Cartesian, Flags, Frame};
+use crate::program::cartesian::flags::Part;
+use crate::program::cartesian::{Cartesian, Flags, Frame};
 use crate::program::{at, number_at, Dialect};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
 use std::ops::Range;

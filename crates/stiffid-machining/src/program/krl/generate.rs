@@ -1,10 +1,14 @@
-//! KUKA KRL (`.src`): `DEF NAME( )` ... `END` (module docs of [`super`]).
+//! KUKA KRL (`.src`): `DEF NAME( )` ... `END` (module docs of [`crate::program::generate`]).
 
-use super::{in_work, number, v, zyx_deg, Move, Part, Plan, Targets, RAPID_PERCENT};
+use crate::program::generate::{
+    in_work, number, v, zyx_deg, Move, Part, Plan, Targets, RAPID_PERCENT,
+};
+use crate::program::Generator;
 use std::fmt::Write;
+use stiffid_core::Result;
 
 /// The motion set-up at the top of the main program.
-pub(super) fn header(plan: &Plan) -> String {
+pub(crate) fn header(plan: &Plan) -> String {
     let mut s = String::from(
         "; written by stiffid: compensated targets, the tool, base and speeds below;\n\
          ; check them for the cell before running\n\
@@ -51,7 +55,7 @@ fn frame(f: &nalgebra::Isometry3<f64>) -> String {
 }
 
 /// The moves of one file.
-pub(super) fn body(plan: &Plan, part: &Part) -> String {
+pub(crate) fn body(plan: &Plan, part: &Part) -> String {
     let mut s = String::with_capacity(part.targets.len() * 140);
     let mut speed: Option<f64> = None;
     let n = part.targets.len();
@@ -100,11 +104,35 @@ pub(super) fn body(plan: &Plan, part: &Part) -> String {
 }
 
 /// The main program's calls of its sub-programs.
-pub(super) fn calls(subs: &[String]) -> String {
+pub(crate) fn calls(subs: &[String]) -> String {
     subs.iter().map(|n| format!("{n}( )\n")).collect()
 }
 
 /// A whole `.src` file.
-pub(super) fn wrap(name: &str, header: &str, body: &str) -> String {
+pub(crate) fn wrap(name: &str, header: &str, body: &str) -> String {
     format!("DEF {name}( )\n{header}{body}END\n")
+}
+
+impl Generator for super::Krl {
+    fn header(&self, plan: &Plan, _main: &str, _subs: &[String]) -> String {
+        header(plan)
+    }
+    fn body(&self, plan: &Plan, part: &Part, _warnings: &mut Vec<String>) -> Result<String> {
+        Ok(body(plan, part))
+    }
+    fn calls(&self, subs: &[String]) -> String {
+        calls(subs)
+    }
+    fn wrap(&self, name: &str, header: &str, body: &str, _main: bool) -> String {
+        wrap(name, header, body)
+    }
+    fn lines_per_file(&self) -> Option<usize> {
+        None
+    }
+    fn routine_prefix(&self) -> &'static str {
+        ""
+    }
+    fn needs_mass(&self, _targets: Targets) -> bool {
+        false
+    }
 }

@@ -1,11 +1,13 @@
 //! ABB RAPID (`.mod`): `MODULE NAME` with `PROC main()`, sub-programs `MODULE NAME_01` with
-//! `PROC rNAME_01()` (module docs of [`super`]).
+//! `PROC rNAME_01()` (module docs of [`crate::program::generate`]).
 
-use super::{in_work, number, v, Move, Part, Plan, Targets, RAPID_SPEED_MM_S};
+use crate::program::generate::{in_work, number, v, Move, Part, Plan, Targets, RAPID_SPEED_MM_S};
+use crate::program::Generator;
 use std::fmt::Write;
+use stiffid_core::Result;
 
 /// The data the moves use, declared in the main module.
-pub(super) fn header(plan: &Plan, _main: &str, _subs: &[String]) -> String {
+pub(crate) fn header(plan: &Plan, _main: &str, _subs: &[String]) -> String {
     let mut s = String::from(
         "  ! written by stiffid: compensated targets, the tool, work object and speeds below;\n  \
          ! check them for the cell before running\n",
@@ -53,7 +55,7 @@ fn quaternion(r: &nalgebra::UnitQuaternion<f64>) -> String {
 }
 
 /// The moves of one file.
-pub(super) fn body(plan: &Plan, part: &Part) -> String {
+pub(crate) fn body(plan: &Plan, part: &Part) -> String {
     let mut s = String::with_capacity(part.targets.len() * 160);
     let n = part.targets.len();
     for (k, (t, m)) in part.targets.iter().zip(part.moves).enumerate() {
@@ -108,16 +110,42 @@ fn pose(f: &nalgebra::Isometry3<f64>) -> String {
 }
 
 /// The main program's calls of its sub-programs.
-pub(super) fn calls(subs: &[String]) -> String {
+pub(crate) fn calls(subs: &[String]) -> String {
     subs.iter().map(|n| format!("    r{n};\n")).collect()
 }
 
 /// A whole module.
-pub(super) fn wrap(name: &str, header: &str, body: &str, main: bool) -> String {
+pub(crate) fn wrap(name: &str, header: &str, body: &str, main: bool) -> String {
     match main {
         true => format!(
             "MODULE {name}\n{header}  PROC main()\n    ConfJ \\On;\n    ConfL \\On;\n{body}  ENDPROC\nENDMODULE\n"
         ),
         false => format!("MODULE {name}\n  PROC r{name}()\n{body}  ENDPROC\nENDMODULE\n"),
+    }
+}
+
+impl Generator for super::Rapid {
+    fn header(&self, plan: &Plan, main: &str, subs: &[String]) -> String {
+        header(plan, main, subs)
+    }
+    fn body(&self, plan: &Plan, part: &Part, _warnings: &mut Vec<String>) -> Result<String> {
+        Ok(body(plan, part))
+    }
+    fn calls(&self, subs: &[String]) -> String {
+        calls(subs)
+    }
+    fn wrap(&self, name: &str, header: &str, body: &str, main: bool) -> String {
+        wrap(name, header, body, main)
+    }
+    fn lines_per_file(&self) -> Option<usize> {
+        None
+    }
+    /// A sub-program's routine is its module's name after an `r`.
+    fn routine_prefix(&self) -> &'static str {
+        "r"
+    }
+    /// A `tooldata` states the tool's mass: the controller refuses a tool of no mass.
+    fn needs_mass(&self, targets: Targets) -> bool {
+        targets == Targets::Cartesian
     }
 }

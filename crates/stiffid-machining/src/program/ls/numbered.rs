@@ -1,5 +1,5 @@
 //! FANUC LS frames held on the controller by number (`UF : n`, `UT : n`), which an LS program
-//! cannot state: which of them stiffid takes, and which it refuses (module docs of [`super`]).
+//! cannot state: which of them stiffid takes, and which it refuses (module docs of [`crate::program::cartesian`]).
 //!
 //! - `UF : 0` is the controller's world.
 //! - `UF : n`, n >= 1, is the part frame (the setup's `[workpiece]`) only when the program
@@ -9,7 +9,7 @@
 //!   frame the remark `! stiffid: tool_frame = n ;` names, else the first position's; a
 //!   position for another is refused naming its line.
 
-use super::Frame;
+use crate::program::cartesian::Frame;
 use crate::program::{at, lines, JointTarget};
 use stiffid_core::Result;
 

@@ -10,9 +10,18 @@
 //! with `S` and `T`) is a Cartesian target in the `$BASE` and for the `$TOOL` the program sets
 //! before the motion ([`super::cartesian`]).
 
-use super::cartesian::{self, Frame};
+mod cartesian;
+mod generate;
+mod names;
+
+use super::cartesian::Flags;
+use super::cartesian::Frame;
+use super::controller::{lines_starting, BoundComment, Controller, Generator, Read};
+use super::generate::zyx_deg;
 use super::{at, number_at, six, JointTarget};
+use nalgebra::{UnitQuaternion, Vector3};
 use std::collections::HashMap;
+use stiffid_core::robot::configuration::Configuration;
 use stiffid_core::{Error, Result};
 
 /// A point declared in the file: its line and its joint target, or why it is none.
@@ -34,7 +43,7 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
     let mut speed = super::speed::Krl::new();
     for (line, start, l) in super::lines(text) {
         let code = l.split(';').next().unwrap_or("");
-        if let Some((is_base, frame)) = cartesian::krl::frame_set(line, code) {
+        if let Some((is_base, frame)) = cartesian::frame_set(line, code) {
             *(if is_base { &mut base } else { &mut tool }) = frame;
             continue;
         }
@@ -238,7 +247,7 @@ fn aggregate(line: u64, start: usize, code: &str, from: usize, to: usize) -> Res
             .take_while(|c| c.is_ascii_alphanumeric())
             .collect();
         let upper = name.to_ascii_uppercase();
-        if cartesian::krl::is_member(&upper) {
+        if cartesian::is_member(&upper) {
             pose.push((upper, name_start + name.len()));
             at_byte += item.len() + 1;
             continue;
@@ -278,7 +287,7 @@ fn aggregate(line: u64, start: usize, code: &str, from: usize, to: usize) -> Res
                     .into(),
             ));
         }
-        let c = cartesian::krl::target(line, start, code, &pose)?;
+        let c = cartesian::target(line, start, code, &pose)?;
         return Ok(JointTarget::cartesian(line, c).with_external(external));
     }
     six(line, found, "A").map(|t| t.with_external(external)).map_err(|e| match e {
@@ -288,4 +297,103 @@ fn aggregate(line: u64, start: usize, code: &str, from: usize, to: usize) -> Res
         },
         other => other,
     })
+}
+
+/// KUKA KRL (module docs).
+#[derive(Debug, Clone, Copy)]
+pub struct Krl;
+
+impl Controller for Krl {
+    fn key(&self) -> &'static str {
+        "krl"
+    }
+    fn title(&self) -> &'static str {
+        "KUKA KRL"
+    }
+    fn extensions(&self) -> &'static [&'static str] {
+        &["src", "dat"]
+    }
+    fn refuses_output(&self, extension: &str) -> Option<&'static str> {
+        (extension == "dat").then_some(
+            "a KRL program (DEF) is written to a .src file; its .dat holds only data (DEFDAT)",
+        )
+    }
+    fn read(&self, text: &str) -> Result<Read> {
+        let (targets, axes) = targets(text)?;
+        Ok(Read {
+            targets,
+            axes,
+            ..Read::default()
+        })
+    }
+    fn motions(&self) -> &'static str {
+        "PTP or LIN to {A1 .., A6 ..} or {X .., .., C .., S .., T ..}, or to an E6AXIS or E6POS declared in the file; a .dat holds declarations only: give the .src"
+    }
+    fn joint_forms(&self) -> &'static str {
+        "E6AXIS, AXIS"
+    }
+    fn part_forms(&self) -> Option<&'static str> {
+        Some("E6POS with $BASE equal to [workpiece]")
+    }
+    fn external_axis(&self, k: usize) -> String {
+        format!("E{}", k + 1)
+    }
+    fn unused_axis(&self) -> &'static str {
+        ""
+    }
+    fn zero_is_no_axis(&self) -> bool {
+        true
+    }
+    fn rotation(&self, n: &[f64]) -> UnitQuaternion<f64> {
+        abc(n[3], n[4], n[5])
+    }
+    fn pose_numbers(&self, p: &Vector3<f64>, r: &UnitQuaternion<f64>) -> Vec<f64> {
+        let [a, b, c] = zyx_deg(r);
+        vec![p.x, p.y, p.z, a, b, c]
+    }
+    fn flags(&self, arm: &Configuration) -> Flags {
+        let (s, t) = arm.kuka();
+        Flags::Kuka(s, t)
+    }
+    fn flags_name(&self) -> &'static str {
+        "S and T"
+    }
+    fn declares_name(&self, line: &str) -> Option<usize> {
+        let upper = line.to_ascii_uppercase();
+        let rest = upper
+            .strip_prefix("GLOBAL")
+            .map_or(upper.as_str(), str::trim_start);
+        rest.strip_prefix("DEF")
+            .filter(|r| r.starts_with(char::is_whitespace))
+            .map(|r| line.len() - r.len())
+    }
+    fn program_name(&self, stem: &str) -> Option<String> {
+        Some(stem.to_string())
+    }
+    fn max_name_length(&self) -> usize {
+        24
+    }
+    fn default_name_length(&self) -> usize {
+        24
+    }
+    fn reserved_words(&self) -> &'static [&'static str] {
+        names::RESERVED
+    }
+    fn bound_comment(&self) -> BoundComment {
+        BoundComment::EndOfLine {
+            marker: ';',
+            statement: None,
+        }
+    }
+    fn motion_lines(&self, text: &str) -> Vec<u64> {
+        lines_starting(text, &["PTP ", "LIN "])
+    }
+    fn generator(&self) -> Option<&'static dyn Generator> {
+        Some(&Krl)
+    }
+}
+
+/// A rotation from KUKA's A, B, C (deg): `R = Rz(A) Ry(B) Rx(C)`.
+fn abc(a: f64, b: f64, c: f64) -> UnitQuaternion<f64> {
+    UnitQuaternion::from_euler_angles(c.to_radians(), b.to_radians(), a.to_radians())
 }

@@ -1,0 +1,152 @@
+//! What a controller language does, in one trait: [`Controller`] (read a program's targets and
+//! speeds, its Cartesian targets' poses and configuration data, name its axes, files and
+//! programs, comment a target's bound) and, for a language stiffid writes new programs in,
+//! [`Generator`] (the header with the tool and the frames, the moves, the sub-program calls).
+//!
+//! Each language implements them in its own folder ([`super::krl`], [`super::rapid`],
+//! [`super::ls`], [`super::inform`]); [`super::Dialect::controller`] is the one place that maps
+//! a dialect to its controller. Everything else (the targets and their writing back, the speeds,
+//! the Cartesian solve, the names' checks, the bounds' comments) is shared and asks the trait.
+
+use super::cartesian::Flags;
+use super::generate::{Part, Plan, Targets};
+use super::{JointTarget, Units};
+use nalgebra::{UnitQuaternion, Vector3};
+use stiffid_core::robot::configuration::Configuration;
+use stiffid_core::Result;
+
+/// What a reader finds in a program: its targets in motion order, its external axes' names, per
+/// value the pulses per unit of a value written in pulses (empty: every value decimal), per
+/// external axis the unit written and its line (empty where the language does not say).
+#[derive(Debug, Clone, Default)]
+pub struct Read {
+    /// The targets, in the order of the motion instructions.
+    pub targets: Vec<JointTarget>,
+    /// The external axes as the program names them.
+    pub axes: Vec<String>,
+    /// Per value (six axes, then external), the pulses per deg or mm; `None` or absent: decimal.
+    pub pulses: Vec<Option<f64>>,
+    /// Per external axis, the unit written (`mm`, `deg`) and the line of its first value.
+    pub units: Units,
+}
+
+/// How a target's bound is written as a comment (`app::compensate::certify`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BoundComment {
+    /// At the end of the line that ends the motion instruction, after `marker`; `statement`:
+    /// the character that ends an instruction over several lines (`None`: every line ends one).
+    EndOfLine {
+        /// The comment marker (KRL `;`, RAPID `!`).
+        marker: char,
+        /// What ends a statement (RAPID `;`), if a statement may span lines.
+        statement: Option<char>,
+    },
+    /// A comment line of its own before the motion's line, after `marker` (INFORM `'`).
+    LineBefore {
+        /// The comment marker.
+        marker: char,
+    },
+    /// The position's comment (LS `P[i:"0.0123 mm"]`).
+    PositionComment,
+}
+
+/// A controller language (module docs). Each method says what it gives; the names follow the
+/// controller's manual.
+pub trait Controller: Sync {
+    /// The language's name in documents and options (`krl`, `rapid`, `ls`, `inform`).
+    fn key(&self) -> &'static str;
+    /// The language's name for people (`KUKA KRL`).
+    fn title(&self) -> &'static str;
+    /// The file extensions read as this language, lowercase; the first is the one written.
+    fn extensions(&self) -> &'static [&'static str];
+    /// Why a program is not written to a file of `extension` (lowercase) though it reads it
+    /// (KRL's `.dat`), if so.
+    fn refuses_output(&self, extension: &str) -> Option<&'static str>;
+
+    /// The targets, external axes, pulses and units of program `text` (module docs of
+    /// [`super`]), each target with its speed.
+    ///
+    /// # Errors
+    /// [`stiffid_core::Error::Program`] naming the line of a motion outside the subset read.
+    fn read(&self, text: &str) -> Result<Read>;
+    /// The motions read, for the message of a program with none.
+    fn motions(&self) -> &'static str;
+    /// The forms of its joint targets, for messages (`E6AXIS, AXIS`).
+    fn joint_forms(&self) -> &'static str;
+    /// The forms of its Cartesian targets in the part frame, for messages; `None`: the language
+    /// has no Cartesian targets stiffid reads.
+    fn part_forms(&self) -> Option<&'static str>;
+    /// The name of the program's `k`-th external axis (0-based) where the program gives none.
+    fn external_axis(&self, k: usize) -> String;
+    /// What a target says for an axis it does not move, for messages (RAPID ` (9E9: not
+    /// used)`), or empty.
+    fn unused_axis(&self) -> &'static str;
+    /// Whether a value 0 of an axis the cell lacks means no axis (KRL: `E1`..`E6` in every
+    /// `E6AXIS`).
+    fn zero_is_no_axis(&self) -> bool;
+
+    /// A Cartesian target's orientation from its numbers in the language's order (the position,
+    /// mm, then KRL A, B, C deg, RAPID a quaternion, LS W, P, R deg).
+    fn rotation(&self, numbers: &[f64]) -> UnitQuaternion<f64>;
+    /// The numbers that state a pose (position `p`, mm, and rotation `r`), in the order
+    /// [`Controller::rotation`] reads them.
+    fn pose_numbers(&self, p: &Vector3<f64>, r: &UnitQuaternion<f64>) -> Vec<f64>;
+    /// The configuration data of the posture `arm` as the controller writes them.
+    fn flags(&self, arm: &Configuration) -> Flags;
+    /// The configuration data's name in the language, for messages (`S and T`).
+    fn flags_name(&self) -> &'static str;
+
+    /// The program name declared on `line` (trimmed at its start): the offset in `line` of the
+    /// end of the declaring keyword (KRL `DEF`, LS `/PROG`), if the line declares it; a
+    /// language whose program is not named by its file (RAPID) declares none.
+    fn declares_name(&self, line: &str) -> Option<usize>;
+    /// The program name of a file stem, as the controller calls it (LS, INFORM upper case);
+    /// `None`: the name is not the file's (a RAPID module).
+    fn program_name(&self, stem: &str) -> Option<String>;
+    /// The longest program name the controller takes.
+    fn max_name_length(&self) -> usize;
+    /// The longest program name written by default (at most [`Controller::max_name_length`]).
+    fn default_name_length(&self) -> usize;
+    /// The words a program may not be named (the language's reserved words, and the names of
+    /// the data stiffid declares in a program it writes).
+    fn reserved_words(&self) -> &'static [&'static str];
+
+    /// How a target's bound is written as a comment.
+    fn bound_comment(&self) -> BoundComment;
+    /// The lines (1-based) of the motion instructions of a program stiffid wrote, in order.
+    fn motion_lines(&self, text: &str) -> Vec<u64>;
+
+    /// What writes new programs in the language; `None`: programs are read and written back
+    /// compensated, never generated.
+    fn generator(&self) -> Option<&'static dyn Generator>;
+}
+
+/// Writes new programs in a language (module docs of [`super::generate`]).
+pub trait Generator: Sync {
+    /// The main program's header: the tool, the frames and the motion settings; `main` its
+    /// name and `subs` its sub-programs'.
+    fn header(&self, plan: &Plan, main: &str, subs: &[String]) -> String;
+    /// The moves of `part`.
+    ///
+    /// # Errors
+    /// [`stiffid_core::Error::Program`] for a move the language cannot state.
+    fn body(&self, plan: &Plan, part: &Part, warnings: &mut Vec<String>) -> Result<String>;
+    /// The main program's calls of its sub-programs `subs`, in order.
+    fn calls(&self, subs: &[String]) -> String;
+    /// The whole file of program `name` (`main`: the main program).
+    fn wrap(&self, name: &str, header: &str, body: &str, main: bool) -> String;
+    /// The most moves (or calls) one file holds, where the language limits them.
+    fn lines_per_file(&self) -> Option<usize>;
+    /// What a sub-program's routine name adds before the program's name (RAPID `r`).
+    fn routine_prefix(&self) -> &'static str;
+    /// Whether a program with `targets` states the tool's mass and centre of mass.
+    fn needs_mass(&self, targets: Targets) -> bool;
+}
+
+/// The lines (1-based) of `text` that start (after blanks) with one of `motions`.
+pub(crate) fn lines_starting(text: &str, motions: &[&str]) -> Vec<u64> {
+    (text.lines().enumerate())
+        .filter(|(_, l)| motions.iter().any(|m| l.trim_start().starts_with(m)))
+        .map(|(i, _)| i as u64 + 1)
+        .collect()
+}

@@ -1,0 +1,166 @@
+//! Where a new controller plugs in: one row per controller language (`program::Dialect::ALL`),
+//! with a small program and what it must read and write. A new controller adds its variant to
+//! `Dialect` and its `controller()` arm, its folder under `program/` implementing
+//! `program::Controller`, and a row here (docs/ARCHITECTURE.md, "Adding a controller").
+
+use stiffid::machining::app::compensate::certify;
+use stiffid::machining::program::generate::{check_name, default_name_length, max_name_length};
+use stiffid::machining::program::{self, rename, Dialect};
+use stiffid::machining::Language;
+
+/// One controller and what its small program must give.
+struct Row {
+    dialect: Dialect,
+    /// The name in documents and options, and for people.
+    key: &'static str,
+    title: &'static str,
+    /// The extensions read, the first the one written.
+    extensions: &'static [&'static str],
+    /// A program with one joint target at axis angles 1, 2, ..., 6 deg.
+    program: &'static str,
+    /// Axis 3 as the program writes it, then as written back at 3.5 deg (every other byte kept).
+    axis_3: (&'static str, &'static str),
+    /// The name declaration after renaming the program for a file `cut_c` (`None`: the file
+    /// name is not the program's, the text stays).
+    renamed: Option<&'static str>,
+    /// The text a bound of 0.0123 mm at 95% adds on the motion's target.
+    bound: &'static str,
+    /// Whether new programs are written in the language from G-code.
+    generates: bool,
+}
+
+fn rows() -> [Row; 4] {
+    [
+        Row {
+            dialect: Dialect::Krl,
+            key: "krl",
+            title: "KUKA KRL",
+            extensions: &["src", "dat"],
+            program: "DEF cut( )\nPTP {A1 1, A2 2, A3 3, A4 4, A5 5, A6 6}\nEND\n",
+            axis_3: ("A3 3,", "A3 3.500000000,"),
+            renamed: Some("DEF cut_c( )"),
+            bound: "A6 6} ; bound 0.0123 mm at 95%\n",
+            generates: true,
+        },
+        Row {
+            dialect: Dialect::Rapid,
+            key: "rapid",
+            title: "ABB RAPID",
+            extensions: &["mod", "modx", "prg"],
+            program: "MODULE Cut\n  PROC main()\n    MoveAbsJ [[1,2,3,4,5,6],[9E9,9E9,9E9,9E9,9E9,9E9]], v100, fine, tool0;\n  ENDPROC\nENDMODULE\n",
+            axis_3: ("[[1,2,3,4", "[[1,2,3.500000000,4"),
+            renamed: None,
+            bound: "tool0; ! bound 0.0123 mm at 95%\n",
+            generates: true,
+        },
+        Row {
+            dialect: Dialect::FanucLs,
+            key: "ls",
+            title: "FANUC LS",
+            extensions: &["ls"],
+            program: "/PROG  CUT\n/ATTR\nOWNER\t\t= MNEDITOR;\n/MN\n   1:J P[1] 100% FINE    ;\n/POS\nP[1]{\n   GP1:\n\tUF : 0, UT : 1,\n\tJ1=     1.000 deg,\tJ2=     2.000 deg,\tJ3=     3.000 deg,\n\tJ4=     4.000 deg,\tJ5=     5.000 deg,\tJ6=     6.000 deg\n};\n/END\n",
+            axis_3: ("J3=     3.000 deg", "J3=     3.500000000 deg"),
+            renamed: Some("/PROG  CUT_C\n"),
+            bound: "P[1:\"0.0123 mm\"]{\n",
+            generates: true,
+        },
+        Row {
+            dialect: Dialect::Inform,
+            key: "inform",
+            title: "Yaskawa INFORM",
+            extensions: &["jbi"],
+            program: "/JOB\r\n//NAME CUT\r\n//POS\r\n///NPOS 1,0,0,0,0,0\r\n///TOOL 0\r\n///POSTYPE PULSE\r\n///PULSE\r\nC00000=100,200,300,400,500,600\r\n//INST\r\n///DATE 2026/11/25 12:00\r\n///ATTR SC,RW\r\n///GROUP1 RB1\r\n'stiffid: pulses_per_deg = 100 100 100 100 100 100\r\nNOP\r\nMOVJ C00000 VJ=50.00\r\nEND\r\n",
+            axis_3: ("=100,200,300,", "=100,200,350,"),
+            renamed: Some("//NAME CUT_C\r\n"),
+            bound: "'bound 0.0123 mm at 95%\r\nMOVJ C00000",
+            generates: false,
+        },
+    ]
+}
+
+#[test]
+fn every_controller_has_a_row() {
+    let listed: Vec<Dialect> = rows().iter().map(|r| r.dialect).collect();
+    assert_eq!(listed, Dialect::ALL);
+}
+
+#[test]
+fn each_controller_names_its_language_and_files() {
+    for row in rows() {
+        let (d, c) = (row.dialect, row.dialect.controller());
+        assert_eq!((c.key(), c.title()), (row.key, row.title), "{d:?}");
+        assert_eq!(c.extensions(), row.extensions, "{d:?}");
+        for ext in row.extensions {
+            assert_eq!(Dialect::from_extension(ext), Some(d), "{ext}");
+            let upper = ext.to_ascii_uppercase();
+            assert_eq!(Language::from_extension(&upper), Some(Language::Robot(d)));
+        }
+        let refused = Language::of_file("cut.txt").unwrap_err().to_string();
+        assert!(refused.contains(&format!("({})", row.title)), "{refused}");
+        for ext in row.extensions {
+            assert!(refused.contains(&format!(".{ext}")), "{ext}: {refused}");
+        }
+        let language = Language::Robot(d);
+        assert_eq!(language.name(), row.key);
+        assert_eq!(language.extension(), row.extensions[0]);
+    }
+}
+
+#[test]
+fn each_controller_reads_its_target_and_writes_it_back() {
+    for row in rows() {
+        let d = row.dialect;
+        let p = program::parse(row.program, d).unwrap();
+        assert_eq!(p.targets.len(), 1, "{d:?}");
+        assert_eq!(p.targets[0].q_deg, [1.0, 2.0, 3.0, 4.0, 5.0, 6.0], "{d:?}");
+        let q = p.targets[0].q_deg;
+        assert_eq!(p.write(&[q]).unwrap(), row.program, "{d:?}");
+        let moved = [[q[0], q[1], 3.5, q[3], q[4], q[5]]];
+        let (read, written) = row.axis_3;
+        assert_eq!(row.program.matches(read).count(), 1, "{d:?}");
+        assert_eq!(
+            p.write(&moved).unwrap(),
+            row.program.replace(read, written),
+            "{d:?}"
+        );
+    }
+}
+
+#[test]
+fn each_controller_renames_and_certifies_its_program() {
+    for row in rows() {
+        let (d, c) = (row.dialect, row.dialect.controller());
+        let name = c.program_name("cut_c");
+        let renamed = rename::renamed(row.program, d, name.as_deref().unwrap_or("cut_c"));
+        match row.renamed {
+            Some(declared) => assert!(renamed.contains(declared), "{d:?}: {renamed}"),
+            None => assert_eq!((name, renamed.as_str()), (None, row.program), "{d:?}"),
+        }
+        let line = program::parse(row.program, d).unwrap().targets[0].line;
+        let certified = certify::at_lines(d, row.program, &[(line, 1.23e-5)], 0.95);
+        assert!(certified.contains(row.bound), "{d:?}: {certified}");
+        let line = program::parse(&certified, d).unwrap().targets[0].line;
+        let again = certify::at_lines(d, &certified, &[(line, 1.23e-5)], 0.95);
+        assert_eq!(
+            again, certified,
+            "{d:?}: a bound replaces the one written before"
+        );
+    }
+}
+
+#[test]
+fn each_controller_says_whether_and_how_it_writes_new_programs() {
+    for row in rows() {
+        let (d, c) = (row.dialect, row.dialect.controller());
+        assert_eq!(c.generator().is_some(), row.generates, "{d:?}");
+        assert!(default_name_length(d) <= max_name_length(d), "{d:?}");
+        let name = c.program_name("cut").unwrap_or_else(|| "cut".into());
+        assert!(
+            check_name(d, &name, default_name_length(d)).is_ok(),
+            "{d:?}"
+        );
+        for word in c.reserved_words() {
+            assert!(check_name(d, word, 64).is_err(), "{d:?}: {word}");
+        }
+    }
+}
