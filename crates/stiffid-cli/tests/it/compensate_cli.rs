@@ -729,7 +729,8 @@ fn a_program_whose_bound_exceeds_the_largest_error_accepted_is_refused() {
     let doc = json(&o);
     let b = &doc["summary"]["budget"];
     assert_eq!(b["level"].as_f64(), Some(0.997));
-    assert!(b["max_bound_mm"].as_f64().unwrap() > worst);
+    // The force part (the largest here) is a tolerance, the same at every level.
+    assert!(b["max_bound_mm"].as_f64().unwrap() >= worst);
     assert_eq!(b["meets"]["meets"].as_bool(), Some(true));
     let force = (b["made_of"].as_array().unwrap().iter())
         .find(|p| p["part"] == "force")
