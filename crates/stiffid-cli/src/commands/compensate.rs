@@ -455,6 +455,35 @@ fn options(args: &Args, setup: &Setup) -> Result<Options> {
     Ok(options)
 }
 
+/// What the error that remains is made of, and whether the program meets `--max-error-mm`.
+fn made_of(b: &stiffid_machining::app::compensate::budget::BudgetSummary) -> String {
+    let parts: Vec<String> = (b.made_of.iter())
+        .filter(|p| p.part != "left")
+        .map(|p| match p.max_mm {
+            Some(m) => format!(
+                "{} {m:.4} mm (mean {:.4})",
+                p.part.replace('_', " "),
+                p.mean_mm.unwrap_or(m)
+            ),
+            None => format!("{} absent", p.part.replace('_', " ")),
+        })
+        .collect();
+    let mut text = format!(
+        "the error that remains at {}% is made of (largest along the path): {}\n",
+        100.0 * b.level,
+        parts.join(", ")
+    );
+    if let Some(m) = &b.meets {
+        text += &format!(
+            "meets {:.4} mm at {}%: {}\n",
+            m.max_error_mm,
+            100.0 * m.level,
+            if m.meets { "yes" } else { "no" }
+        );
+    }
+    text
+}
+
 /// The text summary.
 fn human(args: &Args, setup: &Setup, report: &Report, names: &Names) -> String {
     let doc = Document::new(report, names, Vec::new());
@@ -508,6 +537,7 @@ fn human(args: &Args, setup: &Setup, report: &Report, names: &Names) -> String {
             ),
         }
     );
+    text += &made_of(b);
     if let (Some(f), Some(o)) = (&d.free_tool_axis, &doc.free_tool_axis) {
         let [lo, hi] = f.tool_rotation_range_deg;
         text += &format!(

@@ -78,6 +78,39 @@ pub fn write(dir: ReportDir, setup: &Setup, view: &View) -> Result<()> {
     dir.finish()
 }
 
+/// What the error that remains after compensation is made of, in mm.
+fn remains(s: &stiffid_machining::app::compensate::document::SummaryDocument) -> String {
+    let b = &s.budget;
+    let parts: Vec<String> = (b.made_of.iter())
+        .map(|p| match p.max_mm {
+            Some(m) => format!(
+                "{} at most {} mm (mean {} mm)",
+                p.part.replace('_', " "),
+                num(m),
+                num(p.mean_mm.unwrap_or(m))
+            ),
+            None => format!("{} absent", p.part.replace('_', " ")),
+        })
+        .collect();
+    let mut text = format!(
+        "After compensation the error that remains at {}% is made of: {} (left: the compensation's residual; compensation: the predicted deflection's error; calibration: the calibrated robot's held-out error; force: the process force model's tolerance; model form: the spread over the models the data support). The compensated axis angles reproduce the model itself to {:.2e} um and {:.2e} urad, {} Newton steps per point at most.",
+        b.level * 100.0,
+        parts.join("; "),
+        s.max_residual_um,
+        s.max_residual_urad,
+        s.max_iterations
+    );
+    if let Some(m) = &b.meets {
+        text += &format!(
+            " Meets {} mm at {}%: {}.",
+            num(m.max_error_mm),
+            m.level * 100.0,
+            if m.meets { "yes" } else { "no" }
+        );
+    }
+    text
+}
+
 fn compose(
     w: &mut dyn Writer,
     setup: &Setup,
@@ -105,20 +138,7 @@ fn compose(
             num(s.mean_deflection_mm),
             num(s.max_rotation_mrad)
         ),
-        match s.max_remaining_error_mm {
-            Some(e) => format!(
-                "After compensation the error that remains is the prediction's uncertainty: at most {} mm (the standard deviation of |d| from the stiffness's covariance; the compensated axis angles reproduce the model itself to {:.2e} um, {} Newton steps per point at most).",
-                num(e),
-                s.max_residual_um,
-                s.max_iterations
-            ),
-            None => format!(
-                "After compensation: the stiffness file has no covariance, so the error that remains cannot be predicted (the compensated axis angles reproduce the model itself to {:.2e} um and {:.2e} urad, {} Newton steps per point at most).",
-                s.max_residual_um,
-                s.max_residual_urad,
-                s.max_iterations
-            ),
-        },
+        remains(s),
     ];
     // The summary's sums are any free variable's; the rotation is named only where it was free.
     if let (Some(free), Some(_)) = (&s.free_tool_axis, &document.free_tool_axis) {

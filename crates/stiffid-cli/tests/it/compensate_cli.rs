@@ -244,7 +244,7 @@ fn a_bad_free_tool_axis_option_is_named_alone_with_its_value() {
     for (text, option, value, other) in [
         ("tool-rotation=-90..90/0", "step", "0", "range"),
         ("tool-rotation=-90..90/91", "step", "91", "range"),
-        ("tool-rotation=-1e308..1e308", "range", "1e308", "step"),
+        ("tool-rotation=-1e108..1e108", "range", "1e108", "step"),
     ] {
         let o = compensate(&path, &out, &["--free", text]);
         let line = assert_usage_error(
@@ -466,36 +466,58 @@ fn bad_programs_exit_2_naming_the_line_or_the_field() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// The milling example's programs (examples/milling/pocket.ls, pocket.src, pocket.mod) are what
-/// the command writes from pocket.nc: FANUC LS on the FANUC setup, KRL and RAPID on the KUKA
-/// KR 210 setup (its spindle's mass in `$LOAD` and the `tooldata`).
+/// `text`, a program the command wrote for an infinitely stiff robot, as the milling example
+/// ships it: without the bound comments (0 mm: nothing compensated) and its header saying its
+/// targets are uncompensated (examples/milling/README.md).
+fn uncompensated(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for line in text.split_inclusive('\n') {
+        let body = line.trim_end_matches(['\n', '\r']);
+        let kept = [" ; bound 0.0000 mm at 95%", " ! bound 0.0000 mm at 95%"]
+            .iter()
+            .find_map(|c| body.strip_suffix(c))
+            .unwrap_or(body);
+        out += &kept
+            .replace(":\"0.0000 mm\"]", "]")
+            .replace("compensated targets", "uncompensated targets");
+        out += &line[body.len()..];
+    }
+    out
+}
+
+/// The milling example's programs (examples/milling/pocket.ls, pocket.src, pocket.mod) are
+/// pocket.nc as the command writes it uncompensated (a robot of stiffness 1e10 N m/rad, the
+/// bound comments left out): FANUC LS on the FANUC setup, KRL and RAPID on the KUKA KR 210 setup
+/// (its spindle's mass in `$LOAD` and the `tooldata`).
 #[test]
 fn the_milling_examples_generated_programs_are_golden() {
     let dir = temp_dir("golden");
+    let stiff = write_file(
+        &dir,
+        "stiff.json",
+        r#"{"stiffness_nm_per_rad": [1e10, 1e10, 1e10, 1e10, 1e10, 1e10]}"#,
+    );
     let cases = [
-        ("fanuc-milling.toml", "stiffness.json", "pocket.ls"),
-        ("kuka-milling.toml", "kuka-stiffness.json", "pocket.src"),
-        ("kuka-milling.toml", "kuka-stiffness.json", "pocket.mod"),
+        ("fanuc-milling.toml", "pocket.ls"),
+        ("kuka-milling.toml", "pocket.src"),
+        ("kuka-milling.toml", "pocket.mod"),
     ];
-    for (setup, stiffness, golden) in cases {
+    for (setup, golden) in cases {
         let out = dir.join(golden);
-        let o = program(
-            &example(&format!("milling/{setup}")),
-            &example(&format!("milling/{stiffness}")),
-            &out,
-            &[],
-        );
+        let stiff = stiff.to_str().unwrap();
+        let o = program(&example(&format!("milling/{setup}")), stiff, &out, &[]);
         assert!(
             o.status.success(),
             "{golden}: {}",
             String::from_utf8_lossy(&o.stderr)
         );
-        let written = std::fs::read_to_string(&out).unwrap();
+        let written = uncompensated(&std::fs::read_to_string(&out).unwrap());
         let shipped = std::fs::read_to_string(example(&format!("milling/{golden}"))).unwrap();
         assert!(
             written == shipped,
             "examples/milling/{golden} is not what the command writes (regenerate it as examples/milling/README.md says)"
         );
+        assert!(!shipped.contains("bound ") && !shipped.contains(" mm\"]"));
         let first = written.lines().find(|l| l.contains("POCKET")).unwrap();
         assert!(
             ["/PROG  POCKET", "DEF POCKET( )", "MODULE POCKET"].contains(&first),
@@ -670,6 +692,8 @@ fn a_program_whose_bound_exceeds_the_largest_error_accepted_is_refused() {
         &["--max-error-mm", "the worst points: line ", "mostly "],
     );
     assert!(line.contains(&format!("largest {worst:.4} mm")), "{line}");
+    let said = format!("meets {:.4} mm at 95%: no", worst / 2.0);
+    assert!(line.contains(&said), "{line}");
     assert!(!out.exists() && !csv.exists());
     let o = program(
         &setup,
@@ -678,6 +702,40 @@ fn a_program_whose_bound_exceeds_the_largest_error_accepted_is_refused() {
         &["--max-error-mm", &format!("{}", worst * 2.0)],
     );
     assert_success(&o);
+    let text = String::from_utf8(o.stdout).unwrap();
+    assert!(
+        text.contains(&format!("meets {:.4} mm at 95%: yes", worst * 2.0)),
+        "{text}"
+    );
+    assert!(
+        text.contains("the error that remains at 95% is made of"),
+        "{text}"
+    );
+    // At 99.7% the bound is wider, the gate and the document at that level.
+    std::fs::remove_file(&out).unwrap();
+    let o = program(
+        &setup,
+        &stiffness,
+        &out,
+        &[
+            "--level",
+            "0.997",
+            "--max-error-mm",
+            &format!("{}", worst * 2.0),
+            "--json",
+        ],
+    );
+    assert_success(&o);
+    let doc = json(&o);
+    let b = &doc["summary"]["budget"];
+    assert_eq!(b["level"].as_f64(), Some(0.997));
+    // The force part (the largest here) is a tolerance, the same at every level.
+    assert!(b["max_bound_mm"].as_f64().unwrap() >= worst);
+    assert_eq!(b["meets"]["meets"].as_bool(), Some(true));
+    let force = (b["made_of"].as_array().unwrap().iter())
+        .find(|p| p["part"] == "force")
+        .unwrap();
+    assert!(force["max_mm"].as_f64().unwrap() > 0.0);
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

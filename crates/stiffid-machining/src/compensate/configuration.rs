@@ -340,7 +340,8 @@ fn refusal(
     checks: &Checks,
 ) -> Option<(Option<u64>, String)> {
     points.iter().zip(results).find_map(|(p, r)| {
-        let why = match checks.fails(&r.q, &r.external) {
+        let touching = checks.touching(Some(&r.q), &r.external);
+        let why = match checks.fails(&r.q, &r.external, &touching) {
             Some(removed) => failed_check(removed),
             None => {
                 let change = Configuration::of(robot, &r.q).change_from(configuration)?;

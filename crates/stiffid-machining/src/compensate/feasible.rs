@@ -5,12 +5,13 @@ use super::speed::Pace;
 use super::Model;
 use nalgebra::{Vector3, Vector6};
 use std::sync::Arc;
-use stiffid_core::cell::{CheckKind, Checker};
+use stiffid_core::cell::{CheckKind, Checker, Margin, Thing};
 use stiffid_core::common::error::JobOption;
 use stiffid_core::common::words::number;
 use stiffid_core::math::jacobi;
 use stiffid_core::robot::external::ExternalValues;
 use stiffid_core::robot::kinematics::Coordinates;
+use stiffid_core::robot::parts::Part;
 use stiffid_core::{Error, Result, Robot, Setup};
 
 /// What every posture the free variables move a point to must keep (module docs of [`super`],
@@ -148,9 +149,29 @@ impl<'a> Checks<'a> {
         }
     }
 
+    /// The obstacles the tool touches at the path's own posture `own` (rad; none without one)
+    /// with the external axes at `e`: the part or stock being cut, whose contact with the tool
+    /// is no collision of a moved posture ([`Checks::fails`]).
+    pub fn touching(&self, own: Option<&Vector6<f64>>, e: &ExternalValues) -> Vec<usize> {
+        let (Some(checker), Some(q)) = (&self.checker, own) else {
+            return Vec::new();
+        };
+        (checker.margins_at(q, e.as_slice()).iter())
+            .filter(|m| m.margin < 0.0)
+            .filter_map(tool_on_obstacle)
+            .collect()
+    }
+
     /// `Removed` with a count of one for the first check posture `q` (rad) fails with the
-    /// external axes at `e` (the arm on its carriage there), `None` when it passes every check.
-    pub fn fails(&self, q: &Vector6<f64>, e: &ExternalValues) -> Option<Removed> {
+    /// external axes at `e` (the arm on its carriage there), `None` when it passes every check;
+    /// the tool's contact with an obstacle of `touching` (those it touches at the path's own
+    /// posture, [`Checks::touching`]) is not a collision.
+    pub fn fails(
+        &self,
+        q: &Vector6<f64>,
+        e: &ExternalValues,
+        touching: &[usize],
+    ) -> Option<Removed> {
         let distance = self.robot.limits().distance(q);
         if distance.is_nan() || distance < self.margin {
             return Some(Removed {
@@ -167,12 +188,24 @@ impl<'a> Checks<'a> {
             });
         }
         let collides = self.checker.as_ref().is_some_and(|c| {
-            (c.margins_at(q, e.as_slice()).iter())
-                .any(|m| COLLISIONS.contains(&m.kind) && m.margin < 0.0)
+            (c.margins_at(q, e.as_slice()).iter()).any(|m| {
+                COLLISIONS.contains(&m.kind)
+                    && m.margin < 0.0
+                    && tool_on_obstacle(m).is_none_or(|o| !touching.contains(&o))
+            })
         });
         collides.then(|| Removed {
             collision: 1,
             ..Removed::default()
         })
+    }
+}
+
+/// The obstacle of a margin between the tool and an obstacle, else `None`.
+fn tool_on_obstacle(m: &Margin) -> Option<usize> {
+    match m.between {
+        (Thing::Part(Part::Tool), Thing::Obstacle(o))
+        | (Thing::Obstacle(o), Thing::Part(Part::Tool)) => Some(o),
+        _ => None,
     }
 }

@@ -137,9 +137,13 @@ pub(super) fn refine(
         .map(|c| c.as_ref().map_or(0.0, |z| z.1))
         .collect();
     let scales = cost.scales(&own_costs);
+    let touching: Vec<Vec<usize>> = (own.iter().zip(external[grid.zero()]))
+        .map(|(c, e)| checks.touching(c.as_ref().map(|z| &z.0), e))
+        .collect();
     for level in 1..=levels {
         let band = Band::new(grid, &line, level);
-        let (cells, external) = band.cells((&line, own), evaluate, checks, removed);
+        let with = (checks, touching.as_slice());
+        let (cells, external) = band.cells((&line, own), evaluate, with, removed);
         line = band.shortest(
             (&cells, &external),
             &scales,
@@ -228,7 +232,7 @@ impl Band {
         &self,
         (line, own): (&Line, &Column),
         evaluate: &Evaluate,
-        checks: &Checks,
+        checks: (&Checks, &[Vec<usize>]),
         removed: &mut [Removed],
     ) -> (Vec<Column>, Vec<Vec<ExternalValues>>) {
         let n = line.values.len();
@@ -281,7 +285,7 @@ impl Band {
         i: usize,
         steps: &[i64],
         (column, own): (&Column, &Column),
-        (external, checks): (&[ExternalValues], &Checks),
+        (external, (checks, touching)): (&[ExternalValues], (&Checks, &[Vec<usize>])),
         removed: &mut Removed,
     ) -> Option<(nalgebra::Vector6<f64>, f64)> {
         if steps.iter().all(|&k| k == 0) {
@@ -292,7 +296,7 @@ impl Band {
         }
         let limit = own[i].as_ref().map_or(0.0, |z| z.1);
         let (q, d) = column[i].as_ref().filter(|z| z.1 <= limit)?;
-        match checks.fails(q, &external[i]) {
+        match checks.fails(q, &external[i], &touching[i]) {
             Some(r) => {
                 *removed += r;
                 None

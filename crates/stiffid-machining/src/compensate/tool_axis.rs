@@ -111,13 +111,15 @@ pub(super) fn choose(
         .into_par_iter()
         .map(|i| {
             let mut removed = Removed::default();
+            let own_q = columns[zero][i].as_ref().map(|z| &z.0);
+            let touching = checks.touching(own_q, &external[zero][i]);
             let costs = (columns.iter().enumerate())
                 .map(|(g, c)| {
                     let (q, d) = c[i].as_ref().filter(|z| z.1 <= own[i])?;
                     if g == zero {
                         return Some(*d);
                     }
-                    match checks.fails(q, &external[g][i]) {
+                    match checks.fails(q, &external[g][i], &touching) {
                         Some(r) => {
                             removed += r;
                             None

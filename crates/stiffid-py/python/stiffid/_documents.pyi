@@ -263,10 +263,12 @@ CompensateAxisSpeed = TypedDict("CompensateAxisSpeed", {
 CompensateBudgetSummary = TypedDict("CompensateBudgetSummary", {
     "absent": list[str],
     "level": float,
+    "made_of": list[CompensatePartSummary],
     "max_bound_before_mm": Optional[float],
     "max_bound_line": Optional[int],
     "max_bound_mm": Optional[float],
     "mean_bound_mm": Optional[float],
+    "meets": Optional[CompensateMeets],
     "worst": list[CompensateWorstPoint],
 })
 
@@ -353,6 +355,12 @@ CompensateLeanSummary = TypedDict("CompensateLeanSummary", {
     "mean_lean_deg": float,
 })
 
+CompensateMeets = TypedDict("CompensateMeets", {
+    "level": float,
+    "max_error_mm": float,
+    "meets": bool,
+})
+
 CompensateOperationDynamics = TypedDict("CompensateOperationDynamics", {
     "first_frequency_hz": Optional[list[float]],
     "kind": str,
@@ -376,6 +384,12 @@ CompensateParameterStiffness = TypedDict("CompensateParameterStiffness", {
     "name": str,
     "stiffness": Optional[float],
     "unit": str,
+})
+
+CompensatePartSummary = TypedDict("CompensatePartSummary", {
+    "max_mm": Optional[float],
+    "mean_mm": Optional[float],
+    "part": str,
 })
 
 CompensateProgram = TypedDict("CompensateProgram", {

@@ -244,3 +244,107 @@ fn a_bound_above_the_largest_error_accepted_is_refused_naming_the_worst_points()
         );
     }
 }
+
+/// The realised error of `robots` simulated true robots at each compensated point of `out`
+/// (`[point][robot]`, m): each robot's compliance drawn from the covariance (Cholesky factor
+/// `chol`), its joint zero offsets from N(0, `sigma_q`^2) (the calibration's error) and its
+/// process force off by a factor uniform in [0.8, 1.2] (the force model's +-20%); the error is
+/// the loaded true tool's distance to the target the unloaded nominal robot reaches.
+fn realised_errors(
+    s: &Setup,
+    compliance: &Compliance,
+    chol: &Matrix6<f64>,
+    out: &[compensate::Compensated],
+    (robots, sigma_q, seed): (usize, f64, u64),
+) -> Vec<Vec<f64>> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut errors = vec![Vec::with_capacity(robots); out.len()];
+    let tcp = s.tool().tcp;
+    for _ in 0..robots {
+        let z = Vector6::from_fn(|_, _| rng.sample::<f64, _>(StandardNormal));
+        let h = compliance.drives_h() + chol * z;
+        let truth = Compliance {
+            h: DVector::from_column_slice(h.as_slice()),
+            covariance: None,
+            ..compliance.clone()
+        };
+        let model = compensate::Model::new(s.arm(), &truth).unwrap();
+        let offsets = Vector6::from_fn(|_, _| rng.sample::<f64, _>(StandardNormal) * sigma_q);
+        let force = 1.0 + rng.random_range(-0.2..0.2);
+        for (e, r) in errors.iter_mut().zip(out) {
+            let target = tool_pose(&s.robot().frames(&r.q), &tcp).translation.vector;
+            let pose = model.loaded_pose(&(r.q_compensated + offsets), &(r.wrench * force));
+            e.push((pose.translation.vector - target).norm());
+        }
+    }
+    errors
+}
+
+/// The robot of `s` carrying `n` held-out errors of its calibration: the distance its tool
+/// moves under joint zero offsets drawn from N(0, `sigma_q`^2), each at a posture within +-10 deg
+/// of one of `near`, as a validation of a calibration with that error would find them.
+fn with_held_out(s: &Setup, near: &[Vector6<f64>], n: usize, sigma_q: f64, seed: u64) -> Setup {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let tcp = s.tool().tcp;
+    let at = |q: &Vector6<f64>| tool_pose(&s.robot().frames(q), &tcp).translation.vector;
+    let mut errors: Vec<f64> = (0..n)
+        .map(|k| {
+            let q = near[k % near.len()]
+                + Vector6::from_fn(|_, _| rng.random_range(-10f64..10.0).to_radians());
+            let offsets = Vector6::from_fn(|_, _| rng.sample::<f64, _>(StandardNormal) * sigma_q);
+            (at(&(q + offsets)) - at(&q)).norm()
+        })
+        .collect();
+    errors.sort_by(f64::total_cmp);
+    let held = stiffid::robot::HeldOut {
+        source: "validate".into(),
+        errors,
+    };
+    let robot = s.robot().clone().with_held_out(Some(held));
+    s.to_builder().with_robot(robot).build().unwrap()
+}
+
+/// The bound is a promise at its level: over 2000 simulated true robots (compliance drawn from
+/// the stiffness covariance, joint zero offsets as the calibration's held-out errors say, the
+/// force within the force model's +-20%), the 95% and 99.7% bounds cover at least 95% and 99.7%
+/// of the program points' errors, and neither is wider than 3 times the realised quantile at
+/// any point.
+#[test]
+fn the_bound_covers_the_true_robots_errors_at_its_level_and_is_not_wider_than_needed() {
+    let (s, compliance, cov) = setup_and_compliance();
+    let chol = cov.cholesky().unwrap().l();
+    let path = line_path(&s, 12);
+    let sigma_q = 0.001f64.to_radians();
+    let nominal = compensate::path(s.arm(), &compliance, &path, &Options::for_setup(&s)).unwrap();
+    let near: Vec<Vector6<f64>> = nominal.iter().map(|r| r.q).collect();
+    let s = with_held_out(&s, &near, 1000, sigma_q, 5);
+    for level in [0.95, 0.997] {
+        let options = Options {
+            level,
+            ..Options::for_setup(&s)
+        };
+        let out = compensate::path(s.arm(), &compliance, &path, &options).unwrap();
+        assert!(out.iter().all(|r| r.budget.calibration.is_some()));
+        let errors = realised_errors(&s, &compliance, &chol, &out, (2000, sigma_q, 17));
+        let (mut covered, mut total) = (0usize, 0usize);
+        let (mut narrowest, mut widest) = (f64::INFINITY, 0.0f64);
+        for (i, (e, r)) in errors.iter().zip(&out).enumerate() {
+            let bound = r.budget.bound;
+            covered += e.iter().filter(|&&x| x <= bound).count();
+            total += e.len();
+            let mut sorted = e.clone();
+            sorted.sort_by(f64::total_cmp);
+            let k = ((level * sorted.len() as f64).ceil() as usize).min(sorted.len()) - 1;
+            let ratio = bound / sorted[k];
+            (narrowest, widest) = (narrowest.min(ratio), widest.max(ratio));
+            assert!(
+                ratio <= 3.0,
+                "level {level} point {i}: bound {bound} m, realised quantile {} m",
+                sorted[k]
+            );
+        }
+        let coverage = covered as f64 / total as f64;
+        eprintln!("level {level}: coverage {coverage:.5} of {total}, bound / realised quantile {narrowest:.2} to {widest:.2}");
+        assert!(coverage >= level, "level {level}: coverage {coverage}");
+    }
+}

@@ -4,7 +4,7 @@
 
 use crate::compensate::{line_path, options};
 use nalgebra::{Vector3, Vector6};
-use stiffid::cell::{capsules, CheckKind, Checker, Part};
+use stiffid::cell::{capsules, CheckKind, Checker, Part, Thing};
 use stiffid::machining::compensate::{self, Compensated, Removed};
 use stiffid::robot::kinematics::Coordinates;
 use stiffid::robot::presets;
@@ -158,4 +158,67 @@ fn the_margin_and_the_condition_number_are_checked() {
         .unwrap_err()
         .to_string()
         .contains("max_condition"));
+}
+
+/// The stock being cut touching the tool is no collision: with a box around the tool's tip at
+/// every posture of the path's own (the tool in the box there), the free tool axis still turns
+/// the tool, and every moved posture it takes meets nothing but the stock with the tool.
+#[test]
+fn the_stock_touching_the_tool_is_not_a_collision() {
+    let free = crate::compensate::rotation(90.0, 3.0);
+    let open = with_cell("\n[cell]\nclearance_mm = 10.0\n");
+    let path = line_path(&open, 20);
+    let compliance = open.model_compliance("test").unwrap();
+    let turned =
+        compensate::path(open.arm(), &compliance, &path, &options(&open, Some(free))).unwrap();
+    let tips: Vec<Vector3<f64>> = (turned.iter())
+        .map(|c| {
+            let frames = open.robot().frames(&c.q_before.unwrap());
+            let tool = capsules(open.arm(), &frames).into_iter();
+            tool.filter(|c| c.part == Part::Tool)
+                .map(|c| c.b)
+                .next()
+                .unwrap()
+        })
+        .collect();
+    let (lo, hi) = tips.iter().fold(
+        (
+            Vector3::repeat(f64::INFINITY),
+            Vector3::repeat(f64::NEG_INFINITY),
+        ),
+        |(lo, hi), p| (lo.inf(p), hi.sup(p)),
+    );
+    let (lo, hi) = (lo.add_scalar(-0.005) * 1e3, hi.add_scalar(0.005) * 1e3);
+    let s = with_cell(&format!(
+        "\n[cell]\nclearance_mm = 10.0\n[[cell.obstacle]]\nname = \"stock\"\nmin_mm = [{}, {}, {}]\nmax_mm = [{}, {}, {}]\n",
+        lo.x, lo.y, lo.z, hi.x, hi.y, hi.z
+    ));
+    let checker = Checker::new(&s);
+    assert!(turned
+        .iter()
+        .all(|c| collides(&checker, &c.q_before.unwrap())));
+    let out = compensate::path(s.arm(), &compliance, &path, &options(&s, Some(free))).unwrap();
+    let moved: Vec<&Compensated> = out.iter().filter(|c| c.tool_rotation != 0.0).collect();
+    assert!(
+        moved.len() >= out.len() / 2,
+        "{} of {} moved",
+        moved.len(),
+        out.len()
+    );
+    let stock = (Thing::Part(Part::Tool), Thing::Obstacle(0));
+    let kinds = [
+        CheckKind::Floor,
+        CheckKind::Obstacles,
+        CheckKind::SelfCollision,
+    ];
+    for c in moved {
+        for m in checker.margins_at(&c.q, &[]) {
+            if kinds.contains(&m.kind) && m.margin < 0.0 {
+                assert!(
+                    m.between == stock || m.between == (stock.1, stock.0),
+                    "{m:?}"
+                );
+            }
+        }
+    }
 }

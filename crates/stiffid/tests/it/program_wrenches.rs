@@ -190,9 +190,8 @@ fn the_pocket_gets_the_same_wrench_and_bound_in_every_language() {
         assert!(wrench < 1.0, "{dialect:?}: {wrench} N");
         assert!(bound < 1e-6, "{dialect:?}: {bound} m");
     }
-    // The shipped programs hold the compensated targets (each moved by its deflection, 0.2 to
-    // 0.7 mm), so their feed directions differ a little from the G-code's: their differences
-    // are printed, not held to the nominal programs' tolerance.
+    // The shipped programs are the G-code written uncompensated (the targets to 9 decimals):
+    // the same wrench to 1 N and bound to 2 um at every point.
     let shipped = [
         (
             &fanuc,
@@ -220,6 +219,8 @@ fn the_pocket_gets_the_same_wrench_and_bound_in_every_language() {
             "shipped {dialect:?} vs G-code: wrench {wrench:.3e} N, bound {:.3e} mm",
             bound * 1e3
         );
+        assert!(wrench < 1.0, "shipped {dialect:?}: {wrench} N");
+        assert!(bound < 2e-6, "shipped {dialect:?}: {bound} m");
     }
 }
 

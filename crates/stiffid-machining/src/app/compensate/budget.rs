@@ -58,6 +58,10 @@ pub struct Worst {
     absent: [bool; 5],
     /// With the free tool axis: the largest bound at the path's own rotation, m.
     max_before: Option<f64>,
+    /// Each part's largest value and sum over the points, m ([`PARTS`]' order).
+    parts: [(f64, f64); 5],
+    /// The largest error accepted (`--max-error-mm`), m.
+    pub limit: Option<f64>,
 }
 
 impl Worst {
@@ -72,6 +76,8 @@ impl Worst {
         self.count += 1;
         for (k, p) in b.parts().iter().enumerate() {
             self.absent[k] |= p.is_none();
+            let v = p.unwrap_or(0.0);
+            self.parts[k] = (self.parts[k].0.max(v), self.parts[k].1 + v);
         }
         if let Some(before) = r.bound_before {
             self.max_before = Some(self.max_before.map_or(before, |m| m.max(before)));
@@ -110,7 +116,34 @@ impl Worst {
                 })
                 .collect(),
             max_bound_before_mm: self.max_before.and_then(|b| finite(mm(b))),
+            made_of: self.made_of(),
+            meets: self.limit.map(|limit| Meets {
+                max_error_mm: mm(limit),
+                level,
+                meets: self.meets(limit),
+            }),
         }
+    }
+
+    /// What the error that remains is made of: each part's largest and mean value along the
+    /// path, mm (`null` where absent at every point or infinite).
+    fn made_of(&self) -> Vec<PartSummary> {
+        let n = self.count.max(1) as f64;
+        (PARTS.iter().zip(self.parts).enumerate())
+            .map(|(k, (name, (max, sum)))| {
+                let present = !self.absent[k] || max > 0.0;
+                PartSummary {
+                    part: name,
+                    max_mm: present.then(|| finite(mm(max))).flatten(),
+                    mean_mm: present.then(|| finite(mm(sum / n))).flatten(),
+                }
+            })
+            .collect()
+    }
+
+    /// Whether every point's bound is within `limit` (m).
+    fn meets(&self, limit: f64) -> bool {
+        self.points.first().is_none_or(|w| w.0 <= limit)
     }
 
     /// Refuses a path whose largest bound exceeds `max_error` (m), naming its worst points and
@@ -118,7 +151,7 @@ impl Worst {
     ///
     /// # Errors
     /// [`Error::Gate`] ([`JobOption::MaxErrorMm`]).
-    pub fn refuse_above(&self, max_error: f64) -> Result<()> {
+    pub fn refuse_above(&self, max_error: f64, level: f64) -> Result<()> {
         let above: Vec<String> = (self.points.iter())
             .filter(|w| w.0 > max_error || w.0.is_nan())
             .map(|w| {
@@ -137,8 +170,10 @@ impl Worst {
         Err(Error::Gate {
             option: JobOption::MaxErrorMm,
             message: format!(
-                "{} mm: the program's error bound exceeds it (largest {} mm); the worst points: {}; nothing written (a stiffer posture, a placement nearer the robot, a better calibration or a larger limit)",
+                "{} mm: meets {} mm at {}%: no, the program's error bound exceeds it (largest {} mm); the worst points: {}; nothing written (a stiffer posture, a placement nearer the robot, a better calibration or a larger limit)",
                 shown(max_error),
+                shown(max_error),
+                level * 100.0,
                 shown(self.max()),
                 above.join("; ")
             ),
@@ -175,4 +210,35 @@ pub struct BudgetSummary {
     pub worst: Vec<WorstPoint>,
     /// With `--free tool-rotation`: the largest bound at the path's own rotation, mm; else `null`.
     pub max_bound_before_mm: Option<f64>,
+    /// What the error that remains after compensation is made of: every part of the bound
+    /// (`left`, `compensation`, `calibration`, `force`, `model_form`), its largest and mean value
+    /// along the path, mm.
+    pub made_of: Vec<PartSummary>,
+    /// With `--max-error-mm`: whether every point's bound at the level is within it; else
+    /// `null`.
+    pub meets: Option<Meets>,
+}
+
+/// One part of the bound along the path.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct PartSummary {
+    /// The part: `left`, `compensation`, `calibration`, `force` or `model_form`.
+    pub part: &'static str,
+    /// Its largest value along the path, mm; `null` when absent everywhere or infinite.
+    pub max_mm: Option<f64>,
+    /// Its mean along the path (0 where absent), mm; `null` when absent everywhere or infinite.
+    pub mean_mm: Option<f64>,
+}
+
+/// Whether a program meets the largest error accepted at the bound's level.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Meets {
+    /// The largest error accepted (`--max-error-mm`), mm.
+    pub max_error_mm: f64,
+    /// The level of the bound.
+    pub level: f64,
+    /// Every point's bound is within it (a program that does not is refused, exit 1).
+    pub meets: bool,
 }

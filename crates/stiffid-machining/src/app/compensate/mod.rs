@@ -216,6 +216,7 @@ where
     let free = options.free.tool_rotation.is_some() || options.free.lead_tilt.is_some() || external;
     let axes = setup.robot().external();
     let mut summary = Summary::new(free, options.level, axes);
+    summary.budget.limit = options.max_error;
     if options.free.lead_tilt.is_some() {
         summary = summary.with_lean();
     }
@@ -417,7 +418,7 @@ where
         }
     };
     if let Some(max_error) = options.max_error {
-        summary.budget.refuse_above(max_error)?;
+        summary.budget.refuse_above(max_error, options.level)?;
     }
     let map = match &mapped {
         Some(points) => {
