@@ -360,10 +360,10 @@ mod tests {
     fn the_criterion_from_moments_equals_the_covariance_by_svd() {
         let setup = stiffid_core::setup::builtin("zhang2021-comau-nj165").unwrap();
         let group = crate::random_group(&setup, 4, 5);
-        let all: Vec<Vector3<f64>> = group.iter().flat_map(|q| points(&setup, q)).collect();
+        let all: Vec<Vector3<f64>> = group.iter().flat_map(|q| points(&setup, q, &[])).collect();
         let moments: Vec<Moments> = group
             .iter()
-            .map(|q| Moments::of(&points(&setup, q)))
+            .map(|q| Moments::of(&points(&setup, q, &[])))
             .collect();
         let fast = criterion(moments.iter());
         let svd = stiffid_metrology::register::rotation_std_per_noise(&all);
