@@ -14,7 +14,7 @@ use stiffid::app::identify::{self as identify, Request};
 use stiffid::app::measurements::Data;
 use stiffid::metrology::calibration::gravity::Gravity;
 use stiffid::model::Compliance;
-use stiffid::setup::Tracker;
+use stiffid::setup::{Controller, Kinematics, Tracker};
 
 /// The six drives identified from load-step readings `text` (tracker frame) on `setup`.
 pub(crate) fn identified(setup: &stiffid::Setup, text: &str) -> Compliance {
@@ -47,8 +47,9 @@ pub(crate) fn print(path: &str, what: &str, r: &Row) {
 /// the calibrated robot (the tracker registered by the calibration), `compensate` with that
 /// stiffness: the sag travels with the calibrated robot, the load steps (loaded minus unloaded)
 /// carry none of it, and joint and Cartesian targets land within 3x the held-out calibration
-/// error plus the predicted deflection's standard deviation, and within 0.05 mm. The same
-/// stiffness on the calibrated robot without its sag misses by far more.
+/// error plus the predicted deflection's standard deviation, and within 0.05 mm, for a controller
+/// with its nominal kinematics and for one running the calibrated model. The same stiffness on
+/// the calibrated robot without its sag misses by far more.
 #[test]
 fn calibrate_then_identify_then_compensate_keeps_the_sag() {
     let case = dh_case();
@@ -84,6 +85,32 @@ fn calibrate_then_identify_then_compensate_keeps_the_sag() {
         expected * 1e3
     );
     for r in [joint, cartesian, gcode] {
+        assert!(r.mean <= 3.0 * expected, "{r:?} vs {expected}");
+        assert!(r.mean <= 0.05e-3, "{r:?}");
+    }
+    // A controller running the calibrated model: the program written in its kinematics (its
+    // inverse kinematics of the Cartesian targets and of the G-code returns the compensated
+    // angles) lands as well.
+    let controller = Controller {
+        kinematics: Kinematics::Calibrated,
+        ..Default::default()
+    };
+    let own = setup
+        .to_builder()
+        .with_controller(controller)
+        .build()
+        .unwrap();
+    let model = own.robot();
+    let (joint_c, cartesian_c, _, _) = landing(&truth, model, (&own, &compliance), &q0, &frame);
+    let gcode_c = gcode_landing(&truth, model, (&own, &compliance), &q0, &frame);
+    print(path, "calibrated controller, joint targets", &joint_c);
+    print(
+        path,
+        "calibrated controller, Cartesian targets",
+        &cartesian_c,
+    );
+    print(path, "calibrated controller, G-code", &gcode_c);
+    for r in [joint_c, cartesian_c, gcode_c] {
         assert!(r.mean <= 3.0 * expected, "{r:?} vs {expected}");
         assert!(r.mean <= 0.05e-3, "{r:?}");
     }
