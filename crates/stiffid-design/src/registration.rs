@@ -109,6 +109,9 @@ pub struct Design {
     pub method: PoolMethod,
     /// Groups evaluated.
     pub evaluations: usize,
+    /// The external axes' values the postures are read at ([`station`]; SI, the cell's order,
+    /// empty without external axes).
+    pub external: Vec<f64>,
 }
 
 impl Design {
@@ -164,9 +167,19 @@ fn criterion<'a>(moments: impl Iterator<Item = &'a Moments>) -> f64 {
     }
 }
 
-/// The measuring points of posture `q`, base frame, m.
-fn points(setup: &Setup, q: &Vector6<f64>) -> Vec<Vector3<f64>> {
-    let frames = setup.robot().frames(q);
+/// Where a cell's external axes stand while the registration postures are read: each axis at
+/// the value of its travel nearest zero (SI, the cell's order; empty without external axes).
+pub fn station(setup: &Setup) -> Vec<f64> {
+    setup.robot().external().map_or(Vec::new(), |axes| {
+        (axes.axes().iter())
+            .map(|a| 0.0f64.clamp(a.lower, a.upper))
+            .collect()
+    })
+}
+
+/// The measuring points of posture `q` with the external axes at `e`, cell frame, m.
+fn points(setup: &Setup, q: &Vector6<f64>, e: &[f64]) -> Vec<Vector3<f64>> {
+    let frames = setup.robot().frames_at(q, e);
     let tool = &setup.tool().measuring_points;
     tool.iter().map(|p| frames.point(p)).collect()
 }
@@ -199,7 +212,10 @@ pub fn design(setup: &Setup, n: usize, options: &Options) -> Result<Design> {
         .map(|_| Vector6::from_fn(|a, _| rng.random_range(lower[a]..=upper[a])))
         .collect();
     let checker = Checker::new(setup);
-    let failed: Vec<Option<CheckKind>> = drawn.par_iter().map(|q| failing(&checker, q)).collect();
+    let e = station(setup);
+    let failed: Vec<Option<CheckKind>> = (drawn.par_iter())
+        .map(|q| failing(&checker, q, &e))
+        .collect();
     let feasible: Vec<Vector6<f64>> = drawn
         .iter()
         .zip(&failed)
@@ -211,7 +227,7 @@ pub fn design(setup: &Setup, n: usize, options: &Options) -> Result<Design> {
     }
     let moments: Vec<Moments> = feasible
         .iter()
-        .map(|q| Moments::of(&points(setup, q)))
+        .map(|q| Moments::of(&points(setup, q, &e)))
         .collect();
     let value = |group: &[usize]| criterion(group.iter().map(|&k| &moments[k]));
     let pool_options = PoolOptions {
@@ -234,10 +250,10 @@ pub fn design(setup: &Setup, n: usize, options: &Options) -> Result<Design> {
     }
     let mut postures: Vec<Vector6<f64>> = group.iter().map(|&k| feasible[k]).collect();
     let mut chosen_moments: Vec<Moments> = group.iter().map(|&k| moments[k]).collect();
-    polish(setup, &checker, &mut postures, &mut chosen_moments);
+    polish((setup, &e), &checker, &mut postures, &mut chosen_moments);
     let origin = tracker_origin(setup);
     let all: Vec<Vector3<f64>> = (postures.iter())
-        .flat_map(|q| points(setup, q))
+        .flat_map(|q| points(setup, q, &e))
         .map(|b| b - origin)
         .collect();
     let covariance = unit_covariance(&all)? * setup.noise().reading_variance;
@@ -252,6 +268,7 @@ pub fn design(setup: &Setup, n: usize, options: &Options) -> Result<Design> {
         feasible: feasible.len(),
         method: chosen.method,
         evaluations: chosen.evaluations,
+        external: e,
     })
 }
 
@@ -260,7 +277,7 @@ pub fn design(setup: &Setup, n: usize, options: &Options) -> Result<Design> {
 /// move kept when the criterion falls and the posture still passes the cell's checks (those that
 /// apply without the load).
 fn polish(
-    setup: &Setup,
+    (setup, e): (&Setup, &[f64]),
     checker: &Checker,
     postures: &mut [Vector6<f64>],
     moments: &mut [Moments],
@@ -275,10 +292,10 @@ fn polish(
                 for (axis, sign) in (0..6).flat_map(|a| [(a, 1.0), (a, -1.0)]) {
                     let mut q = postures[i];
                     q[axis] = (q[axis] + sign * step[axis]).clamp(lower[axis], upper[axis]);
-                    let m = Moments::of(&points(setup, &q));
+                    let m = Moments::of(&points(setup, &q, e));
                     let others = moments.iter().enumerate().filter(|(k, _)| *k != i);
                     let v = criterion(others.map(|(_, m)| m).chain([&m]));
-                    if exchange::improves(v, current) && failing(checker, &q).is_none() {
+                    if exchange::improves(v, current) && failing(checker, &q, e).is_none() {
                         (postures[i], moments[i], current, moved) = (q, m, v, true);
                     }
                 }
@@ -291,8 +308,8 @@ fn polish(
 }
 
 /// The first check that `q` fails among those that apply without the load.
-fn failing(checker: &Checker, q: &Vector6<f64>) -> Option<CheckKind> {
-    let f = checker.feasibility(q);
+fn failing(checker: &Checker, q: &Vector6<f64>, e: &[f64]) -> Option<CheckKind> {
+    let f = checker.feasibility_at(q, e);
     let mut failing = f.violations().map(|c| c.kind);
     failing.find(|k| !LOAD_CHECKS.contains(k))
 }
@@ -343,10 +360,10 @@ mod tests {
     fn the_criterion_from_moments_equals_the_covariance_by_svd() {
         let setup = stiffid_core::setup::builtin("zhang2021-comau-nj165").unwrap();
         let group = crate::random_group(&setup, 4, 5);
-        let all: Vec<Vector3<f64>> = group.iter().flat_map(|q| points(&setup, q)).collect();
+        let all: Vec<Vector3<f64>> = group.iter().flat_map(|q| points(&setup, q, &[])).collect();
         let moments: Vec<Moments> = group
             .iter()
-            .map(|q| Moments::of(&points(&setup, q)))
+            .map(|q| Moments::of(&points(&setup, q, &[])))
             .collect();
         let fast = criterion(moments.iter());
         let svd = stiffid_metrology::register::rotation_std_per_noise(&all);

@@ -127,7 +127,7 @@ impl LoadSteps {
                 posture: r.posture,
                 point: r.point,
                 q: r.q,
-                e: stiffid_core::robot::external::ExternalValues::NONE,
+                e: r.e,
                 wrench,
                 displacement: r.position - reference.position,
             });

@@ -296,7 +296,10 @@ pub fn compensate(
 /// [`compensate()`] for a controller that runs the kinematics of `controller`
 /// ([`stiffid_core::Setup::controller_robot`]): a G-code program's positions are written as the
 /// controller's forward kinematics of the compensated axis angles (its inverse kinematics then
-/// returns them), in the part frame; robot programs' joint targets are the angles themselves.
+/// returns them), in the part frame; on a cell with external axes, with the arm on the
+/// controller's track and the part on the controller's positioner at the point's values (those
+/// of the cell when the controller's robot has no external axes). Robot programs' joint targets
+/// are the angles themselves.
 ///
 /// # Errors
 /// Those of [`compensate()`].
@@ -399,8 +402,17 @@ pub fn compensate_for(
                 .iter()
                 .enumerate()
                 .map(|(i, r)| {
-                    let pose = tool_pose(&controller.frames(&r.q_compensated), tcp);
-                    let part = placements.as_ref().map_or(part, |p| p[i].part);
+                    // On a cell, where the controller's own track and positioner put the tool.
+                    let q = &r.q_compensated;
+                    let (frames, part) = match (&placements, controller.external()) {
+                        (Some(p), Some(axes)) if !axes.is_empty() => {
+                            let e = p[i].external.as_slice();
+                            let turned = axes.positioner_pose(e).inverse();
+                            (controller.frames_at(q, e), part * turned)
+                        }
+                        (p, _) => (controller.frames(q), p.as_ref().map_or(part, |p| p[i].part)),
+                    };
+                    let pose = tool_pose(&frames, tcp);
                     part * nalgebra::Point3::from(pose.translation.vector)
                 })
                 .map(|p| p.coords)

@@ -10,6 +10,7 @@ mod calibrate_cell;
 mod calibration_update;
 mod calibration_update_cell;
 mod calibration_update_kept;
+mod campaign_cell;
 mod campaign_paths;
 mod candidates;
 mod carried_obstacles;

@@ -136,3 +136,68 @@ fn impossible_requests_are_refused_with_the_field() {
     let e = design(&one_point, 2, &Options::default()).unwrap_err();
     assert!(e.to_string().contains("on more than one line"), "{e}");
 }
+
+/// On a cell with a track (its travel from 200 mm) and a turntable (from 10 deg), the readings
+/// template carries the external axes' columns at the station the postures were chosen at (each
+/// axis at the value of its travel nearest zero), and the template filled with noise-free
+/// tracker readings registers as it is: the tracker's transform back to 1e-9.
+#[test]
+fn the_template_of_a_cell_with_external_axes_registers() {
+    use stiffid::app::register::{self as job, document::Proposal};
+    use stiffid::robot::external::{ExternalAxes, ExternalAxis};
+    let base = cell();
+    let axes = ExternalAxes::new(vec![
+        ExternalAxis::linear("track", Vector3::x_axis(), 0.2, 4.0),
+        ExternalAxis::rotary(
+            "table",
+            Vector3::new(2.0, 1.8, 0.0),
+            Vector3::z_axis(),
+            10f64.to_radians(),
+            std::f64::consts::PI,
+        ),
+    ])
+    .unwrap();
+    let robot = base.robot().clone().with_external(Some(axes));
+    let setup = base.to_builder().with_robot(robot).build().unwrap();
+    let request = job::DesignRequest {
+        setup: &setup,
+        postures: 5,
+        options: Options::default(),
+        force: false,
+    };
+    let report = job::propose(&request).unwrap();
+    assert_eq!(report.design.external, vec![0.2, 10f64.to_radians()]);
+    let template = Proposal::new(&report, "setup.toml").readings_template;
+    let mut lines = template.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "posture,point,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,e1_mm,e2_deg,x_tracker_mm,y_tracker_mm,z_tracker_mm"
+    );
+    let truth = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.01, -0.02, 2.4));
+    let mut filled = template.lines().next().unwrap().to_string() + "\n";
+    for line in lines {
+        let cells: Vec<&str> = line.split(',').collect();
+        assert_eq!(cells.len(), 13, "{line}");
+        assert_eq!(&cells[8..10], ["200.000000", "10.000000"]);
+        let v: Vec<f64> = cells[2..10].iter().map(|c| c.parse().unwrap()).collect();
+        let q = Vector6::from_fn(|i, _| v[i].to_radians());
+        let e = [v[6] * 1e-3, v[7].to_radians()];
+        let point: usize = cells[1].parse().unwrap();
+        let b = setup
+            .robot()
+            .frames_at(&q, &e)
+            .point(&setup.tool().measuring_points[point - 1]);
+        let t = truth.inverse() * Point3::from(b) * 1e3;
+        filled += &format!("{},{:?},{:?},{:?}\n", cells[..10].join(","), t.x, t.y, t.z);
+    }
+    let registered = job::run(&job::Request {
+        setup: &setup,
+        name: "registration.csv".into(),
+        text: &filled,
+        force: false,
+    })
+    .unwrap();
+    let fit = registered.registration.base_from_tracker;
+    assert!((fit.translation.vector - truth.translation.vector).norm() < 1e-9);
+    assert!((fit.rotation * truth.rotation.inverse()).angle() < 1e-9);
+}

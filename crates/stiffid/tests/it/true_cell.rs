@@ -28,7 +28,7 @@ use stiffid::robot::ik;
 const TRAVEL: f64 = 6.0;
 
 /// The tracker's noise per coordinate, m.
-const NOISE: f64 = 1.5e-5;
+pub(crate) const NOISE: f64 = 1.5e-5;
 
 /// The true carriage at `s` (m) along x: a vertical bow of 0.3 mm and a pitch of 0.2 mrad.
 fn true_track(s: f64) -> Isometry3<f64> {
@@ -43,7 +43,7 @@ fn true_track(s: f64) -> Isometry3<f64> {
 
 /// The campaign's case: the COMAU with masses of [`true_robot::dh_case`] on a nominal straight
 /// track along x, 0 to 6 m.
-fn track_case() -> true_robot::Case {
+pub(crate) fn track_case() -> true_robot::Case {
     track_case_with("")
 }
 
@@ -65,7 +65,7 @@ pub(crate) fn track_case_with(more: &str) -> true_robot::Case {
 
 /// Readings of every measuring point at `qs` (rad) on the true carriage at `s` (m), unloaded
 /// and under `wrenches` (at the loading point, the cell's frame), with the tracker's noise.
-fn readings(
+pub(crate) fn readings(
     truth: &Truth,
     qs: &[Vector6<f64>],
     s: &[f64],
@@ -140,14 +140,14 @@ fn on_carriage(carriage: &Isometry3<f64>, w: &Vector6<f64>) -> Vector6<f64> {
 
 /// Where the true arm commanded to `q` on the true carriage at `s` puts its TCP under `w` (the
 /// cell's frame), in the tracker's frame.
-fn true_tcp(truth: &Truth, s: f64, q: &Vector6<f64>, w: &Vector6<f64>) -> Vector3<f64> {
+pub(crate) fn true_tcp(truth: &Truth, s: f64, q: &Vector6<f64>, w: &Vector6<f64>) -> Vector3<f64> {
     let carriage = true_track(s);
     let on_base = truth.estimate.frame * Point3::from(truth.tcp_at(q, &on_carriage(&carriage, w)));
     (truth.estimate.frame.inverse() * (carriage * on_base)).coords
 }
 
 /// Stations along the rail for `n` postures, `per` at each: Chebyshev-Lobatto points, m.
-fn stations(n: usize, per: usize) -> Vec<f64> {
+pub(crate) fn stations(n: usize, per: usize) -> Vec<f64> {
     let count = n.div_ceil(per);
     (0..n)
         .map(|i| {

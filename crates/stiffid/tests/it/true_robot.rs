@@ -211,6 +211,27 @@ impl Truth {
         }
     }
 
+    /// The same robot on another day: joint `j`'s angle offset moved by `drift[j]` (rad).
+    pub(crate) fn drifted(&self, drift: &[f64; 6]) -> Self {
+        let mut estimate = self.estimate.clone();
+        for (c, p) in self.model.parameters().iter().enumerate() {
+            if let Target::Joint {
+                joint,
+                component: stiffid::metrology::calibration::error_model::Component::Theta,
+            } = p.target
+            {
+                estimate.values[c] += drift[joint];
+            }
+        }
+        Truth {
+            model: self.model.clone(),
+            robot: robot_file::calibrated(&self.model, &estimate).unwrap(),
+            estimate,
+            compliance: self.compliance,
+            tcp: self.tcp,
+        }
+    }
+
     /// Readings of every measuring point at `qs` (axis angles, rad), unloaded and under
     /// `wrenches` (base frame, at the loading point), with the tracker's noise.
     pub(crate) fn readings(
@@ -305,7 +326,7 @@ pub(crate) fn postures(
 
 /// A rectangle of 60 x 40 mm milled around the tool's position at `q0` (the part frame there,
 /// its z along the tool's -z), in 10 mm steps.
-fn rectangle() -> String {
+pub(crate) fn rectangle() -> String {
     let mut g = String::from(
         "(stiffid: tool_rpy_deg = 180 0 0)\n(operation: wall)\nG21 G90 G17\nT1 M06\nS6000 M03\nG0 X0 Y0 Z5\nG1 Z0 F300\nF1800\n",
     );
@@ -465,9 +486,15 @@ pub(crate) fn calibrated(
         robot: Some(setup.robot().clone()),
         ..Default::default()
     };
+    // The fragment's tool: the fitted measuring points and the TCP moved with them.
+    let points = (report.fragment.lines())
+        .find_map(|l| l.strip_prefix("# measuring_points_mm = "))
+        .unwrap();
+    let points: Vec<[f64; 3]> = serde_json::from_str(points).unwrap();
     let calibrated = setup
         .to_builder()
         .with_robot(robot)
+        .with_measuring_points(points.iter().map(|p| Vector3::from(*p) * 1e-3).collect())
         .with_tcp(report.tcp.unwrap())
         .with_controller(controller)
         .build()
@@ -523,6 +550,17 @@ fn written(
     setup: &Setup,
     compliance: &stiffid::model::Compliance,
     q0: &Vector6<f64>,
+    output: (Language, Targets),
+) -> (String, Vec<Compensated>) {
+    written_from(setup, compliance, (q0, &rectangle()), output)
+}
+
+/// Compensates the G-code `gcode` on `setup` (its part frame set) from `q0` to `output` with
+/// `targets`: the program and every point's result.
+pub(crate) fn written_from(
+    setup: &Setup,
+    compliance: &stiffid::model::Compliance,
+    (q0, gcode): (&Vector6<f64>, &str),
     (output, targets): (Language, Targets),
 ) -> (String, Vec<Compensated>) {
     let process = stiffid::machining::process::file::parse(
@@ -530,7 +568,6 @@ fn written(
         "aluminium.toml",
     )
     .unwrap();
-    let gcode = rectangle();
     let mut options = Options::for_setup(setup);
     options.q0 = *q0;
     let request = compensate::Request {
@@ -538,7 +575,7 @@ fn written(
         compliance: compliance.clone(),
         input: Input::Program {
             name: "rectangle.nc".into(),
-            text: &gcode,
+            text: gcode,
             language: Language::GCode,
             process_name: "aluminium.toml".into(),
             process,

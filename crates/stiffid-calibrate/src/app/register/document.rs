@@ -126,8 +126,9 @@ pub struct Proposal {
     pub method: &'static str,
     /// Groups evaluated.
     pub evaluations: usize,
-    /// The readings CSV to fill in: one row per posture and measuring point, the tracker's
-    /// columns empty.
+    /// The readings CSV to fill in: one row per posture and measuring point, the external axes'
+    /// columns (`e1_mm`, ...) at the station the postures were chosen at, the tracker's columns
+    /// empty.
     pub readings_template: String,
 }
 
@@ -151,19 +152,12 @@ impl Proposal {
                 q_deg,
             })
             .collect();
-        let points = report.measuring_points;
-        let mut template = stiffid_core::io::readings::header() + "\n";
-        for p in &postures {
-            let q: Vec<String> = p.q_deg.iter().map(|v| format!("{v:.6}")).collect();
-            for point in 1..=points {
-                template += &format!("{},{point},{},,,\n", p.posture, q.join(","));
-            }
-        }
+        let template = template(report, &postures);
         Proposal {
             setup: setup_name.to_string(),
             seed: report.seed,
             postures,
-            measuring_points: points,
+            measuring_points: report.measuring_points,
             noise_std_mm: mm(d.noise_std),
             std: TransformStd::new(d.std().into()),
             rotation_std_total_deg: d.rotation_std.to_degrees(),
@@ -176,4 +170,30 @@ impl Proposal {
             readings_template: template,
         }
     }
+}
+
+/// The readings CSV of `postures` to fill in: one row per posture and measuring point, the
+/// external axes' columns (`e1_mm`, ...) at the design's station, the tracker's columns empty.
+fn template(report: &register::DesignReport, postures: &[ProposedPosture]) -> String {
+    let header = stiffid_core::io::readings::header();
+    let (header, external) = match &report.external {
+        Some(axes) => {
+            let e = &report.design.external;
+            let names = axes.column_names().join(",");
+            let values: Vec<String> = (axes.to_display(e).iter())
+                .map(|v| format!("{v:.6},"))
+                .collect();
+            let header = header.replace("q6_deg,", &format!("q6_deg,{names},"));
+            (header, values.concat())
+        }
+        None => (header, String::new()),
+    };
+    let mut text = header + "\n";
+    for p in postures {
+        let q: Vec<String> = p.q_deg.iter().map(|v| format!("{v:.6}")).collect();
+        for point in 1..=report.measuring_points {
+            text += &format!("{},{point},{},{external},,\n", p.posture, q.join(","));
+        }
+    }
+    text
 }

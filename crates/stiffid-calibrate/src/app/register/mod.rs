@@ -81,6 +81,9 @@ pub struct DesignReport {
     pub checks: Vec<CheckKind>,
     /// Measuring points read per posture.
     pub measuring_points: usize,
+    /// The cell's external axes (their readings' columns; the postures are read with them at
+    /// [`stiffid_design::registration::Design::external`]).
+    pub external: Option<stiffid_core::robot::ExternalAxes>,
     /// The seed.
     pub seed: u64,
     /// None today: the job's warnings, for the pattern ([`stiffid_core::app`]).
@@ -111,6 +114,9 @@ pub fn propose(request: &DesignRequest<'_>) -> Result<DesignReport> {
         design,
         checks,
         measuring_points: request.setup.tool().measuring_points.len(),
+        external: (request.setup.robot().external())
+            .filter(|a| !a.is_empty())
+            .cloned(),
         seed: request.options.seed,
         warnings: Vec::new(),
     })
