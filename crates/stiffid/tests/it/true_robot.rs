@@ -443,6 +443,7 @@ pub(crate) fn calibrated(
         update: false,
         refit: Default::default(),
         weight: None,
+        urdf: false,
     })
     .unwrap();
     let document = Document::new(&report, "setup.toml");
