@@ -301,6 +301,7 @@ fn a_calibration_only_setup_calibrates_and_the_loaded_jobs_name_the_loading() {
         setup,
         "--criterion",
         "relative-a",
+        "--start-random",
         "--out",
         out,
     ];
