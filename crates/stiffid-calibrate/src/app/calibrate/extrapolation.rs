@@ -87,10 +87,10 @@ pub(super) fn outside_ranges(
     let mut outside = 0;
     for (&posture, q) in &postures {
         let mut any = false;
-        for j in 0..6 {
+        for (j, outside_j) in joints.iter_mut().enumerate() {
             let d = beyond(q, j);
             if d > OUTSIDE_RAD {
-                (joints[j], any) = (true, true);
+                (*outside_j, any) = (true, true);
                 if farthest.is_none_or(|(_, _, f)| d > f) {
                     farthest = Some((posture, j, d));
                 }
