@@ -166,6 +166,7 @@ pub fn calibrate<'py>(
         update,
         refit,
         weight,
+        urdf: urdf_out.is_some(),
     };
     let report = py.detach(|| job::run(&request)).map_err(raise)?;
     let document = Document::new(&report, &setup.given);

@@ -167,6 +167,7 @@ pub fn run(args: &Args) -> Result<()> {
             Some(p) => load::stiffness(p, &setup)?.own_weight,
             None => None,
         },
+        urdf: args.urdf_out.is_some(),
     };
     let report = job::run(&request)?;
     let document = Document::new(&report, &args.common.setup);
@@ -224,10 +225,19 @@ fn prepare(path: &Option<PathBuf>, option: &str) -> Result<Option<OutFile>> {
         .transpose()
 }
 
+/// The nominal robot's baseline as what it is: registered on the readings in the tracker's
+/// frame, as it is in the base frame (nothing registered).
+fn nominal_label(measured_in: &str) -> &'static str {
+    match measured_in {
+        "base" => "nominal, base frame, nothing registered",
+        _ => "nominal, tracker registered",
+    }
+}
+
 fn text_of(d: &Document) -> String {
     let mut text = format!(
         "robot calibration from {} readings (setup {}, geometry {}, gravity {}, {} iterations)\n\
-         residual RMS {:.4} mm (nominal, tracker registered: {:.4} mm); noise per coordinate {:.4} mm{}\n\
+         residual RMS {:.4} mm ({}: {:.4} mm); noise per coordinate {:.4} mm{}\n\
          rank {} of {} parameters, condition number {}\n",
         d.readings,
         d.setup,
@@ -235,9 +245,11 @@ fn text_of(d: &Document) -> String {
         d.gravity,
         d.iterations,
         d.residual_rms_mm,
+        nominal_label(d.measured_in),
         d.nominal_rms_mm,
         d.noise_std_mm,
-        d.noise_ratio.map_or(String::new(), |r| format!(" ({r:.2} x the setup's)")),
+        d.noise_ratio
+            .map_or(String::new(), |r| format!(" ({r:.2} x the setup's)")),
         d.rank,
         d.parameters.len(),
         d.condition.map_or("-".into(), |c| format!("{c:.3e}")),
@@ -270,11 +282,12 @@ fn text_of(d: &Document) -> String {
     text += &maps_text(&d.maps);
     for v in d.validation.iter().chain(&d.cross_validation) {
         text += &format!(
-            "\nheld out ({}): RMS {:.4} mm, max {:.4} mm over {} readings (nominal, tracker registered: {:.4} mm)\n",
+            "\nheld out ({}): RMS {:.4} mm, max {:.4} mm over {} readings ({}: {:.4} mm)\n",
             v.data,
             v.rms_mm,
             v.max_mm,
             v.errors.len(),
+            nominal_label(d.measured_in),
             v.nominal_rms_mm
         );
         if let Some(i) = &v.intervals {

@@ -52,8 +52,12 @@ fn compose(w: &mut dyn Writer, doc: &Document, figures: &[Figure], scene: &Scene
         doc.data, doc.readings, doc.measured_in, doc.geometry, doc.gravity, doc.stop_reason, doc.iterations
     ));
     let mut summary = format!(
-        "RMS error of the fitted readings: {} mm with the nominal robot (the tracker registered on them), {} mm calibrated; the noise estimated from the residuals is {} mm per coordinate",
+        "RMS error of the fitted readings: {} mm with the nominal robot ({}), {} mm calibrated; the noise estimated from the residuals is {} mm per coordinate",
         num(doc.nominal_rms_mm),
+        match doc.measured_in {
+            "base" => "in the base frame, nothing registered",
+            _ => "the tracker registered on them",
+        },
         num(doc.residual_rms_mm),
         num(doc.noise_std_mm)
     );

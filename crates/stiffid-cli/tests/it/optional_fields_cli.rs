@@ -225,3 +225,94 @@ fn evaluate_names_the_virtual_springs_without_a_nominal_stiffness() {
     let named = "not computed: [[model.spring]] bend, shift: no nominal stiffness";
     assert_eq!(stdout.matches(named).count(), 4, "{stdout}");
 }
+
+/// A setup as a calibration needs it: the robot (the KUKA KR 210, whose calibrated chain a URDF
+/// can carry), the measuring points and the noise; no `[loading]`, loading point, `[bounds]`,
+/// `[test]` or stiffness. `calibrate` fits noise-free readings on it to 1e-6 mm; the jobs that
+/// need the rope load exit 2 naming the table, what needs it and that a calibration needs none.
+/// The URDF's warning (it leaves out the sag of the lumped gravity terms) comes only with
+/// `--urdf-out`.
+#[test]
+fn a_calibration_only_setup_calibrates_and_the_loaded_jobs_name_the_loading() {
+    use crate::calibrate_cli::{postures, readings, truth};
+    use stiffid_metrology::calibration::error_model::MeasuredIn;
+    use stiffid_metrology::calibration::{gravity, ErrorModel, Geometry};
+    let dir = temp_dir("calibration-only");
+    let text = "name = \"tracker-only\"\nrobot = \"kuka-kr210-robond\"\n\n[tool]\n\
+        measuring_points_mm = [[80.0, 80.0, 260.0], [-80.0, 80.0, 260.0], [-80.0, -80.0, 260.0]]\n\n\
+        [noise]\nreading_sd_mm = 0.01\nlevel_multiples = [1.0]\n";
+    let setup = write_file(&dir, "tracker-only.toml", text);
+    let setup = setup.to_str().unwrap();
+    let robot = stiffid_core::robot::presets::get("kuka-kr210-robond").unwrap();
+    let points = [
+        [0.08, 0.08, 0.26],
+        [-0.08, 0.08, 0.26],
+        [-0.08, -0.08, 0.26],
+    ]
+    .map(nalgebra::Vector3::from);
+    let terms = gravity::Terms::none(&robot);
+    let model =
+        ErrorModel::new(&robot, &points, MeasuredIn::Tracker, Geometry::Full, terms).unwrap();
+    let tracker = nalgebra::Isometry3::new(
+        nalgebra::Vector3::new(3.0, -2.0, 1.5),
+        nalgebra::Vector3::new(0.0, 0.0, 2.5),
+    );
+    let data = readings(&model, &truth(&model), &tracker, &postures(25, 1));
+    let data = write_file(&dir, "fit.csv", &data);
+    let data = data.to_str().unwrap();
+    let calibrate = |more: &[&str]| {
+        let args = [
+            "calibrate",
+            "--setup",
+            setup,
+            "--data",
+            data,
+            "--gravity",
+            "lumped",
+        ];
+        stiffid(&[&args[..], more].concat())
+    };
+    let fitted = json(&calibrate(&["--json"]));
+    assert!(
+        fitted["residual_rms_mm"].as_f64().unwrap() < 1e-6,
+        "{fitted}"
+    );
+    let urdf_warning = |out: &std::process::Output| {
+        assert_success(out);
+        String::from_utf8_lossy(&out.stderr).contains("the URDF leaves out")
+    };
+    assert!(!urdf_warning(&calibrate(&[])));
+    let urdf = dir.join("robot.urdf");
+    assert!(urdf_warning(&calibrate(&[
+        "--urdf-out",
+        urdf.to_str().unwrap()
+    ])));
+    let postures = write_file(
+        &dir,
+        "g.csv",
+        "posture,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg\nP1,0,-10,-90,0,45,0\n",
+    );
+    let postures = postures.to_str().unwrap();
+    let out = dir.join("group.csv");
+    let out = out.to_str().unwrap();
+    let select = [
+        "select",
+        "--setup",
+        setup,
+        "--criterion",
+        "relative-a",
+        "--start-random",
+        "--out",
+        out,
+    ];
+    for args in [
+        &["simulate", "--setup", setup, "--postures", postures][..],
+        &select[..],
+    ] {
+        let line = assert_usage_error(&stiffid(args), &["the setup has no loading", "load_n"]);
+        assert!(
+            line.contains(args[0]) && line.contains("a calibration needs none"),
+            "{line}"
+        );
+    }
+}

@@ -431,6 +431,14 @@ fn missing_hint(field: &str) -> &'static str {
             "a rough prior will do: one scaled from the robot's payload class \
              (stiffid::setup::prior::nominal_stiffness, with its source)"
         }
+        "loading" => {
+            "a [loading] table: load_n, the rope load in N, and anchor_mm, the pulley's position \
+             in the base frame; a calibration needs none"
+        }
+        "tool.loading_point_mm" => {
+            "where the rope pulls on the tool, flange frame, mm, under [tool]; a calibration \
+             needs none"
+        }
         "test.postures_deg" => {
             "the postures where the deflection matters to you, axis angles in degrees, under \
              [test]"

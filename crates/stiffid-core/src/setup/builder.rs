@@ -58,10 +58,11 @@ impl Setup {
             springs: arm.model.coordinates(),
             virtual_springs: arm.model.springs().to_vec(),
             candidate_springs: experiment.candidate_springs.clone(),
-            loading_point: Some(arm.tool.loading_point),
+            loading_point: (!experiment.missing.contains(&"tool.loading_point_mm"))
+                .then_some(arm.tool.loading_point),
             measuring_points: arm.tool.measuring_points.clone(),
             tcp: arm.tcp_given.then_some(arm.tool.tcp),
-            load: Some(experiment.load.clone()),
+            load: (!experiment.missing.contains(&"loading")).then(|| experiment.load.clone()),
             load_steps: experiment.load_steps.clone(),
             noise: Some(experiment.noise.clone()),
             bounds: Some(experiment.bounds),
@@ -178,7 +179,8 @@ impl SetupBuilder {
         self
     }
 
-    /// The loading point, flange frame, m (required).
+    /// The loading point, flange frame, m (default the tool centre point, the setup then having
+    /// no loading point: [`Setup::require_loading`]).
     pub fn with_loading_point(mut self, point: Vector3<f64>) -> Self {
         self.loading_point = Some(point);
         self
@@ -203,7 +205,7 @@ impl SetupBuilder {
         self
     }
 
-    /// The rope load (required).
+    /// The rope load (default none: a calibration-only setup, [`Setup::require_loading`]).
     pub fn with_load(mut self, load: RopeLoad) -> Self {
         self.load = Some(load);
         self
@@ -338,8 +340,13 @@ impl SetupBuilder {
         if self.name.trim().is_empty() {
             return Err(invalid("name", "expected a non-empty name"));
         }
-        let loading_point = required(self.loading_point, "tool.loading_point_mm")?;
-        let load = required(self.load, "loading")?;
+        let missing: Vec<&'static str> = [
+            ("loading", self.load.is_none()),
+            ("tool.loading_point_mm", self.loading_point.is_none()),
+        ]
+        .into_iter()
+        .filter_map(|(field, absent)| absent.then_some(field))
+        .collect();
         let noise = required(self.noise, "noise")?;
         if let Some(l) = self.characteristic_length {
             check_scaled(
@@ -357,9 +364,17 @@ impl SetupBuilder {
             )?;
         }
         let tcp = self.tcp.or(self.measuring_points.first().copied());
+        let loading_point = (self.loading_point.or(tcp)).unwrap_or_default();
         check_tool(&loading_point, &self.measuring_points, tcp)?;
         check_positioner(&self.robot, &tcp.unwrap_or_default())?;
-        check_load(&load)?;
+        // No load: a calibration-only setup, whose rope load is zero ([`Setup::require_loading`]).
+        let load = self.load.unwrap_or(RopeLoad {
+            load: 0.0,
+            anchor: Vector3::zeros(),
+        });
+        if !missing.contains(&"loading") {
+            check_load(&load)?;
+        }
         check_load_steps(&self.load_steps)?;
         check_noise(&noise)?;
         let bounds = self.bounds.unwrap_or(*self.robot.limits());
@@ -458,6 +473,7 @@ impl SetupBuilder {
             },
             experiment: Experiment {
                 load,
+                missing,
                 load_steps: self.load_steps,
                 noise,
                 bounds,

@@ -86,6 +86,8 @@ impl Noise {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Experiment {
     pub(super) load: RopeLoad,
+    /// The loading fields the setup left out (`loading`, `tool.loading_point_mm`).
+    pub(super) missing: Vec<&'static str>,
     pub(super) load_steps: Vec<f64>,
     pub(super) noise: Noise,
     pub(super) bounds: JointBox,
@@ -96,9 +98,32 @@ pub struct Experiment {
 }
 
 impl Experiment {
-    /// The loading of the simulation and of the posture search.
+    /// The loading of the simulation and of the posture search (a zero load in a
+    /// calibration-only setup, which has none: [`Experiment::require_loading`]).
     pub fn load(&self) -> &RopeLoad {
         &self.load
+    }
+
+    /// Whether the setup gives the rope load and the loading point: a calibration-only setup
+    /// leaves out `[loading]` and `tool.loading_point_mm`.
+    pub fn loading_given(&self) -> bool {
+        self.missing.is_empty()
+    }
+
+    /// Nothing, when the setup gives the rope load and the loading point, for `needed_by` (a job
+    /// or computation, named in the error).
+    ///
+    /// # Errors
+    /// [`Error::MissingField`] naming the first field the setup left out (`loading`, the
+    /// table with `load_n` and `anchor_mm`, or `tool.loading_point_mm`) and `needed_by`.
+    pub fn require_loading(&self, needed_by: &str) -> Result<()> {
+        match self.missing.first() {
+            None => Ok(()),
+            Some(field) => Err(Error::MissingField {
+                field,
+                needed_by: needed_by.to_string(),
+            }),
+        }
     }
 
     /// The load levels applied in each posture, N, rising (`[loading] steps_n`); empty for one

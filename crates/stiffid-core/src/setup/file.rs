@@ -33,9 +33,9 @@ struct SetupFile {
     #[serde(default, deserialize_with = "crate::common::exact::option")]
     nominal_stiffness_nm_per_rad: Option<[f64; 6]>,
     tool: ToolFile,
-    loading: LoadingFile,
+    loading: Option<LoadingFile>,
     noise: NoiseFile,
-    bounds: BoundsFile,
+    bounds: Option<BoundsFile>,
     test: Option<TestFile>,
     constraints: Option<ConstraintsFile>,
     cell: Option<CellFile>,
@@ -87,8 +87,8 @@ struct WorkpieceFile {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct ToolFile {
-    #[serde(deserialize_with = "crate::common::exact::array")]
-    loading_point_mm: [f64; 3],
+    #[serde(default, deserialize_with = "crate::common::exact::option")]
+    loading_point_mm: Option<[f64; 3]>,
     #[serde(deserialize_with = "crate::common::exact::arrays")]
     measuring_points_mm: Vec<[f64; 3]>,
     #[serde(default, deserialize_with = "crate::common::exact::option")]
@@ -300,7 +300,7 @@ where
     same_robot(&robot, controller.robot.as_ref(), &file.robot, source_name)?;
     controller.world = transform(file.robot_base, "robot_base", source_name)?;
     controller.adapter = transform(file.robot_flange, "robot_flange", source_name)?;
-    let steps = !file.loading.steps_n.is_empty();
+    let steps = file.loading.as_ref().is_some_and(|l| !l.steps_n.is_empty());
     let (reading_variance, note) = file
         .noise
         .reading_variance(steps)
@@ -494,21 +494,28 @@ fn builder(f: SetupFile, robot: Robot, reading_variance: f64) -> Result<SetupBui
         .with_description(f.description)
         .with_robot_ref(f.robot)
         .with_springs(f.springs)
-        .with_loading_point(mm(&f.tool.loading_point_mm))
         .with_measuring_points(measuring_points)
-        .with_load(RopeLoad {
-            load: f.loading.load_n,
-            anchor: mm(&f.loading.anchor_mm),
-        })
-        .with_load_steps(f.loading.steps_n)
         .with_noise(Noise {
             reading_variance,
             levels: f.noise.level_multiples,
-        })
-        .with_bounds(JointBox::new(
-            deg6(&f.bounds.lower_deg),
-            deg6(&f.bounds.upper_deg),
+        });
+    if let Some(p) = &f.tool.loading_point_mm {
+        b = b.with_loading_point(mm(p));
+    }
+    if let Some(l) = f.loading {
+        b = b
+            .with_load(RopeLoad {
+                load: l.load_n,
+                anchor: mm(&l.anchor_mm),
+            })
+            .with_load_steps(l.steps_n);
+    }
+    if let Some(bounds) = &f.bounds {
+        b = b.with_bounds(JointBox::new(
+            deg6(&bounds.lower_deg),
+            deg6(&bounds.upper_deg),
         ));
+    }
     if let Some(l) = f.characteristic_length_mm {
         b = b.with_characteristic_length(l * 1e-3);
     }

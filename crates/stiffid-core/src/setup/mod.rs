@@ -217,6 +217,14 @@ impl Setup {
         self.experiment.load()
     }
 
+    /// Nothing when the setup gives the loading, for `needed_by` ([`Experiment::require_loading`]).
+    ///
+    /// # Errors
+    /// As [`Experiment::require_loading`].
+    pub fn require_loading(&self, needed_by: &str) -> Result<()> {
+        self.experiment.require_loading(needed_by)
+    }
+
     /// Measurement noise ([`Experiment::noise`]).
     pub fn noise(&self) -> &Noise {
         self.experiment.noise()

@@ -200,6 +200,7 @@ pub(super) fn request<'a>(
         update,
         refit: Default::default(),
         weight: None,
+        urdf: false,
     }
 }
 

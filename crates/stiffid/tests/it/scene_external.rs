@@ -127,6 +127,7 @@ fn a_calibrations_scene_stands_each_posture_at_its_readings_station() {
         update: false,
         refit: Default::default(),
         weight: None,
+        urdf: false,
     })
     .unwrap();
     let doc = calibrate::document::Document::new(&report, "track-cell.toml");

@@ -156,7 +156,7 @@ fn bad_values_in_code_name_the_field() {
     let e = field_of(Setup::builder(" ", robot.clone()).build());
     assert_eq!(e, "name");
     let e = field_of(Setup::builder("cell", robot).build());
-    assert_eq!(e, "tool.loading_point_mm");
+    assert_eq!(e, "noise");
 }
 
 #[test]

@@ -464,6 +464,7 @@ pub(crate) fn calibrated(
         update: false,
         refit: Default::default(),
         weight: None,
+        urdf: false,
     })
     .unwrap();
     let document = Document::new(&report, "setup.toml");

@@ -47,8 +47,9 @@ pub struct Document {
     pub correlations: Vec<Correlation>,
     /// RMS of the fitted readings' 3D residuals, mm.
     pub residual_rms_mm: f64,
-    /// The same with the nominal robot, the tracker registered and the setup's measuring points,
-    /// mm: where the calibration starts.
+    /// The same with the nominal robot, the tracker registered (readings in the tracker's frame;
+    /// in the base frame nothing is registered) and the setup's measuring points, mm: where the
+    /// calibration starts.
     pub nominal_rms_mm: f64,
     /// Noise per coordinate estimated from the residuals, mm.
     pub noise_std_mm: f64,
@@ -299,7 +300,9 @@ pub struct ValidationDocument {
     pub rms_mm: f64,
     /// The largest, mm.
     pub max_mm: f64,
-    /// The nominal robot's RMS on the same readings, the tracker registered on them, mm.
+    /// The nominal robot's RMS on the same readings, mm: the tracker registered on them for
+    /// readings in the tracker's frame; as it is for readings in the base frame (`measured_in`
+    /// `base`: nothing registered).
     pub nominal_rms_mm: f64,
     /// The prediction intervals of the held-out readings' errors and how well they covered
     /// them (`--validate`, with at most 500 fitted postures); `null` for the cross-validation.

@@ -64,17 +64,70 @@ pub(super) fn warning(
     ))
 }
 
+/// The warning ([`WarningKind::Extrapolation`]) when held-out postures (`held`, labelled by
+/// `labels`) lie outside the `fitted` observations' axis ranges by more than [`OUTSIDE_RAD`],
+/// whatever their errors: how many, the joints outside, and the farthest posture with its
+/// distance (deg) beyond the range and its joint; `None` when every held-out posture lies within.
+pub(super) fn outside_ranges(
+    name: &str,
+    (fitted, held): (&[Observation], &[Observation]),
+    labels: &[String],
+) -> Option<Warning> {
+    let ranges = ranges(fitted);
+    let mut postures = std::collections::BTreeMap::new();
+    for o in held.iter().filter(|o| !o.table) {
+        postures.entry(o.posture).or_insert(o.q);
+    }
+    let beyond = |q: &Vector6<f64>, j: usize| {
+        let (lo, hi) = ranges[j];
+        (lo - q[j]).max(q[j] - hi).max(0.0)
+    };
+    let mut joints = [false; 6];
+    let mut farthest: Option<(usize, usize, f64)> = None;
+    let mut outside = 0;
+    for (&posture, q) in &postures {
+        let mut any = false;
+        for (j, outside_j) in joints.iter_mut().enumerate() {
+            let d = beyond(q, j);
+            if d > OUTSIDE_RAD {
+                (*outside_j, any) = (true, true);
+                if farthest.is_none_or(|(_, _, f)| d > f) {
+                    farthest = Some((posture, j, d));
+                }
+            }
+        }
+        outside += usize::from(any);
+    }
+    let (posture, joint, distance) = farthest?;
+    Some(Warning::new(
+        WarningKind::Extrapolation,
+        format!(
+            "{name}: {outside} of {} held-out postures lie outside the fitted postures' range of {} by more than 1 deg (farthest: posture {}, {:.1} deg beyond on joint {}): the calibration extrapolates there, and its errors and intervals there say nothing of the region it was fitted in; fit postures that cover the region the robot works in",
+            postures.len(),
+            joint_list((0..6).filter(|&j| joints[j])),
+            stiffid_core::common::limits::short(labels.get(posture).map_or("?", String::as_str)),
+            distance.to_degrees(),
+            joint + 1
+        ),
+    ))
+}
+
+/// The range of each axis angle over the `fitted` observations, rad.
+fn ranges(fitted: &[Observation]) -> [(f64, f64); 6] {
+    std::array::from_fn(|j| {
+        (fitted.iter().map(|o| o.q[j])).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        })
+    })
+}
+
 /// `; joints 4, 6 outside the fitted postures' range (193.2 deg against -108.3 to 71.6 deg, ...)`
 /// for the joints of `q` beyond the `fitted` angles' range by more than [`OUTSIDE_RAD`]; empty
 /// when every joint lies within it.
 fn outside(fitted: &[Observation], q: &Vector6<f64>) -> String {
-    let range = |j: usize| {
-        (fitted.iter().map(|o| o.q[j])).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-            (lo.min(v), hi.max(v))
-        })
-    };
+    let ranges = ranges(fitted);
     let joints: Vec<(usize, (f64, f64))> = (0..6)
-        .map(|j| (j, range(j)))
+        .map(|j| (j, ranges[j]))
         .filter(|&(j, (lo, hi))| q[j] < lo - OUTSIDE_RAD || q[j] > hi + OUTSIDE_RAD)
         .collect();
     if joints.is_empty() {
@@ -165,6 +218,30 @@ mod tests {
         // Without --reregister, one reading of two missed is no moved tracker either.
         let w = case(2.0, true).unwrap();
         assert!(!w.message.contains("--reregister"), "{}", w.message);
+    }
+
+    /// The held-out postures of [`case`]: the second turns joint 4 123 deg and joint 6 90 deg
+    /// beyond the fitted range, the first lies within it; postures inside say nothing.
+    #[test]
+    fn held_out_postures_outside_the_fitted_ranges_are_named_with_their_distance() {
+        let fitted = [
+            observation(0, [0.0, -90.0, 0.0, -100.0, 0.0, -90.0]),
+            observation(1, [10.0, -80.0, 10.0, 70.0, 10.0, 0.0]),
+        ];
+        let held = [
+            observation(0, [5.0, -85.0, 5.0, 0.0, 5.0, -45.0]),
+            observation(0, [5.0, -85.0, 5.0, 0.0, 5.0, -45.0]),
+            observation(1, [5.0, -85.0, 5.0, 193.0, 5.0, 90.0]),
+        ];
+        let labels = ["D1".to_string(), "D414".to_string()];
+        let w = outside_ranges("held.csv", (&fitted, &held), &labels).unwrap();
+        assert_eq!(w.kind, WarningKind::Extrapolation);
+        assert!(
+            w.message.starts_with("held.csv: 1 of 2 held-out postures lie outside the fitted postures' range of joints 4, 6 by more than 1 deg (farthest: posture D414, 123.0 deg beyond on joint 4)"),
+            "{}",
+            w.message
+        );
+        assert!(outside_ranges("held.csv", (&fitted, &held[..2]), &labels).is_none());
     }
 
     #[test]

@@ -145,6 +145,10 @@ pub struct Request<'a> {
     /// the update's forward model (refitted from there with [`update::Refit::Gravity`]); `None`
     /// for a calibration without gravity terms or a robot file carrying them.
     pub weight: Option<stiffid_core::model::OwnWeight>,
+    /// A URDF is asked for: only then the warnings of what a URDF leaves out (the joint error
+    /// maps, the measuring points' frame, the sag under the robot's own weight). The report's
+    /// URDF text is there either way.
+    pub urdf: bool,
 }
 
 /// A validation with the nominal model's error beside it.
@@ -412,10 +416,11 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         own_weight.as_ref(),
     );
     let urdf = robot_file::urdf(&model, &fitted.estimate).map_err(|e| e.to_string());
-    if let (Ok(_), Some(note)) = (&urdf, robot_file::urdf_leaves_out(&model, &fitted.estimate)) {
+    let asked = request.urdf && urdf.is_ok();
+    if let (true, Some(note)) = (asked, robot_file::urdf_leaves_out(&model, &fitted.estimate)) {
         warnings.push(Warning::new(WarningKind::LeftOut, note));
     }
-    warnings.extend(update::urdf_rigid(urdf.is_ok(), own_weight.as_ref()));
+    warnings.extend(update::urdf_rigid(asked, own_weight.as_ref()));
     let tcp = tcp(setup, &model, &fitted.estimate.values);
     let fragment = fragment(&model, &fitted, tcp.as_ref());
     let compliance = (gravity != Gravity::None || model.has_loads())
@@ -530,9 +535,11 @@ fn held_out(
         intervals,
         coverage,
     };
-    // The gate of the fitted readings: a held-out reading that the nominal robot registered on
-    // them misses by more than a robot's error is not of this robot. One the calibration alone
-    // misses that far is, and the calibration extrapolates there: a warning, not a refusal.
+    // The gate of the fitted readings: a held-out reading that both the calibrated robot and the
+    // nominal robot registered on them miss by more than a robot's error is not of this robot.
+    // One the calibration explains is (a real robot's nominal can miss its own readings by
+    // centimetres); one the calibration alone misses that far is too, and the calibration
+    // extrapolates there: a warning, not a refusal.
     let unloaded = |v: &Validation| -> Vec<_> {
         (v.errors.iter())
             .zip(
@@ -544,9 +551,18 @@ fn held_out(
             .map(|(e, _)| e.error)
             .collect()
     };
-    refuse_implausible(&readings, &data, None, &unloaded(&held.nominal))?;
+    let closer = (unloaded(&held.calibrated).into_iter())
+        .zip(unloaded(&held.nominal))
+        .map(|(c, n)| if c.norm() <= n.norm() { c } else { n })
+        .collect::<Vec<_>>();
+    refuse_implausible(&readings, &data, None, &closer)?;
     let limit =
         stiffid_metrology::register::residual_limit(request.readings.setup.noise().reading_sd());
+    warnings.extend(extrapolation::outside_ranges(
+        name,
+        (fitted, &obs),
+        &data.labels,
+    ));
     warnings.extend(extrapolation::warning(
         (name, !request.reregister),
         (fitted, &obs),

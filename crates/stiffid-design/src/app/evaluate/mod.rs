@@ -67,6 +67,9 @@ pub struct Report {
 pub fn run(request: &Request) -> Result<Report> {
     let (setup, postures) = (request.setup, request.postures);
     purpose::check(request.purpose, &request.calibration)?;
+    if !request.purpose.calibration_only() {
+        setup.require_loading("evaluate (the rope load of every posture)")?;
+    }
     if request.candidates.is_some() && request.purpose.calibration_only() {
         return Err(Error::InvalidOption {
             option: JobOption::Candidates,

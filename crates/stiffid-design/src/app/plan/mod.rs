@@ -94,6 +94,7 @@ pub struct Report {
 /// of [`Setup::check_bodies`].
 pub fn run(request: &Request) -> Result<Report> {
     let (setup, postures) = (request.setup, request.postures);
+    setup.require_loading("plan (where the rope pulls)")?;
     stiffid_core::common::limits::check_count("postures", postures.len(), 1, MAX_POSTURES)?;
     stiffid_view::check_external(setup, postures.len(), request.external)?;
     if let (Some(axes), true) = (setup.robot().external(), request.external.is_empty()) {

@@ -37,6 +37,9 @@ pub struct Report {
 /// The errors of [`study::run`]: counts out of range, a setup without a nominal stiffness or a
 /// characteristic length.
 pub fn run(request: &Request) -> Result<Report> {
+    request
+        .setup
+        .require_loading("reproduce (the rope load of the study)")?;
     let study = study::run(request.setup, &request.options, request.progress)?;
     Ok(Report {
         findings: findings(&study),

@@ -12,6 +12,10 @@ use stiffid_core::{Error, Result};
 /// The request's parts fit its method, and its counts are in range.
 pub(super) fn check(r: &Request) -> Result<()> {
     r.setup.check_bodies()?;
+    if !r.purpose.calibration_only() {
+        r.setup
+            .require_loading("select (the rope load of every posture)")?;
+    }
     let invalid = |field: &str, message: &str| {
         Err(Error::InvalidField {
             field: field.into(),

@@ -66,6 +66,7 @@ pub fn run(request: &Request) -> Result<Report> {
 /// Those of [`run`].
 pub fn run_with_progress(request: &Request, progress: &dyn Progress) -> Result<Report> {
     let setup = request.setup;
+    setup.require_loading("simulate (the rope load of every posture)")?;
     limits::check_count("groups", request.groups.len(), 1, limits::MAX_GROUPS)?;
     let groups: Vec<Vec<Vector6<f64>>> =
         request.groups.iter().map(|g| g.postures.clone()).collect();

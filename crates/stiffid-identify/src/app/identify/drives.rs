@@ -154,6 +154,12 @@ pub(super) fn run<R: Read + Send>(request: Request<'_, R>) -> Result<Report> {
         .nominal_stiffness()
         .and_then(|k| identification.unit_check(k));
     let (cross_validation, prediction) = cross_validation.unzip();
+    let (prediction, folds) = super::folds::carried(
+        prediction,
+        cross_validation.as_ref(),
+        &origin,
+        setup.model(),
+    );
     let mut report = Report {
         data_name,
         fit: how,
@@ -173,6 +179,7 @@ pub(super) fn run<R: Read + Send>(request: Request<'_, R>) -> Result<Report> {
     };
     report.influential = influential(&report);
     report.warnings = warnings(&report);
+    report.warnings.extend(folds);
     Ok(report)
 }
 

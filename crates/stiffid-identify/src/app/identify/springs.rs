@@ -68,7 +68,14 @@ pub(super) fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {
     let (data_name, origin, (fit, cross_validation)) =
         on_measurements(setup, data, |m| fit_all(setup, method, folds, m))?;
     let (cross_validation, prediction) = cross_validation.unzip();
+    let (prediction, folds) = super::folds::carried(
+        prediction,
+        cross_validation.as_ref(),
+        &origin,
+        setup.model(),
+    );
     let mut warnings = warnings(&fit);
+    warnings.extend(folds);
     warnings.extend(angle_warnings(&data_name, &origin));
     Ok(Report {
         data_name,
