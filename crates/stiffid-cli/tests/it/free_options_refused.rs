@@ -241,7 +241,11 @@ fn combinations_that_make_no_sense_are_refused_naming_the_option() {
         .into_iter()
         .chain(surge)
         .collect();
-    run(compensate(false), &config_surge, &["--free configuration"]);
+    run(
+        compensate(false),
+        &config_surge,
+        &["--minimise", "configuration"],
+    );
     run(
         compensate(false),
         &["--free", "configuration", "--free", "configuration=run"],
