@@ -113,7 +113,7 @@ pub(super) fn outside_ranges(
 }
 
 /// The range of each axis angle over the `fitted` observations, rad.
-fn ranges(fitted: &[Observation]) -> [(f64, f64); 6] {
+pub(super) fn ranges(fitted: &[Observation]) -> [(f64, f64); 6] {
     std::array::from_fn(|j| {
         (fitted.iter().map(|o| o.q[j])).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
             (lo.min(v), hi.max(v))

@@ -333,6 +333,9 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         e @ stiffid_core::Error::InvalidOption { .. } => e,
         e => in_data(name, e),
     })?;
+    // The maps hold over the fitted postures' angles and taper to zero beyond them.
+    let model =
+        (model.with_map_ranges(extrapolation::ranges(&obs))).map_err(|e| in_data(name, e))?;
     let start = match model.map_start() {
         Some(_) => fit::start(&model, &obs).map_err(|e| in_data(name, e))?,
         None => start,
