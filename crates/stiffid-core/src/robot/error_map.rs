@@ -11,7 +11,12 @@
 //! and the chain turns by `q + e(q)`. Where the approach direction is known (the sign `d` of the
 //! joint's last motion, -1 or +1: the readings' `dir1..dir6`), a backlash term adds `b d`, `b`
 //! half the backlash (rad): `e(q, d) = e(q) + b d` ([`ErrorMap::angle_from`]); without a direction
-//! the robot stands at the mean of the two approaches, `e(q)`. A robot with maps ([`crate::Robot::with_error_maps`])
+//! the robot stands at the mean of the two approaches, `e(q)`. A map fitted over a range of its
+//! axis's angles ([`ErrorMap::with_range`], the calibrated robot file's `range_deg`) holds its
+//! series there only: beyond it the series tapers to zero over [`TAPER_DEG`] by a cosine ramp,
+//! `e(q) w(d)` with `d` the distance beyond the range and `w(d) = (1 + cos(pi d / W)) / 2` for
+//! `d < W`, 0 beyond ([`taper`]), rather than extrapolating a Fourier series fitted elsewhere
+//! (the backlash term, a property of the gear, is kept everywhere). A robot with maps ([`crate::Robot::with_error_maps`])
 //! evaluates its kinematic angles as `theta = M (q + e(q)) + c` ([`crate::AxisMap`]), so every
 //! computation on its frames (kinematics, prediction, compensation, design) uses them. The
 //! calibration identifies the coefficients (`stiffid_metrology::calibration::maps`). Source:
@@ -26,12 +31,35 @@ pub const MAX_HARMONICS: usize = 64;
 /// The largest coefficient a map holds, rad (10 deg): an error map is a small correction.
 pub const MAX_COEFFICIENT: f64 = 10.0 * std::f64::consts::PI / 180.0;
 
-/// One axis's error map: the coefficients of harmonics `1..=H` and half the backlash, rad.
+/// The width `W` of the ramp over which a map's series tapers to zero beyond its fitted range,
+/// deg ([`taper`]).
+pub const TAPER_DEG: f64 = 10.0;
+
+/// The factor `w(d)` of a map's series at the axis angle `q` (rad) with the fitted range
+/// `(lo, hi)` (rad): exactly 1 within it, `(1 + cos(pi d / W)) / 2` at the distance `d` beyond it
+/// within the ramp `W` ([`TAPER_DEG`]), exactly 0 past the ramp. Continuous with its slope (0 at
+/// both ends of the ramp).
+#[inline]
+pub fn taper(q: f64, (lo, hi): (f64, f64)) -> f64 {
+    let d = (lo - q).max(q - hi);
+    let width = TAPER_DEG.to_radians();
+    if d <= 0.0 {
+        1.0
+    } else if d >= width {
+        0.0
+    } else {
+        0.5 * (1.0 + (std::f64::consts::PI * d / width).cos())
+    }
+}
+
+/// One axis's error map: the coefficients of harmonics `1..=H`, half the backlash, rad, and the
+/// range of axis angles it was fitted over (rad), when known.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct ErrorMap {
     cos: Vec<f64>,
     sin: Vec<f64>,
     backlash: f64,
+    range: Option<(f64, f64)>,
 }
 
 impl ErrorMap {
@@ -69,7 +97,36 @@ impl ErrorMap {
             cos,
             sin,
             backlash: 0.0,
+            range: None,
         })
+    }
+
+    /// The map fitted over the axis angles `lo..=hi` (rad): its series tapers to zero beyond
+    /// them ([`taper`]).
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (`error_map.range_deg`) when a bound is not finite or `lo > hi`.
+    pub fn with_range(self, lo: f64, hi: f64) -> Result<Self> {
+        if !(lo.is_finite() && hi.is_finite() && lo <= hi) {
+            return Err(Error::InvalidField {
+                field: "error_map.range_deg".into(),
+                message: format!(
+                    "expected two finite angles, the lower first, got {} and {} deg",
+                    lo.to_degrees(),
+                    hi.to_degrees()
+                ),
+            });
+        }
+        Ok(ErrorMap {
+            range: Some((lo, hi)),
+            ..self
+        })
+    }
+
+    /// The range of axis angles the map was fitted over (rad), when known: beyond it the series
+    /// tapers to zero ([`taper`]); `None` for a series that holds at every angle.
+    pub fn range(&self) -> Option<(f64, f64)> {
+        self.range
     }
 
     /// The map with half the backlash `b` (rad): the angle error `+ b d` approached with the
@@ -122,12 +179,30 @@ impl ErrorMap {
     /// The error `e(q)` (rad) at the axis angle `q` (rad), the harmonics by the angle-addition
     /// recurrence from one `sin_cos`: the harmonics `h` of each residue of `h mod 4` in their own
     /// chain, each turned by `4 q` (a quarter of the dependent steps of one chain turned by
-    /// `q`); no `sin_cos` for an axis without harmonics.
+    /// `q`); no `sin_cos` for an axis without harmonics. Beyond the fitted range it tapers
+    /// ([`taper`]).
     #[inline]
     pub fn angle(&self, q: f64) -> f64 {
         match self.cos.is_empty() {
             true => 0.0,
-            false => self.series(q.sin_cos()),
+            false => self.tapered(q, q.sin_cos()),
+        }
+    }
+
+    /// The factor [`taper`] of the map's series at the axis angle `q` (rad): 1 without a range.
+    #[inline]
+    pub fn taper(&self, q: f64) -> f64 {
+        self.range.map_or(1.0, |r| taper(q, r))
+    }
+
+    /// The series at `q` (rad) from `(sin q, cos q)`, tapered beyond the fitted range: the
+    /// series itself, untouched, within it.
+    #[inline]
+    fn tapered(&self, q: f64, turn: (f64, f64)) -> f64 {
+        match self.taper(q) {
+            1.0 => self.series(turn),
+            0.0 => 0.0,
+            w => w * self.series(turn),
         }
     }
 
@@ -161,7 +236,7 @@ impl ErrorMap {
     }
 
     /// The map whose coefficients and backlash are the sums of this one's and `other`'s (the
-    /// longer's count).
+    /// longer's count), with this one's range (`other`'s without one).
     pub fn plus(&self, other: &ErrorMap) -> ErrorMap {
         let n = self.harmonics().max(other.harmonics());
         let at = |v: &[f64], h: usize| v.get(h).copied().unwrap_or(0.0);
@@ -173,18 +248,19 @@ impl ErrorMap {
                 .map(|h| at(&self.sin, h) + at(&other.sin, h))
                 .collect(),
             backlash: self.backlash + other.backlash,
+            range: self.range.or(other.range),
         }
     }
 }
 
 /// The errors `e(q_i)` (rad) of six axes' maps at the axis angles `q` (rad), each
-/// [`ErrorMap::angle`] of its own axis's angle: every `sin_cos` taken before the harmonics' sums,
-/// so that the axes' independent work overlaps.
+/// [`ErrorMap::angle`] of its own axis's angle (tapered beyond its range): every `sin_cos` taken
+/// before the harmonics' sums, so that the axes' independent work overlaps.
 #[inline]
 pub fn angles(maps: &[ErrorMap; 6], q: &Vector6<f64>) -> [f64; 6] {
     let turns: [Option<(f64, f64)>; 6] =
         std::array::from_fn(|i| (!maps[i].cos.is_empty()).then(|| q[i].sin_cos()));
-    std::array::from_fn(|i| turns[i].map_or(0.0, |t| maps[i].series(t)))
+    std::array::from_fn(|i| turns[i].map_or(0.0, |t| maps[i].tapered(q[i], t)))
 }
 
 #[cfg(test)]
@@ -268,5 +344,59 @@ mod tests {
         assert!((only.plus(&map).backlash() - 6e-4).abs() < 1e-18);
         assert!(ErrorMap::default().with_backlash(f64::NAN).is_err());
         assert!(ErrorMap::default().with_backlash(0.2).is_err());
+    }
+
+    /// A map fitted over -30..50 deg: within it the series to the last bit, beyond the
+    /// ramp exactly 0, across the ramp the cosine taper (half at mid-ramp), continuous with its
+    /// slope by central differences.
+    #[test]
+    fn a_map_tapers_to_zero_beyond_its_fitted_range() {
+        let (lo, hi) = (-30f64.to_radians(), 50f64.to_radians());
+        let free = ErrorMap::new(vec![1e-3, -4e-4, 2e-4], vec![5e-4, 3e-4, -1e-4])
+            .unwrap()
+            .with_backlash(2e-4)
+            .unwrap();
+        let map = free.clone().with_range(lo, hi).unwrap();
+        assert_eq!(map.range(), Some((lo, hi)));
+        for deg in [-30.0, -29.999, 0.0, 17.3, 49.99, 50.0] {
+            let q = f64::to_radians(deg);
+            assert_eq!(map.angle(q).to_bits(), free.angle(q).to_bits(), "{deg}");
+        }
+        for deg in [-40.0, -40.001, -100.0, 60.0, 60.5, 170.0] {
+            let q = f64::to_radians(deg);
+            assert_eq!(map.angle(q), 0.0, "{deg}");
+            // The backlash is the gear's, kept everywhere.
+            assert!((map.angle_from(q, -1.0) + 2e-4).abs() < 1e-18, "{deg}");
+        }
+        let mid = 55f64.to_radians();
+        assert!((map.angle(mid) - 0.5 * free.angle(mid)).abs() < 1e-18);
+        let quarter = 52.5f64.to_radians();
+        let w = 0.5 * (1.0 + (std::f64::consts::PI / 4.0).cos());
+        assert!((map.angle(quarter) - w * free.angle(quarter)).abs() < 1e-18);
+        // The slope of e(q) w(q) by central differences is continuous across both ends of each
+        // ramp (w' = 0 there) and equals the product rule within it.
+        let h = 1e-7;
+        let slope = |m: &ErrorMap, q: f64| (m.angle(q + h) - m.angle(q - h)) / (2.0 * h);
+        for edge in [lo, hi] {
+            let s = edge.signum();
+            for q in [edge, edge + s * TAPER_DEG.to_radians()] {
+                // A linear ramp's slope would jump by e / W, about 5e-3 here.
+                let (left, right) = (slope(&map, q - 1e-6), slope(&map, q + 1e-6));
+                assert!((left - right).abs() < 1e-6, "{q}: {left} {right}");
+            }
+        }
+        let q = 57f64.to_radians();
+        let d = q - hi;
+        let width = TAPER_DEG.to_radians();
+        let dw = -0.5 * std::f64::consts::PI / width * (std::f64::consts::PI * d / width).sin();
+        let product = slope(&free, q) * map.taper(q) + free.angle(q) * dw;
+        assert!((slope(&map, q) - product).abs() < 1e-8, "{}", product);
+        let maps: [ErrorMap; 6] = std::array::from_fn(|_| map.clone());
+        let q = Vector6::from_fn(|i, _| f64::to_radians(-60.0 + 25.0 * i as f64));
+        let each: [f64; 6] = std::array::from_fn(|i| map.angle(q[i]));
+        assert_eq!(angles(&maps, &q), each);
+        assert!(each[0] == 0.0 && each[1] != 0.0 && each[5] == 0.0);
+        assert!(free.clone().with_range(hi, lo).is_err());
+        assert!(free.with_range(f64::NAN, hi).is_err());
     }
 }

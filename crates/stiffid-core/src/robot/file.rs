@@ -150,7 +150,8 @@ struct JointRow {
 }
 
 /// A joint's `error_map`: the Fourier coefficients of its axis's angle error and half its
-/// backlash, deg ([`super::ErrorMap`]).
+/// backlash, deg ([`super::ErrorMap`]), and the axis angles it was fitted over, deg (a file
+/// without them: the series at every angle).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct ErrorMapFile {
@@ -160,6 +161,7 @@ struct ErrorMapFile {
     sin_deg: Vec<f64>,
     #[serde(default)]
     half_backlash_deg: f64,
+    range_deg: Option<[f64; 2]>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -407,7 +409,11 @@ fn error_maps(joints: &[JointRow], source_name: &str) -> Result<[super::ErrorMap
                 false => v.iter().map(|d| d.to_radians()).collect(),
             };
             let map = super::ErrorMap::new(rad(&m.cos_deg), rad(&m.sin_deg))
-                .and_then(|map| map.with_backlash(m.half_backlash_deg.to_radians()));
+                .and_then(|map| map.with_backlash(m.half_backlash_deg.to_radians()))
+                .and_then(|map| match m.range_deg {
+                    Some([lo, hi]) => map.with_range(lo.to_radians(), hi.to_radians()),
+                    None => Ok(map),
+                });
             maps[i] = map.map_err(|e| {
                 let message = match e {
                     Error::InvalidField { message, .. } => message,

@@ -80,7 +80,8 @@ fn table_robot(robot: &Robot, table: &dh::Table) -> Result<Robot> {
     )
 }
 
-/// The `error_map` line of a joint's map (deg, shortest round-trip), or nothing without one.
+/// The `error_map` line of a joint's map (deg, shortest round-trip, with the range it was fitted
+/// over), or nothing without one.
 fn error_map_line(map: &stiffid_core::robot::ErrorMap) -> String {
     if map.is_empty() {
         return String::new();
@@ -93,8 +94,16 @@ fn error_map_line(map: &stiffid_core::robot::ErrorMap) -> String {
         0.0 => String::new(),
         b => format!(", half_backlash_deg = {:?}", b.to_degrees()),
     };
+    let range = match map.range() {
+        Some((lo, hi)) => format!(
+            ", range_deg = [{:?}, {:?}]",
+            lo.to_degrees(),
+            hi.to_degrees()
+        ),
+        None => String::new(),
+    };
     format!(
-        "error_map = {{ cos_deg = [{}], sin_deg = [{}]{backlash} }}\n",
+        "error_map = {{ cos_deg = [{}], sin_deg = [{}]{backlash}{range} }}\n",
         deg(map.cos()),
         deg(map.sin())
     )

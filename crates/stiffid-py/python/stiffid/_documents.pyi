@@ -153,6 +153,11 @@ CalibrateMerged = TypedDict("CalibrateMerged", {
     "reason": str,
 })
 
+CalibrateOutsideRange = TypedDict("CalibrateOutsideRange", {
+    "distance_deg": float,
+    "joints": list[int],
+})
+
 CalibrateParameter = TypedDict("CalibrateParameter", {
     "identified": bool,
     "kind": str,
@@ -175,7 +180,9 @@ CalibrateParameterStiffness = TypedDict("CalibrateParameterStiffness", {
 CalibratePointError = TypedDict("CalibratePointError", {
     "error_mm": list[float],
     "error_norm_mm": float,
+    "interval_holds": Optional[bool],
     "interval_mm": Optional[list[list[Optional[float]]]],
+    "outside_range": Optional[CalibrateOutsideRange],
     "point": int,
     "posture": str,
 })

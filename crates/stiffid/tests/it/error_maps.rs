@@ -253,3 +253,85 @@ fn a_backlash_survives_the_robot_file_round_trip() {
         "{e}"
     );
 }
+
+/// A map's `range_deg` (the axis angles it was fitted over): within it the kinematics are the
+/// map's without a range to the last bit, 10 deg and more beyond it those of no map on that
+/// joint, half-way down the ramp the chain turns by half the error; the calibrated robot file
+/// writes the range its model's maps were given, and a reversed range is refused naming the
+/// joint.
+#[test]
+fn a_map_tapers_to_zero_beyond_its_range_in_the_robot_file() {
+    use stiffid::metrology::calibration::error_model::MeasuredIn;
+    use stiffid::metrology::calibration::{gravity, robot_file, ErrorModel, Estimate, Geometry};
+    let with = |line: &str| {
+        let map = format!(
+            "error_map = {{ cos_deg = {}, sin_deg = {}{line} }}",
+            list(&COS1),
+            list(&SIN1)
+        );
+        let text = TABLE.replace("ERROR1", &map).replace("ERROR3", "");
+        file::parse(&text, "ranged.toml").unwrap()
+    };
+    let ranged = with(", range_deg = [-30.0, 50.0]");
+    let free = with("");
+    let none = file::parse(
+        &TABLE.replace("ERROR1", "").replace("ERROR3", ""),
+        "none.toml",
+    )
+    .unwrap();
+    let at = |q1_deg: f64| Vector6::new(q1_deg.to_radians(), -0.4, 0.5, -0.6, 0.7, -0.8);
+    for deg in [-30.0, 0.0, 49.9] {
+        assert_eq!(
+            ranged.frames(&at(deg)).flange,
+            free.frames(&at(deg)).flange,
+            "{deg}"
+        );
+    }
+    for deg in [-40.0, 60.0, 150.0] {
+        assert_eq!(
+            ranged.frames(&at(deg)).flange,
+            none.frames(&at(deg)).flange,
+            "{deg}"
+        );
+        assert_ne!(
+            free.frames(&at(deg)).flange,
+            none.frames(&at(deg)).flange,
+            "{deg}"
+        );
+    }
+    let q = 55f64.to_radians();
+    let half = 0.5 * error(&COS1, &SIN1, q);
+    assert!((ranged.mapped(&at(55.0))[0] - (q + half)).abs() < 1e-16);
+    let model = ErrorModel::new(
+        &free,
+        &[Vector3::new(0.0, 0.0, 0.1)],
+        MeasuredIn::Base,
+        Geometry::Full,
+        gravity::Terms::none(&free),
+    )
+    .and_then(|m| m.with_maps([3, 0, 0, 0, 0, 0]))
+    .and_then(|m| m.with_map_ranges([(-0.5, 0.9); 6]))
+    .unwrap();
+    let estimate = Estimate {
+        frame: nalgebra::Isometry3::identity(),
+        values: model.nominal(),
+    };
+    let written = robot_file::robot_toml(&model, &estimate).unwrap();
+    let back = file::parse(&written, "calibrated.toml").unwrap();
+    let (lo, hi) = back.error_maps().unwrap()[0].range().expect(&written);
+    assert!(
+        (lo + 0.5).abs() < 1e-15 && (hi - 0.9).abs() < 1e-15,
+        "{lo} {hi}"
+    );
+    let bad = TABLE
+        .replace(
+            "ERROR1",
+            "error_map = { cos_deg = [0.01], range_deg = [50.0, -30.0] }",
+        )
+        .replace("ERROR3", "");
+    let e = file::parse(&bad, "bad.toml").unwrap_err().to_string();
+    assert!(
+        e.contains("bad.toml: joint[1].error_map") && e.contains("the lower first"),
+        "{e}"
+    );
+}

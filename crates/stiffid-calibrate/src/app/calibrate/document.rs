@@ -353,6 +353,23 @@ pub struct PointError {
     /// The prediction interval `[lower, upper]` of each coordinate of `error_mm`, mm (`null`
     /// ends: too few fitted readings for the level); `null` without intervals.
     pub interval_mm: Option<[[Option<f64>; 2]; 3]>,
+    /// Whether `interval_mm` holds: `false` where the posture lies outside the fitted postures'
+    /// axis ranges (`outside_range`; the intervals are built from the fitted postures and say
+    /// nothing there), `true` within; `null` without intervals.
+    pub interval_holds: Option<bool>,
+    /// How far the posture lies outside the fitted postures' axis ranges, when more than 1 deg
+    /// (`--validate`); `null` within them.
+    pub outside_range: Option<OutsideRange>,
+}
+
+/// A held-out posture outside the fitted postures' axis ranges.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct OutsideRange {
+    /// The largest distance of an axis angle beyond its fitted range, deg.
+    pub distance_deg: f64,
+    /// The joints beyond their fitted range by more than 1 deg (1-based, ascending).
+    pub joints: Vec<usize>,
 }
 
 impl Document {
@@ -528,8 +545,15 @@ fn held(h: &Held) -> ValidationDocument {
         }
     });
     let mut errors = errors(&h.calibrated, &h.labels);
+    for (e, p) in errors.iter_mut().zip(&h.calibrated.errors) {
+        e.outside_range = h.outside.get(&p.posture).map(|o| OutsideRange {
+            distance_deg: o.distance.to_degrees(),
+            joints: o.joints.iter().map(|j| j + 1).collect(),
+        });
+    }
     for (e, i) in errors.iter_mut().zip(h.intervals.iter().flatten()) {
         e.interval_mm = Some(stiffid_core::app::document::interval_mm(*i));
+        e.interval_holds = Some(e.outside_range.is_none());
     }
     ValidationDocument {
         data: h.name.clone(),
@@ -596,6 +620,8 @@ fn errors(v: &Validation, labels: &[String]) -> Vec<PointError> {
             error_mm: [mm(e.error.x), mm(e.error.y), mm(e.error.z)],
             error_norm_mm: mm(e.error.norm()),
             interval_mm: None,
+            interval_holds: None,
+            outside_range: None,
         })
         .collect()
 }
@@ -624,4 +650,50 @@ pub(super) fn held_out_lines(source: &str, lengths: impl Iterator<Item = f64>) -
         "\n# The calibration's held-out position errors (|predicted - read|, mm): the error budget of\n# `stiffid compensate` takes their quantile at its level.\n[held_out]\nsource = \"{source}\"\nerrors_mm = [{}]\n",
         errors.join(", ")
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::app::calibrate::Outside;
+    use stiffid_metrology::calibration::validation::PointError as Error;
+
+    /// Two held-out readings with intervals, the second's posture 12.5 deg beyond joint 2's
+    /// fitted range and 3 deg beyond joint 5's: its interval is marked as not holding, with the
+    /// distance and joints; the first's holds.
+    #[test]
+    fn intervals_of_postures_outside_the_fitted_ranges_do_not_hold() {
+        let error = |posture| Error {
+            posture,
+            point: 0,
+            error: nalgebra::Vector3::new(1e-4, 0.0, 0.0),
+        };
+        let outside = Outside {
+            distance: 12.5f64.to_radians(),
+            farthest: 1,
+            joints: vec![1, 4],
+        };
+        let h = Held {
+            name: "held.csv".into(),
+            calibrated: Validation::new(vec![error(0), error(1)]),
+            nominal: Validation::new(vec![error(0), error(1)]),
+            labels: vec!["A".into(), "B".into()],
+            intervals: Some(vec![[[-1e-3, 1e-3]; 3]; 2]),
+            coverage: None,
+            outside: [(1, outside)].into_iter().collect(),
+        };
+        let doc = held(&h);
+        assert_eq!(doc.errors[0].interval_holds, Some(true));
+        assert_eq!(doc.errors[0].outside_range, None);
+        assert_eq!(doc.errors[1].interval_holds, Some(false));
+        let o = doc.errors[1].outside_range.as_ref().unwrap();
+        assert!((o.distance_deg - 12.5).abs() < 1e-12, "{}", o.distance_deg);
+        assert_eq!(o.joints, [2, 5]);
+        let without = held(&Held {
+            intervals: None,
+            ..h
+        });
+        assert_eq!(without.errors[1].interval_holds, None);
+        assert!(without.errors[1].outside_range.is_some());
+    }
 }

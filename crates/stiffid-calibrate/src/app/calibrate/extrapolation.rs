@@ -64,15 +64,24 @@ pub(super) fn warning(
     ))
 }
 
-/// The warning ([`WarningKind::Extrapolation`]) when held-out postures (`held`, labelled by
-/// `labels`) lie outside the `fitted` observations' axis ranges by more than [`OUTSIDE_RAD`],
-/// whatever their errors: how many, the joints outside, and the farthest posture with its
-/// distance (deg) beyond the range and its joint; `None` when every held-out posture lies within.
-pub(super) fn outside_ranges(
-    name: &str,
-    (fitted, held): (&[Observation], &[Observation]),
-    labels: &[String],
-) -> Option<Warning> {
+/// A held-out posture outside the fitted postures' axis ranges.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Outside {
+    /// The largest distance of an axis angle beyond its fitted range, rad.
+    pub distance: f64,
+    /// The joint at that distance (0-based).
+    pub farthest: usize,
+    /// The joints beyond their range by more than 1 deg (0-based, ascending).
+    pub joints: Vec<usize>,
+}
+
+/// The held-out postures (`held`'s posture indices, table observations left out) whose axis
+/// angles lie outside the `fitted` observations' ranges by more than [`OUTSIDE_RAD`], each with
+/// its [`Outside`], and the count of distinct held-out postures.
+pub(super) fn postures_outside(
+    fitted: &[Observation],
+    held: &[Observation],
+) -> (std::collections::BTreeMap<usize, Outside>, usize) {
     let ranges = ranges(fitted);
     let mut postures = std::collections::BTreeMap::new();
     for o in held.iter().filter(|o| !o.table) {
@@ -82,38 +91,51 @@ pub(super) fn outside_ranges(
         let (lo, hi) = ranges[j];
         (lo - q[j]).max(q[j] - hi).max(0.0)
     };
-    let mut joints = [false; 6];
-    let mut farthest: Option<(usize, usize, f64)> = None;
-    let mut outside = 0;
-    for (&posture, q) in &postures {
-        let mut any = false;
-        for (j, outside_j) in joints.iter_mut().enumerate() {
-            let d = beyond(q, j);
-            if d > OUTSIDE_RAD {
-                (*outside_j, any) = (true, true);
-                if farthest.is_none_or(|(_, _, f)| d > f) {
-                    farthest = Some((posture, j, d));
-                }
-            }
-        }
-        outside += usize::from(any);
-    }
-    let (posture, joint, distance) = farthest?;
+    let outside = (postures.iter()).filter_map(|(&posture, q)| {
+        let joints: Vec<usize> = (0..6).filter(|&j| beyond(q, j) > OUTSIDE_RAD).collect();
+        let farthest =
+            (joints.iter().copied()).max_by(|&a, &b| beyond(q, a).total_cmp(&beyond(q, b)))?;
+        let distance = beyond(q, farthest);
+        Some((
+            posture,
+            Outside {
+                distance,
+                farthest,
+                joints,
+            },
+        ))
+    });
+    (outside.collect(), postures.len())
+}
+
+/// The warning ([`WarningKind::Extrapolation`]) when held-out postures (`held`, labelled by
+/// `labels`) lie outside the `fitted` observations' axis ranges by more than [`OUTSIDE_RAD`],
+/// whatever their errors: how many, the joints outside, and the farthest posture with its
+/// distance (deg) beyond the range and its joint; `None` when every held-out posture lies within.
+pub(super) fn outside_ranges(
+    name: &str,
+    (fitted, held): (&[Observation], &[Observation]),
+    labels: &[String],
+) -> Option<Warning> {
+    let (outside, count) = postures_outside(fitted, held);
+    let joints = (outside.values()).flat_map(|o| o.joints.iter().copied());
+    let joints: std::collections::BTreeSet<usize> = joints.collect();
+    let (posture, far) = (outside.iter()).max_by(|a, b| a.1.distance.total_cmp(&b.1.distance))?;
     Some(Warning::new(
         WarningKind::Extrapolation,
         format!(
-            "{name}: {outside} of {} held-out postures lie outside the fitted postures' range of {} by more than 1 deg (farthest: posture {}, {:.1} deg beyond on joint {}): the calibration extrapolates there, and its errors and intervals there say nothing of the region it was fitted in; fit postures that cover the region the robot works in",
-            postures.len(),
-            joint_list((0..6).filter(|&j| joints[j])),
-            stiffid_core::common::limits::short(labels.get(posture).map_or("?", String::as_str)),
-            distance.to_degrees(),
-            joint + 1
+            "{name}: {} of {count} held-out postures lie outside the fitted postures' range of {} by more than 1 deg (farthest: posture {}, {:.1} deg beyond on joint {}): the calibration extrapolates there, and its errors and intervals there say nothing of the region it was fitted in; fit postures that cover the region the robot works in",
+            outside.len(),
+            joint_list(joints),
+            stiffid_core::common::limits::short(labels.get(*posture).map_or("?", String::as_str)),
+            far.distance.to_degrees(),
+            far.farthest + 1
         ),
     ))
 }
 
 /// The range of each axis angle over the `fitted` observations, rad.
-fn ranges(fitted: &[Observation]) -> [(f64, f64); 6] {
+pub(super) fn ranges(fitted: &[Observation]) -> [(f64, f64); 6] {
     std::array::from_fn(|j| {
         (fitted.iter().map(|o| o.q[j])).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
             (lo.min(v), hi.max(v))
@@ -242,6 +264,30 @@ mod tests {
             w.message
         );
         assert!(outside_ranges("held.csv", (&fitted, &held[..2]), &labels).is_none());
+    }
+
+    /// Per posture: the second held-out posture of [`case`] lies 123 deg beyond on joint 4 (and
+    /// 90 deg on joint 6), the first within; joint 1's 0.5 deg beyond is inside the 1 deg margin.
+    #[test]
+    fn each_posture_outside_carries_its_distance_and_joints() {
+        let fitted = [
+            observation(0, [0.0, -90.0, 0.0, -100.0, 0.0, -90.0]),
+            observation(1, [10.0, -80.0, 10.0, 70.0, 10.0, 0.0]),
+        ];
+        let held = [
+            observation(0, [10.5, -85.0, 5.0, 0.0, 5.0, -45.0]),
+            observation(1, [5.0, -85.0, 5.0, 193.0, 5.0, 90.0]),
+            observation(1, [5.0, -85.0, 5.0, 193.0, 5.0, 90.0]),
+        ];
+        let (outside, count) = postures_outside(&fitted, &held);
+        assert_eq!((count, outside.len()), (2, 1));
+        let o = &outside[&1];
+        assert_eq!((o.farthest, o.joints.clone()), (3, vec![3, 5]));
+        assert!(
+            (o.distance.to_degrees() - 123.0).abs() < 1e-12,
+            "{}",
+            o.distance
+        );
     }
 
     #[test]

@@ -27,6 +27,7 @@ pub mod scene;
 pub mod update;
 
 pub use compliance::{fitted_compliance, FittedCompliance};
+pub use extrapolation::Outside;
 pub use maps::{Maps, MAX_MAP_WORK};
 pub use update::MIN_POSTURES as MIN_UPDATE_POSTURES;
 pub use update::{Refit, Refits};
@@ -167,6 +168,9 @@ pub struct Held {
     pub intervals: Option<Vec<stiffid_core::model::prediction::Interval>>,
     /// The share of the held-out coordinates inside their intervals.
     pub coverage: Option<Coverage>,
+    /// The held-out postures (indices of `labels`) outside the fitted postures' axis ranges by
+    /// more than 1 deg (`--validate`; empty for the cross-validation).
+    pub outside: std::collections::BTreeMap<usize, Outside>,
 }
 
 /// What the job found.
@@ -333,6 +337,9 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         e @ stiffid_core::Error::InvalidOption { .. } => e,
         e => in_data(name, e),
     })?;
+    // The maps hold over the fitted postures' angles and taper to zero beyond them.
+    let model =
+        (model.with_map_ranges(extrapolation::ranges(&obs))).map_err(|e| in_data(name, e))?;
     let start = match model.map_start() {
         Some(_) => fit::start(&model, &obs).map_err(|e| in_data(name, e))?,
         None => start,
@@ -382,6 +389,7 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
             nominal: nominal.clone(),
             labels: data.labels.clone(),
             intervals: None,
+            outside: Default::default(),
             coverage: None,
         }),
     };
@@ -534,6 +542,7 @@ fn held_out(
         labels: data.labels.clone(),
         intervals,
         coverage,
+        outside: extrapolation::postures_outside(fitted, &obs).0,
     };
     // The gate of the fitted readings: a held-out reading that both the calibrated robot and the
     // nominal robot registered on them miss by more than a robot's error is not of this robot.

@@ -72,6 +72,8 @@ pub(super) struct Maps {
     /// The index of each joint's first coefficient (`a_1..a_H`, then `b_1..b_H`, then its
     /// half backlash).
     pub starts: [usize; 6],
+    /// The axis angles each fitted map holds over (rad; [`ErrorModel::with_map_ranges`]).
+    pub ranges: Option<[(f64, f64); 6]>,
 }
 
 impl ErrorModel {
@@ -139,7 +141,28 @@ impl ErrorModel {
                 });
             }
         }
-        self.maps = (!terms.is_none()).then_some(Maps { terms, starts });
+        self.maps = (!terms.is_none()).then_some(Maps {
+            terms,
+            starts,
+            ranges: None,
+        });
+        Ok(self)
+    }
+
+    /// The model whose fitted maps hold over the axis angles `ranges` (rad, per joint: the
+    /// fitted postures' range) and taper to zero beyond them ([`stiffid_core::robot::error_map::taper`]):
+    /// its robot's maps carry them ([`ErrorMap::with_range`]) and its map columns taper alike.
+    /// Without maps, the model unchanged.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (`error_map.range_deg`) when a range is not finite or reversed.
+    pub fn with_map_ranges(mut self, ranges: [(f64, f64); 6]) -> Result<Self> {
+        for &(lo, hi) in &ranges {
+            ErrorMap::default().with_range(lo, hi)?;
+        }
+        if let Some(maps) = self.maps.as_mut() {
+            maps.ranges = Some(ranges);
+        }
         Ok(self)
     }
 
@@ -184,14 +207,22 @@ impl ErrorModel {
                 true => values[s + 2 * h],
                 false => own[joint].backlash(),
             };
-            out[joint] = fitted.plus(&rest).with_backlash(backlash)?;
+            let map = fitted.plus(&rest).with_backlash(backlash)?;
+            out[joint] = match maps.ranges.map(|r| r[joint]) {
+                Some((lo, hi)) => map.with_range(lo, hi)?,
+                None => match own[joint].range() {
+                    Some((lo, hi)) => map.with_range(lo, hi)?,
+                    None => map,
+                },
+            };
         }
         Ok(Some(out))
     }
 
     /// Writes the map columns of the point whose axis-coordinate Jacobian columns are
     /// `columns[i]` (base frame, m/rad) at the axis angles `at` (rad) approached from
-    /// `direction` ([`super::Observation::direction`]) into `put(index, column)`.
+    /// `direction` ([`super::Observation::direction`]) into `put(index, column)`, the series'
+    /// columns tapered beyond the maps' ranges as the maps are.
     pub(super) fn map_columns(
         &self,
         columns: &[Vector3<f64>; 6],
@@ -204,11 +235,12 @@ impl ErrorModel {
         };
         for joint in (0..6).filter(|&j| maps.terms.has(j)) {
             let h = maps.terms.harmonics[joint];
+            let w = (maps.ranges).map_or(1.0, |r| error_map::taper(at[joint], r[joint]));
             let (s1, c1) = at[joint].sin_cos();
             let (mut s, mut c) = (s1, c1);
             for k in 0..h {
-                put(maps.starts[joint] + k, columns[joint] * c);
-                put(maps.starts[joint] + h + k, columns[joint] * s);
+                put(maps.starts[joint] + k, columns[joint] * (w * c));
+                put(maps.starts[joint] + h + k, columns[joint] * (w * s));
                 (s, c) = (s * c1 + c * s1, c * c1 - s * s1);
             }
             if maps.terms.backlash[joint] {
