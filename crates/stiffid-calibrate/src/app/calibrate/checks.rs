@@ -1,10 +1,13 @@
-//! The checks of a calibrate request that come before any fit: the level of the held-out
-//! readings' intervals and the size of a cross-validation.
+//! The checks of a calibrate request: before any fit, the level of the held-out readings'
+//! intervals and the size of a cross-validation; after it, readings that determine nothing.
 
 use super::{Request, MAX_CROSS_VALIDATION_POSTURES};
 use stiffid_core::common::error::JobOption;
-use stiffid_core::{Error, Result};
+use stiffid_core::io::readings::Readings as Data;
+use stiffid_core::{Error, Result, Setup};
 use stiffid_metrology::calibration::error_model::Observation;
+use stiffid_metrology::calibration::fit::Fit;
+use stiffid_metrology::calibration::ErrorModel;
 
 /// The level of the held-out readings' prediction intervals: `request.level`, else
 /// [`stiffid_core::model::prediction::DEFAULT_LEVEL`].
@@ -40,4 +43,58 @@ pub(super) fn cross_validation_size(obs: &[Observation]) -> Result<()> {
         }),
         false => Ok(()),
     }
+}
+
+/// Refuses readings whose distinct postures ([`stiffid_design::distinct`]) give no more coordinates
+/// than the fit has parameters (but the maps' ridge-held ones): they would determine nothing.
+///
+/// # Errors
+/// [`Error::InvalidField`] (`readings`) naming the count of distinct postures, of readings, of
+/// their coordinates and of the fitted parameters.
+pub(super) fn refuse_repeated(
+    setup: &Setup,
+    data: &Data,
+    model: &ErrorModel,
+    fit: &Fit,
+) -> Result<()> {
+    // The postures of the arm's points, grouped by their external axes' values: postures at two
+    // stations of a track are distinct whatever their axis angles.
+    let mut postures = vec![None; data.labels.len()];
+    for r in data.readings.iter().filter(|r| !r.table) {
+        postures[r.posture].get_or_insert((r.q, &r.e));
+    }
+    let mut groups = std::collections::BTreeMap::<Vec<u64>, Vec<_>>::new();
+    for (q, e) in postures.into_iter().flatten() {
+        let key = e.as_slice().iter().map(|v| v.to_bits()).collect();
+        groups.entry(key).or_default().push(q);
+    }
+    let distance = stiffid_design::distinct::Distinctness::default();
+    let distinct: usize = (groups.values())
+        .map(|postures| {
+            let mut usable = vec![true; postures.len()];
+            stiffid_design::distinct::distinct_pool(
+                setup.robot(),
+                postures,
+                &mut usable,
+                &distance,
+            );
+            usable.iter().filter(|&&u| u).count()
+        })
+        .sum();
+    let tables = data.readings.iter().filter(|r| r.table).count();
+    let coordinates = 3 * model.points() * distinct + 3 * tables;
+    let fitted = (fit.fitted.iter()).filter(|&&i| model.map_start().is_none_or(|s| i < s));
+    let fitted = fitted.count();
+    if coordinates > fitted {
+        return Ok(());
+    }
+    Err(Error::InvalidField {
+        field: "readings".into(),
+        message: format!(
+            "{} readings of {distinct} distinct posture{} (postures closer than 2 deg in every axis, or 10 mm and 2 deg at the flange, count once) give {coordinates} coordinates for {} fitted parameters: the readings determine nothing the fit would not choose; read more distinct postures",
+            data.readings.len(),
+            if distinct == 1 { "" } else { "s" },
+            fitted
+        ),
+    })
 }
