@@ -598,7 +598,7 @@ fn finite(v: f64) -> f64 {
 /// relative standard deviations, and the predicted deviation rate grows as the square root of the
 /// noise level (levels 0.5 and 2.0: a factor of 2).
 /// ```
-/// use stiffid_design::::{evaluate, random_group, Criterion};
+/// use stiffid_design::{evaluate, random_group, Criterion};
 /// let setup = stiffid_core::setup::builtin("zhang2021-comau-nj165")?;
 /// let e = evaluate(&setup, &random_group(&setup, 8, 1));
 /// let rms = e.relative_std.norm() / 6f64.sqrt();

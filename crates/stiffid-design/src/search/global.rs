@@ -46,7 +46,7 @@ use stiffid_core::Result;
 /// Two starts on the paper's setup: the same group with the same seed, and the evaluations of
 /// both starts counted.
 /// ```
-/// use stiffid_design::::{global, Criterion, SearchOptions};
+/// use stiffid_design::{global, Criterion, SearchOptions};
 /// let setup = stiffid_core::setup::builtin("zhang2021-comau-nj165")?;
 /// let options = SearchOptions { starts: 2, polished: 1, max_evals: 150, ..SearchOptions::quick() };
 /// let a = global(&setup, Criterion::DOptimal, 8, &options, &())?;

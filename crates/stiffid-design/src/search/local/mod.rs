@@ -51,7 +51,7 @@ const PENALTY: f64 = 1e3;
 /// From a seeded start group of 8 postures on the paper's setup, SQP on `relative-a` ends lower,
 /// within the bounds.
 /// ```
-/// use stiffid_design::::{local, random_group, Criterion, SearchOptions};
+/// use stiffid_design::{local, random_group, Criterion, SearchOptions};
 /// let setup = stiffid_core::setup::builtin("zhang2021-comau-nj165")?;
 /// let start = random_group(&setup, 8, 1);
 /// let options = SearchOptions { max_evals: 200, ..SearchOptions::default() };
