@@ -18,7 +18,7 @@
 //! outside `G83`, and a block of `R`, `Q` or `P` alone (controllers differ on whether it drills).
 
 use super::{at, may_move, Block, GCode, Motion, Point, State, MAX_POINTS};
-use nalgebra::Vector3;
+use nalgebra::{UnitQuaternion, Vector3};
 use std::ops::Range;
 use stiffid_core::Result;
 
@@ -89,13 +89,43 @@ pub(super) fn block(
     s: &mut State,
     out: &mut GCode,
 ) -> Result<()> {
-    let code = s.motion;
-    let name = format!("G{code}");
     let scale = if s.inch { 25.4e-3 } else { 1e-3 };
-    let text = |r: &Range<usize>| out.text[r.clone()].to_string();
-    if let Some((v, r)) = &w.dwell {
-        s.cycle.dwell = Some((*v, text(r)));
+    if let Some((_, r)) = &w.dwell {
         drop.push(r.clone());
+    }
+    keep_in_force(&w, scale, &out.text, s);
+    let drills = w.given || w.xyz.iter().any(Option::is_some);
+    if !drills {
+        if w.retract.is_some() || w.peck.is_some() || w.dwell.is_some() {
+            return Err(at(line, format!("G{}: R, Q or P without X, Y or Z: controllers differ on whether such a block drills; give the hole's X Y", s.motion)));
+        }
+        return Ok(());
+    }
+    let hole = hole(line, &w, other_geometry, scale, s)?;
+    let (moves, bottom_index) = moves(&hole, s);
+    if !moves
+        .iter()
+        .all(|(p, _)| p.iter().all(|v| v.abs() <= 100.0))
+    {
+        return Err(at(line, "position beyond 100 m".into()));
+    }
+    let block = Block {
+        line: span,
+        points: 0..0,
+        drop,
+        external_words: Vec::new(),
+        arc_word: None,
+        inch: s.inch,
+        incremental: false,
+        cycle: None,
+    };
+    push(line, hole, &moves, bottom_index, block, s, out)
+}
+
+/// The block's `Z`, `R`, `Q` and `P` kept in force for the cycle's next blocks.
+fn keep_in_force(w: &Words, scale: f64, text: &str, s: &mut State) {
+    if let Some((v, r)) = &w.dwell {
+        s.cycle.dwell = Some((*v, text[r.clone()].to_string()));
     }
     if let Some(z) = w.xyz[2] {
         s.cycle.depth = Some(z * scale);
@@ -106,14 +136,32 @@ pub(super) fn block(
     if let Some(q) = w.peck {
         s.cycle.peck = Some(q * scale);
     }
-    let drills = w.given || w.xyz.iter().any(Option::is_some);
-    if !drills {
-        if w.retract.is_some() || w.peck.is_some() || w.dwell.is_some() {
-            return Err(at(line, format!("{name}: R, Q or P without X, Y or Z: controllers differ on whether such a block drills; give the hole's X Y")));
-        }
-        return Ok(());
+}
+
+/// One hole as the cycle drills it (m, part frame), the tool's orientation along it.
+struct Hole {
+    code: u8,
+    x: f64,
+    y: f64,
+    depth: f64,
+    retract: f64,
+    clearance: f64,
+    peck: Option<f64>,
+    /// `P`: its value and its text.
+    dwell: Option<(f64, String)>,
+    orientation: UnitQuaternion<f64>,
+}
+
+impl Hole {
+    fn at_xy(&self, z: f64) -> Vector3<f64> {
+        Vector3::new(self.x, self.y, z)
     }
-    let refuse = |why: &str| Err(at(line, format!("{name}: {why}")));
+}
+
+/// The hole a drilling block makes, or the reason (module docs) it is refused.
+fn hole(line: u64, w: &Words, other_geometry: bool, scale: f64, s: &State) -> Result<Hole> {
+    let code = s.motion;
+    let refuse = |why: &str| Err(at(line, format!("G{code}: {why}")));
     if s.incremental {
         return refuse("a canned cycle under G91: controllers differ on what R and Z count from; write it in G90");
     }
@@ -124,7 +172,7 @@ pub(super) fn block(
         return refuse("I, J, K, rotary or external axis words in a canned cycle");
     }
     let tool = may_move(line, s)?;
-    let orientation = nalgebra::UnitQuaternion::from_euler_angles(
+    let orientation = UnitQuaternion::from_euler_angles(
         s.abc[0].to_radians(),
         s.abc[1].to_radians(),
         s.abc[2].to_radians(),
@@ -158,18 +206,30 @@ pub(super) fn block(
     };
     if let Some(q) = peck {
         if (retract - depth) / q > MAX_POINTS as f64 / 3.0 {
-            return Err(at(
-                line,
-                format!("{name}: more than {MAX_POINTS} path points of pecks"),
-            ));
+            return refuse(&format!("more than {MAX_POINTS} path points of pecks"));
         }
     }
-    let x = w.xyz[0].map_or(s.position.x, |v| v * scale);
-    let y = w.xyz[1].map_or(s.position.y, |v| v * scale);
     let clearance = match s.retract_to_r {
         true => retract,
         false => retract.max(s.cycle.initial),
     };
+    Ok(Hole {
+        code,
+        x: w.xyz[0].map_or(s.position.x, |v| v * scale),
+        y: w.xyz[1].map_or(s.position.y, |v| v * scale),
+        depth,
+        retract,
+        clearance,
+        peck,
+        dwell,
+        orientation,
+    })
+}
+
+/// The hole's moves from the tool's position (module docs), and the index of the move that
+/// reaches the bottom.
+fn moves(hole: &Hole, s: &State) -> (Vec<(Vector3<f64>, Motion)>, usize) {
+    let (depth, retract) = (hole.depth, hole.retract);
     let mut moves: Vec<(Vector3<f64>, Motion)> = Vec::new();
     let mut here = s.position;
     let mut go = |p: Vector3<f64>, m: Motion, moves: &mut Vec<(Vector3<f64>, Motion)>| {
@@ -178,27 +238,27 @@ pub(super) fn block(
             here = p;
         }
     };
-    let at_xy = |z: f64| Vector3::new(x, y, z);
     let above = s.position.z.max(retract);
     go(
         Vector3::new(s.position.x, s.position.y, above),
         Motion::Rapid,
         &mut moves,
     );
-    go(at_xy(above), Motion::Rapid, &mut moves);
-    go(at_xy(retract), Motion::Rapid, &mut moves);
+    go(hole.at_xy(above), Motion::Rapid, &mut moves);
+    go(hole.at_xy(retract), Motion::Rapid, &mut moves);
     let (mut reached, surface) = (retract, s.surface);
     let bottom_index = loop {
         // A peck too small to change the level in floating point goes to the bottom.
-        let next = peck
+        let next = hole
+            .peck
             .map(|q| (reached - q).max(depth))
             .filter(|n| *n < reached)
             .unwrap_or(depth);
         let from = match reached < retract {
             true => {
-                go(at_xy(retract), Motion::Rapid, &mut moves);
+                go(hole.at_xy(retract), Motion::Rapid, &mut moves);
                 let z = (reached + PECK_CLEARANCE_MM * 1e-3).min(retract);
-                go(at_xy(z), Motion::Rapid, &mut moves);
+                go(hole.at_xy(z), Motion::Rapid, &mut moves);
                 z
             }
             false => retract,
@@ -206,38 +266,45 @@ pub(super) fn block(
         // Where the drill meets material: the part's surface, or the depth a peck reached.
         let entry = reached.min(surface);
         if entry < from && entry > next {
-            go(at_xy(entry), Motion::Feed, &mut moves);
+            go(hole.at_xy(entry), Motion::Feed, &mut moves);
         }
-        go(at_xy(next), Motion::Feed, &mut moves);
+        go(hole.at_xy(next), Motion::Feed, &mut moves);
         reached = next;
         if next <= depth {
             break moves.len() - 1;
         }
     };
-    go(at_xy(clearance), Motion::Rapid, &mut moves);
-    if !moves
-        .iter()
-        .all(|(p, _)| p.iter().all(|v| v.abs() <= 100.0))
-    {
-        return Err(at(line, "position beyond 100 m".into()));
-    }
+    go(hole.at_xy(hole.clearance), Motion::Rapid, &mut moves);
+    (moves, bottom_index)
+}
+
+/// The hole in `out.cycles`, its moves in `out.points` and its block in `out.blocks`.
+fn push(
+    line: u64,
+    hole: Hole,
+    moves: &[(Vector3<f64>, Motion)],
+    bottom_index: usize,
+    mut block: Block,
+    s: &mut State,
+    out: &mut GCode,
+) -> Result<()> {
     let index = out.cycles.len();
     out.cycles.push(super::Cycle {
         line,
-        code,
-        bottom: at_xy(depth),
-        retract,
-        clearance,
-        dwell: dwell.as_ref().map(|(v, _)| *v),
-        peck,
+        code: hole.code,
+        bottom: hole.at_xy(hole.depth),
+        retract: hole.retract,
+        clearance: hole.clearance,
+        dwell: hole.dwell.as_ref().map(|(v, _)| *v),
+        peck: hole.peck,
     });
     let first = out.points.len();
     let external = super::external_values(line, s)?;
-    for (p, m) in &moves {
+    for (p, m) in moves {
         out.points.push(Point {
             line,
             position: *p,
-            orientation,
+            orientation: hole.orientation,
             motion: *m,
             tool_number: s.tool_number,
             operation: s.operation.clone(),
@@ -246,16 +313,11 @@ pub(super) fn block(
             external: external.clone(),
         });
     }
-    s.position = here;
-    out.blocks.push(Block {
-        line: span,
-        points: first..out.points.len(),
-        drop,
-        external_words: Vec::new(),
-        arc_word: None,
-        inch: s.inch,
-        incremental: false,
-        cycle: Some(dwell.map(|(_, text)| (bottom_index, text))),
-    });
+    if let Some((p, _)) = moves.last() {
+        s.position = *p;
+    }
+    block.points = first..out.points.len();
+    block.cycle = Some(hole.dwell.map(|(_, text)| (bottom_index, text)));
+    out.blocks.push(block);
     Ok(())
 }

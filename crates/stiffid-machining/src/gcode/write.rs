@@ -1,6 +1,6 @@
 //! The program written back with corrected positions (module docs of [`super`], "What is written").
 
-use super::{GCode, Motion};
+use super::{Block, GCode, Motion};
 use nalgebra::Vector3;
 use std::ops::Range;
 use stiffid_core::{Error, Result};
@@ -55,38 +55,17 @@ impl GCode {
                 ),
             });
         }
-        let letters = &self.external.0;
-        let mut written_e = vec![0.0; letters.len()];
+        let mut words = Words {
+            positions,
+            external,
+            letters: &self.external.0,
+            written: Vector3::zeros(),
+            written_e: vec![0.0; self.external.0.len()],
+        };
         let mut out = String::with_capacity(self.text.len() * 2);
         let mut at = 0;
-        // The position the controller is at, as written (for incremental blocks).
-        let mut written = Vector3::zeros();
         for b in &self.blocks {
             out.push_str(&self.text[at..b.line.start]);
-            let scale = if b.inch { 25.4e-3 } else { 1e-3 };
-            let mut words = |k: usize| {
-                let p = &positions[k];
-                let v = if b.incremental {
-                    (p - written) / scale
-                } else {
-                    p / scale
-                };
-                written = *p;
-                let mut text = format!("X{:.6} Y{:.6} Z{:.6}", v.x, v.y, v.z);
-                for (j, l) in letters.iter().enumerate() {
-                    let Some(e) = external.map(|e| e[k][j]) else {
-                        break;
-                    };
-                    let unit = match (l, b.inch) {
-                        ('U' | 'V' | 'W', true) => 25.4,
-                        _ => 1.0,
-                    };
-                    let value = if b.incremental { e - written_e[j] } else { e };
-                    written_e[j] = e;
-                    text.push_str(&format!(" {l}{:.6}", value / unit));
-                }
-                text
-            };
             let mut drop = b.drop.clone();
             if external.is_some() {
                 drop.extend(b.external_words.iter().cloned());
@@ -95,67 +74,133 @@ impl GCode {
                 true => "\r\n",
                 false => "\n",
             };
-            if let Some(dwell) = &b.cycle {
-                drop.sort_by_key(|r| r.start);
-                let mut from = b.line.start;
-                for r in &drop {
-                    out.push_str(&self.text[from..r.start]);
-                    from = r.end;
-                }
-                out.push_str(&self.text[from..b.line.end]);
-                for (j, (k, point)) in (b.points.clone())
-                    .zip(&self.points[b.points.clone()])
-                    .enumerate()
-                {
-                    out.push_str(ending);
-                    out.push_str(match point.motion {
-                        Motion::Rapid => "G0 ",
-                        Motion::Feed => "G1 ",
-                    });
-                    out.push_str(&words(k));
-                    if let Some((_, p_word)) = dwell.as_ref().filter(|(after, _)| *after == j) {
-                        out.push_str(ending);
-                        out.push_str("G4 ");
-                        out.push_str(p_word);
-                    }
-                }
-                at = b.line.end;
-                continue;
-            }
-            let first = words(b.points.start);
-            let mut line = String::new();
-            let mut from = b.line.start;
-            let mut edits: Vec<(Range<usize>, &str)> =
-                drop.iter().map(|r| (r.clone(), "")).collect();
-            if let Some(g) = &b.arc_word {
-                edits.push((g.clone(), "G1"));
-            }
-            edits.sort_by_key(|(r, _)| r.start);
-            let insert = edits
-                .iter()
-                .find(|(_, t)| t.is_empty())
-                .map_or(b.line.end, |(r, _)| r.start);
-            for (r, t) in &edits {
-                line.push_str(&self.text[from..r.start]);
-                if r.start == insert {
-                    line.push_str(&first);
-                }
-                line.push_str(t);
-                from = r.end;
-            }
-            line.push_str(&self.text[from..b.line.end]);
-            if insert == b.line.end {
-                line.push(' ');
-                line.push_str(&first);
-            }
-            out.push_str(&line);
-            for k in b.points.start + 1..b.points.end {
-                out.push_str(ending);
-                out.push_str(&words(k));
+            match &b.cycle {
+                Some(dwell) => self.write_cycle(b, drop, dwell, ending, &mut words, &mut out),
+                None => self.write_motion(b, &drop, ending, &mut words, &mut out),
             }
             at = b.line.end;
         }
         out.push_str(&self.text[at..]);
         Ok(out)
+    }
+
+    /// A canned cycle's block: its own words kept, each point a `G0`/`G1` block of its own, the
+    /// dwell `G4 P..` after the bottom.
+    fn write_cycle(
+        &self,
+        b: &Block,
+        mut drop: Vec<Range<usize>>,
+        dwell: &Option<(usize, String)>,
+        ending: &str,
+        words: &mut Words,
+        out: &mut String,
+    ) {
+        drop.sort_by_key(|r| r.start);
+        let mut from = b.line.start;
+        for r in &drop {
+            out.push_str(&self.text[from..r.start]);
+            from = r.end;
+        }
+        out.push_str(&self.text[from..b.line.end]);
+        for (j, (k, point)) in (b.points.clone())
+            .zip(&self.points[b.points.clone()])
+            .enumerate()
+        {
+            out.push_str(ending);
+            out.push_str(match point.motion {
+                Motion::Rapid => "G0 ",
+                Motion::Feed => "G1 ",
+            });
+            out.push_str(&words.point(k, b));
+            if let Some((_, p_word)) = dwell.as_ref().filter(|(after, _)| *after == j) {
+                out.push_str(ending);
+                out.push_str("G4 ");
+                out.push_str(p_word);
+            }
+        }
+    }
+
+    /// A block of a straight or circular move: its first point's words where the dropped words
+    /// were (an arc's `G2`/`G3` as `G1`), the arc's further points on blocks of their own.
+    fn write_motion(
+        &self,
+        b: &Block,
+        drop: &[Range<usize>],
+        ending: &str,
+        words: &mut Words,
+        out: &mut String,
+    ) {
+        let first = words.point(b.points.start, b);
+        let mut line = String::new();
+        let mut from = b.line.start;
+        let mut edits: Vec<(Range<usize>, &str)> = drop.iter().map(|r| (r.clone(), "")).collect();
+        if let Some(g) = &b.arc_word {
+            edits.push((g.clone(), "G1"));
+        }
+        edits.sort_by_key(|(r, _)| r.start);
+        let insert = edits
+            .iter()
+            .find(|(_, t)| t.is_empty())
+            .map_or(b.line.end, |(r, _)| r.start);
+        for (r, t) in &edits {
+            line.push_str(&self.text[from..r.start]);
+            if r.start == insert {
+                line.push_str(&first);
+            }
+            line.push_str(t);
+            from = r.end;
+        }
+        line.push_str(&self.text[from..b.line.end]);
+        if insert == b.line.end {
+            line.push(' ');
+            line.push_str(&first);
+        }
+        out.push_str(&line);
+        for k in b.points.start + 1..b.points.end {
+            out.push_str(ending);
+            out.push_str(&words.point(k, b));
+        }
+    }
+}
+
+/// The words of each point written, and where the controller is as written (for incremental
+/// blocks).
+struct Words<'a> {
+    positions: &'a [Vector3<f64>],
+    external: Option<&'a [Vec<f64>]>,
+    letters: &'a [char],
+    written: Vector3<f64>,
+    written_e: Vec<f64>,
+}
+
+impl Words<'_> {
+    /// Point `k`'s `X Y Z` and external axes' words in block `b`'s units and distance mode.
+    fn point(&mut self, k: usize, b: &Block) -> String {
+        let scale = if b.inch { 25.4e-3 } else { 1e-3 };
+        let p = &self.positions[k];
+        let v = if b.incremental {
+            (p - self.written) / scale
+        } else {
+            p / scale
+        };
+        self.written = *p;
+        let mut text = format!("X{:.6} Y{:.6} Z{:.6}", v.x, v.y, v.z);
+        for (j, l) in self.letters.iter().enumerate() {
+            let Some(e) = self.external.map(|e| e[k][j]) else {
+                break;
+            };
+            let unit = match (l, b.inch) {
+                ('U' | 'V' | 'W', true) => 25.4,
+                _ => 1.0,
+            };
+            let value = if b.incremental {
+                e - self.written_e[j]
+            } else {
+                e
+            };
+            self.written_e[j] = e;
+            text.push_str(&format!(" {l}{:.6}", value / unit));
+        }
+        text
     }
 }
