@@ -378,13 +378,44 @@ pub fn compensate_for(
         (Some(_), true) => Some(cell::at_chosen(arm, workpiece, program, &results)?),
         _ => placements,
     };
-    let program = match program {
+    let at = (arm, workpiece);
+    let program = write_back(
+        controller,
+        at,
+        program,
+        &results,
+        (placements.as_deref(), free),
+    )?;
+    if let Some(p) = &placements {
+        cell::to_cell(&mut results, p);
+    }
+    Ok(Report {
+        points,
+        results,
+        operations: indices,
+        program,
+        warnings,
+        configurations,
+    })
+}
+
+/// The program written back in its own format (module docs, step 5): a robot program with the
+/// compensated axis angles, G-code with the controller's positions of them in the part frame;
+/// the external values chosen when they are free.
+fn write_back(
+    controller: &stiffid_core::Robot,
+    (arm, workpiece): (&Arm, Option<&Isometry3<f64>>),
+    program: &Program,
+    results: &[Compensated],
+    (placements, free): (Option<&[cell::Placement]>, bool),
+) -> Result<String> {
+    Ok(match program {
         Program::Robot(p) => {
             let q: Vec<[f64; 6]> = results
                 .iter()
                 .map(|r| r.q_compensated.map(f64::to_degrees).into())
                 .collect();
-            match (&placements, arm.robot().external()) {
+            match (placements, arm.robot().external()) {
                 (Some(placed), axes @ Some(_)) => {
                     let e: Vec<Vec<f64>> = placed
                         .iter()
@@ -404,13 +435,13 @@ pub fn compensate_for(
                 .map(|(i, r)| {
                     // On a cell, where the controller's own track and positioner put the tool.
                     let q = &r.q_compensated;
-                    let (frames, part) = match (&placements, controller.external()) {
+                    let (frames, part) = match (placements, controller.external()) {
                         (Some(p), Some(axes)) if !axes.is_empty() => {
                             let e = p[i].external.as_slice();
                             let turned = axes.positioner_pose(e).inverse();
                             (controller.frames_at(q, e), part * turned)
                         }
-                        (p, _) => (controller.frames(q), p.as_ref().map_or(part, |p| p[i].part)),
+                        (p, _) => (controller.frames(q), p.map_or(part, |p| p[i].part)),
                     };
                     let pose = tool_pose(&frames, tcp);
                     part * nalgebra::Point3::from(pose.translation.vector)
@@ -419,7 +450,7 @@ pub fn compensate_for(
                 .collect();
             match (free, arm.robot().external()) {
                 (true, Some(axes)) => {
-                    let e: Vec<Vec<f64>> = (placements.iter().flatten())
+                    let e: Vec<Vec<f64>> = (placements.into_iter().flatten())
                         .map(|p| axes.to_display(p.external.as_slice()))
                         .collect();
                     g.write_with_external(&positions, &e)?
@@ -427,17 +458,6 @@ pub fn compensate_for(
                 _ => g.write(&positions)?,
             }
         }
-    };
-    if let Some(p) = &placements {
-        cell::to_cell(&mut results, p);
-    }
-    Ok(Report {
-        points,
-        results,
-        operations: indices,
-        program,
-        warnings,
-        configurations,
     })
 }
 

@@ -4,9 +4,9 @@
 //! of the free tool axis over the grid of (station, tilt, table angle, rotation) states (module
 //! docs of [`super`], "The free station").
 
-use super::feasible::Checks;
+use super::feasible::{Checks, Removed};
 use super::lead_tilt::{cones, lean_count, Leaning};
-use super::refine::{refine, Evaluate, Layout};
+use super::refine::{refine, Evaluate, Layout, Line};
 use super::stream::{compensate_chosen, nominal_postures, path_in_cones, Chosen};
 use super::tool_axis::{choose, column, lean_axes, rotation_axis, Axis, Column, Cost, Grid, Move};
 use super::PathPoint;
@@ -87,16 +87,8 @@ pub(crate) fn on_track(
     let (cell, free) = free_axes(robot.external(), options)?;
     let angles = options.free.tool_rotation.map_or(vec![0.0], |f| f.angles());
     let states = states(&free);
-    let largest = cones.iter().copied().fold(0.0, f64::max);
-    let leans = (options.free.lead_tilt.as_ref()).map_or(1.0, |l| lean_count(l, largest));
-    check_grid(
-        options,
-        (states.len() * angles.len()) as f64 * leans,
-        placed.len(),
-    )?;
-    let lean_axes_count = 2 * usize::from(options.free.lead_tilt.is_some());
-    let axes = free.len() + lean_axes_count + usize::from(options.free.tool_rotation.is_some());
-    super::refine::check(options.refine, axes, placed.len())?;
+    let sizes = (states.len(), angles.len(), free.len());
+    check_sizes(options, sizes, cones, placed.len())?;
     let model = Model::new(arm, compliance)?
         .at_level(options.level)
         .with_max_iterations(options.max_iterations)
@@ -118,38 +110,13 @@ pub(crate) fn on_track(
         .map(|moves| Station::new(cell, &at, moves))
         .collect();
     let leaning = Leaning::new(options.free.lead_tilt.as_ref(), &at.poses, cones.to_vec());
-    let (a, per_station) = (angles.len(), leaning.len() * angles.len());
     let cost = match objective {
         Objective::Deflection => Cost::Deflection,
         _ => Cost::Bound,
     };
-    let columns: Vec<Column> = (0..stations.len() * per_station)
-        .into_par_iter()
-        .map(|s| {
-            let k = s / per_station;
-            let st = &stations[k];
-            // A state beyond the travel at every point is no state: no inverse kinematics.
-            if !st.inside.contains(&true) {
-                return vec![None; nominal.len()];
-            }
-            let m = Move {
-                phi: angles[s % a],
-                shift: states[k]
-                    .iter()
-                    .any(|m| m.1 != 0.0)
-                    .then_some(st.shift.as_slice()),
-                lean: leaning.at(s % per_station / a),
-                line: None,
-            };
-            let mut c = column(&model, &nominal, &st.wrenches, (m, &cost), &options.ik);
-            for (cell, inside) in c.iter_mut().zip(&st.inside) {
-                if !inside {
-                    *cell = None;
-                }
-            }
-            c
-        })
-        .collect();
+    let grid = (angles.as_slice(), &leaning);
+    let columns = grid_columns(&model, &nominal, &stations, &states, grid, (&cost, options));
+    let per_station = leaning.len() * angles.len();
     let mut axes: Vec<Axis> = free.iter().map(FreeAxis::axis).collect();
     axes.extend(lean_axes(&leaning));
     if let Some(f) = &options.free.tool_rotation {
@@ -177,13 +144,8 @@ pub(crate) fn on_track(
             lean: leaning.at(leaning.len() / 2),
             line: Some(&line),
         };
-        let mut c = column(&model, &nominal, &st.wrenches, (m, &cost), &options.ik);
-        for (cell, inside) in c.iter_mut().zip(&st.inside) {
-            if !inside {
-                *cell = None;
-            }
-        }
-        (c, st.external)
+        let c = column(&model, &nominal, &st.wrenches, (m, &cost), &options.ik);
+        (within_travel(c, &st.inside), st.external)
     };
     let refined = (options.refine, &evaluate as &Evaluate);
     let line = refine(
@@ -195,7 +157,84 @@ pub(crate) fn on_track(
         &mut removed,
     );
     let st = along(&line.values);
-    let postures: Vec<Vector6<f64>> = (line.cells.iter().zip(&nominal))
+    let before = (wrenches.as_slice(), removed.as_slice());
+    compensate_line(&model, placed, (&line, st), &layout, &nominal, before)
+}
+
+/// The grid's size and the refinement's checked against their limits ([`check_grid`],
+/// [`super::refine::check`]): `states` of the free external axes, `angles` about tool z, `free`
+/// external axes.
+fn check_sizes(
+    options: &Options,
+    (states, angles, free): (usize, usize, usize),
+    cones: &[f64],
+    points: usize,
+) -> Result<()> {
+    let largest = cones.iter().copied().fold(0.0, f64::max);
+    let leans = (options.free.lead_tilt.as_ref()).map_or(1.0, |l| lean_count(l, largest));
+    check_grid(options, (states * angles) as f64 * leans, points)?;
+    let lean_axes_count = 2 * usize::from(options.free.lead_tilt.is_some());
+    let axes = free + lean_axes_count + usize::from(options.free.tool_rotation.is_some());
+    super::refine::check(options.refine, axes, points)
+}
+
+/// The grid's columns, one per station state, lean and rotation about tool z (in that order of
+/// nesting), each point's cell; none beyond the travel.
+fn grid_columns(
+    model: &Model,
+    nominal: &[Vector6<f64>],
+    stations: &[Station],
+    states: &[Vec<(usize, f64)>],
+    (angles, leaning): (&[f64], &Leaning),
+    (cost, options): (&Cost, &Options),
+) -> Vec<Column> {
+    let (a, per_station) = (angles.len(), leaning.len() * angles.len());
+    (0..stations.len() * per_station)
+        .into_par_iter()
+        .map(|s| {
+            let k = s / per_station;
+            let st = &stations[k];
+            // A state beyond the travel at every point is no state: no inverse kinematics.
+            if !st.inside.contains(&true) {
+                return vec![None; nominal.len()];
+            }
+            let m = Move {
+                phi: angles[s % a],
+                shift: states[k]
+                    .iter()
+                    .any(|m| m.1 != 0.0)
+                    .then_some(st.shift.as_slice()),
+                lean: leaning.at(s % per_station / a),
+                line: None,
+            };
+            let c = column(model, nominal, &st.wrenches, (m, cost), &options.ik);
+            within_travel(c, &st.inside)
+        })
+        .collect()
+}
+
+/// `column` without the cells of the points beyond the travel (`inside` false).
+fn within_travel(mut column: Column, inside: &[bool]) -> Column {
+    for (cell, inside) in column.iter_mut().zip(inside) {
+        if !inside {
+            *cell = None;
+        }
+    }
+    column
+}
+
+/// The points compensated along the refined `line` at the station `st` it moves them to: each
+/// at its chosen posture, rotation, lean and external values, from its `nominal` posture; the
+/// wrenches at the points' own values and the states the checks removed.
+fn compensate_line(
+    model: &Model,
+    placed: &[PathPoint],
+    (line, st): (&Line, Station),
+    layout: &Layout,
+    nominal: &[Vector6<f64>],
+    (wrenches, removed): (&[Vector6<f64>], &[Removed]),
+) -> Result<Vec<Compensated>> {
+    let postures: Vec<Vector6<f64>> = (line.cells.iter().zip(nominal))
         .map(|(c, q)| c.as_ref().map_or(*q, |c| c.0))
         .collect();
     let turned: Vec<[f64; 3]> = line.values.iter().map(|v| layout.turn_lean(v)).collect();
@@ -203,15 +242,15 @@ pub(crate) fn on_track(
     let leans: Vec<(f64, f64)> = turned.iter().map(|t| (t[1], t[2])).collect();
     let moved = st.wrenches;
     let at = Chosen {
-        nominal: &nominal,
+        nominal,
         postures: &postures,
         rotations: &rotations,
         leans: &leans,
         wrenches: &moved,
-        wrenches_before: &wrenches,
-        removed: &removed,
+        wrenches_before: wrenches,
+        removed,
     };
-    let mut results = compensate_chosen(&model, placed, &at, true)?;
+    let mut results = compensate_chosen(model, placed, &at, true)?;
     for (r, e) in results.iter_mut().zip(st.external) {
         r.external = e;
     }
