@@ -348,21 +348,7 @@ impl SetupBuilder {
         .filter_map(|(field, absent)| absent.then_some(field))
         .collect();
         let noise = required(self.noise, "noise")?;
-        if let Some(l) = self.characteristic_length {
-            check_scaled(
-                "characteristic_length_mm",
-                &[l],
-                1e3,
-                &limits::CHARACTERISTIC_LENGTH_MM,
-            )?;
-        }
-        if let Some(k) = &self.nominal_stiffness {
-            limits::check(
-                "nominal_stiffness_nm_per_rad",
-                k.as_slice(),
-                &limits::STIFFNESS_NM_PER_RAD,
-            )?;
-        }
+        check_scales(self.characteristic_length, self.nominal_stiffness.as_ref())?;
         let tcp = self.tcp.or(self.measuring_points.first().copied());
         let loading_point = (self.loading_point.or(tcp)).unwrap_or_default();
         check_tool(&loading_point, &self.measuring_points, tcp)?;
@@ -400,58 +386,11 @@ impl SetupBuilder {
             measuring_points: self.measuring_points,
             tcp: tcp.unwrap_or_default(),
         };
-        let defaults = super::default_geometry(&self.robot, &tool);
-        let shapes = match (&self.robot.bodies(), self.link_radii) {
-            (Bodies::Shapes(s), None) => Bodies::Shapes(s.clone()),
-            (Bodies::Missing(m), None) => Bodies::Missing(m.clone()),
-            _ => Bodies::Scaled,
-        };
-        let robot_radii = match &self.robot.bodies() {
-            Bodies::Capsules(r) => Some(*r),
-            _ => None,
-        };
-        let geometry = RobotGeometry {
-            link_radii: self
-                .link_radii
-                .or(robot_radii)
-                .unwrap_or(defaults.link_radii),
-            tool_radius: self.tool_radius.unwrap_or(defaults.tool_radius),
-        };
-        cell::check_geometry(&geometry)?;
-        if let Some(w) = &self.workpiece {
-            let xyz = w.translation.vector;
-            let field = "workpiece.base_from_part.xyz_mm";
-            check_scaled(field, xyz.as_slice(), 1e3, &limits::LENGTH_MM)?;
-        }
-        check_table_reflectors(
-            &self.table_reflectors,
-            &self.robot,
-            self.workpiece.is_some(),
-        )?;
-        if let Some(p) = &self.payload {
-            limits::check("tool.mass_kg", &[p.mass], &limits::TOOL_MASS_KG)?;
-            check_points("tool.centre_of_mass_mm", std::slice::from_ref(&p.centre))?;
-            let six = crate::robot::dynamics::body::components(&p.inertia);
-            limits::check("tool.inertia_kg_m2", &six, &limits::INERTIA_KG_M2)?;
-            crate::robot::dynamics::body::physical(&p.inertia).map_err(|message| {
-                crate::Error::InvalidField {
-                    field: "tool.inertia_kg_m2".into(),
-                    message,
-                }
-            })?;
-        }
-        let (p, o) = self.frame_sd;
-        limits::check("robot_accuracy.frame_sd_mm", &[p * 1e3], &limits::FRAME_SD)?;
-        limits::check(
-            "robot_accuracy.frame_sd_mrad",
-            &[o * 1e3],
-            &limits::FRAME_SD,
-        )?;
-        limits::check(
-            "masses.sd_pct",
-            &[self.mass_sd * 1e2],
-            &limits::MASS_SD_PERCENT,
-        )?;
+        let (shapes, geometry) =
+            robot_geometry(&self.robot, (self.link_radii, self.tool_radius), &tool)?;
+        let reflectors = (self.workpiece.as_ref(), self.table_reflectors.as_slice());
+        check_part_and_tool(reflectors, &self.robot, self.payload.as_ref())?;
+        check_accuracy(self.frame_sd, self.mass_sd)?;
         let tracker = self
             .tracker
             .map(|t| cell::checked_tracker(t, tool.measuring_points.len(), self.cell.as_ref()))
@@ -493,6 +432,95 @@ impl SetupBuilder {
             notes: Vec::new(),
         })
     }
+}
+
+/// The robot's bodies and geometry for the collision checks: the setup's `(link_radii,
+/// tool_radius)`, else the robot's capsules, else the defaults for the robot and the tool.
+fn robot_geometry(
+    robot: &Robot,
+    (link_radii, tool_radius): (Option<[f64; 7]>, Option<f64>),
+    tool: &Tool,
+) -> Result<(Bodies, RobotGeometry)> {
+    let defaults = super::default_geometry(robot, tool);
+    let shapes = match (robot.bodies(), link_radii) {
+        (Bodies::Shapes(s), None) => Bodies::Shapes(s.clone()),
+        (Bodies::Missing(m), None) => Bodies::Missing(m.clone()),
+        _ => Bodies::Scaled,
+    };
+    let robot_radii = match robot.bodies() {
+        Bodies::Capsules(r) => Some(*r),
+        _ => None,
+    };
+    let geometry = RobotGeometry {
+        link_radii: link_radii.or(robot_radii).unwrap_or(defaults.link_radii),
+        tool_radius: tool_radius.unwrap_or(defaults.tool_radius),
+    };
+    cell::check_geometry(&geometry)?;
+    Ok((shapes, geometry))
+}
+
+/// The workpiece frame's position, the table reflectors and the tool's mass within their
+/// limits.
+fn check_part_and_tool(
+    (workpiece, reflectors): (Option<&Isometry3<f64>>, &[Vector3<f64>]),
+    robot: &Robot,
+    payload: Option<&Payload>,
+) -> Result<()> {
+    if let Some(w) = workpiece {
+        let xyz = w.translation.vector;
+        let field = "workpiece.base_from_part.xyz_mm";
+        check_scaled(field, xyz.as_slice(), 1e3, &limits::LENGTH_MM)?;
+    }
+    check_table_reflectors(reflectors, robot, workpiece.is_some())?;
+    if let Some(p) = payload {
+        limits::check("tool.mass_kg", &[p.mass], &limits::TOOL_MASS_KG)?;
+        check_points("tool.centre_of_mass_mm", std::slice::from_ref(&p.centre))?;
+        let six = crate::robot::dynamics::body::components(&p.inertia);
+        limits::check("tool.inertia_kg_m2", &six, &limits::INERTIA_KG_M2)?;
+        crate::robot::dynamics::body::physical(&p.inertia).map_err(|message| {
+            crate::Error::InvalidField {
+                field: "tool.inertia_kg_m2".into(),
+                message,
+            }
+        })?;
+    }
+    Ok(())
+}
+
+/// The model's frame deviations (m, rad) and the masses' relative deviation within their limits.
+fn check_accuracy(frame_sd: (f64, f64), mass_sd: f64) -> Result<()> {
+    let (p, o) = frame_sd;
+    limits::check("robot_accuracy.frame_sd_mm", &[p * 1e3], &limits::FRAME_SD)?;
+    limits::check(
+        "robot_accuracy.frame_sd_mrad",
+        &[o * 1e3],
+        &limits::FRAME_SD,
+    )?;
+    limits::check("masses.sd_pct", &[mass_sd * 1e2], &limits::MASS_SD_PERCENT)?;
+    Ok(())
+}
+
+/// The characteristic length (m) and the nominal stiffness (Nm/rad) within their limits.
+fn check_scales(
+    characteristic_length: Option<f64>,
+    nominal_stiffness: Option<&Vector6<f64>>,
+) -> Result<()> {
+    if let Some(l) = characteristic_length {
+        check_scaled(
+            "characteristic_length_mm",
+            &[l],
+            1e3,
+            &limits::CHARACTERISTIC_LENGTH_MM,
+        )?;
+    }
+    if let Some(k) = nominal_stiffness {
+        limits::check(
+            "nominal_stiffness_nm_per_rad",
+            k.as_slice(),
+            &limits::STIFFNESS_NM_PER_RAD,
+        )?;
+    }
+    Ok(())
 }
 
 fn required<T>(value: Option<T>, field: &str) -> Result<T> {

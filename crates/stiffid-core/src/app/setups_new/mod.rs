@@ -50,14 +50,7 @@ pub fn run(request: &Request<'_>) -> Result<String> {
     } = *request;
     let reach = prior::reach(robot, SEED);
     let reference_reach = prior::reach(&presets::get(REFERENCE_ROBOT)?, SEED);
-    let (payload, payload_note) = match payload_kg {
-        Some(kg) => (kg, format!("the rated payload given, {kg} kg")),
-        None => {
-            let kg = prior::payload_class_kg(reach, reference_reach);
-            let note = format!("a payload class of about {kg:.0} kg guessed from the reach");
-            (kg, note + " (give --payload-kg)")
-        }
-    };
+    let (payload, payload_note) = payload(payload_kg, reach, reference_reach);
     let stiffness =
         prior::nominal_stiffness(payload).map_err(|e| e.for_option(JobOption::PayloadKg))?;
     // The paper's tool (a 160 mm plate 260 mm out, a loading arm 150 mm off axis 6), scaled down
@@ -84,32 +77,7 @@ pub fn run(request: &Request<'_>) -> Result<String> {
         .iter()
         .map(|p| list(p.iter(), 1))
         .collect();
-    let stem = match presets::get(robot_ref) {
-        Ok(_) => robot_ref.into(),
-        Err(_) => Path::new(robot_ref)
-            .file_stem()
-            .map_or(robot_ref.into(), |s| s.to_string_lossy()),
-    };
-    let urdf = Path::new(robot_ref)
-        .extension()
-        .is_some_and(|e| e == "urdf");
-    let tip_line = match tip {
-        Some(tip) => format!("robot_tip = {}", quoted(tip)),
-        None if urdf => "# robot_tip = \"tool0\"".into(),
-        None => "# (this robot is a preset or a robot TOML: it has no tip link to choose)".into(),
-    };
-    let package_line = match package_paths {
-        [] if urdf => "# package_paths = [\"../ros_ws/src\"]".into(),
-        [] => "# (a preset or a robot TOML has no meshes to find)".into(),
-        paths => format!(
-            "package_paths = [{}]",
-            paths
-                .iter()
-                .map(|p| quoted(p))
-                .collect::<Vec<_>>()
-                .join(", ")
-        ),
-    };
+    let (stem, tip_line, package_line) = robot_lines(robot_ref, tip, package_paths);
     let reach_mm = reach * 1e3;
     let mut values = vec![
         ("ROBOT_NAME", in_comment(robot.name())),
@@ -150,6 +118,56 @@ pub fn run(request: &Request<'_>) -> Result<String> {
     ];
     values.extend(cell_values(robot, &tool_mm, reach_mm));
     fill(&values)
+}
+
+/// The payload the prior's stiffness scales with (kg) and the note saying where it comes from:
+/// the rated payload given, else a class guessed from the robot's reach against the paper's
+/// robot's (m).
+fn payload(payload_kg: Option<f64>, reach: f64, reference_reach: f64) -> (f64, String) {
+    match payload_kg {
+        Some(kg) => (kg, format!("the rated payload given, {kg} kg")),
+        None => {
+            let kg = prior::payload_class_kg(reach, reference_reach);
+            let note = format!("a payload class of about {kg:.0} kg guessed from the reach");
+            (kg, note + " (give --payload-kg)")
+        }
+    }
+}
+
+/// The setup's name stem, its `robot_tip` line and its `package_paths` line for the robot as the
+/// setup file names it (a preset, a robot TOML or a URDF).
+fn robot_lines(
+    robot_ref: &str,
+    tip: Option<&str>,
+    package_paths: &[String],
+) -> (String, String, String) {
+    let stem = match presets::get(robot_ref) {
+        Ok(_) => robot_ref.into(),
+        Err(_) => Path::new(robot_ref)
+            .file_stem()
+            .map_or(robot_ref.into(), |s| s.to_string_lossy()),
+    };
+    let urdf = Path::new(robot_ref)
+        .extension()
+        .is_some_and(|e| e == "urdf");
+    let tip_line = match tip {
+        Some(tip) => format!("robot_tip = {}", quoted(tip)),
+        None if urdf => "# robot_tip = \"tool0\"".into(),
+        None => "# (this robot is a preset or a robot TOML: it has no tip link to choose)".into(),
+    };
+    let package_line = match package_paths {
+        [] if urdf => "# package_paths = [\"../ros_ws/src\"]".into(),
+        [] => "# (a preset or a robot TOML has no meshes to find)".into(),
+        paths => format!(
+            "package_paths = [{}]",
+            paths
+                .iter()
+                .map(|p| quoted(p))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    };
+    (stem.into_owned(), tip_line, package_line)
 }
 
 /// The values of the commented-out `[cell]`, `[robot_geometry]` and `[tracker]` sections for a

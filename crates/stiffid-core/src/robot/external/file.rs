@@ -114,10 +114,6 @@ fn axis(t: &AxisFile, table: &str, source_name: &str) -> Result<ExternalAxis> {
     let table = format!("{table} ({})", limits::short(&t.name));
     let field = |f: &str| format!("{table}.{f}");
     let field_in = |f: &str| format!("{source_name}: {table}.{f}");
-    let refuse = |present: bool, f: &str, why: &str| match present {
-        true => Err(invalid(source_name, &field(f), why)),
-        false => Ok(()),
-    };
     check_in(
         source_name,
         &field("direction"),
@@ -135,100 +131,15 @@ fn axis(t: &AxisFile, table: &str, source_name: &str) -> Result<ExternalAxis> {
         RoleFile::Carrier => (AxisKind::Linear, Role::Carrier),
         RoleFile::Positioner => (AxisKind::Rotary, Role::Positioner),
     };
-    let (lower, upper, offset, point, errors) = match kind {
-        AxisKind::Linear => {
-            let linear =
-                "given on a linear carrier axis: a carrier axis takes limits_mm and offset_mm (mm)";
-            refuse(t.limits_deg.is_some(), "limits_deg", linear)?;
-            refuse(t.offset_deg.is_some(), "offset_deg", linear)?;
-            refuse(t.max_speed_deg_s.is_some(), "max_speed_deg_s", linear)?;
-            refuse(
-                t.point_mm.is_some(),
-                "point_mm",
-                "given on a linear carrier axis: only a rotary positioner axis has a line through a point",
-            )?;
-            let Some([lower, upper]) = t.limits_mm else {
-                return Err(invalid(
-                    source_name,
-                    &field("limits_mm"),
-                    "missing: expected the axis's travel [lower, upper], mm",
-                ));
-            };
-            let offset = t.offset_mm.unwrap_or(0.0);
-            check_in(
-                source_name,
-                &field("limits_mm"),
-                &[lower, upper],
-                &limits::LENGTH_MM,
-            )?;
-            check_in(
-                source_name,
-                &field("offset_mm"),
-                &[offset],
-                &limits::LENGTH_MM,
-            )?;
-            let rows = (t.error_motions.iter().flatten())
-                .map(|r| [r[0], r[1], r[2], r[3], r[4], r[5]].map(|v| v * 1e-3))
-                .collect();
-            let errors = ErrorMotions::new(rows).map_err(|e| {
-                let message = match e {
-                    Error::InvalidField { message, .. } => {
-                        message.replace("50 mm and 0.1 rad", "50 mm and 100 mrad")
-                    }
-                    other => other.to_string(),
-                };
-                invalid(source_name, &field("error_motions"), &message)
-            })?;
-            (
-                lower * 1e-3,
-                upper * 1e-3,
-                offset * 1e-3,
-                Vector3::zeros(),
-                errors,
-            )
-        }
-        AxisKind::Rotary => {
-            let rotary = "given on a rotary positioner axis: a positioner axis takes limits_deg, offset_deg and point_mm";
-            refuse(t.limits_mm.is_some(), "limits_mm", rotary)?;
-            refuse(t.offset_mm.is_some(), "offset_mm", rotary)?;
-            refuse(t.max_speed_mm_s.is_some(), "max_speed_mm_s", rotary)?;
-            refuse(
-                t.error_motions.is_some(),
-                "error_motions",
-                "given on a rotary positioner axis: only a linear axis has error motions (a rotary axis's line and offset are its errors)",
-            )?;
-            let Some([lower, upper]) = t.limits_deg else {
-                return Err(invalid(
-                    source_name,
-                    &field("limits_deg"),
-                    "missing: expected the axis's travel [lower, upper], deg",
-                ));
-            };
-            let offset = t.offset_deg.unwrap_or(0.0);
-            let point = t.point_mm.unwrap_or_default();
-            check_in(
-                source_name,
-                &field("limits_deg"),
-                &[lower, upper],
-                &limits::ANGLE_DEG,
-            )?;
-            check_in(
-                source_name,
-                &field("offset_deg"),
-                &[offset],
-                &limits::ANGLE_DEG,
-            )?;
-            check_in(source_name, &field("point_mm"), &point, &limits::LENGTH_MM)?;
-            let rad = f64::to_radians;
-            let point = Vector3::from(point) * 1e-3;
-            (
-                rad(lower),
-                rad(upper),
-                rad(offset),
-                point,
-                ErrorMotions::default(),
-            )
-        }
+    let Travel {
+        lower,
+        upper,
+        offset,
+        point,
+        errors,
+    } = match kind {
+        AxisKind::Linear => linear(t, source_name, &field)?,
+        AxisKind::Rotary => rotary(t, source_name, &field)?,
     };
     if lower >= upper {
         let unit = match kind {
@@ -259,6 +170,123 @@ fn axis(t: &AxisFile, table: &str, source_name: &str) -> Result<ExternalAxis> {
         upper,
         errors,
         max_speed,
+    })
+}
+
+/// An axis's travel `[lower, upper]` and offset (m or rad), the point its line passes (m) and
+/// its error motions.
+struct Travel {
+    lower: f64,
+    upper: f64,
+    offset: f64,
+    point: Vector3<f64>,
+    errors: ErrorMotions,
+}
+
+/// A linear carrier axis's travel, offset and error motions (mm in the table); the keys of a
+/// rotary axis refused.
+fn linear(t: &AxisFile, source_name: &str, field: &dyn Fn(&str) -> String) -> Result<Travel> {
+    let refuse = |present: bool, f: &str, why: &str| match present {
+        true => Err(invalid(source_name, &field(f), why)),
+        false => Ok(()),
+    };
+    let linear =
+        "given on a linear carrier axis: a carrier axis takes limits_mm and offset_mm (mm)";
+    refuse(t.limits_deg.is_some(), "limits_deg", linear)?;
+    refuse(t.offset_deg.is_some(), "offset_deg", linear)?;
+    refuse(t.max_speed_deg_s.is_some(), "max_speed_deg_s", linear)?;
+    refuse(
+        t.point_mm.is_some(),
+        "point_mm",
+        "given on a linear carrier axis: only a rotary positioner axis has a line through a point",
+    )?;
+    let Some([lower, upper]) = t.limits_mm else {
+        return Err(invalid(
+            source_name,
+            &field("limits_mm"),
+            "missing: expected the axis's travel [lower, upper], mm",
+        ));
+    };
+    let offset = t.offset_mm.unwrap_or(0.0);
+    check_in(
+        source_name,
+        &field("limits_mm"),
+        &[lower, upper],
+        &limits::LENGTH_MM,
+    )?;
+    check_in(
+        source_name,
+        &field("offset_mm"),
+        &[offset],
+        &limits::LENGTH_MM,
+    )?;
+    let rows = (t.error_motions.iter().flatten())
+        .map(|r| [r[0], r[1], r[2], r[3], r[4], r[5]].map(|v| v * 1e-3))
+        .collect();
+    let errors = ErrorMotions::new(rows).map_err(|e| {
+        let message = match e {
+            Error::InvalidField { message, .. } => {
+                message.replace("50 mm and 0.1 rad", "50 mm and 100 mrad")
+            }
+            other => other.to_string(),
+        };
+        invalid(source_name, &field("error_motions"), &message)
+    })?;
+    Ok(Travel {
+        lower: lower * 1e-3,
+        upper: upper * 1e-3,
+        offset: offset * 1e-3,
+        point: Vector3::zeros(),
+        errors,
+    })
+}
+
+/// A rotary positioner axis's travel, offset and point (deg and mm in the table); the keys of a
+/// linear axis refused.
+fn rotary(t: &AxisFile, source_name: &str, field: &dyn Fn(&str) -> String) -> Result<Travel> {
+    let refuse = |present: bool, f: &str, why: &str| match present {
+        true => Err(invalid(source_name, &field(f), why)),
+        false => Ok(()),
+    };
+    let rotary = "given on a rotary positioner axis: a positioner axis takes limits_deg, offset_deg and point_mm";
+    refuse(t.limits_mm.is_some(), "limits_mm", rotary)?;
+    refuse(t.offset_mm.is_some(), "offset_mm", rotary)?;
+    refuse(t.max_speed_mm_s.is_some(), "max_speed_mm_s", rotary)?;
+    refuse(
+        t.error_motions.is_some(),
+        "error_motions",
+        "given on a rotary positioner axis: only a linear axis has error motions (a rotary axis's line and offset are its errors)",
+    )?;
+    let Some([lower, upper]) = t.limits_deg else {
+        return Err(invalid(
+            source_name,
+            &field("limits_deg"),
+            "missing: expected the axis's travel [lower, upper], deg",
+        ));
+    };
+    let offset = t.offset_deg.unwrap_or(0.0);
+    let point = t.point_mm.unwrap_or_default();
+    check_in(
+        source_name,
+        &field("limits_deg"),
+        &[lower, upper],
+        &limits::ANGLE_DEG,
+    )?;
+    check_in(
+        source_name,
+        &field("offset_deg"),
+        &[offset],
+        &limits::ANGLE_DEG,
+    )?;
+    check_in(source_name, &field("point_mm"), &point, &limits::LENGTH_MM)?;
+    let rad = f64::to_radians;
+    let point = Vector3::from(point) * 1e-3;
+    Ok(Travel {
+        lower: rad(lower),
+        upper: rad(upper),
+        offset: rad(offset),
+        point,
+        errors: ErrorMotions::default(),
     })
 }
 
