@@ -16,18 +16,44 @@ pub(super) fn check(r: &Request) -> Result<()> {
         r.setup
             .require_loading("select (the rope load of every posture)")?;
     }
-    let invalid = |field: &str, message: &str| {
-        Err(Error::InvalidField {
-            field: field.into(),
-            message: message.into(),
-        })
-    };
-    let invalid_option = |option, message: &str| {
-        Err(Error::InvalidOption {
-            option,
-            message: message.into(),
-        })
-    };
+    check_method(r)?;
+    r.options.validate()?;
+    if r.options.margin.is_some() && !Checker::new(r.setup).constrains() {
+        return invalid_option(
+            JobOption::MarginMm,
+            "the setup has no cell, tracker or constraints to keep a margin to",
+        );
+    }
+    purpose::check(r.purpose, &r.calibration)?;
+    check_candidates_and_target(r)?;
+    if let Some(p) = &r.pool {
+        if p.postures.len() > MAX_POOL {
+            let message = format!(
+                "{} postures: a pool holds at most {MAX_POOL}",
+                p.postures.len()
+            );
+            return Err(in_pool(&p.name, "pool", message));
+        }
+    }
+    Ok(())
+}
+
+fn invalid(field: &str, message: &str) -> Result<()> {
+    Err(Error::InvalidField {
+        field: field.into(),
+        message: message.into(),
+    })
+}
+
+fn invalid_option(option: JobOption, message: &str) -> Result<()> {
+    Err(Error::InvalidOption {
+        option,
+        message: message.into(),
+    })
+}
+
+/// The start, the pool, the distinctness and the restarts fit the method; the counts in range.
+fn check_method(r: &Request) -> Result<()> {
     if r.start.is_some() && r.method != Method::Local {
         return invalid_option(JobOption::Start, "only for a local search");
     }
@@ -63,14 +89,11 @@ pub(super) fn check(r: &Request) -> Result<()> {
         limits::check_integer("restarts", restarts as u64, 1, limits::MAX_POOL_RESTARTS)
             .map_err(|e| e.for_option(JobOption::Restarts))?;
     }
-    r.options.validate()?;
-    if r.options.margin.is_some() && !Checker::new(r.setup).constrains() {
-        return invalid_option(
-            JobOption::MarginMm,
-            "the setup has no cell, tracker or constraints to keep a margin to",
-        );
-    }
-    purpose::check(r.purpose, &r.calibration)?;
+    Ok(())
+}
+
+/// The candidate springs and the target deviation rate fit the purpose and the method.
+fn check_candidates_and_target(r: &Request) -> Result<()> {
     if r.candidates.is_some() && !r.for_candidates {
         return Err(Error::OptionCombination {
             option: JobOption::Candidates,
@@ -105,15 +128,6 @@ pub(super) fn check(r: &Request) -> Result<()> {
                 JobOption::TargetPct,
                 "needs a pool or the global search to choose each group",
             );
-        }
-    }
-    if let Some(p) = &r.pool {
-        if p.postures.len() > MAX_POOL {
-            let message = format!(
-                "{} postures: a pool holds at most {MAX_POOL}",
-                p.postures.len()
-            );
-            return Err(in_pool(&p.name, "pool", message));
         }
     }
     Ok(())
