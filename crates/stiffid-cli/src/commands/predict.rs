@@ -80,13 +80,29 @@ pub fn run(args: &Args) -> Result<()> {
 }
 
 fn human(r: &Document) -> String {
-    let row = |v: &[f64], digits: usize| {
-        v.iter()
-            .map(|x| format!("{x:>12.digits$}"))
-            .collect::<Vec<_>>()
-            .join("")
-    };
-    let mut s = format!(
+    header(r) + &joints(r) + &points(r) + &tcp(r) + &cartesian(r) + &mass(r)
+}
+
+/// `v` in columns 12 wide with `digits` decimals.
+fn row(v: &[f64], digits: usize) -> String {
+    v.iter()
+        .map(|x| format!("{x:>12.digits$}"))
+        .collect::<Vec<_>>()
+        .join("")
+}
+
+/// A prediction interval per axis, `[lower, upper]` (mm), an open end as infinity.
+fn ranges(i: &[[Option<f64>; 2]; 3]) -> String {
+    i.map(|[lo, hi]| {
+        let end = |v: Option<f64>, inf: &str| v.map_or(inf.to_string(), |v| format!("{v:.4}"));
+        format!("[{}, {}]", end(lo, "-inf"), end(hi, "inf"))
+    })
+    .join(", ")
+}
+
+/// The setup, the posture and the wrench.
+fn header(r: &Document) -> String {
+    format!(
         "setup {}, q = ({}) deg\nwrench at ({}) mm (flange frame), {} frame: f = ({}) N, m = ({}) Nm\n\n",
         r.setup,
         r.q_deg.map(angle).join(", "),
@@ -94,7 +110,12 @@ fn human(r: &Document) -> String {
         r.wrench_frame,
         r.wrench_n_nm[..3].iter().map(|v| v.to_string()).collect::<Vec<_>>().join(", "),
         r.wrench_n_nm[3..].iter().map(|v| v.to_string()).collect::<Vec<_>>().join(", ")
-    );
+    )
+}
+
+/// Per joint its stiffness, torque and deflection.
+fn joints(r: &Document) -> String {
+    let mut s = String::new();
     s += &format!(
         "joint                    {}\n",
         row(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0], 0)
@@ -108,6 +129,13 @@ fn human(r: &Document) -> String {
         "joint deflection mrad    {}\n",
         row(&r.joint_deflections_mrad, 5)
     );
+    s
+}
+
+/// Each measuring point's position and displacement, the prediction intervals when the
+/// stiffness file gives them.
+fn points(r: &Document) -> String {
+    let mut s = String::new();
     s += "\npoint   position mm (x, y, z)                displacement mm (x, y, z)            |d| mm\n";
     for p in &r.measuring_points {
         s += &format!(
@@ -118,13 +146,6 @@ fn human(r: &Document) -> String {
             p.displacement_norm_mm
         );
     }
-    let ranges = |i: &[[Option<f64>; 2]; 3]| {
-        i.map(|[lo, hi]| {
-            let end = |v: Option<f64>, inf: &str| v.map_or(inf.to_string(), |v| format!("{v:.4}"));
-            format!("[{}, {}]", end(lo, "-inf"), end(hi, "inf"))
-        })
-        .join(", ")
-    };
     if r.measuring_points
         .iter()
         .any(|p| p.displacement_interval_mm.is_some())
@@ -145,6 +166,13 @@ fn human(r: &Document) -> String {
             }
         }
     }
+    s
+}
+
+/// The flange's rotation and the TCP's deflection and rotation (with their standard deviations
+/// and prediction interval when known).
+fn tcp(r: &Document) -> String {
+    let mut s = String::new();
     let [a, b, c] = r.flange_rotation_mrad;
     s += &format!("\nflange rotation (base frame): ({a:.5}, {b:.5}, {c:.5}) mrad\n");
     let pm = |v: &[f64; 3], sd: &Option<[f64; 3]>, digits: usize| match sd {
@@ -172,6 +200,12 @@ fn human(r: &Document) -> String {
             ranges(i)
         );
     }
+    s
+}
+
+/// The Cartesian compliance and stiffness at the loaded point.
+fn cartesian(r: &Document) -> String {
+    let mut s = String::new();
     s += "\nCartesian compliance C_x at the loaded point, base frame, rows dx dy dz (mm) drx dry drz (mrad), per fx fy fz (kN) mx my mz (kNm):\n";
     for line in &r.cartesian_compliance.matrix_mm_mrad_per_kn_knm {
         s += &format!("  {}\n", row(line, 5));
@@ -185,7 +219,7 @@ fn human(r: &Document) -> String {
             }
         }
     }
-    s + &mass(r)
+    s
 }
 
 /// The mass lines: natural frequencies and the surge, where the robot gives its masses.

@@ -229,30 +229,43 @@ pub fn run(args: &Args) -> Result<()> {
         (dir, _) => dir,
     };
     if let Some(dir) = report_dir {
-        let t = report.target.as_ref();
-        let provenance = plan::Provenance {
-            command: crate::commands::common::command_line(),
-            seed: report.seed,
-            value: report.value,
-        };
-        let external = match &report.station {
-            Some(e) if placed.is_empty() => vec![e.as_slice().to_vec(); report.postures.len()],
-            _ => placed,
-        };
-        plan::write(
-            dir,
-            &setup,
-            criterion(args),
-            &report.postures,
-            &external,
-            t,
-            &provenance,
-        )?;
+        write_plan(dir, args, &setup, &report, placed)?;
     }
     match args.common.json {
         true => output::print(&json(&doc)?),
         false => output::print(&text(args, &setup, &report, &doc)),
     }
+}
+
+/// The plan of `--report` in `dir`: the postures at their external values (the station chosen
+/// for every posture, or each posture's own), the criterion, the target and the provenance.
+fn write_plan(
+    dir: crate::output::ReportDir,
+    args: &Args,
+    setup: &Setup,
+    report: &Report,
+    placed: Vec<Vec<f64>>,
+) -> Result<()> {
+    let t = report.target.as_ref();
+    let provenance = plan::Provenance {
+        command: crate::commands::common::command_line(),
+        seed: report.seed,
+        value: report.value,
+    };
+    let external = match &report.station {
+        Some(e) if placed.is_empty() => vec![e.as_slice().to_vec(); report.postures.len()],
+        _ => placed,
+    };
+    plan::write(
+        dir,
+        setup,
+        criterion(args),
+        &report.postures,
+        &external,
+        t,
+        &provenance,
+    )?;
+    Ok(())
 }
 
 /// The distances of `--distinct`: the flagging's defaults, overridden by the arguments.
