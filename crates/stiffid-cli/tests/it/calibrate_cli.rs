@@ -6,6 +6,9 @@ use crate::common;
 
 use common::{json, refused, stiffid, temp_dir, write_file};
 use nalgebra::{DVector, Isometry3, Point3, Vector3, Vector6};
+use serde_json::Value;
+use std::path::Path;
+use stiffid_core::Setup;
 use stiffid_metrology::calibration::error_model::MeasuredIn;
 use stiffid_metrology::calibration::{gravity, ErrorModel, Geometry};
 
@@ -303,10 +306,8 @@ fn calibrate_refuses_bad_input() {
 /// With known masses, `--stiffness-out` writes the fitted compliance as a stiffness file that
 /// the readers take: noise-free readings of a robot whose joints 2-6 are 30 % more compliant than
 /// the setup's nominal give them back (joint 1, vertical, keeps its nominal stiffness).
-#[test]
-fn calibrate_with_masses_writes_the_stiffness_file() {
-    let d = temp_dir("calibrate-stiffness");
-    let setup = stiffid_core::setup::builtin(SETUP).unwrap();
+/// The COMAU preset with a mass and centre of mass on each joint, written to `robot.toml` in `d`.
+fn robot_with_masses(d: &Path) -> String {
     let masses = [250.0, 180.0, 120.0, 60.0, 20.0, 40.0];
     let mut robot_text = String::new();
     for (i, part) in include_str!("../../../stiffid/presets/comau-smart5-nj165-3.0.toml")
@@ -323,7 +324,58 @@ fn calibrate_with_masses_writes_the_stiffness_file() {
             );
         }
     }
-    write_file(&d, "robot.toml", &robot_text);
+    write_file(d, "robot.toml", &robot_text);
+    robot_text
+}
+
+/// The nominal reference is the same with masses (`doc`) and without (`rigid`), and the held-out
+/// one is `reference` (mm).
+fn assert_nominal_reference(doc: &Value, rigid: &Value, reference: f64) {
+    for key in ["nominal_rms_mm", "/validation/nominal_rms_mm"] {
+        let (a, b) = match key.strip_prefix('/') {
+            Some(p) => (
+                doc.pointer(&format!("/{p}")),
+                rigid.pointer(&format!("/{p}")),
+            ),
+            None => (doc.get(key), rigid.get(key)),
+        };
+        let (a, b) = (a.unwrap().as_f64().unwrap(), b.unwrap().as_f64().unwrap());
+        assert!(
+            (a - b).abs() <= 1e-9 * b,
+            "{key}: {a} with masses, {b} without"
+        );
+    }
+    let held_nominal = doc["validation"]["nominal_rms_mm"].as_f64().unwrap();
+    assert!(
+        (held_nominal - reference).abs() < 1e-6 * reference,
+        "{held_nominal} vs {reference}"
+    );
+}
+
+/// The stiffness file `k` gives back the compliance `springs` of joints 2-6 (joint 1 fixed, its
+/// variance zero).
+fn assert_stiffness_file(k: &Path, setup: &Setup, springs: &Vector6<f64>) {
+    let file = stiffid_core::io::stiffness::parse(&std::fs::read_to_string(k).unwrap()).unwrap();
+    let c = file.compliance(setup.model()).unwrap();
+    for j in 0..6 {
+        assert!(
+            ((c.h[j] - springs[j]) / springs[j]).abs() < 1e-6,
+            "joint {}: {:e} vs {:e}",
+            j + 1,
+            c.h[j],
+            springs[j]
+        );
+    }
+    let cov = c.covariance.unwrap();
+    assert_eq!(cov[(0, 0)], 0.0);
+    assert!((1..6).all(|j| cov[(j, j)] > 0.0));
+}
+
+#[test]
+fn calibrate_with_masses_writes_the_stiffness_file() {
+    let d = temp_dir("calibrate-stiffness");
+    let setup = stiffid_core::setup::builtin(SETUP).unwrap();
+    let robot_text = robot_with_masses(&d);
     let setup_text = include_str!("../../../stiffid/setups/zhang2021-comau-nj165.toml").replace(
         "robot = \"comau-smart5-nj165-3.0\"",
         "robot = \"robot.toml\"",
@@ -386,39 +438,8 @@ fn calibrate_with_masses_writes_the_stiffness_file() {
     )
     .unwrap();
     let reference = nominal_rms_mm(&nominal_model, &x, &model, &tracker, &postures(8, 6));
-    for key in ["nominal_rms_mm", "/validation/nominal_rms_mm"] {
-        let (a, b) = match key.strip_prefix('/') {
-            Some(p) => (
-                doc.pointer(&format!("/{p}")),
-                rigid.pointer(&format!("/{p}")),
-            ),
-            None => (doc.get(key), rigid.get(key)),
-        };
-        let (a, b) = (a.unwrap().as_f64().unwrap(), b.unwrap().as_f64().unwrap());
-        assert!(
-            (a - b).abs() <= 1e-9 * b,
-            "{key}: {a} with masses, {b} without"
-        );
-    }
-    let held_nominal = doc["validation"]["nominal_rms_mm"].as_f64().unwrap();
-    assert!(
-        (held_nominal - reference).abs() < 1e-6 * reference,
-        "{held_nominal} vs {reference}"
-    );
-    let file = stiffid_core::io::stiffness::parse(&std::fs::read_to_string(&k).unwrap()).unwrap();
-    let c = file.compliance(setup.model()).unwrap();
-    for j in 0..6 {
-        assert!(
-            ((c.h[j] - springs[j]) / springs[j]).abs() < 1e-6,
-            "joint {}: {:e} vs {:e}",
-            j + 1,
-            c.h[j],
-            springs[j]
-        );
-    }
-    let cov = c.covariance.unwrap();
-    assert_eq!(cov[(0, 0)], 0.0);
-    assert!((1..6).all(|j| cov[(j, j)] > 0.0));
+    assert_nominal_reference(&doc, &rigid, reference);
+    assert_stiffness_file(&k, &setup, &springs);
     // Without masses there is no compliance to write: refused, nothing written.
     let (setup_arg, data_arg) = (setup_file.to_str().unwrap(), data.to_str().unwrap());
     refused(

@@ -191,88 +191,99 @@ fn empty_and_malformed_values_are_refused_naming_the_option() {
     }
 }
 
-#[test]
-fn combinations_that_make_no_sense_are_refused_naming_the_option() {
-    let dir = temp_dir("hostile-combinations");
-    let run = |base: Vec<String>, extra: &[&str], names: &[&str]| {
-        let mut args: Vec<&str> = base.iter().map(String::as_str).collect();
-        args.extend(extra);
-        refused(&dir, &args, names);
-    };
-    let program = |extra: &[&str]| {
-        let mut args = compensate(false);
-        args.truncate(5);
-        args.extend(["--program".into(), example("milling/trim.nc")]);
-        args.extend(["--process".into(), example("milling/trim.toml")]);
-        args.extend(["--out".into(), "{dir}/trim.ls".into()]);
-        args.extend(extra.iter().map(|s| s.to_string()));
-        args
-    };
-    // A tilt on a robot without a positioner; a step without its range.
-    run(
-        compensate(false),
-        &["--free", "tilt=-10..10"],
-        &["--free tilt", "positioner"],
-    );
-    run(
-        compensate(true),
-        &["--free", "tilt=/5"],
-        &["--free", "tilt"],
-    );
-    // A cone without the lean; a program's cone given as an option; a process without a cone.
-    run(
-        program(&["--free", "lead-tilt=-5..5"]),
-        &[],
-        &["--free lead-tilt range", "process file"],
-    );
-    run(
-        program(&["--free", "lead-tilt"]),
-        &[],
-        &["--free lead-tilt range", "allows no lean"],
-    );
+/// A command refused: its arguments and the names its refusal must hold.
+type Refusal = (Vec<String>, Vec<&'static str>);
+
+/// `base` with `extra` after it, refused naming `names`.
+fn case(mut base: Vec<String>, extra: &[&str], names: &[&'static str]) -> Refusal {
+    base.extend(extra.iter().map(|s| s.to_string()));
+    (base, names.to_vec())
+}
+
+/// `compensate` of the milling example's trim program written as FANUC LS, `extra` after it.
+fn program(extra: &[&str]) -> Vec<String> {
+    let mut args = compensate(false);
+    args.truncate(5);
+    args.extend(["--program".into(), example("milling/trim.nc")]);
+    args.extend(["--process".into(), example("milling/trim.toml")]);
+    args.extend(["--out".into(), "{dir}/trim.ls".into()]);
+    args.extend(extra.iter().map(|s| s.to_string()));
+    args
+}
+
+/// Free variables that do not go together, or not with the cell, the program or the process.
+fn free_variables_that_do_not_fit() -> Vec<Refusal> {
     // The surge minimised by the lean or the configuration.
     let surge = ["--free", "tool-rotation", "--minimise", "surge"];
     let lean_surge: Vec<&str> = ["--free", "lead-tilt=-5..5"]
         .into_iter()
         .chain(surge)
         .collect();
-    run(compensate(false), &lean_surge, &["--minimise"]);
     let config_surge: Vec<&str> = ["--free", "configuration"]
         .into_iter()
         .chain(surge)
         .collect();
-    run(
-        compensate(false),
-        &config_surge,
-        &["--minimise", "configuration"],
-    );
-    run(
-        compensate(false),
-        &["--free", "configuration", "--free", "configuration=run"],
-        &["--free", "configuration", "twice"],
-    );
-    // An axis by its name and by its keyword is one variable; a name the cell does not have.
-    run(
-        compensate(true),
-        &["--free", "rotate=-10..10", "--free", "positioner=-10..10"],
-        &["--free", "positioner", "twice"],
-    );
-    run(
-        compensate(true),
-        &["--free", "turn=-10..10"],
-        &["--free", "turn: unknown variable", "track, tilt, rotate"],
-    );
-    // The options of the free variables without one.
-    for option in [
+    vec![
+        // A tilt on a robot without a positioner; a step without its range.
+        case(
+            compensate(false),
+            &["--free", "tilt=-10..10"],
+            &["--free tilt", "positioner"],
+        ),
+        case(
+            compensate(true),
+            &["--free", "tilt=/5"],
+            &["--free", "tilt"],
+        ),
+        // A cone without the lean; a program's cone given as an option; a process without a cone.
+        case(
+            program(&["--free", "lead-tilt=-5..5"]),
+            &[],
+            &["--free lead-tilt range", "process file"],
+        ),
+        case(
+            program(&["--free", "lead-tilt"]),
+            &[],
+            &["--free lead-tilt range", "allows no lean"],
+        ),
+        case(compensate(false), &lean_surge, &["--minimise"]),
+        case(
+            compensate(false),
+            &config_surge,
+            &["--minimise", "configuration"],
+        ),
+        case(
+            compensate(false),
+            &["--free", "configuration", "--free", "configuration=run"],
+            &["--free", "configuration", "twice"],
+        ),
+        // An axis by its name and by its keyword is one variable; a name the cell does not have.
+        case(
+            compensate(true),
+            &["--free", "rotate=-10..10", "--free", "positioner=-10..10"],
+            &["--free", "positioner", "twice"],
+        ),
+        case(
+            compensate(true),
+            &["--free", "turn=-10..10"],
+            &["--free", "turn: unknown variable", "track, tilt, rotate"],
+        ),
+    ]
+}
+
+/// The options of the free variables without one, and the options `--free` replaced, each
+/// refused saying how to write it.
+fn options_without_free() -> Vec<Refusal> {
+    let mut cases: Vec<Refusal> = [
         ["--minimise", "bound"],
         ["--objective", "max"],
         ["--margin-deg", "3"],
         ["--max-condition", "100"],
         ["--refine", "1"],
-    ] {
-        run(compensate(false), &option, &[option[0], "only with --free"]);
-    }
-    // The options --free replaced, each refused saying how to write it.
+    ]
+    .iter()
+    .map(|option| case(compensate(false), option, &[option[0], "only with --free"]))
+    .collect();
     for (option, how) in [
         (vec!["--free-tool-axis"], "--free tool-rotation=-90..90/2"),
         (
@@ -287,12 +298,14 @@ fn combinations_that_make_no_sense_are_refused_naming_the_option() {
         ),
         (vec!["--cone-deg", "5"], "--free lead-tilt=-CONE..CONE/STEP"),
     ] {
-        run(
-            compensate(false),
-            &option,
-            &[option[0].split('=').next().unwrap(), "removed", how],
-        );
+        let named = option[0].split('=').next().unwrap();
+        cases.push(case(compensate(false), &option, &[named, "removed", how]));
     }
+    cases
+}
+
+/// A map, a grid and a region that cannot be.
+fn searches_that_cannot_be() -> Vec<Refusal> {
     // A map of the track on a fixed base, with the lean free.
     let track_map = [
         "--free",
@@ -302,23 +315,39 @@ fn combinations_that_make_no_sense_are_refused_naming_the_option() {
         "--report",
         "{dir}/report",
     ];
-    run(compensate(false), &track_map, &["--map", "carrier"]);
     // A lean grid beyond the cells a path may take.
     let fine = ["--free", "lead-tilt=-30..30/0.1", "--free", "tool-rotation"];
-    run(
-        compensate(false),
-        &fine,
-        &["--free lead-tilt step", "at most 5e6"],
-    );
-    // A region that holds no feasible placement; --z-mm without --free.
-    run(
-        place(),
-        &["--region-mm", "-20000,-19000,-20000,-19000"],
-        &["--region-mm", "no placement"],
-    );
-    run(
-        place(),
-        &["--region-mm", "500,2000,-1500,500", "--z-mm", "0,10"],
-        &["--free"],
-    );
+    vec![
+        case(compensate(false), &track_map, &["--map", "carrier"]),
+        case(
+            compensate(false),
+            &fine,
+            &["--free lead-tilt step", "at most 5e6"],
+        ),
+        // A region that holds no feasible placement; --z-mm without --free.
+        case(
+            place(),
+            &["--region-mm", "-20000,-19000,-20000,-19000"],
+            &["--region-mm", "no placement"],
+        ),
+        case(
+            place(),
+            &["--region-mm", "500,2000,-1500,500", "--z-mm", "0,10"],
+            &["--free"],
+        ),
+    ]
+}
+
+#[test]
+fn combinations_that_make_no_sense_are_refused_naming_the_option() {
+    let dir = temp_dir("hostile-combinations");
+    let cases = [
+        free_variables_that_do_not_fit(),
+        options_without_free(),
+        searches_that_cannot_be(),
+    ];
+    for (args, names) in cases.concat() {
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        refused(&dir, &args, &names);
+    }
 }

@@ -34,30 +34,9 @@ fn summary(dir: &Path) -> Value {
     serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
 }
 
-#[test]
-fn the_report_is_complete_self_contained_and_reproducible() {
-    let dir = fresh_dir("report");
-    let out = reproduce(&dir, &[]);
-    assert_success(&out);
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        stdout.contains("report.html") && stdout.contains("Groups 1 and 2"),
-        "{stdout}"
-    );
-
-    let first = summary(&dir);
-    let groups = first["groups"].as_array().unwrap();
-    let names: Vec<&str> = groups.iter().map(|g| g["name"].as_str().unwrap()).collect();
-    assert_eq!(
-        names,
-        [
-            "group1-start",
-            "group2-classical",
-            "group3-zhang2021",
-            "group4-relative-a",
-            "group5-d-optimal"
-        ]
-    );
+/// Every file of the report is there and not empty, each figure inline in the HTML (nothing
+/// fetched from elsewhere) and linked from the Markdown; `names`: the groups'.
+fn assert_files(dir: &Path, names: &[&str]) {
     let mut files = vec![
         "report.html".to_string(),
         "report.md".into(),
@@ -95,11 +74,15 @@ fn the_report_is_complete_self_contained_and_reproducible() {
     assert!(!html.contains("src=\"http") && !html.contains("href=\"http"));
     let md = std::fs::read_to_string(dir.join("report.md")).unwrap();
     assert!(md.contains("![deviation_vs_noise](figures/deviation_vs_noise.png)"));
+}
 
+/// The summary's shape, and the paper's index lowered by the local search.
+fn assert_summary(summary: &Value) {
     // The summary's shape and the paper's index lowered by the local search.
-    assert_eq!(first["runs"], 20);
-    assert_eq!(first["levels"].as_array().unwrap().len(), 6);
-    assert_eq!(first["setup"]["characteristic_length_mm"], 1200.0);
+    assert_eq!(summary["runs"], 20);
+    assert_eq!(summary["levels"].as_array().unwrap().len(), 6);
+    assert_eq!(summary["setup"]["characteristic_length_mm"], 1200.0);
+    let groups = summary["groups"].as_array().unwrap();
     for g in groups {
         assert_eq!(g["postures_deg"].as_array().unwrap().len(), 6);
         for key in [
@@ -120,7 +103,13 @@ fn the_report_is_complete_self_contained_and_reproducible() {
         zhang(2),
         zhang(0)
     );
-    let trials = first["start_trials"].as_array().unwrap();
+}
+
+/// The start groups' check: its first group is Group 1, searched the same way, with the same
+/// predictions.
+fn assert_start_trials(summary: &Value) {
+    let groups = summary["groups"].as_array().unwrap();
+    let trials = summary["start_trials"].as_array().unwrap();
     assert_eq!(trials.len(), 2);
     assert_eq!(trials[0]["seed"], 5);
     // The first start group of the check is Group 1, searched the same way: same predictions.
@@ -144,6 +133,35 @@ fn the_report_is_complete_self_contained_and_reproducible() {
             .abs()
             < 1e-12
     );
+}
+
+#[test]
+fn the_report_is_complete_self_contained_and_reproducible() {
+    let dir = fresh_dir("report");
+    let out = reproduce(&dir, &[]);
+    assert_success(&out);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        stdout.contains("report.html") && stdout.contains("Groups 1 and 2"),
+        "{stdout}"
+    );
+
+    let first = summary(&dir);
+    let groups = first["groups"].as_array().unwrap();
+    let names: Vec<&str> = groups.iter().map(|g| g["name"].as_str().unwrap()).collect();
+    assert_eq!(
+        names,
+        [
+            "group1-start",
+            "group2-classical",
+            "group3-zhang2021",
+            "group4-relative-a",
+            "group5-d-optimal"
+        ]
+    );
+    assert_files(&dir, &names);
+    assert_summary(&first);
+    assert_start_trials(&first);
     let csv = std::fs::read_to_string(dir.join("deviation_rates.csv")).unwrap();
     assert_eq!(csv.lines().count(), 1 + 5 * 6 * 6);
 

@@ -5,26 +5,29 @@
 
 use crate::calibrate_cli::{model, postures, readings, truth, SETUP};
 use crate::common::{json, numbers, refused, stiffid, temp_dir, write_file};
-use nalgebra::{Isometry3, Vector3};
+use nalgebra::{DVector, Isometry3, Vector3};
+use std::path::{Path, PathBuf};
+use stiffid_metrology::calibration::ErrorModel;
 
-#[test]
-fn the_check_finds_the_drift_and_the_update_recovers_it() {
-    let d = temp_dir("update-cli");
-    let model = model();
-    let x = truth(&model);
+fn arg(p: &Path) -> String {
+    p.to_str().unwrap().to_string()
+}
+
+/// A calibration of the true robot `x` (25 postures, 8 held out) written to `robot.toml` in
+/// `d`, and a setup on it.
+fn calibrated_setup(d: &Path, model: &ErrorModel, x: &DVector<f64>) -> PathBuf {
     let tracker = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.0, 0.0, 2.5));
     let fit = write_file(
-        &d,
+        d,
         "fit.csv",
-        &readings(&model, &x, &tracker, &postures(25, 1)),
+        &readings(model, x, &tracker, &postures(25, 1)),
     );
     let held = write_file(
-        &d,
+        d,
         "held.csv",
-        &readings(&model, &x, &tracker, &postures(8, 2)),
+        &readings(model, x, &tracker, &postures(8, 2)),
     );
     let robot = d.join("robot.toml");
-    let arg = |p: &std::path::Path| p.to_str().unwrap().to_string();
     json(&stiffid(&[
         "calibrate",
         "--setup",
@@ -44,12 +47,17 @@ fn the_check_finds_the_drift_and_the_update_recovers_it() {
         "robot = \"comau-smart5-nj165-3.0\"",
         "robot = \"robot.toml\"",
     );
-    let setup = write_file(&d, "calibrated.toml", &setup_text);
+    write_file(d, "calibrated.toml", &setup_text)
+}
+
+/// The check campaign `select --for check` designs on the calibrated robot of `setup`: 10
+/// postures of the offsets, deg.
+fn check_postures(d: &Path, setup: &Path) -> Vec<[f64; 6]> {
     let check = d.join("check.csv");
     let doc = json(&stiffid(&[
         "select",
         "--setup",
-        &arg(&setup),
+        &arg(setup),
         "--for",
         "check",
         "--global",
@@ -64,6 +72,48 @@ fn the_check_finds_the_drift_and_the_update_recovers_it() {
         .map(|q| std::array::from_fn(|i| numbers(q)[i]))
         .collect();
     assert_eq!(designed.len(), 10);
+    designed
+}
+
+/// What an update does not take: another geometry, the input as its output, a robot that is
+/// not a calibrated file.
+fn an_update_refuses_what_it_does_not_take(d: &Path) {
+    let again = [
+        "calibrate",
+        "--setup",
+        "{dir}/calibrated.toml",
+        "--update",
+        "--data",
+    ];
+    let check_data = "{dir}/check-readings.csv";
+    refused(
+        d,
+        &[&again[..], &[check_data, "--geometry", "full"]].concat(),
+        &["--geometry"],
+    );
+    refused(
+        d,
+        &[&again[..], &[check_data, "--out", "{dir}/robot.toml"]].concat(),
+        &["--out"],
+    );
+    let plain = [
+        "calibrate",
+        "--setup",
+        SETUP,
+        "--update",
+        "--data",
+        check_data,
+    ];
+    refused(d, &plain, &["update", "not a calibrated robot file"]);
+}
+
+#[test]
+fn the_check_finds_the_drift_and_the_update_recovers_it() {
+    let d = temp_dir("update-cli");
+    let model = model();
+    let x = truth(&model);
+    let setup = calibrated_setup(&d, &model, &x);
+    let designed = check_postures(&d, &setup);
     // The drift: joints 2 to 5's offsets by 0.05 degrees, the tracker moved.
     let mut drifted = x.clone();
     for (c, p) in model.parameters().iter().enumerate() {
@@ -129,32 +179,5 @@ fn the_check_finds_the_drift_and_the_update_recovers_it() {
     assert!(std::fs::read_to_string(&updated)
         .unwrap()
         .contains("(calibrated)"));
-    // What an update does not take.
-    let again = [
-        "calibrate",
-        "--setup",
-        "{dir}/calibrated.toml",
-        "--update",
-        "--data",
-    ];
-    let check_data = "{dir}/check-readings.csv";
-    refused(
-        &d,
-        &[&again[..], &[check_data, "--geometry", "full"]].concat(),
-        &["--geometry"],
-    );
-    refused(
-        &d,
-        &[&again[..], &[check_data, "--out", "{dir}/robot.toml"]].concat(),
-        &["--out"],
-    );
-    let plain = [
-        "calibrate",
-        "--setup",
-        SETUP,
-        "--update",
-        "--data",
-        check_data,
-    ];
-    refused(&d, &plain, &["update", "not a calibrated robot file"]);
+    an_update_refuses_what_it_does_not_take(&d);
 }
