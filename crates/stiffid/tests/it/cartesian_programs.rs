@@ -271,74 +271,64 @@ fn replaced(text: &str, from: &str, to: &str) -> String {
     text.replacen(from, to, 1)
 }
 
-#[test]
-fn cartesian_targets_that_cannot_be_read_are_refused_naming_the_line() {
-    let s = setup();
-    let options = Options::for_setup(&s);
-    let poses = cut(2);
-    let (_, krl) = written(&s, Dialect::Krl, &poses, true);
-    let (_, rapid) = written(&s, Dialect::Rapid, &poses, true);
-    let (_, ls) = written(&s, Dialect::FanucLs, &poses, true);
-    let line_of = |text: &str, needle: &str| {
-        text.lines().position(|l| l.contains(needle)).unwrap() as u64 + 1
-    };
-    let first_krl = line_of(&krl, "PTP {E6POS");
-    let krl_s = krl.lines().nth(first_krl as usize - 1).unwrap();
-    let status = &krl_s[krl_s.find("S 'B").unwrap()..][..8];
+/// Cartesian programs that cannot be read, each with its language, the line its refusal names
+/// and what the refusal says: `krl`, `rapid` and `ls` as written, their targets changed;
+/// `status` the first KRL target's (at line `first_krl`).
+fn unreadable(
+    (krl, rapid, ls): (&str, &str, &str),
+    status: &str,
+    first_krl: u64,
+) -> Vec<(Dialect, String, u64, &'static str)> {
     let rapid_conf = rapid.lines().find(|l| l.contains("MoveJ")).unwrap();
     let conf = rapid_conf.split("],[").nth(2).unwrap();
-    let cases: Vec<(Dialect, String, u64, &str)> = vec![
+    vec![
         // An unknown configuration.
         (
             Dialect::FanucLs,
-            replaced(&ls, "CONFIG : 'N", "CONFIG : 'X"),
-            line_of(&ls, "CONFIG"),
+            replaced(ls, "CONFIG : 'N", "CONFIG : 'X"),
+            line_of(ls, "CONFIG"),
             "CONFIG 'X",
         ),
         // A pose out of reach in the configuration it names: axis 1 in its fourth quadrant.
         (
             Dialect::Rapid,
             replaced(
-                &rapid,
+                rapid,
                 &format!("],[{conf}],["),
                 &format!("],[3{}],[", &conf[conf.find(',').unwrap()..]),
             ),
-            line_of(&rapid, "MoveJ"),
+            line_of(rapid, "MoveJ"),
             "out of reach in the configuration [3,",
         ),
         // The shoulder behind axis 1 and the elbow down, out of reach in the joint limits.
         (
             Dialect::Krl,
-            replaced(&krl, status, "S 'B001'"),
+            replaced(krl, status, "S 'B001'"),
             first_krl,
             "out of reach in the configuration S 'B001'",
         ),
         // A tool that is not the setup's.
         (
             Dialect::Krl,
-            replaced(&krl, "$TOOL = {X 6.9", "$TOOL = {X 16.9"),
-            line_of(&krl, "$TOOL ="),
+            replaced(krl, "$TOOL = {X 6.9", "$TOOL = {X 16.9"),
+            line_of(krl, "$TOOL ="),
             "is not the setup's",
         ),
         (
             Dialect::Rapid,
             replaced(
-                &rapid,
+                rapid,
                 "tooldata tspindle := [TRUE,[[6.9",
                 "tooldata tspindle := [TRUE,[[7.9",
             ),
-            line_of(&rapid, "tooldata"),
+            line_of(rapid, "tooldata"),
             "is not the setup's",
         ),
         // A work object the robot holds, a base the controller holds.
         (
             Dialect::Rapid,
-            replaced(
-                &rapid,
-                "wobjdata wpart := [FALSE",
-                "wobjdata wpart := [TRUE",
-            ),
-            line_of(&rapid, "wobjdata"),
+            replaced(rapid, "wobjdata wpart := [FALSE", "wobjdata wpart := [TRUE"),
+            line_of(rapid, "wobjdata"),
             "wobjdata wpart: a work object the robot holds",
         ),
         (
@@ -349,7 +339,7 @@ fn cartesian_targets_that_cannot_be_read_are_refused_naming_the_line() {
                     false => format!("{l}\n"),
                 })
                 .collect(),
-            line_of(&krl, "$BASE ="),
+            line_of(krl, "$BASE ="),
             "BASE_DATA[1]",
         ),
         // An LS user frame without a part frame is fine here (the setup has one); a RAPID tool
@@ -357,29 +347,20 @@ fn cartesian_targets_that_cannot_be_read_are_refused_naming_the_line() {
         (
             Dialect::Rapid,
             rapid.replace("tspindle\\WObj", "tmill\\WObj"),
-            line_of(&rapid, "MoveJ"),
+            line_of(rapid, "MoveJ"),
             "tooldata tmill: not declared",
         ),
-    ];
-    for (dialect, text, line, needle) in cases {
-        let e = machining::read(&text, Language::Robot(dialect), 1e-4)
-            .and_then(|p| machining::resolve(&p, &s, None, &options).map(|_| ()));
-        match e {
-            Err(Error::Program { line: l, message }) => {
-                assert_eq!(l, line, "{dialect:?} {needle}: {message}");
-                assert!(message.contains(needle), "{dialect:?}: {message}");
-            }
-            other => panic!("{dialect:?} {needle}: {other:?}"),
-        }
-    }
-    // Through the compensate job: the file and the line named.
-    let text = replaced(&krl, status, "S 'B001'");
+    ]
+}
+
+/// The compensate job refuses the KRL program `text` naming its file and the line `line`.
+fn refused_by_the_job(s: &Setup, options: Options, text: &str, line: u64) {
     let request = stiffid::app::compensate::Request {
-        setup: &s,
-        compliance: compliance(&s),
+        setup: s,
+        compliance: compliance(s),
         input: stiffid::app::compensate::Input::Program {
             name: "cut.src".into(),
-            text: &text,
+            text,
             language: Language::Robot(Dialect::Krl),
             process_name: "aluminium.toml".into(),
             process: process(),
@@ -393,36 +374,65 @@ fn cartesian_targets_that_cannot_be_read_are_refused_naming_the_line() {
     let e = stiffid::app::compensate::run::<Error, _>(request, |_, _, _, _| Ok(())).unwrap_err();
     let message = e.to_string();
     assert!(
-        message.contains("cut.src") && message.contains(&format!("line {first_krl}")),
+        message.contains("cut.src") && message.contains(&format!("line {line}")),
         "{message}"
     );
+}
+
+#[test]
+fn cartesian_targets_that_cannot_be_read_are_refused_naming_the_line() {
+    let s = setup();
+    let options = Options::for_setup(&s);
+    let poses = cut(2);
+    let (_, krl) = written(&s, Dialect::Krl, &poses, true);
+    let (_, rapid) = written(&s, Dialect::Rapid, &poses, true);
+    let (_, ls) = written(&s, Dialect::FanucLs, &poses, true);
+    let first_krl = line_of(&krl, "PTP {E6POS");
+    let krl_s = krl.lines().nth(first_krl as usize - 1).unwrap();
+    let status = &krl_s[krl_s.find("S 'B").unwrap()..][..8];
+    let cases = unreadable((&krl, &rapid, &ls), status, first_krl);
+    for (dialect, text, line, needle) in cases {
+        let e = machining::read(&text, Language::Robot(dialect), 1e-4)
+            .and_then(|p| machining::resolve(&p, &s, None, &options).map(|_| ()));
+        match e {
+            Err(Error::Program { line: l, message }) => {
+                assert_eq!(l, line, "{dialect:?} {needle}: {message}");
+                assert!(message.contains(needle), "{dialect:?}: {message}");
+            }
+            other => panic!("{dialect:?} {needle}: {other:?}"),
+        }
+    }
+    // Through the compensate job: the file and the line named.
+    let text = replaced(&krl, status, "S 'B001'");
+    refused_by_the_job(&s, options, &text, first_krl);
 }
 
 /// A cut of seven points as G-code, every move a cutting one.
 const GCODE: &str = "(stiffid: tool_rpy_deg = 180 0 0)\nG21 G90 G17\nG1 X0 Y0 Z-4 F1800\nG1 X10\nG1 X20\nG1 X30\nG1 X40\nG1 X50\nG1 X60\n";
 
-#[test]
-fn a_cartesian_program_in_the_part_frame_is_placed_as_the_gcode_of_its_points() {
-    let s = setup();
-    let (compliance, process) = (compliance(&s), process());
-    let options = Options::for_setup(&s);
-    let gcode = machining::read(GCODE, Language::GCode, 1e-4).unwrap();
-    let (_, krl) = written(&s, Dialect::Krl, &cut(7), false);
-    let (_, rapid) = written(&s, Dialect::Rapid, &cut(7), false);
-    let (_, ls) = written(&s, Dialect::FanucLs, &cut(7), false);
-    let ls = in_user_frame(&s, &ls);
-    let programs: Vec<(Dialect, Program)> = [
+/// The cut of seven points written as KRL, RAPID and LS (in a user frame) Cartesian targets in
+/// the part frame, read back.
+fn in_part_frame(s: &Setup) -> Vec<(Dialect, Program)> {
+    let (_, krl) = written(s, Dialect::Krl, &cut(7), false);
+    let (_, rapid) = written(s, Dialect::Rapid, &cut(7), false);
+    let (_, ls) = written(s, Dialect::FanucLs, &cut(7), false);
+    let ls = in_user_frame(s, &ls);
+    [
         (Dialect::Krl, krl),
         (Dialect::Rapid, rapid),
         (Dialect::FanucLs, ls),
     ]
     .into_iter()
     .map(|(d, text)| (d, machining::read(&text, Language::Robot(d), 1e-4).unwrap()))
-    .collect();
-    // Joint targets and targets in the world frame do not move with the part.
-    let (_, world) = written(&s, Dialect::FanucLs, &cut(7), false);
+    .collect()
+}
+
+/// Programs whose targets do not move with the part (joint targets, targets in the world
+/// frame), each with what its refusal says.
+fn not_in_part_frame(s: &Setup) -> Vec<(Dialect, Program, &'static str)> {
+    let (_, world) = written(s, Dialect::FanucLs, &cut(7), false);
     let joint = "DEF a( )\nPTP {A1 -20, A2 -10, A3 -20, A4 0, A5 -60, A6 180}\nEND\n";
-    let refused: Vec<(Dialect, Program, &str)> = [
+    [
         (
             Dialect::FanucLs,
             world.as_str(),
@@ -442,7 +452,51 @@ fn a_cartesian_program_in_the_part_frame_is_placed_as_the_gcode_of_its_points() 
             needle,
         )
     })
-    .collect();
+    .collect()
+}
+
+/// The program of `r` evaluates as the G-code of `g` at three placements (feasible at two at
+/// least) and is placed where the G-code is (`by_gcode`).
+fn assert_placed_as(g: &Request, r: &Request, by_gcode: &place::Report, dialect: Dialect) {
+    let mut feasible = 0;
+    for (x, y) in [(1.3, -0.7), (1.1, -0.5), (1.4, -0.8)] {
+        let pose = Isometry3::translation(x, y, 0.4);
+        let (eg, er) = (
+            place::evaluate(g, &pose).unwrap(),
+            place::evaluate(r, &pose).unwrap(),
+        );
+        assert_eq!(eg.is_ok(), er.is_ok(), "{dialect:?}: {eg:?} vs {er:?}");
+        if let (Ok(eg), Ok(er)) = (eg, er) {
+            feasible += 1;
+            assert!(
+                (eg.peak - er.peak).abs() <= 1e-9 * eg.peak,
+                "{dialect:?}: {eg:?} vs {er:?}"
+            );
+            assert!((eg.sum - er.sum).abs() <= 1e-9 * eg.sum, "{dialect:?}");
+        }
+    }
+    assert!(feasible >= 2, "{dialect:?}: {feasible}");
+    let placed = place::run(r).unwrap();
+    let (a, b) = (
+        &by_gcode.placed.base_from_part,
+        &placed.placed.base_from_part,
+    );
+    assert!(
+        (a.translation.vector - b.translation.vector).norm() < 1e-6,
+        "{dialect:?}"
+    );
+    assert!((by_gcode.placed.peak - placed.placed.peak).abs() <= 1e-9 * placed.placed.peak);
+    assert_eq!(by_gcode.setup_text, placed.setup_text);
+}
+
+#[test]
+fn a_cartesian_program_in_the_part_frame_is_placed_as_the_gcode_of_its_points() {
+    let s = setup();
+    let (compliance, process) = (compliance(&s), process());
+    let options = Options::for_setup(&s);
+    let gcode = machining::read(GCODE, Language::GCode, 1e-4).unwrap();
+    let programs = in_part_frame(&s);
+    let refused = not_in_part_frame(&s);
     let region = Region {
         x: [0.9, 1.5],
         y: [-0.9, -0.3],
@@ -477,35 +531,7 @@ fn a_cartesian_program_in_the_part_frame_is_placed_as_the_gcode_of_its_points() 
             program,
             process: &process,
         });
-        let mut feasible = 0;
-        for (x, y) in [(1.3, -0.7), (1.1, -0.5), (1.4, -0.8)] {
-            let pose = Isometry3::translation(x, y, 0.4);
-            let (eg, er) = (
-                place::evaluate(&g, &pose).unwrap(),
-                place::evaluate(&r, &pose).unwrap(),
-            );
-            assert_eq!(eg.is_ok(), er.is_ok(), "{dialect:?}: {eg:?} vs {er:?}");
-            if let (Ok(eg), Ok(er)) = (eg, er) {
-                feasible += 1;
-                assert!(
-                    (eg.peak - er.peak).abs() <= 1e-9 * eg.peak,
-                    "{dialect:?}: {eg:?} vs {er:?}"
-                );
-                assert!((eg.sum - er.sum).abs() <= 1e-9 * eg.sum, "{dialect:?}");
-            }
-        }
-        assert!(feasible >= 2, "{dialect:?}: {feasible}");
-        let placed = place::run(&r).unwrap();
-        let (a, b) = (
-            &by_gcode.placed.base_from_part,
-            &placed.placed.base_from_part,
-        );
-        assert!(
-            (a.translation.vector - b.translation.vector).norm() < 1e-6,
-            "{dialect:?}"
-        );
-        assert!((by_gcode.placed.peak - placed.placed.peak).abs() <= 1e-9 * placed.placed.peak);
-        assert_eq!(by_gcode.setup_text, placed.setup_text);
+        assert_placed_as(&g, &r, &by_gcode, *dialect);
     }
     for (dialect, program, needle) in &refused {
         let r = request(Work::Program {

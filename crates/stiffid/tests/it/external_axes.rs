@@ -384,6 +384,67 @@ fn external_axis_tables_are_refused_naming_the_file_table_and_field() {
     }
 }
 
+/// The arm's bodies ride on the track of `setup`: every capsule moved by the carriage's travel.
+fn assert_bodies_ride_on_the_track(setup: &stiffid::Setup) {
+    let q = Vector6::new(0.2, 0.3, -1.6, 0.1, 0.4, -0.3);
+    let axes = setup.robot().external().unwrap();
+    let at = |s_mm: f64| {
+        let frames = setup.robot().frames_at(&q, &axes.to_si(&[s_mm]));
+        stiffid::cell::capsules(setup.arm(), &frames)
+    };
+    let (home, far) = (at(0.0), at(4000.0));
+    assert_eq!(home.len(), far.len());
+    let shift = Vector3::new(1.0, 0.2, 0.0).normalize() * 4.0;
+    for (a, b) in home.iter().zip(&far) {
+        close(
+            (b.a - a.a).as_slice(),
+            shift.as_slice(),
+            1e-9,
+            "capsule start",
+        );
+        close(
+            (b.b - a.b).as_slice(),
+            shift.as_slice(),
+            1e-9,
+            "capsule end",
+        );
+    }
+}
+
+/// The track (with error motions) and the positioner written back and read again: the same
+/// axes.
+fn assert_axes_written_back() {
+    let with_errors = robot(&format!(
+        "{}\nerror_motions = [[0.1, 0.3, -0.05, 0.02, 0.2, -0.01], [0.0, 0.01, 0.0, 0.0, 0.0, 0.03]]\n{POSITIONER}",
+        TRACK.trim_end()
+    ));
+    let axes = with_errors.external().unwrap();
+    let written = stiffid::robot::external::file::toml(axes);
+    let back = robot(&written);
+    assert_eq!(back.external().unwrap().len(), 3);
+    for (a, b) in axes.axes().iter().zip(back.external().unwrap().axes()) {
+        assert_eq!(a.name, b.name);
+        close(
+            a.direction.as_slice(),
+            b.direction.as_slice(),
+            1e-15,
+            "direction",
+        );
+        close(a.point.as_slice(), b.point.as_slice(), 1e-15, "point");
+        close(
+            &[a.offset, a.lower, a.upper],
+            &[b.offset, b.lower, b.upper],
+            1e-12,
+            "travel",
+        );
+        let (ca, cb) = (a.errors.coefficients(), b.errors.coefficients());
+        assert_eq!(ca.len(), cb.len());
+        for (x, y) in ca.iter().zip(cb) {
+            close(x, y, 1e-18, "error motions");
+        }
+    }
+}
+
 #[test]
 fn a_setups_tables_replace_the_robot_files_and_the_files_write_them_back() {
     let dir = std::env::temp_dir().join(format!("stiffid-external-{}", std::process::id()));
@@ -432,30 +493,7 @@ fn a_setups_tables_replace_the_robot_files_and_the_files_write_them_back() {
     ))
     .unwrap();
     assert!(removed.robot().external().is_none());
-    // The arm's bodies ride on the track: every capsule moved by the carriage's travel.
-    let q = Vector6::new(0.2, 0.3, -1.6, 0.1, 0.4, -0.3);
-    let axes = setup.robot().external().unwrap();
-    let at = |s_mm: f64| {
-        let frames = setup.robot().frames_at(&q, &axes.to_si(&[s_mm]));
-        stiffid::cell::capsules(setup.arm(), &frames)
-    };
-    let (home, far) = (at(0.0), at(4000.0));
-    assert_eq!(home.len(), far.len());
-    let shift = Vector3::new(1.0, 0.2, 0.0).normalize() * 4.0;
-    for (a, b) in home.iter().zip(&far) {
-        close(
-            (b.a - a.a).as_slice(),
-            shift.as_slice(),
-            1e-9,
-            "capsule start",
-        );
-        close(
-            (b.b - a.b).as_slice(),
-            shift.as_slice(),
-            1e-9,
-            "capsule end",
-        );
-    }
+    assert_bodies_ride_on_the_track(&setup);
     let bad = read(&format!(
         "{setup_text}\n[[external_axis]]\nname = \"t\"\nrole = \"carrier\"\ndirection = [1, 0, 0]\n"
     ))
@@ -465,36 +503,7 @@ fn a_setups_tables_replace_the_robot_files_and_the_files_write_them_back() {
         bad.contains("cell-setup.toml: external_axis[1] (t).limits_mm"),
         "{bad}"
     );
-    // Written back and read again: the same axes.
-    let with_errors = robot(&format!(
-        "{}\nerror_motions = [[0.1, 0.3, -0.05, 0.02, 0.2, -0.01], [0.0, 0.01, 0.0, 0.0, 0.0, 0.03]]\n{POSITIONER}",
-        TRACK.trim_end()
-    ));
-    let axes = with_errors.external().unwrap();
-    let written = stiffid::robot::external::file::toml(axes);
-    let back = robot(&written);
-    assert_eq!(back.external().unwrap().len(), 3);
-    for (a, b) in axes.axes().iter().zip(back.external().unwrap().axes()) {
-        assert_eq!(a.name, b.name);
-        close(
-            a.direction.as_slice(),
-            b.direction.as_slice(),
-            1e-15,
-            "direction",
-        );
-        close(a.point.as_slice(), b.point.as_slice(), 1e-15, "point");
-        close(
-            &[a.offset, a.lower, a.upper],
-            &[b.offset, b.lower, b.upper],
-            1e-12,
-            "travel",
-        );
-        let (ca, cb) = (a.errors.coefficients(), b.errors.coefficients());
-        assert_eq!(ca.len(), cb.len());
-        for (x, y) in ca.iter().zip(cb) {
-            close(x, y, 1e-18, "error motions");
-        }
-    }
+    assert_axes_written_back();
     std::fs::remove_dir_all(&dir).ok();
 }
 

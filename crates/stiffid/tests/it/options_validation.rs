@@ -387,27 +387,32 @@ fn a_margin_out_of_range_is_refused_as_an_option() {
     assert!(inside.validate().is_ok());
 }
 
-/// Options that mean nothing where they are given are refused by the jobs themselves, as typed
-/// option errors (the command and Python name them their own way): a pool's restarts for a
-/// search, a calibration option for a stiffness design, the weight unless for both, a margin on a
-/// setup without a cell, `force` for a registration proposal, a level without prediction data.
-#[test]
-fn options_that_mean_nothing_where_given_are_refused_by_the_jobs() {
-    use stiffid::app::purpose::{CalibrationOptions, Purpose};
-    use stiffid::app::{evaluate, predict, register, select};
-    use stiffid::design::observability::CalibrationCriterion;
-    use stiffid::metrology::calibration::gravity::Gravity;
-    use stiffid::JobOption;
-    let setup = paper();
-    let refused = |result: Result<(), Error>, want: JobOption, text: &str| match result {
+/// `result` is the option error of `want`, its message holding `text`.
+fn refused_option(result: Result<(), Error>, want: stiffid::JobOption, text: &str) {
+    match result {
         Err(Error::InvalidOption { option, message }) => {
             assert_eq!(option, want, "{message}");
             assert!(message.contains(text), "{want:?}: {message}");
         }
         other => panic!("{want:?}: expected an option error, got {other:?}"),
-    };
+    }
+}
+
+/// Selections on `setup` with an option that means nothing there: the option and what its
+/// refusal says.
+fn select_cases(
+    setup: &Setup,
+) -> Vec<(
+    stiffid::app::select::Request<'_>,
+    stiffid::JobOption,
+    &'static str,
+)> {
+    use stiffid::app::purpose::{CalibrationOptions, Purpose};
+    use stiffid::app::select;
+    use stiffid::design::observability::CalibrationCriterion;
+    use stiffid::JobOption;
     let search = select::Request {
-        setup: &setup,
+        setup,
         criterion: Criterion::RelativeA,
         purpose: Purpose::Stiffness,
         calibration: CalibrationOptions::default(),
@@ -432,7 +437,7 @@ fn options_that_mean_nothing_where_given_are_refused_by_the_jobs() {
         criterion: Some(CalibrationCriterion::O1),
         ..Default::default()
     };
-    let cases = [
+    vec![
         (
             select::Request {
                 restarts: Some(4),
@@ -477,9 +482,23 @@ fn options_that_mean_nothing_where_given_are_refused_by_the_jobs() {
             JobOption::MarginMm,
             "no cell, tracker or constraints",
         ),
-    ];
+    ]
+}
+
+/// Options that mean nothing where they are given are refused by the jobs themselves, as typed
+/// option errors (the command and Python name them their own way): a pool's restarts for a
+/// search, a calibration option for a stiffness design, the weight unless for both, a margin on a
+/// setup without a cell, `force` for a registration proposal, a level without prediction data.
+#[test]
+fn options_that_mean_nothing_where_given_are_refused_by_the_jobs() {
+    use stiffid::app::purpose::{CalibrationOptions, Purpose};
+    use stiffid::app::{evaluate, predict, register, select};
+    use stiffid::metrology::calibration::gravity::Gravity;
+    use stiffid::JobOption;
+    let setup = paper();
+    let cases = select_cases(&setup);
     for (request, option, text) in cases {
-        refused(select::run(&request).map(drop), option, text);
+        refused_option(select::run(&request).map(drop), option, text);
     }
     let group = design::random_group(&setup, 6, 1);
     let gravity = CalibrationOptions {
@@ -493,7 +512,7 @@ fn options_that_mean_nothing_where_given_are_refused_by_the_jobs() {
         postures: &group,
         candidates: None,
     };
-    refused(
+    refused_option(
         evaluate::run(&evaluate).map(drop),
         JobOption::Gravity,
         "for = calibration",
@@ -504,7 +523,7 @@ fn options_that_mean_nothing_where_given_are_refused_by_the_jobs() {
         options: Default::default(),
         force: true,
     };
-    refused(
+    refused_option(
         register::propose(&proposal).map(drop),
         JobOption::Force,
         "only with readings",
@@ -518,7 +537,7 @@ fn options_that_mean_nothing_where_given_are_refused_by_the_jobs() {
         compliance: None,
         level,
     };
-    refused(
+    refused_option(
         predict::run(prediction(Some(0.9))).map(drop),
         JobOption::Level,
         "prediction data",

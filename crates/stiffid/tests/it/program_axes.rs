@@ -212,9 +212,12 @@ fn program_values_are_checked_against_the_cell() {
     );
 }
 
-#[test]
-fn malformed_external_axes_and_inform_jobs_are_refused_naming_the_line() {
-    let cases = [
+/// A malformed program and what its refusal holds: the language, the line and a word.
+type Malformed = (String, Dialect, u64, &'static str);
+
+/// External axes' values malformed in RAPID, KRL and LS.
+fn malformed_axes() -> Vec<Malformed> {
+    vec![
         (
             RAPID.replace("[1500.5,0,9E9,9E9,9E9,9E9]", "[1500.5,0,9E9]"),
             Dialect::Rapid,
@@ -242,6 +245,12 @@ fn malformed_external_axes_and_inform_jobs_are_refused_naming_the_line() {
             22,
             "third motion group",
         ),
+    ]
+}
+
+/// INFORM jobs malformed: pulses, positions, moves and instructions stiffid does not read.
+fn malformed_inform_jobs() -> Vec<Malformed> {
+    vec![
         (
             INFORM.replace("'stiffid: pulses_per_deg = 100 100 100 100 100 100\r\n", ""),
             Dialect::Inform,
@@ -338,7 +347,12 @@ fn malformed_external_axes_and_inform_jobs_are_refused_naming_the_line() {
             25,
             "Cartesian",
         ),
-    ];
+    ]
+}
+
+#[test]
+fn malformed_external_axes_and_inform_jobs_are_refused_naming_the_line() {
+    let cases = [malformed_axes(), malformed_inform_jobs()].concat();
     for (text, dialect, line, word) in cases {
         match program::parse(&text, dialect) {
             Err(Error::Program { line: l, message }) => {
