@@ -15,11 +15,11 @@ FANUC_DATA = REPO / "examples" / "data" / "fanuc-r2000ic-165f" / "measurements.c
 
 
 def cli_path() -> Path:
-    """The `stiffid` binary: $STIFFID_CLI, else target/release/stiffid (of $CARGO_TARGET_DIR)."""
+    """The `stiffid` binary: $STIFFID_CLI, else target/ci/stiffid (of $CARGO_TARGET_DIR)."""
     if "STIFFID_CLI" in os.environ:
         return Path(os.environ["STIFFID_CLI"])
     target = Path(os.environ.get("CARGO_TARGET_DIR", REPO / "target"))
-    return target / "release" / "stiffid"
+    return target / "ci" / "stiffid"
 
 
 @pytest.fixture(scope="session")
@@ -69,11 +69,11 @@ def plain(document):
 @pytest.fixture(scope="session")
 def mesh_robot(tmp_path_factory):
     """The generated 6R robot with STL collision meshes (crates/stiffid/tests/support/mesh_robot.rs)
-    and its cell setup, written by the library's `mesh_robot` example (which `cargo test --release`
-    builds beside the command): the package directory (`mesh_robot/urdf/robot.urdf`,
+    and its cell setup, written by the library's `mesh_robot` example (which `cargo test` builds beside
+    the command): the package directory (`mesh_robot/urdf/robot.urdf`,
     `mesh_robot/meshes/*.stl`, `cell.toml`)."""
     example = cli_path().parent / "examples" / "mesh_robot"
-    assert example.exists(), f"{example}: build it first (cargo build --release -p stiffid --example mesh_robot)"
+    assert example.exists(), f"{example}: build it first (cargo build --profile ci -p stiffid --example mesh_robot)"
     out = tmp_path_factory.mktemp("mesh")
     subprocess.run([str(example), str(out)], check=True, capture_output=True)
     return out
