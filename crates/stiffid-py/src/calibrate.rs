@@ -19,7 +19,8 @@ use stiffid_metrology::app::readings::Request as Readings;
 /// the robot's geometric errors (``geometry``: ``"none"``, the tracker and the measuring points
 /// only, as ``calibrate_cell``; ``"offsets"``, the joint angle offsets too; ``"full"``, the
 /// default, every joint error with the dependent ones merged), its deflection under its own
-/// weight (``gravity``: ``"none"``, the default; ``"masses"``, one compliance per joint with the
+/// weight (``gravity``: ``"auto"``, the default, chosen with ``maps`` by a cross-validation that
+/// holds out groups of postures, as ``--gravity auto``; ``"none"``; ``"masses"``, one compliance per joint with the
 /// robot's link masses and centres; ``"lumped"``, compliance times the mass moments of the upper
 /// arm, forearm and wrist; ``"lumped-links"``, of every link), the tracker's
 /// registration and the measuring points, fitted together by Levenberg-Marquardt (docs/model.md,
@@ -69,7 +70,7 @@ use stiffid_metrology::app::readings::Request as Readings;
 /// readings no rigid transform explains (as ``register``: a mirror image of the robot's points, a
 /// residual of the calibration beyond the larger of 10 mm and 1000 times the tracker noise).
 #[pyfunction]
-#[pyo3(signature = (setup, readings, *, geometry="full", gravity="none", validate=None, reregister=false, cross_validate=false, tolerance_mm=None, tolerance_deg=None, maps="auto", error_motions="auto", level=None, update=false, update_parameters=None, stiffness=None, out=None, urdf_out=None, stiffness_out=None, force=false))]
+#[pyo3(signature = (setup, readings, *, geometry="full", gravity="auto", validate=None, reregister=false, cross_validate=false, tolerance_mm=None, tolerance_deg=None, maps="auto", error_motions="auto", level=None, update=false, update_parameters=None, stiffness=None, out=None, urdf_out=None, stiffness_out=None, force=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn calibrate<'py>(
     py: Python<'py>,

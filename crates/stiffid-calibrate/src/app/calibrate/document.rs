@@ -24,7 +24,8 @@ pub struct Document {
     pub data: String,
     /// The joint errors fitted: `none`, `offsets` or `full`.
     pub geometry: &'static str,
-    /// The gravity terms fitted: `none`, `masses`, `lumped` or `lumped-links`.
+    /// The gravity terms fitted: `none`, `masses`, `lumped` or `lumped-links` (with `--gravity
+    /// auto`, the ladder's choice).
     pub gravity: &'static str,
     /// The frame of the readings: `tracker` or `base`.
     pub measured_in: &'static str,
@@ -73,6 +74,10 @@ pub struct Document {
     /// The joint error maps: what was asked, the choice by cross-validation inside the fitted
     /// readings and its held-out gain by an outer cross-validation around the choice.
     pub maps: MapsDocument,
+    /// With `--gravity auto` or `--maps auto`: the models tried (the gravity models without and
+    /// with the maps), each one's held-out error over groups of postures, and the one fitted;
+    /// `null` when the model was given.
+    pub ladder: Option<super::ladder::LadderDocument>,
     /// With `--update`: the check readings' errors with the calibrated robot before the update
     /// against the calibration's held-out error bound, and whether it drifted beyond them;
     /// `null` otherwise, or without `[held_out]` in the robot file.
@@ -120,7 +125,8 @@ pub struct MapsDocument {
     pub asked: String,
     /// The distinct postures of the fitted readings.
     pub postures: usize,
-    /// Why no map was considered; `null` when maps were.
+    /// Why no map was considered or why none is fitted (the ladder chose the model without);
+    /// `null` when maps were considered and chosen.
     pub skipped: Option<String>,
     /// The maps fitted, `J3:16,J5:8b` (joint and harmonics, `b` a backlash term, `J2:b` the
     /// backlash alone), or `none`.
@@ -466,6 +472,10 @@ impl Document {
             })
             .collect(),
             maps: maps_document(&report.maps),
+            ladder: report
+                .ladder
+                .as_ref()
+                .map(super::ladder::LadderDocument::new),
             check: (report.check.as_ref())
                 .map(|c| super::drift::CheckDocument::new(c, &report.nominal, &report.labels)),
             validation: report.validation.as_ref().map(held),

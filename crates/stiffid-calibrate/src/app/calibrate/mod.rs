@@ -21,6 +21,7 @@ pub mod document;
 pub mod drift;
 mod extrapolation;
 mod judge;
+pub mod ladder;
 use judge::{judge, largest_residual};
 mod maps;
 pub mod scene;
@@ -28,6 +29,7 @@ pub mod update;
 
 pub use compliance::{fitted_compliance, FittedCompliance};
 pub use extrapolation::Outside;
+pub use ladder::{GravitySpec, Ladder, Rung};
 pub use maps::{Maps, MAX_MAP_WORK};
 pub use update::MIN_POSTURES as MIN_UPDATE_POSTURES;
 pub use update::{Refit, Refits};
@@ -108,8 +110,8 @@ pub struct Request<'a> {
     pub readings: Readings<'a>,
     /// The joint errors fitted.
     pub geometry: Geometry,
-    /// The gravity terms fitted.
-    pub gravity: Gravity,
+    /// The gravity terms fitted: chosen with the maps by [`ladder`] (`auto`), or given.
+    pub gravity: GravitySpec,
     /// Held-out readings (name, text), predicted by the calibration.
     pub validate: Option<(String, &'a str)>,
     /// Register the tracker anew on the held-out readings (another series: the tracker moved).
@@ -207,6 +209,8 @@ pub struct Report {
     pub noise_ratio: f64,
     /// The joint error maps: what was asked, the choice and its nested held-out gain.
     pub maps: Maps,
+    /// The models tried and their held-out errors, when the model was chosen ([`ladder`]).
+    pub ladder: Option<Ladder>,
     /// With external axes: the orders of the carrier's error motions and how they were chosen.
     pub error_motions: Option<stiffid_metrology::calibration::motions::Choice>,
     /// With `update`: the check readings against the calibration's held-out errors, before the
@@ -281,7 +285,6 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     }
     let level = interval_level(request)?;
     let (geometry, gravity, maps_spec) = update::settings(request, setup, &obs)?;
-    let model = update::kept(request, model(setup, measured_in, geometry, gravity)?)?;
     let options = Options {
         length: setup.characteristic_length().unwrap_or(1.0),
         priors: request.priors.map(|t| Priors {
@@ -291,52 +294,48 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         }),
         ridge: 0.0,
     };
-    let (model, error_motions) = match setup.robot().external() {
-        None => (model, None),
-        Some(_) if measured_in == MeasuredIn::Base => {
-            return Err(in_data(name, Error::InvalidField {
-                field: "readings".into(),
-                message: "the readings are in the base frame (x_mm, y_mm, z_mm): with external axes the calibration registers the tracker to the cell, give the tracker's readings (x_tracker_mm, y_tracker_mm, z_tracker_mm)".into(),
-            }));
-        }
-        Some(_) if request.update => update::external(request, model, data.tables, name)?,
-        Some(_) => {
-            request.progress.begin("error motions", 0);
-            let chosen = stiffid_metrology::calibration::motions::choose(
-                &model,
-                data.tables,
-                &obs,
-                &options,
-                request.error_motions,
-            );
-            request.progress.end();
-            let (model, _, choice) = chosen.map_err(|e| in_data(name, e))?;
-            (model, Some(choice))
-        }
-    };
-    update::identifiable(request, setup, &model, &obs)?;
-    let model = match obs.iter().any(Observation::loaded) {
-        true => model.with_loads(setup)?,
-        false => model,
-    };
-    // The fit and the maps' choice report no count: each a stage of total 0 (a spinner).
+    // The fits and the maps' choice report no count: each a stage of total 0 (a spinner).
     let progress = request.progress;
     progress.begin("fit", 0);
-    let start = fit::start(&model, &obs).map_err(|e| in_data(name, e));
-    let fitted = start.and_then(|s| {
-        let f = fit::fit(&model, &obs, &s, &options).map_err(|e| in_data(name, e));
-        f.map(|f| (s, f))
-    });
+    let climbed = ladder::climb(
+        (gravity, maps_spec),
+        setup.robot().masses().is_some(),
+        &obs,
+        &options,
+        |g| {
+            fitted(
+                request,
+                (&obs, measured_in, data.tables),
+                geometry,
+                g,
+                &options,
+            )
+        },
+    );
     progress.end();
-    let (start, fitted) = fitted?;
-    progress.begin("joint error maps", 0);
-    let mapped = maps::fit_maps(maps_spec, model, fitted, &obs, options);
-    progress.end();
-    let (model, fitted, options, maps) = mapped.map_err(|e| match e {
+    let climbed = climbed.map_err(|e| match e {
         // Too many maps for the readings is the option's error, not the data's.
-        e @ stiffid_core::Error::InvalidOption { .. } => e,
+        e @ (Error::InvalidOption { .. } | Error::Input { .. }) => e,
         e => in_data(name, e),
     })?;
+    let ladder::Fitted {
+        model,
+        start,
+        fit: fitted,
+        error_motions,
+    } = climbed.fitted;
+    let climbed_ladder = climbed.ladder;
+    let gravity = model.gravity().kind();
+    progress.begin("joint error maps", 0);
+    let mapped = maps::fit_maps(
+        climbed.assessed,
+        climbed.keep,
+        (model, fitted),
+        &obs,
+        options,
+    );
+    progress.end();
+    let (model, fitted, options, maps) = mapped.map_err(|e| in_data(name, e))?;
     // The maps hold over the fitted postures' angles and taper to zero beyond them.
     let model =
         (model.with_map_ranges(extrapolation::ranges(&obs))).map_err(|e| in_data(name, e))?;
@@ -448,6 +447,7 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         external,
         noise_ratio,
         maps,
+        ladder: climbed_ladder,
         error_motions,
         check,
         validation,
@@ -458,6 +458,60 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         tcp,
         compliance,
         warnings,
+    })
+}
+
+/// The calibration of `gravity` fitted to the readings `obs` (in `measured_in`, with the
+/// cell's `tables`): the error model with its error motions and loads, its start and its fit.
+///
+/// # Errors
+/// Those of [`model`], [`update::kept`], [`update::external`],
+/// [`stiffid_metrology::calibration::motions::choose`], [`update::identifiable`],
+/// [`ErrorModel::with_loads`], [`fit::start`] and [`fit::fit`];
+/// [`Error::InvalidField`] (`readings`) for base-frame readings with external axes.
+fn fitted(
+    request: &Request<'_>,
+    (obs, measured_in, tables): (&[Observation], MeasuredIn, usize),
+    geometry: Geometry,
+    gravity: Gravity,
+    options: &Options,
+) -> Result<ladder::Fitted> {
+    let setup = request.readings.setup;
+    let name = &request.readings.name;
+    let model = update::kept(request, model(setup, measured_in, geometry, gravity)?)?;
+    let (model, error_motions) = match setup.robot().external() {
+        None => (model, None),
+        Some(_) if measured_in == MeasuredIn::Base => {
+            return Err(Error::InvalidField {
+                field: "readings".into(),
+                message: "the readings are in the base frame (x_mm, y_mm, z_mm): with external axes the calibration registers the tracker to the cell, give the tracker's readings (x_tracker_mm, y_tracker_mm, z_tracker_mm)".into(),
+            });
+        }
+        Some(_) if request.update => update::external(request, model, tables, name)?,
+        Some(_) => {
+            let chosen = stiffid_metrology::calibration::motions::choose(
+                &model,
+                tables,
+                obs,
+                options,
+                request.error_motions,
+            );
+            let (model, _, choice) = chosen?;
+            (model, Some(choice))
+        }
+    };
+    update::identifiable(request, setup, &model, obs)?;
+    let model = match obs.iter().any(Observation::loaded) {
+        true => model.with_loads(setup)?,
+        false => model,
+    };
+    let start = fit::start(&model, obs)?;
+    let fit = fit::fit(&model, obs, &start, options)?;
+    Ok(ladder::Fitted {
+        model,
+        start,
+        fit,
+        error_motions,
     })
 }
 

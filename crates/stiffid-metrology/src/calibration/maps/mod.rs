@@ -221,6 +221,11 @@ pub struct Nested {
     pub rms: f64,
     /// The maps each outer fold chose.
     pub choices: Vec<JointMaps>,
+    /// Per held-out posture (the outer folds' in order: fold `k` holds the postures `i` with
+    /// `i mod K = k`), the sum of its squared errors without maps, m^2.
+    pub none_errors: Vec<f64>,
+    /// The same with the maps each outer fold chose, m^2.
+    pub errors: Vec<f64>,
 }
 
 /// The folds of `postures`: fold `k` holds `postures[i]` with `i mod K = k`, `K = min(FOLDS, n)`.
@@ -429,16 +434,20 @@ pub fn nested(linear: &Linear, postures: &[usize], spec: Spec) -> Result<Nested>
             let n: usize = train.iter().map(|&p| linear.rows[p].len() / 3).sum();
             let maps = linear.errors(&split, &choice.maps, &[choice.ridge * n as f64])?;
             let none = linear.errors(&split, &JointMaps::NONE, &[0.0])?;
-            let sum = |e: &[Vec<f64>]| e[0].iter().sum::<f64>();
-            Ok((sum(&maps), sum(&none), choice.maps))
+            let first = |mut e: Vec<Vec<f64>>| e.swap_remove(0);
+            Ok((first(maps), first(none), choice.maps))
         })
         .collect::<Result<Vec<_>>>()?;
     let readings: usize = postures.iter().map(|&p| linear.rows[p].len() / 3).sum();
-    let rms = |total: f64| (total / readings.max(1) as f64).sqrt();
+    let rms = |e: &[f64]| (e.iter().sum::<f64>() / readings.max(1) as f64).sqrt();
+    let errors: Vec<f64> = outer.iter().flat_map(|o| o.0.clone()).collect();
+    let none_errors: Vec<f64> = outer.iter().flat_map(|o| o.1.clone()).collect();
     Ok(Nested {
         folds: parts.len(),
-        rms: rms(outer.iter().map(|o| o.0).sum()),
-        none_rms: rms(outer.iter().map(|o| o.1).sum()),
+        rms: rms(&errors),
+        none_rms: rms(&none_errors),
         choices: outer.iter().map(|o| o.2).collect(),
+        none_errors,
+        errors,
     })
 }
