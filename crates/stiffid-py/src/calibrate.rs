@@ -94,40 +94,13 @@ pub fn calibrate<'py>(
     stiffness_out: Option<PathBuf>,
     force: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let tolerances = (
-        crate::count::real("tolerance_mm", tolerance_mm)?,
-        crate::count::real("tolerance_deg", tolerance_deg)?,
-    );
-    let priors = match tolerances {
-        (Some(l), Some(a)) => Some(Tolerances::from_mm_deg(l, a).map_err(raise)?),
-        (None, None) => None,
-        _ => return Err(value("tolerance_mm, tolerance_deg: give both or neither")),
-    };
+    let priors = priors(tolerance_mm, tolerance_deg)?;
     if reregister && validate.is_none() {
         return Err(value(
             "reregister: only with validate= (the held-out readings)",
         ));
     }
-    if !update && (update_parameters.is_some() || stiffness.is_some()) {
-        return Err(value(
-            "update_parameters, stiffness: only with update=True (a calibrated robot updated from check readings)",
-        ));
-    }
-    let refit = (update_parameters.map(job::Refits::parse))
-        .transpose()
-        .map_err(raise)?
-        .unwrap_or_default();
-    let weight = match &stiffness {
-        Some(p) => {
-            let name = p.display().to_string();
-            let file = stiffid_core::io::stiffness::parse(&error::read(p)?)
-                .map_err(|e| error::raise_in(&name, e))?;
-            (file.compliance(setup.inner.model()))
-                .map_err(|e| error::raise_in(&name, e))?
-                .own_weight
-        }
-        None => None,
-    };
+    let (refit, weight) = update_of(setup, update, update_parameters, stiffness.as_ref())?;
     let text = error::read(&readings)?;
     let held = validate.as_ref().map(|p| error::read(p)).transpose()?;
     let mut inputs = setup.files.clone();
@@ -171,41 +144,94 @@ pub fn calibrate<'py>(
     };
     let report = py.detach(|| job::run(&request)).map_err(raise)?;
     let document = Document::new(&report, &setup.given);
-    let robot_file = match (&out_file, document.robot_file_out()) {
-        (Some(file), Some(text)) => Some((file, text)),
-        (Some(_), None) => {
-            let why = document.robot_file_error.clone().unwrap_or_default();
-            return Err(value(format!("out: {why}")));
-        }
-        (None, _) => None,
-    };
-    let urdf = match (&urdf_file, &document.urdf) {
-        (Some(file), Some(text)) => Some((file, text)),
-        (Some(_), None) => {
-            let why = document.urdf_error.clone().unwrap_or_default();
-            return Err(value(format!("urdf_out: {why}")));
-        }
-        (None, _) => None,
-    };
-    let stiffness = match (&stiffness_file, document.stiffness_file_out()) {
-        (Some(file), Some(text)) => Some((file, text)),
-        (Some(_), None) => {
-            let why = document.stiffness_file_error.clone().unwrap_or_else(|| {
-                "no compliance is fitted: loaded readings (load steps) or a gravity model (gravity=\"masses\", \"lumped\" or \"lumped-links\") fit them".into()
-            });
-            return Err(value(format!("stiffness_out: {why}")));
-        }
-        (None, _) => None,
-    };
+    let writes = writes(
+        &document,
+        [
+            out_file.as_ref(),
+            urdf_file.as_ref(),
+            stiffness_file.as_ref(),
+        ],
+    )?;
     warn(py, &document.warnings)?;
-    if let Some((file, text)) = robot_file {
-        file.write(text.as_bytes())?;
-    }
-    if let Some((file, text)) = urdf {
-        file.write(text.as_bytes())?;
-    }
-    if let Some((file, text)) = stiffness {
+    for (file, text) in writes {
         file.write(text.as_bytes())?;
     }
     to_python(py, &document, &[])
+}
+
+/// The priors of `tolerance_mm` and `tolerance_deg`, both or neither.
+fn priors(
+    tolerance_mm: Option<&Bound<'_, PyAny>>,
+    tolerance_deg: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Option<Tolerances>> {
+    let tolerances = (
+        crate::count::real("tolerance_mm", tolerance_mm)?,
+        crate::count::real("tolerance_deg", tolerance_deg)?,
+    );
+    match tolerances {
+        (Some(l), Some(a)) => Ok(Some(Tolerances::from_mm_deg(l, a).map_err(raise)?)),
+        (None, None) => Ok(None),
+        _ => Err(value("tolerance_mm, tolerance_deg: give both or neither")),
+    }
+}
+
+/// What an update refits (`update_parameters`) and the own weight of its `stiffness` file; both
+/// refused without `update`.
+fn update_of(
+    setup: &Setup,
+    update: bool,
+    update_parameters: Option<&str>,
+    stiffness: Option<&PathBuf>,
+) -> PyResult<(job::Refits, Option<stiffid_core::model::OwnWeight>)> {
+    if !update && (update_parameters.is_some() || stiffness.is_some()) {
+        return Err(value(
+            "update_parameters, stiffness: only with update=True (a calibrated robot updated from check readings)",
+        ));
+    }
+    let refit = (update_parameters.map(job::Refits::parse))
+        .transpose()
+        .map_err(raise)?
+        .unwrap_or_default();
+    let weight = match stiffness {
+        Some(p) => {
+            let name = p.display().to_string();
+            let file = stiffid_core::io::stiffness::parse(&error::read(p)?)
+                .map_err(|e| error::raise_in(&name, e))?;
+            (file.compliance(setup.inner.model()))
+                .map_err(|e| error::raise_in(&name, e))?
+                .own_weight
+        }
+        None => None,
+    };
+    Ok((refit, weight))
+}
+
+/// The texts to write into the files asked (`out`, `urdf_out`, `stiffness_out`), or why one
+/// cannot be written (a `ValueError` naming the argument), before anything is written.
+fn writes<'a>(
+    document: &Document,
+    [out, urdf, stiffness]: [Option<&'a output::OutFile>; 3],
+) -> PyResult<Vec<(&'a output::OutFile, String)>> {
+    let texts = [
+        ("out", document.robot_file_out(), document.robot_file_error.clone()),
+        ("urdf_out", document.urdf.clone(), document.urdf_error.clone()),
+        (
+            "stiffness_out",
+            document.stiffness_file_out(),
+            Some(document.stiffness_file_error.clone().unwrap_or_else(|| {
+                "no compliance is fitted: loaded readings (load steps) or a gravity model (gravity=\"masses\", \"lumped\" or \"lumped-links\") fit them".into()
+            })),
+        ),
+    ];
+    let mut writes = Vec::new();
+    for (file, (what, text, why)) in [out, urdf, stiffness].into_iter().zip(texts) {
+        match (file, text) {
+            (Some(file), Some(text)) => writes.push((file, text)),
+            (Some(_), None) => {
+                return Err(value(format!("{what}: {}", why.unwrap_or_default())));
+            }
+            (None, _) => {}
+        }
+    }
+    Ok(writes)
 }

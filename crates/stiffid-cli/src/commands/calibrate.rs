@@ -49,7 +49,7 @@ pub struct Args {
     #[arg(long, requires = "validate")]
     reregister: bool,
     /// The level of the --validate readings' prediction intervals [0.5 to 0.999], default
-    /// 0.95: jackknife+ over the fitted postures (one fit each, at most 500), built from their
+    /// 0.95: jackknife+ over the fitted postures (one fold each, at most 5000), built from their
     /// leave-one-posture-out errors; the document's validation reports each reading's interval
     /// and the share of held-out coordinates inside (coverage).
     #[arg(long)]
@@ -79,8 +79,8 @@ pub struct Args {
     /// them.
     #[arg(long)]
     force: bool,
-    /// Leave-one-posture-out: each posture's error predicted by the fit of the others (at most
-    /// 500 postures, with progress on stderr).
+    /// Leave-one-posture-out: each posture's error predicted by the fit of the others, one
+    /// Gauss-Newton step from the full fit (at most 5000 postures, with progress on stderr).
     #[arg(long)]
     cross_validate: bool,
     /// Nominal tolerance of the joints' length errors, mm [1e-6 to 1000] (a prior: weakly
