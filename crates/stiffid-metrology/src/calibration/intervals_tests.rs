@@ -60,7 +60,7 @@ fn the_linearised_folds_equal_the_refitted_ones() {
 
 #[test]
 fn the_one_step_cross_validation_equals_the_refitted_one() {
-    let (model, fit, data, _) = campaign(40, 0, 2e-4, 2);
+    let (model, fit, data, _) = campaign(40, 0, 2e-4, 1);
     let exact = leave_one_out(&model, &data, &fit.estimate, &options(0.0), &()).unwrap();
     let exact = pooled(&exact);
     let step = cross_validate(&model, &data, &fit, &options(0.0), &()).unwrap();
