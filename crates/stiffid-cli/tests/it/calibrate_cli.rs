@@ -419,7 +419,7 @@ fn calibrate_with_masses_writes_the_stiffness_file() {
     let cov = c.covariance.unwrap();
     assert_eq!(cov[(0, 0)], 0.0);
     assert!((1..6).all(|j| cov[(j, j)] > 0.0));
-    // Without masses there is no compliance to write: refused, nothing written.
+    // Without a gravity model there is no compliance to write: refused, nothing written.
     let (setup_arg, data_arg) = (setup_file.to_str().unwrap(), data.to_str().unwrap());
     refused(
         &d,
@@ -429,6 +429,8 @@ fn calibrate_with_masses_writes_the_stiffness_file() {
             setup_arg,
             "--data",
             data_arg,
+            "--gravity",
+            "none",
             "--stiffness-out",
             "{dir}/k2.json",
         ],
