@@ -19,7 +19,8 @@ use stiffid_metrology::app::readings::Request as Readings;
 /// the robot's geometric errors (``geometry``: ``"none"``, the tracker and the measuring points
 /// only, as ``calibrate_cell``; ``"offsets"``, the joint angle offsets too; ``"full"``, the
 /// default, every joint error with the dependent ones merged), its deflection under its own
-/// weight (``gravity``: ``"none"``, the default; ``"masses"``, one compliance per joint with the
+/// weight (``gravity``: ``"auto"``, the default, chosen with ``maps`` by a cross-validation that
+/// holds out groups of postures, as ``--gravity auto``; ``"none"``; ``"masses"``, one compliance per joint with the
 /// robot's link masses and centres; ``"lumped"``, compliance times the mass moments of the upper
 /// arm, forearm and wrist; ``"lumped-links"``, of every link), the tracker's
 /// registration and the measuring points, fitted together by Levenberg-Marquardt (docs/model.md,
@@ -69,7 +70,7 @@ use stiffid_metrology::app::readings::Request as Readings;
 /// readings no rigid transform explains (as ``register``: a mirror image of the robot's points, a
 /// residual of the calibration beyond the larger of 10 mm and 1000 times the tracker noise).
 #[pyfunction]
-#[pyo3(signature = (setup, readings, *, geometry="full", gravity="none", validate=None, reregister=false, cross_validate=false, tolerance_mm=None, tolerance_deg=None, maps="auto", error_motions="auto", level=None, update=false, update_parameters=None, stiffness=None, out=None, urdf_out=None, stiffness_out=None, force=false))]
+#[pyo3(signature = (setup, readings, *, geometry="full", gravity="auto", validate=None, reregister=false, cross_validate=false, tolerance_mm=None, tolerance_deg=None, maps="auto", error_motions="auto", level=None, update=false, update_parameters=None, stiffness=None, out=None, urdf_out=None, stiffness_out=None, force=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn calibrate<'py>(
     py: Python<'py>,
@@ -93,40 +94,13 @@ pub fn calibrate<'py>(
     stiffness_out: Option<PathBuf>,
     force: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let tolerances = (
-        crate::count::real("tolerance_mm", tolerance_mm)?,
-        crate::count::real("tolerance_deg", tolerance_deg)?,
-    );
-    let priors = match tolerances {
-        (Some(l), Some(a)) => Some(Tolerances::from_mm_deg(l, a).map_err(raise)?),
-        (None, None) => None,
-        _ => return Err(value("tolerance_mm, tolerance_deg: give both or neither")),
-    };
+    let priors = priors(tolerance_mm, tolerance_deg)?;
     if reregister && validate.is_none() {
         return Err(value(
             "reregister: only with validate= (the held-out readings)",
         ));
     }
-    if !update && (update_parameters.is_some() || stiffness.is_some()) {
-        return Err(value(
-            "update_parameters, stiffness: only with update=True (a calibrated robot updated from check readings)",
-        ));
-    }
-    let refit = (update_parameters.map(job::Refits::parse))
-        .transpose()
-        .map_err(raise)?
-        .unwrap_or_default();
-    let weight = match &stiffness {
-        Some(p) => {
-            let name = p.display().to_string();
-            let file = stiffid_core::io::stiffness::parse(&error::read(p)?)
-                .map_err(|e| error::raise_in(&name, e))?;
-            (file.compliance(setup.inner.model()))
-                .map_err(|e| error::raise_in(&name, e))?
-                .own_weight
-        }
-        None => None,
-    };
+    let (refit, weight) = update_of(setup, update, update_parameters, stiffness.as_ref())?;
     let text = error::read(&readings)?;
     let held = validate.as_ref().map(|p| error::read(p)).transpose()?;
     let mut inputs = setup.files.clone();
@@ -170,41 +144,94 @@ pub fn calibrate<'py>(
     };
     let report = py.detach(|| job::run(&request)).map_err(raise)?;
     let document = Document::new(&report, &setup.given);
-    let robot_file = match (&out_file, document.robot_file_out()) {
-        (Some(file), Some(text)) => Some((file, text)),
-        (Some(_), None) => {
-            let why = document.robot_file_error.clone().unwrap_or_default();
-            return Err(value(format!("out: {why}")));
-        }
-        (None, _) => None,
-    };
-    let urdf = match (&urdf_file, &document.urdf) {
-        (Some(file), Some(text)) => Some((file, text)),
-        (Some(_), None) => {
-            let why = document.urdf_error.clone().unwrap_or_default();
-            return Err(value(format!("urdf_out: {why}")));
-        }
-        (None, _) => None,
-    };
-    let stiffness = match (&stiffness_file, document.stiffness_file_out()) {
-        (Some(file), Some(text)) => Some((file, text)),
-        (Some(_), None) => {
-            let why = document.stiffness_file_error.clone().unwrap_or_else(|| {
-                "no compliance is fitted: loaded readings (load steps) or a gravity model (gravity=\"masses\", \"lumped\" or \"lumped-links\") fit them".into()
-            });
-            return Err(value(format!("stiffness_out: {why}")));
-        }
-        (None, _) => None,
-    };
+    let writes = writes(
+        &document,
+        [
+            out_file.as_ref(),
+            urdf_file.as_ref(),
+            stiffness_file.as_ref(),
+        ],
+    )?;
     warn(py, &document.warnings)?;
-    if let Some((file, text)) = robot_file {
-        file.write(text.as_bytes())?;
-    }
-    if let Some((file, text)) = urdf {
-        file.write(text.as_bytes())?;
-    }
-    if let Some((file, text)) = stiffness {
+    for (file, text) in writes {
         file.write(text.as_bytes())?;
     }
     to_python(py, &document, &[])
+}
+
+/// The priors of `tolerance_mm` and `tolerance_deg`, both or neither.
+fn priors(
+    tolerance_mm: Option<&Bound<'_, PyAny>>,
+    tolerance_deg: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Option<Tolerances>> {
+    let tolerances = (
+        crate::count::real("tolerance_mm", tolerance_mm)?,
+        crate::count::real("tolerance_deg", tolerance_deg)?,
+    );
+    match tolerances {
+        (Some(l), Some(a)) => Ok(Some(Tolerances::from_mm_deg(l, a).map_err(raise)?)),
+        (None, None) => Ok(None),
+        _ => Err(value("tolerance_mm, tolerance_deg: give both or neither")),
+    }
+}
+
+/// What an update refits (`update_parameters`) and the own weight of its `stiffness` file; both
+/// refused without `update`.
+fn update_of(
+    setup: &Setup,
+    update: bool,
+    update_parameters: Option<&str>,
+    stiffness: Option<&PathBuf>,
+) -> PyResult<(job::Refits, Option<stiffid_core::model::OwnWeight>)> {
+    if !update && (update_parameters.is_some() || stiffness.is_some()) {
+        return Err(value(
+            "update_parameters, stiffness: only with update=True (a calibrated robot updated from check readings)",
+        ));
+    }
+    let refit = (update_parameters.map(job::Refits::parse))
+        .transpose()
+        .map_err(raise)?
+        .unwrap_or_default();
+    let weight = match stiffness {
+        Some(p) => {
+            let name = p.display().to_string();
+            let file = stiffid_core::io::stiffness::parse(&error::read(p)?)
+                .map_err(|e| error::raise_in(&name, e))?;
+            (file.compliance(setup.inner.model()))
+                .map_err(|e| error::raise_in(&name, e))?
+                .own_weight
+        }
+        None => None,
+    };
+    Ok((refit, weight))
+}
+
+/// The texts to write into the files asked (`out`, `urdf_out`, `stiffness_out`), or why one
+/// cannot be written (a `ValueError` naming the argument), before anything is written.
+fn writes<'a>(
+    document: &Document,
+    [out, urdf, stiffness]: [Option<&'a output::OutFile>; 3],
+) -> PyResult<Vec<(&'a output::OutFile, String)>> {
+    let texts = [
+        ("out", document.robot_file_out(), document.robot_file_error.clone()),
+        ("urdf_out", document.urdf.clone(), document.urdf_error.clone()),
+        (
+            "stiffness_out",
+            document.stiffness_file_out(),
+            Some(document.stiffness_file_error.clone().unwrap_or_else(|| {
+                "no compliance is fitted: loaded readings (load steps) or a gravity model (gravity=\"masses\", \"lumped\" or \"lumped-links\") fit them".into()
+            })),
+        ),
+    ];
+    let mut writes = Vec::new();
+    for (file, (what, text, why)) in [out, urdf, stiffness].into_iter().zip(texts) {
+        match (file, text) {
+            (Some(file), Some(text)) => writes.push((file, text)),
+            (Some(_), None) => {
+                return Err(value(format!("{what}: {}", why.unwrap_or_default())));
+            }
+            (None, _) => {}
+        }
+    }
+    Ok(writes)
 }

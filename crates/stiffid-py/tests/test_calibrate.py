@@ -194,7 +194,7 @@ def test_stiffness_out_writes_the_commands_stiffness_file(paper, cli, campaign):
     assert written == mine["stiffness_file"]
     # Without loads or a gravity model no compliance is fitted: refused, nothing written.
     with pytest.raises(stiffid.InputError, match=r"stiffness_out: no compliance is fitted.*gravity=\"masses\""):
-        stiffid.calibrate(paper, fit, stiffness_out=d / "none.json")
+        stiffid.calibrate(paper, fit, gravity="none", stiffness_out=d / "none.json")
     assert not (d / "none.json").exists()
 
 

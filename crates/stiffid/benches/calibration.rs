@@ -2,7 +2,8 @@
 //! FANUC R-2000iC/165F preset, noise-free readings of a robot with 0.5 mm / 0.5 mrad errors, at 36
 //! postures x 3 measuring points and at 3000 postures x 3 points; the same on a 6 m track (its
 //! direction and error motions of order 3 fitted too, the postures spread over the rail), and
-//! the choice of the track's orders by cross-validation (`--error-motions auto`) at 36.
+//! the choice of the track's orders by cross-validation (`--error-motions auto`) at 36; the fit
+//! and the leave-one-posture-out cross-validation (`--cross-validate`) of 1000 postures x 1 point.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::{Isometry3, Point3, Vector3, Vector6};
@@ -10,7 +11,9 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use stiffid::metrology::calibration::error_model::{MeasuredIn, Observation};
 use stiffid::metrology::calibration::fit::{self, Options};
-use stiffid::metrology::calibration::{gravity, motions, ErrorModel, Estimate, Geometry};
+use stiffid::metrology::calibration::{
+    gravity, motions, validation, ErrorModel, Estimate, Geometry,
+};
 use stiffid::robot::external::{ErrorMotions, ExternalAxes, ExternalAxis, ExternalValues};
 use stiffid::robot::presets;
 
@@ -104,6 +107,17 @@ fn bench(c: &mut Criterion) {
             });
         }
     }
+    // `calibrate --cross-validate` of 1000 one-point postures: the fit, then its folds.
+    let (model, mut obs) = campaign(1000, false);
+    obs.retain(|o| o.point == 0);
+    let start: Estimate = fit::start(&model, &obs).unwrap();
+    c.bench_function("calibrate full+lumped 1000x1", |b| {
+        b.iter(|| fit::fit(&model, &obs, &start, &options).unwrap())
+    });
+    let fitted = fit::fit(&model, &obs, &start, &options).unwrap();
+    c.bench_function("calibrate cross-validation 1000x1", |b| {
+        b.iter(|| validation::cross_validate(&model, &obs, &fitted, &options, &()).unwrap())
+    });
 }
 
 criterion_group! {

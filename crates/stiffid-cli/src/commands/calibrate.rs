@@ -10,9 +10,9 @@ use crate::report::calibration;
 use anyhow::{bail, Result};
 use std::path::PathBuf;
 use stiffid_calibrate::app::calibrate::document::Document;
+use stiffid_calibrate::app::calibrate::GravitySpec;
 use stiffid_calibrate::app::calibrate::{self as job, Tolerances};
 use stiffid_metrology::app::readings::Request as Readings;
-use stiffid_metrology::calibration::gravity::Gravity;
 use stiffid_metrology::calibration::maps::Spec;
 use stiffid_metrology::calibration::Geometry;
 
@@ -34,11 +34,14 @@ pub struct Args {
     /// dependent ones merged).
     #[arg(long, value_parser = choice::<Geometry>(), default_value = "full")]
     geometry: Geometry,
-    /// The deflection under the robot's own weight: none, masses (the robot's link masses and
-    /// centres known, the joint compliances fitted), lumped (compliance times mass moment of the
-    /// upper arm, the forearm and the wrist) or lumped-links (of every link each joint carries).
-    #[arg(long, value_parser = choice::<Gravity>(), default_value = "none")]
-    gravity: Gravity,
+    /// The deflection under the robot's own weight: auto (chosen with --maps by a
+    /// cross-validation that holds out groups of postures: the simplest model within one standard
+    /// error of the best, with 10 distinct postures or more; none below), none, masses (the
+    /// robot's link masses and centres known, the joint compliances fitted), lumped (compliance
+    /// times mass moment of the upper arm, the forearm and the wrist) or lumped-links (of every
+    /// link each joint carries).
+    #[arg(long, value_parser = choice::<GravitySpec>(), default_value = "auto")]
+    gravity: GravitySpec,
     /// Held-out readings CSV (same format): their 3D position error with the calibration.
     #[arg(long)]
     validate: Option<PathBuf>,
@@ -46,7 +49,7 @@ pub struct Args {
     #[arg(long, requires = "validate")]
     reregister: bool,
     /// The level of the --validate readings' prediction intervals [0.5 to 0.999], default
-    /// 0.95: jackknife+ over the fitted postures (one fit each, at most 500), built from their
+    /// 0.95: jackknife+ over the fitted postures (one fold each, at most 5000), built from their
     /// leave-one-posture-out errors; the document's validation reports each reading's interval
     /// and the share of held-out coordinates inside (coverage).
     #[arg(long)]
@@ -76,8 +79,8 @@ pub struct Args {
     /// them.
     #[arg(long)]
     force: bool,
-    /// Leave-one-posture-out: each posture's error predicted by the fit of the others (at most
-    /// 500 postures, with progress on stderr).
+    /// Leave-one-posture-out: each posture's error predicted by the fit of the others, one
+    /// Gauss-Newton step from the full fit (at most 5000 postures, with progress on stderr).
     #[arg(long)]
     cross_validate: bool,
     /// Nominal tolerance of the joints' length errors, mm [1e-6 to 1000] (a prior: weakly
@@ -279,6 +282,7 @@ fn text_of(d: &Document) -> String {
         text += &format!("correlated: {} and {} ({:+.3})\n", c.a, c.b, c.rho);
     }
     text += &check_text(d.check.as_ref());
+    text += &ladder_text(d.ladder.as_ref());
     text += &maps_text(&d.maps);
     for v in d.validation.iter().chain(&d.cross_validation) {
         text += &format!(
@@ -326,6 +330,40 @@ fn check_text(c: Option<&stiffid_calibrate::app::calibrate::drift::CheckDocument
             false => "not drifted beyond its intervals",
         }
     )
+}
+
+/// The ladder's lines: each rung's held-out error over groups of postures, the one fitted.
+fn ladder_text(
+    ladder: Option<&stiffid_calibrate::app::calibrate::ladder::LadderDocument>,
+) -> String {
+    let Some(l) = ladder else {
+        return String::new();
+    };
+    let mut text = match l.folds {
+        0 => "
+model: not chosen (too few postures), the first rung fitted
+"
+        .to_string(),
+        k => format!(
+            "
+model chosen by {k} groups of postures held out (RMS, mm):
+"
+        ),
+    };
+    for (i, r) in l.rungs.iter().enumerate() {
+        let figure = match (&r.held_out_rms_mm, &r.skipped) {
+            (Some(v), _) => format!("{v:.4}"),
+            (None, Some(why)) => format!("skipped: {why}"),
+            (None, None) => "-".into(),
+        };
+        text += &format!(
+            "  {} gravity {:<12} {:<9} {figure}\n",
+            if i == l.chosen { "*" } else { " " },
+            r.gravity,
+            if r.maps { "+ maps" } else { "" },
+        );
+    }
+    text
 }
 
 /// The maps' lines: the choice, the figure it was tuned on and the nested held-out gain.

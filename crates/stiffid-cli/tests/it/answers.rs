@@ -462,13 +462,13 @@ fn the_margin_select_keeps_is_the_margin_evaluate_measures() {
     }
 }
 
-/// `calibrate --cross-validate` refits once per posture: beyond its documented 500 postures it
+/// `calibrate --cross-validate` takes one fold per posture: beyond its documented 5000 postures it
 /// is refused before any fit, naming the limit and the way out.
 #[test]
 fn cross_validation_beyond_its_posture_limit_is_refused_at_once() {
     let d = temp_dir("answers-cross-limit");
     let model = model();
-    let text = readings(&model, &truth(&model), &tracker(), &postures(501, 4));
+    let text = readings(&model, &truth(&model), &tracker(), &postures(5001, 1));
     write_file(&d, "many.csv", &text);
     let args = ["calibrate", "--setup", SETUP, "--data", "{dir}/many.csv"];
     let line = refused(
@@ -476,8 +476,8 @@ fn cross_validation_beyond_its_posture_limit_is_refused_at_once() {
         &[&args[..], &["--cross-validate"]].concat(),
         &[
             "cross_validate",
-            "at most 500 postures",
-            "got 501",
+            "at most 5000 postures",
+            "got 5001",
             "held-out",
         ],
     );

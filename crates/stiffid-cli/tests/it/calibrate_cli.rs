@@ -440,7 +440,7 @@ fn calibrate_with_masses_writes_the_stiffness_file() {
     let reference = nominal_rms_mm(&nominal_model, &x, &model, &tracker, &postures(8, 6));
     assert_nominal_reference(&doc, &rigid, reference);
     assert_stiffness_file(&k, &setup, &springs);
-    // Without masses there is no compliance to write: refused, nothing written.
+    // Without a gravity model there is no compliance to write: refused, nothing written.
     let (setup_arg, data_arg) = (setup_file.to_str().unwrap(), data.to_str().unwrap());
     refused(
         &d,
@@ -450,6 +450,8 @@ fn calibrate_with_masses_writes_the_stiffness_file() {
             setup_arg,
             "--data",
             data_arg,
+            "--gravity",
+            "none",
             "--stiffness-out",
             "{dir}/k2.json",
         ],

@@ -7,7 +7,9 @@ use super::fit;
 use super::intervals::{coverage, Intervals};
 use super::maps_tests::{identified, model, noisy, options, truth};
 use super::tests::{postures, readings};
-use super::validation::{leave_one_out, leave_one_out_linearised, pooled, validate};
+use super::validation::{
+    cross_validate, leave_one_out, leave_one_out_linearised, pooled, validate,
+};
 use super::ErrorModel;
 
 /// A UR10 campaign of `n` fitted and `held` held-out postures (one point, tracker noise
@@ -52,6 +54,31 @@ fn the_linearised_folds_equal_the_refitted_ones() {
         (linear.rms / exact.rms - 1.0).abs() < 0.02,
         "{:e} vs {:e}",
         linear.rms,
+        exact.rms
+    );
+}
+
+#[test]
+fn the_one_step_cross_validation_equals_the_refitted_one() {
+    let (model, fit, data, _) = campaign(40, 0, 2e-4, 1);
+    let exact = leave_one_out(&model, &data, &fit.estimate, &options(0.0), &()).unwrap();
+    let exact = pooled(&exact);
+    let step = cross_validate(&model, &data, &fit, &options(0.0), &()).unwrap();
+    // One Gauss-Newton step from the full fit, the held-out posture on the model itself: the
+    // same postures in the same order, each error within 15 % of their RMS, the RMS within 2 %.
+    assert_eq!(step.errors.len(), exact.errors.len());
+    let worst = (exact.errors.iter().zip(&step.errors))
+        .map(|(a, b)| {
+            assert_eq!((a.posture, a.point), (b.posture, b.point));
+            (a.error - b.error).norm()
+        })
+        .fold(0.0, f64::max);
+    assert!(exact.rms > 1e-4, "{}", exact.rms);
+    assert!(worst < 0.15 * exact.rms, "{worst:e} vs RMS {:e}", exact.rms);
+    assert!(
+        (step.rms / exact.rms - 1.0).abs() < 0.02,
+        "{:e} vs {:e}",
+        step.rms,
         exact.rms
     );
 }

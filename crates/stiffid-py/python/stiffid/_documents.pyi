@@ -50,6 +50,7 @@ CalibrateDocument = TypedDict("CalibrateDocument", {
     "held": list[str],
     "iterations": int,
     "kind": Literal["calibrate"],
+    "ladder": Optional[CalibrateLadderDocument],
     "maps": CalibrateMapsDocument,
     "measured_in": str,
     "merged": list[CalibrateMerged],
@@ -119,6 +120,12 @@ CalibrateIntervalsDocument = TypedDict("CalibrateIntervalsDocument", {
     "level": float,
     "median_width_mm": Optional[float],
     "method": str,
+})
+
+CalibrateLadderDocument = TypedDict("CalibrateLadderDocument", {
+    "chosen": int,
+    "folds": int,
+    "rungs": list[CalibrateRungDocument],
 })
 
 CalibrateMapTried = TypedDict("CalibrateMapTried", {
@@ -192,6 +199,13 @@ CalibrateRegionSection = TypedDict("CalibrateRegionSection", {
     "margin_deg": float,
     "postures": int,
     "upper_deg": list[float],
+})
+
+CalibrateRungDocument = TypedDict("CalibrateRungDocument", {
+    "gravity": str,
+    "held_out_rms_mm": Optional[float],
+    "maps": bool,
+    "skipped": Optional[str],
 })
 
 CalibrateStance = TypedDict("CalibrateStance", {

@@ -422,7 +422,7 @@ def calibrate(
     readings: _PathLike,
     *,
     geometry: Literal["none", "offsets", "full"] = "full",
-    gravity: Literal["none", "masses", "lumped", "lumped-links"] = "none",
+    gravity: Literal["auto", "none", "masses", "lumped", "lumped-links"] = "auto",
     validate: Optional[_PathLike] = None,
     reregister: bool = False,
     cross_validate: bool = False,

@@ -188,7 +188,7 @@ pub(super) fn request<'a>(
             force: false,
         },
         geometry: Geometry::Full,
-        gravity: Gravity::None,
+        gravity: stiffid::app::calibrate::GravitySpec::Fixed(Gravity::None),
         validate: held.map(|h| ("held.csv".to_string(), h)),
         reregister: false,
         cross_validate: false,

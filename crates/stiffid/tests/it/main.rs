@@ -55,6 +55,7 @@ mod lsq;
 mod map_chosen;
 mod model_fits;
 mod model_form;
+mod model_ladder;
 mod model_prediction;
 mod models;
 mod mounting;

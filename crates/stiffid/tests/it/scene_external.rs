@@ -115,7 +115,7 @@ fn a_calibrations_scene_stands_each_posture_at_its_readings_station() {
             force: false,
         },
         geometry: Geometry::Offsets,
-        gravity: Gravity::None,
+        gravity: stiffid::app::calibrate::GravitySpec::Fixed(Gravity::None),
         validate: None,
         reregister: false,
         cross_validate: false,

@@ -452,7 +452,7 @@ pub(crate) fn calibrated(
             force: false,
         },
         geometry: Geometry::Full,
-        gravity,
+        gravity: stiffid::app::calibrate::GravitySpec::Fixed(gravity),
         validate: Some(("held.csv".into(), held)),
         reregister: false,
         cross_validate: false,

@@ -37,7 +37,7 @@ pub(super) fn cross_validation_size(obs: &[Observation]) -> Result<()> {
         true => Err(Error::InvalidField {
             field: "cross_validate".into(),
             message: format!(
-                "at most {MAX_CROSS_VALIDATION_POSTURES} postures (one fit each), got {}: validate on a held-out file instead",
+                "at most {MAX_CROSS_VALIDATION_POSTURES} postures (one fold each), got {}: validate on a held-out file instead",
                 postures.len()
             ),
         }),

@@ -24,7 +24,8 @@ pub struct Document {
     pub data: String,
     /// The joint errors fitted: `none`, `offsets` or `full`.
     pub geometry: &'static str,
-    /// The gravity terms fitted: `none`, `masses`, `lumped` or `lumped-links`.
+    /// The gravity terms fitted: `none`, `masses`, `lumped` or `lumped-links` (with `--gravity
+    /// auto`, the ladder's choice).
     pub gravity: &'static str,
     /// The frame of the readings: `tracker` or `base`.
     pub measured_in: &'static str,
@@ -73,6 +74,10 @@ pub struct Document {
     /// The joint error maps: what was asked, the choice by cross-validation inside the fitted
     /// readings and its held-out gain by an outer cross-validation around the choice.
     pub maps: MapsDocument,
+    /// With `--gravity auto` or `--maps auto`: the models tried (the gravity models without and
+    /// with the maps), each one's held-out error over groups of postures, and the one fitted;
+    /// `null` when the model was given.
+    pub ladder: Option<super::ladder::LadderDocument>,
     /// With `--update`: the check readings' errors with the calibrated robot before the update
     /// against the calibration's held-out error bound, and whether it drifted beyond them;
     /// `null` otherwise, or without `[held_out]` in the robot file.
@@ -120,7 +125,8 @@ pub struct MapsDocument {
     pub asked: String,
     /// The distinct postures of the fitted readings.
     pub postures: usize,
-    /// Why no map was considered; `null` when maps were.
+    /// Why no map was considered or why none is fitted (the ladder chose the model without);
+    /// `null` when maps were considered and chosen.
     pub skipped: Option<String>,
     /// The maps fitted, `J3:16,J5:8b` (joint and harmonics, `b` a backlash term, `J2:b` the
     /// backlash alone), or `none`.
@@ -305,7 +311,7 @@ pub struct ValidationDocument {
     /// `base`: nothing registered).
     pub nominal_rms_mm: f64,
     /// The prediction intervals of the held-out readings' errors and how well they covered
-    /// them (`--validate`, with at most 500 fitted postures); `null` for the cross-validation.
+    /// them (`--validate`, with at most 5000 fitted postures); `null` for the cross-validation.
     pub intervals: Option<IntervalsDocument>,
     /// The share of the held-out coordinates inside their prediction intervals (`intervals`'
     /// `coverage`); `null` without intervals.
@@ -378,51 +384,9 @@ impl Document {
         let model = &report.model;
         let fit = &report.fit;
         let params = model.parameters();
-        let values = &fit.estimate.values;
-        let frame = &fit.estimate.frame;
-        let frame_values = frame_vector(frame);
-        let start = frame_vector(&report.start_frame);
-        let parameters = (params.iter().enumerate())
-            .map(|(c, p)| {
-                let f = p.document_factor();
-                let (nominal, value) = match p.target {
-                    Target::Frame(i) => (start[i] * f, frame_values[i] * f),
-                    _ => (p.nominal * f, values[c] * f),
-                };
-                Parameter {
-                    name: p.name.clone(),
-                    kind: p.kind.name(),
-                    unit: p.unit(),
-                    nominal,
-                    value,
-                    sd: fit.sd[c].map(|s| s * f),
-                    identified: fit.fitted.contains(&c),
-                }
-            })
-            .collect();
         let id = &fit.identifiability;
-        let merged = (id.merged.iter())
-            .filter(|m| !fit.fitted.contains(&m.parameter) && !model.held().contains(&m.parameter))
-            .map(|m| {
-                let into: Vec<String> = m.into.iter().map(|(k, _)| params[*k].name.clone()).collect();
-                let reason = match (into.is_empty(), model.merged_words(m.parameter)) {
-                    (true, _) => "no effect on the readings at these postures".to_string(),
-                    (false, None) => format!(
-                        "its effect is a combination of {} at these postures: left nominal, absorbed by them",
-                        into.join(", ")
-                    ),
-                    (false, Some(words)) => format!(
-                        "{words}; its effect is a combination of {} at these postures: left nominal, absorbed by them",
-                        into.join(", ")
-                    ),
-                };
-                Merged {
-                    name: params[m.parameter].name.clone(),
-                    into,
-                    reason,
-                }
-            })
-            .collect();
+        let parameters = parameters(report);
+        let merged = merged(report);
         let correlations = (id.correlations.iter())
             .map(|(a, b, rho)| Correlation {
                 a: params[*a].name.clone(),
@@ -466,6 +430,10 @@ impl Document {
             })
             .collect(),
             maps: maps_document(&report.maps),
+            ladder: report
+                .ladder
+                .as_ref()
+                .map(super::ladder::LadderDocument::new),
             check: (report.check.as_ref())
                 .map(|c| super::drift::CheckDocument::new(c, &report.nominal, &report.labels)),
             validation: report.validation.as_ref().map(held),
@@ -476,18 +444,7 @@ impl Document {
             urdf_error: report.urdf.as_ref().err().cloned(),
             fragment: report.fragment.clone(),
             tcp_mm: report.tcp.map(|t| [mm(t.x), mm(t.y), mm(t.z)]),
-            stiffness_file: match &report.compliance {
-                Some(Ok(c)) => Some(StiffnessSection {
-                    parameters: stiffness(&c.parameters, &c.h),
-                    compliance_covariance_si: (c.covariance.row_iter())
-                        .map(|r| r.iter().copied().collect())
-                        .collect(),
-                    fitted: c.fitted.clone(),
-                    region: stiffid_core::model::PostureRange::of(&report.postures)
-                        .map(|r| stiffid_core::io::stiffness::RegionSection::new(&r)),
-                }),
-                _ => None,
-            },
+            stiffness_file: stiffness_section(report),
             stiffness_file_error: match &report.compliance {
                 Some(Err(e)) => Some(e.clone()),
                 _ => None,
@@ -495,6 +452,78 @@ impl Document {
             warnings: report.warnings.clone(),
         }
     }
+}
+
+/// Every parameter of `report`'s model with its value and standard deviation, in the
+/// document's units (the frame's from the start's registration).
+fn parameters(report: &Report) -> Vec<Parameter> {
+    let fit = &report.fit;
+    let values = &fit.estimate.values;
+    let frame_values = frame_vector(&fit.estimate.frame);
+    let start = frame_vector(&report.start_frame);
+    (report.model.parameters().iter().enumerate())
+        .map(|(c, p)| {
+            let f = p.document_factor();
+            let (nominal, value) = match p.target {
+                Target::Frame(i) => (start[i] * f, frame_values[i] * f),
+                _ => (p.nominal * f, values[c] * f),
+            };
+            Parameter {
+                name: p.name.clone(),
+                kind: p.kind.name(),
+                unit: p.unit(),
+                nominal,
+                value,
+                sd: fit.sd[c].map(|s| s * f),
+                identified: fit.fitted.contains(&c),
+            }
+        })
+        .collect()
+}
+
+/// The parameters the readings do not separate from the identified ones, with what absorbs
+/// them and why.
+fn merged(report: &Report) -> Vec<Merged> {
+    let (model, fit) = (&report.model, &report.fit);
+    let params = model.parameters();
+    (fit.identifiability.merged.iter())
+        .filter(|m| !fit.fitted.contains(&m.parameter) && !model.held().contains(&m.parameter))
+        .map(|m| {
+            let into: Vec<String> = m.into.iter().map(|(k, _)| params[*k].name.clone()).collect();
+            let reason = match (into.is_empty(), model.merged_words(m.parameter)) {
+                (true, _) => "no effect on the readings at these postures".to_string(),
+                (false, None) => format!(
+                    "its effect is a combination of {} at these postures: left nominal, absorbed by them",
+                    into.join(", ")
+                ),
+                (false, Some(words)) => format!(
+                    "{words}; its effect is a combination of {} at these postures: left nominal, absorbed by them",
+                    into.join(", ")
+                ),
+            };
+            Merged {
+                name: params[m.parameter].name.clone(),
+                into,
+                reason,
+            }
+        })
+        .collect()
+}
+
+/// The fitted compliance as a stiffness file, when there is one.
+fn stiffness_section(report: &Report) -> Option<StiffnessSection> {
+    let Some(Ok(c)) = &report.compliance else {
+        return None;
+    };
+    Some(StiffnessSection {
+        parameters: stiffness(&c.parameters, &c.h),
+        compliance_covariance_si: (c.covariance.row_iter())
+            .map(|r| r.iter().copied().collect())
+            .collect(),
+        fitted: c.fitted.clone(),
+        region: stiffid_core::model::PostureRange::of(&report.postures)
+            .map(|r| stiffid_core::io::stiffness::RegionSection::new(&r)),
+    })
 }
 
 impl Document {

@@ -7,7 +7,7 @@ use stiffid_core::common::error::JobOption;
 use stiffid_core::{Error, Result};
 use stiffid_metrology::calibration::error_model::Observation;
 use stiffid_metrology::calibration::fit::{self, Fit, Options};
-use stiffid_metrology::calibration::maps::{self, Choice, Linear, Nested, Spec};
+use stiffid_metrology::calibration::maps::{self, Choice, JointMaps, Linear, Nested, Spec};
 use stiffid_metrology::calibration::ErrorModel;
 
 /// The most work the maps' choice takes on: readings x (map coefficients)^2, the cost of its
@@ -31,20 +31,34 @@ pub struct Maps {
     pub skipped: Option<String>,
 }
 
-/// The model, fit and options after the maps of `spec`: those given when no map is chosen, else
-/// the model with the chosen maps fitted from the calibration's start ([`fit::start`]) with the
-/// chosen ridge (what the readings determine analysed where `fitted` analysed it).
+/// The maps of `spec` assessed at a fit: the report with the nested held-out figure (the choice
+/// not yet made on every posture), and the linearised fit the choice is made on; or, when no map
+/// is considered, the report saying why (and for the ladder the held-out errors without maps).
+pub(super) struct Assessed {
+    /// What the maps' choice found so far.
+    pub maps: Maps,
+    /// The calibration linearised at the fit with the candidate maps' columns, when maps are
+    /// considered.
+    pub linear: Option<Linear>,
+    /// The held-out errors of the outer folds, without maps and with them (without alone when
+    /// no map is considered): the ladder's; `None` when neither maps nor the ladder need them.
+    pub nested: Option<Nested>,
+}
+
+/// Assesses the maps of `spec` on `model`'s fit `fitted` to `observations` (module docs); with
+/// `ladder` the held-out errors without maps too when no map is considered.
 ///
 /// # Errors
-/// Those of [`ErrorModel::with_maps`], [`maps::choose`], [`maps::nested`], [`fit::start`] and
-/// [`fit::fit`].
-pub(super) fn fit_maps(
+/// [`Error::InvalidOption`] ([`JobOption::Maps`]) for fixed maps beyond [`MAX_MAP_WORK`] or a
+/// backlash term without directions; those of [`Linear::at`] and [`maps::nested`].
+pub(super) fn assess(
     spec: Spec,
-    model: ErrorModel,
-    fitted: Fit,
+    model: &ErrorModel,
+    fitted: &Fit,
     observations: &[Observation],
-    options: Options,
-) -> Result<(ErrorModel, Fit, Options, Maps)> {
+    options: &Options,
+    ladder: bool,
+) -> Result<Assessed> {
     let mut postures: Vec<usize> = observations.iter().map(|o| o.posture).collect();
     postures.sort_unstable();
     postures.dedup();
@@ -66,17 +80,51 @@ pub(super) fn fit_maps(
             ),
         });
     }
+    report.skipped = skipped(spec, postures.len(), observations.len(), candidates)?;
+    let all: Vec<usize> = (0..postures.len()).collect();
+    let (candidates, considered) = match (&report.skipped, ladder) {
+        (None, _) => (candidates, spec),
+        (Some(_), true) => (JointMaps::NONE, Spec::None),
+        (Some(_), false) => {
+            return Ok(Assessed {
+                maps: report,
+                linear: None,
+                nested: None,
+            })
+        }
+    };
+    let linear = Linear::at(model, fitted, observations, options.length, candidates)?;
+    let nested = maps::nested(&linear, &all, considered)?;
+    if report.skipped.is_none() {
+        report.nested = Some(nested.clone());
+    }
+    let linear = (report.skipped.is_none()).then_some(linear);
+    Ok(Assessed {
+        maps: report,
+        linear,
+        nested: Some(nested),
+    })
+}
+
+/// Why no map is considered, if none is.
+///
+/// # Errors
+/// [`Error::InvalidOption`] ([`JobOption::Maps`]) for fixed maps beyond [`MAX_MAP_WORK`].
+fn skipped(
+    spec: Spec,
+    postures: usize,
+    readings: usize,
+    candidates: JointMaps,
+) -> Result<Option<String>> {
     let coefficients = candidates.coefficients();
-    let readings = observations.len();
     let work = readings as f64 * (coefficients * coefficients) as f64;
     let over = format!(
         "{readings} readings x {coefficients}^2 map coefficients = {work:.3e}, more than the {MAX_MAP_WORK:.0e} on which maps are chosen in about a minute"
     );
-    report.skipped = match spec {
+    Ok(match spec {
         Spec::None => Some("--maps none".into()),
-        Spec::Auto if postures.len() < maps::MIN_POSTURES => Some(format!(
-            "{} distinct postures, fewer than the {} with which maps are chosen",
-            postures.len(),
+        Spec::Auto if postures < maps::MIN_POSTURES => Some(format!(
+            "{postures} distinct postures, fewer than the {} with which maps are chosen",
             maps::MIN_POSTURES
         )),
         Spec::Auto if work > MAX_MAP_WORK => Some(format!(
@@ -92,14 +140,36 @@ pub(super) fn fit_maps(
             })
         }
         _ => None,
-    };
-    if report.skipped.is_some() {
-        return Ok((model, fitted, options, report));
+    })
+}
+
+/// The model, fit and options after the maps `assessed` (`keep`: the maps are fitted, else none
+/// is and `why` says why): those given without maps, else the model with the maps chosen on every
+/// posture fitted from the calibration's start ([`fit::start`]) with the chosen ridge (what the
+/// readings determine analysed where `fitted` analysed it).
+///
+/// # Errors
+/// Those of [`ErrorModel::with_maps`], [`maps::choose`], [`fit::start`] and [`fit::fit`].
+pub(super) fn fit_maps(
+    assessed: Assessed,
+    keep: std::result::Result<(), String>,
+    (model, fitted): (ErrorModel, Fit),
+    observations: &[Observation],
+    options: Options,
+) -> Result<(ErrorModel, Fit, Options, Maps)> {
+    let Assessed {
+        maps: mut report,
+        linear,
+        ..
+    } = assessed;
+    if let Err(why) = keep {
+        report.skipped = report.skipped.or(Some(why));
     }
-    let linear = Linear::at(&model, &fitted, observations, options.length, candidates)?;
-    let all: Vec<usize> = (0..postures.len()).collect();
-    let choice = maps::choose(&linear, &all, spec)?;
-    report.nested = Some(maps::nested(&linear, &all, spec)?);
+    let Some(linear) = linear.filter(|_| report.skipped.is_none()) else {
+        return Ok((model, fitted, options, report));
+    };
+    let all: Vec<usize> = (0..report.postures).collect();
+    let choice = maps::choose(&linear, &all, report.spec)?;
     let chosen = choice.maps;
     let ridge = choice.ridge;
     report.choice = Some(choice);

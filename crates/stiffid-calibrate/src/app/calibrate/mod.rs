@@ -16,11 +16,15 @@
 //! least [`MIN_UPDATE_POSTURES`] postures with `update`.
 
 mod checks;
+mod chosen;
 mod compliance;
 pub mod document;
 pub mod drift;
 mod extrapolation;
+mod files;
+mod held;
 mod judge;
+pub mod ladder;
 use judge::{judge, largest_residual};
 mod maps;
 pub mod scene;
@@ -28,6 +32,7 @@ pub mod update;
 
 pub use compliance::{fitted_compliance, FittedCompliance};
 pub use extrapolation::Outside;
+pub use ladder::{GravitySpec, Ladder, Rung};
 pub use maps::{Maps, MAX_MAP_WORK};
 pub use update::MIN_POSTURES as MIN_UPDATE_POSTURES;
 pub use update::{Refit, Refits};
@@ -45,16 +50,17 @@ use stiffid_core::observation::frames::DisplacementFrame;
 use stiffid_core::{Error, Result, Setup};
 use stiffid_metrology::app::readings::{read, refuse_implausible, Request as Readings};
 use stiffid_metrology::calibration::error_model::{MeasuredIn, Observation};
-use stiffid_metrology::calibration::fit::{self, Fit, Options, Priors};
+use stiffid_metrology::calibration::fit::{self, Fit};
 use stiffid_metrology::calibration::gravity::{self, Gravity};
 use stiffid_metrology::calibration::intervals::{self, Coverage, Intervals};
 use stiffid_metrology::calibration::validation::{self, Validation};
-use stiffid_metrology::calibration::{model, robot_file, ErrorModel, Estimate, Geometry};
+use stiffid_metrology::calibration::{ErrorModel, Estimate, Geometry};
 
 pub use stiffid_core::io::readings::MAX_READINGS;
 
-/// Most postures cross-validation refits for (one fit per posture).
-pub const MAX_CROSS_VALIDATION_POSTURES: usize = 500;
+/// Most postures cross-validation takes (one Gauss-Newton step from the full fit per posture;
+/// the held-out readings' intervals the same folds).
+pub const MAX_CROSS_VALIDATION_POSTURES: usize = 5000;
 
 /// The noise ratio above which the job warns that the model misses something.
 pub const MISFIT_RATIO: f64 = 3.0;
@@ -108,8 +114,8 @@ pub struct Request<'a> {
     pub readings: Readings<'a>,
     /// The joint errors fitted.
     pub geometry: Geometry,
-    /// The gravity terms fitted.
-    pub gravity: Gravity,
+    /// The gravity terms fitted: chosen with the maps by [`ladder`] (`auto`), or given.
+    pub gravity: GravitySpec,
     /// Held-out readings (name, text), predicted by the calibration.
     pub validate: Option<(String, &'a str)>,
     /// Register the tracker anew on the held-out readings (another series: the tracker moved).
@@ -207,6 +213,8 @@ pub struct Report {
     pub noise_ratio: f64,
     /// The joint error maps: what was asked, the choice and its nested held-out gain.
     pub maps: Maps,
+    /// The models tried and their held-out errors, when the model was chosen ([`ladder`]).
+    pub ladder: Option<Ladder>,
     /// With external axes: the orders of the carrier's error motions and how they were chosen.
     pub error_motions: Option<stiffid_metrology::calibration::motions::Choice>,
     /// With `update`: the check readings against the calibration's held-out errors, before the
@@ -265,8 +273,9 @@ fn observations(setup: &Setup, data: &Data, unloaded_only: bool) -> (Vec<Observa
 /// Runs the job.
 ///
 /// # Errors
-/// Those of [`read`], [`model`], [`fit::start`], [`fit::fit`], [`validation::validate`] and
-/// [`validation::cross_validate`], as [`Error::Input`] naming the file;
+/// Those of [`read`], [`stiffid_metrology::calibration::model`], [`fit::start`], [`fit::fit`],
+/// the ladder's ([`ladder`]), [`validation::validate`] and [`validation::cross_validate`], as
+/// [`Error::Input`] naming the file;
 /// [`Error::InvalidField`] (`cross_validate`) beyond [`MAX_CROSS_VALIDATION_POSTURES`] postures,
 /// (`validate`) when the held-out readings are in another frame than the fitted;
 /// [`Error::InvalidOption`] ([`JobOption::Level`]) for a level outside
@@ -280,84 +289,22 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         cross_validation_size(&obs)?;
     }
     let level = interval_level(request)?;
-    let (geometry, gravity, maps_spec) = update::settings(request, setup, &obs)?;
-    let model = update::kept(request, model(setup, measured_in, geometry, gravity)?)?;
-    let options = Options {
-        length: setup.characteristic_length().unwrap_or(1.0),
-        priors: request.priors.map(|t| Priors {
-            length: t.length,
-            angle: t.angle,
-            noise: setup.noise().reading_sd(),
-        }),
-        ridge: 0.0,
-    };
-    let (model, error_motions) = match setup.robot().external() {
-        None => (model, None),
-        Some(_) if measured_in == MeasuredIn::Base => {
-            return Err(in_data(name, Error::InvalidField {
-                field: "readings".into(),
-                message: "the readings are in the base frame (x_mm, y_mm, z_mm): with external axes the calibration registers the tracker to the cell, give the tracker's readings (x_tracker_mm, y_tracker_mm, z_tracker_mm)".into(),
-            }));
-        }
-        Some(_) if request.update => update::external(request, model, data.tables, name)?,
-        Some(_) => {
-            request.progress.begin("error motions", 0);
-            let chosen = stiffid_metrology::calibration::motions::choose(
-                &model,
-                data.tables,
-                &obs,
-                &options,
-                request.error_motions,
-            );
-            request.progress.end();
-            let (model, _, choice) = chosen.map_err(|e| in_data(name, e))?;
-            (model, Some(choice))
-        }
-    };
-    update::identifiable(request, setup, &model, &obs)?;
-    let model = match obs.iter().any(Observation::loaded) {
-        true => model.with_loads(setup)?,
-        false => model,
-    };
-    // The fit and the maps' choice report no count: each a stage of total 0 (a spinner).
-    let progress = request.progress;
-    progress.begin("fit", 0);
-    let start = fit::start(&model, &obs).map_err(|e| in_data(name, e));
-    let fitted = start.and_then(|s| {
-        let f = fit::fit(&model, &obs, &s, &options).map_err(|e| in_data(name, e));
-        f.map(|f| (s, f))
-    });
-    progress.end();
-    let (start, fitted) = fitted?;
-    progress.begin("joint error maps", 0);
-    let mapped = maps::fit_maps(maps_spec, model, fitted, &obs, options);
-    progress.end();
-    let (model, fitted, options, maps) = mapped.map_err(|e| match e {
-        // Too many maps for the readings is the option's error, not the data's.
-        e @ stiffid_core::Error::InvalidOption { .. } => e,
-        e => in_data(name, e),
-    })?;
-    // The maps hold over the fitted postures' angles and taper to zero beyond them.
-    let model =
-        (model.with_map_ranges(extrapolation::ranges(&obs))).map_err(|e| in_data(name, e))?;
-    let start = match model.map_start() {
-        Some(_) => fit::start(&model, &obs).map_err(|e| in_data(name, e))?,
-        None => start,
-    };
+    let chosen = chosen::choose(request, (&obs, measured_in, data.tables))?;
+    let (model, fitted) = (&chosen.model, &chosen.fit);
     let residuals: Vec<_> = (fitted.residuals.as_slice().chunks_exact(3))
         .zip(&data.readings)
         .filter(|(_, r)| r.unloaded())
         .map(|(r, _)| nalgebra::Vector3::from_column_slice(r))
         .collect();
     refuse_implausible(&request.readings, &data, None, &residuals)?;
-    refuse_repeated(setup, &data, &model, &fitted).map_err(|e| in_data(name, e))?;
-    let reference = update::reference(request, &model, reference(setup, &model)?)?;
+    refuse_repeated(setup, &data, model, fitted).map_err(|e| in_data(name, e))?;
+    let reference = update::reference(request, model, reference(setup, model)?)?;
     let nominal = nominal(&reference, &obs, name)?;
     let check = (request.update)
         .then(|| drift::checked(setup.robot(), &nominal, level, &mut warnings))
         .flatten();
     let calibrated =
-        validation::validate(&model, &fitted.estimate, &obs).map_err(|e| in_data(name, e))?;
+        validation::validate(model, &fitted.estimate, &obs).map_err(|e| in_data(name, e))?;
     let mut postures = vec![nalgebra::Vector6::zeros(); data.labels.len()];
     let mut external = vec![Default::default(); data.labels.len()];
     for o in &obs {
@@ -365,98 +312,43 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         external[o.posture] = o.e;
     }
     let noise_ratio = fitted.sigma / setup.noise().reading_sd();
-    let with_intervals = request.validate.is_some() && cross_validation_size(&obs).is_ok();
-    if request.validate.is_some() && !with_intervals {
-        warnings.push(Warning::new(
-            WarningKind::LeftOut,
-            format!(
-                "the held-out readings get no prediction intervals: they take one fold per fitted posture, at most {MAX_CROSS_VALIDATION_POSTURES}"
-            ),
-        ));
-    }
-    let cross_validation = match request.cross_validate {
-        false => None,
-        true => Some(Held {
-            name: "cross-validation".into(),
-            calibrated: validation::cross_validate(
-                &model,
-                &obs,
-                &fitted.estimate,
-                &options,
-                request.progress,
-            )
-            .map_err(|e| in_data(name, e))?,
-            nominal: nominal.clone(),
-            labels: data.labels.clone(),
-            intervals: None,
-            outside: Default::default(),
-            coverage: None,
-        }),
-    };
-    // The intervals' folds: linearised at the fit (with the maps' ridge rows).
-    let folds = with_intervals
-        .then(|| validation::leave_one_out_linearised(&model, &obs, &fitted, &options));
-    let intervals = match folds {
-        None => None,
-        Some(f) => Some(Intervals::new(&f.map_err(|e| in_data(name, e))?)),
-    };
-    let validation = match &request.validate {
-        None => None,
-        Some((held_name, text)) => Some(held_out(
-            request,
-            (&model, &reference, &obs),
-            (&fitted.estimate, intervals.as_ref().map(|i| (i, level))),
-            held_name,
-            text,
-            &mut warnings,
-        )?),
-    };
-    warnings.extend(judge(&model, &fitted, noise_ratio, name));
+    let (validation, cross_validation) = held::held(
+        request,
+        (&chosen, &reference, &obs),
+        (&nominal, &data.labels, level),
+        &mut warnings,
+    )?;
+    warnings.extend(judge(model, fitted, noise_ratio, name));
     if let Some(w) = warnings.iter_mut().find(|w| w.kind == WarningKind::Misfit) {
         w.message += &largest_residual(&data, &fitted.residuals);
     }
-    let own_weight = compliance::own_weight(&model, &fitted, update::tool_mass(request)?);
     let held = (validation.as_ref(), cross_validation.as_ref());
-    let robot_toml = update::robot_file(
-        request,
-        (&model, &fitted.estimate),
-        held,
-        own_weight.as_ref(),
-    );
-    let urdf = robot_file::urdf(&model, &fitted.estimate).map_err(|e| e.to_string());
-    let asked = request.urdf && urdf.is_ok();
-    if let (true, Some(note)) = (asked, robot_file::urdf_leaves_out(&model, &fitted.estimate)) {
-        warnings.push(Warning::new(WarningKind::LeftOut, note));
-    }
-    warnings.extend(update::urdf_rigid(asked, own_weight.as_ref()));
-    let tcp = tcp(setup, &model, &fitted.estimate.values);
-    let fragment = fragment(&model, &fitted, tcp.as_ref());
-    let compliance = (gravity != Gravity::None || model.has_loads())
-        .then(|| fitted_compliance(setup, &model, &fitted));
+    let files = files::files(request, &chosen, held, &mut warnings)?;
     Ok(Report {
         data_name: name.clone(),
         labels: data.labels.clone(),
         readings: obs.len(),
-        model,
-        geometry,
-        gravity,
-        start_frame: start.frame,
-        fit: fitted,
+        geometry: chosen.geometry,
+        gravity: chosen.model.gravity().kind(),
+        start_frame: chosen.start.frame,
+        model: chosen.model,
+        fit: chosen.fit,
         nominal,
         calibrated,
         postures,
         external,
         noise_ratio,
-        maps,
-        error_motions,
+        maps: chosen.maps,
+        ladder: chosen.ladder,
+        error_motions: chosen.error_motions,
         check,
         validation,
         cross_validation,
-        robot_toml,
-        urdf,
-        fragment,
-        tcp,
-        compliance,
+        robot_toml: files.robot_toml,
+        urdf: files.urdf,
+        fragment: files.fragment,
+        tcp: files.tcp,
+        compliance: files.compliance,
         warnings,
     })
 }

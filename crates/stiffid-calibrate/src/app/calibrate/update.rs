@@ -30,7 +30,7 @@
 //! without reflectors on a positioner's table; a one-axis positioner's with the reflectors'
 //! positions on its table).
 
-use super::Request;
+use super::{GravitySpec, Request};
 use stiffid_core::common::choice::{self, Choice};
 use stiffid_core::common::error::JobOption;
 use stiffid_core::model::OwnWeight;
@@ -161,7 +161,7 @@ pub(super) fn settings(
     request: &Request<'_>,
     setup: &Setup,
     obs: &[Observation],
-) -> Result<(Geometry, Gravity, Spec)> {
+) -> Result<(Geometry, GravitySpec, Spec)> {
     if !request.update {
         return Ok((request.geometry, request.gravity, request.maps));
     }
@@ -212,7 +212,7 @@ pub(super) fn settings(
         true => Geometry::Offsets,
         false => Geometry::None,
     };
-    Ok((geometry, gravity, Spec::None))
+    Ok((geometry, GravitySpec::Fixed(gravity), Spec::None))
 }
 
 /// With `update`, `model` with what the list keeps held ([`ErrorModel::with_held`]): the

@@ -20,7 +20,10 @@
 //! these in the order of their own held-out error, each kept when it lowers the held-out error by
 //! more than [`MAP_ACCEPT`] standard errors of the paired per-posture differences (a one-sided
 //! test at about 0.6 %) and by [`LEAST_GAIN`] of it: the choice keeps no map on a robot without
-//! one. The choice is made on the linearised fit ([`linear`]): exact to second order in
+//! one. Then jointly: the first `k` joints of that order (`k` from 2) together at each harmonic
+//! count, the one with the least held-out error replacing the forward choice where it has less
+//! and lowers the error without maps by the same rule (one joint at a time stops early where
+//! several joints' maps each gain a little). The choice is made on the linearised fit ([`linear`]): exact to second order in
 //! the parameters' change from the fit, a few nanometres on a calibrated robot.
 //!
 //! # The honest figure ([`nested`])
@@ -221,6 +224,11 @@ pub struct Nested {
     pub rms: f64,
     /// The maps each outer fold chose.
     pub choices: Vec<JointMaps>,
+    /// Per held-out posture (the outer folds' in order: fold `k` holds the postures `i` with
+    /// `i mod K = k`), the sum of its squared errors without maps, m^2.
+    pub none_errors: Vec<f64>,
+    /// The same with the maps each outer fold chose, m^2.
+    pub errors: Vec<f64>,
 }
 
 /// The folds of `postures`: fold `k` holds `postures[i]` with `i mod K = k`, `K = min(FOLDS, n)`.
@@ -250,6 +258,7 @@ struct Inner<'a> {
 }
 
 /// A candidate's held-out errors at its best ridge.
+#[derive(Clone)]
 struct Scored {
     ridge: f64,
     /// Per held-out posture (all folds, in order), the sum of squared errors, m^2.
@@ -343,7 +352,7 @@ pub fn choose(linear: &Linear, postures: &[usize], spec: Spec) -> Result<Choice>
             kept,
         })
     };
-    let (mut chosen, mut current) = (JointMaps::NONE, none);
+    let (mut chosen, mut current) = (JointMaps::NONE, none.clone());
     match spec {
         Spec::None => {}
         Spec::Fixed(h) => {
@@ -354,6 +363,9 @@ pub fn choose(linear: &Linear, postures: &[usize], spec: Spec) -> Result<Choice>
         Spec::Auto => {
             let mut alone = alone(&inner, &mut record)?;
             alone.sort_by(|a, b| a.1.total_cmp(&b.1));
+            let order: Vec<usize> = (alone.iter())
+                .filter_map(|(m, _)| (0..6).find(|&j| m.harmonics[j] > 0))
+                .collect();
             // Forward: the terms in that order, each kept when it lowers the error enough.
             for (term, _) in alone {
                 let choice = union(&chosen, &term);
@@ -362,6 +374,23 @@ pub fn choose(linear: &Linear, postures: &[usize], spec: Spec) -> Result<Choice>
                 record(choice, &s, kept);
                 if kept {
                     (chosen, current) = (choice, s);
+                }
+            }
+            // Jointly: the first joints of that order together, at each harmonic count; the
+            // best of these replaces the forward choice when its held-out error is lower and it
+            // lowers the error without maps by the same rule.
+            for k in 2..=order.len() {
+                for &h in &HARMONICS {
+                    let mut set = JointMaps::NONE;
+                    for &j in &order[..k] {
+                        set.harmonics[j] = h;
+                    }
+                    let s = inner.score(&set)?;
+                    let kept = s.total < current.total && better(&none, &s);
+                    record(set, &s, kept);
+                    if kept {
+                        (chosen, current) = (set, s);
+                    }
                 }
             }
         }
@@ -429,16 +458,20 @@ pub fn nested(linear: &Linear, postures: &[usize], spec: Spec) -> Result<Nested>
             let n: usize = train.iter().map(|&p| linear.rows[p].len() / 3).sum();
             let maps = linear.errors(&split, &choice.maps, &[choice.ridge * n as f64])?;
             let none = linear.errors(&split, &JointMaps::NONE, &[0.0])?;
-            let sum = |e: &[Vec<f64>]| e[0].iter().sum::<f64>();
-            Ok((sum(&maps), sum(&none), choice.maps))
+            let first = |mut e: Vec<Vec<f64>>| e.swap_remove(0);
+            Ok((first(maps), first(none), choice.maps))
         })
         .collect::<Result<Vec<_>>>()?;
     let readings: usize = postures.iter().map(|&p| linear.rows[p].len() / 3).sum();
-    let rms = |total: f64| (total / readings.max(1) as f64).sqrt();
+    let rms = |e: &[f64]| (e.iter().sum::<f64>() / readings.max(1) as f64).sqrt();
+    let errors: Vec<f64> = outer.iter().flat_map(|o| o.0.clone()).collect();
+    let none_errors: Vec<f64> = outer.iter().flat_map(|o| o.1.clone()).collect();
     Ok(Nested {
         folds: parts.len(),
-        rms: rms(outer.iter().map(|o| o.0).sum()),
-        none_rms: rms(outer.iter().map(|o| o.1).sum()),
+        rms: rms(&errors),
+        none_rms: rms(&none_errors),
         choices: outer.iter().map(|o| o.2).collect(),
+        none_errors,
+        errors,
     })
 }

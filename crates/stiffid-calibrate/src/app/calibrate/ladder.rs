@@ -1,0 +1,420 @@
+//! The model a calibration fits when it is not told (`--gravity auto`, `--maps auto`): a ladder
+//! of nested models climbed by a cross-validation that holds out groups of postures.
+//!
+//! # The rungs
+//! In order of complexity, each gravity model ([`GRAVITY_RUNGS`]: the rigid robot, the lumped
+//! bodies, the lumped links, the known masses where the robot gives them) without joint error
+//! maps and then with the maps of `--maps` (chosen by [`stiffid_metrology::calibration::maps`]
+//! inside every training set). A fixed `--gravity` is a ladder of one gravity model, `--maps none`
+//! or fixed maps one maps variant; a ladder of one rung is not climbed.
+//!
+//! # The held-out figure
+//! Each rung is fitted to every reading; a rung whose fit does not converge or whose scaled
+//! Jacobian's condition exceeds [`super::WEAK_CONDITION`] is skipped (the simpler model kept).
+//! The postures are dealt into [`FOLDS`] groups (posture `i` in group `i mod K`); each group is
+//! predicted by the rung refitted without it (linearised at the rung's fit, as the maps' choice:
+//! [`stiffid_metrology::calibration::maps::nested`], the maps chosen anew on each training set),
+//! which gives every held-out posture its squared error under every rung, paired.
+//!
+//! # The choice (one standard error)
+//! The rung with the least held-out error is the best; the job fits the simplest rung whose
+//! held-out squared error exceeds the best's by at most one standard error of their paired
+//! per-posture differences and by no more than any simpler rung's: a model is never chosen
+//! over a simpler one that predicts the held-out postures better. With fewer than
+//! [`MIN_POSTURES`] distinct postures the ladder is not climbed and its first rung is fitted.
+
+use super::maps::{assess, Assessed};
+use super::WEAK_CONDITION;
+use stiffid_core::common::choice::Choice;
+use stiffid_core::Result;
+use stiffid_metrology::calibration::error_model::Observation;
+use stiffid_metrology::calibration::fit::{stop_warning, Fit, Options};
+use stiffid_metrology::calibration::gravity::Gravity;
+use stiffid_metrology::calibration::maps::{Spec, FOLDS};
+use stiffid_metrology::calibration::{motions, ErrorModel, Estimate};
+
+/// The gravity models of `--gravity auto`, in order of complexity ([`Gravity::Masses`] only on a
+/// robot with link masses).
+pub const GRAVITY_RUNGS: [Gravity; 4] = [
+    Gravity::None,
+    Gravity::Lumped,
+    Gravity::LumpedLinks,
+    Gravity::Masses,
+];
+
+/// The fewest distinct postures with which the ladder is climbed: two per group.
+pub const MIN_POSTURES: usize = 2 * FOLDS;
+
+/// Which gravity terms a calibration fits: chosen by the ladder, or given.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum GravitySpec {
+    /// Chosen by the ladder (module docs).
+    #[default]
+    Auto,
+    /// These.
+    Fixed(Gravity),
+}
+
+impl Choice for GravitySpec {
+    const FIELD: &'static str = "gravity";
+    const ALL: &'static [Self] = &[
+        GravitySpec::Auto,
+        GravitySpec::Fixed(Gravity::None),
+        GravitySpec::Fixed(Gravity::Masses),
+        GravitySpec::Fixed(Gravity::Lumped),
+        GravitySpec::Fixed(Gravity::LumpedLinks),
+    ];
+    fn name(self) -> &'static str {
+        match self {
+            GravitySpec::Auto => "auto",
+            GravitySpec::Fixed(g) => g.name(),
+        }
+    }
+    fn help(self) -> &'static str {
+        match self {
+            GravitySpec::Auto => {
+                "Chosen with the maps by a cross-validation holding out groups of postures"
+            }
+            GravitySpec::Fixed(g) => g.help(),
+        }
+    }
+}
+
+stiffid_core::common::choice::by_name!(GravitySpec);
+
+impl GravitySpec {
+    /// The gravity models to try on a robot with (`masses`) or without link masses.
+    pub fn rungs(self, masses: bool) -> Vec<Gravity> {
+        match self {
+            GravitySpec::Fixed(g) => vec![g],
+            GravitySpec::Auto => (GRAVITY_RUNGS.iter().copied())
+                .filter(|&g| masses || g != Gravity::Masses)
+                .collect(),
+        }
+    }
+}
+
+/// One rung of the ladder.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Rung {
+    /// Its gravity terms.
+    pub gravity: Gravity,
+    /// Whether it fits the joint error maps of `--maps` (chosen inside each training set).
+    pub maps: bool,
+    /// Its held-out RMS error over the groups, m; `None` when skipped.
+    pub rms: Option<f64>,
+    /// Why it was skipped (a fit that does not converge, is ill-conditioned or fails).
+    pub skipped: Option<String>,
+    /// Per held-out posture (the groups' in order), its sum of squared errors, m^2; empty when
+    /// skipped.
+    pub errors: Vec<f64>,
+}
+
+/// The ladder climbed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Ladder {
+    /// The groups of postures held out in turn.
+    pub folds: usize,
+    /// The rungs, simplest first.
+    pub rungs: Vec<Rung>,
+    /// The rung chosen (an index of `rungs`).
+    pub chosen: usize,
+}
+
+/// The rung chosen among `rungs` (simplest first) by the one-standard-error rule (module docs);
+/// the first when none was scored.
+pub fn choose(rungs: &[Rung]) -> usize {
+    let total = |r: &Rung| r.errors.iter().sum::<f64>();
+    let scored: Vec<usize> = (0..rungs.len())
+        .filter(|&i| rungs[i].skipped.is_none() && !rungs[i].errors.is_empty())
+        .collect();
+    let Some(&best) = scored
+        .iter()
+        .min_by(|&&a, &&b| total(&rungs[a]).total_cmp(&total(&rungs[b])))
+    else {
+        return 0;
+    };
+    let within = |i: usize| {
+        let d: Vec<f64> = (rungs[i].errors.iter().zip(&rungs[best].errors))
+            .map(|(a, b)| a - b)
+            .collect();
+        let n = d.len() as f64;
+        let mean = d.iter().sum::<f64>() / n;
+        let var = d.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0).max(1.0);
+        mean <= (var / n).sqrt()
+    };
+    let mut simplest = f64::INFINITY;
+    for &i in &scored {
+        let t = total(&rungs[i]);
+        if within(i) && t <= simplest {
+            return i;
+        }
+        simplest = simplest.min(t);
+    }
+    best
+}
+
+/// One gravity model fitted to every reading.
+pub(super) struct Fitted {
+    /// The error model (with its error motions and loads).
+    pub model: ErrorModel,
+    /// The fit's start.
+    pub start: Estimate,
+    /// The fit.
+    pub fit: Fit,
+    /// With external axes: the error motions' choice.
+    pub error_motions: Option<motions::Choice>,
+}
+
+/// What the ladder chose: the rung's fit, its maps assessed and whether they are kept (or why
+/// not), and the ladder (`None` for a ladder of one rung).
+pub(super) struct Climbed {
+    /// The chosen gravity model's fit.
+    pub fitted: Fitted,
+    /// Its maps assessed.
+    pub assessed: Assessed,
+    /// Whether the maps are kept, or why not.
+    pub keep: std::result::Result<(), String>,
+    /// The ladder.
+    pub ladder: Option<Ladder>,
+}
+
+/// Climbs the ladder of `gravity` and `maps` (module docs), fitting each gravity model with
+/// `fit` to `obs`.
+///
+/// # Errors
+/// Those of `fit` and [`assess`] for the first gravity model (a later one that fails is skipped).
+pub(super) fn climb(
+    (gravity, maps): (GravitySpec, Spec),
+    masses: bool,
+    obs: &[Observation],
+    options: &Options,
+    fit: impl Fn(Gravity) -> Result<Fitted>,
+) -> Result<Climbed> {
+    let gravities = gravity.rungs(masses);
+    let variants: &[bool] = match maps {
+        Spec::Auto => &[false, true],
+        Spec::None => &[false],
+        Spec::Fixed(_) => &[true],
+    };
+    let mut postures: Vec<usize> = obs.iter().map(|o| o.posture).collect();
+    postures.sort_unstable();
+    postures.dedup();
+    let climbed = gravities.len() * variants.len() > 1 && postures.len() >= MIN_POSTURES;
+    let first = fit(gravities[0])?;
+    let assessed = assess(maps, &first.model, &first.fit, obs, options, climbed)?;
+    if !climbed {
+        let ladder = (gravities.len() * variants.len() > 1).then(|| Ladder {
+            folds: 0,
+            rungs: vec![unscored(gravities[0], variants[0], None)],
+            chosen: 0,
+        });
+        let keep = match ladder {
+            Some(_) => Err(format!(
+                "{} distinct postures, fewer than the {MIN_POSTURES} with which the model is chosen",
+                postures.len()
+            )),
+            None => Ok(()),
+        };
+        return Ok(Climbed {
+            fitted: first,
+            assessed,
+            keep: keep.and(match variants[0] {
+                true => Ok(()),
+                false => Err("--maps none".into()),
+            }),
+            ladder,
+        });
+    }
+    let mut fits: Vec<std::result::Result<(Fitted, Assessed), String>> =
+        vec![Ok((first, assessed))];
+    for &g in &gravities[1..] {
+        let tried = fit(g).and_then(|f| {
+            let a = assess(maps, &f.model, &f.fit, obs, options, true)?;
+            Ok((f, a))
+        });
+        fits.push(tried.map_err(|e| e.to_string()).and_then(|(f, a)| {
+            judged(&f.fit)?;
+            Ok((f, a))
+        }));
+    }
+    // The rungs without maps first, then with them: the maps are the larger family.
+    let order: Vec<(usize, bool)> = (variants.iter())
+        .flat_map(|&v| (0..gravities.len()).map(move |g| (g, v)))
+        .collect();
+    let rungs: Vec<Rung> = (order.iter())
+        .map(|&(g, v)| rung(gravities[g], v, &fits[g]))
+        .collect();
+    let chosen = choose(&rungs);
+    let (g, with_maps) = order[chosen];
+    let why = (!with_maps).then(|| {
+        let none = rungs[chosen].rms.unwrap_or(f64::NAN) * 1e3;
+        format!("the ladder chose the model without maps ({none:.4} mm held out)")
+    });
+    let Ok((fitted, assessed)) = fits.swap_remove(g) else {
+        unreachable!("a skipped rung is never chosen");
+    };
+    Ok(Climbed {
+        fitted,
+        assessed,
+        keep: why.map_or(Ok(()), Err),
+        ladder: Some(Ladder {
+            folds: FOLDS.min(postures.len()),
+            rungs,
+            chosen,
+        }),
+    })
+}
+
+/// `Err` why a gravity model's fit is not a rung: it did not converge, or its scaled Jacobian's
+/// condition exceeds [`WEAK_CONDITION`].
+fn judged(fit: &Fit) -> std::result::Result<(), String> {
+    if let Some(w) = stop_warning(fit.stop, fit.iterations) {
+        return Err(w.message);
+    }
+    let condition = fit.identifiability.condition;
+    match condition > WEAK_CONDITION {
+        true => Err(format!(
+            "the condition number of its scaled Jacobian is {condition:.3e}, above {WEAK_CONDITION:.0e}"
+        )),
+        false => Ok(()),
+    }
+}
+
+/// The rung of gravity `gravity` with (`maps`) or without the maps, from its fit and
+/// assessment (or why it has none).
+fn rung(
+    gravity: Gravity,
+    maps: bool,
+    fitted: &std::result::Result<(Fitted, Assessed), String>,
+) -> Rung {
+    let assessed = match fitted {
+        Err(e) => return unscored(gravity, maps, Some(e.clone())),
+        Ok((_, a)) => a,
+    };
+    let Some(nested) = &assessed.nested else {
+        return unscored(gravity, maps, Some("not scored".into()));
+    };
+    match (maps, &assessed.maps.skipped) {
+        (true, Some(why)) => unscored(gravity, maps, Some(format!("no map considered: {why}"))),
+        (true, None) => Rung {
+            gravity,
+            maps,
+            rms: Some(nested.rms),
+            skipped: None,
+            errors: nested.errors.clone(),
+        },
+        (false, _) => Rung {
+            gravity,
+            maps,
+            rms: Some(nested.none_rms),
+            skipped: None,
+            errors: nested.none_errors.clone(),
+        },
+    }
+}
+
+/// A rung not scored.
+fn unscored(gravity: Gravity, maps: bool, skipped: Option<String>) -> Rung {
+    Rung {
+        gravity,
+        maps,
+        rms: None,
+        skipped,
+        errors: Vec::new(),
+    }
+}
+
+/// The ladder in the calibration's document.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct LadderDocument {
+    /// The groups of postures held out in turn (posture `i` in group `i mod folds`); 0 when
+    /// the ladder was not climbed (too few postures: its first rung fitted).
+    pub folds: usize,
+    /// The rungs, simplest first: the gravity models without maps, then with them.
+    pub rungs: Vec<RungDocument>,
+    /// The rung fitted: the simplest within one standard error of the best held-out error.
+    pub chosen: usize,
+}
+
+/// A rung of the ladder in the document.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct RungDocument {
+    /// Its gravity terms: `none`, `lumped`, `lumped-links` or `masses`.
+    pub gravity: &'static str,
+    /// Whether it fits the joint error maps (chosen inside each training set).
+    pub maps: bool,
+    /// Its held-out RMS error over the groups (the nested figure), mm; `null` when skipped.
+    pub held_out_rms_mm: Option<f64>,
+    /// Why it was skipped; `null` when scored.
+    pub skipped: Option<String>,
+}
+
+impl LadderDocument {
+    /// The document of `ladder`.
+    pub fn new(ladder: &Ladder) -> Self {
+        LadderDocument {
+            folds: ladder.folds,
+            rungs: (ladder.rungs.iter())
+                .map(|r| RungDocument {
+                    gravity: r.gravity.name(),
+                    maps: r.maps,
+                    held_out_rms_mm: r.rms.map(stiffid_core::app::document::mm),
+                    skipped: r.skipped.clone(),
+                })
+                .collect(),
+            chosen: ladder.chosen,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rung(errors: Vec<f64>) -> Rung {
+        Rung {
+            gravity: Gravity::None,
+            maps: false,
+            rms: None,
+            skipped: None,
+            errors,
+        }
+    }
+
+    #[test]
+    fn the_simplest_within_one_standard_error_of_the_best() {
+        // The second rung is better by far more than a standard error: chosen; the third
+        // improves on it by less than one: not.
+        let a = rung(vec![4.0, 5.0, 6.0, 5.0]);
+        let b = rung(vec![1.0, 1.2, 0.8, 1.0]);
+        let c = rung(vec![0.9, 1.3, 0.6, 1.0]);
+        assert_eq!(choose(&[a.clone(), b.clone(), c.clone()]), 1);
+        // Without the second, the third is chosen over the first.
+        assert_eq!(choose(&[a.clone(), c]), 1);
+        // A skipped rung is never chosen, whatever its errors.
+        let mut skipped = rung(vec![0.0; 4]);
+        skipped.skipped = Some("not converged".into());
+        assert_eq!(choose(&[a, skipped, b]), 2);
+    }
+
+    #[test]
+    fn a_rung_that_loses_to_a_simpler_one_is_not_chosen() {
+        let a = rung(vec![1.0, 1.0, 1.0, 1.0]);
+        let b = rung(vec![1.5, 1.4, 1.6, 1.5]);
+        assert_eq!(choose(&[a, b]), 0);
+        assert_eq!(choose(&[]), 0);
+    }
+
+    #[test]
+    fn auto_tries_masses_only_where_the_robot_has_them() {
+        assert_eq!(GravitySpec::Auto.rungs(false).len(), 3);
+        assert_eq!(GravitySpec::Auto.rungs(true)[3], Gravity::Masses);
+        let lumped: GravitySpec = "lumped".parse().unwrap();
+        assert_eq!(lumped.rungs(true), vec![Gravity::Lumped]);
+        assert_eq!("auto".parse::<GravitySpec>().unwrap(), GravitySpec::Auto);
+        assert!("sag".parse::<GravitySpec>().is_err());
+    }
+}
