@@ -584,7 +584,8 @@ pub(crate) fn written_from(
             output,
             out_name: match output {
                 Language::GCode => "rectangle-compensated.nc".into(),
-                _ => "rectangle.src".into(),
+                // A name every language takes (LS: at most 8 characters by default).
+                Language::Robot(d) => format!("rect.{}", d.controller().extensions()[0]),
             },
             // G-code output carries positions only: the targets' form is a robot program's.
             settings: match output {

@@ -44,6 +44,7 @@ pub use input::read_program;
 use stiffid_core::app::{Warning, WarningKind};
 use stiffid_core::model::Parameter;
 use stiffid_core::observation::deflection::Frame;
+use stiffid_core::robot::ExternalAxes;
 use stiffid_core::{Coordinates, Error, Result, Setup};
 
 /// The path to compensate.
@@ -305,7 +306,12 @@ where
                 unreachable!("read_checked reads every program")
             };
             // Every name and setting of the output before the compensation, which can be long.
-            let written_name = written_name(&program, output, &out_name, &settings)?;
+            let written_name = written_name(
+                &program,
+                output,
+                &out_name,
+                (&settings, setup.robot().external()),
+            )?;
             // A G-code program is written for the controller's kinematics.
             let controller = match (&program, output) {
                 (Program::GCode(_), Language::GCode) => setup.controller_robot()?,
@@ -476,7 +482,7 @@ fn written_name(
     program: &Program,
     output: Language,
     out_name: &str,
-    settings: &Settings,
+    (settings, cell): (&Settings, Option<&ExternalAxes>),
 ) -> Result<Option<String>> {
     let path = std::path::Path::new(out_name);
     let extension = path.extension().and_then(|e| e.to_str()).unwrap_or("");
@@ -492,13 +498,10 @@ fn written_name(
         });
     }
     match program {
-        Program::GCode(g) if !g.external.0.is_empty() => Err(Error::InvalidField {
-            field: "out".into(),
-            message: format!("{out_name}: a G-code path that drives external axes is written back as G-code; the robot programs stiffid generates are for a fixed base"),
-        }),
         Program::GCode(g) => {
             let name = stem.to_ascii_uppercase();
             generate::check_plan(dialect, &name, settings, g.points.len())?;
+            generate::check_cell(dialect, settings.targets, cell)?;
             Ok(Some(name))
         }
         Program::Robot(_) if stem.is_empty() => Ok(None),
@@ -534,12 +537,18 @@ fn write_robot_program(
     // Joint targets are exact in any kinematics; Cartesian ones are the controller's.
     let controller = match settings.targets {
         generate::Targets::Joint => setup.robot(),
-        generate::Targets::Cartesian => setup.controller_robot()?,
+        generate::Targets::Cartesian => cell_controller(setup)?,
     };
-    let targets: Vec<Target> = compensated
-        .results
-        .par_iter()
-        .map(|r| Target::new(controller, &tool.tcp, &r.q_compensated))
+    let targets: Vec<Target> = (compensated.results.par_iter())
+        .zip(&compensated.points)
+        .map(|(r, p)| {
+            // The values the compensation chose (a free station), else the program's.
+            let e = match r.external.is_empty() {
+                true => p.external.as_slice(),
+                false => r.external.as_slice(),
+            };
+            Target::at(controller, &tool.tcp, &r.q_compensated, e)
+        })
         .collect();
     let plan = Plan {
         dialect,
@@ -548,11 +557,47 @@ fn write_robot_program(
         moves: &moves,
         tool: program_tool(setup),
         work: setup.workpiece().copied().unwrap_or_default(),
+        external: setup.robot().external(),
         world: setup.workcell().controller().world,
         approximation: chord_tolerance,
         settings: *settings,
     };
     generate(&plan)
+}
+
+/// The controller's kinematics ([`Setup::controller_robot`]) for Cartesian targets, which on a
+/// cell with external axes must model the cell's: the controller moves the arm on its carriage
+/// (and the part on its positioner) by its own model of them.
+///
+/// # Errors
+/// Those of [`Setup::controller_robot`]; [`Error::InvalidField`] (`controller.robot`) for a
+/// controller's robot without the cell's external axes (another count or role).
+fn cell_controller(setup: &Setup) -> Result<&stiffid_core::Robot> {
+    let controller = setup.controller_robot()?;
+    let roles = |r: &stiffid_core::Robot| -> Vec<_> {
+        (r.external().map_or(&[][..], |a| a.axes()).iter())
+            .map(|a| (a.role, a.kind))
+            .collect()
+    };
+    if roles(controller) != roles(setup.robot()) {
+        let names = |r: &stiffid_core::Robot| match r.external().filter(|a| !a.is_empty()) {
+            Some(a) => (a.axes().iter().map(|a| a.name.as_str()))
+                .collect::<Vec<_>>()
+                .join(", "),
+            None => "none".into(),
+        };
+        return Err(Error::InvalidField {
+            field: "controller.robot".into(),
+            message: format!(
+                "the controller's robot '{}' has the external axes {} and the setup's robot '{}' has {}: the controller moves the arm by its own model of the cell's external axes, so its robot file must declare them ([[external_axis]])",
+                controller.name(),
+                names(controller),
+                setup.robot().name(),
+                names(setup.robot())
+            ),
+        });
+    }
+    Ok(controller)
 }
 
 /// The tool a generated program states, from the controller's flange (the setup's
