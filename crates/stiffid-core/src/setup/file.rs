@@ -10,7 +10,7 @@ use crate::model::file::ModelFile;
 use crate::robot::file::{transform, TransformFile};
 use crate::robot::kinematics::Coordinates;
 use crate::{Error, Result, Robot};
-use nalgebra::{Vector3, Vector6};
+use nalgebra::{Isometry3, Vector3, Vector6};
 use serde::Deserialize;
 
 #[derive(Debug, Deserialize)]
@@ -292,13 +292,17 @@ where
         field: "robot",
     })?;
     let mount_note = calibrated_mount(&robot, &file, source_name)?;
-    let robot = mounted(robot, &file, source_name)?;
+    let mount = match (&file.robot_base, robot.mount()) {
+        (Some(t), _) => Some(transform(Some(*t), "robot_base", source_name)?),
+        (None, recorded) => recorded.copied(),
+    };
+    let robot = mounted(robot, &file, source_name, mount)?;
     let mut controller = match file.controller.take() {
         None => super::Controller::default(),
-        Some(c) => controller(c, &file, source_name, &mut resolve_robot)?,
+        Some(c) => controller(c, &file, source_name, &mut resolve_robot, mount)?,
     };
     same_robot(&robot, controller.robot.as_ref(), &file.robot, source_name)?;
-    controller.world = transform(file.robot_base, "robot_base", source_name)?;
+    controller.world = mount.unwrap_or_default();
     controller.adapter = transform(file.robot_flange, "robot_flange", source_name)?;
     let steps = file.loading.as_ref().is_some_and(|l| !l.steps_n.is_empty());
     let (reading_variance, note) = file
@@ -315,15 +319,41 @@ where
 }
 
 /// What a setup pointing at a calibrated robot repeats of it: `[robot_base]` (the calibration
-/// fitted the mount into the file's `[base]`: a note, the mount not applied again, the field
-/// still the controller's world) and `[[external_axis]]` tables beside the file's calibrated
-/// ones (refused).
+/// fitted the mount into the file's `[base]`: refused where the file records the mount it was
+/// calibrated on, `[mount]`, which then places the controller's world; for a file without
+/// `[mount]` a note, the mount not applied again, the field still the controller's world) and
+/// `[[external_axis]]` tables beside the file's calibrated ones (refused).
 ///
 /// # Errors
-/// [`Error::InvalidField`] (`external_axis`) naming both places.
+/// [`Error::InvalidField`] (`robot_base`, `external_axis`) naming both places.
 fn calibrated_mount(robot: &Robot, f: &SetupFile, src: &str) -> Result<Option<Warning>> {
     if !robot.is_calibrated() {
         return Ok(None);
+    }
+    if let (Some(t), Some(m)) = (&f.robot_base, robot.mount()) {
+        let short = crate::common::words::number;
+        let words = |m: &Isometry3<f64>| {
+            let p = m.translation.vector * 1e3;
+            let [r, pi, y] = crate::robot::file::rpy(&m.rotation);
+            format!(
+                "xyz_mm = [{}, {}, {}], rpy_deg = [{}, {}, {}]",
+                short(p.x),
+                short(p.y),
+                short(p.z),
+                short(r.to_degrees()),
+                short(pi.to_degrees()),
+                short(y.to_degrees())
+            )
+        };
+        return Err(Error::InvalidField {
+            field: format!("{src}: robot_base"),
+            message: format!(
+                "{}: the calibrated robot file '{}' records the mount it was calibrated on ([mount] {}), which its [base] holds: the setup's [robot_base] would mount the robot again; leave [robot_base] out (the file's [mount] places the controller's world), or calibrate the robot on its new mount",
+                words(&t.isometry()),
+                f.robot,
+                words(m)
+            ),
+        });
     }
     if let (Some(_), Some(axes)) = (&f.external_axis, robot.external()) {
         let names: Vec<&str> = axes.axes().iter().map(|a| a.name.as_str()).collect();
@@ -377,6 +407,7 @@ fn controller<F>(
     file: &SetupFile,
     source_name: &str,
     resolve_robot: &mut F,
+    mount: Option<Isometry3<f64>>,
 ) -> Result<super::Controller>
 where
     F: FnMut(&RobotRequest) -> Result<Robot>,
@@ -405,7 +436,7 @@ where
                 package_paths: &file.package_paths,
                 field: "controller.robot",
             })?;
-            Some(mounted(robot, file, source_name)?)
+            Some(mounted(robot, file, source_name, mount)?)
         }
     };
     Ok(super::Controller {
@@ -457,17 +488,23 @@ fn in_file(e: Error, source_name: &str) -> Error {
 ///
 /// The setup's `[[external_axis]]` tables, when it has any, replace the robot file's
 /// (`external_axis = []` takes them away: the arm on a fixed base); its `max_speed_deg_s`
-/// replaces the robot's axis speeds. A calibrated robot file holds its mount: `[robot_base]`
-/// does not move it again ([`calibrated_mount`]).
-fn mounted(mut robot: Robot, f: &SetupFile, src: &str) -> Result<Robot> {
+/// replaces the robot's axis speeds. `mount` is `[robot_base]`, or the mount a calibrated
+/// robot's file records; a calibrated robot file holds its mount, which is not applied to it
+/// again ([`calibrated_mount`]).
+fn mounted(
+    mut robot: Robot,
+    f: &SetupFile,
+    src: &str,
+    mount: Option<Isometry3<f64>>,
+) -> Result<Robot> {
     if let Some(v) = &f.max_speed_deg_s {
         robot = robot.with_max_speeds(crate::robot::file::max_speeds(Some(v), src)?)?;
     }
     if let Some(tables) = &f.external_axis {
         robot = robot.with_external(crate::robot::external::file::build(tables, src)?);
     }
-    if f.robot_base.is_some() && !robot.is_calibrated() {
-        let base = transform(f.robot_base, "robot_base", src)? * robot.base();
+    if let Some(mount) = mount.filter(|_| !robot.is_calibrated()) {
+        let base = mount * robot.base();
         robot = robot.with_base(base)?;
     }
     if f.robot_flange.is_some() {

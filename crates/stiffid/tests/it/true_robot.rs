@@ -482,6 +482,8 @@ pub(crate) fn calibrated(
     let robot = stiffid::robot::file::parse(report.robot_toml.as_ref().unwrap(), "calibrated.toml")
         .unwrap();
     assert_eq!(robot.own_weight().is_some(), gravity != Gravity::None);
+    // It records the mount it was calibrated on.
+    assert_eq!(robot.mount(), Some(&setup.workcell().controller().world));
     let controller = Controller {
         kinematics: Kinematics::Nominal,
         robot: Some(setup.robot().clone()),
