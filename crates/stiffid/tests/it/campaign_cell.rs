@@ -230,12 +230,13 @@ fn a_track_cell_campaign_with_external_values_lands_on_the_true_cell() {
     assert!(alone.mean > 1e-3, "{alone:?}");
 }
 
+/// A target read back: its axis angles (rad) or its Cartesian pose (cell frame), the track's
+/// value (m).
+type ReadBack = (Option<Vector6<f64>>, Option<Isometry3<f64>>, f64);
+
 /// One robot program's targets read back: per target the axis angles (rad) or the Cartesian
 /// pose (cell frame: its frame as the program states it), and the track's value (m).
-fn read_back(
-    text: &str,
-    dialect: Dialect,
-) -> Vec<(Option<Vector6<f64>>, Option<Isometry3<f64>>, f64)> {
+fn read_back(text: &str, dialect: Dialect) -> Vec<ReadBack> {
     let program = stiffid::machining::program::parse(text, dialect).unwrap();
     assert_eq!(program.axes.len(), 1, "{:?}", program.axes);
     (program.targets.iter())
