@@ -1,6 +1,7 @@
 //! The setup TOML file (format in [`super`]): read, converted to SI and built through
 //! [`SetupBuilder`], which checks every field.
 
+use super::calibrated;
 use super::{
     cell, mm, Cell, CellConstraints, Noise, Obstacle, RopeLoad, Setup, SetupBuilder, Tracker,
 };
@@ -291,7 +292,9 @@ where
         package_paths: &file.package_paths,
         field: "robot",
     })?;
-    let mount_note = calibrated_mount(&robot, &file, source_name)?;
+    let tables = file.external_axis.is_some();
+    let mount_note =
+        calibrated::mount(&robot, &file.robot, (file.robot_base, tables), source_name)?;
     let mount = match (&file.robot_base, robot.mount()) {
         (Some(t), _) => Some(transform(Some(*t), "robot_base", source_name)?),
         (None, recorded) => recorded.copied(),
@@ -301,7 +304,7 @@ where
         None => super::Controller::default(),
         Some(c) => controller(c, &file, source_name, &mut resolve_robot, mount)?,
     };
-    same_robot(&robot, controller.robot.as_ref(), &file.robot, source_name)?;
+    calibrated::same_robot(&robot, controller.robot.as_ref(), &file.robot, source_name)?;
     controller.world = mount.unwrap_or_default();
     controller.adapter = transform(file.robot_flange, "robot_flange", source_name)?;
     let steps = file.loading.as_ref().is_some_and(|l| !l.steps_n.is_empty());
@@ -316,88 +319,6 @@ where
     setup.notes.extend(note);
     setup.notes.extend(mount_note);
     Ok(setup)
-}
-
-/// What a setup pointing at a calibrated robot repeats of it: `[robot_base]` (the calibration
-/// fitted the mount into the file's `[base]`: refused where the file records the mount it was
-/// calibrated on, `[mount]`, which then places the controller's world; for a file without
-/// `[mount]` a note, the mount not applied again, the field still the controller's world) and
-/// `[[external_axis]]` tables beside the file's calibrated ones (refused).
-///
-/// # Errors
-/// [`Error::InvalidField`] (`robot_base`, `external_axis`) naming both places.
-fn calibrated_mount(robot: &Robot, f: &SetupFile, src: &str) -> Result<Option<Warning>> {
-    if !robot.is_calibrated() {
-        return Ok(None);
-    }
-    if let (Some(t), Some(m)) = (&f.robot_base, robot.mount()) {
-        let short = crate::common::words::number;
-        let words = |m: &Isometry3<f64>| {
-            let p = m.translation.vector * 1e3;
-            let [r, pi, y] = crate::robot::file::rpy(&m.rotation);
-            format!(
-                "xyz_mm = [{}, {}, {}], rpy_deg = [{}, {}, {}]",
-                short(p.x),
-                short(p.y),
-                short(p.z),
-                short(r.to_degrees()),
-                short(pi.to_degrees()),
-                short(y.to_degrees())
-            )
-        };
-        return Err(Error::InvalidField {
-            field: format!("{src}: robot_base"),
-            message: format!(
-                "{}: the calibrated robot file '{}' records the mount it was calibrated on ([mount] {}), which its [base] holds: the setup's [robot_base] would mount the robot again; leave [robot_base] out (the file's [mount] places the controller's world), or calibrate the robot on its new mount",
-                words(&t.isometry()),
-                f.robot,
-                words(m)
-            ),
-        });
-    }
-    if let (Some(_), Some(axes)) = (&f.external_axis, robot.external()) {
-        let names: Vec<&str> = axes.axes().iter().map(|a| a.name.as_str()).collect();
-        return Err(Error::InvalidField {
-            field: format!("{src}: external_axis"),
-            message: format!(
-                "the calibrated robot file '{}' holds the calibrated external axes ({}): the setup's [[external_axis]] tables would replace them; leave them out of the setup",
-                f.robot,
-                names.join(", ")
-            ),
-        });
-    }
-    Ok(f.robot_base.is_some().then(|| {
-        Warning::new(
-            WarningKind::Calibrated,
-            format!(
-                "{src}: [robot_base] with the calibrated robot file '{}': its [base] holds the mount the calibration fitted, so [robot_base] is not applied to it again (it still places the controller's world frame)",
-                f.robot
-            ),
-        )
-    }))
-}
-
-/// Refuses `[controller] robot` naming another robot than the calibrated `robot` was
-/// calibrated from (its name without [`crate::robot::CALIBRATED`]).
-///
-/// # Errors
-/// [`Error::InvalidField`] (`controller.robot`) naming both robots.
-fn same_robot(robot: &Robot, controller: Option<&Robot>, reference: &str, src: &str) -> Result<()> {
-    let Some(c) = controller.filter(|_| robot.is_calibrated()) else {
-        return Ok(());
-    };
-    let calibrated = robot.name().trim_end_matches(crate::robot::CALIBRATED);
-    match c.name().trim_end_matches(crate::robot::CALIBRATED) == calibrated {
-        true => Ok(()),
-        false => Err(Error::InvalidField {
-            field: format!("{src}: controller.robot"),
-            message: format!(
-                "'{}' where the setup's robot '{reference}' is '{}' calibrated: the controller runs the nominal robot of the one calibrated",
-                c.name(),
-                calibrated
-            ),
-        }),
-    }
 }
 
 /// `[controller]`: its kinematics and the robot file it runs (resolved as `robot` is, with the
@@ -490,7 +411,7 @@ fn in_file(e: Error, source_name: &str) -> Error {
 /// (`external_axis = []` takes them away: the arm on a fixed base); its `max_speed_deg_s`
 /// replaces the robot's axis speeds. `mount` is `[robot_base]`, or the mount a calibrated
 /// robot's file records; a calibrated robot file holds its mount, which is not applied to it
-/// again ([`calibrated_mount`]).
+/// again ([`calibrated::mount`]).
 fn mounted(
     mut robot: Robot,
     f: &SetupFile,
