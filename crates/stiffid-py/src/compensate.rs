@@ -134,26 +134,9 @@ pub fn compensate<'py>(
     })?;
     let compliance = crate::stiffness::compliance(s, stiffness, None, "stiffness")?;
     let frame = frame.parse::<Frame>().map_err(raise)?;
-    let mut options = options(py, s, q0_deg)?;
-    options.level = level;
-    options.max_error = max_error_mm.map(|m| m * 1e-3);
-    options.force_tolerance = force_tolerance_pct / 100.0;
-    (options.map, options.map_over) = map_over(map)?;
-    let freedom = Freedom {
-        free: free_variables(free)?,
-        minimise: minimise
-            .map(str::parse::<Objective>)
-            .transpose()
-            .map_err(raise)?,
-        objective: objective
-            .map(str::parse::<Aggregate>)
-            .transpose()
-            .map_err(raise)?,
-        margin_deg,
-        max_condition,
-        refine: crate::count::optional("refine", refine)?,
-    };
-    freedom.apply(s, &mut options).map_err(raise)?;
+    let gates = (level, max_error_mm, force_tolerance_pct, map);
+    let freedom = (free, minimise, objective, margin_deg, max_condition, refine);
+    let options = job_options(py, s, q0_deg, gates, freedom)?;
     let (name, file_path) = match (&path, &program) {
         (Some(p), None) | (None, Some(p)) => (p.display().to_string(), p.clone()),
         _ => {
@@ -163,44 +146,9 @@ pub fn compensate<'py>(
         }
     };
     let text = error::read(&file_path)?;
-    let input = match (&program, &process) {
-        (None, None) => Input::Path {
-            name: name.clone(),
-            text: &text,
-            frame,
-        },
-        (Some(_), Some(process)) => {
-            let language = Language::of_file(&name).map_err(raise)?;
-            let process_name = process.display().to_string();
-            let parsed = file::parse(&error::read(process)?, &process_name).map_err(raise)?;
-            let stem = program_name.unwrap_or_else(|| {
-                Path::new(&name)
-                    .file_stem()
-                    .map_or(String::new(), |s| s.to_string_lossy().into_owned())
-            });
-            let (output, out_name) =
-                Language::output(language, None, output, &stem).map_err(raise)?;
-            let settings = Settings {
-                targets: targets.parse::<Targets>().map_err(raise)?,
-                max_tcp_speed: max_tcp_speed_mm_s * 1e-3,
-                name_length,
-                moves_per_file,
-            };
-            Input::Program {
-                name: name.clone(),
-                text: &text,
-                language,
-                process_name,
-                process: parsed,
-                chord_tolerance: chord_tolerance_mm * 1e-3,
-                output,
-                out_name,
-                settings,
-            }
-        }
-        (None, Some(_)) => return Err(error::value("process: only with program=")),
-        (Some(_), None) => return Err(error::value("program: needs process= (the process file)")),
-    };
+    let how = (output, program_name, chord_tolerance_mm);
+    let settings = (targets, max_tcp_speed_mm_s, name_length, moves_per_file);
+    let input = input_of((&name, &text, frame), (&program, &process), how, settings)?;
     let request = Request {
         setup: s,
         compliance,
@@ -253,47 +201,160 @@ pub fn compensate<'py>(
         out.set_item("figures", crate::figures::svgs(py, &drawings)?)?;
     }
     if let Some(p) = &report.program {
-        out.set_item("program", &p.text)?;
-        let subprograms = PyDict::new(py);
-        for f in &p.subprograms {
-            subprograms.set_item(&f.name, &f.text)?;
-        }
-        out.set_item("subprograms", subprograms)?;
+        program_items(py, &out, p)?;
     }
     if let Some(m) = &report.map {
-        let map = PyDict::new(py);
-        let matrix = |x: &nalgebra::DMatrix<f64>, scale: f64| {
-            let a = numpy::ndarray::Array2::from_shape_fn((x.nrows(), x.ncols()), |(i, k)| {
-                x[(i, k)] * scale
-            });
-            numpy::IntoPyArray::into_pyarray(a, py)
-        };
-        map.set_item("line", arrays::integers(py, m.lines.iter().copied()))?;
-        let deg = |v: &[f64]| arrays::vec1(py, v.iter().map(|a| a.to_degrees()));
-        let mm = |v: &[f64]| arrays::vec1(py, v.iter().map(|a| a * 1e3));
-        match m.variable {
-            MapVariable::Rotation => {
-                map.set_item("tool_rotation_deg", deg(&m.angles))?;
-                map.set_item("chosen_deg", deg(&m.chosen))?;
-            }
-            MapVariable::Track => {
-                map.set_item("station_offset_mm", mm(&m.stations))?;
-                map.set_item("chosen_mm", mm(&m.chosen))?;
-            }
-        }
-        if let Some(c) = &m.collision_distance {
-            map.set_item("collision_distance_mm", matrix(c, 1e3))?;
-        }
-        map.set_item("bound_mm", matrix(&m.bound, 1e3))?;
-        map.set_item("deflection_mm", matrix(&m.deflection, 1e3))?;
-        map.set_item("condition", matrix(&m.condition, 1.0))?;
-        map.set_item(
-            "limit_distance_deg",
-            matrix(&m.limit_distance, 1.0f64.to_degrees()),
-        )?;
-        out.set_item("map", map)?;
+        out.set_item("map", map_dict(py, m)?)?;
     }
     Ok(out)
+}
+
+/// The job's options: where inverse kinematics starts, the levels and gates, the map, the
+/// free variables (the arguments of [`compensate`]).
+#[allow(clippy::type_complexity)]
+fn job_options<'py>(
+    py: Python<'py>,
+    s: &stiffid_core::Setup,
+    q0_deg: Option<&Bound<'py, PyAny>>,
+    (level, max_error_mm, force_tolerance_pct, map): (
+        f64,
+        Option<f64>,
+        f64,
+        Option<&Bound<'py, PyAny>>,
+    ),
+    (free, minimise, objective, margin_deg, max_condition, refine): (
+        Option<&Bound<'py, PyAny>>,
+        Option<&str>,
+        Option<&str>,
+        Option<f64>,
+        Option<f64>,
+        Option<i64>,
+    ),
+) -> PyResult<Options> {
+    let mut options = options(py, s, q0_deg)?;
+    options.level = level;
+    options.max_error = max_error_mm.map(|m| m * 1e-3);
+    options.force_tolerance = force_tolerance_pct / 100.0;
+    (options.map, options.map_over) = map_over(map)?;
+    let freedom = Freedom {
+        free: free_variables(free)?,
+        minimise: minimise
+            .map(str::parse::<Objective>)
+            .transpose()
+            .map_err(raise)?,
+        objective: objective
+            .map(str::parse::<Aggregate>)
+            .transpose()
+            .map_err(raise)?,
+        margin_deg,
+        max_condition,
+        refine: crate::count::optional("refine", refine)?,
+    };
+    freedom.apply(s, &mut options).map_err(raise)?;
+    Ok(options)
+}
+
+/// A compensated program's items: `program`, its text, and `subprograms`.
+fn program_items(
+    py: Python<'_>,
+    out: &Bound<'_, PyDict>,
+    p: &stiffid_machining::app::compensate::ProgramReport,
+) -> PyResult<()> {
+    out.set_item("program", &p.text)?;
+    let subprograms = PyDict::new(py);
+    for f in &p.subprograms {
+        subprograms.set_item(&f.name, &f.text)?;
+    }
+    out.set_item("subprograms", subprograms)?;
+    Ok(())
+}
+
+/// The path (`program` and `process` `None`) or the program to compensate, named `name`, and
+/// how its output is written.
+#[allow(clippy::type_complexity)]
+fn input_of<'t>(
+    (name, text, frame): (&str, &'t str, Frame),
+    (program, process): (&Option<PathBuf>, &Option<PathBuf>),
+    (output, program_name, chord_tolerance_mm): (Option<&str>, Option<String>, f64),
+    (targets, max_tcp_speed_mm_s, name_length, moves_per_file): (&str, f64, Option<usize>, usize),
+) -> PyResult<Input<'t>> {
+    let input = match (program, process) {
+        (None, None) => Input::Path {
+            name: name.to_string(),
+            text,
+            frame,
+        },
+        (Some(_), Some(process)) => {
+            let language = Language::of_file(name).map_err(raise)?;
+            let process_name = process.display().to_string();
+            let parsed = file::parse(&error::read(process)?, &process_name).map_err(raise)?;
+            let stem = program_name.unwrap_or_else(|| {
+                Path::new(name)
+                    .file_stem()
+                    .map_or(String::new(), |s| s.to_string_lossy().into_owned())
+            });
+            let (output, out_name) =
+                Language::output(language, None, output, &stem).map_err(raise)?;
+            let settings = Settings {
+                targets: targets.parse::<Targets>().map_err(raise)?,
+                max_tcp_speed: max_tcp_speed_mm_s * 1e-3,
+                name_length,
+                moves_per_file,
+            };
+            Input::Program {
+                name: name.to_string(),
+                text,
+                language,
+                process_name,
+                process: parsed,
+                chord_tolerance: chord_tolerance_mm * 1e-3,
+                output,
+                out_name,
+                settings,
+            }
+        }
+        (None, Some(_)) => return Err(error::value("process: only with program=")),
+        (Some(_), None) => return Err(error::value("program: needs process= (the process file)")),
+    };
+    Ok(input)
+}
+
+/// The dict of the free variable's map `m` (module docs of [`compensate`]).
+fn map_dict<'py>(
+    py: Python<'py>,
+    m: &stiffid_machining::compensate::Map,
+) -> PyResult<Bound<'py, PyDict>> {
+    let map = PyDict::new(py);
+    let matrix = |x: &nalgebra::DMatrix<f64>, scale: f64| {
+        let a = numpy::ndarray::Array2::from_shape_fn((x.nrows(), x.ncols()), |(i, k)| {
+            x[(i, k)] * scale
+        });
+        numpy::IntoPyArray::into_pyarray(a, py)
+    };
+    map.set_item("line", arrays::integers(py, m.lines.iter().copied()))?;
+    let deg = |v: &[f64]| arrays::vec1(py, v.iter().map(|a| a.to_degrees()));
+    let mm = |v: &[f64]| arrays::vec1(py, v.iter().map(|a| a * 1e3));
+    match m.variable {
+        MapVariable::Rotation => {
+            map.set_item("tool_rotation_deg", deg(&m.angles))?;
+            map.set_item("chosen_deg", deg(&m.chosen))?;
+        }
+        MapVariable::Track => {
+            map.set_item("station_offset_mm", mm(&m.stations))?;
+            map.set_item("chosen_mm", mm(&m.chosen))?;
+        }
+    }
+    if let Some(c) = &m.collision_distance {
+        map.set_item("collision_distance_mm", matrix(c, 1e3))?;
+    }
+    map.set_item("bound_mm", matrix(&m.bound, 1e3))?;
+    map.set_item("deflection_mm", matrix(&m.deflection, 1e3))?;
+    map.set_item("condition", matrix(&m.condition, 1.0))?;
+    map.set_item(
+        "limit_distance_deg",
+        matrix(&m.limit_distance, 1.0f64.to_degrees()),
+    )?;
+    Ok(map)
 }
 
 /// `map=`: `None` or `False` (no map), `True` or `"rotation"` (the rotation's), `"track"` (the

@@ -484,9 +484,20 @@ fn made_of(b: &stiffid_machining::app::compensate::budget::BudgetSummary) -> Str
     text
 }
 
-/// The text summary.
+/// The text summary: what was compensated, the error bound, the free variables, what was
+/// written.
 fn human(args: &Args, setup: &Setup, report: &Report, names: &Names) -> String {
     let doc = Document::new(report, names, Vec::new());
+    let mut text = head(setup, report, names, &doc);
+    text += &bound(&doc);
+    text += &made_of(&doc.summary.budget);
+    text += &free(&doc);
+    text += &written(args, report, names, &doc);
+    text
+}
+
+/// The summary's first lines: the points, the deflection, the residual, the intervals.
+fn head(setup: &Setup, report: &Report, names: &Names, doc: &Document) -> String {
     let d = &doc.summary;
     let mut text = format!(
         "{} path points of {} compensated (setup {}, stiffness {}{})\n\
@@ -514,8 +525,13 @@ fn human(args: &Args, setup: &Setup, report: &Report, names: &Names) -> String {
                 .map_or("is unbounded (too few held-out residuals for the level)".into(), |w| format!("is {w:.4} mm wide"))
         );
     }
-    let b = &d.budget;
-    text += &format!(
+    text
+}
+
+/// The error bound's line.
+fn bound(doc: &Document) -> String {
+    let b = &doc.summary.budget;
+    format!(
         "error bound at {}%: largest {} (line {}), mean {}{}{}\n",
         100.0 * b.level,
         b.max_bound_mm.map_or(
@@ -536,8 +552,13 @@ fn human(args: &Args, setup: &Setup, report: &Report, names: &Names) -> String {
                 b.absent.join(", ").replace('_', " ")
             ),
         }
-    );
-    text += &made_of(b);
+    )
+}
+
+/// The free variables' lines: the tool axis, lead and tilt, the feasibility, the speeds, the
+/// grid's refinement, the configurations.
+fn free(doc: &Document) -> String {
+    let (d, mut text) = (&doc.summary, String::new());
     if let (Some(f), Some(o)) = (&d.free_tool_axis, &doc.free_tool_axis) {
         let [lo, hi] = f.tool_rotation_range_deg;
         text += &format!(
@@ -576,6 +597,12 @@ fn human(args: &Args, setup: &Setup, report: &Report, names: &Names) -> String {
     if let Some(c) = &doc.configurations {
         text += &crate::commands::configuration_table::table(c);
     }
+    text
+}
+
+/// The program and the files written.
+fn written(args: &Args, report: &Report, names: &Names, doc: &Document) -> String {
+    let mut text = String::new();
     if let Some(p) = &doc.program {
         text += &format!(
             "program ({}, process {}): {}, process force up to {:.1} N\n",

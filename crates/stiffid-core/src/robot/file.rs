@@ -42,6 +42,10 @@
 //! [held_out]                            # optional (stiffid calibrate --out writes it): the
 //! source = "validate"                   #   calibration's held-out position errors, "validate"
 //! errors_mm = [0.012, 0.019, 0.031]     #   or "cross-validate", each |error| in mm (1 to 1e6)
+//! [mount]                               # optional (stiffid calibrate --out writes it): the
+//! xyz_mm = [0, 0, 300]                  #   pedestal the robot was calibrated on (the setup's
+//! rpy_deg = [0, 0, 0]                   #   [robot_base]), which [base] holds; a setup pointing
+//!                                       #   at the file takes the controller's world from it
 //! [gravity]                             # optional (stiffid calibrate --out writes it): the
 //! model = "masses"                      #   sag under the robot's own weight and its tool's
 //! terms = [{ name = "gravity.c2", value_si = 1.1e-7 }]   # ([`super::weight_file`])
@@ -77,6 +81,7 @@ struct RobotFile {
     #[serde(default)]
     external_axis: Vec<super::external::file::AxisFile>,
     held_out: Option<HeldOutFile>,
+    mount: Option<TransformFile>,
     gravity: Option<super::weight_file::GravityFile>,
 }
 
@@ -305,6 +310,10 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
     let flange = transform(file.flange, "flange", source_name)?;
     let bodies = bodies(file.robot_geometry, source_name)?;
     let held = held_out(file.held_out, source_name)?;
+    let mount = match file.mount {
+        Some(m) => Some(transform(Some(m), "mount", source_name)?),
+        None => None,
+    };
     let own_weight = super::weight_file::build(file.gravity, source_name)?;
     let speeds = max_speeds(file.max_speed_deg_s.as_ref(), source_name)?;
     let external = super::external::file::build(&file.external_axis, source_name)?;
@@ -322,6 +331,7 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
                 .with_masses(masses)
                 .with_error_maps(maps)
                 .with_held_out(held)
+                .with_mount(mount)
                 .with_own_weight(own_weight)
                 .with_external(external)
         })

@@ -74,6 +74,8 @@ pub struct Robot {
     external: Option<Arc<ExternalAxes>>,
     /// A calibrated robot's held-out position errors ([`HeldOut`]), when its file carries them.
     held_out: Option<Arc<HeldOut>>,
+    /// The mount a calibrated robot was calibrated on, when its file records it (`[mount]`).
+    mount: Option<Isometry3<f64>>,
     /// A calibrated robot's sag under its own weight ([`OwnWeight`]), when its
     /// file carries it.
     own_weight: Option<Arc<OwnWeight>>,
@@ -180,6 +182,7 @@ impl Robot {
             error_maps: None,
             external: None,
             held_out: None,
+            mount: None,
             own_weight: None,
             max_speeds: Vector6::repeat(f64::INFINITY),
         }
@@ -290,6 +293,19 @@ impl Robot {
             external: axes.map(Arc::new),
             ..self
         }
+    }
+
+    /// The robot recording the mount it was calibrated on: the pedestal's pose in the cell
+    /// (the calibration setup's `[robot_base]`, the controller's world in the base frame; the
+    /// identity without one), which its base already holds.
+    pub fn with_mount(self, mount: Option<Isometry3<f64>>) -> Self {
+        Self { mount, ..self }
+    }
+
+    /// The mount a calibrated robot was calibrated on ([`Robot::with_mount`]), when its file
+    /// records it.
+    pub fn mount(&self) -> Option<&Isometry3<f64>> {
+        self.mount.as_ref()
     }
 
     /// The robot carrying a calibration's held-out position errors ([`HeldOut`]).

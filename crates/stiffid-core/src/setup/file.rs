@@ -1,6 +1,7 @@
 //! The setup TOML file (format in [`super`]): read, converted to SI and built through
 //! [`SetupBuilder`], which checks every field.
 
+use super::calibrated;
 use super::{
     cell, mm, Cell, CellConstraints, Noise, Obstacle, RopeLoad, Setup, SetupBuilder, Tracker,
 };
@@ -10,7 +11,7 @@ use crate::model::file::ModelFile;
 use crate::robot::file::{transform, TransformFile};
 use crate::robot::kinematics::Coordinates;
 use crate::{Error, Result, Robot};
-use nalgebra::{Vector3, Vector6};
+use nalgebra::{Isometry3, Vector3, Vector6};
 use serde::Deserialize;
 
 #[derive(Debug, Deserialize)]
@@ -291,14 +292,20 @@ where
         package_paths: &file.package_paths,
         field: "robot",
     })?;
-    let mount_note = calibrated_mount(&robot, &file, source_name)?;
-    let robot = mounted(robot, &file, source_name)?;
+    let tables = file.external_axis.is_some();
+    let mount_note =
+        calibrated::mount(&robot, &file.robot, (file.robot_base, tables), source_name)?;
+    let mount = match (&file.robot_base, robot.mount()) {
+        (Some(t), _) => Some(transform(Some(*t), "robot_base", source_name)?),
+        (None, recorded) => recorded.copied(),
+    };
+    let robot = mounted(robot, &file, source_name, mount)?;
     let mut controller = match file.controller.take() {
         None => super::Controller::default(),
-        Some(c) => controller(c, &file, source_name, &mut resolve_robot)?,
+        Some(c) => controller(c, &file, source_name, &mut resolve_robot, mount)?,
     };
-    same_robot(&robot, controller.robot.as_ref(), &file.robot, source_name)?;
-    controller.world = transform(file.robot_base, "robot_base", source_name)?;
+    calibrated::same_robot(&robot, controller.robot.as_ref(), &file.robot, source_name)?;
+    controller.world = mount.unwrap_or_default();
     controller.adapter = transform(file.robot_flange, "robot_flange", source_name)?;
     let steps = file.loading.as_ref().is_some_and(|l| !l.steps_n.is_empty());
     let (reading_variance, note) = file
@@ -314,62 +321,6 @@ where
     Ok(setup)
 }
 
-/// What a setup pointing at a calibrated robot repeats of it: `[robot_base]` (the calibration
-/// fitted the mount into the file's `[base]`: a note, the mount not applied again, the field
-/// still the controller's world) and `[[external_axis]]` tables beside the file's calibrated
-/// ones (refused).
-///
-/// # Errors
-/// [`Error::InvalidField`] (`external_axis`) naming both places.
-fn calibrated_mount(robot: &Robot, f: &SetupFile, src: &str) -> Result<Option<Warning>> {
-    if !robot.is_calibrated() {
-        return Ok(None);
-    }
-    if let (Some(_), Some(axes)) = (&f.external_axis, robot.external()) {
-        let names: Vec<&str> = axes.axes().iter().map(|a| a.name.as_str()).collect();
-        return Err(Error::InvalidField {
-            field: format!("{src}: external_axis"),
-            message: format!(
-                "the calibrated robot file '{}' holds the calibrated external axes ({}): the setup's [[external_axis]] tables would replace them; leave them out of the setup",
-                f.robot,
-                names.join(", ")
-            ),
-        });
-    }
-    Ok(f.robot_base.is_some().then(|| {
-        Warning::new(
-            WarningKind::Calibrated,
-            format!(
-                "{src}: [robot_base] with the calibrated robot file '{}': its [base] holds the mount the calibration fitted, so [robot_base] is not applied to it again (it still places the controller's world frame)",
-                f.robot
-            ),
-        )
-    }))
-}
-
-/// Refuses `[controller] robot` naming another robot than the calibrated `robot` was
-/// calibrated from (its name without [`crate::robot::CALIBRATED`]).
-///
-/// # Errors
-/// [`Error::InvalidField`] (`controller.robot`) naming both robots.
-fn same_robot(robot: &Robot, controller: Option<&Robot>, reference: &str, src: &str) -> Result<()> {
-    let Some(c) = controller.filter(|_| robot.is_calibrated()) else {
-        return Ok(());
-    };
-    let calibrated = robot.name().trim_end_matches(crate::robot::CALIBRATED);
-    match c.name().trim_end_matches(crate::robot::CALIBRATED) == calibrated {
-        true => Ok(()),
-        false => Err(Error::InvalidField {
-            field: format!("{src}: controller.robot"),
-            message: format!(
-                "'{}' where the setup's robot '{reference}' is '{}' calibrated: the controller runs the nominal robot of the one calibrated",
-                c.name(),
-                calibrated
-            ),
-        }),
-    }
-}
-
 /// `[controller]`: its kinematics and the robot file it runs (resolved as `robot` is, with the
 /// setup's offsets).
 fn controller<F>(
@@ -377,6 +328,7 @@ fn controller<F>(
     file: &SetupFile,
     source_name: &str,
     resolve_robot: &mut F,
+    mount: Option<Isometry3<f64>>,
 ) -> Result<super::Controller>
 where
     F: FnMut(&RobotRequest) -> Result<Robot>,
@@ -405,7 +357,7 @@ where
                 package_paths: &file.package_paths,
                 field: "controller.robot",
             })?;
-            Some(mounted(robot, file, source_name)?)
+            Some(mounted(robot, file, source_name, mount)?)
         }
     };
     Ok(super::Controller {
@@ -457,17 +409,23 @@ fn in_file(e: Error, source_name: &str) -> Error {
 ///
 /// The setup's `[[external_axis]]` tables, when it has any, replace the robot file's
 /// (`external_axis = []` takes them away: the arm on a fixed base); its `max_speed_deg_s`
-/// replaces the robot's axis speeds. A calibrated robot file holds its mount: `[robot_base]`
-/// does not move it again ([`calibrated_mount`]).
-fn mounted(mut robot: Robot, f: &SetupFile, src: &str) -> Result<Robot> {
+/// replaces the robot's axis speeds. `mount` is `[robot_base]`, or the mount a calibrated
+/// robot's file records; a calibrated robot file holds its mount, which is not applied to it
+/// again ([`calibrated::mount`]).
+fn mounted(
+    mut robot: Robot,
+    f: &SetupFile,
+    src: &str,
+    mount: Option<Isometry3<f64>>,
+) -> Result<Robot> {
     if let Some(v) = &f.max_speed_deg_s {
         robot = robot.with_max_speeds(crate::robot::file::max_speeds(Some(v), src)?)?;
     }
     if let Some(tables) = &f.external_axis {
         robot = robot.with_external(crate::robot::external::file::build(tables, src)?);
     }
-    if f.robot_base.is_some() && !robot.is_calibrated() {
-        let base = transform(f.robot_base, "robot_base", src)? * robot.base();
+    if let Some(mount) = mount.filter(|_| !robot.is_calibrated()) {
+        let base = mount * robot.base();
         robot = robot.with_base(base)?;
     }
     if f.robot_flange.is_some() {

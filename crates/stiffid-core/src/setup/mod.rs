@@ -69,6 +69,7 @@
 
 mod arm;
 mod builder;
+mod calibrated;
 mod carried;
 mod cell;
 mod experiment;

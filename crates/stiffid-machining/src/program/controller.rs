@@ -13,6 +13,7 @@ use super::generate::{Part, Plan, Targets};
 use super::{JointTarget, Units};
 use nalgebra::{UnitQuaternion, Vector3};
 use stiffid_core::robot::configuration::Configuration;
+use stiffid_core::robot::external::Role;
 use stiffid_core::Result;
 
 /// What a reader finds in a program: its targets in motion order, its external axes' names, per
@@ -141,6 +142,10 @@ pub trait Generator: Sync {
     fn routine_prefix(&self) -> &'static str;
     /// Whether a program with `targets` states the tool's mass and centre of mass.
     fn needs_mass(&self, targets: Targets) -> bool;
+    /// The most external axes of `role` a program holds.
+    fn most_external(&self, role: Role) -> usize;
+    /// Where a program writes the external axes of `role`, for messages (KRL `E1..E6`).
+    fn external_form(&self, role: Role) -> &'static str;
 }
 
 /// The lines (1-based) of `text` that start (after blanks) with one of `motions`.

@@ -481,6 +481,13 @@ fn edited_urdf(nominal: &Robot, calibrated: &Robot, source: &UrdfSource) -> Resu
     Ok(text)
 }
 
+/// The robot file's `[mount]` table: the mount `mount` (the calibration setup's `[robot_base]`,
+/// the identity without one) a robot was calibrated on, which its `[base]` holds
+/// ([`stiffid_core::Robot::mount`]).
+pub fn mount_table(mount: &Isometry3<f64>) -> String {
+    format!("\n[mount]\n{}", transform(mount))
+}
+
 fn transform(t: &Isometry3<f64>) -> String {
     let [r, p, y] = stiffid_core::robot::file::rpy(&t.rotation);
     format!(

@@ -75,6 +75,7 @@ fn written(
         },
         work: part,
         world: Isometry3::identity(),
+        external: None,
         approximation: 1e-5,
         settings: Settings::default(),
     };
@@ -177,6 +178,7 @@ fn the_configuration_data_choose_the_solution_of_a_pose() {
                 },
                 work: *s.workpiece().unwrap(),
                 world: Isometry3::identity(),
+                external: None,
                 approximation: 1e-5,
                 settings: Settings::default(),
             };

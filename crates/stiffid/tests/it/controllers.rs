@@ -3,10 +3,16 @@
 //! `Dialect` and its `controller()` arm, its folder under `program/` implementing
 //! `program::Controller`, and a row here (docs/ARCHITECTURE.md, "Adding a controller").
 
+use nalgebra::{Isometry3, Vector3, Vector6};
 use stiffid::machining::app::compensate::certify;
-use stiffid::machining::program::generate::{check_name, default_name_length, max_name_length};
+use stiffid::machining::program::generate::{
+    check_name, default_name_length, generate, max_name_length, Move, Plan, Settings, Target,
+    Targets, Tool,
+};
 use stiffid::machining::program::{self, rename, Dialect};
 use stiffid::machining::Language;
+use stiffid::robot::configuration::Configuration;
+use stiffid::robot::external::{ExternalAxes, ExternalAxis};
 
 /// One controller and what its small program must give.
 struct Row {
@@ -27,6 +33,9 @@ struct Row {
     bound: &'static str,
     /// Whether new programs are written in the language from G-code.
     generates: bool,
+    /// A generated joint target at 1..6 deg with a track at 1500 mm and a turntable at 45 deg:
+    /// the text of the external values (each language's own form).
+    external: Option<&'static str>,
 }
 
 fn rows() -> [Row; 4] {
@@ -41,6 +50,7 @@ fn rows() -> [Row; 4] {
             renamed: Some("DEF cut_c( )"),
             bound: "A6 6} ; bound 0.0123 mm at 95%\n",
             generates: true,
+            external: Some("A6 6.000000000, E1 1500.000000000, E2 45.000000000}"),
         },
         Row {
             dialect: Dialect::Rapid,
@@ -52,6 +62,7 @@ fn rows() -> [Row; 4] {
             renamed: None,
             bound: "tool0; ! bound 0.0123 mm at 95%\n",
             generates: true,
+            external: Some("[[1.000000000,2.000000000,3.000000000,4.000000000,5.000000000,6.000000000],[1500.000000000,45.000000000,9E9,9E9,9E9,9E9]]"),
         },
         Row {
             dialect: Dialect::FanucLs,
@@ -63,6 +74,7 @@ fn rows() -> [Row; 4] {
             renamed: Some("/PROG  CUT_C\n"),
             bound: "P[1:\"0.0123 mm\"]{\n",
             generates: true,
+            external: Some("J6= 6.000000000 deg,\n\tE1= 1500.000000000 mm\n   GP2:\n\tUF : 0, UT : 1,\n\tJ1= 45.000000000 deg\n};"),
         },
         Row {
             dialect: Dialect::Inform,
@@ -74,6 +86,7 @@ fn rows() -> [Row; 4] {
             renamed: Some("//NAME CUT_C\r\n"),
             bound: "'bound 0.0123 mm at 95%\r\nMOVJ C00000",
             generates: false,
+            external: None,
         },
     ]
 }
@@ -162,5 +175,93 @@ fn each_controller_says_whether_and_how_it_writes_new_programs() {
         for word in c.reserved_words() {
             assert!(check_name(d, word, 64).is_err(), "{d:?}: {word}");
         }
+    }
+}
+
+/// A track along x (0 to 6 m) and a turntable about z (-360 to 360 deg).
+fn track_and_table() -> ExternalAxes {
+    let turn = 360f64.to_radians();
+    ExternalAxes::new(vec![
+        ExternalAxis::linear("track", Vector3::x_axis(), 0.0, 6.0),
+        ExternalAxis::rotary(
+            "table",
+            Vector3::new(2.5, 0.0, 0.0),
+            Vector3::z_axis(),
+            -turn,
+            turn,
+        ),
+    ])
+    .unwrap()
+}
+
+/// A one-target plan in `dialect` with `targets` on the cell `axes`.
+fn plan<'a>(
+    dialect: Dialect,
+    targets: Targets,
+    target: &'a [Target],
+    axes: &'a ExternalAxes,
+) -> Plan<'a> {
+    Plan {
+        dialect,
+        name: "CUT",
+        targets: target,
+        moves: &[Move::Rapid],
+        tool: Tool {
+            frame: Isometry3::translation(0.0, 0.0, 0.3),
+            payload: Some((10.0, Vector3::zeros())),
+        },
+        work: Isometry3::identity(),
+        world: Isometry3::identity(),
+        external: Some(axes),
+        approximation: 1e-5,
+        settings: Settings {
+            targets,
+            ..Settings::default()
+        },
+    }
+}
+
+#[test]
+fn each_generating_controller_writes_the_cells_external_axes_in_its_form() {
+    let axes = track_and_table();
+    let robot = stiffid::robot::presets::get("comau-smart5-nj165-3.0").unwrap();
+    let q = Vector6::new(1.0, 2.0, 3.0, 4.0, 5.0, 6.0).map(f64::to_radians);
+    let target = [Target {
+        q_deg: [1.0, 2.0, 3.0, 4.0, 5.0, 6.0],
+        pose: Isometry3::translation(1.0, 0.0, 1.0),
+        arm: Configuration::of(&robot, &q),
+        external: vec![1500.0, 45.0],
+    }];
+    for row in rows() {
+        let d = row.dialect;
+        let written = generate(&plan(d, Targets::Joint, &target, &axes));
+        let Some(form) = row.external else {
+            assert!(written.is_err(), "{d:?}");
+            continue;
+        };
+        let text = &written.unwrap().files[0].text;
+        assert!(text.contains(form), "{d:?}: {text}");
+        // Read back: the six angles and the two external values.
+        let p = program::parse(text, d).unwrap();
+        assert_eq!(p.axes.len(), 2, "{d:?}: {:?}", p.axes);
+        assert_eq!(p.targets[0].q_deg, [1.0, 2.0, 3.0, 4.0, 5.0, 6.0], "{d:?}");
+        assert_eq!(p.targets[0].external, [Some(1500.0), Some(45.0)], "{d:?}");
+        // A Cartesian target on the positioner needs coordinated motion: refused naming it.
+        let e = generate(&plan(d, Targets::Cartesian, &target, &axes)).unwrap_err();
+        assert!(
+            e.to_string().contains("positioner axis table"),
+            "{d:?}: {e}"
+        );
+        // A target without the cell's values: refused.
+        let bare = [Target {
+            external: vec![1500.0],
+            ..target[0].clone()
+        }];
+        let e = generate(&plan(d, Targets::Joint, &bare, &axes)).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("expected 2 finite external axis values"),
+            "{d:?}: {e}"
+        );
     }
 }

@@ -12,7 +12,7 @@ use stiffid::metrology::calibration::gravity::{self, Terms};
 use stiffid::model::{Compliance, OwnWeight};
 use stiffid::observation::deflection::Frame;
 use stiffid::robot::ik::tool_pose;
-use stiffid::{Coordinates, Error};
+use stiffid::{setup, Coordinates, Error};
 
 const STIFFNESS: [f64; 6] = [950000.0, 3000000.0, 900000.0, 250000.0, 200000.0, 150000.0];
 const TOOL: &str = "mass_kg = 40.0\ncentre_of_mass_mm = [0.0, 0.0, 150.0]\n";
@@ -187,4 +187,52 @@ fn a_setup_does_not_repeat_the_calibrated_robot() {
     assert!(e.contains("controller.robot") && e.contains("FANUC"), "{e}");
     let same = "[controller]\nkinematics = \"nominal\"\nrobot = \"comau-smart5-nj165-3.0\"";
     heavy_on(same, "", &calibrated_text("")).unwrap();
+}
+
+/// A calibrated robot file records the mount it was calibrated on (`[mount]`, which its `[base]`
+/// holds): a setup pointing at it that gives `[robot_base]` again is refused naming both
+/// places; without it the controller's world is the recorded mount and a nominal controller's
+/// robot stands on it, as it did on the setup's `[robot_base]` before the calibration.
+#[test]
+fn the_calibrated_mount_is_recorded_and_not_given_twice() {
+    let mount = "[mount]\nxyz_mm = [0.0, 0.0, 300.0]\nrpy_deg = [0.0, 0.0, 0.0]\n";
+    let riser = "[robot_base]\nxyz_mm = [0.0, 0.0, 300.0]";
+    let recorded = calibrated_text(mount);
+    let file = stiffid::robot::file::parse(&recorded, "robot.toml").unwrap();
+    let lift = Vector3::new(0.0, 0.0, 0.3);
+    assert!((file.mount().unwrap().translation.vector - lift).norm() < 1e-15);
+    let e = heavy_on(riser, "", &recorded).unwrap_err().to_string();
+    assert!(
+        e.contains("heavy.toml: robot_base")
+            && e.contains("[mount] xyz_mm = [0, 0, 300]")
+            && e.contains("comau-smart5-nj165-3.0"),
+        "{e}"
+    );
+    // Without [robot_base]: the recorded mount is the controller's world, the nominal
+    // controller's robot mounted on it; the calibrated robot's base as its file gives it.
+    let text = setup::builtin_text("zhang2021-comau-nj165").unwrap().replacen(
+        "\n[tool]\n",
+        "\n[controller]\nkinematics = \"nominal\"\nrobot = \"nominal\"\n\n[tool]\ntcp_mm = [0.0, 0.0, 300.0]\n",
+        1,
+    );
+    // The nominal robot the calibrated one was calibrated from (its name without the mark).
+    let nominal_text: Vec<String> = (crate::true_robot::dh_robot_text().lines())
+        .map(|l| match l.starts_with("name = ") {
+            true => "name = \"COMAU\"".to_string(),
+            false => l.to_string(),
+        })
+        .collect();
+    let nominal_text = nominal_text.join("\n");
+    let s = setup::parse(&text, "mounted.toml", |name, _| match name {
+        "nominal" => stiffid::robot::file::parse(&nominal_text, "nominal.toml"),
+        _ => stiffid::robot::file::parse(&recorded, "robot.toml"),
+    })
+    .unwrap();
+    let c = s.workcell().controller();
+    assert!((c.world.translation.vector - lift).norm() < 1e-15);
+    assert_eq!(s.robot().base(), file.base());
+    let nominal = stiffid::robot::file::parse(&nominal_text, "nominal.toml").unwrap();
+    let controller = c.robot.as_ref().unwrap();
+    let raised = controller.base().translation.vector - nominal.base().translation.vector;
+    assert!((raised - lift).norm() < 1e-12, "{raised}");
 }

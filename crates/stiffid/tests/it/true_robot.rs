@@ -482,6 +482,8 @@ pub(crate) fn calibrated(
     let robot = stiffid::robot::file::parse(report.robot_toml.as_ref().unwrap(), "calibrated.toml")
         .unwrap();
     assert_eq!(robot.own_weight().is_some(), gravity != Gravity::None);
+    // It records the mount it was calibrated on.
+    assert_eq!(robot.mount(), Some(&setup.workcell().controller().world));
     let controller = Controller {
         kinematics: Kinematics::Nominal,
         robot: Some(setup.robot().clone()),
@@ -584,7 +586,8 @@ pub(crate) fn written_from(
             output,
             out_name: match output {
                 Language::GCode => "rectangle-compensated.nc".into(),
-                _ => "rectangle.src".into(),
+                // A name every language takes (LS: at most 8 characters by default).
+                Language::Robot(d) => format!("rect.{}", d.controller().extensions()[0]),
             },
             // G-code output carries positions only: the targets' form is a robot program's.
             settings: match output {

@@ -491,7 +491,7 @@ pub(super) fn tool_mass(request: &Request<'_>) -> Result<Option<f64>> {
 }
 
 /// The calibrated robot file's text ([`robot_file::robot_toml`]): the robot, its `[held_out]`
-/// ([`held_out`]) and its sag `own` in the file's link frames
+/// ([`held_out`]), the mount it was calibrated on ([`robot_file::mount_table`]) and its sag `own` in the file's link frames
 /// ([`robot_file::own_weight_in_table`]); or why there is none.
 pub(super) fn robot_file(
     request: &Request<'_>,
@@ -508,7 +508,10 @@ pub(super) fn robot_file(
             let sag = sag.map_or(String::new(), |w| {
                 stiffid_core::robot::weight_file::toml(&w)
             });
-            Ok(t + &held_out(request, setup, validation, cross_validation) + &sag)
+            // The mount it was calibrated on: the setup's, or the one its calibrated robot
+            // records (an update).
+            let mount = robot_file::mount_table(&setup.workcell().controller().world);
+            Ok(t + &held_out(request, setup, validation, cross_validation) + &mount + &sag)
         })
         .map_err(|e| e.to_string())
 }

@@ -2,7 +2,8 @@
 //! output, options and settings, its text, and its Cartesian targets resolved as the controller
 //! moves to them.
 
-use super::{generate, in_input, output, program_tool, Input};
+use super::written::program_tool;
+use super::{generate, in_input, output, Input};
 use crate::compensate::Options;
 use crate::{self as machining, Language, Program};
 use stiffid_core::{Result, Setup};

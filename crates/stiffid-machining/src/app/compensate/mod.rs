@@ -29,14 +29,14 @@ mod output;
 pub mod scene;
 pub mod speed;
 pub mod stream;
+mod written;
 
 use crate::app::compensate::document::Summary;
 use crate::compensate::{self, Compensated, Compliance, Options, PathPoint, CHUNK};
 use crate::dynamics::Dynamics;
 use crate::process::Process;
-use crate::program::generate::{self, generate, moves, Plan, Settings, Target, Tool};
+use crate::program::generate::{self, generate, Settings};
 use crate::program::rename::renamed;
-use crate::program::Dialect;
 use crate::{self as machining, Language, Program};
 use crate::{cell, path};
 use input::read_checked;
@@ -45,6 +45,7 @@ use stiffid_core::app::{Warning, WarningKind};
 use stiffid_core::model::Parameter;
 use stiffid_core::observation::deflection::Frame;
 use stiffid_core::{Coordinates, Error, Result, Setup};
+use written::{generated, written_name};
 
 /// The path to compensate.
 pub enum Input<'t> {
@@ -203,241 +204,341 @@ where
         options,
     } = request;
     options.validate()?;
-    if !setup.tcp_given() {
-        return Err(Error::InvalidField {
+    check_tcp(setup)?;
+    let read = read_checked(setup, &input, &options)?;
+    let (options, speeds) = speed::prepare(setup, &input, read.as_ref(), options)?;
+    let mut tally = Tally::new(setup, &options, speeds);
+    let outcome = {
+        let mut add = |first: usize, p: &[PathPoint], r: &[Compensated], d: &[Dynamics]| {
+            tally.add(first, p, r, options.map);
+            sink(first, p, r, d)
+        };
+        match (input, read) {
+            (Input::Path { name, text, frame }, _) => {
+                path_job(setup, &compliance, (name, text, frame), &options, &mut add)?
+            }
+            (input @ Input::Program { .. }, Some(program)) => {
+                program_job(setup, &compliance, (input, program), &options, &mut add)?
+            }
+            (Input::Program { .. }, None) => unreachable!("read_checked reads every program"),
+        }
+    };
+    Ok(finish(setup, compliance, options, tally, outcome)?)
+}
+
+/// Refuses a setup without the tool's centre point.
+fn check_tcp(setup: &Setup) -> Result<()> {
+    match setup.tcp_given() {
+        true => Ok(()),
+        false => Err(Error::InvalidField {
             field: "tool.tcp_mm".into(),
             message: format!("missing in setup {}: compensation moves the cutting tool's centre point, which the setup must give ([tool] tcp_mm); measuring point 1 is a measuring target, not the tool", setup.name()),
+        }),
+    }
+}
+
+/// Whether the compensation moves a free variable (the tool's rotation, its lean, an external
+/// axis).
+fn frees(options: &Options) -> bool {
+    let free = &options.free;
+    free.tool_rotation.is_some() || free.lead_tilt.is_some() || free.frees_external()
+}
+
+/// What the job gathers point by point as they are computed: the summary, the speeds, the
+/// values chosen (for the map).
+struct Tally<'a> {
+    summary: Summary,
+    speeds: speed::Tracker<'a>,
+    chosen: Vec<compensate::ChosenValues>,
+}
+
+impl<'a> Tally<'a> {
+    fn new(setup: &Setup, options: &Options, speeds: speed::Tracker<'a>) -> Self {
+        let mut summary = Summary::new(frees(options), options.level, setup.robot().external());
+        summary.budget.limit = options.max_error;
+        if options.free.lead_tilt.is_some() {
+            summary = summary.with_lean();
         }
-        .into());
+        Tally {
+            summary,
+            speeds,
+            chosen: Vec::new(),
+        }
     }
-    let read = read_checked(setup, &input, &options)?;
-    let (options, mut speeds) = speed::prepare(setup, &input, read.as_ref(), options)?;
-    let external = options.free.frees_external();
-    let free = options.free.tool_rotation.is_some() || options.free.lead_tilt.is_some() || external;
-    let axes = setup.robot().external();
-    let mut summary = Summary::new(free, options.level, axes);
-    summary.budget.limit = options.max_error;
-    if options.free.lead_tilt.is_some() {
-        summary = summary.with_lean();
-    }
-    let mut chosen: Vec<compensate::ChosenValues> = Vec::new();
-    let mut add = |first: usize, points: &[PathPoint], results: &[Compensated], d: &[Dynamics]| {
+
+    /// The points from the 0-based `first` and their results; `map`: keep the values chosen.
+    fn add(&mut self, first: usize, points: &[PathPoint], results: &[Compensated], map: bool) {
         for (k, (p, r)) in points.iter().zip(results).enumerate() {
             // The values the compensation chose (a free station or positioner), else the path's own.
             let e = match r.external.is_empty() {
                 true => &p.external,
                 false => &r.external,
             };
-            summary.add(first + k, p.line, r, e);
-            speeds.add(first + k, p, r);
-            if options.map {
-                chosen.push(compensate::ChosenValues::of(r, &p.external));
+            self.summary.add(first + k, p.line, r, e);
+            self.speeds.add(first + k, p, r);
+            if map {
+                self.chosen
+                    .push(compensate::ChosenValues::of(r, &p.external));
             }
         }
-        sink(first, points, results, d)
-    };
-    let mut mapped: Option<Vec<PathPoint>> = None;
-    let mut chosen_configurations: Option<compensate::Configurations> = None;
-    let (name, program, warnings) = match input {
-        Input::Path { name, text, frame } => {
-            let robot = setup.arm().robot();
-            let placed = |text| -> Result<_> {
-                let points = path::points(text, frame, robot.external())?;
-                Ok(points.map(|p| p.and_then(|p| cell::on_carriage(robot, p))))
-            };
-            if options.map {
-                let points = placed(text).map_err(|e| in_input(&name, e))?;
-                let points: Result<Vec<PathPoint>> = points.collect();
-                mapped = Some(points.map_err(|e| in_input(&name, e))?);
-            }
-            if options.free.configuration.is_some() {
-                let points = placed(text).map_err(|e| in_input(&name, e))?;
-                let points: Result<Vec<PathPoint>> = points.collect();
-                let points = points.map_err(|e| in_input(&name, e))?;
-                let (results, c) =
-                    compensate::path_configurations(setup.arm(), &compliance, &points, &options)
-                        .map_err(|e| in_input(&name, e))?;
-                let results = cell::path_to_cell(robot, &points, results);
-                for (k, (p, r)) in points.chunks(CHUNK).zip(results.chunks(CHUNK)).enumerate() {
-                    add(k * CHUNK, p, r, &vec![Dynamics::default(); p.len()])?;
-                }
-                if let Some(m) = mapped.as_mut() {
-                    *m = c.in_chosen(setup.arm(), m);
-                }
-                chosen_configurations = Some(c);
-            } else if !external {
-                let points = placed(text).map_err(|e| in_input(&name, e))?;
-                let mut first = 0;
-                compensate::stream(setup.arm(), &compliance, points, &options, |p, r| {
-                    let r = match robot.external() {
-                        None => std::borrow::Cow::Borrowed(r),
-                        Some(_) => {
-                            std::borrow::Cow::Owned(cell::path_to_cell(robot, p, r.to_vec()))
-                        }
-                    };
-                    add(first, p, &r, &vec![Dynamics::default(); p.len()])
-                        .map_err(Failure::Sink)?;
-                    first += p.len();
-                    Ok(())
-                })
-                .map_err(|f: Failure<E>| f.into_error(&name))?;
-            } else {
-                let points = path::points(text, frame, robot.external());
-                let points: Result<Vec<PathPoint>> = points.and_then(Iterator::collect);
-                let points = points.map_err(|e| in_input(&name, e))?;
-                on_track(setup, &compliance, &points, &options, &mut add)
-                    .map_err(|f: Failure<E>| f.into_error(&name))?;
-            }
-            (name, None, Vec::new())
-        }
-        Input::Program {
+    }
+}
+
+/// What a path's or a program's job gives besides the points: the input's name, the program,
+/// the warnings, the points to map, the configurations evaluated.
+struct Outcome {
+    name: String,
+    program: Option<ProgramReport>,
+    warnings: Vec<Warning>,
+    mapped: Option<Vec<PathPoint>>,
+    configurations: Option<compensate::Configurations>,
+}
+
+impl Outcome {
+    fn named(name: String) -> Self {
+        Outcome {
             name,
-            language,
-            process_name,
-            process,
-            chord_tolerance,
-            output,
-            out_name,
-            settings,
-            ..
-        } => {
-            let Some(program) = read else {
-                unreachable!("read_checked reads every program")
-            };
-            // Every name and setting of the output before the compensation, which can be long.
-            let written_name = written_name(&program, output, &out_name, &settings)?;
-            // A G-code program is written for the controller's kinematics.
-            let controller = match (&program, output) {
-                (Program::GCode(_), Language::GCode) => setup.controller_robot()?,
-                _ => setup.robot(),
-            };
-            let at = (setup.arm(), setup.workpiece(), &compliance);
-            let compensated =
-                machining::compensate_for(controller, at, &program, &process, &options)
-                    .map_err(|e| in_input(&name, e))?;
-            output::check_runs(compensated.configurations.as_ref(), output)?;
-            if options.map {
-                mapped = Some(match &compensated.configurations {
-                    Some(c) => c.in_chosen(setup.arm(), &compensated.points),
-                    None => compensated.points.clone(),
-                });
-            }
-            chosen_configurations = compensated.configurations.clone();
-            let (masses, mass_warning) =
-                stiffid_core::observation::dynamics::mass_model(setup.arm());
-            let point_dynamics = match &masses {
-                Some(m) => crate::dynamics::program(
-                    setup.arm(),
-                    m,
-                    &compliance,
-                    &process,
-                    &compensated.results,
-                    &compensated.operations,
-                ),
-                None => vec![Dynamics::default(); compensated.points.len()],
-            };
-            for (k, ((p, r), d)) in compensated
-                .points
-                .chunks(CHUNK)
-                .zip(compensated.results.chunks(CHUNK))
-                .zip(point_dynamics.chunks(CHUNK))
-                .enumerate()
-            {
-                add(k * CHUNK, p, r, d)?;
-            }
-            let mut warnings: Vec<Warning> = compensated
-                .warnings
-                .iter()
-                .map(|w| Warning::new(WarningKind::NoForce, w.clone()))
-                .collect();
-            warnings.extend(mass_warning);
-            // Without masses no point has dynamics: the document's list is empty (its docs).
-            let (operation_dynamics, chatter) = match &masses {
-                Some(_) => dynamics::operations(
-                    &process,
-                    &compensated.points,
-                    &compensated.operations,
-                    &point_dynamics,
-                ),
-                None => (Vec::new(), Vec::new()),
-            };
-            warnings.extend(chatter);
-            let (text, subprograms) = match (output, &program) {
-                (Language::Robot(d), Program::GCode(g)) => {
-                    let written = write_robot_program(
-                        setup,
-                        d,
-                        &compensated,
-                        &g.points,
-                        (
-                            &written_name.unwrap_or_default(),
-                            &settings,
-                            chord_tolerance,
-                        ),
-                    )
-                    .map_err(|e| in_input(&name, e))?;
-                    warnings.extend(
-                        written
-                            .warnings
-                            .into_iter()
-                            .map(|w| Warning::new(WarningKind::Feed, w)),
-                    );
-                    let bounds: Vec<f64> =
-                        compensated.results.iter().map(|r| r.budget.bound).collect();
-                    let texts: Vec<String> = written.files.iter().map(|f| f.text.clone()).collect();
-                    let texts = certify::generated(d, &texts, &bounds, options.level);
-                    let mut files = (written.files.into_iter().zip(texts))
-                        .map(|(f, text)| generate::File { text, ..f });
-                    let main = files.next().map(|f| f.text).unwrap_or_default();
-                    (main, files.collect())
-                }
-                (Language::Robot(d), _) => {
-                    let text = match &written_name {
-                        Some(to) => renamed(&compensated.program, d, to),
-                        None => compensated.program.clone(),
-                    };
-                    let lines: Vec<(u64, f64)> = (compensated.points.iter())
-                        .zip(&compensated.results)
-                        .map(|(p, r)| (p.line, r.budget.bound))
-                        .collect();
-                    let text = certify::at_lines(d, &text, &lines, options.level);
-                    (text, Vec::new())
-                }
-                _ => (compensated.program.clone(), Vec::new()),
-            };
-            let report = ProgramReport {
-                language,
-                output,
-                process: process_name,
-                segments: segments(&compensated, &process),
-                dynamics: operation_dynamics,
-                text,
-                subprograms,
-            };
-            (name, Some(report), warnings)
+            program: None,
+            warnings: Vec::new(),
+            mapped: None,
+            configurations: None,
         }
+    }
+}
+
+/// Gives `points` and their `results` (and dynamics, else none) to `add` in chunks of [`CHUNK`].
+fn feed<E, A>(
+    points: &[PathPoint],
+    results: &[Compensated],
+    dynamics: Option<&[Dynamics]>,
+    add: &mut A,
+) -> std::result::Result<(), E>
+where
+    A: FnMut(usize, &[PathPoint], &[Compensated], &[Dynamics]) -> std::result::Result<(), E>,
+{
+    for (k, (p, r)) in points.chunks(CHUNK).zip(results.chunks(CHUNK)).enumerate() {
+        match dynamics {
+            Some(d) => add(k * CHUNK, p, r, &d[k * CHUNK..k * CHUNK + p.len()])?,
+            None => add(k * CHUNK, p, r, &vec![Dynamics::default(); p.len()])?,
+        }
+    }
+    Ok(())
+}
+
+/// A path file's job: its points compensated in the configuration chosen, streamed, or with a
+/// free station or positioner ([`on_track`]).
+fn path_job<E, A>(
+    setup: &Setup,
+    compliance: &Compliance,
+    (name, text, frame): (String, &str, Frame),
+    options: &Options,
+    add: &mut A,
+) -> std::result::Result<Outcome, E>
+where
+    E: From<Error>,
+    A: FnMut(usize, &[PathPoint], &[Compensated], &[Dynamics]) -> std::result::Result<(), E>,
+{
+    let robot = setup.arm().robot();
+    let placed = |text| -> Result<_> {
+        let points = path::points(text, frame, robot.external())?;
+        Ok(points.map(|p| p.and_then(|p| cell::on_carriage(robot, p))))
     };
+    let all = || placed(text).and_then(Iterator::collect::<Result<Vec<PathPoint>>>);
+    let mut out = Outcome::named(name);
+    if options.map {
+        out.mapped = Some(all().map_err(|e| in_input(&out.name, e))?);
+    }
+    if options.free.configuration.is_some() {
+        let points = all().map_err(|e| in_input(&out.name, e))?;
+        let (results, c) =
+            compensate::path_configurations(setup.arm(), compliance, &points, options)
+                .map_err(|e| in_input(&out.name, e))?;
+        feed(
+            &points,
+            &cell::path_to_cell(robot, &points, results),
+            None,
+            add,
+        )?;
+        if let Some(m) = out.mapped.as_mut() {
+            *m = c.in_chosen(setup.arm(), m);
+        }
+        out.configurations = Some(c);
+    } else if !options.free.frees_external() {
+        let points = placed(text).map_err(|e| in_input(&out.name, e))?;
+        let mut first = 0;
+        compensate::stream(setup.arm(), compliance, points, options, |p, r| {
+            let r = match robot.external() {
+                None => std::borrow::Cow::Borrowed(r),
+                Some(_) => std::borrow::Cow::Owned(cell::path_to_cell(robot, p, r.to_vec())),
+            };
+            add(first, p, &r, &vec![Dynamics::default(); p.len()]).map_err(Failure::Sink)?;
+            first += p.len();
+            Ok(())
+        })
+        .map_err(|f: Failure<E>| f.into_error(&out.name))?;
+    } else {
+        let points = path::points(text, frame, robot.external());
+        let points: Result<Vec<PathPoint>> = points.and_then(Iterator::collect);
+        let points = points.map_err(|e| in_input(&out.name, e))?;
+        on_track(setup, compliance, &points, options, add)
+            .map_err(|f: Failure<E>| f.into_error(&out.name))?;
+    }
+    Ok(out)
+}
+
+/// A program's job: every name and setting of the output checked, the program compensated, its
+/// points' dynamics, the program written.
+fn program_job<E, A>(
+    setup: &Setup,
+    compliance: &Compliance,
+    (input, program): (Input<'_>, Program),
+    options: &Options,
+    add: &mut A,
+) -> std::result::Result<Outcome, E>
+where
+    E: From<Error>,
+    A: FnMut(usize, &[PathPoint], &[Compensated], &[Dynamics]) -> std::result::Result<(), E>,
+{
+    let Input::Program {
+        name,
+        language,
+        process_name,
+        process,
+        chord_tolerance,
+        output,
+        out_name,
+        settings,
+        ..
+    } = input
+    else {
+        unreachable!("a program's input")
+    };
+    // Every name and setting of the output before the compensation, which can be long.
+    let cell = setup.robot().external();
+    let written_name = written_name(&program, output, &out_name, (&settings, cell))?;
+    // A G-code program is written for the controller's kinematics.
+    let controller = match (&program, output) {
+        (Program::GCode(_), Language::GCode) => setup.controller_robot()?,
+        _ => setup.robot(),
+    };
+    let at = (setup.arm(), setup.workpiece(), compliance);
+    let compensated = machining::compensate_for(controller, at, &program, &process, options)
+        .map_err(|e| in_input(&name, e))?;
+    output::check_runs(compensated.configurations.as_ref(), output)?;
+    let mut out = Outcome::named(name);
+    out.mapped = options.map.then(|| match &compensated.configurations {
+        Some(c) => c.in_chosen(setup.arm(), &compensated.points),
+        None => compensated.points.clone(),
+    });
+    out.configurations = compensated.configurations.clone();
+    let (dynamics, warnings) = program_dynamics(setup, compliance, &process, &compensated, add)?;
+    out.warnings = warnings;
+    let (text, subprograms) = match (output, &program) {
+        (Language::Robot(d), Program::GCode(g)) => {
+            let how = (written_name.unwrap_or_default(), settings, chord_tolerance);
+            let written = generated(setup, d, &compensated, &g.points, (how, options.level));
+            let (text, subprograms, warnings) = written.map_err(|e| in_input(&out.name, e))?;
+            out.warnings.extend(warnings);
+            (text, subprograms)
+        }
+        (Language::Robot(d), _) => {
+            let text = match &written_name {
+                Some(to) => renamed(&compensated.program, d, to),
+                None => compensated.program.clone(),
+            };
+            let lines: Vec<(u64, f64)> = (compensated.points.iter())
+                .zip(&compensated.results)
+                .map(|(p, r)| (p.line, r.budget.bound))
+                .collect();
+            (
+                certify::at_lines(d, &text, &lines, options.level),
+                Vec::new(),
+            )
+        }
+        _ => (compensated.program.clone(), Vec::new()),
+    };
+    out.program = Some(ProgramReport {
+        language,
+        output,
+        process: process_name,
+        segments: segments(&compensated, &process),
+        dynamics,
+        text,
+        subprograms,
+    });
+    Ok(out)
+}
+
+/// A compensated program's points given to `add` with their drilling surge and milling
+/// frequencies (with a mass model), each operation's dynamics and the warnings (points without
+/// a force, no mass model, chatter).
+fn program_dynamics<E, A>(
+    setup: &Setup,
+    compliance: &Compliance,
+    process: &Process,
+    compensated: &machining::Report,
+    add: &mut A,
+) -> std::result::Result<(Vec<dynamics::OperationDynamics>, Vec<Warning>), E>
+where
+    A: FnMut(usize, &[PathPoint], &[Compensated], &[Dynamics]) -> std::result::Result<(), E>,
+{
+    let c = compensated;
+    let (masses, mass_warning) = stiffid_core::observation::dynamics::mass_model(setup.arm());
+    let point_dynamics = match &masses {
+        Some(m) => crate::dynamics::program(
+            setup.arm(),
+            m,
+            compliance,
+            process,
+            &c.results,
+            &c.operations,
+        ),
+        None => vec![Dynamics::default(); c.points.len()],
+    };
+    feed(&c.points, &c.results, Some(&point_dynamics), add)?;
+    let mut warnings: Vec<Warning> = (c.warnings.iter())
+        .map(|w| Warning::new(WarningKind::NoForce, w.clone()))
+        .collect();
+    warnings.extend(mass_warning);
+    // Without masses no point has dynamics: the document's list is empty (its docs).
+    let (operations, chatter) = match &masses {
+        Some(_) => dynamics::operations(process, &c.points, &c.operations, &point_dynamics),
+        None => (Vec::new(), Vec::new()),
+    };
+    warnings.extend(chatter);
+    Ok((operations, warnings))
+}
+
+/// The report: the largest error refused above `--max-error-mm`, the map of the free variable,
+/// the warnings of the configurations, the speeds, the solver's stops and the compliance's
+/// region.
+///
+/// # Errors
+/// Those of [`budget::Worst::refuse_above`] and [`compensate::map`].
+fn finish(
+    setup: &Setup,
+    compliance: Compliance,
+    options: Options,
+    tally: Tally<'_>,
+    outcome: Outcome,
+) -> Result<Report> {
+    let Tally {
+        summary,
+        speeds,
+        chosen,
+    } = tally;
     if let Some(max_error) = options.max_error {
         summary.budget.refuse_above(max_error, options.level)?;
     }
-    let map = match &mapped {
-        Some(points) => {
-            let mut in_chosen = options.clone();
-            in_chosen.q0 = (chosen_configurations.as_ref())
-                .and_then(compensate::Configurations::start)
-                .unwrap_or(options.q0);
-            in_chosen.free.configuration = None;
-            // A program's wrenches hold the tool's weight (machining::compensate).
-            let weighted =
-                program.is_some() && crate::weight::tool_load(setup.arm(), &compliance).is_some();
-            let at = (&in_chosen, setup.cell());
-            let map = compensate::map(setup.arm(), &compliance, points, at, (&chosen, weighted));
-            Some(map.map_err(|e| in_input(&name, e))?)
-        }
-        None => None,
-    };
-    let mut warnings = warnings;
-    if let Some(c) = &chosen_configurations {
+    let map = map_of(setup, &compliance, &options, &outcome, &chosen)?;
+    let Outcome {
+        name,
+        program,
+        mut warnings,
+        configurations,
+        ..
+    } = outcome;
+    if let Some(c) = &configurations {
         (c.warnings.iter())
             .for_each(|w| warnings.push(Warning::new(WarningKind::Configuration, w.clone())));
     }
@@ -447,124 +548,47 @@ where
     Ok(Report {
         input: name,
         springs: setup.springs(),
-        free: options.free,
         feasibility: feasibility::Feasibility::new(&options, summary.removed),
         speed_limits: speeds.document(),
-        refine: free.then_some(options.refine),
+        refine: frees(&options).then_some(options.refine),
+        free: options.free,
         parameters: setup.model().parameters(),
         prediction_level: compliance.prediction.as_ref().map(|_| options.level),
         compliance,
         summary,
         program,
         map,
-        configurations: chosen_configurations,
+        configurations,
         warnings,
     })
 }
 
-/// The name of the program written, checked before anything is computed: for a G-code program
-/// written as a robot program, the stem of `out_name` in upper case ([`generate::check_plan`]:
-/// every name, setting and count of the program of its points); for a robot program written back
-/// under another name, that stem (upper case for LS, as written for KRL;
-/// [`generate::check_name`]), which its declaration takes ([`renamed`]); `None` otherwise (a
-/// RAPID module, G-code written as G-code, no output file).
+/// With [`Options::map`]: the map of the free variable over the points kept, in the
+/// configuration chosen, with the values chosen.
 ///
 /// # Errors
-/// [`Error::InvalidField`] (`out`) for a KRL program to be written into a `.dat` (a `DEF` belongs
-/// in the `.src`); those of [`generate::check_plan`] and [`generate::check_name`].
-fn written_name(
-    program: &Program,
-    output: Language,
-    out_name: &str,
-    settings: &Settings,
-) -> Result<Option<String>> {
-    let path = std::path::Path::new(out_name);
-    let extension = path.extension().and_then(|e| e.to_str()).unwrap_or("");
-    let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("");
-    let Language::Robot(dialect) = output else {
+/// Those of [`compensate::map`], placed in the input.
+fn map_of(
+    setup: &Setup,
+    compliance: &Compliance,
+    options: &Options,
+    outcome: &Outcome,
+    chosen: &[compensate::ChosenValues],
+) -> Result<Option<compensate::Map>> {
+    let Some(points) = &outcome.mapped else {
         return Ok(None);
     };
-    let controller = dialect.controller();
-    if let Some(why) = controller.refuses_output(&extension.to_ascii_lowercase()) {
-        return Err(Error::InvalidField {
-            field: "out".into(),
-            message: format!("{out_name}: {why}"),
-        });
-    }
-    match program {
-        Program::GCode(g) if !g.external.0.is_empty() => Err(Error::InvalidField {
-            field: "out".into(),
-            message: format!("{out_name}: a G-code path that drives external axes is written back as G-code; the robot programs stiffid generates are for a fixed base"),
-        }),
-        Program::GCode(g) => {
-            let name = stem.to_ascii_uppercase();
-            generate::check_plan(dialect, &name, settings, g.points.len())?;
-            Ok(Some(name))
-        }
-        Program::Robot(_) if stem.is_empty() => Ok(None),
-        Program::Robot(_) => {
-            let Some(name) = controller.program_name(stem) else {
-                return Ok(None);
-            };
-            let longest = (settings.name_length).unwrap_or(generate::max_name_length(dialect));
-            generate::check_name(dialect, &name, longest)?;
-            Ok(Some(name))
-        }
-    }
-}
-
-/// The robot program of a compensated G-code path ([`generate`]) named `name`
-/// ([`written_name`]), written with `settings`, cutting points approximated within the chord
-/// tolerance (m). Its Cartesian targets are the forward kinematics of the compensated axis angles
-/// in the controller's kinematics ([`Setup::controller_robot`]), with the configuration that makes
-/// its inverse kinematics return them.
-///
-/// # Errors
-/// Those of [`Setup::controller_robot`], [`moves`] and [`generate`].
-fn write_robot_program(
-    setup: &Setup,
-    dialect: Dialect,
-    compensated: &machining::Report,
-    points: &[crate::gcode::Point],
-    (name, settings, chord_tolerance): (&str, &Settings, f64),
-) -> Result<generate::Written> {
-    use rayon::prelude::*;
-    let moves = moves(points, settings.max_tcp_speed)?;
-    let tool = setup.tool();
-    // Joint targets are exact in any kinematics; Cartesian ones are the controller's.
-    let controller = match settings.targets {
-        generate::Targets::Joint => setup.robot(),
-        generate::Targets::Cartesian => setup.controller_robot()?,
-    };
-    let targets: Vec<Target> = compensated
-        .results
-        .par_iter()
-        .map(|r| Target::new(controller, &tool.tcp, &r.q_compensated))
-        .collect();
-    let plan = Plan {
-        dialect,
-        name,
-        targets: &targets,
-        moves: &moves,
-        tool: program_tool(setup),
-        work: setup.workpiece().copied().unwrap_or_default(),
-        world: setup.workcell().controller().world,
-        approximation: chord_tolerance,
-        settings: *settings,
-    };
-    generate(&plan)
-}
-
-/// The tool a generated program states, from the controller's flange (the setup's
-/// `[robot_flange]` adapter included): the setup's TCP, mass and centre of mass.
-fn program_tool(setup: &Setup) -> Tool {
-    let adapter = setup.workcell().controller().adapter;
-    Tool {
-        frame: adapter * nalgebra::Translation3::from(setup.tool().tcp),
-        payload: setup
-            .payload()
-            .map(|p| (p.mass, adapter.transform_point(&p.centre.into()).coords)),
-    }
+    let mut in_chosen = options.clone();
+    in_chosen.q0 = (outcome.configurations.as_ref())
+        .and_then(compensate::Configurations::start)
+        .unwrap_or(options.q0);
+    in_chosen.free.configuration = None;
+    // A program's wrenches hold the tool's weight (machining::compensate).
+    let weighted =
+        outcome.program.is_some() && crate::weight::tool_load(setup.arm(), compliance).is_some();
+    let at = (&in_chosen, setup.cell());
+    let map = compensate::map(setup.arm(), compliance, points, at, (chosen, weighted));
+    map.map(Some).map_err(|e| in_input(&outcome.name, e))
 }
 
 /// A path file's `points` (cell frame) of a robot on a track compensated with the station or

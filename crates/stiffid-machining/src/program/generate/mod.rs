@@ -67,6 +67,8 @@ use crate::gcode::{Motion, Point};
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 use stiffid_core::common::error::JobOption;
 use stiffid_core::robot::configuration::Configuration;
+use stiffid_core::robot::external::Role;
+use stiffid_core::robot::ExternalAxes;
 use stiffid_core::{Error, Result, Robot};
 
 /// How the robot moves to a target.
@@ -208,6 +210,9 @@ pub struct Target {
     pub pose: Isometry3<f64>,
     /// The configuration of the axis angles.
     pub arm: Configuration,
+    /// The cell's external axes' values at the target, mm for a linear axis and deg for a
+    /// rotary one, the cell's order ([`Plan::external`]); empty on a fixed base.
+    pub external: Vec<f64>,
 }
 
 impl Target {
@@ -219,6 +224,24 @@ impl Target {
             q_deg: q.map(f64::to_degrees).into(),
             pose: stiffid_core::robot::ik::tool_pose(&frames, tcp),
             arm: Configuration::of(robot, q),
+            external: Vec::new(),
+        }
+    }
+
+    /// The target of `robot` at axis angles `q` (rad) with its external axes at `e` (SI, the
+    /// cell's order of [`Robot::external`]): the pose is the tool's in the frame of the part at
+    /// `e = 0` (the arm on its carriage at `e`, the positioner turned back: the pose a
+    /// controller that coordinates its external axes is told), the values in mm and deg.
+    pub fn at(robot: &Robot, tcp: &Vector3<f64>, q: &Vector6<f64>, e: &[f64]) -> Self {
+        let Some(axes) = robot.external().filter(|a| !a.is_empty()) else {
+            return Self::new(robot, tcp, q);
+        };
+        let pose = stiffid_core::robot::ik::tool_pose(&robot.frames_at(q, e), tcp);
+        Self {
+            q_deg: q.map(f64::to_degrees).into(),
+            pose: axes.positioner_pose(e).inverse() * pose,
+            arm: Configuration::of(robot, q),
+            external: axes.to_display(e),
         }
     }
 }
@@ -255,6 +278,9 @@ pub struct Plan<'a> {
     /// The controller's world frame in the frame of the targets' poses (the setup's
     /// `[robot_base]`): what the program's world positions, base and work object are relative to.
     pub world: Isometry3<f64>,
+    /// The cell's external axes, which every target gives a value of ([`Target::external`]);
+    /// `None` on a fixed base.
+    pub external: Option<&'a ExternalAxes>,
     /// The approximation of intermediate cutting points, m (the chord tolerance).
     pub approximation: f64,
     /// How.
@@ -417,7 +443,72 @@ fn check_targets(plan: &Plan) -> Result<()> {
             ),
         ));
     }
+    check_external(plan)?;
     check_payload(plan.dialect, plan.settings.targets, &plan.tool)
+}
+
+/// Every target's external values against the cell's axes and what the language holds.
+fn check_external(plan: &Plan) -> Result<()> {
+    let n = plan.external.map_or(0, ExternalAxes::len);
+    let bad = (plan.targets.iter())
+        .any(|t| t.external.len() != n || t.external.iter().any(|v| !v.is_finite()));
+    if bad {
+        return Err(invalid(
+            "targets",
+            format!("expected {n} finite external axis values in every target, one per axis of the cell"),
+        ));
+    }
+    check_cell(plan.dialect, plan.settings.targets, plan.external)
+}
+
+/// Whether a program of `dialect` with `targets` can be written for a cell with the external
+/// axes `axes`: no more axes of a role than the language holds
+/// ([`Generator::most_external`](super::Generator::most_external)), and Cartesian targets only
+/// with a carrier (a track: the controller takes the tool's pose in its world, the part's
+/// frame, and moves the arm on its carriage by the values given), never with a positioner.
+///
+/// # Errors
+/// [`Error::InvalidField`] (`external_axis`) naming the first axis past the language's;
+/// [`Error::InvalidOption`] ([`JobOption::Targets`]) naming the positioner's axis for
+/// Cartesian targets.
+pub fn check_cell(dialect: Dialect, targets: Targets, axes: Option<&ExternalAxes>) -> Result<()> {
+    let Some(axes) = axes.filter(|a| !a.is_empty()) else {
+        return Ok(());
+    };
+    let controller = dialect.controller();
+    for role in [Role::Carrier, Role::Positioner] {
+        let most = (controller.generator()).map_or(0, |g| g.most_external(role));
+        let mut of_role = axes.axes().iter().filter(|a| a.role == role);
+        if let Some(axis) = of_role.nth(most) {
+            return Err(invalid(
+                "external_axis",
+                format!(
+                    "{}: a {} program holds at most {most} {} axes ({}); this one is its {}th",
+                    axis.name,
+                    controller.key().to_ascii_uppercase(),
+                    role_name(role),
+                    controller.generator().map_or("", |g| g.external_form(role)),
+                    most + 1
+                ),
+            ));
+        }
+    }
+    let positioner = axes.axes().iter().find(|a| a.role == Role::Positioner);
+    if let (Targets::Cartesian, Some(axis)) = (targets, positioner) {
+        return Err(Error::InvalidOption {
+            option: JobOption::Targets,
+            message: format!("cartesian: the cell's positioner axis {} carries the part, and a Cartesian target on it needs the controller's coordinated motion (a base or work object coupled to the positioner), which stiffid does not write; write joint targets (targets = joint)", axis.name),
+        });
+    }
+    Ok(())
+}
+
+/// An axis role's name in messages.
+fn role_name(role: Role) -> &'static str {
+    match role {
+        Role::Carrier => "carrier (track)",
+        Role::Positioner => "positioner",
+    }
 }
 
 /// Whether a program of `dialect` with `targets` can be written for `tool`: a RAPID program

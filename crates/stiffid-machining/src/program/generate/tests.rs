@@ -45,6 +45,7 @@ fn plan<'a>(dialect: Dialect, name: &'a str, t: &'a [Target], m: &'a [Move]) -> 
         tool: tool(),
         work: work(),
         world: Isometry3::identity(),
+        external: None,
         approximation: 1e-5,
         settings: Settings::default(),
     }

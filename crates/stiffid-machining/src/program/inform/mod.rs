@@ -150,65 +150,9 @@ pub(crate) fn targets(text: &str) -> Result<Read> {
             pulses[6 + k] = Some(*r);
         }
     }
-    let mut out = Vec::with_capacity(motions.len());
-    for m in &motions {
-        let get = |kind: Kind, index: u64| {
-            positions.get(&(kind, index)).ok_or_else(|| {
-                at(
-                    m.line,
-                    format!(
-                        "{} {}{index:05}: no such position in //POS",
-                        m.word,
-                        kind.prefix()
-                    ),
-                )
-            })
-        };
-        let robot = get(Kind::Robot, m.robot)?;
-        if robot.form == Form::Rectan {
-            return Err(at(m.line, format!("{} C{:05}: a Cartesian position (line {}); stiffid compensates positions in pulses: teach or post the job in pulses (///POSTYPE PULSE)", m.word, m.robot, robot.line)));
-        }
-        if robot.values.len() != 6 {
-            return Err(at(
-                robot.line,
-                format!(
-                    "C{:05}: expected 6 axis values, found {}",
-                    m.robot,
-                    robot.values.len()
-                ),
-            ));
-        }
-        let mut found: super::Found = Default::default();
-        for (k, (v, span)) in robot.values.iter().enumerate() {
-            found[k] = Some((v / pulses[k].unwrap_or(1.0), span.clone()));
-        }
-        let mut external: Vec<Option<(f64, Range<usize>)>> = vec![None; nb + ne];
-        for (kind, index, offset) in [(Kind::Base, m.base, 0), (Kind::Station, m.station, nb)] {
-            let Some(index) = index else { continue };
-            let p = get(kind, index)?;
-            if p.form == Form::Rectan {
-                return Err(at(m.line, format!("{} {}{index:05}: a position in Cartesian form (line {}); stiffid reads base and station axes in pulses or ANGLE", m.word, kind.prefix(), p.line)));
-            }
-            for (k, (v, span)) in p.values.iter().enumerate() {
-                let v = v / pulses[6 + offset + k].unwrap_or(1.0);
-                if !v.is_finite() {
-                    return Err(at(
-                        p.line,
-                        format!(
-                            "{}{index:05}: axis {}: {v} is not a finite value",
-                            kind.prefix(),
-                            k + 1
-                        ),
-                    ));
-                }
-                external[offset + k] = Some((v, span.clone()));
-            }
-        }
-        let mut target = six(m.line, found, "C")?.with_external(external);
-        target.origin = robot.line;
-        target.speed = m.speed.clone();
-        out.push(target);
-    }
+    let out = (motions.iter())
+        .map(|m| target(m, &positions, &pulses, (nb, ne)))
+        .collect::<Result<Vec<_>>>()?;
     let axes = (1..=nb).map(|k| format!("BC{k}"));
     let axes = axes.chain((1..=ne).map(|k| format!("EC{k}"))).collect();
     Ok(Read {
@@ -217,6 +161,72 @@ pub(crate) fn targets(text: &str) -> Result<Read> {
         pulses,
         units: Vec::new(),
     })
+}
+
+/// The target of motion `m`: its robot position in pulses converted by `pulses` (per value, the
+/// six axes then the `nb` base and `ne` station axes), its base and station positions.
+fn target(
+    m: &Motion,
+    positions: &HashMap<(Kind, u64), Position>,
+    pulses: &[Option<f64>],
+    (nb, ne): (usize, usize),
+) -> Result<super::JointTarget> {
+    let get = |kind: Kind, index: u64| {
+        positions.get(&(kind, index)).ok_or_else(|| {
+            at(
+                m.line,
+                format!(
+                    "{} {}{index:05}: no such position in //POS",
+                    m.word,
+                    kind.prefix()
+                ),
+            )
+        })
+    };
+    let robot = get(Kind::Robot, m.robot)?;
+    if robot.form == Form::Rectan {
+        return Err(at(m.line, format!("{} C{:05}: a Cartesian position (line {}); stiffid compensates positions in pulses: teach or post the job in pulses (///POSTYPE PULSE)", m.word, m.robot, robot.line)));
+    }
+    if robot.values.len() != 6 {
+        return Err(at(
+            robot.line,
+            format!(
+                "C{:05}: expected 6 axis values, found {}",
+                m.robot,
+                robot.values.len()
+            ),
+        ));
+    }
+    let mut found: super::Found = Default::default();
+    for (k, (v, span)) in robot.values.iter().enumerate() {
+        found[k] = Some((v / pulses[k].unwrap_or(1.0), span.clone()));
+    }
+    let mut external: Vec<Option<(f64, Range<usize>)>> = vec![None; nb + ne];
+    for (kind, index, offset) in [(Kind::Base, m.base, 0), (Kind::Station, m.station, nb)] {
+        let Some(index) = index else { continue };
+        let p = get(kind, index)?;
+        if p.form == Form::Rectan {
+            return Err(at(m.line, format!("{} {}{index:05}: a position in Cartesian form (line {}); stiffid reads base and station axes in pulses or ANGLE", m.word, kind.prefix(), p.line)));
+        }
+        for (k, (v, span)) in p.values.iter().enumerate() {
+            let v = v / pulses[6 + offset + k].unwrap_or(1.0);
+            if !v.is_finite() {
+                return Err(at(
+                    p.line,
+                    format!(
+                        "{}{index:05}: axis {}: {v} is not a finite value",
+                        kind.prefix(),
+                        k + 1
+                    ),
+                ));
+            }
+            external[offset + k] = Some((v, span.clone()));
+        }
+    }
+    let mut target = six(m.line, found, "C")?.with_external(external);
+    target.origin = robot.line;
+    target.speed = m.speed.clone();
+    Ok(target)
 }
 
 /// The `//POS` section's teaching positions by kind and number, and `///NPOS`'s line and counts.

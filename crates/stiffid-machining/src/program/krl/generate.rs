@@ -1,10 +1,11 @@
 //! KUKA KRL (`.src`): `DEF NAME( )` ... `END` (module docs of [`crate::program::generate`]).
 
 use crate::program::generate::{
-    in_work, number, v, zyx_deg, Move, Part, Plan, Targets, RAPID_PERCENT,
+    in_work, number, v, zyx_deg, Move, Part, Plan, Target, Targets, RAPID_PERCENT,
 };
 use crate::program::Generator;
 use std::fmt::Write;
+use stiffid_core::robot::external::Role;
 use stiffid_core::Result;
 
 /// The motion set-up at the top of the main program.
@@ -76,7 +77,13 @@ pub(crate) fn body(plan: &Plan, part: &Part) -> String {
                 let axes: Vec<String> = (0..6)
                     .map(|k| format!("A{} {}", k + 1, v(t.q_deg[k])))
                     .collect();
-                let _ = writeln!(s, "PTP {{{}}}{}", axes.join(", "), approximate("C_PTP"));
+                let _ = writeln!(
+                    s,
+                    "PTP {{{}{}}}{}",
+                    axes.join(", "),
+                    external(t),
+                    approximate("C_PTP")
+                );
             }
             Targets::Cartesian => {
                 let (p, r) = in_work(plan, t);
@@ -88,19 +95,28 @@ pub(crate) fn body(plan: &Plan, part: &Part) -> String {
                 };
                 let _ = writeln!(
                     s,
-                    "{motion} {{E6POS: X {}, Y {}, Z {}, A {}, B {}, C {}, S 'B{status:03b}', T 'B{turn:06b}'}}{}",
+                    "{motion} {{E6POS: X {}, Y {}, Z {}, A {}, B {}, C {}{}, S 'B{status:03b}', T 'B{turn:06b}'}}{}",
                     v(p.x),
                     v(p.y),
                     v(p.z),
                     v(a),
                     v(b),
                     v(c),
+                    external(t),
                     approximate("C_DIS")
                 );
             }
         }
     }
     s
+}
+
+/// A target's external axes as `E6AXIS`/`E6POS` members, `, E1 .., E2 ..` (mm or deg, the
+/// `$EX_AX_NUM` numbering in the cell's order); empty on a fixed base.
+fn external(t: &Target) -> String {
+    (t.external.iter().enumerate())
+        .map(|(k, x)| format!(", E{} {}", k + 1, v(*x)))
+        .collect()
 }
 
 /// The main program's calls of its sub-programs.
@@ -134,5 +150,12 @@ impl Generator for super::Krl {
     }
     fn needs_mass(&self, _targets: Targets) -> bool {
         false
+    }
+    /// `E1` to `E6`, the carrier's then the positioner's.
+    fn most_external(&self, _role: Role) -> usize {
+        6
+    }
+    fn external_form(&self, _role: Role) -> &'static str {
+        "E1 to E6"
     }
 }

@@ -2,10 +2,11 @@
 
 use crate::program::generate::LS_MAX_LINES;
 use crate::program::generate::{
-    in_world, number, v, zyx_deg, Move, Part, Plan, Targets, RAPID_PERCENT,
+    in_world, number, v, zyx_deg, Move, Part, Plan, Target, Targets, RAPID_PERCENT,
 };
 use crate::program::Generator;
 use std::fmt::Write;
+use stiffid_core::robot::external::Role;
 use stiffid_core::{Error, Result};
 
 /// The `COMMENT` of every program: at most 16 characters, what the pendant shows.
@@ -86,21 +87,53 @@ pub(crate) fn body(plan: &Plan, part: &Part, warnings: &mut Vec<String>) -> Resu
         let _ = match plan.settings.targets {
             Targets::Joint => write!(
                 pos,
-                "\n\tJ1= {} deg,\tJ2= {} deg,\tJ3= {} deg,\n\tJ4= {} deg,\tJ5= {} deg,\tJ6= {} deg\n}};\n",
-                v(t.q_deg[0]), v(t.q_deg[1]), v(t.q_deg[2]), v(t.q_deg[3]), v(t.q_deg[4]), v(t.q_deg[5])
+                "\n\tJ1= {} deg,\tJ2= {} deg,\tJ3= {} deg,\n\tJ4= {} deg,\tJ5= {} deg,\tJ6= {} deg",
+                v(t.q_deg[0]),
+                v(t.q_deg[1]),
+                v(t.q_deg[2]),
+                v(t.q_deg[3]),
+                v(t.q_deg[4]),
+                v(t.q_deg[5])
             ),
             Targets::Cartesian => {
                 let (p, rotation) = in_world(plan, &t.pose);
                 let [r, pitch, w] = zyx_deg(&rotation);
                 write!(
                     pos,
-                    "\t\tCONFIG : '{}',\n\tX = {} mm,\tY = {} mm,\tZ = {} mm,\n\tW = {} deg,\tP = {} deg,\tR = {} deg\n}};\n",
+                    "\t\tCONFIG : '{}',\n\tX = {} mm,\tY = {} mm,\tZ = {} mm,\n\tW = {} deg,\tP = {} deg,\tR = {} deg",
                     t.arm.fanuc(), v(p.x), v(p.y), v(p.z), v(w), v(pitch), v(r)
                 )
             }
         };
+        pos += &groups(plan, t);
     }
     Ok(format!("{mn}/POS\n{pos}"))
+}
+
+/// The end of a position after group 1's six values: the carrier's axes as group 1's extended
+/// axes `E1`.. (mm), the positioner's as group 2's `J1`.. (deg), then `};`.
+fn groups(plan: &Plan, t: &Target) -> String {
+    let Some(axes) = plan.external else {
+        return "\n};\n".into();
+    };
+    let mut s = String::new();
+    let (mut extended, mut second) = (0, 0);
+    for (axis, x) in axes.axes().iter().zip(&t.external) {
+        let unit = axis.unit();
+        if axis.role == Role::Carrier {
+            extended += 1;
+            let _ = write!(s, ",\n\tE{extended}= {} {unit}", v(*x));
+        } else {
+            second += 1;
+            let start = if second == 1 {
+                "\n   GP2:\n\tUF : 0, UT : 1,\n\t"
+            } else {
+                ",\t"
+            };
+            let _ = write!(s, "{start}J{second}= {} {unit}", v(*x));
+        }
+    }
+    s + "\n};\n"
 }
 
 /// The main program's calls of its sub-programs.
@@ -114,8 +147,13 @@ pub(crate) fn calls(subs: &[String]) -> String {
 /// A whole `.ls` file: the `/MN` lines numbered.
 pub(crate) fn wrap(name: &str, header: &str, body: &str) -> String {
     let (mn, pos) = body.split_once("/POS\n").unwrap_or((body, ""));
+    // A positioner's group 2 joins the default motion group mask.
+    let groups = match pos.contains("\n   GP2:") {
+        true => "1,1,*,*,*",
+        false => "1,*,*,*,*",
+    };
     let mut s = format!(
-        "/PROG  {name}\n/ATTR\nCOMMENT\t\t= \"{COMMENT}\";\nDEFAULT_GROUP\t= 1,*,*,*,*;\n/MN\n"
+        "/PROG  {name}\n/ATTR\nCOMMENT\t\t= \"{COMMENT}\";\nDEFAULT_GROUP\t= {groups};\n/MN\n"
     );
     for (i, line) in header.lines().chain(mn.lines()).enumerate() {
         let pad = if line.starts_with(['J', 'L']) {
@@ -150,6 +188,19 @@ impl Generator for super::FanucLs {
     }
     fn needs_mass(&self, _targets: Targets) -> bool {
         false
+    }
+    /// A carrier in group 1's extended axes `E1` to `E3`, a positioner in group 2's `J1`..
+    fn most_external(&self, role: Role) -> usize {
+        match role {
+            Role::Carrier => 3,
+            Role::Positioner => 6,
+        }
+    }
+    fn external_form(&self, role: Role) -> &'static str {
+        match role {
+            Role::Carrier => "group 1's extended axes E1 to E3",
+            Role::Positioner => "group 2's J1 to J6",
+        }
     }
 }
 

@@ -202,7 +202,7 @@ struct Open {
 /// `E1`.. then group 2's `J1`.. (`GP2 J1`), and their units.
 fn positions(text: &str) -> Result<(HashMap<u64, JointTarget>, Vec<String>, Units)> {
     let mut read: Vec<Open> = Vec::new();
-    let mut units: HashMap<(u8, usize), (&'static str, u64)> = HashMap::new();
+    let mut units: AxisUnits = HashMap::new();
     let mut in_pos = false;
     let mut open: Option<Open> = None;
     for (line, start, l) in super::lines(text) {
@@ -218,94 +218,14 @@ fn positions(text: &str) -> Result<(HashMap<u64, JointTarget>, Vec<String>, Unit
             if let Some(o) = &open {
                 return Err(at(o.first, "position without its closing '};'".into()));
             }
-            let index = inner
-                .split([':', ']'])
-                .next()
-                .and_then(|i| i.trim().parse::<u64>().ok())
-                .ok_or_else(|| at(line, "P[: expected a position number".into()))?;
-            if read.iter().any(|o| o.index == index) {
-                return Err(at(line, format!("P[{index}] defined twice in /POS")));
-            }
-            open = Some(Open {
-                index,
-                first: line,
-                found: Default::default(),
-                extended: Vec::new(),
-                second: Vec::new(),
-                group: 0,
-                pose: Default::default(),
-                config: None,
-                frames: (None, None),
-            });
+            open = Some(Open::new(line, inner, &read)?);
         }
         let Some(o) = open.as_mut() else {
             continue;
         };
         let masked = cartesian::masked(l);
-        for piece in split_keeping_offsets(&masked) {
-            let (offset, item) = piece;
-            let mut item_t = item.trim();
-            if let Some(g) = item_t.strip_prefix("GP") {
-                o.group = g
-                    .trim_start()
-                    .bytes()
-                    .next()
-                    .map_or(0, |d| d.wrapping_sub(b'0'));
-                if !(1..=2).contains(&o.group) {
-                    return Err(at(line, format!("{}: a third motion group; stiffid reads group 1 (the robot and its extended axes) and group 2 (a positioner)", stiffid_core::common::limits::short(item_t.trim_end_matches(':')))));
-                }
-                item_t = item_t.split_once(':').map_or("", |(_, r)| r.trim());
-            }
-            if o.group == 0 {
-                continue;
-            }
-            if let Some((user, n)) = cartesian::frame_number(line, item_t)? {
-                if o.group == 1 {
-                    *(if user {
-                        &mut o.frames.0
-                    } else {
-                        &mut o.frames.1
-                    }) = Some(n);
-                }
-                continue;
-            }
-            let Some(eq) = item.find('=') else { continue };
-            let name = item[..eq].trim();
-            let name = name.rsplit(':').next().unwrap_or(name).trim();
-            let number = |prefix: char| {
-                name.strip_prefix(prefix)
-                    .and_then(|d| d.parse::<usize>().ok())
-            };
-            if let (1, Some(k)) = (
-                o.group,
-                cartesian::POSE.iter().position(|(n, _)| *n == name),
-            ) {
-                let (v, span, _) = value(l, offset + eq + 1, line, name, &[cartesian::POSE[k].1])?;
-                once(line, o.index, name, o.pose[k].is_some())?;
-                o.pose[k] = Some((v, start + span.start..start + span.end));
-                continue;
-            }
-            let (values, k) = match (o.group, number('J'), number('E')) {
-                (1, Some(k @ 1..=6), _) => {
-                    let (v, span, _) = value(l, offset + eq + 1, line, name, &["deg"])?;
-                    once(line, o.index, name, o.found[k - 1].is_some())?;
-                    o.found[k - 1] = Some((v, start + span.start..start + span.end));
-                    continue;
-                }
-                (1, _, Some(k @ 1..=3)) => (&mut o.extended, k),
-                (2, Some(k @ 1..=6), _) => (&mut o.second, k),
-                _ => continue,
-            };
-            let (v, span, unit) = value(l, offset + eq + 1, line, name, &["mm", "deg"])?;
-            let (first_unit, first_line) = *units.entry((o.group, k)).or_insert((unit, line));
-            if first_unit != unit {
-                return Err(at(line, format!("{name} in {unit}: the same axis is in {first_unit} on line {first_line}; one unit per axis (mm for a linear axis, deg for a rotary one)")));
-            }
-            if values.len() < k {
-                values.resize(k, None);
-            }
-            once(line, o.index, name, values[k - 1].is_some())?;
-            values[k - 1] = Some((v, start + span.start..start + span.end));
+        for (offset, item) in split_keeping_offsets(&masked) {
+            o.item((line, start, l), offset, item, &mut units)?;
         }
         if o.group == 1 {
             if let Some(c) = cartesian::config(line, start, l)? {
@@ -321,6 +241,120 @@ fn positions(text: &str) -> Result<(HashMap<u64, JointTarget>, Vec<String>, Unit
     if let Some(o) = open {
         return Err(at(o.first, "position without its closing '};'".into()));
     }
+    assemble(read, &units)
+}
+
+/// Per group and axis number, the unit of an axis's values and the line of the first.
+type AxisUnits = HashMap<(u8, usize), (&'static str, u64)>;
+
+impl Open {
+    /// The position opened on `line` by `P[` and `inner`, its number not among `read`'s.
+    fn new(line: u64, inner: &str, read: &[Open]) -> Result<Self> {
+        let index = inner
+            .split([':', ']'])
+            .next()
+            .and_then(|i| i.trim().parse::<u64>().ok())
+            .ok_or_else(|| at(line, "P[: expected a position number".into()))?;
+        if read.iter().any(|o| o.index == index) {
+            return Err(at(line, format!("P[{index}] defined twice in /POS")));
+        }
+        Ok(Open {
+            index,
+            first: line,
+            found: Default::default(),
+            extended: Vec::new(),
+            second: Vec::new(),
+            group: 0,
+            pose: Default::default(),
+            config: None,
+            frames: (None, None),
+        })
+    }
+
+    /// One item of line `l` (its number `line`, its first byte `start` in the text) at byte
+    /// `offset`: a group's start, a frame number, a pose's value, an axis's value.
+    fn item(
+        &mut self,
+        (line, start, l): (u64, usize, &str),
+        offset: usize,
+        item: &str,
+        units: &mut AxisUnits,
+    ) -> Result<()> {
+        let mut item_t = item.trim();
+        if let Some(g) = item_t.strip_prefix("GP") {
+            self.group = g
+                .trim_start()
+                .bytes()
+                .next()
+                .map_or(0, |d| d.wrapping_sub(b'0'));
+            if !(1..=2).contains(&self.group) {
+                return Err(at(line, format!("{}: a third motion group; stiffid reads group 1 (the robot and its extended axes) and group 2 (a positioner)", stiffid_core::common::limits::short(item_t.trim_end_matches(':')))));
+            }
+            item_t = item_t.split_once(':').map_or("", |(_, r)| r.trim());
+        }
+        if self.group == 0 {
+            return Ok(());
+        }
+        if let Some((user, n)) = cartesian::frame_number(line, item_t)? {
+            if self.group == 1 {
+                *(if user {
+                    &mut self.frames.0
+                } else {
+                    &mut self.frames.1
+                }) = Some(n);
+            }
+            return Ok(());
+        }
+        let Some(eq) = item.find('=') else {
+            return Ok(());
+        };
+        let name = item[..eq].trim();
+        let name = name.rsplit(':').next().unwrap_or(name).trim();
+        let number = |prefix: char| {
+            name.strip_prefix(prefix)
+                .and_then(|d| d.parse::<usize>().ok())
+        };
+        let span = |s: std::ops::Range<usize>| start + s.start..start + s.end;
+        if let (1, Some(k)) = (
+            self.group,
+            cartesian::POSE.iter().position(|(n, _)| *n == name),
+        ) {
+            let (v, s, _) = value(l, offset + eq + 1, line, name, &[cartesian::POSE[k].1])?;
+            once(line, self.index, name, self.pose[k].is_some())?;
+            self.pose[k] = Some((v, span(s)));
+            return Ok(());
+        }
+        let (values, k) = match (self.group, number('J'), number('E')) {
+            (1, Some(k @ 1..=6), _) => {
+                let (v, s, _) = value(l, offset + eq + 1, line, name, &["deg"])?;
+                once(line, self.index, name, self.found[k - 1].is_some())?;
+                self.found[k - 1] = Some((v, span(s)));
+                return Ok(());
+            }
+            (1, _, Some(k @ 1..=3)) => (&mut self.extended, k),
+            (2, Some(k @ 1..=6), _) => (&mut self.second, k),
+            _ => return Ok(()),
+        };
+        let (v, s, unit) = value(l, offset + eq + 1, line, name, &["mm", "deg"])?;
+        let (first_unit, first_line) = *units.entry((self.group, k)).or_insert((unit, line));
+        if first_unit != unit {
+            return Err(at(line, format!("{name} in {unit}: the same axis is in {first_unit} on line {first_line}; one unit per axis (mm for a linear axis, deg for a rotary one)")));
+        }
+        if values.len() < k {
+            values.resize(k, None);
+        }
+        once(line, self.index, name, values[k - 1].is_some())?;
+        values[k - 1] = Some((v, span(s)));
+        Ok(())
+    }
+}
+
+/// The positions read, each a joint or a Cartesian target with its external values (group 1's
+/// extended axes, then group 2's), the program's external axes and their units.
+fn assemble(
+    read: Vec<Open>,
+    units: &AxisUnits,
+) -> Result<(HashMap<u64, JointTarget>, Vec<String>, Units)> {
     let n1 = read.iter().map(|o| o.extended.len()).max().unwrap_or(0);
     let n2 = read.iter().map(|o| o.second.len()).max().unwrap_or(0);
     let mut out = HashMap::with_capacity(read.len());

@@ -1,9 +1,12 @@
 //! ABB RAPID (`.mod`): `MODULE NAME` with `PROC main()`, sub-programs `MODULE NAME_01` with
 //! `PROC rNAME_01()` (module docs of [`crate::program::generate`]).
 
-use crate::program::generate::{in_work, number, v, Move, Part, Plan, Targets, RAPID_SPEED_MM_S};
+use crate::program::generate::{
+    in_work, number, v, Move, Part, Plan, Target, Targets, RAPID_SPEED_MM_S,
+};
 use crate::program::Generator;
 use std::fmt::Write;
+use stiffid_core::robot::external::Role;
 use stiffid_core::Result;
 
 /// The data the moves use, declared in the main module.
@@ -72,8 +75,9 @@ pub(crate) fn body(plan: &Plan, part: &Part) -> String {
                 let axes: Vec<String> = t.q_deg.iter().map(|x| v(*x)).collect();
                 writeln!(
                     s,
-                    "    MoveAbsJ [[{}],[9E9,9E9,9E9,9E9,9E9,9E9]], {speed}, {zone}, tool0;",
-                    axes.join(",")
+                    "    MoveAbsJ [[{}],{}], {speed}, {zone}, tool0;",
+                    axes.join(","),
+                    extax(t)
                 )
             }
             Targets::Cartesian => {
@@ -85,17 +89,30 @@ pub(crate) fn body(plan: &Plan, part: &Part) -> String {
                 };
                 writeln!(
                     s,
-                    "    {motion} [[{},{},{}],{},[{c1},{c4},{c6},{cx}],[9E9,9E9,9E9,9E9,9E9,9E9]], {speed}, {zone}, tspindle\\WObj:=wpart;",
+                    "    {motion} [[{},{},{}],{},[{c1},{c4},{c6},{cx}],{}], {speed}, {zone}, tspindle\\WObj:=wpart;",
                     v(p.x),
                     v(p.y),
                     v(p.z),
-                    quaternion(&r)
+                    quaternion(&r),
+                    extax(t)
                 )
             }
         };
     }
     s
 }
+
+/// A target's `extjoint` `[eax_a,..,eax_f]`: the cell's external axes in order (mm or deg),
+/// `9E9` for the logical axes the cell does not have.
+fn extax(t: &Target) -> String {
+    let axes: Vec<String> = (0..EXTAX)
+        .map(|k| t.external.get(k).map_or("9E9".into(), |x| v(*x)))
+        .collect();
+    format!("[{}]", axes.join(","))
+}
+
+/// The logical external axes of an `extjoint`, `eax_a` to `eax_f`.
+const EXTAX: usize = 6;
 
 /// A RAPID `pose`: `[[x,y,z],[q1,q2,q3,q4]]` (mm).
 fn pose(f: &nalgebra::Isometry3<f64>) -> String {
@@ -147,5 +164,12 @@ impl Generator for super::Rapid {
     /// A `tooldata` states the tool's mass: the controller refuses a tool of no mass.
     fn needs_mass(&self, targets: Targets) -> bool {
         targets == Targets::Cartesian
+    }
+    /// `eax_a` to `eax_f`, the carrier's then the positioner's.
+    fn most_external(&self, _role: Role) -> usize {
+        EXTAX
+    }
+    fn external_form(&self, _role: Role) -> &'static str {
+        "eax_a to eax_f"
     }
 }

@@ -1,0 +1,182 @@
+//! A compensated program's output checked and written: its name and settings before the
+//! compensation ([`written_name`]), a G-code program written as a new robot program
+//! ([`generated`]) in the controller's kinematics and frames.
+
+use super::certify;
+use crate::program::generate::{self, generate, moves, Plan, Settings, Target, Tool};
+use crate::program::Dialect;
+use crate::{self as machining, Language, Program};
+use stiffid_core::app::{Warning, WarningKind};
+use stiffid_core::robot::ExternalAxes;
+use stiffid_core::{Error, Result, Setup};
+
+/// A compensated G-code program written as a new robot program in `dialect`
+/// ([`write_robot_program`]), each target's bound at `level` in a comment: the main program's
+/// text, its sub-programs, the warnings.
+///
+/// # Errors
+/// Those of [`write_robot_program`].
+pub(super) fn generated(
+    setup: &Setup,
+    dialect: Dialect,
+    compensated: &machining::Report,
+    points: &[crate::gcode::Point],
+    ((name, settings, chord_tolerance), level): ((String, Settings, f64), f64),
+) -> Result<(String, Vec<generate::File>, Vec<Warning>)> {
+    let how = (name.as_str(), &settings, chord_tolerance);
+    let written = write_robot_program(setup, dialect, compensated, points, how)?;
+    let warnings = (written.warnings.into_iter())
+        .map(|w| Warning::new(WarningKind::Feed, w))
+        .collect();
+    let bounds: Vec<f64> = compensated.results.iter().map(|r| r.budget.bound).collect();
+    let texts: Vec<String> = written.files.iter().map(|f| f.text.clone()).collect();
+    let texts = certify::generated(dialect, &texts, &bounds, level);
+    let mut files =
+        (written.files.into_iter().zip(texts)).map(|(f, text)| generate::File { text, ..f });
+    let main = files.next().map(|f| f.text).unwrap_or_default();
+    Ok((main, files.collect(), warnings))
+}
+
+/// The name of the program written, checked before anything is computed: for a G-code program
+/// written as a robot program, the stem of `out_name` in upper case ([`generate::check_plan`]:
+/// every name, setting and count of the program of its points); for a robot program written back
+/// under another name, that stem (upper case for LS, as written for KRL;
+/// [`generate::check_name`]), which its declaration takes ([`renamed`]); `None` otherwise (a
+/// RAPID module, G-code written as G-code, no output file).
+///
+/// # Errors
+/// [`Error::InvalidField`] (`out`) for a KRL program to be written into a `.dat` (a `DEF` belongs
+/// in the `.src`); those of [`generate::check_plan`] and [`generate::check_name`].
+pub(super) fn written_name(
+    program: &Program,
+    output: Language,
+    out_name: &str,
+    (settings, cell): (&Settings, Option<&ExternalAxes>),
+) -> Result<Option<String>> {
+    let path = std::path::Path::new(out_name);
+    let extension = path.extension().and_then(|e| e.to_str()).unwrap_or("");
+    let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("");
+    let Language::Robot(dialect) = output else {
+        return Ok(None);
+    };
+    let controller = dialect.controller();
+    if let Some(why) = controller.refuses_output(&extension.to_ascii_lowercase()) {
+        return Err(Error::InvalidField {
+            field: "out".into(),
+            message: format!("{out_name}: {why}"),
+        });
+    }
+    match program {
+        Program::GCode(g) => {
+            let name = stem.to_ascii_uppercase();
+            generate::check_plan(dialect, &name, settings, g.points.len())?;
+            generate::check_cell(dialect, settings.targets, cell)?;
+            Ok(Some(name))
+        }
+        Program::Robot(_) if stem.is_empty() => Ok(None),
+        Program::Robot(_) => {
+            let Some(name) = controller.program_name(stem) else {
+                return Ok(None);
+            };
+            let longest = (settings.name_length).unwrap_or(generate::max_name_length(dialect));
+            generate::check_name(dialect, &name, longest)?;
+            Ok(Some(name))
+        }
+    }
+}
+
+/// The robot program of a compensated G-code path ([`generate`]) named `name`
+/// ([`written_name`]), written with `settings`, cutting points approximated within the chord
+/// tolerance (m). Its Cartesian targets are the forward kinematics of the compensated axis angles
+/// in the controller's kinematics ([`Setup::controller_robot`]), with the configuration that makes
+/// its inverse kinematics return them.
+///
+/// # Errors
+/// Those of [`Setup::controller_robot`], [`moves`] and [`generate`].
+fn write_robot_program(
+    setup: &Setup,
+    dialect: Dialect,
+    compensated: &machining::Report,
+    points: &[crate::gcode::Point],
+    (name, settings, chord_tolerance): (&str, &Settings, f64),
+) -> Result<generate::Written> {
+    use rayon::prelude::*;
+    let moves = moves(points, settings.max_tcp_speed)?;
+    let tool = setup.tool();
+    // Joint targets are exact in any kinematics; Cartesian ones are the controller's.
+    let controller = match settings.targets {
+        generate::Targets::Joint => setup.robot(),
+        generate::Targets::Cartesian => cell_controller(setup)?,
+    };
+    let targets: Vec<Target> = (compensated.results.par_iter())
+        .zip(&compensated.points)
+        .map(|(r, p)| {
+            // The values the compensation chose (a free station), else the program's.
+            let e = match r.external.is_empty() {
+                true => p.external.as_slice(),
+                false => r.external.as_slice(),
+            };
+            Target::at(controller, &tool.tcp, &r.q_compensated, e)
+        })
+        .collect();
+    let plan = Plan {
+        dialect,
+        name,
+        targets: &targets,
+        moves: &moves,
+        tool: program_tool(setup),
+        work: setup.workpiece().copied().unwrap_or_default(),
+        external: setup.robot().external(),
+        world: setup.workcell().controller().world,
+        approximation: chord_tolerance,
+        settings: *settings,
+    };
+    generate(&plan)
+}
+
+/// The controller's kinematics ([`Setup::controller_robot`]) for Cartesian targets, which on a
+/// cell with external axes must model the cell's: the controller moves the arm on its carriage
+/// (and the part on its positioner) by its own model of them.
+///
+/// # Errors
+/// Those of [`Setup::controller_robot`]; [`Error::InvalidField`] (`controller.robot`) for a
+/// controller's robot without the cell's external axes (another count or role).
+fn cell_controller(setup: &Setup) -> Result<&stiffid_core::Robot> {
+    let controller = setup.controller_robot()?;
+    let roles = |r: &stiffid_core::Robot| -> Vec<_> {
+        (r.external().map_or(&[][..], |a| a.axes()).iter())
+            .map(|a| (a.role, a.kind))
+            .collect()
+    };
+    if roles(controller) != roles(setup.robot()) {
+        let names = |r: &stiffid_core::Robot| match r.external().filter(|a| !a.is_empty()) {
+            Some(a) => (a.axes().iter().map(|a| a.name.as_str()))
+                .collect::<Vec<_>>()
+                .join(", "),
+            None => "none".into(),
+        };
+        return Err(Error::InvalidField {
+            field: "controller.robot".into(),
+            message: format!(
+                "the controller's robot '{}' has the external axes {} and the setup's robot '{}' has {}: the controller moves the arm by its own model of the cell's external axes, so its robot file must declare them ([[external_axis]])",
+                controller.name(),
+                names(controller),
+                setup.robot().name(),
+                names(setup.robot())
+            ),
+        });
+    }
+    Ok(controller)
+}
+
+/// The tool a generated program states, from the controller's flange (the setup's
+/// `[robot_flange]` adapter included): the setup's TCP, mass and centre of mass.
+pub(super) fn program_tool(setup: &Setup) -> Tool {
+    let adapter = setup.workcell().controller().adapter;
+    Tool {
+        frame: adapter * nalgebra::Translation3::from(setup.tool().tcp),
+        payload: setup
+            .payload()
+            .map(|p| (p.mass, adapter.transform_point(&p.centre.into()).coords)),
+    }
+}
