@@ -282,27 +282,32 @@ fn noise_free_cell_campaign_recovers_track_positioner_and_arm() {
             p.name
         );
     }
-    let merged: Vec<_> = found
-        .identifiability
-        .merged
-        .iter()
-        .map(|m| m.parameter)
-        .collect();
-    let merged_names = names(&model, &merged);
     let kept = names(&model, &identified);
-    // The track: its direction and every error motion but the linear straightnesses, which
-    // are a turn of the direction (and a shift of the tracker); joint 1's offset merges into
-    // the direction's turn about the vertical and the tracker's.
-    let at = merged_names
+    assert_track_identified(&model, &found, &kept);
+    assert_positioner_identified(&model, &found, &kept);
+    let frame = result.estimate.frame;
+    assert!((frame.translation.vector - tracker().translation.vector).norm() < 1e-12);
+    assert!(frame.rotation.angle_to(&tracker().rotation) < 1e-12);
+}
+
+/// The names of the parameters the merged parameter `name` of `found` merges into.
+fn merged_into(model: &ErrorModel, found: &fit::Fit, name: &str) -> Vec<String> {
+    let merged = &found.identifiability.merged;
+    let at = merged
         .iter()
-        .position(|n| n == "joint1.theta")
-        .unwrap();
-    let into = names(
-        &model,
-        &(found.identifiability.merged[at].into.iter())
-            .map(|(c, _)| *c)
-            .collect::<Vec<_>>(),
-    );
+        .position(|m| model.parameters()[m.parameter].name == name)
+        .unwrap_or_else(|| panic!("{name} not merged"));
+    names(
+        model,
+        &merged[at].into.iter().map(|(c, _)| *c).collect::<Vec<_>>(),
+    )
+}
+
+/// The track: its direction and every error motion but the linear straightnesses, which are a
+/// turn of the direction (and a shift of the tracker); joint 1's offset merges into the
+/// direction's turn about the vertical and the tracker's.
+fn assert_track_identified(model: &ErrorModel, found: &fit::Fit, kept: &[String]) {
+    let into = merged_into(model, found, "joint1.theta");
     assert!(into.contains(&"tracker.rz".to_string()), "{into:?}");
     assert!(into.contains(&"track.direction.rz".to_string()), "{into:?}");
     for name in [
@@ -318,59 +323,39 @@ fn noise_free_cell_campaign_recovers_track_positioner_and_arm() {
             assert!(kept.contains(&name), "{name} not in {kept:?}");
         }
     }
-    for k in 2..=3 {
-        for m in ["straightness_y", "straightness_z"] {
+    for m in ["straightness_y", "straightness_z"] {
+        for k in 2..=3 {
             let name = format!("track.{m}.u{k}");
             assert!(kept.contains(&name), "{name} not in {kept:?}");
         }
-    }
-    for m in ["straightness_y", "straightness_z"] {
         let name = format!("track.{m}.u1");
-        let at = merged_names.iter().position(|n| *n == name).expect(&name);
-        let into = names(
-            &model,
-            &(found.identifiability.merged[at].into.iter())
-                .map(|(c, _)| *c)
-                .collect::<Vec<_>>(),
-        );
+        let into = merged_into(model, found, &name);
         assert!(
             into.iter().any(|n| n.starts_with("track.direction")),
             "{name}: {into:?}"
         );
     }
-    // The positioner: both lines (location and direction) kept; the table's reflectors take
-    // the turn's offset, the turn's line and the reflectors the tilt's.
+}
+
+/// The positioner: both lines (location and direction) kept; the table's reflectors take the
+/// turn's offset, the turn's line and the reflectors the tilt's.
+fn assert_positioner_identified(model: &ErrorModel, found: &fit::Fit, kept: &[String]) {
     for axis in ["tilt", "turn"] {
         for p in ["location.y", "location.z", "direction.ry", "direction.rz"] {
             let name = format!("{axis}.{p}");
             assert!(kept.contains(&name), "{name} not in {kept:?}");
         }
     }
-    let at = merged_names
-        .iter()
-        .position(|n| n == "tilt.offset")
-        .unwrap();
-    let into = names(
-        &model,
-        &(found.identifiability.merged[at].into.iter())
-            .map(|(c, _)| *c)
-            .collect::<Vec<_>>(),
-    );
+    let into = merged_into(model, found, "tilt.offset");
     assert!(into.iter().any(|n| n.starts_with("turn.")), "{into:?}");
-    let at = merged_names
+    let into = merged_into(model, found, "turn.offset");
+    let table: Vec<_> = model
+        .parameters()
         .iter()
-        .position(|n| n == "turn.offset")
-        .unwrap();
-    let into = &found.identifiability.merged[at].into;
-    assert!(
-        into.iter()
-            .any(|(c, _)| model.parameters()[*c].kind == Kind::Table),
-        "{:?}",
-        names(&model, &into.iter().map(|(c, _)| *c).collect::<Vec<_>>())
-    );
-    let frame = result.estimate.frame;
-    assert!((frame.translation.vector - tracker().translation.vector).norm() < 1e-12);
-    assert!(frame.rotation.angle_to(&tracker().rotation) < 1e-12);
+        .filter(|p| p.kind == Kind::Table)
+        .map(|p| p.name.clone())
+        .collect();
+    assert!(into.iter().any(|n| table.contains(n)), "{into:?}");
 }
 
 /// The true track of the held-out test: a vertical bow of 0.3 mm and a pitch of 0.2 mrad
