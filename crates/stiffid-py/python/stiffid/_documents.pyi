@@ -80,6 +80,7 @@ CalibrateBeforeAfter = TypedDict("CalibrateBeforeAfter", {
     "before_mm": list[float],
     "before_norm_mm": float,
     "point": int,
+    "point_name": str,
     "posture": str,
     "set": str,
 })
@@ -101,6 +102,7 @@ CalibrateCheckedReading = TypedDict("CalibrateCheckedReading", {
     "error_mm": float,
     "outside": bool,
     "point": int,
+    "point_name": str,
     "posture": str,
 })
 
@@ -184,6 +186,7 @@ CalibratePointError = TypedDict("CalibratePointError", {
     "interval_mm": Optional[list[list[Optional[float]]]],
     "outside_range": Optional[CalibrateOutsideRange],
     "point": int,
+    "point_name": str,
     "posture": str,
 })
 
