@@ -84,7 +84,7 @@ pub fn calibrate<'py>(
     tolerance_deg: Option<&Bound<'py, PyAny>>,
     maps: &str,
     error_motions: &str,
-    level: Option<f64>,
+    level: Option<&Bound<'_, PyAny>>,
     update: bool,
     update_parameters: Option<&str>,
     stiffness: Option<PathBuf>,
@@ -93,6 +93,7 @@ pub fn calibrate<'py>(
     stiffness_out: Option<PathBuf>,
     force: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let level = crate::count::real("level", level)?;
     let tolerances = (
         crate::count::real("tolerance_mm", tolerance_mm)?,
         crate::count::real("tolerance_deg", tolerance_deg)?,
