@@ -85,7 +85,7 @@ pub fn calibrate<'py>(
     tolerance_deg: Option<&Bound<'py, PyAny>>,
     maps: &str,
     error_motions: &str,
-    level: Option<f64>,
+    level: Option<&Bound<'_, PyAny>>,
     update: bool,
     update_parameters: Option<&str>,
     stiffness: Option<PathBuf>,
@@ -95,6 +95,7 @@ pub fn calibrate<'py>(
     force: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let priors = priors(tolerance_mm, tolerance_deg)?;
+    let level = crate::count::real("level", level)?;
     if reregister && validate.is_none() {
         return Err(value(
             "reregister: only with validate= (the held-out readings)",

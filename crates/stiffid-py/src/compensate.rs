@@ -115,16 +115,19 @@ pub fn compensate<'py>(
     name_length: Option<i64>,
     moves_per_file: i64,
     level: f64,
-    max_error_mm: Option<f64>,
+    max_error_mm: Option<&Bound<'_, PyAny>>,
     force_tolerance_pct: f64,
     objective: Option<&str>,
     map: Option<&Bound<'py, PyAny>>,
-    margin_deg: Option<f64>,
-    max_condition: Option<f64>,
+    margin_deg: Option<&Bound<'_, PyAny>>,
+    max_condition: Option<&Bound<'_, PyAny>>,
     refine: Option<i64>,
     figures: bool,
     retired: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let max_error_mm = crate::count::real("max_error_mm", max_error_mm)?;
+    let margin_deg = crate::count::real("margin_deg", margin_deg)?;
+    let max_condition = crate::count::real("max_condition", max_condition)?;
     refuse_retired(retired)?;
     let name_length = crate::count::optional("name_length", name_length)?;
     let moves_per_file = crate::count::count("moves_per_file", moves_per_file)?;

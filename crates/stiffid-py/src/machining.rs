@@ -29,8 +29,9 @@ use stiffid_machining::{Language, Program};
 pub fn process_force<'py>(
     py: Python<'py>,
     process: PathBuf,
-    peak_resolution_deg: Option<f64>,
+    peak_resolution_deg: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let peak_resolution_deg = crate::count::real("peak_resolution_deg", peak_resolution_deg)?;
     let name = process.display().to_string();
     let parsed = file::parse(&error::read(&process)?, &name).map_err(raise)?;
     let request = force::Request {

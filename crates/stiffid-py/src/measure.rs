@@ -333,8 +333,9 @@ pub fn validate<'py>(
     wrench: Option<&Bound<'py, PyAny>>,
     displacement_mm: Option<&Bound<'py, PyAny>>,
     point: Option<Vec<i64>>,
-    level: Option<f64>,
+    level: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let level = crate::count::real("level", level)?;
     let s = &setup.inner;
     let compliance =
         crate::stiffness::compliance(s, stiffness_nm_per_rad, None, "stiffness_nm_per_rad")?;

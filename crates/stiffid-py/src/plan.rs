@@ -36,9 +36,10 @@ pub fn plan<'py>(
     setup: &Setup,
     postures_deg: &Bound<'py, PyAny>,
     criterion: &str,
-    target_pct: Option<f64>,
+    target_pct: Option<&Bound<'_, PyAny>>,
     external: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let target_pct = crate::count::real("target_pct", target_pct)?;
     let s = &setup.inner;
     let within = (s.robot().limits(), "the joint limits");
     let (group, _) = postures(postures_deg, "postures_deg", within, job::MAX_POSTURES)?;

@@ -44,8 +44,9 @@ pub fn predict<'py>(
     frame: &str,
     stiffness_nm_per_rad: Option<&Bound<'py, PyAny>>,
     compliance_covariance_rad2_per_nm2: Option<&Bound<'py, PyAny>>,
-    level: Option<f64>,
+    level: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let level = crate::count::real("level", level)?;
     let q = arrays::vector::<6>(q_deg, "q_deg", &limits::ANGLE_DEG)?;
     let wrench = arrays::vector::<6>(wrench, "wrench", &limits::WRENCH)?;
     let options = Options::new(
@@ -83,8 +84,9 @@ pub fn deflection<'py>(
     frame: &str,
     stiffness_nm_per_rad: Option<&Bound<'py, PyAny>>,
     compliance_covariance_rad2_per_nm2: Option<&Bound<'py, PyAny>>,
-    level: Option<f64>,
+    level: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Bound<'py, PyList>> {
+    let level = crate::count::real("level", level)?;
     let max = crate::robot::MAX_POSTURES;
     let qs = rows::<6>(q_deg, "q_deg")?.rows;
     if qs.is_empty() || qs.len() > max {

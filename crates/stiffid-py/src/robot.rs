@@ -141,9 +141,11 @@ impl Robot {
         py: Python<'py>,
         q_deg: &Bound<'py, PyAny>,
         point_mm: Option<&Bound<'py, PyAny>>,
-        characteristic_length_mm: Option<f64>,
+        characteristic_length_mm: Option<&Bound<'_, PyAny>>,
         coordinates: &str,
     ) -> PyResult<Py<PyAny>> {
+        let characteristic_length_mm =
+            crate::count::real("characteristic_length_mm", characteristic_length_mm)?;
         let (robot, at) = (&self.inner, point(point_mm)?);
         let given = characteristic_length_mm.map(|l| l * 1e-3);
         let length = py
@@ -177,11 +179,13 @@ impl Robot {
         py: Python<'py>,
         q_deg: &Bound<'py, PyAny>,
         point_mm: Option<&Bound<'py, PyAny>>,
-        characteristic_length_mm: Option<f64>,
+        characteristic_length_mm: Option<&Bound<'_, PyAny>>,
         coordinates: &str,
         stiffness_nm_per_rad: Option<&Bound<'py, PyAny>>,
         external: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
+        let characteristic_length_mm =
+            crate::count::real("characteristic_length_mm", characteristic_length_mm)?;
         let external = match (external, self.inner.external()) {
             (None, _) => Vec::new(),
             (Some(_), None) => {
@@ -257,12 +261,16 @@ impl Robot {
         pose_mm: &Bound<'py, PyAny>,
         q0_deg: &Bound<'py, PyAny>,
         point_mm: Option<&Bound<'py, PyAny>>,
-        position_tolerance_mm: Option<f64>,
-        rotation_tolerance_deg: Option<f64>,
+        position_tolerance_mm: Option<&Bound<'_, PyAny>>,
+        rotation_tolerance_deg: Option<&Bound<'_, PyAny>>,
         max_iterations: Option<i64>,
         restarts: Option<i64>,
         seed: i64,
     ) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
+        let position_tolerance_mm =
+            crate::count::real("position_tolerance_mm", position_tolerance_mm)?;
+        let rotation_tolerance_deg =
+            crate::count::real("rotation_tolerance_deg", rotation_tolerance_deg)?;
         let max_iterations = crate::count::optional("max_iterations", max_iterations)?;
         let restarts = crate::count::optional("restarts", restarts)?;
         let seed = crate::count::seed("seed", seed)?;

@@ -297,8 +297,9 @@ impl Setup {
         calibration_criterion: Option<&str>,
         geometry: Option<&str>,
         gravity: Option<&str>,
-        weight: Option<f64>,
+        weight: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
+        let weight = crate::count::real("weight", weight)?;
         let group = self.group(postures_deg, "postures_deg")?;
         let purpose = design::For {
             purpose,
@@ -380,20 +381,25 @@ impl Setup {
         solver: &str,
         pool: Option<&Bound<'py, PyAny>>,
         restarts: Option<i64>,
-        target_pct: Option<f64>,
-        margin_mm: Option<f64>,
+        target_pct: Option<&Bound<'_, PyAny>>,
+        margin_mm: Option<&Bound<'_, PyAny>>,
         for_candidates: bool,
         candidates: Option<Vec<String>>,
         distinct: bool,
-        distinct_deg: Option<f64>,
-        distinct_mm: Option<f64>,
+        distinct_deg: Option<&Bound<'_, PyAny>>,
+        distinct_mm: Option<&Bound<'_, PyAny>>,
         purpose: &str,
         calibration_criterion: Option<&str>,
         geometry: Option<&str>,
         gravity: Option<&str>,
-        weight: Option<f64>,
+        weight: Option<&Bound<'_, PyAny>>,
         stations: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
+        let target_pct = crate::count::real("target_pct", target_pct)?;
+        let margin_mm = crate::count::real("margin_mm", margin_mm)?;
+        let distinct_deg = crate::count::real("distinct_deg", distinct_deg)?;
+        let distinct_mm = crate::count::real("distinct_mm", distinct_mm)?;
+        let weight = crate::count::real("weight", weight)?;
         use crate::count::optional;
         let start = start.map(|s| self.group(s, "start")).transpose()?;
         let pool = match pool {

@@ -61,3 +61,22 @@ def test_rows_of_numbers_refuse_text_and_bools_naming_the_element(paper):
         track.select(stations=[[True, 0, 0]])
     with pytest.raises(stiffid.InputError, match=r"^external\[1\]\[2\]: expected a number"):
         stiffid.plan(track, [[0, 0, 0, 0, 0, 0], [0, 10, 0, 0, 0, 0]], external=[[0, 0, 0], [0, 0, "x"]])
+
+
+@pytest.mark.parametrize(
+    "name, call",
+    [
+        ("characteristic_length_mm", lambda r, s: r.kinematics([0, 0, 0, 0, 0, 0], characteristic_length_mm=True)),
+        ("characteristic_length_mm", lambda r, s: r.dexterity([0, 0, 0, 0, 0, 0], characteristic_length_mm=False)),
+        ("position_tolerance_mm", lambda r, s: r.inverse_kinematics(np.eye(4), [0] * 6, position_tolerance_mm=True)),
+        ("target_pct", lambda r, s: s.select(target_pct=True)),
+        ("margin_mm", lambda r, s: s.select(margin_mm=True)),
+        ("level", lambda r, s: stiffid.predict(s, [0, 0, 0, 0, 0, 0], [0, 0, 100, 0, 0, 0], level=True)),
+        ("target_pct", lambda r, s: stiffid.plan(s, [[0, 0, 0, 0, 0, 0]] * 2, target_pct=True)),
+        ("peak_resolution_deg", lambda r, s: stiffid.process_force(MILLING / "aluminium.toml", peak_resolution_deg=True)),
+    ],
+)
+def test_a_bool_is_no_number_for_any_optional_number(paper, name, call):
+    robot = stiffid.Robot.preset("kuka-kr210-robond")
+    with pytest.raises(stiffid.InputError, match=rf"^{name}: (True|False) is a bool: expected a number"):
+        call(robot, paper)

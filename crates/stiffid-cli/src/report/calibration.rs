@@ -136,7 +136,7 @@ fn errors_table(doc: &Document) -> Table {
             vec![
                 e.set.to_string(),
                 e.posture.clone(),
-                e.point.to_string(),
+                e.point_name.clone(),
                 format!("{:.4}", e.before_norm_mm),
                 format!("{:.4}", e.after_norm_mm),
             ]

@@ -180,10 +180,11 @@ fn a_campaigns_station_with_too_few_postures_says_it_per_station() {
         "--out",
         "{dir}/campaign.csv",
     ];
-    let line = refused(&dir, &args, &["station 1: 2 given"]);
+    let line = refused(&dir, &args, &["station 1: 2 postures per station"]);
     assert!(
-        line.contains("the campaign deals its 6 postures over its stations, 2 at this one"),
+        line.contains("the campaign deals its 6 postures over its stations"),
         "{line}"
     );
+    assert!(!line.contains("2 given"), "{line}");
     std::fs::remove_dir_all(&dir).unwrap();
 }

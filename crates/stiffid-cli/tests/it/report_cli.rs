@@ -136,10 +136,12 @@ fn the_calibration_report_renders_the_document() {
         assert!(html.contains(needle), "{needle}");
     }
     let first = &errors[0];
+    // A tool's measuring point is named by its number, as in the readings.
+    assert_eq!(first["point_name"], first["point"].to_string().as_str());
     let row = format!(
         "<td>fitted</td><td>{}</td><td>{}</td><td>{:.4}</td><td>{:.4}</td>",
         first["posture"].as_str().unwrap(),
-        first["point"],
+        first["point_name"].as_str().unwrap(),
         norm(first, "before_norm_mm"),
         norm(first, "after_norm_mm")
     );

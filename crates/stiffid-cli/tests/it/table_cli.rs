@@ -5,7 +5,7 @@
 
 use crate::common;
 
-use common::{json, stiffid, temp_dir};
+use common::{json, refused, stiffid, temp_dir};
 use std::path::Path;
 
 #[test]
@@ -87,4 +87,50 @@ fn select_gives_each_posture_the_positioners_angles() {
         (predicted - value).abs() <= 1e-6 * predicted,
         "{predicted} {value}"
     );
+}
+
+/// A wall between the tracker and the positioner hides the table's reflectors at every angle of
+/// the positioner: the design is refused for that, naming the table and what to move, before any
+/// search (the search would first meet the wall in the tool's own lines of sight), nothing written.
+#[test]
+fn reflectors_hidden_at_every_table_angle_are_refused_before_the_search() {
+    let dir = temp_dir("table-hidden");
+    let example =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/track/track-cell.toml");
+    let text = std::fs::read_to_string(example).unwrap()
+        + "reflectors_mm = [[300, 0, 40], [-200, 250, 40]]\n"
+        + "[cell]\nclearance_mm = 20\n[tracker]\nposition_mm = [3000, 4500, 1500]\n"
+        + "[[cell.obstacle]]\nname = \"wall\"\nmin_mm = [-2000, 3400, -500]\n"
+        + "max_mm = [8000, 3500, 6000]\n";
+    let setup = dir.join("cell.toml");
+    std::fs::write(&setup, text).unwrap();
+    let args = [
+        "select",
+        "--setup",
+        setup.to_str().unwrap(),
+        "--for",
+        "calibration",
+        "--start-random",
+        "--count",
+        "12",
+        "--station",
+        "3000,0,0",
+        "--seed",
+        "1",
+        "--out",
+        "{dir}/campaign.csv",
+    ];
+    let line = refused(
+        &dir,
+        &args,
+        &[
+            "table",
+            "no angle of the positioner has clear lines of sight",
+        ],
+    );
+    assert!(
+        line.contains("move the tracker or the reflectors"),
+        "{line}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -20,6 +20,9 @@ pub struct PointError {
     pub posture: usize,
     /// The measuring point, 0-based.
     pub point: usize,
+    /// Whether `point` is a reflector on the positioner's table rather than a measuring point
+    /// of the tool ([`super::error_model::Observation::table`]).
+    pub table: bool,
     /// Predicted minus read, base frame, m.
     pub error: Vector3<f64>,
 }
@@ -69,6 +72,7 @@ pub fn validate(
             .map(|(i, o)| PointError {
                 posture: o.posture,
                 point: o.point,
+                table: o.table,
                 error: r.fixed_rows::<3>(3 * i).into_owned(),
             })
             .collect(),
@@ -205,6 +209,7 @@ pub fn leave_one_out_linearised(
                 .map(|(i, o)| PointError {
                     posture: p,
                     point: o.point,
+                    table: o.table,
                     error: fit.residuals.fixed_rows::<3>(3 * i)
                         + jacobian.fixed_rows::<3>(3 * i) * &change,
                 })

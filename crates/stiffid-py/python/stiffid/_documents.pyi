@@ -81,6 +81,7 @@ CalibrateBeforeAfter = TypedDict("CalibrateBeforeAfter", {
     "before_mm": list[float],
     "before_norm_mm": float,
     "point": int,
+    "point_name": str,
     "posture": str,
     "set": str,
 })
@@ -102,6 +103,7 @@ CalibrateCheckedReading = TypedDict("CalibrateCheckedReading", {
     "error_mm": float,
     "outside": bool,
     "point": int,
+    "point_name": str,
     "posture": str,
 })
 
@@ -191,6 +193,7 @@ CalibratePointError = TypedDict("CalibratePointError", {
     "interval_mm": Optional[list[list[Optional[float]]]],
     "outside_range": Optional[CalibrateOutsideRange],
     "point": int,
+    "point_name": str,
     "posture": str,
 })
 

@@ -428,6 +428,31 @@ struct Outcome {
     expected: f64,
 }
 
+/// The (posture, point) of every row of the readings `text` (unloaded), sorted: the points as the
+/// readings name them (`1`, `2`, ... on the tool, `T1`, `T2`, ... on the positioner's table).
+fn read_points(text: &str) -> Vec<(String, String)> {
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let step = header.iter().position(|h| *h == "load_step");
+    let mut out: Vec<(String, String)> = lines
+        .map(|l| l.split(',').collect::<Vec<&str>>())
+        .filter(|cells| step.is_none_or(|k| cells[k].parse::<f64>() == Ok(0.0)))
+        .map(|cells| (cells[0].to_string(), cells[1].to_string()))
+        .collect();
+    out.sort();
+    out
+}
+
+/// The (posture, point name) of the calibrate document's held-out readings, sorted.
+fn held_points(document: &Document) -> Vec<(String, String)> {
+    let mut out: Vec<(String, String)> = (document.errors.iter())
+        .filter(|e| e.set == "validation")
+        .map(|e| (e.posture.clone(), e.point_name.clone()))
+        .collect();
+    out.sort();
+    out
+}
+
 /// Calibrates with `gravity`, returns the calibrated setup (the nominal controller named), the
 /// compliance (from loaded readings), the registration, the held-out RMS and the registration on
 /// the nominal robot.
@@ -468,6 +493,7 @@ pub(crate) fn calibrated(
     })
     .unwrap();
     let document = Document::new(&report, "setup.toml");
+    assert_eq!(held_points(&document), read_points(held), "held-out points");
     let compliance = document.stiffness_file.as_ref().map(|file| {
         let file = serde_json::to_string(file).unwrap();
         let compliance = stiffid::io::stiffness::parse(&file)

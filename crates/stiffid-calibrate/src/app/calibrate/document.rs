@@ -7,6 +7,7 @@ use stiffid_core::app::document::parameters::{stiffness, ParameterStiffness};
 use stiffid_core::app::document::{finite, mm};
 use stiffid_core::app::Warning;
 use stiffid_core::common::choice::Choice;
+use stiffid_core::io::readings::point_name;
 use stiffid_metrology::calibration::error_model::Target;
 use stiffid_metrology::calibration::validation::Validation;
 use stiffid_view as scene;
@@ -272,8 +273,11 @@ pub struct BeforeAfter {
     pub set: &'static str,
     /// The posture's label.
     pub posture: String,
-    /// The measuring point (1-based).
+    /// The measuring point (1-based), or the table reflector's number (`point_name`).
     pub point: usize,
+    /// The point as the readings name it: `1`, `2`, ... a measuring point of the tool (`point`),
+    /// `T1`, `T2`, ... a reflector on the positioner's table (numbered apart from the tool's).
+    pub point_name: String,
     /// Predicted minus read with the nominal robot, base frame, mm.
     pub before_mm: [f64; 3],
     /// Predicted minus read with the calibration, base frame, mm.
@@ -350,8 +354,11 @@ pub struct IntervalsDocument {
 pub struct PointError {
     /// The posture's label.
     pub posture: String,
-    /// The measuring point (1-based).
+    /// The measuring point (1-based), or the table reflector's number (`point_name`).
     pub point: usize,
+    /// The point as the readings name it: `1`, `2`, ... a measuring point of the tool (`point`),
+    /// `T1`, `T2`, ... a reflector on the positioner's table (numbered apart from the tool's).
+    pub point_name: String,
     /// Predicted minus read, base frame, mm.
     pub error_mm: [f64; 3],
     /// Its length, mm.
@@ -631,6 +638,7 @@ fn before_after(report: &Report) -> Vec<BeforeAfter> {
                     set,
                     posture: labels.get(a.posture).cloned().unwrap_or_default(),
                     point: a.point + 1,
+                    point_name: point_name(a.point, a.table),
                     before_mm: [mm(b.error.x), mm(b.error.y), mm(b.error.z)],
                     after_mm: [mm(a.error.x), mm(a.error.y), mm(a.error.z)],
                     before_norm_mm: mm(b.error.norm()),
@@ -646,6 +654,7 @@ fn errors(v: &Validation, labels: &[String]) -> Vec<PointError> {
         .map(|e| PointError {
             posture: labels.get(e.posture).cloned().unwrap_or_default(),
             point: e.point + 1,
+            point_name: point_name(e.point, e.table),
             error_mm: [mm(e.error.x), mm(e.error.y), mm(e.error.z)],
             error_norm_mm: mm(e.error.norm()),
             interval_mm: None,
@@ -695,6 +704,7 @@ mod tests {
         let error = |posture| Error {
             posture,
             point: 0,
+            table: false,
             error: nalgebra::Vector3::new(1e-4, 0.0, 0.0),
         };
         let outside = Outside {

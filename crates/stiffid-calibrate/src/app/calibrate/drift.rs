@@ -137,8 +137,11 @@ pub struct CheckDocument {
 pub struct CheckedReading {
     /// The posture's label.
     pub posture: String,
-    /// The measuring point (1-based).
+    /// The measuring point (1-based), or the table reflector's number (`point_name`).
     pub point: usize,
+    /// The point as the readings name it: `1`, `2`, ... a measuring point of the tool (`point`),
+    /// `T1`, `T2`, ... a reflector on the positioner's table (numbered apart from the tool's).
+    pub point_name: String,
     /// The error's length with the calibrated robot, mm.
     pub error_mm: f64,
     /// Beyond the bound.
@@ -164,6 +167,7 @@ impl CheckDocument {
                 .map(|(e, &outside)| CheckedReading {
                     posture: labels.get(e.posture).cloned().unwrap_or_default(),
                     point: e.point + 1,
+                    point_name: stiffid_core::io::readings::point_name(e.point, e.table),
                     error_mm: e.error.norm() * 1e3,
                     outside,
                 })

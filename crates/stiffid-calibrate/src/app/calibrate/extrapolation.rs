@@ -8,6 +8,7 @@
 use super::{Warning, WarningKind};
 use nalgebra::Vector6;
 use stiffid_core::common::warning::joint_list;
+use stiffid_core::io::readings::point_name;
 use stiffid_metrology::calibration::error_model::Observation;
 use stiffid_metrology::calibration::validation::Validation;
 
@@ -51,7 +52,7 @@ pub(super) fn warning(
             if missed.len() == 1 { "" } else { "s" },
             limit * 1e3,
             stiffid_core::common::limits::short(label),
-            obs.point + 1,
+            point_name(obs.point, obs.table),
             calibrated.errors[worst].error.norm() * 1e3,
             nominal.errors[worst].error.norm() * 1e3,
             outside(fitted, &obs.q),
@@ -197,6 +198,7 @@ mod tests {
                 .map(|(posture, &l)| PointError {
                     posture,
                     point: 0,
+                    table: false,
                     error: Vector3::new(0.0, l * 1e-3, 0.0),
                 })
                 .collect(),

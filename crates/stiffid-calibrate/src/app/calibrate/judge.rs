@@ -24,7 +24,7 @@ pub(super) fn largest_residual(data: &Data, residuals: &DVector<f64>) -> String 
         "; or a bad reading: the longest residual is {:.3} mm, line {line} (posture {}, point {})",
         length * 1e3,
         limits::short(&data.labels[reading.posture]),
-        reading.point + 1
+        stiffid_core::io::readings::point_name(reading.point, reading.table)
     )
 }
 

@@ -16,6 +16,9 @@ struct Reading {
     set: String,
     posture: String,
     point: usize,
+    /// `T1`, `T2`, ... for a reflector on the positioner's table, which has no arrow.
+    #[serde(default)]
+    point_name: String,
     before_mm: [f64; 3],
     after_mm: [f64; 3],
 }
@@ -52,7 +55,8 @@ pub fn scene(setup: &Setup, document: &str) -> stiffid_core::Result<Scene> {
     let mut before = vec![vec![Vector3::zeros(); points]; postures.len()];
     let mut after = before.clone();
     let mut fitted: Vec<&str> = Vec::new();
-    for r in read.errors.iter().filter(|r| r.set == "fitted") {
+    let tool = |r: &&Reading| r.set == "fitted" && !r.point_name.starts_with('T');
+    for r in read.errors.iter().filter(tool) {
         if !fitted.contains(&r.posture.as_str()) {
             fitted.push(&r.posture);
         }

@@ -129,6 +129,16 @@ impl Reading {
     }
 }
 
+/// The name the readings give a point (their `point` column): `1`, `2`, ... for the tool's
+/// measuring point `point` (0-based), `T1`, `T2`, ... for the positioner table's reflector
+/// `point` (0-based) when `table`.
+pub fn point_name(point: usize, table: bool) -> String {
+    match table {
+        true => format!("T{}", point + 1),
+        false => (point + 1).to_string(),
+    }
+}
+
 /// The rows of a readings file and where each came from.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Readings {

@@ -169,10 +169,14 @@ fn search(
 /// one station's share, not as the group asked for.
 fn at_station(e: Error, k: usize, size: usize, n: usize) -> Error {
     match e {
-        Error::InvalidField { field, message } if field == "postures" => Error::InvalidField {
-            field,
-            message: format!("station {}: {message}; the campaign deals its {n} postures over its stations, {size} at this one: give more postures or fewer stations", k + 1),
-        },
+        Error::InvalidField { field, message } if field == "postures" => {
+            let given = format!("{size} given: ");
+            let why = message.strip_prefix(&given).unwrap_or(&message);
+            Error::InvalidField {
+                field,
+                message: format!("station {}: {size} postures per station (the campaign deals its {n} postures over its stations): {why}; give more postures or fewer stations", k + 1),
+            }
+        }
         e => e,
     }
 }

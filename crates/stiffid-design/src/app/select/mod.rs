@@ -303,6 +303,7 @@ pub struct Unconstrained {
 /// [`candidates::design_setup`]; the searches' errors; a group that cannot identify every parameter (for a calibration: separate its parameters, [`Error::Input`] of an [`Error::InvalidField`] `calibration`).
 pub fn run(request: &Request) -> Result<Report> {
     check(request)?;
+    table::check(request)?;
     let report = if campaign::is_campaign(request) {
         station::checked(request)?;
         campaign::campaign(request)?

@@ -5,7 +5,9 @@
 //! design with the positioner's lines, offsets and the reflectors ([`purpose::design`]).
 //!
 //! The candidates are a grid of about [`CANDIDATE_ANGLES`] angles over the positioner's travel
-//! ([`purpose::table_grid`]: the travel is a feasibility check by construction), those with the
+//! ([`purpose::table_grid`]: the travel is a feasibility check by construction) and the
+//! positioner's values the postures were designed at (so that each posture clears the boxes the
+//! positioner carries at one candidate at least, its own), those with the
 //! tracker's line of sight to a reflector through an obstacle of the cell left out (the sight
 //! from the tracker's head to [`SIGHT_END`] before the reflector, where its nest and the table
 //! are). The arm's own bodies are not checked against these sights. With boxes the positioner
@@ -67,16 +69,18 @@ pub(super) fn with_table(r: &Request, mut report: Report) -> Result<Report> {
         .map(|(q, e)| (*q, tail(e, cut)))
         .collect();
     let design_axes = setup.robot().external().expect("a positioner");
-    let candidates = candidates(&setup, design_axes, &reflectors, &tail(&here, cut));
-    let refuse = |message: String| Error::Input {
-        source_name: "postures: the table's readings".into(),
-        error: Box::new(Error::InvalidField {
-            field: "table".into(),
-            message,
-        }),
-    };
+    let designed_at: Vec<ExternalValues> = (where_read.iter())
+        .map(|w| joined(design_axes, &tail(&here, cut), &tail(w, cut)))
+        .collect();
+    let candidates = candidates(
+        &setup,
+        design_axes,
+        &reflectors,
+        &tail(&here, cut),
+        &designed_at,
+    );
     if candidates.is_empty() {
-        return Err(refuse("no angle of the positioner has clear lines of sight from the tracker to every reflector on the table: move the tracker or the reflectors".into()));
+        return Err(no_sight());
     }
     let read_at = |at: &ExternalValues, table: &ExternalValues| {
         let e = joined(design_axes, &tail(at, cut), table);
@@ -84,14 +88,14 @@ pub(super) fn with_table(r: &Request, mut report: Report) -> Result<Report> {
     };
     let allowed = clear_of_carried(r, &report.postures, &where_read, &candidates, read_at);
     if let Some(i) = (allowed.iter().flatten()).position(|a| !a.contains(&true)) {
-        return Err(refuse(format!("posture {} of the group meets a box the positioner carries (its arm, rope or a line of sight within the clearance) at every candidate angle with clear lines of sight to the reflectors: move the box, the reflectors or the tracker, or choose other postures", i + 1)));
+        return Err(refused(format!("posture {} of the group meets a box the positioner carries (its arm, rope or a line of sight within the clearance) at every candidate angle with clear lines of sight to the reflectors: move the box, the reflectors or the tracker, or choose other postures", i + 1)));
     }
     let criterion = options.criterion();
     let count = placed.len();
     let choice =
         design.choose_table_angles(criterion, &placed, &candidates, count, allowed.as_deref())?;
     if !choice.value.is_finite() {
-        return Err(refuse(format!(
+        return Err(refused(format!(
             "the {} postures with the table read at as many angles do not separate the calibration's {} parameters: choose more postures or reflectors",
             placed.len(),
             design.kept().len()
@@ -169,35 +173,95 @@ fn joined(axes: &ExternalAxes, at: &ExternalValues, table: &ExternalValues) -> E
     ExternalValues::new(&e).expect("the cell's axes")
 }
 
-/// The candidate angles (module docs), the carrier at `here`.
+/// The candidate angles (module docs), the carrier at `here`, and the positioner's values
+/// `designed_at` the postures were designed at (the boxes it carries there: every posture clears
+/// them at its own), each with clear lines of sight to the reflectors.
 fn candidates(
     setup: &Setup,
     axes: &ExternalAxes,
     reflectors: &[nalgebra::Vector3<f64>],
     here: &ExternalValues,
+    designed_at: &[ExternalValues],
 ) -> Vec<ExternalValues> {
-    let grid = purpose::table_grid(axes, CANDIDATE_ANGLES, here);
+    let mut grid = purpose::table_grid(axes, CANDIDATE_ANGLES, here);
+    for e in designed_at {
+        if !grid.contains(e) {
+            grid.push(*e);
+        }
+    }
+    grid.into_iter()
+        .filter(|e| sights_clear(setup, axes, reflectors, e))
+        .collect()
+}
+
+/// Whether the tracker sees every reflector on the table with the external axes at `e` (module
+/// docs): always without a tracker or a cell.
+fn sights_clear(
+    setup: &Setup,
+    axes: &ExternalAxes,
+    reflectors: &[nalgebra::Vector3<f64>],
+    e: &ExternalValues,
+) -> bool {
     let (Some(tracker), Some(cell)) = (setup.tracker(), setup.cell()) else {
-        return grid;
+        return true;
     };
-    let clear = |e: &ExternalValues| {
-        let pose = axes.positioner_pose(e.as_slice());
-        reflectors.iter().all(|x| {
-            let point = (pose * nalgebra::Point3::from(*x)).coords;
-            let towards = tracker.position - point;
-            let length = towards.norm();
-            if length <= SIGHT_END {
-                return true;
-            }
-            let sight = Capsule {
-                part: Part::Tool,
-                a: tracker.position,
-                b: point + towards * (SIGHT_END / length),
-                radius: 0.0,
-            };
-            let obstacles = cell.obstacles_at(setup.robot(), e.as_slice());
-            obstacles.iter().all(|o| capsule_box(&sight, o) > 0.0)
-        })
+    let pose = axes.positioner_pose(e.as_slice());
+    let obstacles = cell.obstacles_at(setup.robot(), e.as_slice());
+    reflectors.iter().all(|x| {
+        let point = (pose * nalgebra::Point3::from(*x)).coords;
+        let towards = tracker.position - point;
+        let length = towards.norm();
+        if length <= SIGHT_END {
+            return true;
+        }
+        let sight = Capsule {
+            part: Part::Tool,
+            a: tracker.position,
+            b: point + towards * (SIGHT_END / length),
+            radius: 0.0,
+        };
+        obstacles.iter().all(|o| capsule_box(&sight, o) > 0.0)
+    })
+}
+
+/// The refusal of a group's table readings with `message`.
+fn refused(message: String) -> Error {
+    Error::Input {
+        source_name: "postures: the table's readings".into(),
+        error: Box::new(Error::InvalidField {
+            field: "table".into(),
+            message,
+        }),
+    }
+}
+
+/// The refusal when no angle of the positioner has clear lines of sight to the reflectors.
+fn no_sight() -> Error {
+    refused("no angle of the positioner has clear lines of sight from the tracker to every reflector on the table: move the tracker or the reflectors".into())
+}
+
+/// Refuses, before any search, a calibration design on `r` with reflectors on the positioner's
+/// table that no angle of the positioner can read: no candidate angle (module docs) at the
+/// first station asked for (the cell's first without one) has clear lines of sight from the
+/// tracker to every reflector. A cheap check (a line per reflector and candidate), where the
+/// search would otherwise run its course first.
+///
+/// # Errors
+/// [`Error::Input`] (`table`) as [`with_table`] for no clear line of sight.
+pub(super) fn check(r: &Request) -> Result<()> {
+    let reflectors = r.setup.table_reflectors();
+    let Some(axes) = r.setup.robot().external() else {
+        return Ok(());
     };
-    grid.into_iter().filter(clear).collect()
+    if r.purpose != Purpose::Calibration
+        || reflectors.is_empty()
+        || axes.len() == axes.carrier_len()
+    {
+        return Ok(());
+    }
+    let here = (r.stations.first().copied()).unwrap_or_else(|| axes.stations(1)[0]);
+    match candidates(r.setup, axes, &reflectors, &here, &[here]).is_empty() {
+        true => Err(no_sight()),
+        false => Ok(()),
+    }
 }
