@@ -36,6 +36,8 @@
 //! transform, `stiffid_identify::steps` the loaded ones into displacements.
 
 pub mod direction;
+mod name;
+pub use name::point_name;
 
 use crate::io::external::{self, external_like};
 use crate::robot::external::ExternalValues;
@@ -126,16 +128,6 @@ impl Reading {
     /// Whether the reading is unloaded: no load columns, or load 0.
     pub fn unloaded(&self) -> bool {
         self.load.is_none_or(Load::is_zero)
-    }
-}
-
-/// The name the readings give a point (their `point` column): `1`, `2`, ... for the tool's
-/// measuring point `point` (0-based), `T1`, `T2`, ... for the positioner table's reflector
-/// `point` (0-based) when `table`.
-pub fn point_name(point: usize, table: bool) -> String {
-    match table {
-        true => format!("T{}", point + 1),
-        false => (point + 1).to_string(),
     }
 }
 
