@@ -208,6 +208,8 @@ fn calibrate_without_geometry_is_calibrate_cell() {
         data,
         "--geometry",
         "none",
+        "--gravity",
+        "none",
         "--json",
     ]));
     let (a, b) = (
