@@ -41,6 +41,34 @@ pub fn real(name: &str, given: Option<&Bound<'_, PyAny>>) -> PyResult<Option<f64
     v.extract::<f64>().map(Some).map_err(|_| got())
 }
 
+/// A number argument read by PyO3 (`#[pyo3(from_py_with = count::number)]`): an int or a float,
+/// never a bool (`True` is not 1 here). PyO3 notes the argument's name on the error, which the
+/// package's functions put in front of the message (`level: True is a bool: expected a number`).
+pub fn number(given: &Bound<'_, PyAny>) -> PyResult<f64> {
+    no_bool(given, "a number")?;
+    given.extract::<f64>()
+}
+
+/// A whole-number argument read by PyO3 (`#[pyo3(from_py_with = count::whole)]`): an int, never
+/// a bool; its sign is checked where it is used ([`count`], [`seed`]).
+pub fn whole(given: &Bound<'_, PyAny>) -> PyResult<i64> {
+    no_bool(given, "a whole number")?;
+    given.extract::<i64>()
+}
+
+/// [`whole`] of an argument that may be `None`.
+pub fn optional_whole(given: &Bound<'_, PyAny>) -> PyResult<Option<i64>> {
+    no_bool(given, "a whole number")?;
+    given.extract::<Option<i64>>()
+}
+
+fn no_bool(given: &Bound<'_, PyAny>, expected: &str) -> PyResult<()> {
+    match given.is_instance_of::<PyBool>() {
+        true => Err(value(format!("{given} is a bool: expected {expected}"))),
+        false => Ok(()),
+    }
+}
+
 /// Rows of numbers (a list of lists, or a 2-D array) as the argument `name`, none when left out:
 /// an `InputError` naming the argument for a text or anything but rows, naming the element
 /// (`name[i][j]`) for a bool or a non-number.

@@ -68,7 +68,7 @@ pub fn process_force<'py>(
 pub fn read_program<'py>(
     py: Python<'py>,
     program: PathBuf,
-    chord_tolerance_mm: f64,
+    #[pyo3(from_py_with = crate::count::number)] chord_tolerance_mm: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let name = program.display().to_string();
     let language = Language::of_file(&name).map_err(raise)?;

@@ -237,12 +237,12 @@ pub fn identify<'py>(
     robust: Option<&str>,
     nonnegative: bool,
     cross_validate: bool,
-    folds: Option<i64>,
+    #[pyo3(from_py_with = crate::count::optional_whole)] folds: Option<i64>,
     offsets: bool,
     compare_models: bool,
     candidates: Option<Vec<String>>,
-    bootstrap: Option<i64>,
-    seed: Option<i64>,
+    #[pyo3(from_py_with = crate::count::optional_whole)] bootstrap: Option<i64>,
+    #[pyo3(from_py_with = crate::count::optional_whole)] seed: Option<i64>,
     stiffness_out: Option<PathBuf>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let folds = count::optional("folds", folds)?;

@@ -263,9 +263,9 @@ impl Robot {
         point_mm: Option<&Bound<'py, PyAny>>,
         position_tolerance_mm: Option<&Bound<'_, PyAny>>,
         rotation_tolerance_deg: Option<&Bound<'_, PyAny>>,
-        max_iterations: Option<i64>,
-        restarts: Option<i64>,
-        seed: i64,
+        #[pyo3(from_py_with = crate::count::optional_whole)] max_iterations: Option<i64>,
+        #[pyo3(from_py_with = crate::count::optional_whole)] restarts: Option<i64>,
+        #[pyo3(from_py_with = crate::count::whole)] seed: i64,
     ) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
         let position_tolerance_mm =
             crate::count::real("position_tolerance_mm", position_tolerance_mm)?;

@@ -35,8 +35,8 @@ pub fn simulate<'py>(
     py: Python<'py>,
     setup: &Setup,
     groups: &Bound<'py, PyAny>,
-    runs: i64,
-    seed: i64,
+    #[pyo3(from_py_with = crate::count::whole)] runs: i64,
+    #[pyo3(from_py_with = crate::count::whole)] seed: i64,
 ) -> PyResult<Bound<'py, PyList>> {
     let seed = crate::count::seed("seed", seed)?;
     let items: Vec<Bound<'py, PyAny>> = groups
@@ -103,10 +103,10 @@ const RATES: [&str; 4] = [
 pub fn reproduce<'py>(
     py: Python<'py>,
     setup: Option<&Setup>,
-    runs: i64,
-    seed: i64,
-    starts: i64,
-    trials: i64,
+    #[pyo3(from_py_with = crate::count::whole)] runs: i64,
+    #[pyo3(from_py_with = crate::count::whole)] seed: i64,
+    #[pyo3(from_py_with = crate::count::whole)] starts: i64,
+    #[pyo3(from_py_with = crate::count::whole)] trials: i64,
     solver: &str,
     figures: bool,
 ) -> PyResult<Bound<'py, PyDict>> {

@@ -80,3 +80,40 @@ def test_a_bool_is_no_number_for_any_optional_number(paper, name, call):
     robot = stiffid.Robot.preset("kuka-kr210-robond")
     with pytest.raises(stiffid.InputError, match=rf"^{name}: (True|False) is a bool: expected a number"):
         call(robot, paper)
+
+
+def _pocket(**options):
+    common = dict(program=MILLING / "pocket.nc", process=MILLING / "aluminium.toml")
+    return stiffid.compensate(
+        stiffid.Setup.from_file(MILLING / "fanuc-milling.toml"), MILLING / "stiffness.json", **common, **options
+    )
+
+
+@pytest.mark.parametrize(
+    "name, expected, call",
+    [
+        ("level", "a number", lambda r, s: _pocket(level=True)),
+        ("moves_per_file", "a whole number", lambda r, s: _pocket(moves_per_file=False)),
+        ("seed", "a whole number", lambda r, s: stiffid.simulate(s, [[0, 0, 0, 0, 0, 0]] * 7, runs=10, seed=True)),
+        ("runs", "a whole number", lambda r, s: stiffid.reproduce(runs=True)),
+        ("seed", "a whole number", lambda r, s: s.select(seed=True)),
+        ("n", "a whole number", lambda r, s: s.random_group(True)),
+        ("restarts", "a whole number", lambda r, s: r.inverse_kinematics(np.eye(4), [0] * 6, restarts=True)),
+        ("count", "a whole number", lambda r, s: stiffid.register(s, count=True)),
+    ],
+)
+def test_a_bool_is_no_number_for_any_number_argument(paper, name, expected, call):
+    robot = stiffid.Robot.preset("kuka-kr210-robond")
+    with pytest.raises(stiffid.InputError, match=rf"^{name}: (True|False) is a bool: expected {expected}$"):
+        call(robot, paper)
+
+
+def test_every_argument_of_the_wrong_type_is_named(paper, tmp_path):
+    with pytest.raises(TypeError, match=r"^update: "):
+        stiffid.calibrate(paper, tmp_path / "readings.csv", update=1)
+    with pytest.raises(TypeError, match=r"^setup: "):
+        stiffid.plan("paper", [[0, 0, 0, 0, 0, 0]])
+    with pytest.raises(TypeError, match=r"^distinct: "):
+        paper.select(distinct="yes")
+    with pytest.raises(TypeError, match=r"^name: "):
+        stiffid.Robot.preset(7)

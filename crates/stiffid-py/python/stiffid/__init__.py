@@ -85,3 +85,14 @@ __all__ = [
     "simulate",
     "validate",
 ]
+
+# Every error in reading an argument names it (``_arguments``).
+from . import _arguments  # noqa: E402
+
+for _function in __all__:
+    if type(globals()[_function]).__name__ == "builtin_function_or_method":
+        globals()[_function] = _arguments.naming(globals()[_function])
+for _class in (Robot, Scene, Setup):
+    _arguments.name_arguments_of(_class)
+del _function, _class
+
