@@ -1,13 +1,16 @@
 """Every error in reading an argument names it.
 
-PyO3 notes the argument on an error raised while converting it (``while processing 'seed'``);
-the package's functions and methods put that name in front of the message
-(``seed: True is a bool: expected a whole number``), as the library's own checks of an argument
-do. Python 3.11 and later (earlier versions have no exception notes: the message is PyO3's alone).
+PyO3 notes the argument on an error raised while converting it (``while processing 'seed'``).
+The package's functions and methods put that name in front of the message, and raise a wrong
+type as an ``InputError``, as the library's own checks of an argument do
+(``update: 'int' object is not an instance of 'bool'``). Python 3.11 and later (earlier
+versions have no exception notes: the error is PyO3's own there).
 """
 
 import functools
 import re
+
+from ._stiffid import Error, InputError
 
 _NOTE = re.compile(r"while processing '(\w+)'")
 
@@ -20,8 +23,10 @@ def naming(function):
         try:
             return function(*args, **kwargs)
         except Exception as error:
-            _name(error)
-            raise
+            named = _named(error)
+            if named is error:
+                raise
+            raise named from error
 
     return call
 
@@ -37,11 +42,17 @@ def name_arguments_of(cls):
             setattr(cls, key, naming(attribute))
 
 
-def _name(error):
+def _named(error):
+    """``error`` with its argument's name in front (an ``InputError`` unless it is one of the
+    package's errors), or ``error`` itself when no argument is noted on it."""
     notes = getattr(error, "__notes__", [])
     for note in notes:
         found = _NOTE.fullmatch(note)
         if found and error.args and isinstance(error.args[0], str):
-            error.args = (f"{found[1]}: {error.args[0]}", *error.args[1:])
+            message = f"{found[1]}: {error.args[0]}"
+            if not isinstance(error, Error):
+                return InputError(message)
+            error.args = (message, *error.args[1:])
             notes.remove(note)
-            return
+            return error
+    return error
