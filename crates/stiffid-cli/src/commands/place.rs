@@ -118,7 +118,7 @@ pub fn run(args: &Args) -> Result<()> {
     let compliance = args.stiffness.load(&setup)?;
     let (program, process, path);
     let work = match (&args.program, &args.process, &args.path) {
-        (Some(program_path), Some(process_path), _) => {
+        (Some(program_path), Some(process_path), None) => {
             let name = program_path.display().to_string();
             let language = Language::of_file(&name).map_err(|e| anyhow!("--program {e}"))?;
             let text = load::read(program_path)?;
@@ -132,12 +132,15 @@ pub fn run(args: &Args) -> Result<()> {
                 process: &process,
             }
         }
-        (_, _, Some(p)) => {
+        (None, None, Some(p)) => {
             let text = load::read(p)?;
             path = place::read_path(&setup, &p.display().to_string(), &text, args.frame)
                 .map_err(option_error)?;
             Work::Path(&path)
         }
+        (None, Some(_), Some(_)) => bail!(
+            "--process: only with --program: a path CSV gives each row its own wrench (--path)"
+        ),
         _ => bail!("expected --program and --process, or --path"),
     };
     let mut options = Options::for_setup(&setup);

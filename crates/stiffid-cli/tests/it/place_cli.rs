@@ -119,6 +119,13 @@ fn a_path_file_is_placed_and_compensating_it_there_gives_the_bound_stated() {
         "--starts",
         "1",
     ];
+    // A process file with a path is refused: the path's rows carry their wrenches.
+    let process = example("aluminium.toml");
+    let with_process = [&rest[..], &["--process", &process]].concat();
+    assert_usage_error(
+        &stiffid(&args(&setup, &out, &with_process)),
+        &["--process: only with --program"],
+    );
     let d = json(&stiffid(&args(&setup, &out, &rest)));
     assert!(d["gain_vs_own_pct"].as_f64().unwrap() > 0.0, "{d}");
     // The rows carried to the placement, in the base frame as compensate reads them.
