@@ -114,9 +114,6 @@ where
     if let Some(message) = renamed::refused(&words) {
         return report(&message);
     }
-    if let Some(message) = commands::compensate::retired(args.iter().cloned()) {
-        return report(&message);
-    }
     let cli = match command()
         .try_get_matches_from(args)
         .and_then(|m| Cli::from_arg_matches(&m))

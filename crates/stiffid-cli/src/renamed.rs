@@ -1,6 +1,6 @@
 //! Options renamed so that each name means one thing in every command and each unit is spelt
-//! one way: the old spelling is refused with a message naming the new one (exit code 2), before
-//! clap, which would only call it unknown.
+//! one way, and `compensate`'s options retired for `--free`: the old spelling is refused with a
+//! message naming the new one (exit code 2), before clap, which would only call it unknown.
 
 /// Each renamed option: the command, the old spelling, the new one and why.
 const RENAMED: [(&str, &str, &str, &str); 4] = [
@@ -16,11 +16,29 @@ pub fn refused<S: AsRef<str>>(args: &[S]) -> Option<String> {
     let args: Vec<&str> = args.iter().map(AsRef::as_ref).collect();
     let at = command(&args)?;
     let (command, options) = (args[at], &args[at + 1..]);
+    renamed(command, options).or_else(|| retired(command, options))
+}
+
+/// An option of [`RENAMED`] among `command`'s `options`.
+fn renamed(command: &str, options: &[&str]) -> Option<String> {
     let given =
         |old: &str, a: &str| a == old || a.strip_prefix(old).is_some_and(|r| r.starts_with('='));
     RENAMED.iter().find_map(|&(c, old, new, why)| {
         (c == command && options.iter().any(|a| given(old, a)))
             .then(|| format!("{old}: renamed {new} in `stiffid {command}` ({why})"))
+    })
+}
+
+/// A retired option of `stiffid compensate` among its `options`, with how to write it with
+/// `--free` (the library's table, which Python's `compensate` refuses by too).
+fn retired(command: &str, options: &[&str]) -> Option<String> {
+    if command != "compensate" {
+        return None;
+    }
+    options.iter().find_map(|a| {
+        let name = a.strip_prefix("--")?.split('=').next()?;
+        let (option, value) = stiffid_machining::compensate::free::retired(name)?;
+        Some(format!("--{name}: removed; write --{option} {value}"))
     })
 }
 
@@ -60,5 +78,12 @@ mod tests {
         assert_eq!(refused(&["select", "--count", "6"]), None);
         assert_eq!(refused(&["select", "--postures-file"]), None);
         assert_eq!(refused(&["--package-path", "select"]), None);
+        // compensate's options retired for --free, in compensate only.
+        let free = ["compensate", "--setup", "s", "--free-tool-axis"];
+        assert_eq!(
+            refused(&free).unwrap(),
+            "--free-tool-axis: removed; write --free tool-rotation=-90..90/2"
+        );
+        assert_eq!(refused(&["place", "--free-tool-axis"]), None);
     }
 }

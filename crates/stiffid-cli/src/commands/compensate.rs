@@ -413,20 +413,6 @@ fn write_subprograms(
     Ok(())
 }
 
-/// The message refusing a retired option of `stiffid compensate` among the process's arguments
-/// `args`, saying how to write it with `--free`.
-pub fn retired(args: impl Iterator<Item = std::ffi::OsString>) -> Option<String> {
-    let args: Vec<String> = args.map(|a| a.to_string_lossy().into_owned()).collect();
-    if !args.iter().any(|a| a == "compensate") {
-        return None;
-    }
-    args.iter().find_map(|a| {
-        let name = a.strip_prefix("--")?.split('=').next()?;
-        let (option, value) = stiffid_machining::compensate::free::retired(name)?;
-        Some(format!("--{name}: removed; write --{option} {value}"))
-    })
-}
-
 fn options(args: &Args, setup: &Setup) -> Result<Options> {
     let mut options = Options::for_setup(setup);
     stiffid_core::model::prediction::check_level("--level", args.level)?;
