@@ -13,36 +13,36 @@ pub enum JobOption {
     /// compensate, place: how the points' costs add up along the path (sum or max).
     Objective,
     /// compensate: the free tool axis' largest change between consecutive points, deg.
-    MaxStepDeg,
+    ToolRotationStep,
     /// compensate: how far the free tool axis may turn from the path's rotation, deg.
-    ToolAxisRangeDeg,
+    ToolRotationRange,
     /// compensate: what the free tool axis minimises (the deflection, or the drilling surge).
-    FreeToolAxisObjective,
+    Minimise,
     /// compensate: how far the free track station may move from the path's own, mm.
-    FreeStationMm,
+    StationRange,
     /// compensate: the free track station's largest change between consecutive points, mm.
-    StationStepMm,
+    StationStep,
     /// compensate: how far the free positioner may turn from the path's own angle, deg.
-    FreePositionerDeg,
+    PositionerRange,
     /// compensate: the free positioner's largest change between consecutive points, deg.
-    PositionerStepDeg,
+    PositionerStep,
     /// compensate: the tool axis' lead and tilt free within the cone.
-    FreeLeadTilt,
+    LeadTilt,
     /// compensate: the cone's half angle a path file's tool axis may lean within, deg.
-    ConeDeg,
+    LeadTiltRange,
     /// compensate: the largest change of the lead and of the tilt between consecutive points,
     /// deg.
-    LeadTiltStepDeg,
+    LeadTiltStep,
     /// compensate: how far the free tilt (a two-axis positioner's first axis) may turn from
     /// the path's own angle, deg.
-    FreeTiltDeg,
+    TiltRange,
     /// compensate: the free tilt's largest change between consecutive points, deg.
-    TiltStepDeg,
+    TiltStep,
     /// compensate: the robot's configuration chosen among the arm's (shoulder, elbow, wrist).
-    FreeConfiguration,
+    Configuration,
     /// compensate: what one configuration of the free configuration holds (the program, or
     /// each run between rapid moves).
-    ConfigurationPer,
+    ConfigurationScope,
     /// compensate: the free variable mapped (the tool rotation or the track station).
     Map,
     /// compensate: the largest error bound a program may have anywhere, mm.
@@ -54,7 +54,7 @@ pub enum JobOption {
     /// compensate: the levels of refinement of the free variables' grid.
     Refine,
     /// compensate: the process force model's relative error, percent.
-    ForceTolerancePercent,
+    ForceTolerancePct,
     /// compensate: the largest sagitta of the chords of a G-code arc, mm.
     ChordToleranceMm,
     /// compensate: the robot's largest TCP speed, mm/s.
@@ -144,26 +144,26 @@ impl JobOption {
             JobOption::Station => "station",
             JobOption::Free => "free",
             JobOption::Objective => "objective",
-            JobOption::MaxStepDeg => "free tool-rotation step",
-            JobOption::ToolAxisRangeDeg => "free tool-rotation range",
-            JobOption::FreeToolAxisObjective => "minimise",
-            JobOption::FreeStationMm => "free station range",
-            JobOption::StationStepMm => "free station step",
-            JobOption::FreePositionerDeg => "free positioner range",
-            JobOption::PositionerStepDeg => "free positioner step",
-            JobOption::FreeLeadTilt => "free lead-tilt",
-            JobOption::ConeDeg => "free lead-tilt range",
-            JobOption::LeadTiltStepDeg => "free lead-tilt step",
-            JobOption::FreeTiltDeg => "free tilt range",
-            JobOption::TiltStepDeg => "free tilt step",
-            JobOption::FreeConfiguration => "free configuration",
-            JobOption::ConfigurationPer => "free configuration",
+            JobOption::ToolRotationStep => "free tool-rotation step",
+            JobOption::ToolRotationRange => "free tool-rotation range",
+            JobOption::Minimise => "minimise",
+            JobOption::StationRange => "free station range",
+            JobOption::StationStep => "free station step",
+            JobOption::PositionerRange => "free positioner range",
+            JobOption::PositionerStep => "free positioner step",
+            JobOption::LeadTilt => "free lead-tilt",
+            JobOption::LeadTiltRange => "free lead-tilt range",
+            JobOption::LeadTiltStep => "free lead-tilt step",
+            JobOption::TiltRange => "free tilt range",
+            JobOption::TiltStep => "free tilt step",
+            JobOption::Configuration => "free configuration",
+            JobOption::ConfigurationScope => "free configuration",
             JobOption::Map => "map",
             JobOption::MaxErrorMm => "max_error_mm",
             JobOption::MarginDeg => "margin_deg",
             JobOption::MaxCondition => "max_condition",
             JobOption::Refine => "refine",
-            JobOption::ForceTolerancePercent => "force_tolerance_pct",
+            JobOption::ForceTolerancePct => "force_tolerance_pct",
             JobOption::ChordToleranceMm => "chord_tolerance_mm",
             JobOption::MaxTcpSpeedMmS => "max_tcp_speed_mm_s",
             JobOption::Targets => "targets",

@@ -429,7 +429,7 @@ fn starts(
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`free_configuration`) without one; [`Error::InvalidOption`]
-/// ([`JobOption::FreeConfiguration`]) for more than [`super::MAX_CONFIGURATION_POINTS`] points.
+/// ([`JobOption::Configuration`]) for more than [`super::MAX_CONFIGURATION_POINTS`] points.
 pub(super) fn free_configuration(options: &Options, points: usize) -> Result<FreeVariables> {
     if options.free.configuration.is_none() {
         return Err(Error::InvalidField {
@@ -439,7 +439,7 @@ pub(super) fn free_configuration(options: &Options, points: usize) -> Result<Fre
     }
     if points > super::MAX_CONFIGURATION_POINTS {
         return Err(Error::InvalidOption {
-            option: JobOption::FreeConfiguration,
+            option: JobOption::Configuration,
             message: format!(
                 "{points} path points: at most {} (every configuration holds the whole path)",
                 super::MAX_CONFIGURATION_POINTS

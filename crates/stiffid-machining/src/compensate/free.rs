@@ -280,7 +280,7 @@ impl Freedom {
             return Ok(());
         }
         let given = [
-            (self.minimise.is_some(), JobOption::FreeToolAxisObjective),
+            (self.minimise.is_some(), JobOption::Minimise),
             (self.objective.is_some(), JobOption::Objective),
             (self.margin_deg.is_some(), JobOption::MarginDeg),
             (self.max_condition.is_some(), JobOption::MaxCondition),

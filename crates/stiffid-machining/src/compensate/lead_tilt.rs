@@ -12,28 +12,28 @@ use stiffid_core::{Error, Result};
 /// point, else `process` (one per point: its operation's), checked.
 ///
 /// # Errors
-/// [`Error::InvalidOption`] ([`JobOption::ConeDeg`]) for a path file's points without a cone
+/// [`Error::InvalidOption`] ([`JobOption::LeadTiltRange`]) for a path file's points without a cone
 /// or a program's with one (the process file gives it), and for a process whose operations
-/// allow no lean; ([`JobOption::LeadTiltStepDeg`]) for a step above the largest cone.
+/// allow no lean; ([`JobOption::LeadTiltStep`]) for a step above the largest cone.
 pub(crate) fn cones(free: &LeadTilt, points: usize, process: Option<&[f64]>) -> Result<Vec<f64>> {
     let refuse = |option, message: String| Error::InvalidOption { option, message };
     let cones = match (free.cone, process) {
         (Some(c), None) => vec![c; points],
         (None, Some(p)) => p.to_vec(),
-        (None, None) => return Err(refuse(JobOption::ConeDeg, "missing: a path file has no process file to allow a lean; give the cone's half angle (--free lead-tilt=-CONE..CONE, free=[\"lead-tilt=-CONE..CONE\"])".into())),
-        (Some(_), Some(_)) => return Err(refuse(JobOption::ConeDeg, "a program's cone is its process file's ([tool_axis] cone_deg of a milling operation), not an option".into())),
+        (None, None) => return Err(refuse(JobOption::LeadTiltRange, "missing: a path file has no process file to allow a lean; give the cone's half angle (--free lead-tilt=-CONE..CONE, free=[\"lead-tilt=-CONE..CONE\"])".into())),
+        (Some(_), Some(_)) => return Err(refuse(JobOption::LeadTiltRange, "a program's cone is its process file's ([tool_axis] cone_deg of a milling operation), not an option".into())),
     };
     let largest = cones.iter().copied().fold(0.0, f64::max);
     if largest == 0.0 {
         return Err(refuse(
-            JobOption::ConeDeg,
+            JobOption::LeadTiltRange,
             "the process file allows no lean: no milling operation gives [tool_axis] cone_deg"
                 .into(),
         ));
     }
     if free.step > largest * (1.0 + 1e-12) {
         return Err(refuse(
-            JobOption::LeadTiltStepDeg,
+            JobOption::LeadTiltStep,
             format!(
                 "{}: expected at most the largest cone, {} deg",
                 number(free.step.to_degrees()),
@@ -49,7 +49,7 @@ pub(crate) fn cones(free: &LeadTilt, points: usize, process: Option<&[f64]>) -> 
 /// rotation's own check ([`super::FreeRange::check_rotation_grid`]).
 ///
 /// # Errors
-/// [`Error::InvalidOption`] ([`JobOption::LeadTiltStepDeg`]) with the grid's size and what to
+/// [`Error::InvalidOption`] ([`JobOption::LeadTiltStep`]) with the grid's size and what to
 /// change; those of [`super::FreeRange::check_rotation_grid`].
 pub(super) fn check_cells(options: &Options, points: usize, largest: f64) -> Result<()> {
     let Some(l) = &options.free.lead_tilt else {
@@ -62,7 +62,7 @@ pub(super) fn check_cells(options: &Options, points: usize, largest: f64) -> Res
         return Ok(());
     }
     Err(Error::InvalidOption {
-        option: JobOption::LeadTiltStepDeg,
+        option: JobOption::LeadTiltStep,
         message: format!(
             "{} deg within a cone of {} deg makes {per} leans x {angles} rotations x {points} path points = {cells:.3e} cells; at most {:.0e} (a larger step, a smaller cone, a coarser rotation grid or a shorter path)",
             number(l.step.to_degrees()),
@@ -78,7 +78,7 @@ pub(super) fn check_cells(options: &Options, points: usize, largest: f64) -> Res
 /// points.
 ///
 /// # Errors
-/// [`Error::InvalidOption`] ([`JobOption::LeadTiltStepDeg`], or [`JobOption::MaxStepDeg`]
+/// [`Error::InvalidOption`] ([`JobOption::LeadTiltStep`], or [`JobOption::ToolRotationStep`]
 /// without a free lean) with the states per point and what to change.
 pub(super) fn check_streaming(options: &Options, read: usize, largest: f64) -> Result<()> {
     if check_cells(options, read, largest).is_ok() {
@@ -87,7 +87,7 @@ pub(super) fn check_streaming(options: &Options, read: usize, largest: f64) -> R
     let angles = options.free.tool_rotation.map_or(1.0, |f| f.angle_count());
     let (option, grid, per, change) = match (&options.free.lead_tilt, &options.free.tool_rotation) {
         (Some(l), _) => (
-            JobOption::LeadTiltStepDeg,
+            JobOption::LeadTiltStep,
             format!(
                 "{} deg within a cone of {} deg makes {} leans x {angles} rotations",
                 number(l.step.to_degrees()),
@@ -98,7 +98,7 @@ pub(super) fn check_streaming(options: &Options, read: usize, largest: f64) -> R
             "a larger step, a smaller cone, a coarser rotation grid or a shorter path",
         ),
         (None, Some(f)) => (
-            JobOption::MaxStepDeg,
+            JobOption::ToolRotationStep,
             format!(
                 "{} deg with a range of +-{} deg makes {angles} rotations",
                 number(f.step.to_degrees()),

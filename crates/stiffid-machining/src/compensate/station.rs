@@ -31,7 +31,7 @@ use stiffid_core::{Error, Result};
 ///
 /// # Errors
 /// Those of [`super::path`]; those of [`on_carriage`] for a point's external values;
-/// [`Error::InvalidOption`] ([`JobOption::FreeStationMm`]) for a robot without a carrier axis
+/// [`Error::InvalidOption`] ([`JobOption::StationRange`]) for a robot without a carrier axis
 /// and for a grid of more than [`MAX_GRID_CELLS`] cells (stations x rotations x
 /// points).
 pub fn path_on_track(
@@ -65,8 +65,8 @@ pub fn path_on_track(
 /// a free station or positioner, the points at their own values.
 ///
 /// # Errors
-/// Those of [`path_on_track`]; [`Error::InvalidOption`] ([`JobOption::FreePositionerDeg`]) for
-/// a cell without a positioner axis, ([`JobOption::FreeTiltDeg`]) without a two-axis
+/// Those of [`path_on_track`]; [`Error::InvalidOption`] ([`JobOption::PositionerRange`]) for
+/// a cell without a positioner axis, ([`JobOption::TiltRange`]) without a two-axis
 /// positioner.
 pub(crate) fn on_track(
     arm: &Arm,
@@ -300,7 +300,7 @@ pub(super) fn free_axes<'a>(
     if let Some(s) = &options.free.station {
         if carriers == 0 {
             return Err(Error::InvalidOption {
-                option: JobOption::FreeStationMm,
+                option: JobOption::StationRange,
                 message: "the robot has no carrier axis (a track): a free station moves the carrier's first axis, which the robot file's [[external_axis]] with role = \"carrier\" gives".into(),
             });
         }
@@ -314,7 +314,7 @@ pub(super) fn free_axes<'a>(
     if let Some(p) = &options.free.tilt {
         if positioners < 2 {
             return Err(Error::InvalidOption {
-                option: JobOption::FreeTiltDeg,
+                option: JobOption::TiltRange,
                 message: format!("the robot's positioner has {positioners} axis(es): a free tilt turns a two-axis positioner's first axis (the table's turn, its last, is --free positioner), which the robot file's [[external_axis]] with role = \"positioner\" give"),
             });
         }
@@ -328,7 +328,7 @@ pub(super) fn free_axes<'a>(
     if let Some(p) = &options.free.positioner {
         if positioners == 0 {
             return Err(Error::InvalidOption {
-                option: JobOption::FreePositionerDeg,
+                option: JobOption::PositionerRange,
                 message: "the robot has no positioner axis: a free positioner turns the positioner's last axis, which the robot file's [[external_axis]] with role = \"positioner\" gives".into(),
             });
         }
@@ -342,7 +342,7 @@ pub(super) fn free_axes<'a>(
     match cell {
         Some(cell) if !out.is_empty() => Ok((cell, out)),
         _ => Err(Error::InvalidOption {
-            option: JobOption::FreeStationMm,
+            option: JobOption::StationRange,
             message: "no free external axis given".into(),
         }),
     }
@@ -376,13 +376,13 @@ pub(super) fn check_grid(options: &Options, states: f64, points: usize) -> Resul
     };
     let (option, what) = match (&options.free.station, &options.free.positioner) {
         (Some(s), _) => (
-            JobOption::FreeStationMm,
+            JobOption::StationRange,
             format!("+-{} mm in steps of {} mm", s.range * 1e3, s.step * 1e3),
         ),
-        (None, Some(p)) => (JobOption::FreePositionerDeg, degrees(p)),
+        (None, Some(p)) => (JobOption::PositionerRange, degrees(p)),
         (None, None) => match &options.free.tilt {
-            Some(p) => (JobOption::FreeTiltDeg, degrees(p)),
-            None => (JobOption::FreeStationMm, String::new()),
+            Some(p) => (JobOption::TiltRange, degrees(p)),
+            None => (JobOption::StationRange, String::new()),
         },
     };
     Err(Error::InvalidOption {

@@ -24,7 +24,7 @@ use stiffid_core::{Error, Result};
 /// # Errors
 /// [`Error::InvalidField`] for `options` outside their limits ([`Options::validate`]) or a free
 /// tool axis grid beyond [`super::MAX_GRID_CELLS`] ([`super::FreeRange::check_rotation_grid`]);
-/// [`Error::InvalidOption`] ([`JobOption::FreeToolAxisObjective`]) for the surge objective, which
+/// [`Error::InvalidOption`] ([`JobOption::Minimise`]) for the surge objective, which
 /// needs a drilling program ([`path_with_exits`]);
 /// [`Error::Column`] naming the line of the first point (in path order) that fails: axis angles
 /// outside the joint limits ([`ColumnProblem::Outside`], `q1_deg..q6_deg`), a pose inverse
@@ -46,7 +46,7 @@ pub fn path(
 /// a path without any), which the free tool axis' [`Objective::Surge`] minimises.
 ///
 /// # Errors
-/// Those of [`path`]; [`Error::InvalidOption`] ([`JobOption::FreeToolAxisObjective`]) for the
+/// Those of [`path`]; [`Error::InvalidOption`] ([`JobOption::Minimise`]) for the
 /// surge objective with a robot that gives no masses (or placeholders) or a path without a
 /// drilling exit.
 ///
@@ -84,7 +84,7 @@ pub(crate) fn path_in_cones(
     assert!(thrusts.is_empty() || thrusts.len() == points.len());
     if options.free.frees_external() {
         return Err(Error::InvalidOption {
-            option: JobOption::FreeStationMm,
+            option: JobOption::StationRange,
             message: "a free station, positioner or tilt is chosen for points with their external values (compensate::path_on_track for a path file's, machining::compensate for a program's); these points have none".into(),
         });
     }
@@ -162,7 +162,7 @@ fn cost<'a>(
         Objective::Surge => {}
     }
     let refuse = |message: String| Error::InvalidOption {
-        option: JobOption::FreeToolAxisObjective,
+        option: JobOption::Minimise,
         message: format!("surge: {message}"),
     };
     let masses = match stiffid_core::observation::dynamics::mass_model(arm) {

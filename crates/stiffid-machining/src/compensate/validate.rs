@@ -43,7 +43,7 @@ impl Options {
         }
         if !(0.0..=1.0).contains(&self.force_tolerance) {
             return Err(Error::InvalidOption {
-                option: JobOption::ForceTolerancePercent,
+                option: JobOption::ForceTolerancePct,
                 message: format!(
                     "{}: expected 0 to 100 percent",
                     number(self.force_tolerance * 100.0)
@@ -68,7 +68,7 @@ impl Options {
     fn validate_configuration(&self) -> Result<()> {
         if self.free.configuration == Some(super::Scope::Run) && self.map {
             return Err(Error::OptionCombination {
-                option: JobOption::ConfigurationPer,
+                option: JobOption::ConfigurationScope,
                 with: vec![JobOption::Map],
                 needs: false,
                 reason: "run: a map is drawn over the whole program in one configuration".into(),

@@ -201,11 +201,11 @@ impl Variable {
     /// The options that name this variable's range and step in an error.
     fn options(&self) -> [JobOption; 2] {
         match self {
-            Variable::ToolRotation => [JobOption::ToolAxisRangeDeg, JobOption::MaxStepDeg],
-            Variable::LeadTilt => [JobOption::ConeDeg, JobOption::LeadTiltStepDeg],
-            Variable::Station => [JobOption::FreeStationMm, JobOption::StationStepMm],
-            Variable::Tilt => [JobOption::FreeTiltDeg, JobOption::TiltStepDeg],
-            _ => [JobOption::FreePositionerDeg, JobOption::PositionerStepDeg],
+            Variable::ToolRotation => [JobOption::ToolRotationRange, JobOption::ToolRotationStep],
+            Variable::LeadTilt => [JobOption::LeadTiltRange, JobOption::LeadTiltStep],
+            Variable::Station => [JobOption::StationRange, JobOption::StationStep],
+            Variable::Tilt => [JobOption::TiltRange, JobOption::TiltStep],
+            _ => [JobOption::PositionerRange, JobOption::PositionerStep],
         }
     }
 
@@ -280,7 +280,7 @@ impl FreeRange {
     /// [`MAX_GRID_CELLS`].
     ///
     /// # Errors
-    /// [`Error::InvalidOption`] ([`JobOption::MaxStepDeg`]) with the grid's size and what to
+    /// [`Error::InvalidOption`] ([`JobOption::ToolRotationStep`]) with the grid's size and what to
     /// change.
     pub(super) fn check_rotation_grid(&self, points: usize) -> Result<()> {
         let angles = self.angle_count();
@@ -289,7 +289,7 @@ impl FreeRange {
             return Ok(());
         }
         Err(Error::InvalidOption {
-            option: JobOption::MaxStepDeg,
+            option: JobOption::ToolRotationStep,
             message: format!(
                 "{} deg with a range of +-{} deg makes a grid of {angles:.3e} angles x {points} path points = {cells:.3e} cells; at most {MAX_GRID_CELLS:.0e} (a larger step, a smaller range or a shorter path)",
                 number(self.step.to_degrees()),
@@ -304,20 +304,20 @@ impl LeadTilt {
     /// the units of the command line (deg), checked against [`Variable::limits`].
     ///
     /// # Errors
-    /// [`Error::InvalidOption`] ([`JobOption::ConeDeg`], [`JobOption::LeadTiltStepDeg`]) with
+    /// [`Error::InvalidOption`] ([`JobOption::LeadTiltRange`], [`JobOption::LeadTiltStep`]) with
     /// the value given.
     pub fn checked(cone_deg: Option<f64>, step_deg: f64) -> Result<Self> {
         let variable = Variable::LeadTilt;
         let l = variable.limits();
         if let Some(c) = cone_deg {
-            check_range(l, c, JobOption::ConeDeg)?;
+            check_range(l, c, JobOption::LeadTiltRange)?;
         }
         check_step(
             l,
             step_deg,
             cone_deg,
             variable.scale(),
-            JobOption::LeadTiltStepDeg,
+            JobOption::LeadTiltStep,
         )?;
         Ok(LeadTilt {
             cone: cone_deg.map(f64::to_radians),
@@ -410,7 +410,7 @@ impl FreeVariables {
     ///
     /// # Errors
     /// Those of [`FreeRange::checked`] and [`LeadTilt::checked`]; [`Error::InvalidOption`]
-    /// ([`JobOption::FreeToolAxisObjective`]) for the surge with another free variable.
+    /// ([`JobOption::Minimise`]) for the surge with another free variable.
     pub fn validate(&self) -> Result<()> {
         let ranges = [
             (Variable::ToolRotation, self.tool_rotation),
@@ -430,7 +430,7 @@ impl FreeVariables {
         let others = self.frees_external() || self.lead_tilt.is_some();
         if self.minimise == Objective::Surge && (others || self.configuration.is_some()) {
             return Err(Error::InvalidOption {
-                option: JobOption::FreeToolAxisObjective,
+                option: JobOption::Minimise,
                 message: "surge: the surge is a drilling exit's, chosen by the tool rotation alone; the station, the positioner axes, the lead and tilt and the configuration minimise the deflection or the bound".into(),
             });
         }

@@ -348,7 +348,7 @@ fn the_surge_objective_needs_masses_and_a_drilling_exit() {
     let refused =
         |r: stiffid::Result<(stiffid::app::compensate::Report, Rows)>, words: &str| match r {
             Err(stiffid::Error::InvalidOption { option, message }) => {
-                assert_eq!(option, stiffid::JobOption::FreeToolAxisObjective);
+                assert_eq!(option, stiffid::JobOption::Minimise);
                 assert!(message.contains(words), "{message}");
             }
             other => panic!("{:?}", other.map(|_| ())),

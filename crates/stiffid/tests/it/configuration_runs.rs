@@ -284,7 +284,7 @@ fn a_gcode_program_runs_between_rapid_moves_and_its_gcode_is_refused_naming_the_
     }
     match drill(&s, &far, Language::GCode).unwrap_err() {
         Error::InvalidOption { option, message } => {
-            assert_eq!(option, JobOption::ConfigurationPer);
+            assert_eq!(option, JobOption::ConfigurationScope);
             assert!(message.contains("run 2 (lines 8 to 11)"), "{message}");
         }
         e => panic!("{e}"),
@@ -303,7 +303,7 @@ fn one_configuration_per_run_is_refused_with_a_map() {
     };
     match o.validate().unwrap_err() {
         Error::OptionCombination { option, with, .. } => {
-            assert_eq!(option, JobOption::ConfigurationPer);
+            assert_eq!(option, JobOption::ConfigurationScope);
             assert_eq!(with, vec![JobOption::Map]);
         }
         e => panic!("{e}"),

@@ -249,7 +249,7 @@ fn the_free_configuration_refuses_the_surge_and_too_long_paths_naming_itself() {
     o.free.configuration = Some(Scope::Program);
     match o.validate().unwrap_err() {
         Error::InvalidOption { option, message } => {
-            assert_eq!(option, JobOption::FreeToolAxisObjective);
+            assert_eq!(option, JobOption::Minimise);
             assert!(message.contains("configuration"), "{message}");
         }
         e => panic!("{e}"),
@@ -260,7 +260,7 @@ fn the_free_configuration_refuses_the_surge_and_too_long_paths_naming_itself() {
     let long = vec![one[0].clone(); compensate::MAX_CONFIGURATION_POINTS + 1];
     match path_configurations(s.arm(), &compliance, &long, &o).unwrap_err() {
         Error::InvalidOption { option, message } => {
-            assert_eq!(option, JobOption::FreeConfiguration);
+            assert_eq!(option, JobOption::Configuration);
             assert!(message.contains("100000"), "{message}");
         }
         e => panic!("{e}"),

@@ -212,7 +212,7 @@ fn a_free_positioner_without_a_positioner_is_refused() {
         matches!(
             error,
             stiffid::Error::InvalidOption {
-                option: stiffid::JobOption::FreePositionerDeg,
+                option: stiffid::JobOption::PositionerRange,
                 ..
             }
         ),

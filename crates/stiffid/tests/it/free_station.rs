@@ -230,7 +230,7 @@ fn a_free_station_without_a_track_is_refused() {
         matches!(
             error,
             stiffid::Error::InvalidOption {
-                option: stiffid::JobOption::FreeStationMm,
+                option: stiffid::JobOption::StationRange,
                 ..
             }
         ),

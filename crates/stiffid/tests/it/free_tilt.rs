@@ -221,7 +221,7 @@ fn a_free_tilt_on_a_one_axis_positioner_is_refused() {
         matches!(
             error,
             stiffid::Error::InvalidOption {
-                option: stiffid::JobOption::FreeTiltDeg,
+                option: stiffid::JobOption::TiltRange,
                 ..
             }
         ),

@@ -210,16 +210,12 @@ fn bad_cones_and_steps_are_refused_naming_the_option() {
         other => panic!("{cone:?} {step}: {other:?}"),
     };
     for cone in [f64::NAN, -1.0, 0.0, 30.5, f64::INFINITY] {
-        assert_eq!(refused(Some(cone), 0.5), JobOption::ConeDeg, "{cone}");
+        assert_eq!(refused(Some(cone), 0.5), JobOption::LeadTiltRange, "{cone}");
     }
     for step in [f64::NAN, -1.0, 0.0, 0.05, 10.5] {
-        assert_eq!(
-            refused(Some(10.0), step),
-            JobOption::LeadTiltStepDeg,
-            "{step}"
-        );
+        assert_eq!(refused(Some(10.0), step), JobOption::LeadTiltStep, "{step}");
     }
-    assert_eq!(refused(None, 31.0), JobOption::LeadTiltStepDeg);
+    assert_eq!(refused(None, 31.0), JobOption::LeadTiltStep);
     let surge = FreeVariables {
         tool_rotation: Some(crate::compensate::rotation(10.0, 5.0)),
         lead_tilt: LeadTilt::checked(Some(10.0), 2.0).ok(),
@@ -230,7 +226,7 @@ fn bad_cones_and_steps_are_refused_naming_the_option() {
     assert!(matches!(
         e,
         Err(Error::InvalidOption {
-            option: JobOption::FreeToolAxisObjective,
+            option: JobOption::Minimise,
             ..
         })
     ));
@@ -241,7 +237,7 @@ fn bad_cones_and_steps_are_refused_naming_the_option() {
     o.free.lead_tilt.as_mut().unwrap().cone = None;
     let e = compensate::path(s.arm(), &compliance, &line(3), &o).unwrap_err();
     assert!(
-        matches!(&e, Error::InvalidOption { option: JobOption::ConeDeg, message } if message.contains("--free lead-tilt=-CONE..CONE")),
+        matches!(&e, Error::InvalidOption { option: JobOption::LeadTiltRange, message } if message.contains("--free lead-tilt=-CONE..CONE")),
         "{e}"
     );
     o.free.lead_tilt.as_mut().unwrap().cone = Some(1.0);
@@ -250,7 +246,7 @@ fn bad_cones_and_steps_are_refused_naming_the_option() {
         matches!(
             e,
             Error::InvalidOption {
-                option: JobOption::ConeDeg,
+                option: JobOption::LeadTiltRange,
                 ..
             }
         ),
@@ -260,7 +256,7 @@ fn bad_cones_and_steps_are_refused_naming_the_option() {
     let o = options(&s, 30.0, 0.1, Aggregate::Sum);
     let e = compensate::path(s.arm(), &compliance, &line(2000), &o).unwrap_err();
     assert!(
-        matches!(&e, Error::InvalidOption { option: JobOption::LeadTiltStepDeg, message } if message.contains("cells")),
+        matches!(&e, Error::InvalidOption { option: JobOption::LeadTiltStep, message } if message.contains("cells")),
         "{e}"
     );
 }
@@ -280,7 +276,7 @@ fn a_streamed_grid_too_large_names_its_states_per_point() {
     };
     // 0.1 deg steps in a 30 deg cone: 601 x 601 = 361201 leans, floor(5e6 / 361201) = 13 points.
     let (option, message) = refused(&options(&s, 30.0, 0.1, Aggregate::Sum));
-    assert_eq!(option, JobOption::LeadTiltStepDeg);
+    assert_eq!(option, JobOption::LeadTiltStep);
     for part in [
         "0.1 deg within a cone of 30 deg makes 361201 leans x 1 rotations = 361201 states per path point",
         "at most 5e6 cells: at most 13 path points",
@@ -308,7 +304,7 @@ fn a_streamed_grid_too_large_names_its_states_per_point() {
     let Err(Error::InvalidOption { option, message }) = e else {
         panic!("{e:?}");
     };
-    assert_eq!(option, JobOption::MaxStepDeg);
+    assert_eq!(option, JobOption::ToolRotationStep);
     assert!(
         message.contains("3601 rotations = 3601 states per path point"),
         "{message}"
@@ -370,7 +366,7 @@ fn a_program_leans_within_its_operations_cone() {
         matches!(
             e,
             Error::InvalidOption {
-                option: JobOption::ConeDeg,
+                option: JobOption::LeadTiltRange,
                 ..
             }
         ),

@@ -202,7 +202,7 @@ fn ik_and_compensate_options_out_of_range_are_refused() {
     });
     match options.validate() {
         Err(Error::InvalidOption { option, message }) => {
-            assert_eq!(option, stiffid::JobOption::MaxStepDeg);
+            assert_eq!(option, stiffid::JobOption::ToolRotationStep);
             assert!(message.starts_with("0: expected a number > 0"), "{message}");
         }
         other => panic!("expected an option error, got {other:?}"),
@@ -212,7 +212,7 @@ fn ik_and_compensate_options_out_of_range_are_refused() {
     budget.force_tolerance = 1.5;
     let e = budget.validate().unwrap_err();
     assert!(
-        matches!(&e, stiffid::Error::InvalidOption { option: stiffid::JobOption::ForceTolerancePercent, message } if message == "150: expected 0 to 100 percent"),
+        matches!(&e, stiffid::Error::InvalidOption { option: stiffid::JobOption::ForceTolerancePct, message } if message == "150: expected 0 to 100 percent"),
         "{e}"
     );
     let mut budget = compensate::Options::for_setup(&setup);
@@ -225,7 +225,7 @@ fn ik_and_compensate_options_out_of_range_are_refused() {
     // 5e-324 deg is 0 rad: refused by the degrees' own check, naming the option.
     match FreeRange::checked(&Variable::ToolRotation, 90.0, 5e-324) {
         Err(Error::InvalidOption { option, message }) => {
-            assert_eq!(option, stiffid::JobOption::MaxStepDeg);
+            assert_eq!(option, stiffid::JobOption::ToolRotationStep);
             assert!(message.contains("5e-324"), "{message}");
         }
         other => panic!("expected an option error, got {other:?}"),
@@ -233,7 +233,7 @@ fn ik_and_compensate_options_out_of_range_are_refused() {
     assert!(matches!(
         FreeRange::checked(&Variable::ToolRotation, 181.0, 10.0),
         Err(Error::InvalidOption {
-            option: stiffid::JobOption::ToolAxisRangeDeg,
+            option: stiffid::JobOption::ToolRotationRange,
             ..
         })
     ));

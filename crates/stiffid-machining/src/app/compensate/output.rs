@@ -77,11 +77,11 @@ pub(super) fn check_settings(
 /// only, so the leaned postures would be lost.
 ///
 /// # Errors
-/// [`Error::InvalidOption`] ([`JobOption::FreeLeadTilt`]).
+/// [`Error::InvalidOption`] ([`JobOption::LeadTilt`]).
 pub(super) fn check_lean(options: &Options, output: Language) -> Result<()> {
     match (options.free.lead_tilt, output) {
         (Some(_), Language::GCode) => Err(Error::InvalidOption {
-            option: stiffid_core::JobOption::FreeLeadTilt,
+            option: stiffid_core::JobOption::LeadTilt,
             message: "a program written as G-code carries the tool's positions only (a 3-axis program has no words for its axis), so the leaned postures would be lost: write it as a robot program (--out X.ls, .src or .mod; Python output=), whose targets carry them".into(),
         }),
         _ => Ok(()),
@@ -93,11 +93,11 @@ pub(super) fn check_lean(options: &Options, output: Language) -> Result<()> {
 /// program's own posture).
 ///
 /// # Errors
-/// [`Error::InvalidOption`] ([`JobOption::ToolAxisRangeDeg`]).
+/// [`Error::InvalidOption`] ([`JobOption::ToolRotationRange`]).
 pub(super) fn check_tool_axis(options: &Options, output: Language) -> Result<()> {
     match (&options.free.tool_rotation, output) {
         (Some(_), Language::GCode) => Err(Error::InvalidOption {
-            option: stiffid_core::JobOption::ToolAxisRangeDeg,
+            option: stiffid_core::JobOption::ToolRotationRange,
             message: "a program written as G-code carries the tool's positions only (a 3-axis program has no word for the rotation about the tool's axis), so the rotation chosen would be lost: write it as a robot program (--out X.ls, .src or .mod; Python output=), whose targets carry it".into(),
         }),
         _ => Ok(()),
@@ -109,7 +109,7 @@ pub(super) fn check_tool_axis(options: &Options, output: Language) -> Result<()>
 /// controller would hold the first run's configuration throughout.
 ///
 /// # Errors
-/// [`Error::InvalidOption`] ([`JobOption::ConfigurationPer`]) naming the first run whose
+/// [`Error::InvalidOption`] ([`JobOption::ConfigurationScope`]) naming the first run whose
 /// configuration is not the first run's, its lines and both configurations.
 pub(super) fn check_runs(configurations: Option<&Configurations>, output: Language) -> Result<()> {
     let runs = configurations.map_or(&[][..], |c| c.runs.as_slice());
@@ -121,7 +121,7 @@ pub(super) fn check_runs(configurations: Option<&Configurations>, output: Langua
         return Ok(());
     };
     Err(Error::InvalidOption {
-        option: stiffid_core::JobOption::ConfigurationPer,
+        option: stiffid_core::JobOption::ConfigurationScope,
         message: format!(
             "run: run {} (lines {} to {}) is compensated in {}, run 1 in {}; a G-code program cannot name a configuration, so the controller would keep one throughout: write a robot program (--out X.src, .mod or .ls; Python output=), whose joint moves carry each run's configuration, or keep one configuration per program",
             k + 1,
