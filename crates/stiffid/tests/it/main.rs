@@ -33,6 +33,7 @@ mod extrapolation;
 mod fanuc_data;
 mod fanuc_prediction;
 mod feasible_states;
+mod figures;
 mod formats_proptest;
 mod forward_model;
 mod free_configuration;
