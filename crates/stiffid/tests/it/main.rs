@@ -54,6 +54,7 @@ mod load_steps;
 mod load_steps_design;
 mod lsq;
 mod map_chosen;
+mod metrology;
 mod model_fits;
 mod model_form;
 mod model_ladder;
