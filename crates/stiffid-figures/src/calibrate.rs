@@ -227,18 +227,3 @@ fn parameters(doc: &Value) -> Vec<Figure> {
         })
         .collect()
 }
-
-#[cfg(test)]
-mod tests {
-    use super::{density, histogram};
-
-    #[test]
-    fn a_histogram_is_a_density() {
-        let v: Vec<f64> = (0..100).map(|k| (k as f64 * 0.37).sin()).collect();
-        let area: f64 = histogram(&v).iter().map(|(a, b, d)| (b - a) * d).sum();
-        assert!((area - 1.0).abs() < 1e-12, "{area}");
-        let d = density(2.0, 8.0);
-        let peak = d[60].1;
-        assert!((peak - 1.0 / (2.0 * (2.0 * std::f64::consts::PI).sqrt())).abs() < 1e-15);
-    }
-}

@@ -137,16 +137,3 @@ pub fn short(v: f64) -> String {
         false => s,
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::short;
-
-    #[test]
-    fn labels_keep_three_significant_digits() {
-        assert_eq!(short(0.012345), "0.0123");
-        assert_eq!(short(1234.6), "1235");
-        assert_eq!(short(2.5), "2.5");
-        assert_eq!(short(0.0), "0");
-    }
-}

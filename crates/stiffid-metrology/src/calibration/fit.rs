@@ -126,8 +126,12 @@ pub fn fit(
     fit_within(model, observations, start, options, MAX_ITERATIONS)
 }
 
-/// [`fit`] with at most `limit` iterations.
-pub(super) fn fit_within(
+/// [`fit`] with at most `limit` iterations (a fit cut there stops with
+/// [`Stop::IterationLimit`], which [`stop_warning`] reports).
+///
+/// # Errors
+/// Those of [`fit`].
+pub fn fit_within(
     model: &ErrorModel,
     observations: &[Observation],
     start: &Estimate,

@@ -65,18 +65,3 @@ pub fn model(
         g,
     )
 }
-
-#[cfg(test)]
-mod backlash_tests;
-#[cfg(test)]
-mod external_tests;
-#[cfg(test)]
-mod heavy_tests;
-#[cfg(test)]
-mod intervals_tests;
-#[cfg(test)]
-mod loaded_tests;
-#[cfg(test)]
-mod maps_tests;
-#[cfg(test)]
-mod tests;

@@ -1,7 +1,8 @@
 //! The library's layout by concern (docs/ARCHITECTURE.md): crates that stand on each other
 //! without a circle, no import circle between the files of a crate (a folder's `mod.rs` and
 //! `lib.rs` included), no job folder of an `app/` importing another, no library file over 700
-//! lines, and each crate's public surface the one docs/ARCHITECTURE.md lists.
+//! lines, each crate's public surface the one docs/ARCHITECTURE.md lists, and no unit test in a
+//! crate whose tests are off (`[lib] test = false`: compiled once, its tests in tests/it).
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -607,4 +608,61 @@ fn the_public_surface_is_the_one_architecture_lists() {
         listed_surface(doc, "stiffid_core"),
         ["d"].map(String::from).into()
     );
+}
+
+/// Whether Rust source `text` declares a test: `#[test]` or a `proptest!` block.
+fn declares_a_test(text: &str) -> bool {
+    text.contains("#[test]") || text.contains("proptest!")
+}
+
+/// Every `.rs` file under `dir`, test modules included.
+fn every_source(dir: &Path, out: &mut Vec<PathBuf>) {
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            every_source(&path, out);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            out.push(path);
+        }
+    }
+}
+
+/// A crate whose unit tests are off (`[lib] test = false`, so `cargo test` compiles it once)
+/// has no test under `src/`: one added there would never run. Its tests live in tests/it.
+#[test]
+fn a_crate_without_unit_tests_declares_none() {
+    let crates = crate_dir("stiffid").join("..");
+    let mut off = Vec::new();
+    for entry in std::fs::read_dir(&crates).unwrap() {
+        let dir = entry.unwrap().path();
+        let Ok(manifest) = std::fs::read_to_string(dir.join("Cargo.toml")) else {
+            continue;
+        };
+        let manifest: toml::Table = toml::from_str(&manifest).unwrap();
+        let lib = manifest.get("lib").and_then(toml::Value::as_table);
+        if lib
+            .and_then(|l| l.get("test"))
+            .and_then(toml::Value::as_bool)
+            != Some(false)
+        {
+            continue;
+        }
+        let mut files = Vec::new();
+        every_source(&dir.join("src"), &mut files);
+        for file in files {
+            let text = std::fs::read_to_string(&file).unwrap();
+            assert!(
+                !declares_a_test(&text),
+                "{}: a test in a crate with `[lib] test = false` never runs; move it to crates/stiffid/tests/it",
+                file.display()
+            );
+        }
+        off.push(dir.file_name().unwrap().to_string_lossy().into_owned());
+    }
+    assert!(off.contains(&"stiffid-view".to_string()), "{off:?}");
+    assert!(declares_a_test(
+        "#[cfg(test)]\nmod t {\n    #[test]\n    fn a() {}\n}"
+    ));
+    assert!(declares_a_test("proptest! {\n    fn b(x in 0..3) {}\n}"));
+    assert!(!declares_a_test("#[cfg(test)]\nmod t {}\n"));
 }

@@ -321,7 +321,7 @@ fn better(current: &Scored, candidate: &Scored) -> bool {
 /// current ones by more than `accept` standard errors of the paired per-posture differences
 /// and by [`LEAST_GAIN`] of the total: the acceptance rule of every choice by cross-validation
 /// in the calibration (the maps at [`MAP_ACCEPT`], the error motions' orders at [`ACCEPT`]).
-pub(super) fn lowers(current: (&[f64], f64), candidate: (&[f64], f64), accept: f64) -> bool {
+pub fn lowers(current: (&[f64], f64), candidate: (&[f64], f64), accept: f64) -> bool {
     let n = current.0.len();
     if n < 2 {
         return false;

@@ -1,3 +1,8 @@
+//! The error model and its fit: the identification Jacobian against central differences,
+//! noise-free recovery of the geometry (DH, URDF) and of the gravity terms, calibrated robot files
+//! that reproduce the positions, standard deviations against Monte Carlo, the fit's stop reason;
+//! and the simulated campaigns (postures, points, tracker, readings) the other modules share.
+
 use super::error_model::{MeasuredIn, Observation};
 use super::fit::{self, Options};
 use super::gravity::{self, LinkMass};
@@ -289,7 +294,7 @@ fn fanuc_geometry_recovered_and_merged_named() {
 
 #[test]
 fn urdf_geometry_recovered() {
-    let text = include_str!("../../../stiffid/tests/data/comau-nj165.urdf");
+    let text = include_str!("../../../data/comau-nj165.urdf");
     let robot = urdf::parse(text, "comau-nj165.urdf", None).unwrap();
     let model = ErrorModel::new(
         &robot,
@@ -364,7 +369,7 @@ fn gravity_lumped_bodies_recovered() {
 #[test]
 fn calibrated_robot_files_reproduce_positions() {
     let urdf_robot = urdf::parse(
-        include_str!("../../../stiffid/tests/data/comau-nj165.urdf"),
+        include_str!("../../../data/comau-nj165.urdf"),
         "comau-nj165.urdf",
         None,
     )
