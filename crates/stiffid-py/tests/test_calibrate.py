@@ -107,6 +107,8 @@ def test_every_option_equals_the_command(paper, cli, campaign, kwargs, flags):
     _, _, fit, held = campaign
     if kwargs.get("reregister") or kwargs.get("level"):
         kwargs, flags = dict(kwargs, validate=held), [*flags, "--validate", held]
+    if "gravity" not in kwargs:
+        kwargs, flags = dict(kwargs, gravity="none"), [*flags, "--gravity", "none"]
     with pytest.warns(UserWarning) if kwargs.get("geometry") == "offsets" else _nothing():
         mine = stiffid.calibrate(paper, fit, **kwargs)
     assert mine == cli("calibrate", "--setup", SETUP, "--data", fit, *flags, "--json")
@@ -119,7 +121,7 @@ def test_every_option_equals_the_command(paper, cli, campaign, kwargs, flags):
 
 def test_a_setup_with_the_calibrated_robot_serves_every_function(paper, cli, campaign):
     d, true, fit, _ = campaign
-    stiffid.calibrate(paper, fit, out=d / "calibrated.toml")
+    stiffid.calibrate(paper, fit, gravity="none", out=d / "calibrated.toml")
     text = cli("setups", "show", SETUP, parse=False)
     assert 'robot = "comau-smart5-nj165-3.0"' in text
     setup_file = d / "calibrated-setup.toml"
@@ -202,7 +204,7 @@ def test_the_scene_of_a_calibration_document_is_the_reports(paper, cli, campaign
     """stiffid.scene of the calibrate document: each fitted posture at its axis angles with its
     errors before and after, the same glTF binary as `calibrate --report`'s errors.glb."""
     d, _, fit, _ = campaign
-    doc = stiffid.calibrate(paper, fit)
+    doc = stiffid.calibrate(paper, fit, gravity="none")
     scene = stiffid.scene(paper, document=doc)
     drawn = scene.document()
     assert {p["label"] for p in doc["postures"]} == {e["posture"] for e in doc["errors"] if e["set"] == "fitted"}
@@ -214,7 +216,7 @@ def test_the_scene_of_a_calibration_document_is_the_reports(paper, cli, campaign
     arrow = drawn["postures"][0]["arrows"][0]
     np.testing.assert_allclose(np.array(arrow["measured_m"]) * 1e3, first["before_mm"], rtol=1e-12)
     np.testing.assert_allclose(np.array(arrow["predicted_m"]) * 1e3, first["after_mm"], rtol=1e-12)
-    cli("calibrate", "--setup", SETUP, "--data", fit, "--report", d / "report", parse=False)
+    cli("calibrate", "--setup", SETUP, "--data", fit, "--gravity", "none", "--report", d / "report", parse=False)
     assert scene.glb() == (d / "report" / "errors.glb").read_bytes()
     assert scene._repr_html_().startswith("<iframe srcdoc=")
     with pytest.raises(stiffid.InputError, match="postures_deg"):

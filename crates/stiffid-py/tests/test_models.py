@@ -63,14 +63,14 @@ def test_compare_models_candidates_and_refusals(fanuc):
 
 def test_compare_models_bootstrap_is_the_commands_document(fanuc, cli):
     """The bootstrap from both front ends: the same document, bootstrap section included."""
-    ours = stiffid.identify(fanuc, FANUC_DATA, compare_models=True, bootstrap=20, seed=5)
+    ours = stiffid.identify(fanuc, FANUC_DATA, compare_models=True, bootstrap=8, seed=5)
     theirs = cli("identify", "--setup", "fanuc-r2000ic-165f", "--data", FANUC_DATA,
-                 "--compare-models", "--bootstrap", "20", "--seed", "5", "--json")
+                 "--compare-models", "--bootstrap", "8", "--seed", "5", "--json")
     assert {k: v for k, v in ours.items() if k not in ("table", "fragment")} == theirs
     b = theirs["bootstrap"]
-    assert (b["resamples"], b["seed"]) == (20, 5)
+    assert (b["resamples"], b["seed"]) == (8, 5)
     # The drives are in every model; every share is a multiple of one usable resample.
-    usable = 20 - b["unidentified"]
+    usable = 8 - b["unidentified"]
     assert [p["name"] for p in b["parameters"][:6]] == ["k1", "k2", "k3", "k4", "k5", "k6"]
     assert all(p["chosen_share"] == 1.0 for p in b["parameters"][:6])
     for p in b["parameters"]:
@@ -125,12 +125,12 @@ def test_compare_models_bootstrap_writes_the_commands_stiffness_file(fanuc, cli,
     function builds it for both)."""
     theirs, mine = tmp_path / "cli.json", tmp_path / "py.json"
     cli("identify", "--setup", "fanuc-r2000ic-165f", "--data", FANUC_DATA, "--compare-models",
-        "--bootstrap", "10", "--seed", "3", "--stiffness-out", theirs, "--json")
-    stiffid.identify(fanuc, FANUC_DATA, compare_models=True, bootstrap=10, seed=3,
+        "--bootstrap", "4", "--seed", "3", "--stiffness-out", theirs, "--json")
+    stiffid.identify(fanuc, FANUC_DATA, compare_models=True, bootstrap=4, seed=3,
                      stiffness_out=mine)
     assert mine.read_bytes() == theirs.read_bytes()
     form = json.loads(mine.read_text())["model_form"]
-    assert (form["resamples"], form["seed"]) == (10, 3) and form["models"]
+    assert (form["resamples"], form["seed"]) == (4, 3) and form["models"]
     with pytest.raises(ValueError, match="stiffness_out: only with compare_models=True and bootstrap"):
         stiffid.identify(fanuc, FANUC_DATA, compare_models=True, stiffness_out=tmp_path / "x.json")
     with pytest.raises(ValueError, match="stiffness_out"):

@@ -93,6 +93,8 @@ fn calibrate_fits_the_backlash_and_writes_it_to_the_robot_file() {
         data.to_str().unwrap(),
         "--maps",
         "J2:b,J3:b",
+        "--gravity",
+        "none",
         "--out",
         robot.to_str().unwrap(),
         "--json",
@@ -125,8 +127,8 @@ fn calibrate_fits_the_backlash_and_writes_it_to_the_robot_file() {
         assert!((got - deg).abs() < 1e-12 * deg.abs(), "{got} vs {deg}");
         assert_eq!(maps[joint].harmonics(), 0);
     }
-    // `auto` finds both terms from the 40 postures (30 or more).
-    let auto = [&args[..5], &["--json"]].concat();
+    // `--maps auto` finds both terms from the 40 postures (30 or more).
+    let auto = [&args[..5], &["--gravity", "none", "--json"]].concat();
     let doc = json(&stiffid(&auto));
     let chosen = doc["maps"]["chosen"].as_str().unwrap().to_string();
     let Spec::Fixed(found) = Spec::parse(&chosen).unwrap() else {

@@ -421,6 +421,8 @@ fn calibrate_with_masses_writes_the_stiffness_file() {
         held.to_str().unwrap(),
         "--gravity",
         "masses",
+        "--maps",
+        "none",
         "--stiffness-out",
         k.to_str().unwrap(),
         "--json",
@@ -430,7 +432,13 @@ fn calibrate_with_masses_writes_the_stiffness_file() {
     // The nominal reference is the rigid nominal robot whatever the model fitted: the same
     // without gravity, and its independent computation here (the tracker registered on the
     // nominal positions, their RMS error).
-    let rigid = json(&stiffid(&[&args[..7], &["--json"]].concat()));
+    let rigid = json(&stiffid(
+        &[
+            &args[..7],
+            &["--gravity", "none", "--maps", "none", "--json"],
+        ]
+        .concat(),
+    ));
     let nominal_model = ErrorModel::new(
         &robot,
         &setup.tool().measuring_points,
@@ -453,6 +461,8 @@ fn calibrate_with_masses_writes_the_stiffness_file() {
             "--data",
             data_arg,
             "--gravity",
+            "none",
+            "--maps",
             "none",
             "--stiffness-out",
             "{dir}/k2.json",
@@ -635,6 +645,10 @@ fn calibrate_gives_held_out_readings_intervals_and_their_coverage() {
         data.to_str().unwrap(),
         "--geometry",
         "offsets",
+        "--gravity",
+        "none",
+        "--maps",
+        "none",
         "--validate",
         held.to_str().unwrap(),
         "--level",
