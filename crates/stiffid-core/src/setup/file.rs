@@ -301,6 +301,17 @@ where
     };
     let part = workpiece(&file, source_name)?;
     let (part, part_note) = calibrated::part(&robot, &file.robot, part, source_name)?;
+    if part.is_none()
+        && file
+            .workpiece
+            .as_ref()
+            .is_some_and(|w| w.reflectors_mm.is_empty())
+    {
+        return Err(Error::InvalidField {
+            field: format!("{source_name}: workpiece.base_from_part"),
+            message: "missing: [workpiece] gives the part's frame in the robot base frame (base_from_part = { xyz_mm = [..], rpy_deg = [..] }); only a setup whose calibrated robot file records the part ([part]) leaves it out".into(),
+        });
+    }
     let robot = mounted(robot, &file, source_name, mount)?;
     let mut controller = match file.controller.take() {
         None => super::Controller::default(),
