@@ -46,6 +46,12 @@
 //! xyz_mm = [0, 0, 300]                  #   pedestal the robot was calibrated on (the setup's
 //! rpy_deg = [0, 0, 0]                   #   [robot_base]), which [base] holds; a setup pointing
 //!                                       #   at the file takes the controller's world from it
+//! [part]                                # optional (stiffid calibrate --out writes it): the
+//! xyz_mm = [1500, 0, 400]               #   part's frame the calibration located from the
+//! rpy_deg = [0, 0, 0.11]                #   reflectors on the positioner's table (the setup's
+//!                                       #   [workpiece] reflectors_mm are in it), cell frame,
+//!                                       #   external axes at 0: a setup pointing at the file
+//!                                       #   takes it as [workpiece] base_from_part
 //! [gravity]                             # optional (stiffid calibrate --out writes it): the
 //! model = "masses"                      #   sag under the robot's own weight and its tool's
 //! terms = [{ name = "gravity.c2", value_si = 1.1e-7 }]   # ([`super::weight_file`])
@@ -82,6 +88,7 @@ struct RobotFile {
     external_axis: Vec<super::external::file::AxisFile>,
     held_out: Option<HeldOutFile>,
     mount: Option<TransformFile>,
+    part: Option<TransformFile>,
     gravity: Option<super::weight_file::GravityFile>,
 }
 
@@ -314,6 +321,10 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
         Some(m) => Some(transform(Some(m), "mount", source_name)?),
         None => None,
     };
+    let part = match file.part {
+        Some(p) => Some(transform(Some(p), "part", source_name)?),
+        None => None,
+    };
     let own_weight = super::weight_file::build(file.gravity, source_name)?;
     let speeds = max_speeds(file.max_speed_deg_s.as_ref(), source_name)?;
     let external = super::external::file::build(&file.external_axis, source_name)?;
@@ -332,6 +343,7 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
                 .with_error_maps(maps)
                 .with_held_out(held)
                 .with_mount(mount)
+                .with_part(part)
                 .with_own_weight(own_weight)
                 .with_external(external)
         })

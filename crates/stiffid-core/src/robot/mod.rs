@@ -76,6 +76,9 @@ pub struct Robot {
     held_out: Option<Arc<HeldOut>>,
     /// The mount a calibrated robot was calibrated on, when its file records it (`[mount]`).
     mount: Option<Isometry3<f64>>,
+    /// The part's frame a calibration located from the table reflectors, when its file records
+    /// it (`[part]`).
+    part: Option<Isometry3<f64>>,
     /// A calibrated robot's sag under its own weight ([`OwnWeight`]), when its
     /// file carries it.
     own_weight: Option<Arc<OwnWeight>>,
@@ -183,6 +186,7 @@ impl Robot {
             external: None,
             held_out: None,
             mount: None,
+            part: None,
             own_weight: None,
             max_speeds: Vector6::repeat(f64::INFINITY),
         }
@@ -306,6 +310,20 @@ impl Robot {
     /// records it.
     pub fn mount(&self) -> Option<&Isometry3<f64>> {
         self.mount.as_ref()
+    }
+
+    /// The robot recording the part's frame its calibration located from the reflectors on the
+    /// positioner's table: the frame the setup's `[workpiece] reflectors_mm` are given in, in
+    /// the calibrated cell frame with every external axis at 0 (m), the setup's
+    /// `[workpiece] base_from_part` for every setup pointing at the robot.
+    pub fn with_part(self, part: Option<Isometry3<f64>>) -> Self {
+        Self { part, ..self }
+    }
+
+    /// The part's frame a calibrated robot's calibration located ([`Robot::with_part`]), when
+    /// its file records it.
+    pub fn part(&self) -> Option<&Isometry3<f64>> {
+        self.part.as_ref()
     }
 
     /// The robot carrying a calibration's held-out position errors ([`HeldOut`]).

@@ -80,7 +80,7 @@ struct ControllerFile {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct WorkpieceFile {
-    base_from_part: TransformFile,
+    base_from_part: Option<TransformFile>,
     #[serde(default, deserialize_with = "crate::common::exact::arrays")]
     reflectors_mm: Vec<[f64; 3]>,
 }
@@ -299,6 +299,19 @@ where
         (Some(t), _) => Some(transform(Some(*t), "robot_base", source_name)?),
         (None, recorded) => recorded.copied(),
     };
+    let part = workpiece(&file, source_name)?;
+    let (part, part_note) = calibrated::part(&robot, &file.robot, part, source_name)?;
+    if part.is_none()
+        && file
+            .workpiece
+            .as_ref()
+            .is_some_and(|w| w.reflectors_mm.is_empty())
+    {
+        return Err(Error::InvalidField {
+            field: format!("{source_name}: workpiece.base_from_part"),
+            message: "missing: [workpiece] gives the part's frame in the robot base frame (base_from_part = { xyz_mm = [..], rpy_deg = [..] }); only a setup whose calibrated robot file records the part ([part]) leaves it out".into(),
+        });
+    }
     let robot = mounted(robot, &file, source_name, mount)?;
     let mut controller = match file.controller.take() {
         None => super::Controller::default(),
@@ -314,11 +327,33 @@ where
         .map_err(|e| in_file(e, source_name))?;
     let mut setup = builder(file, robot, reading_variance)
         .map(|b| b.with_controller(controller))
+        .map(|b| match part {
+            Some(p) => b.with_workpiece(p),
+            None => b,
+        })
         .and_then(SetupBuilder::build)
         .map_err(|e| in_file(e, source_name))?;
     setup.notes.extend(note);
     setup.notes.extend(mount_note);
+    setup.notes.extend(part_note);
     Ok(setup)
+}
+
+/// The setup's `[workpiece] base_from_part`, m, checked within the documented ranges.
+///
+/// # Errors
+/// [`Error::InvalidField`] (`workpiece.base_from_part.xyz_mm`, `.rpy_deg`) out of range.
+fn workpiece(file: &SetupFile, source_name: &str) -> Result<Option<Isometry3<f64>>> {
+    let Some(t) = file.workpiece.as_ref().and_then(|w| w.base_from_part) else {
+        return Ok(None);
+    };
+    let field = "workpiece.base_from_part";
+    let check = |name: &str, v: &[f64; 3], range| {
+        limits::check(&format!("{field}.{name}"), v, range).map_err(|e| in_file(e, source_name))
+    };
+    check("xyz_mm", &t.xyz_mm, &limits::LENGTH_MM)?;
+    check("rpy_deg", &t.rpy_deg, &limits::ANGLE_DEG)?;
+    Ok(Some(t.isometry()))
 }
 
 /// `[controller]`: its kinematics and the robot file it runs (resolved as `robot` is, with the
@@ -532,11 +567,6 @@ fn builder(f: SetupFile, robot: Robot, reading_variance: f64) -> Result<SetupBui
         b = b.with_tracker(read_tracker(t)?);
     }
     if let Some(w) = f.workpiece {
-        let t = &w.base_from_part;
-        let field = "workpiece.base_from_part";
-        limits::check(&format!("{field}.xyz_mm"), &t.xyz_mm, &limits::LENGTH_MM)?;
-        limits::check(&format!("{field}.rpy_deg"), &t.rpy_deg, &limits::ANGLE_DEG)?;
-        b = b.with_workpiece(t.isometry());
         let reflectors = w.reflectors_mm.iter().map(|p| Vector3::from(*p) * 1e-3);
         b = b.with_table_reflectors(reflectors.collect());
     }

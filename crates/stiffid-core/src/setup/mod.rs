@@ -62,7 +62,9 @@
 //! A robot on a track and a part on a positioner: `[[external_axis]]` tables
 //! ([`crate::robot::external::file`]), which replace the robot file's (`external_axis = []`
 //! takes them away); the setup's robot carries them ([`crate::Robot::external`]). With a
-//! positioner, `[workpiece]` is the part's frame at `e = 0`, cell frame.
+//! positioner, `[workpiece]` is the part's frame at `e = 0`, cell frame; a calibrated robot file
+//! that records the part's frame its calibration located from the table reflectors (`[part]`,
+//! [`crate::Robot::part`]) gives it instead (a setup's other `base_from_part` is refused).
 //!
 //! In code, [`Setup::builder`] takes the same fields in SI units and checks them as the file's
 //! ([`SetupBuilder::build`]); [`parse`] reads the file through it.

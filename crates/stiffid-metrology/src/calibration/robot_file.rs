@@ -488,6 +488,13 @@ pub fn mount_table(mount: &Isometry3<f64>) -> String {
     format!("\n[mount]\n{}", transform(mount))
 }
 
+/// The robot file's `[part]` table: the part's frame `part` a calibration located from the
+/// reflectors on the positioner's table (cell frame with every external axis at 0, m;
+/// [`stiffid_core::Robot::part`]).
+pub fn part_table(part: &Isometry3<f64>) -> String {
+    format!("\n[part]\n{}", transform(part))
+}
+
 fn transform(t: &Isometry3<f64>) -> String {
     let [r, p, y] = stiffid_core::robot::file::rpy(&t.rotation);
     format!(

@@ -104,6 +104,7 @@ mod track_design;
 mod track_map;
 mod track_stiffness;
 mod true_cell;
+mod true_part;
 mod true_robot;
 mod true_table;
 mod trust;

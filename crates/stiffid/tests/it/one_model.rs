@@ -236,3 +236,52 @@ fn the_calibrated_mount_is_recorded_and_not_given_twice() {
     let raised = controller.base().translation.vector - nominal.base().translation.vector;
     assert!((raised - lift).norm() < 1e-12, "{raised}");
 }
+
+/// A calibrated robot file records the part's frame its calibration located (`[part]`): a setup
+/// pointing at it without `[workpiece] base_from_part` takes it with a note, one that repeats it
+/// to the file's precision keeps it, one 0.11 deg off is refused naming both places and the
+/// difference; a `[workpiece]` without the part's frame and no `[part]` to take it from is refused.
+#[test]
+fn the_located_part_is_taken_not_contradicted() {
+    let part = "[part]\nxyz_mm = [1500.0, -200.0, 400.0]\nrpy_deg = [0.0, 0.0, 30.0]\n";
+    let recorded = calibrated_text(part);
+    let file = stiffid::robot::file::parse(&recorded, "robot.toml").unwrap();
+    let located = *file.part().unwrap();
+    assert!((located.translation.vector - Vector3::new(1.5, -0.2, 0.4)).norm() < 1e-15);
+    let taken = heavy_on("", "", &recorded).unwrap();
+    assert_eq!(taken.workpiece(), Some(&located));
+    let note = (taken.notes().iter())
+        .find(|n| n.message.contains("[part]"))
+        .unwrap();
+    assert_eq!(note.kind, stiffid::common::warning::WarningKind::Calibrated);
+    let given = |yaw: f64| {
+        format!("[workpiece]\nbase_from_part = {{ xyz_mm = [1500.0, -200.0, 400.0], rpy_deg = [0.0, 0.0, {yaw:?}] }}")
+    };
+    let same = heavy_on(&given(30.0), "", &recorded).unwrap();
+    assert!(
+        same.workpiece()
+            .unwrap()
+            .rotation
+            .angle_to(&located.rotation)
+            < 1e-12
+    );
+    let e = heavy_on(&given(30.11), "", &recorded)
+        .unwrap_err()
+        .to_string();
+    for words in [
+        "heavy.toml: workpiece.base_from_part",
+        "comau-smart5-nj165-3.0",
+        "[part] xyz_mm = [1500, -200, 400], rpy_deg = [0, 0, 30]",
+        "its origin 0 mm away and turned 0.11 deg",
+    ] {
+        assert!(e.contains(words), "{words}: {e}");
+    }
+    // No [part] to take: a [workpiece] must give the part's frame.
+    let e = heavy_on("[workpiece]", "", &calibrated_text(""))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("workpiece.base_from_part") && e.contains("missing"),
+        "{e}"
+    );
+}

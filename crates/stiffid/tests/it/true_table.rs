@@ -24,24 +24,24 @@ use stiffid::robot::ik;
 const NOISE: f64 = 1.5e-5;
 
 /// The arm's posture over the table's centre, deg.
-const OVER_TABLE_DEG: [f64; 6] = [10.0, 10.0, -110.0, 20.0, -50.0, 40.0];
+pub(crate) const OVER_TABLE_DEG: [f64; 6] = [10.0, 10.0, -110.0, 20.0, -50.0, 40.0];
 
 /// A turntable's line (a point and a direction, the arm's base frame, m): where it turns the
 /// part by `e` (rad).
-fn turned(point: &Vector3<f64>, direction: &Vector3<f64>, e: f64) -> Isometry3<f64> {
+pub(crate) fn turned(point: &Vector3<f64>, direction: &Vector3<f64>, e: f64) -> Isometry3<f64> {
     let turn = UnitQuaternion::from_axis_angle(&Unit::new_normalize(*direction), e);
     Translation3::from(*point) * turn * Translation3::from(-point)
 }
 
 /// The nominal table: its axis vertical through the part's origin, 200 mm below it, m.
-struct Table {
-    point: Vector3<f64>,
+pub(crate) struct Table {
+    pub(crate) point: Vector3<f64>,
     direction: Vector3<f64>,
 }
 
 impl Table {
     /// The true table: the line moved 0.5 mm across itself and leaning 1.1 mrad.
-    fn truth(&self) -> Table {
+    pub(crate) fn truth(&self) -> Table {
         let lean = UnitQuaternion::from_scaled_axis(Vector3::new(1e-3, -0.5e-3, 0.0));
         Table {
             point: self.point + Vector3::new(0.4e-3, -0.3e-3, 0.0),
@@ -49,14 +49,14 @@ impl Table {
         }
     }
 
-    fn at(&self, e: f64) -> Isometry3<f64> {
+    pub(crate) fn at(&self, e: f64) -> Isometry3<f64> {
         turned(&self.point, &self.direction, e)
     }
 }
 
 /// The campaign's case: the COMAU with masses of [`true_robot::dh_case`] with a turntable whose
 /// part's origin is the TCP at [`OVER_TABLE_DEG`], and that pose (base frame).
-fn table_case() -> (true_robot::Case, Table, Isometry3<f64>) {
+pub(crate) fn table_case() -> (true_robot::Case, Table, Isometry3<f64>) {
     let arm = true_robot::dh_case();
     let q = Vector6::from_fn(|i, _| OVER_TABLE_DEG[i].to_radians());
     let over = ik::tool_pose(&arm.setup.robot().frames(&q), &arm.setup.tool().tcp);
@@ -69,8 +69,8 @@ fn table_case() -> (true_robot::Case, Table, Isometry3<f64>) {
         "robot.toml",
         "[bounds]\nlower_deg = [-90.0, -60.0, -180.0, -180.0, -90.0, -180.0]\nupper_deg = [90.0, 40.0, -40.0, 180.0, 90.0, 180.0]",
     ) + &format!(
-        "\n[workpiece]\nbase_from_part = {{ xyz_mm = [{:?}, {:?}, {:?}], rpy_deg = [0.0, 0.0, 0.0] }}\n",
-        c.x, c.y, c.z
+        "\n[workpiece]\nbase_from_part = {{ xyz_mm = [{:?}, {:?}, {:?}], rpy_deg = [0.0, 0.0, 0.0] }}\n{}\n",
+        c.x, c.y, c.z, reflectors_mm()
     );
     let robot = true_robot::dh_robot_text()
         + &format!(
@@ -86,10 +86,29 @@ fn table_case() -> (true_robot::Case, Table, Isometry3<f64>) {
     (true_robot::Case { setup, ..arm }, table, over)
 }
 
+/// Four reflectors on the table, the part's frame (the part's origin over the table's centre),
+/// m.
+pub(crate) fn on_table() -> Vec<Vector3<f64>> {
+    (0..4)
+        .map(|k| {
+            let a = 1.3 * k as f64 + 0.2;
+            Vector3::new(0.25 * a.cos(), 0.25 * a.sin(), 0.02 * k as f64)
+        })
+        .collect()
+}
+
+/// The setup's `reflectors_mm` of [`on_table`].
+pub(crate) fn reflectors_mm() -> String {
+    let mm: Vec<String> = (on_table().iter())
+        .map(|p| format!("[{:?}, {:?}, {:?}]", p.x * 1e3, p.y * 1e3, p.z * 1e3))
+        .collect();
+    format!("reflectors_mm = [{}]", mm.join(", "))
+}
+
 /// Readings of the tool's measuring points at `qs` (rad; the table at 0) and of the table's
 /// `reflectors` (true base frame at `e = 0`, m) at the table angles `angles` (rad), with the
 /// tracker's noise.
-fn readings(
+pub(crate) fn readings(
     truth: &Truth,
     table: &Table,
     (qs, angles): (&[Vector6<f64>], &[f64]),

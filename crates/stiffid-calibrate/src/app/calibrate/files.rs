@@ -1,7 +1,9 @@
 //! What a calibration writes: the calibrated robot as a robot file and a URDF, the setup
-//! fragment, the TCP moved with the measuring points and the fitted compliance.
+//! fragment, the TCP moved with the measuring points, the part's frame located from the table
+//! reflectors and the fitted compliance.
 
 use super::chosen::Chosen;
+use super::part;
 use super::{compliance, fitted_compliance, fragment, tcp, update, FittedCompliance, Held};
 use super::{Request, Warning, WarningKind};
 use stiffid_core::Result;
@@ -31,11 +33,12 @@ pub(super) fn files(
     let setup = request.readings.setup;
     let (model, fitted) = (&chosen.model, &chosen.fit);
     let own_weight = compliance::own_weight(model, fitted, update::tool_mass(request)?);
+    let part = part::located(setup, (model, &fitted.estimate), warnings);
     let robot_toml = update::robot_file(
         request,
         (model, &fitted.estimate),
         held,
-        own_weight.as_ref(),
+        (own_weight.as_ref(), part.as_ref()),
     );
     let urdf = robot_file::urdf(model, &fitted.estimate).map_err(|e| e.to_string());
     let asked = request.urdf && urdf.is_ok();

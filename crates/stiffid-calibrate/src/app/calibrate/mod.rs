@@ -27,6 +27,7 @@ mod judge;
 pub mod ladder;
 use judge::{judge, largest_residual};
 mod maps;
+mod part;
 pub mod scene;
 pub mod update;
 

@@ -491,13 +491,14 @@ pub(super) fn tool_mass(request: &Request<'_>) -> Result<Option<f64>> {
 }
 
 /// The calibrated robot file's text ([`robot_file::robot_toml`]): the robot, its `[held_out]`
-/// ([`held_out`]), the mount it was calibrated on ([`robot_file::mount_table`]) and its sag `own` in the file's link frames
-/// ([`robot_file::own_weight_in_table`]); or why there is none.
+/// ([`held_out`]), the mount it was calibrated on ([`robot_file::mount_table`]), the part's
+/// frame it located (`part`, [`robot_file::part_table`]) and its sag `own` in the file's link
+/// frames ([`robot_file::own_weight_in_table`]); or why there is none.
 pub(super) fn robot_file(
     request: &Request<'_>,
     (model, estimate): (&ErrorModel, &stiffid_metrology::calibration::Estimate),
     (validation, cross_validation): (Option<&super::Held>, Option<&super::Held>),
-    own: Option<&OwnWeight>,
+    (own, part): (Option<&OwnWeight>, Option<&nalgebra::Isometry3<f64>>),
 ) -> std::result::Result<String, String> {
     let setup = request.readings.setup;
     robot_file::robot_toml(model, estimate)
@@ -511,7 +512,9 @@ pub(super) fn robot_file(
             // The mount it was calibrated on: the setup's, or the one its calibrated robot
             // records (an update).
             let mount = robot_file::mount_table(&setup.workcell().controller().world);
-            Ok(t + &held_out(request, setup, validation, cross_validation) + &mount + &sag)
+            let part = part.map_or(String::new(), robot_file::part_table);
+            let held = held_out(request, setup, validation, cross_validation);
+            Ok(t + &held + &mount + &part + &sag)
         })
         .map_err(|e| e.to_string())
 }

@@ -267,6 +267,12 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         field: "workpiece.base_from_part".into(),
         message: format!("missing in setup {}: placement starts from the part's own frame ([workpiece] base_from_part)", setup.name()),
     })?;
+    if setup.robot().part().is_some() {
+        return Err(Error::InvalidField {
+            field: "workpiece.base_from_part".into(),
+            message: format!("setup {}: the part's frame is the one the calibration located from the table reflectors ([part] of its calibrated robot file): that part is clamped already; choose a new part's placement on a setup with the nominal robot, then locate it (calibrate --update with the table reflectors' readings)", setup.name()),
+        });
+    }
     let context = context(request);
     let space = request.region.space();
     // Both searches start from the same grid and samples: each placement is evaluated once.

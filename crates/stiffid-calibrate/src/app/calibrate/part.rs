@@ -1,0 +1,73 @@
+//! The part's frame a calibration locates from the reflectors on the positioner's table: the
+//! setup gives them in the part's frame (`[workpiece] reflectors_mm`), the calibration fits where
+//! they are in the calibrated cell (every external axis at 0), and the rigid transform between
+//! the two (Umeyama's least squares, [`stiffid_metrology::register::fit`]) is the part's frame in
+//! the calibrated cell, which the calibrated robot file records (`[part]`,
+//! [`stiffid_core::Robot::part`]) for every setup pointing at it. The setup's own
+//! `[workpiece] base_from_part` places the part in the nominal cell; after a calibration that
+//! moved the cell frame (its registration, the base's errors) it misses the part by as much.
+
+use super::{Warning, WarningKind};
+use nalgebra::{Isometry3, Point3};
+use stiffid_core::common::words::number;
+use stiffid_core::Setup;
+use stiffid_metrology::calibration::error_model::{ErrorModel, Estimate, MeasuredIn};
+use stiffid_metrology::register::{fit, Correspondence};
+
+/// The part's frame in the calibrated cell (m), located from the setup's table reflectors and
+/// the model's fitted ones (paired by number, `T1` with the first): `None` without reflectors in
+/// both. A location that fails (fewer than three reflectors, or on one line) and one far from
+/// the setup's `[workpiece] base_from_part` add a warning to `warnings`.
+pub(super) fn located(
+    setup: &Setup,
+    (model, estimate): (&ErrorModel, &Estimate),
+    warnings: &mut Vec<Warning>,
+) -> Option<Isometry3<f64>> {
+    let part = setup.workpiece()?;
+    let given = setup.table_reflectors();
+    let n = given.len().min(model.tables());
+    if n == 0 {
+        return None;
+    }
+    // Readings in the base frame: the calibrated robot's base is `T^-1 base`, so its cell too.
+    let cell = match model.measured_in() {
+        MeasuredIn::Tracker => Isometry3::identity(),
+        MeasuredIn::Base => estimate.frame.inverse(),
+    };
+    let pairs: Vec<Correspondence> = (0..n)
+        .map(|k| Correspondence {
+            base: (cell * Point3::from(model.table(&estimate.values, k))).coords,
+            tracker: (part.inverse() * Point3::from(given[k])).coords,
+        })
+        .collect();
+    match fit(&pairs) {
+        Ok(r) => {
+            warnings.extend(moved(part, &r.base_from_tracker));
+            Some(r.base_from_tracker)
+        }
+        Err(e) => {
+            warnings.push(Warning::new(
+                WarningKind::Calibrated,
+                format!("the part's frame is not located from the table reflectors ({e}): the calibrated robot file records none, and a setup pointing at it needs [workpiece] base_from_part"),
+            ));
+            None
+        }
+    }
+}
+
+/// The warning that the part located at `located` lies away from the setup's `part` (beyond
+/// 0.001 mm or 0.001 deg), how far.
+fn moved(part: &Isometry3<f64>, located: &Isometry3<f64>) -> Option<Warning> {
+    let origin = (located.translation.vector - part.translation.vector).norm();
+    let angle = part.rotation.angle_to(&located.rotation);
+    (origin > 1e-6 || angle > 1e-3f64.to_radians()).then(|| {
+        Warning::new(
+            WarningKind::Calibrated,
+            format!(
+                "the part located from the table reflectors lies {} mm and {} deg from the setup's [workpiece] base_from_part in the calibrated cell: the calibrated robot file records it ([part]); a setup pointing at that file takes it, leave base_from_part out",
+                number(origin * 1e3),
+                number(angle.to_degrees())
+            ),
+        )
+    })
+}
