@@ -20,6 +20,7 @@ mod kinematics;
 mod lead_tilt_cli;
 mod limits_edges;
 mod mass_cli;
+mod model_ranking_cli;
 #[path = "../../../stiffid/tests/it/mutate.rs"]
 mod mutate;
 mod optional_fields_cli;

@@ -71,6 +71,9 @@ pub enum WarningKind {
     /// A setup field that repeats what a calibrated robot file holds (its mount): taken from the
     /// calibration, not applied twice.
     Calibrated,
+    /// The stiffness file's model and the recommended model the data support rank a path's
+    /// postures differently (`stiffid_machining::app::compensate`, its `model_ranking`).
+    ModelForm,
 }
 
 impl WarningKind {
@@ -98,6 +101,7 @@ impl WarningKind {
             WarningKind::Extrapolation => "extrapolation",
             WarningKind::Speed => "speed",
             WarningKind::Calibrated => "calibrated",
+            WarningKind::ModelForm => "model-form",
         }
     }
 }

@@ -1,6 +1,10 @@
 //! Numerical building blocks: the one-sided Jacobi SVD and condition numbers ([`jacobi`]), the
-//! six-column QR kernels ([`linalg`]) and the least-squares solvers by QR and SVD ([`lsq`]).
+//! six-column QR kernels ([`linalg`]), the least-squares solvers by QR and SVD ([`lsq`]) and
+//! Spearman's rank correlation ([`spearman`]).
 
 pub mod jacobi;
 pub mod linalg;
 pub mod lsq;
+mod spearman;
+
+pub use spearman::{ranks, spearman};

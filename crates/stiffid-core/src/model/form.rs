@@ -29,6 +29,10 @@ pub struct FormModel {
 pub struct ModelForm {
     /// The models, each with its sets.
     pub models: Vec<FormModel>,
+    /// The comparison's recommended model fitted to every posture (one set), when the file
+    /// carries it: what a compensation sets beside the file's own model to say whether the two
+    /// rank the path's postures alike.
+    pub recommended: Option<FormModel>,
 }
 
 impl ModelForm {
@@ -48,21 +52,38 @@ impl ModelForm {
     ) -> Vec<Vector3<f64>> {
         let mut out = Vec::with_capacity(self.sets());
         for m in &self.models {
-            let j = m.model.jacobian(frames, point);
-            let tau = j.tr_mul(wrench);
-            let laws = m.model.springs().iter().map(|s| s.law);
-            let g = DVector::from_iterator(
-                tau.len(),
-                (tau.iter().take(6).copied()).chain(
-                    tau.iter()
-                        .skip(6)
-                        .zip(laws)
-                        .map(|(t, law)| law.response(*t)),
-                ),
-            );
-            let rows = j.fixed_rows::<3>(0);
-            out.extend(m.sets.iter().map(|h| rows * h.component_mul(&g)));
+            out.extend(m.translations(frames, point, wrench));
         }
         out
+    }
+}
+
+impl FormModel {
+    /// The TCP translation (m, base frame) each of its sets predicts at the posture `frames`
+    /// under the wrench `wrench` (`[f; m]`, N and Nm, base frame) at the tool point `point`
+    /// (flange frame, m), in the sets' order (module docs).
+    pub fn translations(
+        &self,
+        frames: &Frames,
+        point: &Vector3<f64>,
+        wrench: &Vector6<f64>,
+    ) -> Vec<Vector3<f64>> {
+        let j = self.model.jacobian(frames, point);
+        let tau = j.tr_mul(wrench);
+        let laws = self.model.springs().iter().map(|s| s.law);
+        let g = DVector::from_iterator(
+            tau.len(),
+            (tau.iter().take(6).copied()).chain(
+                tau.iter()
+                    .skip(6)
+                    .zip(laws)
+                    .map(|(t, law)| law.response(*t)),
+            ),
+        );
+        let rows = j.fixed_rows::<3>(0);
+        self.sets
+            .iter()
+            .map(|h| rows * h.component_mul(&g))
+            .collect()
     }
 }

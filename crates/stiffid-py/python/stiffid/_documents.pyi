@@ -240,7 +240,7 @@ CalibrateWarning = TypedDict("CalibrateWarning", {
     "message": str,
 })
 
-CalibrateWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed", "calibrated"]
+CalibrateWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed", "calibrated", "model-form"]
 
 # compensate: docs/schemas/compensate.schema.json
 
@@ -255,6 +255,7 @@ CompensateDocument = TypedDict("CompensateDocument", {
     "generator": str,
     "has_covariance": bool,
     "kind": Literal["compensate"],
+    "model_ranking": Optional[CompensateRankingDocument],
     "out": str,
     "parameters": list[CompensateParameterStiffness],
     "path": str,
@@ -427,6 +428,23 @@ CompensateProgram = TypedDict("CompensateProgram", {
     "subprograms": list[str],
 })
 
+CompensateRankedPoint = TypedDict("CompensateRankedPoint", {
+    "deflection_mm": float,
+    "line": int,
+    "rank": float,
+    "recommended_deflection_mm": float,
+    "recommended_rank": float,
+})
+
+CompensateRankingDocument = TypedDict("CompensateRankingDocument", {
+    "agree": bool,
+    "largest_rank_differences": list[CompensateRankedPoint],
+    "points": int,
+    "recommended_springs": list[str],
+    "rho": Optional[float],
+    "threshold_rho": float,
+})
+
 CompensateRegionSection = TypedDict("CompensateRegionSection", {
     "lower_deg": list[float],
     "margin_deg": float,
@@ -576,7 +594,7 @@ CompensateWarning = TypedDict("CompensateWarning", {
     "message": str,
 })
 
-CompensateWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed", "calibrated"]
+CompensateWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed", "calibrated", "model-form"]
 
 CompensateWorstPoint = TypedDict("CompensateWorstPoint", {
     "bound_mm": Optional[float],
@@ -833,6 +851,7 @@ IdentifyModelDoc = TypedDict("IdentifyModelDoc", {
 
 IdentifyModelFormSection = TypedDict("IdentifyModelFormSection", {
     "models": list[IdentifyFormModelSection],
+    "recommended": NotRequired[Optional[IdentifyFormModelSection]],
     "resamples": int,
     "seed": int,
     "springs": list[IdentifyFormSpring],
@@ -950,7 +969,7 @@ IdentifyWarning = TypedDict("IdentifyWarning", {
     "message": str,
 })
 
-IdentifyWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed", "calibrated"]
+IdentifyWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed", "calibrated", "model-form"]
 
 IdentifyComparisonDocument = TypedDict("IdentifyComparisonDocument", {
     "bootstrap": NotRequired[Optional[IdentifyBootstrapDoc]],
@@ -1092,7 +1111,7 @@ KinematicsWarning = TypedDict("KinematicsWarning", {
     "message": str,
 })
 
-KinematicsWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed", "calibrated"]
+KinematicsWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed", "calibrated", "model-form"]
 
 # place: docs/schemas/place.schema.json
 
@@ -1273,7 +1292,7 @@ PredictWarning = TypedDict("PredictWarning", {
     "message": str,
 })
 
-PredictWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed", "calibrated"]
+PredictWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed", "calibrated", "model-form"]
 
 # register-postures: docs/schemas/register-postures.schema.json
 
@@ -1701,6 +1720,7 @@ StiffnessKind = Literal["rotation", "translation"]
 
 StiffnessModelFormSection = TypedDict("StiffnessModelFormSection", {
     "models": list[StiffnessFormModelSection],
+    "recommended": NotRequired[Optional[StiffnessFormModelSection]],
     "resamples": int,
     "seed": int,
     "springs": list[StiffnessFormSpring],

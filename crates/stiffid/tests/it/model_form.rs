@@ -11,6 +11,7 @@ use stiffid::app::measurements::Data;
 use stiffid::design::random_group;
 use stiffid::identify::compare::bootstrap::percentile;
 use stiffid::identify::compare::{bootstrap, compare, Resampling};
+use stiffid::machining::app::compensate::ranking::{Ranking, RankingDocument};
 use stiffid::machining::compensate::{self, Options as CompensateOptions, PathPoint, Target};
 use stiffid::observation::deflection::{Frame, Points};
 use stiffid::observation::Measurement;
@@ -125,6 +126,23 @@ fn the_model_form_part_is_the_spread_over_the_resamples() {
         .to_string();
     assert!(
         error.contains("model_form.models[1].compliance_si[1]") && error.contains("at most 1"),
+        "{error}"
+    );
+    // The recommended model fitted to every posture rides along: one set, the comparison's fit.
+    let recommended = form.recommended.as_ref().unwrap();
+    let fitted = &report.comparison.recommended_fit.compliance;
+    assert_eq!(recommended.sets.len(), 1);
+    assert!((&recommended.sets[0] - fitted).norm() <= 1e-12 * fitted.norm());
+    let two = bad["model_form"]["recommended"]["compliance_si"][0].clone();
+    let mut bad: serde_json::Value = serde_json::from_str(&text).unwrap();
+    bad["model_form"]["recommended"]["compliance_si"] = serde_json::json!([two.clone(), two]);
+    let error = stiffid::io::stiffness::parse(&bad.to_string())
+        .and_then(|f| f.compliance(s.model()))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.contains("model_form.recommended.compliance_si")
+            && error.contains("one parameter set"),
         "{error}"
     );
     let counts: Vec<usize> = form.models.iter().map(|m| m.sets.len()).collect();
@@ -258,7 +276,7 @@ fn the_drives_and_the_recommended_model_rank_a_holes_postures_in_opposite_order(
         let rotation =
             nalgebra::UnitQuaternion::from_axis_angle(&Vector3::z_axis(), deg.to_radians());
         let point = PathPoint {
-            line: 1,
+            line: 1 + ((deg + 90.0) / 30.0) as u64,
             target: Target::Pose(start * rotation),
             wrench: Vector6::new(0.0, 0.0, 600.0, 0.0, 0.0, 0.0),
             frame: Frame::Tool,
@@ -282,6 +300,23 @@ fn the_drives_and_the_recommended_model_rank_a_holes_postures_in_opposite_order(
     let rho = spearman(&da, &db);
     println!("q {:?}\ndrives {da:.4?}\nrecommended {db:.4?}\nmodel form {mf:.4?}\nbound {bound:.4?}\nrho {rho:.3}", q.map(f64::to_degrees).as_slice());
     assert!(rho <= -0.5, "{rho}");
+    // The compensation says so: the stiffness file's recommended model, set beside the drives at
+    // every point, gives the recommended setup's own deflections and their rho, and a warning.
+    let (section, warning) = ranked(&s, &drives, &a);
+    assert!((section.rho.unwrap() - rho).abs() < 1e-12, "{section:?}");
+    assert!(!section.agree && section.recommended_springs.len() == 2);
+    for p in &section.largest_rank_differences {
+        let k = (p.line - 1) as usize;
+        assert!(
+            (p.recommended_deflection_mm - db[k]).abs() < 1e-9 * db[k],
+            "{p:?} against {}",
+            db[k]
+        );
+        assert!((p.deflection_mm - da[k]).abs() < 1e-12 * da[k]);
+    }
+    let warning = warning.unwrap();
+    assert_eq!(warning.kind.code(), "model-form");
+    assert!(warning.message.contains("rho -0.79"), "{}", warning.message);
     // What the drives promise by their best rotation over the recommended model's best.
     let best = |x: &[f64]| (0..x.len()).min_by(|i, j| x[*i].total_cmp(&x[*j])).unwrap();
     let promised = da[best(&db)] - da[best(&da)];
@@ -290,4 +325,61 @@ fn the_drives_and_the_recommended_model_rank_a_holes_postures_in_opposite_order(
         mf.iter().all(|&m| m > promised),
         "{mf:?} against {promised}"
     );
+}
+
+/// The compensation's `model_ranking` of the points compensated as `results` (lines 1, 2, ...)
+/// with `compliance` on `s`, and its warning.
+fn ranked(
+    s: &Setup,
+    compliance: &stiffid::model::Compliance,
+    results: &[compensate::Compensated],
+) -> (RankingDocument, Option<stiffid::common::warning::Warning>) {
+    let mut ranking = Ranking::new(s.arm(), compliance.model_form.as_ref()).unwrap();
+    for (k, r) in results.iter().enumerate() {
+        ranking.add(s.arm(), k as u64 + 1, r);
+    }
+    ranking.finish()
+}
+
+/// Where the models agree, the compensation says nothing: on the real FANUC data, seven holes
+/// 10 mm apart towards the base drilled with a thrust growing from 100 to 700 N along the tool
+/// (the deflection growing with it under both models), the drives and the recommended model
+/// rank the points alike; a stiffness file without the recommended model, or whose recommended
+/// model is its own, gives no ranking.
+#[test]
+fn the_drives_and_the_recommended_model_rank_growing_thrusts_alike() {
+    let (s, drives, _, _) = fanuc(10);
+    let q = random_group(&s, 300, 11)[196];
+    let start = tool_pose(&s.robot().frames(&q), &s.tool().tcp);
+    let mut options = CompensateOptions::for_setup(&s);
+    options.q0 = q;
+    let points: Vec<PathPoint> = (0..7)
+        .map(|k| {
+            let towards = nalgebra::Translation3::from(
+                -start.translation.vector.normalize() * (0.01 * k as f64),
+            );
+            PathPoint {
+                line: k + 1,
+                target: Target::Pose(towards * start),
+                wrench: Vector6::new(0.0, 0.0, 100.0 * (k + 1) as f64, 0.0, 0.0, 0.0),
+                frame: Frame::Tool,
+                external: stiffid::robot::external::ExternalValues::NONE,
+            }
+        })
+        .collect();
+    let results = compensate::path(s.arm(), &drives, &points, &options).unwrap();
+    let (section, warning) = ranked(&s, &drives, &results);
+    println!("{section:#?}");
+    assert!(section.agree && section.rho.unwrap() >= 0.9, "{section:?}");
+    assert_eq!(section.points, 7);
+    assert!(warning.is_none());
+    let mut form = drives.model_form.clone().unwrap();
+    assert!(Ranking::new(s.arm(), Some(&form)).is_some());
+    form.recommended = Some(stiffid::model::FormModel {
+        model: s.model().clone(),
+        sets: vec![drives.h.clone()],
+    });
+    assert!(Ranking::new(s.arm(), Some(&form)).is_none());
+    form.recommended = None;
+    assert!(Ranking::new(s.arm(), Some(&form)).is_none());
 }

@@ -42,6 +42,10 @@ pub struct ModelFormSection {
     /// The models, each with the parameter sets of the resamples that support it; at most
     /// [`MAX_MODEL_FORM_SETS`] sets in all.
     pub models: Vec<FormModelSection>,
+    /// The comparison's recommended model fitted to every posture: one parameter set (its
+    /// springs among `springs`); absent in files written before it was.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub recommended: Option<FormModelSection>,
 }
 
 /// A virtual spring of a `model_form` model, as a setup's `[[model.spring]]` gives it.
@@ -150,30 +154,61 @@ impl ModelFormSection {
         Model::new(coordinates, springs.clone())?;
         let models = (self.models.iter().enumerate())
             .map(|(i, m)| {
-                let field = format!("model_form.models[{}]", i + 1);
-                let own = (m.springs.iter())
-                    .map(|name| {
-                        springs.iter().find(|s| &s.name == name).cloned().ok_or_else(|| {
-                            invalid(
-                                format!("{field}.springs"),
-                                format!("'{}' is not among model_form.springs", limits::short(name)),
-                            )
-                        })
-                    })
-                    .collect::<Result<Vec<_>>>()?;
-                let model = Model::new(coordinates, own)?;
-                let sets = (m.compliance_si.iter().enumerate())
-                    .map(|(k, h)| match h.len() == model.len() && h.iter().all(|v| v.abs() <= MAX_COMPLIANCE_SI) {
-                        true => Ok(DVector::from_column_slice(h)),
-                        false => Err(invalid(
-                            format!("{field}.compliance_si[{}]", k + 1),
-                            format!("expected {} finite values of magnitude at most {MAX_COMPLIANCE_SI} (rad/Nm, m/N, rad/Nm^2), the six drives' then the springs' in order", model.len()),
-                        )),
-                    })
-                    .collect::<Result<Vec<_>>>()?;
-                Ok(FormModel { model, sets })
+                m.model(
+                    &format!("model_form.models[{}]", i + 1),
+                    &springs,
+                    coordinates,
+                )
             })
             .collect::<Result<Vec<_>>>()?;
-        Ok(ModelForm { models })
+        let recommended = (self.recommended.as_ref())
+            .map(|m| m.model("model_form.recommended", &springs, coordinates))
+            .transpose()?;
+        if let Some(r) = recommended.as_ref().filter(|r| r.sets.len() != 1) {
+            return Err(invalid(
+                "model_form.recommended.compliance_si".into(),
+                format!("expected one parameter set, found {}", r.sets.len()),
+            ));
+        }
+        Ok(ModelForm {
+            models,
+            recommended,
+        })
+    }
+}
+
+impl FormModelSection {
+    /// The model named `field` and its sets, its springs among `springs`.
+    fn model(
+        &self,
+        field: &str,
+        springs: &[Spring],
+        coordinates: Coordinates,
+    ) -> Result<FormModel> {
+        let own = (self.springs.iter())
+            .map(|name| {
+                springs
+                    .iter()
+                    .find(|s| &s.name == name)
+                    .cloned()
+                    .ok_or_else(|| {
+                        invalid(
+                            format!("{field}.springs"),
+                            format!("'{}' is not among model_form.springs", limits::short(name)),
+                        )
+                    })
+            })
+            .collect::<Result<Vec<_>>>()?;
+        let model = Model::new(coordinates, own)?;
+        let sets = (self.compliance_si.iter().enumerate())
+            .map(|(k, h)| match h.len() == model.len() && h.iter().all(|v| v.abs() <= MAX_COMPLIANCE_SI) {
+                true => Ok(DVector::from_column_slice(h)),
+                false => Err(invalid(
+                    format!("{field}.compliance_si[{}]", k + 1),
+                    format!("expected {} finite values of magnitude at most {MAX_COMPLIANCE_SI} (rad/Nm, m/N, rad/Nm^2), the six drives' then the springs' in order", model.len()),
+                )),
+            })
+            .collect::<Result<Vec<_>>>()?;
+        Ok(FormModel { model, sets })
     }
 }

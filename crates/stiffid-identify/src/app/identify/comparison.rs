@@ -88,7 +88,11 @@ impl Report {
             warnings: self.warnings.clone(),
         };
         let mut doc = super::document::springs::Document::new(&fit, setup_name, setup);
-        doc.model_form = Some(super::model_form::section(b, &self.springs));
+        doc.model_form = Some(super::model_form::section(
+            b,
+            &self.comparison,
+            &self.springs,
+        ));
         Some(doc)
     }
 

@@ -90,6 +90,11 @@ pub struct Document {
     pub program: Option<Program>,
     /// The largest and mean values along the path.
     pub summary: SummaryDocument,
+    /// With a stiffness file whose `model_form` holds a recommended model other than its own
+    /// (`identify --compare-models --bootstrap N --stiffness-out`): Spearman's rho of the two
+    /// models' deflections over the points, whether they rank the postures alike, and the points
+    /// whose ranks differ most ([`super::ranking`]); else `null`.
+    pub model_ranking: Option<super::ranking::RankingDocument>,
     /// Results to look at before trusting them (points without a force).
     pub warnings: Vec<Warning>,
     /// One object per path point: the columns of the CSV by name.
@@ -339,6 +344,7 @@ impl Document {
                 dynamics: p.dynamics.clone(),
             }),
             summary: report.summary.document(),
+            model_ranking: report.model_ranking.clone(),
             warnings: report.warnings.clone(),
             points,
         }

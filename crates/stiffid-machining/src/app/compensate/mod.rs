@@ -26,6 +26,7 @@ pub mod feasibility;
 mod free;
 mod input;
 mod output;
+pub mod ranking;
 pub mod scene;
 pub mod speed;
 pub mod stream;
@@ -175,6 +176,9 @@ pub struct Report {
     /// With [`super::FreeVariables::configuration`]: every configuration of the arm evaluated over the
     /// path, the one chosen ([`compensate::Configurations`]).
     pub configurations: Option<compensate::Configurations>,
+    /// With a stiffness file whose `model_form` holds a recommended model other than its own:
+    /// whether the two rank the path's points alike ([`ranking`]).
+    pub model_ranking: Option<ranking::RankingDocument>,
     /// Points without a process force (plunges, rapid moves, blocks no operation covers).
     pub warnings: Vec<Warning>,
 }
@@ -208,9 +212,10 @@ where
     let read = read_checked(setup, &input, &options)?;
     let (options, speeds) = speed::prepare(setup, &input, read.as_ref(), options)?;
     let mut tally = Tally::new(setup, &options, speeds);
+    tally.ranking = ranking::Ranking::new(setup.arm(), compliance.model_form.as_ref());
     let outcome = {
         let mut add = |first: usize, p: &[PathPoint], r: &[Compensated], d: &[Dynamics]| {
-            tally.add(first, p, r, options.map);
+            tally.add(setup, first, p, r, options.map);
             sink(first, p, r, d)
         };
         match (input, read) {
@@ -245,11 +250,12 @@ fn frees(options: &Options) -> bool {
 }
 
 /// What the job gathers point by point as they are computed: the summary, the speeds, the
-/// values chosen (for the map).
+/// values chosen (for the map), the two models' deflections (with a recommended model).
 struct Tally<'a> {
     summary: Summary,
     speeds: speed::Tracker<'a>,
     chosen: Vec<compensate::ChosenValues>,
+    ranking: Option<ranking::Ranking>,
 }
 
 impl<'a> Tally<'a> {
@@ -263,11 +269,19 @@ impl<'a> Tally<'a> {
             summary,
             speeds,
             chosen: Vec::new(),
+            ranking: None,
         }
     }
 
     /// The points from the 0-based `first` and their results; `map`: keep the values chosen.
-    fn add(&mut self, first: usize, points: &[PathPoint], results: &[Compensated], map: bool) {
+    fn add(
+        &mut self,
+        setup: &Setup,
+        first: usize,
+        points: &[PathPoint],
+        results: &[Compensated],
+        map: bool,
+    ) {
         for (k, (p, r)) in points.iter().zip(results).enumerate() {
             // The values the compensation chose (a free station or positioner), else the path's own.
             let e = match r.external.is_empty() {
@@ -276,6 +290,9 @@ impl<'a> Tally<'a> {
             };
             self.summary.add(first + k, p.line, r, e);
             self.speeds.add(first + k, p, r);
+            if let Some(ranking) = &mut self.ranking {
+                ranking.add(setup.arm(), p.line, r);
+            }
             if map {
                 self.chosen
                     .push(compensate::ChosenValues::of(r, &p.external));
@@ -526,6 +543,7 @@ fn finish(
         summary,
         speeds,
         chosen,
+        ranking,
     } = tally;
     if let Some(max_error) = options.max_error {
         summary.budget.refuse_above(max_error, options.level)?;
@@ -545,6 +563,8 @@ fn finish(
     warnings.extend(speeds.warning());
     warnings.extend(summary.stop_warning(options.max_iterations));
     warnings.extend(summary.region_warnings(&compliance.region));
+    let (model_ranking, disagree) = ranking.map(ranking::Ranking::finish).unzip();
+    warnings.extend(disagree.flatten());
     Ok(Report {
         input: name,
         springs: setup.springs(),
@@ -559,6 +579,7 @@ fn finish(
         program,
         map,
         configurations,
+        model_ranking,
         warnings,
     })
 }

@@ -1,7 +1,8 @@
 //! Spearman's rank correlation (ties get mean ranks).
 
-/// The ranks (1-based) of a sample, ties given the mean of the ranks they span.
-fn ranks(v: &[f64]) -> Vec<f64> {
+/// The ranks (1-based, ascending: 1 the smallest value) of a sample, ties given the mean of the
+/// ranks they span.
+pub fn ranks(v: &[f64]) -> Vec<f64> {
     let mut order: Vec<usize> = (0..v.len()).collect();
     order.sort_by(|&a, &b| v[a].total_cmp(&v[b]));
     let mut r = vec![0.0; v.len()];
@@ -25,7 +26,7 @@ fn ranks(v: &[f64]) -> Vec<f64> {
 ///
 /// # Examples
 /// ```
-/// let rho = stiffid_design::study::spearman(&[1.0, 2.0, 3.0], &[30.0, 20.0, 10.0]);
+/// let rho = stiffid_core::math::spearman(&[1.0, 2.0, 3.0], &[30.0, 20.0, 10.0]);
 /// assert_eq!(rho, Some(-1.0));
 /// ```
 pub fn spearman(x: &[f64], y: &[f64]) -> Option<f64> {
