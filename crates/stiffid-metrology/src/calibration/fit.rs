@@ -99,6 +99,12 @@ pub struct Fit {
     pub covariance: DMatrix<f64>,
     /// The residuals at the solution, 3 per reading, base frame, m.
     pub residuals: DVector<f64>,
+    /// The effective number of fitted parameters: the trace of the hat matrix
+    /// `J (J_a^T J_a)^-1 J^T` (`J` the readings' rows of the Jacobian, `J_a` with the priors' and
+    /// the maps' ridge rows below them), between 0 and `fitted.len()`: as many as are fitted
+    /// without priors nor ridge, fewer where they hold parameters (Hastie, Tibshirani and
+    /// Friedman, *The Elements of Statistical Learning*, 2nd ed., eq. 3.50).
+    pub effective_parameters: f64,
     /// RMS of the residuals' lengths, m.
     pub rms: f64,
     /// The noise per coordinate estimated from the residuals, m.
@@ -519,6 +525,7 @@ impl Problem<'_> {
         let svd = rt.capped_svd(false, true).ok_or_else(not_converged)?;
         let v_t = svd.v_t.ok_or_else(not_converged)?;
         let s = &svd.singular_values;
+        let effective_parameters = effective_parameters(&j.rows(0, data), &v_t, s);
         let inverse = DMatrix::from_diagonal(&s.map(|v| 1.0 / (v * v)));
         let unit = v_t.transpose() * inverse * &v_t;
         let noise2 = self.noise.map_or(sigma * sigma, |t| t * t);
@@ -538,12 +545,28 @@ impl Problem<'_> {
             sd,
             covariance,
             residuals,
+            effective_parameters,
             rms,
             sigma,
             iterations,
             stop,
         })
     }
+}
+
+/// The trace of the hat matrix from the SVD `U S V^T` of the augmented Jacobian `J_a`:
+/// `sum_i |J v_i|^2 / s_i^2` over its nonzero singular values, `J` (`readings`) its rows of the
+/// readings; each term is in [0, 1] since `s_i^2 = |J v_i|^2 + |P v_i|^2` with `P` the prior rows.
+fn effective_parameters(
+    readings: &nalgebra::DMatrixView<'_, f64>,
+    v_t: &DMatrix<f64>,
+    s: &DVector<f64>,
+) -> f64 {
+    let jv = readings * v_t.transpose();
+    (jv.column_iter().zip(s.iter()))
+        .filter(|(_, &sv)| sv > 0.0)
+        .map(|(c, &sv)| (c.norm_squared() / (sv * sv)).min(1.0))
+        .sum()
 }
 
 /// `R` (`n x n`) and `Q^T r` (`n`) of the QR factorisation of `j` (`m x n`, `m >= n`), from one

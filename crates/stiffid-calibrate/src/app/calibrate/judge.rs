@@ -33,12 +33,21 @@ pub(super) fn judge(model: &ErrorModel, fit: &Fit, noise_ratio: f64, name: &str)
     let not_converged = fit::stop_warning(fit.stop, fit.iterations);
     let mut w: Vec<Warning> = not_converged.into_iter().collect();
     let id = &fit.identifiability;
-    let dof = fit.residuals.len() - fit.fitted.len().min(fit.residuals.len());
-    if dof < MIN_DEGREES_OF_FREEDOM {
+    // The priors and the maps' ridge hold part of the fitted parameters: what the readings must
+    // determine is the effective count.
+    let effective = fit.effective_parameters;
+    let dof = (fit.residuals.len() as f64 - effective).max(0.0);
+    if dof < MIN_DEGREES_OF_FREEDOM as f64 {
+        let held = match fit.fitted.len() as f64 - effective {
+            h if h >= 0.5 => {
+                format!(" ({effective:.1} effective: the priors and the maps' ridge hold the rest)")
+            }
+            _ => String::new(),
+        };
         w.push(Warning::new(
             WarningKind::Unidentifiable,
             format!(
-                "{name}: {} coordinates for {} fitted parameters leave {dof} degrees of freedom (fewer than {MIN_DEGREES_OF_FREEDOM}): the fit explains the readings whatever their errors, and its standard deviations and noise ratio mean little; read more postures",
+                "{name}: {} coordinates for {} fitted parameters{held} leave {dof:.1} degrees of freedom (fewer than {MIN_DEGREES_OF_FREEDOM}): the fit explains the readings whatever their errors, and its standard deviations and noise ratio mean little; read more postures",
                 fit.residuals.len(),
                 fit.fitted.len()
             ),

@@ -317,3 +317,47 @@ fn the_jacobian_with_maps_matches_central_differences() {
         mapped.positions(v, &at).unwrap()
     });
 }
+
+/// The fit's effective number of parameters: the fitted count without a ridge; under the maps'
+/// ridge fewer, and equal to the fit's own divergence (Stein): the sum over every reading's
+/// coordinate of how much its fitted value follows it, by central differences over refits.
+#[test]
+fn the_effective_parameters_are_the_fits_divergence() {
+    let geometry = model();
+    let qs = postures(geometry.robot(), 12, 5);
+    let kept = identified(&geometry, &qs);
+    let mapped = geometry.clone().with_maps([0, 2, 0, 0, 1, 0]).unwrap();
+    let truth = truth(&mapped, &kept, 3e-4, 5);
+    let data = noisy(readings(&mapped, &truth, &qs), 2e-5, 5);
+    let start = maps::extended(&mapped, &fit::start(&geometry, &data).unwrap());
+    let plain = fit::fit(&mapped, &data, &start, &options(0.0)).unwrap();
+    let fitted = plain.fitted.len() as f64;
+    assert!(
+        (plain.effective_parameters - fitted).abs() < 1e-6,
+        "{}",
+        plain.effective_parameters
+    );
+    let ridge = options(1e-2);
+    let held = fit::fit(&mapped, &data, &start, &ridge).unwrap();
+    let turn = held.estimate.frame.rotation.inverse();
+    let h = 1e-6;
+    let mut divergence = 0.0;
+    for i in 0..data.len() {
+        for k in 0..3 {
+            // The reading moved by h along the base frame's axis k.
+            let residual = |d: f64| {
+                let mut moved = data.clone();
+                moved[i].measured += turn * Vector3::ith(k, d);
+                let f = fit::fit(&mapped, &moved, &start, &ridge).unwrap();
+                f.residuals[3 * i + k]
+            };
+            divergence += 1.0 - ((residual(h) - residual(-h)) / (2.0 * h)).abs();
+        }
+    }
+    let effective = held.effective_parameters;
+    assert!(effective < fitted - 0.5, "{effective} of {fitted}");
+    assert!(
+        (effective - divergence).abs() < 2e-3,
+        "{effective} vs {divergence}"
+    );
+}
