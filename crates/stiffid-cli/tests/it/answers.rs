@@ -171,24 +171,21 @@ fn readings_of_too_few_distinct_postures_are_refused_with_their_count() {
     let text = readings(&model, &truth(&model), &tracker(), &vec![one[0]; 30]);
     write_file(&d, "one.csv", &text);
     let args = ["calibrate", "--setup", SETUP, "--data", "{dir}/one.csv"];
-    // The refusal comes after the fit: a fit of the geometry alone.
-    let out = [
-        "--gravity",
-        "none",
-        "--maps",
-        "none",
-        "--out",
-        "{dir}/robot.toml",
-    ];
-    refused(
-        &d,
-        &[&args[..], &out].concat(),
-        &[
-            "one.csv",
-            "120 readings of 1 distinct posture ",
-            "read more distinct postures",
-        ],
-    );
+    // The refusal comes after the first model's fit, before the ladder's and the maps' choices:
+    // with the defaults as with the geometry alone.
+    let geometry = ["--gravity", "none", "--maps", "none"];
+    for model in [&[][..], &geometry[..]] {
+        let out = ["--out", "{dir}/robot.toml"];
+        refused(
+            &d,
+            &[&args[..], model, &out].concat(),
+            &[
+                "one.csv",
+                "120 readings of 1 distinct posture ",
+                "read more distinct postures",
+            ],
+        );
+    }
 }
 
 /// A short search on the paper setup, before its start and output.

@@ -3,7 +3,6 @@
 
 use super::{Request, MAX_CROSS_VALIDATION_POSTURES};
 use stiffid_core::common::error::JobOption;
-use stiffid_core::io::readings::Readings as Data;
 use stiffid_core::{Error, Result, Setup};
 use stiffid_metrology::calibration::error_model::Observation;
 use stiffid_metrology::calibration::fit::Fit;
@@ -45,23 +44,26 @@ pub(super) fn cross_validation_size(obs: &[Observation]) -> Result<()> {
     }
 }
 
-/// Refuses readings whose distinct postures ([`stiffid_design::distinct`]) give no more coordinates
-/// than the fit has parameters (but the maps' ridge-held ones): they would determine nothing.
+/// Refuses readings (`obs`, every reading as an observation) whose distinct postures
+/// ([`stiffid_design::distinct`]) give no more coordinates than the fit has parameters (but the
+/// maps' ridge-held ones): they would determine nothing. Checked after the first model's fit,
+/// before the ladder's and the maps' choices, and again for the model chosen.
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`readings`) naming the count of distinct postures, of readings, of
 /// their coordinates and of the fitted parameters.
 pub(super) fn refuse_repeated(
     setup: &Setup,
-    data: &Data,
+    obs: &[Observation],
     model: &ErrorModel,
     fit: &Fit,
 ) -> Result<()> {
     // The postures of the arm's points, grouped by their external axes' values: postures at two
     // stations of a track are distinct whatever their axis angles.
-    let mut postures = vec![None; data.labels.len()];
-    for r in data.readings.iter().filter(|r| !r.table) {
-        postures[r.posture].get_or_insert((r.q, &r.e));
+    let labels = obs.iter().map(|o| o.posture + 1).max().unwrap_or(0);
+    let mut postures = vec![None; labels];
+    for o in obs.iter().filter(|o| !o.table) {
+        postures[o.posture].get_or_insert((o.q, &o.e));
     }
     let mut groups = std::collections::BTreeMap::<Vec<u64>, Vec<_>>::new();
     for (q, e) in postures.into_iter().flatten() {
@@ -81,7 +83,7 @@ pub(super) fn refuse_repeated(
             usable.iter().filter(|&&u| u).count()
         })
         .sum();
-    let tables = data.readings.iter().filter(|r| r.table).count();
+    let tables = obs.iter().filter(|o| o.table).count();
     let coordinates = 3 * model.points() * distinct + 3 * tables;
     let fitted = (fit.fitted.iter()).filter(|&&i| model.map_start().is_none_or(|s| i < s));
     let fitted = fitted.count();
@@ -92,7 +94,7 @@ pub(super) fn refuse_repeated(
         field: "readings".into(),
         message: format!(
             "{} readings of {distinct} distinct posture{} (postures closer than 2 deg in every axis, or 10 mm and 2 deg at the flange, count once) give {coordinates} coordinates for {} fitted parameters: the readings determine nothing the fit would not choose; read more distinct postures",
-            data.readings.len(),
+            obs.len(),
             if distinct == 1 { "" } else { "s" },
             fitted
         ),

@@ -65,7 +65,11 @@ pub(super) fn choose(
         setup.robot().masses().is_some(),
         obs,
         &options,
-        |g| fitted(request, (obs, measured_in, tables), geometry, g, &options),
+        (
+            |g| fitted(request, (obs, measured_in, tables), geometry, g, &options),
+            // Readings that determine nothing are refused before any choice is fitted.
+            |f: &ladder::Fitted| super::checks::refuse_repeated(setup, obs, &f.model, &f.fit),
+        ),
     );
     progress.end();
     let climbed = climbed.map_err(|e| match e {

@@ -180,16 +180,21 @@ pub(super) struct Climbed {
 }
 
 /// Climbs the ladder of `gravity` and `maps` (module docs), fitting each gravity model with
-/// `fit` to `obs`.
+/// `fit` to `obs`, after `check` of the first model's fit (what refuses readings before any
+/// choice is fitted).
 ///
 /// # Errors
-/// Those of `fit` and [`assess`] for the first gravity model (a later one that fails is skipped).
+/// Those of `fit`, `check` and [`assess`] for the first gravity model (a later one that fails is
+/// skipped).
 pub(super) fn climb(
     (gravity, maps): (GravitySpec, Spec),
     masses: bool,
     obs: &[Observation],
     options: &Options,
-    fit: impl Fn(Gravity) -> Result<Fitted>,
+    (fit, check): (
+        impl Fn(Gravity) -> Result<Fitted>,
+        impl Fn(&Fitted) -> Result<()>,
+    ),
 ) -> Result<Climbed> {
     let gravities = gravity.rungs(masses);
     let variants: &[bool] = match maps {
@@ -202,6 +207,7 @@ pub(super) fn climb(
     postures.dedup();
     let climbed = gravities.len() * variants.len() > 1 && postures.len() >= MIN_POSTURES;
     let first = fit(gravities[0])?;
+    check(&first)?;
     let assessed = assess(maps, &first.model, &first.fit, obs, options, climbed)?;
     if !climbed {
         let ladder = (gravities.len() * variants.len() > 1).then(|| Ladder {

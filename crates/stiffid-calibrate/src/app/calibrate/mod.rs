@@ -298,7 +298,7 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         .map(|(r, _)| nalgebra::Vector3::from_column_slice(r))
         .collect();
     refuse_implausible(&request.readings, &data, None, &residuals)?;
-    refuse_repeated(setup, &data, model, fitted).map_err(|e| in_data(name, e))?;
+    refuse_repeated(setup, &obs, model, fitted).map_err(|e| in_data(name, e))?;
     let reference = update::reference(request, model, reference(setup, model)?)?;
     let nominal = nominal(&reference, &obs, name)?;
     let check = (request.update)
