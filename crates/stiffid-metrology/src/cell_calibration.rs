@@ -117,6 +117,7 @@ pub fn fit(setup: &Setup, observations: &[Observation]) -> Result<Calibration> {
         length: setup.characteristic_length().unwrap_or(1.0),
         priors: None,
         ridge: 0.0,
+        gravity: None,
     };
     let result = fit::fit(&model, observations, &start, &options)?;
     let rank = result.identifiability.rank;

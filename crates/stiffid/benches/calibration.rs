@@ -85,6 +85,7 @@ fn bench(c: &mut Criterion) {
         length: 1.0,
         priors: None,
         ridge: 0.0,
+        gravity: None,
     };
     for postures in [36, 3000] {
         let (model, obs) = campaign(postures, false);

@@ -68,6 +68,7 @@ fn bench(c: &mut Criterion) {
         length: 1.0,
         priors: None,
         ridge: 0.0,
+        gravity: None,
     };
     let (model, obs) = campaign();
     let start = fit::start(&model, &obs).unwrap();

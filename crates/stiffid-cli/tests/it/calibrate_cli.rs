@@ -355,13 +355,14 @@ fn assert_nominal_reference(doc: &Value, rigid: &Value, reference: f64) {
 }
 
 /// The stiffness file `k` gives back the compliance `springs` of joints 2-6 (joint 1 fixed, its
-/// variance zero).
+/// variance zero), noise-free readings to 1e-5 of it (the bound on the gravity terms, a prior
+/// centred on the setup's nominal compliance, moves a noise-free fit by a few millionths).
 fn assert_stiffness_file(k: &Path, setup: &Setup, springs: &Vector6<f64>) {
     let file = stiffid_core::io::stiffness::parse(&std::fs::read_to_string(k).unwrap()).unwrap();
     let c = file.compliance(setup.model()).unwrap();
     for j in 0..6 {
         assert!(
-            ((c.h[j] - springs[j]) / springs[j]).abs() < 1e-6,
+            ((c.h[j] - springs[j]) / springs[j]).abs() < 1e-5,
             "joint {}: {:e} vs {:e}",
             j + 1,
             c.h[j],

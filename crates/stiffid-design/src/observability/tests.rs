@@ -114,6 +114,7 @@ fn predicted_error_matches_a_monte_carlo_of_calibrations() {
         length: LENGTH,
         priors: None,
         ridge: 0.0,
+        gravity: None,
     };
     let runs = 100;
     let mut squares = 0.0;

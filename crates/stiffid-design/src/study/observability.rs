@@ -118,6 +118,7 @@ pub fn calibration_study(
         length: 1.0,
         priors: None,
         ridge: 0.0,
+        gravity: None,
     };
     let mut outcome = CalibrationStudy {
         criteria: Vec::with_capacity(groups),

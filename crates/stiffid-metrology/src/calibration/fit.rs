@@ -68,6 +68,30 @@ pub struct Priors {
     pub noise: f64,
 }
 
+/// A bound on what the gravity terms deflect, as Gaussian priors centred on their nominal
+/// values: each term's prior standard deviation is the value that deflects its joint by
+/// `deflection` at the largest torque it meets anywhere in the robot's joint limits
+/// ([`crate::calibration::gravity::Terms::peaks`]): each term's row `(x - x_0) sigma_t y / d`
+/// (`y` its peak regressor, `d` the deflection, `sigma_t` the noise), a Gaussian prior as
+/// [`Priors`] are. Where the readings determine a term the prior does not move it (a deflection
+/// of 1 mrad moves a point 1 m away by 1 mm, forty times a tracker's noise, at every reading);
+/// where they do not (postures that sweep the weight's joints over a few degrees), it
+/// holds the term near its nominal value instead of letting it grow along what the fitted
+/// postures cannot see, and the fit's covariance says how far it stays open
+/// ([`crate::calibration::spread`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GravityPrior {
+    /// The prior standard deviation of each term's deflection at its largest torque, rad.
+    pub deflection: f64,
+    /// The tracker's noise per coordinate, m (the prior's weight against the readings).
+    pub noise: f64,
+}
+
+/// The deflection of [`GravityPrior`] that the calibration uses: 3 mrad (0.17 deg), a heavy
+/// robot's sag at its joint 2 and more (about 2 mrad for a 165 kg payload-class arm at its
+/// nominal stiffness under its own weight, far less for a light one).
+pub const GRAVITY_DEFLECTION: f64 = 3e-3;
+
 /// What the fit needs besides the model and the readings.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Options {
@@ -80,6 +104,8 @@ pub struct Options {
     /// characteristic length), a penalty of `mu` per reading on a coefficient that moves a point
     /// at `L` by 1 m. 0 without maps.
     pub ridge: f64,
+    /// The bound on the gravity terms, if any.
+    pub gravity: Option<GravityPrior>,
 }
 
 /// The fitted calibration.
@@ -166,7 +192,7 @@ pub fn fit_within(
         })
         .collect();
     let coordinates = 3 * observations.len();
-    let regularised = options.priors.is_some() || analysed < j.ncols();
+    let regularised = regularised(model, options);
     if !regularised && coordinates <= fitted.len() {
         return Err(Error::InvalidField {
             field: "readings".into(),
@@ -216,7 +242,7 @@ pub(super) fn leave_one_out_linearised(
 ) -> Result<Vec<(usize, Estimate, DVector<f64>)>> {
     let scales = model.column_scales_of(options.length, observations);
     let fitted = &fit.fitted;
-    let regularised = options.priors.is_some() || model.map_start().is_some();
+    let regularised = regularised(model, options);
     let problem = Problem {
         model,
         observations,
@@ -358,6 +384,14 @@ fn check(observations: &[Observation], options: &Options) -> Result<()> {
     if !(options.ridge.is_finite() && options.ridge >= 0.0) {
         return Err(invalid("options", "expected a ridge of 0 or more".into()));
     }
+    if let Some(g) = options.gravity {
+        if !(positive(g.deflection) && positive(g.noise)) {
+            return Err(invalid(
+                "options",
+                "expected a positive gravity deflection and noise".into(),
+            ));
+        }
+    }
     if let Some(p) = options.priors {
         if !(positive(p.length) && positive(p.angle) && positive(p.noise)) {
             return Err(invalid(
@@ -369,9 +403,18 @@ fn check(observations: &[Observation], options: &Options) -> Result<()> {
     Ok(())
 }
 
+/// Whether the fit of `model` with `options` has prior rows: priors on the joint errors, maps (their
+/// ridge) or a bound on gravity terms.
+fn regularised(model: &ErrorModel, options: &Options) -> bool {
+    options.priors.is_some()
+        || model.map_start().is_some()
+        || (options.gravity.is_some() && !model.gravity().is_empty())
+}
+
 /// The weight of each fitted parameter's prior row (per SI unit): `sigma_t / sigma_p` of a joint
 /// error with priors, `sqrt(mu n) L` of a map's coefficient ([`Options::ridge`], `n` readings),
-/// 0 for any other parameter.
+/// `sigma_t y / d` of a gravity term with [`Options::gravity`] (`y` its peak regressor, `d` the
+/// deflection), 0 for any other parameter.
 fn prior_weights(
     model: &ErrorModel,
     fitted: &[usize],
@@ -379,6 +422,8 @@ fn prior_weights(
     readings: usize,
 ) -> DVector<f64> {
     let ridge = (options.ridge * readings as f64).sqrt() * options.length;
+    let peaks = model.gravity().peaks();
+    let start = model.gravity_start();
     DVector::from_iterator(
         fitted.len(),
         fitted
@@ -389,6 +434,9 @@ fn prior_weights(
                 }
                 (Target::Joint { .. }, Some(p)) => p.noise / p.length,
                 (Target::Map { .. } | Target::Backlash { .. }, _) => ridge,
+                (Target::Gravity(_), _) => options
+                    .gravity
+                    .map_or(0.0, |g| g.noise * peaks[c - start] / g.deflection),
                 _ => 0.0,
             }),
     )

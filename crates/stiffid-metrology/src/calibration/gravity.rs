@@ -36,6 +36,7 @@
 
 use nalgebra::{DVectorView, Matrix6, Vector3, Vector6};
 use serde::Serialize;
+use stiffid_core::common::limits::JointBox;
 use stiffid_core::robot::kinematics::Coordinates;
 use stiffid_core::{Error, Result, Robot};
 
@@ -185,6 +186,8 @@ pub struct Terms {
     terms: Vec<Term>,
     /// `M^-1` of the axis map, for kinematic springs.
     inverse_map: Matrix6<f64>,
+    /// Each term's largest regressor magnitude over [`spanning`] postures ([`Terms::peaks`]).
+    peaks: Vec<f64>,
 }
 
 impl Terms {
@@ -313,7 +316,7 @@ impl Terms {
         nominal: Vector6<f64>,
         terms: Vec<Term>,
     ) -> Self {
-        Terms {
+        let mut made = Terms {
             kind,
             inverse_map: robot
                 .axis_map()
@@ -325,7 +328,10 @@ impl Terms {
             masses,
             nominal,
             terms,
-        }
+            peaks: Vec::new(),
+        };
+        made.peaks = made.peaks_over(&spanning(robot.limits()));
+        made
     }
 
     /// Which model it is.
@@ -449,6 +455,26 @@ impl Terms {
         }
     }
 
+    /// Each term's largest regressor magnitude (N m, or N m per unit mass moment) over
+    /// [`SPANNING_POSTURES`] postures spread over the robot's joint limits ([`spanning`]): the
+    /// largest torque through which a term deflects its joint anywhere the robot can go.
+    pub fn peaks(&self) -> &[f64] {
+        &self.peaks
+    }
+
+    fn peaks_over(&self, qs: &[Vector6<f64>]) -> Vec<f64> {
+        let mut peaks = vec![0.0f64; self.terms.len()];
+        if self.terms.is_empty() {
+            return peaks;
+        }
+        for q in qs {
+            for (p, y) in peaks.iter_mut().zip(self.regressors(q)) {
+                *p = p.max(y.abs());
+            }
+        }
+        peaks
+    }
+
     /// The RMS of each term's regressor over the postures `qs` (axis angles, rad).
     pub fn regressor_rms(&self, qs: &[Vector6<f64>]) -> Vec<f64> {
         let mut sum = vec![0.0; self.terms.len()];
@@ -460,6 +486,40 @@ impl Terms {
         let n = qs.len().max(1) as f64;
         sum.iter().map(|s| (s / n).sqrt()).collect()
     }
+}
+
+/// The postures of [`Terms::peaks`].
+pub const SPANNING_POSTURES: usize = 512;
+
+/// [`SPANNING_POSTURES`] postures spread over `limits` (axis angles, rad): the Halton sequence
+/// in the first six primes (Halton 1960), its first point skipped; an axis with an infinite end
+/// spans one turn about 0 (the weight's torque repeats every turn).
+pub fn spanning(limits: &JointBox) -> Vec<Vector6<f64>> {
+    use std::f64::consts::PI;
+    const PRIMES: [u64; 6] = [2, 3, 5, 7, 11, 13];
+    let span = |i: usize| match limits.lower[i].is_finite() && limits.upper[i].is_finite() {
+        true => (limits.lower[i], limits.upper[i]),
+        false => (-PI, PI),
+    };
+    (1..=SPANNING_POSTURES as u64)
+        .map(|k| {
+            Vector6::from_fn(|i, _| {
+                let (lo, hi) = span(i);
+                lo + (hi - lo) * radical_inverse(k, PRIMES[i])
+            })
+        })
+        .collect()
+}
+
+/// The van der Corput radical inverse of `k` in `base`: its digits mirrored about the point.
+fn radical_inverse(mut k: u64, base: u64) -> f64 {
+    let (mut value, mut scale) = (0.0, 1.0 / base as f64);
+    while k > 0 {
+        value += (k % base) as f64 * scale;
+        k /= base;
+        scale /= base as f64;
+    }
+    value
 }
 
 fn invalid(link: usize, field: &str, message: &str) -> Error {

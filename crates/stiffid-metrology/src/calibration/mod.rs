@@ -17,6 +17,8 @@
 //! - [`motions`]: the orders of a carrier's error motions, chosen by cross-validation.
 //! - [`fit`]: Levenberg-Marquardt over the identifiable parameters, standard deviations, the
 //!   noise-ratio model check.
+//! - [`spread`]: the uncertainty of the predictions over the robot's joint limits, from the fit's
+//!   covariance.
 //! - [`validation`]: the held-out position error of readings not fitted.
 //! - [`intervals`]: prediction intervals of the position error from the held-out errors of
 //!   leave-one-posture-out (jackknife+), and their coverage.
@@ -32,6 +34,7 @@ pub mod intervals;
 pub mod maps;
 pub mod motions;
 pub mod robot_file;
+pub mod spread;
 pub mod validation;
 
 pub use error_model::{

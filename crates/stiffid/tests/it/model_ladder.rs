@@ -75,6 +75,11 @@ fn a_robot_that_sags_gets_gravity_terms() {
         .iter()
         .all(|r| r.rms.is_some() != r.skipped.is_some()));
     assert_ne!(report.gravity, Gravity::None, "{ladder:#?}");
+    // Postures over the joint ranges determine the gravity terms: the chosen model's predictions
+    // over the joint limits spread less than the geometry's, and none is said to extrapolate.
+    let spread = |g: Gravity| (ladder.rungs.iter().find(|r| r.gravity == g)).and_then(|r| r.spread);
+    assert!(spread(report.gravity).unwrap() < spread(Gravity::None).unwrap());
+    assert!(ladder.rungs.iter().all(|r| r.rms.is_some()), "{ladder:#?}");
     assert_eq!(report.gravity, ladder.rungs[ladder.chosen].gravity);
     // The weight's sag is millimetres: the geometry alone misses held out by far more than the
     // chosen model, which predicts to within a few times the tracker's noise.
@@ -143,6 +148,16 @@ fn thin(
 
 /// The RMS and largest error (m) of `gravity` fitted to `data` on the held-out readings `held`.
 fn validated(case: &Case, data: &str, held: &str, gravity: GravitySpec) -> (f64, f64, Gravity) {
+    validated_ladder(case, data, held, gravity).0
+}
+
+/// [`validated`] and the ladder climbed.
+fn validated_ladder(
+    case: &Case,
+    data: &str,
+    held: &str,
+    gravity: GravitySpec,
+) -> ((f64, f64, Gravity), Option<calibrate::ladder::Ladder>) {
     let report = calibrate::run(&calibrate::Request {
         readings: stiffid::app::readings::Request {
             setup: &case.setup,
@@ -166,24 +181,17 @@ fn validated(case: &Case, data: &str, held: &str, gravity: GravitySpec) -> (f64,
         urdf: false,
     })
     .unwrap();
-    if let Some(ladder) = report.ladder.as_ref().filter(|l| l.rungs.len() > 1) {
-        for r in &ladder.rungs {
-            println!(
-                "  rung {:?}: held out {:?}, skipped {:?}",
-                r.gravity, r.rms, r.skipped
-            );
-        }
-    }
     let v = &report.validation.as_ref().unwrap().calibrated;
-    (v.rms, v.max, report.gravity)
+    ((v.rms, v.max, report.gravity), report.ladder)
 }
 
 /// A campaign whose postures leave the sag's joints a thin sweep (joints 2 and 3 within 8 deg,
-/// 30 postures) and held-out postures over the whole range: every gravity model fitted to it
-/// extrapolates there, the lumped terms far beyond the geometry alone; the default's choice (the
-/// robot's masses, which the ladder scores best within the sweep) stays within twice the
-/// geometry's held-out error. The ladder's folds hold out postures within the sweep: they cannot
-/// see the extrapolation, and a robot without masses would be left with the lumped rungs.
+/// 30 postures) and held-out postures over the whole range: the three bodies' lumped terms,
+/// which the sweep does not determine, spread the predictions over the joint limits by
+/// millimetres (their bound holds them), and the ladder skips them as extrapolating although
+/// the lumped terms fitted when asked for miss the wide postures by more than the geometry;
+/// the default's choice (the robot's masses) stays within twice the geometry's
+/// held-out error.
 #[test]
 fn a_thin_sweep_does_not_blow_up_the_default() {
     let case = dh_case();
@@ -195,16 +203,29 @@ fn a_thin_sweep_does_not_blow_up_the_default() {
         let data = truth.readings(&fit, &[Vector6::zeros()], &mut rng);
         let held = truth.readings(&wide, &[Vector6::zeros()], &mut rng);
         let geometry = validated(&case, &data, &held, GravitySpec::Fixed(Gravity::None));
-        let auto = validated(&case, &data, &held, GravitySpec::Auto);
+        let (auto, ladder) = validated_ladder(&case, &data, &held, GravitySpec::Auto);
         let lumped = validated(&case, &data, &held, GravitySpec::Fixed(Gravity::Lumped));
-        let masses = validated(&case, &data, &held, GravitySpec::Fixed(Gravity::Masses));
-        println!("seed {seed}: geometry {geometry:.6?} auto {auto:.6?} lumped {lumped:.6?} masses {masses:.6?}");
-        // The sweep is thin: the lumped terms, fitted whatever the ladder says, miss the wide
-        // postures by more than twice the geometry (2.5 to 6.5 times on these seeds).
-        assert!(
-            lumped.0 > 2.0 * geometry.0,
-            "{lumped:?} against {geometry:?}"
+        let ladder = ladder.unwrap();
+        let rung = |g: Gravity| ladder.rungs.iter().find(|r| r.gravity == g).unwrap();
+        let (none, three) = (rung(Gravity::None), rung(Gravity::Lumped));
+        println!(
+            "seed {seed}: geometry {geometry:.6?} auto {auto:.6?} lumped {lumped:.6?}; spread {:.6?} against {:.6?}, held out {:.6}",
+            three.spread, none.spread, none_held(&ladder)
         );
+        let why = three.skipped.as_deref().unwrap_or_default();
+        assert!(why.starts_with("it extrapolates"), "{ladder:#?}");
+        // Its spread alone exceeds the geometry's expected error over the joint limits.
+        let base = none.spread.unwrap().hypot(none_held(&ladder));
+        assert!(three.spread.unwrap() > base, "{ladder:#?}");
         assert!(auto.0 <= 2.0 * geometry.0, "{auto:?} against {geometry:?}");
+        assert!(lumped.0 > geometry.0, "{lumped:?} against {geometry:?}");
     }
+}
+
+/// The geometry's held-out RMS without maps in `ladder`, m.
+fn none_held(ladder: &calibrate::ladder::Ladder) -> f64 {
+    (ladder.rungs.iter())
+        .find(|r| r.gravity == Gravity::None && !r.maps)
+        .and_then(|r| r.rms)
+        .unwrap()
 }

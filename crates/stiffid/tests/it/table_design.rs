@@ -188,6 +188,7 @@ fn fit_options() -> Options {
         length: 1.0,
         priors: None,
         ridge: 0.0,
+        gravity: None,
     }
 }
 

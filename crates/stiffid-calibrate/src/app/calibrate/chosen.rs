@@ -5,7 +5,9 @@ use super::{ladder, maps, update, Maps, Request};
 use stiffid_core::app::in_data;
 use stiffid_core::{Error, Result};
 use stiffid_metrology::calibration::error_model::{MeasuredIn, Observation};
-use stiffid_metrology::calibration::fit::{self, Fit, Options, Priors};
+use stiffid_metrology::calibration::fit::{
+    self, Fit, GravityPrior, Options, Priors, GRAVITY_DEFLECTION,
+};
 use stiffid_metrology::calibration::gravity::Gravity;
 use stiffid_metrology::calibration::{model, motions, ErrorModel, Estimate, Geometry};
 
@@ -29,17 +31,23 @@ pub(super) struct Chosen {
     pub error_motions: Option<motions::Choice>,
 }
 
-/// The fit's options: the setup's characteristic length, the request's priors, no ridge.
+/// The fit's options: the setup's characteristic length, the request's priors, no ridge, the
+/// gravity terms bounded ([`GravityPrior`], [`GRAVITY_DEFLECTION`]).
 fn options(request: &Request<'_>) -> Options {
     let setup = request.readings.setup;
+    let noise = setup.noise().reading_sd();
     Options {
         length: setup.characteristic_length().unwrap_or(1.0),
         priors: request.priors.map(|t| Priors {
             length: t.length,
             angle: t.angle,
-            noise: setup.noise().reading_sd(),
+            noise,
         }),
         ridge: 0.0,
+        gravity: Some(GravityPrior {
+            deflection: GRAVITY_DEFLECTION,
+            noise,
+        }),
     }
 }
 

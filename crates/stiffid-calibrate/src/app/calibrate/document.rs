@@ -9,6 +9,8 @@ use stiffid_core::app::Warning;
 use stiffid_core::common::choice::Choice;
 use stiffid_core::io::readings::point_name;
 use stiffid_metrology::calibration::error_model::Target;
+use stiffid_metrology::calibration::fit::GRAVITY_DEFLECTION;
+use stiffid_metrology::calibration::gravity::Gravity;
 use stiffid_metrology::calibration::validation::Validation;
 use stiffid_view as scene;
 
@@ -28,6 +30,10 @@ pub struct Document {
     /// The gravity terms fitted: `none`, `masses`, `lumped` or `lumped-links` (with `--gravity
     /// auto`, the ladder's choice).
     pub gravity: &'static str,
+    /// With gravity terms: their bound, the prior standard deviation of each term's deflection
+    /// at the largest torque it meets within the robot's joint limits, mrad (what holds a term
+    /// the readings do not determine at its nominal value); `null` without gravity terms.
+    pub gravity_prior_mrad: Option<f64>,
     /// The frame of the readings: `tracker` or `base`.
     pub measured_in: &'static str,
     /// Readings fitted: the unloaded, and the loaded ones with load steps.
@@ -406,6 +412,8 @@ impl Document {
             data: report.data_name.clone(),
             geometry: Choice::name(report.geometry),
             gravity: Choice::name(report.gravity),
+            gravity_prior_mrad: (report.gravity != Gravity::None)
+                .then_some(GRAVITY_DEFLECTION * 1e3),
             measured_in: match model.measured_in() {
                 stiffid_metrology::calibration::error_model::MeasuredIn::Tracker => "tracker",
                 stiffid_metrology::calibration::error_model::MeasuredIn::Base => "base",

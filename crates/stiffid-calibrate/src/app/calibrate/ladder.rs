@@ -9,8 +9,15 @@
 //! or fixed maps one maps variant; a ladder of one rung is not climbed.
 //!
 //! # The held-out figure
-//! Each rung is fitted to every reading; a rung whose fit does not converge or whose scaled
-//! Jacobian's condition exceeds [`super::WEAK_CONDITION`] is skipped (the simpler model kept).
+//! Each rung is fitted to every reading (its gravity terms bounded by
+//! [`stiffid_metrology::calibration::fit::GravityPrior`]); a rung whose fit does not converge or
+//! whose scaled Jacobian's condition exceeds [`super::WEAK_CONDITION`] is skipped (the simpler
+//! model kept), and so is a gravity model that extrapolates: one whose expected error over the
+//! robot's joint limits exceeds the geometry's, the expected error being the held-out error
+//! (below) and the RMS standard deviation of the predictions over the joint limits
+//! ([`workspace_sd`], where the readings leave the terms to their prior) in quadrature: bias
+//! and variance. The groups held out among the fitted postures cannot show what the spread
+//! shows.
 //! The postures are dealt into [`FOLDS`] groups (posture `i` in group `i mod K`); each group is
 //! predicted by the rung refitted without it (linearised at the rung's fit, as the maps' choice:
 //! [`stiffid_metrology::calibration::maps::nested`], the maps chosen anew on each training set),
@@ -31,6 +38,7 @@ use stiffid_metrology::calibration::error_model::Observation;
 use stiffid_metrology::calibration::fit::{stop_warning, Fit, Options};
 use stiffid_metrology::calibration::gravity::Gravity;
 use stiffid_metrology::calibration::maps::{Spec, FOLDS};
+use stiffid_metrology::calibration::spread::workspace_sd;
 use stiffid_metrology::calibration::{motions, ErrorModel, Estimate};
 
 /// The gravity models of `--gravity auto`, in order of complexity ([`Gravity::Masses`] only on a
@@ -103,8 +111,12 @@ pub struct Rung {
     pub maps: bool,
     /// Its held-out RMS error over the groups, m; `None` when skipped.
     pub rms: Option<f64>,
-    /// Why it was skipped (a fit that does not converge, is ill-conditioned or fails).
+    /// Why it was skipped (a fit that does not converge, is ill-conditioned, fails or
+    /// extrapolates).
     pub skipped: Option<String>,
+    /// The RMS standard deviation of its gravity model's predictions over the robot's joint
+    /// limits ([`workspace_sd`]), m; `None` when not computed.
+    pub spread: Option<f64>,
     /// Per held-out posture (the groups' in order), its sum of squared errors, m^2; empty when
     /// skipped.
     pub errors: Vec<f64>,
@@ -248,9 +260,17 @@ pub(super) fn climb(
     let order: Vec<(usize, bool)> = (variants.iter())
         .flat_map(|&v| (0..gravities.len()).map(move |g| (g, v)))
         .collect();
-    let rungs: Vec<Rung> = (order.iter())
-        .map(|&(g, v)| rung(gravities[g], v, &fits[g]))
+    let like = obs.iter().find(|o| !o.table).unwrap_or(&obs[0]);
+    let spreads: Vec<Option<f64>> = (fits.iter())
+        .map(|f| (f.as_ref().ok()).and_then(|(f, _)| workspace_sd(&f.model, &f.fit, like).ok()))
         .collect();
+    let mut rungs: Vec<Rung> = (order.iter())
+        .map(|&(g, v)| Rung {
+            spread: spreads[g],
+            ..rung(gravities[g], v, &fits[g])
+        })
+        .collect();
+    extrapolating(&mut rungs, &order);
     let chosen = choose(&rungs);
     let (g, with_maps) = order[chosen];
     let why = (!with_maps).then(|| {
@@ -270,6 +290,37 @@ pub(super) fn climb(
             chosen,
         }),
     })
+}
+
+/// Skips the rungs (`order`: each one's gravity model's index and whether it fits maps) of every
+/// gravity model that extrapolates: whose expected error over the robot's joint limits, its
+/// held-out error without maps and its spread there in quadrature, exceeds the first gravity
+/// model's (module docs).
+fn extrapolating(rungs: &mut [Rung], order: &[(usize, bool)]) {
+    // Per gravity model: its held-out error without maps and its spread, squared and summed.
+    let expected = |rungs: &[Rung], g: usize| {
+        let i = (0..order.len()).find(|&i| order[i] == (g, false))?;
+        let (rms, spread) = (rungs[i].rms?, rungs[i].spread?);
+        Some((rms * rms + spread * spread).sqrt())
+    };
+    let Some(base) = expected(rungs, 0) else {
+        return;
+    };
+    let worse: Vec<(usize, f64)> = (1..=order.iter().map(|o| o.0).max().unwrap_or(0))
+        .filter_map(|g| expected(rungs, g).filter(|&e| e > base).map(|e| (g, e)))
+        .collect();
+    for (r, &(g, _)) in rungs.iter_mut().zip(order) {
+        let Some(&(_, e)) = worse.iter().find(|w| w.0 == g) else {
+            continue;
+        };
+        r.skipped = Some(format!(
+            "it extrapolates: its predictions over the robot's joint limits spread by {:.3} mm, and with its held-out error it is expected {:.3} mm off there against {:.3} mm for the geometry (the postures leave its gravity terms to their bound)",
+            r.spread.unwrap_or(f64::NAN) * 1e3,
+            e * 1e3,
+            base * 1e3
+        ));
+        (r.rms, r.errors) = (None, Vec::new());
+    }
 }
 
 /// `Err` why a gravity model's fit is not a rung: it did not converge, or its scaled Jacobian's
@@ -308,6 +359,7 @@ fn rung(
             maps,
             rms: Some(nested.rms),
             skipped: None,
+            spread: None,
             errors: nested.errors.clone(),
         },
         (false, _) => Rung {
@@ -315,6 +367,7 @@ fn rung(
             maps,
             rms: Some(nested.none_rms),
             skipped: None,
+            spread: None,
             errors: nested.none_errors.clone(),
         },
     }
@@ -327,6 +380,7 @@ fn unscored(gravity: Gravity, maps: bool, skipped: Option<String>) -> Rung {
         maps,
         rms: None,
         skipped,
+        spread: None,
         errors: Vec::new(),
     }
 }
@@ -356,6 +410,10 @@ pub struct RungDocument {
     pub held_out_rms_mm: Option<f64>,
     /// Why it was skipped; `null` when scored.
     pub skipped: Option<String>,
+    /// The RMS standard deviation of its gravity model's predicted positions over postures
+    /// spread over the robot's joint limits, from the fit's covariance, mm: how far the
+    /// readings determine it where the robot can go; `null` when not computed.
+    pub workspace_sd_mm: Option<f64>,
 }
 
 impl LadderDocument {
@@ -369,6 +427,7 @@ impl LadderDocument {
                     maps: r.maps,
                     held_out_rms_mm: r.rms.map(stiffid_core::app::document::mm),
                     skipped: r.skipped.clone(),
+                    workspace_sd_mm: r.spread.map(stiffid_core::app::document::mm),
                 })
                 .collect(),
             chosen: ladder.chosen,
@@ -386,6 +445,7 @@ mod tests {
             maps: false,
             rms: None,
             skipped: None,
+            spread: None,
             errors,
         }
     }

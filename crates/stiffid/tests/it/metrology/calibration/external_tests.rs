@@ -154,6 +154,7 @@ fn options() -> Options {
         length: 1.0,
         priors: None,
         ridge: 0.0,
+        gravity: None,
     }
 }
 

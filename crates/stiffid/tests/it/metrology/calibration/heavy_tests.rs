@@ -84,6 +84,7 @@ fn simulate(models: &[&str], splits: u64) -> Study {
         length: 1.2,
         priors: None,
         ridge: 0.0,
+        gravity: None,
     };
     let mut sums = vec![0.0; models.len()];
     let (mut sag, mut count) = (0.0, 0usize);

@@ -114,6 +114,7 @@ fn recovers(model: &ErrorModel, gravity: f64, qs: &[Vector6<f64>]) -> fit::Fit {
         length: 1.2,
         priors: None,
         ridge: 0.0,
+        gravity: None,
     };
     let nominal = Estimate {
         frame: Isometry3::identity(),

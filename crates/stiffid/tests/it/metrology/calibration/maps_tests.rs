@@ -70,6 +70,7 @@ pub(super) fn options(ridge: f64) -> Options {
         length: 1.0,
         priors: None,
         ridge,
+        gravity: None,
     }
 }
 

@@ -206,6 +206,7 @@ fn recovers(
         length: 1.0,
         priors: None,
         ridge: 0.0,
+        gravity: None,
     };
     let found = fit::fit(model, &probe, &start0, &options).unwrap();
     let identified = found.identifiability.identified.clone();
@@ -479,6 +480,7 @@ fn standard_deviations_match_monte_carlo() {
         length: 1.0,
         priors: None,
         ridge: 0.0,
+        gravity: None,
     };
     let noise = Normal::new(0.0, 5e-5).unwrap();
     let mut rng = ChaCha8Rng::seed_from_u64(7);
@@ -543,6 +545,7 @@ fn the_fit_says_why_it_stopped_and_warns_at_its_iteration_limit() {
         length: 1.0,
         priors: None,
         ridge: 0.0,
+        gravity: None,
     };
     // One step from the registered nominal leaves the 1 mm errors partly unfitted.
     let cut = fit::fit_within(&model, &data, &start, &options, 1).unwrap();
