@@ -53,7 +53,7 @@ struct Study {
     sag: f64,
 }
 
-fn simulate(models: &[&str], splits: u64) -> Study {
+fn simulate(models: &[&str], splits: u64, gravity: Option<fit::GravityPrior>) -> Study {
     let robot = presets::get("fanuc-r2000ic-165f").unwrap();
     let masses = masses(&robot);
     let compliance = Vector6::from_fn(|i, _| 1.0 / STIFFNESS[i]);
@@ -84,7 +84,7 @@ fn simulate(models: &[&str], splits: u64) -> Study {
         length: 1.2,
         priors: None,
         ridge: 0.0,
-        gravity: None,
+        gravity,
     };
     let mut sums = vec![0.0; models.len()];
     let (mut sag, mut count) = (0.0, 0usize);
@@ -158,7 +158,7 @@ fn simulate(models: &[&str], splits: u64) -> Study {
 #[test]
 fn heavy_robot_gravity_terms_cut_held_out_error() {
     let models = ["none", "lumped", "lumped-links", "masses"];
-    let s = simulate(&models, 20);
+    let s = simulate(&models, 20, None);
     for (m, e) in models.iter().zip(&s.held_out) {
         eprintln!("gravity {m}: held-out RMS {:.4} mm", e * 1e3);
     }
@@ -174,4 +174,60 @@ fn heavy_robot_gravity_terms_cut_held_out_error() {
     let noise = 3f64.sqrt() * NOISE;
     assert!(masses < 1.25 * noise, "{masses}");
     assert!(lumped < 1.5 * noise, "{lumped}");
+}
+
+/// The bound on the gravity terms (as `calibrate` fits them: [`fit::GRAVITY_DEFLECTION`], the
+/// tracker's noise) leaves what a campaign over the joint ranges determines: every model predicts
+/// the held-out readings as it does without it, within 2 %.
+#[test]
+fn the_bound_leaves_determined_gravity_terms() {
+    let models = ["none", "lumped", "lumped-links", "masses"];
+    let prior = fit::GravityPrior {
+        deflection: fit::GRAVITY_DEFLECTION,
+        noise: NOISE,
+    };
+    let (free, bound) = (
+        simulate(&models, 5, None),
+        simulate(&models, 5, Some(prior)),
+    );
+    for ((m, a), b) in models.iter().zip(&free.held_out).zip(&bound.held_out) {
+        eprintln!(
+            "gravity {m}: held-out RMS {:.5} mm free, {:.5} mm bound",
+            a * 1e3,
+            b * 1e3
+        );
+        assert!((b - a).abs() < 0.02 * a, "{m}: {b} against {a}");
+    }
+}
+
+/// The postures the bound and the spread are taken over fill the joint limits: every one inside,
+/// each axis's range covered to 1 % of its ends, an unbounded axis over one turn.
+#[test]
+fn the_spanning_postures_fill_the_joint_limits() {
+    use stiffid_core::common::limits::JointBox;
+    let robot = presets::get("fanuc-r2000ic-165f").unwrap();
+    let mut limits = *robot.limits();
+    limits.lower[5] = f64::NEG_INFINITY;
+    let qs = gravity::spanning(&limits);
+    assert_eq!(qs.len(), gravity::SPANNING_POSTURES);
+    // The unbounded axis spans one turn about 0, the others their limits.
+    let pi = std::f64::consts::PI;
+    let mut turn = JointBox::new(limits.lower, limits.upper);
+    (turn.lower[5], turn.upper[5]) = (-pi, pi);
+    for axis in 0..6 {
+        let (lo, hi) = (turn.lower[axis], turn.upper[axis]);
+        let seen = |f: fn(f64, f64) -> f64, from: f64| qs.iter().map(|q| q[axis]).fold(from, f);
+        let (min, max) = (
+            seen(f64::min, f64::INFINITY),
+            seen(f64::max, f64::NEG_INFINITY),
+        );
+        assert!(
+            min >= lo && max <= hi,
+            "axis {axis}: {min}..{max} in {lo}..{hi}"
+        );
+        assert!(
+            min - lo < 0.01 * (hi - lo) && hi - max < 0.01 * (hi - lo),
+            "axis {axis}"
+        );
+    }
 }
