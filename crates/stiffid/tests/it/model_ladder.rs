@@ -214,6 +214,8 @@ fn a_thin_sweep_does_not_blow_up_the_default() {
         );
         let why = three.skipped.as_deref().unwrap_or_default();
         assert!(why.starts_with("it extrapolates"), "{ladder:#?}");
+        // Within the sweep it beats the geometry held out: only the spread shows it.
+        assert!(three.rms.unwrap() < none_held(&ladder), "{ladder:#?}");
         // Its spread alone exceeds the geometry's expected error over the joint limits.
         let base = none.spread.unwrap().hypot(none_held(&ladder));
         assert!(three.spread.unwrap() > base, "{ladder:#?}");

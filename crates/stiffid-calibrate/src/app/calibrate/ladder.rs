@@ -109,7 +109,8 @@ pub struct Rung {
     pub gravity: Gravity,
     /// Whether it fits the joint error maps of `--maps` (chosen inside each training set).
     pub maps: bool,
-    /// Its held-out RMS error over the groups, m; `None` when skipped.
+    /// Its held-out RMS error over the groups, m; `None` when not scored (a skipped rung keeps
+    /// it when it was scored before it was found to extrapolate).
     pub rms: Option<f64>,
     /// Why it was skipped (a fit that does not converge, is ill-conditioned, fails or
     /// extrapolates).
@@ -118,7 +119,7 @@ pub struct Rung {
     /// limits ([`workspace_sd`]), m; `None` when not computed.
     pub spread: Option<f64>,
     /// Per held-out posture (the groups' in order), its sum of squared errors, m^2; empty when
-    /// skipped.
+    /// not scored.
     pub errors: Vec<f64>,
 }
 
@@ -319,7 +320,6 @@ fn extrapolating(rungs: &mut [Rung], order: &[(usize, bool)]) {
             e * 1e3,
             base * 1e3
         ));
-        (r.rms, r.errors) = (None, Vec::new());
     }
 }
 
@@ -406,7 +406,9 @@ pub struct RungDocument {
     pub gravity: &'static str,
     /// Whether it fits the joint error maps (chosen inside each training set).
     pub maps: bool,
-    /// Its held-out RMS error over the groups (the nested figure), mm; `null` when skipped.
+    /// Its held-out RMS error over the groups (the nested figure), mm; `null` when not scored
+    /// (a fit that does not converge, is ill-conditioned or fails; a model skipped because it
+    /// extrapolates keeps its figure).
     pub held_out_rms_mm: Option<f64>,
     /// Why it was skipped; `null` when scored.
     pub skipped: Option<String>,
