@@ -209,8 +209,8 @@ fn a_thin_sweep_does_not_blow_up_the_default() {
         let rung = |g: Gravity| ladder.rungs.iter().find(|r| r.gravity == g).unwrap();
         let (none, three) = (rung(Gravity::None), rung(Gravity::Lumped));
         println!(
-            "seed {seed}: geometry {geometry:.6?} auto {auto:.6?} lumped {lumped:.6?}; spread {:.6?} against {:.6?}, held out {:.6}",
-            three.spread, none.spread, none_held(&ladder)
+            "seed {seed}: geometry {geometry:.6?} auto {auto:.6?} lumped {lumped:.6?}; spread {:.6?} against {:.6?}, held out {:.6?} against {:.6}",
+            three.spread, none.spread, three.rms, none_held(&ladder)
         );
         let why = three.skipped.as_deref().unwrap_or_default();
         assert!(why.starts_with("it extrapolates"), "{ladder:#?}");
