@@ -4,8 +4,9 @@
 //! own postures) gets the same wrench and the same error bound at every point (written by stiffid:
 //! to 1e-6 N of 244 N and 1e-12 m; INFORM's whole pulses: 0.1 N and 1e-7 m; the shipped files, whose
 //! targets carry a deflection of up to 0.2 um: 0.01 N and 2e-9 m): the joint moves, the plunges
-//! and the retracts none, the cutting moves the operation's. `place`
-//! evaluates the KRL and RAPID programs as their G-code. A drilling program's cycles (`G81`,
+//! and the retracts none, the cutting moves the operation's; so do two slots joined by a rapid
+//! across (a joint move in a robot program). `place` evaluates the KRL and RAPID programs as
+//! their G-code. A drilling program's cycles (`G81`,
 //! `G83`) written as LS, KRL and RAPID get the thrust where the G-code's drill cuts (from where it
 //! meets the part to each feed's end), never at the `R` level or a peck's re-approach.
 
@@ -246,6 +247,58 @@ fn the_pocket_gets_the_same_wrench_and_bound_in_every_language() {
         );
         assert!(wrench < 1e-2, "shipped {dialect:?}: {wrench} N");
         assert!(bound < 2e-9, "shipped {dialect:?}: {bound} m");
+    }
+}
+
+/// Two slots 4 mm deep joined by rapids in the air: a plunge, a cut along X, a rapid up, a
+/// rapid across to the second slot, a plunge and a cut back.
+const SLOTS: &str = "(stiffid: tool_rpy_deg = 180 0 0)\nG21 G90 G17\nG0 X0 Y-50 Z5\n\
+    G1 Z-4 F300\nG1 X25 F1800\nG1 X50\nG0 Z5\nG0 X50 Y50\nG1 Z-4 F300\nG1 X25 F1800\nG1 X0\n\
+    G0 Z50\n";
+
+/// A milling program written as LS (FANUC cell), KRL and RAPID (KUKA cell) by stiffid, read back
+/// and compensated, gets the G-code's wrench (to 1e-9 N) and bound (to 1e-12 m) at every point:
+/// the operation's force along the slots, none at the plunges and the rapids (the joint moves
+/// `J`, `PTP`, `MoveJ`), the one across between the slots included.
+#[test]
+fn rapids_between_cuts_cut_nothing_in_every_language() {
+    let (fanuc, kuka) = (fanuc(), kuka());
+    let g = machining::gcode::parse(SLOTS, 1e-5).unwrap();
+    // Where the tool cuts: the feeds across the tool axis (not the plunges).
+    let cuts: Vec<bool> = (0..g.points.len())
+        .map(|i| {
+            let p = &g.points[i];
+            let lateral = i > 0 && (p.position.z - g.points[i - 1].position.z).abs() < 1e-12;
+            p.motion == machining::gcode::Motion::Feed && lateral
+        })
+        .collect();
+    assert_eq!(cuts.iter().filter(|c| **c).count(), 4);
+    for (c, dialect) in [
+        (&fanuc, Dialect::FanucLs),
+        (&kuka, Dialect::Krl),
+        (&kuka, Dialect::Rapid),
+    ] {
+        let gcode = compensated(c, SLOTS, Language::GCode);
+        let text = written(c, SLOTS, dialect);
+        let robot = compensated(c, &text, Language::Robot(dialect));
+        for r in [&gcode, &robot] {
+            // The spindle's weight (the KUKA's; the same force at every point).
+            let weight = r.points[0].wrench.fixed_rows::<3>(0).into_owned();
+            for (i, p) in r.points.iter().enumerate() {
+                let force = (p.wrench.fixed_rows::<3>(0) - weight).norm();
+                match cuts[i] {
+                    true => assert!(force > 100.0, "{dialect:?} {i}: {force} N"),
+                    false => assert!(force < 1e-9, "{dialect:?} {i}: {force} N"),
+                }
+            }
+        }
+        let (wrench, bound) = differences(&gcode, &robot);
+        eprintln!(
+            "slots {dialect:?} vs G-code: wrench {wrench:.3e} N, bound {:.3e} mm",
+            bound * 1e3
+        );
+        assert!(wrench < 1e-9, "{dialect:?}: {wrench} N");
+        assert!(bound < 1e-12, "{dialect:?}: {bound} m");
     }
 }
 
