@@ -311,9 +311,10 @@ const DRILLING: &str = "(stiffid: tool_rpy_deg = 180 0 0)\nG21 G90 G17\nG0 X0 Y0
 /// tool tilted by `A` to each hole's normal.
 const PANEL: &str = include_str!("../../../../examples/milling/panel.nc");
 
-/// Drilling programs written as LS (FANUC cell), KRL and RAPID (KUKA cell) by stiffid, read back
-/// and compensated, get the G-code's wrench (to 1e-9 N), bound (to 1e-12 m) and compensated
-/// posture (to 1e-10 rad) at every point: the thrust (600 N up the spindle) from where the drill
+/// Drilling programs written as LS (FANUC cell), KRL and RAPID (KUKA cell) by stiffid, and as an
+/// INFORM job of the G-code's postures (FANUC cell), read back and compensated, get the G-code's
+/// wrench (to 1e-9 N), bound (to 1e-12 m) and compensated posture (to 1e-10 rad) at every point
+/// (INFORM's whole pulses: 1e-3 N, 1e-10 m, 1e-6 rad): the thrust (600 N up the spindle) from where the drill
 /// meets the part (its surface, or the depth a peck reached) to each feed's end, none at a
 /// cycle's `R` level, a peck's re-approach, an approach or a retract. The cycles: [`DRILLING`];
 /// the panel ([`PANEL`], LS only).
@@ -331,6 +332,7 @@ fn a_drilling_program_gets_the_thrust_where_the_drill_cuts_in_every_language() {
         (&fanuc, DRILLING, Dialect::FanucLs),
         (&kuka, DRILLING, Dialect::Krl),
         (&kuka, DRILLING, Dialect::Rapid),
+        (&fanuc, DRILLING, Dialect::Inform),
         (&fanuc, PANEL, Dialect::FanucLs),
     ];
     for (c, program, dialect) in programs {
@@ -343,7 +345,17 @@ fn a_drilling_program_gets_the_thrust_where_the_drill_cuts_in_every_language() {
         let holes = if program == PANEL { 20 } else { 2 + 6 };
         assert_eq!(cuts.iter().filter(|c| **c).count(), holes);
         let gcode = compensated(c, program, Language::GCode);
-        let text = written(c, program, dialect);
+        let text = match dialect {
+            // An INFORM job of the G-code's postures: `MOVJ` for its rapids, else `MOVL`.
+            Dialect::Inform => {
+                let rapid: Vec<bool> = (g.points.iter())
+                    .map(|p| p.motion == machining::gcode::Motion::Rapid)
+                    .collect();
+                let postures: Vec<_> = gcode.results.iter().map(|r| r.q).collect();
+                inform(&postures, &rapid)
+            }
+            _ => written(c, program, dialect),
+        };
         let robot = compensated(c, &text, Language::Robot(dialect));
         for r in [&gcode, &robot] {
             // The spindle's weight (the KUKA's; the same force at every point).
@@ -370,9 +382,14 @@ fn a_drilling_program_gets_the_thrust_where_the_drill_cuts_in_every_language() {
             g.points.len(),
             bound * 1e3
         );
-        assert!(wrench < 1e-9, "{dialect:?}: {wrench} N");
-        assert!(bound < 1e-12, "{dialect:?}: {bound} m");
-        assert!(posture < 1e-10, "{dialect:?}: {posture} rad");
+        // INFORM states whole pulses (1e-5 deg); the others 9 decimals of mm and deg.
+        let (n, m, rad) = match dialect {
+            Dialect::Inform => (1e-3, 1e-10, 1e-6),
+            _ => (1e-9, 1e-12, 1e-10),
+        };
+        assert!(wrench < n, "{dialect:?}: {wrench} N");
+        assert!(bound < m, "{dialect:?}: {bound} m");
+        assert!(posture < rad, "{dialect:?}: {posture} rad");
     }
 }
 
