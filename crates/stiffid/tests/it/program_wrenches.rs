@@ -314,10 +314,10 @@ const PANEL: &str = include_str!("../../../../examples/milling/panel.nc");
 /// Drilling programs written as LS (FANUC cell), KRL and RAPID (KUKA cell) by stiffid, and as an
 /// INFORM job of the G-code's postures (FANUC cell), read back and compensated, get the G-code's
 /// wrench (to 1e-9 N), bound (to 1e-12 m) and compensated posture (to 1e-10 rad) at every point
-/// (INFORM's whole pulses: 1e-3 N, 1e-10 m, 1e-6 rad): the thrust (600 N up the spindle) from where the drill
-/// meets the part (its surface, or the depth a peck reached) to each feed's end, none at a
-/// cycle's `R` level, a peck's re-approach, an approach or a retract. The cycles: [`DRILLING`];
-/// the panel ([`PANEL`], LS only).
+/// (INFORM's whole pulses: 1e-3 N, 1e-10 m, 1e-6 rad): the thrust (600 N up the spindle) from
+/// where the drill meets the part (its surface, or the depth a peck reached) to each feed's end,
+/// none at a cycle's `R` level, a peck's re-approach, an approach or a retract. The cycles:
+/// [`DRILLING`]; the panel ([`PANEL`], LS only).
 #[test]
 fn a_drilling_program_gets_the_thrust_where_the_drill_cuts_in_every_language() {
     let (fanuc, kuka) = (drilling(fanuc()), drilling(kuka()));
