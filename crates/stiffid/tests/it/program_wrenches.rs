@@ -1,14 +1,14 @@
 //! The process wrench where the tool cuts, in every program language: the milling example's
 //! pocket as G-code (`pocket.nc`) and as the robot programs written from it (`pocket.ls` on the
 //! FANUC cell, `pocket.src` and `pocket.mod` on the KUKA cell, and an INFORM job of the G-code's
-//! own postures) gets the same wrench and the same error bound at every point (written by stiffid:
-//! to 1e-6 N of 244 N and 1e-12 m; INFORM's whole pulses: 0.1 N and 1e-7 m; the shipped files, whose
-//! targets carry a deflection of up to 0.2 um: 0.01 N and 2e-9 m): the joint moves, the plunges
-//! and the retracts none, the cutting moves the operation's; so do two slots joined by a rapid
-//! across (a joint move in a robot program). `place` evaluates the KRL and RAPID programs as
-//! their G-code. A drilling program's cycles (`G81`,
-//! `G83`) written as LS, KRL and RAPID get the thrust where the G-code's drill cuts (from where it
-//! meets the part to each feed's end), never at the `R` level or a peck's re-approach.
+//! own postures) gets the same wrench and the same error bound at every point (written by
+//! stiffid: to 1e-6 N of 244 N and 1e-12 m; INFORM's whole pulses: 0.1 N and 1e-7 m; the shipped
+//! files, whose targets carry a deflection of up to 0.2 um: 0.01 N and 2e-9 m): the joint moves,
+//! the plunges and the retracts none, the cutting moves the operation's; so do two slots joined
+//! by a rapid across (a joint move in a robot program). `place` evaluates the KRL and RAPID
+//! programs as their G-code. A drilling program's cycles (`G81`, `G83`) written as LS, KRL,
+//! RAPID and INFORM get the thrust where the G-code's drill cuts (from where it meets the part
+//! to each feed's end), never at the `R` level or a peck's re-approach.
 
 use nalgebra::Isometry3;
 use stiffid::app::place::{self, Region, Request, Work};
