@@ -438,7 +438,7 @@ fn not_in_part_frame(s: &Setup) -> Vec<(Dialect, Program, &'static str)> {
         (
             Dialect::FanucLs,
             world.as_str(),
-            "the world frame: the targets are not in the part frame",
+            "the world frame: the targets are not in the part frame (the setup's [workpiece]), so they do not move with the part; give them as Cartesian positions in a user frame UF : n, n >= 1, that a remark `! stiffid: user_frame = n ;` names",
         ),
         (
             Dialect::Krl,

@@ -137,7 +137,7 @@ pub fn check_placed(program: &JointProgram, controller: &Controller) -> Result<(
             return Err(at(t.line, "a joint target: axis angles do not move with the part; give every target as a Cartesian one in the part frame".into()));
         };
         check_tool(&c.tool, t.line, controller)?;
-        base_frame(&c.frame, t.line, controller, Some(&part))?;
+        base_frame(&c.frame, t.line, (controller, program.dialect), Some(&part))?;
     }
     Ok(())
 }
@@ -168,7 +168,7 @@ fn resolve_in(
             return Err(at(line, "a Cartesian target on a robot with external axes: stiffid reads those as joint targets only; write the program with joint targets".into()));
         }
         check_tool(&c.tool, line, controller)?;
-        let frame = base_frame(&c.frame, line, controller, placed)?;
+        let frame = base_frame(&c.frame, line, (controller, dialect), placed)?;
         let target = frame * c.pose();
         let kept = previous_arm.filter(|_| c.follows || c.flags.is_none());
         let wanted = c.flags.clone().or(flags.clone()).ok_or_else(|| at(line, format!("a Cartesian target without configuration data ({}), and no target before it to keep the configuration of: the pose has up to eight solutions; give them", dialect.controller().flags_name())))?;
@@ -261,11 +261,12 @@ fn same(a: &Isometry3<f64>, b: &Isometry3<f64>) -> bool {
 fn base_frame(
     frame: &Frame,
     line: u64,
-    c: &Controller,
+    (c, dialect): (&Controller, Dialect),
     placed: Option<&Isometry3<f64>>,
 ) -> Result<Isometry3<f64>> {
+    let form = dialect.controller().part_forms().unwrap_or("none");
     let not_part = |l: u64, what: String| {
-        at(l, format!("{what}: the targets are not in the part frame (the setup's [workpiece]), so they do not move with the part; give them in a base or work object equal to [workpiece]"))
+        at(l, format!("{what}: the targets are not in the part frame (the setup's [workpiece]), so they do not move with the part; give them as {form}"))
     };
     match frame {
         Frame::Unknown(l, why) => Err(at(*l, why.clone())),

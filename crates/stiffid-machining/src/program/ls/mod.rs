@@ -456,7 +456,7 @@ impl Controller for FanucLs {
         "positions in joint representation"
     }
     fn part_forms(&self) -> Option<&'static str> {
-        Some("Cartesian positions in a user frame UF : n, n >= 1")
+        Some("Cartesian positions in a user frame UF : n, n >= 1, that a remark `! stiffid: user_frame = n ;` names")
     }
     fn external_axis(&self, k: usize) -> String {
         format!("E{}", k + 1)
