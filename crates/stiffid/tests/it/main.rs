@@ -84,6 +84,7 @@ mod program_station;
 mod program_wrenches;
 mod programs;
 mod programs_proptest;
+mod readers_proptest;
 mod refined_grid;
 mod register_postures;
 mod register_robot_error;
