@@ -11,7 +11,7 @@ use crate::report::{self, compensation};
 use anyhow::{anyhow, bail, Result};
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use stiffid_core::common::words::count;
+use stiffid_core::common::words::{count, number};
 use stiffid_core::observation::deflection::Frame;
 use stiffid_core::robot::ExternalAxes;
 use stiffid_core::{Error, Progress, Setup};
@@ -461,8 +461,8 @@ fn made_of(b: &stiffid_machining::app::compensate::budget::BudgetSummary) -> Str
     );
     if let Some(m) = &b.meets {
         text += &format!(
-            "meets {:.4} mm at {}%: {}\n",
-            m.max_error_mm,
+            "meets {} mm at {}%: {}\n",
+            number(m.max_error_mm),
             100.0 * m.level,
             if m.meets { "yes" } else { "no" }
         );
@@ -565,7 +565,7 @@ fn free(doc: &Document) -> String {
         text += &format!(
             "moved postures kept {:.1} deg from the joint limits, condition number at most {}, the cell's collisions {}: states removed {} (limit margin), {} (singularity), {} (collision); moves refused {} (axis speed)\n",
             f.margin_deg,
-            f.max_condition,
+            number(f.max_condition),
             if f.collisions_checked { "checked" } else { "not checked" },
             f.states_removed_limit_margin,
             f.states_removed_singularity,

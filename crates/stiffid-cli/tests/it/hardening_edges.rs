@@ -93,6 +93,34 @@ fn program_settings_without_a_generated_program_are_refused() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// The limits a user gives `compensate` are said as given, in a number a person can read: 1e308
+/// is `1e308`, not 309 digits.
+#[test]
+fn the_limits_given_are_printed_as_given() {
+    let dir = temp_dir("edges-limits");
+    let d = dir.to_str().unwrap();
+    let out = format!("{d}/out.ls");
+    let limits = [
+        "--free",
+        "tool-rotation=-10..10/10",
+        "--max-condition",
+        "1e308",
+        "--max-error-mm",
+        "1e308",
+    ];
+    let o = stiffid(&refs(&pocket(&out, &limits)));
+    assert_success(&o);
+    let text = String::from_utf8(o.stdout).unwrap();
+    for said in [
+        "condition number at most 1e308,",
+        "meets 1e308 mm at 95%: yes",
+    ] {
+        assert!(text.contains(said), "{said}: {text}");
+    }
+    assert!(!text.contains("00000000"), "{text}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// `select --margin-mm` is a distance of 0 to 1000 mm: a negative, infinite or NaN one is
 /// refused naming the option, the edges themselves taken.
 #[test]
