@@ -58,8 +58,9 @@ fn a_split_program_never_replaces_a_file_it_did_not_write() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// The settings of a robot program generated from G-code are refused where none is generated:
-/// written back as G-code, or a robot program read back.
+/// The settings of a robot program generated from G-code (targets, name length, moves per file,
+/// the largest TCP speed) are refused where none is generated: written back as G-code, or a
+/// robot program read back.
 #[test]
 fn program_settings_without_a_generated_program_are_refused() {
     let dir = temp_dir("edges-settings");
@@ -67,6 +68,7 @@ fn program_settings_without_a_generated_program_are_refused() {
         (["--targets", "joint"], "--targets"),
         (["--name-length", "12"], "--name-length"),
         (["--moves-per-file", "100"], "--moves-per-file"),
+        (["--max-tcp-speed-mm-s", "100"], "--max-tcp-speed-mm-s"),
     ];
     for (extra, flag) in gcode_out {
         let args = pocket("{dir}/out.nc", &extra);
@@ -80,6 +82,7 @@ fn program_settings_without_a_generated_program_are_refused() {
     for (extra, flag) in [
         (["--targets", "joint"], "--targets"),
         (["--moves-per-file", "100"], "--moves-per-file"),
+        (["--max-tcp-speed-mm-s", "100"], "--max-tcp-speed-mm-s"),
     ] {
         let mut args = pocket("{dir}/back.ls", &extra);
         args[6] = ls.clone();
