@@ -91,7 +91,8 @@ pub struct Args {
     /// setup's first test posture, else the middle of its bounds.
     #[arg(long, allow_hyphen_values = true)]
     q0_deg: Option<String>,
-    /// The frame of the wrench in rows without a `frame` column value.
+    /// With --path: the frame of the wrench in rows without a `frame` column value (a program's
+    /// wrench is its process file's, where the tool cuts).
     #[arg(long, value_parser = choice::<Frame>(), default_value = "base")]
     frame: Frame,
     /// A free variable, moved from the path's or the program's own value at every point
@@ -254,6 +255,9 @@ pub fn run(args: &Args) -> Result<()> {
     Ok(())
 }
 
+/// Why a wrench frame other than the default is refused with a program.
+pub(crate) const FRAME_WITHOUT_PATH: &str = "only with --path (the frame of a path CSV's wrenches): a program's wrench is its process file's, where the tool cuts";
+
 /// The request's input from the arguments and the input file's text.
 fn input<'t>(args: &Args, name: String, text: &'t str) -> Result<Input<'t>> {
     let Some(process) = &args.process else {
@@ -263,6 +267,9 @@ fn input<'t>(args: &Args, name: String, text: &'t str) -> Result<Input<'t>> {
             frame: args.frame,
         });
     };
+    if args.frame != Frame::Base {
+        bail!("--frame: {FRAME_WITHOUT_PATH}");
+    }
     let language = Language::of_file(&name).map_err(|e| anyhow!("--program {e}"))?;
     let out = args.out.display().to_string();
     let (output, out_name) =

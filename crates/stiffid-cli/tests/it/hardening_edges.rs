@@ -96,6 +96,41 @@ fn program_settings_without_a_generated_program_are_refused() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// `--frame` names the frame of a path CSV's wrenches: with a program (whose wrench is its
+/// process file's) a frame other than the default is refused by `compensate` and `place`
+/// alike, where it was ignored; the default passes.
+#[test]
+fn a_wrench_frame_with_a_program_is_refused() {
+    let dir = temp_dir("edges-frame");
+    let expected = ["--frame", "only with --path", "process file's"];
+    let compensate = pocket("{dir}/out.nc", &["--frame", "tool"]);
+    let line = refused(&dir, &refs(&compensate), &expected);
+    assert!(line.starts_with("error: --frame: "), "{line}");
+    let place = [
+        "place",
+        "--setup",
+        &example("milling/fanuc-milling.toml"),
+        "--stiffness",
+        &example("milling/stiffness.json"),
+        "--program",
+        &example("milling/pocket.nc"),
+        "--process",
+        &example("milling/aluminium.toml"),
+        "--region-mm",
+        "500,2000,-1500,500",
+        "--out",
+        "{dir}/placed.toml",
+        "--frame",
+        "tool",
+    ];
+    let line = refused(&dir, &place, &expected);
+    assert!(line.starts_with("error: --frame: "), "{line}");
+    let d = dir.to_str().unwrap();
+    let by_default = pocket(&format!("{d}/out.nc"), &["--frame", "base"]);
+    assert_success(&stiffid(&refs(&by_default)));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// The limits a user gives `compensate` are said as given, in a number a person can read: 1e308
 /// is `1e308`, not 309 digits.
 #[test]
