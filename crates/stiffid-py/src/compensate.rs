@@ -287,6 +287,11 @@ fn input_of<'t>(
             text,
             frame,
         },
+        (Some(_), Some(_)) if frame != Frame::Base => {
+            return Err(error::value(
+                "frame: only with path= (the frame of a path CSV's wrenches): a program's wrench is its process file's, where the tool cuts",
+            ))
+        }
         (Some(_), Some(process)) => {
             let language = Language::of_file(name).map_err(raise)?;
             let process_name = process.display().to_string();

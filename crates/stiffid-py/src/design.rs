@@ -153,6 +153,7 @@ pub fn select<'py>(py: Python<'py>, setup: &Setup, r: Request) -> PyResult<Bound
         starts: r.starts.is_some(),
         screen_steps: r.screen_steps.is_some(),
         polished: r.polished.is_some(),
+        search: select::Given::search_of(r.max_evals.is_some(), options.gradient, options.solver),
     };
     select::check_given(purpose, method, given).map_err(raise)?;
     let request = select::Request {

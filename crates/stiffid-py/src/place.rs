@@ -72,6 +72,11 @@ pub fn place<'py>(
     options.force_tolerance = force_tolerance_pct / 100.0;
     let (read, parsed, points);
     let work = match (&program, &process, &path) {
+        (Some(_), Some(_), None) if frame.parse::<Frame>().map_err(raise)? != Frame::Base => {
+            return Err(error::value(
+                "frame: only with path= (the frame of a path CSV's wrenches): a program's wrench is its process file's, where the tool cuts",
+            ))
+        }
         (Some(program), Some(process_path), None) => {
             let name = program.display().to_string();
             let language = Language::of_file(&name).map_err(raise)?;

@@ -351,8 +351,7 @@ impl Robot {
             None => None,
             Some(a) => {
                 let text = tables_json(py, a, "axes")?;
-                stiffid_core::robot::external::file::from_json(&text, "external_axes")
-                    .map_err(raise)?
+                stiffid_core::robot::external::file::from_json(&text, "axes").map_err(raise)?
             }
         };
         Ok(Self {

@@ -23,6 +23,25 @@ def test_external_axes_take_numpy_arrays_and_refuse_nan_naming_the_argument():
         robot.with_external_axes([dict(TRACK, direction={1, 2})])
 
 
+def test_external_axes_of_the_wrong_shape_name_the_argument_and_the_table():
+    robot = stiffid.Robot.preset("kuka-kr210-robond")
+    with pytest.raises(stiffid.InputError, match=r'^axes: external_axis\[2\]: invalid type: string "x"'):
+        robot.with_external_axes([TRACK, dict(TRACK, name="t2", direction="x")])
+    with pytest.raises(stiffid.InputError, match=r"^axes: external_axis\[1\]: missing field `role`$"):
+        robot.with_external_axes([{k: v for k, v in TRACK.items() if k != "role"}])
+    with pytest.raises(stiffid.InputError, match=r"^axes: expected a list of tables, one per external axis"):
+        robot.with_external_axes(TRACK)
+
+
+def test_a_wrench_frame_with_a_program_is_refused_as_by_the_command():
+    common = dict(program=MILLING / "pocket.nc", process=MILLING / "aluminium.toml", frame="tool")
+    expected = r"^frame: only with path= .*process file's"
+    with pytest.raises(stiffid.InputError, match=expected):
+        stiffid.compensate(stiffid.Setup.from_file(MILLING / "fanuc-milling.toml"), stiffness=MILLING / "stiffness.json", **common)
+    with pytest.raises(stiffid.InputError, match=expected):
+        stiffid.place(MILLING / "fanuc-milling.toml", MILLING / "stiffness.json", region_mm=(500, 2000, -1500, 500), **common)
+
+
 def test_a_negative_seed_of_place_names_the_argument():
     with pytest.raises(stiffid.InputError, match=r"^seed: -1 is negative"):
         stiffid.place(
@@ -42,6 +61,8 @@ def test_program_settings_without_a_generated_program_are_refused_as_by_the_comm
         stiffid.compensate(setup, program=MILLING / "pocket.nc", targets="joint", **common)
     with pytest.raises(stiffid.InputError, match=r"^moves_per_file: only for a G-code program written as a robot program: a robot program is written back"):
         stiffid.compensate(setup, program=MILLING / "pocket.ls", moves_per_file=100, **common)
+    with pytest.raises(stiffid.InputError, match=r"^max_tcp_speed_mm_s: only for a G-code program written as a robot program"):
+        stiffid.compensate(setup, program=MILLING / "pocket.nc", max_tcp_speed_mm_s=100.0, **common)
 
 
 def test_a_bool_is_no_number(paper, tmp_path):

@@ -11,7 +11,7 @@ use crate::report::{self, compensation};
 use anyhow::{anyhow, bail, Result};
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use stiffid_core::common::words::count;
+use stiffid_core::common::words::{count, number};
 use stiffid_core::observation::deflection::Frame;
 use stiffid_core::robot::ExternalAxes;
 use stiffid_core::{Error, Progress, Setup};
@@ -91,7 +91,8 @@ pub struct Args {
     /// setup's first test posture, else the middle of its bounds.
     #[arg(long, allow_hyphen_values = true)]
     q0_deg: Option<String>,
-    /// The frame of the wrench in rows without a `frame` column value.
+    /// With --path: the frame of the wrench in rows without a `frame` column value (a program's
+    /// wrench is its process file's, where the tool cuts).
     #[arg(long, value_parser = choice::<Frame>(), default_value = "base")]
     frame: Frame,
     /// A free variable, moved from the path's or the program's own value at every point
@@ -254,6 +255,9 @@ pub fn run(args: &Args) -> Result<()> {
     Ok(())
 }
 
+/// Why a wrench frame other than the default is refused with a program.
+pub(crate) const FRAME_WITHOUT_PATH: &str = "only with --path (the frame of a path CSV's wrenches): a program's wrench is its process file's, where the tool cuts";
+
 /// The request's input from the arguments and the input file's text.
 fn input<'t>(args: &Args, name: String, text: &'t str) -> Result<Input<'t>> {
     let Some(process) = &args.process else {
@@ -263,6 +267,9 @@ fn input<'t>(args: &Args, name: String, text: &'t str) -> Result<Input<'t>> {
             frame: args.frame,
         });
     };
+    if args.frame != Frame::Base {
+        bail!("--frame: {FRAME_WITHOUT_PATH}");
+    }
     let language = Language::of_file(&name).map_err(|e| anyhow!("--program {e}"))?;
     let out = args.out.display().to_string();
     let (output, out_name) =
@@ -461,8 +468,8 @@ fn made_of(b: &stiffid_machining::app::compensate::budget::BudgetSummary) -> Str
     );
     if let Some(m) = &b.meets {
         text += &format!(
-            "meets {:.4} mm at {}%: {}\n",
-            m.max_error_mm,
+            "meets {} mm at {}%: {}\n",
+            number(m.max_error_mm),
             100.0 * m.level,
             if m.meets { "yes" } else { "no" }
         );
@@ -565,7 +572,7 @@ fn free(doc: &Document) -> String {
         text += &format!(
             "moved postures kept {:.1} deg from the joint limits, condition number at most {}, the cell's collisions {}: states removed {} (limit margin), {} (singularity), {} (collision); moves refused {} (axis speed)\n",
             f.margin_deg,
-            f.max_condition,
+            number(f.max_condition),
             if f.collisions_checked { "checked" } else { "not checked" },
             f.states_removed_limit_margin,
             f.states_removed_singularity,

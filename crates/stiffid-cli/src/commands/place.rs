@@ -43,7 +43,7 @@ pub struct Args {
     path: Option<PathBuf>,
     /// With --path: the frame of the wrench in rows without a `frame` value (`base`: the part
     /// frame).
-    #[arg(long, value_parser = choice::<Frame>(), default_value = "base", requires = "path")]
+    #[arg(long, value_parser = choice::<Frame>(), default_value = "base")]
     frame: Frame,
     /// Where the part frame's origin may go in the robot base frame: X0,X1,Y0,Y1 in mm (each
     /// range at most +-20000 mm).
@@ -118,6 +118,10 @@ pub fn run(args: &Args) -> Result<()> {
     let compliance = args.stiffness.load(&setup)?;
     let (program, process, path);
     let work = match (&args.program, &args.process, &args.path) {
+        (Some(_), Some(_), None) if args.frame != Frame::Base => bail!(
+            "--frame: {}",
+            crate::commands::compensate::FRAME_WITHOUT_PATH
+        ),
         (Some(program_path), Some(process_path), None) => {
             let name = program_path.display().to_string();
             let language = Language::of_file(&name).map_err(|e| anyhow!("--program {e}"))?;

@@ -695,16 +695,18 @@ fn a_program_whose_bound_exceeds_the_largest_error_accepted_is_refused() {
     let said = format!("meets {:.4} mm at 95%: no", worst / 2.0);
     assert!(line.contains(&said), "{line}");
     assert!(!out.exists() && !csv.exists());
+    // The limit is said as given.
+    let twice: f64 = format!("{:.4}", worst * 2.0).parse().unwrap();
     let o = program(
         &setup,
         &stiffness,
         &out,
-        &["--max-error-mm", &format!("{}", worst * 2.0)],
+        &["--max-error-mm", &twice.to_string()],
     );
     assert_success(&o);
     let text = String::from_utf8(o.stdout).unwrap();
     assert!(
-        text.contains(&format!("meets {:.4} mm at 95%: yes", worst * 2.0)),
+        text.contains(&format!("meets {twice} mm at 95%: yes")),
         "{text}"
     );
     assert!(

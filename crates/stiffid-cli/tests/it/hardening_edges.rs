@@ -58,8 +58,9 @@ fn a_split_program_never_replaces_a_file_it_did_not_write() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// The settings of a robot program generated from G-code are refused where none is generated:
-/// written back as G-code, or a robot program read back.
+/// The settings of a robot program generated from G-code (targets, name length, moves per file,
+/// the largest TCP speed) are refused where none is generated: written back as G-code, or a
+/// robot program read back.
 #[test]
 fn program_settings_without_a_generated_program_are_refused() {
     let dir = temp_dir("edges-settings");
@@ -67,6 +68,7 @@ fn program_settings_without_a_generated_program_are_refused() {
         (["--targets", "joint"], "--targets"),
         (["--name-length", "12"], "--name-length"),
         (["--moves-per-file", "100"], "--moves-per-file"),
+        (["--max-tcp-speed-mm-s", "100"], "--max-tcp-speed-mm-s"),
     ];
     for (extra, flag) in gcode_out {
         let args = pocket("{dir}/out.nc", &extra);
@@ -80,6 +82,7 @@ fn program_settings_without_a_generated_program_are_refused() {
     for (extra, flag) in [
         (["--targets", "joint"], "--targets"),
         (["--moves-per-file", "100"], "--moves-per-file"),
+        (["--max-tcp-speed-mm-s", "100"], "--max-tcp-speed-mm-s"),
     ] {
         let mut args = pocket("{dir}/back.ls", &extra);
         args[6] = ls.clone();
@@ -90,6 +93,69 @@ fn program_settings_without_a_generated_program_are_refused() {
         );
         assert!(line.starts_with(&format!("error: {flag}: ")), "{line}");
     }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `--frame` names the frame of a path CSV's wrenches: with a program (whose wrench is its
+/// process file's) a frame other than the default is refused by `compensate` and `place`
+/// alike, where it was ignored; the default passes.
+#[test]
+fn a_wrench_frame_with_a_program_is_refused() {
+    let dir = temp_dir("edges-frame");
+    let expected = ["--frame", "only with --path", "process file's"];
+    let compensate = pocket("{dir}/out.nc", &["--frame", "tool"]);
+    let line = refused(&dir, &refs(&compensate), &expected);
+    assert!(line.starts_with("error: --frame: "), "{line}");
+    let place = [
+        "place",
+        "--setup",
+        &example("milling/fanuc-milling.toml"),
+        "--stiffness",
+        &example("milling/stiffness.json"),
+        "--program",
+        &example("milling/pocket.nc"),
+        "--process",
+        &example("milling/aluminium.toml"),
+        "--region-mm",
+        "500,2000,-1500,500",
+        "--out",
+        "{dir}/placed.toml",
+        "--frame",
+        "tool",
+    ];
+    let line = refused(&dir, &place, &expected);
+    assert!(line.starts_with("error: --frame: "), "{line}");
+    let d = dir.to_str().unwrap();
+    let by_default = pocket(&format!("{d}/out.nc"), &["--frame", "base"]);
+    assert_success(&stiffid(&refs(&by_default)));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The limits a user gives `compensate` are said as given, in a number a person can read: 1e308
+/// is `1e308`, not 309 digits.
+#[test]
+fn the_limits_given_are_printed_as_given() {
+    let dir = temp_dir("edges-limits");
+    let d = dir.to_str().unwrap();
+    let out = format!("{d}/out.ls");
+    let limits = [
+        "--free",
+        "tool-rotation=-10..10/10",
+        "--max-condition",
+        "1e308",
+        "--max-error-mm",
+        "1e308",
+    ];
+    let o = stiffid(&refs(&pocket(&out, &limits)));
+    assert_success(&o);
+    let text = String::from_utf8(o.stdout).unwrap();
+    for said in [
+        "condition number at most 1e308,",
+        "meets 1e308 mm at 95%: yes",
+    ] {
+        assert!(text.contains(said), "{said}: {text}");
+    }
+    assert!(!text.contains("00000000"), "{text}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

@@ -76,6 +76,12 @@ pub enum JobOption {
     ScreenSteps,
     /// select: the global starts that continue after the screening.
     Polished,
+    /// select: the most criterion evaluations of a local search.
+    MaxEvals,
+    /// select: how a local search gets its gradient (exact or finite differences).
+    Gradient,
+    /// select: the SQP of the local searches.
+    Solver,
     /// select: the target predicted deviation rate, %.
     TargetPct,
     /// select: the group a local search starts from.
@@ -174,6 +180,9 @@ impl JobOption {
             JobOption::Starts => "starts",
             JobOption::ScreenSteps => "screen_steps",
             JobOption::Polished => "polished",
+            JobOption::MaxEvals => "max_evals",
+            JobOption::Gradient => "gradient",
+            JobOption::Solver => "solver",
             JobOption::TargetPct => "target_pct",
             JobOption::Start => "start",
             JobOption::DistinctDeg => "distinct_deg",

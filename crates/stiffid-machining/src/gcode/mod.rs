@@ -35,7 +35,8 @@
 //!
 //! ## What is written
 //! [`GCode::write`] keeps every line byte for byte but the motion blocks, where the `X Y Z I J K R`
-//! words are replaced by the corrected position of each point (a canned cycle becomes its `G0`,
+//! words are replaced by the corrected position of each point (a word dropped takes the blanks
+//! before it along, so a program written back twice reads as once; a canned cycle becomes its `G0`,
 //! `G1` and `G4` blocks; an arc becomes its chords, `G2`/`G3`
 //! becomes `G1`), in the program's own units and distance mode. Only positions are corrected: a
 //! 3-axis program has no words for the tool's rotation. [`GCode::write_with_external`] also writes

@@ -13,13 +13,12 @@ pub(super) struct Word {
     pub(super) span: Range<usize>,
 }
 
-/// The words of one line; comments are read for the header and operation names.
+/// The words of one line (`start`: its first byte's in the text); comments are read for the
+/// header and operation names. A byte-order mark opening the text is no word.
 pub(super) fn words(line: u64, start: usize, l: &str, s: &mut State) -> Result<Vec<Word>> {
-    let bytes = l.as_bytes();
     let mut out = Vec::new();
     let mut i = 0;
-    while i < bytes.len() {
-        let c = bytes[i] as char;
+    while let Some(c) = l[i..].chars().next() {
         if c == '(' {
             let end = l[i..]
                 .find(')')
@@ -33,8 +32,8 @@ pub(super) fn words(line: u64, start: usize, l: &str, s: &mut State) -> Result<V
             comment(line, &l[i + 1..], s)?;
             break;
         }
-        if c.is_whitespace() || c == '%' {
-            i += 1;
+        if c.is_whitespace() || c == '%' || (c == '\u{feff}' && start + i == 0) {
+            i += c.len_utf8();
             continue;
         }
         let letter = c.to_ascii_uppercase();

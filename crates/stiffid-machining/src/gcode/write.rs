@@ -98,6 +98,7 @@ impl GCode {
         drop.sort_by_key(|r| r.start);
         let mut from = b.line.start;
         for r in &drop {
+            let r = blanks_before(&self.text, r, from);
             out.push_str(&self.text[from..r.start]);
             from = r.end;
         }
@@ -143,6 +144,11 @@ impl GCode {
             .find(|(_, t)| t.is_empty())
             .map_or(b.line.end, |(r, _)| r.start);
         for (r, t) in &edits {
+            // A word dropped, not replaced, takes the blanks before it along.
+            let r = match t.is_empty() && r.start != insert {
+                true => blanks_before(&self.text, r, from),
+                false => r.clone(),
+            };
             line.push_str(&self.text[from..r.start]);
             if r.start == insert {
                 line.push_str(&first);
@@ -161,6 +167,14 @@ impl GCode {
             out.push_str(&words.point(k, b));
         }
     }
+}
+
+/// `r` (a dropped word's bytes in `text`) widened to the spaces and tabs before it, back to
+/// `floor` at most: the written block keeps no blanks where words were, and a program
+/// compensated again gains none.
+fn blanks_before(text: &str, r: &Range<usize>, floor: usize) -> Range<usize> {
+    let before = &text[floor..r.start];
+    r.start - (before.len() - before.trim_end_matches([' ', '\t']).len())..r.end
 }
 
 /// The words of each point written, and where the controller is as written (for incremental

@@ -384,6 +384,38 @@ fn external_axis_tables_are_refused_naming_the_file_table_and_field() {
     }
 }
 
+/// Tables built in code (Python's `Robot.with_external_axes`) are refused naming the argument
+/// and the table, and no position in the JSON text the caller never wrote.
+#[test]
+fn external_axis_tables_from_json_are_refused_naming_the_table_not_a_column() {
+    use stiffid::robot::external::file::from_json;
+    let track =
+        r#"{"name": "track", "role": "carrier", "direction": [0, 1, 0], "limits_mm": [0, 4000]}"#;
+    let cases = [
+        (
+            format!(
+                r#"[{track}, {{"name": "t2", "role": "carrier", "direction": "x", "limits_mm": [0, 1]}}]"#
+            ),
+            "axes: external_axis[2]: invalid type: string \"x\"",
+        ),
+        (
+            r#"[{"name": "track", "direction": [0, 1, 0], "limits_mm": [0, 4000]}]"#.to_string(),
+            "axes: external_axis[1]: missing field `role`",
+        ),
+        (
+            track.to_string(),
+            "axes: expected a list of tables, one per external axis",
+        ),
+    ];
+    for (text, expected) in cases {
+        let error = from_json(&text, "axes").unwrap_err().to_string();
+        assert!(error.starts_with(expected), "{text}\n-> {error}");
+        assert!(!error.contains("column"), "{error}");
+    }
+    let axes = from_json(&format!("[{track}]"), "axes").unwrap().unwrap();
+    assert_eq!(axes.len(), 1);
+}
+
 /// The arm's bodies ride on the track of `setup`: every capsule moved by the carriage's travel.
 fn assert_bodies_ride_on_the_track(setup: &stiffid::Setup) {
     let q = Vector6::new(0.2, 0.3, -1.6, 0.1, 0.4, -0.3);

@@ -181,6 +181,17 @@ fn a_stiffness_file_without_its_region_is_read_and_said_once_unchecked() {
     assert_eq!(extrapolation(&v.warnings).len(), 1);
 }
 
+/// A stiffness file saved with a byte-order mark (as editors on Windows write) reads as without
+/// it, region included (it was refused as "line 1, column 1: expected value").
+#[test]
+fn a_stiffness_file_with_a_byte_order_mark_reads_as_without_it() {
+    let text = include_str!("../../../../examples/milling/stiffness.json");
+    let plain = stiffness::parse(text).unwrap();
+    let marked = stiffness::parse(&format!("\u{feff}{text}")).unwrap();
+    assert_eq!(format!("{marked:?}"), format!("{plain:?}"));
+    assert!(stiffness::parse(&format!(" \u{feff}{text}")).is_err());
+}
+
 #[test]
 fn a_region_out_of_shape_is_refused_naming_the_field() {
     let setup = fanuc();

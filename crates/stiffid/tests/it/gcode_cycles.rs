@@ -105,7 +105,7 @@ fn canned_cycles_are_written_back_as_their_moves() {
         "{out}"
     );
     assert!(
-        out.contains("N10        F120 M8\nG0 X10.000000 Y20.000000 Z10.000000\n"),
+        out.contains("N10 F120 M8\nG0 X10.000000 Y20.000000 Z10.000000\n"),
         "{out}"
     );
     assert!(
@@ -127,6 +127,11 @@ fn canned_cycles_are_written_back_as_their_moves() {
     moved[3].x += 0.1234e-3;
     let again = gcode::parse(&g.write(&moved).unwrap(), 1e-5).unwrap();
     assert!((again.points[3].position - moved[3]).norm() < 1e-9);
+    // Written back again, the program is the same text: no blank gained where words were.
+    let positions: Vec<Vector3<f64>> = again.points.iter().map(|p| p.position).collect();
+    let twice = again.write(&positions).unwrap();
+    assert_eq!(twice, g.write(&moved).unwrap());
+    assert!(!twice.contains("  "), "{twice}");
 }
 
 #[test]

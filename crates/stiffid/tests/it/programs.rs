@@ -273,6 +273,36 @@ fn malformed_gcode_is_refused_naming_the_line() {
     ));
 }
 
+/// A G-code program saved with a byte-order mark (as editors on Windows do) reads as without
+/// it; elsewhere, and for any other character that is no word, the line names the character as
+/// written (it used to name the first byte of its UTF-8 encoding: 'ï' for the mark).
+#[test]
+fn gcode_with_a_byte_order_mark_reads_as_without_it() {
+    let text = format!("{HEADER}G0 X0 Y0 Z5\nG1 Z-1 F300\nG1 X20 Y10\n");
+    let plain = gcode::parse(&text, 1e-5).unwrap();
+    let marked = gcode::parse(&format!("\u{feff}{text}"), 1e-5).unwrap();
+    assert_eq!(marked.points.len(), plain.points.len());
+    for (a, b) in marked.points.iter().zip(&plain.points) {
+        assert_eq!(a.position, b.position);
+    }
+    for (text, line, expected) in [
+        (
+            format!("{HEADER}\u{feff}G1 X1\n"),
+            2,
+            "'\u{feff}': expected a word",
+        ),
+        (format!("{HEADER}G1 X1 é2\n"), 2, "'é': expected a word"),
+    ] {
+        match gcode::parse(&text, 1e-5) {
+            Err(Error::Program { line: l, message }) => {
+                assert_eq!(l, line, "{message}");
+                assert!(message.contains(expected), "{expected}: {message}");
+            }
+            other => panic!("{expected}: {other:?}"),
+        }
+    }
+}
+
 const PROCESS: &str = "[tool]\ndiameter_mm = 20\nflutes = 3\nhelix_deg = 30\n[cut]\nfeed_per_tooth_mm = 0.1\n\
     axial_depth_mm = 4\nradial_depth_mm = 10\nmode = \"down\"\n[coefficients]\npreset = \"al7075-t6\"\n";
 

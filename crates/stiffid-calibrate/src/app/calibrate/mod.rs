@@ -290,6 +290,9 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
         cross_validation_size(&obs)?;
     }
     let level = interval_level(request)?;
+    // A mirror image needs no fit (the tracker's registration says it): refused before the
+    // models are chosen; the residuals are judged after the fit.
+    refuse_implausible(&request.readings, &data, None, &[])?;
     let chosen = chosen::choose(request, (&obs, measured_in, data.tables))?;
     let (model, fitted) = (&chosen.model, &chosen.fit);
     let residuals: Vec<_> = (fitted.residuals.as_slice().chunks_exact(3))

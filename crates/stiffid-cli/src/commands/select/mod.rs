@@ -180,6 +180,7 @@ pub fn run(args: &Args) -> Result<()> {
         starts: args.starts.is_some(),
         screen_steps: args.screen_steps.is_some(),
         polished: args.polished.is_some(),
+        search: job::Given::search_of(args.max_evals.is_some(), args.gradient, args.solver),
     };
     job::check_given(args.purpose.purpose, method, given)?;
     let bars = Bars::new(false);

@@ -225,7 +225,8 @@ fn null_message(field: &str, unit: &str) -> String {
 /// What [`parse`] expects, for errors.
 const EXPECTED: &str = "JSON with the key parameters (name, kind, unit, stiffness of each) and optionally compliance_covariance_si (n x n), or stiffness_nm_per_rad (six numbers, Nm/rad) and optionally compliance_covariance_rad2_per_nm2 (6x6)";
 
-/// Parses and checks the text of a stiffness file.
+/// Parses and checks the text of a stiffness file (a byte-order mark opening it, as editors on
+/// Windows write, is skipped).
 ///
 /// # Errors
 /// [`Error::Json`] (line, column) for text that is not JSON with these keys and shapes;
@@ -245,6 +246,7 @@ const EXPECTED: &str = "JSON with the key parameters (name, kind, unit, stiffnes
 /// assert!(c.covariance.is_none());
 /// ```
 pub fn parse(text: &str) -> Result<StiffnessFile> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let json = |e: serde_json::Error| {
         let message = e.to_string();
         let position = format!(" at line {} column {}", e.line(), e.column());

@@ -93,13 +93,34 @@ pub fn build(tables: &[AxisFile], source_name: &str) -> Result<Option<ExternalAx
 /// `source_name` names it in errors. An empty array: none.
 ///
 /// # Errors
-/// [`Error::Parse`] for malformed JSON, unknown or missing keys and wrong types; those of the
-/// tables as a file's ([`crate::robot::file::parse`]).
+/// [`Error::Parse`] for malformed JSON, anything but an array, and unknown or missing keys and
+/// wrong types naming the table (`external_axis[i]`, 1-based in the array's order); those of
+/// the tables as a file's ([`crate::robot::file::parse`]).
 pub fn from_json(text: &str, source_name: &str) -> Result<Option<ExternalAxes>> {
-    let tables: Vec<AxisFile> = serde_json::from_str(text).map_err(|e| Error::Parse {
+    let parse = |message: String| Error::Parse {
         source_name: source_name.to_string(),
-        message: limits::one_line(&e.to_string()),
-    })?;
+        message,
+    };
+    let value: serde_json::Value =
+        serde_json::from_str(text).map_err(|e| parse(limits::one_line(&e.to_string())))?;
+    let serde_json::Value::Array(items) = value else {
+        return Err(parse(format!(
+            "expected a list of tables, one per external axis, got {}",
+            limits::short(&value.to_string())
+        )));
+    };
+    // Each table read from its value: serde's message then names no position in the text.
+    let tables = (items.into_iter().enumerate())
+        .map(|(i, item)| {
+            AxisFile::deserialize(item).map_err(|e| {
+                parse(format!(
+                    "external_axis[{}]: {}",
+                    i + 1,
+                    limits::one_line(&e.to_string())
+                ))
+            })
+        })
+        .collect::<Result<Vec<_>>>()?;
     build(&tables, source_name)
 }
 

@@ -145,15 +145,37 @@ pub struct Given {
     pub screen_steps: bool,
     /// The global starts polished ([`crate::SearchOptions::polished`]).
     pub polished: bool,
+    /// The local searches' settings given (other than their defaults), in this order: the most
+    /// evaluations ([`crate::SearchOptions::max_evals`]), the gradient and the SQP
+    /// ([`crate::SearchOptions::gradient`], [`crate::SearchOptions::solver`]).
+    pub search: [bool; 3],
+}
+
+impl Given {
+    /// [`Given::search`] of the most evaluations (`max_evals`: given or not), `gradient` and
+    /// `solver` (given when not their defaults).
+    pub fn search_of(
+        max_evals: bool,
+        gradient: crate::Gradient,
+        solver: crate::Solver,
+    ) -> [bool; 3] {
+        [
+            max_evals,
+            gradient != crate::Gradient::default(),
+            solver != crate::Solver::default(),
+        ]
+    }
 }
 
 /// Refuses the options `given` that mean nothing for `purpose` and `method`: the stiffness
-/// criterion for a design for the calibration alone ([`Purpose::calibration_only`]), and the
-/// global search's starts, screening steps and polished starts for any other method.
+/// criterion for a design for the calibration alone ([`Purpose::calibration_only`]), the
+/// global search's starts, screening steps and polished starts for any other method, and the
+/// local searches' settings for a pool (its group is chosen by exchange, no search runs).
 ///
 /// # Errors
 /// [`Error::InvalidOption`] naming the option ([`JobOption::Criterion`], [`JobOption::Starts`],
-/// [`JobOption::ScreenSteps`], [`JobOption::Polished`]).
+/// [`JobOption::ScreenSteps`], [`JobOption::Polished`], [`JobOption::MaxEvals`],
+/// [`JobOption::Gradient`], [`JobOption::Solver`]).
 pub fn check_given(purpose: Purpose, method: Method, given: Given) -> Result<()> {
     let refuse = |option, message: &str| {
         Err(Error::InvalidOption {
@@ -165,6 +187,14 @@ pub fn check_given(purpose: Purpose, method: Method, given: Given) -> Result<()>
         return refuse(
             JobOption::Criterion,
             "a stiffness criterion: only with for = stiffness or both (the group is designed for the calibration, by the calibration's criterion)",
+        );
+    }
+    let search = [JobOption::MaxEvals, JobOption::Gradient, JobOption::Solver];
+    let mut given_search = given.search.into_iter().zip(search);
+    if let Some((_, option)) = given_search.find(|(g, _)| *g && method == Method::Pool) {
+        return refuse(
+            option,
+            "only for a search (from a start group, or global): a pool's group is chosen by exchange, no local search runs",
         );
     }
     let global = [

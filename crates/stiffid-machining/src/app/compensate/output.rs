@@ -25,14 +25,14 @@ pub(super) fn check_output(language: Language, output: Language) -> Result<()> {
     }
 }
 
-/// Refuses the settings of a generated robot program where none is generated: the targets and
-/// the moves per file for a robot program written back (it keeps its own targets, in one file),
-/// the targets and the name length for a program written as G-code. A setting at its default
-/// changes nothing and passes.
+/// Refuses the settings of a generated robot program where none is generated: the targets, the
+/// moves per file and the largest TCP speed for a robot program written back (it keeps its own
+/// targets and speeds, in one file), these and the name length for a program written as G-code.
+/// A setting at its default changes nothing and passes.
 ///
 /// # Errors
 /// [`Error::InvalidOption`] ([`JobOption::Targets`], [`JobOption::MovesPerFile`],
-/// [`JobOption::NameLength`]).
+/// [`JobOption::MaxTcpSpeedMmS`], [`JobOption::NameLength`]).
 pub(super) fn check_settings(
     language: Language,
     output: Language,
@@ -49,19 +49,24 @@ pub(super) fn check_settings(
             stiffid_core::JobOption::MovesPerFile,
         ),
         (
+            settings.max_tcp_speed != default.max_tcp_speed,
+            stiffid_core::JobOption::MaxTcpSpeedMmS,
+        ),
+        (
             settings.name_length.is_some(),
             stiffid_core::JobOption::NameLength,
         ),
     ];
+    use stiffid_core::JobOption::{MaxTcpSpeedMmS, MovesPerFile, NameLength, Targets};
     let (unused, why): (&[stiffid_core::JobOption], _) = match (language, output) {
         (Language::GCode, Language::Robot(_)) => return Ok(()),
         (Language::Robot(_), _) => (
-            &[stiffid_core::JobOption::Targets, stiffid_core::JobOption::MovesPerFile],
-            "only for a G-code program written as a robot program: a robot program is written back with its own targets, in one file",
+            &[Targets, MovesPerFile, MaxTcpSpeedMmS],
+            "only for a G-code program written as a robot program: a robot program is written back with its own targets and speeds, in one file",
         ),
         (_, Language::GCode) => (
-            &[stiffid_core::JobOption::Targets, stiffid_core::JobOption::MovesPerFile, stiffid_core::JobOption::NameLength],
-            "only for a G-code program written as a robot program (--out X.ls, .src or .mod; Python output=): G-code carries positions and no program name",
+            &[Targets, MovesPerFile, MaxTcpSpeedMmS, NameLength],
+            "only for a G-code program written as a robot program (--out X.ls, .src or .mod; Python output=): G-code carries positions, its own feeds and no program name",
         ),
     };
     match given.iter().find(|(g, o)| *g && unused.contains(o)) {
