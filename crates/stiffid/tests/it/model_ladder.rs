@@ -231,3 +231,51 @@ fn none_held(ladder: &calibrate::ladder::Ladder) -> f64 {
         .and_then(|r| r.rms)
         .unwrap()
 }
+
+/// Mirrored readings (the tracker's x negated) fitted anyway (`force`), the maps `auto`: the
+/// maps it chose do not survive the final fit (their coefficients leave their range) and are
+/// dropped with the reason, the geometry fitted and its misfit said, never an error about a map
+/// the user did not ask for.
+#[test]
+fn forced_mirrored_readings_drop_the_maps_that_fail() {
+    let case = dh_case();
+    let data = readings(&case, 15, 30, false);
+    let mirror = |(i, line): (usize, &str)| {
+        let mut fields: Vec<String> = line.split(',').map(str::to_string).collect();
+        let n = fields.len();
+        if i > 0 {
+            fields[n - 3] = format!("{:?}", -fields[n - 3].parse::<f64>().unwrap());
+        }
+        fields.join(",") + "\n"
+    };
+    let mirrored: String = data.lines().enumerate().map(mirror).collect();
+    let report = calibrate::run(&calibrate::Request {
+        readings: stiffid::app::readings::Request {
+            setup: &case.setup,
+            name: "fit.csv".into(),
+            text: &mirrored,
+            force: true,
+        },
+        geometry: Geometry::Full,
+        gravity: GravitySpec::Fixed(Gravity::None),
+        validate: None,
+        reregister: false,
+        cross_validate: false,
+        priors: None,
+        progress: &(),
+        maps: Spec::Auto,
+        error_motions: Default::default(),
+        level: None,
+        update: false,
+        refit: Default::default(),
+        weight: None,
+        urdf: false,
+    })
+    .unwrap();
+    let why = report.maps.skipped.as_deref().unwrap_or_default();
+    assert!(
+        why.starts_with("the fit with the maps chosen failed"),
+        "{why}"
+    );
+    assert!(report.model.map_start().is_none());
+}

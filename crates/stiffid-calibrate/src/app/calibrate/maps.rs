@@ -176,13 +176,23 @@ pub(super) fn fit_maps(
     if chosen.is_none() {
         return Ok((model, fitted, options, report));
     }
-    let model = model.with_maps(chosen)?;
+    let mapped = model.clone().with_maps(chosen)?;
     // From the calibration's own start, not from the geometric fit: what the readings determine
     // is analysed where the geometric fit analysed it (at the fitted geometry, parallel axes
     // are parallel no more and their merged parameters would be fitted, drifting along a
     // valley), so the final fit fits the parameters the choice was made with.
-    let start = fit::start(&model, observations)?;
-    let options = Options { ridge, ..options };
-    let fitted = fit::fit(&model, observations, &start, &options)?;
-    Ok((model, fitted, options, report))
+    let start = fit::start(&mapped, observations)?;
+    let with = Options { ridge, ..options };
+    let fit_with = fit::fit(&mapped, observations, &start, &with)
+        .and_then(|f| mapped.robot_at(&f.estimate.values).map(|_| f));
+    // A fit whose maps leave their range (readings that do not determine them) is an error of
+    // maps asked for; maps chosen by `auto` are dropped instead, saying why.
+    match (report.spec, fit_with) {
+        (Spec::Auto, Err(e)) => {
+            report.skipped = Some(format!("the fit with the maps chosen failed: {e}"));
+            report.choice = None;
+            Ok((model, fitted, options, report))
+        }
+        (_, fit_with) => Ok((mapped, fit_with?, with, report)),
+    }
 }
