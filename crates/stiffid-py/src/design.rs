@@ -154,6 +154,8 @@ pub fn select<'py>(py: Python<'py>, setup: &Setup, r: Request) -> PyResult<Bound
         screen_steps: r.screen_steps.is_some(),
         polished: r.polished.is_some(),
         search: select::Given::search_of(r.max_evals.is_some(), options.gradient, options.solver),
+        start: r.start.is_some(),
+        seed: select::Given::seed_of(r.seed),
     };
     select::check_given(purpose, method, given).map_err(raise)?;
     let request = select::Request {

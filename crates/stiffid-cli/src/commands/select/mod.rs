@@ -181,6 +181,8 @@ pub fn run(args: &Args) -> Result<()> {
         screen_steps: args.screen_steps.is_some(),
         polished: args.polished.is_some(),
         search: job::Given::search_of(args.max_evals.is_some(), args.gradient, args.solver),
+        start: args.start.is_some(),
+        seed: job::Given::seed_of(args.seed),
     };
     job::check_given(args.purpose.purpose, method, given)?;
     let bars = Bars::new(false);

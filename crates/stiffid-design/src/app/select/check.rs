@@ -149,9 +149,18 @@ pub struct Given {
     /// evaluations ([`crate::SearchOptions::max_evals`]), the gradient and the SQP
     /// ([`crate::SearchOptions::gradient`], [`crate::SearchOptions::solver`]).
     pub search: [bool; 3],
+    /// A start group given ([`Request::start`]).
+    pub start: bool,
+    /// A seed other than its default ([`crate::SearchOptions::seed`]).
+    pub seed: bool,
 }
 
 impl Given {
+    /// Whether `seed` is given: other than [`crate::SearchOptions::seed`]'s default.
+    pub fn seed_of(seed: u64) -> bool {
+        seed != crate::SearchOptions::default().seed
+    }
+
     /// [`Given::search`] of the most evaluations (`max_evals`: given or not), `gradient` and
     /// `solver` (given when not their defaults).
     pub fn search_of(
@@ -169,13 +178,14 @@ impl Given {
 
 /// Refuses the options `given` that mean nothing for `purpose` and `method`: the stiffness
 /// criterion for a design for the calibration alone ([`Purpose::calibration_only`]), the
-/// global search's starts, screening steps and polished starts for any other method, and the
-/// local searches' settings for a pool (its group is chosen by exchange, no search runs).
+/// global search's starts, screening steps and polished starts for any other method, the local
+/// searches' settings for a pool (its group is chosen by exchange, no search runs), and a seed
+/// for a search from a start group given (nothing is drawn).
 ///
 /// # Errors
 /// [`Error::InvalidOption`] naming the option ([`JobOption::Criterion`], [`JobOption::Starts`],
 /// [`JobOption::ScreenSteps`], [`JobOption::Polished`], [`JobOption::MaxEvals`],
-/// [`JobOption::Gradient`], [`JobOption::Solver`]).
+/// [`JobOption::Gradient`], [`JobOption::Solver`], [`JobOption::Seed`]).
 pub fn check_given(purpose: Purpose, method: Method, given: Given) -> Result<()> {
     let refuse = |option, message: &str| {
         Err(Error::InvalidOption {
@@ -195,6 +205,12 @@ pub fn check_given(purpose: Purpose, method: Method, given: Given) -> Result<()>
         return refuse(
             option,
             "only for a search (from a start group, or global): a pool's group is chosen by exchange, no local search runs",
+        );
+    }
+    if given.seed && given.start && method == Method::Local {
+        return refuse(
+            JobOption::Seed,
+            "only with a random start group, the global search or a pool's exchange runs: the search starts from the group given, nothing is drawn",
         );
     }
     let global = [
