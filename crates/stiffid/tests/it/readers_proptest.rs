@@ -89,8 +89,11 @@ fn check_process(text: &str) -> bool {
     true
 }
 
+/// A real file and the check of its reader.
+type Reader = (&'static str, fn(&str) -> bool);
+
 /// The readers and their real files.
-fn readers() -> [(&'static str, fn(&str) -> bool); 5] {
+fn readers() -> [Reader; 5] {
     [
         (POCKET, check_gcode),
         (PANEL, check_gcode),
