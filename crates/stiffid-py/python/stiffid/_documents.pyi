@@ -47,6 +47,7 @@ CalibrateDocument = TypedDict("CalibrateDocument", {
     "fragment": str,
     "geometry": str,
     "gravity": str,
+    "gravity_prior_mrad": Optional[float],
     "held": list[str],
     "iterations": int,
     "kind": Literal["calibrate"],
@@ -209,6 +210,7 @@ CalibrateRungDocument = TypedDict("CalibrateRungDocument", {
     "held_out_rms_mm": Optional[float],
     "maps": bool,
     "skipped": Optional[str],
+    "workspace_sd_mm": Optional[float],
 })
 
 CalibrateStance = TypedDict("CalibrateStance", {

@@ -9,6 +9,12 @@
 //! of the `n` check readings beyond it is then at most binomial `(n, 1 - level)`, and the robot
 //! drifted when the count reaches the smallest `k` with `P(X >= k) <= `[`SIGNIFICANCE`] (a
 //! one-sided binomial test: a false alarm in at most 1 % of checks of an undrifted robot).
+//!
+//! The bound is never below what the tracker's noise alone makes of a reading's error length:
+//! `sigma sqrt(q_3(level))`, `sigma` the setup's noise per coordinate and `q_3` the chi-square
+//! quantile with three degrees of freedom (2.80 `sigma` at 95 %). A calibration fitted to readings
+//! far more precise than the check's (simulated, noise-free) would otherwise call a robot drifted
+//! by nanometres.
 
 use serde::Serialize;
 use stiffid_core::common::error::JobOption;
@@ -38,15 +44,16 @@ pub struct Check {
     pub drifted: bool,
 }
 
-/// The check of `errors` (the check readings' errors with the calibrated `robot`) at `level`;
-/// `None` when the robot carries no held-out errors or too few for the level (the bound
-/// infinite).
-pub fn check(robot: &Robot, errors: &Validation, level: f64) -> Option<Check> {
+/// The check of `errors` (the check readings' errors with the calibrated `robot`, read with
+/// `noise` per coordinate, m) at `level`; `None` when the robot carries no held-out errors or
+/// too few for the level (the bound infinite).
+pub fn check(robot: &Robot, errors: &Validation, level: f64, noise: f64) -> Option<Check> {
     let held = robot.held_out()?;
     let bound = held.quantile(level);
     if !bound.is_finite() {
         return None;
     }
+    let bound = bound.max(noise_length(noise, level));
     let outside: Vec<bool> = errors
         .errors
         .iter()
@@ -68,10 +75,10 @@ pub fn check(robot: &Robot, errors: &Validation, level: f64) -> Option<Check> {
 pub fn checked(
     robot: &Robot,
     errors: &Validation,
-    level: f64,
+    (level, noise): (f64, f64),
     warnings: &mut Vec<Warning>,
 ) -> Option<Check> {
-    let check = check(robot, errors, level);
+    let check = check(robot, errors, level, noise);
     if check.is_none() {
         warnings.push(Warning::new(
             WarningKind::LeftOut,
@@ -79,6 +86,16 @@ pub fn checked(
         ));
     }
     check
+}
+
+/// The length (m) below which the 3D error of a reading with `noise` per coordinate (m, Gaussian)
+/// lies at `level`: `noise sqrt(q_3(level))` (module docs); 0 without noise.
+fn noise_length(noise: f64, level: f64) -> f64 {
+    use statrs::distribution::{ChiSquared, ContinuousCDF};
+    match ChiSquared::new(3.0) {
+        Ok(chi) if noise > 0.0 => noise * chi.inverse_cdf(level).sqrt(),
+        _ => 0.0,
+    }
 }
 
 /// The largest count `k` of `n` trials of probability `p` with `P(X > k) > alpha` no more:
@@ -196,7 +213,15 @@ impl CheckDocument {
 
 #[cfg(test)]
 mod tests {
-    use super::allowed;
+    use super::{allowed, noise_length};
+
+    #[test]
+    fn the_noise_floor_is_the_chi_quantile_of_three_coordinates() {
+        // Tables: chi-square with 3 degrees of freedom, 7.8147 at 95 %, 11.3449 at 99 %.
+        assert!((noise_length(1e-5, 0.95) - 1e-5 * 7.8147f64.sqrt()).abs() < 1e-9);
+        assert!((noise_length(2e-5, 0.99) - 2e-5 * 11.3449f64.sqrt()).abs() < 1e-9);
+        assert_eq!(noise_length(0.0, 0.95), 0.0);
+    }
 
     #[test]
     fn allowed_is_the_binomial_critical_count() {

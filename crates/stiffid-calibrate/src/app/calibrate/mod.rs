@@ -305,7 +305,14 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     let reference = update::reference(request, model, reference(setup, model)?)?;
     let nominal = nominal(&reference, &obs, name)?;
     let check = (request.update)
-        .then(|| drift::checked(setup.robot(), &nominal, level, &mut warnings))
+        .then(|| {
+            drift::checked(
+                setup.robot(),
+                &nominal,
+                (level, setup.noise().reading_sd()),
+                &mut warnings,
+            )
+        })
         .flatten();
     let calibrated =
         validation::validate(model, &fitted.estimate, &obs).map_err(|e| in_data(name, e))?;
