@@ -48,7 +48,7 @@ where
 /// Householder QR in place of the column-major `m x 6` matrix `a` (LAPACK `dgeqrf`): on return `R`
 /// is on and above the diagonal and the reflector vectors `v_k` (with `v_k[k] = 1` implied) below
 /// it. Returns the `tau_k`.
-pub(crate) fn householder_qr(a: &mut [f64], m: usize) -> Vector6<f64> {
+pub fn householder_qr(a: &mut [f64], m: usize) -> Vector6<f64> {
     let mut taus = Vector6::zeros();
     householder_qr_columns(a, m, taus.as_mut_slice());
     taus
@@ -85,7 +85,7 @@ pub fn householder_qr_columns(a: &mut [f64], m: usize, taus: &mut [f64]) {
 /// The inverse of a 6x6 matrix by Gauss-Jordan elimination with partial pivoting, on a fixed-size
 /// array (no allocation, no dimension bookkeeping); `None` when a pivot is exactly zero. Accurate
 /// to `cond(a)` times rounding, as an LU-based inverse.
-pub(crate) fn inverse(a: &Matrix6<f64>) -> Option<Matrix6<f64>> {
+pub fn inverse(a: &Matrix6<f64>) -> Option<Matrix6<f64>> {
     // Rows of [a | I].
     let mut m: [[f64; 12]; 6] = std::array::from_fn(|i| {
         std::array::from_fn(|j| {
@@ -147,7 +147,7 @@ pub fn triangular_factor(a: DMatrix<f64>) -> Matrix6<f64> {
 }
 
 /// The upper triangle `R` (6x6) of the in-place result of [`householder_qr`] on `a` with `m` rows.
-pub(crate) fn upper_triangle(a: &[f64], m: usize) -> Matrix6<f64> {
+pub fn upper_triangle(a: &[f64], m: usize) -> Matrix6<f64> {
     Matrix6::from_fn(|i, j| if i <= j { a[j * m + i] } else { 0.0 })
 }
 
@@ -182,79 +182,4 @@ pub fn dot(a: &[f64], b: &[f64]) -> f64 {
 /// `y += alpha x`, element by element.
 pub fn axpy(alpha: f64, x: &[f64], y: &mut [f64]) {
     y.iter_mut().zip(x).for_each(|(y, x)| *y += alpha * x);
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use nalgebra::DMatrix;
-
-    /// A fixed, well-conditioned 9x6 matrix (column-major), not triangular, not symmetric.
-    fn sample() -> DMatrix<f64> {
-        DMatrix::from_fn(9, 6, |i, j| {
-            let (i, j) = (i as f64, j as f64);
-            (1.0 + i * 0.7 + j * 1.3).sin() + if i == j { 2.0 } else { 0.0 }
-        })
-    }
-
-    /// `Q = H_1 .. H_6` (m x m) from the reflectors below the diagonal of `a` and `taus`.
-    fn q_of(a: &DMatrix<f64>, taus: &Vector6<f64>) -> DMatrix<f64> {
-        let m = a.nrows();
-        let mut q = DMatrix::identity(m, m);
-        for k in 0..6 {
-            let mut v = DMatrix::zeros(m, 1);
-            v[k] = 1.0;
-            for i in k + 1..m {
-                v[i] = a[(i, k)];
-            }
-            let h = DMatrix::identity(m, m) - &v * v.transpose() * taus[k];
-            q *= h;
-        }
-        q
-    }
-
-    #[test]
-    fn householder_qr_gives_orthogonal_q_triangular_r_and_q_r_equal_to_a() {
-        let a = sample();
-        let m = a.nrows();
-        let mut f = a.clone();
-        let taus = householder_qr(f.as_mut_slice(), m);
-        let q = q_of(&f, &taus);
-        assert!((q.transpose() * &q - DMatrix::identity(m, m)).amax() < 1e-14);
-        let r = upper_triangle(f.as_slice(), m);
-        let mut r_full = DMatrix::zeros(m, 6);
-        r_full.view_mut((0, 0), (6, 6)).copy_from(&r);
-        assert!((&q * r_full - &a).amax() < 1e-13 * a.amax());
-        // R is nalgebra's up to the signs of its rows.
-        let reference = a.clone().qr().r();
-        for i in 0..6 {
-            let sign = (r[(i, i)] * reference[(i, i)]).signum();
-            for j in 0..6 {
-                assert!((r[(i, j)] - sign * reference[(i, j)]).abs() < 1e-13);
-            }
-        }
-    }
-
-    #[test]
-    fn householder_qr_skips_a_column_already_triangular() {
-        // Column 0 is e_0: no reflection needed (tau = 0), and R[0, 0] keeps its value.
-        let mut a = sample();
-        a.column_mut(0).fill(0.0);
-        a[(0, 0)] = 3.0;
-        let taus = householder_qr(a.as_mut_slice(), 9);
-        assert_eq!(taus[0], 0.0);
-        assert_eq!(a[(0, 0)], 3.0);
-    }
-
-    #[test]
-    fn inverse_is_nalgebras_with_every_row_swap() {
-        // Rows reversed with small leading entries: partial pivoting swaps at every step.
-        let a = Matrix6::from_fn(|i, j| {
-            ((i * 6 + j) as f64 * 0.61).sin() + if i + j == 5 { 3.0 } else { 0.0 }
-        });
-        let want = a.try_inverse().unwrap();
-        let got = inverse(&a).unwrap();
-        assert!((got - want).amax() < 1e-14 * want.amax(), "{got} vs {want}");
-        assert!((a * got - Matrix6::identity()).amax() < 1e-14);
-    }
 }

@@ -248,27 +248,3 @@ pub fn fragment(springs: &[Spring]) -> String {
     }
     s
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn a_spring_axis_or_point_of_another_length_is_refused() {
-        let spring = |axis: &str, point: &str| {
-            let text = format!(
-                "[[spring]]\nname = \"bend\"\nkind = \"rotation\"\nlink = 3\naxis = {axis}\n{point}"
-            );
-            toml::from_str::<ModelFile>(&text).map_err(|e| e.to_string())
-        };
-        assert!(spring("[1, 0, 0]", "point_mm = [0, 0, 10]").is_ok());
-        for (axis, point) in [
-            ("[1, 0, 0, 0]", ""),
-            ("[1, 0]", ""),
-            ("[1, 0, 0]", "point_mm = [0, 0, 10, 5]"),
-        ] {
-            let e = spring(axis, point).unwrap_err();
-            assert!(e.contains("an array of length 3"), "{axis} {point}: {e}");
-        }
-    }
-}

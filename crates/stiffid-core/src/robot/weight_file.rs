@@ -51,7 +51,7 @@ struct TermFile {
 /// A robot file's `[gravity]` table.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct GravityFile {
+pub struct GravityFile {
     model: String,
     tool_mass_kg: Option<f64>,
     terms: Vec<TermFile>,
@@ -63,7 +63,7 @@ pub(super) struct GravityFile {
 ///
 /// # Errors
 /// [`Error::InvalidField`] naming the file and the field.
-pub(super) fn build(file: Option<GravityFile>, source_name: &str) -> Result<Option<OwnWeight>> {
+pub fn build(file: Option<GravityFile>, source_name: &str) -> Result<Option<OwnWeight>> {
     let Some(g) = file else { return Ok(None) };
     let invalid = |field: String, message: String| Error::InvalidField {
         field: format!("{source_name}: gravity.{field}"),
@@ -122,47 +122,4 @@ pub fn toml(own: &OwnWeight) -> String {
     }
     t += "]\n";
     t
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn own() -> OwnWeight {
-        OwnWeight {
-            gravity: "lumped".into(),
-            terms: vec![
-                ("gravity.c2.link2.m".into(), 6.1e-7),
-                ("gravity.c3.link3.mx".into(), -1.25e-8),
-            ],
-            tool_mass: Some(12.5),
-        }
-    }
-
-    fn read(text: &str) -> Result<Option<OwnWeight>> {
-        #[derive(Deserialize)]
-        struct F {
-            gravity: Option<GravityFile>,
-        }
-        let f: F = toml::from_str(text).expect("TOML");
-        build(f.gravity, "robot.toml")
-    }
-
-    #[test]
-    fn round_trip_is_exact() {
-        assert_eq!(read(&toml(&own())).unwrap(), Some(own()));
-    }
-
-    #[test]
-    fn bad_tables_name_the_field() {
-        let bad = toml(&own()).replace("lumped\"", "none\"");
-        let e = read(&bad).unwrap_err().to_string();
-        assert!(e.contains("robot.toml: gravity.model"), "{e}");
-        let bad = toml(&own()).replace("12.5", "-1.0");
-        let e = read(&bad).unwrap_err().to_string();
-        assert!(e.contains("gravity.tool_mass_kg"), "{e}");
-        let bad = toml(&own()).replace("6.1e-7", "nan");
-        let e = read(&bad).unwrap_err().to_string();
-        assert!(e.contains("gravity.terms[1].value_si"), "{e}");
-    }
 }

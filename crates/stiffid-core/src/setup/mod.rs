@@ -255,18 +255,6 @@ impl Setup {
         self.experiment.bounds()
     }
 
-    /// `n` postures drawn uniformly within the bounds from `seed` (ChaCha8), for the unit tests
-    /// of the stages below the design (which draws its groups with `stiffid_design::random_group`).
-    #[cfg(test)]
-    pub(crate) fn random_postures(&self, n: usize, seed: u64) -> Vec<Vector6<f64>> {
-        use rand::{Rng, SeedableRng};
-        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
-        let (lower, upper) = (&self.bounds().lower, &self.bounds().upper);
-        (0..n)
-            .map(|_| Vector6::from_fn(|j, _| rng.random_range(lower[j]..=upper[j])))
-            .collect()
-    }
-
     /// Nominal joint stiffness, Nm/rad, if the setup gives one
     /// ([`Experiment::nominal_stiffness`]).
     pub fn nominal_stiffness(&self) -> Option<&Vector6<f64>> {

@@ -159,7 +159,7 @@ fn median_dexterity(jacobians: &[Matrix6<f64>], l: f64) -> f64 {
 }
 
 /// The minimiser of a unimodal `f` on `[a, b]`, to an interval of width `tol`.
-fn golden_section(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64, tol: f64) -> f64 {
+pub fn golden_section(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64, tol: f64) -> f64 {
     let r = (5f64.sqrt() - 1.0) / 2.0;
     let (mut c, mut d) = (b - r * (b - a), a + r * (b - a));
     let (mut fc, mut fd) = (f(c), f(d));
@@ -175,24 +175,4 @@ fn golden_section(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64, tol: f64) -> f
         }
     }
     (a + b) / 2.0
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn golden_section_finds_the_minimum_of_a_parabola() {
-        let x = golden_section(|x| (x - 0.3).powi(2), -2.0, 5.0, 1e-9);
-        assert!((x - 0.3).abs() < 1e-8, "{x}");
-    }
-
-    #[test]
-    fn the_stiffness_prior_scales_with_the_payload_and_refuses_nonsense() {
-        let k = nominal_stiffness(82.5).unwrap();
-        assert_eq!(k[1], 1_500_000.0);
-        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY, 1e9] {
-            assert!(nominal_stiffness(bad).is_err(), "{bad}");
-        }
-    }
 }

@@ -3,7 +3,7 @@
 //! capsules as the fallback and the user's override; `[robot_geometry]` in robot TOML files.
 
 #[path = "../support/mesh_robot.rs"]
-mod mesh_robot;
+pub(crate) mod mesh_robot;
 
 use nalgebra::{Vector3, Vector6};
 use std::collections::HashMap;

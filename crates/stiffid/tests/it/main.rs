@@ -23,6 +23,7 @@ mod compensate;
 mod compensate_dynamics;
 mod configuration_runs;
 mod controllers;
+mod core;
 mod criteria;
 mod design_candidates;
 mod distinct_postures;

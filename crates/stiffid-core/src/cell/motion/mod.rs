@@ -237,6 +237,3 @@ impl Margins {
         (self.margins, gradients)
     }
 }
-
-#[cfg(test)]
-mod tests;

@@ -28,7 +28,7 @@
 //! threads). [`parse`] is the reader over a `&str`.
 
 mod columns;
-mod plain;
+pub mod plain;
 
 pub use columns::Layout;
 
@@ -400,25 +400,26 @@ fn read_piece(source: &mut impl BufRead, piece: &mut Vec<u8>) -> std::io::Result
 
 /// The rows of one piece of text, parsed (postures not numbered yet), until its first error.
 #[derive(Default)]
-struct Parsed {
+pub struct Parsed {
     /// The measurement, its line and the end of its label in `labels`.
-    rows: Vec<(Measurement, u64, usize)>,
+    pub rows: Vec<(Measurement, u64, usize)>,
     /// The rows' labels, one after the other.
-    labels: String,
-    error: Option<Error>,
+    pub labels: String,
+    /// The first error, which ends the rows.
+    pub error: Option<Error>,
 }
 
 impl Parsed {
     /// Parses `text`, whose first line is line `first` of the file, into `self` (its buffers
     /// reused): split directly when its lines are plain ([`plain`]), else by the `csv` crate.
-    fn fill(&mut self, layout: &Layout, text: &[u8], first: u64) {
+    pub fn fill(&mut self, layout: &Layout, text: &[u8], first: u64) {
         if !plain::parse(layout, text, first, self) {
             *self = Self::by_csv(layout, text, first);
         }
     }
 
     /// Parses `text` with the `csv` crate (quoted fields, errors).
-    fn by_csv(layout: &Layout, text: &[u8], first: u64) -> Self {
+    pub fn by_csv(layout: &Layout, text: &[u8], first: u64) -> Self {
         let mut parsed = Self {
             rows: Vec::with_capacity(text.len() / 64),
             labels: String::new(),

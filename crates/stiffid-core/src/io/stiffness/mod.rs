@@ -507,6 +507,3 @@ impl StiffnessFile {
         })
     }
 }
-
-#[cfg(test)]
-mod tests;

@@ -460,6 +460,3 @@ fn binary_size(bytes: &[u8]) -> std::result::Result<(), String> {
         )),
     }
 }
-
-#[cfg(test)]
-mod tests;

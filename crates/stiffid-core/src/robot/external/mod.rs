@@ -561,6 +561,3 @@ fn invalid(field: &str, message: String) -> Error {
         message,
     }
 }
-
-#[cfg(test)]
-mod tests;

@@ -1,24 +1,25 @@
 //! The exact margin gradients against central differences, at random feasible postures of every
 //! robot preset in a cell with every check.
 
-use crate::cell::{CheckKind, Checker};
-use crate::robot::presets;
-use crate::setup::Setup;
 use nalgebra::Vector6;
+
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use stiffid_core::cell::{CheckKind, Checker};
+use stiffid_core::robot::presets;
+use stiffid_core::setup::Setup;
 
 /// The paper setup on `robot`, within its joint limits, in a cell with a floor, a table, a
 /// tracker with an incidence limit and both `[constraints]`.
 fn cell(robot: &str) -> Setup {
-    let text = crate::setup::builtin_text("zhang2021-comau-nj165").unwrap().to_string()
+    let text = stiffid_core::setup::builtin_text("zhang2021-comau-nj165").unwrap().to_string()
         + "\n[cell]\nfloor_z_mm = -100.0\nclearance_mm = 50.0\n\
            [[cell.obstacle]]\nname = \"table\"\nmin_mm = [1200.0, -2000.0, -100.0]\nmax_mm = [2200.0, -600.0, 700.0]\n\
            [tracker]\nposition_mm = [3000.0, -2000.0, 1500.0]\nmax_incidence_deg = 70.0\n\
            [constraints]\nloading_point_min_z_mm = 200.0\nanchor_below_loading_point = true\n";
-    let setup = crate::setup::parse(&text, "cell.toml", |r, _| presets::get(r)).unwrap();
+    let setup = stiffid_core::setup::parse(&text, "cell.toml", |r, _| presets::get(r)).unwrap();
     let robot = presets::get(robot).unwrap();
-    let geometry = crate::setup::default_geometry(&robot, setup.tool());
+    let geometry = stiffid_core::setup::default_geometry(&robot, setup.tool());
     let builder = setup.to_builder().with_bounds(*robot.limits());
     builder
         .with_geometry(geometry)
@@ -53,8 +54,7 @@ fn margin_gradients_match_central_differences() {
     }
 }
 
-#[path = "../../../../stiffid/tests/support/mesh_robot.rs"]
-mod mesh_robot;
+use crate::bodies::mesh_robot;
 
 /// The mesh robot's setup ([`mesh_robot::setup_toml`]) read from memory, its hulls as bodies.
 pub(crate) fn mesh_setup() -> Setup {
@@ -65,16 +65,18 @@ pub(crate) fn mesh_setup() -> Setup {
         .collect();
     let text = |p: &Path| {
         let b = files.get(p)?;
-        Some(Ok::<_, crate::Error>(String::from_utf8(b.clone()).unwrap()))
+        Some(Ok::<_, stiffid_core::Error>(
+            String::from_utf8(b.clone()).unwrap(),
+        ))
     };
     let bytes = |p: &Path| files.get(p).cloned().map(Ok);
-    let meshes = crate::setup::reference::Meshes {
+    let meshes = stiffid_core::setup::reference::Meshes {
         read: &bytes,
         package_paths: &[],
     };
     let toml = mesh_robot::setup_toml() + "[constraints]\nloading_point_min_z_mm = 200.0\n";
     let toml = toml.replace("[tracker]\n", "[tracker]\nmax_incidence_deg = 70.0\n");
-    crate::setup::reference::setup_text_with_meshes(
+    stiffid_core::setup::reference::setup_text_with_meshes(
         &toml,
         "pkg/cell.toml",
         Path::new("pkg"),
@@ -111,7 +113,7 @@ fn kept_margins_are_the_plain_ones_less_the_margin_with_exact_gradients() {
         for (a, b) in plain.margins(&q).iter().zip(kept.margins(&q)) {
             let less = match (a.kind, a.between.0) {
                 (CheckKind::Bounds, _) => 0.0,
-                (CheckKind::Incidence, crate::cell::Thing::MeasuringPoint(i)) => {
+                (CheckKind::Incidence, stiffid_core::cell::Thing::MeasuringPoint(i)) => {
                     let p = frames.point(&setup.tool().measuring_points[i]);
                     KEEP / (tracker - p).norm()
                 }
@@ -120,10 +122,10 @@ fn kept_margins_are_the_plain_ones_less_the_margin_with_exact_gradients() {
             // A pair within FAR_MARGIN of its requirement is exact in both (never broad phase),
             // as a line against an obstacle always is.
             let line = matches!(a.kind, CheckKind::Rope | CheckKind::LineOfSight);
-            let obstacle = matches!(a.between.1, crate::cell::Thing::Obstacle(_));
+            let obstacle = matches!(a.between.1, stiffid_core::cell::Thing::Obstacle(_));
             let exact = a.kind.is_angle()
                 || (line && obstacle)
-                || a.margin < crate::cell::FAR_MARGIN
+                || a.margin < stiffid_core::cell::FAR_MARGIN
                 || matches!(
                     a.kind,
                     CheckKind::LoadingPointHeight | CheckKind::AnchorBelow

@@ -1,15 +1,15 @@
 //! The virtual springs' columns against finite differences of the virtual joint, and the
 //! `[model]` table of a setup file.
 
-use crate::model::*;
-use crate::observation::posture_block;
-use crate::setup::Setup;
 use nalgebra::{Rotation3, Vector3, Vector6};
+use stiffid_core::model::*;
+use stiffid_core::observation::posture_block;
+use stiffid_core::setup::Setup;
 
 /// The paper's setup with a spring of every kind and link: the elbow tilt family, a rotation
 /// about an off-origin axis in link 1, the tool translations and the base mount.
 fn extended() -> Setup {
-    let text = crate::setup::builtin_text("zhang2021-comau-nj165")
+    let text = stiffid_core::setup::builtin_text("zhang2021-comau-nj165")
         .unwrap()
         .to_string()
         + r#"
@@ -35,7 +35,10 @@ family = "base"
 nominal_stiffness_nm_per_rad = 2e7
 nominal_stiffness_n_per_mm = 1e5
 "#;
-    crate::setup::parse(&text, "extended.toml", |r, _| crate::robot::presets::get(r)).unwrap()
+    stiffid_core::setup::parse(&text, "extended.toml", |r, _| {
+        stiffid_core::robot::presets::get(r)
+    })
+    .unwrap()
 }
 
 /// The position of a base-frame point after the virtual joint moves by `e` (rad or m).
@@ -58,7 +61,7 @@ fn spring_columns_are_finite_differences_of_the_virtual_joint() {
     let setup = extended();
     assert_eq!(setup.model().len(), 6 + 1 + 2 + 3 + 6);
     let e = 1e-6;
-    for q in setup.random_postures(4, 3) {
+    for q in stiffid_design::random_group(&setup, 4, 3) {
         let frames = setup.robot().frames(&q);
         let wrench = setup.rope_wrench(&frames) + Vector6::new(0.0, 0.0, 0.0, 30.0, -20.0, 10.0);
         let block = posture_block(setup.arm(), &frames, &wrench);
@@ -87,7 +90,7 @@ fn spring_columns_are_finite_differences_of_the_virtual_joint() {
         }
         // The drive columns are those of the drives-only model.
         let drives = posture_block(
-            crate::setup::builtin("zhang2021-comau-nj165")
+            stiffid_core::setup::builtin("zhang2021-comau-nj165")
                 .unwrap()
                 .arm(),
             &frames,
@@ -145,19 +148,21 @@ fn families_and_parameters() {
     assert_eq!(h.len(), 18);
     assert_eq!(h[7], 1.0 / 4e6);
     // The fragment of a model reads back as the same springs.
-    let again = crate::setup::builtin_text("zhang2021-comau-nj165")
+    let again = stiffid_core::setup::builtin_text("zhang2021-comau-nj165")
         .unwrap()
         .to_string()
         + &fragment(springs);
-    let again =
-        crate::setup::parse(&again, "again.toml", |r, _| crate::robot::presets::get(r)).unwrap();
+    let again = stiffid_core::setup::parse(&again, "again.toml", |r, _| {
+        stiffid_core::robot::presets::get(r)
+    })
+    .unwrap();
     assert_eq!(again.model(), setup.model());
 }
 
 /// Bad `[model]` entries are errors naming the field.
 #[test]
 fn bad_springs_name_the_field() {
-    let base = crate::setup::builtin_text("zhang2021-comau-nj165").unwrap();
+    let base = stiffid_core::setup::builtin_text("zhang2021-comau-nj165").unwrap();
     let cases = [
         ("[[model.spring]]\nname = \"a\"\nkind = \"rotation\"\nlink = 7\naxis = [1, 0, 0]\n", "model.spring[1].link"),
         ("[[model.spring]]\nname = \"a\"\nkind = \"rotation\"\nlink = 2\naxis = [0, 0, 0]\n", "model.spring[1].axis"),
@@ -175,8 +180,10 @@ fn bad_springs_name_the_field() {
     ];
     for (fragment, field) in cases {
         let text = format!("{base}\n{fragment}");
-        match crate::setup::parse(&text, "s.toml", |r, _| crate::robot::presets::get(r)) {
-            Err(crate::Error::InvalidField { field: f, message }) => {
+        match stiffid_core::setup::parse(&text, "s.toml", |r, _| {
+            stiffid_core::robot::presets::get(r)
+        }) {
+            Err(stiffid_core::Error::InvalidField { field: f, message }) => {
                 assert!(
                     f.starts_with(&format!("s.toml: {field}")),
                     "{fragment}: {f}: {message}"

@@ -1,0 +1,7 @@
+mod external;
+mod input;
+mod measurements;
+mod output;
+mod postures;
+mod readings;
+mod stiffness;

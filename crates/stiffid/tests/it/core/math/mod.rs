@@ -1,0 +1,3 @@
+mod jacobi;
+mod linalg;
+mod spearman;

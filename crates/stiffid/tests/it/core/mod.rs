@@ -1,0 +1,11 @@
+//! The stiffid_core crate's tests, through its public paths.
+
+mod app;
+mod cell;
+mod common;
+mod io;
+mod math;
+mod model;
+mod observation;
+mod robot;
+mod setup;

@@ -1,0 +1,1 @@
+mod rpy_tests;

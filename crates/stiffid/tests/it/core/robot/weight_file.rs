@@ -1,0 +1,41 @@
+use serde::Deserialize;
+use stiffid_core::robot::weight_file::*;
+use stiffid_core::Result;
+
+fn own() -> OwnWeight {
+    OwnWeight {
+        gravity: "lumped".into(),
+        terms: vec![
+            ("gravity.c2.link2.m".into(), 6.1e-7),
+            ("gravity.c3.link3.mx".into(), -1.25e-8),
+        ],
+        tool_mass: Some(12.5),
+    }
+}
+
+fn read(text: &str) -> Result<Option<OwnWeight>> {
+    #[derive(Deserialize)]
+    struct F {
+        gravity: Option<GravityFile>,
+    }
+    let f: F = toml::from_str(text).expect("TOML");
+    build(f.gravity, "robot.toml")
+}
+
+#[test]
+fn round_trip_is_exact() {
+    assert_eq!(read(&toml(&own())).unwrap(), Some(own()));
+}
+
+#[test]
+fn bad_tables_name_the_field() {
+    let bad = toml(&own()).replace("lumped\"", "none\"");
+    let e = read(&bad).unwrap_err().to_string();
+    assert!(e.contains("robot.toml: gravity.model"), "{e}");
+    let bad = toml(&own()).replace("12.5", "-1.0");
+    let e = read(&bad).unwrap_err().to_string();
+    assert!(e.contains("gravity.tool_mass_kg"), "{e}");
+    let bad = toml(&own()).replace("6.1e-7", "nan");
+    let e = read(&bad).unwrap_err().to_string();
+    assert!(e.contains("gravity.terms[1].value_si"), "{e}");
+}

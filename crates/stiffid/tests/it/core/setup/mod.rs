@@ -1,0 +1,3 @@
+mod load_steps;
+mod prior;
+mod reference;
