@@ -126,3 +126,79 @@ fn calibrate_locates_a_fixed_part_from_its_reflectors() {
         ],
     );
 }
+
+/// `select --for calibration` on the fixed cell with reflectors on the part: the postures as
+/// without them (no external axis column), the campaign's plan listing the part's reflectors as
+/// fixed points of the cell to read in the same session.
+#[test]
+fn select_plans_the_reflectors_of_a_fixed_part() {
+    let d = temp_dir("fixed-part-select");
+    let setup = write_file(
+        &d,
+        "setup.toml",
+        &setup_text("comau-smart5-nj165-3.0", [1500.0, 200.0, 600.0], true),
+    );
+    let out = d.join("campaign.csv");
+    let args = |setup: &str, out: &str| {
+        let args = [
+            "select",
+            "--setup",
+            setup,
+            "--for",
+            "calibration",
+            "--start-random",
+            "--count",
+            "12",
+            "--seed",
+            "1",
+            "--max-evals",
+            "100",
+            "--out",
+            out,
+            "--json",
+        ];
+        json(&stiffid(&args))
+    };
+    let doc = args(setup.to_str().unwrap(), out.to_str().unwrap());
+    assert!(
+        doc.get("posture_stations").is_none_or(|s| s.is_null()),
+        "{doc}"
+    );
+    let csv = std::fs::read_to_string(&out).unwrap();
+    assert!(csv.lines().next().unwrap().ends_with("q6_deg"), "{csv}");
+    // The same postures as on the setup without the reflectors: they change no design.
+    let plain = write_file(
+        &d,
+        "plain.toml",
+        &setup_text("comau-smart5-nj165-3.0", [1500.0, 200.0, 600.0], false),
+    );
+    let plain_out = d.join("plain.csv");
+    args(plain.to_str().unwrap(), plain_out.to_str().unwrap());
+    assert_eq!(std::fs::read_to_string(&plain_out).unwrap(), csv);
+    let plan = d.join("plan");
+    stiffid(&[
+        "select",
+        "--setup",
+        setup.to_str().unwrap(),
+        "--for",
+        "calibration",
+        "--start-random",
+        "--count",
+        "12",
+        "--seed",
+        "1",
+        "--max-evals",
+        "100",
+        "--out",
+        d.join("again.csv").to_str().unwrap(),
+        "--report",
+        plan.to_str().unwrap(),
+    ]);
+    let page = std::fs::read_to_string(plan.join("plan.html")).unwrap();
+    for k in 1..=3 {
+        let line = format!("Part reflector T{k} (point T{k} of the readings)");
+        assert!(page.contains(&line), "{line}");
+    }
+    assert!(page.contains("a fixed point of the cell, read it once"));
+    assert!(!page.contains("table angles"), "{page}");
+}
