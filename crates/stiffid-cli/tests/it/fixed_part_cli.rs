@@ -202,3 +202,41 @@ fn select_plans_the_reflectors_of_a_fixed_part() {
     assert!(page.contains("a fixed point of the cell, read it once"));
     assert!(!page.contains("table angles"), "{page}");
 }
+
+/// Reflectors read on a fixed cell whose setup does not place them locate nothing: a warning
+/// says which, and the robot file records no part.
+#[test]
+fn reflectors_the_setup_does_not_place_are_named() {
+    let d = temp_dir("fixed-part-unplaced");
+    let model = model();
+    let x = truth(&model);
+    let tracker = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.0, 0.0, 2.5));
+    let mut text = readings(&model, &x, &tracker, &postures(25, 1));
+    let line = text.lines().nth(1).unwrap().to_string();
+    let first: Vec<&str> = line.split(',').collect();
+    text += &format!("P1,T1,{},1500.0,200.0,600.0\n", first[2..8].join(","));
+    let data = write_file(&d, "fit.csv", &text);
+    let setup = write_file(
+        &d,
+        "setup.toml",
+        &setup_text("comau-smart5-nj165-3.0", [1500.0, 200.0, 600.0], false),
+    );
+    let robot = d.join("robot.toml");
+    let doc = json(&stiffid(&[
+        "calibrate",
+        "--setup",
+        setup.to_str().unwrap(),
+        "--data",
+        data.to_str().unwrap(),
+        "--out",
+        robot.to_str().unwrap(),
+        "--json",
+    ]));
+    let warnings = doc["warnings"].to_string();
+    assert!(
+        warnings.contains("reflectors T1 fixed in the cell and the setup places 0"),
+        "{warnings}"
+    );
+    let file = std::fs::read_to_string(&robot).unwrap();
+    assert!(!file.contains("[part]"), "{file}");
+}

@@ -19,15 +19,17 @@ use stiffid_metrology::register::{fit, Correspondence};
 
 /// The part's frame in the calibrated cell (m), located from the setup's reflectors and
 /// the model's fitted ones (paired by number, `T1` with the first): `None` without reflectors in
-/// both. A location that fails (fewer than three reflectors, or on one line) and one far from
-/// the setup's `[workpiece] base_from_part` add a warning to `warnings`.
+/// both. A location that fails (fewer than three reflectors, or on one line), one far from
+/// the setup's `[workpiece] base_from_part`, and reflectors read in a cell without a positioner
+/// that the setup does not place (they locate nothing) add a warning to `warnings`.
 pub(super) fn located(
     setup: &Setup,
     (model, estimate): (&ErrorModel, &Estimate),
     warnings: &mut Vec<Warning>,
 ) -> Option<Isometry3<f64>> {
-    let part = setup.workpiece()?;
     let given = setup.table_reflectors();
+    warnings.extend(unplaced(setup, model.tables(), given.len()));
+    let part = setup.workpiece()?;
     let n = given.len().min(model.tables());
     if n == 0 {
         return None;
@@ -71,6 +73,26 @@ fn moved(part: &Isometry3<f64>, located: &Isometry3<f64>, n: usize) -> Option<Wa
                 n,
                 number(origin * 1e3),
                 number(angle.to_degrees())
+            ),
+        )
+    })
+}
+
+/// The warning that a cell without a positioner read `read` reflectors (`T` rows) where the
+/// setup places `placed` (`[workpiece] reflectors_mm`): the others are fitted and locate nothing.
+fn unplaced(setup: &Setup, read: usize, placed: usize) -> Option<Warning> {
+    let positioner = (setup.robot().external()).is_some_and(|a| a.len() > a.carrier_len());
+    let names = |from: usize| match from == read {
+        true => format!("T{read}"),
+        false => format!("T{from}..T{read}"),
+    };
+    (!positioner && read > placed).then(|| {
+        Warning::new(
+            WarningKind::Calibrated,
+            format!(
+                "the readings read reflectors {} fixed in the cell and the setup places {placed} ([workpiece] reflectors_mm, in the part's frame): without a positioner, {} locate nothing; give each in reflectors_mm to locate the part from them",
+                names(1),
+                names(placed + 1)
             ),
         )
     })
