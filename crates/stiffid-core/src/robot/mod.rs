@@ -313,9 +313,10 @@ impl Robot {
     }
 
     /// The robot recording the part's frame its calibration located from the reflectors on the
-    /// positioner's table or, in a cell without a positioner, on the part: the frame the setup's `[workpiece] reflectors_mm` are given in, in
-    /// the calibrated cell frame with every external axis at 0 (m), the setup's
-    /// `[workpiece] base_from_part` for every setup pointing at the robot.
+    /// positioner's table or, in a cell without a positioner, on the part: the frame the
+    /// setup's `[workpiece] reflectors_mm` are given in, in the calibrated cell frame with
+    /// every external axis at 0 (m), the setup's `[workpiece] base_from_part` for every setup
+    /// pointing at the robot.
     pub fn with_part(self, part: Option<Isometry3<f64>>) -> Self {
         Self { part, ..self }
     }

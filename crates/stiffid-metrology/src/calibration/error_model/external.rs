@@ -338,16 +338,16 @@ impl ErrorModel {
     /// per rotary positioner axis its line's location (`<axis>.location.y`, `.z`, m),
     /// direction (`<axis>.direction.ry`, `.rz`, rad) and angular offset (`<axis>.offset`,
     /// rad); then `tables` reflectors fixed in the cell ([`ErrorModel::with_tables`]: on the
-    /// positioner's table, or fixed points of a cell with a track alone). Priorities: the reflectors, a carrier's directions and a
-    /// positioner's lines 0 (kept before joint 1's errors, which then merge into them and the
-    /// tracker's registration: the cell's frame is the tracker's, the track's and the
-    /// positioner's), the error motions and offsets 2. `orders` has one entry per axis (a rotary axis's
-    /// is ignored).
+    /// positioner's table, or fixed points of a cell with a track alone). Priorities: the
+    /// reflectors, a carrier's directions and a positioner's lines 0 (kept before joint 1's
+    /// errors, which then merge into them and the tracker's registration: the cell's frame is
+    /// the tracker's, the track's and the positioner's), the error motions and offsets 2.
+    /// `orders` has one entry per axis (a rotary axis's is ignored).
     ///
     /// # Errors
     /// [`Error::InvalidField`] (`external_axis`) when the robot has no external axes, the
-    /// model has reflectors, loads or maps already, `orders` has another length, an order exceeds
-    /// [`MAX_FITTED_ORDER`], or `tables` exceeds [`super::MAX_POINTS`].
+    /// model has reflectors, loads or maps already, `orders` has another length, an order
+    /// exceeds [`MAX_FITTED_ORDER`], or `tables` exceeds [`super::MAX_POINTS`].
     pub fn with_external(mut self, orders: &[usize], tables: usize) -> Result<Self> {
         let invalid = |message: String| Error::InvalidField {
             field: "external_axis".into(),
@@ -426,7 +426,8 @@ impl ErrorModel {
     }
 
     /// The model with the robot's external axes as it gives them (no parameter of theirs
-    /// fitted) and `tables` reflectors fixed in the cell ([`ErrorModel::with_tables`]): the nominal cell, or the cell calibration.
+    /// fitted) and `tables` reflectors fixed in the cell ([`ErrorModel::with_tables`]): the
+    /// nominal cell, or the cell calibration.
     ///
     /// # Errors
     /// As [`ErrorModel::with_external`].
