@@ -3,10 +3,10 @@
 //! or its fixture. The setup gives them in the part's frame (`[workpiece] reflectors_mm`), the
 //! calibration fits where they are in the calibrated cell (every external axis at 0; a fixed
 //! reflector is a free point of the cell, read through the tracker's registration), and the
-//! rigid transform between
-//! the two (Umeyama's least squares, [`stiffid_metrology::register::fit`]) is the part's frame in
-//! the calibrated cell, which the calibrated robot file records (`[part]`,
-//! [`stiffid_core::Robot::part`]) for every setup pointing at it. The setup's own
+//! rigid transform between the two (Umeyama's least squares,
+//! [`stiffid_metrology::register::fit`]) is the part's frame in the calibrated cell, which the
+//! calibrated robot file records (`[part]`, [`stiffid_core::Robot::part`]) for every setup
+//! pointing at it. The setup's own
 //! `[workpiece] base_from_part` places the part in the nominal cell; after a calibration that
 //! moved the cell frame (its registration, the base's errors) it misses the part by as much.
 
