@@ -90,10 +90,16 @@ fn reflectors(setup: &Setup) -> Vec<String> {
         })
         .collect();
     let table = setup.table_reflectors();
-    out.extend((table.iter().enumerate()).map(|(i, p)| {
-        format!("Table reflector T{} (point T{} of the readings) at {}, cell frame with every axis at 0: read it at the posture's table angles.", i + 1, i + 1, at(p))
+    out.extend((table.iter().enumerate()).map(|(i, p)| match positioner(setup) {
+        true => format!("Table reflector T{} (point T{} of the readings) at {}, cell frame with every axis at 0: read it at the posture's table angles.", i + 1, i + 1, at(p)),
+        false => format!("Part reflector T{} (point T{} of the readings) at {}, cell frame: a fixed point of the cell, read it once (or at a few postures) in the same tracker session.", i + 1, i + 1, at(p)),
     }));
     out
+}
+
+/// Whether the cell has a positioner (its table's reflectors turn with it).
+fn positioner(setup: &Setup) -> bool {
+    (setup.robot().external()).is_some_and(|a| a.len() > a.carrier_len())
 }
 
 /// What to do at each posture: the external axes first, then the arm, then the readings.
@@ -109,7 +115,8 @@ fn steps(setup: &Setup, doc: &Document) -> Vec<String> {
         "Read {} with the tracker, and write each reading as a row of the readings CSV (posture, point, x_mm, y_mm, z_mm{}; docs/reference.md, Readings CSV).",
         match (points, setup.table_reflectors().len()) {
             (p, 0) => format!("the tool's {p} reflector(s)"),
-            (p, t) => format!("the tool's {p} reflector(s) and the table's {t}"),
+            (p, t) if positioner(setup) => format!("the tool's {p} reflector(s) and the table's {t}"),
+            (p, t) => format!("the tool's {p} reflector(s) (and the part's {t} where the list says)"),
         },
         if external { " and the e columns" } else { "" }
     ));

@@ -12,6 +12,7 @@ mod compensate_cli;
 mod completions;
 mod documents_renamed;
 mod extrapolation_cli;
+mod fixed_part_cli;
 mod free_options_refused;
 mod hardening;
 mod hardening_edges;

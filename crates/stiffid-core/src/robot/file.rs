@@ -48,7 +48,7 @@
 //!                                       #   at the file takes the controller's world from it
 //! [part]                                # optional (stiffid calibrate --out writes it): the
 //! xyz_mm = [1500, 0, 400]               #   part's frame the calibration located from the
-//! rpy_deg = [0, 0, 0.11]                #   reflectors on the positioner's table (the setup's
+//! rpy_deg = [0, 0, 0.11]                #   reflectors on the table or a fixed part (the setup's
 //!                                       #   [workpiece] reflectors_mm are in it), cell frame,
 //!                                       #   external axes at 0: a setup pointing at the file
 //!                                       #   takes it as [workpiece] base_from_part

@@ -76,8 +76,8 @@ pub struct Robot {
     held_out: Option<Arc<HeldOut>>,
     /// The mount a calibrated robot was calibrated on, when its file records it (`[mount]`).
     mount: Option<Isometry3<f64>>,
-    /// The part's frame a calibration located from the table reflectors, when its file records
-    /// it (`[part]`).
+    /// The part's frame a calibration located from the reflectors fixed in the cell (on the
+    /// positioner's table or on a fixed part), when its file records it (`[part]`).
     part: Option<Isometry3<f64>>,
     /// A calibrated robot's sag under its own weight ([`OwnWeight`]), when its
     /// file carries it.
@@ -313,9 +313,10 @@ impl Robot {
     }
 
     /// The robot recording the part's frame its calibration located from the reflectors on the
-    /// positioner's table: the frame the setup's `[workpiece] reflectors_mm` are given in, in
-    /// the calibrated cell frame with every external axis at 0 (m), the setup's
-    /// `[workpiece] base_from_part` for every setup pointing at the robot.
+    /// positioner's table or, in a cell without a positioner, on the part: the frame the
+    /// setup's `[workpiece] reflectors_mm` are given in, in the calibrated cell frame with
+    /// every external axis at 0 (m), the setup's `[workpiece] base_from_part` for every setup
+    /// pointing at the robot.
     pub fn with_part(self, part: Option<Isometry3<f64>>) -> Self {
         Self { part, ..self }
     }

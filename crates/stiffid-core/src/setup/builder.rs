@@ -293,10 +293,12 @@ impl SetupBuilder {
         self
     }
 
-    /// Reflectors fixed on the positioner's table, the part's frame ([`Self::with_workpiece`]),
-    /// m (default none; at most [`limits::MAX_TABLE_REFLECTORS`], each coordinate within
-    /// [`limits::LENGTH_MM`]; they need a workpiece and a positioner): the points `select --for
-    /// calibration` designs the positioner's angles for, read as `T1`, `T2`, ... in that order.
+    /// Reflectors fixed on the positioner's table or, in a cell without a positioner, on the
+    /// part or its fixture, the part's frame ([`Self::with_workpiece`]), m (default none; at
+    /// most [`limits::MAX_TABLE_REFLECTORS`], each coordinate within [`limits::LENGTH_MM`]; they
+    /// need a workpiece), read as `T1`, `T2`, ... in that order: the points `select --for
+    /// calibration` designs the positioner's angles for, and those the calibration locates the
+    /// part from.
     pub fn with_table_reflectors(mut self, reflectors: Vec<Vector3<f64>>) -> Self {
         self.table_reflectors = reflectors;
         self
@@ -389,7 +391,7 @@ impl SetupBuilder {
         let (shapes, geometry) =
             robot_geometry(&self.robot, (self.link_radii, self.tool_radius), &tool)?;
         let reflectors = (self.workpiece.as_ref(), self.table_reflectors.as_slice());
-        check_part_and_tool(reflectors, &self.robot, self.payload.as_ref())?;
+        check_part_and_tool(reflectors, self.payload.as_ref())?;
         check_accuracy(self.frame_sd, self.mass_sd)?;
         let tracker = self
             .tracker
@@ -463,7 +465,6 @@ fn robot_geometry(
 /// limits.
 fn check_part_and_tool(
     (workpiece, reflectors): (Option<&Isometry3<f64>>, &[Vector3<f64>]),
-    robot: &Robot,
     payload: Option<&Payload>,
 ) -> Result<()> {
     if let Some(w) = workpiece {
@@ -471,7 +472,7 @@ fn check_part_and_tool(
         let field = "workpiece.base_from_part.xyz_mm";
         check_scaled(field, xyz.as_slice(), 1e3, &limits::LENGTH_MM)?;
     }
-    check_table_reflectors(reflectors, robot, workpiece.is_some())?;
+    check_table_reflectors(reflectors, workpiece.is_some())?;
     if let Some(p) = payload {
         limits::check("tool.mass_kg", &[p.mass], &limits::TOOL_MASS_KG)?;
         check_points("tool.centre_of_mass_mm", std::slice::from_ref(&p.centre))?;
@@ -539,28 +540,21 @@ fn check_points(field: &str, points: &[Vector3<f64>]) -> Result<()> {
     check_scaled(field, &values, 1e3, &limits::LENGTH_MM)
 }
 
-/// Refuses table reflectors beyond [`limits::MAX_TABLE_REFLECTORS`] or [`limits::LENGTH_MM`],
-/// or without a workpiece frame or a positioner.
-fn check_table_reflectors(
-    reflectors: &[Vector3<f64>],
-    robot: &crate::Robot,
-    workpiece: bool,
-) -> Result<()> {
+/// Refuses reflectors fixed in the cell (on the positioner's table, or on a fixed part)
+/// beyond [`limits::MAX_TABLE_REFLECTORS`] or [`limits::LENGTH_MM`], or without a workpiece
+/// frame.
+fn check_table_reflectors(reflectors: &[Vector3<f64>], workpiece: bool) -> Result<()> {
     let field = "workpiece.reflectors_mm";
     if reflectors.is_empty() {
         return Ok(());
     }
     limits::check_count(field, reflectors.len(), 0, limits::MAX_TABLE_REFLECTORS)?;
     check_points(field, reflectors)?;
-    let positioner = robot.external().is_some_and(|a| a.len() > a.carrier_len());
-    match (workpiece, positioner) {
-        (true, true) => Ok(()),
-        _ => Err(crate::Error::InvalidField {
+    match workpiece {
+        true => Ok(()),
+        false => Err(crate::Error::InvalidField {
             field: field.into(),
-            message: match workpiece {
-                false => "reflectors on the table need the part's frame: give [workpiece] base_from_part".into(),
-                true => "reflectors on a positioner's table, and the cell has no positioner: give its [[external_axis]] (role = \"positioner\") or no reflectors".into(),
-            },
+            message: "reflectors on the part (or the positioner's table) are given in the part's frame: give [workpiece] base_from_part".into(),
         }),
     }
 }

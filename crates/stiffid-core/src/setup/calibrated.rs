@@ -78,7 +78,7 @@ pub(super) fn part(
         let note = Warning::new(
             WarningKind::Calibrated,
             format!(
-                "{src}: the part's frame is the one the calibration located from the table reflectors ([part] of the calibrated robot file '{reference}': {})",
+                "{src}: the part's frame is the one the calibration located from the reflectors on the table or the part ([part] of the calibrated robot file '{reference}': {})",
                 words(located)
             ),
         );
@@ -95,7 +95,7 @@ pub(super) fn part(
     Err(Error::InvalidField {
         field: format!("{src}: workpiece.base_from_part"),
         message: format!(
-            "{}: the calibrated robot file '{reference}' records the part's frame the calibration located from the table reflectors ([part] {}), its origin {} mm away and turned {} deg: leave base_from_part out (the file's [part] places the part), or, if the part moved on the table since, locate it again (calibrate --update with the table reflectors' readings)",
+            "{}: the calibrated robot file '{reference}' records the part's frame the calibration located from the reflectors on the table or the part ([part] {}), its origin {} mm away and turned {} deg: leave base_from_part out (the file's [part] places the part), or, if the part moved since, locate it again (calibrate --update with the reflectors' readings)",
             words(&given),
             words(located),
             short(origin * 1e3),

@@ -64,7 +64,9 @@
 //! takes them away); the setup's robot carries them ([`crate::Robot::external`]). With a
 //! positioner, `[workpiece]` is the part's frame at `e = 0`, cell frame; a calibrated robot file
 //! that records the part's frame its calibration located from the table reflectors (`[part]`,
-//! [`crate::Robot::part`]) gives it instead (a setup's other `base_from_part` is refused).
+//! [`crate::Robot::part`]) gives it instead (a setup's other `base_from_part` is refused). A
+//! cell without a positioner locates a fixed part the same way from reflectors on the part or
+//! its fixture (`[workpiece] reflectors_mm`, read as fixed points of the cell).
 //!
 //! In code, [`Setup::builder`] takes the same fields in SI units and checks them as the file's
 //! ([`SetupBuilder::build`]); [`parse`] reads the file through it.
@@ -389,8 +391,8 @@ impl Setup {
         self.arm.payload()
     }
 
-    /// The reflectors on the positioner's table, cell frame at `e = 0`, m
-    /// ([`Workcell::table_reflectors`]).
+    /// The reflectors fixed on the positioner's table or on a fixed part, cell frame at `e = 0`,
+    /// m ([`Workcell::table_reflectors`]).
     pub fn table_reflectors(&self) -> Vec<Vector3<f64>> {
         self.workcell.table_reflectors()
     }

@@ -81,7 +81,7 @@ pub struct Workcell {
     pub(super) cell: Option<Cell>,
     pub(super) tracker: Option<Tracker>,
     pub(super) workpiece: Option<Isometry3<f64>>,
-    /// Reflectors on the positioner's table, the part's frame, m.
+    /// Reflectors on the positioner's table or on a fixed part, the part's frame, m.
     pub(super) table_reflectors: Vec<Vector3<f64>>,
     pub(super) controller: Controller,
 }
@@ -107,9 +107,10 @@ impl Workcell {
         self.workpiece.as_ref()
     }
 
-    /// `[workpiece] reflectors_mm`: the reflectors fixed on the positioner's table (`T1`, `T2`,
-    /// ... of a readings file), in the cell frame with every axis at 0 (the part's frame
-    /// `base_from_part` applied), m; empty without.
+    /// `[workpiece] reflectors_mm`: the reflectors fixed on the positioner's table or, in a
+    /// cell without a positioner, on the part or its fixture (`T1`, `T2`, ... of a readings
+    /// file), in the cell frame with every axis at 0 (the part's frame `base_from_part`
+    /// applied), m; empty without.
     pub fn table_reflectors(&self) -> Vec<Vector3<f64>> {
         let part = self.workpiece.unwrap_or_default();
         (self.table_reflectors.iter())

@@ -208,7 +208,8 @@ pub fn check(purpose: Purpose, options: &CalibrationOptions) -> Result<()> {
 /// positioner's lines, which only reflectors on its table read, drop out as not identified),
 /// the reference postures are dealt over [`REFERENCE_STATIONS`] stations of the travel
 /// ([`stiffid_core::robot::ExternalAxes::stations`]) and every test posture is read at each of them.
-/// With reflectors on a positioner's table (`[workpiece] reflectors_mm`), the model has the
+/// With reflectors on a positioner's table (`[workpiece] reflectors_mm`; reflectors on a fixed
+/// part without a positioner change no design), the model has the
 /// positioner's lines and offsets and the reflectors' coordinates too, and the table is read at
 /// [`REFERENCE_TABLE_ANGLES`] angles ([`table_grid`]) for reference, for the part's test
 /// points and as the readings a group is scored with until `select` chooses its own
@@ -229,7 +230,12 @@ pub fn design(setup: &Setup, options: &CalibrationOptions) -> Result<Calibration
         setup.characteristic_length().unwrap_or(1.0),
         setup.noise().reading_sd(),
     );
-    let reflectors = setup.table_reflectors();
+    // Reflectors on a fixed part (no positioner) are fixed points of the cell: their readings
+    // locate the part and separate none of the robot's parameters, nothing to design for.
+    let reflectors = match setup.robot().external() {
+        Some(a) if a.len() > a.carrier_len() => setup.table_reflectors(),
+        _ => Vec::new(),
+    };
     let Some(axes) =
         (setup.robot().external()).filter(|a| a.carrier_len() > 0 || !reflectors.is_empty())
     else {

@@ -303,7 +303,7 @@ pub(super) fn leave_one_out_linearised(
 
 /// The start of a fit: the nominal values, and the frame registered on the nominal positions
 /// ([`crate::register::fit`], Umeyama) of the arm's measuring points for tracker
-/// readings, the identity for base-frame ones; the reflectors on a positioner's table started
+/// readings, the identity for base-frame ones; the reflectors fixed in the cell started
 /// from their readings (the mean of `P(e)^-1 T t` over each one's).
 ///
 /// # Errors

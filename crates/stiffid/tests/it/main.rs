@@ -106,6 +106,7 @@ mod track_design;
 mod track_map;
 mod track_stiffness;
 mod true_cell;
+mod true_fixed_part;
 mod true_part;
 mod true_robot;
 mod true_table;

@@ -349,9 +349,11 @@ fn designed_angles_beat_random_angles() {
     assert!(designed_rms < random_rms);
 }
 
-/// Reflectors on a table need a positioner: the setup names the field.
+/// Without a positioner the reflectors are on a fixed part (fixed points of the cell): the
+/// setup takes them in the part's frame; without the part's frame it refuses them naming the
+/// field.
 #[test]
-fn table_reflectors_without_a_positioner_are_refused() {
+fn reflectors_without_a_positioner_are_on_a_fixed_part() {
     let without = SETUP
         .split("[tool]")
         .enumerate()
@@ -360,11 +362,20 @@ fn table_reflectors_without_a_positioner_are_refused() {
             _ => format!("[tool]{part}"),
         })
         .collect::<String>();
-    let e = stiffid::setup::parse(&without, "table.toml", |name, _| {
-        stiffid::robot::presets::get(name)
-    })
-    .unwrap_err()
-    .to_string();
+    let parse = |text: &str| {
+        stiffid::setup::parse(text, "table.toml", |name, _| {
+            stiffid::robot::presets::get(name)
+        })
+    };
+    let setup = parse(&without).unwrap();
+    let first = setup.table_reflectors()[0] * 1e3;
+    assert!((first - nalgebra::Vector3::new(2100.0, 1500.0, 940.0)).norm() < 1e-9);
+    assert_eq!(setup.table_reflectors().len(), 3);
+    let unplaced = without.replace(
+        "base_from_part = { xyz_mm = [1800, 1500, 900], rpy_deg = [0, 0, 0] }\n",
+        "",
+    );
+    let e = parse(&unplaced).unwrap_err().to_string();
     assert!(e.contains("workpiece.reflectors_mm"), "{e}");
-    assert!(e.contains("no positioner"), "{e}");
+    assert!(e.contains("give [workpiece] base_from_part"), "{e}");
 }

@@ -31,7 +31,7 @@ const TRAVEL: f64 = 6.0;
 pub(crate) const NOISE: f64 = 1.5e-5;
 
 /// The true carriage at `s` (m) along x: a vertical bow of 0.3 mm and a pitch of 0.2 mrad.
-fn true_track(s: f64) -> Isometry3<f64> {
+pub(crate) fn true_track(s: f64) -> Isometry3<f64> {
     let x = s / TRAVEL;
     let bow = Vector3::new(s, 0.0, 3e-4 * (std::f64::consts::PI * x).sin());
     let pitch = 2e-4 * (std::f64::consts::PI * x).cos();

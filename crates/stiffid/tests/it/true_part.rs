@@ -50,7 +50,7 @@ fn path(points: &[(Isometry3<f64>, f64)], part: &Isometry3<f64>) -> String {
 
 /// The setup pointing at the calibrated robot `robot` (`calibrated.toml`) with `workpiece`
 /// (the `[workpiece]` table's lines).
-fn pointing(robot: &Robot, workpiece: &str) -> stiffid::Result<Setup> {
+pub(crate) fn pointing(robot: &Robot, workpiece: &str) -> stiffid::Result<Setup> {
     let text = true_robot::setup_text(
         "calibrated.toml",
         "[bounds]\nlower_deg = [-90.0, -60.0, -180.0, -180.0, -90.0, -180.0]\nupper_deg = [90.0, 40.0, -40.0, 180.0, 90.0, 180.0]",
@@ -104,11 +104,17 @@ fn the_part_located_by_the_calibration_lands_on_the_true_part() {
         .map(|i| (-165.0 + 30.0 * i as f64).to_radians())
         .collect();
     let fit = true_robot::postures(30, &mut rng, case.angles);
-    let data = readings(&truth, &true_table, (&fit, &angles), &reflectors, &mut rng);
+    let data = readings(
+        &truth,
+        Some(&true_table),
+        (&fit, &angles),
+        &reflectors,
+        &mut rng,
+    );
     let held_q = true_robot::postures(12, &mut rng, case.angles);
     let held_e: Vec<f64> = angles.iter().map(|e| e + 0.2).collect();
     let held = (held_q.as_slice(), held_e.as_slice());
-    let held = readings(&truth, &true_table, held, &reflectors, &mut rng);
+    let held = readings(&truth, Some(&true_table), held, &reflectors, &mut rng);
     let (kept, weight, _, held_rms, _) =
         true_robot::calibrated(&case, Gravity::Masses, &data, &held);
     let robot = kept.robot();

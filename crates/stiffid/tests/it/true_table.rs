@@ -107,24 +107,30 @@ pub(crate) fn reflectors_mm() -> String {
 
 /// Readings of the tool's measuring points at `qs` (rad; the table at 0) and of the table's
 /// `reflectors` (true base frame at `e = 0`, m) at the table angles `angles` (rad), with the
-/// tracker's noise.
+/// tracker's noise. Without a `table` (a fixed cell: no `e1_deg` column) the reflectors are
+/// fixed points of the cell, read once per entry of `angles` (each 0).
 pub(crate) fn readings(
     truth: &Truth,
-    table: &Table,
+    table: Option<&Table>,
     (qs, angles): (&[Vector6<f64>], &[f64]),
     reflectors: &[Vector3<f64>],
     rng: &mut ChaCha8Rng,
 ) -> String {
     let noise = Normal::new(0.0, NOISE).unwrap();
-    let mut text = stiffid::io::readings::header().replace("q6_deg,", "q6_deg,e1_deg,") + "\n";
+    let mut text = match table {
+        Some(_) => stiffid::io::readings::header().replace("q6_deg,", "q6_deg,e1_deg,"),
+        None => stiffid::io::readings::header(),
+    } + "\n";
     let mut row = |label: String, point: String, q: &Vector6<f64>, e: f64, base: Vector3<f64>| {
         let t = truth.estimate.frame.inverse() * Point3::from(base);
         let t = t.coords + Vector3::from_fn(|_, _| noise.sample(rng));
-        let q: Vec<String> = q.iter().map(|v| format!("{:?}", v.to_degrees())).collect();
+        let mut q: Vec<String> = q.iter().map(|v| format!("{:?}", v.to_degrees())).collect();
+        if table.is_some() {
+            q.push(format!("{:?}", e.to_degrees()));
+        }
         text += &format!(
-            "{label},{point},{},{:?},{:?},{:?},{:?}\n",
+            "{label},{point},{},{:?},{:?},{:?}\n",
             q.join(","),
-            e.to_degrees(),
             t.x * 1e3,
             t.y * 1e3,
             t.z * 1e3
@@ -149,7 +155,8 @@ pub(crate) fn readings(
     let q = qs[0];
     for (i, &e) in angles.iter().enumerate() {
         for (k, y) in reflectors.iter().enumerate() {
-            let at = table.at(e) * Point3::from(*y);
+            assert!(table.is_some() || e == 0.0, "a fixed cell reads at e = 0");
+            let at = table.map_or(Isometry3::identity(), |t| t.at(e)) * Point3::from(*y);
             row(
                 format!("E{}", i + 1),
                 format!("T{}", k + 1),
@@ -215,12 +222,18 @@ fn a_path_on_a_turned_table_lands_on_the_true_part() {
         .map(|i| (-165.0 + 30.0 * i as f64).to_radians())
         .collect();
     let fit = true_robot::postures(30, &mut rng, case.angles);
-    let data = readings(&truth, &true_table, (&fit, &angles), &reflectors, &mut rng);
+    let data = readings(
+        &truth,
+        Some(&true_table),
+        (&fit, &angles),
+        &reflectors,
+        &mut rng,
+    );
     let held_q = true_robot::postures(12, &mut rng, case.angles);
     let held_e: Vec<f64> = angles.iter().map(|e| e + 0.2).collect();
     let held = readings(
         &truth,
-        &true_table,
+        Some(&true_table),
         (&held_q, &held_e),
         &reflectors,
         &mut rng,

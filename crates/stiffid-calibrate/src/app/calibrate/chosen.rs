@@ -124,7 +124,7 @@ pub(super) fn choose(
 /// cell's `tables`): the error model with its error motions and loads, its start and its fit.
 ///
 /// # Errors
-/// Those of [`model`], [`update::kept`], [`update::external`],
+/// Those of [`model`], [`update::kept`], [`ErrorModel::with_tables`], [`update::external`],
 /// [`stiffid_metrology::calibration::motions::choose`], [`update::identifiable`],
 /// [`ErrorModel::with_loads`], [`fit::start`] and [`fit::fit`];
 /// [`Error::InvalidField`] (`readings`) for base-frame readings with external axes.
@@ -139,7 +139,7 @@ pub(super) fn fitted(
     let name = &request.readings.name;
     let model = update::kept(request, model(setup, measured_in, geometry, gravity)?)?;
     let (model, error_motions) = match setup.robot().external() {
-        None => (model, None),
+        None => (model.with_tables(tables)?, None),
         Some(_) if measured_in == MeasuredIn::Base => {
             return Err(Error::InvalidField {
                 field: "readings".into(),

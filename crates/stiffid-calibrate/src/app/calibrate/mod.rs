@@ -380,7 +380,7 @@ fn reference(setup: &Setup, model: &ErrorModel) -> Result<ErrorModel> {
     )?;
     match robot.external() {
         Some(_) => reference.with_external_nominal(model.tables()),
-        None => Ok(reference),
+        None => reference.with_tables(model.tables()),
     }
 }
 

@@ -1,9 +1,12 @@
-//! The part's frame a calibration locates from the reflectors on the positioner's table: the
-//! setup gives them in the part's frame (`[workpiece] reflectors_mm`), the calibration fits where
-//! they are in the calibrated cell (every external axis at 0), and the rigid transform between
-//! the two (Umeyama's least squares, [`stiffid_metrology::register::fit`]) is the part's frame in
-//! the calibrated cell, which the calibrated robot file records (`[part]`,
-//! [`stiffid_core::Robot::part`]) for every setup pointing at it. The setup's own
+//! The part's frame a calibration locates from the reflectors fixed in the cell: on the
+//! positioner's table, or, in a cell without a positioner (a fixed base or a track), on the part
+//! or its fixture. The setup gives them in the part's frame (`[workpiece] reflectors_mm`), the
+//! calibration fits where they are in the calibrated cell (every external axis at 0; a fixed
+//! reflector is a free point of the cell, read through the tracker's registration), and the
+//! rigid transform between the two (Umeyama's least squares,
+//! [`stiffid_metrology::register::fit`]) is the part's frame in the calibrated cell, which the
+//! calibrated robot file records (`[part]`, [`stiffid_core::Robot::part`]) for every setup
+//! pointing at it. The setup's own
 //! `[workpiece] base_from_part` places the part in the nominal cell; after a calibration that
 //! moved the cell frame (its registration, the base's errors) it misses the part by as much.
 
@@ -14,17 +17,19 @@ use stiffid_core::Setup;
 use stiffid_metrology::calibration::error_model::{ErrorModel, Estimate, MeasuredIn};
 use stiffid_metrology::register::{fit, Correspondence};
 
-/// The part's frame in the calibrated cell (m), located from the setup's table reflectors and
+/// The part's frame in the calibrated cell (m), located from the setup's reflectors and
 /// the model's fitted ones (paired by number, `T1` with the first): `None` without reflectors in
-/// both. A location that fails (fewer than three reflectors, or on one line) and one far from
-/// the setup's `[workpiece] base_from_part` add a warning to `warnings`.
+/// both. A location that fails (fewer than three reflectors, or on one line), one far from
+/// the setup's `[workpiece] base_from_part`, and reflectors read in a cell without a positioner
+/// that the setup does not place (they locate nothing) add a warning to `warnings`.
 pub(super) fn located(
     setup: &Setup,
     (model, estimate): (&ErrorModel, &Estimate),
     warnings: &mut Vec<Warning>,
 ) -> Option<Isometry3<f64>> {
-    let part = setup.workpiece()?;
     let given = setup.table_reflectors();
+    warnings.extend(unplaced(setup, model.tables(), given.len()));
+    let part = setup.workpiece()?;
     let n = given.len().min(model.tables());
     if n == 0 {
         return None;
@@ -42,31 +47,52 @@ pub(super) fn located(
         .collect();
     match fit(&pairs) {
         Ok(r) => {
-            warnings.extend(moved(part, &r.base_from_tracker));
+            warnings.extend(moved(part, &r.base_from_tracker, n));
             Some(r.base_from_tracker)
         }
         Err(e) => {
             warnings.push(Warning::new(
                 WarningKind::Calibrated,
-                format!("the part's frame is not located from the table reflectors ({e}): the calibrated robot file records none, and a setup pointing at it needs [workpiece] base_from_part"),
+                format!("the part's frame is not located from the reflectors T1..T{n} ({e}): the calibrated robot file records none, and a setup pointing at it needs [workpiece] base_from_part"),
             ));
             None
         }
     }
 }
 
-/// The warning that the part located at `located` lies away from the setup's `part` (beyond
-/// 0.001 mm or 0.001 deg), how far.
-fn moved(part: &Isometry3<f64>, located: &Isometry3<f64>) -> Option<Warning> {
+/// The warning that the part located at `located` from `n` reflectors lies away from the
+/// setup's `part` (beyond 0.001 mm or 0.001 deg), how far.
+fn moved(part: &Isometry3<f64>, located: &Isometry3<f64>, n: usize) -> Option<Warning> {
     let origin = (located.translation.vector - part.translation.vector).norm();
     let angle = part.rotation.angle_to(&located.rotation);
     (origin > 1e-6 || angle > 1e-3f64.to_radians()).then(|| {
         Warning::new(
             WarningKind::Calibrated,
             format!(
-                "the part located from the table reflectors lies {} mm and {} deg from the setup's [workpiece] base_from_part in the calibrated cell: the calibrated robot file records it ([part]); a setup pointing at that file takes it, leave base_from_part out",
+                "the part located from the reflectors T1..T{} lies {} mm and {} deg from the setup's [workpiece] base_from_part in the calibrated cell: the calibrated robot file records it ([part]); a setup pointing at that file takes it, leave base_from_part out",
+                n,
                 number(origin * 1e3),
                 number(angle.to_degrees())
+            ),
+        )
+    })
+}
+
+/// The warning that a cell without a positioner read `read` reflectors (`T` rows) where the
+/// setup places `placed` (`[workpiece] reflectors_mm`): the others are fitted and locate nothing.
+fn unplaced(setup: &Setup, read: usize, placed: usize) -> Option<Warning> {
+    let positioner = (setup.robot().external()).is_some_and(|a| a.len() > a.carrier_len());
+    let names = |from: usize| match from == read {
+        true => format!("T{read}"),
+        false => format!("T{from}..T{read}"),
+    };
+    (!positioner && read > placed).then(|| {
+        Warning::new(
+            WarningKind::Calibrated,
+            format!(
+                "the readings read reflectors {} fixed in the cell and the setup places {placed} ([workpiece] reflectors_mm, in the part's frame): without a positioner, {} locate nothing; give each in reflectors_mm to locate the part from them",
+                names(1),
+                names(placed + 1)
             ),
         )
     })

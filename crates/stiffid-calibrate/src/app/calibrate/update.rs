@@ -311,7 +311,7 @@ pub(super) fn reference(
     )?;
     let with = match rigid.robot().external() {
         Some(_) => with.with_external_nominal(model.tables())?,
-        None => with,
+        None => with.with_tables(model.tables())?,
     };
     let (from, to) = (model.gravity_start(), with.gravity_start());
     let held: Vec<(usize, f64)> = (0..model.gravity().len())

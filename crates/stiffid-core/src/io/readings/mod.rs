@@ -15,11 +15,13 @@
 //!   ([`crate::robot::ExternalAxes::column_names`]: mm for a linear axis, deg for a rotary
 //!   one), each value within its axis's travel; required when the cell has external axes, a
 //!   column of an axis the cell lacks refused.
-//! - A reflector fixed on the positioner's table (a point of the part, read at several
-//!   positioner angles to calibrate the positioner's axes): `point` is `T1`, `T2`, ... (`T` and
-//!   the reflector's number, from 1) instead of a measuring point's number; the row's axis
-//!   angles are the arm's at the time (not used for the reflector), its positioner columns say
-//!   where the table stood. Only in a cell with a positioner, and not in a file with load steps.
+//! - A reflector fixed in the cell: on the positioner's table (a point of the part, read at
+//!   several positioner angles to calibrate the positioner's axes), or, in a cell without a
+//!   positioner, on a fixed part or fixture (a fixed point of the cell, read once or at several
+//!   postures' readings): `point` is `T1`, `T2`, ... (`T` and the reflector's number, from 1)
+//!   instead of a measuring point's number; the row's axis angles are the arm's at the time (not
+//!   used for the reflector), its positioner columns say where the table stood. Not in a file
+//!   with load steps.
 //! - `x_tracker_mm..z_tracker_mm`: the tracker's reading of the measuring point, tracker frame,
 //!   mm, within [`crate::common::limits::LENGTH_MM`]; or `x_mm,y_mm,z_mm` in the robot base frame (a
 //!   tracker already registered).
@@ -53,7 +55,7 @@ use std::collections::HashMap;
 /// Most rows a readings file may hold.
 pub const MAX_READINGS: usize = 100_000;
 
-/// Most reflectors on a positioner's table (`T1` ...) a readings file names.
+/// Most reflectors fixed in the cell (`T1` ...) a readings file names.
 pub const MAX_TABLE_REFLECTORS: usize = crate::common::limits::MAX_TABLE_REFLECTORS;
 
 /// Largest load step number (`load_step`).
@@ -109,8 +111,8 @@ pub struct Reading {
     pub q: Vector6<f64>,
     /// The external axes' values, SI (m, rad), the cell's order; empty without external axes.
     pub e: ExternalValues,
-    /// Whether `point` is a reflector on the positioner's table (`T1`, `T2`, ...), 0-based,
-    /// rather than a measuring point of the tool.
+    /// Whether `point` is a reflector fixed in the cell (`T1`, `T2`, ...: on the positioner's
+    /// table, or on a fixed part), 0-based, rather than a measuring point of the tool.
     pub table: bool,
     /// The reading of the measuring point, m, in [`Readings::frame`].
     pub position: Vector3<f64>,
@@ -149,7 +151,7 @@ pub struct Readings {
     pub has_loads: bool,
     /// The names of the force and of the position columns in the header, comma-separated.
     pub columns: [String; 2],
-    /// How many reflectors on the positioner's table the rows read: the largest `T<k>`.
+    /// How many reflectors fixed in the cell the rows read: the largest `T<k>`.
     pub tables: usize,
 }
 
@@ -291,8 +293,6 @@ struct Columns {
     q: [usize; 6],
     /// The external axes' columns, the cell's order.
     e: external::Columns,
-    /// Whether the cell has a positioner (table reflectors allowed).
-    positioner: bool,
     position: [usize; 3],
     frame: DisplacementFrame,
     load: Option<(usize, bool)>,
@@ -455,7 +455,6 @@ impl Columns {
             point,
             q,
             e,
-            positioner: robot.external().is_some_and(|x| x.len() > x.carrier_len()),
             position,
             frame,
             load,
@@ -499,7 +498,7 @@ impl Columns {
         }
         let (point, table) = self.point(row, points)?;
         if table && self.load.is_some() {
-            let message = "a reflector on the positioner's table in a file with load steps: load steps read the tool's measuring points".to_string();
+            let message = "a reflector fixed in the cell in a file with load steps: load steps read the tool's measuring points".to_string();
             return Err(row.error(self.point, ColumnProblem::Measurement { message }));
         }
         let mut q = Vector6::zeros();
@@ -591,28 +590,20 @@ impl Columns {
         Ok(e)
     }
 
-    /// The point of a row, 0-based, and whether it is a reflector on the positioner's table
-    /// (`T1`, `T2`, ...).
+    /// The point of a row, 0-based, and whether it is a reflector fixed in the cell (`T1`,
+    /// `T2`, ...).
     fn point(&self, row: &Row, points: usize) -> Result<(usize, bool)> {
         let field = row.field(self.point);
         if let Some(k) = field.strip_prefix(['T', 't']) {
             return match k.parse::<usize>() {
-                Ok(k) if self.positioner && (1..=MAX_TABLE_REFLECTORS).contains(&k) => {
-                    Ok((k - 1, true))
-                }
+                Ok(k) if (1..=MAX_TABLE_REFLECTORS).contains(&k) => Ok((k - 1, true)),
                 _ => Err(row.error(
                     self.point,
                     ColumnProblem::Measurement {
-                        message: match self.positioner {
-                            true => format!(
-                                "'{}' is not a reflector on the positioner's table (T1 to T{MAX_TABLE_REFLECTORS})",
-                                short(field)
-                            ),
-                            false => format!(
-                                "'{}' names a reflector on a positioner's table, and the cell has no positioner: expected a measuring point 1 to {points}",
-                                short(field)
-                            ),
-                        },
+                        message: format!(
+                            "'{}' is not a reflector fixed in the cell (T1 to T{MAX_TABLE_REFLECTORS}) nor a measuring point 1 to {points}",
+                            short(field)
+                        ),
                     },
                 )),
             };

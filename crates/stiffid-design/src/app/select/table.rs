@@ -34,7 +34,8 @@ pub const SIGHT_END: f64 = 0.05;
 /// `report` with the positioner's angles of its table readings chosen (module docs), where
 /// each posture is read ([`Report::placed`]) then holding them, and its value and calibration
 /// criteria those of the group with them; `report` as it is unless `r` designs for
-/// [`Purpose::Calibration`] on a setup with table reflectors.
+/// [`Purpose::Calibration`] on a setup with a positioner and table reflectors (reflectors on a
+/// fixed part are read as the campaign's steps say, at no angle to choose).
 ///
 /// # Errors
 /// [`Error::Input`] (`table`) when no candidate angle has clear lines of sight, a posture meets
@@ -42,7 +43,7 @@ pub const SIGHT_END: f64 = 0.05;
 /// calibration's parameters; those of [`purpose::design`].
 pub(super) fn with_table(r: &Request, mut report: Report) -> Result<Report> {
     let reflectors = r.setup.table_reflectors();
-    let Some(axes) = r.setup.robot().external() else {
+    let Some(axes) = (r.setup.robot().external()).filter(|a| a.len() > a.carrier_len()) else {
         return Ok(report);
     };
     if r.purpose != Purpose::Calibration || reflectors.is_empty() {

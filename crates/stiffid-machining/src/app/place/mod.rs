@@ -270,7 +270,7 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
     if setup.robot().part().is_some() {
         return Err(Error::InvalidField {
             field: "workpiece.base_from_part".into(),
-            message: format!("setup {}: the part's frame is the one the calibration located from the table reflectors ([part] of its calibrated robot file): that part is clamped already; choose a new part's placement on a setup with the nominal robot, then locate it (calibrate --update with the table reflectors' readings)", setup.name()),
+            message: format!("setup {}: the part's frame is the one the calibration located from the reflectors on the table or the part ([part] of its calibrated robot file): that part is clamped already; choose a new part's placement on a setup with the nominal robot, then locate it (calibrate --update with the reflectors' readings)", setup.name()),
         });
     }
     let context = context(request);

@@ -50,9 +50,6 @@ pub(super) struct External {
     pub(super) orders: Vec<usize>,
     /// Each axis's first parameter.
     starts: Vec<usize>,
-    /// The first table reflector's first parameter, and their count.
-    pub(super) table_start: usize,
-    pub(super) tables: usize,
     /// Whether the axes' parameters are fitted (else the axes stand as the robot gives them and
     /// only the table's reflectors are parameters: [`ErrorModel::with_external_nominal`]).
     fitted: bool,
@@ -231,15 +228,18 @@ impl External {
         pose
     }
 
-    /// Writes the columns of the positioner's parameters and of table reflector `k`'s
-    /// coordinates for its reading at `e` into `put(parameter, column)`.
+    /// Writes the columns of the positioner's parameters for the reading of the table
+    /// reflector at `x` (part frame at `e = 0`, m) at `e` into `put(parameter, column)`.
     pub(super) fn positioner_columns(
         &self,
         values: &DVector<f64>,
         e: &[f64],
-        k: usize,
+        x: Vector3<f64>,
         mut put: impl FnMut(usize, Vector3<f64>),
     ) {
+        if !self.fitted {
+            return;
+        }
         let start = self.axes.carrier_len();
         let turns: Vec<_> = (start..self.axes.len())
             .map(|i| self.line(values, i, e.get(i).copied().unwrap_or(0.0)))
@@ -247,16 +247,12 @@ impl External {
         let poses: Vec<Isometry3<f64>> =
             turns.iter().map(|(p, d, a)| Self::turn(p, d, *a)).collect();
         // The reflector before each turn: `y_j = T_{j+1} ... T_n x`.
-        let mut y = vec![self.table(values, k); poses.len() + 1];
+        let mut y = vec![x; poses.len() + 1];
         for j in (0..poses.len()).rev() {
             y[j] = (poses[j] * Point3::from(y[j + 1])).coords;
         }
         let mut before = Isometry3::identity();
         for (j, ((p, d, _), pose)) in turns.iter().zip(&poses).enumerate() {
-            if !self.fitted {
-                before *= pose;
-                continue;
-            }
             let i = start + j;
             let s = self.starts[i];
             let (rb, r) = (before.rotation, pose.rotation);
@@ -273,20 +269,6 @@ impl External {
             put(s + 4, rb * d.normalize().cross(&turned));
             before *= pose;
         }
-        let rotation = before.rotation.to_rotation_matrix();
-        for a in 0..3 {
-            put(
-                self.table_start + 3 * k + a,
-                rotation.matrix().column(a).into_owned(),
-            );
-        }
-    }
-
-    /// Table reflector `k` (part frame at `e = 0`, m) at `values`.
-    pub(super) fn table(&self, values: &DVector<f64>, k: usize) -> Vector3<f64> {
-        values
-            .fixed_rows::<3>(self.table_start + 3 * k)
-            .into_owned()
     }
 
     /// The external axes at `values`, as a robot file holds them: a linear axis's direction
@@ -355,19 +337,17 @@ impl ErrorModel {
     /// `<axis>.<motion>.u<k>`, the coefficient of `u^k`, m or rad, nominal the axis's own);
     /// per rotary positioner axis its line's location (`<axis>.location.y`, `.z`, m),
     /// direction (`<axis>.direction.ry`, `.rz`, rad) and angular offset (`<axis>.offset`,
-    /// rad); then `tables` reflectors on the positioner's table (`table<k>.x`, `.y`, `.z`, m,
-    /// part frame at `e = 0`, nominal 0: [`crate::calibration::fit::start`] starts
-    /// them from their readings). Priorities: the reflectors, a carrier's directions and a
-    /// positioner's lines 0 (kept before joint 1's errors, which then merge into them and the
-    /// tracker's registration: the cell's frame is the tracker's, the track's and the
-    /// positioner's), the error motions and offsets 2. `orders` has one entry per axis (a rotary axis's
-    /// is ignored).
+    /// rad); then `tables` reflectors fixed in the cell ([`ErrorModel::with_tables`]: on the
+    /// positioner's table, or fixed points of a cell with a track alone). Priorities: the
+    /// reflectors, a carrier's directions and a positioner's lines 0 (kept before joint 1's
+    /// errors, which then merge into them and the tracker's registration: the cell's frame is
+    /// the tracker's, the track's and the positioner's), the error motions and offsets 2.
+    /// `orders` has one entry per axis (a rotary axis's is ignored).
     ///
     /// # Errors
     /// [`Error::InvalidField`] (`external_axis`) when the robot has no external axes, the
-    /// model has loads or maps already, `orders` has another length, an order exceeds
-    /// [`MAX_FITTED_ORDER`], or `tables` is not 0 without a positioner or exceeds
-    /// [`super::MAX_POINTS`].
+    /// model has reflectors, loads or maps already, `orders` has another length, an order
+    /// exceeds [`MAX_FITTED_ORDER`], or `tables` exceeds [`super::MAX_POINTS`].
     pub fn with_external(mut self, orders: &[usize], tables: usize) -> Result<Self> {
         let invalid = |message: String| Error::InvalidField {
             field: "external_axis".into(),
@@ -382,7 +362,7 @@ impl ErrorModel {
                 axes.len()
             )));
         }
-        self.check_tables(&axes, tables)?;
+        self.check_tables(tables)?;
         let mut starts = Vec::with_capacity(axes.len());
         let mut fitted_orders = Vec::with_capacity(axes.len());
         for (i, axis) in axes.axes().iter().enumerate() {
@@ -441,13 +421,13 @@ impl ErrorModel {
                 }
             }
         }
-        self.push_tables(axes, fitted_orders, starts, tables, true);
-        Ok(self)
+        self.push_axes(axes, fitted_orders, starts, true);
+        self.with_tables(tables)
     }
 
     /// The model with the robot's external axes as it gives them (no parameter of theirs
-    /// fitted) and `tables` reflectors on the positioner's table (parameters as
-    /// [`ErrorModel::with_external`] names them): the nominal cell, or the cell calibration.
+    /// fitted) and `tables` reflectors fixed in the cell ([`ErrorModel::with_tables`]): the
+    /// nominal cell, or the cell calibration.
     ///
     /// # Errors
     /// As [`ErrorModel::with_external`].
@@ -458,65 +438,51 @@ impl ErrorModel {
                 message: "the robot has no external axes".into(),
             });
         };
-        self.check_tables(&axes, tables)?;
+        self.check_tables(tables)?;
         let n = axes.len();
-        self.push_tables(axes, vec![0; n], vec![0; n], tables, false);
-        Ok(self)
+        self.push_axes(axes, vec![0; n], vec![0; n], false);
+        self.with_tables(tables)
     }
 
-    fn check_tables(&self, axes: &ExternalAxes, tables: usize) -> Result<()> {
+    /// Refuses external axes added again or after the loads, the maps or the reflectors, and
+    /// more than [`super::MAX_POINTS`] reflectors.
+    fn check_tables(&self, tables: usize) -> Result<()> {
         let invalid = |message: String| Error::InvalidField {
             field: "external_axis".into(),
             message,
         };
-        if self.loads.is_some() || self.maps.is_some() || self.external.is_some() {
+        if self.loads.is_some()
+            || self.maps.is_some()
+            || self.external.is_some()
+            || self.tables() > 0
+        {
             return Err(invalid(
-                "add the external axes before the loads and the error maps, once".into(),
+                "add the external axes before the reflectors, the loads and the error maps, once"
+                    .into(),
             ));
         }
-        let positioner = axes.len() > axes.carrier_len();
-        if tables > super::MAX_POINTS || (tables > 0 && !positioner) {
+        if tables > super::MAX_POINTS {
             return Err(invalid(format!(
-                "expected 0 to {} reflectors on a positioner's table, got {tables}{}",
-                super::MAX_POINTS,
-                if positioner {
-                    ""
-                } else {
-                    " without a positioner"
-                }
+                "expected 0 to {} reflectors fixed in the cell, got {tables}",
+                super::MAX_POINTS
             )));
         }
         Ok(())
     }
 
-    fn push_tables(
+    fn push_axes(
         &mut self,
         axes: ExternalAxes,
         orders: Vec<usize>,
         starts: Vec<usize>,
-        tables: usize,
         fitted: bool,
     ) {
-        let table_start = self.parameters.len();
-        for k in 0..tables {
-            for (axis, n) in ["x", "y", "z"].iter().enumerate() {
-                self.parameters.push(Parameter {
-                    name: format!("table{}.{n}", k + 1),
-                    kind: Kind::Table,
-                    target: Target::Table { point: k, axis },
-                    nominal: 0.0,
-                    priority: 0,
-                });
-            }
-        }
         self.external = Some(External {
             frames: axes.axes().iter().map(ExternalAxis::frame).collect(),
             shifts: vec![None; axes.len()],
             axes,
             orders,
             starts,
-            table_start,
-            tables,
             fitted,
         });
     }
@@ -525,22 +491,6 @@ impl ErrorModel {
     /// without external axes.
     pub fn external_orders(&self) -> Option<&[usize]> {
         self.external.as_ref().map(|x| x.orders.as_slice())
-    }
-
-    /// The reflectors on the positioner's table the model fits.
-    pub fn tables(&self) -> usize {
-        self.external.as_ref().map_or(0, |x| x.tables)
-    }
-
-    /// Table reflector `k` (part frame at `e = 0`, m) in `values`.
-    ///
-    /// # Panics
-    /// Without external axes or beyond [`ErrorModel::tables`].
-    pub fn table(&self, values: &DVector<f64>, k: usize) -> Vector3<f64> {
-        self.external
-            .as_ref()
-            .expect("external axes")
-            .table(values, k)
     }
 
     /// The external axes at `values` as a robot file holds them (the directions, error motions,
@@ -587,37 +537,6 @@ impl ErrorModel {
         match &self.external {
             Some(x) => x.positioner(values, e),
             None => Isometry3::identity(),
-        }
-    }
-}
-
-impl ErrorModel {
-    /// `values` with each table reflector's coordinates started from its readings: the mean of
-    /// `P(e)^-1 T t` over them (`P` at `values`, `T` the measurement frame `frame`). A reflector
-    /// without readings keeps its value.
-    pub(crate) fn start_tables(
-        &self,
-        values: &mut DVector<f64>,
-        frame: &Isometry3<f64>,
-        observations: &[super::Observation],
-    ) {
-        let Some(x) = &self.external else {
-            return;
-        };
-        for k in 0..x.tables {
-            let part: Vec<Vector3<f64>> = (observations.iter())
-                .filter(|o| o.table && o.point == k)
-                .map(|o| {
-                    let cell = frame * Point3::from(o.measured);
-                    (x.positioner(values, o.e.as_slice()).inverse() * cell).coords
-                })
-                .collect();
-            if !part.is_empty() {
-                let mean = part.iter().sum::<Vector3<f64>>() / part.len() as f64;
-                values
-                    .fixed_rows_mut::<3>(x.table_start + 3 * k)
-                    .copy_from(&mean);
-            }
         }
     }
 }

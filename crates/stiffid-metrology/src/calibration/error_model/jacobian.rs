@@ -63,11 +63,9 @@ impl ErrorModel {
                 block
                     .fixed_view_mut::<3, 3>(0, 3)
                     .copy_from(&(-b.cross_matrix()));
-                if let Some(x) = &self.external {
-                    x.positioner_columns(values, a.e.as_slice(), a.point, |c, col| {
-                        block.column_mut(c).copy_from(&col)
-                    });
-                }
+                self.table_columns(values, a.e.as_slice(), a.point, |c, col| {
+                    block.column_mut(c).copy_from(&col)
+                });
                 continue;
             }
             let k = &a.point;

@@ -79,6 +79,7 @@ mod jacobian;
 mod loads;
 mod maps;
 mod parameter;
+mod tables;
 
 pub use basis::Basis;
 pub use external::{MAX_FITTED_ORDER, MOTIONS};
@@ -161,8 +162,9 @@ pub struct Observation {
     /// The external axes' values, SI (m, rad), the cell's order ([`stiffid_core::robot::ExternalAxes`]);
     /// empty without external axes.
     pub e: ExternalValues,
-    /// Whether `point` is a reflector on the positioner's table ([`ErrorModel::with_external`])
-    /// rather than a measuring point on the tool.
+    /// Whether `point` is a reflector fixed in the cell (`T<k>`: on the positioner's table, or a
+    /// fixed point of a cell without a positioner, [`ErrorModel::with_tables`]) rather than a
+    /// measuring point on the tool.
     pub table: bool,
     /// The sign of each joint's last motion before the reading (-1.0 or 1.0, the readings'
     /// `dir1..dir6`), by which a backlash term moves the joint ([`ErrorModel::with_maps`]); 0.0
@@ -230,6 +232,8 @@ pub struct ErrorModel {
     maps: Option<maps::Maps>,
     /// The cell's external axes ([`ErrorModel::with_external`]).
     external: Option<external::External>,
+    /// The reflectors fixed in the cell ([`ErrorModel::with_tables`]).
+    tables: tables::Tables,
     /// The parameters held at their nominal values ([`ErrorModel::with_held`]), ascending.
     held: Vec<usize>,
 }
@@ -328,6 +332,7 @@ impl ErrorModel {
             loads: None,
             maps: None,
             external: None,
+            tables: tables::Tables::default(),
             held: Vec::new(),
         })
     }
@@ -455,12 +460,6 @@ impl ErrorModel {
                 (delta * nalgebra::Point3::from(b)).coords
             })
             .collect())
-    }
-
-    /// Table reflector `k` at `e` (cell frame, m): `P(e) x_k`.
-    fn table_position(&self, values: &DVector<f64>, e: &[f64], k: usize) -> Vector3<f64> {
-        let x = self.table(values, k);
-        (self.positioner_pose(values, e) * nalgebra::Point3::from(x)).coords
     }
 
     /// The posture of commanded `a.q` on `robot` (the chain at `values`) at external axis values

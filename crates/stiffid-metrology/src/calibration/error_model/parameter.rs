@@ -156,8 +156,9 @@ pub enum Target {
         /// What it moves.
         part: AxisPart,
     },
-    /// A coordinate (0 x, 1 y, 2 z) of a reflector fixed on the positioner's table, part frame
-    /// at `e = 0` (cell coordinates), m; reflectors 0-based.
+    /// A coordinate (0 x, 1 y, 2 z) of a reflector fixed in the cell (on the positioner's table,
+    /// or a fixed point of a cell without a positioner), part frame at `e = 0` (cell
+    /// coordinates), m; reflectors 0-based.
     Table {
         /// The reflector, 0-based.
         point: usize,
@@ -226,7 +227,7 @@ pub enum Kind {
     /// A parameter of a positioner's rotary axis: its line's location and direction, its
     /// angular offset.
     Positioner,
-    /// A coordinate of a reflector on the positioner's table.
+    /// A coordinate of a reflector fixed in the cell (on the positioner's table, or fixed).
     Table,
 }
 

@@ -6,6 +6,7 @@ use stiffid_metrology::calibration::*;
 
 mod backlash_tests;
 mod external_tests;
+mod fixed_tables_tests;
 mod heavy_tests;
 mod intervals_tests;
 mod loaded_tests;

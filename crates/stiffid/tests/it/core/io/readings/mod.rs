@@ -60,9 +60,7 @@ fn external_axes_and_table_reflectors() {
     );
     let e = error(format!("{head}\na,T0,{row},2500,0,1,2,3\n"), &cell(true));
     assert!(
-        e.contains(
-            "column 2 (point): 'T0' is not a reflector on the positioner's table (T1 to T100)"
-        ),
+        e.contains("column 2 (point): 'T0' is not a reflector fixed in the cell (T1 to T100)"),
         "{e}"
     );
     let e = error(
@@ -90,16 +88,15 @@ fn external_axes_and_table_reflectors() {
         e,
         "line 1, column 10 (e2_deg): no external axis has this column: the cell's external axes are e1_mm (track)"
     );
-    let e = error(
-        format!("{short_head}\na,T1,{row},2500,1,2,3\n"),
+    // A reflector fixed in a cell without a positioner: a fixed point of the cell.
+    let fixed = parse(
+        &format!("{short_head}\na,T3,{row},2500,1,2,3\n"),
         &cell(false),
+        4,
     );
-    assert!(
-        e.contains(
-            "'T1' names a reflector on a positioner's table, and the cell has no positioner"
-        ),
-        "{e}"
-    );
+    let fixed = fixed.unwrap();
+    assert!(fixed.readings[0].table && fixed.readings[0].point == 2);
+    assert_eq!(fixed.tables, 3);
     let e = error(format!("{head}\na,1,{row},2500,0,1,2,3\n"), &robot());
     assert!(
         e.contains(

@@ -1,0 +1,242 @@
+//! `stiffid calibrate` on a fixed cell (no positioner) with reflectors on the part: noise-free
+//! readings of the arm and of the three reflectors (`T1`..`T3` rows) locate the part where it
+//! truly is, 2 mm from the setup's `[workpiece] base_from_part`; the robot file records it
+//! (`[part]`), `kinematics` on a setup pointing at that file places the part there, and the old
+//! `base_from_part` kept in that setup is refused naming both places.
+
+use crate::calibrate_cli::{model, postures, readings, truth, SETUP};
+use crate::common::{json, numbers, refused, stiffid, temp_dir, write_file};
+use nalgebra::{Isometry3, Point3, Vector3};
+
+/// The reflectors on the part, part frame, mm.
+const ON_PART_MM: [[f64; 3]; 3] = [
+    [300.0, 0.0, 40.0],
+    [-200.0, 250.0, 40.0],
+    [-100.0, -300.0, 60.0],
+];
+
+/// The built-in setup on `robot` with `[workpiece]` at `xyz_mm` (turned 30 deg about z) and,
+/// with `reflectors`, the reflectors on the part.
+fn setup_text(robot: &str, xyz_mm: [f64; 3], reflectors: bool) -> String {
+    let text = stiffid_core::setup::builtin_text(SETUP).unwrap().replace(
+        "robot = \"comau-smart5-nj165-3.0\"",
+        &format!("robot = \"{robot}\""),
+    );
+    let [x, y, z] = xyz_mm;
+    let mut workpiece = format!(
+        "\n[workpiece]\nbase_from_part = {{ xyz_mm = [{x:?}, {y:?}, {z:?}], rpy_deg = [0.0, 0.0, 30.0] }}\n"
+    );
+    if reflectors {
+        workpiece += &format!("reflectors_mm = {ON_PART_MM:?}\n");
+    }
+    text + &workpiece
+}
+
+#[test]
+fn calibrate_locates_a_fixed_part_from_its_reflectors() {
+    let d = temp_dir("fixed-part");
+    let model = model();
+    let x = truth(&model);
+    let tracker = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.0, 0.0, 2.5));
+    let part = Isometry3::new(
+        Vector3::new(1.5, 0.2, 0.6),
+        Vector3::z() * 30f64.to_radians(),
+    );
+    // The arm's readings, then each reflector read once, beside the first posture.
+    let mut text = readings(&model, &x, &tracker, &postures(25, 1));
+    let line = text.lines().nth(1).unwrap().to_string();
+    let first: Vec<&str> = line.split(',').collect();
+    for (k, r) in ON_PART_MM.iter().enumerate() {
+        let t = tracker.inverse() * part * Point3::from(Vector3::from(*r) * 1e-3);
+        text += &format!(
+            "P1,T{},{},{:?},{:?},{:?}\n",
+            k + 1,
+            first[2..8].join(","),
+            t.x * 1e3,
+            t.y * 1e3,
+            t.z * 1e3
+        );
+    }
+    let data = write_file(&d, "fit.csv", &text);
+    // The setup's part frame 2 mm from where the part is.
+    let setup = write_file(
+        &d,
+        "setup.toml",
+        &setup_text("comau-smart5-nj165-3.0", [1502.0, 200.0, 600.0], true),
+    );
+    let robot = d.join("robot.toml");
+    let doc = json(&stiffid(&[
+        "calibrate",
+        "--setup",
+        setup.to_str().unwrap(),
+        "--data",
+        data.to_str().unwrap(),
+        "--out",
+        robot.to_str().unwrap(),
+        "--json",
+    ]));
+    assert_eq!(doc["readings"].as_u64(), Some(25 * 4 + 3));
+    let warnings = doc["warnings"].to_string();
+    assert!(
+        warnings.contains("the part located from the reflectors T1..T3 lies 2")
+            && warnings.contains("from the setup's [workpiece] base_from_part"),
+        "{warnings}"
+    );
+    let file = std::fs::read_to_string(&robot).unwrap();
+    let located = stiffid_core::robot::file::parse(&file, "robot.toml").unwrap();
+    let located = *located.part().expect("[part]");
+    assert!((located.translation.vector - part.translation.vector).norm() < 1e-9);
+    assert!(located.rotation.angle_to(&part.rotation) < 1e-9);
+    // A setup pointing at the file: the part where the file puts it.
+    let pointing = setup_text("robot.toml", [1502.0, 200.0, 600.0], true);
+    let without = pointing.replace(
+        "base_from_part = { xyz_mm = [1502.0, 200.0, 600.0], rpy_deg = [0.0, 0.0, 30.0] }\n",
+        "",
+    );
+    let at = write_file(&d, "at.toml", &without);
+    let kinematics = json(&stiffid(&[
+        "kinematics",
+        "--setup",
+        at.to_str().unwrap(),
+        "--q-deg",
+        "0,0,-90,0,60,0",
+        "--json",
+    ]));
+    let origin = Vector3::from_iterator(numbers(&kinematics["part_position_mm"]));
+    assert!(
+        (origin - Vector3::new(1500.0, 200.0, 600.0)).norm() < 1e-6,
+        "{origin}"
+    );
+    // The old part frame kept there is refused, naming both places.
+    write_file(&d, "kept.toml", &pointing);
+    refused(
+        &d,
+        &[
+            "kinematics",
+            "--setup",
+            "{dir}/kept.toml",
+            "--q-deg",
+            "0,0,-90,0,60,0",
+        ],
+        &[
+            "workpiece.base_from_part",
+            "[part]",
+            "robot.toml",
+            "mm away",
+        ],
+    );
+}
+
+/// `select --for calibration` on the fixed cell with reflectors on the part: the postures as
+/// without them (no external axis column), the campaign's plan listing the part's reflectors as
+/// fixed points of the cell to read in the same session.
+#[test]
+fn select_plans_the_reflectors_of_a_fixed_part() {
+    let d = temp_dir("fixed-part-select");
+    let setup = write_file(
+        &d,
+        "setup.toml",
+        &setup_text("comau-smart5-nj165-3.0", [1500.0, 200.0, 600.0], true),
+    );
+    let out = d.join("campaign.csv");
+    let args = |setup: &str, out: &str| {
+        let args = [
+            "select",
+            "--setup",
+            setup,
+            "--for",
+            "calibration",
+            "--start-random",
+            "--count",
+            "12",
+            "--seed",
+            "1",
+            "--max-evals",
+            "100",
+            "--out",
+            out,
+            "--json",
+        ];
+        json(&stiffid(&args))
+    };
+    let doc = args(setup.to_str().unwrap(), out.to_str().unwrap());
+    assert!(
+        doc.get("posture_stations").is_none_or(|s| s.is_null()),
+        "{doc}"
+    );
+    let csv = std::fs::read_to_string(&out).unwrap();
+    assert!(csv.lines().next().unwrap().ends_with("q6_deg"), "{csv}");
+    // The same postures as on the setup without the reflectors: they change no design.
+    let plain = write_file(
+        &d,
+        "plain.toml",
+        &setup_text("comau-smart5-nj165-3.0", [1500.0, 200.0, 600.0], false),
+    );
+    let plain_out = d.join("plain.csv");
+    args(plain.to_str().unwrap(), plain_out.to_str().unwrap());
+    assert_eq!(std::fs::read_to_string(&plain_out).unwrap(), csv);
+    let plan = d.join("plan");
+    stiffid(&[
+        "select",
+        "--setup",
+        setup.to_str().unwrap(),
+        "--for",
+        "calibration",
+        "--start-random",
+        "--count",
+        "12",
+        "--seed",
+        "1",
+        "--max-evals",
+        "100",
+        "--out",
+        d.join("again.csv").to_str().unwrap(),
+        "--report",
+        plan.to_str().unwrap(),
+    ]);
+    let page = std::fs::read_to_string(plan.join("plan.html")).unwrap();
+    for k in 1..=3 {
+        let line = format!("Part reflector T{k} (point T{k} of the readings)");
+        assert!(page.contains(&line), "{line}");
+    }
+    assert!(page.contains("a fixed point of the cell, read it once"));
+    assert!(!page.contains("table angles"), "{page}");
+}
+
+/// Reflectors read on a fixed cell whose setup does not place them locate nothing: a warning
+/// says which, and the robot file records no part.
+#[test]
+fn reflectors_the_setup_does_not_place_are_named() {
+    let d = temp_dir("fixed-part-unplaced");
+    let model = model();
+    let x = truth(&model);
+    let tracker = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.0, 0.0, 2.5));
+    let mut text = readings(&model, &x, &tracker, &postures(25, 1));
+    let line = text.lines().nth(1).unwrap().to_string();
+    let first: Vec<&str> = line.split(',').collect();
+    text += &format!("P1,T1,{},1500.0,200.0,600.0\n", first[2..8].join(","));
+    let data = write_file(&d, "fit.csv", &text);
+    let setup = write_file(
+        &d,
+        "setup.toml",
+        &setup_text("comau-smart5-nj165-3.0", [1500.0, 200.0, 600.0], false),
+    );
+    let robot = d.join("robot.toml");
+    let doc = json(&stiffid(&[
+        "calibrate",
+        "--setup",
+        setup.to_str().unwrap(),
+        "--data",
+        data.to_str().unwrap(),
+        "--out",
+        robot.to_str().unwrap(),
+        "--json",
+    ]));
+    let warnings = doc["warnings"].to_string();
+    assert!(
+        warnings.contains("reflectors T1 fixed in the cell and the setup places 0"),
+        "{warnings}"
+    );
+    let file = std::fs::read_to_string(&robot).unwrap();
+    assert!(!file.contains("[part]"), "{file}");
+}
