@@ -30,10 +30,8 @@
 //!   problem maps a failed evaluation to a large finite value).
 //! - **Deterministic**: one thread, fixed-order arithmetic: the same problem gives the same bits.
 
-mod hessian;
-pub(crate) mod qp;
-#[cfg(test)]
-mod tests;
+pub mod hessian;
+pub mod qp;
 
 use super::termination::Termination;
 use hessian::Hessian;
@@ -41,24 +39,28 @@ use qp::{Active, Qp, QpError, Row};
 use stiffid_core::math::linalg::dot;
 
 /// The constraint gradients' nonzeros: `(index, coefficient)` pairs, one list per constraint.
-pub(crate) type SparseRows = Vec<Vec<(usize, f64)>>;
+pub type SparseRows = Vec<Vec<(usize, f64)>>;
 
 /// The values at a point: the objective and every constraint (`c_j <= 0` is feasible).
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) struct Values {
+pub struct Values {
+    /// The objective.
     pub f: f64,
+    /// Every constraint, in order.
     pub c: Vec<f64>,
 }
 
 /// The gradients at a point: the objective's (dense) and the constraints' (sparse).
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) struct Gradients {
+pub struct Gradients {
+    /// The objective's gradient, one entry per variable.
     pub f: Vec<f64>,
+    /// Each constraint's gradient, its nonzeros.
     pub c: SparseRows,
 }
 
 /// A problem for [`minimise`]: its bounds, values and gradients, and its evaluation budget.
-pub(crate) trait Nlp {
+pub trait Nlp {
     /// The bounds on the variables (`lower <= upper`; infinite for a free variable).
     fn bounds(&self) -> (&[f64], &[f64]);
     /// The values at `x` (within the bounds).
@@ -78,7 +80,7 @@ pub(crate) trait Nlp {
 
 /// Tolerances of [`minimise`].
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Tolerances {
+pub struct Tolerances {
     /// Stop when a step changes `f` by less than this.
     pub ftol: f64,
     /// Stop when a step moves every variable by less than this.
@@ -87,7 +89,7 @@ pub(crate) struct Tolerances {
 
 /// Largest summed constraint violation of a point that counts as feasible for the stops, unless
 /// the problem says otherwise ([`Nlp::feasible`]).
-pub(crate) const FEASIBLE: f64 = 1e-10;
+pub const FEASIBLE: f64 = 1e-10;
 /// Weight of the relaxation variable of an incompatible QP, relative to `B`'s largest diagonal.
 const RELAXATION: f64 = 1e4;
 /// Most trial points of one line search.
@@ -97,7 +99,7 @@ const ARMIJO: f64 = 0.1;
 
 /// Minimises the problem from `x0` (module docs); returns why it stopped. The problem keeps the
 /// points it evaluated (the best one is the caller's to choose).
-pub(crate) fn minimise(nlp: &impl Nlp, x0: &[f64], tolerances: Tolerances) -> Termination {
+pub fn minimise(nlp: &impl Nlp, x0: &[f64], tolerances: Tolerances) -> Termination {
     let mut search = Search::new(nlp, x0);
     loop {
         if let Some(stop) = search.step(tolerances) {
@@ -319,7 +321,7 @@ fn lagrangian(g: &Gradients, lambda: &[f64]) -> Vec<f64> {
 }
 
 /// The summed violation `sum_j max(0, c_j)`.
-pub(crate) fn violation(c: &[f64]) -> f64 {
+pub fn violation(c: &[f64]) -> f64 {
     c.iter().map(|c| c.max(0.0)).sum()
 }
 
