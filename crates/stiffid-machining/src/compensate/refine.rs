@@ -199,13 +199,13 @@ impl Band {
     }
 
     /// The number of states: `(2 WIDTH + 1)^axes`.
-    pub fn len(&self) -> usize {
+    pub fn states(&self) -> usize {
         (2 * WIDTH as usize + 1).pow(self.step.len() as u32)
     }
 
     /// The state whose offsets are all 0 (the line itself).
     pub fn centre(&self) -> usize {
-        self.len() / 2
+        self.states() / 2
     }
 
     /// State `s`'s offset from the line on every axis, in steps (the last axis fastest).
@@ -236,7 +236,7 @@ impl Band {
         removed: &mut [Removed],
     ) -> (Vec<Column>, Vec<Vec<ExternalValues>>) {
         let n = line.values.len();
-        let evaluated: Vec<(Column, Vec<ExternalValues>, Vec<Removed>)> = (0..self.len())
+        let evaluated: Vec<(Column, Vec<ExternalValues>, Vec<Removed>)> = (0..self.states())
             .into_par_iter()
             .map(|s| {
                 if s == self.centre() {
@@ -324,7 +324,7 @@ impl Band {
             (own(i - 1, a) && own(i, g))
                 || pace.allows(i, (&from.0, &external[a][i - 1]), (&to.0, &external[g][i]))
         };
-        let (n, states) = (self.line.len(), self.len());
+        let (n, states) = (self.line.len(), self.states());
         let mut value = vec![vec![Value::INFINITE; states]; n];
         let mut from = vec![vec![0usize; states]; n];
         for i in 0..n {

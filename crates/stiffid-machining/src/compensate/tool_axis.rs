@@ -176,7 +176,7 @@ pub struct Grid<'a> {
 
 impl Grid<'_> {
     /// The number of states.
-    pub fn len(&self) -> usize {
+    pub fn states(&self) -> usize {
         self.axes.iter().map(|a| a.values.len()).product()
     }
 
@@ -207,7 +207,7 @@ impl Grid<'_> {
     /// Every state's predecessors (the states within each axis' reach) with the tie-breaking
     /// cost of the step: per axis the change over its largest step, summed.
     fn steps(&self) -> Vec<Vec<(usize, f64)>> {
-        (0..self.len())
+        (0..self.states())
             .map(|s| {
                 let at = self.indices(s);
                 let mut out = vec![(0usize, 0.0)];
@@ -292,7 +292,7 @@ pub fn shortest(
     allowed: &dyn Fn(usize, usize, usize) -> bool,
 ) -> Vec<usize> {
     let n = costs.len();
-    let (g_count, zero) = (grid.len(), grid.zero());
+    let (g_count, zero) = (grid.states(), grid.zero());
     let steps = grid.steps();
     let away: Vec<f64> = (0..g_count).map(|s| grid.away(s)).collect();
     // value[i][g]: the least value of the paths up to point i ending at state g.

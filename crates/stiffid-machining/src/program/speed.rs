@@ -98,6 +98,12 @@ pub struct Krl {
     in_force: Speed,
 }
 
+impl Default for Krl {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 impl Krl {
     /// Before any line: no speed set.
     pub fn new() -> Self {

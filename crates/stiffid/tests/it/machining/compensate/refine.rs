@@ -100,7 +100,7 @@ fn the_band_dynamic_programming_finds_the_exhaustive_optimum_and_never_rises() {
             };
             let band = Band::new(&grid, &line, 1);
             // Costs in [1, 2) with some cells missing, the line's own always there.
-            let cells: Vec<Column> = (0..band.len())
+            let cells: Vec<Column> = (0..band.states())
                 .map(|s| {
                     (0..n)
                         .map(|i| match s == band.centre() {
@@ -112,7 +112,7 @@ fn the_band_dynamic_programming_finds_the_exhaustive_optimum_and_never_rises() {
                 })
                 .collect();
             for aggregate in [Aggregate::Sum, Aggregate::Max] {
-                let external = vec![vec![ExternalValues::default(); n]; band.len()];
+                let external = vec![vec![ExternalValues::default(); n]; band.states()];
                 let chosen = band.shortest((&cells, &external), &vec![1.0; n], aggregate, None);
                 let costs: Vec<f64> = chosen.cells.iter().map(|c| c.as_ref().unwrap().1).collect();
                 let found = total(&costs, aggregate);
