@@ -570,10 +570,7 @@ fn frame_vector(t: &nalgebra::Isometry3<f64>) -> [f64; 6] {
     [p.x, p.y, p.z, r.x, r.y, r.z]
 }
 
-/// The validation section of the held-out readings `h`: their errors with the calibrated robot
-/// (mm), each with its interval where `h` has them (holding unless its posture lies outside the
-/// fitted postures' ranges, [`Held::outside`]: then marked, with the distance in deg and the
-/// joints 1-based), the nominal robot's RMS and the intervals' coverage.
+/// The section of held-out readings `h`: an interval holds unless [`Held::outside`] names it.
 pub fn held(h: &Held) -> ValidationDocument {
     let intervals = h.coverage.as_ref().map(|c| {
         let mut widths: Vec<f64> = (h.intervals.iter().flatten())
