@@ -7,7 +7,7 @@
 //!   Numerical Optimization, 2nd ed., 6.20), then the BFGS update of `B` (Eq. 6.19) and the same
 //!   update of its inverse (Eq. 6.17: `H+ = (I - rho s y^T) H (I - rho y s^T) + rho s s^T`,
 //!   `rho = 1 / s^T y`) with the damped `y`: `O(n^2)` each.
-//! - **Drift**: every [`REFACTOR`] updates (at least `n`), `H` is computed again from `B`
+//! - **Drift**: every `REFACTOR` updates (at least `n`), `H` is computed again from `B`
 //!   (Cholesky factor), so the rounding of the two recurrences never accumulates.
 
 use super::qp::inverse;

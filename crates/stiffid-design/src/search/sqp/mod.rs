@@ -7,14 +7,14 @@
 //!   linearised constraints `c_j + a_j^T d <= 0` and the bounds, by the dual active-set method of
 //!   Goldfarb and Idnani ([`qp`]); when the linearised constraints are incompatible, the QP is
 //!   relaxed as in Kraft's SLSQP (1988): `c_j (1 - xi) + a_j^T d <= 0` for the violated `c_j`,
-//!   `0 <= xi <= 1`, with `xi` weighted [`RELAXATION`] times `B`'s largest diagonal.
+//!   `0 <= xi <= 1`, with `xi` weighted `RELAXATION` times `B`'s largest diagonal.
 //! - **Hessian**: `B` starts as the identity and is updated by damped BFGS on the Lagrangian's
 //!   gradient ([`hessian`]: Powell's damping keeps `B` positive definite; `B` and its inverse are
 //!   both updated in `O(n^2)`, so a step factors no matrix).
 //! - **Line search**: backtracking on the L1 merit function `f + sum_j mu_j max(0, c_j)`
 //!   (Han 1977), `mu_j = max(lambda_j, (mu_j + lambda_j) / 2)` from the QP's multipliers
 //!   `lambda_j` (Powell 1978); Armijo's condition with 0.1, quadratic interpolation clamped to
-//!   `[0.1, 0.5]` of the last step, at most [`BACKTRACKS`] trials.
+//!   `[0.1, 0.5]` of the last step, at most `BACKTRACKS` trials.
 //! - **Stops** ([`Termination`]): at a point whose constraints hold ([`Nlp::feasible`]: their
 //!   violations summed at most [`FEASIBLE`] unless the problem says otherwise) when a step
 //!   changes `f` by less than `ftol` or the QP's predicted change `|g^T d| + sum lambda_j |c_j|`

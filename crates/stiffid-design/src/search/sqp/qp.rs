@@ -106,7 +106,7 @@ impl Qp<'_> {
 
     /// Solves the QP from the active set `warm` of a QP of the same shape (the last SQP step's):
     /// the dual method starts at the minimiser with those constraints held as equalities
-    /// ([`Qp::warm_start`]) instead of the unconstrained minimum, so that an active set that
+    /// (`Qp::warm_start`) instead of the unconstrained minimum, so that an active set that
     /// changes little between steps costs few changes. The minimiser is the same (the QP is
     /// strictly convex); only the path to it is shorter.
     pub fn solve_from(&self, warm: &Active) -> Result<Solution, QpError> {
