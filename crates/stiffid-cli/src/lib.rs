@@ -8,13 +8,13 @@
 //! beside the rest of that library's compilation, where a binary's code waited for all of it
 //! (docs/performance.md, "The first build").
 
-mod commands;
+pub mod commands;
 mod feasibility;
-mod load;
-mod output;
+pub mod load;
+pub mod output;
 mod progress;
-mod renamed;
-mod report;
+pub mod renamed;
+pub mod report;
 
 use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use std::process::ExitCode;

@@ -81,7 +81,7 @@ impl PoolMethod {
 
 /// The group chosen.
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) struct Chosen {
+pub struct Chosen {
     /// Candidate indices, in the order the search left them.
     pub group: Vec<usize>,
     /// Enumeration or exchange.
@@ -96,7 +96,7 @@ pub(crate) struct Chosen {
 /// stream `r` of `options.seed`; the lowest run index on ties). The same options give the same
 /// group whatever the thread count. `n <= u` and `options` valid ([`PoolOptions::validate`]) are
 /// the caller's to check.
-pub(crate) fn best(
+pub fn best(
     u: usize,
     n: usize,
     options: &PoolOptions,
@@ -186,12 +186,12 @@ fn exchange(
 }
 
 /// Whether `v` is lower than `than` by more than rounding (so an exchange loop cannot cycle).
-pub(crate) fn improves(v: f64, than: f64) -> bool {
+pub fn improves(v: f64, than: f64) -> bool {
     v < than && (than.is_infinite() || than - v > 1e-12 * than.abs())
 }
 
 /// The next combination of `group.len()` of `0..u` in lexicographic order; false after the last.
-fn next_combination(group: &mut [usize], u: usize) -> bool {
+pub fn next_combination(group: &mut [usize], u: usize) -> bool {
     let n = group.len();
     let Some(i) = (0..n).rev().find(|&i| group[i] < u - n + i) else {
         return false;
@@ -204,7 +204,7 @@ fn next_combination(group: &mut [usize], u: usize) -> bool {
 }
 
 /// `C(u, n)`, `u128::MAX` when larger.
-pub(crate) fn binomial(u: usize, n: usize) -> u128 {
+pub fn binomial(u: usize, n: usize) -> u128 {
     if n > u {
         return 0;
     }
@@ -214,49 +214,4 @@ pub(crate) fn binomial(u: usize, n: usize) -> u128 {
             c.checked_mul((u - k) as u128).map(|p| p / (k as u128 + 1))
         })
         .unwrap_or(u128::MAX)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn combinations_are_all_visited_once_in_order() {
-        let mut g = vec![0, 1, 2];
-        let mut count = 1;
-        let mut last = g.clone();
-        while next_combination(&mut g, 6) {
-            assert!(g > last && g.windows(2).all(|w| w[0] < w[1]) && g[2] < 6);
-            last = g.clone();
-            count += 1;
-        }
-        assert_eq!(count, binomial(6, 3));
-        assert_eq!(count, 20);
-        assert_eq!(binomial(1000, 6), 1_368_173_298_991_500);
-        assert_eq!(binomial(12, 6), 924);
-        assert_eq!(binomial(5, 6), 0);
-        assert_eq!(binomial(10_000, 60), u128::MAX);
-    }
-
-    #[test]
-    fn the_exchange_finds_what_enumeration_finds_on_a_separable_value() {
-        // The sum of distinct weights: the best group is the n smallest, found by both.
-        let weights: Vec<f64> = (0..40).map(|i| ((i * 37) % 41) as f64).collect();
-        let value = |g: &[usize]| g.iter().map(|&k| weights[k]).sum::<f64>();
-        let exact = PoolOptions {
-            enumeration_limit: 1_000_000,
-            ..PoolOptions::default()
-        };
-        let swapped = PoolOptions {
-            enumeration_limit: 0,
-            ..PoolOptions::default()
-        };
-        let a = best(40, 3, &exact, &value);
-        let mut b = best(40, 3, &swapped, &value);
-        b.group.sort_unstable();
-        assert_eq!(a.method, PoolMethod::Enumeration);
-        assert_eq!(b.method, PoolMethod::Exchange);
-        assert_eq!(a.group, b.group);
-        assert_eq!(value(&a.group), 0.0 + 1.0 + 2.0);
-    }
 }

@@ -212,7 +212,7 @@ impl<'a> Pool<'a> {
 
     /// The criterion of a group of usable postures (positions in [`Pool::usable`]) from its
     /// information matrix.
-    fn value(&self, criterion: Criterion, group: &[usize]) -> f64 {
+    pub fn value(&self, criterion: Criterion, group: &[usize]) -> f64 {
         let Some(information) = Information::sum(group.iter().map(|&k| &self.information[k]))
         else {
             return f64::INFINITY;
@@ -227,34 +227,5 @@ fn pool_error(message: String) -> Error {
     Error::InvalidField {
         field: "pool".into(),
         message,
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::random_group;
-    use nalgebra::Matrix6;
-
-    #[test]
-    fn criteria_from_the_information_matrix_equal_those_from_qr() {
-        let setup = stiffid_core::setup::builtin("zhang2021-comau-nj165").unwrap();
-        let postures = random_group(&setup, 7, 3);
-        let pool = Pool::new(&setup, &postures, &[]).unwrap();
-        let evaluator = Evaluator::new(&setup);
-        for criterion in Criterion::ALL {
-            let qr = evaluator.value(criterion, &postures);
-            let cholesky = pool.value(criterion, &(0..7).collect::<Vec<_>>());
-            assert!(
-                (cholesky - qr).abs() <= 1e-9 * qr,
-                "{criterion}: {cholesky} vs {qr}"
-            );
-        }
-        let none = evaluator.value_from_information(
-            Criterion::RelativeA,
-            &Information::Six(Matrix6::zeros()),
-            1.0,
-        );
-        assert_eq!(none, f64::INFINITY, "no information");
     }
 }

@@ -125,14 +125,15 @@ impl Design {
 /// What one candidate posture's points contribute: their count, sum (m) and inertia about the
 /// base origin, `sum (|b|^2 I - b b^T)` (m^2).
 #[derive(Debug, Clone, Copy)]
-struct Moments {
+pub struct Moments {
     count: f64,
     sum: Vector3<f64>,
     inertia: Matrix3<f64>,
 }
 
 impl Moments {
-    fn of(points: &[Vector3<f64>]) -> Self {
+    /// The moments of `points` (m).
+    pub fn of(points: &[Vector3<f64>]) -> Self {
         Self {
             count: points.len() as f64,
             sum: points.iter().sum(),
@@ -148,8 +149,9 @@ fn inertia(b: &Vector3<f64>) -> Matrix3<f64> {
 
 /// `sqrt(tr C_rr)` per unit noise of a group from its postures' moments: the inertia about the
 /// centroid by the parallel-axis theorem, inverted by Cholesky; `+infinity` when singular
-/// (collinear points).
-fn criterion<'a>(moments: impl Iterator<Item = &'a Moments>) -> f64 {
+/// (collinear points) or with fewer than
+/// [`MIN_POINTS`] points.
+pub fn criterion<'a>(moments: impl Iterator<Item = &'a Moments>) -> f64 {
     let (mut count, mut sum, mut inertia_origin) = (0.0, Vector3::zeros(), Matrix3::zeros());
     for m in moments {
         count += m.count;
@@ -178,7 +180,7 @@ pub fn station(setup: &Setup) -> Vec<f64> {
 }
 
 /// The measuring points of posture `q` with the external axes at `e`, cell frame, m.
-fn points(setup: &Setup, q: &Vector6<f64>, e: &[f64]) -> Vec<Vector3<f64>> {
+pub fn points(setup: &Setup, q: &Vector6<f64>, e: &[f64]) -> Vec<Vector3<f64>> {
     let frames = setup.robot().frames_at(q, e);
     let tool = &setup.tool().measuring_points;
     tool.iter().map(|p| frames.point(p)).collect()
@@ -349,26 +351,5 @@ fn too_few_feasible(setup: &Setup, n: usize, failed: &[Option<CheckKind>]) -> Er
             "{n} asked for, but only {feasible} of the {} candidates drawn in the bounds pass the cell's checks{why}: draw more candidates or widen the bounds",
             failed.len()
         ),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_criterion_from_moments_equals_the_covariance_by_svd() {
-        let setup = stiffid_core::setup::builtin("zhang2021-comau-nj165").unwrap();
-        let group = crate::random_group(&setup, 4, 5);
-        let all: Vec<Vector3<f64>> = group.iter().flat_map(|q| points(&setup, q, &[])).collect();
-        let moments: Vec<Moments> = group
-            .iter()
-            .map(|q| Moments::of(&points(&setup, q, &[])))
-            .collect();
-        let fast = criterion(moments.iter());
-        let svd = stiffid_metrology::register::rotation_std_per_noise(&all);
-        assert!((fast - svd).abs() < 1e-9 * svd, "{fast} vs {svd}");
-        let one_point = [Moments::of(&all[..1])];
-        assert!(criterion(one_point.iter()).is_infinite());
     }
 }

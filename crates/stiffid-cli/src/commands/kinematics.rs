@@ -194,7 +194,7 @@ fn external(text: Option<&str>, robot: &stiffid_core::Robot) -> Result<Vec<f64>>
 }
 
 /// `v` with `decimals` digits after the point, without a sign on a value that rounds to zero.
-fn fixed(v: f64, decimals: usize) -> String {
+pub fn fixed(v: f64, decimals: usize) -> String {
     let scale = 10f64.powi(decimals as i32);
     let rounded = (v * scale).round() / scale + 0.0;
     format!("{rounded:.decimals$}")
@@ -207,16 +207,4 @@ fn list<const N: usize>(values: &[f64; N], decimals: usize) -> String {
         .map(|v| fixed(*v, decimals))
         .collect::<Vec<_>>()
         .join(", ")
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn fixed_drops_the_sign_of_zero() {
-        assert_eq!(fixed(-1e-14, 3), "0.000");
-        assert_eq!(fixed(-0.0006, 3), "-0.001");
-        assert_eq!(fixed(2074.0000000000005, 3), "2074.000");
-    }
 }

@@ -76,13 +76,8 @@ impl OutFile {
     /// When the temporary file cannot be created.
     pub fn writer(&self) -> Result<Writer> {
         let (tmp, file) = temporary(dir_of(&self.target))?;
-        Ok(Writer {
-            file: BufWriter::with_capacity(1 << 16, file),
-            tmp,
-            target: self.target.clone(),
-            new_only: self.new_only,
-            done: false,
-        })
+        let file = BufWriter::with_capacity(1 << 16, file);
+        Ok(Writer::new(file, tmp, self.target.clone(), self.new_only))
     }
 }
 
@@ -97,6 +92,18 @@ pub struct Writer {
 }
 
 impl Writer {
+    /// A writer of `file`, the temporary file `tmp`, staged as `target` when finished (only as a
+    /// new file with `new_only`); its errors name `target`.
+    pub fn new(file: BufWriter<File>, tmp: PathBuf, target: PathBuf, new_only: bool) -> Self {
+        Writer {
+            file,
+            tmp,
+            target,
+            new_only,
+            done: false,
+        }
+    }
+
     /// The temporary file being written (to read it back once finished writing).
     pub fn path(&self) -> &Path {
         &self.tmp
@@ -160,28 +167,4 @@ impl Drop for Writer {
 /// The directory of a resolved (absolute) target.
 fn dir_of(target: &Path) -> &Path {
     target.parent().unwrap_or(Path::new("/"))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A full device's error names the file being written (`/dev/full` answers every write with
-    /// "No space left on device").
-    #[test]
-    fn a_full_device_names_the_file() {
-        let full = std::fs::OpenOptions::new().write(true).open("/dev/full");
-        let mut w = Writer {
-            file: BufWriter::with_capacity(16, full.unwrap()),
-            tmp: PathBuf::from("/nonexistent/stiffid-tmp"),
-            target: PathBuf::from("o/PK.csv"),
-            new_only: false,
-            done: false,
-        };
-        let e = (0..100)
-            .try_for_each(|_| writeln!(w, "1,2,3,4,5,6"))
-            .unwrap_err();
-        assert_eq!(e.kind(), std::io::ErrorKind::StorageFull);
-        assert!(e.to_string().starts_with("o/PK.csv: cannot write: "), "{e}");
-    }
 }

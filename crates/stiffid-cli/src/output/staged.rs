@@ -9,7 +9,7 @@ use std::sync::Mutex;
 
 /// What the end of the run does.
 #[derive(Debug)]
-enum Step {
+pub enum Step {
     /// Success: rename `tmp` over `target`; failure: remove `tmp`.
     Replace { tmp: PathBuf, target: PathBuf },
     /// As `Replace`, but `target` must not exist (an atomic no-replace create).
@@ -142,7 +142,7 @@ pub fn commit() -> Result<()> {
 
 /// The last guard of "never write over an input": a staged file whose target is a file the run
 /// read (whatever the order in which the command read its inputs and prepared its outputs).
-fn over_an_input(steps: &[Step]) -> Option<anyhow::Error> {
+pub fn over_an_input(steps: &[Step]) -> Option<anyhow::Error> {
     steps.iter().find_map(|step| match step {
         Step::Replace { target, .. } | Step::Create { target, .. } => crate::load::input_at(target)
             .map(|input| {
@@ -183,34 +183,4 @@ pub fn discard() {
 fn place(tmp: &Path, target: &Path, new_only: bool) -> Result<()> {
     stiffid_core::io::output::place(tmp, target, new_only)
         .with_context(|| format!("{}: cannot write", target.display()))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A staged replacement of a file the run read is caught by the commit's guard, even when the
-    /// output was staged before the input was read. (The guard is tested on its own: `commit`
-    /// works on the process's staged steps, which other tests of this binary use in parallel.)
-    #[test]
-    fn the_commit_guard_catches_a_staged_input() {
-        // A file that outlives the test (a removed one's inode could be taken by another test's
-        // directory, which would then look like this input).
-        let input = Path::new(env!("CARGO_MANIFEST_DIR")).join("Cargo.toml");
-        let input = input.canonicalize().unwrap();
-        let other = std::env::temp_dir().join("stiffid-no-such-output.csv");
-        let step = |target: &Path| Step::Replace {
-            tmp: other.with_extension("tmp"),
-            target: target.to_path_buf(),
-        };
-        let steps = [step(&other), step(&input)];
-        assert!(over_an_input(&steps).is_none(), "not read yet");
-        crate::load::open(&input).unwrap();
-        let error = over_an_input(&steps).unwrap().to_string();
-        assert!(
-            error.contains("input file") && error.contains("Cargo.toml"),
-            "{error}"
-        );
-        assert!(over_an_input(&steps[..1]).is_none(), "another file");
-    }
 }

@@ -11,7 +11,7 @@ struct Markdown(String);
 
 /// Text outside `code spans` with `&`, `<` and `>` as entities, so text from a setup (its name,
 /// its description) can never become raw HTML in a Markdown renderer.
-fn inline(text: &str) -> String {
+pub fn inline(text: &str) -> String {
     text.split('`')
         .enumerate()
         .map(|(i, part)| match i % 2 {
@@ -77,17 +77,4 @@ pub fn report(report: &Report, summary: &Summary, figures: &[Figure]) -> String 
     let mut w = Markdown(String::new());
     compose(report, summary, figures, &mut w);
     w.0
-}
-
-#[cfg(test)]
-mod tests {
-    use super::inline;
-
-    #[test]
-    fn html_in_text_is_escaped_but_code_spans_are_kept() {
-        assert_eq!(
-            inline("setup <script>x</script> & `a<b`"),
-            "setup &lt;script&gt;x&lt;/script&gt; &amp; `a<b`"
-        );
-    }
 }

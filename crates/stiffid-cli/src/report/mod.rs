@@ -10,7 +10,7 @@ pub mod document;
 pub mod figures;
 pub mod html;
 pub mod identification;
-mod markdown;
+pub mod markdown;
 pub mod plan;
 pub mod summary;
 pub mod tables;
@@ -85,41 +85,4 @@ pub fn write(dir: ReportDir, report: &Report, figures: &[Figure]) -> Result<()> 
     );
     dir.write_all(&files)?;
     dir.finish()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::holds;
-    use std::path::Path;
-    use stiffid_design::app::reproduce::document::GENERATOR;
-
-    fn open(dir: &Path, force: bool) -> anyhow::Result<crate::output::ReportDir> {
-        super::open(dir, "--out", Some(force), GENERATOR, &holds)
-    }
-
-    #[test]
-    fn only_empty_missing_or_own_directories_are_written_without_force() {
-        let dir = std::env::temp_dir().join(format!("stiffid-target-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        drop(open(&dir, false).expect("missing"));
-        assert!(
-            !dir.exists(),
-            "a directory it created and did not finish is removed"
-        );
-        std::fs::create_dir_all(&dir).unwrap();
-        drop(open(&dir, false).expect("empty"));
-        assert!(dir.exists(), "a directory it did not create stays");
-        std::fs::write(dir.join("summary.json"), r#"{"generator": "someone else"}"#).unwrap();
-        assert!(open(&dir, false).is_err(), "foreign summary.json");
-        assert!(open(&dir, true).is_ok(), "forced");
-        std::fs::write(
-            dir.join("summary.json"),
-            r#"{"generator": "stiffid reproduce"}"#,
-        )
-        .unwrap();
-        assert!(open(&dir, false).is_ok(), "own report");
-        let file = dir.join("summary.json");
-        assert!(open(&file, false).is_err(), "a file");
-        std::fs::remove_dir_all(&dir).unwrap();
-    }
 }

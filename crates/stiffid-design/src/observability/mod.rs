@@ -53,8 +53,6 @@ mod jacobian;
 mod score;
 mod station;
 mod table;
-#[cfg(test)]
-mod tests;
 
 pub use score::CalibrationCriterion;
 pub use table::{TableChoice, TableDesign};
@@ -256,6 +254,27 @@ impl CalibrationDesign {
         &self.kept
     }
 
+    /// The kept parameters' scales (one per [`CalibrationDesign::kept`], in its order): the
+    /// column scaling of the design Jacobian (module docs).
+    pub fn scales(&self) -> &[f64] {
+        &self.layout.scales
+    }
+
+    /// The design a step at one station with a carrier is reduced to (the arm's columns,
+    /// [`CalibrationDesign::on_station`] with fixed postures); `None` for any other design.
+    pub fn reduced(&self) -> Option<&CalibrationDesign> {
+        self.reduced.as_deref()
+    }
+
+    /// This design scored on the whole Jacobian, every column, not reduced: what the reduced
+    /// scoring equals.
+    pub fn whole(&self) -> CalibrationDesign {
+        CalibrationDesign {
+            reduced: None,
+            ..self.clone()
+        }
+    }
+
     /// The tracker's noise per coordinate, m.
     pub fn noise(&self) -> f64 {
         self.noise
@@ -436,7 +455,7 @@ fn stack(a: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
 
 /// The model's nominal values with the gravity terms at zero: the rigid nominal chain, where the
 /// design Jacobian is taken.
-fn rigid(model: &ErrorModel) -> nalgebra::DVector<f64> {
+pub fn rigid(model: &ErrorModel) -> nalgebra::DVector<f64> {
     let mut x = model.nominal();
     x.rows_mut(model.gravity_start(), model.gravity().len())
         .fill(0.0);
@@ -444,7 +463,7 @@ fn rigid(model: &ErrorModel) -> nalgebra::DVector<f64> {
 }
 
 /// Unloaded readings of every measuring point of `model` at every posture, posture-major.
-fn readings(model: &ErrorModel, postures: &[Placed]) -> Vec<Observation> {
+pub fn readings(model: &ErrorModel, postures: &[Placed]) -> Vec<Observation> {
     (postures.iter().enumerate())
         .flat_map(|(i, (q, e))| {
             (0..model.points()).map(move |k| Observation {

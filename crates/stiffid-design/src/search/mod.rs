@@ -17,7 +17,7 @@ mod constraints;
 mod global;
 mod local;
 mod sample;
-mod sqp;
+pub mod sqp;
 mod termination;
 
 pub use constraints::{cell_constraints, CellConstraints};

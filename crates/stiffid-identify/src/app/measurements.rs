@@ -65,7 +65,12 @@ impl Origin {
             .collect()
     }
 
-    pub(crate) fn new(
+    /// The origin of measurements with posture labels `labels`, each measurement's posture
+    /// number (dense, in order of first appearance: `labels.len()` of them) and measuring point
+    /// (0-based), each posture's axis angles (rad) and external axes' values (SI), the
+    /// measurements' lines in their file (`None` for arrays) and the force and displacement
+    /// columns' names.
+    pub fn new(
         labels: Labels,
         postures: Vec<usize>,
         points: Vec<usize>,

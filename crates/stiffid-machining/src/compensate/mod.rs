@@ -191,14 +191,14 @@ mod map;
 mod model;
 mod options;
 pub mod refine;
-mod runs;
+pub mod runs;
 mod scope;
 mod speed;
 mod station;
 mod stream;
-mod tool_axis;
+pub mod tool_axis;
 mod validate;
-mod variables;
+pub mod variables;
 
 pub use budget::Budget;
 pub use configuration::{posed, Branch, Configurations, Run};

@@ -63,7 +63,7 @@ pub fn has_speed_limits(robot: &Robot) -> bool {
 }
 
 /// The speed limits of one path: the robot's axes and each point's move time.
-pub(super) struct Pace<'a> {
+pub struct Pace<'a> {
     robot: &'a Robot,
     times: &'a [Option<f64>],
 }

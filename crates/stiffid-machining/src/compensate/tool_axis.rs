@@ -154,7 +154,7 @@ pub(super) fn choose(
 }
 
 /// One axis of the grid of the free variables (the tool rotation, the track station).
-pub(super) struct Axis<'a> {
+pub struct Axis<'a> {
     /// The values (offsets from the path's own), ascending, rad or m.
     pub values: &'a [f64],
     /// The most cells one step between points may move.
@@ -169,14 +169,14 @@ pub(super) struct Axis<'a> {
 
 /// The grid of the free variables: its states are the combinations of the axes' values, the
 /// last axis' index running fastest.
-pub(super) struct Grid<'a> {
+pub struct Grid<'a> {
     /// The axes, at least one.
     pub axes: Vec<Axis<'a>>,
 }
 
 impl Grid<'_> {
     /// The number of states.
-    pub fn len(&self) -> usize {
+    pub fn states(&self) -> usize {
         self.axes.iter().map(|a| a.values.len()).product()
     }
 
@@ -207,7 +207,7 @@ impl Grid<'_> {
     /// Every state's predecessors (the states within each axis' reach) with the tie-breaking
     /// cost of the step: per axis the change over its largest step, summed.
     fn steps(&self) -> Vec<Vec<(usize, f64)>> {
-        (0..self.len())
+        (0..self.states())
             .map(|s| {
                 let at = self.indices(s);
                 let mut out = vec![(0usize, 0.0)];
@@ -284,7 +284,7 @@ impl Value {
 /// speed limits; the path's own move, `grid.zero` to `grid.zero`, always is); returns the
 /// angle index of each point on the path of least value (module docs of [`super`]),
 /// `grid.zero` everywhere when no path is feasible.
-pub(super) fn shortest(
+pub fn shortest(
     costs: &[Vec<Option<f64>>],
     grid: &Grid,
     scales: &[f64],
@@ -292,7 +292,7 @@ pub(super) fn shortest(
     allowed: &dyn Fn(usize, usize, usize) -> bool,
 ) -> Vec<usize> {
     let n = costs.len();
-    let (g_count, zero) = (grid.len(), grid.zero());
+    let (g_count, zero) = (grid.states(), grid.zero());
     let steps = grid.steps();
     let away: Vec<f64> = (0..g_count).map(|s| grid.away(s)).collect();
     // value[i][g]: the least value of the paths up to point i ending at state g.
@@ -347,7 +347,7 @@ pub(super) fn shortest(
 
 /// One state's posture and [`Cost`] at every path point; `None` where inverse kinematics fails
 /// or the cost cannot be computed.
-pub(super) type Column = Vec<Option<(Vector6<f64>, f64)>>;
+pub type Column = Vec<Option<(Vector6<f64>, f64)>>;
 
 /// How a state of the grid moves each point's pose from the path's own: turned by `phi` about
 /// tool z, leaned by `lean` ([`super::lean`]), then, on a moved track station, taken by each
@@ -435,97 +435,4 @@ pub(super) fn column(
             }
         })
         .collect()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Every path of angle indices over `n` points on `g` angles whose consecutive indices
-    /// differ by at most `reach` and whose moves `allowed` takes (the own angle `zero` kept
-    /// always allowed), by enumeration: the least aggregate of the costs.
-    fn exhaustive(
-        costs: &[Vec<Option<f64>>],
-        (reach, zero): (usize, usize),
-        aggregate: Aggregate,
-        allowed: &dyn Fn(usize, usize, usize) -> bool,
-    ) -> f64 {
-        let (n, g) = (costs.len(), costs[0].len());
-        let mut best = f64::INFINITY;
-        for code in 0..g.pow(n as u32) {
-            let path: Vec<usize> = (0..n).map(|i| code / g.pow(i as u32) % g).collect();
-            if path.windows(2).any(|w| w[0].abs_diff(w[1]) > reach) {
-                continue;
-            }
-            let refused = (1..n).any(|i| {
-                let own = path[i - 1] == zero && path[i] == zero;
-                !own && !allowed(i, path[i - 1], path[i])
-            });
-            if refused {
-                continue;
-            }
-            let values: Option<Vec<f64>> = (0..n).map(|i| costs[i][path[i]]).collect();
-            let Some(values) = values else { continue };
-            let value = match aggregate {
-                Aggregate::Sum => values.iter().sum(),
-                Aggregate::Max => values.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-            };
-            best = best.min(value);
-        }
-        best
-    }
-
-    #[test]
-    fn the_dynamic_programming_finds_the_exhaustive_optimum_with_refused_moves() {
-        use rand::{Rng, SeedableRng};
-        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
-        let angles = [-0.2, -0.1, 0.0, 0.1, 0.2];
-        let grid = Grid {
-            axes: vec![Axis {
-                values: &angles,
-                reach: 1,
-                range: 0.2,
-                max_step: 0.1,
-                zero: 2,
-            }],
-        };
-        for trial in 0..40 {
-            let n = 6;
-            // Costs in [1, 2) mm with some infeasible cells, the path's own angle always feasible.
-            let costs: Vec<Vec<Option<f64>>> = (0..n)
-                .map(|_| {
-                    (0..5)
-                        .map(|g| {
-                            (g == 2 || rng.random::<f64>() > 0.2).then(|| 1.0 + rng.random::<f64>())
-                        })
-                        .collect()
-                })
-                .collect();
-            let scales = vec![1.0; n];
-            // Every third trial refuses a random third of the moves (the speed limits).
-            let mask: Vec<bool> = (0..n * 25).map(|_| rng.random::<f64>() > 0.33).collect();
-            let masked = trial % 3 == 0;
-            let allowed = |i: usize, a: usize, g: usize| !masked || mask[i * 25 + a * 5 + g];
-            for aggregate in [Aggregate::Sum, Aggregate::Max] {
-                let chosen = shortest(&costs, &grid, &scales, aggregate, &allowed);
-                assert!(chosen.windows(2).all(|w| w[0].abs_diff(w[1]) <= 1));
-                let taken = (1..n).all(|i| {
-                    let own = chosen[i - 1] == 2 && chosen[i] == 2;
-                    own || allowed(i, chosen[i - 1], chosen[i])
-                });
-                assert!(taken, "trial {trial}: a refused move taken");
-                let values: Vec<f64> = (0..n).map(|i| costs[i][chosen[i]].unwrap()).collect();
-                let value = match aggregate {
-                    Aggregate::Sum => values.iter().sum(),
-                    Aggregate::Max => values.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-                };
-                let best = exhaustive(&costs, (1, 2), aggregate, &allowed);
-                // Equal up to the tie-breaking cost (1e-6 of a cost per point and step).
-                assert!(
-                    (value - best).abs() <= 1e-5,
-                    "trial {trial} {aggregate:?}: {value} against {best}"
-                );
-            }
-        }
-    }
 }

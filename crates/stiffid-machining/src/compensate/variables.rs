@@ -259,20 +259,20 @@ impl FreeRange {
 
     /// The rotation grid's spacing: `step` divided into whole cells of at most 5 deg, and the
     /// number of cells one step may move.
-    pub(super) fn cells(&self) -> (f64, usize) {
+    pub fn cells(&self) -> (f64, usize) {
         let cells = (self.step / 5f64.to_radians()).ceil().max(1.0);
         (self.step / cells, cells as usize)
     }
 
     /// The rotation grid's angles, rad, ascending, `0` among them: `2 floor(range / spacing) +
     /// 1` ([`FreeRange::cells`]).
-    pub(super) fn angles(&self) -> Vec<f64> {
+    pub fn angles(&self) -> Vec<f64> {
         offsets(self.range, self.cells().0)
     }
 
     /// The number of the rotation grid's angles, as a float (it may be astronomically large for
     /// a tiny step).
-    pub(super) fn angle_count(&self) -> f64 {
+    pub fn angle_count(&self) -> f64 {
         2.0 * (self.range / self.cells().0 + 1e-9).floor() + 1.0
     }
 
@@ -435,65 +435,5 @@ impl FreeVariables {
             });
         }
         Ok(())
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn ranges_and_steps_are_checked_at_their_limits_in_si() {
-        let station = FreeRange::checked(&Variable::Station, 500.0, 10.0).unwrap();
-        assert_eq!((station.range, station.step), (0.5, 0.01));
-        let rotation = FreeRange::checked(&Variable::ToolRotation, 180.0, 90.0).unwrap();
-        assert_eq!(rotation.range, std::f64::consts::PI);
-        for (variable, range, step) in [
-            (Variable::ToolRotation, 180.1, 2.0),
-            (Variable::ToolRotation, 90.0, 90.1),
-            (Variable::ToolRotation, 90.0, 5e-324),
-            (Variable::Station, 20_001.0, 10.0),
-            (Variable::Station, 100.0, 0.09),
-            (Variable::Station, 100.0, 100.1),
-            (Variable::Positioner, 0.005, 0.01),
-            (Variable::Tilt, 10.0, f64::NAN),
-            (Variable::Tilt, f64::INFINITY, 1.0),
-        ] {
-            assert!(
-                FreeRange::checked(&variable, range, step).is_err(),
-                "{variable:?} {range} {step}"
-            );
-        }
-        assert!(LeadTilt::checked(Some(30.1), 1.0).is_err());
-        assert!(LeadTilt::checked(Some(5.0), 5.1).is_err());
-        assert!(LeadTilt::checked(None, 30.0).is_ok());
-        assert!(LeadTilt::checked(None, 30.1).is_err());
-    }
-
-    #[test]
-    fn the_rotation_grid_splits_a_step_into_cells_of_at_most_5_deg() {
-        let f = FreeRange::checked(&Variable::ToolRotation, 90.0, 12.0).unwrap();
-        let (spacing, cells) = f.cells();
-        assert_eq!(cells, 3);
-        assert!((spacing.to_degrees() - 4.0).abs() < 1e-12);
-        assert_eq!(f.angles().len(), 45);
-        assert_eq!(f.angle_count(), 45.0);
-        assert_eq!(f.angles()[22], 0.0);
-    }
-
-    #[test]
-    fn the_surge_is_the_tool_rotations_alone() {
-        let rotation = FreeRange::checked(&Variable::ToolRotation, 90.0, 2.0).ok();
-        let free = FreeVariables {
-            tool_rotation: rotation,
-            minimise: Objective::Surge,
-            ..Default::default()
-        };
-        assert!(free.validate().is_ok());
-        let with_station = FreeVariables {
-            station: FreeRange::checked(&Variable::Station, 100.0, 10.0).ok(),
-            ..free
-        };
-        assert!(with_station.validate().is_err());
     }
 }

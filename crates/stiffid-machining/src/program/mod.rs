@@ -55,7 +55,8 @@ pub mod rapid;
 pub mod rename;
 pub mod speed;
 
-pub(crate) use super::text::{lines, number_at};
+pub(crate) use super::text::lines;
+pub use super::text::number_at;
 pub use controller::{BoundComment, Controller, Generator, Read};
 use std::ops::Range;
 use stiffid_core::{Error, Result};

@@ -94,8 +94,14 @@ fn compact(text: &str) -> String {
 }
 
 /// The KRL path speed in force while a program is read line by line (module docs).
-pub(super) struct Krl {
+pub struct Krl {
     in_force: Speed,
+}
+
+impl Default for Krl {
+    fn default() -> Self {
+        Self::new()
+    }
 }
 
 impl Krl {
@@ -176,14 +182,14 @@ const RAPID_PREDEFINED: [u32; 25] = [
 
 /// A RAPID module's `speeddata` by lower-case name: its `v_tcp` (mm/s) and declaration's line,
 /// or why it has none in the file.
-pub(super) type RapidSpeeds = HashMap<String, std::result::Result<(f64, u64), String>>;
+pub type RapidSpeeds = HashMap<String, std::result::Result<(f64, u64), String>>;
 
 /// The speed of the RAPID motion `first` (`movel`, `movej`, `moveabsj`) whose speed argument
 /// is `argument` (`v100`, `vcut\V:=120`, `v100\T:=2`), with the module's `declared` speeds.
 ///
 /// # Errors
 /// A literal speed or time outside its limits, naming the line.
-pub(super) fn rapid(
+pub fn rapid(
     line: u64,
     first: &str,
     argument: Option<&str>,
@@ -249,7 +255,7 @@ pub(super) fn rapid(
 ///
 /// # Errors
 /// A literal speed or time outside its limits, naming the line.
-pub(super) fn ls(line: u64, letter: &str, word: &str) -> Result<Speed> {
+pub fn ls(line: u64, letter: &str, word: &str) -> Result<Speed> {
     if letter == "J" {
         return Ok(Speed::Joint);
     }
@@ -280,7 +286,7 @@ pub(super) fn ls(line: u64, letter: &str, word: &str) -> Result<Speed> {
 ///
 /// # Errors
 /// A literal speed outside its limits, naming the line.
-pub(super) fn inform(line: u64, word: &str, tags: &[&str]) -> Result<Speed> {
+pub fn inform(line: u64, word: &str, tags: &[&str]) -> Result<Speed> {
     if word.eq_ignore_ascii_case("MOVJ") {
         return Ok(Speed::Joint);
     }
@@ -310,101 +316,5 @@ pub(super) fn inform(line: u64, word: &str, tags: &[&str]) -> Result<Speed> {
         _ => Ok(Speed::Unread(
             "no V= tag: the speed is the controller's".into(),
         )),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn mm_s(s: Speed) -> f64 {
-        match s {
-            Speed::Path(v) => v * 1e3,
-            other => panic!("expected a path speed, got {other:?}"),
-        }
-    }
-
-    #[test]
-    fn krl_speeds_in_force_and_per_motion() {
-        let mut k = Krl::new();
-        assert!(matches!(k.motion(1, "LIN", "").unwrap(), Speed::Unread(_)));
-        assert_eq!(k.motion(1, "PTP", "").unwrap(), Speed::Joint);
-        assert!(k.set(2, " $vel.cp = 0.25 ").unwrap());
-        assert!((mm_s(k.motion(3, "LIN", " C_DIS").unwrap()) - 250.0).abs() < 1e-9);
-        assert!(k.set(4, "BAS (#CP_PARAMS, 0.5)").unwrap());
-        assert!((mm_s(k.motion(5, "SLIN", "").unwrap()) - 500.0).abs() < 1e-9);
-        let with = k.motion(6, "SLIN", " WITH $VEL = SVEL_CP(0.02, , LCPDAT1)");
-        assert!((mm_s(with.unwrap()) - 20.0).abs() < 1e-9);
-        assert!((mm_s(k.motion(6, "LIN", " WITH $VEL.CP = 0.1").unwrap()) - 100.0).abs() < 1e-9);
-        assert!(!k.set(7, "$VEL.ORI1 = 200").unwrap());
-        assert!(k.set(8, "$VEL.CP = $VEL_MA.CP * 0.5").unwrap());
-        assert!(
-            matches!(k.motion(9, "LIN", "").unwrap(), Speed::Unread(w) if w.contains("line 8"))
-        );
-        for bad in [
-            "$VEL.CP = -1",
-            "$VEL.CP = 0",
-            "$VEL.CP = 11",
-            "BAS(#CP_PARAMS, 0)",
-        ] {
-            let e = Krl::new().set(10, bad).unwrap_err().to_string();
-            assert!(
-                e.contains("line 10") && e.contains("(0, 10000] mm/s"),
-                "{bad}: {e}"
-            );
-        }
-    }
-
-    #[test]
-    fn rapid_speeds_predefined_declared_and_switches() {
-        let mut declared = RapidSpeeds::new();
-        declared.insert("vcut".into(), Ok((25.0, 3)));
-        declared.insert("vrun".into(), Err("vrun is assigned on line 9".into()));
-        let s = |a: &str| rapid(20, "movel", Some(a), &declared).unwrap();
-        assert!((mm_s(s(" v100")) - 100.0).abs() < 1e-12);
-        assert!((mm_s(s(" V7000")) - 7000.0).abs() < 1e-9);
-        assert!((mm_s(s(" vcut")) - 25.0).abs() < 1e-12);
-        assert!((mm_s(s(" [5,500,5000,1000]")) - 5.0).abs() < 1e-12);
-        assert!(matches!(s(" [5,500]"), Speed::Unread(_)));
-        assert!((mm_s(s(" v100\\V:=120")) - 120.0).abs() < 1e-12);
-        assert_eq!(s(" v100 \\T:=2.5"), Speed::Duration(2.5));
-        assert!(matches!(s(" vrun"), Speed::Unread(w) if w.contains("line 9")));
-        assert!(matches!(s(" vmax"), Speed::Unread(_)));
-        assert!(matches!(s(" v123"), Speed::Unread(w) if w.contains("v5 to v7000")));
-        assert!(matches!(s(" v100\\V:=speed"), Speed::Unread(_)));
-        assert_eq!(rapid(1, "moveabsj", None, &declared).unwrap(), Speed::Joint);
-        let e = rapid(21, "movel", Some("v100\\V:=-3"), &declared).unwrap_err();
-        assert!(e.to_string().contains("line 21"), "{e}");
-        let e = rapid(22, "movel", Some("v100\\T:=0"), &declared).unwrap_err();
-        assert!(e.to_string().contains("(0, 3600] s"), "{e}");
-    }
-
-    #[test]
-    fn ls_speed_units() {
-        let s = |w: &str| ls(3, "L", w).unwrap();
-        assert!((mm_s(s("100mm/sec")) - 100.0).abs() < 1e-12);
-        assert!((mm_s(s("600cm/min")) - 100.0).abs() < 1e-9);
-        assert!((mm_s(s("60inch/min")) - 25.4).abs() < 1e-9);
-        assert_eq!(s("2sec"), Speed::Duration(2.0));
-        assert_eq!(s("500msec"), Speed::Duration(0.5));
-        assert!(matches!(s("R[1]mm/sec"), Speed::Unread(w) if w.contains("register")));
-        assert!(matches!(s("90deg/sec"), Speed::Unread(_)));
-        assert!(matches!(s("max_speed"), Speed::Unread(_)));
-        assert_eq!(ls(3, "J", "100%").unwrap(), Speed::Joint);
-        assert!(ls(4, "L", "0mm/sec")
-            .unwrap_err()
-            .to_string()
-            .contains("line 4"));
-    }
-
-    #[test]
-    fn inform_speed_tags() {
-        let s = |t: &[&str]| inform(5, "MOVL", t).unwrap();
-        assert!((mm_s(s(&["V=83.3", "PL=0"])) - 83.3).abs() < 1e-12);
-        assert!(matches!(s(&["V=I000"]), Speed::Unread(w) if w.contains("variable")));
-        assert!(matches!(s(&["VR=30.0"]), Speed::Unread(w) if w.contains("orientation")));
-        assert!(matches!(s(&["PL=0"]), Speed::Unread(_)));
-        assert_eq!(inform(5, "MOVJ", &["VJ=50.00"]).unwrap(), Speed::Joint);
-        assert!(inform(6, "MOVL", &["V=20000"]).is_err());
     }
 }

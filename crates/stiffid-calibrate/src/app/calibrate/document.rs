@@ -570,7 +570,8 @@ fn frame_vector(t: &nalgebra::Isometry3<f64>) -> [f64; 6] {
     [p.x, p.y, p.z, r.x, r.y, r.z]
 }
 
-fn held(h: &Held) -> ValidationDocument {
+/// The section of held-out readings `h`: an interval holds unless [`Held::outside`] names it.
+pub fn held(h: &Held) -> ValidationDocument {
     let intervals = h.coverage.as_ref().map(|c| {
         let mut widths: Vec<f64> = (h.intervals.iter().flatten())
             .map(|i| i.iter().map(|c| c[1] - c[0]).sum::<f64>() / 3.0)
@@ -696,51 +697,4 @@ pub(super) fn held_out_lines(source: &str, lengths: impl Iterator<Item = f64>) -
         "\n# The calibration's held-out position errors (|predicted - read|, mm): the error budget of\n# `stiffid compensate` takes their quantile at its level.\n[held_out]\nsource = \"{source}\"\nerrors_mm = [{}]\n",
         errors.join(", ")
     )
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::app::calibrate::Outside;
-    use stiffid_metrology::calibration::validation::PointError as Error;
-
-    /// Two held-out readings with intervals, the second's posture 12.5 deg beyond joint 2's
-    /// fitted range and 3 deg beyond joint 5's: its interval is marked as not holding, with the
-    /// distance and joints; the first's holds.
-    #[test]
-    fn intervals_of_postures_outside_the_fitted_ranges_do_not_hold() {
-        let error = |posture| Error {
-            posture,
-            point: 0,
-            table: false,
-            error: nalgebra::Vector3::new(1e-4, 0.0, 0.0),
-        };
-        let outside = Outside {
-            distance: 12.5f64.to_radians(),
-            farthest: 1,
-            joints: vec![1, 4],
-        };
-        let h = Held {
-            name: "held.csv".into(),
-            calibrated: Validation::new(vec![error(0), error(1)]),
-            nominal: Validation::new(vec![error(0), error(1)]),
-            labels: vec!["A".into(), "B".into()],
-            intervals: Some(vec![[[-1e-3, 1e-3]; 3]; 2]),
-            coverage: None,
-            outside: [(1, outside)].into_iter().collect(),
-        };
-        let doc = held(&h);
-        assert_eq!(doc.errors[0].interval_holds, Some(true));
-        assert_eq!(doc.errors[0].outside_range, None);
-        assert_eq!(doc.errors[1].interval_holds, Some(false));
-        let o = doc.errors[1].outside_range.as_ref().unwrap();
-        assert!((o.distance_deg - 12.5).abs() < 1e-12, "{}", o.distance_deg);
-        assert_eq!(o.joints, [2, 5]);
-        let without = held(&Held {
-            intervals: None,
-            ..h
-        });
-        assert_eq!(without.errors[1].interval_holds, None);
-        assert!(without.errors[1].outside_range.is_some());
-    }
 }

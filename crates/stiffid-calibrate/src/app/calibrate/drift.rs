@@ -89,8 +89,8 @@ pub fn checked(
 }
 
 /// The length (m) below which the 3D error of a reading with `noise` per coordinate (m, Gaussian)
-/// lies at `level`: `noise sqrt(q_3(level))` (module docs); 0 without noise.
-fn noise_length(noise: f64, level: f64) -> f64 {
+/// lies at `level` (in (0, 1)): `noise sqrt(q_3(level))` (module docs); 0 without noise.
+pub fn noise_length(noise: f64, level: f64) -> f64 {
     use statrs::distribution::{ChiSquared, ContinuousCDF};
     match ChiSquared::new(3.0) {
         Ok(chi) if noise > 0.0 => noise * chi.inverse_cdf(level).sqrt(),
@@ -100,8 +100,9 @@ fn noise_length(noise: f64, level: f64) -> f64 {
 
 /// The largest count `k` of `n` trials of probability `p` with `P(X > k) > alpha` no more:
 /// the smallest `k` with `P(X >= k + 1) <= alpha` (binomial, the probabilities summed in
-/// log space so that no term underflows the sum's start).
-fn allowed(n: usize, p: f64, alpha: f64) -> usize {
+/// log space so that no term underflows the sum's start); 0 when `p <= 0`, `n` when no count
+/// below `n` reaches `alpha`.
+pub fn allowed(n: usize, p: f64, alpha: f64) -> usize {
     if p <= 0.0 {
         return 0;
     }
@@ -208,30 +209,5 @@ impl CheckDocument {
                 ),
             }),
         }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::{allowed, noise_length};
-
-    #[test]
-    fn the_noise_floor_is_the_chi_quantile_of_three_coordinates() {
-        // Tables: chi-square with 3 degrees of freedom, 7.8147 at 95 %, 11.3449 at 99 %.
-        assert!((noise_length(1e-5, 0.95) - 1e-5 * 7.8147f64.sqrt()).abs() < 1e-9);
-        assert!((noise_length(2e-5, 0.99) - 2e-5 * 11.3449f64.sqrt()).abs() < 1e-9);
-        assert_eq!(noise_length(0.0, 0.95), 0.0);
-    }
-
-    #[test]
-    fn allowed_is_the_binomial_critical_count() {
-        // n = 10, p = 0.05: P(X >= 3) = 0.0115 > 0.01, P(X >= 4) = 0.00103.
-        assert_eq!(allowed(10, 0.05, 0.01), 3);
-        // n = 1: P(X >= 1) = 0.05 > 0.01.
-        assert_eq!(allowed(1, 0.05, 0.01), 1);
-        assert_eq!(allowed(10, 0.0, 0.01), 0);
-        // n = 100000, p = 0.05: mean 5000, sd 68.9; the 99 % quantile near 5000 + 2.33 sd.
-        let k = allowed(100_000, 0.05, 0.01);
-        assert!((5155..=5165).contains(&k), "{k}");
     }
 }

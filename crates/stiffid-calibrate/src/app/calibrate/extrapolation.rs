@@ -14,7 +14,7 @@ use stiffid_metrology::calibration::validation::Validation;
 
 /// How far a held-out posture's axis angle may lie beyond the fitted postures' range before it
 /// is named as outside it: 1 degree.
-const OUTSIDE_RAD: f64 = std::f64::consts::PI / 180.0;
+pub const OUTSIDE_RAD: f64 = std::f64::consts::PI / 180.0;
 
 /// The warning ([`WarningKind::Extrapolation`]) when the calibration misses held-out readings
 /// (`calibrated`, one error per observation of `held`) by more than `limit` (m) while the
@@ -22,7 +22,7 @@ const OUTSIDE_RAD: f64 = std::f64::consts::PI / 180.0;
 /// the worst such reading's posture (`labels`) and the joints whose angle there lies outside the
 /// range of the `fitted` observations' angles; with `moved` (the tracker not registered anew on
 /// the held-out readings) and most readings missed, it says the tracker may have moved.
-pub(super) fn warning(
+pub fn warning(
     (name, moved): (&str, bool),
     (fitted, held): (&[Observation], &[Observation]),
     labels: &[String],
@@ -79,7 +79,7 @@ pub struct Outside {
 /// The held-out postures (`held`'s posture indices, table observations left out) whose axis
 /// angles lie outside the `fitted` observations' ranges by more than [`OUTSIDE_RAD`], each with
 /// its [`Outside`], and the count of distinct held-out postures.
-pub(super) fn postures_outside(
+pub fn postures_outside(
     fitted: &[Observation],
     held: &[Observation],
 ) -> (std::collections::BTreeMap<usize, Outside>, usize) {
@@ -113,7 +113,7 @@ pub(super) fn postures_outside(
 /// `labels`) lie outside the `fitted` observations' axis ranges by more than [`OUTSIDE_RAD`],
 /// whatever their errors: how many, the joints outside, and the farthest posture with its
 /// distance (deg) beyond the range and its joint; `None` when every held-out posture lies within.
-pub(super) fn outside_ranges(
+pub fn outside_ranges(
     name: &str,
     (fitted, held): (&[Observation], &[Observation]),
     labels: &[String],
@@ -136,7 +136,7 @@ pub(super) fn outside_ranges(
 }
 
 /// The range of each axis angle over the `fitted` observations, rad.
-pub(super) fn ranges(fitted: &[Observation]) -> [(f64, f64); 6] {
+pub fn ranges(fitted: &[Observation]) -> [(f64, f64); 6] {
     std::array::from_fn(|j| {
         (fitted.iter().map(|o| o.q[j])).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
             (lo.min(v), hi.max(v))
@@ -171,130 +171,4 @@ fn outside(fitted: &[Observation], q: &Vector6<f64>) -> String {
         joint_list(joints.iter().map(|&(j, _)| j)),
         angles.join(", ")
     )
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use nalgebra::Vector3;
-    use stiffid_metrology::calibration::validation::PointError;
-
-    fn observation(posture: usize, q_deg: [f64; 6]) -> Observation {
-        Observation {
-            posture,
-            point: 0,
-            q: Vector6::from(q_deg.map(f64::to_radians)),
-            measured: Vector3::zeros(),
-            wrench: Vector6::zeros(),
-            e: Default::default(),
-            table: false,
-            direction: Vector6::zeros(),
-        }
-    }
-
-    fn errors(lengths_mm: &[f64]) -> Validation {
-        Validation::new(
-            (lengths_mm.iter().enumerate())
-                .map(|(posture, &l)| PointError {
-                    posture,
-                    point: 0,
-                    table: false,
-                    error: Vector3::new(0.0, l * 1e-3, 0.0),
-                })
-                .collect(),
-        )
-    }
-
-    /// Two fitted postures span joint 4 over -100..70 deg and joint 6 over -90..0 deg; the second
-    /// held-out posture turns both beyond and the calibration misses it by 110 mm.
-    fn case(nominal_mm: f64, moved: bool) -> Option<Warning> {
-        let fitted = [
-            observation(0, [0.0, -90.0, 0.0, -100.0, 0.0, -90.0]),
-            observation(1, [10.0, -80.0, 10.0, 70.0, 10.0, 0.0]),
-        ];
-        let held = [
-            observation(0, [5.0, -85.0, 5.0, 0.0, 5.0, -45.0]),
-            observation(1, [5.0, -85.0, 5.0, 193.0, 5.0, 90.0]),
-        ];
-        let labels = ["D1".to_string(), "D414".to_string()];
-        warning(
-            ("held.csv", moved),
-            (&fitted, &held),
-            &labels,
-            (&errors(&[0.3, 110.0]), &errors(&[1.1, nominal_mm])),
-            0.02,
-        )
-    }
-
-    #[test]
-    fn names_the_posture_and_the_joints_outside_the_fitted_range() {
-        let w =
-            case(2.0, false).expect("the calibration misses a reading the nominal robot explains");
-        assert_eq!(w.kind, WarningKind::Extrapolation);
-        for part in [
-            "1 held-out reading more than 20 mm off",
-            "posture D414, point 1, 110.0 mm against 2.000 mm nominal",
-            "joints 4, 6 outside the fitted postures' range: 193.0 deg against -100.0 to 70.0 deg, 90.0 deg against -90.0 to 0.0 deg",
-        ] {
-            assert!(w.message.contains(part), "{part}\n{}", w.message);
-        }
-        assert!(!w.message.contains("--reregister"), "{}", w.message);
-        // Without --reregister, one reading of two missed is no moved tracker either.
-        let w = case(2.0, true).unwrap();
-        assert!(!w.message.contains("--reregister"), "{}", w.message);
-    }
-
-    /// The held-out postures of [`case`]: the second turns joint 4 123 deg and joint 6 90 deg
-    /// beyond the fitted range, the first lies within it; postures inside say nothing.
-    #[test]
-    fn held_out_postures_outside_the_fitted_ranges_are_named_with_their_distance() {
-        let fitted = [
-            observation(0, [0.0, -90.0, 0.0, -100.0, 0.0, -90.0]),
-            observation(1, [10.0, -80.0, 10.0, 70.0, 10.0, 0.0]),
-        ];
-        let held = [
-            observation(0, [5.0, -85.0, 5.0, 0.0, 5.0, -45.0]),
-            observation(0, [5.0, -85.0, 5.0, 0.0, 5.0, -45.0]),
-            observation(1, [5.0, -85.0, 5.0, 193.0, 5.0, 90.0]),
-        ];
-        let labels = ["D1".to_string(), "D414".to_string()];
-        let w = outside_ranges("held.csv", (&fitted, &held), &labels).unwrap();
-        assert_eq!(w.kind, WarningKind::Extrapolation);
-        assert!(
-            w.message.starts_with("held.csv: 1 of 2 held-out postures lie outside the fitted postures' range of joints 4, 6 by more than 1 deg (farthest: posture D414, 123.0 deg beyond on joint 4)"),
-            "{}",
-            w.message
-        );
-        assert!(outside_ranges("held.csv", (&fitted, &held[..2]), &labels).is_none());
-    }
-
-    /// Per posture: the second held-out posture of [`case`] lies 123 deg beyond on joint 4 (and
-    /// 90 deg on joint 6), the first within; joint 1's 0.5 deg beyond is inside the 1 deg margin.
-    #[test]
-    fn each_posture_outside_carries_its_distance_and_joints() {
-        let fitted = [
-            observation(0, [0.0, -90.0, 0.0, -100.0, 0.0, -90.0]),
-            observation(1, [10.0, -80.0, 10.0, 70.0, 10.0, 0.0]),
-        ];
-        let held = [
-            observation(0, [10.5, -85.0, 5.0, 0.0, 5.0, -45.0]),
-            observation(1, [5.0, -85.0, 5.0, 193.0, 5.0, 90.0]),
-            observation(1, [5.0, -85.0, 5.0, 193.0, 5.0, 90.0]),
-        ];
-        let (outside, count) = postures_outside(&fitted, &held);
-        assert_eq!((count, outside.len()), (2, 1));
-        let o = &outside[&1];
-        assert_eq!((o.farthest, o.joints.clone()), (3, vec![3, 5]));
-        assert!(
-            (o.distance.to_degrees() - 123.0).abs() < 1e-12,
-            "{}",
-            o.distance
-        );
-    }
-
-    #[test]
-    fn is_silent_when_the_nominal_robot_misses_the_reading_too() {
-        // A reading of another robot: the gate refuses it, this warning has nothing to add.
-        assert!(case(30.0, false).is_none());
-    }
 }

@@ -20,7 +20,7 @@ mod chosen;
 mod compliance;
 pub mod document;
 pub mod drift;
-mod extrapolation;
+pub mod extrapolation;
 mod files;
 mod held;
 mod judge;

@@ -7,7 +7,7 @@
 //!   Numerical Optimization, 2nd ed., 6.20), then the BFGS update of `B` (Eq. 6.19) and the same
 //!   update of its inverse (Eq. 6.17: `H+ = (I - rho s y^T) H (I - rho y s^T) + rho s s^T`,
 //!   `rho = 1 / s^T y`) with the damped `y`: `O(n^2)` each.
-//! - **Drift**: every [`REFACTOR`] updates (at least `n`), `H` is computed again from `B`
+//! - **Drift**: every `REFACTOR` updates (at least `n`), `H` is computed again from `B`
 //!   (Cholesky factor), so the rounding of the two recurrences never accumulates.
 
 use super::qp::inverse;
@@ -17,7 +17,7 @@ use stiffid_core::math::linalg::{axpy, dot};
 const REFACTOR: usize = 64;
 
 /// A damped-BFGS `B` and `H = B^-1` (both column-major `n x n`, symmetric).
-pub(super) struct Hessian {
+pub struct Hessian {
     n: usize,
     b: Vec<f64>,
     h: Vec<f64>,
@@ -28,6 +28,7 @@ pub(super) struct Hessian {
 }
 
 impl Hessian {
+    /// The identity of size `n` (and its inverse), the start of the updates.
     pub fn identity(n: usize) -> Self {
         let mut b = vec![0.0; n * n];
         (0..n).for_each(|k| b[k + n * k] = 1.0);
@@ -115,8 +116,8 @@ impl Hessian {
         }
     }
 
-    /// `B` (column-major), for tests.
-    #[cfg(test)]
+    /// The Hessian approximation `B` itself, `n x n` column-major (what [`Hessian::inverse`]
+    /// inverts).
     pub fn matrix(&self) -> &[f64] {
         &self.b
     }

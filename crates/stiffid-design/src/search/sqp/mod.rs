@@ -7,14 +7,14 @@
 //!   linearised constraints `c_j + a_j^T d <= 0` and the bounds, by the dual active-set method of
 //!   Goldfarb and Idnani ([`qp`]); when the linearised constraints are incompatible, the QP is
 //!   relaxed as in Kraft's SLSQP (1988): `c_j (1 - xi) + a_j^T d <= 0` for the violated `c_j`,
-//!   `0 <= xi <= 1`, with `xi` weighted [`RELAXATION`] times `B`'s largest diagonal.
+//!   `0 <= xi <= 1`, with `xi` weighted `RELAXATION` times `B`'s largest diagonal.
 //! - **Hessian**: `B` starts as the identity and is updated by damped BFGS on the Lagrangian's
 //!   gradient ([`hessian`]: Powell's damping keeps `B` positive definite; `B` and its inverse are
 //!   both updated in `O(n^2)`, so a step factors no matrix).
 //! - **Line search**: backtracking on the L1 merit function `f + sum_j mu_j max(0, c_j)`
 //!   (Han 1977), `mu_j = max(lambda_j, (mu_j + lambda_j) / 2)` from the QP's multipliers
 //!   `lambda_j` (Powell 1978); Armijo's condition with 0.1, quadratic interpolation clamped to
-//!   `[0.1, 0.5]` of the last step, at most [`BACKTRACKS`] trials.
+//!   `[0.1, 0.5]` of the last step, at most `BACKTRACKS` trials.
 //! - **Stops** ([`Termination`]): at a point whose constraints hold ([`Nlp::feasible`]: their
 //!   violations summed at most [`FEASIBLE`] unless the problem says otherwise) when a step
 //!   changes `f` by less than `ftol` or the QP's predicted change `|g^T d| + sum lambda_j |c_j|`
@@ -30,10 +30,8 @@
 //!   problem maps a failed evaluation to a large finite value).
 //! - **Deterministic**: one thread, fixed-order arithmetic: the same problem gives the same bits.
 
-mod hessian;
-pub(crate) mod qp;
-#[cfg(test)]
-mod tests;
+pub mod hessian;
+pub mod qp;
 
 use super::termination::Termination;
 use hessian::Hessian;
@@ -41,24 +39,28 @@ use qp::{Active, Qp, QpError, Row};
 use stiffid_core::math::linalg::dot;
 
 /// The constraint gradients' nonzeros: `(index, coefficient)` pairs, one list per constraint.
-pub(crate) type SparseRows = Vec<Vec<(usize, f64)>>;
+pub type SparseRows = Vec<Vec<(usize, f64)>>;
 
 /// The values at a point: the objective and every constraint (`c_j <= 0` is feasible).
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) struct Values {
+pub struct Values {
+    /// The objective.
     pub f: f64,
+    /// Every constraint, in order.
     pub c: Vec<f64>,
 }
 
 /// The gradients at a point: the objective's (dense) and the constraints' (sparse).
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) struct Gradients {
+pub struct Gradients {
+    /// The objective's gradient, one entry per variable.
     pub f: Vec<f64>,
+    /// Each constraint's gradient, its nonzeros.
     pub c: SparseRows,
 }
 
 /// A problem for [`minimise`]: its bounds, values and gradients, and its evaluation budget.
-pub(crate) trait Nlp {
+pub trait Nlp {
     /// The bounds on the variables (`lower <= upper`; infinite for a free variable).
     fn bounds(&self) -> (&[f64], &[f64]);
     /// The values at `x` (within the bounds).
@@ -78,7 +80,7 @@ pub(crate) trait Nlp {
 
 /// Tolerances of [`minimise`].
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Tolerances {
+pub struct Tolerances {
     /// Stop when a step changes `f` by less than this.
     pub ftol: f64,
     /// Stop when a step moves every variable by less than this.
@@ -87,7 +89,7 @@ pub(crate) struct Tolerances {
 
 /// Largest summed constraint violation of a point that counts as feasible for the stops, unless
 /// the problem says otherwise ([`Nlp::feasible`]).
-pub(crate) const FEASIBLE: f64 = 1e-10;
+pub const FEASIBLE: f64 = 1e-10;
 /// Weight of the relaxation variable of an incompatible QP, relative to `B`'s largest diagonal.
 const RELAXATION: f64 = 1e4;
 /// Most trial points of one line search.
@@ -97,7 +99,7 @@ const ARMIJO: f64 = 0.1;
 
 /// Minimises the problem from `x0` (module docs); returns why it stopped. The problem keeps the
 /// points it evaluated (the best one is the caller's to choose).
-pub(crate) fn minimise(nlp: &impl Nlp, x0: &[f64], tolerances: Tolerances) -> Termination {
+pub fn minimise(nlp: &impl Nlp, x0: &[f64], tolerances: Tolerances) -> Termination {
     let mut search = Search::new(nlp, x0);
     loop {
         if let Some(stop) = search.step(tolerances) {
@@ -319,7 +321,7 @@ fn lagrangian(g: &Gradients, lambda: &[f64]) -> Vec<f64> {
 }
 
 /// The summed violation `sum_j max(0, c_j)`.
-pub(crate) fn violation(c: &[f64]) -> f64 {
+pub fn violation(c: &[f64]) -> f64 {
     c.iter().map(|c| c.max(0.0)).sum()
 }
 

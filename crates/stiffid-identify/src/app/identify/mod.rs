@@ -16,7 +16,7 @@
 pub mod comparison;
 pub mod document;
 pub mod drives;
-mod folds;
+pub mod folds;
 mod model_form;
 mod options;
 pub mod springs;

@@ -37,7 +37,7 @@ pub mod document;
 mod evaluate;
 pub mod search;
 mod work;
-mod written;
+pub mod written;
 
 pub use evaluate::Evaluation;
 pub use work::{check_language, read_path, read_program, Work};

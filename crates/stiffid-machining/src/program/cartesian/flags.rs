@@ -46,7 +46,7 @@ impl Flags {
     /// FANUC's `CONFIG` text (inside the quotes) as the data, or why not: a flip `F`/`N`, an
     /// elbow `U`/`D`, a side `T`/`B` (in any order, blanks or none between), then the three
     /// turn numbers of J1, J4 and J6 (absent ones 0).
-    pub(crate) fn fanuc(text: &str) -> Result<Self, String> {
+    pub fn fanuc(text: &str) -> Result<Self, String> {
         let (letters, turns) = text.split_once(',').unwrap_or((text, ""));
         let letters: String = letters.chars().filter(|c| !c.is_whitespace()).collect();
         let letters = letters.to_ascii_uppercase();
@@ -88,11 +88,17 @@ impl Flags {
 
 /// Where a part of the data sits and how it is written back.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Part {
+pub enum Part {
     /// KUKA status, as a binary string `'B..'` or a decimal number.
-    Status { binary: bool },
+    Status {
+        /// Written as a binary string.
+        binary: bool,
+    },
     /// KUKA turn, likewise.
-    Turn { binary: bool },
+    Turn {
+        /// Written as a binary string.
+        binary: bool,
+    },
     /// ABB `confdata` member `k` (0: cf1, 1: cf4, 2: cf6, 3: cfx).
     Abb(usize),
     /// FANUC `CONFIG`'s text inside its quotes.
@@ -101,7 +107,7 @@ pub(crate) enum Part {
 
 impl Part {
     /// The text of this part of `flags`.
-    pub(crate) fn text(self, flags: &Flags) -> String {
+    pub fn text(self, flags: &Flags) -> String {
         match (self, flags) {
             (Part::Status { binary: true }, Flags::Kuka(s, _)) => format!("'B{s:03b}'"),
             (Part::Turn { binary: true }, Flags::Kuka(_, t)) => format!("'B{t:06b}'"),
@@ -111,38 +117,5 @@ impl Part {
             (_, Flags::Fanuc(f)) => f.clone(),
             (_, other) => other.text(),
         }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn fanuc_config_is_read_in_its_variants_and_refused_when_unknown() {
-        let want = Flags::Fanuc("N U T, 0, 0, 0".into());
-        for text in ["N U T, 0, 0, 0", "NUT, 0, 0, 0", "N U T", "T U N, 0,0,0"] {
-            assert_eq!(Flags::fanuc(text).as_ref(), Ok(&want), "{text}");
-        }
-        assert_eq!(
-            Flags::fanuc("F D B, -1, 0, 1"),
-            Ok(Flags::Fanuc("F D B, -1, 0, 1".into()))
-        );
-        for bad in [
-            "N X T, 0, 0, 0",
-            "N U, 0, 0, 0",
-            "N U T, a, 0, 0",
-            "N F U T",
-        ] {
-            assert!(Flags::fanuc(bad).is_err(), "{bad}");
-        }
-    }
-
-    #[test]
-    fn kuka_parts_are_written_in_the_form_read() {
-        let f = Flags::Kuka(0b110, 0b010101);
-        assert_eq!(Part::Status { binary: true }.text(&f), "'B110'");
-        assert_eq!(Part::Turn { binary: false }.text(&f), "21");
-        assert_eq!(Part::Abb(3).text(&Flags::Abb([0, -1, 2, 5])), "5");
     }
 }

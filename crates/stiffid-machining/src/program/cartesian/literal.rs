@@ -6,7 +6,7 @@ use std::ops::Range;
 
 /// One member of a literal.
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) enum Node {
+pub enum Node {
     /// `[..]`.
     List(Vec<Node>),
     /// A number and its span.
@@ -19,7 +19,7 @@ pub(crate) enum Node {
 
 impl Node {
     /// The members of a list, `None` for anything else.
-    pub(crate) fn list(&self) -> Option<&[Node]> {
+    pub fn list(&self) -> Option<&[Node]> {
         match self {
             Node::List(items) => Some(items),
             _ => None,
@@ -27,7 +27,7 @@ impl Node {
     }
 
     /// The `n` numbers of a list of numbers, with their spans.
-    pub(crate) fn numbers(&self, n: usize) -> Option<Vec<(f64, Range<usize>)>> {
+    pub fn numbers(&self, n: usize) -> Option<Vec<(f64, Range<usize>)>> {
         let items = self.list().filter(|i| i.len() == n)?;
         items
             .iter()
@@ -39,7 +39,7 @@ impl Node {
     }
 
     /// Whether a word is `TRUE` (`Some(true)`), `FALSE`, or neither (`None`).
-    pub(crate) fn boolean(&self) -> Option<bool> {
+    pub fn boolean(&self) -> Option<bool> {
         match self {
             Node::Word(w) if w == "TRUE" => Some(true),
             Node::Word(w) if w == "FALSE" => Some(false),
@@ -50,7 +50,7 @@ impl Node {
 
 /// The literal opening with `[` at or after blanks from byte `from` of `code`, and the byte
 /// after its closing `]`; `None` when there is no well-formed literal there.
-pub(crate) fn parse(code: &str, from: usize) -> Option<(Node, usize)> {
+pub fn parse(code: &str, from: usize) -> Option<(Node, usize)> {
     let bytes = code.as_bytes();
     let skip = |mut i: usize| {
         while i < bytes.len() && bytes[i].is_ascii_whitespace() {
@@ -92,25 +92,5 @@ pub(crate) fn parse(code: &str, from: usize) -> Option<(Node, usize)> {
             let end = span.end;
             Some((Node::Number(v, span), end))
         }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn nested_literals_keep_every_numbers_span() {
-        let code = "x := [TRUE,[[1.5, -2,3e2],[1,0,0,0]],\"a\"];";
-        let (node, end) = parse(code, 4).unwrap();
-        assert_eq!(&code[end..], ";");
-        let items = node.list().unwrap();
-        assert_eq!(items[0].boolean(), Some(true));
-        let p = items[1].list().unwrap()[0].numbers(3).unwrap();
-        assert_eq!(p[2].0, 300.0);
-        assert_eq!(&code[p[1].1.clone()], "-2");
-        assert_eq!(items[2], Node::Text("a".into()));
-        assert!(parse("[1,2", 0).is_none());
-        assert!(parse("[1;2]", 0).is_none());
     }
 }

@@ -36,8 +36,8 @@
 //! target's frame) with the configuration data of the compensated posture, as the programs
 //! written from G-code state it ([`super::generate`]).
 
-pub(crate) mod flags;
-pub(crate) mod literal;
+pub mod flags;
+pub mod literal;
 mod resolve;
 mod solve;
 

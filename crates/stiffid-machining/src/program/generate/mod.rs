@@ -560,6 +560,3 @@ pub(crate) fn zyx_deg(r: &UnitQuaternion<f64>) -> [f64; 3] {
     let (roll, pitch, yaw) = r.euler_angles();
     [yaw.to_degrees(), pitch.to_degrees(), roll.to_degrees()]
 }
-
-#[cfg(test)]
-mod tests;

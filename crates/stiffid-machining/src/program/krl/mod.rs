@@ -10,7 +10,7 @@
 //! with `S` and `T`) is a Cartesian target in the `$BASE` and for the `$TOOL` the program sets
 //! before the motion ([`super::cartesian`]).
 
-mod cartesian;
+pub mod cartesian;
 mod generate;
 mod names;
 

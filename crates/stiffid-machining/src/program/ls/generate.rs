@@ -15,7 +15,7 @@ pub const COMMENT: &str = "stiffid";
 /// The frames set up at the top of the main program: user frame 0 (the world), tool frame 1,
 /// whose values (the tool frame from the controller's flange) the remarks state, one per line
 /// (a remark is at most 32 characters on the pendant).
-pub(crate) fn header(plan: &Plan) -> String {
+pub fn header(plan: &Plan) -> String {
     let t = &plan.tool.frame;
     let p = t.translation.vector * 1e3;
     let [r, pitch, w] = zyx_deg(&t.rotation);
@@ -35,7 +35,7 @@ pub(crate) fn header(plan: &Plan) -> String {
 
 /// A feed (m/s) as an LS speed: whole mm/sec, else whole cm/min, else the nearest cm/min (with a
 /// warning); `None` below 1 cm/min.
-pub(crate) fn speed(feed: f64) -> Option<(String, bool)> {
+pub fn speed(feed: f64) -> Option<(String, bool)> {
     let whole = |x: f64| (x - x.round()).abs() <= 1e-9 * x.max(1.0) && x.round() >= 1.0;
     let (mm_s, cm_min) = (feed * 1e3, feed * 6e3);
     if whole(mm_s) {
@@ -206,4 +206,4 @@ impl Generator for super::FanucLs {
 
 /// The lines an LS main program's header adds before its moves or calls (`! set UTOOL`, six
 /// remarks of the tool frame's values, `UFRAME_NUM`, `UTOOL_NUM`).
-pub(crate) const LS_HEADER_LINES: usize = 9;
+pub const LS_HEADER_LINES: usize = 9;

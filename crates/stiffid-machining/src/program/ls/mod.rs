@@ -10,7 +10,7 @@
 //! Cartesian target ([`super::cartesian`]); an `INC` motion to one is refused.
 
 mod cartesian;
-pub(crate) mod generate;
+pub mod generate;
 mod names;
 mod numbered;
 

@@ -1,7 +1,13 @@
-use super::*;
-use crate::program::ls::generate as ls;
+//! Programs generated for each controller (`stiffid_machining::program::generate`).
+
+use nalgebra::{Isometry3, Vector3, Vector6};
 use nalgebra::{Translation3, UnitQuaternion};
+use stiffid_core::common::error::JobOption;
 use stiffid_core::robot::presets;
+use stiffid_core::{Error, Robot};
+use stiffid_machining::program::generate::*;
+use stiffid_machining::program::ls::generate as ls;
+use stiffid_machining::program::Dialect;
 
 fn robot() -> Robot {
     presets::get("fanuc-r2000ic-165f").unwrap()
@@ -61,7 +67,8 @@ const MOVES: [Move; 3] = [Move::Rapid, Move::Feed(0.03), Move::Feed(100.0 / 6e4)
 /// The number after `key` in `line`.
 fn after(line: &str, key: &str) -> f64 {
     let at = line.find(key).unwrap_or_else(|| panic!("{key} in {line}")) + key.len();
-    let (value, _) = super::super::number_at(line, at).unwrap_or_else(|| panic!("{line}"));
+    let (value, _) =
+        stiffid_machining::program::number_at(line, at).unwrap_or_else(|| panic!("{line}"));
     value
 }
 
@@ -274,7 +281,7 @@ fn joint_targets_read_back_to_their_axis_angles() {
         let mut p = plan(d, "POCKET", &t, &MOVES);
         p.settings.targets = Targets::Joint;
         let w = generate(&p).unwrap();
-        let read = super::super::parse(&w.files[0].text, d).unwrap();
+        let read = stiffid_machining::program::parse(&w.files[0].text, d).unwrap();
         assert_eq!(read.targets.len(), 3, "{d:?}");
         for (r, e) in read.targets.iter().zip(&Q) {
             for (a, b) in r.q_deg.iter().zip(e) {

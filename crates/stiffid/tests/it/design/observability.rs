@@ -1,11 +1,16 @@
-use super::*;
-use crate::study::observability as study;
+//! The calibration's observability criteria (`stiffid_design::observability`).
+
+use nalgebra::{DMatrix, Vector6};
 use nalgebra::{Isometry3, Vector3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use stiffid_core::robot::external::ExternalValues;
 use stiffid_core::robot::presets;
 use stiffid_core::Robot;
+use stiffid_design::observability::*;
+use stiffid_design::study::observability as study;
 use stiffid_metrology::calibration::error_model::{MeasuredIn, Target};
+use stiffid_metrology::calibration::ErrorModel;
 use stiffid_metrology::calibration::{fit, gravity, validation, Estimate, Geometry};
 
 const LENGTH: f64 = 1.0;
@@ -99,7 +104,7 @@ fn predicted_error_matches_a_monte_carlo_of_calibrations() {
         let p = &model.parameters()[c];
         let at = d.kept().iter().position(|&k| k == c).unwrap();
         let size = match p.kind {
-            stiffid_metrology::calibration::Kind::Gravity => 1e-4 * d.layout.scales[at],
+            stiffid_metrology::calibration::Kind::Gravity => 1e-4 * d.scales()[at],
             _ => 1e-3,
         };
         truth[c] += size * (2.0 * rng.random::<f64>() - 1.0);
@@ -359,20 +364,14 @@ fn a_track_campaign_is_designed_with_the_tracks_columns() {
 #[test]
 fn a_step_at_a_station_reduced_to_the_arm_equals_the_whole_jacobian() {
     let (robot, d, stations) = track_design();
-    assert!(d.on_station(stations[0], &[]).unwrap().reduced.is_none());
+    assert!(d.on_station(stations[0], &[]).unwrap().reduced().is_none());
     let fixed: Vec<Placed> = (postures(&robot, 30, 11).iter().enumerate())
         .map(|(i, q)| (*q, stations[1 + i % 5]))
         .collect();
     let here = d.on_station(stations[2], &fixed).unwrap();
-    let reduced = here
-        .reduced
-        .as_ref()
-        .expect("a step on the track is reduced");
+    let reduced = here.reduced().expect("a step on the track is reduced");
     assert!(reduced.kept().len() < here.kept().len());
-    let whole = CalibrationDesign {
-        reduced: None,
-        ..here.clone()
-    };
+    let whole = here.whole();
     let group = postures(&robot, 12, 13);
     for criterion in [
         CalibrationCriterion::TestPose,

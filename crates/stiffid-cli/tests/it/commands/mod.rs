@@ -1,0 +1,3 @@
+//! The subcommands' code (`stiffid_cli::commands`).
+
+mod kinematics;

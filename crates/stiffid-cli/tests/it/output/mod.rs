@@ -1,0 +1,4 @@
+//! The command's outputs (`stiffid_cli::output`).
+
+mod file;
+mod staged;

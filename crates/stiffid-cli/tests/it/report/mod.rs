@@ -1,0 +1,37 @@
+//! The study's report directory (`stiffid_cli::report`): which directories it writes into.
+
+mod markdown;
+
+use std::path::Path;
+use stiffid_cli::report::{self, holds};
+use stiffid_design::app::reproduce::document::GENERATOR;
+
+fn open(dir: &Path, force: bool) -> anyhow::Result<stiffid_cli::output::ReportDir> {
+    report::open(dir, "--out", Some(force), GENERATOR, &holds)
+}
+
+#[test]
+fn only_empty_missing_or_own_directories_are_written_without_force() {
+    let dir = std::env::temp_dir().join(format!("stiffid-target-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    drop(open(&dir, false).expect("missing"));
+    assert!(
+        !dir.exists(),
+        "a directory it created and did not finish is removed"
+    );
+    std::fs::create_dir_all(&dir).unwrap();
+    drop(open(&dir, false).expect("empty"));
+    assert!(dir.exists(), "a directory it did not create stays");
+    std::fs::write(dir.join("summary.json"), r#"{"generator": "someone else"}"#).unwrap();
+    assert!(open(&dir, false).is_err(), "foreign summary.json");
+    assert!(open(&dir, true).is_ok(), "forced");
+    std::fs::write(
+        dir.join("summary.json"),
+        r#"{"generator": "stiffid reproduce"}"#,
+    )
+    .unwrap();
+    assert!(open(&dir, false).is_ok(), "own report");
+    let file = dir.join("summary.json");
+    assert!(open(&file, false).is_err(), "a file");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -1,0 +1,6 @@
+//! The calibrate job's parts (`stiffid_calibrate::app::calibrate`).
+
+mod document;
+mod drift;
+mod extrapolation;
+mod ladder;

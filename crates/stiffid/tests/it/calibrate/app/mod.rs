@@ -1,0 +1,3 @@
+//! The calibrate crate's jobs (`stiffid_calibrate::app`).
+
+mod calibrate;

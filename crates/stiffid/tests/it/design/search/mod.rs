@@ -1,0 +1,3 @@
+//! The posture searches (`stiffid_design::search`).
+
+mod sqp;

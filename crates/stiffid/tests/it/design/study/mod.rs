@@ -1,0 +1,3 @@
+//! The paper's study (`stiffid_design::study`).
+
+mod observability;

@@ -1,0 +1,3 @@
+//! The identify job's parts (`stiffid_identify::app::identify`).
+
+mod folds;

@@ -1,0 +1,3 @@
+//! The identify crate's jobs (`stiffid_identify::app`).
+
+mod identify;

@@ -1,0 +1,62 @@
+//! Each target's bound in a program (`stiffid_machining::app::compensate::certify`).
+
+use stiffid_machining::app::compensate::certify::*;
+use stiffid_machining::program::Dialect;
+
+#[test]
+fn every_target_carries_its_bound() {
+    let krl = "DEF A( )\nPTP {A1 1, A2 2, A3 3, A4 4, A5 5, A6 6} ; start\nLIN {A1 1}\nEND\n";
+    let out = at_lines(Dialect::Krl, krl, &[(2, 1.5e-5), (3, 2e-5)], 0.95);
+    assert!(out.contains("; start ; bound 0.0150 mm at 95%\n"), "{out}");
+    assert!(
+        out.contains("LIN {A1 1} ; bound 0.0200 mm at 95%\n"),
+        "{out}"
+    );
+    // Compensated again: the new bound in the old one's place, the user's comment kept.
+    let again = at_lines(Dialect::Krl, &out, &[(2, 3e-5), (3, f64::INFINITY)], 0.95);
+    assert!(
+        again.contains("; start ; bound 0.0300 mm at 95%\n"),
+        "{again}"
+    );
+    let infinite = "LIN {A1 1} ; bound infinite at 95% (too few held-out values)\n";
+    assert!(again.contains(infinite), "{again}");
+    let third = at_lines(Dialect::Krl, &again, &[(3, 1e-5)], 0.95);
+    assert!(
+        third.contains("LIN {A1 1} ; bound 0.0100 mm at 95%\n"),
+        "{third}"
+    );
+    let inform = "NOP\nMOVJ C00000 VJ=10.00\nEND\n";
+    let once = at_lines(Dialect::Inform, inform, &[(2, 1e-5)], 0.95);
+    let twice = at_lines(Dialect::Inform, &once, &[(3, 2e-5)], 0.95);
+    assert_eq!(
+        twice,
+        "NOP\n'bound 0.0200 mm at 95%\nMOVJ C00000 VJ=10.00\nEND\n"
+    );
+    let rapid = "  MoveAbsJ [[1,2,3,\n 4,5,6],[9E9]], v10, fine, tool0;\n";
+    let out = at_lines(Dialect::Rapid, rapid, &[(1, 1e-5)], 0.9);
+    assert!(
+        out.ends_with("tool0; ! bound 0.0100 mm at 90%\n")
+            && out.starts_with("  MoveAbsJ [[1,2,3,\n"),
+        "{out}"
+    );
+    let again = at_lines(Dialect::Rapid, &out, &[(1, 2e-5)], 0.9);
+    assert!(
+        again.ends_with("tool0; ! bound 0.0200 mm at 90%\n"),
+        "{again}"
+    );
+    let ls = "/MN\n   1:J P[1] 100% FINE ;\n   2:L P[2] 5mm/sec FINE ;\n/POS\nP[1]{\n J1= 1 deg\n};\nP[2:\"HOME\"]{\n};\n/END\n";
+    let out = at_lines(Dialect::FanucLs, ls, &[(2, 3e-5), (3, 4e-5)], 0.95);
+    assert!(out.contains("P[1:\"0.0300 mm\"]{\n"), "{out}");
+    assert!(out.contains("P[2:\"HOME\"]{\n"), "{out}");
+    let again = at_lines(Dialect::FanucLs, &out, &[(2, 7e-5), (3, 4e-5)], 0.95);
+    assert!(
+        again.contains("P[1:\"0.0700 mm\"]{\n") && !again.contains("0.0300"),
+        "{again}"
+    );
+    let generated = generated(Dialect::FanucLs, &[ls.to_string()], &[5e-5, 6e-5], 0.95);
+    assert!(
+        generated[0].contains("P[1:\"0.0500 mm\"]{"),
+        "{}",
+        generated[0]
+    );
+}

@@ -1,0 +1,3 @@
+//! The compensate job's parts (`stiffid_machining::app::compensate`).
+
+mod certify;

@@ -1,0 +1,4 @@
+//! The machining crate's jobs (`stiffid_machining::app`).
+
+mod compensate;
+mod place;

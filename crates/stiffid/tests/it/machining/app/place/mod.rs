@@ -1,0 +1,4 @@
+//! The place job's parts (`stiffid_machining::app::place`).
+
+mod search;
+mod written;

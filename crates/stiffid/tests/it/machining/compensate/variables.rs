@@ -1,0 +1,58 @@
+//! The free variables' ranges and steps (`stiffid_machining::compensate::variables`).
+
+use stiffid_machining::compensate::variables::*;
+
+#[test]
+fn ranges_and_steps_are_checked_at_their_limits_in_si() {
+    let station = FreeRange::checked(&Variable::Station, 500.0, 10.0).unwrap();
+    assert_eq!((station.range, station.step), (0.5, 0.01));
+    let rotation = FreeRange::checked(&Variable::ToolRotation, 180.0, 90.0).unwrap();
+    assert_eq!(rotation.range, std::f64::consts::PI);
+    for (variable, range, step) in [
+        (Variable::ToolRotation, 180.1, 2.0),
+        (Variable::ToolRotation, 90.0, 90.1),
+        (Variable::ToolRotation, 90.0, 5e-324),
+        (Variable::Station, 20_001.0, 10.0),
+        (Variable::Station, 100.0, 0.09),
+        (Variable::Station, 100.0, 100.1),
+        (Variable::Positioner, 0.005, 0.01),
+        (Variable::Tilt, 10.0, f64::NAN),
+        (Variable::Tilt, f64::INFINITY, 1.0),
+    ] {
+        assert!(
+            FreeRange::checked(&variable, range, step).is_err(),
+            "{variable:?} {range} {step}"
+        );
+    }
+    assert!(LeadTilt::checked(Some(30.1), 1.0).is_err());
+    assert!(LeadTilt::checked(Some(5.0), 5.1).is_err());
+    assert!(LeadTilt::checked(None, 30.0).is_ok());
+    assert!(LeadTilt::checked(None, 30.1).is_err());
+}
+
+#[test]
+fn the_rotation_grid_splits_a_step_into_cells_of_at_most_5_deg() {
+    let f = FreeRange::checked(&Variable::ToolRotation, 90.0, 12.0).unwrap();
+    let (spacing, cells) = f.cells();
+    assert_eq!(cells, 3);
+    assert!((spacing.to_degrees() - 4.0).abs() < 1e-12);
+    assert_eq!(f.angles().len(), 45);
+    assert_eq!(f.angle_count(), 45.0);
+    assert_eq!(f.angles()[22], 0.0);
+}
+
+#[test]
+fn the_surge_is_the_tool_rotations_alone() {
+    let rotation = FreeRange::checked(&Variable::ToolRotation, 90.0, 2.0).ok();
+    let free = FreeVariables {
+        tool_rotation: rotation,
+        minimise: Objective::Surge,
+        ..Default::default()
+    };
+    assert!(free.validate().is_ok());
+    let with_station = FreeVariables {
+        station: FreeRange::checked(&Variable::Station, 100.0, 10.0).ok(),
+        ..free
+    };
+    assert!(with_station.validate().is_err());
+}

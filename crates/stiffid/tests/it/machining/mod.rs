@@ -1,0 +1,6 @@
+//! The machining crate's tests (`stiffid_machining`), through its public paths: programs, compensation, placement.
+
+mod app;
+mod compensate;
+mod dynamics;
+mod program;

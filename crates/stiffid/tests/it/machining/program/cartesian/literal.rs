@@ -1,0 +1,18 @@
+//! RAPID's nested literals (`stiffid_machining::program::cartesian::literal`).
+
+use stiffid_machining::program::cartesian::literal::*;
+
+#[test]
+fn nested_literals_keep_every_numbers_span() {
+    let code = "x := [TRUE,[[1.5, -2,3e2],[1,0,0,0]],\"a\"];";
+    let (node, end) = parse(code, 4).unwrap();
+    assert_eq!(&code[end..], ";");
+    let items = node.list().unwrap();
+    assert_eq!(items[0].boolean(), Some(true));
+    let p = items[1].list().unwrap()[0].numbers(3).unwrap();
+    assert_eq!(p[2].0, 300.0);
+    assert_eq!(&code[p[1].1.clone()], "-2");
+    assert_eq!(items[2], Node::Text("a".into()));
+    assert!(parse("[1,2", 0).is_none());
+    assert!(parse("[1;2]", 0).is_none());
+}

@@ -1,0 +1,3 @@
+//! KUKA's KRL (`stiffid_machining::program::krl`).
+
+mod cartesian;

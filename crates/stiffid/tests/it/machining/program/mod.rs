@@ -1,0 +1,6 @@
+//! The controllers' programs (`stiffid_machining::program`).
+
+mod cartesian;
+mod generate;
+mod krl;
+mod speed;
