@@ -371,3 +371,68 @@ fn robot_programs_for_the_track_cell_land_on_the_true_cell() {
         }
     }
 }
+
+/// `[controller] pulses_per_deg` and `external_pulses` on the track cell: read as given, the
+/// external count the cell's (one track), every number within 1e-6 to 1e9; anything else refused
+/// naming the file and the field, never a job in wrong pulses.
+#[test]
+fn the_controllers_pulses_are_read_and_checked_against_the_cell() {
+    let robot = true_robot::dh_robot_text()
+        + "\n[[external_axis]]\nname = \"track\"\nrole = \"carrier\"\ndirection = [1.0, 0.0, 0.0]\nlimits_mm = [0.0, 6000.0]\n";
+    let read = |controller: &str| {
+        let text = true_robot::setup_text("robot.toml", "") + "\n[controller]\n" + controller;
+        stiffid::setup::parse(&text, "cell.toml", |_, _| {
+            stiffid::robot::file::parse(&robot, "robot.toml")
+        })
+    };
+    let setup = read("pulses_per_deg = [1341.25, 1341.25, 1150.5, 873.4, 873.4, 532.7]\nexternal_pulses = [1000]\n").unwrap();
+    let pulses = setup.workcell().controller().pulses.clone().unwrap();
+    assert_eq!(pulses.per_deg, PULSES_PER_DEG);
+    assert_eq!(pulses.external, vec![PULSES_PER_MM]);
+    // Without external_pulses the track is written in mm.
+    let setup = read("pulses_per_deg = [1000, 1000, 1000, 1000, 1000, 1000]\n").unwrap();
+    assert!(setup
+        .workcell()
+        .controller()
+        .pulses
+        .as_ref()
+        .unwrap()
+        .external
+        .is_empty());
+    let six = "pulses_per_deg = [1000, 1000, 1000, 1000, 1000, 1000]\n";
+    for (controller, field, words) in [
+        (
+            format!("{six}external_pulses = [1000, 1000]\n"),
+            "cell.toml: controller.external_pulses",
+            "2 numbers for 1 external axes",
+        ),
+        (
+            format!("{six}external_pulses = [nan]\n"),
+            "cell.toml: controller.external_pulses",
+            "NaN is outside [1e-6, 1e9] pulses per deg or mm",
+        ),
+        (
+            "pulses_per_deg = [1000, 1000, -1000, 1000, 1000, 1000]\n".into(),
+            "cell.toml: controller.pulses_per_deg[3]",
+            "-1000 is outside",
+        ),
+        (
+            "pulses_per_deg = [1000, 1000, 1000, 1000, 1000, 2e9]\n".into(),
+            "cell.toml: controller.pulses_per_deg[6]",
+            "is outside",
+        ),
+        (
+            "external_pulses = [1000]\n".into(),
+            "cell.toml: controller.external_pulses",
+            "without pulses_per_deg",
+        ),
+    ] {
+        match read(&controller) {
+            Err(stiffid::Error::InvalidField { field: f, message }) => {
+                assert_eq!(f, field, "{controller}: {message}");
+                assert!(message.contains(words), "{controller}: {message}");
+            }
+            other => panic!("{controller}: {other:?}"),
+        }
+    }
+}

@@ -9,7 +9,9 @@
 //! group (the positioner's, `EC00000`) are written in pulses with `external_pulses`, else in
 //! `///ANGLE` form (mm, deg).
 
-use crate::program::generate::{number, zyx_deg, Move, Part, Plan, Target, Targets, RAPID_PERCENT};
+use crate::program::generate::{
+    number, v, zyx_deg, Move, Part, Plan, Target, Targets, RAPID_PERCENT,
+};
 use crate::program::{whole_pulses, Generator};
 use std::fmt::Write;
 use stiffid_core::robot::external::Role;
@@ -178,7 +180,7 @@ fn external(
         let values: Vec<String> = (range.clone())
             .map(|i| match in_pulses {
                 true => whole_pulses(t.external[i], pulses.external[i]).to_string(),
-                false => crate::program::generate::v(t.external[i]),
+                false => v(t.external[i]),
             })
             .collect();
         let _ = writeln!(s, "{prefix}{k:05}={}", values.join(","));
