@@ -401,28 +401,10 @@ where
     Ok(super::Controller {
         kinematics,
         robot,
-        pulses: pulses(c.pulses_per_deg, c.external_pulses).map_err(|e| in_file(e, source_name))?,
+        pulses: super::Pulses::read(c.pulses_per_deg, c.external_pulses)
+            .map_err(|e| in_file(e, source_name))?,
         ..Default::default()
     })
-}
-
-/// `[controller] pulses_per_deg` and `external_pulses` (their ranges and counts are checked
-/// with the robot's external axes, [`super::Pulses::check`]).
-///
-/// # Errors
-/// [`Error::InvalidField`] (`controller.external_pulses`) given without `pulses_per_deg`.
-fn pulses(per_deg: Option<[f64; 6]>, external: Option<Vec<f64>>) -> Result<Option<super::Pulses>> {
-    match (per_deg, external) {
-        (None, None) => Ok(None),
-        (None, Some(_)) => Err(Error::InvalidField {
-            field: "controller.external_pulses".into(),
-            message: "given without pulses_per_deg: a program in pulses needs the robot's six axes' pulses per degree too (pulses_per_deg = [S, L, U, R, B, T])".into(),
-        }),
-        (Some(per_deg), external) => Ok(Some(super::Pulses {
-            per_deg,
-            external: external.unwrap_or_default(),
-        })),
-    }
 }
 
 fn check_package_paths(paths: &[String]) -> Result<()> {

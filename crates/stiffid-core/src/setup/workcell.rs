@@ -81,6 +81,29 @@ pub struct Pulses {
 }
 
 impl Pulses {
+    /// The setup file's `[controller] pulses_per_deg` and `external_pulses` (their ranges and
+    /// counts are checked with the robot's external axes: [`Pulses::check`]).
+    ///
+    /// # Errors
+    /// [`crate::Error::InvalidField`] (`controller.external_pulses`) given without
+    /// `pulses_per_deg`.
+    pub(super) fn read(
+        per_deg: Option<[f64; 6]>,
+        external: Option<Vec<f64>>,
+    ) -> crate::Result<Option<Self>> {
+        match (per_deg, external) {
+            (None, None) => Ok(None),
+            (None, Some(_)) => Err(crate::Error::InvalidField {
+                field: "controller.external_pulses".into(),
+                message: "given without pulses_per_deg: a program in pulses needs the robot's six axes' pulses per degree too (pulses_per_deg = [S, L, U, R, B, T])".into(),
+            }),
+            (Some(per_deg), external) => Ok(Some(Self {
+                per_deg,
+                external: external.unwrap_or_default(),
+            })),
+        }
+    }
+
     /// Checks every number against [`crate::common::limits::PULSES`] and the external count
     /// against the cell's `external` axes (none, or one per axis).
     ///

@@ -545,8 +545,16 @@ pub fn check_payload(dialect: Dialect, targets: Targets, tool: &Tool) -> Result<
 pub fn check_pulses(dialect: Dialect, pulses: Option<&Pulses>) -> Result<()> {
     let needs = (dialect.controller().generator()).is_some_and(|g| g.needs_pulses());
     match needs && pulses.is_none() {
-        true => Err(super::inform::generate::missing_pulses()),
+        true => Err(missing_pulses()),
         false => Ok(()),
+    }
+}
+
+/// The error of a program in pulses (an INFORM job) written without the controller's pulses.
+pub(crate) fn missing_pulses() -> Error {
+    Error::InvalidField {
+        field: "controller.pulses_per_deg".into(),
+        message: "missing: an INFORM job states its positions in encoder pulses, and how many make a degree of each axis is the controller's (its axis parameters): give them in the setup, [controller] pulses_per_deg = [S, L, U, R, B, T] (and external_pulses = [..] per external axis, or the external axes are written in mm and deg)".into(),
     }
 }
 
@@ -557,6 +565,33 @@ pub fn written_targets(dialect: Dialect, targets: Targets) -> Targets {
         true => Targets::Joint,
         false => targets,
     }
+}
+
+/// A feed (m/s) as a language states it in its own units: `speed` gives the text and whether it
+/// is exact (`None` below the slowest it states, `slowest`), a rounded feed adds a warning (once)
+/// that it has no `units`; `line` is the target's 1-based index in the program.
+///
+/// # Errors
+/// [`Error::Program`] at `line` for a feed below the slowest.
+pub(crate) fn stated_feed(
+    feed: f64,
+    line: usize,
+    speed: fn(f64) -> Option<(String, bool)>,
+    (slowest, units): (&str, &str),
+    warnings: &mut Vec<String>,
+) -> Result<String> {
+    let (text, exact) = speed(feed).ok_or_else(|| Error::Program {
+        line: line as u64,
+        message: format!("a feed of {} mm/min is below {slowest}", number(feed * 6e4)),
+    })?;
+    let w = format!(
+        "a feed of {} mm/min has no {units}: written as {text}",
+        number(feed * 6e4)
+    );
+    if !exact && !warnings.contains(&w) {
+        warnings.push(w);
+    }
+    Ok(text)
 }
 
 /// `x` with [`DECIMALS`] decimals, a negative zero without its sign.

@@ -5,6 +5,7 @@ use crate::program::{parse, Dialect};
 use nalgebra::{Isometry3, Vector3, Vector6};
 use stiffid_core::robot::external::{ExternalAxes, ExternalAxis};
 use stiffid_core::robot::presets;
+use stiffid_core::Error;
 
 /// Pulses per degree that are not whole (S, L, U, R, B, T) and per mm of a track.
 fn pulses(external: Vec<f64>) -> Pulses {

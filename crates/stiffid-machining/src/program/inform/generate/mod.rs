@@ -10,13 +10,14 @@
 //! `///ANGLE` form (mm, deg).
 
 use crate::program::generate::{
-    number, v, zyx_deg, Move, Part, Plan, Target, Targets, RAPID_PERCENT,
+    missing_pulses, number, stated_feed, v, zyx_deg, Move, Part, Plan, Target, Targets,
+    RAPID_PERCENT,
 };
 use crate::program::{whole_pulses, Generator};
 use std::fmt::Write;
 use stiffid_core::robot::external::Role;
 use stiffid_core::setup::Pulses;
-use stiffid_core::{Error, Result};
+use stiffid_core::Result;
 
 /// The tool file the moves use (`///TOOL 1`), whose values the job's comments state.
 pub const TOOL: u32 = 1;
@@ -28,34 +29,6 @@ pub const MAX_POSITIONS: usize = 100_000;
 /// A path speed's resolution, mm/s: `V=` states tenths of a mm/s.
 const SPEED_STEP_MM_S: f64 = 0.1;
 
-/// The main job's comments of the tool file [`TOOL`] it moves with: the tool frame from the
-/// controller's flange (X, Y, Z mm; Rx, Ry, Rz deg with `R = Rz Ry Rx`) and, when the setup
-/// gives them, the mass (W, kg) and centre of gravity (Xg, Yg, Zg, mm); a comment line is at
-/// most 32 characters on the pendant.
-pub(crate) fn header(plan: &Plan) -> String {
-    let t = &plan.tool.frame;
-    let p = t.translation.vector * 1e3;
-    let [rz, ry, rx] = zyx_deg(&t.rotation);
-    let mut s = format!("'set tool file {TOOL} to the tool:\n");
-    let mut values = vec![
-        ("X", p.x, "mm"),
-        ("Y", p.y, "mm"),
-        ("Z", p.z, "mm"),
-        ("Rx", rx, "deg"),
-        ("Ry", ry, "deg"),
-        ("Rz", rz, "deg"),
-    ];
-    if let Some((mass, c)) = plan.tool.payload {
-        let c = c * 1e3;
-        values.extend([("W", mass, "kg"), ("Xg", c.x, "mm"), ("Yg", c.y, "mm")]);
-        values.push(("Zg", c.z, "mm"));
-    }
-    for (name, value, unit) in values {
-        let _ = writeln!(s, "'{name} = {} {unit}", number(value));
-    }
-    s
-}
-
 /// The pulses of `plan`, which a job needs.
 ///
 /// # Errors
@@ -64,59 +37,11 @@ pub(crate) fn pulses<'a>(plan: &Plan<'a>) -> Result<&'a Pulses> {
     plan.pulses.ok_or_else(missing_pulses)
 }
 
-/// The error of a job written without the controller's pulses.
-pub(crate) fn missing_pulses() -> Error {
-    Error::InvalidField {
-        field: "controller.pulses_per_deg".into(),
-        message: "missing: an INFORM job states its positions in encoder pulses, and how many make a degree of each axis is the controller's (its axis parameters): give them in the setup, [controller] pulses_per_deg = [S, L, U, R, B, T] (and external_pulses = [..] per external axis, or the external axes are written in mm and deg)".into(),
-    }
-}
-
 /// A feed (m/s) as `V=` in tenths of a mm/s, whether exact; `None` below 0.1 mm/s.
 pub(crate) fn speed(feed: f64) -> Option<(String, bool)> {
     let steps = feed * 1e3 / SPEED_STEP_MM_S;
     let exact = (steps - steps.round()).abs() <= 1e-9 * steps.max(1.0);
     (steps.round() >= 1.0).then(|| (format!("V={:.1}", steps.round() * SPEED_STEP_MM_S), exact))
-}
-
-/// The moves (`//INST` lines after `NOP`, the `'stiffid:` comments first) and the positions
-/// (`//POS` lines) of one job, `//POS` between them.
-pub(crate) fn body(plan: &Plan, part: &Part, warnings: &mut Vec<String>) -> Result<String> {
-    let pulses = pulses(plan)?;
-    let mut inst = directives(pulses);
-    let n = part.targets.len();
-    let (base, station) = groups(plan);
-    for (k, m) in part.moves.iter().enumerate() {
-        let exact = part.last && k + 1 == n;
-        let external = |prefix: &str, has: bool| match has {
-            true => format!(" {prefix}{k:05}"),
-            false => String::new(),
-        };
-        let names = format!("C{k:05}{}{}", external("BC", base), external("EC", station));
-        let _ = match m {
-            Move::Rapid => writeln!(inst, "MOVJ {names} VJ={RAPID_PERCENT}.00 PL=0"),
-            Move::Feed(f) => {
-                let (v, is_exact) = speed(*f).ok_or_else(|| Error::Program {
-                    line: (part.first + k + 1) as u64,
-                    message: format!(
-                        "a feed of {} mm/min is below 0.1 mm/s, the slowest an INFORM job states",
-                        number(f * 6e4)
-                    ),
-                })?;
-                if !is_exact {
-                    let w = format!(
-                        "a feed of {} mm/min has no whole tenth of a mm/s: written as {v} (mm/s)",
-                        number(f * 6e4)
-                    );
-                    if !warnings.contains(&w) {
-                        warnings.push(w);
-                    }
-                }
-                writeln!(inst, "MOVL {names} {v} PL={}", u8::from(!exact))
-            }
-        };
-    }
-    Ok(format!("{inst}//POS\n{}", positions(plan, part, pulses)))
 }
 
 /// The `'stiffid:` comments that convert the job's pulses (module docs of [`super`]).
@@ -188,42 +113,83 @@ fn external(
     s
 }
 
-/// The main job's calls of its sub-jobs (no position of its own).
-pub(crate) fn calls(subs: &[String]) -> String {
-    let calls: String = subs.iter().map(|n| format!("CALL JOB:{n}\n")).collect();
-    calls + "//POS\n///NPOS 0,0,0,0,0,0\n"
-}
-
-/// A whole `.jbi` file (CR LF line ends, as the controllers write them): `//POS` from the body,
-/// `//INST` with the motion group (the robot `RB1`, a base `BS1`, a station `ST1`), `NOP`, the
-/// header's and the body's lines, `END`.
-pub(crate) fn wrap(name: &str, header: &str, body: &str) -> String {
-    let (inst, pos) = body.split_once("//POS\n").unwrap_or((body, ""));
-    let mut group = String::from("RB1");
-    if pos.contains("\nBC00000=") {
-        group += ",BS1";
-    }
-    if pos.contains("\nEC00000=") {
-        group += ",ST1";
-    }
-    let text = format!(
-        "/JOB\n//NAME {name}\n//POS\n{pos}//INST\n///ATTR SC,RW\n///GROUP1 {group}\nNOP\n{header}{inst}END\n"
-    );
-    text.replace('\n', "\r\n")
-}
-
 impl Generator for super::Inform {
+    /// The main job's comments of the tool file [`TOOL`] it moves with: the tool frame from the
+    /// controller's flange (X, Y, Z mm; Rx, Ry, Rz deg with `R = Rz Ry Rx`) and, when the setup
+    /// gives them, the mass (W, kg) and centre of gravity (Xg, Yg, Zg, mm); a comment line is at
+    /// most 32 characters on the pendant.
     fn header(&self, plan: &Plan, _main: &str, _subs: &[String]) -> String {
-        header(plan)
+        let t = &plan.tool.frame;
+        let p = t.translation.vector * 1e3;
+        let [rz, ry, rx] = zyx_deg(&t.rotation);
+        let mut s = format!("'set tool file {TOOL} to the tool:\n");
+        let mut values = vec![
+            ("X", p.x, "mm"),
+            ("Y", p.y, "mm"),
+            ("Z", p.z, "mm"),
+            ("Rx", rx, "deg"),
+            ("Ry", ry, "deg"),
+            ("Rz", rz, "deg"),
+        ];
+        if let Some((mass, c)) = plan.tool.payload {
+            let c = c * 1e3;
+            values.extend([("W", mass, "kg"), ("Xg", c.x, "mm"), ("Yg", c.y, "mm")]);
+            values.push(("Zg", c.z, "mm"));
+        }
+        for (name, value, unit) in values {
+            let _ = writeln!(s, "'{name} = {} {unit}", number(value));
+        }
+        s
     }
+    /// The moves (`//INST` lines after `NOP`, the `'stiffid:` comments first) and the positions
+    /// (`//POS` lines) of one job, `//POS` between them.
     fn body(&self, plan: &Plan, part: &Part, warnings: &mut Vec<String>) -> Result<String> {
-        body(plan, part, warnings)
+        let pulses = pulses(plan)?;
+        let mut inst = directives(pulses);
+        let n = part.targets.len();
+        let (base, station) = groups(plan);
+        for (k, m) in part.moves.iter().enumerate() {
+            let exact = part.last && k + 1 == n;
+            let external = |prefix: &str, has: bool| match has {
+                true => format!(" {prefix}{k:05}"),
+                false => String::new(),
+            };
+            let names = format!("C{k:05}{}{}", external("BC", base), external("EC", station));
+            let _ = match m {
+                Move::Rapid => writeln!(inst, "MOVJ {names} VJ={RAPID_PERCENT}.00 PL=0"),
+                Move::Feed(f) => {
+                    let slowest = (
+                        "0.1 mm/s, the slowest an INFORM job states",
+                        "whole tenth of a mm/s",
+                    );
+                    let v = stated_feed(*f, part.first + k + 1, speed, slowest, warnings)?;
+                    writeln!(inst, "MOVL {names} {v} PL={}", u8::from(!exact))
+                }
+            };
+        }
+        Ok(format!("{inst}//POS\n{}", positions(plan, part, pulses)))
     }
+    /// The main job's calls of its sub-jobs (no position of its own).
     fn calls(&self, subs: &[String]) -> String {
-        calls(subs)
+        let calls: String = subs.iter().map(|n| format!("CALL JOB:{n}\n")).collect();
+        calls + "//POS\n///NPOS 0,0,0,0,0,0\n"
     }
+    /// A whole `.jbi` file (CR LF line ends, as the controllers write them): `//POS` from the body,
+    /// `//INST` with the motion group (the robot `RB1`, a base `BS1`, a station `ST1`), `NOP`, the
+    /// header's and the body's lines, `END`.
     fn wrap(&self, name: &str, header: &str, body: &str, _main: bool) -> String {
-        wrap(name, header, body)
+        let (inst, pos) = body.split_once("//POS\n").unwrap_or((body, ""));
+        let mut group = String::from("RB1");
+        if pos.contains("\nBC00000=") {
+            group += ",BS1";
+        }
+        if pos.contains("\nEC00000=") {
+            group += ",ST1";
+        }
+        let text = format!(
+            "/JOB\n//NAME {name}\n//POS\n{pos}//INST\n///ATTR SC,RW\n///GROUP1 {group}\nNOP\n{header}{inst}END\n"
+        );
+        text.replace('\n', "\r\n")
     }
     /// [`MAX_POSITIONS`] teaching positions.
     fn lines_per_file(&self) -> Option<usize> {
