@@ -85,9 +85,11 @@ use stiffid_machining::Language;
 /// (``(n, 3)``, base frame; ``-inf``/``inf`` for an unbounded end); ``document``: the document of
 /// ``stiffid compensate --json`` (its ``program`` with the segments' force and deflection before
 /// and after, for a program); with a program, ``program``: the compensated program's text, in
-/// the program's own language or, for G-code with ``output="krl"``, ``"rapid"`` or ``"ls"``, a
-/// robot program of the compensated targets (``targets="cartesian"``, the default: the compensated
-/// poses with their configuration, cutting moves linear; ``"joint"``: axis angles), named
+/// the program's own language or, for G-code with ``output="krl"``, ``"rapid"``, ``"ls"`` or
+/// ``"inform"``, a robot program of the compensated targets (``targets="cartesian"``, the
+/// default: the compensated poses with their configuration, cutting moves linear; ``"joint"``:
+/// axis angles; an INFORM job: axis angles in pulses, the setup's ``[controller]
+/// pulses_per_deg``), named
 /// ``program_name`` (default the program file's stem, upper case), its feeds refused above
 /// ``max_tcp_speed_mm_s``, split into sub-programs of at most ``moves_per_file`` moves
 /// (``subprograms``: their names and texts, in call order), names within ``name_length``

@@ -94,6 +94,33 @@ def test_compensate_a_program_equals_the_command(cli, tmp_path, output):
         stiffid.compensate(setup, stiffness=STIFFNESS, program=POCKET, process=PROCESS, output="cobol")
 
 
+def test_an_inform_job_in_pulses_equals_the_command(cli, tmp_path):
+    # The setup gives the controller's pulses; the job and its sub-jobs are the command's, byte
+    # for byte (CR LF line ends), their targets the compensated axis angles to half a pulse.
+    pulses = [1341.25, 1341.25, 1150.5, 873.4, 873.4, 532.7]
+    path = tmp_path / "yaskawa.toml"
+    path.write_text(SETUP.read_text() + f"\n[controller]\npulses_per_deg = {pulses}\n")
+    out = tmp_path / "WALL.jbi"
+    theirs = cli("compensate", "--setup", path, "--stiffness", STIFFNESS, "--program", POCKET, "--process",
+                 PROCESS, "--out", out, "--moves-per-file", "100", "--json")
+    setup = stiffid.Setup.from_file(path)
+    with pytest.warns(UserWarning, match="INFORM programs are written with joint targets"):
+        mine = stiffid.compensate(setup, stiffness=STIFFNESS, program=POCKET, process=PROCESS, output="inform",
+                                  program_name="wall", moves_per_file=100)
+    assert mine["program"] == out.read_bytes().decode()
+    assert "CALL JOB:WALL_04\r\n" in mine["program"]
+    positions = []
+    for name, text in mine["subprograms"].items():
+        assert (tmp_path / f"{name}.jbi").read_bytes().decode() == text
+        positions += [[int(v) for v in line.split("=")[1].split(",")]
+                      for line in text.split("\r\n") if line.startswith("C0")]
+    compensated = np.array([[p[f"qc{k}_deg"] for k in range(1, 7)] for p in theirs["points"]])
+    np.testing.assert_allclose(np.array(positions) / pulses, compensated, rtol=0, atol=0.5 / min(pulses) + 1e-6)
+    with pytest.raises(ValueError, match=r"controller.pulses_per_deg: missing"):
+        stiffid.compensate(stiffid.Setup.from_file(SETUP), stiffness=STIFFNESS, program=POCKET, process=PROCESS,
+                           output="inform")
+
+
 def test_program_options_equal_the_command(cli, tmp_path):
     setup = stiffid.Setup.from_file(SETUP)
     out = tmp_path / "WALL.ls"

@@ -57,14 +57,14 @@ pub struct Args {
     chord_tolerance_mm: f64,
     /// With --path: the CSV written, one row per path point, units in the header. With
     /// --program: the compensated program, in the program's own language, or for G-code a robot
-    /// program of the compensated targets (.src KRL, .mod RAPID, .ls FANUC LS) named after the
-    /// file (its stem, upper case), with its sub-programs beside it when it is split. Never one
-    /// of the inputs.
+    /// program of the compensated targets (.src KRL, .mod RAPID, .ls FANUC LS, .jbi Yaskawa
+    /// INFORM in pulses: the setup's [controller] pulses_per_deg) named after the file (its stem,
+    /// upper case), with its sub-programs beside it when it is split. Never one of the inputs.
     #[arg(long)]
     out: PathBuf,
     /// With a G-code --program written as a robot program: Cartesian targets (the compensated
     /// poses with their configuration, cutting moves linear) or joint targets (every move
-    /// axis-interpolated).
+    /// axis-interpolated; an INFORM job always).
     #[arg(long, value_parser = choice::<Targets>(), default_value = "cartesian", requires = "program")]
     targets: Targets,
     /// With a G-code --program written as a robot program: the robot's largest TCP speed, mm/s

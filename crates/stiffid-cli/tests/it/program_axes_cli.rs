@@ -4,7 +4,7 @@
 
 use crate::common;
 
-use common::{assert_success, assert_usage_error, example, stiffid, temp_dir, write_file};
+use common::{assert_success, assert_usage_error, example, json, stiffid, temp_dir, write_file};
 use std::path::Path;
 
 /// Two teaching positions near the milling example's posture, 1000 pulses per degree.
@@ -69,22 +69,125 @@ fn an_inform_job_is_written_back_in_pulses_under_its_new_name() {
             _ => assert_eq!(a, b),
         }
     }
-    // A G-code path is not generated as a job.
-    let o = stiffid(&[
-        "compensate",
-        "--setup",
-        &example("milling/fanuc-milling.toml"),
-        "--stiffness",
-        &example("milling/stiffness.json"),
-        "--program",
-        &example("milling/pocket.nc"),
-        "--process",
-        &example("milling/aluminium.toml"),
-        "--out",
-        dir.join("pocket.jbi").to_str().unwrap(),
-    ]);
-    assert_usage_error(&o, &["not generated"]);
-    assert!(!dir.join("pocket.jbi").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `compensate --program pocket.nc --out POCKET.jbi` with the command's arguments.
+fn pocket_as_job(setup: &Path, out: &Path, extra: &[&str]) -> std::process::Output {
+    let mut args: Vec<String> = vec![
+        "compensate".into(),
+        "--setup".into(),
+        setup.to_str().unwrap().into(),
+        "--stiffness".into(),
+        example("milling/stiffness.json"),
+        "--program".into(),
+        example("milling/pocket.nc"),
+        "--process".into(),
+        example("milling/aluminium.toml"),
+        "--out".into(),
+        out.to_str().unwrap().into(),
+    ];
+    args.extend(extra.iter().map(|a| a.to_string()));
+    stiffid(&args.iter().map(String::as_str).collect::<Vec<_>>())
+}
+
+/// A G-code pocket written as a Yaskawa job: in pulses at the setup's `[controller]
+/// pulses_per_deg`, each position the compensated axis angles to half a pulse, the pulses stated
+/// in the job; refused without the pulses or with the wrong count, nothing written.
+#[test]
+fn a_gcode_pocket_becomes_a_job_in_the_controllers_pulses() {
+    let dir = temp_dir("pocket-jbi");
+    let out = dir.join("POCKET.jbi");
+    let plain = Path::new(&example("milling/fanuc-milling.toml")).to_path_buf();
+    let o = pocket_as_job(&plain, &out, &[]);
+    assert_usage_error(
+        &o,
+        &["controller.pulses_per_deg", "missing", "[controller]"],
+    );
+    assert!(!out.exists());
+    let text = std::fs::read_to_string(&plain).unwrap();
+    let pulses = [1341.25, 1341.25, 1150.5, 873.4, 873.4, 532.7];
+    let written = std::cell::Cell::new(0);
+    let with = |controller: &str| {
+        written.set(written.get() + 1);
+        let name = format!("setup{}.toml", written.get());
+        write_file(
+            &dir,
+            &name,
+            &format!("{text}\n[controller]\n{controller}\n"),
+        )
+    };
+    for (bad, words) in [
+        (
+            "pulses_per_deg = [1000, 1000, 1000]",
+            &["pulses_per_deg = [1000, 1000, 1000]", "length 6"][..],
+        ),
+        (
+            "pulses_per_deg = [1000, 1000, 1000, 1000, 1000, 0]",
+            &["controller.pulses_per_deg[6]", "outside"][..],
+        ),
+        (
+            "pulses_per_deg = [1000, 1000, 1000, 1000, 1000, nan]",
+            &["controller.pulses_per_deg[6]"][..],
+        ),
+        (
+            "pulses_per_deg = [1000, 1000, 1000, 1000, 1000, 1000]\nexternal_pulses = [1000]",
+            &[
+                "controller.external_pulses",
+                "1 numbers for 0 external axes",
+            ][..],
+        ),
+        (
+            "external_pulses = [1000]",
+            &["controller.external_pulses", "without pulses_per_deg"][..],
+        ),
+    ] {
+        let o = pocket_as_job(&with(bad), &out, &[]);
+        assert_usage_error(&o, words);
+        assert!(!out.exists(), "{bad}");
+    }
+    let list: Vec<String> = pulses.iter().map(f64::to_string).collect();
+    let setup = with(&format!("pulses_per_deg = [{}]", list.join(", ")));
+    let o = pocket_as_job(&setup, &out, &["--json"]);
+    let document = json(&o);
+    let warned = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        warned.contains("targets = cartesian: INFORM programs are written with joint targets"),
+        "{warned}"
+    );
+    let job = std::fs::read_to_string(&out).unwrap();
+    assert!(job.starts_with("/JOB\r\n//NAME POCKET\r\n"), "{job}");
+    assert!(job.contains(&format!(
+        "'stiffid: pulses_per_deg = {}\r\n",
+        list.join(" ")
+    )));
+    let points = document["points"].as_array().unwrap();
+    let positions: Vec<Vec<f64>> = (job.split("\r\n"))
+        .filter_map(|l| l.strip_prefix('C').and_then(|l| l.split_once('=')))
+        .map(|(_, v)| v.split(',').map(|p| p.parse::<f64>().unwrap()).collect())
+        .collect();
+    assert_eq!(positions.len(), points.len());
+    assert_eq!(
+        job.matches("\r\nMOVL C").count() + job.matches("\r\nMOVJ C").count(),
+        points.len()
+    );
+    let mut largest: f64 = 0.0;
+    for (p, point) in positions.iter().zip(points) {
+        for k in 0..6 {
+            let want = point[format!("qc{}_deg", k + 1)].as_f64().unwrap();
+            let off = (p[k] / pulses[k] - want).abs() * pulses[k];
+            largest = largest.max(off);
+        }
+    }
+    // Half a pulse, and the document's own rounding of its angles.
+    assert!(largest <= 0.5 + 0.01, "{largest} pulses");
+    // `--targets joint` writes the same job, without the warning.
+    let joint = dir.join("JOINT.jbi");
+    let o = pocket_as_job(&setup, &joint, &["--targets", "joint"]);
+    assert_success(&o);
+    assert!(!String::from_utf8_lossy(&o.stderr).contains("joint targets (the compensated"));
+    let same = std::fs::read_to_string(&joint).unwrap();
+    assert_eq!(same.replace("//NAME JOINT", "//NAME POCKET"), job);
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

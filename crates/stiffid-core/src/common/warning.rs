@@ -59,8 +59,8 @@ pub enum WarningKind {
     /// The free configuration kept the path's own for want of another, or left it because it
     /// cannot take the path (`stiffid_machining::compensate::FreeConfiguration`).
     Configuration,
-    /// A file written leaves out part of the model: a URDF holds no joint error map
-    /// ([`crate::robot::ErrorMap`]).
+    /// A file written leaves out part of the model or of what was asked: a URDF holds no joint
+    /// error map ([`crate::robot::ErrorMap`]), an INFORM job no Cartesian target.
     LeftOut,
     /// A posture or path point lies outside the region the stiffness was identified from, or
     /// the stiffness file does not record that region ([`crate::model::region`]).

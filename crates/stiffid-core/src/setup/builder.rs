@@ -280,7 +280,8 @@ impl SetupBuilder {
     }
 
     /// The kinematics of the controller that runs a program (default: nominal, the setup's
-    /// robot).
+    /// robot) and its axes' pulses (checked by [`Self::build`] against the robot's external
+    /// axes: [`super::Pulses::check`]).
     pub fn with_controller(mut self, controller: Controller) -> Self {
         self.controller = controller;
         self
@@ -393,6 +394,9 @@ impl SetupBuilder {
         let reflectors = (self.workpiece.as_ref(), self.table_reflectors.as_slice());
         check_part_and_tool(reflectors, self.payload.as_ref())?;
         check_accuracy(self.frame_sd, self.mass_sd)?;
+        if let Some(pulses) = &self.controller.pulses {
+            pulses.check(self.robot.external().map_or(0, |a| a.len()))?;
+        }
         let tracker = self
             .tracker
             .map(|t| cell::checked_tracker(t, tool.measuring_points.len(), self.cell.as_ref()))

@@ -74,6 +74,9 @@ struct ControllerFile {
     kinematics: Option<String>,
     robot: Option<String>,
     robot_tip: Option<String>,
+    #[serde(default, deserialize_with = "crate::common::exact::option")]
+    pulses_per_deg: Option<[f64; 6]>,
+    external_pulses: Option<Vec<f64>>,
 }
 
 /// `[workpiece]`: where a G-code program's part frame sits in the robot base frame.
@@ -398,6 +401,8 @@ where
     Ok(super::Controller {
         kinematics,
         robot,
+        pulses: super::Pulses::read(c.pulses_per_deg, c.external_pulses)
+            .map_err(|e| in_file(e, source_name))?,
         ..Default::default()
     })
 }

@@ -94,7 +94,7 @@ pub use experiment::{Experiment, Noise, RopeLoad};
 pub use file::{
     builtin, builtin_names, builtin_text, parse, parse_with, RobotRequest, MAX_PACKAGE_PATHS,
 };
-pub use workcell::{CellConstraints, Controller, Kinematics, Workcell};
+pub use workcell::{CellConstraints, Controller, Kinematics, Pulses, Workcell};
 
 use crate::common::limits::JointBox;
 use crate::model::{Compliance, Model, Spring};

@@ -60,6 +60,70 @@ pub struct Controller {
     /// the controller's flange frame: the setup's `[robot_flange]` adapter, the identity without
     /// one. Lengths in m.
     pub adapter: Isometry3<f64>,
+    /// `[controller] pulses_per_deg` and `external_pulses`: the encoder pulses of the
+    /// controller's axes, for a program written in pulses (a Yaskawa INFORM job); `None` when
+    /// the setup does not give them.
+    pub pulses: Option<Pulses>,
+}
+
+/// How many encoder pulses make a unit of each axis on the controller (its axis parameters): a
+/// program in pulses (a Yaskawa INFORM job's `///PULSE` positions) writes an axis value as the
+/// nearest whole number of its pulses. Each number within [`crate::common::limits::PULSES`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Pulses {
+    /// Pulses per degree of the robot's six axes (S, L, U, R, B, T), in the order of its
+    /// axis angles.
+    pub per_deg: [f64; 6],
+    /// Pulses per mm of a linear external axis and per degree of a rotary one, one per external
+    /// axis in the cell's order (the carrier's axes, then the positioner's); empty: the
+    /// external axes are written as decimals (mm, deg).
+    pub external: Vec<f64>,
+}
+
+impl Pulses {
+    /// The setup file's `[controller] pulses_per_deg` and `external_pulses` (their ranges and
+    /// counts are checked with the robot's external axes: [`Pulses::check`]).
+    ///
+    /// # Errors
+    /// [`crate::Error::InvalidField`] (`controller.external_pulses`) given without
+    /// `pulses_per_deg`.
+    pub(super) fn read(
+        per_deg: Option<[f64; 6]>,
+        external: Option<Vec<f64>>,
+    ) -> crate::Result<Option<Self>> {
+        match (per_deg, external) {
+            (None, None) => Ok(None),
+            (None, Some(_)) => Err(crate::Error::InvalidField {
+                field: "controller.external_pulses".into(),
+                message: "given without pulses_per_deg: a program in pulses needs the robot's six axes' pulses per degree too (pulses_per_deg = [S, L, U, R, B, T])".into(),
+            }),
+            (Some(per_deg), external) => Ok(Some(Self {
+                per_deg,
+                external: external.unwrap_or_default(),
+            })),
+        }
+    }
+
+    /// Checks every number against [`crate::common::limits::PULSES`] and the external count
+    /// against the cell's `external` axes (none, or one per axis).
+    ///
+    /// # Errors
+    /// [`crate::Error::InvalidField`] naming `controller.pulses_per_deg[i]` or
+    /// `controller.external_pulses[i]` (a value outside the range or not finite), or
+    /// `controller.external_pulses` (another count than the cell's axes).
+    pub fn check(&self, external: usize) -> crate::Result<()> {
+        use crate::common::limits::{check, PULSES};
+        check("controller.pulses_per_deg", &self.per_deg, &PULSES)?;
+        check("controller.external_pulses", &self.external, &PULSES)?;
+        match self.external.len() {
+            0 => Ok(()),
+            n if n == external => Ok(()),
+            n => Err(crate::Error::InvalidField {
+                field: "controller.external_pulses".into(),
+                message: format!("{n} numbers for {external} external axes: expected one per external axis ([[external_axis]]), in the cell's order (the carrier's axes, then the positioner's), or none (the external axes written in mm and deg)"),
+            }),
+        }
+    }
 }
 
 /// Constraints of a real cell on the postures a search may choose.

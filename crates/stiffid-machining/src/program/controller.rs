@@ -118,7 +118,7 @@ pub trait Controller: Sync {
     fn motion_lines(&self, text: &str) -> Vec<u64>;
 
     /// What writes new programs in the language; `None`: programs are read and written back
-    /// compensated, never generated.
+    /// compensated, never generated (every language stiffid reads is generated today).
     fn generator(&self) -> Option<&'static dyn Generator>;
 }
 
@@ -142,6 +142,16 @@ pub trait Generator: Sync {
     fn routine_prefix(&self) -> &'static str;
     /// Whether a program with `targets` states the tool's mass and centre of mass.
     fn needs_mass(&self, targets: Targets) -> bool;
+    /// Whether a Cartesian target is written as a pose; `false`: every target is written as its
+    /// axis angles, whatever [`super::generate::Targets`] asks (INFORM's pulses).
+    fn writes_cartesian(&self) -> bool {
+        true
+    }
+    /// Whether a program states its axes in encoder pulses, which the setup must give
+    /// (`[controller] pulses_per_deg`).
+    fn needs_pulses(&self) -> bool {
+        false
+    }
     /// The most external axes of `role` a program holds.
     fn most_external(&self, role: Role) -> usize;
     /// Where a program writes the external axes of `role`, for messages (KRL `E1..E6`).

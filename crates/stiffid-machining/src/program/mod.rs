@@ -368,7 +368,7 @@ impl JointProgram {
     /// [`DECIMALS`] decimals, or a whole number of pulses (INFORM's pulse form).
     fn number(&self, k: usize, value: f64) -> String {
         match self.pulses.get(k).copied().flatten() {
-            Some(per_unit) => format!("{}", (value * per_unit).round() as i64),
+            Some(per_unit) => whole_pulses(value, per_unit).to_string(),
             None => format!("{value:.DECIMALS$}"),
         }
     }
@@ -380,6 +380,12 @@ impl JointTarget {
         let e = self.external.iter().map(|v| v.unwrap_or(0.0));
         self.q_deg.iter().copied().chain(e).collect()
     }
+}
+
+/// A value (deg or mm) as the nearest whole number of pulses at `per_unit` pulses per unit
+/// (INFORM's pulse form): exact to half a pulse.
+pub(crate) fn whole_pulses(value: f64, per_unit: f64) -> i64 {
+    (value * per_unit).round() as i64
 }
 
 /// The error at `line`.

@@ -291,7 +291,7 @@ def compensate(
     *,
     program: Optional[Union[str, os.PathLike[str]]] = None,
     process: Optional[Union[str, os.PathLike[str]]] = None,
-    output: Optional[Literal["gcode", "krl", "rapid", "ls"]] = None,
+    output: Optional[Literal["gcode", "krl", "rapid", "ls", "inform"]] = None,
     chord_tolerance_mm: float = 0.01,
     frame: Literal["base", "tool"] = "base",
     q0_deg: Optional[ArrayLike] = None,

@@ -7,8 +7,8 @@
 //! track, the nominal arm): its joint targets (the compensated angles at each point's `U`) and
 //! its Cartesian targets (the G-code's points, run by the controller's inverse kinematics, the
 //! orientation as programmed); and written as robot programs with the track's values (KRL `E1`,
-//! RAPID `eax_a`, LS group 1's `E1`), joint and Cartesian targets, for the nominal controller and
-//! for one running the calibrated model.
+//! RAPID `eax_a`, LS group 1's `E1`, INFORM's base axis `BC` in pulses), joint and Cartesian
+//! targets, for the nominal controller and for one running the calibrated model.
 
 use crate::campaign_paths::{identified, print, tracker};
 use crate::true_cell::{readings, readings_with, stations, track_case, true_tcp, NOISE};
@@ -20,16 +20,38 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use stiffid::machining::compensate::Compensated;
 use stiffid::machining::program::cartesian::Frame;
-use stiffid::machining::program::generate::Targets;
+use stiffid::machining::program::generate::{written_targets, Targets};
 use stiffid::machining::program::Dialect;
 use stiffid::machining::Language;
 use stiffid::metrology::calibration::gravity::Gravity;
 use stiffid::robot::ik;
-use stiffid::setup::{Controller, Kinematics};
+use stiffid::setup::{Controller, Kinematics, Pulses};
 use stiffid::{Robot, Setup};
 
 /// The station the part is milled at, m.
 const STATION: f64 = 3.0;
+
+/// A Yaskawa controller's pulses per degree of the six axes (S, L, U, R, B, T), not whole.
+const PULSES_PER_DEG: [f64; 6] = [1341.25, 1341.25, 1150.5, 873.4, 873.4, 532.7];
+
+/// Its pulses per mm of the track.
+const PULSES_PER_MM: f64 = 1000.0;
+
+/// `setup` with the controller's pulses (`[controller] pulses_per_deg`, `external_pulses`).
+fn with_pulses(setup: &Setup) -> Setup {
+    let controller = Controller {
+        pulses: Some(Pulses {
+            per_deg: PULSES_PER_DEG,
+            external: vec![PULSES_PER_MM],
+        }),
+        ..setup.workcell().controller().clone()
+    };
+    setup
+        .to_builder()
+        .with_controller(controller)
+        .build()
+        .unwrap()
+}
 
 /// [`rectangle`] with the track driven by `U` (mm): 3000 mm at the start, then 4 mm per mm of
 /// `X`, so that the track moves while the tool mills.
@@ -74,17 +96,18 @@ fn controller(
 }
 
 /// The true cell's TCP error (m) at every compensated point `results` commanded to `qs` with the
-/// track at `s`, the targets registered through the tracker at `frame`.
+/// track at `s` (as compensated to `track`, m), the targets registered through the tracker at
+/// `frame`.
 fn errors(
     truth: &Truth,
     frame: &Isometry3<f64>,
     results: &[Compensated],
-    commanded: &[(Vector6<f64>, f64)],
+    (commanded, track): (&[(Vector6<f64>, f64)], f64),
 ) -> Row {
     assert_eq!(results.len(), commanded.len());
     let e: Vec<f64> = (results.iter().zip(commanded))
         .map(|(r, (q, s))| {
-            assert!((r.external.as_slice()[0] - s).abs() < 1e-9, "{s}");
+            assert!((r.external.as_slice()[0] - s).abs() < track, "{s}");
             let want = frame.inverse() * Point3::from(r.pose.translation.vector);
             (true_tcp(truth, *s, q, &r.wrench) - want.coords).norm()
         })
@@ -185,7 +208,7 @@ fn a_track_cell_campaign_with_external_values_lands_on_the_true_cell() {
     let joint: Vec<(Vector6<f64>, f64)> = (results.iter())
         .map(|r| (r.q_compensated, r.external.as_slice()[0]))
         .collect();
-    let joint = errors(&truth, &frame, &results, &joint);
+    let joint = errors(&truth, &frame, &results, (&joint, 1e-9));
     let g = stiffid::machining::gcode::parse(&text, 1e-5).unwrap();
     assert_eq!(g.external.0, vec!['U']);
     assert_eq!(g.points.len(), results.len());
@@ -199,7 +222,7 @@ fn a_track_cell_campaign_with_external_values_lands_on_the_true_cell() {
             (previous, s)
         })
         .collect();
-    let gcode_row = errors(&truth, &frame, &results, &commanded);
+    let gcode_row = errors(&truth, &frame, &results, (&commanded, 1e-9));
     // The nominal controller alone: the rigid targets on its straight track.
     let mut previous = results[0].q;
     let alone: Vec<(Vector6<f64>, f64)> = (results.iter())
@@ -209,7 +232,7 @@ fn a_track_cell_campaign_with_external_values_lands_on_the_true_cell() {
             (previous, s)
         })
         .collect();
-    let alone = errors(&truth, &frame, &results, &alone);
+    let alone = errors(&truth, &frame, &results, (&alone, 1e-9));
     let std: Vec<f64> = results
         .iter()
         .filter_map(|r| r.translation_norm_std)
@@ -259,10 +282,11 @@ fn read_back(text: &str, dialect: Dialect) -> Vec<ReadBack> {
         .collect()
 }
 
-/// The track cell's campaign written as KRL, RAPID and LS programs with the track's values in
-/// each language's form, joint and Cartesian targets, for the nominal controller and for one
-/// running the calibrated model (its track's error motions included): read back, every target
-/// gives the compensated angles (joint targets, to 1e-8 deg) or, run by the controller's inverse
+/// The track cell's campaign written as KRL, RAPID, LS and INFORM programs with the track's
+/// values in each language's form (INFORM: a base axis in pulses, joint targets whatever is
+/// asked), joint and Cartesian targets, for the nominal controller and for one running the
+/// calibrated model (its track's error motions included): read back, every target gives the
+/// compensated angles (joint targets, to 1e-8 deg; INFORM to half a pulse) or, run by the controller's inverse
 /// kinematics on its own track, the compensated angles (to 1e-6 rad), the track's value as
 /// compensated; on the true cell each program lands within 3x the held-out calibration error
 /// plus the predicted deflection's standard deviation, and within 0.05 mm.
@@ -289,31 +313,40 @@ fn robot_programs_for_the_track_cell_land_on_the_true_cell() {
         ("nominal", &c.setup, &c.nominal),
         ("calibrated", &calibrated, c.setup.robot()),
     ] {
-        for dialect in [Dialect::Krl, Dialect::Rapid, Dialect::FanucLs] {
+        for dialect in Dialect::ALL {
             for targets in [Targets::Joint, Targets::Cartesian] {
                 let setup = match (dialect, targets) {
                     (Dialect::Rapid, Targets::Cartesian) => {
                         setup.to_builder().with_payload(payload).build().unwrap()
                     }
+                    (Dialect::Inform, _) => with_pulses(setup),
                     _ => setup.clone(),
+                };
+                // INFORM writes whole pulses: its values are exact to half a pulse.
+                let (per_deg, per_mm) = match dialect {
+                    Dialect::Inform => (
+                        PULSES_PER_DEG.iter().copied().fold(f64::MAX, f64::min),
+                        PULSES_PER_MM,
+                    ),
+                    _ => (f64::INFINITY, f64::INFINITY),
                 };
                 let output = (Language::Robot(dialect), targets);
                 let (text, results) = written_from(&setup, &c.compliance, (&c.q0, &gcode), output);
                 let read = read_back(&text, dialect);
                 assert_eq!(read.len(), results.len());
                 let mut previous = results[0].q;
+                let track = 0.5e-3 / per_mm + 1e-9;
                 let commanded: Vec<(Vector6<f64>, f64)> = (read.iter().zip(&results))
                     .map(|((q, pose, s), r)| {
-                        assert!((s - r.external.as_slice()[0]).abs() < 1e-9, "{s}");
+                        assert!((s - r.external.as_slice()[0]).abs() < track, "{s}");
                         let q = match (q, pose) {
                             (Some(q), _) => *q,
                             (None, Some(pose)) => controller(model, &tcp, pose, *s, &previous),
                             _ => unreachable!(),
                         };
-                        let tolerance = if targets == Targets::Joint {
-                            1e-9
-                        } else {
-                            1e-6
+                        let tolerance = match written_targets(dialect, targets) {
+                            Targets::Joint => 1e-9 + (0.5 / per_deg).to_radians(),
+                            Targets::Cartesian => 1e-6,
                         };
                         assert!(
                             (q - r.q_compensated).amax() < tolerance,
@@ -324,7 +357,7 @@ fn robot_programs_for_the_track_cell_land_on_the_true_cell() {
                         (q, *s)
                     })
                     .collect();
-                let row = errors(&c.truth, &c.frame, &results, &commanded);
+                let row = errors(&c.truth, &c.frame, &results, (&commanded, track));
                 let std: Vec<f64> = results
                     .iter()
                     .filter_map(|r| r.translation_norm_std)
@@ -335,6 +368,71 @@ fn robot_programs_for_the_track_cell_land_on_the_true_cell() {
                 assert!(row.mean <= 3.0 * expected, "{what}: {row:?} vs {expected}");
                 assert!(row.mean <= 0.05e-3, "{what}: {row:?}");
             }
+        }
+    }
+}
+
+/// `[controller] pulses_per_deg` and `external_pulses` on the track cell: read as given, the
+/// external count the cell's (one track), every number within 1e-6 to 1e9; anything else refused
+/// naming the file and the field, never a job in wrong pulses.
+#[test]
+fn the_controllers_pulses_are_read_and_checked_against_the_cell() {
+    let robot = true_robot::dh_robot_text()
+        + "\n[[external_axis]]\nname = \"track\"\nrole = \"carrier\"\ndirection = [1.0, 0.0, 0.0]\nlimits_mm = [0.0, 6000.0]\n";
+    let read = |controller: &str| {
+        let text = true_robot::setup_text("robot.toml", "") + "\n[controller]\n" + controller;
+        stiffid::setup::parse(&text, "cell.toml", |_, _| {
+            stiffid::robot::file::parse(&robot, "robot.toml")
+        })
+    };
+    let setup = read("pulses_per_deg = [1341.25, 1341.25, 1150.5, 873.4, 873.4, 532.7]\nexternal_pulses = [1000]\n").unwrap();
+    let pulses = setup.workcell().controller().pulses.clone().unwrap();
+    assert_eq!(pulses.per_deg, PULSES_PER_DEG);
+    assert_eq!(pulses.external, vec![PULSES_PER_MM]);
+    // Without external_pulses the track is written in mm.
+    let setup = read("pulses_per_deg = [1000, 1000, 1000, 1000, 1000, 1000]\n").unwrap();
+    assert!(setup
+        .workcell()
+        .controller()
+        .pulses
+        .as_ref()
+        .unwrap()
+        .external
+        .is_empty());
+    let six = "pulses_per_deg = [1000, 1000, 1000, 1000, 1000, 1000]\n";
+    for (controller, field, words) in [
+        (
+            format!("{six}external_pulses = [1000, 1000]\n"),
+            "cell.toml: controller.external_pulses",
+            "2 numbers for 1 external axes",
+        ),
+        (
+            format!("{six}external_pulses = [nan]\n"),
+            "cell.toml: controller.external_pulses",
+            "NaN is outside [1e-6, 1e9] pulses per deg or mm",
+        ),
+        (
+            "pulses_per_deg = [1000, 1000, -1000, 1000, 1000, 1000]\n".into(),
+            "cell.toml: controller.pulses_per_deg[3]",
+            "-1000 is outside",
+        ),
+        (
+            "pulses_per_deg = [1000, 1000, 1000, 1000, 1000, 2e9]\n".into(),
+            "cell.toml: controller.pulses_per_deg[6]",
+            "is outside",
+        ),
+        (
+            "external_pulses = [1000]\n".into(),
+            "cell.toml: controller.external_pulses",
+            "without pulses_per_deg",
+        ),
+    ] {
+        match read(&controller) {
+            Err(stiffid::Error::InvalidField { field: f, message }) => {
+                assert_eq!(f, field, "{controller}: {message}");
+                assert!(message.contains(words), "{controller}: {message}");
+            }
+            other => panic!("{controller}: {other:?}"),
         }
     }
 }

@@ -77,6 +77,7 @@ fn written(
         world: Isometry3::identity(),
         external: None,
         approximation: 1e-5,
+        pulses: None,
         settings: Settings::default(),
     };
     let text = generate(&plan).unwrap().files.remove(0).text;
@@ -180,6 +181,7 @@ fn the_configuration_data_choose_the_solution_of_a_pose() {
                 world: Isometry3::identity(),
                 external: None,
                 approximation: 1e-5,
+                pulses: None,
                 settings: Settings::default(),
             };
             ((), generate(&plan).unwrap().files.remove(0).text)

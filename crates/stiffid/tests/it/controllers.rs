@@ -6,13 +6,14 @@
 use nalgebra::{Isometry3, Vector3, Vector6};
 use stiffid::machining::app::compensate::certify;
 use stiffid::machining::program::generate::{
-    check_name, default_name_length, generate, max_name_length, Move, Plan, Settings, Target,
-    Targets, Tool,
+    check_name, default_name_length, generate, max_name_length, written_targets, Move, Plan,
+    Settings, Target, Targets, Tool,
 };
 use stiffid::machining::program::{self, rename, Dialect};
 use stiffid::machining::Language;
 use stiffid::robot::configuration::Configuration;
 use stiffid::robot::external::{ExternalAxes, ExternalAxis};
+use stiffid::setup::Pulses;
 
 /// One controller and what its small program must give.
 struct Row {
@@ -85,8 +86,8 @@ fn rows() -> [Row; 4] {
             axis_3: ("=100,200,300,", "=100,200,350,"),
             renamed: Some("//NAME CUT_C\r\n"),
             bound: "'bound 0.0123 mm at 95%\r\nMOVJ C00000",
-            generates: false,
-            external: None,
+            generates: true,
+            external: Some("C00000=100,200,300,400,500,600\r\n///POSTYPE PULSE\r\n///PULSE\r\nBC00000=150000\r\n///POSTYPE PULSE\r\n///PULSE\r\nEC00000=4500\r\n"),
         },
     ]
 }
@@ -194,12 +195,21 @@ fn track_and_table() -> ExternalAxes {
     .unwrap()
 }
 
-/// A one-target plan in `dialect` with `targets` on the cell `axes`.
+/// A controller's 100 pulses per degree and per mm of every axis, the robot's and the cell's.
+fn pulses() -> Pulses {
+    Pulses {
+        per_deg: [100.0; 6],
+        external: vec![100.0; 2],
+    }
+}
+
+/// A one-target plan in `dialect` with `targets` on the cell `axes` (with the controller's
+/// `pulses`, which only INFORM reads).
 fn plan<'a>(
     dialect: Dialect,
     targets: Targets,
     target: &'a [Target],
-    axes: &'a ExternalAxes,
+    (axes, pulses): (&'a ExternalAxes, &'a Pulses),
 ) -> Plan<'a> {
     Plan {
         dialect,
@@ -214,6 +224,7 @@ fn plan<'a>(
         world: Isometry3::identity(),
         external: Some(axes),
         approximation: 1e-5,
+        pulses: Some(pulses),
         settings: Settings {
             targets,
             ..Settings::default()
@@ -232,9 +243,11 @@ fn each_generating_controller_writes_the_cells_external_axes_in_its_form() {
         arm: Configuration::of(&robot, &q),
         external: vec![1500.0, 45.0],
     }];
+    let pulses = pulses();
+    let cell = (&axes, &pulses);
     for row in rows() {
         let d = row.dialect;
-        let written = generate(&plan(d, Targets::Joint, &target, &axes));
+        let written = generate(&plan(d, Targets::Joint, &target, cell));
         let Some(form) = row.external else {
             assert!(written.is_err(), "{d:?}");
             continue;
@@ -246,18 +259,22 @@ fn each_generating_controller_writes_the_cells_external_axes_in_its_form() {
         assert_eq!(p.axes.len(), 2, "{d:?}: {:?}", p.axes);
         assert_eq!(p.targets[0].q_deg, [1.0, 2.0, 3.0, 4.0, 5.0, 6.0], "{d:?}");
         assert_eq!(p.targets[0].external, [Some(1500.0), Some(45.0)], "{d:?}");
-        // A Cartesian target on the positioner needs coordinated motion: refused naming it.
-        let e = generate(&plan(d, Targets::Cartesian, &target, &axes)).unwrap_err();
-        assert!(
-            e.to_string().contains("positioner axis table"),
-            "{d:?}: {e}"
-        );
+        // A Cartesian target on the positioner needs coordinated motion: refused naming it,
+        // where the language writes poses (INFORM writes the axis angles, the same job).
+        let cartesian = generate(&plan(d, Targets::Cartesian, &target, cell));
+        match written_targets(d, Targets::Cartesian) {
+            Targets::Cartesian => {
+                let e = cartesian.unwrap_err().to_string();
+                assert!(e.contains("positioner axis table"), "{d:?}: {e}");
+            }
+            Targets::Joint => assert_eq!(&cartesian.unwrap().files[0].text, text, "{d:?}"),
+        }
         // A target without the cell's values: refused.
         let bare = [Target {
             external: vec![1500.0],
             ..target[0].clone()
         }];
-        let e = generate(&plan(d, Targets::Joint, &bare, &axes)).unwrap_err();
+        let e = generate(&plan(d, Targets::Joint, &bare, cell)).unwrap_err();
         assert!(
             e.to_string()
                 .contains("expected 2 finite external axis values"),

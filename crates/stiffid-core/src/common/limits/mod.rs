@@ -56,6 +56,10 @@ impl std::fmt::Display for Range {
     }
 }
 
+/// Encoder pulses per degree (or per mm) of a controller's axis (`[controller] pulses_per_deg`,
+/// `external_pulses`; an INFORM job's `'stiffid:` comments): from 1e-6 to 1e9.
+pub const PULSES: Range = Range::new(1e-6, 1e9, "pulses per deg or mm");
+
 /// An axis's largest speed in a robot, setup or URDF file (`max_speed_deg_s`, `max_speed_mm_s`):
 /// above 0, at most 10 000 deg/s or mm/s ([`check_speeds`]).
 pub const AXIS_SPEED: Range = Range::new(0.0, 1e4, "deg/s or mm/s");

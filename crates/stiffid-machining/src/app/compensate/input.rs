@@ -42,6 +42,7 @@ pub(super) fn read_checked(
     output::check_settings(language, output, settings)?;
     if let (Language::GCode, Language::Robot(d)) = (language, output) {
         generate::check_payload(d, settings.targets, &program_tool(setup))?;
+        generate::check_pulses(d, setup.workcell().controller().pulses.as_ref())?;
     }
     let program = read_program(name, text, language, *chord_tolerance)?;
     // A Cartesian program's targets as the controller moves to them (a copy only then).

@@ -66,7 +66,7 @@ pub(super) fn check_settings(
         ),
         (_, Language::GCode) => (
             &[Targets, MovesPerFile, MaxTcpSpeedMmS, NameLength],
-            "only for a G-code program written as a robot program (--out X.ls, .src or .mod; Python output=): G-code carries positions, its own feeds and no program name",
+            "only for a G-code program written as a robot program (--out X.ls, .src, .mod or .jbi; Python output=): G-code carries positions, its own feeds and no program name",
         ),
     };
     match given.iter().find(|(g, o)| *g && unused.contains(o)) {
@@ -87,7 +87,7 @@ pub(super) fn check_lean(options: &Options, output: Language) -> Result<()> {
     match (options.free.lead_tilt, output) {
         (Some(_), Language::GCode) => Err(Error::InvalidOption {
             option: stiffid_core::JobOption::LeadTilt,
-            message: "a program written as G-code carries the tool's positions only (a 3-axis program has no words for its axis), so the leaned postures would be lost: write it as a robot program (--out X.ls, .src or .mod; Python output=), whose targets carry them".into(),
+            message: "a program written as G-code carries the tool's positions only (a 3-axis program has no words for its axis), so the leaned postures would be lost: write it as a robot program (--out X.ls, .src, .mod or .jbi; Python output=), whose targets carry them".into(),
         }),
         _ => Ok(()),
     }
@@ -103,7 +103,7 @@ pub(super) fn check_tool_axis(options: &Options, output: Language) -> Result<()>
     match (&options.free.tool_rotation, output) {
         (Some(_), Language::GCode) => Err(Error::InvalidOption {
             option: stiffid_core::JobOption::ToolRotationRange,
-            message: "a program written as G-code carries the tool's positions only (a 3-axis program has no word for the rotation about the tool's axis), so the rotation chosen would be lost: write it as a robot program (--out X.ls, .src or .mod; Python output=), whose targets carry it".into(),
+            message: "a program written as G-code carries the tool's positions only (a 3-axis program has no word for the rotation about the tool's axis), so the rotation chosen would be lost: write it as a robot program (--out X.ls, .src, .mod or .jbi; Python output=), whose targets carry it".into(),
         }),
         _ => Ok(()),
     }

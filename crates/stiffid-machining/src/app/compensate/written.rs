@@ -25,9 +25,16 @@ pub(super) fn generated(
 ) -> Result<(String, Vec<generate::File>, Vec<Warning>)> {
     let how = (name.as_str(), &settings, chord_tolerance);
     let written = write_robot_program(setup, dialect, compensated, points, how)?;
-    let warnings = (written.warnings.into_iter())
+    let mut warnings: Vec<Warning> = (written.warnings.into_iter())
         .map(|w| Warning::new(WarningKind::Feed, w))
         .collect();
+    if generate::written_targets(dialect, settings.targets) != settings.targets {
+        warnings.push(Warning::new(WarningKind::LeftOut, format!(
+            "targets = {}: {} programs are written with joint targets (the compensated axis angles in pulses; stiffid reads no rectangular position back), which hold in any kinematics; the controller interpolates the axes between them",
+            settings.targets.name(),
+            dialect.controller().key().to_ascii_uppercase()
+        )));
+    }
     let bounds: Vec<f64> = compensated.results.iter().map(|r| r.budget.bound).collect();
     let texts: Vec<String> = written.files.iter().map(|f| f.text.clone()).collect();
     let texts = certify::generated(dialect, &texts, &bounds, level);
@@ -104,7 +111,7 @@ fn write_robot_program(
     let moves = moves(points, settings.max_tcp_speed)?;
     let tool = setup.tool();
     // Joint targets are exact in any kinematics; Cartesian ones are the controller's.
-    let controller = match settings.targets {
+    let controller = match generate::written_targets(dialect, settings.targets) {
         generate::Targets::Joint => setup.robot(),
         generate::Targets::Cartesian => cell_controller(setup)?,
     };
@@ -129,6 +136,7 @@ fn write_robot_program(
         external: setup.robot().external(),
         world: setup.workcell().controller().world,
         approximation: chord_tolerance,
+        pulses: setup.workcell().controller().pulses.as_ref(),
         settings: *settings,
     };
     generate(&plan)

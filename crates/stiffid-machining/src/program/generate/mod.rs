@@ -29,24 +29,31 @@
 //! - FANUC LS (`.ls`): positions in user frame 0 (the world) with tool frame 1 (`UT : 1`), which
 //!   must hold the tool frame on the controller (an LS program cannot set it); the program states
 //!   its values in remarks.
+//! - Yaskawa INFORM (`.jbi`): joint targets only, in whole encoder pulses at the setup's
+//!   `[controller] pulses_per_deg` (stated in the job's `'stiffid:` comments; refused without
+//!   them), Cartesian targets written as their axis angles ([`written_targets`]); tool file 1
+//!   (`///TOOL 1`), whose values the job's comments state ([`super::inform::generate`]).
 //!
 //! ## Controller rules
 //! Every rule comes from the controller's manual (docs/reference.md lists the sources):
 //! - the program's name is an identifier of the language, not a reserved word, within
 //!   [`Settings::name_length`] (default: KRL 24, RAPID 32, LS 8 as on R-30iA controllers; at
-//!   most [`max_name_length`]: KRL 24, RAPID 32, LS 36);
+//!   most [`max_name_length`]: KRL 24, RAPID 32, LS 36, INFORM 32);
 //!   a generated program is called as its file is named, so the name is the file's stem;
 //! - motion is initialised before the first move: KRL `BAS(#INITMOV, 0)`, `$VEL`, `$ACC` and
-//!   `$APO`; RAPID `ConfJ \On`, `ConfL \On`; LS `UFRAME_NUM`, `UTOOL_NUM`;
+//!   `$APO`; RAPID `ConfJ \On`, `ConfL \On`; LS `UFRAME_NUM`, `UTOOL_NUM`; INFORM `NOP`;
 //! - intermediate cutting points are approximated within the chord tolerance (KRL `C_DIS` with
-//!   `$APO.CDIS`, RAPID a `zonedata` of that size, LS `CNT100`); the last point is exact (no
-//!   approximation, `fine`, `FINE`), as are the first point and rapid moves;
+//!   `$APO.CDIS`, RAPID a `zonedata` of that size, LS `CNT100`; INFORM `PL=1`, the controller's
+//!   smallest position level, whose distance its parameters set); the last point is exact (no
+//!   approximation, `fine`, `FINE`, `PL=0`), as are the first point and rapid moves;
 //! - feeds are written exactly: KRL `$VEL.CP` in m/s and RAPID `v_tcp` in mm/s with 9 decimals,
 //!   LS in whole `mm/sec`, else whole `cm/min` (exact for a feed in whole mm/min divisible by 10),
-//!   else the nearest whole `cm/min` with a warning; a feed above [`Settings::max_tcp_speed`] or
-//!   one an LS program cannot state (below 1 cm/min) is refused naming the G-code line;
+//!   else the nearest whole `cm/min` with a warning, INFORM `V=` in tenths of a mm/s (else the
+//!   nearest with a warning); a feed above [`Settings::max_tcp_speed`] or one an LS or INFORM
+//!   program cannot state (below 1 cm/min, 0.1 mm/s) is refused naming the G-code line;
 //! - the LS `COMMENT` is at most 16 characters, and an LS file at most [`LS_MAX_LINES`]
 //!   numbered lines (the pendant's four digits): its sub-programs hold fewer moves when needed;
+//!   an INFORM job at most [`super::inform::generate::MAX_POSITIONS`] positions (five digits);
 //! - no move is faster than [`Settings::max_tcp_speed`], RAPID's rapids (`vrapid`) included;
 //! - a program of more than [`Settings::moves_per_file`] moves is split into sub-programs of at
 //!   most that many moves (`NAME_01`, `NAME_02`, ... in files of their own), which the main
@@ -69,6 +76,7 @@ use stiffid_core::common::error::JobOption;
 use stiffid_core::robot::configuration::Configuration;
 use stiffid_core::robot::external::Role;
 use stiffid_core::robot::ExternalAxes;
+use stiffid_core::setup::Pulses;
 use stiffid_core::{Error, Result, Robot};
 
 /// How the robot moves to a target.
@@ -283,6 +291,9 @@ pub struct Plan<'a> {
     pub external: Option<&'a ExternalAxes>,
     /// The approximation of intermediate cutting points, m (the chord tolerance).
     pub approximation: f64,
+    /// The controller's axes' encoder pulses (`[controller] pulses_per_deg`), for a language
+    /// that writes pulses (INFORM); `None`: not given.
+    pub pulses: Option<&'a Pulses>,
     /// How.
     pub settings: Settings,
 }
@@ -444,7 +455,8 @@ fn check_targets(plan: &Plan) -> Result<()> {
         ));
     }
     check_external(plan)?;
-    check_payload(plan.dialect, plan.settings.targets, &plan.tool)
+    check_payload(plan.dialect, plan.settings.targets, &plan.tool)?;
+    check_pulses(plan.dialect, plan.pulses)
 }
 
 /// Every target's external values against the cell's axes and what the language holds.
@@ -494,7 +506,7 @@ pub fn check_cell(dialect: Dialect, targets: Targets, axes: Option<&ExternalAxes
         }
     }
     let positioner = axes.axes().iter().find(|a| a.role == Role::Positioner);
-    if let (Targets::Cartesian, Some(axis)) = (targets, positioner) {
+    if let (Targets::Cartesian, Some(axis)) = (written_targets(dialect, targets), positioner) {
         return Err(Error::InvalidOption {
             option: JobOption::Targets,
             message: format!("cartesian: the cell's positioner axis {} carries the part, and a Cartesian target on it needs the controller's coordinated motion (a base or work object coupled to the positioner), which stiffid does not write; write joint targets (targets = joint)", axis.name),
@@ -522,6 +534,64 @@ pub fn check_payload(dialect: Dialect, targets: Targets, tool: &Tool) -> Result<
         return Err(invalid("tool.mass_kg", "a RAPID tooldata needs the tool's mass and centre of mass (the controller refuses a tool of no mass): [tool] mass_kg and centre_of_mass_mm in the setup".into()));
     }
     Ok(())
+}
+
+/// Whether a program of `dialect` can be written with the controller's `pulses`: a language
+/// that states its axes in pulses (INFORM) needs them.
+///
+/// # Errors
+/// [`Error::InvalidField`] (`controller.pulses_per_deg`) when the program needs them and the
+/// setup gives none.
+pub fn check_pulses(dialect: Dialect, pulses: Option<&Pulses>) -> Result<()> {
+    let needs = (dialect.controller().generator()).is_some_and(|g| g.needs_pulses());
+    match needs && pulses.is_none() {
+        true => Err(missing_pulses()),
+        false => Ok(()),
+    }
+}
+
+/// The error of a program in pulses (an INFORM job) written without the controller's pulses.
+pub(crate) fn missing_pulses() -> Error {
+    Error::InvalidField {
+        field: "controller.pulses_per_deg".into(),
+        message: "missing: an INFORM job states its positions in encoder pulses, and how many make a degree of each axis is the controller's (its axis parameters): give them in the setup, [controller] pulses_per_deg = [S, L, U, R, B, T] (and external_pulses = [..] per external axis, or the external axes are written in mm and deg)".into(),
+    }
+}
+
+/// The targets a program of `dialect` is written with when `targets` are asked: the joint
+/// targets of a language that writes no pose (INFORM's pulses), else `targets`.
+pub fn written_targets(dialect: Dialect, targets: Targets) -> Targets {
+    match (dialect.controller().generator()).is_some_and(|g| !g.writes_cartesian()) {
+        true => Targets::Joint,
+        false => targets,
+    }
+}
+
+/// A feed (m/s) as a language states it in its own units: `speed` gives the text and whether it
+/// is exact (`None` below the slowest it states, `slowest`), a rounded feed adds a warning (once)
+/// that it has no `units`; `line` is the target's 1-based index in the program.
+///
+/// # Errors
+/// [`Error::Program`] at `line` for a feed below the slowest.
+pub(crate) fn stated_feed(
+    feed: f64,
+    line: usize,
+    speed: fn(f64) -> Option<(String, bool)>,
+    (slowest, units): (&str, &str),
+    warnings: &mut Vec<String>,
+) -> Result<String> {
+    let (text, exact) = speed(feed).ok_or_else(|| Error::Program {
+        line: line as u64,
+        message: format!("a feed of {} mm/min is below {slowest}", number(feed * 6e4)),
+    })?;
+    let w = format!(
+        "a feed of {} mm/min has no {units}: written as {text}",
+        number(feed * 6e4)
+    );
+    if !exact && !warnings.contains(&w) {
+        warnings.push(w);
+    }
+    Ok(text)
 }
 
 /// `x` with [`DECIMALS`] decimals, a negative zero without its sign.

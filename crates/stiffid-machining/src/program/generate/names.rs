@@ -151,7 +151,7 @@ fn dialect_name(d: Dialect) -> &'static str {
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`out`) for a language whose programs are read and written back,
-/// never generated (INFORM).
+/// never generated (none today).
 pub(crate) fn generator(dialect: Dialect) -> Result<&'static dyn Generator> {
     dialect.controller().generator().ok_or_else(|| Error::InvalidField {
         field: "out".into(),

@@ -31,6 +31,12 @@
 //! - a position named in a motion that `//POS` does not hold, one defined twice, a count that
 //!   differs from `///NPOS`, pulses that are not whole numbers, a pulse position without the
 //!   `stiffid:` comment that converts it, and a group's positions in two forms.
+//!
+//! ## Written
+//! A G-code path is written as a new job in pulses ([`generate`]), with the `'stiffid:` comments
+//! of the setup's `[controller] pulses_per_deg` and `external_pulses`, so it reads back here.
+
+pub mod generate;
 
 use super::cartesian::Flags;
 use super::controller::{lines_starting, BoundComment, Controller, Generator};
@@ -568,8 +574,8 @@ impl Controller for Inform {
     fn motion_lines(&self, text: &str) -> Vec<u64> {
         lines_starting(text, &["MOVJ ", "MOVL "])
     }
-    /// None: jobs are read and written back compensated, never generated.
+    /// Jobs in pulses ([`generate`]).
     fn generator(&self) -> Option<&'static dyn Generator> {
-        None
+        Some(&Inform)
     }
 }

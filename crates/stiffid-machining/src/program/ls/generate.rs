@@ -2,12 +2,12 @@
 
 use crate::program::generate::LS_MAX_LINES;
 use crate::program::generate::{
-    in_world, number, v, zyx_deg, Move, Part, Plan, Target, Targets, RAPID_PERCENT,
+    in_world, number, stated_feed, v, zyx_deg, Move, Part, Plan, Target, Targets, RAPID_PERCENT,
 };
 use crate::program::Generator;
 use std::fmt::Write;
 use stiffid_core::robot::external::Role;
-use stiffid_core::{Error, Result};
+use stiffid_core::Result;
 
 /// The `COMMENT` of every program: at most 16 characters, what the pendant shows.
 pub const COMMENT: &str = "stiffid";
@@ -60,22 +60,11 @@ pub(crate) fn body(plan: &Plan, part: &Part, warnings: &mut Vec<String>) -> Resu
         let _ = match m {
             Move::Rapid => writeln!(mn, "J P[{i}] {RAPID_PERCENT}% FINE ;"),
             Move::Feed(f) => {
-                let (text, is_exact) = speed(*f).ok_or_else(|| Error::Program {
-                    line: (part.first + i) as u64,
-                    message: format!(
-                        "a feed of {} mm/min is below 1 cm/min, the slowest an LS program states",
-                        number(f * 6e4)
-                    ),
-                })?;
-                if !is_exact {
-                    let w = format!(
-                        "a feed of {} mm/min has no whole mm/sec or cm/min: written as {text}",
-                        number(f * 6e4)
-                    );
-                    if !warnings.contains(&w) {
-                        warnings.push(w);
-                    }
-                }
+                let slowest = (
+                    "1 cm/min, the slowest an LS program states",
+                    "whole mm/sec or cm/min",
+                );
+                let text = stated_feed(*f, part.first + i, speed, slowest, warnings)?;
                 writeln!(
                     mn,
                     "L P[{i}] {text} {} ;",

@@ -2,5 +2,6 @@
 
 mod cartesian;
 mod generate;
+mod inform;
 mod krl;
 mod speed;
