@@ -13,7 +13,7 @@ pub trait Draw: Sync {
     /// # Errors
     /// Those of drawing.
     fn svg(&self) -> Result<String>;
-    /// The figure as a PNG image ([`png`]).
+    /// The figure as a PNG image ([`png()`]).
     ///
     /// # Errors
     /// Those of drawing and of encoding.

@@ -36,7 +36,7 @@ pub struct Offset {
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`offsets`) when a posture's point has a single load (one wrench);
-/// those of [`Observations::from_measurements`] and of [`Observations::least_squares`].
+/// those of [`Observations::from_measurements`] and of [`least_squares`](crate::Identify::least_squares).
 pub fn least_squares(
     arm: &Arm,
     measurements: &[Measurement],

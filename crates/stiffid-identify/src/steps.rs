@@ -41,7 +41,7 @@
 //! reading's `sigma^2`; the stored residuals are the displacements' (unwhitened).
 //!
 //! The design side of the steps (`[loading] steps_n`: what they are worth in the criteria and
-//! the Monte Carlo) is [`design`].
+//! the Monte Carlo) is `stiffid_design`'s.
 
 use crate::adequacy::SIGNIFICANCE;
 use crate::Identification;

@@ -4,7 +4,7 @@
 //! point to its anchor, the compliance ellipsoid at the tool centre point scaled to a force, the
 //! measured and predicted displacements of the measuring points, and a path coloured by its
 //! predicted error; with external axes, the track's rail, the carriage at each posture's
-//! station and the positioner's table at its angles ([`external`]). What `select --report`,
+//! station and the positioner's table at its angles. What `select --report`,
 //! `compensate --report`, `calibrate --report` and `identify --report` draw in 3D, and Python's
 //! `stiffid.scene`.
 //!

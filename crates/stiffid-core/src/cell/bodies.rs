@@ -134,7 +134,7 @@ const SAME_POINT: f64 = 1e-9;
 /// - tool: from the flange origin along the flange z axis to the height (flange z) of the tool
 ///   point farthest along it (loading, measuring and tool centre points).
 ///
-/// Radii from [`RobotGeometry`]. This is what `stiffid plot` draws.
+/// Radii from [`RobotGeometry`](crate::setup::RobotGeometry). This is what `stiffid plot` draws.
 pub fn capsules(arm: &Arm, frames: &Frames) -> Vec<Capsule> {
     let g = &arm.geometry();
     let mut out = Vec::with_capacity(16);

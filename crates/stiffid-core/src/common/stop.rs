@@ -1,7 +1,7 @@
 //! Why an iterative solver stopped: one stop reason for the calibration's Levenberg-Marquardt
 //! fit (`stiffid_metrology::calibration::fit`), inverse kinematics ([`crate::robot::ik`]), the
 //! robust reweighting of identification (`stiffid_identify::robust`) and the compensation's
-//! Newton steps ([`stiffid_machining::compensate`](mod@stiffid_machining::compensate)). Each
+//! Newton steps (`stiffid_machining::compensate`). Each
 //! solver documents which reasons it gives; the posture search, whose reasons are those of an
 //! SQP, has its own (`stiffid_design::Termination`).
 //!

@@ -8,11 +8,11 @@
 //! - [`input`]: the files a front end reads: regular files only, never a wait on a FIFO.
 //! - [`measurements`]: the measurement CSV of an identification or validation.
 //! - [`output`]: the files a front end writes: where a write lands, whether it may, whole files.
-//! - [`path`]: the path (pose list) CSV of compensation.
+//! - `stiffid_machining::path`: the path (pose list) CSV of compensation.
 //! - [`postures`]: the postures CSV of a group of postures.
-//! - [`program`]: the joint targets of robot programs (KUKA KRL, ABB RAPID, FANUC LS).
+//! - `stiffid_machining::program`: the joint targets of robot programs (KUKA KRL, ABB RAPID, FANUC LS).
 //! - [`readings`]: the registration readings CSV (axis angles and tracker readings).
-//! - [`reference`](mod@reference): a robot or setup named by a file path or a built-in name.
+//! - [`reference`](mod@crate::setup::reference): a robot or setup named by a file path or a built-in name.
 //! - [`stiffness`]: the stiffness JSON (joint stiffness and the covariance of the compliance).
 
 pub mod external;
@@ -250,7 +250,7 @@ impl<'a> LineCount<'a> {
         }
     }
 
-    /// [`LineCount::new`] for a reader that skips comment lines (`#` first), which it reports at
+    /// `LineCount::new` (lines counted from the start) for a reader that skips comment lines (`#` first), which it reports at
     /// the comment's start.
     pub fn with_comments(body: &'a [u8]) -> Self {
         Self {

@@ -17,7 +17,7 @@ use nalgebra::{
 /// sizes stiffid factors converges in a few iterations per singular value.
 pub(crate) const SVD_MAX_ITERATIONS: usize = 10_000;
 
-/// nalgebra's SVD as stiffid runs it: machine epsilon and the cap [`SVD_MAX_ITERATIONS`].
+/// nalgebra's SVD as stiffid runs it: machine epsilon and the cap `SVD_MAX_ITERATIONS` (10 000 iterations).
 pub trait CappedSvd<R: DimMin<C>, C: Dim>
 where
     DefaultAllocator: Allocator<DimMinimum<R, C>, C>

@@ -184,7 +184,7 @@ pub fn points_factor(tool: &Tool) -> Matrix6<f64> {
 /// The compact block `C = R_P J_b diag(tau)` of one posture under the setup's rope-mass load
 /// ([`points_factor`]: `B^T B = C^T C` for its block B of [`rope_observation_matrix`]); rows
 /// `min(3p, 6)..6` are zero. `J_b`: the body Jacobian of the flange origin in the springs'
-/// coordinates ([`Frames::body_jacobian`]); `tau = J_f^T W` (Eq. 4).
+/// coordinates (`Frames::body_jacobian`); `tau = J_f^T W` (Eq. 4).
 pub fn compact_posture_block(
     setup: &Setup,
     frames: &Frames,

@@ -157,7 +157,7 @@ fn rot_z(angle: f64) -> Isometry3<f64> {
 
 /// The chain of `robot` (any axes: each joint turned onto its z axis first) as a DH table in
 /// `convention` with the same kinematics at every kinematic angle: the rows from the fixed
-/// transforms between consecutive axes ([`split`]), the theta offsets the robot's plus what
+/// transforms between consecutive axes (`split`), the theta offsets the robot's plus what
 /// turns with each joint, the base and flange the robot's with what no row holds (in modified
 /// DH, the first row's `a`, `alpha`, `beta` where they hold the first joint's transform, and the
 /// last joint's `d`). `tolerance` (m) is the lateral offset that counts as none. The axis map

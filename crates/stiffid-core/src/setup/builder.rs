@@ -254,7 +254,7 @@ impl SetupBuilder {
         self
     }
 
-    /// Capsule radii of the bodies, m (default [`default_geometry`]).
+    /// Capsule radii of the bodies, m (default [`default_geometry`](super::default_geometry)).
     pub fn with_geometry(self, geometry: RobotGeometry) -> Self {
         self.with_link_radii(geometry.link_radii)
             .with_tool_radius(geometry.tool_radius)
@@ -332,12 +332,12 @@ impl SetupBuilder {
     /// The setup, every field checked against [`crate::common::limits`] and the others.
     ///
     /// # Errors
-    /// [`Error::InvalidField`] naming the field as a setup file names it (unit in the name, the
+    /// [`Error::InvalidField`](crate::Error::InvalidField) naming the field as a setup file names it (unit in the name, the
     /// value given in that unit) for a missing required field, an empty name, a number that is not
     /// finite or outside its documented range, no measuring point or no noise level (or more than
     /// their limits), bounds not below each other, and an inconsistent cell (a box `carried_by` no
     /// positioner axis of the robot's) or tracker ([`Cell`],
-    /// [`Tracker`]) or virtual springs ([`crate::model::check_springs`]); [`Error::OutsideBox`] with the field, the value and the range for bounds or
+    /// [`Tracker`]) or virtual springs ([`crate::model::check_springs`]); [`Error::OutsideBox`](crate::Error::OutsideBox) with the field, the value and the range for bounds or
     /// test postures outside the robot's limits.
     pub fn build(self) -> Result<Setup> {
         if self.name.trim().is_empty() {

@@ -15,7 +15,7 @@ use stiffid_core::Result;
 pub const CONSTRAINT_TRIES: usize = 1000;
 
 /// Uniform postures a global search draws before it starts, to stop at once when none of them
-/// passes the cell's checks ([`check_some_feasible`]).
+/// passes the cell's checks.
 pub const PROBE_DRAWS: usize = 2000;
 
 /// `Ok` if one of [`PROBE_DRAWS`] uniform postures within the bounds (stream `u64::MAX` of

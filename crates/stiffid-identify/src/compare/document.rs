@@ -43,7 +43,7 @@ pub struct Document {
     pub bootstrap: Option<BootstrapDoc>,
 }
 
-/// The posture bootstrap ([`super::bootstrap`]): postures drawn with replacement, the selection
+/// The posture bootstrap ([`super::bootstrap()`]): postures drawn with replacement, the selection
 /// and the recommendation redone on each resample; the spread of each stiffness over the models
 /// chosen, not a confidence interval conditional on one model.
 #[derive(Debug, Serialize)]

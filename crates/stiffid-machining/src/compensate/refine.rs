@@ -308,7 +308,7 @@ impl Band {
     /// The line of least value over `cells` (module docs of [`super`]: the costs added up by
     /// `aggregate`, the tie-breaking costs scaled by `scales`), every axis changing by at most
     /// its reach between points and, with speed limits `pace`, every move but the path's own
-    /// between two points within them (as [`super::tool_axis::choose`]'s).
+    /// between two points within them (as the tool axis choice's).
     pub fn shortest(
         &self,
         (cells, external): (&[Column], &[Vec<ExternalValues>]),

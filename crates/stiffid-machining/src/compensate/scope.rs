@@ -7,7 +7,7 @@ pub enum Scope {
     /// The whole path or program: no change of configuration anywhere.
     #[default]
     Program,
-    /// Each run ([`starts`]): the arm may change configuration in the joint move that starts
+    /// Each run ([`super::starts`]): the arm may change configuration in the joint move that starts
     /// a run.
     Run,
 }

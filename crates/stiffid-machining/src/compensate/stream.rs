@@ -23,7 +23,7 @@ use stiffid_core::{Error, Result};
 ///
 /// # Errors
 /// [`Error::InvalidField`] for `options` outside their limits ([`Options::validate`]) or a free
-/// tool axis grid beyond [`super::MAX_GRID_CELLS`] ([`super::FreeRange::check_rotation_grid`]);
+/// tool axis grid beyond [`super::MAX_GRID_CELLS`];
 /// [`Error::InvalidOption`] ([`JobOption::Minimise`]) for the surge objective, which
 /// needs a drilling program ([`path_with_exits`]);
 /// [`Error::Column`] naming the line of the first point (in path order) that fails: axis angles

@@ -345,7 +345,7 @@ pub fn shortest(
     chosen
 }
 
-/// One state's posture and [`Cost`] at every path point; `None` where inverse kinematics fails
+/// One state's posture and cost at every path point; `None` where inverse kinematics fails
 /// or the cost cannot be computed.
 pub type Column = Vec<Option<(Vector6<f64>, f64)>>;
 

@@ -137,7 +137,7 @@ pub fn urdf_leaves_out(model: &ErrorModel, estimate: &Estimate) -> Option<String
 /// where a row needs it, the axis map, joint limits, axis speeds (when any axis has one: `inf` for an axis without), base, flange, capsule radii and masses (their
 /// centres carried into the table's link frames) of the nominal robot. Numbers are written in
 /// full (shortest round-trip) and the file is read back: its flange is the calibrated robot's
-/// within [`READ_BACK`] of the robot's size at three postures.
+/// within 1e-9 of the robot's size at three postures.
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`robot`) when a joint's transform has no DH row (axes at 90 degrees
@@ -334,7 +334,7 @@ fn read_back(robot: &Robot, back: &Robot) -> std::result::Result<(), String> {
 /// into the origins, a negative sign into the axis: the URDF's joint positions are the axis
 /// angles), the axis limits as joint limits (an unbounded axis a continuous joint) and the
 /// links' masses, centres and inertia tensors when the nominal robot has them. Either is read
-/// back: its flange is the calibrated robot's within [`READ_BACK`] of the robot's size at three
+/// back: its flange is the calibrated robot's within 1e-9 of the robot's size at three
 /// postures. It leaves out the joint error maps ([`urdf_leaves_out`]): it is the calibrated
 /// chain without them.
 ///

@@ -177,7 +177,7 @@ pub fn leave_one_out(
 }
 
 /// The folds of [`leave_one_out`] linearised at the fit `fit` of `observations` with `options`
-/// ([`fit::leave_one_out_linearised`]: exact to second order in the change of the parameters),
+/// (`fit::leave_one_out_linearised`: exact to second order in the change of the parameters),
 /// each held-out posture's errors linearised too: its residuals at the full fit plus the
 /// Jacobian there times the fold's change of the values (the leave-one-out residual
 /// `(I - H)^-1 r_p` of the linear model). Linear in the changes, so a fold that moves far along
@@ -186,7 +186,7 @@ pub fn leave_one_out(
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`readings`) with fewer than 2 postures; those of
-/// [`fit::leave_one_out_linearised`] and [`ErrorModel::jacobian_of`].
+/// `fit::leave_one_out_linearised` and [`ErrorModel::jacobian_of`].
 pub fn leave_one_out_linearised(
     model: &ErrorModel,
     observations: &[Observation],

@@ -149,7 +149,7 @@ pub struct Request<'a> {
     pub refit: update::Refits,
     /// With `update`: the robot's own weight as a stiffness file written before the calibrated
     /// robot file carried it holds it ([`stiffid_core::model::Compliance::own_weight`]); the robot
-    /// file's (`[gravity]`) take its place, and the two must agree ([`update::weight`]). Kept in
+    /// file's (`[gravity]`) take its place, and the two must agree (else [`Error::InvalidOption`]). Kept in
     /// the update's forward model (refitted from there with [`update::Refit::Gravity`]); `None`
     /// for a calibration without gravity terms or a robot file carrying them.
     pub weight: Option<stiffid_core::model::OwnWeight>,

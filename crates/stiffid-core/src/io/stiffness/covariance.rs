@@ -10,7 +10,7 @@ use nalgebra::{DMatrix, Matrix6};
 /// largest diagonal entry).
 ///
 /// # Errors
-/// [`Error::InvalidField`] naming `compliance_covariance_rad2_per_nm2`.
+/// [`Error::InvalidField`](crate::Error::InvalidField) naming `compliance_covariance_rad2_per_nm2`.
 ///
 /// # Examples
 /// ```
@@ -27,7 +27,7 @@ pub fn check_covariance(c: &Matrix6<f64>) -> Result<()> {
 /// [`check_covariance`] of a square matrix of any size (n x n, SI), the error naming `field`.
 ///
 /// # Errors
-/// [`Error::InvalidField`] naming `field`.
+/// [`Error::InvalidField`](crate::Error::InvalidField) naming `field`.
 pub fn check_covariance_of(c: &DMatrix<f64>, field: &str) -> Result<()> {
     let scale = c.diagonal().amax();
     let valid = c.iter().all(|v| v.is_finite())

@@ -30,7 +30,7 @@ impl ErrorMotions {
     ///
     /// # Errors
     /// [`Error::InvalidField`] (`error_motions`) when there are more than [`MAX_ORDER`] orders
-    /// or a coefficient is not finite or beyond [`MAX_COEFFICIENT`].
+    /// or a coefficient is not finite or beyond [`MAX_COEFFICIENT`](super::MAX_COEFFICIENT).
     pub fn new(coefficients: Vec<[f64; 6]>) -> Result<Self> {
         let invalid = |message: String| Error::InvalidField {
             field: "error_motions".into(),

@@ -74,7 +74,7 @@ enum RoleFile {
 /// for a missing travel (`limits_mm` on a carrier, `limits_deg` on a positioner), a field of the
 /// other kind of axis, a zero or non-finite direction, a number outside its range
 /// ([`limits::LENGTH_MM`], [`limits::ANGLE_DEG`], [`limits::AXIS_SPEED`]), error motions beyond
-/// [`super::error_motions::MAX_COEFFICIENT`] or [`super::MAX_ORDER`], and everything
+/// [`super::MAX_COEFFICIENT`] or [`super::MAX_ORDER`], and everything
 /// [`ExternalAxes::new`] checks (counts, names, travel).
 pub fn build(tables: &[AxisFile], source_name: &str) -> Result<Option<ExternalAxes>> {
     if tables.is_empty() {

@@ -34,7 +34,7 @@
 
 mod error_motions;
 pub mod file;
-pub use error_motions::{ErrorMotions, MAX_ORDER};
+pub use error_motions::{ErrorMotions, MAX_COEFFICIENT, MAX_ORDER};
 
 use crate::common::limits;
 use crate::{Error, Result};

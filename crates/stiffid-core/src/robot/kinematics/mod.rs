@@ -121,8 +121,9 @@ impl Robot {
         self.update_chain(base, &self.mapped(q), f);
     }
 
-    /// [`Robot::update_frames_on`] approached with the last motions' signs `direction` (-1.0 or
-    /// 1.0 per axis, 0.0 for the mean of the two approaches): the axes turn by
+    /// [`Robot::update_frames`] with the chain's first frame at `base` (cell frame), approached
+    /// with the last motions' signs `direction` (-1.0 or 1.0 per axis, 0.0 for the mean of the
+    /// two approaches): the axes turn by
     /// [`Robot::mapped_from`], their backlash included.
     pub fn update_frames_from(
         &self,
@@ -170,7 +171,7 @@ impl Robot {
 }
 
 impl Frames {
-    /// Frames to be written over by [`Robot::update_frames_on`].
+    /// Frames to be written over by the kinematics (`Robot::update_frames_on`).
     pub fn blank() -> Self {
         Frames {
             base: Isometry3::identity(),

@@ -41,11 +41,11 @@ use stiffid_core::{Error, Result, Setup};
 /// How the group is chosen.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Method {
-    /// One SQP search from a start group ([`design::local`]).
+    /// One SQP search from a start group ([`crate::local`]).
     Local,
-    /// Local searches from seeded start groups, the best kept ([`design::global`]).
+    /// Local searches from seeded start groups, the best kept ([`crate::global`]).
     Global,
-    /// The best group of a pool of postures ([`design::Pool::best`]).
+    /// The best group of a pool of postures ([`crate::Pool::best`]).
     Pool,
 }
 
@@ -81,7 +81,7 @@ pub struct PoolInput {
     /// Its name in the report and in errors: a file's name, or `arrays`.
     pub name: String,
     /// The postures (axis angles, rad, within the robot's joint limits), at most
-    /// [`MAX_POOL`]; those that fail a check of the cell are reported and skipped.
+    /// [`MAX_POOL`](crate::pool::MAX_POOL); those that fail a check of the cell are reported and skipped.
     pub postures: Vec<Vector6<f64>>,
 }
 
@@ -100,12 +100,12 @@ pub struct Request<'a> {
     /// How.
     pub method: Method,
     /// [`Method::Local`] only: the start group (axis angles, rad, within the setup's bounds;
-    /// 2 to [`limits::MAX_SEARCH_POSTURES`] postures); `None` for a seeded random group
-    /// ([`design::random_group`]).
+    /// 2 to [`MAX_SEARCH_POSTURES`](stiffid_core::common::limits::MAX_SEARCH_POSTURES) postures); `None` for a seeded random group
+    /// ([`crate::random_group`]).
     pub start: Option<Vec<Vector6<f64>>>,
     /// [`Method::Pool`] only, and then required: the pool.
     pub pool: Option<PoolInput>,
-    /// The group size (2 to [`limits::MAX_SEARCH_POSTURES`]); the start group's size with a
+    /// The group size (2 to [`MAX_SEARCH_POSTURES`](stiffid_core::common::limits::MAX_SEARCH_POSTURES)); the start group's size with a
     /// start group; unused with a target.
     pub postures: usize,
     /// The smallest group whose predicted mean deviation rate at noise level multiple 1 is at
@@ -116,7 +116,7 @@ pub struct Request<'a> {
     /// global starts and the pool's exchange runs.
     pub options: SearchOptions,
     /// [`Method::Pool`] only: exchange runs of the pool choice (1 to
-    /// [`limits::MAX_POOL_RESTARTS`]); `None` for [`PoolOptions`]' default.
+    /// [`MAX_POOL_RESTARTS`](stiffid_core::common::limits::MAX_POOL_RESTARTS)); `None` for [`PoolOptions`](crate::PoolOptions)' default.
     pub restarts: Option<usize>,
     /// Forbid postures that are not distinct by these distances ([`Method::Pool`] only: the
     /// pool keeps the first of every near pair, [`crate::distinct::distinct_pool`]);
@@ -133,10 +133,10 @@ pub struct Request<'a> {
     pub candidates: Option<Vec<String>>,
     /// For a robot with external axes (a track, [`stiffid_core::robot::external`]): where the arm
     /// stands for the whole group, each station one value per axis (SI, the cell's order); with
-    /// several, the group is designed at each and the best kept ([`station`]); for
+    /// several, the group is designed at each and the best kept ([`Station`]); for
     /// [`Purpose::Calibration`] on a robot with a carrier, the group is one campaign over all
     /// of them, its postures dealt over the stations and designed together with the track's
-    /// parameters ([`campaign`], [`Report::placed`]). Empty for a robot without external axes;
+    /// parameters ([`Report::placed`]). Empty for a robot without external axes;
     /// 1 to [`MAX_STATIONS`] with them.
     pub stations: Vec<stiffid_core::robot::external::ExternalValues>,
     /// Where the searches report their progress (`&()` for nowhere): each search begins a stage
@@ -172,13 +172,13 @@ pub struct Report {
     pub postures: Vec<Vector6<f64>>,
     /// The value minimised for the start group (`None` for a pool choice): the stiffness
     /// criterion, the calibration criterion's loss ([`CalibrationCriterion::loss`]) or their
-    /// weighted geometric mean ([`Goal`]).
+    /// weighted geometric mean ([`Goal`](crate::Goal)).
     pub start_value: Option<f64>,
     /// The value minimised for the group chosen.
     pub value: f64,
     /// Criterion evaluations, over every group size tried with a target.
     pub evaluations: usize,
-    /// Why every local search of the last search stopped ([`SearchOutcome::terminations`]); empty
+    /// Why every local search of the last search stopped ([`SearchOutcome::terminations`](crate::SearchOutcome::terminations)); empty
     /// for a pool choice.
     pub terminations: Vec<Termination>,
     /// Why the search that found the group stopped; `None` for a pool choice.
@@ -198,8 +198,7 @@ pub struct Report {
     /// by the request's distances or the defaults.
     pub near: Vec<Near>,
     /// The margin every posture was chosen to keep to every constraint of the cell, m
-    /// ([`crate::design_margin`]: the request's, else the tracker's registration
-    /// uncertainty, else 0).
+    /// (the request's, else the tracker's registration uncertainty, else 0).
     pub margin: f64,
     /// Each chosen posture's smallest margin to a constraint of the cell's lengths (m, from the
     /// exact checks: [`stiffid_core::cell::Feasibility::min_margin`]; the tool, where the rope and the

@@ -53,7 +53,7 @@ pub struct Report {
 ///
 /// # Errors
 /// [`stiffid_core::Error::InvalidField`] (`groups`) for no group or more than [`limits::MAX_GROUPS`]; the
-/// errors of [`monte_carlo`] (among them a virtual spring without a nominal stiffness, the
+/// errors of [`monte_carlo`](crate::study::simulate::monte_carlo) (among them a virtual spring without a nominal stiffness, the
 /// truth of the simulation, and a group that cannot identify every parameter of the model).
 pub fn run(request: &Request) -> Result<Report> {
     run_with_progress(request, &())

@@ -18,7 +18,7 @@ const PENALTY: f64 = 1e3;
 
 /// Minimises `criterion` by SQP (the counterpart of the MATLAB `fmincon` of Zhang et al. 2021,
 /// Section III-B step 5: [`SearchOptions::solver`], by default chosen per criterion by
-/// [`Solver::resolve`]) over the `6n` axis angles of the `n` postures of `start` (rad), within the setup's
+/// [`Solver::resolve`](crate::Solver::resolve)) over the `6n` axis angles of the `n` postures of `start` (rad), within the setup's
 /// bounds.
 ///
 /// - The objective is `ln(criterion)` (scale-free steps; a rank-deficient group, `+infinity`,

@@ -1,7 +1,7 @@
 //! The model-comparison job (`stiffid identify --compare-models`): from the setup's model, forward
 //! selection of candidate virtual springs on the leave-one-posture-out error, nested in an outer
 //! cross-validation ([`crate::compare`]), and on request its posture bootstrap
-//! ([`crate::compare::bootstrap`]), on a measurement file or measurements given as
+//! ([`crate::compare::bootstrap()`]), on a measurement file or measurements given as
 //! arrays.
 
 use crate::app::measurements::{angle_warnings, on_measurements, Data};

@@ -90,7 +90,7 @@ pub struct Report {
     /// With raw readings under load steps ([`crate::steps`]): each posture's linearity, offset
     /// and hysteresis; `None` for displacements.
     pub load_steps: Option<Vec<Linearity>>,
-    /// The offsets fitted beside the compliances, when asked ([`Request::offsets`]).
+    /// The offsets fitted beside the compliances, when asked ([`super::Options::offsets`]).
     pub offsets: Option<Vec<Offset>>,
     /// Results to look at before trusting them (signs, units).
     pub warnings: Vec<Warning>,

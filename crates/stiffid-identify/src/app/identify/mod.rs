@@ -41,9 +41,9 @@ pub enum Fit {
     /// Linear least squares by QR (Eq. 13-14).
     #[default]
     LeastSquares,
-    /// Iteratively reweighted least squares with this loss ([`Observations::robust`]).
+    /// Iteratively reweighted least squares with this loss ([`crate::Identify::robust`]).
     Robust(Loss),
-    /// Least squares with every compliance `>= 0` ([`Observations::nonnegative`]).
+    /// Least squares with every compliance `>= 0` ([`crate::Identify::nonnegative`]).
     Nonnegative,
 }
 

@@ -52,7 +52,7 @@ pub struct Report {
 /// # Errors
 /// Errors about the data are [`stiffid_core::Error::Input`] naming the data (a file's line and column,
 /// or the measurement's number): those of [`stiffid_core::io::measurements::parse`] and of
-/// [`compare`] (the compliance against the model, the measurements against the setup).
+/// [`compare`](crate::validate::compare) (the compliance against the model, the measurements against the setup).
 pub fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {
     let Request {
         setup,

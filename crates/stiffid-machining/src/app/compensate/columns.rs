@@ -10,7 +10,7 @@ fn names(prefix: &str, items: &[&str], unit: &str) -> Vec<String> {
     items.iter().map(|i| format!("{prefix}{i}{unit}")).collect()
 }
 
-/// The column names of the CSV (and the keys of a [`Row`]).
+/// The column names of the CSV (and the keys of a [`Row`](super::document::Row)).
 pub fn header() -> Vec<String> {
     let axes = ["1", "2", "3", "4", "5", "6"];
     let xyz = ["x", "y", "z"];

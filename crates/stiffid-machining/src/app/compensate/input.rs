@@ -57,7 +57,7 @@ pub(super) fn read_checked(
 /// errors placed in the file `name`.
 ///
 /// # Errors
-/// Those of [`machining::read`], as [`Error::Input`].
+/// Those of [`machining::read`], as [`Error::Input`](stiffid_core::Error::Input).
 pub fn read_program(
     name: &str,
     text: &str,

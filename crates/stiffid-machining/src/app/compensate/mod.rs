@@ -1,5 +1,5 @@
 //! The compensate job: the deflection of every point of a machining path under its process
-//! wrench, and the compensated axis angles that cancel it ([`crate::compensate`], Zhang et al.
+//! wrench, and the compensated axis angles that cancel it ([`crate::compensate`](mod@crate::compensate), Zhang et al.
 //! 2021, Eq. 4-6).
 //!
 //! The path comes from
@@ -75,7 +75,7 @@ pub enum Input<'t> {
         /// G-code arcs are split into chords of at most this sagitta, m.
         chord_tolerance: f64,
         /// The language of the compensated program: the program's own, or for G-code a robot
-        /// program of the compensated targets ([`generate`]).
+        /// program of the compensated targets ([`generate()`]).
         output: Language,
         /// The name of the file the compensated program is written to: a generated robot
         /// program is named after its stem (upper case), as the controllers call it.
@@ -173,7 +173,7 @@ pub struct Report {
     /// With [`Options::map`]: the map of the free variable with the rotations chosen
     /// ([`compensate::Map`]).
     pub map: Option<compensate::Map>,
-    /// With [`super::FreeVariables::configuration`]: every configuration of the arm evaluated over the
+    /// With [`crate::compensate::FreeVariables::configuration`]: every configuration of the arm evaluated over the
     /// path, the one chosen ([`compensate::Configurations`]).
     pub configurations: Option<compensate::Configurations>,
     /// With a stiffness file whose `model_form` holds a recommended model other than its own:
@@ -191,9 +191,9 @@ pub struct Report {
 /// # Errors
 /// [`Error::InvalidField`] for options outside their limits ([`Options::validate`],
 /// [`Settings::validate`]), a setup without `[tool] tcp_mm` (`tool.tcp_mm`), a generated robot
-/// program's name, tool or file its controller does not take ([`generate`]); errors about
+/// program's name, tool or file its controller does not take ([`generate()`]); errors about
 /// the path as [`Error::Input`] naming the path or program file: those of
-/// [`path::points`], [`compensate::stream`], [`machining::read`] and [`machining::compensate`]
+/// [`path::points`], [`compensate::stream`], [`machining::read`] and [`machining::compensate()`]
 /// (a malformed program, a point outside the joint limits or whose compensation changes the
 /// configuration, naming the line); and those of `sink`.
 pub fn run<E, F>(request: Request<'_>, mut sink: F) -> std::result::Result<Report, E>

@@ -99,11 +99,11 @@ pub fn scene(setup: &Setup, part: &ScenePart) -> stiffid_core::Result<Option<Sce
     scene::scene(setup, &postures, &extras).map(Some)
 }
 
-/// The scene of the compensate document `document` (its JSON text) on `setup` ([`scene`]).
+/// The scene of the compensate document `document` (its JSON text) on `setup` ([`scene()`]).
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`document`) when it is not a compensate document with
-/// `summary.scene`; those of [`scene`].
+/// `summary.scene`; those of [`scene()`].
 pub fn of_document(setup: &Setup, document: &str) -> stiffid_core::Result<Option<Scene>> {
     let read: Read = serde_json::from_str(document).map_err(|e| Error::InvalidField {
         field: "document".into(),

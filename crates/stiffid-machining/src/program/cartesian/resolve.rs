@@ -85,7 +85,7 @@ pub fn is_cartesian(program: &JointProgram) -> bool {
 /// back as it is.
 ///
 /// # Errors
-/// [`Error::Program`] naming the target's line (or the line that states the frame): a frame
+/// [`Error::Program`](stiffid_core::Error::Program) naming the target's line (or the line that states the frame): a frame
 /// the program leaves to the controller (KRL without `$BASE` or `$TOOL`, `BASE_DATA[n]`), a
 /// tool that is not the setup's ([`SAME_M`], [`SAME_RAD`]), an LS user frame without the
 /// setup's `[workpiece]`, the first target without configuration data, a pose out of reach in
@@ -110,7 +110,7 @@ pub fn resolve(
 /// states its own.
 ///
 /// # Errors
-/// Those of [`resolve`]; [`Error::Program`] naming the line of a joint target (axis angles do
+/// Those of [`resolve`]; [`Error::Program`](stiffid_core::Error::Program) naming the line of a joint target (axis angles do
 /// not move with the part) or of a target in another frame than the part's.
 pub fn resolve_placed(
     program: &JointProgram,
@@ -127,7 +127,7 @@ pub fn resolve_placed(
 /// before it tries any placement.
 ///
 /// # Errors
-/// [`Error::Program`] naming the line of the first target (or of the frame it states) that
+/// [`Error::Program`](stiffid_core::Error::Program) naming the line of the first target (or of the frame it states) that
 /// fails: a joint target, a tool that is not the setup's or that the program leaves to the
 /// controller, a frame that is not the part's (as [`resolve_placed`]).
 pub fn check_placed(program: &JointProgram, controller: &Controller) -> Result<()> {
