@@ -37,6 +37,7 @@
 //! of the setup's `[controller] pulses_per_deg` and `external_pulses`, so it reads back here.
 
 pub mod generate;
+pub mod speed;
 
 use super::cartesian::Flags;
 use super::controller::{lines_starting, BoundComment, Controller, Generator};
@@ -422,7 +423,7 @@ fn motion(line: u64, word: &str, words: &[&str]) -> Result<Motion> {
         robot,
         base: None,
         station: None,
-        speed: super::speed::inform(line, word, &words[1..])?,
+        speed: speed::speed(line, word, &words[1..])?,
     };
     for w in &words[1..] {
         let upper = w.to_ascii_uppercase();

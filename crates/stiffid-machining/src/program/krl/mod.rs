@@ -13,6 +13,7 @@
 pub mod cartesian;
 mod generate;
 mod names;
+pub mod speed;
 
 use super::cartesian::Flags;
 use super::cartesian::Frame;
@@ -40,7 +41,7 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
         Frame::Unknown(0, format!("no {name} set before this Cartesian motion: its frame is the controller's, which the program does not state; set {name} = {{X .., Y .., Z .., A .., B .., C ..}} in the program"))
     };
     let (mut base, mut tool) = (unset("$BASE"), unset("$TOOL"));
-    let mut speed = super::speed::Krl::new();
+    let mut speed = speed::Krl::new();
     for (line, start, l) in super::lines(text) {
         let code = l.split(';').next().unwrap_or("");
         if let Some((is_base, frame)) = cartesian::frame_set(line, code) {

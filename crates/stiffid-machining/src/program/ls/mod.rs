@@ -13,6 +13,7 @@ mod cartesian;
 pub mod generate;
 mod names;
 mod numbered;
+pub mod speed;
 
 use super::cartesian::Flags;
 use super::controller::{BoundComment, Controller, Generator, Read};
@@ -90,7 +91,7 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>, Unit
         })?;
         let mut target = position.moved_to(line, incremental);
         let speed_word = after.split_whitespace().next().unwrap_or("");
-        target.speed = super::speed::ls(line, letter, speed_word)?;
+        target.speed = speed::speed(line, letter, speed_word)?;
         if incremental && target.cartesian.is_some() {
             return Err(at(line, format!("{letter} P[{index}] INC: an increment of a Cartesian position; stiffid follows absolute Cartesian positions: write P[{index}] absolute")));
         }

@@ -14,13 +14,14 @@
 mod cartesian;
 mod generate;
 mod names;
+pub mod speed;
 
 use super::cartesian::Flags;
 use super::cartesian::{literal, Frame};
 use super::controller::{lines_starting, BoundComment, Controller, Generator, Read};
-use super::speed::{self, RapidSpeeds};
 use super::{at, number_at, six, JointTarget};
 use nalgebra::{UnitQuaternion, Vector3};
+use speed::RapidSpeeds;
 use std::collections::HashMap;
 use stiffid_core::robot::configuration::Configuration;
 use stiffid_core::Result;
@@ -443,7 +444,7 @@ fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Option<
                 }
                 other => other,
             })?;
-        target.speed = speed::rapid(line, first, argument, &data.speeds)?;
+        target.speed = speed::speed(line, first, argument, &data.speeds)?;
         return Ok(Some(target));
     }
     let target_text = code[from..s.span.end].trim_start();
@@ -464,7 +465,7 @@ fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Option<
 /// A `MoveAbsJ`'s target: a joint motion.
 fn joint(target: JointTarget) -> JointTarget {
     JointTarget {
-        speed: speed::Speed::Joint,
+        speed: super::speed::Speed::Joint,
         ..target
     }
 }

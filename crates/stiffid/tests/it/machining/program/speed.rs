@@ -1,6 +1,10 @@
 //! The controllers' speeds (`stiffid_machining::program::speed`).
 
-use stiffid_machining::program::speed::*;
+use stiffid_machining::program::inform::speed::speed as inform;
+use stiffid_machining::program::krl::speed::Krl;
+use stiffid_machining::program::ls::speed::speed as ls;
+use stiffid_machining::program::rapid::speed::{speed as rapid, RapidSpeeds};
+use stiffid_machining::program::speed::Speed;
 
 fn mm_s(s: Speed) -> f64 {
     match s {
