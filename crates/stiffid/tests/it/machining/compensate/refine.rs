@@ -28,31 +28,53 @@ fn value(line: &[Vec<f64>], half: &[f64], i: usize, mut s: usize) -> Vec<f64> {
 }
 
 /// The least aggregate over every choice of one band state per point whose values change
-/// by at most `max_step` per axis between points, by enumeration; with the values chosen.
+/// by at most `max_step` per axis between points, by enumeration: a depth-first walk over every
+/// such choice (a choice is dropped at the first point it cannot take, which no cost can repair).
 fn exhaustive(
     (line, half, max_step): (&[Vec<f64>], &[f64], &[f64]),
     cells: &[Column],
     aggregate: Aggregate,
 ) -> f64 {
-    let (n, states) = (line.len(), cells.len());
+    let values: Vec<Vec<Vec<f64>>> = (0..line.len())
+        .map(|i| (0..cells.len()).map(|s| value(line, half, i, s)).collect())
+        .collect();
     let mut best = f64::INFINITY;
-    for code in 0..states.pow(n as u32) {
-        let path: Vec<usize> = (0..n)
-            .map(|i| code / states.pow(i as u32) % states)
-            .collect();
-        let values: Vec<Vec<f64>> = (0..n).map(|i| value(line, half, i, path[i])).collect();
-        let fast = values.windows(2).any(|w| {
-            (w[0].iter().zip(&w[1]).zip(max_step))
+    walk(
+        (&values, max_step, cells, aggregate),
+        None,
+        &mut Vec::new(),
+        &mut best,
+    );
+    best
+}
+
+/// Each point's band states' values, the steps allowed, the cells and the aggregate.
+type Enumeration<'a> = (&'a [Vec<Vec<f64>>], &'a [f64], &'a [Column], Aggregate);
+
+/// Extends the choice whose costs are `costs` (its last state `last`) by every state the next
+/// point can take, lowering `best` at each complete choice.
+fn walk(
+    enumeration @ (values, max_step, cells, aggregate): Enumeration,
+    last: Option<usize>,
+    costs: &mut Vec<f64>,
+    best: &mut f64,
+) {
+    let i = costs.len();
+    if i == values.len() {
+        *best = best.min(total(costs, aggregate));
+        return;
+    }
+    for (s, column) in cells.iter().enumerate() {
+        let fast = last.is_some_and(|p| {
+            (values[i - 1][p].iter().zip(&values[i][s]).zip(max_step))
                 .any(|((a, b), m)| (a - b).abs() > m * (1.0 + 1e-9))
         });
-        let costs: Option<Vec<f64>> = (0..n)
-            .map(|i| cells[path[i]][i].as_ref().map(|z| z.1))
-            .collect();
-        if let (false, Some(costs)) = (fast, costs) {
-            best = best.min(total(&costs, aggregate));
+        if let (false, Some(cell)) = (fast, &column[i]) {
+            costs.push(cell.1);
+            walk(enumeration, Some(s), costs, best);
+            costs.pop();
         }
     }
-    best
 }
 
 #[test]
