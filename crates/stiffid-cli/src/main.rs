@@ -18,7 +18,7 @@ static STDOUT_CLOSED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicB
 /// Runs from `.init_array`, before `main` and before Rust's runtime touches the standard streams.
 #[cfg(target_os = "linux")]
 #[used]
-#[link_section = ".init_array"]
+#[unsafe(link_section = ".init_array")]
 static STDOUT_AT_START: extern "C" fn() = {
     extern "C" fn record() {
         // SAFETY: fcntl(F_GETFD) only queries the descriptor; -1 (EBADF) means it is closed.

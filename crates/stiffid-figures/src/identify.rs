@@ -101,11 +101,11 @@ fn parameters(doc: &Value) -> Option<Figure> {
                 .unwrap_or("?")
                 .to_string(),
         );
-        if let (Some(k), Some(lo), Some(hi)) = (k, at(0), at(1)) {
-            if k != 0.0 {
-                let pct = |v: f64| 100.0 * (v / k - 1.0);
-                values.push((j as f64, 0.0, pct(lo), pct(hi)));
-            }
+        if let (Some(k), Some(lo), Some(hi)) = (k, at(0), at(1))
+            && k != 0.0
+        {
+            let pct = |v: f64| 100.0 * (v / k - 1.0);
+            values.push((j as f64, 0.0, pct(lo), pct(hi)));
         }
     }
     if values.is_empty() {

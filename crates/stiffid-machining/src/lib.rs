@@ -310,17 +310,16 @@ pub fn compensate_for(
     process: &Process,
     options: &compensate::Options,
 ) -> Result<Report> {
-    if let Program::Robot(p) = program {
-        if let Some(t) = p
+    if let Program::Robot(p) = program
+        && let Some(t) = p
             .targets
             .iter()
             .find(|t| t.q_deg.iter().any(|v| !v.is_finite()))
-        {
-            return Err(Error::Program {
+    {
+        return Err(Error::Program {
                 line: t.line,
                 message: "a Cartesian target without its axis angles: resolve the program on its setup first (machining::resolve)".into(),
             });
-        }
     }
     let placements = cell::placements(arm, workpiece, program)?;
     let poses = poses(arm, workpiece, program, placements.as_deref())?;

@@ -105,7 +105,7 @@ pub fn points<'t>(
     text: &'t str,
     default_frame: Frame,
     cell: Option<&ExternalAxes>,
-) -> Result<impl Iterator<Item = Result<PathPoint>> + 't> {
+) -> Result<impl Iterator<Item = Result<PathPoint>> + use<'t>> {
     let mut reader = reader(text);
     let header = reader.headers().map_err(|e| unreadable(1, &e))?.clone();
     // Lines counted from the text: csv's own count is one too low after a `\r\n` line end.

@@ -189,7 +189,7 @@ struct Timespec {
     tv_nsec: i64,
 }
 
-extern "C" {
+unsafe extern "C" {
     fn clock_gettime(clock: i32, time: *mut Timespec) -> i32;
 }
 

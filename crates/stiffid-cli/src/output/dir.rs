@@ -213,19 +213,27 @@ impl Drop for ReportDir {
 /// [`super::write_stdout_with`]).
 pub type Fill<'a> = &'a dyn Fn(&mut dyn Write) -> std::io::Result<()>;
 
+/// How often, 20 ms apart, a lock another holder has is asked for before it is refused.
+const LOCK_TRIES: u32 = 10;
+
 /// Takes an exclusive lock on the directory `dir` (held as long as the returned handle), refusing
-/// when another process (or another open of it) holds it.
+/// when another process (or another open of it) holds it. A lock just released can still be
+/// held for a moment by a child process another thread started (its copy of the descriptor lives
+/// until the child starts its program), so a refused lock is asked for again for up to 0.2 s.
 fn lock(dir: &Path) -> Result<Option<std::fs::File>> {
     #[cfg(unix)]
     {
         use std::os::unix::io::AsRawFd;
         let handle = std::fs::File::open(dir).context("cannot open")?;
-        // SAFETY: flock on a descriptor we own; LOCK_NB never blocks.
-        let locked = unsafe { libc::flock(handle.as_raw_fd(), libc::LOCK_EX | libc::LOCK_NB) };
-        if locked != 0 {
-            bail!("another stiffid run is writing into this directory; wait for it to end");
+        for _ in 0..LOCK_TRIES {
+            // SAFETY: flock on a descriptor we own; LOCK_NB never blocks.
+            let locked = unsafe { libc::flock(handle.as_raw_fd(), libc::LOCK_EX | libc::LOCK_NB) };
+            if locked == 0 {
+                return Ok(Some(handle));
+            }
+            std::thread::sleep(std::time::Duration::from_millis(20));
         }
-        return Ok(Some(handle));
+        bail!("another stiffid run is writing into this directory; wait for it to end");
     }
     #[allow(unreachable_code)]
     Ok(None)

@@ -259,16 +259,16 @@ pub(super) fn checked_tracker(
             ),
         ));
     }
-    if let Some(a) = t.max_incidence {
-        if !(a > 0.0 && a.to_degrees() <= 90.0) {
-            return Err(invalid(
-                "tracker.max_incidence_deg",
-                format!(
-                    "{} given: expected an angle in (0, 90] deg",
-                    crate::common::words::number(a.to_degrees())
-                ),
-            ));
-        }
+    if let Some(a) = t.max_incidence
+        && !(a > 0.0 && a.to_degrees() <= 90.0)
+    {
+        return Err(invalid(
+            "tracker.max_incidence_deg",
+            format!(
+                "{} given: expected an angle in (0, 90] deg",
+                crate::common::words::number(a.to_degrees())
+            ),
+        ));
     }
     t.measuring_normals = normals(&t.measuring_normals, measuring_points)?;
     Ok(t)

@@ -204,10 +204,10 @@ fn hole(line: u64, w: &Words, other_geometry: bool, scale: f64, s: &State) -> Re
         (_, Some(_)) => return refuse("P (a dwell) belongs to G82"),
         _ => None,
     };
-    if let Some(q) = peck {
-        if (retract - depth) / q > MAX_POINTS as f64 / 3.0 {
-            return refuse(&format!("more than {MAX_POINTS} path points of pecks"));
-        }
+    if let Some(q) = peck
+        && (retract - depth) / q > MAX_POINTS as f64 / 3.0
+    {
+        return refuse(&format!("more than {MAX_POINTS} path points of pecks"));
     }
     let clearance = match s.retract_to_r {
         true => retract,

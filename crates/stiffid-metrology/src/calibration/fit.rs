@@ -384,21 +384,21 @@ fn check(observations: &[Observation], options: &Options) -> Result<()> {
     if !(options.ridge.is_finite() && options.ridge >= 0.0) {
         return Err(invalid("options", "expected a ridge of 0 or more".into()));
     }
-    if let Some(g) = options.gravity {
-        if !(positive(g.deflection) && positive(g.noise)) {
-            return Err(invalid(
-                "options",
-                "expected a positive gravity deflection and noise".into(),
-            ));
-        }
+    if let Some(g) = options.gravity
+        && !(positive(g.deflection) && positive(g.noise))
+    {
+        return Err(invalid(
+            "options",
+            "expected a positive gravity deflection and noise".into(),
+        ));
     }
-    if let Some(p) = options.priors {
-        if !(positive(p.length) && positive(p.angle) && positive(p.noise)) {
-            return Err(invalid(
-                "options",
-                "expected positive prior tolerances and noise".into(),
-            ));
-        }
+    if let Some(p) = options.priors
+        && !(positive(p.length) && positive(p.angle) && positive(p.noise))
+    {
+        return Err(invalid(
+            "options",
+            "expected positive prior tolerances and noise".into(),
+        ));
     }
     Ok(())
 }
@@ -612,7 +612,7 @@ fn effective_parameters(
 ) -> f64 {
     let jv = readings * v_t.transpose();
     (jv.column_iter().zip(s.iter()))
-        .filter(|(_, &sv)| sv > 0.0)
+        .filter(|&(_, &sv)| sv > 0.0)
         .map(|(c, &sv)| (c.norm_squared() / (sv * sv)).min(1.0))
         .sum()
 }

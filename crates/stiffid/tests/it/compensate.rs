@@ -572,13 +572,13 @@ fn a_compensation_on_the_calibrated_robot_lands_on_the_target() {
     let mut rng = ChaCha8Rng::seed_from_u64(3);
     let mut values = model.nominal();
     for (i, p) in model.parameters().iter().enumerate() {
-        if let Moved::Joint { component, .. } = p.target {
-            if matches!(
+        if let Moved::Joint { component, .. } = p.target
+            && matches!(
                 component,
                 Component::Theta | Component::D | Component::A | Component::Alpha
-            ) {
-                values[i] += 1e-3 * (2.0 * rng.random::<f64>() - 1.0);
-            }
+            )
+        {
+            values[i] += 1e-3 * (2.0 * rng.random::<f64>() - 1.0);
         }
     }
     let estimate = Estimate {

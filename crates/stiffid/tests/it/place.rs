@@ -87,10 +87,10 @@ fn placements_optimum_equals_a_dense_grid_search() {
             let x = SMALL.x[0] + (SMALL.x[1] - SMALL.x[0]) * a as f64 / (n - 1) as f64;
             let y = SMALL.y[0] + (SMALL.y[1] - SMALL.y[0]) * b as f64 / (n - 1) as f64;
             let pose = Isometry3::from_parts(Translation3::new(x, y, 0.4), own.rotation);
-            if let Ok(e) = place::evaluate(&r, &pose).unwrap() {
-                if dense.is_none_or(|d| e.peak < d.0) {
-                    dense = Some((e.peak, x, y));
-                }
+            if let Ok(e) = place::evaluate(&r, &pose).unwrap()
+                && dense.is_none_or(|d| e.peak < d.0)
+            {
+                dense = Some((e.peak, x, y));
             }
         }
     }

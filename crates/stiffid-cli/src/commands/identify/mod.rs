@@ -140,10 +140,10 @@ pub fn run(args: &Args) -> Result<()> {
             if let Some(out) = &out {
                 out.write(r.fragment().as_bytes())?;
             }
-            if let Some(out) = &stiffness_out {
-                if let Some(text) = r.stiffness_file_text(name, &setup, &output::flag)? {
-                    out.write(text.as_bytes())?;
-                }
+            if let Some(out) = &stiffness_out
+                && let Some(text) = r.stiffness_file_text(name, &setup, &output::flag)?
+            {
+                out.write(text.as_bytes())?;
             }
             let doc = r.document(name);
             if let Some(dir) = report_dir {

@@ -35,3 +35,20 @@ fn only_empty_missing_or_own_directories_are_written_without_force() {
     assert!(open(&file, false).is_err(), "a file");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn a_directory_being_written_is_refused_until_its_writer_ends() {
+    let dir = std::env::temp_dir().join(format!("stiffid-locked-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let writer = open(&dir, false).expect("first");
+    // In one process the run's own claim refuses it; in another, the directory's lock.
+    let refused = open(&dir, true).err().expect("a second writer");
+    assert!(
+        format!("{refused:#}").contains("the same place"),
+        "{refused:#}"
+    );
+    drop(writer);
+    drop(open(&dir, false).expect("after the first ends"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -160,11 +160,11 @@ pub fn run(request: Request<'_>) -> Result<Report> {
     let outside_region = compliance.region.outside(&q);
     let mut warnings = Vec::from_iter(warning);
     warnings.extend(compliance.region.unrecorded_warning());
-    if let (Region::Postures(r), Some(axes)) = (&compliance.region, &outside_region) {
-        if !axes.is_empty() {
-            let flagged = [(String::new(), axes.clone())];
-            warnings.push(extrapolation_warning(r, "the posture lies", &flagged, 0));
-        }
+    if let (Region::Postures(r), Some(axes)) = (&compliance.region, &outside_region)
+        && !axes.is_empty()
+    {
+        let flagged = [(String::new(), axes.clone())];
+        warnings.push(extrapolation_warning(r, "the posture lies", &flagged, 0));
     }
     let point = |observed: &Vector3<f64>| {
         point(

@@ -26,14 +26,14 @@ pub(super) fn check(r: &Request) -> Result<()> {
     }
     purpose::check(r.purpose, &r.calibration)?;
     check_candidates_and_target(r)?;
-    if let Some(p) = &r.pool {
-        if p.postures.len() > MAX_POOL {
-            let message = format!(
-                "{} postures: a pool holds at most {MAX_POOL}",
-                p.postures.len()
-            );
-            return Err(in_pool(&p.name, "pool", message));
-        }
+    if let Some(p) = &r.pool
+        && p.postures.len() > MAX_POOL
+    {
+        let message = format!(
+            "{} postures: a pool holds at most {MAX_POOL}",
+            p.postures.len()
+        );
+        return Err(in_pool(&p.name, "pool", message));
     }
     Ok(())
 }

@@ -27,12 +27,12 @@ pub fn carried(
     let outside: Vec<String> = (cv.folds.iter())
         .filter_map(|f| {
             let names: Vec<&str> = (parameters.iter().zip(f.compliance.iter()))
-                .filter(|(p, &h)| {
+                .filter(|(p, h)| {
                     let (range, per_si) = match p.kind {
                         ParameterKind::Translation => (&STIFFNESS_N_PER_MM, 1e-3),
                         _ => (&STIFFNESS_NM_PER_RAD, 1.0),
                     };
-                    !range.contains(per_si / h)
+                    !range.contains(per_si / **h)
                 })
                 .map(|(p, _)| p.name.as_str())
                 .collect();

@@ -590,19 +590,19 @@ impl Summary {
     /// first lines and their axes), or that the stiffness file does not record it.
     pub fn region_warnings(&self, region: &Region) -> Vec<Warning> {
         let mut out = Vec::from_iter(region.unrecorded_warning());
-        if let (Region::Postures(r), Some(n)) = (region, self.extrapolated) {
-            if n > 0 {
-                let flagged: Vec<(String, Vec<Violation>)> = (self.extrapolated_lines.iter())
-                    .map(|(line, axes)| (format!("line {line}"), axes.clone()))
-                    .collect();
-                let subject = format!("{n} of {} path points {}", self.points, region::lie(n));
-                out.push(region::extrapolation_warning(
-                    r,
-                    &subject,
-                    &flagged,
-                    n - flagged.len(),
-                ));
-            }
+        if let (Region::Postures(r), Some(n)) = (region, self.extrapolated)
+            && n > 0
+        {
+            let flagged: Vec<(String, Vec<Violation>)> = (self.extrapolated_lines.iter())
+                .map(|(line, axes)| (format!("line {line}"), axes.clone()))
+                .collect();
+            let subject = format!("{n} of {} path points {}", self.points, region::lie(n));
+            out.push(region::extrapolation_warning(
+                r,
+                &subject,
+                &flagged,
+                n - flagged.len(),
+            ));
         }
         out
     }

@@ -39,15 +39,15 @@ pub struct Report {
 /// # Errors
 /// [`Error::InvalidField`] (`peak_resolution_deg`) for a resolution outside its range.
 pub fn run(request: &Request<'_>) -> Result<Report> {
-    if let Some(deg) = request.peak_resolution_deg {
-        if !(MIN_RESOLUTION_DEG..=MAX_RESOLUTION_DEG).contains(&deg) {
-            return Err(Error::InvalidField {
-                field: "peak_resolution_deg".into(),
-                message: format!(
-                    "{deg}: expected a number >= {MIN_RESOLUTION_DEG} and <= {MAX_RESOLUTION_DEG}"
-                ),
-            });
-        }
+    if let Some(deg) = request.peak_resolution_deg
+        && !(MIN_RESOLUTION_DEG..=MAX_RESOLUTION_DEG).contains(&deg)
+    {
+        return Err(Error::InvalidField {
+            field: "peak_resolution_deg".into(),
+            message: format!(
+                "{deg}: expected a number >= {MIN_RESOLUTION_DEG} and <= {MAX_RESOLUTION_DEG}"
+            ),
+        });
     }
     Ok(Report {
         name: request.name.clone(),

@@ -62,11 +62,11 @@ pub(crate) fn body(plan: &Plan, part: &Part) -> String {
     let n = part.targets.len();
     for (k, (t, m)) in part.targets.iter().zip(part.moves).enumerate() {
         let exact = part.last && k + 1 == n;
-        if let Move::Feed(f) = m {
-            if speed != Some(*f) {
-                let _ = writeln!(s, "$VEL.CP = {}", number(*f));
-                speed = Some(*f);
-            }
+        if let Move::Feed(f) = m
+            && speed != Some(*f)
+        {
+            let _ = writeln!(s, "$VEL.CP = {}", number(*f));
+            speed = Some(*f);
         }
         let approximate = |c: &str| match (exact, m) {
             (false, Move::Feed(_)) => format!(" {c}"),

@@ -228,15 +228,15 @@ fn positions(text: &str) -> Result<(HashMap<u64, JointTarget>, Vec<String>, Unit
         for (offset, item) in split_keeping_offsets(&masked) {
             o.item((line, start, l), offset, item, &mut units)?;
         }
-        if o.group == 1 {
-            if let Some(c) = cartesian::config(line, start, l)? {
-                o.config = Some(c);
-            }
+        if o.group == 1
+            && let Some(c) = cartesian::config(line, start, l)?
+        {
+            o.config = Some(c);
         }
-        if t.ends_with("};") {
-            if let Some(o) = open.take() {
-                read.push(o);
-            }
+        if t.ends_with("};")
+            && let Some(o) = open.take()
+        {
+            read.push(o);
         }
     }
     if let Some(o) = open {

@@ -44,10 +44,10 @@ pub(crate) fn apply(text: &str, targets: &mut [JointTarget]) -> Result<()> {
                 None => Frame::Unknown(l, format!("UF : {n}: a user frame held on the controller, which the program does not state: say that it holds the part frame (the setup's [workpiece]) with the remark `! {USER_FRAME} = {n} ;`, or give the positions in the world, UF : 0")),
             };
         }
-        if let (Frame::Numbered(l, n), Some((d, t))) = (c.tool.clone(), tool) {
-            if n != t {
-                c.tool = Frame::Unknown(l, format!("UT : {n}: the program's positions are for tool frame {t} (line {d}), the one that must hold the setup's tool; give every position in UT : {t}"));
-            }
+        if let (Frame::Numbered(l, n), Some((d, t))) = (c.tool.clone(), tool)
+            && n != t
+        {
+            c.tool = Frame::Unknown(l, format!("UT : {n}: the program's positions are for tool frame {t} (line {d}), the one that must hold the setup's tool; give every position in UT : {t}"));
         }
     }
     Ok(())

@@ -186,7 +186,7 @@ impl ErrorModel {
         for (m, &c) in loads.columns.iter().enumerate() {
             let unit = self.parameters[c].unit();
             let largest = (loads.columns.iter().zip(&rms))
-                .filter(|(&c, _)| self.parameters[c].unit() == unit)
+                .filter(|&(&c, _)| self.parameters[c].unit() == unit)
                 .map(|(_, r)| *r)
                 .fold(0.0, f64::max);
             let loaded = match rms[m] > NO_EFFECT * largest {

@@ -195,7 +195,7 @@ impl Linear {
     /// The map columns of `choice` on `rows`.
     fn columns(&self, choice: &JointMaps, rows: &[usize]) -> DMatrix<f64> {
         let mut cols = Vec::new();
-        for (j, &h) in choice.harmonics.iter().enumerate().filter(|(_, &h)| h > 0) {
+        for (j, &h) in choice.harmonics.iter().enumerate().filter(|&(_, &h)| h > 0) {
             cols.extend(
                 (0..h)
                     .chain(self.harmonics..self.harmonics + h)
