@@ -52,7 +52,7 @@ fi
 echo "== stiffid criterion benches" >&2
 if [ -n "${QUICK:-}" ]; then times=(--warm-up-time 1 --measurement-time 2); else times=(); fi
 for bench in compare design identify scaling; do
-  cargo bench -q -p stiffid --bench "$bench" -- --save-baseline compare "${times[@]}" >&2
+  cargo bench -q -p stiffid-bench --bench "$bench" -- --save-baseline compare "${times[@]}" >&2
 done
 
 echo "== NumPy/SciPy baseline (timeit)" >&2

@@ -43,7 +43,9 @@ fn a_directory_being_written_is_refused_until_its_writer_ends() {
     std::fs::create_dir_all(&dir).unwrap();
     let writer = open(&dir, false).expect("first");
     // In one process the run's own claim refuses it; in another, the directory's lock.
-    let refused = open(&dir, true).err().expect("a second writer");
+    let Err(refused) = open(&dir, true) else {
+        panic!("a second writer is accepted");
+    };
     assert!(
         format!("{refused:#}").contains("the same place"),
         "{refused:#}"

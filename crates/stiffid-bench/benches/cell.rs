@@ -5,7 +5,7 @@
 //! default radii and a tracker at (3000, -2000, 1500) mm; capsule against mesh bodies per
 //! evaluation on a generated robot with collision meshes (`tests/support/mesh_robot.rs`).
 
-#[path = "../tests/support/mesh_robot.rs"]
+#[path = "../../stiffid/tests/support/mesh_robot.rs"]
 mod mesh_robot;
 
 use criterion::{criterion_group, criterion_main, Criterion as Bench};

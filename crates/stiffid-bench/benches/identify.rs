@@ -4,7 +4,7 @@
 //! the 24 measurements, and the whole path, for reference.
 
 use stiffid::identify::Identify;
-#[path = "../tests/it/common.rs"]
+#[path = "../../stiffid/tests/it/common.rs"]
 mod common;
 
 use criterion::{criterion_group, criterion_main, Criterion};
