@@ -77,6 +77,10 @@ struct ControllerFile {
     #[serde(default, deserialize_with = "crate::common::exact::option")]
     pulses_per_deg: Option<[f64; 6]>,
     external_pulses: Option<Vec<f64>>,
+    #[serde(default)]
+    tools: Vec<super::numbered::NumberedFrameFile>,
+    #[serde(default)]
+    bases: Vec<super::numbered::NumberedFrameFile>,
 }
 
 /// `[workpiece]`: where a G-code program's part frame sits in the robot base frame.
@@ -402,6 +406,10 @@ where
         kinematics,
         robot,
         pulses: super::Pulses::read(c.pulses_per_deg, c.external_pulses)
+            .map_err(|e| in_file(e, source_name))?,
+        tools: super::numbered::read("controller.tools", &c.tools)
+            .map_err(|e| in_file(e, source_name))?,
+        bases: super::numbered::read("controller.bases", &c.bases)
             .map_err(|e| in_file(e, source_name))?,
         ..Default::default()
     })

@@ -79,6 +79,7 @@ mod cell;
 mod experiment;
 mod file;
 pub mod load_steps;
+pub mod numbered;
 pub mod plausibility;
 pub mod prior;
 pub mod reference;
@@ -94,6 +95,7 @@ pub use experiment::{Experiment, Noise, RopeLoad};
 pub use file::{
     builtin, builtin_names, builtin_text, parse, parse_with, RobotRequest, MAX_PACKAGE_PATHS,
 };
+pub use numbered::NumberedFrames;
 pub use workcell::{CellConstraints, Controller, Kinematics, Pulses, Workcell};
 
 use crate::common::limits::JointBox;

@@ -1,7 +1,7 @@
 //! The workcell: what surrounds the arm in a real cell (the floor, clearance and obstacles, the
 //! laser tracker, the search's constraints, the workpiece's frame) ([`super::Setup::workcell`]).
 
-use super::{Cell, Tracker};
+use super::{Cell, NumberedFrames, Tracker};
 use crate::Robot;
 use nalgebra::{Isometry3, Vector3};
 
@@ -64,6 +64,14 @@ pub struct Controller {
     /// controller's axes, for a program written in pulses (a Yaskawa INFORM job); `None` when
     /// the setup does not give them.
     pub pulses: Option<Pulses>,
+    /// `[controller] tools`: the tool frames the controller holds by number (KUKA
+    /// `TOOL_DATA[n]`, FANUC `UTOOL[n]`, a Yaskawa tool file), each in the controller's flange
+    /// frame, m ([`super::numbered`]); empty without.
+    pub tools: NumberedFrames,
+    /// `[controller] bases`: the base and user frames the controller holds by number (KUKA
+    /// `BASE_DATA[n]`, FANUC `UFRAME[n]`, a Yaskawa user frame), each in the controller's world
+    /// frame, m; empty without.
+    pub bases: NumberedFrames,
 }
 
 /// How many encoder pulses make a unit of each axis on the controller (its axis parameters): a

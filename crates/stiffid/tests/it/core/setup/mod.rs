@@ -1,3 +1,4 @@
 mod load_steps;
+mod numbered;
 mod prior;
 mod reference;
