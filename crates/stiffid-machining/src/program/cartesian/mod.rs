@@ -62,8 +62,14 @@ pub enum Frame {
     /// A frame the program states on `line` (KRL `$BASE`, `$TOOL`, RAPID `wobjdata`,
     /// `tooldata`): in the controller's world (a base, a work object) or flange (a tool), m.
     Stated(u64, Isometry3<f64>),
-    /// A frame held on the controller by number (LS `UF : n`, `UT : n`), on `line`.
+    /// A frame held on the controller by number (KRL `BASE_DATA[n]`, `TOOL_DATA[n]`, LS
+    /// `UF : n`, `UT : n`), on `line`: read from the setup's `[controller] bases` or `tools`
+    /// ([`stiffid_core::setup::numbered`]), refused where the setup does not give it.
     Numbered(u64, u32),
+    /// The setup's own frame of its role (its `[workpiece]` part frame for a base, its `[tool]`
+    /// for a tool), which the program declares on `line` that it moves in (an LS remark
+    /// `! stiffid: user_frame = n ;` or `tool_frame = n`).
+    Declared(u64),
     /// A frame the program leaves to the controller (not set, a variable, a number of the
     /// controller's table): the line of the motion and why.
     Unknown(u64, String),

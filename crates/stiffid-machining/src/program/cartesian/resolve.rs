@@ -7,6 +7,7 @@ use crate::program::{at, Dialect, JointProgram};
 use nalgebra::{Isometry3, Translation3, Vector3, Vector6};
 use stiffid_core::robot::configuration::Configuration;
 use stiffid_core::robot::ik::{self, tool_pose};
+use stiffid_core::setup::NumberedFrames;
 use stiffid_core::{Result, Robot, Setup};
 
 /// How far a frame the program states may be from the setup's (its tool, its `[workpiece]`)
@@ -32,6 +33,10 @@ pub struct Controller<'a> {
     pub world: Isometry3<f64>,
     /// The part frame in the setup's base frame (`[workpiece] base_from_part`), if given.
     pub part: Option<Isometry3<f64>>,
+    /// The tools the controller holds by number, in its flange frame (`[controller] tools`).
+    pub tools: &'a NumberedFrames,
+    /// The bases the controller holds by number, in its world (`[controller] bases`).
+    pub bases: &'a NumberedFrames,
 }
 
 impl<'a> Controller<'a> {
@@ -48,6 +53,8 @@ impl<'a> Controller<'a> {
             tool: c.adapter * Translation3::from(setup.tool().tcp),
             world: c.world,
             part: setup.workpiece().copied(),
+            tools: &c.tools,
+            bases: &c.bases,
         })
     }
 }
@@ -240,10 +247,11 @@ fn on_truth(
 /// Refuses a tool that is not the setup's (module docs of [`resolve`]).
 fn check_tool(tool: &Frame, line: u64, controller: &Controller) -> Result<()> {
     let (stated, on) = match tool {
-        Frame::Numbered(..) => return Ok(()),
+        Frame::Declared(_) => return Ok(()),
         Frame::Unknown(l, why) => return Err(at(*l, why.clone())),
         Frame::World => (Isometry3::identity(), line),
         Frame::Stated(l, f) => (*f, *l),
+        Frame::Numbered(l, n) => (*numbered(controller.tools, (*l, *n), "tools")?, *l),
     };
     if same(&stated, &controller.tool) {
         return Ok(());
@@ -282,8 +290,28 @@ fn base_frame(
                 Some(_) => Err(not_part(*l, format!("the frame {}", words(f)))),
             }
         }
-        Frame::Numbered(l, n) => placed.copied().or(c.part).ok_or_else(|| {
-            at(*l, format!("UF : {n}: a user frame held on the controller, which stiffid takes as the part frame; the setup gives none ([workpiece] base_from_part)"))
+        Frame::Numbered(l, n) => {
+            let f = numbered(c.bases, (*l, *n), "bases")?;
+            base_frame(&Frame::Stated(*l, *f), line, (c, dialect), placed)
+        }
+        Frame::Declared(l) => placed.copied().or(c.part).ok_or_else(|| {
+            at(*l, "the program declares its user frame the part frame, and the setup gives none ([workpiece] base_from_part)".into())
         }),
     }
+}
+
+/// The frame numbered `n` (stated on `line`) of the setup's `[controller]` table `table`
+/// (`tools`, `bases`).
+fn numbered<'t>(
+    frames: &'t NumberedFrames,
+    (line, n): (u64, u32),
+    table: &str,
+) -> Result<&'t Isometry3<f64>> {
+    frames.get(n).ok_or_else(|| {
+        let given = match frames.numbers().map(|k| k.to_string()).collect::<Vec<_>>() {
+            k if k.is_empty() => "gives none".to_string(),
+            k => format!("gives {}", k.join(", ")),
+        };
+        at(line, format!("frame number {n} of the controller's {table}, which the program selects by number without stating it, and the setup's [controller] {table} {given}: give it there ({{ number = {n}, xyz_mm = [..], rpy_deg = [..] }}, as the controller holds it)"))
+    })
 }

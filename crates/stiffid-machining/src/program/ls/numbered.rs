@@ -39,15 +39,16 @@ pub(crate) fn apply(text: &str, targets: &mut [JointTarget]) -> Result<()> {
     {
         if let Frame::Numbered(l, n) = c.frame {
             c.frame = match user {
-                Some((_, u)) if u == n => Frame::Numbered(l, n),
+                Some((_, u)) if u == n => Frame::Declared(l),
                 Some((d, u)) => Frame::Unknown(l, format!("UF : {n}: the program names user frame {u} the part frame (line {d}); user frame {n} is held on the controller, which the program does not state: give the position in UF : {u} or in the world, UF : 0")),
                 None => Frame::Unknown(l, format!("UF : {n}: a user frame held on the controller, which the program does not state: say that it holds the part frame (the setup's [workpiece]) with the remark `! {USER_FRAME} = {n} ;`, or give the positions in the world, UF : 0")),
             };
         }
-        if let (Frame::Numbered(l, n), Some((d, t))) = (c.tool.clone(), tool)
-            && n != t
-        {
-            c.tool = Frame::Unknown(l, format!("UT : {n}: the program's positions are for tool frame {t} (line {d}), the one that must hold the setup's tool; give every position in UT : {t}"));
+        if let (Frame::Numbered(l, n), Some((d, t))) = (c.tool.clone(), tool) {
+            c.tool = match n == t {
+                true => Frame::Declared(l),
+                false => Frame::Unknown(l, format!("UT : {n}: the program's positions are for tool frame {t} (line {d}), the one that must hold the setup's tool; give every position in UT : {t}")),
+            };
         }
     }
     Ok(())
