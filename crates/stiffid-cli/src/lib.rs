@@ -15,6 +15,7 @@ pub mod output;
 mod progress;
 pub mod renamed;
 pub mod report;
+mod signals;
 
 use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use std::process::ExitCode;
@@ -107,6 +108,7 @@ where
     if let Err(message) = stiffid_core::common::threads::start() {
         return report(&message);
     }
+    signals::remove_temporaries_on_signals();
     let args: Vec<std::ffi::OsString> = args.into_iter().map(Into::into).collect();
     let words: Vec<String> = (args.iter().skip(1))
         .filter_map(|a| a.to_str().map(str::to_owned))

@@ -83,6 +83,7 @@ impl ReportDir {
         }
         std::fs::create_dir(&report.tmp)
             .with_context(|| format!("{option} {name}: cannot write into it"))?;
+        super::staged::scratch(report.tmp.clone());
         Ok(report)
     }
 

@@ -24,6 +24,31 @@ pub enum Step {
 
 static STEPS: Mutex<Vec<Step>> = Mutex::new(Vec::new());
 
+/// The report directories' temporary directories being written into (removed by [`interrupted`]).
+static SCRATCH: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// Held while [`commit`] puts the files in place.
+static COMMITTING: Mutex<()> = Mutex::new(());
+
+/// Records `dir`, a report directory's temporary directory, for [`interrupted`].
+pub fn scratch(dir: PathBuf) {
+    SCRATCH.lock().unwrap_or_else(|e| e.into_inner()).push(dir);
+}
+
+/// What a run interrupted by a signal leaves: nothing of its own. Every staged temporary file and
+/// directory, the directories the run created, the report directories' temporary directories
+/// and every temporary file the run made ([`stiffid_core::io::output::remove_temporaries`]) are
+/// removed; the files already there stay as they were.
+pub fn interrupted() {
+    // A commit under way finishes first: its files are all put in place, not some.
+    let _committing = COMMITTING.lock().unwrap_or_else(|e| e.into_inner());
+    discard();
+    for dir in std::mem::take(&mut *SCRATCH.lock().unwrap_or_else(|e| e.into_inner())) {
+        let _ = std::fs::remove_dir_all(dir);
+    }
+    stiffid_core::io::output::remove_temporaries();
+}
+
 /// Handles held to the end of the run (report directories' locks).
 static HELD: Mutex<Vec<std::fs::File>> = Mutex::new(Vec::new());
 
@@ -109,6 +134,7 @@ pub fn created(dir: PathBuf) {
 /// The first file that cannot be put in place (the others are still tried; temporary files of
 /// the failed ones are removed).
 pub fn commit() -> Result<()> {
+    let _committing = COMMITTING.lock().unwrap_or_else(|e| e.into_inner());
     let steps = take();
     if let Some(e) = over_an_input(&steps) {
         put_back(steps);

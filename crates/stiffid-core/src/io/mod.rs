@@ -22,6 +22,7 @@ pub mod output;
 pub mod postures;
 pub mod readings;
 pub mod stiffness;
+mod temporaries;
 
 use crate::common::error::ColumnProblem;
 use crate::common::limits::{short, MAX_INPUT_BYTES};

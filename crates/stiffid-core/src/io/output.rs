@@ -13,6 +13,8 @@ use std::io::{ErrorKind, Write};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
+use super::temporaries;
+
 /// The file a write to `path` replaces or creates, paths resolved: `path` itself (absolute) for a
 /// new name or a regular file, the final target for a symlink to a regular file. `input_at`
 /// gives the input file of the run that a resolved path is, if any.
@@ -111,17 +113,23 @@ pub fn kind_of(file_type: std::fs::FileType) -> &'static str {
 }
 
 /// A new temporary file in `dir` with a short name (`.stiffid-PID-N.tmp`, under 32 bytes, so any
-/// valid target name works), created exclusively.
+/// valid target name works), created exclusively and recorded for [`remove_temporaries`]. The
+/// first temporary a process makes in a directory first removes the stale ones there
+/// (`.stiffid-PID-N.tmp` of a process that is gone).
 ///
 /// # Errors
 /// When it cannot be created.
 pub fn temporary(dir: &Path) -> std::io::Result<(PathBuf, File)> {
     static COUNT: AtomicUsize = AtomicUsize::new(0);
+    temporaries::remove_stale(dir);
     let n = COUNT.fetch_add(1, Ordering::Relaxed);
-    let path = dir.join(format!(".stiffid-{}-{n}.tmp", std::process::id()));
+    let path = dir.join(temporaries::name(std::process::id(), n));
+    temporaries::record(&path);
     let file = File::options().write(true).create_new(true).open(&path)?;
     Ok((path, file))
 }
+
+pub use temporaries::remove_temporaries;
 
 /// `bytes` written whole to a new [`temporary`] file in `dir`, synced; its path. Nothing is left
 /// behind on failure.
