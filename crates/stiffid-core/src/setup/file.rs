@@ -124,7 +124,15 @@ struct LoadingFile {
 struct NoiseFile {
     reading_sd_mm: Option<f64>,
     variance_mm2: Option<f64>,
+    /// The simulations' noise levels: optional, `[1.0]` (the reading noise as given) without,
+    /// since a setup used only to identify and compensate simulates nothing.
+    #[serde(default = "one_level")]
     level_multiples: Vec<f64>,
+}
+
+/// The noise levels of a setup that gives none: the reading noise as given.
+fn one_level() -> Vec<f64> {
+    vec![1.0]
 }
 
 impl NoiseFile {
@@ -325,6 +333,9 @@ where
         Some(c) => controller(c, &file, source_name, &mut resolve_robot, mount)?,
     };
     calibrated::same_robot(&robot, controller.robot.as_ref(), &file.robot, source_name)?;
+    if let Some(c) = &controller.robot {
+        super::controller_robot::check(&robot, c, &file.robot, source_name)?;
+    }
     controller.world = mount.unwrap_or_default();
     controller.adapter = transform(file.robot_flange, "robot_flange", source_name)?;
     let steps = file.loading.as_ref().is_some_and(|l| !l.steps_n.is_empty());

@@ -76,6 +76,7 @@ mod builder;
 mod calibrated;
 mod carried;
 mod cell;
+mod controller_robot;
 mod experiment;
 mod file;
 pub mod load_steps;
@@ -91,6 +92,7 @@ pub use arm::{
 };
 pub use builder::{SetupBuilder, DEFAULT_FRAME_SD};
 pub use cell::{Cell, Obstacle, Tracker, MAX_LENGTH_MM, MAX_OBSTACLES};
+pub use controller_robot::SAME_ROBOT_MM;
 pub use experiment::{Experiment, Noise, RopeLoad};
 pub use file::{
     builtin, builtin_names, builtin_text, parse, parse_with, RobotRequest, MAX_PACKAGE_PATHS,

@@ -169,3 +169,17 @@ fn the_fields_given_are_still_checked() {
         "{built}"
     );
 }
+
+/// A setup used only to identify and compensate may leave out the simulations' noise levels:
+/// it has the one level of the reading noise as given, and everything else as with them.
+#[test]
+fn without_noise_levels_a_setup_has_the_reading_noise_as_given() {
+    let (full, setup) = (paper(), paper_without("level_multiples"));
+    assert_eq!(setup.noise().levels, vec![1.0]);
+    assert!(full.noise().levels.len() > 1);
+    assert_eq!(
+        setup.noise().reading_variance,
+        full.noise().reading_variance
+    );
+    assert_eq!(setup.robot(), full.robot());
+}

@@ -1,0 +1,62 @@
+//! The robot file a controller runs (`[controller] robot`) must be the setup's robot as the
+//! controller knows it: its nominal kinematics, not a calibrated file, and not another robot. A
+//! controller of another robot would put every Cartesian target decimetres to metres away; a
+//! calibrated file run as the nominal one would move every target by the calibration's
+//! correction (millimetres) without a word.
+
+use crate::{Error, Result, Robot};
+use nalgebra::Vector6;
+
+/// How far the controller's flange may be from the setup robot's at the same axis angles and
+/// still be the same robot, mm: a calibration moves a robot's flange by a few millimetres
+/// (geometric errors of industrial robots: 1 to 5 mm before calibration), another robot model by
+/// decimetres.
+pub const SAME_ROBOT_MM: f64 = 20.0;
+
+/// Refuses a `[controller] robot` that is a calibrated file (with nominal kinematics), or whose
+/// flange lies more than [`SAME_ROBOT_MM`] from the setup's robot's at any of 13 postures spread
+/// over the setup robot's joint limits (the centre, and each axis at a quarter and three
+/// quarters of its range). `reference` is the setup's `robot` field, `src` the file name.
+///
+/// # Errors
+/// [`Error::InvalidField`] (`controller.robot`) naming both robots, and for another robot the
+/// posture and the distance.
+pub(super) fn check(robot: &Robot, controller: &Robot, reference: &str, src: &str) -> Result<()> {
+    let fail = |message: String| Error::InvalidField {
+        field: format!("{src}: controller.robot"),
+        message,
+    };
+    if controller.is_calibrated() {
+        return Err(fail(format!("'{}' is a calibrated robot file, and kinematics = \"nominal\" says the controller runs its nominal robot: name the robot file or preset the controller runs, or say kinematics = \"calibrated\" for a controller loaded with the calibrated model", controller.name())));
+    }
+    let (lower, upper) = (robot.limits().lower, robot.limits().upper);
+    let centre = (lower + upper) / 2.0;
+    let mut postures = vec![centre];
+    for k in 0..6 {
+        for f in [0.25, 0.75] {
+            let mut q = centre;
+            q[k] = lower[k] + f * (upper[k] - lower[k]);
+            postures.push(q);
+        }
+    }
+    let far = postures.iter().find_map(|q| {
+        let d = flange_distance_mm(robot, controller, q);
+        (d.is_nan() || d > SAME_ROBOT_MM).then_some((q, d))
+    });
+    match far {
+        None => Ok(()),
+        Some((q, d)) => Err(fail(format!(
+            "'{}' is not the setup's robot '{reference}' ('{}'): at the axis angles [{}] deg their flanges are {} mm apart (more than {SAME_ROBOT_MM} mm, more than any calibration moves a robot); name the robot file the controller of this robot runs",
+            controller.name(),
+            robot.name(),
+            q.iter().map(|a| format!("{:.1}", a.to_degrees())).collect::<Vec<_>>().join(", "),
+            crate::common::words::number(d),
+        ))),
+    }
+}
+
+/// The distance between the two robots' flanges at axis angles `q` (rad), mm.
+fn flange_distance_mm(a: &Robot, b: &Robot, q: &Vector6<f64>) -> f64 {
+    let (fa, fb) = (a.frames(q).flange, b.frames(q).flange);
+    (fa.translation.vector - fb.translation.vector).norm() * 1e3
+}
