@@ -61,6 +61,13 @@ pub struct Noise {
 }
 
 impl Noise {
+    /// The noise levels of a setup file that gives none (`[noise] level_multiples` left out):
+    /// the reading noise as given, `[1.0]`. A setup used only to identify and compensate
+    /// simulates nothing.
+    pub fn one_level() -> Vec<f64> {
+        vec![1.0]
+    }
+
     /// Standard deviation `sigma_r` of one coordinate of one reading at multiple 1, m.
     pub fn reading_sd(&self) -> f64 {
         self.reading_variance.sqrt()

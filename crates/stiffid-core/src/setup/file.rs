@@ -124,15 +124,9 @@ struct LoadingFile {
 struct NoiseFile {
     reading_sd_mm: Option<f64>,
     variance_mm2: Option<f64>,
-    /// The simulations' noise levels: optional, `[1.0]` (the reading noise as given) without,
-    /// since a setup used only to identify and compensate simulates nothing.
-    #[serde(default = "one_level")]
+    /// Optional: `[1.0]`, the reading noise as given ([`super::Noise::one_level`]).
+    #[serde(default = "super::Noise::one_level")]
     level_multiples: Vec<f64>,
-}
-
-/// The noise levels of a setup that gives none: the reading noise as given.
-fn one_level() -> Vec<f64> {
-    vec![1.0]
 }
 
 impl NoiseFile {

@@ -425,3 +425,26 @@ fn the_update_recovers_the_gain_of_a_full_recalibration() {
     }
     eprintln!("held-out RMS mm (none, update, full, share of the gain): {figures:?}");
 }
+
+/// An update whose check campaign reads no reflectors keeps the part its calibrated robot file
+/// located (`[part]`), with a warning that says how to locate it again; it never drops it.
+#[test]
+fn an_update_without_reflectors_keeps_the_located_part() {
+    let part = "\n[part]\nxyz_mm = [1200.0, -300.0, 400.0]\nrpy_deg = [0.0, 0.0, 30.0]\n";
+    let robot =
+        stiffid::robot::file::parse(&(robot_text(&OFFSETS) + part), "calibrated.toml").unwrap();
+    let located = *robot.part().unwrap();
+    let setup = setup().to_builder().with_robot(robot).build().unwrap();
+    let postures = stiffid::design::random_group(&setup, 10, 3);
+    let data = readings(&drifted(), &setup, &postures, "C", 0.0, 4);
+    let report = update(&setup, &data, None).unwrap();
+    let file = report.robot_toml.as_ref().unwrap();
+    let updated = stiffid::robot::file::parse(file, "updated.toml").unwrap();
+    let kept = updated.part().expect("the updated file keeps [part]");
+    assert!((kept.translation.vector - located.translation.vector).norm() < 1e-12);
+    assert!(kept.rotation.angle_to(&located.rotation) < 1e-12);
+    assert!(report
+        .warnings
+        .iter()
+        .any(|w| w.message.contains("keeps the part")));
+}

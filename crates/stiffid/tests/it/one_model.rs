@@ -185,8 +185,16 @@ fn a_setup_does_not_repeat_the_calibrated_robot() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("controller.robot") && e.contains("FANUC"), "{e}");
-    let same = "[controller]\nkinematics = \"nominal\"\nrobot = \"comau-smart5-nj165-3.0\"";
-    heavy_on(same, "", &calibrated_text("")).unwrap();
+    // The calibrated file itself as the nominal controller's robot: every Cartesian target
+    // would move by the calibration's correction.
+    let itself = "[controller]\nkinematics = \"nominal\"\nrobot = \"comau-smart5-nj165-3.0\"";
+    let e = heavy_on(itself, "", &calibrated_text(""))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("controller.robot") && e.contains("is a calibrated robot file"),
+        "{e}"
+    );
 }
 
 /// A calibrated robot file records the mount it was calibrated on (`[mount]`, which its `[base]`
@@ -195,7 +203,8 @@ fn a_setup_does_not_repeat_the_calibrated_robot() {
 /// robot stands on it, as it did on the setup's `[robot_base]` before the calibration.
 #[test]
 fn the_calibrated_mount_is_recorded_and_not_given_twice() {
-    let mount = "[mount]\nxyz_mm = [0.0, 0.0, 300.0]\nrpy_deg = [0.0, 0.0, 0.0]\n";
+    // The file's [base] holds the mount, as a calibration writes it.
+    let mount = "[mount]\nxyz_mm = [0.0, 0.0, 300.0]\nrpy_deg = [0.0, 0.0, 0.0]\n[base]\nxyz_mm = [0.0, 0.0, 300.0]\n";
     let riser = "[robot_base]\nxyz_mm = [0.0, 0.0, 300.0]";
     let recorded = calibrated_text(mount);
     let file = stiffid::robot::file::parse(&recorded, "robot.toml").unwrap();

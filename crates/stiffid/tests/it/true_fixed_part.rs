@@ -251,3 +251,61 @@ fn the_part_beside_a_track_is_located_by_the_calibration() {
     assert!(off.rotation.angle() < 0.03e-3 / 0.25, "{off}");
     assert!(moved.translation.vector.norm() > 20.0 * off.translation.vector.norm());
 }
+
+/// Reflectors that no rigid transform explains (the setup's `T1` and `T2` swapped, or `T3` placed
+/// 50 m away) are refused naming `workpiece.reflectors_mm` and the reflector, never written
+/// into `[part]` with a distance warning only.
+#[test]
+fn reflectors_no_rigid_transform_explains_are_refused() {
+    let (case, part) = fixed_case();
+    let mut rng = ChaCha8Rng::seed_from_u64(12);
+    let truth = Truth::new(&true_robot::dh_case().setup, &mut rng);
+    let reflectors: Vec<Vector3<f64>> = (on_table().iter())
+        .map(|r| (part * Point3::from(*r)).coords)
+        .collect();
+    let fit = true_robot::postures(30, &mut rng, case.angles);
+    let data = readings(&truth, None, (&fit, &[0.0; 3]), &reflectors, &mut rng);
+    let mut swapped = on_table();
+    swapped.swap(0, 1);
+    let mut far = on_table();
+    far[2].x = 50.0;
+    for (placed, named) in [(swapped, "lies"), (far, "T3 lies")] {
+        let setup = (case.setup.to_builder())
+            .with_table_reflectors(placed)
+            .build()
+            .unwrap();
+        let request = stiffid::app::calibrate::Request {
+            readings: stiffid::app::readings::Request {
+                setup: &setup,
+                name: "fit.csv".into(),
+                text: &data,
+                force: false,
+            },
+            geometry: stiffid::metrology::calibration::Geometry::Full,
+            gravity: stiffid::app::calibrate::GravitySpec::Fixed(Gravity::None),
+            validate: None,
+            reregister: false,
+            cross_validate: false,
+            priors: None,
+            progress: &(),
+            maps: stiffid::metrology::calibration::maps::Spec::None,
+            error_motions: Default::default(),
+            level: None,
+            update: false,
+            refit: Default::default(),
+            weight: None,
+            urdf: false,
+        };
+        match stiffid::app::calibrate::run(&request) {
+            Err(stiffid::Error::InvalidField { field, message }) => {
+                assert_eq!(field, "workpiece.reflectors_mm", "{message}");
+                assert!(
+                    message.contains(named) && message.contains("mm from its place"),
+                    "{message}"
+                );
+            }
+            Err(other) => panic!("{other}"),
+            Ok(_) => panic!("{named}: accepted"),
+        }
+    }
+}

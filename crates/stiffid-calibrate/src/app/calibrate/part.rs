@@ -13,27 +13,57 @@
 use super::{Warning, WarningKind};
 use nalgebra::{Isometry3, Point3};
 use stiffid_core::common::words::number;
-use stiffid_core::Setup;
+use stiffid_core::{Error, Result, Setup};
 use stiffid_metrology::calibration::error_model::{ErrorModel, Estimate, MeasuredIn};
-use stiffid_metrology::register::{fit, Correspondence};
+use stiffid_metrology::register::{fit, suspect, Correspondence, Registration, Suspect};
 
 /// The part's frame in the calibrated cell (m), located from the setup's reflectors and
 /// the model's fitted ones (paired by number, `T1` with the first): `None` without reflectors in
 /// both. A location that fails (fewer than three reflectors, or on one line), one far from
-/// the setup's `[workpiece] base_from_part`, and reflectors read in a cell without a positioner
-/// that the setup does not place (they locate nothing) add a warning to `warnings`.
+/// the setup's `[workpiece] base_from_part`, reflectors read in a cell without a positioner
+/// that the setup does not place (they locate nothing) and reflectors placed that were not read
+/// add a warning to `warnings`. An update (`update`) that locates no part keeps the one its
+/// calibrated robot file records, with a warning.
+///
+/// # Errors
+/// [`stiffid_core::Error::InvalidField`] (`workpiece.reflectors_mm`) when no rigid transform
+/// explains the reflectors as the setup places them and as the calibration fitted them: a mirror
+/// image, or a reflector farther from its place than the registration's residual limit
+/// ([`stiffid_metrology::register::suspect`]), naming it and how far.
 pub(super) fn located(
     setup: &Setup,
     (model, estimate): (&ErrorModel, &Estimate),
+    update: bool,
     warnings: &mut Vec<Warning>,
-) -> Option<Isometry3<f64>> {
+) -> Result<Option<Isometry3<f64>>> {
+    let found = locate(setup, (model, estimate), warnings)?;
+    match (found, setup.robot().part()) {
+        (None, Some(kept)) if update => {
+            warnings.push(Warning::new(
+                WarningKind::Calibrated,
+                "the update locates no part (no reflectors read and placed): the calibrated robot file keeps the part the calibration located ([part]); if the part or the robot moved since, read the reflectors in the check campaign ([workpiece] reflectors_mm and their T rows) to locate it again",
+            ));
+            Ok(Some(*kept))
+        }
+        (found, _) => Ok(found),
+    }
+}
+
+fn locate(
+    setup: &Setup,
+    (model, estimate): (&ErrorModel, &Estimate),
+    warnings: &mut Vec<Warning>,
+) -> Result<Option<Isometry3<f64>>> {
     let given = setup.table_reflectors();
     warnings.extend(unplaced(setup, model.tables(), given.len()));
-    let part = setup.workpiece()?;
+    let Some(part) = setup.workpiece() else {
+        return Ok(None);
+    };
     let n = given.len().min(model.tables());
     if n == 0 {
-        return None;
+        return Ok(None);
     }
+    warnings.extend(unread(given.len(), model.tables()));
     // Readings in the base frame: the calibrated robot's base is `T^-1 base`, so its cell too.
     let cell = match model.measured_in() {
         MeasuredIn::Tracker => Isometry3::identity(),
@@ -47,17 +77,53 @@ pub(super) fn located(
         .collect();
     match fit(&pairs) {
         Ok(r) => {
+            explained(&r, setup.noise().reading_sd())?;
             warnings.extend(moved(part, &r.base_from_tracker, n));
-            Some(r.base_from_tracker)
+            Ok(Some(r.base_from_tracker))
         }
         Err(e) => {
             warnings.push(Warning::new(
                 WarningKind::Calibrated,
                 format!("the part's frame is not located from the reflectors T1..T{n} ({e}): the calibrated robot file records none, and a setup pointing at it needs [workpiece] base_from_part"),
             ));
-            None
+            Ok(None)
         }
     }
+}
+
+/// Refuses a location `r` that no rigid transform explains at the tracker noise `sigma` (m):
+/// the registration's check ([`suspect`]).
+fn explained(r: &Registration, sigma: f64) -> Result<()> {
+    let why = match suspect(&r.residuals, r.rms, r.mirror_rms, sigma) {
+        None => return Ok(()),
+        Some(Suspect::Mirrored { rms, mirror_rms }) => format!(
+            "the fitted reflectors are a mirror image of the ones placed (a rotation leaves {} mm RMS, a reflection {} mm): check the signs of the coordinates",
+            number(rms * 1e3),
+            number(mirror_rms * 1e3)
+        ),
+        Some(Suspect::Residual { index, length, limit }) => format!(
+            "no rigid transform puts the reflectors where the calibration fitted them: T{} lies {} mm from its place (at most {} mm; RMS of all {} mm): check its coordinates and that each T row reads the reflector of the same number",
+            index + 1,
+            number(length * 1e3),
+            number(limit * 1e3),
+            number(r.rms * 1e3)
+        ),
+    };
+    Err(Error::InvalidField {
+        field: "workpiece.reflectors_mm".into(),
+        message: format!("{why}; the part is not located from them"),
+    })
+}
+
+/// The warning that the setup places `placed` reflectors and the readings read only `read`:
+/// the part is located from the first `read`.
+fn unread(placed: usize, read: usize) -> Option<Warning> {
+    (placed > read && read > 0).then(|| {
+        Warning::new(
+            WarningKind::Calibrated,
+            format!("the setup places {placed} reflectors ([workpiece] reflectors_mm) and the readings read {read} (T rows): the part is located from T1..T{read} only"),
+        )
+    })
 }
 
 /// The warning that the part located at `located` from `n` reflectors lies away from the
