@@ -507,10 +507,7 @@ fn operations<'a>(
     process: &'a Process,
 ) -> Result<Vec<Option<(usize, &'a Operation)>>> {
     let ops = &process.operations;
-    let fallback = ops
-        .iter()
-        .enumerate()
-        .find(|(_, o)| o.selector.tool_number.is_none() && o.selector.lines.is_none());
+    let fallback = |line: u64| fallback(ops, line);
     match program {
         Program::GCode(g) => g
             .points
@@ -535,7 +532,7 @@ fn operations<'a>(
                                 .enumerate()
                                 .find(|(_, o)| o.selector.tool_number == Some(t))
                         })
-                        .or(fallback),
+                        .map_or_else(|| fallback(p.line), |op| Ok(Some(op)))?,
                 };
                 match (p.cycle, op) {
                     (Some(c), Some((_, o))) if !matches!(o.kind, Kind::Drilling(_)) => {
@@ -552,18 +549,37 @@ fn operations<'a>(
                 }
             })
             .collect(),
-        Program::Robot(r) => Ok(r
-            .targets
-            .iter()
+        Program::Robot(r) => (r.targets.iter())
             .map(|t| {
                 let by_line = ops.iter().enumerate().find(|(_, o)| {
                     o.selector
                         .lines
                         .is_some_and(|(a, b)| (a..=b).contains(&t.line))
                 });
-                by_line.or(fallback)
+                by_line.map_or_else(|| fallback(t.line), |op| Ok(Some(op)))
             })
-            .collect()),
+            .collect(),
+    }
+}
+
+/// The operation covering a point on `line` that no selector covers: the one operation without
+/// a selector; none without one; refused naming the line when several have none (each is
+/// chosen by `(operation: NAME)` only, and this point names none).
+fn fallback(ops: &[Operation], line: u64) -> Result<Option<(usize, &Operation)>> {
+    let mut free = (ops.iter().enumerate())
+        .filter(|(_, o)| o.selector.tool_number.is_none() && o.selector.lines.is_none());
+    match (free.next(), free.next()) {
+        (one, None) => Ok(one),
+        (Some((_, a)), Some((_, b))) => Err(Error::Program {
+            line,
+            message: format!(
+                "no operation covers this point: the process has several without a selector ('{}', '{}'{}), each chosen by an (operation: NAME) comment, and none is in force here; name one before this line, or give the operations a tool_number or lines",
+                stiffid_core::common::limits::short(&a.name),
+                stiffid_core::common::limits::short(&b.name),
+                if free.next().is_some() { ", ..." } else { "" }
+            ),
+        }),
+        (None, Some(_)) => Ok(None),
     }
 }
 

@@ -43,8 +43,10 @@
 //! ([`crate::compensate::LEAD_TILT_MAX_CONE_DEG`]).
 //!
 //! # Ambiguity
-//! Two operations with the same name, the same `tool_number`, overlapping `lines`, or both
-//! without a selector are refused naming both: a program could not tell which one covers a point.
+//! Two operations with the same name, the same `tool_number` or overlapping `lines` are refused
+//! naming both: a program could not tell which one covers a point. Operations without a selector
+//! are chosen by name (`(operation: NAME)`); with several of them, a point that names none is
+//! refused naming its line.
 //! Every key is checked: a key the operation's kind does not take (a drilling operation's
 //! `flutes`) or a single operation's key beside `[[operation]]` tables is refused.
 
@@ -229,7 +231,8 @@ fn process(file: FileToml) -> Result<Process> {
 }
 
 /// Refuses two operations a program could not tell apart: the same name, the same
-/// `tool_number`, overlapping `lines`, or both without a selector (the first would silently win).
+/// `tool_number` or overlapping `lines`. Several without a selector are each chosen by name
+/// (`(operation: NAME)`); a point that names none is refused where it needs one.
 fn unambiguous(operations: &[Operation]) -> Result<()> {
     let label = |i: usize| match operations.len() {
         1 => String::new(),
@@ -245,12 +248,6 @@ fn unambiguous(operations: &[Operation]) -> Result<()> {
             } else if let (Some((a0, a1)), Some((b0, b1))) = (sa.lines, sb.lines) {
                 (a0 <= b1 && b0 <= a1)
                     .then(|| format!("overlapping lines [{a0}, {a1}] and [{b0}, {b1}]"))
-            } else if sa.tool_number.is_none()
-                && sa.lines.is_none()
-                && sb.tool_number.is_none()
-                && sb.lines.is_none()
-            {
-                Some("no selector (tool_number or lines) in either".to_string())
             } else {
                 None
             };

@@ -328,3 +328,57 @@ fn a_drilling_feed_runs_along_the_compensated_hole_axis() {
         assert_eq!(cuts, if cycle.starts_with("G83") { 3 } else { 1 });
     }
 }
+
+/// Operations without a selector are each chosen by name: a process of a drilling and a milling
+/// operation chosen by `(operation: NAME)` only is read, each point takes the one named in force
+/// (the drill's thrust on the hole, the milling force on the wall), and a point that names none
+/// is refused naming its line.
+#[test]
+fn operations_chosen_by_name_alone_cover_the_points_that_name_them() {
+    let by_name = DRILL
+        .replace("tool_number = 2\n", "")
+        .replace("tool_number = 1\n", "");
+    let process = file::parse(&by_name, "p.toml").unwrap();
+    assert_eq!(process.operations.len(), 2);
+    let s = drilling_setup();
+    let program = |text: &str| machining::read(text, Language::GCode, 1e-5).unwrap();
+    let run = |text: &str| {
+        machining::compensate(
+            s.arm(),
+            s.workpiece(),
+            &s.model_compliance("test").unwrap(),
+            &program(text),
+            &process,
+            &Options::for_setup(&s),
+        )
+    };
+    let text = format!(
+        "{HEADER}(operation: drill)\nG0 X0 Y0 Z10\nG81 X20 Y10 Z-8 R2 F120\nG80\n\
+         (operation: wall)\nG0 X0 Y0 Z5\nG1 Z-4 F300\nG1 X50 F1800\n"
+    );
+    let report = run(&text).unwrap();
+    let named: Vec<&str> = (report.operations.iter().flatten())
+        .map(|&i| process.operations[i].name.as_str())
+        .collect();
+    assert!(
+        named.contains(&"drill") && named.contains(&"wall"),
+        "{named:?}"
+    );
+    let drilled = (report.points.iter().zip(&report.operations))
+        .find(|(_, o)| o.map(|i| process.operations[i].name.as_str()) == Some("drill"))
+        .unwrap();
+    assert!(
+        (drilled.0.wrench[2] - 1000.0).abs() < 1e-9,
+        "{}",
+        drilled.0.wrench
+    );
+    match run(&format!("{HEADER}G0 X0 Y0 Z10\nG1 Z-4 F300\n")) {
+        Err(Error::Program { line: 2, message }) => {
+            assert!(
+                message.contains("'drill', 'wall'") && message.contains("(operation: NAME)"),
+                "{message}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+}

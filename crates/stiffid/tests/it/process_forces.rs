@@ -445,7 +445,6 @@ fn ambiguous_operations_and_misplaced_keys_are_refused_naming_them() {
         (two("name = \"a\"\ntool_number = 1", "name = \"a\"\ntool_number = 2"), "p.toml: operation[2]", "name 'a'"),
         (two("name = \"a\"\ntool_number = 1", "name = \"b\"\ntool_number = 1"), "p.toml: operation[2]", "tool_number = 1"),
         (two("name = \"a\"\nlines = [1, 10]", "name = \"b\"\nlines = [10, 20]"), "p.toml: operation[2]", "overlapping lines [1, 10] and [10, 20]"),
-        (two("name = \"a\"", "name = \"b\""), "p.toml: operation[2]", "no selector"),
         (two("name = \"a\"\nlines = [1, 2, 3]", "name = \"b\""), "p.toml: operation[1].lines", "[1, 2, 3]"),
         (two("name = \"a\"\nlines = [4]", "name = \"b\""), "p.toml: operation[1].lines", "two line numbers"),
         (format!("tool_number = 3\n{}", two("name = \"a\"", "name = \"b\"\ntool_number = 1")), "p.toml: tool_number", "beside [[operation]]"),
