@@ -135,7 +135,11 @@ pub fn compensate<'py>(
     let moves_per_file = crate::count::count("moves_per_file", moves_per_file)?;
     let s = &setup.inner;
     let stiffness = stiffness.ok_or_else(|| {
-        error::value("stiffness: expected one stiffness per parameter of the setup's model or a stiffness file")
+        let positional = match &path {
+            Some(p) if p.extension().is_some_and(|e| e.eq_ignore_ascii_case("json")) => format!(" (the second positional argument is path, and {} was given there: pass the stiffness by keyword, stiffness=...)", p.display()),
+            _ => String::new(),
+        };
+        error::value(format!("stiffness: missing: give stiffness=, one stiffness per parameter of the setup's model or a stiffness file{positional}"))
     })?;
     let compliance = crate::stiffness::compliance(s, stiffness, None, "stiffness")?;
     let frame = frame.parse::<Frame>().map_err(raise)?;

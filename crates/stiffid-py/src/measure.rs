@@ -40,7 +40,9 @@ fn job_data(
     }
     match (measurements, arrays) {
         (Some(m), [None, None, None]) => {
-            let path = m.extract::<PathBuf>()?;
+            let path = m.extract::<PathBuf>().map_err(|_| {
+                value(format!("measurements: expected the path of a measurements CSV file (str or os.PathLike), got {}", m.get_type()))
+            })?;
             let reader = error::open(&path)?;
             let name = path.display().to_string();
             Ok(Data::File { name, reader })

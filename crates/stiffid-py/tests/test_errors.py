@@ -84,3 +84,27 @@ def test_a_model_no_group_can_separate_is_unidentifiable(paper):
 def test_a_negative_count_is_a_value_error_naming_the_argument(paper, name, call):
     with pytest.raises(stiffid.InputError, match=rf"^{name}: -\d+ is negative: expected a whole number, 0 or more$"):
         call(paper)
+
+
+
+
+def test_an_argument_of_the_wrong_type_or_value_is_an_input_error_naming_it(paper):
+    """Every argument given wrong, by type, value, position or name, is an ``InputError`` whose
+    message begins with the argument's name (never Python's own ``TypeError`` or a Rust path)."""
+    from conftest import REPO
+
+    milling = stiffid.Setup.from_file(REPO / "examples" / "milling" / "fanuc-milling.toml")
+    path = REPO / "examples" / "milling" / "path.csv"
+    stiffness = REPO / "examples" / "milling" / "stiffness.json"
+    cases = [
+        (lambda: stiffid.identify(paper, 5), r"^measurements: expected the path of a measurements CSV file"),
+        (lambda: stiffid.compensate(milling, path, stiffness, level=95), r"^level: 95: expected a level in \[0\.5, 0\.999\]"),
+        (lambda: stiffid.compensate(milling, stiffness), r"^stiffness: missing: .*the second positional argument is path"),
+        (lambda: stiffid.compensate(milling, path, stiffness, confidence=0.95), r"^confidence: not an argument of compensate\(\)"),
+        (lambda: stiffid.compensate(milling, path, stiffness, path=path), r"^path: given twice"),
+        (lambda: stiffid.identify(), r"^setup: missing: identify\(\) needs it"),
+        (lambda: stiffid.identify(paper, None, None), r"^identify: takes from 1 to 2 positional arguments, 3 given"),
+    ]
+    for call, message in cases:
+        with pytest.raises(stiffid.InputError, match=message):
+            call()

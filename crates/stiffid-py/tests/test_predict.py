@@ -79,7 +79,7 @@ def test_deflection_refuses_as_predict_does(paper, fanuc):
         stiffid.deflection(paper, Q, [0, 0, -500, 0, 0, 0], compliance_covariance_rad2_per_nm2=np.eye(6))
     with pytest.raises(ValueError, match=r"wrench: expected shape \(6,\) or \(2, 6\)"):
         stiffid.deflection(paper, qs, np.zeros((3, 6)))
-    with pytest.raises(TypeError, match="observed_mm"):
+    with pytest.raises(stiffid.InputError, match=r"^observed_mm: not an argument of deflection\(\)"):
         stiffid.deflection(paper, Q, [0, 0, -500, 0, 0, 0], observed_mm=[0, 0, 0])
     with pytest.warns(UserWarning, match="q_deg posture 0: every axis angle lies within"):
         stiffid.deflection(fanuc, [0.1, 0.2, -0.3, 0.4, 0.5, 0.6], [0, 0, -500, 0, 0, 0])

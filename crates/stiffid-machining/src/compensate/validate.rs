@@ -28,7 +28,8 @@ impl Options {
             &limits::ANGLE_RAD,
         )?;
         self.ik.validate()?;
-        stiffid_core::model::prediction::check_level("compensate::Options.level", self.level)?;
+        stiffid_core::model::prediction::check_level("level", self.level)
+            .map_err(|e| e.for_option(JobOption::Level))?;
         limits::check_integer(
             "compensate::Options.max_iterations",
             self.max_iterations as u64,

@@ -42,9 +42,28 @@ def name_arguments_of(cls):
             setattr(cls, key, naming(attribute))
 
 
+# Python's own words for a call that does not fit the signature: the argument named first.
+_CALL = [
+    (re.compile(r"(\w+)\(\) got an unexpected keyword argument '(\w+)'"),
+     lambda m: f"{m[2]}: not an argument of {m[1]}() (see help(stiffid.{m[1]}) for its arguments)"),
+    (re.compile(r"(\w+)\(\) missing \d+ required (?:positional|keyword-only) arguments?: '(\w+)'.*"),
+     lambda m: f"{m[2]}: missing: {m[1]}() needs it"),
+    (re.compile(r"(\w+)\(\) got multiple values for (?:keyword )?argument '(\w+)'"),
+     lambda m: f"{m[2]}: given twice, by position and by keyword"),
+    (re.compile(r"(\w+)\(\) takes (.*) positional arguments? but (\d+) (?:were|was) given"),
+     lambda m: f"{m[1]}: takes {m[2]} positional arguments, {m[3]} given: pass the others by keyword"),
+    (re.compile(r"argument '(\w+)': (.*)", re.S), lambda m: f"{m[1]}: {m[2]}"),
+]
+
+
 def _named(error):
     """``error`` with its argument's name in front (an ``InputError`` unless it is one of the
     package's errors), or ``error`` itself when no argument is noted on it."""
+    if type(error) is TypeError and error.args and isinstance(error.args[0], str):
+        for pattern, words in _CALL:
+            found = pattern.fullmatch(error.args[0])
+            if found:
+                return InputError(words(found))
     notes = getattr(error, "__notes__", [])
     for note in notes:
         found = _NOTE.fullmatch(note)
