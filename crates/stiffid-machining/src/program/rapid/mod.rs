@@ -12,6 +12,7 @@
 //! ([`super::cartesian`]).
 
 mod cartesian;
+mod flow;
 mod generate;
 mod names;
 pub mod speed;
@@ -53,7 +54,8 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
     let mut out = Vec::new();
     let mut routine: Option<(String, u64)> = None;
     let mut current: Option<(String, u64)> = None;
-    let mut control: Option<(u64, String)> = None;
+    let mut flow = flow::Flow::default();
+    let mut flow_of_motions: Option<flow::Flow> = None;
     for s in &statements {
         let body = &code[s.span.clone()];
         let first = first_word(body);
@@ -70,14 +72,24 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
         if let ["proc" | "trap", name, ..] | ["func", _, name, ..] = w.as_slice() {
             let name = name.split('(').next().unwrap_or(name).to_string();
             current = Some((name, s.line));
+            if let (Some(_), None) = (&routine, &flow_of_motions) {
+                flow_of_motions = Some(std::mem::take(&mut flow));
+            }
+            flow.routine();
             continue;
         }
-        if matches!(
-            first.as_str(),
-            "if" | "for" | "while" | "test" | "goto" | "retry" | "trynext"
-        ) && control.is_none()
-        {
-            control = Some((s.line, first.to_uppercase()));
+        flow.statement(&first, is_header(body), s.line);
+        if first == "if" && !is_header(body) {
+            if let Some((name, line)) = flow::in_compact_if(body, s.line, flow::is_motion) {
+                flow.check(&name, line, Some(s.line))?;
+            }
+            if let Some((name, line)) = flow::in_compact_if(body, s.line, flow::is_jump) {
+                flow.jump(&format!("IF (line {}) {}", s.line, name.to_uppercase()), line);
+            }
+        }
+        if flow::is_motion(&first) {
+            let name = &body.trim_start()[..first.len()];
+            flow.check(name, s.line, None)?;
         }
         let Some(target) = motion(s, &code, &first, &data)? else {
             continue;
@@ -91,8 +103,9 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
         }
         out.push(target);
     }
-    if let (Some((line, word)), false) = (control, out.is_empty()) {
-        return Err(at(line, format!("{word}: a jump, loop or branch in a module with motions; the order the controller runs them would not be the file's: write the path as straight-line code")));
+    if let (Some(first), Some(r)) = (out.first(), &routine) {
+        let flow = flow_of_motions.as_ref().unwrap_or(&flow);
+        flow.check_jumps(&format!("PROC {}", r.0), first.line)?;
     }
     let n = out
         .iter()

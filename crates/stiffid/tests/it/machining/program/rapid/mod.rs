@@ -1,0 +1,3 @@
+//! ABB's RAPID (`stiffid_machining::program::rapid`).
+
+mod flow;
