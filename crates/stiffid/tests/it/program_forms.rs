@@ -75,7 +75,7 @@ fn rapid_cases() -> Vec<(String, Reads)> {
         (rapid("", "    MoveAbsJ jx, v100, fine, tool0;"), Refused(4, "not a jointtarget declared")),
         (rapid("  VAR jointtarget j1;", "    MoveAbsJ j1, v100, fine, tool0;"), Refused(4, "without a value")),
         (rapid(&format!("  VAR jointtarget j1 := {lit1};"), "    j1.robax.rax_1 := 7;\n    MoveAbsJ j1, v100, fine, tool0;"), Refused(5, "assigned on line 4")),
-        (rapid("", &format!("    FOR i FROM 1 TO 3 DO\n      MoveAbsJ {lit1}, v100, fine, tool0;\n    ENDFOR")), Refused(4, "loop")),
+        (rapid("", &format!("    FOR i FROM 1 TO 3 DO\n      MoveAbsJ {lit1}, v100, fine, tool0;\n    ENDFOR")), Refused(5, "MoveAbsJ inside FOR (line 4)")),
         (format!("MODULE M\n  PROC a()\n    MoveAbsJ {lit1}, v1, fine, tool0;\n  ENDPROC\n  PROC b()\n    MoveAbsJ {lit1}, v1, fine, tool0;\n  ENDPROC\nENDMODULE\n"), Refused(6, "PROC a (line 2) and PROC b (line 5)")),
     ]
 }

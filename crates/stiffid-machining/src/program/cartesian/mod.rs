@@ -72,10 +72,18 @@ pub enum Frame {
 /// A Cartesian target as the program gives it (module docs).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Cartesian {
-    /// The TCP position in the target's frame, mm.
+    /// The TCP position in the target's frame, mm, as the program's numbers state it (a target
+    /// displaced by an offset, RAPID `Offs` or `RelTool`: its base point's; [`Cartesian::pose`]
+    /// is where the controller moves).
     pub position_mm: Vector3<f64>,
-    /// The tool's orientation in the target's frame.
+    /// The tool's orientation in the target's frame, likewise.
     pub rotation: UnitQuaternion<f64>,
+    /// The displacement the motion applies in the target's frame before the stated pose
+    /// (RAPID `Offs(p, x, y, z)`: a translation), m; identity without one.
+    pub(crate) before: Isometry3<f64>,
+    /// The displacement the motion applies in the tool's frame after the stated pose (RAPID
+    /// `RelTool(p, x, y, z \Rx \Ry \Rz)`), m; identity without one.
+    pub(crate) after: Isometry3<f64>,
     /// The configuration data; `None`: the previous target's (module docs).
     pub flags: Option<Flags>,
     /// The controller ignores the configuration data and continues from the previous posture
@@ -104,6 +112,8 @@ impl Cartesian {
         Cartesian {
             position_mm: Vector3::new(n[0], n[1], n[2]),
             rotation,
+            before: Isometry3::identity(),
+            after: Isometry3::identity(),
             flags: None,
             follows: false,
             frame: Frame::World,
@@ -114,9 +124,17 @@ impl Cartesian {
         }
     }
 
-    /// The pose in its frame, m.
+    /// The pose the controller moves the tool to, in the target's frame, m: the stated pose
+    /// with its displacements (`before * stated * after`).
     pub fn pose(&self) -> Isometry3<f64> {
-        Isometry3::from_parts(Translation3::from(self.position_mm * 1e-3), self.rotation)
+        let stated = Isometry3::from_parts(Translation3::from(self.position_mm * 1e-3), self.rotation);
+        self.before * stated * self.after
+    }
+
+    /// The pose to state so that the displacements land the tool on `pose` (both in the
+    /// target's frame, m): the inverse of [`Cartesian::pose`].
+    pub(crate) fn stated(&self, pose: &Isometry3<f64>) -> Isometry3<f64> {
+        self.before.inverse() * pose * self.after.inverse()
     }
 
     /// The texts that state `pose` (in the target's frame, m) with the configuration `arm`, each

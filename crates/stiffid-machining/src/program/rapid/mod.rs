@@ -15,6 +15,7 @@ mod cartesian;
 mod flow;
 mod generate;
 mod names;
+mod offset;
 pub mod speed;
 
 use super::cartesian::Flags;
@@ -91,9 +92,10 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
             let name = &body.trim_start()[..first.len()];
             flow.check(name, s.line, None)?;
         }
-        let Some(target) = motion(s, &code, &first, &data)? else {
+        let found = motion(s, &code, &first, &data)?;
+        if found.is_empty() {
             continue;
-        };
+        }
         match (&routine, &current) {
             (Some((a, a_line)), Some((b, b_line))) if a != b => {
                 return Err(at(s.line, format!("motions in PROC {a} (line {a_line}) and PROC {b} (line {b_line}): the order the controller runs them depends on the calls; put the path in one PROC")));
@@ -101,7 +103,7 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
             (None, _) => routine = current.clone(),
             _ => {}
         }
-        out.push(target);
+        out.extend(found);
     }
     if let (Some(first), Some(r)) = (out.first(), &routine) {
         let flow = flow_of_motions.as_ref().unwrap_or(&flow);
@@ -397,22 +399,22 @@ fn literal(line: u64, code: &str, from: usize) -> Result<JointTarget> {
     Ok(target.with_external(external))
 }
 
-/// The target of a motion statement, `None` for a statement that is no motion; every motion
-/// outside the subset refused naming the line.
-fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Option<JointTarget>> {
+/// The targets of a motion statement (`MoveC`: its circle point then its end point), none for
+/// a statement that is no motion; every motion outside the subset refused naming the line.
+fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Vec<JointTarget>> {
     let line = s.line;
     let name = &code[s.span.clone()].trim_start()[..first.len()];
-    let cartesian = matches!(first, "movel" | "movej");
+    let cartesian = matches!(first, "movel" | "movej" | "movec");
     if first != "moveabsj" && !cartesian {
         let why = match first {
-            "movec" | "movelsync" | "movejsync" | "movecsync" | "moveldo"
+            "movelsync" | "movejsync" | "movecsync" | "moveldo"
             | "movejdo" | "movecdo" | "movelgo" | "movejgo" | "movecgo" | "movelao"
             | "movejao" | "movecao" => "a motion stiffid does not follow (a circle, or a signal set on the way); write the path as MoveL, MoveJ or MoveAbsJ",
             "moveextj" => "a motion of external axes only; not compensated: remove it",
             f if f.starts_with("trigg") => "a motion with triggered events (robtarget); not compensated: write the path as MoveL or MoveAbsJ and set the events apart",
             f if f.starts_with("search") => "a search motion stops where a sensor fires, which the program does not say; not compensated",
             f if f.starts_with("move") || f.starts_with("arc") || f.starts_with("spot") || f.starts_with("paint") || f.starts_with("cap") => "a motion instruction stiffid does not follow; write the path as MoveL, MoveJ or MoveAbsJ",
-            _ => return Ok(None),
+            _ => return Ok(Vec::new()),
         };
         return Err(at(line, format!("{name}: {why}")));
     }
@@ -449,20 +451,31 @@ fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Option<
     if cartesian {
         let end = s.span.end - usize::from(code[..s.span.end].ends_with(';'));
         let args = &code[from..end];
-        let argument = cartesian::top_level(args).get(1).map(|r| &args[r.clone()]);
-        let mut target = cartesian::motion(line, (code, from, args), &named, &data.frames)
-            .map_err(|e| match e {
-                stiffid_core::Error::Program { line, message } if !message.starts_with(name) => {
-                    at(line, format!("{name}: {message}"))
-                }
-                other => other,
-            })?;
-        target.speed = speed::speed(line, first, argument, &data.speeds)?;
-        return Ok(Some(target));
+        let points = if first == "movec" { 2 } else { 1 };
+        let argument = cartesian::top_level(args).get(points).map(|r| &args[r.clone()]);
+        let mut targets =
+            cartesian::motion(line, (code, from, args), points, &named, &data.frames).map_err(
+                |e| match e {
+                    stiffid_core::Error::Program { line, message }
+                        if !message.starts_with(name) =>
+                    {
+                        at(line, format!("{name}: {message}"))
+                    }
+                    other => other,
+                },
+            )?;
+        let speed = match speed::speed(line, first, argument, &data.speeds)? {
+            super::speed::Speed::Duration(_) if points == 2 => super::speed::Speed::Unread(format!("{name} \\T: the time of the whole circle, which stiffid does not share between its two points")),
+            other => other,
+        };
+        for t in &mut targets {
+            t.speed = speed.clone();
+        }
+        return Ok(targets);
     }
     let target_text = code[from..s.span.end].trim_start();
     if target_text.starts_with("[[") {
-        return literal(line, code, from).map(|t| Some(joint(t)));
+        return literal(line, code, from).map(|t| vec![joint(t)]);
     }
     let ident: String = target_text
         .chars()
@@ -472,7 +485,7 @@ fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Option<
     if ident.is_empty() || next.starts_with(['{', '(', '.']) {
         return Err(at(line, format!("{name}: the target is computed on the controller (an expression, a function or an array element); stiffid compensates literals and jointtargets declared in the module")));
     }
-    named(&ident).map(|t| Some(joint(t)))
+    named(&ident).map(|t| vec![joint(t)])
 }
 
 /// A `MoveAbsJ`'s target: a joint motion.
@@ -509,7 +522,7 @@ impl Controller for Rapid {
         })
     }
     fn motions(&self) -> &'static str {
-        "MoveAbsJ to a jointtarget, MoveL or MoveJ to a robtarget"
+        "MoveAbsJ to a jointtarget, MoveL, MoveJ or MoveC to a robtarget"
     }
     fn joint_forms(&self) -> &'static str {
         "jointtarget"

@@ -1,3 +1,5 @@
 //! ABB's RAPID (`stiffid_machining::program::rapid`).
 
 mod flow;
+mod module;
+mod offsets;
