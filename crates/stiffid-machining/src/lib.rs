@@ -329,7 +329,10 @@ pub fn compensate_for(
     let tool = weight::tool_load(arm, compliance);
     let weight = |pose: &Isometry3<f64>| {
         tool.map_or(Vector6::zeros(), |p| {
-            p.wrench(&pose.rotation, &arm.tool().tcp)
+            p.wrench(
+                &(pose.rotation * arm.tool().rotation.inverse()),
+                &arm.tool().tcp,
+            )
         })
     };
     let (points, warnings) =
@@ -468,7 +471,11 @@ fn part_frame(workpiece: Option<&Isometry3<f64>>) -> Result<Isometry3<f64>> {
     })
 }
 
-/// Each point's line, target and nominal TCP pose (base frame).
+/// Each point's line, target and nominal TCP pose (base frame; a robot program's in its tool's
+/// axes, `[tool] tcp_rpy_deg`, whose z the process pushes along).
+///
+/// # Errors
+/// A G-code program without `[workpiece]`, or with a turned tool frame.
 fn poses(
     arm: &Arm,
     workpiece: Option<&Isometry3<f64>>,
@@ -476,6 +483,12 @@ fn poses(
     placements: Option<&[cell::Placement]>,
 ) -> Result<Vec<(u64, Target, Isometry3<f64>)>> {
     match program {
+        Program::GCode(_) if arm.tool().rotation != nalgebra::UnitQuaternion::identity() => {
+            Err(Error::InvalidField {
+                field: "tool.tcp_rpy_deg".into(),
+                message: "a G-code program's tool axis is the flange's z: a tool frame turned on the flange is read for robot programs' Cartesian targets only; leave tcp_rpy_deg out for G-code".into(),
+            })
+        }
         Program::GCode(g) => {
             let base = part_frame(workpiece)?;
             Ok(g.points
@@ -493,7 +506,9 @@ fn poses(
             .iter()
             .map(|t| {
                 let q = nalgebra::Vector6::from(t.q_deg).map(f64::to_radians);
-                let pose = tool_pose(&arm.robot().frames(&q), &arm.tool().tcp);
+                // The tool's axes (`[tool] tcp_rpy_deg`): the process pushes along its z.
+                let mut pose = tool_pose(&arm.robot().frames(&q), &arm.tool().tcp);
+                pose.rotation *= arm.tool().rotation;
                 (t.line, Target::Posture(q), pose)
             })
             .collect()),

@@ -127,7 +127,8 @@ impl Cartesian {
     /// The pose the controller moves the tool to, in the target's frame, m: the stated pose
     /// with its displacements (`before * stated * after`).
     pub fn pose(&self) -> Isometry3<f64> {
-        let stated = Isometry3::from_parts(Translation3::from(self.position_mm * 1e-3), self.rotation);
+        let stated =
+            Isometry3::from_parts(Translation3::from(self.position_mm * 1e-3), self.rotation);
         self.before * stated * self.after
     }
 

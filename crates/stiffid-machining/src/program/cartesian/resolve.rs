@@ -76,7 +76,11 @@ impl Writer {
         let mut pose = tool_pose(&self.robot.frames(q), &self.tcp);
         pose.rotation *= self.tcp_rotation;
         let local = c.base_from_frame.unwrap_or_default().inverse() * pose;
-        c.texts(dialect, &c.stated(&local), &Configuration::of(&self.robot, q))
+        c.texts(
+            dialect,
+            &c.stated(&local),
+            &Configuration::of(&self.robot, q),
+        )
     }
 }
 

@@ -85,7 +85,10 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
                 flow.check(&name, line, Some(s.line))?;
             }
             if let Some((name, line)) = flow::in_compact_if(body, s.line, flow::is_jump) {
-                flow.jump(&format!("IF (line {}) {}", s.line, name.to_uppercase()), line);
+                flow.jump(
+                    &format!("IF (line {}) {}", s.line, name.to_uppercase()),
+                    line,
+                );
             }
         }
         if flow::is_motion(&first) {
@@ -452,18 +455,16 @@ fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Vec<Joi
         let end = s.span.end - usize::from(code[..s.span.end].ends_with(';'));
         let args = &code[from..end];
         let points = if first == "movec" { 2 } else { 1 };
-        let argument = cartesian::top_level(args).get(points).map(|r| &args[r.clone()]);
-        let mut targets =
-            cartesian::motion(line, (code, from, args), points, &named, &data.frames).map_err(
-                |e| match e {
-                    stiffid_core::Error::Program { line, message }
-                        if !message.starts_with(name) =>
-                    {
-                        at(line, format!("{name}: {message}"))
-                    }
-                    other => other,
-                },
-            )?;
+        let argument = cartesian::top_level(args)
+            .get(points)
+            .map(|r| &args[r.clone()]);
+        let mut targets = cartesian::motion(line, (code, from, args), points, &named, &data.frames)
+            .map_err(|e| match e {
+                stiffid_core::Error::Program { line, message } if !message.starts_with(name) => {
+                    at(line, format!("{name}: {message}"))
+                }
+                other => other,
+            })?;
         let speed = match speed::speed(line, first, argument, &data.speeds)? {
             super::speed::Speed::Duration(_) if points == 2 => super::speed::Speed::Unread(format!("{name} \\T: the time of the whole circle, which stiffid does not share between its two points")),
             other => other,

@@ -87,7 +87,8 @@ pub(super) fn arguments(
 ) -> Result<(Range<usize>, Arguments)> {
     let name = f.name();
     let bad = |what: String| at(line, format!("{name}: {what}"));
-    let close = closing(&code[..end], open).ok_or_else(|| bad("expected its closing ')'".into()))?;
+    let close =
+        closing(&code[..end], open).ok_or_else(|| bad("expected its closing ')'".into()))?;
     let inner = &code[open + 1..close];
     let parts = super::cartesian::top_level(inner);
     let [point, x, y, z] = parts.as_slice() else {
@@ -96,7 +97,9 @@ pub(super) fn arguments(
             parts.len()
         )));
     };
-    let (z, switches) = inner[z.clone()].split_once('\\').unwrap_or((&inner[z.clone()], ""));
+    let (z, switches) = inner[z.clone()]
+        .split_once('\\')
+        .unwrap_or((&inner[z.clone()], ""));
     let mut args = Arguments {
         xyz_mm: [0.0; 3],
         rxyz_deg: [0.0; 3],
@@ -114,13 +117,22 @@ pub(super) fn arguments(
             (Function::RelTool, "rx") => 0,
             (Function::RelTool, "ry") => 1,
             (Function::RelTool, "rz") => 2,
-            _ => return Err(bad(format!("\\{}: not a switch of {name} stiffid reads (RelTool's \\Rx, \\Ry, \\Rz)", key.trim()))),
+            _ => {
+                return Err(bad(format!(
+                    "\\{}: not a switch of {name} stiffid reads (RelTool's \\Rx, \\Ry, \\Rz)",
+                    key.trim()
+                )))
+            }
         };
         let what = format!("\\{}", key.trim());
         args.rxyz_deg[k] = constant(value).ok_or_else(|| bad(not_constant(&what, value)))?;
     }
-    limits::check(&format!("{name} \\Rx, \\Ry, \\Rz"), &args.rxyz_deg, &ANGLE_DEG)
-        .map_err(|e| bad(e.to_string()))?;
+    limits::check(
+        &format!("{name} \\Rx, \\Ry, \\Rz"),
+        &args.rxyz_deg,
+        &ANGLE_DEG,
+    )
+    .map_err(|e| bad(e.to_string()))?;
     let after = code[close + 1..end].trim_start();
     if !(after.is_empty() || after.starts_with('\\')) {
         return Err(bad("the point is an expression around the function; stiffid reads Offs and RelTool of a point as the whole target".into()));

@@ -4,5 +4,5 @@ mod cartesian;
 mod generate;
 mod inform;
 mod krl;
-mod rapid;
+pub(crate) mod rapid;
 mod speed;

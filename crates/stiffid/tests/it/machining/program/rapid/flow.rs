@@ -72,7 +72,8 @@ fn constructs_without_motions_leave_the_motions_as_read() {
 
 #[test]
 fn a_module_without_motions_says_so() {
-    let (line, message) = refused("MODULE M\n  PROC main()\n    SetDO do1, 1;\n  ENDPROC\nENDMODULE\n");
+    let (line, message) =
+        refused("MODULE M\n  PROC main()\n    SetDO do1, 1;\n  ENDPROC\nENDMODULE\n");
     assert_eq!(line, 1);
     assert!(message.contains("no motion"), "{message}");
 }

@@ -3,3 +3,4 @@
 mod flow;
 mod module;
 mod offsets;
+pub(crate) mod stored;

@@ -114,6 +114,10 @@ pub(super) fn robtarget(setup: &Setup, pose_m: &Isometry3<f64>, q: &Vector6<f64>
 
 /// The program read and resolved on `setup` (the axis angles of its Cartesian targets).
 pub(super) fn resolved(setup: &Setup, text: &str) -> stiffid::Result<Program> {
-    let p = machining::read(text, Language::Robot(stiffid::machining::program::Dialect::Rapid), 1e-4)?;
+    let p = machining::read(
+        text,
+        Language::Robot(stiffid::machining::program::Dialect::Rapid),
+        1e-4,
+    )?;
     Ok(machining::resolve(&p, setup, None, &Options::for_setup(setup))?.into_owned())
 }

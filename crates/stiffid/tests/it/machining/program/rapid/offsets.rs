@@ -3,9 +3,7 @@
 //! the module was made from, written back so that the same calls land on the compensated poses,
 //! and refused where a point's visits would need two values or an argument is the controller's.
 
-use super::module::{
-    data, in_wobj, postures, resolved, robtarget, rpy, setup, TOOL_RPY_DEG,
-};
+use super::module::{data, in_wobj, postures, resolved, robtarget, rpy, setup, TOOL_RPY_DEG};
 use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3, Vector6};
 use stiffid::machining::program::{self, speed::Speed, Dialect};
 use stiffid::machining::Program;
@@ -50,7 +48,11 @@ fn offs_reltool_and_movec_read_to_the_poses_the_manual_defines() {
     for (t, (line, pose)) in p.targets.iter().zip(&want) {
         let c = t.cartesian.as_deref().unwrap();
         assert_eq!(t.line, *line);
-        assert!(close(&c.pose(), pose), "line {line}: {} against {pose}", c.pose());
+        assert!(
+            close(&c.pose(), pose),
+            "line {line}: {} against {pose}",
+            c.pose()
+        );
     }
     // MoveC's two points at its path speed.
     assert_eq!(p.targets[3].speed, Speed::Path(0.2));
@@ -81,14 +83,16 @@ fn module_of_postures() -> (stiffid::Setup, String, Vec<Vector6<f64>>) {
     text += "  PROC main()\n";
     text += "    MoveJ pHome, v500, fine, tSpindle\\WObj:=wobjPart;\n";
     text += "    MoveL Offs(pAbove,0,0,50), v100, z1, tSpindle\\WObj:=wobjPart;\n";
-    text += "    MoveL RelTool(pTurned, 10, 0, -20 \\Rz:=15), v100, z1, tSpindle\\WObj:=wobjPart;\n";
+    text +=
+        "    MoveL RelTool(pTurned, 10, 0, -20 \\Rz:=15), v100, z1, tSpindle\\WObj:=wobjPart;\n";
     text += "    MoveC pCir, pEnd, v50, fine, tSpindle\\WObj:=wobjPart;\n";
     text += "  ENDPROC\nENDMODULE\n";
     (s, text, qs)
 }
 
 #[test]
-fn a_module_with_offsets_and_a_turned_tool_resolves_to_its_postures_and_writes_back_where_they_land() {
+fn a_module_with_offsets_and_a_turned_tool_resolves_to_its_postures_and_writes_back_where_they_land(
+) {
     let (s, text, qs) = module_of_postures();
     let Program::Robot(p) = resolved(&s, &text).unwrap() else {
         panic!("a robot program")
@@ -110,7 +114,11 @@ fn a_module_with_offsets_and_a_turned_tool_resolves_to_its_postures_and_writes_b
         .map(|(k, q)| q.map(|v| v + 0.01 * (k + 1) as f64))
         .collect();
     let out = p.write(&moved).unwrap();
-    for call in ["Offs(pAbove,0,0,50)", "RelTool(pTurned, 10, 0, -20 \\Rz:=15)", "MoveC pCir, pEnd"] {
+    for call in [
+        "Offs(pAbove,0,0,50)",
+        "RelTool(pTurned, 10, 0, -20 \\Rz:=15)",
+        "MoveC pCir, pEnd",
+    ] {
         assert!(out.contains(call), "{call}\n{out}");
     }
     let Program::Robot(again) = resolved(&s, &out).unwrap() else {
@@ -146,7 +154,10 @@ fn a_point_visited_directly_and_by_offs_is_refused_when_the_visits_need_two_valu
     match p.write(&moved) {
         Err(Error::Program { line, message }) => {
             assert_eq!(line, 12, "{message}");
-            assert!(message.contains("lines 10 and 12 go to the one point of line 5"), "{message}");
+            assert!(
+                message.contains("lines 10 and 12 go to the one point of line 5"),
+                "{message}"
+            );
         }
         other => panic!("{other:?}"),
     }
@@ -159,21 +170,65 @@ fn tools_work_objects_and_arguments_the_module_cannot_state_are_refused_naming_t
     let cases = [
         // A tool turned otherwise than the setup's (its quaternion the flange's).
         (setup([0.0, 0.0, 0.0]), text.clone(), 2, "not the setup's"),
-        (s.clone(), text.replacen("[FALSE,TRUE,\"\"", "[TRUE,TRUE,\"\"", 1), wobj_line, "robhold TRUE"),
-        (s.clone(), text.replacen("[FALSE,TRUE,\"\"", "[FALSE,FALSE,\"STN1\"", 1), wobj_line, "ufprog FALSE: a user frame the mechanical unit \"STN1\""),
-        (s.clone(), text.replacen("Offs(pAbove,0,0,50)", "Offs(pAbove,0,0,dz)", 1), 11, "z = 'dz' is not a number"),
-        (s.clone(), text.replacen("\\Rz:=15", "\\Rz:=15\\Lin", 1), 12, "\\Lin: not a switch"),
-        (s.clone(), text.replacen("Offs(pAbove,0,0,50)", "Offs(pAbove,0,50)", 1), 11, "expected 4 arguments"),
-        (s.clone(), text.replacen("Offs(pAbove,0,0,50)", "CRobT()", 1), 11, "computed on the controller"),
-        (s.clone(), text.replacen("MoveC pCir, pEnd", "MoveC pCir", 1), 13, "a circle point, an end point"),
-        (s.clone(), text.replacen("MoveC pCir, pEnd, v50", "MoveC pCir, pEnd, v50 \\T:=2", 1), 0, ""),
+        (
+            s.clone(),
+            text.replacen("[FALSE,TRUE,\"\"", "[TRUE,TRUE,\"\"", 1),
+            wobj_line,
+            "robhold TRUE",
+        ),
+        (
+            s.clone(),
+            text.replacen("[FALSE,TRUE,\"\"", "[FALSE,FALSE,\"STN1\"", 1),
+            wobj_line,
+            "ufprog FALSE: a user frame the mechanical unit \"STN1\"",
+        ),
+        (
+            s.clone(),
+            text.replacen("Offs(pAbove,0,0,50)", "Offs(pAbove,0,0,dz)", 1),
+            11,
+            "z = 'dz' is not a number",
+        ),
+        (
+            s.clone(),
+            text.replacen("\\Rz:=15", "\\Rz:=15\\Lin", 1),
+            12,
+            "\\Lin: not a switch",
+        ),
+        (
+            s.clone(),
+            text.replacen("Offs(pAbove,0,0,50)", "Offs(pAbove,0,50)", 1),
+            11,
+            "expected 4 arguments",
+        ),
+        (
+            s.clone(),
+            text.replacen("Offs(pAbove,0,0,50)", "CRobT()", 1),
+            11,
+            "computed on the controller",
+        ),
+        (
+            s.clone(),
+            text.replacen("MoveC pCir, pEnd", "MoveC pCir", 1),
+            13,
+            "a circle point, an end point",
+        ),
+        (
+            s.clone(),
+            text.replacen("MoveC pCir, pEnd, v50", "MoveC pCir, pEnd, v50 \\T:=2", 1),
+            0,
+            "",
+        ),
     ];
     for (setup, text, line, words) in cases {
         let result = resolved(&setup, &text);
         if line == 0 {
             // A circle in a given time: read, its speed left to the controller.
-            let Program::Robot(p) = result.unwrap() else { panic!() };
-            assert!(matches!(&p.targets[4].speed, Speed::Unread(why) if why.contains("whole circle")));
+            let Program::Robot(p) = result.unwrap() else {
+                panic!()
+            };
+            assert!(
+                matches!(&p.targets[4].speed, Speed::Unread(why) if why.contains("whole circle"))
+            );
             continue;
         }
         match result {
