@@ -53,6 +53,7 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
     let statements = statements(&code);
     let data = declarations(&code, &statements)?;
     let mut out = Vec::new();
+    let mut routines: Vec<(String, u64)> = Vec::new();
     let mut routine: Option<(String, u64)> = None;
     let mut current: Option<(String, u64)> = None;
     let mut flow = flow::Flow::default();
@@ -72,6 +73,7 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
             .collect();
         if let ["proc" | "trap", name, ..] | ["func", _, name, ..] = w.as_slice() {
             let name = name.split('(').next().unwrap_or(name).to_string();
+            routines.push((name.clone(), s.line));
             current = Some((name, s.line));
             if let (Some(_), None) = (&routine, &flow_of_motions) {
                 flow_of_motions = Some(std::mem::take(&mut flow));
@@ -108,6 +110,9 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
         }
         out.extend(found);
     }
+    if out.is_empty() {
+        return Err(at(1, no_motion(&routines)));
+    }
     if let (Some(first), Some(r)) = (out.first(), &routine) {
         let flow = flow_of_motions.as_ref().unwrap_or(&flow);
         flow.check_jumps(&format!("PROC {}", r.0), first.line)?;
@@ -119,6 +124,23 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
         .map_or(0, |k| k + 1);
     let axes = (0..n).map(|k| format!("eax_{}", (b'a' + k as u8) as char));
     Ok((out, axes.collect()))
+}
+
+/// Why a module without motions gives no target: what it holds instead.
+fn no_motion(routines: &[(String, u64)]) -> String {
+    let listed: Vec<String> = (routines.iter().take(5))
+        .map(|(n, l)| format!("{n} (line {l})"))
+        .collect();
+    let holds = match routines.len() {
+        0 => "no routine: a module of data (declarations only)".to_string(),
+        n => format!(
+            "{n} routine{} ({}{}) without a motion instruction: a module of data, I/O or communication, or one whose routines call the motions of another module",
+            if n == 1 { "" } else { "s" },
+            listed.join(", "),
+            if n > 5 { ", .." } else { "" }
+        ),
+    };
+    format!("no motion instruction in the module (MoveAbsJ, MoveL, MoveJ, MoveC); it holds {holds}: give stiffid the module with the path's motions")
 }
 
 /// The value RAPID writes for an external axis that is not used: `9E9` (any value from
@@ -484,7 +506,13 @@ fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Vec<Joi
         .collect();
     let next = target_text[ident.len()..].trim_start();
     if ident.is_empty() || next.starts_with(['{', '(', '.']) {
-        return Err(at(line, format!("{name}: the target is computed on the controller (an expression, a function or an array element); stiffid compensates literals and jointtargets declared in the module")));
+        let what = match next.chars().next() {
+            Some('(') => format!("{ident}(..), a function"),
+            Some('{') => format!("{ident}{{..}}, an array element"),
+            Some('.') => format!("{ident}.., a component"),
+            _ => "an expression".to_string(),
+        };
+        return Err(at(line, format!("{name}: the target is {what} the controller computes; stiffid compensates literals and jointtargets declared in the module")));
     }
     named(&ident).map(|t| vec![joint(t)])
 }

@@ -75,5 +75,8 @@ fn a_module_without_motions_says_so() {
     let (line, message) =
         refused("MODULE M\n  PROC main()\n    SetDO do1, 1;\n  ENDPROC\nENDMODULE\n");
     assert_eq!(line, 1);
-    assert!(message.contains("no motion"), "{message}");
+    assert!(
+        message.contains("no motion instruction in the module (MoveAbsJ, MoveL, MoveJ, MoveC); it holds 1 routine (main (line 2))"),
+        "{message}"
+    );
 }
