@@ -471,11 +471,12 @@ fn part_frame(workpiece: Option<&Isometry3<f64>>) -> Result<Isometry3<f64>> {
     })
 }
 
-/// Each point's line, target and nominal TCP pose (base frame; a robot program's in its tool's
-/// axes, `[tool] tcp_rpy_deg`, whose z the process pushes along).
+/// Each point's line, target and nominal TCP pose (base frame, in the tool's axes, `[tool]
+/// tcp_rpy_deg`, whose z the process pushes along: a G-code point's orientation is the tool's;
+/// the target of a G-code point is the flange's axes at the TCP).
 ///
 /// # Errors
-/// A G-code program without `[workpiece]`, or with a turned tool frame.
+/// A G-code program without `[workpiece]`.
 fn poses(
     arm: &Arm,
     workpiece: Option<&Isometry3<f64>>,
@@ -483,12 +484,6 @@ fn poses(
     placements: Option<&[cell::Placement]>,
 ) -> Result<Vec<(u64, Target, Isometry3<f64>)>> {
     match program {
-        Program::GCode(_) if arm.tool().rotation != nalgebra::UnitQuaternion::identity() => {
-            Err(Error::InvalidField {
-                field: "tool.tcp_rpy_deg".into(),
-                message: "a G-code program's tool axis is the flange's z: a tool frame turned on the flange is read for robot programs' Cartesian targets only; leave tcp_rpy_deg out for G-code".into(),
-            })
-        }
         Program::GCode(g) => {
             let base = part_frame(workpiece)?;
             Ok(g.points
@@ -497,7 +492,10 @@ fn poses(
                 .map(|(i, p)| {
                     let base = placements.map_or(base, |c| c[i].part.inverse());
                     let pose = base * Isometry3::from_parts(p.position.into(), p.orientation);
-                    (p.line, Target::Pose(pose), pose)
+                    // The tool's axes: the flange's at the TCP turned by `[tool] tcp_rpy_deg`.
+                    let mut flange_axes = pose;
+                    flange_axes.rotation *= arm.tool().rotation.inverse();
+                    (p.line, Target::Pose(flange_axes), pose)
                 })
                 .collect())
         }

@@ -20,13 +20,36 @@ pub(super) struct Flow {
     jumps: Vec<(String, u64)>,
 }
 
-/// Whether a word (lower case) names a motion instruction: the `Move*`, `Search*`, `Trigg*`
-/// families and the process instructions that move the robot (`Arc*` of arc welding, `Spot*`,
-/// `Paint*`, `Cap*`).
+/// Whether a word (lower case) names a motion instruction (*RAPID Instructions* and the process
+/// options' manuals): every `Move*` (a routine of the cell's named so is taken as one too),
+/// `SearchL`/`SearchC`/`SearchExtJ`, `TriggL`/`TriggJ`/`TriggC` (and their `IOs` forms), the
+/// arc welding `ArcL*`/`ArcC*`, spot welding `SpotL`/`SpotJ`/`SpotML`/`SpotMJ`, painting
+/// `PaintL`/`PaintC`, continuous application `CapL`/`CapC`, dispensing `DispL`/`DispC`.
 pub(super) fn is_motion(word: &str) -> bool {
-    ["move", "search", "trigg", "arc", "spot", "paint", "cap"]
-        .iter()
-        .any(|f| word.starts_with(f))
+    word.starts_with("move")
+        || word.starts_with("arcl")
+        || word.starts_with("arcc")
+        || matches!(
+            word,
+            "searchl"
+                | "searchc"
+                | "searchextj"
+                | "triggl"
+                | "triggj"
+                | "triggc"
+                | "trigglios"
+                | "triggjios"
+                | "spotl"
+                | "spotj"
+                | "spotml"
+                | "spotmj"
+                | "paintl"
+                | "paintc"
+                | "capl"
+                | "capc"
+                | "displ"
+                | "dispc"
+        )
 }
 
 impl Flow {
@@ -110,7 +133,8 @@ pub(super) fn is_jump(word: &str) -> bool {
 }
 
 /// The first word of a compact `IF` statement (`statement`, its text, starting on `line`)
-/// outside parentheses, brackets and strings that `wanted` (lower case) takes, and its line.
+/// outside parentheses, brackets and strings, not an operand (followed by an operator), that
+/// `wanted` (lower case) takes, and its line.
 pub(super) fn in_compact_if(
     statement: &str,
     line: u64,
@@ -123,7 +147,11 @@ pub(super) fn in_compact_if(
         if let (Some(s), false) = (start, word_char) {
             start = None;
             let word = &statement[s..i];
-            if depth == 0 && wanted(&word.to_ascii_lowercase()) {
+            // An instruction, not an operand of the condition (`IF moveCount > 3 ..`).
+            let operand = statement[i..]
+                .trim_start()
+                .starts_with(['=', '<', '>', '+', '-', '*', '/', ',', ')', ':']);
+            if depth == 0 && !operand && wanted(&word.to_ascii_lowercase()) {
                 let on = line + statement[..s].matches('\n').count() as u64;
                 return Some((word.to_string(), on));
             }

@@ -9,7 +9,14 @@
 //!
 //! `MoveL` and `MoveJ` (also `\Conc`) to a `robtarget` literal or one declared in the module are
 //! Cartesian targets, with their `tooldata` and `\WObj:=` `wobjdata` declared in the module
-//! ([`super::cartesian`]).
+//! ([`super::cartesian`]); `MoveC` gives two, its circle point then its end point (the controller
+//! moves on the circle through the previous target and them: each point is compensated, the arc
+//! between is the circle through the compensated points). A point may also be `Offs` or
+//! `RelTool` of one with constant arguments (module `offset`).
+//!
+//! A motion inside a loop, a branch or an error handler, and a jump in the routine of the
+//! motions, are refused naming the line and the construct (module `flow`); docs/programs/rapid.md
+//! is the guide, with ABB's manuals as the source of each rule.
 
 mod cartesian;
 mod flow;
@@ -92,6 +99,11 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
                     line,
                 );
             }
+        }
+        let rest = body.trim_start()[first.len()..].trim_start();
+        if rest.starts_with([':', '.', '{']) {
+            // An assignment (`name := ..`, `name.x := ..`, `name{i} := ..`): no motion.
+            continue;
         }
         if flow::is_motion(&first) {
             let name = &body.trim_start()[..first.len()];
@@ -431,6 +443,9 @@ fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Vec<Joi
     let name = &code[s.span.clone()].trim_start()[..first.len()];
     let cartesian = matches!(first, "movel" | "movej" | "movec");
     if first != "moveabsj" && !cartesian {
+        if !flow::is_motion(first) {
+            return Ok(Vec::new());
+        }
         let why = match first {
             "movelsync" | "movejsync" | "movecsync" | "moveldo"
             | "movejdo" | "movecdo" | "movelgo" | "movejgo" | "movecgo" | "movelao"
@@ -438,8 +453,7 @@ fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Vec<Joi
             "moveextj" => "a motion of external axes only; not compensated: remove it",
             f if f.starts_with("trigg") => "a motion with triggered events (robtarget); not compensated: write the path as MoveL or MoveAbsJ and set the events apart",
             f if f.starts_with("search") => "a search motion stops where a sensor fires, which the program does not say; not compensated",
-            f if f.starts_with("move") || f.starts_with("arc") || f.starts_with("spot") || f.starts_with("paint") || f.starts_with("cap") => "a motion instruction stiffid does not follow; write the path as MoveL, MoveJ or MoveAbsJ",
-            _ => return Ok(Vec::new()),
+            _ => "a motion instruction stiffid does not follow; write the path as MoveL, MoveJ or MoveAbsJ",
         };
         return Err(at(line, format!("{name}: {why}")));
     }

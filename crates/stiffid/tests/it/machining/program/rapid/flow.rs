@@ -56,7 +56,7 @@ fn a_motion_inside_a_construct_is_refused_naming_it_its_line_and_the_constructs(
 #[test]
 fn constructs_without_motions_leave_the_motions_as_read() {
     let body = format!(
-        "    {}\n    IF di1 = 1 THEN\n      SetDO do1, 1;\n    ENDIF\n    IF di2 = 1 SetDO do2, 0;\n    WHILE di3 = 0 DO\n      WaitTime 0.1;\n    ENDWHILE\n    {}",
+        "    {}\n    IF di1 = 1 THEN\n      SetDO do1, 1;\n    ENDIF\n    IF moveCount > 2 SetDO do2, 0;\n    WHILE di3 = 0 DO\n      capacity := capacity + 1;\n    ENDWHILE\n    {}",
         motion(1.0),
         motion(2.0)
     );
