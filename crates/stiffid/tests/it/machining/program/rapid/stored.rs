@@ -114,9 +114,11 @@ fn pose_of(v: &[f64]) -> Isometry3<f64> {
     )
 }
 
-/// What the controller reads from the module: per target, the tool's pose in its world and
-/// the `confdata`; the tool frame on the flange.
-fn controller_view(text: &str) -> (Isometry3<f64>, Vec<(Isometry3<f64>, [i64; 4])>) {
+/// A target as the controller reads it: the tool's pose (its world, m) and the `confdata`.
+type Read = (Isometry3<f64>, [i64; 4]);
+
+/// What the controller reads from the module: the tool frame on the flange, and every target.
+fn controller_view(text: &str) -> (Isometry3<f64>, Vec<Read>) {
     let after = |key: &str| -> Vec<f64> {
         let l = text.lines().find(|l| l.contains(key)).unwrap();
         numbers(&l[l.find(":=").unwrap() + 2..])
