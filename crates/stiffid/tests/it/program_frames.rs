@@ -296,7 +296,11 @@ fn written_cartesian_programs_read_back_to_their_targets() {
             );
             // The turned tool's postures take the written decimals (RAPID's quaternion to 1e-9)
             // through a less well conditioned wrist: up to 4 times the straight tool's.
-            let scale = if turn == UnitQuaternion::identity() { 1.0 } else { 4.0 };
+            let scale = if turn == UnitQuaternion::identity() {
+                1.0
+            } else {
+                4.0
+            };
             let read_back = scale * crate::cartesian_programs::read_back(dialect);
             assert!(q_error <= read_back, "{dialect:?}: {q_error} deg");
         }

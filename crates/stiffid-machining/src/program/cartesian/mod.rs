@@ -8,8 +8,9 @@
 //!   `.dat` writes them); external axes `E1`.. as in joint targets. The frame is the `$BASE`
 //!   assigned before the motion (a literal frame, or `$NULLFRAME`/`$WORLD`: the world), the tool
 //!   the `$TOOL` assigned before it (a literal frame).
-//! - ABB RAPID: `MoveL`/`MoveJ` to a `robtarget` literal `[[x,y,z],[q1,q2,q3,q4],[cf1,cf4,cf6,
-//!   cfx],[eax_a,..]]` or one declared in the module, with a `tooldata` declared in the module
+//! - ABB RAPID: `MoveL`/`MoveJ` (and `MoveC`'s circle point and end point) to a `robtarget`
+//!   literal `[[x,y,z],[q1,q2,q3,q4],[cf1,cf4,cf6,cfx],[eax_a,..]]`, one declared in the module,
+//!   or `Offs`/`RelTool` of one with constant arguments, with a `tooldata` declared in the module
 //!   (its `tframe`) and `\WObj:=` a `wobjdata` declared in the module (`uframe` then `oframe`,
 //!   `robhold FALSE`, `ufprog TRUE`), or `wobj0` / none: the world.
 //! - FANUC LS: positions of `/POS` in Cartesian representation, `CONFIG : 'N U T, 0, 0, 0'`,
@@ -18,6 +19,10 @@
 //!   setup's `[workpiece]`), all in one tool frame `UT : n` that must hold the setup's tool (a
 //!   remark `! stiffid: tool_frame = n ;` names it, else the first position's): an LS program
 //!   cannot state either frame (the LS reader's `numbered` rule).
+//!
+//! A target's orientation is the tool frame's: the flange's turned by the setup's `[tool]
+//! tcp_rpy_deg` (identity by default), the tool the program states (`tframe`, `$TOOL`) being
+//! the setup's, position and orientation.
 //!
 //! A target without configuration data (a KRL `FRAME`, or `POS` without `S` and `T`) and a KRL
 //! `LIN` (whose `S` and `T` a KUKA controller ignores) keep the configuration of the previous
