@@ -329,7 +329,10 @@ pub fn compensate_for(
     let tool = weight::tool_load(arm, compliance);
     let weight = |pose: &Isometry3<f64>| {
         tool.map_or(Vector6::zeros(), |p| {
-            p.wrench(&pose.rotation, &arm.tool().tcp)
+            p.wrench(
+                &(pose.rotation * arm.tool().rotation.inverse()),
+                &arm.tool().tcp,
+            )
         })
     };
     let (points, warnings) =
@@ -468,7 +471,12 @@ fn part_frame(workpiece: Option<&Isometry3<f64>>) -> Result<Isometry3<f64>> {
     })
 }
 
-/// Each point's line, target and nominal TCP pose (base frame).
+/// Each point's line, target and nominal TCP pose (base frame, in the tool's axes, `[tool]
+/// tcp_rpy_deg`, whose z the process pushes along: a G-code point's orientation is the tool's;
+/// the target of a G-code point is the flange's axes at the TCP).
+///
+/// # Errors
+/// A G-code program without `[workpiece]`.
 fn poses(
     arm: &Arm,
     workpiece: Option<&Isometry3<f64>>,
@@ -484,7 +492,10 @@ fn poses(
                 .map(|(i, p)| {
                     let base = placements.map_or(base, |c| c[i].part.inverse());
                     let pose = base * Isometry3::from_parts(p.position.into(), p.orientation);
-                    (p.line, Target::Pose(pose), pose)
+                    // The tool's axes: the flange's at the TCP turned by `[tool] tcp_rpy_deg`.
+                    let mut flange_axes = pose;
+                    flange_axes.rotation *= arm.tool().rotation.inverse();
+                    (p.line, Target::Pose(flange_axes), pose)
                 })
                 .collect())
         }
@@ -493,7 +504,9 @@ fn poses(
             .iter()
             .map(|t| {
                 let q = nalgebra::Vector6::from(t.q_deg).map(f64::to_radians);
-                let pose = tool_pose(&arm.robot().frames(&q), &arm.tool().tcp);
+                // The tool's axes (`[tool] tcp_rpy_deg`): the process pushes along its z.
+                let mut pose = tool_pose(&arm.robot().frames(&q), &arm.tool().tcp);
+                pose.rotation *= arm.tool().rotation;
                 (t.line, Target::Posture(q), pose)
             })
             .collect()),

@@ -58,3 +58,35 @@ def test_a_rapid_program_compensated_in_place_parses(setup, wall, tmp_path):
     # The parser is not a formality: a statement without its ';' is an error.
     broken = compensated.replace("ConfL \\On;", "ConfL \\On", 1)
     assert broken != compensated and check.check_format(broken) != []
+
+
+def test_a_rapid_module_with_offs_reltool_and_movec_compensated_in_place_parses(setup, wall, tmp_path):
+    """A stored module's forms stiffid reads (declared targets moved by Offs and RelTool of
+    numbers, a circle as MoveC) stay valid RAPID once compensated in place."""
+    generated = generate(setup, wall, output="rapid", targets="cartesian")
+    lines = generated.splitlines()
+    moves = [i for i, line in enumerate(lines) if line.lstrip().startswith("MoveL [")]
+    assert len(moves) >= 4
+
+    def target(i):
+        line = lines[i]
+        start = line.index("[")
+        end = line.index("]], ") + 2
+        return line[:start], line[start:end], line[end:]
+
+    head, first, rest = target(moves[0])
+    lines[moves[0]] = f"{head}Offs({first},0,0,0){rest}"
+    head, second, rest = target(moves[1])
+    lines[moves[1]] = f"{head}RelTool({second},0,0,0\\Rz:=0){rest}"
+    _, circle, _ = target(moves[2])
+    head, end, rest = target(moves[3])
+    lines[moves[2]] = ""
+    lines[moves[3]] = f"{head.replace('MoveL', 'MoveC')}{circle}, {end}{rest}"
+    module = tmp_path / "CELL.mod"
+    module.write_text("\n".join(lines) + "\n")
+    assert check.check_format(module.read_text()) == []
+    compensated = generate(setup, module)
+    assert compensated != module.read_text()
+    for form in ("Offs([[", "RelTool([[", "MoveC [["):
+        assert form in compensated
+    assert check.check_format(compensated) == []

@@ -7,7 +7,7 @@ use crate::robot::kinematics::Coordinates;
 use crate::robot::parts::polylines;
 use crate::robot::Bodies;
 use crate::Robot;
-use nalgebra::{Matrix3, Vector3, Vector6};
+use nalgebra::{Isometry3, Matrix3, Translation3, UnitQuaternion, Vector3, Vector6};
 
 /// Points of the tool, in the flange frame, m.
 #[derive(Debug, Clone, PartialEq)]
@@ -18,6 +18,11 @@ pub struct Tool {
     pub measuring_points: Vec<Vector3<f64>>,
     /// The tool centre point whose Jacobian gives the dexterity index.
     pub tcp: Vector3<f64>,
+    /// The tool frame's orientation in the flange frame (`[tool] tcp_rpy_deg`, identity by
+    /// default): the axes a robot program's Cartesian targets give the tool's orientation in
+    /// (ABB `tooldata` `tframe`, KUKA `$TOOL`, FANUC `UTOOL`). Only those targets use it
+    /// (read, written back, generated); the TCP is [`Tool::tcp`] either way.
+    pub rotation: UnitQuaternion<f64>,
 }
 
 impl Tool {
@@ -27,6 +32,11 @@ impl Tool {
         std::iter::once(&self.loading_point)
             .chain(&self.measuring_points)
             .chain(std::iter::once(&self.tcp))
+    }
+
+    /// The tool frame in the flange frame, m: its origin the TCP, its axes [`Tool::rotation`].
+    pub fn frame(&self) -> Isometry3<f64> {
+        Isometry3::from_parts(Translation3::from(self.tcp), self.rotation)
     }
 }
 

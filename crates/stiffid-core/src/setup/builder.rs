@@ -10,7 +10,7 @@ use crate::model::{Model, Spring};
 use crate::robot::kinematics::Coordinates;
 use crate::robot::Bodies;
 use crate::{Result, Robot};
-use nalgebra::{Isometry3, Vector3, Vector6};
+use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 
 impl Setup {
     /// A builder of a setup named `name` on `robot`, SI units; see [`SetupBuilder`].
@@ -26,6 +26,7 @@ impl Setup {
             loading_point: None,
             measuring_points: Vec::new(),
             tcp: None,
+            tcp_rotation: UnitQuaternion::identity(),
             load: None,
             load_steps: Vec::new(),
             noise: None,
@@ -62,6 +63,7 @@ impl Setup {
                 .then_some(arm.tool.loading_point),
             measuring_points: arm.tool.measuring_points.clone(),
             tcp: arm.tcp_given.then_some(arm.tool.tcp),
+            tcp_rotation: arm.tool.rotation,
             load: (!experiment.missing.contains(&"loading")).then(|| experiment.load.clone()),
             load_steps: experiment.load_steps.clone(),
             noise: Some(experiment.noise.clone()),
@@ -121,6 +123,7 @@ pub struct SetupBuilder {
     loading_point: Option<Vector3<f64>>,
     measuring_points: Vec<Vector3<f64>>,
     tcp: Option<Vector3<f64>>,
+    tcp_rotation: UnitQuaternion<f64>,
     load: Option<RopeLoad>,
     load_steps: Vec<f64>,
     noise: Option<Noise>,
@@ -195,6 +198,12 @@ impl SetupBuilder {
     /// The tool centre point, flange frame, m (default the first measuring point).
     pub fn with_tcp(mut self, tcp: Vector3<f64>) -> Self {
         self.tcp = Some(tcp);
+        self
+    }
+
+    /// The tool frame's orientation in the flange frame ([`Tool::rotation`], default identity).
+    pub fn with_tcp_rotation(mut self, rotation: UnitQuaternion<f64>) -> Self {
+        self.tcp_rotation = rotation;
         self
     }
 
@@ -388,6 +397,7 @@ impl SetupBuilder {
             loading_point,
             measuring_points: self.measuring_points,
             tcp: tcp.unwrap_or_default(),
+            rotation: self.tcp_rotation,
         };
         let (shapes, geometry) =
             robot_geometry(&self.robot, (self.link_radii, self.tool_radius), &tool)?;

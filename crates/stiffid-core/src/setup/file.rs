@@ -101,6 +101,8 @@ struct ToolFile {
     measuring_points_mm: Vec<[f64; 3]>,
     #[serde(default, deserialize_with = "crate::common::exact::option")]
     tcp_mm: Option<[f64; 3]>,
+    #[serde(default, deserialize_with = "crate::common::exact::option")]
+    tcp_rpy_deg: Option<[f64; 3]>,
     #[serde(default)]
     mass_kg: Option<f64>,
     #[serde(default, deserialize_with = "crate::common::exact::option")]
@@ -535,6 +537,11 @@ fn builder(f: SetupFile, robot: Robot, reading_variance: f64) -> Result<SetupBui
     }
     if let Some(tcp) = &f.tool.tcp_mm {
         b = b.with_tcp(mm(tcp));
+    }
+    if let Some(rpy) = &f.tool.tcp_rpy_deg {
+        limits::check("tool.tcp_rpy_deg", rpy, &limits::ANGLE_DEG)?;
+        let [r, p, y] = rpy.map(f64::to_radians);
+        b = b.with_tcp_rotation(nalgebra::UnitQuaternion::from_euler_angles(r, p, y));
     }
     match (f.tool.mass_kg, &f.tool.centre_of_mass_mm) {
         (Some(mass), Some(c)) => {

@@ -33,6 +33,8 @@
 //! measuring_points_mm = [[80, 80, 260], [-80, 80, 260]]
 //! # tcp_mm = [80, 80, 260]               # the dexterity index's (default measuring point 1);
 //! #                                      # compensate requires it: the cutting tool's centre point
+//! # tcp_rpy_deg = [0, -90, 0]            # optional: the tool frame's axes on the flange, as a
+//! #                                      # robot program's tooldata / $TOOL states them
 //! # mass_kg = 12.5                       # optional, with centre_of_mass_mm: the spindle's weight
 //! # centre_of_mass_mm = [0, 0, 120]      # joins the process wrench in compensate
 //! # inertia_kg_m2 = [0.3, 0.3, 0.1, 0, 0, 0]  # optional: [ixx, iyy, izz, ixy, ixz, iyz] about the

@@ -29,13 +29,17 @@
 //! name). A program may mix both kinds. A compensated Cartesian target is written back as the
 //! pose the controller must be told, with the configuration data of the compensated posture.
 //!
+//! RAPID's `MoveC` is read as its circle point and end point, and `Offs`/`RelTool` of a point with
+//! constant arguments as the pose they land on ([`rapid`]).
+//!
 //! Every other motion instruction is refused naming its line and what to do, never skipped: a
 //! circular or spline motion (the path between the points is not the compensated one), a relative
 //! motion the file cannot resolve exactly, an offset or target held in a register on the
 //! controller (LS `Offset,PR[]`, `Tool_Offset`, `PR[]`), a point declared outside the file or
 //! assigned at run time, a search or triggered motion (RAPID `SearchL`, `TriggL`, `MoveLDO`),
 //! motions in more than one routine, and jumps, loops, branches and calls in a program with
-//! motions (the order the controller runs would not be the file's).
+//! motions (the order the controller runs would not be the file's; RAPID refuses the ones that
+//! hold a motion, or jump in the routine of the motions, [`rapid`]).
 //!
 //! The targets come in the order of the motion instructions, which is the order the path follows;
 //! a declared point moved to twice is one target per visit. [`JointProgram::write`] replaces the

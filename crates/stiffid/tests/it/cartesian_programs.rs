@@ -333,7 +333,7 @@ fn unreadable(
             Dialect::Rapid,
             replaced(rapid, "wobjdata wpart := [FALSE", "wobjdata wpart := [TRUE"),
             line_of(rapid, "wobjdata"),
-            "wobjdata wpart: a work object the robot holds",
+            "wobjdata wpart: robhold TRUE: a work object the robot holds",
         ),
         (
             Dialect::Krl,

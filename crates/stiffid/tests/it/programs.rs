@@ -121,7 +121,7 @@ fn malformed_programs_are_refused_naming_the_line() {
             "MODULE M\nENDMODULE\n".to_string(),
             Dialect::Rapid,
             1,
-            "no motion to a joint target",
+            "no motion instruction in the module",
         ),
         (
             LS.replace(

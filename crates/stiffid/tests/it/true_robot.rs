@@ -422,6 +422,9 @@ struct Outcome {
     nominal: Row,
     joint: Row,
     cartesian: Row,
+    /// A RAPID module as its controller stores it, compensated and run by the nominal
+    /// controller from its text ([`crate::machining::program::rapid::stored`]).
+    stored: Row,
     geometry_only: Row,
     /// The held-out calibration error (RMS, m) plus the mean predicted standard deviation of the
     /// deflection's length (m).
@@ -759,6 +762,13 @@ fn campaign(case: &Case, seed: u64) -> Outcome {
     let nominal = case.setup.robot();
     let (joint, cartesian, results, _) =
         landing(&truth, nominal, (&setup, &compliance), &q0, &frame);
+    let stored = crate::machining::program::rapid::stored::stored_landing(
+        &truth,
+        nominal,
+        (&setup, &compliance),
+        &q0,
+        &frame,
+    );
     let error =
         |frame: &Isometry3<f64>, target: &Isometry3<f64>, q: &Vector6<f64>, w: &Vector6<f64>| {
             let want = frame.inverse() * Point3::from(target.translation.vector);
@@ -800,6 +810,7 @@ fn campaign(case: &Case, seed: u64) -> Outcome {
         nominal: row(&nominal_errors),
         joint,
         cartesian,
+        stored,
         geometry_only: row(&geometry_only),
         expected: held_rms + std.iter().sum::<f64>() / std.len().max(1) as f64,
     }
@@ -810,6 +821,7 @@ fn check(name: &str, o: &Outcome) {
         ("nominal controller", o.nominal),
         ("joint targets", o.joint),
         ("Cartesian targets", o.cartesian),
+        ("RAPID module as stored", o.stored),
         ("geometry-only calibration", o.geometry_only),
     ] {
         eprintln!(
@@ -822,7 +834,7 @@ fn check(name: &str, o: &Outcome) {
         "{name}: expected (held-out + deflection sd) {:.4} mm",
         o.expected * 1e3
     );
-    for r in [o.joint, o.cartesian] {
+    for r in [o.joint, o.cartesian, o.stored] {
         assert!(
             r.mean <= 3.0 * o.expected,
             "{name}: {r:?} vs {}",

@@ -64,6 +64,7 @@ pub fn run(request: &Request<'_>) -> Result<String> {
         loading_point: tool(150.0, 0.0, 200.0),
         measuring_points: corners.iter().map(|&(x, y)| tool(x, y, 260.0)).collect(),
         tcp: tool(80.0, 80.0, 260.0),
+        rotation: nalgebra::UnitQuaternion::identity(),
     };
     let l = prior::characteristic_length(
         robot,
@@ -180,6 +181,7 @@ fn cell_values(robot: &Robot, tool_mm: &Tool, reach_mm: f64) -> Vec<(&'static st
         loading_point: tool_mm.loading_point * 1e-3,
         measuring_points: tool_mm.measuring_points.iter().map(|p| p * 1e-3).collect(),
         tcp: tool_mm.tcp * 1e-3,
+        rotation: tool_mm.rotation,
     };
     let geometry = crate::setup::default_geometry(robot, &si);
     let normals = vec!["[0.0, 0.0, 1.0]"; si.measuring_points.len()];

@@ -123,7 +123,10 @@ fn write_robot_program(
                 true => p.external.as_slice(),
                 false => r.external.as_slice(),
             };
-            Target::at(controller, &tool.tcp, &r.q_compensated, e)
+            // The pose in the tool's axes ([tool] tcp_rpy_deg), as the program's tool states them.
+            let mut t = Target::at(controller, &tool.tcp, &r.q_compensated, e);
+            t.pose.rotation *= tool.rotation;
+            t
         })
         .collect();
     let plan = Plan {
@@ -178,11 +181,12 @@ fn cell_controller(setup: &Setup) -> Result<&stiffid_core::Robot> {
 }
 
 /// The tool a generated program states, from the controller's flange (the setup's
-/// `[robot_flange]` adapter included): the setup's TCP, mass and centre of mass.
+/// `[robot_flange]` adapter included): the setup's TCP and tool axes (`tcp_mm`, `tcp_rpy_deg`),
+/// mass and centre of mass.
 pub(super) fn program_tool(setup: &Setup) -> Tool {
     let adapter = setup.workcell().controller().adapter;
     Tool {
-        frame: adapter * nalgebra::Translation3::from(setup.tool().tcp),
+        frame: adapter * setup.tool().frame(),
         payload: setup
             .payload()
             .map(|p| (p.mass, adapter.transform_point(&p.centre.into()).coords)),

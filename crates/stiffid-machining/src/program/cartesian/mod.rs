@@ -8,8 +8,9 @@
 //!   `.dat` writes them); external axes `E1`.. as in joint targets. The frame is the `$BASE`
 //!   assigned before the motion (a literal frame, or `$NULLFRAME`/`$WORLD`: the world), the tool
 //!   the `$TOOL` assigned before it (a literal frame).
-//! - ABB RAPID: `MoveL`/`MoveJ` to a `robtarget` literal `[[x,y,z],[q1,q2,q3,q4],[cf1,cf4,cf6,
-//!   cfx],[eax_a,..]]` or one declared in the module, with a `tooldata` declared in the module
+//! - ABB RAPID: `MoveL`/`MoveJ` (and `MoveC`'s circle point and end point) to a `robtarget`
+//!   literal `[[x,y,z],[q1,q2,q3,q4],[cf1,cf4,cf6,cfx],[eax_a,..]]`, one declared in the module,
+//!   or `Offs`/`RelTool` of one with constant arguments, with a `tooldata` declared in the module
 //!   (its `tframe`) and `\WObj:=` a `wobjdata` declared in the module (`uframe` then `oframe`,
 //!   `robhold FALSE`, `ufprog TRUE`), or `wobj0` / none: the world.
 //! - FANUC LS: positions of `/POS` in Cartesian representation, `CONFIG : 'N U T, 0, 0, 0'`,
@@ -18,6 +19,10 @@
 //!   setup's `[workpiece]`), all in one tool frame `UT : n` that must hold the setup's tool (a
 //!   remark `! stiffid: tool_frame = n ;` names it, else the first position's): an LS program
 //!   cannot state either frame (the LS reader's `numbered` rule).
+//!
+//! A target's orientation is the tool frame's: the flange's turned by the setup's `[tool]
+//! tcp_rpy_deg` (identity by default), the tool the program states (`tframe`, `$TOOL`) being
+//! the setup's, position and orientation.
 //!
 //! A target without configuration data (a KRL `FRAME`, or `POS` without `S` and `T`) and a KRL
 //! `LIN` (whose `S` and `T` a KUKA controller ignores) keep the configuration of the previous
@@ -78,10 +83,18 @@ pub enum Frame {
 /// A Cartesian target as the program gives it (module docs).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Cartesian {
-    /// The TCP position in the target's frame, mm.
+    /// The TCP position in the target's frame, mm, as the program's numbers state it (a target
+    /// displaced by an offset, RAPID `Offs` or `RelTool`: its base point's; [`Cartesian::pose`]
+    /// is where the controller moves).
     pub position_mm: Vector3<f64>,
-    /// The tool's orientation in the target's frame.
+    /// The tool's orientation in the target's frame, likewise.
     pub rotation: UnitQuaternion<f64>,
+    /// The displacement the motion applies in the target's frame before the stated pose
+    /// (RAPID `Offs(p, x, y, z)`: a translation), m; identity without one.
+    pub(crate) before: Isometry3<f64>,
+    /// The displacement the motion applies in the tool's frame after the stated pose (RAPID
+    /// `RelTool(p, x, y, z \Rx \Ry \Rz)`), m; identity without one.
+    pub(crate) after: Isometry3<f64>,
     /// The configuration data; `None`: the previous target's (module docs).
     pub flags: Option<Flags>,
     /// The controller ignores the configuration data and continues from the previous posture
@@ -110,6 +123,8 @@ impl Cartesian {
         Cartesian {
             position_mm: Vector3::new(n[0], n[1], n[2]),
             rotation,
+            before: Isometry3::identity(),
+            after: Isometry3::identity(),
             flags: None,
             follows: false,
             frame: Frame::World,
@@ -120,9 +135,18 @@ impl Cartesian {
         }
     }
 
-    /// The pose in its frame, m.
+    /// The pose the controller moves the tool to, in the target's frame, m: the stated pose
+    /// with its displacements (`before * stated * after`).
     pub fn pose(&self) -> Isometry3<f64> {
-        Isometry3::from_parts(Translation3::from(self.position_mm * 1e-3), self.rotation)
+        let stated =
+            Isometry3::from_parts(Translation3::from(self.position_mm * 1e-3), self.rotation);
+        self.before * stated * self.after
+    }
+
+    /// The pose to state so that the displacements land the tool on `pose` (both in the
+    /// target's frame, m): the inverse of [`Cartesian::pose`].
+    pub(crate) fn stated(&self, pose: &Isometry3<f64>) -> Isometry3<f64> {
+        self.before.inverse() * pose * self.after.inverse()
     }
 
     /// The texts that state `pose` (in the target's frame, m) with the configuration `arm`, each

@@ -4,7 +4,7 @@
 use super::solve::{configured, Miss};
 use super::{words, Cartesian, Flags, Frame};
 use crate::program::{at, Dialect, JointProgram};
-use nalgebra::{Isometry3, Translation3, Vector3, Vector6};
+use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 use stiffid_core::robot::configuration::Configuration;
 use stiffid_core::robot::ik::{self, tool_pose};
 use stiffid_core::setup::NumberedFrames;
@@ -26,6 +26,9 @@ pub struct Controller<'a> {
     pub truth: &'a Robot,
     /// The tool centre point, flange frame of both robots, m (`[tool] tcp_mm`).
     pub tcp: Vector3<f64>,
+    /// The tool's axes in the flange frame of both robots (`[tool] tcp_rpy_deg`): a target's
+    /// orientation is the tool's, the flange's turned by it.
+    pub tcp_rotation: UnitQuaternion<f64>,
     /// The tool frame as the controller holds it: in its flange frame (after the setup's
     /// `[robot_flange]` adapter), m.
     pub tool: Isometry3<f64>,
@@ -50,7 +53,8 @@ impl<'a> Controller<'a> {
             robot: setup.controller_robot()?,
             truth: setup.robot(),
             tcp: setup.tool().tcp,
-            tool: c.adapter * Translation3::from(setup.tool().tcp),
+            tcp_rotation: setup.tool().rotation,
+            tool: c.adapter * setup.tool().frame(),
             world: c.world,
             part: setup.workpiece().copied(),
             tools: &c.tools,
@@ -65,6 +69,7 @@ impl<'a> Controller<'a> {
 pub(crate) struct Writer {
     pub robot: Robot,
     pub tcp: Vector3<f64>,
+    pub tcp_rotation: UnitQuaternion<f64>,
 }
 
 impl Writer {
@@ -75,9 +80,14 @@ impl Writer {
         c: &Cartesian,
         q: &Vector6<f64>,
     ) -> Vec<(std::ops::Range<usize>, String)> {
-        let pose = tool_pose(&self.robot.frames(q), &self.tcp);
+        let mut pose = tool_pose(&self.robot.frames(q), &self.tcp);
+        pose.rotation *= self.tcp_rotation;
         let local = c.base_from_frame.unwrap_or_default().inverse() * pose;
-        c.texts(dialect, &local, &Configuration::of(&self.robot, q))
+        c.texts(
+            dialect,
+            &c.stated(&local),
+            &Configuration::of(&self.robot, q),
+        )
     }
 }
 
@@ -176,7 +186,9 @@ fn resolve_in(
         }
         check_tool(&c.tool, line, controller)?;
         let frame = base_frame(&c.frame, line, (controller, dialect), placed)?;
-        let target = frame * c.pose();
+        // The flange's axes at the TCP: the tool's turned back by the tool's rotation.
+        let mut target = frame * c.pose();
+        target.rotation *= controller.tcp_rotation.inverse();
         let kept = previous_arm.filter(|_| c.follows || c.flags.is_none());
         let wanted = c.flags.clone().or(flags.clone()).ok_or_else(|| at(line, format!("a Cartesian target without configuration data ({}), and no target before it to keep the configuration of: the pose has up to eight solutions; give them", dialect.controller().flags_name())))?;
         let accept = |arm: &Configuration| match (&kept, placed) {
@@ -203,6 +215,7 @@ fn resolve_in(
     out.writer = Some(Box::new(Writer {
         robot: controller.robot.clone(),
         tcp: controller.tcp,
+        tcp_rotation: controller.tcp_rotation,
     }));
     Ok(out)
 }
@@ -256,7 +269,7 @@ fn check_tool(tool: &Frame, line: u64, controller: &Controller) -> Result<()> {
     if same(&stated, &controller.tool) {
         return Ok(());
     }
-    Err(at(on, format!("the program's tool ({}) is not the setup's ({}: its [tool] tcp_mm, after [robot_flange]); compensation moves the setup's tool: write the program for it", words(&stated), words(&controller.tool))))
+    Err(at(on, format!("the program's tool ({}) is not the setup's ({}: its [tool] tcp_mm and tcp_rpy_deg, after [robot_flange]); compensation moves the setup's tool: write the program for it", words(&stated), words(&controller.tool))))
 }
 
 /// Whether two frames are one within [`SAME_M`] and [`SAME_RAD`].

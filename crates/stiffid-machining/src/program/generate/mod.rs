@@ -213,8 +213,9 @@ impl Settings {
 pub struct Target {
     /// Axis angles q1..q6, deg.
     pub q_deg: [f64; 6],
-    /// The TCP position (m) and the flange's orientation, base frame: the forward kinematics of
-    /// the axis angles.
+    /// The TCP position (m) and the tool's orientation, base frame: the forward kinematics of
+    /// the axis angles ([`Target::new`] the flange's axes; a program written for a tool whose
+    /// axes are turned, `[tool] tcp_rpy_deg`, turns them the same).
     pub pose: Isometry3<f64>,
     /// The configuration of the axis angles.
     pub arm: Configuration,
@@ -259,8 +260,8 @@ impl Target {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Tool {
     /// The tool frame in the controller's flange frame: its origin the tool centre point, its
-    /// axes those of the flange the targets' orientations are given for (the mounted flange,
-    /// after an adapter plate); lengths in m.
+    /// axes those the targets' orientations are given for (the mounted flange's, after an
+    /// adapter plate, turned by `[tool] tcp_rpy_deg`); lengths in m.
     pub frame: Isometry3<f64>,
     /// The mass (kg) and centre of mass (the controller's flange frame, m), if the setup gives
     /// them.

@@ -97,10 +97,15 @@ pub(crate) fn frame(kind: &str, name: &str, line: u64, code: &str, from: usize) 
                     "a stationary tool (robhold FALSE): stiffid compensates a tool the robot holds",
                 )),
             },
-            ("wobjdata", [hold, programmed, _, uframe, oframe, ..]) => {
+            ("wobjdata", [hold, programmed, unit, uframe, oframe, ..]) => {
                 match (hold.boolean(), programmed.boolean()) {
                     (Some(false), Some(true)) => pose(line, uframe)? * pose(line, oframe)?,
-                    _ => return Err(bad("a work object the robot holds or a mechanical unit moves (robhold TRUE or ufprog FALSE): stiffid reads a fixed work object")),
+                    (Some(true), _) => return Err(bad("robhold TRUE: a work object the robot holds (its tool stationary); stiffid reads a work object fixed in the world, the robot holding the tool")),
+                    (_, Some(false)) => {
+                        let unit = match unit { Node::Text(t) => t.as_str(), _ => "" };
+                        return Err(bad(&format!("ufprog FALSE: a user frame the mechanical unit \"{unit}\" (ufmec) moves, whose pose at the motion is the controller's; stiffid reads a fixed user frame (ufprog TRUE)")));
+                    }
+                    _ => return Err(bad("expected robhold and ufprog to be TRUE or FALSE")),
                 }
             }
             _ => return Err(bad("expected the members of its type")),
@@ -113,35 +118,27 @@ pub(crate) fn frame(kind: &str, name: &str, line: u64, code: &str, from: usize) 
     })
 }
 
-/// A `MoveL`/`MoveJ` statement's target, tool and work object from its arguments `args` (the
-/// text after the instruction's name and switches, without `;`, at byte `from` of `code`);
-/// `named` gives a declared `robtarget` by name.
+/// The targets of a `MoveL`/`MoveJ` (`points` 1) or `MoveC` (`points` 2: the circle point, then
+/// the end point) statement, with its tool and work object, from its arguments `args` (the text
+/// after the instruction's name and switches, without `;`, at byte `from` of `code`); `named`
+/// gives a declared `robtarget` by name.
 pub(crate) fn motion(
     line: u64,
     (code, from, args): (&str, usize, &str),
+    points: usize,
     named: &dyn Fn(&str) -> Result<JointTarget>,
     frames: &HashMap<String, Frame>,
-) -> Result<JointTarget> {
+) -> Result<Vec<JointTarget>> {
     let parts = top_level(args);
-    let [target, _speed, _zone, tool, ..] = parts.as_slice() else {
+    let Some(tool) = parts.get(points + 2).filter(|_| parts.len() >= points + 3) else {
+        let what = match points {
+            1 => "a target",
+            _ => "a circle point, an end point",
+        };
         return Err(at(
             line,
-            "expected a target, a speed, a zone and a tool".into(),
+            format!("expected {what}, a speed, a zone and a tool"),
         ));
-    };
-    let text = args[target.clone()].trim_start();
-    let mut t = if text.starts_with('[') {
-        robtarget(line, code, from + target.start)?
-    } else {
-        let ident: String = text
-            .chars()
-            .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
-            .collect();
-        let next = text[ident.len()..].trim_start();
-        if ident.is_empty() || !(next.is_empty() || next.starts_with('\\')) {
-            return Err(at(line, "the target is computed on the controller (Offs, RelTool, an expression, a function or an array element); stiffid compensates robtarget literals and robtargets declared in the module".into()));
-        }
-        named(&ident)?
     };
     let tool_text = &args[tool.clone()];
     let (tool_name, switches) = tool_text.split_once('\\').unwrap_or((tool_text, ""));
@@ -151,16 +148,56 @@ pub(crate) fn motion(
             .eq_ignore_ascii_case("wobj")
             .then(|| v.trim().to_string())
     });
-    let c = t
-        .cartesian
-        .as_deref_mut()
-        .ok_or_else(|| at(line, "expected a robtarget".into()))?;
-    c.tool = lookup(line, "tooldata", "tool0", tool_name.trim(), frames);
-    c.frame = match wobj {
-        None => Frame::World,
-        Some(w) => lookup(line, "wobjdata", "wobj0", &w, frames),
-    };
-    Ok(t)
+    let mut out = Vec::with_capacity(points);
+    for part in &parts[..points] {
+        let mut t = point(line, code, from + part.start, &args[part.clone()], named)?;
+        let c = t
+            .cartesian
+            .as_deref_mut()
+            .ok_or_else(|| at(line, "expected a robtarget".into()))?;
+        c.tool = lookup(line, "tooldata", "tool0", tool_name.trim(), frames);
+        c.frame = match &wobj {
+            None => Frame::World,
+            Some(w) => lookup(line, "wobjdata", "wobj0", w, frames),
+        };
+        out.push(t);
+    }
+    Ok(out)
+}
+
+/// One point argument `text` (at byte `from` of `code`): a `robtarget` literal, a declared one,
+/// or `Offs`/`RelTool` of one with constant displacements ([`super::offset`]).
+fn point(
+    line: u64,
+    code: &str,
+    from: usize,
+    text: &str,
+    named: &dyn Fn(&str) -> Result<JointTarget>,
+) -> Result<JointTarget> {
+    let lead = text.len() - text.trim_start().len();
+    let text = text.trim_start();
+    if text.starts_with('[') {
+        return robtarget(line, code, from + lead);
+    }
+    let ident: String = text
+        .chars()
+        .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+        .collect();
+    let next = text[ident.len()..].trim_start();
+    if !ident.is_empty() && (next.is_empty() || next.starts_with('\\')) {
+        return named(&ident);
+    }
+    if let Some(f) = super::offset::Function::of(&ident).filter(|_| next.starts_with('(')) {
+        let open = from + lead + text.len() - next.len();
+        let end = from + lead + text.len();
+        let (base, args) = super::offset::arguments(line, f, code, (open, end))?;
+        let mut t = point(line, code, base.start, &code[base], named)?;
+        if let Some(c) = t.cartesian.as_deref_mut() {
+            f.apply(c, &args);
+        }
+        return Ok(t);
+    }
+    Err(at(line, "the target is computed on the controller (a function other than Offs and RelTool, a variable argument, an expression or an array element); stiffid compensates robtarget literals, robtargets declared in the module and Offs or RelTool of them by constants".into()))
 }
 
 /// The frame of a tool or work object named in a motion.

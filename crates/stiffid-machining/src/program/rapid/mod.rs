@@ -9,11 +9,20 @@
 //!
 //! `MoveL` and `MoveJ` (also `\Conc`) to a `robtarget` literal or one declared in the module are
 //! Cartesian targets, with their `tooldata` and `\WObj:=` `wobjdata` declared in the module
-//! ([`super::cartesian`]).
+//! ([`super::cartesian`]); `MoveC` gives two, its circle point then its end point (the controller
+//! moves on the circle through the previous target and them: each point is compensated, the arc
+//! between is the circle through the compensated points). A point may also be `Offs` or
+//! `RelTool` of one with constant arguments (module `offset`).
+//!
+//! A motion inside a loop, a branch or an error handler, and a jump in the routine of the
+//! motions, are refused naming the line and the construct (module `flow`); docs/programs/rapid.md
+//! is the guide, with ABB's manuals as the source of each rule.
 
 mod cartesian;
+mod flow;
 mod generate;
 mod names;
+mod offset;
 pub mod speed;
 
 use super::cartesian::Flags;
@@ -51,9 +60,11 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
     let statements = statements(&code);
     let data = declarations(&code, &statements)?;
     let mut out = Vec::new();
+    let mut routines: Vec<(String, u64)> = Vec::new();
     let mut routine: Option<(String, u64)> = None;
     let mut current: Option<(String, u64)> = None;
-    let mut control: Option<(u64, String)> = None;
+    let mut flow = flow::Flow::default();
+    let mut flow_of_motions: Option<flow::Flow> = None;
     for s in &statements {
         let body = &code[s.span.clone()];
         let first = first_word(body);
@@ -69,19 +80,39 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
             .collect();
         if let ["proc" | "trap", name, ..] | ["func", _, name, ..] = w.as_slice() {
             let name = name.split('(').next().unwrap_or(name).to_string();
+            routines.push((name.clone(), s.line));
             current = Some((name, s.line));
+            if let (Some(_), None) = (&routine, &flow_of_motions) {
+                flow_of_motions = Some(std::mem::take(&mut flow));
+            }
+            flow.routine();
             continue;
         }
-        if matches!(
-            first.as_str(),
-            "if" | "for" | "while" | "test" | "goto" | "retry" | "trynext"
-        ) && control.is_none()
-        {
-            control = Some((s.line, first.to_uppercase()));
+        flow.statement(&first, is_header(body), s.line);
+        if first == "if" && !is_header(body) {
+            if let Some((name, line)) = flow::in_compact_if(body, s.line, flow::is_motion) {
+                flow.check(&name, line, Some(s.line))?;
+            }
+            if let Some((name, line)) = flow::in_compact_if(body, s.line, flow::is_jump) {
+                flow.jump(
+                    &format!("IF (line {}) {}", s.line, name.to_uppercase()),
+                    line,
+                );
+            }
         }
-        let Some(target) = motion(s, &code, &first, &data)? else {
+        let rest = body.trim_start()[first.len()..].trim_start();
+        if rest.starts_with([':', '.', '{']) {
+            // An assignment (`name := ..`, `name.x := ..`, `name{i} := ..`): no motion.
             continue;
-        };
+        }
+        if flow::is_motion(&first) {
+            let name = &body.trim_start()[..first.len()];
+            flow.check(name, s.line, None)?;
+        }
+        let found = motion(s, &code, &first, &data)?;
+        if found.is_empty() {
+            continue;
+        }
         match (&routine, &current) {
             (Some((a, a_line)), Some((b, b_line))) if a != b => {
                 return Err(at(s.line, format!("motions in PROC {a} (line {a_line}) and PROC {b} (line {b_line}): the order the controller runs them depends on the calls; put the path in one PROC")));
@@ -89,10 +120,14 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
             (None, _) => routine = current.clone(),
             _ => {}
         }
-        out.push(target);
+        out.extend(found);
     }
-    if let (Some((line, word)), false) = (control, out.is_empty()) {
-        return Err(at(line, format!("{word}: a jump, loop or branch in a module with motions; the order the controller runs them would not be the file's: write the path as straight-line code")));
+    if out.is_empty() {
+        return Err(at(1, no_motion(&routines)));
+    }
+    if let (Some(first), Some(r)) = (out.first(), &routine) {
+        let flow = flow_of_motions.as_ref().unwrap_or(&flow);
+        flow.check_jumps(&format!("PROC {}", r.0), first.line)?;
     }
     let n = out
         .iter()
@@ -101,6 +136,23 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
         .map_or(0, |k| k + 1);
     let axes = (0..n).map(|k| format!("eax_{}", (b'a' + k as u8) as char));
     Ok((out, axes.collect()))
+}
+
+/// Why a module without motions gives no target: what it holds instead.
+fn no_motion(routines: &[(String, u64)]) -> String {
+    let listed: Vec<String> = (routines.iter().take(5))
+        .map(|(n, l)| format!("{n} (line {l})"))
+        .collect();
+    let holds = match routines.len() {
+        0 => "no routine: a module of data (declarations only)".to_string(),
+        n => format!(
+            "{n} routine{} ({}{}) without a motion instruction: a module of data, I/O or communication, or one whose routines call the motions of another module",
+            if n == 1 { "" } else { "s" },
+            listed.join(", "),
+            if n > 5 { ", .." } else { "" }
+        ),
+    };
+    format!("no motion instruction in the module (MoveAbsJ, MoveL, MoveJ, MoveC); it holds {holds}: give stiffid the module with the path's motions")
 }
 
 /// The value RAPID writes for an external axis that is not used: `9E9` (any value from
@@ -384,22 +436,24 @@ fn literal(line: u64, code: &str, from: usize) -> Result<JointTarget> {
     Ok(target.with_external(external))
 }
 
-/// The target of a motion statement, `None` for a statement that is no motion; every motion
-/// outside the subset refused naming the line.
-fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Option<JointTarget>> {
+/// The targets of a motion statement (`MoveC`: its circle point then its end point), none for
+/// a statement that is no motion; every motion outside the subset refused naming the line.
+fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Vec<JointTarget>> {
     let line = s.line;
     let name = &code[s.span.clone()].trim_start()[..first.len()];
-    let cartesian = matches!(first, "movel" | "movej");
+    let cartesian = matches!(first, "movel" | "movej" | "movec");
     if first != "moveabsj" && !cartesian {
+        if !flow::is_motion(first) {
+            return Ok(Vec::new());
+        }
         let why = match first {
-            "movec" | "movelsync" | "movejsync" | "movecsync" | "moveldo"
+            "movelsync" | "movejsync" | "movecsync" | "moveldo"
             | "movejdo" | "movecdo" | "movelgo" | "movejgo" | "movecgo" | "movelao"
             | "movejao" | "movecao" => "a motion stiffid does not follow (a circle, or a signal set on the way); write the path as MoveL, MoveJ or MoveAbsJ",
             "moveextj" => "a motion of external axes only; not compensated: remove it",
             f if f.starts_with("trigg") => "a motion with triggered events (robtarget); not compensated: write the path as MoveL or MoveAbsJ and set the events apart",
             f if f.starts_with("search") => "a search motion stops where a sensor fires, which the program does not say; not compensated",
-            f if f.starts_with("move") || f.starts_with("arc") || f.starts_with("spot") || f.starts_with("paint") || f.starts_with("cap") => "a motion instruction stiffid does not follow; write the path as MoveL, MoveJ or MoveAbsJ",
-            _ => return Ok(None),
+            _ => "a motion instruction stiffid does not follow; write the path as MoveL, MoveJ or MoveAbsJ",
         };
         return Err(at(line, format!("{name}: {why}")));
     }
@@ -436,20 +490,29 @@ fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Option<
     if cartesian {
         let end = s.span.end - usize::from(code[..s.span.end].ends_with(';'));
         let args = &code[from..end];
-        let argument = cartesian::top_level(args).get(1).map(|r| &args[r.clone()]);
-        let mut target = cartesian::motion(line, (code, from, args), &named, &data.frames)
+        let points = if first == "movec" { 2 } else { 1 };
+        let argument = cartesian::top_level(args)
+            .get(points)
+            .map(|r| &args[r.clone()]);
+        let mut targets = cartesian::motion(line, (code, from, args), points, &named, &data.frames)
             .map_err(|e| match e {
                 stiffid_core::Error::Program { line, message } if !message.starts_with(name) => {
                     at(line, format!("{name}: {message}"))
                 }
                 other => other,
             })?;
-        target.speed = speed::speed(line, first, argument, &data.speeds)?;
-        return Ok(Some(target));
+        let speed = match speed::speed(line, first, argument, &data.speeds)? {
+            super::speed::Speed::Duration(_) if points == 2 => super::speed::Speed::Unread(format!("{name} \\T: the time of the whole circle, which stiffid does not share between its two points")),
+            other => other,
+        };
+        for t in &mut targets {
+            t.speed = speed.clone();
+        }
+        return Ok(targets);
     }
     let target_text = code[from..s.span.end].trim_start();
     if target_text.starts_with("[[") {
-        return literal(line, code, from).map(|t| Some(joint(t)));
+        return literal(line, code, from).map(|t| vec![joint(t)]);
     }
     let ident: String = target_text
         .chars()
@@ -457,9 +520,15 @@ fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Option<
         .collect();
     let next = target_text[ident.len()..].trim_start();
     if ident.is_empty() || next.starts_with(['{', '(', '.']) {
-        return Err(at(line, format!("{name}: the target is computed on the controller (an expression, a function or an array element); stiffid compensates literals and jointtargets declared in the module")));
+        let what = match next.chars().next() {
+            Some('(') => format!("{ident}(..), a function"),
+            Some('{') => format!("{ident}{{..}}, an array element"),
+            Some('.') => format!("{ident}.., a component"),
+            _ => "an expression".to_string(),
+        };
+        return Err(at(line, format!("{name}: the target is {what} the controller computes; stiffid compensates literals and jointtargets declared in the module")));
     }
-    named(&ident).map(|t| Some(joint(t)))
+    named(&ident).map(|t| vec![joint(t)])
 }
 
 /// A `MoveAbsJ`'s target: a joint motion.
@@ -496,7 +565,7 @@ impl Controller for Rapid {
         })
     }
     fn motions(&self) -> &'static str {
-        "MoveAbsJ to a jointtarget, MoveL or MoveJ to a robtarget"
+        "MoveAbsJ to a jointtarget, MoveL, MoveJ or MoveC to a robtarget"
     }
     fn joint_forms(&self) -> &'static str {
         "jointtarget"

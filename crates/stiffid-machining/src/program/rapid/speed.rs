@@ -16,7 +16,7 @@ const RAPID_PREDEFINED: [u32; 25] = [
 /// or why it has none in the file.
 pub type RapidSpeeds = HashMap<String, std::result::Result<(f64, u64), String>>;
 
-/// The speed of the RAPID motion `first` (`movel`, `movej`, `moveabsj`) whose speed argument
+/// The speed of the RAPID motion `first` (`movel`, `movec`: a path speed; `movej`, `moveabsj`) whose speed argument
 /// is `argument` (`v100`, `vcut\V:=120`, `v100\T:=2`), with the module's `declared` speeds.
 ///
 /// # Errors
@@ -27,7 +27,7 @@ pub fn speed(
     argument: Option<&str>,
     declared: &RapidSpeeds,
 ) -> Result<Speed> {
-    if first != "movel" {
+    if !matches!(first, "movel" | "movec") {
         return Ok(Speed::Joint);
     }
     let Some(argument) = argument else {

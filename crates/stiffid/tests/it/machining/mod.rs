@@ -3,4 +3,4 @@
 mod app;
 mod compensate;
 mod dynamics;
-mod program;
+pub(crate) mod program;

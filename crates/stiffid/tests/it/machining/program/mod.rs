@@ -4,4 +4,5 @@ mod cartesian;
 mod generate;
 mod inform;
 mod krl;
+pub(crate) mod rapid;
 mod speed;

@@ -1,0 +1,168 @@
+//! RAPID's program flow around motions (ABB, *Technical reference manual - RAPID Instructions,
+//! Functions and Data types*: `IF`, `WHILE`, `FOR`, `TEST`, `GOTO`, and the `ERROR` handler of
+//! *RAPID overview*): a motion a loop, a branch or an error handler holds runs as often and in
+//! the order the controller decides at run time, so the file's order is not the path's. Such a
+//! motion is refused naming its line, the instruction and every construct around it with its
+//! line; a `GOTO` in the routine that holds the motions, or a `RETURN`, `EXIT`, `ExitCycle` or
+//! `RAISE` a construct holds there, is refused naming its line and the routine's first motion. The one-line `IF cond instruction;` (the *compact IF*) is a branch
+//! of one statement: a motion in it is refused likewise.
+
+use crate::program::at;
+use stiffid_core::Result;
+
+/// The constructs open around a statement of the routine being read, and its `GOTO`s.
+#[derive(Debug, Default)]
+pub(super) struct Flow {
+    /// Each open construct's name as RAPID writes it (`WHILE`) and its line, outermost first.
+    open: Vec<(&'static str, u64)>,
+    /// The routine's jumps: each `GOTO`, and each `RETURN`, `EXIT`, `ExitCycle` or `RAISE` a
+    /// construct holds (it may skip the motions after it), as written, with its line.
+    jumps: Vec<(String, u64)>,
+}
+
+/// Whether a word (lower case) names a motion instruction (*RAPID Instructions* and the process
+/// options' manuals): every `Move*` (a routine of the cell's named so is taken as one too),
+/// `SearchL`/`SearchC`/`SearchExtJ`, `TriggL`/`TriggJ`/`TriggC` (and their `IOs` forms), the
+/// arc welding `ArcL*`/`ArcC*`, spot welding `SpotL`/`SpotJ`/`SpotML`/`SpotMJ`, painting
+/// `PaintL`/`PaintC`, continuous application `CapL`/`CapC`, dispensing `DispL`/`DispC`.
+pub(super) fn is_motion(word: &str) -> bool {
+    word.starts_with("move")
+        || word.starts_with("arcl")
+        || word.starts_with("arcc")
+        || matches!(
+            word,
+            "searchl"
+                | "searchc"
+                | "searchextj"
+                | "triggl"
+                | "triggj"
+                | "triggc"
+                | "trigglios"
+                | "triggjios"
+                | "spotl"
+                | "spotj"
+                | "spotml"
+                | "spotmj"
+                | "paintl"
+                | "paintc"
+                | "capl"
+                | "capc"
+                | "displ"
+                | "dispc"
+        )
+}
+
+impl Flow {
+    /// A new routine (`PROC`, `FUNC`, `TRAP`): nothing open, no `GOTO`.
+    pub(super) fn routine(&mut self) {
+        *self = Flow::default();
+    }
+
+    /// Takes a statement whose first word (lower case) is `first`, on `line`; `header` whether
+    /// it is a line of the module's structure (`IF .. THEN`, `WHILE .. DO`, `ENDIF`).
+    pub(super) fn statement(&mut self, first: &str, header: bool, line: u64) {
+        let opens = match first {
+            "if" if header => Some("IF"),
+            "while" => Some("WHILE"),
+            "for" => Some("FOR"),
+            "test" => Some("TEST"),
+            "error" => Some("ERROR handler"),
+            "undo" => Some("UNDO handler"),
+            "backward" => Some("BACKWARD handler"),
+            _ => None,
+        };
+        if let Some(name) = opens {
+            self.open.push((name, line));
+        }
+        if matches!(first, "endif" | "endwhile" | "endfor" | "endtest") {
+            self.open.pop();
+        }
+        let branch = (self.open.iter()).any(|(c, _)| !c.ends_with("handler"));
+        let leaves = is_leave(first) && branch;
+        if first == "goto" || leaves {
+            self.jump(&first.to_ascii_uppercase(), line);
+        }
+    }
+
+    /// Refuses the motion `name` on `line` when a construct is open around it (module docs);
+    /// `compact` the line of a compact `IF` that holds it.
+    pub(super) fn check(&self, name: &str, line: u64, compact: Option<u64>) -> Result<()> {
+        let mut around: Vec<String> = (self.open.iter().rev())
+            .map(|(c, l)| format!("{c} (line {l})"))
+            .collect();
+        if let Some(l) = compact {
+            around.insert(0, format!("IF (line {l})"));
+        }
+        if around.is_empty() {
+            return Ok(());
+        }
+        Err(at(
+            line,
+            format!(
+                "{name} inside {}: a loop, branch or error handler decides at run time whether, how often and in which order its motions run, so the file's order is not the path's; write the path as straight-line code",
+                around.join(" inside ")
+            ),
+        ))
+    }
+
+    /// Takes a jump (`GOTO`, a conditional `RETURN`..) on `line`.
+    pub(super) fn jump(&mut self, name: &str, line: u64) {
+        self.jumps.push((name.to_string(), line));
+    }
+
+    /// Refuses a jump of the routine that holds the motions, the first on `first_motion`.
+    pub(super) fn check_jumps(&self, routine: &str, first_motion: u64) -> Result<()> {
+        match self.jumps.first() {
+            None => Ok(()),
+            Some((name, l)) => Err(at(
+                *l,
+                format!("{name} in {routine}, whose motions start on line {first_motion}: a jump, or a routine left on a condition, makes the motions the controller runs not the file's; write the path as straight-line code"),
+            )),
+        }
+    }
+}
+
+/// Whether a word (lower case) leaves the routine (`RETURN`, `EXIT`, `ExitCycle`, `RAISE`).
+pub(super) fn is_leave(word: &str) -> bool {
+    matches!(word, "return" | "exit" | "exitcycle" | "raise")
+}
+
+/// Whether a word (lower case) jumps (`GOTO`) or leaves the routine ([`is_leave`]).
+pub(super) fn is_jump(word: &str) -> bool {
+    word == "goto" || is_leave(word)
+}
+
+/// The first word of a compact `IF` statement (`statement`, its text, starting on `line`)
+/// outside parentheses, brackets and strings, not an operand (followed by an operator), that
+/// `wanted` (lower case) takes, and its line.
+pub(super) fn in_compact_if(
+    statement: &str,
+    line: u64,
+    wanted: fn(&str) -> bool,
+) -> Option<(String, u64)> {
+    let (mut depth, mut in_string, mut start) = (0i32, false, None::<usize>);
+    let end = std::iter::once((statement.len(), ' '));
+    for (i, c) in statement.char_indices().chain(end) {
+        let word_char = c.is_ascii_alphanumeric() || c == '_';
+        if let (Some(s), false) = (start, word_char) {
+            start = None;
+            let word = &statement[s..i];
+            // An instruction, not an operand of the condition (`IF moveCount > 3 ..`).
+            let operand = statement[i..]
+                .trim_start()
+                .starts_with(['=', '<', '>', '+', '-', '*', '/', ',', ')', ':']);
+            if depth == 0 && !operand && wanted(&word.to_ascii_lowercase()) {
+                let on = line + statement[..s].matches('\n').count() as u64;
+                return Some((word.to_string(), on));
+            }
+        }
+        match c {
+            '"' => in_string = !in_string,
+            '(' | '[' if !in_string => depth += 1,
+            ')' | ']' if !in_string => depth -= 1,
+            _ if word_char && start.is_none() && !in_string => start = Some(i),
+            _ => {}
+        }
+    }
+    None
+}

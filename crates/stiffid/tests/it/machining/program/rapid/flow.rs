@@ -1,0 +1,82 @@
+//! RAPID's loops, branches, jumps and handlers around motions: refused naming the first motion
+//! they hold, its line and every construct around it with its line; a construct that holds no
+//! motion leaves the motions as read.
+
+use stiffid::machining::program::{self, Dialect};
+use stiffid::Error;
+
+const EXT: &str = "[9E9,9E9,9E9,9E9,9E9,9E9]";
+
+/// A module whose `main` holds `body`, its first line the module's line 3.
+fn module(body: &str) -> String {
+    format!("MODULE M\n  PROC main()\n{body}\n  ENDPROC\nENDMODULE\n")
+}
+
+fn motion(q1: f64) -> String {
+    format!("MoveAbsJ [[{q1},0,0,0,30,0],{EXT}], v100, fine, tool0;")
+}
+
+/// The line and message of the refusal of `text`.
+fn refused(text: &str) -> (u64, String) {
+    match program::parse(text, Dialect::Rapid) {
+        Err(Error::Program { line, message }) => (line, message),
+        other => panic!("expected a refusal, got {other:?}\n{text}"),
+    }
+}
+
+#[test]
+fn a_motion_inside_a_construct_is_refused_naming_it_its_line_and_the_constructs() {
+    let m = motion(1.0);
+    let cases = [
+        // A compact IF over two lines around a motion, inside a FOR inside a WHILE.
+        (
+            format!("    WHILE TRUE DO\n      FOR i FROM 1 TO 3 DO\n        IF (NOT skip)\n          {m}\n      ENDFOR\n    ENDWHILE"),
+            6,
+            "MoveAbsJ inside IF (line 5) inside FOR (line 4) inside WHILE (line 3)",
+        ),
+        (format!("    {}\n    IF di1 = 1 THEN\n      {m}\n    ENDIF", motion(2.0)), 5, "MoveAbsJ inside IF (line 4)"),
+        (format!("    IF di1 = 1 THEN\n      SetDO do1, 1;\n    ELSE\n      {m}\n    ENDIF"), 6, "MoveAbsJ inside IF (line 3)"),
+        (format!("    TEST n\n    CASE 1:\n      {m}\n    ENDTEST"), 5, "MoveAbsJ inside TEST (line 3)"),
+        (format!("    {m}\n  ERROR\n    MoveL p1, v10, fine, tool0;"), 5, "MoveL inside ERROR handler (line 4)"),
+        // A construct the motion is not in, then a jump or a conditional leave: refused there.
+        (format!("    {m}\n    IF di1 = 1 GOTO skip;\n    {m}\n  skip:"), 4, "IF (line 4) GOTO in PROC main, whose motions start on line 3"),
+        (format!("    {m}\n    IF di1 = 1 THEN\n      RETURN;\n    ENDIF\n    {m}"), 5, "RETURN in PROC main, whose motions start on line 3"),
+        (format!("    {m}\n    IF di1 = 1 RETURN;\n    {m}"), 4, "IF (line 4) RETURN in PROC main"),
+        // A motion the reader refuses anyway: the construct comes first.
+        ("    FOR i FROM 1 TO 3 DO\n      ArcLStart p1, v100, seam1, weld1, fine, tool1;\n    ENDFOR".to_string(), 4, "ArcLStart inside FOR (line 3)"),
+    ];
+    for (body, line, words) in cases {
+        let text = module(&body);
+        let (l, message) = refused(&text);
+        assert_eq!(l, line, "{message}\n{text}");
+        assert!(message.contains(words), "{message}\n{text}");
+    }
+}
+
+#[test]
+fn constructs_without_motions_leave_the_motions_as_read() {
+    let body = format!(
+        "    {}\n    IF di1 = 1 THEN\n      SetDO do1, 1;\n    ENDIF\n    IF moveCount > 2 SetDO do2, 0;\n    WHILE di3 = 0 DO\n      capacity := capacity + 1;\n    ENDWHILE\n    {}",
+        motion(1.0),
+        motion(2.0)
+    );
+    let text = module(&body);
+    let p = program::parse(&text, Dialect::Rapid).unwrap();
+    let read: Vec<(u64, f64)> = p.targets.iter().map(|t| (t.line, t.q_deg[0])).collect();
+    assert_eq!(read, [(3, 1.0), (11, 2.0)]);
+    // A routine without motions may loop and jump: it is not the path.
+    let text = format!("MODULE M\n  PROC main()\n    {}\n  ENDPROC\n  PROC wait()\n    WHILE TRUE DO\n      IF di1 = 1 GOTO out;\n    ENDWHILE\n  out:\n  ENDPROC\nENDMODULE\n", motion(3.0));
+    let p = program::parse(&text, Dialect::Rapid).unwrap();
+    assert_eq!(p.targets.len(), 1);
+}
+
+#[test]
+fn a_module_without_motions_says_so() {
+    let (line, message) =
+        refused("MODULE M\n  PROC main()\n    SetDO do1, 1;\n  ENDPROC\nENDMODULE\n");
+    assert_eq!(line, 1);
+    assert!(
+        message.contains("no motion instruction in the module (MoveAbsJ, MoveL, MoveJ, MoveC); it holds 1 routine (main (line 2))"),
+        "{message}"
+    );
+}

@@ -1,0 +1,6 @@
+//! ABB's RAPID (`stiffid_machining::program::rapid`).
+
+mod flow;
+mod module;
+mod offsets;
+pub(crate) mod stored;

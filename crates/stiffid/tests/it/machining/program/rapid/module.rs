@@ -1,0 +1,123 @@
+//! A RAPID module as a controller stores it, built for the tests from postures of the FANUC
+//! milling example: `robtarget`s declared in the module in a `wobjdata` (`uframe` then
+//! `oframe`) for a `tooldata` whose frame is turned on the flange, the setup's `[tool]` turned
+//! the same (`tcp_rpy_deg`).
+
+use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector6};
+use stiffid::machining::compensate::Options;
+use stiffid::machining::{self, Language, Program};
+use stiffid::robot::configuration::Configuration;
+use stiffid::robot::{ik, presets};
+use stiffid::Setup;
+
+const SETUP: &str = include_str!("../../../../../../../examples/milling/fanuc-milling.toml");
+
+/// The tool's turn on the flange, roll, pitch, yaw (deg): the spindle's axis along the
+/// flange's x.
+pub(super) const TOOL_RPY_DEG: [f64; 3] = [0.0, -90.0, 30.0];
+
+/// The example's setup with its tool turned by `rpy_deg` (`[tool] tcp_rpy_deg`).
+pub(super) fn setup(rpy_deg: [f64; 3]) -> Setup {
+    let line = format!(
+        "tcp_mm = [6.9, 245.3, 319.3]\ntcp_rpy_deg = [{}, {}, {}]",
+        rpy_deg[0], rpy_deg[1], rpy_deg[2]
+    );
+    let text = SETUP.replacen("tcp_mm = [6.9, 245.3, 319.3]", &line, 1);
+    assert_ne!(text, SETUP);
+    stiffid::setup::parse(&text, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap()
+}
+
+/// The turn of roll, pitch, yaw (deg) about the fixed x, y, z axes: `Rz(yaw) Ry(pitch) Rx(roll)`.
+pub(super) fn rpy(rpy_deg: [f64; 3]) -> UnitQuaternion<f64> {
+    let [r, p, y] = rpy_deg.map(f64::to_radians);
+    UnitQuaternion::from_axis_angle(&nalgebra::Vector3::z_axis(), y)
+        * UnitQuaternion::from_axis_angle(&nalgebra::Vector3::y_axis(), p)
+        * UnitQuaternion::from_axis_angle(&nalgebra::Vector3::x_axis(), r)
+}
+
+/// The user frame and object frame of the module's work object, world frame, m.
+pub(super) fn wobj() -> (Isometry3<f64>, Isometry3<f64>) {
+    let u = Isometry3::from_parts(
+        Translation3::new(1.2, -0.6, 0.35),
+        UnitQuaternion::from_euler_angles(0.0, 0.0, 25f64.to_radians()),
+    );
+    let o = Isometry3::from_parts(
+        Translation3::new(0.04, 0.02, 0.0),
+        UnitQuaternion::from_euler_angles(0.0, 0.0, -10f64.to_radians()),
+    );
+    (u, o)
+}
+
+/// A RAPID pose `[[x,y,z],[q1,q2,q3,q4]]` of a frame (m to mm), 9 decimals.
+pub(super) fn pose(f: &Isometry3<f64>) -> String {
+    let p = f.translation.vector * 1e3;
+    let q = f.rotation.quaternion();
+    let s = if q.w < 0.0 { -1.0 } else { 1.0 };
+    format!(
+        "[[{:.9},{:.9},{:.9}],[{:.9},{:.9},{:.9},{:.9}]]",
+        p.x,
+        p.y,
+        p.z,
+        s * q.w,
+        s * q.i,
+        s * q.j,
+        s * q.k
+    )
+}
+
+/// The `tooldata` and `wobjdata` declarations of the module for `setup`'s tool turned by
+/// `tool_rpy_deg`.
+pub(super) fn data(setup: &Setup, tool_rpy_deg: [f64; 3]) -> String {
+    let tool = Isometry3::from_parts(Translation3::from(setup.tool().tcp), rpy(tool_rpy_deg));
+    let (u, o) = wobj();
+    format!(
+        "  PERS tooldata tSpindle:=[TRUE,{},[12,[0,0,150],[1,0,0,0],0,0,0]];\n  TASK PERS wobjdata wobjPart:=[FALSE,TRUE,\"\",{},{}];\n",
+        pose(&tool),
+        pose(&u),
+        pose(&o)
+    )
+}
+
+/// Postures near the setup's start: `n` of them, each 2 deg further on axis 1 and 1.5 deg on
+/// axis 3.
+pub(super) fn postures(setup: &Setup, n: usize) -> Vec<Vector6<f64>> {
+    let q0 = Options::for_setup(setup).q0;
+    (0..n)
+        .map(|k| {
+            let mut q = q0;
+            q[0] += (2.0 * k as f64).to_radians();
+            q[2] += (1.5 * k as f64).to_radians();
+            q
+        })
+        .collect()
+}
+
+/// The tool's pose at `q` in the work object (m): the flange's axes turned by the tool's
+/// `tool_rpy_deg`.
+pub(super) fn in_wobj(setup: &Setup, tool_rpy_deg: [f64; 3], q: &Vector6<f64>) -> Isometry3<f64> {
+    let robot = setup.controller_robot().unwrap();
+    let mut at = ik::tool_pose(&robot.frames(q), &setup.tool().tcp);
+    at.rotation *= rpy(tool_rpy_deg);
+    let (u, o) = wobj();
+    (setup.workcell().controller().world * u * o).inverse() * at
+}
+
+/// A `robtarget` literal of `pose` (m) with the `confdata` of `q`.
+pub(super) fn robtarget(setup: &Setup, pose_m: &Isometry3<f64>, q: &Vector6<f64>) -> String {
+    let [a, b, c, d] = Configuration::of(setup.controller_robot().unwrap(), q).abb();
+    let p = pose(pose_m);
+    format!(
+        "[{},[{a},{b},{c},{d}],[9E9,9E9,9E9,9E9,9E9,9E9]]",
+        &p[1..p.len() - 1]
+    )
+}
+
+/// The program read and resolved on `setup` (the axis angles of its Cartesian targets).
+pub(super) fn resolved(setup: &Setup, text: &str) -> stiffid::Result<Program> {
+    let p = machining::read(
+        text,
+        Language::Robot(stiffid::machining::program::Dialect::Rapid),
+        1e-4,
+    )?;
+    Ok(machining::resolve(&p, setup, None, &Options::for_setup(setup))?.into_owned())
+}
