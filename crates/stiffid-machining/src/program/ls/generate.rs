@@ -14,9 +14,7 @@ pub const COMMENT: &str = "stiffid";
 
 /// The frames set up at the top of the main program: user frame 0 (the world), tool frame 1,
 /// whose values (the tool frame from the controller's flange) the remarks state, one per line
-/// (a remark is at most 32 characters on the pendant), and the remark
-/// `! stiffid: tool_frame = 1 ;` that declares tool frame 1 the setup's tool when the program is
-/// read back.
+/// (a remark is at most 32 characters on the pendant).
 pub fn header(plan: &Plan) -> String {
     let t = &plan.tool.frame;
     let p = t.translation.vector * 1e3;
@@ -32,11 +30,8 @@ pub fn header(plan: &Plan) -> String {
     ] {
         let _ = writeln!(s, "! UT1 {name} = {} {unit} ;", number(value));
     }
-    s + TOOL_FRAME_REMARK + "\nUFRAME_NUM=0 ;\nUTOOL_NUM=1 ;\n"
+    s + "UFRAME_NUM=0 ;\nUTOOL_NUM=1 ;\n"
 }
-
-/// The remark declaring tool frame 1 the setup's tool ([`super::numbered`]).
-const TOOL_FRAME_REMARK: &str = "! stiffid: tool_frame = 1 ;";
 
 /// A feed (m/s) as an LS speed: whole mm/sec, else whole cm/min, else the nearest cm/min (with a
 /// warning); `None` below 1 cm/min.
@@ -170,12 +165,8 @@ impl Generator for super::FanucLs {
     fn calls(&self, subs: &[String]) -> String {
         calls(subs)
     }
-    /// A sub-program declares its tool frame as the main program's header does.
-    fn wrap(&self, name: &str, header: &str, body: &str, main: bool) -> String {
-        match main {
-            true => wrap(name, header, body),
-            false => wrap(name, &format!("{TOOL_FRAME_REMARK}\n{header}"), body),
-        }
+    fn wrap(&self, name: &str, header: &str, body: &str, _main: bool) -> String {
+        wrap(name, header, body)
     }
     /// [`LS_MAX_LINES`] numbered lines, the main program's header included.
     fn lines_per_file(&self) -> Option<usize> {
@@ -203,6 +194,5 @@ impl Generator for super::FanucLs {
 }
 
 /// The lines an LS main program's header adds before its moves or calls (`! set UTOOL`, six
-/// remarks of the tool frame's values, the `stiffid: tool_frame` remark, `UFRAME_NUM`,
-/// `UTOOL_NUM`).
-pub const LS_HEADER_LINES: usize = 10;
+/// remarks of the tool frame's values, `UFRAME_NUM`, `UTOOL_NUM`).
+pub const LS_HEADER_LINES: usize = 9;

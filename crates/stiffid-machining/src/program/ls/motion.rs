@@ -59,7 +59,12 @@ pub(super) fn targets(
     let mut target = position(line, letter, index, positions)?.moved_to(line, o.incremental);
     target.speed = speed::speed(line, letter, words.first().copied().unwrap_or(""))?;
     if o.incremental {
-        increment(line, &what, &mut target, before.last().filter(|_| previous_fine))?;
+        increment(
+            line,
+            &what,
+            &mut target,
+            before.last().filter(|_| previous_fine),
+        )?;
     }
     Ok((vec![target], o.fine))
 }

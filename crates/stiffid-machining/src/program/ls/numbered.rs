@@ -7,7 +7,8 @@
 //!   `n` ([`Frame::Numbered`]), refused naming the line where the setup does not give it;
 //!   unless a remark declares the number the setup's own frame: `! stiffid: user_frame = n ;`
 //!   the part frame (the setup's `[workpiece]`), `! stiffid: tool_frame = n ;` the setup's
-//!   `[tool]` ([`Frame::Declared`]).
+//!   `[tool]` ([`Frame::Declared`]); a program stiffid wrote declares its tool frame with the
+//!   remark its writer puts first, `! set UTOOL[1] to the tool: ;`.
 //! - The frame numbers in force: a position's `UF` and `UT` are the frames the controller moves
 //!   it in only when they are the ones selected by `UFRAME_NUM=` and `UTOOL_NUM=` (the last
 //!   before the motion; none in the program: the controller's, which must be the position's).
@@ -37,7 +38,7 @@ const TOOL_FRAME: &str = "stiffid: tool_frame";
 /// second remark naming another frame.
 pub(crate) fn apply(text: &str, targets: &mut [JointTarget], selected: &[Selected]) -> Result<()> {
     let user = declared(text, USER_FRAME)?;
-    let tool = declared(text, TOOL_FRAME)?;
+    let tool = declared(text, TOOL_FRAME)?.or_else(|| written_tool(text));
     for (t, s) in targets.iter_mut().zip(selected) {
         let line = t.line;
         let Some(c) = t.cartesian.as_deref_mut() else {
@@ -94,6 +95,20 @@ fn frame(
         (n, Some((_, d))) if d == n => Frame::Declared(l),
         (n, _) => Frame::Numbered(l, n),
     }
+}
+
+/// The tool frame number of the remark stiffid's LS writer puts first in a program it writes
+/// ([`super::generate::header`]), `! set UTOOL[n] to the tool: ;`, and its line: the writer's
+/// declaration that tool frame `n` holds the setup's tool.
+fn written_tool(text: &str) -> Option<(u64, u32)> {
+    const OPEN: &str = "! set UTOOL[";
+    lines(text).find_map(|(line, _, l)| {
+        let rest = &l[l.find(OPEN)? + OPEN.len()..];
+        let (n, tail) = rest.split_once(']')?;
+        tail.starts_with(" to the tool:")
+            .then(|| n.parse().ok().map(|n| (line, n)))
+            .flatten()
+    })
 }
 
 /// The frame number the remark `key = n` declares and its line; `None` without one.

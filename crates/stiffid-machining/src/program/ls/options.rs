@@ -38,7 +38,10 @@ pub(super) fn read(line: u64, what: &str, words: &[&str]) -> Result<Options> {
     let termination = upper.first().map(String::as_str).unwrap_or("");
     let mut rest = upper.get(1..).unwrap_or(&[]);
     let fine = termination == "FINE";
-    let terminated = fine || ["CNT", "CR", "CD"].iter().any(|p| termination.starts_with(p));
+    let terminated = fine
+        || ["CNT", "CR", "CD"]
+            .iter()
+            .any(|p| termination.starts_with(p));
     if !terminated {
         return Err(at(
             line,

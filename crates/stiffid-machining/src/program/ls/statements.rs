@@ -8,13 +8,15 @@
 //!   registers (`R[i]=`, `PR[i]=`, `SR[i]=`: a position register matters only to a motion to it
 //!   or offset by it, which is refused), `TIMER[i]`, `PAYLOAD[i]`, `OVERRIDE`, `UALM`, `MESSAGE`,
 //!   `PAUSE`, the offset conditions (`OFFSET CONDITION PR[i]`: only a motion's `Offset` uses it,
-//!   and that is refused), and every other instruction that neither moves nor selects a frame.
+//!   and that is refused), `RUN` (a task started alongside: the controller refuses a second
+//!   program holding a motion group the first holds, so it cannot move this program's groups),
+//!   a `CALL` before the first motion or after the last, and every other instruction that neither
+//!   moves nor selects a frame.
 //! - Followed: `UFRAME_NUM=n` and `UTOOL_NUM=n`, the user and tool frame numbers in force for
 //!   the motions after them ([`Selected`]).
 //! - Refused naming the line, in a program with motions: a jump, branch or loop (`JMP`, `IF`,
 //!   `SELECT`, `FOR`, `WAIT .. TIMEOUT,LBL[..]`, any instruction naming a label but the label
-//!   itself) and `RUN` (a task started alongside: the order the controller runs would not be the
-//!   file's); a `CALL` between two motions (the called program may move the robot between
+//!   itself: the order the controller runs would not be the file's); a `CALL` between two motions (the called program may move the robot between
 //!   them); `END` or `ABORT` before a motion; a frame's value set by the program
 //!   (`UFRAME[i]=`, `UTOOL[i]=`, a system variable of the frames, `$MNUFRAME`, `$MNUTOOL`,
 //!   `$UFRAME`, `$UTOOL`) before a motion; a frame number in a register (`UFRAME_NUM=R[i]`).
@@ -71,7 +73,7 @@ pub(super) fn instruction(line: u64, t: &str, place: Place, selected: &mut Selec
         selected.tool = Some(number(line, t, n));
         return Ok(());
     }
-    let jump = matches!(first, "JMP" | "IF" | "SELECT" | "FOR" | "ENDFOR" | "RUN")
+    let jump = matches!(first, "JMP" | "IF" | "SELECT" | "FOR" | "ENDFOR")
         || (upper.contains("LBL[") && first != "LBL");
     if jump && any_motion {
         return refuse("a jump, call, loop or branch in a program with motions; the order the controller runs them would not be the file's: write the path as straight-line motions");
@@ -80,7 +82,9 @@ pub(super) fn instruction(line: u64, t: &str, place: Place, selected: &mut Selec
         return refuse("a call between two motions; the called program may move the robot between them, off the path the file gives: call it before the first motion or after the last");
     }
     if matches!(first, "END" | "ABORT") && place.before_last {
-        return refuse("the program ends here, before the motions after it: remove them or the instruction");
+        return refuse(
+            "the program ends here, before the motions after it: remove them or the instruction",
+        );
     }
     if sets_frame(&upper) && place.before_last {
         return refuse("the program sets a frame's value, which stiffid reads from the setup's [controller] tools and bases (as the controller holds them before the program runs): set the frame on the controller and give it in the setup");
