@@ -55,6 +55,7 @@ mod layout;
 mod lead_tilt;
 mod load_steps;
 mod load_steps_design;
+mod ls_corpus;
 mod lsq;
 mod machining;
 mod map_chosen;

@@ -111,6 +111,8 @@ struct Open {
     extended: Vec<Value>,
     second: Vec<Value>,
     group: u8,
+    /// Whether the position gives group 1 (`GP1:`).
+    first_group: bool,
     /// A Cartesian position's `X`..`R`, `CONFIG` and user and tool frame numbers.
     pose: [Value; 6],
     config: Option<(Flags, std::ops::Range<usize>)>,
@@ -184,6 +186,7 @@ impl Open {
             extended: Vec::new(),
             second: Vec::new(),
             group: 0,
+            first_group: false,
             pose: Default::default(),
             config: None,
             frames: (None, None),
@@ -209,6 +212,7 @@ impl Open {
             if !(1..=2).contains(&self.group) {
                 return Err(at(line, format!("{}: a third motion group; stiffid reads group 1 (the robot and its extended axes) and group 2 (a positioner)", stiffid_core::common::limits::short(item_t.trim_end_matches(':')))));
             }
+            self.first_group |= self.group == 1;
             item_t = item_t.split_once(':').map_or("", |(_, r)| r.trim());
         }
         if self.group == 0 {
@@ -234,6 +238,9 @@ impl Open {
                 .and_then(|d| d.parse::<usize>().ok())
         };
         let span = |s: std::ops::Range<usize>| start + s.start..start + s.end;
+        if self.group == 2 && cartesian::POSE.iter().any(|(n, _)| *n == name) {
+            return Err(at(line, format!("GP2 {name}: group 2 in Cartesian representation (a second robot); stiffid reads group 2 as a positioner's axes J1.. in joint representation")));
+        }
         if let (1, Some(k)) = (
             self.group,
             cartesian::POSE.iter().position(|(n, _)| *n == name),
@@ -280,6 +287,9 @@ fn assemble(
     for mut o in read {
         o.extended.resize(n1, None);
         o.extended.append(&mut o.second);
+        if !o.first_group {
+            return Err(at(o.first, format!("P[{}]: no group 1 (GP1): the program moves another motion group (its DEFAULT_GROUP); stiffid reads motion group 1 as the robot", o.index)));
+        }
         let target = match o.pose.iter().any(Option::is_some) || o.config.is_some() {
             true if o.found.iter().any(Option::is_some) => {
                 return Err(at(o.first, "a position with both joint (J1=) and Cartesian (X =, CONFIG) values: give one representation".into()));
