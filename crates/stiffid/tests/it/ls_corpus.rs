@@ -43,30 +43,74 @@ const CORPUS: [(&str, Outcome); 13] = [
     ("rpi_test.ls", Read),
     ("crs_ws_surface.ls", Read),
     // The C motion's via point in a configuration (elbow down) this robot cannot take there.
-    ("rpi_example.ls", Refused(30, "out of reach in the configuration 'N D B, 0, 0, 0'")),
+    (
+        "rpi_example.ls",
+        Refused(30, "out of reach in the configuration 'N D B, 0, 0, 0'"),
+    ),
     ("rpi_tmpa.ls", Read),
     ("rpi_test_record.ls", Read),
     // Written for a smaller arm: its first pose is out of this one's reach.
-    ("crs_surface_cartesian.ls", Refused(24, "the pose is out of reach")),
+    (
+        "crs_surface_cartesian.ls",
+        Refused(24, "the pose is out of reach"),
+    ),
     // A second robot as group 2, in Cartesian representation.
-    ("rpi_example_coor.ls", Refused(34, "GP2 X: group 2 in Cartesian representation")),
-    ("rpi_tmpb.ls", Refused(21, "GP2 X: group 2 in Cartesian representation")),
-    ("crs_surface_tool_offset.ls", Refused(24, "TOOL_OFFSET,PR[15]: the offset is held on the controller")),
-    ("rosi_ros_movesm.ls", Refused(43, "J PR[..]: a position register")),
-    ("wilder_a10defaste.ls", Refused(37, "UFRAME[9:STRIP_DRILL]=PR[9]: the program sets a frame's value")),
-    ("wilder_robot_repeatability.ls", Refused(29, "JMP LBL[1]: a jump")),
+    (
+        "rpi_example_coor.ls",
+        Refused(34, "GP2 X: group 2 in Cartesian representation"),
+    ),
+    (
+        "rpi_tmpb.ls",
+        Refused(21, "GP2 X: group 2 in Cartesian representation"),
+    ),
+    (
+        "crs_surface_tool_offset.ls",
+        Refused(
+            24,
+            "TOOL_OFFSET,PR[15]: the offset is held on the controller",
+        ),
+    ),
+    (
+        "rosi_ros_movesm.ls",
+        Refused(43, "J PR[..]: a position register"),
+    ),
+    (
+        "wilder_a10defaste.ls",
+        Refused(
+            37,
+            "UFRAME[9:STRIP_DRILL]=PR[9]: the program sets a frame's value",
+        ),
+    ),
+    (
+        "wilder_robot_repeatability.ls",
+        Refused(29, "JMP LBL[1]: a jump"),
+    ),
     // A tool frame the setup's table does not give.
-    ("wilder_job_dbl_safe_1.ls", Refused(50, "frame number 4 of the controller's tools")),
+    (
+        "wilder_job_dbl_safe_1.ls",
+        Refused(50, "frame number 4 of the controller's tools"),
+    ),
 ];
 
-/// `text` (the corpus file `name`) compensated on `s`, LS in and out: the program written and
-/// each target's compensation.
+/// `text` (the corpus file `name`) compensated on `s` with the milling example's stiffness, LS
+/// in and out: the program written and each target's compensation.
 fn compensated(s: &Setup, name: &str, text: &str) -> stiffid::Result<(String, Vec<Compensated>)> {
     let compliance =
         stiffid::io::stiffness::parse(include_str!("../../../../examples/milling/stiffness.json"))
             .unwrap()
             .compliance(s.model())
             .unwrap();
+    compensated_with(s, &compliance, Options::for_setup(s), (name, text))
+}
+
+/// The LS program `text` (file `name`) compensated on `s` with `compliance` and `options`, LS
+/// in and out: the program written and each target's compensation.
+pub(crate) fn compensated_with(
+    s: &Setup,
+    compliance: &stiffid::model::Compliance,
+    options: Options,
+    (name, text): (&str, &str),
+) -> stiffid::Result<(String, Vec<Compensated>)> {
     let process = stiffid::machining::process::file::parse(
         include_str!("../../../../examples/milling/aluminium.toml"),
         "aluminium.toml",
@@ -74,7 +118,7 @@ fn compensated(s: &Setup, name: &str, text: &str) -> stiffid::Result<(String, Ve
     .unwrap();
     let request = compensate::Request {
         setup: s,
-        compliance,
+        compliance: compliance.clone(),
         input: Input::Program {
             name: name.into(),
             text,
@@ -86,7 +130,7 @@ fn compensated(s: &Setup, name: &str, text: &str) -> stiffid::Result<(String, Ve
             out_name: name.into(),
             settings: Settings::default(),
         },
-        options: Options::for_setup(s),
+        options,
     };
     let mut results = Vec::new();
     let report = compensate::run::<Error, _>(request, |_, _, r, _| {
@@ -99,19 +143,23 @@ fn compensated(s: &Setup, name: &str, text: &str) -> stiffid::Result<(String, Ve
 /// A position of `/POS` as the file gives it: its frame numbers and its six numbers (`X`..`R`
 /// mm and deg, or `J1`..`J6` deg).
 #[derive(Debug, Clone, PartialEq)]
-struct Position {
-    frames: (u32, u32),
-    cartesian: bool,
-    values: [f64; 6],
+pub(crate) struct Position {
+    pub(crate) frames: (u32, u32),
+    pub(crate) cartesian: bool,
+    pub(crate) values: [f64; 6],
 }
 
 /// The independent reading: the positions of the motions of `text` in the order of `/MN`
 /// (a `C` motion's via point, then its end), each as `/POS` gives it. Read line by line with
 /// string searches, not with stiffid's reader.
-fn independent(text: &str) -> Vec<Position> {
+pub(crate) fn independent(text: &str) -> Vec<Position> {
     let (mn, pos) = text.split_once("/POS").unwrap();
     let mut order = Vec::new();
-    let mut lines = mn.lines().skip_while(|l| !l.starts_with("/MN")).skip(1).peekable();
+    let mut lines = mn
+        .lines()
+        .skip_while(|l| !l.starts_with("/MN"))
+        .skip(1)
+        .peekable();
     while let Some(l) = lines.next() {
         let body = l.split_once(':').map_or("", |(_, b)| b);
         let letter = body.chars().next().unwrap_or(' ');
@@ -119,11 +167,20 @@ fn independent(text: &str) -> Vec<Position> {
             continue;
         }
         let mut motion = body.to_string();
-        while lines.peek().is_some_and(|n| n.trim_start().starts_with(':')) {
+        while lines
+            .peek()
+            .is_some_and(|n| n.trim_start().starts_with(':'))
+        {
             motion += lines.next().unwrap();
         }
-        for (at, _) in motion.match_indices("P[").filter(|(i, _)| !motion[..*i].ends_with('R')) {
-            let digits: String = motion[at + 2..].chars().take_while(char::is_ascii_digit).collect();
+        for (at, _) in motion
+            .match_indices("P[")
+            .filter(|(i, _)| !motion[..*i].ends_with('R'))
+        {
+            let digits: String = motion[at + 2..]
+                .chars()
+                .take_while(char::is_ascii_digit)
+                .collect();
             order.push(digits.parse::<u64>().unwrap());
         }
     }
@@ -135,9 +192,18 @@ fn independent(text: &str) -> Vec<Position> {
     let after = |b: &str, key: &str| -> f64 {
         let rest = &b[b.find(key).unwrap() + key.len()..];
         let rest = rest.trim_start().trim_start_matches('=').trim_start();
-        let end = rest.find(|c: char| !(c.is_ascii_digit() || "+-.".contains(c))).unwrap();
+        let end = rest
+            .find(|c: char| !(c.is_ascii_digit() || "+-.".contains(c)))
+            .unwrap();
         // The controller writes `-.384` and `.094`.
-        rest[..end].replacen('.', "0.", usize::from(rest[..end].trim_start_matches('-').starts_with('.'))).parse().unwrap()
+        rest[..end]
+            .replacen(
+                '.',
+                "0.",
+                usize::from(rest[..end].trim_start_matches('-').starts_with('.')),
+            )
+            .parse()
+            .unwrap()
     };
     order
         .into_iter()
@@ -167,7 +233,7 @@ fn refusal(e: &Error) -> (u64, String) {
 }
 
 /// The pose `X, Y, Z` (mm), `W, P, R` (deg) of an LS position: `R = Rz(R) Ry(P) Rx(W)`.
-fn pose(v: &[f64; 6]) -> Isometry3<f64> {
+pub(crate) fn pose(v: &[f64; 6]) -> Isometry3<f64> {
     let [w, p, r] = [v[3], v[4], v[5]].map(f64::to_radians);
     Isometry3::from_parts(
         Translation3::new(v[0] * 1e-3, v[1] * 1e-3, v[2] * 1e-3),
@@ -193,7 +259,11 @@ fn check(s: &Setup, name: &str, (text, out): (&str, &str), results: &[Compensate
                 let expected = pose(&f.values);
                 let d = (c.pose().translation.vector - expected.translation.vector).norm();
                 assert!(d < 1e-12, "{name}: line {}: {d} m", t.line);
-                assert!(c.rotation.angle_to(&expected.rotation) < 1e-12, "{name}: line {}", t.line);
+                assert!(
+                    c.rotation.angle_to(&expected.rotation) < 1e-12,
+                    "{name}: line {}",
+                    t.line
+                );
             }
             None => {
                 assert!(!f.cartesian, "{name}: line {}", t.line);
@@ -202,7 +272,15 @@ fn check(s: &Setup, name: &str, (text, out): (&str, &str), results: &[Compensate
         }
     }
     // Only the positions' numbers change (and `/PROG`, named after the file written).
-    let mn = |t: &str| t.split_once("/ATTR").unwrap().1.split_once("/POS").unwrap().0.to_string();
+    let mn = |t: &str| {
+        t.split_once("/ATTR")
+            .unwrap()
+            .1
+            .split_once("/POS")
+            .unwrap()
+            .0
+            .to_string()
+    };
     assert_eq!(mn(out), mn(text), "{name}");
     let controller = s.workcell().controller();
     let robot = s.controller_robot().unwrap();
@@ -228,7 +306,8 @@ fn check(s: &Setup, name: &str, (text, out): (&str, &str), results: &[Compensate
         let d = (at.translation.vector - fk.translation.vector).norm();
         assert!(d < 1e-8, "{name}: {d} m");
         assert!(at.rotation.angle_to(&fk.rotation) < 1e-8, "{name}");
-        moved = moved.max((pose(&w.values).translation.vector - pose(&f.values).translation.vector).norm());
+        moved = moved
+            .max((pose(&w.values).translation.vector - pose(&f.values).translation.vector).norm());
     }
     // Compensated: where the process loads the tool (a linear or circular motion, at its feed),
     // the positions written are not the ones read; joint motions are rapids, unloaded.
@@ -252,7 +331,10 @@ fn every_real_ls_program_is_compensated_point_by_point_or_refused_naming_its_lin
             (Refused(line, construct), Err(e)) => {
                 let (l, message) = refusal(&e);
                 assert_eq!(l, *line, "{name}: {message}");
-                assert!(message.contains(construct), "{name}: {construct}: {message}");
+                assert!(
+                    message.contains(construct),
+                    "{name}: {construct}: {message}"
+                );
             }
             (_, other) => panic!("{name}: {:?}", other.map(|_| ())),
         }
