@@ -124,6 +124,7 @@ fn ls_cases() -> Vec<(String, Reads)> {
         (ls("   1:J P[1] 100% FINE ;\n   2:  WAIT DI[1]=ON TIMEOUT,LBL[1] ;\n   3:L P[2] 50mm/sec FINE ;", &pos), Refused(5, "jump")),
         (ls("   1:  UFRAME[1]=PR[1] ;\n   2:J P[1] 100% FINE ;", &pos), Refused(4, "sets a frame's value")),
         (ls("   1:J P[1] 100% FINE ;\n   2:  END ;\n   3:L P[2] 50mm/sec FINE ;", &pos), Refused(5, "the program ends here")),
+        (ls("   1:J P[1] 100% FINE ;\n   2:  Weave Sine[1] ;\n   3:L P[2] 50mm/sec FINE ;\n   4:  Weave End ;", &pos), Refused(5, "weave across the path")),
         (ls("   1:LBL[1] ;\n   2:J P[1] 100% FINE ;\n   3:JMP LBL[1] ;", &pos), Refused(6, "jump")),
         (ls("   1:J P[1] 100% FINE ;", &[]), Refused(4, "no position P[1]")),
         (ls("", &pos), Refused(1, "no motion to a joint target")),

@@ -1,13 +1,18 @@
-//! FANUC LS: the `/MN` section's motions `J P[i] 100% FINE ;` and `L P[i] 50mm/sec CNT100 ;`
-//! (any speed, a termination `FINE`, `CNTn`, `CRn` or `CDn`, the options `ACCn` and `INC`) to the
-//! `/POS` section's positions in joint representation,
+//! FANUC LS: the `/MN` section's motions `J P[i] 100% FINE ;`, `L P[i] 50mm/sec CNT100 ;` and
+//! `C P[i] .. P[j] ..` (the via point and the end: two targets; [`motion`]), their terminations
+//! and options ([`options`]), to the `/POS` section's positions in joint representation,
 //! `P[1]{ GP1: UF : 0, UT : 1, J1= 0.000 deg, J2= ... J6= ... deg };` over one or more lines.
 //! Group 1 (`GP1`: the robot's `J1`..`J6` and its extended axes `E1`..`E3`, such as a track)
 //! and group 2 (`GP2`: `J1`.., a positioner) are read, mm for a linear axis and deg for a rotary
-//! one; a third group is refused. An `INC` motion after one that ends `FINE` goes to the previous
+//! one; a position without group 1, group 2 in Cartesian representation (a second robot) and a
+//! third group are refused. An `INC` motion after one that ends `FINE` goes to the previous
 //! target plus the position's increments (every axis of both groups). A position in Cartesian
 //! representation (`CONFIG : '..'`, `X = .. mm` to `R = .. deg`, in its `UF` and `UT`) is a
-//! Cartesian target ([`super::cartesian`]); an `INC` motion to one is refused.
+//! Cartesian target ([`super::cartesian`]) in the frames the controller holds by number
+//! ([`numbered`]); an `INC` motion to one is refused. The instructions around the motions are
+//! passed over, followed (`UFRAME_NUM`, `UTOOL_NUM`) or refused naming the line
+//! ([`statements`]). The rules come from the FANUC R-30iA/R-30iB HandlingTool Operator's Manual;
+//! docs/programs/ls.md gives each with its source.
 
 mod cartesian;
 pub mod generate;

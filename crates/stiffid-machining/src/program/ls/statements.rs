@@ -17,7 +17,8 @@
 //! - Refused naming the line, in a program with motions: a jump, branch or loop (`JMP`, `IF`,
 //!   `SELECT`, `FOR`, `WAIT .. TIMEOUT,LBL[..]`, any instruction naming a label but the label
 //!   itself: the order the controller runs would not be the file's); a `CALL` between two motions (the called program may move the robot between
-//!   them); `END` or `ABORT` before a motion; a frame's value set by the program
+//!   them); `END` or `ABORT` before a motion; `Weave ..` and `Track ..` (ArcTool: weaving and
+//!   seam tracking move the tool off the programmed path) before a motion; a frame's value set by the program
 //!   (`UFRAME[i]=`, `UTOOL[i]=`, a system variable of the frames, `$MNUFRAME`, `$MNUTOOL`,
 //!   `$UFRAME`, `$UTOOL`) before a motion; a frame number in a register (`UFRAME_NUM=R[i]`).
 
@@ -80,6 +81,10 @@ pub(super) fn instruction(line: u64, t: &str, place: Place, selected: &mut Selec
     }
     if first == "CALL" && place.after_first && place.before_last {
         return refuse("a call between two motions; the called program may move the robot between them, off the path the file gives: call it before the first motion or after the last");
+    }
+    let process_path = matches!(first, "WEAVE" | "TRACK") && !upper.ends_with("END");
+    if process_path && place.before_last {
+        return refuse("the motions after it weave across the path or follow a sensor (ArcTool), so the path the controller runs is not the file's: remove it or compensate the program without it");
     }
     if matches!(first, "END" | "ABORT") && place.before_last {
         return refuse(
