@@ -572,20 +572,30 @@ fn with_table(table: &str) -> Setup {
     stiffid::setup::parse(&text, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap()
 }
 
-#[test]
-fn ls_user_and_tool_frames_are_read_by_number_or_as_the_program_declares_them() {
+/// The axis angles of the LS program `text` resolved on `s`.
+fn ls_resolved(s: &Setup, text: &str) -> stiffid::Result<Vec<[f64; 6]>> {
+    let p = machining::read(text, Language::Robot(Dialect::FanucLs), 1e-4)?;
+    let p = machining::resolve(&p, s, None, &Options::for_setup(s))?;
+    match p.into_owned() {
+        Program::Robot(p) => Ok(p.targets.iter().map(|t| t.q_deg).collect()),
+        _ => panic!("not a robot program"),
+    }
+}
+
+/// The milling setup, an LS program of three poses in the world (user frame 0) and the same in
+/// user frame 1 at the part frame's place.
+fn ls_frames_case() -> (Setup, String, String) {
     let s = setup();
-    let options = Options::for_setup(&s);
     let (_, world) = written(&s, Dialect::FanucLs, &cut(3), false);
     let part = positions_in_user_frame(&s, &world);
+    (s, world, part)
+}
+
+#[test]
+fn ls_user_and_tool_frames_are_read_by_number_or_as_the_program_declares_them() {
+    let (s, world, part) = ls_frames_case();
     let named = named_part_frame(&part);
-    let resolve_on = |s: &Setup, text: &str| {
-        let p = machining::read(text, Language::Robot(Dialect::FanucLs), 1e-4)?;
-        machining::resolve(&p, s, None, &options).map(|p| match p.into_owned() {
-            Program::Robot(p) => p.targets.iter().map(|t| t.q_deg).collect::<Vec<_>>(),
-            _ => panic!(),
-        })
-    };
+    let resolve_on = ls_resolved;
     let resolve = |text: &str| resolve_on(&s, text);
     // The world, and the user frame the remark names the part frame: read alike.
     let q_world = resolve(&world).unwrap();
@@ -609,6 +619,15 @@ fn ls_user_and_tool_frames_are_read_by_number_or_as_the_program_declares_them() 
         .iter()
         .zip(&q_table[0])
         .any(|(a, b)| (a - b).abs() > 0.1));
+}
+
+/// Where the setup's tables lack a frame, the frames in force differ from the position's, a
+/// number is in a register, or the remarks contradict themselves: refused naming the line.
+#[test]
+fn ls_frames_not_stated_or_not_in_force_are_refused_naming_the_line() {
+    let (s, _, part) = ls_frames_case();
+    let named = named_part_frame(&part);
+    let resolve_on = ls_resolved;
     // The second position's frames as `with`.
     let second = |text: &str, with: &str| {
         let at = text.match_indices("UF : 1, UT : 1").nth(1).unwrap().0;
