@@ -29,6 +29,15 @@ fn setup() -> Setup {
     stiffid::setup::parse(&(text + CONTROLLER), "cell.toml", |n, _| presets::get(n)).unwrap()
 }
 
+/// The same cell with a straight spindle 200 mm long, tool 1 on the controller.
+fn straight_spindle() -> Setup {
+    let (from, to) = ("[6.9, 245.3, 319.3]", "[0, 0, 200]");
+    let text = include_str!("../../../../examples/milling/fanuc-milling.toml");
+    let text = text.replacen(&format!("tcp_mm = {from}"), &format!("tcp_mm = {to}"), 1);
+    let text = text + &CONTROLLER.replace(from, to);
+    stiffid::setup::parse(&text, "cell.toml", |n, _| presets::get(n)).unwrap()
+}
+
 /// What stiffid does with a corpus file.
 enum Outcome {
     /// Compensated.
@@ -340,4 +349,25 @@ fn every_real_ls_program_is_compensated_point_by_point_or_refused_naming_its_lin
         }
     }
     assert!(CORPUS.len() >= 8);
+}
+
+/// `rpi_example.ls` as its refusal asks, its `C` motion's via point in a configuration this arm
+/// takes there (`N U T`), on a straight spindle that reaches its poses: compensated, the via point and the end both targets of the `C` line,
+/// equal to the independent reading, written back as `C` with both positions compensated.
+#[test]
+fn a_circular_motion_is_compensated_at_its_via_point_and_its_end() {
+    let s = straight_spindle();
+    assert_eq!(s.tool().tcp, Vector3::new(0.0, 0.0, 0.2));
+    let found = std::fs::read_to_string(format!("{DIR}rpi_example.ls")).unwrap();
+    let text = found.replacen("'N D B, 0, 0, 0'", "'N U T, 0, 0, 0'", 1);
+    let (out, results) = compensated(&s, "rpi_example.ls", &text).unwrap();
+    check(&s, "rpi_example.ls", (&text, &out), &results);
+    let read = stiffid::machining::program::parse(&text, Dialect::FanucLs).unwrap();
+    let line = |i: usize| read.targets[i].line;
+    // J P[1], J P[2], L P[3], C P[4] P[5], L P[6]: the via point and the end on the C's line.
+    assert_eq!((line(3), line(4)), (30, 30));
+    assert!(
+        out.contains("   9:C P[4]    \n    :  P[5] 100mm/sec CNT100    ;\n"),
+        "{out}"
+    );
 }
