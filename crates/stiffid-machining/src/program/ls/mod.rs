@@ -384,7 +384,7 @@ impl Controller for FanucLs {
         })
     }
     fn motions(&self) -> &'static str {
-        "J or L to a P[i] of /POS"
+        "J, L or C to a P[i] of /POS"
     }
     fn joint_forms(&self) -> &'static str {
         "positions in joint representation"
