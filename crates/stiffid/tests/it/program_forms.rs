@@ -115,7 +115,7 @@ fn ls_cases() -> Vec<(String, Reads)> {
         (ls("   1:J P[1] 100% FINE ;\n   2:L P[2] 50mm/sec FINE COORD ;", &pos), Refused(5, "COORD: coordinated motion")),
         (ls("   1:J P[1] 100% FINE ;\n   2:L P[2] 50mm/sec FINE Wjnt ;", &pos), Refused(5, "WJNT: an option")),
         // Options that change neither the path nor its end, an output early, a register's CNT.
-        (ls("   1:J P[1] 100% CNT R[2:cnt] ;\n   2:L P[2] 50mm/sec FINE TB .5sec,CALL X PTH\n    :  Arc Start[1] ;", &pos), Targets(&[(4, Q1), (5, Q2)])),
+        (ls("   1:J P[1] R[1:joint speed]% CNT R[2:corner value] ;\n   2:L P[2] 50mm/sec FINE TB .5sec,CALL X PTH\n    :  Arc Start[1] ;", &pos), Targets(&[(4, Q1), (5, Q2)])),
         (ls("   1:J P[1] 100% FINE ;\n   2:L P[2] 50mm/sec FINE Arc Weld[1] ;", &pos), Refused(5, "Arc Start[..] or Arc End[..]")),
         (ls("   1:J P[9] 100% FINE ;", &pos), Refused(4, "no position P[9]")),
         // Around the motions: what cannot change the path passes, what can is refused.

@@ -53,7 +53,7 @@ pub(super) fn targets(
         let (end_index, end_after) = target(line, "C", &end)?;
         return circular(line, (index, end_index), end_after, positions);
     }
-    let words: Vec<&str> = after.split_whitespace().collect();
+    let words = words(after);
     let what = format!("{letter} P[{index}]");
     let o = options::read(line, &what, words.get(1..).unwrap_or(&[]))?;
     let mut target = position(line, letter, index, positions)?.moved_to(line, o.incremental);
@@ -76,7 +76,7 @@ fn circular(
     after: &str,
     positions: &HashMap<u64, JointTarget>,
 ) -> Result<(Vec<JointTarget>, bool)> {
-    let words: Vec<&str> = after.split_whitespace().collect();
+    let words = words(after);
     let what = format!("C P[{via}] P[{end}]");
     let o = options::read(line, &what, words.get(1..).unwrap_or(&[]))?;
     if o.incremental {
@@ -90,6 +90,29 @@ fn circular(
         out.push(t);
     }
     Ok((out, o.fine))
+}
+
+/// The words of `s` split at blanks outside brackets: a register's comment keeps its blanks
+/// (`R[23:weld speed]mm/sec` is one word).
+fn words(s: &str) -> Vec<&str> {
+    let mut out = Vec::new();
+    let (mut depth, mut from) = (0usize, None);
+    for (i, c) in s.char_indices() {
+        match c {
+            '[' => depth += 1,
+            ']' => depth = depth.saturating_sub(1),
+            c if c.is_whitespace() && depth == 0 => {
+                if let Some(f) = from.take() {
+                    out.push(&s[f..i]);
+                }
+                continue;
+            }
+            _ => {}
+        }
+        from.get_or_insert(i);
+    }
+    out.extend(from.map(|f| &s[f..]));
+    out
 }
 
 /// The position `P[index]` of `/POS` that the motion `letter` on `line` goes to.
