@@ -7,10 +7,12 @@
 //! - [`rapid`]: `MoveAbsJ` (also `\Conc`) to a literal `[[j1,..,j6],[e1,..,e6]]` or to a
 //!   `jointtarget` declared in the same module (over one line or several), with its external axes
 //!   `eax_a`..`eax_f` (`9E9`: not used).
-//! - [`ls`]: `J`/`L` motions in `/MN` to `P[i]` positions of `/POS` in joint representation
-//!   (`J1= .. deg` to `J6`, group 1's extended axes `E1`.. and a second group `GP2`); `INC` after a
-//!   motion that ends `FINE` is resolved (the increment from the previous target, written back as
-//!   the increment between the compensated targets).
+//! - [`ls`]: `J`/`L` motions and `C` motions (the via point and the end, two targets) in `/MN`
+//!   to `P[i]` positions of `/POS` in joint representation (`J1= .. deg` to `J6`, group 1's
+//!   extended axes `E1`.. and a second group `GP2`); `INC` after a motion that ends `FINE` is
+//!   resolved (the increment from the previous target, written back as the increment between the
+//!   compensated targets); the instructions around the motions passed over where they cannot
+//!   change the path or the frames, refused naming the line where they can.
 //! - [`inform`]: `MOVJ`/`MOVL` to `C` teaching positions in pulses, with base (`BC`) and station
 //!   (`EC`) positions; the pulses per degree from a `'stiffid:` comment of the job.
 //!
@@ -33,7 +35,8 @@
 //! constant arguments as the pose they land on ([`rapid`]).
 //!
 //! Every other motion instruction is refused naming its line and what to do, never skipped: a
-//! circular or spline motion (the path between the points is not the compensated one), a relative
+//! circular or spline motion (the path between the points is not the compensated one; LS `C`
+//! aside, whose via point and end are both targets), a relative
 //! motion the file cannot resolve exactly, an offset or target held in a register on the
 //! controller (LS `Offset,PR[]`, `Tool_Offset`, `PR[]`), a point declared outside the file or
 //! assigned at run time, a search or triggered motion (RAPID `SearchL`, `TriggL`, `MoveLDO`),

@@ -95,7 +95,8 @@ fn named_part_frame(text: &str) -> String {
     text.replacen("/MN\n", "/MN\n   1:  ! stiffid: user_frame = 1 ;\n", 1)
 }
 
-/// An LS program's positions put in user frame 1 (the part's place) instead of the world.
+/// An LS program's positions put in user frame 1 (the part's place) instead of the world, and
+/// user frame 1 selected (`UFRAME_NUM=1`).
 fn positions_in_user_frame(s: &Setup, text: &str) -> String {
     let part = *s.workpiece().unwrap();
     // The world positions of the writer moved into the part frame: X, Y and Z less the part's
@@ -104,7 +105,9 @@ fn positions_in_user_frame(s: &Setup, text: &str) -> String {
     let o = part.translation.vector * 1e3;
     let mut out = String::new();
     for line in text.split_inclusive('\n') {
-        let mut l = line.replace("UF : 0", "UF : 1");
+        let mut l = line
+            .replace("UF : 0", "UF : 1")
+            .replace("UFRAME_NUM=0", "UFRAME_NUM=1");
         if let Some(rest) = l.trim_start().strip_prefix("X = ") {
             let v: Vec<f64> = rest
                 .split(['=', ','])
@@ -562,71 +565,150 @@ fn position_line(text: &str, n: usize) -> u64 {
     before.iter().rposition(|l| l.starts_with("P[")).unwrap() as u64 + 1
 }
 
-#[test]
-fn ls_user_and_tool_frames_are_taken_only_as_the_program_names_them() {
+/// The FANUC milling setup with the controller's frames by number: `[controller] bases` and
+/// `tools` as `table` gives them.
+fn with_table(table: &str) -> Setup {
+    let text = format!("{SETUP}\n[controller]\n{table}\n");
+    stiffid::setup::parse(&text, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap()
+}
+
+/// The axis angles of the LS program `text` resolved on `s`.
+fn ls_resolved(s: &Setup, text: &str) -> stiffid::Result<Vec<[f64; 6]>> {
+    let p = machining::read(text, Language::Robot(Dialect::FanucLs), 1e-4)?;
+    let p = machining::resolve(&p, s, None, &Options::for_setup(s))?;
+    match p.into_owned() {
+        Program::Robot(p) => Ok(p.targets.iter().map(|t| t.q_deg).collect()),
+        _ => panic!("not a robot program"),
+    }
+}
+
+/// The milling setup, an LS program of three poses in the world (user frame 0) and the same in
+/// user frame 1 at the part frame's place.
+fn ls_frames_case() -> (Setup, String, String) {
     let s = setup();
-    let options = Options::for_setup(&s);
     let (_, world) = written(&s, Dialect::FanucLs, &cut(3), false);
     let part = positions_in_user_frame(&s, &world);
+    (s, world, part)
+}
+
+#[test]
+fn ls_user_and_tool_frames_are_read_by_number_or_as_the_program_declares_them() {
+    let (s, world, part) = ls_frames_case();
     let named = named_part_frame(&part);
-    let resolve = |text: &str| {
-        let p = machining::read(text, Language::Robot(Dialect::FanucLs), 1e-4)?;
-        machining::resolve(&p, &s, None, &options).map(|_| ())
+    let resolve_on = ls_resolved;
+    let resolve = |text: &str| resolve_on(&s, text);
+    // The world, and the user frame the remark names the part frame: read alike.
+    let q_world = resolve(&world).unwrap();
+    let q_named = resolve(&named).unwrap();
+    // User frame 1 by number from the setup's table, the part frame's value there: the same
+    // axis angles; another value there moves every target by it.
+    let tcp = "tools = [{ number = 1, xyz_mm = [6.9, 245.3, 319.3], rpy_deg = [0, 0, 0] }]";
+    let table = |base: &str| {
+        with_table(&format!(
+            "bases = [{{ number = 1, xyz_mm = {base}, rpy_deg = [0, 0, 0] }}]\n{tcp}"
+        ))
     };
-    // The world, and the user frame the remark names the part frame: read.
-    resolve(&world).unwrap();
-    resolve(&named).unwrap();
+    let q_table = resolve_on(&table("[1300, -700, 400]"), &part).unwrap();
+    let q_off = resolve_on(&table("[1300, -690, 400]"), &part).unwrap();
+    for q in [&q_named, &q_table] {
+        for (a, b) in q.iter().flatten().zip(q_world.iter().flatten()) {
+            assert!((a - b).abs() < 1e-9, "{a} {b}");
+        }
+    }
+    assert!(q_off[0]
+        .iter()
+        .zip(&q_table[0])
+        .any(|(a, b)| (a - b).abs() > 0.1));
+}
+
+/// Where the setup's tables lack a frame, the frames in force differ from the position's, a
+/// number is in a register, or the remarks contradict themselves: refused naming the line.
+#[test]
+fn ls_frames_not_stated_or_not_in_force_are_refused_naming_the_line() {
+    let (s, _, part) = ls_frames_case();
+    let named = named_part_frame(&part);
+    let resolve_on = ls_resolved;
     // The second position's frames as `with`.
     let second = |text: &str, with: &str| {
         let at = text.match_indices("UF : 1, UT : 1").nth(1).unwrap().0;
         format!("{}{with}{}", &text[..at], &text[at + 14..])
     };
-    let remark = line_of(&named, "stiffid: user_frame");
     let tool_remark = named.replacen("/MN\n", "/MN\n   1:  ! stiffid: tool_frame = 3 ;\n", 1);
     let no_number = part.replacen("/MN\n", "/MN\n   1:  ! stiffid: user_frame ;\n", 1);
     let twice = named_part_frame(&named.replacen("user_frame = 1", "user_frame = 2", 1));
+    let from_register = named.replacen("UTOOL_NUM=1", "UTOOL_NUM=R[5]", 1);
     let (other_user, other_tool) = (
         second(&named, "UF : 2, UT : 1"),
         second(&named, "UF : 1, UT : 2"),
     );
-    let cases: Vec<(&str, u64, String)> = vec![
-        // A user frame no remark names.
+    let motion = |text: &str, n: usize| {
+        text.lines()
+            .enumerate()
+            .filter(|(_, l)| l.contains(":L P[") || l.contains(":J P["))
+            .nth(n)
+            .unwrap()
+            .0 as u64
+            + 1
+    };
+    let wrong_tool =
+        with_table("tools = [{ number = 1, xyz_mm = [6.9, 245.3, 300], rpy_deg = [0, 0, 0] }]");
+    let cases: Vec<(&Setup, &str, u64, String)> = vec![
+        // A user frame no remark names, and no table gives.
         (
+            &s,
             &part,
             position_line(&part, 0),
-            "UF : 1: a user frame held on the controller, which the program does not state".into(),
+            "frame number 1 of the controller's bases".into(),
         ),
-        // Another user frame than the one named.
+        // Another user frame than the one selected: the controller's mismatch alarm.
         (
+            &s,
             &other_user,
-            position_line(&other_user, 1),
-            format!("UF : 2: the program names user frame 1 the part frame (line {remark})"),
-        ),
-        // Another tool frame than the first position's.
-        (
-            &other_tool,
-            position_line(&other_tool, 1),
+            motion(&other_user, 1),
             format!(
-                "UT : 2: the program's positions are for tool frame 1 (line {})",
-                position_line(&other_tool, 0)
+                "UF : 2: the position is in frame 2, and UFRAME_NUM=1 on line {} is in force",
+                line_of(&other_user, "UFRAME_NUM=1")
             ),
         ),
-        // Another tool frame than the one a remark names.
         (
+            &s,
+            &other_tool,
+            motion(&other_tool, 1),
+            format!(
+                "UT : 2: the position is in frame 2, and UTOOL_NUM=1 on line {} is in force",
+                line_of(&other_tool, "UTOOL_NUM=1")
+            ),
+        ),
+        // A tool frame number from a register.
+        (
+            &s,
+            &from_register,
+            line_of(&from_register, "UTOOL_NUM=R[5]"),
+            "UTOOL_NUM=R[5]: the frame number is held in a register".into(),
+        ),
+        // Another tool frame than the one a remark names: read from the table, which lacks it.
+        (
+            &s,
             &tool_remark,
             position_line(&tool_remark, 0),
-            format!(
-                "UT : 1: the program's positions are for tool frame 3 (line {})",
-                line_of(&tool_remark, "tool_frame")
-            ),
+            "frame number 1 of the controller's tools".into(),
+        ),
+        // A table whose tool 1 is not the setup's tool.
+        (
+            &wrong_tool,
+            &tool_remark,
+            position_line(&tool_remark, 0),
+            "is not the setup's".into(),
         ),
         // A remark without a number, and two remarks naming two frames.
         (
+            &s,
             &no_number,
             line_of(&no_number, "stiffid: user_frame ;"),
             "stiffid: user_frame: expected = and a frame number".into(),
         ),
         (
+            &s,
             &twice,
             line_of(&twice, "user_frame = 2"),
             format!(
@@ -635,8 +717,8 @@ fn ls_user_and_tool_frames_are_taken_only_as_the_program_names_them() {
             ),
         ),
     ];
-    for (text, line, needle) in &cases {
-        match resolve(text) {
+    for (setup, text, line, needle) in &cases {
+        match resolve_on(setup, text) {
             Err(Error::Program { line: l, message }) => {
                 assert_eq!(l, *line, "{needle}: {message}");
                 assert!(message.contains(needle.as_str()), "{needle}: {message}");

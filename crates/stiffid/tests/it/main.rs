@@ -55,6 +55,8 @@ mod layout;
 mod lead_tilt;
 mod load_steps;
 mod load_steps_design;
+mod ls_corpus;
+mod ls_landing;
 mod lsq;
 mod machining;
 mod map_chosen;

@@ -127,12 +127,19 @@ fn inform(text: &str, by_line: &HashMap<u64, f64>, level: f64, marker: char) -> 
     out
 }
 
-/// An LS program with the bound of the position of each motion line of `by_line` as the
-/// position's comment in `/POS`.
+/// An LS program with the bound of the position of each motion line of `by_line` (and of its
+/// continuation lines: a `C` motion's end) as the position's comment in `/POS`.
 fn ls(text: &str, by_line: &HashMap<u64, f64>) -> String {
     let mut positions: HashMap<String, f64> = HashMap::new();
+    // The bound of the motion on the line, for its continuation lines too (a `C` motion's end).
+    let mut motion: Option<f64> = None;
     for (i, line) in text.lines().enumerate() {
-        let Some(b) = by_line.get(&(i as u64 + 1)) else {
+        let continued = line.trim_start().starts_with(':');
+        motion = by_line
+            .get(&(i as u64 + 1))
+            .copied()
+            .or(motion.filter(|_| continued));
+        let Some(b) = motion else {
             continue;
         };
         let Some(index) = line
@@ -141,8 +148,8 @@ fn ls(text: &str, by_line: &HashMap<u64, f64>) -> String {
         else {
             continue;
         };
-        let p = positions.entry(index.trim().to_string()).or_insert(*b);
-        *p = p.max(*b);
+        let p = positions.entry(index.trim().to_string()).or_insert(b);
+        *p = p.max(b);
     }
     let mut out = String::with_capacity(text.len() + 16 * positions.len());
     let mut in_pos = false;

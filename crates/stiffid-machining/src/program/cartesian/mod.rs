@@ -15,10 +15,10 @@
 //!   `robhold FALSE`, `ufprog TRUE`), or `wobj0` / none: the world.
 //! - FANUC LS: positions of `/POS` in Cartesian representation, `CONFIG : 'N U T, 0, 0, 0'`,
 //!   `X = .. mm` to `R = .. deg` (`R = Rz(R) Ry(P) Rx(W)`), in `UF : 0` (the world) or the user
-//!   frame `UF : n` (n >= 1) a remark `! stiffid: user_frame = n ;` names the part frame (the
-//!   setup's `[workpiece]`), all in one tool frame `UT : n` that must hold the setup's tool (a
-//!   remark `! stiffid: tool_frame = n ;` names it, else the first position's): an LS program
-//!   cannot state either frame (the LS reader's `numbered` rule).
+//!   frame `UF : n` (n >= 1), for the tool frame `UT : n`: frames the controller holds by number
+//!   ([`Frame::Numbered`]: the setup's `[controller] bases` and `tools`), or the setup's own part
+//!   frame and tool where a remark declares them ([`Frame::Declared`]); the `UFRAME_NUM` and
+//!   `UTOOL_NUM` in force checked against each position's (the LS reader's `numbered` rule).
 //!
 //! A target's orientation is the tool frame's: the flange's turned by the setup's `[tool]
 //! tcp_rpy_deg` (identity by default), the tool the program states (`tframe`, `$TOOL`) being

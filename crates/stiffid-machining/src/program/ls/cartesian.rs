@@ -106,6 +106,7 @@ pub(crate) fn target(
         None => unknown("UF"),
     };
     c.tool = match tool {
+        Some(0) => Frame::World,
         Some(n) => Frame::Numbered(line, n),
         None => unknown("UT"),
     };

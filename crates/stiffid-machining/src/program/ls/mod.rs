@@ -1,19 +1,27 @@
-//! FANUC LS: the `/MN` section's motions `J P[i] 100% FINE ;` and `L P[i] 50mm/sec CNT100 ;`
-//! (any speed, a termination `FINE`, `CNTn`, `CRn` or `CDn`, the options `ACCn` and `INC`) to the
-//! `/POS` section's positions in joint representation,
+//! FANUC LS: the `/MN` section's motions `J P[i] 100% FINE ;`, `L P[i] 50mm/sec CNT100 ;` and
+//! `C P[i] .. P[j] ..` (the via point and the end: two targets; [`motion`]), their terminations
+//! and options ([`options`]), to the `/POS` section's positions in joint representation,
 //! `P[1]{ GP1: UF : 0, UT : 1, J1= 0.000 deg, J2= ... J6= ... deg };` over one or more lines.
 //! Group 1 (`GP1`: the robot's `J1`..`J6` and its extended axes `E1`..`E3`, such as a track)
 //! and group 2 (`GP2`: `J1`.., a positioner) are read, mm for a linear axis and deg for a rotary
-//! one; a third group is refused. An `INC` motion after one that ends `FINE` goes to the previous
+//! one; a position without group 1, group 2 in Cartesian representation (a second robot) and a
+//! third group are refused. An `INC` motion after one that ends `FINE` goes to the previous
 //! target plus the position's increments (every axis of both groups). A position in Cartesian
 //! representation (`CONFIG : '..'`, `X = .. mm` to `R = .. deg`, in its `UF` and `UT`) is a
-//! Cartesian target ([`super::cartesian`]); an `INC` motion to one is refused.
+//! Cartesian target ([`super::cartesian`]) in the frames the controller holds by number
+//! ([`numbered`]); an `INC` motion to one is refused. The instructions around the motions are
+//! passed over, followed (`UFRAME_NUM`, `UTOOL_NUM`) or refused naming the line
+//! ([`statements`]). The rules come from the FANUC R-30iA/R-30iB HandlingTool Operator's Manual;
+//! docs/programs/ls.md gives each with its source.
 
 mod cartesian;
 pub mod generate;
+mod motion;
 mod names;
 mod numbered;
+mod options;
 pub mod speed;
+mod statements;
 
 use super::cartesian::Flags;
 use super::controller::{BoundComment, Controller, Generator, Read};
@@ -21,6 +29,7 @@ use super::generate::zyx_deg;
 use super::{at, number_at, six, Found, JointTarget, Units};
 use cartesian::Value;
 use nalgebra::{UnitQuaternion, Vector3};
+use statements::{Place, Selected};
 use std::collections::HashMap;
 use stiffid_core::robot::configuration::Configuration;
 use stiffid_core::Result;
@@ -29,122 +38,36 @@ use stiffid_core::Result;
 /// program's external axes.
 pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>, Units)> {
     let (positions, axes, units) = positions(text)?;
+    let instructions = instructions(text);
+    let motions: Vec<bool> = (instructions.iter())
+        .map(|(_, t)| motion::rest(t.trim()).is_some())
+        .collect();
+    let (first, last) = (
+        motions.iter().position(|m| *m),
+        motions.iter().rposition(|m| *m),
+    );
     let mut out: Vec<JointTarget> = Vec::new();
-    // Whether the previous motion ended FINE; the first jump, call, loop or branch.
+    // Per target, the frame numbers in force at its motion.
+    let mut in_force: Vec<Selected> = Vec::new();
+    let mut selected = Selected::default();
     let mut previous_fine = false;
-    let mut control: Option<(u64, String)> = None;
-    for (line, instruction) in instructions(text) {
+    for (k, (line, instruction)) in instructions.iter().enumerate() {
         let t = instruction.trim();
-        let first = t
-            .split(|c: char| c.is_whitespace() || c == '[' || c == '(')
-            .next()
-            .unwrap_or("")
-            .to_ascii_uppercase();
-        if matches!(
-            first.as_str(),
-            "JMP" | "IF" | "FOR" | "SELECT" | "CALL" | "RUN"
-        ) && control.is_none()
-        {
-            control = Some((line, first.clone()));
-        }
-        let Some(rest) = motion_rest(t) else {
-            continue;
-        };
-        let letter = &t[..1];
-        if matches!(letter, "C" | "A") {
-            return Err(at(line, format!("{letter}: a circular motion; the arc between compensated points is not the compensated arc: split it into L motions")));
-        }
-        let (index, after) = target(line, letter, rest)?;
-        let words: Vec<String> = after
-            .split_whitespace()
-            .map(str::to_ascii_uppercase)
-            .collect();
-        let termination = words.get(1).map(String::as_str).unwrap_or("");
-        if !(termination == "FINE"
-            || ["CNT", "CR", "CD"]
-                .iter()
-                .any(|p| termination.starts_with(p)))
-        {
-            return Err(at(line, format!("{letter} P[{index}]: expected a speed and a termination (FINE, CNTn, CRn, CDn)")));
-        }
-        let mut incremental = false;
-        for w in &words[2..] {
-            match w.as_str() {
-                "INC" => incremental = true,
-                a if a.starts_with("ACC") => {}
-                o if o.starts_with("OFFSET")
-                    || o.starts_with("TOOL_OFFSET")
-                    || o.starts_with("VOFFSET") =>
-                {
-                    return Err(at(line, format!("{letter} P[{index}] {}: the offset is held on the controller (a position register or vision offset), not in this program; apply it to the positions and remove it", stiffid_core::common::limits::short(w))));
-                }
-                other => {
-                    return Err(at(line, format!("{letter} P[{index}] {}: an option stiffid does not follow (the path or its end would not be the program's); remove it or compensate the program without it", stiffid_core::common::limits::short(other))));
-                }
-            }
-        }
-        let position = positions.get(&index).ok_or_else(|| {
-            at(
-                line,
-                format!("{letter} P[{index}]: no position P[{index}] in /POS"),
-            )
-        })?;
-        let mut target = position.moved_to(line, incremental);
-        let speed_word = after.split_whitespace().next().unwrap_or("");
-        target.speed = speed::speed(line, letter, speed_word)?;
-        if incremental && target.cartesian.is_some() {
-            return Err(at(line, format!("{letter} P[{index}] INC: an increment of a Cartesian position; stiffid follows absolute Cartesian positions: write P[{index}] absolute")));
-        }
-        if incremental {
-            let Some(previous) = out.last().filter(|_| previous_fine) else {
-                return Err(at(line, format!("{letter} P[{index}] INC: an increment from where the robot is, which only a previous motion ending FINE in this program fixes; end the previous motion FINE or write P[{index}] absolute")));
+        if !motions[k] {
+            let place = Place {
+                after_first: first.is_some_and(|f| f < k),
+                before_last: last.is_some_and(|l| l > k),
             };
-            for (q, p) in target.q_deg.iter_mut().zip(previous.q_deg) {
-                *q += p;
-            }
-            for (e, p) in target.external.iter_mut().zip(&previous.external) {
-                if let (Some(e), Some(p)) = (e.as_mut(), p) {
-                    *e += p;
-                }
-            }
+            statements::instruction(*line, t, place, &mut selected)?;
+            continue;
         }
-        previous_fine = termination == "FINE";
-        out.push(target);
+        let (targets, fine) = motion::targets(*line, t, &positions, (&out, previous_fine))?;
+        in_force.extend(std::iter::repeat_n(selected.clone(), targets.len()));
+        out.extend(targets);
+        previous_fine = fine;
     }
-    if let (Some((line, word)), false) = (control, out.is_empty()) {
-        return Err(at(line, format!("{word}: a jump, call, loop or branch in a program with motions; the order the controller runs them would not be the file's: write the path as straight-line motions")));
-    }
-    numbered::apply(text, &mut out)?;
+    numbered::apply(text, &mut out, &in_force)?;
     Ok((out, axes, units))
-}
-
-/// After `J ` or `L ` (or another motion letter), the rest of a motion instruction.
-fn motion_rest(t: &str) -> Option<&str> {
-    let mut chars = t.chars();
-    let letter = chars.next()?;
-    let rest = chars.as_str();
-    let next = rest.trim_start();
-    (matches!(letter, 'J' | 'L' | 'C' | 'A') && next.len() < rest.len() && next.starts_with('P'))
-        .then_some(next)
-}
-
-/// The position index of a motion's target `P[i]` or `P[i:comment]` and the text after it;
-/// position registers and indirect indices refused.
-fn target<'a>(line: u64, letter: &str, rest: &'a str) -> Result<(u64, &'a str)> {
-    if rest.starts_with("PR[") {
-        return Err(at(line, format!("{letter} PR[..]: a position register holds its value on the controller, not in this program; copy it into a P[] position")));
-    }
-    let inner = rest
-        .strip_prefix("P[")
-        .ok_or_else(|| at(line, format!("{letter}: expected a target P[i]")))?;
-    let close = inner
-        .find(']')
-        .ok_or_else(|| at(line, format!("{letter} P[: expected ']'")))?;
-    let index = inner[..close].split(':').next().unwrap_or("").trim();
-    let index: u64 = index.parse().map_err(|_| {
-        at(line, format!("{letter} P[{}]: the index is computed on the controller (a register); stiffid follows positions by number", stiffid_core::common::limits::short(index)))
-    })?;
-    Ok((index, &inner[close + 1..]))
 }
 
 /// The `/MN` instructions: the line of each and its text (continuation lines `   :` joined),
@@ -193,6 +116,8 @@ struct Open {
     extended: Vec<Value>,
     second: Vec<Value>,
     group: u8,
+    /// Whether the position gives group 1 (`GP1:`).
+    first_group: bool,
     /// A Cartesian position's `X`..`R`, `CONFIG` and user and tool frame numbers.
     pose: [Value; 6],
     config: Option<(Flags, std::ops::Range<usize>)>,
@@ -266,6 +191,7 @@ impl Open {
             extended: Vec::new(),
             second: Vec::new(),
             group: 0,
+            first_group: false,
             pose: Default::default(),
             config: None,
             frames: (None, None),
@@ -291,6 +217,7 @@ impl Open {
             if !(1..=2).contains(&self.group) {
                 return Err(at(line, format!("{}: a third motion group; stiffid reads group 1 (the robot and its extended axes) and group 2 (a positioner)", stiffid_core::common::limits::short(item_t.trim_end_matches(':')))));
             }
+            self.first_group |= self.group == 1;
             item_t = item_t.split_once(':').map_or("", |(_, r)| r.trim());
         }
         if self.group == 0 {
@@ -316,6 +243,9 @@ impl Open {
                 .and_then(|d| d.parse::<usize>().ok())
         };
         let span = |s: std::ops::Range<usize>| start + s.start..start + s.end;
+        if self.group == 2 && cartesian::POSE.iter().any(|(n, _)| *n == name) {
+            return Err(at(line, format!("GP2 {name}: group 2 in Cartesian representation (a second robot); stiffid reads group 2 as a positioner's axes J1.. in joint representation")));
+        }
         if let (1, Some(k)) = (
             self.group,
             cartesian::POSE.iter().position(|(n, _)| *n == name),
@@ -362,6 +292,9 @@ fn assemble(
     for mut o in read {
         o.extended.resize(n1, None);
         o.extended.append(&mut o.second);
+        if !o.first_group {
+            return Err(at(o.first, format!("P[{}]: no group 1 (GP1): the program moves another motion group (its DEFAULT_GROUP); stiffid reads motion group 1 as the robot", o.index)));
+        }
         let target = match o.pose.iter().any(Option::is_some) || o.config.is_some() {
             true if o.found.iter().any(Option::is_some) => {
                 return Err(at(o.first, "a position with both joint (J1=) and Cartesian (X =, CONFIG) values: give one representation".into()));
@@ -451,7 +384,7 @@ impl Controller for FanucLs {
         })
     }
     fn motions(&self) -> &'static str {
-        "J or L to a P[i] of /POS"
+        "J, L or C to a P[i] of /POS"
     }
     fn joint_forms(&self) -> &'static str {
         "positions in joint representation"
@@ -501,7 +434,7 @@ impl Controller for FanucLs {
     fn bound_comment(&self) -> BoundComment {
         BoundComment::PositionComment
     }
-    /// The `J P[..]` and `L P[..]` lines of `/MN`.
+    /// The `J P[..]`, `L P[..]` and `C P[..]` lines of `/MN`.
     fn motion_lines(&self, text: &str) -> Vec<u64> {
         let mut in_mn = false;
         (text.lines().enumerate())
@@ -511,7 +444,7 @@ impl Controller for FanucLs {
                     in_mn = t.starts_with("/MN");
                 }
                 let body = t.split_once(':').map_or("", |(_, b)| b);
-                in_mn && (body.starts_with("J P[") || body.starts_with("L P["))
+                in_mn && ["J P[", "L P[", "C P["].iter().any(|m| body.starts_with(m))
             })
             .map(|(i, _)| i as u64 + 1)
             .collect()

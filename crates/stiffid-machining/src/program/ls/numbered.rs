@@ -1,14 +1,25 @@
-//! FANUC LS frames held on the controller by number (`UF : n`, `UT : n`), which an LS program
-//! cannot state: which of them stiffid takes, and which it refuses (module docs of [`crate::program::cartesian`]).
+//! FANUC LS frames held on the controller by number (`UF : n`, `UT : n`, `UFRAME_NUM=n`,
+//! `UTOOL_NUM=n`), which an LS program cannot state: how stiffid takes them (module docs of
+//! [`crate::program::cartesian`]).
 //!
-//! - `UF : 0` is the controller's world.
-//! - `UF : n`, n >= 1, is the part frame (the setup's `[workpiece]`) only when the program
-//!   says so in a remark, `! stiffid: user_frame = n ;`; a position in any other user frame is
-//!   refused naming its line (that frame's value is on the controller only).
-//! - `UT : n`: one tool frame holds every position, the one that holds the setup's tool: the
-//!   frame the remark `! stiffid: tool_frame = n ;` names, else the first position's; a
-//!   position for another is refused naming its line.
+//! - `UF : 0` is the controller's world; `UT : 0` its flange (the tool frame of no tool).
+//! - `UF : n` (n >= 1) is the setup's `[controller] bases` frame `n`, `UT : n` its `tools` frame
+//!   `n` ([`Frame::Numbered`]), refused naming the line where the setup does not give it;
+//!   unless a remark declares the number the setup's own frame: `! stiffid: user_frame = n ;`
+//!   the part frame (the setup's `[workpiece]`), `! stiffid: tool_frame = n ;` the setup's
+//!   `[tool]` ([`Frame::Declared`]); a program stiffid wrote declares its tool frame with the
+//!   remark its writer puts first, `! set UTOOL[1] to the tool: ;`.
+//! - The frame numbers in force: a position's `UF` and `UT` are the frames the controller moves
+//!   it in only when they are the ones selected by `UFRAME_NUM=` and `UTOOL_NUM=` (the last
+//!   before the motion; none in the program: the controller's, which must be the position's).
+//!   A position whose numbers differ stops the program with the controller's frame-number
+//!   mismatch alarm (the INTP alarms "Uframe number mismatch", "Utool number mismatch"), or,
+//!   where the integrator switched that check off, moves in the selected frame instead: which of
+//!   the two the controller does is not in the program, so stiffid refuses the motion naming its
+//!   line. A number selected from a register
+//!   (`UFRAME_NUM=R[i]`) is refused naming that line for every Cartesian position after it.
 
+use super::statements::{Number, Selected};
 use crate::program::cartesian::Frame;
 use crate::program::{at, lines, JointTarget};
 use stiffid_core::Result;
@@ -18,40 +29,86 @@ const USER_FRAME: &str = "stiffid: user_frame";
 /// The remark naming the tool frame that holds the setup's tool.
 const TOOL_FRAME: &str = "stiffid: tool_frame";
 
-/// The rule (module docs) applied to the Cartesian `targets` of the LS program `text`: a frame
-/// it refuses becomes [`Frame::Unknown`] saying why, which resolving the target reports on its
-/// position's line.
+/// The rule (module docs) applied to the Cartesian `targets` of the LS program `text`, each
+/// moved to with the frame numbers `selected` in force: a frame it refuses becomes
+/// [`Frame::Unknown`] saying why, which resolving the target reports on its line.
 ///
 /// # Errors
 /// [`stiffid_core::Error::Program`] naming the line of a remark without a frame number, or of a
 /// second remark naming another frame.
-pub(crate) fn apply(text: &str, targets: &mut [JointTarget]) -> Result<()> {
+pub(crate) fn apply(text: &str, targets: &mut [JointTarget], selected: &[Selected]) -> Result<()> {
     let user = declared(text, USER_FRAME)?;
-    let first_tool =
-        (targets.iter().filter_map(|t| t.cartesian.as_deref())).find_map(|c| match c.tool {
-            Frame::Numbered(l, n) => Some((l, n)),
-            _ => None,
-        });
-    let tool = declared(text, TOOL_FRAME)?.or(first_tool);
-    for c in targets
-        .iter_mut()
-        .filter_map(|t| t.cartesian.as_deref_mut())
-    {
-        if let Frame::Numbered(l, n) = c.frame {
-            c.frame = match user {
-                Some((_, u)) if u == n => Frame::Declared(l),
-                Some((d, u)) => Frame::Unknown(l, format!("UF : {n}: the program names user frame {u} the part frame (line {d}); user frame {n} is held on the controller, which the program does not state: give the position in UF : {u} or in the world, UF : 0")),
-                None => Frame::Unknown(l, format!("UF : {n}: a user frame held on the controller, which the program does not state: say that it holds the part frame (the setup's [workpiece]) with the remark `! {USER_FRAME} = {n} ;`, or give the positions in the world, UF : 0")),
-            };
-        }
-        if let (Frame::Numbered(l, n), Some((d, t))) = (c.tool.clone(), tool) {
-            c.tool = match n == t {
-                true => Frame::Declared(l),
-                false => Frame::Unknown(l, format!("UT : {n}: the program's positions are for tool frame {t} (line {d}), the one that must hold the setup's tool; give every position in UT : {t}")),
-            };
-        }
+    let tool = declared(text, TOOL_FRAME)?.or_else(|| written_tool(text));
+    for (t, s) in targets.iter_mut().zip(selected) {
+        let line = t.line;
+        let Some(c) = t.cartesian.as_deref_mut() else {
+            continue;
+        };
+        c.frame = frame(&c.frame, user, s.user.as_ref(), (line, Kind::User));
+        c.tool = frame(&c.tool, tool, s.tool.as_ref(), (line, Kind::Tool));
     }
     Ok(())
+}
+
+/// A user or a tool frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    User,
+    Tool,
+}
+
+impl Kind {
+    /// The position's word (`UF`) and the instruction selecting it (`UFRAME_NUM`).
+    fn words(self) -> (&'static str, &'static str) {
+        match self {
+            Kind::User => ("UF", "UFRAME_NUM"),
+            Kind::Tool => ("UT", "UTOOL_NUM"),
+        }
+    }
+}
+
+/// The frame a position gives (`given`) as stiffid takes it on the motion on `line`: checked
+/// against the number `selected` in force, the number a remark `declared` the setup's own.
+fn frame(
+    given: &Frame,
+    declared: Option<(u64, u32)>,
+    selected: Option<&Number>,
+    (line, kind): (u64, Kind),
+) -> Frame {
+    let (word, instruction) = kind.words();
+    let (l, n) = match given {
+        Frame::Numbered(l, n) => (*l, *n),
+        Frame::World => (line, 0),
+        other => return other.clone(),
+    };
+    match selected {
+        Some(Number::Literal(s, m)) if *m != n => {
+            return Frame::Unknown(line, format!("{word} : {n}: the position is in frame {n}, and {instruction}={m} on line {s} is in force: the controller stops such a motion with a frame-number mismatch alarm, or, with the check switched off, moves in frame {m}; select {instruction}={n} before the motion or give the position in frame {m}"));
+        }
+        Some(Number::Unread(s, text)) => {
+            return Frame::Unknown(*s, format!("{text}: the frame number is held in a register on the controller, which the program does not state; select the frame by number ({instruction}=n)"));
+        }
+        _ => {}
+    }
+    match (n, declared) {
+        (0, _) => Frame::World,
+        (n, Some((_, d))) if d == n => Frame::Declared(l),
+        (n, _) => Frame::Numbered(l, n),
+    }
+}
+
+/// The tool frame number of the remark stiffid's LS writer puts first in a program it writes
+/// ([`super::generate::header`]), `! set UTOOL[n] to the tool: ;`, and its line: the writer's
+/// declaration that tool frame `n` holds the setup's tool.
+fn written_tool(text: &str) -> Option<(u64, u32)> {
+    const OPEN: &str = "! set UTOOL[";
+    lines(text).find_map(|(line, _, l)| {
+        let rest = &l[l.find(OPEN)? + OPEN.len()..];
+        let (n, tail) = rest.split_once(']')?;
+        tail.starts_with(" to the tool:")
+            .then(|| n.parse().ok().map(|n| (line, n)))
+            .flatten()
+    })
 }
 
 /// The frame number the remark `key = n` declares and its line; `None` without one.

@@ -53,6 +53,17 @@ fn every_target_carries_its_bound() {
         again.contains("P[1:\"0.0700 mm\"]{\n") && !again.contains("0.0300"),
         "{again}"
     );
+    // A circular motion: its via point and its end (on the continuation line) both carry it.
+    let circular = "/PROG C\n/MN\n   1:C P[1]\n    :  P[2] 10mm/sec FINE\n    :  Arc End[1] ;\n   2:L P[3] 10mm/sec FINE ;\n/POS\nP[1]{\n};\nP[2]{\n};\nP[3]{\n};\n/END\n";
+    let out = at_lines(
+        Dialect::FanucLs,
+        circular,
+        &[(3, 2e-5), (3, 3e-5), (6, 1e-5)],
+        0.95,
+    );
+    for (i, b) in [(1, "0.0300"), (2, "0.0300"), (3, "0.0100")] {
+        assert!(out.contains(&format!("P[{i}:\"{b} mm\"]{{\n")), "{out}");
+    }
     let generated = generated(Dialect::FanucLs, &[ls.to_string()], &[5e-5, 6e-5], 0.95);
     assert!(
         generated[0].contains("P[1:\"0.0500 mm\"]{"),

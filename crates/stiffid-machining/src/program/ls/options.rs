@@ -1,0 +1,98 @@
+//! The words after an LS motion's speed: its termination and its options, which stiffid follows
+//! where they cannot change the path or its end, and refuses naming the line where they can
+//! (FANUC R-30iA/R-30iB HandlingTool operator's manual, "Motion instructions": the motion
+//! options; ArcTool's "Arc instructions").
+//!
+//! - Termination: `FINE`, `CNTn`, `CNT R[i]`, `CRn`, `CDn` (the corner's rounding is the
+//!   controller's, as for every program stiffid reads).
+//! - Followed: `ACCn` (acceleration), `PTH` (the path planned for short segments), `INC`
+//!   (resolved by the reader), `Arc Start[..]`/`Arc End[..]` (ArcTool: the arc switched on or
+//!   off at the point), `EVn%`/`Ind.EVn%` (extended axes' speed), `TB`/`TA`/`DB` with the
+//!   instruction they run early or late (an output, a point-logic or a program call: a program
+//!   called there runs without a motion group, so it cannot move the robot).
+//! - Refused: `COORD` (coordinated motion: the path is relative to the leader group, a
+//!   positioner that moves during it), `Offset`, `Tool_Offset`, `VOFFSET` (an offset held on the
+//!   controller), `Skip,LBL[..]` (a jump when the skip condition holds), and every other option
+//!   (`Wjnt`, `RTCP`, `Weave`, `CTV`, ...): stiffid does not follow them.
+
+use crate::program::at;
+use stiffid_core::common::limits::short;
+use stiffid_core::Result;
+
+/// What a motion's words after its speed say: whether it ends `FINE` and whether it is `INC`.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub(super) struct Options {
+    /// The motion ends `FINE`: the robot stops on the target.
+    pub fine: bool,
+    /// The position holds the increment from the previous target (`INC`).
+    pub incremental: bool,
+}
+
+/// The termination and options of the motion `what` (`L P[3]`) on `line`, from the words after
+/// its speed (module docs).
+///
+/// # Errors
+/// Naming the line: no termination, or an option stiffid refuses (module docs).
+pub(super) fn read(line: u64, what: &str, words: &[&str]) -> Result<Options> {
+    let upper: Vec<String> = words.iter().map(|w| w.to_ascii_uppercase()).collect();
+    let termination = upper.first().map(String::as_str).unwrap_or("");
+    let mut rest = upper.get(1..).unwrap_or(&[]);
+    let fine = termination == "FINE";
+    let terminated = fine
+        || ["CNT", "CR", "CD"]
+            .iter()
+            .any(|p| termination.starts_with(p));
+    if !terminated {
+        return Err(at(
+            line,
+            format!("{what}: expected a speed and a termination (FINE, CNTn, CRn, CDn)"),
+        ));
+    }
+    // `CNT R[i]`: the value in a register, its own word.
+    if termination == "CNT" && rest.first().is_some_and(|w| w.starts_with("R[")) {
+        rest = &rest[1..];
+    }
+    let mut options = Options {
+        fine,
+        incremental: false,
+    };
+    let mut i = 0;
+    while let Some(w) = rest.get(i) {
+        i += 1 + option(line, what, w, &rest[i + 1..], &mut options)?;
+    }
+    Ok(options)
+}
+
+/// One option word `w` (upper case) and the words after it: how many of those it takes too.
+fn option(line: u64, what: &str, w: &str, after: &[String], o: &mut Options) -> Result<usize> {
+    let refuse = |why: &str| Err(at(line, format!("{what} {}: {why}", short(w))));
+    match w {
+        "INC" => o.incremental = true,
+        "PTH" => {}
+        "ARC" => {
+            return match after.first() {
+                Some(n) if n.starts_with("START[") || n.starts_with("END[") => Ok(1),
+                _ => refuse("expected Arc Start[..] or Arc End[..]"),
+            }
+        }
+        "TB" | "TA" | "DB" => {
+            // The time or distance and the instruction, `.10sec,DO[1]=ON`, `0.5sec,CALL X`.
+            let takes_name = after.first().is_some_and(|a| a.ends_with(",CALL"));
+            return Ok(1 + usize::from(takes_name));
+        }
+        "COORD" => {
+            return refuse("coordinated motion: the path is relative to the leader group (a positioner) that moves during it; stiffid reads a positioner's axes as the program's targets, not a path relative to it: write the motion without COORD")
+        }
+        a if a.starts_with("ACC") || a.starts_with("EV") || a.starts_with("IND.EV") => {}
+        o if o.starts_with("OFFSET") || o.starts_with("TOOL_OFFSET") || o.starts_with("VOFFSET") => {
+            return refuse("the offset is held on the controller (a position register or vision offset), not in this program; apply it to the positions and remove it")
+        }
+        s if s.starts_with("SKIP") => {
+            return refuse("a jump when the skip condition holds; the path the controller runs would not be the file's: remove it")
+        }
+        _ => {
+            return refuse("an option stiffid does not follow (the path or its end would not be the program's); remove it or compensate the program without it")
+        }
+    }
+    Ok(0)
+}

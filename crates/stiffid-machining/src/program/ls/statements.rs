@@ -1,0 +1,119 @@
+//! The `/MN` instructions around an LS program's motions: which stiffid passes over (they cannot
+//! change the path or the frames), which it follows (the frame numbers selected), and which it
+//! refuses naming the line (FANUC R-30iA/R-30iB HandlingTool operator's manual, "Program
+//! instructions").
+//!
+//! - Passed over: remarks `!`, lines commented out `//`, labels `LBL[i]`, `WAIT` (a time or a
+//!   condition, without `TIMEOUT,LBL`), I/O (`DO[i]=`, `RO[i]=`, `GO[i]=`, `AO[i]=`, `F[i]=`),
+//!   registers (`R[i]=`, `PR[i]=`, `SR[i]=`: a position register matters only to a motion to it
+//!   or offset by it, which is refused), `TIMER[i]`, `PAYLOAD[i]`, `OVERRIDE`, `UALM`, `MESSAGE`,
+//!   `PAUSE`, the offset conditions (`OFFSET CONDITION PR[i]`: only a motion's `Offset` uses it,
+//!   and that is refused), `RUN` (a task started alongside: the controller refuses a second
+//!   program holding a motion group the first holds, so it cannot move this program's groups),
+//!   a `CALL` before the first motion or after the last, and every other instruction that neither
+//!   moves nor selects a frame.
+//! - Followed: `UFRAME_NUM=n` and `UTOOL_NUM=n`, the user and tool frame numbers in force for
+//!   the motions after them ([`Selected`]).
+//! - Refused naming the line, in a program with motions: a jump, branch or loop (`JMP`, `IF`,
+//!   `SELECT`, `FOR`, `WAIT .. TIMEOUT,LBL[..]`, any instruction naming a label but the label
+//!   itself: the order the controller runs would not be the file's); a `CALL` between two motions (the called program may move the robot between
+//!   them); `END` or `ABORT` before a motion; `Weave ..` and `Track ..` (ArcTool: weaving and
+//!   seam tracking move the tool off the programmed path) before a motion; a frame's value set by the program
+//!   (`UFRAME[i]=`, `UTOOL[i]=`, a system variable of the frames, `$MNUFRAME`, `$MNUTOOL`,
+//!   `$UFRAME`, `$UTOOL`) before a motion; a frame number in a register (`UFRAME_NUM=R[i]`).
+
+use crate::program::at;
+use stiffid_core::common::limits::short;
+use stiffid_core::Result;
+
+/// A frame number selected by `UFRAME_NUM=` or `UTOOL_NUM=`: the number and the line, or the
+/// line and text of a selection stiffid cannot read (a register).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(super) enum Number {
+    /// The number selected on the line.
+    Literal(u64, u32),
+    /// A number held on the controller: the line and the instruction.
+    Unread(u64, String),
+}
+
+/// The user and tool frame numbers in force (`None`: none selected yet in the program).
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub(super) struct Selected {
+    /// `UFRAME_NUM`.
+    pub user: Option<Number>,
+    /// `UTOOL_NUM`.
+    pub tool: Option<Number>,
+}
+
+/// Where an instruction sits among the program's motions.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Place {
+    /// A motion comes before it.
+    pub after_first: bool,
+    /// A motion comes after it.
+    pub before_last: bool,
+}
+
+/// The instruction `t` on `line` (module docs): the frame numbers it selects into `selected`.
+///
+/// # Errors
+/// Naming the line, an instruction refused at its `place` (module docs).
+pub(super) fn instruction(line: u64, t: &str, place: Place, selected: &mut Selected) -> Result<()> {
+    let upper = t.trim().to_ascii_uppercase();
+    let first = upper
+        .split(|c: char| c.is_whitespace() || c == '[' || c == '(' || c == '=')
+        .next()
+        .unwrap_or("");
+    let any_motion = place.after_first || place.before_last;
+    let refuse = |why: &str| Err(at(line, format!("{}: {why}", short(t.trim()))));
+    if let Some(n) = upper.strip_prefix("UFRAME_NUM") {
+        selected.user = Some(number(line, t, n));
+        return Ok(());
+    }
+    if let Some(n) = upper.strip_prefix("UTOOL_NUM") {
+        selected.tool = Some(number(line, t, n));
+        return Ok(());
+    }
+    let jump = matches!(first, "JMP" | "IF" | "SELECT" | "FOR" | "ENDFOR")
+        || (upper.contains("LBL[") && first != "LBL");
+    if jump && any_motion {
+        return refuse("a jump, call, loop or branch in a program with motions; the order the controller runs them would not be the file's: write the path as straight-line motions");
+    }
+    if first == "CALL" && place.after_first && place.before_last {
+        return refuse("a call between two motions; the called program may move the robot between them, off the path the file gives: call it before the first motion or after the last");
+    }
+    let process_path = matches!(first, "WEAVE" | "TRACK") && !upper.ends_with("END");
+    if process_path && place.before_last {
+        return refuse("the motions after it weave across the path or follow a sensor (ArcTool), so the path the controller runs is not the file's: remove it or compensate the program without it");
+    }
+    if matches!(first, "END" | "ABORT") && place.before_last {
+        return refuse(
+            "the program ends here, before the motions after it: remove them or the instruction",
+        );
+    }
+    if sets_frame(&upper) && place.before_last {
+        return refuse("the program sets a frame's value, which stiffid reads from the setup's [controller] tools and bases (as the controller holds them before the program runs): set the frame on the controller and give it in the setup");
+    }
+    Ok(())
+}
+
+/// The number after `UFRAME_NUM`/`UTOOL_NUM` (`rest`, upper case) of instruction `t`.
+fn number(line: u64, t: &str, rest: &str) -> Number {
+    let n = rest.trim_start().strip_prefix('=').map(str::trim);
+    match n.and_then(|n| n.parse::<u32>().ok()) {
+        Some(n) => Number::Literal(line, n),
+        None => Number::Unread(line, short(t.trim()).to_string()),
+    }
+}
+
+/// Whether the instruction (upper case) assigns a frame's value: `UFRAME[i]=`, `UTOOL[i]=`, or
+/// a system variable of the frames (`$MNUFRAME[..]=`, `$GROUP[..].$UTOOL=`).
+fn sets_frame(upper: &str) -> bool {
+    let Some((lhs, _)) = upper.split_once('=') else {
+        return false;
+    };
+    let lhs = lhs.trim();
+    lhs.starts_with("UFRAME[")
+        || lhs.starts_with("UTOOL[")
+        || (lhs.starts_with('$') && (lhs.contains("FRAME") || lhs.contains("TOOL")))
+}
