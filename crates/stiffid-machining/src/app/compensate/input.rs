@@ -15,7 +15,8 @@ use stiffid_core::{Result, Setup};
 /// # Errors
 /// Those of [`output::check_output`], [`output::check_lean`], [`output::check_tool_axis`],
 /// [`Settings::validate`], [`output::check_settings`],
-/// [`generate::check_payload`], [`machining::read`] and [`machining::resolve`] (the program's
+/// [`generate::check_payload`], [`machining::read_in`] (with the setup's pulses and tools) and
+/// [`machining::resolve`] (the program's
 /// as [`Error::Input`] naming its file).
 pub(super) fn read_checked(
     setup: &Setup,
@@ -44,7 +45,9 @@ pub(super) fn read_checked(
         generate::check_payload(d, settings.targets, &program_tool(setup))?;
         generate::check_pulses(d, setup.workcell().controller().pulses.as_ref())?;
     }
-    let program = read_program(name, text, language, *chord_tolerance)?;
+    let context = crate::program::Context::of(setup);
+    let program = machining::read_in(text, language, *chord_tolerance, &context)
+        .map_err(|e| in_input(name, e))?;
     // A Cartesian program's targets as the controller moves to them (a copy only then).
     match machining::resolve(&program, setup, None, options) {
         Ok(std::borrow::Cow::Owned(p)) => Ok(Some(p)),

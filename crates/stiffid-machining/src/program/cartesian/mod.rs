@@ -42,7 +42,7 @@ mod resolve;
 mod solve;
 
 pub use flags::Flags;
-pub(crate) use resolve::Writer;
+pub(crate) use resolve::{same, Writer};
 pub use resolve::{
     check_placed, is_cartesian, resolve, resolve_placed, Controller, SAME_M, SAME_RAD,
 };
