@@ -1,6 +1,8 @@
 """process_force, read_program and compensate(program=..., process=...) against the command: the
 same jobs, so the same documents and the same compensated program."""
 
+import warnings
+
 import numpy as np
 import pytest
 
@@ -104,9 +106,16 @@ def test_an_inform_job_in_pulses_equals_the_command(cli, tmp_path):
     theirs = cli("compensate", "--setup", path, "--stiffness", STIFFNESS, "--program", POCKET, "--process",
                  PROCESS, "--out", out, "--moves-per-file", "100", "--json")
     setup = stiffid.Setup.from_file(path)
-    with pytest.warns(UserWarning, match="INFORM programs are written with joint targets"):
+    # Nobody asked for Cartesian targets: no warning of them (asked for, one).
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
         mine = stiffid.compensate(setup, stiffness=STIFFNESS, program=POCKET, process=PROCESS, output="inform",
                                   program_name="wall", moves_per_file=100)
+    assert not [w for w in caught if "joint targets" in str(w.message)]
+    with pytest.warns(UserWarning, match="INFORM programs are written with joint targets"):
+        asked = stiffid.compensate(setup, stiffness=STIFFNESS, program=POCKET, process=PROCESS, output="inform",
+                                   program_name="wall", moves_per_file=100, targets="cartesian")
+    assert asked["program"] == mine["program"]
     assert mine["program"] == out.read_bytes().decode()
     assert "CALL JOB:WALL_04\r\n" in mine["program"]
     positions = []

@@ -402,6 +402,12 @@ impl JointProgram {
         Ok(out)
     }
 
+    /// Per value (the six axes, then the external ones), the pulses per degree or mm of a value
+    /// written in whole encoder pulses (INFORM), `None` for a decimal value.
+    pub fn pulses(&self) -> &[Option<f64>] {
+        &self.pulses
+    }
+
     /// Value `k` of a target (the six axes, then the external ones) as the program writes it:
     /// [`DECIMALS`] decimals, or a whole number of pulses (INFORM's pulse form).
     fn number(&self, k: usize, value: f64) -> String {

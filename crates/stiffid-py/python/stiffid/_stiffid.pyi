@@ -298,7 +298,7 @@ def compensate(
     free: Optional[list[Union[str, dict[str, Any]]]] = None,
     minimise: Optional[Literal["bound", "deflection", "surge"]] = None,
     program_name: Optional[str] = None,
-    targets: Literal["cartesian", "joint"] = "cartesian",
+    targets: Optional[Literal["cartesian", "joint"]] = None,
     max_tcp_speed_mm_s: float = 2000.0,
     name_length: Optional[int] = None,
     moves_per_file: int = 10000,

@@ -40,8 +40,8 @@ const ACCEPTED: &[&str] = &[
 
 /// Instructions that change the order the controller runs (a jump, a call, a loop, a branch).
 const CONTROL: &[&str] = &[
-    "JUMP", "CALL", "IF", "IFTHEN", "IFTHENEXP", "ELSEIF", "ELSEIFEXP", "FOR", "WHILE",
-    "WHILEEXP", "SWITCH", "RET",
+    "JUMP", "CALL", "IF", "IFTHEN", "IFTHENEXP", "ELSEIF", "ELSEIFEXP", "ELSE", "ENDIF", "FOR",
+    "NEXT", "WHILE", "WHILEEXP", "ENDWHILE", "SWITCH", "CASE", "DEFAULT", "ENDSWITCH", "RET",
 ];
 
 /// The `//INST` section of `text`: its directives and motions, every other instruction checked

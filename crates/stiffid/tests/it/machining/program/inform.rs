@@ -9,7 +9,15 @@ use stiffid_machining::program::generate::{generate, Settings, Tool};
 use stiffid_machining::program::generate::{Move, Plan, Target, Targets};
 use stiffid_machining::program::inform::generate::speed;
 use stiffid_machining::program::speed::Speed;
-use stiffid_machining::program::{parse, Dialect};
+use stiffid_machining::program::{parse, parse_in, Context, Dialect};
+
+/// What a setup with the controller's pulses `p` tells the reader.
+fn with(p: &Pulses) -> Context<'_> {
+    Context {
+        pulses: Some(p),
+        tool: None,
+    }
+}
 
 /// Pulses per degree that are not whole (S, L, U, R, B, T) and per mm of a track.
 fn pulses(external: Vec<f64>) -> Pulses {
@@ -76,17 +84,14 @@ fn a_job_reads_back_its_targets_within_half_a_pulse() {
         text.contains("'W = 12.5 kg\r\n'Xg = 0 mm\r\n'Yg = 0 mm\r\n'Zg = 120 mm\r\n"),
         "{text}"
     );
-    assert!(
-        text.contains("'stiffid: pulses_per_deg = 1341.25 1341.25 1150.5 873.4 873.4 532.7\r\n"),
-        "{text}"
-    );
+    // The pulses are the setup's: no comment states them (a pendant keeps 32 characters).
+    assert!(!text.contains("'stiffid:"), "{text}");
     assert!(text.contains("MOVJ C00000 VJ=20.00 PL=0\r\nMOVL C00001 V=30.0 PL=1\r\nMOVL C00002 V=1.7 PL=0\r\nEND\r\n"), "{text}");
-    assert!(text
-        .lines()
-        .all(|l| !l.starts_with('\'') || l.starts_with("'stiffid:") || l.len() <= 32));
+    assert!(text.lines().all(|l| !l.starts_with('\'') || l.len() <= 32));
     assert_eq!(w.warnings.len(), 1, "{:?}", w.warnings);
     assert!(w.warnings[0].contains("100 mm/min") && w.warnings[0].contains("V=1.7"));
-    let read = parse(text, Dialect::Inform).unwrap();
+    assert!(parse(text, Dialect::Inform).is_err());
+    let read = parse_in(text, Dialect::Inform, &with(&p)).unwrap();
     assert_eq!(read.targets.len(), 3);
     for (r, q) in read.targets.iter().zip(&Q) {
         for ((a, b), per) in r.q_deg.iter().zip(q).zip(&p.per_deg) {
@@ -153,7 +158,7 @@ fn a_split_job_calls_sub_jobs_that_read_back_on_their_own() {
         assert!(f
             .text
             .starts_with(&format!("/JOB\r\n//NAME {}\r\n", f.name)));
-        read.extend(parse(&f.text, Dialect::Inform).unwrap().targets);
+        read.extend(parse_in(&f.text, Dialect::Inform, &with(&p)).unwrap().targets);
     }
     assert_eq!(read.len(), 250);
     for (r, q) in read.iter().zip(&q) {
@@ -185,7 +190,7 @@ fn a_base_axis_is_written_in_angle_form_or_in_pulses() {
             false => "///PULSE\r\nBC00000=1500123\r\n",
         };
         assert!(text.contains(form), "{text}");
-        let read = parse(text, Dialect::Inform).unwrap();
+        let read = parse_in(text, Dialect::Inform, &with(&p)).unwrap();
         for r in &read.targets {
             let e = r.external[0].unwrap();
             assert!((e - 1500.123456789).abs() <= tolerance, "{e}");

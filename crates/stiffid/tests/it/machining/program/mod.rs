@@ -3,5 +3,6 @@
 mod cartesian;
 mod generate;
 mod inform;
+mod inform_jobs;
 mod krl;
 mod speed;
