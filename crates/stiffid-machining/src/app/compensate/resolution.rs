@@ -40,8 +40,10 @@ fn written_pulses(setup: &Setup, program: &Program, output: Language) -> Option<
     }
 }
 
-/// Refuses a program in pulses where, at a target, its whole pulses put the TCP farther from the
-/// compensated posture's than the target's bound (a finite one).
+/// Refuses a program in pulses whose whole pulses move the TCP, at some target, by more than the
+/// most the compensation does or claims anywhere in the program: the largest of the targets'
+/// finite bounds and of their corrections (the TCP's motion from each target's posture to its
+/// compensated one). The rounding then swamps what the job was compensated for.
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`controller.pulses_per_deg`) naming the target, both lengths and
@@ -54,16 +56,20 @@ pub(super) fn check(
     let Some(per_deg) = written_pulses(setup, program, output) else {
         return Ok(());
     };
-    let tcp = setup.tool().tcp;
-    for (i, r) in results.iter().enumerate() {
-        let moved = rounding(setup.robot(), &tcp, &r.q_compensated, &per_deg);
-        if r.budget.bound.is_finite() && moved > r.budget.bound {
-            let list: Vec<String> = per_deg.iter().map(f64::to_string).collect();
-            return Err(Error::InvalidField {
-                field: "controller.pulses_per_deg".into(),
-                message: format!("[{}]: rounding the axes to whole pulses moves the TCP by {:.4} mm at target {} of the program, more than its bound of {:.4} mm: the job could not keep its bound; give the controller's pulses per degree (its axis parameters, S to T)", list.join(", "), moved * 1e3, i + 1, r.budget.bound * 1e3),
-            });
-        }
+    let (robot, tcp) = (setup.robot(), setup.tool().tcp);
+    let at = |q: &Vector6<f64>| tool_pose(&robot.frames(q), &tcp).translation.vector;
+    let most = (results.iter())
+        .map(|r| (at(&r.q_compensated) - at(&r.q)).norm())
+        .chain(results.iter().map(|r| r.budget.bound).filter(|b| b.is_finite()))
+        .fold(0.0, f64::max);
+    let rounded = results.iter().map(|r| rounding(robot, &tcp, &r.q_compensated, &per_deg));
+    let worst = rounded.enumerate().fold((0, 0.0), |w, (i, m)| if m > w.1 { (i, m) } else { w });
+    if worst.1 <= most {
+        return Ok(());
     }
-    Ok(())
+    let list: Vec<String> = per_deg.iter().map(f64::to_string).collect();
+    Err(Error::InvalidField {
+        field: "controller.pulses_per_deg".into(),
+        message: format!("[{}]: rounding the axes to whole pulses moves the TCP by {:.4} mm at target {} of the program, more than the most the compensation corrects or bounds anywhere in it ({:.4} mm): the job could not keep what it was compensated for; give the controller's pulses per degree (its axis parameters, S to T)", list.join(", "), worst.1 * 1e3, worst.0 + 1, most * 1e3),
+    })
 }
