@@ -216,7 +216,12 @@ impl Program {
 /// # Errors
 /// Those of [`gcode::parse`] and [`program::parse`].
 pub fn read(text: &str, language: Language, chord_tolerance: f64) -> Result<Program> {
-    read_in(text, language, chord_tolerance, &program::Context::default())
+    read_in(
+        text,
+        language,
+        chord_tolerance,
+        &program::Context::default(),
+    )
 }
 
 /// [`read`] with what the setup says of a robot program in `context` (an INFORM job's pulses

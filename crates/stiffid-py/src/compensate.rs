@@ -281,7 +281,12 @@ fn input_of<'t>(
     (name, text, frame): (&str, &'t str, Frame),
     (program, process): (&Option<PathBuf>, &Option<PathBuf>),
     (output, program_name, chord_tolerance_mm): (Option<&str>, Option<String>, f64),
-    (targets, max_tcp_speed_mm_s, name_length, moves_per_file): (Option<&str>, f64, Option<usize>, usize),
+    (targets, max_tcp_speed_mm_s, name_length, moves_per_file): (
+        Option<&str>,
+        f64,
+        Option<usize>,
+        usize,
+    ),
 ) -> PyResult<Input<'t>> {
     let input = match (program, process) {
         (None, None) => Input::Path {

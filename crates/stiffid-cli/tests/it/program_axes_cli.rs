@@ -153,12 +153,18 @@ fn a_gcode_pocket_becomes_a_job_in_the_controllers_pulses() {
     let document = json(&o);
     // Nobody asked for Cartesian targets: no word of them.
     let warned = String::from_utf8_lossy(&o.stderr);
-    assert!(!warned.contains("joint targets (the compensated"), "{warned}");
+    assert!(
+        !warned.contains("joint targets (the compensated"),
+        "{warned}"
+    );
     let job = std::fs::read_to_string(&out).unwrap();
     assert!(job.starts_with("/JOB\r\n//NAME POCKET\r\n"), "{job}");
     // The pulses are the setup's; every comment fits the pendant's 32 characters.
     assert!(!job.contains("'stiffid:"), "{job}");
-    assert!(job.lines().all(|l| !l.starts_with('\'') || l.len() <= 32), "{job}");
+    assert!(
+        job.lines().all(|l| !l.starts_with('\'') || l.len() <= 32),
+        "{job}"
+    );
     let points = document["points"].as_array().unwrap();
     let positions: Vec<Vec<f64>> = (job.split("\r\n"))
         .filter_map(|l| l.strip_prefix('C').and_then(|l| l.split_once('=')))

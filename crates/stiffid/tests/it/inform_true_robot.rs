@@ -24,7 +24,8 @@ const PER_DEG: [f64; 6] = [1341.25, 1341.25, 1150.5, 873.4, 873.4, 532.7];
 /// file 1, a joint move to the first and linear moves after it.
 fn stored_job(q: &[Vector6<f64>]) -> String {
     let n = q.len();
-    let mut text = format!("/JOB\r\n//NAME WELD\r\n//POS\r\n///NPOS {n},0,0,0,0,0\r\n///TOOL 1\r\n");
+    let mut text =
+        format!("/JOB\r\n//NAME WELD\r\n//POS\r\n///NPOS {n},0,0,0,0,0\r\n///TOOL 1\r\n");
     for (i, q) in q.iter().enumerate() {
         let p: Vec<String> = (q.iter().zip(&PER_DEG))
             .map(|(v, per)| ((v.to_degrees() * per).round() as i64).to_string())
@@ -44,15 +45,17 @@ fn stored_job(q: &[Vector6<f64>]) -> String {
 /// The positions of a job read independently: each `Cnnnnn=` line's pulses over [`PER_DEG`],
 /// rad.
 fn positions(text: &str) -> Vec<Vector6<f64>> {
-    (text.lines().filter(|l| l.starts_with('C') && l.contains('=')))
-        .map(|l| {
-            let values = l.split_once('=').unwrap().1.split(',');
-            let deg: Vec<f64> = (values.zip(&PER_DEG))
-                .map(|(v, per)| v.trim().parse::<i64>().unwrap() as f64 / per)
-                .collect();
-            Vector6::from_iterator(deg.into_iter().map(f64::to_radians))
-        })
-        .collect()
+    (text
+        .lines()
+        .filter(|l| l.starts_with('C') && l.contains('=')))
+    .map(|l| {
+        let values = l.split_once('=').unwrap().1.split(',');
+        let deg: Vec<f64> = (values.zip(&PER_DEG))
+            .map(|(v, per)| v.trim().parse::<i64>().unwrap() as f64 / per)
+            .collect();
+        Vector6::from_iterator(deg.into_iter().map(f64::to_radians))
+    })
+    .collect()
 }
 
 /// `job` compensated on `setup` and written back: its text and every target's result.
@@ -123,7 +126,11 @@ fn a_stored_inform_job_lands_on_the_true_robot() {
         tools: NumberedFrames::new("controller.tools", &[(1, tool)]).unwrap(),
         ..c.clone()
     };
-    let setup = setup.to_builder().with_controller(controller).build().unwrap();
+    let setup = setup
+        .to_builder()
+        .with_controller(controller)
+        .build()
+        .unwrap();
     let (text, results) = compensated(&setup, &compliance, &q0, &job);
     let written = positions(&text);
     assert_eq!(written.len(), results.len());

@@ -31,11 +31,15 @@ fn written_pulses(setup: &Setup, program: &Program, output: Language) -> Option<
     match (program, output) {
         (Program::Robot(p), _) => {
             let six: Option<Vec<f64>> = p.pulses().iter().take(6).copied().collect();
-            six.filter(|v| v.len() == 6).map(|v| [v[0], v[1], v[2], v[3], v[4], v[5]])
+            six.filter(|v| v.len() == 6)
+                .map(|v| [v[0], v[1], v[2], v[3], v[4], v[5]])
         }
-        (Program::GCode(_), Language::Robot(Dialect::Inform)) => {
-            setup.workcell().controller().pulses.as_ref().map(|p| p.per_deg)
-        }
+        (Program::GCode(_), Language::Robot(Dialect::Inform)) => setup
+            .workcell()
+            .controller()
+            .pulses
+            .as_ref()
+            .map(|p| p.per_deg),
         _ => None,
     }
 }
@@ -60,10 +64,19 @@ pub(super) fn check(
     let at = |q: &Vector6<f64>| tool_pose(&robot.frames(q), &tcp).translation.vector;
     let most = (results.iter())
         .map(|r| (at(&r.q_compensated) - at(&r.q)).norm())
-        .chain(results.iter().map(|r| r.budget.bound).filter(|b| b.is_finite()))
+        .chain(
+            results
+                .iter()
+                .map(|r| r.budget.bound)
+                .filter(|b| b.is_finite()),
+        )
         .fold(0.0, f64::max);
-    let rounded = results.iter().map(|r| rounding(robot, &tcp, &r.q_compensated, &per_deg));
-    let worst = rounded.enumerate().fold((0, 0.0), |w, (i, m)| if m > w.1 { (i, m) } else { w });
+    let rounded = results
+        .iter()
+        .map(|r| rounding(robot, &tcp, &r.q_compensated, &per_deg));
+    let worst = rounded
+        .enumerate()
+        .fold((0, 0.0), |w, (i, m)| if m > w.1 { (i, m) } else { w });
     if worst.1 <= most {
         return Ok(());
     }

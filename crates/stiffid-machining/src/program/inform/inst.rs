@@ -30,18 +30,35 @@ pub(super) struct Instructions {
 /// waits, arithmetic on B, I, D, R and S variables, messages, arc-welding and weaving
 /// conditions, synchronisation with other tasks.
 const ACCEPTED: &[&str] = &[
-    "NOP", "TIMER", "DOUT", "DIN", "AOUT", "WAIT", "PULSE", "SET", "SETE", "GETE", "GETS",
-    "CLEAR", "INC", "DEC", "ADD", "SUB", "MUL", "DIV", "AND", "OR", "NOT", "XOR", "MSG",
-    "ARCON", "ARCOF", "ARCSET", "ARCCTS", "ARCCTE", "WVON", "WVOF", "AWELD", "VWELD", "SPEED",
-    "TSYNC", "SKILLSND", "HPVELON", "HPVELOF", "PAUSE", "CWAIT", "ADVINIT", "ADVSTOP", "SETREG",
-    "GETREG", "SYSTART", "SYEND", "HAND", "HSEN", "GETARG", "CNVRT", "GETPOS", "SETFILE",
-    "GETFILE", "ARATION", "ARATIOF", "TOOLON", "TOOLOF", "SVSPOT", "SPOT", "GUNCHG",
+    "NOP", "TIMER", "DOUT", "DIN", "AOUT", "WAIT", "PULSE", "SET", "SETE", "GETE", "GETS", "CLEAR",
+    "INC", "DEC", "ADD", "SUB", "MUL", "DIV", "AND", "OR", "NOT", "XOR", "MSG", "ARCON", "ARCOF",
+    "ARCSET", "ARCCTS", "ARCCTE", "WVON", "WVOF", "AWELD", "VWELD", "SPEED", "TSYNC", "SKILLSND",
+    "HPVELON", "HPVELOF", "PAUSE", "CWAIT", "ADVINIT", "ADVSTOP", "SETREG", "GETREG", "SYSTART",
+    "SYEND", "HAND", "HSEN", "GETARG", "CNVRT", "GETPOS", "SETFILE", "GETFILE", "ARATION",
+    "ARATIOF", "TOOLON", "TOOLOF", "SVSPOT", "SPOT", "GUNCHG",
 ];
 
 /// Instructions that change the order the controller runs (a jump, a call, a loop, a branch).
 const CONTROL: &[&str] = &[
-    "JUMP", "CALL", "IF", "IFTHEN", "IFTHENEXP", "ELSEIF", "ELSEIFEXP", "ELSE", "ENDIF", "FOR",
-    "NEXT", "WHILE", "WHILEEXP", "ENDWHILE", "SWITCH", "CASE", "DEFAULT", "ENDSWITCH", "RET",
+    "JUMP",
+    "CALL",
+    "IF",
+    "IFTHEN",
+    "IFTHENEXP",
+    "ELSEIF",
+    "ELSEIFEXP",
+    "ELSE",
+    "ENDIF",
+    "FOR",
+    "NEXT",
+    "WHILE",
+    "WHILEEXP",
+    "ENDWHILE",
+    "SWITCH",
+    "CASE",
+    "DEFAULT",
+    "ENDSWITCH",
+    "RET",
 ];
 
 /// The `//INST` section of `text`: its directives and motions, every other instruction checked
@@ -165,7 +182,10 @@ fn tag(line: u64, word: &str, w: &str, m: &mut Motion) -> Result<()> {
         return Err(at(line, format!("{word} .. UNTIL: a search stops where a signal comes, which the job does not say; not compensated")));
     } else if upper.starts_with("+MOV") {
         return Err(at(line, format!("{word} .. {}: another group's own motion (a station moving at its own speed beside the robot); stiffid follows one motion per line: write the station's values in the robot's motion (C.. EC..)", short(w))));
-    } else if let Some(n) = upper.strip_prefix("TOOL#(").and_then(|r| r.strip_suffix(')')) {
+    } else if let Some(n) = upper
+        .strip_prefix("TOOL#(")
+        .and_then(|r| r.strip_suffix(')'))
+    {
         let n = n.parse::<u32>().map_err(|_| {
             at(line, format!("{word} .. {}: a tool file selected by a variable; the job does not say which: write its number", short(w)))
         })?;
@@ -195,6 +215,12 @@ fn value_tag(line: u64, word: &str, (name, value): (&str, &str), w: &str) -> Res
         });
     match number || variable {
         true => Ok(()),
-        false => Err(at(line, format!("{word} .. {}: expected a number or a B, I, D or R variable after {name}=", short(w)))),
+        false => Err(at(
+            line,
+            format!(
+                "{word} .. {}: expected a number or a B, I, D or R variable after {name}=",
+                short(w)
+            ),
+        )),
     }
 }

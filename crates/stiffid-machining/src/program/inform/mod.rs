@@ -115,10 +115,13 @@ pub(crate) fn targets(text: &str, context: &Context) -> Result<Read> {
             *p = Some(r);
         }
     }
-    let external_pulse = [(forms[1], Kind::Base, 0..nb), (forms[2], Kind::Station, nb..nb + ne)]
-        .into_iter()
-        .filter(|(f, kind, _)| *f == Some(Form::Pulse) && used(*kind))
-        .flat_map(|(_, _, r)| r);
+    let external_pulse = [
+        (forms[1], Kind::Base, 0..nb),
+        (forms[2], Kind::Station, nb..nb + ne),
+    ]
+    .into_iter()
+    .filter(|(f, kind, _)| *f == Some(Form::Pulse) && used(*kind))
+    .flat_map(|(_, _, r)| r);
     for k in external_pulse {
         let per = pulses::external(&inst.directives, context, (k, nb + ne), first)?;
         pulses[6 + k] = Some(per);
@@ -154,7 +157,9 @@ fn check_counts(section: &pos::Section) -> Result<()> {
         return Ok(());
     };
     for (k, kind) in [Kind::Robot, Kind::Base, Kind::Station].iter().enumerate() {
-        let have = (section.positions.keys()).filter(|(c, _)| c == kind).count();
+        let have = (section.positions.keys())
+            .filter(|(c, _)| c == kind)
+            .count();
         if declared.get(k).is_some_and(|n| *n != have) {
             return Err(at(*line, format!("///NPOS declares {} {} positions, //POS holds {have}: the controller refuses the job (is the file cut off?)", declared[k], kind.prefix())));
         }
@@ -204,7 +209,10 @@ fn target(
     let get = |kind: Kind, index: u64| {
         positions.get(&(kind, index)).ok_or_else(|| {
             let (word, prefix) = (&m.word, kind.prefix());
-            at(m.line, format!("{word} {prefix}{index:05}: no such position in //POS"))
+            at(
+                m.line,
+                format!("{word} {prefix}{index:05}: no such position in //POS"),
+            )
         })
     };
     let robot = get(Kind::Robot, m.robot)?;
@@ -213,7 +221,10 @@ fn target(
     }
     if robot.values.len() != 6 {
         let n = robot.values.len();
-        return Err(at(robot.line, format!("C{:05}: expected 6 axis values, found {n}", m.robot)));
+        return Err(at(
+            robot.line,
+            format!("C{:05}: expected 6 axis values, found {n}", m.robot),
+        ));
     }
     let mut found: super::Found = Default::default();
     for (k, (v, span)) in robot.values.iter().enumerate() {
@@ -230,7 +241,10 @@ fn target(
             let v = v / pulses[6 + offset + k].unwrap_or(1.0);
             if !v.is_finite() {
                 let (prefix, axis) = (kind.prefix(), k + 1);
-                return Err(at(p.line, format!("{prefix}{index:05}: axis {axis}: {v} is not a finite value")));
+                return Err(at(
+                    p.line,
+                    format!("{prefix}{index:05}: axis {axis}: {v} is not a finite value"),
+                ));
             }
             external[offset + k] = Some((v, span.clone()));
         }

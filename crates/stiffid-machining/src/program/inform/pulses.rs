@@ -123,7 +123,12 @@ pub(super) fn external(
     };
     list.get(k).copied().ok_or_else(|| {
         let n = list.len();
-        at(line, format!("external_pulses gives {n} numbers for the job's {count} base and station axes"))
+        at(
+            line,
+            format!(
+                "external_pulses gives {n} numbers for the job's {count} base and station axes"
+            ),
+        )
     })
 }
 

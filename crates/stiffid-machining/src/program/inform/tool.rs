@@ -26,7 +26,9 @@ pub(super) fn check(
         let Some((line, n)) = m.tool.map(|n| (m.line, n)).or(taught) else {
             continue;
         };
-        let held = context.tool.and_then(|(setup, tools)| tools.get(n).map(|t| (setup, t)));
+        let held = context
+            .tool
+            .and_then(|(setup, tools)| tools.get(n).map(|t| (setup, t)));
         if let Some((setup, held)) = held {
             if !same(&setup, held) {
                 return Err(at(line, format!("tool file {n}, which the setup's [controller] tools gives as {}, is not the setup's tool ({}: its [tool] tcp_mm, after [robot_flange]); compensation moves the setup's tool: write the job for it", words(held), words(&setup))));

@@ -158,7 +158,11 @@ fn a_split_job_calls_sub_jobs_that_read_back_on_their_own() {
         assert!(f
             .text
             .starts_with(&format!("/JOB\r\n//NAME {}\r\n", f.name)));
-        read.extend(parse_in(&f.text, Dialect::Inform, &with(&p)).unwrap().targets);
+        read.extend(
+            parse_in(&f.text, Dialect::Inform, &with(&p))
+                .unwrap()
+                .targets,
+        );
     }
     assert_eq!(read.len(), 250);
     for (r, q) in read.iter().zip(&q) {

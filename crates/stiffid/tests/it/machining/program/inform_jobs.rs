@@ -47,7 +47,11 @@ fn independent(text: &str, per_deg: &[f64; 6]) -> Vec<(u32, Vec<f64>)> {
 /// The position numbers the motion lines of `text` name, in order.
 fn moved_to(text: &str) -> Vec<u32> {
     text.lines()
-        .filter(|l| ["MOVJ C", "MOVL C", "MOVC C"].iter().any(|m| l.starts_with(m)))
+        .filter(|l| {
+            ["MOVJ C", "MOVL C", "MOVC C"]
+                .iter()
+                .any(|m| l.starts_with(m))
+        })
         .map(|l| l[6..11].parse().unwrap())
         .collect()
 }
@@ -80,7 +84,9 @@ fn a_stored_job_is_read_with_the_setups_pulses() {
     }
     let lines: Vec<u64> = read.targets.iter().map(|t| t.line).collect();
     assert_eq!(lines, [19, 22, 23, 24, 25]);
-    assert!(matches!(read.targets[3].speed, stiffid_machining::program::speed::Speed::Path(v) if (v - 0.01).abs() < 1e-12));
+    assert!(
+        matches!(read.targets[3].speed, stiffid_machining::program::speed::Speed::Path(v) if (v - 0.01).abs() < 1e-12)
+    );
     let mut q: Vec<[f64; 6]> = read.targets.iter().map(|t| t.q_deg).collect();
     q[3][1] += 0.01;
     let written = read.write(&q).unwrap();
@@ -88,7 +94,10 @@ fn a_stored_job_is_read_with_the_setups_pulses() {
     let changed: Vec<(&str, &str)> = changed.collect();
     assert_eq!(changed.len(), 1, "{changed:?}");
     let l = ((105372.0 / PER_DEG[1] + 0.01) * PER_DEG[1]).round() as i64;
-    assert_eq!(changed[0].0, format!("C00003=-44969,{l},61036,4871,-50464,-5567"));
+    assert_eq!(
+        changed[0].0,
+        format!("C00003=-44969,{l},61036,4871,-50464,-5567")
+    );
     assert!(written.contains("MOVC C00003 V=10.0\r\n"));
 }
 
@@ -96,7 +105,12 @@ fn a_stored_job_is_read_with_the_setups_pulses() {
 /// when they contradict the setup's or each other.
 #[test]
 fn contradicting_pulses_are_refused_naming_both() {
-    let comment = |v: &str| STORED.replace("NOP\r\n", &format!("NOP\r\n'stiffid: pulses_per_deg = {v}\r\n"));
+    let comment = |v: &str| {
+        STORED.replace(
+            "NOP\r\n",
+            &format!("NOP\r\n'stiffid: pulses_per_deg = {v}\r\n"),
+        )
+    };
     let same = comment("1341.25 1341.25 1150.5 873.4 873.4 532.7");
     let alone = parse(&same, Dialect::Inform).unwrap();
     let p = pulses();
@@ -105,11 +119,20 @@ fn contradicting_pulses_are_refused_naming_both() {
     let other = comment("1000 1000 1000 1000 1000 1000");
     let (line, message) = refused(parse_in(&other, Dialect::Inform, &with(&p)));
     assert_eq!(line, 16);
-    assert!(message.contains("contradicts the setup's [controller] pulses_per_deg = [1341.25"), "{message}");
-    let twice = other.replace("NOP\r\n", "NOP\r\n'stiffid: pulses_per_deg = 1000 1000 1000 1000 1000 999\r\n");
+    assert!(
+        message.contains("contradicts the setup's [controller] pulses_per_deg = [1341.25"),
+        "{message}"
+    );
+    let twice = other.replace(
+        "NOP\r\n",
+        "NOP\r\n'stiffid: pulses_per_deg = 1000 1000 1000 1000 1000 999\r\n",
+    );
     let (line, message) = refused(parse(&twice, Dialect::Inform));
     assert_eq!(line, 17);
-    assert!(message.contains("stated twice with other values (lines 16 and 17)"), "{message}");
+    assert!(
+        message.contains("stated twice with other values (lines 16 and 17)"),
+        "{message}"
+    );
 }
 
 /// A tool file the setup's `[controller] tools` gives is checked against the setup's tool; one it
@@ -119,7 +142,11 @@ fn tool_files_are_checked_against_the_setups_tool() {
     let p = pulses();
     let tool = Isometry3::translation(0.0, 0.0, 0.3);
     let held = NumberedFrames::new("controller.tools", &[(1, tool)]).unwrap();
-    let other = NumberedFrames::new("controller.tools", &[(1, Isometry3::translation(0.0, 0.0, 0.25))]).unwrap();
+    let other = NumberedFrames::new(
+        "controller.tools",
+        &[(1, Isometry3::translation(0.0, 0.0, 0.25))],
+    )
+    .unwrap();
     let context = |tools| Context {
         pulses: Some(&p),
         tool: Some((tool, tools)),
@@ -127,13 +154,19 @@ fn tool_files_are_checked_against_the_setups_tool() {
     assert!(parse_in(STORED, Dialect::Inform, &context(&held)).is_ok());
     let (line, message) = refused(parse_in(STORED, Dialect::Inform, &context(&other)));
     assert_eq!(line, 5);
-    assert!(message.contains("tool file 1") && message.contains("is not the setup's tool"), "{message}");
+    assert!(
+        message.contains("tool file 1") && message.contains("is not the setup's tool"),
+        "{message}"
+    );
     let empty = NumberedFrames::default();
     assert!(parse_in(STORED, Dialect::Inform, &context(&empty)).is_ok());
     let changes = STORED.replace("MOVC C00003 V=10.0", "MOVC C00003 V=10.0 TOOL#(2)");
     let (line, message) = refused(parse_in(&changes, Dialect::Inform, &context(&empty)));
     assert_eq!(line, 24);
-    assert!(message.contains("tool file 2 after tool file 1 (line 5)"), "{message}");
+    assert!(
+        message.contains("tool file 2 after tool file 1 (line 5)"),
+        "{message}"
+    );
 }
 
 /// What changes the path or cannot be known is refused naming its line: a shift, a position
@@ -142,15 +175,53 @@ fn tool_files_are_checked_against_the_setups_tool() {
 fn what_can_change_the_path_is_refused_naming_the_line() {
     let p = pulses();
     let cases: Vec<(String, u64, &str)> = vec![
-        (STORED.replace("ARCOF AEF#(1)", "SFTON P001 UF#(1)"), 26, "SFTON: a shift"),
-        (STORED.replace("MOVL C00001", "MOVL P001"), 22, "MOVL P001: a position variable"),
-        (STORED.replace("SET B000 1", "JUMP *START"), 27, "JUMP: a jump"),
-        (STORED.replace("SET B000 1", "FROBNICATE 3"), 27, "an instruction stiffid does not know"),
-        (STORED.replace("V=10.0 PL=0 NWAIT", "V=nan PL=0"), 22, "V=nan: expected a number"),
-        (STORED.replace("MOVS", "").replace("MOVC C00002", "MOVS C00002"), 23, "MOVS: a spline"),
-        (STORED.replace("SET B000 1\r\nEND\r\n", "SET B000 1\r\nMOVL C000"), 28, "without END"),
-        (STORED.replace("MOVL C00001 V=10.0", "MOVL C00001 V=10.0\0"), 22, "a control character"),
-        (STORED.replace("///NPOS 5,", "///NPOS 6,"), 4, "///NPOS declares 6 C positions, //POS holds 5"),
+        (
+            STORED.replace("ARCOF AEF#(1)", "SFTON P001 UF#(1)"),
+            26,
+            "SFTON: a shift",
+        ),
+        (
+            STORED.replace("MOVL C00001", "MOVL P001"),
+            22,
+            "MOVL P001: a position variable",
+        ),
+        (
+            STORED.replace("SET B000 1", "JUMP *START"),
+            27,
+            "JUMP: a jump",
+        ),
+        (
+            STORED.replace("SET B000 1", "FROBNICATE 3"),
+            27,
+            "an instruction stiffid does not know",
+        ),
+        (
+            STORED.replace("V=10.0 PL=0 NWAIT", "V=nan PL=0"),
+            22,
+            "V=nan: expected a number",
+        ),
+        (
+            STORED
+                .replace("MOVS", "")
+                .replace("MOVC C00002", "MOVS C00002"),
+            23,
+            "MOVS: a spline",
+        ),
+        (
+            STORED.replace("SET B000 1\r\nEND\r\n", "SET B000 1\r\nMOVL C000"),
+            28,
+            "without END",
+        ),
+        (
+            STORED.replace("MOVL C00001 V=10.0", "MOVL C00001 V=10.0\0"),
+            22,
+            "a control character",
+        ),
+        (
+            STORED.replace("///NPOS 5,", "///NPOS 6,"),
+            4,
+            "///NPOS declares 6 C positions, //POS holds 5",
+        ),
     ];
     for (text, line, words) in cases {
         let (at, message) = refused(parse_in(&text, Dialect::Inform, &with(&p)));
@@ -166,17 +237,43 @@ fn the_real_jobs_are_refused_naming_line_and_construct() {
     let p = pulses();
     let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/programs/inform/");
     let expected: [(&str, u64, &str); 8] = [
-        ("MQCIA_DROP01.JBI", 45, "CALL: a jump, call, macro, loop or branch"),
-        ("MQCIA_ROBOT_CELL_000.JBI", 74, "+MOVJ: another group's own motion"),
+        (
+            "MQCIA_DROP01.JBI",
+            45,
+            "CALL: a jump, call, macro, loop or branch",
+        ),
+        (
+            "MQCIA_ROBOT_CELL_000.JBI",
+            74,
+            "+MOVJ: another group's own motion",
+        ),
         ("TSHIKINA_TEST1.JBI", 32, "IMOV: an increment"),
-        ("MOTOROS2_INIT_ROS_SINGLE_ARM.JBI", 1, "no motion to a joint target"),
-        ("MOTOROS2_INIT_ROS_TWO_ARMS.JBI", 1, "no motion to a joint target"),
+        (
+            "MOTOROS2_INIT_ROS_SINGLE_ARM.JBI",
+            1,
+            "no motion to a joint target",
+        ),
+        (
+            "MOTOROS2_INIT_ROS_TWO_ARMS.JBI",
+            1,
+            "no motion to a joint target",
+        ),
         ("ROSI_ROS_R1B1.JBI", 1, "no motion to a joint target"),
         ("ROSI_ROS_S1.JBI", 1, "no motion to a joint target"),
-        ("ROSI_INIT_ROS_CALL_JOB_MAIN.JBI", 1, "no motion to a joint target"),
+        (
+            "ROSI_INIT_ROS_CALL_JOB_MAIN.JBI",
+            1,
+            "no motion to a joint target",
+        ),
     ];
     let files = std::fs::read_dir(dir).unwrap();
-    let jobs = files.filter(|f| f.as_ref().unwrap().path().extension().is_some_and(|e| e == "JBI"));
+    let jobs = files.filter(|f| {
+        f.as_ref()
+            .unwrap()
+            .path()
+            .extension()
+            .is_some_and(|e| e == "JBI")
+    });
     assert_eq!(jobs.count(), expected.len());
     for (name, line, words) in expected {
         let text = std::fs::read_to_string(format!("{dir}{name}")).unwrap();

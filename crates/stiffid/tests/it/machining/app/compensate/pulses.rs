@@ -80,7 +80,10 @@ fn rounding_is_within_each_axis_half_pulse_at_the_tcp() {
     // One pulse per degree: the axes rounded to whole degrees, by hand.
     let whole = q.map(|v| v.to_degrees().round().to_radians());
     let coarse = rounding(s.robot(), &tcp, &q, &[1.0; 6]);
-    assert!((coarse - (at(&whole) - at(&q)).norm()).abs() < 1e-12, "{coarse}");
+    assert!(
+        (coarse - (at(&whole) - at(&q)).norm()).abs() < 1e-12,
+        "{coarse}"
+    );
     assert!(coarse > 1e-3, "{coarse}");
 }
 
@@ -95,8 +98,14 @@ fn coarse_pulses_are_refused_naming_the_field() {
         match job(&setup(coarse)) {
             Err(Error::InvalidField { field, message }) => {
                 assert_eq!(field, "controller.pulses_per_deg", "{message}");
-                assert!(message.contains("rounding the axes to whole pulses moves the TCP by"), "{message}");
-                assert!(message.contains("more than the most the compensation corrects or bounds"), "{message}");
+                assert!(
+                    message.contains("rounding the axes to whole pulses moves the TCP by"),
+                    "{message}"
+                );
+                assert!(
+                    message.contains("more than the most the compensation corrects or bounds"),
+                    "{message}"
+                );
             }
             other => panic!("{coarse}: {other:?}"),
         }
