@@ -111,10 +111,12 @@ pub(super) fn external(
     first: u64,
 ) -> Result<f64> {
     let setup = (context.pulses).and_then(|p| (!p.external.is_empty()).then_some(&p.external));
-    if let (Some((line, job)), Some(setup)) = (&directives.external, setup) {
-        if !same(job, setup) {
-            return Err(contradiction(*line, "external_pulses", job, setup));
-        }
+    let contradicted = (directives.external.as_ref()).and_then(|(line, job)| {
+        let setup = setup.filter(|setup| !same(job, setup))?;
+        Some(contradiction(*line, "external_pulses", job, setup))
+    });
+    if let Some(e) = contradicted {
+        return Err(e);
     }
     let (line, list) = match (&directives.external, setup) {
         (Some((line, job)), _) => (*line, job),

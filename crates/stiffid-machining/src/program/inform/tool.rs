@@ -29,10 +29,8 @@ pub(super) fn check(
         let held = context
             .tool
             .and_then(|(setup, tools)| tools.get(n).map(|t| (setup, t)));
-        if let Some((setup, held)) = held {
-            if !same(&setup, held) {
-                return Err(at(line, format!("tool file {n}, which the setup's [controller] tools gives as {}, is not the setup's tool ({}: its [tool] tcp_mm, after [robot_flange]); compensation moves the setup's tool: write the job for it", words(held), words(&setup))));
-            }
+        if let Some((setup, held)) = held.filter(|(setup, held)| !same(setup, held)) {
+            return Err(at(line, format!("tool file {n}, which the setup's [controller] tools gives as {}, is not the setup's tool ({}: its [tool] tcp_mm, after [robot_flange]); compensation moves the setup's tool: write the job for it", words(held), words(&setup))));
         }
         match first {
             None => first = Some((line, n, held.is_some())),
