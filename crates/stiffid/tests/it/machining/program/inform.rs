@@ -70,8 +70,9 @@ const Q: [[f64; 6]; 3] = [
 ];
 const MOVES: [Move; 3] = [Move::Rapid, Move::Feed(0.03), Move::Feed(100.0 / 6e4)];
 
-/// A job written from Cartesian targets (the default) states their axis angles in pulses, reads
-/// back on its own to within half a pulse, with its speeds, and is the job of joint targets.
+/// A job written from Cartesian targets (the default) states their axis angles in pulses and no
+/// `'stiffid:` comment, reads back with the setup's pulses (not without them) to within half a
+/// pulse, with its speeds, and is the job of joint targets.
 #[test]
 fn a_job_reads_back_its_targets_within_half_a_pulse() {
     let (t, p) = (targets(&Q, &[]), pulses(Vec::new()));
@@ -133,10 +134,10 @@ fn a_job_without_pulses_or_with_a_feed_it_cannot_state_is_refused() {
     ));
 }
 
-/// A job of more moves than one file holds calls its sub-jobs, each of which reads back on its
-/// own (its `'stiffid:` comments) with its share of the targets.
+/// A job of more moves than one file holds calls its sub-jobs, each of which reads back with the
+/// setup's pulses with its share of the targets.
 #[test]
-fn a_split_job_calls_sub_jobs_that_read_back_on_their_own() {
+fn a_split_job_calls_sub_jobs_that_read_back_with_the_setups_pulses() {
     let q: Vec<[f64; 6]> = (0..250)
         .map(|i| [-20.0 + 1e-3 * i as f64, 5.0, -45.0, 10.0, -40.0, 20.0])
         .collect();
