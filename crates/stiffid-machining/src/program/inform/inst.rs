@@ -80,6 +80,9 @@ pub(super) fn instructions(text: &str) -> Result<Instructions> {
             in_inst = section.starts_with("INST");
             continue;
         }
+        if in_inst && t.starts_with("///GROUP") {
+            groups(line, t)?;
+        }
         if !in_inst || t.starts_with("///") || t.is_empty() {
             continue;
         }
@@ -110,6 +113,16 @@ pub(super) fn instructions(text: &str) -> Result<Instructions> {
         return Err(at(line, format!("{}: a jump, call, macro, loop or branch in a job with motions; the order the controller runs them (or the motions of the job it calls) would not be the file's: write the path as motions of one job", short(&word))));
     }
     Ok(out)
+}
+
+/// Refuses a job that moves a robot other than the controller's first (`///GROUP1 RB2`, a
+/// second robot `RB2` in any group): the setup is one robot, whose positions are `RB1`'s.
+fn groups(line: u64, t: &str) -> Result<()> {
+    let words = t.split_whitespace().skip(1).flat_map(|w| w.split(','));
+    match words.map(str::trim).find(|w| w.starts_with("RB") && *w != "RB1") {
+        Some(robot) => Err(at(line, format!("{}: a job of robot {}; stiffid compensates one robot, the controller's first (RB1): compensate a job of that robot", short(t), short(robot)))),
+        None => Ok(()),
+    }
 }
 
 /// Refuses a job whose last instruction is not `END`: the controller loads no job without it,

@@ -57,6 +57,7 @@
 //! - `JUMP`, `CALL`, `MACRO`, `IF`, `IFTHEN`, `FOR`, `WHILE`, `SWITCH` in a job with motions
 //!   (the order the controller runs, or the motions of the job it calls, would not be the
 //!   file's);
+//! - a job of another robot than the controller's first (`RB2` in a `///GROUP` line);
 //! - a job that does not end with `END` (cut off), a control character (a NUL) anywhere;
 //! - a position named in a motion that `//POS` does not hold, one defined twice, a count that
 //!   differs from `///NPOS`, pulses that are not whole numbers, pulses whose conversion neither

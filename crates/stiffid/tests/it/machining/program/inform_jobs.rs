@@ -218,6 +218,11 @@ fn what_can_change_the_path_is_refused_naming_the_line() {
             "a control character",
         ),
         (
+            STORED.replace("///GROUP1 RB1", "///GROUP1 RB1,RB2"),
+            14,
+            "a job of robot RB2",
+        ),
+        (
             STORED.replace("///NPOS 5,", "///NPOS 6,"),
             4,
             "///NPOS declares 6 C positions, //POS holds 5",
@@ -255,8 +260,8 @@ fn the_real_jobs_are_refused_naming_line_and_construct() {
         ),
         (
             "MOTOROS2_INIT_ROS_TWO_ARMS.JBI",
-            1,
-            "no motion to a joint target",
+            9,
+            "///GROUP2 RB2: a job of robot RB2",
         ),
         ("ROSI_ROS_R1B1.JBI", 1, "no motion to a joint target"),
         ("ROSI_ROS_S1.JBI", 1, "no motion to a joint target"),
