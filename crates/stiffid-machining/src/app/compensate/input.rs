@@ -5,6 +5,7 @@
 use super::written::program_tool;
 use super::{generate, in_input, output, Input};
 use crate::compensate::Options;
+use crate::program::Context;
 use crate::{self as machining, Language, Program};
 use stiffid_core::{Result, Setup};
 
@@ -45,9 +46,7 @@ pub(super) fn read_checked(
         generate::check_payload(d, settings.targets, &program_tool(setup))?;
         generate::check_pulses(d, setup.workcell().controller().pulses.as_ref())?;
     }
-    let context = crate::program::Context::of(setup);
-    let program = machining::read_in(text, language, *chord_tolerance, &context)
-        .map_err(|e| in_input(name, e))?;
+    let program = read_program_in(name, text, language, *chord_tolerance, &Context::of(setup))?;
     // A Cartesian program's targets as the controller moves to them (a copy only then).
     match machining::resolve(&program, setup, None, options) {
         Ok(std::borrow::Cow::Owned(p)) => Ok(Some(p)),
@@ -67,5 +66,20 @@ pub fn read_program(
     language: Language,
     chord_tolerance: f64,
 ) -> Result<Program> {
-    machining::read(text, language, chord_tolerance).map_err(|e| in_input(name, e))
+    read_program_in(name, text, language, chord_tolerance, &Context::default())
+}
+
+/// [`read_program`] with what a setup says of the program in `context` (an INFORM job's pulses
+/// and tool files: [`Context::of`]).
+///
+/// # Errors
+/// Those of [`machining::read_in`], as [`Error::Input`](stiffid_core::Error::Input).
+pub fn read_program_in(
+    name: &str,
+    text: &str,
+    language: Language,
+    chord_tolerance: f64,
+    context: &Context,
+) -> Result<Program> {
+    machining::read_in(text, language, chord_tolerance, context).map_err(|e| in_input(name, e))
 }
