@@ -287,3 +287,40 @@ fn the_real_jobs_are_refused_naming_line_and_construct() {
         assert!(message.contains(words), "{name}: {message}");
     }
 }
+
+/// A base axis in pulses: the setup's `external_pulses`, or the job's comment, never two that
+/// differ.
+#[test]
+fn a_base_axis_takes_the_setups_external_pulses() {
+    let job = "/JOB\r\n//NAME T\r\n//POS\r\n///NPOS 1,1,0,0,0,0\r\n///POSTYPE PULSE\r\n///PULSE\r\nC00000=1000,2000,3000,0,-4500,500\r\nBC00000=150000\r\n//INST\r\n///ATTR SC,RW\r\n///GROUP1 RB1,BS1\r\n'stiffid: external_pulses = 100\r\nNOP\r\nMOVJ C00000 BC00000 VJ=10.00\r\nEND\r\n";
+    let with_external = |external: Vec<f64>| Pulses {
+        per_deg: PER_DEG,
+        external,
+    };
+    let (same, other, none) = (
+        with_external(vec![100.0]),
+        with_external(vec![1000.0]),
+        with_external(Vec::new()),
+    );
+    for p in [&same, &none] {
+        let read = parse_in(job, Dialect::Inform, &with(p)).unwrap();
+        assert_eq!(read.targets[0].external, vec![Some(1500.0)]);
+    }
+    let (line, message) = refused(parse_in(job, Dialect::Inform, &with(&other)));
+    assert_eq!(line, 12);
+    assert!(
+        message.contains(
+            "external_pulses = 100 contradicts the setup's [controller] external_pulses = [1000]"
+        ),
+        "{message}"
+    );
+    let bare = job.replace("'stiffid: external_pulses = 100\r\n", "");
+    let read = parse_in(&bare, Dialect::Inform, &with(&other)).unwrap();
+    assert_eq!(read.targets[0].external, vec![Some(150.0)]);
+    let (line, message) = refused(parse_in(&bare, Dialect::Inform, &with(&none)));
+    assert_eq!(line, 13);
+    assert!(
+        message.contains("[controller] external_pulses"),
+        "{message}"
+    );
+}
