@@ -216,9 +216,28 @@ impl Program {
 /// # Errors
 /// Those of [`gcode::parse`] and [`program::parse`].
 pub fn read(text: &str, language: Language, chord_tolerance: f64) -> Result<Program> {
+    read_in(
+        text,
+        language,
+        chord_tolerance,
+        &program::Context::default(),
+    )
+}
+
+/// [`read`] with what the setup says of a robot program in `context` (an INFORM job's pulses
+/// and tool files).
+///
+/// # Errors
+/// Those of [`gcode::parse`] and [`program::parse_in`].
+pub fn read_in(
+    text: &str,
+    language: Language,
+    chord_tolerance: f64,
+    context: &program::Context,
+) -> Result<Program> {
     match language {
         Language::GCode => gcode::parse(text, chord_tolerance).map(Program::GCode),
-        Language::Robot(d) => program::parse(text, d).map(Program::Robot),
+        Language::Robot(d) => program::parse_in(text, d, context).map(Program::Robot),
     }
 }
 

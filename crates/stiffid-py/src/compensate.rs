@@ -87,16 +87,16 @@ use stiffid_machining::Language;
 /// and after, for a program); with a program, ``program``: the compensated program's text, in
 /// the program's own language or, for G-code with ``output="krl"``, ``"rapid"``, ``"ls"`` or
 /// ``"inform"``, a robot program of the compensated targets (``targets="cartesian"``, the
-/// default: the compensated poses with their configuration, cutting moves linear; ``"joint"``:
+/// default when ``None``: the compensated poses with their configuration, cutting moves linear; ``"joint"``:
 /// axis angles; an INFORM job: axis angles in pulses, the setup's ``[controller]
-/// pulses_per_deg``), named
+/// pulses_per_deg``, with a warning when ``targets="cartesian"`` is given), named
 /// ``program_name`` (default the program file's stem, upper case), its feeds refused above
 /// ``max_tcp_speed_mm_s``, split into sub-programs of at most ``moves_per_file`` moves
 /// (``subprograms``: their names and texts, in call order), names within ``name_length``
 /// (default the controller's: KRL 24, RAPID 32, LS 8), as ``stiffid compensate`` does. Points
 /// without a process force are warned about (``UserWarning``) as the command does.
 #[pyfunction]
-#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free=None, minimise=None, program_name=None, targets="cartesian", max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_pct=20.0, objective=None, map=None, margin_deg=None, max_condition=None, refine=None, figures=false, **retired))]
+#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free=None, minimise=None, program_name=None, targets=None, max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_pct=20.0, objective=None, map=None, margin_deg=None, max_condition=None, refine=None, figures=false, **retired))]
 #[allow(clippy::too_many_arguments)]
 pub fn compensate<'py>(
     py: Python<'py>,
@@ -112,7 +112,7 @@ pub fn compensate<'py>(
     free: Option<&Bound<'py, PyAny>>,
     minimise: Option<&str>,
     program_name: Option<String>,
-    targets: &str,
+    targets: Option<&str>,
     #[pyo3(from_py_with = crate::count::number)] max_tcp_speed_mm_s: f64,
     #[pyo3(from_py_with = crate::count::optional_whole)] name_length: Option<i64>,
     #[pyo3(from_py_with = crate::count::whole)] moves_per_file: i64,
@@ -285,7 +285,12 @@ fn input_of<'t>(
     (name, text, frame): (&str, &'t str, Frame),
     (program, process): (&Option<PathBuf>, &Option<PathBuf>),
     (output, program_name, chord_tolerance_mm): (Option<&str>, Option<String>, f64),
-    (targets, max_tcp_speed_mm_s, name_length, moves_per_file): (&str, f64, Option<usize>, usize),
+    (targets, max_tcp_speed_mm_s, name_length, moves_per_file): (
+        Option<&str>,
+        f64,
+        Option<usize>,
+        usize,
+    ),
 ) -> PyResult<Input<'t>> {
     let input = match (program, process) {
         (None, None) => Input::Path {
@@ -310,7 +315,10 @@ fn input_of<'t>(
             let (output, out_name) =
                 Language::output(language, None, output, &stem).map_err(raise)?;
             let settings = Settings {
-                targets: targets.parse::<Targets>().map_err(raise)?,
+                targets: (targets.map(str::parse::<Targets>).transpose())
+                    .map_err(raise)?
+                    .unwrap_or_default(),
+                targets_asked: targets.is_some(),
                 max_tcp_speed: max_tcp_speed_mm_s * 1e-3,
                 name_length,
                 moves_per_file,

@@ -14,7 +14,7 @@ use stiffid_machining::app::{compensate, force};
 use stiffid_machining::gcode::Motion;
 use stiffid_machining::process::file;
 use stiffid_machining::program::speed::Speed;
-use stiffid_machining::program::JointProgram;
+use stiffid_machining::program::{Context, JointProgram};
 use stiffid_machining::{Language, Program};
 
 /// The mean cutting force of every operation of the process file ``process`` (TOML, the format
@@ -46,8 +46,10 @@ pub fn process_force<'py>(
 /// The path of the machining program ``program`` as ``stiffid compensate --program`` reads it:
 /// G-code (``.nc .ngc .gcode .tap .cnc .g``; arcs split into chords of at most
 /// ``chord_tolerance_mm`` sagitta), KUKA KRL (``.src .dat``), ABB RAPID (``.mod .modx .prg``) or
-/// FANUC LS (``.ls``) joint targets. Returns a dict: ``language`` (``"gcode"``, ``"krl"``,
-/// ``"rapid"`` or ``"ls"``), ``line`` (``(n,)``, ``int64``: each point's line); for G-code
+/// FANUC LS (``.ls``) joint targets, or a Yaskawa INFORM job (``.jbi``; its pulses per degree
+/// from ``setup``'s ``[controller] pulses_per_deg``, or the job's ``'stiffid:`` comment, and its
+/// tool files checked against ``setup``'s tool). Returns a dict: ``language`` (``"gcode"``,
+/// ``"krl"``, ``"rapid"``, ``"ls"`` or ``"inform"``), ``line`` (``(n,)``, ``int64``: each point's line); for G-code
 /// ``position_mm`` (``(n, 3)``, part frame), ``rapid`` (``(n,)`` bool: a ``G0`` move),
 /// ``tool_number`` and ``operation`` (lists, ``None`` where none is in force); for a robot
 /// program ``q_deg`` (``(n, 6)``, the joint targets' axis angles; ``NaN`` for a Cartesian
@@ -64,17 +66,20 @@ pub fn process_force<'py>(
 /// ``NaN`` elsewhere) and ``speed_not_read`` (a list: why a linear motion's speed is not read, a
 /// variable or a register; ``None`` where it is).
 #[pyfunction]
-#[pyo3(signature = (program, *, chord_tolerance_mm=0.01))]
+#[pyo3(signature = (program, *, chord_tolerance_mm=0.01, setup=None))]
 pub fn read_program<'py>(
     py: Python<'py>,
     program: PathBuf,
     #[pyo3(from_py_with = crate::count::number)] chord_tolerance_mm: f64,
+    setup: Option<&crate::setup::Setup>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let name = program.display().to_string();
     let language = Language::of_file(&name).map_err(raise)?;
     let text = error::read(&program)?;
-    let read = compensate::read_program(&name, &text, language, chord_tolerance_mm * 1e-3)
-        .map_err(raise)?;
+    let context = setup.map_or_else(Context::default, |s| Context::of(&s.inner));
+    let read =
+        compensate::read_program_in(&name, &text, language, chord_tolerance_mm * 1e-3, &context)
+            .map_err(raise)?;
     let out = PyDict::new(py);
     out.set_item("language", language.name())?;
     match &read {

@@ -1,6 +1,9 @@
 """process_force, read_program and compensate(program=..., process=...) against the command: the
 same jobs, so the same documents and the same compensated program."""
 
+import re
+import warnings
+
 import numpy as np
 import pytest
 
@@ -104,9 +107,16 @@ def test_an_inform_job_in_pulses_equals_the_command(cli, tmp_path):
     theirs = cli("compensate", "--setup", path, "--stiffness", STIFFNESS, "--program", POCKET, "--process",
                  PROCESS, "--out", out, "--moves-per-file", "100", "--json")
     setup = stiffid.Setup.from_file(path)
-    with pytest.warns(UserWarning, match="INFORM programs are written with joint targets"):
+    # Nobody asked for Cartesian targets: no warning of them (asked for, one).
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
         mine = stiffid.compensate(setup, stiffness=STIFFNESS, program=POCKET, process=PROCESS, output="inform",
                                   program_name="wall", moves_per_file=100)
+    assert not [w for w in caught if "joint targets" in str(w.message)]
+    with pytest.warns(UserWarning, match="INFORM programs are written with joint targets"):
+        asked = stiffid.compensate(setup, stiffness=STIFFNESS, program=POCKET, process=PROCESS, output="inform",
+                                   program_name="wall", moves_per_file=100, targets="cartesian")
+    assert asked["program"] == mine["program"]
     assert mine["program"] == out.read_bytes().decode()
     assert "CALL JOB:WALL_04\r\n" in mine["program"]
     positions = []
@@ -140,3 +150,26 @@ def test_program_options_equal_the_command(cli, tmp_path):
     with pytest.raises(ValueError, match=r"largest TCP speed, 10 mm/s"):
         stiffid.compensate(setup, stiffness=STIFFNESS, program=POCKET, process=PROCESS, output="ls",
                            max_tcp_speed_mm_s=10.0)
+
+
+def test_read_program_reads_a_stored_inform_job_with_the_setups_pulses(tmp_path):
+    # A job as a YRC1000 stores it: no ///POSTYPE line, tool file 1, no 'stiffid: comment, a circle.
+    job = ("/JOB\r\n//NAME WELD\r\n//POS\r\n///NPOS 3,0,0,0,0,0\r\n///TOOL 1\r\n"
+           "C00000=-48629,112084,69901,4161,-52375,-4796\r\nC00001=-46969,105372,61036,4871,-50464,-5567\r\n"
+           "C00002=-45969,104372,60036,4871,-50464,-5567\r\n//INST\r\n///DATE 2023/02/07 09:03\r\n"
+           "///ATTR SC,RW\r\n///GROUP1 RB1\r\nNOP\r\nTIMER T=0.50\r\nMOVJ C00000 VJ=25.00\r\n"
+           "MOVC C00001 V=10.0\r\nMOVC C00002 V=10.0 PL=0\r\nEND\r\n")
+    path = tmp_path / "WELD.JBI"
+    path.write_bytes(job.encode())
+    pulses = [1341.25, 1341.25, 1150.5, 873.4, 873.4, 532.7]
+    setup_path = tmp_path / "yaskawa.toml"
+    setup_path.write_text(SETUP.read_text() + f"\n[controller]\npulses_per_deg = {pulses}\n")
+    with pytest.raises(stiffid.InputError, match=r"line 15: .*\[controller\] pulses_per_deg"):
+        stiffid.read_program(path)
+    read = stiffid.read_program(path, setup=stiffid.Setup.from_file(setup_path))
+    assert read["language"] == "inform"
+    # An independent reading: each C line's whole pulses over the setup's pulses per degree.
+    positions = [[int(v) for v in m.group(1).split(",")] for m in re.finditer(r"^C\d{5}=(.*)\r$", job, re.M)]
+    np.testing.assert_allclose(read["q_deg"], np.array(positions) / pulses, rtol=0, atol=1e-12)
+    np.testing.assert_array_equal(read["line"], [15, 16, 17])
+    np.testing.assert_allclose(read["feed_mm_s"][1:], [10.0, 10.0])

@@ -64,9 +64,10 @@ pub struct Args {
     out: PathBuf,
     /// With a G-code --program written as a robot program: Cartesian targets (the compensated
     /// poses with their configuration, cutting moves linear) or joint targets (every move
-    /// axis-interpolated; an INFORM job always).
-    #[arg(long, value_parser = choice::<Targets>(), default_value = "cartesian", requires = "program")]
-    targets: Targets,
+    /// axis-interpolated; an INFORM job always, with a warning when cartesian is given). Default:
+    /// cartesian.
+    #[arg(long, value_parser = choice::<Targets>(), requires = "program")]
+    targets: Option<Targets>,
     /// With a G-code --program written as a robot program: the robot's largest TCP speed, mm/s
     /// (0 < value <= 10000); a faster feed is refused.
     #[arg(long, default_value_t = 2000.0, requires = "program")]
@@ -289,7 +290,8 @@ fn input<'t>(args: &Args, name: String, text: &'t str) -> Result<Input<'t>> {
         output,
         out_name,
         settings: Settings {
-            targets: args.targets,
+            targets: args.targets.unwrap_or_default(),
+            targets_asked: args.targets.is_some(),
             max_tcp_speed: args.max_tcp_speed_mm_s * 1e-3,
             name_length: args.name_length,
             moves_per_file: args.moves_per_file,

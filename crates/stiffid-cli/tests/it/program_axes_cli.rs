@@ -92,8 +92,9 @@ fn pocket_as_job(setup: &Path, out: &Path, extra: &[&str]) -> std::process::Outp
 }
 
 /// A G-code pocket written as a Yaskawa job: in pulses at the setup's `[controller]
-/// pulses_per_deg`, each position the compensated axis angles to half a pulse, the pulses stated
-/// in the job; refused without the pulses or with the wrong count, nothing written.
+/// pulses_per_deg`, each position the compensated axis angles to half a pulse, no comment longer
+/// than the pendant keeps, a warning of joint targets only when Cartesian ones are asked for;
+/// refused without the pulses or with the wrong count, nothing written.
 #[test]
 fn a_gcode_pocket_becomes_a_job_in_the_controllers_pulses() {
     let dir = temp_dir("pocket-jbi");
@@ -150,17 +151,20 @@ fn a_gcode_pocket_becomes_a_job_in_the_controllers_pulses() {
     let setup = with(&format!("pulses_per_deg = [{}]", list.join(", ")));
     let o = pocket_as_job(&setup, &out, &["--json"]);
     let document = json(&o);
+    // Nobody asked for Cartesian targets: no word of them.
     let warned = String::from_utf8_lossy(&o.stderr);
     assert!(
-        warned.contains("targets = cartesian: INFORM programs are written with joint targets"),
+        !warned.contains("joint targets (the compensated"),
         "{warned}"
     );
     let job = std::fs::read_to_string(&out).unwrap();
     assert!(job.starts_with("/JOB\r\n//NAME POCKET\r\n"), "{job}");
-    assert!(job.contains(&format!(
-        "'stiffid: pulses_per_deg = {}\r\n",
-        list.join(" ")
-    )));
+    // The pulses are the setup's; every comment fits the pendant's 32 characters.
+    assert!(!job.contains("'stiffid:"), "{job}");
+    assert!(
+        job.lines().all(|l| !l.starts_with('\'') || l.len() <= 32),
+        "{job}"
+    );
     let points = document["points"].as_array().unwrap();
     let positions: Vec<Vec<f64>> = (job.split("\r\n"))
         .filter_map(|l| l.strip_prefix('C').and_then(|l| l.split_once('=')))
@@ -181,6 +185,10 @@ fn a_gcode_pocket_becomes_a_job_in_the_controllers_pulses() {
     }
     // Half a pulse, and the document's own rounding of its angles.
     assert!(largest <= 0.5 + 0.01, "{largest} pulses");
+    // `--targets cartesian` asked for: the same job, with the warning.
+    let o = pocket_as_job(&setup, &dir.join("CART.jbi"), &["--targets", "cartesian"]);
+    let warned = String::from_utf8_lossy(&o.stderr);
+    assert!(warned.contains("targets = cartesian: INFORM programs are written with joint targets"));
     // `--targets joint` writes the same job, without the warning.
     let joint = dir.join("JOINT.jbi");
     let o = pocket_as_job(&setup, &joint, &["--targets", "joint"]);

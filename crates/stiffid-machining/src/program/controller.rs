@@ -70,6 +70,15 @@ pub trait Controller: Sync {
     /// # Errors
     /// [`stiffid_core::Error::Program`] naming the line of a motion outside the subset read.
     fn read(&self, text: &str) -> Result<Read>;
+    /// [`Controller::read`] with what the setup says in `context` (a language whose programs
+    /// state everything reads them as [`Controller::read`] does).
+    ///
+    /// # Errors
+    /// Those of [`Controller::read`].
+    fn read_in(&self, text: &str, context: &super::Context) -> Result<Read> {
+        let _ = context;
+        self.read(text)
+    }
     /// The motions read, for the message of a program with none.
     fn motions(&self) -> &'static str;
     /// The forms of its joint targets, for messages (`E6AXIS, AXIS`).

@@ -13,8 +13,9 @@
 //!   resolved (the increment from the previous target, written back as the increment between the
 //!   compensated targets); the instructions around the motions passed over where they cannot
 //!   change the path or the frames, refused naming the line where they can.
-//! - [`inform`]: `MOVJ`/`MOVL` to `C` teaching positions in pulses, with base (`BC`) and station
-//!   (`EC`) positions; the pulses per degree from a `'stiffid:` comment of the job.
+//! - [`inform`]: `MOVJ`/`MOVL`/`MOVC` to `C` teaching positions in pulses, with base (`BC`) and
+//!   station (`EC`) positions; the pulses per degree from the setup ([`Context`]) or a
+//!   `'stiffid:` comment of the job.
 //!
 //! Each language is a folder ([`krl`], [`rapid`], [`ls`], [`inform`]: its reader, its Cartesian
 //! targets, its program writer and its names) implementing [`Controller`], what a controller
@@ -65,8 +66,10 @@ pub mod speed;
 pub(crate) use super::text::lines;
 pub use super::text::number_at;
 pub use controller::{BoundComment, Controller, Generator, Read};
+use nalgebra::{Isometry3, Translation3};
 use std::ops::Range;
-use stiffid_core::{Error, Result};
+use stiffid_core::setup::{NumberedFrames, Pulses};
+use stiffid_core::{Error, Result, Setup};
 
 /// Decimals of a written joint value, deg (1e-9 deg: the compensation's precision; controllers
 /// round to their own).
@@ -207,20 +210,55 @@ pub struct JointProgram {
     text: String,
 }
 
-/// Parses the joint targets of `text` in `dialect`.
+/// What the setup says of a program that the program itself does not: the controller's
+/// encoder pulses (an INFORM job's positions) and the tool files it holds by number, which a
+/// reader checks against the setup's tool ([`inform`]). The default says nothing: a program
+/// read on its own.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Context<'a> {
+    /// The controller's pulses per degree or mm of each axis (`[controller] pulses_per_deg`,
+    /// `external_pulses`).
+    pub pulses: Option<&'a Pulses>,
+    /// The setup's tool in the controller's flange frame (`[tool] tcp_mm` after
+    /// `[robot_flange]`), m, and the tools the controller holds by number (`[controller]
+    /// tools`, in its flange frame).
+    pub tool: Option<(Isometry3<f64>, &'a NumberedFrames)>,
+}
+
+impl<'a> Context<'a> {
+    /// What `setup` says of its programs.
+    pub fn of(setup: &'a Setup) -> Self {
+        let c = setup.workcell().controller();
+        Context {
+            pulses: c.pulses.as_ref(),
+            tool: Some((c.adapter * Translation3::from(setup.tool().tcp), &c.tools)),
+        }
+    }
+}
+
+/// Parses the joint targets of `text` in `dialect`, read on its own ([`parse_in`] with the
+/// default [`Context`]).
+///
+/// # Errors
+/// Those of [`parse_in`].
+pub fn parse(text: &str, dialect: Dialect) -> Result<JointProgram> {
+    parse_in(text, dialect, &Context::default())
+}
+
+/// Parses the joint targets of `text` in `dialect` with what the setup says in `context`.
 ///
 /// # Errors
 /// [`Error::Program`] naming the line: every motion instruction outside the subset (module docs),
 /// a joint target with a missing, repeated or non-numeric axis value, a Cartesian target with a
 /// missing or malformed member or configuration data ([`cartesian`]), no motion to a target
 /// at all, or more than [`MAX_TARGETS`].
-pub fn parse(text: &str, dialect: Dialect) -> Result<JointProgram> {
+pub fn parse_in(text: &str, dialect: Dialect, context: &Context) -> Result<JointProgram> {
     let Read {
         mut targets,
         axes,
         pulses,
         units,
-    } = dialect.controller().read(text)?;
+    } = dialect.controller().read_in(text, context)?;
     for t in &mut targets {
         t.external.resize(axes.len(), None);
         t.external_spans.resize(axes.len(), None);
@@ -369,6 +407,12 @@ impl JointProgram {
         }
         out.push_str(&self.text[at..]);
         Ok(out)
+    }
+
+    /// Per value (the six axes, then the external ones), the pulses per degree or mm of a value
+    /// written in whole encoder pulses (INFORM), `None` for a decimal value.
+    pub fn pulses(&self) -> &[Option<f64>] {
+        &self.pulses
     }
 
     /// Value `k` of a target (the six axes, then the external ones) as the program writes it:

@@ -260,7 +260,16 @@ type ReadBack = (Option<Vector6<f64>>, Option<Isometry3<f64>>, f64);
 /// One robot program's targets read back: per target the axis angles (rad) or the Cartesian
 /// pose (cell frame: its frame as the program states it), and the track's value (m).
 fn read_back(text: &str, dialect: Dialect) -> Vec<ReadBack> {
-    let program = stiffid::machining::program::parse(text, dialect).unwrap();
+    // An INFORM job's pulses are the setup's ([`with_pulses`]).
+    let pulses = Pulses {
+        per_deg: PULSES_PER_DEG,
+        external: vec![PULSES_PER_MM],
+    };
+    let context = stiffid::machining::program::Context {
+        pulses: Some(&pulses),
+        tool: None,
+    };
+    let program = stiffid::machining::program::parse_in(text, dialect, &context).unwrap();
     assert_eq!(program.axes.len(), 1, "{:?}", program.axes);
     (program.targets.iter())
         .map(|t| {

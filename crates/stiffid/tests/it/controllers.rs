@@ -255,7 +255,12 @@ fn each_generating_controller_writes_the_cells_external_axes_in_its_form() {
         let text = &written.unwrap().files[0].text;
         assert!(text.contains(form), "{d:?}: {text}");
         // Read back: the six angles and the two external values.
-        let p = program::parse(text, d).unwrap();
+        // INFORM's pulses are the setup's (the job states none).
+        let context = program::Context {
+            pulses: Some(&pulses),
+            tool: None,
+        };
+        let p = program::parse_in(text, d, &context).unwrap();
         assert_eq!(p.axes.len(), 2, "{d:?}: {:?}", p.axes);
         assert_eq!(p.targets[0].q_deg, [1.0, 2.0, 3.0, 4.0, 5.0, 6.0], "{d:?}");
         assert_eq!(p.targets[0].external, [Some(1500.0), Some(45.0)], "{d:?}");

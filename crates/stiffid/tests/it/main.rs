@@ -49,6 +49,7 @@ mod identify;
 mod identify_blocks;
 mod identify_options;
 mod identify_streamed;
+mod inform_true_robot;
 mod jacobians;
 mod joint_box;
 mod layout;

@@ -289,10 +289,10 @@ fn malformed_inform_jobs() -> Vec<Malformed> {
             "external_pulses",
         ),
         (
-            INFORM.replace("MOVL C00001", "MOVC C00001"),
+            INFORM.replace("MOVL C00001", "MOVS C00001"),
             Dialect::Inform,
             24,
-            "MOVC",
+            "MOVS",
         ),
         (
             INFORM.replace("MOVL C00001", "IMOV C00001"),

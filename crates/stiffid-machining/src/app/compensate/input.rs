@@ -5,6 +5,7 @@
 use super::written::program_tool;
 use super::{generate, in_input, output, Input};
 use crate::compensate::Options;
+use crate::program::Context;
 use crate::{self as machining, Language, Program};
 use stiffid_core::{Result, Setup};
 
@@ -15,7 +16,8 @@ use stiffid_core::{Result, Setup};
 /// # Errors
 /// Those of [`output::check_output`], [`output::check_lean`], [`output::check_tool_axis`],
 /// [`Settings::validate`], [`output::check_settings`],
-/// [`generate::check_payload`], [`machining::read`] and [`machining::resolve`] (the program's
+/// [`generate::check_payload`], [`machining::read_in`] (with the setup's pulses and tools) and
+/// [`machining::resolve`] (the program's
 /// as [`Error::Input`] naming its file).
 pub(super) fn read_checked(
     setup: &Setup,
@@ -44,7 +46,7 @@ pub(super) fn read_checked(
         generate::check_payload(d, settings.targets, &program_tool(setup))?;
         generate::check_pulses(d, setup.workcell().controller().pulses.as_ref())?;
     }
-    let program = read_program(name, text, language, *chord_tolerance)?;
+    let program = read_program_in(name, text, language, *chord_tolerance, &Context::of(setup))?;
     // A Cartesian program's targets as the controller moves to them (a copy only then).
     match machining::resolve(&program, setup, None, options) {
         Ok(std::borrow::Cow::Owned(p)) => Ok(Some(p)),
@@ -64,5 +66,20 @@ pub fn read_program(
     language: Language,
     chord_tolerance: f64,
 ) -> Result<Program> {
-    machining::read(text, language, chord_tolerance).map_err(|e| in_input(name, e))
+    read_program_in(name, text, language, chord_tolerance, &Context::default())
+}
+
+/// [`read_program`] with what a setup says of the program in `context` (an INFORM job's pulses
+/// and tool files: [`Context::of`]).
+///
+/// # Errors
+/// Those of [`machining::read_in`], as [`Error::Input`](stiffid_core::Error::Input).
+pub fn read_program_in(
+    name: &str,
+    text: &str,
+    language: Language,
+    chord_tolerance: f64,
+    context: &Context,
+) -> Result<Program> {
+    machining::read_in(text, language, chord_tolerance, context).map_err(|e| in_input(name, e))
 }

@@ -27,6 +27,7 @@ mod free;
 mod input;
 mod output;
 pub mod ranking;
+pub mod resolution;
 pub mod scene;
 pub mod speed;
 pub mod stream;
@@ -41,7 +42,7 @@ use crate::program::rename::renamed;
 use crate::{self as machining, Language, Program};
 use crate::{cell, path};
 use input::read_checked;
-pub use input::read_program;
+pub use input::{read_program, read_program_in};
 use stiffid_core::app::{Warning, WarningKind};
 use stiffid_core::model::Parameter;
 use stiffid_core::observation::deflection::Frame;
@@ -442,6 +443,7 @@ where
     let compensated = machining::compensate_for(controller, at, &program, &process, options)
         .map_err(|e| in_input(&name, e))?;
     output::check_runs(compensated.configurations.as_ref(), output)?;
+    resolution::check(setup, (&program, output), &compensated.results)?;
     let mut out = Outcome::named(name);
     out.mapped = options.map.then(|| match &compensated.configurations {
         Some(c) => c.in_chosen(setup.arm(), &compensated.points),

@@ -28,7 +28,9 @@ pub(super) fn generated(
     let mut warnings: Vec<Warning> = (written.warnings.into_iter())
         .map(|w| Warning::new(WarningKind::Feed, w))
         .collect();
-    if generate::written_targets(dialect, settings.targets) != settings.targets {
+    if settings.targets_asked
+        && generate::written_targets(dialect, settings.targets) != settings.targets
+    {
         warnings.push(Warning::new(WarningKind::LeftOut, format!(
             "targets = {}: {} programs are written with joint targets (the compensated axis angles in pulses; stiffid reads no rectangular position back), which hold in any kinematics; the controller interpolates the axes between them",
             settings.targets.name(),

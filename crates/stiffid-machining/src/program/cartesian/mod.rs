@@ -47,10 +47,10 @@ mod resolve;
 mod solve;
 
 pub use flags::Flags;
-pub(crate) use resolve::Writer;
 pub use resolve::{
     check_placed, is_cartesian, resolve, resolve_placed, Controller, SAME_M, SAME_RAD,
 };
+pub(crate) use resolve::{same, Writer};
 
 use super::generate::{number, v, zyx_deg};
 use super::Dialect;

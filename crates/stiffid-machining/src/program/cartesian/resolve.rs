@@ -273,7 +273,7 @@ fn check_tool(tool: &Frame, line: u64, controller: &Controller) -> Result<()> {
 }
 
 /// Whether two frames are one within [`SAME_M`] and [`SAME_RAD`].
-fn same(a: &Isometry3<f64>, b: &Isometry3<f64>) -> bool {
+pub(crate) fn same(a: &Isometry3<f64>, b: &Isometry3<f64>) -> bool {
     (a.translation.vector - b.translation.vector).norm() <= SAME_M
         && a.rotation.angle_to(&b.rotation) <= SAME_RAD
 }

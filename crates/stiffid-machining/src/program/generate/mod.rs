@@ -145,6 +145,9 @@ pub const NAME_LENGTH: std::ops::RangeInclusive<usize> = 8..=64;
 pub struct Settings {
     /// Cartesian or joint targets.
     pub targets: Targets,
+    /// Whether `targets` was asked for (an option given, not its default): a language that
+    /// writes joint targets only (INFORM) says so only then.
+    pub targets_asked: bool,
     /// The robot's largest TCP speed, m/s (> 0, at most 10): a faster feed is refused.
     pub max_tcp_speed: f64,
     /// The longest program name the controller takes; `None`: the dialect's
@@ -155,10 +158,12 @@ pub struct Settings {
 }
 
 impl Default for Settings {
-    /// Cartesian targets, 2000 mm/s, the dialect's name length, 10 000 moves per file.
+    /// Cartesian targets (not asked), 2000 mm/s, the dialect's name length, 10 000 moves per
+    /// file.
     fn default() -> Self {
         Self {
             targets: Targets::Cartesian,
+            targets_asked: false,
             max_tcp_speed: 2.0,
             name_length: None,
             moves_per_file: 10_000,

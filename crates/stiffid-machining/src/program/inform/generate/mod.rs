@@ -4,8 +4,9 @@
 //! Every target is written as its axis angles in whole encoder pulses (`///POSTYPE PULSE`,
 //! `C00000=S,L,U,R,B,T`), whatever [`Targets`] asks: stiffid reads no rectangular position back
 //! ([`super`]), so a job it writes states none. The pulses per degree are the setup's
-//! (`[controller] pulses_per_deg`, [`Pulses`]), stated in the job's `'stiffid:` comments, so the
-//! job reads back on its own; a base axis group (the carrier's axes, `BC00000`) and a station
+//! (`[controller] pulses_per_deg`, [`Pulses`]), which read it back ([`crate::program::Context`]):
+//! the job states them in no comment (a comment line is at most 32 characters on the pendant,
+//! and six numbers do not fit); a base axis group (the carrier's axes, `BC00000`) and a station
 //! group (the positioner's, `EC00000`) are written in pulses with `external_pulses`, else in
 //! `///ANGLE` form (mm, deg).
 
@@ -42,16 +43,6 @@ pub fn speed(feed: f64) -> Option<(String, bool)> {
     let steps = feed * 1e3 / SPEED_STEP_MM_S;
     let exact = (steps - steps.round()).abs() <= 1e-9 * steps.max(1.0);
     (steps.round() >= 1.0).then(|| (format!("V={:.1}", steps.round() * SPEED_STEP_MM_S), exact))
-}
-
-/// The `'stiffid:` comments that convert the job's pulses (module docs of [`super`]).
-fn directives(pulses: &Pulses) -> String {
-    let list = |v: &[f64]| v.iter().map(f64::to_string).collect::<Vec<_>>().join(" ");
-    let mut s = format!("'stiffid: pulses_per_deg = {}\n", list(&pulses.per_deg));
-    if !pulses.external.is_empty() {
-        let _ = writeln!(s, "'stiffid: external_pulses = {}", list(&pulses.external));
-    }
-    s
 }
 
 /// Whether the cell of `plan` has a base axis group (carrier axes) and a station group
@@ -141,11 +132,11 @@ impl Generator for super::Inform {
         }
         s
     }
-    /// The moves (`//INST` lines after `NOP`, the `'stiffid:` comments first) and the positions
-    /// (`//POS` lines) of one job, `//POS` between them.
+    /// The moves (`//INST` lines after `NOP`) and the positions (`//POS` lines) of one job,
+    /// `//POS` between them.
     fn body(&self, plan: &Plan, part: &Part, warnings: &mut Vec<String>) -> Result<String> {
         let pulses = pulses(plan)?;
-        let mut inst = directives(pulses);
+        let mut inst = String::new();
         let n = part.targets.len();
         let (base, station) = groups(plan);
         for (k, m) in part.moves.iter().enumerate() {

@@ -9,7 +9,15 @@ use stiffid_machining::program::generate::{generate, Settings, Tool};
 use stiffid_machining::program::generate::{Move, Plan, Target, Targets};
 use stiffid_machining::program::inform::generate::speed;
 use stiffid_machining::program::speed::Speed;
-use stiffid_machining::program::{parse, Dialect};
+use stiffid_machining::program::{parse, parse_in, Context, Dialect};
+
+/// What a setup with the controller's pulses `p` tells the reader.
+fn with(p: &Pulses) -> Context<'_> {
+    Context {
+        pulses: Some(p),
+        tool: None,
+    }
+}
 
 /// Pulses per degree that are not whole (S, L, U, R, B, T) and per mm of a track.
 fn pulses(external: Vec<f64>) -> Pulses {
@@ -62,8 +70,9 @@ const Q: [[f64; 6]; 3] = [
 ];
 const MOVES: [Move; 3] = [Move::Rapid, Move::Feed(0.03), Move::Feed(100.0 / 6e4)];
 
-/// A job written from Cartesian targets (the default) states their axis angles in pulses, reads
-/// back on its own to within half a pulse, with its speeds, and is the job of joint targets.
+/// A job written from Cartesian targets (the default) states their axis angles in pulses and no
+/// `'stiffid:` comment, reads back with the setup's pulses (not without them) to within half a
+/// pulse, with its speeds, and is the job of joint targets.
 #[test]
 fn a_job_reads_back_its_targets_within_half_a_pulse() {
     let (t, p) = (targets(&Q, &[]), pulses(Vec::new()));
@@ -76,17 +85,14 @@ fn a_job_reads_back_its_targets_within_half_a_pulse() {
         text.contains("'W = 12.5 kg\r\n'Xg = 0 mm\r\n'Yg = 0 mm\r\n'Zg = 120 mm\r\n"),
         "{text}"
     );
-    assert!(
-        text.contains("'stiffid: pulses_per_deg = 1341.25 1341.25 1150.5 873.4 873.4 532.7\r\n"),
-        "{text}"
-    );
+    // The pulses are the setup's: no comment states them (a pendant keeps 32 characters).
+    assert!(!text.contains("'stiffid:"), "{text}");
     assert!(text.contains("MOVJ C00000 VJ=20.00 PL=0\r\nMOVL C00001 V=30.0 PL=1\r\nMOVL C00002 V=1.7 PL=0\r\nEND\r\n"), "{text}");
-    assert!(text
-        .lines()
-        .all(|l| !l.starts_with('\'') || l.starts_with("'stiffid:") || l.len() <= 32));
+    assert!(text.lines().all(|l| !l.starts_with('\'') || l.len() <= 32));
     assert_eq!(w.warnings.len(), 1, "{:?}", w.warnings);
     assert!(w.warnings[0].contains("100 mm/min") && w.warnings[0].contains("V=1.7"));
-    let read = parse(text, Dialect::Inform).unwrap();
+    assert!(parse(text, Dialect::Inform).is_err());
+    let read = parse_in(text, Dialect::Inform, &with(&p)).unwrap();
     assert_eq!(read.targets.len(), 3);
     for (r, q) in read.targets.iter().zip(&Q) {
         for ((a, b), per) in r.q_deg.iter().zip(q).zip(&p.per_deg) {
@@ -128,10 +134,10 @@ fn a_job_without_pulses_or_with_a_feed_it_cannot_state_is_refused() {
     ));
 }
 
-/// A job of more moves than one file holds calls its sub-jobs, each of which reads back on its
-/// own (its `'stiffid:` comments) with its share of the targets.
+/// A job of more moves than one file holds calls its sub-jobs, each of which reads back with the
+/// setup's pulses with its share of the targets.
 #[test]
-fn a_split_job_calls_sub_jobs_that_read_back_on_their_own() {
+fn a_split_job_calls_sub_jobs_that_read_back_with_the_setups_pulses() {
     let q: Vec<[f64; 6]> = (0..250)
         .map(|i| [-20.0 + 1e-3 * i as f64, 5.0, -45.0, 10.0, -40.0, 20.0])
         .collect();
@@ -153,7 +159,11 @@ fn a_split_job_calls_sub_jobs_that_read_back_on_their_own() {
         assert!(f
             .text
             .starts_with(&format!("/JOB\r\n//NAME {}\r\n", f.name)));
-        read.extend(parse(&f.text, Dialect::Inform).unwrap().targets);
+        read.extend(
+            parse_in(&f.text, Dialect::Inform, &with(&p))
+                .unwrap()
+                .targets,
+        );
     }
     assert_eq!(read.len(), 250);
     for (r, q) in read.iter().zip(&q) {
@@ -185,7 +195,7 @@ fn a_base_axis_is_written_in_angle_form_or_in_pulses() {
             false => "///PULSE\r\nBC00000=1500123\r\n",
         };
         assert!(text.contains(form), "{text}");
-        let read = parse(text, Dialect::Inform).unwrap();
+        let read = parse_in(text, Dialect::Inform, &with(&p)).unwrap();
         for r in &read.targets {
             let e = r.external[0].unwrap();
             assert!((e - 1500.123456789).abs() <= tolerance, "{e}");

@@ -3,6 +3,7 @@
 mod cartesian;
 mod generate;
 mod inform;
+mod inform_jobs;
 mod krl;
 pub(crate) mod rapid;
 mod speed;

@@ -1,0 +1,239 @@
+//! The `//INST` section of a job: its motions, its `'stiffid:` comments, and every other
+//! instruction accepted or refused as it can or cannot change the path (module docs of
+//! [`super`]; the instructions as the YRC1000 and DX200 INFORM manuals name them).
+
+use super::pulses::{directive, Directives};
+use crate::program::at;
+use crate::program::speed::Speed;
+use stiffid_core::common::limits::short;
+use stiffid_core::Result;
+
+/// A motion to a teaching position: its line, instruction, the positions it names, its speed
+/// and the tool file a `TOOL#(n)` tag selects.
+pub(super) struct Motion {
+    pub line: u64,
+    pub word: String,
+    pub robot: u64,
+    pub base: Option<u64>,
+    pub station: Option<u64>,
+    pub speed: Speed,
+    pub tool: Option<u32>,
+}
+
+/// What `//INST` holds: the `'stiffid:` comments and the motions.
+pub(super) struct Instructions {
+    pub directives: Directives,
+    pub motions: Vec<Motion>,
+}
+
+/// Instructions that cannot move the robot or change a frame: input and output, timers and
+/// waits, arithmetic on B, I, D, R and S variables, messages, arc-welding and weaving
+/// conditions, synchronisation with other tasks.
+const ACCEPTED: &[&str] = &[
+    "NOP", "TIMER", "DOUT", "DIN", "AOUT", "WAIT", "PULSE", "SET", "SETE", "GETE", "GETS", "CLEAR",
+    "INC", "DEC", "ADD", "SUB", "MUL", "DIV", "AND", "OR", "NOT", "XOR", "MSG", "ARCON", "ARCOF",
+    "ARCSET", "ARCCTS", "ARCCTE", "WVON", "WVOF", "AWELD", "VWELD", "SPEED", "TSYNC", "SKILLSND",
+    "HPVELON", "HPVELOF", "PAUSE", "CWAIT", "ADVINIT", "ADVSTOP", "SETREG", "GETREG", "SYSTART",
+    "SYEND", "HAND", "HSEN", "GETARG", "CNVRT", "GETPOS", "SETFILE", "GETFILE", "ARATION",
+    "ARATIOF", "TOOLON", "TOOLOF", "SVSPOT", "SPOT", "GUNCHG",
+];
+
+/// Instructions that change the order the controller runs (a jump, a call, a loop, a branch).
+const CONTROL: &[&str] = &[
+    "JUMP",
+    "CALL",
+    "IF",
+    "IFTHEN",
+    "IFTHENEXP",
+    "ELSEIF",
+    "ELSEIFEXP",
+    "ELSE",
+    "ENDIF",
+    "FOR",
+    "NEXT",
+    "WHILE",
+    "WHILEEXP",
+    "ENDWHILE",
+    "SWITCH",
+    "CASE",
+    "DEFAULT",
+    "ENDSWITCH",
+    "RET",
+];
+
+/// The `//INST` section of `text`: its directives and motions, every other instruction checked
+/// (module docs of [`super`]).
+///
+/// # Errors
+/// [`stiffid_core::Error::Program`] naming the line of an instruction refused, of a job that
+/// does not end with `END` (cut off), or of a jump or call in a job with motions.
+pub(super) fn instructions(text: &str) -> Result<Instructions> {
+    let mut out = Instructions {
+        directives: Directives::default(),
+        motions: Vec::new(),
+    };
+    let (mut in_inst, mut last) = (false, None::<(u64, String)>);
+    let mut control: Option<(u64, String)> = None;
+    for (line, _, l) in crate::program::lines(text) {
+        let t = l.trim();
+        if let Some(section) = t.strip_prefix("//").filter(|s| !s.starts_with('/')) {
+            in_inst = section.starts_with("INST");
+            continue;
+        }
+        if in_inst && t.starts_with("///GROUP") {
+            groups(line, t)?;
+        }
+        if !in_inst || t.starts_with("///") || t.is_empty() {
+            continue;
+        }
+        last = Some((line, t.to_string()));
+        if let Some(comment) = t.strip_prefix('\'') {
+            directive(line, comment, &mut out.directives)?;
+            continue;
+        }
+        let words: Vec<&str> = t.split_whitespace().collect();
+        let first = words[0].to_ascii_uppercase();
+        if first.starts_with('*') {
+            // A label: where a JUMP goes, refused below when the job has one.
+            continue;
+        }
+        if CONTROL.contains(&first.as_str()) || first.starts_with("MACRO") {
+            control.get_or_insert((line, first));
+            continue;
+        }
+        match first.as_str() {
+            "MOVJ" | "MOVL" | "MOVC" => out.motions.push(motion(line, &first, &words[1..])?),
+            "END" => {}
+            w if ACCEPTED.contains(&w) => {}
+            _ => return Err(refused(line, &first, t)),
+        }
+    }
+    check_end(last)?;
+    if let (Some((line, word)), false) = (control, out.motions.is_empty()) {
+        return Err(at(line, format!("{}: a jump, call, macro, loop or branch in a job with motions; the order the controller runs them (or the motions of the job it calls) would not be the file's: write the path as motions of one job", short(&word))));
+    }
+    Ok(out)
+}
+
+/// Refuses a job that moves a robot other than the controller's first (`///GROUP1 RB2`, a
+/// second robot `RB2` in any group): the setup is one robot, whose positions are `RB1`'s.
+fn groups(line: u64, t: &str) -> Result<()> {
+    let words = t.split_whitespace().skip(1).flat_map(|w| w.split(','));
+    match words.map(str::trim).find(|w| w.starts_with("RB") && *w != "RB1") {
+        Some(robot) => Err(at(line, format!("{}: a job of robot {}; stiffid compensates one robot, the controller's first (RB1): compensate a job of that robot", short(t), short(robot)))),
+        None => Ok(()),
+    }
+}
+
+/// Refuses a job whose last instruction is not `END`: the controller loads no job without it,
+/// and a file cut off mid-line reads as one.
+fn check_end(last: Option<(u64, String)>) -> Result<()> {
+    match last {
+        Some((_, t)) if t.eq_ignore_ascii_case("END") => Ok(()),
+        Some((line, t)) => Err(at(line, format!("the job ends on '{}' without END: a job the controller stores ends with END (is the file cut off?)", short(&t)))),
+        None => Err(at(1, "no //INST section ending with END: not a whole INFORM job (is the file cut off?)".into())),
+    }
+}
+
+/// The error of the instruction `word` on `line` (`t`), which stiffid does not accept.
+fn refused(line: u64, word: &str, t: &str) -> stiffid_core::Error {
+    let why = match word {
+        "MOVS" => "a spline; its path bends through all its points, not along the compensated ones: write it as MOVL or MOVJ motions".to_string(),
+        "IMOV" => "an increment from where the robot is, which the job does not say: write the absolute position".to_string(),
+        "SFTON" | "SFTOF" | "MSHIFT" => "a shift moves the path by an amount held on the controller, which the job does not say: compensate the path without it (teach or post the shifted positions)".to_string(),
+        w if w.starts_with("SMOV") || w.starts_with("+MOV") || w.starts_with("SYMOV") => {
+            "a motion stiffid does not follow (on a conveyor, or of another group alone); write the path as MOVJ, MOVL and MOVC to C positions".to_string()
+        }
+        _ => format!("an instruction stiffid does not know ('{}'); it may move the robot or change a frame, so the job is not compensated: remove it or write the path without it", short(t)),
+    };
+    at(line, format!("{}: {why}", short(word)))
+}
+
+/// The positions and tags of a `MOVJ`, `MOVL` or `MOVC` line after its word.
+fn motion(line: u64, word: &str, words: &[&str]) -> Result<Motion> {
+    let target = words.first().copied().unwrap_or("");
+    let robot = index(target, "C").ok_or_else(|| {
+        let why = match target.chars().next() {
+            Some('P' | 'L') => "a position variable holds its value on the controller, not in this job; teach the position in the job (C)",
+            _ => "expected a teaching position C00000",
+        };
+        at(line, format!("{word} {}: {why}", short(target)))
+    })?;
+    let mut m = Motion {
+        line,
+        word: word.to_string(),
+        robot,
+        base: None,
+        station: None,
+        speed: Speed::Joint,
+        tool: None,
+    };
+    for w in &words[1..] {
+        tag(line, word, w, &mut m)?;
+    }
+    m.speed = super::speed::speed(line, word, &words[1..])?;
+    Ok(m)
+}
+
+/// The number of a position named `prefix` then digits (`C00001`), if `w` is one.
+fn index(w: &str, prefix: &str) -> Option<u64> {
+    w.strip_prefix(prefix)
+        .filter(|d| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit()))
+        .and_then(|d| d.parse().ok())
+}
+
+/// Reads one word `w` after a motion's position into `m`, refusing what stiffid does not follow.
+fn tag(line: u64, word: &str, w: &str, m: &mut Motion) -> Result<()> {
+    let upper = w.to_ascii_uppercase();
+    if let Some(i) = index(&upper, "BC") {
+        m.base = Some(i);
+    } else if let Some(i) = index(&upper, "EC") {
+        m.station = Some(i);
+    } else if upper.starts_with("BP") || upper.starts_with("EX") {
+        return Err(at(line, format!("{word} .. {}: a position variable holds its value on the controller, not in this job; teach the position in the job (BC, EC)", short(w))));
+    } else if upper == "UNTIL" {
+        return Err(at(line, format!("{word} .. UNTIL: a search stops where a signal comes, which the job does not say; not compensated")));
+    } else if upper.starts_with("+MOV") {
+        return Err(at(line, format!("{word} .. {}: another group's own motion (a station moving at its own speed beside the robot); stiffid follows one motion per line: write the station's values in the robot's motion (C.. EC..)", short(w))));
+    } else if let Some(n) = upper
+        .strip_prefix("TOOL#(")
+        .and_then(|r| r.strip_suffix(')'))
+    {
+        let n = n.parse::<u32>().map_err(|_| {
+            at(line, format!("{word} .. {}: a tool file selected by a variable; the job does not say which: write its number", short(w)))
+        })?;
+        m.tool = Some(n);
+    } else if let Some((name, value)) = upper.split_once('=') {
+        value_tag(line, word, (name, value), w)?;
+    } else if upper != "NWAIT" {
+        return Err(at(line, format!("{word} .. {}: a tag stiffid does not follow (the path or its end would not be the job's); remove it or compensate the job without it", short(w))));
+    }
+    Ok(())
+}
+
+/// Checks a tag `name=value` (`w` as written): a speed, position level or acceleration tag with
+/// a finite number or a variable (`I000`, `LD001`, `B[1]`).
+fn value_tag(line: u64, word: &str, (name, value): (&str, &str), w: &str) -> Result<()> {
+    if !["VJ", "V", "VR", "VE", "PL", "CR", "ACC", "DEC"].contains(&name) {
+        return Err(at(line, format!("{word} .. {}: a tag stiffid does not follow (the path or its end would not be the job's); remove it or compensate the job without it", short(w))));
+    }
+    let number = crate::program::speed::literal(value).is_some();
+    let variable = value
+        .strip_prefix('L')
+        .unwrap_or(value)
+        .strip_prefix(['B', 'I', 'D', 'R'])
+        .is_some_and(|r| {
+            (!r.is_empty() && r.bytes().all(|b| b.is_ascii_digit()))
+                || (r.starts_with('[') && r.ends_with(']'))
+        });
+    match number || variable {
+        true => Ok(()),
+        false => Err(at(
+            line,
+            format!(
+                "{word} .. {}: expected a number or a B, I, D or R variable after {name}=",
+                short(w)
+            ),
+        )),
+    }
+}

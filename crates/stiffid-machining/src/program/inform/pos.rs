@@ -1,0 +1,177 @@
+//! The `//POS` section of a job: its teaching positions, the form and tool file each was taught
+//! in, and `///NPOS` (module docs of [`super`]).
+
+use crate::program::{at, number_at};
+use std::collections::HashMap;
+use std::ops::Range;
+use stiffid_core::common::limits::short;
+use stiffid_core::Result;
+
+/// How a block of positions is written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Form {
+    Pulse,
+    Angle,
+    Rectan,
+}
+
+/// The three kinds of teaching positions a motion names.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub(super) enum Kind {
+    Robot,
+    Base,
+    Station,
+}
+
+impl Kind {
+    pub(super) fn prefix(self) -> &'static str {
+        match self {
+            Kind::Robot => "C",
+            Kind::Base => "BC",
+            Kind::Station => "EC",
+        }
+    }
+}
+
+/// A teaching position: its line, form, values with their spans, the tool file it was taught
+/// with (`///TOOL n` before it, with its line) and, in Cartesian form, the frame it names.
+pub(super) struct Position {
+    pub line: u64,
+    pub form: Form,
+    pub values: Vec<(f64, Range<usize>)>,
+    pub tool: Option<(u64, u32)>,
+    pub frame: String,
+}
+
+/// The positions by kind and number, and `///NPOS`'s line and counts.
+pub(super) struct Section {
+    pub positions: HashMap<(Kind, u64), Position>,
+    pub npos: Option<(u64, Vec<usize>)>,
+}
+
+/// The state of the `//POS` lines read so far: the form, tool file and frame in force.
+struct Block {
+    form: Form,
+    tool: Option<(u64, u32)>,
+    frame: String,
+}
+
+/// The `//POS` section of `text`. A block with no `///POSTYPE` and form line holds pulses, the
+/// form the controllers store a job in by default (YRC1000 and DX200 jobs load so).
+pub(super) fn section(text: &str) -> Result<Section> {
+    let mut out = Section {
+        positions: HashMap::new(),
+        npos: None,
+    };
+    let mut in_pos = false;
+    let mut block = Block {
+        form: Form::Pulse,
+        tool: None,
+        frame: "PULSE".into(),
+    };
+    for (line, start, l) in crate::program::lines(text) {
+        let t = l.trim();
+        if let Some(section) = t.strip_prefix("//").filter(|s| !s.starts_with('/')) {
+            in_pos = section.starts_with("POS");
+            continue;
+        }
+        if !in_pos {
+            continue;
+        }
+        if let Some(pseudo) = t.strip_prefix("///") {
+            pseudo_line(line, pseudo, &mut block, &mut out)?;
+            continue;
+        }
+        let Some((name, _)) = t.split_once('=') else {
+            continue;
+        };
+        position(line, (start, l), name.trim(), &block, &mut out)?;
+    }
+    Ok(out)
+}
+
+/// Reads one `///` line of `//POS` into `block` (form, tool, frame) or `out` (`///NPOS`).
+fn pseudo_line(line: u64, pseudo: &str, block: &mut Block, out: &mut Section) -> Result<()> {
+    let mut words = pseudo.split_whitespace();
+    let word = words.next().unwrap_or("");
+    let rest: Vec<&str> = words.collect();
+    match word {
+        "PULSE" => block.form = Form::Pulse,
+        "ANGLE" => block.form = Form::Angle,
+        "RECTAN" => block.form = Form::Rectan,
+        "POSTYPE" => block.frame = rest.join(" "),
+        "TOOL" => {
+            let n = rest.first().and_then(|n| n.parse::<u32>().ok());
+            let n = n.ok_or_else(|| at(line, "///TOOL: expected a tool file number".into()))?;
+            block.tool = Some((line, n));
+        }
+        "NPOS" => {
+            let counts = pseudo[4..]
+                .split(',')
+                .map(|n| n.trim().parse::<usize>())
+                .collect::<std::result::Result<Vec<_>, _>>()
+                .map_err(|_| at(line, "///NPOS: expected six counts C,BC,EC,P,BP,EX".into()))?;
+            out.npos = Some((line, counts));
+        }
+        _ => {}
+    }
+    Ok(())
+}
+
+/// Reads the position `name` on `line` (`l`, starting at byte `start` of the text) into `out`.
+fn position(
+    line: u64,
+    (start, l): (usize, &str),
+    name: &str,
+    block: &Block,
+    out: &mut Section,
+) -> Result<()> {
+    let (kind, digits) = match name {
+        n if n.starts_with("BC") => (Kind::Base, &n[2..]),
+        n if n.starts_with("EC") => (Kind::Station, &n[2..]),
+        n if n.starts_with('C') => (Kind::Robot, &n[1..]),
+        // Position variables' initial values: held on the controller.
+        _ => return Ok(()),
+    };
+    let index: u64 = digits
+        .parse()
+        .map_err(|_| at(line, format!("{}: expected a position number", short(name))))?;
+    let mut values = Vec::new();
+    let mut from = l.find('=').map_or(l.len(), |e| e + 1);
+    loop {
+        let (v, span) = number_at(l, from)
+            .ok_or_else(|| at(line, format!("{name}: expected numbers separated by ','")))?;
+        if block.form == Form::Pulse && l[span.clone()].contains(['.', 'e', 'E']) {
+            let what = &l[span.clone()];
+            return Err(at(
+                line,
+                format!("{name}: {what} is not a whole number of pulses"),
+            ));
+        }
+        values.push((v, start + span.start..start + span.end));
+        let rest = l[span.end..].trim_start();
+        match rest.strip_prefix(',') {
+            Some(_) => from = l.len() - rest.len() + 1,
+            None if rest.is_empty() => break,
+            None => {
+                let after = short(rest);
+                return Err(at(line, format!("{name}: '{after}' after its values")));
+            }
+        }
+    }
+    let position = Position {
+        line,
+        form: block.form,
+        values,
+        tool: block.tool,
+        frame: block.frame.clone(),
+    };
+    if let Some(first) = out.positions.insert((kind, index), position) {
+        let first = first.line;
+        return Err(at(
+            line,
+            format!("{name} defined twice in //POS (lines {first} and {line})"),
+        ));
+    }
+    Ok(())
+}

@@ -1,0 +1,326 @@
+//! INFORM jobs as the controllers store them (`stiffid_machining::program::inform`): pulses from
+//! the setup, tool files, `MOVC`, what real jobs write around their motions, and the real jobs
+//! of `tests/data/programs/inform` (SOURCES.md there), each read point by point against an
+//! independent reading or refused naming its line and construct.
+
+use nalgebra::Isometry3;
+use stiffid_core::setup::{NumberedFrames, Pulses};
+use stiffid_core::Error;
+use stiffid_machining::program::{parse, parse_in, Context, Dialect, JointProgram};
+
+/// A GP-sized robot's pulses per degree (S, L, U, R, B, T), not whole.
+const PER_DEG: [f64; 6] = [1341.25, 1341.25, 1150.5, 873.4, 873.4, 532.7];
+
+fn pulses() -> Pulses {
+    Pulses {
+        per_deg: PER_DEG,
+        external: Vec::new(),
+    }
+}
+
+fn with(p: &Pulses) -> Context<'_> {
+    Context {
+        pulses: Some(p),
+        tool: None,
+    }
+}
+
+/// A job as a YRC1000 stores it: no `///POSTYPE` line, tool file 1, no `'stiffid:` comment,
+/// I/O, timers, arc welding, a label and a circle around its motions.
+const STORED: &str = "/JOB\r\n//NAME WELD\r\n//POS\r\n///NPOS 5,0,0,0,0,0\r\n///TOOL 1\r\nC00000=-48629,112084,69901,4161,-52375,-4796\r\nC00001=-46969,105372,61036,4871,-50464,-5567\r\nC00002=-45969,104372,60036,4871,-50464,-5567\r\nC00003=-44969,105372,61036,4871,-50464,-5567\r\nC00004=-43969,106372,62036,4871,-50464,-5567\r\n//INST\r\n///DATE 2023/02/07 09:03\r\n///ATTR SC,RW\r\n///GROUP1 RB1\r\nNOP\r\n*START\r\nDOUT OT#(12) ON\r\nTIMER T=0.50\r\nMOVJ C00000 VJ=25.00 PL=0\r\nWAIT IN#(3)=ON\r\nARCON ASF#(1)\r\nMOVL C00001 V=10.0 PL=0 NWAIT\r\nMOVC C00002 V=10.0\r\nMOVC C00003 V=10.0\r\nMOVC C00004 V=10.0 PL=0\r\nARCOF AEF#(1)\r\nSET B000 1\r\nEND\r\n";
+
+/// The `C` positions of `text` read independently: each `Cnnnnn=` line's numbers divided by
+/// `per_deg`, by position number.
+fn independent(text: &str, per_deg: &[f64; 6]) -> Vec<(u32, Vec<f64>)> {
+    text.lines()
+        .filter(|l| l.starts_with('C') && l.contains('='))
+        .map(|l| {
+            let (name, values) = l.split_once('=').unwrap();
+            let values = (values.trim().split(',').zip(per_deg))
+                .map(|(v, per)| v.parse::<i64>().unwrap() as f64 / per)
+                .collect();
+            (name[1..].parse().unwrap(), values)
+        })
+        .collect()
+}
+
+/// The position numbers the motion lines of `text` name, in order.
+fn moved_to(text: &str) -> Vec<u32> {
+    text.lines()
+        .filter(|l| {
+            ["MOVJ C", "MOVL C", "MOVC C"]
+                .iter()
+                .any(|m| l.starts_with(m))
+        })
+        .map(|l| l[6..11].parse().unwrap())
+        .collect()
+}
+
+fn refused(result: stiffid_core::Result<JointProgram>) -> (u64, String) {
+    match result {
+        Err(Error::Program { line, message }) => (line, message),
+        other => panic!("{other:?}"),
+    }
+}
+
+/// A job stored as the controller stores it is read with the setup's pulses, every target equal
+/// to the independent reading, MOVC a path motion; written back, the MOVC lines stay MOVC and
+/// only the positions change, in whole pulses.
+#[test]
+fn a_stored_job_is_read_with_the_setups_pulses() {
+    let p = pulses();
+    let (line, message) = refused(parse(STORED, Dialect::Inform));
+    assert_eq!(line, 19);
+    assert!(message.contains("[controller] pulses_per_deg"), "{message}");
+    let read = parse_in(STORED, Dialect::Inform, &with(&p)).unwrap();
+    let positions = independent(STORED, &PER_DEG);
+    let order = moved_to(STORED);
+    assert_eq!(read.targets.len(), 5);
+    for (t, n) in read.targets.iter().zip(&order) {
+        let (_, want) = positions.iter().find(|(k, _)| k == n).unwrap();
+        for (a, b) in t.q_deg.iter().zip(want) {
+            assert!((a - b).abs() < 1e-12, "{a} {b}");
+        }
+    }
+    let lines: Vec<u64> = read.targets.iter().map(|t| t.line).collect();
+    assert_eq!(lines, [19, 22, 23, 24, 25]);
+    assert!(
+        matches!(read.targets[3].speed, stiffid_machining::program::speed::Speed::Path(v) if (v - 0.01).abs() < 1e-12)
+    );
+    let mut q: Vec<[f64; 6]> = read.targets.iter().map(|t| t.q_deg).collect();
+    q[3][1] += 0.01;
+    let written = read.write(&q).unwrap();
+    let changed = (written.lines().zip(STORED.lines())).filter(|(a, b)| a != b);
+    let changed: Vec<(&str, &str)> = changed.collect();
+    assert_eq!(changed.len(), 1, "{changed:?}");
+    let l = ((105372.0 / PER_DEG[1] + 0.01) * PER_DEG[1]).round() as i64;
+    assert_eq!(
+        changed[0].0,
+        format!("C00003=-44969,{l},61036,4871,-50464,-5567")
+    );
+    assert!(written.contains("MOVC C00003 V=10.0\r\n"));
+}
+
+/// The job's `'stiffid:` pulses are used when the setup gives none and refused, naming both,
+/// when they contradict the setup's or each other.
+#[test]
+fn contradicting_pulses_are_refused_naming_both() {
+    let comment = |v: &str| {
+        STORED.replace(
+            "NOP\r\n",
+            &format!("NOP\r\n'stiffid: pulses_per_deg = {v}\r\n"),
+        )
+    };
+    let same = comment("1341.25 1341.25 1150.5 873.4 873.4 532.7");
+    let alone = parse(&same, Dialect::Inform).unwrap();
+    let p = pulses();
+    let both = parse_in(&same, Dialect::Inform, &with(&p)).unwrap();
+    assert_eq!(alone.targets, both.targets);
+    let other = comment("1000 1000 1000 1000 1000 1000");
+    let (line, message) = refused(parse_in(&other, Dialect::Inform, &with(&p)));
+    assert_eq!(line, 16);
+    assert!(
+        message.contains("contradicts the setup's [controller] pulses_per_deg = [1341.25"),
+        "{message}"
+    );
+    let twice = other.replace(
+        "NOP\r\n",
+        "NOP\r\n'stiffid: pulses_per_deg = 1000 1000 1000 1000 1000 999\r\n",
+    );
+    let (line, message) = refused(parse(&twice, Dialect::Inform));
+    assert_eq!(line, 17);
+    assert!(
+        message.contains("stated twice with other values (lines 16 and 17)"),
+        "{message}"
+    );
+}
+
+/// A tool file the setup's `[controller] tools` gives is checked against the setup's tool; one it
+/// does not give is the setup's only in a job that never changes it.
+#[test]
+fn tool_files_are_checked_against_the_setups_tool() {
+    let p = pulses();
+    let tool = Isometry3::translation(0.0, 0.0, 0.3);
+    let held = NumberedFrames::new("controller.tools", &[(1, tool)]).unwrap();
+    let other = NumberedFrames::new(
+        "controller.tools",
+        &[(1, Isometry3::translation(0.0, 0.0, 0.25))],
+    )
+    .unwrap();
+    let context = |tools| Context {
+        pulses: Some(&p),
+        tool: Some((tool, tools)),
+    };
+    assert!(parse_in(STORED, Dialect::Inform, &context(&held)).is_ok());
+    let (line, message) = refused(parse_in(STORED, Dialect::Inform, &context(&other)));
+    assert_eq!(line, 5);
+    assert!(
+        message.contains("tool file 1") && message.contains("is not the setup's tool"),
+        "{message}"
+    );
+    let empty = NumberedFrames::default();
+    assert!(parse_in(STORED, Dialect::Inform, &context(&empty)).is_ok());
+    let changes = STORED.replace("MOVC C00003 V=10.0", "MOVC C00003 V=10.0 TOOL#(2)");
+    let (line, message) = refused(parse_in(&changes, Dialect::Inform, &context(&empty)));
+    assert_eq!(line, 24);
+    assert!(
+        message.contains("tool file 2 after tool file 1 (line 5)"),
+        "{message}"
+    );
+}
+
+/// What changes the path or cannot be known is refused naming its line: a shift, a position
+/// variable, a jump, an unknown instruction, a speed that is not a number, a job cut off, a NUL.
+#[test]
+fn what_can_change_the_path_is_refused_naming_the_line() {
+    let p = pulses();
+    let cases: Vec<(String, u64, &str)> = vec![
+        (
+            STORED.replace("ARCOF AEF#(1)", "SFTON P001 UF#(1)"),
+            26,
+            "SFTON: a shift",
+        ),
+        (
+            STORED.replace("MOVL C00001", "MOVL P001"),
+            22,
+            "MOVL P001: a position variable",
+        ),
+        (
+            STORED.replace("SET B000 1", "JUMP *START"),
+            27,
+            "JUMP: a jump",
+        ),
+        (
+            STORED.replace("SET B000 1", "FROBNICATE 3"),
+            27,
+            "an instruction stiffid does not know",
+        ),
+        (
+            STORED.replace("V=10.0 PL=0 NWAIT", "V=nan PL=0"),
+            22,
+            "V=nan: expected a number",
+        ),
+        (
+            STORED
+                .replace("MOVS", "")
+                .replace("MOVC C00002", "MOVS C00002"),
+            23,
+            "MOVS: a spline",
+        ),
+        (
+            STORED.replace("SET B000 1\r\nEND\r\n", "SET B000 1\r\nMOVL C000"),
+            28,
+            "without END",
+        ),
+        (
+            STORED.replace("MOVL C00001 V=10.0", "MOVL C00001 V=10.0\0"),
+            22,
+            "a control character",
+        ),
+        (
+            STORED.replace("///GROUP1 RB1", "///GROUP1 RB1,RB2"),
+            14,
+            "a job of robot RB2",
+        ),
+        (
+            STORED.replace("///NPOS 5,", "///NPOS 6,"),
+            4,
+            "///NPOS declares 6 C positions, //POS holds 5",
+        ),
+    ];
+    for (text, line, words) in cases {
+        let (at, message) = refused(parse_in(&text, Dialect::Inform, &with(&p)));
+        assert_eq!(at, line, "{words}: {message}");
+        assert!(message.contains(words), "{words}: {message}");
+    }
+}
+
+/// The real jobs of the corpus (tests/data/programs/inform, SOURCES.md): each refused naming
+/// its line and construct, with the setup's pulses given (a GP-sized robot's), never read wrong.
+#[test]
+fn the_real_jobs_are_refused_naming_line_and_construct() {
+    let p = pulses();
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/programs/inform/");
+    let expected: [(&str, u64, &str); 8] = [
+        (
+            "MQCIA_DROP01.JBI",
+            45,
+            "CALL: a jump, call, macro, loop or branch",
+        ),
+        (
+            "MQCIA_ROBOT_CELL_000.JBI",
+            74,
+            "+MOVJ: another group's own motion",
+        ),
+        ("TSHIKINA_TEST1.JBI", 32, "IMOV: an increment"),
+        (
+            "MOTOROS2_INIT_ROS_SINGLE_ARM.JBI",
+            1,
+            "no motion to a joint target",
+        ),
+        (
+            "MOTOROS2_INIT_ROS_TWO_ARMS.JBI",
+            9,
+            "///GROUP2 RB2: a job of robot RB2",
+        ),
+        ("ROSI_ROS_R1B1.JBI", 1, "no motion to a joint target"),
+        ("ROSI_ROS_S1.JBI", 1, "no motion to a joint target"),
+        (
+            "ROSI_INIT_ROS_CALL_JOB_MAIN.JBI",
+            1,
+            "no motion to a joint target",
+        ),
+    ];
+    let files = std::fs::read_dir(dir).unwrap();
+    let jobs = files.filter(|f| {
+        f.as_ref()
+            .unwrap()
+            .path()
+            .extension()
+            .is_some_and(|e| e == "JBI")
+    });
+    assert_eq!(jobs.count(), expected.len());
+    for (name, line, words) in expected {
+        let text = std::fs::read_to_string(format!("{dir}{name}")).unwrap();
+        let (at, message) = refused(parse_in(&text, Dialect::Inform, &with(&p)));
+        assert_eq!(at, line, "{name}: {message}");
+        assert!(message.contains(words), "{name}: {message}");
+    }
+}
+
+/// A base axis in pulses: the setup's `external_pulses`, or the job's comment, never two that
+/// differ.
+#[test]
+fn a_base_axis_takes_the_setups_external_pulses() {
+    let job = "/JOB\r\n//NAME T\r\n//POS\r\n///NPOS 1,1,0,0,0,0\r\n///POSTYPE PULSE\r\n///PULSE\r\nC00000=1000,2000,3000,0,-4500,500\r\nBC00000=150000\r\n//INST\r\n///ATTR SC,RW\r\n///GROUP1 RB1,BS1\r\n'stiffid: external_pulses = 100\r\nNOP\r\nMOVJ C00000 BC00000 VJ=10.00\r\nEND\r\n";
+    let with_external = |external: Vec<f64>| Pulses {
+        per_deg: PER_DEG,
+        external,
+    };
+    let (same, other, none) = (
+        with_external(vec![100.0]),
+        with_external(vec![1000.0]),
+        with_external(Vec::new()),
+    );
+    for p in [&same, &none] {
+        let read = parse_in(job, Dialect::Inform, &with(p)).unwrap();
+        assert_eq!(read.targets[0].external, vec![Some(1500.0)]);
+    }
+    let (line, message) = refused(parse_in(job, Dialect::Inform, &with(&other)));
+    assert_eq!(line, 12);
+    assert!(
+        message.contains(
+            "external_pulses = 100 contradicts the setup's [controller] external_pulses = [1000]"
+        ),
+        "{message}"
+    );
+    let bare = job.replace("'stiffid: external_pulses = 100\r\n", "");
+    let read = parse_in(&bare, Dialect::Inform, &with(&other)).unwrap();
+    assert_eq!(read.targets[0].external, vec![Some(150.0)]);
+    let (line, message) = refused(parse_in(&bare, Dialect::Inform, &with(&none)));
+    assert_eq!(line, 13);
+    assert!(
+        message.contains("[controller] external_pulses"),
+        "{message}"
+    );
+}
