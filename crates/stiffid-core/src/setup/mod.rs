@@ -472,7 +472,8 @@ impl Setup {
         axes.check(e, "station")?;
         let base = axes.carrier_pose(e) * self.robot().base();
         let robot = (self.robot().clone().with_external(None)).with_base(base)?;
-        let mut builder = self.to_builder().with_robot(robot);
+        let mut builder = (self.to_builder().with_robot(robot))
+            .with_controller(self.controller_keeping(axes.len()..axes.len()));
         if let Some(cell) = self.cell() {
             let obstacles = cell.obstacles_at(self.robot(), e).into_owned();
             builder = builder.with_cell(Cell {
@@ -501,7 +502,19 @@ impl Setup {
         let base = axes.carrier_pose(e) * self.robot().base();
         let positioner = crate::robot::ExternalAxes::new(rest)?;
         let robot = (self.robot().clone().with_external(Some(positioner))).with_base(base)?;
-        self.to_builder().with_robot(robot).build()
+        (self.to_builder().with_robot(robot))
+            .with_controller(self.controller_keeping(axes.carrier_len()..axes.len()))
+            .build()
+    }
+
+    /// The controller with the external pulses of the axes `kept` only (the cell's order): the
+    /// setup of [`Setup::at_station`] or [`Setup::at_carrier`], whose robot keeps those axes.
+    fn controller_keeping(&self, kept: std::ops::Range<usize>) -> Controller {
+        let mut c = self.workcell.controller().clone();
+        if let Some(p) = c.pulses.as_mut().filter(|p| !p.external.is_empty()) {
+            p.external = p.external.get(kept).map(<[f64]>::to_vec).unwrap_or_default();
+        }
+        c
     }
 
     /// The rope-mass wrench on the loading point of a posture, base frame.

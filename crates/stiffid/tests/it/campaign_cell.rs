@@ -398,6 +398,12 @@ fn the_controllers_pulses_are_read_and_checked_against_the_cell() {
     let pulses = setup.workcell().controller().pulses.clone().unwrap();
     assert_eq!(pulses.per_deg, PULSES_PER_DEG);
     assert_eq!(pulses.external, vec![PULSES_PER_MM]);
+    // The arm at a station of the track (what a design for the fixed arm, `select --for
+    // calibration --station`, works on) keeps the robot's pulses and drops the track's with it.
+    let at = setup.at_station(&[2.0]).unwrap();
+    assert!(at.robot().external().is_none());
+    let kept = at.workcell().controller().pulses.clone().unwrap();
+    assert_eq!((kept.per_deg, kept.external.len()), (PULSES_PER_DEG, 0));
     // Without external_pulses the track is written in mm.
     let setup = read("pulses_per_deg = [1000, 1000, 1000, 1000, 1000, 1000]\n").unwrap();
     assert!(setup
