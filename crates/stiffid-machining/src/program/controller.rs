@@ -70,6 +70,15 @@ pub trait Controller: Sync {
     /// # Errors
     /// [`stiffid_core::Error::Program`] naming the line of a motion outside the subset read.
     fn read(&self, text: &str) -> Result<Read>;
+    /// [`Controller::read`] of a program whose points may live in a data file beside it, `data`
+    /// (KRL's `.dat`); a language without one reads `text` alone.
+    ///
+    /// # Errors
+    /// Those of [`Controller::read`].
+    fn read_with_data(&self, text: &str, data: Option<&str>) -> Result<Read> {
+        let _ = data;
+        self.read(text)
+    }
     /// The motions read, for the message of a program with none.
     fn motions(&self) -> &'static str;
     /// The forms of its joint targets, for messages (`E6AXIS, AXIS`).

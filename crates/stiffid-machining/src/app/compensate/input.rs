@@ -25,6 +25,7 @@ pub(super) fn read_checked(
     let Input::Program {
         name,
         text,
+        data,
         language,
         chord_tolerance,
         output,
@@ -44,7 +45,8 @@ pub(super) fn read_checked(
         generate::check_payload(d, settings.targets, &program_tool(setup))?;
         generate::check_pulses(d, setup.workcell().controller().pulses.as_ref())?;
     }
-    let program = read_program(name, text, language, *chord_tolerance)?;
+    let program = machining::read_with_data(text, *data, language, *chord_tolerance)
+        .map_err(|e| in_input(name, e))?;
     // A Cartesian program's targets as the controller moves to them (a copy only then).
     match machining::resolve(&program, setup, None, options) {
         Ok(std::borrow::Cow::Owned(p)) => Ok(Some(p)),
