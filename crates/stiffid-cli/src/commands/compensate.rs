@@ -216,7 +216,12 @@ pub fn run(args: &Args) -> Result<()> {
     let input = input(args, name.clone(), (&text, data.as_deref()))?;
     let out = OutFile::prepare(&args.out, "--out")?;
     let data_out = (data.as_ref())
-        .map(|_| OutFile::prepare(&stiffid_machining::program::krl::data_out(&args.out), "--out"))
+        .map(|_| {
+            OutFile::prepare(
+                &stiffid_machining::program::krl::data_out(&args.out),
+                "--out",
+            )
+        })
         .transpose()?;
     let csv_out = args
         .csv
@@ -257,7 +262,10 @@ pub fn run(args: &Args) -> Result<()> {
     output::warnings(&report.warnings);
     let Sinks { mut csv, rows, .. } = sinks;
     csv.sync()?;
-    if let (Some(o), Some(d)) = (&data_out, report.program.as_ref().and_then(|p| p.data.as_ref())) {
+    if let (Some(o), Some(d)) = (
+        &data_out,
+        report.program.as_ref().and_then(|p| p.data.as_ref()),
+    ) {
         o.write(d.as_bytes())?;
     }
     let names = names(args);
@@ -269,7 +277,11 @@ pub fn run(args: &Args) -> Result<()> {
 pub(crate) const FRAME_WITHOUT_PATH: &str = "only with --path (the frame of a path CSV's wrenches): a program's wrench is its process file's, where the tool cuts";
 
 /// The request's input from the arguments and the input file's text.
-fn input<'t>(args: &Args, name: String, (text, data): (&'t str, Option<&'t str>)) -> Result<Input<'t>> {
+fn input<'t>(
+    args: &Args,
+    name: String,
+    (text, data): (&'t str, Option<&'t str>),
+) -> Result<Input<'t>> {
     let Some(process) = &args.process else {
         return Ok(Input::Path {
             name,

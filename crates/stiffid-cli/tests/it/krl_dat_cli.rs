@@ -43,7 +43,10 @@ fn a_krl_program_and_its_dat_are_compensated_together() {
     let src = std::fs::read_to_string(dir.join("out/C2.SRC")).unwrap();
     let dat = std::fs::read_to_string(dir.join("out/C2.DAT")).unwrap();
     // The .src: renamed, bounds in comments, its motions as read.
-    let kept: Vec<&str> = src.lines().map(|l| l.split(" ; bound").next().unwrap()).collect();
+    let kept: Vec<&str> = src
+        .lines()
+        .map(|l| l.split(" ; bound").next().unwrap())
+        .collect();
     assert_eq!(kept, ["DEF C2( )", "PTP XP1", "PTP XP2", "END"]);
     // The .dat: renamed, the points moved by the spindle's weight, every other byte kept.
     assert!(dat.starts_with("DEFDAT  C2\r\n"), "{dat}");

@@ -87,11 +87,15 @@ fn read(
             ["E6AXIS" | "AXIS" | "E6POS" | "POS" | "FRAME", name, ..] => {
                 let name = name.split(['[', ',']).next().unwrap_or(name).to_string();
                 let value = match code.find('{') {
-                    None => Err(format!("{name} is declared {on} without a value (set at run time)")),
+                    None => Err(format!(
+                        "{name} is declared {on} without a value (set at run time)"
+                    )),
                     Some(open) => match (aggregate_at(line, start + offset, code, open), place) {
                         (Ok(t), _) => Ok(t),
                         (Err(e), Place::Src) => return Err(e),
-                        (Err(e), Place::Dat(_)) => Err(format!("{name}, declared {on}: {}", message(e))),
+                        (Err(e), Place::Dat(_)) => {
+                            Err(format!("{name}, declared {on}: {}", message(e)))
+                        }
                     },
                 };
                 out.points.insert(name, (on, value));
@@ -122,7 +126,12 @@ fn message(e: Error) -> String {
 }
 /// The joint target of the aggregate opening at byte `open` of `code` (which starts at byte
 /// `start` of the text).
-pub(super) fn aggregate_at(line: u64, start: usize, code: &str, open: usize) -> Result<JointTarget> {
+pub(super) fn aggregate_at(
+    line: u64,
+    start: usize,
+    code: &str,
+    open: usize,
+) -> Result<JointTarget> {
     let close = code[open..]
         .find('}')
         .map(|c| open + c)
@@ -162,7 +171,15 @@ fn aggregate(line: u64, start: usize, code: &str, from: usize, to: usize) -> Res
         let value = || {
             let (v, span) = number_at(code, name_start + name.len())
                 .filter(|(_, s)| code[s.end..item_end].trim().is_empty())
-                .ok_or_else(|| at(line, format!("{name}: expected a number, found '{}'", stiffid_core::common::limits::short(trimmed[name.len()..].trim()))))?;
+                .ok_or_else(|| {
+                    at(
+                        line,
+                        format!(
+                            "{name}: expected a number, found '{}'",
+                            stiffid_core::common::limits::short(trimmed[name.len()..].trim())
+                        ),
+                    )
+                })?;
             Ok::<_, Error>((v, start + span.start..start + span.end))
         };
         if let Some(k) = slot('A') {

@@ -46,7 +46,10 @@ const MAX_BASE: i64 = 16;
 
 /// The frame data record of an aggregate `{TOOL_NO 1, BASE_NO 0, IPO_FRAME #BASE, ..}`.
 pub(super) fn fdat(value: &str) -> FdatRead {
-    let inner = value.trim().strip_prefix('{').and_then(|v| v.split('}').next());
+    let inner = value
+        .trim()
+        .strip_prefix('{')
+        .and_then(|v| v.split('}').next());
     let inner = inner.ok_or("expected an aggregate {TOOL_NO .., BASE_NO .., IPO_FRAME ..}")?;
     let inner = inner.split_once(':').map_or(inner, |(_, r)| r);
     let (mut tool, mut base, mut ipo) = (None, None, None);
@@ -62,14 +65,21 @@ pub(super) fn fdat(value: &str) -> FdatRead {
             _ => {}
         }
     }
-    let missing = |m: &str| format!("its {m} is not given (KRL keeps the member of a partial aggregate the controller holds)");
+    let missing = |m: &str| {
+        format!("its {m} is not given (KRL keeps the member of a partial aggregate the controller holds)")
+    };
     Ok(Fdat {
         tool: tool.ok_or_else(|| missing("TOOL_NO"))?,
         base: base.ok_or_else(|| missing("BASE_NO"))?,
         external: match ipo.as_deref() {
             Some("#BASE") => false,
             Some("#TCP") => true,
-            Some(other) => return Err(format!("IPO_FRAME {}: expected #BASE or #TCP", short(other))),
+            Some(other) => {
+                return Err(format!(
+                    "IPO_FRAME {}: expected #BASE or #TCP",
+                    short(other)
+                ))
+            }
             None => return Err(missing("IPO_FRAME")),
         },
     })
@@ -145,11 +155,19 @@ impl Frames {
                     ("TOOL_NO", Some(n)) => f.tool = n,
                     ("BASE_NO", Some(n)) => f.base = n,
                     ("IPO_FRAME", _) if v == "#BASE" || v == "#TCP" => f.external = v == "#TCP",
-                    _ => return Err(format!("FDAT_ACT.{} on line {line} is not a literal stiffid reads", short(member))),
+                    _ => {
+                        return Err(format!(
+                            "FDAT_ACT.{} on line {line} is not a literal stiffid reads",
+                            short(member)
+                        ))
+                    }
                 }
                 Ok(f)
             });
-            let why = format!("FDAT_ACT.{} is set on line {line} before FDAT_ACT is", short(member));
+            let why = format!(
+                "FDAT_ACT.{} is set on line {line} before FDAT_ACT is",
+                short(member)
+            );
             self.act = Some((line, value.unwrap_or(Err(why))));
         } else if c.starts_with("BAS(#FRAMES") {
             self.apply(line);
@@ -158,17 +176,25 @@ impl Frames {
         } else if c.starts_with("BAS(#INITMOV") {
             let why = format!("BAS(#INITMOV) on line {line} sets it to the BAS package's default, which differs between KUKA System Software versions; set it in the program (an inline form, $TOOL/$BASE = ..)");
             (self.base, self.tool) = (held(&why), held(&why));
-        } else if let Some(n) = c.strip_prefix("BAS(#TOOL,").or(c.strip_prefix("BAS(#BASE,")) {
+        } else if let Some(n) = c
+            .strip_prefix("BAS(#TOOL,")
+            .or(c.strip_prefix("BAS(#BASE,"))
+        {
             let base = c.starts_with("BAS(#BASE");
             let frame = match whole(n.trim_end_matches(')'), "the number") {
                 Ok(n) => numbered(line, n, base),
-                Err(why) => held(&format!("{} on line {line}: {why} (a variable is the controller's)", short(code.trim()))),
+                Err(why) => held(&format!(
+                    "{} on line {line}: {why} (a variable is the controller's)",
+                    short(code.trim())
+                )),
             };
             *(if base { &mut self.base } else { &mut self.tool }) = frame;
         } else if c.starts_with("TOOL_CORR") || c.starts_with("BASE_CORR") {
             let why = format!("line {line} sets a correction frame of the BAS package ({}), which stiffid does not apply", short(code.trim()));
             (self.base, self.tool) = (held(&why), held(&why));
-        } else if let Some((base, frame)) = assigned(line, &c).or_else(|| super::cartesian::frame_set(line, code)) {
+        } else if let Some((base, frame)) =
+            assigned(line, &c).or_else(|| super::cartesian::frame_set(line, code))
+        {
             *(if base { &mut self.base } else { &mut self.tool }) = frame;
         } else {
             return false;
@@ -198,8 +224,16 @@ impl Frames {
             Some((_, r)) => r.clone(),
         };
         (self.base, self.tool, self.external) = match record {
-            Ok(f) => (numbered(line, f.base, true), numbered(line, f.tool, false), f.external.then_some(line)),
-            Err(why) => (Frame::Unknown(line, why.clone()), Frame::Unknown(line, why), None),
+            Ok(f) => (
+                numbered(line, f.base, true),
+                numbered(line, f.tool, false),
+                f.external.then_some(line),
+            ),
+            Err(why) => (
+                Frame::Unknown(line, why.clone()),
+                Frame::Unknown(line, why),
+                None,
+            ),
         };
     }
 
@@ -211,17 +245,22 @@ impl Frames {
         let c = compact(code);
         let with = c.split_once("WITH").map_or("", |(_, w)| w);
         let items = split_top(with);
-        let (mut base, mut tool, mut external) = (self.base.clone(), self.tool.clone(), self.external);
+        let (mut base, mut tool, mut external) =
+            (self.base.clone(), self.tool.clone(), self.external);
         let mut own = false;
         for item in &items {
-            let Some((name, value)) = item.split_once('=') else { continue };
+            let Some((name, value)) = item.split_once('=') else {
+                continue;
+            };
             match name {
                 "$TOOL" => tool = self.with_frame(line, value, false, fdats),
                 "$BASE" => base = self.with_frame(line, value, true, fdats),
-                "$IPO_MODE" => external = match with_ipo(value, fdats) {
-                    Some(false) => None,
-                    _ => Some(line),
-                },
+                "$IPO_MODE" => {
+                    external = match with_ipo(value, fdats) {
+                        Some(false) => None,
+                        _ => Some(line),
+                    }
+                }
                 _ => continue,
             }
             own = true;
@@ -252,7 +291,9 @@ impl Frames {
         let found = record.map(|r| match fdats.get(r) {
             Some((_, Ok(f))) => Ok(if base { f.base } else { f.tool }),
             Some((at, Err(why))) => Err(format!("{r}, declared {at}, {why}")),
-            None => Err(format!("{r} is not a frame data record declared in the .src or its .dat")),
+            None => Err(format!(
+                "{r} is not a frame data record declared in the .src or its .dat"
+            )),
         });
         match found {
             Some(Ok(n)) => numbered(line, n, base),
@@ -292,7 +333,10 @@ fn with_ipo(value: &str, fdats: &Fdats) -> Option<bool> {
         "#TCP" => Some(true),
         _ => {
             let r = value.strip_prefix("SIPO_MODE(")?.split(['.', ')']).next()?;
-            fdats.get(r).and_then(|(_, f)| f.as_ref().ok()).map(|f| f.external)
+            fdats
+                .get(r)
+                .and_then(|(_, f)| f.as_ref().ok())
+                .map(|f| f.external)
         }
     }
 }

@@ -52,7 +52,9 @@ pub fn data_beside(src: &std::path::Path) -> Option<std::path::PathBuf> {
         .map(|e| e.path())
         .filter(|p| {
             p.file_stem() == Some(stem)
-                && p.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("dat"))
+                && p.extension()
+                    .and_then(|e| e.to_str())
+                    .is_some_and(|e| e.eq_ignore_ascii_case("dat"))
         })
         .collect();
     found.sort();

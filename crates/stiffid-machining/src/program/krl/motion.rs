@@ -51,14 +51,19 @@ pub(super) fn motion(
         if circle && k == 0 {
             let rest = &code[from..];
             let comma = rest.trim_start().strip_prefix(',').ok_or_else(|| {
-                at(line, format!("{first}: expected the auxiliary point, a comma, then the end point"))
+                at(
+                    line,
+                    format!("{first}: expected the auxiliary point, a comma, then the end point"),
+                )
             })?;
             from = code.len() - comma.len();
         }
     }
     check_after(line, first, &code[from..])?;
     if circle && out.iter().any(|t| t.cartesian.is_none()) {
-        return refuse("a circle through axis angles; KRL's CIRC takes Cartesian points (POS, E6POS, FRAME)");
+        return refuse(
+            "a circle through axis angles; KRL's CIRC takes Cartesian points (POS, E6POS, FRAME)",
+        );
     }
     Ok(Some(out))
 }

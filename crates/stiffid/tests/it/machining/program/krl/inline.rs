@@ -3,9 +3,9 @@
 //! $TOOL = STOOL2(..)`), `CIRC`, loops and branches; every frame applied or refused, never
 //! ignored.
 
+use stiffid_core::Error;
 use stiffid_machining::program::cartesian::Frame;
 use stiffid_machining::program::{parse_with_data, Dialect, JointProgram};
-use stiffid_core::Error;
 
 /// A `.src` with KSS 8.3 inline forms: a literal `$BASE` first (which the inline forms must
 /// replace), PTP P1 and LIN P2 in tool 1 and base 2, CIRC P3 P4 in base 0, SLIN P5 with its own
@@ -28,7 +28,10 @@ fn dat_points(dat: &str) -> Vec<(String, [f64; 6])> {
         let mut v = [f64::NAN; 6];
         for member in body.trim_end_matches('}').split(',') {
             let (key, value) = member.split_once(' ').unwrap();
-            if let Some(k) = ["X", "Y", "Z", "A", "B", "C"].iter().position(|n| *n == key) {
+            if let Some(k) = ["X", "Y", "Z", "A", "B", "C"]
+                .iter()
+                .position(|n| *n == key)
+            {
                 v[k] = value.parse().unwrap();
             }
         }
@@ -50,7 +53,13 @@ fn inline_forms_read_points_from_the_dat_and_frames_by_number() {
     let circ = line_of(SRC, "CIRC XP3");
     assert_eq!(
         lines,
-        [line_of(SRC, "PTP XP1"), line_of(SRC, "LIN XP2"), circ, circ, line_of(SRC, "SLIN XP5")]
+        [
+            line_of(SRC, "PTP XP1"),
+            line_of(SRC, "LIN XP2"),
+            circ,
+            circ,
+            line_of(SRC, "SLIN XP5")
+        ]
     );
     let points = dat_points(DAT);
     assert_eq!(points.len(), 5);
@@ -65,9 +74,15 @@ fn inline_forms_read_points_from_the_dat_and_frames_by_number() {
     }
     // The literal $BASE is replaced by FP1's tool 1 and base 2 where BAS applies them.
     let bas = line_of(SRC, "BAS(#PTP_PARAMS");
-    assert_eq!(frames(&p, 0), (Frame::Numbered(bas, 2), Frame::Numbered(bas, 1)));
+    assert_eq!(
+        frames(&p, 0),
+        (Frame::Numbered(bas, 2), Frame::Numbered(bas, 1))
+    );
     let bas = line_of(SRC, "BAS(#CP_PARAMS");
-    assert_eq!(frames(&p, 1), (Frame::Numbered(bas, 2), Frame::Numbered(bas, 1)));
+    assert_eq!(
+        frames(&p, 1),
+        (Frame::Numbered(bas, 2), Frame::Numbered(bas, 1))
+    );
     // A literal FDAT_ACT: base 0 is the world, whatever $BASE was set to before.
     let bas = line_of(SRC, "BAS(#FRAMES");
     for i in [2, 3] {
@@ -75,7 +90,10 @@ fn inline_forms_read_points_from_the_dat_and_frames_by_number() {
     }
     // KSS 8's WITH frames: the motion's own.
     let slin = line_of(SRC, "SLIN XP5");
-    assert_eq!(frames(&p, 4), (Frame::Numbered(slin, 4), Frame::Numbered(slin, 3)));
+    assert_eq!(
+        frames(&p, 4),
+        (Frame::Numbered(slin, 4), Frame::Numbered(slin, 3))
+    );
 }
 
 /// The first Cartesian target of `src` (with [`DAT`]): its base's frame.
@@ -96,16 +114,25 @@ fn frames_stiffid_cannot_know_are_refused_naming_their_line_never_ignored() {
     let ptp = line_of(SRC, "BAS(#PTP_PARAMS");
     let swap = |from: &str, to: &str| SRC.replacen(from, to, 1);
     // An external TCP, a record the files do not declare, an external kinematic, a variable.
-    let external = swap("FDAT_ACT=FP1", "FDAT_ACT={TOOL_NO 1,BASE_NO 2,IPO_FRAME #TCP}");
+    let external = swap(
+        "FDAT_ACT=FP1",
+        "FDAT_ACT={TOOL_NO 1,BASE_NO 2,IPO_FRAME #TCP}",
+    );
     let p = parse_with_data(&external, Some(DAT), Dialect::Krl).unwrap();
     assert!(matches!(frames(&p, 0).0, Frame::Unknown(_, why) if why.contains("external TCP")));
     unknown(swap("FDAT_ACT=FP1", "FDAT_ACT=FP199"), ptp, "FP199");
     unknown(
-        swap("FDAT_ACT=FP1", "FDAT_ACT={TOOL_NO 1,BASE_NO 17,IPO_FRAME #BASE}"),
+        swap(
+            "FDAT_ACT=FP1",
+            "FDAT_ACT={TOOL_NO 1,BASE_NO 17,IPO_FRAME #BASE}",
+        ),
         ptp,
         "external kinematic",
     );
-    let var = swap("FDAT_ACT=FP1\r\nBAS(#PTP_PARAMS,100)\r\n", "BAS(#BASE, MY_BASE)\r\n");
+    let var = swap(
+        "FDAT_ACT=FP1\r\nBAS(#PTP_PARAMS,100)\r\n",
+        "BAS(#BASE, MY_BASE)\r\n",
+    );
     unknown(var, line_of(SRC, "FDAT_ACT=FP1"), "MY_BASE");
     // Frames set by INITMOV only: the BAS package's defaults.
     let bare = "DEF a( )\nBAS (#INITMOV,0 )\nPTP {X 1, Y 2, Z 3, A 0, B 0, C 0, S 2, T 0}\nEND\n";
@@ -129,7 +156,10 @@ fn a_point_in_a_missing_dat_is_refused_naming_the_line_and_the_point() {
     match parse_with_data(SRC, None, Dialect::Krl) {
         Err(Error::Program { line: l, message }) => {
             assert_eq!(l, line);
-            assert!(message.contains("XP1") && message.contains(".dat"), "{message}");
+            assert!(
+                message.contains("XP1") && message.contains(".dat"),
+                "{message}"
+            );
         }
         other => panic!("{other:?}"),
     }
@@ -138,7 +168,10 @@ fn a_point_in_a_missing_dat_is_refused_naming_the_line_and_the_point() {
     match parse_with_data(SRC, Some(&dat), Dialect::Krl) {
         Err(Error::Program { line: l, message }) => {
             assert_eq!(l, line_of(SRC, "LIN XP2"));
-            assert!(message.contains("XP2") && message.contains("of the .dat"), "{message}");
+            assert!(
+                message.contains("XP2") && message.contains("of the .dat"),
+                "{message}"
+            );
         }
         other => panic!("{other:?}"),
     }
@@ -153,10 +186,16 @@ fn circles_read_both_points_and_refuse_what_ends_elsewhere() {
         }
         other => panic!("{needle}: {other:?}"),
     };
-    refused(SRC.replace("CIRC XP3, XP4 C_DIS", "CIRC XP3, XP4, CA 90"), "CA");
+    refused(
+        SRC.replace("CIRC XP3, XP4 C_DIS", "CIRC XP3, XP4, CA 90"),
+        "CA",
+    );
     refused(SRC.replace("CIRC XP3, XP4 C_DIS", "CIRC XP3"), "end point");
     refused(
-        SRC.replace("CIRC XP3, XP4 C_DIS", "CIRC {A1 0, A2 -90, A3 90, A4 0, A5 0, A6 0}, XP4"),
+        SRC.replace(
+            "CIRC XP3, XP4 C_DIS",
+            "CIRC {A1 0, A2 -90, A3 90, A4 0, A5 0, A6 0}, XP4",
+        ),
         "axis angles",
     );
 }
@@ -177,7 +216,10 @@ fn motions_outside_loops_and_branches_run_and_inside_are_refused() {
         other => panic!("{other:?}"),
     }
     // A frame set inside a branch leaves the next motion's frame to the run.
-    let branch = SRC.replace("FDAT_ACT=FP1\r\n", "IF $IN[2] THEN\r\nFDAT_ACT=FP1\r\nENDIF\r\n");
+    let branch = SRC.replace(
+        "FDAT_ACT=FP1\r\n",
+        "IF $IN[2] THEN\r\nFDAT_ACT=FP1\r\nENDIF\r\n",
+    );
     let p = parse_with_data(&branch, Some(DAT), Dialect::Krl).unwrap();
     assert!(matches!(frames(&p, 0).0, Frame::Unknown(_, why) if why.contains("IF")));
     // A jump anywhere.
