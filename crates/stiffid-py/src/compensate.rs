@@ -160,7 +160,7 @@ pub fn compensate<'py>(
         .transpose()?;
     let how = (output, program_name, chord_tolerance_mm);
     let settings = (targets, max_tcp_speed_mm_s, name_length, moves_per_file);
-    let texts = (&name, (text.as_str(), data.as_deref()), frame);
+    let texts = (name.as_str(), (text.as_str(), data.as_deref()), frame);
     let input = input_of(texts, (&program, &process), how, settings)?;
     let request = Request {
         setup: s,

@@ -169,9 +169,10 @@ impl Frames {
                 short(member)
             );
             self.act = Some((line, value.unwrap_or(Err(why))));
-        } else if c.starts_with("BAS(#FRAMES") {
-            self.apply(line);
-        } else if c.starts_with("BAS(#PTP_PARAMS") || c.starts_with("BAS(#CP_PARAMS") {
+        } else if ["BAS(#FRAMES", "BAS(#PTP_PARAMS", "BAS(#CP_PARAMS"]
+            .iter()
+            .any(|b| c.starts_with(b))
+        {
             self.apply(line);
         } else if c.starts_with("BAS(#INITMOV") {
             let why = format!("BAS(#INITMOV) on line {line} sets it to the BAS package's default, which differs between KUKA System Software versions; set it in the program (an inline form, $TOOL/$BASE = ..)");

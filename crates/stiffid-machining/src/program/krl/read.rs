@@ -29,7 +29,8 @@ pub(crate) fn targets(text: &str, data: Option<&str>) -> Result<(Vec<JointTarget
     let setters = frame_routines(text, &declared);
     let mut out = Vec::new();
     // The program's own routine (its first DEF) and the one of the line.
-    let (mut main, mut current): (Option<(String, u64)>, Option<(String, u64)>) = (None, None);
+    let mut main: Option<Routine> = None;
+    let mut current: Option<Routine> = None;
     let mut flow = Flow::default();
     let unset = |name: &str| {
         Frame::Unknown(0, format!("no {name} set before this Cartesian motion: its frame is the controller's, which the program does not state; set it in the program (an inline form's FDAT, {name} = {{X .., Y .., Z .., A .., B .., C ..}} or {}_DATA[n])", &name[1..]))
@@ -89,6 +90,9 @@ pub(crate) fn targets(text: &str, data: Option<&str>) -> Result<(Vec<JointTarget
     let n = out.iter().map(|t| t.external.len()).max().unwrap_or(0);
     Ok((out, (1..=n).map(|k| format!("E{k}")).collect()))
 }
+
+/// A routine of the file: its upper-case name and the line of its `DEF`.
+type Routine = (String, u64);
 
 /// The routines after the program's first that set a frame or the frame data, by upper-case
 /// name, with the line of the first they set.
