@@ -225,10 +225,15 @@ fn motions_outside_loops_and_branches_run_and_inside_are_refused() {
     // A routine of the file that sets a frame, called before a motion.
     let called = SRC
         .replace("LIN XP2 \r\n", "set_base( )\r\nLIN XP2 \r\n")
-        .replace("END\r\n", "END\r\nDEF set_base( )\r\n$BASE = {X 1, Y 2, Z 3, A 0, B 0, C 0}\r\nEND\r\n");
+        .replace(
+            "END\r\n",
+            "END\r\nDEF set_base( )\r\n$BASE = {X 1, Y 2, Z 3, A 0, B 0, C 0}\r\nEND\r\n",
+        );
     let p = parse_with_data(&called, Some(DAT), Dialect::Krl).unwrap();
     let call = line_of(&called, "set_base( )");
-    assert!(matches!(frames(&p, 1).0, Frame::Unknown(l, why) if l == call && why.contains("SET_BASE")));
+    assert!(
+        matches!(frames(&p, 1).0, Frame::Unknown(l, why) if l == call && why.contains("SET_BASE"))
+    );
     // A jump anywhere.
     let jump = SRC.replace("END\r\n", "GOTO LABEL1\r\nEND\r\n");
     assert!(matches!(
