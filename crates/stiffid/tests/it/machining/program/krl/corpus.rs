@@ -53,3 +53,21 @@ fn every_real_krl_program_is_refused_naming_its_line_and_construct() {
     listed.sort();
     assert_eq!(found, listed);
 }
+
+/// Past the sensor-guided motion, kroshu's iiQKA file's return `PTP` writes `A5 0S`: no number to
+/// KRL, refused naming the line and the member rather than read as 0.
+#[test]
+fn a_number_run_into_a_letter_is_refused() {
+    let src = std::fs::read_to_string(format!("{DIR}/rsi_iiqka_os2.src")).unwrap();
+    let without = src.replace("RSI_MOVECORR()", "");
+    match parse_with_data(&without, None, Dialect::Krl) {
+        Err(Error::Program { line, message }) => {
+            assert_eq!(line, 93, "{message}");
+            assert!(
+                message.contains("A5") && message.contains("0S"),
+                "{message}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+}
