@@ -65,6 +65,7 @@ fn benches(c: &mut Criterion) {
                     input: Input::Program {
                         name: "raster.nc".into(),
                         text: &text,
+                        data: None,
                         language: Language::GCode,
                         process_name: "p.toml".into(),
                         process: process.clone(),

@@ -225,19 +225,24 @@ pub fn read(text: &str, language: Language, chord_tolerance: f64) -> Result<Prog
 }
 
 /// [`read`] with what the setup says of a robot program in `context` (an INFORM job's pulses
-/// and tool files).
+/// and tool files, KRL's `.dat` beside the `.src`).
 ///
 /// # Errors
-/// Those of [`gcode::parse`] and [`program::parse_in`].
+/// Those of [`gcode::parse`] and [`program::parse_in`]; [`Error::InvalidField`] (`data`) for a
+/// data file with G-code.
 pub fn read_in(
     text: &str,
     language: Language,
     chord_tolerance: f64,
     context: &program::Context,
 ) -> Result<Program> {
-    match language {
-        Language::GCode => gcode::parse(text, chord_tolerance).map(Program::GCode),
-        Language::Robot(d) => program::parse_in(text, d, context).map(Program::Robot),
+    match (language, context.data) {
+        (Language::GCode, None) => gcode::parse(text, chord_tolerance).map(Program::GCode),
+        (Language::GCode, Some(_)) => Err(Error::InvalidField {
+            field: "data".into(),
+            message: "a data file is read with a KRL program only".into(),
+        }),
+        (Language::Robot(d), _) => program::parse_in(text, d, context).map(Program::Robot),
     }
 }
 
@@ -282,6 +287,9 @@ pub struct Report {
     pub operations: Vec<Option<usize>>,
     /// The program, compensated, in its own format.
     pub program: String,
+    /// Its data file compensated, for a robot program read with one whose targets may live
+    /// there (KRL's `.dat`, [`program::parse_with_data`]): written beside the program, together.
+    pub data: Option<String>,
     /// What the user should know: plunges without a milling force, points no operation covers.
     pub warnings: Vec<String>,
     /// With a free configuration ([`compensate::FreeVariables::configuration`]): every
@@ -400,7 +408,7 @@ pub fn compensate_for(
         _ => placements,
     };
     let at = (arm, workpiece);
-    let program = write_back(
+    let (program, data) = write_back(
         controller,
         at,
         program,
@@ -415,6 +423,7 @@ pub fn compensate_for(
         results,
         operations: indices,
         program,
+        data,
         warnings,
         configurations,
     })
@@ -422,14 +431,15 @@ pub fn compensate_for(
 
 /// The program written back in its own format (module docs, step 5): a robot program with the
 /// compensated axis angles, G-code with the controller's positions of them in the part frame;
-/// the external values chosen when they are free.
+/// the external values chosen when they are free; a robot program's data file with it, when one
+/// was read.
 fn write_back(
     controller: &stiffid_core::Robot,
     (arm, workpiece): (&Arm, Option<&Isometry3<f64>>),
     program: &Program,
     results: &[Compensated],
     (placements, free): (Option<&[cell::Placement]>, bool),
-) -> Result<String> {
+) -> Result<(String, Option<String>)> {
     Ok(match program {
         Program::Robot(p) => {
             let q: Vec<[f64; 6]> = results
@@ -442,9 +452,13 @@ fn write_back(
                         .iter()
                         .map(|p| p.external.as_slice().to_vec())
                         .collect();
-                    p.write_with_external(&q, &program::external::program_values(p, &e, axes))?
+                    p.write_pair(&q, &program::external::program_values(p, &e, axes))?
                 }
-                _ => p.write(&q)?,
+                _ => {
+                    let e: Vec<Vec<Option<f64>>> =
+                        p.targets.iter().map(|t| t.external.clone()).collect();
+                    p.write_pair(&q, &e)?
+                }
             }
         }
         Program::GCode(g) => {
@@ -474,9 +488,9 @@ fn write_back(
                     let e: Vec<Vec<f64>> = (placements.into_iter().flatten())
                         .map(|p| axes.to_display(p.external.as_slice()))
                         .collect();
-                    g.write_with_external(&positions, &e)?
+                    (g.write_with_external(&positions, &e)?, None)
                 }
-                _ => g.write(&positions)?,
+                _ => (g.write(&positions)?, None),
             }
         }
     })

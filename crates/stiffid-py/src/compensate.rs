@@ -93,7 +93,9 @@ use stiffid_machining::Language;
 /// ``program_name`` (default the program file's stem, upper case), its feeds refused above
 /// ``max_tcp_speed_mm_s``, split into sub-programs of at most ``moves_per_file`` moves
 /// (``subprograms``: their names and texts, in call order), names within ``name_length``
-/// (default the controller's: KRL 24, RAPID 32, LS 8), as ``stiffid compensate`` does. Points
+/// (default the controller's: KRL 24, RAPID 32, LS 8), as ``stiffid compensate`` does. A KRL
+/// ``.src`` is read with the ``.dat`` beside it (same folder and stem, as the controller pairs
+/// them) and ``data`` is that ``.dat`` compensated (``None`` without one). Points
 /// without a process force are warned about (``UserWarning``) as the command does.
 #[pyfunction]
 #[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free=None, minimise=None, program_name=None, targets=None, max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_pct=20.0, objective=None, map=None, margin_deg=None, max_condition=None, refine=None, figures=false, **retired))]
@@ -155,9 +157,15 @@ pub fn compensate<'py>(
         }
     };
     let text = error::read(&file_path)?;
+    // A KRL program's .dat beside it, read with it (its compensated copy is ``data``).
+    let data = (program.as_deref())
+        .and_then(stiffid_machining::program::krl::data_beside)
+        .map(|p| error::read(&p))
+        .transpose()?;
     let how = (output, program_name, chord_tolerance_mm);
     let settings = (targets, max_tcp_speed_mm_s, name_length, moves_per_file);
-    let input = input_of((&name, &text, frame), (&program, &process), how, settings)?;
+    let texts = (name.as_str(), (text.as_str(), data.as_deref()), frame);
+    let input = input_of(texts, (&program, &process), how, settings)?;
     let request = Request {
         setup: s,
         compliance,
@@ -263,7 +271,8 @@ fn job_options<'py>(
     Ok(options)
 }
 
-/// A compensated program's items: `program`, its text, and `subprograms`.
+/// A compensated program's items: `program`, its text, `subprograms`, and `data` (a KRL
+/// program's compensated `.dat`, or `None`).
 fn program_items(
     py: Python<'_>,
     out: &Bound<'_, PyDict>,
@@ -275,6 +284,7 @@ fn program_items(
         subprograms.set_item(&f.name, &f.text)?;
     }
     out.set_item("subprograms", subprograms)?;
+    out.set_item("data", p.data.as_deref())?;
     Ok(())
 }
 
@@ -282,7 +292,7 @@ fn program_items(
 /// how its output is written.
 #[allow(clippy::type_complexity)]
 fn input_of<'t>(
-    (name, text, frame): (&str, &'t str, Frame),
+    (name, (text, data), frame): (&str, (&'t str, Option<&'t str>), Frame),
     (program, process): (&Option<PathBuf>, &Option<PathBuf>),
     (output, program_name, chord_tolerance_mm): (Option<&str>, Option<String>, f64),
     (targets, max_tcp_speed_mm_s, name_length, moves_per_file): (
@@ -326,6 +336,7 @@ fn input_of<'t>(
             Input::Program {
                 name: name.to_string(),
                 text,
+                data,
                 language,
                 process_name,
                 process: parsed,

@@ -210,8 +210,20 @@ pub fn run(args: &Args) -> Result<()> {
         (None, None) => bail!("expected --path or --program"),
     };
     let text = load::read(&input_path)?;
-    let input = input(args, name.clone(), &text)?;
+    // A KRL program's .dat beside it: read with it, and written compensated beside --out.
+    let data_path = (args.program.as_deref().zip(args.process.as_ref()))
+        .and_then(|(p, _)| stiffid_machining::program::krl::data_beside(p));
+    let data = data_path.as_deref().map(load::read).transpose()?;
+    let input = input(args, name.clone(), (&text, data.as_deref()))?;
     let out = OutFile::prepare(&args.out, "--out")?;
+    let data_out = (data.as_ref())
+        .map(|_| {
+            OutFile::prepare(
+                &stiffid_machining::program::krl::data_out(&args.out),
+                "--out",
+            )
+        })
+        .transpose()?;
     let csv_out = args
         .csv
         .as_deref()
@@ -251,6 +263,12 @@ pub fn run(args: &Args) -> Result<()> {
     output::warnings(&report.warnings);
     let Sinks { mut csv, rows, .. } = sinks;
     csv.sync()?;
+    if let (Some(o), Some(d)) = (
+        &data_out,
+        report.program.as_ref().and_then(|p| p.data.as_ref()),
+    ) {
+        o.write(d.as_bytes())?;
+    }
     let names = names(args);
     finish(args, &setup, &report, &names, csv, rows, &out, report_dir)?;
     Ok(())
@@ -260,7 +278,11 @@ pub fn run(args: &Args) -> Result<()> {
 pub(crate) const FRAME_WITHOUT_PATH: &str = "only with --path (the frame of a path CSV's wrenches): a program's wrench is its process file's, where the tool cuts";
 
 /// The request's input from the arguments and the input file's text.
-fn input<'t>(args: &Args, name: String, text: &'t str) -> Result<Input<'t>> {
+fn input<'t>(
+    args: &Args,
+    name: String,
+    (text, data): (&'t str, Option<&'t str>),
+) -> Result<Input<'t>> {
     let Some(process) = &args.process else {
         return Ok(Input::Path {
             name,
@@ -283,6 +305,7 @@ fn input<'t>(args: &Args, name: String, text: &'t str) -> Result<Input<'t>> {
     Ok(Input::Program {
         name,
         text,
+        data,
         language,
         process_name,
         process: parsed,

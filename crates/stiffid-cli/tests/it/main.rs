@@ -19,6 +19,7 @@ mod hardening;
 mod hardening_edges;
 mod identify_cli;
 mod kinematics;
+mod krl_dat_cli;
 mod lead_tilt_cli;
 mod limits_edges;
 mod mass_cli;

@@ -70,8 +70,9 @@ pub trait Controller: Sync {
     /// # Errors
     /// [`stiffid_core::Error::Program`] naming the line of a motion outside the subset read.
     fn read(&self, text: &str) -> Result<Read>;
-    /// [`Controller::read`] with what the setup says in `context` (a language whose programs
-    /// state everything reads them as [`Controller::read`] does).
+    /// [`Controller::read`] with what the setup says in `context` and the data file beside the
+    /// program (KRL's `.dat`, `context.data`); a language whose programs state everything reads
+    /// them as [`Controller::read`] does.
     ///
     /// # Errors
     /// Those of [`Controller::read`].

@@ -2,8 +2,10 @@
 //! programs and the Cartesian targets of KRL, RAPID and LS ones ([`cartesian`]), read in the
 //! order the controller moves to them and written back with everything else byte for byte.
 //!
-//! - [`krl`]: `PTP`/`LIN` (and `SPTP`/`SLIN`) motions to an aggregate `{A1 .., ..., A6 ..}` or to
-//!   a point declared in the same file as `E6AXIS`/`AXIS`, with its external axes `E1`..`E6`.
+//! - [`krl`]: `PTP`/`LIN` (and `SPTP`/`SLIN`, `CIRC`/`SCIRC`) motions to an aggregate
+//!   `{A1 .., ..., A6 ..}` or to a point declared in the `.src` or the `.dat` beside it
+//!   ([`parse_with_data`]) as `E6AXIS`/`AXIS`, with its external axes `E1`..`E6`; the inline
+//!   forms' frames by number.
 //! - [`rapid`]: `MoveAbsJ` (also `\Conc`) to a literal `[[j1,..,j6],[e1,..,e6]]` or to a
 //!   `jointtarget` declared in the same module (over one line or several), with its external axes
 //!   `eax_a`..`eax_f` (`9E9`: not used).
@@ -207,7 +209,10 @@ pub struct JointProgram {
     units: Units,
     /// What writes the Cartesian targets back, once resolved ([`cartesian::resolve`]).
     writer: Option<Box<cartesian::Writer>>,
+    /// The program's text, then its data file's when one was read (KRL's `.dat`).
     text: String,
+    /// Where the data file's text begins in `text`, when one was read.
+    data_at: Option<usize>,
 }
 
 /// What the setup says of a program that the program itself does not: the controller's
@@ -223,6 +228,9 @@ pub struct Context<'a> {
     /// `[robot_flange]`), m, and the tools the controller holds by number (`[controller]
     /// tools`, in its flange frame).
     pub tool: Option<(Isometry3<f64>, &'a NumberedFrames)>,
+    /// The data file beside the program (KRL's `.dat`: its points and frame data), whose
+    /// targets there are written back into it ([`JointProgram::write_pair`]).
+    pub data: Option<&'a str>,
 }
 
 impl<'a> Context<'a> {
@@ -232,7 +240,13 @@ impl<'a> Context<'a> {
         Context {
             pulses: c.pulses.as_ref(),
             tool: Some((c.adapter * Translation3::from(setup.tool().tcp), &c.tools)),
+            data: None,
         }
+    }
+
+    /// The context with the data file `data` beside the program (KRL's `.dat`).
+    pub fn with_data(self, data: Option<&'a str>) -> Self {
+        Context { data, ..self }
     }
 }
 
@@ -243,6 +257,15 @@ impl<'a> Context<'a> {
 /// Those of [`parse_in`].
 pub fn parse(text: &str, dialect: Dialect) -> Result<JointProgram> {
     parse_in(text, dialect, &Context::default())
+}
+
+/// [`parse`] of a program with the data file beside it (KRL's `.dat`: its points, frame data),
+/// whose targets there are written back into it ([`JointProgram::write_pair`]).
+///
+/// # Errors
+/// Those of [`parse_in`]; a motion to a point neither file declares, naming its line.
+pub fn parse_with_data(text: &str, data: Option<&str>, dialect: Dialect) -> Result<JointProgram> {
+    parse_in(text, dialect, &Context::default().with_data(data))
 }
 
 /// Parses the joint targets of `text` in `dialect` with what the setup says in `context`.
@@ -283,7 +306,8 @@ pub fn parse_in(text: &str, dialect: Dialect, context: &Context) -> Result<Joint
         pulses,
         units,
         writer: None,
-        text: text.to_string(),
+        text: [text, context.data.unwrap_or("")].concat(),
+        data_at: context.data.map(|_| text.len()),
     })
 }
 
@@ -313,12 +337,39 @@ impl JointProgram {
     /// targets, a row of `external` another shape than the target's values, or a value is not
     /// finite; [`Error::Program`] naming the line where two motions to one declared point would
     /// take different values, or of a Cartesian target of a program not resolved
-    /// ([`cartesian::resolve`]).
+    /// ([`cartesian::resolve`]); [`Error::InvalidField`] (`data`) for a program whose data file
+    /// changes, which only [`JointProgram::write_pair`] writes.
     pub fn write_with_external(
         &self,
         q_deg: &[[f64; 6]],
         external: &[Vec<Option<f64>>],
     ) -> Result<String> {
+        match self.write_pair(q_deg, external)? {
+            (program, None) => Ok(program),
+            (program, Some(data)) if Some(data.as_str()) == self.data() => Ok(program),
+            _ => Err(Error::InvalidField {
+                field: "data".into(),
+                message: "targets of the program live in its data file (KRL's .dat), which changes with them: write both (JointProgram::write_pair)".into(),
+            }),
+        }
+    }
+
+    /// The data file's text as read (KRL's `.dat`), if one was.
+    pub fn data(&self) -> Option<&str> {
+        self.data_at.map(|at| &self.text[at..])
+    }
+
+    /// The program and its data file (when one was read: KRL's `.dat`), the targets written as
+    /// [`JointProgram::write_with_external`] does: every number of a target in its file, every
+    /// other byte of both as read.
+    ///
+    /// # Errors
+    /// Those of [`JointProgram::write_with_external`] but the data file's.
+    pub fn write_pair(
+        &self,
+        q_deg: &[[f64; 6]],
+        external: &[Vec<Option<f64>>],
+    ) -> Result<(String, Option<String>)> {
         if q_deg.len() != self.targets.len() || q_deg.iter().flatten().any(|v| !v.is_finite()) {
             return Err(Error::InvalidField {
                 field: "q_deg".into(),
@@ -384,6 +435,8 @@ impl JointProgram {
         edits.sort_by_key(|e| e.0.start);
         let mut out = String::with_capacity(self.text.len() + self.targets.len() * 24);
         let mut at = 0;
+        // How much the program's own text grew, to find where the data file's begins.
+        let mut grown: isize = 0;
         for (j, (span, i, text, changed)) in edits.iter().enumerate() {
             if let Some((_, first, other, _)) = edits[..j].last().filter(|e| e.0 == *span) {
                 if other != text {
@@ -403,10 +456,19 @@ impl JointProgram {
                 out.push_str(&self.text[at..span.start]);
                 out.push_str(text);
                 at = span.end;
+                if self.data_at.is_some_and(|d| span.end <= d) {
+                    grown += text.len() as isize - span.len() as isize;
+                }
             }
         }
         out.push_str(&self.text[at..]);
-        Ok(out)
+        Ok(match self.data_at {
+            None => (out, None),
+            Some(d) => {
+                let data = out.split_off((d as isize + grown) as usize);
+                (out, Some(data))
+            }
+        })
     }
 
     /// Per value (the six axes, then the external ones), the pulses per degree or mm of a value

@@ -26,6 +26,30 @@ pub fn renamed(text: &str, dialect: Dialect, name: &str) -> String {
     }
 }
 
+/// A KRL `.dat`, `text`, with the name its `DEFDAT` declares replaced by `name` (KUKA System
+/// Software pairs a `.src` and its `.dat` by the module name both declare); every other byte as
+/// it was.
+///
+/// # Examples
+/// ```
+/// use stiffid_machining::program::rename::renamed_data;
+/// let dat = "&ACCESS RVP\nDEFDAT  pocket PUBLIC\nENDDAT\n";
+/// assert_eq!(renamed_data(dat, "pocket_c"), "&ACCESS RVP\nDEFDAT  pocket_c PUBLIC\nENDDAT\n");
+/// ```
+pub fn renamed_data(text: &str, name: &str) -> String {
+    let keyword = |line: &str| {
+        let upper = line.to_ascii_uppercase();
+        upper
+            .strip_prefix("DEFDAT")
+            .filter(|r| r.starts_with(char::is_whitespace))
+            .map(|r| line.len() - r.len())
+    };
+    match declared(text, keyword) {
+        Some((start, end)) => format!("{}{name}{}", &text[..start], &text[end..]),
+        None => text.to_string(),
+    }
+}
+
 /// The byte span in `text` of the name on the first line where `keyword` finds the end of the
 /// declaring keyword (an offset in the line with its leading blanks removed): the identifier
 /// after the blanks that follow it.

@@ -347,7 +347,7 @@ fn unreadable(
                 })
                 .collect(),
             line_of(krl, "$BASE ="),
-            "BASE_DATA[1]",
+            "frame number 1 of the controller's bases",
         ),
         // An LS user frame without a part frame is fine here (the setup has one); a RAPID tool
         // not declared is not.
@@ -368,6 +368,7 @@ fn refused_by_the_job(s: &Setup, options: Options, text: &str, line: u64) {
         input: stiffid::app::compensate::Input::Program {
             name: "cut.src".into(),
             text,
+            data: None,
             language: Language::Robot(Dialect::Krl),
             process_name: "aluminium.toml".into(),
             process: process(),

@@ -83,6 +83,7 @@ fn compensate_with(
         input: Input::Program {
             name: "p.nc".into(),
             text: program,
+            data: None,
             language: Language::GCode,
             process_name: "p.toml".into(),
             process: file::parse(process, "p.toml").unwrap(),

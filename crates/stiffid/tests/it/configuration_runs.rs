@@ -213,6 +213,7 @@ fn drill_with(
         input: Input::Program {
             name: "drill.nc".into(),
             text,
+            data: None,
             language: Language::GCode,
             process_name: "drilling.toml".into(),
             process,

@@ -30,11 +30,11 @@ fn krl_cases() -> Vec<(String, Reads)> {
         (krl(&format!("{KRL_DECLS}\nPTP XP1\nlin xp2 c_dis ; cut\nLIN XP1")), Targets(&[(4, Q1), (5, Q2), (6, Q1)])),
         // Motions the file does not say exactly.
         (krl("DECL E6POS XP1={X 1,Y 2,Z 3,A 0,B 0,C 0,S 6}\nLIN XP1"), Refused(2, "only one of S and T")),
-        (krl("PTP XP9"), Refused(2, "not a point declared in this file")),
-        (krl("PTP $AXIS_ACT"), Refused(2, "not a point declared in this file")),
+        (krl("PTP XP9"), Refused(2, "not a point declared in the .src, and no .dat beside it")),
+        (krl("PTP $AXIS_ACT"), Refused(2, "a system variable")),
         (krl(&format!("{KRL_DECLS}\nSPL XP1")), Refused(4, "spline")),
         (krl(&format!("{KRL_DECLS}\nSPLINE\nSLIN XP1\nENDSPLINE")), Refused(4, "spline")),
-        (krl(&format!("PTP {lit1}\nCIRC {lit1}, {lit1}")), Refused(3, "circular")),
+        (krl(&format!("PTP {lit1}\nCIRC {lit1}, {lit1}")), Refused(3, "a circle through axis angles")),
         (krl("PTP_REL {A1 5}"), Refused(2, "relative")),
         (krl("LIN {X 1, Y 2, Z 3, A 0, B 0}"), Refused(2, "no C")),
         (krl("LIN {X 1, Y 2, Z 3, A 0, B 0, C 0, A1 5}"), Refused(2, "both axis angles (A1..) and a Cartesian pose")),
@@ -42,8 +42,8 @@ fn krl_cases() -> Vec<(String, Reads)> {
         (krl(&format!("{KRL_DECLS}\nPTP XP1 : {{A1 5}}")), Refused(4, "':'")),
         (krl(&format!("{KRL_DECLS}\nXP1.A1 = 7\nPTP XP1")), Refused(5, "assigned on line 4")),
         (krl("DECL E6AXIS XP1\nPTP XP1"), Refused(3, "without a value")),
-        (krl(&format!("FOR I = 1 TO 3\nPTP {lit1}\nENDFOR")), Refused(2, "loop")),
-        (format!("DEF a( )\nPTP {lit1}\nEND\nDEF b( )\nPTP {lit1}\nEND\n"), Refused(5, "DEF A (line 1) and DEF B (line 4)")),
+        (krl(&format!("FOR I = 1 TO 3\nPTP {lit1}\nENDFOR")), Refused(3, "inside FOR (line 2)")),
+        (format!("DEF a( )\nPTP {lit1}\nEND\nDEF b( )\nPTP {lit1}\nEND\n"), Refused(5, "DEF B (line 4), a routine the program's DEF A (line 1)")),
         ("DEFDAT p\nDECL E6AXIS XP1={A1 1,A2 2,A3 3,A4 4,A5 5,A6 6}\nENDDAT\n".to_string(), Refused(1, "give the .src")),
     ]
 }

@@ -93,6 +93,7 @@ fn program(setup: &stiffid::Setup, dialect: Dialect) -> (String, Vec<Compensated
         input: Input::Program {
             name: "pocket.nc".into(),
             text: include_str!("../../../../examples/milling/pocket.nc"),
+            data: None,
             language: Language::GCode,
             process_name: "aluminium.toml".into(),
             process,

@@ -120,6 +120,7 @@ fn rotated(case: &Case, s: &Setup) -> Result<(Report, Postures), Error> {
         input: Input::Program {
             name: name.to_string(),
             text,
+            data: None,
             language: Language::Robot(*dialect),
             process_name: "aluminium.toml".into(),
             process: stiffid::machining::process::file::parse(PROCESS, "aluminium.toml").unwrap(),

@@ -138,6 +138,7 @@ fn written(c: &Cell, gcode: &'static str, dialect: Dialect) -> String {
         input: Input::Program {
             name: "pocket.nc".into(),
             text: gcode,
+            data: None,
             language: Language::GCode,
             process_name: "process.toml".into(),
             process: c.process.clone(),

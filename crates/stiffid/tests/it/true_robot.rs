@@ -608,6 +608,7 @@ pub(crate) fn written_from(
         input: Input::Program {
             name: "rectangle.nc".into(),
             text: gcode,
+            data: None,
             language: Language::GCode,
             process_name: "aluminium.toml".into(),
             process,

@@ -27,6 +27,7 @@ pub(super) fn read_checked(
     let Input::Program {
         name,
         text,
+        data,
         language,
         chord_tolerance,
         output,
@@ -46,7 +47,8 @@ pub(super) fn read_checked(
         generate::check_payload(d, settings.targets, &program_tool(setup))?;
         generate::check_pulses(d, setup.workcell().controller().pulses.as_ref())?;
     }
-    let program = read_program_in(name, text, language, *chord_tolerance, &Context::of(setup))?;
+    let context = Context::of(setup).with_data(*data);
+    let program = read_program_in(name, text, language, *chord_tolerance, &context)?;
     // A Cartesian program's targets as the controller moves to them (a copy only then).
     match machining::resolve(&program, setup, None, options) {
         Ok(std::borrow::Cow::Owned(p)) => Ok(Some(p)),

@@ -67,6 +67,10 @@ pub enum Input<'t> {
         name: String,
         /// Its text.
         text: &'t str,
+        /// The text of its data file, for a KRL `.src` whose `.dat` is beside it (same stem,
+        /// same folder): its points and frame data are read from it, and its targets there
+        /// written back into a compensated copy ([`ProgramReport::data`]).
+        data: Option<&'t str>,
         /// Its language.
         language: Language,
         /// The process file's name.
@@ -115,6 +119,10 @@ pub struct ProgramReport {
     /// A generated program's sub-programs, in call order (empty unless it is split): each
     /// written to a file of its name next to the main program's.
     pub subprograms: Vec<generate::File>,
+    /// For a KRL program read with its `.dat` ([`Input::Program`]'s `data`): the `.dat`
+    /// compensated (its `DEFDAT` renamed with the program's `DEF`), to be written beside the
+    /// program under its stem with `.dat`, together with it.
+    pub data: Option<String>,
     /// Each segment's force and deflection, in program order.
     pub segments: Vec<Segment>,
     /// Each operation's drilling surge or milling frequencies ([`dynamics::operations`]); empty
@@ -452,6 +460,10 @@ where
     out.configurations = compensated.configurations.clone();
     let (dynamics, warnings) = program_dynamics(setup, compliance, &process, &compensated, add)?;
     out.warnings = warnings;
+    let data = compensated.data.as_ref().map(|d| match &written_name {
+        Some(to) => crate::program::rename::renamed_data(d, to),
+        None => d.clone(),
+    });
     let (text, subprograms) = match (output, &program) {
         (Language::Robot(d), Program::GCode(g)) => {
             let how = (written_name.unwrap_or_default(), settings, chord_tolerance);
@@ -484,6 +496,7 @@ where
         dynamics,
         text,
         subprograms,
+        data,
     });
     Ok(out)
 }

@@ -32,7 +32,8 @@ pub(crate) fn target(
             return Err(at(line, format!("a Cartesian target with {} {name}: expected each of X, Y, Z, A, B, C once (KRL keeps the members a partial aggregate leaves out where the robot is, which the file does not say)", if found.is_empty() { "no" } else { "more than one" })));
         };
         let (v, span) = number_at(code, *after)
-            .ok_or_else(|| at(line, format!("{name}: expected a number")))?;
+            .filter(|(_, s)| ends_member(code, s.end))
+            .ok_or_else(|| at(line, format!("{name}: expected a number, then ',' or '}}'")))?;
         pose.push((v, start + span.start..start + span.end));
     }
     let mut c = Cartesian::new(Dialect::Krl, &pose);
@@ -56,6 +57,13 @@ pub(crate) fn target(
     Ok(c)
 }
 
+/// Whether an aggregate's member ends at byte `end` of `code`: blanks, then `,` or `}` (a
+/// number run into letters, `0S`, is no number to KRL).
+fn ends_member(code: &str, end: usize) -> bool {
+    let rest = code[end..].trim_start();
+    rest.is_empty() || rest.starts_with([',', '}'])
+}
+
 /// The value of `S` or `T` after byte `after`: a binary string `'B0110'` or a whole number;
 /// its value, span and whether it is binary.
 fn bits(line: u64, code: &str, after: usize, name: &str) -> Result<(u64, Range<usize>, bool)> {
@@ -76,7 +84,9 @@ fn bits(line: u64, code: &str, after: usize, name: &str) -> Result<(u64, Range<u
         let value = u64::from_str_radix(digits, 2).map_err(|_| bad())?;
         return Ok((value, from..from + close + 2, true));
     }
-    let (v, span) = number_at(code, from).ok_or_else(bad)?;
+    let (v, span) = number_at(code, from)
+        .filter(|(_, s)| ends_member(code, s.end))
+        .ok_or_else(bad)?;
     match v >= 0.0 && v.fract() == 0.0 && v < 256.0 {
         true => Ok((v as u64, span, false)),
         false => Err(bad()),

@@ -44,7 +44,10 @@ impl Krl {
             Speed::Unread(format!(
                 "line {line} sets $VEL as a whole, which stiffid does not read: set $VEL.CP"
             ))
-        } else if c.starts_with("BAS(#INITMOV") || c.starts_with("BAS(#VEL_CP") {
+        } else if ["BAS(#INITMOV", "BAS(#VEL_CP", "BAS(#CP_DAT"]
+            .iter()
+            .any(|b| c.starts_with(b))
+        {
             Speed::Unread(format!("line {line} sets the path speed by {}, to the controller's value: set $VEL.CP after it", short(code.trim())))
         } else {
             return Ok(false);

@@ -28,6 +28,9 @@ fn krl_speeds_in_force_and_per_motion() {
     assert!(!k.set(7, "$VEL.ORI1 = 200").unwrap());
     assert!(k.set(8, "$VEL.CP = $VEL_MA.CP * 0.5").unwrap());
     assert!(matches!(k.motion(9, "LIN", "").unwrap(), Speed::Unread(w) if w.contains("line 8")));
+    // The old inline forms' BAS(#CP_DAT) takes LDAT_ACT's speed, which is not read.
+    assert!(k.set(9, "BAS (#CP_DAT)").unwrap());
+    assert!(matches!(k.motion(10, "LIN", "").unwrap(), Speed::Unread(w) if w.contains("line 9")));
     for bad in [
         "$VEL.CP = -1",
         "$VEL.CP = 0",

@@ -1,3 +1,6 @@
 //! KUKA's KRL (`stiffid_machining::program::krl`).
 
 mod cartesian;
+mod corpus;
+mod inline;
+mod stored;

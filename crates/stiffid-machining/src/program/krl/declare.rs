@@ -1,0 +1,219 @@
+//! The data a KRL program declares, in the `.src` or its `.dat` (`DEFDAT`): its points
+//! (`E6AXIS`, `AXIS` as joint targets; `E6POS`, `POS`, `FRAME` as Cartesian ones), its frame data
+//! records (`FDAT`), and the lines of the `.src` that assign a declared point at run time.
+
+use super::cartesian;
+use super::frames::{fdat, Fdats};
+use super::read::words;
+use crate::program::{at, number_at, six, JointTarget};
+use std::collections::HashMap;
+use stiffid_core::{Error, Result};
+
+/// A point declared: where (its line, and `of the .dat` for one there) and its joint target, or
+/// why it is none.
+pub(super) type Declared = HashMap<String, (String, std::result::Result<JointTarget, String>)>;
+
+/// What a program and its `.dat` declare.
+#[derive(Debug, Default)]
+pub(super) struct Declarations {
+    /// The points, by upper-case name.
+    pub points: Declared,
+    /// The frame data records, by upper-case name.
+    pub fdats: Fdats,
+    /// The line of the `.src` that last assigns each declared point at run time.
+    pub assigned: HashMap<String, u64>,
+}
+
+/// Where a text is: the `.src` (its points read or refused as they are found), or its `.dat`
+/// from byte `offset` of the program's text (a point there that cannot be read is refused
+/// only by a motion to it).
+#[derive(Debug, Clone, Copy)]
+pub(super) enum Place {
+    /// The program.
+    Src,
+    /// Its `.dat`, from this byte of the program's text (the `.src` then the `.dat`).
+    Dat(usize),
+}
+
+/// The declarations of the `.src` `text` and of its `.dat` `data` (a name declared in both is
+/// the `.src`'s, as KRL's local declaration hides the module's).
+///
+/// # Errors
+/// A malformed point of the `.src`, naming its line.
+pub(super) fn declarations(text: &str, data: Option<&str>) -> Result<Declarations> {
+    let mut out = Declarations::default();
+    let mut assignments = Vec::new();
+    read(text, Place::Src, &mut out, &mut assignments)?;
+    if let Some(d) = data {
+        let mut own = Declarations::default();
+        read(d, Place::Dat(text.len()), &mut own, &mut Vec::new())?;
+        for (k, v) in own.points {
+            out.points.entry(k).or_insert(v);
+        }
+        for (k, v) in own.fdats {
+            out.fdats.entry(k).or_insert(v);
+        }
+    }
+    out.assigned = assignments
+        .into_iter()
+        .filter(|(name, _)| out.points.contains_key(name))
+        .rev()
+        .collect();
+    Ok(out)
+}
+
+/// The declarations of one text into `out`, its assignments into `assignments`.
+fn read(
+    text: &str,
+    place: Place,
+    out: &mut Declarations,
+    assignments: &mut Vec<(String, u64)>,
+) -> Result<()> {
+    let (offset, file) = match place {
+        Place::Src => (0, ""),
+        Place::Dat(o) => (o, " of the .dat"),
+    };
+    for (line, start, l) in crate::program::lines(text) {
+        let code = l.split(';').next().unwrap_or("");
+        let words = words(code);
+        let w: Vec<&str> = words
+            .iter()
+            .map(String::as_str)
+            .skip_while(|w| matches!(*w, "DECL" | "GLOBAL" | "CONST"))
+            .collect();
+        let declares = words.first().is_some_and(|f| f == "DECL") || w.len() < words.len();
+        let on = format!("on line {line}{file}");
+        match w.as_slice() {
+            ["E6AXIS" | "AXIS" | "E6POS" | "POS" | "FRAME", name, ..] => {
+                let name = name.split(['[', ',']).next().unwrap_or(name).to_string();
+                let value = match code.find('{') {
+                    None => Err(format!(
+                        "{name} is declared {on} without a value (set at run time)"
+                    )),
+                    Some(open) => match (aggregate_at(line, start + offset, code, open), place) {
+                        (Ok(t), _) => Ok(t),
+                        (Err(e), Place::Src) => return Err(e),
+                        (Err(e), Place::Dat(_)) => {
+                            Err(format!("{name}, declared {on}: {}", message(e)))
+                        }
+                    },
+                };
+                out.points.insert(name, (on, value));
+            }
+            ["FDAT", name, ..] => {
+                let value = match code.split_once('=') {
+                    Some((_, v)) => fdat(v),
+                    None => Err("declared without a value".into()),
+                };
+                out.fdats.insert(name.to_string(), (on, value));
+            }
+            [name, ..] if !declares && code.contains('=') => {
+                let name = name.split(['.', '[']).next().unwrap_or(name).to_string();
+                assignments.push((name, line));
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+/// An error's message without its line.
+fn message(e: Error) -> String {
+    match e {
+        Error::Program { message, .. } => message,
+        other => other.to_string(),
+    }
+}
+/// The joint target of the aggregate opening at byte `open` of `code` (which starts at byte
+/// `start` of the text).
+pub(super) fn aggregate_at(
+    line: u64,
+    start: usize,
+    code: &str,
+    open: usize,
+) -> Result<JointTarget> {
+    let close = code[open..]
+        .find('}')
+        .map(|c| open + c)
+        .ok_or_else(|| at(line, "aggregate without its closing '}' on the line".into()))?;
+    aggregate(line, start, code, open + 1, close)
+}
+
+/// The target of the aggregate between `from` and `to` of `code` (which starts at byte `start`).
+fn aggregate(line: u64, start: usize, code: &str, from: usize, to: usize) -> Result<JointTarget> {
+    let inner = &code[from..to];
+    // An optional type: `{E6AXIS: A1 0, ...}`.
+    let skip = inner.find(':').map_or(0, |c| c + 1);
+    let mut found: [Option<(f64, std::ops::Range<usize>)>; 6] = Default::default();
+    let mut external: Vec<Option<(f64, std::ops::Range<usize>)>> = Vec::new();
+    let mut pose: Vec<(String, usize)> = Vec::new();
+    let mut at_byte = from + skip;
+    for item in code[from + skip..to].split(',') {
+        let name_start = at_byte + item.len() - item.trim_start().len();
+        let trimmed = item.trim();
+        let name: String = trimmed
+            .chars()
+            .take_while(|c| c.is_ascii_alphanumeric())
+            .collect();
+        let upper = name.to_ascii_uppercase();
+        if cartesian::is_member(&upper) {
+            pose.push((upper, name_start + name.len()));
+            at_byte += item.len() + 1;
+            continue;
+        }
+        let slot = |prefix: char| {
+            upper
+                .strip_prefix(prefix)
+                .and_then(|d| d.parse::<usize>().ok())
+                .filter(|k| (1..=6).contains(k))
+        };
+        let item_end = at_byte + item.len();
+        let value = || {
+            let (v, span) = number_at(code, name_start + name.len())
+                .filter(|(_, s)| code[s.end..item_end].trim().is_empty())
+                .ok_or_else(|| {
+                    at(
+                        line,
+                        format!(
+                            "{name}: expected a number, found '{}'",
+                            stiffid_core::common::limits::short(trimmed[name.len()..].trim())
+                        ),
+                    )
+                })?;
+            Ok::<_, Error>((v, start + span.start..start + span.end))
+        };
+        if let Some(k) = slot('A') {
+            if found[k - 1].is_some() {
+                return Err(at(line, format!("{name} given twice")));
+            }
+            found[k - 1] = Some(value()?);
+        } else if let Some(k) = slot('E') {
+            if external.len() < k {
+                external.resize(k, None);
+            }
+            if external[k - 1].is_some() {
+                return Err(at(line, format!("{name} given twice")));
+            }
+            external[k - 1] = Some(value()?);
+        }
+        at_byte += item.len() + 1;
+    }
+    if !pose.is_empty() {
+        if found.iter().any(Option::is_some) {
+            return Err(at(
+                line,
+                "an aggregate with both axis angles (A1..) and a Cartesian pose (X..): give one"
+                    .into(),
+            ));
+        }
+        let c = cartesian::target(line, start, code, &pose)?;
+        return Ok(JointTarget::cartesian(line, c).with_external(external));
+    }
+    six(line, found, "A").map(|t| t.with_external(external)).map_err(|e| match e {
+        Error::Program { line, message } => Error::Program {
+            line,
+            message: format!("{message}: KRL keeps the axes a partial aggregate leaves out where the robot is, which the file does not say; give all six"),
+        },
+        other => other,
+    })
+}

@@ -1,0 +1,126 @@
+//! One KRL motion line's targets (module docs of [`super`]): `PTP`, `LIN`, `SPTP`, `SLIN` to
+//! an aggregate or a declared point, `CIRC`/`SCIRC` to an auxiliary point and an end point;
+//! every other motion refused naming the line.
+
+use super::declare::{aggregate_at, Declarations};
+use crate::program::{at, JointTarget};
+use stiffid_core::common::limits::short;
+use stiffid_core::Result;
+
+/// What a motion line reads against: the declarations, and whether a `.dat` was given.
+pub(super) struct Context<'a> {
+    /// The declarations of the `.src` and its `.dat`.
+    pub declared: &'a Declarations,
+    /// Whether the `.dat` was read.
+    pub data: bool,
+}
+
+/// The targets of a motion line (one, or for `CIRC` the auxiliary point then the end point),
+/// `None` for a line that is no motion; every motion outside the subset refused naming the
+/// line.
+pub(super) fn motion(
+    (line, start): (u64, usize),
+    code: &str,
+    first: &str,
+    context: &Context,
+) -> Result<Option<Vec<JointTarget>>> {
+    let refuse = |what: &str| Err(at(line, format!("{first}: {what}")));
+    let circle = match first {
+        "PTP" | "LIN" | "SPTP" | "SLIN" => false,
+        "CIRC" | "SCIRC" => true,
+        "PTP_REL" | "LIN_REL" | "SPTP_REL" | "SLIN_REL" | "CIRC_REL" | "SCIRC_REL" => {
+            return refuse("a relative motion; stiffid compensates absolute joint targets: write the absolute target")
+        }
+        "SPL" | "SPLINE" | "PTP_SPLINE" | "ENDSPLINE" | "SLIN_SPL" | "SCIRC_SPL" => {
+            return refuse("a spline; its path bends through all its points, not along the compensated ones: write it as LIN or PTP motions")
+        }
+        "ASYPTP" | "ASYCONT" => {
+            return refuse("an asynchronous motion of external axes; not compensated: remove it")
+        }
+        "RSI_MOVECORR" | "ST_MOVECORR" => {
+            return refuse("a motion the Robot Sensor Interface commands from its sensor, not the program's targets; stiffid does not compensate it: write the path as PTP/LIN motions")
+        }
+        _ => return Ok(None),
+    };
+    let mut from = code.len() - code.trim_start()[first.len()..].len();
+    let mut out = Vec::with_capacity(2);
+    for k in 0..=usize::from(circle) {
+        let (target, after) = one((line, start), code, from, (first, context))?;
+        out.push(target);
+        from = after;
+        if circle && k == 0 {
+            let rest = &code[from..];
+            let comma = rest.trim_start().strip_prefix(',').ok_or_else(|| {
+                at(
+                    line,
+                    format!("{first}: expected the auxiliary point, a comma, then the end point"),
+                )
+            })?;
+            from = code.len() - comma.len();
+        }
+    }
+    check_after(line, first, &code[from..])?;
+    if circle && out.iter().any(|t| t.cartesian.is_none()) {
+        return refuse(
+            "a circle through axis angles; KRL's CIRC takes Cartesian points (POS, E6POS, FRAME)",
+        );
+    }
+    Ok(Some(out))
+}
+
+/// The target at or after blanks from byte `from` of `code`: an aggregate or a declared point,
+/// and the byte after it.
+fn one(
+    (line, start): (u64, usize),
+    code: &str,
+    from: usize,
+    (first, context): (&str, &Context),
+) -> Result<(JointTarget, usize)> {
+    let rest = code[from..].trim_start();
+    let open = code.len() - rest.len();
+    if rest.starts_with('{') {
+        let close = code[open..]
+            .find('}')
+            .map(|c| open + c)
+            .ok_or_else(|| at(line, "aggregate without its closing '}' on the line".into()))?;
+        return Ok((aggregate_at(line, start, code, open)?, close + 1));
+    }
+    let name: String = rest
+        .chars()
+        .take_while(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '$' | '[' | ']'))
+        .collect();
+    let upper = name.to_ascii_uppercase();
+    let declared = context.declared;
+    if let Some(assigned_on) = declared.assigned.get(&upper) {
+        return Err(at(line, format!("{first} {name}: {name} is assigned on line {assigned_on}, so its value at the motion is the controller's, not the file's: give the motion its own declared point")));
+    }
+    let target = match declared.points.get(&upper) {
+        Some((_, Ok(t))) => t.moved_to(line, false),
+        Some((_, Err(why))) => return Err(at(line, format!("{first} {name}: {why}"))),
+        None if name.is_empty() => return Err(at(line, format!("{first}: expected a point or an aggregate {{..}}"))),
+        None if name.starts_with('$') => return Err(at(line, format!("{first} {name}: a system variable, whose value is the controller's at run time: give the motion a point declared in the .src or its .dat"))),
+        None if context.data => return Err(at(line, format!("{first} {name}: not a point declared in the .src or its .dat ($config.dat or a system variable holds it, which stiffid cannot know): declare it in the .dat as E6POS or E6AXIS"))),
+        None => return Err(at(line, format!("{first} {name}: not a point declared in the .src, and no .dat beside it (the .src's stem with .dat) declares it: give the .dat beside the .src, or declare the point in it as E6POS or E6AXIS"))),
+    };
+    Ok((target, open + name.len()))
+}
+
+/// Refuses a word after a motion's target(s) that is not an approximation or `WITH`: a
+/// geometric operator, an offset, or a circle's angle (`CA`).
+fn check_after(line: u64, first: &str, after: &str) -> Result<()> {
+    let extra = after
+        .split(|c: char| c.is_whitespace() || c == ',')
+        .find(|w| !w.is_empty())
+        .filter(|w| {
+            let w = w.to_ascii_uppercase();
+            !matches!(
+                w.as_str(),
+                "C_PTP" | "C_DIS" | "C_VEL" | "C_ORI" | "C_SPL" | "WITH"
+            )
+        });
+    match extra {
+        Some(w) if w.eq_ignore_ascii_case("CA") => Err(at(line, format!("{first}: CA, a circular angle: the motion ends elsewhere than its end point, on the circle; write the end point the controller reaches"))),
+        Some(w) => Err(at(line, format!("{first}: '{}' after the target is not followed (a geometric operator, an offset or an option): write the motion to its absolute target", short(w)))),
+        None => Ok(()),
+    }
+}
