@@ -268,6 +268,7 @@ fn read_back(text: &str, dialect: Dialect) -> Vec<ReadBack> {
     let context = stiffid::machining::program::Context {
         pulses: Some(&pulses),
         tool: None,
+        data: None,
     };
     let program = stiffid::machining::program::parse_in(text, dialect, &context).unwrap();
     assert_eq!(program.axes.len(), 1, "{:?}", program.axes);

@@ -79,6 +79,7 @@ fn compensated(
         input: Input::Program {
             name: "weld.jbi".into(),
             text: job,
+            data: None,
             language: inform,
             process_name: "aluminium.toml".into(),
             process,

@@ -131,6 +131,7 @@ pub(crate) fn compensated_with(
         input: Input::Program {
             name: name.into(),
             text,
+            data: None,
             language: Language::Robot(Dialect::FanucLs),
             process_name: "aluminium.toml".into(),
             process,

@@ -16,6 +16,7 @@ fn with(p: &Pulses) -> Context<'_> {
     Context {
         pulses: Some(p),
         tool: None,
+        data: None,
     }
 }
 

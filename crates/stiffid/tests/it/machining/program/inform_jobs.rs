@@ -22,6 +22,7 @@ fn with(p: &Pulses) -> Context<'_> {
     Context {
         pulses: Some(p),
         tool: None,
+        data: None,
     }
 }
 
@@ -150,6 +151,7 @@ fn tool_files_are_checked_against_the_setups_tool() {
     let context = |tools| Context {
         pulses: Some(&p),
         tool: Some((tool, tools)),
+        data: None,
     };
     assert!(parse_in(STORED, Dialect::Inform, &context(&held)).is_ok());
     let (line, message) = refused(parse_in(STORED, Dialect::Inform, &context(&other)));

@@ -40,6 +40,7 @@ fn job(setup: &stiffid::Setup) -> stiffid::Result<Vec<f64>> {
         input: Input::Program {
             name: "pocket.nc".into(),
             text: include_str!("../../../../../../../examples/milling/pocket.nc"),
+            data: None,
             language: Language::GCode,
             process_name: "aluminium.toml".into(),
             process,

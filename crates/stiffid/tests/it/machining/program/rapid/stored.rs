@@ -179,6 +179,7 @@ fn compensated(
         input: Input::Program {
             name: "Rect.mod".into(),
             text,
+            data: None,
             language: Language::Robot(Dialect::Rapid),
             process_name: "aluminium.toml".into(),
             process,
