@@ -19,7 +19,7 @@ struct Refusal {
 }
 
 /// The modules refused as read (`program::parse`), without a setup.
-const REFUSED: [Refusal; 10] = [
+const REFUSED: [Refusal; 15] = [
     Refusal {
         file: "ROS_motion.mod",
         line: 66,
@@ -73,6 +73,36 @@ const REFUSED: [Refusal; 10] = [
         line: 1,
         says: &["no motion instruction", "holds no routine"],
         holds: &[(1, "MODULE ROS_common")],
+    },
+    Refusal {
+        file: "EGM_IRB_120_Module1.mod",
+        line: 74,
+        says: &["EGMRunJoint inside WHILE (line 58)"],
+        holds: &[(74, "EGMRunJoint egm_id, EGM_STOP_HOLD"), (58, "WHILE TRUE DO")],
+    },
+    Refusal {
+        file: "Tutorial-Simple_Module1.mod",
+        line: 48,
+        says: &["motions in PROC main (line 37) and PROC path_10 (line 47)"],
+        holds: &[(37, "PROC main()"), (39, "MoveAbsJ [[0,0,0,0,90,0]"), (47, "PROC Path_10()"), (48, "MoveL Target_10")],
+    },
+    Refusal {
+        file: "Tutorial-Simple_CalibData.mod",
+        line: 1,
+        says: &["no motion instruction", "holds no routine"],
+        holds: &[(2, "PERS tooldata smc_gripper")],
+    },
+    Refusal {
+        file: "data_processing_Module1.mod",
+        line: 14,
+        says: &["MoveAbsJ inside FOR (line 13) inside TEST (line 7)"],
+        holds: &[(14, "MoveAbsJ J_Orientation_Target{i}"), (13, "FOR i FROM 1 TO 5 DO"), (7, "TEST main_state")],
+    },
+    Refusal {
+        file: "SortingLine_IRB_1200_T_ROB1_Module1.mod",
+        line: 67,
+        says: &["MoveAbsJ inside TEST (line 57)"],
+        holds: &[(67, "MoveAbsJ [[0,0,0,0,90,0]"), (57, "TEST r_str.actual_state")],
     },
     Refusal {
         file: "error_reporter.mod",
@@ -157,3 +187,4 @@ fn a_multimove_example_is_refused_at_its_work_object_moved_by_another_robot() {
     let resolved = machining::resolve(&read, &setup, None, &Options::for_setup(&setup)).map(drop);
     check(&ON_SETUP, resolved.map_err(Error::from));
 }
+
