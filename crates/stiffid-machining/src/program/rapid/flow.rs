@@ -28,7 +28,9 @@ pub(super) struct Flow {
 /// motions whose path the program does not hold: Externally Guided Motion's `EGMRunJoint`,
 /// `EGMRunPose`, `EGMMoveL`, `EGMMoveC` (*Application manual - Externally Guided Motion*), the
 /// independent axes' `IndAMove`/`IndCMove`/`IndDMove`/`IndRMove`, `ContactL`, and the recorded
-/// path's `PathRecMoveBwd`/`PathRecMoveFwd`/`StepBwdPath`.
+/// path's `PathRecMoveBwd`/`PathRecMoveFwd`/`StepBwdPath`, and Force Control's pressing motions
+/// `FCPress1LStart`, `FCPressL`, `FCPressC`, `FCPressEnd`, `FCPressLEnd` (*Application manual -
+/// Force control*: the path follows the contact force).
 pub(super) fn is_motion(word: &str) -> bool {
     word.starts_with("move")
         || word.starts_with("arcl")
@@ -65,6 +67,11 @@ pub(super) fn is_motion(word: &str) -> bool {
                 | "pathrecmovebwd"
                 | "pathrecmovefwd"
                 | "stepbwdpath"
+                | "fcpress1lstart"
+                | "fcpressl"
+                | "fcpressc"
+                | "fcpressend"
+                | "fcpresslend"
         )
 }
 
