@@ -148,6 +148,14 @@ pub(crate) fn motion(
             .eq_ignore_ascii_case("wobj")
             .then(|| v.trim().to_string())
     });
+    if switches
+        .split('\\')
+        .any(|s| s.trim().eq_ignore_ascii_case("corr"))
+    {
+        // *RAPID Instructions*, MoveL: `\Corr` adds the correction a sensor writes
+        // (`CorrWrite`) to the path at run time.
+        return Err(at(line, format!("\\Corr (tool {}): the path is corrected at run time by the offsets a correction generator receives (CorrWrite), which the program does not hold; not compensated", tool_name.trim())));
+    }
     let mut out = Vec::with_capacity(points);
     for part in &parts[..points] {
         let mut t = point(line, code, from + part.start, &args[part.clone()], named)?;

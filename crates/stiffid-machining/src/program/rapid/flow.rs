@@ -24,7 +24,13 @@ pub(super) struct Flow {
 /// options' manuals): every `Move*` (a routine of the cell's named so is taken as one too),
 /// `SearchL`/`SearchC`/`SearchExtJ`, `TriggL`/`TriggJ`/`TriggC` (and their `IOs` forms), the
 /// arc welding `ArcL*`/`ArcC*`, spot welding `SpotL`/`SpotJ`/`SpotML`/`SpotMJ`, painting
-/// `PaintL`/`PaintC`, continuous application `CapL`/`CapC`, dispensing `DispL`/`DispC`.
+/// `PaintL`/`PaintC`, continuous application `CapL`/`CapC`, dispensing `DispL`/`DispC`; the
+/// motions whose path the program does not hold: Externally Guided Motion's `EGMRunJoint`,
+/// `EGMRunPose`, `EGMMoveL`, `EGMMoveC` (*Application manual - Externally Guided Motion*), the
+/// independent axes' `IndAMove`/`IndCMove`/`IndDMove`/`IndRMove`, `ContactL`, and the recorded
+/// path's `PathRecMoveBwd`/`PathRecMoveFwd`/`StepBwdPath`, and Force Control's pressing motions
+/// `FCPress1LStart`, `FCPressL`, `FCPressC`, `FCPressEnd`, `FCPressLEnd` (*Application manual -
+/// Force control*: the path follows the contact force).
 pub(super) fn is_motion(word: &str) -> bool {
     word.starts_with("move")
         || word.starts_with("arcl")
@@ -49,6 +55,23 @@ pub(super) fn is_motion(word: &str) -> bool {
                 | "capc"
                 | "displ"
                 | "dispc"
+                | "egmrunjoint"
+                | "egmrunpose"
+                | "egmmovel"
+                | "egmmovec"
+                | "indamove"
+                | "indcmove"
+                | "inddmove"
+                | "indrmove"
+                | "contactl"
+                | "pathrecmovebwd"
+                | "pathrecmovefwd"
+                | "stepbwdpath"
+                | "fcpress1lstart"
+                | "fcpressl"
+                | "fcpressc"
+                | "fcpressend"
+                | "fcpresslend"
         )
 }
 

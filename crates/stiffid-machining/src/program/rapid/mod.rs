@@ -453,6 +453,11 @@ fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Vec<Joi
             "moveextj" => "a motion of external axes only; not compensated: remove it",
             f if f.starts_with("trigg") => "a motion with triggered events (robtarget); not compensated: write the path as MoveL or MoveAbsJ and set the events apart",
             f if f.starts_with("search") => "a search motion stops where a sensor fires, which the program does not say; not compensated",
+            f if f.starts_with("egm") => "an Externally Guided Motion: the robot follows the positions a sensor sends at run time, which the program does not hold; not compensated",
+            f if f.starts_with("ind") => "an independent axis motion: the axis moves apart from the path, as the controller decides; not compensated",
+            f if f.starts_with("fcpress") => "a force-controlled motion: the robot presses with the programmed force and its path follows the contact, which the program does not hold; not compensated",
+            "contactl" => "a motion that stops where contact is made, which the program does not say; not compensated",
+            "pathrecmovebwd" | "pathrecmovefwd" | "stepbwdpath" => "a motion along a path the controller recorded at run time; not compensated",
             _ => "a motion instruction stiffid does not follow; write the path as MoveL, MoveJ or MoveAbsJ",
         };
         return Err(at(line, format!("{name}: {why}")));

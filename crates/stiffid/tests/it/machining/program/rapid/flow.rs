@@ -80,3 +80,27 @@ fn a_module_without_motions_says_so() {
         "{message}"
     );
 }
+
+#[test]
+fn motions_whose_path_the_program_does_not_hold_are_refused_naming_them() {
+    let m = motion(1.0);
+    let robtarget = format!("[[500,0,400],[0,0,1,0],[0,0,0,0],{EXT}]");
+    let cases = [
+        // After a motion the reader takes, an EGM motion in a routine of its own: the module's
+        // path is the sensor's (Externally Guided Motion), so it is refused, not read as one point.
+        (format!("    {m}\n    EGMRunJoint egm_id, EGM_STOP_HOLD, \\J1 \\J2 \\J3 \\J4 \\J5 \\J6 \\CondTime:=1.0;"), 4, "EGMRunJoint: an Externally Guided Motion"),
+        (format!("    {m}\n    EGMMoveL egm_id, {robtarget}, v10, fine, tool0;"), 4, "EGMMoveL: an Externally Guided Motion"),
+        (format!("    {m}\n    WHILE TRUE DO\n      EGMRunPose egm_id, EGM_STOP_HOLD;\n    ENDWHILE"), 5, "EGMRunPose inside WHILE (line 4)"),
+        (format!("    {m}\n    IndAMove Station_A, 2\\ToAbsNum:=90, 20;"), 4, "IndAMove: an independent axis motion"),
+        (format!("    {m}\n    ContactL \\DesiredTorque:=2.5, {robtarget}, v10, tool0;"), 4, "ContactL: a motion that stops where contact is made"),
+        (format!("    {m}\n    PathRecMoveBwd \\ID:=fixture_id;"), 4, "PathRecMoveBwd: a motion along a path the controller recorded"),
+        // `\Corr`: a sensor's correction added to the path at run time.
+        (format!("    {m}\n    MoveL {robtarget}, v100, z10, tool0\\Corr;"), 4, "\\Corr (tool tool0): the path is corrected at run time"),
+    ];
+    for (body, line, words) in cases {
+        let text = module(&body);
+        let (l, message) = refused(&text);
+        assert_eq!(l, line, "{message}\n{text}");
+        assert!(message.contains(words), "{message}\n{text}");
+    }
+}

@@ -1,5 +1,6 @@
 //! ABB's RAPID (`stiffid_machining::program::rapid`).
 
+mod corpus;
 mod flow;
 mod module;
 mod offsets;
