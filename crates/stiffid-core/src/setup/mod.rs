@@ -82,6 +82,7 @@ pub mod load_steps;
 pub mod plausibility;
 pub mod prior;
 pub mod reference;
+mod program_frames;
 mod workcell;
 
 pub use arm::{
@@ -94,6 +95,7 @@ pub use experiment::{Experiment, Noise, RopeLoad};
 pub use file::{
     builtin, builtin_names, builtin_text, parse, parse_with, RobotRequest, MAX_PACKAGE_PATHS,
 };
+pub use program_frames::{offset_name, ProgramFrames, MAX_EXTENDED_OFFSET, MAX_OFFSETS};
 pub use workcell::{CellConstraints, Controller, Kinematics, Pulses, Workcell};
 
 use crate::common::limits::JointBox;
@@ -438,6 +440,7 @@ impl Setup {
         Setup {
             workcell: Workcell {
                 workpiece: self.workcell.workpiece,
+                program_frames: self.workcell.program_frames.clone(),
                 table_reflectors: self.workcell.table_reflectors.clone(),
                 controller: self.workcell.controller.clone(),
                 ..Workcell::default()

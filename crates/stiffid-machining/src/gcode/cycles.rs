@@ -117,6 +117,8 @@ pub(super) fn block(
         arc_word: None,
         inch: s.inch,
         incremental: false,
+        to_program: nalgebra::Isometry3::identity(),
+        verbatim: false,
         cycle: None,
     };
     push(line, hole, &moves, bottom_index, block, s, out)
@@ -171,6 +173,8 @@ fn hole(line: u64, w: &Words, other_geometry: bool, scale: f64, s: &State) -> Re
     if other_geometry {
         return refuse("I, J, K, rotary or external axis words in a canned cycle");
     }
+    s.known(line, &format!("G{code}: a canned cycle"))?;
+    s.plain(line, &format!("G{code}: a canned cycle"))?;
     let tool = may_move(line, s)?;
     let orientation = UnitQuaternion::from_euler_angles(
         s.abc[0].to_radians(),

@@ -47,10 +47,15 @@
 mod arc;
 mod block;
 mod cycles;
+mod home;
+mod machine;
+mod modal;
 mod words;
 mod write;
 
+pub use arc::{ARC_END_MAX_MM, ARC_END_RELATIVE, ARC_END_TOLERANCE_MM};
 pub use cycles::{Cycle, PECK_CLEARANCE_MM};
+pub use machine::{Machine, ProgramFrames};
 pub use words::MAX_FEED;
 
 use block::block;
@@ -117,6 +122,11 @@ struct Block {
     arc_word: Option<Range<usize>>,
     inch: bool,
     incremental: bool,
+    /// The programmed coordinates of a tip (`G54` part frame) in the block's frame and tool
+    /// length offset.
+    to_program: nalgebra::Isometry3<f64>,
+    /// Written as found (`G28`, `G30`): the controller goes where its stored position is.
+    verbatim: bool,
     /// A canned cycle's block: its points written as `G0`/`G1` blocks of their own, and the dwell
     /// `G4 P..` after the point of this index (within the block) with the `P` word as written.
     cycle: Option<Option<(usize, String)>>,
@@ -134,6 +144,9 @@ pub struct GCode {
     pub external: (Vec<char>, u64),
     blocks: Vec<Block>,
     text: String,
+    /// The tip at the start (the setup's), `G54` part frame, m: where an incremental first
+    /// block is written from.
+    start: Option<Vector3<f64>>,
 }
 
 struct State {
@@ -156,6 +169,18 @@ struct State {
     feed: Option<f64>,
     /// The line of the `F` word in force.
     feed_line: u64,
+    /// Which axes of `position` the program has given (or the setup's start).
+    known: [bool; 3],
+    /// The line of the first motion with an axis unknown, before any point.
+    pending: Option<u64>,
+    /// The work offset in force.
+    frame: machine::Frame,
+    /// The tool length offset in force (`G43`: +length, `G44`: -length, `G49`: 0), m.
+    length_offset: f64,
+    /// `G90.1`: arc centres `I J K` absolute (else, `G91.1`, from the arc's start).
+    ij_absolute: bool,
+    /// The controller's knowledge beyond the text.
+    machine: Machine,
     /// `G99`: canned cycles retract to `R` (else, `G98`, to the level they started from).
     retract_to_r: bool,
     /// The canned cycle's words in force.
@@ -169,14 +194,27 @@ fn at(line: u64, message: String) -> Error {
     Error::Program { line, message }
 }
 
-/// Parses `text` (module docs), arcs split to `chord_tolerance` (m).
+/// Parses `text` (module docs), arcs split to `chord_tolerance` (m), on a controller that knows
+/// nothing beyond the text ([`Machine::default`]: `G54` only, the start unknown, no tool
+/// lengths).
+///
+/// # Errors
+/// Those of [`parse_on`].
+pub fn parse(text: &str, chord_tolerance: f64) -> Result<GCode> {
+    parse_on(text, chord_tolerance, &Machine::default())
+}
+
+/// Parses `text` (module docs), arcs split to `chord_tolerance` (m), on a controller that knows
+/// `machine`: its work offsets, start and home positions and tool lengths.
 ///
 /// # Errors
 /// [`Error::InvalidOption`] for a chord tolerance outside [`CHORD_TOLERANCE_MM`];
 /// [`Error::Program`] naming the line for anything outside the subset, a malformed word, an arc
-/// off its circle, no tool orientation in the header, rotary words without `rotary = abc`, no
-/// motion at all, or more than [`MAX_BLOCKS`] lines or [`MAX_POINTS`] points.
-pub fn parse(text: &str, chord_tolerance: f64) -> Result<GCode> {
+/// off its circle, no tool orientation in the header or the setup, rotary words without
+/// `rotary = abc`, a work offset, home position or tool length `machine` lacks, a feed motion
+/// before every axis is known, no motion at all, or more than [`MAX_BLOCKS`] lines or
+/// [`MAX_POINTS`] points.
+pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<GCode> {
     stiffid_core::common::limits::check(
         "chord_tolerance_mm",
         &[chord_tolerance * 1e3],
@@ -192,7 +230,7 @@ pub fn parse(text: &str, chord_tolerance: f64) -> Result<GCode> {
         incremental: false,
         tool_number: None,
         operation: None,
-        tool: None,
+        tool: machine.frames.tool,
         rotary: false,
         external: (Vec::new(), 0),
         e: Vec::new(),
@@ -202,13 +240,21 @@ pub fn parse(text: &str, chord_tolerance: f64) -> Result<GCode> {
         retract_to_r: false,
         cycle: Default::default(),
         surface: 0.0,
+        known: [false; 3],
+        pending: None,
+        frame: machine::Frame::default(),
+        length_offset: 0.0,
+        ij_absolute: false,
+        machine: machine.clone(),
     };
+    s.start();
     let mut out = GCode {
         points: Vec::new(),
         cycles: Vec::new(),
         external: (Vec::new(), 0),
         blocks: Vec::new(),
         text: text.to_string(),
+        start: machine.frames.start,
     };
     for (line, start, l) in super::text::lines(text) {
         if line as usize > MAX_BLOCKS {
@@ -231,6 +277,9 @@ pub fn parse(text: &str, chord_tolerance: f64) -> Result<GCode> {
         }
     }
     if out.points.is_empty() {
+        if let Some(line) = s.pending {
+            return Err(at(line, format!("no motion reaches a point whose X, Y and Z are all known (from line {line} on; {})", modal::UNKNOWN_HELP)));
+        }
         return Err(at(1, "no motion block (G0, G1, G2, G3) found".into()));
     }
     out.external = s.external;

@@ -29,6 +29,7 @@ pub(super) fn read_checked(
         chord_tolerance,
         output,
         settings,
+        process,
         ..
     } = input
     else {
@@ -44,7 +45,9 @@ pub(super) fn read_checked(
         generate::check_payload(d, settings.targets, &program_tool(setup))?;
         generate::check_pulses(d, setup.workcell().controller().pulses.as_ref())?;
     }
-    let program = read_program(name, text, language, *chord_tolerance)?;
+    let machine = crate::gcode::Machine::of(setup, Some(process));
+    let program = machining::read_on(text, language, *chord_tolerance, &machine)
+        .map_err(|e| in_input(name, e))?;
     // A Cartesian program's targets as the controller moves to them (a copy only then).
     match machining::resolve(&program, setup, None, options) {
         Ok(std::borrow::Cow::Owned(p)) => Ok(Some(p)),

@@ -72,7 +72,8 @@ pub fn read_program(
         },
         e => e,
     };
-    let program = crate::read(text, language, chord_tolerance).map_err(in_file)?;
+    let machine = crate::gcode::Machine::of(setup, None);
+    let program = crate::read_on(text, language, chord_tolerance, &machine).map_err(in_file)?;
     check_program(setup, &program).map_err(in_file)?;
     Ok(program)
 }
