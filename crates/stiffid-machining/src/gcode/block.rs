@@ -364,6 +364,7 @@ fn motion(
     out: &mut GCode,
     tolerance: f64,
 ) -> Result<()> {
+    may_move(line, s)?;
     let frame = match given.g53 {
         true => machine_frame(line, s)?,
         false => s.frame.clone(),

@@ -27,12 +27,19 @@ pub(super) fn home(
     if given.centre_given() || given.radius.is_some() || given.abc || given.external {
         return Err(at(line, format!("G{code}: only X Y Z (the intermediate point) are read with a move home")));
     }
-    let Some(to_program) = s.to_program() else {
-        return Err(at(line, format!("G{code}: the tool in use has no length in the process's tool table, and the home position is the tip's")));
-    };
-    let home = to_program * nalgebra::Point3::from(tip);
     let first = out.points.len();
     let named = given.target.map(|t| t.is_some());
+    let Some(to_program) = s.to_program() else {
+        // The tip goes home, but where that is in the program's coordinates depends on the
+        // tool's length, not known yet: the axes moved are not known until the program
+        // gives them (module docs of `modal`).
+        s.pending.get_or_insert(line);
+        for k in 0..3 {
+            s.known[k] &= named.iter().any(|n| *n) && !named[k];
+        }
+        return Ok(());
+    };
+    let home = to_program * nalgebra::Point3::from(tip);
     if named.iter().any(|n| *n) {
         let (end, known) = end_point(line, &given, (s.position, s.known), s)?;
         rapid(line, (end, known), s, out)?;

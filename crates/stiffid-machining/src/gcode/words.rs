@@ -49,6 +49,9 @@ pub(super) fn words(line: u64, start: usize, l: &str, s: &mut State) -> Result<V
             continue;
         }
         let letter = c.to_ascii_uppercase();
+        if c == '^' || c == '@' {
+            return Err(at(line, format!("'{c}': polar coordinates (LinuxCNC's @ distance and ^ angle) are not read; have the post write X Y")));
+        }
         if c == '#' || c == '[' {
             return Err(at(line, format!("'{c}': parameters and expressions (#1 = 2.5, #<name>, [#1 * 2]) are not evaluated; have the post write numbers")));
         }

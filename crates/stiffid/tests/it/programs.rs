@@ -214,9 +214,9 @@ fn gcode_arcs_lie_on_their_analytic_circle_within_the_chord_tolerance() {
 #[test]
 fn malformed_gcode_is_refused_naming_the_line() {
     let cases = [
-        (format!("{HEADER}G1 X10\nG41 X20\n"), 3, "G41"),
+        (format!("{HEADER}G0 X10 Y0 Z0\nG41 X20\n"), 3, "G41"),
         (
-            format!("{HEADER}G1 X10\nG2 X20 Y0 I3 J0\n"),
+            format!("{HEADER}G0 X10 Y0 Z0\nG2 X20 Y0 I3 J0\n"),
             3,
             "off its circle",
         ),
@@ -248,9 +248,9 @@ fn malformed_gcode_is_refused_naming_the_line() {
             "F0: expected a feed rate",
         ),
         (format!("{HEADER}G1 X10 F1e7\n"), 2, "feed rate"),
-        (format!("{HEADER}G1 X10\nM98 P100\n"), 3, "M98: subprogram"),
+        (format!("{HEADER}G0 X10 Y0 Z0\nM98 P100\n"), 3, "M98: subprogram"),
         (
-            format!("{HEADER}G1 X10\nM30\nG1 X20\n"),
+            format!("{HEADER}G0 X10 Y0 Z0\nM30\nG1 X20\n"),
             4,
             "end of the program (M2/M30 on line 3)",
         ),

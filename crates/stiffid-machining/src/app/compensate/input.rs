@@ -46,8 +46,7 @@ pub(super) fn read_checked(
         generate::check_pulses(d, setup.workcell().controller().pulses.as_ref())?;
     }
     let machine = crate::gcode::Machine::of(setup, Some(process));
-    let program = machining::read_on(text, language, *chord_tolerance, &machine)
-        .map_err(|e| in_input(name, e))?;
+    let program = read_program_on(name, text, language, *chord_tolerance, &machine)?;
     // A Cartesian program's targets as the controller moves to them (a copy only then).
     match machining::resolve(&program, setup, None, options) {
         Ok(std::borrow::Cow::Owned(p)) => Ok(Some(p)),
@@ -67,5 +66,20 @@ pub fn read_program(
     language: Language,
     chord_tolerance: f64,
 ) -> Result<Program> {
-    machining::read(text, language, chord_tolerance).map_err(|e| in_input(name, e))
+    read_program_on(name, text, language, chord_tolerance, &Default::default())
+}
+
+/// [`read_program`] on a controller that knows `machine` (a G-code program's work offsets,
+/// start and home positions and tool lengths: [`crate::gcode::Machine::of`]).
+///
+/// # Errors
+/// Those of [`machining::read_on`], as [`Error::Input`](stiffid_core::Error::Input).
+pub fn read_program_on(
+    name: &str,
+    text: &str,
+    language: Language,
+    chord_tolerance: f64,
+    machine: &crate::gcode::Machine,
+) -> Result<Program> {
+    machining::read_on(text, language, chord_tolerance, machine).map_err(|e| in_input(name, e))
 }

@@ -41,7 +41,7 @@ use crate::program::rename::renamed;
 use crate::{self as machining, Language, Program};
 use crate::{cell, path};
 use input::read_checked;
-pub use input::read_program;
+pub use input::{read_program, read_program_on};
 use stiffid_core::app::{Warning, WarningKind};
 use stiffid_core::model::Parameter;
 use stiffid_core::observation::deflection::Frame;
