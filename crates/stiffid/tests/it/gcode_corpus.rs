@@ -47,7 +47,7 @@ const READ: [(&str, &str, &str, u64, [f64; 3], f64); 8] = [
 
 /// Each refused file: the line and the construct its error names.
 const REFUSED: [(&str, u64, &str); 2] = [
-    ("linuxcnc-hole-circle.ngc", 8, "'^': polar coordinates"),
+    ("linuxcnc-hole-circle.ngc", 10, "'^': polar coordinates"),
     ("linuxcnc-g20sub.ngc", 3, "O-word 'O<g20sub> sub'"),
 ];
 
@@ -60,12 +60,14 @@ fn every_corpus_program_is_read_from_its_first_known_point_and_written_back_as_r
         assert_eq!(p.line, line, "{name}");
         assert_relative_eq!(p.position, Vector3::from(first) * unit * 1e-3, epsilon = 1e-12);
         assert_relative_eq!(p.orientation * Vector3::z(), -Vector3::z(), epsilon = 1e-12);
-        // Written back at the positions read, the program reads back to them.
+        // Written back at the positions read, the program reads back to them (to the 6
+        // decimals of its units the written words carry).
         let positions: Vec<_> = g.points.iter().map(|p| p.position).collect();
         let again = gcode::parse_on(&g.write(&positions).unwrap(), 1e-5, &m).unwrap();
         assert_eq!(again.points.len(), g.points.len(), "{name}");
         for (a, b) in again.points.iter().zip(&g.points) {
-            assert!((a.position - b.position).norm() < 1e-8, "{name}: line {}", b.line);
+            let tolerance = unit * 1e-9 * 3f64.sqrt();
+            assert!((a.position - b.position).norm() <= tolerance, "{name}: line {}", b.line);
         }
     }
 }
