@@ -381,10 +381,14 @@ fn motion(
         (s.position, s.known) = convert((end, known), (&frame, lift), (&s.frame, lift));
         return Ok(());
     }
+    if s.motion != 0 && !here.1.iter().all(|k| *k) {
+        let what = match s.motion {
+            1 => "G1: a feed move".to_string(),
+            g => format!("G{g}: an arc"),
+        };
+        return Err(refuse_unknown(line, &what, here.1));
+    }
     let positions = if s.motion >= 2 {
-        if !here.1.iter().all(|k| *k) {
-            return Err(refuse_unknown(line, &format!("G{}: an arc", s.motion), here.1));
-        }
         positions(line, &given, end, s, tolerance)?
     } else {
         vec![end]

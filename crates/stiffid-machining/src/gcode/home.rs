@@ -42,7 +42,10 @@ pub(super) fn home(
     let home = to_program * nalgebra::Point3::from(tip);
     if named.iter().any(|n| *n) {
         let (end, known) = end_point(line, &given, (s.position, s.known), s)?;
-        rapid(line, (end, known), s, out)?;
+        // An intermediate point where the tool is (`G28 G91 Z0`) is no move.
+        if known != s.known || (end - s.position).norm() > 0.0 {
+            rapid(line, (end, known), s, out)?;
+        }
     }
     let (mut end, mut known) = (s.position, s.known);
     for k in 0..3 {

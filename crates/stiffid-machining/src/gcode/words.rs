@@ -61,6 +61,10 @@ pub(super) fn words(line: u64, start: usize, l: &str, s: &mut State) -> Result<V
                 format!("'{c}': expected a word (a letter and a number)"),
             ));
         }
+        let next = l[i + 1..].trim_start().chars().next();
+        if let Some(c @ ('#' | '[')) = next {
+            return Err(at(line, format!("'{c}': parameters and expressions (#1 = 2.5, #<name>, [#1 * 2]) are not evaluated; have the post write numbers")));
+        }
         let (value, span) = crate::text::number_at(l, i + 1).ok_or_else(|| {
             at(
                 line,

@@ -43,6 +43,7 @@ mod free_configuration;
 mod free_positioner;
 mod free_station;
 mod free_tilt;
+mod gcode_controller;
 mod gcode_corpus;
 mod gcode_cycles;
 mod gradients;

@@ -224,7 +224,7 @@ fn malformed_gcode_is_refused_naming_the_line() {
         (format!("{HEADER}G1 X10 A30\n"), 2, "rotary"),
         (format!("{HEADER}G1 X1Q\n"), 2, "Q: expected a number"),
         (format!("{HEADER}G1 X10 (open\n"), 2, "')'"),
-        (format!("{HEADER}G2 X10 Y0 R2\n"), 2, "shorter than half"),
+        (format!("{HEADER}G0 X0 Y0 Z0\nG2 X10 Y0 R2\n"), 3, "shorter than half"),
         (format!("{HEADER}M3 S1000\n"), 1, "no motion"),
         (format!("{HEADER}G1 X10 X20\n"), 2, "X given twice"),
         (
