@@ -104,7 +104,9 @@ def independent(path, lengths):
         if 49 in gs:
             r.set_lift(lambda: setattr(r, "h", 0.0))
         if 28 in gs:
-            out[n] = home(r, axes)
+            reached = home(r, axes)
+            if reached is not None:
+                out[n] = reached
             continue
         if r.motion == 81 and (axes or 81 in gs):
             out[n] = hole(r, words, axes)
@@ -146,8 +148,8 @@ def hole(r, words, axes):
     for letter, v in words:
         if letter in "RZ":
             c[letter] = v * r.scale
-    x = axes.get("X", r.pos[0] / r.scale) * r.scale
-    y = axes.get("Y", r.pos[1] / r.scale) * r.scale
+    x = axes["X"] * r.scale if "X" in axes else r.pos[0]
+    y = axes["Y"] * r.scale if "Y" in axes else r.pos[1]
     top = max(c["R"], c["start"])
     r.pos = [x, y, top]
     return ("hole", np.array([x, y, c["Z"]]), np.array([x, y, top]))
