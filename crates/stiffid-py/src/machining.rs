@@ -89,13 +89,16 @@ pub fn read_program<'py>(
     let machine = match &setup {
         Some(s) => Machine::of(&s.inner, process.as_ref()),
         None => Machine {
-            tool_lengths: process.as_ref().map(|p| p.tool_lengths()).unwrap_or_default(),
+            tool_lengths: process
+                .as_ref()
+                .map(|p| p.tool_lengths())
+                .unwrap_or_default(),
             ..Default::default()
         },
     };
     let tolerance = chord_tolerance_mm * 1e-3;
-    let read = compensate::read_program_on(&name, &text, language, tolerance, &machine)
-        .map_err(raise)?;
+    let read =
+        compensate::read_program_on(&name, &text, language, tolerance, &machine).map_err(raise)?;
     let out = PyDict::new(py);
     out.set_item("language", language.name())?;
     match &read {

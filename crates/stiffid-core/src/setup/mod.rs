@@ -81,8 +81,8 @@ mod file;
 pub mod load_steps;
 pub mod plausibility;
 pub mod prior;
-pub mod reference;
 mod program_frames;
+pub mod reference;
 mod workcell;
 
 pub use arm::{

@@ -54,17 +54,26 @@ impl ProgramFrames {
         if name == "G54" {
             return Some(Isometry3::identity());
         }
-        self.offsets.iter().find(|(n, _)| n == name).map(|(_, f)| *f)
+        self.offsets
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, f)| *f)
     }
 }
 
 /// The canonical name of a work offset as a setup or a program writes it (`g55`, `G59.1`,
 /// `G54.1 P2`, `G54.1P2`, `G53`), or `None` for anything else (`G54.1 P0`, `G60`).
 pub fn offset_name(text: &str) -> Option<String> {
-    let t: String = text.split_whitespace().collect::<String>().to_ascii_uppercase();
+    let t: String = text
+        .split_whitespace()
+        .collect::<String>()
+        .to_ascii_uppercase();
     let t = t.strip_prefix('G')?;
     if let Some(p) = t.strip_prefix("54.1P") {
-        let n: u32 = p.parse().ok().filter(|n| (1..=MAX_EXTENDED_OFFSET).contains(n))?;
+        let n: u32 = p
+            .parse()
+            .ok()
+            .filter(|n| (1..=MAX_EXTENDED_OFFSET).contains(n))?;
         return Some(format!("G54.1 P{n}"));
     }
     match t {
@@ -89,14 +98,20 @@ pub(super) fn read(
 ) -> Result<ProgramFrames> {
     let invalid = |field: String, message: String| Error::InvalidField { field, message };
     if offsets.len() > MAX_OFFSETS {
-        return Err(invalid("workpiece.offsets".into(), format!("at most {MAX_OFFSETS} work offsets")));
+        return Err(invalid(
+            "workpiece.offsets".into(),
+            format!("at most {MAX_OFFSETS} work offsets"),
+        ));
     }
     let mut out = ProgramFrames::default();
     for (key, t) in offsets {
         let field = format!("workpiece.offsets.{}", limits::short(key));
         let name = offset_name(key).ok_or_else(|| invalid(field.clone(), format!("expected a work offset as a program names it: G53 (machine coordinates), G55 to G59, G59.1 to G59.3 or G54.1 P1 to G54.1 P{MAX_EXTENDED_OFFSET}")))?;
         if name == "G54" {
-            return Err(invalid(field, "G54 is the part frame itself: give it as [workpiece] base_from_part".into()));
+            return Err(invalid(
+                field,
+                "G54 is the part frame itself: give it as [workpiece] base_from_part".into(),
+            ));
         }
         if out.offsets.iter().any(|(n, _)| *n == name) {
             return Err(invalid(field, format!("{name} given twice")));

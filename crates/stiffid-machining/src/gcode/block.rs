@@ -1,8 +1,8 @@
 //! One block applied to the state: modes, motions, canned cycles, the points it makes.
 
 use super::arc::arc;
-use super::words::{check_words, Word};
 use super::machine::convert;
+use super::words::{check_words, Word};
 use super::{at, cycles, external_values, may_move, Block, GCode, Motion, Point, State};
 use nalgebra::{UnitQuaternion, Vector3};
 use std::ops::Range;
@@ -123,7 +123,10 @@ impl Given {
         let v = w.value;
         let tenths = (v * 10.0).round();
         if (v * 10.0 - tenths).abs() > 1e-6 || !(0.0..1000.0).contains(&tenths) {
-            return Err(at(line, format!("G{v}: not in the supported subset ({SUBSET})")));
+            return Err(at(
+                line,
+                format!("G{v}: not in the supported subset ({SUBSET})"),
+            ));
         }
         let tenths = tenths as u16;
         if tenths % 10 != 0 {
@@ -210,12 +213,18 @@ impl Given {
         if s.machine.tool_lengths.is_empty() {
             return Err(at(line, format!("G{g}: a tool length offset needs the tools' lengths: give [tool] length_mm in the process's operations (with their tool_number)")));
         }
-        let n = match (self.h, s.tool_number) {
-            (Some(h), _) if h.fract() == 0.0 && (0.0..=1e6).contains(&h) => h as u32,
-            (Some(h), _) => return Err(at(line, format!("H{h}: expected a tool number"))),
-            (None, Some(t)) => t,
-            (None, None) => return Err(at(line, format!("G{g} without H before any T: which tool's length is meant is not known"))),
-        };
+        let n =
+            match (self.h, s.tool_number) {
+                (Some(h), _) if h.fract() == 0.0 && (0.0..=1e6).contains(&h) => h as u32,
+                (Some(h), _) => return Err(at(line, format!("H{h}: expected a tool number"))),
+                (None, Some(t)) => t,
+                (None, None) => return Err(at(
+                    line,
+                    format!(
+                        "G{g} without H before any T: which tool's length is meant is not known"
+                    ),
+                )),
+            };
         let Some(length) = s.machine.tool_length(Some(n)) else {
             return Err(at(line, format!("G{g} H{n}: the process's tool table has no length for tool {n} (give [tool] length_mm in the operation with tool_number = {n})")));
         };
@@ -344,7 +353,11 @@ pub(super) fn end_point(
     let (mut end, mut known) = from;
     for k in 0..3 {
         if let Some(v) = given.target[k] {
-            end[k] = if s.incremental { end[k] + v * scale } else { v * scale };
+            end[k] = if s.incremental {
+                end[k] + v * scale
+            } else {
+                v * scale
+            };
             known[k] |= !s.incremental;
         }
     }
@@ -393,7 +406,11 @@ fn motion(
     } else {
         vec![end]
     };
-    let motion = if s.motion == 0 { Motion::Rapid } else { Motion::Feed };
+    let motion = if s.motion == 0 {
+        Motion::Rapid
+    } else {
+        Motion::Feed
+    };
     let first = out.points.len();
     push_points(line, &positions, motion, &frame, s, out)?;
     (s.position, s.known) = convert((end, known), (&frame, lift), (&s.frame, lift));
@@ -428,7 +445,14 @@ fn refuse_unknown(line: u64, what: &str, known: [bool; 3]) -> stiffid_core::Erro
         .filter(|(_, k)| !k)
         .map(|(l, _)| *l)
         .collect();
-    at(line, format!("{what} from or to a place not known: {} has no value yet ({})", missing.join(" "), super::modal::UNKNOWN_HELP))
+    at(
+        line,
+        format!(
+            "{what} from or to a place not known: {} has no value yet ({})",
+            missing.join(" "),
+            super::modal::UNKNOWN_HELP
+        ),
+    )
 }
 
 /// The points at `positions` (programmed, in `frame`) added to `out` as tips in the `G54`
@@ -489,5 +513,8 @@ fn unsupported(line: u64, g: &str) -> stiffid_core::Error {
         "G68" | "G51" | "G50.1" | "G51.1" | "G15" | "G16" => ": a coordinate rotation, scaling, mirror or polar mode the path would pass through",
         _ => "",
     };
-    at(line, format!("{g}: not in the supported subset ({SUBSET}){why}"))
+    at(
+        line,
+        format!("{g}: not in the supported subset ({SUBSET}){why}"),
+    )
 }

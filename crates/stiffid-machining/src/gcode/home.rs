@@ -25,7 +25,10 @@ pub(super) fn home(
         return Err(at(line, format!("G{code}: the setup does not state the G{code} position: give where the tool tip is there, [workpiece] g{code}_mm (G54 part frame)")));
     };
     if given.centre_given() || given.radius.is_some() || given.abc || given.external {
-        return Err(at(line, format!("G{code}: only X Y Z (the intermediate point) are read with a move home")));
+        return Err(at(
+            line,
+            format!("G{code}: only X Y Z (the intermediate point) are read with a move home"),
+        ));
     }
     let first = out.points.len();
     let named = given.target.map(|t| t.is_some());
@@ -70,7 +73,12 @@ pub(super) fn home(
 }
 
 /// A rapid to `end` in the frame in force: a point when every axis is known, else none yet.
-fn rapid(line: u64, (end, known): (Vector3<f64>, [bool; 3]), s: &mut State, out: &mut GCode) -> Result<()> {
+fn rapid(
+    line: u64,
+    (end, known): (Vector3<f64>, [bool; 3]),
+    s: &mut State,
+    out: &mut GCode,
+) -> Result<()> {
     if known.iter().all(|k| *k) {
         let frame = s.frame.clone();
         push_points(line, &[end], Motion::Rapid, &frame, s, out)?;

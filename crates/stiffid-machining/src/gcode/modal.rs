@@ -74,7 +74,13 @@ impl State {
     pub(super) fn known(&self, line: u64, what: &str) -> Result<()> {
         match self.known.iter().position(|k| !k) {
             None => Ok(()),
-            Some(i) => Err(at(line, format!("{what} from a place not known: {} has no value yet ({UNKNOWN_HELP})", ['X', 'Y', 'Z'][i]))),
+            Some(i) => Err(at(
+                line,
+                format!(
+                    "{what} from a place not known: {} has no value yet ({UNKNOWN_HELP})",
+                    ['X', 'Y', 'Z'][i]
+                ),
+            )),
         }
     }
 

@@ -89,8 +89,26 @@ fn o_word_flow(opening: &str) -> Option<String> {
         Some(named) => &named[named.find('>')? + 1..],
         None => rest.trim_start_matches(|c: char| c.is_ascii_digit() || c == ' ' || c == '\t'),
     };
-    let word: String = rest.trim_start().chars().take_while(char::is_ascii_alphabetic).collect();
-    const FLOW: [&str; 13] = ["sub", "endsub", "call", "return", "if", "elseif", "else", "endif", "while", "endwhile", "do", "repeat", "endrepeat"];
+    let word: String = rest
+        .trim_start()
+        .chars()
+        .take_while(char::is_ascii_alphabetic)
+        .collect();
+    const FLOW: [&str; 13] = [
+        "sub",
+        "endsub",
+        "call",
+        "return",
+        "if",
+        "elseif",
+        "else",
+        "endif",
+        "while",
+        "endwhile",
+        "do",
+        "repeat",
+        "endrepeat",
+    ];
     let w = word.to_ascii_lowercase();
     (FLOW.contains(&w.as_str()) || opening[1..].starts_with('<')).then(|| limits_short(opening))
 }

@@ -14,7 +14,10 @@ use stiffid::Error;
 const SETUP: &str = include_str!("../../../../examples/milling/fanuc-milling.toml");
 
 fn corpus(name: &str) -> String {
-    let path = format!("{}/tests/data/programs/gcode/{name}", env!("CARGO_MANIFEST_DIR"));
+    let path = format!(
+        "{}/tests/data/programs/gcode/{name}",
+        env!("CARGO_MANIFEST_DIR")
+    );
     std::fs::read_to_string(path).unwrap()
 }
 
@@ -23,7 +26,8 @@ fn corpus(name: &str) -> String {
 pub(crate) fn machine(workpiece: &str, process: &str) -> Machine {
     let start = SETUP.find("[workpiece]").unwrap();
     let text = format!("{}{}", &SETUP[..start], corpus(workpiece));
-    let setup = stiffid::setup::parse(&text, "setup.toml", |n, _| stiffid::robot::presets::get(n)).unwrap();
+    let setup =
+        stiffid::setup::parse(&text, "setup.toml", |n, _| stiffid::robot::presets::get(n)).unwrap();
     let process_text = match process {
         "aluminium.toml" => include_str!("../../../../examples/milling/aluminium.toml").to_string(),
         other => corpus(other),
@@ -35,14 +39,70 @@ pub(crate) fn machine(workpiece: &str, process: &str) -> Machine {
 /// Each compensated file: its setup's workpiece, its process, the line of its first point and
 /// that point as the file gives it (mm, or inch for a G20 file), read by eye.
 const READ: [(&str, &str, &str, u64, [f64; 3], f64); 8] = [
-    ("fusion360-personal-contour.nc", "workpiece-fusion360.toml", "aluminium.toml", 16, [-0.7, -0.7, 10.0], 1.0),
-    ("fusion360-personal-arcs.nc", "workpiece-fusion360.toml", "aluminium.toml", 16, [0.0, -1.587, 10.0], 1.0),
-    ("fusion360-generic-router.nc", "workpiece-fusion360.toml", "process-fusion360.toml", 19, [1013.311, -462.124, 15.24], 25.4),
-    ("fusion360-mpcnc-mill.gcode", "workpiece-fusion360.toml", "aluminium.toml", 60, [3.412, 49.305, 3.0], 1.0),
-    ("fusion360-mpcnc-drill.gcode", "workpiece-fusion360.toml", "aluminium.toml", 54, [77.688, 49.688, 3.0], 1.0),
-    ("linuxcnc-two-tools.ngc", "workpiece-linuxcnc.toml", "process-two-tools.toml", 17, [-25.0, 100.0, 10.0], 1.0),
-    ("pcb2gcode-drill.ngc", "workpiece-linuxcnc.toml", "aluminium.toml", 24, [0.9, -0.45, 0.08], 25.4),
-    ("pcb2gcode-outline.ngc", "workpiece-linuxcnc.toml", "aluminium.toml", 25, [-0.07953, -1.1, 0.08], 25.4),
+    (
+        "fusion360-personal-contour.nc",
+        "workpiece-fusion360.toml",
+        "aluminium.toml",
+        16,
+        [-0.7, -0.7, 10.0],
+        1.0,
+    ),
+    (
+        "fusion360-personal-arcs.nc",
+        "workpiece-fusion360.toml",
+        "aluminium.toml",
+        16,
+        [0.0, -1.587, 10.0],
+        1.0,
+    ),
+    (
+        "fusion360-generic-router.nc",
+        "workpiece-fusion360.toml",
+        "process-fusion360.toml",
+        19,
+        [1013.311, -462.124, 15.24],
+        25.4,
+    ),
+    (
+        "fusion360-mpcnc-mill.gcode",
+        "workpiece-fusion360.toml",
+        "aluminium.toml",
+        60,
+        [3.412, 49.305, 3.0],
+        1.0,
+    ),
+    (
+        "fusion360-mpcnc-drill.gcode",
+        "workpiece-fusion360.toml",
+        "aluminium.toml",
+        54,
+        [77.688, 49.688, 3.0],
+        1.0,
+    ),
+    (
+        "linuxcnc-two-tools.ngc",
+        "workpiece-linuxcnc.toml",
+        "process-two-tools.toml",
+        17,
+        [-25.0, 100.0, 10.0],
+        1.0,
+    ),
+    (
+        "pcb2gcode-drill.ngc",
+        "workpiece-linuxcnc.toml",
+        "aluminium.toml",
+        24,
+        [0.9, -0.45, 0.08],
+        25.4,
+    ),
+    (
+        "pcb2gcode-outline.ngc",
+        "workpiece-linuxcnc.toml",
+        "aluminium.toml",
+        25,
+        [-0.07953, -1.1, 0.08],
+        25.4,
+    ),
 ];
 
 /// Each refused file: the line and the construct its error names.
@@ -58,7 +118,11 @@ fn every_corpus_program_is_read_from_its_first_known_point_and_written_back_as_r
         let g = gcode::parse_on(&corpus(name), 1e-5, &m).unwrap_or_else(|e| panic!("{name}: {e}"));
         let p = &g.points[0];
         assert_eq!(p.line, line, "{name}");
-        assert_relative_eq!(p.position, Vector3::from(first) * unit * 1e-3, epsilon = 1e-12);
+        assert_relative_eq!(
+            p.position,
+            Vector3::from(first) * unit * 1e-3,
+            epsilon = 1e-12
+        );
         assert_relative_eq!(p.orientation * Vector3::z(), -Vector3::z(), epsilon = 1e-12);
         // Written back at the positions read, the program reads back to them (to the 6
         // decimals of its units the written words carry).
@@ -67,7 +131,11 @@ fn every_corpus_program_is_read_from_its_first_known_point_and_written_back_as_r
         assert_eq!(again.points.len(), g.points.len(), "{name}");
         for (a, b) in again.points.iter().zip(&g.points) {
             let tolerance = unit * 1e-9 * 3f64.sqrt();
-            assert!((a.position - b.position).norm() <= tolerance, "{name}: line {}", b.line);
+            assert!(
+                (a.position - b.position).norm() <= tolerance,
+                "{name}: line {}",
+                b.line
+            );
         }
     }
 }
@@ -103,7 +171,10 @@ fn fusion_files_need_what_their_controller_knows() {
     match gcode::parse_on(&router, 1e-5, &no_home) {
         Err(Error::Program { line, message }) => {
             assert_eq!(line, 9, "{message}");
-            assert!(message.contains("G28: the setup does not state the G28 position"), "{message}");
+            assert!(
+                message.contains("G28: the setup does not state the G28 position"),
+                "{message}"
+            );
         }
         other => panic!("{other:?}"),
     }
@@ -111,7 +182,10 @@ fn fusion_files_need_what_their_controller_knows() {
     match gcode::parse_on(&router, 1e-5, &no_lengths) {
         Err(Error::Program { line, message }) => {
             assert_eq!(line, 19, "{message}");
-            assert!(message.contains("G43: a tool length offset needs the tools' lengths"), "{message}");
+            assert!(
+                message.contains("G43: a tool length offset needs the tools' lengths"),
+                "{message}"
+            );
         }
         other => panic!("{other:?}"),
     }

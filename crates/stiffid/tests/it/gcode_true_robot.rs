@@ -5,8 +5,7 @@
 //! its path, as the rectangle of the campaign does.
 
 use crate::true_robot::{
-    calibrated, dh_case, joint_targets, postures, q0, row, with_part, written_with, Truth,
-    WRENCHES,
+    calibrated, dh_case, joint_targets, postures, q0, row, with_part, written_with, Truth, WRENCHES,
 };
 use nalgebra::{Point3, UnitQuaternion};
 use rand::SeedableRng;
@@ -17,7 +16,10 @@ use stiffid::machining::program::Dialect;
 use stiffid::machining::Language;
 
 fn corpus(name: &str) -> String {
-    let path = format!("{}/tests/data/programs/gcode/{name}", env!("CARGO_MANIFEST_DIR"));
+    let path = format!(
+        "{}/tests/data/programs/gcode/{name}",
+        env!("CARGO_MANIFEST_DIR")
+    );
     std::fs::read_to_string(path).unwrap()
 }
 
@@ -35,13 +37,24 @@ fn a_real_program_with_work_offset_tool_lengths_and_arcs_lands_on_the_true_robot
     let (setup, _) = with_part(&setup, &q0);
     // The program states no tool orientation: the setup's [workpiece] tool_rpy_deg does.
     let down = UnitQuaternion::from_euler_angles(std::f64::consts::PI, 0.0, 0.0);
-    let frames = ProgramFrames { tool: Some(down), ..Default::default() };
-    let setup = setup.to_builder().with_program_frames(frames).build().unwrap();
+    let frames = ProgramFrames {
+        tool: Some(down),
+        ..Default::default()
+    };
+    let setup = setup
+        .to_builder()
+        .with_program_frames(frames)
+        .build()
+        .unwrap();
     let program = corpus("linuxcnc-two-tools.ngc");
     let process = corpus("process-two-tools.toml");
     let output = (Language::Robot(Dialect::Krl), Targets::Joint);
-    let (krl, results) =
-        written_with(&setup, &compliance.unwrap(), (&q0, &program, &process), output);
+    let (krl, results) = written_with(
+        &setup,
+        &compliance.unwrap(),
+        (&q0, &program, &process),
+        output,
+    );
     let qs = joint_targets(&krl);
     assert_eq!(qs.len(), results.len());
     // Both tools' circles: 2 x (approach, plunge, circle, retract) and the final moves.

@@ -224,7 +224,11 @@ fn malformed_gcode_is_refused_naming_the_line() {
         (format!("{HEADER}G1 X10 A30\n"), 2, "rotary"),
         (format!("{HEADER}G1 X1Q\n"), 2, "Q: expected a number"),
         (format!("{HEADER}G1 X10 (open\n"), 2, "')'"),
-        (format!("{HEADER}G0 X0 Y0 Z0\nG2 X10 Y0 R2\n"), 3, "shorter than half"),
+        (
+            format!("{HEADER}G0 X0 Y0 Z0\nG2 X10 Y0 R2\n"),
+            3,
+            "shorter than half",
+        ),
         (format!("{HEADER}M3 S1000\n"), 1, "no motion"),
         (format!("{HEADER}G1 X10 X20\n"), 2, "X given twice"),
         (
@@ -248,7 +252,11 @@ fn malformed_gcode_is_refused_naming_the_line() {
             "F0: expected a feed rate",
         ),
         (format!("{HEADER}G1 X10 F1e7\n"), 2, "feed rate"),
-        (format!("{HEADER}G0 X10 Y0 Z0\nM98 P100\n"), 3, "M98: subprogram"),
+        (
+            format!("{HEADER}G0 X10 Y0 Z0\nM98 P100\n"),
+            3,
+            "M98: subprogram",
+        ),
         (
             format!("{HEADER}G0 X10 Y0 Z0\nM30\nG1 X20\n"),
             4,
