@@ -129,7 +129,7 @@ impl Given {
             ));
         }
         let tenths = tenths as u16;
-        if tenths % 10 != 0 {
+        if !tenths.is_multiple_of(10) {
             return self.g_decimal(line, tenths, s);
         }
         match (tenths / 10) as u8 {
@@ -190,11 +190,11 @@ impl Given {
                 541 => {
                     let p = self.cycle.dwell.take().map(|(p, _)| p);
                     match p {
-                        Some(p) if p.fract() == 0.0 && p >= 1.0 && p <= 1e4 => format!("G54.1 P{p}"),
+                        Some(p) if p.fract() == 0.0 && (1.0..=1e4).contains(&p) => format!("G54.1 P{p}"),
                         _ => return Err(at(line, "G54.1: expected the additional work offset's number P in the block (G54.1 P1)".into())),
                     }
                 }
-                c if c % 10 == 0 => format!("G{}", c / 10),
+                c if c.is_multiple_of(10) => format!("G{}", c / 10),
                 c => format!("G{}.{}", c / 10, c % 10),
             };
             s.set_frame(super::modal::frame(line, name, s)?);
@@ -213,18 +213,19 @@ impl Given {
         if s.machine.tool_lengths.is_empty() {
             return Err(at(line, format!("G{g}: a tool length offset needs the tools' lengths: give [tool] length_mm in the process's operations (with their tool_number)")));
         }
-        let n =
-            match (self.h, s.tool_number) {
-                (Some(h), _) if h.fract() == 0.0 && (0.0..=1e6).contains(&h) => h as u32,
-                (Some(h), _) => return Err(at(line, format!("H{h}: expected a tool number"))),
-                (None, Some(t)) => t,
-                (None, None) => return Err(at(
+        let n = match (self.h, s.tool_number) {
+            (Some(h), _) if h.fract() == 0.0 && (0.0..=1e6).contains(&h) => h as u32,
+            (Some(h), _) => return Err(at(line, format!("H{h}: expected a tool number"))),
+            (None, Some(t)) => t,
+            (None, None) => {
+                return Err(at(
                     line,
                     format!(
                         "G{g} without H before any T: which tool's length is meant is not known"
                     ),
-                )),
-            };
+                ))
+            }
+        };
         let Some(length) = s.machine.tool_length(Some(n)) else {
             return Err(at(line, format!("G{g} H{n}: the process's tool table has no length for tool {n} (give [tool] length_mm in the operation with tool_number = {n})")));
         };

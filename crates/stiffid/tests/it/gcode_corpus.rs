@@ -38,7 +38,10 @@ pub(crate) fn machine(workpiece: &str, process: &str) -> Machine {
 
 /// Each compensated file: its setup's workpiece, its process, the line of its first point and
 /// that point as the file gives it (mm, or inch for a G20 file), read by eye.
-const READ: [(&str, &str, &str, u64, [f64; 3], f64); 8] = [
+/// A compensated file: name, workpiece, process, first point's line, position, unit (mm).
+type Read = (&'static str, &'static str, &'static str, u64, [f64; 3], f64);
+
+const READ: [Read; 8] = [
     (
         "fusion360-personal-contour.nc",
         "workpiece-fusion360.toml",
