@@ -96,7 +96,11 @@ pub(super) fn arc(
             }
             let t = i as f64 / count as f64;
             let a = a0 + sweep * t;
-            let r = r0 + (r1 - r0) * t;
+            // The spiral of an end off the circle; a circle to rounding stays the circle.
+            let r = match (r1 - r0).abs() > 1e-9 {
+                true => r0 + (r1 - r0) * t,
+                false => r0,
+            };
             let mut p = start;
             p[u] = cu + r * a.cos();
             p[v] = cv + r * a.sin();

@@ -469,7 +469,10 @@ pub(super) fn push_points(
     let tool = may_move(line, s)?;
     let external = external_values(line, s)?;
     let [a, b, c] = s.abc.map(f64::to_radians);
-    let orientation = frame.part_from.rotation * UnitQuaternion::from_euler_angles(a, b, c) * tool;
+    let mut orientation = UnitQuaternion::from_euler_angles(a, b, c) * tool;
+    if frame.part_from.rotation != UnitQuaternion::identity() {
+        orientation = frame.part_from.rotation * orientation;
+    }
     for p in positions {
         out.points.push(Point {
             line,

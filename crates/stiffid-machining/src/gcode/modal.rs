@@ -67,6 +67,10 @@ impl State {
             let tool = self.tool_number.map_or("no T word yet".into(), |t| format!("T{t}"));
             at(line, format!("the tool in use ({tool}) has no length in the process's tool table ([tool] length_mm of the operation with its tool_number), and the tool length offset G43/G44/G49 in force needs it to place the tip"))
         })?;
+        if frame.part_from == nalgebra::Isometry3::identity() && lift == 0.0 {
+            // The part frame itself: the programmed point, to the last bit.
+            return Ok(*p);
+        }
         Ok((frame.part_from * Point3::from(p + Vector3::z() * lift)).coords)
     }
 
