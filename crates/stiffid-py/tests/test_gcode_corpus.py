@@ -63,12 +63,11 @@ class Reading:
             return None
         return np.array([self.pos[0], self.pos[1], self.pos[2] + lift])
 
-    def set_lift(self, change):
-        before = self.lift()
-        change()
-        after = self.lift()
+    def set_offset(self, h):
+        """G43/G49: the machine stays, its programmed Z changes by the offset's change."""
         if self.pos[2] is not None:
-            self.pos[2] = None if None in (before, after) else self.pos[2] + before - after
+            self.pos[2] += self.h - h
+        self.h = h
 
 
 def words_of(text):
@@ -86,7 +85,7 @@ def independent(path, lengths):
         centre = {letter: v for letter, v in words if letter in "IJK"}
         for letter, v in words:
             if letter == "T":
-                r.set_lift(lambda v=v: setattr(r, "tool", int(v)))
+                r.tool = int(v)
         for g in gs:
             if g in (20, 21):
                 r.scale = 25.4 if g == 20 else 1.0
@@ -100,9 +99,9 @@ def independent(path, lengths):
                 r.motion = None
         if 43 in gs:
             h = next((v for letter, v in words if letter == "H"), r.tool)
-            r.set_lift(lambda h=h: setattr(r, "h", r.lengths[int(h)]))
+            r.set_offset(r.lengths[int(h)])
         if 49 in gs:
-            r.set_lift(lambda: setattr(r, "h", 0.0))
+            r.set_offset(0.0)
         if 28 in gs:
             reached = home(r, axes)
             if reached is not None:

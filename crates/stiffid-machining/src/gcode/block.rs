@@ -103,7 +103,7 @@ impl Given {
                 if v < 0.0 || v.fract() != 0.0 || v > 1e6 {
                     return Err(at(line, format!("T{v}: expected a tool number 0..1000000")));
                 }
-                s.with_lift_change(|s| s.tool_number = Some(v as u32));
+                s.tool_number = Some(v as u32);
             }
             'F' => self.feed = Some(v),
             'Q' => {
@@ -200,7 +200,7 @@ impl Given {
             s.set_frame(super::modal::frame(line, name, s)?);
         }
         match self.length {
-            Some(49) => s.with_lift_change(|s| s.length_offset = 0.0),
+            Some(49) => s.set_length_offset(0.0),
             Some(g) => self.length_offset(line, g, s)?,
             None => {}
         }
@@ -230,7 +230,7 @@ impl Given {
             return Err(at(line, format!("G{g} H{n}: the process's tool table has no length for tool {n} (give [tool] length_mm in the operation with tool_number = {n})")));
         };
         let h = if g == 44 { -length } else { length };
-        s.with_lift_change(|s| s.length_offset = h);
+        s.set_length_offset(h);
         Ok(())
     }
 

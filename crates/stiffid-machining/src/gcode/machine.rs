@@ -72,7 +72,8 @@ pub(super) fn to_program(frame: &Frame, lift: f64) -> Isometry3<f64> {
 
 /// A position known per axis in `from` (with its lift) expressed in `to` (with its): exact
 /// when every axis and both lifts are known; axis by axis when the frames are parallel (a work
-/// offset that only shifts keeps the axes known, `Z` only with both lifts); else nothing known.
+/// offset that only shifts keeps the axes known, `Z` only with both lifts known or equal); else
+/// nothing known.
 pub(super) fn convert(
     (p, known): (Vector3<f64>, [bool; 3]),
     (from, lift_from): (&Frame, Lift),
@@ -88,7 +89,8 @@ pub(super) fn convert(
     }
     let dz = match (lift_from, lift_to) {
         (Some(a), Some(b)) => Some(a - b),
-        _ if lift_from == lift_to && from == to => Some(0.0),
+        // The same tool and offset on both sides: the lift cancels.
+        _ if lift_from == lift_to => Some(0.0),
         _ => None,
     };
     let shifted = p + relative.translation.vector + Vector3::z() * dz.unwrap_or(0.0);

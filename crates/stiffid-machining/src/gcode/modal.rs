@@ -48,17 +48,11 @@ impl State {
         (self.position, self.known, self.frame) = (p, k, frame);
     }
 
-    /// Runs `change` (a tool length offset or a tool put in force), the position carried.
-    pub(super) fn with_lift_change(&mut self, change: impl FnOnce(&mut State)) {
-        let before = self.lift();
-        change(self);
-        let after = self.lift();
-        let (p, k) = machine::convert(
-            (self.position, self.known),
-            (&self.frame, before),
-            (&self.frame, after),
-        );
-        (self.position, self.known) = (p, k);
+    /// Puts the tool length offset `h` (m) in force: the machine does not move, so the
+    /// programmed coordinates of where it is change by the offset's change (LinuxCNC, G43).
+    pub(super) fn set_length_offset(&mut self, h: f64) {
+        self.position.z += self.length_offset - h;
+        self.length_offset = h;
     }
 
     /// The tip at the programmed point `p` of the frame in force, `G54` part frame, m.
