@@ -216,22 +216,8 @@ impl Program {
 /// # Errors
 /// Those of [`gcode::parse`] and [`program::parse`].
 pub fn read(text: &str, language: Language, chord_tolerance: f64) -> Result<Program> {
-    read_on(text, language, chord_tolerance, &gcode::Machine::default())
-}
-
-/// Reads a program; `chord_tolerance` (m) splits G-code arcs, and a G-code program runs on a
-/// controller that knows `machine` (work offsets, start and home positions, tool lengths).
-///
-/// # Errors
-/// Those of [`gcode::parse_on`] and [`program::parse`].
-pub fn read_on(
-    text: &str,
-    language: Language,
-    chord_tolerance: f64,
-    machine: &gcode::Machine,
-) -> Result<Program> {
     match language {
-        Language::GCode => gcode::parse_on(text, chord_tolerance, machine).map(Program::GCode),
+        Language::GCode => gcode::parse(text, chord_tolerance).map(Program::GCode),
         Language::Robot(d) => program::parse(text, d).map(Program::Robot),
     }
 }

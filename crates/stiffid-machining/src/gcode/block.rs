@@ -2,9 +2,10 @@
 
 use super::arc::arc;
 use super::machine::convert;
+use super::modal::{end_point, push_points};
 use super::words::{check_words, Word};
-use super::{at, cycles, external_values, may_move, Block, GCode, Motion, Point, State};
-use nalgebra::{UnitQuaternion, Vector3};
+use super::{at, cycles, may_move, Block, GCode, Motion, State};
+use nalgebra::Vector3;
 use std::ops::Range;
 use stiffid_core::Result;
 
@@ -60,7 +61,8 @@ pub(super) fn block(
     given.modes(line, s)?;
     motion_and_feed(line, &given, inch_before, s)?;
     if let Some(code) = given.home {
-        return super::home::home(line, span, given, code, s, out);
+        let other = given.centre_given() || given.radius.is_some() || given.abc || given.external;
+        return super::home::home(line, span, (given.target, other), code, s, out);
     }
     if s.motion >= 81 && s.motion != NO_MOTION {
         return cycle(line, span, given, s, out);
@@ -342,32 +344,6 @@ pub(super) fn moves(line: u64, given: &Given, s: &State) -> Result<bool> {
     Ok(true)
 }
 
-/// The move's end point in m from the block's `X Y Z` (absolute or incremental, mm or inch),
-/// from `from` (with the axes known), and the axes known there.
-pub(super) fn end_point(
-    line: u64,
-    given: &Given,
-    from: (Vector3<f64>, [bool; 3]),
-    s: &State,
-) -> Result<(Vector3<f64>, [bool; 3])> {
-    let scale = if s.inch { 25.4e-3 } else { 1e-3 };
-    let (mut end, mut known) = from;
-    for k in 0..3 {
-        if let Some(v) = given.target[k] {
-            end[k] = if s.incremental {
-                end[k] + v * scale
-            } else {
-                v * scale
-            };
-            known[k] |= !s.incremental;
-        }
-    }
-    if !end.iter().all(|v| v.abs() <= 100.0) {
-        return Err(at(line, "position beyond 100 m".into()));
-    }
-    Ok((end, known))
-}
-
 /// A straight or circular move: its points added to `out`, and its block (a `G53` block's
 /// coordinates in the machine's frame).
 fn motion(
@@ -385,7 +361,7 @@ fn motion(
     };
     let lift = s.lift();
     let here = convert((s.position, s.known), (&s.frame, lift), (&frame, lift));
-    let (end, known) = end_point(line, &given, here, s)?;
+    let (end, known) = end_point(line, &given.target, here, s)?;
     if !known.iter().all(|k| *k) {
         if s.motion != 0 {
             let what = format!("G{}: a feed move", s.motion);
@@ -454,39 +430,6 @@ fn refuse_unknown(line: u64, what: &str, known: [bool; 3]) -> stiffid_core::Erro
             super::modal::UNKNOWN_HELP
         ),
     )
-}
-
-/// The points at `positions` (programmed, in `frame`) added to `out` as tips in the `G54`
-/// part frame.
-pub(super) fn push_points(
-    line: u64,
-    positions: &[Vector3<f64>],
-    motion: Motion,
-    frame: &super::machine::Frame,
-    s: &mut State,
-    out: &mut GCode,
-) -> Result<()> {
-    let tool = may_move(line, s)?;
-    let external = external_values(line, s)?;
-    let [a, b, c] = s.abc.map(f64::to_radians);
-    let mut orientation = UnitQuaternion::from_euler_angles(a, b, c) * tool;
-    if frame.part_from.rotation != UnitQuaternion::identity() {
-        orientation = frame.part_from.rotation * orientation;
-    }
-    for p in positions {
-        out.points.push(Point {
-            line,
-            position: s.tip(line, p, frame)?,
-            orientation,
-            motion,
-            tool_number: s.tool_number,
-            operation: s.operation.clone(),
-            feed: s.feed,
-            cycle: None,
-            external: external.clone(),
-        });
-    }
-    Ok(())
 }
 
 /// The positions the move passes, in m: its end point, or an arc's points within `tolerance`.

@@ -4,8 +4,8 @@
 //! none is) rapid to the home position's coordinates in the frame in force. The block is
 //! written back as found: the controller goes where its own stored position is.
 
-use super::block::{end_point, push_points, Given};
 use super::machine::convert;
+use super::modal::{end_point, push_points};
 use super::{at, Block, GCode, Motion, State};
 use nalgebra::Vector3;
 use std::ops::Range;
@@ -15,7 +15,7 @@ use stiffid_core::Result;
 pub(super) fn home(
     line: u64,
     span: Range<usize>,
-    given: Given,
+    (target, other): ([Option<f64>; 3], bool),
     code: u8,
     s: &mut State,
     out: &mut GCode,
@@ -24,14 +24,14 @@ pub(super) fn home(
     let Some(tip) = (if code == 28 { frames.g28 } else { frames.g30 }) else {
         return Err(at(line, format!("G{code}: the setup does not state the G{code} position: give where the tool tip is there, [workpiece] g{code}_mm (G54 part frame)")));
     };
-    if given.centre_given() || given.radius.is_some() || given.abc || given.external {
+    if other {
         return Err(at(
             line,
             format!("G{code}: only X Y Z (the intermediate point) are read with a move home"),
         ));
     }
     let first = out.points.len();
-    let named = given.target.map(|t| t.is_some());
+    let named = target.map(|t| t.is_some());
     let Some(to_program) = s.to_program() else {
         // The tip goes home, but where that is in the program's coordinates depends on the
         // tool's length, not known yet: the axes moved are not known until the program
@@ -44,7 +44,7 @@ pub(super) fn home(
     };
     let home = to_program * nalgebra::Point3::from(tip);
     if named.iter().any(|n| *n) {
-        let (end, known) = end_point(line, &given, (s.position, s.known), s)?;
+        let (end, known) = end_point(line, &target, (s.position, s.known), s)?;
         // An intermediate point where the tool is (`G28 G91 Z0`) is no move.
         if known != s.known || (end - s.position).norm() > 0.0 {
             rapid(line, (end, known), s, out)?;

@@ -9,8 +9,8 @@
 //! line.
 
 use super::machine::{self, Frame, Lift};
-use super::{at, State};
-use nalgebra::{Point3, Vector3};
+use super::{at, external_values, may_move, GCode, Motion, Point, State};
+use nalgebra::{Point3, UnitQuaternion, Vector3};
 use stiffid_core::Result;
 
 /// What to do about an axis not known (module docs).
@@ -112,4 +112,63 @@ fn toml_key(name: &str) -> String {
         true => format!("\"{name}\""),
         false => name.to_string(),
     }
+}
+
+/// The move's end point in m from the block's `X Y Z` (absolute or incremental, mm or inch),
+/// from `from` (with the axes known), and the axes known there.
+pub(super) fn end_point(
+    line: u64,
+    target: &[Option<f64>; 3],
+    from: (Vector3<f64>, [bool; 3]),
+    s: &State,
+) -> Result<(Vector3<f64>, [bool; 3])> {
+    let scale = if s.inch { 25.4e-3 } else { 1e-3 };
+    let (mut end, mut known) = from;
+    for k in 0..3 {
+        if let Some(v) = target[k] {
+            end[k] = if s.incremental {
+                end[k] + v * scale
+            } else {
+                v * scale
+            };
+            known[k] |= !s.incremental;
+        }
+    }
+    if !end.iter().all(|v| v.abs() <= 100.0) {
+        return Err(at(line, "position beyond 100 m".into()));
+    }
+    Ok((end, known))
+}
+
+/// The points at `positions` (programmed, in `frame`) added to `out` as tips in the `G54`
+/// part frame.
+pub(super) fn push_points(
+    line: u64,
+    positions: &[Vector3<f64>],
+    motion: Motion,
+    frame: &super::machine::Frame,
+    s: &mut State,
+    out: &mut GCode,
+) -> Result<()> {
+    let tool = may_move(line, s)?;
+    let external = external_values(line, s)?;
+    let [a, b, c] = s.abc.map(f64::to_radians);
+    let mut orientation = UnitQuaternion::from_euler_angles(a, b, c) * tool;
+    if frame.part_from.rotation != UnitQuaternion::identity() {
+        orientation = frame.part_from.rotation * orientation;
+    }
+    for p in positions {
+        out.points.push(Point {
+            line,
+            position: s.tip(line, p, frame)?,
+            orientation,
+            motion,
+            tool_number: s.tool_number,
+            operation: s.operation.clone(),
+            feed: s.feed,
+            cycle: None,
+            external: external.clone(),
+        });
+    }
+    Ok(())
 }

@@ -507,7 +507,7 @@ fn a_cartesian_program_in_the_part_frame_is_placed_as_the_gcode_of_its_points() 
         },
         ..Default::default()
     };
-    let gcode = machining::read_on(GCODE, Language::GCode, 1e-4, &start).unwrap();
+    let gcode = Program::GCode(machining::gcode::parse_on(GCODE, 1e-4, &start).unwrap());
     let programs = in_part_frame(&s);
     let refused = not_in_part_frame(&s);
     let region = Region {

@@ -73,7 +73,8 @@ pub fn read_program(
 /// start and home positions and tool lengths: [`crate::gcode::Machine::of`]).
 ///
 /// # Errors
-/// Those of [`machining::read_on`], as [`Error::Input`](stiffid_core::Error::Input).
+/// Those of [`crate::gcode::parse_on`] and [`crate::program::parse`], as
+/// [`Error::Input`](stiffid_core::Error::Input).
 pub fn read_program_on(
     name: &str,
     text: &str,
@@ -81,5 +82,20 @@ pub fn read_program_on(
     chord_tolerance: f64,
     machine: &crate::gcode::Machine,
 ) -> Result<Program> {
-    machining::read_on(text, language, chord_tolerance, machine).map_err(|e| in_input(name, e))
+    read_on(text, language, chord_tolerance, machine).map_err(|e| in_input(name, e))
+}
+
+/// [`machining::read`] on a controller that knows `machine`.
+fn read_on(
+    text: &str,
+    language: Language,
+    chord_tolerance: f64,
+    machine: &crate::gcode::Machine,
+) -> Result<Program> {
+    match language {
+        Language::GCode => {
+            crate::gcode::parse_on(text, chord_tolerance, machine).map(Program::GCode)
+        }
+        Language::Robot(d) => crate::program::parse(text, d).map(Program::Robot),
+    }
 }

@@ -74,7 +74,13 @@ pub fn read_program(
         e => e,
     };
     let machine = crate::gcode::Machine::of(setup, Some(process));
-    let program = crate::read_on(text, language, chord_tolerance, &machine).map_err(in_file)?;
+    let program = match language {
+        Language::GCode => {
+            crate::gcode::parse_on(text, chord_tolerance, &machine).map(Program::GCode)
+        }
+        _ => crate::read(text, language, chord_tolerance),
+    };
+    let program = program.map_err(in_file)?;
     check_program(setup, &program).map_err(in_file)?;
     Ok(program)
 }
