@@ -224,8 +224,8 @@ pub fn read(text: &str, language: Language, chord_tolerance: f64) -> Result<Prog
     )
 }
 
-/// [`read`] with what the setup says of a robot program in `context` (an INFORM job's pulses
-/// and tool files, KRL's `.dat` beside the `.src`).
+/// [`read`] with what the setup says of a program in `context` (an INFORM job's pulses and
+/// tool files, KRL's `.dat` beside the `.src`, a G-code program's controller).
 ///
 /// # Errors
 /// Those of [`gcode::parse`] and [`program::parse_in`]; [`Error::InvalidField`] (`data`) for a
@@ -237,7 +237,11 @@ pub fn read_in(
     context: &program::Context,
 ) -> Result<Program> {
     match (language, context.data) {
-        (Language::GCode, None) => gcode::parse(text, chord_tolerance).map(Program::GCode),
+        (Language::GCode, None) => match context.machine {
+            Some(machine) => gcode::parse_on(text, chord_tolerance, machine),
+            None => gcode::parse(text, chord_tolerance),
+        }
+        .map(Program::GCode),
         (Language::GCode, Some(_)) => Err(Error::InvalidField {
             field: "data".into(),
             message: "a data file is read with a KRL program only".into(),

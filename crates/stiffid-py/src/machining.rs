@@ -11,7 +11,7 @@ use pyo3::types::PyDict;
 use std::path::PathBuf;
 use stiffid_machining::app::force::document::Document;
 use stiffid_machining::app::{compensate, force};
-use stiffid_machining::gcode::Motion;
+use stiffid_machining::gcode::{Machine, Motion};
 use stiffid_machining::process::file;
 use stiffid_machining::program::speed::Speed;
 use stiffid_machining::program::{Context, JointProgram};
@@ -64,22 +64,48 @@ pub fn process_force<'py>(
 /// program also ``joint`` (``(n,)`` bool: a joint motion, which the controller times),
 /// ``time_s`` (``(n,)``: the move's time where the program gives it, RAPID ``\\T``, LS ``sec``;
 /// ``NaN`` elsewhere) and ``speed_not_read`` (a list: why a linear motion's speed is not read, a
-/// variable or a register; ``None`` where it is).
+/// variable or a register; ``None`` where it is). A G-code program is read on the controller
+/// ``setup`` (a ``Setup``: its ``[workpiece]`` work offsets, start and ``G28``/``G30``
+/// positions and tool orientation) and ``process`` (a process file: its tools' ``length_mm``
+/// for ``G43``) describe, as ``compensate`` reads it: the positions are the tool tip's in the
+/// ``G54`` part frame.
 #[pyfunction]
-#[pyo3(signature = (program, *, chord_tolerance_mm=0.01, setup=None))]
+#[pyo3(signature = (program, *, chord_tolerance_mm=0.01, setup=None, process=None))]
 pub fn read_program<'py>(
     py: Python<'py>,
     program: PathBuf,
     #[pyo3(from_py_with = crate::count::number)] chord_tolerance_mm: f64,
-    setup: Option<&crate::setup::Setup>,
+    setup: Option<PyRef<'py, crate::setup::Setup>>,
+    process: Option<PathBuf>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let name = program.display().to_string();
     let language = Language::of_file(&name).map_err(raise)?;
     let text = error::read(&program)?;
-    let context = setup.map_or_else(Context::default, |s| Context::of(&s.inner));
+    let process = match process {
+        Some(p) => {
+            let text = error::read(&p)?;
+            Some(file::parse(&text, &p.display().to_string()).map_err(raise)?)
+        }
+        None => None,
+    };
+    let machine = match &setup {
+        Some(s) => Machine::of(&s.inner, process.as_ref()),
+        None => Machine {
+            tool_lengths: process
+                .as_ref()
+                .map(|p| p.tool_lengths())
+                .unwrap_or_default(),
+            ..Default::default()
+        },
+    };
+    let context = match &setup {
+        Some(s) => Context::of(&s.inner),
+        None => Context::default(),
+    }
+    .with_machine(&machine);
+    let tolerance = chord_tolerance_mm * 1e-3;
     let read =
-        compensate::read_program_in(&name, &text, language, chord_tolerance_mm * 1e-3, &context)
-            .map_err(raise)?;
+        compensate::read_program_in(&name, &text, language, tolerance, &context).map_err(raise)?;
     let out = PyDict::new(py);
     out.set_item("language", language.name())?;
     match &read {

@@ -82,9 +82,10 @@ pub fn place<'py>(
             let language = Language::of_file(&name).map_err(raise)?;
             let text = error::read(program)?;
             let tolerance = chord_tolerance_mm * 1e-3;
-            read = job::read_program(s, &name, &text, language, tolerance).map_err(raise)?;
-            let name = process_path.display().to_string();
-            parsed = file::parse(&error::read(process_path)?, &name).map_err(raise)?;
+            let process_name = process_path.display().to_string();
+            parsed = file::parse(&error::read(process_path)?, &process_name).map_err(raise)?;
+            read = job::read_program(s, &name, &text, language, (tolerance, &parsed))
+                .map_err(raise)?;
             Work::Program {
                 program: &read,
                 process: &parsed,

@@ -127,10 +127,10 @@ pub fn run(args: &Args) -> Result<()> {
             let language = Language::of_file(&name).map_err(|e| anyhow!("--program {e}"))?;
             let text = load::read(program_path)?;
             let tolerance = args.chord_tolerance_mm * 1e-3;
-            program = place::read_program(&setup, &name, &text, language, tolerance)
+            let process_name = process_path.display().to_string();
+            process = file::parse(&load::read(process_path)?, &process_name)?;
+            program = place::read_program(&setup, &name, &text, language, (tolerance, &process))
                 .map_err(option_error)?;
-            let name = process_path.display().to_string();
-            process = file::parse(&load::read(process_path)?, &name)?;
             Work::Program {
                 program: &program,
                 process: &process,

@@ -41,6 +41,7 @@ impl Setup {
             tracker: None,
             workpiece: None,
             table_reflectors: Vec::new(),
+            program_frames: Default::default(),
             controller: Controller::default(),
             payload: None,
             mass_sd: 0.0,
@@ -78,6 +79,7 @@ impl Setup {
             tracker: workcell.tracker.clone(),
             workpiece: workcell.workpiece,
             table_reflectors: workcell.table_reflectors.clone(),
+            program_frames: workcell.program_frames.clone(),
             controller: workcell.controller.clone(),
             payload: arm.payload,
             mass_sd: arm.mass_sd,
@@ -138,6 +140,7 @@ pub struct SetupBuilder {
     tracker: Option<Tracker>,
     workpiece: Option<Isometry3<f64>>,
     table_reflectors: Vec<Vector3<f64>>,
+    program_frames: super::ProgramFrames,
     controller: Controller,
     payload: Option<Payload>,
     mass_sd: f64,
@@ -303,6 +306,13 @@ impl SetupBuilder {
         self
     }
 
+    /// A G-code program's work offsets, start and home positions ([`super::ProgramFrames`],
+    /// checked when read from `[workpiece]`; default none).
+    pub fn with_program_frames(mut self, frames: super::ProgramFrames) -> Self {
+        self.program_frames = frames;
+        self
+    }
+
     /// Reflectors fixed on the positioner's table or, in a cell without a positioner, on the
     /// part or its fixture, the part's frame ([`Self::with_workpiece`]), m (default none; at
     /// most [`limits::MAX_TABLE_REFLECTORS`], each coordinate within [`limits::LENGTH_MM`]; they
@@ -443,6 +453,7 @@ impl SetupBuilder {
                 tracker,
                 workpiece: self.workpiece,
                 table_reflectors: self.table_reflectors,
+                program_frames: self.program_frames,
                 controller: self.controller,
             },
             notes: Vec::new(),

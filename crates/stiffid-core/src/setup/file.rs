@@ -90,6 +90,16 @@ struct WorkpieceFile {
     base_from_part: Option<TransformFile>,
     #[serde(default, deserialize_with = "crate::common::exact::arrays")]
     reflectors_mm: Vec<[f64; 3]>,
+    #[serde(default)]
+    offsets: std::collections::BTreeMap<String, TransformFile>,
+    #[serde(default, deserialize_with = "crate::common::exact::option")]
+    start_mm: Option<[f64; 3]>,
+    #[serde(default, deserialize_with = "crate::common::exact::option")]
+    g28_mm: Option<[f64; 3]>,
+    #[serde(default, deserialize_with = "crate::common::exact::option")]
+    g30_mm: Option<[f64; 3]>,
+    #[serde(default, deserialize_with = "crate::common::exact::option")]
+    tool_rpy_deg: Option<[f64; 3]>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -594,6 +604,8 @@ fn builder(f: SetupFile, robot: Robot, reading_variance: f64) -> Result<SetupBui
     if let Some(w) = f.workpiece {
         let reflectors = w.reflectors_mm.iter().map(|p| Vector3::from(*p) * 1e-3);
         b = b.with_table_reflectors(reflectors.collect());
+        let positions = [w.start_mm, w.g28_mm, w.g30_mm, w.tool_rpy_deg];
+        b = b.with_program_frames(super::program_frames::read(&w.offsets, positions)?);
     }
     Ok(b)
 }

@@ -85,6 +85,7 @@ pub mod load_steps;
 pub mod numbered;
 pub mod plausibility;
 pub mod prior;
+mod program_frames;
 pub mod reference;
 mod workcell;
 
@@ -100,6 +101,7 @@ pub use file::{
     builtin, builtin_names, builtin_text, parse, parse_with, RobotRequest, MAX_PACKAGE_PATHS,
 };
 pub use numbered::NumberedFrames;
+pub use program_frames::{offset_name, ProgramFrames, MAX_EXTENDED_OFFSET, MAX_OFFSETS};
 pub use workcell::{CellConstraints, Controller, Kinematics, Pulses, Workcell};
 
 use crate::common::limits::JointBox;
@@ -444,6 +446,7 @@ impl Setup {
         Setup {
             workcell: Workcell {
                 workpiece: self.workcell.workpiece,
+                program_frames: self.workcell.program_frames.clone(),
                 table_reflectors: self.workcell.table_reflectors.clone(),
                 controller: self.workcell.controller.clone(),
                 ..Workcell::default()
@@ -512,7 +515,11 @@ impl Setup {
     fn controller_keeping(&self, kept: std::ops::Range<usize>) -> Controller {
         let mut c = self.workcell.controller().clone();
         if let Some(p) = c.pulses.as_mut().filter(|p| !p.external.is_empty()) {
-            p.external = p.external.get(kept).map(<[f64]>::to_vec).unwrap_or_default();
+            p.external = p
+                .external
+                .get(kept)
+                .map(<[f64]>::to_vec)
+                .unwrap_or_default();
         }
         c
     }

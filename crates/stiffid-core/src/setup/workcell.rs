@@ -153,6 +153,8 @@ pub struct Workcell {
     pub(super) cell: Option<Cell>,
     pub(super) tracker: Option<Tracker>,
     pub(super) workpiece: Option<Isometry3<f64>>,
+    /// `[workpiece]`'s work offsets, start and home positions for G-code.
+    pub(super) program_frames: super::ProgramFrames,
     /// Reflectors on the positioner's table or on a fixed part, the part's frame, m.
     pub(super) table_reflectors: Vec<Vector3<f64>>,
     pub(super) controller: Controller,
@@ -177,6 +179,13 @@ impl Workcell {
     /// `[workpiece] base_from_part`: a G-code program's part frame in the robot base frame, m.
     pub fn workpiece(&self) -> Option<&Isometry3<f64>> {
         self.workpiece.as_ref()
+    }
+
+    /// `[workpiece]`'s work offsets (`[workpiece.offsets]`), `start_mm`, `g28_mm` and
+    /// `g30_mm`: what a G-code program's `G53`-`G59.3`, `G28` and `G30` and its first moves
+    /// need ([`super::ProgramFrames`]).
+    pub fn program_frames(&self) -> &super::ProgramFrames {
+        &self.program_frames
     }
 
     /// `[workpiece] reflectors_mm`: the reflectors fixed on the positioner's table or, in a

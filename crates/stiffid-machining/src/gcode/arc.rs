@@ -13,6 +13,27 @@ pub(super) fn plane_axes(plane: u8) -> (usize, usize, usize) {
     }
 }
 
+/// How far an arc's end may lie off the circle through its start, m: grbl's rule
+/// (`gcode.c`: refused beyond 0.005 mm when also beyond 0.5 mm or 0.1 % of the radius), which
+/// accepts every arc LinuxCNC does (`interp_arc.cc` `arc_data_ijk`: refused beyond
+/// `CENTER_ARC_RADIUS_TOLERANCE`, 0.028 mm or 0.0028 inch, or 0.1 % of the radius,
+/// `SPIRAL_RELATIVE_TOLERANCE`). As both controllers, the end is reached exactly: the radius
+/// changes linearly from the start's to the end's along the arc (LinuxCNC's spiral).
+pub const ARC_END_TOLERANCE_MM: f64 = 0.005;
+/// The most an arc's end may lie off the circle in any case, mm (grbl's 0.5 mm).
+pub const ARC_END_MAX_MM: f64 = 0.5;
+/// The most an arc's end may lie off the circle beyond [`ARC_END_TOLERANCE_MM`], relative to
+/// the radius (grbl's and LinuxCNC's 0.1 %).
+pub const ARC_END_RELATIVE: f64 = 1e-3;
+
+/// Whether an arc of start radius `r0` and end radius `r1` (m) is accepted
+/// ([`ARC_END_TOLERANCE_MM`]).
+fn on_circle(r0: f64, r1: f64) -> bool {
+    let off = (r0 - r1).abs();
+    off <= ARC_END_TOLERANCE_MM * 1e-3
+        || (off <= ARC_END_MAX_MM * 1e-3 && off <= ARC_END_RELATIVE * r0.max(r1))
+}
+
 /// The points of an arc from `s.position` to `end` (the end included), chords within `tolerance`.
 pub(super) fn arc(
     line: u64,
@@ -34,6 +55,10 @@ pub(super) fn arc(
             ))
         }
         (None, false) => return Err(at(line, "arc without centre (I J K) or radius (R)".into())),
+        (None, true) if s.ij_absolute => match (ijk[u], ijk[v]) {
+            (Some(cu), Some(cv)) => (cu, cv),
+            _ => return Err(at(line, "G90.1 (absolute arc centres): give both of the plane's centre coordinates (I J in G17, K I in G18, J K in G19)".into())),
+        },
         (None, true) => (su + ijk[u].unwrap_or(0.0), sv + ijk[v].unwrap_or(0.0)),
         (Some(r), false) => centre_from_radius(line, (su, sv), (eu, ev), r, ccw)?,
     };
@@ -42,8 +67,8 @@ pub(super) fn arc(
     if r0 < 1e-6 {
         return Err(at(line, "arc radius below 1 um".into()));
     }
-    if (r0 - r1).abs() > 1e-6_f64.max(1e-6 * r0) {
-        return Err(at(line, format!("the arc's end is {:.4} mm off its circle (radius {:.4} mm at the start, {:.4} mm at the end)", (r0 - r1).abs() * 1e3, r0 * 1e3, r1 * 1e3)));
+    if !on_circle(r0, r1) {
+        return Err(at(line, format!("the arc's end is {:.4} mm off its circle (radius {:.4} mm at the start, {:.4} mm at the end; accepted: {ARC_END_TOLERANCE_MM} mm, or {} % of the radius up to {ARC_END_MAX_MM} mm, as grbl and LinuxCNC)", (r0 - r1).abs() * 1e3, r0 * 1e3, r1 * 1e3, ARC_END_RELATIVE * 100.0)));
     }
     let a0 = (sv - cv).atan2(su - cu);
     let a1 = (ev - cv).atan2(eu - cu);
@@ -71,9 +96,14 @@ pub(super) fn arc(
             }
             let t = i as f64 / count as f64;
             let a = a0 + sweep * t;
+            // The spiral of an end off the circle; a circle to rounding stays the circle.
+            let r = match (r1 - r0).abs() > 1e-9 {
+                true => r0 + (r1 - r0) * t,
+                false => r0,
+            };
             let mut p = start;
-            p[u] = cu + r0 * a.cos();
-            p[v] = cv + r0 * a.sin();
+            p[u] = cu + r * a.cos();
+            p[v] = cv + r * a.sin();
             p[n] = start[n] + (end[n] - start[n]) * t;
             p
         })
@@ -98,7 +128,9 @@ pub(super) fn centre_from_radius(
         ));
     }
     let half = d / 2.0;
-    if r.abs() < half - 1e-9 {
+    // LinuxCNC's RADIUS_TOLERANCE (0.00005 inch, `arc_data_r`): a radius that short of half
+    // the chord makes a half circle.
+    if r.abs() < half - 1.27e-6 {
         return Err(at(
             line,
             format!(

@@ -1,31 +1,47 @@
 //! One block applied to the state: modes, motions, canned cycles, the points it makes.
 
 use super::arc::arc;
+use super::machine::convert;
+use super::modal::{end_point, push_points};
 use super::words::{check_words, Word};
-use super::{at, cycles, external_values, may_move, Block, GCode, Motion, Point, State};
-use nalgebra::{UnitQuaternion, Vector3};
+use super::{at, cycles, may_move, Block, GCode, Motion, State};
+use nalgebra::Vector3;
 use std::ops::Range;
 use stiffid_core::Result;
 
-pub(super) const SUBSET: &str = "G0-G4, G17-G21, G40, G49, G80-G83, G90, G91, G94, G98, G99";
+pub(super) const SUBSET: &str = "G0-G4, G17-G21, G28, G30, G40, G43, G44, G49, G53-G59.3, G54.1, G61, G61.1, G64, G80-G83, G90, G90.1, G91, G91.1, G94, G98, G99";
 
 /// `s.motion` after `G80` ended a canned cycle: no motion in force until `G0`-`G3`.
 pub(super) const NO_MOTION: u8 = 80;
 
 /// The words of one block, gathered before it moves anything (the block's units).
 #[derive(Default)]
-struct Given {
-    target: [Option<f64>; 3],
+pub(super) struct Given {
+    pub(super) target: [Option<f64>; 3],
     centre: [Option<f64>; 3],
-    radius: Option<f64>,
+    pub(super) radius: Option<f64>,
     motion: Option<(u8, Range<usize>)>,
     /// Spans the compensated block writes again (targets, centres, cycle words).
-    drop: Vec<Range<usize>>,
-    abc: bool,
-    external: bool,
+    pub(super) drop: Vec<Range<usize>>,
+    pub(super) abc: bool,
+    pub(super) external: bool,
     external_words: Vec<Range<usize>>,
     feed: Option<f64>,
     cycle: cycles::Words,
+    /// The `Q` word's span (a peck depth, or `G64`'s tolerance).
+    q_span: Option<Range<usize>>,
+    /// A work offset chosen (`54`..`59.3` as ten times the code, `541` for `G54.1`).
+    offset: Option<u16>,
+    /// `G53`: this block's coordinates are machine coordinates.
+    g53: bool,
+    /// `G28` or `G30`.
+    home: Option<u8>,
+    /// `G43`, `G44` or `G49`.
+    length: Option<u8>,
+    /// `G64` (its `P` and `Q` are tolerances).
+    g64: bool,
+    /// The `H` word.
+    h: Option<f64>,
 }
 
 pub(super) fn block(
@@ -42,7 +58,12 @@ pub(super) fn block(
     for w in words {
         given.word(line, w, s)?;
     }
+    given.modes(line, s)?;
     motion_and_feed(line, &given, inch_before, s)?;
+    if let Some(code) = given.home {
+        let other = given.centre_given() || given.radius.is_some() || given.abc || given.external;
+        return super::home::home(line, span, (given.target, other), code, s, out);
+    }
     if s.motion >= 81 && s.motion != NO_MOTION {
         return cycle(line, span, given, s, out);
     }
@@ -89,10 +110,11 @@ impl Given {
             'F' => self.feed = Some(v),
             'Q' => {
                 self.cycle.peck = Some(v);
-                self.drop.push(w.span.clone());
+                self.q_span = Some(w.span.clone());
             }
             'P' => self.cycle.dwell = Some((v, w.span.clone())),
-            'S' | 'M' | 'N' | 'O' | 'H' | 'D' => {}
+            'H' => self.h = Some(v),
+            'S' | 'M' | 'N' | 'O' | 'D' => {}
             other => return Err(at(line, format!("'{other}': not a word of the supported subset (G M T F S N O P Q X Y Z I J K R, A B C with rotary = abc, U V W A B C mapped by external = LETTERS)"))),
         }
         Ok(())
@@ -101,14 +123,24 @@ impl Given {
     /// A `G` word: a motion or cycle gathered, or a mode (plane, units, distances, retract) set.
     fn g(&mut self, line: u64, w: &Word, s: &mut State) -> Result<()> {
         let v = w.value;
-        let g = v.round();
-        if (v - g).abs() > 1e-9 || !(0.0..100.0).contains(&g) {
+        let tenths = (v * 10.0).round();
+        if (v * 10.0 - tenths).abs() > 1e-6 || !(0.0..1000.0).contains(&tenths) {
             return Err(at(
                 line,
                 format!("G{v}: not in the supported subset ({SUBSET})"),
             ));
         }
-        match g as u8 {
+        let tenths = tenths as u16;
+        if !tenths.is_multiple_of(10) {
+            return self.g_decimal(line, tenths, s);
+        }
+        match (tenths / 10) as u8 {
+            g @ (54..=59) => self.offset = Some(u16::from(g) * 10),
+            53 => self.g53 = true,
+            g @ (28 | 30) => self.home = Some(g),
+            g @ (43 | 44 | 49) => self.length = Some(g),
+            64 => self.g64 = true,
+            61 => {}
             g @ 0..=3 => self.motion = Some((g, w.span.clone())),
             g @ 81..=83 => {
                 self.motion = Some((g, w.span.clone()));
@@ -125,9 +157,82 @@ impl Given {
             21 => s.inch = false,
             90 => s.incremental = false,
             91 => s.incremental = true,
-            4 | 40 | 49 | 80 | 94 => {}
-            _ => return Err(at(line, format!("G{g}: not in the supported subset ({SUBSET})"))),
+            4 | 40 | 80 | 94 => {}
+            g => return Err(unsupported(line, &format!("G{g}"))),
         }
+        Ok(())
+    }
+
+    /// A `G` word with a decimal: `G54.1`, `G59.1`-`G59.3`, `G61.1`, `G90.1`, `G91.1`.
+    fn g_decimal(&mut self, line: u64, tenths: u16, s: &mut State) -> Result<()> {
+        match tenths {
+            541 | 591..=593 => self.offset = Some(tenths),
+            611 => {}
+            901 => s.ij_absolute = true,
+            911 => s.ij_absolute = false,
+            _ => {
+                let g = format!("G{}.{}", tenths / 10, tenths % 10);
+                return Err(unsupported(line, &g));
+            }
+        }
+        Ok(())
+    }
+
+    /// The modes the block's words put in force together: `G64`'s `P Q`, a work offset, a tool
+    /// length offset.
+    fn modes(&mut self, line: u64, s: &mut State) -> Result<()> {
+        if self.g64 {
+            self.cycle.peck = None;
+            self.cycle.dwell = None;
+        } else if let Some(q) = self.q_span.take() {
+            self.drop.push(q);
+        }
+        if let Some(code) = self.offset {
+            let name = match code {
+                541 => {
+                    let p = self.cycle.dwell.take().map(|(p, _)| p);
+                    match p {
+                        Some(p) if p.fract() == 0.0 && (1.0..=1e4).contains(&p) => format!("G54.1 P{p}"),
+                        _ => return Err(at(line, "G54.1: expected the additional work offset's number P in the block (G54.1 P1)".into())),
+                    }
+                }
+                c if c.is_multiple_of(10) => format!("G{}", c / 10),
+                c => format!("G{}.{}", c / 10, c % 10),
+            };
+            s.set_frame(super::modal::frame(line, name, s)?);
+        }
+        match self.length {
+            Some(49) => s.set_length_offset(0.0),
+            Some(g) => self.length_offset(line, g, s)?,
+            None => {}
+        }
+        Ok(())
+    }
+
+    /// `G43`/`G44` with `H` (or, without, the tool in use as LinuxCNC reads it): the tool's
+    /// length from the table put in force.
+    fn length_offset(&self, line: u64, g: u8, s: &mut State) -> Result<()> {
+        if s.machine.tool_lengths.is_empty() {
+            return Err(at(line, format!("G{g}: a tool length offset needs the tools' lengths: give [tool] length_mm in the process's operations (with their tool_number)")));
+        }
+        let n = match (self.h, s.tool_number) {
+            (Some(h), _) if h.fract() == 0.0 && (0.0..=1e6).contains(&h) => h as u32,
+            (Some(h), _) => return Err(at(line, format!("H{h}: expected a tool number"))),
+            (None, Some(t)) => t,
+            (None, None) => {
+                return Err(at(
+                    line,
+                    format!(
+                        "G{g} without H before any T: which tool's length is meant is not known"
+                    ),
+                ))
+            }
+        };
+        let Some(length) = s.machine.tool_length(Some(n)) else {
+            return Err(at(line, format!("G{g} H{n}: the process's tool table has no length for tool {n} (give [tool] length_mm in the operation with tool_number = {n})")));
+        };
+        let h = if g == 44 { -length } else { length };
+        s.set_length_offset(h);
         Ok(())
     }
 
@@ -156,7 +261,7 @@ impl Given {
         Ok(())
     }
 
-    fn centre_given(&self) -> bool {
+    pub(super) fn centre_given(&self) -> bool {
         self.centre.iter().any(Option::is_some)
     }
 }
@@ -221,7 +326,7 @@ fn cycle(
 
 /// Whether the block moves (an end point, an angle, an external axis, an arc's centre or radius);
 /// an error for what cannot move.
-fn moves(line: u64, given: &Given, s: &State) -> Result<bool> {
+pub(super) fn moves(line: u64, given: &Given, s: &State) -> Result<bool> {
     let arc_only = s.motion >= 2 && (given.centre_given() || given.radius.is_some());
     let moves = given.target.iter().any(Option::is_some) || given.abc || given.external || arc_only;
     if given.external && s.motion >= 2 {
@@ -239,26 +344,8 @@ fn moves(line: u64, given: &Given, s: &State) -> Result<bool> {
     Ok(true)
 }
 
-/// The move's end point in m from the block's `X Y Z` (absolute or incremental, mm or inch).
-fn end_point(line: u64, given: &Given, s: &State) -> Result<Vector3<f64>> {
-    let scale = if s.inch { 25.4e-3 } else { 1e-3 };
-    let mut end = s.position;
-    for k in 0..3 {
-        if let Some(v) = given.target[k] {
-            end[k] = if s.incremental {
-                end[k] + v * scale
-            } else {
-                v * scale
-            };
-        }
-    }
-    if !end.iter().all(|v| v.abs() <= 100.0) {
-        return Err(at(line, "position beyond 100 m".into()));
-    }
-    Ok(end)
-}
-
-/// A straight or circular move: its points added to `out`, and its block.
+/// A straight or circular move: its points added to `out`, and its block (a `G53` block's
+/// coordinates in the machine's frame).
 fn motion(
     line: u64,
     span: Range<usize>,
@@ -267,31 +354,45 @@ fn motion(
     out: &mut GCode,
     tolerance: f64,
 ) -> Result<()> {
-    let tool = may_move(line, s)?;
-    let external = external_values(line, s)?;
-    let end = end_point(line, &given, s)?;
-    let [a, b, c] = s.abc.map(f64::to_radians);
-    let orientation = UnitQuaternion::from_euler_angles(a, b, c) * tool;
-    let first = out.points.len();
-    for p in positions(line, &given, end, s, tolerance)? {
-        out.points.push(Point {
-            line,
-            position: p,
-            orientation,
-            motion: if s.motion == 0 {
-                Motion::Rapid
-            } else {
-                Motion::Feed
-            },
-            tool_number: s.tool_number,
-            operation: s.operation.clone(),
-            feed: s.feed,
-            cycle: None,
-            external: external.clone(),
-        });
+    may_move(line, s)?;
+    let frame = match given.g53 {
+        true => machine_frame(line, s)?,
+        false => s.frame.clone(),
+    };
+    let lift = s.lift();
+    let here = convert((s.position, s.known), (&s.frame, lift), (&frame, lift));
+    let (end, known) = end_point(line, &given.target, here, s)?;
+    if !known.iter().all(|k| *k) {
+        if s.motion != 0 {
+            let what = format!("G{}: a feed move", s.motion);
+            return Err(refuse_unknown(line, &what, known));
+        }
+        s.pending.get_or_insert(line);
+        (s.position, s.known) = convert((end, known), (&frame, lift), (&s.frame, lift));
+        return Ok(());
     }
-    s.position = end;
+    if s.motion != 0 && !here.1.iter().all(|k| *k) {
+        let what = match s.motion {
+            1 => "G1: a feed move".to_string(),
+            g => format!("G{g}: an arc"),
+        };
+        return Err(refuse_unknown(line, &what, here.1));
+    }
+    let positions = if s.motion >= 2 {
+        positions(line, &given, end, s, tolerance)?
+    } else {
+        vec![end]
+    };
+    let motion = if s.motion == 0 {
+        Motion::Rapid
+    } else {
+        Motion::Feed
+    };
+    let first = out.points.len();
+    push_points(line, &positions, motion, &frame, s, out)?;
+    (s.position, s.known) = convert((end, known), (&frame, lift), (&s.frame, lift));
     let arc_word = given.motion.filter(|(g, _)| *g >= 2).map(|(_, span)| span);
+    let to_program = super::machine::to_program(&frame, lift.unwrap_or(0.0));
     out.blocks.push(Block {
         line: span,
         points: first..out.points.len(),
@@ -300,9 +401,35 @@ fn motion(
         arc_word,
         inch: s.inch,
         incremental: s.incremental,
+        to_program,
+        verbatim: false,
         cycle: None,
     });
     Ok(())
+}
+
+/// `G53`'s frame (LinuxCNC: absolute machine coordinates, `G0` or `G1` only).
+fn machine_frame(line: u64, s: &State) -> Result<super::machine::Frame> {
+    if s.incremental || s.motion >= 2 {
+        return Err(at(line, "G53: machine coordinates are read in G90 with G0 or G1 (LinuxCNC), not in G91 or with an arc".into()));
+    }
+    super::modal::frame(line, "G53".into(), s)
+}
+
+/// The error for a motion that needs every axis known and lacks one.
+fn refuse_unknown(line: u64, what: &str, known: [bool; 3]) -> stiffid_core::Error {
+    let missing: Vec<&str> = (["X", "Y", "Z"].iter().zip(known))
+        .filter(|(_, k)| !k)
+        .map(|(l, _)| *l)
+        .collect();
+    at(
+        line,
+        format!(
+            "{what} from or to a place not known: {} has no value yet ({})",
+            missing.join(" "),
+            super::modal::UNKNOWN_HELP
+        ),
+    )
 }
 
 /// The positions the move passes, in m: its end point, or an arc's points within `tolerance`.
@@ -314,15 +441,27 @@ fn positions(
     tolerance: f64,
 ) -> Result<Vec<Vector3<f64>>> {
     let scale = if s.inch { 25.4e-3 } else { 1e-3 };
-    match s.motion {
-        2 | 3 => arc(
-            line,
-            s,
-            end,
-            given.centre.map(|c| c.map(|v| v * scale)),
-            given.radius.map(|r| r * scale),
-            tolerance,
-        ),
-        _ => Ok(vec![end]),
-    }
+    arc(
+        line,
+        s,
+        end,
+        given.centre.map(|c| c.map(|v| v * scale)),
+        given.radius.map(|r| r * scale),
+        tolerance,
+    )
+}
+
+/// The error for a `G` code outside the subset, saying why for those real posts write.
+fn unsupported(line: u64, g: &str) -> stiffid_core::Error {
+    let why = match g {
+        "G92" | "G92.1" | "G92.2" | "G92.3" | "G10" => ": it sets an offset from the machine's position at run time, which stiffid cannot know; give the work offsets in the setup ([workpiece.offsets])",
+        "G93" | "G95" => ": the feed rate F would be per block (G93) or per revolution (G95); post the program in G94 (per minute)",
+        "G28.1" | "G30.1" => ": it stores the machine's position at run time as the home position; give it in the setup ([workpiece] g28_mm, g30_mm)",
+        "G68" | "G51" | "G50.1" | "G51.1" | "G15" | "G16" => ": a coordinate rotation, scaling, mirror or polar mode the path would pass through",
+        _ => "",
+    };
+    at(
+        line,
+        format!("{g}: not in the supported subset ({SUBSET}){why}"),
+    )
 }

@@ -117,6 +117,8 @@ pub(super) fn block(
         arc_word: None,
         inch: s.inch,
         incremental: false,
+        to_program: nalgebra::Isometry3::identity(),
+        verbatim: false,
         cycle: None,
     };
     push(line, hole, &moves, bottom_index, block, s, out)
@@ -171,6 +173,12 @@ fn hole(line: u64, w: &Words, other_geometry: bool, scale: f64, s: &State) -> Re
     if other_geometry {
         return refuse("I, J, K, rotary or external axis words in a canned cycle");
     }
+    if !s.known[2] {
+        // X and Y unknown make no point (the rapid over the hole is the first one); the
+        // level the cycle starts from must be known (G98 returns to it).
+        s.known(line, &format!("G{code}: a canned cycle"))?;
+    }
+    s.plain(line, &format!("G{code}: a canned cycle"))?;
     let tool = may_move(line, s)?;
     let orientation = UnitQuaternion::from_euler_angles(
         s.abc[0].to_radians(),
@@ -239,11 +247,13 @@ fn moves(hole: &Hole, s: &State) -> (Vec<(Vector3<f64>, Motion)>, usize) {
         }
     };
     let above = s.position.z.max(retract);
-    go(
-        Vector3::new(s.position.x, s.position.y, above),
-        Motion::Rapid,
-        &mut moves,
-    );
+    if s.known[0] && s.known[1] {
+        go(
+            Vector3::new(s.position.x, s.position.y, above),
+            Motion::Rapid,
+            &mut moves,
+        );
+    }
     go(hole.at_xy(above), Motion::Rapid, &mut moves);
     go(hole.at_xy(retract), Motion::Rapid, &mut moves);
     let (mut reached, surface) = (retract, s.surface);
@@ -314,7 +324,7 @@ fn push(
         });
     }
     if let Some((p, _)) = moves.last() {
-        s.position = *p;
+        (s.position, s.known) = (*p, [true; 3]);
     }
     block.points = first..out.points.len();
     block.cycle = Some(hole.dwell.map(|(_, text)| (bottom_index, text)));

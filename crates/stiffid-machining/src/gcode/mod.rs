@@ -9,16 +9,26 @@
 //! - Drilling canned cycles `G81`, `G82`, `G83` with `G98`/`G99`, ended by `G80` or `G0`-`G3`:
 //!   each hole read as the moves it makes ([`Cycle`], module `cycles`); after `G80` a motion
 //!   needs its `G0`-`G3`.
-//! - Modes: `G90`/`G91` absolute / incremental, `G20`/`G21` inch / mm; `G4` dwell, `G40`, `G49`,
-//!   `G80`, `G94` are accepted and change nothing here. `F` is the feed rate (modal, per minute:
+//! - As the controller runs it ([`parse_on`] with a [`Machine`]: the setup's `[workpiece]` and the
+//!   process's tool lengths; `docs/programs/gcode.md` names each rule's source): an axis is
+//!   unknown until a block gives it or the setup states the start (rapids before make no point;
+//!   a feed, arc or cycle from there is refused, module `modal`); work offsets `G54`-`G59`,
+//!   `G59.1`-`G59.3`, `G54.1 Pn` and machine coordinates `G53` in the setup's frames; `G28`/`G30`
+//!   to the setup's positions (module `home`); tool length offsets `G43 Hn`/`G44`/`G49` with the
+//!   tools' lengths (module `machine`); arc centres `G90.1`/`G91.1`; an arc's end off its circle
+//!   within grbl's and LinuxCNC's tolerance ([`ARC_END_TOLERANCE_MM`]), reached along a spiral.
+//!   Every point is the tool tip in the `G54` part frame.
+//! - Modes: `G90`/`G91` absolute / incremental, `G20`/`G21` inch / mm; `G4` dwell, `G40`, `G61`,
+//!   `G61.1`, `G64` (its `P Q`), `G80`, `G94` are accepted and change nothing here; a line opening
+//!   with `%` is no block. `F` is the feed rate (modal, per minute:
 //!   mm/min under `G21`, inch/min under `G20`), kept with every point for the robot programs
 //!   written from the path; a change of units while an `F` is in force needs the `F` again in
 //!   its block (controllers differ on whether the feed follows the units). `S`, `M`, `N`, `O`, `P`
 //!   words are kept and not interpreted (`P` and `Q` are a cycle's dwell and peck); `T` sets the
-//!   tool number (which selects the process operation).
+//!   tool number (which selects the process operation and the tool length).
 //! - Comments `( ... )` and `; ...`. A comment `(operation: NAME)` selects the process operation
 //!   named `NAME` from there on. Header comments state the tool orientation:
-//!   `(stiffid: tool_rpy_deg = 180 0 0)`, the tool frame in the part frame as fixed-axis
+//!   `(stiffid: tool_rpy_deg = 180 0 0)` (else the setup's `[workpiece] tool_rpy_deg`), the tool frame in the part frame as fixed-axis
 //!   roll-pitch-yaw (`180 0 0` points the tool z axis down, along the part's -Z); and, to allow
 //!   rotary words, `(stiffid: rotary = abc)`: `A B C` (deg, absolute, -360 to 360) then turn the tool by
 //!   `Rz(C) Ry(B) Rx(A)` in the part frame before the header's orientation. A canned cycle
@@ -27,18 +37,22 @@
 //! - Arcs are split into chords whose sagitta is at most the chord tolerance.
 //!
 //! Any other G code or letter is refused naming its line (cutter radius compensation `G41`/`G42`
-//! saying it belongs to the CAM post), as are an arc whose end is not on its
-//! circle (more than 1 um or 1e-6 of the radius off), an arc of radius below 1 um, a letter given
-//! twice in one block (but `G` and `M`), a feed rate `F` outside `(0, MAX_FEED]`, a subprogram
-//! call or return (`M97`, `M98`, `M99`), a motion after the program's end (`M2`, `M30`), and more
-//! than [`MAX_POINTS`] points.
+//! saying it belongs to the CAM post; `G92`, `G93`, `G95`, `G28.1` saying why), as are
+//! parameters and expressions (`#`, `[`), O-word subprograms and loops, block delete `/`, polar
+//! words `@ ^`, an arc whose end is off its circle beyond [`ARC_END_TOLERANCE_MM`], an arc of
+//! radius below 1 um, a letter given twice in one block (but `G` and `M`), a feed rate `F`
+//! outside `(0, MAX_FEED]`, a subprogram call or return (`M97`, `M98`, `M99`), a motion after the
+//! program's end (`M2`, `M30`), a work offset, home position or tool length the [`Machine`] does
+//! not give, and more than [`MAX_POINTS`] points.
 //!
 //! ## What is written
 //! [`GCode::write`] keeps every line byte for byte but the motion blocks, where the `X Y Z I J K R`
 //! words are replaced by the corrected position of each point (a word dropped takes the blanks
 //! before it along, so a program written back twice reads as once; a canned cycle becomes its `G0`,
 //! `G1` and `G4` blocks; an arc becomes its chords, `G2`/`G3`
-//! becomes `G1`), in the program's own units and distance mode. Only positions are corrected: a
+//! becomes `G1`), in the program's own units and distance mode, each block's words in its own
+//! work offset's frame and tool length offset; rapids before the first point and `G28`/`G30`
+//! blocks as found (the controller goes where its own positions are). Only positions are corrected: a
 //! 3-axis program has no words for the tool's rotation. [`GCode::write_with_external`] also writes
 //! the mapped external axes' values of every point (a station chosen by the compensation): the
 //! block's own external words are dropped and every written point carries all of them, in the
@@ -47,10 +61,15 @@
 mod arc;
 mod block;
 mod cycles;
+mod home;
+mod machine;
+mod modal;
 mod words;
 mod write;
 
+pub use arc::{ARC_END_MAX_MM, ARC_END_RELATIVE, ARC_END_TOLERANCE_MM};
 pub use cycles::{Cycle, PECK_CLEARANCE_MM};
+pub use machine::{Machine, ProgramFrames};
 pub use words::MAX_FEED;
 
 use block::block;
@@ -117,6 +136,11 @@ struct Block {
     arc_word: Option<Range<usize>>,
     inch: bool,
     incremental: bool,
+    /// The programmed coordinates of a tip (`G54` part frame) in the block's frame and tool
+    /// length offset.
+    to_program: nalgebra::Isometry3<f64>,
+    /// Written as found (`G28`, `G30`): the controller goes where its stored position is.
+    verbatim: bool,
     /// A canned cycle's block: its points written as `G0`/`G1` blocks of their own, and the dwell
     /// `G4 P..` after the point of this index (within the block) with the `P` word as written.
     cycle: Option<Option<(usize, String)>>,
@@ -134,6 +158,9 @@ pub struct GCode {
     pub external: (Vec<char>, u64),
     blocks: Vec<Block>,
     text: String,
+    /// The tip at the start (the setup's), `G54` part frame, m: where an incremental first
+    /// block is written from.
+    start: Option<Vector3<f64>>,
 }
 
 struct State {
@@ -156,6 +183,18 @@ struct State {
     feed: Option<f64>,
     /// The line of the `F` word in force.
     feed_line: u64,
+    /// Which axes of `position` the program has given (or the setup's start).
+    known: [bool; 3],
+    /// The line of the first motion with an axis unknown, before any point.
+    pending: Option<u64>,
+    /// The work offset in force.
+    frame: machine::Frame,
+    /// The tool length offset in force (`G43`: +length, `G44`: -length, `G49`: 0), m.
+    length_offset: f64,
+    /// `G90.1`: arc centres `I J K` absolute (else, `G91.1`, from the arc's start).
+    ij_absolute: bool,
+    /// The controller's knowledge beyond the text.
+    machine: Machine,
     /// `G99`: canned cycles retract to `R` (else, `G98`, to the level they started from).
     retract_to_r: bool,
     /// The canned cycle's words in force.
@@ -169,14 +208,27 @@ fn at(line: u64, message: String) -> Error {
     Error::Program { line, message }
 }
 
-/// Parses `text` (module docs), arcs split to `chord_tolerance` (m).
+/// Parses `text` (module docs), arcs split to `chord_tolerance` (m), on a controller that knows
+/// nothing beyond the text ([`Machine::default`]: `G54` only, the start unknown, no tool
+/// lengths).
+///
+/// # Errors
+/// Those of [`parse_on`].
+pub fn parse(text: &str, chord_tolerance: f64) -> Result<GCode> {
+    parse_on(text, chord_tolerance, &Machine::default())
+}
+
+/// Parses `text` (module docs), arcs split to `chord_tolerance` (m), on a controller that knows
+/// `machine`: its work offsets, start and home positions and tool lengths.
 ///
 /// # Errors
 /// [`Error::InvalidOption`] for a chord tolerance outside [`CHORD_TOLERANCE_MM`];
 /// [`Error::Program`] naming the line for anything outside the subset, a malformed word, an arc
-/// off its circle, no tool orientation in the header, rotary words without `rotary = abc`, no
-/// motion at all, or more than [`MAX_BLOCKS`] lines or [`MAX_POINTS`] points.
-pub fn parse(text: &str, chord_tolerance: f64) -> Result<GCode> {
+/// off its circle, no tool orientation in the header or the setup, rotary words without
+/// `rotary = abc`, a work offset, home position or tool length `machine` lacks, a feed motion
+/// before every axis is known, no motion at all, or more than [`MAX_BLOCKS`] lines or
+/// [`MAX_POINTS`] points.
+pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<GCode> {
     stiffid_core::common::limits::check(
         "chord_tolerance_mm",
         &[chord_tolerance * 1e3],
@@ -192,7 +244,7 @@ pub fn parse(text: &str, chord_tolerance: f64) -> Result<GCode> {
         incremental: false,
         tool_number: None,
         operation: None,
-        tool: None,
+        tool: machine.frames.tool,
         rotary: false,
         external: (Vec::new(), 0),
         e: Vec::new(),
@@ -202,13 +254,21 @@ pub fn parse(text: &str, chord_tolerance: f64) -> Result<GCode> {
         retract_to_r: false,
         cycle: Default::default(),
         surface: 0.0,
+        known: [false; 3],
+        pending: None,
+        frame: machine::Frame::default(),
+        length_offset: 0.0,
+        ij_absolute: false,
+        machine: machine.clone(),
     };
+    s.start();
     let mut out = GCode {
         points: Vec::new(),
         cycles: Vec::new(),
         external: (Vec::new(), 0),
         blocks: Vec::new(),
         text: text.to_string(),
+        start: machine.frames.start,
     };
     for (line, start, l) in super::text::lines(text) {
         if line as usize > MAX_BLOCKS {
@@ -231,6 +291,9 @@ pub fn parse(text: &str, chord_tolerance: f64) -> Result<GCode> {
         }
     }
     if out.points.is_empty() {
+        if let Some(line) = s.pending {
+            return Err(at(line, format!("no motion reaches a point whose X, Y and Z are all known (from line {line} on; {})", modal::UNKNOWN_HELP)));
+        }
         return Err(at(1, "no motion block (G0, G1, G2, G3) found".into()));
     }
     out.external = s.external;

@@ -17,6 +17,18 @@ pub(super) struct Word {
 /// header and operation names. A byte-order mark opening the text is no word.
 pub(super) fn words(line: u64, start: usize, l: &str, s: &mut State) -> Result<Vec<Word>> {
     let mut out = Vec::new();
+    let opening = l.trim_start_matches(['\u{feff}', ' ', '\t']);
+    if opening.starts_with('%') {
+        // The tape's start or end (RS-274, LinuxCNC's manual "File Requirements"): the rest
+        // of the line, a program name on some controls, is no block.
+        return Ok(out);
+    }
+    if opening.starts_with('/') {
+        return Err(at(line, "/: a block delete line: whether the controller runs it depends on its block delete switch, which the program does not say; remove the '/' (run it) or the line".into()));
+    }
+    if let Some(flow) = o_word_flow(opening) {
+        return Err(at(line, format!("O-word '{flow}': subprograms, loops and conditions (LinuxCNC's O codes) are not followed; expand the program into one file of plain blocks first")));
+    }
     let mut i = 0;
     while let Some(c) = l[i..].chars().next() {
         if c == '(' {
@@ -37,11 +49,21 @@ pub(super) fn words(line: u64, start: usize, l: &str, s: &mut State) -> Result<V
             continue;
         }
         let letter = c.to_ascii_uppercase();
+        if c == '^' || c == '@' {
+            return Err(at(line, format!("'{c}': polar coordinates (LinuxCNC's @ distance and ^ angle) are not read; have the post write X Y")));
+        }
+        if c == '#' || c == '[' {
+            return Err(at(line, format!("'{c}': parameters and expressions (#1 = 2.5, #<name>, [#1 * 2]) are not evaluated; have the post write numbers")));
+        }
         if !letter.is_ascii_alphabetic() {
             return Err(at(
                 line,
                 format!("'{c}': expected a word (a letter and a number)"),
             ));
+        }
+        let next = l[i + 1..].trim_start().chars().next();
+        if let Some(c @ ('#' | '[')) = next {
+            return Err(at(line, format!("'{c}': parameters and expressions (#1 = 2.5, #<name>, [#1 * 2]) are not evaluated; have the post write numbers")));
         }
         let (value, span) = crate::text::number_at(l, i + 1).ok_or_else(|| {
             at(
@@ -57,6 +79,42 @@ pub(super) fn words(line: u64, start: usize, l: &str, s: &mut State) -> Result<V
         i = span.end;
     }
     Ok(out)
+}
+
+/// The keyword of an O-word that starts a subprogram, a call, a loop or a condition
+/// (`O100 sub`, `o<probe> call`, `O1 if [..]`), if the line opens with one.
+fn o_word_flow(opening: &str) -> Option<String> {
+    let rest = opening.strip_prefix(['O', 'o'])?;
+    let rest = match rest.strip_prefix('<') {
+        Some(named) => &named[named.find('>')? + 1..],
+        None => rest.trim_start_matches(|c: char| c.is_ascii_digit() || c == ' ' || c == '\t'),
+    };
+    let word: String = rest
+        .trim_start()
+        .chars()
+        .take_while(char::is_ascii_alphabetic)
+        .collect();
+    const FLOW: [&str; 13] = [
+        "sub",
+        "endsub",
+        "call",
+        "return",
+        "if",
+        "elseif",
+        "else",
+        "endif",
+        "while",
+        "endwhile",
+        "do",
+        "repeat",
+        "endrepeat",
+    ];
+    let w = word.to_ascii_lowercase();
+    (FLOW.contains(&w.as_str()) || opening[1..].starts_with('<')).then(|| limits_short(opening))
+}
+
+fn limits_short(text: &str) -> String {
+    stiffid_core::common::limits::short(text.trim())
 }
 
 pub(super) fn comment(line: u64, text: &str, s: &mut State) -> Result<()> {

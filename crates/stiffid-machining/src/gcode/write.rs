@@ -59,7 +59,7 @@ impl GCode {
             positions,
             external,
             letters: &self.external.0,
-            written: Vector3::zeros(),
+            written: self.start.unwrap_or_default(),
             written_e: vec![0.0; self.external.0.len()],
         };
         let mut out = String::with_capacity(self.text.len() * 2);
@@ -75,6 +75,12 @@ impl GCode {
                 false => "\n",
             };
             match &b.cycle {
+                _ if b.verbatim => {
+                    out.push_str(&self.text[b.line.clone()]);
+                    if b.points.end > b.points.start {
+                        words.written = self.points[b.points.end - 1].position;
+                    }
+                }
                 Some(dwell) => self.write_cycle(b, drop, dwell, ending, &mut words, &mut out),
                 None => self.write_motion(b, &drop, ending, &mut words, &mut out),
             }
@@ -193,9 +199,9 @@ impl Words<'_> {
         let scale = if b.inch { 25.4e-3 } else { 1e-3 };
         let p = &self.positions[k];
         let v = if b.incremental {
-            (p - self.written) / scale
+            b.to_program.rotation * (p - self.written) / scale
         } else {
-            p / scale
+            (b.to_program * nalgebra::Point3::from(*p)).coords / scale
         };
         self.written = *p;
         let mut text = format!("X{:.6} Y{:.6} Z{:.6}", v.x, v.y, v.z);

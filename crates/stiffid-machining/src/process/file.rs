@@ -31,11 +31,15 @@
 //! ```
 //! (`[operation.tool_axis]` in an `[[operation]]` table). A drilling operation that gives one is
 //! refused: a drill's axis is the hole's.
+//! A G-code program's tool length offsets (`G43 Hn`, `G44`, `G49`) are read with the tools'
+//! lengths, each operation's `[tool] length_mm` (optional: from the spindle's gauge line to the
+//! tip, as the CNC's tool table has it) for its `tool_number` ([`crate::gcode::Machine`]):
+//! `G43 H` of the tool in use programs its tip, the setup's `[tool] tcp_mm`.
 //! Where the workpiece sits is the cell's, not the process's: `[workpiece] base_from_part` is a
 //! field of the setup ([`stiffid_core::setup`]); a process file that has one is refused, saying so.
 //!
 //! # Limits
-//! `diameter_mm` (0, 200]; `flutes` 1..=12; `helix_deg` [-60, 60]; `feed_per_tooth_mm` and
+//! `diameter_mm` (0, 200]; `length_mm` (0, 1000]; `flutes` 1..=12; `helix_deg` [-60, 60]; `feed_per_tooth_mm` and
 //! `feed_per_rev_mm` (0, 5]; `spindle_rpm` [1, 100000]; `axial_depth_mm` (0, 200]; `radial_depth_mm` (0, diameter_mm];
 //! cutting coefficients and specific energies [0, 20000] N/mm^2 (`k_ac` [-20000, 20000]); edge
 //! coefficients [0, 1000] N/mm (`k_ae` [-1000, 1000]); at most [`MAX_OPERATIONS`] operations;
@@ -70,6 +74,7 @@ const CUTTING_SIGNED: Range = Range::new(-2e4, 2e4, "N/mm^2");
 const SPINDLE: Range = Range::new(1.0, 1e5, "rpm");
 const EDGE: Range = Range::new(0.0, 1e3, "N/mm");
 const EDGE_SIGNED: Range = Range::new(-1e3, 1e3, "N/mm");
+const LENGTH: Range = Range::new(1e-3, 1000.0, "mm");
 const CONE: Range = Range::new(0.0, crate::compensate::LEAD_TILT_MAX_CONE_DEG, "deg");
 
 #[derive(Deserialize)]
@@ -110,6 +115,7 @@ struct ToolAxisToml {
 #[serde(deny_unknown_fields)]
 struct ToolToml {
     diameter_mm: f64,
+    length_mm: Option<f64>,
     flutes: Option<u32>,
     helix_deg: Option<f64>,
 }
@@ -314,7 +320,12 @@ fn operation(i: usize, prefix: &str, t: OperationToml) -> Result<Operation> {
         }
     };
     let cone = cone(prefix, &kind, t.tool_axis.as_ref())?;
+    let tool_length = match t.tool.length_mm {
+        Some(l) => Some(ranged(prefix, "tool.length_mm", l, &LENGTH)? * 1e-3),
+        None => None,
+    };
     Ok(Operation {
+        tool_length,
         name,
         selector,
         kind,

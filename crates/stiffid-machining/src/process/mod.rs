@@ -54,6 +54,20 @@ pub struct Operation {
     /// (`[tool_axis] cone_deg`, [`mod@file`]; 0: no lean, always for drilling), which
     /// `compensate --free lead-tilt` uses ([`crate::compensate::FreeVariables::lead_tilt`]).
     pub cone: f64,
+    /// The tool's length from the spindle's gauge line to its tip as the CNC's tool table has
+    /// it, m (`[tool] length_mm`): what a G-code program's tool length offsets `G43`/`G44`/`G49`
+    /// are read with ([`crate::gcode::Machine`]); `None` when not given.
+    pub tool_length: Option<f64>,
+}
+
+impl Process {
+    /// The tool table of its operations that give `[tool] length_mm`: per `tool_number` (none:
+    /// every tool's, an operation without one) the length, m.
+    pub fn tool_lengths(&self) -> Vec<(Option<u32>, f64)> {
+        (self.operations.iter())
+            .filter_map(|o| Some((o.selector.tool_number, o.tool_length?)))
+            .collect()
+    }
 }
 
 /// The process of an operation.

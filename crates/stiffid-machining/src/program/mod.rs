@@ -217,7 +217,8 @@ pub struct JointProgram {
 
 /// What the setup says of a program that the program itself does not: the controller's
 /// encoder pulses (an INFORM job's positions) and the tool files it holds by number, which a
-/// reader checks against the setup's tool ([`inform`]). The default says nothing: a program
+/// reader checks against the setup's tool ([`inform`]); the data file beside it (KRL's `.dat`);
+/// a G-code program's controller ([`crate::gcode::Machine`]). The default says nothing: a program
 /// read on its own.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Context<'a> {
@@ -231,6 +232,9 @@ pub struct Context<'a> {
     /// The data file beside the program (KRL's `.dat`: its points and frame data), whose
     /// targets there are written back into it ([`JointProgram::write_pair`]).
     pub data: Option<&'a str>,
+    /// A G-code program's controller: its work offsets, start and home positions and tool
+    /// lengths ([`crate::gcode::Machine::of`]); `None`: none of them known.
+    pub machine: Option<&'a crate::gcode::Machine>,
 }
 
 impl<'a> Context<'a> {
@@ -241,6 +245,15 @@ impl<'a> Context<'a> {
             pulses: c.pulses.as_ref(),
             tool: Some((c.adapter * Translation3::from(setup.tool().tcp), &c.tools)),
             data: None,
+            machine: None,
+        }
+    }
+
+    /// The context with the G-code controller `machine`.
+    pub fn with_machine(self, machine: &'a crate::gcode::Machine) -> Self {
+        Context {
+            machine: Some(machine),
+            ..self
         }
     }
 

@@ -326,6 +326,7 @@ def read_program(
     *,
     chord_tolerance_mm: float = 0.01,
     setup: Optional[Setup] = None,
+    process: Optional[Union[str, os.PathLike[str]]] = None,
 ) -> dict[str, Any]:
     """language, line (n,) int64; G-code: position_mm (n, 3), rapid (n,) bool, tool_number, operation; robot programs: q_deg (n, 6), NaN for a Cartesian target (its axis angles need the setup: compensate resolves them); both: external_axes (k names), external (n, k) mm or deg as written, NaN where a target gives none; feed_mm_s (n,) the TCP speed of each move (a G-code feed move's F, a robot program's linear motion's programmed speed; NaN elsewhere); robot programs: joint (n,) bool (a joint motion), time_s (n,) the move's time where given (NaN elsewhere), speed_not_read (list: why a linear motion's speed is not read, None where it is)."""
 

@@ -269,6 +269,7 @@ fn read_back(text: &str, dialect: Dialect) -> Vec<ReadBack> {
         pulses: Some(&pulses),
         tool: None,
         data: None,
+        machine: None,
     };
     let program = stiffid::machining::program::parse_in(text, dialect, &context).unwrap();
     assert_eq!(program.axes.len(), 1, "{:?}", program.axes);

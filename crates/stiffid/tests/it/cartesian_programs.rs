@@ -502,7 +502,16 @@ fn a_cartesian_program_in_the_part_frame_is_placed_as_the_gcode_of_its_points() 
     let s = setup();
     let (compliance, process) = (compliance(&s), process());
     let options = Options::for_setup(&s);
-    let gcode = machining::read(GCODE, Language::GCode, 1e-4).unwrap();
+    // The cut starts where the tool is (the setup's start): its first feed is no plunge from
+    // a place the program does not say.
+    let start = machining::gcode::Machine {
+        frames: machining::gcode::ProgramFrames {
+            start: Some(nalgebra::Vector3::new(0.0, 0.0, -4e-3)),
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    let gcode = Program::GCode(machining::gcode::parse_on(GCODE, 1e-4, &start).unwrap());
     let programs = in_part_frame(&s);
     let refused = not_in_part_frame(&s);
     let region = Region {

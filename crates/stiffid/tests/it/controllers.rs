@@ -260,6 +260,7 @@ fn each_generating_controller_writes_the_cells_external_axes_in_its_form() {
             pulses: Some(&pulses),
             tool: None,
             data: None,
+            machine: None,
         };
         let p = program::parse_in(text, d, &context).unwrap();
         assert_eq!(p.axes.len(), 2, "{d:?}: {:?}", p.axes);

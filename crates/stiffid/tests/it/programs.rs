@@ -214,9 +214,9 @@ fn gcode_arcs_lie_on_their_analytic_circle_within_the_chord_tolerance() {
 #[test]
 fn malformed_gcode_is_refused_naming_the_line() {
     let cases = [
-        (format!("{HEADER}G1 X10\nG41 X20\n"), 3, "G41"),
+        (format!("{HEADER}G0 X10 Y0 Z0\nG41 X20\n"), 3, "G41"),
         (
-            format!("{HEADER}G1 X10\nG2 X20 Y0 I3 J0\n"),
+            format!("{HEADER}G0 X10 Y0 Z0\nG2 X20 Y0 I3 J0\n"),
             3,
             "off its circle",
         ),
@@ -224,7 +224,11 @@ fn malformed_gcode_is_refused_naming_the_line() {
         (format!("{HEADER}G1 X10 A30\n"), 2, "rotary"),
         (format!("{HEADER}G1 X1Q\n"), 2, "Q: expected a number"),
         (format!("{HEADER}G1 X10 (open\n"), 2, "')'"),
-        (format!("{HEADER}G2 X10 Y0 R2\n"), 2, "shorter than half"),
+        (
+            format!("{HEADER}G0 X0 Y0 Z0\nG2 X10 Y0 R2\n"),
+            3,
+            "shorter than half",
+        ),
         (format!("{HEADER}M3 S1000\n"), 1, "no motion"),
         (format!("{HEADER}G1 X10 X20\n"), 2, "X given twice"),
         (
@@ -248,9 +252,13 @@ fn malformed_gcode_is_refused_naming_the_line() {
             "F0: expected a feed rate",
         ),
         (format!("{HEADER}G1 X10 F1e7\n"), 2, "feed rate"),
-        (format!("{HEADER}G1 X10\nM98 P100\n"), 3, "M98: subprogram"),
         (
-            format!("{HEADER}G1 X10\nM30\nG1 X20\n"),
+            format!("{HEADER}G0 X10 Y0 Z0\nM98 P100\n"),
+            3,
+            "M98: subprogram",
+        ),
+        (
+            format!("{HEADER}G0 X10 Y0 Z0\nM30\nG1 X20\n"),
             4,
             "end of the program (M2/M30 on line 3)",
         ),

@@ -362,7 +362,7 @@ pub(crate) fn row(errors: &[f64]) -> Row {
 }
 
 /// The axis angles of a KRL program's motions (joint targets, `PTP {A1 ..}`), deg to rad.
-fn joint_targets(krl: &str) -> Vec<Vector6<f64>> {
+pub(crate) fn joint_targets(krl: &str) -> Vec<Vector6<f64>> {
     krl.lines()
         .filter(|l| l.starts_with("PTP {A1"))
         .map(|l| {
@@ -593,13 +593,20 @@ pub(crate) fn written_from(
     setup: &Setup,
     compliance: &stiffid::model::Compliance,
     (q0, gcode): (&Vector6<f64>, &str),
+    output: (Language, Targets),
+) -> (String, Vec<Compensated>) {
+    let process = include_str!("../../../../examples/milling/aluminium.toml");
+    written_with(setup, compliance, (q0, gcode, process), output)
+}
+
+/// [`written_from`] under the process file `process` (its text).
+pub(crate) fn written_with(
+    setup: &Setup,
+    compliance: &stiffid::model::Compliance,
+    (q0, gcode, process): (&Vector6<f64>, &str, &str),
     (output, targets): (Language, Targets),
 ) -> (String, Vec<Compensated>) {
-    let process = stiffid::machining::process::file::parse(
-        include_str!("../../../../examples/milling/aluminium.toml"),
-        "aluminium.toml",
-    )
-    .unwrap();
+    let process = stiffid::machining::process::file::parse(process, "process.toml").unwrap();
     let mut options = Options::for_setup(setup);
     options.q0 = *q0;
     let request = compensate::Request {

@@ -32,6 +32,7 @@ pub(super) fn read_checked(
         chord_tolerance,
         output,
         settings,
+        process,
         ..
     } = input
     else {
@@ -47,7 +48,8 @@ pub(super) fn read_checked(
         generate::check_payload(d, settings.targets, &program_tool(setup))?;
         generate::check_pulses(d, setup.workcell().controller().pulses.as_ref())?;
     }
-    let context = Context::of(setup).with_data(*data);
+    let machine = crate::gcode::Machine::of(setup, Some(process));
+    let context = Context::of(setup).with_data(*data).with_machine(&machine);
     let program = read_program_in(name, text, language, *chord_tolerance, &context)?;
     // A Cartesian program's targets as the controller moves to them (a copy only then).
     match machining::resolve(&program, setup, None, options) {
@@ -72,7 +74,8 @@ pub fn read_program(
 }
 
 /// [`read_program`] with what a setup says of the program in `context` (an INFORM job's pulses
-/// and tool files: [`Context::of`]).
+/// and tool files, [`Context::of`]; KRL's `.dat`; a G-code program's controller, its work offsets,
+/// start and home positions and tool lengths, [`crate::gcode::Machine::of`]).
 ///
 /// # Errors
 /// Those of [`machining::read_in`], as [`Error::Input`](stiffid_core::Error::Input).

@@ -48,7 +48,8 @@ pub fn read_path(
 }
 
 /// Reads a program file's text (`name` for its errors; G-code arcs split into chords of at
-/// most `chord_tolerance`, m) for placement on `setup`: its language ([`check_language`]), the
+/// most `chord_tolerance`, m; a G-code program read on the controller `setup` and `process`'s
+/// tool lengths describe, [`crate::gcode::Machine::of`]) for placement on `setup`: its language ([`check_language`]), the
 /// program ([`crate::read`]), and what the part cannot carry ([`Work::check`]),
 /// refused before any placement is tried.
 ///
@@ -62,7 +63,7 @@ pub fn read_program(
     name: &str,
     text: &str,
     language: Language,
-    chord_tolerance: f64,
+    (chord_tolerance, process): (f64, &Process),
 ) -> Result<Program> {
     check_language(language)?;
     let in_file = |e: Error| match e {
@@ -72,7 +73,9 @@ pub fn read_program(
         },
         e => e,
     };
-    let program = crate::read(text, language, chord_tolerance).map_err(in_file)?;
+    let machine = crate::gcode::Machine::of(setup, Some(process));
+    let context = crate::program::Context::of(setup).with_machine(&machine);
+    let program = crate::read_in(text, language, chord_tolerance, &context).map_err(in_file)?;
     check_program(setup, &program).map_err(in_file)?;
     Ok(program)
 }

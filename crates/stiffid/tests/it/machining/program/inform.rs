@@ -17,6 +17,7 @@ fn with(p: &Pulses) -> Context<'_> {
         pulses: Some(p),
         tool: None,
         data: None,
+        machine: None,
     }
 }
 

@@ -23,6 +23,7 @@ fn with(p: &Pulses) -> Context<'_> {
         pulses: Some(p),
         tool: None,
         data: None,
+        machine: None,
     }
 }
 
@@ -152,6 +153,7 @@ fn tool_files_are_checked_against_the_setups_tool() {
         pulses: Some(&p),
         tool: Some((tool, tools)),
         data: None,
+        machine: None,
     };
     assert!(parse_in(STORED, Dialect::Inform, &context(&held)).is_ok());
     let (line, message) = refused(parse_in(STORED, Dialect::Inform, &context(&other)));

@@ -1,0 +1,174 @@
+//! The frame and the tool length offset in force, and which axes are known: a controller
+//! starts where the machine is, which the program does not say. As LinuxCNC's interpreter does
+//! (`G0 X1 Y2` moves X and Y only, from wherever the machine is), an axis is known once a
+//! block gives it absolutely (or a `G28`/`G30` sends it home), or from the start when the setup
+//! states the start (`[workpiece] start_mm`). Rapids before every axis is known make no point:
+//! the first point is the first place they reach with `X Y Z` all known, reached by the robot
+//! in one move from wherever it is (a rapid in the air, as the first move of every robot
+//! program). A feed, an arc or a canned cycle from a place not known is refused naming the
+//! line.
+
+use super::machine::{self, Frame, Lift};
+use super::{at, external_values, may_move, GCode, Motion, Point, State};
+use nalgebra::{Point3, UnitQuaternion, Vector3};
+use stiffid_core::Result;
+
+/// What to do about an axis not known (module docs).
+pub(super) const UNKNOWN_HELP: &str = "the controller starts where the machine is, which the program does not say: give X Y Z in a rapid (G0) first, or state where the tool tip is when the program starts in the setup ([workpiece] start_mm, G54 part frame)";
+
+impl State {
+    /// The start: the setup's, or nothing known.
+    pub(super) fn start(&mut self) {
+        let Some(tip) = self.machine.frames.start else {
+            return;
+        };
+        let lift = self.lift();
+        let p = tip - Vector3::z() * lift.unwrap_or(0.0);
+        self.position = p;
+        self.known = [true, true, lift.is_some()];
+    }
+
+    /// The tip's lift from the programmed point in force (module docs of [`machine`]).
+    pub(super) fn lift(&self) -> Lift {
+        if self.machine.tool_lengths.is_empty() {
+            return Some(0.0);
+        }
+        let length = self.machine.tool_length(self.tool_number)?;
+        Some(self.length_offset - length)
+    }
+
+    /// Puts `frame` in force, the position carried into it.
+    pub(super) fn set_frame(&mut self, frame: Frame) {
+        let lift = self.lift();
+        let (p, k) = machine::convert(
+            (self.position, self.known),
+            (&self.frame, lift),
+            (&frame, lift),
+        );
+        (self.position, self.known, self.frame) = (p, k, frame);
+    }
+
+    /// Puts the tool length offset `h` (m) in force: the machine does not move, so the
+    /// programmed coordinates of where it is change by the offset's change (LinuxCNC, G43).
+    pub(super) fn set_length_offset(&mut self, h: f64) {
+        self.position.z += self.length_offset - h;
+        self.length_offset = h;
+    }
+
+    /// The tip at the programmed point `p` of the frame in force, `G54` part frame, m.
+    pub(super) fn tip(&self, line: u64, p: &Vector3<f64>, frame: &Frame) -> Result<Vector3<f64>> {
+        let lift = self.lift().ok_or_else(|| {
+            let tool = self.tool_number.map_or("no T word yet".into(), |t| format!("T{t}"));
+            at(line, format!("the tool in use ({tool}) has no length in the process's tool table ([tool] length_mm of the operation with its tool_number), and the tool length offset G43/G44/G49 in force needs it to place the tip"))
+        })?;
+        if frame.part_from == nalgebra::Isometry3::identity() && lift == 0.0 {
+            // The part frame itself: the programmed point, to the last bit.
+            return Ok(*p);
+        }
+        Ok((frame.part_from * Point3::from(p + Vector3::z() * lift)).coords)
+    }
+
+    /// An error unless every axis is known (module docs), naming what moves from there.
+    pub(super) fn known(&self, line: u64, what: &str) -> Result<()> {
+        match self.known.iter().position(|k| !k) {
+            None => Ok(()),
+            Some(i) => Err(at(
+                line,
+                format!(
+                    "{what} from a place not known: {} has no value yet ({UNKNOWN_HELP})",
+                    ['X', 'Y', 'Z'][i]
+                ),
+            )),
+        }
+    }
+
+    /// The programmed coordinates of a tip in the frame and tool length offset in force;
+    /// `None` while the tool in use has no length.
+    pub(super) fn to_program(&self) -> Option<nalgebra::Isometry3<f64>> {
+        Some(machine::to_program(&self.frame, self.lift()?))
+    }
+
+    /// Refuses what only the part frame `G54` without a tool length offset reads (a canned
+    /// cycle).
+    pub(super) fn plain(&self, line: u64, what: &str) -> Result<()> {
+        if self.frame.name != "G54" || self.lift() != Some(0.0) {
+            return Err(at(line, format!("{what} in the work offset {} or under a tool length offset: stiffid reads canned cycles in G54 with the tip programmed (G43 H of the tool in use, or no tool table)", self.frame.name)));
+        }
+        Ok(())
+    }
+}
+
+/// The frame of the work offset `name` the setup gives, or the error naming the line.
+pub(super) fn frame(line: u64, name: String, s: &State) -> Result<Frame> {
+    match s.machine.frames.offset(&name) {
+        Some(part_from) => Ok(Frame { name, part_from }),
+        None => Err(at(line, format!("{name}: the setup gives no frame for this work offset: give it under [workpiece.offsets] ({} = {{ xyz_mm = [..], rpy_deg = [..] }}, its frame in the G54 part frame)", toml_key(&name)))),
+    }
+}
+
+/// `name` as a TOML key (quoted when it has a dot or a blank).
+fn toml_key(name: &str) -> String {
+    match name.contains(['.', ' ']) {
+        true => format!("\"{name}\""),
+        false => name.to_string(),
+    }
+}
+
+/// The move's end point in m from the block's `X Y Z` (absolute or incremental, mm or inch),
+/// from `from` (with the axes known), and the axes known there.
+pub(super) fn end_point(
+    line: u64,
+    target: &[Option<f64>; 3],
+    from: (Vector3<f64>, [bool; 3]),
+    s: &State,
+) -> Result<(Vector3<f64>, [bool; 3])> {
+    let scale = if s.inch { 25.4e-3 } else { 1e-3 };
+    let (mut end, mut known) = from;
+    for k in 0..3 {
+        if let Some(v) = target[k] {
+            end[k] = if s.incremental {
+                end[k] + v * scale
+            } else {
+                v * scale
+            };
+            known[k] |= !s.incremental;
+        }
+    }
+    if !end.iter().all(|v| v.abs() <= 100.0) {
+        return Err(at(line, "position beyond 100 m".into()));
+    }
+    Ok((end, known))
+}
+
+/// The points at `positions` (programmed, in `frame`) added to `out` as tips in the `G54`
+/// part frame.
+pub(super) fn push_points(
+    line: u64,
+    positions: &[Vector3<f64>],
+    motion: Motion,
+    frame: &super::machine::Frame,
+    s: &mut State,
+    out: &mut GCode,
+) -> Result<()> {
+    let tool = may_move(line, s)?;
+    let external = external_values(line, s)?;
+    let [a, b, c] = s.abc.map(f64::to_radians);
+    let mut orientation = UnitQuaternion::from_euler_angles(a, b, c) * tool;
+    if frame.part_from.rotation != UnitQuaternion::identity() {
+        orientation = frame.part_from.rotation * orientation;
+    }
+    for p in positions {
+        out.points.push(Point {
+            line,
+            position: s.tip(line, p, frame)?,
+            orientation,
+            motion,
+            tool_number: s.tool_number,
+            operation: s.operation.clone(),
+            feed: s.feed,
+            cycle: None,
+            external: external.clone(),
+        });
+    }
+    Ok(())
+}

@@ -1,0 +1,302 @@
+//! G-code as a controller runs it: axes known only once given (or from the setup's start),
+//! work offsets, `G53`, `G28`, tool length offsets from the process's tool table, arc centre
+//! modes, the arc end tolerance of LinuxCNC and grbl, and what real posts write besides, each
+//! read at known values or refused naming the line and the construct.
+
+use approx::assert_relative_eq;
+use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
+use stiffid::machining::gcode::{self, Machine, ProgramFrames};
+use stiffid::Error;
+
+const DOWN: &str = "(stiffid: tool_rpy_deg = 180 0 0)\n";
+
+fn mm(x: f64, y: f64, z: f64) -> Vector3<f64> {
+    Vector3::new(x, y, z) * 1e-3
+}
+
+fn read(text: &str, m: &Machine) -> gcode::GCode {
+    gcode::parse_on(&format!("{DOWN}{text}"), 1e-5, m).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn refused(text: &str, m: &Machine, line: u64, construct: &str) {
+    match gcode::parse_on(&format!("{DOWN}{text}"), 1e-5, m) {
+        Err(Error::Program { line: l, message }) => {
+            assert_eq!(l, line, "{message}");
+            assert!(message.contains(construct), "{construct}: {message}");
+        }
+        other => panic!("{construct}: {other:?}"),
+    }
+}
+
+/// The lines and positions of the points.
+fn path(g: &gcode::GCode) -> Vec<(u64, Vector3<f64>)> {
+    g.points.iter().map(|p| (p.line, p.position)).collect()
+}
+
+#[test]
+fn an_axis_is_known_only_once_given_or_from_the_setups_start() {
+    let m = Machine::default();
+    // Fusion 360: X Y before any Z: no point until Z is given, never a move to Z = 0.
+    let g = read("G0 X-0.7 Y-0.7\nZ10\nG1 Z-1 F100\n", &m);
+    assert_eq!(
+        path(&g),
+        vec![(3, mm(-0.7, -0.7, 10.0)), (4, mm(-0.7, -0.7, -1.0))]
+    );
+    refused(
+        "G0 X1 Y2\nG1 Z-1 F100\n",
+        &m,
+        3,
+        "G1: a feed move from or to a place not known: Z has no value yet",
+    );
+    refused(
+        "G0 Z5\nG2 X1 Y0 I1 J0 F100\n",
+        &m,
+        3,
+        "X Y has no value yet",
+    );
+    refused(
+        "G0 X1 Y2\nG91 G0 Z5\n",
+        &m,
+        2,
+        "no motion reaches a point whose X, Y and Z are all known",
+    );
+    // The setup's start: the first rapid moves X and Y from there (LinuxCNC).
+    let started = Machine {
+        frames: ProgramFrames {
+            start: Some(mm(0.0, 0.0, 100.0)),
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    let g = read("G0 X1 Y2\nG91 G1 Z-5 F100\n", &started);
+    assert_eq!(
+        path(&g),
+        vec![(2, mm(1.0, 2.0, 100.0)), (3, mm(1.0, 2.0, 95.0))]
+    );
+    // Written back incrementally from the start: the increment is the compensated one.
+    let text = g.write(&[mm(1.0, 2.0, 100.0), mm(1.0, 2.0, 94.0)]).unwrap();
+    assert!(
+        text.contains("G91 G1 X0.000000 Y0.000000 Z-6.000000 F100"),
+        "{text}"
+    );
+}
+
+fn offsets() -> Machine {
+    let g55 = Isometry3::from_parts(
+        Translation3::new(0.3, 0.0, 0.0),
+        UnitQuaternion::from_euler_angles(0.0, 0.0, std::f64::consts::FRAC_PI_2),
+    );
+    let g53 = Isometry3::translation(-0.5, -0.4, -0.3);
+    let extended = Isometry3::translation(0.0, 0.25, 0.0);
+    Machine {
+        frames: ProgramFrames {
+            offsets: vec![
+                ("G55".into(), g55),
+                ("G53".into(), g53),
+                ("G54.1 P2".into(), extended),
+            ],
+            ..Default::default()
+        },
+        ..Default::default()
+    }
+}
+
+#[test]
+fn work_offsets_place_the_path_in_the_setups_frames_and_write_it_back_in_them() {
+    let m = offsets();
+    let text =
+        "G54 G0 X10 Y0 Z5\nG55 G0 X10 Y0 Z5\nG1 X20 F100\nG53 G0 Z0\nG54.1 P2 G0 X1\nG54 X0\n";
+    let g = read(text, &m);
+    // G55 turned 90 deg about Z at (300, 0, 0) mm: its X is G54's Y.
+    let expected = [
+        (2, mm(10.0, 0.0, 5.0)),
+        (3, mm(300.0, 10.0, 5.0)),
+        (4, mm(300.0, 20.0, 5.0)),
+        (5, mm(300.0, 20.0, -300.0)),
+        (6, mm(1.0, 20.0, -300.0)),
+        (7, mm(0.0, 20.0, -300.0)),
+    ];
+    for ((line, p), (l, q)) in path(&g).iter().zip(expected) {
+        assert_eq!(*line, l);
+        assert_relative_eq!(*p, q, epsilon = 1e-12);
+    }
+    // Written back, each block's words are in its own frame (G53's in machine coordinates).
+    let positions: Vec<_> = g.points.iter().map(|p| p.position).collect();
+    let written = g.write(&positions).unwrap();
+    assert!(
+        written.contains("G53 G0 X800.000000 Y420.000000 Z0.000000"),
+        "{written}"
+    );
+    assert!(
+        written.contains("G1 X20.000000 Y-0.000000 Z5.000000")
+            || written.contains("G1 X20.000000 Y0.000000 Z5.000000"),
+        "{written}"
+    );
+    let again = gcode::parse_on(&written, 1e-5, &m).unwrap();
+    for (a, b) in again.points.iter().zip(&g.points) {
+        assert_relative_eq!(a.position, b.position, epsilon = 1e-9);
+    }
+    refused(
+        "G56 G0 X1 Y2 Z3\n",
+        &m,
+        2,
+        "G56: the setup gives no frame for this work offset",
+    );
+    refused("G59.2\n", &m, 2, "G59.2: the setup gives no frame");
+    refused("G54.1 P7\n", &m, 2, "G54.1 P7: the setup gives no frame");
+    refused(
+        "G54.1 X1\n",
+        &m,
+        2,
+        "G54.1: expected the additional work offset's number P",
+    );
+    refused(
+        "G0 X1 Y2 Z3\nG91 G53 G0 Z0\n",
+        &m,
+        3,
+        "G53: machine coordinates are read in G90",
+    );
+    refused(
+        "G53 G0 Z0\n",
+        &Machine::default(),
+        2,
+        "G53: the setup gives no frame",
+    );
+}
+
+fn tools() -> Machine {
+    Machine {
+        frames: ProgramFrames {
+            g28: Some(mm(0.0, 0.0, 150.0)),
+            ..Default::default()
+        },
+        tool_lengths: vec![(Some(1), 0.05), (Some(2), 0.08)],
+    }
+}
+
+#[test]
+fn tool_length_offsets_place_the_tip_with_the_process_tool_table() {
+    let m = tools();
+    // G43 H of the tool in use programs the tip; without an offset (G49) the gauge line.
+    let g = read(
+        "T1 M6\nG43 H1 G0 X0 Y0 Z10\nG49\nG0 Z10\nT2 M6\nG43 G0 Z10\nG43 H1 G0 Z10\n",
+        &m,
+    );
+    let z: Vec<f64> = g.points.iter().map(|p| p.position.z * 1e3).collect();
+    let want = [10.0, 10.0 - 50.0, 10.0, 10.0 + 50.0 - 80.0];
+    for (a, b) in z.iter().zip(want) {
+        assert_relative_eq!(*a, b, epsilon = 1e-9);
+    }
+    refused(
+        "T1 M6\nG43 H3\n",
+        &m,
+        3,
+        "G43 H3: the process's tool table has no length for tool 3",
+    );
+    refused("G43 Z10\n", &m, 2, "G43 without H before any T");
+    refused(
+        "T1 G43 H1\n",
+        &Machine::default(),
+        2,
+        "G43: a tool length offset needs the tools' lengths",
+    );
+    refused(
+        "T5 M6\nG0 X0 Y0 Z10\n",
+        &m,
+        3,
+        "the tool in use (T5) has no length in the process's tool table",
+    );
+    // G28 G91 Z0 (Fusion 360): Z to the setup's G28 position, the tip's; X Y stay.
+    let g = read(
+        "T1 M6 G43 H1\nG0 X1 Y2 Z3\nG28 G91 Z0.\nG90\nG28 G91 X0. Y0.\n",
+        &m,
+    );
+    assert_eq!(
+        path(&g),
+        vec![
+            (3, mm(1.0, 2.0, 3.0)),
+            (4, mm(1.0, 2.0, 150.0)),
+            (6, mm(0.0, 0.0, 150.0))
+        ]
+    );
+    refused(
+        "G0 X1 Y2 Z3\nG28\n",
+        &Machine::default(),
+        3,
+        "G28: the setup does not state the G28 position",
+    );
+}
+
+#[test]
+fn arcs_end_within_grbls_and_linuxcncs_tolerance_and_centres_in_either_mode() {
+    let m = Machine::default();
+    // Fusion's 3-decimal rounding: 1.587 and 1.588 mm radii, 1 um off; the end is reached.
+    let g = read(
+        "G0 X0 Y-1.587 Z0\nG2 X-1.587 Y0 I0 J1.587 F500\nG2 X0 Y1.588 I1.587 J0\n",
+        &m,
+    );
+    assert_relative_eq!(
+        g.points.last().unwrap().position,
+        mm(0.0, 1.588, 0.0),
+        epsilon = 1e-15
+    );
+    // 9 um off a 10 mm radius (0.09 %) is accepted; its points spiral from one radius to the other.
+    let g = read("G0 X10 Y0 Z0\nG3 X-10.009 Y0 I-10 J0\n", &m);
+    for p in &g.points {
+        let r = ((p.position.x * 1e3).powi(2) + (p.position.y * 1e3).powi(2)).sqrt();
+        assert!((10.0 - 1e-9..=10.009 + 1e-9).contains(&r), "{r}");
+    }
+    refused(
+        "G0 X1 Y0 Z0\nG3 X-1.006 Y0 I-1 J0\n",
+        &m,
+        3,
+        "the arc's end is 0.0060 mm off its circle",
+    );
+    refused(
+        "G0 X400 Y0 Z0\nG3 X-400.6 Y0 I-400 J0\n",
+        &m,
+        3,
+        "0.6000 mm off",
+    );
+    // G90.1: I J K are the centre itself.
+    let absolute = read("G90.1\nG0 X10 Y5 Z0\nG3 X0 Y15 I0 J5\n", &m);
+    let incremental = read("G91.1\nG0 X10 Y5 Z0\nG3 X0 Y15 I-10 J0\n", &m);
+    assert_eq!(absolute.points.len(), incremental.points.len());
+    for (a, b) in absolute.points.iter().zip(&incremental.points) {
+        assert_relative_eq!(a.position, b.position, epsilon = 1e-15);
+    }
+    refused(
+        "G90.1\nG0 X10 Y5 Z0\nG3 X0 Y15 I0\n",
+        &m,
+        4,
+        "G90.1 (absolute arc centres): give both",
+    );
+}
+
+#[test]
+fn what_real_posts_write_is_read_or_refused_naming_the_line() {
+    let m = Machine::default();
+    let g = read(
+        "%\n%MPF1 text after the tape mark\nO1001 (PROGRAM)\nN10 G61 G64 P0.01 Q0.01 G94\nN20 G0 X1 Y2 Z3 ; comment\nM6 T1\nS1000 M3 M8\nG4 P1\nM9 M5\nG61.1 G40 G49\nG1 X2 F100\nM30\n%\n",
+        &m,
+    );
+    assert_eq!(
+        path(&g),
+        vec![(6, mm(1.0, 2.0, 3.0)), (12, mm(2.0, 2.0, 3.0))]
+    );
+    for (text, construct) in [
+        ("/G0 X1 Y2 Z3\n", "/: a block delete line"),
+        ("#1 = 2.5\n", "'#': parameters and expressions"),
+        ("G0 X[1 + 2] Y0 Z0\n", "'[': parameters and expressions"),
+        ("o100 sub\n", "O-word 'o100 sub'"),
+        ("O<probe> call [1]\n", "O-word 'O<probe> call [1]'"),
+        ("M98 P100\n", "M98: subprogram"),
+        ("G92 X0 Y0\n", "G92: not in the supported subset"),
+        ("G93\n", "G93: not in the supported subset"),
+        ("G41 D1\n", "G41: cutter radius compensation"),
+        ("G0 @10 ^45\n", "'@': polar coordinates"),
+        ("G28.1\n", "G28.1: not in the supported subset"),
+    ] {
+        refused(text, &m, 2, construct);
+    }
+}
