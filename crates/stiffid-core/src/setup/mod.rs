@@ -78,6 +78,8 @@ mod builder;
 mod calibrated;
 mod carried;
 mod cell;
+mod cell_file;
+mod checks;
 mod controller_robot;
 mod experiment;
 mod file;

@@ -17,6 +17,7 @@
 //! (the TCP's motion) and the tool axis, and [`Operation::base_wrench`] turns the operation's
 //! mean force and moment into the base-frame wrench on the tool that compensation takes.
 
+pub(crate) mod covering;
 pub mod drilling;
 pub mod file;
 pub mod milling;

@@ -29,6 +29,7 @@ mod output;
 pub mod ranking;
 pub mod resolution;
 pub mod scene;
+mod segments;
 pub mod speed;
 pub mod stream;
 mod written;
@@ -492,7 +493,7 @@ where
         language,
         output,
         process: process_name,
-        segments: segments(&compensated, &process),
+        segments: segments::segments(&compensated, &process),
         dynamics,
         text,
         subprograms,
@@ -680,33 +681,4 @@ fn in_input(name: &str, error: Error) -> Error {
             error: Box::new(e),
         },
     }
-}
-
-/// The segments of a compensated program: its points grouped by line, in order.
-fn segments(c: &machining::Report, process: &Process) -> Vec<Segment> {
-    let mut out: Vec<Segment> = Vec::new();
-    for ((p, r), op) in c.points.iter().zip(&c.results).zip(&c.operations) {
-        let force = r.wrench.fixed_rows::<3>(0).norm();
-        let before = r.deflection.fixed_rows::<3>(0).norm();
-        let std = r.translation_norm_std;
-        match out.last_mut() {
-            Some(s) if s.line == p.line => {
-                s.points += 1;
-                s.force = s.force.max(force);
-                s.deflection_before = s.deflection_before.max(before);
-                s.deflection_after = s.deflection_after.max(r.residual_position);
-                s.deflection_std = s.deflection_std.zip(std).map(|(a, b)| a.max(b));
-            }
-            _ => out.push(Segment {
-                line: p.line,
-                operation: op.map(|i| process.operations[i].name.clone()),
-                points: 1,
-                force,
-                deflection_before: before,
-                deflection_after: r.residual_position,
-                deflection_std: std,
-            }),
-        }
-    }
-    out
 }

@@ -4,7 +4,6 @@
 
 use super::cartesian;
 use super::frames::{fdat, Fdats};
-use super::read::words;
 use crate::program::{at, number_at, six, JointTarget};
 use std::collections::HashMap;
 use stiffid_core::{Error, Result};
@@ -216,4 +215,12 @@ fn aggregate(line: u64, start: usize, code: &str, from: usize, to: usize) -> Res
         },
         other => other,
     })
+}
+
+/// The upper-case words of a line's code.
+pub(super) fn words(code: &str) -> Vec<String> {
+    code.split(|c: char| c.is_whitespace() || c == '=' || c == '{' || c == '(')
+        .filter(|w| !w.is_empty())
+        .map(str::to_ascii_uppercase)
+        .collect()
 }

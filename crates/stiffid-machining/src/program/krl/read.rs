@@ -2,7 +2,7 @@
 //! its frames ([`super::frames`]) and speed ([`super::speed`]), its points from the `.src` or its
 //! `.dat` ([`super::declare`]), loops and branches around motions refused ([`super::flow`]).
 
-use super::declare::{declarations, Declarations};
+use super::declare::{declarations, words, Declarations};
 use super::flow::Flow;
 use super::frames::{compact, Frames};
 use super::motion::{motion, Context};
@@ -121,14 +121,6 @@ fn called<'a>(code: &str, setters: &'a HashMap<String, u64>) -> Option<(&'a str,
     let c = compact(code);
     let name = c.split('(').next().filter(|n| c.len() > n.len())?;
     setters.get_key_value(name).map(|(k, l)| (k.as_str(), *l))
-}
-
-/// The upper-case words of a line's code.
-pub(super) fn words(code: &str) -> Vec<String> {
-    code.split(|c: char| c.is_whitespace() || c == '=' || c == '{' || c == '(')
-        .filter(|w| !w.is_empty())
-        .map(str::to_ascii_uppercase)
-        .collect()
 }
 
 /// The name of the routine a `DEF`/`DEFFCT` line opens (`GLOBAL DEF name( )`).

@@ -129,7 +129,7 @@ pub(crate) fn motion(
     named: &dyn Fn(&str) -> Result<JointTarget>,
     frames: &HashMap<String, Frame>,
 ) -> Result<Vec<JointTarget>> {
-    let parts = top_level(args);
+    let parts = super::arguments::top_level(args);
     let Some(tool) = parts.get(points + 2).filter(|_| parts.len() >= points + 3) else {
         let what = match points {
             1 => "a target",
@@ -223,26 +223,6 @@ fn lookup(
     frames.get(&key).cloned().unwrap_or_else(|| {
         Frame::Unknown(line, format!("{kind} {name}: not declared in this module with a value; stiffid reads the {kind} the module states"))
     })
-}
-
-/// The byte ranges of the comma-separated arguments of `args` outside brackets, parentheses
-/// and strings.
-pub(crate) fn top_level(args: &str) -> Vec<std::ops::Range<usize>> {
-    let (mut out, mut depth, mut in_string, mut from) = (Vec::new(), 0i32, false, 0);
-    for (i, c) in args.char_indices() {
-        match c {
-            '"' => in_string = !in_string,
-            '[' | '(' if !in_string => depth += 1,
-            ']' | ')' if !in_string => depth -= 1,
-            ',' if !in_string && depth == 0 => {
-                out.push(from..i);
-                from = i + 1;
-            }
-            _ => {}
-        }
-    }
-    out.push(from..args.len());
-    out
 }
 
 /// Whether a declared type is one of the Cartesian data (`robtarget`, `tooldata`, `wobjdata`).

@@ -18,6 +18,7 @@
 //! motions, are refused naming the line and the construct (module `flow`); docs/programs/rapid.md
 //! is the guide, with ABB's manuals as the source of each rule.
 
+mod arguments;
 mod cartesian;
 mod flow;
 mod generate;
@@ -496,7 +497,7 @@ fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Vec<Joi
         let end = s.span.end - usize::from(code[..s.span.end].ends_with(';'));
         let args = &code[from..end];
         let points = if first == "movec" { 2 } else { 1 };
-        let argument = cartesian::top_level(args)
+        let argument = arguments::top_level(args)
             .get(points)
             .map(|r| &args[r.clone()]);
         let mut targets = cartesian::motion(line, (code, from, args), points, &named, &data.frames)

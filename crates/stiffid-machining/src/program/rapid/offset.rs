@@ -90,7 +90,7 @@ pub(super) fn arguments(
     let close =
         closing(&code[..end], open).ok_or_else(|| bad("expected its closing ')'".into()))?;
     let inner = &code[open + 1..close];
-    let parts = super::cartesian::top_level(inner);
+    let parts = super::arguments::top_level(inner);
     let [point, x, y, z] = parts.as_slice() else {
         return Err(bad(format!(
             "expected 4 arguments (a point, x, y, z), found {}",
