@@ -546,38 +546,7 @@ fn builder(f: SetupFile, robot: Robot, reading_variance: f64) -> Result<SetupBui
     if let Some(k) = f.nominal_stiffness_nm_per_rad {
         b = b.with_nominal_stiffness(Vector6::from(k));
     }
-    if let Some(tcp) = &f.tool.tcp_mm {
-        b = b.with_tcp(mm(tcp));
-    }
-    if let Some(rpy) = &f.tool.tcp_rpy_deg {
-        limits::check("tool.tcp_rpy_deg", rpy, &limits::ANGLE_DEG)?;
-        let [r, p, y] = rpy.map(f64::to_radians);
-        b = b.with_tcp_rotation(nalgebra::UnitQuaternion::from_euler_angles(r, p, y));
-    }
-    match (f.tool.mass_kg, &f.tool.centre_of_mass_mm) {
-        (Some(mass), Some(c)) => {
-            b = b.with_payload(crate::setup::Payload {
-                mass,
-                centre: mm(c),
-                inertia: crate::robot::dynamics::body::tensor(
-                    f.tool.inertia_kg_m2.unwrap_or_default(),
-                ),
-            })
-        }
-        (None, None) if f.tool.inertia_kg_m2.is_some() => {
-            return Err(Error::InvalidField {
-                field: "tool.inertia_kg_m2".into(),
-                message: "inertia_kg_m2 needs mass_kg and centre_of_mass_mm".into(),
-            })
-        }
-        (None, None) => {}
-        _ => {
-            return Err(Error::InvalidField {
-                field: "tool.mass_kg".into(),
-                message: "mass_kg and centre_of_mass_mm come together: give both or neither".into(),
-            })
-        }
-    }
+    b = with_tool(b, &f.tool)?;
     if let Some(a) = &f.robot_accuracy {
         b = b.with_frame_sd(a.frame_sd_mm * 1e-3, a.frame_sd_mrad * 1e-3);
     }
@@ -607,6 +576,43 @@ fn builder(f: SetupFile, robot: Robot, reading_variance: f64) -> Result<SetupBui
         b = b.with_table_reflectors(reflectors.collect());
         let positions = [w.start_mm, w.g28_mm, w.g30_mm, w.tool_rpy_deg];
         b = b.with_program_frames(super::program_frames::read(&w.offsets, positions)?);
+    }
+    Ok(b)
+}
+
+/// The builder with the `[tool]` table's tool centre point, its turn and its payload.
+fn with_tool(mut b: SetupBuilder, tool: &ToolFile) -> Result<SetupBuilder> {
+    if let Some(tcp) = &tool.tcp_mm {
+        b = b.with_tcp(mm(tcp));
+    }
+    if let Some(rpy) = &tool.tcp_rpy_deg {
+        limits::check("tool.tcp_rpy_deg", rpy, &limits::ANGLE_DEG)?;
+        let [r, p, y] = rpy.map(f64::to_radians);
+        b = b.with_tcp_rotation(nalgebra::UnitQuaternion::from_euler_angles(r, p, y));
+    }
+    match (tool.mass_kg, &tool.centre_of_mass_mm) {
+        (Some(mass), Some(c)) => {
+            b = b.with_payload(crate::setup::Payload {
+                mass,
+                centre: mm(c),
+                inertia: crate::robot::dynamics::body::tensor(
+                    tool.inertia_kg_m2.unwrap_or_default(),
+                ),
+            })
+        }
+        (None, None) if tool.inertia_kg_m2.is_some() => {
+            return Err(Error::InvalidField {
+                field: "tool.inertia_kg_m2".into(),
+                message: "inertia_kg_m2 needs mass_kg and centre_of_mass_mm".into(),
+            })
+        }
+        (None, None) => {}
+        _ => {
+            return Err(Error::InvalidField {
+                field: "tool.mass_kg".into(),
+                message: "mass_kg and centre_of_mass_mm come together: give both or neither".into(),
+            })
+        }
     }
     Ok(b)
 }
