@@ -1,6 +1,7 @@
 //! A real program as found, with a work offset (`G54`), tool length offsets (`G43` of two
 //! tools, from the process's tool table), full-circle arcs and spindle codes (LinuxCNC's
-//! `hk_ba20_testmill.ngc`, corpus `linuxcnc-two-tools.ngc`), compensated and run as joint
+//! `hk_ba20_testmill.ngc`, corpus `linuxcnc-two-tools.ngc`), and a Fusion 360 post's contour with
+//! `G54`, arcs and spindle codes (`fusion360-personal-arcs.nc`), each compensated and run as joint
 //! targets on the simulated true robot of [`crate::true_robot`]: it lands within 0.05 mm mean of
 //! its path, as the rectangle of the campaign does.
 
@@ -46,31 +47,36 @@ fn a_real_program_with_work_offset_tool_lengths_and_arcs_lands_on_the_true_robot
         .with_program_frames(frames)
         .build()
         .unwrap();
-    let program = corpus("linuxcnc-two-tools.ngc");
-    let process = corpus("process-two-tools.toml");
-    let output = (Language::Robot(Dialect::Krl), Targets::Joint);
-    let (krl, results) = written_with(
-        &setup,
-        &compliance.unwrap(),
-        (&q0, &program, &process),
-        output,
-    );
-    let qs = joint_targets(&krl);
-    assert_eq!(qs.len(), results.len());
-    // Both tools' circles: 2 x (approach, plunge, circle, retract) and the final moves.
-    assert!(results.len() > 100, "{}", results.len());
-    let errors: Vec<f64> = (qs.iter().zip(&results))
-        .map(|(q, r)| {
-            let want = frame.inverse() * Point3::from(r.pose.translation.vector);
-            (truth.tcp_at(q, &r.wrench) - want.coords).norm()
-        })
-        .collect();
-    let landed = row(&errors);
-    eprintln!(
-        "linuxcnc-two-tools.ngc on the true robot: TCP error mean {:.4} mm, max {:.4} mm (held-out RMS {:.4} mm)",
-        landed.mean * 1e3,
-        landed.max * 1e3,
-        held_rms * 1e3
-    );
-    assert!(landed.mean <= 0.05e-3, "{landed:?}");
+    // LinuxCNC's two tools (G54, G43 of both, full circles), and a Fusion 360 post's contour as
+    // found (G54, 32 arcs, S5000 M3).
+    for (name, process, at_least) in [
+        ("linuxcnc-two-tools.ngc", "process-two-tools.toml", 100),
+        ("fusion360-personal-arcs.nc", "process-fusion360.toml", 30),
+    ] {
+        let (program, process) = (corpus(name), corpus(process));
+        let output = (Language::Robot(Dialect::Krl), Targets::Joint);
+        let (krl, results) = written_with(
+            &setup,
+            compliance.as_ref().unwrap(),
+            (&q0, &program, &process),
+            output,
+        );
+        let qs = joint_targets(&krl);
+        assert_eq!(qs.len(), results.len());
+        assert!(results.len() > at_least, "{name}: {}", results.len());
+        let errors: Vec<f64> = (qs.iter().zip(&results))
+            .map(|(q, r)| {
+                let want = frame.inverse() * Point3::from(r.pose.translation.vector);
+                (truth.tcp_at(q, &r.wrench) - want.coords).norm()
+            })
+            .collect();
+        let landed = row(&errors);
+        eprintln!(
+            "{name} on the true robot: TCP error mean {:.4} mm, max {:.4} mm (held-out RMS {:.4} mm)",
+            landed.mean * 1e3,
+            landed.max * 1e3,
+            held_rms * 1e3
+        );
+        assert!(landed.mean <= 0.05e-3, "{name}: {landed:?}");
+    }
 }
