@@ -246,3 +246,29 @@ fn a_design_on_a_track_keeps_the_best_station() {
     let paper = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
     assert!(refused(stations, &paper).contains("no external axes"));
 }
+
+/// On a cell whose only external axes are a positioner's (the arm on a fixed base), a design
+/// needs no station: the positioner moves the part, never the arm, so the group is the design of
+/// the arm with the positioner at its zero, the same as with that station given.
+#[test]
+fn a_design_on_a_positioner_cell_needs_no_station() {
+    let text = include_str!("../../../../examples/track/track-cell.toml");
+    let start = text.find("[[external_axis]]\nname = \"track\"").unwrap();
+    let end = text.find("# The positioner: e2").unwrap();
+    let positioner_only = format!("{}{}", &text[..start], &text[end..]);
+    let setup = stiffid::setup::parse(&positioner_only, "cell.toml", |r, _| {
+        stiffid::robot::presets::get(r)
+    })
+    .unwrap();
+    let axes = setup.robot().external().unwrap();
+    assert_eq!((axes.len(), axes.carrier_len()), (2, 0));
+    let without = stiffid::app::select::run(&at(&setup, Vec::new())).unwrap();
+    let zero = vec![ExternalValues::new(&[0.0, 0.0]).unwrap()];
+    let with = stiffid::app::select::run(&at(&setup, zero.clone())).unwrap();
+    assert_eq!(without.postures, with.postures);
+    assert_eq!(without.station, Some(zero[0]));
+    // A cell with a carrier still needs its stations: where the arm stands is the design's.
+    let (track, _) = on_track();
+    let e = stiffid::app::select::run(&at(&track, Vec::new())).unwrap_err();
+    assert!(e.to_string().contains("give 1 to 100 stations"), "{e}");
+}

@@ -125,8 +125,10 @@ pub struct Args {
     /// comma-separated: `--station 2500`); repeat it to try several stations (1 to 100): the
     /// group is designed at each and the best kept; with --for calibration on a track, the
     /// group is one campaign over them all (the postures dealt over the stations, at least 2 at
-    /// each, designed together with the track's parameters). --out gets the external axis
-    /// columns.
+    /// each, designed together with the track's parameters). On a cell whose only external
+    /// axes are a positioner's (the arm on a fixed base) it may be left out: the positioner
+    /// moves the part, never the arm, and the group is designed with it at zero. --out gets
+    /// the external axis columns.
     #[arg(long)]
     station: Vec<String>,
     /// Where to write the postures found (posture,q1_deg,...,q6_deg).

@@ -137,7 +137,8 @@ pub struct Request<'a> {
     /// [`Purpose::Calibration`] on a robot with a carrier, the group is one campaign over all
     /// of them, its postures dealt over the stations and designed together with the track's
     /// parameters ([`Report::placed`]). Empty for a robot without external axes;
-    /// 1 to [`MAX_STATIONS`] with them.
+    /// 1 to [`MAX_STATIONS`] with them (empty on a cell whose only external axes are a
+    /// positioner's: the positioner at zero).
     pub stations: Vec<stiffid_core::robot::external::ExternalValues>,
     /// Where the searches report their progress (`&()` for nowhere): each search begins a stage
     /// (`global search (relative-a)` with its starts as the total; a local search and the choice

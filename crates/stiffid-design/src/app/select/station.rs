@@ -36,10 +36,10 @@ pub(super) fn at_stations(
     request: &Request,
     run: impl Fn(&Request) -> Result<Report>,
 ) -> Result<Report> {
-    checked(request)?;
+    let tried = stations_of(request)?;
     let mut best: Option<Report> = None;
-    let mut stations = Vec::with_capacity(request.stations.len());
-    for e in &request.stations {
+    let mut stations = Vec::with_capacity(tried.len());
+    for e in &tried {
         let setup = setup_at(request, e)?;
         let report = run(&Request {
             setup: &setup,
@@ -65,6 +65,20 @@ fn refuse(message: String) -> Error {
     Error::InvalidOption {
         option: JobOption::Station,
         message,
+    }
+}
+
+/// The stations to try: the request's; on a cell whose only external axes are a positioner's
+/// (the arm on a fixed base: the positioner moves the part, never the arm), none given means the
+/// positioner at its zero, `e = 0` (its carried obstacles where the setup draws them).
+///
+/// # Errors
+/// Those of [`checked`] for a cell with a carrier.
+fn stations_of(request: &Request) -> Result<Vec<ExternalValues>> {
+    let axes = request.setup.robot().external();
+    match axes.filter(|a| request.stations.is_empty() && a.carrier_len() == 0) {
+        Some(a) => Ok(vec![ExternalValues::new(&vec![0.0; a.len()])?]),
+        None => checked(request).map(|_| request.stations.clone()),
     }
 }
 
