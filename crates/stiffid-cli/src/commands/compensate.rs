@@ -553,7 +553,10 @@ fn bound(doc: &Document) -> String {
         "error bound at {}%: largest {} (line {}), mean {}{}{}\n",
         100.0 * b.level,
         b.max_bound_mm.map_or(
-            "infinite (too few held-out calibration errors)".into(),
+            format!(
+                "infinite (a finite bound needs at least {} held-out calibration errors)",
+                stiffid_core::model::prediction::held_out_needed(b.level)
+            ),
             |m| format!("{m:.4} mm")
         ),
         b.max_bound_line.unwrap_or(0),

@@ -174,7 +174,11 @@ fn compose(
                 false => format!(" (absent, counted as 0: {})", b.absent.join(", ")),
             }
         ),
-        None => "Error bound: infinite (too few held-out calibration errors for the level).".into(),
+        None => format!(
+            "Error bound at {}%: infinite (a finite bound needs at least {} held-out calibration errors).",
+            b.level * 100.0,
+            stiffid_core::model::prediction::held_out_needed(b.level)
+        ),
     });
     if !document.has_covariance {
         items.push("The stiffness file has no compliance covariance: no uncertainty band (run `stiffid identify --out` to get one).".into());

@@ -294,6 +294,13 @@ pub fn ranks(n: usize, level: f64) -> [Option<usize>; 2] {
     [(lo >= 1).then_some(lo), (hi <= n && hi >= 1).then_some(hi)]
 }
 
+/// The fewest held-out values that give a finite upper bound at `level` (split conformal and
+/// jackknife+, [`ranks`]: `ceil(level (n + 1)) <= n`, so `n >= level / (1 - level)`): 19 at
+/// 95%, 333 at 99.7%.
+pub fn held_out_needed(level: f64) -> usize {
+    (level / (1.0 - level) - 1e-9).ceil().max(1.0) as usize
+}
+
 /// The `k`-th smallest (1-based) of `values`, reordering them.
 fn smallest(values: &mut [f64], k: usize) -> f64 {
     *values.select_nth_unstable_by(k - 1, f64::total_cmp).1

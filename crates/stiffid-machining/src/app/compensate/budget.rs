@@ -158,9 +158,9 @@ impl Worst {
                 format!(
                     "line {}: {} mm, mostly {} ({} mm)",
                     w.1,
-                    shown(w.0),
+                    shown(w.0, level),
                     w.2.replace('_', " "),
-                    shown(w.3)
+                    shown(w.3, level)
                 )
             })
             .collect();
@@ -171,21 +171,26 @@ impl Worst {
             option: JobOption::MaxErrorMm,
             message: format!(
                 "{} mm: meets {} mm at {}%: no, the program's error bound exceeds it (largest {} mm); the worst points: {}; nothing written (a stiffer posture, a placement nearer the robot, a better calibration or a larger limit)",
-                shown(max_error),
-                shown(max_error),
+                shown(max_error, level),
+                shown(max_error, level),
                 level * 100.0,
-                shown(self.max()),
+                shown(self.max(), level),
                 above.join("; ")
             ),
         })
     }
 }
 
-/// A length in m shown in mm with 4 significant decimals.
-fn shown(x: f64) -> String {
+/// A length in m shown in mm with 4 significant decimals; an infinite bound at `level` says
+/// how many held-out values a finite one needs.
+fn shown(x: f64, level: f64) -> String {
     match x.is_finite() {
         true => format!("{:.4}", x * 1e3),
-        false => "infinite (too few held-out values for the level)".into(),
+        false => format!(
+            "infinite (a finite bound at {}% needs at least {} held-out values)",
+            level * 100.0,
+            stiffid_core::model::prediction::held_out_needed(level)
+        ),
     }
 }
 

@@ -21,8 +21,9 @@ fn words(bound: f64, level: f64) -> String {
     match bound.is_finite() {
         true => format!("bound {:.4} mm at {}%", bound * 1e3, level * 100.0),
         false => format!(
-            "bound infinite at {}% (too few held-out values)",
-            level * 100.0
+            "bound infinite at {}% (needs {} held-out values)",
+            level * 100.0,
+            stiffid_core::model::prediction::held_out_needed(level)
         ),
     }
 }
@@ -90,7 +91,10 @@ pub fn generated(dialect: Dialect, texts: &[String], bounds: &[f64], level: f64)
 /// compensated again takes the new bound in its place.
 fn is_bound(comment: &str) -> bool {
     let c = comment.trim();
-    c.starts_with("bound ") && (c.ends_with('%') || c.ends_with("(too few held-out values)"))
+    c.starts_with("bound ")
+        && (c.ends_with('%')
+            || c.ends_with(" held-out values)")
+            || c.ends_with("(too few held-out values)"))
 }
 
 /// `body` (a KRL or RAPID line) without the bound comment an earlier compensation put at its end.

@@ -18,8 +18,19 @@ fn every_target_carries_its_bound() {
         again.contains("; start ; bound 0.0300 mm at 95%\n"),
         "{again}"
     );
-    let infinite = "LIN {A1 1} ; bound infinite at 95% (too few held-out values)\n";
+    // An infinite bound says how many held-out values a finite one needs at the level.
+    let infinite = "LIN {A1 1} ; bound infinite at 95% (needs 19 held-out values)\n";
     assert!(again.contains(infinite), "{again}");
+    // A comment of the older form is a bound too: compensated again, it is replaced.
+    let older = again.replace(
+        infinite,
+        "LIN {A1 1} ; bound infinite at 95% (too few held-out values)\n",
+    );
+    let replaced = at_lines(Dialect::Krl, &older, &[(3, 1e-5)], 0.95);
+    assert!(
+        replaced.contains("LIN {A1 1} ; bound 0.0100 mm at 95%\n"),
+        "{replaced}"
+    );
     let third = at_lines(Dialect::Krl, &again, &[(3, 1e-5)], 0.95);
     assert!(
         third.contains("LIN {A1 1} ; bound 0.0100 mm at 95%\n"),
