@@ -15,6 +15,7 @@ use super::error_model::{ErrorModel, Observation};
 use super::fit::Fit;
 use super::gravity;
 use nalgebra::{Vector3, Vector6};
+use stiffid_core::common::limits::JointBox;
 use stiffid_core::Result;
 
 /// The RMS over [`gravity::spanning`] postures of the robot's joint limits of the standard
@@ -24,7 +25,22 @@ use stiffid_core::Result;
 /// # Errors
 /// Those of [`ErrorModel::jacobian_of`].
 pub fn workspace_sd(model: &ErrorModel, fit: &Fit, like: &Observation) -> Result<f64> {
-    let observations: Vec<Observation> = gravity::spanning(model.robot().limits())
+    region_sd(model, fit, like, model.robot().limits())
+}
+
+/// [`workspace_sd`] over `region` (axis angles, rad) rather than the robot's joint limits: the
+/// RMS over [`gravity::spanning`] postures of `region` of the predicted position's standard
+/// deviation (3D, m).
+///
+/// # Errors
+/// Those of [`ErrorModel::jacobian_of`].
+pub fn region_sd(
+    model: &ErrorModel,
+    fit: &Fit,
+    like: &Observation,
+    region: &JointBox,
+) -> Result<f64> {
+    let observations: Vec<Observation> = gravity::spanning(region)
         .into_iter()
         .enumerate()
         .map(|(posture, q)| Observation {

@@ -68,10 +68,12 @@ pub(super) fn choose(
     // The fits and the maps' choice report no count: each a stage of total 0 (a spinner).
     let progress = request.progress;
     progress.begin("fit", 0);
+    let held = held_postures(request);
+    let region = super::region::of(setup, obs, held.as_deref());
     let climbed = ladder::climb(
         (gravity, maps_spec),
         setup.robot().masses().is_some(),
-        obs,
+        (obs, &region),
         &options,
         (
             |g| fitted(request, (obs, measured_in, tables), geometry, g, &options),
@@ -118,6 +120,20 @@ pub(super) fn choose(
         ladder: climbed.ladder,
         error_motions,
     })
+}
+
+/// The axis angles (rad) of the held-out readings of `--validate` (table readings left out);
+/// `None` without them or when they cannot be read (the validation says why).
+fn held_postures(request: &Request<'_>) -> Option<Vec<nalgebra::Vector6<f64>>> {
+    let (name, text) = request.validate.as_ref()?;
+    let readings = stiffid_metrology::app::readings::Request {
+        setup: request.readings.setup,
+        name: name.clone(),
+        text,
+        force: true,
+    };
+    let (data, _) = stiffid_metrology::app::readings::read(&readings).ok()?;
+    Some((data.readings.iter()).filter(|r| !r.table).map(|r| r.q).collect())
 }
 
 /// The calibration of `gravity` fitted to the readings `obs` (in `measured_in`, with the

@@ -12,12 +12,13 @@
 //! Each rung is fitted to every reading (its gravity terms bounded by
 //! [`stiffid_metrology::calibration::fit::GravityPrior`]); a rung whose fit does not converge or
 //! whose scaled Jacobian's condition exceeds [`super::WEAK_CONDITION`] is skipped (the simpler
-//! model kept), and so is a gravity model that extrapolates: one whose expected error over the
-//! robot's joint limits exceeds the geometry's, the expected error being the held-out error
-//! (below) and the RMS standard deviation of the predictions over the joint limits
-//! ([`workspace_sd`], where the readings leave the terms to their prior) in quadrature: bias
-//! and variance. The groups held out among the fitted postures cannot show what the spread
-//! shows.
+//! model kept), and so is a gravity model that extrapolates: one whose expected error where the
+//! robot is used ([`super::region`]: the postures of the campaign and of the setup, with a
+//! margin) exceeds the geometry's, the expected error being the held-out error (below) and the
+//! RMS standard deviation of the predictions over that region ([`region_sd`], where the
+//! readings leave the terms to their prior) in quadrature: bias and variance. The groups held
+//! out among the fitted postures cannot show what the spread shows; postures the robot never
+//! takes do not turn a model down.
 //! The postures are dealt into [`FOLDS`] groups (posture `i` in group `i mod K`); each group is
 //! predicted by the rung refitted without it (linearised at the rung's fit, as the maps' choice:
 //! [`stiffid_metrology::calibration::maps::nested`], the maps chosen anew on each training set),
@@ -38,7 +39,8 @@ use stiffid_metrology::calibration::error_model::Observation;
 use stiffid_metrology::calibration::fit::{stop_warning, Fit, Options};
 use stiffid_metrology::calibration::gravity::Gravity;
 use stiffid_metrology::calibration::maps::{Spec, FOLDS};
-use stiffid_metrology::calibration::spread::workspace_sd;
+use stiffid_core::common::limits::JointBox;
+use stiffid_metrology::calibration::spread::region_sd;
 use stiffid_metrology::calibration::{motions, ErrorModel, Estimate};
 
 /// The gravity models of `--gravity auto`, in order of complexity ([`Gravity::Masses`] only on a
@@ -115,8 +117,8 @@ pub struct Rung {
     /// Why it was skipped (a fit that does not converge, is ill-conditioned, fails or
     /// extrapolates).
     pub skipped: Option<String>,
-    /// The RMS standard deviation of its gravity model's predictions over the robot's joint
-    /// limits ([`workspace_sd`]), m; `None` when not computed.
+    /// The RMS standard deviation of its gravity model's predictions over the region where the
+    /// robot is used ([`Ladder::region`], [`region_sd`]), m; `None` when not computed.
     pub spread: Option<f64>,
     /// Per held-out posture (the groups' in order), its sum of squared errors, m^2; empty when
     /// not scored.
@@ -132,6 +134,9 @@ pub struct Ladder {
     pub rungs: Vec<Rung>,
     /// The rung chosen (an index of `rungs`).
     pub chosen: usize,
+    /// The region of axis angles where the robot is used ([`super::region`]), rad: where the
+    /// rungs' spread is judged.
+    pub region: JointBox,
 }
 
 /// The rung chosen among `rungs` (simplest first) by the one-standard-error rule (module docs);
@@ -202,7 +207,7 @@ pub(super) struct Climbed {
 pub(super) fn climb(
     (gravity, maps): (GravitySpec, Spec),
     masses: bool,
-    obs: &[Observation],
+    (obs, region): (&[Observation], &JointBox),
     options: &Options,
     (fit, check): (
         impl Fn(Gravity) -> Result<Fitted>,
@@ -227,6 +232,7 @@ pub(super) fn climb(
             folds: 0,
             rungs: vec![unscored(gravities[0], variants[0], None)],
             chosen: 0,
+            region: *region,
         });
         let keep = match ladder {
             Some(_) => Err(format!(
@@ -263,7 +269,7 @@ pub(super) fn climb(
         .collect();
     let like = obs.iter().find(|o| !o.table).unwrap_or(&obs[0]);
     let spreads: Vec<Option<f64>> = (fits.iter())
-        .map(|f| (f.as_ref().ok()).and_then(|(f, _)| workspace_sd(&f.model, &f.fit, like).ok()))
+        .map(|f| (f.as_ref().ok()).and_then(|(f, _)| region_sd(&f.model, &f.fit, like, region).ok()))
         .collect();
     let mut rungs: Vec<Rung> = (order.iter())
         .map(|&(g, v)| Rung {
@@ -289,14 +295,15 @@ pub(super) fn climb(
             folds: FOLDS.min(postures.len()),
             rungs,
             chosen,
+            region: *region,
         }),
     })
 }
 
 /// Skips the rungs (`order`: each one's gravity model's index and whether it fits maps) of every
-/// gravity model that extrapolates: whose expected error over the robot's joint limits, its
-/// held-out error without maps and its spread there in quadrature, exceeds the first gravity
-/// model's (module docs).
+/// gravity model that extrapolates: whose expected error where the robot is used, its held-out
+/// error without maps and its spread there in quadrature, exceeds the first gravity model's
+/// (module docs).
 fn extrapolating(rungs: &mut [Rung], order: &[(usize, bool)]) {
     // Per gravity model: its held-out error without maps and its spread, squared and summed.
     let expected = |rungs: &[Rung], g: usize| {
@@ -315,7 +322,7 @@ fn extrapolating(rungs: &mut [Rung], order: &[(usize, bool)]) {
             continue;
         };
         r.skipped = Some(format!(
-            "it extrapolates: its predictions over the robot's joint limits spread by {:.3} mm, and with its held-out error it is expected {:.3} mm off there against {:.3} mm for the geometry (the postures leave its gravity terms to their bound)",
+            "it extrapolates: its predictions over the region where the robot is used spread by {:.3} mm, and with its held-out error it is expected {:.3} mm off there against {:.3} mm for the geometry (the postures leave its gravity terms to their bound)",
             r.spread.unwrap_or(f64::NAN) * 1e3,
             e * 1e3,
             base * 1e3
@@ -396,6 +403,13 @@ pub struct LadderDocument {
     pub rungs: Vec<RungDocument>,
     /// The rung fitted: the simplest within one standard error of the best held-out error.
     pub chosen: usize,
+    /// The lower ends of the region of axis angles where the robot is used, over which each
+    /// rung's `workspace_sd_mm` is taken (the fitted and held-out postures and the setup's test
+    /// postures, widened by 10 % of each axis's range and at least 5 deg, within the joint limits
+    /// and the setup's bounds), deg.
+    pub region_lower_deg: [f64; 6],
+    /// The upper ends of that region, deg.
+    pub region_upper_deg: [f64; 6],
 }
 
 /// A rung of the ladder in the document.
@@ -413,8 +427,9 @@ pub struct RungDocument {
     /// Why it was skipped; `null` when scored.
     pub skipped: Option<String>,
     /// The RMS standard deviation of its gravity model's predicted positions over postures
-    /// spread over the robot's joint limits, from the fit's covariance, mm: how far the
-    /// readings determine it where the robot can go; `null` when not computed.
+    /// spread over the region where the robot is used (`region_lower_deg` to
+    /// `region_upper_deg`), from the fit's covariance, mm: how far the readings determine it
+    /// where the robot works; `null` when not computed.
     pub workspace_sd_mm: Option<f64>,
 }
 
@@ -433,6 +448,8 @@ impl LadderDocument {
                 })
                 .collect(),
             chosen: ladder.chosen,
+            region_lower_deg: ladder.region.lower.map(f64::to_degrees).into(),
+            region_upper_deg: ladder.region.upper.map(f64::to_degrees).into(),
         }
     }
 }

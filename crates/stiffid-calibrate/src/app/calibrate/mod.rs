@@ -28,6 +28,7 @@ pub mod ladder;
 use judge::{judge, largest_residual};
 mod maps;
 mod part;
+pub mod region;
 pub mod scene;
 pub mod update;
 
