@@ -305,6 +305,12 @@ fn text_of(d: &Document) -> String {
                 i.median_width_mm
                     .map_or(String::new(), |w| format!(", median width {w:.4} mm"))
             );
+            if i.from_fit > 0 {
+                text += &format!(
+                    "  {} coordinates bounded from the fit (Gaussian: the held-out variance and the fit's covariance): the jackknife+ needs {} held-out values at this level, the {} fitted postures give fewer\n",
+                    i.from_fit, i.held_out_needed, i.folds
+                );
+            }
         }
     }
     text + "\n" + &d.fragment
@@ -352,7 +358,8 @@ model chosen by {k} groups of postures held out (RMS, mm):
     };
     for (i, r) in l.rungs.iter().enumerate() {
         let figure = match (&r.held_out_rms_mm, &r.skipped) {
-            (Some(v), _) => format!("{v:.4}"),
+            (Some(v), None) => format!("{v:.4}"),
+            (Some(v), Some(why)) => format!("{v:.4}, skipped: {why}"),
             (None, Some(why)) => format!("skipped: {why}"),
             (None, None) => "-".into(),
         };
@@ -361,6 +368,20 @@ model chosen by {k} groups of postures held out (RMS, mm):
             if i == l.chosen { "*" } else { " " },
             r.gravity,
             if r.maps { "+ maps" } else { "" },
+        );
+    }
+    let geometry = l.rungs.first().and_then(|r| r.held_out_rms_mm);
+    let chosen = l.rungs.get(l.chosen).and_then(|r| r.held_out_rms_mm);
+    if let (Some(g), Some(c), true) = (geometry, chosen, l.chosen > 0) {
+        text += &format!("  chosen {c:.4} mm held out against {g:.4} mm for the geometry alone\n");
+    }
+    if l.folds > 0 {
+        let range: Vec<String> = (l.region_lower_deg.iter().zip(&l.region_upper_deg))
+            .map(|(a, b)| format!("{a:.0}..{b:.0}"))
+            .collect();
+        text += &format!(
+            "  spread judged where the robot is used: joints {} deg\n",
+            range.join(", ")
         );
     }
     text

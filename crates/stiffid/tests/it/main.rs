@@ -67,6 +67,7 @@ mod map_chosen;
 mod metrology;
 mod model_fits;
 mod model_form;
+mod ladder_heavy;
 mod model_ladder;
 mod model_prediction;
 mod models;

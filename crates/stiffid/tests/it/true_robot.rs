@@ -59,7 +59,7 @@ level_multiples = [1.0]
 }
 
 /// Link masses of the arm (kg) with their centres in the link frames (m).
-fn masses() -> [LinkMass; 6] {
+pub(crate) fn masses() -> [LinkMass; 6] {
     let kg = [250.0, 180.0, 120.0, 60.0, 20.0, 40.0];
     std::array::from_fn(|i| LinkMass {
         mass: kg[i],

@@ -3,7 +3,7 @@
 
 use super::checks::cross_validation_size;
 use super::chosen::Chosen;
-use super::{held_out, Held, Request, MAX_CROSS_VALIDATION_POSTURES};
+use super::{fit_bound, held_out, Bounds, Held, Request, MAX_CROSS_VALIDATION_POSTURES};
 use stiffid_core::app::{in_data, Warning, WarningKind};
 use stiffid_core::Result;
 use stiffid_metrology::calibration::error_model::Observation;
@@ -47,6 +47,7 @@ pub(super) fn held(
             intervals: None,
             outside: Default::default(),
             coverage: None,
+            from_fit: 0,
         }),
     };
     // The intervals' folds: linearised at the fit (with the maps' ridge rows).
@@ -54,14 +55,23 @@ pub(super) fn held(
         with_intervals.then(|| validation::leave_one_out_linearised(model, obs, fitted, options));
     let intervals = match folds {
         None => None,
-        Some(f) => Some(Intervals::new(&f.map_err(|e| in_data(name, e))?)),
+        Some(f) => {
+            let f = f.map_err(|e| in_data(name, e))?;
+            Some((Intervals::new(&f), fit_bound::held_out_variance(&f)))
+        }
     };
     let validation = match &request.validate {
         None => None,
         Some((held_name, text)) => Some(held_out(
             request,
             (model, reference, obs),
-            (&fitted.estimate, intervals.as_ref().map(|i| (i, level))),
+            &fitted.estimate,
+            intervals.as_ref().map(|(i, held)| Bounds {
+                intervals: i,
+                level,
+                fit: fitted,
+                held_variance: *held,
+            }),
             held_name,
             text,
             warnings,

@@ -22,6 +22,7 @@ pub mod document;
 pub mod drift;
 pub mod extrapolation;
 mod files;
+mod fit_bound;
 mod held;
 mod judge;
 pub mod ladder;
@@ -176,6 +177,10 @@ pub struct Held {
     pub intervals: Option<Vec<stiffid_core::model::prediction::Interval>>,
     /// The share of the held-out coordinates inside their intervals.
     pub coverage: Option<Coverage>,
+    /// How many held-out coordinates have interval ends from the fit's Gaussian bound, where
+    /// the jackknife+ has too few held-out values for a finite one at the level
+    /// ([`fit_bound`]).
+    pub from_fit: usize,
     /// The held-out postures (indices of `labels`) outside the fitted postures' axis ranges by
     /// more than 1 deg (`--validate`; empty for the cross-validation).
     pub outside: std::collections::BTreeMap<usize, Outside>,
@@ -391,12 +396,25 @@ fn nominal(reference: &ErrorModel, obs: &[Observation], name: &str) -> Result<Va
     validation::validate(reference, &start, obs)
 }
 
+/// What the held-out readings' intervals are built from.
+struct Bounds<'a> {
+    /// The jackknife+ of the fitted postures' folds.
+    intervals: &'a Intervals,
+    /// Their level.
+    level: f64,
+    /// The fit (its covariance: the bound from the fit where the jackknife+ has no finite end).
+    fit: &'a Fit,
+    /// The mean square of the folds' held-out error coordinates, m^2 ([`fit_bound`]).
+    held_variance: f64,
+}
+
 /// The held-out validation: the readings of `text` predicted at `estimate` (the tracker
-/// registered anew on them with `reregister`).
+/// registered anew on them with `reregister`), with the intervals of `bounds`.
 fn held_out(
     request: &Request<'_>,
     (model, reference, fitted): (&ErrorModel, &ErrorModel, &[Observation]),
-    (estimate, intervals): (&Estimate, Option<(&Intervals, f64)>),
+    estimate: &Estimate,
+    bounds: Option<Bounds<'_>>,
     name: &str,
     text: &str,
     warnings: &mut Vec<Warning>,
@@ -427,14 +445,22 @@ fn held_out(
         },
     };
     let calibrated = validation::validate(model, &estimate, &obs).map_err(|e| in_data(name, e))?;
-    let bounds = match intervals {
+    let mut from_fit = 0;
+    let bounds = match bounds {
         None => None,
-        Some((i, level)) => {
-            let bounds = i
-                .of(model, &estimate, &obs, level, request.reregister)
+        Some(b) => {
+            let mut bounds = (b.intervals)
+                .of(model, &estimate, &obs, b.level, request.reregister)
                 .map_err(|e| in_data(name, e))?;
+            from_fit = fit_bound::fill(
+                &mut bounds,
+                (model, b.fit, &estimate),
+                &obs,
+                (b.level, b.held_variance),
+            )
+            .map_err(|e| in_data(name, e))?;
             let errors: Vec<_> = calibrated.errors.iter().map(|e| e.error).collect();
-            let coverage = intervals::coverage(&bounds, &errors, level, i.folds());
+            let coverage = intervals::coverage(&bounds, &errors, b.level, b.intervals.folds());
             Some((bounds, coverage))
         }
     };
@@ -446,6 +472,7 @@ fn held_out(
         labels: data.labels.clone(),
         intervals,
         coverage,
+        from_fit,
         outside: extrapolation::postures_outside(fitted, &obs).0,
     };
     // The gate of the fitted readings: a held-out reading that both the calibrated robot and the

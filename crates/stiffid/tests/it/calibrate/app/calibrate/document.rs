@@ -29,6 +29,7 @@ fn intervals_of_postures_outside_the_fitted_ranges_do_not_hold() {
         labels: vec!["A".into(), "B".into()],
         intervals: Some(vec![[[-1e-3, 1e-3]; 3]; 2]),
         coverage: None,
+        from_fit: 0,
         outside: [(1, outside)].into_iter().collect(),
     };
     let doc = held(&h);
