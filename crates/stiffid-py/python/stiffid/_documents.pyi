@@ -115,11 +115,14 @@ CalibrateCorrelation = TypedDict("CalibrateCorrelation", {
 })
 
 CalibrateIntervalsDocument = TypedDict("CalibrateIntervalsDocument", {
+    "assumption": Optional[str],
     "coordinates": int,
     "coverage": float,
     "coverage_pct": float,
     "covered": int,
     "folds": int,
+    "from_fit": int,
+    "held_out_needed": int,
     "level": float,
     "median_width_mm": Optional[float],
     "method": str,
@@ -128,6 +131,8 @@ CalibrateIntervalsDocument = TypedDict("CalibrateIntervalsDocument", {
 CalibrateLadderDocument = TypedDict("CalibrateLadderDocument", {
     "chosen": int,
     "folds": int,
+    "region_lower_deg": list[float],
+    "region_upper_deg": list[float],
     "rungs": list[CalibrateRungDocument],
 })
 

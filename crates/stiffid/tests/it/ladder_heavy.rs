@@ -39,7 +39,17 @@ fn robot_text(with_masses: bool) -> String {
 
 /// The heavy robot's setup (the true robot's link masses in its robot file when `with_masses`).
 pub(crate) fn heavy_setup(with_masses: bool) -> Setup {
-    let text = setup_text("robot.toml", "");
+    setup_with(with_masses, false, "")
+}
+
+/// [`heavy_setup`], read at one measuring point when `one_point`, with `more` appended (a
+/// `[test]` table).
+fn setup_with(with_masses: bool, one_point: bool, more: &str) -> Setup {
+    let mut text = setup_text("robot.toml", more);
+    if one_point {
+        let four = text.lines().find(|l| l.starts_with("measuring_points_mm")).unwrap();
+        text = text.replace(four, "measuring_points_mm = [[80.0, 80.0, 260.0]]");
+    }
     let robot = robot_text(with_masses);
     stiffid::setup::parse(&text, "setup.toml", |_, _| {
         stiffid::robot::file::parse(&robot, "robot.toml")
@@ -125,15 +135,27 @@ fn a_heavy_robot_measured_where_it_works_gets_gravity_terms() {
 #[ignore = "a measurement, minutes long"]
 fn measure() {
     let splits: u64 = std::env::var("SPLITS").map_or(10, |s| s.parse().unwrap());
-    for with_masses in [false, true] {
-        let setup = heavy_setup(with_masses);
+    // Test postures at the joint limits' corners: the region is the joint limits (the screen
+    // as it was before it judged where the robot is used).
+    let everywhere = "[test]\npostures_deg = [[-185.0, -60.0, -132.0, -360.0, -125.0, -360.0], [185.0, 76.0, 180.0, 360.0, 125.0, 360.0]]";
+    let cases = [
+        (false, false, ""),
+        (true, false, ""),
+        (false, true, ""),
+        (true, true, ""),
+        (false, false, everywhere),
+        (true, false, everywhere),
+    ];
+    for (with_masses, one_point, more) in cases {
+        let setup = setup_with(with_masses, one_point, more);
+        let with_masses = format!("{with_masses}, one point {one_point}, limits {}", !more.is_empty());
         let mut rows = Vec::new();
         for seed in 0..splits {
             let (data, held) = split(&setup, 1000 + seed);
             let mut row = Vec::new();
             let mut specs = vec![GravitySpec::Auto, GravitySpec::Fixed(Gravity::None)];
             specs.push(GravitySpec::Fixed(Gravity::Lumped));
-            if with_masses {
+            if with_masses.starts_with("true") {
                 specs.push(GravitySpec::Fixed(Gravity::Masses));
             }
             let mut chosen = Gravity::None;
