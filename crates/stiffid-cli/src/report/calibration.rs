@@ -81,6 +81,9 @@ fn compose(w: &mut dyn Writer, doc: &Document, figures: &[Figure], scene: &Scene
     for warning in &doc.warnings {
         w.paragraph(&format!("Warning: {}", warning.message));
     }
+    if let Some(l) = &doc.ladder {
+        ladder_section(w, l);
+    }
     w.heading(2, "Error per posture and measuring point, before and after");
     if let Some(f) = find(figures, "errors") {
         w.figure(f);
@@ -124,6 +127,48 @@ fn compose(w: &mut dyn Writer, doc: &Document, figures: &[Figure], scene: &Scene
     w.heading(2, "Every reading");
     w.table(&errors_table(doc));
     w.paragraph("Files: calibration.json (the calibrate document this page renders), errors.glb (the 3D scene), figures/ (SVG and PNG).");
+}
+
+/// The ladder of models: each rung's held-out figure and why it was skipped, the chosen one's
+/// beside the geometry's, the region where the spread was judged.
+fn ladder_section(w: &mut dyn Writer, l: &stiffid_calibrate::app::calibrate::ladder::LadderDocument) {
+    w.heading(2, "The model chosen");
+    let geometry = l.rungs.first().and_then(|r| r.held_out_rms_mm);
+    let chosen = l.rungs.get(l.chosen).and_then(|r| r.held_out_rms_mm);
+    let text = match (l.folds, geometry, chosen) {
+        (0, _, _) => "Too few postures to choose a model: the first rung is fitted.".to_string(),
+        (k, Some(g), Some(c)) => format!(
+            "Each model predicts {k} groups of postures from the others; the simplest within one standard error of the best held-out error, and below every simpler model's, is fitted (marked). The chosen model: {} mm RMS held out, against {} mm for the geometry alone (no gravity terms, no maps).",
+            num(c),
+            num(g)
+        ),
+        (k, _, _) => format!("Each model predicts {k} groups of postures from the others."),
+    };
+    w.paragraph(&text);
+    let region: Vec<String> = (l.region_lower_deg.iter().zip(&l.region_upper_deg))
+        .enumerate()
+        .map(|(j, (a, b))| format!("joint {}: {} to {} deg", j + 1, num(*a), num(*b)))
+        .collect();
+    w.paragraph(&format!(
+        "A gravity model's spread is judged where the robot is used (its postures, held-out and test postures, with a margin): {}.",
+        region.join(", ")
+    ));
+    let header = ["", "gravity", "maps", "held out, mm", "spread, mm", "skipped"]
+        .map(String::from)
+        .to_vec();
+    let rows = (l.rungs.iter().enumerate())
+        .map(|(i, r)| {
+            vec![
+                if i == l.chosen { "chosen" } else { "" }.into(),
+                r.gravity.to_string(),
+                if r.maps { "yes" } else { "no" }.into(),
+                r.held_out_rms_mm.map_or("-".into(), num),
+                r.workspace_sd_mm.map_or("-".into(), num),
+                r.skipped.clone().unwrap_or_default(),
+            ]
+        })
+        .collect();
+    w.table(&Table { header, rows });
 }
 
 /// The before and after error of every reading.

@@ -22,7 +22,7 @@ pub mod document;
 pub mod drift;
 pub mod extrapolation;
 mod files;
-mod fit_bound;
+pub mod fit_bound;
 mod held;
 mod judge;
 pub mod ladder;

@@ -4,3 +4,4 @@ mod document;
 mod drift;
 mod extrapolation;
 mod ladder;
+mod region;
