@@ -131,7 +131,10 @@ fn compose(w: &mut dyn Writer, doc: &Document, figures: &[Figure], scene: &Scene
 
 /// The ladder of models: each rung's held-out figure and why it was skipped, the chosen one's
 /// beside the geometry's, the region where the spread was judged.
-fn ladder_section(w: &mut dyn Writer, l: &stiffid_calibrate::app::calibrate::ladder::LadderDocument) {
+fn ladder_section(
+    w: &mut dyn Writer,
+    l: &stiffid_calibrate::app::calibrate::ladder::LadderDocument,
+) {
     w.heading(2, "The model chosen");
     let geometry = l.rungs.first().and_then(|r| r.held_out_rms_mm);
     let chosen = l.rungs.get(l.chosen).and_then(|r| r.held_out_rms_mm);
@@ -153,9 +156,16 @@ fn ladder_section(w: &mut dyn Writer, l: &stiffid_calibrate::app::calibrate::lad
         "A gravity model's spread is judged where the robot is used (its postures, held-out and test postures, with a margin): {}.",
         region.join(", ")
     ));
-    let header = ["", "gravity", "maps", "held out, mm", "spread, mm", "skipped"]
-        .map(String::from)
-        .to_vec();
+    let header = [
+        "",
+        "gravity",
+        "maps",
+        "held out, mm",
+        "spread, mm",
+        "skipped",
+    ]
+    .map(String::from)
+    .to_vec();
     let rows = (l.rungs.iter().enumerate())
         .map(|(i, r)| {
             vec![

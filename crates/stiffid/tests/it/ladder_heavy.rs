@@ -47,7 +47,10 @@ pub(crate) fn heavy_setup(with_masses: bool) -> Setup {
 fn setup_with(with_masses: bool, one_point: bool, more: &str) -> Setup {
     let mut text = setup_text("robot.toml", more);
     if one_point {
-        let four = text.lines().find(|l| l.starts_with("measuring_points_mm")).unwrap();
+        let four = text
+            .lines()
+            .find(|l| l.starts_with("measuring_points_mm"))
+            .unwrap();
         text = text.replace(four, "measuring_points_mm = [[80.0, 80.0, 260.0]]");
     }
     let robot = robot_text(with_masses);
@@ -188,7 +191,10 @@ fn measure() {
     ];
     for (with_masses, one_point, more) in cases {
         let setup = setup_with(with_masses, one_point, more);
-        let with_masses = format!("{with_masses}, one point {one_point}, limits {}", !more.is_empty());
+        let with_masses = format!(
+            "{with_masses}, one point {one_point}, limits {}",
+            !more.is_empty()
+        );
         let mut rows = Vec::new();
         for seed in 0..splits {
             let (data, held) = split(&setup, 1000 + seed);
@@ -205,7 +211,12 @@ fn measure() {
                     chosen = r.gravity;
                     for rung in &r.ladder.as_ref().unwrap().rungs {
                         let why = rung.skipped.as_deref().unwrap_or_default();
-                        println!("  {:?} {:?} {:.70}", rung.gravity, rung.rms.map(|v| v * 1e3), why);
+                        println!(
+                            "  {:?} {:?} {:.70}",
+                            rung.gravity,
+                            rung.rms.map(|v| v * 1e3),
+                            why
+                        );
                     }
                 }
                 row.push(held_out(&r) * 1e3);

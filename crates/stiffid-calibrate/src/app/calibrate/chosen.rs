@@ -133,7 +133,12 @@ fn held_postures(request: &Request<'_>) -> Option<Vec<nalgebra::Vector6<f64>>> {
         force: true,
     };
     let (data, _) = stiffid_metrology::app::readings::read(&readings).ok()?;
-    Some((data.readings.iter()).filter(|r| !r.table).map(|r| r.q).collect())
+    Some(
+        (data.readings.iter())
+            .filter(|r| !r.table)
+            .map(|r| r.q)
+            .collect(),
+    )
 }
 
 /// The calibration of `gravity` fitted to the readings `obs` (in `measured_in`, with the

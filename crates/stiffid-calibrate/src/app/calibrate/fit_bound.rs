@@ -34,8 +34,9 @@ pub const ASSUMPTION: &str = "each coordinate's error normal, with the variance 
 
 /// The mean square (m^2) of the coordinates of every fold's held-out errors: `s^2` (module docs).
 pub fn held_out_variance(folds: &[Fold]) -> f64 {
-    let (sum, n) = (folds.iter().flat_map(|f| &f.held.errors))
-        .fold((0.0, 0usize), |(s, n), e| (s + e.error.norm_squared(), n + 3));
+    let (sum, n) = (folds.iter().flat_map(|f| &f.held.errors)).fold((0.0, 0usize), |(s, n), e| {
+        (s + e.error.norm_squared(), n + 3)
+    });
     sum / n.max(1) as f64
 }
 
@@ -61,10 +62,7 @@ pub fn fill(
 ) -> Result<usize> {
     let open = |i: &Interval| i.iter().flatten().any(|v| !v.is_finite());
     let mut filled = 0;
-    for (chunk, bounds) in observations
-        .chunks(CHUNK)
-        .zip(intervals.chunks_mut(CHUNK))
-    {
+    for (chunk, bounds) in observations.chunks(CHUNK).zip(intervals.chunks_mut(CHUNK)) {
         if !bounds.iter().any(open) {
             continue;
         }

@@ -34,12 +34,12 @@
 use super::maps::{assess, Assessed};
 use super::WEAK_CONDITION;
 use stiffid_core::common::choice::Choice;
+use stiffid_core::common::limits::JointBox;
 use stiffid_core::Result;
 use stiffid_metrology::calibration::error_model::Observation;
 use stiffid_metrology::calibration::fit::{stop_warning, Fit, Options};
 use stiffid_metrology::calibration::gravity::Gravity;
 use stiffid_metrology::calibration::maps::{Spec, FOLDS};
-use stiffid_core::common::limits::JointBox;
 use stiffid_metrology::calibration::spread::region_sd;
 use stiffid_metrology::calibration::{motions, ErrorModel, Estimate};
 
@@ -269,7 +269,9 @@ pub(super) fn climb(
         .collect();
     let like = obs.iter().find(|o| !o.table).unwrap_or(&obs[0]);
     let spreads: Vec<Option<f64>> = (fits.iter())
-        .map(|f| (f.as_ref().ok()).and_then(|(f, _)| region_sd(&f.model, &f.fit, like, region).ok()))
+        .map(|f| {
+            (f.as_ref().ok()).and_then(|(f, _)| region_sd(&f.model, &f.fit, like, region).ok())
+        })
         .collect();
     let mut rungs: Vec<Rung> = (order.iter())
         .map(|&(g, v)| Rung {

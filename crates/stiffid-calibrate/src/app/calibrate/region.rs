@@ -49,10 +49,8 @@ pub fn region(postures: &[Vector6<f64>], limits: &JointBox, bounds: &JointBox) -
 /// error comes with the validation) and the `setup`'s test postures, cut to the robot's limits and
 /// the setup's bounds (module docs).
 pub fn of(setup: &Setup, fitted: &[Observation], held: Option<&[Vector6<f64>]>) -> JointBox {
-    let mut postures: Vec<Vector6<f64>> = (fitted.iter())
-        .filter(|o| !o.table)
-        .map(|o| o.q)
-        .collect();
+    let mut postures: Vec<Vector6<f64>> =
+        (fitted.iter()).filter(|o| !o.table).map(|o| o.q).collect();
     postures.extend(held.unwrap_or_default());
     postures.extend_from_slice(setup.test_postures());
     region(&postures, setup.robot().limits(), setup.bounds())

@@ -13,7 +13,10 @@ fn deg(v: [f64; 6]) -> Vector6<f64> {
 #[test]
 fn the_region_is_the_postures_box_with_its_margin_within_the_limits() {
     let limits = JointBox::new(deg([-180.0; 6]), deg([180.0; 6]));
-    let bounds = JointBox::new(deg([-180.0, -180.0, -180.0, -180.0, -180.0, 8.0]), deg([180.0; 6]));
+    let bounds = JointBox::new(
+        deg([-180.0, -180.0, -180.0, -180.0, -180.0, 8.0]),
+        deg([180.0; 6]),
+    );
     let postures = [
         deg([-10.0, 0.0, 100.0, 0.0, 175.0, 10.0]),
         deg([90.0, 2.0, 120.0, 0.0, 178.0, 20.0]),
@@ -25,8 +28,16 @@ fn the_region_is_the_postures_box_with_its_margin_within_the_limits() {
     let expected_lower = [-20.0, -5.0, 95.0, -5.0, 170.0, 8.0];
     let expected_upper = [100.0, 7.0, 125.0, 5.0, 180.0, 25.0];
     for j in 0..6 {
-        assert!((r.lower[j].to_degrees() - expected_lower[j]).abs() < 1e-9, "{j}: {}", r.lower[j].to_degrees());
-        assert!((r.upper[j].to_degrees() - expected_upper[j]).abs() < 1e-9, "{j}: {}", r.upper[j].to_degrees());
+        assert!(
+            (r.lower[j].to_degrees() - expected_lower[j]).abs() < 1e-9,
+            "{j}: {}",
+            r.lower[j].to_degrees()
+        );
+        assert!(
+            (r.upper[j].to_degrees() - expected_upper[j]).abs() < 1e-9,
+            "{j}: {}",
+            r.upper[j].to_degrees()
+        );
     }
     // No posture: the joint limits.
     assert_eq!(region(&[], &limits, &bounds), limits);
