@@ -296,8 +296,8 @@ fn text_of(d: &Document) -> String {
         );
         if let Some(i) = &v.intervals {
             text += &format!(
-                "  {:.0}% prediction intervals ({}, {} folds): {:.1}% of {} held-out coordinates inside{}\n",
-                100.0 * i.level,
+                "  {}% prediction intervals ({}, {} folds): {:.1}% of {} held-out coordinates inside{}\n",
+                percent(i.level),
                 i.method,
                 i.folds,
                 i.coverage_pct,
@@ -314,6 +314,15 @@ fn text_of(d: &Document) -> String {
         }
     }
     text + "\n" + &d.fragment
+}
+
+/// `level` in percent, to the tenth where it has one (99.7, not 100).
+fn percent(level: f64) -> String {
+    let pct = 100.0 * level;
+    match (pct - pct.round()).abs() < 1e-9 {
+        true => format!("{pct:.0}"),
+        false => format!("{pct:.1}"),
+    }
 }
 
 /// The check's lines (`--update`): the bound, the readings outside it and the verdict.
