@@ -620,6 +620,46 @@ fn calibrate_with_loaded_readings_writes_the_stiffness_file() {
 /// `--validate --level`: each held-out reading's error gets its jackknife+ interval from the
 /// fitted postures' leave-one-posture-out errors, and `validation.coverage` is the share of the
 /// held-out coordinates inside; `--level` means nothing without `--validate`.
+/// The calibration of `args` (30 fitted postures, `--level` last) at 99.9 %: its ends from the
+/// fit.
+fn the_fit_bounds_where_the_jackknife_has_none(args: &[&str]) {
+    // At 99.9 % the 30 postures' held-out values (three per reading) give the jackknife+ no
+    // finite end (it needs 999): every end comes from the fit, finite, and the text says so with
+    // the level as it is.
+    let mut high = args.to_vec();
+    *high.last_mut().unwrap() = "0.999";
+    let doc = json(&stiffid(&[&high[..], &["--json"]].concat()));
+    let i = &doc["validation"]["intervals"];
+    assert_eq!(i["method"], "the fit's Gaussian bound");
+    assert_eq!(i["held_out_needed"].as_u64(), Some(999));
+    assert_eq!(i["from_fit"], i["coordinates"]);
+    let ends = doc["validation"]["errors"].as_array().unwrap().iter();
+    let ends: Vec<f64> = ends
+        .flat_map(|e| {
+            (0..3).flat_map(move |c| {
+                [
+                    e["interval_mm"][c][0].clone(),
+                    e["interval_mm"][c][1].clone(),
+                ]
+            })
+        })
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    assert!(
+        ends.iter().all(|v| v.is_finite() && v.abs() > 0.01),
+        "{ends:?}"
+    );
+    let text = String::from_utf8(stiffid(&high).stdout).unwrap();
+    assert!(
+        text.contains("99.9% prediction intervals (the fit's Gaussian bound, 30 folds)"),
+        "{text}"
+    );
+    assert!(
+        text.contains("the jackknife+ needs 999 held-out values"),
+        "{text}"
+    );
+}
+
 #[test]
 fn calibrate_gives_held_out_readings_intervals_and_their_coverage() {
     let d = temp_dir("calibrate-intervals");
@@ -685,41 +725,7 @@ fn calibrate_gives_held_out_readings_intervals_and_their_coverage() {
         text.contains("90% prediction intervals (jackknife+, 30 folds)"),
         "{text}"
     );
-    // At 99.9 % the 30 postures' held-out values (three per reading) give the jackknife+ no
-    // finite end (it needs 999): every end comes from the fit, finite, and the text says so with
-    // the level as it is.
-    let mut high = args.to_vec();
-    *high.last_mut().unwrap() = "0.999";
-    let doc = json(&stiffid(&[&high[..], &["--json"]].concat()));
-    let i = &doc["validation"]["intervals"];
-    assert_eq!(i["method"], "the fit's Gaussian bound");
-    assert_eq!(i["held_out_needed"].as_u64(), Some(999));
-    assert_eq!(i["from_fit"], i["coordinates"]);
-    let ends = doc["validation"]["errors"].as_array().unwrap().iter();
-    let ends: Vec<f64> = ends
-        .flat_map(|e| {
-            (0..3).flat_map(move |c| {
-                [
-                    e["interval_mm"][c][0].clone(),
-                    e["interval_mm"][c][1].clone(),
-                ]
-            })
-        })
-        .map(|v| v.as_f64().unwrap())
-        .collect();
-    assert!(
-        ends.iter().all(|v| v.is_finite() && v.abs() > 0.01),
-        "{ends:?}"
-    );
-    let text = String::from_utf8(stiffid(&high).stdout).unwrap();
-    assert!(
-        text.contains("99.9% prediction intervals (the fit's Gaussian bound, 30 folds)"),
-        "{text}"
-    );
-    assert!(
-        text.contains("the jackknife+ needs 999 held-out values"),
-        "{text}"
-    );
+    the_fit_bounds_where_the_jackknife_has_none(&args);
     // A level without held-out readings, or outside [0.5, 0.999], is the option's error.
     for (bad, say) in [
         (&["--level", "0.9"][..], "only with --validate"),
