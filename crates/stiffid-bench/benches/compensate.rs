@@ -121,7 +121,7 @@ fn benches(c: &mut Criterion) {
     // chosen by dynamic programming to minimise the worst point's error bound.
     let rotation = compensate::FreeRange::checked(&compensate::Variable::ToolRotation, 30.0, 5.0);
     let free = compensate::FreeVariables {
-        tool_rotation: rotation.ok(),
+        free: vec![compensate::Free::ToolRotation(rotation.unwrap())],
         minimise: compensate::Objective::Bound,
         aggregate: compensate::Aggregate::Max,
         ..compensate::FreeVariables::default()
@@ -171,7 +171,7 @@ fn track(group: &mut criterion::BenchmarkGroup<criterion::measurement::WallTime>
         .collect();
     let alone = Options {
         free: FreeVariables {
-            station: FreeRange::checked(&Variable::Station, 60.0, 10.0).ok(),
+            free: vec![Free::Station(FreeRange::checked(&Variable::Station, 60.0, 10.0).unwrap())],
             aggregate: Aggregate::Max,
             ..FreeVariables::default()
         },

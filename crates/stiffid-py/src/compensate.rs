@@ -14,7 +14,7 @@ use stiffid_core::observation::deflection::Frame;
 use stiffid_machining::app::compensate::document::{values, Document, Names, Row, DYNAMICS};
 use stiffid_machining::app::compensate::{self as job, Input, Request};
 use stiffid_machining::compensate::{
-    free, Aggregate, Compensated, Free, Freedom, MapVariable, Objective, Options, PathPoint,
+    free, Aggregate, Compensated, FreeOption, Freedom, MapVariable, Objective, Options, PathPoint,
 };
 use stiffid_machining::dynamics::Dynamics;
 use stiffid_machining::process::file;
@@ -424,7 +424,7 @@ pub(crate) fn options(
 
 /// `free=`: a list of the texts of `compensate --free` (`"tool-rotation=-90..90/5"`) or of dicts
 /// (`{"variable": "station", "range": 500, "step": 10}`, `range` and `step` optional).
-fn free_variables(free: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<Free>> {
+fn free_variables(free: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<FreeOption>> {
     let Some(free) = free else {
         return Ok(Vec::new());
     };
@@ -440,9 +440,9 @@ fn free_variables(free: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<Free>> {
 }
 
 /// One item of `free=`.
-fn free_variable(item: &Bound<'_, PyAny>, expected: &str) -> PyResult<Free> {
+fn free_variable(item: &Bound<'_, PyAny>, expected: &str) -> PyResult<FreeOption> {
     if let Ok(text) = item.extract::<String>() {
-        return Free::parse(&text).map_err(raise);
+        return FreeOption::parse(&text).map_err(raise);
     }
     let dict = item.cast::<PyDict>().map_err(|_| error::value(expected))?;
     for key in dict.keys() {
@@ -470,7 +470,7 @@ fn free_variable(item: &Bound<'_, PyAny>, expected: &str) -> PyResult<Free> {
         .ok_or_else(|| error::value("free: a dict needs its variable"))?
         .extract()
         .map_err(|_| error::value("free: variable: expected a str"))?;
-    Free::from_parts(&variable, number("range")?, number("step")?).map_err(raise)
+    FreeOption::from_parts(&variable, number("range")?, number("step")?).map_err(raise)
 }
 
 /// Refuses a keyword that `free=` or `minimise=` replaced, saying how to write it.

@@ -52,11 +52,11 @@ pub(crate) fn cones(free: &LeadTilt, points: usize, process: Option<&[f64]>) -> 
 /// [`Error::InvalidOption`] ([`JobOption::LeadTiltStep`]) with the grid's size and what to
 /// change; those of [`super::FreeRange::check_rotation_grid`].
 pub(super) fn check_cells(options: &Options, points: usize, largest: f64) -> Result<()> {
-    let Some(l) = &options.free.lead_tilt else {
-        return (options.free.tool_rotation).map_or(Ok(()), |f| f.check_rotation_grid(points));
+    let Some(l) = &options.free.lead_tilt() else {
+        return (options.free.tool_rotation()).map_or(Ok(()), |f| f.check_rotation_grid(points));
     };
     let per = lean_count(l, largest);
-    let angles = options.free.tool_rotation.map_or(1.0, |f| f.angle_count());
+    let angles = options.free.tool_rotation().map_or(1.0, |f| f.angle_count());
     let cells = per * angles * points as f64;
     if cells <= MAX_GRID_CELLS {
         return Ok(());
@@ -84,8 +84,8 @@ pub(super) fn check_streaming(options: &Options, read: usize, largest: f64) -> R
     if check_cells(options, read, largest).is_ok() {
         return Ok(());
     }
-    let angles = options.free.tool_rotation.map_or(1.0, |f| f.angle_count());
-    let (option, grid, per, change) = match (&options.free.lead_tilt, &options.free.tool_rotation) {
+    let angles = options.free.tool_rotation().map_or(1.0, |f| f.angle_count());
+    let (option, grid, per, change) = match (&options.free.lead_tilt(), &options.free.tool_rotation()) {
         (Some(l), _) => (
             JobOption::LeadTiltStep,
             format!(

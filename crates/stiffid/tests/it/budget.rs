@@ -8,7 +8,7 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
 use stiffid::app::compensate::{run, Input, Request};
 use stiffid::common::error::JobOption;
-use stiffid::machining::compensate::{
+use stiffid::machining::compensate::{Free, 
     self, Aggregate, Compliance, FreeVariables, Objective, Options, PathPoint, Target,
 };
 use stiffid::observation::deflection::{Frame, Points};
@@ -152,7 +152,7 @@ fn the_free_tool_axis_minimising_the_bound_raises_no_point() {
     let path = line_path(&s, 20);
     for aggregate in [Aggregate::Sum, Aggregate::Max] {
         let free = FreeVariables {
-            tool_rotation: Some(crate::compensate::rotation(60.0, 5.0)),
+            free: vec![Free::ToolRotation(crate::compensate::rotation(60.0, 5.0))],
             minimise: Objective::Bound,
             aggregate,
             ..FreeVariables::default()

@@ -8,7 +8,7 @@ use nalgebra::{
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
-use stiffid::machining::compensate::{
+use stiffid::machining::compensate::{Free, 
     self, FreeRange, FreeVariables, Objective, Options, PathPoint, Target, Variable,
 };
 use stiffid::observation::deflection::{base_wrench, Frame, Points};
@@ -256,7 +256,7 @@ pub(crate) fn options(s: &Setup, free: Option<FreeRange>) -> Options {
         q0: s.test_postures()[0],
         ik: ik::Options::default(),
         free: FreeVariables {
-            tool_rotation: free,
+            free: free.map(Free::ToolRotation).into_iter().collect(),
             minimise: Objective::Deflection,
             ..FreeVariables::default()
         },

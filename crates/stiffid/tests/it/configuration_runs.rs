@@ -11,7 +11,7 @@ use nalgebra::{Translation3, Vector6};
 use stiffid::app::compensate::configurations::ConfigurationsDocument;
 use stiffid::app::compensate::{self as job, Input};
 use stiffid::common::limits::JointBox;
-use stiffid::machining::compensate::{
+use stiffid::machining::compensate::{Free, 
     self, path_runs, Aggregate, Compensated, FreeVariables, Objective, Options, PathPoint, Scope,
     Target,
 };
@@ -46,7 +46,7 @@ fn two_runs(s: &Setup) -> Vec<PathPoint> {
 fn per(s: &Setup, aggregate: Aggregate, per: Scope) -> Options {
     Options {
         free: FreeVariables {
-            configuration: Some(per),
+            free: vec![Free::Configuration(per)],
             minimise: Objective::Bound,
             aggregate,
             ..FreeVariables::default()

@@ -5,7 +5,7 @@
 //! where the table turned it; a cell without a positioner is refused naming the option.
 
 use nalgebra::{Isometry3, Rotation3, UnitQuaternion, Vector3, Vector6};
-use stiffid::machining::compensate::{
+use stiffid::machining::compensate::{Free, 
     self, Aggregate, Compensated, FreeRange, FreeVariables, Model, Objective, Options, PathPoint,
     Target, Variable,
 };
@@ -77,8 +77,7 @@ fn moved(i: usize, phi: f64) -> Isometry3<f64> {
 fn free(aggregate: Aggregate) -> (Options, Setup) {
     let s = on_table();
     let free = FreeVariables {
-        tool_rotation: Some(crate::compensate::rotation(10.0, 5.0)),
-        positioner: FreeRange::checked(&Variable::Positioner, 10.0, 10.0).ok(),
+        free: vec![Free::ToolRotation(crate::compensate::rotation(10.0, 5.0)), Free::Positioner(FreeRange::checked(&Variable::Positioner, 10.0, 10.0).unwrap())],
         minimise: Objective::Bound,
         aggregate,
         ..FreeVariables::default()

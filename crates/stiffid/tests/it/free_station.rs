@@ -4,7 +4,7 @@
 //! point's bound rises; the loaded tool lands on the part from the chosen station.
 
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
-use stiffid::machining::compensate::{
+use stiffid::machining::compensate::{Free, 
     self, Aggregate, Compensated, FreeRange, FreeVariables, Model, Objective, Options, PathPoint,
     Target, Variable,
 };
@@ -51,8 +51,7 @@ fn moved(i: usize, phi: f64) -> Isometry3<f64> {
 fn free(aggregate: Aggregate) -> (Options, Setup) {
     let s = on_track();
     let free = FreeVariables {
-        tool_rotation: Some(crate::compensate::rotation(10.0, 5.0)),
-        station: FreeRange::checked(&Variable::Station, 100.0, 100.0).ok(),
+        free: vec![Free::ToolRotation(crate::compensate::rotation(10.0, 5.0)), Free::Station(FreeRange::checked(&Variable::Station, 100.0, 100.0).unwrap())],
         minimise: Objective::Bound,
         aggregate,
         ..FreeVariables::default()

@@ -5,7 +5,7 @@
 //! point where the tilt put it; a one-axis positioner is refused naming the option.
 
 use nalgebra::{Isometry3, Rotation3, UnitQuaternion, Vector3, Vector6};
-use stiffid::machining::compensate::{
+use stiffid::machining::compensate::{Free, 
     self, Aggregate, Compensated, FreeRange, FreeVariables, Model, Objective, Options, PathPoint,
     Target, Variable,
 };
@@ -86,8 +86,7 @@ fn moved(i: usize, phi: f64) -> Isometry3<f64> {
 /// The free tilt +-10 deg in 10 deg steps and the free tool axis +-10 deg in 5 deg steps.
 fn free(s: &Setup, aggregate: Aggregate) -> Options {
     let free = FreeVariables {
-        tool_rotation: Some(crate::compensate::rotation(10.0, 5.0)),
-        tilt: FreeRange::checked(&Variable::Tilt, 10.0, 10.0).ok(),
+        free: vec![Free::ToolRotation(crate::compensate::rotation(10.0, 5.0)), Free::Tilt(FreeRange::checked(&Variable::Tilt, 10.0, 10.0).unwrap())],
         minimise: Objective::Bound,
         aggregate,
         ..FreeVariables::default()

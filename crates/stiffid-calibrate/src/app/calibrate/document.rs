@@ -217,9 +217,12 @@ fn maps_document(m: &super::Maps) -> MapsDocument {
     }
 }
 
-/// The calibrated compliance as a stiffness file ([`stiffid_core::io::stiffness`]).
+/// The calibrated compliance as a stiffness file ([`stiffid_core::io::stiffness`]), named by its
+/// first key, `kind`: `stiffness` (a reader takes a file without it, as written before).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(tag = "kind", rename = "stiffness")]
+#[cfg_attr(feature = "schema", schemars(transform = stiffid_core::app::document::schema::Kind("stiffness")))]
 pub struct StiffnessSection {
     /// Every parameter of the setup's model with its stiffness.
     pub parameters: Vec<ParameterStiffness>,

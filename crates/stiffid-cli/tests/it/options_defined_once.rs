@@ -1,0 +1,261 @@
+//! Each option is declared once, in the command's parser (`stiffid_cli::command`: its name,
+//! value, help with its range and unit, default), and what repeats it elsewhere is checked
+//! against that declaration so the three cannot drift:
+//! - the reference's option tables (`docs/reference.md`, one per command): row for row the
+//!   command's options, each `| --name <VALUE> | help [default: X] |` as clap states it;
+//! - the Python keywords of the same jobs (their PyO3 signatures in `crates/stiffid-py/src`): a
+//!   keyword and an option of the same name (`margin_deg`, `--margin-deg`) have the same default,
+//!   and a name in one front end only is one of the differences listed here, each with why.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::Path;
+
+fn repo() -> &'static Path {
+    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+}
+
+/// Every visible subcommand by its path (`compensate`, `setups new`).
+fn commands() -> Vec<(String, clap::Command)> {
+    fn walk(prefix: &str, cmd: &clap::Command, out: &mut Vec<(String, clap::Command)>) {
+        for sub in cmd.get_subcommands().filter(|s| !s.is_hide_set()) {
+            let name = format!("{prefix}{}", sub.get_name());
+            out.push((name.clone(), sub.clone()));
+            walk(&format!("{name} "), sub, out);
+        }
+    }
+    let mut out = Vec::new();
+    walk("", &stiffid_cli::command(), &mut out);
+    out
+}
+
+/// The visible options of `cmd` with a long name (positionals and `--help` left out).
+fn options(cmd: &clap::Command) -> Vec<&clap::Arg> {
+    (cmd.get_arguments())
+        .filter(|a| !a.is_hide_set() && !a.is_positional())
+        .filter(|a| a.get_long().is_some_and(|l| l != "help" && l != "version"))
+        .collect()
+}
+
+/// The option's default as clap states it (`5`, `-180,180`), or `None`.
+fn default(arg: &clap::Arg) -> Option<String> {
+    let values: Vec<String> = (arg.get_default_values().iter())
+        .map(|v| v.to_string_lossy().into_owned())
+        .collect();
+    match arg.get_action().takes_values() && !values.is_empty() {
+        true => Some(values.join(",")),
+        false => None,
+    }
+}
+
+/// The reference's row of `arg`: `| `--name <VALUE>` | help [default: X] |`.
+fn row(arg: &clap::Arg) -> String {
+    let long = arg.get_long().unwrap();
+    let value = match arg.get_action().takes_values() {
+        true => {
+            let names: Vec<String> = match arg.get_value_names() {
+                Some(n) => n.iter().map(|s| s.to_string()).collect(),
+                None => vec![arg.get_id().as_str().to_uppercase()],
+            };
+            format!(" <{}>", names.join("> <"))
+        }
+        false => String::new(),
+    };
+    let help = (arg.get_long_help().or(arg.get_help()))
+        .map(|h| h.to_string())
+        .unwrap_or_default();
+    let mut meaning = help.split_whitespace().collect::<Vec<_>>().join(" ");
+    if let Some(d) = default(arg) {
+        meaning += &format!(" [default: {d}]");
+    }
+    format!("| `--{long}{value}` | {} |", meaning.replace('|', "\\|"))
+}
+
+/// The option rows (`| `--...`) of the reference's section `### `stiffid NAME``, in order.
+fn reference_rows(reference: &str, name: &str) -> Option<Vec<String>> {
+    let heading = format!("### `stiffid {name}`\n");
+    let start = reference.find(&heading)? + heading.len();
+    let rest = &reference[start..];
+    let end = rest.find("\n## ").into_iter().chain(rest.find("\n### ")).min();
+    let section = &rest[..end.unwrap_or(rest.len())];
+    let rows = (section.lines())
+        .filter(|l| l.starts_with("| `--"))
+        .map(str::to_string)
+        .collect();
+    Some(rows)
+}
+
+#[test]
+fn the_references_option_tables_are_the_commands_options() {
+    let reference = std::fs::read_to_string(repo().join("docs/reference.md")).unwrap();
+    let mut drift = Vec::new();
+    for (name, cmd) in commands() {
+        let expected: Vec<String> = options(&cmd).into_iter().map(row).collect();
+        let Some(found) = reference_rows(&reference, &name) else {
+            drift.push(format!("docs/reference.md: no section ### `stiffid {name}`"));
+            continue;
+        };
+        for e in expected.iter().filter(|e| !found.contains(e)) {
+            drift.push(format!("stiffid {name}: the reference lacks or differs from\n  {e}"));
+        }
+        for f in found.iter().filter(|f| !expected.contains(f)) {
+            drift.push(format!("stiffid {name}: the reference holds a row the command does not declare\n  {f}"));
+        }
+        let order: Vec<&String> = found.iter().filter(|f| expected.contains(f)).collect();
+        let declared: Vec<&String> = expected.iter().filter(|e| found.contains(e)).collect();
+        if order != declared {
+            drift.push(format!("stiffid {name}: the reference's rows are not in the command's order"));
+        }
+    }
+    assert!(
+        drift.is_empty(),
+        "docs/reference.md's option tables differ from the command's declarations (write each row as shown):\n{}",
+        drift.join("\n")
+    );
+}
+
+/// A Python function's keywords with their defaults as written in its PyO3 signature
+/// (`None` for a parameter without one), `*` and `**` left out.
+type Signature = BTreeMap<String, Option<String>>;
+
+/// Every `#[pyo3(signature = (...))]` of the Python package's sources, by function name (a name
+/// given twice, such as two `from_file`, is left out).
+fn python_signatures() -> BTreeMap<String, Signature> {
+    let dir = repo().join("crates/stiffid-py/src");
+    let mut found: BTreeMap<String, Vec<Signature>> = BTreeMap::new();
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let text = std::fs::read_to_string(entry.unwrap().path()).unwrap();
+        let mut rest = text.as_str();
+        while let Some(at) = rest.find("#[pyo3(signature = (") {
+            rest = &rest[at + "#[pyo3(signature = (".len()..];
+            let inner = balanced(rest);
+            let after = &rest[inner.len()..];
+            let name = after.split("fn ").nth(1).unwrap();
+            let name: String = name.chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
+            found.entry(name).or_default().push(parameters(inner));
+        }
+    }
+    (found.into_iter())
+        .filter(|(_, v)| v.len() == 1)
+        .map(|(k, mut v)| (k, v.remove(0)))
+        .collect()
+}
+
+/// The text up to the `)` that closes the signature's tuple.
+fn balanced(text: &str) -> &str {
+    let (mut depth, mut quoted) = (0i32, false);
+    for (i, c) in text.char_indices() {
+        match c {
+            '"' => quoted = !quoted,
+            '(' | '[' if !quoted => depth += 1,
+            ')' | ']' if !quoted && depth == 0 => return &text[..i],
+            ')' | ']' if !quoted => depth -= 1,
+            _ => {}
+        }
+    }
+    text
+}
+
+/// The parameters of a signature's text, split at its top-level commas.
+fn parameters(text: &str) -> Signature {
+    let (mut out, mut current, mut depth, mut quoted) = (Signature::new(), String::new(), 0, false);
+    for c in text.chars().chain([',']) {
+        match c {
+            '"' => quoted = !quoted,
+            '(' | '[' if !quoted => depth += 1,
+            ')' | ']' if !quoted => depth -= 1,
+            ',' if !quoted && depth == 0 => {
+                let p = std::mem::take(&mut current);
+                let p = p.trim();
+                if !p.is_empty() && !p.starts_with('*') {
+                    match p.split_once('=') {
+                        Some((k, v)) => out.insert(k.trim().into(), Some(v.trim().into())),
+                        None => out.insert(p.into(), None),
+                    };
+                }
+                continue;
+            }
+            _ => {}
+        }
+        current.push(c);
+    }
+    out
+}
+
+/// Whether a Python default and the option's agree: numbers equal as numbers (tuples element by
+/// element against comma-separated values), texts equal, `false` for a switch, `None` for an
+/// option without a default.
+fn same_default(python: Option<&str>, option: &clap::Arg) -> bool {
+    let clap = default(option);
+    let switch = !option.get_action().takes_values();
+    match (python, clap.as_deref()) {
+        (None, _) => true,
+        (Some("None"), None) => true,
+        (Some("false"), None) => switch,
+        (Some(p), Some(c)) => {
+            let p = p.trim_matches(|ch| ch == '(' || ch == ')' || ch == '"');
+            let numbers = |s: &str| -> Option<Vec<f64>> {
+                s.split(',').map(|x| x.trim().parse::<f64>().ok()).collect()
+            };
+            match (numbers(p), numbers(c)) {
+                (Some(a), Some(b)) => a == b,
+                _ => p == c,
+            }
+        }
+        _ => false,
+    }
+}
+
+/// The Python function of each command, and the names that are in one front end only: the
+/// keyword (or option, `--` spelt as `_`) and why.
+const FRONT_ENDS: &[(&str, &str, &[(&str, &str)])] = &[
+    ("compensate", "compensate", &[
+        ("json", "the command's output form"),
+        ("report", "the command's report directory; Python returns figures=True"),
+        ("out", "the CSV the command writes; Python returns arrays"),
+        ("program_out", "the program the command writes; Python returns its text"),
+        ("figures", "Python's figures as SVG strings"),
+        ("map_over", "Python's map= names the variable"),
+    ]),
+    ("place", "place", &[
+        ("json", "the command's output form"),
+        ("out", "the setup the command writes; Python returns setup_text"),
+    ]),
+];
+
+#[test]
+fn python_keywords_and_the_commands_options_agree_on_names_and_defaults() {
+    let signatures = python_signatures();
+    let commands: BTreeMap<String, clap::Command> = commands().into_iter().collect();
+    let mut drift = Vec::new();
+    for (command, function, one_sided) in FRONT_ENDS {
+        let cmd = &commands[*command];
+        let Some(python) = signatures.get(*function) else {
+            drift.push(format!("Python has no function {function}"));
+            continue;
+        };
+        let opts: BTreeMap<String, &clap::Arg> = (options(cmd).into_iter())
+            .map(|a| (a.get_long().unwrap().replace('-', "_"), a))
+            .collect();
+        let allowed: BTreeSet<&str> = one_sided.iter().map(|(n, _)| *n).collect();
+        for (name, value) in python {
+            match opts.get(name) {
+                Some(arg) if !same_default(value.as_deref(), arg) => drift.push(format!(
+                    "{command}: Python's {name}={} but --{} defaults to {:?}",
+                    value.as_deref().unwrap_or("(required)"),
+                    arg.get_long().unwrap(),
+                    default(arg)
+                )),
+                Some(_) => {}
+                None if allowed.contains(name.as_str()) => {}
+                None => drift.push(format!("{command}: Python's keyword {name} has no option --{}", name.replace('_', "-"))),
+            }
+        }
+        for name in opts.keys().filter(|n| !python.contains_key(*n) && !allowed.contains(n.as_str())) {
+            drift.push(format!("{command}: the option --{} has no Python keyword {name}", name.replace('_', "-")));
+        }
+        for name in allowed.iter().filter(|n| python.contains_key(**n) && opts.contains_key(**n)) {
+            drift.push(format!("{command}: {name} is in both front ends: remove it from FRONT_ENDS"));
+        }
+    }
+    assert!(drift.is_empty(), "the front ends disagree:\n{}", drift.join("\n"));
+}
