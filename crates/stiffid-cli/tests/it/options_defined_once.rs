@@ -1,8 +1,10 @@
 //! Each option is declared once, in the command's parser (`stiffid_cli::command`: its name,
 //! value, help with its range and unit, default), and what repeats it elsewhere is checked
 //! against that declaration so the three cannot drift:
-//! - the reference's option tables (`docs/reference.md`, one per command): row for row the
-//!   command's options, each `| --name <VALUE> | help [default: X] |` as clap states it;
+//! - the reference's option tables (`docs/reference.md`, the first `| option | meaning |` table
+//!   of each command's section): the same options in the same order, each row stating the
+//!   option's default (`[default: X]`, `the default X`) and every range its help states (`A to
+//!   B`, `A <= value <= B`);
 //! - the Python keywords of the same jobs (their PyO3 signatures in `crates/stiffid-py/src`): a
 //!   keyword and an option of the same name (`margin_deg`, `--margin-deg`) have the same default,
 //!   and a name in one front end only is one of the differences listed here, each with why.
@@ -47,68 +49,119 @@ fn default(arg: &clap::Arg) -> Option<String> {
     }
 }
 
-/// The reference's row of `arg`: `| `--name <VALUE>` | help [default: X] |`.
-fn row(arg: &clap::Arg) -> String {
-    let long = arg.get_long().unwrap();
-    let value = match arg.get_action().takes_values() {
-        true => {
-            let names: Vec<String> = match arg.get_value_names() {
-                Some(n) => n.iter().map(|s| s.to_string()).collect(),
-                None => vec![arg.get_id().as_str().to_uppercase()],
-            };
-            format!(" <{}>", names.join("> <"))
-        }
-        false => String::new(),
-    };
+/// The help of `arg` as one line.
+fn help(arg: &clap::Arg) -> String {
     let help = (arg.get_long_help().or(arg.get_help()))
         .map(|h| h.to_string())
         .unwrap_or_default();
-    let mut meaning = help.split_whitespace().collect::<Vec<_>>().join(" ");
-    if let Some(d) = default(arg) {
-        meaning += &format!(" [default: {d}]");
-    }
-    format!("| `--{long}{value}` | {} |", meaning.replace('|', "\\|"))
+    help.split_whitespace().collect::<Vec<_>>().join(" ")
 }
 
-/// The option rows (`| `--...`) of the reference's section `### `stiffid NAME``, in order.
-fn reference_rows(reference: &str, name: &str) -> Option<Vec<String>> {
+/// The reference's option rows of the section `### `stiffid NAME``: its first table headed
+/// `| option | meaning |`, each row's option name (`margin-deg`) and its meaning.
+fn reference_rows(reference: &str, name: &str) -> Option<Vec<(String, String)>> {
     let heading = format!("### `stiffid {name}`\n");
     let start = reference.find(&heading)? + heading.len();
     let rest = &reference[start..];
     let end = rest.find("\n## ").into_iter().chain(rest.find("\n### ")).min();
     let section = &rest[..end.unwrap_or(rest.len())];
-    let rows = (section.lines())
-        .filter(|l| l.starts_with("| `--"))
-        .map(str::to_string)
+    let Some(table) = section.find("| option | meaning |") else {
+        return Some(Vec::new());
+    };
+    let rows = (section[table..].lines().skip(2))
+        .take_while(|l| l.starts_with('|'))
+        .filter_map(|l| l.trim_start_matches("| ").split_once(" | "))
+        .flat_map(|(cell, meaning)| {
+            // A row may name several options (`--tolerance-mm <L>`, `--tolerance-deg <A>`).
+            let meaning = meaning.trim_end_matches(" |").to_string();
+            (cell.split("`--").skip(1))
+                .map(|l| l.chars().take_while(|c| c.is_alphanumeric() || *c == '-').collect())
+                .map(move |long: String| (long, meaning.clone()))
+                .collect::<Vec<_>>()
+        })
         .collect();
     Some(rows)
 }
 
+/// The numeric ranges a help states: `A to B` and `A <= value <= B`, as pairs of numbers.
+fn ranges(text: &str) -> BTreeSet<(String, String)> {
+    let words: Vec<&str> = text
+        .split(|c: char| c.is_whitespace() || "()[],;:".contains(c))
+        .filter(|w| !w.is_empty())
+        .collect();
+    let number = |w: &str| w.replace(' ', "").parse::<f64>().is_ok();
+    let mut out = BTreeSet::new();
+    for k in 1..words.len().saturating_sub(1) {
+        let (a, b) = (words[k - 1], words[k + 1]);
+        if words[k] == "to" && number(a) && number(b) {
+            out.insert((a.to_string(), b.to_string()));
+        }
+        if words[k] == "value" && k >= 2 && k + 2 < words.len() && words[k - 1] == "<=" && words[k + 1] == "<=" {
+            out.insert((words[k - 2].to_string(), words[k + 2].to_string()));
+        }
+    }
+    out
+}
+
+/// Whether the reference's `meaning` states the default `d` (`[default: 5]`, `the default 5`,
+/// `(default `5`)`, `` `5` (default)``), or, without one, states no `[default: X]` unless the
+/// option's help names `X` as what it falls back to.
+fn states_default(meaning: &str, d: Option<&str>, help: &str) -> bool {
+    match d {
+        None => match meaning.split_once("[default: ") {
+            None => true,
+            Some((_, rest)) => {
+                let x = rest.split(']').next().unwrap_or_default();
+                help.contains("default") && help.contains(x)
+            }
+        },
+        Some(d) => [
+            format!("[default: {d}]"),
+            format!("default {d}"),
+            format!("default: {d}"),
+            format!("default `{d}`"),
+            format!("`{d}` (default"),
+        ]
+        .iter()
+        .any(|f| meaning.contains(f.as_str())),
+    }
+}
+
 #[test]
-fn the_references_option_tables_are_the_commands_options() {
+fn the_references_option_tables_name_each_option_with_its_default_and_ranges() {
     let reference = std::fs::read_to_string(repo().join("docs/reference.md")).unwrap();
     let mut drift = Vec::new();
     for (name, cmd) in commands() {
-        let expected: Vec<String> = options(&cmd).into_iter().map(row).collect();
-        let Some(found) = reference_rows(&reference, &name) else {
+        let declared = options(&cmd);
+        let Some(rows) = reference_rows(&reference, &name) else {
             drift.push(format!("docs/reference.md: no section ### `stiffid {name}`"));
             continue;
         };
-        for e in expected.iter().filter(|e| !found.contains(e)) {
-            drift.push(format!("stiffid {name}: the reference lacks or differs from\n  {e}"));
+        let names: Vec<&str> = rows.iter().map(|(n, _)| n.as_str()).collect();
+        let longs: Vec<&str> = declared.iter().map(|a| a.get_long().unwrap()).collect();
+        if names != longs {
+            drift.push(format!(
+                "stiffid {name}: the reference's options {names:?}, the command's {longs:?}"
+            ));
+            continue;
         }
-        for f in found.iter().filter(|f| !expected.contains(f)) {
-            drift.push(format!("stiffid {name}: the reference holds a row the command does not declare\n  {f}"));
-        }
-        let order: Vec<&String> = found.iter().filter(|f| expected.contains(f)).collect();
-        let declared: Vec<&String> = expected.iter().filter(|e| found.contains(e)).collect();
-        if order != declared {
-            drift.push(format!("stiffid {name}: the reference's rows are not in the command's order"));
+        for (arg, (long, meaning)) in declared.iter().zip(&rows) {
+            let d = default(arg);
+            if !states_default(meaning, d.as_deref(), &help(arg)) {
+                drift.push(format!("stiffid {name} --{long}: the reference does not state the default {d:?}"));
+            }
+            // Every range the command states is the reference's (which may say more).
+            let (stated, given) = (ranges(meaning), ranges(&help(arg)));
+            if !given.is_subset(&stated) {
+                drift.push(format!(
+                    "stiffid {name} --{long}: the reference's ranges {stated:?}, the command's {given:?}"
+                ));
+            }
         }
     }
     assert!(
         drift.is_empty(),
-        "docs/reference.md's option tables differ from the command's declarations (write each row as shown):\n{}",
+        "docs/reference.md's option tables differ from the command's declarations:\n{}",
         drift.join("\n")
     );
 }
@@ -215,6 +268,9 @@ const FRONT_ENDS: &[(&str, &str, &[(&str, &str)])] = &[
         ("program_out", "the program the command writes; Python returns its text"),
         ("figures", "Python's figures as SVG strings"),
         ("map_over", "Python's map= names the variable"),
+        ("output", "the command takes the language from --out's extension"),
+        ("program_name", "the command names the program after --out's stem"),
+        ("csv", "the program's CSV the command writes; Python returns arrays"),
     ]),
     ("place", "place", &[
         ("json", "the command's output form"),
