@@ -171,7 +171,9 @@ fn track(group: &mut criterion::BenchmarkGroup<criterion::measurement::WallTime>
         .collect();
     let alone = Options {
         free: FreeVariables {
-            free: vec![Free::Station(FreeRange::checked(&Variable::Station, 60.0, 10.0).unwrap())],
+            free: vec![Free::Station(
+                FreeRange::checked(&Variable::Station, 60.0, 10.0).unwrap(),
+            )],
             aggregate: Aggregate::Max,
             ..FreeVariables::default()
         },

@@ -142,7 +142,9 @@ fn free_texts(free: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<String>> {
         return Ok(Vec::new());
     };
     let expected = "free: expected a list of str, the texts of `stiffid place --free`: [\"z\", \"tilt\"] (the height +-100 mm and the tilt +-10 deg), [\"z=-50..150\"] (mm from the part's own height), [\"tilt=-5..5\"] (deg)";
-    if free.is_instance_of::<pyo3::types::PyString>() || free.is_instance_of::<pyo3::types::PyBool>() {
+    if free.is_instance_of::<pyo3::types::PyString>()
+        || free.is_instance_of::<pyo3::types::PyBool>()
+    {
         return Err(error::value(expected));
     }
     free.extract::<Vec<String>>()

@@ -66,8 +66,14 @@ fn a_path_leans_within_its_cone_and_no_point_rises() {
     assert_eq!(free[0]["variable"], "lead-tilt");
     assert!((free[0]["range"].as_f64().unwrap() - 6.0).abs() < 1e-12);
     assert!((free[0]["step"].as_f64().unwrap() - 3.0).abs() < 1e-12);
-    assert_eq!((&free[0]["unit"], &free[0]["per"]), (&"deg".into(), &serde_json::Value::Null));
-    assert_eq!((&doc["minimise"], &doc["objective"]), (&"bound".into(), &"max".into()));
+    assert_eq!(
+        (&free[0]["unit"], &free[0]["per"]),
+        (&"deg".into(), &serde_json::Value::Null)
+    );
+    assert_eq!(
+        (&doc["minimise"], &doc["objective"]),
+        (&"bound".into(), &"max".into())
+    );
     let names = ["bound_mm", "lead_deg", "tilt_deg"];
     let (own, lean) = (
         columns(&dir.join("own.csv"), &names),

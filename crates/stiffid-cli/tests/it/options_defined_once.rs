@@ -63,7 +63,11 @@ fn reference_rows(reference: &str, name: &str) -> Option<Vec<(String, String)>> 
     let heading = format!("### `stiffid {name}`\n");
     let start = reference.find(&heading)? + heading.len();
     let rest = &reference[start..];
-    let end = rest.find("\n## ").into_iter().chain(rest.find("\n### ")).min();
+    let end = rest
+        .find("\n## ")
+        .into_iter()
+        .chain(rest.find("\n### "))
+        .min();
     let section = &rest[..end.unwrap_or(rest.len())];
     let Some(table) = section.find("| option | meaning |") else {
         return Some(Vec::new());
@@ -75,7 +79,11 @@ fn reference_rows(reference: &str, name: &str) -> Option<Vec<(String, String)>> 
             // A row may name several options (`--tolerance-mm <L>`, `--tolerance-deg <A>`).
             let meaning = meaning.trim_end_matches(" |").to_string();
             (cell.split("`--").skip(1))
-                .map(|l| l.chars().take_while(|c| c.is_alphanumeric() || *c == '-').collect())
+                .map(|l| {
+                    l.chars()
+                        .take_while(|c| c.is_alphanumeric() || *c == '-')
+                        .collect()
+                })
                 .map(move |long: String| (long, meaning.clone()))
                 .collect::<Vec<_>>()
         })
@@ -96,7 +104,12 @@ fn ranges(text: &str) -> BTreeSet<(String, String)> {
         if words[k] == "to" && number(a) && number(b) {
             out.insert((a.to_string(), b.to_string()));
         }
-        if words[k] == "value" && k >= 2 && k + 2 < words.len() && words[k - 1] == "<=" && words[k + 1] == "<=" {
+        if words[k] == "value"
+            && k >= 2
+            && k + 2 < words.len()
+            && words[k - 1] == "<="
+            && words[k + 1] == "<="
+        {
             out.insert((words[k - 2].to_string(), words[k + 2].to_string()));
         }
     }
@@ -134,7 +147,9 @@ fn the_references_option_tables_name_each_option_with_its_default_and_ranges() {
     for (name, cmd) in commands() {
         let declared = options(&cmd);
         let Some(rows) = reference_rows(&reference, &name) else {
-            drift.push(format!("docs/reference.md: no section ### `stiffid {name}`"));
+            drift.push(format!(
+                "docs/reference.md: no section ### `stiffid {name}`"
+            ));
             continue;
         };
         let names: Vec<&str> = rows.iter().map(|(n, _)| n.as_str()).collect();
@@ -148,7 +163,9 @@ fn the_references_option_tables_name_each_option_with_its_default_and_ranges() {
         for (arg, (long, meaning)) in declared.iter().zip(&rows) {
             let d = default(arg);
             if !states_default(meaning, d.as_deref(), &help(arg)) {
-                drift.push(format!("stiffid {name} --{long}: the reference does not state the default {d:?}"));
+                drift.push(format!(
+                    "stiffid {name} --{long}: the reference does not state the default {d:?}"
+                ));
             }
             // Every range the command states is the reference's (which may say more).
             let (stated, given) = (ranges(meaning), ranges(&help(arg)));
@@ -183,7 +200,10 @@ fn python_signatures() -> BTreeMap<String, Signature> {
             let inner = balanced(rest);
             let after = &rest[inner.len()..];
             let name = after.split("fn ").nth(1).unwrap();
-            let name: String = name.chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
+            let name: String = name
+                .chars()
+                .take_while(|c| c.is_alphanumeric() || *c == '_')
+                .collect();
             found.entry(name).or_default().push(parameters(inner));
         }
     }
@@ -261,116 +281,237 @@ fn same_default(python: Option<&str>, option: &clap::Arg) -> bool {
 /// The Python function of each command, and the names that are in one front end only: the
 /// keyword (or option, `--` spelt as `_`) and why.
 const FRONT_ENDS: &[(&str, &str, &[(&str, &str)])] = &[
-    ("compensate", "compensate", &[
-        ("json", "the command's output form"),
-        ("report", "the command's report directory; Python returns figures=True"),
-        ("out", "the CSV the command writes; Python returns arrays"),
-        ("figures", "Python's figures as SVG strings"),
-        ("output", "the command takes the language from --out's extension"),
-        ("program_name", "the command names the program after --out's stem"),
-        ("csv", "the program's CSV the command writes; Python returns arrays"),
-    ]),
-    ("place", "place", &[
-        ("json", "the command's output form"),
-        ("out", "the setup the command writes; Python returns setup_text"),
-    ]),
-    ("identify", "identify", &[
-        ("json", "the command's output form"),
-        ("out", "the stiffness file the command writes; Python returns the document"),
-        ("report", "the command's report directory; Python's figures(document)"),
-        ("data", "Python's measurements= (a file or arrays)"),
-        ("measurements", "the command's --data"),
-        ("q_deg", "Python's measurements as arrays"),
-        ("wrench", "Python's measurements as arrays"),
-        ("displacement_mm", "Python's measurements as arrays"),
-        ("point", "Python's measurements as arrays"),
-    ]),
-    ("validate", "validate", &[
-        ("json", "the command's output form"),
-        ("data", "Python's measurements= (a file or arrays)"),
-        ("measurements", "the command's --data"),
-        ("q_deg", "Python's measurements as arrays"),
-        ("wrench", "Python's measurements as arrays"),
-        ("displacement_mm", "Python's measurements as arrays"),
-        ("point", "Python's measurements as arrays"),
-        ("stiffness", "Python's stiffness_nm_per_rad= (numbers or a stiffness file)"),
-        ("stiffness_nm_per_rad", "the command's --stiffness"),
-    ]),
-    ("predict", "predict", &[
-        ("json", "the command's output form"),
-        ("stiffness", "Python's stiffness_nm_per_rad= and its covariance as arrays"),
-        ("stiffness_nm_per_rad", "the command's --stiffness file"),
-        ("compliance_covariance_rad2_per_nm2", "the command's --stiffness file"),
-    ]),
-    ("calibrate", "calibrate", &[
-        ("json", "the command's output form"),
-        ("report", "the command's report directory; Python's figures(document)"),
-        ("data", "Python's readings="),
-        ("readings", "the command's --data"),
-        ("update", "the command's --update [LIST]: Python's update=True and update_parameters"),
-        ("update_parameters", "the command's --update LIST"),
-    ]),
-    ("calibrate-cell", "calibrate_cell", &[
-        ("json", "the command's output form"),
-        ("out", "the setup fragment the command writes; Python returns the document"),
-        ("data", "Python's readings="),
-        ("readings", "the command's --data"),
-    ]),
-    ("register", "register", &[
-        ("json", "the command's output form"),
-        ("out", "the file the command writes; Python returns the document"),
-        ("data", "Python's readings="),
-        ("readings", "the command's --data"),
-        ("postures", "refused in Python too: renamed count (its message)"),
-    ]),
-    ("simulate", "simulate", &[
-        ("json", "the command's output form"),
-        ("out", "the directory the command writes; Python returns the document"),
-        ("force", "the command's overwrite of --out"),
-        ("postures", "Python's groups= (arrays)"),
-        ("groups", "the command's --postures files"),
-    ]),
-    ("reproduce", "reproduce", &[
-        ("out", "the directory the command writes; Python returns the document"),
-        ("force", "the command's overwrite of --out"),
-        ("figures", "Python's figures as SVG strings"),
-        ("setup", "Python's None is the command's default, the paper's built-in setup"),
-    ]),
-    ("force", "process_force", &[("json", "the command's output form")]),
-    ("setups new", "setups_new", &[
-        ("package_paths", "the command's global --package-path"),
-    ]),
-    ("select", "select", &[
-        ("json", "the command's output form"),
-        ("out", "the postures file the command writes; Python returns the document"),
-        ("report", "the command's plan directory; Python's plan(...)"),
-        ("force", "the command's overwrite of --out"),
-        ("setup", "a method of Python's Setup"),
-        ("count", "Python's n="),
-        ("n", "the command's --count"),
-        ("for", "Python's purpose= (for is a Python keyword)"),
-        ("purpose", "the command's --for"),
-        ("global", "Python's method=\"global\" (global is a Python keyword)"),
-        ("start_random", "Python's start="),
-        ("method", "the command's --global and --pool"),
-        ("station", "Python's stations= (a list)"),
-        ("stations", "the command's --station, repeated"),
-    ]),
-    ("evaluate", "evaluate", &[
-        ("json", "the command's output form"),
-        ("setup", "a method of Python's Setup"),
-        ("postures", "Python's postures_deg= (arrays)"),
-        ("postures_deg", "the command's --postures file"),
-        ("for", "Python's purpose= (for is a Python keyword)"),
-        ("purpose", "the command's --for"),
-    ]),
-    ("kinematics", "kinematics", &[
-        ("json", "the command's output form"),
-        ("setup", "a method of Python's Robot"),
-        ("robot", "a method of Python's Robot"),
-        ("tip", "Python's Robot.from_file(path, tip)"),
-        ("point_mm", "Python's None is the command's default, the flange origin"),
-    ]),
+    (
+        "compensate",
+        "compensate",
+        &[
+            ("json", "the command's output form"),
+            (
+                "report",
+                "the command's report directory; Python returns figures=True",
+            ),
+            ("out", "the CSV the command writes; Python returns arrays"),
+            ("figures", "Python's figures as SVG strings"),
+            (
+                "output",
+                "the command takes the language from --out's extension",
+            ),
+            (
+                "program_name",
+                "the command names the program after --out's stem",
+            ),
+            (
+                "csv",
+                "the program's CSV the command writes; Python returns arrays",
+            ),
+        ],
+    ),
+    (
+        "place",
+        "place",
+        &[
+            ("json", "the command's output form"),
+            (
+                "out",
+                "the setup the command writes; Python returns setup_text",
+            ),
+        ],
+    ),
+    (
+        "identify",
+        "identify",
+        &[
+            ("json", "the command's output form"),
+            (
+                "out",
+                "the stiffness file the command writes; Python returns the document",
+            ),
+            (
+                "report",
+                "the command's report directory; Python's figures(document)",
+            ),
+            ("data", "Python's measurements= (a file or arrays)"),
+            ("measurements", "the command's --data"),
+            ("q_deg", "Python's measurements as arrays"),
+            ("wrench", "Python's measurements as arrays"),
+            ("displacement_mm", "Python's measurements as arrays"),
+            ("point", "Python's measurements as arrays"),
+        ],
+    ),
+    (
+        "validate",
+        "validate",
+        &[
+            ("json", "the command's output form"),
+            ("data", "Python's measurements= (a file or arrays)"),
+            ("measurements", "the command's --data"),
+            ("q_deg", "Python's measurements as arrays"),
+            ("wrench", "Python's measurements as arrays"),
+            ("displacement_mm", "Python's measurements as arrays"),
+            ("point", "Python's measurements as arrays"),
+            (
+                "stiffness",
+                "Python's stiffness_nm_per_rad= (numbers or a stiffness file)",
+            ),
+            ("stiffness_nm_per_rad", "the command's --stiffness"),
+        ],
+    ),
+    (
+        "predict",
+        "predict",
+        &[
+            ("json", "the command's output form"),
+            (
+                "stiffness",
+                "Python's stiffness_nm_per_rad= and its covariance as arrays",
+            ),
+            ("stiffness_nm_per_rad", "the command's --stiffness file"),
+            (
+                "compliance_covariance_rad2_per_nm2",
+                "the command's --stiffness file",
+            ),
+        ],
+    ),
+    (
+        "calibrate",
+        "calibrate",
+        &[
+            ("json", "the command's output form"),
+            (
+                "report",
+                "the command's report directory; Python's figures(document)",
+            ),
+            ("data", "Python's readings="),
+            ("readings", "the command's --data"),
+            (
+                "update",
+                "the command's --update [LIST]: Python's update=True and update_parameters",
+            ),
+            ("update_parameters", "the command's --update LIST"),
+        ],
+    ),
+    (
+        "calibrate-cell",
+        "calibrate_cell",
+        &[
+            ("json", "the command's output form"),
+            (
+                "out",
+                "the setup fragment the command writes; Python returns the document",
+            ),
+            ("data", "Python's readings="),
+            ("readings", "the command's --data"),
+        ],
+    ),
+    (
+        "register",
+        "register",
+        &[
+            ("json", "the command's output form"),
+            (
+                "out",
+                "the file the command writes; Python returns the document",
+            ),
+            ("data", "Python's readings="),
+            ("readings", "the command's --data"),
+            (
+                "postures",
+                "refused in Python too: renamed count (its message)",
+            ),
+        ],
+    ),
+    (
+        "simulate",
+        "simulate",
+        &[
+            ("json", "the command's output form"),
+            (
+                "out",
+                "the directory the command writes; Python returns the document",
+            ),
+            ("force", "the command's overwrite of --out"),
+            ("postures", "Python's groups= (arrays)"),
+            ("groups", "the command's --postures files"),
+        ],
+    ),
+    (
+        "reproduce",
+        "reproduce",
+        &[
+            (
+                "out",
+                "the directory the command writes; Python returns the document",
+            ),
+            ("force", "the command's overwrite of --out"),
+            ("figures", "Python's figures as SVG strings"),
+            (
+                "setup",
+                "Python's None is the command's default, the paper's built-in setup",
+            ),
+        ],
+    ),
+    (
+        "force",
+        "process_force",
+        &[("json", "the command's output form")],
+    ),
+    (
+        "setups new",
+        "setups_new",
+        &[("package_paths", "the command's global --package-path")],
+    ),
+    (
+        "select",
+        "select",
+        &[
+            ("json", "the command's output form"),
+            (
+                "out",
+                "the postures file the command writes; Python returns the document",
+            ),
+            ("report", "the command's plan directory; Python's plan(...)"),
+            ("force", "the command's overwrite of --out"),
+            ("setup", "a method of Python's Setup"),
+            ("count", "Python's n="),
+            ("n", "the command's --count"),
+            ("for", "Python's purpose= (for is a Python keyword)"),
+            ("purpose", "the command's --for"),
+            (
+                "global",
+                "Python's method=\"global\" (global is a Python keyword)",
+            ),
+            ("start_random", "Python's start="),
+            ("method", "the command's --global and --pool"),
+            ("station", "Python's stations= (a list)"),
+            ("stations", "the command's --station, repeated"),
+        ],
+    ),
+    (
+        "evaluate",
+        "evaluate",
+        &[
+            ("json", "the command's output form"),
+            ("setup", "a method of Python's Setup"),
+            ("postures", "Python's postures_deg= (arrays)"),
+            ("postures_deg", "the command's --postures file"),
+            ("for", "Python's purpose= (for is a Python keyword)"),
+            ("purpose", "the command's --for"),
+        ],
+    ),
+    (
+        "kinematics",
+        "kinematics",
+        &[
+            ("json", "the command's output form"),
+            ("setup", "a method of Python's Robot"),
+            ("robot", "a method of Python's Robot"),
+            ("tip", "Python's Robot.from_file(path, tip)"),
+            (
+                "point_mm",
+                "Python's None is the command's default, the flange origin",
+            ),
+        ],
+    ),
 ];
 
 #[test]
@@ -404,15 +545,33 @@ fn python_keywords_and_the_commands_options_agree_on_names_and_defaults() {
                 )),
                 Some(_) => {}
                 None if listed => {}
-                None => drift.push(format!("{command}: Python's keyword {name} has no option --{}", name.replace('_', "-"))),
+                None => drift.push(format!(
+                    "{command}: Python's keyword {name} has no option --{}",
+                    name.replace('_', "-")
+                )),
             }
         }
-        for name in opts.keys().filter(|n| !python.contains_key(*n) && !allowed.contains(n.as_str())) {
-            drift.push(format!("{command}: the option --{} has no Python keyword {name}", name.replace('_', "-")));
+        for name in opts
+            .keys()
+            .filter(|n| !python.contains_key(*n) && !allowed.contains(n.as_str()))
+        {
+            drift.push(format!(
+                "{command}: the option --{} has no Python keyword {name}",
+                name.replace('_', "-")
+            ));
         }
-        for name in allowed.iter().filter(|n| !python.contains_key(**n) && !opts.contains_key(**n)) {
-            drift.push(format!("{command}: {name} is in neither front end: remove it from FRONT_ENDS"));
+        for name in allowed
+            .iter()
+            .filter(|n| !python.contains_key(**n) && !opts.contains_key(**n))
+        {
+            drift.push(format!(
+                "{command}: {name} is in neither front end: remove it from FRONT_ENDS"
+            ));
         }
     }
-    assert!(drift.is_empty(), "the front ends disagree:\n{}", drift.join("\n"));
+    assert!(
+        drift.is_empty(),
+        "the front ends disagree:\n{}",
+        drift.join("\n")
+    );
 }

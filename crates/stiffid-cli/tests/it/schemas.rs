@@ -155,7 +155,12 @@ fn a_stiffness_file_reads_every_key_the_documents_write() {
 #[test]
 fn the_force_document_names_itself_first() {
     let process = repo().join("examples/milling/aluminium.toml");
-    let out = stiffid(&["force", "--process", &process.display().to_string(), "--json"]);
+    let out = stiffid(&[
+        "force",
+        "--process",
+        &process.display().to_string(),
+        "--json",
+    ]);
     common::assert_success(&out);
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(text.starts_with("{\n  \"kind\": \"force\","), "{text}");

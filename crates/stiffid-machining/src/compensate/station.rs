@@ -85,7 +85,10 @@ pub(crate) fn on_track(
         return given(results, own);
     }
     let (cell, free) = free_axes(robot.external(), options)?;
-    let angles = options.free.tool_rotation().map_or(vec![0.0], |f| f.angles());
+    let angles = options
+        .free
+        .tool_rotation()
+        .map_or(vec![0.0], |f| f.angles());
     let states = states(&free);
     let sizes = (states.len(), angles.len(), free.len());
     check_sizes(options, sizes, cones, placed.len())?;

@@ -554,14 +554,14 @@ impl FreeVariables {
             if self.free[..i].iter().any(|g| g.same_variable(f)) {
                 return Err(Error::InvalidOption {
                     option: JobOption::Free,
-                    message: format!(
-                        "{}: given twice: at most one of each variable",
-                        f.name()
-                    ),
+                    message: format!("{}: given twice: at most one of each variable", f.name()),
                 });
             }
         }
-        let others = self.free.iter().any(|f| !matches!(f, Free::ToolRotation(_)));
+        let others = self
+            .free
+            .iter()
+            .any(|f| !matches!(f, Free::ToolRotation(_)));
         if self.minimise == Objective::Surge && others {
             return Err(Error::InvalidOption {
                 option: JobOption::Minimise,

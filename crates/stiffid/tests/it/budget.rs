@@ -8,8 +8,8 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
 use stiffid::app::compensate::{run, Input, Request};
 use stiffid::common::error::JobOption;
-use stiffid::machining::compensate::{Free, 
-    self, Aggregate, Compliance, FreeVariables, Objective, Options, PathPoint, Target,
+use stiffid::machining::compensate::{
+    self, Aggregate, Compliance, Free, FreeVariables, Objective, Options, PathPoint, Target,
 };
 use stiffid::observation::deflection::{Frame, Points};
 use stiffid::robot::ik::tool_pose;

@@ -8,8 +8,8 @@
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3, Vector6};
 use stiffid::cell::{bodies, body_box, capsule_box, capsules, Capsule, CheckKind, Checker, Part};
 use stiffid::machining::compensate::PathPoint;
-use stiffid::machining::compensate::{Free, 
-    self, Compensated, FreeRange, FreeVariables, Options, Variable,
+use stiffid::machining::compensate::{
+    self, Compensated, Free, FreeRange, FreeVariables, Options, Variable,
 };
 use stiffid::robot::external::{ExternalAxes, ExternalAxis, ExternalValues};
 use stiffid::robot::presets;

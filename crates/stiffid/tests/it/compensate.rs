@@ -8,8 +8,8 @@ use nalgebra::{
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
-use stiffid::machining::compensate::{Free, 
-    self, FreeRange, FreeVariables, Objective, Options, PathPoint, Target, Variable,
+use stiffid::machining::compensate::{
+    self, Free, FreeRange, FreeVariables, Objective, Options, PathPoint, Target, Variable,
 };
 use stiffid::observation::deflection::{base_wrench, Frame, Points};
 use stiffid::robot::ik::{self, pose_error, tool_pose};

@@ -6,7 +6,9 @@
 use nalgebra::{Isometry3, UnitQuaternion, Vector3};
 use stiffid::app::compensate::{run, Input, Request};
 use stiffid::common::warning::WarningKind;
-use stiffid::machining::compensate::{Free, Compensated, FreeVariables, Objective, Options, PathPoint};
+use stiffid::machining::compensate::{
+    Compensated, Free, FreeVariables, Objective, Options, PathPoint,
+};
 use stiffid::machining::dynamics::Dynamics;
 use stiffid::machining::process::file;
 use stiffid::machining::program::generate::Settings;

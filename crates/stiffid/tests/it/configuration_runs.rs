@@ -11,9 +11,9 @@ use nalgebra::{Translation3, Vector6};
 use stiffid::app::compensate::configurations::ConfigurationsDocument;
 use stiffid::app::compensate::{self as job, Input};
 use stiffid::common::limits::JointBox;
-use stiffid::machining::compensate::{Free, 
-    self, path_runs, Aggregate, Compensated, FreeVariables, Objective, Options, PathPoint, Scope,
-    Target,
+use stiffid::machining::compensate::{
+    self, path_runs, Aggregate, Compensated, Free, FreeVariables, Objective, Options, PathPoint,
+    Scope, Target,
 };
 use stiffid::machining::program::generate::Settings;
 use stiffid::machining::program::Dialect;

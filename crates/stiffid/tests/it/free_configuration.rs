@@ -7,8 +7,8 @@ use crate::common::on_robot;
 use crate::compensate::{line_path, options};
 use nalgebra::{Translation3, UnitQuaternion, Vector3, Vector6};
 use stiffid::common::limits::JointBox;
-use stiffid::machining::compensate::{Free, 
-    self, path_configurations, posed, Aggregate, Compensated, Configurations, FreeVariables,
+use stiffid::machining::compensate::{
+    self, path_configurations, posed, Aggregate, Compensated, Configurations, Free, FreeVariables,
     Objective, Options, PathPoint, Scope, Target,
 };
 use stiffid::robot::ik::tool_pose;

@@ -5,9 +5,9 @@
 //! where the table turned it; a cell without a positioner is refused naming the option.
 
 use nalgebra::{Isometry3, Rotation3, UnitQuaternion, Vector3, Vector6};
-use stiffid::machining::compensate::{Free, 
-    self, Aggregate, Compensated, FreeRange, FreeVariables, Model, Objective, Options, PathPoint,
-    Target, Variable,
+use stiffid::machining::compensate::{
+    self, Aggregate, Compensated, Free, FreeRange, FreeVariables, Model, Objective, Options,
+    PathPoint, Target, Variable,
 };
 use stiffid::observation::deflection::Frame;
 use stiffid::robot::external::{ExternalAxes, ExternalAxis, ExternalValues};
@@ -77,7 +77,10 @@ fn moved(i: usize, phi: f64) -> Isometry3<f64> {
 fn free(aggregate: Aggregate) -> (Options, Setup) {
     let s = on_table();
     let free = FreeVariables {
-        free: vec![Free::ToolRotation(crate::compensate::rotation(10.0, 5.0)), Free::Positioner(FreeRange::checked(&Variable::Positioner, 10.0, 10.0).unwrap())],
+        free: vec![
+            Free::ToolRotation(crate::compensate::rotation(10.0, 5.0)),
+            Free::Positioner(FreeRange::checked(&Variable::Positioner, 10.0, 10.0).unwrap()),
+        ],
         minimise: Objective::Bound,
         aggregate,
         ..FreeVariables::default()

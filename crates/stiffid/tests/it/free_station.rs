@@ -4,9 +4,9 @@
 //! point's bound rises; the loaded tool lands on the part from the chosen station.
 
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
-use stiffid::machining::compensate::{Free, 
-    self, Aggregate, Compensated, FreeRange, FreeVariables, Model, Objective, Options, PathPoint,
-    Target, Variable,
+use stiffid::machining::compensate::{
+    self, Aggregate, Compensated, Free, FreeRange, FreeVariables, Model, Objective, Options,
+    PathPoint, Target, Variable,
 };
 use stiffid::observation::deflection::Frame;
 use stiffid::robot::external::{ErrorMotions, ExternalAxes, ExternalAxis, ExternalValues};
@@ -51,7 +51,10 @@ fn moved(i: usize, phi: f64) -> Isometry3<f64> {
 fn free(aggregate: Aggregate) -> (Options, Setup) {
     let s = on_track();
     let free = FreeVariables {
-        free: vec![Free::ToolRotation(crate::compensate::rotation(10.0, 5.0)), Free::Station(FreeRange::checked(&Variable::Station, 100.0, 100.0).unwrap())],
+        free: vec![
+            Free::ToolRotation(crate::compensate::rotation(10.0, 5.0)),
+            Free::Station(FreeRange::checked(&Variable::Station, 100.0, 100.0).unwrap()),
+        ],
         minimise: Objective::Bound,
         aggregate,
         ..FreeVariables::default()

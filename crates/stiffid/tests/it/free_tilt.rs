@@ -5,9 +5,9 @@
 //! point where the tilt put it; a one-axis positioner is refused naming the option.
 
 use nalgebra::{Isometry3, Rotation3, UnitQuaternion, Vector3, Vector6};
-use stiffid::machining::compensate::{Free, 
-    self, Aggregate, Compensated, FreeRange, FreeVariables, Model, Objective, Options, PathPoint,
-    Target, Variable,
+use stiffid::machining::compensate::{
+    self, Aggregate, Compensated, Free, FreeRange, FreeVariables, Model, Objective, Options,
+    PathPoint, Target, Variable,
 };
 use stiffid::observation::deflection::Frame;
 use stiffid::robot::external::{ExternalAxes, ExternalAxis, ExternalValues};
@@ -86,7 +86,10 @@ fn moved(i: usize, phi: f64) -> Isometry3<f64> {
 /// The free tilt +-10 deg in 10 deg steps and the free tool axis +-10 deg in 5 deg steps.
 fn free(s: &Setup, aggregate: Aggregate) -> Options {
     let free = FreeVariables {
-        free: vec![Free::ToolRotation(crate::compensate::rotation(10.0, 5.0)), Free::Tilt(FreeRange::checked(&Variable::Tilt, 10.0, 10.0).unwrap())],
+        free: vec![
+            Free::ToolRotation(crate::compensate::rotation(10.0, 5.0)),
+            Free::Tilt(FreeRange::checked(&Variable::Tilt, 10.0, 10.0).unwrap()),
+        ],
         minimise: Objective::Bound,
         aggregate,
         ..FreeVariables::default()

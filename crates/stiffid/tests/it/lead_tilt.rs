@@ -6,8 +6,8 @@
 //! streamed path's grid too large is refused naming its states per point and the most points.
 
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
-use stiffid::machining::compensate::{Free, 
-    self, Aggregate, FreeVariables, LeadTilt, Model, Objective, Options, PathPoint, Target,
+use stiffid::machining::compensate::{
+    self, Aggregate, Free, FreeVariables, LeadTilt, Model, Objective, Options, PathPoint, Target,
 };
 use stiffid::machining::{self, process, Language};
 use stiffid::observation::deflection::Frame;
@@ -61,7 +61,9 @@ fn leaned(p: &PathPoint, lead: f64, tilt: f64) -> Isometry3<f64> {
 /// Lead and tilt free within `cone_deg` in `step_deg` steps, minimising the bound.
 fn options(s: &Setup, cone_deg: f64, step_deg: f64, aggregate: Aggregate) -> Options {
     let free = FreeVariables {
-        free: vec![Free::LeadTilt(LeadTilt::checked(Some(cone_deg), step_deg).unwrap())],
+        free: vec![Free::LeadTilt(
+            LeadTilt::checked(Some(cone_deg), step_deg).unwrap(),
+        )],
         aggregate,
         ..FreeVariables::default()
     };
@@ -137,7 +139,9 @@ fn the_axis_chosen_lies_in_the_cone_and_the_tool_lands_on_it() {
     let compliance = s.model_compliance("test").unwrap();
     let (cone, step) = (8f64.to_radians(), 2f64.to_radians());
     let mut options = options(&s, 8.0, 2.0, Aggregate::Max);
-    options.free.set(Free::ToolRotation(crate::compensate::rotation(20.0, 10.0)));
+    options
+        .free
+        .set(Free::ToolRotation(crate::compensate::rotation(20.0, 10.0)));
     let results = compensate::path(s.arm(), &compliance, &points, &options).unwrap();
     let model = Model::new(s.arm(), &compliance).unwrap();
     let z_own = down() * Vector3::z();
@@ -217,7 +221,10 @@ fn bad_cones_and_steps_are_refused_naming_the_option() {
     }
     assert_eq!(refused(None, 31.0), JobOption::LeadTiltStep);
     let surge = FreeVariables {
-        free: vec![Free::ToolRotation(crate::compensate::rotation(10.0, 5.0)), Free::LeadTilt(LeadTilt::checked(Some(10.0), 2.0).unwrap())],
+        free: vec![
+            Free::ToolRotation(crate::compensate::rotation(10.0, 5.0)),
+            Free::LeadTilt(LeadTilt::checked(Some(10.0), 2.0).unwrap()),
+        ],
         minimise: Objective::Surge,
         ..FreeVariables::default()
     };
@@ -291,7 +298,8 @@ fn a_streamed_grid_too_large_names_its_states_per_point() {
     assert!(!message.contains("x 14 path points"), "{message}");
     // With the rotation free in 1 deg steps over +-180 deg (361 rotations): 1.3e8 states.
     let mut o = options(&s, 30.0, 0.1, Aggregate::Sum);
-    o.free.set(Free::ToolRotation(crate::compensate::rotation(180.0, 1.0)));
+    o.free
+        .set(Free::ToolRotation(crate::compensate::rotation(180.0, 1.0)));
     let (_, message) = refused(&o);
     assert!(
         message.contains("361201 leans x 361 rotations = 130393561 states per path point"),
@@ -303,7 +311,8 @@ fn a_streamed_grid_too_large_names_its_states_per_point() {
     );
     // The rotation alone in 0.1 deg steps: 3601 rotations, at most 1388 points.
     let mut o = Options::for_setup(&s);
-    o.free.set(Free::ToolRotation(crate::compensate::rotation(180.0, 0.1)));
+    o.free
+        .set(Free::ToolRotation(crate::compensate::rotation(180.0, 0.1)));
     let points = line(1400).into_iter().map(Ok);
     let e = compensate::stream(s.arm(), &compliance, points, &o, |_, _| Ok::<(), Error>(()));
     let Err(Error::InvalidOption { option, message }) = e else {

@@ -8,7 +8,9 @@
 
 use nalgebra::Vector6;
 use stiffid::app::compensate::{self, Input, Report};
-use stiffid::machining::compensate::{Free, Compensated, FreeVariables, Objective, Options, PathPoint};
+use stiffid::machining::compensate::{
+    Compensated, Free, FreeVariables, Objective, Options, PathPoint,
+};
 use stiffid::machining::dynamics::Dynamics;
 use stiffid::machining::gcode::{self, Motion};
 use stiffid::machining::program::speed::Speed;

@@ -3,8 +3,8 @@
 //! largest step given, its values on the halved steps; on a smooth case one level reaches the
 //! optimum of a uniform grid of the halved step; bad values refused naming the option.
 
-use stiffid::machining::compensate::{Free, 
-    self, refine, Aggregate, Compensated, FreeVariables, Objective, Options, PathPoint,
+use stiffid::machining::compensate::{
+    self, refine, Aggregate, Compensated, Free, FreeVariables, Objective, Options, PathPoint,
 };
 use stiffid::machining::path;
 use stiffid::observation::deflection::Frame;
@@ -23,7 +23,10 @@ fn total(results: &[Compensated], aggregate: Aggregate) -> f64 {
 /// more, so that a 2.5 deg grid reaches 90 too).
 fn rotation(s: &Setup, max_step_deg: f64, aggregate: Aggregate, refine: usize) -> Options {
     let free = FreeVariables {
-        free: vec![Free::ToolRotation(crate::compensate::rotation(90.002, max_step_deg))],
+        free: vec![Free::ToolRotation(crate::compensate::rotation(
+            90.002,
+            max_step_deg,
+        ))],
         minimise: Objective::Bound,
         aggregate,
         ..FreeVariables::default()
@@ -105,7 +108,8 @@ fn the_refined_station_and_rotation_never_rise_and_keep_the_step() {
     for aggregate in [Aggregate::Sum, Aggregate::Max] {
         let options = |refine| {
             let mut o = rotation(&s, 5.0, aggregate, refine);
-            o.free.set(Free::Station(crate::compensate::station(100.0, 50.0)));
+            o.free
+                .set(Free::Station(crate::compensate::station(100.0, 50.0)));
             o
         };
         let run =

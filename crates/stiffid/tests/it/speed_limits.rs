@@ -9,8 +9,8 @@
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 use std::sync::Arc;
 use stiffid::app::compensate::{self, document::Document, Input};
-use stiffid::machining::compensate::{Free, 
-    self as comp, speed_shares, Aggregate, Compensated, FreeVariables, Objective, Options,
+use stiffid::machining::compensate::{
+    self as comp, speed_shares, Aggregate, Compensated, Free, FreeVariables, Objective, Options,
     PathPoint, Target,
 };
 use stiffid::machining::dynamics::Dynamics;

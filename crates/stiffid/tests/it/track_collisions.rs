@@ -6,8 +6,8 @@
 
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 use stiffid::cell::{capsules, CheckKind, Checker};
-use stiffid::machining::compensate::{Free, 
-    self, Aggregate, Compensated, FreeVariables, Options, PathPoint, Target,
+use stiffid::machining::compensate::{
+    self, Aggregate, Compensated, Free, FreeVariables, Options, PathPoint, Target,
 };
 use stiffid::observation::deflection::Frame;
 use stiffid::robot::external::{ExternalAxes, ExternalAxis, ExternalValues};

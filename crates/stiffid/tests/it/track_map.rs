@@ -8,8 +8,8 @@
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 use stiffid::cell::{CheckKind, Checker};
 use stiffid::machining::cell::on_carriage;
-use stiffid::machining::compensate::{Free, 
-    self, ChosenValues, FreeVariables, MapVariable, Options, PathPoint, Target,
+use stiffid::machining::compensate::{
+    self, ChosenValues, Free, FreeVariables, MapVariable, Options, PathPoint, Target,
 };
 use stiffid::observation::deflection::Frame;
 use stiffid::robot::external::{ExternalAxes, ExternalAxis, ExternalValues};

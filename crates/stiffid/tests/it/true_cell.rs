@@ -14,8 +14,8 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 use stiffid::app::compensate::{self, Input};
 use stiffid::identify::svd::fit;
-use stiffid::machining::compensate::{Free, 
-    Aggregate, Compensated, FreeVariables, Objective, Options, PathPoint,
+use stiffid::machining::compensate::{
+    Aggregate, Compensated, Free, FreeVariables, Objective, Options, PathPoint,
 };
 use stiffid::metrology::calibration::error_model::Observation;
 use stiffid::metrology::calibration::gravity::Gravity;
@@ -309,7 +309,10 @@ fn a_path_along_the_track_lands_on_the_true_cell() {
     check(own, own_nominal);
     // The station (+-500 mm) and the tool rotation (+-30 deg) chosen for the least deflection.
     options.free = FreeVariables {
-        free: vec![Free::ToolRotation(crate::compensate::rotation(30.0, 10.0)), Free::Station(crate::compensate::station(500.0, 100.0))],
+        free: vec![
+            Free::ToolRotation(crate::compensate::rotation(30.0, 10.0)),
+            Free::Station(crate::compensate::station(500.0, 100.0)),
+        ],
         minimise: Objective::Deflection,
         aggregate: Aggregate::Max,
         ..FreeVariables::default()

@@ -619,7 +619,9 @@ fn map_of(
     in_chosen.q0 = (outcome.configurations.as_ref())
         .and_then(compensate::Configurations::start)
         .unwrap_or(options.q0);
-    in_chosen.free = in_chosen.free.keeping(|f| !matches!(f, compensate::Free::Configuration(_)));
+    in_chosen.free = in_chosen
+        .free
+        .keeping(|f| !matches!(f, compensate::Free::Configuration(_)));
     // A program's wrenches hold the tool's weight (machining::compensate).
     let weighted =
         outcome.program.is_some() && crate::weight::tool_load(setup.arm(), compliance).is_some();

@@ -30,7 +30,10 @@ impl Free {
         for text in texts.iter().map(AsRef::as_ref) {
             let p = parts(text)?;
             if p.step.is_some() {
-                return Err(invalid(text, "no step: the placement's search is continuous"));
+                return Err(invalid(
+                    text,
+                    "no step: the placement's search is continuous",
+                ));
             }
             let slot = match p.name {
                 "z" => &mut z,

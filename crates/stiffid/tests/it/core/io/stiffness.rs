@@ -203,7 +203,10 @@ fn a_file_with_its_kind_reads_as_one_without_as_written_before() {
         {"name": "k5", "kind": "drive", "unit": "Nm/rad", "stiffness": 200000},
         {"name": "k6", "kind": "drive", "unit": "Nm/rad", "stiffness": 150000}]"#;
     let old = parse(&format!(r#"{{"parameters": {params}}}"#)).unwrap();
-    let new = parse(&format!(r#"{{"kind": "stiffness", "parameters": {params}}}"#)).unwrap();
+    let new = parse(&format!(
+        r#"{{"kind": "stiffness", "parameters": {params}}}"#
+    ))
+    .unwrap();
     assert_eq!(old, new);
     let h = new.compliance(&Model::default()).unwrap().h;
     assert_eq!(h[1], 1.0 / 3_000_000.0);

@@ -74,12 +74,18 @@ fn the_free_variables_are_one_list_each_found_by_its_kind_and_given_once() {
     assert_eq!(free.tool_rotation(), Some(rotation));
     assert_eq!(free.positioner(), Some(table));
     assert_eq!(free.lead_tilt(), Some(lean));
-    assert_eq!((free.station(), free.tilt(), free.configuration()), (None, None, None));
+    assert_eq!(
+        (free.station(), free.tilt(), free.configuration()),
+        (None, None, None)
+    );
     assert!(free.frees_external() && free.frees_tool_axis() && free.any());
     let names: Vec<&str> = free.free.iter().map(Free::name).collect();
     assert_eq!(names, ["positioner", "tool-rotation", "lead-tilt"]);
     let inside = free.keeping(|f| !f.is_external());
-    assert_eq!(inside.free, [Free::ToolRotation(rotation), Free::LeadTilt(lean)]);
+    assert_eq!(
+        inside.free,
+        [Free::ToolRotation(rotation), Free::LeadTilt(lean)]
+    );
     assert!(!inside.frees_external());
     // Two of one variable (two tables) are refused naming it, whatever their ranges.
     let other = FreeRange::checked(&Variable::Positioner, 10.0, 5.0).unwrap();
@@ -92,9 +98,13 @@ fn the_free_variables_are_one_list_each_found_by_its_kind_and_given_once() {
         range: 181f64.to_radians(),
         step: 1f64.to_radians(),
     };
-    let e = FreeVariables::new(vec![Free::ToolRotation(wide)], Objective::Bound, Aggregate::Sum)
-        .validate()
-        .unwrap_err()
-        .to_string();
+    let e = FreeVariables::new(
+        vec![Free::ToolRotation(wide)],
+        Objective::Bound,
+        Aggregate::Sum,
+    )
+    .validate()
+    .unwrap_err()
+    .to_string();
     assert!(e.contains("181"), "{e}");
 }

@@ -15,7 +15,8 @@ fn parse(texts: &[&str]) -> Option<Free> {
 #[test]
 fn the_height_and_tilt_are_ranges_from_the_parts_own_and_a_variable_not_given_stays() {
     assert_eq!(parse(&[]), None);
-    let close = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).abs() < 1e-12 && (a[1] - b[1]).abs() < 1e-12;
+    let close =
+        |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).abs() < 1e-12 && (a[1] - b[1]).abs() < 1e-12;
     let z = parse(&["z"]).unwrap();
     assert!(close(z.z, [0.3, 0.5]) && z.tilt == 0.0, "{z:?}");
     let z = parse(&["z = -50..150"]).unwrap();
