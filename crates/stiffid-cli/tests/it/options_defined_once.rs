@@ -280,7 +280,14 @@ fn same_default(python: Option<&str>, option: &clap::Arg) -> bool {
 
 /// The Python function of each command, and the names that are in one front end only: the
 /// keyword (or option, `--` spelt as `_`) and why.
-const FRONT_ENDS: &[(&str, &str, &[(&str, &str)])] = &[
+/// A command, its Python function and the names in one front end only, each with why.
+type FrontEnd = (
+    &'static str,
+    &'static str,
+    &'static [(&'static str, &'static str)],
+);
+
+const FRONT_ENDS: &[FrontEnd] = &[
     (
         "compensate",
         "compensate",

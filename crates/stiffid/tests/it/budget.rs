@@ -155,7 +155,6 @@ fn the_free_tool_axis_minimising_the_bound_raises_no_point() {
             free: vec![Free::ToolRotation(crate::compensate::rotation(60.0, 5.0))],
             minimise: Objective::Bound,
             aggregate,
-            ..FreeVariables::default()
         };
         let options = Options {
             free,

@@ -49,7 +49,6 @@ fn per(s: &Setup, aggregate: Aggregate, per: Scope) -> Options {
             free: vec![Free::Configuration(per)],
             minimise: Objective::Bound,
             aggregate,
-            ..FreeVariables::default()
         },
         ..options(s, None)
     }

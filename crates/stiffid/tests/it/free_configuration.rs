@@ -44,7 +44,6 @@ fn free_options(s: &Setup, aggregate: Aggregate) -> Options {
             free: vec![Free::Configuration(Scope::Program)],
             minimise: Objective::Bound,
             aggregate,
-            ..FreeVariables::default()
         },
         ..options(s, None)
     }

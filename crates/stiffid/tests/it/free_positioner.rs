@@ -83,7 +83,6 @@ fn free(aggregate: Aggregate) -> (Options, Setup) {
         ],
         minimise: Objective::Bound,
         aggregate,
-        ..FreeVariables::default()
     };
     let options = Options {
         free,

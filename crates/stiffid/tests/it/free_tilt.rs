@@ -92,7 +92,6 @@ fn free(s: &Setup, aggregate: Aggregate) -> Options {
         ],
         minimise: Objective::Bound,
         aggregate,
-        ..FreeVariables::default()
     };
     Options {
         free,

@@ -38,7 +38,6 @@ fn free(s: &Setup) -> Options {
         ],
         minimise: Objective::Bound,
         aggregate: Aggregate::Sum,
-        ..FreeVariables::default()
     };
     Options {
         free,

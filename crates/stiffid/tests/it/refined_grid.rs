@@ -29,7 +29,6 @@ fn rotation(s: &Setup, max_step_deg: f64, aggregate: Aggregate, refine: usize) -
         ))],
         minimise: Objective::Bound,
         aggregate,
-        ..FreeVariables::default()
     };
     Options {
         free,

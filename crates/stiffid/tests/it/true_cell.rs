@@ -315,7 +315,6 @@ fn a_path_along_the_track_lands_on_the_true_cell() {
         ],
         minimise: Objective::Deflection,
         aggregate: Aggregate::Max,
-        ..FreeVariables::default()
     };
     let (points, results) = compensated(&setup, &compliance, &options, &text);
     let moved = (points.iter().zip(&results))

@@ -254,7 +254,6 @@ fn a_path_on_a_turned_table_lands_on_the_true_part() {
         ],
         minimise: Objective::Deflection,
         aggregate: Aggregate::Max,
-        ..FreeVariables::default()
     };
     let poses = poses(&over);
     let (points, results) = compensated(&setup, &compliance, &options, &path(&poses));
