@@ -201,6 +201,13 @@ def test_a_free_table_angle_equals_the_command(cli, tmp_path):
     [table] = mine["document"]["free"]
     assert (table["variable"], table["unit"]) == ("positioner", "deg")
     assert (table["range"], table["step"]) == (pytest.approx(180.0), pytest.approx(5.0))
+    # The document's free variables pass back as they are: the same compensation.
+    again = stiffid.compensate(cell, path, stiffness, free=mine["document"]["free"], objective="max")
+    np.testing.assert_array_equal(again["bound_mm"], mine["bound_mm"])
+    with pytest.raises(ValueError, match=r"^free: unit mm: positioner is in deg"):
+        stiffid.compensate(cell, path, stiffness, free=[dict(table, unit="mm")])
+    with pytest.raises(ValueError, match=r"^free: per: only for the configuration"):
+        stiffid.compensate(cell, path, stiffness, free=[dict(table, per="run")])
     own = stiffid.compensate(cell, path, stiffness)
     assert (mine["bound_mm"] <= own["bound_mm"] * (1 + 1e-9)).all()
     assert mine["bound_mm"].max() < 0.6 * own["bound_mm"].max()
