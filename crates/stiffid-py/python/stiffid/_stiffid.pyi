@@ -9,6 +9,7 @@ from numpy.typing import ArrayLike, NDArray
 from ._documents import (
     CalibrateCellDocument,
     CalibrateDocument,
+    ForceDocument,
     KinematicsDocument,
     PlaceDocument,
     PlanDocument,
@@ -318,8 +319,8 @@ def process_force(
     process: Union[str, os.PathLike[str]],
     *,
     peak_resolution_deg: Optional[float] = None,
-) -> dict[str, Any]:
-    """The document of `stiffid force --json`: process, peak_resolution_deg, operations (name, kind, mean_force_n, mean_moment_nm, peak_force_n)."""
+) -> ForceDocument:
+    """The document of `stiffid force --json`: kind ("force"), process, peak_resolution_deg, operations (name, kind, mean_force_n, mean_moment_nm, peak_force_n)."""
 
 def read_program(
     program: Union[str, os.PathLike[str]],
