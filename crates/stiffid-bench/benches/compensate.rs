@@ -121,10 +121,9 @@ fn benches(c: &mut Criterion) {
     // chosen by dynamic programming to minimise the worst point's error bound.
     let rotation = compensate::FreeRange::checked(&compensate::Variable::ToolRotation, 30.0, 5.0);
     let free = compensate::FreeVariables {
-        tool_rotation: rotation.ok(),
+        free: vec![compensate::Free::ToolRotation(rotation.unwrap())],
         minimise: compensate::Objective::Bound,
         aggregate: compensate::Aggregate::Max,
-        ..compensate::FreeVariables::default()
     };
     let free_options = Options {
         free,
@@ -147,7 +146,7 @@ fn benches(c: &mut Criterion) {
 /// minimising the worst point's bound.
 fn track(group: &mut criterion::BenchmarkGroup<criterion::measurement::WallTime>) {
     use nalgebra::{Isometry3, UnitQuaternion, Vector3};
-    use stiffid::machining::compensate::{Aggregate, FreeRange, FreeVariables, Variable};
+    use stiffid::machining::compensate::{Aggregate, Free, FreeRange, FreeVariables, Variable};
     use stiffid::robot::external::ExternalValues;
     let text = include_str!("../../../examples/track/track-cell.toml");
     let s = setup::parse(text, "track-cell.toml", |name, _| {
@@ -171,7 +170,9 @@ fn track(group: &mut criterion::BenchmarkGroup<criterion::measurement::WallTime>
         .collect();
     let alone = Options {
         free: FreeVariables {
-            station: FreeRange::checked(&Variable::Station, 60.0, 10.0).ok(),
+            free: vec![Free::Station(
+                FreeRange::checked(&Variable::Station, 60.0, 10.0).unwrap(),
+            )],
             aggregate: Aggregate::Max,
             ..FreeVariables::default()
         },
@@ -186,7 +187,8 @@ fn track(group: &mut criterion::BenchmarkGroup<criterion::measurement::WallTime>
         },
     );
     let mut both = alone.clone();
-    both.free.tool_rotation = FreeRange::checked(&Variable::ToolRotation, 30.0, 5.0).ok();
+    let rotation = FreeRange::checked(&Variable::ToolRotation, 30.0, 5.0).unwrap();
+    both.free.set(Free::ToolRotation(rotation));
     group.bench_function(
         "track, station and rotation (13 x 13 states), worst bound",
         |b| {

@@ -36,7 +36,13 @@ fn benches(c: &mut Criterion) {
             process: &process,
         },
         options: &options,
-        region: Region::from_mm_deg([500.0, 2000.0, -1500.0, 500.0], [-180.0, 180.0], None, 0.4),
+        region: Region::from_mm_deg(
+            [500.0, 2000.0, -1500.0, 500.0],
+            [-180.0, 180.0],
+            &[] as &[&str],
+            0.4,
+        )
+        .unwrap(),
         objective: Aggregate::Max,
         margin: 5f64.to_radians(),
         max_condition: 1000.0,

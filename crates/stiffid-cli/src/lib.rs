@@ -185,8 +185,10 @@ fn exit_code(e: &anyhow::Error) -> u8 {
 
 /// The command line: [`Cli`], with every numeric option (a number, or comma-separated numbers
 /// in a unit such as `--q-deg`) taking values that start with `-` (`--target-pct -inf`,
-/// `--q0-deg -10,20,...`), in every subcommand.
-fn command() -> clap::Command {
+/// `--q0-deg -10,20,...`), in every subcommand. Each option is declared here once (its name,
+/// value, help with its range and unit, default): the reference's option tables and the
+/// Python keywords of the same jobs are checked against it by the test `options_defined_once`.
+pub fn command() -> clap::Command {
     fn numeric(arg: clap::Arg) -> clap::Arg {
         use std::any::TypeId;
         let id = arg.get_value_parser().type_id();

@@ -29,9 +29,22 @@ fn renamed(command: &str, options: &[&str]) -> Option<String> {
     })
 }
 
-/// A retired option of `stiffid compensate` among its `options`, with how to write it with
-/// `--free` (the library's table, which Python's `compensate` refuses by too).
+/// `place`'s options retired for `--free VARIABLE=LO..HI`: the old spelling and how to write it.
+const PLACE_RETIRED: [(&str, &str); 2] = [
+    (
+        "--z-mm",
+        "--free z=LO..HI (the height's range, mm from the part's own)",
+    ),
+    ("--tilt-deg", "--free tilt=-T..T (deg)"),
+];
+
+/// A retired option of `stiffid compensate` or `stiffid place` among its `options`, with how to
+/// write it with `--free` (for compensate the library's table, which Python's `compensate`
+/// refuses by too).
 fn retired(command: &str, options: &[&str]) -> Option<String> {
+    if command == "place" {
+        return place_retired(options);
+    }
     if command != "compensate" {
         return None;
     }
@@ -39,6 +52,23 @@ fn retired(command: &str, options: &[&str]) -> Option<String> {
         let name = a.strip_prefix("--")?.split('=').next()?;
         let (option, value) = stiffid_machining::compensate::free::retired(name)?;
         Some(format!("--{name}: removed; write --{option} {value}"))
+    })
+}
+
+/// A retired option of `stiffid place`, or its `--free` given without a value as it was a
+/// switch (the six degrees of freedom).
+fn place_retired(options: &[&str]) -> Option<String> {
+    let given =
+        |old: &str, a: &str| a == old || a.strip_prefix(old).is_some_and(|r| r.starts_with('='));
+    let found = PLACE_RETIRED.iter().find_map(|&(old, new)| {
+        (options.iter().any(|a| given(old, a))).then(|| format!("{old}: removed; write {new}"))
+    });
+    let bare =
+        |i: usize| options[i] == "--free" && options.get(i + 1).is_none_or(|v| v.starts_with("--"));
+    found.or_else(|| {
+        (0..options.len()).any(bare).then(|| {
+            "--free: expected a variable: --free z (the height, its own +-100 mm) and --free tilt (+-10 deg) for the six degrees of freedom, or z=LO..HI (mm from its own) and tilt=-T..T (deg)".to_string()
+        })
     })
 }
 

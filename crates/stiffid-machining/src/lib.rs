@@ -376,7 +376,7 @@ pub fn compensate_for(
     let nominal: Vec<Isometry3<f64>> = poses.iter().map(|p| p.2).collect();
     let thrusts = dynamics::exit_thrusts(process, &nominal, &indices);
     let free = options.free.frees_external();
-    let cones = match &options.free.lead_tilt {
+    let cones = match &options.free.lead_tilt() {
         Some(l) => {
             let allowed: Vec<f64> = (operations.iter())
                 .map(|o| o.map_or(0.0, |(_, op)| op.cone))
@@ -401,7 +401,7 @@ pub fn compensate_for(
             }
         }
     };
-    let (mut results, configurations) = match options.free.configuration {
+    let (mut results, configurations) = match options.free.configuration() {
         None => (evaluate(0, &points, options)?, None),
         Some(_) => {
             let starts = compensate::starts(&joint);

@@ -14,7 +14,8 @@ use stiffid_core::observation::deflection::Frame;
 use stiffid_machining::app::compensate::document::{values, Document, Names, Row, DYNAMICS};
 use stiffid_machining::app::compensate::{self as job, Input, Request};
 use stiffid_machining::compensate::{
-    free, Aggregate, Compensated, Free, Freedom, MapVariable, Objective, Options, PathPoint,
+    free, Aggregate, Compensated, FreeOption, Freedom, MapVariable, Objective, Options, PathPoint,
+    Variable,
 };
 use stiffid_machining::dynamics::Dynamics;
 use stiffid_machining::process::file;
@@ -424,7 +425,7 @@ pub(crate) fn options(
 
 /// `free=`: a list of the texts of `compensate --free` (`"tool-rotation=-90..90/5"`) or of dicts
 /// (`{"variable": "station", "range": 500, "step": 10}`, `range` and `step` optional).
-fn free_variables(free: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<Free>> {
+fn free_variables(free: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<FreeOption>> {
     let Some(free) = free else {
         return Ok(Vec::new());
     };
@@ -440,16 +441,16 @@ fn free_variables(free: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<Free>> {
 }
 
 /// One item of `free=`.
-fn free_variable(item: &Bound<'_, PyAny>, expected: &str) -> PyResult<Free> {
+fn free_variable(item: &Bound<'_, PyAny>, expected: &str) -> PyResult<FreeOption> {
     if let Ok(text) = item.extract::<String>() {
-        return Free::parse(&text).map_err(raise);
+        return FreeOption::parse(&text).map_err(raise);
     }
     let dict = item.cast::<PyDict>().map_err(|_| error::value(expected))?;
     for key in dict.keys() {
         let key: String = key.extract().map_err(|_| error::value(expected))?;
-        if !["variable", "range", "step"].contains(&key.as_str()) {
+        if !["variable", "range", "step", "unit", "per"].contains(&key.as_str()) {
             return Err(error::value(format!(
-                "free: `{key}`: expected the keys variable, range and step"
+                "free: `{key}`: expected the keys variable, range, step, unit and per"
             )));
         }
     }
@@ -470,7 +471,36 @@ fn free_variable(item: &Bound<'_, PyAny>, expected: &str) -> PyResult<Free> {
         .ok_or_else(|| error::value("free: a dict needs its variable"))?
         .extract()
         .map_err(|_| error::value("free: variable: expected a str"))?;
-    Free::from_parts(&variable, number("range")?, number("step")?).map_err(raise)
+    let text = |key: &str| -> PyResult<Option<String>> {
+        match dict.get_item(key)? {
+            Some(v) if !v.is_none() => v
+                .extract::<String>()
+                .map(Some)
+                .map_err(|_| error::value(format!("free: {key}: expected a str"))),
+            _ => Ok(None),
+        }
+    };
+    // A document's `free` entry as it is: `per` the configuration's, `unit` the variable's.
+    let option = match text("per")? {
+        Some(per) if variable == "configuration" => {
+            FreeOption::parse(&format!("configuration={per}"))
+        }
+        Some(_) => return Err(error::value("free: per: only for the configuration")),
+        None => FreeOption::from_parts(&variable, number("range")?, number("step")?),
+    }
+    .map_err(raise)?;
+    let own = match &option.variable {
+        Variable::Axis(_) => None,
+        Variable::Configuration(_) => Some(""),
+        v => Some(v.limits().unit),
+    };
+    match (text("unit")?, own) {
+        (Some(u), Some(own)) if u != own => Err(error::value(format!(
+            "free: unit {u}: {variable} is in {}",
+            if own.is_empty() { "no unit" } else { own }
+        ))),
+        _ => Ok(option),
+    }
 }
 
 /// Refuses a keyword that `free=` or `minimise=` replaced, saying how to write it.

@@ -22,8 +22,8 @@ use stiffid_machining::{Language, Program};
 /// axial]`` (Altintas's linear edge-force model for milling, a specific-energy model for
 /// drilling); with ``peak_resolution_deg`` (0.01 to 10) also the milling peak over a revolution
 /// on a grid of spindle angles that far apart. Returns the document of ``stiffid force --json``:
-/// ``process``, ``peak_resolution_deg`` and ``operations``, each with ``name``, ``kind``,
-/// ``mean_force_n``, ``mean_moment_nm`` and, when asked, ``peak_force_n``.
+/// ``kind`` (``"force"``), ``process``, ``peak_resolution_deg`` and ``operations``, each with
+/// ``name``, ``kind``, ``mean_force_n``, ``mean_moment_nm`` and, when asked, ``peak_force_n``.
 #[pyfunction]
 #[pyo3(signature = (process, *, peak_resolution_deg=None))]
 pub fn process_force<'py>(

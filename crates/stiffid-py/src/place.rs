@@ -22,9 +22,10 @@ use stiffid_machining::Language;
 /// ``[workpiece] base_from_part``, the part's own placement) with the stiffness ``stiffness``
 /// (numbers per parameter or a stiffness file, as ``compensate``): the part frame's origin
 /// within ``region_mm`` ``(x0, x1, y0, y1)`` of the robot base frame, turned about the base z axis
-/// within ``rotation_deg`` from its own; ``free=True`` also moves its height within ``z_mm``
-/// (default its own +-100 mm) and tilts it about the base x and y axes within
-/// ``+-tilt_deg``. Every point must be reachable from ``q0_deg`` without a change of
+/// within ``rotation_deg`` from its own; ``free``, a list of the texts of ``stiffid place
+/// --free``, also moves its height (``"z"``: its own +-100 mm, ``"z=LO..HI"``: mm from its own)
+/// and tilts it about the base x and y axes (``"tilt"``: within +-10 deg, ``"tilt=-T..T"``).
+/// Every point must be reachable from ``q0_deg`` without a change of
 /// configuration, every axis ``margin_deg`` from its joint limits, the TCP Jacobian's condition
 /// number at most ``max_condition`` and, with a ``[cell]``, clear of the floor, the obstacles
 /// and itself. It minimises the path's largest bound (``objective="max"``) or their sum
@@ -36,7 +37,7 @@ use stiffid_machining::Language;
 /// ``gain_vs_reach_only_pct``, ``evaluations``) and ``setup_text``: the setup file's text
 /// with the chosen ``[workpiece]``, as ``stiffid place --out`` writes it.
 #[pyfunction]
-#[pyo3(signature = (setup, stiffness, *, program=None, process=None, path=None, frame="base", region_mm, rotation_deg=(-180.0, 180.0), free=false, z_mm=None, tilt_deg=10.0, objective="max", margin_deg=5.0, max_condition=1000.0, seed=1, grid=5, samples=32, starts=3, chord_tolerance_mm=0.01, level=0.95, force_tolerance_pct=20.0, q0_deg=None))]
+#[pyo3(signature = (setup, stiffness, *, program=None, process=None, path=None, frame="base", region_mm, rotation_deg=(-180.0, 180.0), free=None, objective="max", margin_deg=5.0, max_condition=1000.0, seed=1, grid=5, samples=32, starts=3, chord_tolerance_mm=0.01, level=0.95, force_tolerance_pct=20.0, q0_deg=None, **retired))]
 #[allow(clippy::too_many_arguments)]
 pub fn place<'py>(
     py: Python<'py>,
@@ -48,9 +49,7 @@ pub fn place<'py>(
     frame: &str,
     region_mm: [f64; 4],
     rotation_deg: (f64, f64),
-    free: bool,
-    z_mm: Option<[f64; 2]>,
-    #[pyo3(from_py_with = crate::count::number)] tilt_deg: f64,
+    free: Option<&Bound<'py, PyAny>>,
     objective: &str,
     #[pyo3(from_py_with = crate::count::number)] margin_deg: f64,
     #[pyo3(from_py_with = crate::count::number)] max_condition: f64,
@@ -62,7 +61,10 @@ pub fn place<'py>(
     #[pyo3(from_py_with = crate::count::number)] level: f64,
     #[pyo3(from_py_with = crate::count::number)] force_tolerance_pct: f64,
     q0_deg: Option<&Bound<'py, PyAny>>,
+    retired: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    refuse_retired(retired)?;
+    let free = free_texts(free)?;
     let setup_text = error::read(&setup)?;
     let s = Setup::from_file(py, setup, Vec::new())?;
     let s = &s.inner;
@@ -107,9 +109,10 @@ pub fn place<'py>(
     let region = Region::from_mm_deg(
         region_mm,
         [rotation_deg.0, rotation_deg.1],
-        free.then_some((z_mm, tilt_deg)),
+        &free,
         own.map_or(0.0, |o| o.translation.vector.z),
-    );
+    )
+    .map_err(raise)?;
     let request = Request {
         setup: s,
         setup_text: &setup_text,
@@ -131,4 +134,38 @@ pub fn place<'py>(
     let out = to_python(py, &Document::new(&report, &own.unwrap_or_default()), &[])?;
     out.set_item("setup_text", &report.setup_text)?;
     Ok(out)
+}
+
+/// `free=`: a list of the texts of `stiffid place --free` (`"z=-50..150"`, `"tilt"`).
+fn free_texts(free: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<String>> {
+    let Some(free) = free else {
+        return Ok(Vec::new());
+    };
+    let expected = "free: expected a list of str, the texts of `stiffid place --free`: [\"z\", \"tilt\"] (the height +-100 mm and the tilt +-10 deg), [\"z=-50..150\"] (mm from the part's own height), [\"tilt=-5..5\"] (deg)";
+    if free.is_instance_of::<pyo3::types::PyString>()
+        || free.is_instance_of::<pyo3::types::PyBool>()
+    {
+        return Err(error::value(expected));
+    }
+    free.extract::<Vec<String>>()
+        .map_err(|_| error::value(expected))
+}
+
+/// Refuses `z_mm=` and `tilt_deg=`, which `free=` replaced, saying how to write them; any
+/// other keyword as Python would.
+fn refuse_retired(retired: Option<&Bound<'_, PyDict>>) -> PyResult<()> {
+    let Some(key) = retired.and_then(|r| r.keys().into_iter().next()) else {
+        return Ok(());
+    };
+    let key: String = key.extract()?;
+    let how = match key.as_str() {
+        "z_mm" => "free=[\"z=LO..HI\"] (the height's range, mm from the part's own)",
+        "tilt_deg" => "free=[\"tilt=-T..T\"] (deg)",
+        _ => {
+            return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+                "place() got an unexpected keyword argument '{key}'"
+            )))
+        }
+    };
+    Err(error::value(format!("{key}: removed; write {how}")))
 }

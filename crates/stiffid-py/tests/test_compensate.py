@@ -198,7 +198,16 @@ def test_a_free_table_angle_equals_the_command(cli, tmp_path):
     cell = stiffid.Setup.from_file(setup)
     mine = stiffid.compensate(cell, path, stiffness, free=["positioner=-180..180/5"], objective="max")
     np.testing.assert_allclose(mine["bound_mm"], [p["bound_mm"] for p in theirs], rtol=1e-12)
-    assert mine["document"]["free_positioner"]["range_deg"] == pytest.approx(180.0)
+    [table] = mine["document"]["free"]
+    assert (table["variable"], table["unit"]) == ("positioner", "deg")
+    assert (table["range"], table["step"]) == (pytest.approx(180.0), pytest.approx(5.0))
+    # The document's free variables pass back as they are: the same compensation.
+    again = stiffid.compensate(cell, path, stiffness, free=mine["document"]["free"], objective="max")
+    np.testing.assert_array_equal(again["bound_mm"], mine["bound_mm"])
+    with pytest.raises(ValueError, match=r"^free: unit mm: positioner is in deg"):
+        stiffid.compensate(cell, path, stiffness, free=[dict(table, unit="mm")])
+    with pytest.raises(ValueError, match=r"^free: per: only for the configuration"):
+        stiffid.compensate(cell, path, stiffness, free=[dict(table, per="run")])
     own = stiffid.compensate(cell, path, stiffness)
     assert (mine["bound_mm"] <= own["bound_mm"] * (1 + 1e-9)).all()
     assert mine["bound_mm"].max() < 0.6 * own["bound_mm"].max()
@@ -233,7 +242,8 @@ def test_lead_and_tilt_equal_the_command(milling, cli, tmp_path):
         np.testing.assert_allclose(mine[key], [p[key] for p in theirs], rtol=1e-12, atol=1e-12)
     assert np.hypot(mine["lead_deg"], mine["tilt_deg"]).max() <= 6 + 1e-9
     assert np.abs(mine["lead_deg"]).max() > 0
-    assert mine["document"]["free_lead_tilt"]["step_deg"] == pytest.approx(3)
+    [lean] = mine["document"]["free"]
+    assert (lean["variable"], lean["step"]) == ("lead-tilt", pytest.approx(3))
     with pytest.raises(ValueError, match="free lead-tilt range"):
         stiffid.compensate(milling, PATH, STIFFNESS, free=["lead-tilt=-45..45"])
     with pytest.raises(ValueError, match="cone_deg: removed"):

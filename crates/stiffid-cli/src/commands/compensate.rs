@@ -22,7 +22,7 @@ use stiffid_machining::app::compensate::dynamics::OperationDynamics;
 use stiffid_machining::app::compensate::stream::Points;
 use stiffid_machining::app::compensate::{self as job, Input, Report, Request};
 use stiffid_machining::compensate::{
-    Aggregate, Compensated, Free, Freedom, MapVariable, Objective, Options, PathPoint,
+    Aggregate, Compensated, FreeOption, Freedom, MapVariable, Objective, Options, PathPoint,
 };
 use stiffid_machining::dynamics::Dynamics;
 use stiffid_machining::process::file;
@@ -459,7 +459,7 @@ fn options(args: &Args, setup: &Setup) -> Result<Options> {
     let free = args
         .free
         .iter()
-        .map(|f| Free::parse(f.as_str()))
+        .map(|f| FreeOption::parse(f.as_str()))
         .collect::<stiffid_core::Result<Vec<_>>>()?;
     let freedom = Freedom {
         free,
@@ -580,11 +580,12 @@ fn bound(doc: &Document) -> String {
 /// grid's refinement, the configurations.
 fn free(doc: &Document) -> String {
     let (d, mut text) = (&doc.summary, String::new());
-    if let (Some(f), Some(o)) = (&d.free_tool_axis, &doc.free_tool_axis) {
+    let rotation = doc.free.iter().any(|f| f.variable == "tool-rotation");
+    if let (Some(f), true, Some(minimise)) = (&d.free_tool_axis, rotation, doc.minimise) {
         let [lo, hi] = f.tool_rotation_range_deg;
         text += &format!(
             "free tool axis (minimising the {}): mean TCP deflection {:.4} mm before, {:.4} mm after ({:+.1}%), tool rotation within [{lo:.1}, {hi:.1}] deg\n",
-            o.objective,
+            minimise,
             f.mean_deflection_before_mm,
             f.mean_deflection_after_mm,
             f.mean_change_pct,

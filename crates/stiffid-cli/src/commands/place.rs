@@ -53,16 +53,13 @@ pub struct Args {
     /// within +-180.
     #[arg(long, allow_hyphen_values = true, default_value = "-180,180")]
     rotation_deg: String,
-    /// The six degrees of freedom: also the part's height (--z-mm) and a tilt about the base x
-    /// and y axes (--tilt-deg).
-    #[arg(long)]
-    free: bool,
-    /// With --free: the part origin's z range, Z0,Z1 in mm; default its own z +-100 mm.
-    #[arg(long, allow_hyphen_values = true, requires = "free")]
-    z_mm: Option<String>,
-    /// With --free: the largest tilt about the base x and y axes, deg (0 to 45).
-    #[arg(long, default_value_t = 10.0, requires = "free")]
-    tilt_deg: f64,
+    /// A free variable besides x, y and the rotation (repeatable, one of each; both: the six
+    /// degrees of freedom), in the grammar of `compensate --free`: `z=LO..HI` (the part origin's
+    /// height, mm from its own; `z` alone: -100..100) or `tilt=-T..T` (the tilt about the base x
+    /// and y axes, deg, 0 < T <= 45; `tilt` alone: -10..10). A variable not given stays at its
+    /// own (the height, no tilt).
+    #[arg(long, value_name = "VARIABLE=LO..HI", allow_hyphen_values = true)]
+    free: Vec<String>,
     /// What the placement minimises: the path's largest error bound, or their sum.
     #[arg(long, value_parser = choice::<Aggregate>(), default_value = "max")]
     objective: Aggregate,
@@ -218,13 +215,7 @@ fn region(args: &Args, own_z: f64) -> Result<Region> {
             )
         })?;
     let a = exactly(&args.rotation_deg, "--rotation-deg")?;
-    let z = args
-        .z_mm
-        .as_deref()
-        .map(|t| exactly(t, "--z-mm"))
-        .transpose()?;
-    let free = args.free.then_some((z, args.tilt_deg));
-    Ok(Region::from_mm_deg(r, a, free, own_z))
+    Ok(Region::from_mm_deg(r, a, &args.free, own_z)?)
 }
 
 /// Parses the setup written as `--setup` would read it from `--out` (a robot file it names

@@ -17,7 +17,7 @@ pub struct Args {
 }
 
 /// Every document with a schema: its name and what writes (or reads) it.
-const DOCUMENTS: [(&str, &str); 16] = [
+const DOCUMENTS: [(&str, &str); 17] = [
     ("kinematics", "stiffid kinematics --json"),
     ("evaluate", "stiffid evaluate --json"),
     ("select", "stiffid select --json"),
@@ -43,6 +43,7 @@ const DOCUMENTS: [(&str, &str); 16] = [
     ("calibrate-cell", "stiffid calibrate-cell --json"),
     ("calibrate", "stiffid calibrate --json"),
     ("place", "stiffid place --json"),
+    ("force", "stiffid force --json"),
 ];
 
 /// Prints the schema of the named document, or without a name the names, one per line.
@@ -76,6 +77,7 @@ pub fn schema(name: &str) -> Result<Schema> {
         "validate" => closed::<stiffid_identify::app::validate::document::Document>(),
         "compensate" => closed::<stiffid_machining::app::compensate::document::Document>(),
         "place" => closed::<stiffid_machining::app::place::document::Document>(),
+        "force" => closed::<stiffid_machining::app::force::document::Document>(),
         "simulate" => closed::<stiffid_design::app::simulate::document::Document>(),
         "reproduce" => closed::<stiffid_design::app::reproduce::document::Summary<'static>>(),
         "register" => closed::<stiffid_calibrate::app::register::document::Document>(),

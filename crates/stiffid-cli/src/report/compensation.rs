@@ -141,7 +141,8 @@ fn compose(
         remains(s),
     ];
     // The summary's sums are any free variable's; the rotation is named only where it was free.
-    if let (Some(free), Some(_)) = (&s.free_tool_axis, &document.free_tool_axis) {
+    let rotation = document.free.iter().any(|f| f.variable == "tool-rotation");
+    if let (Some(free), true) = (&s.free_tool_axis, rotation) {
         items.push(format!(
             "Free tool axis: sum of the TCP deflections {} mm before, {} mm after the optimisation of the rotation about tool z.",
             num(free.sum_deflection_before_mm),

@@ -324,7 +324,7 @@ fn searches_that_cannot_be() -> Vec<Refusal> {
             &fine,
             &["--free lead-tilt step", "at most 5e6"],
         ),
-        // A region that holds no feasible placement; --z-mm without --free.
+        // A region that holds no feasible placement; the retired --z-mm names the new form.
         case(
             place(),
             &["--region-mm", "-20000,-19000,-20000,-19000"],

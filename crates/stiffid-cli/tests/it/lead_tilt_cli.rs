@@ -60,8 +60,20 @@ fn a_path_leans_within_its_cone_and_no_point_rises() {
     let out = milling(&dir, "lean.csv", &flags);
     assert_success(&out);
     let doc = json(&out);
-    assert!((doc["free_lead_tilt"]["cone_deg"].as_f64().unwrap() - 6.0).abs() < 1e-12);
-    assert_eq!(doc["free_lead_tilt"]["objective"], "bound");
+    // One entry per free variable, in the units of --free; the objective once.
+    let free = doc["free"].as_array().unwrap();
+    assert_eq!(free.len(), 1);
+    assert_eq!(free[0]["variable"], "lead-tilt");
+    assert!((free[0]["range"].as_f64().unwrap() - 6.0).abs() < 1e-12);
+    assert!((free[0]["step"].as_f64().unwrap() - 3.0).abs() < 1e-12);
+    assert_eq!(
+        (&free[0]["unit"], &free[0]["per"]),
+        (&"deg".into(), &serde_json::Value::Null)
+    );
+    assert_eq!(
+        (&doc["minimise"], &doc["objective"]),
+        (&"bound".into(), &"max".into())
+    );
     let names = ["bound_mm", "lead_deg", "tilt_deg"];
     let (own, lean) = (
         columns(&dir.join("own.csv"), &names),

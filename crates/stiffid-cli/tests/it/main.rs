@@ -27,6 +27,7 @@ mod model_ranking_cli;
 #[path = "../../../stiffid/tests/it/mutate.rs"]
 mod mutate;
 mod optional_fields_cli;
+mod options_defined_once;
 mod options_proptest;
 mod output;
 mod place_cli;

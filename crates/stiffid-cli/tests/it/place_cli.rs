@@ -255,3 +255,82 @@ fn robot_programs_and_built_in_setups_without_a_tool_are_refused_naming_why() {
     );
     assert!(!std::path::Path::new(&out).exists());
 }
+
+#[test]
+fn the_height_and_tilt_are_free_in_the_grammar_of_compensate_and_the_old_spelling_says_the_new() {
+    let dir = temp_dir("place-free");
+    let part = dir.join("part.csv");
+    std::fs::write(&part, path_in_part_frame([0.0; 3])).unwrap();
+    let (part, out) = (
+        part.display().to_string(),
+        dir.join("placed.toml").display().to_string(),
+    );
+    let (setup, stiffness) = (example("fanuc-milling.toml"), example("stiffness.json"));
+    let rest = [
+        "--stiffness",
+        &stiffness,
+        "--path",
+        &part,
+        "--region-mm",
+        "500,2000,-1500,500",
+        "--rotation-deg",
+        "0,0",
+        "--grid",
+        "3",
+        "--samples",
+        "8",
+        "--starts",
+        "1",
+    ];
+    // The height within -30..60 mm of its own (400 mm), the tilt within +-4 deg.
+    let free = ["--free", "z=-30..60", "--free", "tilt=-4..4"];
+    let d = json(&stiffid(&args(&setup, &out, &[&rest[..], &free].concat())));
+    let z = d["placed"]["xyz_mm"][2].as_f64().unwrap();
+    assert!((370.0 - 1e-9..=460.0 + 1e-9).contains(&z), "{d}");
+    let rpy: Vec<f64> = (d["placed"]["rpy_deg"].as_array().unwrap().iter())
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    assert!(
+        rpy[0].abs() <= 4.0 + 1e-6 && rpy[1].abs() <= 4.0 + 1e-6,
+        "{d}"
+    );
+    // The height alone: no tilt, whatever the search finds.
+    let d = json(&stiffid(&args(
+        &setup,
+        &out,
+        &[&rest[..], &["--free", "z"]].concat(),
+    )));
+    let rpy = &d["placed"]["rpy_deg"];
+    assert!(rpy[0].as_f64().unwrap().abs() < 1e-9 && rpy[1].as_f64().unwrap().abs() < 1e-9);
+    let z = d["placed"]["xyz_mm"][2].as_f64().unwrap();
+    assert!((300.0 - 1e-9..=500.0 + 1e-9).contains(&z), "{d}");
+    // Bad texts are refused naming --free and the text; the old spelling names the new.
+    for (given, said) in [
+        (
+            &["--free", "x=-5..5"][..],
+            &["--free", "x=-5..5", "expected z"][..],
+        ),
+        (
+            &["--free", "tilt=-2..5"],
+            &["--free", "tilt=-2..5", "-T..T"],
+        ),
+        (&["--free", "tilt=-50..50"], &["--free", "0 < T <= 45"]),
+        (&["--free", "z=/10"], &["--free", "z=/10", "no step"]),
+        (
+            &["--free", "z", "--free", "z=-5..5"],
+            &["--free", "given twice"],
+        ),
+        (
+            &["--free"],
+            &["--free: expected a variable", "--free z", "--free tilt"],
+        ),
+        (&["--z-mm", "0,10"], &["--z-mm: removed", "--free z=LO..HI"]),
+        (
+            &["--tilt-deg", "5"],
+            &["--tilt-deg: removed", "--free tilt=-T..T"],
+        ),
+    ] {
+        let refused = stiffid(&args(&setup, &out, &[&rest[..], given].concat()));
+        assert_usage_error(&refused, said);
+    }
+}

@@ -57,7 +57,7 @@ fn the_shipped_schemas_are_the_generated_ones() {
 
 /// Every document says what it is: its schema requires `kind`, one name per document (the
 /// schema's name; each of identify's three forms its own), so no union is told apart by its
-/// keys. The stiffness file, read rather than written, has none.
+/// keys. The stiffness file's schema, of what is read, does not require it.
 #[test]
 fn every_document_has_a_kind() {
     let mut kinds = Vec::new();
@@ -89,7 +89,14 @@ fn every_document_has_a_kind() {
     unique.sort();
     unique.dedup();
     assert_eq!(unique.len(), kinds.len(), "{kinds:?}");
-    assert_eq!(kinds.len(), 17, "{kinds:?}");
+    assert_eq!(kinds.len(), 18, "{kinds:?}");
+    // The file `calibrate --stiffness-out` writes (the document's `stiffness_file`) names itself
+    // too; the stiffness file's reader takes a file without it, as written before.
+    let text = std::fs::read_to_string(schema_path("calibrate")).unwrap();
+    let schema: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let file = &schema["$defs"]["stiffness"];
+    assert_eq!(file["properties"]["kind"]["const"], "stiffness");
+    assert_eq!(file["required"][0], "kind");
 }
 
 /// The top-level keys of the shipped schema `name`, or of its definition `def`.
@@ -122,7 +129,7 @@ fn a_stiffness_file_reads_every_key_the_documents_write() {
     assert_eq!(forms.len(), 3, "{forms:?}");
     let mut written = keys("identify", Some(forms[0]));
     written.extend(keys("identify", Some(forms[1])));
-    written.extend(keys("calibrate", Some("StiffnessSection")));
+    written.extend(keys("calibrate", Some("stiffness")));
     let mut read = keys("stiffness", None);
     let ignored = ::stiffid_core::io::stiffness::DOCUMENT_KEYS;
     read.extend(ignored.iter().map(|k| k.to_string()));
@@ -142,4 +149,21 @@ fn a_stiffness_file_reads_every_key_the_documents_write() {
         .filter(|k| keys("stiffness", None).contains(**k))
         .collect();
     assert!(both.is_empty(), "keys both read and ignored: {both:?}");
+}
+
+/// The force document, which had none, names itself in its first key as every other does.
+#[test]
+fn the_force_document_names_itself_first() {
+    let process = repo().join("examples/milling/aluminium.toml");
+    let out = stiffid(&[
+        "force",
+        "--process",
+        &process.display().to_string(),
+        "--json",
+    ]);
+    common::assert_success(&out);
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.starts_with("{\n  \"kind\": \"force\","), "{text}");
+    let doc: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert!(!doc["operations"].as_array().unwrap().is_empty(), "{doc}");
 }

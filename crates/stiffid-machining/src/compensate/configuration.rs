@@ -3,7 +3,7 @@
 //! objective kept (module docs of [`super`], "The free configuration").
 
 use super::feasible::Checks;
-use super::{Aggregate, Compensated, Compliance, FreeVariables, Model, Objective, Options};
+use super::{Aggregate, Compensated, Compliance, Free, FreeVariables, Model, Objective, Options};
 use super::{PathPoint, Removed, Target};
 use nalgebra::{Isometry3, Vector6};
 use rand::SeedableRng;
@@ -144,7 +144,7 @@ pub(super) fn choose_one(
         });
     };
     let mut alone = options.clone();
-    alone.free.configuration = None;
+    alone.free = alone.free.keeping(|f| !matches!(f, Free::Configuration(_)));
     let own_start = own_start(arm, first, options);
     let starts = starts(arm, first, own_start, options);
     let model = Model::new(arm, compliance)?;
@@ -301,7 +301,7 @@ pub(super) fn evaluate_branch(
     evaluate: impl Fn(&[PathPoint], &Options) -> Result<Vec<Compensated>>,
 ) -> Result<Vec<Compensated>> {
     let mut alone = options.clone();
-    alone.free.configuration = None;
+    alone.free = alone.free.keeping(|f| !matches!(f, Free::Configuration(_)));
     match branch.own {
         true => evaluate(points, &alone),
         false => evaluate(
@@ -431,7 +431,7 @@ fn starts(
 /// [`Error::InvalidField`] (`free_configuration`) without one; [`Error::InvalidOption`]
 /// ([`JobOption::Configuration`]) for more than [`super::MAX_CONFIGURATION_POINTS`] points.
 pub(super) fn free_configuration(options: &Options, points: usize) -> Result<FreeVariables> {
-    if options.free.configuration.is_none() {
+    if options.free.configuration().is_none() {
         return Err(Error::InvalidField {
             field: "free_configuration".into(),
             message: "missing: the configurations are evaluated for a free configuration".into(),
@@ -446,5 +446,5 @@ pub(super) fn free_configuration(options: &Options, points: usize) -> Result<Fre
             ),
         });
     }
-    Ok(options.free)
+    Ok(options.free.clone())
 }

@@ -1,20 +1,23 @@
-//! What a compensation may move, in one place: each free variable ([`Free`]: the variable, its
-//! range and its step) and the run's one objective ([`Freedom`]), parsed and checked here for the
-//! command line (`--free tool-rotation=-90..90/5`) and Python (`free=["tool-rotation=-90..90/5"]`).
+//! What a compensation may move, in one place: each free variable as given ([`FreeOption`]: the
+//! variable, its range and its step) and the run's one objective ([`Freedom`]), parsed and checked
+//! here for the command line (`--free tool-rotation=-90..90/5`) and Python
+//! (`free=["tool-rotation=-90..90/5"]`) into [`FreeVariables`]. The grammar's one parser,
+//! [`FreeOption::parse`], also reads `place --free` ([`crate::app::place`]).
 
+use super::grammar::{self, invalid};
 use super::options::Options;
-use super::variables::{Aggregate, FreeRange, FreeVariables, LeadTilt, Objective, Variable};
+use super::variables::{Aggregate, Free, FreeRange, FreeVariables, LeadTilt, Objective, Variable};
 use super::Scope;
 use stiffid_core::common::error::JobOption;
 use stiffid_core::common::words::number;
 use stiffid_core::robot::external::{ExternalAxes, Role};
 use stiffid_core::{Error, Result, Setup};
 
-/// One free variable: what moves, how far from the path's own value (`range`, `-range..range`)
+/// One free variable as given: what moves, how far from the path's own value (`range`, `-range..range`)
 /// and on which grid step (also the most it changes between consecutive points), in the units
 /// of the command line: mm for the station, deg otherwise; `None` for the default.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Free {
+pub struct FreeOption {
     /// What moves.
     pub variable: Variable,
     /// The half range about the path's own value, mm or deg.
@@ -29,7 +32,7 @@ pub struct Free {
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Freedom {
     /// The free variables, at most one of each.
-    pub free: Vec<Free>,
+    pub free: Vec<FreeOption>,
     /// What a point costs; default the error bound the document reports.
     pub minimise: Option<Objective>,
     /// How the points' costs add up; default their sum.
@@ -82,7 +85,7 @@ pub fn retired(name: &str) -> Option<(&'static str, &'static str)> {
         .map(|(_, option, value)| (*option, *value))
 }
 
-impl Free {
+impl FreeOption {
     /// Parses `NAME`, `NAME=LO..HI`, `NAME=LO..HI/STEP` or `NAME=/STEP` (`LO = -HI`: the range
     /// is symmetric about the path's own value), or `configuration=program|run`.
     ///
@@ -90,40 +93,44 @@ impl Free {
     /// [`Error::InvalidOption`] ([`JobOption::Free`]) naming the text and what was expected.
     pub fn parse(text: &str) -> Result<Self> {
         let (name, value) = text.split_once('=').unwrap_or((text, ""));
-        let name = name.trim();
-        if name == "configuration" {
+        if name.trim() == "configuration" {
             let per = match value.trim() {
                 "" | "program" => Scope::Program,
                 "run" => Scope::Run,
                 v => return Err(invalid(text, &format!("`{v}`: expected program or run"))),
             };
-            return Ok(Free::new(Variable::Configuration(per), None, None));
+            return Ok(FreeOption::new(Variable::Configuration(per), None, None));
         }
-        let variable = match name {
+        let parts = grammar::parts(text)?;
+        let variable = match parts.name {
             "tool-rotation" => Variable::ToolRotation,
             "lead-tilt" => Variable::LeadTilt,
             "station" => Variable::Station,
             "positioner" => Variable::Positioner,
             "tilt" => Variable::Tilt,
-            "" => return Err(invalid(text, "expected a variable before `=`")),
             n => Variable::Axis(n.to_string()),
         };
-        let (range, step) = value.split_once('/').unwrap_or((value, ""));
-        let step = match step.trim() {
-            "" if value.contains('/') => return Err(invalid(text, "expected a step after `/`")),
-            "" => None,
-            s => Some(parse_number(text, s)?),
+        let half = match parts.range {
+            None => None,
+            Some([lo, hi]) if hi > 0.0 && lo == -hi => Some(hi),
+            Some(_) => {
+                let range = value.split('/').next().unwrap_or("").trim();
+                return Err(invalid(
+                    text,
+                    &format!("`{range}`: expected a range -R..R about the path's own value, R > 0"),
+                ));
+            }
         };
-        Ok(Free::new(variable, half_range(text, range.trim())?, step))
+        Ok(FreeOption::new(variable, half, parts.step))
     }
 
-    /// The free variable `variable` (a name of [`Free::parse`]) with its range and step: the
+    /// The free variable `variable` (a name of [`FreeOption::parse`]) with its range and step: the
     /// parts of a Python dict (`{"variable": "station", "range": 500, "step": 10}`).
     ///
     /// # Errors
-    /// Those of [`Free::parse`].
+    /// Those of [`FreeOption::parse`].
     pub fn from_parts(variable: &str, range: Option<f64>, step: Option<f64>) -> Result<Self> {
-        let free = Free::parse(variable)?;
+        let free = FreeOption::parse(variable)?;
         if variable.contains('=') {
             return Err(invalid(variable, "expected a variable's name alone"));
         }
@@ -134,7 +141,7 @@ impl Free {
                 &format!("range {}: expected a number > 0", number(r)),
             ));
         }
-        Ok(Free {
+        Ok(FreeOption {
             range,
             step,
             ..free
@@ -142,7 +149,7 @@ impl Free {
     }
 
     fn new(variable: Variable, range: Option<f64>, step: Option<f64>) -> Self {
-        Free {
+        FreeOption {
             variable,
             range,
             step,
@@ -188,38 +195,6 @@ impl Free {
     }
 }
 
-/// `-R..R` (or empty: `None`) as `R`.
-fn half_range(text: &str, range: &str) -> Result<Option<f64>> {
-    if range.is_empty() {
-        return Ok(None);
-    }
-    let Some((lo, hi)) = range.split_once("..") else {
-        return Err(invalid(text, &format!("`{range}`: expected a range -R..R")));
-    };
-    let (lo, hi) = (parse_number(text, lo)?, parse_number(text, hi)?);
-    if !(hi > 0.0 && lo == -hi) {
-        return Err(invalid(
-            text,
-            &format!("`{range}`: expected a range -R..R about the path's own value, R > 0"),
-        ));
-    }
-    Ok(Some(hi))
-}
-
-fn parse_number(text: &str, s: &str) -> Result<f64> {
-    match s.trim().parse::<f64>() {
-        Ok(v) if v.is_finite() => Ok(v),
-        _ => Err(invalid(text, &format!("`{}`: expected a number", s.trim()))),
-    }
-}
-
-fn invalid(text: &str, why: &str) -> Error {
-    Error::InvalidOption {
-        option: JobOption::Free,
-        message: format!("{text}: {why}"),
-    }
-}
-
 impl Freedom {
     /// Sets the free variables of `options` ([`Options::free`]: all of them minimising
     /// [`Freedom::minimise`], their costs added up by [`Freedom::objective`]) and the
@@ -240,11 +215,11 @@ impl Freedom {
                 &format!("at most {MAX_FREE}"),
             ));
         }
-        let mut free = FreeVariables {
-            minimise: self.minimise.unwrap_or_default(),
-            aggregate: self.objective.unwrap_or_default(),
-            ..FreeVariables::default()
-        };
+        let mut free = FreeVariables::new(
+            Vec::new(),
+            self.minimise.unwrap_or_default(),
+            self.objective.unwrap_or_default(),
+        );
         let axes = setup.robot().external();
         let mut seen: Vec<Variable> = Vec::new();
         for given in &self.free {
@@ -260,7 +235,7 @@ impl Freedom {
                 ));
             }
             seen.push(key);
-            set(&mut free, &variable, given)?;
+            free.free.push(bounds(&variable, given)?);
         }
         free.validate()?;
         options.free = free;
@@ -298,9 +273,9 @@ impl Freedom {
     }
 }
 
-/// Sets the one field of `variable` in `free`, the range and step of `given` (the variable's
-/// defaults where it gives none, [`Variable::limits`]).
-fn set(free: &mut FreeVariables, variable: &Variable, given: &Free) -> Result<()> {
+/// The free variable `variable` with the range and step of `given` (the variable's defaults
+/// where it gives none, [`Variable::limits`]), checked.
+fn bounds(variable: &Variable, given: &FreeOption) -> Result<Free> {
     let l = variable.limits();
     let step = given.step.unwrap_or(l.step);
     let range = || {
@@ -312,18 +287,14 @@ fn set(free: &mut FreeVariables, variable: &Variable, given: &Free) -> Result<()
             )
         })
     };
-    match variable {
-        Variable::ToolRotation => {
-            free.tool_rotation = Some(FreeRange::checked(variable, range()?, step)?)
-        }
-        Variable::Station => free.station = Some(FreeRange::checked(variable, range()?, step)?),
-        Variable::Positioner => {
-            free.positioner = Some(FreeRange::checked(variable, range()?, step)?)
-        }
-        Variable::Tilt => free.tilt = Some(FreeRange::checked(variable, range()?, step)?),
-        Variable::LeadTilt => free.lead_tilt = Some(LeadTilt::checked(given.range, step)?),
-        Variable::Configuration(per) => free.configuration = Some(*per),
+    let checked = || FreeRange::checked(variable, range()?, step);
+    Ok(match variable {
+        Variable::ToolRotation => Free::ToolRotation(checked()?),
+        Variable::Station => Free::Station(checked()?),
+        Variable::Positioner => Free::Positioner(checked()?),
+        Variable::Tilt => Free::Tilt(checked()?),
+        Variable::LeadTilt => Free::LeadTilt(LeadTilt::checked(given.range, step)?),
+        Variable::Configuration(per) => Free::Configuration(*per),
         Variable::Axis(name) => return Err(invalid(name, "unknown variable")),
-    }
-    Ok(())
+    })
 }

@@ -52,11 +52,14 @@ pub(crate) fn cones(free: &LeadTilt, points: usize, process: Option<&[f64]>) -> 
 /// [`Error::InvalidOption`] ([`JobOption::LeadTiltStep`]) with the grid's size and what to
 /// change; those of [`super::FreeRange::check_rotation_grid`].
 pub(super) fn check_cells(options: &Options, points: usize, largest: f64) -> Result<()> {
-    let Some(l) = &options.free.lead_tilt else {
-        return (options.free.tool_rotation).map_or(Ok(()), |f| f.check_rotation_grid(points));
+    let Some(l) = &options.free.lead_tilt() else {
+        return (options.free.tool_rotation()).map_or(Ok(()), |f| f.check_rotation_grid(points));
     };
     let per = lean_count(l, largest);
-    let angles = options.free.tool_rotation.map_or(1.0, |f| f.angle_count());
+    let angles = options
+        .free
+        .tool_rotation()
+        .map_or(1.0, |f| f.angle_count());
     let cells = per * angles * points as f64;
     if cells <= MAX_GRID_CELLS {
         return Ok(());
@@ -84,31 +87,35 @@ pub(super) fn check_streaming(options: &Options, read: usize, largest: f64) -> R
     if check_cells(options, read, largest).is_ok() {
         return Ok(());
     }
-    let angles = options.free.tool_rotation.map_or(1.0, |f| f.angle_count());
-    let (option, grid, per, change) = match (&options.free.lead_tilt, &options.free.tool_rotation) {
-        (Some(l), _) => (
-            JobOption::LeadTiltStep,
-            format!(
-                "{} deg within a cone of {} deg makes {} leans x {angles} rotations",
-                number(l.step.to_degrees()),
-                number(largest.to_degrees()),
-                lean_count(l, largest)
+    let angles = options
+        .free
+        .tool_rotation()
+        .map_or(1.0, |f| f.angle_count());
+    let (option, grid, per, change) =
+        match (&options.free.lead_tilt(), &options.free.tool_rotation()) {
+            (Some(l), _) => (
+                JobOption::LeadTiltStep,
+                format!(
+                    "{} deg within a cone of {} deg makes {} leans x {angles} rotations",
+                    number(l.step.to_degrees()),
+                    number(largest.to_degrees()),
+                    lean_count(l, largest)
+                ),
+                lean_count(l, largest),
+                "a larger step, a smaller cone, a coarser rotation grid or a shorter path",
             ),
-            lean_count(l, largest),
-            "a larger step, a smaller cone, a coarser rotation grid or a shorter path",
-        ),
-        (None, Some(f)) => (
-            JobOption::ToolRotationStep,
-            format!(
-                "{} deg with a range of +-{} deg makes {angles} rotations",
-                number(f.step.to_degrees()),
-                number(f.range.to_degrees())
+            (None, Some(f)) => (
+                JobOption::ToolRotationStep,
+                format!(
+                    "{} deg with a range of +-{} deg makes {angles} rotations",
+                    number(f.step.to_degrees()),
+                    number(f.range.to_degrees())
+                ),
+                1.0,
+                "a larger step, a smaller range or a shorter path",
             ),
-            1.0,
-            "a larger step, a smaller range or a shorter path",
-        ),
-        (None, None) => return Ok(()),
-    };
+            (None, None) => return Ok(()),
+        };
     let states = per * angles;
     let limit = MAX_GRID_CELLS;
     let most = match (limit / states).floor() {

@@ -159,7 +159,7 @@ pub fn map(
     let leans = leans(&at.poses, chosen);
     let (angles, stations, cells) = match options.map_over {
         MapVariable::Rotation => {
-            let free = match options.free.tool_rotation {
+            let free = match options.free.tool_rotation() {
                 Some(f) => f,
                 None => FreeRange::checked(
                     &Variable::ToolRotation,
@@ -276,7 +276,7 @@ fn track(
     at: &Own,
     (chosen, leans): (&[ChosenValues], &[Option<UnitQuaternion<f64>>]),
 ) -> Result<(Vec<f64>, Vec<Cells>)> {
-    let station = match mapped.options.free.station {
+    let station = match mapped.options.free.station() {
         Some(s) => s,
         None => FreeRange::checked(
             &Variable::Station,
@@ -292,7 +292,8 @@ fn track(
     }
     let offsets = station.offsets();
     let mut only = mapped.options.clone();
-    (only.free.station, only.free.positioner, only.free.tilt) = (Some(station), None, None);
+    only.free = only.free.keeping(|f| !f.is_external());
+    only.free.free.push(super::Free::Station(station));
     super::station::check_grid(&only, offsets.len() as f64, at.values.len())?;
     let rotations: Vec<f64> = chosen.iter().map(|c| c.rotation).collect();
     let cells = (offsets.par_iter())

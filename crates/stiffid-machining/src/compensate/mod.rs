@@ -186,6 +186,7 @@ mod configuration;
 mod feasible;
 mod fixed_base;
 pub mod free;
+pub mod grammar;
 mod lead_tilt;
 mod map;
 mod model;
@@ -203,7 +204,7 @@ pub mod variables;
 pub use budget::Budget;
 pub use configuration::{posed, Branch, Configurations, Run};
 pub use feasible::{Feasible, Removed};
-pub use free::{Free, Freedom};
+pub use free::{FreeOption, Freedom};
 pub(crate) use lead_tilt::cones;
 pub use lead_tilt::lean;
 pub use map::{map, ChosenValues, Map};
@@ -218,7 +219,7 @@ pub use station::path_on_track;
 pub(crate) use stream::path_in_cones;
 pub use stream::{path, path_with_exits, stream, CHUNK};
 pub use variables::{
-    Aggregate, FreeRange, FreeVariables, LeadTilt, Limits, Objective, Variable,
+    Aggregate, Free, FreeRange, FreeVariables, LeadTilt, Limits, Objective, Variable,
     CONFIGURATION_SEEDS, LEAD_TILT_MAX_CONE_DEG, MAX_CONFIGURATION_POINTS, MAX_GRID_CELLS,
 };
 /// The residual the Newton steps aim at, m.

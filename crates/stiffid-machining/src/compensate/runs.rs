@@ -56,7 +56,7 @@ pub fn path_runs(
     options: &Options,
 ) -> Result<(Vec<Compensated>, Configurations)> {
     let own: Vec<ExternalValues> = placed.iter().map(|p| p.external).collect();
-    let cones = match &options.free.lead_tilt {
+    let cones = match &options.free.lead_tilt() {
         Some(l) => super::lead_tilt::cones(l, placed.len(), None)?,
         None => Vec::new(),
     };
@@ -85,7 +85,7 @@ pub(crate) fn choose(
     evaluate: impl Fn(usize, &[PathPoint], &Options) -> Result<Vec<Compensated>>,
 ) -> Result<(Vec<Compensated>, Configurations)> {
     let free = super::configuration::free_configuration(options, points.len())?;
-    if free.configuration == Some(super::Scope::Program) {
+    if free.configuration() == Some(super::Scope::Program) {
         return choose_one(arm, compliance, points, (options, 0.0), |p, o| {
             evaluate(0, p, o)
         });

@@ -46,7 +46,7 @@ pub fn path_on_track(
         .map(|p| on_carriage(robot, p.clone()))
         .collect::<Result<_>>()?;
     let own: Vec<ExternalValues> = points.iter().map(|p| p.external).collect();
-    let cones = match &options.free.lead_tilt {
+    let cones = match &options.free.lead_tilt() {
         Some(l) => cones(l, points.len(), None)?,
         None => Vec::new(),
     };
@@ -80,12 +80,15 @@ pub(crate) fn on_track(
     let (objective, aggregate) = (options.free.minimise, options.free.aggregate);
     if !options.free.frees_external() {
         let mut plain = options.clone();
-        (plain.free.station, plain.free.positioner, plain.free.tilt) = (None, None, None);
+        plain.free = plain.free.keeping(|f| !f.is_external());
         let results = path_in_cones(arm, compliance, placed, (&[], cones), &plain)?;
         return given(results, own);
     }
     let (cell, free) = free_axes(robot.external(), options)?;
-    let angles = options.free.tool_rotation.map_or(vec![0.0], |f| f.angles());
+    let angles = options
+        .free
+        .tool_rotation()
+        .map_or(vec![0.0], |f| f.angles());
     let states = states(&free);
     let sizes = (states.len(), angles.len(), free.len());
     check_sizes(options, sizes, cones, placed.len())?;
@@ -109,7 +112,7 @@ pub(crate) fn on_track(
     let stations: Vec<Station> = (states.par_iter())
         .map(|moves| Station::new(cell, &at, moves))
         .collect();
-    let leaning = Leaning::new(options.free.lead_tilt.as_ref(), &at.poses, cones.to_vec());
+    let leaning = Leaning::new(options.free.lead_tilt().as_ref(), &at.poses, cones.to_vec());
     let cost = match objective {
         Objective::Deflection => Cost::Deflection,
         _ => Cost::Bound,
@@ -119,7 +122,7 @@ pub(crate) fn on_track(
     let per_station = leaning.len() * angles.len();
     let mut axes: Vec<Axis> = free.iter().map(FreeAxis::axis).collect();
     axes.extend(lean_axes(&leaning));
-    if let Some(f) = &options.free.tool_rotation {
+    if let Some(f) = &options.free.tool_rotation() {
         axes.push(rotation_axis(f, &angles));
     }
     let checks = Checks::new(&model, &options.feasible);
@@ -128,7 +131,7 @@ pub(crate) fn on_track(
         .collect();
     let grid = Grid { axes };
     let (chosen, mut removed) = choose((&columns, &external), &grid, (&cost, &checks), aggregate);
-    let layout = Layout::new(free.len(), &leaning, options.free.tool_rotation.is_some());
+    let layout = Layout::new(free.len(), &leaning, options.free.tool_rotation().is_some());
     let along = |values: &[Vec<f64>]| {
         let moves: Vec<Vec<(usize, f64)>> = (values.iter())
             .map(|v| free.iter().zip(v).map(|(f, &d)| (f.index, d)).collect())
@@ -171,10 +174,10 @@ fn check_sizes(
     points: usize,
 ) -> Result<()> {
     let largest = cones.iter().copied().fold(0.0, f64::max);
-    let leans = (options.free.lead_tilt.as_ref()).map_or(1.0, |l| lean_count(l, largest));
+    let leans = (options.free.lead_tilt().as_ref()).map_or(1.0, |l| lean_count(l, largest));
     check_grid(options, (states * angles) as f64 * leans, points)?;
-    let lean_axes_count = 2 * usize::from(options.free.lead_tilt.is_some());
-    let axes = free + lean_axes_count + usize::from(options.free.tool_rotation.is_some());
+    let lean_axes_count = 2 * usize::from(options.free.lead_tilt().is_some());
+    let axes = free + lean_axes_count + usize::from(options.free.tool_rotation().is_some());
     super::refine::check(options.refine, axes, points)
 }
 
@@ -297,7 +300,7 @@ pub(super) fn free_axes<'a>(
     let carriers = cell.map_or(0, ExternalAxes::carrier_len);
     let positioners = cell.map_or(0, ExternalAxes::len) - carriers;
     let mut out = Vec::new();
-    if let Some(s) = &options.free.station {
+    if let Some(s) = &options.free.station() {
         if carriers == 0 {
             return Err(Error::InvalidOption {
                 option: JobOption::StationRange,
@@ -311,7 +314,7 @@ pub(super) fn free_axes<'a>(
             max_step: s.step,
         });
     }
-    if let Some(p) = &options.free.tilt {
+    if let Some(p) = &options.free.tilt() {
         if positioners < 2 {
             return Err(Error::InvalidOption {
                 option: JobOption::TiltRange,
@@ -325,7 +328,7 @@ pub(super) fn free_axes<'a>(
             max_step: p.step,
         });
     }
-    if let Some(p) = &options.free.positioner {
+    if let Some(p) = &options.free.positioner() {
         if positioners == 0 {
             return Err(Error::InvalidOption {
                 option: JobOption::PositionerRange,
@@ -374,13 +377,13 @@ pub(super) fn check_grid(options: &Options, states: f64, points: usize) -> Resul
         let (range, step) = (p.range.to_degrees(), p.step.to_degrees());
         format!("+-{range} deg in steps of {step} deg")
     };
-    let (option, what) = match (&options.free.station, &options.free.positioner) {
+    let (option, what) = match (&options.free.station(), &options.free.positioner()) {
         (Some(s), _) => (
             JobOption::StationRange,
             format!("+-{} mm in steps of {} mm", s.range * 1e3, s.step * 1e3),
         ),
         (None, Some(p)) => (JobOption::PositionerRange, degrees(p)),
-        (None, None) => match &options.free.tilt {
+        (None, None) => match &options.free.tilt() {
             Some(p) => (JobOption::TiltRange, degrees(p)),
             None => (JobOption::StationRange, String::new()),
         },

@@ -60,7 +60,7 @@ pub fn path_with_exits(
     options: &Options,
 ) -> Result<Vec<Compensated>> {
     options.validate()?;
-    let cones = match &options.free.lead_tilt {
+    let cones = match &options.free.lead_tilt() {
         Some(l) => cones(l, points.len(), None)?,
         None => Vec::new(),
     };
@@ -88,10 +88,8 @@ pub(crate) fn path_in_cones(
             message: "a free station, positioner or tilt is chosen for points with their external values (compensate::path_on_track for a path file's, machining::compensate for a program's); these points have none".into(),
         });
     }
-    let (rotation, lean) = (
-        options.free.tool_rotation.as_ref(),
-        options.free.lead_tilt.as_ref(),
-    );
+    let (rotation, lean) = (options.free.tool_rotation(), options.free.lead_tilt());
+    let (rotation, lean) = (rotation.as_ref(), lean.as_ref());
     let largest = cones.iter().copied().fold(0.0, f64::max);
     check_cells(options, points.len(), largest)?;
     let axes = 2 * usize::from(lean.is_some()) + usize::from(rotation.is_some());
@@ -219,8 +217,8 @@ where
 {
     options.validate()?;
     let mut points = points.into_iter();
-    if options.free.tool_rotation.is_some() || options.free.lead_tilt.is_some() {
-        let cone = options.free.lead_tilt.and_then(|l| l.cone).unwrap_or(0.0);
+    if options.free.tool_rotation().is_some() || options.free.lead_tilt().is_some() {
+        let cone = options.free.lead_tilt().and_then(|l| l.cone).unwrap_or(0.0);
         let mut all = Vec::new();
         for p in points {
             all.push(p?);

@@ -67,7 +67,7 @@ impl Options {
 
     /// One configuration per run not with a map.
     fn validate_configuration(&self) -> Result<()> {
-        if self.free.configuration == Some(super::Scope::Run) && self.map {
+        if self.free.configuration() == Some(super::Scope::Run) && self.map {
             return Err(Error::OptionCombination {
                 option: JobOption::ConfigurationScope,
                 with: vec![JobOption::Map],

@@ -135,22 +135,92 @@ pub struct LeadTilt {
     pub step: f64,
 }
 
-/// What a compensation may move from the path's own values at every point, and what it
-/// minimises: `None` fields stay at the path's own (the default: nothing free).
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct FreeVariables {
-    /// The rotation about the tool z axis (module docs of [`super`], "The free tool axis").
-    pub tool_rotation: Option<FreeRange>,
-    /// The lead and tilt of the tool axis.
-    pub lead_tilt: Option<LeadTilt>,
+/// One free variable with its bounds in SI units: what a compensation may move from the path's
+/// own value at every point ([`Free::variable`] names it as `--free` does).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Free {
+    /// The rotation about the tool z axis, rad (module docs of [`super`], "The free tool axis").
+    ToolRotation(FreeRange),
+    /// The lead and tilt of the tool axis within a cone ("Lead and tilt").
+    LeadTilt(LeadTilt),
     /// The track station: the carrier's first axis, m ("The free station").
-    pub station: Option<FreeRange>,
-    /// The positioner's last axis, the table's turn ("The free positioner").
-    pub positioner: Option<FreeRange>,
-    /// A two-axis positioner's first axis, the tilt.
-    pub tilt: Option<FreeRange>,
+    Station(FreeRange),
+    /// The positioner's last axis, the table's turn, rad ("The free positioner").
+    Positioner(FreeRange),
+    /// A two-axis positioner's first axis, the tilt, rad.
+    Tilt(FreeRange),
     /// The configuration of the arm, one per program or per run ([`Scope`]).
-    pub configuration: Option<Scope>,
+    Configuration(Scope),
+}
+
+impl Free {
+    /// The variable this one moves.
+    pub fn variable(&self) -> Variable {
+        match self {
+            Free::ToolRotation(_) => Variable::ToolRotation,
+            Free::LeadTilt(_) => Variable::LeadTilt,
+            Free::Station(_) => Variable::Station,
+            Free::Positioner(_) => Variable::Positioner,
+            Free::Tilt(_) => Variable::Tilt,
+            Free::Configuration(per) => Variable::Configuration(*per),
+        }
+    }
+
+    /// Its name as `--free` gives it: `tool-rotation`, `lead-tilt`, `station`, `positioner`,
+    /// `tilt` or `configuration`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Free::ToolRotation(_) => "tool-rotation",
+            Free::LeadTilt(_) => "lead-tilt",
+            Free::Station(_) => "station",
+            Free::Positioner(_) => "positioner",
+            Free::Tilt(_) => "tilt",
+            Free::Configuration(_) => "configuration",
+        }
+    }
+
+    /// Whether it is an external axis: the station, the positioner or the tilt.
+    pub fn is_external(&self) -> bool {
+        matches!(self, Free::Station(_) | Free::Positioner(_) | Free::Tilt(_))
+    }
+
+    /// Whether it moves the tool axis: its rotation or its lead and tilt.
+    pub fn is_tool_axis(&self) -> bool {
+        matches!(self, Free::ToolRotation(_) | Free::LeadTilt(_))
+    }
+
+    /// Whether `self` and `other` move the same variable (the configuration whatever its
+    /// scope).
+    pub fn same_variable(&self, other: &Free) -> bool {
+        std::mem::discriminant(self) == std::mem::discriminant(other)
+    }
+
+    /// Checks its range and step as [`FreeRange::checked`] and [`LeadTilt::checked`] give them.
+    ///
+    /// # Errors
+    /// Those of [`FreeRange::checked`] and [`LeadTilt::checked`].
+    pub fn validate(&self) -> Result<()> {
+        let variable = self.variable();
+        let s = variable.scale();
+        match self {
+            Free::ToolRotation(f) | Free::Station(f) | Free::Positioner(f) | Free::Tilt(f) => {
+                FreeRange::checked(&variable, f.range / s, f.step / s).map(|_| ())
+            }
+            Free::LeadTilt(l) => {
+                LeadTilt::checked(l.cone.map(f64::to_degrees), l.step.to_degrees()).map(|_| ())
+            }
+            Free::Configuration(_) => Ok(()),
+        }
+    }
+}
+
+/// What a compensation may move from the path's own values at every point, and what it
+/// minimises: the free variables ([`Free`], at most one of each; none by default: the path's
+/// own values) and their one objective.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct FreeVariables {
+    /// The free variables, at most one of each ([`FreeVariables::validate`]).
+    pub free: Vec<Free>,
     /// What a point costs.
     pub minimise: Objective,
     /// How the points' costs add up along the path.
@@ -388,47 +458,111 @@ fn check_step(
     })
 }
 
+/// The bounds of the free variable `$variant` of `self`, if free.
+macro_rules! find {
+    ($self:ident, $variant:ident) => {
+        $self.free.iter().find_map(|f| match f {
+            Free::$variant(v) => Some(*v),
+            _ => None,
+        })
+    };
+}
+
 impl FreeVariables {
+    /// The free variables `free` minimising `minimise`, their costs added up by `aggregate`.
+    pub fn new(free: Vec<Free>, minimise: Objective, aggregate: Aggregate) -> Self {
+        FreeVariables {
+            free,
+            minimise,
+            aggregate,
+        }
+    }
+
+    /// The rotation about the tool z axis (module docs of [`super`], "The free tool axis"), if
+    /// free.
+    pub fn tool_rotation(&self) -> Option<FreeRange> {
+        find!(self, ToolRotation)
+    }
+
+    /// The lead and tilt of the tool axis ("Lead and tilt"), if free.
+    pub fn lead_tilt(&self) -> Option<LeadTilt> {
+        find!(self, LeadTilt)
+    }
+
+    /// The track station, m ("The free station"), if free.
+    pub fn station(&self) -> Option<FreeRange> {
+        find!(self, Station)
+    }
+
+    /// The positioner's last axis, the table's turn ("The free positioner"), if free.
+    pub fn positioner(&self) -> Option<FreeRange> {
+        find!(self, Positioner)
+    }
+
+    /// A two-axis positioner's first axis, the tilt, if free.
+    pub fn tilt(&self) -> Option<FreeRange> {
+        find!(self, Tilt)
+    }
+
+    /// The configuration of the arm, one per program or per run ([`Scope`]), if free.
+    pub fn configuration(&self) -> Option<Scope> {
+        find!(self, Configuration)
+    }
+
+    /// Frees `free`: in place of the same variable if free, else after the others.
+    pub fn set(&mut self, free: Free) {
+        match self.free.iter_mut().find(|f| f.same_variable(&free)) {
+            Some(f) => *f = free,
+            None => self.free.push(free),
+        }
+    }
+
+    /// The same with only the free variables `keep` keeps.
+    pub fn keeping(&self, keep: impl Fn(&Free) -> bool) -> Self {
+        FreeVariables {
+            free: self.free.iter().copied().filter(|f| keep(f)).collect(),
+            ..self.clone()
+        }
+    }
+
     /// Whether an external axis is free: the station, the positioner or the tilt.
     pub fn frees_external(&self) -> bool {
-        self.station.is_some() || self.positioner.is_some() || self.tilt.is_some()
+        self.free.iter().any(Free::is_external)
     }
 
     /// Whether the tool axis is free: its rotation or its lead and tilt.
     pub fn frees_tool_axis(&self) -> bool {
-        self.tool_rotation.is_some() || self.lead_tilt.is_some()
+        self.free.iter().any(Free::is_tool_axis)
     }
 
     /// Whether anything is free.
     pub fn any(&self) -> bool {
-        self.frees_external() || self.frees_tool_axis() || self.configuration.is_some()
+        !self.free.is_empty()
     }
 
-    /// Checks every range and step as [`FreeRange::checked`] and [`LeadTilt::checked`] give
-    /// them, and the objective: the surge only for the tool rotation alone (a drilling exit's,
-    /// whose axis is the hole's).
+    /// Checks every variable ([`Free::validate`]), that none is given twice, and the
+    /// objective: the surge only for the tool rotation alone (a drilling exit's, whose axis is
+    /// the hole's).
     ///
     /// # Errors
-    /// Those of [`FreeRange::checked`] and [`LeadTilt::checked`]; [`Error::InvalidOption`]
-    /// ([`JobOption::Minimise`]) for the surge with another free variable.
+    /// Those of [`Free::validate`]; [`Error::InvalidOption`] ([`JobOption::Free`]) for a
+    /// variable given twice, ([`JobOption::Minimise`]) for the surge with another free
+    /// variable.
     pub fn validate(&self) -> Result<()> {
-        let ranges = [
-            (Variable::ToolRotation, self.tool_rotation),
-            (Variable::Station, self.station),
-            (Variable::Positioner, self.positioner),
-            (Variable::Tilt, self.tilt),
-        ];
-        for (variable, free) in ranges {
-            if let Some(f) = free {
-                let s = variable.scale();
-                FreeRange::checked(&variable, f.range / s, f.step / s)?;
+        for (i, f) in self.free.iter().enumerate() {
+            f.validate()?;
+            if self.free[..i].iter().any(|g| g.same_variable(f)) {
+                return Err(Error::InvalidOption {
+                    option: JobOption::Free,
+                    message: format!("{}: given twice: at most one of each variable", f.name()),
+                });
             }
         }
-        if let Some(l) = self.lead_tilt {
-            LeadTilt::checked(l.cone.map(f64::to_degrees), l.step.to_degrees())?;
-        }
-        let others = self.frees_external() || self.lead_tilt.is_some();
-        if self.minimise == Objective::Surge && (others || self.configuration.is_some()) {
+        let others = self
+            .free
+            .iter()
+            .any(|f| !matches!(f, Free::ToolRotation(_)));
+        if self.minimise == Objective::Surge && others {
             return Err(Error::InvalidOption {
                 option: JobOption::Minimise,
                 message: "surge: the surge is a drilling exit's, chosen by the tool rotation alone; the station, the positioner axes, the lead and tilt and the configuration minimise the deflection or the bound".into(),

@@ -131,6 +131,7 @@ pub fn feed_frame(feed: &Vector3<f64>, tool_z: &Vector3<f64>) -> Option<Rotation
 
 /// The forces of one operation, as `stiffid force` prints them.
 #[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct OperationForce {
     /// The operation's name.
     pub name: String,

@@ -66,7 +66,7 @@ CalibrateDocument = TypedDict("CalibrateDocument", {
     "robot_file": Optional[str],
     "robot_file_error": Optional[str],
     "setup": str,
-    "stiffness_file": Optional[CalibrateStiffnessSection],
+    "stiffness_file": Optional[StiffnessDocument],
     "stiffness_file_error": Optional[str],
     "stop_reason": CalibrateStop,
     "tcp_mm": NotRequired[Optional[list[float]]],
@@ -223,13 +223,6 @@ CalibrateStance = TypedDict("CalibrateStance", {
     "q_deg": list[float],
 })
 
-CalibrateStiffnessSection = TypedDict("CalibrateStiffnessSection", {
-    "compliance_covariance_si": list[list[float]],
-    "fitted": list[bool],
-    "parameters": list[CalibrateParameterStiffness],
-    "region": NotRequired[Optional[CalibrateRegionSection]],
-})
-
 CalibrateStop = Literal["converged", "stalled", "damping-exhausted", "iteration-limit"]
 
 CalibrateValidationDocument = TypedDict("CalibrateValidationDocument", {
@@ -249,20 +242,26 @@ CalibrateWarning = TypedDict("CalibrateWarning", {
 
 CalibrateWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed", "calibrated", "model-form"]
 
+StiffnessDocument = TypedDict("StiffnessDocument", {
+    "compliance_covariance_si": list[list[float]],
+    "fitted": list[bool],
+    "kind": Literal["stiffness"],
+    "parameters": list[CalibrateParameterStiffness],
+    "region": NotRequired[Optional[CalibrateRegionSection]],
+})
+
 # compensate: docs/schemas/compensate.schema.json
 
 CompensateDocument = TypedDict("CompensateDocument", {
     "configurations": Optional[CompensateConfigurationsDocument],
     "feasibility": Optional[CompensateFeasibility],
-    "free_lead_tilt": Optional[CompensateFreeLeadTilt],
-    "free_positioner": Optional[CompensateFreePositioner],
-    "free_station": Optional[CompensateFreeStation],
-    "free_tilt": Optional[CompensateFreePositioner],
-    "free_tool_axis": Optional[CompensateFreeToolAxis],
+    "free": list[CompensateFreeVariable],
     "generator": str,
     "has_covariance": bool,
     "kind": Literal["compensate"],
+    "minimise": Optional[str],
     "model_ranking": Optional[CompensateRankingDocument],
+    "objective": Optional[str],
     "out": str,
     "parameters": list[CompensateParameterStiffness],
     "path": str,
@@ -343,27 +342,6 @@ CompensateFeasibility = TypedDict("CompensateFeasibility", {
     "states_removed_singularity": int,
 })
 
-CompensateFreeLeadTilt = TypedDict("CompensateFreeLeadTilt", {
-    "aggregate": str,
-    "cone_deg": Optional[float],
-    "objective": str,
-    "step_deg": float,
-})
-
-CompensateFreePositioner = TypedDict("CompensateFreePositioner", {
-    "aggregate": str,
-    "objective": str,
-    "range_deg": float,
-    "step_deg": float,
-})
-
-CompensateFreeStation = TypedDict("CompensateFreeStation", {
-    "aggregate": str,
-    "objective": str,
-    "range_mm": float,
-    "step_mm": float,
-})
-
 CompensateFreeSummary = TypedDict("CompensateFreeSummary", {
     "mean_change_pct": float,
     "mean_deflection_after_mm": float,
@@ -373,11 +351,12 @@ CompensateFreeSummary = TypedDict("CompensateFreeSummary", {
     "tool_rotation_range_deg": list[float],
 })
 
-CompensateFreeToolAxis = TypedDict("CompensateFreeToolAxis", {
-    "aggregate": str,
-    "max_step_deg": float,
-    "objective": str,
-    "range_deg": float,
+CompensateFreeVariable = TypedDict("CompensateFreeVariable", {
+    "per": Optional[str],
+    "range": Optional[float],
+    "step": Optional[float],
+    "unit": Optional[str],
+    "variable": str,
 })
 
 CompensateLeanSummary = TypedDict("CompensateLeanSummary", {
@@ -700,6 +679,23 @@ EvaluateViolation = TypedDict("EvaluateViolation", {
     "check": str,
     "margin_deg": Optional[float],
     "margin_mm": Optional[float],
+})
+
+# force: docs/schemas/force.schema.json
+
+ForceDocument = TypedDict("ForceDocument", {
+    "kind": Literal["force"],
+    "operations": list[ForceOperationForce],
+    "peak_resolution_deg": Optional[float],
+    "process": str,
+})
+
+ForceOperationForce = TypedDict("ForceOperationForce", {
+    "kind": str,
+    "mean_force_n": list[float],
+    "mean_moment_nm": list[float],
+    "name": str,
+    "peak_force_n": NotRequired[Optional[list[float]]],
 })
 
 # identify: docs/schemas/identify.schema.json

@@ -9,6 +9,7 @@ from numpy.typing import ArrayLike, NDArray
 from ._documents import (
     CalibrateCellDocument,
     CalibrateDocument,
+    ForceDocument,
     KinematicsDocument,
     PlaceDocument,
     PlanDocument,
@@ -318,8 +319,8 @@ def process_force(
     process: Union[str, os.PathLike[str]],
     *,
     peak_resolution_deg: Optional[float] = None,
-) -> dict[str, Any]:
-    """The document of `stiffid force --json`: process, peak_resolution_deg, operations (name, kind, mean_force_n, mean_moment_nm, peak_force_n)."""
+) -> ForceDocument:
+    """The document of `stiffid force --json`: kind ("force"), process, peak_resolution_deg, operations (name, kind, mean_force_n, mean_moment_nm, peak_force_n)."""
 
 def read_program(
     program: Union[str, os.PathLike[str]],
@@ -340,9 +341,7 @@ def place(
     frame: Literal["base", "tool"] = "base",
     region_mm: Sequence[float],
     rotation_deg: Sequence[float] = (-180.0, 180.0),
-    free: bool = False,
-    z_mm: Optional[Sequence[float]] = None,
-    tilt_deg: float = 10.0,
+    free: Optional[Sequence[str]] = None,
     objective: Literal["max", "sum"] = "max",
     margin_deg: float = 5.0,
     max_condition: float = 1000.0,

@@ -9,7 +9,7 @@ use rand_distr::StandardNormal;
 use stiffid::app::compensate::{run, Input, Request};
 use stiffid::common::error::JobOption;
 use stiffid::machining::compensate::{
-    self, Aggregate, Compliance, FreeVariables, Objective, Options, PathPoint, Target,
+    self, Aggregate, Compliance, Free, FreeVariables, Objective, Options, PathPoint, Target,
 };
 use stiffid::observation::deflection::{Frame, Points};
 use stiffid::robot::ik::tool_pose;
@@ -152,10 +152,9 @@ fn the_free_tool_axis_minimising_the_bound_raises_no_point() {
     let path = line_path(&s, 20);
     for aggregate in [Aggregate::Sum, Aggregate::Max] {
         let free = FreeVariables {
-            tool_rotation: Some(crate::compensate::rotation(60.0, 5.0)),
+            free: vec![Free::ToolRotation(crate::compensate::rotation(60.0, 5.0))],
             minimise: Objective::Bound,
             aggregate,
-            ..FreeVariables::default()
         };
         let options = Options {
             free,

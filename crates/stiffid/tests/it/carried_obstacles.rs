@@ -9,7 +9,7 @@ use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3, Vector6
 use stiffid::cell::{bodies, body_box, capsule_box, capsules, Capsule, CheckKind, Checker, Part};
 use stiffid::machining::compensate::PathPoint;
 use stiffid::machining::compensate::{
-    self, Compensated, FreeRange, FreeVariables, Options, Variable,
+    self, Compensated, Free, FreeRange, FreeVariables, Options, Variable,
 };
 use stiffid::robot::external::{ExternalAxes, ExternalAxis, ExternalValues};
 use stiffid::robot::presets;
@@ -191,7 +191,7 @@ fn options(s: &Setup) -> Options {
     let table = FreeRange::checked(&Variable::Positioner, 20.0, 10.0).ok();
     Options {
         free: FreeVariables {
-            positioner: table,
+            free: table.map(Free::Positioner).into_iter().collect(),
             ..FreeVariables::default()
         },
         ..Options::for_setup(s)

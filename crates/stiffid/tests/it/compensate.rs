@@ -9,7 +9,7 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
 use stiffid::machining::compensate::{
-    self, FreeRange, FreeVariables, Objective, Options, PathPoint, Target, Variable,
+    self, Free, FreeRange, FreeVariables, Objective, Options, PathPoint, Target, Variable,
 };
 use stiffid::observation::deflection::{base_wrench, Frame, Points};
 use stiffid::robot::ik::{self, pose_error, tool_pose};
@@ -256,7 +256,7 @@ pub(crate) fn options(s: &Setup, free: Option<FreeRange>) -> Options {
         q0: s.test_postures()[0],
         ik: ik::Options::default(),
         free: FreeVariables {
-            tool_rotation: free,
+            free: free.map(Free::ToolRotation).into_iter().collect(),
             minimise: Objective::Deflection,
             ..FreeVariables::default()
         },

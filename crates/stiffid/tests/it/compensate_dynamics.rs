@@ -6,7 +6,9 @@
 use nalgebra::{Isometry3, UnitQuaternion, Vector3};
 use stiffid::app::compensate::{run, Input, Request};
 use stiffid::common::warning::WarningKind;
-use stiffid::machining::compensate::{Compensated, FreeVariables, Objective, Options, PathPoint};
+use stiffid::machining::compensate::{
+    Compensated, Free, FreeVariables, Objective, Options, PathPoint,
+};
 use stiffid::machining::dynamics::Dynamics;
 use stiffid::machining::process::file;
 use stiffid::machining::program::generate::Settings;
@@ -89,7 +91,7 @@ fn compensate_with(
             process: file::parse(process, "p.toml").unwrap(),
             chord_tolerance: 1e-5,
             // A rotation about the tool axis reaches the controller in a robot program only.
-            output: match options.free.tool_rotation {
+            output: match options.free.tool_rotation() {
                 Some(_) => Language::Robot(stiffid::machining::program::Dialect::Krl),
                 None => Language::GCode,
             },
@@ -234,7 +236,7 @@ fn holes() -> (Setup, String) {
 /// The free tool axis with `objective`: steps of at most 20 deg (a 5 deg grid) within +-90 deg.
 fn free_options(s: &Setup, objective: Objective) -> Options {
     let free = FreeVariables {
-        tool_rotation: Some(crate::compensate::rotation(90.0, 20.0)),
+        free: vec![Free::ToolRotation(crate::compensate::rotation(90.0, 20.0))],
         minimise: objective,
         ..FreeVariables::default()
     };

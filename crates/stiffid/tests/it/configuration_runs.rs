@@ -12,8 +12,8 @@ use stiffid::app::compensate::configurations::ConfigurationsDocument;
 use stiffid::app::compensate::{self as job, Input};
 use stiffid::common::limits::JointBox;
 use stiffid::machining::compensate::{
-    self, path_runs, Aggregate, Compensated, FreeVariables, Objective, Options, PathPoint, Scope,
-    Target,
+    self, path_runs, Aggregate, Compensated, Free, FreeVariables, Objective, Options, PathPoint,
+    Scope, Target,
 };
 use stiffid::machining::program::generate::Settings;
 use stiffid::machining::program::Dialect;
@@ -46,10 +46,9 @@ fn two_runs(s: &Setup) -> Vec<PathPoint> {
 fn per(s: &Setup, aggregate: Aggregate, per: Scope) -> Options {
     Options {
         free: FreeVariables {
-            configuration: Some(per),
+            free: vec![Free::Configuration(per)],
             minimise: Objective::Bound,
             aggregate,
-            ..FreeVariables::default()
         },
         ..options(s, None)
     }

@@ -8,7 +8,7 @@ use crate::compensate::{line_path, options};
 use nalgebra::{Translation3, UnitQuaternion, Vector3, Vector6};
 use stiffid::common::limits::JointBox;
 use stiffid::machining::compensate::{
-    self, path_configurations, posed, Aggregate, Compensated, Configurations, FreeVariables,
+    self, path_configurations, posed, Aggregate, Compensated, Configurations, Free, FreeVariables,
     Objective, Options, PathPoint, Scope, Target,
 };
 use stiffid::robot::ik::tool_pose;
@@ -41,10 +41,9 @@ pub(crate) const WIDE: [(f64, f64); 6] = [(-300.0, 300.0); 6];
 fn free_options(s: &Setup, aggregate: Aggregate) -> Options {
     Options {
         free: FreeVariables {
-            configuration: Some(Scope::Program),
+            free: vec![Free::Configuration(Scope::Program)],
             minimise: Objective::Bound,
             aggregate,
-            ..FreeVariables::default()
         },
         ..options(s, None)
     }
@@ -66,7 +65,7 @@ fn alone(
 ) -> Vec<Option<Vec<Compensated>>> {
     let compliance = s.model_compliance("test").unwrap();
     let mut plain = o.clone();
-    plain.free.configuration = None;
+    plain.free = plain.free.keeping(|f| !matches!(f, Free::Configuration(_)));
     let moved = posed(s.arm(), path);
     (c.branches.iter())
         .map(|b| {
@@ -246,7 +245,7 @@ fn the_free_configuration_refuses_the_surge_and_too_long_paths_naming_itself() {
     let mut o = options(&s, Some(crate::compensate::rotation(90.0, 2.0)));
     o.free.minimise = Objective::Surge;
     o.validate().unwrap();
-    o.free.configuration = Some(Scope::Program);
+    o.free.set(Free::Configuration(Scope::Program));
     match o.validate().unwrap_err() {
         Error::InvalidOption { option, message } => {
             assert_eq!(option, JobOption::Minimise);

@@ -6,8 +6,8 @@
 
 use nalgebra::{Isometry3, Rotation3, UnitQuaternion, Vector3, Vector6};
 use stiffid::machining::compensate::{
-    self, Aggregate, Compensated, FreeRange, FreeVariables, Model, Objective, Options, PathPoint,
-    Target, Variable,
+    self, Aggregate, Compensated, Free, FreeRange, FreeVariables, Model, Objective, Options,
+    PathPoint, Target, Variable,
 };
 use stiffid::observation::deflection::Frame;
 use stiffid::robot::external::{ExternalAxes, ExternalAxis, ExternalValues};
@@ -77,11 +77,12 @@ fn moved(i: usize, phi: f64) -> Isometry3<f64> {
 fn free(aggregate: Aggregate) -> (Options, Setup) {
     let s = on_table();
     let free = FreeVariables {
-        tool_rotation: Some(crate::compensate::rotation(10.0, 5.0)),
-        positioner: FreeRange::checked(&Variable::Positioner, 10.0, 10.0).ok(),
+        free: vec![
+            Free::ToolRotation(crate::compensate::rotation(10.0, 5.0)),
+            Free::Positioner(FreeRange::checked(&Variable::Positioner, 10.0, 10.0).unwrap()),
+        ],
         minimise: Objective::Bound,
         aggregate,
-        ..FreeVariables::default()
     };
     let options = Options {
         free,

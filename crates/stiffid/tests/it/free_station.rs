@@ -5,8 +5,8 @@
 
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 use stiffid::machining::compensate::{
-    self, Aggregate, Compensated, FreeRange, FreeVariables, Model, Objective, Options, PathPoint,
-    Target, Variable,
+    self, Aggregate, Compensated, Free, FreeRange, FreeVariables, Model, Objective, Options,
+    PathPoint, Target, Variable,
 };
 use stiffid::observation::deflection::Frame;
 use stiffid::robot::external::{ErrorMotions, ExternalAxes, ExternalAxis, ExternalValues};
@@ -51,11 +51,12 @@ fn moved(i: usize, phi: f64) -> Isometry3<f64> {
 fn free(aggregate: Aggregate) -> (Options, Setup) {
     let s = on_track();
     let free = FreeVariables {
-        tool_rotation: Some(crate::compensate::rotation(10.0, 5.0)),
-        station: FreeRange::checked(&Variable::Station, 100.0, 100.0).ok(),
+        free: vec![
+            Free::ToolRotation(crate::compensate::rotation(10.0, 5.0)),
+            Free::Station(FreeRange::checked(&Variable::Station, 100.0, 100.0).unwrap()),
+        ],
         minimise: Objective::Bound,
         aggregate,
-        ..FreeVariables::default()
     };
     let options = Options {
         free,

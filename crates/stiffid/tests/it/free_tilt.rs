@@ -6,8 +6,8 @@
 
 use nalgebra::{Isometry3, Rotation3, UnitQuaternion, Vector3, Vector6};
 use stiffid::machining::compensate::{
-    self, Aggregate, Compensated, FreeRange, FreeVariables, Model, Objective, Options, PathPoint,
-    Target, Variable,
+    self, Aggregate, Compensated, Free, FreeRange, FreeVariables, Model, Objective, Options,
+    PathPoint, Target, Variable,
 };
 use stiffid::observation::deflection::Frame;
 use stiffid::robot::external::{ExternalAxes, ExternalAxis, ExternalValues};
@@ -86,11 +86,12 @@ fn moved(i: usize, phi: f64) -> Isometry3<f64> {
 /// The free tilt +-10 deg in 10 deg steps and the free tool axis +-10 deg in 5 deg steps.
 fn free(s: &Setup, aggregate: Aggregate) -> Options {
     let free = FreeVariables {
-        tool_rotation: Some(crate::compensate::rotation(10.0, 5.0)),
-        tilt: FreeRange::checked(&Variable::Tilt, 10.0, 10.0).ok(),
+        free: vec![
+            Free::ToolRotation(crate::compensate::rotation(10.0, 5.0)),
+            Free::Tilt(FreeRange::checked(&Variable::Tilt, 10.0, 10.0).unwrap()),
+        ],
         minimise: Objective::Bound,
         aggregate,
-        ..FreeVariables::default()
     };
     Options {
         free,

@@ -666,3 +666,30 @@ fn a_crate_without_unit_tests_declares_none() {
     assert!(declares_a_test("proptest! {\n    fn b(x in 0..3) {}\n}"));
     assert!(!declares_a_test("#[cfg(test)]\nmod t {}\n"));
 }
+
+/// Every `Document` type of the library (what a job writes) names itself: its attributes hold
+/// serde's `tag = "kind"`, so its JSON's first key is `kind` (docs/ARCHITECTURE.md, "Jobs and
+/// documents"); the schemas' test checks the same of every schema `stiffid schema` lists.
+#[test]
+fn every_document_type_names_its_kind() {
+    let mut missing = Vec::new();
+    let mut found = 0;
+    for c in CRATES {
+        for (file, code) in library_files(c) {
+            let lines: Vec<&str> = code.lines().collect();
+            for (i, line) in lines.iter().enumerate() {
+                if !line.starts_with("pub struct Document") {
+                    continue;
+                }
+                found += 1;
+                let attributes = (lines[..i].iter().rev())
+                    .take_while(|l| l.starts_with("#[") || l.starts_with("///"));
+                if !attributes.into_iter().any(|l| l.contains("tag = \"kind\"")) {
+                    missing.push(format!("{c}/src/{}:{}", file.display(), i + 1));
+                }
+            }
+        }
+    }
+    assert!(found >= 15, "{found} document types found");
+    assert!(missing.is_empty(), "documents without a kind: {missing:?}");
+}

@@ -7,7 +7,7 @@
 
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 use stiffid::machining::compensate::{
-    self, Aggregate, FreeVariables, LeadTilt, Model, Objective, Options, PathPoint, Target,
+    self, Aggregate, Free, FreeVariables, LeadTilt, Model, Objective, Options, PathPoint, Target,
 };
 use stiffid::machining::{self, process, Language};
 use stiffid::observation::deflection::Frame;
@@ -61,7 +61,9 @@ fn leaned(p: &PathPoint, lead: f64, tilt: f64) -> Isometry3<f64> {
 /// Lead and tilt free within `cone_deg` in `step_deg` steps, minimising the bound.
 fn options(s: &Setup, cone_deg: f64, step_deg: f64, aggregate: Aggregate) -> Options {
     let free = FreeVariables {
-        lead_tilt: Some(LeadTilt::checked(Some(cone_deg), step_deg).unwrap()),
+        free: vec![Free::LeadTilt(
+            LeadTilt::checked(Some(cone_deg), step_deg).unwrap(),
+        )],
         aggregate,
         ..FreeVariables::default()
     };
@@ -137,7 +139,9 @@ fn the_axis_chosen_lies_in_the_cone_and_the_tool_lands_on_it() {
     let compliance = s.model_compliance("test").unwrap();
     let (cone, step) = (8f64.to_radians(), 2f64.to_radians());
     let mut options = options(&s, 8.0, 2.0, Aggregate::Max);
-    options.free.tool_rotation = Some(crate::compensate::rotation(20.0, 10.0));
+    options
+        .free
+        .set(Free::ToolRotation(crate::compensate::rotation(20.0, 10.0)));
     let results = compensate::path(s.arm(), &compliance, &points, &options).unwrap();
     let model = Model::new(s.arm(), &compliance).unwrap();
     let z_own = down() * Vector3::z();
@@ -217,8 +221,10 @@ fn bad_cones_and_steps_are_refused_naming_the_option() {
     }
     assert_eq!(refused(None, 31.0), JobOption::LeadTiltStep);
     let surge = FreeVariables {
-        tool_rotation: Some(crate::compensate::rotation(10.0, 5.0)),
-        lead_tilt: LeadTilt::checked(Some(10.0), 2.0).ok(),
+        free: vec![
+            Free::ToolRotation(crate::compensate::rotation(10.0, 5.0)),
+            Free::LeadTilt(LeadTilt::checked(Some(10.0), 2.0).unwrap()),
+        ],
         minimise: Objective::Surge,
         ..FreeVariables::default()
     };
@@ -234,13 +240,19 @@ fn bad_cones_and_steps_are_refused_naming_the_option() {
     let s = milling();
     let compliance = s.model_compliance("test").unwrap();
     let mut o = options(&s, 10.0, 2.0, Aggregate::Sum);
-    o.free.lead_tilt.as_mut().unwrap().cone = None;
+    o.free.set(Free::LeadTilt(LeadTilt {
+        cone: None,
+        ..o.free.lead_tilt().unwrap()
+    }));
     let e = compensate::path(s.arm(), &compliance, &line(3), &o).unwrap_err();
     assert!(
         matches!(&e, Error::InvalidOption { option: JobOption::LeadTiltRange, message } if message.contains("--free lead-tilt=-CONE..CONE")),
         "{e}"
     );
-    o.free.lead_tilt.as_mut().unwrap().cone = Some(1.0);
+    o.free.set(Free::LeadTilt(LeadTilt {
+        cone: Some(1.0),
+        ..o.free.lead_tilt().unwrap()
+    }));
     let e = compensate::path(s.arm(), &compliance, &line(3), &o).unwrap_err();
     assert!(
         matches!(
@@ -286,7 +298,8 @@ fn a_streamed_grid_too_large_names_its_states_per_point() {
     assert!(!message.contains("x 14 path points"), "{message}");
     // With the rotation free in 1 deg steps over +-180 deg (361 rotations): 1.3e8 states.
     let mut o = options(&s, 30.0, 0.1, Aggregate::Sum);
-    o.free.tool_rotation = Some(crate::compensate::rotation(180.0, 1.0));
+    o.free
+        .set(Free::ToolRotation(crate::compensate::rotation(180.0, 1.0)));
     let (_, message) = refused(&o);
     assert!(
         message.contains("361201 leans x 361 rotations = 130393561 states per path point"),
@@ -298,7 +311,8 @@ fn a_streamed_grid_too_large_names_its_states_per_point() {
     );
     // The rotation alone in 0.1 deg steps: 3601 rotations, at most 1388 points.
     let mut o = Options::for_setup(&s);
-    o.free.tool_rotation = Some(crate::compensate::rotation(180.0, 0.1));
+    o.free
+        .set(Free::ToolRotation(crate::compensate::rotation(180.0, 0.1)));
     let points = line(1400).into_iter().map(Ok);
     let e = compensate::stream(s.arm(), &compliance, points, &o, |_, _| Ok::<(), Error>(()));
     let Err(Error::InvalidOption { option, message }) = e else {
@@ -348,7 +362,10 @@ fn a_program_leans_within_its_operations_cone() {
     let process =
         process::file::parse(&format!("{MILLING}[tool_axis]\ncone_deg = 6\n"), "p.toml").unwrap();
     let mut o = options(&s, 6.0, 3.0, Aggregate::Max);
-    o.free.lead_tilt.as_mut().unwrap().cone = None;
+    o.free.set(Free::LeadTilt(LeadTilt {
+        cone: None,
+        ..o.free.lead_tilt().unwrap()
+    }));
     let report =
         machining::compensate(s.arm(), s.workpiece(), &compliance, &program, &process, &o).unwrap();
     for (r, op) in report.results.iter().zip(&report.operations) {
@@ -359,7 +376,10 @@ fn a_program_leans_within_its_operations_cone() {
         }
         assert!(r.budget.bound <= r.bound_before.unwrap() * (1.0 + 1e-9));
     }
-    o.free.lead_tilt.as_mut().unwrap().cone = Some(6f64.to_radians());
+    o.free.set(Free::LeadTilt(LeadTilt {
+        cone: Some(6f64.to_radians()),
+        ..o.free.lead_tilt().unwrap()
+    }));
     let e = machining::compensate(s.arm(), s.workpiece(), &compliance, &program, &process, &o)
         .unwrap_err();
     assert!(

@@ -8,8 +8,8 @@ use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 use stiffid::app::compensate::{run, Input, Request};
 use stiffid::machining::cell::on_carriage;
 use stiffid::machining::compensate::{
-    self, Aggregate, ChosenValues, Compensated, FreeVariables, LeadTilt, MapVariable, Objective,
-    Options, PathPoint, Target,
+    self, Aggregate, ChosenValues, Compensated, Free, FreeVariables, LeadTilt, MapVariable,
+    Objective, Options, PathPoint, Target,
 };
 use stiffid::observation::deflection::Frame;
 use stiffid::robot::external::{ExternalAxes, ExternalAxis, ExternalValues};
@@ -32,11 +32,12 @@ fn milling(track: bool) -> Setup {
 /// free, minimising the summed bound.
 fn free(s: &Setup) -> Options {
     let free = FreeVariables {
-        tool_rotation: Some(crate::compensate::rotation(30.0, 5.0)),
-        lead_tilt: LeadTilt::checked(Some(10.0), 2.5).ok(),
+        free: vec![
+            Free::ToolRotation(crate::compensate::rotation(30.0, 5.0)),
+            Free::LeadTilt(LeadTilt::checked(Some(10.0), 2.5).unwrap()),
+        ],
         minimise: Objective::Bound,
         aggregate: Aggregate::Sum,
-        ..FreeVariables::default()
     };
     Options {
         free,
@@ -118,7 +119,9 @@ fn the_track_map_holds_the_chosen_rotation_and_lean_and_its_chosen_cells_are_the
         })
         .collect();
     let mut options = free(&s);
-    options.free.station = Some(crate::compensate::station(100.0, 50.0));
+    options
+        .free
+        .set(Free::Station(crate::compensate::station(100.0, 50.0)));
     options.map_over = MapVariable::Track;
     let results = compensate::path_on_track(s.arm(), &compliance, &points, &options).unwrap();
     assert!(results

@@ -4,7 +4,7 @@
 
 use nalgebra::{Isometry3, Vector3};
 use stiffid::design::{self, Criterion, Pool, PoolOptions, SearchOptions};
-use stiffid::machining::compensate::{self, FreeRange, Variable};
+use stiffid::machining::compensate::{self, Free, FreeRange, Variable};
 use stiffid::observation::stiffness::joint_torques;
 use stiffid::observation::{point_rows, posture_block};
 use stiffid::{robot::ik, setup, study, study::simulate, Error, Setup};
@@ -196,10 +196,10 @@ fn ik_and_compensate_options_out_of_range_are_refused() {
     options.q0[3] = f64::NAN;
     rejected(options.validate(), "compensate::Options.q0[4]", "NaN");
     let mut options = compensate::Options::for_setup(&setup);
-    options.free.tool_rotation = Some(FreeRange {
+    options.free.set(Free::ToolRotation(FreeRange {
         step: 0.0,
         range: 1.0,
-    });
+    }));
     match options.validate() {
         Err(Error::InvalidOption { option, message }) => {
             assert_eq!(option, stiffid::JobOption::ToolRotationStep);
@@ -238,7 +238,7 @@ fn ik_and_compensate_options_out_of_range_are_refused() {
         })
     ));
     let free = crate::compensate::rotation(180.0, 90.0);
-    options.free.tool_rotation = Some(free);
+    options.free.set(Free::ToolRotation(free));
     assert!(options.validate().is_ok());
 }
 

@@ -8,7 +8,9 @@
 
 use nalgebra::Vector6;
 use stiffid::app::compensate::{self, Input, Report};
-use stiffid::machining::compensate::{Compensated, FreeVariables, Objective, Options, PathPoint};
+use stiffid::machining::compensate::{
+    Compensated, Free, FreeVariables, Objective, Options, PathPoint,
+};
 use stiffid::machining::dynamics::Dynamics;
 use stiffid::machining::gcode::{self, Motion};
 use stiffid::machining::program::speed::Speed;
@@ -106,7 +108,7 @@ type Postures = [Vec<Vector6<f64>>; 2];
 fn rotated(case: &Case, s: &Setup) -> Result<(Report, Postures), Error> {
     let options = Options {
         free: FreeVariables {
-            tool_rotation: Some(crate::compensate::rotation(30.0, 2.0)),
+            free: vec![Free::ToolRotation(crate::compensate::rotation(30.0, 2.0))],
             minimise: Objective::Deflection,
             ..FreeVariables::default()
         },

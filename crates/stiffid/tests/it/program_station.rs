@@ -5,7 +5,7 @@
 //! 0.1 micrometre; no point's bound above its bound at the program's own station.
 
 use nalgebra::{Isometry3, Vector3};
-use stiffid::machining::compensate::{FreeVariables, Model, Options};
+use stiffid::machining::compensate::{Free, FreeVariables, Model, Options};
 use stiffid::machining::process::file;
 use stiffid::machining::{self, gcode, Language};
 use stiffid::robot::external::{ExternalAxes, ExternalAxis};
@@ -60,7 +60,7 @@ fn a_gcode_program_is_written_back_at_the_stations_chosen() {
     let own = compensate(&own_options);
     let options = Options {
         free: FreeVariables {
-            station: Some(crate::compensate::station(200.0, 50.0)),
+            free: vec![Free::Station(crate::compensate::station(200.0, 50.0))],
             ..FreeVariables::default()
         },
         ..own_options.clone()

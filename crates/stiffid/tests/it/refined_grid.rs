@@ -4,7 +4,7 @@
 //! optimum of a uniform grid of the halved step; bad values refused naming the option.
 
 use stiffid::machining::compensate::{
-    self, refine, Aggregate, Compensated, FreeVariables, Objective, Options, PathPoint,
+    self, refine, Aggregate, Compensated, Free, FreeVariables, Objective, Options, PathPoint,
 };
 use stiffid::machining::path;
 use stiffid::observation::deflection::Frame;
@@ -23,10 +23,12 @@ fn total(results: &[Compensated], aggregate: Aggregate) -> f64 {
 /// more, so that a 2.5 deg grid reaches 90 too).
 fn rotation(s: &Setup, max_step_deg: f64, aggregate: Aggregate, refine: usize) -> Options {
     let free = FreeVariables {
-        tool_rotation: Some(crate::compensate::rotation(90.002, max_step_deg)),
+        free: vec![Free::ToolRotation(crate::compensate::rotation(
+            90.002,
+            max_step_deg,
+        ))],
         minimise: Objective::Bound,
         aggregate,
-        ..FreeVariables::default()
     };
     Options {
         free,
@@ -105,7 +107,8 @@ fn the_refined_station_and_rotation_never_rise_and_keep_the_step() {
     for aggregate in [Aggregate::Sum, Aggregate::Max] {
         let options = |refine| {
             let mut o = rotation(&s, 5.0, aggregate, refine);
-            o.free.station = Some(crate::compensate::station(100.0, 50.0));
+            o.free
+                .set(Free::Station(crate::compensate::station(100.0, 50.0)));
             o
         };
         let run =

@@ -10,7 +10,7 @@ use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 use std::sync::Arc;
 use stiffid::app::compensate::{self, document::Document, Input};
 use stiffid::machining::compensate::{
-    self as comp, speed_shares, Aggregate, Compensated, FreeVariables, Objective, Options,
+    self as comp, speed_shares, Aggregate, Compensated, Free, FreeVariables, Objective, Options,
     PathPoint, Target,
 };
 use stiffid::machining::dynamics::Dynamics;
@@ -57,7 +57,7 @@ fn trim(feed: f64) -> (String, Vec<f64>) {
 fn on_track(s: &Setup, text: &str) -> (Document, Vec<f64>) {
     let options = Options {
         free: FreeVariables {
-            station: Some(crate::compensate::station(1500.0, 50.0)),
+            free: vec![Free::Station(crate::compensate::station(1500.0, 50.0))],
             aggregate: Aggregate::Max,
             ..FreeVariables::default()
         },
@@ -151,7 +151,7 @@ fn line() -> Vec<PathPoint> {
 fn rotated(s: &Setup) -> Vec<Compensated> {
     let mut options = Options {
         free: FreeVariables {
-            tool_rotation: Some(crate::compensate::rotation(30.0, 5.0)),
+            free: vec![Free::ToolRotation(crate::compensate::rotation(30.0, 5.0))],
             minimise: Objective::Deflection,
             ..FreeVariables::default()
         },

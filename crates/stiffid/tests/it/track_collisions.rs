@@ -7,7 +7,7 @@
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 use stiffid::cell::{capsules, CheckKind, Checker};
 use stiffid::machining::compensate::{
-    self, Aggregate, Compensated, FreeVariables, Options, PathPoint, Target,
+    self, Aggregate, Compensated, Free, FreeVariables, Options, PathPoint, Target,
 };
 use stiffid::observation::deflection::Frame;
 use stiffid::robot::external::{ExternalAxes, ExternalAxis, ExternalValues};
@@ -65,7 +65,7 @@ pub(crate) fn line_at(n: usize, e: &[f64]) -> Vec<PathPoint> {
 /// The free station +-500 mm in 100 mm steps, the bound summed.
 fn options(s: &Setup) -> Options {
     let free = FreeVariables {
-        station: Some(crate::compensate::station(500.0, 100.0)),
+        free: vec![Free::Station(crate::compensate::station(500.0, 100.0))],
         aggregate: Aggregate::Sum,
         ..FreeVariables::default()
     };

@@ -9,7 +9,7 @@ use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 use stiffid::cell::{CheckKind, Checker};
 use stiffid::machining::cell::on_carriage;
 use stiffid::machining::compensate::{
-    self, ChosenValues, FreeVariables, MapVariable, Options, PathPoint, Target,
+    self, ChosenValues, Free, FreeVariables, MapVariable, Options, PathPoint, Target,
 };
 use stiffid::observation::deflection::Frame;
 use stiffid::robot::external::{ExternalAxes, ExternalAxis, ExternalValues};
@@ -89,7 +89,7 @@ fn every_cell_of_the_track_map_is_a_compensation_at_its_station() {
         map: true,
         map_over: MapVariable::Track,
         free: FreeVariables {
-            station: Some(crate::compensate::station(100.0, 50.0)),
+            free: vec![Free::Station(crate::compensate::station(100.0, 50.0))],
             ..FreeVariables::default()
         },
         ..Options::for_setup(&s)

@@ -15,7 +15,7 @@ use rand_distr::{Distribution, Normal};
 use stiffid::app::compensate::{self, Input};
 use stiffid::identify::svd::fit;
 use stiffid::machining::compensate::{
-    Aggregate, Compensated, FreeVariables, Objective, Options, PathPoint,
+    Aggregate, Compensated, Free, FreeVariables, Objective, Options, PathPoint,
 };
 use stiffid::metrology::calibration::error_model::Observation;
 use stiffid::metrology::calibration::gravity::Gravity;
@@ -309,11 +309,12 @@ fn a_path_along_the_track_lands_on_the_true_cell() {
     check(own, own_nominal);
     // The station (+-500 mm) and the tool rotation (+-30 deg) chosen for the least deflection.
     options.free = FreeVariables {
-        tool_rotation: Some(crate::compensate::rotation(30.0, 10.0)),
-        station: Some(crate::compensate::station(500.0, 100.0)),
+        free: vec![
+            Free::ToolRotation(crate::compensate::rotation(30.0, 10.0)),
+            Free::Station(crate::compensate::station(500.0, 100.0)),
+        ],
         minimise: Objective::Deflection,
         aggregate: Aggregate::Max,
-        ..FreeVariables::default()
     };
     let (points, results) = compensated(&setup, &compliance, &options, &text);
     let moved = (points.iter().zip(&results))

@@ -14,7 +14,7 @@ use nalgebra::{Isometry3, Point3, Translation3, Unit, UnitQuaternion, Vector3, V
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
-use stiffid::machining::compensate::{Aggregate, FreeVariables, Objective, Options};
+use stiffid::machining::compensate::{Aggregate, Free, FreeVariables, Objective, Options};
 use stiffid::metrology::calibration::error_model::Observation;
 use stiffid::metrology::calibration::gravity::Gravity;
 use stiffid::robot::external::ExternalValues;
@@ -248,11 +248,12 @@ fn a_path_on_a_turned_table_lands_on_the_true_part() {
     let mut options = Options::for_setup(&setup);
     options.q0 = Vector6::from_fn(|i, _| OVER_TABLE_DEG[i].to_radians());
     options.free = FreeVariables {
-        tool_rotation: Some(crate::compensate::rotation(30.0, 10.0)),
-        positioner: Some(crate::compensate::positioner(90.0, 15.0)),
+        free: vec![
+            Free::ToolRotation(crate::compensate::rotation(30.0, 10.0)),
+            Free::Positioner(crate::compensate::positioner(90.0, 15.0)),
+        ],
         minimise: Objective::Deflection,
         aggregate: Aggregate::Max,
-        ..FreeVariables::default()
     };
     let poses = poses(&over);
     let (points, results) = compensated(&setup, &compliance, &options, &path(&poses));

@@ -217,9 +217,10 @@ fn maps_document(m: &super::Maps) -> MapsDocument {
     }
 }
 
-/// The calibrated compliance as a stiffness file ([`stiffid_core::io::stiffness`]).
+/// The calibrated compliance as a stiffness file ([`stiffid_core::io::stiffness`]), `kind` first.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema), schemars(transform = stiffid_core::app::document::schema::Kind("stiffness")))]
+#[serde(tag = "kind", rename = "stiffness")]
 pub struct StiffnessSection {
     /// Every parameter of the setup's model with its stiffness.
     pub parameters: Vec<ParameterStiffness>,
@@ -572,8 +573,7 @@ impl Document {
     /// (`stiffness_file_error` says why, or no compliance is fitted: neither loaded readings nor a
     /// gravity model).
     pub fn stiffness_file_out(&self) -> Option<String> {
-        let file = self.stiffness_file.as_ref()?;
-        serde_json::to_string_pretty(file).ok()
+        serde_json::to_string_pretty(self.stiffness_file.as_ref()?).ok()
     }
 }
 

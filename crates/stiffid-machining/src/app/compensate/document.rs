@@ -3,7 +3,7 @@
 //! `stiffid compensate --json`, the report's `summary.json`) and its summary ([`Summary`],
 //! accumulated point by point so that a path of any length is summarised in bounded memory).
 
-pub use super::free::{FreeLeadTilt, FreePositioner, FreeStation, FreeToolAxis};
+pub use super::free::FreeVariable;
 use crate::app::compensate::{Report, Segment};
 use crate::compensate::Compensated;
 use nalgebra::Vector6;
@@ -60,10 +60,15 @@ pub struct Document {
     /// extrapolates: the CSV's `extrapolates`, the summary's `extrapolated`); `null` when the
     /// stiffness records none.
     pub region: Option<RegionSection>,
-    /// With `--free tool-rotation`: its options; else `null`.
-    pub free_tool_axis: Option<FreeToolAxis>,
-    /// With `--free station`: its options; else `null`.
-    pub free_station: Option<FreeStation>,
+    /// The free variables (`--free`), in the order given: each one's name, range and step;
+    /// empty when nothing is free.
+    pub free: Vec<FreeVariable>,
+    /// With a free variable: what a point costs (`--minimise`): `deflection`, `surge` or
+    /// `bound`; else `null`.
+    pub minimise: Option<&'static str>,
+    /// With a free variable: how the points' costs add up along the path (`--objective`): `sum`
+    /// or `max` (the worst point's); else `null`.
+    pub objective: Option<&'static str>,
     /// With a free variable: the feasibility checks of its moved postures and the states each
     /// removed; else `null`.
     pub feasibility: Option<super::feasibility::Feasibility>,
@@ -71,13 +76,6 @@ pub struct Document {
     /// checked against them, and each axis's highest share of its largest speed along the path
     /// at the path's own values and at those chosen.
     pub speed_limits: super::speed::SpeedLimits,
-    /// With `--free positioner`: its options; else `null`.
-    pub free_positioner: Option<FreePositioner>,
-    /// With `--free lead-tilt`: its options; else `null`. The lead and tilt chosen are every
-    /// point's `lead_deg` and `tilt_deg`.
-    pub free_lead_tilt: Option<FreeLeadTilt>,
-    /// With `--free tilt`: its options (a two-axis positioner's first axis); else `null`.
-    pub free_tilt: Option<FreePositioner>,
     /// With a free variable: the levels its grid was refined around the line chosen on it
     /// (`--refine`, 0 to 4: each halves every free variable's step in a band around the
     /// previous level's line); else `null`.
@@ -323,14 +321,12 @@ impl Document {
             has_covariance: report.compliance.covariance.is_some(),
             prediction_level: report.prediction_level,
             region: RegionSection::of(&report.compliance.region),
-            free_tool_axis: FreeToolAxis::new(&report.free),
-            free_station: FreeStation::new(&report.free),
+            free: FreeVariable::all(&report.free),
+            minimise: super::free::objective(&report.free).map(|o| o.0),
+            objective: super::free::objective(&report.free).map(|o| o.1),
             feasibility: report.feasibility.clone(),
             speed_limits: report.speed_limits.clone(),
-            free_positioner: FreePositioner::new(report.free.positioner, &report.free),
-            free_tilt: FreePositioner::new(report.free.tilt, &report.free),
             refine: report.refine,
-            free_lead_tilt: FreeLeadTilt::new(&report.free),
             configurations: (report.configurations.as_ref())
                 .map(super::configurations::ConfigurationsDocument::new),
             program: report.program.as_ref().map(|p| Program {

@@ -256,7 +256,7 @@ fn check_tcp(setup: &Setup) -> Result<()> {
 /// axis).
 fn frees(options: &Options) -> bool {
     let free = &options.free;
-    free.tool_rotation.is_some() || free.lead_tilt.is_some() || free.frees_external()
+    free.tool_rotation().is_some() || free.lead_tilt().is_some() || free.frees_external()
 }
 
 /// What the job gathers point by point as they are computed: the summary, the speeds, the
@@ -272,7 +272,7 @@ impl<'a> Tally<'a> {
     fn new(setup: &Setup, options: &Options, speeds: speed::Tracker<'a>) -> Self {
         let mut summary = Summary::new(frees(options), options.level, setup.robot().external());
         summary.budget.limit = options.max_error;
-        if options.free.lead_tilt.is_some() {
+        if options.free.lead_tilt().is_some() {
             summary = summary.with_lean();
         }
         Tally {
@@ -375,7 +375,7 @@ where
     if options.map {
         out.mapped = Some(all().map_err(|e| in_input(&out.name, e))?);
     }
-    if options.free.configuration.is_some() {
+    if options.free.configuration().is_some() {
         let points = all().map_err(|e| in_input(&out.name, e))?;
         let (results, c) =
             compensate::path_configurations(setup.arm(), compliance, &points, options)
@@ -619,7 +619,9 @@ fn map_of(
     in_chosen.q0 = (outcome.configurations.as_ref())
         .and_then(compensate::Configurations::start)
         .unwrap_or(options.q0);
-    in_chosen.free.configuration = None;
+    in_chosen.free = in_chosen
+        .free
+        .keeping(|f| !matches!(f, compensate::Free::Configuration(_)));
     // A program's wrenches hold the tool's weight (machining::compensate).
     let weighted =
         outcome.program.is_some() && crate::weight::tool_load(setup.arm(), compliance).is_some();

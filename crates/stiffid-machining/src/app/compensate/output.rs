@@ -84,7 +84,7 @@ pub(super) fn check_settings(
 /// # Errors
 /// [`Error::InvalidOption`] ([`JobOption::LeadTilt`]).
 pub(super) fn check_lean(options: &Options, output: Language) -> Result<()> {
-    match (options.free.lead_tilt, output) {
+    match (options.free.lead_tilt(), output) {
         (Some(_), Language::GCode) => Err(Error::InvalidOption {
             option: stiffid_core::JobOption::LeadTilt,
             message: "a program written as G-code carries the tool's positions only (a 3-axis program has no words for its axis), so the leaned postures would be lost: write it as a robot program (--out X.ls, .src, .mod or .jbi; Python output=), whose targets carry them".into(),
@@ -100,7 +100,7 @@ pub(super) fn check_lean(options: &Options, output: Language) -> Result<()> {
 /// # Errors
 /// [`Error::InvalidOption`] ([`JobOption::ToolRotationRange`]).
 pub(super) fn check_tool_axis(options: &Options, output: Language) -> Result<()> {
-    match (&options.free.tool_rotation, output) {
+    match (&options.free.tool_rotation(), output) {
         (Some(_), Language::GCode) => Err(Error::InvalidOption {
             option: stiffid_core::JobOption::ToolRotationRange,
             message: "a program written as G-code carries the tool's positions only (a 3-axis program has no word for the rotation about the tool's axis), so the rotation chosen would be lost: write it as a robot program (--out X.ls, .src, .mod or .jbi; Python output=), whose targets carry it".into(),

@@ -7,6 +7,9 @@ use serde::Serialize;
 
 /// The force document.
 #[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(tag = "kind", rename = "force")]
+#[cfg_attr(feature = "schema", schemars(transform = stiffid_core::app::document::schema::Kind("force")))]
 pub struct Document {
     /// The process file.
     pub process: String,

@@ -35,6 +35,7 @@
 
 pub mod document;
 mod evaluate;
+mod free;
 pub mod search;
 mod work;
 pub mod written;
@@ -81,63 +82,55 @@ impl Region {
     pub const MAX_TILT_DEG: f64 = 45.0;
     /// How far the part may move up or down from its own height by default, mm.
     pub const DEFAULT_HEIGHT_MM: f64 = 100.0;
+    /// The largest tilt by default (`--free tilt`), deg.
+    pub const DEFAULT_TILT_DEG: f64 = 10.0;
 
     /// The region in the front ends' units: `region_mm` `[x0, x1, y0, y1]`, `rotation_deg`
-    /// `[a0, a1]`, and for six degrees of freedom `free` the height range `[z0, z1]` in mm
-    /// (`None`: `own_z +-` [`Self::DEFAULT_HEIGHT_MM`], `own_z` the part's own height in m) and
-    /// the largest tilt in deg.
-    pub fn from_mm_deg(
+    /// `[a0, a1]`, and `free` the texts of `place --free` ([`Free::parse`]; `own_z` the part's
+    /// own height, m).
+    ///
+    /// # Errors
+    /// Those of [`Free::parse`].
+    pub fn from_mm_deg<S: AsRef<str>>(
         region_mm: [f64; 4],
         rotation_deg: [f64; 2],
-        free: Option<(Option<[f64; 2]>, f64)>,
+        free: &[S],
         own_z: f64,
-    ) -> Self {
-        let h = Self::DEFAULT_HEIGHT_MM * 1e-3;
-        Region {
+    ) -> Result<Self> {
+        Ok(Region {
             x: [region_mm[0] * 1e-3, region_mm[1] * 1e-3],
             y: [region_mm[2] * 1e-3, region_mm[3] * 1e-3],
             rotation: rotation_deg.map(f64::to_radians),
-            free: free.map(|(z, tilt)| Free {
-                z: z.map_or([own_z - h, own_z + h], |z| z.map(|v| v * 1e-3)),
-                tilt: tilt.to_radians(),
-            }),
-        }
+            free: Free::parse(free, own_z)?,
+        })
     }
 
     /// Checks every range: finite, lower <= upper, lengths within +-[`Self::MAX_EXTENT_M`], the
     /// rotation within +-180 deg, the tilt within [0, [`Self::MAX_TILT_DEG`]].
     ///
     /// # Errors
-    /// [`Error::InvalidField`] naming the range (`region_mm`, `rotation_deg`, `z_mm`,
-    /// `tilt_deg`) and the values, in mm and deg.
+    /// [`Error::InvalidField`] naming the range (`region_mm`, `rotation_deg`, `free`: the height
+    /// `z` in the base frame or the `tilt`) and the values, in mm and deg.
     pub fn validate(&self) -> Result<()> {
         let m = Self::MAX_EXTENT_M;
+        let deg = 180.0 / std::f64::consts::PI;
         let mut ranges = vec![
-            ("region_mm", self.x, 1e3, m),
-            ("region_mm", self.y, 1e3, m),
-            (
-                "rotation_deg",
-                self.rotation,
-                180.0 / std::f64::consts::PI,
-                std::f64::consts::PI,
-            ),
+            ("region_mm", "", self.x, 1e3, m),
+            ("region_mm", "", self.y, 1e3, m),
+            ("rotation_deg", "", self.rotation, deg, std::f64::consts::PI),
         ];
         if let Some(f) = &self.free {
-            ranges.push(("z_mm", f.z, 1e3, m));
-            ranges.push((
-                "tilt_deg",
-                [0.0, f.tilt],
-                180.0 / std::f64::consts::PI,
-                Self::MAX_TILT_DEG.to_radians(),
-            ));
+            ranges.push(("free", "z in the base frame, mm: ", f.z, 1e3, m));
+            let most = Self::MAX_TILT_DEG.to_radians();
+            ranges.push(("free", "tilt, deg: ", [0.0, f.tilt], deg, most));
         }
-        for (field, [a, b], scale, most) in ranges {
+        for (field, what, [a, b], scale, most) in ranges {
             let ok = a.is_finite() && b.is_finite() && a <= b && a >= -most && b <= most;
             if !ok {
                 return Err(Error::InvalidField {
                     field: field.into(),
                     message: format!(
-                        "{}, {}: expected two numbers, the first no larger, within +-{}",
+                        "{what}{}, {}: expected two numbers, the first no larger, within +-{}",
                         number(a * scale),
                         number(b * scale),
                         number(most * scale)

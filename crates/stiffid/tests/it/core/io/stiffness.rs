@@ -192,3 +192,22 @@ fn a_file_written_with_the_former_percent_keys_still_reads() {
     let e = parse(&wrong).unwrap_err().to_string();
     assert!(e.contains("std_error_per_cent: unknown key"), "{e}");
 }
+
+#[test]
+fn a_file_with_its_kind_reads_as_one_without_as_written_before() {
+    // What `calibrate --stiffness-out` writes names itself (`kind`); older files do not.
+    let params = r#"[{"name": "k1", "kind": "drive", "unit": "Nm/rad", "stiffness": 950000},
+        {"name": "k2", "kind": "drive", "unit": "Nm/rad", "stiffness": 3000000},
+        {"name": "k3", "kind": "drive", "unit": "Nm/rad", "stiffness": 900000},
+        {"name": "k4", "kind": "drive", "unit": "Nm/rad", "stiffness": 250000},
+        {"name": "k5", "kind": "drive", "unit": "Nm/rad", "stiffness": 200000},
+        {"name": "k6", "kind": "drive", "unit": "Nm/rad", "stiffness": 150000}]"#;
+    let old = parse(&format!(r#"{{"parameters": {params}}}"#)).unwrap();
+    let new = parse(&format!(
+        r#"{{"kind": "stiffness", "parameters": {params}}}"#
+    ))
+    .unwrap();
+    assert_eq!(old, new);
+    let h = new.compliance(&Model::default()).unwrap().h;
+    assert_eq!(h[1], 1.0 / 3_000_000.0);
+}

@@ -38,7 +38,7 @@ fn the_texts_of_free_parse_to_their_variable_range_and_step() {
         ),
     ];
     for (text, variable, range, step) in cases {
-        let free = Free::parse(text).unwrap();
+        let free = FreeOption::parse(text).unwrap();
         assert_eq!(
             (free.variable, free.range, free.step),
             (variable, range, step),
@@ -60,7 +60,7 @@ fn malformed_texts_are_refused_naming_free_and_the_text() {
         "=-5..5",
         "configuration=each",
     ] {
-        match Free::parse(text) {
+        match FreeOption::parse(text) {
             Err(Error::InvalidOption {
                 option: JobOption::Free,
                 message,
@@ -70,8 +70,8 @@ fn malformed_texts_are_refused_naming_free_and_the_text() {
             other => panic!("{text}: {other:?}"),
         }
     }
-    assert!(Free::from_parts("station=-5..5", None, None).is_err());
-    assert!(Free::from_parts("station", Some(-5.0), None).is_err());
+    assert!(FreeOption::from_parts("station=-5..5", None, None).is_err());
+    assert!(FreeOption::from_parts("station", Some(-5.0), None).is_err());
 }
 
 #[test]
@@ -84,7 +84,7 @@ fn every_retired_option_says_how_to_write_it() {
                 .replace("-R..R", "-1..1")
                 .replace("-CONE..CONE", "-1..1");
             let text = text.replace("STEP", "1");
-            Free::parse(&text).unwrap_or_else(|e| panic!("{name}: {text}: {e}"));
+            FreeOption::parse(&text).unwrap_or_else(|e| panic!("{name}: {text}: {e}"));
         }
     }
     assert_eq!(

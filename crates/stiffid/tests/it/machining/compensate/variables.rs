@@ -43,16 +43,68 @@ fn the_rotation_grid_splits_a_step_into_cells_of_at_most_5_deg() {
 
 #[test]
 fn the_surge_is_the_tool_rotations_alone() {
-    let rotation = FreeRange::checked(&Variable::ToolRotation, 90.0, 2.0).ok();
-    let free = FreeVariables {
-        tool_rotation: rotation,
-        minimise: Objective::Surge,
-        ..Default::default()
-    };
+    let rotation = FreeRange::checked(&Variable::ToolRotation, 90.0, 2.0).unwrap();
+    let free = FreeVariables::new(
+        vec![Free::ToolRotation(rotation)],
+        Objective::Surge,
+        Aggregate::Sum,
+    );
     assert!(free.validate().is_ok());
-    let with_station = FreeVariables {
-        station: FreeRange::checked(&Variable::Station, 100.0, 10.0).ok(),
-        ..free
-    };
+    let mut with_station = free.clone();
+    let station = FreeRange::checked(&Variable::Station, 100.0, 10.0).unwrap();
+    with_station.free.push(Free::Station(station));
     assert!(with_station.validate().is_err());
+}
+
+#[test]
+fn the_free_variables_are_one_list_each_found_by_its_kind_and_given_once() {
+    let rotation = FreeRange::checked(&Variable::ToolRotation, 90.0, 2.0).unwrap();
+    let table = FreeRange::checked(&Variable::Positioner, 45.0, 5.0).unwrap();
+    let lean = LeadTilt::checked(Some(10.0), 2.0).unwrap();
+    let free = FreeVariables::new(
+        vec![
+            Free::Positioner(table),
+            Free::ToolRotation(rotation),
+            Free::LeadTilt(lean),
+        ],
+        Objective::Bound,
+        Aggregate::Max,
+    );
+    assert!(free.validate().is_ok());
+    assert_eq!(free.tool_rotation(), Some(rotation));
+    assert_eq!(free.positioner(), Some(table));
+    assert_eq!(free.lead_tilt(), Some(lean));
+    assert_eq!(
+        (free.station(), free.tilt(), free.configuration()),
+        (None, None, None)
+    );
+    assert!(free.frees_external() && free.frees_tool_axis() && free.any());
+    let names: Vec<&str> = free.free.iter().map(Free::name).collect();
+    assert_eq!(names, ["positioner", "tool-rotation", "lead-tilt"]);
+    let inside = free.keeping(|f| !f.is_external());
+    assert_eq!(
+        inside.free,
+        [Free::ToolRotation(rotation), Free::LeadTilt(lean)]
+    );
+    assert!(!inside.frees_external());
+    // Two of one variable (two tables) are refused naming it, whatever their ranges.
+    let other = FreeRange::checked(&Variable::Positioner, 10.0, 5.0).unwrap();
+    let mut twice = free.clone();
+    twice.free.push(Free::Positioner(other));
+    let e = twice.validate().unwrap_err().to_string();
+    assert!(e.contains("positioner: given twice"), "{e}");
+    // A range outside its variable's limits built by hand is refused as the parser refuses it.
+    let wide = FreeRange {
+        range: 181f64.to_radians(),
+        step: 1f64.to_radians(),
+    };
+    let e = FreeVariables::new(
+        vec![Free::ToolRotation(wide)],
+        Objective::Bound,
+        Aggregate::Sum,
+    )
+    .validate()
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("181"), "{e}");
 }
