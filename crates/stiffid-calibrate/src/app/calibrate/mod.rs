@@ -28,6 +28,7 @@ mod judge;
 pub mod ladder;
 use judge::{judge, largest_residual};
 mod maps;
+mod maps_document;
 mod part;
 pub mod region;
 pub mod scene;
