@@ -88,6 +88,7 @@ pub mod numbered;
 pub mod plausibility;
 pub mod prior;
 mod program_frames;
+pub mod program_io;
 pub mod reference;
 mod workcell;
 
@@ -103,6 +104,7 @@ pub use file::{
     builtin, builtin_names, builtin_text, parse, parse_with, RobotRequest, MAX_PACKAGE_PATHS,
 };
 pub use numbered::NumberedFrames;
+pub use program_io::ProgramSettings;
 pub use program_frames::{offset_name, ProgramFrames, MAX_EXTENDED_OFFSET, MAX_OFFSETS};
 pub use workcell::{CellConstraints, Controller, Kinematics, Pulses, Workcell};
 

@@ -63,11 +63,13 @@
 //! `10^-DECIMALS` mm and deg.
 
 mod names;
+mod process;
 
 pub use names::{
     check_name, check_plan, default_name_length, max_name_length, moves_per_file, LS_MAX_LINES,
     MAX_FILES,
 };
+pub use process::{place, Process, ProcessForm};
 
 use super::{Dialect, DECIMALS};
 use crate::gcode::{Motion, Point};
@@ -155,11 +157,22 @@ pub struct Settings {
     pub name_length: Option<usize>,
     /// The most moves in one program file (within [`MOVES_PER_FILE`]).
     pub moves_per_file: usize,
+    /// The TCP speed of rapid moves where the language states one (RAPID `vrapid`, at most
+    /// `max_tcp_speed`), m/s, within [`RAPID_SPEED`] (the setup's `[controller]
+    /// rapid_speed_mm_s`).
+    pub rapid_speed: f64,
+    /// The joint speed of rapid moves (KRL `BAS(#VEL_PTP)`, LS `J .. %`, INFORM `VJ=`), percent
+    /// of the axes' top speed, within [`stiffid_core::setup::program_io::RAPID_JOINT_PCT`] (the
+    /// setup's `[controller] rapid_joint_pct`); LS states whole percents, INFORM hundredths.
+    pub rapid_joint_pct: f64,
 }
+
+/// The range of [`Settings::rapid_speed`], m/s.
+pub const RAPID_SPEED: std::ops::RangeInclusive<f64> = 1e-3..=10.0;
 
 impl Default for Settings {
     /// Cartesian targets (not asked), 2000 mm/s, the dialect's name length, 10 000 moves per
-    /// file.
+    /// file, rapids at [`RAPID_SPEED_MM_S`] and [`RAPID_PERCENT`].
     fn default() -> Self {
         Self {
             targets: Targets::Cartesian,
@@ -167,6 +180,8 @@ impl Default for Settings {
             max_tcp_speed: 2.0,
             name_length: None,
             moves_per_file: 10_000,
+            rapid_speed: RAPID_SPEED_MM_S * 1e-3,
+            rapid_joint_pct: RAPID_PERCENT as f64,
         }
     }
 }
@@ -198,6 +213,7 @@ impl Settings {
                 ),
             );
         }
+        self.validate_rapids()?;
         if !MOVES_PER_FILE.contains(&self.moves_per_file) {
             return bad(
                 JobOption::MovesPerFile,
@@ -208,6 +224,31 @@ impl Settings {
                     MOVES_PER_FILE.end()
                 ),
             );
+        }
+        Ok(())
+    }
+}
+
+impl Settings {
+    /// Checks the rapid speeds against their ranges.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] naming `controller.rapid_speed_mm_s` or
+    /// `controller.rapid_joint_pct`.
+    fn validate_rapids(&self) -> Result<()> {
+        let pct = stiffid_core::setup::program_io::RAPID_JOINT_PCT;
+        if !RAPID_SPEED.contains(&self.rapid_speed) {
+            let (lo, hi) = (RAPID_SPEED.start() * 1e3, RAPID_SPEED.end() * 1e3);
+            return Err(invalid(
+                "controller.rapid_speed_mm_s",
+                format!("{} mm/s: expected {lo} to {hi}", self.rapid_speed * 1e3),
+            ));
+        }
+        if !pct.contains(self.rapid_joint_pct) {
+            return Err(invalid(
+                "controller.rapid_joint_pct",
+                format!("{}: expected {pct}", self.rapid_joint_pct),
+            ));
         }
         Ok(())
     }
@@ -320,6 +361,9 @@ pub struct Written {
     pub files: Vec<File>,
     /// What the user should know (a feed LS cannot state exactly).
     pub warnings: Vec<String>,
+    /// What the program leaves to the user: the process words no `[controller.io]` event maps,
+    /// written as comments ([`Process`]).
+    pub left_out: Vec<String>,
 }
 
 /// How the robot moves to each point of a G-code path: the first point and rapid moves
@@ -362,14 +406,31 @@ pub fn moves(points: &[Point], max_tcp_speed: f64) -> Result<Vec<Move>> {
 /// [`Error::Program`] for a feed an LS program
 /// cannot state (naming the target's 1-based index as its line).
 pub fn generate(plan: &Plan) -> Result<Written> {
-    let names = check_plan(plan.dialect, plan.name, &plan.settings, plan.targets.len())?;
+    generate_with(plan, &Process::default())
+}
+
+/// [`generate`] with the G-code's process words written between the moves ([`Process`]);
+/// a file's numbered lines (LS) count them.
+///
+/// # Errors
+/// Those of [`generate`]; [`Error::InvalidField`] (`controller.io.KEY`) for an action the
+/// language cannot write; [`Error::Program`] naming the G-code line of a word whose action
+/// needs a value the program has not given; [`Error::InvalidOption`]
+/// ([`JobOption::MovesPerFile`]) for more process lines than a file holds.
+pub fn generate_with(plan: &Plan, process: &Process) -> Result<Written> {
     let generator = names::generator(plan.dialect)?;
+    let form = generator.process_form().ok_or_else(|| invalid("out", "this language writes no process instruction".into()))?;
+    let (inserted, left_out) = process::inserted(plan, form, process)?;
+    let settings = room_for(generator, &plan.settings, &inserted)?;
+    let names = check_plan(plan.dialect, plan.name, &settings, plan.targets.len())?;
     check_targets(plan)?;
-    let per_file = moves_per_file(plan.dialect, &plan.settings);
+    generator.check_settings(&plan.settings)?;
+    let per_file = moves_per_file(plan.dialect, &settings);
     let chunks: Vec<&[Target]> = plan.targets.chunks(per_file).collect();
     let mut written = Written {
         files: Vec::new(),
         warnings: Vec::new(),
+        left_out: left_out.into_iter().collect(),
     };
     let mut first = 0;
     let mut bodies = Vec::new();
@@ -382,6 +443,7 @@ pub fn generate(plan: &Plan) -> Result<Written> {
             targets: chunk,
             moves: &plan.moves[first..first + chunk.len()],
             last: first + chunk.len() == plan.targets.len(),
+            inserted: &inserted,
         };
         bodies.push((
             name.clone(),
@@ -423,6 +485,46 @@ pub struct Part<'a> {
     pub moves: &'a [Move],
     /// Whether it ends the whole program (its last point exact).
     pub last: bool,
+    /// The lines written before each target of the whole program, then after its last
+    /// ([`Process`]); empty: none.
+    pub inserted: &'a [String],
+}
+
+impl Part<'_> {
+    /// The lines written before its `k`-th target (0-based within the part).
+    pub fn before(&self, k: usize) -> &str {
+        self.inserted.get(self.first + k).map_or("", String::as_str)
+    }
+
+    /// The lines written after its last target: the program's end's, for the last part.
+    pub fn after(&self) -> &str {
+        let end = self.first + self.targets.len();
+        match self.last {
+            true => self.inserted.get(end).map_or("", String::as_str),
+            false => "",
+        }
+    }
+}
+
+/// `settings` with room in each file for the process lines `inserted` where the language limits
+/// a file's lines ([`super::Generator::lines_per_file`]): fewer moves per file.
+///
+/// # Errors
+/// [`Error::InvalidOption`] ([`JobOption::MovesPerFile`]) when they leave room for fewer than
+/// the least moves per file.
+fn room_for(generator: &dyn super::Generator, settings: &Settings, inserted: &[String]) -> Result<Settings> {
+    let extra: usize = inserted.iter().map(|s| s.lines().count()).sum();
+    let Some(limit) = generator.lines_per_file().filter(|_| extra > 0) else {
+        return Ok(*settings);
+    };
+    let room = limit.saturating_sub(extra);
+    if room < *MOVES_PER_FILE.start() {
+        return Err(Error::InvalidOption {
+            option: JobOption::MovesPerFile,
+            message: format!("{extra} process instructions leave room for {room} moves in a file of at most {limit} lines"),
+        });
+    }
+    Ok(Settings { moves_per_file: settings.moves_per_file.min(room), ..*settings })
 }
 
 fn invalid(field: &str, message: String) -> Error {
