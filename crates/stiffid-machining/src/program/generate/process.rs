@@ -133,18 +133,16 @@ fn written(plan: &Plan, form: &ProcessForm, w: &ProcessWord, action: &Action) ->
     };
     let line = match action {
         Action::Call { name, arguments } => {
-            check_name(plan, name).map_err(&refused)?;
             let values = (arguments.iter())
                 .map(|a| value(w, a))
                 .collect::<Result<Vec<String>>>()?;
-            (form.call)(name, &values)
+            check_name(plan, name).and_then(|()| (form.call)(name, &values))
         }
-        Action::Output { signal, on } => {
-            if let Signal::Name(name) = signal {
-                check_name(plan, name).map_err(&refused)?;
-            }
-            (form.output)(signal, *on)
+        Action::Output { signal, on } => match signal {
+            Signal::Name(name) => check_name(plan, name),
+            Signal::Number(_) => Ok(()),
         }
+        .and_then(|()| (form.output)(signal, *on)),
     };
     line.map_err(|why| refused(format!("{} (at {} on line {})", why, w.words, w.line)))
 }
