@@ -33,6 +33,7 @@ mod place_cli;
 mod pool_cli;
 mod program_axes_cli;
 mod program_readback_cli;
+mod program_process_cli;
 mod program_speeds_cli;
 mod readable_files;
 mod refine_cli;
