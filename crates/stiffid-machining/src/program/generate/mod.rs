@@ -55,6 +55,16 @@
 //!   numbered lines (the pendant's four digits): its sub-programs hold fewer moves when needed;
 //!   an INFORM job at most [`super::inform::generate::MAX_POSITIONS`] positions (five digits);
 //! - no move is faster than [`Settings::max_tcp_speed`], RAPID's rapids (`vrapid`) included;
+//!   rapids move at [`Settings::rapid_speed`] (RAPID `vrapid`) and
+//!   [`Settings::rapid_joint_pct`] (KRL `BAS(#VEL_PTP)`, LS `J .. %` in whole percents, INFORM
+//!   `VJ=` in hundredths), the setup's `[controller] rapid_speed_mm_s` and `rapid_joint_pct`;
+//! - joint-target programs move with the real tool too: KRL sets `$TOOL`, `$LOAD` and `$BASE`
+//!   whatever the targets, RAPID's `MoveAbsJ` names `tspindle\WObj:=wpart` (RAPID
+//!   Instructions: `MoveAbsJ .. Tool [\WObj]`), LS and INFORM use tool frame (file) 1 either way;
+//! - the G-code's process words ([`Process`], [`generate_with`]) are written between the
+//!   motions where the G-code has them, as the setup's `[controller.io]` maps their events or
+//!   as comments with one warning ([`Written::left_out`]); an LS file's numbered lines count
+//!   them;
 //! - a program of more than [`Settings::moves_per_file`] moves is split into sub-programs of at
 //!   most that many moves (`NAME_01`, `NAME_02`, ... in files of their own), which the main
 //!   program calls in order.
@@ -131,9 +141,11 @@ impl stiffid_core::common::choice::Choice for Targets {
 
 stiffid_core::common::choice::by_name!(Targets);
 
-/// The rapid speed of RAPID's `vrapid`, mm/s, or [`Settings::max_tcp_speed`] when slower.
+/// The default rapid speed ([`Settings::rapid_speed`]) of RAPID's `vrapid`, mm/s, or
+/// [`Settings::max_tcp_speed`] when slower.
 pub const RAPID_SPEED_MM_S: f64 = 200.0;
-/// The joint speed of rapid moves (KRL `BAS(#VEL_PTP)`, LS `J`), percent of the axes' top speed.
+/// The default joint speed of rapid moves ([`Settings::rapid_joint_pct`]: KRL `BAS(#VEL_PTP)`,
+/// LS `J`, INFORM `VJ=`), percent of the axes' top speed; KRL's `BAS(#ACC_PTP)` always.
 pub const RAPID_PERCENT: u32 = 20;
 /// The slowest feed written, m/s (0.001 mm/s): a slower one is refused, never written as 0.
 pub const MIN_FEED: f64 = 1e-6;
@@ -158,7 +170,8 @@ pub struct Settings {
     /// The most moves in one program file (within [`MOVES_PER_FILE`]).
     pub moves_per_file: usize,
     /// The TCP speed of rapid moves where the language states one (RAPID `vrapid`, at most
-    /// `max_tcp_speed`), m/s, within [`RAPID_SPEED`] (the setup's `[controller]
+    /// `max_tcp_speed`), m/s, within
+    /// [`stiffid_core::setup::program_io::RAPID_SPEED_MM_S`] (the setup's `[controller]
     /// rapid_speed_mm_s`).
     pub rapid_speed: f64,
     /// The joint speed of rapid moves (KRL `BAS(#VEL_PTP)`, LS `J .. %`, INFORM `VJ=`), percent
@@ -167,8 +180,6 @@ pub struct Settings {
     pub rapid_joint_pct: f64,
 }
 
-/// The range of [`Settings::rapid_speed`], m/s.
-pub const RAPID_SPEED: std::ops::RangeInclusive<f64> = 1e-3..=10.0;
 
 impl Default for Settings {
     /// Cartesian targets (not asked), 2000 mm/s, the dialect's name length, 10 000 moves per
@@ -236,21 +247,11 @@ impl Settings {
     /// [`Error::InvalidField`] naming `controller.rapid_speed_mm_s` or
     /// `controller.rapid_joint_pct`.
     fn validate_rapids(&self) -> Result<()> {
-        let pct = stiffid_core::setup::program_io::RAPID_JOINT_PCT;
-        if !RAPID_SPEED.contains(&self.rapid_speed) {
-            let (lo, hi) = (RAPID_SPEED.start() * 1e3, RAPID_SPEED.end() * 1e3);
-            return Err(invalid(
-                "controller.rapid_speed_mm_s",
-                format!("{} mm/s: expected {lo} to {hi}", self.rapid_speed * 1e3),
-            ));
-        }
-        if !pct.contains(self.rapid_joint_pct) {
-            return Err(invalid(
-                "controller.rapid_joint_pct",
-                format!("{}: expected {pct}", self.rapid_joint_pct),
-            ));
-        }
-        Ok(())
+        use stiffid_core::common::limits::check;
+        use stiffid_core::setup::program_io::{RAPID_JOINT_PCT, RAPID_SPEED_MM_S};
+        let mm_s = self.rapid_speed * 1e3;
+        check("controller.rapid_speed_mm_s", &[mm_s], &RAPID_SPEED_MM_S)?;
+        check("controller.rapid_joint_pct", &[self.rapid_joint_pct], &RAPID_JOINT_PCT)
     }
 }
 
