@@ -336,7 +336,9 @@ fn a_gcode_pocket_becomes_a_compensated_fanuc_ls_program_with_its_report() {
         text.contains("  10:  ! T1 M6 (line 5) ;\n  11:  ! S6000 M3 (line 6) ;\n"),
         "{text}"
     );
-    assert!(text.contains(":  ! M5 (line 189) ;\n") && text.contains(":  ! M30 (line 190) ;\n/POS"));
+    assert!(
+        text.contains(":  ! M5 (line 189) ;\n") && text.contains(":  ! M30 (line 190) ;\n/POS")
+    );
     // Linear moves at the program's feed (F1800 mm/min, the plunges F300) where it cuts; the
     // first point and the rapid moves are joint motions, exact; the last point is exact.
     assert!(
@@ -353,7 +355,10 @@ fn a_gcode_pocket_becomes_a_compensated_fanuc_ls_program_with_its_report() {
         "{at_feed} {linear}"
     );
     // The program ends with the retract (G0), exact, then the end's remarks.
-    let end = format!(":J P[{}] 20% FINE ;\n 384:  ! M5 (line 189) ;\n", points.len());
+    let end = format!(
+        ":J P[{}] 20% FINE ;\n 384:  ! M5 (line 189) ;\n",
+        points.len()
+    );
     assert!(text.contains(&end), "{text}");
     assert!(text.starts_with("/PROG  POCKET\n"));
     // The process force: about 240 N where the wall is cut, none on the rapid moves and plunges.

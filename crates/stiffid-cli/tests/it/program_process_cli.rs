@@ -48,7 +48,13 @@ spindle_off = \"out[12] = off\"
 
 /// The `/MN` lines of an LS program, without their numbers.
 fn mn(text: &str) -> Vec<String> {
-    let body = text.split("/MN\n").nth(1).unwrap().split("/POS\n").next().unwrap();
+    let body = text
+        .split("/MN\n")
+        .nth(1)
+        .unwrap()
+        .split("/POS\n")
+        .next()
+        .unwrap();
     (body.lines())
         .map(|l| l.split_once(':').unwrap().1.trim().to_string())
         .collect()
@@ -63,9 +69,16 @@ fn the_pocket_starts_and_ends_at_home_with_its_process_words_mapped() {
     assert_success(&o);
     let stderr = String::from_utf8_lossy(&o.stderr);
     // The one word left unmapped, named in one warning.
-    let warned: Vec<&str> = stderr.lines().filter(|l| l.contains("process word")).collect();
+    let warned: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.contains("process word"))
+        .collect();
     assert_eq!(warned.len(), 1, "{stderr}");
-    assert!(warned[0].contains("1 process word(s)") && warned[0].ends_with("program_end: M30 (line 190)"), "{stderr}");
+    assert!(
+        warned[0].contains("1 process word(s)")
+            && warned[0].ends_with("program_end: M30 (line 190)"),
+        "{stderr}"
+    );
     let text = std::fs::read_to_string(&ls).unwrap();
     let lines = mn(&text);
     let moves: Vec<usize> = (lines.iter().enumerate())
@@ -79,10 +92,17 @@ fn the_pocket_starts_and_ends_at_home_with_its_process_words_mapped() {
     assert_eq!(lines[last], "J P[374] 35% FINE ;");
     // Tool change and spindle after moving home, before the path's first point; the spindle
     // stop after the path's last point, before going home; the end after it.
-    let after_home: Vec<&str> = lines[first + 1..moves[1]].iter().map(String::as_str).collect();
+    let after_home: Vec<&str> = lines[first + 1..moves[1]]
+        .iter()
+        .map(String::as_str)
+        .collect();
     assert_eq!(
         after_home,
-        ["CALL TOOL_CHANGE(1) ;", "CALL SPINDLE_ON(6000) ;", "DO[12]=ON ;"]
+        [
+            "CALL TOOL_CHANGE(1) ;",
+            "CALL SPINDLE_ON(6000) ;",
+            "DO[12]=ON ;"
+        ]
     );
     assert_eq!(lines[last - 1], "DO[12]=OFF ;");
     assert_eq!(lines[last + 1], "! M30 (line 190) ;");
@@ -96,7 +116,10 @@ fn the_pocket_starts_and_ends_at_home_with_its_process_words_mapped() {
         pos[start..end].to_string()
     };
     let (home, back) = (position(1), position(374));
-    assert!(home.starts_with("P[1]{") && back.starts_with("P[374]{"), "{home}\n{back}");
+    assert!(
+        home.starts_with("P[1]{") && back.starts_with("P[374]{"),
+        "{home}\n{back}"
+    );
     assert_eq!(home.replace("P[1]", ""), back.replace("P[374]", ""));
     assert!(position(2).starts_with("P[2:\""), "{}", position(2));
     // Joint targets: the home posture as its axis angles.
@@ -107,7 +130,10 @@ fn the_pocket_starts_and_ends_at_home_with_its_process_words_mapped() {
     let home = "PTP {A1 0.000000000, A2 10.000000000, A3 -20.000000000, A4 0.000000000, A5 -60.000000000, A6 0.000000000}\n";
     assert!(text.matches(home).count() == 2, "{text}");
     assert!(text.contains("BAS(#VEL_PTP, 35)"), "{text}");
-    assert!(text.contains("TOOL_CHANGE(1)\nSPINDLE_ON(6000)\n$OUT[12]=TRUE\n"), "{text}");
+    assert!(
+        text.contains("TOOL_CHANGE(1)\nSPINDLE_ON(6000)\n$OUT[12]=TRUE\n"),
+        "{text}"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -121,7 +147,10 @@ fn program_settings_a_language_cannot_state_are_refused_before_compensating() {
     let setup = setup_outside(&dir);
     let o = compensate(&setup, &ls, &[]);
     assert_usage_error(&o, &["controller.home_deg[5]", "the robot's limits"]);
-    let setup = self::setup(&dir, "[controller.io]\nspindle_cw = \"out[doSpindle] = on\"\n");
+    let setup = self::setup(
+        &dir,
+        "[controller.io]\nspindle_cw = \"out[doSpindle] = on\"\n",
+    );
     let o = compensate(&setup, &ls, &[]);
     assert_usage_error(&o, &["controller.io.spindle_cw", "DO[n]", "line 6"]);
     assert!(!ls.exists());

@@ -104,8 +104,8 @@ pub use file::{
     builtin, builtin_names, builtin_text, parse, parse_with, RobotRequest, MAX_PACKAGE_PATHS,
 };
 pub use numbered::NumberedFrames;
-pub use program_io::ProgramSettings;
 pub use program_frames::{offset_name, ProgramFrames, MAX_EXTENDED_OFFSET, MAX_OFFSETS};
+pub use program_io::ProgramSettings;
 pub use workcell::{CellConstraints, Controller, Kinematics, Pulses, Workcell};
 
 use crate::common::limits::JointBox;

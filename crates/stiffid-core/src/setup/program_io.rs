@@ -255,7 +255,10 @@ fn action(event: ProcessEvent, text: &str) -> Result<Action> {
     let bad = |why: String| io_error(key, format!("{:?}: {why}", limits::short(t)));
     if let Some(rest) = t.strip_prefix("out[").or_else(|| t.strip_prefix("OUT[")) {
         let (signal, state) = rest.split_once(']').ok_or_else(|| bad(FORMS.into()))?;
-        let state = state.trim().strip_prefix('=').ok_or_else(|| bad(FORMS.into()))?;
+        let state = state
+            .trim()
+            .strip_prefix('=')
+            .ok_or_else(|| bad(FORMS.into()))?;
         let on = match state.trim().to_ascii_lowercase().as_str() {
             "on" => true,
             "off" => false,

@@ -77,7 +77,10 @@ pub(super) fn gather(line: u64, words: &[Word], s: &mut State) {
         };
         push(s, line, Some(event), words);
     }
-    for w in m.iter().filter(|w| !EVENTS.iter().any(|(c, _)| *c == w.value)) {
+    for w in m
+        .iter()
+        .filter(|w| !EVENTS.iter().any(|(c, _)| *c == w.value))
+    {
         push(s, line, None, text(w));
     }
 }

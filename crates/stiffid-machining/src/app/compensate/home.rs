@@ -26,7 +26,10 @@ pub(super) fn add(
     let tool = setup.tool();
     let q = Vector6::from(home).map(f64::to_radians);
     let at = |t: &Target| {
-        let e = setup.robot().external().map_or(Vec::new(), |a| a.to_si(&t.external));
+        let e = setup
+            .robot()
+            .external()
+            .map_or(Vec::new(), |a| a.to_si(&t.external));
         let mut h = Target::at(controller, &tool.tcp, &q, &e);
         h.pose.rotation *= tool.rotation;
         h

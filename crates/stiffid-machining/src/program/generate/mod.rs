@@ -180,7 +180,6 @@ pub struct Settings {
     pub rapid_joint_pct: f64,
 }
 
-
 impl Default for Settings {
     /// Cartesian targets (not asked), 2000 mm/s, the dialect's name length, 10 000 moves per
     /// file, rapids at [`RAPID_SPEED_MM_S`] and [`RAPID_PERCENT`].
@@ -251,7 +250,11 @@ impl Settings {
         use stiffid_core::setup::program_io::{RAPID_JOINT_PCT, RAPID_SPEED_MM_S};
         let mm_s = self.rapid_speed * 1e3;
         check("controller.rapid_speed_mm_s", &[mm_s], &RAPID_SPEED_MM_S)?;
-        check("controller.rapid_joint_pct", &[self.rapid_joint_pct], &RAPID_JOINT_PCT)
+        check(
+            "controller.rapid_joint_pct",
+            &[self.rapid_joint_pct],
+            &RAPID_JOINT_PCT,
+        )
     }
 }
 
@@ -403,7 +406,7 @@ pub fn moves(points: &[Point], max_tcp_speed: f64) -> Result<Vec<Move>> {
 /// ([`JobOption::MovesPerFile`]); [`Error::InvalidField`] for no
 /// target or more than [`super::MAX_TARGETS`], an axis angle that is not finite (`targets`), a
 /// count of moves other than the targets' or a feed below [`MIN_FEED`] or not finite (`moves`),
-/// a RAPID program with Cartesian targets and a tool without mass (`tool.mass_kg`);
+/// a RAPID program and a tool without mass (`tool.mass_kg`);
 /// [`Error::Program`] for a feed an LS program
 /// cannot state (naming the target's 1-based index as its line).
 pub fn generate(plan: &Plan) -> Result<Written> {
@@ -420,7 +423,9 @@ pub fn generate(plan: &Plan) -> Result<Written> {
 /// ([`JobOption::MovesPerFile`]) for more process lines than a file holds.
 pub fn generate_with(plan: &Plan, process: &Process) -> Result<Written> {
     let generator = names::generator(plan.dialect)?;
-    let form = generator.process_form().ok_or_else(|| invalid("out", "this language writes no process instruction".into()))?;
+    let form = generator
+        .process_form()
+        .ok_or_else(|| invalid("out", "this language writes no process instruction".into()))?;
     let (inserted, left_out) = process::inserted(plan, form, process)?;
     let settings = room_for(generator, &plan.settings, &inserted)?;
     let names = check_plan(plan.dialect, plan.name, &settings, plan.targets.len())?;
@@ -513,7 +518,11 @@ impl Part<'_> {
 /// # Errors
 /// [`Error::InvalidOption`] ([`JobOption::MovesPerFile`]) when they leave room for fewer than
 /// the least moves per file.
-fn room_for(generator: &dyn super::Generator, settings: &Settings, inserted: &[String]) -> Result<Settings> {
+fn room_for(
+    generator: &dyn super::Generator,
+    settings: &Settings,
+    inserted: &[String],
+) -> Result<Settings> {
     let extra: usize = inserted.iter().map(|s| s.lines().count()).sum();
     let Some(limit) = generator.lines_per_file().filter(|_| extra > 0) else {
         return Ok(*settings);
@@ -525,7 +534,10 @@ fn room_for(generator: &dyn super::Generator, settings: &Settings, inserted: &[S
             message: format!("{extra} process instructions leave room for {room} moves in a file of at most {limit} lines"),
         });
     }
-    Ok(Settings { moves_per_file: settings.moves_per_file.min(room), ..*settings })
+    Ok(Settings {
+        moves_per_file: settings.moves_per_file.min(room),
+        ..*settings
+    })
 }
 
 fn invalid(field: &str, message: String) -> Error {

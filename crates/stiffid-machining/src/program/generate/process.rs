@@ -92,7 +92,10 @@ fn comment(form: &ProcessForm, w: &ProcessWord) -> String {
     if let Some(most) = form.comment_length {
         text.truncate(most);
     }
-    format!("{}{}{text}{}\n", form.indent, form.comment.0, form.comment.1)
+    format!(
+        "{}{}{text}{}\n",
+        form.indent, form.comment.0, form.comment.1
+    )
 }
 
 /// One warning naming every word not mapped, grouped by event key.
@@ -170,11 +173,18 @@ fn check_name(plan: &Plan, name: &str) -> std::result::Result<(), String> {
 fn value(w: &ProcessWord, a: &Argument) -> Result<String> {
     let missing = |what: &str| Error::Program {
         line: w.line,
-        message: format!("{}: the setup's [controller.io] passes {what}, and no such word is in force here", w.words),
+        message: format!(
+            "{}: the setup's [controller.io] passes {what}, and no such word is in force here",
+            w.words
+        ),
     };
     match a {
         Argument::Number(n) => Ok(n.clone()),
-        Argument::Value(Placeholder::Rpm) => (w.rpm.map(number)).ok_or_else(|| missing("{rpm}, the spindle speed S")),
-        Argument::Value(Placeholder::Tool) => (w.tool.map(|t| t.to_string())).ok_or_else(|| missing("{tool}, the tool number T")),
+        Argument::Value(Placeholder::Rpm) => {
+            (w.rpm.map(number)).ok_or_else(|| missing("{rpm}, the spindle speed S"))
+        }
+        Argument::Value(Placeholder::Tool) => {
+            (w.tool.map(|t| t.to_string())).ok_or_else(|| missing("{tool}, the tool number T"))
+        }
     }
 }

@@ -147,7 +147,11 @@ impl Generator for super::Inform {
             };
             let names = format!("C{k:05}{}{}", external("BC", base), external("EC", station));
             let _ = match m {
-                Move::Rapid => writeln!(inst, "MOVJ {names} VJ={:.2} PL=0", plan.settings.rapid_joint_pct),
+                Move::Rapid => writeln!(
+                    inst,
+                    "MOVJ {names} VJ={:.2} PL=0",
+                    plan.settings.rapid_joint_pct
+                ),
                 Move::Feed(f) => {
                     let slowest = (
                         "0.1 mm/s, the slowest an INFORM job states",

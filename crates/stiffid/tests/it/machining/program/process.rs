@@ -81,8 +81,7 @@ fn motion_lines(dialect: Dialect, text: &str) -> Vec<usize> {
 
 /// The index of the first line of `text` containing `what`.
 fn line_of(text: &str, what: &str) -> usize {
-    (text.lines().position(|l| l.contains(what)))
-        .unwrap_or_else(|| panic!("{what} not in\n{text}"))
+    (text.lines().position(|l| l.contains(what))).unwrap_or_else(|| panic!("{what} not in\n{text}"))
 }
 
 /// The Fusion 360 generic router post's file as found (its setup's workpiece and process).
@@ -192,17 +191,26 @@ fn the_fusion_routers_process_words_are_kept_in_every_language_as_mapped_or_name
             assert_eq!(motions.len(), g.points.len(), "{dialect:?}");
             let (first, last) = (motions[0], *motions.last().unwrap());
             let (tool_at, spindle_at) = (line_of(text, tool), line_of(text, spindle));
-            assert!(tool_at < spindle_at && spindle_at < first, "{dialect:?}\n{text}");
+            assert!(
+                tool_at < spindle_at && spindle_at < first,
+                "{dialect:?}\n{text}"
+            );
             let stop = line_of(text, &comment(dialect, "M5 (line 53)"));
             let end = line_of(text, &comment(dialect, "M30 (line 58)"));
             let k = stop_index(&g);
-            assert!(motions[k - 1] < stop && stop < motions[k], "{dialect:?}\n{text}");
+            assert!(
+                motions[k - 1] < stop && stop < motions[k],
+                "{dialect:?}\n{text}"
+            );
             assert!(last < end, "{dialect:?}\n{text}");
             // One warning naming every word left unmapped, and nothing else.
             assert_eq!(written.left_out.len(), 1, "{:?}", written.left_out);
             let w = &written.left_out[0];
             assert!(w.starts_with("2 process word(s)"), "{w}");
-            assert!(w.ends_with("spindle_off: M5 (line 53); program_end: M30 (line 58)"), "{w}");
+            assert!(
+                w.ends_with("spindle_off: M5 (line 53); program_end: M30 (line 58)"),
+                "{w}"
+            );
             assert!(!w.contains("line 13") && !w.contains("line 14"), "{w}");
             if dialect == Dialect::FanucLs {
                 ls_numbered(text);
@@ -214,7 +222,13 @@ fn the_fusion_routers_process_words_are_kept_in_every_language_as_mapped_or_name
 /// An LS program's `/MN` lines numbered 1, 2, .. without a gap, each at most the pendant's
 /// four digits.
 fn ls_numbered(text: &str) {
-    let mn = text.split("/MN\n").nth(1).unwrap().split("/POS\n").next().unwrap();
+    let mn = text
+        .split("/MN\n")
+        .nth(1)
+        .unwrap()
+        .split("/POS\n")
+        .next()
+        .unwrap();
     for (i, line) in mn.lines().enumerate() {
         let (number, _) = line.split_once(':').unwrap_or_else(|| panic!("{line}"));
         assert_eq!(number.trim().parse::<usize>().unwrap(), i + 1, "{line}");
@@ -294,13 +308,43 @@ fn an_action_the_language_cannot_write_or_a_value_not_given_is_refused_naming_th
         external: Vec::new(),
     };
     let cases: [(Dialect, ProcessEvent, &str, &str); 6] = [
-        (Dialect::Rapid, ProcessEvent::CoolantFlood, "out[3] = on", "a RAPID digital output is a named signal"),
-        (Dialect::FanucLs, ProcessEvent::CoolantFlood, "out[doCool] = on", "by its number, DO[n]"),
-        (Dialect::Inform, ProcessEvent::CoolantFlood, "COOL(1)", "without arguments"),
-        (Dialect::Inform, ProcessEvent::CoolantFlood, "out[doCool] = off", "by its number"),
+        (
+            Dialect::Rapid,
+            ProcessEvent::CoolantFlood,
+            "out[3] = on",
+            "a RAPID digital output is a named signal",
+        ),
+        (
+            Dialect::FanucLs,
+            ProcessEvent::CoolantFlood,
+            "out[doCool] = on",
+            "by its number, DO[n]",
+        ),
+        (
+            Dialect::Inform,
+            ProcessEvent::CoolantFlood,
+            "COOL(1)",
+            "without arguments",
+        ),
+        (
+            Dialect::Inform,
+            ProcessEvent::CoolantFlood,
+            "out[doCool] = off",
+            "by its number",
+        ),
         // KRL names are at most 24 characters; RAPID's 32 take it.
-        (Dialect::Krl, ProcessEvent::CoolantFlood, "COOLANT_FLOOD_ON_AT_LINE_4", "at most 24 characters"),
-        (Dialect::Rapid, ProcessEvent::CoolantFlood, "wpart", "a reserved word"),
+        (
+            Dialect::Krl,
+            ProcessEvent::CoolantFlood,
+            "COOLANT_FLOOD_ON_AT_LINE_4",
+            "at most 24 characters",
+        ),
+        (
+            Dialect::Rapid,
+            ProcessEvent::CoolantFlood,
+            "wpart",
+            "a reserved word",
+        ),
     ];
     for (dialect, event, action, expected) in cases {
         let io = Io::default().with(event, &[action]).unwrap();
@@ -327,9 +371,14 @@ fn an_action_the_language_cannot_write_or_a_value_not_given_is_refused_naming_th
     };
     let p = plan(Dialect::Rapid, &t, &moves, &pulses, Targets::Joint);
     let text = &generate_with(&p, &process).unwrap().files[0].text;
-    assert!(text.contains("\n    COOLANT_FLOOD_ON_AT_LINE_4;\n"), "{text}");
+    assert!(
+        text.contains("\n    COOLANT_FLOOD_ON_AT_LINE_4;\n"),
+        "{text}"
+    );
     // A spindle call passing {rpm} where no S word has been given.
-    let io = Io::default().with(ProcessEvent::SpindleCw, &["ON({rpm})"]).unwrap();
+    let io = Io::default()
+        .with(ProcessEvent::SpindleCw, &["ON({rpm})"])
+        .unwrap();
     let g = gcode::parse("(stiffid: tool_rpy_deg = 180 0 0)\nM3\nG0 X0 Y0 Z0\n", 1e-5).unwrap();
     let before = place(&g.process, &[Some(3)]);
     let process = Process {
@@ -390,14 +439,37 @@ fn the_controllers_program_settings_are_read_and_refused_outside_their_ranges() 
     assert_eq!(program.io.get(ProcessEvent::SpindleOff).unwrap().len(), 2);
     assert!(program.io.get(ProcessEvent::CoolantOff).is_none());
     for (controller, field, expected) in [
-        ("rapid_speed_mm_s = 0", "controller.rapid_speed_mm_s", "outside"),
-        ("rapid_joint_pct = 101", "controller.rapid_joint_pct", "outside"),
-        ("home_deg = [0, 0, 0, 0, 300, 0]", "controller.home_deg[5]", "the robot's limits"),
-        ("[controller.io]\nspindle = \"ON\"", "controller.io.spindle", "unknown event"),
-        ("[controller.io]\ntool_change = []", "controller.io.tool_change", "expected 1 to 8 actions"),
+        (
+            "rapid_speed_mm_s = 0",
+            "controller.rapid_speed_mm_s",
+            "outside",
+        ),
+        (
+            "rapid_joint_pct = 101",
+            "controller.rapid_joint_pct",
+            "outside",
+        ),
+        (
+            "home_deg = [0, 0, 0, 0, 300, 0]",
+            "controller.home_deg[5]",
+            "the robot's limits",
+        ),
+        (
+            "[controller.io]\nspindle = \"ON\"",
+            "controller.io.spindle",
+            "unknown event",
+        ),
+        (
+            "[controller.io]\ntool_change = []",
+            "controller.io.tool_change",
+            "expected 1 to 8 actions",
+        ),
     ] {
         let e = setup_with(controller).unwrap_err().to_string();
-        assert!(e.contains(field) && e.contains(expected), "{controller}: {e}");
+        assert!(
+            e.contains(field) && e.contains(expected),
+            "{controller}: {e}"
+        );
     }
 }
 
@@ -429,7 +501,9 @@ fn rapid_speeds_are_the_settings_and_stated_in_each_languages_form_or_refused() 
         let mut p = plan(dialect, &t, &moves, &pulses, Targets::Joint);
         p.settings = settings(pct);
         match generate(&p) {
-            Err(Error::InvalidField { field, .. }) => assert_eq!(field, "controller.rapid_joint_pct"),
+            Err(Error::InvalidField { field, .. }) => {
+                assert_eq!(field, "controller.rapid_joint_pct")
+            }
             other => panic!("{dialect:?}: {other:?}"),
         }
     }
@@ -451,16 +525,30 @@ fn joint_target_programs_move_with_the_real_tool() {
     };
     let rapid = generate(&plan(Dialect::Rapid, &t, &moves, &pulses, Targets::Joint)).unwrap();
     let text = &rapid.files[0].text;
-    assert!(text.contains("PERS tooldata tspindle := [TRUE,[[10,-20,300],"), "{text}");
+    assert!(
+        text.contains("PERS tooldata tspindle := [TRUE,[[10,-20,300],"),
+        "{text}"
+    );
     assert!(text.contains("PERS wobjdata wpart"), "{text}");
     let moves_with: Vec<&str> = text.lines().filter(|l| l.contains("MoveAbsJ")).collect();
     assert_eq!(moves_with.len(), 2);
-    assert!(moves_with.iter().all(|l| l.ends_with(", tspindle\\WObj:=wpart;")), "{text}");
+    assert!(
+        moves_with
+            .iter()
+            .all(|l| l.ends_with(", tspindle\\WObj:=wpart;")),
+        "{text}"
+    );
     assert!(!text.contains("tool0"), "{text}");
     let krl = generate(&plan(Dialect::Krl, &t, &moves, &pulses, Targets::Joint)).unwrap();
     let text = &krl.files[0].text;
-    assert!(text.contains("$TOOL = {X 10, Y -20, Z 300, A 0, B 0, C 0}"), "{text}");
-    assert!(text.contains("$LOAD = {M 12.5, CM {X 0, Y 0, Z 120"), "{text}");
+    assert!(
+        text.contains("$TOOL = {X 10, Y -20, Z 300, A 0, B 0, C 0}"),
+        "{text}"
+    );
+    assert!(
+        text.contains("$LOAD = {M 12.5, CM {X 0, Y 0, Z 120"),
+        "{text}"
+    );
     // A RAPID tooldata states a mass: without one, a joint-target program is refused too.
     let mut p = plan(Dialect::Rapid, &t, &moves, &pulses, Targets::Joint);
     p.tool.payload = None;
@@ -475,9 +563,23 @@ fn joint_target_programs_move_with_the_real_tool() {
 fn emitted_names(text: &str) -> Vec<String> {
     let mut names = Vec::new();
     for line in text.lines() {
-        let l = line.split_once(':').filter(|(n, _)| n.trim().parse::<u32>().is_ok());
+        let l = line
+            .split_once(':')
+            .filter(|(n, _)| n.trim().parse::<u32>().is_ok());
         let l = l.map_or(line, |(_, b)| b).trim();
-        for key in ["DEF ", "MODULE ", "PROC ", "/PROG  ", "//NAME ", "CALL JOB:", "CALL ", "tooldata ", "wobjdata ", "speeddata ", "zonedata "] {
+        for key in [
+            "DEF ",
+            "MODULE ",
+            "PROC ",
+            "/PROG  ",
+            "//NAME ",
+            "CALL JOB:",
+            "CALL ",
+            "tooldata ",
+            "wobjdata ",
+            "speeddata ",
+            "zonedata ",
+        ] {
             if let Some(rest) = l.split_once(key).map(|(_, r)| r) {
                 let name: String = (rest.trim_start().chars())
                     .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
@@ -508,13 +610,21 @@ fn every_name_written_in_every_language_is_within_the_controllers_length() {
     let t = targets(250);
     let mut moves = vec![Move::Feed(0.01); 250];
     moves[0] = Move::Rapid;
-    for dialect in [Dialect::Krl, Dialect::Rapid, Dialect::FanucLs, Dialect::Inform] {
+    for dialect in [
+        Dialect::Krl,
+        Dialect::Rapid,
+        Dialect::FanucLs,
+        Dialect::Inform,
+    ] {
         let most = max_name_length(dialect);
         // The longest main name that leaves room for the sub-programs' (`_01`.. and RAPID's `r`).
         let room = most - 3 - usize::from(dialect == Dialect::Rapid);
         let name: String = "P".repeat(room);
         let io = Io::default()
-            .with(ProcessEvent::SpindleOff, &[&format!("CALL{}", "X".repeat(most - 4))])
+            .with(
+                ProcessEvent::SpindleOff,
+                &[&format!("CALL{}", "X".repeat(most - 4))],
+            )
             .unwrap();
         let g = gcode::parse("(stiffid: tool_rpy_deg = 180 0 0)\nG0 X0 Y0 Z0\nM5\n", 1e-5).unwrap();
         let before = vec![250];
@@ -540,15 +650,79 @@ fn every_name_written_in_every_language_is_within_the_controllers_length() {
         // One character more is refused, naming the option or the key.
         let longer = format!("{name}P");
         p.name = &longer;
-        assert!(matches!(generate_with(&p, &process), Err(Error::InvalidOption { .. })));
+        assert!(matches!(
+            generate_with(&p, &process),
+            Err(Error::InvalidOption { .. })
+        ));
         p.name = &name;
         let io = Io::default()
-            .with(ProcessEvent::SpindleOff, &[&format!("CALL{}", "X".repeat(most - 3))])
+            .with(
+                ProcessEvent::SpindleOff,
+                &[&format!("CALL{}", "X".repeat(most - 3))],
+            )
             .unwrap();
-        let process = Process { io: Some(&io), ..process };
+        let process = Process {
+            io: Some(&io),
+            ..process
+        };
         match generate_with(&p, &process) {
-            Err(Error::InvalidField { field, .. }) => assert_eq!(field, "controller.io.spindle_off"),
+            Err(Error::InvalidField { field, .. }) => {
+                assert_eq!(field, "controller.io.spindle_off")
+            }
             other => panic!("{dialect:?}: {other:?}"),
         }
     }
+}
+
+#[test]
+fn an_ls_files_process_lines_count_toward_the_pendants_line_numbers() {
+    let n = 9_900;
+    let t = targets(n);
+    let mut moves = vec![Move::Feed(0.01); n];
+    moves[0] = Move::Rapid;
+    // 300 spindle speed changes spread along the path.
+    let words: Vec<ProcessWord> = (0..300)
+        .map(|i| ProcessWord {
+            line: i + 1,
+            event: Some(ProcessEvent::SpindleSpeed),
+            words: format!("S{}", 1000 + i),
+            rpm: Some(1000.0 + i as f64),
+            tool: None,
+        })
+        .collect();
+    let before: Vec<usize> = (0..300).map(|i| i * 33).collect();
+    let pulses = Pulses {
+        per_deg: PULSES,
+        external: Vec::new(),
+    };
+    let process = Process {
+        words: &words,
+        before: &before,
+        io: None,
+    };
+    let mut p = plan(Dialect::FanucLs, &t, &moves, &pulses, Targets::Joint);
+    p.settings.moves_per_file = 1_000_000;
+    let written = generate_with(&p, &process).unwrap();
+    // Without the process lines one file of 9 900 moves would do; with them, two.
+    assert_eq!(written.files.len(), 3);
+    let mut moved = 0;
+    let mut remarks = 0;
+    for file in &written.files[1..] {
+        ls_numbered(&file.text);
+        let mn = file
+            .text
+            .split("/MN\n")
+            .nth(1)
+            .unwrap()
+            .split("/POS\n")
+            .next()
+            .unwrap();
+        assert!(mn.lines().count() <= LS_MAX_LINES);
+        moved += mn
+            .lines()
+            .filter(|l| l.contains(":L P[") || l.contains(":J P["))
+            .count();
+        remarks += mn.lines().filter(|l| l.contains("! S")).count();
+    }
+    assert_eq!((moved, remarks), (n, 300));
 }
