@@ -90,10 +90,13 @@ fn router() -> gcode::GCode {
     gcode::parse_on(&corpus("fusion360-generic-router.nc"), 1e-5, &m).unwrap()
 }
 
+/// A process word as read: its line, event, words, speed and tool in force.
+type Read<'a> = (u64, Option<ProcessEvent>, &'a str, Option<f64>, Option<u32>);
+
 #[test]
 fn the_fusion_router_files_process_words_are_read_in_path_order_with_their_values() {
     let g = router();
-    let read: Vec<(u64, Option<ProcessEvent>, &str, Option<f64>, Option<u32>)> = (g.process.iter())
+    let read: Vec<Read> = (g.process.iter())
         .map(|w: &ProcessWord| (w.line, w.event, w.words.as_str(), w.rpm, w.tool))
         .collect();
     // By eye: "T1 M6" on line 13, "S5000 M3" on 14, "M5" on 53, "M30" on 58.
