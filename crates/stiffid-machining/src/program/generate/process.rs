@@ -73,7 +73,9 @@ pub(crate) fn inserted(
     for (w, &at) in process.words.iter().zip(process.before) {
         let actions = w.event.and_then(|e| process.io.and_then(|io| io.get(e)));
         let Some(actions) = actions else {
-            let key = w.event.map_or("no event", ProcessEvent::key);
+            let key = w
+                .event
+                .map_or("other M words (no event)", ProcessEvent::key);
             unmapped.push((key, w));
             lines[at.min(plan.targets.len())] += &comment(form, w);
             continue;

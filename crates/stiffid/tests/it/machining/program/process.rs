@@ -705,6 +705,7 @@ fn an_ls_files_process_lines_count_toward_the_pendants_line_numbers() {
     };
     let mut p = plan(Dialect::FanucLs, &t, &moves, &pulses, Targets::Joint);
     p.settings.moves_per_file = 1_000_000;
+    p.settings.name_length = Some(12);
     let written = generate_with(&p, &process).unwrap();
     // Without the process lines one file of 9 900 moves would do; with them, two.
     assert_eq!(written.files.len(), 3);
@@ -728,4 +729,41 @@ fn an_ls_files_process_lines_count_toward_the_pendants_line_numbers() {
         remarks += mn.lines().filter(|l| l.contains("! S")).count();
     }
     assert_eq!((moved, remarks), (n, 300));
+}
+
+#[test]
+fn an_m_word_of_no_event_is_a_comment_named_in_the_warning() {
+    let g = gcode::parse(
+        "(stiffid: tool_rpy_deg = 180 0 0)\nM62 P0\nG0 X0 Y0 Z0\nM0\n",
+        1e-5,
+    )
+    .unwrap();
+    let words: Vec<(u64, Option<ProcessEvent>, &str)> = (g.process.iter())
+        .map(|w| (w.line, w.event, w.words.as_str()))
+        .collect();
+    assert_eq!(words, [(2, None, "M62"), (4, None, "M0")]);
+    let before = place(&g.process, &[Some(3)]);
+    assert_eq!(before, [0, 1]);
+    let io = Io::default()
+        .with(ProcessEvent::ProgramEnd, &["END_CELL"])
+        .unwrap();
+    let process = Process {
+        words: &g.process,
+        before: &before,
+        io: Some(&io),
+    };
+    let pulses = Pulses {
+        per_deg: PULSES,
+        external: Vec::new(),
+    };
+    let t = targets(1);
+    let p = plan(Dialect::Rapid, &t, &[Move::Rapid], &pulses, Targets::Joint);
+    let written = generate_with(&p, &process).unwrap();
+    let text = &written.files[0].text;
+    assert!(text.contains("    ! M62 (line 2)\n    MoveAbsJ"), "{text}");
+    assert!(text.contains("    ! M0 (line 4)\n  ENDPROC"), "{text}");
+    assert_eq!(
+        written.left_out,
+        ["2 process word(s) of the G-code not mapped in the setup's [controller.io], written as comments where the G-code has them (map an event to a call or an output to run it): other M words (no event): M62 (line 2), M0 (line 4)"]
+    );
 }
