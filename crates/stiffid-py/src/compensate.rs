@@ -333,6 +333,7 @@ fn input_of<'t>(
                 max_tcp_speed: max_tcp_speed_mm_s * 1e-3,
                 name_length,
                 moves_per_file,
+                ..Settings::default()
             };
             Input::Program {
                 name: name.to_string(),

@@ -318,6 +318,7 @@ fn input<'t>(
             max_tcp_speed: args.max_tcp_speed_mm_s * 1e-3,
             name_length: args.name_length,
             moves_per_file: args.moves_per_file,
+            ..Settings::default()
         },
     })
 }

@@ -330,10 +330,19 @@ fn a_gcode_pocket_becomes_a_compensated_fanuc_ls_program_with_its_report() {
         text.matches("CONFIG : 'N U T, 0, 0, 0',").count(),
         points.len()
     );
+    // The G-code's tool change and spindle words, unmapped ([controller.io]), as remarks before
+    // the first move, its spindle stop and end after the last.
+    assert!(
+        text.contains("  10:  ! T1 M6 (line 5) ;\n  11:  ! S6000 M3 (line 6) ;\n"),
+        "{text}"
+    );
+    assert!(
+        text.contains(":  ! M5 (line 189) ;\n") && text.contains(":  ! M30 (line 190) ;\n/POS")
+    );
     // Linear moves at the program's feed (F1800 mm/min, the plunges F300) where it cuts; the
     // first point and the rapid moves are joint motions, exact; the last point is exact.
     assert!(
-        text.contains("  10:J P[1] 20% FINE ;\n  11:L P[2] 5mm/sec CNT100 ;\n"),
+        text.contains("  12:J P[1] 20% FINE ;\n  13:L P[2] 5mm/sec CNT100 ;\n"),
         "{text}"
     );
     let linear = text.lines().filter(|l| l.contains("mm/sec CNT100")).count();
@@ -345,8 +354,12 @@ fn a_gcode_pocket_becomes_a_compensated_fanuc_ls_program_with_its_report() {
         at_feed > 300 && linear == points.len() - 2,
         "{at_feed} {linear}"
     );
-    // The program ends with the retract (G0), exact.
-    assert!(text.contains(&format!(":J P[{}] 20% FINE ;\n/POS\n", points.len())));
+    // The program ends with the retract (G0), exact, then the end's remarks.
+    let end = format!(
+        ":J P[{}] 20% FINE ;\n 384:  ! M5 (line 189) ;\n",
+        points.len()
+    );
+    assert!(text.contains(&end), "{text}");
     assert!(text.starts_with("/PROG  POCKET\n"));
     // The process force: about 240 N where the wall is cut, none on the rapid moves and plunges.
     let force = |p: &serde_json::Value| {

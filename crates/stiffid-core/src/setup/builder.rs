@@ -421,6 +421,7 @@ impl SetupBuilder {
         if let Some(pulses) = &self.controller.pulses {
             pulses.check(self.robot.external().map_or(0, |a| a.len()))?;
         }
+        self.controller.program.check(&self.robot)?;
         let tracker = self
             .tracker
             .map(|t| cell::checked_tracker(t, tool.measuring_points.len(), self.cell.as_ref()))

@@ -82,6 +82,12 @@ struct ControllerFile {
     tools: Vec<super::numbered::NumberedFrameFile>,
     #[serde(default)]
     bases: Vec<super::numbered::NumberedFrameFile>,
+    rapid_speed_mm_s: Option<f64>,
+    rapid_joint_pct: Option<f64>,
+    #[serde(default, deserialize_with = "crate::common::exact::option")]
+    home_deg: Option<[f64; 6]>,
+    #[serde(default)]
+    io: std::collections::BTreeMap<String, super::program_io::IoValue>,
 }
 
 /// `[workpiece]`: where a G-code program's part frame sits in the robot base frame.
@@ -429,6 +435,13 @@ where
             .map_err(|e| in_file(e, source_name))?,
         bases: super::numbered::read("controller.bases", &c.bases)
             .map_err(|e| in_file(e, source_name))?,
+        program: super::ProgramSettings::read(
+            c.rapid_speed_mm_s,
+            c.rapid_joint_pct,
+            c.home_deg,
+            &c.io,
+        )
+        .map_err(|e| in_file(e, source_name))?,
         ..Default::default()
     })
 }

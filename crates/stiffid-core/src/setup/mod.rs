@@ -88,6 +88,7 @@ pub mod numbered;
 pub mod plausibility;
 pub mod prior;
 mod program_frames;
+pub mod program_io;
 pub mod reference;
 mod workcell;
 
@@ -104,6 +105,7 @@ pub use file::{
 };
 pub use numbered::NumberedFrames;
 pub use program_frames::{offset_name, ProgramFrames, MAX_EXTENDED_OFFSET, MAX_OFFSETS};
+pub use program_io::ProgramSettings;
 pub use workcell::{CellConstraints, Controller, Kinematics, Pulses, Workcell};
 
 use crate::common::limits::JointBox;

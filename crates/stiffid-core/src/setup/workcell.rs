@@ -72,6 +72,10 @@ pub struct Controller {
     /// `BASE_DATA[n]`, FANUC `UFRAME[n]`, a Yaskawa user frame), each in the controller's world
     /// frame, m; empty without.
     pub bases: NumberedFrames,
+    /// `[controller] rapid_speed_mm_s`, `rapid_joint_pct`, `home_deg` and `[controller.io]`:
+    /// how a generated program moves to and from its path and what it does at the G-code's
+    /// process words ([`super::program_io`]).
+    pub program: super::ProgramSettings,
 }
 
 /// How many encoder pulses make a unit of each axis on the controller (its axis parameters): a

@@ -58,6 +58,7 @@ pub(super) fn block(
     for w in words {
         given.word(line, w, s)?;
     }
+    super::process::gather(line, words, s);
     given.modes(line, s)?;
     motion_and_feed(line, &given, inch_before, s)?;
     if let Some(code) = given.home {

@@ -64,12 +64,14 @@ mod cycles;
 mod home;
 mod machine;
 mod modal;
+mod process;
 mod words;
 mod write;
 
 pub use arc::{ARC_END_MAX_MM, ARC_END_RELATIVE, ARC_END_TOLERANCE_MM};
 pub use cycles::{Cycle, PECK_CLEARANCE_MM};
 pub use machine::{Machine, ProgramFrames};
+pub use process::ProcessWord;
 pub use words::MAX_FEED;
 
 use block::block;
@@ -156,6 +158,9 @@ pub struct GCode {
     /// The letters the header maps to the cell's external axes, in the cell's order
     /// (`(stiffid: external = U C)`), and the header's line; empty (line 0) when it maps none.
     pub external: (Vec<char>, u64),
+    /// The process words (spindle, coolant, tool, end), in path order
+    /// ([`ProcessWord`]).
+    pub process: Vec<ProcessWord>,
     blocks: Vec<Block>,
     text: String,
     /// The tip at the start (the setup's), `G54` part frame, m: where an incremental first
@@ -180,6 +185,10 @@ struct State {
     e: Vec<Option<f64>>,
     /// The line of the `M2`/`M30` that ended the program.
     ended: Option<u64>,
+    /// The spindle speed in force (the last `S`, rev/min).
+    rpm: Option<f64>,
+    /// The process words so far.
+    process: Vec<ProcessWord>,
     feed: Option<f64>,
     /// The line of the `F` word in force.
     feed_line: u64,
@@ -249,6 +258,8 @@ pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<G
         external: (Vec::new(), 0),
         e: Vec::new(),
         ended: None,
+        rpm: None,
+        process: Vec::new(),
         feed: None,
         feed_line: 0,
         retract_to_r: false,
@@ -266,6 +277,7 @@ pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<G
         points: Vec::new(),
         cycles: Vec::new(),
         external: (Vec::new(), 0),
+        process: Vec::new(),
         blocks: Vec::new(),
         text: text.to_string(),
         start: machine.frames.start,
@@ -297,6 +309,7 @@ pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<G
         return Err(at(1, "no motion block (G0, G1, G2, G3) found".into()));
     }
     out.external = s.external;
+    out.process = s.process;
     Ok(out)
 }
 

@@ -166,6 +166,18 @@ pub trait Generator: Sync {
     fn most_external(&self, role: Role) -> usize;
     /// Where a program writes the external axes of `role`, for messages (KRL `E1..E6`).
     fn external_form(&self, role: Role) -> &'static str;
+    /// How the language writes the G-code's process words ([`super::generate::Process`]);
+    /// `None`: it writes none (a program with process words is refused).
+    fn process_form(&self) -> Option<&'static super::generate::ProcessForm> {
+        None
+    }
+    /// Checks what the language can state of `settings` (LS: a whole percent of joint speed).
+    ///
+    /// # Errors
+    /// [`stiffid_core::Error::InvalidField`] naming the setting's setup field.
+    fn check_settings(&self, _settings: &super::generate::Settings) -> Result<()> {
+        Ok(())
+    }
 }
 
 /// The lines (1-based) of `text` that start (after blanks) with one of `motions`.

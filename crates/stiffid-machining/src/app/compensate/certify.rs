@@ -73,14 +73,20 @@ pub fn at_lines(dialect: Dialect, text: &str, lines: &[(u64, f64)], level: f64) 
 }
 
 /// `texts` (the files of a generated program, in call order) with the bounds (m) of its targets,
-/// in path order, as comments: each motion line, in file order, takes the next bound.
-pub fn generated(dialect: Dialect, texts: &[String], bounds: &[f64], level: f64) -> Vec<String> {
+/// in path order, as comments: each motion line, in file order, takes the next bound (`None`: a
+/// move of no bound, the home posture's, without a comment).
+pub fn generated(
+    dialect: Dialect,
+    texts: &[String],
+    bounds: &[Option<f64>],
+    level: f64,
+) -> Vec<String> {
     let mut next = bounds.iter().copied();
     texts
         .iter()
         .map(|text| {
             let lines: Vec<(u64, f64)> = (dialect.controller().motion_lines(text).into_iter())
-                .filter_map(|line| next.next().map(|b| (line, b)))
+                .filter_map(|line| next.next().flatten().map(|b| (line, b)))
                 .collect();
             at_lines(dialect, text, &lines, level)
         })

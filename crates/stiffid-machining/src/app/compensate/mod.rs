@@ -24,6 +24,7 @@ pub mod document;
 pub mod dynamics;
 pub mod feasibility;
 mod free;
+mod home;
 mod input;
 mod output;
 pub mod ranking;
@@ -442,6 +443,7 @@ where
     };
     // Every name and setting of the output before the compensation, which can be long.
     let cell = setup.robot().external();
+    let settings = written::with_setup(setup, settings);
     let written_name = written_name(&program, output, &out_name, (&settings, cell))?;
     // A G-code program is written for the controller's kinematics.
     let controller = match (&program, output) {
@@ -468,7 +470,7 @@ where
     let (text, subprograms) = match (output, &program) {
         (Language::Robot(d), Program::GCode(g)) => {
             let how = (written_name.unwrap_or_default(), settings, chord_tolerance);
-            let written = generated(setup, d, &compensated, &g.points, (how, options.level));
+            let written = generated(setup, d, &compensated, g, (how, options.level));
             let (text, subprograms, warnings) = written.map_err(|e| in_input(&out.name, e))?;
             out.warnings.extend(warnings);
             (text, subprograms)

@@ -3,7 +3,7 @@
 //! ([`generated`]) in the controller's kinematics and frames.
 
 use super::certify;
-use crate::program::generate::{self, generate, moves, Plan, Settings, Target, Tool};
+use crate::program::generate::{self, generate_with, moves, Plan, Settings, Target, Tool};
 use crate::program::Dialect;
 use crate::{self as machining, Language, Program};
 use stiffid_core::app::{Warning, WarningKind};
@@ -20,14 +20,15 @@ pub(super) fn generated(
     setup: &Setup,
     dialect: Dialect,
     compensated: &machining::Report,
-    points: &[crate::gcode::Point],
+    gcode: &crate::gcode::GCode,
     ((name, settings, chord_tolerance), level): ((String, Settings, f64), f64),
 ) -> Result<(String, Vec<generate::File>, Vec<Warning>)> {
     let how = (name.as_str(), &settings, chord_tolerance);
-    let written = write_robot_program(setup, dialect, compensated, points, how)?;
+    let (written, home) = write_robot_program(setup, dialect, compensated, gcode, how)?;
     let mut warnings: Vec<Warning> = (written.warnings.into_iter())
         .map(|w| Warning::new(WarningKind::Feed, w))
         .collect();
+    warnings.extend((written.left_out.into_iter()).map(|w| Warning::new(WarningKind::LeftOut, w)));
     if settings.targets_asked
         && generate::written_targets(dialect, settings.targets) != settings.targets
     {
@@ -37,7 +38,12 @@ pub(super) fn generated(
             dialect.controller().key().to_ascii_uppercase()
         )));
     }
-    let bounds: Vec<f64> = compensated.results.iter().map(|r| r.budget.bound).collect();
+    // The home posture's moves carry no bound: they are not compensated.
+    let path = compensated.results.iter().map(|r| Some(r.budget.bound));
+    let bounds: Vec<Option<f64>> = (home.then_some(None).into_iter())
+        .chain(path)
+        .chain(home.then_some(None))
+        .collect();
     let texts: Vec<String> = written.files.iter().map(|f| f.text.clone()).collect();
     let texts = certify::generated(dialect, &texts, &bounds, level);
     let mut files =
@@ -79,6 +85,9 @@ pub(super) fn written_name(
         Program::GCode(g) => {
             let name = stem.to_ascii_uppercase();
             generate::check_plan(dialect, &name, settings, g.points.len())?;
+            if let Some(generator) = dialect.controller().generator() {
+                generator.check_settings(settings)?;
+            }
             generate::check_cell(dialect, settings.targets, cell)?;
             Ok(Some(name))
         }
@@ -106,18 +115,19 @@ fn write_robot_program(
     setup: &Setup,
     dialect: Dialect,
     compensated: &machining::Report,
-    points: &[crate::gcode::Point],
+    gcode: &crate::gcode::GCode,
     (name, settings, chord_tolerance): (&str, &Settings, f64),
-) -> Result<generate::Written> {
+) -> Result<(generate::Written, bool)> {
     use rayon::prelude::*;
-    let moves = moves(points, settings.max_tcp_speed)?;
+    let points = &gcode.points;
+    let mut moves = moves(points, settings.max_tcp_speed)?;
     let tool = setup.tool();
     // Joint targets are exact in any kinematics; Cartesian ones are the controller's.
     let controller = match generate::written_targets(dialect, settings.targets) {
         generate::Targets::Joint => setup.robot(),
         generate::Targets::Cartesian => cell_controller(setup)?,
     };
-    let targets: Vec<Target> = (compensated.results.par_iter())
+    let mut targets: Vec<Target> = (compensated.results.par_iter())
         .zip(&compensated.points)
         .map(|(r, p)| {
             // The values the compensation chose (a free station), else the program's.
@@ -131,6 +141,14 @@ fn write_robot_program(
             t
         })
         .collect();
+    let mut lines: Vec<Option<u64>> = points.iter().map(|p| Some(p.line)).collect();
+    let home = super::home::add(setup, controller, (&mut targets, &mut moves, &mut lines));
+    let before = generate::place(&gcode.process, &lines);
+    let process = generate::Process {
+        words: &gcode.process,
+        before: &before,
+        io: Some(&setup.workcell().controller().program.io),
+    };
     let plan = Plan {
         dialect,
         name,
@@ -144,7 +162,18 @@ fn write_robot_program(
         pulses: setup.workcell().controller().pulses.as_ref(),
         settings: *settings,
     };
-    generate(&plan)
+    Ok((generate_with(&plan, &process)?, home))
+}
+
+/// `settings` with the setup's rapid speeds (`[controller] rapid_speed_mm_s`,
+/// `rapid_joint_pct`), where it gives them.
+pub(super) fn with_setup(setup: &Setup, settings: Settings) -> Settings {
+    let program = &setup.workcell().controller().program;
+    Settings {
+        rapid_speed: program.rapid_speed.unwrap_or(settings.rapid_speed),
+        rapid_joint_pct: program.rapid_joint_pct.unwrap_or(settings.rapid_joint_pct),
+        ..settings
+    }
 }
 
 /// The controller's kinematics ([`Setup::controller_robot`]) for Cartesian targets, which on a

@@ -55,6 +55,16 @@
 //!   numbered lines (the pendant's four digits): its sub-programs hold fewer moves when needed;
 //!   an INFORM job at most [`super::inform::generate::MAX_POSITIONS`] positions (five digits);
 //! - no move is faster than [`Settings::max_tcp_speed`], RAPID's rapids (`vrapid`) included;
+//!   rapids move at [`Settings::rapid_speed`] (RAPID `vrapid`) and
+//!   [`Settings::rapid_joint_pct`] (KRL `BAS(#VEL_PTP)`, LS `J .. %` in whole percents, INFORM
+//!   `VJ=` in hundredths), the setup's `[controller] rapid_speed_mm_s` and `rapid_joint_pct`;
+//! - joint-target programs move with the real tool too: KRL sets `$TOOL`, `$LOAD` and `$BASE`
+//!   whatever the targets, RAPID's `MoveAbsJ` names `tspindle\WObj:=wpart` (RAPID
+//!   Instructions: `MoveAbsJ .. Tool [\WObj]`), LS and INFORM use tool frame (file) 1 either way;
+//! - the G-code's process words ([`Process`], [`generate_with`]) are written between the
+//!   motions where the G-code has them, as the setup's `[controller.io]` maps their events or
+//!   as comments with one warning ([`Written::left_out`]); an LS file's numbered lines count
+//!   them;
 //! - a program of more than [`Settings::moves_per_file`] moves is split into sub-programs of at
 //!   most that many moves (`NAME_01`, `NAME_02`, ... in files of their own), which the main
 //!   program calls in order.
@@ -63,11 +73,13 @@
 //! `10^-DECIMALS` mm and deg.
 
 mod names;
+mod process;
 
 pub use names::{
     check_name, check_plan, default_name_length, max_name_length, moves_per_file, LS_MAX_LINES,
     MAX_FILES,
 };
+pub use process::{place, Process, ProcessForm};
 
 use super::{Dialect, DECIMALS};
 use crate::gcode::{Motion, Point};
@@ -129,9 +141,11 @@ impl stiffid_core::common::choice::Choice for Targets {
 
 stiffid_core::common::choice::by_name!(Targets);
 
-/// The rapid speed of RAPID's `vrapid`, mm/s, or [`Settings::max_tcp_speed`] when slower.
+/// The default rapid speed ([`Settings::rapid_speed`]) of RAPID's `vrapid`, mm/s, or
+/// [`Settings::max_tcp_speed`] when slower.
 pub const RAPID_SPEED_MM_S: f64 = 200.0;
-/// The joint speed of rapid moves (KRL `BAS(#VEL_PTP)`, LS `J`), percent of the axes' top speed.
+/// The default joint speed of rapid moves ([`Settings::rapid_joint_pct`]: KRL `BAS(#VEL_PTP)`,
+/// LS `J`, INFORM `VJ=`), percent of the axes' top speed; KRL's `BAS(#ACC_PTP)` always.
 pub const RAPID_PERCENT: u32 = 20;
 /// The slowest feed written, m/s (0.001 mm/s): a slower one is refused, never written as 0.
 pub const MIN_FEED: f64 = 1e-6;
@@ -155,11 +169,20 @@ pub struct Settings {
     pub name_length: Option<usize>,
     /// The most moves in one program file (within [`MOVES_PER_FILE`]).
     pub moves_per_file: usize,
+    /// The TCP speed of rapid moves where the language states one (RAPID `vrapid`, at most
+    /// `max_tcp_speed`), m/s, within
+    /// [`stiffid_core::setup::program_io::RAPID_SPEED_MM_S`] (the setup's `[controller]
+    /// rapid_speed_mm_s`).
+    pub rapid_speed: f64,
+    /// The joint speed of rapid moves (KRL `BAS(#VEL_PTP)`, LS `J .. %`, INFORM `VJ=`), percent
+    /// of the axes' top speed, within [`stiffid_core::setup::program_io::RAPID_JOINT_PCT`] (the
+    /// setup's `[controller] rapid_joint_pct`); LS states whole percents, INFORM hundredths.
+    pub rapid_joint_pct: f64,
 }
 
 impl Default for Settings {
     /// Cartesian targets (not asked), 2000 mm/s, the dialect's name length, 10 000 moves per
-    /// file.
+    /// file, rapids at [`RAPID_SPEED_MM_S`] and [`RAPID_PERCENT`].
     fn default() -> Self {
         Self {
             targets: Targets::Cartesian,
@@ -167,6 +190,8 @@ impl Default for Settings {
             max_tcp_speed: 2.0,
             name_length: None,
             moves_per_file: 10_000,
+            rapid_speed: RAPID_SPEED_MM_S * 1e-3,
+            rapid_joint_pct: RAPID_PERCENT as f64,
         }
     }
 }
@@ -198,6 +223,7 @@ impl Settings {
                 ),
             );
         }
+        self.validate_rapids()?;
         if !MOVES_PER_FILE.contains(&self.moves_per_file) {
             return bad(
                 JobOption::MovesPerFile,
@@ -210,6 +236,25 @@ impl Settings {
             );
         }
         Ok(())
+    }
+}
+
+impl Settings {
+    /// Checks the rapid speeds against their ranges.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] naming `controller.rapid_speed_mm_s` or
+    /// `controller.rapid_joint_pct`.
+    fn validate_rapids(&self) -> Result<()> {
+        use stiffid_core::common::limits::check;
+        use stiffid_core::setup::program_io::{RAPID_JOINT_PCT, RAPID_SPEED_MM_S};
+        let mm_s = self.rapid_speed * 1e3;
+        check("controller.rapid_speed_mm_s", &[mm_s], &RAPID_SPEED_MM_S)?;
+        check(
+            "controller.rapid_joint_pct",
+            &[self.rapid_joint_pct],
+            &RAPID_JOINT_PCT,
+        )
     }
 }
 
@@ -320,6 +365,9 @@ pub struct Written {
     pub files: Vec<File>,
     /// What the user should know (a feed LS cannot state exactly).
     pub warnings: Vec<String>,
+    /// What the program leaves to the user: the process words no `[controller.io]` event maps,
+    /// written as comments ([`Process`]).
+    pub left_out: Vec<String>,
 }
 
 /// How the robot moves to each point of a G-code path: the first point and rapid moves
@@ -358,18 +406,37 @@ pub fn moves(points: &[Point], max_tcp_speed: f64) -> Result<Vec<Move>> {
 /// ([`JobOption::MovesPerFile`]); [`Error::InvalidField`] for no
 /// target or more than [`super::MAX_TARGETS`], an axis angle that is not finite (`targets`), a
 /// count of moves other than the targets' or a feed below [`MIN_FEED`] or not finite (`moves`),
-/// a RAPID program with Cartesian targets and a tool without mass (`tool.mass_kg`);
+/// a RAPID program and a tool without mass (`tool.mass_kg`);
 /// [`Error::Program`] for a feed an LS program
 /// cannot state (naming the target's 1-based index as its line).
 pub fn generate(plan: &Plan) -> Result<Written> {
-    let names = check_plan(plan.dialect, plan.name, &plan.settings, plan.targets.len())?;
+    generate_with(plan, &Process::default())
+}
+
+/// [`generate`] with the G-code's process words written between the moves ([`Process`]);
+/// a file's numbered lines (LS) count them.
+///
+/// # Errors
+/// Those of [`generate`]; [`Error::InvalidField`] (`controller.io.KEY`) for an action the
+/// language cannot write; [`Error::Program`] naming the G-code line of a word whose action
+/// needs a value the program has not given; [`Error::InvalidOption`]
+/// ([`JobOption::MovesPerFile`]) for more process lines than a file holds.
+pub fn generate_with(plan: &Plan, process: &Process) -> Result<Written> {
     let generator = names::generator(plan.dialect)?;
+    let form = generator
+        .process_form()
+        .ok_or_else(|| invalid("out", "this language writes no process instruction".into()))?;
+    let (inserted, left_out) = process::inserted(plan, form, process)?;
+    let settings = room_for(generator, &plan.settings, &inserted)?;
+    let names = check_plan(plan.dialect, plan.name, &settings, plan.targets.len())?;
     check_targets(plan)?;
-    let per_file = moves_per_file(plan.dialect, &plan.settings);
+    generator.check_settings(&plan.settings)?;
+    let per_file = moves_per_file(plan.dialect, &settings);
     let chunks: Vec<&[Target]> = plan.targets.chunks(per_file).collect();
     let mut written = Written {
         files: Vec::new(),
         warnings: Vec::new(),
+        left_out: left_out.into_iter().collect(),
     };
     let mut first = 0;
     let mut bodies = Vec::new();
@@ -382,6 +449,7 @@ pub fn generate(plan: &Plan) -> Result<Written> {
             targets: chunk,
             moves: &plan.moves[first..first + chunk.len()],
             last: first + chunk.len() == plan.targets.len(),
+            inserted: &inserted,
         };
         bodies.push((
             name.clone(),
@@ -423,6 +491,53 @@ pub struct Part<'a> {
     pub moves: &'a [Move],
     /// Whether it ends the whole program (its last point exact).
     pub last: bool,
+    /// The lines written before each target of the whole program, then after its last
+    /// ([`Process`]); empty: none.
+    pub inserted: &'a [String],
+}
+
+impl Part<'_> {
+    /// The lines written before its `k`-th target (0-based within the part).
+    pub fn before(&self, k: usize) -> &str {
+        self.inserted.get(self.first + k).map_or("", String::as_str)
+    }
+
+    /// The lines written after its last target: the program's end's, for the last part.
+    pub fn after(&self) -> &str {
+        let end = self.first + self.targets.len();
+        match self.last {
+            true => self.inserted.get(end).map_or("", String::as_str),
+            false => "",
+        }
+    }
+}
+
+/// `settings` with room in each file for the process lines `inserted` where the language limits
+/// a file's lines ([`super::Generator::lines_per_file`]): fewer moves per file.
+///
+/// # Errors
+/// [`Error::InvalidOption`] ([`JobOption::MovesPerFile`]) when they leave room for fewer than
+/// the least moves per file.
+fn room_for(
+    generator: &dyn super::Generator,
+    settings: &Settings,
+    inserted: &[String],
+) -> Result<Settings> {
+    let extra: usize = inserted.iter().map(|s| s.lines().count()).sum();
+    let Some(limit) = generator.lines_per_file().filter(|_| extra > 0) else {
+        return Ok(*settings);
+    };
+    let room = limit.saturating_sub(extra);
+    if room < *MOVES_PER_FILE.start() {
+        return Err(Error::InvalidOption {
+            option: JobOption::MovesPerFile,
+            message: format!("{extra} process instructions leave room for {room} moves in a file of at most {limit} lines"),
+        });
+    }
+    Ok(Settings {
+        moves_per_file: settings.moves_per_file.min(room),
+        ..*settings
+    })
 }
 
 fn invalid(field: &str, message: String) -> Error {

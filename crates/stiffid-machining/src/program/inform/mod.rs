@@ -69,6 +69,7 @@
 pub mod generate;
 mod inst;
 mod pos;
+mod process;
 mod pulses;
 pub mod speed;
 mod tool;

@@ -17,12 +17,14 @@ pub(crate) fn header(plan: &Plan) -> String {
     );
     let _ = write!(
         s,
-        "BAS(#VEL_PTP, {RAPID_PERCENT})\nBAS(#ACC_PTP, {RAPID_PERCENT})\n\
+        "BAS(#VEL_PTP, {})\nBAS(#ACC_PTP, {RAPID_PERCENT})\n\
          $VEL.ORI1 = 200\n$VEL.ORI2 = 200\n$ACC.CP = 1\n$ACC.ORI1 = 100\n$ACC.ORI2 = 100\n\
          $APO.CDIS = {}\n",
+        number(plan.settings.rapid_joint_pct),
         number(plan.approximation * 1e3)
     );
-    if plan.settings.targets == Targets::Cartesian {
+    // The real tool and load in joint-target programs too: speeds and dynamics are the tool's.
+    {
         let _ = writeln!(s, "$TOOL = {}", frame(&plan.tool.frame));
         if let Some((mass, c)) = plan.tool.payload {
             let c = c * 1e3;
@@ -62,6 +64,7 @@ pub(crate) fn body(plan: &Plan, part: &Part) -> String {
     let n = part.targets.len();
     for (k, (t, m)) in part.targets.iter().zip(part.moves).enumerate() {
         let exact = part.last && k + 1 == n;
+        s += part.before(k);
         if let Move::Feed(f) = m
             && speed != Some(*f)
         {
@@ -108,7 +111,7 @@ pub(crate) fn body(plan: &Plan, part: &Part) -> String {
             }
         }
     }
-    s
+    s + part.after()
 }
 
 /// A target's external axes as `E6AXIS`/`E6POS` members, `, E1 .., E2 ..` (mm or deg, the
@@ -157,5 +160,8 @@ impl Generator for super::Krl {
     }
     fn external_form(&self, _role: Role) -> &'static str {
         "E1 to E6"
+    }
+    fn process_form(&self) -> Option<&'static crate::program::generate::ProcessForm> {
+        Some(&super::process::FORM)
     }
 }

@@ -25,6 +25,7 @@ mod frames;
 mod generate;
 mod motion;
 mod names;
+mod process;
 mod read;
 pub mod speed;
 

@@ -2,7 +2,7 @@
 
 use crate::program::generate::LS_MAX_LINES;
 use crate::program::generate::{
-    in_world, number, stated_feed, v, zyx_deg, Move, Part, Plan, Target, Targets, RAPID_PERCENT,
+    in_world, number, stated_feed, v, zyx_deg, Move, Part, Plan, Settings, Target, Targets,
 };
 use crate::program::Generator;
 use std::fmt::Write;
@@ -57,8 +57,9 @@ pub(crate) fn body(plan: &Plan, part: &Part, warnings: &mut Vec<String>) -> Resu
     for (k, (t, m)) in part.targets.iter().zip(part.moves).enumerate() {
         let i = k + 1;
         let exact = part.last && k + 1 == n;
+        mn += part.before(k);
         let _ = match m {
-            Move::Rapid => writeln!(mn, "J P[{i}] {RAPID_PERCENT}% FINE ;"),
+            Move::Rapid => writeln!(mn, "J P[{i}] {}% FINE ;", plan.settings.rapid_joint_pct),
             Move::Feed(f) => {
                 let slowest = (
                     "1 cm/min, the slowest an LS program states",
@@ -96,6 +97,7 @@ pub(crate) fn body(plan: &Plan, part: &Part, warnings: &mut Vec<String>) -> Resu
         };
         pos += &groups(plan, t);
     }
+    mn += part.after();
     Ok(format!("{mn}/POS\n{pos}"))
 }
 
@@ -189,6 +191,20 @@ impl Generator for super::FanucLs {
         match role {
             Role::Carrier => "group 1's extended axes E1 to E3",
             Role::Positioner => "group 2's J1 to J6",
+        }
+    }
+    fn process_form(&self) -> Option<&'static crate::program::generate::ProcessForm> {
+        Some(&super::process::FORM)
+    }
+    /// A joint move's speed is a whole percent (`J P[1] 20% FINE`).
+    fn check_settings(&self, settings: &Settings) -> Result<()> {
+        let pct = settings.rapid_joint_pct;
+        match pct.fract() == 0.0 && pct >= 1.0 {
+            true => Ok(()),
+            false => Err(stiffid_core::Error::InvalidField {
+                field: "controller.rapid_joint_pct".into(),
+                message: format!("{pct}: an LS joint move states a whole percent of the joint speed, 1 to 100 (J P[1] 20% FINE)"),
+            }),
         }
     }
 }

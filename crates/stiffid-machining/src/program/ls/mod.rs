@@ -20,6 +20,7 @@ mod motion;
 mod names;
 mod numbered;
 mod options;
+mod process;
 pub mod speed;
 mod statements;
 

@@ -1,9 +1,7 @@
 //! ABB RAPID (`.mod`): `MODULE NAME` with `PROC main()`, sub-programs `MODULE NAME_01` with
 //! `PROC rNAME_01()` (module docs of [`crate::program::generate`]).
 
-use crate::program::generate::{
-    in_work, number, v, Move, Part, Plan, Target, Targets, RAPID_SPEED_MM_S,
-};
+use crate::program::generate::{in_work, number, v, Move, Part, Plan, Target, Targets};
 use crate::program::Generator;
 use std::fmt::Write;
 use stiffid_core::robot::external::Role;
@@ -15,7 +13,8 @@ pub(crate) fn header(plan: &Plan, _main: &str, _subs: &[String]) -> String {
         "  ! written by stiffid: compensated targets, the tool, work object and speeds below;\n  \
          ! check them for the cell before running\n",
     );
-    if plan.settings.targets == Targets::Cartesian {
+    // The real tool in joint-target programs too (`MoveAbsJ .., tspindle`).
+    {
         let tool = &plan.tool.frame;
         let (mass, c) = plan.tool.payload.unwrap_or_default();
         let c = c * 1e3;
@@ -39,7 +38,7 @@ pub(crate) fn header(plan: &Plan, _main: &str, _subs: &[String]) -> String {
         s,
         "  CONST speeddata vrapid := [{},500,5000,1000];\n  \
          CONST zonedata zpath := [FALSE,{a},{a},{a},0.1,{a},0.1];\n",
-        number(RAPID_SPEED_MM_S.min(plan.settings.max_tcp_speed * 1e3))
+        number(plan.settings.rapid_speed.min(plan.settings.max_tcp_speed) * 1e3)
     );
     s
 }
@@ -63,6 +62,7 @@ pub(crate) fn body(plan: &Plan, part: &Part) -> String {
     let n = part.targets.len();
     for (k, (t, m)) in part.targets.iter().zip(part.moves).enumerate() {
         let exact = part.last && k + 1 == n;
+        s += part.before(k);
         let (speed, zone) = match m {
             Move::Rapid => ("vrapid".to_string(), "fine"),
             Move::Feed(f) => (
@@ -75,7 +75,7 @@ pub(crate) fn body(plan: &Plan, part: &Part) -> String {
                 let axes: Vec<String> = t.q_deg.iter().map(|x| v(*x)).collect();
                 writeln!(
                     s,
-                    "    MoveAbsJ [[{}],{}], {speed}, {zone}, tool0;",
+                    "    MoveAbsJ [[{}],{}], {speed}, {zone}, tspindle\\WObj:=wpart;",
                     axes.join(","),
                     extax(t)
                 )
@@ -99,7 +99,7 @@ pub(crate) fn body(plan: &Plan, part: &Part) -> String {
             }
         };
     }
-    s
+    s + part.after()
 }
 
 /// A target's `extjoint` `[eax_a,..,eax_f]`: the cell's external axes in order (mm or deg),
@@ -161,9 +161,10 @@ impl Generator for super::Rapid {
     fn routine_prefix(&self) -> &'static str {
         "r"
     }
-    /// A `tooldata` states the tool's mass: the controller refuses a tool of no mass.
-    fn needs_mass(&self, targets: Targets) -> bool {
-        targets == Targets::Cartesian
+    /// A `tooldata` states the tool's mass: the controller refuses a tool of no mass; joint
+    /// targets move with it too.
+    fn needs_mass(&self, _targets: Targets) -> bool {
+        true
     }
     /// `eax_a` to `eax_f`, the carrier's then the positioner's.
     fn most_external(&self, _role: Role) -> usize {
@@ -171,5 +172,8 @@ impl Generator for super::Rapid {
     }
     fn external_form(&self, _role: Role) -> &'static str {
         "eax_a to eax_f"
+    }
+    fn process_form(&self) -> Option<&'static crate::program::generate::ProcessForm> {
+        Some(&super::process::FORM)
     }
 }

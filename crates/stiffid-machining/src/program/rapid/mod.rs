@@ -24,6 +24,7 @@ mod flow;
 mod generate;
 mod names;
 mod offset;
+mod process;
 pub mod speed;
 
 use super::cartesian::Flags;

@@ -11,8 +11,7 @@
 //! `///ANGLE` form (mm, deg).
 
 use crate::program::generate::{
-    missing_pulses, number, stated_feed, v, zyx_deg, Move, Part, Plan, Target, Targets,
-    RAPID_PERCENT,
+    missing_pulses, number, stated_feed, v, zyx_deg, Move, Part, Plan, Settings, Target, Targets,
 };
 use crate::program::{whole_pulses, Generator};
 use std::fmt::Write;
@@ -141,13 +140,18 @@ impl Generator for super::Inform {
         let (base, station) = groups(plan);
         for (k, m) in part.moves.iter().enumerate() {
             let exact = part.last && k + 1 == n;
+            inst += part.before(k);
             let external = |prefix: &str, has: bool| match has {
                 true => format!(" {prefix}{k:05}"),
                 false => String::new(),
             };
             let names = format!("C{k:05}{}{}", external("BC", base), external("EC", station));
             let _ = match m {
-                Move::Rapid => writeln!(inst, "MOVJ {names} VJ={RAPID_PERCENT}.00 PL=0"),
+                Move::Rapid => writeln!(
+                    inst,
+                    "MOVJ {names} VJ={:.2} PL=0",
+                    plan.settings.rapid_joint_pct
+                ),
                 Move::Feed(f) => {
                     let slowest = (
                         "0.1 mm/s, the slowest an INFORM job states",
@@ -158,6 +162,7 @@ impl Generator for super::Inform {
                 }
             };
         }
+        inst += part.after();
         Ok(format!("{inst}//POS\n{}", positions(plan, part, pulses)))
     }
     /// The main job's calls of its sub-jobs (no position of its own).
@@ -210,6 +215,20 @@ impl Generator for super::Inform {
         match role {
             Role::Carrier => "a base axis group BC of 3 axes",
             Role::Positioner => "a station group EC of 6 axes",
+        }
+    }
+    fn process_form(&self) -> Option<&'static crate::program::generate::ProcessForm> {
+        Some(&crate::program::inform::process::FORM)
+    }
+    /// A joint speed `VJ=` in hundredths of a percent.
+    fn check_settings(&self, settings: &Settings) -> Result<()> {
+        let steps = settings.rapid_joint_pct * 100.0;
+        match (steps - steps.round()).abs() <= 1e-9 * steps {
+            true => Ok(()),
+            false => Err(stiffid_core::Error::InvalidField {
+                field: "controller.rapid_joint_pct".into(),
+                message: format!("{}: an INFORM joint move states the joint speed in hundredths of a percent (VJ=20.00)", settings.rapid_joint_pct),
+            }),
         }
     }
 }

@@ -5,5 +5,6 @@ mod generate;
 mod inform;
 mod inform_jobs;
 mod krl;
+mod process;
 pub(crate) mod rapid;
 mod speed;

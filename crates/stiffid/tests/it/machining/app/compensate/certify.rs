@@ -75,7 +75,12 @@ fn every_target_carries_its_bound() {
     for (i, b) in [(1, "0.0300"), (2, "0.0300"), (3, "0.0100")] {
         assert!(out.contains(&format!("P[{i}:\"{b} mm\"]{{\n")), "{out}");
     }
-    let generated = generated(Dialect::FanucLs, &[ls.to_string()], &[5e-5, 6e-5], 0.95);
+    let generated = generated(
+        Dialect::FanucLs,
+        &[ls.to_string()],
+        &[Some(5e-5), Some(6e-5)],
+        0.95,
+    );
     assert!(
         generated[0].contains("P[1:\"0.0500 mm\"]{"),
         "{}",

@@ -1,0 +1,192 @@
+//! The G-code's process words in a generated program: each written where the G-code has it
+//! between the motions ([`place`]), as the setup's `[controller.io]` maps its event
+//! ([`stiffid_core::setup::program_io`]) in the language's own form ([`ProcessForm`]), or, not
+//! mapped, as a comment naming the words and their line, with one warning naming them all.
+//!
+//! Each language's forms and their sources are in its folder (`process.rs`); every name written
+//! is checked against the controller's longest name and reserved words.
+
+use super::{number, Plan};
+use crate::gcode::ProcessWord;
+use stiffid_core::setup::program_io::{Action, Argument, Io, Placeholder, ProcessEvent, Signal};
+use stiffid_core::{Error, Result};
+
+/// How a language writes process instructions.
+#[derive(Debug, Clone, Copy)]
+pub struct ProcessForm {
+    /// A comment line: its text between these (KRL `; `, LS `! ` and ` ;`).
+    pub comment: (&'static str, &'static str),
+    /// The longest comment the pendant keeps, characters of its text; `None`: no limit.
+    pub comment_length: Option<usize>,
+    /// The indentation of a line of the program's body.
+    pub indent: &'static str,
+    /// A call of the routine `name` with `arguments` (numbers, as text), or why the language
+    /// cannot write it.
+    pub call: fn(name: &str, arguments: &[String]) -> std::result::Result<String, String>,
+    /// A digital output set on or off, or why the language cannot write it.
+    pub output: fn(signal: &Signal, on: bool) -> std::result::Result<String, String>,
+}
+
+/// The process words of a program and where they go.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Process<'a> {
+    /// The words, in path order.
+    pub words: &'a [ProcessWord],
+    /// For each word, the index of the target it is written before; the targets' count: after
+    /// the last ([`place`]).
+    pub before: &'a [usize],
+    /// The setup's `[controller.io]`; `None`: no event mapped.
+    pub io: Option<&'a Io>,
+}
+
+/// Where each of `words` goes among targets whose G-code lines are `lines` (`None`: a target of
+/// no G-code line, the home posture): before the first target of its line or a later one (a
+/// block's process words run before its motion), the program's end (`M2`, `M30`) after every
+/// target, a word after the last motion before a home posture that follows it.
+pub fn place(words: &[ProcessWord], lines: &[Option<u64>]) -> Vec<usize> {
+    let n = lines.len();
+    let after_path = lines.iter().rposition(Option::is_some).map_or(n, |i| i + 1);
+    (words.iter())
+        .map(|w| match w.event {
+            Some(ProcessEvent::ProgramEnd) => n,
+            _ => (lines.iter())
+                .position(|l| l.is_some_and(|l| l >= w.line))
+                .unwrap_or(after_path),
+        })
+        .collect()
+}
+
+/// The lines written before each target of `plan` (and, at the targets' count, after the last),
+/// and the warning naming the words no event of `io` maps.
+///
+/// # Errors
+/// [`Error::InvalidField`] (`controller.io.KEY`) for an action the language cannot write or a
+/// name the controller does not take; [`Error::Program`] naming the G-code line of a word whose
+/// action needs a value (`{rpm}`, `{tool}`) the program has not given.
+pub(crate) fn inserted(
+    plan: &Plan,
+    form: &ProcessForm,
+    process: &Process,
+) -> Result<(Vec<String>, Option<String>)> {
+    let mut lines = vec![String::new(); plan.targets.len() + 1];
+    let mut unmapped: Vec<(&str, &ProcessWord)> = Vec::new();
+    for (w, &at) in process.words.iter().zip(process.before) {
+        let actions = w.event.and_then(|e| process.io.and_then(|io| io.get(e)));
+        let Some(actions) = actions else {
+            let key = w
+                .event
+                .map_or("other M words (no event)", ProcessEvent::key);
+            unmapped.push((key, w));
+            lines[at.min(plan.targets.len())] += &comment(form, w);
+            continue;
+        };
+        for action in actions {
+            let line = written(plan, form, w, action)?;
+            lines[at.min(plan.targets.len())] += &format!("{}{line}\n", form.indent);
+        }
+    }
+    Ok((lines, warning(&unmapped)))
+}
+
+/// A comment line naming a word not mapped and its G-code line, within the pendant's length.
+fn comment(form: &ProcessForm, w: &ProcessWord) -> String {
+    let mut text = format!("{} (line {})", w.words, w.line);
+    if let Some(most) = form.comment_length {
+        text.truncate(most);
+    }
+    format!(
+        "{}{}{text}{}\n",
+        form.indent, form.comment.0, form.comment.1
+    )
+}
+
+/// One warning naming every word not mapped, grouped by event key.
+fn warning(unmapped: &[(&str, &ProcessWord)]) -> Option<String> {
+    if unmapped.is_empty() {
+        return None;
+    }
+    let mut keys: Vec<&str> = unmapped.iter().map(|(k, _)| *k).collect();
+    keys.dedup();
+    let mut seen = Vec::new();
+    let groups: Vec<String> = (keys.into_iter())
+        .filter(|k| {
+            let new = !seen.contains(k);
+            seen.push(*k);
+            new
+        })
+        .map(|key| {
+            let words: Vec<String> = (unmapped.iter())
+                .filter(|(k, _)| *k == key)
+                .map(|(_, w)| format!("{} (line {})", w.words, w.line))
+                .collect();
+            format!("{key}: {}", words.join(", "))
+        })
+        .collect();
+    Some(format!(
+        "{} process word(s) of the G-code not mapped in the setup's [controller.io], written as comments where the G-code has them (map an event to a call or an output to run it): {}",
+        unmapped.len(),
+        groups.join("; ")
+    ))
+}
+
+/// One action of a word in the language, names checked.
+fn written(plan: &Plan, form: &ProcessForm, w: &ProcessWord, action: &Action) -> Result<String> {
+    let key = w.event.map_or("", ProcessEvent::key);
+    let refused = |message: String| Error::InvalidField {
+        field: format!("controller.io.{key}"),
+        message,
+    };
+    let line = match action {
+        Action::Call { name, arguments } => {
+            let values = (arguments.iter())
+                .map(|a| value(w, a))
+                .collect::<Result<Vec<String>>>()?;
+            check_name(plan, name).and_then(|()| (form.call)(name, &values))
+        }
+        Action::Output { signal, on } => match signal {
+            Signal::Name(name) => check_name(plan, name),
+            Signal::Number(_) => Ok(()),
+        }
+        .and_then(|()| (form.output)(signal, *on)),
+    };
+    line.map_err(|why| refused(format!("{} (at {} on line {})", why, w.words, w.line)))
+}
+
+/// A name within the controller's longest and not one of its reserved words.
+fn check_name(plan: &Plan, name: &str) -> std::result::Result<(), String> {
+    let controller = plan.dialect.controller();
+    let most = controller.max_name_length();
+    if name.len() > most {
+        return Err(format!(
+            "{name}: {} takes names of at most {most} characters",
+            controller.title()
+        ));
+    }
+    if (controller.reserved_words().iter()).any(|r| r.eq_ignore_ascii_case(name)) {
+        return Err(format!(
+            "{name}: a reserved word of {} (or a name the program declares)",
+            controller.title()
+        ));
+    }
+    Ok(())
+}
+
+/// An argument's text: a number as the setup gives it, a placeholder the word's value.
+fn value(w: &ProcessWord, a: &Argument) -> Result<String> {
+    let missing = |what: &str| Error::Program {
+        line: w.line,
+        message: format!(
+            "{}: the setup's [controller.io] passes {what}, and no such word is in force here",
+            w.words
+        ),
+    };
+    match a {
+        Argument::Number(n) => Ok(n.clone()),
+        Argument::Value(Placeholder::Rpm) => {
+            (w.rpm.map(number)).ok_or_else(|| missing("{rpm}, the spindle speed S"))
+        }
+        Argument::Value(Placeholder::Tool) => {
+            (w.tool.map(|t| t.to_string())).ok_or_else(|| missing("{tool}, the tool number T"))
+        }
+    }
+}

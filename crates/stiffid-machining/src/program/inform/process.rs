@@ -1,0 +1,30 @@
+//! Yaskawa INFORM's process instructions (DX200 / YRC1000 INFORM manual: `CALL JOB:NAME`,
+//! `DOUT OT#(n) ON`, a comment line `'..` of at most 32 characters).
+
+use crate::program::generate::ProcessForm;
+use stiffid_core::setup::program_io::Signal;
+
+/// INFORM's forms.
+pub(crate) static FORM: ProcessForm = ProcessForm {
+    comment: ("'", ""),
+    comment_length: Some(32),
+    indent: "",
+    call,
+    output,
+};
+
+/// `CALL JOB:NAME`; a call with arguments is refused.
+fn call(name: &str, arguments: &[String]) -> Result<String, String> {
+    match arguments.is_empty() {
+        true => Ok(format!("CALL JOB:{name}")),
+        false => Err(format!("{name}: stiffid writes an INFORM CALL JOB without arguments; map the event to a job that takes none (set the value in a variable the job reads)")),
+    }
+}
+
+/// `DOUT OT#(3) ON`: a job sets outputs by number.
+fn output(signal: &Signal, on: bool) -> Result<String, String> {
+    match signal {
+        Signal::Number(n) => Ok(format!("DOUT OT#({n}) {}", if on { "ON" } else { "OFF" })),
+        Signal::Name(name) => Err(format!("out[{name}]: an INFORM job sets a general output by its number, DOUT OT#(n): give out[n] = on")),
+    }
+}

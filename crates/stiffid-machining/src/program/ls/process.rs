@@ -1,0 +1,31 @@
+//! FANUC LS's process instructions (FANUC R-30iB Operator's Manual: `CALL NAME ;` and
+//! `CALL NAME(arg, ..) ;` with arguments, `DO[n]=ON ;`, a remark `! .. ;` of at most 32
+//! characters).
+
+use crate::program::generate::ProcessForm;
+use stiffid_core::setup::program_io::Signal;
+
+/// LS's forms.
+pub(crate) static FORM: ProcessForm = ProcessForm {
+    comment: ("! ", " ;"),
+    comment_length: Some(32),
+    indent: "",
+    call,
+    output,
+};
+
+/// `CALL NAME ;`, `CALL NAME(a,b) ;`.
+fn call(name: &str, arguments: &[String]) -> Result<String, String> {
+    Ok(match arguments.is_empty() {
+        true => format!("CALL {name} ;"),
+        false => format!("CALL {name}({}) ;", arguments.join(",")),
+    })
+}
+
+/// `DO[3]=ON ;`: an LS program sets outputs by number.
+fn output(signal: &Signal, on: bool) -> Result<String, String> {
+    match signal {
+        Signal::Number(n) => Ok(format!("DO[{n}]={} ;", if on { "ON" } else { "OFF" })),
+        Signal::Name(name) => Err(format!("out[{name}]: an LS program sets a digital output by its number, DO[n]: give out[n] = on")),
+    }
+}
