@@ -30,7 +30,7 @@
 //! over a simpler one that predicts the held-out postures better. With fewer than
 //! [`MIN_POSTURES`] distinct postures the ladder is not climbed and its first rung is fitted.
 
-use super::maps::{assess, Assessed};
+use super::maps::{assess, assess_given, Assessed};
 use super::WEAK_CONDITION;
 use stiffid_core::common::choice::Choice;
 use stiffid_core::Result;
@@ -245,11 +245,13 @@ pub(super) fn climb(
             ladder,
         });
     }
+    // The maps each outer fold chose for the first gravity model, kept for the others.
+    let choices = (assessed.nested.as_ref()).map_or_else(Vec::new, |n| n.choices.clone());
     let mut fits: Vec<std::result::Result<(Fitted, Assessed), String>> =
         vec![Ok((first, assessed))];
     for &g in &gravities[1..] {
         let tried = fit(g).and_then(|f| {
-            let a = assess(maps, &f.model, &f.fit, obs, options, true)?;
+            let a = assess_given(maps, (&f.model, &f.fit), obs, options, &choices)?;
             Ok((f, a))
         });
         fits.push(tried.map_err(|e| e.to_string()).and_then(|(f, a)| {
