@@ -20,8 +20,10 @@
 //! shows.
 //! The postures are dealt into [`FOLDS`] groups (posture `i` in group `i mod K`); each group is
 //! predicted by the rung refitted without it (linearised at the rung's fit, as the maps' choice:
-//! [`stiffid_metrology::calibration::maps::nested`], the maps chosen anew on each training set),
-//! which gives every held-out posture its squared error under every rung, paired.
+//! [`stiffid_metrology::calibration::maps::nested`], the maps chosen on each training set at the
+//! first gravity model's fit and kept for the others, each one's ridge chosen anew:
+//! [`stiffid_metrology::calibration::maps::nested_given`]), which gives every held-out posture
+//! its squared error under every rung, paired.
 //!
 //! # The choice (one standard error)
 //! The rung with the least held-out error is the best; the job fits the simplest rung whose

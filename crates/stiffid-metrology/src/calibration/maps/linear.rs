@@ -14,6 +14,13 @@
 //!
 //! exactly the least squares of the linearised model with the ridge rows on the maps alone, for
 //! every `lambda` from one SVD (never the normal equations).
+//!
+//! A split projects every candidate column once (`P M_T` and `M_V - A U^T M_T`, all joints);
+//! where the training rows outnumber them it keeps the triangular factor `R` of the Householder
+//! QR `P M_T = Q R` and `Q^T P r_T` instead: the columns `S` of a choice have the same singular
+//! values and right singular vectors `Z` in `R` as in `P M_T`, from a matrix no taller than it is
+//! wide. `W` is never formed: `sigma_i g_i = z_i^T (P M_T)_S^T P r_T`, so the maps' step is
+//! `y = -Z diag(1 / (sigma^2 + lambda)) Z^T (P M_T)_S^T P r_T` over the nonzero `sigma`.
 
 use super::super::error_model::{JointMaps, Observation, Target};
 use super::super::fit::Fit;

@@ -30,7 +30,9 @@
 //! An outer cross-validation of [`FOLDS`] folds makes the whole choice on each outer fold's
 //! training postures and predicts its held-out postures with it, beside the geometry alone on the
 //! same split: the held-out gain of choosing maps by cross-validation. Folds run in parallel
-//! (rayon), the result independent of the thread count.
+//! (rayon), the result independent of the thread count. [`nested_given`] scores the choices
+//! another linearisation of the same postures made (a calibration's ladder chooses the harmonics
+//! once, at its first gravity model), each fold's ridge chosen anew.
 //!
 //! Equations and sources: docs/model.md, section "Calibration", "Joint error maps".
 
