@@ -22,13 +22,13 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 use stiffid::app::calibrate::{self, GravitySpec, Report, Request};
 use stiffid::app::readings::Request as Readings;
+use stiffid::common::choice::Choice;
 use stiffid::metrology::calibration::error_model::{MeasuredIn, Observation, Target};
 use stiffid::metrology::calibration::gravity;
 use stiffid::metrology::calibration::maps::Spec;
 use stiffid::metrology::calibration::{motions, ErrorModel, Geometry};
 use stiffid::robot::external::ExternalValues;
 use stiffid::robot::Robot;
-use stiffid::common::choice::Choice;
 use stiffid::Setup;
 
 /// The UR10 (standard DH, Universal Robots' published table), joints within +-360 deg.
@@ -55,10 +55,8 @@ fn ur10() -> Robot {
         )
     });
     let two_pi = 2.0 * std::f64::consts::PI;
-    let limits = stiffid::common::limits::JointBox::new(
-        Vector6::repeat(-two_pi),
-        Vector6::repeat(two_pi),
-    );
+    let limits =
+        stiffid::common::limits::JointBox::new(Vector6::repeat(-two_pi), Vector6::repeat(two_pi));
     Robot::new("UR10", "Universal Robots DH table", joints, limits).unwrap()
 }
 
@@ -199,7 +197,9 @@ fn loaded_campaign() -> (Setup, String) {
     let x = truth(&model, &mut rng);
     let l = setup.bounds();
     let qs: Vec<Vector6<f64>> = (0..100)
-        .map(|_| Vector6::from_fn(|i, _| l.lower[i] + (l.upper[i] - l.lower[i]) * rng.random::<f64>()))
+        .map(|_| {
+            Vector6::from_fn(|i, _| l.lower[i] + (l.upper[i] - l.lower[i]) * rng.random::<f64>())
+        })
         .collect();
     let wrenches = [
         Vector6::zeros(),
@@ -211,7 +211,11 @@ fn loaded_campaign() -> (Setup, String) {
 }
 
 /// The job's request on `text` with `gravity` and `maps`.
-fn request<'a>(setup: &'a Setup, text: &'a str, (gravity, maps): (GravitySpec, Spec)) -> Request<'a> {
+fn request<'a>(
+    setup: &'a Setup,
+    text: &'a str,
+    (gravity, maps): (GravitySpec, Spec),
+) -> Request<'a> {
     Request {
         readings: Readings {
             setup,
@@ -267,7 +271,11 @@ fn once(name: &str, request: &Request) -> Report {
         t.elapsed().as_secs_f64(),
         report.gravity.name(),
         stiffid::metrology::calibration::maps::name(
-            &report.maps.choice.as_ref().map_or(Default::default(), |c| c.maps)
+            &report
+                .maps
+                .choice
+                .as_ref()
+                .map_or(Default::default(), |c| c.maps)
         )
     );
     report
@@ -279,13 +287,21 @@ fn bench(c: &mut Criterion) {
     let loaded = loaded_campaign();
     let large = ur10_campaign(1000);
     if let Ok(dir) = std::env::var("STIFFID_BENCH_DATA") {
-        for (name, (_, text)) in [("ur10-100", &ur10), ("loaded-300", &loaded), ("ur10-1000", &large)] {
+        for (name, (_, text)) in [
+            ("ur10-100", &ur10),
+            ("loaded-300", &loaded),
+            ("ur10-1000", &large),
+        ] {
             std::fs::write(std::path::Path::new(&dir).join(format!("{name}.csv")), text).unwrap();
         }
     }
     let mut group = c.benchmark_group("ladder");
     group.sample_size(10);
-    for (name, (setup, text)) in [("ur10 100x1", &ur10), ("loaded 100x3x1", &loaded), ("ur10 1000x1", &large)] {
+    for (name, (setup, text)) in [
+        ("ur10 100x1", &ur10),
+        ("loaded 100x3x1", &loaded),
+        ("ur10 1000x1", &large),
+    ] {
         let report = once(&format!("{name} default"), &request(setup, text, auto));
         let model = picked(&report);
         once(&format!("{name} picked"), &request(setup, text, model));

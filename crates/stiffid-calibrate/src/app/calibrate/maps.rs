@@ -75,7 +75,14 @@ pub(super) fn assess_given(
     options: &Options,
     first: &[JointMaps],
 ) -> Result<Assessed> {
-    assess_with(spec, (model, fitted), observations, options, true, Some(first))
+    assess_with(
+        spec,
+        (model, fitted),
+        observations,
+        options,
+        true,
+        Some(first),
+    )
 }
 
 /// [`assess`], the outer folds' maps chosen anew or `given`.

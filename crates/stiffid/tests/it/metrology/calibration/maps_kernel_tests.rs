@@ -4,10 +4,10 @@
 //! columns' triangular factor); and the nested figure of choices given back equal to the one
 //! that chose them.
 
+use super::fit;
 use super::maps::{self, JointMaps, Linear, Spec};
 use super::maps_tests::{identified, model, noisy, options, truth};
 use super::tests::{postures, readings};
-use super::fit;
 use nalgebra::{DMatrix, DVector};
 
 /// A UR10 campaign of `n` postures at one point with maps on joints 2 and 5, linearised at its
@@ -38,15 +38,23 @@ fn map_columns(linear: &Linear, choice: &JointMaps) -> DMatrix<f64> {
 
 /// Per test posture, the sum of squared errors of the linearised model's ridge least squares
 /// (`min |r_T + G_T dx + M_T y|^2 + lambda |y|^2`) solved as one system.
-fn direct(linear: &Linear, choice: &JointMaps, train: &[usize], test: &[usize], lambda: f64) -> Vec<f64> {
-    let rows = |ps: &[usize]| -> Vec<usize> { ps.iter().flat_map(|&p| linear.rows[p].clone()).collect() };
+fn direct(
+    linear: &Linear,
+    choice: &JointMaps,
+    train: &[usize],
+    test: &[usize],
+    lambda: f64,
+) -> Vec<f64> {
+    let rows =
+        |ps: &[usize]| -> Vec<usize> { ps.iter().flat_map(|&p| linear.rows[p].clone()).collect() };
     let tr = rows(train);
     let m = map_columns(linear, choice);
     let (g, s) = (linear.geometry.ncols(), m.ncols());
     let mut a = DMatrix::zeros(tr.len() + s, g + s);
     let mut b = DVector::zeros(tr.len() + s);
     for (i, &r) in tr.iter().enumerate() {
-        a.view_mut((i, 0), (1, g)).copy_from(&linear.geometry.row(r));
+        a.view_mut((i, 0), (1, g))
+            .copy_from(&linear.geometry.row(r));
         a.view_mut((i, g), (1, s)).copy_from(&m.row(r));
         b[i] = -linear.residuals[r];
     }
@@ -74,10 +82,16 @@ fn assert_split_matches(n: usize) {
     choice.harmonics[1] = 16;
     choice.harmonics[4] = 8;
     for lambda in [1e-4, 1e-2, 1.0] {
-        let got = linear.errors(&split, &choice, &[lambda]).unwrap().swap_remove(0);
+        let got = linear
+            .errors(&split, &choice, &[lambda])
+            .unwrap()
+            .swap_remove(0);
         let want = direct(&linear, &choice, &train, &test, lambda);
         for (g, w) in got.iter().zip(&want) {
-            assert!((g - w).abs() <= 1e-9 * w.max(1e-12), "{n} postures, lambda {lambda}: {g:e} vs {w:e}");
+            assert!(
+                (g - w).abs() <= 1e-9 * w.max(1e-12),
+                "{n} postures, lambda {lambda}: {g:e} vs {w:e}"
+            );
         }
     }
 }
