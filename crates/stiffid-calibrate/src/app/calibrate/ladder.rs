@@ -21,8 +21,10 @@
 //! takes do not turn a model down.
 //! The postures are dealt into [`FOLDS`] groups (posture `i` in group `i mod K`); each group is
 //! predicted by the rung refitted without it (linearised at the rung's fit, as the maps' choice:
-//! [`stiffid_metrology::calibration::maps::nested`], the maps chosen anew on each training set),
-//! which gives every held-out posture its squared error under every rung, paired.
+//! [`stiffid_metrology::calibration::maps::nested`], the maps chosen on each training set at the
+//! first gravity model's fit and kept for the others, each one's ridge chosen anew:
+//! [`stiffid_metrology::calibration::maps::nested_given`]), which gives every held-out posture
+//! its squared error under every rung, paired.
 //!
 //! # The choice (one standard error)
 //! The rung with the least held-out error is the best; the job fits the simplest rung whose
@@ -31,7 +33,7 @@
 //! over a simpler one that predicts the held-out postures better. With fewer than
 //! [`MIN_POSTURES`] distinct postures the ladder is not climbed and its first rung is fitted.
 
-use super::maps::{assess, Assessed};
+use super::maps::{assess, assess_given, Assessed};
 use super::WEAK_CONDITION;
 use stiffid_core::common::choice::Choice;
 use stiffid_core::common::limits::JointBox;
@@ -251,11 +253,13 @@ pub(super) fn climb(
             ladder,
         });
     }
+    // The maps each outer fold chose for the first gravity model, kept for the others.
+    let choices = (assessed.nested.as_ref()).map_or_else(Vec::new, |n| n.choices.clone());
     let mut fits: Vec<std::result::Result<(Fitted, Assessed), String>> =
         vec![Ok((first, assessed))];
     for &g in &gravities[1..] {
         let tried = fit(g).and_then(|f| {
-            let a = assess(maps, &f.model, &f.fit, obs, options, true)?;
+            let a = assess_given(maps, (&f.model, &f.fit), obs, options, &choices)?;
             Ok((f, a))
         });
         fits.push(tried.map_err(|e| e.to_string()).and_then(|(f, a)| {

@@ -59,6 +59,41 @@ pub(super) fn assess(
     options: &Options,
     ladder: bool,
 ) -> Result<Assessed> {
+    assess_with(spec, (model, fitted), observations, options, ladder, None)
+}
+
+/// [`assess`] for the ladder's later gravity models: the nested figure of the maps each outer
+/// fold of the first gravity model's assessment chose (`first`, [`Nested::choices`]), each
+/// fold's ridge chosen anew ([`maps::nested_given`]): the harmonics chosen once on the ladder.
+///
+/// # Errors
+/// Those of [`assess`] and [`maps::nested_given`].
+pub(super) fn assess_given(
+    spec: Spec,
+    (model, fitted): (&ErrorModel, &Fit),
+    observations: &[Observation],
+    options: &Options,
+    first: &[JointMaps],
+) -> Result<Assessed> {
+    assess_with(
+        spec,
+        (model, fitted),
+        observations,
+        options,
+        true,
+        Some(first),
+    )
+}
+
+/// [`assess`], the outer folds' maps chosen anew or `given`.
+fn assess_with(
+    spec: Spec,
+    (model, fitted): (&ErrorModel, &Fit),
+    observations: &[Observation],
+    options: &Options,
+    ladder: bool,
+    given: Option<&[JointMaps]>,
+) -> Result<Assessed> {
     let mut postures: Vec<usize> = observations.iter().map(|o| o.posture).collect();
     postures.sort_unstable();
     postures.dedup();
@@ -94,7 +129,10 @@ pub(super) fn assess(
         }
     };
     let linear = Linear::at(model, fitted, observations, options.length, candidates)?;
-    let nested = maps::nested(&linear, &all, considered)?;
+    let nested = match given {
+        Some(choices) => maps::nested_given(&linear, &all, choices)?,
+        None => maps::nested(&linear, &all, considered)?,
+    };
     if report.skipped.is_none() {
         report.nested = Some(nested.clone());
     }

@@ -14,6 +14,13 @@
 //!
 //! exactly the least squares of the linearised model with the ridge rows on the maps alone, for
 //! every `lambda` from one SVD (never the normal equations).
+//!
+//! A split projects every candidate column once (`P M_T` and `M_V - A U^T M_T`, all joints);
+//! where the training rows outnumber them it keeps the triangular factor `R` of the Householder
+//! QR `P M_T = Q R` and `Q^T P r_T` instead: the columns `S` of a choice have the same singular
+//! values and right singular vectors `Z` in `R` as in `P M_T`, from a matrix no taller than it is
+//! wide. `W` is never formed: `sigma_i g_i = z_i^T (P M_T)_S^T P r_T`, so the maps' step is
+//! `y = -Z diag(1 / (sigma^2 + lambda)) Z^T (P M_T)_S^T P r_T` over the nonzero `sigma`.
 
 use super::super::error_model::{JointMaps, Observation, Target};
 use super::super::fit::Fit;
@@ -46,16 +53,19 @@ pub struct Linear {
 
 /// A split's training part, prepared once for every choice of maps.
 pub struct Split {
-    train: Vec<usize>,
-    test: Vec<usize>,
     /// The postures of the test rows (index into the split's test postures), one per row.
     test_posture: Vec<usize>,
-    u: DMatrix<f64>,
-    a: DMatrix<f64>,
     /// `r_V - A U^T r_T`.
     base: DVector<f64>,
-    /// `P r_T`.
+    /// Every candidate map column projected, `P M_T` (all of [`Linear::maps`]' columns, joint
+    /// after joint), or its triangular factor `R` (`P M_T = Q R`) where it has more rows than
+    /// columns: the same singular values and right singular vectors for any subset of columns.
+    projected_maps: DMatrix<f64>,
+    /// `P r_T`, or `Q^T P r_T` beside `R`: `projected_maps[:, S]^T` times it is
+    /// `(P M_T)[:, S]^T P r_T` for any subset `S`.
     projected: DVector<f64>,
+    /// Every candidate map column on the held-out rows, `M_V - A U^T M_T`.
+    held_maps: DMatrix<f64>,
 }
 
 /// `estimate` with the nominal values of the maps `model` adds after its parameters.
@@ -181,19 +191,23 @@ impl Linear {
             test_rows.iter().map(|&i| self.residuals[i]),
         );
         let utr = u.tr_mul(&r_t);
+        let projected = r_t - &u * &utr;
+        let all = self.all_columns();
+        let m_t = self.columns_of(&all, &train_rows);
+        let utm = u.tr_mul(&m_t);
+        let held_maps = self.columns_of(&all, &test_rows) - &a * &utm;
+        let (projected_maps, projected) = compressed(m_t - &u * utm, projected);
         Ok(Split {
             base: r_v - &a * &utr,
-            projected: r_t - &u * utr,
-            train: train_rows,
-            test: test_rows,
+            projected,
+            projected_maps,
+            held_maps,
             test_posture,
-            u,
-            a,
         })
     }
 
-    /// The map columns of `choice` on `rows`.
-    fn columns(&self, choice: &JointMaps, rows: &[usize]) -> DMatrix<f64> {
+    /// The map columns of `choice` (joint, column of [`Linear::maps`]' matrix of the joint).
+    fn columns(&self, choice: &JointMaps) -> Vec<(usize, usize)> {
         let mut cols = Vec::new();
         for (j, &h) in choice.harmonics.iter().enumerate().filter(|&(_, &h)| h > 0) {
             cols.extend(
@@ -205,6 +219,30 @@ impl Linear {
         for j in (0..6).filter(|&j| choice.backlash[j]) {
             cols.push((j, self.maps[j].ncols() - 1));
         }
+        cols
+    }
+
+    /// Every map column (joint, column), joint after joint: the layout of a split's
+    /// `projected_maps` and `held_maps`.
+    fn all_columns(&self) -> Vec<(usize, usize)> {
+        (0..6)
+            .flat_map(|j| (0..self.maps[j].ncols()).map(move |k| (j, k)))
+            .collect()
+    }
+
+    /// The indices in [`Self::all_columns`] of the map columns of `choice`.
+    fn indices(&self, choice: &JointMaps) -> Vec<usize> {
+        let mut offsets = [0; 6];
+        for j in 1..6 {
+            offsets[j] = offsets[j - 1] + self.maps[j - 1].ncols();
+        }
+        (self.columns(choice).into_iter())
+            .map(|(j, k)| offsets[j] + k)
+            .collect()
+    }
+
+    /// The map columns `cols` on `rows`.
+    fn columns_of(&self, cols: &[(usize, usize)], rows: &[usize]) -> DMatrix<f64> {
         DMatrix::from_fn(rows.len(), cols.len(), |r, c| {
             let (j, k) = cols[c];
             self.maps[j][(rows[r], k)]
@@ -234,27 +272,24 @@ impl Linear {
         if choice.is_none() {
             return Ok(vec![per_posture(&split.base); lambdas.len()]);
         }
-        let m_t = self.columns(choice, &split.train);
-        let m_v = self.columns(choice, &split.test);
-        let utm = split.u.tr_mul(&m_t);
-        let pm = m_t - &split.u * &utm;
-        let mv = m_v - &split.a * utm;
-        let svd = pm.capped_svd(true, true).ok_or_else(not_converged)?;
-        let (w, z_t) = (
-            svd.u.ok_or_else(not_converged)?,
-            svd.v_t.ok_or_else(not_converged)?,
-        );
-        let g = w.tr_mul(&split.projected);
+        let chosen = self.indices(choice);
+        let pm = split.projected_maps.select_columns(chosen.iter());
+        let mv = split.held_maps.select_columns(chosen.iter());
+        // `Z^T (P M_T)^T P r_T`: its entry i is `s_i g_i` (`g = W^T P r_T`), without `W`.
+        let b = pm.tr_mul(&split.projected);
+        let svd = pm.capped_svd(false, true).ok_or_else(not_converged)?;
+        let z_t = svd.v_t.ok_or_else(not_converged)?;
+        let sg = &z_t * b;
         let mvz = mv * z_t.transpose();
         Ok(lambdas
             .iter()
             .map(|&lambda| {
                 let weights = DVector::from_iterator(
-                    g.len(),
-                    (svd.singular_values.iter().zip(g.iter())).map(|(s, g)| {
+                    sg.len(),
+                    (svd.singular_values.iter().zip(sg.iter())).map(|(s, sg)| {
                         let d = s * s + lambda;
-                        match d > 0.0 {
-                            true => -s * g / d,
+                        match d > 0.0 && *s > 0.0 {
+                            true => -sg / d,
                             false => 0.0,
                         }
                     }),
@@ -263,6 +298,24 @@ impl Linear {
             })
             .collect())
     }
+}
+
+/// `(P M_T, P r_T)` as they are when `P M_T` has no more rows than columns, else its triangular
+/// factor `R` and `Q^T P r_T` (Householder QR of `[P M_T | P r_T]`): any subset of the columns
+/// has the same singular values and right singular vectors in `R` as in `P M_T`, and the same
+/// products with the right-hand side, from a matrix as tall as it is wide.
+fn compressed(pm: DMatrix<f64>, pr: DVector<f64>) -> (DMatrix<f64>, DVector<f64>) {
+    let (m, n) = pm.shape();
+    if m <= n {
+        return (pm, pr);
+    }
+    let mut a = pm.insert_column(n, 0.0);
+    a.column_mut(n).copy_from(&pr);
+    let mut taus = vec![0.0; n];
+    stiffid_core::math::linalg::householder_qr_columns(a.as_mut_slice(), m, &mut taus);
+    let r = DMatrix::from_fn(n, n, |i, c| if i <= c { a[(i, c)] } else { 0.0 });
+    let qtr = a.column(n).rows(0, n).into_owned();
+    (r, qtr)
 }
 
 fn not_converged() -> Error {

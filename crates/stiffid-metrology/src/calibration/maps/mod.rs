@@ -30,7 +30,9 @@
 //! An outer cross-validation of [`FOLDS`] folds makes the whole choice on each outer fold's
 //! training postures and predicts its held-out postures with it, beside the geometry alone on the
 //! same split: the held-out gain of choosing maps by cross-validation. Folds run in parallel
-//! (rayon), the result independent of the thread count.
+//! (rayon), the result independent of the thread count. [`nested_given`] scores the choices
+//! another linearisation of the same postures made (a calibration's ladder chooses the harmonics
+//! once, at its first gravity model), each fold's ridge chosen anew.
 //!
 //! Equations and sources: docs/model.md, section "Calibration", "Joint error maps".
 
@@ -255,6 +257,8 @@ struct Inner<'a> {
     readings: usize,
     /// The training readings of each split (the ridge's `n`).
     train_readings: Vec<usize>,
+    /// The candidates scored so far: the forward and joint steps meet some again.
+    scored: std::sync::Mutex<Vec<(JointMaps, Scored)>>,
 }
 
 /// A candidate's held-out errors at its best ridge.
@@ -278,11 +282,28 @@ impl<'a> Inner<'a> {
             readings: readings_of(postures),
             train_readings: parts.iter().map(|(t, _)| readings_of(t)).collect(),
             splits,
+            scored: Default::default(),
         })
     }
 
-    /// The held-out errors of `choice` at its best ridge of [`RIDGES`].
+    /// The held-out errors of `choice` at its best ridge of [`RIDGES`], scored once.
     fn score(&self, choice: &JointMaps) -> Result<Scored> {
+        let known = |memo: &[(JointMaps, Scored)]| {
+            (memo.iter().find(|(m, _)| m == choice)).map(|(_, s)| s.clone())
+        };
+        let memo = self.scored.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(s) = known(&memo) {
+            return Ok(s);
+        }
+        drop(memo);
+        let s = self.scored_anew(choice)?;
+        let mut memo = self.scored.lock().unwrap_or_else(|e| e.into_inner());
+        memo.push((*choice, s.clone()));
+        Ok(s)
+    }
+
+    /// [`Self::score`] computed.
+    fn scored_anew(&self, choice: &JointMaps) -> Result<Scored> {
         let per_fold = (self.splits.par_iter().zip(&self.train_readings))
             .map(|(s, &n)| {
                 let lambdas: Vec<f64> = RIDGES.iter().map(|mu| mu * n as f64).collect();
@@ -450,16 +471,57 @@ fn union(a: &JointMaps, b: &JointMaps) -> JointMaps {
 /// # Errors
 /// Those of [`choose`].
 pub fn nested(linear: &Linear, postures: &[usize], spec: Spec) -> Result<Nested> {
+    outer(linear, postures, |_, train| {
+        let choice = choose(linear, train, spec)?;
+        Ok((choice.maps, choice.ridge))
+    })
+}
+
+/// [`nested`] with the maps of each outer fold given, `choices` (one per fold, in the order of
+/// [`Nested::choices`]: those another linearisation of the same postures chose), each fold's
+/// ridge chosen on its training postures as [`choose`] chooses it for fixed maps: the held-out
+/// figure of a choice already made, at the cost of one candidate per fold.
+///
+/// # Errors
+/// [`Error::InvalidField`] (`choices`) unless there is one per outer fold; those of [`choose`].
+pub fn nested_given(linear: &Linear, postures: &[usize], choices: &[JointMaps]) -> Result<Nested> {
+    if choices.len() != FOLDS.min(postures.len()) {
+        return Err(Error::InvalidField {
+            field: "choices".into(),
+            message: format!(
+                "expected one choice of maps per outer fold ({}), got {}",
+                FOLDS.min(postures.len()),
+                choices.len()
+            ),
+        });
+    }
+    outer(linear, postures, |k, train| {
+        let spec = match choices[k].is_none() {
+            true => Spec::None,
+            false => Spec::Fixed(choices[k]),
+        };
+        let choice = choose(linear, train, spec)?;
+        Ok((choice.maps, choice.ridge))
+    })
+}
+
+/// The outer cross-validation of [`nested`] over `postures`, each fold's maps and ridge given
+/// by `chosen` (its index and training postures).
+fn outer(
+    linear: &Linear,
+    postures: &[usize],
+    chosen: impl Fn(usize, &[usize]) -> Result<(JointMaps, f64)> + Sync,
+) -> Result<Nested> {
     let parts = folds(postures);
-    let outer = (parts.par_iter())
-        .map(|(train, test)| {
-            let choice = choose(linear, train, spec)?;
+    let outer = (parts.par_iter().enumerate())
+        .map(|(k, (train, test))| {
+            let (maps, ridge) = chosen(k, train)?;
             let split = linear.split(train, test)?;
             let n: usize = train.iter().map(|&p| linear.rows[p].len() / 3).sum();
-            let maps = linear.errors(&split, &choice.maps, &[choice.ridge * n as f64])?;
+            let with = linear.errors(&split, &maps, &[ridge * n as f64])?;
             let none = linear.errors(&split, &JointMaps::NONE, &[0.0])?;
             let first = |mut e: Vec<Vec<f64>>| e.swap_remove(0);
-            Ok((first(maps), first(none), choice.maps))
+            Ok((first(with), first(none), maps))
         })
         .collect::<Result<Vec<_>>>()?;
     let readings: usize = postures.iter().map(|&p| linear.rows[p].len() / 3).sum();

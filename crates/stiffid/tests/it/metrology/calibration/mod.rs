@@ -10,5 +10,6 @@ mod fixed_tables_tests;
 mod heavy_tests;
 mod intervals_tests;
 mod loaded_tests;
+mod maps_kernel_tests;
 mod maps_tests;
 mod tests;

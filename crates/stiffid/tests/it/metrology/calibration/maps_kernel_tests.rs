@@ -1,0 +1,123 @@
+//! The maps' held-out errors on a split ([`Linear::errors`]) against the ridge least squares of
+//! the linearised model solved directly (nalgebra's SVD of the whole augmented system), with
+//! fewer training rows than candidate columns and with more (where the split keeps the projected
+//! columns' triangular factor); and the nested figure of choices given back equal to the one
+//! that chose them.
+
+use super::fit;
+use super::maps::{self, JointMaps, Linear, Spec};
+use super::maps_tests::{identified, model, noisy, options, truth};
+use super::tests::{postures, readings};
+use nalgebra::{DMatrix, DVector};
+
+/// A UR10 campaign of `n` postures at one point with maps on joints 2 and 5, linearised at its
+/// geometric fit with every joint's 32 harmonics (384 columns) as candidates.
+fn linear(n: usize, seed: u64) -> Linear {
+    let geometry = model();
+    let qs = postures(geometry.robot(), n, 500 + seed);
+    let kept = identified(&geometry, &qs);
+    let mapped = geometry.clone().with_maps([0, 8, 0, 0, 4, 0]).unwrap();
+    let truth = truth(&mapped, &kept, 2e-4, seed);
+    let data = noisy(readings(&mapped, &truth, &qs), 2e-5, seed);
+    let start = fit::start(&geometry, &data).unwrap();
+    let fitted = fit::fit(&geometry, &data, &start, &options(0.0)).unwrap();
+    Linear::at(&geometry, &fitted, &data, 1.0, Spec::Auto.candidates(false)).unwrap()
+}
+
+/// The columns of `choice` in `linear`: each chosen joint's `cos 1..h` then `sin 1..h`.
+fn map_columns(linear: &Linear, choice: &JointMaps) -> DMatrix<f64> {
+    let mut cols = Vec::new();
+    for j in 0..6 {
+        let h = choice.harmonics[j];
+        for c in (0..h).chain(linear.harmonics..linear.harmonics + h) {
+            cols.push(linear.maps[j].column(c).into_owned());
+        }
+    }
+    DMatrix::from_columns(&cols)
+}
+
+/// Per test posture, the sum of squared errors of the linearised model's ridge least squares
+/// (`min |r_T + G_T dx + M_T y|^2 + lambda |y|^2`) solved as one system.
+fn direct(
+    linear: &Linear,
+    choice: &JointMaps,
+    train: &[usize],
+    test: &[usize],
+    lambda: f64,
+) -> Vec<f64> {
+    let rows =
+        |ps: &[usize]| -> Vec<usize> { ps.iter().flat_map(|&p| linear.rows[p].clone()).collect() };
+    let tr = rows(train);
+    let m = map_columns(linear, choice);
+    let (g, s) = (linear.geometry.ncols(), m.ncols());
+    let mut a = DMatrix::zeros(tr.len() + s, g + s);
+    let mut b = DVector::zeros(tr.len() + s);
+    for (i, &r) in tr.iter().enumerate() {
+        a.view_mut((i, 0), (1, g))
+            .copy_from(&linear.geometry.row(r));
+        a.view_mut((i, g), (1, s)).copy_from(&m.row(r));
+        b[i] = -linear.residuals[r];
+    }
+    for k in 0..s {
+        a[(tr.len() + k, g + k)] = lambda.sqrt();
+    }
+    let x = a.svd(true, true).solve(&b, 1e-12).unwrap();
+    let mut out = vec![0.0; test.len()];
+    for (t, &p) in test.iter().enumerate() {
+        for &r in &linear.rows[p] {
+            let e = linear.residuals[r]
+                + linear.geometry.row(r).dot(&x.rows(0, g).transpose())
+                + m.row(r).dot(&x.rows(g, s).transpose());
+            out[t] += e * e;
+        }
+    }
+    out
+}
+
+fn assert_split_matches(n: usize) {
+    let linear = linear(n, 7);
+    let (train, test): (Vec<usize>, Vec<usize>) = (0..n).partition(|p| p % 5 != 0);
+    let split = linear.split(&train, &test).unwrap();
+    let mut choice = JointMaps::NONE;
+    choice.harmonics[1] = 16;
+    choice.harmonics[4] = 8;
+    for lambda in [1e-4, 1e-2, 1.0] {
+        let got = linear
+            .errors(&split, &choice, &[lambda])
+            .unwrap()
+            .swap_remove(0);
+        let want = direct(&linear, &choice, &train, &test, lambda);
+        for (g, w) in got.iter().zip(&want) {
+            assert!(
+                (g - w).abs() <= 1e-9 * w.max(1e-12),
+                "{n} postures, lambda {lambda}: {g:e} vs {w:e}"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_splits_errors_are_the_ridge_least_squares_with_fewer_rows_than_columns() {
+    // 40 training postures at one point: 120 rows, 384 candidate columns.
+    assert_split_matches(50);
+}
+
+#[test]
+fn a_splits_errors_are_the_ridge_least_squares_with_more_rows_than_columns() {
+    // 200 training postures: 600 rows, 384 candidate columns (the triangular factor kept).
+    assert_split_matches(250);
+}
+
+#[test]
+fn the_nested_figure_of_the_choices_given_is_the_nested_figure() {
+    let linear = linear(60, 3);
+    let all: Vec<usize> = (0..60).collect();
+    let nested = maps::nested(&linear, &all, Spec::Auto).unwrap();
+    assert!(nested.choices.iter().any(|c| !c.is_none()), "{nested:?}");
+    let given = maps::nested_given(&linear, &all, &nested.choices).unwrap();
+    assert_eq!(given.choices, nested.choices);
+    for (g, w) in given.errors.iter().zip(&nested.errors) {
+        assert!((g - w).abs() <= 1e-12 * w.max(1e-30), "{g:e} vs {w:e}");
+    }
+    assert!(maps::nested_given(&linear, &all, &nested.choices[1..]).is_err());
+}
