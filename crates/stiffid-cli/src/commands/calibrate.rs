@@ -14,6 +14,7 @@ use stiffid_calibrate::app::calibrate::GravitySpec;
 use stiffid_calibrate::app::calibrate::{self as job, Tolerances};
 use stiffid_metrology::app::readings::Request as Readings;
 use stiffid_metrology::calibration::maps::Spec;
+use stiffid_metrology::calibration::identifiability::CORRELATION_INSEPARABLE;
 use stiffid_metrology::calibration::Geometry;
 
 use crate::commands::common::{choice, Common};
@@ -237,6 +238,22 @@ fn nominal_label(measured_in: &str) -> &'static str {
     }
 }
 
+/// The note under the parameters' table for those the readings do not separate (correlated
+/// beyond 0.999 in absolute value): their standard deviations are not printed.
+fn inseparable_text(d: &Document) -> String {
+    let names: Vec<String> = (d.parameters.iter())
+        .filter(|p| p.identified && !p.inseparable_from.is_empty())
+        .map(|p| format!("{} (with {})", p.name, p.inseparable_from.join(", ")))
+        .collect();
+    match names.is_empty() {
+        true => String::new(),
+        false => format!(
+            "inseparable: {}: correlated beyond 0.999, the readings determine only a combination of them, so no standard deviation of one alone is printed; readings at other postures (or loads) separate them\n",
+            names.join("; ")
+        ),
+    }
+}
+
 fn text_of(d: &Document) -> String {
     let mut text = format!(
         "robot calibration from {} readings (setup {}, geometry {}, gravity {}, {} iterations)\n\
@@ -259,15 +276,17 @@ fn text_of(d: &Document) -> String {
     );
     text += "\nparameter          unit          nominal          value             sd\n";
     for p in d.parameters.iter().filter(|p| p.identified) {
+        let sd = match (p.sd, p.inseparable_from.is_empty()) {
+            (_, false) => "inseparable".into(),
+            (Some(s), true) => format!("{s:.6}"),
+            (None, true) => "-".into(),
+        };
         text += &format!(
             "{:<18} {:<13} {:>12.6} {:>14.6} {:>14}\n",
-            p.name,
-            p.unit,
-            p.nominal,
-            p.value,
-            p.sd.map_or("-".into(), |s| format!("{s:.6}"))
+            p.name, p.unit, p.nominal, p.value, sd
         );
     }
+    text += &inseparable_text(d);
     if !d.merged.is_empty() {
         text += "\nmerged (left nominal):\n";
         for m in &d.merged {
@@ -279,7 +298,14 @@ fn text_of(d: &Document) -> String {
         }
     }
     for c in &d.correlations {
-        text += &format!("correlated: {} and {} ({:+.3})\n", c.a, c.b, c.rho);
+        let inseparable = match c.rho.abs() > CORRELATION_INSEPARABLE {
+            true => ": not separately identifiable",
+            false => "",
+        };
+        text += &format!(
+            "correlated: {} and {} ({:+.3}){inseparable}\n",
+            c.a, c.b, c.rho
+        );
     }
     text += &check_text(d.check.as_ref());
     text += &ladder_text(d.ladder.as_ref());

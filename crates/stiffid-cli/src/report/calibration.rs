@@ -165,10 +165,16 @@ fn parameters_table(doc: &Document) -> Table {
                 p.unit.to_string(),
                 num(p.nominal),
                 num(p.value),
-                p.sd.map_or("-".into(), num),
-                p.sd.map_or("-".into(), |s| {
-                    format!("{} to {}", num(p.value - 1.96 * s), num(p.value + 1.96 * s))
-                }),
+                match p.inseparable_from.is_empty() {
+                    true => p.sd.map_or("-".into(), num),
+                    false => format!("inseparable from {}", p.inseparable_from.join(", ")),
+                },
+                match (p.sd, p.inseparable_from.is_empty()) {
+                    (Some(s), true) => {
+                        format!("{} to {}", num(p.value - 1.96 * s), num(p.value + 1.96 * s))
+                    }
+                    _ => "-".into(),
+                },
                 if p.identified { "yes" } else { "merged" }.into(),
             ]
         })

@@ -24,6 +24,7 @@ mod lead_tilt_cli;
 mod limits_edges;
 mod mass_cli;
 mod model_ranking_cli;
+mod open_cases;
 #[path = "../../../stiffid/tests/it/mutate.rs"]
 mod mutate;
 mod optional_fields_cli;

@@ -44,6 +44,35 @@ pub struct Cycle {
     pub dwell: Option<f64>,
     /// `G83`'s peck depth `Q`, m.
     pub peck: Option<f64>,
+    /// The level where the drill first meets material, m: the part's surface (`Z = 0` or
+    /// `(stiffid: surface_mm = Z)`), or `R` when that lies below it ([`GCode::drilled_in_air`]).
+    pub entry: f64,
+}
+
+impl GCode {
+    /// Whether each point is fed by a canned cycle without cutting ([`Cycle::entry`]): a feed
+    /// that ends at or above the material's level, which is the hole's entry until a feed has
+    /// gone deeper and then the depth reached (the feed from `R` down to the surface, a peck's
+    /// re-entry down to the depth the last peck reached, a peck that stays above the surface).
+    /// Only the feed below that level cuts and carries the drill's thrust. `false` for every
+    /// point outside a cycle.
+    pub fn drilled_in_air(&self) -> Vec<bool> {
+        let mut levels: Vec<f64> = self.cycles.iter().map(|c| c.entry).collect();
+        (self.points.iter())
+            .map(|p| match (p.cycle, p.motion) {
+                (Some(k), Motion::Feed) => {
+                    let Some(level) = levels.get_mut(k) else {
+                        return false;
+                    };
+                    let z = p.position.z;
+                    let air = z >= *level - 1e-12;
+                    *level = level.min(z);
+                    air
+                }
+                _ => false,
+            })
+            .collect()
+    }
 }
 
 /// The cycle's words in force (modal within a cycle), in the units of their blocks (m).
@@ -152,6 +181,8 @@ struct Hole {
     /// `P`: its value and its text.
     dwell: Option<(f64, String)>,
     orientation: UnitQuaternion<f64>,
+    /// Where the drill meets material ([`Cycle::entry`]).
+    entry: f64,
 }
 
 impl Hole {
@@ -231,6 +262,7 @@ fn hole(line: u64, w: &Words, other_geometry: bool, scale: f64, s: &State) -> Re
         peck,
         dwell,
         orientation,
+        entry: retract.min(s.surface),
     })
 }
 
@@ -307,6 +339,7 @@ fn push(
         clearance: hole.clearance,
         dwell: hole.dwell.as_ref().map(|(v, _)| *v),
         peck: hole.peck,
+        entry: hole.entry,
     });
     let first = out.points.len();
     let external = super::external_values(line, s)?;

@@ -11,6 +11,7 @@ use stiffid_core::io::readings::point_name;
 use stiffid_metrology::calibration::error_model::Target;
 use stiffid_metrology::calibration::fit::GRAVITY_DEFLECTION;
 use stiffid_metrology::calibration::gravity::Gravity;
+use stiffid_metrology::calibration::identifiability::CORRELATION_INSEPARABLE;
 use stiffid_metrology::calibration::validation::Validation;
 use stiffid_view as scene;
 
@@ -255,6 +256,10 @@ pub struct Parameter {
     pub sd: Option<f64>,
     /// Whether the readings determine it (fitted).
     pub identified: bool,
+    /// The fitted parameters its estimate is correlated with beyond
+    /// [`CORRELATION_INSEPARABLE`] in absolute value: not separately identifiable, the readings
+    /// determine only a combination of them, so `sd` alone means nothing; empty otherwise.
+    pub inseparable_from: Vec<String>,
 }
 
 /// A merged parameter.
@@ -476,7 +481,18 @@ fn parameters(report: &Report) -> Vec<Parameter> {
     let values = &fit.estimate.values;
     let frame_values = frame_vector(&fit.estimate.frame);
     let start = frame_vector(&report.start_frame);
-    (report.model.parameters().iter().enumerate())
+    let params = report.model.parameters();
+    let inseparable = |c: usize| -> Vec<String> {
+        (fit.identifiability.correlations.iter())
+            .filter(|(_, _, rho)| rho.abs() > CORRELATION_INSEPARABLE)
+            .filter_map(|&(a, b, _)| match (a == c, b == c) {
+                (true, _) => Some(params[b].name.clone()),
+                (_, true) => Some(params[a].name.clone()),
+                _ => None,
+            })
+            .collect()
+    };
+    (params.iter().enumerate())
         .map(|(c, p)| {
             let f = p.document_factor();
             let (nominal, value) = match p.target {
@@ -491,6 +507,7 @@ fn parameters(report: &Report) -> Vec<Parameter> {
                 value,
                 sd: fit.sd[c].map(|s| s * f),
                 identified: fit.fitted.contains(&c),
+                inseparable_from: inseparable(c),
             }
         })
         .collect()
