@@ -18,8 +18,8 @@
 use nalgebra::{DVector, Vector6};
 use stiffid_core::common::words::number;
 use stiffid_core::model::{Compliance, OwnWeight};
-use stiffid_core::robot::weight_file::TOOL_MOMENT_TOLERANCE_NM;
 use stiffid_core::robot::kinematics::Coordinates;
+use stiffid_core::robot::weight_file::TOOL_MOMENT_TOLERANCE_NM;
 use stiffid_core::setup::{Arm, Payload};
 use stiffid_core::{Error, Result, Robot};
 use stiffid_metrology::calibration::gravity::{self, Gravity};

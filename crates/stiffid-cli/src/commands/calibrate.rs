@@ -13,8 +13,8 @@ use stiffid_calibrate::app::calibrate::document::Document;
 use stiffid_calibrate::app::calibrate::GravitySpec;
 use stiffid_calibrate::app::calibrate::{self as job, Tolerances};
 use stiffid_metrology::app::readings::Request as Readings;
-use stiffid_metrology::calibration::maps::Spec;
 use stiffid_metrology::calibration::identifiability::CORRELATION_INSEPARABLE;
+use stiffid_metrology::calibration::maps::Spec;
 use stiffid_metrology::calibration::Geometry;
 
 use crate::commands::common::{choice, Common};
@@ -254,6 +254,38 @@ fn inseparable_text(d: &Document) -> String {
     }
 }
 
+/// The note under the parameters' table on the gravity terms the robot file states: in SI
+/// (the table's value times 1e-6) and in the link frames of its DH table, each term whose file
+/// value is not the table's so converted named with both.
+fn gravity_file_text(d: &Document) -> String {
+    let terms: Vec<_> = (d.parameters.iter())
+        .filter(|p| p.identified)
+        .filter_map(|p| p.robot_file_si.map(|si| (p, si)))
+        .collect();
+    if terms.is_empty() {
+        return String::new();
+    }
+    let mut text = "gravity terms: the robot file's [gravity] states them in SI, value_si = the value above x 1e-6".to_string();
+    let turned: Vec<String> = (terms.iter())
+        .filter(|(p, si)| (p.value * 1e-6 - si).abs() > 1e-9 * si.abs().max(p.value.abs() * 1e-6))
+        .map(|(p, si)| {
+            format!(
+                "{} = {} {} here, value_si = {si:e} in the file",
+                p.name, p.value, p.unit
+            )
+        })
+        .collect();
+    match turned.is_empty() {
+        true => text += "\n",
+        false => {
+            text += ", and the first moments in the link frames of its DH table, turned from the fit's: ";
+            text += &turned.join("; ");
+            text += "\n";
+        }
+    }
+    text
+}
+
 fn text_of(d: &Document) -> String {
     let mut text = format!(
         "robot calibration from {} readings (setup {}, geometry {}, gravity {}, {} iterations)\n\
@@ -287,6 +319,7 @@ fn text_of(d: &Document) -> String {
         );
     }
     text += &inseparable_text(d);
+    text += &gravity_file_text(d);
     if !d.merged.is_empty() {
         text += "\nmerged (left nominal):\n";
         for m in &d.merged {

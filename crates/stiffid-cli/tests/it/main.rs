@@ -24,9 +24,9 @@ mod lead_tilt_cli;
 mod limits_edges;
 mod mass_cli;
 mod model_ranking_cli;
-mod open_cases;
 #[path = "../../../stiffid/tests/it/mutate.rs"]
 mod mutate;
+mod open_cases;
 mod optional_fields_cli;
 mod options_proptest;
 mod output;

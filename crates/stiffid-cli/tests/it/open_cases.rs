@@ -5,12 +5,30 @@ use crate::common;
 
 use common::{example, refused, stiffid, temp_dir, write_file};
 
-/// The milling example's FANUC cell with a track along x and a turntable about z through
-/// (1330, -680) mm beside the part, and `controller` appended.
-fn cell_setup(controller: &str) -> String {
+/// The track along x and the turntable about z through (1330, -680) mm beside the part, the
+/// table's axis moved by `shift_mm` along x.
+fn axes(shift_mm: f64) -> String {
+    format!("\n[[external_axis]]\nname = \"track\"\nrole = \"carrier\"\ndirection = [1.0, 0.0, 0.0]\nlimits_mm = [0.0, 6000.0]\n\n[[external_axis]]\nname = \"table\"\nrole = \"positioner\"\ndirection = [0.0, 0.0, 1.0]\npoint_mm = [{:?}, -680.0, 0.0]\nlimits_deg = [-360.0, 360.0]\n", 1330.0 + shift_mm)
+}
+
+/// The FANUC preset as a robot file named `name` with the cell's axes ([`axes`]).
+fn robot_file(dir: &std::path::Path, file: &str, name: &str, shift_mm: f64) -> String {
+    let preset = include_str!("../../../stiffid/presets/fanuc-r2000ic-165f.toml");
+    let text = preset.replace("name = \"FANUC R-2000iC/165F\"", &format!("name = \"{name}\""));
+    assert!(text.contains(&format!("name = \"{name}\"")));
+    let path = write_file(dir, file, &(text + &axes(shift_mm)));
+    path.to_str().unwrap().to_string()
+}
+
+/// The milling example's FANUC cell on a calibrated robot file with the cell's axes
+/// ([`robot_file`]), `controller` appended.
+fn cell_setup(dir: &std::path::Path, controller: &str) -> String {
     let base = std::fs::read_to_string(example("milling/fanuc-milling.toml")).unwrap();
-    let axes = "\n[[external_axis]]\nname = \"track\"\nrole = \"carrier\"\ndirection = [1.0, 0.0, 0.0]\nlimits_mm = [0.0, 6000.0]\n\n[[external_axis]]\nname = \"table\"\nrole = \"positioner\"\ndirection = [0.0, 0.0, 1.0]\npoint_mm = [1330.0, -680.0, 0.0]\nlimits_deg = [-360.0, 360.0]\n";
-    let base = base.replace("[tool]", &format!("{}\n[tool]", axes.trim_start()));
+    let calibrated = robot_file(dir, "cal.toml", "FANUC R-2000iC/165F (calibrated)", 0.0);
+    let base = base.replace(
+        "robot = \"fanuc-r2000ic-165f\"",
+        &format!("robot = \"{calibrated}\""),
+    );
     format!("{base}\n{controller}")
 }
 
@@ -38,22 +56,98 @@ fn compensate_gcode(dir: &std::path::Path, setup: &str) -> Vec<String> {
 }
 
 /// A nominal controller whose robot file declares no external axes: the G-code written back
-/// would place the part by the setup's own model of the track and table, which the controller
-/// does not run. Refused naming `controller.robot` and what it needs, nothing written.
+/// would place the part by the calibrated model of the track and table, which the controller
+/// does not run. Refused naming `controller.robot` and what it needs, nothing written. With a
+/// controller loaded with the calibrated cell it is written without a word of it; with a nominal
+/// controller declaring its own axes, written with a warning naming its model.
 #[test]
 fn gcode_on_a_cell_for_a_nominal_controller_without_its_axes_is_refused() {
     let dir = temp_dir("open-gcode-cell");
     let nominal = "[controller]\nkinematics = \"nominal\"\nrobot = \"fanuc-r2000ic-165f\"\n";
-    let args = compensate_gcode(&dir, &cell_setup(nominal));
+    let args = compensate_gcode(&dir, &cell_setup(&dir, nominal));
     let args: Vec<&str> = args.iter().map(String::as_str).collect();
     let line = refused(&dir, &args, &["controller.robot", "track, table", "G-code"]);
     assert!(line.contains("kinematics = \"calibrated\""), "{line}");
-    // The setup's own kinematics (no [controller]): written, no such warning.
-    let args = compensate_gcode(&dir, &cell_setup(""));
-    let out = stiffid(&args.iter().map(String::as_str).collect::<Vec<_>>());
-    common::assert_success(&out);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(!stderr.contains("controller.robot"), "{stderr}");
-    assert!(dir.join("out.nc").exists());
+    let run = |controller: &str| {
+        let _ = std::fs::remove_file(dir.join("out.nc"));
+        let args = compensate_gcode(&dir, &cell_setup(&dir, controller));
+        let out = stiffid(&args.iter().map(String::as_str).collect::<Vec<_>>());
+        common::assert_success(&out);
+        assert!(dir.join("out.nc").exists());
+        String::from_utf8_lossy(&out.stderr).into_owned()
+    };
+    let stderr = run("[controller]\nkinematics = \"calibrated\"\n");
+    assert!(!stderr.contains("G-code on a cell"), "{stderr}");
+    let own = robot_file(&dir, "nominal.toml", "FANUC R-2000iC/165F", 1.0);
+    let stderr = run(&format!("[controller]\nkinematics = \"nominal\"\nrobot = \"{own}\"\n"));
+    assert!(
+        stderr.contains("G-code on a cell with external axes (track, table)")
+            && stderr.contains("robot 'FANUC R-2000iC/165F' (kinematics = \"nominal\")"),
+        "{stderr}"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Readings whose joint 6 barely turns (0.01 deg between postures) leave its offset and the
+/// measuring points' positions about the flange's axis correlated beyond 0.999: the document
+/// names each such parameter's partners (both ways, exactly the pairs its correlations list
+/// beyond 0.999), and the printed table gives no standard deviation for them but says why.
+#[test]
+fn parameters_the_readings_do_not_separate_print_no_standard_deviation() {
+    use crate::calibrate_cli::{model, postures, readings, truth, SETUP};
+    let d = temp_dir("open-inseparable");
+    let model = model();
+    let x = truth(&model);
+    let tracker = nalgebra::Isometry3::translation(3.0, -2.0, 1.5);
+    let mut qs = postures(25, 1);
+    for (i, q) in qs.iter_mut().enumerate() {
+        q[5] = 10.0 + 0.01 * i as f64;
+    }
+    let data = write_file(&d, "fit.csv", &readings(&model, &x, &tracker, &qs));
+    let args = [
+        "calibrate",
+        "--setup",
+        SETUP,
+        "--data",
+        data.to_str().unwrap(),
+    ];
+    let doc = common::json(&stiffid(&[&args[..], &["--json"]].concat()));
+    let strong: Vec<(String, String)> = (doc["correlations"].as_array().unwrap().iter())
+        .filter(|c| c["rho"].as_f64().unwrap().abs() > 0.999)
+        .map(|c| {
+            (
+                c["a"].as_str().unwrap().into(),
+                c["b"].as_str().unwrap().into(),
+            )
+        })
+        .collect();
+    assert!(!strong.is_empty(), "{}", doc["correlations"]);
+    let text = String::from_utf8(stiffid(&args).stdout).unwrap();
+    for p in doc["parameters"].as_array().unwrap() {
+        let name = p["name"].as_str().unwrap();
+        let mut partners: Vec<&str> = (strong.iter())
+            .filter_map(|(a, b)| match (a == name, b == name) {
+                (true, _) => Some(b.as_str()),
+                (_, true) => Some(a.as_str()),
+                _ => None,
+            })
+            .collect();
+        let mut listed: Vec<&str> = (p["inseparable_from"].as_array().unwrap().iter())
+            .map(|v| v.as_str().unwrap())
+            .collect();
+        (partners.sort(), listed.sort());
+        assert_eq!(listed, partners, "{name}");
+        if !p["identified"].as_bool().unwrap() {
+            continue;
+        }
+        let row = (text.lines())
+            .find(|l| l.split_whitespace().next() == Some(name))
+            .unwrap_or_else(|| panic!("{name}: {text}"));
+        assert_eq!(row.ends_with(" inseparable"), !partners.is_empty(), "{row}");
+    }
+    assert!(
+        text.contains("inseparable: ") && text.contains("not separately identifiable"),
+        "{text}"
+    );
+    std::fs::remove_dir_all(&d).unwrap();
 }

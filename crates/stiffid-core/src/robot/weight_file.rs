@@ -143,7 +143,11 @@ pub fn toml(own: &OwnWeight) -> String {
     }
     if let (Some(_), Some(c)) = (own.tool_mass, own.tool_centre) {
         let c = c * 1e3;
-        let _ = writeln!(t, "tool_centre_of_mass_mm = [{:?}, {:?}, {:?}]", c.x, c.y, c.z);
+        let _ = writeln!(
+            t,
+            "tool_centre_of_mass_mm = [{:?}, {:?}, {:?}]",
+            c.x, c.y, c.z
+        );
     }
     t += "terms = [\n";
     for (name, v) in &own.terms {

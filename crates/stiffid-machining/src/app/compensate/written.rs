@@ -152,8 +152,9 @@ fn write_robot_program(
 /// its carriage and the part on its positioner by its own model of them, so its robot must
 /// declare them ([`cell_controller`]); the G-code's positions are then the controller's forward
 /// kinematics of the compensated axes at its own external axes, in the part frame of `[workpiece]
-/// base_from_part`. With `kinematics = "nominal"` on such a cell, a warning states that model and
-/// frame, which the controller must hold.
+/// base_from_part`. When the controller's model of them is not the setup's (a nominal controller
+/// beside a calibrated cell), a warning states that model and frame, which the controller must
+/// hold.
 ///
 /// # Errors
 /// Those of [`cell_controller`], its message saying what a G-code controller of the cell needs.
@@ -165,9 +166,9 @@ pub(super) fn gcode_controller(setup: &Setup) -> Result<(&stiffid_core::Robot, O
         },
         e => e,
     })?;
-    let nominal = setup.workcell().controller().kinematics == stiffid_core::setup::Kinematics::Nominal;
     let cell = (setup.robot().external()).filter(|a| !a.is_empty());
-    let warning = match (nominal && !std::ptr::eq(controller, setup.robot()), cell) {
+    let own = controller.external() != setup.robot().external();
+    let warning = match (own, cell) {
         (true, Some(axes)) => Some(Warning::new(WarningKind::Calibrated, format!(
             "G-code on a cell with external axes ({}) is written for a controller that moves them by the model of its robot '{}' (kinematics = \"nominal\"), not the setup's '{}', with the part frame at [workpiece] base_from_part: the controller's external axes and part frame must be those",
             (axes.axes().iter().map(|a| a.name.as_str())).collect::<Vec<_>>().join(", "),
