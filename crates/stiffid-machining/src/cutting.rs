@@ -11,7 +11,8 @@
 //!    its axis, cuts nothing; nor does a G-code canned cycle's feed in the air or in the hole
 //!    already drilled ([`idle`]: from `R` down to the surface, a peck's re-entry), nor in any
 //!    language the first feed after a joint move (an approach) that a further feed into the
-//!    part continues: it brings the drill to the material, as a cycle written as moves does.
+//!    part continues: it brings the drill to the material, as a cycle written as moves does
+//!    (its next point, the same again, is where the drill takes its thrust).
 //!
 //! A milling point fed along the tool axis (a plunge or a linear retract) keeps its operation but
 //! takes no force ([`super::Operation::base_wrench`]: the feed frame needs a feed across the axis).
@@ -99,7 +100,8 @@ pub fn cutting<'a>(
                     };
                     // The first feed after an approach, continued by a deeper one, brings the
                     // drill to the material: it cuts from there on.
-                    let approach = i > 0 && joint[i - 1] && joint.get(i + 1) == Some(&false);
+                    let moved = i > 0 && poses[i].translation != poses[i - 1].translation;
+                    let approach = moved && joint[i - 1] && joint.get(i + 1) == Some(&false);
                     match into(i) && !(approach && into(i + 1)) {
                         true => op,
                         false => None,

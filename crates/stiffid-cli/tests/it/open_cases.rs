@@ -14,7 +14,10 @@ fn axes(shift_mm: f64) -> String {
 /// The FANUC preset as a robot file named `name` with the cell's axes ([`axes`]).
 fn robot_file(dir: &std::path::Path, file: &str, name: &str, shift_mm: f64) -> String {
     let preset = include_str!("../../../stiffid/presets/fanuc-r2000ic-165f.toml");
-    let text = preset.replace("name = \"FANUC R-2000iC/165F\"", &format!("name = \"{name}\""));
+    let text = preset.replace(
+        "name = \"FANUC R-2000iC/165F\"",
+        &format!("name = \"{name}\""),
+    );
     assert!(text.contains(&format!("name = \"{name}\"")));
     let path = write_file(dir, file, &(text + &axes(shift_mm)));
     path.to_str().unwrap().to_string()
@@ -79,7 +82,9 @@ fn gcode_on_a_cell_for_a_nominal_controller_without_its_axes_is_refused() {
     let stderr = run("[controller]\nkinematics = \"calibrated\"\n");
     assert!(!stderr.contains("G-code on a cell"), "{stderr}");
     let own = robot_file(&dir, "nominal.toml", "FANUC R-2000iC/165F", 1.0);
-    let stderr = run(&format!("[controller]\nkinematics = \"nominal\"\nrobot = \"{own}\"\n"));
+    let stderr = run(&format!(
+        "[controller]\nkinematics = \"nominal\"\nrobot = \"{own}\"\n"
+    ));
     assert!(
         stderr.contains("G-code on a cell with external axes (track, table)")
             && stderr.contains("robot 'FANUC R-2000iC/165F' (kinematics = \"nominal\")"),

@@ -180,7 +180,7 @@ fn lumped_terms_hold_the_tools_centre_of_the_calibration() {
     let e = compensate::path(s.arm(), &compliance, &at, &options).unwrap_err();
     let text = e.to_string();
     // 40 kg * 9.80665 m/s^2 * 0.112 m.
-    let moment = 40.0 * 9.80665 * 0.112;
+    let moment: f64 = 40.0 * 9.80665 * 0.112;
     assert!((moment - 43.93).abs() < 0.01);
     assert!(
         text.contains("tool.centre_of_mass_mm")
