@@ -156,3 +156,62 @@ fn parameters_the_readings_do_not_separate_print_no_standard_deviation() {
     );
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+/// A calibrated robot with 30 held-out errors gives no finite calibration part at 99.7% (it
+/// needs 333): the bound and what it is made of both say infinite and how many it needs, and
+/// neither calls the calibration absent.
+#[test]
+fn an_infinite_calibration_part_is_not_called_absent() {
+    let dir = temp_dir("open-infinite");
+    let base = std::fs::read_to_string(example("milling/fanuc-milling.toml")).unwrap();
+    let preset = include_str!("../../../stiffid/presets/fanuc-r2000ic-165f.toml");
+    let errors: Vec<String> = (1..=30).map(|i| format!("{:?}", 0.01 * i as f64)).collect();
+    let robot = preset.replace(
+        "name = \"FANUC R-2000iC/165F\"",
+        "name = \"FANUC R-2000iC/165F (calibrated)\"",
+    ) + &format!(
+        "\n[held_out]\nsource = \"validate\"\nerrors_mm = [{}]\n",
+        errors.join(", ")
+    );
+    let robot = write_file(&dir, "cal.toml", &robot);
+    let setup = base.replace(
+        "robot = \"fanuc-r2000ic-165f\"",
+        &format!("robot = \"{}\"", robot.display()),
+    ) + "\n[controller]\nkinematics = \"calibrated\"\n";
+    let setup = write_file(&dir, "cell.toml", &setup);
+    let out = dir.join("out.nc");
+    let run = |level: &str| {
+        let args = [
+            "compensate",
+            "--setup",
+            setup.to_str().unwrap(),
+            "--stiffness",
+            &example("milling/stiffness.json"),
+            "--program",
+            &example("milling/pocket.nc"),
+            "--process",
+            &example("milling/aluminium.toml"),
+            "--out",
+            out.to_str().unwrap(),
+            "--level",
+            level,
+        ];
+        let out = stiffid(&args);
+        common::assert_success(&out);
+        String::from_utf8(out.stdout).unwrap()
+    };
+    let text = run("0.997");
+    let needs = "infinite (a finite bound at 99.7% needs at least 333 held-out values)";
+    let made_of = (text.lines())
+        .find(|l| l.starts_with("the error that remains"))
+        .unwrap_or_else(|| panic!("{text}"));
+    assert!(
+        made_of.contains(&format!("calibration {needs}")),
+        "{made_of}"
+    );
+    assert!(!text.contains("calibration absent"), "{text}");
+    // At 95% the 30 errors give a finite part: the ceil(0.95 * 31) = 30th smallest.
+    let text = run("0.95");
+    assert!(text.contains("calibration 0.3000 mm"), "{text}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
