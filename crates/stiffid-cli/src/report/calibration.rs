@@ -11,6 +11,7 @@ use crate::output::{json, ReportDir};
 use anyhow::Result;
 use std::path::Path;
 use stiffid_calibrate::app::calibrate::document::Document;
+use stiffid_core::common::words::apart;
 use stiffid_core::Setup;
 use stiffid_view::{glb, Scene};
 
@@ -171,7 +172,8 @@ fn parameters_table(doc: &Document) -> Table {
                 },
                 match (p.sd, p.inseparable_from.is_empty()) {
                     (Some(s), true) => {
-                        format!("{} to {}", num(p.value - 1.96 * s), num(p.value + 1.96 * s))
+                        let ends = apart(&[p.value - 1.96 * s, p.value + 1.96 * s], 4);
+                        format!("{} to {}", ends[0], ends[1])
                     }
                     _ => "-".into(),
                 },
