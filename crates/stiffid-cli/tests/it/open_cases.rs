@@ -215,3 +215,119 @@ fn an_infinite_calibration_part_is_not_called_absent() {
     assert!(text.contains("calibration 0.3000 mm"), "{text}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The part located after a calibration that read no reflector (as one fit with load steps
+/// reads none): `calibrate --update` of its robot file with check readings of the arm and the
+/// part's three reflectors writes the part where it truly is into the updated file's `[part]`.
+#[test]
+fn a_calibrated_robot_locates_its_part_in_an_update() {
+    use crate::calibrate_cli::{model, postures, readings, truth, SETUP};
+    use nalgebra::{Isometry3, Point3, Vector3};
+    let d = temp_dir("open-part-update");
+    let model = model();
+    let x = truth(&model);
+    let tracker = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.0, 0.0, 2.5));
+    let setup = stiffid_core::setup::builtin_text(SETUP).unwrap();
+    let first = write_file(&d, "setup.toml", &setup);
+    let fit = write_file(
+        &d,
+        "fit.csv",
+        &readings(&model, &x, &tracker, &postures(25, 1)),
+    );
+    let robot = d.join("robot.toml");
+    let args = ["calibrate", "--setup", first.to_str().unwrap(), "--data"];
+    let out = stiffid(
+        &[
+            &args[..],
+            &[fit.to_str().unwrap(), "--out", robot.to_str().unwrap()],
+        ]
+        .concat(),
+    );
+    common::assert_success(&out);
+    // The second step: the setup on the calibrated file, the part's reflectors placed.
+    let on_part = [
+        [300.0, 0.0, 40.0],
+        [-200.0, 250.0, 40.0],
+        [-100.0, -300.0, 60.0],
+    ];
+    let part = Isometry3::new(
+        Vector3::new(1.5, 0.2, 0.6),
+        Vector3::z() * 30f64.to_radians(),
+    );
+    let second = setup.replace("robot = \"comau-smart5-nj165-3.0\"", "robot = \"robot.toml\"")
+        + &format!("\n[workpiece]\nbase_from_part = {{ xyz_mm = [1502.0, 200.0, 600.0], rpy_deg = [0.0, 0.0, 30.0] }}\nreflectors_mm = {on_part:?}\n");
+    let second = write_file(&d, "second.toml", &second);
+    let mut check = readings(&model, &x, &tracker, &postures(12, 3));
+    let row: Vec<String> = check
+        .lines()
+        .nth(1)
+        .unwrap()
+        .split(',')
+        .map(String::from)
+        .collect();
+    for (k, r) in on_part.iter().enumerate() {
+        let t = tracker.inverse() * part * Point3::from(Vector3::from(*r) * 1e-3);
+        let q = row[2..8].join(",");
+        check += &format!(
+            "P1,T{},{q},{:?},{:?},{:?}\n",
+            k + 1,
+            t.x * 1e3,
+            t.y * 1e3,
+            t.z * 1e3
+        );
+    }
+    let check = write_file(&d, "check.csv", &check);
+    let updated = d.join("updated.toml");
+    let args = [
+        "calibrate",
+        "--setup",
+        second.to_str().unwrap(),
+        "--update",
+        "--data",
+    ];
+    let out = stiffid(
+        &[
+            &args[..],
+            &[check.to_str().unwrap(), "--out", updated.to_str().unwrap()],
+        ]
+        .concat(),
+    );
+    common::assert_success(&out);
+    let file = std::fs::read_to_string(&updated).unwrap();
+    let located = stiffid_core::robot::file::parse(&file, "updated.toml").unwrap();
+    let located = *located.part().expect("[part]");
+    let off = (located.translation.vector - part.translation.vector).norm();
+    let turn = located.rotation.angle_to(&part.rotation);
+    eprintln!(
+        "part located {:.2e} mm and {:.2e} deg off",
+        off * 1e3,
+        turn.to_degrees()
+    );
+    assert!(off < 1e-6, "{off} m");
+    assert!(turn < 1e-6);
+    // Reflector rows beside load steps: refused, the message saying how to locate the part.
+    let q = row[2..8].join(",");
+    let loaded = format!(
+        "posture,point,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,load_n,fx_n,fy_n,fz_n,x_tracker_mm,y_tracker_mm,z_tracker_mm\n\
+         P1,1,{q},0,0,0,0,100.0,200.0,300.0\nP1,1,{q},100,0,0,-100,100.0,200.0,299.9\n\
+         P1,T1,{q},0,0,0,0,500.0,200.0,300.0\n"
+    );
+    write_file(&d, "loaded.csv", &loaded);
+    let args = [
+        "calibrate",
+        "--setup",
+        "{dir}/second.toml",
+        "--data",
+        "{dir}/loaded.csv",
+    ];
+    refused(
+        &d,
+        &args,
+        &[
+            "loaded.csv: line 4, column 2 (point)",
+            "load steps",
+            "calibrate --update",
+        ],
+    );
+    std::fs::remove_dir_all(&d).unwrap();
+}
