@@ -331,3 +331,57 @@ fn a_calibrated_robot_locates_its_part_in_an_update() {
     );
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+/// The gravity terms under one name and a stated conversion: each fitted term's
+/// `robot_file_si` is the value the written robot file's `[gravity]` holds under its name, and
+/// the printed table's note says the file holds them in SI, the table's value times 1e-6, naming
+/// every term whose file value is not that (turned into the file's link frames).
+#[test]
+fn gravity_terms_name_their_robot_file_values() {
+    use crate::calibrate_cli::{model, postures, readings, truth, SETUP};
+    let d = temp_dir("open-gravity-names");
+    let model = model();
+    let x = truth(&model);
+    let tracker = nalgebra::Isometry3::translation(3.0, -2.0, 1.5);
+    let data = write_file(&d, "fit.csv", &readings(&model, &x, &tracker, &postures(40, 1)));
+    let robot = d.join("robot.toml");
+    let args = [
+        "calibrate",
+        "--setup",
+        SETUP,
+        "--data",
+        data.to_str().unwrap(),
+        "--gravity",
+        "lumped",
+        "--out",
+        robot.to_str().unwrap(),
+    ];
+    let text = String::from_utf8(stiffid(&args).stdout).unwrap();
+    let doc = common::json(&stiffid(&[&args[..], &["--json"]].concat()));
+    let file = std::fs::read_to_string(&robot).unwrap();
+    let file = stiffid_core::robot::file::parse(&file, "robot.toml").unwrap();
+    let own = file.own_weight().expect("[gravity]");
+    let mut turned = Vec::new();
+    let mut fitted = 0;
+    for p in doc["parameters"].as_array().unwrap() {
+        let name = p["name"].as_str().unwrap();
+        let in_file = own.terms.iter().find(|(n, _)| n == name).map(|t| t.1);
+        assert_eq!(p["robot_file_si"].as_f64(), in_file, "{name}");
+        if let (Some(si), true) = (in_file, p["identified"].as_bool().unwrap()) {
+            fitted += 1;
+            let value = p["value"].as_f64().unwrap();
+            if (value * 1e-6 - si).abs() > 1e-9 * si.abs().max(value.abs() * 1e-6) {
+                turned.push(name.to_string());
+            }
+        }
+    }
+    assert!(fitted > 0, "{}", doc["parameters"]);
+    assert!(
+        text.contains("gravity terms: the robot file's [gravity] states them in SI, value_si = the value above x 1e-6"),
+        "{text}"
+    );
+    for name in &turned {
+        assert!(text.contains(&format!("{name} = ")), "{name}: {text}");
+    }
+    std::fs::remove_dir_all(&d).unwrap();
+}
