@@ -343,7 +343,11 @@ fn gravity_terms_name_their_robot_file_values() {
     let model = model();
     let x = truth(&model);
     let tracker = nalgebra::Isometry3::translation(3.0, -2.0, 1.5);
-    let data = write_file(&d, "fit.csv", &readings(&model, &x, &tracker, &postures(40, 1)));
+    let data = write_file(
+        &d,
+        "fit.csv",
+        &readings(&model, &x, &tracker, &postures(40, 1)),
+    );
     let robot = d.join("robot.toml");
     let args = [
         "calibrate",
@@ -384,4 +388,81 @@ fn gravity_terms_name_their_robot_file_values() {
         assert!(text.contains(&format!("{name} = ")), "{name}: {text}");
     }
     std::fs::remove_dir_all(&d).unwrap();
+}
+
+/// The KUKA example's pocket with its first `LIN` target moved into a `.dat` as `XP1`, whose
+/// declaration there is `decl`; compensated into `out.src`.
+fn krl_with_dat(dir: &std::path::Path, decl: &dyn Fn(&str) -> String) -> Vec<String> {
+    let src = std::fs::read_to_string(example("milling/pocket.src")).unwrap();
+    let line = src.lines().find(|l| l.starts_with("LIN {")).unwrap();
+    let (target, rest) = line[4..].split_at(line[4..].find('}').unwrap() + 1);
+    let src = src
+        .replacen(line, &format!("LIN XP1{rest}"), 1)
+        .replacen("DEF pocket", "DEF cut", 1);
+    write_file(dir, "cut.src", &src);
+    write_file(
+        dir,
+        "cut.dat",
+        &format!("DEFDAT cut\n{}ENDDAT\n", decl(target)),
+    );
+    [
+        "compensate",
+        "--setup",
+        &example("milling/kuka-milling.toml"),
+        "--stiffness",
+        &example("milling/kuka-stiffness.json"),
+        "--program",
+        "{dir}/cut.src",
+        "--process",
+        &example("milling/aluminium.toml"),
+        "--out",
+        "{dir}/out.src",
+    ]
+    .map(String::from)
+    .to_vec()
+}
+
+/// A point declared twice in a KRL `.dat` (the controller refuses the module) is refused where a
+/// motion uses it, naming both declarations; a coordinate beyond any length (`X 1e300`) is
+/// refused naming the member, not searched for as a pose out of reach. The target as declared
+/// once compensates.
+#[test]
+fn a_krl_point_declared_twice_or_out_of_range_is_refused_naming_it() {
+    let dir = temp_dir("open-krl-dat");
+    let once = |t: &str| format!("DECL E6POS XP1={t}\n");
+    let args = krl_with_dat(&dir, &once);
+    let run = |args: &[String]| {
+        let d = dir.to_str().unwrap();
+        let args: Vec<String> = args.iter().map(|a| a.replace("{dir}", d)).collect();
+        stiffid(&args.iter().map(String::as_str).collect::<Vec<_>>())
+    };
+    common::assert_success(&run(&args));
+    std::fs::remove_file(dir.join("out.src")).unwrap();
+    let _ = std::fs::remove_file(dir.join("out.dat"));
+    let twice = |t: &str| format!("DECL E6POS XP1={t}\nDECL E6POS XP1={t}\n");
+    let args = krl_with_dat(&dir, &twice);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    refused(
+        &dir,
+        &args,
+        &[
+            "cut.src",
+            "XP1 is declared twice",
+            "on line 2 of the .dat",
+            "on line 3 of the .dat",
+        ],
+    );
+    let huge = |t: &str| {
+        let x = t.find("X ").unwrap() + 2;
+        let end = x + t[x..].find(',').unwrap();
+        format!("DECL E6POS XP1={}1e300{}\n", &t[..x], &t[end..])
+    };
+    let args = krl_with_dat(&dir, &huge);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    refused(
+        &dir,
+        &args,
+        &["cut.src", "X 1e300: outside -100000 to 100000 mm"],
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
 }
