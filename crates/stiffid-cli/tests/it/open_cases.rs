@@ -140,7 +140,8 @@ fn parameters_the_readings_do_not_separate_print_no_standard_deviation() {
         let mut listed: Vec<&str> = (p["inseparable_from"].as_array().unwrap().iter())
             .map(|v| v.as_str().unwrap())
             .collect();
-        (partners.sort(), listed.sort());
+        partners.sort();
+        listed.sort();
         assert_eq!(listed, partners, "{name}");
         if !p["identified"].as_bool().unwrap() {
             continue;
@@ -228,7 +229,7 @@ fn a_calibrated_robot_locates_its_part_in_an_update() {
     let x = truth(&model);
     let tracker = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.0, 0.0, 2.5));
     let setup = stiffid_core::setup::builtin_text(SETUP).unwrap();
-    let first = write_file(&d, "setup.toml", &setup);
+    let first = write_file(&d, "setup.toml", setup);
     let fit = write_file(
         &d,
         "fit.csv",
@@ -305,30 +306,7 @@ fn a_calibrated_robot_locates_its_part_in_an_update() {
     );
     assert!(off < 1e-6, "{off} m");
     assert!(turn < 1e-6);
-    // Reflector rows beside load steps: refused, the message saying how to locate the part.
-    let q = row[2..8].join(",");
-    let loaded = format!(
-        "posture,point,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,load_n,fx_n,fy_n,fz_n,x_tracker_mm,y_tracker_mm,z_tracker_mm\n\
-         P1,1,{q},0,0,0,0,100.0,200.0,300.0\nP1,1,{q},100,0,0,-100,100.0,200.0,299.9\n\
-         P1,T1,{q},0,0,0,0,500.0,200.0,300.0\n"
-    );
-    write_file(&d, "loaded.csv", &loaded);
-    let args = [
-        "calibrate",
-        "--setup",
-        "{dir}/second.toml",
-        "--data",
-        "{dir}/loaded.csv",
-    ];
-    refused(
-        &d,
-        &args,
-        &[
-            "loaded.csv: line 4, column 2 (point)",
-            "load steps",
-            "calibrate --update",
-        ],
-    );
+    reflectors_beside_load_steps_are_refused(&d, &row[2..8].join(","));
     std::fs::remove_dir_all(&d).unwrap();
 }
 
@@ -465,4 +443,32 @@ fn a_krl_point_declared_twice_or_out_of_range_is_refused_naming_it() {
         &["cut.src", "X 1e300: outside -100000 to 100000 mm"],
     );
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Reflector rows beside load steps (in `d`, with its `second.toml`, the arm's axis angles `q`
+/// of a posture): refused, the message saying how to locate the part.
+fn reflectors_beside_load_steps_are_refused(d: &std::path::Path, q: &str) {
+    // Reflector rows beside load steps: refused, the message saying how to locate the part.
+    let loaded = format!(
+        "posture,point,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,load_n,fx_n,fy_n,fz_n,x_tracker_mm,y_tracker_mm,z_tracker_mm\n\
+         P1,1,{q},0,0,0,0,100.0,200.0,300.0\nP1,1,{q},100,0,0,-100,100.0,200.0,299.9\n\
+         P1,T1,{q},0,0,0,0,500.0,200.0,300.0\n"
+    );
+    write_file(d, "loaded.csv", &loaded);
+    let args = [
+        "calibrate",
+        "--setup",
+        "{dir}/second.toml",
+        "--data",
+        "{dir}/loaded.csv",
+    ];
+    refused(
+        d,
+        &args,
+        &[
+            "loaded.csv: line 4, column 2 (point)",
+            "load steps",
+            "calibrate --update",
+        ],
+    );
 }

@@ -39,7 +39,7 @@ pub(crate) fn target(
             true => (stiffid_core::common::limits::LENGTH_MM.max, "mm"),
             false => (1e4, "deg"),
         };
-        if !(v.abs() <= most) {
+        if v.is_nan() || v.abs() > most {
             let v = stiffid_core::common::words::number(v);
             return Err(at(
                 line,
