@@ -8,7 +8,11 @@
 //!    moves between cuts;
 //! 2. for a drilling operation, it is fed into the part: its feed ([`feeds`]) points towards the
 //!    tool's tip, within [`DRILL_CONE_DEG`] of the tool axis. A drill's retract, or a move across
-//!    its axis, cuts nothing.
+//!    its axis, cuts nothing; nor does a G-code canned cycle's feed in the air or in the hole
+//!    already drilled ([`idle`]: from `R` down to the surface, a peck's re-entry), nor in any
+//!    language the first feed after a joint move (an approach) that a further feed into the
+//!    part continues: it brings the drill to the material, as a cycle written as moves does
+//!    (its next point, the same again, is where the drill takes its thrust).
 //!
 //! A milling point fed along the tool axis (a plunge or a linear retract) keeps its operation but
 //! takes no force ([`super::Operation::base_wrench`]: the feed frame needs a feed across the axis).
@@ -28,6 +32,20 @@ pub fn joint_moves(program: &Program) -> Vec<bool> {
     match program {
         Program::GCode(g) => g.points.iter().map(|p| p.motion == Motion::Rapid).collect(),
         Program::Robot(r) => r.joint_moves(),
+    }
+}
+
+/// Whether each point cuts nothing whatever covers it: reached by a joint move (`joint`,
+/// [`joint_moves`]) or fed by a G-code canned cycle in the air or in the hole already drilled
+/// ([`crate::gcode::GCode::drilled_in_air`]: the feed from `R` to the surface, a peck's
+/// re-entry).
+pub fn idle(program: &Program, joint: &[bool]) -> Vec<bool> {
+    match program {
+        Program::GCode(g) => (g.drilled_in_air().into_iter())
+            .zip(joint)
+            .map(|(air, j)| air || *j)
+            .collect(),
+        Program::Robot(_) => joint.to_vec(),
     }
 }
 
@@ -76,9 +94,15 @@ pub fn cutting<'a>(
             match o.kind {
                 Kind::Milling(_) => op,
                 Kind::Drilling(_) => {
-                    let tip = poses[i].rotation * Vector3::z();
-                    let f = feeds[i]?;
-                    match f.dot(&tip) > cos * f.norm() {
+                    let into = |k: usize| {
+                        let tip = poses[k].rotation * Vector3::z();
+                        feeds[k].is_some_and(|f| f.dot(&tip) > cos * f.norm())
+                    };
+                    // The first feed after an approach, continued by a deeper one, brings the
+                    // drill to the material: it cuts from there on.
+                    let moved = i > 0 && poses[i].translation != poses[i - 1].translation;
+                    let approach = moved && joint[i - 1] && joint.get(i + 1) == Some(&false);
+                    match into(i) && !(approach && into(i + 1)) {
                         true => op,
                         false => None,
                     }

@@ -356,8 +356,9 @@ pub fn compensate_for(
     let poses = poses(arm, workpiece, program, placements.as_deref())?;
     let on_part = on_part(&poses, placements.as_deref());
     let joint = cutting::joint_moves(program);
+    let idle = cutting::idle(program, &joint);
     let operations = cutting::cutting(
-        &joint,
+        &idle,
         &on_part,
         process::covering::operations(program, process)?,
     );

@@ -16,8 +16,10 @@
 //! ([`tool_load`]).
 
 use nalgebra::{DVector, Vector6};
+use stiffid_core::common::words::number;
 use stiffid_core::model::{Compliance, OwnWeight};
 use stiffid_core::robot::kinematics::Coordinates;
+use stiffid_core::robot::weight_file::TOOL_MOMENT_TOLERANCE_NM;
 use stiffid_core::setup::{Arm, Payload};
 use stiffid_core::{Error, Result, Robot};
 use stiffid_metrology::calibration::gravity::{self, Gravity};
@@ -39,7 +41,8 @@ impl Weight {
     /// `lumped` or `lumped-links`; those of [`gravity::Terms::of`] (a robot without masses for
     /// `masses`); (`gravity.terms`) when the terms differ from the model's (another robot's
     /// file, or other springs); (`tool.mass_kg`) when lumped terms hold a tool of another mass
-    /// than `tool`'s.
+    /// than `tool`'s, (`tool.centre_of_mass_mm`) one whose weight acts elsewhere
+    /// ([`TOOL_MOMENT_TOLERANCE_NM`]).
     pub fn new(
         robot: &Robot,
         springs: Coordinates,
@@ -140,6 +143,36 @@ fn check_tool(own: &OwnWeight, tool: Option<&Payload>) -> Result<()> {
                 ),
             })
         }
+        (Some(m), Some(t)) => check_centre(own, m, t),
         _ => Ok(()),
     }
+}
+
+/// Refuses a setup's tool `t` (of the mass `m` lumped terms `own` hold) whose centre of mass
+/// lies so far from the one the terms were calibrated with that its weight's moment differs by
+/// more than [`TOOL_MOMENT_TOLERANCE_NM`]: `m g |c_setup - c_calibration|`.
+fn check_centre(own: &OwnWeight, m: f64, t: &Payload) -> Result<()> {
+    let Some(c) = own.tool_centre else {
+        return Ok(());
+    };
+    let moment = m * stiffid_core::setup::GRAVITY * (t.centre - c).norm();
+    if moment <= TOOL_MOMENT_TOLERANCE_NM {
+        return Ok(());
+    }
+    let mm = |v: &nalgebra::Vector3<f64>| {
+        let v = v * 1e3;
+        format!("[{}, {}, {}]", number(v.x), number(v.y), number(v.z))
+    };
+    Err(Error::InvalidField {
+        field: "tool.centre_of_mass_mm".into(),
+        message: format!(
+            "{} mm in the setup, where the calibrated robot's {} gravity terms hold the tool of {} kg at {} mm ([gravity] tool_centre_of_mass_mm in its file): its weight's moment differs by {} N m, more than the {} N m lumped terms allow; calibrate with this tool, or give the tool of the calibration",
+            mm(&t.centre),
+            own.gravity,
+            number(m),
+            mm(&c),
+            number(moment),
+            number(TOOL_MOMENT_TOLERANCE_NM)
+        ),
+    })
 }

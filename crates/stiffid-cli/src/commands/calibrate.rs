@@ -13,6 +13,7 @@ use stiffid_calibrate::app::calibrate::document::Document;
 use stiffid_calibrate::app::calibrate::GravitySpec;
 use stiffid_calibrate::app::calibrate::{self as job, Tolerances};
 use stiffid_metrology::app::readings::Request as Readings;
+use stiffid_metrology::calibration::identifiability::CORRELATION_INSEPARABLE;
 use stiffid_metrology::calibration::maps::Spec;
 use stiffid_metrology::calibration::Geometry;
 
@@ -237,6 +238,54 @@ fn nominal_label(measured_in: &str) -> &'static str {
     }
 }
 
+/// The note under the parameters' table for those the readings do not separate (correlated
+/// beyond 0.999 in absolute value): their standard deviations are not printed.
+fn inseparable_text(d: &Document) -> String {
+    let names: Vec<String> = (d.parameters.iter())
+        .filter(|p| p.identified && !p.inseparable_from.is_empty())
+        .map(|p| format!("{} (with {})", p.name, p.inseparable_from.join(", ")))
+        .collect();
+    match names.is_empty() {
+        true => String::new(),
+        false => format!(
+            "inseparable: {}: correlated beyond 0.999, the readings determine only a combination of them, so no standard deviation of one alone is printed; readings at other postures (or loads) separate them\n",
+            names.join("; ")
+        ),
+    }
+}
+
+/// The note under the parameters' table on the gravity terms the robot file states: in SI
+/// (the table's value times 1e-6) and in the link frames of its DH table, each term whose file
+/// value is not the table's so converted named with both.
+fn gravity_file_text(d: &Document) -> String {
+    let terms: Vec<_> = (d.parameters.iter())
+        .filter(|p| p.identified)
+        .filter_map(|p| p.robot_file_si.map(|si| (p, si)))
+        .collect();
+    if terms.is_empty() {
+        return String::new();
+    }
+    let mut text = "gravity terms: the robot file's [gravity] states them in SI, value_si = the value above x 1e-6".to_string();
+    let turned: Vec<String> = (terms.iter())
+        .filter(|(p, si)| (p.value * 1e-6 - si).abs() > 1e-9 * si.abs().max(p.value.abs() * 1e-6))
+        .map(|(p, si)| {
+            format!(
+                "{} = {} {} here, value_si = {si:e} in the file",
+                p.name, p.value, p.unit
+            )
+        })
+        .collect();
+    match turned.is_empty() {
+        true => text += "\n",
+        false => {
+            text += ", and the first moments in the link frames of its DH table, turned from the fit's: ";
+            text += &turned.join("; ");
+            text += "\n";
+        }
+    }
+    text
+}
+
 fn text_of(d: &Document) -> String {
     let mut text = format!(
         "robot calibration from {} readings (setup {}, geometry {}, gravity {}, {} iterations)\n\
@@ -259,15 +308,18 @@ fn text_of(d: &Document) -> String {
     );
     text += "\nparameter          unit          nominal          value             sd\n";
     for p in d.parameters.iter().filter(|p| p.identified) {
+        let sd = match (p.sd, p.inseparable_from.is_empty()) {
+            (_, false) => "inseparable".into(),
+            (Some(s), true) => format!("{s:.6}"),
+            (None, true) => "-".into(),
+        };
         text += &format!(
             "{:<18} {:<13} {:>12.6} {:>14.6} {:>14}\n",
-            p.name,
-            p.unit,
-            p.nominal,
-            p.value,
-            p.sd.map_or("-".into(), |s| format!("{s:.6}"))
+            p.name, p.unit, p.nominal, p.value, sd
         );
     }
+    text += &inseparable_text(d);
+    text += &gravity_file_text(d);
     if !d.merged.is_empty() {
         text += "\nmerged (left nominal):\n";
         for m in &d.merged {
@@ -279,7 +331,14 @@ fn text_of(d: &Document) -> String {
         }
     }
     for c in &d.correlations {
-        text += &format!("correlated: {} and {} ({:+.3})\n", c.a, c.b, c.rho);
+        let inseparable = match c.rho.abs() > CORRELATION_INSEPARABLE {
+            true => ": not separately identifiable",
+            false => "",
+        };
+        text += &format!(
+            "correlated: {} and {} ({:+.3}){inseparable}\n",
+            c.a, c.b, c.rho
+        );
     }
     text += &check_text(d.check.as_ref());
     text += &ladder_text(d.ladder.as_ref());

@@ -484,7 +484,7 @@ fn made_of(b: &stiffid_machining::app::compensate::budget::BudgetSummary) -> Str
                 p.part.replace('_', " "),
                 p.mean_mm.unwrap_or(m)
             ),
-            None => format!("{} absent", p.part.replace('_', " ")),
+            None => format!("{} {}", p.part.replace('_', " "), b.no_value(p)),
         })
         .collect();
     let mut text = format!(

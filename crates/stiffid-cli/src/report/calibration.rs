@@ -11,6 +11,7 @@ use crate::output::{json, ReportDir};
 use anyhow::Result;
 use std::path::Path;
 use stiffid_calibrate::app::calibrate::document::Document;
+use stiffid_core::common::words::apart;
 use stiffid_core::Setup;
 use stiffid_view::{glb, Scene};
 
@@ -220,10 +221,17 @@ fn parameters_table(doc: &Document) -> Table {
                 p.unit.to_string(),
                 num(p.nominal),
                 num(p.value),
-                p.sd.map_or("-".into(), num),
-                p.sd.map_or("-".into(), |s| {
-                    format!("{} to {}", num(p.value - 1.96 * s), num(p.value + 1.96 * s))
-                }),
+                match p.inseparable_from.is_empty() {
+                    true => p.sd.map_or("-".into(), num),
+                    false => format!("inseparable from {}", p.inseparable_from.join(", ")),
+                },
+                match (p.sd, p.inseparable_from.is_empty()) {
+                    (Some(s), true) => {
+                        let ends = apart(&[p.value - 1.96 * s, p.value + 1.96 * s], 4);
+                        format!("{} to {}", ends[0], ends[1])
+                    }
+                    _ => "-".into(),
+                },
                 if p.identified { "yes" } else { "merged" }.into(),
             ]
         })

@@ -89,7 +89,7 @@ fn remains(s: &stiffid_machining::app::compensate::document::SummaryDocument) ->
                 num(m),
                 num(p.mean_mm.unwrap_or(m))
             ),
-            None => format!("{} absent", p.part.replace('_', " ")),
+            None => format!("{} {}", p.part.replace('_', " "), b.no_value(p)),
         })
         .collect();
     let mut text = format!(

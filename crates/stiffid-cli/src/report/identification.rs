@@ -151,8 +151,18 @@ fn parameters_table(doc: &Value, parameters: &[Value]) -> Table {
                 text(&p["unit"]),
                 text(&p["stiffness"]),
                 ci.map_or("-".into(), |c| {
-                    let end = |i: usize| c.get(i).map_or("-".into(), text);
-                    format!("{} to {}", end(0), end(1))
+                    let ends: Vec<Option<f64>> = c.iter().map(Value::as_f64).collect();
+                    match ends[..] {
+                        // Both ends with the digits that tell them apart.
+                        [Some(a), Some(b)] => {
+                            let ends = stiffid_core::common::words::apart(&[a, b], 4);
+                            format!("{} to {}", ends[0], ends[1])
+                        }
+                        _ => {
+                            let end = |i: usize| c.get(i).map_or("-".into(), text);
+                            format!("{} to {}", end(0), end(1))
+                        }
+                    }
                 }),
                 se.and_then(|s| s.get(j)).map_or("-".into(), text),
             ]

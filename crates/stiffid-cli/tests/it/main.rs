@@ -26,6 +26,7 @@ mod mass_cli;
 mod model_ranking_cli;
 #[path = "../../../stiffid/tests/it/mutate.rs"]
 mod mutate;
+mod open_cases;
 mod optional_fields_cli;
 mod options_defined_once;
 mod options_proptest;

@@ -75,3 +75,50 @@ pub fn distinct(value: f64, lower: f64, upper: f64) -> String {
         .find(|(v, n)| v != n)
         .map_or_else(|| format!("{value:.2}"), |(v, _)| v)
 }
+
+/// `values` each with the fewest significant digits, at least `least` (and at most 17), at which
+/// any two that differ read differently: `4009.1` and `4009.4` are `4009.1` and `4009.4` where
+/// four digits would show both as `4009`, and no digit more than that. Plain decimals for
+/// magnitudes from 1e-4 to 1e9 (as [`number`]), scientific notation otherwise; a value not finite
+/// as Rust writes it.
+///
+/// # Examples
+/// ```
+/// use stiffid_core::common::words::apart;
+/// assert_eq!(apart(&[4009.1, 4009.4], 4), ["4009.1", "4009.4"]);
+/// assert_eq!(apart(&[4009.1, 5000.0], 4), ["4009", "5000"]);
+/// assert_eq!(apart(&[1.5e-7, 1.6e-7], 2), ["1.5e-7", "1.6e-7"]);
+/// ```
+pub fn apart(values: &[f64], least: usize) -> Vec<String> {
+    let least = least.clamp(1, 17);
+    let at =
+        |digits: usize| -> Vec<String> { values.iter().map(|v| significant(*v, digits)).collect() };
+    for digits in least..17 {
+        let texts = at(digits);
+        let apart = (0..values.len()).all(|i| {
+            (i + 1..values.len())
+                .all(|j| as_given(values[i]) == as_given(values[j]) || texts[i] != texts[j])
+        });
+        if apart {
+            return texts;
+        }
+    }
+    at(17)
+}
+
+/// `v` with `digits` significant digits (module docs of [`apart`]), trailing zeros of a decimal
+/// fraction kept as the digits ask.
+fn significant(v: f64, digits: usize) -> String {
+    if !v.is_finite() {
+        return format!("{v}");
+    }
+    if v == 0.0 || (1e-4..1e9).contains(&v.abs()) {
+        let magnitude = match v {
+            0.0 => 0,
+            _ => v.abs().log10().floor() as i64,
+        };
+        let decimals = (digits as i64 - 1 - magnitude).max(0) as usize;
+        return format!("{v:.decimals$}");
+    }
+    format!("{v:.*e}", digits - 1)
+}

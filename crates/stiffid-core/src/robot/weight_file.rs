@@ -6,6 +6,7 @@
 //! [gravity]
 //! model = "lumped"                      # masses, lumped or lumped-links
 //! tool_mass_kg = 12.5                   # optional: the calibration's [tool] mass_kg
+//! tool_centre_of_mass_mm = [0, 0, 120]  # optional: its [tool] centre_of_mass_mm
 //! terms = [                             # in the model's order, at most 144
 //!   { name = "gravity.c2.link2.m", value_si = 6.1e-7 },
 //! ]
@@ -38,7 +39,18 @@ pub struct OwnWeight {
     /// same way); lumped terms hold the weight of the tool the robot carried, so compensation
     /// refuses a setup whose tool's mass differs from it.
     pub tool_mass: Option<f64>,
+    /// The tool's centre of mass (m, flange frame) the calibration's setup gave with its mass
+    /// (`[tool] centre_of_mass_mm`), `None` without (or in a file written before it was
+    /// recorded): lumped terms hold the tool's moment about each joint, so compensation refuses
+    /// a setup whose tool's weight acts elsewhere ([`TOOL_MOMENT_TOLERANCE_NM`]).
+    pub tool_centre: Option<nalgebra::Vector3<f64>>,
 }
+
+/// The largest difference of the tool's weight moment, N m (the setup's tool against the one
+/// lumped gravity terms hold: mass times gravity times the distance between the two centres of
+/// mass) that compensation takes: 1 N m turns a wrist of 1e-5 rad/(N m) by 10 microradians, a
+/// few micrometres at the tool.
+pub const TOOL_MOMENT_TOLERANCE_NM: f64 = 1.0;
 
 /// One term of a `[gravity]` table.
 #[derive(Debug, Deserialize)]
@@ -54,12 +66,14 @@ struct TermFile {
 pub struct GravityFile {
     model: String,
     tool_mass_kg: Option<f64>,
+    tool_centre_of_mass_mm: Option<[f64; 3]>,
     terms: Vec<TermFile>,
 }
 
 /// The own weight of a `[gravity]` table, checked: the model `masses`, `lumped` or
 /// `lumped-links`, 1 to [`MAX_GRAVITY_TERMS`] terms with finite values, a tool mass within
-/// [`limits::TOOL_MASS_KG`].
+/// [`limits::TOOL_MASS_KG`], a tool's centre of mass within [`limits::LENGTH_MM`] and only with
+/// its mass.
 ///
 /// # Errors
 /// [`Error::InvalidField`] naming the file and the field.
@@ -99,10 +113,21 @@ pub fn build(file: Option<GravityFile>, source_name: &str) -> Result<Option<OwnW
             &limits::TOOL_MASS_KG,
         )?;
     }
+    if let Some(c) = g.tool_centre_of_mass_mm {
+        let field = "gravity.tool_centre_of_mass_mm";
+        check_in(source_name, field, &c, &limits::LENGTH_MM)?;
+        if g.tool_mass_kg.is_none() {
+            return Err(invalid(
+                "tool_centre_of_mass_mm".into(),
+                "needs tool_mass_kg: the centre of the tool's mass the terms hold".into(),
+            ));
+        }
+    }
     Ok(Some(OwnWeight {
         gravity: g.model,
         terms: g.terms.into_iter().map(|t| (t.name, t.value_si)).collect(),
         tool_mass: g.tool_mass_kg,
+        tool_centre: (g.tool_centre_of_mass_mm).map(|c| nalgebra::Vector3::from(c) / 1e3),
     }))
 }
 
@@ -115,6 +140,14 @@ pub fn toml(own: &OwnWeight) -> String {
     let _ = writeln!(t, "model = \"{}\"", own.gravity);
     if let Some(m) = own.tool_mass {
         let _ = writeln!(t, "tool_mass_kg = {m:?}");
+    }
+    if let (Some(_), Some(c)) = (own.tool_mass, own.tool_centre) {
+        let c = c * 1e3;
+        let _ = writeln!(
+            t,
+            "tool_centre_of_mass_mm = [{:?}, {:?}, {:?}]",
+            c.x, c.y, c.z
+        );
     }
     t += "terms = [\n";
     for (name, v) in &own.terms {

@@ -9,9 +9,9 @@
 //! [`PECK_CLEARANCE_MM`] above the depth reached), dwell `P` (`G82`), rapid out to the clearance
 //! level (`G98`, the default: the higher of `R` and the level the cycle started from; `G99`: `R`).
 //! Each feed has a point where the drill meets material, the part's surface (`Z = 0` of the part
-//! frame, or `(stiffid: surface_mm = Z)`) when below `R`, or the depth a peck reached: the feed
-//! from there to its end cuts, the rest of the cycle moves in the air or in the hole drilled
-//! ([`crate::cutting`]). `Z`, `R`, `Q` and `P` stay in force within a cycle. Refused naming the line: a cycle under
+//! frame, or `(stiffid: surface_mm = Z)`) when below `R`, or the depth a peck reached, stated
+//! twice (the drill arrives there unloaded, then takes its thrust): the feed from there to its
+//! end cuts, the rest of the cycle moves in the air or in the hole drilled ([`crate::cutting`]). `Z`, `R`, `Q` and `P` stay in force within a cycle. Refused naming the line: a cycle under
 //! `G91` (controllers differ on what an incremental `R` and `Z` count from), outside the `G17`
 //! plane, with the tool not pointing along the part's `-Z`, with `I J K` or rotary words, without
 //! `Z` or `R` or a feed rate `F` in force, a bottom not below `R` or not below the part's surface, a `G83` without a positive `Q`, `P` outside `G82` and `Q`
@@ -44,6 +44,41 @@ pub struct Cycle {
     pub dwell: Option<f64>,
     /// `G83`'s peck depth `Q`, m.
     pub peck: Option<f64>,
+    /// The level where the drill first meets material, m: the part's surface (`Z = 0` or
+    /// `(stiffid: surface_mm = Z)`), or `R` when that lies below it ([`GCode::drilled_in_air`]).
+    pub entry: f64,
+}
+
+impl GCode {
+    /// Whether each point is fed by a canned cycle without cutting ([`Cycle::entry`]): a feed
+    /// that ends at or above the material's level, which is the hole's entry until a feed has
+    /// gone deeper and then the depth reached (the feed from `R` down to the surface, a peck's
+    /// re-entry down to the depth the last peck reached, a peck that stays above the surface).
+    /// The cycle states the point where the drill meets material twice: reached unloaded, then
+    /// (a move of no length) under the thrust, from where the feed below cuts and carries it.
+    /// `false` for every point outside a cycle.
+    pub fn drilled_in_air(&self) -> Vec<bool> {
+        let mut levels: Vec<f64> = self.cycles.iter().map(|c| c.entry).collect();
+        (self.points.iter().enumerate())
+            .map(|(i, p)| match (p.cycle, p.motion) {
+                (Some(k), Motion::Feed) => {
+                    let Some(level) = levels.get_mut(k) else {
+                        return false;
+                    };
+                    let z = p.position.z;
+                    // The point where the drill meets material, again: the cut starts there.
+                    let engaged = i > 0 && {
+                        let q = &self.points[i - 1];
+                        q.motion == Motion::Feed && (q.position - p.position).norm() <= 1e-12
+                    };
+                    let air = z >= *level - 1e-12 && !engaged;
+                    *level = level.min(z);
+                    air
+                }
+                _ => false,
+            })
+            .collect()
+    }
 }
 
 /// The cycle's words in force (modal within a cycle), in the units of their blocks (m).
@@ -152,6 +187,8 @@ struct Hole {
     /// `P`: its value and its text.
     dwell: Option<(f64, String)>,
     orientation: UnitQuaternion<f64>,
+    /// Where the drill meets material ([`Cycle::entry`]).
+    entry: f64,
 }
 
 impl Hole {
@@ -231,6 +268,7 @@ fn hole(line: u64, w: &Words, other_geometry: bool, scale: f64, s: &State) -> Re
         peck,
         dwell,
         orientation,
+        entry: retract.min(s.surface),
     })
 }
 
@@ -277,6 +315,9 @@ fn moves(hole: &Hole, s: &State) -> (Vec<(Vector3<f64>, Motion)>, usize) {
         let entry = reached.min(surface);
         if entry < from && entry > next {
             go(hole.at_xy(entry), Motion::Feed, &mut moves);
+            // The same point again, where the thrust starts: the drill arrives unloaded and
+            // cuts from there under its thrust ([`GCode::drilled_in_air`]).
+            moves.push((hole.at_xy(entry), Motion::Feed));
         }
         go(hole.at_xy(next), Motion::Feed, &mut moves);
         reached = next;
@@ -307,6 +348,7 @@ fn push(
         clearance: hole.clearance,
         dwell: hole.dwell.as_ref().map(|(v, _)| *v),
         peck: hole.peck,
+        entry: hole.entry,
     });
     let first = out.points.len();
     let external = super::external_values(line, s)?;

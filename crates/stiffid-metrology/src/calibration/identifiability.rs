@@ -29,6 +29,11 @@ pub const RANK_TOLERANCE: f64 = 1e-7;
 /// Correlations above this, in absolute value, are listed.
 pub const CORRELATION_REPORTED: f64 = 0.9;
 
+/// Correlations above this, in absolute value, leave the two parameters not separately
+/// identifiable: the readings determine one combination of them, and each one's standard
+/// deviation alone means nothing (a change of one is taken up by the other).
+pub const CORRELATION_INSEPARABLE: f64 = 0.999;
+
 /// Coefficients below this share of a merged column's largest are not listed.
 const COEFFICIENT_LISTED: f64 = 1e-3;
 

@@ -175,9 +175,11 @@ CalibrateOutsideRange = TypedDict("CalibrateOutsideRange", {
 
 CalibrateParameter = TypedDict("CalibrateParameter", {
     "identified": bool,
+    "inseparable_from": list[str],
     "kind": str,
     "name": str,
     "nominal": float,
+    "robot_file_si": Optional[float],
     "sd": Optional[float],
     "unit": str,
     "value": float,

@@ -27,6 +27,7 @@ fn weight(scale: f64) -> (Terms, OwnWeight) {
             .zip(values)
             .collect(),
         tool_mass: None,
+        tool_centre: None,
     };
     (terms, own)
 }

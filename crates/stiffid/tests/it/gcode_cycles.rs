@@ -31,8 +31,9 @@ fn moves(text: &str) -> Vec<(u64, [f64; 3], bool)> {
 #[test]
 fn canned_cycles_make_the_moves_of_their_definition() {
     // G81 with G98: over the hole at the starting level, down to R, feed to Z (through the
-    // part's surface, Z = 0, where the drill meets material), back up to the starting level
-    // (above R); the next block drills the next hole with the same Z and R.
+    // part's surface, Z = 0, where the drill meets material: stated twice, reached unloaded and
+    // then under the thrust), back up to the starting level (above R); the next block drills
+    // the next hole with the same Z and R.
     let g81 = format!(
         "{HEADER}G21 G90 G17\nG0 X0 Y0 Z10\nG98 G81 X10 Y20 Z-5 R2 F120\nX30\nG80\nG0 Z20\n"
     );
@@ -44,10 +45,12 @@ fn canned_cycles_make_the_moves_of_their_definition() {
             (4, [10.0, 20.0, 10.0], r),
             (4, [10.0, 20.0, 2.0], r),
             (4, [10.0, 20.0, 0.0], !r),
+            (4, [10.0, 20.0, 0.0], !r),
             (4, [10.0, 20.0, -5.0], !r),
             (4, [10.0, 20.0, 10.0], r),
             (5, [30.0, 20.0, 10.0], r),
             (5, [30.0, 20.0, 2.0], r),
+            (5, [30.0, 20.0, 0.0], !r),
             (5, [30.0, 20.0, 0.0], !r),
             (5, [30.0, 20.0, -5.0], !r),
             (5, [30.0, 20.0, 10.0], r),
@@ -61,6 +64,12 @@ fn canned_cycles_make_the_moves_of_their_definition() {
     assert_eq!((g.cycles[1].retract, g.cycles[1].clearance), (2e-3, 10e-3));
     assert_eq!(g.points[4].cycle, Some(0));
     assert_eq!(g.points[0].cycle, None);
+    // The feed in the air: from R to the surface, each hole's first arrival there.
+    let air: Vec<usize> = (g.drilled_in_air().iter().enumerate())
+        .filter(|(_, a)| **a)
+        .map(|(i, _)| i)
+        .collect();
+    assert_eq!(air, [3, 9]);
     // G83 with G99 in inches: pecks of Q0.1 in from R0.05 in to Z-0.25 in, out to R after each,
     // back to 0.010 in (0.254 mm) above the depth reached, feed through the depth reached (where
     // the drill meets material again), retract to R.
@@ -71,13 +80,16 @@ fn canned_cycles_make_the_moves_of_their_definition() {
         (4, [1.0, 0.0, 1.0], r),
         (4, [1.0, 0.0, 0.05], r),
         (4, [1.0, 0.0, 0.0], !r),
+        (4, [1.0, 0.0, 0.0], !r),
         (4, [1.0, 0.0, -0.05], !r),
         (4, [1.0, 0.0, 0.05], r),
         (4, [1.0, 0.0, -0.04], r),
         (4, [1.0, 0.0, -0.05], !r),
+        (4, [1.0, 0.0, -0.05], !r),
         (4, [1.0, 0.0, -0.15], !r),
         (4, [1.0, 0.0, 0.05], r),
         (4, [1.0, 0.0, -0.14], r),
+        (4, [1.0, 0.0, -0.15], !r),
         (4, [1.0, 0.0, -0.15], !r),
         (4, [1.0, 0.0, -0.25], !r),
         (4, [1.0, 0.0, 0.05], r),
@@ -88,6 +100,13 @@ fn canned_cycles_make_the_moves_of_their_definition() {
     assert_eq!(moves(&g83), expected);
     let g = gcode::parse(&g83, 1e-5).unwrap();
     assert!((g.cycles[0].peck.unwrap() - 0.1 * 25.4e-3).abs() < 1e-15);
+    // In the air or the hole drilled: the feed to the surface and each peck's re-entry to the
+    // depth reached.
+    let air: Vec<usize> = (g.drilled_in_air().iter().enumerate())
+        .filter(|(_, a)| **a)
+        .map(|(i, _)| i)
+        .collect();
+    assert_eq!(air, [3, 8, 13]);
     // The feed of the cycle: F4 inch/min.
     assert!((g.points[3].feed.unwrap() - 4.0 * 25.4e-3 / 60.0).abs() < 1e-15);
 }

@@ -36,6 +36,7 @@ fn masses(scale: f64, tool_mass: Option<f64>) -> OwnWeight {
             .map(|j| (format!("gravity.c{}", j + 1), scale / STIFFNESS[j]))
             .collect(),
         tool_mass,
+        tool_centre: None,
     }
 }
 
@@ -131,6 +132,7 @@ fn lumped_terms_hold_the_tool_of_the_calibration() {
             .map(|(i, t)| (t.name(), [6e-5, 2e-5, -1e-5, 1.5e-5][i % 4]))
             .collect(),
         tool_mass: Some(40.0),
+        tool_centre: None,
     };
     let robot_text = calibrated_text(&stiffid::robot::weight_file::toml(&own));
     let s = heavy_on("", TOOL, &robot_text).unwrap();
@@ -145,6 +147,46 @@ fn lumped_terms_hold_the_tool_of_the_calibration() {
     let text = e.to_string();
     assert!(
         text.contains("tool.mass_kg") && text.contains("25 kg") && text.contains("40 kg"),
+        "{text}"
+    );
+}
+
+/// Lumped terms calibrated with the tool's centre of mass at 150 mm on the flange's axis hold
+/// its moment there: the same 40 kg at 262 mm (44 N m more at the wrist) is refused naming both
+/// centres and the moment's difference; 2 mm away (0.78 N m) is taken.
+#[test]
+fn lumped_terms_hold_the_tools_centre_of_the_calibration() {
+    let bare = heavy_on("", "", &calibrated_text("")).unwrap();
+    let terms = Terms::lumped_bodies(bare.robot(), Coordinates::Axis);
+    let own = OwnWeight {
+        gravity: "lumped".into(),
+        terms: (terms.terms().iter().enumerate())
+            .map(|(i, t)| (t.name(), [6e-5, 2e-5, -1e-5, 1.5e-5][i % 4]))
+            .collect(),
+        tool_mass: Some(40.0),
+        tool_centre: Some(Vector3::new(0.0, 0.0, 0.15)),
+    };
+    let robot_text = calibrated_text(&stiffid::robot::weight_file::toml(&own));
+    let s = heavy_on("", TOOL, &robot_text).unwrap();
+    let compliance = plain(&s);
+    let at = [point(s.test_postures()[0], Vector6::zeros())];
+    let options = Options::for_setup(&s);
+    compensate::path(s.arm(), &compliance, &at, &options).unwrap();
+    let near = TOOL.replace("150.0", "152.0");
+    let s = heavy_on("", &near, &robot_text).unwrap();
+    compensate::path(s.arm(), &compliance, &at, &options).unwrap();
+    let far = TOOL.replace("150.0", "262.0");
+    let s = heavy_on("", &far, &robot_text).unwrap();
+    let e = compensate::path(s.arm(), &compliance, &at, &options).unwrap_err();
+    let text = e.to_string();
+    // 40 kg * 9.80665 m/s^2 * 0.112 m.
+    let moment: f64 = 40.0 * 9.80665 * 0.112;
+    assert!((moment - 43.93).abs() < 0.01);
+    assert!(
+        text.contains("tool.centre_of_mass_mm")
+            && text.contains("[0, 0, 262] mm")
+            && text.contains("[0, 0, 150] mm")
+            && text.contains(&format!("{} N m", stiffid::common::words::number(moment))),
         "{text}"
     );
 }

@@ -7,8 +7,8 @@
 //! the plunges and the retracts none, the cutting moves the operation's; so do two slots joined
 //! by a rapid across (a joint move in a robot program). `place` evaluates the KRL and RAPID
 //! programs as their G-code. A drilling program's cycles (`G81`, `G83`) written as LS, KRL,
-//! RAPID and INFORM get the thrust where the G-code's drill cuts (from where it meets the part
-//! to each feed's end), never at the `R` level or a peck's re-approach.
+//! RAPID and INFORM get the thrust where the G-code's drill cuts (the feed below where it meets
+//! the part), never at the `R` level, on the feed down to the surface or a peck's re-entry.
 
 use nalgebra::Isometry3;
 use stiffid::app::place::{self, Region, Request, Work};
@@ -316,8 +316,10 @@ const PANEL: &str = include_str!("../../../../examples/milling/panel.nc");
 /// INFORM job of the G-code's postures (FANUC cell), read back and compensated, get the G-code's
 /// wrench (to 1e-9 N), bound (to 1e-12 m) and compensated posture (to 1e-10 rad) at every point
 /// (INFORM's whole pulses: 1e-3 N, 1e-10 m, 1e-6 rad): the thrust (600 N up the spindle) from
-/// where the drill meets the part (its surface, or the depth a peck reached) to each feed's end,
-/// none at a cycle's `R` level, a peck's re-approach, an approach or a retract. The cycles:
+/// where the drill meets the part (its surface, or the depth a peck reached: stated twice,
+/// reached unloaded then under the thrust) to each feed's end, none at a cycle's `R` level, on
+/// the feed from there to the surface, a peck's re-approach or re-entry, an approach or a
+/// retract. The cycles:
 /// [`DRILLING`]; the panel ([`PANEL`], LS only).
 #[test]
 fn a_drilling_program_gets_the_thrust_where_the_drill_cuts_in_every_language() {
@@ -338,13 +340,33 @@ fn a_drilling_program_gets_the_thrust_where_the_drill_cuts_in_every_language() {
     ];
     for (c, program, dialect) in programs {
         let g = machining::gcode::parse(program, 1e-5).unwrap();
-        // Where the drill cuts: the feeds at or below the part's surface (the R level, the
-        // re-approaches, 0.254 mm above the depth reached, and the retracts are rapids).
-        let cuts: Vec<bool> = (g.points.iter())
-            .map(|p| p.motion == machining::gcode::Motion::Feed && p.position.z <= 1e-12)
+        // Where the drill cuts: where it meets the part, stated again by a feed of no length
+        // (the cycle's point under thrust), and the feeds below the part's surface to a point no
+        // feed reached before (the R level, the re-approaches, 0.254 mm above the depth reached,
+        // and the retracts are rapids; the feed from R to the surface and a peck's re-entry to
+        // the depth reached move in the air or the hole drilled).
+        let feed = |p: &machining::gcode::Point| p.motion == machining::gcode::Motion::Feed;
+        let cuts: Vec<bool> = (g.points.iter().enumerate())
+            .map(|(i, p)| {
+                let again = g.points[..i]
+                    .iter()
+                    .any(|q| feed(q) && (q.position - p.position).norm() < 1e-12);
+                let repeated =
+                    i > 0 && feed(&g.points[i - 1]) && g.points[i - 1].position == p.position;
+                let below = p.position.z <= 1e-12 && !again;
+                let surface = program == DRILLING && p.position.z.abs() < 1e-12;
+                feed(p) && (repeated || (below && !surface))
+            })
             .collect();
-        let holes = if program == PANEL { 20 } else { 2 + 6 };
-        assert_eq!(cuts.iter().filter(|c| **c).count(), holes);
+        if program == DRILLING {
+            let depths: Vec<f64> = (g.points.iter().zip(&cuts))
+                .filter(|(_, c)| **c)
+                .map(|(p, _)| (p.position.z * 1e3).round())
+                .collect();
+            assert_eq!(depths, [0.0, -8.0, 0.0, -10.0, -10.0, -22.0, -22.0, -30.0]);
+        } else {
+            assert_eq!(cuts.iter().filter(|c| **c).count(), 20);
+        }
         let gcode = compensated(c, program, Language::GCode);
         let text = match dialect {
             // An INFORM job of the G-code's postures: `MOVJ` for its rapids, else `MOVL`.

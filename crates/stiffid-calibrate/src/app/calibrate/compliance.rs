@@ -79,12 +79,12 @@ pub fn fitted_compliance(
 }
 
 /// The gravity terms of `model` at their values in `fit` (fitted or held), the tool of mass
-/// `tool_mass` (kg) in them; `None` without gravity terms. The calibrated robot file carries them
+/// `tool` in them (its mass, kg, and centre of mass, m, flange frame); `None` without gravity terms. The calibrated robot file carries them
 /// (`[gravity]`, [`stiffid_core::robot::weight_file`]).
 pub fn own_weight(
     model: &ErrorModel,
     fit: &Fit,
-    tool_mass: Option<f64>,
+    tool: (Option<f64>, Option<nalgebra::Vector3<f64>>),
 ) -> Option<stiffid_core::model::OwnWeight> {
     let g = model.gravity();
     let values = fit.estimate.values.rows(model.gravity_start(), g.len());
@@ -93,6 +93,7 @@ pub fn own_weight(
         terms: (g.terms().iter().map(|t| t.name()))
             .zip(values.iter().copied())
             .collect(),
-        tool_mass,
+        tool_mass: tool.0,
+        tool_centre: tool.0.and(tool.1),
     })
 }

@@ -11,6 +11,7 @@ use stiffid_core::io::readings::point_name;
 use stiffid_metrology::calibration::error_model::Target;
 use stiffid_metrology::calibration::fit::GRAVITY_DEFLECTION;
 use stiffid_metrology::calibration::gravity::Gravity;
+use stiffid_metrology::calibration::identifiability::CORRELATION_INSEPARABLE;
 use stiffid_metrology::calibration::validation::Validation;
 use stiffid_view as scene;
 
@@ -165,6 +166,16 @@ pub struct Parameter {
     pub sd: Option<f64>,
     /// Whether the readings determine it (fitted).
     pub identified: bool,
+    /// The fitted parameters its estimate is correlated with beyond
+    /// [`CORRELATION_INSEPARABLE`] in absolute value: not separately identifiable, the readings
+    /// determine only a combination of them, so `sd` alone means nothing; empty otherwise.
+    pub inseparable_from: Vec<String>,
+    /// For a gravity term, the value the calibrated robot file's `[gravity]` table states for
+    /// it under the same name: SI (`value_si`, `value` times 1e-6) and a lumped first moment
+    /// (`mx`, `my`, `mz`) in the link frames of the file's DH table, which may be turned from
+    /// the fit's (so its components differ from `value`'s); `null` for other parameters and
+    /// without a robot file.
+    pub robot_file_si: Option<f64>,
 }
 
 /// A merged parameter.
@@ -399,7 +410,19 @@ fn parameters(report: &Report) -> Vec<Parameter> {
     let values = &fit.estimate.values;
     let frame_values = frame_vector(&fit.estimate.frame);
     let start = frame_vector(&report.start_frame);
-    (report.model.parameters().iter().enumerate())
+    let params = report.model.parameters();
+    let in_file = gravity_in_file(report);
+    let inseparable = |c: usize| -> Vec<String> {
+        (fit.identifiability.correlations.iter())
+            .filter(|(_, _, rho)| rho.abs() > CORRELATION_INSEPARABLE)
+            .filter_map(|&(a, b, _)| match (a == c, b == c) {
+                (true, _) => Some(params[b].name.clone()),
+                (_, true) => Some(params[a].name.clone()),
+                _ => None,
+            })
+            .collect()
+    };
+    (params.iter().enumerate())
         .map(|(c, p)| {
             let f = p.document_factor();
             let (nominal, value) = match p.target {
@@ -414,9 +437,21 @@ fn parameters(report: &Report) -> Vec<Parameter> {
                 value,
                 sd: fit.sd[c].map(|s| s * f),
                 identified: fit.fitted.contains(&c),
+                inseparable_from: inseparable(c),
+                robot_file_si: (in_file.iter())
+                    .find(|(n, _)| *n == p.name)
+                    .map(|(_, v)| *v),
             }
         })
         .collect()
+}
+
+/// The gravity terms the calibrated robot file states (`[gravity]`: name and SI value, in its
+/// table's link frames), empty without a robot file or gravity.
+fn gravity_in_file(report: &Report) -> Vec<(String, f64)> {
+    let file = (report.robot_toml.as_ref().ok())
+        .and_then(|t| stiffid_core::robot::file::parse(t, "the calibrated robot file").ok());
+    (file.as_ref().and_then(|r| r.own_weight())).map_or(Vec::new(), |w| w.terms.clone())
 }
 
 /// The parameters the readings do not separate from the identified ones, with what absorbs

@@ -23,7 +23,7 @@ pub(super) struct Files {
 /// warnings of what a URDF leaves out when one is asked for.
 ///
 /// # Errors
-/// Those of [`update::tool_mass`] and of locating the part ([`part::located`]).
+/// Those of [`update::tool_load`] and of locating the part ([`part::located`]).
 pub(super) fn files(
     request: &Request<'_>,
     chosen: &Chosen,
@@ -32,7 +32,7 @@ pub(super) fn files(
 ) -> Result<Files> {
     let setup = request.readings.setup;
     let (model, fitted) = (&chosen.model, &chosen.fit);
-    let own_weight = compliance::own_weight(model, fitted, update::tool_mass(request)?);
+    let own_weight = compliance::own_weight(model, fitted, update::tool_load(request)?);
     let part = part::located(setup, (model, &fitted.estimate), request.update, warnings)?;
     let robot_toml = update::robot_file(
         request,

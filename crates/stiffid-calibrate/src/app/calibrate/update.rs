@@ -477,16 +477,19 @@ pub(super) fn weight<'r>(request: &'r Request<'_>) -> Result<Option<&'r OwnWeigh
     }
 }
 
-/// The tool's mass (kg) the calibrated robot file's gravity terms hold: the setup's
-/// (`[tool] mass_kg`), or with `update` of lumped terms the calibration's (the terms are kept).
+/// The tool the calibrated robot file's gravity terms hold, its mass (kg) and centre of mass
+/// (m, flange frame): the setup's (`[tool] mass_kg`, `centre_of_mass_mm`), or with `update` of
+/// lumped terms the calibration's (the terms are kept).
 ///
 /// # Errors
 /// Those of [`weight`].
-pub(super) fn tool_mass(request: &Request<'_>) -> Result<Option<f64>> {
-    let payload = request.readings.setup.payload().map(|p| p.mass);
+pub(super) fn tool_load(
+    request: &Request<'_>,
+) -> Result<(Option<f64>, Option<nalgebra::Vector3<f64>>)> {
+    let payload = request.readings.setup.payload();
     Ok(match weight(request)? {
-        Some(w) if w.gravity != "masses" => w.tool_mass,
-        _ => payload,
+        Some(w) if w.gravity != "masses" => (w.tool_mass, w.tool_centre),
+        _ => (payload.map(|p| p.mass), payload.map(|p| p.centre)),
     })
 }
 

@@ -498,7 +498,7 @@ impl Columns {
         }
         let (point, table) = self.point(row, points)?;
         if table && self.load.is_some() {
-            let message = "a reflector fixed in the cell in a file with load steps: load steps read the tool's measuring points".to_string();
+            let message = "a reflector fixed in the cell in a file with load steps: load steps read the tool's measuring points; locate the part in a second step, `calibrate --update` of the calibrated robot file with unloaded readings of the arm and the reflectors (the guide's \"Locating the part after a calibration with load steps\")".to_string();
             return Err(row.error(self.point, ColumnProblem::Measurement { message }));
         }
         let mut q = Vector6::zeros();

@@ -71,6 +71,7 @@ impl GravitySection {
                 .map(|t| (t.name.clone(), t.value_si))
                 .collect(),
             tool_mass: None,
+            tool_centre: None,
         }
     }
 }

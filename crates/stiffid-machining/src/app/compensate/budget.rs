@@ -224,6 +224,19 @@ pub struct BudgetSummary {
     pub meets: Option<Meets>,
 }
 
+impl BudgetSummary {
+    /// The words for a part of [`BudgetSummary::made_of`] without a value (`max_mm` `null`):
+    /// `absent` when it is absent along the path ([`BudgetSummary::absent`]), else `infinite`
+    /// with the count of held-out values a finite bound at the level needs, as the bound's own
+    /// words say it.
+    pub fn no_value(&self, part: &PartSummary) -> String {
+        match self.absent.contains(&part.part) {
+            true => "absent".into(),
+            false => shown(f64::INFINITY, self.level),
+        }
+    }
+}
+
 /// One part of the bound along the path.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]

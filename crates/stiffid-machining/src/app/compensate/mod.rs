@@ -446,9 +446,9 @@ where
     let settings = written::with_setup(setup, settings);
     let written_name = written_name(&program, output, &out_name, (&settings, cell))?;
     // A G-code program is written for the controller's kinematics.
-    let controller = match (&program, output) {
-        (Program::GCode(_), Language::GCode) => setup.controller_robot()?,
-        _ => setup.robot(),
+    let (controller, assumed) = match (&program, output) {
+        (Program::GCode(_), Language::GCode) => written::gcode_controller(setup)?,
+        _ => (setup.robot(), None),
     };
     let at = (setup.arm(), setup.workpiece(), compliance);
     let compensated = machining::compensate_for(controller, at, &program, &process, options)
@@ -463,6 +463,7 @@ where
     out.configurations = compensated.configurations.clone();
     let (dynamics, warnings) = program_dynamics(setup, compliance, &process, &compensated, add)?;
     out.warnings = warnings;
+    out.warnings.extend(assumed);
     let data = compensated.data.as_ref().map(|d| match &written_name {
         Some(to) => crate::program::rename::renamed_data(d, to),
         None => d.clone(),

@@ -176,6 +176,39 @@ pub(super) fn with_setup(setup: &Setup, settings: Settings) -> Settings {
     }
 }
 
+/// The controller's kinematics for a G-code program written back as G-code
+/// ([`Setup::controller_robot`]): on a cell with external axes, the controller moves the arm on
+/// its carriage and the part on its positioner by its own model of them, so its robot must
+/// declare them ([`cell_controller`]); the G-code's positions are then the controller's forward
+/// kinematics of the compensated axes at its own external axes, in the part frame of `[workpiece]
+/// base_from_part`. When the controller's model of them is not the setup's (a nominal controller
+/// beside a calibrated cell), a warning states that model and frame, which the controller must
+/// hold.
+///
+/// # Errors
+/// Those of [`cell_controller`], its message saying what a G-code controller of the cell needs.
+pub(super) fn gcode_controller(setup: &Setup) -> Result<(&stiffid_core::Robot, Option<Warning>)> {
+    let controller = cell_controller(setup).map_err(|e| match e {
+        Error::InvalidField { field, message } => Error::InvalidField {
+            field,
+            message: format!("{message}; G-code written back on this cell would otherwise place the part by the setup's own (calibrated) external axes, which the controller does not run; or say kinematics = \"calibrated\" for a controller loaded with the calibrated cell, or write the program as a robot program (its joint targets hold in any kinematics)"),
+        },
+        e => e,
+    })?;
+    let cell = (setup.robot().external()).filter(|a| !a.is_empty());
+    let own = controller.external() != setup.robot().external();
+    let warning = match (own, cell) {
+        (true, Some(axes)) => Some(Warning::new(WarningKind::Calibrated, format!(
+            "G-code on a cell with external axes ({}) is written for a controller that moves them by the model of its robot '{}' (kinematics = \"nominal\"), not the setup's '{}', with the part frame at [workpiece] base_from_part: the controller's external axes and part frame must be those",
+            (axes.axes().iter().map(|a| a.name.as_str())).collect::<Vec<_>>().join(", "),
+            controller.name(),
+            setup.robot().name()
+        ))),
+        _ => None,
+    };
+    Ok((controller, warning))
+}
+
 /// The controller's kinematics ([`Setup::controller_robot`]) for Cartesian targets, which on a
 /// cell with external axes must model the cell's: the controller moves the arm on its carriage
 /// (and the part on its positioner) by its own model of them.

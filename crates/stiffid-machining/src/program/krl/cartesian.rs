@@ -34,6 +34,18 @@ pub(crate) fn target(
         let (v, span) = number_at(code, *after)
             .filter(|(_, s)| ends_member(code, s.end))
             .ok_or_else(|| at(line, format!("{name}: expected a number, then ',' or '}}'")))?;
+        // Lengths within the limits' range of any length (mm), angles within +-1e4 deg.
+        let (most, unit) = match pose.len() < 3 {
+            true => (stiffid_core::common::limits::LENGTH_MM.max, "mm"),
+            false => (1e4, "deg"),
+        };
+        if v.is_nan() || v.abs() > most {
+            let v = stiffid_core::common::words::number(v);
+            return Err(at(
+                line,
+                format!("{name} {v}: outside -{most} to {most} {unit}"),
+            ));
+        }
         pose.push((v, start + span.start..start + span.end));
     }
     let mut c = Cartesian::new(Dialect::Krl, &pose);

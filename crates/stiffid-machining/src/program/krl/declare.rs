@@ -97,6 +97,17 @@ fn read(
                         }
                     },
                 };
+                let value = match out.points.get(&name) {
+                    // KRL refuses a name declared twice in one module: neither value is sure.
+                    Some((first, _)) => {
+                        let why = format!("{name} is declared twice, {first} and {on}: the controller refuses a name declared twice in one module; declare it once");
+                        match place {
+                            Place::Src => return Err(at(line, why)),
+                            Place::Dat(_) => Err(why),
+                        }
+                    }
+                    None => value,
+                };
                 out.points.insert(name, (on, value));
             }
             ["FDAT", name, ..] => {

@@ -10,6 +10,7 @@ fn own() -> OwnWeight {
             ("gravity.c3.link3.mx".into(), -1.25e-8),
         ],
         tool_mass: Some(12.5),
+        tool_centre: Some(nalgebra::Vector3::new(0.0, -0.05, 0.125)),
     }
 }
 
@@ -25,6 +26,7 @@ fn read(text: &str) -> Result<Option<OwnWeight>> {
 #[test]
 fn round_trip_is_exact() {
     assert_eq!(read(&toml(&own())).unwrap(), Some(own()));
+    assert!(toml(&own()).contains("tool_centre_of_mass_mm = [0.0, -50.0, 125.0]\n"));
 }
 
 #[test]
@@ -38,4 +40,20 @@ fn bad_tables_name_the_field() {
     let bad = toml(&own()).replace("6.1e-7", "nan");
     let e = read(&bad).unwrap_err().to_string();
     assert!(e.contains("gravity.terms[1].value_si"), "{e}");
+}
+
+/// A tool's centre of mass in the table: finite, within the lengths' range, only with its mass.
+#[test]
+fn a_bad_tool_centre_names_the_field() {
+    for bad in ["nan", "1e9"] {
+        let text = toml(&own()).replace("125.0]", &format!("{bad}]"));
+        let e = read(&text).unwrap_err().to_string();
+        assert!(e.contains("gravity.tool_centre_of_mass_mm"), "{e}");
+    }
+    let alone = toml(&own()).replace("tool_mass_kg = 12.5\n", "");
+    let e = read(&alone).unwrap_err().to_string();
+    assert!(
+        e.contains("gravity.tool_centre_of_mass_mm") && e.contains("needs tool_mass_kg"),
+        "{e}"
+    );
 }
