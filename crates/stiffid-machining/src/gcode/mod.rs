@@ -67,7 +67,7 @@ mod modal;
 mod words;
 mod write;
 
-pub use arc::{ARC_END_MAX_MM, ARC_END_RELATIVE, ARC_END_TOLERANCE_MM};
+pub use arc::{ArcBlock, ARC_END_MAX_MM, ARC_END_RELATIVE, ARC_END_TOLERANCE_MM};
 pub use cycles::{Cycle, PECK_CLEARANCE_MM};
 pub use machine::{Machine, ProgramFrames};
 pub use words::MAX_FEED;

@@ -18,6 +18,7 @@
 
 pub mod budget;
 pub mod certify;
+mod circles;
 mod columns;
 pub mod configurations;
 pub mod document;
@@ -468,7 +469,9 @@ where
     let (text, subprograms) = match (output, &program) {
         (Language::Robot(d), Program::GCode(g)) => {
             let how = (written_name.unwrap_or_default(), settings, chord_tolerance);
-            let written = generated(setup, d, &compensated, &g.points, (how, options.level));
+            let arcs = g.arcs();
+            let path = (g.points.as_slice(), arcs.as_slice());
+            let written = generated(setup, d, &compensated, path, (how, options.level));
             let (text, subprograms, warnings) = written.map_err(|e| in_input(&out.name, e))?;
             out.warnings.extend(warnings);
             (text, subprograms)

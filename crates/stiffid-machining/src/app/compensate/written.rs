@@ -3,6 +3,7 @@
 //! ([`generated`]) in the controller's kinematics and frames.
 
 use super::certify;
+use crate::program::generate::arcs::{self, Circular, Form};
 use crate::program::generate::{self, generate, moves, Plan, Settings, Target, Tool};
 use crate::program::Dialect;
 use crate::{self as machining, Language, Program};
@@ -20,13 +21,18 @@ pub(super) fn generated(
     setup: &Setup,
     dialect: Dialect,
     compensated: &machining::Report,
-    points: &[crate::gcode::Point],
+    path: (&[crate::gcode::Point], &[crate::gcode::ArcBlock]),
     ((name, settings, chord_tolerance), level): ((String, Settings, f64), f64),
 ) -> Result<(String, Vec<generate::File>, Vec<Warning>)> {
     let how = (name.as_str(), &settings, chord_tolerance);
-    let written = write_robot_program(setup, dialect, compensated, points, how)?;
-    let mut warnings: Vec<Warning> = (written.warnings.into_iter())
-        .map(|w| Warning::new(WarningKind::Feed, w))
+    let (written, circular, form) = write_robot_program(setup, dialect, compensated, path, how)?;
+    let arcs = circular.warnings.len();
+    let feeds = written.warnings.len() - arcs;
+    let mut warnings: Vec<Warning> = (written.warnings.into_iter().enumerate())
+        .map(|(i, w)| match i < feeds {
+            true => Warning::new(WarningKind::Feed, w),
+            false => Warning::new(WarningKind::LeftOut, w),
+        })
         .collect();
     if settings.targets_asked
         && generate::written_targets(dialect, settings.targets) != settings.targets
@@ -38,6 +44,7 @@ pub(super) fn generated(
         )));
     }
     let bounds: Vec<f64> = compensated.results.iter().map(|r| r.budget.bound).collect();
+    let bounds = arcs::motion_bounds(&circular, &bounds, form.unwrap_or(Form::ViaEnd));
     let texts: Vec<String> = written.files.iter().map(|f| f.text.clone()).collect();
     let texts = certify::generated(dialect, &texts, &bounds, level);
     let mut files =
@@ -106,9 +113,9 @@ fn write_robot_program(
     setup: &Setup,
     dialect: Dialect,
     compensated: &machining::Report,
-    points: &[crate::gcode::Point],
+    (points, arcs): (&[crate::gcode::Point], &[crate::gcode::ArcBlock]),
     (name, settings, chord_tolerance): (&str, &Settings, f64),
-) -> Result<generate::Written> {
+) -> Result<(generate::Written, Circular, Option<Form>)> {
     use rayon::prelude::*;
     let moves = moves(points, settings.max_tcp_speed)?;
     let tool = setup.tool();
@@ -120,17 +127,21 @@ fn write_robot_program(
     let targets: Vec<Target> = (compensated.results.par_iter())
         .zip(&compensated.points)
         .map(|(r, p)| {
-            // The values the compensation chose (a free station), else the program's.
-            let e = match r.external.is_empty() {
-                true => p.external.as_slice(),
-                false => r.external.as_slice(),
-            };
+            let e = super::circles::values(r, p);
             // The pose in the tool's axes ([tool] tcp_rpy_deg), as the program's tool states them.
             let mut t = Target::at(controller, &tool.tcp, &r.q_compensated, e);
             t.pose.rotation *= tool.rotation;
             t
         })
         .collect();
+    let check = (&tool.tcp, compensated, cell_controller(setup));
+    let (targets, moves, circular, form) = super::circles::circular(
+        (dialect, settings),
+        arcs,
+        (targets, moves),
+        check,
+        chord_tolerance,
+    );
     let plan = Plan {
         dialect,
         name,
@@ -144,7 +155,9 @@ fn write_robot_program(
         pulses: setup.workcell().controller().pulses.as_ref(),
         settings: *settings,
     };
-    generate(&plan)
+    let mut written = generate(&plan)?;
+    written.warnings.extend(circular.warnings.iter().cloned());
+    Ok((written, circular, form))
 }
 
 /// The controller's kinematics ([`Setup::controller_robot`]) for Cartesian targets, which on a

@@ -62,6 +62,7 @@
 //! Each program written reads back ([`super::parse`], joint targets) or states its targets to
 //! `10^-DECIMALS` mm and deg.
 
+pub mod arcs;
 mod names;
 
 pub use names::{
@@ -86,6 +87,25 @@ pub enum Move {
     Rapid,
     /// A cutting move at the path's feed, m/s.
     Feed(f64),
+    /// The start of a circular move taught as a position of its own, at the feed (m/s), in a
+    /// language whose circle is three positions (INFORM `MOVC`); the next target is its via
+    /// point ([`arcs`]).
+    ArcStart(f64),
+    /// The via point of a circular move at the feed (m/s): the next target ends it ([`arcs`]).
+    ArcVia(f64),
+    /// The end of a circular move through the target before ([`Move::ArcVia`]), at the feed,
+    /// m/s ([`arcs`]).
+    ArcEnd(f64),
+}
+
+impl Move {
+    /// The feed of a cutting move (linear or circular), m/s; `None` for a rapid move.
+    pub fn feed(self) -> Option<f64> {
+        match self {
+            Move::Rapid => None,
+            Move::Feed(f) | Move::ArcStart(f) | Move::ArcVia(f) | Move::ArcEnd(f) => Some(f),
+        }
+    }
 }
 
 /// What the targets of a generated program are (module docs).
@@ -366,7 +386,13 @@ pub fn generate(plan: &Plan) -> Result<Written> {
     let generator = names::generator(plan.dialect)?;
     check_targets(plan)?;
     let per_file = moves_per_file(plan.dialect, &plan.settings);
-    let chunks: Vec<&[Target]> = plan.targets.chunks(per_file).collect();
+    let files = arcs::files(plan.moves, per_file);
+    let chunks: Vec<&[Target]> = files.iter().map(|r| &plan.targets[r.clone()]).collect();
+    // A file ends before a circular move it cannot hold whole: one more file, maybe.
+    let names = match chunks.len() > 1 && names.len() != chunks.len() + 1 {
+        true => check_plan(plan.dialect, plan.name, &plan.settings, chunks.len() * per_file)?,
+        false => names,
+    };
     let mut written = Written {
         files: Vec::new(),
         warnings: Vec::new(),
@@ -449,7 +475,7 @@ fn check_targets(plan: &Plan) -> Result<()> {
     let bad_feed = plan
         .moves
         .iter()
-        .any(|m| matches!(m, Move::Feed(f) if !(f.is_finite() && *f >= MIN_FEED)));
+        .any(|m| m.feed().is_some_and(|f| !(f.is_finite() && f >= MIN_FEED)));
     if plan.moves.len() != t.len() || bad_feed {
         return Err(invalid(
             "moves",
@@ -459,6 +485,13 @@ fn check_targets(plan: &Plan) -> Result<()> {
                 MIN_FEED * 1e3
             ),
         ));
+    }
+    let form = (names::generator(plan.dialect)?).circular(plan.settings.targets);
+    if !arcs::whole(plan.moves, form) {
+        return Err(invalid("moves", match form {
+            Some(_) => "expected every circular move whole: its start (INFORM), its via point, then its end".into(),
+            None => format!("a {} program with {} targets writes no circular move", plan.dialect.controller().key().to_ascii_uppercase(), plan.settings.targets.name()),
+        }));
     }
     check_external(plan)?;
     check_payload(plan.dialect, plan.settings.targets, &plan.tool)?;

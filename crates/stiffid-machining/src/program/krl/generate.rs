@@ -59,17 +59,19 @@ fn frame(f: &nalgebra::Isometry3<f64>) -> String {
 pub(crate) fn body(plan: &Plan, part: &Part) -> String {
     let mut s = String::with_capacity(part.targets.len() * 140);
     let mut speed: Option<f64> = None;
+    // The via point of the circular move the next target ends.
+    let mut via: Option<String> = None;
     let n = part.targets.len();
     for (k, (t, m)) in part.targets.iter().zip(part.moves).enumerate() {
         let exact = part.last && k + 1 == n;
-        if let Move::Feed(f) = m
-            && speed != Some(*f)
+        if let Some(f) = m.feed()
+            && speed != Some(f)
         {
-            let _ = writeln!(s, "$VEL.CP = {}", number(*f));
-            speed = Some(*f);
+            let _ = writeln!(s, "$VEL.CP = {}", number(f));
+            speed = Some(f);
         }
-        let approximate = |c: &str| match (exact, m) {
-            (false, Move::Feed(_)) => format!(" {c}"),
+        let approximate = |c: &str| match (exact, m.feed()) {
+            (false, Some(_)) => format!(" {c}"),
             _ => String::new(),
         };
         match plan.settings.targets {
@@ -89,13 +91,8 @@ pub(crate) fn body(plan: &Plan, part: &Part) -> String {
                 let (p, r) = in_work(plan, t);
                 let [a, b, c] = zyx_deg(&r);
                 let (status, turn) = t.arm.kuka();
-                let motion = match m {
-                    Move::Rapid => "PTP",
-                    Move::Feed(_) => "LIN",
-                };
-                let _ = writeln!(
-                    s,
-                    "{motion} {{E6POS: X {}, Y {}, Z {}, A {}, B {}, C {}{}, S 'B{status:03b}', T 'B{turn:06b}'}}{}",
+                let pos = format!(
+                    "{{E6POS: X {}, Y {}, Z {}, A {}, B {}, C {}{}, S 'B{status:03b}', T 'B{turn:06b}'}}",
                     v(p.x),
                     v(p.y),
                     v(p.z),
@@ -103,8 +100,18 @@ pub(crate) fn body(plan: &Plan, part: &Part) -> String {
                     v(b),
                     v(c),
                     external(t),
-                    approximate("C_DIS")
                 );
+                let _ = match (m, via.take()) {
+                    (Move::ArcVia(_), _) => {
+                        via = Some(pos);
+                        Ok(())
+                    }
+                    (Move::ArcEnd(_), Some(via)) => {
+                        writeln!(s, "CIRC {via},{pos}{}", approximate("C_DIS"))
+                    }
+                    (Move::Rapid, _) => writeln!(s, "PTP {pos}"),
+                    _ => writeln!(s, "LIN {pos}{}", approximate("C_DIS")),
+                };
             }
         }
     }

@@ -161,7 +161,7 @@ impl Controller for Krl {
         }
     }
     fn motion_lines(&self, text: &str) -> Vec<u64> {
-        lines_starting(text, &["PTP ", "LIN "])
+        lines_starting(text, &["PTP ", "LIN ", "CIRC "])
     }
     fn generator(&self) -> Option<&'static dyn Generator> {
         Some(&Krl)

@@ -9,6 +9,9 @@ use std::fmt::Write;
 use stiffid_core::robot::external::Role;
 use stiffid_core::Result;
 
+/// How the continuation line of a circular move (its end) starts, unnumbered as FANUC writes it.
+const CONTINUATION: &str = "    :  ";
+
 /// The `COMMENT` of every program: at most 16 characters, what the pendant shows.
 pub const COMMENT: &str = "stiffid";
 
@@ -59,15 +62,22 @@ pub(crate) fn body(plan: &Plan, part: &Part, warnings: &mut Vec<String>) -> Resu
         let exact = part.last && k + 1 == n;
         let _ = match m {
             Move::Rapid => writeln!(mn, "J P[{i}] {RAPID_PERCENT}% FINE ;"),
-            Move::Feed(f) => {
+            // A circular move: the via point on its line, the end on the continuation line.
+            Move::ArcVia(_) => writeln!(mn, "C P[{i}]"),
+            m => {
                 let slowest = (
                     "1 cm/min, the slowest an LS program states",
                     "whole mm/sec or cm/min",
                 );
-                let text = stated_feed(*f, part.first + i, speed, slowest, warnings)?;
+                let f = m.feed().unwrap_or_default();
+                let text = stated_feed(f, part.first + i, speed, slowest, warnings)?;
+                let motion = match m {
+                    Move::ArcEnd(_) => CONTINUATION,
+                    _ => "L ",
+                };
                 writeln!(
                     mn,
-                    "L P[{i}] {text} {} ;",
+                    "{motion}P[{i}] {text} {} ;",
                     if exact { "FINE" } else { "CNT100" }
                 )
             }
@@ -144,13 +154,19 @@ pub(crate) fn wrap(name: &str, header: &str, body: &str) -> String {
     let mut s = format!(
         "/PROG  {name}\n/ATTR\nCOMMENT\t\t= \"{COMMENT}\";\nDEFAULT_GROUP\t= {groups};\n/MN\n"
     );
-    for (i, line) in header.lines().chain(mn.lines()).enumerate() {
-        let pad = if line.starts_with(['J', 'L']) {
+    let mut number = 0;
+    for line in header.lines().chain(mn.lines()) {
+        if line.starts_with(CONTINUATION) {
+            let _ = writeln!(s, "{line}");
+            continue;
+        }
+        number += 1;
+        let pad = if line.starts_with(['J', 'L', 'C']) {
             ""
         } else {
             "  "
         };
-        let _ = writeln!(s, "{:>4}:{pad}{line}", i + 1);
+        let _ = writeln!(s, "{number:>4}:{pad}{line}");
     }
     s + "/POS\n" + pos + "/END\n"
 }

@@ -148,13 +148,18 @@ impl Generator for super::Inform {
             let names = format!("C{k:05}{}{}", external("BC", base), external("EC", station));
             let _ = match m {
                 Move::Rapid => writeln!(inst, "MOVJ {names} VJ={RAPID_PERCENT}.00 PL=0"),
-                Move::Feed(f) => {
+                m => {
                     let slowest = (
                         "0.1 mm/s, the slowest an INFORM job states",
                         "whole tenth of a mm/s",
                     );
-                    let v = stated_feed(*f, part.first + k + 1, speed, slowest, warnings)?;
-                    writeln!(inst, "MOVL {names} {v} PL={}", u8::from(!exact))
+                    let f = m.feed().unwrap_or_default();
+                    let v = stated_feed(f, part.first + k + 1, speed, slowest, warnings)?;
+                    let motion = match m {
+                        Move::Feed(_) => "MOVL",
+                        _ => "MOVC",
+                    };
+                    writeln!(inst, "{motion} {names} {v} PL={}", u8::from(!exact))
                 }
             };
         }
@@ -191,6 +196,12 @@ impl Generator for super::Inform {
     }
     fn needs_mass(&self, _targets: Targets) -> bool {
         false
+    }
+    /// Three `MOVC` positions (start, via, end), whatever the targets: a `MOVC` between pulse
+    /// positions moves the tool on the circle through their poses in the controller's
+    /// kinematics, as a `MOVL` moves it on a line.
+    fn circular(&self, _targets: Targets) -> Option<crate::program::generate::arcs::Form> {
+        Some(crate::program::generate::arcs::Form::StartViaEnd)
     }
     /// Pulse positions only.
     fn writes_cartesian(&self) -> bool {

@@ -1,5 +1,6 @@
 //! The controllers' programs (`stiffid_machining::program`).
 
+mod arcs;
 mod cartesian;
 mod generate;
 mod inform;
