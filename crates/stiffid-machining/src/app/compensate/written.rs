@@ -152,12 +152,21 @@ fn write_robot_program(
         external: setup.robot().external(),
         world: setup.workcell().controller().world,
         approximation: chord_tolerance,
+        numbers: numbers(setup),
         pulses: setup.workcell().controller().pulses.as_ref(),
         settings: *settings,
     };
     let mut written = generate(&plan)?;
     written.warnings.extend(circular.warnings.iter().cloned());
     Ok((written, circular, form))
+}
+
+/// The setup's tool and part frame as its controller holds them by number
+/// ([`generate::numbered`]).
+fn numbers(setup: &Setup) -> generate::numbered::Numbers {
+    let c = setup.workcell().controller();
+    let part = c.world.inv_mul(&setup.workpiece().copied().unwrap_or_default());
+    generate::numbered::Numbers::of((&c.tools, &c.bases), &program_tool(setup).frame, &part)
 }
 
 /// The controller's kinematics ([`Setup::controller_robot`]) for Cartesian targets, which on a

@@ -34,6 +34,17 @@
 //!   them), Cartesian targets written as their axis angles ([`written_targets`]); tool file 1
 //!   (`///TOOL 1`), whose values the job's comments state ([`super::inform::generate`]).
 //!
+//! A tool or part frame the controller holds by number (the setup's `[controller] tools` and
+//! `bases`) is selected by its number instead ([`numbered`]): KRL `$TOOL = TOOL_DATA[n]`,
+//! `$BASE = BASE_DATA[m]`; LS `UTOOL_NUM=n`, `UFRAME_NUM=m`, positions in user frame `m`;
+//! INFORM tool file `n`.
+//!
+//! ## Headers
+//! As the controllers write them: KRL `&ACCESS RVP`, `&REL 1`, `&PARAM TEMPLATE`, `&PARAM
+//! EDITMASK` before `DEF`; LS the whole `/ATTR` (owner, comment, sizes, dates, line count,
+//! protection, task attributes, motion groups, control code); INFORM `///DATE` and `///COMM`.
+//! The dates are reproducible ([`date`]).
+//!
 //! ## Controller rules
 //! Every rule comes from the controller's manual (docs/reference.md lists the sources):
 //! - the program's name is an identifier of the language, not a reserved word, within
@@ -42,6 +53,8 @@
 //!   a generated program is called as its file is named, so the name is the file's stem;
 //! - motion is initialised before the first move: KRL `BAS(#INITMOV, 0)`, `$VEL`, `$ACC` and
 //!   `$APO`; RAPID `ConfJ \On`, `ConfL \On`; LS `UFRAME_NUM`, `UTOOL_NUM`; INFORM `NOP`;
+//! - arcs are circular moves where the compensated arc stays within the chord tolerance of a
+//!   circle, else chords with a warning ([`arcs`]);
 //! - intermediate cutting points are approximated within the chord tolerance (KRL `C_DIS` with
 //!   `$APO.CDIS`, RAPID a `zonedata` of that size, LS `CNT100`; INFORM `PL=1`, the controller's
 //!   smallest position level, whose distance its parameters set); the last point is exact (no
@@ -63,7 +76,9 @@
 //! `10^-DECIMALS` mm and deg.
 
 pub mod arcs;
+pub mod date;
 mod names;
+pub mod numbered;
 
 pub use names::{
     check_name, check_plan, default_name_length, max_name_length, moves_per_file, LS_MAX_LINES,
@@ -317,6 +332,9 @@ pub struct Plan<'a> {
     pub external: Option<&'a ExternalAxes>,
     /// The approximation of intermediate cutting points, m (the chord tolerance).
     pub approximation: f64,
+    /// The tool and part frame as the controller holds them by number, if it does
+    /// ([`numbered`]); `Default`: stated.
+    pub numbers: numbered::Numbers,
     /// The controller's axes' encoder pulses (`[controller] pulses_per_deg`), for a language
     /// that writes pulses (INFORM); `None`: not given.
     pub pulses: Option<&'a Pulses>,
@@ -383,6 +401,7 @@ pub fn moves(points: &[Point], max_tcp_speed: f64) -> Result<Vec<Move>> {
 /// cannot state (naming the target's 1-based index as its line).
 pub fn generate(plan: &Plan) -> Result<Written> {
     let names = check_plan(plan.dialect, plan.name, &plan.settings, plan.targets.len())?;
+    date::stamp()?;
     let generator = names::generator(plan.dialect)?;
     check_targets(plan)?;
     let per_file = moves_per_file(plan.dialect, &plan.settings);

@@ -23,7 +23,8 @@ pub(crate) fn header(plan: &Plan) -> String {
         number(plan.approximation * 1e3)
     );
     if plan.settings.targets == Targets::Cartesian {
-        let _ = writeln!(s, "$TOOL = {}", frame(&plan.tool.frame));
+        let tool = (plan.numbers.tool).map(|(n, _)| format!("TOOL_DATA[{n}]"));
+        let _ = writeln!(s, "$TOOL = {}", tool.unwrap_or(frame(&plan.tool.frame)));
         if let Some((mass, c)) = plan.tool.payload {
             let c = c * 1e3;
             let _ = writeln!(
@@ -35,7 +36,8 @@ pub(crate) fn header(plan: &Plan) -> String {
                 number(c.z)
             );
         }
-        let _ = writeln!(s, "$BASE = {}", frame(&plan.world.inv_mul(&plan.work)));
+        let base = (plan.numbers.base).map(|(n, _)| format!("BASE_DATA[{n}]"));
+        let _ = writeln!(s, "$BASE = {}", base.unwrap_or(frame(&plan.world.inv_mul(&plan.work))));
     }
     s
 }
@@ -131,10 +133,16 @@ pub(crate) fn calls(subs: &[String]) -> String {
     subs.iter().map(|n| format!("{n}( )\n")).collect()
 }
 
-/// A whole `.src` file.
+/// A whole `.src` file: the [`KSS_HEADER`], `DEF NAME( )` ... `END`.
 pub(crate) fn wrap(name: &str, header: &str, body: &str) -> String {
-    format!("DEF {name}( )\n{header}{body}END\n")
+    format!("{KSS_HEADER}DEF {name}( )\n{header}{body}END\n")
 }
+
+/// The lines KSS writes before a program's `DEF` (KUKA System Software 8, "the file's
+/// attributes"): read-write access for the expert and operator (`&ACCESS RVP`), release 1, the
+/// template it was made from and the edit mask (`*`: every line editable).
+pub const KSS_HEADER: &str =
+    "&ACCESS RVP\n&REL 1\n&PARAM TEMPLATE = C:\\KRC\\Roboter\\Template\\vorgabe\n&PARAM EDITMASK = *\n";
 
 impl Generator for super::Krl {
     fn header(&self, plan: &Plan, _main: &str, _subs: &[String]) -> String {

@@ -23,6 +23,7 @@ mod declare;
 mod flow;
 mod frames;
 mod generate;
+pub use generate::KSS_HEADER;
 mod motion;
 mod names;
 mod read;

@@ -14,14 +14,25 @@ use crate::program::generate::{
     missing_pulses, number, stated_feed, v, zyx_deg, Move, Part, Plan, Target, Targets,
     RAPID_PERCENT,
 };
+use crate::program::generate::date::Stamp;
 use crate::program::{whole_pulses, Generator};
 use std::fmt::Write;
 use stiffid_core::robot::external::Role;
 use stiffid_core::setup::Pulses;
 use stiffid_core::Result;
 
-/// The tool file the moves use (`///TOOL 1`), whose values the job's comments state.
+/// The job's comment (`///COMM`): what the pendant shows beside its name (32 characters at most).
+pub const COMM: &str = "stiffid";
+
+/// The tool file the moves use (`///TOOL 1`) when the controller holds the tool in none of its
+/// tool files the setup gives (`[controller] tools`), whose values the job's comments state.
 pub const TOOL: u32 = 1;
+
+/// The tool file a job of `plan` moves with: the one the controller holds its tool in
+/// ([`crate::program::generate::numbered`]), else [`TOOL`].
+fn tool_file(plan: &Plan) -> u32 {
+    plan.numbers.tool.map_or(TOOL, |(n, _)| n)
+}
 
 /// The most teaching positions of one kind in a job: a position's number has five digits
 /// (`C00000` to `C99999`).
@@ -59,9 +70,10 @@ fn positions(plan: &Plan, part: &Part, pulses: &Pulses) -> String {
     let (base, station) = groups(plan);
     let carriers = plan.external.map_or(0, |a| a.carrier_len());
     let mut s = format!(
-        "///NPOS {n},{},{},0,0,0\n///TOOL {TOOL}\n///POSTYPE PULSE\n///PULSE\n",
+        "///NPOS {n},{},{},0,0,0\n///TOOL {}\n///POSTYPE PULSE\n///PULSE\n",
         if base { n } else { 0 },
-        if station { n } else { 0 }
+        if station { n } else { 0 },
+        tool_file(plan)
     );
     for (k, t) in part.targets.iter().enumerate() {
         let values: Vec<String> = (t.q_deg.iter().zip(&pulses.per_deg))
@@ -113,7 +125,7 @@ impl Generator for super::Inform {
         let t = &plan.tool.frame;
         let p = t.translation.vector * 1e3;
         let [rz, ry, rx] = zyx_deg(&t.rotation);
-        let mut s = format!("'set tool file {TOOL} to the tool:\n");
+        let mut s = format!("'set tool file {} to the tool:\n", tool_file(plan));
         let mut values = vec![
             ("X", p.x, "mm"),
             ("Y", p.y, "mm"),
@@ -171,7 +183,7 @@ impl Generator for super::Inform {
         calls + "//POS\n///NPOS 0,0,0,0,0,0\n"
     }
     /// A whole `.jbi` file (CR LF line ends, as the controllers write them): `//POS` from the body,
-    /// `//INST` with the motion group (the robot `RB1`, a base `BS1`, a station `ST1`), `NOP`, the
+    /// `//INST` with its date ([`crate::program::generate::date`]), comment ([`COMM`]), the motion group (the robot `RB1`, a base `BS1`, a station `ST1`), `NOP`, the
     /// header's and the body's lines, `END`.
     fn wrap(&self, name: &str, header: &str, body: &str, _main: bool) -> String {
         let (inst, pos) = body.split_once("//POS\n").unwrap_or((body, ""));
@@ -182,8 +194,10 @@ impl Generator for super::Inform {
         if pos.contains("\nEC00000=") {
             group += ",ST1";
         }
+        let d = crate::program::generate::date::stamp().unwrap_or(Stamp::at(0));
         let text = format!(
-            "/JOB\n//NAME {name}\n//POS\n{pos}//INST\n///ATTR SC,RW\n///GROUP1 {group}\nNOP\n{header}{inst}END\n"
+            "/JOB\n//NAME {name}\n//POS\n{pos}//INST\n///DATE {:04}/{:02}/{:02} {:02}:{:02}\n///COMM {COMM}\n///ATTR SC,RW\n///GROUP1 {group}\nNOP\n{header}{inst}END\n",
+            d.year, d.month, d.day, d.time.0, d.time.1
         );
         text.replace('\n', "\r\n")
     }

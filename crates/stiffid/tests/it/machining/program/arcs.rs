@@ -214,7 +214,7 @@ fn setup() -> Setup {
 
 /// The targets of the setup's robot at the part-frame points `points` (the tool down), by its
 /// inverse kinematics from the start.
-fn robot_targets(s: &Setup, points: &[Vector3<f64>]) -> Vec<Target> {
+pub(super) fn robot_targets(s: &Setup, points: &[Vector3<f64>]) -> Vec<Target> {
     let (robot, tcp, part) = (s.robot(), s.tool().tcp, *s.workpiece().unwrap());
     let down = UnitQuaternion::from_euler_angles(std::f64::consts::PI, 0.0, 0.0);
     let mut q = Options::for_setup(s).q0;
@@ -246,6 +246,7 @@ fn plan<'a>(
         world: Isometry3::identity(),
         external: None,
         approximation: 1e-5,
+        numbers: Default::default(),
         pulses,
         settings: Settings::default(),
     }

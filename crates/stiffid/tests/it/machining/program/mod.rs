@@ -3,8 +3,10 @@
 mod arcs;
 mod cartesian;
 mod generate;
+mod headers;
 mod inform;
 mod inform_jobs;
+mod numbered;
 mod krl;
 pub(crate) mod rapid;
 mod speed;
