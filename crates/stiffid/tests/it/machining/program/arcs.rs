@@ -294,6 +294,16 @@ fn each_language_writes_its_circular_moves_and_reads_them_back() {
         let p = plan(&s, dialect, (&written, &c.moves), Some(&pulses));
         let text = generate(&p).unwrap().files.remove(0).text;
         assert_eq!(text.matches(circular).count(), count, "{dialect:?}: {text}");
+        if dialect == Dialect::FanucLs {
+            // The LS reader of the corpus's tests (string searches, not stiffid's): the via
+            // point and the end of each `C`, in order, each the written target's world position.
+            let read = crate::ls_corpus::independent(&text);
+            assert_eq!(read.len(), written.len());
+            for (r, w) in read.iter().zip(&written) {
+                let p = Vector3::new(r.values[0], r.values[1], r.values[2]) * 1e-3;
+                assert!((p - w.pose.translation.vector).norm() < 1e-11, "{r:?}");
+            }
+        }
         let back = match dialect {
             Dialect::Inform => {
                 let context = Context {

@@ -105,6 +105,17 @@ fn a_tool_and_base_the_controller_holds_are_selected_by_number_and_read_back() {
         for form in forms {
             assert!(text.contains(form), "{dialect:?}: {form} in {text}");
         }
+        if dialect == Dialect::FanucLs {
+            // The corpus tests' independent LS reader: user frame 2, tool frame 3, each
+            // position the target's in user frame 2.
+            let base = *s.workcell().controller().bases.get(2).unwrap();
+            for (r, w) in crate::ls_corpus::independent(&text).iter().zip(&t) {
+                assert_eq!(r.frames, (2, 3));
+                let p = Vector3::new(r.values[0], r.values[1], r.values[2]) * 1e-3;
+                let want = base.inverse() * w.pose;
+                assert!((p - want.translation.vector).norm() < 1e-11, "{r:?}");
+            }
+        }
         let back = read_back(&s, dialect, &text, &pulses);
         assert_eq!(back.len(), t.len(), "{dialect:?}");
         for (b, w) in back.iter().zip(&t) {
