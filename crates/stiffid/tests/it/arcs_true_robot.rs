@@ -77,15 +77,18 @@ fn on_circle(
 ) -> (Vector3<f64>, f64) {
     let (a, b) = (s - e, v - e);
     let ab = a.cross(&b);
-    let centre = e + (b * a.norm_squared() - a * b.norm_squared()).cross(&ab)
-        / (2.0 * ab.norm_squared());
+    let centre =
+        e + (b * a.norm_squared() - a * b.norm_squared()).cross(&ab) / (2.0 * ab.norm_squared());
     let n = (v - s).cross(&(e - v)).normalize();
     let r = (s - centre).norm();
     let d = p - centre;
     let d = d - n * n.dot(&d);
     let angle = |x: &Vector3<f64>| {
         let (u, x) = (s - centre, x - centre);
-        u.cross(&x).dot(&n).atan2(u.dot(&x)).rem_euclid(std::f64::consts::TAU)
+        u.cross(&x)
+            .dot(&n)
+            .atan2(u.dot(&x))
+            .rem_euclid(std::f64::consts::TAU)
     };
     let point = centre + d.normalize() * r;
     (point, angle(&point) / angle(e))
@@ -93,7 +96,11 @@ fn on_circle(
 
 /// Per compensated point, where the controller running `krl` commands the tool (base frame):
 /// a target of the program where the point is one, else the circle's point nearest it.
-fn commanded(krl: &str, part: &Isometry3<f64>, compensated: &[Isometry3<f64>]) -> Vec<Isometry3<f64>> {
+fn commanded(
+    krl: &str,
+    part: &Isometry3<f64>,
+    compensated: &[Isometry3<f64>],
+) -> Vec<Isometry3<f64>> {
     let motions = motions(krl);
     let mut k = 0;
     let mut out = Vec::new();
@@ -113,7 +120,12 @@ fn commanded(krl: &str, part: &Isometry3<f64>, compensated: &[Isometry3<f64>]) -
             panic!("a compensated point off the program's motions: {local:?}");
         };
         let s = motions[k - 1].end();
-        let (p, t) = on_circle(&s.translation.vector, v, &e.translation.vector, &local.translation.vector);
+        let (p, t) = on_circle(
+            &s.translation.vector,
+            v,
+            &e.translation.vector,
+            &local.translation.vector,
+        );
         let r = s.rotation.slerp(&e.rotation, t);
         out.push(part * Isometry3::from_parts(Translation3::from(p), r));
     }

@@ -86,12 +86,7 @@ fn a_real_program_with_work_offset_tool_lengths_and_arcs_lands_on_the_true_robot
     ] {
         let (program, process) = (corpus(name), corpus(process));
         let output = (Language::Robot(Dialect::Krl), Targets::Joint);
-        let (krl, results) = written_with(
-            &setup,
-            &compliance,
-            (&q0, &program, &process),
-            output,
-        );
+        let (krl, results) = written_with(&setup, &compliance, (&q0, &program, &process), output);
         let qs = joint_targets(&krl);
         assert_eq!(qs.len(), results.len());
         assert!(results.len() > at_least, "{name}: {}", results.len());

@@ -94,11 +94,15 @@ fn matched(reference: &Report, robot: &Report, text: &str) -> (f64, f64) {
     let lines: Vec<&str> = text.lines().collect();
     let circular = |line: u64| {
         let l = lines[line as usize - 1].trim();
-        let body = l.split_once(':').map_or(l, |(n, b)| match n.trim().parse::<u64>() {
-            Ok(_) => b,
-            Err(_) => l,
-        });
-        ["CIRC ", "MoveC ", "C P[", ":"].iter().any(|m| body.trim_start().starts_with(m))
+        let body = l
+            .split_once(':')
+            .map_or(l, |(n, b)| match n.trim().parse::<u64>() {
+                Ok(_) => b,
+                Err(_) => l,
+            });
+        ["CIRC ", "MoveC ", "C P[", ":"]
+            .iter()
+            .any(|m| body.trim_start().starts_with(m))
     };
     let mut j = 0;
     let (mut wrench, mut bound) = (0.0f64, 0.0f64);
@@ -115,7 +119,11 @@ fn matched(reference: &Report, robot: &Report, text: &str) -> (f64, f64) {
         wrench = wrench.max((reference.points[found].wrench - p.wrench).amax());
         bound = bound.max((reference.results[found].budget.bound - r.budget.bound).abs());
     }
-    assert!(shared > robot.points.len() / 2, "{shared} of {}", robot.points.len());
+    assert!(
+        shared > robot.points.len() / 2,
+        "{shared} of {}",
+        robot.points.len()
+    );
     (wrench, bound)
 }
 

@@ -30,7 +30,10 @@ pub(super) fn circular(
             (compensated.results.iter().zip(&compensated.points))
                 .map(|(r, p)| {
                     let e = values(r, p);
-                    Target::at(robot, tcp, &r.q_compensated, e).pose.translation.vector
+                    Target::at(robot, tcp, &r.q_compensated, e)
+                        .pose
+                        .translation
+                        .vector
                 })
                 .collect(),
         ),
@@ -63,7 +66,10 @@ fn identity(n: usize, moves: &[Move]) -> Circular {
 
 /// The external axes' values of a compensated point (SI): those the compensation chose (a free
 /// station), else the program's.
-pub(super) fn values<'a>(r: &'a crate::compensate::Compensated, p: &'a crate::compensate::PathPoint) -> &'a [f64] {
+pub(super) fn values<'a>(
+    r: &'a crate::compensate::Compensated,
+    p: &'a crate::compensate::PathPoint,
+) -> &'a [f64] {
     match r.external.is_empty() {
         true => p.external.as_slice(),
         false => r.external.as_slice(),

@@ -165,7 +165,9 @@ fn write_robot_program(
 /// ([`generate::numbered`]).
 fn numbers(setup: &Setup) -> generate::numbered::Numbers {
     let c = setup.workcell().controller();
-    let part = c.world.inv_mul(&setup.workpiece().copied().unwrap_or_default());
+    let part = c
+        .world
+        .inv_mul(&setup.workpiece().copied().unwrap_or_default());
     generate::numbered::Numbers::of((&c.tools, &c.bases), &program_tool(setup).frame, &part)
 }
 

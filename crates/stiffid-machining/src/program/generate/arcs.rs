@@ -110,8 +110,8 @@ impl Circle {
         if xy.norm() <= 1e-9 * x.norm() * y.norm() || turn.norm() == 0.0 {
             return None;
         }
-        let centre =
-            c + (y * x.norm_squared() - x * y.norm_squared()).cross(&xy) / (2.0 * xy.norm_squared());
+        let centre = c
+            + (y * x.norm_squared() - x * y.norm_squared()).cross(&xy) / (2.0 * xy.norm_squared());
         let radius = (a - centre).norm();
         Some(Circle {
             centre,
@@ -206,9 +206,8 @@ fn still(range: &Range<usize>, targets: &[Target], moves: &[Move]) -> bool {
     let first = &targets[range.start].external;
     let feed = moves[range.start + 1];
     (range.clone().skip(1)).all(|i| moves[i] == feed && matches!(feed, Move::Feed(_)))
-        && (range.clone()).all(|i| {
-            (targets[i].external.iter().zip(first)).all(|(a, b)| (a - b).abs() <= 1e-9)
-        })
+        && (range.clone())
+            .all(|i| (targets[i].external.iter().zip(first)).all(|(a, b)| (a - b).abs() <= 1e-9))
 }
 
 /// The program's targets with the arcs `arcs` written as circular moves of `form` where they
@@ -278,7 +277,9 @@ fn warnings(circular: usize, chords: &[(u64, Chords)], tolerance: f64) -> Vec<St
     if chords.is_empty() {
         return Vec::new();
     }
-    let lines: Vec<String> = (chords.iter().take(8)).map(|(l, _)| l.to_string()).collect();
+    let lines: Vec<String> = (chords.iter().take(8))
+        .map(|(l, _)| l.to_string())
+        .collect();
     let more = match chords.len() > 8 {
         true => format!(" and {} more", chords.len() - 8),
         false => String::new(),
@@ -370,7 +371,9 @@ pub fn whole(moves: &[Move], form: Option<Form>) -> bool {
         let before = i.checked_sub(1).map(|j| moves[j]);
         let after = moves.get(i + 1).copied();
         match moves[i] {
-            Move::ArcStart(_) => form == Form::StartViaEnd && matches!(after, Some(Move::ArcVia(_))),
+            Move::ArcStart(_) => {
+                form == Form::StartViaEnd && matches!(after, Some(Move::ArcVia(_)))
+            }
             Move::ArcVia(_) => {
                 matches!(after, Some(Move::ArcEnd(_)))
                     && (form == Form::ViaEnd || matches!(before, Some(Move::ArcStart(_))))

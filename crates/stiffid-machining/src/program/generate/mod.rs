@@ -409,7 +409,12 @@ pub fn generate(plan: &Plan) -> Result<Written> {
     let chunks: Vec<&[Target]> = files.iter().map(|r| &plan.targets[r.clone()]).collect();
     // A file ends before a circular move it cannot hold whole: one more file, maybe.
     let names = match chunks.len() > 1 && names.len() != chunks.len() + 1 {
-        true => check_plan(plan.dialect, plan.name, &plan.settings, chunks.len() * per_file)?,
+        true => check_plan(
+            plan.dialect,
+            plan.name,
+            &plan.settings,
+            chunks.len() * per_file,
+        )?,
         false => names,
     };
     let mut written = Written {

@@ -37,7 +37,11 @@ pub(crate) fn header(plan: &Plan) -> String {
             );
         }
         let base = (plan.numbers.base).map(|(n, _)| format!("BASE_DATA[{n}]"));
-        let _ = writeln!(s, "$BASE = {}", base.unwrap_or(frame(&plan.world.inv_mul(&plan.work))));
+        let _ = writeln!(
+            s,
+            "$BASE = {}",
+            base.unwrap_or(frame(&plan.world.inv_mul(&plan.work)))
+        );
     }
     s
 }

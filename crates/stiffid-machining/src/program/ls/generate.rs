@@ -112,7 +112,10 @@ pub(crate) fn body(plan: &Plan, part: &Part, warnings: &mut Vec<String>) -> Resu
             Targets::Cartesian => {
                 // In the user frame the controller holds the part frame in, else the world.
                 let user = plan.numbers.base.map_or(Isometry3::identity(), |(_, f)| f);
-                let (p, rotation) = in_world(plan, &(plan.world * user.inverse() * plan.world.inverse() * t.pose));
+                let (p, rotation) = in_world(
+                    plan,
+                    &(plan.world * user.inverse() * plan.world.inverse() * t.pose),
+                );
                 let [r, pitch, w] = zyx_deg(&rotation);
                 write!(
                     pos,
@@ -183,7 +186,10 @@ pub(crate) fn wrap(name: &str, header: &str, body: &str) -> String {
         };
         let _ = writeln!(lines, "{number:>4}:{pad}{line}");
     }
-    format!("/PROG  {name}\n{}/MN\n{lines}/POS\n{pos}/END\n", attributes(groups, number))
+    format!(
+        "/PROG  {name}\n{}/MN\n{lines}/POS\n{pos}/END\n",
+        attributes(groups, number)
+    )
 }
 
 /// The `/ATTR` section as the controller writes it (the corpus's programs; FANUC R-30iB

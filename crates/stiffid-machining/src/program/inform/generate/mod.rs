@@ -10,11 +10,11 @@
 //! group (the positioner's, `EC00000`) are written in pulses with `external_pulses`, else in
 //! `///ANGLE` form (mm, deg).
 
+use crate::program::generate::date::Stamp;
 use crate::program::generate::{
     missing_pulses, number, stated_feed, v, zyx_deg, Move, Part, Plan, Target, Targets,
     RAPID_PERCENT,
 };
-use crate::program::generate::date::Stamp;
 use crate::program::{whole_pulses, Generator};
 use std::fmt::Write;
 use stiffid_core::robot::external::Role;

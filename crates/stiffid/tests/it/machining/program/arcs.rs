@@ -325,7 +325,11 @@ fn each_language_writes_its_circular_moves_and_reads_them_back() {
         };
         assert_eq!(back.len(), written.len(), "{dialect:?}");
         // INFORM rounds to whole pulses; the others state 9 decimals.
-        let within = if dialect == Dialect::Inform { 1e-3 } else { 1e-6 };
+        let within = if dialect == Dialect::Inform {
+            1e-3
+        } else {
+            1e-6
+        };
         for (b, w) in back.iter().zip(&written) {
             let off = (Vector6::from(b.q_deg) - Vector6::from(w.q_deg)).amax();
             assert!(off <= within, "{dialect:?}: {off} deg");

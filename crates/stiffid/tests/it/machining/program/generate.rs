@@ -1,12 +1,12 @@
 //! Programs generated for each controller (`stiffid_machining::program::generate`).
 
-use stiffid_machining::program::krl::KSS_HEADER;
 use nalgebra::{Isometry3, Vector3, Vector6};
 use nalgebra::{Translation3, UnitQuaternion};
 use stiffid_core::common::error::JobOption;
 use stiffid_core::robot::presets;
 use stiffid_core::{Error, Robot};
 use stiffid_machining::program::generate::*;
+use stiffid_machining::program::krl::KSS_HEADER;
 use stiffid_machining::program::ls::generate as ls;
 use stiffid_machining::program::Dialect;
 

@@ -29,7 +29,10 @@ fn a_date_is_the_calendars() {
 
 fn texts() -> Vec<(Dialect, String)> {
     let s = stiffid::setup::parse(SETUP, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap();
-    let points = [Vector3::new(0.0, 0.0, -0.004), Vector3::new(0.05, 0.0, -0.004)];
+    let points = [
+        Vector3::new(0.0, 0.0, -0.004),
+        Vector3::new(0.05, 0.0, -0.004),
+    ];
     let t = robot_targets(&s, &points);
     let m = [Move::Rapid, Move::Feed(0.02)];
     let pulses = Pulses {
@@ -69,7 +72,10 @@ fn generated_programs_carry_the_headers_their_controllers_write() {
     let krl = &texts[0].1;
     assert!(krl.starts_with("&ACCESS RVP\n&REL 1\n&PARAM TEMPLATE = C:\\KRC\\Roboter\\Template\\vorgabe\n&PARAM EDITMASK = *\nDEF HEAD( )\n"), "{krl}");
     let ls = &texts[1].1;
-    let numbered = ls.lines().filter(|l| l.len() > 5 && l[..4].trim().parse::<u32>().is_ok() && &l[4..5] == ":").count();
+    let numbered = ls
+        .lines()
+        .filter(|l| l.len() > 5 && l[..4].trim().parse::<u32>().is_ok() && &l[4..5] == ":")
+        .count();
     let attr = format!("/PROG  HEAD\n/ATTR\nOWNER\t\t= MNEDITOR;\nCOMMENT\t\t= \"stiffid\";\nPROG_SIZE\t= 0;\nCREATE\t\t= DATE 70-01-01  TIME 00:00:00;\nMODIFIED\t= DATE 70-01-01  TIME 00:00:00;\nFILE_NAME\t= ;\nVERSION\t\t= 0;\nLINE_COUNT\t= {numbered};\nMEMORY_SIZE\t= 0;\nPROTECT\t\t= READ_WRITE;\nTCD:  STACK_SIZE\t= 0,\n      TASK_PRIORITY\t= 50,\n      TIME_SLICE\t= 0,\n      BUSY_LAMP_OFF\t= 0,\n      ABORT_REQUEST\t= 0,\n      PAUSE_REQUEST\t= 0;\nDEFAULT_GROUP\t= 1,*,*,*,*;\nCONTROL_CODE\t= 00000000 00000000;\n/MN\n");
     assert!(ls.starts_with(&attr), "{ls}");
     assert_eq!(numbered, 11, "{ls}");
@@ -93,5 +99,11 @@ fn generated_programs_carry_the_headers_their_controllers_write() {
         data: None,
         machine: None,
     };
-    assert_eq!(parse_in(jbi, Dialect::Inform, &context).unwrap().targets.len(), 2);
+    assert_eq!(
+        parse_in(jbi, Dialect::Inform, &context)
+            .unwrap()
+            .targets
+            .len(),
+        2
+    );
 }

@@ -6,7 +6,7 @@ mod generate;
 mod headers;
 mod inform;
 mod inform_jobs;
-mod numbered;
 mod krl;
+mod numbered;
 pub(crate) mod rapid;
 mod speed;

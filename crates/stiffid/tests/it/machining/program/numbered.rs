@@ -23,7 +23,13 @@ fn setup(tool: &str, base: &str) -> Setup {
     stiffid::setup::parse(&text, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap()
 }
 
-fn plan<'a>(s: &Setup, dialect: Dialect, t: &'a [Target], m: &'a [Move], p: &'a Pulses) -> Plan<'a> {
+fn plan<'a>(
+    s: &Setup,
+    dialect: Dialect,
+    t: &'a [Target],
+    m: &'a [Move],
+    p: &'a Pulses,
+) -> Plan<'a> {
     let tool = Isometry3::from(Translation3::from(s.tool().tcp));
     let c = s.workcell().controller();
     let work = *s.workpiece().unwrap();
@@ -92,16 +98,28 @@ fn a_tool_and_base_the_controller_holds_are_selected_by_number_and_read_back() {
         external: Vec::new(),
     };
     let cases: [(Dialect, &[&str], f64); 3] = [
-        (Dialect::Krl, &["$TOOL = TOOL_DATA[3]\n", "$BASE = BASE_DATA[2]\n"], 1e-6),
+        (
+            Dialect::Krl,
+            &["$TOOL = TOOL_DATA[3]\n", "$BASE = BASE_DATA[2]\n"],
+            1e-6,
+        ),
         (
             Dialect::FanucLs,
             &["  UFRAME_NUM=2 ;\n", "  UTOOL_NUM=3 ;\n", "UF : 2, UT : 3,"],
             1e-6,
         ),
-        (Dialect::Inform, &["///TOOL 3\r\n", "'set tool file 3 to the tool:"], 1e-3),
+        (
+            Dialect::Inform,
+            &["///TOOL 3\r\n", "'set tool file 3 to the tool:"],
+            1e-3,
+        ),
     ];
     for (dialect, forms, within) in cases {
-        let text = generate(&plan(&s, dialect, &t, &m, &pulses)).unwrap().files.remove(0).text;
+        let text = generate(&plan(&s, dialect, &t, &m, &pulses))
+            .unwrap()
+            .files
+            .remove(0)
+            .text;
         for form in forms {
             assert!(text.contains(form), "{dialect:?}: {form} in {text}");
         }
@@ -137,8 +155,21 @@ fn frames_the_controller_does_not_hold_are_stated() {
     let p = plan(&s, Dialect::Krl, &t, &m, &pulses);
     assert_eq!(p.numbers, Numbers::default());
     let krl = generate(&p).unwrap().files.remove(0).text;
-    assert!(krl.contains("$TOOL = {X 6.9, Y 245.3, Z 319.3, A 0, B 0, C 0}\n"), "{krl}");
-    assert!(krl.contains("$BASE = {X 1300, Y -700, Z 400, A 0, B 0, C 0}\n"), "{krl}");
-    let ls = generate(&plan(&s, Dialect::FanucLs, &t, &m, &pulses)).unwrap().files.remove(0).text;
-    assert!(ls.contains("  UFRAME_NUM=0 ;\n") && ls.contains("UF : 0, UT : 1,"), "{ls}");
+    assert!(
+        krl.contains("$TOOL = {X 6.9, Y 245.3, Z 319.3, A 0, B 0, C 0}\n"),
+        "{krl}"
+    );
+    assert!(
+        krl.contains("$BASE = {X 1300, Y -700, Z 400, A 0, B 0, C 0}\n"),
+        "{krl}"
+    );
+    let ls = generate(&plan(&s, Dialect::FanucLs, &t, &m, &pulses))
+        .unwrap()
+        .files
+        .remove(0)
+        .text;
+    assert!(
+        ls.contains("  UFRAME_NUM=0 ;\n") && ls.contains("UF : 0, UT : 1,"),
+        "{ls}"
+    );
 }
