@@ -328,8 +328,14 @@ fn a_gcode_pocket_becomes_a_compensated_fanuc_ls_program_with_its_report() {
     let points = r["points"].as_array().unwrap();
     let positions = text.matches("GP1:").count();
     let circles = text.matches(":C P[").count();
-    assert!(circles >= 1 && positions < points.len(), "{circles} {positions}");
-    assert_eq!(text.matches("CONFIG : 'N U T, 0, 0, 0',").count(), positions);
+    assert!(
+        circles >= 1 && positions < points.len(),
+        "{circles} {positions}"
+    );
+    assert_eq!(
+        text.matches("CONFIG : 'N U T, 0, 0, 0',").count(),
+        positions
+    );
     // Linear moves at the program's feed (F1800 mm/min, the plunges F300) where it cuts; the
     // first point and the rapid moves are joint motions, exact; the last point is exact.
     assert!(

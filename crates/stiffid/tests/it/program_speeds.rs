@@ -57,23 +57,30 @@ fn the_written_programs_state_the_feed_of_every_move() {
             }
             out
         };
-        let want = runs((g.points.iter())
-            .map(|point| match point.motion {
-                Motion::Rapid => None,
-                Motion::Feed => point.feed,
-            })
-            .collect());
-        let got = runs((p.targets.iter())
-            .map(|t| match &t.speed {
-                Speed::Joint => None,
-                Speed::Path(v) => Some(*v),
-                other => panic!("{dialect:?} line {}: {other:?}", t.line),
-            })
-            .collect());
+        let want = runs(
+            (g.points.iter())
+                .map(|point| match point.motion {
+                    Motion::Rapid => None,
+                    Motion::Feed => point.feed,
+                })
+                .collect(),
+        );
+        let got = runs(
+            (p.targets.iter())
+                .map(|t| match &t.speed {
+                    Speed::Joint => None,
+                    Speed::Path(v) => Some(*v),
+                    other => panic!("{dialect:?} line {}: {other:?}", t.line),
+                })
+                .collect(),
+        );
         assert_eq!(got.len(), want.len(), "{dialect:?}");
         for (a, b) in got.iter().zip(&want) {
             assert_eq!(a.is_some(), b.is_some(), "{dialect:?}");
-            assert!((a.unwrap_or(0.0) - b.unwrap_or(0.0)).abs() < 1e-12, "{dialect:?}");
+            assert!(
+                (a.unwrap_or(0.0) - b.unwrap_or(0.0)).abs() < 1e-12,
+                "{dialect:?}"
+            );
         }
     }
 }

@@ -170,10 +170,14 @@ fn turning(p: &[Vector3<f64>]) -> f64 {
         .sum()
 }
 
+/// A piece of an arc: its `[start, via, end]` indices and how far its points lie off its circle
+/// beyond the tolerance (m; `None`: within it).
+type Piece = ([usize; 3], Option<f64>);
+
 /// The pieces of an arc of points `p` (its start first, its end last) as `[start, via, end]`
 /// indices into `p`, each with how far its points lie off its circle (m; `None`: within
 /// `tolerance`, a circular move), or why the arc is written as chords.
-fn pieces(p: &[Vector3<f64>], tolerance: f64) -> Result<Vec<([usize; 3], Option<f64>)>, Chords> {
+fn pieces(p: &[Vector3<f64>], tolerance: f64) -> Result<Vec<Piece>, Chords> {
     let m = p.len() - 1;
     if m < 2 {
         return Err(Chords::Short);
@@ -304,7 +308,7 @@ fn warnings(circular: usize, chords: &[(u64, Chords)], tolerance: f64) -> Vec<St
 }
 
 /// The largest distance off its circle of the pieces written as chords, m.
-fn largest(pieces: &[([usize; 3], Option<f64>)]) -> f64 {
+fn largest(pieces: &[Piece]) -> f64 {
     (pieces.iter().filter_map(|(_, off)| *off)).fold(0.0, f64::max)
 }
 
