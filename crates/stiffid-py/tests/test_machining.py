@@ -128,7 +128,16 @@ def test_an_inform_job_in_pulses_equals_the_command(cli, tmp_path):
         positions += [[int(v) for v in line.split("=")[1].split(",")]
                       for line in text.split("\r\n") if line.startswith("C0")]
     compensated = np.array([[p[f"qc{k}_deg"] for k in range(1, 7)] for p in theirs["points"]])
-    np.testing.assert_allclose(np.array(positions) / pulses, compensated, rtol=0, atol=0.5 / min(pulses) + 1e-6)
+    # Each position is a point's compensated angles to half a pulse, in path order: the arcs
+    # written as MOVC leave their other chord points out, a taught arc start repeats the point
+    # before it.
+    positions = np.array(positions) / pulses
+    assert len(positions) < len(compensated)
+    at = 0
+    for p in positions:
+        close = np.abs(compensated[max(at - 1, 0):] - p).max(axis=1) <= 0.5 / min(pulses) + 1e-6
+        assert close.any(), p
+        at = max(at - 1, 0) + int(np.argmax(close)) + 1
     with pytest.raises(ValueError, match=r"controller.pulses_per_deg: missing"):
         stiffid.compensate(stiffid.Setup.from_file(SETUP), stiffness=STIFFNESS, program=POCKET, process=PROCESS,
                            output="inform")
