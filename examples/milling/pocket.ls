@@ -1,7 +1,23 @@
 /PROG  POCKET
 /ATTR
+OWNER		= MNEDITOR;
 COMMENT		= "stiffid";
+PROG_SIZE	= 0;
+CREATE		= DATE 70-01-01  TIME 00:00:00;
+MODIFIED	= DATE 70-01-01  TIME 00:00:00;
+FILE_NAME	= ;
+VERSION		= 0;
+LINE_COUNT	= 193;
+MEMORY_SIZE	= 0;
+PROTECT		= READ_WRITE;
+TCD:  STACK_SIZE	= 0,
+      TASK_PRIORITY	= 50,
+      TIME_SLICE	= 0,
+      BUSY_LAMP_OFF	= 0,
+      ABORT_REQUEST	= 0,
+      PAUSE_REQUEST	= 0;
 DEFAULT_GROUP	= 1,*,*,*,*;
+CONTROL_CODE	= 00000000 00000000;
 /MN
    1:  ! set UTOOL[1] to the tool: ;
    2:  ! UT1 X = 6.9 mm ;
@@ -29,365 +45,181 @@ DEFAULT_GROUP	= 1,*,*,*,*;
   24:L P[13] 30mm/sec CNT100 ;
   25:L P[14] 30mm/sec CNT100 ;
   26:L P[15] 30mm/sec CNT100 ;
-  27:L P[16] 30mm/sec CNT100 ;
-  28:L P[17] 30mm/sec CNT100 ;
-  29:L P[18] 30mm/sec CNT100 ;
-  30:L P[19] 30mm/sec CNT100 ;
-  31:L P[20] 30mm/sec CNT100 ;
-  32:L P[21] 30mm/sec CNT100 ;
-  33:L P[22] 30mm/sec CNT100 ;
-  34:L P[23] 30mm/sec CNT100 ;
-  35:L P[24] 30mm/sec CNT100 ;
-  36:L P[25] 30mm/sec CNT100 ;
-  37:L P[26] 30mm/sec CNT100 ;
-  38:L P[27] 30mm/sec CNT100 ;
-  39:L P[28] 30mm/sec CNT100 ;
-  40:L P[29] 30mm/sec CNT100 ;
-  41:L P[30] 30mm/sec CNT100 ;
-  42:L P[31] 30mm/sec CNT100 ;
-  43:L P[32] 30mm/sec CNT100 ;
-  44:L P[33] 30mm/sec CNT100 ;
-  45:L P[34] 30mm/sec CNT100 ;
-  46:L P[35] 30mm/sec CNT100 ;
-  47:L P[36] 30mm/sec CNT100 ;
-  48:L P[37] 30mm/sec CNT100 ;
-  49:L P[38] 30mm/sec CNT100 ;
-  50:L P[39] 30mm/sec CNT100 ;
-  51:L P[40] 30mm/sec CNT100 ;
-  52:L P[41] 30mm/sec CNT100 ;
-  53:L P[42] 30mm/sec CNT100 ;
-  54:L P[43] 30mm/sec CNT100 ;
-  55:L P[44] 30mm/sec CNT100 ;
-  56:L P[45] 30mm/sec CNT100 ;
-  57:L P[46] 30mm/sec CNT100 ;
-  58:L P[47] 30mm/sec CNT100 ;
-  59:L P[48] 30mm/sec CNT100 ;
-  60:L P[49] 30mm/sec CNT100 ;
-  61:L P[50] 30mm/sec CNT100 ;
-  62:L P[51] 30mm/sec CNT100 ;
-  63:L P[52] 30mm/sec CNT100 ;
-  64:L P[53] 30mm/sec CNT100 ;
-  65:L P[54] 30mm/sec CNT100 ;
-  66:L P[55] 30mm/sec CNT100 ;
-  67:L P[56] 30mm/sec CNT100 ;
-  68:L P[57] 30mm/sec CNT100 ;
-  69:L P[58] 30mm/sec CNT100 ;
-  70:L P[59] 30mm/sec CNT100 ;
-  71:L P[60] 30mm/sec CNT100 ;
-  72:L P[61] 30mm/sec CNT100 ;
-  73:L P[62] 30mm/sec CNT100 ;
-  74:L P[63] 30mm/sec CNT100 ;
-  75:L P[64] 30mm/sec CNT100 ;
-  76:L P[65] 30mm/sec CNT100 ;
-  77:L P[66] 30mm/sec CNT100 ;
-  78:L P[67] 30mm/sec CNT100 ;
-  79:L P[68] 30mm/sec CNT100 ;
-  80:L P[69] 30mm/sec CNT100 ;
-  81:L P[70] 30mm/sec CNT100 ;
-  82:L P[71] 30mm/sec CNT100 ;
-  83:L P[72] 30mm/sec CNT100 ;
-  84:L P[73] 30mm/sec CNT100 ;
-  85:L P[74] 30mm/sec CNT100 ;
-  86:L P[75] 30mm/sec CNT100 ;
-  87:L P[76] 30mm/sec CNT100 ;
-  88:L P[77] 30mm/sec CNT100 ;
-  89:L P[78] 30mm/sec CNT100 ;
-  90:L P[79] 30mm/sec CNT100 ;
-  91:L P[80] 30mm/sec CNT100 ;
-  92:L P[81] 30mm/sec CNT100 ;
-  93:L P[82] 30mm/sec CNT100 ;
-  94:L P[83] 30mm/sec CNT100 ;
-  95:L P[84] 30mm/sec CNT100 ;
-  96:L P[85] 30mm/sec CNT100 ;
-  97:L P[86] 30mm/sec CNT100 ;
-  98:L P[87] 30mm/sec CNT100 ;
-  99:L P[88] 30mm/sec CNT100 ;
- 100:L P[89] 30mm/sec CNT100 ;
- 101:L P[90] 30mm/sec CNT100 ;
- 102:L P[91] 30mm/sec CNT100 ;
- 103:L P[92] 30mm/sec CNT100 ;
- 104:L P[93] 30mm/sec CNT100 ;
- 105:L P[94] 30mm/sec CNT100 ;
- 106:L P[95] 30mm/sec CNT100 ;
- 107:L P[96] 30mm/sec CNT100 ;
- 108:L P[97] 30mm/sec CNT100 ;
- 109:L P[98] 30mm/sec CNT100 ;
- 110:L P[99] 30mm/sec CNT100 ;
- 111:L P[100] 30mm/sec CNT100 ;
- 112:L P[101] 30mm/sec CNT100 ;
- 113:L P[102] 30mm/sec CNT100 ;
- 114:L P[103] 30mm/sec CNT100 ;
- 115:L P[104] 30mm/sec CNT100 ;
- 116:L P[105] 30mm/sec CNT100 ;
- 117:L P[106] 30mm/sec CNT100 ;
- 118:L P[107] 30mm/sec CNT100 ;
- 119:L P[108] 30mm/sec CNT100 ;
- 120:L P[109] 30mm/sec CNT100 ;
- 121:L P[110] 30mm/sec CNT100 ;
- 122:L P[111] 30mm/sec CNT100 ;
- 123:L P[112] 30mm/sec CNT100 ;
- 124:L P[113] 30mm/sec CNT100 ;
- 125:L P[114] 30mm/sec CNT100 ;
- 126:L P[115] 30mm/sec CNT100 ;
- 127:L P[116] 30mm/sec CNT100 ;
- 128:L P[117] 30mm/sec CNT100 ;
- 129:L P[118] 30mm/sec CNT100 ;
- 130:L P[119] 30mm/sec CNT100 ;
- 131:L P[120] 30mm/sec CNT100 ;
- 132:L P[121] 30mm/sec CNT100 ;
- 133:L P[122] 30mm/sec CNT100 ;
- 134:L P[123] 30mm/sec CNT100 ;
- 135:L P[124] 30mm/sec CNT100 ;
- 136:L P[125] 30mm/sec CNT100 ;
- 137:L P[126] 30mm/sec CNT100 ;
- 138:L P[127] 30mm/sec CNT100 ;
- 139:L P[128] 30mm/sec CNT100 ;
- 140:L P[129] 30mm/sec CNT100 ;
- 141:L P[130] 30mm/sec CNT100 ;
- 142:L P[131] 30mm/sec CNT100 ;
- 143:L P[132] 30mm/sec CNT100 ;
- 144:L P[133] 30mm/sec CNT100 ;
- 145:L P[134] 30mm/sec CNT100 ;
- 146:L P[135] 30mm/sec CNT100 ;
- 147:L P[136] 30mm/sec CNT100 ;
- 148:L P[137] 30mm/sec CNT100 ;
- 149:L P[138] 30mm/sec CNT100 ;
- 150:L P[139] 30mm/sec CNT100 ;
- 151:L P[140] 30mm/sec CNT100 ;
- 152:L P[141] 30mm/sec CNT100 ;
- 153:L P[142] 30mm/sec CNT100 ;
- 154:L P[143] 30mm/sec CNT100 ;
- 155:L P[144] 30mm/sec CNT100 ;
- 156:L P[145] 30mm/sec CNT100 ;
- 157:L P[146] 30mm/sec CNT100 ;
- 158:L P[147] 30mm/sec CNT100 ;
- 159:L P[148] 30mm/sec CNT100 ;
- 160:L P[149] 30mm/sec CNT100 ;
- 161:L P[150] 30mm/sec CNT100 ;
- 162:L P[151] 30mm/sec CNT100 ;
- 163:L P[152] 30mm/sec CNT100 ;
- 164:L P[153] 30mm/sec CNT100 ;
- 165:L P[154] 30mm/sec CNT100 ;
- 166:L P[155] 30mm/sec CNT100 ;
- 167:L P[156] 30mm/sec CNT100 ;
- 168:L P[157] 30mm/sec CNT100 ;
- 169:L P[158] 30mm/sec CNT100 ;
- 170:L P[159] 30mm/sec CNT100 ;
- 171:L P[160] 30mm/sec CNT100 ;
- 172:L P[161] 30mm/sec CNT100 ;
- 173:L P[162] 30mm/sec CNT100 ;
- 174:L P[163] 30mm/sec CNT100 ;
- 175:L P[164] 30mm/sec CNT100 ;
- 176:L P[165] 30mm/sec CNT100 ;
- 177:L P[166] 30mm/sec CNT100 ;
- 178:L P[167] 30mm/sec CNT100 ;
- 179:L P[168] 30mm/sec CNT100 ;
- 180:L P[169] 30mm/sec CNT100 ;
- 181:L P[170] 30mm/sec CNT100 ;
- 182:L P[171] 30mm/sec CNT100 ;
- 183:L P[172] 30mm/sec CNT100 ;
- 184:L P[173] 30mm/sec CNT100 ;
- 185:L P[174] 30mm/sec CNT100 ;
- 186:L P[175] 30mm/sec CNT100 ;
- 187:L P[176] 30mm/sec CNT100 ;
- 188:L P[177] 30mm/sec CNT100 ;
- 189:L P[178] 30mm/sec CNT100 ;
- 190:L P[179] 30mm/sec CNT100 ;
- 191:L P[180] 30mm/sec CNT100 ;
- 192:L P[181] 30mm/sec CNT100 ;
- 193:L P[182] 30mm/sec CNT100 ;
- 194:L P[183] 30mm/sec CNT100 ;
- 195:L P[184] 30mm/sec CNT100 ;
- 196:L P[185] 30mm/sec CNT100 ;
- 197:L P[186] 30mm/sec CNT100 ;
- 198:L P[187] 5mm/sec CNT100 ;
- 199:L P[188] 30mm/sec CNT100 ;
- 200:L P[189] 30mm/sec CNT100 ;
- 201:L P[190] 30mm/sec CNT100 ;
- 202:L P[191] 30mm/sec CNT100 ;
- 203:L P[192] 30mm/sec CNT100 ;
- 204:L P[193] 30mm/sec CNT100 ;
- 205:L P[194] 30mm/sec CNT100 ;
- 206:L P[195] 30mm/sec CNT100 ;
- 207:L P[196] 30mm/sec CNT100 ;
- 208:L P[197] 30mm/sec CNT100 ;
- 209:L P[198] 30mm/sec CNT100 ;
- 210:L P[199] 30mm/sec CNT100 ;
- 211:L P[200] 30mm/sec CNT100 ;
- 212:L P[201] 30mm/sec CNT100 ;
- 213:L P[202] 30mm/sec CNT100 ;
- 214:L P[203] 30mm/sec CNT100 ;
- 215:L P[204] 30mm/sec CNT100 ;
- 216:L P[205] 30mm/sec CNT100 ;
- 217:L P[206] 30mm/sec CNT100 ;
- 218:L P[207] 30mm/sec CNT100 ;
- 219:L P[208] 30mm/sec CNT100 ;
- 220:L P[209] 30mm/sec CNT100 ;
- 221:L P[210] 30mm/sec CNT100 ;
- 222:L P[211] 30mm/sec CNT100 ;
- 223:L P[212] 30mm/sec CNT100 ;
- 224:L P[213] 30mm/sec CNT100 ;
- 225:L P[214] 30mm/sec CNT100 ;
- 226:L P[215] 30mm/sec CNT100 ;
- 227:L P[216] 30mm/sec CNT100 ;
- 228:L P[217] 30mm/sec CNT100 ;
- 229:L P[218] 30mm/sec CNT100 ;
- 230:L P[219] 30mm/sec CNT100 ;
- 231:L P[220] 30mm/sec CNT100 ;
- 232:L P[221] 30mm/sec CNT100 ;
- 233:L P[222] 30mm/sec CNT100 ;
- 234:L P[223] 30mm/sec CNT100 ;
- 235:L P[224] 30mm/sec CNT100 ;
- 236:L P[225] 30mm/sec CNT100 ;
- 237:L P[226] 30mm/sec CNT100 ;
- 238:L P[227] 30mm/sec CNT100 ;
- 239:L P[228] 30mm/sec CNT100 ;
- 240:L P[229] 30mm/sec CNT100 ;
- 241:L P[230] 30mm/sec CNT100 ;
- 242:L P[231] 30mm/sec CNT100 ;
- 243:L P[232] 30mm/sec CNT100 ;
- 244:L P[233] 30mm/sec CNT100 ;
- 245:L P[234] 30mm/sec CNT100 ;
- 246:L P[235] 30mm/sec CNT100 ;
- 247:L P[236] 30mm/sec CNT100 ;
- 248:L P[237] 30mm/sec CNT100 ;
- 249:L P[238] 30mm/sec CNT100 ;
- 250:L P[239] 30mm/sec CNT100 ;
- 251:L P[240] 30mm/sec CNT100 ;
- 252:L P[241] 30mm/sec CNT100 ;
- 253:L P[242] 30mm/sec CNT100 ;
- 254:L P[243] 30mm/sec CNT100 ;
- 255:L P[244] 30mm/sec CNT100 ;
- 256:L P[245] 30mm/sec CNT100 ;
- 257:L P[246] 30mm/sec CNT100 ;
- 258:L P[247] 30mm/sec CNT100 ;
- 259:L P[248] 30mm/sec CNT100 ;
- 260:L P[249] 30mm/sec CNT100 ;
- 261:L P[250] 30mm/sec CNT100 ;
- 262:L P[251] 30mm/sec CNT100 ;
- 263:L P[252] 30mm/sec CNT100 ;
- 264:L P[253] 30mm/sec CNT100 ;
- 265:L P[254] 30mm/sec CNT100 ;
- 266:L P[255] 30mm/sec CNT100 ;
- 267:L P[256] 30mm/sec CNT100 ;
- 268:L P[257] 30mm/sec CNT100 ;
- 269:L P[258] 30mm/sec CNT100 ;
- 270:L P[259] 30mm/sec CNT100 ;
- 271:L P[260] 30mm/sec CNT100 ;
- 272:L P[261] 30mm/sec CNT100 ;
- 273:L P[262] 30mm/sec CNT100 ;
- 274:L P[263] 30mm/sec CNT100 ;
- 275:L P[264] 30mm/sec CNT100 ;
- 276:L P[265] 30mm/sec CNT100 ;
- 277:L P[266] 30mm/sec CNT100 ;
- 278:L P[267] 30mm/sec CNT100 ;
- 279:L P[268] 30mm/sec CNT100 ;
- 280:L P[269] 30mm/sec CNT100 ;
- 281:L P[270] 30mm/sec CNT100 ;
- 282:L P[271] 30mm/sec CNT100 ;
- 283:L P[272] 30mm/sec CNT100 ;
- 284:L P[273] 30mm/sec CNT100 ;
- 285:L P[274] 30mm/sec CNT100 ;
- 286:L P[275] 30mm/sec CNT100 ;
- 287:L P[276] 30mm/sec CNT100 ;
- 288:L P[277] 30mm/sec CNT100 ;
- 289:L P[278] 30mm/sec CNT100 ;
- 290:L P[279] 30mm/sec CNT100 ;
- 291:L P[280] 30mm/sec CNT100 ;
- 292:L P[281] 30mm/sec CNT100 ;
- 293:L P[282] 30mm/sec CNT100 ;
- 294:L P[283] 30mm/sec CNT100 ;
- 295:L P[284] 30mm/sec CNT100 ;
- 296:L P[285] 30mm/sec CNT100 ;
- 297:L P[286] 30mm/sec CNT100 ;
- 298:L P[287] 30mm/sec CNT100 ;
- 299:L P[288] 30mm/sec CNT100 ;
- 300:L P[289] 30mm/sec CNT100 ;
- 301:L P[290] 30mm/sec CNT100 ;
- 302:L P[291] 30mm/sec CNT100 ;
- 303:L P[292] 30mm/sec CNT100 ;
- 304:L P[293] 30mm/sec CNT100 ;
- 305:L P[294] 30mm/sec CNT100 ;
- 306:L P[295] 30mm/sec CNT100 ;
- 307:L P[296] 30mm/sec CNT100 ;
- 308:L P[297] 30mm/sec CNT100 ;
- 309:L P[298] 30mm/sec CNT100 ;
- 310:L P[299] 30mm/sec CNT100 ;
- 311:L P[300] 30mm/sec CNT100 ;
- 312:L P[301] 30mm/sec CNT100 ;
- 313:L P[302] 30mm/sec CNT100 ;
- 314:L P[303] 30mm/sec CNT100 ;
- 315:L P[304] 30mm/sec CNT100 ;
- 316:L P[305] 30mm/sec CNT100 ;
- 317:L P[306] 30mm/sec CNT100 ;
- 318:L P[307] 30mm/sec CNT100 ;
- 319:L P[308] 30mm/sec CNT100 ;
- 320:L P[309] 30mm/sec CNT100 ;
- 321:L P[310] 30mm/sec CNT100 ;
- 322:L P[311] 30mm/sec CNT100 ;
- 323:L P[312] 30mm/sec CNT100 ;
- 324:L P[313] 30mm/sec CNT100 ;
- 325:L P[314] 30mm/sec CNT100 ;
- 326:L P[315] 30mm/sec CNT100 ;
- 327:L P[316] 30mm/sec CNT100 ;
- 328:L P[317] 30mm/sec CNT100 ;
- 329:L P[318] 30mm/sec CNT100 ;
- 330:L P[319] 30mm/sec CNT100 ;
- 331:L P[320] 30mm/sec CNT100 ;
- 332:L P[321] 30mm/sec CNT100 ;
- 333:L P[322] 30mm/sec CNT100 ;
- 334:L P[323] 30mm/sec CNT100 ;
- 335:L P[324] 30mm/sec CNT100 ;
- 336:L P[325] 30mm/sec CNT100 ;
- 337:L P[326] 30mm/sec CNT100 ;
- 338:L P[327] 30mm/sec CNT100 ;
- 339:L P[328] 30mm/sec CNT100 ;
- 340:L P[329] 30mm/sec CNT100 ;
- 341:L P[330] 30mm/sec CNT100 ;
- 342:L P[331] 30mm/sec CNT100 ;
- 343:L P[332] 30mm/sec CNT100 ;
- 344:L P[333] 30mm/sec CNT100 ;
- 345:L P[334] 30mm/sec CNT100 ;
- 346:L P[335] 30mm/sec CNT100 ;
- 347:L P[336] 30mm/sec CNT100 ;
- 348:L P[337] 30mm/sec CNT100 ;
- 349:L P[338] 30mm/sec CNT100 ;
- 350:L P[339] 30mm/sec CNT100 ;
- 351:L P[340] 30mm/sec CNT100 ;
- 352:L P[341] 30mm/sec CNT100 ;
- 353:L P[342] 30mm/sec CNT100 ;
- 354:L P[343] 30mm/sec CNT100 ;
- 355:L P[344] 30mm/sec CNT100 ;
- 356:L P[345] 30mm/sec CNT100 ;
- 357:L P[346] 30mm/sec CNT100 ;
- 358:L P[347] 30mm/sec CNT100 ;
- 359:L P[348] 30mm/sec CNT100 ;
- 360:L P[349] 30mm/sec CNT100 ;
- 361:L P[350] 30mm/sec CNT100 ;
- 362:L P[351] 30mm/sec CNT100 ;
- 363:L P[352] 30mm/sec CNT100 ;
- 364:L P[353] 30mm/sec CNT100 ;
- 365:L P[354] 30mm/sec CNT100 ;
- 366:L P[355] 30mm/sec CNT100 ;
- 367:L P[356] 30mm/sec CNT100 ;
- 368:L P[357] 30mm/sec CNT100 ;
- 369:L P[358] 30mm/sec CNT100 ;
- 370:L P[359] 30mm/sec CNT100 ;
- 371:L P[360] 30mm/sec CNT100 ;
- 372:L P[361] 30mm/sec CNT100 ;
- 373:L P[362] 30mm/sec CNT100 ;
- 374:L P[363] 30mm/sec CNT100 ;
- 375:L P[364] 30mm/sec CNT100 ;
- 376:L P[365] 30mm/sec CNT100 ;
- 377:L P[366] 30mm/sec CNT100 ;
- 378:L P[367] 30mm/sec CNT100 ;
- 379:L P[368] 30mm/sec CNT100 ;
- 380:L P[369] 30mm/sec CNT100 ;
- 381:L P[370] 30mm/sec CNT100 ;
- 382:L P[371] 30mm/sec CNT100 ;
- 383:J P[372] 20% FINE ;
- 384:  ! M5 (line 189) ;
- 385:  ! M30 (line 190) ;
+  27:C P[16]
+    :  P[17] 30mm/sec CNT100 ;
+  28:L P[18] 30mm/sec CNT100 ;
+  29:L P[19] 30mm/sec CNT100 ;
+  30:L P[20] 30mm/sec CNT100 ;
+  31:L P[21] 30mm/sec CNT100 ;
+  32:L P[22] 30mm/sec CNT100 ;
+  33:L P[23] 30mm/sec CNT100 ;
+  34:L P[24] 30mm/sec CNT100 ;
+  35:L P[25] 30mm/sec CNT100 ;
+  36:L P[26] 30mm/sec CNT100 ;
+  37:L P[27] 30mm/sec CNT100 ;
+  38:L P[28] 30mm/sec CNT100 ;
+  39:L P[29] 30mm/sec CNT100 ;
+  40:L P[30] 30mm/sec CNT100 ;
+  41:L P[31] 30mm/sec CNT100 ;
+  42:L P[32] 30mm/sec CNT100 ;
+  43:L P[33] 30mm/sec CNT100 ;
+  44:C P[34]
+    :  P[35] 30mm/sec CNT100 ;
+  45:L P[36] 30mm/sec CNT100 ;
+  46:L P[37] 30mm/sec CNT100 ;
+  47:L P[38] 30mm/sec CNT100 ;
+  48:L P[39] 30mm/sec CNT100 ;
+  49:L P[40] 30mm/sec CNT100 ;
+  50:L P[41] 30mm/sec CNT100 ;
+  51:L P[42] 30mm/sec CNT100 ;
+  52:L P[43] 30mm/sec CNT100 ;
+  53:L P[44] 30mm/sec CNT100 ;
+  54:L P[45] 30mm/sec CNT100 ;
+  55:L P[46] 30mm/sec CNT100 ;
+  56:L P[47] 30mm/sec CNT100 ;
+  57:L P[48] 30mm/sec CNT100 ;
+  58:L P[49] 30mm/sec CNT100 ;
+  59:L P[50] 30mm/sec CNT100 ;
+  60:L P[51] 30mm/sec CNT100 ;
+  61:L P[52] 30mm/sec CNT100 ;
+  62:L P[53] 30mm/sec CNT100 ;
+  63:L P[54] 30mm/sec CNT100 ;
+  64:L P[55] 30mm/sec CNT100 ;
+  65:L P[56] 30mm/sec CNT100 ;
+  66:L P[57] 30mm/sec CNT100 ;
+  67:L P[58] 30mm/sec CNT100 ;
+  68:L P[59] 30mm/sec CNT100 ;
+  69:L P[60] 30mm/sec CNT100 ;
+  70:L P[61] 30mm/sec CNT100 ;
+  71:C P[62]
+    :  P[63] 30mm/sec CNT100 ;
+  72:L P[64] 30mm/sec CNT100 ;
+  73:L P[65] 30mm/sec CNT100 ;
+  74:L P[66] 30mm/sec CNT100 ;
+  75:L P[67] 30mm/sec CNT100 ;
+  76:L P[68] 30mm/sec CNT100 ;
+  77:L P[69] 30mm/sec CNT100 ;
+  78:L P[70] 30mm/sec CNT100 ;
+  79:L P[71] 30mm/sec CNT100 ;
+  80:L P[72] 30mm/sec CNT100 ;
+  81:L P[73] 30mm/sec CNT100 ;
+  82:L P[74] 30mm/sec CNT100 ;
+  83:L P[75] 30mm/sec CNT100 ;
+  84:L P[76] 30mm/sec CNT100 ;
+  85:L P[77] 30mm/sec CNT100 ;
+  86:L P[78] 30mm/sec CNT100 ;
+  87:L P[79] 30mm/sec CNT100 ;
+  88:C P[80]
+    :  P[81] 30mm/sec CNT100 ;
+  89:L P[82] 30mm/sec CNT100 ;
+  90:L P[83] 30mm/sec CNT100 ;
+  91:L P[84] 30mm/sec CNT100 ;
+  92:L P[85] 30mm/sec CNT100 ;
+  93:L P[86] 30mm/sec CNT100 ;
+  94:L P[87] 30mm/sec CNT100 ;
+  95:L P[88] 30mm/sec CNT100 ;
+  96:L P[89] 30mm/sec CNT100 ;
+  97:L P[90] 30mm/sec CNT100 ;
+  98:L P[91] 30mm/sec CNT100 ;
+  99:L P[92] 30mm/sec CNT100 ;
+ 100:L P[93] 30mm/sec CNT100 ;
+ 101:L P[94] 30mm/sec CNT100 ;
+ 102:L P[95] 5mm/sec CNT100 ;
+ 103:L P[96] 30mm/sec CNT100 ;
+ 104:L P[97] 30mm/sec CNT100 ;
+ 105:L P[98] 30mm/sec CNT100 ;
+ 106:L P[99] 30mm/sec CNT100 ;
+ 107:L P[100] 30mm/sec CNT100 ;
+ 108:L P[101] 30mm/sec CNT100 ;
+ 109:L P[102] 30mm/sec CNT100 ;
+ 110:L P[103] 30mm/sec CNT100 ;
+ 111:L P[104] 30mm/sec CNT100 ;
+ 112:L P[105] 30mm/sec CNT100 ;
+ 113:L P[106] 30mm/sec CNT100 ;
+ 114:L P[107] 30mm/sec CNT100 ;
+ 115:L P[108] 30mm/sec CNT100 ;
+ 116:C P[109]
+    :  P[110] 30mm/sec CNT100 ;
+ 117:L P[111] 30mm/sec CNT100 ;
+ 118:L P[112] 30mm/sec CNT100 ;
+ 119:L P[113] 30mm/sec CNT100 ;
+ 120:L P[114] 30mm/sec CNT100 ;
+ 121:L P[115] 30mm/sec CNT100 ;
+ 122:L P[116] 30mm/sec CNT100 ;
+ 123:L P[117] 30mm/sec CNT100 ;
+ 124:L P[118] 30mm/sec CNT100 ;
+ 125:L P[119] 30mm/sec CNT100 ;
+ 126:L P[120] 30mm/sec CNT100 ;
+ 127:L P[121] 30mm/sec CNT100 ;
+ 128:L P[122] 30mm/sec CNT100 ;
+ 129:L P[123] 30mm/sec CNT100 ;
+ 130:L P[124] 30mm/sec CNT100 ;
+ 131:L P[125] 30mm/sec CNT100 ;
+ 132:L P[126] 30mm/sec CNT100 ;
+ 133:C P[127]
+    :  P[128] 30mm/sec CNT100 ;
+ 134:L P[129] 30mm/sec CNT100 ;
+ 135:L P[130] 30mm/sec CNT100 ;
+ 136:L P[131] 30mm/sec CNT100 ;
+ 137:L P[132] 30mm/sec CNT100 ;
+ 138:L P[133] 30mm/sec CNT100 ;
+ 139:L P[134] 30mm/sec CNT100 ;
+ 140:L P[135] 30mm/sec CNT100 ;
+ 141:L P[136] 30mm/sec CNT100 ;
+ 142:L P[137] 30mm/sec CNT100 ;
+ 143:L P[138] 30mm/sec CNT100 ;
+ 144:L P[139] 30mm/sec CNT100 ;
+ 145:L P[140] 30mm/sec CNT100 ;
+ 146:L P[141] 30mm/sec CNT100 ;
+ 147:L P[142] 30mm/sec CNT100 ;
+ 148:L P[143] 30mm/sec CNT100 ;
+ 149:L P[144] 30mm/sec CNT100 ;
+ 150:L P[145] 30mm/sec CNT100 ;
+ 151:L P[146] 30mm/sec CNT100 ;
+ 152:L P[147] 30mm/sec CNT100 ;
+ 153:L P[148] 30mm/sec CNT100 ;
+ 154:L P[149] 30mm/sec CNT100 ;
+ 155:L P[150] 30mm/sec CNT100 ;
+ 156:L P[151] 30mm/sec CNT100 ;
+ 157:L P[152] 30mm/sec CNT100 ;
+ 158:L P[153] 30mm/sec CNT100 ;
+ 159:L P[154] 30mm/sec CNT100 ;
+ 160:C P[155]
+    :  P[156] 30mm/sec CNT100 ;
+ 161:L P[157] 30mm/sec CNT100 ;
+ 162:L P[158] 30mm/sec CNT100 ;
+ 163:L P[159] 30mm/sec CNT100 ;
+ 164:L P[160] 30mm/sec CNT100 ;
+ 165:L P[161] 30mm/sec CNT100 ;
+ 166:L P[162] 30mm/sec CNT100 ;
+ 167:L P[163] 30mm/sec CNT100 ;
+ 168:L P[164] 30mm/sec CNT100 ;
+ 169:L P[165] 30mm/sec CNT100 ;
+ 170:L P[166] 30mm/sec CNT100 ;
+ 171:L P[167] 30mm/sec CNT100 ;
+ 172:L P[168] 30mm/sec CNT100 ;
+ 173:L P[169] 30mm/sec CNT100 ;
+ 174:L P[170] 30mm/sec CNT100 ;
+ 175:L P[171] 30mm/sec CNT100 ;
+ 176:L P[172] 30mm/sec CNT100 ;
+ 177:C P[173]
+    :  P[174] 30mm/sec CNT100 ;
+ 178:L P[175] 30mm/sec CNT100 ;
+ 179:L P[176] 30mm/sec CNT100 ;
+ 180:L P[177] 30mm/sec CNT100 ;
+ 181:L P[178] 30mm/sec CNT100 ;
+ 182:L P[179] 30mm/sec CNT100 ;
+ 183:L P[180] 30mm/sec CNT100 ;
+ 184:L P[181] 30mm/sec CNT100 ;
+ 185:L P[182] 30mm/sec CNT100 ;
+ 186:L P[183] 30mm/sec CNT100 ;
+ 187:L P[184] 30mm/sec CNT100 ;
+ 188:L P[185] 30mm/sec CNT100 ;
+ 189:L P[186] 30mm/sec CNT100 ;
+ 190:L P[187] 30mm/sec CNT100 ;
+ 191:J P[188] 20% FINE ;
+ 192:  ! M5 (line 189) ;
+ 193:  ! M30 (line 190) ;
 /POS
 P[1]{
    GP1:
@@ -482,2140 +314,1036 @@ P[15]{
 P[16]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1431.255781575 mm,	Y = -799.960590849 mm,	Z = 395.999996357 mm,
-	W = 179.999999793 deg,	P = 0.000000176 deg,	R = -0.000001945 deg
-};
-P[17]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1432.506639536 mm,	Y = -799.842350316 mm,	Z = 395.999999145 mm,
-	W = 179.999999723 deg,	P = 0.000000012 deg,	R = -0.000001869 deg
-};
-P[18]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1433.747604905 mm,	Y = -799.645801073 mm,	Z = 396.000001883 mm,
-	W = 179.999999655 deg,	P = -0.000000150 deg,	R = -0.000001786 deg
-};
-P[19]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1434.973780157 mm,	Y = -799.371718811 mm,	Z = 396.000004560 mm,
-	W = 179.999999589 deg,	P = -0.000000309 deg,	R = -0.000001696 deg
-};
-P[20]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1436.180326141 mm,	Y = -799.021185207 mm,	Z = 396.000007166 mm,
-	W = 179.999999526 deg,	P = -0.000000465 deg,	R = -0.000001600 deg
-};
-P[21]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1437.362481170 mm,	Y = -798.595583656 mm,	Z = 396.000009690 mm,
-	W = 179.999999467 deg,	P = -0.000000616 deg,	R = -0.000001498 deg
-};
-P[22]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1438.515579818 mm,	Y = -798.096593813 mm,	Z = 396.000012124 mm,
-	W = 179.999999411 deg,	P = -0.000000763 deg,	R = -0.000001390 deg
-};
-P[23]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1439.635071333 mm,	Y = -797.526184962 mm,	Z = 396.000014457 mm,
-	W = 179.999999358 deg,	P = -0.000000904 deg,	R = -0.000001276 deg
-};
-P[24]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1440.716537592 mm,	Y = -796.886608247 mm,	Z = 396.000016682 mm,
-	W = 179.999999309 deg,	P = -0.000001040 deg,	R = -0.000001158 deg
-};
-P[25]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1441.755710543 mm,	Y = -796.180387785 mm,	Z = 396.000018789 mm,
-	W = 179.999999264 deg,	P = -0.000001169 deg,	R = -0.000001036 deg
-};
-P[26]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1442.748489044 mm,	Y = -795.410310706 mm,	Z = 396.000020770 mm,
-	W = 179.999999223 deg,	P = -0.000001292 deg,	R = -0.000000910 deg
-};
-P[27]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1443.690955052 mm,	Y = -794.579416152 mm,	Z = 396.000022618 mm,
 	W = 179.999999186 deg,	P = -0.000001407 deg,	R = -0.000000780 deg
 };
-P[28]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1444.579389085 mm,	Y = -793.690983284 mm,	Z = 396.000024327 mm,
-	W = 179.999999154 deg,	P = -0.000001515 deg,	R = -0.000000648 deg
-};
-P[29]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1445.410284899 mm,	Y = -792.748518343 mm,	Z = 396.000025889 mm,
-	W = 179.999999126 deg,	P = -0.000001615 deg,	R = -0.000000513 deg
-};
-P[30]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1446.180363327 mm,	Y = -791.755740807 mm,	Z = 396.000027299 mm,
-	W = 179.999999102 deg,	P = -0.000001706 deg,	R = -0.000000376 deg
-};
-P[31]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1446.886585222 mm,	Y = -790.716568717 mm,	Z = 396.000028551 mm,
-	W = 179.999999084 deg,	P = -0.000001789 deg,	R = -0.000000239 deg
-};
-P[32]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1447.526163449 mm,	Y = -789.635103210 mm,	Z = 396.000029642 mm,
-	W = 179.999999070 deg,	P = -0.000001862 deg,	R = -0.000000100 deg
-};
-P[33]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1448.096573883 mm,	Y = -788.515612338 mm,	Z = 396.000030566 mm,
-	W = 179.999999060 deg,	P = -0.000001926 deg,	R = 0.000000038 deg
-};
-P[34]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1448.595565375 mm,	Y = -787.362514221 mm,	Z = 396.000031321 mm,
-	W = 179.999999056 deg,	P = -0.000001981 deg,	R = 0.000000177 deg
-};
-P[35]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1449.021168634 mm,	Y = -786.180359611 mm,	Z = 396.000031904 mm,
-	W = 179.999999056 deg,	P = -0.000002025 deg,	R = 0.000000314 deg
-};
-P[36]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1449.371703997 mm,	Y = -784.973813933 mm,	Z = 396.000032313 mm,
-	W = 179.999999060 deg,	P = -0.000002060 deg,	R = 0.000000449 deg
-};
-P[37]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1449.645788062 mm,	Y = -783.747638874 mm,	Z = 396.000032545 mm,
-	W = 179.999999070 deg,	P = -0.000002084 deg,	R = 0.000000583 deg
-};
-P[38]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1449.842339143 mm,	Y = -782.506673586 mm,	Z = 396.000032601 mm,
-	W = 179.999999084 deg,	P = -0.000002098 deg,	R = 0.000000714 deg
-};
-P[39]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1449.960581543 mm,	Y = -781.255815594 mm,	Z = 396.000032480 mm,
-	W = 179.999999102 deg,	P = -0.000002102 deg,	R = 0.000000842 deg
-};
-P[40]{
+P[17]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000048613 mm,	Y = -780.000001464 mm,	Z = 396.000032182 mm,
 	W = 179.999999125 deg,	P = -0.000002095 deg,	R = 0.000000967 deg
 };
-P[41]{
+P[18]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000049252 mm,	Y = -769.999999730 mm,	Z = 396.000031997 mm,
 	W = 179.999999146 deg,	P = -0.000002097 deg,	R = 0.000001017 deg
 };
-P[42]{
+P[19]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000049151 mm,	Y = -759.999999878 mm,	Z = 396.000032027 mm,
 	W = 179.999999156 deg,	P = -0.000002106 deg,	R = 0.000001006 deg
 };
-P[43]{
+P[20]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000049053 mm,	Y = -750.000000022 mm,	Z = 396.000032053 mm,
 	W = 179.999999165 deg,	P = -0.000002116 deg,	R = 0.000000995 deg
 };
-P[44]{
+P[21]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000048956 mm,	Y = -740.000000163 mm,	Z = 396.000032077 mm,
 	W = 179.999999175 deg,	P = -0.000002125 deg,	R = 0.000000983 deg
 };
-P[45]{
+P[22]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000048860 mm,	Y = -730.000000301 mm,	Z = 396.000032098 mm,
 	W = 179.999999184 deg,	P = -0.000002134 deg,	R = 0.000000972 deg
 };
-P[46]{
+P[23]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000048766 mm,	Y = -720.000000435 mm,	Z = 396.000032116 mm,
 	W = 179.999999194 deg,	P = -0.000002143 deg,	R = 0.000000961 deg
 };
-P[47]{
+P[24]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000048674 mm,	Y = -710.000000566 mm,	Z = 396.000032132 mm,
 	W = 179.999999204 deg,	P = -0.000002151 deg,	R = 0.000000950 deg
 };
-P[48]{
+P[25]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000048583 mm,	Y = -700.000000694 mm,	Z = 396.000032145 mm,
 	W = 179.999999215 deg,	P = -0.000002160 deg,	R = 0.000000939 deg
 };
-P[49]{
+P[26]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000048493 mm,	Y = -690.000000818 mm,	Z = 396.000032156 mm,
 	W = 179.999999225 deg,	P = -0.000002168 deg,	R = 0.000000928 deg
 };
-P[50]{
+P[27]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000048404 mm,	Y = -680.000000939 mm,	Z = 396.000032163 mm,
 	W = 179.999999236 deg,	P = -0.000002176 deg,	R = 0.000000917 deg
 };
-P[51]{
+P[28]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000048317 mm,	Y = -670.000001058 mm,	Z = 396.000032168 mm,
 	W = 179.999999247 deg,	P = -0.000002184 deg,	R = 0.000000906 deg
 };
-P[52]{
+P[29]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000048230 mm,	Y = -660.000001173 mm,	Z = 396.000032170 mm,
 	W = 179.999999258 deg,	P = -0.000002192 deg,	R = 0.000000895 deg
 };
-P[53]{
+P[30]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000048145 mm,	Y = -650.000001285 mm,	Z = 396.000032170 mm,
 	W = 179.999999269 deg,	P = -0.000002200 deg,	R = 0.000000884 deg
 };
-P[54]{
+P[31]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000048060 mm,	Y = -640.000001394 mm,	Z = 396.000032167 mm,
 	W = 179.999999280 deg,	P = -0.000002207 deg,	R = 0.000000873 deg
 };
-P[55]{
+P[32]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000047977 mm,	Y = -630.000001501 mm,	Z = 396.000032161 mm,
 	W = 179.999999291 deg,	P = -0.000002215 deg,	R = 0.000000862 deg
 };
-P[56]{
+P[33]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000047895 mm,	Y = -620.000001605 mm,	Z = 396.000032152 mm,
 	W = 179.999999303 deg,	P = -0.000002222 deg,	R = 0.000000850 deg
 };
-P[57]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1449.960583071 mm,	Y = -618.744189436 mm,	Z = 396.000032036 mm,
-	W = 179.999999314 deg,	P = -0.000002220 deg,	R = 0.000000908 deg
-};
-P[58]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1449.842343585 mm,	Y = -617.493331586 mm,	Z = 396.000031675 mm,
-	W = 179.999999338 deg,	P = -0.000002207 deg,	R = 0.000001021 deg
-};
-P[59]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1449.645795401 mm,	Y = -616.252366409 mm,	Z = 396.000031146 mm,
-	W = 179.999999366 deg,	P = -0.000002183 deg,	R = 0.000001131 deg
-};
-P[60]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1449.371714204 mm,	Y = -615.026191426 mm,	Z = 396.000030450 mm,
-	W = 179.999999396 deg,	P = -0.000002149 deg,	R = 0.000001235 deg
-};
-P[61]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1449.021181667 mm,	Y = -613.819645792 mm,	Z = 396.000029590 mm,
-	W = 179.999999429 deg,	P = -0.000002104 deg,	R = 0.000001334 deg
-};
-P[62]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1448.595581182 mm,	Y = -612.637491192 mm,	Z = 396.000028569 mm,
-	W = 179.999999465 deg,	P = -0.000002049 deg,	R = 0.000001428 deg
-};
-P[63]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1448.096592400 mm,	Y = -611.484393050 mm,	Z = 396.000027390 mm,
-	W = 179.999999504 deg,	P = -0.000001983 deg,	R = 0.000001516 deg
-};
-P[64]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1447.526184600 mm,	Y = -610.364902119 mm,	Z = 396.000026058 mm,
-	W = 179.999999545 deg,	P = -0.000001908 deg,	R = 0.000001597 deg
-};
-P[65]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1446.886608923 mm,	Y = -609.283436517 mm,	Z = 396.000024579 mm,
-	W = 179.999999589 deg,	P = -0.000001822 deg,	R = 0.000001672 deg
-};
-P[66]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1446.180389480 mm,	Y = -608.244264296 mm,	Z = 396.000022957 mm,
-	W = 179.999999635 deg,	P = -0.000001728 deg,	R = 0.000001740 deg
-};
-P[67]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1445.410313398 mm,	Y = -607.251486593 mm,	Z = 396.000021200 mm,
-	W = 179.999999682 deg,	P = -0.000001624 deg,	R = 0.000001801 deg
-};
-P[68]{
+P[34]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1444.579419814 mm,	Y = -606.309021449 mm,	Z = 396.000019312 mm,
 	W = 179.999999732 deg,	P = -0.000001511 deg,	R = 0.000001854 deg
 };
-P[69]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1443.690987887 mm,	Y = -605.420588343 mm,	Z = 396.000017302 mm,
-	W = 179.999999783 deg,	P = -0.000001390 deg,	R = 0.000001900 deg
-};
-P[70]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1442.748523850 mm,	Y = -604.589693513 mm,	Z = 396.000015177 mm,
-	W = 179.999999835 deg,	P = -0.000001261 deg,	R = 0.000001938 deg
-};
-P[71]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1441.755747180 mm,	Y = -603.819616123 mm,	Z = 396.000012945 mm,
-	W = 179.999999889 deg,	P = -0.000001125 deg,	R = 0.000001968 deg
-};
-P[72]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1440.716575912 mm,	Y = -603.113395314 mm,	Z = 396.000010615 mm,
-	W = 179.999999943 deg,	P = -0.000000982 deg,	R = 0.000001990 deg
-};
-P[73]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1439.635111181 mm,	Y = -602.473818217 mm,	Z = 396.000008195 mm,
-	W = 179.999999999 deg,	P = -0.000000833 deg,	R = 0.000002003 deg
-};
-P[74]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1438.515621033 mm,	Y = -601.903408951 mm,	Z = 396.000005695 mm,
-	W = -179.999999945 deg,	P = -0.000000678 deg,	R = 0.000002009 deg
-};
-P[75]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1437.362523585 mm,	Y = -601.404418658 mm,	Z = 396.000003124 mm,
-	W = -179.999999888 deg,	P = -0.000000518 deg,	R = 0.000002006 deg
-};
-P[76]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1436.180369586 mm,	Y = -600.978816624 mm,	Z = 396.000000492 mm,
-	W = -179.999999831 deg,	P = -0.000000354 deg,	R = 0.000001996 deg
-};
-P[77]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1434.973824459 mm,	Y = -600.628282506 mm,	Z = 395.999997809 mm,
-	W = -179.999999774 deg,	P = -0.000000185 deg,	R = 0.000001977 deg
-};
-P[78]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1433.747649885 mm,	Y = -600.354199701 mm,	Z = 395.999995086 mm,
-	W = -179.999999718 deg,	P = -0.000000014 deg,	R = 0.000001949 deg
-};
-P[79]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1432.506685015 mm,	Y = -600.157649887 mm,	Z = 395.999992333 mm,
-	W = -179.999999661 deg,	P = 0.000000160 deg,	R = 0.000001914 deg
-};
-P[80]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1431.255827372 mm,	Y = -600.039408754 mm,	Z = 395.999989561 mm,
-	W = -179.999999605 deg,	P = 0.000000336 deg,	R = 0.000001871 deg
-};
-P[81]{
+P[35]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1430.000013519 mm,	Y = -599.999942947 mm,	Z = 395.999986780 mm,
 	W = -179.999999550 deg,	P = 0.000000513 deg,	R = 0.000001821 deg
 };
-P[82]{
+P[36]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1420.000011556 mm,	Y = -599.999943469 mm,	Z = 395.999985426 mm,
 	W = -179.999999522 deg,	P = 0.000000604 deg,	R = 0.000001780 deg
 };
-P[83]{
+P[37]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1410.000011344 mm,	Y = -599.999944133 mm,	Z = 395.999985462 mm,
 	W = -179.999999521 deg,	P = 0.000000606 deg,	R = 0.000001767 deg
 };
-P[84]{
+P[38]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1400.000011131 mm,	Y = -599.999944792 mm,	Z = 395.999985495 mm,
 	W = -179.999999520 deg,	P = 0.000000608 deg,	R = 0.000001754 deg
 };
-P[85]{
+P[39]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1390.000010917 mm,	Y = -599.999945445 mm,	Z = 395.999985525 mm,
 	W = -179.999999519 deg,	P = 0.000000610 deg,	R = 0.000001741 deg
 };
-P[86]{
+P[40]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1380.000010702 mm,	Y = -599.999946092 mm,	Z = 395.999985553 mm,
 	W = -179.999999518 deg,	P = 0.000000612 deg,	R = 0.000001727 deg
 };
-P[87]{
+P[41]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1370.000010487 mm,	Y = -599.999946733 mm,	Z = 395.999985578 mm,
 	W = -179.999999517 deg,	P = 0.000000614 deg,	R = 0.000001714 deg
 };
-P[88]{
+P[42]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1360.000010270 mm,	Y = -599.999947368 mm,	Z = 395.999985601 mm,
 	W = -179.999999516 deg,	P = 0.000000617 deg,	R = 0.000001701 deg
 };
-P[89]{
+P[43]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1350.000010052 mm,	Y = -599.999947997 mm,	Z = 395.999985621 mm,
 	W = -179.999999514 deg,	P = 0.000000619 deg,	R = 0.000001687 deg
 };
-P[90]{
+P[44]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1340.000009834 mm,	Y = -599.999948619 mm,	Z = 395.999985638 mm,
 	W = -179.999999513 deg,	P = 0.000000621 deg,	R = 0.000001674 deg
 };
-P[91]{
+P[45]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1330.000009614 mm,	Y = -599.999949236 mm,	Z = 395.999985652 mm,
 	W = -179.999999511 deg,	P = 0.000000624 deg,	R = 0.000001661 deg
 };
-P[92]{
+P[46]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1320.000009394 mm,	Y = -599.999949847 mm,	Z = 395.999985664 mm,
 	W = -179.999999509 deg,	P = 0.000000626 deg,	R = 0.000001647 deg
 };
-P[93]{
+P[47]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1310.000009173 mm,	Y = -599.999950451 mm,	Z = 395.999985673 mm,
 	W = -179.999999507 deg,	P = 0.000000629 deg,	R = 0.000001634 deg
 };
-P[94]{
+P[48]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1300.000008951 mm,	Y = -599.999951049 mm,	Z = 395.999985679 mm,
 	W = -179.999999505 deg,	P = 0.000000631 deg,	R = 0.000001621 deg
 };
-P[95]{
+P[49]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1290.000008728 mm,	Y = -599.999951641 mm,	Z = 395.999985682 mm,
 	W = -179.999999503 deg,	P = 0.000000634 deg,	R = 0.000001607 deg
 };
-P[96]{
+P[50]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1280.000008504 mm,	Y = -599.999952227 mm,	Z = 395.999985683 mm,
 	W = -179.999999501 deg,	P = 0.000000637 deg,	R = 0.000001594 deg
 };
-P[97]{
+P[51]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1270.000008280 mm,	Y = -599.999952806 mm,	Z = 395.999985680 mm,
 	W = -179.999999498 deg,	P = 0.000000639 deg,	R = 0.000001580 deg
 };
-P[98]{
+P[52]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1260.000008055 mm,	Y = -599.999953379 mm,	Z = 395.999985674 mm,
 	W = -179.999999496 deg,	P = 0.000000642 deg,	R = 0.000001567 deg
 };
-P[99]{
+P[53]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1250.000007829 mm,	Y = -599.999953946 mm,	Z = 395.999985665 mm,
 	W = -179.999999493 deg,	P = 0.000000645 deg,	R = 0.000001554 deg
 };
-P[100]{
+P[54]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1240.000007602 mm,	Y = -599.999954507 mm,	Z = 395.999985653 mm,
 	W = -179.999999491 deg,	P = 0.000000648 deg,	R = 0.000001540 deg
 };
-P[101]{
+P[55]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1230.000007375 mm,	Y = -599.999955061 mm,	Z = 395.999985638 mm,
 	W = -179.999999488 deg,	P = 0.000000651 deg,	R = 0.000001527 deg
 };
-P[102]{
+P[56]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1220.000007147 mm,	Y = -599.999955609 mm,	Z = 395.999985620 mm,
 	W = -179.999999485 deg,	P = 0.000000654 deg,	R = 0.000001513 deg
 };
-P[103]{
+P[57]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1210.000006919 mm,	Y = -599.999956150 mm,	Z = 395.999985598 mm,
 	W = -179.999999482 deg,	P = 0.000000657 deg,	R = 0.000001500 deg
 };
-P[104]{
+P[58]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1200.000006690 mm,	Y = -599.999956685 mm,	Z = 395.999985573 mm,
 	W = -179.999999478 deg,	P = 0.000000661 deg,	R = 0.000001486 deg
 };
-P[105]{
+P[59]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1190.000006461 mm,	Y = -599.999957213 mm,	Z = 395.999985545 mm,
 	W = -179.999999475 deg,	P = 0.000000664 deg,	R = 0.000001473 deg
 };
-P[106]{
+P[60]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1180.000006231 mm,	Y = -599.999957735 mm,	Z = 395.999985513 mm,
 	W = -179.999999471 deg,	P = 0.000000667 deg,	R = 0.000001459 deg
 };
-P[107]{
+P[61]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1170.000006001 mm,	Y = -599.999958250 mm,	Z = 395.999985478 mm,
 	W = -179.999999467 deg,	P = 0.000000671 deg,	R = 0.000001446 deg
 };
-P[108]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1168.744193814 mm,	Y = -600.039423557 mm,	Z = 395.999984121 mm,
-	W = -179.999999436 deg,	P = 0.000000758 deg,	R = 0.000001413 deg
-};
-P[109]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1167.493335938 mm,	Y = -600.157663900 mm,	Z = 395.999981432 mm,
-	W = -179.999999375 deg,	P = 0.000000932 deg,	R = 0.000001346 deg
-};
-P[110]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1166.252370690 mm,	Y = -600.354212863 mm,	Z = 395.999978774 mm,
-	W = -179.999999315 deg,	P = 0.000001104 deg,	R = 0.000001273 deg
-};
-P[111]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1165.026195594 mm,	Y = -600.628294758 mm,	Z = 395.999976160 mm,
-	W = -179.999999257 deg,	P = 0.000001274 deg,	R = 0.000001195 deg
-};
-P[112]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1163.819649802 mm,	Y = -600.978827908 mm,	Z = 395.999973599 mm,
-	W = -179.999999201 deg,	P = 0.000001441 deg,	R = 0.000001111 deg
-};
-P[113]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1162.637495001 mm,	Y = -601.404428917 mm,	Z = 395.999971102 mm,
-	W = -179.999999146 deg,	P = 0.000001604 deg,	R = 0.000001024 deg
-};
-P[114]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1161.484396614 mm,	Y = -601.903418133 mm,	Z = 395.999968679 mm,
-	W = -179.999999095 deg,	P = 0.000001763 deg,	R = 0.000000931 deg
-};
-P[115]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1160.364905396 mm,	Y = -602.473826273 mm,	Z = 395.999966339 mm,
-	W = -179.999999046 deg,	P = 0.000001916 deg,	R = 0.000000835 deg
-};
-P[116]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1159.283439465 mm,	Y = -603.113402195 mm,	Z = 395.999964094 mm,
-	W = -179.999998999 deg,	P = 0.000002064 deg,	R = 0.000000736 deg
-};
-P[117]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1158.244266874 mm,	Y = -603.819621788 mm,	Z = 395.999961951 mm,
-	W = -179.999998956 deg,	P = 0.000002206 deg,	R = 0.000000633 deg
-};
-P[118]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1157.251488763 mm,	Y = -604.589697923 mm,	Z = 395.999959920 mm,
-	W = -179.999998915 deg,	P = 0.000002341 deg,	R = 0.000000528 deg
-};
-P[119]{
+P[62]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1156.309023174 mm,	Y = -605.420591463 mm,	Z = 395.999958009 mm,
 	W = -179.999998878 deg,	P = 0.000002469 deg,	R = 0.000000420 deg
 };
-P[120]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1155.420589586 mm,	Y = -606.309023251 mm,	Z = 395.999956226 mm,
-	W = -179.999998844 deg,	P = 0.000002588 deg,	R = 0.000000310 deg
-};
-P[121]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1154.589694242 mm,	Y = -607.251487052 mm,	Z = 395.999954579 mm,
-	W = -179.999998814 deg,	P = 0.000002700 deg,	R = 0.000000199 deg
-};
-P[122]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1153.819616306 mm,	Y = -608.244263395 mm,	Z = 395.999953075 mm,
-	W = -179.999998788 deg,	P = 0.000002802 deg,	R = 0.000000087 deg
-};
-P[123]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1153.113394924 mm,	Y = -609.283434243 mm,	Z = 395.999951719 mm,
-	W = -179.999998765 deg,	P = 0.000002895 deg,	R = -0.000000026 deg
-};
-P[124]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1152.473817228 mm,	Y = -610.364898467 mm,	Z = 395.999950518 mm,
-	W = -179.999998747 deg,	P = 0.000002978 deg,	R = -0.000000138 deg
-};
-P[125]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1151.903407339 mm,	Y = -611.484388020 mm,	Z = 395.999949477 mm,
-	W = -179.999998732 deg,	P = 0.000003051 deg,	R = -0.000000251 deg
-};
-P[126]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1151.404416405 mm,	Y = -612.637484791 mm,	Z = 395.999948601 mm,
-	W = -179.999998722 deg,	P = 0.000003114 deg,	R = -0.000000363 deg
-};
-P[127]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1150.978813714 mm,	Y = -613.819638035 mm,	Z = 395.999947893 mm,
-	W = -179.999998716 deg,	P = 0.000003166 deg,	R = -0.000000473 deg
-};
-P[128]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1150.628278925 mm,	Y = -615.026182333 mm,	Z = 395.999947355 mm,
-	W = -179.999998714 deg,	P = 0.000003207 deg,	R = -0.000000582 deg
-};
-P[129]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1150.354195439 mm,	Y = -616.252356007 mm,	Z = 395.999946991 mm,
-	W = -179.999998717 deg,	P = 0.000003238 deg,	R = -0.000000689 deg
-};
-P[130]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1150.157644938 mm,	Y = -617.493319912 mm,	Z = 395.999946803 mm,
-	W = -179.999998724 deg,	P = 0.000003257 deg,	R = -0.000000794 deg
-};
-P[131]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1150.039403116 mm,	Y = -618.744176530 mm,	Z = 395.999946790 mm,
-	W = -179.999998735 deg,	P = 0.000003266 deg,	R = -0.000000896 deg
-};
-P[132]{
+P[63]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999936619 mm,	Y = -619.999989303 mm,	Z = 395.999946953 mm,
 	W = -179.999998751 deg,	P = 0.000003263 deg,	R = -0.000000994 deg
 };
-P[133]{
+P[64]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999936096 mm,	Y = -629.999990370 mm,	Z = 395.999946985 mm,
 	W = -179.999998739 deg,	P = 0.000003249 deg,	R = -0.000001052 deg
 };
-P[134]{
+P[65]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999936018 mm,	Y = -639.999990225 mm,	Z = 395.999946863 mm,
 	W = -179.999998716 deg,	P = 0.000003240 deg,	R = -0.000001063 deg
 };
-P[135]{
+P[66]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999935941 mm,	Y = -649.999990086 mm,	Z = 395.999946743 mm,
 	W = -179.999998693 deg,	P = 0.000003230 deg,	R = -0.000001073 deg
 };
-P[136]{
+P[67]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999935864 mm,	Y = -659.999989950 mm,	Z = 395.999946626 mm,
 	W = -179.999998670 deg,	P = 0.000003220 deg,	R = -0.000001084 deg
 };
-P[137]{
+P[68]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999935788 mm,	Y = -669.999989819 mm,	Z = 395.999946510 mm,
 	W = -179.999998648 deg,	P = 0.000003211 deg,	R = -0.000001095 deg
 };
-P[138]{
+P[69]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999935711 mm,	Y = -679.999989693 mm,	Z = 395.999946397 mm,
 	W = -179.999998626 deg,	P = 0.000003200 deg,	R = -0.000001106 deg
 };
-P[139]{
+P[70]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999935635 mm,	Y = -689.999989572 mm,	Z = 395.999946285 mm,
 	W = -179.999998604 deg,	P = 0.000003190 deg,	R = -0.000001116 deg
 };
-P[140]{
+P[71]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999935559 mm,	Y = -699.999989456 mm,	Z = 395.999946176 mm,
 	W = -179.999998583 deg,	P = 0.000003179 deg,	R = -0.000001127 deg
 };
-P[141]{
+P[72]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999935483 mm,	Y = -709.999989345 mm,	Z = 395.999946068 mm,
 	W = -179.999998562 deg,	P = 0.000003168 deg,	R = -0.000001138 deg
 };
-P[142]{
+P[73]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999935407 mm,	Y = -719.999989238 mm,	Z = 395.999945963 mm,
 	W = -179.999998541 deg,	P = 0.000003157 deg,	R = -0.000001149 deg
 };
-P[143]{
+P[74]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999935330 mm,	Y = -729.999989137 mm,	Z = 395.999945859 mm,
 	W = -179.999998520 deg,	P = 0.000003146 deg,	R = -0.000001160 deg
 };
-P[144]{
+P[75]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999935254 mm,	Y = -739.999989041 mm,	Z = 395.999945757 mm,
 	W = -179.999998500 deg,	P = 0.000003135 deg,	R = -0.000001170 deg
 };
-P[145]{
+P[76]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999935176 mm,	Y = -749.999988951 mm,	Z = 395.999945657 mm,
 	W = -179.999998480 deg,	P = 0.000003123 deg,	R = -0.000001181 deg
 };
-P[146]{
+P[77]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999935098 mm,	Y = -759.999988866 mm,	Z = 395.999945558 mm,
 	W = -179.999998460 deg,	P = 0.000003111 deg,	R = -0.000001192 deg
 };
-P[147]{
+P[78]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999935019 mm,	Y = -769.999988786 mm,	Z = 395.999945462 mm,
 	W = -179.999998440 deg,	P = 0.000003099 deg,	R = -0.000001203 deg
 };
-P[148]{
+P[79]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999934940 mm,	Y = -779.999988712 mm,	Z = 395.999945367 mm,
 	W = -179.999998421 deg,	P = 0.000003087 deg,	R = -0.000001214 deg
 };
-P[149]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1150.039399961 mm,	Y = -781.255800442 mm,	Z = 395.999945724 mm,
-	W = -179.999998436 deg,	P = 0.000003069 deg,	R = -0.000001263 deg
-};
-P[150]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1150.157639862 mm,	Y = -782.506657434 mm,	Z = 395.999946581 mm,
-	W = -179.999998472 deg,	P = 0.000003027 deg,	R = -0.000001357 deg
-};
-P[151]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1150.354188460 mm,	Y = -783.747621788 mm,	Z = 395.999947610 mm,
-	W = -179.999998513 deg,	P = 0.000002974 deg,	R = -0.000001445 deg
-};
-P[152]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1150.628270067 mm,	Y = -784.973795985 mm,	Z = 395.999948807 mm,
-	W = -179.999998559 deg,	P = 0.000002912 deg,	R = -0.000001528 deg
-};
-P[153]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1150.978803008 mm,	Y = -786.180340876 mm,	Z = 395.999950166 mm,
-	W = -179.999998610 deg,	P = 0.000002841 deg,	R = -0.000001606 deg
-};
-P[154]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1151.404403890 mm,	Y = -787.362494780 mm,	Z = 395.999951683 mm,
-	W = -179.999998666 deg,	P = 0.000002760 deg,	R = -0.000001677 deg
-};
-P[155]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1151.903393061 mm,	Y = -788.515592275 mm,	Z = 395.999953349 mm,
-	W = -179.999998726 deg,	P = 0.000002671 deg,	R = -0.000001742 deg
-};
-P[156]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1152.473801237 mm,	Y = -789.635082612 mm,	Z = 395.999955160 mm,
-	W = -179.999998791 deg,	P = 0.000002573 deg,	R = -0.000001800 deg
-};
-P[157]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1153.113377278 mm,	Y = -790.716547675 mm,	Z = 395.999957106 mm,
-	W = -179.999998859 deg,	P = 0.000002467 deg,	R = -0.000001852 deg
-};
-P[158]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1153.819597071 mm,	Y = -791.755719415 mm,	Z = 395.999959180 mm,
-	W = -179.999998931 deg,	P = 0.000002353 deg,	R = -0.000001897 deg
-};
-P[159]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1154.589673488 mm,	Y = -792.748496694 mm,	Z = 395.999961374 mm,
-	W = -179.999999006 deg,	P = 0.000002232 deg,	R = -0.000001934 deg
-};
-P[160]{
+P[80]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1155.420567390 mm,	Y = -793.690961476 mm,	Z = 395.999963677 mm,
 	W = -179.999999085 deg,	P = 0.000002105 deg,	R = -0.000001964 deg
 };
-P[161]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1156.308999617 mm,	Y = -794.579394280 mm,	Z = 395.999966081 mm,
-	W = -179.999999166 deg,	P = 0.000001972 deg,	R = -0.000001987 deg
-};
-P[162]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1157.251463936 mm,	Y = -795.410288868 mm,	Z = 395.999968576 mm,
-	W = -179.999999249 deg,	P = 0.000001832 deg,	R = -0.000002002 deg
-};
-P[163]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1158.244240868 mm,	Y = -796.180366078 mm,	Z = 395.999971151 mm,
-	W = -179.999999334 deg,	P = 0.000001688 deg,	R = -0.000002009 deg
-};
-P[164]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1159.283412379 mm,	Y = -796.886586766 mm,	Z = 395.999973796 mm,
-	W = -179.999999421 deg,	P = 0.000001540 deg,	R = -0.000002009 deg
-};
-P[165]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1160.364877332 mm,	Y = -797.526163800 mm,	Z = 395.999976500 mm,
-	W = -179.999999509 deg,	P = 0.000001387 deg,	R = -0.000002001 deg
-};
-P[166]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1161.484367681 mm,	Y = -798.096573062 mm,	Z = 395.999979253 mm,
-	W = -179.999999598 deg,	P = 0.000001232 deg,	R = -0.000001986 deg
-};
-P[167]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1162.637465309 mm,	Y = -798.595563405 mm,	Z = 395.999982043 mm,
-	W = -179.999999688 deg,	P = 0.000001073 deg,	R = -0.000001963 deg
-};
-P[168]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1163.819619466 mm,	Y = -799.021165542 mm,	Z = 395.999984859 mm,
-	W = -179.999999777 deg,	P = 0.000000913 deg,	R = -0.000001932 deg
-};
-P[169]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1165.026164731 mm,	Y = -799.371699815 mm,	Z = 395.999987689 mm,
-	W = -179.999999866 deg,	P = 0.000000751 deg,	R = -0.000001895 deg
-};
-P[170]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1166.252339421 mm,	Y = -799.645782824 mm,	Z = 395.999990523 mm,
-	W = -179.999999955 deg,	P = 0.000000589 deg,	R = -0.000001850 deg
-};
-P[171]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1167.493304385 mm,	Y = -799.842332887 mm,	Z = 395.999993350 mm,
-	W = 179.999999958 deg,	P = 0.000000426 deg,	R = -0.000001797 deg
-};
-P[172]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1168.744162102 mm,	Y = -799.960574310 mm,	Z = 395.999996157 mm,
-	W = 179.999999871 deg,	P = 0.000000264 deg,	R = -0.000001738 deg
-};
-P[173]{
+P[81]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1169.999976009 mm,	Y = -800.000040448 mm,	Z = 395.999998935 mm,
 	W = 179.999999787 deg,	P = 0.000000103 deg,	R = -0.000001673 deg
 };
-P[174]{
+P[82]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1179.999977485 mm,	Y = -800.000041218 mm,	Z = 396.000000114 mm,
 	W = 179.999999750 deg,	P = 0.000000031 deg,	R = -0.000001650 deg
 };
-P[175]{
+P[83]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1189.999977158 mm,	Y = -800.000041739 mm,	Z = 395.999999905 mm,
 	W = 179.999999755 deg,	P = 0.000000041 deg,	R = -0.000001663 deg
 };
-P[176]{
+P[84]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1199.999976830 mm,	Y = -800.000042266 mm,	Z = 395.999999697 mm,
 	W = 179.999999759 deg,	P = 0.000000050 deg,	R = -0.000001677 deg
 };
-P[177]{
+P[85]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1209.999976502 mm,	Y = -800.000042800 mm,	Z = 395.999999489 mm,
 	W = 179.999999763 deg,	P = 0.000000059 deg,	R = -0.000001690 deg
 };
-P[178]{
+P[86]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1219.999976175 mm,	Y = -800.000043340 mm,	Z = 395.999999281 mm,
 	W = 179.999999768 deg,	P = 0.000000068 deg,	R = -0.000001703 deg
 };
-P[179]{
+P[87]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1229.999975848 mm,	Y = -800.000043887 mm,	Z = 395.999999074 mm,
 	W = 179.999999772 deg,	P = 0.000000078 deg,	R = -0.000001716 deg
 };
-P[180]{
+P[88]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1239.999975520 mm,	Y = -800.000044440 mm,	Z = 395.999998867 mm,
 	W = 179.999999775 deg,	P = 0.000000087 deg,	R = -0.000001730 deg
 };
-P[181]{
+P[89]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1249.999975194 mm,	Y = -800.000045000 mm,	Z = 395.999998660 mm,
 	W = 179.999999779 deg,	P = 0.000000096 deg,	R = -0.000001743 deg
 };
-P[182]{
+P[90]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1259.999974867 mm,	Y = -800.000045566 mm,	Z = 395.999998453 mm,
 	W = 179.999999783 deg,	P = 0.000000105 deg,	R = -0.000001756 deg
 };
-P[183]{
+P[91]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1269.999974541 mm,	Y = -800.000046138 mm,	Z = 395.999998247 mm,
 	W = 179.999999786 deg,	P = 0.000000114 deg,	R = -0.000001769 deg
 };
-P[184]{
+P[92]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1279.999974215 mm,	Y = -800.000046717 mm,	Z = 395.999998041 mm,
 	W = 179.999999790 deg,	P = 0.000000123 deg,	R = -0.000001782 deg
 };
-P[185]{
+P[93]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1289.999973890 mm,	Y = -800.000047302 mm,	Z = 395.999997835 mm,
 	W = 179.999999793 deg,	P = 0.000000133 deg,	R = -0.000001796 deg
 };
-P[186]{
+P[94]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1299.999973565 mm,	Y = -800.000047893 mm,	Z = 395.999997629 mm,
 	W = 179.999999796 deg,	P = 0.000000142 deg,	R = -0.000001809 deg
 };
-P[187]{
+P[95]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1299.999999998 mm,	Y = -799.999999999 mm,	Z = 391.999999971 mm,
 	W = -180.000000000 deg,	P = 0.000000000 deg,	R = 0.000000000 deg
 };
-P[188]{
+P[96]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1309.999973277 mm,	Y = -800.000048483 mm,	Z = 391.999997467 mm,
 	W = 179.999999801 deg,	P = 0.000000147 deg,	R = -0.000001823 deg
 };
-P[189]{
+P[97]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1319.999972952 mm,	Y = -800.000049087 mm,	Z = 391.999997262 mm,
 	W = 179.999999804 deg,	P = 0.000000156 deg,	R = -0.000001836 deg
 };
-P[190]{
+P[98]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1329.999972627 mm,	Y = -800.000049696 mm,	Z = 391.999997056 mm,
 	W = 179.999999806 deg,	P = 0.000000165 deg,	R = -0.000001849 deg
 };
-P[191]{
+P[99]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1339.999972303 mm,	Y = -800.000050312 mm,	Z = 391.999996850 mm,
 	W = 179.999999809 deg,	P = 0.000000175 deg,	R = -0.000001862 deg
 };
-P[192]{
+P[100]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1349.999971980 mm,	Y = -800.000050934 mm,	Z = 391.999996645 mm,
 	W = 179.999999812 deg,	P = 0.000000184 deg,	R = -0.000001875 deg
 };
-P[193]{
+P[101]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1359.999971657 mm,	Y = -800.000051563 mm,	Z = 391.999996439 mm,
 	W = 179.999999815 deg,	P = 0.000000193 deg,	R = -0.000001889 deg
 };
-P[194]{
+P[102]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1369.999971335 mm,	Y = -800.000052197 mm,	Z = 391.999996234 mm,
 	W = 179.999999817 deg,	P = 0.000000202 deg,	R = -0.000001902 deg
 };
-P[195]{
+P[103]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1379.999971014 mm,	Y = -800.000052838 mm,	Z = 391.999996029 mm,
 	W = 179.999999819 deg,	P = 0.000000211 deg,	R = -0.000001915 deg
 };
-P[196]{
+P[104]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1389.999970693 mm,	Y = -800.000053484 mm,	Z = 391.999995823 mm,
 	W = 179.999999822 deg,	P = 0.000000220 deg,	R = -0.000001928 deg
 };
-P[197]{
+P[105]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1399.999970373 mm,	Y = -800.000054137 mm,	Z = 391.999995618 mm,
 	W = 179.999999824 deg,	P = 0.000000228 deg,	R = -0.000001941 deg
 };
-P[198]{
+P[106]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1409.999970054 mm,	Y = -800.000054796 mm,	Z = 391.999995412 mm,
 	W = 179.999999826 deg,	P = 0.000000237 deg,	R = -0.000001954 deg
 };
-P[199]{
+P[107]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1419.999969736 mm,	Y = -800.000055461 mm,	Z = 391.999995207 mm,
 	W = 179.999999828 deg,	P = 0.000000246 deg,	R = -0.000001967 deg
 };
-P[200]{
+P[108]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1429.999969418 mm,	Y = -800.000056133 mm,	Z = 391.999995001 mm,
 	W = 179.999999830 deg,	P = 0.000000255 deg,	R = -0.000001980 deg
 };
-P[201]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1431.255781607 mm,	Y = -799.960590840 mm,	Z = 391.999996402 mm,
-	W = 179.999999794 deg,	P = 0.000000173 deg,	R = -0.000001946 deg
-};
-P[202]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1432.506639584 mm,	Y = -799.842350313 mm,	Z = 391.999999198 mm,
-	W = 179.999999723 deg,	P = 0.000000008 deg,	R = -0.000001870 deg
-};
-P[203]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1433.747604968 mm,	Y = -799.645801077 mm,	Z = 392.000001944 mm,
-	W = 179.999999655 deg,	P = -0.000000155 deg,	R = -0.000001787 deg
-};
-P[204]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1434.973780235 mm,	Y = -799.371718821 mm,	Z = 392.000004629 mm,
-	W = 179.999999589 deg,	P = -0.000000314 deg,	R = -0.000001697 deg
-};
-P[205]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1436.180326234 mm,	Y = -799.021185223 mm,	Z = 392.000007242 mm,
-	W = 179.999999527 deg,	P = -0.000000470 deg,	R = -0.000001600 deg
-};
-P[206]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1437.362481277 mm,	Y = -798.595583678 mm,	Z = 392.000009774 mm,
-	W = 179.999999467 deg,	P = -0.000000622 deg,	R = -0.000001498 deg
-};
-P[207]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1438.515579939 mm,	Y = -798.096593841 mm,	Z = 392.000012215 mm,
-	W = 179.999999410 deg,	P = -0.000000769 deg,	R = -0.000001390 deg
-};
-P[208]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1439.635071467 mm,	Y = -797.526184996 mm,	Z = 392.000014556 mm,
-	W = 179.999999357 deg,	P = -0.000000911 deg,	R = -0.000001276 deg
-};
-P[209]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1440.716537739 mm,	Y = -796.886608286 mm,	Z = 392.000016787 mm,
-	W = 179.999999308 deg,	P = -0.000001047 deg,	R = -0.000001158 deg
-};
-P[210]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1441.755710702 mm,	Y = -796.180387830 mm,	Z = 392.000018901 mm,
-	W = 179.999999263 deg,	P = -0.000001177 deg,	R = -0.000001036 deg
-};
-P[211]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1442.748489215 mm,	Y = -795.410310755 mm,	Z = 392.000020888 mm,
-	W = 179.999999221 deg,	P = -0.000001300 deg,	R = -0.000000909 deg
-};
-P[212]{
+P[109]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1443.690955233 mm,	Y = -794.579416206 mm,	Z = 392.000022743 mm,
 	W = 179.999999184 deg,	P = -0.000001416 deg,	R = -0.000000780 deg
 };
-P[213]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1444.579389276 mm,	Y = -793.690983343 mm,	Z = 392.000024457 mm,
-	W = 179.999999152 deg,	P = -0.000001524 deg,	R = -0.000000647 deg
-};
-P[214]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1445.410285099 mm,	Y = -792.748518406 mm,	Z = 392.000026024 mm,
-	W = 179.999999124 deg,	P = -0.000001624 deg,	R = -0.000000512 deg
-};
-P[215]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1446.180363535 mm,	Y = -791.755740874 mm,	Z = 392.000027439 mm,
-	W = 179.999999100 deg,	P = -0.000001716 deg,	R = -0.000000376 deg
-};
-P[216]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1446.886585437 mm,	Y = -790.716568787 mm,	Z = 392.000028696 mm,
-	W = 179.999999081 deg,	P = -0.000001798 deg,	R = -0.000000238 deg
-};
-P[217]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1447.526163670 mm,	Y = -789.635103284 mm,	Z = 392.000029790 mm,
-	W = 179.999999067 deg,	P = -0.000001872 deg,	R = -0.000000100 deg
-};
-P[218]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1448.096574109 mm,	Y = -788.515612415 mm,	Z = 392.000030718 mm,
-	W = 179.999999057 deg,	P = -0.000001936 deg,	R = 0.000000039 deg
-};
-P[219]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1448.595565606 mm,	Y = -787.362514301 mm,	Z = 392.000031476 mm,
-	W = 179.999999052 deg,	P = -0.000001991 deg,	R = 0.000000177 deg
-};
-P[220]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1449.021168868 mm,	Y = -786.180359694 mm,	Z = 392.000032061 mm,
-	W = 179.999999052 deg,	P = -0.000002035 deg,	R = 0.000000315 deg
-};
-P[221]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1449.371704234 mm,	Y = -784.973814018 mm,	Z = 392.000032471 mm,
-	W = 179.999999057 deg,	P = -0.000002070 deg,	R = 0.000000450 deg
-};
-P[222]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1449.645788301 mm,	Y = -783.747638960 mm,	Z = 392.000032705 mm,
-	W = 179.999999066 deg,	P = -0.000002094 deg,	R = 0.000000584 deg
-};
-P[223]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1449.842339382 mm,	Y = -782.506673674 mm,	Z = 392.000032762 mm,
-	W = 179.999999080 deg,	P = -0.000002108 deg,	R = 0.000000715 deg
-};
-P[224]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1449.960581782 mm,	Y = -781.255815683 mm,	Z = 392.000032641 mm,
-	W = 179.999999098 deg,	P = -0.000002112 deg,	R = 0.000000843 deg
-};
-P[225]{
+P[110]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000048850 mm,	Y = -780.000001553 mm,	Z = 392.000032343 mm,
 	W = 179.999999121 deg,	P = -0.000002105 deg,	R = 0.000000968 deg
 };
-P[226]{
+P[111]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000049489 mm,	Y = -769.999999818 mm,	Z = 392.000032158 mm,
 	W = 179.999999142 deg,	P = -0.000002107 deg,	R = 0.000001018 deg
 };
-P[227]{
+P[112]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000049390 mm,	Y = -759.999999965 mm,	Z = 392.000032186 mm,
 	W = 179.999999152 deg,	P = -0.000002116 deg,	R = 0.000001007 deg
 };
-P[228]{
+P[113]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000049293 mm,	Y = -750.000000108 mm,	Z = 392.000032212 mm,
 	W = 179.999999161 deg,	P = -0.000002126 deg,	R = 0.000000996 deg
 };
-P[229]{
+P[114]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000049197 mm,	Y = -740.000000248 mm,	Z = 392.000032235 mm,
 	W = 179.999999171 deg,	P = -0.000002135 deg,	R = 0.000000985 deg
 };
-P[230]{
+P[115]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000049103 mm,	Y = -730.000000384 mm,	Z = 392.000032256 mm,
 	W = 179.999999181 deg,	P = -0.000002144 deg,	R = 0.000000973 deg
 };
-P[231]{
+P[116]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000049010 mm,	Y = -720.000000517 mm,	Z = 392.000032274 mm,
 	W = 179.999999191 deg,	P = -0.000002153 deg,	R = 0.000000962 deg
 };
-P[232]{
+P[117]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000048919 mm,	Y = -710.000000646 mm,	Z = 392.000032289 mm,
 	W = 179.999999201 deg,	P = -0.000002162 deg,	R = 0.000000951 deg
 };
-P[233]{
+P[118]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000048829 mm,	Y = -700.000000773 mm,	Z = 392.000032301 mm,
 	W = 179.999999211 deg,	P = -0.000002170 deg,	R = 0.000000940 deg
 };
-P[234]{
+P[119]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000048741 mm,	Y = -690.000000896 mm,	Z = 392.000032311 mm,
 	W = 179.999999222 deg,	P = -0.000002179 deg,	R = 0.000000929 deg
 };
-P[235]{
+P[120]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000048653 mm,	Y = -680.000001016 mm,	Z = 392.000032318 mm,
 	W = 179.999999232 deg,	P = -0.000002187 deg,	R = 0.000000918 deg
 };
-P[236]{
+P[121]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000048567 mm,	Y = -670.000001132 mm,	Z = 392.000032322 mm,
 	W = 179.999999243 deg,	P = -0.000002195 deg,	R = 0.000000907 deg
 };
-P[237]{
+P[122]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000048482 mm,	Y = -660.000001246 mm,	Z = 392.000032324 mm,
 	W = 179.999999254 deg,	P = -0.000002203 deg,	R = 0.000000896 deg
 };
-P[238]{
+P[123]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000048397 mm,	Y = -650.000001357 mm,	Z = 392.000032323 mm,
 	W = 179.999999265 deg,	P = -0.000002210 deg,	R = 0.000000885 deg
 };
-P[239]{
+P[124]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000048314 mm,	Y = -640.000001464 mm,	Z = 392.000032319 mm,
 	W = 179.999999277 deg,	P = -0.000002218 deg,	R = 0.000000874 deg
 };
-P[240]{
+P[125]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000048232 mm,	Y = -630.000001569 mm,	Z = 392.000032312 mm,
 	W = 179.999999288 deg,	P = -0.000002225 deg,	R = 0.000000863 deg
 };
-P[241]{
+P[126]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1450.000048150 mm,	Y = -620.000001671 mm,	Z = 392.000032303 mm,
 	W = 179.999999300 deg,	P = -0.000002232 deg,	R = 0.000000852 deg
 };
-P[242]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1449.960583326 mm,	Y = -618.744189503 mm,	Z = 392.000032186 mm,
-	W = 179.999999311 deg,	P = -0.000002231 deg,	R = 0.000000909 deg
-};
-P[243]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1449.842343839 mm,	Y = -617.493331654 mm,	Z = 392.000031826 mm,
-	W = 179.999999335 deg,	P = -0.000002218 deg,	R = 0.000001023 deg
-};
-P[244]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1449.645795652 mm,	Y = -616.252366477 mm,	Z = 392.000031296 mm,
-	W = 179.999999362 deg,	P = -0.000002194 deg,	R = 0.000001132 deg
-};
-P[245]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1449.371714451 mm,	Y = -615.026191495 mm,	Z = 392.000030599 mm,
-	W = 179.999999393 deg,	P = -0.000002159 deg,	R = 0.000001236 deg
-};
-P[246]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1449.021181909 mm,	Y = -613.819645861 mm,	Z = 392.000029737 mm,
-	W = 179.999999426 deg,	P = -0.000002114 deg,	R = 0.000001335 deg
-};
-P[247]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1448.595581418 mm,	Y = -612.637491261 mm,	Z = 392.000028713 mm,
-	W = 179.999999462 deg,	P = -0.000002059 deg,	R = 0.000001429 deg
-};
-P[248]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1448.096592628 mm,	Y = -611.484393118 mm,	Z = 392.000027532 mm,
-	W = 179.999999501 deg,	P = -0.000001993 deg,	R = 0.000001517 deg
-};
-P[249]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1447.526184821 mm,	Y = -610.364902186 mm,	Z = 392.000026198 mm,
-	W = 179.999999542 deg,	P = -0.000001917 deg,	R = 0.000001598 deg
-};
-P[250]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1446.886609134 mm,	Y = -609.283436583 mm,	Z = 392.000024715 mm,
-	W = 179.999999585 deg,	P = -0.000001831 deg,	R = 0.000001673 deg
-};
-P[251]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1446.180389682 mm,	Y = -608.244264361 mm,	Z = 392.000023089 mm,
-	W = 179.999999631 deg,	P = -0.000001736 deg,	R = 0.000001741 deg
-};
-P[252]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1445.410313589 mm,	Y = -607.251486656 mm,	Z = 392.000021327 mm,
-	W = 179.999999678 deg,	P = -0.000001632 deg,	R = 0.000001802 deg
-};
-P[253]{
+P[127]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1444.579419994 mm,	Y = -606.309021511 mm,	Z = 392.000019435 mm,
 	W = 179.999999728 deg,	P = -0.000001519 deg,	R = 0.000001855 deg
 };
-P[254]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1443.690988054 mm,	Y = -605.420588402 mm,	Z = 392.000017420 mm,
-	W = 179.999999779 deg,	P = -0.000001397 deg,	R = 0.000001901 deg
-};
-P[255]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1442.748524004 mm,	Y = -604.589693571 mm,	Z = 392.000015290 mm,
-	W = 179.999999831 deg,	P = -0.000001268 deg,	R = 0.000001939 deg
-};
-P[256]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1441.755747320 mm,	Y = -603.819616178 mm,	Z = 392.000013053 mm,
-	W = 179.999999885 deg,	P = -0.000001131 deg,	R = 0.000001969 deg
-};
-P[257]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1440.716576038 mm,	Y = -603.113395366 mm,	Z = 392.000010716 mm,
-	W = 179.999999940 deg,	P = -0.000000988 deg,	R = 0.000001991 deg
-};
-P[258]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1439.635111291 mm,	Y = -602.473818267 mm,	Z = 392.000008290 mm,
-	W = 179.999999995 deg,	P = -0.000000838 deg,	R = 0.000002005 deg
-};
-P[259]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1438.515621127 mm,	Y = -601.903408997 mm,	Z = 392.000005784 mm,
-	W = -179.999999948 deg,	P = -0.000000683 deg,	R = 0.000002010 deg
-};
-P[260]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1437.362523663 mm,	Y = -601.404418700 mm,	Z = 392.000003206 mm,
-	W = -179.999999892 deg,	P = -0.000000522 deg,	R = 0.000002007 deg
-};
-P[261]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1436.180369648 mm,	Y = -600.978816664 mm,	Z = 392.000000567 mm,
-	W = -179.999999835 deg,	P = -0.000000357 deg,	R = 0.000001996 deg
-};
-P[262]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1434.973824504 mm,	Y = -600.628282542 mm,	Z = 391.999997877 mm,
-	W = -179.999999778 deg,	P = -0.000000188 deg,	R = 0.000001977 deg
-};
-P[263]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1433.747649912 mm,	Y = -600.354199733 mm,	Z = 391.999995147 mm,
-	W = -179.999999721 deg,	P = -0.000000016 deg,	R = 0.000001950 deg
-};
-P[264]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1432.506685025 mm,	Y = -600.157649914 mm,	Z = 391.999992387 mm,
-	W = -179.999999664 deg,	P = 0.000000159 deg,	R = 0.000001915 deg
-};
-P[265]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1431.255827364 mm,	Y = -600.039408778 mm,	Z = 391.999989607 mm,
-	W = -179.999999608 deg,	P = 0.000000336 deg,	R = 0.000001872 deg
-};
-P[266]{
+P[128]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1430.000013493 mm,	Y = -599.999942967 mm,	Z = 391.999986819 mm,
 	W = -179.999999553 deg,	P = 0.000000513 deg,	R = 0.000001821 deg
 };
-P[267]{
+P[129]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1420.000011521 mm,	Y = -599.999943486 mm,	Z = 391.999985461 mm,
 	W = -179.999999525 deg,	P = 0.000000604 deg,	R = 0.000001781 deg
 };
-P[268]{
+P[130]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1410.000011309 mm,	Y = -599.999944151 mm,	Z = 391.999985497 mm,
 	W = -179.999999524 deg,	P = 0.000000606 deg,	R = 0.000001768 deg
 };
-P[269]{
+P[131]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1400.000011096 mm,	Y = -599.999944810 mm,	Z = 391.999985530 mm,
 	W = -179.999999523 deg,	P = 0.000000608 deg,	R = 0.000001754 deg
 };
-P[270]{
+P[132]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1390.000010881 mm,	Y = -599.999945463 mm,	Z = 391.999985560 mm,
 	W = -179.999999522 deg,	P = 0.000000610 deg,	R = 0.000001741 deg
 };
-P[271]{
+P[133]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1380.000010666 mm,	Y = -599.999946110 mm,	Z = 391.999985588 mm,
 	W = -179.999999521 deg,	P = 0.000000613 deg,	R = 0.000001728 deg
 };
-P[272]{
+P[134]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1370.000010450 mm,	Y = -599.999946750 mm,	Z = 391.999985614 mm,
 	W = -179.999999520 deg,	P = 0.000000615 deg,	R = 0.000001715 deg
 };
-P[273]{
+P[135]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1360.000010233 mm,	Y = -599.999947385 mm,	Z = 391.999985637 mm,
 	W = -179.999999518 deg,	P = 0.000000617 deg,	R = 0.000001701 deg
 };
-P[274]{
+P[136]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1350.000010015 mm,	Y = -599.999948014 mm,	Z = 391.999985657 mm,
 	W = -179.999999517 deg,	P = 0.000000619 deg,	R = 0.000001688 deg
 };
-P[275]{
+P[137]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1340.000009796 mm,	Y = -599.999948637 mm,	Z = 391.999985674 mm,
 	W = -179.999999515 deg,	P = 0.000000622 deg,	R = 0.000001675 deg
 };
-P[276]{
+P[138]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1330.000009576 mm,	Y = -599.999949253 mm,	Z = 391.999985689 mm,
 	W = -179.999999514 deg,	P = 0.000000624 deg,	R = 0.000001661 deg
 };
-P[277]{
+P[139]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1320.000009355 mm,	Y = -599.999949864 mm,	Z = 391.999985701 mm,
 	W = -179.999999512 deg,	P = 0.000000627 deg,	R = 0.000001648 deg
 };
-P[278]{
+P[140]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1310.000009133 mm,	Y = -599.999950468 mm,	Z = 391.999985710 mm,
 	W = -179.999999510 deg,	P = 0.000000629 deg,	R = 0.000001635 deg
 };
-P[279]{
+P[141]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1300.000008911 mm,	Y = -599.999951066 mm,	Z = 391.999985716 mm,
 	W = -179.999999508 deg,	P = 0.000000632 deg,	R = 0.000001621 deg
 };
-P[280]{
+P[142]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1290.000008687 mm,	Y = -599.999951658 mm,	Z = 391.999985719 mm,
 	W = -179.999999506 deg,	P = 0.000000635 deg,	R = 0.000001608 deg
 };
-P[281]{
+P[143]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1280.000008463 mm,	Y = -599.999952244 mm,	Z = 391.999985720 mm,
 	W = -179.999999504 deg,	P = 0.000000637 deg,	R = 0.000001595 deg
 };
-P[282]{
+P[144]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1270.000008238 mm,	Y = -599.999952823 mm,	Z = 391.999985717 mm,
 	W = -179.999999501 deg,	P = 0.000000640 deg,	R = 0.000001581 deg
 };
-P[283]{
+P[145]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1260.000008012 mm,	Y = -599.999953397 mm,	Z = 391.999985712 mm,
 	W = -179.999999499 deg,	P = 0.000000643 deg,	R = 0.000001568 deg
 };
-P[284]{
+P[146]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1250.000007786 mm,	Y = -599.999953963 mm,	Z = 391.999985703 mm,
 	W = -179.999999496 deg,	P = 0.000000646 deg,	R = 0.000001554 deg
 };
-P[285]{
+P[147]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1240.000007558 mm,	Y = -599.999954524 mm,	Z = 391.999985691 mm,
 	W = -179.999999494 deg,	P = 0.000000649 deg,	R = 0.000001541 deg
 };
-P[286]{
+P[148]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1230.000007330 mm,	Y = -599.999955078 mm,	Z = 391.999985676 mm,
 	W = -179.999999491 deg,	P = 0.000000652 deg,	R = 0.000001527 deg
 };
-P[287]{
+P[149]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1220.000007102 mm,	Y = -599.999955625 mm,	Z = 391.999985658 mm,
 	W = -179.999999488 deg,	P = 0.000000655 deg,	R = 0.000001514 deg
 };
-P[288]{
+P[150]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1210.000006872 mm,	Y = -599.999956166 mm,	Z = 391.999985636 mm,
 	W = -179.999999485 deg,	P = 0.000000658 deg,	R = 0.000001500 deg
 };
-P[289]{
+P[151]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1200.000006643 mm,	Y = -599.999956701 mm,	Z = 391.999985612 mm,
 	W = -179.999999481 deg,	P = 0.000000662 deg,	R = 0.000001487 deg
 };
-P[290]{
+P[152]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1190.000006412 mm,	Y = -599.999957229 mm,	Z = 391.999985584 mm,
 	W = -179.999999478 deg,	P = 0.000000665 deg,	R = 0.000001473 deg
 };
-P[291]{
+P[153]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1180.000006182 mm,	Y = -599.999957751 mm,	Z = 391.999985552 mm,
 	W = -179.999999474 deg,	P = 0.000000668 deg,	R = 0.000001460 deg
 };
-P[292]{
+P[154]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1170.000005950 mm,	Y = -599.999958266 mm,	Z = 391.999985517 mm,
 	W = -179.999999471 deg,	P = 0.000000672 deg,	R = 0.000001446 deg
 };
-P[293]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1168.744193753 mm,	Y = -600.039423570 mm,	Z = 391.999984157 mm,
-	W = -179.999999439 deg,	P = 0.000000759 deg,	R = 0.000001414 deg
-};
-P[294]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1167.493335857 mm,	Y = -600.157663906 mm,	Z = 391.999981462 mm,
-	W = -179.999999377 deg,	P = 0.000000934 deg,	R = 0.000001346 deg
-};
-P[295]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1166.252370589 mm,	Y = -600.354212864 mm,	Z = 391.999978798 mm,
-	W = -179.999999317 deg,	P = 0.000001107 deg,	R = 0.000001273 deg
-};
-P[296]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1165.026195473 mm,	Y = -600.628294752 mm,	Z = 391.999976178 mm,
-	W = -179.999999259 deg,	P = 0.000001277 deg,	R = 0.000001195 deg
-};
-P[297]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1163.819649662 mm,	Y = -600.978827895 mm,	Z = 391.999973611 mm,
-	W = -179.999999203 deg,	P = 0.000001445 deg,	R = 0.000001112 deg
-};
-P[298]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1162.637494841 mm,	Y = -601.404428898 mm,	Z = 391.999971108 mm,
-	W = -179.999999148 deg,	P = 0.000001608 deg,	R = 0.000001024 deg
-};
-P[299]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1161.484396436 mm,	Y = -601.903418108 mm,	Z = 391.999968679 mm,
-	W = -179.999999096 deg,	P = 0.000001768 deg,	R = 0.000000931 deg
-};
-P[300]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1160.364905199 mm,	Y = -602.473826241 mm,	Z = 391.999966334 mm,
-	W = -179.999999047 deg,	P = 0.000001922 deg,	R = 0.000000835 deg
-};
-P[301]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1159.283439251 mm,	Y = -603.113402157 mm,	Z = 391.999964083 mm,
-	W = -179.999999000 deg,	P = 0.000002071 deg,	R = 0.000000736 deg
-};
-P[302]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1158.244266644 mm,	Y = -603.819621743 mm,	Z = 391.999961935 mm,
-	W = -179.999998956 deg,	P = 0.000002213 deg,	R = 0.000000633 deg
-};
-P[303]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1157.251488518 mm,	Y = -604.589697872 mm,	Z = 391.999959899 mm,
-	W = -179.999998916 deg,	P = 0.000002349 deg,	R = 0.000000527 deg
-};
-P[304]{
+P[155]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1156.309022914 mm,	Y = -605.420591406 mm,	Z = 391.999957983 mm,
 	W = -179.999998878 deg,	P = 0.000002477 deg,	R = 0.000000420 deg
 };
-P[305]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1155.420589312 mm,	Y = -606.309023188 mm,	Z = 391.999956196 mm,
-	W = -179.999998844 deg,	P = 0.000002597 deg,	R = 0.000000310 deg
-};
-P[306]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1154.589693956 mm,	Y = -607.251486985 mm,	Z = 391.999954544 mm,
-	W = -179.999998814 deg,	P = 0.000002708 deg,	R = 0.000000199 deg
-};
-P[307]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1153.819616009 mm,	Y = -608.244263322 mm,	Z = 391.999953036 mm,
-	W = -179.999998787 deg,	P = 0.000002811 deg,	R = 0.000000086 deg
-};
-P[308]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1153.113394616 mm,	Y = -609.283434165 mm,	Z = 391.999951676 mm,
-	W = -179.999998764 deg,	P = 0.000002904 deg,	R = -0.000000026 deg
-};
-P[309]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1152.473816911 mm,	Y = -610.364898384 mm,	Z = 391.999950472 mm,
-	W = -179.999998746 deg,	P = 0.000002988 deg,	R = -0.000000139 deg
-};
-P[310]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1151.903407014 mm,	Y = -611.484387933 mm,	Z = 391.999949428 mm,
-	W = -179.999998731 deg,	P = 0.000003061 deg,	R = -0.000000252 deg
-};
-P[311]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1151.404416073 mm,	Y = -612.637484700 mm,	Z = 391.999948549 mm,
-	W = -179.999998720 deg,	P = 0.000003124 deg,	R = -0.000000364 deg
-};
-P[312]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1150.978813377 mm,	Y = -613.819637939 mm,	Z = 391.999947838 mm,
-	W = -179.999998714 deg,	P = 0.000003176 deg,	R = -0.000000475 deg
-};
-P[313]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1150.628278584 mm,	Y = -615.026182234 mm,	Z = 391.999947298 mm,
-	W = -179.999998712 deg,	P = 0.000003218 deg,	R = -0.000000584 deg
-};
-P[314]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1150.354195095 mm,	Y = -616.252355905 mm,	Z = 391.999946933 mm,
-	W = -179.999998714 deg,	P = 0.000003248 deg,	R = -0.000000691 deg
-};
-P[315]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1150.157644593 mm,	Y = -617.493319807 mm,	Z = 391.999946743 mm,
-	W = -179.999998721 deg,	P = 0.000003268 deg,	R = -0.000000795 deg
-};
-P[316]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1150.039402771 mm,	Y = -618.744176423 mm,	Z = 391.999946729 mm,
-	W = -179.999998732 deg,	P = 0.000003276 deg,	R = -0.000000897 deg
-};
-P[317]{
+P[156]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999936276 mm,	Y = -619.999989195 mm,	Z = 391.999946891 mm,
 	W = -179.999998748 deg,	P = 0.000003273 deg,	R = -0.000000996 deg
 };
-P[318]{
+P[157]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999935755 mm,	Y = -629.999990258 mm,	Z = 391.999946922 mm,
 	W = -179.999998735 deg,	P = 0.000003259 deg,	R = -0.000001054 deg
 };
-P[319]{
+P[158]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999935679 mm,	Y = -639.999990111 mm,	Z = 391.999946800 mm,
 	W = -179.999998712 deg,	P = 0.000003250 deg,	R = -0.000001064 deg
 };
-P[320]{
+P[159]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999935604 mm,	Y = -649.999989969 mm,	Z = 391.999946680 mm,
 	W = -179.999998689 deg,	P = 0.000003240 deg,	R = -0.000001075 deg
 };
-P[321]{
+P[160]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999935529 mm,	Y = -659.999989831 mm,	Z = 391.999946562 mm,
 	W = -179.999998667 deg,	P = 0.000003230 deg,	R = -0.000001086 deg
 };
-P[322]{
+P[161]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999935455 mm,	Y = -669.999989698 mm,	Z = 391.999946446 mm,
 	W = -179.999998644 deg,	P = 0.000003220 deg,	R = -0.000001096 deg
 };
-P[323]{
+P[162]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999935380 mm,	Y = -679.999989570 mm,	Z = 391.999946332 mm,
 	W = -179.999998622 deg,	P = 0.000003210 deg,	R = -0.000001107 deg
 };
-P[324]{
+P[163]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999935306 mm,	Y = -689.999989446 mm,	Z = 391.999946220 mm,
 	W = -179.999998601 deg,	P = 0.000003200 deg,	R = -0.000001118 deg
 };
-P[325]{
+P[164]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999935232 mm,	Y = -699.999989328 mm,	Z = 391.999946110 mm,
 	W = -179.999998579 deg,	P = 0.000003189 deg,	R = -0.000001129 deg
 };
-P[326]{
+P[165]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999935158 mm,	Y = -709.999989214 mm,	Z = 391.999946002 mm,
 	W = -179.999998558 deg,	P = 0.000003178 deg,	R = -0.000001139 deg
 };
-P[327]{
+P[166]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999935084 mm,	Y = -719.999989106 mm,	Z = 391.999945896 mm,
 	W = -179.999998537 deg,	P = 0.000003167 deg,	R = -0.000001150 deg
 };
-P[328]{
+P[167]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999935010 mm,	Y = -729.999989003 mm,	Z = 391.999945791 mm,
 	W = -179.999998516 deg,	P = 0.000003156 deg,	R = -0.000001161 deg
 };
-P[329]{
+P[168]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999934935 mm,	Y = -739.999988905 mm,	Z = 391.999945689 mm,
 	W = -179.999998495 deg,	P = 0.000003144 deg,	R = -0.000001172 deg
 };
-P[330]{
+P[169]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999934860 mm,	Y = -749.999988812 mm,	Z = 391.999945588 mm,
 	W = -179.999998475 deg,	P = 0.000003132 deg,	R = -0.000001183 deg
 };
-P[331]{
+P[170]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999934784 mm,	Y = -759.999988725 mm,	Z = 391.999945489 mm,
 	W = -179.999998455 deg,	P = 0.000003120 deg,	R = -0.000001194 deg
 };
-P[332]{
+P[171]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999934708 mm,	Y = -769.999988644 mm,	Z = 391.999945392 mm,
 	W = -179.999998436 deg,	P = 0.000003108 deg,	R = -0.000001204 deg
 };
-P[333]{
+P[172]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1149.999934631 mm,	Y = -779.999988568 mm,	Z = 391.999945297 mm,
 	W = -179.999998416 deg,	P = 0.000003096 deg,	R = -0.000001215 deg
 };
-P[334]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1150.039399654 mm,	Y = -781.255800298 mm,	Z = 391.999945654 mm,
-	W = -179.999998431 deg,	P = 0.000003078 deg,	R = -0.000001265 deg
-};
-P[335]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1150.157639561 mm,	Y = -782.506657291 mm,	Z = 391.999946512 mm,
-	W = -179.999998467 deg,	P = 0.000003035 deg,	R = -0.000001358 deg
-};
-P[336]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1150.354188167 mm,	Y = -783.747621646 mm,	Z = 391.999947543 mm,
-	W = -179.999998508 deg,	P = 0.000002983 deg,	R = -0.000001447 deg
-};
-P[337]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1150.628269782 mm,	Y = -784.973795845 mm,	Z = 391.999948742 mm,
-	W = -179.999998554 deg,	P = 0.000002920 deg,	R = -0.000001530 deg
-};
-P[338]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1150.978802733 mm,	Y = -786.180340739 mm,	Z = 391.999950104 mm,
-	W = -179.999998606 deg,	P = 0.000002849 deg,	R = -0.000001607 deg
-};
-P[339]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1151.404403625 mm,	Y = -787.362494645 mm,	Z = 391.999951623 mm,
-	W = -179.999998661 deg,	P = 0.000002768 deg,	R = -0.000001679 deg
-};
-P[340]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1151.903392807 mm,	Y = -788.515592144 mm,	Z = 391.999953293 mm,
-	W = -179.999998722 deg,	P = 0.000002678 deg,	R = -0.000001744 deg
-};
-P[341]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1152.473800996 mm,	Y = -789.635082485 mm,	Z = 391.999955107 mm,
-	W = -179.999998786 deg,	P = 0.000002579 deg,	R = -0.000001802 deg
-};
-P[342]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1153.113377050 mm,	Y = -790.716547553 mm,	Z = 391.999957057 mm,
-	W = -179.999998855 deg,	P = 0.000002473 deg,	R = -0.000001854 deg
-};
-P[343]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1153.819596857 mm,	Y = -791.755719298 mm,	Z = 391.999959135 mm,
-	W = -179.999998927 deg,	P = 0.000002358 deg,	R = -0.000001898 deg
-};
-P[344]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1154.589673289 mm,	Y = -792.748496583 mm,	Z = 391.999961333 mm,
-	W = -179.999999002 deg,	P = 0.000002237 deg,	R = -0.000001936 deg
-};
-P[345]{
+P[173]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1155.420567206 mm,	Y = -793.690961370 mm,	Z = 391.999963642 mm,
 	W = -179.999999081 deg,	P = 0.000002109 deg,	R = -0.000001966 deg
 };
-P[346]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1156.308999450 mm,	Y = -794.579394181 mm,	Z = 391.999966051 mm,
-	W = -179.999999162 deg,	P = 0.000001975 deg,	R = -0.000001988 deg
-};
-P[347]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1157.251463784 mm,	Y = -795.410288776 mm,	Z = 391.999968551 mm,
-	W = -179.999999245 deg,	P = 0.000001835 deg,	R = -0.000002003 deg
-};
-P[348]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1158.244240734 mm,	Y = -796.180365993 mm,	Z = 391.999971132 mm,
-	W = -179.999999331 deg,	P = 0.000001691 deg,	R = -0.000002011 deg
-};
-P[349]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1159.283412262 mm,	Y = -796.886586688 mm,	Z = 391.999973783 mm,
-	W = -179.999999418 deg,	P = 0.000001542 deg,	R = -0.000002011 deg
-};
-P[350]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1160.364877234 mm,	Y = -797.526163730 mm,	Z = 391.999976493 mm,
-	W = -179.999999506 deg,	P = 0.000001389 deg,	R = -0.000002003 deg
-};
-P[351]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1161.484367600 mm,	Y = -798.096573000 mm,	Z = 391.999979252 mm,
-	W = -179.999999595 deg,	P = 0.000001232 deg,	R = -0.000001987 deg
-};
-P[352]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1162.637465246 mm,	Y = -798.595563351 mm,	Z = 391.999982048 mm,
-	W = -179.999999685 deg,	P = 0.000001073 deg,	R = -0.000001964 deg
-};
-P[353]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1163.819619422 mm,	Y = -799.021165497 mm,	Z = 391.999984870 mm,
-	W = -179.999999775 deg,	P = 0.000000912 deg,	R = -0.000001934 deg
-};
-P[354]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1165.026164705 mm,	Y = -799.371699778 mm,	Z = 391.999987708 mm,
-	W = -179.999999864 deg,	P = 0.000000750 deg,	R = -0.000001896 deg
-};
-P[355]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1166.252339414 mm,	Y = -799.645782795 mm,	Z = 391.999990548 mm,
-	W = -179.999999953 deg,	P = 0.000000587 deg,	R = -0.000001851 deg
-};
-P[356]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1167.493304396 mm,	Y = -799.842332867 mm,	Z = 391.999993381 mm,
-	W = 179.999999959 deg,	P = 0.000000423 deg,	R = -0.000001798 deg
-};
-P[357]{
-   GP1:
-	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X = 1168.744162131 mm,	Y = -799.960574299 mm,	Z = 391.999996196 mm,
-	W = 179.999999873 deg,	P = 0.000000261 deg,	R = -0.000001739 deg
-};
-P[358]{
+P[174]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1169.999976056 mm,	Y = -800.000040446 mm,	Z = 391.999998980 mm,
 	W = 179.999999788 deg,	P = 0.000000099 deg,	R = -0.000001674 deg
 };
-P[359]{
+P[175]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1179.999977540 mm,	Y = -800.000041219 mm,	Z = 392.000000162 mm,
 	W = 179.999999751 deg,	P = 0.000000027 deg,	R = -0.000001651 deg
 };
-P[360]{
+P[176]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1189.999977211 mm,	Y = -800.000041739 mm,	Z = 391.999999953 mm,
 	W = 179.999999756 deg,	P = 0.000000036 deg,	R = -0.000001664 deg
 };
-P[361]{
+P[177]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1199.999976882 mm,	Y = -800.000042266 mm,	Z = 391.999999744 mm,
 	W = 179.999999760 deg,	P = 0.000000046 deg,	R = -0.000001677 deg
 };
-P[362]{
+P[178]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1209.999976553 mm,	Y = -800.000042799 mm,	Z = 391.999999536 mm,
 	W = 179.999999764 deg,	P = 0.000000055 deg,	R = -0.000001691 deg
 };
-P[363]{
+P[179]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1219.999976224 mm,	Y = -800.000043338 mm,	Z = 391.999999328 mm,
 	W = 179.999999768 deg,	P = 0.000000064 deg,	R = -0.000001704 deg
 };
-P[364]{
+P[180]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1229.999975895 mm,	Y = -800.000043885 mm,	Z = 391.999999120 mm,
 	W = 179.999999773 deg,	P = 0.000000074 deg,	R = -0.000001717 deg
 };
-P[365]{
+P[181]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1239.999975567 mm,	Y = -800.000044437 mm,	Z = 391.999998913 mm,
 	W = 179.999999776 deg,	P = 0.000000083 deg,	R = -0.000001730 deg
 };
-P[366]{
+P[182]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1249.999975239 mm,	Y = -800.000044996 mm,	Z = 391.999998705 mm,
 	W = 179.999999780 deg,	P = 0.000000092 deg,	R = -0.000001744 deg
 };
-P[367]{
+P[183]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1259.999974911 mm,	Y = -800.000045561 mm,	Z = 391.999998499 mm,
 	W = 179.999999784 deg,	P = 0.000000101 deg,	R = -0.000001757 deg
 };
-P[368]{
+P[184]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1269.999974583 mm,	Y = -800.000046133 mm,	Z = 391.999998292 mm,
 	W = 179.999999787 deg,	P = 0.000000111 deg,	R = -0.000001770 deg
 };
-P[369]{
+P[185]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1279.999974256 mm,	Y = -800.000046711 mm,	Z = 391.999998086 mm,
 	W = 179.999999791 deg,	P = 0.000000120 deg,	R = -0.000001783 deg
 };
-P[370]{
+P[186]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1289.999973929 mm,	Y = -800.000047296 mm,	Z = 391.999997879 mm,
 	W = 179.999999794 deg,	P = 0.000000129 deg,	R = -0.000001796 deg
 };
-P[371]{
+P[187]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1299.999973603 mm,	Y = -800.000047886 mm,	Z = 391.999997673 mm,
 	W = 179.999999797 deg,	P = 0.000000138 deg,	R = -0.000001810 deg
 };
-P[372]{
+P[188]{
    GP1:
 	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
 	X = 1300.000000000 mm,	Y = -800.000000000 mm,	Z = 405.000000000 mm,

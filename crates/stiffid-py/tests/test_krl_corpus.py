@@ -79,6 +79,11 @@ def stored(n):
         if line.startswith(("$TOOL", "$BASE")):
             continue
         speed = line.split("=")[1].strip() if line.startswith("$VEL.CP") else speed
+        if line.startswith("CIRC"):
+            motions += 1
+            if motions <= n:
+                src.append(line)
+            continue
         m = re.match(r"(PTP|LIN) \{E6POS: ([^}]*)\}(.*)", line)
         if not m:
             src.append(line)

@@ -63,12 +63,15 @@ def test_read_program_carries_each_targets_external_values(tmp_path):
 
 
 def test_read_program_gives_the_programmed_speeds():
-    # The LS pocket is written from pocket.nc: the same feed at every move, a joint move first.
+    # The LS pocket is written from pocket.nc: the G-code's feeds (its arcs circular motions
+    # through two of their points), its rapids joint moves, a joint move first.
     gcode = stiffid.read_program(POCKET)
     ls = stiffid.read_program(MILLING / "pocket.ls")
     np.testing.assert_array_equal(np.isnan(gcode["feed_mm_s"]), gcode["rapid"])
-    np.testing.assert_allclose(ls["feed_mm_s"], gcode["feed_mm_s"], rtol=1e-12)
-    np.testing.assert_array_equal(ls["joint"], gcode["rapid"])
+    np.testing.assert_array_equal(np.isnan(ls["feed_mm_s"]), ls["joint"])
+    assert ls["joint"][0] and ls["joint"].sum() == gcode["rapid"].sum()
+    assert len(ls["line"]) < len(gcode["line"])
+    np.testing.assert_allclose(np.unique(ls["feed_mm_s"][~ls["joint"]].round(9)), [5, 30])
     assert np.isnan(ls["time_s"]).all() and ls["speed_not_read"] == [None] * len(ls["line"])
     np.testing.assert_allclose(np.unique(gcode["feed_mm_s"][~gcode["rapid"]].round(9)), [5, 30])
 
@@ -125,7 +128,16 @@ def test_an_inform_job_in_pulses_equals_the_command(cli, tmp_path):
         positions += [[int(v) for v in line.split("=")[1].split(",")]
                       for line in text.split("\r\n") if line.startswith("C0")]
     compensated = np.array([[p[f"qc{k}_deg"] for k in range(1, 7)] for p in theirs["points"]])
-    np.testing.assert_allclose(np.array(positions) / pulses, compensated, rtol=0, atol=0.5 / min(pulses) + 1e-6)
+    # Each position is a point's compensated angles to half a pulse, in path order: the arcs
+    # written as MOVC leave their other chord points out, a taught arc start repeats the point
+    # before it.
+    positions = np.array(positions) / pulses
+    assert len(positions) < len(compensated)
+    at = 0
+    for p in positions:
+        close = np.abs(compensated[max(at - 1, 0):] - p).max(axis=1) <= 0.5 / min(pulses) + 1e-6
+        assert close.any(), p
+        at = max(at - 1, 0) + int(np.argmax(close)) + 1
     with pytest.raises(ValueError, match=r"controller.pulses_per_deg: missing"):
         stiffid.compensate(stiffid.Setup.from_file(SETUP), stiffness=STIFFNESS, program=POCKET, process=PROCESS,
                            output="inform")

@@ -47,7 +47,7 @@ def test_place_a_path_file_equals_the_command(cli, tmp_path):
                          grid=3, samples=8, starts=1)
     assert mine.pop("setup_text") == out.read_text()
     assert mine == theirs and mine["gain_vs_own_pct"] > 0
-    with pytest.raises(ValueError, match="line 13: the program's tool .* is not the setup's"):
+    with pytest.raises(ValueError, match="line 17: the program's tool .* is not the setup's"):
         stiffid.place(SETUP, stiffness, program=MILLING / "pocket.src",
                       process=MILLING / "aluminium.toml", region_mm=(500, 2000, -1500, 500))
     with pytest.raises(ValueError, match="expected program= and process="):

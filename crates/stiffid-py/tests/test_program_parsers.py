@@ -4,6 +4,9 @@ or format error in a program generated from G-code, with Cartesian or joint targ
 program compensated in place. The milling pocket's first wall (straight moves and an arc, its
 process and tool) keeps the parser's seconds few; the whole pocket's program has the same lines."""
 
+import re
+import subprocess
+import sys
 import warnings
 
 import pytest
@@ -42,9 +45,15 @@ def generate(setup, program, **kwargs):
         return stiffid.compensate(setup, stiffness=STIFFNESS, program=program, process=PROCESS, **kwargs)["program"]
 
 
-@pytest.mark.parametrize("targets, move", [("cartesian", "MoveL ["), ("joint", "MoveAbsJ")])
-def test_generated_rapid_programs_parse(setup, wall, targets, move):
-    generated = generate(setup, wall, output="rapid", targets=targets)
+@pytest.mark.parametrize(
+    "targets, move, tolerance",
+    [("cartesian", "MoveL [", 0.01), ("cartesian", "MoveC [", 0.05), ("joint", "MoveAbsJ", 0.01)],
+)
+def test_generated_rapid_programs_parse(setup, wall, targets, move, tolerance):
+    """The wall's arc, compensated, stays within 0.024 mm of a circle: a MoveC at a chord
+    tolerance of 0.05 mm, its chords at 0.01 mm (with a warning); with joint targets its chord
+    points."""
+    generated = generate(setup, wall, output="rapid", targets=targets, chord_tolerance_mm=tolerance)
     assert move in generated
     assert check.check_format(generated) == []
 
@@ -90,3 +99,16 @@ def test_a_rapid_module_with_offs_reltool_and_movec_compensated_in_place_parses(
     for form in ("Offs([[", "RelTool([[", "MoveC [["):
         assert form in compensated
     assert check.check_format(compensated) == []
+
+
+def test_generated_krl_programs_with_circ_lint_clean(setup, wall, tmp_path):
+    """A KRL program written from the wall (its arc a CIRC at a chord tolerance of 0.05 mm, the
+    KSS header lines before DEF) lints clean with krllint (pinned in requirements-test.txt), as the whole pocket does."""
+    pytest.importorskip("krllint")
+    generated = generate(setup, wall, output="krl", targets="cartesian", chord_tolerance_mm=0.05)
+    assert generated.startswith("&ACCESS RVP\n&REL 1\n") and "\nCIRC {E6POS:" in generated
+    path = tmp_path / "WALL.src"
+    path.write_text(generated)
+    out = subprocess.run([sys.executable, "-m", "krllint", str(path)], capture_output=True, text=True, check=False)
+    assert "0 found errors" in out.stdout and "0 fatal errors" in out.stdout, out.stdout
+    assert not [line for line in out.stdout.splitlines() if re.match(r"^\d+:", line)], out.stdout

@@ -34,6 +34,7 @@ mod output;
 mod place_cli;
 mod pool_cli;
 mod program_axes_cli;
+mod program_dates_cli;
 mod program_process_cli;
 mod program_readback_cli;
 mod program_speeds_cli;

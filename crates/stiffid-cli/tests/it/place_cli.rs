@@ -194,7 +194,7 @@ fn robot_programs_and_built_in_setups_without_a_tool_are_refused_naming_why() {
         // The example's KRL program states a tool without the setup's TCP: its Cartesian
         // targets are read, and refused for that tool, naming the file and the line.
         &[
-            &format!("{krl}: line 13: the program's tool"),
+            &format!("{krl}: line 17: the program's tool"),
             "is not the setup's",
         ],
     );

@@ -58,11 +58,11 @@ fn a_robot_programs_speeds_are_checked_counted_or_refused() {
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert!(
         stderr.contains("warning: the programmed speed of 1 linear move is not read")
-            && stderr.contains("line 19: R[1]mm/sec: the speed is held in a register"),
+            && stderr.contains("line 35: R[1]mm/sec: the speed is held in a register"),
         "{stderr}"
     );
     let o = compensated(&dir, "0mm/sec");
-    assert_usage_error(&o, &["pocket.ls", "line 19", "0mm/sec", "(0, 10000] mm/s"]);
+    assert_usage_error(&o, &["pocket.ls", "line 35", "0mm/sec", "(0, 10000] mm/s"]);
     assert!(!dir.join("OUT.ls").exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -1,8 +1,35 @@
 //! Arcs (`G2`/`G3`) split into chords within the tolerance, the centre by `I J K` or `R`.
 
-use super::{at, State, MAX_POINTS};
+use super::{at, GCode, State, MAX_POINTS};
 use nalgebra::Vector3;
+use std::ops::Range;
 use stiffid_core::Result;
+
+/// One arc block (`G2`/`G3`) of a path: its line and its points.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ArcBlock {
+    /// The block's line, 1-based.
+    pub line: u64,
+    /// Its points in [`GCode::points`]: the arc's start (the point before the block, where the
+    /// tool stands), its chord points and its end (the block's last point).
+    pub points: Range<usize>,
+}
+
+impl GCode {
+    /// The arc blocks of the path, in path order, each with its start, chord points and end:
+    /// what a robot program may write as circular moves
+    /// ([`crate::program::generate::arcs`]).
+    pub fn arcs(&self) -> Vec<ArcBlock> {
+        (self.blocks.iter())
+            .filter(|b| b.arc_word.is_some() && b.cycle.is_none())
+            .filter(|b| b.points.start > 0 && !b.points.is_empty())
+            .map(|b| ArcBlock {
+                line: self.points[b.points.start].line,
+                points: b.points.start - 1..b.points.end,
+            })
+            .collect()
+    }
+}
 
 /// The plane's axes `(u, v, normal)` as coordinate indices, `u x v = normal`.
 pub(super) fn plane_axes(plane: u8) -> (usize, usize, usize) {

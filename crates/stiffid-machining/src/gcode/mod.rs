@@ -34,7 +34,9 @@
 //!   `Rz(C) Ry(B) Rx(A)` in the part frame before the header's orientation. A canned cycle
 //!   drills into the part's surface at `Z = 0` of the part frame, or at the level
 //!   `(stiffid: surface_mm = Z)` states (mm whatever the program's units, from there on).
-//! - Arcs are split into chords whose sagitta is at most the chord tolerance.
+//! - Arcs are split into chords whose sagitta is at most the chord tolerance; which points came
+//!   from one arc block is kept ([`GCode::arcs`]), so that a robot program written from the
+//!   path may write the arc as a circular move ([`crate::program::generate::arcs`]).
 //!
 //! Any other G code or letter is refused naming its line (cutter radius compensation `G41`/`G42`
 //! saying it belongs to the CAM post; `G92`, `G93`, `G95`, `G28.1` saying why), as are
@@ -68,7 +70,7 @@ mod process;
 mod words;
 mod write;
 
-pub use arc::{ARC_END_MAX_MM, ARC_END_RELATIVE, ARC_END_TOLERANCE_MM};
+pub use arc::{ArcBlock, ARC_END_MAX_MM, ARC_END_RELATIVE, ARC_END_TOLERANCE_MM};
 pub use cycles::{Cycle, PECK_CLEARANCE_MM};
 pub use machine::{Machine, ProgramFrames};
 pub use process::ProcessWord;

@@ -162,6 +162,13 @@ pub trait Generator: Sync {
     fn needs_pulses(&self) -> bool {
         false
     }
+    /// How the language writes a circular move in a program of `targets`
+    /// ([`super::generate::arcs`]); `None`: its arcs are written as their chord points. By
+    /// default the via point and the end, with Cartesian targets only (joint targets are
+    /// interpolated axis by axis).
+    fn circular(&self, targets: Targets) -> Option<super::generate::arcs::Form> {
+        (targets == Targets::Cartesian).then_some(super::generate::arcs::Form::ViaEnd)
+    }
     /// The most external axes of `role` a program holds.
     fn most_external(&self, role: Role) -> usize;
     /// Where a program writes the external axes of `role`, for messages (KRL `E1..E6`).

@@ -77,6 +77,7 @@ fn written(
         world: Isometry3::identity(),
         external: None,
         approximation: 1e-5,
+        numbers: Default::default(),
         pulses: None,
         settings: Settings::default(),
     };
@@ -184,6 +185,7 @@ fn the_configuration_data_choose_the_solution_of_a_pose() {
                 world: Isometry3::identity(),
                 external: None,
                 approximation: 1e-5,
+                numbers: Default::default(),
                 pulses: None,
                 settings: Settings::default(),
             };

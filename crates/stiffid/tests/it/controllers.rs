@@ -224,6 +224,7 @@ fn plan<'a>(
         world: Isometry3::identity(),
         external: Some(axes),
         approximation: 1e-5,
+        numbers: Default::default(),
         pulses: Some(pulses),
         settings: Settings {
             targets,

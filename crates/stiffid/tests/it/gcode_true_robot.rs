@@ -16,7 +16,7 @@ use stiffid::machining::program::generate::Targets;
 use stiffid::machining::program::Dialect;
 use stiffid::machining::Language;
 
-fn corpus(name: &str) -> String {
+pub(crate) fn corpus(name: &str) -> String {
     let path = format!(
         "{}/tests/data/programs/gcode/{name}",
         env!("CARGO_MANIFEST_DIR")
@@ -24,8 +24,19 @@ fn corpus(name: &str) -> String {
     std::fs::read_to_string(path).unwrap()
 }
 
-#[test]
-fn a_real_program_with_work_offset_tool_lengths_and_arcs_lands_on_the_true_robot() {
+/// The campaign's true robot, the setup calibrated on it with the part placed and the tool
+/// down (the programs state no tool orientation), its compliance, the tracker's frame, the
+/// start and the held-out RMS (m).
+pub(crate) struct Prepared {
+    pub(crate) truth: Truth,
+    pub(crate) setup: stiffid::Setup,
+    pub(crate) compliance: stiffid::model::Compliance,
+    pub(crate) frame: nalgebra::Isometry3<f64>,
+    pub(crate) q0: nalgebra::Vector6<f64>,
+    pub(crate) held_rms: f64,
+}
+
+pub(crate) fn prepared() -> Prepared {
     let case = dh_case();
     let mut rng = ChaCha8Rng::seed_from_u64(78);
     let truth = Truth::new(&case.setup, &mut rng);
@@ -47,6 +58,26 @@ fn a_real_program_with_work_offset_tool_lengths_and_arcs_lands_on_the_true_robot
         .with_program_frames(frames)
         .build()
         .unwrap();
+    Prepared {
+        truth,
+        setup,
+        compliance: compliance.unwrap(),
+        frame,
+        q0,
+        held_rms,
+    }
+}
+
+#[test]
+fn a_real_program_with_work_offset_tool_lengths_and_arcs_lands_on_the_true_robot() {
+    let Prepared {
+        truth,
+        setup,
+        compliance,
+        frame,
+        q0,
+        held_rms,
+    } = prepared();
     // LinuxCNC's two tools (G54, G43 of both, full circles), and a Fusion 360 post's contour as
     // found (G54, 32 arcs, S5000 M3).
     for (name, process, at_least) in [
@@ -55,12 +86,7 @@ fn a_real_program_with_work_offset_tool_lengths_and_arcs_lands_on_the_true_robot
     ] {
         let (program, process) = (corpus(name), corpus(process));
         let output = (Language::Robot(Dialect::Krl), Targets::Joint);
-        let (krl, results) = written_with(
-            &setup,
-            compliance.as_ref().unwrap(),
-            (&q0, &program, &process),
-            output,
-        );
+        let (krl, results) = written_with(&setup, &compliance, (&q0, &program, &process), output);
         let qs = joint_targets(&krl);
         assert_eq!(qs.len(), results.len());
         assert!(results.len() > at_least, "{name}: {}", results.len());

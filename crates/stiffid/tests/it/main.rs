@@ -3,6 +3,7 @@
 //! `mod NAME;` below; `common` holds the shared helpers, `mutate` the property tests' mutations.
 
 mod active_set;
+mod arcs_true_robot;
 mod bodies;
 mod bootstrap;
 mod budget;

@@ -39,7 +39,8 @@ fn the_written_programs_state_the_feed_of_every_move() {
     ];
     for (text, dialect) in programs {
         let p = program::parse(text, dialect).unwrap();
-        assert_eq!(p.targets.len(), g.points.len(), "{dialect:?}");
+        // One target per point but for the chord points of the arcs written as circular moves.
+        assert!(p.targets.len() < g.points.len(), "{dialect:?}");
         // Read back on its cell: the RAPID wrist sits on a quadrant boundary (axis 4 at 0).
         let case = match dialect {
             Dialect::FanucLs => ls(),
@@ -48,15 +49,40 @@ fn the_written_programs_state_the_feed_of_every_move() {
         let (s, read) = (cell(&case, None), Program::Robot(p.clone()));
         let resolved = stiffid::machining::resolve(&read, &s, None, &Options::for_setup(&s));
         assert!(resolved.is_ok(), "{dialect:?}: {:?}", resolved.err());
-        for (t, point) in p.targets.iter().zip(&g.points) {
-            match (point.motion, &t.speed) {
-                (Motion::Rapid, Speed::Joint) => {}
-                (Motion::Feed, Speed::Path(v)) => {
-                    let feed = point.feed.unwrap();
-                    assert!((v - feed).abs() < 1e-12, "{dialect:?} line {}", t.line);
+        // The speeds in path order, each run of one speed once: the G-code's rapids and feeds.
+        let runs = |speeds: Vec<Option<f64>>| {
+            let mut out: Vec<Option<f64>> = Vec::new();
+            for v in speeds {
+                if out.last() != Some(&v) {
+                    out.push(v);
                 }
-                other => panic!("{dialect:?} line {}: {other:?}", t.line),
             }
+            out
+        };
+        let want = runs(
+            (g.points.iter())
+                .map(|point| match point.motion {
+                    Motion::Rapid => None,
+                    Motion::Feed => point.feed,
+                })
+                .collect(),
+        );
+        let got = runs(
+            (p.targets.iter())
+                .map(|t| match &t.speed {
+                    Speed::Joint => None,
+                    Speed::Path(v) => Some(*v),
+                    other => panic!("{dialect:?} line {}: {other:?}", t.line),
+                })
+                .collect(),
+        );
+        assert_eq!(got.len(), want.len(), "{dialect:?}");
+        for (a, b) in got.iter().zip(&want) {
+            assert_eq!(a.is_some(), b.is_some(), "{dialect:?}");
+            assert!(
+                (a.unwrap_or(0.0) - b.unwrap_or(0.0)).abs() < 1e-12,
+                "{dialect:?}"
+            );
         }
     }
 }
@@ -216,11 +242,13 @@ fn unread_speeds_are_counted_and_bad_ones_refused_naming_the_line() {
     let (r, _) = rotated(&unread, &s).unwrap();
     assert!(r.speed_limits.checked);
     let line = 1 + KRL.lines().position(|l| l == "$VEL.CP = 0.03").unwrap() as u64;
+    // Its moves: each LIN a target, each CIRC two (its via point and end).
     let after = KRL
         .lines()
         .skip(line as usize)
-        .take_while(|l| l.starts_with("LIN"));
-    assert_eq!(r.speed_limits.moves_not_read, after.count());
+        .take_while(|l| l.starts_with("LIN") || l.starts_with("CIRC"))
+        .map(|l| 1 + usize::from(l.starts_with("CIRC")));
+    assert_eq!(r.speed_limits.moves_not_read, after.sum::<usize>());
     let w = r
         .warnings
         .iter()

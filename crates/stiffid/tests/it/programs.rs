@@ -549,6 +549,7 @@ fn a_gcode_path_written_as_a_robot_program_moves_at_its_feed() {
         world: nalgebra::Isometry3::identity(),
         external: None,
         approximation: 1e-5,
+        numbers: Default::default(),
         pulses: None,
         settings: Settings::default(),
     };

@@ -18,6 +18,7 @@
 
 pub mod budget;
 pub mod certify;
+mod circles;
 mod columns;
 pub mod configurations;
 pub mod document;

@@ -3,6 +3,7 @@
 //! ([`generated`]) in the controller's kinematics and frames.
 
 use super::certify;
+use crate::program::generate::arcs::{self, Circular, Form};
 use crate::program::generate::{self, generate_with, moves, Plan, Settings, Target, Tool};
 use crate::program::Dialect;
 use crate::{self as machining, Language, Program};
@@ -24,9 +25,15 @@ pub(super) fn generated(
     ((name, settings, chord_tolerance), level): ((String, Settings, f64), f64),
 ) -> Result<(String, Vec<generate::File>, Vec<Warning>)> {
     let how = (name.as_str(), &settings, chord_tolerance);
-    let (written, home) = write_robot_program(setup, dialect, compensated, gcode, how)?;
-    let mut warnings: Vec<Warning> = (written.warnings.into_iter())
-        .map(|w| Warning::new(WarningKind::Feed, w))
+    let (written, (circular, form), home) =
+        write_robot_program(setup, dialect, compensated, gcode, how)?;
+    let arcs = circular.warnings.len();
+    let feeds = written.warnings.len() - arcs;
+    let mut warnings: Vec<Warning> = (written.warnings.into_iter().enumerate())
+        .map(|(i, w)| match i < feeds {
+            true => Warning::new(WarningKind::Feed, w),
+            false => Warning::new(WarningKind::LeftOut, w),
+        })
         .collect();
     warnings.extend((written.left_out.into_iter()).map(|w| Warning::new(WarningKind::LeftOut, w)));
     if settings.targets_asked
@@ -38,10 +45,11 @@ pub(super) fn generated(
             dialect.controller().key().to_ascii_uppercase()
         )));
     }
+    let bounds: Vec<f64> = compensated.results.iter().map(|r| r.budget.bound).collect();
+    let path = arcs::motion_bounds(&circular, &bounds, form.unwrap_or(Form::ViaEnd));
     // The home posture's moves carry no bound: they are not compensated.
-    let path = compensated.results.iter().map(|r| Some(r.budget.bound));
     let bounds: Vec<Option<f64>> = (home.then_some(None).into_iter())
-        .chain(path)
+        .chain(path.into_iter().map(Some))
         .chain(home.then_some(None))
         .collect();
     let texts: Vec<String> = written.files.iter().map(|f| f.text.clone()).collect();
@@ -117,31 +125,37 @@ fn write_robot_program(
     compensated: &machining::Report,
     gcode: &crate::gcode::GCode,
     (name, settings, chord_tolerance): (&str, &Settings, f64),
-) -> Result<(generate::Written, bool)> {
+) -> Result<(generate::Written, (Circular, Option<Form>), bool)> {
     use rayon::prelude::*;
     let points = &gcode.points;
-    let mut moves = moves(points, settings.max_tcp_speed)?;
+    let moves = moves(points, settings.max_tcp_speed)?;
     let tool = setup.tool();
     // Joint targets are exact in any kinematics; Cartesian ones are the controller's.
     let controller = match generate::written_targets(dialect, settings.targets) {
         generate::Targets::Joint => setup.robot(),
         generate::Targets::Cartesian => cell_controller(setup)?,
     };
-    let mut targets: Vec<Target> = (compensated.results.par_iter())
+    let targets: Vec<Target> = (compensated.results.par_iter())
         .zip(&compensated.points)
         .map(|(r, p)| {
-            // The values the compensation chose (a free station), else the program's.
-            let e = match r.external.is_empty() {
-                true => p.external.as_slice(),
-                false => r.external.as_slice(),
-            };
+            let e = super::circles::values(r, p);
             // The pose in the tool's axes ([tool] tcp_rpy_deg), as the program's tool states them.
             let mut t = Target::at(controller, &tool.tcp, &r.q_compensated, e);
             t.pose.rotation *= tool.rotation;
             t
         })
         .collect();
-    let mut lines: Vec<Option<u64>> = points.iter().map(|p| Some(p.line)).collect();
+    let check = (&tool.tcp, compensated, cell_controller(setup));
+    let (mut targets, mut moves, circular, form) = super::circles::circular(
+        (dialect, settings),
+        &gcode.arcs(),
+        (targets, moves),
+        check,
+        chord_tolerance,
+    );
+    let mut lines: Vec<Option<u64>> = (circular.index.iter())
+        .map(|&i| Some(points[i].line))
+        .collect();
     let home = super::home::add(setup, controller, (&mut targets, &mut moves, &mut lines));
     let before = generate::place(&gcode.process, &lines);
     let process = generate::Process {
@@ -159,10 +173,23 @@ fn write_robot_program(
         external: setup.robot().external(),
         world: setup.workcell().controller().world,
         approximation: chord_tolerance,
+        numbers: numbers(setup),
         pulses: setup.workcell().controller().pulses.as_ref(),
         settings: *settings,
     };
-    Ok((generate_with(&plan, &process)?, home))
+    let mut written = generate_with(&plan, &process)?;
+    written.warnings.extend(circular.warnings.iter().cloned());
+    Ok((written, (circular, form), home))
+}
+
+/// The setup's tool and part frame as its controller holds them by number
+/// ([`generate::numbered`]).
+fn numbers(setup: &Setup) -> generate::numbered::Numbers {
+    let c = setup.workcell().controller();
+    let part = c
+        .world
+        .inv_mul(&setup.workpiece().copied().unwrap_or_default());
+    generate::numbered::Numbers::of((&c.tools, &c.bases), &program_tool(setup).frame, &part)
 }
 
 /// `settings` with the setup's rapid speeds (`[controller] rapid_speed_mm_s`,

@@ -34,6 +34,17 @@
 //!   them), Cartesian targets written as their axis angles ([`written_targets`]); tool file 1
 //!   (`///TOOL 1`), whose values the job's comments state ([`super::inform::generate`]).
 //!
+//! A tool or part frame the controller holds by number (the setup's `[controller] tools` and
+//! `bases`) is selected by its number instead ([`numbered`]): KRL `$TOOL = TOOL_DATA[n]`,
+//! `$BASE = BASE_DATA[m]`; LS `UTOOL_NUM=n`, `UFRAME_NUM=m`, positions in user frame `m`;
+//! INFORM tool file `n`.
+//!
+//! ## Headers
+//! As the controllers write them: KRL `&ACCESS RVP`, `&REL 1`, `&PARAM TEMPLATE`, `&PARAM
+//! EDITMASK` before `DEF`; LS the whole `/ATTR` (owner, comment, sizes, dates, line count,
+//! protection, task attributes, motion groups, control code); INFORM `///DATE` and `///COMM`.
+//! The dates are reproducible ([`date`]).
+//!
 //! ## Controller rules
 //! Every rule comes from the controller's manual (docs/reference.md lists the sources):
 //! - the program's name is an identifier of the language, not a reserved word, within
@@ -42,6 +53,8 @@
 //!   a generated program is called as its file is named, so the name is the file's stem;
 //! - motion is initialised before the first move: KRL `BAS(#INITMOV, 0)`, `$VEL`, `$ACC` and
 //!   `$APO`; RAPID `ConfJ \On`, `ConfL \On`; LS `UFRAME_NUM`, `UTOOL_NUM`; INFORM `NOP`;
+//! - arcs are circular moves where the compensated arc stays within the chord tolerance of a
+//!   circle, else chords with a warning ([`arcs`]);
 //! - intermediate cutting points are approximated within the chord tolerance (KRL `C_DIS` with
 //!   `$APO.CDIS`, RAPID a `zonedata` of that size, LS `CNT100`; INFORM `PL=1`, the controller's
 //!   smallest position level, whose distance its parameters set); the last point is exact (no
@@ -72,8 +85,11 @@
 //! Each program written reads back ([`super::parse`], joint targets) or states its targets to
 //! `10^-DECIMALS` mm and deg.
 
+pub mod arcs;
+pub mod date;
 mod names;
 mod process;
+pub mod numbered;
 
 pub use names::{
     check_name, check_plan, default_name_length, max_name_length, moves_per_file, LS_MAX_LINES,
@@ -98,6 +114,25 @@ pub enum Move {
     Rapid,
     /// A cutting move at the path's feed, m/s.
     Feed(f64),
+    /// The start of a circular move taught as a position of its own, at the feed (m/s), in a
+    /// language whose circle is three positions (INFORM `MOVC`); the next target is its via
+    /// point ([`arcs`]).
+    ArcStart(f64),
+    /// The via point of a circular move at the feed (m/s): the next target ends it ([`arcs`]).
+    ArcVia(f64),
+    /// The end of a circular move through the target before ([`Move::ArcVia`]), at the feed,
+    /// m/s ([`arcs`]).
+    ArcEnd(f64),
+}
+
+impl Move {
+    /// The feed of a cutting move (linear or circular), m/s; `None` for a rapid move.
+    pub fn feed(self) -> Option<f64> {
+        match self {
+            Move::Rapid => None,
+            Move::Feed(f) | Move::ArcStart(f) | Move::ArcVia(f) | Move::ArcEnd(f) => Some(f),
+        }
+    }
 }
 
 /// What the targets of a generated program are (module docs).
@@ -342,6 +377,9 @@ pub struct Plan<'a> {
     pub external: Option<&'a ExternalAxes>,
     /// The approximation of intermediate cutting points, m (the chord tolerance).
     pub approximation: f64,
+    /// The tool and part frame as the controller holds them by number, if it does
+    /// ([`numbered`]); `Default`: stated.
+    pub numbers: numbered::Numbers,
     /// The controller's axes' encoder pulses (`[controller] pulses_per_deg`), for a language
     /// that writes pulses (INFORM); `None`: not given.
     pub pulses: Option<&'a Pulses>,
@@ -429,10 +467,17 @@ pub fn generate_with(plan: &Plan, process: &Process) -> Result<Written> {
     let (inserted, left_out) = process::inserted(plan, form, process)?;
     let settings = room_for(generator, &plan.settings, &inserted)?;
     let names = check_plan(plan.dialect, plan.name, &settings, plan.targets.len())?;
+    date::stamp()?;
     check_targets(plan)?;
     generator.check_settings(&plan.settings)?;
     let per_file = moves_per_file(plan.dialect, &settings);
-    let chunks: Vec<&[Target]> = plan.targets.chunks(per_file).collect();
+    let files = arcs::files(plan.moves, per_file);
+    let chunks: Vec<&[Target]> = files.iter().map(|r| &plan.targets[r.clone()]).collect();
+    // A file ends before a circular move it cannot hold whole: one more file, maybe.
+    let names = match chunks.len() > 1 && names.len() != chunks.len() + 1 {
+        true => check_plan(plan.dialect, plan.name, &settings, chunks.len() * per_file)?,
+        false => names,
+    };
     let mut written = Written {
         files: Vec::new(),
         warnings: Vec::new(),
@@ -564,7 +609,7 @@ fn check_targets(plan: &Plan) -> Result<()> {
     let bad_feed = plan
         .moves
         .iter()
-        .any(|m| matches!(m, Move::Feed(f) if !(f.is_finite() && *f >= MIN_FEED)));
+        .any(|m| m.feed().is_some_and(|f| !(f.is_finite() && f >= MIN_FEED)));
     if plan.moves.len() != t.len() || bad_feed {
         return Err(invalid(
             "moves",
@@ -574,6 +619,13 @@ fn check_targets(plan: &Plan) -> Result<()> {
                 MIN_FEED * 1e3
             ),
         ));
+    }
+    let form = (names::generator(plan.dialect)?).circular(plan.settings.targets);
+    if !arcs::whole(plan.moves, form) {
+        return Err(invalid("moves", match form {
+            Some(_) => "expected every circular move whole: its start (INFORM), its via point, then its end".into(),
+            None => format!("a {} program with {} targets writes no circular move", plan.dialect.controller().key().to_ascii_uppercase(), plan.settings.targets.name()),
+        }));
     }
     check_external(plan)?;
     check_payload(plan.dialect, plan.settings.targets, &plan.tool)?;

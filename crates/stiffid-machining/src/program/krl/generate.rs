@@ -25,7 +25,8 @@ pub(crate) fn header(plan: &Plan) -> String {
     );
     // The real tool and load in joint-target programs too: speeds and dynamics are the tool's.
     {
-        let _ = writeln!(s, "$TOOL = {}", frame(&plan.tool.frame));
+        let tool = (plan.numbers.tool).map(|(n, _)| format!("TOOL_DATA[{n}]"));
+        let _ = writeln!(s, "$TOOL = {}", tool.unwrap_or(frame(&plan.tool.frame)));
         if let Some((mass, c)) = plan.tool.payload {
             let c = c * 1e3;
             let _ = writeln!(
@@ -37,7 +38,12 @@ pub(crate) fn header(plan: &Plan) -> String {
                 number(c.z)
             );
         }
-        let _ = writeln!(s, "$BASE = {}", frame(&plan.world.inv_mul(&plan.work)));
+        let base = (plan.numbers.base).map(|(n, _)| format!("BASE_DATA[{n}]"));
+        let _ = writeln!(
+            s,
+            "$BASE = {}",
+            base.unwrap_or(frame(&plan.world.inv_mul(&plan.work)))
+        );
     }
     s
 }
@@ -61,18 +67,20 @@ fn frame(f: &nalgebra::Isometry3<f64>) -> String {
 pub(crate) fn body(plan: &Plan, part: &Part) -> String {
     let mut s = String::with_capacity(part.targets.len() * 140);
     let mut speed: Option<f64> = None;
+    // The via point of the circular move the next target ends.
+    let mut via: Option<String> = None;
     let n = part.targets.len();
     for (k, (t, m)) in part.targets.iter().zip(part.moves).enumerate() {
         let exact = part.last && k + 1 == n;
         s += part.before(k);
-        if let Move::Feed(f) = m
-            && speed != Some(*f)
+        if let Some(f) = m.feed()
+            && speed != Some(f)
         {
-            let _ = writeln!(s, "$VEL.CP = {}", number(*f));
-            speed = Some(*f);
+            let _ = writeln!(s, "$VEL.CP = {}", number(f));
+            speed = Some(f);
         }
-        let approximate = |c: &str| match (exact, m) {
-            (false, Move::Feed(_)) => format!(" {c}"),
+        let approximate = |c: &str| match (exact, m.feed()) {
+            (false, Some(_)) => format!(" {c}"),
             _ => String::new(),
         };
         match plan.settings.targets {
@@ -92,13 +100,8 @@ pub(crate) fn body(plan: &Plan, part: &Part) -> String {
                 let (p, r) = in_work(plan, t);
                 let [a, b, c] = zyx_deg(&r);
                 let (status, turn) = t.arm.kuka();
-                let motion = match m {
-                    Move::Rapid => "PTP",
-                    Move::Feed(_) => "LIN",
-                };
-                let _ = writeln!(
-                    s,
-                    "{motion} {{E6POS: X {}, Y {}, Z {}, A {}, B {}, C {}{}, S 'B{status:03b}', T 'B{turn:06b}'}}{}",
+                let pos = format!(
+                    "{{E6POS: X {}, Y {}, Z {}, A {}, B {}, C {}{}, S 'B{status:03b}', T 'B{turn:06b}'}}",
                     v(p.x),
                     v(p.y),
                     v(p.z),
@@ -106,8 +109,18 @@ pub(crate) fn body(plan: &Plan, part: &Part) -> String {
                     v(b),
                     v(c),
                     external(t),
-                    approximate("C_DIS")
                 );
+                let _ = match (m, via.take()) {
+                    (Move::ArcVia(_), _) => {
+                        via = Some(pos);
+                        Ok(())
+                    }
+                    (Move::ArcEnd(_), Some(via)) => {
+                        writeln!(s, "CIRC {via},{pos}{}", approximate("C_DIS"))
+                    }
+                    (Move::Rapid, _) => writeln!(s, "PTP {pos}"),
+                    _ => writeln!(s, "LIN {pos}{}", approximate("C_DIS")),
+                };
             }
         }
     }
@@ -127,10 +140,16 @@ pub(crate) fn calls(subs: &[String]) -> String {
     subs.iter().map(|n| format!("{n}( )\n")).collect()
 }
 
-/// A whole `.src` file.
+/// A whole `.src` file: the [`KSS_HEADER`], `DEF NAME( )` ... `END`.
 pub(crate) fn wrap(name: &str, header: &str, body: &str) -> String {
-    format!("DEF {name}( )\n{header}{body}END\n")
+    format!("{KSS_HEADER}DEF {name}( )\n{header}{body}END\n")
 }
+
+/// The lines KSS writes before a program's `DEF` (KUKA System Software 8, "the file's
+/// attributes"): read-write access for the expert and operator (`&ACCESS RVP`), release 1, the
+/// template it was made from and the edit mask (`*`: every line editable).
+pub const KSS_HEADER: &str =
+    "&ACCESS RVP\n&REL 1\n&PARAM TEMPLATE = C:\\KRC\\Roboter\\Template\\vorgabe\n&PARAM EDITMASK = *\n";
 
 impl Generator for super::Krl {
     fn header(&self, plan: &Plan, _main: &str, _subs: &[String]) -> String {

@@ -23,6 +23,7 @@ mod declare;
 mod flow;
 mod frames;
 mod generate;
+pub use generate::KSS_HEADER;
 mod motion;
 mod names;
 mod process;
@@ -162,7 +163,7 @@ impl Controller for Krl {
         }
     }
     fn motion_lines(&self, text: &str) -> Vec<u64> {
-        lines_starting(text, &["PTP ", "LIN "])
+        lines_starting(text, &["PTP ", "LIN ", "CIRC "])
     }
     fn generator(&self) -> Option<&'static dyn Generator> {
         Some(&Krl)

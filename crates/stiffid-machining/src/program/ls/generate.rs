@@ -5,21 +5,30 @@ use crate::program::generate::{
     in_world, number, stated_feed, v, zyx_deg, Move, Part, Plan, Settings, Target, Targets,
 };
 use crate::program::Generator;
+use nalgebra::Isometry3;
 use std::fmt::Write;
 use stiffid_core::robot::external::Role;
 use stiffid_core::Result;
+
+/// How the continuation line of a circular move (its end) starts, unnumbered as FANUC writes it.
+const CONTINUATION: &str = "    :  ";
 
 /// The `COMMENT` of every program: at most 16 characters, what the pendant shows.
 pub const COMMENT: &str = "stiffid";
 
 /// The frames set up at the top of the main program: user frame 0 (the world), tool frame 1,
 /// whose values (the tool frame from the controller's flange) the remarks state, one per line
-/// (a remark is at most 32 characters on the pendant).
+/// (a remark is at most 32 characters on the pendant); or the frames the controller holds the
+/// part frame and the tool in ([`crate::program::generate::numbered`]).
 pub fn header(plan: &Plan) -> String {
     let t = &plan.tool.frame;
     let p = t.translation.vector * 1e3;
     let [r, pitch, w] = zyx_deg(&t.rotation);
-    let mut s = String::from("! set UTOOL[1] to the tool: ;\n");
+    let (uf, ut) = frame_numbers(plan);
+    let mut s = match plan.numbers.tool {
+        Some(_) => format!("! UTOOL[{ut}] holds the tool: ;\n"),
+        None => format!("! set UTOOL[{ut}] to the tool: ;\n"),
+    };
     for (name, value, unit) in [
         ("X", p.x, "mm"),
         ("Y", p.y, "mm"),
@@ -28,9 +37,17 @@ pub fn header(plan: &Plan) -> String {
         ("P", pitch, "deg"),
         ("R", r, "deg"),
     ] {
-        let _ = writeln!(s, "! UT1 {name} = {} {unit} ;", number(value));
+        let _ = writeln!(s, "! UT{ut} {name} = {} {unit} ;", number(value));
     }
-    s + "UFRAME_NUM=0 ;\nUTOOL_NUM=1 ;\n"
+    s + &format!("UFRAME_NUM={uf} ;\nUTOOL_NUM={ut} ;\n")
+}
+
+/// The user frame and the tool frame a program of `plan` runs in: those the controller holds
+/// its part frame and tool in ([`crate::program::generate::numbered`]), else user frame 0 (the
+/// world) and tool frame 1.
+fn frame_numbers(plan: &Plan) -> (u32, u32) {
+    let uf = plan.numbers.base.map_or(0, |(n, _)| n);
+    (uf, plan.numbers.tool.map_or(1, |(n, _)| n))
 }
 
 /// A feed (m/s) as an LS speed: whole mm/sec, else whole cm/min, else the nearest cm/min (with a
@@ -60,20 +77,28 @@ pub(crate) fn body(plan: &Plan, part: &Part, warnings: &mut Vec<String>) -> Resu
         mn += part.before(k);
         let _ = match m {
             Move::Rapid => writeln!(mn, "J P[{i}] {}% FINE ;", plan.settings.rapid_joint_pct),
-            Move::Feed(f) => {
+            // A circular move: the via point on its line, the end on the continuation line.
+            Move::ArcVia(_) => writeln!(mn, "C P[{i}]"),
+            m => {
                 let slowest = (
                     "1 cm/min, the slowest an LS program states",
                     "whole mm/sec or cm/min",
                 );
-                let text = stated_feed(*f, part.first + i, speed, slowest, warnings)?;
+                let f = m.feed().unwrap_or_default();
+                let text = stated_feed(f, part.first + i, speed, slowest, warnings)?;
+                let motion = match m {
+                    Move::ArcEnd(_) => CONTINUATION,
+                    _ => "L ",
+                };
                 writeln!(
                     mn,
-                    "L P[{i}] {text} {} ;",
+                    "{motion}P[{i}] {text} {} ;",
                     if exact { "FINE" } else { "CNT100" }
                 )
             }
         };
-        let _ = write!(pos, "P[{i}]{{\n   GP1:\n\tUF : 0, UT : 1,");
+        let (uf, ut) = frame_numbers(plan);
+        let _ = write!(pos, "P[{i}]{{\n   GP1:\n\tUF : {uf}, UT : {ut},");
         let _ = match plan.settings.targets {
             Targets::Joint => write!(
                 pos,
@@ -86,7 +111,12 @@ pub(crate) fn body(plan: &Plan, part: &Part, warnings: &mut Vec<String>) -> Resu
                 v(t.q_deg[5])
             ),
             Targets::Cartesian => {
-                let (p, rotation) = in_world(plan, &t.pose);
+                // In the user frame the controller holds the part frame in, else the world.
+                let user = plan.numbers.base.map_or(Isometry3::identity(), |(_, f)| f);
+                let (p, rotation) = in_world(
+                    plan,
+                    &(plan.world * user.inverse() * plan.world.inverse() * t.pose),
+                );
                 let [r, pitch, w] = zyx_deg(&rotation);
                 write!(
                     pos,
@@ -143,18 +173,48 @@ pub(crate) fn wrap(name: &str, header: &str, body: &str) -> String {
         true => "1,1,*,*,*",
         false => "1,*,*,*,*",
     };
-    let mut s = format!(
-        "/PROG  {name}\n/ATTR\nCOMMENT\t\t= \"{COMMENT}\";\nDEFAULT_GROUP\t= {groups};\n/MN\n"
-    );
-    for (i, line) in header.lines().chain(mn.lines()).enumerate() {
-        let pad = if line.starts_with(['J', 'L']) {
+    let mut lines = String::new();
+    let mut number = 0;
+    for line in header.lines().chain(mn.lines()) {
+        if line.starts_with(CONTINUATION) {
+            let _ = writeln!(lines, "{line}");
+            continue;
+        }
+        number += 1;
+        let pad = if line.starts_with(['J', 'L', 'C']) {
             ""
         } else {
             "  "
         };
-        let _ = writeln!(s, "{:>4}:{pad}{line}", i + 1);
+        let _ = writeln!(lines, "{number:>4}:{pad}{line}");
     }
-    s + "/POS\n" + pos + "/END\n"
+    format!(
+        "/PROG  {name}\n{}/MN\n{lines}/POS\n{pos}/END\n",
+        attributes(groups, number)
+    )
+}
+
+/// The `/ATTR` section as the controller writes it (the corpus's programs; FANUC R-30iB
+/// Operator's Manual, "program header"): `OWNER = MNEDITOR`, the [`COMMENT`], sizes 0 (the
+/// controller computes them when it loads the program), the creation and modification dates
+/// ([`crate::program::generate::date`]), `LINE_COUNT` the numbered lines, `PROTECT =
+/// READ_WRITE`, the task attributes (`TCD`) at their defaults, the motion group mask `groups`,
+/// `CONTROL_CODE` zero.
+fn attributes(groups: &str, lines: usize) -> String {
+    let d = crate::program::generate::date::stamp()
+        .unwrap_or(crate::program::generate::date::Stamp::at(0));
+    let date = format!(
+        "DATE {:02}-{:02}-{:02}  TIME {:02}:{:02}:{:02}",
+        d.year.rem_euclid(100),
+        d.month,
+        d.day,
+        d.time.0,
+        d.time.1,
+        d.time.2
+    );
+    format!(
+        "/ATTR\nOWNER\t\t= MNEDITOR;\nCOMMENT\t\t= \"{COMMENT}\";\nPROG_SIZE\t= 0;\nCREATE\t\t= {date};\nMODIFIED\t= {date};\nFILE_NAME\t= ;\nVERSION\t\t= 0;\nLINE_COUNT\t= {lines};\nMEMORY_SIZE\t= 0;\nPROTECT\t\t= READ_WRITE;\nTCD:  STACK_SIZE\t= 0,\n      TASK_PRIORITY\t= 50,\n      TIME_SLICE\t= 0,\n      BUSY_LAMP_OFF\t= 0,\n      ABORT_REQUEST\t= 0,\n      PAUSE_REQUEST\t= 0;\nDEFAULT_GROUP\t= {groups};\nCONTROL_CODE\t= 00000000 00000000;\n"
+    )
 }
 
 impl Generator for super::FanucLs {

@@ -60,12 +60,14 @@ fn quaternion(r: &nalgebra::UnitQuaternion<f64>) -> String {
 pub(crate) fn body(plan: &Plan, part: &Part) -> String {
     let mut s = String::with_capacity(part.targets.len() * 160);
     let n = part.targets.len();
+    // The circle point of the `MoveC` the next target ends.
+    let mut via: Option<String> = None;
     for (k, (t, m)) in part.targets.iter().zip(part.moves).enumerate() {
         let exact = part.last && k + 1 == n;
         s += part.before(k);
-        let (speed, zone) = match m {
-            Move::Rapid => ("vrapid".to_string(), "fine"),
-            Move::Feed(f) => (
+        let (speed, zone) = match m.feed() {
+            None => ("vrapid".to_string(), "fine"),
+            Some(f) => (
                 format!("[{},500,5000,1000]", number(f * 1e3)),
                 if exact { "fine" } else { "zpath" },
             ),
@@ -83,18 +85,26 @@ pub(crate) fn body(plan: &Plan, part: &Part) -> String {
             Targets::Cartesian => {
                 let (p, r) = in_work(plan, t);
                 let [c1, c4, c6, cx] = t.arm.abb();
-                let motion = match m {
-                    Move::Rapid => "MoveJ",
-                    Move::Feed(_) => "MoveL",
-                };
-                writeln!(
-                    s,
-                    "    {motion} [[{},{},{}],{},[{c1},{c4},{c6},{cx}],{}], {speed}, {zone}, tspindle\\WObj:=wpart;",
+                let target = format!(
+                    "[[{},{},{}],{},[{c1},{c4},{c6},{cx}],{}]",
                     v(p.x),
                     v(p.y),
                     v(p.z),
                     quaternion(&r),
                     extax(t)
+                );
+                let (motion, target) = match (m, via.take()) {
+                    (Move::ArcVia(_), _) => {
+                        via = Some(target);
+                        continue;
+                    }
+                    (Move::ArcEnd(_), Some(via)) => ("MoveC", format!("{via}, {target}")),
+                    (Move::Rapid, _) => ("MoveJ", target),
+                    _ => ("MoveL", target),
+                };
+                writeln!(
+                    s,
+                    "    {motion} {target}, {speed}, {zone}, tspindle\\WObj:=wpart;"
                 )
             }
         };

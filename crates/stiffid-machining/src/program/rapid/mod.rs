@@ -627,7 +627,7 @@ impl Controller for Rapid {
         }
     }
     fn motion_lines(&self, text: &str) -> Vec<u64> {
-        lines_starting(text, &["MoveJ ", "MoveL ", "MoveAbsJ "])
+        lines_starting(text, &["MoveJ ", "MoveL ", "MoveC ", "MoveAbsJ "])
     }
     fn generator(&self) -> Option<&'static dyn Generator> {
         Some(&Rapid)

@@ -10,6 +10,7 @@
 //! group (the positioner's, `EC00000`) are written in pulses with `external_pulses`, else in
 //! `///ANGLE` form (mm, deg).
 
+use crate::program::generate::date::Stamp;
 use crate::program::generate::{
     missing_pulses, number, stated_feed, v, zyx_deg, Move, Part, Plan, Settings, Target, Targets,
 };
@@ -19,8 +20,18 @@ use stiffid_core::robot::external::Role;
 use stiffid_core::setup::Pulses;
 use stiffid_core::Result;
 
-/// The tool file the moves use (`///TOOL 1`), whose values the job's comments state.
+/// The job's comment (`///COMM`): what the pendant shows beside its name (32 characters at most).
+pub const COMM: &str = "stiffid";
+
+/// The tool file the moves use (`///TOOL 1`) when the controller holds the tool in none of its
+/// tool files the setup gives (`[controller] tools`), whose values the job's comments state.
 pub const TOOL: u32 = 1;
+
+/// The tool file a job of `plan` moves with: the one the controller holds its tool in
+/// ([`crate::program::generate::numbered`]), else [`TOOL`].
+fn tool_file(plan: &Plan) -> u32 {
+    plan.numbers.tool.map_or(TOOL, |(n, _)| n)
+}
 
 /// The most teaching positions of one kind in a job: a position's number has five digits
 /// (`C00000` to `C99999`).
@@ -58,9 +69,10 @@ fn positions(plan: &Plan, part: &Part, pulses: &Pulses) -> String {
     let (base, station) = groups(plan);
     let carriers = plan.external.map_or(0, |a| a.carrier_len());
     let mut s = format!(
-        "///NPOS {n},{},{},0,0,0\n///TOOL {TOOL}\n///POSTYPE PULSE\n///PULSE\n",
+        "///NPOS {n},{},{},0,0,0\n///TOOL {}\n///POSTYPE PULSE\n///PULSE\n",
         if base { n } else { 0 },
-        if station { n } else { 0 }
+        if station { n } else { 0 },
+        tool_file(plan)
     );
     for (k, t) in part.targets.iter().enumerate() {
         let values: Vec<String> = (t.q_deg.iter().zip(&pulses.per_deg))
@@ -112,7 +124,7 @@ impl Generator for super::Inform {
         let t = &plan.tool.frame;
         let p = t.translation.vector * 1e3;
         let [rz, ry, rx] = zyx_deg(&t.rotation);
-        let mut s = format!("'set tool file {TOOL} to the tool:\n");
+        let mut s = format!("'set tool file {} to the tool:\n", tool_file(plan));
         let mut values = vec![
             ("X", p.x, "mm"),
             ("Y", p.y, "mm"),
@@ -152,13 +164,18 @@ impl Generator for super::Inform {
                     "MOVJ {names} VJ={:.2} PL=0",
                     plan.settings.rapid_joint_pct
                 ),
-                Move::Feed(f) => {
+                m => {
                     let slowest = (
                         "0.1 mm/s, the slowest an INFORM job states",
                         "whole tenth of a mm/s",
                     );
-                    let v = stated_feed(*f, part.first + k + 1, speed, slowest, warnings)?;
-                    writeln!(inst, "MOVL {names} {v} PL={}", u8::from(!exact))
+                    let f = m.feed().unwrap_or_default();
+                    let v = stated_feed(f, part.first + k + 1, speed, slowest, warnings)?;
+                    let motion = match m {
+                        Move::Feed(_) => "MOVL",
+                        _ => "MOVC",
+                    };
+                    writeln!(inst, "{motion} {names} {v} PL={}", u8::from(!exact))
                 }
             };
         }
@@ -171,7 +188,7 @@ impl Generator for super::Inform {
         calls + "//POS\n///NPOS 0,0,0,0,0,0\n"
     }
     /// A whole `.jbi` file (CR LF line ends, as the controllers write them): `//POS` from the body,
-    /// `//INST` with the motion group (the robot `RB1`, a base `BS1`, a station `ST1`), `NOP`, the
+    /// `//INST` with its date ([`crate::program::generate::date`]), comment ([`COMM`]), the motion group (the robot `RB1`, a base `BS1`, a station `ST1`), `NOP`, the
     /// header's and the body's lines, `END`.
     fn wrap(&self, name: &str, header: &str, body: &str, _main: bool) -> String {
         let (inst, pos) = body.split_once("//POS\n").unwrap_or((body, ""));
@@ -182,8 +199,10 @@ impl Generator for super::Inform {
         if pos.contains("\nEC00000=") {
             group += ",ST1";
         }
+        let d = crate::program::generate::date::stamp().unwrap_or(Stamp::at(0));
         let text = format!(
-            "/JOB\n//NAME {name}\n//POS\n{pos}//INST\n///ATTR SC,RW\n///GROUP1 {group}\nNOP\n{header}{inst}END\n"
+            "/JOB\n//NAME {name}\n//POS\n{pos}//INST\n///DATE {:04}/{:02}/{:02} {:02}:{:02}\n///COMM {COMM}\n///ATTR SC,RW\n///GROUP1 {group}\nNOP\n{header}{inst}END\n",
+            d.year, d.month, d.day, d.time.0, d.time.1
         );
         text.replace('\n', "\r\n")
     }
@@ -196,6 +215,12 @@ impl Generator for super::Inform {
     }
     fn needs_mass(&self, _targets: Targets) -> bool {
         false
+    }
+    /// Three `MOVC` positions (start, via, end), whatever the targets: a `MOVC` between pulse
+    /// positions moves the tool on the circle through their poses in the controller's
+    /// kinematics, as a `MOVL` moves it on a line.
+    fn circular(&self, _targets: Targets) -> Option<crate::program::generate::arcs::Form> {
+        Some(crate::program::generate::arcs::Form::StartViaEnd)
     }
     /// Pulse positions only.
     fn writes_cartesian(&self) -> bool {

@@ -6,6 +6,7 @@ use stiffid_core::common::error::JobOption;
 use stiffid_core::robot::presets;
 use stiffid_core::{Error, Robot};
 use stiffid_machining::program::generate::*;
+use stiffid_machining::program::krl::KSS_HEADER;
 use stiffid_machining::program::ls::generate as ls;
 use stiffid_machining::program::Dialect;
 
@@ -53,6 +54,7 @@ fn plan<'a>(dialect: Dialect, name: &'a str, t: &'a [Target], m: &'a [Move]) -> 
         world: Isometry3::identity(),
         external: None,
         approximation: 1e-5,
+        numbers: Default::default(),
         pulses: None,
         settings: Settings::default(),
     }
@@ -204,6 +206,8 @@ fn the_programs_initialise_motion_end_exact_and_name_their_tool_and_work_object(
         .unwrap()
         .files[0]
         .text;
+    // The lines KSS writes before DEF, then the program.
+    let krl = krl.strip_prefix(KSS_HEADER).unwrap();
     assert!(krl.starts_with("DEF POCKET( )\n"), "{krl}");
     for needed in [
         "BAS(#INITMOV, 0)",
@@ -449,7 +453,7 @@ fn split_krl_and_rapid_programs_call_their_sub_programs() {
         assert_eq!(w.files.len(), 4, "{d:?}");
         assert!(w.files[0].text.contains(call), "{d:?}: {}", w.files[0].text);
         assert!(w.files[3].text.starts_with(match d {
-            Dialect::Krl => "DEF P_03( )\n",
+            Dialect::Krl => "&ACCESS RVP\n&REL 1\n&PARAM TEMPLATE = C:\\KRC\\Roboter\\Template\\vorgabe\n&PARAM EDITMASK = *\nDEF P_03( )\n",
             _ => "MODULE P_03\n  PROC rP_03()\n",
         }));
     }

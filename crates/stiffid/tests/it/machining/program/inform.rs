@@ -58,6 +58,7 @@ fn plan<'a>(t: &'a [Target], m: &'a [Move], pulses: Option<&'a Pulses>) -> Plan<
         world: Isometry3::identity(),
         external: None,
         approximation: 1e-5,
+        numbers: Default::default(),
         pulses,
         settings: Settings::default(),
     }

@@ -1,10 +1,13 @@
 //! The controllers' programs (`stiffid_machining::program`).
 
+mod arcs;
 mod cartesian;
 mod generate;
+mod headers;
 mod inform;
 mod inform_jobs;
 mod krl;
+mod numbered;
 mod process;
 pub(crate) mod rapid;
 mod speed;

@@ -1,0 +1,109 @@
+//! The headers the controllers expect in a generated program: KRL's `&ACCESS`, `&REL` and
+//! `&PARAM` lines, LS's whole `/ATTR`, INFORM's `///DATE` and `///COMM`; the dates reproducible
+//! (`SOURCE_DATE_EPOCH`, else 1970-01-01).
+
+use super::arcs::robot_targets;
+use nalgebra::{Isometry3, Translation3, Vector3};
+use stiffid::robot::presets;
+use stiffid_core::setup::Pulses;
+use stiffid_machining::program::generate::date::Stamp;
+use stiffid_machining::program::generate::{generate, Move, Plan, Settings, Tool};
+use stiffid_machining::program::{parse_in, Context, Dialect};
+
+const SETUP: &str = include_str!("../../../../../../examples/milling/fanuc-milling.toml");
+
+#[test]
+fn a_date_is_the_calendars() {
+    // Python's datetime.fromtimestamp(s, UTC) of each.
+    for (s, want) in [
+        (0, (1970, 1, 1, (0, 0, 0))),
+        (951_782_400, (2000, 2, 29, (0, 0, 0))),
+        (1_764_203_461, (2025, 11, 27, (0, 31, 1))),
+        (4_107_542_400, (2100, 3, 1, (0, 0, 0))),
+        (253_402_300_799, (9999, 12, 31, (23, 59, 59))),
+    ] {
+        let d = Stamp::at(s);
+        assert_eq!((d.year, d.month, d.day, d.time), want, "{s}");
+    }
+}
+
+fn texts() -> Vec<(Dialect, String)> {
+    let s = stiffid::setup::parse(SETUP, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap();
+    let points = [
+        Vector3::new(0.0, 0.0, -0.004),
+        Vector3::new(0.05, 0.0, -0.004),
+    ];
+    let t = robot_targets(&s, &points);
+    let m = [Move::Rapid, Move::Feed(0.02)];
+    let pulses = Pulses {
+        per_deg: [1341.25; 6],
+        external: Vec::new(),
+    };
+    [Dialect::Krl, Dialect::FanucLs, Dialect::Inform]
+        .into_iter()
+        .map(|dialect| {
+            let plan = Plan {
+                dialect,
+                name: "HEAD",
+                targets: &t,
+                moves: &m,
+                tool: Tool {
+                    frame: Isometry3::from(Translation3::from(s.tool().tcp)),
+                    payload: None,
+                },
+                work: *s.workpiece().unwrap(),
+                world: Isometry3::identity(),
+                external: None,
+                approximation: 1e-5,
+                numbers: Default::default(),
+                pulses: Some(&pulses),
+                settings: Settings::default(),
+            };
+            (dialect, generate(&plan).unwrap().files.remove(0).text)
+        })
+        .collect()
+}
+
+#[test]
+fn generated_programs_carry_the_headers_their_controllers_write() {
+    // The test process leaves SOURCE_DATE_EPOCH unset: the dates are 1970-01-01.
+    assert!(std::env::var("SOURCE_DATE_EPOCH").is_err());
+    let texts = texts();
+    let krl = &texts[0].1;
+    assert!(krl.starts_with("&ACCESS RVP\n&REL 1\n&PARAM TEMPLATE = C:\\KRC\\Roboter\\Template\\vorgabe\n&PARAM EDITMASK = *\nDEF HEAD( )\n"), "{krl}");
+    let ls = &texts[1].1;
+    let numbered = ls
+        .lines()
+        .filter(|l| l.len() > 5 && l[..4].trim().parse::<u32>().is_ok() && &l[4..5] == ":")
+        .count();
+    let attr = format!("/PROG  HEAD\n/ATTR\nOWNER\t\t= MNEDITOR;\nCOMMENT\t\t= \"stiffid\";\nPROG_SIZE\t= 0;\nCREATE\t\t= DATE 70-01-01  TIME 00:00:00;\nMODIFIED\t= DATE 70-01-01  TIME 00:00:00;\nFILE_NAME\t= ;\nVERSION\t\t= 0;\nLINE_COUNT\t= {numbered};\nMEMORY_SIZE\t= 0;\nPROTECT\t\t= READ_WRITE;\nTCD:  STACK_SIZE\t= 0,\n      TASK_PRIORITY\t= 50,\n      TIME_SLICE\t= 0,\n      BUSY_LAMP_OFF\t= 0,\n      ABORT_REQUEST\t= 0,\n      PAUSE_REQUEST\t= 0;\nDEFAULT_GROUP\t= 1,*,*,*,*;\nCONTROL_CODE\t= 00000000 00000000;\n/MN\n");
+    assert!(ls.starts_with(&attr), "{ls}");
+    assert_eq!(numbered, 11, "{ls}");
+    let jbi = &texts[2].1;
+    assert!(
+        jbi.contains("//INST\r\n///DATE 1970/01/01 00:00\r\n///COMM stiffid\r\n///ATTR SC,RW\r\n"),
+        "{jbi}"
+    );
+    // Each still reads (the LS and KRL readers the headers of real files; INFORM with the
+    // setup's pulses).
+    for (text, d) in [(krl, Dialect::Krl), (ls, Dialect::FanucLs)] {
+        stiffid::machining::read(text, stiffid::machining::Language::Robot(d), 1e-4).unwrap();
+    }
+    let pulses = Pulses {
+        per_deg: [1341.25; 6],
+        external: Vec::new(),
+    };
+    let context = Context {
+        pulses: Some(&pulses),
+        tool: None,
+        data: None,
+        machine: None,
+    };
+    assert_eq!(
+        parse_in(jbi, Dialect::Inform, &context)
+            .unwrap()
+            .targets
+            .len(),
+        2
+    );
+}
