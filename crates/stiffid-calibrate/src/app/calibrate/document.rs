@@ -15,8 +15,8 @@ use stiffid_metrology::calibration::identifiability::CORRELATION_INSEPARABLE;
 use stiffid_metrology::calibration::validation::Validation;
 use stiffid_view as scene;
 
-pub use super::maps_document::{MapTried, MapsDocument, MapsNested};
 use super::maps_document::maps_document;
+pub use super::maps_document::{MapTried, MapsDocument, MapsNested};
 
 /// The robot calibration: every parameter with its value and standard deviation, what the
 /// readings determine, the residual and held-out errors, the calibrated robot's files.

@@ -86,23 +86,31 @@
 //! `10^-DECIMALS` mm and deg.
 
 pub mod arcs;
+mod checks;
 pub mod date;
 mod names;
-mod process;
 pub mod numbered;
+mod process;
+mod settings;
 
+pub(crate) use checks::missing_pulses;
+pub use checks::{check_cell, check_payload, check_pulses, written_targets};
+use names::room_for;
 pub use names::{
     check_name, check_plan, default_name_length, max_name_length, moves_per_file, LS_MAX_LINES,
     MAX_FILES,
 };
 pub use process::{place, Process, ProcessForm};
+pub use settings::{
+    Settings, MIN_FEED, MOVES_PER_FILE, NAME_LENGTH, RAPID_PERCENT, RAPID_SPEED_MM_S,
+};
 
 use super::{Dialect, DECIMALS};
 use crate::gcode::{Motion, Point};
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
+#[cfg(doc)]
 use stiffid_core::common::error::JobOption;
 use stiffid_core::robot::configuration::Configuration;
-use stiffid_core::robot::external::Role;
 use stiffid_core::robot::ExternalAxes;
 use stiffid_core::setup::Pulses;
 use stiffid_core::{Error, Result, Robot};
@@ -175,123 +183,6 @@ impl stiffid_core::common::choice::Choice for Targets {
 }
 
 stiffid_core::common::choice::by_name!(Targets);
-
-/// The default rapid speed ([`Settings::rapid_speed`]) of RAPID's `vrapid`, mm/s, or
-/// [`Settings::max_tcp_speed`] when slower.
-pub const RAPID_SPEED_MM_S: f64 = 200.0;
-/// The default joint speed of rapid moves ([`Settings::rapid_joint_pct`]: KRL `BAS(#VEL_PTP)`,
-/// LS `J`, INFORM `VJ=`), percent of the axes' top speed; KRL's `BAS(#ACC_PTP)` always.
-pub const RAPID_PERCENT: u32 = 20;
-/// The slowest feed written, m/s (0.001 mm/s): a slower one is refused, never written as 0.
-pub const MIN_FEED: f64 = 1e-6;
-/// The range of [`Settings::moves_per_file`].
-pub const MOVES_PER_FILE: std::ops::RangeInclusive<usize> = 100..=1_000_000;
-/// The range of [`Settings::name_length`].
-pub const NAME_LENGTH: std::ops::RangeInclusive<usize> = 8..=64;
-
-/// How programs are written (module docs).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Settings {
-    /// Cartesian or joint targets.
-    pub targets: Targets,
-    /// Whether `targets` was asked for (an option given, not its default): a language that
-    /// writes joint targets only (INFORM) says so only then.
-    pub targets_asked: bool,
-    /// The robot's largest TCP speed, m/s (> 0, at most 10): a faster feed is refused.
-    pub max_tcp_speed: f64,
-    /// The longest program name the controller takes; `None`: the dialect's
-    /// ([`default_name_length`]).
-    pub name_length: Option<usize>,
-    /// The most moves in one program file (within [`MOVES_PER_FILE`]).
-    pub moves_per_file: usize,
-    /// The TCP speed of rapid moves where the language states one (RAPID `vrapid`, at most
-    /// `max_tcp_speed`), m/s, within
-    /// [`stiffid_core::setup::program_io::RAPID_SPEED_MM_S`] (the setup's `[controller]
-    /// rapid_speed_mm_s`).
-    pub rapid_speed: f64,
-    /// The joint speed of rapid moves (KRL `BAS(#VEL_PTP)`, LS `J .. %`, INFORM `VJ=`), percent
-    /// of the axes' top speed, within [`stiffid_core::setup::program_io::RAPID_JOINT_PCT`] (the
-    /// setup's `[controller] rapid_joint_pct`); LS states whole percents, INFORM hundredths.
-    pub rapid_joint_pct: f64,
-}
-
-impl Default for Settings {
-    /// Cartesian targets (not asked), 2000 mm/s, the dialect's name length, 10 000 moves per
-    /// file, rapids at [`RAPID_SPEED_MM_S`] and [`RAPID_PERCENT`].
-    fn default() -> Self {
-        Self {
-            targets: Targets::Cartesian,
-            targets_asked: false,
-            max_tcp_speed: 2.0,
-            name_length: None,
-            moves_per_file: 10_000,
-            rapid_speed: RAPID_SPEED_MM_S * 1e-3,
-            rapid_joint_pct: RAPID_PERCENT as f64,
-        }
-    }
-}
-
-impl Settings {
-    /// Checks every field against its limit.
-    ///
-    /// # Errors
-    /// [`Error::InvalidOption`] naming the option ([`JobOption::MaxTcpSpeedMmS`],
-    /// [`JobOption::NameLength`], [`JobOption::MovesPerFile`]), the value and the range.
-    pub fn validate(&self) -> Result<()> {
-        let bad = |option, message: String| Err(Error::InvalidOption { option, message });
-        if !(self.max_tcp_speed > 0.0 && self.max_tcp_speed <= 10.0) {
-            return bad(
-                JobOption::MaxTcpSpeedMmS,
-                format!(
-                    "{} mm/s: expected > 0 and at most 10000",
-                    self.max_tcp_speed * 1e3
-                ),
-            );
-        }
-        if let Some(n) = self.name_length.filter(|n| !NAME_LENGTH.contains(n)) {
-            return bad(
-                JobOption::NameLength,
-                format!(
-                    "{n}: expected {} to {}",
-                    NAME_LENGTH.start(),
-                    NAME_LENGTH.end()
-                ),
-            );
-        }
-        self.validate_rapids()?;
-        if !MOVES_PER_FILE.contains(&self.moves_per_file) {
-            return bad(
-                JobOption::MovesPerFile,
-                format!(
-                    "{}: expected {} to {}",
-                    self.moves_per_file,
-                    MOVES_PER_FILE.start(),
-                    MOVES_PER_FILE.end()
-                ),
-            );
-        }
-        Ok(())
-    }
-}
-
-impl Settings {
-    /// Checks the rapid speeds against their ranges.
-    ///
-    /// # Errors
-    /// [`Error::InvalidField`] naming `controller.rapid_speed_mm_s` or
-    /// `controller.rapid_joint_pct`.
-    fn validate_rapids(&self) -> Result<()> {
-        use stiffid_core::common::limits::check;
-        use stiffid_core::setup::program_io::{RAPID_JOINT_PCT, RAPID_SPEED_MM_S};
-        let mm_s = self.rapid_speed * 1e3;
-        check("controller.rapid_speed_mm_s", &[mm_s], &RAPID_SPEED_MM_S)?;
-        check(
-            "controller.rapid_joint_pct",
-            &[self.rapid_joint_pct],
-            &RAPID_JOINT_PCT,
-        )
-    }
-}
 
 /// One target: the compensated axis angles, the TCP pose they give, their configuration.
 #[derive(Debug, Clone, PartialEq)]
@@ -557,35 +448,7 @@ impl Part<'_> {
     }
 }
 
-/// `settings` with room in each file for the process lines `inserted` where the language limits
-/// a file's lines ([`super::Generator::lines_per_file`]): fewer moves per file.
-///
-/// # Errors
-/// [`Error::InvalidOption`] ([`JobOption::MovesPerFile`]) when they leave room for fewer than
-/// the least moves per file.
-fn room_for(
-    generator: &dyn super::Generator,
-    settings: &Settings,
-    inserted: &[String],
-) -> Result<Settings> {
-    let extra: usize = inserted.iter().map(|s| s.lines().count()).sum();
-    let Some(limit) = generator.lines_per_file().filter(|_| extra > 0) else {
-        return Ok(*settings);
-    };
-    let room = limit.saturating_sub(extra);
-    if room < *MOVES_PER_FILE.start() {
-        return Err(Error::InvalidOption {
-            option: JobOption::MovesPerFile,
-            message: format!("{extra} process instructions leave room for {room} moves in a file of at most {limit} lines"),
-        });
-    }
-    Ok(Settings {
-        moves_per_file: settings.moves_per_file.min(room),
-        ..*settings
-    })
-}
-
-fn invalid(field: &str, message: String) -> Error {
+pub(super) fn invalid(field: &str, message: String) -> Error {
     Error::InvalidField {
         field: field.into(),
         message,
@@ -644,100 +507,6 @@ fn check_external(plan: &Plan) -> Result<()> {
         ));
     }
     check_cell(plan.dialect, plan.settings.targets, plan.external)
-}
-
-/// Whether a program of `dialect` with `targets` can be written for a cell with the external
-/// axes `axes`: no more axes of a role than the language holds
-/// ([`Generator::most_external`](super::Generator::most_external)), and Cartesian targets only
-/// with a carrier (a track: the controller takes the tool's pose in its world, the part's
-/// frame, and moves the arm on its carriage by the values given), never with a positioner.
-///
-/// # Errors
-/// [`Error::InvalidField`] (`external_axis`) naming the first axis past the language's;
-/// [`Error::InvalidOption`] ([`JobOption::Targets`]) naming the positioner's axis for
-/// Cartesian targets.
-pub fn check_cell(dialect: Dialect, targets: Targets, axes: Option<&ExternalAxes>) -> Result<()> {
-    let Some(axes) = axes.filter(|a| !a.is_empty()) else {
-        return Ok(());
-    };
-    let controller = dialect.controller();
-    for role in [Role::Carrier, Role::Positioner] {
-        let most = (controller.generator()).map_or(0, |g| g.most_external(role));
-        let mut of_role = axes.axes().iter().filter(|a| a.role == role);
-        if let Some(axis) = of_role.nth(most) {
-            return Err(invalid(
-                "external_axis",
-                format!(
-                    "{}: a {} program holds at most {most} {} axes ({}); this one is its {}th",
-                    axis.name,
-                    controller.key().to_ascii_uppercase(),
-                    role_name(role),
-                    controller.generator().map_or("", |g| g.external_form(role)),
-                    most + 1
-                ),
-            ));
-        }
-    }
-    let positioner = axes.axes().iter().find(|a| a.role == Role::Positioner);
-    if let (Targets::Cartesian, Some(axis)) = (written_targets(dialect, targets), positioner) {
-        return Err(Error::InvalidOption {
-            option: JobOption::Targets,
-            message: format!("cartesian: the cell's positioner axis {} carries the part, and a Cartesian target on it needs the controller's coordinated motion (a base or work object coupled to the positioner), which stiffid does not write; write joint targets (targets = joint)", axis.name),
-        });
-    }
-    Ok(())
-}
-
-/// An axis role's name in messages.
-fn role_name(role: Role) -> &'static str {
-    match role {
-        Role::Carrier => "carrier (track)",
-        Role::Positioner => "positioner",
-    }
-}
-
-/// Whether a program of `dialect` with `targets` can be written for `tool`: a RAPID program
-/// with Cartesian targets states the tool's mass and centre of mass.
-///
-/// # Errors
-/// [`Error::InvalidField`] (`tool.mass_kg`) when the program needs them and `tool` has none.
-pub fn check_payload(dialect: Dialect, targets: Targets, tool: &Tool) -> Result<()> {
-    let needs_mass = (dialect.controller().generator()).is_some_and(|g| g.needs_mass(targets));
-    if needs_mass && tool.payload.is_none() {
-        return Err(invalid("tool.mass_kg", "a RAPID tooldata needs the tool's mass and centre of mass (the controller refuses a tool of no mass): [tool] mass_kg and centre_of_mass_mm in the setup".into()));
-    }
-    Ok(())
-}
-
-/// Whether a program of `dialect` can be written with the controller's `pulses`: a language
-/// that states its axes in pulses (INFORM) needs them.
-///
-/// # Errors
-/// [`Error::InvalidField`] (`controller.pulses_per_deg`) when the program needs them and the
-/// setup gives none.
-pub fn check_pulses(dialect: Dialect, pulses: Option<&Pulses>) -> Result<()> {
-    let needs = (dialect.controller().generator()).is_some_and(|g| g.needs_pulses());
-    match needs && pulses.is_none() {
-        true => Err(missing_pulses()),
-        false => Ok(()),
-    }
-}
-
-/// The error of a program in pulses (an INFORM job) written without the controller's pulses.
-pub(crate) fn missing_pulses() -> Error {
-    Error::InvalidField {
-        field: "controller.pulses_per_deg".into(),
-        message: "missing: an INFORM job states its positions in encoder pulses, and how many make a degree of each axis is the controller's (its axis parameters): give them in the setup, [controller] pulses_per_deg = [S, L, U, R, B, T] (and external_pulses = [..] per external axis, or the external axes are written in mm and deg)".into(),
-    }
-}
-
-/// The targets a program of `dialect` is written with when `targets` are asked: the joint
-/// targets of a language that writes no pose (INFORM's pulses), else `targets`.
-pub fn written_targets(dialect: Dialect, targets: Targets) -> Targets {
-    match (dialect.controller().generator()).is_some_and(|g| !g.writes_cartesian()) {
-        true => Targets::Joint,
-        false => targets,
-    }
 }
 
 /// A feed (m/s) as a language states it in its own units: `speed` gives the text and whether it

@@ -5,7 +5,7 @@
 //! numbered lines per file). [`check_plan`] checks them all from counts alone, before anything is
 //! computed.
 
-use super::{Dialect, Settings};
+use super::{Dialect, Settings, MOVES_PER_FILE};
 use crate::program::Generator;
 use stiffid_core::common::error::JobOption;
 use stiffid_core::{Error, Result};
@@ -172,4 +172,32 @@ fn generated() -> String {
 /// the names of the data stiffid declares in it.
 fn reserved_words(dialect: Dialect) -> &'static [&'static str] {
     dialect.controller().reserved_words()
+}
+
+/// `settings` with room in each file for the process lines `inserted` where the language limits
+/// a file's lines ([`Generator::lines_per_file`]): fewer moves per file.
+///
+/// # Errors
+/// [`Error::InvalidOption`] ([`JobOption::MovesPerFile`]) when they leave room for fewer than
+/// the least moves per file.
+pub(super) fn room_for(
+    generator: &dyn Generator,
+    settings: &Settings,
+    inserted: &[String],
+) -> Result<Settings> {
+    let extra: usize = inserted.iter().map(|s| s.lines().count()).sum();
+    let Some(limit) = generator.lines_per_file().filter(|_| extra > 0) else {
+        return Ok(*settings);
+    };
+    let room = limit.saturating_sub(extra);
+    if room < *MOVES_PER_FILE.start() {
+        return Err(Error::InvalidOption {
+            option: JobOption::MovesPerFile,
+            message: format!("{extra} process instructions leave room for {room} moves in a file of at most {limit} lines"),
+        });
+    }
+    Ok(Settings {
+        moves_per_file: settings.moves_per_file.min(room),
+        ..*settings
+    })
 }

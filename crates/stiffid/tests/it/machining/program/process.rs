@@ -53,6 +53,7 @@ fn plan<'a>(
         world: Isometry3::identity(),
         external: None,
         approximation: 1e-5,
+        numbers: Default::default(),
         pulses: Some(pulses),
         settings: Settings {
             targets,
