@@ -69,7 +69,10 @@ pub fn build(file: Option<GravityFile>, source_name: &str) -> Result<Option<OwnW
         field: format!("{source_name}: gravity.{field}"),
         message,
     };
-    if !matches!(g.model.as_str(), "masses" | "lumped" | "lumped-links" | "arm") {
+    if !matches!(
+        g.model.as_str(),
+        "masses" | "lumped" | "lumped-links" | "arm"
+    ) {
         return Err(invalid(
             "model".into(),
             format!(

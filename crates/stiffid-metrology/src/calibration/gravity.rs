@@ -47,8 +47,8 @@
 //!   (joint 1 vertical, joints 2 and 3 horizontal and parallel within [`ARM_TOLERANCE`]); any
 //!   other robot is refused, naming the joint.
 
-use nalgebra::{DVectorView, Matrix6, Vector3, Vector6};
 pub use arm::{ARM_BODIES, ARM_TOLERANCE};
+use nalgebra::{DVectorView, Matrix6, Vector3, Vector6};
 
 mod arm;
 use serde::Serialize;

@@ -185,9 +185,7 @@ fn gravity_models() -> Vec<(&'static str, GravityOf)> {
         ),
         (
             "arm",
-            Box::new(|r: &Robot| {
-                gravity::Terms::arm(r, stiffid_core::Coordinates::Axis).unwrap()
-            }),
+            Box::new(|r: &Robot| gravity::Terms::arm(r, stiffid_core::Coordinates::Axis).unwrap()),
         ),
         (
             "masses",

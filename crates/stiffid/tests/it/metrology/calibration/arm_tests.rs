@@ -33,7 +33,10 @@ fn the_three_terms_are_recovered_from_noise_free_readings() {
     let (p, z) = (f.axis_points, f.axis_directions);
     // The upper arm's axis from joint 2's axis to joint 3's, the forearm's from joint 3's to
     // the wrist; 210 kg at 45 % of the upper arm, 330 kg at 40 % of the forearm.
-    let (upper, fore) = (across(p[2] - p[1], z[1]), across(wrist(&robot) - p[2], z[2]));
+    let (upper, fore) = (
+        across(p[2] - p[1], z[1]),
+        across(wrist(&robot) - p[2], z[2]),
+    );
     let (m1, m2) = (210.0, 330.0);
     let centres = [p[1] + 0.45 * upper, p[2] + 0.4 * fore];
     let masses: [LinkMass; 6] = std::array::from_fn(|l| match l {
@@ -93,7 +96,11 @@ fn the_three_terms_are_recovered_from_noise_free_readings() {
     let names: Vec<String> = model.gravity().terms().iter().map(|t| t.name()).collect();
     assert_eq!(
         names,
-        ["gravity.c2.upper-arm", "gravity.c2.forearm", "gravity.c3.forearm"]
+        [
+            "gravity.c2.upper-arm",
+            "gravity.c2.forearm",
+            "gravity.c3.forearm"
+        ]
     );
     for (g, w) in got.iter().zip(want) {
         assert!((g - w).abs() <= 1e-9 * w.abs(), "{got} against {want:?}");
