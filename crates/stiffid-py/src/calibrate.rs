@@ -221,7 +221,7 @@ fn writes<'a>(
             "stiffness_out",
             document.stiffness_file_out(),
             Some(document.stiffness_file_error.clone().unwrap_or_else(|| {
-                "no compliance is fitted: loaded readings (load steps) or a gravity model (gravity=\"arm\", \"masses\", \"lumped\" or \"lumped-links\") fit them".into()
+                "no compliance is fitted: loaded readings (load steps) or a gravity model (gravity=\"masses\", \"lumped\", \"lumped-links\" or \"arm\") fit them".into()
             })),
         ),
     ];

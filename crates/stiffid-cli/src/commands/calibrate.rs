@@ -182,7 +182,7 @@ pub fn run(args: &Args) -> Result<()> {
         (Some(_), None) => bail!(
             "--stiffness-out: {}",
             document.stiffness_file_error.clone().unwrap_or_else(|| {
-                "no compliance is fitted: loaded readings (load steps) or a gravity model (--gravity arm, masses, lumped or lumped-links) fit them"
+                "no compliance is fitted: loaded readings (load steps) or a gravity model (--gravity masses, lumped, lumped-links or arm) fit them"
                     .into()
             })
         ),
