@@ -38,7 +38,7 @@ impl Weight {
     ///
     /// # Errors
     /// [`Error::InvalidField`] (`gravity.model`) for a model name that is not `masses`,
-    /// `lumped` or `lumped-links`; those of [`gravity::Terms::of`] (a robot without masses for
+    /// `lumped`, `lumped-links` or `arm`; those of [`gravity::Terms::of`] (a robot without masses for
     /// `masses`); (`gravity.terms`) when the terms differ from the model's (another robot's
     /// file, or other springs); (`tool.mass_kg`) when lumped terms hold a tool of another mass
     /// than `tool`'s, (`tool.centre_of_mass_mm`) one whose weight acts elsewhere
@@ -54,7 +54,7 @@ impl Weight {
                 return Err(Error::InvalidField {
                     field: "gravity.model".into(),
                     message: format!(
-                        "'{}': expected masses, lumped or lumped-links",
+                        "'{}': expected masses, lumped, lumped-links or arm",
                         stiffid_core::common::limits::short(&own.gravity)
                     ),
                 })

@@ -20,7 +20,8 @@ use stiffid_metrology::app::readings::Request as Readings;
 /// only, as ``calibrate_cell``; ``"offsets"``, the joint angle offsets too; ``"full"``, the
 /// default, every joint error with the dependent ones merged), its deflection under its own
 /// weight (``gravity``: ``"auto"``, the default, chosen with ``maps`` by a cross-validation that
-/// holds out groups of postures, as ``--gravity auto``; ``"none"``; ``"masses"``, one compliance per joint with the
+/// holds out groups of postures, as ``--gravity auto``; ``"none"``; ``"arm"``, three terms: the
+/// upper arm's and the forearm's weight on joints 2 and 3 of an anthropomorphic arm; ``"masses"``, one compliance per joint with the
 /// robot's link masses and centres; ``"lumped"``, compliance times the mass moments of the upper
 /// arm, forearm and wrist; ``"lumped-links"``, of every link), the tracker's
 /// registration and the measuring points, fitted together by Levenberg-Marquardt (docs/model.md,
@@ -220,7 +221,7 @@ fn writes<'a>(
             "stiffness_out",
             document.stiffness_file_out(),
             Some(document.stiffness_file_error.clone().unwrap_or_else(|| {
-                "no compliance is fitted: loaded readings (load steps) or a gravity model (gravity=\"masses\", \"lumped\" or \"lumped-links\") fit them".into()
+                "no compliance is fitted: loaded readings (load steps) or a gravity model (gravity=\"masses\", \"lumped\", \"lumped-links\" or \"arm\") fit them".into()
             })),
         ),
     ];

@@ -37,8 +37,9 @@ pub struct Args {
     geometry: Geometry,
     /// The deflection under the robot's own weight: auto (chosen with --maps by a
     /// cross-validation that holds out groups of postures: the simplest model within one standard
-    /// error of the best, with 10 distinct postures or more; none below), none, masses (the
-    /// robot's link masses and centres known, the joint compliances fitted), lumped (compliance
+    /// error of the best, with 10 distinct postures or more; none below), none, arm (three terms:
+    /// the upper arm's and the forearm's weight on joints 2 and 3, on an anthropomorphic arm),
+    /// masses (the robot's link masses and centres known, the joint compliances fitted), lumped (compliance
     /// times mass moment of the upper arm, the forearm and the wrist) or lumped-links (of every
     /// link each joint carries).
     #[arg(long, value_parser = choice::<GravitySpec>(), default_value = "auto")]
@@ -182,7 +183,7 @@ pub fn run(args: &Args) -> Result<()> {
         (Some(_), None) => bail!(
             "--stiffness-out: {}",
             document.stiffness_file_error.clone().unwrap_or_else(|| {
-                "no compliance is fitted: loaded readings (load steps) or a gravity model (--gravity masses, lumped or lumped-links) fit them"
+                "no compliance is fitted: loaded readings (load steps) or a gravity model (--gravity masses, lumped, lumped-links or arm) fit them"
                     .into()
             })
         ),

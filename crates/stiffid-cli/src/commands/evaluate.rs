@@ -55,7 +55,7 @@ pub struct ForArgs {
     /// the default full). With --for calibration or both only.
     #[arg(long, value_parser = choice::<Geometry>())]
     pub geometry: Option<Geometry>,
-    /// The gravity terms the calibration fits: none, masses, lumped or lumped-links (as
+    /// The gravity terms the calibration fits: none, arm, masses, lumped or lumped-links (as
     /// `calibrate --gravity`; the default none). With --for calibration or both only.
     #[arg(long, value_parser = choice::<Gravity>())]
     pub gravity: Option<Gravity>,

@@ -4,7 +4,7 @@
 //!
 //! ```toml
 //! [gravity]
-//! model = "lumped"                      # masses, lumped or lumped-links
+//! model = "lumped"                      # masses, lumped, lumped-links or arm
 //! tool_mass_kg = 12.5                   # optional: the calibration's [tool] mass_kg
 //! tool_centre_of_mass_mm = [0, 0, 120]  # optional: its [tool] centre_of_mass_mm
 //! terms = [                             # in the model's order, at most 144
@@ -28,7 +28,7 @@ pub const MAX_GRAVITY_TERMS: usize = 144;
 /// carries it (`[gravity]`, [`crate::Robot::own_weight`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct OwnWeight {
-    /// The gravity model: `masses`, `lumped` or `lumped-links`.
+    /// The gravity model: `masses`, `lumped`, `lumped-links` or `arm`.
     pub gravity: String,
     /// Each term's name (`gravity.c2`, `gravity.c2.link3.mx`) and value, SI (rad/(N m) for a
     /// compliance, rad kg/(N m) for a lumped mass, rad kg/N for a lumped first moment), in the
@@ -70,8 +70,8 @@ pub struct GravityFile {
     terms: Vec<TermFile>,
 }
 
-/// The own weight of a `[gravity]` table, checked: the model `masses`, `lumped` or
-/// `lumped-links`, 1 to [`MAX_GRAVITY_TERMS`] terms with finite values, a tool mass within
+/// The own weight of a `[gravity]` table, checked: the model `masses`, `lumped`,
+/// `lumped-links` or `arm`, 1 to [`MAX_GRAVITY_TERMS`] terms with finite values, a tool mass within
 /// [`limits::TOOL_MASS_KG`], a tool's centre of mass within [`limits::LENGTH_MM`] and only with
 /// its mass.
 ///
@@ -83,11 +83,14 @@ pub fn build(file: Option<GravityFile>, source_name: &str) -> Result<Option<OwnW
         field: format!("{source_name}: gravity.{field}"),
         message,
     };
-    if !matches!(g.model.as_str(), "masses" | "lumped" | "lumped-links") {
+    if !matches!(
+        g.model.as_str(),
+        "masses" | "lumped" | "lumped-links" | "arm"
+    ) {
         return Err(invalid(
             "model".into(),
             format!(
-                "'{}': expected masses, lumped or lumped-links",
+                "'{}': expected masses, lumped, lumped-links or arm",
                 limits::short(&g.model)
             ),
         ));

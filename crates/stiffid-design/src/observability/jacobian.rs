@@ -423,6 +423,10 @@ fn regressors(model: &ErrorModel, f: &Frames) -> (Vec<f64>, Vec<Vector6<f64>>) {
                 });
                 spring(t, joint)
             }
+            Term::Arm { joint, link } => {
+                let axis = f.joints[link].rotation * gm.arm_axis(link);
+                spring(&torques(f, &[axis; 6][..=link]), joint)
+            }
             Term::Compliance { joint } => spring(
                 masses.as_ref().expect("a compliance term has masses"),
                 joint,

@@ -195,7 +195,7 @@ class Setup:
         purpose: Literal["stiffness", "calibration", "both", "check"] = "stiffness",
         calibration_criterion: Optional[Literal["test-pose", "o1", "o3", "o4", "o5", "d-optimality"]] = None,
         geometry: Optional[Literal["none", "offsets", "full"]] = None,
-        gravity: Optional[Literal["none", "masses", "lumped", "lumped-links"]] = None,
+        gravity: Optional[Literal["none", "arm", "masses", "lumped", "lumped-links"]] = None,
         weight: Optional[float] = None,
     ) -> dict[str, Any]:
         """The evaluate document: criteria (floats), relative_std (6,), predicted_deviation_pct (levels, 6), feasibility, parameters, unidentifiable, candidates, calibration (with purpose calibration or both); None where the setup lacks the field."""
@@ -225,7 +225,7 @@ class Setup:
         purpose: Literal["stiffness", "calibration", "both", "check"] = "stiffness",
         calibration_criterion: Optional[Literal["test-pose", "o1", "o3", "o4", "o5", "d-optimality"]] = None,
         geometry: Optional[Literal["none", "offsets", "full"]] = None,
-        gravity: Optional[Literal["none", "masses", "lumped", "lumped-links"]] = None,
+        gravity: Optional[Literal["none", "arm", "masses", "lumped", "lumped-links"]] = None,
         weight: Optional[float] = None,
         stations: Optional[Sequence[Sequence[float]]] = None,
     ) -> dict[str, Any]:
@@ -423,7 +423,7 @@ def calibrate(
     readings: _PathLike,
     *,
     geometry: Literal["none", "offsets", "full"] = "full",
-    gravity: Literal["auto", "none", "masses", "lumped", "lumped-links"] = "auto",
+    gravity: Literal["auto", "none", "arm", "masses", "lumped", "lumped-links"] = "auto",
     validate: Optional[_PathLike] = None,
     reregister: bool = False,
     cross_validate: bool = False,

@@ -134,6 +134,13 @@ fn a_heavy_robot_measured_where_it_works_gets_gravity_terms() {
     let ladder = auto.ladder.as_ref().unwrap();
     println!("{ladder:#?}");
     assert_ne!(auto.gravity, Gravity::None, "{ladder:#?}");
+    // The arm's three terms are scored on this anthropomorphic arm, not skipped.
+    let arm = ladder
+        .rungs
+        .iter()
+        .find(|r| r.gravity == Gravity::Arm)
+        .unwrap();
+    assert!(arm.rms.is_some() && arm.skipped.is_none(), "{arm:#?}");
     // The region is the narrow one with its margin, not the joint limits: joint 2 within
     // 0..12 deg widened by 5 deg on either side.
     assert!(ladder.region.lower[1] >= (-5.0f64 - 1e-9).to_radians());
@@ -200,6 +207,7 @@ fn measure() {
             let (data, held) = split(&setup, 1000 + seed);
             let mut row = Vec::new();
             let mut specs = vec![GravitySpec::Auto, GravitySpec::Fixed(Gravity::None)];
+            specs.push(GravitySpec::Fixed(Gravity::Arm));
             specs.push(GravitySpec::Fixed(Gravity::Lumped));
             if with_masses.starts_with("true") {
                 specs.push(GravitySpec::Fixed(Gravity::Masses));
@@ -221,7 +229,7 @@ fn measure() {
                 }
                 row.push(held_out(&r) * 1e3);
             }
-            println!("masses {with_masses} seed {seed}: auto ({chosen:?}), none, lumped[, masses] held-out RMS mm {row:.4?}");
+            println!("masses {with_masses} seed {seed}: auto ({chosen:?}), none, arm, lumped[, masses] held-out RMS mm {row:.4?}");
             rows.push(row);
         }
         let n = rows.len() as f64;

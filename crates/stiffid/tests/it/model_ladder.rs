@@ -67,8 +67,8 @@ fn a_robot_that_sags_gets_gravity_terms() {
     let case = dh_case();
     let report = calibrated(&case, &readings(&case, 11, 40, false));
     let ladder = report.ladder.as_ref().unwrap();
-    // Four gravity models (the robot gives its link masses), each scored or skipped for a reason.
-    assert_eq!(ladder.rungs.len(), 4);
+    // Five gravity models (the robot gives its link masses), each scored or skipped for a reason.
+    assert_eq!(ladder.rungs.len(), 5);
     assert_eq!(ladder.folds, 5);
     assert!(ladder
         .rungs
@@ -90,7 +90,7 @@ fn a_robot_that_sags_gets_gravity_terms() {
     // The document shows the ladder and the model fitted.
     let document = Document::new(&report, "setup.toml");
     let shown = document.ladder.as_ref().unwrap();
-    assert_eq!(shown.rungs.len(), 4);
+    assert_eq!(shown.rungs.len(), 5);
     assert_eq!(document.gravity, shown.rungs[shown.chosen].gravity);
     assert!((shown.rungs[0].held_out_rms_mm.unwrap() - geometry * 1e3).abs() < 1e-9);
 }

@@ -31,7 +31,7 @@ pub struct Document {
     pub data: String,
     /// The joint errors fitted: `none`, `offsets` or `full`.
     pub geometry: &'static str,
-    /// The gravity terms fitted: `none`, `masses`, `lumped` or `lumped-links` (with `--gravity
+    /// The gravity terms fitted: `none`, `arm`, `masses`, `lumped` or `lumped-links` (with `--gravity
     /// auto`, the ladder's choice).
     pub gravity: &'static str,
     /// With gravity terms: their bound, the prior standard deviation of each term's deflection

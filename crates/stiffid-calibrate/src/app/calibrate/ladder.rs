@@ -2,7 +2,8 @@
 //! of nested models climbed by a cross-validation that holds out groups of postures.
 //!
 //! # The rungs
-//! In order of complexity, each gravity model ([`GRAVITY_RUNGS`]: the rigid robot, the lumped
+//! In order of complexity, each gravity model ([`GRAVITY_RUNGS`]: the rigid robot, the arm's
+//! three terms (skipped, saying why, on a robot that is not an anthropomorphic arm), the lumped
 //! bodies, the lumped links, the known masses where the robot gives them) without joint error
 //! maps and then with the maps of `--maps` (chosen by [`stiffid_metrology::calibration::maps`]
 //! inside every training set). A fixed `--gravity` is a ladder of one gravity model, `--maps none`
@@ -47,8 +48,9 @@ use stiffid_metrology::calibration::{motions, ErrorModel, Estimate};
 
 /// The gravity models of `--gravity auto`, in order of complexity ([`Gravity::Masses`] only on a
 /// robot with link masses).
-pub const GRAVITY_RUNGS: [Gravity; 4] = [
+pub const GRAVITY_RUNGS: [Gravity; 5] = [
     Gravity::None,
+    Gravity::Arm,
     Gravity::Lumped,
     Gravity::LumpedLinks,
     Gravity::Masses,
@@ -72,6 +74,7 @@ impl Choice for GravitySpec {
     const ALL: &'static [Self] = &[
         GravitySpec::Auto,
         GravitySpec::Fixed(Gravity::None),
+        GravitySpec::Fixed(Gravity::Arm),
         GravitySpec::Fixed(Gravity::Masses),
         GravitySpec::Fixed(Gravity::Lumped),
         GravitySpec::Fixed(Gravity::LumpedLinks),
@@ -422,7 +425,7 @@ pub struct LadderDocument {
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct RungDocument {
-    /// Its gravity terms: `none`, `lumped`, `lumped-links` or `masses`.
+    /// Its gravity terms: `none`, `arm`, `lumped`, `lumped-links` or `masses`.
     pub gravity: &'static str,
     /// Whether it fits the joint error maps (chosen inside each training set).
     pub maps: bool,

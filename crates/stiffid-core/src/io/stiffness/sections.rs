@@ -19,7 +19,7 @@ pub use crate::robot::weight_file::MAX_GRAVITY_TERMS;
 #[serde(deny_unknown_fields)]
 pub struct GravitySection {
     /// The gravity model: `masses` (the robot's link masses, the terms the joint compliances),
-    /// `lumped` or `lumped-links` (compliance times mass moment).
+    /// `lumped`, `lumped-links` or `arm` (compliance times mass moment).
     pub model: String,
     /// Each term, in the model's order; at most [`MAX_GRAVITY_TERMS`].
     pub terms: Vec<GravityTerm>,

@@ -331,7 +331,7 @@ pub(super) fn gravity_parameters(terms: &gravity::Terms) -> Vec<Parameter> {
             name: t.name(),
             kind: match t {
                 Term::Compliance { .. } => Kind::Compliance,
-                Term::Lumped { .. } => Kind::Gravity,
+                Term::Lumped { .. } | Term::Arm { .. } => Kind::Gravity,
             },
             target: Target::Gravity(t),
             nominal: terms.nominal(t),

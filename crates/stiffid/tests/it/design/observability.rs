@@ -184,6 +184,10 @@ fn gravity_models() -> Vec<(&'static str, GravityOf)> {
             Box::new(|r: &Robot| gravity::Terms::lumped(r, stiffid_core::Coordinates::Kinematic)),
         ),
         (
+            "arm",
+            Box::new(|r: &Robot| gravity::Terms::arm(r, stiffid_core::Coordinates::Axis).unwrap()),
+        ),
+        (
             "masses",
             Box::new(|r: &Robot| {
                 let masses = *r.masses().unwrap();

@@ -4,6 +4,7 @@
 
 use stiffid_metrology::calibration::*;
 
+mod arm_tests;
 mod backlash_tests;
 mod external_tests;
 mod fixed_tables_tests;

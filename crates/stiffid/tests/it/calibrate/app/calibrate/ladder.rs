@@ -40,8 +40,20 @@ fn a_rung_that_loses_to_a_simpler_one_is_not_chosen() {
 
 #[test]
 fn auto_tries_masses_only_where_the_robot_has_them() {
-    assert_eq!(GravitySpec::Auto.rungs(false).len(), 3);
-    assert_eq!(GravitySpec::Auto.rungs(true)[3], Gravity::Masses);
+    assert_eq!(
+        GravitySpec::Auto.rungs(false),
+        [
+            Gravity::None,
+            Gravity::Arm,
+            Gravity::Lumped,
+            Gravity::LumpedLinks
+        ]
+    );
+    assert_eq!(GravitySpec::Auto.rungs(true)[4], Gravity::Masses);
+    assert_eq!(
+        "arm".parse::<GravitySpec>().unwrap().rungs(true),
+        [Gravity::Arm]
+    );
     let lumped: GravitySpec = "lumped".parse().unwrap();
     assert_eq!(lumped.rungs(true), vec![Gravity::Lumped]);
     assert_eq!("auto".parse::<GravitySpec>().unwrap(), GravitySpec::Auto);

@@ -33,8 +33,24 @@
 //!   `tau_2 = A cos phi_2 + B sin phi_2 + C cos phi_23 + D sin phi_23 + (the wrist's)`, `c_3`
 //!   times `C, D` of `tau_3`, and the wrist's first moments with `c_2`, `c_3`, `c_4` and `c_5`:
 //!   17 terms on the FANUC R-2000iC/165F (kinematic springs) against 30 for every link.
+//! - [`Gravity::Arm`]: masses unknown, three physical terms ([`Terms::arm`]) for a heavy
+//!   robot and thin data: the weight of the upper arm and of the forearm (with the wrist and the
+//!   tool) on the springs of joints 2 and 3, their centres on the links' axes. The upper arm's
+//!   axis runs from joint 2's axis to joint 3's ([`ARM_BODIES`]: link 1), the forearm's from
+//!   joint 3's axis to the wrist point (on joint 4's axis, nearest joint 5's: link 2), both
+//!   across the joints' axes; with `phi_2` and `phi_23` their angles above the horizontal,
+//!   `dq_2 = a cos phi_2 + b cos phi_23` and `dq_3 = c cos phi_23`, each a compliance times a
+//!   mass moment along the axis (`b` and `c` the forearm's, through the compliances of joints 2
+//!   and 3). The regressor of a term is the lumped one ([`Gravity::Lumped`]) of its link's first
+//!   moment along the axis: a sub-model of `lumped`, its `A` and `C` terms with the centres
+//!   on the axes (`B = D = 0` in the axes' angles). It holds on an anthropomorphic arm only
+//!   (joint 1 vertical, joints 2 and 3 horizontal and parallel within [`ARM_TOLERANCE`]); any
+//!   other robot is refused, naming the joint.
 
+pub use arm::{ARM_BODIES, ARM_TOLERANCE};
 use nalgebra::{DVectorView, Matrix6, Vector3, Vector6};
+
+mod arm;
 use serde::Serialize;
 use stiffid_core::common::limits::JointBox;
 use stiffid_core::robot::kinematics::Coordinates;
@@ -63,12 +79,16 @@ pub enum Gravity {
     /// Unknown masses: compliance times mass moment, for every spring and every link it carries
     /// ([`Terms::lumped`]).
     LumpedLinks,
+    /// Unknown masses, three terms: the upper arm's and the forearm's weight on joints 2 and 3,
+    /// their centres on the links' axes ([`Terms::arm`]).
+    Arm,
 }
 
 impl stiffid_core::common::choice::Choice for Gravity {
     const FIELD: &'static str = "gravity";
     const ALL: &'static [Self] = &[
         Gravity::None,
+        Gravity::Arm,
         Gravity::Masses,
         Gravity::Lumped,
         Gravity::LumpedLinks,
@@ -79,6 +99,7 @@ impl stiffid_core::common::choice::Choice for Gravity {
             Gravity::Masses => "masses",
             Gravity::Lumped => "lumped",
             Gravity::LumpedLinks => "lumped-links",
+            Gravity::Arm => "arm",
         }
     }
     fn help(self) -> &'static str {
@@ -90,6 +111,9 @@ impl stiffid_core::common::choice::Choice for Gravity {
             }
             Gravity::LumpedLinks => {
                 "Unknown masses: compliance times mass moment, every joint and every link it carries"
+            }
+            Gravity::Arm => {
+                "Unknown masses, three terms: the upper arm's and the forearm's weight on joints 2 and 3 (an anthropomorphic arm)"
             }
         }
     }
@@ -132,13 +156,24 @@ pub enum Term {
         /// 0 the mass, 1-3 the first moment's x, y, z.
         moment: usize,
     },
+    /// `c_joint` times the first moment of link `link` (0-based: 1 the upper arm, 2 the forearm)
+    /// along its axis ([`Gravity::Arm`]), regressor the unit torque of a first moment along the
+    /// axis (N/kg).
+    Arm {
+        /// The spring, 0-based.
+        joint: usize,
+        /// The link, 0-based: 1 the upper arm, 2 the forearm.
+        link: usize,
+    },
 }
 
 impl Term {
     /// The spring it deflects, 0-based.
     pub fn joint(self) -> usize {
         match self {
-            Term::Compliance { joint } | Term::Lumped { joint, .. } => joint,
+            Term::Compliance { joint } | Term::Lumped { joint, .. } | Term::Arm { joint, .. } => {
+                joint
+            }
         }
     }
 
@@ -147,7 +182,7 @@ impl Term {
         match self {
             Term::Compliance { .. } => "urad/(N m)",
             Term::Lumped { moment: 0, .. } => "urad kg/(N m)",
-            Term::Lumped { .. } => "urad kg/N",
+            Term::Lumped { .. } | Term::Arm { .. } => "urad kg/N",
         }
     }
 
@@ -157,7 +192,8 @@ impl Term {
     }
 
     /// Its parameter name: `gravity.c2` for joint 2's compliance, `gravity.c2.link3.mx` for a
-    /// lumped term (the joint, the link, the mass moment `m`, `mx`, `my` or `mz`).
+    /// lumped term (the joint, the link, the mass moment `m`, `mx`, `my` or `mz`),
+    /// `gravity.c2.upper-arm` or `gravity.c3.forearm` for an arm term.
     pub fn name(self) -> String {
         match self {
             Term::Compliance { joint } => format!("gravity.c{}", joint + 1),
@@ -170,6 +206,11 @@ impl Term {
                 joint + 1,
                 link + 1,
                 ["m", "mx", "my", "mz"][moment]
+            ),
+            Term::Arm { joint, link } => format!(
+                "gravity.c{}.{}",
+                joint + 1,
+                if link == 1 { "upper-arm" } else { "forearm" }
             ),
         }
     }
@@ -186,6 +227,8 @@ pub struct Terms {
     terms: Vec<Term>,
     /// `M^-1` of the axis map, for kinematic springs.
     inverse_map: Matrix6<f64>,
+    /// Per link, the unit axis (link frame) of its [`Term::Arm`] terms; zero for other links.
+    axes: [Vector3<f64>; 6],
     /// Each term's largest regressor magnitude over [`spanning`] postures ([`Terms::peaks`]).
     peaks: Vec<f64>,
 }
@@ -204,11 +247,11 @@ impl Terms {
 
     /// The model `gravity` of `robot` with springs in `coordinates`: [`Terms::none`],
     /// [`Terms::masses`] of the robot's link masses (the compliances' nominal values `nominal`,
-    /// rad/(N m)), [`Terms::lumped_bodies`] or [`Terms::lumped`].
+    /// rad/(N m)), [`Terms::lumped_bodies`], [`Terms::lumped`] or [`Terms::arm`].
     ///
     /// # Errors
     /// [`Error::InvalidField`] (`gravity`) for [`Gravity::Masses`] with a robot without masses;
-    /// those of [`Terms::masses`].
+    /// those of [`Terms::masses`] and [`Terms::arm`].
     pub fn of(
         robot: &Robot,
         gravity: Gravity,
@@ -219,6 +262,7 @@ impl Terms {
             Gravity::None => Ok(Self::none(robot)),
             Gravity::Lumped => Ok(Self::lumped_bodies(robot, coordinates)),
             Gravity::LumpedLinks => Ok(Self::lumped(robot, coordinates)),
+            Gravity::Arm => Self::arm(robot, coordinates),
             Gravity::Masses => {
                 let Some(masses) = robot.masses() else {
                     return Err(Error::InvalidField {
@@ -283,6 +327,39 @@ impl Terms {
         Self::lumped_links((robot, Gravity::Lumped), coordinates, &BODIES)
     }
 
+    /// Unknown masses, three terms ([`Gravity::Arm`], module docs): `c_2` times the upper arm's
+    /// first moment along its axis, `c_2` and `c_3` times the forearm's, springs in
+    /// `coordinates`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (`gravity`) naming the joint when the robot is not an
+    /// anthropomorphic arm ([`ARM_TOLERANCE`]): joint 1 not vertical, joint 2 not horizontal,
+    /// joint 3 not parallel to joint 2, or a link without length across its joints' axes.
+    pub fn arm(robot: &Robot, coordinates: Coordinates) -> Result<Self> {
+        let axes = arm::axes(robot)?;
+        let terms = vec![
+            Term::Arm { joint: 1, link: 1 },
+            Term::Arm { joint: 1, link: 2 },
+            Term::Arm { joint: 2, link: 2 },
+        ];
+        let mut made = Self::with_terms(
+            (robot, Gravity::Arm),
+            coordinates,
+            None,
+            Vector6::zeros(),
+            terms,
+        );
+        made.axes = axes;
+        made.peaks = made.peaks_over(&spanning(robot.limits()));
+        Ok(made)
+    }
+
+    /// The unit axis, in link `link`'s frame, of its [`Term::Arm`] terms (module docs); zero
+    /// for a link without.
+    pub fn arm_axis(&self, link: usize) -> Vector3<f64> {
+        self.axes[link]
+    }
+
     /// The lumped terms of every spring and every link of `links` (0-based) it carries.
     fn lumped_links(
         (robot, kind): (&Robot, Gravity),
@@ -328,6 +405,7 @@ impl Terms {
             masses,
             nominal,
             terms,
+            axes: [Vector3::zeros(); 6],
             peaks: Vec::new(),
         };
         made.peaks = made.peaks_over(&spanning(robot.limits()));
@@ -365,11 +443,11 @@ impl Terms {
     }
 
     /// The nominal value (SI) of `term`: its compliance's nominal value (rad/(N m), zero when
-    /// unknown), zero for a lumped term.
+    /// unknown), zero for a lumped or arm term.
     pub(crate) fn nominal(&self, term: Term) -> f64 {
         match term {
             Term::Compliance { joint } => self.nominal[joint],
-            Term::Lumped { .. } => 0.0,
+            Term::Lumped { .. } | Term::Arm { .. } => 0.0,
         }
     }
 
@@ -426,6 +504,9 @@ impl Terms {
                     link,
                     moment,
                 } => unit[link][moment][joint],
+                Term::Arm { joint, link } => (0..3)
+                    .map(|k| self.axes[link][k] * unit[link][k + 1][joint])
+                    .sum(),
             })
             .collect()
     }
