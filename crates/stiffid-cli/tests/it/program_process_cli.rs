@@ -81,15 +81,23 @@ fn the_pocket_starts_and_ends_at_home_with_its_process_words_mapped() {
     );
     let text = std::fs::read_to_string(&ls).unwrap();
     let lines = mn(&text);
+    // Every position once: a circular move's via point on its `C` line, its end on the
+    // continuation line.
     let moves: Vec<usize> = (lines.iter().enumerate())
-        .filter(|(_, l)| l.starts_with("J P[") || l.starts_with("L P["))
+        .filter(|(_, l)| {
+            ["J P[", "L P[", "C P[", "P["]
+                .iter()
+                .any(|m| l.starts_with(m))
+        })
         .map(|(i, _)| i)
         .collect();
-    // The pocket's 372 points and the home posture at both ends.
-    assert_eq!(moves.len(), 372 + 2);
+    // The pocket's points (its arcs as circular moves) and the home posture at both ends.
+    let n = moves.len();
+    let declared = text.split("/POS\n").nth(1).unwrap().matches("\nP[").count() + 1;
+    assert_eq!(n, declared, "{text}");
     let (first, last) = (moves[0], *moves.last().unwrap());
     assert_eq!(lines[first], "J P[1] 35% FINE ;");
-    assert_eq!(lines[last], "J P[374] 35% FINE ;");
+    assert_eq!(lines[last], format!("J P[{n}] 35% FINE ;"));
     // Tool change and spindle after moving home, before the path's first point; the spindle
     // stop after the path's last point, before going home; the end after it.
     let after_home: Vec<&str> = lines[first + 1..moves[1]]
@@ -115,12 +123,15 @@ fn the_pocket_starts_and_ends_at_home_with_its_process_words_mapped() {
         let end = start + pos[start..].find("};").unwrap();
         pos[start..end].to_string()
     };
-    let (home, back) = (position(1), position(374));
+    let (home, back) = (position(1), position(n));
     assert!(
-        home.starts_with("P[1]{") && back.starts_with("P[374]{"),
+        home.starts_with("P[1]{") && back.starts_with(&format!("P[{n}]{{")),
         "{home}\n{back}"
     );
-    assert_eq!(home.replace("P[1]", ""), back.replace("P[374]", ""));
+    assert_eq!(
+        home.replace("P[1]", ""),
+        back.replace(&format!("P[{n}]"), "")
+    );
     assert!(position(2).starts_with("P[2:\""), "{}", position(2));
     // Joint targets: the home posture as its axis angles.
     let krl = dir.join("POCKET.src");
