@@ -1,6 +1,6 @@
 //! The arm configuration of a posture: which of the up to eight inverse-kinematics solutions of a
-//! pose a 6R arm with a wrist is in, and the configuration data each controller stores with a
-//! Cartesian target to name it (KUKA status and turn, ABB `confdata`, FANUC `CONFIG`).
+//! pose a 6R arm with a wrist is in, which the configuration data a controller stores with a
+//! Cartesian target name.
 //!
 //! Three binary choices separate the solutions of a pose, each read from the geometry of the
 //! posture (so independent of the robot's axis sign conventions):
@@ -13,18 +13,9 @@
 //!   upper arm raised and forearm reaching forward;
 //! - **wrist**: the sign of axis 5's angle.
 //!
-//! The controllers' definitions (KUKA System Software 8 operating and programming instructions for
-//! system integrators, "Status" and "Turn"; ABB Technical reference manual RAPID Instructions,
-//! Functions and Data types, `confdata`; FANUC R-30iA/R-30iB operator's manual, "Configuration" of
-//! a position in Cartesian representation):
-//! - KUKA `S`: bit 0 set behind axis 1 (overhead area: the wrist centre's x in the A1 coordinate
-//!   system negative), bit 1 set when `A3 >= phi` (the elbow in front, the usual posture), bit 2
-//!   set when `A5 <= 0`; `T`: bit `k` set when axis `k+1` is negative.
-//! - ABB `[cf1, cf4, cf6, cfx]`: the quadrant of axes 1, 4 and 6 (`floor(q / 90 deg)`), and
-//!   `cfx = 4 (behind axis 1) + 2 (wrist centre behind the lower arm) + (axis 5 negative)`.
-//! - FANUC `'W E S, t1, t4, t6'`: `F` (flip) when J5 > 0, else `N`; `U` (up) with the elbow in
-//!   front, else `D`; `T` (front) in front of axis 1, else `B`; the turn numbers of J1, J4 and
-//!   J6: `floor((q + 180 deg) / 360 deg)`.
+//! Each controller names these choices in its own configuration data (KUKA status and turn,
+//! ABB `confdata`, FANUC `CONFIG`), which its language's folder defines from a configuration
+//! (`stiffid_machining::program`'s `krl`, `rapid` and `ls`), with the controller's manual.
 //!
 //! What stiffid assumes: the setup's axis angles are the controller's (same zero and sign, as a
 //! joint program of that controller reads them), and the configuration is read from the setup's
@@ -93,43 +84,6 @@ impl Configuration {
     /// Whether axis 5 is negative.
     pub fn wrist_negative(&self) -> bool {
         self.q_deg[4] < 0.0
-    }
-
-    /// KUKA status and turn (module docs).
-    pub fn kuka(&self) -> (u8, u8) {
-        let status = u8::from(self.behind())
-            | u8::from(!self.elbow_down()) << 1
-            | u8::from(self.q_deg[4] <= 0.0) << 2;
-        let turn = (0..6).fold(0u8, |t, k| t | u8::from(self.q_deg[k] < 0.0) << k);
-        (status, turn)
-    }
-
-    /// ABB `confdata` `[cf1, cf4, cf6, cfx]` (module docs).
-    pub fn abb(&self) -> [i64; 4] {
-        let quadrant = |q: f64| (q / 90.0).floor() as i64;
-        let cfx = 4 * i64::from(self.behind())
-            + 2 * i64::from(self.elbow_down())
-            + i64::from(self.wrist_negative());
-        [
-            quadrant(self.q_deg[0]),
-            quadrant(self.q_deg[3]),
-            quadrant(self.q_deg[5]),
-            cfx,
-        ]
-    }
-
-    /// FANUC `CONFIG` (module docs), e.g. `N U T, 0, 0, 0`.
-    pub fn fanuc(&self) -> String {
-        let turn = |q: f64| ((q + 180.0) / 360.0).floor() as i64;
-        format!(
-            "{} {} {}, {}, {}, {}",
-            if self.q_deg[4] > 0.0 { 'F' } else { 'N' },
-            if self.elbow_down() { 'D' } else { 'U' },
-            if self.behind() { 'B' } else { 'T' },
-            turn(self.q_deg[0]),
-            turn(self.q_deg[3]),
-            turn(self.q_deg[5])
-        )
     }
 
     /// What differs from `other` among the shoulder, elbow and wrist choices, each compared only

@@ -1,14 +1,17 @@
-//! What a controller language does, in one trait: [`Controller`] (read a program's targets and
-//! speeds, its Cartesian targets' poses and configuration data, name its axes, files and
-//! programs, comment a target's bound) and, for a language stiffid writes new programs in,
-//! [`Generator`] (the header with the tool and the frames, the moves, the sub-program calls).
+//! What a controller language does, in one trait: [`Controller`] (what the language is as data,
+//! a [`Descriptor`]: its names, files, forms, names' rules and bound comments; its configuration
+//! data's type; read a program's targets and speeds, state its Cartesian targets' poses) and, for
+//! a language stiffid writes new programs in, [`Generator`] (the header with the tool and the
+//! frames, the moves, the sub-program calls). [`DynController`] is a `Controller` as the
+//! registry holds it, its configuration data without their type.
 //!
 //! Each language implements them in its own folder ([`super::krl`], [`super::rapid`],
-//! [`super::ls`], [`super::inform`]); [`super::Dialect::controller`] is the one place that maps
-//! a dialect to its controller. Everything else (the targets and their writing back, the speeds,
+//! [`super::ls`], [`super::inform`]); the registry of [`super::Dialect`] is the one place that
+//! maps a dialect to its controller. Everything else (the targets and their writing back, the speeds,
 //! the Cartesian solve, the names' checks, the bounds' comments) is shared and asks the trait.
 
-use super::cartesian::Flags;
+use super::cartesian::flags::{ConfigurationData, Flags};
+pub use super::descriptor::{AxisNames, Descriptor, FileName, NameRules};
 use super::generate::{Part, Plan, Targets};
 use super::{JointTarget, Units};
 use nalgebra::{UnitQuaternion, Vector3};
@@ -51,18 +54,17 @@ pub enum BoundComment {
     PositionComment,
 }
 
-/// A controller language (module docs). Each method says what it gives; the names follow the
-/// controller's manual.
-pub trait Controller: Sync {
-    /// The language's name in documents and options (`krl`, `rapid`, `ls`, `inform`).
-    fn key(&self) -> &'static str;
-    /// The language's name for people (`KUKA KRL`).
-    fn title(&self) -> &'static str;
-    /// The file extensions read as this language, lowercase; the first is the one written.
-    fn extensions(&self) -> &'static [&'static str];
-    /// Why a program is not written to a file of `extension` (lowercase) though it reads it
-    /// (KRL's `.dat`), if so.
-    fn refuses_output(&self, extension: &str) -> Option<&'static str>;
+/// A controller language (module docs): what it is as data in [`Controller::LANGUAGE`], its
+/// configuration data's type [`Controller::Flags`], and the few methods that read its programs
+/// and state its poses; everything else has a default reading the descriptor. The registry
+/// ([`super::Dialect`]) holds each language as a [`DynController`], which every `Controller`
+/// is. Each method says what it gives; the names follow the controller's manual.
+pub trait Controller: Sync + 'static {
+    /// Its configuration data (KRL's status and turn, RAPID's `confdata`, LS `CONFIG`), as the
+    /// controller's manual defines them from the posture.
+    type Flags: ConfigurationData;
+    /// What the language is, as data.
+    const LANGUAGE: &'static Descriptor;
 
     /// The targets, external axes, pulses and units of program `text` (module docs of
     /// [`super`]), each target with its speed.
@@ -70,9 +72,16 @@ pub trait Controller: Sync {
     /// # Errors
     /// [`stiffid_core::Error::Program`] naming the line of a motion outside the subset read.
     fn read(&self, text: &str) -> Result<Read>;
+    /// A Cartesian target's orientation from its numbers in the language's order (the position,
+    /// mm, then KRL A, B, C deg, RAPID a quaternion, LS W, P, R deg).
+    fn rotation(&self, numbers: &[f64]) -> UnitQuaternion<f64>;
+    /// The numbers that state a pose (position `p`, mm, and rotation `r`), in the order
+    /// [`Controller::rotation`] reads them.
+    fn pose_numbers(&self, p: &Vector3<f64>, r: &UnitQuaternion<f64>) -> Vec<f64>;
+
     /// [`Controller::read`] with what the setup says in `context` and the data file beside the
-    /// program (KRL's `.dat`, `context.data`); a language whose programs state everything reads
-    /// them as [`Controller::read`] does.
+    /// program (KRL's `.dat`, `context.data`); by default, a language whose programs state
+    /// everything reads them as [`Controller::read`] does.
     ///
     /// # Errors
     /// Those of [`Controller::read`].
@@ -80,56 +89,157 @@ pub trait Controller: Sync {
         let _ = context;
         self.read(text)
     }
-    /// The motions read, for the message of a program with none.
-    fn motions(&self) -> &'static str;
-    /// The forms of its joint targets, for messages (`E6AXIS, AXIS`).
-    fn joint_forms(&self) -> &'static str;
-    /// The forms of its Cartesian targets in the part frame, for messages; `None`: the language
-    /// has no Cartesian targets stiffid reads.
-    fn part_forms(&self) -> Option<&'static str>;
-    /// The name of the program's `k`-th external axis (0-based) where the program gives none.
-    fn external_axis(&self, k: usize) -> String;
-    /// What a target says for an axis it does not move, for messages (RAPID ` (9E9: not
-    /// used)`), or empty.
-    fn unused_axis(&self) -> &'static str;
-    /// Whether a value 0 of an axis the cell lacks means no axis (KRL: `E1`..`E6` in every
-    /// `E6AXIS`).
-    fn zero_is_no_axis(&self) -> bool;
+    /// The program name declared on `line` (trimmed at its start): the offset in `line` of the
+    /// end of the declaring keyword; by default the descriptor's [`NameRules::declared_by`] at
+    /// the line's start.
+    fn declares_name(&self, line: &str) -> Option<usize> {
+        let keyword = Self::LANGUAGE.names.declared_by?;
+        line.strip_prefix(keyword).map(|r| line.len() - r.len())
+    }
+    /// The lines (1-based) of the motion instructions of a program stiffid wrote, in order; by
+    /// default those starting with one of the descriptor's [`Descriptor::motion_words`].
+    fn motion_lines(&self, text: &str) -> Vec<u64> {
+        lines_starting(text, Self::LANGUAGE.motion_words)
+    }
+    /// What writes new programs in the language; `None` (the default): programs are read and
+    /// written back compensated, never generated.
+    fn generator(&self) -> Option<&'static dyn Generator> {
+        None
+    }
+}
 
-    /// A Cartesian target's orientation from its numbers in the language's order (the position,
-    /// mm, then KRL A, B, C deg, RAPID a quaternion, LS W, P, R deg).
+/// A [`Controller`] as the registry holds it ([`super::Dialect::controller`]): its
+/// configuration data without their type ([`Flags`]). Every [`Controller`] is one; the data
+/// methods read its [`Descriptor`].
+pub trait DynController: Sync {
+    /// What the language is, as data ([`Controller::LANGUAGE`]).
+    fn descriptor(&self) -> &'static Descriptor;
+    /// [`Controller::read`].
+    ///
+    /// # Errors
+    /// Those of [`Controller::read`].
+    fn read(&self, text: &str) -> Result<Read>;
+    /// [`Controller::read_in`].
+    ///
+    /// # Errors
+    /// Those of [`Controller::read`].
+    fn read_in(&self, text: &str, context: &super::Context) -> Result<Read>;
+    /// [`Controller::rotation`].
     fn rotation(&self, numbers: &[f64]) -> UnitQuaternion<f64>;
-    /// The numbers that state a pose (position `p`, mm, and rotation `r`), in the order
-    /// [`Controller::rotation`] reads them.
+    /// [`Controller::pose_numbers`].
     fn pose_numbers(&self, p: &Vector3<f64>, r: &UnitQuaternion<f64>) -> Vec<f64>;
     /// The configuration data of the posture `arm` as the controller writes them.
     fn flags(&self, arm: &Configuration) -> Flags;
     /// The configuration data's name in the language, for messages (`S and T`).
     fn flags_name(&self) -> &'static str;
-
-    /// The program name declared on `line` (trimmed at its start): the offset in `line` of the
-    /// end of the declaring keyword (KRL `DEF`, LS `/PROG`), if the line declares it; a
-    /// language whose program is not named by its file (RAPID) declares none.
+    /// [`Controller::declares_name`].
     fn declares_name(&self, line: &str) -> Option<usize>;
+    /// [`Controller::motion_lines`].
+    fn motion_lines(&self, text: &str) -> Vec<u64>;
+    /// [`Controller::generator`].
+    fn generator(&self) -> Option<&'static dyn Generator>;
+
+    /// The language's name in documents and options (`krl`, `rapid`, `ls`, `inform`).
+    fn key(&self) -> &'static str {
+        self.descriptor().key
+    }
+    /// The language's name for people (`KUKA KRL`).
+    fn title(&self) -> &'static str {
+        self.descriptor().title
+    }
+    /// The file extensions read as this language, lowercase; the first is the one written.
+    fn extensions(&self) -> &'static [&'static str] {
+        self.descriptor().extensions
+    }
+    /// Why a program is not written to a file of `extension` (lowercase) though it reads it
+    /// (KRL's `.dat`), if so.
+    fn refuses_output(&self, extension: &str) -> Option<&'static str> {
+        (self.descriptor().data_files.iter())
+            .find(|(e, _)| *e == extension)
+            .map(|(_, why)| *why)
+    }
+    /// The motions read, for the message of a program with none.
+    fn motions(&self) -> &'static str {
+        self.descriptor().motions
+    }
+    /// The forms of its joint targets, for messages (`E6AXIS, AXIS`).
+    fn joint_forms(&self) -> &'static str {
+        self.descriptor().joint_forms
+    }
+    /// The forms of its Cartesian targets in the part frame, for messages; `None`: the language
+    /// has no Cartesian targets stiffid reads.
+    fn part_forms(&self) -> Option<&'static str> {
+        self.descriptor().part_forms
+    }
+    /// The name of the program's `k`-th external axis (0-based) where the program gives none.
+    fn external_axis(&self, k: usize) -> String {
+        self.descriptor().external_axes.name(k)
+    }
+    /// What a target says for an axis it does not move, for messages (RAPID ` (9E9: not
+    /// used)`), or empty.
+    fn unused_axis(&self) -> &'static str {
+        self.descriptor().unused_axis
+    }
+    /// Whether a value 0 of an axis the cell lacks means no axis (KRL: `E1`..`E6` in every
+    /// `E6AXIS`).
+    fn zero_is_no_axis(&self) -> bool {
+        self.descriptor().zero_is_no_axis
+    }
     /// The program name of a file stem, as the controller calls it (LS, INFORM upper case);
     /// `None`: the name is not the file's (a RAPID module).
-    fn program_name(&self, stem: &str) -> Option<String>;
+    fn program_name(&self, stem: &str) -> Option<String> {
+        self.descriptor().names.file.name(stem)
+    }
     /// The longest program name the controller takes.
-    fn max_name_length(&self) -> usize;
-    /// The longest program name written by default (at most [`Controller::max_name_length`]).
-    fn default_name_length(&self) -> usize;
+    fn max_name_length(&self) -> usize {
+        self.descriptor().names.max_length
+    }
+    /// The longest program name written by default (at most [`DynController::max_name_length`]).
+    fn default_name_length(&self) -> usize {
+        self.descriptor().names.default_length
+    }
     /// The words a program may not be named (the language's reserved words, and the names of
     /// the data stiffid declares in a program it writes).
-    fn reserved_words(&self) -> &'static [&'static str];
-
+    fn reserved_words(&self) -> &'static [&'static str] {
+        self.descriptor().names.reserved
+    }
     /// How a target's bound is written as a comment.
-    fn bound_comment(&self) -> BoundComment;
-    /// The lines (1-based) of the motion instructions of a program stiffid wrote, in order.
-    fn motion_lines(&self, text: &str) -> Vec<u64>;
+    fn bound_comment(&self) -> BoundComment {
+        self.descriptor().bound_comment
+    }
+}
 
-    /// What writes new programs in the language; `None`: programs are read and written back
-    /// compensated, never generated (every language stiffid reads is generated today).
-    fn generator(&self) -> Option<&'static dyn Generator>;
+impl<C: Controller> DynController for C {
+    fn descriptor(&self) -> &'static Descriptor {
+        C::LANGUAGE
+    }
+    fn read(&self, text: &str) -> Result<Read> {
+        Controller::read(self, text)
+    }
+    fn read_in(&self, text: &str, context: &super::Context) -> Result<Read> {
+        Controller::read_in(self, text, context)
+    }
+    fn rotation(&self, numbers: &[f64]) -> UnitQuaternion<f64> {
+        Controller::rotation(self, numbers)
+    }
+    fn pose_numbers(&self, p: &Vector3<f64>, r: &UnitQuaternion<f64>) -> Vec<f64> {
+        Controller::pose_numbers(self, p, r)
+    }
+    fn flags(&self, arm: &Configuration) -> Flags {
+        Flags::new(C::Flags::of(arm))
+    }
+    fn flags_name(&self) -> &'static str {
+        <C::Flags as ConfigurationData>::NAME
+    }
+    fn declares_name(&self, line: &str) -> Option<usize> {
+        Controller::declares_name(self, line)
+    }
+    fn motion_lines(&self, text: &str) -> Vec<u64> {
+        Controller::motion_lines(self, text)
+    }
+    fn generator(&self) -> Option<&'static dyn Generator> {
+        Controller::generator(self)
+    }
 }
 
 /// Writes new programs in a language (module docs of [`super::generate`]).

@@ -20,8 +20,10 @@
 //!   `'stiffid:` comment of the job.
 //!
 //! Each language is a folder ([`krl`], [`rapid`], [`ls`], [`inform`]: its reader, its Cartesian
-//! targets, its program writer and its names) implementing [`Controller`], what a controller
-//! language does; [`Dialect::controller`] is the one place a dialect maps to its folder, and
+//! targets and configuration data, its program writer and its names) implementing
+//! [`Controller`], what a controller language does (its [`Descriptor`] and a few methods); the
+//! registry of [`Dialect`] (one line per language) is the one place a dialect maps to its
+//! folder, and
 //! everything else here (the targets and their writing back, [`speed`], [`cartesian`]'s solve,
 //! [`external`], [`rename`], [`generate`]'s shared part) asks the trait.
 //!
@@ -56,6 +58,7 @@
 
 pub mod cartesian;
 mod controller;
+mod descriptor;
 pub mod external;
 pub mod generate;
 pub mod inform;
@@ -67,7 +70,10 @@ pub mod speed;
 
 pub(crate) use super::text::lines;
 pub use super::text::number_at;
-pub use controller::{BoundComment, Controller, Generator, Read};
+pub use controller::{
+    AxisNames, BoundComment, Controller, Descriptor, DynController, FileName, Generator,
+    NameRules, Read,
+};
 use nalgebra::{Isometry3, Translation3};
 use std::ops::Range;
 use stiffid_core::setup::{NumberedFrames, Pulses};
@@ -80,39 +86,44 @@ pub const DECIMALS: usize = 9;
 /// The most joint targets a program may hold.
 pub const MAX_TARGETS: usize = 1_000_000;
 
-/// The robot-program language.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Dialect {
+/// The registry: each controller language's variant of [`Dialect`], its doc line and its
+/// controller (a unit struct of its folder implementing [`Controller`]). A new language adds
+/// its folder and one line here.
+macro_rules! registry {
+    ($($(#[doc = $doc:expr])* $variant:ident => $controller:expr,)*) => {
+        /// The robot-program language.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+        pub enum Dialect {
+            $($(#[doc = $doc])* $variant,)*
+        }
+
+        impl Dialect {
+            /// Every dialect, in the order options and messages list them.
+            pub const ALL: [Dialect; [$(stringify!($variant)),*].len()] = [$(Dialect::$variant),*];
+
+            /// The controller language that reads and writes the dialect: the one place a
+            /// dialect maps to its code.
+            pub fn controller(self) -> &'static dyn DynController {
+                match self {
+                    $(Dialect::$variant => &$controller,)*
+                }
+            }
+        }
+    };
+}
+
+registry! {
     /// KUKA KRL (`.src`, `.dat`).
-    Krl,
+    Krl => krl::Krl,
     /// ABB RAPID (`.mod`, `.modx`, `.prg`).
-    Rapid,
+    Rapid => rapid::Rapid,
     /// FANUC LS (`.ls`), joint representation.
-    FanucLs,
+    FanucLs => ls::FanucLs,
     /// Yaskawa INFORM (`.jbi`), pulse positions.
-    Inform,
+    Inform => inform::Inform,
 }
 
 impl Dialect {
-    /// Every dialect, in the order options and messages list them.
-    pub const ALL: [Dialect; 4] = [
-        Dialect::Krl,
-        Dialect::Rapid,
-        Dialect::FanucLs,
-        Dialect::Inform,
-    ];
-
-    /// The controller language that reads and writes the dialect: the one place a dialect
-    /// maps to its code (a new controller adds its variant here and its folder).
-    pub fn controller(self) -> &'static dyn Controller {
-        match self {
-            Dialect::Krl => &krl::Krl,
-            Dialect::Rapid => &rapid::Rapid,
-            Dialect::FanucLs => &ls::FanucLs,
-            Dialect::Inform => &inform::Inform,
-        }
-    }
-
     /// The dialect of a file name's extension (case-insensitive), if it is one of ours.
     pub fn from_extension(extension: &str) -> Option<Self> {
         let extension = extension.to_ascii_lowercase();

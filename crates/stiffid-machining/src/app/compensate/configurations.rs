@@ -6,6 +6,8 @@
 use crate::compensate::{Aggregate, Branch, Configurations, Run};
 use serde::Serialize;
 use stiffid_core::common::choice::Choice;
+use crate::program::cartesian::flags::ConfigurationData;
+use crate::program::{krl::StatusTurn, ls::Config, rapid::ConfData};
 
 /// Every configuration of the arm evaluated over the path, and the one chosen.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -157,7 +159,7 @@ fn run_row(k: usize, r: &Run, aggregate: Aggregate) -> RunRow {
         last_line: r.last_line,
         points: r.points.len(),
         chosen: name(&b.configuration),
-        fanuc: b.configuration.fanuc(),
+        fanuc: Config::of(&b.configuration).to_string(),
         q_first_deg: b.configuration.q_deg,
         own: own.map(|o| name(&o.configuration)),
         chosen_own: b.own,
@@ -198,9 +200,9 @@ fn row(b: &Branch, chosen: bool, c: &Configurations) -> ConfigurationRow {
     };
     ConfigurationRow {
         name: name(a),
-        fanuc: a.fanuc(),
-        kuka_status: a.kuka().0,
-        abb_cfx: a.abb()[3],
+        fanuc: Config::of(a).to_string(),
+        kuka_status: StatusTurn::of(a).status,
+        abb_cfx: ConfData::of(a).0[3],
         q_first_deg: a.q_deg,
         own: b.own,
         chosen,

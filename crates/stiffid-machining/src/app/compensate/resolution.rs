@@ -4,7 +4,6 @@
 //! GP-sized arm) could not keep a bound of tenths of a mm however well it is compensated.
 
 use crate::compensate::Compensated;
-use crate::program::Dialect;
 use crate::{Language, Program};
 use nalgebra::{Vector3, Vector6};
 use stiffid_core::robot::ik::tool_pose;
@@ -34,12 +33,16 @@ fn written_pulses(setup: &Setup, program: &Program, output: Language) -> Option<
             six.filter(|v| v.len() == 6)
                 .map(|v| [v[0], v[1], v[2], v[3], v[4], v[5]])
         }
-        (Program::GCode(_), Language::Robot(Dialect::Inform)) => setup
+        (Program::GCode(_), Language::Robot(d))
+            if (d.controller().generator()).is_some_and(|g| g.needs_pulses()) =>
+        {
+            setup
             .workcell()
             .controller()
             .pulses
             .as_ref()
-            .map(|p| p.per_deg),
+                .map(|p| p.per_deg)
+        }
         _ => None,
     }
 }

@@ -1,121 +1,193 @@
-//! The configuration data of a Cartesian target as each controller writes it
-//! ([`stiffid_core::robot::configuration`] defines them from the posture).
+//! The configuration data of a Cartesian target: each language states its own type in its
+//! folder (its [`crate::program::Controller::Flags`], implementing [`ConfigurationData`], from
+//! the posture's [`stiffid_core::robot::configuration`]); the shared code (the solve, the
+//! writing back) holds them as [`Flags`] and each part's form as [`Part`], whatever the
+//! language.
 
-use super::super::Dialect;
+use std::any::Any;
+use std::fmt;
 use stiffid_core::robot::configuration::Configuration;
 
-/// A target's configuration data.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub enum Flags {
-    /// KUKA status (its three low bits) and turn (six bits).
-    Kuka(u8, u8),
-    /// ABB `confdata` `[cf1, cf4, cf6, cfx]`.
-    Abb([i64; 4]),
-    /// FANUC `CONFIG`, as [`Configuration::fanuc`] writes it: `N U T, 0, 0, 0`.
-    Fanuc(String),
+/// The shoulder, elbow and wrist a posture or configuration data name, as
+/// [`stiffid_core::robot::configuration`] reads them: the wrist centre behind axis 1, the elbow
+/// down, axis 5 negative (or zero, where the controller counts it so).
+pub type Branch = (bool, bool, bool);
+
+/// A language's configuration data: what picks one of the up to eight inverse-kinematics
+/// solutions of a pose, as the controller's manual defines it from the posture.
+pub trait ConfigurationData: fmt::Debug + Clone + PartialEq + Send + Sync + 'static {
+    /// How one part of the data is written where a program states it (KRL's status as a
+    /// binary string or a number); `()` where the data are written whole.
+    type Part: fmt::Debug + Copy + PartialEq + Send + Sync + 'static;
+    /// The data's name in the language, for messages (`S and T`).
+    const NAME: &'static str;
+    /// The data of the posture `arm`.
+    fn of(arm: &Configuration) -> Self;
+    /// The shoulder, elbow and wrist they name.
+    fn branch(&self) -> Branch;
+    /// As the program writes them, for messages.
+    fn text(&self) -> String;
+    /// The text of `part` of the data, where a program holds it.
+    fn part(&self, part: Self::Part) -> String;
 }
 
+/// The configuration data of a language without its own (its Cartesian targets are not read):
+/// the shoulder, elbow and wrist of the posture.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Posture(pub Branch);
+
+impl ConfigurationData for Posture {
+    type Part = ();
+    const NAME: &'static str = "shoulder, elbow and wrist";
+    fn of(arm: &Configuration) -> Self {
+        Posture((arm.behind(), arm.elbow_down(), arm.wrist_negative()))
+    }
+    fn branch(&self) -> Branch {
+        self.0
+    }
+    fn text(&self) -> String {
+        let (behind, down, negative) = self.0;
+        format!(
+            "{}, elbow {}, axis 5 {}",
+            if behind { "back" } else { "front" },
+            if down { "down" } else { "up" },
+            if negative { "negative" } else { "positive" }
+        )
+    }
+    fn part(&self, _part: ()) -> String {
+        ConfigurationData::text(self)
+    }
+}
+
+/// A target's configuration data, of whichever language read or wrote them.
+pub struct Flags(Box<dyn Erased>);
+
 impl Flags {
+    /// The data `data` of a language.
+    pub fn new<F: ConfigurationData>(data: F) -> Self {
+        Flags(Box::new(data))
+    }
+
     /// The data of the posture `arm` in `dialect` (its controller's
-    /// [`crate::program::Controller::flags`]; KRL's for INFORM, which has no Cartesian targets
-    /// here).
-    pub fn of(dialect: Dialect, arm: &Configuration) -> Self {
+    /// [`crate::program::Controller::Flags`]).
+    pub fn of(dialect: super::super::Dialect, arm: &Configuration) -> Self {
         dialect.controller().flags(arm)
     }
 
-    /// The shoulder, elbow and wrist the data name, as [`stiffid_core::robot::configuration`] reads
-    /// them from a posture: the wrist centre behind axis 1, the elbow down, axis 5 negative
-    /// (or zero, for KUKA and FANUC).
-    pub fn branch(&self) -> (bool, bool, bool) {
-        match self {
-            Flags::Kuka(s, _) => (s & 1 != 0, s & 2 == 0, s & 4 != 0),
-            Flags::Abb(c) => (c[3] & 4 != 0, c[3] & 2 != 0, c[3] & 1 != 0),
-            Flags::Fanuc(f) => (f.contains('B'), f.contains('D'), f.starts_with('N')),
-        }
+    /// The data as the language's own type `F`, if they are of it.
+    pub fn get<F: ConfigurationData>(&self) -> Option<&F> {
+        self.0.any().downcast_ref()
+    }
+
+    /// The shoulder, elbow and wrist the data name ([`ConfigurationData::branch`]).
+    pub fn branch(&self) -> Branch {
+        self.0.branch()
     }
 
     /// As the program writes them, for messages.
     pub fn text(&self) -> String {
-        match self {
-            Flags::Kuka(s, t) => format!("S 'B{s:03b}' T 'B{t:06b}'"),
-            Flags::Abb([a, b, c, d]) => format!("[{a},{b},{c},{d}]"),
-            Flags::Fanuc(f) => format!("'{f}'"),
-        }
-    }
-
-    /// FANUC's `CONFIG` text (inside the quotes) as the data, or why not: a flip `F`/`N`, an
-    /// elbow `U`/`D`, a side `T`/`B` (in any order, blanks or none between), then the three
-    /// turn numbers of J1, J4 and J6 (absent ones 0).
-    pub fn fanuc(text: &str) -> Result<Self, String> {
-        let (letters, turns) = text.split_once(',').unwrap_or((text, ""));
-        let letters: String = letters.chars().filter(|c| !c.is_whitespace()).collect();
-        let letters = letters.to_ascii_uppercase();
-        let pick = |a: char, b: char| {
-            match (letters.contains(a), letters.contains(b)) {
-            (true, false) => Ok(a),
-            (false, true) => Ok(b),
-            _ => Err(format!(
-                "CONFIG '{text}': expected one of {a} and {b} among its letters (flip F/N, elbow U/D, side T/B)"
-            )),
-        }
-        };
-        let (flip, elbow, side) = (pick('F', 'N')?, pick('U', 'D')?, pick('T', 'B')?);
-        if letters.len() != 3 {
-            return Err(format!(
-                "CONFIG '{text}': expected three letters (flip F/N, elbow U/D, side T/B)"
-            ));
-        }
-        let mut t = [0i64; 3];
-        for (k, w) in turns
-            .split(',')
-            .map(str::trim)
-            .filter(|w| !w.is_empty())
-            .enumerate()
-        {
-            let slot = t.get_mut(k).ok_or_else(|| {
-                format!("CONFIG '{text}': more than three turn numbers (J1, J4, J6)")
-            })?;
-            *slot = w
-                .parse()
-                .map_err(|_| format!("CONFIG '{text}': turn number '{w}' is not a whole number"))?;
-        }
-        Ok(Flags::Fanuc(format!(
-            "{flip} {elbow} {side}, {}, {}, {}",
-            t[0], t[1], t[2]
-        )))
+        self.0.text()
     }
 }
 
-/// Where a part of the data sits and how it is written back.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Part {
-    /// KUKA status, as a binary string `'B..'` or a decimal number.
-    Status {
-        /// Written as a binary string.
-        binary: bool,
-    },
-    /// KUKA turn, likewise.
-    Turn {
-        /// Written as a binary string.
-        binary: bool,
-    },
-    /// ABB `confdata` member `k` (0: cf1, 1: cf4, 2: cf6, 3: cfx).
-    Abb(usize),
-    /// FANUC `CONFIG`'s text inside its quotes.
-    Fanuc,
+impl Clone for Flags {
+    fn clone(&self) -> Self {
+        Flags(self.0.boxed())
+    }
 }
+
+impl PartialEq for Flags {
+    fn eq(&self, other: &Self) -> bool {
+        self.0.same(other.0.any())
+    }
+}
+
+impl fmt::Debug for Flags {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.0.fmt(f)
+    }
+}
+
+/// Where a part of the data sits and how it is written back: a language's
+/// [`ConfigurationData::Part`].
+pub struct Part(Box<dyn ErasedPart>);
 
 impl Part {
-    /// The text of this part of `flags`.
-    pub fn text(self, flags: &Flags) -> String {
-        match (self, flags) {
-            (Part::Status { binary: true }, Flags::Kuka(s, _)) => format!("'B{s:03b}'"),
-            (Part::Turn { binary: true }, Flags::Kuka(_, t)) => format!("'B{t:06b}'"),
-            (Part::Status { .. }, Flags::Kuka(s, _)) => s.to_string(),
-            (Part::Turn { .. }, Flags::Kuka(_, t)) => t.to_string(),
-            (Part::Abb(k), Flags::Abb(c)) => c[k].to_string(),
-            (_, Flags::Fanuc(f)) => f.clone(),
-            (_, other) => other.text(),
-        }
+    /// The part `part` of a language's data.
+    pub fn new<P: fmt::Debug + Copy + PartialEq + Send + Sync + 'static>(part: P) -> Self {
+        Part(Box::new(part))
+    }
+
+    /// The text of this part of `flags`; their whole text where they are another language's.
+    pub fn text(&self, flags: &Flags) -> String {
+        (flags.0.part(self.0.any())).unwrap_or_else(|| flags.text())
+    }
+}
+
+impl Clone for Part {
+    fn clone(&self) -> Self {
+        Part(self.0.boxed())
+    }
+}
+
+impl PartialEq for Part {
+    fn eq(&self, other: &Self) -> bool {
+        self.0.same(other.0.any())
+    }
+}
+
+impl fmt::Debug for Part {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.0.fmt(f)
+    }
+}
+
+/// [`ConfigurationData`] without its type.
+trait Erased: fmt::Debug + Send + Sync {
+    fn branch(&self) -> Branch;
+    fn text(&self) -> String;
+    fn part(&self, part: &dyn Any) -> Option<String>;
+    fn any(&self) -> &dyn Any;
+    fn same(&self, other: &dyn Any) -> bool;
+    fn boxed(&self) -> Box<dyn Erased>;
+}
+
+impl<F: ConfigurationData> Erased for F {
+    fn branch(&self) -> Branch {
+        ConfigurationData::branch(self)
+    }
+    fn text(&self) -> String {
+        ConfigurationData::text(self)
+    }
+    fn part(&self, part: &dyn Any) -> Option<String> {
+        (part.downcast_ref::<F::Part>()).map(|p| ConfigurationData::part(self, *p))
+    }
+    fn any(&self) -> &dyn Any {
+        self
+    }
+    fn same(&self, other: &dyn Any) -> bool {
+        other.downcast_ref::<F>() == Some(self)
+    }
+    fn boxed(&self) -> Box<dyn Erased> {
+        Box::new(self.clone())
+    }
+}
+
+/// A [`ConfigurationData::Part`] without its type.
+trait ErasedPart: fmt::Debug + Send + Sync {
+    fn any(&self) -> &dyn Any;
+    fn same(&self, other: &dyn Any) -> bool;
+    fn boxed(&self) -> Box<dyn ErasedPart>;
+}
+
+impl<P: fmt::Debug + Copy + PartialEq + Send + Sync + 'static> ErasedPart for P {
+    fn any(&self) -> &dyn Any {
+        self
+    }
+    fn same(&self, other: &dyn Any) -> bool {
+        other.downcast_ref::<P>() == Some(self)
+    }
+    fn boxed(&self) -> Box<dyn ErasedPart> {
+        Box::new(*self)
     }
 }

@@ -74,14 +74,14 @@ mod pulses;
 pub mod speed;
 mod tool;
 
-use super::cartesian::Flags;
-use super::controller::{lines_starting, BoundComment, Controller, Generator};
+use super::cartesian::flags::Posture;
+use super::controller::{BoundComment, Controller, Generator};
+use super::descriptor::{AxisNames, Descriptor, FileName, NameRules};
 use super::{at, six, Context, Read};
 use nalgebra::{UnitQuaternion, Vector3};
 use pos::{Form, Kind, Position};
 use std::collections::HashMap;
 use std::ops::Range;
-use stiffid_core::robot::configuration::Configuration;
 use stiffid_core::Result;
 
 /// Every joint target of `text`, in the order of its motions (module docs), the program's
@@ -262,42 +262,36 @@ fn target(
 pub struct Inform;
 
 impl Controller for Inform {
-    fn key(&self) -> &'static str {
-        "inform"
-    }
-    fn title(&self) -> &'static str {
-        "Yaskawa INFORM"
-    }
-    fn extensions(&self) -> &'static [&'static str] {
-        &["jbi"]
-    }
-    fn refuses_output(&self, _extension: &str) -> Option<&'static str> {
-        None
-    }
+    /// No Cartesian target is read from a job: the posture's shoulder, elbow and wrist.
+    type Flags = Posture;
+    const LANGUAGE: &'static Descriptor = &Descriptor {
+        key: "inform",
+        title: "Yaskawa INFORM",
+        extensions: &["jbi"],
+        data_files: &[],
+        motions: "MOVJ, MOVL or MOVC to a C position of //POS in pulses",
+        joint_forms: "pulse positions",
+        // Its rectangular positions are not read.
+        part_forms: None,
+        external_axes: AxisNames::Numbered("external axis "),
+        unused_axis: "",
+        zero_is_no_axis: false,
+        names: NameRules {
+            declared_by: Some("//NAME"),
+            file: FileName::Upper,
+            max_length: 32,
+            default_length: 32,
+            reserved: &[],
+        },
+        bound_comment: BoundComment::LineBefore { marker: '\'' },
+        motion_words: &["MOVJ ", "MOVL ", "MOVC "],
+    };
+
     fn read(&self, text: &str) -> Result<Read> {
         targets(text, &Context::default())
     }
     fn read_in(&self, text: &str, context: &Context) -> Result<Read> {
         targets(text, context)
-    }
-    fn motions(&self) -> &'static str {
-        "MOVJ, MOVL or MOVC to a C position of //POS in pulses"
-    }
-    fn joint_forms(&self) -> &'static str {
-        "pulse positions"
-    }
-    /// None: its rectangular positions are not read.
-    fn part_forms(&self) -> Option<&'static str> {
-        None
-    }
-    fn external_axis(&self, k: usize) -> String {
-        format!("external axis {}", k + 1)
-    }
-    fn unused_axis(&self) -> &'static str {
-        ""
-    }
-    fn zero_is_no_axis(&self) -> bool {
-        false
     }
     /// No Cartesian target is read from a job: KUKA's A, B, C order, never used.
     fn rotation(&self, n: &[f64]) -> UnitQuaternion<f64> {
@@ -307,35 +301,6 @@ impl Controller for Inform {
     fn pose_numbers(&self, p: &Vector3<f64>, r: &UnitQuaternion<f64>) -> Vec<f64> {
         let [a, b, c] = super::generate::zyx_deg(r);
         vec![p.x, p.y, p.z, a, b, c]
-    }
-    /// No Cartesian target is read from a job: KUKA's data, never used.
-    fn flags(&self, arm: &Configuration) -> Flags {
-        let (s, t) = arm.kuka();
-        Flags::Kuka(s, t)
-    }
-    fn flags_name(&self) -> &'static str {
-        "S and T"
-    }
-    fn declares_name(&self, line: &str) -> Option<usize> {
-        line.strip_prefix("//NAME").map(|r| line.len() - r.len())
-    }
-    fn program_name(&self, stem: &str) -> Option<String> {
-        Some(stem.to_ascii_uppercase())
-    }
-    fn max_name_length(&self) -> usize {
-        32
-    }
-    fn default_name_length(&self) -> usize {
-        32
-    }
-    fn reserved_words(&self) -> &'static [&'static str] {
-        &[]
-    }
-    fn bound_comment(&self) -> BoundComment {
-        BoundComment::LineBefore { marker: '\'' }
-    }
-    fn motion_lines(&self, text: &str) -> Vec<u64> {
-        lines_starting(text, &["MOVJ ", "MOVL ", "MOVC "])
     }
     /// Jobs in pulses ([`generate`]).
     fn generator(&self) -> Option<&'static dyn Generator> {

@@ -3,6 +3,7 @@
 
 use crate::program::cartesian::flags::Part;
 use crate::program::cartesian::{Cartesian, Flags, Frame};
+use crate::program::krl::{StatusPart, StatusTurn};
 use crate::program::{at, number_at, Dialect};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
 use std::ops::Range;
@@ -56,10 +57,13 @@ pub(crate) fn target(
         (Some((_, s)), Some((_, t))) => {
             let (s, s_span, s_binary) = bits(line, code, *s, "S")?;
             let (t, t_span, t_binary) = bits(line, code, *t, "T")?;
-            c.flags = Some(Flags::Kuka((s & 0b111) as u8, (t & 0b11_1111) as u8));
+            c.flags = Some(Flags::new(StatusTurn {
+                status: (s & 0b111) as u8,
+                turn: (t & 0b11_1111) as u8,
+            }));
             c.flag_spans = vec![
-                (start + s_span.start..start + s_span.end, Part::Status { binary: s_binary }),
-                (start + t_span.start..start + t_span.end, Part::Turn { binary: t_binary }),
+                (start + s_span.start..start + s_span.end, Part::new(StatusPart::Status { binary: s_binary })),
+                (start + t_span.start..start + t_span.end, Part::new(StatusPart::Turn { binary: t_binary })),
             ];
         }
         _ => {

@@ -3,6 +3,7 @@
 use crate::program::generate::{
     in_work, number, v, zyx_deg, Move, Part, Plan, Target, Targets, RAPID_PERCENT,
 };
+use crate::program::cartesian::flags::ConfigurationData;
 use crate::program::Generator;
 use std::fmt::Write;
 use stiffid_core::robot::external::Role;
@@ -99,7 +100,7 @@ pub(crate) fn body(plan: &Plan, part: &Part) -> String {
             Targets::Cartesian => {
                 let (p, r) = in_work(plan, t);
                 let [a, b, c] = zyx_deg(&r);
-                let (status, turn) = t.arm.kuka();
+                let super::StatusTurn { status, turn } = ConfigurationData::of(&t.arm);
                 let pos = format!(
                     "{{E6POS: X {}, Y {}, Z {}, A {}, B {}, C {}{}, S 'B{status:03b}', T 'B{turn:06b}'}}",
                     v(p.x),

@@ -29,12 +29,13 @@ mod names;
 mod process;
 mod read;
 pub mod speed;
+pub mod status;
+pub use status::{StatusPart, StatusTurn};
 
-use super::cartesian::Flags;
-use super::controller::{lines_starting, BoundComment, Controller, Generator, Read};
+use super::controller::{BoundComment, Controller, Generator, Read};
+use super::descriptor::{AxisNames, Descriptor, FileName, NameRules};
 use super::generate::zyx_deg;
 use nalgebra::{UnitQuaternion, Vector3};
-use stiffid_core::robot::configuration::Configuration;
 use stiffid_core::Result;
 
 /// The `.dat` beside the KRL program `src` (a `.src`, any case): the file of the same folder
@@ -78,20 +79,35 @@ pub fn data_out(out: &std::path::Path) -> std::path::PathBuf {
 pub struct Krl;
 
 impl Controller for Krl {
-    fn key(&self) -> &'static str {
-        "krl"
-    }
-    fn title(&self) -> &'static str {
-        "KUKA KRL"
-    }
-    fn extensions(&self) -> &'static [&'static str] {
-        &["src", "dat"]
-    }
-    fn refuses_output(&self, extension: &str) -> Option<&'static str> {
-        (extension == "dat").then_some(
+    type Flags = StatusTurn;
+    const LANGUAGE: &'static Descriptor = &Descriptor {
+        key: "krl",
+        title: "KUKA KRL",
+        extensions: &["src", "dat"],
+        data_files: &[(
+            "dat",
             "a KRL program (DEF) is written to a .src file; its .dat holds only data (DEFDAT)",
-        )
-    }
+        )],
+        motions: "PTP or LIN to {A1 .., A6 ..} or {X .., .., C .., S .., T ..}, or to an E6AXIS or E6POS declared in the file; a .dat holds declarations only: give the .src",
+        joint_forms: "E6AXIS, AXIS",
+        part_forms: Some("E6POS with $BASE equal to [workpiece]"),
+        external_axes: AxisNames::Numbered("E"),
+        unused_axis: "",
+        zero_is_no_axis: true,
+        names: NameRules {
+            declared_by: Some("DEF"),
+            file: FileName::Stem,
+            max_length: 24,
+            default_length: 24,
+            reserved: names::RESERVED,
+        },
+        bound_comment: BoundComment::EndOfLine {
+            marker: ';',
+            statement: None,
+        },
+        motion_words: &["PTP ", "LIN ", "CIRC "],
+    };
+
     fn read(&self, text: &str) -> Result<Read> {
         self.read_in(text, &super::Context::default())
     }
@@ -103,24 +119,6 @@ impl Controller for Krl {
             ..Read::default()
         })
     }
-    fn motions(&self) -> &'static str {
-        "PTP or LIN to {A1 .., A6 ..} or {X .., .., C .., S .., T ..}, or to an E6AXIS or E6POS declared in the file; a .dat holds declarations only: give the .src"
-    }
-    fn joint_forms(&self) -> &'static str {
-        "E6AXIS, AXIS"
-    }
-    fn part_forms(&self) -> Option<&'static str> {
-        Some("E6POS with $BASE equal to [workpiece]")
-    }
-    fn external_axis(&self, k: usize) -> String {
-        format!("E{}", k + 1)
-    }
-    fn unused_axis(&self) -> &'static str {
-        ""
-    }
-    fn zero_is_no_axis(&self) -> bool {
-        true
-    }
     fn rotation(&self, n: &[f64]) -> UnitQuaternion<f64> {
         abc(n[3], n[4], n[5])
     }
@@ -128,13 +126,7 @@ impl Controller for Krl {
         let [a, b, c] = zyx_deg(r);
         vec![p.x, p.y, p.z, a, b, c]
     }
-    fn flags(&self, arm: &Configuration) -> Flags {
-        let (s, t) = arm.kuka();
-        Flags::Kuka(s, t)
-    }
-    fn flags_name(&self) -> &'static str {
-        "S and T"
-    }
+    /// `DEF` after an optional `GLOBAL`, in any case, followed by a blank.
     fn declares_name(&self, line: &str) -> Option<usize> {
         let upper = line.to_ascii_uppercase();
         let rest = upper
@@ -143,27 +135,6 @@ impl Controller for Krl {
         rest.strip_prefix("DEF")
             .filter(|r| r.starts_with(char::is_whitespace))
             .map(|r| line.len() - r.len())
-    }
-    fn program_name(&self, stem: &str) -> Option<String> {
-        Some(stem.to_string())
-    }
-    fn max_name_length(&self) -> usize {
-        24
-    }
-    fn default_name_length(&self) -> usize {
-        24
-    }
-    fn reserved_words(&self) -> &'static [&'static str] {
-        names::RESERVED
-    }
-    fn bound_comment(&self) -> BoundComment {
-        BoundComment::EndOfLine {
-            marker: ';',
-            statement: None,
-        }
-    }
-    fn motion_lines(&self, text: &str) -> Vec<u64> {
-        lines_starting(text, &["PTP ", "LIN ", "CIRC "])
     }
     fn generator(&self) -> Option<&'static dyn Generator> {
         Some(&Krl)

@@ -3,6 +3,7 @@
 
 use crate::program::cartesian::flags::Part;
 use crate::program::cartesian::{Cartesian, Flags, Frame};
+use crate::program::ls::Config;
 use crate::program::{at, Dialect};
 use std::ops::Range;
 use stiffid_core::Result;
@@ -51,7 +52,7 @@ pub(crate) fn config(line: u64, start: usize, l: &str) -> Result<Option<(Flags, 
             "CONFIG: expected its text in quotes, 'N U T, 0, 0, 0'".into(),
         ));
     };
-    let flags = Flags::fanuc(&l[open..close]).map_err(|why| at(line, why))?;
+    let flags = Config::parse(&l[open..close]).map(Flags::new).map_err(|why| at(line, why))?;
     Ok(Some((flags, start + open..start + close)))
 }
 
@@ -95,7 +96,7 @@ pub(crate) fn target(
     let mut c = Cartesian::new(Dialect::FanucLs, &values);
     if let Some((flags, span)) = config {
         c.flags = Some(flags);
-        c.flag_spans = vec![(span, Part::Fanuc)];
+        c.flag_spans = vec![(span, Part::new(()))];
     }
     let unknown = |name: &str| {
         Frame::Unknown(line, format!("a Cartesian position without {name}: its frame is the controller's, which the program does not say; give {name} : n"))

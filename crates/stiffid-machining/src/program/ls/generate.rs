@@ -4,6 +4,7 @@ use crate::program::generate::LS_MAX_LINES;
 use crate::program::generate::{
     in_world, number, stated_feed, v, zyx_deg, Move, Part, Plan, Settings, Target, Targets,
 };
+use crate::program::cartesian::flags::ConfigurationData;
 use crate::program::Generator;
 use nalgebra::Isometry3;
 use std::fmt::Write;
@@ -121,7 +122,7 @@ pub(crate) fn body(plan: &Plan, part: &Part, warnings: &mut Vec<String>) -> Resu
                 write!(
                     pos,
                     "\t\tCONFIG : '{}',\n\tX = {} mm,\tY = {} mm,\tZ = {} mm,\n\tW = {} deg,\tP = {} deg,\tR = {} deg",
-                    t.arm.fanuc(), v(p.x), v(p.y), v(p.z), v(w), v(pitch), v(r)
+                    super::Config::of(&t.arm), v(p.x), v(p.y), v(p.z), v(w), v(pitch), v(r)
                 )
             }
         };

@@ -15,6 +15,7 @@
 //! docs/programs/ls.md gives each with its source.
 
 mod cartesian;
+pub mod config;
 pub mod generate;
 mod motion;
 mod names;
@@ -24,15 +25,17 @@ mod process;
 pub mod speed;
 mod statements;
 
+pub use config::Config;
+
 use super::cartesian::Flags;
 use super::controller::{BoundComment, Controller, Generator, Read};
+use super::descriptor::{AxisNames, Descriptor, FileName, NameRules};
 use super::generate::zyx_deg;
 use super::{at, number_at, six, Found, JointTarget, Units};
 use cartesian::Value;
 use nalgebra::{UnitQuaternion, Vector3};
 use statements::{Place, Selected};
 use std::collections::HashMap;
-use stiffid_core::robot::configuration::Configuration;
 use stiffid_core::Result;
 
 /// Every joint target of `text`, in the order of the `/MN` motions (module docs), and the
@@ -363,18 +366,31 @@ fn split_keeping_offsets(l: &str) -> Vec<(usize, &str)> {
 pub struct FanucLs;
 
 impl Controller for FanucLs {
-    fn key(&self) -> &'static str {
-        "ls"
-    }
-    fn title(&self) -> &'static str {
-        "FANUC LS"
-    }
-    fn extensions(&self) -> &'static [&'static str] {
-        &["ls"]
-    }
-    fn refuses_output(&self, _extension: &str) -> Option<&'static str> {
-        None
-    }
+    type Flags = Config;
+    const LANGUAGE: &'static Descriptor = &Descriptor {
+        key: "ls",
+        title: "FANUC LS",
+        extensions: &["ls"],
+        data_files: &[],
+        motions: "J, L or C to a P[i] of /POS",
+        joint_forms: "positions in joint representation",
+        part_forms: Some("Cartesian positions in a user frame UF : n, n >= 1, that a remark `! stiffid: user_frame = n ;` names"),
+        external_axes: AxisNames::Numbered("E"),
+        unused_axis: "",
+        zero_is_no_axis: false,
+        // R-30iA's default length; later controllers take longer names.
+        names: NameRules {
+            declared_by: Some("/PROG"),
+            file: FileName::Upper,
+            max_length: 36,
+            default_length: 8,
+            reserved: names::RESERVED,
+        },
+        bound_comment: BoundComment::PositionComment,
+        // The motion lines are those of `/MN` only (`motion_lines`).
+        motion_words: &[],
+    };
+
     fn read(&self, text: &str) -> Result<Read> {
         let (targets, axes, units) = targets(text)?;
         Ok(Read {
@@ -384,24 +400,6 @@ impl Controller for FanucLs {
             units,
         })
     }
-    fn motions(&self) -> &'static str {
-        "J, L or C to a P[i] of /POS"
-    }
-    fn joint_forms(&self) -> &'static str {
-        "positions in joint representation"
-    }
-    fn part_forms(&self) -> Option<&'static str> {
-        Some("Cartesian positions in a user frame UF : n, n >= 1, that a remark `! stiffid: user_frame = n ;` names")
-    }
-    fn external_axis(&self, k: usize) -> String {
-        format!("E{}", k + 1)
-    }
-    fn unused_axis(&self) -> &'static str {
-        ""
-    }
-    fn zero_is_no_axis(&self) -> bool {
-        false
-    }
     /// `R = Rz(R) Ry(P) Rx(W)`.
     fn rotation(&self, n: &[f64]) -> UnitQuaternion<f64> {
         UnitQuaternion::from_euler_angles(n[3].to_radians(), n[4].to_radians(), n[5].to_radians())
@@ -409,31 +407,6 @@ impl Controller for FanucLs {
     fn pose_numbers(&self, p: &Vector3<f64>, r: &UnitQuaternion<f64>) -> Vec<f64> {
         let [a, b, c] = zyx_deg(r);
         vec![p.x, p.y, p.z, c, b, a]
-    }
-    fn flags(&self, arm: &Configuration) -> Flags {
-        Flags::Fanuc(arm.fanuc())
-    }
-    fn flags_name(&self) -> &'static str {
-        "CONFIG"
-    }
-    fn declares_name(&self, line: &str) -> Option<usize> {
-        line.strip_prefix("/PROG").map(|r| line.len() - r.len())
-    }
-    fn program_name(&self, stem: &str) -> Option<String> {
-        Some(stem.to_ascii_uppercase())
-    }
-    fn max_name_length(&self) -> usize {
-        36
-    }
-    /// R-30iA's; later controllers take longer names.
-    fn default_name_length(&self) -> usize {
-        8
-    }
-    fn reserved_words(&self) -> &'static [&'static str] {
-        names::RESERVED
-    }
-    fn bound_comment(&self) -> BoundComment {
-        BoundComment::PositionComment
     }
     /// The `J P[..]`, `L P[..]` and `C P[..]` lines of `/MN`.
     fn motion_lines(&self, text: &str) -> Vec<u64> {

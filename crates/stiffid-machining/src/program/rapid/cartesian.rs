@@ -4,6 +4,7 @@
 use crate::program::cartesian::flags::Part;
 use crate::program::cartesian::literal::{self, Node};
 use crate::program::cartesian::{Cartesian, Flags, Frame};
+use crate::program::rapid::ConfData;
 use crate::program::{at, Dialect, JointTarget};
 use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion};
 use std::collections::HashMap;
@@ -42,9 +43,9 @@ pub(crate) fn robtarget(line: u64, code: &str, from: usize) -> Result<JointTarge
         return Err(bad("the confdata are not whole numbers"));
     }
     let mut c = Cartesian::new(Dialect::Rapid, &pose);
-    c.flags = Some(Flags::Abb([0, 1, 2, 3].map(|k| conf[k].0 as i64)));
+    c.flags = Some(Flags::new(ConfData([0, 1, 2, 3].map(|k| conf[k].0 as i64))));
     c.flag_spans = (conf.into_iter().enumerate())
-        .map(|(k, (_, span))| (span, Part::Abb(k)))
+        .map(|(k, (_, span))| (span, Part::new(k)))
         .collect();
     let external = external
         .into_iter()

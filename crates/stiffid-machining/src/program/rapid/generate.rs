@@ -2,6 +2,7 @@
 //! `PROC rNAME_01()` (module docs of [`crate::program::generate`]).
 
 use crate::program::generate::{in_work, number, v, Move, Part, Plan, Target, Targets};
+use crate::program::cartesian::flags::ConfigurationData;
 use crate::program::Generator;
 use std::fmt::Write;
 use stiffid_core::robot::external::Role;
@@ -84,7 +85,7 @@ pub(crate) fn body(plan: &Plan, part: &Part) -> String {
             }
             Targets::Cartesian => {
                 let (p, r) = in_work(plan, t);
-                let [c1, c4, c6, cx] = t.arm.abb();
+                let super::ConfData([c1, c4, c6, cx]) = ConfigurationData::of(&t.arm);
                 let target = format!(
                     "[[{},{},{}],{},[{c1},{c4},{c6},{cx}],{}]",
                     v(p.x),

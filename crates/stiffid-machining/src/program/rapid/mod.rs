@@ -20,21 +20,22 @@
 
 mod arguments;
 mod cartesian;
+pub mod confdata;
 mod flow;
 mod generate;
 mod names;
 mod offset;
 mod process;
 pub mod speed;
+pub use confdata::ConfData;
 
-use super::cartesian::Flags;
 use super::cartesian::{literal, Frame};
-use super::controller::{lines_starting, BoundComment, Controller, Generator, Read};
+use super::controller::{BoundComment, Controller, Generator, Read};
+use super::descriptor::{AxisNames, Descriptor, FileName, NameRules};
 use super::{at, number_at, six, JointTarget};
 use nalgebra::{UnitQuaternion, Vector3};
 use speed::RapidSpeeds;
 use std::collections::HashMap;
-use stiffid_core::robot::configuration::Configuration;
 use stiffid_core::Result;
 
 /// A `jointtarget` or `robtarget` declared in the module: its target, or why it is none.
@@ -551,18 +552,33 @@ fn joint(target: JointTarget) -> JointTarget {
 pub struct Rapid;
 
 impl Controller for Rapid {
-    fn key(&self) -> &'static str {
-        "rapid"
-    }
-    fn title(&self) -> &'static str {
-        "ABB RAPID"
-    }
-    fn extensions(&self) -> &'static [&'static str] {
-        &["mod", "modx", "prg"]
-    }
-    fn refuses_output(&self, _extension: &str) -> Option<&'static str> {
-        None
-    }
+    type Flags = ConfData;
+    const LANGUAGE: &'static Descriptor = &Descriptor {
+        key: "rapid",
+        title: "ABB RAPID",
+        extensions: &["mod", "modx", "prg"],
+        data_files: &[],
+        motions: "MoveAbsJ to a jointtarget, MoveL, MoveJ or MoveC to a robtarget",
+        joint_forms: "jointtarget",
+        part_forms: Some("robtargets with a wobjdata equal to [workpiece]"),
+        external_axes: AxisNames::Lettered("eax_"),
+        unused_axis: " (9E9: not used)",
+        zero_is_no_axis: false,
+        // A module's name is not its file's: no line declares the file's.
+        names: NameRules {
+            declared_by: None,
+            file: FileName::NotFile,
+            max_length: 32,
+            default_length: 32,
+            reserved: names::RESERVED,
+        },
+        bound_comment: BoundComment::EndOfLine {
+            marker: '!',
+            statement: Some(';'),
+        },
+        motion_words: &["MoveJ ", "MoveL ", "MoveC ", "MoveAbsJ "],
+    };
+
     fn read(&self, text: &str) -> Result<Read> {
         let (targets, axes) = targets(text)?;
         Ok(Read {
@@ -570,24 +586,6 @@ impl Controller for Rapid {
             axes,
             ..Read::default()
         })
-    }
-    fn motions(&self) -> &'static str {
-        "MoveAbsJ to a jointtarget, MoveL, MoveJ or MoveC to a robtarget"
-    }
-    fn joint_forms(&self) -> &'static str {
-        "jointtarget"
-    }
-    fn part_forms(&self) -> Option<&'static str> {
-        Some("robtargets with a wobjdata equal to [workpiece]")
-    }
-    fn external_axis(&self, k: usize) -> String {
-        format!("eax_{}", (b'a' + k as u8) as char)
-    }
-    fn unused_axis(&self) -> &'static str {
-        " (9E9: not used)"
-    }
-    fn zero_is_no_axis(&self) -> bool {
-        false
     }
     fn rotation(&self, n: &[f64]) -> UnitQuaternion<f64> {
         UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(n[3], n[4], n[5], n[6]))
@@ -597,37 +595,6 @@ impl Controller for Rapid {
         let q = r.quaternion();
         let s = if q.w < 0.0 { -1.0 } else { 1.0 };
         vec![p.x, p.y, p.z, s * q.w, s * q.i, s * q.j, s * q.k]
-    }
-    fn flags(&self, arm: &Configuration) -> Flags {
-        Flags::Abb(arm.abb())
-    }
-    fn flags_name(&self) -> &'static str {
-        "confdata"
-    }
-    /// None: a module's name is not its file's.
-    fn declares_name(&self, _line: &str) -> Option<usize> {
-        None
-    }
-    fn program_name(&self, _stem: &str) -> Option<String> {
-        None
-    }
-    fn max_name_length(&self) -> usize {
-        32
-    }
-    fn default_name_length(&self) -> usize {
-        32
-    }
-    fn reserved_words(&self) -> &'static [&'static str] {
-        names::RESERVED
-    }
-    fn bound_comment(&self) -> BoundComment {
-        BoundComment::EndOfLine {
-            marker: '!',
-            statement: Some(';'),
-        }
-    }
-    fn motion_lines(&self, text: &str) -> Vec<u64> {
-        lines_starting(text, &["MoveJ ", "MoveL ", "MoveC ", "MoveAbsJ "])
     }
     fn generator(&self) -> Option<&'static dyn Generator> {
         Some(&Rapid)

@@ -1,0 +1,99 @@
+//! What a controller language is, as data: its names, files, target forms, external axes'
+//! names, program names' rules and how a bound is commented ([`Descriptor`]), which each
+//! language declares once in its folder as its [`super::Controller::LANGUAGE`].
+
+use super::controller::BoundComment;
+
+/// A controller language as data (module docs); each field says what the trait's method of its
+/// name gives ([`super::DynController`]).
+#[derive(Debug, Clone, Copy)]
+pub struct Descriptor {
+    /// The language's name in documents and options (`krl`, `rapid`, `ls`, `inform`).
+    pub key: &'static str,
+    /// The language's name for people (`KUKA KRL`).
+    pub title: &'static str,
+    /// The file extensions read as this language, lowercase; the first is the one written.
+    pub extensions: &'static [&'static str],
+    /// The extensions read but never written, each with why (KRL's `.dat`: data only).
+    pub data_files: &'static [(&'static str, &'static str)],
+    /// The motions read, for the message of a program with none.
+    pub motions: &'static str,
+    /// The forms of its joint targets, for messages (`E6AXIS, AXIS`).
+    pub joint_forms: &'static str,
+    /// The forms of its Cartesian targets in the part frame, for messages; `None`: the language
+    /// has no Cartesian targets stiffid reads.
+    pub part_forms: Option<&'static str>,
+    /// How a program's external axes are named where it gives no name.
+    pub external_axes: AxisNames,
+    /// What a target says for an axis it does not move, for messages (RAPID ` (9E9: not
+    /// used)`), or empty.
+    pub unused_axis: &'static str,
+    /// Whether a value 0 of an axis the cell lacks means no axis (KRL: `E1`..`E6` in every
+    /// `E6AXIS`).
+    pub zero_is_no_axis: bool,
+    /// The rules of its program names.
+    pub names: NameRules,
+    /// How a target's bound is written as a comment.
+    pub bound_comment: BoundComment,
+    /// The words (with the blank after them) that start a motion line of a program stiffid
+    /// wrote (`PTP `), for [`super::Controller::motion_lines`]'s default.
+    pub motion_words: &'static [&'static str],
+}
+
+/// The rules of a language's program names.
+#[derive(Debug, Clone, Copy)]
+pub struct NameRules {
+    /// The keyword at the start of the line that declares the program's name (LS `/PROG`,
+    /// INFORM `//NAME`); `None`: no line does (a RAPID module's name is not its file's).
+    pub declared_by: Option<&'static str>,
+    /// How the controller names a program after its file.
+    pub file: FileName,
+    /// The longest program name the controller takes.
+    pub max_length: usize,
+    /// The longest program name written by default (at most `max_length`).
+    pub default_length: usize,
+    /// The words a program may not be named (the language's reserved words, and the names of
+    /// the data stiffid declares in a program it writes).
+    pub reserved: &'static [&'static str],
+}
+
+/// How a controller names a program after its file's stem.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FileName {
+    /// The stem as it is (KRL).
+    Stem,
+    /// The stem in upper case (LS, INFORM).
+    Upper,
+    /// The name is not the file's (a RAPID module).
+    NotFile,
+}
+
+impl FileName {
+    /// The program name of a file `stem`; `None`: not the file's.
+    pub fn name(self, stem: &str) -> Option<String> {
+        match self {
+            FileName::Stem => Some(stem.to_string()),
+            FileName::Upper => Some(stem.to_ascii_uppercase()),
+            FileName::NotFile => None,
+        }
+    }
+}
+
+/// How a program's external axes are named where it gives no name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum AxisNames {
+    /// The prefix and the axis' number from 1 (KRL, LS `E1`; INFORM `external axis 1`).
+    Numbered(&'static str),
+    /// The prefix and a letter from `a` (RAPID `eax_a`).
+    Lettered(&'static str),
+}
+
+impl AxisNames {
+    /// The name of the `k`-th external axis (0-based).
+    pub fn name(self, k: usize) -> String {
+        match self {
+            AxisNames::Numbered(prefix) => format!("{prefix}{}", k + 1),
+            AxisNames::Lettered(prefix) => format!("{prefix}{}", (b'a' + k as u8) as char),
+        }
+    }
+}
