@@ -16,6 +16,8 @@ use std::fmt::Write;
 use stiffid::machining::compensate::Options;
 use stiffid::machining::program::generate::Targets;
 use stiffid::machining::program::Dialect;
+use stiffid::machining::program::cartesian::flags::ConfigurationData;
+use stiffid::machining::program::ls::Config;
 use stiffid::machining::Language;
 use stiffid::model::Compliance;
 use stiffid::robot::configuration::Configuration;
@@ -111,7 +113,7 @@ fn an_ls_program_stored_in_frames_by_number_lands_on_the_true_robot() {
     let (plain, nominal_results) = written_from(&setup, &zero, (&q0, &rectangle()), output);
     let poses: Vec<Isometry3<f64>> = nominal_results.iter().map(|r| r.pose).collect();
     let arms: Vec<String> = (nominal_results.iter())
-        .map(|r| Configuration::of(nominal, &r.q).fanuc().to_string())
+        .map(|r| Config::of(&Configuration::of(nominal, &r.q)).to_string())
         .collect();
     let text = stored(&plain, (&poses, &arms), &(world * user));
     assert!(

@@ -18,6 +18,8 @@ use stiffid::app::compensate::{self as compensate, Input};
 use stiffid::machining::compensate::{Compensated, Options};
 use stiffid::machining::program::generate::{Settings, Targets};
 use stiffid::machining::program::Dialect;
+use stiffid::machining::program::cartesian::flags::ConfigurationData;
+use stiffid::machining::program::krl::StatusTurn;
 use stiffid::machining::Language;
 use stiffid::metrology::calibration::error_model::{MeasuredIn, Observation, Target};
 use stiffid::metrology::calibration::gravity::{self, Gravity, LinkMass};
@@ -708,7 +710,8 @@ pub(crate) fn landing(
         )
         .unwrap()
         .q;
-        assert_eq!(Configuration::of(nominal, &q).kuka(), (*s, *t));
+        let st = StatusTurn::of(&Configuration::of(nominal, &q));
+        assert_eq!((st.status, st.turn), (*s, *t));
         // Round trip: the controller's inverse kinematics returns the compensated angles.
         assert!(
             (q - r.q_compensated).amax() < 1e-7,

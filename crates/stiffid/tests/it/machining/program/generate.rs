@@ -9,6 +9,8 @@ use stiffid_machining::program::generate::*;
 use stiffid_machining::program::krl::KSS_HEADER;
 use stiffid_machining::program::ls::generate as ls;
 use stiffid_machining::program::Dialect;
+use stiffid_machining::program::cartesian::flags::ConfigurationData;
+use stiffid_machining::program::{krl::StatusTurn, ls::Config, rapid::ConfData};
 
 fn robot() -> Robot {
     presets::get("fanuc-r2000ic-165f").unwrap()
@@ -193,9 +195,9 @@ fn the_configuration_tells_the_two_wrist_solutions_of_one_pose_apart() {
     let dp = (t[0].pose.translation.vector - t[1].pose.translation.vector).norm();
     assert!(dp < 1e-12 && t[0].pose.rotation.angle_to(&t[1].pose.rotation) < 1e-12);
     let (a, b) = (t[0].arm, t[1].arm);
-    assert_eq!(a.kuka().0 ^ b.kuka().0, 0b100);
-    assert_eq!((a.abb()[3] - b.abb()[3]).abs(), 1);
-    assert_ne!(a.fanuc()[..1], b.fanuc()[..1]);
+    assert_eq!(StatusTurn::of(&a).status ^ StatusTurn::of(&b).status, 0b100);
+    assert_eq!((ConfData::of(&a).0[3] - ConfData::of(&b).0[3]).abs(), 1);
+    assert_ne!(Config::of(&a).as_str()[..1], Config::of(&b).as_str()[..1]);
     assert!(b.change_from(&a).unwrap().contains("wrist"));
 }
 

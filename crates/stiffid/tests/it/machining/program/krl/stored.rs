@@ -12,6 +12,8 @@ use stiffid::machining::compensate::{Compensated, Options};
 use stiffid::machining::program::generate::Settings;
 use stiffid::machining::program::generate::Targets;
 use stiffid::machining::program::Dialect;
+use stiffid::machining::program::cartesian::flags::ConfigurationData;
+use stiffid::machining::program::krl::StatusTurn;
 use stiffid::machining::Language;
 use stiffid::robot::configuration::Configuration;
 use stiffid::robot::ik;
@@ -292,7 +294,8 @@ fn a_stored_krl_program_compensated_lands_on_the_true_robot() {
             let q = ik::solve(nominal, tcp, &target, &previous, &ik::Options::default())
                 .unwrap()
                 .q;
-            assert_eq!(Configuration::of(nominal, &q).kuka(), (*s, *t));
+            let st = StatusTurn::of(&Configuration::of(nominal, &q));
+            assert_eq!((st.status, st.turn), (*s, *t));
             assert!(
                 (q - r.q_compensated).amax() < 1e-7,
                 "{}",

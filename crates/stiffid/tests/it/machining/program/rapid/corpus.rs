@@ -10,6 +10,7 @@ use stiffid::machining::{self, Language};
 use stiffid::robot::presets;
 use stiffid::{Error, Setup};
 use stiffid_machining::program::cartesian::{flags::Flags, Frame};
+use stiffid_machining::program::rapid::ConfData;
 
 /// A stored module's refusal: the line it names, the words of its message, and the words each
 /// named line of the file holds (the file's own text, read here line by line).
@@ -284,7 +285,7 @@ fn a_generated_path_is_read_point_by_point_as_the_file_states_it() {
             .min((c.rotation.coords + q.coords).norm());
         assert!(d < 1e-12, "line {line}: {d}");
         let conf = [n[7], n[8], n[9], n[10]].map(|v| v as i64);
-        assert_eq!(c.flags, Some(Flags::Abb(conf)), "line {line}");
+        assert_eq!(c.flags, Some(Flags::new(ConfData(conf))), "line {line}");
         // The tool `gripper` (line 6) at the flange, as the module declares it; the work object
         // `wobj1` (line 7), whose user and object frames are both the identity: the world frame.
         assert!(

@@ -6,6 +6,8 @@
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector6};
 use stiffid::machining::compensate::Options;
 use stiffid::machining::{self, Language, Program};
+use stiffid::machining::program::cartesian::flags::ConfigurationData;
+use stiffid::machining::program::rapid::ConfData;
 use stiffid::robot::configuration::Configuration;
 use stiffid::robot::{ik, presets};
 use stiffid::Setup;
@@ -104,7 +106,8 @@ pub(super) fn in_wobj(setup: &Setup, tool_rpy_deg: [f64; 3], q: &Vector6<f64>) -
 
 /// A `robtarget` literal of `pose` (m) with the `confdata` of `q`.
 pub(super) fn robtarget(setup: &Setup, pose_m: &Isometry3<f64>, q: &Vector6<f64>) -> String {
-    let [a, b, c, d] = Configuration::of(setup.controller_robot().unwrap(), q).abb();
+    let ConfData([a, b, c, d]) =
+        ConfData::of(&Configuration::of(setup.controller_robot().unwrap(), q));
     let p = pose(pose_m);
     format!(
         "[{},[{a},{b},{c},{d}],[9E9,9E9,9E9,9E9,9E9,9E9]]",

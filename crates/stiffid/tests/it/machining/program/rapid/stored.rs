@@ -12,6 +12,8 @@ use stiffid::app::compensate::{self, Input};
 use stiffid::machining::compensate::{Compensated, Options};
 use stiffid::machining::program::generate::Settings;
 use stiffid::machining::program::Dialect;
+use stiffid::machining::program::cartesian::flags::ConfigurationData;
+use stiffid::machining::program::rapid::ConfData;
 use stiffid::machining::Language;
 use stiffid::robot::configuration::Configuration;
 use stiffid::robot::ik;
@@ -77,7 +79,7 @@ fn module(setup: &Setup, nominal: &Robot, q0: &Vector6<f64>) -> String {
         .unwrap()
         .q;
         previous = q;
-        let [a, b, cf, d] = Configuration::of(nominal, &q).abb();
+        let ConfData([a, b, cf, d]) = ConfData::of(&Configuration::of(nominal, &q));
         let p = pose(&local);
         text += &format!(
             "  CONST robtarget {name}:=[{},[{a},{b},{cf},{d}],[9E9,9E9,9E9,9E9,9E9,9E9]];\n",
@@ -232,7 +234,7 @@ pub(crate) fn stored_landing(
             let q = ik::solve(nominal, &tcp, &at, &previous, &ik::Options::default())
                 .unwrap()
                 .q;
-            assert_eq!(Configuration::of(nominal, &q).abb(), *conf);
+            assert_eq!(ConfData::of(&Configuration::of(nominal, &q)).0, *conf);
             assert!(
                 (q - r.q_compensated).amax() < 1e-6,
                 "{}",
