@@ -4,10 +4,10 @@
 //! chosen; with one configuration per run (`--free configuration=run`), each run's.
 
 use crate::compensate::{Aggregate, Branch, Configurations, Run};
-use serde::Serialize;
-use stiffid_core::common::choice::Choice;
 use crate::program::cartesian::flags::ConfigurationData;
 use crate::program::{krl::StatusTurn, ls::Config, rapid::ConfData};
+use serde::Serialize;
+use stiffid_core::common::choice::Choice;
 
 /// Every configuration of the arm evaluated over the path, and the one chosen.
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -37,10 +37,10 @@ fn written_pulses(setup: &Setup, program: &Program, output: Language) -> Option<
             if (d.controller().generator()).is_some_and(|g| g.needs_pulses()) =>
         {
             setup
-            .workcell()
-            .controller()
-            .pulses
-            .as_ref()
+                .workcell()
+                .controller()
+                .pulses
+                .as_ref()
                 .map(|p| p.per_deg)
         }
         _ => None,

@@ -1,9 +1,9 @@
 //! KUKA KRL (`.src`): `DEF NAME( )` ... `END` (module docs of [`crate::program::generate`]).
 
+use crate::program::cartesian::flags::ConfigurationData;
 use crate::program::generate::{
     in_work, number, v, zyx_deg, Move, Part, Plan, Target, Targets, RAPID_PERCENT,
 };
-use crate::program::cartesian::flags::ConfigurationData;
 use crate::program::Generator;
 use std::fmt::Write;
 use stiffid_core::robot::external::Role;

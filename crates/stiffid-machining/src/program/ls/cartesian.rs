@@ -52,7 +52,9 @@ pub(crate) fn config(line: u64, start: usize, l: &str) -> Result<Option<(Flags, 
             "CONFIG: expected its text in quotes, 'N U T, 0, 0, 0'".into(),
         ));
     };
-    let flags = Config::parse(&l[open..close]).map(Flags::new).map_err(|why| at(line, why))?;
+    let flags = Config::parse(&l[open..close])
+        .map(Flags::new)
+        .map_err(|why| at(line, why))?;
     Ok(Some((flags, start + open..start + close)))
 }
 

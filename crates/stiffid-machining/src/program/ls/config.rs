@@ -23,12 +23,14 @@ impl Config {
         let (letters, turns) = text.split_once(',').unwrap_or((text, ""));
         let letters: String = letters.chars().filter(|c| !c.is_whitespace()).collect();
         let letters = letters.to_ascii_uppercase();
-        let pick = |a: char, b: char| match (letters.contains(a), letters.contains(b)) {
+        let pick = |a: char, b: char| {
+            match (letters.contains(a), letters.contains(b)) {
             (true, false) => Ok(a),
             (false, true) => Ok(b),
             _ => Err(format!(
                 "CONFIG '{text}': expected one of {a} and {b} among its letters (flip F/N, elbow U/D, side T/B)"
             )),
+        }
         };
         let (flip, elbow, side) = (pick('F', 'N')?, pick('U', 'D')?, pick('T', 'B')?);
         if letters.len() != 3 {

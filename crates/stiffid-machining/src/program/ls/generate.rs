@@ -1,10 +1,10 @@
 //! FANUC LS (`.ls`): `/PROG NAME`, `/ATTR`, `/MN`, `/POS`, `/END` (module docs of [`crate::program::generate`]).
 
+use crate::program::cartesian::flags::ConfigurationData;
 use crate::program::generate::LS_MAX_LINES;
 use crate::program::generate::{
     in_world, number, stated_feed, v, zyx_deg, Move, Part, Plan, Settings, Target, Targets,
 };
-use crate::program::cartesian::flags::ConfigurationData;
 use crate::program::Generator;
 use nalgebra::Isometry3;
 use std::fmt::Write;

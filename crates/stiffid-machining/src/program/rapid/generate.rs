@@ -1,8 +1,8 @@
 //! ABB RAPID (`.mod`): `MODULE NAME` with `PROC main()`, sub-programs `MODULE NAME_01` with
 //! `PROC rNAME_01()` (module docs of [`crate::program::generate`]).
 
-use crate::program::generate::{in_work, number, v, Move, Part, Plan, Target, Targets};
 use crate::program::cartesian::flags::ConfigurationData;
+use crate::program::generate::{in_work, number, v, Move, Part, Plan, Target, Targets};
 use crate::program::Generator;
 use std::fmt::Write;
 use stiffid_core::robot::external::Role;

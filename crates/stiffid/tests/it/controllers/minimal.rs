@@ -23,7 +23,10 @@ impl Controller for Val3 {
         key: "val3",
         title: "Staubli VAL3",
         extensions: &["pgx", "dtx"],
-        data_files: &[("dtx", "a VAL3 program is written to a .pgx; its .dtx holds data")],
+        data_files: &[(
+            "dtx",
+            "a VAL3 program is written to a .pgx; its .dtx holds data",
+        )],
         motions: "movej or movel to a jointRx",
         joint_forms: "jointRx",
         part_forms: None,
@@ -68,8 +71,14 @@ fn a_language_with_only_the_required_items_has_every_method() {
     assert_eq!(c.extensions(), ["pgx", "dtx"]);
     assert!(c.refuses_output("dtx").unwrap().contains(".pgx"));
     assert_eq!(c.refuses_output("pgx"), None);
-    assert_eq!((c.motions(), c.joint_forms(), c.part_forms()), ("movej or movel to a jointRx", "jointRx", None));
-    assert_eq!((c.external_axis(0), c.external_axis(2)), ("ext1".into(), "ext3".into()));
+    assert_eq!(
+        (c.motions(), c.joint_forms(), c.part_forms()),
+        ("movej or movel to a jointRx", "jointRx", None)
+    );
+    assert_eq!(
+        (c.external_axis(0), c.external_axis(2)),
+        ("ext1".into(), "ext3".into())
+    );
     assert_eq!((c.unused_axis(), c.zero_is_no_axis()), ("", false));
     assert_eq!(c.program_name("Cut_c"), Some("Cut_c".into()));
     assert_eq!((c.max_name_length(), c.default_name_length()), (15, 12));
@@ -77,7 +86,10 @@ fn a_language_with_only_the_required_items_has_every_method() {
     let line = "<Program name=\"cut\">";
     assert_eq!(c.declares_name(line), Some("<Program name=".len()));
     assert_eq!(c.declares_name("movej(p1)"), None);
-    assert_eq!(c.motion_lines("begin\n  movej(j1)\n  movel(p2)\nend\n"), [2, 3]);
+    assert_eq!(
+        c.motion_lines("begin\n  movej(j1)\n  movel(p2)\nend\n"),
+        [2, 3]
+    );
     assert!(c.generator().is_none());
     let e = c.read("begin\nend\n").unwrap_err().to_string();
     assert!(e.contains("line 1"), "{e}");

@@ -5,11 +5,11 @@ use nalgebra::{Translation3, UnitQuaternion};
 use stiffid_core::common::error::JobOption;
 use stiffid_core::robot::presets;
 use stiffid_core::{Error, Robot};
+use stiffid_machining::program::cartesian::flags::ConfigurationData;
 use stiffid_machining::program::generate::*;
 use stiffid_machining::program::krl::KSS_HEADER;
 use stiffid_machining::program::ls::generate as ls;
 use stiffid_machining::program::Dialect;
-use stiffid_machining::program::cartesian::flags::ConfigurationData;
 use stiffid_machining::program::{krl::StatusTurn, ls::Config, rapid::ConfData};
 
 fn robot() -> Robot {

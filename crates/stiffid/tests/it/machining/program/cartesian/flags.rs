@@ -45,7 +45,10 @@ fn kuka_parts_are_written_in_the_form_read() {
     let part = |p: StatusPart| Part::new(p).text(&f);
     assert_eq!(part(StatusPart::Status { binary: true }), "'B110'");
     assert_eq!(part(StatusPart::Turn { binary: false }), "21");
-    assert_eq!(Part::new(3usize).text(&Flags::new(ConfData([0, -1, 2, 5]))), "5");
+    assert_eq!(
+        Part::new(3usize).text(&Flags::new(ConfData([0, -1, 2, 5]))),
+        "5"
+    );
     // A part of another language's data: the data whole, as they read.
     assert_eq!(Part::new(3usize).text(&f), "S 'B110' T 'B010101'");
 }
@@ -65,12 +68,20 @@ fn each_language_names_the_usual_posture_in_its_own_data() {
         [10.0, -80.0, 60.0, 200.0, 30.0, -400.0],
     );
     let fanuc = Config::of(&back).to_string();
-    assert!(fanuc.starts_with("F ") && fanuc.ends_with(", 0, 1, -1"), "{fanuc}");
+    assert!(
+        fanuc.starts_with("F ") && fanuc.ends_with(", 0, 1, -1"),
+        "{fanuc}"
+    );
     assert_eq!(ConfData::of(&back).0[1..3], [2, -5]);
     // Every language's data name the posture's shoulder, elbow and wrist.
     for arm in [a, back] {
         let branch = (arm.behind(), arm.elbow_down(), arm.wrist_negative());
-        for d in [Dialect::Krl, Dialect::Rapid, Dialect::FanucLs, Dialect::Inform] {
+        for d in [
+            Dialect::Krl,
+            Dialect::Rapid,
+            Dialect::FanucLs,
+            Dialect::Inform,
+        ] {
             assert_eq!(Flags::of(d, &arm).branch(), branch, "{d:?}");
         }
     }

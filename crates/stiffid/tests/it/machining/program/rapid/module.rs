@@ -5,9 +5,9 @@
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector6};
 use stiffid::machining::compensate::Options;
-use stiffid::machining::{self, Language, Program};
 use stiffid::machining::program::cartesian::flags::ConfigurationData;
 use stiffid::machining::program::rapid::ConfData;
+use stiffid::machining::{self, Language, Program};
 use stiffid::robot::configuration::Configuration;
 use stiffid::robot::{ik, presets};
 use stiffid::Setup;
