@@ -1,10 +1,8 @@
 //! Where a new controller plugs in: one row per controller language (`program::Dialect::ALL`),
 //! with a small program and what it must read and write. A new controller adds its folder under
 //! `program/` implementing `program::Controller`, its line in the registry of `Dialect`, and a
-//! row here (docs/ARCHITECTURE.md, "Adding a controller"); `minimal` is a language with only
-//! the trait's required items.
-
-mod minimal;
+//! row here (docs/ARCHITECTURE.md, "Adding a controller"); `machining::program::controller`
+//! implements the trait for a language with only its required items.
 
 use nalgebra::{Isometry3, Vector3, Vector6};
 use stiffid::machining::app::compensate::certify;

@@ -143,7 +143,7 @@ fn required(source: &str, name: &str) -> (Vec<String>, Vec<String>) {
 
 #[test]
 fn the_controller_trait_requires_at_most_ten_methods() {
-    let source = include_str!("../../../../stiffid-machining/src/program/controller.rs");
+    let source = include_str!("../../../../../stiffid-machining/src/program/controller.rs");
     let (methods, others) = required(source, "Controller");
     // The test's language implements exactly these (it compiles with nothing else).
     let names: Vec<&str> = (methods.iter())
