@@ -361,7 +361,13 @@ pub fn lowers(current: (&[f64], f64), candidate: (&[f64], f64), accept: f64) -> 
 /// # Errors
 /// [`Error::NotFinite`] when an SVD does not converge.
 pub fn choose(linear: &Linear, postures: &[usize], spec: Spec) -> Result<Choice> {
-    let inner = Inner::new(linear, postures)?;
+    // Fixed maps or none: the splits project and compress their columns alone.
+    let narrow = match spec {
+        Spec::Auto => None,
+        Spec::None => Some(linear.restricted(&JointMaps::NONE)),
+        Spec::Fixed(h) => Some(linear.restricted(&h)),
+    };
+    let inner = Inner::new(narrow.as_ref().unwrap_or(linear), postures)?;
     let none = inner.score(&JointMaps::NONE)?;
     let none_rms = inner.rms(&none);
     let mut tried = Vec::new();
@@ -516,6 +522,7 @@ fn outer(
     let outer = (parts.par_iter().enumerate())
         .map(|(k, (train, test))| {
             let (maps, ridge) = chosen(k, train)?;
+            let linear = linear.restricted(&maps);
             let split = linear.split(train, test)?;
             let n: usize = train.iter().map(|&p| linear.rows[p].len() / 3).sum();
             let with = linear.errors(&split, &maps, &[ridge * n as f64])?;
