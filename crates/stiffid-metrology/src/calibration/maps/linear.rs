@@ -15,7 +15,8 @@
 //! exactly the least squares of the linearised model with the ridge rows on the maps alone, for
 //! every `lambda` from one SVD (never the normal equations).
 //!
-//! A split projects every candidate column once (`P M_T` and `M_V - A U^T M_T`, all joints);
+//! A split projects every candidate column once (`P M_T` and `M_V - A U^T M_T`, all joints; a
+//! choice of fixed maps or none scores on [`Linear::restricted`] to its own columns);
 //! where the training rows outnumber them it keeps the triangular factor `R` of the Householder
 //! QR `P M_T = Q R` and `Q^T P r_T` instead: the columns `S` of a choice have the same singular
 //! values and right singular vectors `Z` in `R` as in `P M_T`, from a matrix no taller than it is

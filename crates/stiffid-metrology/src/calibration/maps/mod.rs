@@ -32,7 +32,10 @@
 //! same split: the held-out gain of choosing maps by cross-validation. Folds run in parallel
 //! (rayon), the result independent of the thread count. [`nested_given`] scores the choices
 //! another linearisation of the same postures made (a calibration's ladder chooses the harmonics
-//! once, at its first gravity model), each fold's ridge chosen anew.
+//! once, at its first gravity model), each fold's ridge chosen anew. Where the maps are fixed
+//! (or none), the splits project and factor the columns of these maps alone
+//! ([`Linear::restricted`]): the later rungs and each outer fold's figure cost the columns they
+//! use, not the candidates'.
 //!
 //! Equations and sources: docs/model.md, section "Calibration", "Joint error maps".
 
