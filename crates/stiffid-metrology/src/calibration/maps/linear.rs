@@ -15,7 +15,8 @@
 //! exactly the least squares of the linearised model with the ridge rows on the maps alone, for
 //! every `lambda` from one SVD (never the normal equations).
 //!
-//! A split projects every candidate column once (`P M_T` and `M_V - A U^T M_T`, all joints);
+//! A split projects every candidate column once (`P M_T` and `M_V - A U^T M_T`, all joints; a
+//! choice of fixed maps or none scores on [`Linear::restricted`] to its own columns);
 //! where the training rows outnumber them it keeps the triangular factor `R` of the Householder
 //! QR `P M_T = Q R` and `Q^T P r_T` instead: the columns `S` of a choice have the same singular
 //! values and right singular vectors `Z` in `R` as in `P M_T`, from a matrix no taller than it is
@@ -206,15 +207,43 @@ impl Linear {
         })
     }
 
+    /// This linearisation with the map columns of `keep` alone (each joint's matrix `cos 1..h`,
+    /// `sin 1..h`, then its backlash term's, `h` the joint's count in `keep`): the same held-out
+    /// errors for any choice within `keep` (to rounding), from splits that project and compress
+    /// only these columns. `keep` within [`Linear::candidates`].
+    pub fn restricted(&self, keep: &JointMaps) -> Linear {
+        let maps = (0..6)
+            .map(|j| {
+                let h = keep.harmonics[j];
+                let sine = self.sine(j);
+                let mut cols: Vec<usize> = (0..h).chain(sine..sine + h).collect();
+                if keep.backlash[j] {
+                    cols.push(self.maps[j].ncols() - 1);
+                }
+                self.maps[j].select_columns(cols.iter())
+            })
+            .collect();
+        Linear {
+            residuals: self.residuals.clone(),
+            geometry: self.geometry.clone(),
+            maps,
+            harmonics: keep.harmonics.iter().copied().max().unwrap_or(0),
+            candidates: *keep,
+            rows: self.rows.clone(),
+        }
+    }
+
+    /// The column of joint `j`'s first sine in its matrix of [`Linear::maps`]: its harmonic count.
+    fn sine(&self, j: usize) -> usize {
+        (self.maps[j].ncols() - usize::from(self.candidates.backlash[j])) / 2
+    }
+
     /// The map columns of `choice` (joint, column of [`Linear::maps`]' matrix of the joint).
     fn columns(&self, choice: &JointMaps) -> Vec<(usize, usize)> {
         let mut cols = Vec::new();
         for (j, &h) in choice.harmonics.iter().enumerate().filter(|&(_, &h)| h > 0) {
-            cols.extend(
-                (0..h)
-                    .chain(self.harmonics..self.harmonics + h)
-                    .map(|c| (j, c)),
-            );
+            let sine = self.sine(j);
+            cols.extend((0..h).chain(sine..sine + h).map(|c| (j, c)));
         }
         for j in (0..6).filter(|&j| choice.backlash[j]) {
             cols.push((j, self.maps[j].ncols() - 1));

@@ -32,7 +32,10 @@
 //! same split: the held-out gain of choosing maps by cross-validation. Folds run in parallel
 //! (rayon), the result independent of the thread count. [`nested_given`] scores the choices
 //! another linearisation of the same postures made (a calibration's ladder chooses the harmonics
-//! once, at its first gravity model), each fold's ridge chosen anew.
+//! once, at its first gravity model), each fold's ridge chosen anew. Where the maps are fixed
+//! (or none), the splits project and factor the columns of these maps alone
+//! ([`Linear::restricted`]): the later rungs and each outer fold's figure cost the columns they
+//! use, not the candidates'.
 //!
 //! Equations and sources: docs/model.md, section "Calibration", "Joint error maps".
 
@@ -361,7 +364,13 @@ pub fn lowers(current: (&[f64], f64), candidate: (&[f64], f64), accept: f64) -> 
 /// # Errors
 /// [`Error::NotFinite`] when an SVD does not converge.
 pub fn choose(linear: &Linear, postures: &[usize], spec: Spec) -> Result<Choice> {
-    let inner = Inner::new(linear, postures)?;
+    // Fixed maps or none: the splits project and compress their columns alone.
+    let narrow = match spec {
+        Spec::Auto => None,
+        Spec::None => Some(linear.restricted(&JointMaps::NONE)),
+        Spec::Fixed(h) => Some(linear.restricted(&h)),
+    };
+    let inner = Inner::new(narrow.as_ref().unwrap_or(linear), postures)?;
     let none = inner.score(&JointMaps::NONE)?;
     let none_rms = inner.rms(&none);
     let mut tried = Vec::new();
@@ -516,6 +525,7 @@ fn outer(
     let outer = (parts.par_iter().enumerate())
         .map(|(k, (train, test))| {
             let (maps, ridge) = chosen(k, train)?;
+            let linear = linear.restricted(&maps);
             let split = linear.split(train, test)?;
             let n: usize = train.iter().map(|&p| linear.rows[p].len() / 3).sum();
             let with = linear.errors(&split, &maps, &[ridge * n as f64])?;

@@ -74,15 +74,22 @@ fn direct(
     out
 }
 
-fn assert_split_matches(n: usize) {
+/// The split's errors of `n` postures (with `restricted`, from the linearisation restricted to
+/// the choice's columns) against [`direct`] on every candidate column's linearisation.
+fn assert_split_matches(n: usize, restricted: bool) {
     let linear = linear(n, 7);
     let (train, test): (Vec<usize>, Vec<usize>) = (0..n).partition(|p| p % 5 != 0);
-    let split = linear.split(&train, &test).unwrap();
     let mut choice = JointMaps::NONE;
     choice.harmonics[1] = 16;
     choice.harmonics[4] = 8;
+    let narrow = linear.restricted(&choice);
+    let used = if restricted { &narrow } else { &linear };
+    if restricted {
+        assert_eq!(narrow.maps.iter().map(|m| m.ncols()).sum::<usize>(), 48);
+    }
+    let split = used.split(&train, &test).unwrap();
     for lambda in [1e-4, 1e-2, 1.0] {
-        let got = linear
+        let got = used
             .errors(&split, &choice, &[lambda])
             .unwrap()
             .swap_remove(0);
@@ -99,13 +106,21 @@ fn assert_split_matches(n: usize) {
 #[test]
 fn a_splits_errors_are_the_ridge_least_squares_with_fewer_rows_than_columns() {
     // 40 training postures at one point: 120 rows, 384 candidate columns.
-    assert_split_matches(50);
+    assert_split_matches(50, false);
+}
+
+#[test]
+fn a_restricted_linearisations_errors_are_the_ridge_least_squares() {
+    // The choice's 48 columns alone, from 120 training rows and from 600 (both more rows than
+    // columns: the triangular factor kept).
+    assert_split_matches(50, true);
+    assert_split_matches(250, true);
 }
 
 #[test]
 fn a_splits_errors_are_the_ridge_least_squares_with_more_rows_than_columns() {
     // 200 training postures: 600 rows, 384 candidate columns (the triangular factor kept).
-    assert_split_matches(250);
+    assert_split_matches(250, false);
 }
 
 #[test]
