@@ -18,6 +18,21 @@
 //! determined combination gets a value pulled towards nominal, and the covariance is
 //! `sigma_t^2 (J_a^T J_a)^-1` of the augmented Jacobian: the posterior of a Gaussian prior and
 //! noise (Tikhonov regularisation as Bayesian estimation).
+//!
+//! *Thin readings.* The bound on the gravity terms ([`GravityPrior`]) weighs its prior rows
+//! against a noise per coordinate. The tracker's stated noise is right when the model holds the
+//! robot's error; when it does not (an axis's encoder eccentricity, which only maps hold), the
+//! residuals scatter by several times the tracker's noise, and a prior weighed against the
+//! tracker's alone lets the gravity terms chase that misfit on a few dozen postures, then
+//! extrapolate it to others. So a model with gravity terms and no maps is fitted again with
+//! the prior weighed against the noise of its residuals, `sigma^2 = |r|^2 / (3n - p_e)` (`p_e`
+//! the effective parameters, [`Fit::effective_parameters`]), while that exceeds the noise the
+//! prior was weighed against by more than [`NOISE_TOLERANCE`] (a fixed point of the noise, at
+//! most [`MAX_REWEIGHTS`] fits; each from the same start): the prior's Gaussian with the noise
+//! the readings show, which leaves it as stated where the model fits to the tracker's noise
+//! (every noise-free or well-modelled campaign: the fit is unchanged there). [`Fit::gravity_noise`]
+//! gives the noise used; [`fit_at_stated_noise`] fits without it. Every fit converges on its
+//! step and its cost as above and says why it stopped ([`stop_warning`]).
 
 use super::error_model::{ErrorModel, Estimate, Kind, MeasuredIn, Observation, Target};
 use super::identifiability::{self, Identifiability};
