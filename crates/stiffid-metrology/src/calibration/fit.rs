@@ -18,6 +18,21 @@
 //! determined combination gets a value pulled towards nominal, and the covariance is
 //! `sigma_t^2 (J_a^T J_a)^-1` of the augmented Jacobian: the posterior of a Gaussian prior and
 //! noise (Tikhonov regularisation as Bayesian estimation).
+//!
+//! *Thin readings.* The bound on the gravity terms ([`GravityPrior`]) weighs its prior rows
+//! against a noise per coordinate. The tracker's stated noise is right when the model holds the
+//! robot's error; when it does not (an axis's encoder eccentricity, which only maps hold), the
+//! residuals scatter by several times the tracker's noise, and a prior weighed against the
+//! tracker's alone lets the gravity terms chase that misfit on a few dozen postures, then
+//! extrapolate it to others. So a model with gravity terms and no maps is fitted again with
+//! the prior weighed against the noise of its residuals, `sigma^2 = |r|^2 / (3n - p_e)` (`p_e`
+//! the effective parameters, [`Fit::effective_parameters`]), while that exceeds the noise the
+//! prior was weighed against by more than [`NOISE_TOLERANCE`] (a fixed point of the noise, at
+//! most [`MAX_REWEIGHTS`] fits; each from the same start): the prior's Gaussian with the noise
+//! the readings show, which leaves it as stated where the model fits to the tracker's noise
+//! (every noise-free or well-modelled campaign: the fit is unchanged there). [`Fit::gravity_noise`]
+//! gives the noise used; [`fit_at_stated_noise`] fits without it. Every fit converges on its
+//! step and its cost as above and says why it stopped ([`stop_warning`]).
 
 use super::error_model::{ErrorModel, Estimate, Kind, MeasuredIn, Observation, Target};
 use super::identifiability::{self, Identifiability};
@@ -36,6 +51,13 @@ pub const MAX_READINGS: usize = 100_000;
 
 /// The scaled step length below which the fit has converged.
 pub const STEP_TOLERANCE: f64 = 1e-13;
+
+/// Most fits of the noise's fixed point ([`GravityPrior`] weighed against the residuals' noise:
+/// module docs, *Thin readings*).
+pub const MAX_REWEIGHTS: usize = 4;
+
+/// The relative change of the noise under which its fixed point is reached.
+pub const NOISE_TOLERANCE: f64 = 0.05;
 
 /// A warning ([`WarningKind::NotConverged`]) when the fit stopped at its limit of `iterations`
 /// ([`Stop::IterationLimit`]) with the cost still falling: the calibration may still move.
@@ -139,6 +161,10 @@ pub struct Fit {
     pub iterations: usize,
     /// Why the iterations stopped ([`stop_warning`] lists the reasons).
     pub stop: Stop,
+    /// The noise per coordinate the gravity prior was weighed against, m, where it was the
+    /// residuals' rather than the one [`GravityPrior::noise`] states (module docs, *Thin
+    /// readings*); `None` where it was the stated one.
+    pub gravity_noise: Option<f64>,
 }
 
 /// Fits `model` to `observations` from `start` (module docs).
@@ -164,6 +190,52 @@ pub fn fit(
 /// # Errors
 /// Those of [`fit`].
 pub fn fit_within(
+    model: &ErrorModel,
+    observations: &[Observation],
+    start: &Estimate,
+    options: &Options,
+    limit: usize,
+) -> Result<Fit> {
+    fit_with(model, observations, start, options, (limit, true))
+}
+
+/// [`fit_within`] at most `limit` iterations, the gravity prior weighed against the residuals'
+/// noise when `reweigh` and the model has gravity terms ([`reweighed`]; module docs, *Thin
+/// readings*): fitted anew from `start` with the noise per coordinate of the last fit's
+/// residuals (`|r|^2 / (3n - p_e)`, `p_e` its effective parameters) while it exceeds the
+/// prior's noise by more than [`NOISE_TOLERANCE`], at most [`MAX_REWEIGHTS`] times; the
+/// last fit's iterations and stop.
+fn fit_with(
+    model: &ErrorModel,
+    observations: &[Observation],
+    start: &Estimate,
+    options: &Options,
+    (limit, reweigh): (usize, bool),
+) -> Result<Fit> {
+    let mut fit = fit_once(model, observations, start, options, limit)?;
+    let Some(prior) = options.gravity.filter(|_| reweigh && reweighed(model)) else {
+        return Ok(fit);
+    };
+    let mut noise = prior.noise;
+    for _ in 0..MAX_REWEIGHTS {
+        let dof = 3.0 * observations.len() as f64 - fit.effective_parameters;
+        let sigma = (fit.residuals.norm_squared() / dof.max(1.0)).sqrt();
+        if !(sigma.is_finite() && sigma > noise * (1.0 + NOISE_TOLERANCE)) {
+            break;
+        }
+        noise = sigma;
+        let weighed = Options {
+            gravity: Some(GravityPrior { noise, ..prior }),
+            ..*options
+        };
+        fit = fit_once(model, observations, start, &weighed, limit)?;
+    }
+    fit.gravity_noise = (noise > prior.noise).then_some(noise);
+    Ok(fit)
+}
+
+/// One fit of [`fit_with`], the prior's weights as `options` give them.
+fn fit_once(
     model: &ErrorModel,
     observations: &[Observation],
     start: &Estimate,
@@ -216,6 +288,20 @@ pub fn fit_within(
     problem.finish(estimate, identifiability, iterations, stop)
 }
 
+/// [`fit`] with the gravity prior weighed against the noise [`GravityPrior::noise`] states
+/// only, never the residuals' (the comparison of the module docs' *Thin readings*).
+///
+/// # Errors
+/// Those of [`fit`].
+pub fn fit_at_stated_noise(
+    model: &ErrorModel,
+    observations: &[Observation],
+    start: &Estimate,
+    options: &Options,
+) -> Result<Fit> {
+    fit_with(model, observations, start, options, (MAX_ITERATIONS, false))
+}
+
 /// Leave-one-posture-out linearised at the fit `fit` of `observations` (with the options it was
 /// fitted with, the maps' ridge rows among them): per posture, in increasing order, the estimate
 /// of the fit without it, the full fit moved by the change that dropping the posture makes in
@@ -240,6 +326,14 @@ pub(super) fn leave_one_out_linearised(
     fit: &Fit,
     options: &Options,
 ) -> Result<Vec<(usize, Estimate, DVector<f64>)>> {
+    // The prior as the fit weighed it.
+    let options = &Options {
+        gravity: (options.gravity).map(|g| GravityPrior {
+            noise: fit.gravity_noise.unwrap_or(g.noise),
+            ..g
+        }),
+        ..*options
+    };
     let scales = model.column_scales_of(options.length, observations);
     let fitted = &fit.fitted;
     let regularised = regularised(model, options);
@@ -401,6 +495,12 @@ fn check(observations: &[Observation], options: &Options) -> Result<()> {
         ));
     }
     Ok(())
+}
+
+/// Whether the fit of `model` weighs its gravity prior against the residuals' noise: a model with
+/// gravity terms and no maps (the maps' coefficients have their own ridge).
+fn reweighed(model: &ErrorModel) -> bool {
+    !model.gravity().is_empty() && model.map_start().is_none()
 }
 
 /// Whether the fit of `model` with `options` has prior rows: priors on the joint errors, maps (their
@@ -598,6 +698,7 @@ impl Problem<'_> {
             sigma,
             iterations,
             stop,
+            gravity_noise: None,
         })
     }
 }

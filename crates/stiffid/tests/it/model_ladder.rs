@@ -188,9 +188,9 @@ fn validated_ladder(
 /// A campaign whose postures leave the sag's joints a thin sweep (joints 2 and 3 within 8 deg,
 /// 30 postures) and held-out postures over the whole range: the three bodies' lumped terms,
 /// which the sweep does not determine, spread the predictions over the joint limits by
-/// millimetres (their bound holds them), and the ladder skips them as extrapolating although
-/// the lumped terms fitted when asked for miss the wide postures by more than the geometry;
-/// the default's choice (the robot's masses) stays within twice the geometry's
+/// millimetres (their bound holds them), and the ladder skips them as extrapolating; the lumped
+/// terms fitted when asked for stay within 1.5 times the geometry's held-out error; the
+/// default's choice (the robot's masses) stays within twice the geometry's
 /// held-out error.
 #[test]
 fn a_thin_sweep_does_not_blow_up_the_default() {
@@ -220,7 +220,12 @@ fn a_thin_sweep_does_not_blow_up_the_default() {
         let base = none.spread.unwrap().hypot(none_held(&ladder));
         assert!(three.spread.unwrap() > base, "{ladder:#?}");
         assert!(auto.0 <= 2.0 * geometry.0, "{auto:?} against {geometry:?}");
-        assert!(lumped.0 > geometry.0, "{lumped:?} against {geometry:?}");
+        // Asked for, the lumped terms (their bound weighed against the residuals' noise) stay
+        // within 1.5 times the geometry's held-out error.
+        assert!(
+            lumped.0 <= 1.5 * geometry.0,
+            "{lumped:?} against {geometry:?}"
+        );
     }
 }
 

@@ -14,3 +14,4 @@ mod loaded_tests;
 mod maps_kernel_tests;
 mod maps_tests;
 mod tests;
+mod thin_tests;
