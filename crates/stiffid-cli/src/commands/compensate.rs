@@ -216,8 +216,11 @@ pub fn run(args: &Args) -> Result<()> {
     let data = data_path.as_deref().map(load::read).transpose()?;
     let input = input(args, name.clone(), (&text, data.as_deref()))?;
     let out = OutFile::prepare(&args.out, "--out")?;
-    let data_out = (data.as_ref())
-        .map(|_| {
+    // A G-code path written as a KRL program has its points' .dat beside it too.
+    let krl_out = (args.out.extension().and_then(|e| e.to_str()))
+        .is_some_and(|e| e.eq_ignore_ascii_case("src"));
+    let data_out = (data.is_some() || krl_out)
+        .then(|| {
             OutFile::prepare(
                 &stiffid_machining::program::krl::data_out(&args.out),
                 "--out",
@@ -426,7 +429,7 @@ fn check_subprogram_files(out: &Path) -> Result<()> {
 }
 
 /// A split program's sub-programs, each beside the main program in a file of its name with the
-/// main program's extension.
+/// main program's extension (and a KRL sub-program's `.dat` beside it).
 fn write_subprograms(
     out: &Path,
     files: &[stiffid_machining::program::generate::File],
@@ -440,8 +443,21 @@ fn write_subprograms(
             OutFile::prepare(&path, "--out").map(|o| (o, f))
         })
         .collect::<Result<Vec<_>>>()?;
+    let data = files
+        .iter()
+        .filter_map(|f| f.data.as_ref().map(|d| (f, d)))
+        .map(|(f, d)| {
+            let path = stiffid_machining::program::krl::data_out(
+                &dir.join(format!("{}.{extension}", f.name)),
+            );
+            OutFile::prepare(&path, "--out").map(|o| (o, d))
+        })
+        .collect::<Result<Vec<_>>>()?;
     for (o, f) in prepared {
         o.write(f.text.as_bytes())?;
+    }
+    for (o, d) in data {
+        o.write(d.as_bytes())?;
     }
     Ok(())
 }

@@ -285,6 +285,10 @@ pub struct File {
     pub name: String,
     /// Its text.
     pub text: String,
+    /// A KRL program's `.dat` (its points, `DEFDAT NAME` .. `ENDDAT`), to be written beside it
+    /// under its name with `.dat` ([`crate::program::krl::data::split`]); `None` in another
+    /// language.
+    pub data: Option<String>,
 }
 
 /// The programs written: the main program first, then its sub-programs in call order.
@@ -399,17 +403,20 @@ pub fn generate_with(plan: &Plan, process: &Process) -> Result<Written> {
         written.files.push(File {
             text: generator.wrap(&name, &header, &text, true),
             name,
+            data: None,
         });
     } else {
         let calls = generator.calls(&names[1..]);
         written.files.push(File {
             name: names[0].clone(),
             text: generator.wrap(&names[0], &header, &calls, true),
+            data: None,
         });
         for (name, text) in bodies {
             written.files.push(File {
                 text: generator.wrap(&name, "", &text, false),
                 name,
+                data: None,
             });
         }
     }

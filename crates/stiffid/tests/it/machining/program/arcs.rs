@@ -294,6 +294,9 @@ fn each_language_writes_its_circular_moves_and_reads_them_back() {
         let p = plan(&s, dialect, (&written, &c.moves), Some(&pulses));
         let text = generate(&p).unwrap().files.remove(0).text;
         assert_eq!(text.matches(circular).count(), count, "{dialect:?}: {text}");
+        if dialect == Dialect::Krl {
+            reads_back_with_its_data(&text);
+        }
         if dialect == Dialect::FanucLs {
             // The LS reader of the corpus's tests (string searches, not stiffid's): the via
             // point and the end of each `C`, in order, each the written target's world position.
@@ -334,5 +337,36 @@ fn each_language_writes_its_circular_moves_and_reads_them_back() {
             let off = (Vector6::from(b.q_deg) - Vector6::from(w.q_deg)).amax();
             assert!(off <= within, "{dialect:?}: {off} deg");
         }
+    }
+}
+
+/// A written KRL program split into its `.src` naming the points and its `.dat` declaring them
+/// (`krl::data::split`) reads back, with the `.dat`, to the targets of the literal program: the
+/// same lines, values (to 1e-9 mm/deg) and motions, each circular move's via and end points
+/// named in order.
+fn reads_back_with_its_data(text: &str) {
+    use stiffid_machining::program::{krl, parse_with_data};
+    let (src, dat) = krl::data::split("P", text);
+    assert!(!src.contains("E6POS") && !src.contains("{A1"), "{src}");
+    assert!(dat.starts_with("&ACCESS RVP\n&REL 1\nDEFDAT P\n"), "{dat}");
+    assert!(dat.ends_with("ENDDAT\n"), "{dat}");
+    assert!(src.contains("CIRC XP2, XP3"), "{src}");
+    let literal = parse_with_data(text, None, Dialect::Krl).unwrap().targets;
+    let named = parse_with_data(&src, Some(&dat), Dialect::Krl)
+        .unwrap()
+        .targets;
+    assert_eq!(named.len(), literal.len());
+    assert_eq!(dat.matches("DECL E6POS XP").count(), literal.len(), "{dat}");
+    for (n, l) in named.iter().zip(&literal) {
+        assert_eq!(n.line, l.line);
+        assert_eq!(n.speed, l.speed);
+        assert_eq!(n.external, l.external);
+        let (Some(a), Some(b)) = (&n.cartesian, &l.cartesian) else {
+            panic!("a Cartesian target: {n:?}");
+        };
+        let dp = (a.position_mm - b.position_mm).norm();
+        assert!(dp < 1e-9, "{dp} mm");
+        assert!(a.rotation.angle_to(&b.rotation).to_degrees() < 1e-9);
+        assert_eq!((&a.flags, &a.frame, &a.tool), (&b.flags, &b.frame, &b.tool));
     }
 }

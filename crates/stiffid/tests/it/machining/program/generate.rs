@@ -293,6 +293,24 @@ fn joint_targets_read_back_to_their_axis_angles() {
                 assert!((a - b).abs() <= 1e-9, "{d:?}: {:?}", r.q_deg);
             }
         }
+        if d == Dialect::Krl {
+            // Its `.src` naming the points and the `.dat` declaring them, read together.
+            let (src, dat) =
+                stiffid_machining::program::krl::data::split("POCKET", &w.files[0].text);
+            assert!(
+                src.contains("PTP XP1\n") && src.contains("PTP XP3\n"),
+                "{src}"
+            );
+            assert_eq!(dat.matches("DECL E6AXIS XP").count(), 3, "{dat}");
+            let pair = stiffid_machining::program::parse_with_data(&src, Some(&dat), d).unwrap();
+            assert_eq!(pair.targets.len(), 3);
+            for ((r, e), l) in pair.targets.iter().zip(&Q).zip(&read.targets) {
+                assert_eq!((r.line, &r.speed), (l.line, &l.speed));
+                for (a, b) in r.q_deg.iter().zip(e) {
+                    assert!((a - b).abs() <= 1e-9, "{:?}", r.q_deg);
+                }
+            }
+        }
     }
 }
 
