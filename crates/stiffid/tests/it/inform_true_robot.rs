@@ -96,7 +96,7 @@ fn compensated(
         Ok(())
     })
     .unwrap();
-    (report.program.unwrap().text, results)
+    (crate::common::program_text(report.program.unwrap()), results)
 }
 
 #[test]

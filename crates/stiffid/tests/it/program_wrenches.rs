@@ -210,7 +210,7 @@ fn written(c: &Cell, gcode: &'static str, dialect: Dialect) -> String {
         Ok::<(), stiffid::Error>(())
     })
     .unwrap();
-    report.program.unwrap().text
+    crate::common::program_text(report.program.unwrap())
 }
 
 #[test]

@@ -135,8 +135,9 @@ fn cartesian_targets_state_the_forward_kinematics_and_the_configuration_of_the_p
     for d in [Dialect::Krl, Dialect::Rapid, Dialect::FanucLs] {
         let w = generate(&plan(d, "POCKET", &t, &MOVES)).unwrap();
         assert_eq!(w.files.len(), 1);
-        let lines = written_targets(d, &w.files[0].text);
-        assert_eq!(lines.len(), 3, "{d:?}: {}", w.files[0].text);
+        let text = crate::common::inlined(&w.files[0].text, w.files[0].data.as_deref());
+        let lines = written_targets(d, &text);
+        assert_eq!(lines.len(), 3, "{d:?}: {text}");
         for (line, target) in lines.iter().zip(&t) {
             let pose = stated(d, line);
             let dp = (pose.translation.vector - target.pose.translation.vector).norm();
@@ -202,10 +203,12 @@ fn the_configuration_tells_the_two_wrist_solutions_of_one_pose_apart() {
 #[test]
 fn the_programs_initialise_motion_end_exact_and_name_their_tool_and_work_object() {
     let t = targets(&Q);
-    let krl = &generate(&plan(Dialect::Krl, "POCKET", &t, &MOVES))
+    let krl = generate(&plan(Dialect::Krl, "POCKET", &t, &MOVES))
         .unwrap()
-        .files[0]
-        .text;
+        .files
+        .remove(0);
+    // Its points put back from its .dat: the motions' lines as one text.
+    let krl = &crate::common::inlined(&krl.text, krl.data.as_deref());
     // The lines KSS writes before DEF, then the program.
     let krl = krl.strip_prefix(KSS_HEADER).unwrap();
     assert!(krl.starts_with("DEF POCKET( )\n"), "{krl}");
@@ -286,28 +289,34 @@ fn joint_targets_read_back_to_their_axis_angles() {
         let mut p = plan(d, "POCKET", &t, &MOVES);
         p.settings.targets = Targets::Joint;
         let w = generate(&p).unwrap();
-        let read = stiffid_machining::program::parse(&w.files[0].text, d).unwrap();
+        // A KRL program is read with its .dat, which declares its points.
+        let (text, data) = (&w.files[0].text, w.files[0].data.as_deref());
+        assert_eq!(data.is_some(), d == Dialect::Krl, "{d:?}");
+        let read = stiffid_machining::program::parse_with_data(text, data, d).unwrap();
         assert_eq!(read.targets.len(), 3, "{d:?}");
         for (r, e) in read.targets.iter().zip(&Q) {
             for (a, b) in r.q_deg.iter().zip(e) {
                 assert!((a - b).abs() <= 1e-9, "{d:?}: {:?}", r.q_deg);
             }
         }
-        if d == Dialect::Krl {
-            // Its `.src` naming the points and the `.dat` declaring them, read together.
-            let (src, dat) =
-                stiffid_machining::program::krl::data::split("POCKET", &w.files[0].text);
+        if let Some(dat) = data {
+            // The `.src` names the points, the `.dat` declares them (independently read here:
+            // each declaration's values against the axis angles).
             assert!(
-                src.contains("PTP XP1\n") && src.contains("PTP XP3\n"),
-                "{src}"
+                text.contains("PTP XP1\n") && text.contains("PTP XP3\n"),
+                "{text}"
             );
-            assert_eq!(dat.matches("DECL E6AXIS XP").count(), 3, "{dat}");
-            let pair = stiffid_machining::program::parse_with_data(&src, Some(&dat), d).unwrap();
-            assert_eq!(pair.targets.len(), 3);
-            for ((r, e), l) in pair.targets.iter().zip(&Q).zip(&read.targets) {
-                assert_eq!((r.line, &r.speed), (l.line, &l.speed));
-                for (a, b) in r.q_deg.iter().zip(e) {
-                    assert!((a - b).abs() <= 1e-9, "{:?}", r.q_deg);
+            assert!(dat.starts_with("&ACCESS RVP\n&REL 1\nDEFDAT POCKET\n"), "{dat}");
+            let decls: Vec<&str> = dat.lines().filter(|l| l.starts_with("DECL E6AXIS XP")).collect();
+            assert_eq!(decls.len(), 3, "{dat}");
+            for (k, (decl, e)) in decls.iter().zip(&Q).enumerate() {
+                let (name, value) = decl["DECL E6AXIS ".len()..].split_once('=').unwrap();
+                assert_eq!(name, format!("XP{}", k + 1));
+                let values: Vec<f64> = (value.trim_matches(['{', '}']).split(','))
+                    .map(|m| m.split_whitespace().nth(1).unwrap().parse().unwrap())
+                    .collect();
+                for (a, b) in values.iter().zip(e) {
+                    assert!((a - b).abs() <= 1e-9, "{decl}");
                 }
             }
         }
