@@ -162,10 +162,13 @@ fn write_robot_program(
         .collect();
     let home = super::home::add(setup, controller, (&mut targets, &mut moves, &mut lines));
     let before = generate::place(&gcode.process, &lines);
+    let comments_before = generate::place_comments(&gcode.comments, &lines);
     let process = generate::Process {
         words: &gcode.process,
         before: &before,
         io: Some(&setup.workcell().controller().program.io),
+        comments: &gcode.comments,
+        comments_before: &comments_before,
     };
     let plan = Plan {
         dialect,

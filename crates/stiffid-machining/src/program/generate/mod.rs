@@ -100,7 +100,7 @@ pub use names::{
     check_name, check_plan, default_name_length, max_name_length, moves_per_file, LS_MAX_LINES,
     MAX_FILES,
 };
-pub use process::{place, Process, ProcessForm};
+pub use process::{place, place_comments, Process, ProcessForm};
 pub use settings::{
     Settings, MIN_FEED, MOVES_PER_FILE, NAME_LENGTH, RAPID_PERCENT, RAPID_SPEED_MM_S,
 };

@@ -8,6 +8,7 @@ mod inform;
 mod inform_jobs;
 mod krl;
 mod numbered;
+mod comments;
 mod process;
 pub(crate) mod rapid;
 mod speed;
