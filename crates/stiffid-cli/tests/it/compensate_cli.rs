@@ -504,7 +504,8 @@ fn uncompensated(text: &str) -> String {
     out
 }
 
-/// The milling example's programs (examples/milling/pocket.ls, pocket.src, pocket.mod) are
+/// The milling example's programs (examples/milling/pocket.ls, pocket.src with pocket.dat,
+/// pocket.mod) are
 /// pocket.nc as the command writes it uncompensated (a robot of stiffness 1e10 N m/rad, the
 /// bound comments left out): FANUC LS on the FANUC setup, KRL and RAPID on the KUKA KR 210 setup
 /// (its spindle's mass in `$LOAD` and the `tooldata`).
@@ -537,6 +538,13 @@ fn the_milling_examples_generated_programs_are_golden() {
             "examples/milling/{golden} is not what the command writes (regenerate it as examples/milling/README.md says)"
         );
         assert!(!shipped.contains("bound ") && !shipped.contains(" mm\"]"));
+        if golden.ends_with(".src") {
+            // The KRL program's points, in the .dat written beside it.
+            let dat = std::fs::read_to_string(out.with_extension("dat")).unwrap();
+            let shipped = std::fs::read_to_string(example("milling/pocket.dat")).unwrap();
+            assert!(dat == shipped, "examples/milling/pocket.dat is not what the command writes");
+            assert!(dat.starts_with("&ACCESS RVP\n&REL 1\nDEFDAT POCKET\n"));
+        }
         let first = written.lines().find(|l| l.contains("POCKET")).unwrap();
         assert!(
             ["/PROG  POCKET", "DEF POCKET( )", "MODULE POCKET"].contains(&first),
