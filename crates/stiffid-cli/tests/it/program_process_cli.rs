@@ -98,7 +98,8 @@ fn the_pocket_starts_and_ends_at_home_with_its_process_words_mapped() {
     let (first, last) = (moves[0], *moves.last().unwrap());
     assert_eq!(lines[first], "J P[1] 35% FINE ;");
     assert_eq!(lines[last], format!("J P[{n}] 35% FINE ;"));
-    // Tool change and spindle after moving home, before the path's first point; the spindle
+    // The G-code's comments, tool change and spindle after moving home, before the path's
+    // first point (LS remarks of at most 32 characters); the spindle
     // stop after the path's last point, before going home; the end after it.
     let after_home: Vec<&str> = lines[first + 1..moves[1]]
         .iter()
@@ -107,6 +108,8 @@ fn the_pocket_starts_and_ends_at_home_with_its_process_words_mapped() {
     assert_eq!(
         after_home,
         [
+            "! pocket wall: 300 x 200 mm, corne ;",
+            "! operation: wall ;",
             "CALL TOOL_CHANGE(1) ;",
             "CALL SPINDLE_ON(6000) ;",
             "DO[12]=ON ;"

@@ -1,5 +1,5 @@
 //! Yaskawa INFORM's process instructions (DX200 / YRC1000 INFORM manual: `CALL JOB:NAME`,
-//! `DOUT OT#(n) ON`, a comment line `'..` of at most 32 characters).
+//! `DOUT OT#(n) ON`, a comment line `'..` of at most 32 characters, its `'` included).
 
 use crate::program::generate::ProcessForm;
 use stiffid_core::setup::program_io::Signal;
@@ -7,7 +7,7 @@ use stiffid_core::setup::program_io::Signal;
 /// INFORM's forms.
 pub(crate) static FORM: ProcessForm = ProcessForm {
     comment: ("'", ""),
-    comment_length: Some(32),
+    comment_length: Some(31),
     comment_forbidden: "",
     indent: "",
     call,

@@ -69,15 +69,16 @@ fn the_fusion_files_comments_on_lines_of_their_own_are_read_in_order() {
     assert_eq!(place_comments(&g.comments, &homed), [1; 7]);
 }
 
-/// A language's comment line of `text` as its pendant keeps it: KRL and RAPID whole, LS and
-/// INFORM at most 32 characters (the manuals' remark and comment lengths).
+/// A language's comment line of `text` as its pendant keeps it: KRL and RAPID whole, an LS
+/// remark's text at most 32 characters, an INFORM comment line at most 32 with its `'` (the
+/// manuals' remark and comment lengths).
 fn comment_line(d: Dialect, text: &str) -> String {
     let cut = |n: usize| text[..text.len().min(n)].trim_end().to_string();
     match d {
         Dialect::Krl => format!("; {text}"),
         Dialect::Rapid => format!("    ! {text}"),
         Dialect::FanucLs => format!("! {} ;", cut(32)),
-        _ => format!("'{}", cut(32)),
+        _ => format!("'{}", cut(31)),
     }
 }
 
@@ -155,13 +156,13 @@ fn a_comment_is_written_in_the_characters_and_length_its_language_takes() {
         comments_before: &[1],
         ..Default::default()
     };
-    // Non-ASCII as `?`; LS's `;` (which ends its statement) as a blank; LS and INFORM at most
-    // 32 characters.
+    // Non-ASCII as `?`; LS's `;` (which ends its statement) as a blank; LS's text and INFORM's
+    // line at most 32 characters.
     let cases = [
         (Dialect::Krl, "; Kontur ?; 50% (Schlichten) mit einem sehr langen Namen"),
         (Dialect::Rapid, "    ! Kontur ?; 50% (Schlichten) mit einem sehr langen Namen"),
         (Dialect::FanucLs, "! Kontur ?  50% (Schlichten) mit e ;"),
-        (Dialect::Inform, "'Kontur ?; 50% (Schlichten) mit e"),
+        (Dialect::Inform, "'Kontur ?; 50% (Schlichten) mit"),
     ];
     for (d, want) in cases {
         let w = generate_with(&plan(d, &t, &m, &pulses, Targets::Joint), &process).unwrap();
