@@ -62,7 +62,7 @@ fn a_robot_programs_speeds_are_checked_counted_or_refused() {
         "{stderr}"
     );
     let o = compensated(&dir, "0mm/sec");
-    assert_usage_error(&o, &["pocket.ls", "line 35", "0mm/sec", "(0, 10000] mm/s"]);
+    assert_usage_error(&o, &["pocket.ls", "line 37", "0mm/sec", "(0, 10000] mm/s"]);
     assert!(!dir.join("OUT.ls").exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
