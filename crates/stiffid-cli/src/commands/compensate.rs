@@ -59,7 +59,8 @@ pub struct Args {
     /// --program: the compensated program, in the program's own language, or for G-code a robot
     /// program of the compensated targets (.src KRL, .mod RAPID, .ls FANUC LS, .jbi Yaskawa
     /// INFORM in pulses: the setup's [controller] pulses_per_deg) named after the file (its stem,
-    /// upper case), with its sub-programs beside it when it is split. Never one of the inputs.
+    /// upper case), with its sub-programs beside it when it is split; a KRL program (read or
+    /// written) with its .dat beside it (the same stem). Never one of the inputs.
     #[arg(long)]
     out: PathBuf,
     /// With a G-code --program written as a robot program: Cartesian targets (the compensated
