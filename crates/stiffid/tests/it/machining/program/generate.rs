@@ -552,3 +552,66 @@ fn an_ls_file_never_numbers_more_lines_than_the_pendant() {
             .count()
     );
 }
+
+/// Every name a KRL program written in files states, read from the files here: each file's
+/// `DEF` and its `.dat`'s `DEFDAT` (the file's name, KSS pairs them by it), the main program's
+/// calls, the points `XPn` its motions name and its `.dat` declares.
+fn krl_names(w: &Written) -> Vec<String> {
+    let mut names = Vec::new();
+    for f in &w.files {
+        let dat = f.data.as_deref().unwrap();
+        let def = f.text.lines().find_map(|l| l.strip_prefix("DEF ")).unwrap();
+        let defdat = dat.lines().find_map(|l| l.strip_prefix("DEFDAT ")).unwrap();
+        assert_eq!((def, defdat), (&*format!("{}( )", f.name), f.name.as_str()));
+        names.push(defdat.to_string());
+        let calls = (f.text.lines()).filter_map(|l| l.strip_suffix("( )")).filter(|l| !l.contains(' '));
+        names.extend(calls.map(String::from));
+        let points = (dat.lines()).filter_map(|l| l.split_once(' ')?.1.split_once(' ')?.1.split_once('='));
+        names.extend(points.map(|(n, _)| n.to_string()));
+    }
+    names
+}
+
+#[test]
+fn every_name_a_krl_program_writes_is_within_the_controllers_length() {
+    // 250 moves in files of 100: a main program calling three sub-programs, each with its .dat.
+    let q: Vec<[f64; 6]> = (0..250)
+        .map(|i| [Q[0][0] + i as f64 * 1e-3, Q[0][1], Q[0][2], Q[0][3], Q[0][4], Q[0][5]])
+        .collect();
+    let t = targets(&q);
+    let mut m = vec![Move::Feed(0.03); t.len()];
+    m[0] = Move::Rapid;
+    let most = max_name_length(Dialect::Krl);
+    assert_eq!(most, 24);
+    // A name of 21 characters: its sub-programs' `_01` make 24, the longest KSS takes.
+    let name = "A".repeat(most - 3);
+    let mut p = plan(Dialect::Krl, &name, &t, &m);
+    p.settings.moves_per_file = 100;
+    let w = generate(&p).unwrap();
+    assert_eq!(w.files.len(), 4);
+    let names = krl_names(&w);
+    assert!(names.contains(&format!("{name}_03")) && names.contains(&"XP100".to_string()));
+    for n in &names {
+        assert!(n.len() <= most, "{n}");
+        check_name(Dialect::Krl, n, most).unwrap();
+    }
+    // One character more: the sub-programs' names would be 25, refused before anything is
+    // written, naming the option.
+    let longer = "A".repeat(most - 2);
+    let e = generate(&Plan {
+        name: &longer,
+        ..p
+    })
+    .unwrap_err();
+    assert!(
+        matches!(&e, Error::InvalidOption { option: JobOption::ProgramName, message } if message.contains("longer than 24")),
+        "{e}"
+    );
+    // A program of one file may take the whole 24; 25 is refused.
+    let one = "B".repeat(most);
+    let few = plan(Dialect::Krl, &one, &t[..3], &m[..3]);
+    assert!(krl_names(&generate(&few).unwrap()).iter().all(|n| n.len() <= most));
+    let too_long = "B".repeat(most + 1);
+    let e = generate(&plan(Dialect::Krl, &too_long, &t[..3], &m[..3])).unwrap_err();
+    assert!(matches!(&e, Error::InvalidOption { option: JobOption::ProgramName, .. }), "{e}");
+}
