@@ -662,7 +662,10 @@ fn written(args: &Args, report: &Report, names: &Names, doc: &Document) -> Strin
     }
     if report.program.as_ref().is_some_and(|p| p.data.is_some()) && !names.program_out.is_empty() {
         let dat = stiffid_machining::program::krl::data_out(Path::new(&names.program_out));
-        text += &format!("written: {} beside it (its points and data)\n", dat.display());
+        text += &format!(
+            "written: {} beside it (its points and data)\n",
+            dat.display()
+        );
     }
     if let Some(p) = report
         .program

@@ -131,8 +131,9 @@ pub fn run(args: &Args) -> Result<()> {
             let process_name = process_path.display().to_string();
             process = file::parse(&load::read(process_path)?, &process_name)?;
             let how = (tolerance, &process);
-            program = place::read_program_with(&setup, &name, (&text, data.as_deref()), language, how)
-                .map_err(option_error)?;
+            program =
+                place::read_program_with(&setup, &name, (&text, data.as_deref()), language, how)
+                    .map_err(option_error)?;
             Work::Program {
                 program: &program,
                 process: &process,

@@ -217,9 +217,13 @@ pub fn inlined(src: &str, dat: &str) -> String {
         let mut rest = &line[keyword.len()..];
         let mut first = true;
         while let Some(tail) = rest.strip_prefix("XP") {
-            let digits = tail.find(|c: char| !c.is_ascii_digit()).unwrap_or(tail.len());
+            let digits = tail
+                .find(|c: char| !c.is_ascii_digit())
+                .unwrap_or(tail.len());
             let name = &rest[..2 + digits];
-            let value = points.get(name).unwrap_or_else(|| panic!("{name} not in the .dat"));
+            let value = points
+                .get(name)
+                .unwrap_or_else(|| panic!("{name} not in the .dat"));
             if !first {
                 out += ",";
             }

@@ -543,7 +543,10 @@ fn the_milling_examples_generated_programs_are_golden() {
             // The KRL program's points, in the .dat written beside it.
             let dat = std::fs::read_to_string(out.with_extension("dat")).unwrap();
             let shipped = std::fs::read_to_string(example("milling/pocket.dat")).unwrap();
-            assert!(dat == shipped, "examples/milling/pocket.dat is not what the command writes");
+            assert!(
+                dat == shipped,
+                "examples/milling/pocket.dat is not what the command writes"
+            );
             assert!(dat.starts_with("&ACCESS RVP\n&REL 1\nDEFDAT POCKET\n"));
         }
         let first = written.lines().find(|l| l.contains("POCKET")).unwrap();

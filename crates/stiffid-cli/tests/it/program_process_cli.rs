@@ -146,7 +146,10 @@ fn the_pocket_starts_and_ends_at_home_with_its_process_words_mapped() {
     let home = "={A1 0.000000000, A2 10.000000000, A3 -20.000000000, A4 0.000000000, A5 -60.000000000, A6 0.000000000}\n";
     assert!(dat.matches(home).count() == 2, "{dat}");
     let named = |l: &str| l.starts_with("PTP XP") && !l.contains('{');
-    assert_eq!(text.lines().filter(|l| named(l)).count(), dat.matches("DECL E6AXIS XP").count());
+    assert_eq!(
+        text.lines().filter(|l| named(l)).count(),
+        dat.matches("DECL E6AXIS XP").count()
+    );
     assert!(text.contains("BAS(#VEL_PTP, 35)"), "{text}");
     assert!(
         text.contains("TOOL_CHANGE(1)\nSPINDLE_ON(6000)\n$OUT[12]=TRUE\n"),

@@ -96,7 +96,10 @@ fn compensated(
         Ok(())
     })
     .unwrap();
-    (crate::common::program_text(report.program.unwrap()), results)
+    (
+        crate::common::program_text(report.program.unwrap()),
+        results,
+    )
 }
 
 #[test]

@@ -129,7 +129,10 @@ fn program(setup: &stiffid::Setup, dialect: Dialect) -> (String, Vec<Compensated
         Ok(())
     })
     .unwrap();
-    (crate::common::program_text(report.program.unwrap()), results)
+    (
+        crate::common::program_text(report.program.unwrap()),
+        results,
+    )
 }
 
 /// The numbers of a `name value` or `name = value unit` list after `prefix` on a line.

@@ -643,7 +643,10 @@ pub(crate) fn written_with(
         Ok(())
     })
     .unwrap();
-    (crate::common::program_text(report.program.unwrap()), results)
+    (
+        crate::common::program_text(report.program.unwrap()),
+        results,
+    )
 }
 
 /// The axis angles the part is placed at on `case`'s robot.

@@ -65,7 +65,13 @@ pub fn read_program(
     language: Language,
     (chord_tolerance, process): (f64, &Process),
 ) -> Result<Program> {
-    read_program_with(setup, name, (text, None), language, (chord_tolerance, process))
+    read_program_with(
+        setup,
+        name,
+        (text, None),
+        language,
+        (chord_tolerance, process),
+    )
 }
 
 /// [`read_program`] with the data file beside the program (KRL's `.dat`: its points and frame

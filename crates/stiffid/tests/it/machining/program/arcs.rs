@@ -350,7 +350,10 @@ fn reads_back_with_its_data(file: &stiffid_machining::program::generate::File, t
     use stiffid_machining::program::parse_with_data;
     let (src, dat) = (&file.text, file.data.as_deref().unwrap());
     assert!(!src.contains("E6POS") && !src.contains("{A1"), "{src}");
-    assert!(dat.starts_with("&ACCESS RVP\n&REL 1\nDEFDAT ARCS\n"), "{dat}");
+    assert!(
+        dat.starts_with("&ACCESS RVP\n&REL 1\nDEFDAT ARCS\n"),
+        "{dat}"
+    );
     assert!(dat.ends_with("ENDDAT\n"), "{dat}");
     assert!(src.contains("CIRC XP2, XP3"), "{src}");
     // Read alone, a .src naming its points is refused: they are in the .dat.

@@ -44,12 +44,20 @@ fn the_fusion_files_comments_on_lines_of_their_own_are_read_in_order() {
         let text = corpus(name);
         let m = crate::gcode_corpus::machine(workpiece, process);
         let g = gcode::parse_on(&text, 1e-5, &m).unwrap();
-        let read: Vec<(u64, String)> = g.comments.iter().map(|c| (c.line, c.text.clone())).collect();
+        let read: Vec<(u64, String)> = g
+            .comments
+            .iter()
+            .map(|c| (c.line, c.text.clone()))
+            .collect();
         assert_eq!(read, independent(&text), "{name}");
     }
     // By eye: the router's header, its tool and its operation, before its first point (line 19).
     let g = router();
-    let read: Vec<(u64, &str)> = g.comments.iter().map(|c| (c.line, c.text.as_str())).collect();
+    let read: Vec<(u64, &str)> = g
+        .comments
+        .iter()
+        .map(|c| (c.line, c.text.as_str()))
+        .collect();
     assert_eq!(
         read,
         [
@@ -88,7 +96,10 @@ fn the_fusion_routers_comments_are_written_in_every_language_in_order_before_its
     let m = moves(&g.points, 2.0).unwrap();
     let t = targets(g.points.len());
     let lines: Vec<Option<u64>> = g.points.iter().map(|p| Some(p.line)).collect();
-    let (before, comments_before) = (place(&g.process, &lines), place_comments(&g.comments, &lines));
+    let (before, comments_before) = (
+        place(&g.process, &lines),
+        place_comments(&g.comments, &lines),
+    );
     let process = Process {
         words: &g.process,
         before: &before,
@@ -100,26 +111,39 @@ fn the_fusion_routers_comments_are_written_in_every_language_in_order_before_its
         per_deg: PULSES,
         external: Vec::new(),
     };
-    for d in [Dialect::Krl, Dialect::Rapid, Dialect::FanucLs, Dialect::Inform] {
+    for d in [
+        Dialect::Krl,
+        Dialect::Rapid,
+        Dialect::FanucLs,
+        Dialect::Inform,
+    ] {
         let written = generate_with(&plan(d, &t, &m, &pulses, Targets::Joint), &process).unwrap();
         let text = &written.files[0].text;
         // LS's numbered lines carry a number: the statement after it.
         let body = |l: &str| match d {
-            Dialect::FanucLs => l.split_once(':').map_or(l, |(_, b)| b.trim_start()).to_string(),
+            Dialect::FanucLs => l
+                .split_once(':')
+                .map_or(l, |(_, b)| b.trim_start())
+                .to_string(),
             _ => l.to_string(),
         };
         let all: Vec<String> = text.lines().map(body).collect();
         let at: Vec<usize> = (g.comments.iter())
             .map(|c| {
                 let want = comment_line(d, &c.text);
-                all.iter().position(|l| *l == want).unwrap_or_else(|| panic!("{d:?}: {want} in\n{text}"))
+                all.iter()
+                    .position(|l| *l == want)
+                    .unwrap_or_else(|| panic!("{d:?}: {want} in\n{text}"))
             })
             .collect();
         // In the G-code's order, before the first motion; the operation's name before the tool
         // change it starts (line 13, `T1 M6`, a comment as no event is mapped).
         assert!(at.windows(2).all(|w| w[0] < w[1]), "{d:?}: {at:?}");
         assert!(*at.last().unwrap() < motion_lines(d, text)[0], "{d:?}");
-        let tool = all.iter().position(|l| l.contains("T1 M6 (line 13)")).unwrap();
+        let tool = all
+            .iter()
+            .position(|l| l.contains("T1 M6 (line 13)"))
+            .unwrap();
         assert!(at[6] < tool, "{d:?}");
         // Every move still there, as many as without the comments.
         let bare = Process {
@@ -128,8 +152,15 @@ fn the_fusion_routers_comments_are_written_in_every_language_in_order_before_its
             ..process
         };
         let plain = generate_with(&plan(d, &t, &m, &pulses, Targets::Joint), &bare).unwrap();
-        assert_eq!(motion_lines(d, text).len(), motion_lines(d, &plain.files[0].text).len());
-        assert_eq!(text.lines().count(), plain.files[0].text.lines().count() + 7, "{d:?}");
+        assert_eq!(
+            motion_lines(d, text).len(),
+            motion_lines(d, &plain.files[0].text).len()
+        );
+        assert_eq!(
+            text.lines().count(),
+            plain.files[0].text.lines().count() + 7,
+            "{d:?}"
+        );
         if d == Dialect::FanucLs {
             // The corpus tests' independent LS reader: every position, as without them.
             let n = crate::ls_corpus::independent(text).len();
@@ -159,8 +190,14 @@ fn a_comment_is_written_in_the_characters_and_length_its_language_takes() {
     // Non-ASCII as `?`; LS's `;` (which ends its statement) as a blank; LS's text and INFORM's
     // line at most 32 characters.
     let cases = [
-        (Dialect::Krl, "; Kontur ?; 50% (Schlichten) mit einem sehr langen Namen"),
-        (Dialect::Rapid, "    ! Kontur ?; 50% (Schlichten) mit einem sehr langen Namen"),
+        (
+            Dialect::Krl,
+            "; Kontur ?; 50% (Schlichten) mit einem sehr langen Namen",
+        ),
+        (
+            Dialect::Rapid,
+            "    ! Kontur ?; 50% (Schlichten) mit einem sehr langen Namen",
+        ),
         (Dialect::FanucLs, "! Kontur ?  50% (Schlichten) mit e ;"),
         (Dialect::Inform, "'Kontur ?; 50% (Schlichten) mit"),
     ];
@@ -168,7 +205,10 @@ fn a_comment_is_written_in_the_characters_and_length_its_language_takes() {
         let w = generate_with(&plan(d, &t, &m, &pulses, Targets::Joint), &process).unwrap();
         let text = &w.files[0].text;
         let lines: Vec<&str> = text.lines().collect();
-        let found = lines.iter().position(|l| l.ends_with(want.trim_start_matches(' '))).unwrap_or_else(|| panic!("{d:?}: {want} in\n{text}"));
+        let found = lines
+            .iter()
+            .position(|l| l.ends_with(want.trim_start_matches(' ')))
+            .unwrap_or_else(|| panic!("{d:?}: {want} in\n{text}"));
         // Between the first move and the second, where it was placed.
         let motions = motion_lines(d, text);
         assert!(motions[0] < found && found < motions[1], "{d:?}: {text}");

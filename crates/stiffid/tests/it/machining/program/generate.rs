@@ -306,8 +306,14 @@ fn joint_targets_read_back_to_their_axis_angles() {
                 text.contains("PTP XP1\n") && text.contains("PTP XP3\n"),
                 "{text}"
             );
-            assert!(dat.starts_with("&ACCESS RVP\n&REL 1\nDEFDAT POCKET\n"), "{dat}");
-            let decls: Vec<&str> = dat.lines().filter(|l| l.starts_with("DECL E6AXIS XP")).collect();
+            assert!(
+                dat.starts_with("&ACCESS RVP\n&REL 1\nDEFDAT POCKET\n"),
+                "{dat}"
+            );
+            let decls: Vec<&str> = dat
+                .lines()
+                .filter(|l| l.starts_with("DECL E6AXIS XP"))
+                .collect();
             assert_eq!(decls.len(), 3, "{dat}");
             for (k, (decl, e)) in decls.iter().zip(&Q).enumerate() {
                 let (name, value) = decl["DECL E6AXIS ".len()..].split_once('=').unwrap();
@@ -564,9 +570,12 @@ fn krl_names(w: &Written) -> Vec<String> {
         let defdat = dat.lines().find_map(|l| l.strip_prefix("DEFDAT ")).unwrap();
         assert_eq!((def, defdat), (&*format!("{}( )", f.name), f.name.as_str()));
         names.push(defdat.to_string());
-        let calls = (f.text.lines()).filter_map(|l| l.strip_suffix("( )")).filter(|l| !l.contains(' '));
+        let calls = (f.text.lines())
+            .filter_map(|l| l.strip_suffix("( )"))
+            .filter(|l| !l.contains(' '));
         names.extend(calls.map(String::from));
-        let points = (dat.lines()).filter_map(|l| l.split_once(' ')?.1.split_once(' ')?.1.split_once('='));
+        let points =
+            (dat.lines()).filter_map(|l| l.split_once(' ')?.1.split_once(' ')?.1.split_once('='));
         names.extend(points.map(|(n, _)| n.to_string()));
     }
     names
@@ -576,7 +585,16 @@ fn krl_names(w: &Written) -> Vec<String> {
 fn every_name_a_krl_program_writes_is_within_the_controllers_length() {
     // 250 moves in files of 100: a main program calling three sub-programs, each with its .dat.
     let q: Vec<[f64; 6]> = (0..250)
-        .map(|i| [Q[0][0] + i as f64 * 1e-3, Q[0][1], Q[0][2], Q[0][3], Q[0][4], Q[0][5]])
+        .map(|i| {
+            [
+                Q[0][0] + i as f64 * 1e-3,
+                Q[0][1],
+                Q[0][2],
+                Q[0][3],
+                Q[0][4],
+                Q[0][5],
+            ]
+        })
         .collect();
     let t = targets(&q);
     let mut m = vec![Move::Feed(0.03); t.len()];
@@ -598,11 +616,7 @@ fn every_name_a_krl_program_writes_is_within_the_controllers_length() {
     // One character more: the sub-programs' names would be 25, refused before anything is
     // written, naming the option.
     let longer = "A".repeat(most - 2);
-    let e = generate(&Plan {
-        name: &longer,
-        ..p
-    })
-    .unwrap_err();
+    let e = generate(&Plan { name: &longer, ..p }).unwrap_err();
     assert!(
         matches!(&e, Error::InvalidOption { option: JobOption::ProgramName, message } if message.contains("longer than 24")),
         "{e}"
@@ -610,8 +624,19 @@ fn every_name_a_krl_program_writes_is_within_the_controllers_length() {
     // A program of one file may take the whole 24; 25 is refused.
     let one = "B".repeat(most);
     let few = plan(Dialect::Krl, &one, &t[..3], &m[..3]);
-    assert!(krl_names(&generate(&few).unwrap()).iter().all(|n| n.len() <= most));
+    assert!(krl_names(&generate(&few).unwrap())
+        .iter()
+        .all(|n| n.len() <= most));
     let too_long = "B".repeat(most + 1);
     let e = generate(&plan(Dialect::Krl, &too_long, &t[..3], &m[..3])).unwrap_err();
-    assert!(matches!(&e, Error::InvalidOption { option: JobOption::ProgramName, .. }), "{e}");
+    assert!(
+        matches!(
+            &e,
+            Error::InvalidOption {
+                option: JobOption::ProgramName,
+                ..
+            }
+        ),
+        "{e}"
+    );
 }

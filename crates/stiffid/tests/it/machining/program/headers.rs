@@ -76,8 +76,14 @@ fn generated_programs_carry_the_headers_their_controllers_write() {
     let krl = &texts[0].1;
     let dat = texts[0].2.as_deref().unwrap();
     // The .dat as KSS writes one: its attributes, DEFDAT of the program's name, its points.
-    assert!(dat.starts_with("&ACCESS RVP\n&REL 1\nDEFDAT HEAD\nDECL E6POS XP1={X "), "{dat}");
-    assert!(dat.ends_with("}\nENDDAT\n") && dat.matches("DECL").count() == 2, "{dat}");
+    assert!(
+        dat.starts_with("&ACCESS RVP\n&REL 1\nDEFDAT HEAD\nDECL E6POS XP1={X "),
+        "{dat}"
+    );
+    assert!(
+        dat.ends_with("}\nENDDAT\n") && dat.matches("DECL").count() == 2,
+        "{dat}"
+    );
     assert!(krl.starts_with("&ACCESS RVP\n&REL 1\n&PARAM TEMPLATE = C:\\KRC\\Roboter\\Template\\vorgabe\n&PARAM EDITMASK = *\nDEF HEAD( )\n"), "{krl}");
     let ls = &texts[1].1;
     let numbered = ls
@@ -99,7 +105,11 @@ fn generated_programs_carry_the_headers_their_controllers_write() {
             data,
             ..Context::default()
         };
-        assert_eq!(parse_in(text, d, &context).unwrap().targets.len(), 2, "{d:?}");
+        assert_eq!(
+            parse_in(text, d, &context).unwrap().targets.len(),
+            2,
+            "{d:?}"
+        );
     }
     let pulses = Pulses {
         per_deg: [1341.25; 6],

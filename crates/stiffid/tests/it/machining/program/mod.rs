@@ -2,13 +2,13 @@
 
 mod arcs;
 mod cartesian;
+mod comments;
 mod generate;
 mod headers;
 mod inform;
 mod inform_jobs;
 mod krl;
 mod numbered;
-mod comments;
 mod process;
 pub(crate) mod rapid;
 mod speed;
