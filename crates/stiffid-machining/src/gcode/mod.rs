@@ -26,8 +26,9 @@
 //!   its block (controllers differ on whether the feed follows the units). `S`, `M`, `N`, `O`, `P`
 //!   words are kept and not interpreted (`P` and `Q` are a cycle's dwell and peck); `T` sets the
 //!   tool number (which selects the process operation and the tool length).
-//! - Comments `( ... )` and `; ...`. A comment `(operation: NAME)` selects the process operation
-//!   named `NAME` from there on. Header comments state the tool orientation:
+//! - Comments `( ... )` and `; ...`; those on lines of their own are kept in path order
+//!   ([`Comment`], written in a robot program at their place). A comment `(operation: NAME)`
+//!   selects the process operation named `NAME` from there on. Header comments state the tool orientation:
 //!   `(stiffid: tool_rpy_deg = 180 0 0)` (else the setup's `[workpiece] tool_rpy_deg`), the tool frame in the part frame as fixed-axis
 //!   roll-pitch-yaw (`180 0 0` points the tool z axis down, along the part's -Z); and, to allow
 //!   rotary words, `(stiffid: rotary = abc)`: `A B C` (deg, absolute, -360 to 360) then turn the tool by

@@ -43,7 +43,9 @@
 //! As the controllers write them: KRL `&ACCESS RVP`, `&REL 1`, `&PARAM TEMPLATE`, `&PARAM
 //! EDITMASK` before `DEF`; LS the whole `/ATTR` (owner, comment, sizes, dates, line count,
 //! protection, task attributes, motion groups, control code); INFORM `///DATE` and `///COMM`.
-//! The dates are reproducible ([`date`]).
+//! The dates are reproducible ([`date`]). A KRL program's points are in the `.dat` beside it
+//! ([`File::data`], [`crate::program::krl::data::split`]), as KUKA System Software stores a
+//! module.
 //!
 //! ## Controller rules
 //! Every rule comes from the controller's manual (docs/reference.md lists the sources):
@@ -77,7 +79,9 @@
 //! - the G-code's process words ([`Process`], [`generate_with`]) are written between the
 //!   motions where the G-code has them, as the setup's `[controller.io]` maps their events or
 //!   as comments with one warning ([`Written::left_out`]); an LS file's numbered lines count
-//!   them;
+//!   them; the G-code's comments that stand on lines of their own (a CAM post's operation and
+//!   tool comments, [`crate::gcode::Comment`]) are written as comments at their place
+//!   ([`place_comments`]);
 //! - a program of more than [`Settings::moves_per_file`] moves is split into sub-programs of at
 //!   most that many moves (`NAME_01`, `NAME_02`, ... in files of their own), which the main
 //!   program calls in order.
