@@ -237,3 +237,16 @@ pub fn inlined(text: &str, data: Option<&str>) -> String {
 pub fn program_text(p: stiffid::app::compensate::ProgramReport) -> String {
     inlined(&p.text, p.data.as_deref())
 }
+
+/// The milling example's KRL program as one text: `examples/milling/pocket.src` with the points
+/// of its `pocket.dat` put back into its motions ([`inlined`]), for tests that read or edit one
+/// file.
+pub fn pocket_krl() -> &'static str {
+    static TEXT: std::sync::LazyLock<String> = std::sync::LazyLock::new(|| {
+        inlined(
+            include_str!("../../../../examples/milling/pocket.src"),
+            Some(include_str!("../../../../examples/milling/pocket.dat")),
+        )
+    });
+    &TEXT
+}
