@@ -8,6 +8,8 @@ MODULE POCKET
   PROC main()
     ConfJ \On;
     ConfL \On;
+    ! pocket wall: 300 x 200 mm, corner radius 20 mm, two passes of 4 mm
+    ! operation: wall
     ! T1 M6 (line 5)
     ! S6000 M3 (line 6)
     MoveJ [[0.000047450,-100.000002372,5.000101718],[0.000000002,1.000000000,0.000000000,0.000000035],[-1,-1,-1,0],[9E9,9E9,9E9,9E9,9E9,9E9]], vrapid, fine, tspindle\WObj:=wpart;

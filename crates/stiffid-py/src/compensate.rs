@@ -96,7 +96,9 @@ use stiffid_machining::Language;
 /// (``subprograms``: their names and texts, in call order), names within ``name_length``
 /// (default the controller's: KRL 24, RAPID 32, LS 8), as ``stiffid compensate`` does. A KRL
 /// ``.src`` is read with the ``.dat`` beside it (same folder and stem, as the controller pairs
-/// them) and ``data`` is that ``.dat`` compensated (``None`` without one). Points
+/// them) and ``data`` is that ``.dat`` compensated (``None`` without one); a KRL program written
+/// from G-code has its points in ``data``, its ``.dat`` (``DEFDAT``, ``DECL E6POS XP1=..``), to be
+/// written beside it (a sub-program's ``.dat`` is written by ``stiffid compensate`` only). Points
 /// without a process force are warned about (``UserWarning``) as the command does.
 #[pyfunction]
 #[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free=None, minimise=None, program_name=None, targets=None, max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_pct=20.0, objective=None, map=None, margin_deg=None, max_condition=None, refine=None, figures=false, **retired))]

@@ -71,11 +71,23 @@ def test_each_real_program_is_refused_at_the_line_an_independent_reading_finds(s
     assert src.name in str(e.value) and f"line {line}:" in str(e.value), str(e.value)
 
 
+def literal():
+    """The example pocket as one file: the points its pocket.dat declares put back into the
+    motions of its pocket.src by name (`LIN XP2 C_DIS` becomes `LIN {E6POS: ..} C_DIS`)."""
+    points = dict(re.findall(r"^DECL E6POS (XP\d+)=\{([^}]*)\}$", (MILLING / "pocket.dat").read_text(), re.M))
+    lines = []
+    for line in (MILLING / "pocket.src").read_text().splitlines():
+        if line.startswith(("PTP XP", "LIN XP", "CIRC XP")):
+            line = re.sub(r"XP\d+", lambda m: "{E6POS: " + points[m.group(0)] + "}", line.replace(", XP", ",XP"))
+        lines.append(line)
+    return lines
+
+
 def stored(n):
     """The pocket's first `n` motions as a teach pendant stores them: the .src and the .dat."""
     src, dat, speed = [], ["&ACCESS RVP", "DEFDAT  POCKET"], "0.03"
     motions = 0
-    for line in (MILLING / "pocket.src").read_text().splitlines():
+    for line in literal():
         if line.startswith(("$TOOL", "$BASE")):
             continue
         speed = line.split("=")[1].strip() if line.startswith("$VEL.CP") else speed

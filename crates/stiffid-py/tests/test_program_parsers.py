@@ -105,10 +105,15 @@ def test_generated_krl_programs_with_circ_lint_clean(setup, wall, tmp_path):
     """A KRL program written from the wall (its arc a CIRC at a chord tolerance of 0.05 mm, the
     KSS header lines before DEF) lints clean with krllint (pinned in requirements-test.txt), as the whole pocket does."""
     pytest.importorskip("krllint")
-    generated = generate(setup, wall, output="krl", targets="cartesian", chord_tolerance_mm=0.05)
-    assert generated.startswith("&ACCESS RVP\n&REL 1\n") and "\nCIRC {E6POS:" in generated
-    path = tmp_path / "WALL.src"
-    path.write_text(generated)
-    out = subprocess.run([sys.executable, "-m", "krllint", str(path)], capture_output=True, text=True, check=False)
-    assert "0 found errors" in out.stdout and "0 fatal errors" in out.stdout, out.stdout
-    assert not [line for line in out.stdout.splitlines() if re.match(r"^\d+:", line)], out.stdout
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        generated = stiffid.compensate(setup, stiffness=STIFFNESS, program=wall, process=PROCESS, output="krl", targets="cartesian", chord_tolerance_mm=0.05)
+    assert generated["program"].startswith("&ACCESS RVP\n&REL 1\n") and "\nCIRC XP" in generated["program"]
+    # Its points in the .dat written beside it (DEFDAT of the program's name): both files lint.
+    assert generated["data"].startswith("&ACCESS RVP\n&REL 1\nDEFDAT WALL\nDECL E6POS XP1={")
+    for name, text in (("WALL.src", generated["program"]), ("WALL.dat", generated["data"])):
+        path = tmp_path / name
+        path.write_text(text)
+        out = subprocess.run([sys.executable, "-m", "krllint", str(path)], capture_output=True, text=True, check=False)
+        assert "0 found errors" in out.stdout and "0 fatal errors" in out.stdout, out.stdout
+        assert not [line for line in out.stdout.splitlines() if re.match(r"^\d+:", line)], out.stdout

@@ -4,7 +4,7 @@ as RAPID and KRL on a setup whose `[controller.io]` maps the tool change and the
 with the tool number and speed, an output), with a home posture: rapidchecker (a pyparsing
 grammar of ABB RAPID) finds no error, krllint finds nothing it does not find in the same program
 written without them, and every process word is in the program as mapped or named in the one
-warning."""
+warning; the G-code's comments of lines of their own are in both, and the parsers accept them."""
 
 import re
 import subprocess
@@ -73,6 +73,8 @@ def test_rapid_programs_with_process_words_parse(wall, targets):
     check = pytest.importorskip("rapidchecker.check")
     text, warned = generate(setup("out[doSpindle] = on"), wall, output="rapid", targets=targets)
     assert "    TOOL_CHANGE 1;\n    SPINDLE_ON 6000;\n    SetDO doSpindle, 1;\n" in text
+    # The G-code's comments of lines of their own, at their place: rapidchecker reads them too.
+    assert "    ! pocket wall: 300 x 200 mm, corner radius 20 mm, two passes of 4 mm\n    ! operation: wall\n" in text
     kept(text, warned, "! ", wall)
     assert check.check_format(text) == []
     # The parser is not a formality: a call without its ';' is an error.
@@ -91,6 +93,7 @@ def test_krl_programs_with_process_words_lint_as_without(wall, tmp_path, targets
     pytest.importorskip("krllint")
     text, warned = generate(setup("out[12] = on"), wall, output="krl", targets=targets)
     assert "TOOL_CHANGE(1)\nSPINDLE_ON(6000)\n$OUT[12]=TRUE\n" in text
+    assert "; pocket wall: 300 x 200 mm, corner radius 20 mm, two passes of 4 mm\n; operation: wall\n" in text
     kept(text, warned, "; ", wall)
     plain, _ = generate(setup(), wall, output="krl", targets=targets)
     (tmp_path / "WITH.src").write_text(text.replace("DEF WALL", "DEF WITH"))

@@ -59,7 +59,8 @@ pub struct Args {
     /// --program: the compensated program, in the program's own language, or for G-code a robot
     /// program of the compensated targets (.src KRL, .mod RAPID, .ls FANUC LS, .jbi Yaskawa
     /// INFORM in pulses: the setup's [controller] pulses_per_deg) named after the file (its stem,
-    /// upper case), with its sub-programs beside it when it is split. Never one of the inputs.
+    /// upper case), with its sub-programs beside it when it is split; a KRL program (read or
+    /// written) with its .dat beside it (the same stem). Never one of the inputs.
     #[arg(long)]
     out: PathBuf,
     /// With a G-code --program written as a robot program: Cartesian targets (the compensated
@@ -216,8 +217,11 @@ pub fn run(args: &Args) -> Result<()> {
     let data = data_path.as_deref().map(load::read).transpose()?;
     let input = input(args, name.clone(), (&text, data.as_deref()))?;
     let out = OutFile::prepare(&args.out, "--out")?;
-    let data_out = (data.as_ref())
-        .map(|_| {
+    // A G-code path written as a KRL program has its points' .dat beside it too.
+    let krl_out = (args.out.extension().and_then(|e| e.to_str()))
+        .is_some_and(|e| e.eq_ignore_ascii_case("src"));
+    let data_out = (data.is_some() || krl_out)
+        .then(|| {
             OutFile::prepare(
                 &stiffid_machining::program::krl::data_out(&args.out),
                 "--out",
@@ -426,7 +430,7 @@ fn check_subprogram_files(out: &Path) -> Result<()> {
 }
 
 /// A split program's sub-programs, each beside the main program in a file of its name with the
-/// main program's extension.
+/// main program's extension (and a KRL sub-program's `.dat` beside it).
 fn write_subprograms(
     out: &Path,
     files: &[stiffid_machining::program::generate::File],
@@ -440,8 +444,21 @@ fn write_subprograms(
             OutFile::prepare(&path, "--out").map(|o| (o, f))
         })
         .collect::<Result<Vec<_>>>()?;
+    let data = files
+        .iter()
+        .filter_map(|f| f.data.as_ref().map(|d| (f, d)))
+        .map(|(f, d)| {
+            let path = stiffid_machining::program::krl::data_out(
+                &dir.join(format!("{}.{extension}", f.name)),
+            );
+            OutFile::prepare(&path, "--out").map(|o| (o, d))
+        })
+        .collect::<Result<Vec<_>>>()?;
     for (o, f) in prepared {
         o.write(f.text.as_bytes())?;
+    }
+    for (o, d) in data {
+        o.write(d.as_bytes())?;
     }
     Ok(())
 }
@@ -642,6 +659,13 @@ fn written(args: &Args, report: &Report, names: &Names, doc: &Document) -> Strin
         if !written.is_empty() {
             text += &format!("written: {written}\n");
         }
+    }
+    if report.program.as_ref().is_some_and(|p| p.data.is_some()) && !names.program_out.is_empty() {
+        let dat = stiffid_machining::program::krl::data_out(Path::new(&names.program_out));
+        text += &format!(
+            "written: {} beside it (its points and data)\n",
+            dat.display()
+        );
     }
     if let Some(p) = report
         .program

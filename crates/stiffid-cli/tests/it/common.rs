@@ -186,3 +186,52 @@ pub fn example(name: &str) -> String {
         .to_string_lossy()
         .into_owned()
 }
+
+/// A KRL `.src` with the points its `.dat` declares (`DECL E6POS XP1={..}`, `DECL E6AXIS
+/// XP1={..}`) put back into its motions by name (`LIN XP1 C_DIS` becomes `LIN {E6POS: ..}
+/// C_DIS`): the literal form KRL reads alone, for tests that edit one file. Read from the
+/// `.dat`'s lines, not by stiffid; an `XPn` the `.dat` does not declare fails the test.
+pub fn inlined(src: &str, dat: &str) -> String {
+    let points: std::collections::HashMap<&str, String> = (dat.lines())
+        .filter_map(|l| l.strip_prefix("DECL "))
+        .filter_map(|l| {
+            let (kind, rest) = l.split_once(' ')?;
+            let (name, value) = rest.split_once('=')?;
+            let members = value.strip_prefix('{')?.strip_suffix('}')?;
+            Some(match kind {
+                "E6POS" => (name, format!("{{E6POS: {members}}}")),
+                _ => (name, format!("{{{members}}}")),
+            })
+        })
+        .collect();
+    let mut out = String::with_capacity(src.len() + dat.len());
+    for line in src.split_inclusive('\n') {
+        let keyword = ["PTP ", "LIN ", "CIRC "]
+            .into_iter()
+            .find(|k| line.starts_with(k) && line[k.len()..].starts_with("XP"));
+        let Some(keyword) = keyword else {
+            out += line;
+            continue;
+        };
+        out += keyword;
+        let mut rest = &line[keyword.len()..];
+        let mut first = true;
+        while let Some(tail) = rest.strip_prefix("XP") {
+            let digits = tail
+                .find(|c: char| !c.is_ascii_digit())
+                .unwrap_or(tail.len());
+            let name = &rest[..2 + digits];
+            let value = points
+                .get(name)
+                .unwrap_or_else(|| panic!("{name} not in the .dat"));
+            if !first {
+                out += ",";
+            }
+            out += value;
+            first = false;
+            rest = tail[digits..].strip_prefix(", ").unwrap_or(&tail[digits..]);
+        }
+        out += rest;
+    }
+    out
+}

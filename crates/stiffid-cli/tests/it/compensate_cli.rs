@@ -336,10 +336,11 @@ fn a_gcode_pocket_becomes_a_compensated_fanuc_ls_program_with_its_report() {
         text.matches("CONFIG : 'N U T, 0, 0, 0',").count(),
         positions
     );
-    // The G-code's tool change and spindle words, unmapped ([controller.io]), as remarks before
-    // the first move, its spindle stop and end after the last.
+    // The G-code's comments of lines of their own (at most 32 characters) and its tool change
+    // and spindle words, unmapped ([controller.io]), as remarks before the first move, its
+    // spindle stop and end after the last.
     assert!(
-        text.contains("  10:  ! T1 M6 (line 5) ;\n  11:  ! S6000 M3 (line 6) ;\n"),
+        text.contains("  10:  ! pocket wall: 300 x 200 mm, corne ;\n  11:  ! operation: wall ;\n  12:  ! T1 M6 (line 5) ;\n  13:  ! S6000 M3 (line 6) ;\n"),
         "{text}"
     );
     assert!(
@@ -348,7 +349,7 @@ fn a_gcode_pocket_becomes_a_compensated_fanuc_ls_program_with_its_report() {
     // Linear moves at the program's feed (F1800 mm/min, the plunges F300) where it cuts; the
     // first point and the rapid moves are joint motions, exact; the last point is exact.
     assert!(
-        text.contains("  12:J P[1] 20% FINE ;\n  13:L P[2] 5mm/sec CNT100 ;\n"),
+        text.contains("  14:J P[1] 20% FINE ;\n  15:L P[2] 5mm/sec CNT100 ;\n"),
         "{text}"
     );
     let linear = text.lines().filter(|l| l.contains(":L P[")).count();
@@ -504,7 +505,8 @@ fn uncompensated(text: &str) -> String {
     out
 }
 
-/// The milling example's programs (examples/milling/pocket.ls, pocket.src, pocket.mod) are
+/// The milling example's programs (examples/milling/pocket.ls, pocket.src with pocket.dat,
+/// pocket.mod) are
 /// pocket.nc as the command writes it uncompensated (a robot of stiffness 1e10 N m/rad, the
 /// bound comments left out): FANUC LS on the FANUC setup, KRL and RAPID on the KUKA KR 210 setup
 /// (its spindle's mass in `$LOAD` and the `tooldata`).
@@ -537,6 +539,16 @@ fn the_milling_examples_generated_programs_are_golden() {
             "examples/milling/{golden} is not what the command writes (regenerate it as examples/milling/README.md says)"
         );
         assert!(!shipped.contains("bound ") && !shipped.contains(" mm\"]"));
+        if golden.ends_with(".src") {
+            // The KRL program's points, in the .dat written beside it.
+            let dat = std::fs::read_to_string(out.with_extension("dat")).unwrap();
+            let shipped = std::fs::read_to_string(example("milling/pocket.dat")).unwrap();
+            assert!(
+                dat == shipped,
+                "examples/milling/pocket.dat is not what the command writes"
+            );
+            assert!(dat.starts_with("&ACCESS RVP\n&REL 1\nDEFDAT POCKET\n"));
+        }
         let first = written.lines().find(|l| l.contains("POCKET")).unwrap();
         assert!(
             ["/PROG  POCKET", "DEF POCKET( )", "MODULE POCKET"].contains(&first),

@@ -371,7 +371,11 @@ fn gravity_terms_name_their_robot_file_values() {
 /// The KUKA example's pocket with its first `LIN` target moved into a `.dat` as `XP1`, whose
 /// declaration there is `decl`; compensated into `out.src`.
 fn krl_with_dat(dir: &std::path::Path, decl: &dyn Fn(&str) -> String) -> Vec<String> {
-    let src = std::fs::read_to_string(example("milling/pocket.src")).unwrap();
+    // The example as one file: its points put back from its .dat into its motions.
+    let src = common::inlined(
+        &std::fs::read_to_string(example("milling/pocket.src")).unwrap(),
+        &std::fs::read_to_string(example("milling/pocket.dat")).unwrap(),
+    );
     let line = src.lines().find(|l| l.starts_with("LIN {")).unwrap();
     let (target, rest) = line[4..].split_at(line[4..].find('}').unwrap() + 1);
     let src = src

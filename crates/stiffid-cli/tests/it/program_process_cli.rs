@@ -98,7 +98,8 @@ fn the_pocket_starts_and_ends_at_home_with_its_process_words_mapped() {
     let (first, last) = (moves[0], *moves.last().unwrap());
     assert_eq!(lines[first], "J P[1] 35% FINE ;");
     assert_eq!(lines[last], format!("J P[{n}] 35% FINE ;"));
-    // Tool change and spindle after moving home, before the path's first point; the spindle
+    // The G-code's comments, tool change and spindle after moving home, before the path's
+    // first point (LS remarks of at most 32 characters); the spindle
     // stop after the path's last point, before going home; the end after it.
     let after_home: Vec<&str> = lines[first + 1..moves[1]]
         .iter()
@@ -107,6 +108,8 @@ fn the_pocket_starts_and_ends_at_home_with_its_process_words_mapped() {
     assert_eq!(
         after_home,
         [
+            "! pocket wall: 300 x 200 mm, corne ;",
+            "! operation: wall ;",
             "CALL TOOL_CHANGE(1) ;",
             "CALL SPINDLE_ON(6000) ;",
             "DO[12]=ON ;"
@@ -138,8 +141,15 @@ fn the_pocket_starts_and_ends_at_home_with_its_process_words_mapped() {
     let o = compensate(&setup, &krl, &["--targets", "joint"]);
     assert_success(&o);
     let text = std::fs::read_to_string(&krl).unwrap();
-    let home = "PTP {A1 0.000000000, A2 10.000000000, A3 -20.000000000, A4 0.000000000, A5 -60.000000000, A6 0.000000000}\n";
-    assert!(text.matches(home).count() == 2, "{text}");
+    // The points are declared in the .dat beside it, the motions name them.
+    let dat = std::fs::read_to_string(dir.join("POCKET.dat")).unwrap();
+    let home = "={A1 0.000000000, A2 10.000000000, A3 -20.000000000, A4 0.000000000, A5 -60.000000000, A6 0.000000000}\n";
+    assert!(dat.matches(home).count() == 2, "{dat}");
+    let named = |l: &str| l.starts_with("PTP XP") && !l.contains('{');
+    assert_eq!(
+        text.lines().filter(|l| named(l)).count(),
+        dat.matches("DECL E6AXIS XP").count()
+    );
     assert!(text.contains("BAS(#VEL_PTP, 35)"), "{text}");
     assert!(
         text.contains("TOOL_CHANGE(1)\nSPINDLE_ON(6000)\n$OUT[12]=TRUE\n"),

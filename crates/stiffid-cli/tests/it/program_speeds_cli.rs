@@ -19,7 +19,7 @@ fn compensated(dir: &Path, speed: &str) -> std::process::Output {
     );
     let setup = write_file(dir, "limited.toml", &setup);
     let pocket = std::fs::read_to_string(example("milling/pocket.ls")).unwrap();
-    let pocket = pocket.replacen("  14:L P[3] 30mm/sec", &format!("  14:L P[3] {speed}"), 1);
+    let pocket = pocket.replacen("  16:L P[3] 30mm/sec", &format!("  16:L P[3] {speed}"), 1);
     let pocket = write_file(dir, "pocket.ls", &pocket);
     let out = dir.join("OUT.ls");
     let _ = std::fs::remove_file(&out);
@@ -58,11 +58,11 @@ fn a_robot_programs_speeds_are_checked_counted_or_refused() {
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert!(
         stderr.contains("warning: the programmed speed of 1 linear move is not read")
-            && stderr.contains("line 35: R[1]mm/sec: the speed is held in a register"),
+            && stderr.contains("line 37: R[1]mm/sec: the speed is held in a register"),
         "{stderr}"
     );
     let o = compensated(&dir, "0mm/sec");
-    assert_usage_error(&o, &["pocket.ls", "line 35", "0mm/sec", "(0, 10000] mm/s"]);
+    assert_usage_error(&o, &["pocket.ls", "line 37", "0mm/sec", "(0, 10000] mm/s"]);
     assert!(!dir.join("OUT.ls").exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }

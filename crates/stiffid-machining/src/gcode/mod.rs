@@ -26,8 +26,9 @@
 //!   its block (controllers differ on whether the feed follows the units). `S`, `M`, `N`, `O`, `P`
 //!   words are kept and not interpreted (`P` and `Q` are a cycle's dwell and peck); `T` sets the
 //!   tool number (which selects the process operation and the tool length).
-//! - Comments `( ... )` and `; ...`. A comment `(operation: NAME)` selects the process operation
-//!   named `NAME` from there on. Header comments state the tool orientation:
+//! - Comments `( ... )` and `; ...`; those on lines of their own are kept in path order
+//!   ([`Comment`], written in a robot program at their place). A comment `(operation: NAME)`
+//!   selects the process operation named `NAME` from there on. Header comments state the tool orientation:
 //!   `(stiffid: tool_rpy_deg = 180 0 0)` (else the setup's `[workpiece] tool_rpy_deg`), the tool frame in the part frame as fixed-axis
 //!   roll-pitch-yaw (`180 0 0` points the tool z axis down, along the part's -Z); and, to allow
 //!   rotary words, `(stiffid: rotary = abc)`: `A B C` (deg, absolute, -360 to 360) then turn the tool by
@@ -73,7 +74,7 @@ mod write;
 pub use arc::{ArcBlock, ARC_END_MAX_MM, ARC_END_RELATIVE, ARC_END_TOLERANCE_MM};
 pub use cycles::{Cycle, PECK_CLEARANCE_MM};
 pub use machine::{Machine, ProgramFrames};
-pub use process::ProcessWord;
+pub use process::{Comment, ProcessWord};
 pub use words::MAX_FEED;
 
 use block::block;
@@ -163,6 +164,8 @@ pub struct GCode {
     /// The process words (spindle, coolant, tool, end), in path order
     /// ([`ProcessWord`]).
     pub process: Vec<ProcessWord>,
+    /// The comments on lines of their own, in path order ([`Comment`]).
+    pub comments: Vec<Comment>,
     blocks: Vec<Block>,
     text: String,
     /// The tip at the start (the setup's), `G54` part frame, m: where an incremental first
@@ -191,6 +194,10 @@ struct State {
     rpm: Option<f64>,
     /// The process words so far.
     process: Vec<ProcessWord>,
+    /// The comments of the line being read (stiffid's directives left out).
+    line_comments: Vec<String>,
+    /// The comments on lines of their own so far.
+    comments: Vec<Comment>,
     feed: Option<f64>,
     /// The line of the `F` word in force.
     feed_line: u64,
@@ -262,6 +269,8 @@ pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<G
         ended: None,
         rpm: None,
         process: Vec::new(),
+        line_comments: Vec::new(),
+        comments: Vec::new(),
         feed: None,
         feed_line: 0,
         retract_to_r: false,
@@ -280,6 +289,7 @@ pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<G
         cycles: Vec::new(),
         external: (Vec::new(), 0),
         process: Vec::new(),
+        comments: Vec::new(),
         blocks: Vec::new(),
         text: text.to_string(),
         start: machine.frames.start,
@@ -289,6 +299,11 @@ pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<G
             return Err(at(line, format!("more than {MAX_BLOCKS} lines")));
         }
         let words = words(line, start, l, &mut s)?;
+        let comments = std::mem::take(&mut s.line_comments);
+        if words.is_empty() {
+            let kept = comments.into_iter().map(|text| Comment { line, text });
+            s.comments.extend(kept);
+        }
         block(
             line,
             start..start + l.len(),
@@ -312,6 +327,7 @@ pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<G
     }
     out.external = s.external;
     out.process = s.process;
+    out.comments = s.comments;
     Ok(out)
 }
 

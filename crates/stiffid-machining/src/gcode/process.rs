@@ -26,6 +26,19 @@ pub struct ProcessWord {
     pub tool: Option<u32>,
 }
 
+/// A comment on a line of its own (no word in its block), kept to be written in the robot
+/// program at its place between the motions: the CAM post's operation, tool and header
+/// comments (Fusion 360 writes `(2D Contour1)` and `(T1 D=6. CR=0. - ZMIN=-1. - flat end mill)`
+/// on lines of their own). A comment after a block's words explains that block and is not
+/// kept; stiffid's own directives (`(stiffid: ..)`) are not kept.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Comment {
+    /// Its line, 1-based.
+    pub line: u64,
+    /// Its text, the parentheses or `;` and the blanks around it taken off; never empty.
+    pub text: String,
+}
+
 /// The `M` codes that raise an event, with it.
 const EVENTS: [(f64, ProcessEvent); 9] = [
     (6.0, ProcessEvent::ToolChange),

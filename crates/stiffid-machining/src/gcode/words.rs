@@ -123,6 +123,9 @@ pub(super) fn comment(line: u64, text: &str, s: &mut State) -> Result<()> {
         s.operation = Some(name.trim().into());
     }
     let Some(directive) = t.strip_prefix("stiffid:") else {
+        if !t.is_empty() {
+            s.line_comments.push(t.to_string());
+        }
         return Ok(());
     };
     let (key, value) = directive

@@ -81,7 +81,7 @@ fn written(
         pulses: None,
         settings: Settings::default(),
     };
-    let text = generate(&plan).unwrap().files.remove(0).text;
+    let text = one_text(generate(&plan).unwrap().files.remove(0));
     (targets, text)
 }
 
@@ -124,6 +124,12 @@ fn positions_in_user_frame(s: &Setup, text: &str) -> String {
         out += &l;
     }
     out
+}
+
+/// A generated file as one text (a KRL program's points put back from its `.dat`): these tests
+/// read and edit single files.
+fn one_text(f: stiffid::machining::program::generate::File) -> String {
+    crate::common::inlined(&f.text, f.data.as_deref())
 }
 
 fn read(s: &Setup, dialect: Dialect, text: &str) -> Program {
@@ -189,7 +195,7 @@ fn the_configuration_data_choose_the_solution_of_a_pose() {
                 pulses: None,
                 settings: Settings::default(),
             };
-            ((), generate(&plan).unwrap().files.remove(0).text)
+            ((), one_text(generate(&plan).unwrap().files.remove(0)))
         };
         for (text, want) in [(&text, q), (&twin_text, twin)] {
             let Program::Robot(p) = read(&s, dialect, text) else {

@@ -175,3 +175,78 @@ pub fn measurement_csv(data: &[Measurement]) -> String {
     }
     text
 }
+
+/// A generated program as one text, as the tests' readers of a single file take it: a KRL
+/// `.src` with the points its `.dat` declares (`DECL E6POS XP1={..}`, `DECL E6AXIS XP1={..}`)
+/// put back into its motions by name (`LIN XP1 C_DIS` becomes `LIN {E6POS: ..} C_DIS`, the
+/// literal form KRL reads alone); a program without a `.dat` as it is. Independent of stiffid's
+/// readers: the declarations are taken by name from the `.dat`'s lines, and an `XPn` the `.dat`
+/// does not declare fails the test.
+pub fn inlined(text: &str, data: Option<&str>) -> String {
+    let Some(data) = data else {
+        return text.to_string();
+    };
+    let points: std::collections::HashMap<&str, String> = data
+        .lines()
+        .filter_map(|l| l.strip_prefix("DECL "))
+        .filter_map(|l| {
+            let (kind, rest) = l.split_once(' ')?;
+            let (name, value) = rest.split_once('=')?;
+            let members = value.strip_prefix('{')?.strip_suffix('}')?;
+            Some(match kind {
+                "E6POS" => (name, format!("{{E6POS: {members}}}")),
+                _ => (name, format!("{{{members}}}")),
+            })
+        })
+        .collect();
+    let mut out = String::with_capacity(text.len() + data.len());
+    for line in text.split_inclusive('\n') {
+        let motion = ["PTP ", "LIN ", "CIRC "]
+            .iter()
+            .find(|k| line.starts_with(*k) && line[k.len()..].starts_with("XP"));
+        let Some(keyword) = motion else {
+            out += line;
+            continue;
+        };
+        out += keyword;
+        let mut rest = &line[keyword.len()..];
+        let mut first = true;
+        while let Some(tail) = rest.strip_prefix("XP") {
+            let digits = tail
+                .find(|c: char| !c.is_ascii_digit())
+                .unwrap_or(tail.len());
+            let name = &rest[..2 + digits];
+            let value = points
+                .get(name)
+                .unwrap_or_else(|| panic!("{name} not in the .dat"));
+            if !first {
+                out += ",";
+            }
+            out += value;
+            first = false;
+            rest = &tail[digits..];
+            rest = rest.strip_prefix(", ").unwrap_or(rest);
+        }
+        out += rest;
+    }
+    out
+}
+
+/// A compensated program's text as one file ([`inlined`]: a KRL program's `.dat` points put
+/// back into its `.src`).
+pub fn program_text(p: stiffid::app::compensate::ProgramReport) -> String {
+    inlined(&p.text, p.data.as_deref())
+}
+
+/// The milling example's KRL program as one text: `examples/milling/pocket.src` with the points
+/// of its `pocket.dat` put back into its motions ([`inlined`]), for tests that read or edit one
+/// file.
+pub fn pocket_krl() -> &'static str {
+    static TEXT: std::sync::LazyLock<String> = std::sync::LazyLock::new(|| {
+        inlined(
+            include_str!("../../../../examples/milling/pocket.src"),
+            Some(include_str!("../../../../examples/milling/pocket.dat")),
+        )
+    });
+    &TEXT
+}

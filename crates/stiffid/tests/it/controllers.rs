@@ -254,14 +254,16 @@ fn each_generating_controller_writes_the_cells_external_axes_in_its_form() {
             assert!(written.is_err(), "{d:?}");
             continue;
         };
-        let text = &written.unwrap().files[0].text;
-        assert!(text.contains(form), "{d:?}: {text}");
+        let file = written.unwrap().files.remove(0);
+        // A KRL program's points, with their external axes, are in its .dat.
+        let (text, data) = (&file.text, file.data.as_deref());
+        assert!(data.unwrap_or(text).contains(form), "{d:?}: {text}");
         // Read back: the six angles and the two external values.
         // INFORM's pulses are the setup's (the job states none).
         let context = program::Context {
             pulses: Some(&pulses),
             tool: None,
-            data: None,
+            data,
             machine: None,
         };
         let p = program::parse_in(text, d, &context).unwrap();

@@ -39,9 +39,9 @@ pub(crate) fn machine(workpiece: &str, process: &str) -> Machine {
 /// Each compensated file: its setup's workpiece, its process, the line of its first point and
 /// that point as the file gives it (mm, or inch for a G20 file), read by eye.
 /// A compensated file: name, workpiece, process, first point's line, position, unit (mm).
-type Read = (&'static str, &'static str, &'static str, u64, [f64; 3], f64);
+pub(crate) type Read = (&'static str, &'static str, &'static str, u64, [f64; 3], f64);
 
-const READ: [Read; 8] = [
+pub(crate) const READ: [Read; 8] = [
     (
         "fusion360-personal-contour.nc",
         "workpiece-fusion360.toml",

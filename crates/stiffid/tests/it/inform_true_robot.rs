@@ -96,7 +96,10 @@ fn compensated(
         Ok(())
     })
     .unwrap();
-    (report.program.unwrap().text, results)
+    (
+        crate::common::program_text(report.program.unwrap()),
+        results,
+    )
 }
 
 #[test]

@@ -147,7 +147,10 @@ pub(crate) fn compensated_with(
         results.extend_from_slice(r);
         Ok(())
     })?;
-    Ok((report.program.unwrap().text, results))
+    Ok((
+        crate::common::program_text(report.program.unwrap()),
+        results,
+    ))
 }
 
 /// A position of `/POS` as the file gives it: its frame numbers and its six numbers (`X`..`R`

@@ -129,7 +129,10 @@ fn program(setup: &stiffid::Setup, dialect: Dialect) -> (String, Vec<Compensated
         Ok(())
     })
     .unwrap();
-    (report.program.unwrap().text, results)
+    (
+        crate::common::program_text(report.program.unwrap()),
+        results,
+    )
 }
 
 /// The numbers of a `name value` or `name = value unit` list after `prefix` on a line.

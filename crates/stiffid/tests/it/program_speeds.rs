@@ -21,7 +21,6 @@ use stiffid::robot::presets;
 use stiffid::{setup, Error, Setup};
 
 const POCKET: &str = include_str!("../../../../examples/milling/pocket.nc");
-const KRL: &str = include_str!("../../../../examples/milling/pocket.src");
 const LS: &str = include_str!("../../../../examples/milling/pocket.ls");
 const KUKA: &str = include_str!("../../../../examples/milling/kuka-milling.toml");
 const PROCESS: &str = include_str!("../../../../examples/milling/aluminium.toml");
@@ -30,7 +29,7 @@ const PROCESS: &str = include_str!("../../../../examples/milling/aluminium.toml"
 fn the_written_programs_state_the_feed_of_every_move() {
     let g = gcode::parse(POCKET, 1e-5).unwrap();
     let programs = [
-        (KRL, Dialect::Krl),
+        (crate::common::pocket_krl(), Dialect::Krl),
         (
             include_str!("../../../../examples/milling/pocket.mod"),
             Dialect::Rapid,
@@ -237,13 +236,17 @@ fn a_joint_speed_binds_the_free_rotation_of_a_robot_program() {
 
 #[test]
 fn unread_speeds_are_counted_and_bad_ones_refused_naming_the_line() {
-    let unread = krl(KRL.replacen("$VEL.CP = 0.03\n", "$VEL.CP = vcut\n", 1));
+    let unread =
+        krl(crate::common::pocket_krl().replacen("$VEL.CP = 0.03\n", "$VEL.CP = vcut\n", 1));
     let s = cell(&unread, Some(30.0));
     let (r, _) = rotated(&unread, &s).unwrap();
     assert!(r.speed_limits.checked);
-    let line = 1 + KRL.lines().position(|l| l == "$VEL.CP = 0.03").unwrap() as u64;
+    let line = 1 + crate::common::pocket_krl()
+        .lines()
+        .position(|l| l == "$VEL.CP = 0.03")
+        .unwrap() as u64;
     // Its moves: each LIN a target, each CIRC two (its via point and end).
-    let after = KRL
+    let after = crate::common::pocket_krl()
         .lines()
         .skip(line as usize)
         .take_while(|l| l.starts_with("LIN") || l.starts_with("CIRC"))
@@ -260,7 +263,11 @@ fn unread_speeds_are_counted_and_bad_ones_refused_naming_the_line() {
         "{w}"
     );
     for bad in ["-1", "0", "11", "nan"] {
-        let text = KRL.replacen("$VEL.CP = 0.03\n", &format!("$VEL.CP = {bad}\n"), 1);
+        let text = crate::common::pocket_krl().replacen(
+            "$VEL.CP = 0.03\n",
+            &format!("$VEL.CP = {bad}\n"),
+            1,
+        );
         match rotated(&krl(text), &s) {
             Err(e) => {
                 let e = e.to_string();

@@ -210,7 +210,7 @@ fn written(c: &Cell, gcode: &'static str, dialect: Dialect) -> String {
         Ok::<(), stiffid::Error>(())
     })
     .unwrap();
-    report.program.unwrap().text
+    crate::common::program_text(report.program.unwrap())
 }
 
 #[test]
@@ -283,12 +283,7 @@ fn the_pocket_gets_the_same_wrench_and_bound_in_every_language() {
             include_str!("../../../../examples/milling/pocket.ls"),
             Dialect::FanucLs,
         ),
-        (
-            &kuka,
-            &on_kuka,
-            include_str!("../../../../examples/milling/pocket.src"),
-            Dialect::Krl,
-        ),
+        (&kuka, &on_kuka, crate::common::pocket_krl(), Dialect::Krl),
         (
             &kuka,
             &on_kuka,

@@ -25,11 +25,7 @@ const INFORM: &str = "/JOB\r\n//NAME POCKET\r\n//POS\r\n///NPOS 2,0,0,0,0,0\r\n/
 /// A program of each dialect, and the text of its first programmed path speed.
 fn programs() -> [(&'static str, Dialect, &'static str); 4] {
     [
-        (
-            include_str!("../../../../examples/milling/pocket.src"),
-            Dialect::Krl,
-            "$VEL.CP = 0.03",
-        ),
+        (crate::common::pocket_krl(), Dialect::Krl, "$VEL.CP = 0.03"),
         (
             include_str!("../../../../examples/milling/pocket.mod"),
             Dialect::Rapid,

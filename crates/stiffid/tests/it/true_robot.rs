@@ -645,7 +645,10 @@ pub(crate) fn written_with(
         Ok(())
     })
     .unwrap();
-    (report.program.unwrap().text, results)
+    (
+        crate::common::program_text(report.program.unwrap()),
+        results,
+    )
 }
 
 /// The axis angles the part is placed at on `case`'s robot.

@@ -123,7 +123,8 @@ pub struct ProgramReport {
     /// written to a file of its name next to the main program's.
     pub subprograms: Vec<generate::File>,
     /// For a KRL program read with its `.dat` ([`Input::Program`]'s `data`): the `.dat`
-    /// compensated (its `DEFDAT` renamed with the program's `DEF`), to be written beside the
+    /// compensated (its `DEFDAT` renamed with the program's `DEF`); for a G-code path written as
+    /// a KRL program, its points' `.dat` ([`generate::File`]'s `data`). To be written beside the
     /// program under its stem with `.dat`, together with it.
     pub data: Option<String>,
     /// Each segment's force and deflection, in program order.
@@ -465,7 +466,7 @@ where
     let (dynamics, warnings) = program_dynamics(setup, compliance, &process, &compensated, add)?;
     out.warnings = warnings;
     out.warnings.extend(assumed);
-    let data = compensated.data.as_ref().map(|d| match &written_name {
+    let mut data = compensated.data.as_ref().map(|d| match &written_name {
         Some(to) => crate::program::rename::renamed_data(d, to),
         None => d.clone(),
     });
@@ -473,9 +474,10 @@ where
         (Language::Robot(d), Program::GCode(g)) => {
             let how = (written_name.unwrap_or_default(), settings, chord_tolerance);
             let written = generated(setup, d, &compensated, g, (how, options.level));
-            let (text, subprograms, warnings) = written.map_err(|e| in_input(&out.name, e))?;
+            let (main, subprograms, warnings) = written.map_err(|e| in_input(&out.name, e))?;
             out.warnings.extend(warnings);
-            (text, subprograms)
+            data = main.data;
+            (main.text, subprograms)
         }
         (Language::Robot(d), _) => {
             let text = match &written_name {

@@ -12,8 +12,8 @@ use stiffid_core::robot::ExternalAxes;
 use stiffid_core::{Error, Result, Setup};
 
 /// A compensated G-code program written as a new robot program in `dialect`
-/// ([`write_robot_program`]), each target's bound at `level` in a comment: the main program's
-/// text, its sub-programs, the warnings.
+/// ([`write_robot_program`]), each target's bound at `level` in a comment: the main program
+/// (with a KRL program's `.dat`), its sub-programs, the warnings.
 ///
 /// # Errors
 /// Those of [`write_robot_program`].
@@ -23,7 +23,7 @@ pub(super) fn generated(
     compensated: &machining::Report,
     gcode: &crate::gcode::GCode,
     ((name, settings, chord_tolerance), level): ((String, Settings, f64), f64),
-) -> Result<(String, Vec<generate::File>, Vec<Warning>)> {
+) -> Result<(generate::File, Vec<generate::File>, Vec<Warning>)> {
     let how = (name.as_str(), &settings, chord_tolerance);
     let (written, (circular, form), home) =
         write_robot_program(setup, dialect, compensated, gcode, how)?;
@@ -56,7 +56,11 @@ pub(super) fn generated(
     let texts = certify::generated(dialect, &texts, &bounds, level);
     let mut files =
         (written.files.into_iter().zip(texts)).map(|(f, text)| generate::File { text, ..f });
-    let main = files.next().map(|f| f.text).unwrap_or_default();
+    let main = files.next().unwrap_or_else(|| generate::File {
+        name,
+        text: String::new(),
+        data: None,
+    });
     Ok((main, files.collect(), warnings))
 }
 
@@ -158,10 +162,13 @@ fn write_robot_program(
         .collect();
     let home = super::home::add(setup, controller, (&mut targets, &mut moves, &mut lines));
     let before = generate::place(&gcode.process, &lines);
+    let comments_before = generate::place_comments(&gcode.comments, &lines);
     let process = generate::Process {
         words: &gcode.process,
         before: &before,
         io: Some(&setup.workcell().controller().program.io),
+        comments: &gcode.comments,
+        comments_before: &comments_before,
     };
     let plan = Plan {
         dialect,

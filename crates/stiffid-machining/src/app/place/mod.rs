@@ -41,7 +41,7 @@ mod work;
 pub mod written;
 
 pub use evaluate::Evaluation;
-pub use work::{check_language, read_path, read_program, Work};
+pub use work::{check_language, read_path, read_program, read_program_with, Work};
 pub use written::with_workpiece;
 
 use crate::compensate::{Aggregate, Compliance, Options};

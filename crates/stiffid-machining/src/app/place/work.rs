@@ -65,6 +65,27 @@ pub fn read_program(
     language: Language,
     (chord_tolerance, process): (f64, &Process),
 ) -> Result<Program> {
+    read_program_with(
+        setup,
+        name,
+        (text, None),
+        language,
+        (chord_tolerance, process),
+    )
+}
+
+/// [`read_program`] with the data file beside the program (KRL's `.dat`: its points and frame
+/// data), as the controller pairs them.
+///
+/// # Errors
+/// Those of [`read_program`].
+pub fn read_program_with(
+    setup: &Setup,
+    name: &str,
+    (text, data): (&str, Option<&str>),
+    language: Language,
+    (chord_tolerance, process): (f64, &Process),
+) -> Result<Program> {
     check_language(language)?;
     let in_file = |e: Error| match e {
         e @ Error::Program { .. } => Error::Input {
@@ -74,7 +95,8 @@ pub fn read_program(
         e => e,
     };
     let machine = crate::gcode::Machine::of(setup, Some(process));
-    let context = crate::program::Context::of(setup).with_machine(&machine);
+    let mut context = crate::program::Context::of(setup).with_machine(&machine);
+    context.data = data;
     let program = crate::read_in(text, language, chord_tolerance, &context).map_err(in_file)?;
     check_program(setup, &program).map_err(in_file)?;
     Ok(program)

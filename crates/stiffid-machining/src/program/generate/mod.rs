@@ -43,7 +43,9 @@
 //! As the controllers write them: KRL `&ACCESS RVP`, `&REL 1`, `&PARAM TEMPLATE`, `&PARAM
 //! EDITMASK` before `DEF`; LS the whole `/ATTR` (owner, comment, sizes, dates, line count,
 //! protection, task attributes, motion groups, control code); INFORM `///DATE` and `///COMM`.
-//! The dates are reproducible ([`date`]).
+//! The dates are reproducible ([`date`]). A KRL program's points are in the `.dat` beside it
+//! ([`File::data`], [`crate::program::krl::data::split`]), as KUKA System Software stores a
+//! module.
 //!
 //! ## Controller rules
 //! Every rule comes from the controller's manual (docs/reference.md lists the sources):
@@ -77,7 +79,9 @@
 //! - the G-code's process words ([`Process`], [`generate_with`]) are written between the
 //!   motions where the G-code has them, as the setup's `[controller.io]` maps their events or
 //!   as comments with one warning ([`Written::left_out`]); an LS file's numbered lines count
-//!   them;
+//!   them; the G-code's comments that stand on lines of their own (a CAM post's operation and
+//!   tool comments, [`crate::gcode::Comment`]) are written as comments at their place
+//!   ([`place_comments`]);
 //! - a program of more than [`Settings::moves_per_file`] moves is split into sub-programs of at
 //!   most that many moves (`NAME_01`, `NAME_02`, ... in files of their own), which the main
 //!   program calls in order.
@@ -100,7 +104,7 @@ pub use names::{
     check_name, check_plan, default_name_length, max_name_length, moves_per_file, LS_MAX_LINES,
     MAX_FILES,
 };
-pub use process::{place, Process, ProcessForm};
+pub use process::{place, place_comments, Process, ProcessForm};
 pub use settings::{
     Settings, MIN_FEED, MOVES_PER_FILE, NAME_LENGTH, RAPID_PERCENT, RAPID_SPEED_MM_S,
 };
@@ -285,6 +289,10 @@ pub struct File {
     pub name: String,
     /// Its text.
     pub text: String,
+    /// A KRL program's `.dat` (its points, `DEFDAT NAME` .. `ENDDAT`), to be written beside it
+    /// under its name with `.dat` ([`crate::program::krl::data::split`]); `None` in another
+    /// language.
+    pub data: Option<String>,
 }
 
 /// The programs written: the main program first, then its sub-programs in call order.
@@ -399,21 +407,37 @@ pub fn generate_with(plan: &Plan, process: &Process) -> Result<Written> {
         written.files.push(File {
             text: generator.wrap(&name, &header, &text, true),
             name,
+            data: None,
         });
     } else {
         let calls = generator.calls(&names[1..]);
         written.files.push(File {
             name: names[0].clone(),
             text: generator.wrap(&names[0], &header, &calls, true),
+            data: None,
         });
         for (name, text) in bodies {
             written.files.push(File {
                 text: generator.wrap(&name, "", &text, false),
                 name,
+                data: None,
             });
         }
     }
+    if plan.dialect == Dialect::Krl {
+        with_data(&mut written.files);
+    }
     Ok(written)
+}
+
+/// Each KRL program of `files` split as KUKA System Software stores a module: its `.src`
+/// naming its points and the `.dat` declaring them ([`crate::program::krl::data::split`]).
+fn with_data(files: &mut [File]) {
+    for f in files {
+        let (src, dat) = crate::program::krl::data::split(&f.name, &f.text);
+        f.text = src;
+        f.data = Some(dat);
+    }
 }
 
 /// A run of targets written into one file.

@@ -2,12 +2,15 @@
 //! between the motions ([`place`]), as the setup's `[controller.io]` maps its event
 //! ([`stiffid_core::setup::program_io`]) in the language's own form ([`ProcessForm`]), or, not
 //! mapped, as a comment naming the words and their line, with one warning naming them all.
+//! The G-code's comments on lines of their own (the CAM post's operation and tool comments,
+//! [`Comment`]) are written as comments at their place too ([`place_comments`]), each
+//! sanitised to what the language's comment takes ([`ProcessForm::comment_text`]).
 //!
 //! Each language's forms and their sources are in its folder (`process.rs`); every name written
 //! is checked against the controller's longest name and reserved words.
 
 use super::{number, Plan};
-use crate::gcode::ProcessWord;
+use crate::gcode::{Comment, ProcessWord};
 use stiffid_core::setup::program_io::{Action, Argument, Io, Placeholder, ProcessEvent, Signal};
 use stiffid_core::{Error, Result};
 
@@ -18,6 +21,9 @@ pub struct ProcessForm {
     pub comment: (&'static str, &'static str),
     /// The longest comment the pendant keeps, characters of its text; `None`: no limit.
     pub comment_length: Option<usize>,
+    /// Characters a comment's text may not hold (besides anything outside printable ASCII),
+    /// each written as a blank: LS's `;`, which ends its statement.
+    pub comment_forbidden: &'static str,
     /// The indentation of a line of the program's body.
     pub indent: &'static str,
     /// A call of the routine `name` with `arguments` (numbers, as text), or why the language
@@ -37,6 +43,51 @@ pub struct Process<'a> {
     pub before: &'a [usize],
     /// The setup's `[controller.io]`; `None`: no event mapped.
     pub io: Option<&'a Io>,
+    /// The G-code's comments on lines of their own, in path order.
+    pub comments: &'a [Comment],
+    /// For each comment, the index of the target it is written before ([`place_comments`]).
+    pub comments_before: &'a [usize],
+}
+
+impl ProcessForm {
+    /// `text` as this language's comment takes it: every character outside printable ASCII
+    /// (the controllers' files are ASCII or their code pages; a line break would end the
+    /// comment) written as `?`, a forbidden one ([`ProcessForm::comment_forbidden`]) as a
+    /// blank, at most [`ProcessForm::comment_length`] characters.
+    pub fn comment_text(&self, text: &str) -> String {
+        let mut out: String = (text.chars())
+            .map(|c| match c {
+                c if self.comment_forbidden.contains(c) => ' ',
+                ' '..='~' => c,
+                _ => '?',
+            })
+            .collect();
+        if let Some(most) = self.comment_length {
+            out.truncate(most);
+        }
+        out.trim_end().to_string()
+    }
+
+    /// A whole comment line of `text` ([`ProcessForm::comment_text`]).
+    pub fn comment_line(&self, text: &str) -> String {
+        let (open, close) = self.comment;
+        format!("{}{open}{}{close}\n", self.indent, self.comment_text(text))
+    }
+}
+
+/// Where each of `comments` goes among targets whose G-code lines are `lines` (as [`place`]
+/// places a word of its line: before the first target of its line or a later one, else after
+/// the path).
+pub fn place_comments(comments: &[Comment], lines: &[Option<u64>]) -> Vec<usize> {
+    let n = lines.len();
+    let after_path = lines.iter().rposition(Option::is_some).map_or(n, |i| i + 1);
+    (comments.iter())
+        .map(|c| {
+            (lines.iter())
+                .position(|l| l.is_some_and(|l| l >= c.line))
+                .unwrap_or(after_path)
+        })
+        .collect()
 }
 
 /// Where each of `words` goes among targets whose G-code lines are `lines` (`None`: a target of
@@ -68,7 +119,9 @@ pub(crate) fn inserted(
     form: &ProcessForm,
     process: &Process,
 ) -> Result<(Vec<String>, Option<String>)> {
-    let mut lines = vec![String::new(); plan.targets.len() + 1];
+    let n = plan.targets.len();
+    // Each written line with its place (the target it goes before) and its G-code line.
+    let mut placed: Vec<(usize, u64, String)> = Vec::new();
     let mut unmapped: Vec<(&str, &ProcessWord)> = Vec::new();
     for (w, &at) in process.words.iter().zip(process.before) {
         let actions = w.event.and_then(|e| process.io.and_then(|io| io.get(e)));
@@ -77,27 +130,25 @@ pub(crate) fn inserted(
                 .event
                 .map_or("other M words (no event)", ProcessEvent::key);
             unmapped.push((key, w));
-            lines[at.min(plan.targets.len())] += &comment(form, w);
+            let text = format!("{} (line {})", w.words, w.line);
+            placed.push((at.min(n), w.line, form.comment_line(&text)));
             continue;
         };
         for action in actions {
             let line = written(plan, form, w, action)?;
-            lines[at.min(plan.targets.len())] += &format!("{}{line}\n", form.indent);
+            placed.push((at.min(n), w.line, format!("{}{line}\n", form.indent)));
         }
     }
-    Ok((lines, warning(&unmapped)))
-}
-
-/// A comment line naming a word not mapped and its G-code line, within the pendant's length.
-fn comment(form: &ProcessForm, w: &ProcessWord) -> String {
-    let mut text = format!("{} (line {})", w.words, w.line);
-    if let Some(most) = form.comment_length {
-        text.truncate(most);
+    for (c, &at) in process.comments.iter().zip(process.comments_before) {
+        placed.push((at.min(n), c.line, form.comment_line(&c.text)));
     }
-    format!(
-        "{}{}{text}{}\n",
-        form.indent, form.comment.0, form.comment.1
-    )
+    // In the G-code's order at each place (a block's words in their order of execution).
+    placed.sort_by_key(|(at, line, _)| (*at, *line));
+    let mut lines = vec![String::new(); n + 1];
+    for (at, _, text) in placed {
+        lines[at] += &text;
+    }
+    Ok((lines, warning(&unmapped)))
 }
 
 /// One warning naming every word not mapped, grouped by event key.

@@ -1,5 +1,5 @@
 //! Yaskawa INFORM's process instructions (DX200 / YRC1000 INFORM manual: `CALL JOB:NAME`,
-//! `DOUT OT#(n) ON`, a comment line `'..` of at most 32 characters).
+//! `DOUT OT#(n) ON`, a comment line `'..` of at most 32 characters, its `'` included).
 
 use crate::program::generate::ProcessForm;
 use stiffid_core::setup::program_io::Signal;
@@ -7,7 +7,8 @@ use stiffid_core::setup::program_io::Signal;
 /// INFORM's forms.
 pub(crate) static FORM: ProcessForm = ProcessForm {
     comment: ("'", ""),
-    comment_length: Some(32),
+    comment_length: Some(31),
+    comment_forbidden: "",
     indent: "",
     call,
     output,
@@ -17,7 +18,7 @@ pub(crate) static FORM: ProcessForm = ProcessForm {
 fn call(name: &str, arguments: &[String]) -> Result<String, String> {
     match arguments.is_empty() {
         true => Ok(format!("CALL JOB:{name}")),
-        false => Err(format!("{name}: stiffid writes an INFORM CALL JOB without arguments; map the event to a job that takes none (set the value in a variable the job reads)")),
+        false => Err(format!("{name}: stiffid writes an INFORM CALL JOB without arguments (INFORM passes a call's arguments, read with GETARG, only where the controller has argument passing, in a form stiffid does not write); map the event to a job that takes none, e.g. \"{name}\", which reads the value from a variable set on the controller, or to an output out[n] = on")),
     }
 }
 

@@ -19,6 +19,7 @@
 //! page `docs/programs/krl.md` lists each rule with its source.
 
 pub mod cartesian;
+pub mod data;
 mod declare;
 mod flow;
 mod frames;

@@ -8,6 +8,7 @@ use stiffid_core::setup::program_io::Signal;
 pub(crate) static FORM: ProcessForm = ProcessForm {
     comment: ("! ", ""),
     comment_length: None,
+    comment_forbidden: "",
     indent: "    ",
     call,
     output,

@@ -292,8 +292,13 @@ fn each_language_writes_its_circular_moves_and_reads_them_back() {
         assert!(c.warnings.is_empty(), "{:?}", c.warnings);
         let written: Vec<Target> = c.index.iter().map(|&i| targets[i].clone()).collect();
         let p = plan(&s, dialect, (&written, &c.moves), Some(&pulses));
-        let text = generate(&p).unwrap().files.remove(0).text;
+        let file = generate(&p).unwrap().files.remove(0);
+        // A KRL program's points are in its .dat: its literal form, read alone, too.
+        let text = crate::common::inlined(&file.text, file.data.as_deref());
         assert_eq!(text.matches(circular).count(), count, "{dialect:?}: {text}");
+        if dialect == Dialect::Krl {
+            reads_back_with_its_data(&file, &text);
+        }
         if dialect == Dialect::FanucLs {
             // The LS reader of the corpus's tests (string searches, not stiffid's): the via
             // point and the end of each `C`, in order, each the written target's world position.
@@ -334,5 +339,41 @@ fn each_language_writes_its_circular_moves_and_reads_them_back() {
             let off = (Vector6::from(b.q_deg) - Vector6::from(w.q_deg)).amax();
             assert!(off <= within, "{dialect:?}: {off} deg");
         }
+    }
+}
+
+/// A written KRL program, its `.src` naming the points and its `.dat` declaring them
+/// (`krl::data::split`), reads back with the `.dat` to the targets of its literal form `text`
+/// (the points put back): the same lines, values (to 1e-9 mm/deg) and motions, each circular
+/// move's via and end points named in order.
+fn reads_back_with_its_data(file: &stiffid_machining::program::generate::File, text: &str) {
+    use stiffid_machining::program::parse_with_data;
+    let (src, dat) = (&file.text, file.data.as_deref().unwrap());
+    assert!(!src.contains("E6POS") && !src.contains("{A1"), "{src}");
+    assert!(
+        dat.starts_with("&ACCESS RVP\n&REL 1\nDEFDAT ARCS\n"),
+        "{dat}"
+    );
+    assert!(dat.ends_with("ENDDAT\n"), "{dat}");
+    assert!(src.contains("CIRC XP2, XP3"), "{src}");
+    // Read alone, a .src naming its points is refused: they are in the .dat.
+    assert!(parse_with_data(src, None, Dialect::Krl).is_err());
+    let literal = parse_with_data(text, None, Dialect::Krl).unwrap().targets;
+    let named = parse_with_data(src, Some(dat), Dialect::Krl)
+        .unwrap()
+        .targets;
+    assert_eq!(named.len(), literal.len());
+    assert_eq!(dat.matches("DECL E6POS XP").count(), literal.len(), "{dat}");
+    for (n, l) in named.iter().zip(&literal) {
+        assert_eq!(n.line, l.line);
+        assert_eq!(n.speed, l.speed);
+        assert_eq!(n.external, l.external);
+        let (Some(a), Some(b)) = (&n.cartesian, &l.cartesian) else {
+            panic!("a Cartesian target: {n:?}");
+        };
+        let dp = (a.position_mm - b.position_mm).norm();
+        assert!(dp < 1e-9, "{dp} mm");
+        assert!(a.rotation.angle_to(&b.rotation).to_degrees() < 1e-9);
+        assert_eq!((&a.flags, &a.frame, &a.tool), (&b.flags, &b.frame, &b.tool));
     }
 }

@@ -137,8 +137,9 @@ fn cartesian_targets_state_the_forward_kinematics_and_the_configuration_of_the_p
     for d in [Dialect::Krl, Dialect::Rapid, Dialect::FanucLs] {
         let w = generate(&plan(d, "POCKET", &t, &MOVES)).unwrap();
         assert_eq!(w.files.len(), 1);
-        let lines = written_targets(d, &w.files[0].text);
-        assert_eq!(lines.len(), 3, "{d:?}: {}", w.files[0].text);
+        let text = crate::common::inlined(&w.files[0].text, w.files[0].data.as_deref());
+        let lines = written_targets(d, &text);
+        assert_eq!(lines.len(), 3, "{d:?}: {text}");
         for (line, target) in lines.iter().zip(&t) {
             let pose = stated(d, line);
             let dp = (pose.translation.vector - target.pose.translation.vector).norm();
@@ -204,10 +205,12 @@ fn the_configuration_tells_the_two_wrist_solutions_of_one_pose_apart() {
 #[test]
 fn the_programs_initialise_motion_end_exact_and_name_their_tool_and_work_object() {
     let t = targets(&Q);
-    let krl = &generate(&plan(Dialect::Krl, "POCKET", &t, &MOVES))
+    let krl = generate(&plan(Dialect::Krl, "POCKET", &t, &MOVES))
         .unwrap()
-        .files[0]
-        .text;
+        .files
+        .remove(0);
+    // Its points put back from its .dat: the motions' lines as one text.
+    let krl = &crate::common::inlined(&krl.text, krl.data.as_deref());
     // The lines KSS writes before DEF, then the program.
     let krl = krl.strip_prefix(KSS_HEADER).unwrap();
     assert!(krl.starts_with("DEF POCKET( )\n"), "{krl}");
@@ -288,11 +291,41 @@ fn joint_targets_read_back_to_their_axis_angles() {
         let mut p = plan(d, "POCKET", &t, &MOVES);
         p.settings.targets = Targets::Joint;
         let w = generate(&p).unwrap();
-        let read = stiffid_machining::program::parse(&w.files[0].text, d).unwrap();
+        // A KRL program is read with its .dat, which declares its points.
+        let (text, data) = (&w.files[0].text, w.files[0].data.as_deref());
+        assert_eq!(data.is_some(), d == Dialect::Krl, "{d:?}");
+        let read = stiffid_machining::program::parse_with_data(text, data, d).unwrap();
         assert_eq!(read.targets.len(), 3, "{d:?}");
         for (r, e) in read.targets.iter().zip(&Q) {
             for (a, b) in r.q_deg.iter().zip(e) {
                 assert!((a - b).abs() <= 1e-9, "{d:?}: {:?}", r.q_deg);
+            }
+        }
+        if let Some(dat) = data {
+            // The `.src` names the points, the `.dat` declares them (independently read here:
+            // each declaration's values against the axis angles).
+            assert!(
+                text.contains("PTP XP1\n") && text.contains("PTP XP3\n"),
+                "{text}"
+            );
+            assert!(
+                dat.starts_with("&ACCESS RVP\n&REL 1\nDEFDAT POCKET\n"),
+                "{dat}"
+            );
+            let decls: Vec<&str> = dat
+                .lines()
+                .filter(|l| l.starts_with("DECL E6AXIS XP"))
+                .collect();
+            assert_eq!(decls.len(), 3, "{dat}");
+            for (k, (decl, e)) in decls.iter().zip(&Q).enumerate() {
+                let (name, value) = decl["DECL E6AXIS ".len()..].split_once('=').unwrap();
+                assert_eq!(name, format!("XP{}", k + 1));
+                let values: Vec<f64> = (value.trim_matches(['{', '}']).split(','))
+                    .map(|m| m.split_whitespace().nth(1).unwrap().parse().unwrap())
+                    .collect();
+                for (a, b) in values.iter().zip(e) {
+                    assert!((a - b).abs() <= 1e-9, "{decl}");
+                }
             }
         }
     }
@@ -525,5 +558,87 @@ fn an_ls_file_never_numbers_more_lines_than_the_pendant() {
         ls::header(&plan(Dialect::FanucLs, "P", &t, &m))
             .lines()
             .count()
+    );
+}
+
+/// Every name a KRL program written in files states, read from the files here: each file's
+/// `DEF` and its `.dat`'s `DEFDAT` (the file's name, KSS pairs them by it), the main program's
+/// calls, the points `XPn` its motions name and its `.dat` declares.
+fn krl_names(w: &Written) -> Vec<String> {
+    let mut names = Vec::new();
+    for f in &w.files {
+        let dat = f.data.as_deref().unwrap();
+        let def = f.text.lines().find_map(|l| l.strip_prefix("DEF ")).unwrap();
+        let defdat = dat.lines().find_map(|l| l.strip_prefix("DEFDAT ")).unwrap();
+        assert_eq!((def, defdat), (&*format!("{}( )", f.name), f.name.as_str()));
+        names.push(defdat.to_string());
+        let calls = (f.text.lines())
+            .filter_map(|l| l.strip_suffix("( )"))
+            .filter(|l| !l.contains(' '));
+        names.extend(calls.map(String::from));
+        let points =
+            (dat.lines()).filter_map(|l| l.split_once(' ')?.1.split_once(' ')?.1.split_once('='));
+        names.extend(points.map(|(n, _)| n.to_string()));
+    }
+    names
+}
+
+#[test]
+fn every_name_a_krl_program_writes_is_within_the_controllers_length() {
+    // 250 moves in files of 100: a main program calling three sub-programs, each with its .dat.
+    let q: Vec<[f64; 6]> = (0..250)
+        .map(|i| {
+            [
+                Q[0][0] + i as f64 * 1e-3,
+                Q[0][1],
+                Q[0][2],
+                Q[0][3],
+                Q[0][4],
+                Q[0][5],
+            ]
+        })
+        .collect();
+    let t = targets(&q);
+    let mut m = vec![Move::Feed(0.03); t.len()];
+    m[0] = Move::Rapid;
+    let most = max_name_length(Dialect::Krl);
+    assert_eq!(most, 24);
+    // A name of 21 characters: its sub-programs' `_01` make 24, the longest KSS takes.
+    let name = "A".repeat(most - 3);
+    let mut p = plan(Dialect::Krl, &name, &t, &m);
+    p.settings.moves_per_file = 100;
+    let w = generate(&p).unwrap();
+    assert_eq!(w.files.len(), 4);
+    let names = krl_names(&w);
+    assert!(names.contains(&format!("{name}_03")) && names.contains(&"XP100".to_string()));
+    for n in &names {
+        assert!(n.len() <= most, "{n}");
+        check_name(Dialect::Krl, n, most).unwrap();
+    }
+    // One character more: the sub-programs' names would be 25, refused before anything is
+    // written, naming the option.
+    let longer = "A".repeat(most - 2);
+    let e = generate(&Plan { name: &longer, ..p }).unwrap_err();
+    assert!(
+        matches!(&e, Error::InvalidOption { option: JobOption::ProgramName, message } if message.contains("longer than 24")),
+        "{e}"
+    );
+    // A program of one file may take the whole 24; 25 is refused.
+    let one = "B".repeat(most);
+    let few = plan(Dialect::Krl, &one, &t[..3], &m[..3]);
+    assert!(krl_names(&generate(&few).unwrap())
+        .iter()
+        .all(|n| n.len() <= most));
+    let too_long = "B".repeat(most + 1);
+    let e = generate(&plan(Dialect::Krl, &too_long, &t[..3], &m[..3])).unwrap_err();
+    assert!(
+        matches!(
+            &e,
+            Error::InvalidOption {
+                option: JobOption::ProgramName,
+                ..
+            }
+        ),
+        "{e}"
     );
 }

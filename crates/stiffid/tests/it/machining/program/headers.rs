@@ -27,7 +27,8 @@ fn a_date_is_the_calendars() {
     }
 }
 
-fn texts() -> Vec<(Dialect, String)> {
+/// Each language's program of two targets and, for KRL, its `.dat`.
+fn texts() -> Vec<(Dialect, String, Option<String>)> {
     let s = stiffid::setup::parse(SETUP, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap();
     let points = [
         Vector3::new(0.0, 0.0, -0.004),
@@ -59,7 +60,10 @@ fn texts() -> Vec<(Dialect, String)> {
                 pulses: Some(&pulses),
                 settings: Settings::default(),
             };
-            (dialect, generate(&plan).unwrap().files.remove(0).text)
+            {
+                let f = generate(&plan).unwrap().files.remove(0);
+                (dialect, f.text, f.data)
+            }
         })
         .collect()
 }
@@ -70,6 +74,16 @@ fn generated_programs_carry_the_headers_their_controllers_write() {
     assert!(std::env::var("SOURCE_DATE_EPOCH").is_err());
     let texts = texts();
     let krl = &texts[0].1;
+    let dat = texts[0].2.as_deref().unwrap();
+    // The .dat as KSS writes one: its attributes, DEFDAT of the program's name, its points.
+    assert!(
+        dat.starts_with("&ACCESS RVP\n&REL 1\nDEFDAT HEAD\nDECL E6POS XP1={X "),
+        "{dat}"
+    );
+    assert!(
+        dat.ends_with("}\nENDDAT\n") && dat.matches("DECL").count() == 2,
+        "{dat}"
+    );
     assert!(krl.starts_with("&ACCESS RVP\n&REL 1\n&PARAM TEMPLATE = C:\\KRC\\Roboter\\Template\\vorgabe\n&PARAM EDITMASK = *\nDEF HEAD( )\n"), "{krl}");
     let ls = &texts[1].1;
     let numbered = ls
@@ -86,8 +100,16 @@ fn generated_programs_carry_the_headers_their_controllers_write() {
     );
     // Each still reads (the LS and KRL readers the headers of real files; INFORM with the
     // setup's pulses).
-    for (text, d) in [(krl, Dialect::Krl), (ls, Dialect::FanucLs)] {
-        stiffid::machining::read(text, stiffid::machining::Language::Robot(d), 1e-4).unwrap();
+    for (text, data, d) in [(krl, Some(dat), Dialect::Krl), (ls, None, Dialect::FanucLs)] {
+        let context = Context {
+            data,
+            ..Context::default()
+        };
+        assert_eq!(
+            parse_in(text, d, &context).unwrap().targets.len(),
+            2,
+            "{d:?}"
+        );
     }
     let pulses = Pulses {
         per_deg: [1341.25; 6],

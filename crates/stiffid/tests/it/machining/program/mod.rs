@@ -2,6 +2,7 @@
 
 mod arcs;
 mod cartesian;
+mod comments;
 mod controller;
 mod generate;
 mod headers;

@@ -64,7 +64,14 @@ fn square(s: &Setup) -> (Vec<Target>, Vec<Move>) {
     (t, m)
 }
 
-fn read_back(s: &Setup, dialect: Dialect, text: &str, pulses: &Pulses) -> Vec<[f64; 6]> {
+/// The axis angles of `text`'s targets (a KRL program with its `.dat`, `data`), read by
+/// stiffid and resolved on `s`.
+fn read_back(
+    s: &Setup,
+    dialect: Dialect,
+    (text, data): (&str, Option<&str>),
+    pulses: &Pulses,
+) -> Vec<[f64; 6]> {
     let targets = match dialect {
         Dialect::Inform => {
             let c = s.workcell().controller();
@@ -78,7 +85,11 @@ fn read_back(s: &Setup, dialect: Dialect, text: &str, pulses: &Pulses) -> Vec<[f
             parse_in(text, dialect, &context).unwrap().targets
         }
         _ => {
-            let read = machining::read(text, Language::Robot(dialect), 1e-4).unwrap();
+            let context = Context {
+                data,
+                ..Context::default()
+            };
+            let read = machining::read_in(text, Language::Robot(dialect), 1e-4, &context).unwrap();
             let read = machining::resolve(&read, s, None, &Options::for_setup(s)).unwrap();
             let Program::Robot(r) = read.into_owned() else {
                 panic!()
@@ -115,11 +126,11 @@ fn a_tool_and_base_the_controller_holds_are_selected_by_number_and_read_back() {
         ),
     ];
     for (dialect, forms, within) in cases {
-        let text = generate(&plan(&s, dialect, &t, &m, &pulses))
+        let file = generate(&plan(&s, dialect, &t, &m, &pulses))
             .unwrap()
             .files
-            .remove(0)
-            .text;
+            .remove(0);
+        let text = &file.text;
         for form in forms {
             assert!(text.contains(form), "{dialect:?}: {form} in {text}");
         }
@@ -127,14 +138,14 @@ fn a_tool_and_base_the_controller_holds_are_selected_by_number_and_read_back() {
             // The corpus tests' independent LS reader: user frame 2, tool frame 3, each
             // position the target's in user frame 2.
             let base = *s.workcell().controller().bases.get(2).unwrap();
-            for (r, w) in crate::ls_corpus::independent(&text).iter().zip(&t) {
+            for (r, w) in crate::ls_corpus::independent(text).iter().zip(&t) {
                 assert_eq!(r.frames, (2, 3));
                 let p = Vector3::new(r.values[0], r.values[1], r.values[2]) * 1e-3;
                 let want = base.inverse() * w.pose;
                 assert!((p - want.translation.vector).norm() < 1e-11, "{r:?}");
             }
         }
-        let back = read_back(&s, dialect, &text, &pulses);
+        let back = read_back(&s, dialect, (text, file.data.as_deref()), &pulses);
         assert_eq!(back.len(), t.len(), "{dialect:?}");
         for (b, w) in back.iter().zip(&t) {
             let off = (Vector6::from(*b) - Vector6::from(w.q_deg)).amax();

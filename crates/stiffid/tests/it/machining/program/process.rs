@@ -10,7 +10,7 @@ use stiffid_core::Error;
 use stiffid_machining::program::generate::*;
 use stiffid_machining::program::Dialect;
 
-fn corpus(name: &str) -> String {
+pub(super) fn corpus(name: &str) -> String {
     let path = format!(
         "{}/tests/data/programs/gcode/{name}",
         env!("CARGO_MANIFEST_DIR")
@@ -20,7 +20,7 @@ fn corpus(name: &str) -> String {
 
 /// One target per point, at postures a little apart (the process words' places, not the
 /// targets' values, are what these tests read).
-fn targets(n: usize) -> Vec<Target> {
+pub(super) fn targets(n: usize) -> Vec<Target> {
     let robot = stiffid_core::robot::presets::get("fanuc-r2000ic-165f").unwrap();
     (0..n)
         .map(|i| {
@@ -31,9 +31,9 @@ fn targets(n: usize) -> Vec<Target> {
         .collect()
 }
 
-const PULSES: [f64; 6] = [1341.25, 1341.25, 1150.5, 873.4, 873.4, 532.7];
+pub(super) const PULSES: [f64; 6] = [1341.25, 1341.25, 1150.5, 873.4, 873.4, 532.7];
 
-fn plan<'a>(
+pub(super) fn plan<'a>(
     dialect: Dialect,
     t: &'a [Target],
     m: &'a [Move],
@@ -63,7 +63,7 @@ fn plan<'a>(
 }
 
 /// The lines of a program that move the robot, each with its index among all lines.
-fn motion_lines(dialect: Dialect, text: &str) -> Vec<usize> {
+pub(super) fn motion_lines(dialect: Dialect, text: &str) -> Vec<usize> {
     let starts: &[&str] = match dialect {
         Dialect::Krl => &["PTP ", "LIN "],
         Dialect::Rapid => &["MoveL ", "MoveJ ", "MoveAbsJ "],
@@ -86,7 +86,7 @@ fn line_of(text: &str, what: &str) -> usize {
 }
 
 /// The Fusion 360 generic router post's file as found (its setup's workpiece and process).
-fn router() -> gcode::GCode {
+pub(super) fn router() -> gcode::GCode {
     let m = crate::gcode_corpus::machine("workpiece-fusion360.toml", "process-fusion360.toml");
     gcode::parse_on(&corpus("fusion360-generic-router.nc"), 1e-5, &m).unwrap()
 }
@@ -186,6 +186,7 @@ fn the_fusion_routers_process_words_are_kept_in_every_language_as_mapped_or_name
             words: &g.process,
             before: &before,
             io: Some(&io),
+            ..Default::default()
         };
         for targets in Targets::ALL {
             let p = plan(dialect, &t, &moves, &pulses, targets);
@@ -268,6 +269,7 @@ fn process_words_are_written_between_the_motions_the_gcode_puts_them_between() {
         words: &g.process,
         before: &before,
         io: None,
+        ..Default::default()
     };
     let p = plan(Dialect::Krl, &t, &moves, &pulses, Targets::Joint);
     let written = generate_with(&p, &process).unwrap();
@@ -356,6 +358,7 @@ fn an_action_the_language_cannot_write_or_a_value_not_given_is_refused_naming_th
             words: &g.process,
             before: &before,
             io: Some(&io),
+            ..Default::default()
         };
         let p = plan(dialect, &t, &moves, &pulses, Targets::Joint);
         match generate_with(&p, &process) {
@@ -372,6 +375,7 @@ fn an_action_the_language_cannot_write_or_a_value_not_given_is_refused_naming_th
         words: &g.process,
         before: &before,
         io: Some(rapid.as_ref().unwrap()),
+        ..Default::default()
     };
     let p = plan(Dialect::Rapid, &t, &moves, &pulses, Targets::Joint);
     let text = &generate_with(&p, &process).unwrap().files[0].text;
@@ -389,6 +393,7 @@ fn an_action_the_language_cannot_write_or_a_value_not_given_is_refused_naming_th
         words: &g.process,
         before: &before,
         io: Some(&io),
+        ..Default::default()
     };
     let t = targets(1);
     let p = plan(Dialect::Krl, &t, &[Move::Rapid], &pulses, Targets::Joint);
@@ -636,6 +641,7 @@ fn every_name_written_in_every_language_is_within_the_controllers_length() {
             words: &g.process,
             before: &before,
             io: Some(&io),
+            ..Default::default()
         };
         let mut p = plan(dialect, &t, &moves, &pulses, Targets::Joint);
         p.name = &name;
@@ -703,6 +709,7 @@ fn an_ls_files_process_lines_count_toward_the_pendants_line_numbers() {
         words: &words,
         before: &before,
         io: None,
+        ..Default::default()
     };
     let mut p = plan(Dialect::FanucLs, &t, &moves, &pulses, Targets::Joint);
     p.settings.moves_per_file = 1_000_000;
@@ -752,6 +759,7 @@ fn an_m_word_of_no_event_is_a_comment_named_in_the_warning() {
         words: &g.process,
         before: &before,
         io: Some(&io),
+        ..Default::default()
     };
     let pulses = Pulses {
         per_deg: PULSES,

@@ -32,7 +32,7 @@ fn setup() -> stiffid::Setup {
 
 /// The first `n` motions of the pocket with its literal frames, and its end.
 fn literal(n: usize) -> String {
-    let text = std::fs::read_to_string(format!("{MILLING}/pocket.src")).unwrap();
+    let text = crate::common::pocket_krl();
     let mut out = String::new();
     let mut motions = 0;
     for l in text.lines() {
