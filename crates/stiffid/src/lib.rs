@@ -41,23 +41,7 @@ pub use stiffid_identify as identify;
 pub use stiffid_machining as machining;
 pub use stiffid_metrology as metrology;
 
-pub mod app {
-    //! The jobs of every crate under one path: one entry point per use case, run the same way by
-    //! every front end (the pattern: `stiffid_core::app`).
-    pub use stiffid_calibrate::app::{calibrate, calibrate_cell, register};
-    pub use stiffid_core::app::{in_data, kinematics, predict, setups_new, Warning, WarningKind};
-    pub use stiffid_design::app::{evaluate, plan, purpose, reproduce, select, simulate};
-    pub use stiffid_identify::app::{identify, measurements, validate};
-    pub use stiffid_machining::app::{compensate, force, place};
-    pub use stiffid_metrology::app::readings;
-
-    pub mod document {
-        //! The documents' parts the jobs share.
-        pub use stiffid_core::app::document::*;
-        pub use stiffid_design::app::document::{candidates, group};
-        pub use stiffid_view as scene;
-    }
-}
+pub mod app;
 
 /// The Rust examples of the README, run as doctests.
 #[doc = include_str!("../../../README.md")]

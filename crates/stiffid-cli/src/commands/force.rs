@@ -7,8 +7,8 @@ use crate::progress::Bars;
 use anyhow::Result;
 use std::path::PathBuf;
 use stiffid_core::Progress;
-use stiffid_machining::app::force::document::Document;
-use stiffid_machining::app::force::{self, Request};
+use stiffid::app::force::document::Document;
+use stiffid::app::force::{self, Request};
 use stiffid_machining::process::file;
 
 /// Arguments of `stiffid force`.

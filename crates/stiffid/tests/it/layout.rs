@@ -7,16 +7,24 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
-/// The library crates, from the ground up, and this facade last.
-const CRATES: [&str; 8] = [
+/// The library crates, from the ground up: core, the science, the views, and this facade (the
+/// jobs) last.
+const CRATES: [&str; 7] = [
     "stiffid-core",
-    "stiffid-view",
     "stiffid-metrology",
     "stiffid-identify",
     "stiffid-design",
-    "stiffid-calibrate",
     "stiffid-machining",
+    "stiffid-view",
     "stiffid",
+];
+
+/// The science crates: each depends only on core and the science it uses.
+const SCIENCE: [&str; 4] = [
+    "stiffid-metrology",
+    "stiffid-identify",
+    "stiffid-design",
+    "stiffid-machining",
 ];
 
 fn crate_dir(name: &str) -> PathBuf {
@@ -42,7 +50,8 @@ fn sources(dir: &Path, out: &mut Vec<PathBuf>) {
     }
 }
 
-/// The library crates a crate's manifest depends on (`[dependencies]`, not the dev-dependencies).
+/// The workspace's crates a crate's manifest depends on (`[dependencies]`, not the
+/// dev-dependencies).
 fn crate_dependencies(name: &str) -> BTreeSet<String> {
     let manifest = std::fs::read_to_string(crate_dir(name).join("Cargo.toml")).unwrap();
     let deps = (manifest
@@ -51,9 +60,42 @@ fn crate_dependencies(name: &str) -> BTreeSet<String> {
     .unwrap_or_default();
     (deps.lines())
         .filter_map(|l| l.split(['.', ' ', '=']).next())
-        .filter(|d| CRATES.contains(d))
+        .filter(|d| d.starts_with("stiffid"))
         .map(String::from)
         .collect()
+}
+
+/// The floors: a science crate depends only on core and the science below it (not on the
+/// views, the jobs or a front end); the views only on core; the jobs (the facade) on every
+/// library crate and on nothing above (the figures and the front ends stand on it).
+#[test]
+fn science_below_views_below_jobs_below_front_ends() {
+    for name in SCIENCE {
+        let deps = crate_dependencies(name);
+        let allowed = |d: &String| d == "stiffid-core" || SCIENCE.contains(&d.as_str());
+        let above: Vec<&String> = deps.iter().filter(|d| !allowed(d)).collect();
+        assert!(above.is_empty(), "{name} depends on {above:?}, above the science");
+        assert!(deps.contains("stiffid-core"), "{name}: {deps:?}");
+    }
+    let view = crate_dependencies("stiffid-view");
+    assert_eq!(view, ["stiffid-core".to_string()].into(), "stiffid-view: {view:?}");
+    let jobs = crate_dependencies("stiffid");
+    let library: BTreeSet<String> = CRATES[..CRATES.len() - 1].iter().map(|c| c.to_string()).collect();
+    assert_eq!(jobs, library, "the facade (the jobs) stands on every library crate, nothing above");
+    for above in ["stiffid-figures", "stiffid-cli", "stiffid-py"] {
+        let deps = crate_dependencies(above);
+        assert!(deps.contains("stiffid"), "{above} uses the jobs through the facade: {deps:?}");
+    }
+    assert!(!crate_dir("stiffid-calibrate").exists(), "the calibration jobs are the facade's");
+}
+
+/// The jobs live in the facade: no other library crate has an `app/` folder.
+#[test]
+fn only_the_facade_holds_jobs() {
+    for name in CRATES {
+        let app = src_of(name).join("app");
+        assert_eq!(app.is_dir(), name == "stiffid", "{}", app.display());
+    }
 }
 
 #[test]
@@ -443,7 +485,7 @@ fn job_folder<'a>(name: &str, file: &'a str) -> Option<&'a str> {
     (job != "document" && src_of(name).join("app").join(job).is_dir()).then_some(job)
 }
 
-/// The job folders of other crates that a file's code names (`stiffid_design::app::select`).
+/// The job folders of other crates that a file's code names (`stiffid::app::select`).
 fn other_jobs(code: &str) -> Vec<String> {
     let code = strip(code);
     let mut found = Vec::new();
@@ -494,25 +536,22 @@ fn no_job_folder_imports_another() {
             }
         }
     }
-    let design = file_graph("stiffid-design");
+    let jobs = file_graph("stiffid");
     assert!(
-        (design["app/plan/document"].iter()).any(|t| t.starts_with("app/document")),
-        "{design:?}"
+        (jobs["app/plan/document"].iter()).any(|t| t.starts_with("app/document")),
+        "{jobs:?}"
     );
     assert!(
         crossing.is_empty(),
         "move what jobs share to an app/document: {crossing:#?}"
     );
+    assert_eq!(job_folder("stiffid", "app/select/document"), Some("select"));
+    assert_eq!(job_folder("stiffid", "app/select"), Some("select"));
+    assert_eq!(job_folder("stiffid", "app/document/mass"), None);
+    assert_eq!(job_folder("stiffid", "app/readings"), None);
     assert_eq!(
-        job_folder("stiffid-design", "app/select/document"),
-        Some("select")
-    );
-    assert_eq!(job_folder("stiffid-design", "app/select"), Some("select"));
-    assert_eq!(job_folder("stiffid-core", "app/document/mass"), None);
-    assert_eq!(job_folder("stiffid-metrology", "app/readings"), None);
-    assert_eq!(
-        other_jobs("use stiffid_core::app::predict::Request;"),
-        ["stiffid-core: predict"]
+        other_jobs("use stiffid::app::predict::Request;"),
+        ["stiffid: predict"]
     );
 }
 
@@ -592,7 +631,7 @@ fn the_public_surface_is_the_one_architecture_lists() {
     }
     let core =
         public_surface(&std::fs::read_to_string(src_of("stiffid-core").join("lib.rs")).unwrap());
-    assert!(core.contains("app") && core.contains("Setup"), "{core:?}");
+    assert!(!core.contains("app") && core.contains("Setup"), "{core:?}");
     // The parsers themselves.
     let lib = "#![deny(x)]\npub mod a;\nmod hidden;\npub use x::{B, c::D};\n/// pub mod not_code;\npub fn e() {}\nimpl X {\n    pub fn inner() {}\n}\npub struct F;\n#[cfg(doctest)]\npub struct G;\npub use h as i;\n";
     assert_eq!(

@@ -11,7 +11,7 @@ use stiffid::app::measurements::Data;
 use stiffid::design::random_group;
 use stiffid::identify::compare::bootstrap::percentile;
 use stiffid::identify::compare::{bootstrap, compare, Resampling};
-use stiffid::machining::app::compensate::ranking::{Ranking, RankingDocument};
+use stiffid::app::compensate::ranking::{Ranking, RankingDocument};
 use stiffid::machining::compensate::{self, Options as CompensateOptions, PathPoint, Target};
 use stiffid::observation::deflection::{Frame, Points};
 use stiffid::observation::Measurement;

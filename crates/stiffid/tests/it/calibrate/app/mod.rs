@@ -1,3 +1,3 @@
-//! The calibrate crate's jobs (`stiffid_calibrate::app`).
+//! The calibrate crate's jobs (`stiffid::app`).
 
 mod calibrate;

@@ -5,7 +5,7 @@ fn csv_text_quotes_only_the_fields_that_need_it_and_reads_back() {
         vec!["a,b".to_string(), "floor; \"rope\" blocked".to_string()],
         vec!["plain".to_string(), String::new()],
     ];
-    let text = stiffid_core::app::document::csv_text(&header, rows.clone());
+    let text = stiffid::app::document::csv_text(&header, rows.clone());
     assert_eq!(
         text,
         "name,checks\n\"a,b\",\"floor; \"\"rope\"\" blocked\"\nplain,\n"

@@ -1,5 +1,5 @@
 use std::path::Path;
-use stiffid_core::app::setups_new::*;
+use stiffid::app::setups_new::*;
 use stiffid_core::robot::presets;
 
 #[test]

@@ -1,3 +1,3 @@
-//! The identify crate's jobs (`stiffid_identify::app`).
+//! The identify crate's jobs (`stiffid::app`).
 
 mod identify;

@@ -1,4 +1,4 @@
-//! The machining crate's jobs (`stiffid_machining::app`).
+//! The machining crate's jobs (`stiffid::app`).
 
 mod compensate;
 mod place;

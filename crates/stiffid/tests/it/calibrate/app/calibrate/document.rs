@@ -1,8 +1,8 @@
-//! The calibration's document (`stiffid_calibrate::app::calibrate::document`): held-out intervals
+//! The calibration's document (`stiffid::app::calibrate::document`): held-out intervals
 //! outside the fitted ranges.
 
-use stiffid_calibrate::app::calibrate::document::*;
-use stiffid_calibrate::app::calibrate::{Held, Outside};
+use stiffid::app::calibrate::document::*;
+use stiffid::app::calibrate::{Held, Outside};
 use stiffid_metrology::calibration::validation::PointError as Error;
 use stiffid_metrology::calibration::validation::Validation;
 

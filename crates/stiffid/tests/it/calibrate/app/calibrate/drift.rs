@@ -1,6 +1,6 @@
-//! The drift check of a calibrated robot (`stiffid_calibrate::app::calibrate::drift`).
+//! The drift check of a calibrated robot (`stiffid::app::calibrate::drift`).
 
-use stiffid_calibrate::app::calibrate::drift::{allowed, noise_length};
+use stiffid::app::calibrate::drift::{allowed, noise_length};
 
 #[test]
 fn the_noise_floor_is_the_chi_quantile_of_three_coordinates() {

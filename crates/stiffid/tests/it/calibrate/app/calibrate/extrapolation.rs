@@ -1,8 +1,8 @@
 //! Held-out readings where the calibration extrapolates
-//! (`stiffid_calibrate::app::calibrate::extrapolation`).
+//! (`stiffid::app::calibrate::extrapolation`).
 
 use nalgebra::{Vector3, Vector6};
-use stiffid_calibrate::app::calibrate::extrapolation::*;
+use stiffid::app::calibrate::extrapolation::*;
 use stiffid_core::common::warning::{Warning, WarningKind};
 use stiffid_metrology::calibration::error_model::Observation;
 use stiffid_metrology::calibration::validation::{PointError, Validation};

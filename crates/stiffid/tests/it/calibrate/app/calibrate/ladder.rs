@@ -1,6 +1,6 @@
-//! The ladder of gravity models and maps (`stiffid_calibrate::app::calibrate::ladder`).
+//! The ladder of gravity models and maps (`stiffid::app::calibrate::ladder`).
 
-use stiffid_calibrate::app::calibrate::ladder::*;
+use stiffid::app::calibrate::ladder::*;
 use stiffid_metrology::calibration::gravity::Gravity;
 
 fn rung(errors: Vec<f64>) -> Rung {

@@ -1,4 +1,4 @@
-//! The calibrate job's parts (`stiffid_calibrate::app::calibrate`).
+//! The calibrate job's parts (`stiffid::app::calibrate`).
 
 mod document;
 mod drift;

@@ -1,10 +1,10 @@
-//! Where the robot is used (`stiffid_calibrate::app::calibrate::region`) and the bound from the
+//! Where the robot is used (`stiffid::app::calibrate::region`) and the bound from the
 //! fit where the jackknife+ has none (`fit_bound`).
 
 use nalgebra::Vector6;
 use stiffid::common::limits::JointBox;
-use stiffid_calibrate::app::calibrate::fit_bound::half_width;
-use stiffid_calibrate::app::calibrate::region::region;
+use stiffid::app::calibrate::fit_bound::half_width;
+use stiffid::app::calibrate::region::region;
 
 fn deg(v: [f64; 6]) -> Vector6<f64> {
     Vector6::from(v).map(f64::to_radians)

@@ -1,3 +1,3 @@
-//! The identify job's parts (`stiffid_identify::app::identify`).
+//! The identify job's parts (`stiffid::app::identify`).
 
 mod folds;

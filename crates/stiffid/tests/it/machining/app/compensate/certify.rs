@@ -1,6 +1,6 @@
-//! Each target's bound in a program (`stiffid_machining::app::compensate::certify`).
+//! Each target's bound in a program (`stiffid::app::compensate::certify`).
 
-use stiffid_machining::app::compensate::certify::*;
+use stiffid::app::compensate::certify::*;
 use stiffid_machining::program::Dialect;
 
 #[test]

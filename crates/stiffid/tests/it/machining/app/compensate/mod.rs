@@ -1,4 +1,4 @@
-//! The compensate job's parts (`stiffid_machining::app::compensate`).
+//! The compensate job's parts (`stiffid::app::compensate`).
 
 mod certify;
 mod pulses;

@@ -1,10 +1,10 @@
 //! A job in encoder pulses against the bound it must keep
-//! (`stiffid_machining::app::compensate::resolution`): coarse pulses (`pulses_per_deg = [1, ..]`,
+//! (`stiffid::app::compensate::resolution`): coarse pulses (`pulses_per_deg = [1, ..]`,
 //! a whole degree per pulse) are refused naming the field, the controller's own are written.
 
 use nalgebra::Vector6;
 use stiffid::app::compensate::{self, Input};
-use stiffid::machining::app::compensate::resolution::rounding;
+use stiffid::app::compensate::resolution::rounding;
 use stiffid::machining::compensate::Options;
 use stiffid::machining::program::generate::Settings;
 use stiffid::machining::program::Dialect;

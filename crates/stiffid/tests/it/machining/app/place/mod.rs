@@ -1,4 +1,4 @@
-//! The place job's parts (`stiffid_machining::app::place`).
+//! The place job's parts (`stiffid::app::place`).
 
 mod free;
 mod search;

@@ -1,6 +1,6 @@
-//! The placement's search (`stiffid_machining::app::place::search`).
+//! The placement's search (`stiffid::app::place::search`).
 
-use stiffid_machining::app::place::search::*;
+use stiffid::app::place::search::*;
 
 fn space() -> Space {
     Space {

@@ -1,8 +1,8 @@
-//! The setup written with the placement (`stiffid_machining::app::place::written`).
+//! The setup written with the placement (`stiffid::app::place::written`).
 
 use nalgebra::Isometry3;
 use nalgebra::{Translation3, UnitQuaternion};
-use stiffid_machining::app::place::written::*;
+use stiffid::app::place::written::*;
 
 #[test]
 fn the_workpiece_table_is_replaced_and_the_rest_kept() {
