@@ -134,7 +134,7 @@ fn compose(w: &mut dyn Writer, doc: &Document, figures: &[Figure], scene: &Scene
 /// beside the geometry's, the region where the spread was judged.
 fn ladder_section(
     w: &mut dyn Writer,
-    l: &stiffid::app::calibrate::ladder::LadderDocument,
+    l: &stiffid::app::calibrate::document::LadderDocument,
 ) {
     w.heading(2, "The model chosen");
     let geometry = l.rungs.first().and_then(|r| r.held_out_rms_mm);

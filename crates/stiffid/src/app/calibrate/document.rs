@@ -16,6 +16,7 @@ use stiffid_metrology::calibration::validation::Validation;
 use stiffid_view as scene;
 
 use super::maps_document::maps_document;
+pub use super::ladder_document::{LadderDocument, RungDocument};
 pub use super::maps_document::{MapTried, MapsDocument, MapsNested};
 
 /// The robot calibration: every parameter with its value and standard deviation, what the
@@ -88,7 +89,7 @@ pub struct Document {
     /// With `--gravity auto` or `--maps auto`: the models tried (the gravity models without and
     /// with the maps), each one's held-out error over groups of postures, and the one fitted;
     /// `null` when the model was given.
-    pub ladder: Option<super::ladder::LadderDocument>,
+    pub ladder: Option<LadderDocument>,
     /// With `--update`: the check readings' errors with the calibrated robot before the update
     /// against the calibration's held-out error bound, and whether it drifted beyond them;
     /// `null` otherwise, or without `[held_out]` in the robot file.
@@ -382,7 +383,7 @@ impl Document {
             ladder: report
                 .ladder
                 .as_ref()
-                .map(super::ladder::LadderDocument::new),
+                .map(LadderDocument::new),
             check: (report.check.as_ref())
                 .map(|c| super::drift::CheckDocument::new(c, &report.nominal, &report.labels)),
             validation: report.validation.as_ref().map(held),

@@ -20,19 +20,20 @@ mod chosen;
 mod compliance;
 pub mod document;
 pub mod drift;
-pub mod extrapolation;
 mod files;
-pub mod fit_bound;
 mod held;
-mod judge;
-pub mod ladder;
-use judge::{judge, largest_residual};
-mod maps;
+mod ladder_document;
 mod maps_document;
 mod part;
-pub mod region;
 pub mod scene;
 pub mod update;
+
+pub use stiffid_metrology::calibration::judgement::{extrapolation, fit_bound, ladder, region};
+pub use stiffid_metrology::calibration::judgement::{
+    MIN_DEGREES_OF_FREEDOM, MISFIT_RATIO, WEAK_CONDITION,
+};
+use stiffid_metrology::calibration::judgement::judge::{judge, largest_residual};
+use stiffid_metrology::calibration::judgement::maps;
 
 pub use compliance::{fitted_compliance, FittedCompliance};
 pub use extrapolation::Outside;
@@ -65,16 +66,6 @@ pub use stiffid_core::io::readings::MAX_READINGS;
 /// Most postures cross-validation takes (one Gauss-Newton step from the full fit per posture;
 /// the held-out readings' intervals the same folds).
 pub const MAX_CROSS_VALIDATION_POSTURES: usize = 5000;
-
-/// The noise ratio above which the job warns that the model misses something.
-pub const MISFIT_RATIO: f64 = 3.0;
-
-/// The residual degrees of freedom below which the job warns that the readings are too few.
-pub const MIN_DEGREES_OF_FREEDOM: usize = 10;
-
-/// The condition number of the scaled identification Jacobian above which the job warns that
-/// some parameters are weakly determined.
-pub const WEAK_CONDITION: f64 = 1e6;
 
 /// Nominal tolerances of the joint errors, as priors.
 #[derive(Debug, Clone, Copy, PartialEq)]

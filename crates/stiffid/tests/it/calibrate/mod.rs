@@ -1,3 +1,4 @@
-//! The calibrate crate's tests (`stiffid_calibrate`), through its public paths.
+//! The calibration jobs' tests (`stiffid::app::calibrate`, `calibrate_cell`, `register`),
+//! through their public paths.
 
 mod app;

@@ -5,13 +5,13 @@ use super::{Warning, WarningKind, MIN_DEGREES_OF_FREEDOM, MISFIT_RATIO, WEAK_CON
 use nalgebra::DVector;
 use stiffid_core::common::limits;
 use stiffid_core::io::readings::Readings as Data;
-use stiffid_metrology::calibration::fit::{self, Fit};
-use stiffid_metrology::calibration::ErrorModel;
+use crate::calibration::fit::{self, Fit};
+use crate::calibration::ErrorModel;
 
 /// The reading with the longest residual (`residuals`: three coordinates per reading of `data`,
 /// m), as a clause of the misfit warning: one bad reading raises the noise ratio as a missing
 /// model term does.
-pub(super) fn largest_residual(data: &Data, residuals: &DVector<f64>) -> String {
+pub fn largest_residual(data: &Data, residuals: &DVector<f64>) -> String {
     let longest = (residuals.as_slice().chunks_exact(3))
         .map(|r| nalgebra::Vector3::from_column_slice(r).norm())
         .enumerate()
@@ -29,7 +29,7 @@ pub(super) fn largest_residual(data: &Data, residuals: &DVector<f64>) -> String 
 }
 
 /// The warnings about the fit.
-pub(super) fn judge(model: &ErrorModel, fit: &Fit, noise_ratio: f64, name: &str) -> Vec<Warning> {
+pub fn judge(model: &ErrorModel, fit: &Fit, noise_ratio: f64, name: &str) -> Vec<Warning> {
     let not_converged = fit::stop_warning(fit.stop, fit.iterations);
     let mut w: Vec<Warning> = not_converged.into_iter().collect();
     let id = &fit.identifiability;

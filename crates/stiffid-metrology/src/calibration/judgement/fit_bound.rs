@@ -21,10 +21,10 @@
 use statrs::distribution::{ContinuousCDF, Normal};
 use stiffid_core::model::prediction::Interval;
 use stiffid_core::Result;
-use stiffid_metrology::calibration::error_model::{Estimate, Observation};
-use stiffid_metrology::calibration::fit::Fit;
-use stiffid_metrology::calibration::validation::Fold;
-use stiffid_metrology::calibration::ErrorModel;
+use crate::calibration::error_model::{Estimate, Observation};
+use crate::calibration::fit::Fit;
+use crate::calibration::validation::Fold;
+use crate::calibration::ErrorModel;
 
 /// The readings whose Jacobian is computed together.
 const CHUNK: usize = 1024;

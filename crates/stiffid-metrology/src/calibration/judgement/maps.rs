@@ -1,14 +1,14 @@
-//! The joint error maps of a calibration ([`stiffid_metrology::calibration::maps`]): the choice by
+//! The joint error maps of a calibration ([`crate::calibration::maps`]): the choice by
 //! cross-validation inside the fitted readings, its nested held-out gain, and the fit with the
 //! maps chosen.
 
 use nalgebra::Vector6;
 use stiffid_core::common::error::JobOption;
 use stiffid_core::{Error, Result};
-use stiffid_metrology::calibration::error_model::Observation;
-use stiffid_metrology::calibration::fit::{self, Fit, Options};
-use stiffid_metrology::calibration::maps::{self, Choice, JointMaps, Linear, Nested, Spec};
-use stiffid_metrology::calibration::ErrorModel;
+use crate::calibration::error_model::Observation;
+use crate::calibration::fit::{self, Fit, Options};
+use crate::calibration::maps::{self, Choice, JointMaps, Linear, Nested, Spec};
+use crate::calibration::ErrorModel;
 
 /// The most work the maps' choice takes on: readings x (map coefficients)^2, the cost of its
 /// cross-validated fits (about 1.2e-7 s of CPU each: a minute of CPU at this bound, half of it
@@ -34,7 +34,7 @@ pub struct Maps {
 /// The maps of `spec` assessed at a fit: the report with the nested held-out figure (the choice
 /// not yet made on every posture), and the linearised fit the choice is made on; or, when no map
 /// is considered, the report saying why (and for the ladder the held-out errors without maps).
-pub(super) struct Assessed {
+pub struct Assessed {
     /// What the maps' choice found so far.
     pub maps: Maps,
     /// The calibration linearised at the fit with the candidate maps' columns, when maps are
@@ -51,7 +51,7 @@ pub(super) struct Assessed {
 /// # Errors
 /// [`Error::InvalidOption`] ([`JobOption::Maps`]) for fixed maps beyond [`MAX_MAP_WORK`] or a
 /// backlash term without directions; those of [`Linear::at`] and [`maps::nested`].
-pub(super) fn assess(
+pub fn assess(
     spec: Spec,
     model: &ErrorModel,
     fitted: &Fit,
@@ -68,7 +68,7 @@ pub(super) fn assess(
 ///
 /// # Errors
 /// Those of [`assess`] and [`maps::nested_given`].
-pub(super) fn assess_given(
+pub fn assess_given(
     spec: Spec,
     (model, fitted): (&ErrorModel, &Fit),
     observations: &[Observation],
@@ -188,7 +188,7 @@ fn skipped(
 ///
 /// # Errors
 /// Those of [`ErrorModel::with_maps`], [`maps::choose`], [`fit::start`] and [`fit::fit`].
-pub(super) fn fit_maps(
+pub fn fit_maps(
     assessed: Assessed,
     keep: std::result::Result<(), String>,
     (model, fitted): (ErrorModel, Fit),

@@ -5,13 +5,13 @@
 //! In order of complexity, each gravity model ([`GRAVITY_RUNGS`]: the rigid robot, the arm's
 //! three terms (skipped, saying why, on a robot that is not an anthropomorphic arm), the lumped
 //! bodies, the lumped links, the known masses where the robot gives them) without joint error
-//! maps and then with the maps of `--maps` (chosen by [`stiffid_metrology::calibration::maps`]
+//! maps and then with the maps of `--maps` (chosen by [`crate::calibration::maps`]
 //! inside every training set). A fixed `--gravity` is a ladder of one gravity model, `--maps none`
 //! or fixed maps one maps variant; a ladder of one rung is not climbed.
 //!
 //! # The held-out figure
 //! Each rung is fitted to every reading (its gravity terms bounded by
-//! [`stiffid_metrology::calibration::fit::GravityPrior`]); a rung whose fit does not converge or
+//! [`crate::calibration::fit::GravityPrior`]); a rung whose fit does not converge or
 //! whose scaled Jacobian's condition exceeds [`super::WEAK_CONDITION`] is skipped (the simpler
 //! model kept), and so is a gravity model that extrapolates: one whose expected error where the
 //! robot is used ([`super::region`]: the postures of the campaign and of the setup, with a
@@ -22,9 +22,9 @@
 //! takes do not turn a model down.
 //! The postures are dealt into [`FOLDS`] groups (posture `i` in group `i mod K`); each group is
 //! predicted by the rung refitted without it (linearised at the rung's fit, as the maps' choice:
-//! [`stiffid_metrology::calibration::maps::nested`], the maps chosen on each training set at the
+//! [`crate::calibration::maps::nested`], the maps chosen on each training set at the
 //! first gravity model's fit and kept for the others, each one's ridge chosen anew:
-//! [`stiffid_metrology::calibration::maps::nested_given`]), which gives every held-out posture
+//! [`crate::calibration::maps::nested_given`]), which gives every held-out posture
 //! its squared error under every rung, paired.
 //!
 //! # The choice (one standard error)
@@ -39,12 +39,12 @@ use super::WEAK_CONDITION;
 use stiffid_core::common::choice::Choice;
 use stiffid_core::common::limits::JointBox;
 use stiffid_core::Result;
-use stiffid_metrology::calibration::error_model::Observation;
-use stiffid_metrology::calibration::fit::{stop_warning, Fit, Options};
-use stiffid_metrology::calibration::gravity::Gravity;
-use stiffid_metrology::calibration::maps::{Spec, FOLDS};
-use stiffid_metrology::calibration::spread::region_sd;
-use stiffid_metrology::calibration::{motions, ErrorModel, Estimate};
+use crate::calibration::error_model::Observation;
+use crate::calibration::fit::{stop_warning, Fit, Options};
+use crate::calibration::gravity::Gravity;
+use crate::calibration::maps::{Spec, FOLDS};
+use crate::calibration::spread::region_sd;
+use crate::calibration::{motions, ErrorModel, Estimate};
 
 /// The gravity models of `--gravity auto`, in order of complexity ([`Gravity::Masses`] only on a
 /// robot with link masses).
@@ -178,7 +178,7 @@ pub fn choose(rungs: &[Rung]) -> usize {
 }
 
 /// One gravity model fitted to every reading.
-pub(super) struct Fitted {
+pub struct Fitted {
     /// The error model (with its error motions and loads).
     pub model: ErrorModel,
     /// The fit's start.
@@ -191,7 +191,7 @@ pub(super) struct Fitted {
 
 /// What the ladder chose: the rung's fit, its maps assessed and whether they are kept (or why
 /// not), and the ladder (`None` for a ladder of one rung).
-pub(super) struct Climbed {
+pub struct Climbed {
     /// The chosen gravity model's fit.
     pub fitted: Fitted,
     /// Its maps assessed.
@@ -209,7 +209,7 @@ pub(super) struct Climbed {
 /// # Errors
 /// Those of `fit`, `check` and [`assess`] for the first gravity model (a later one that fails is
 /// skipped).
-pub(super) fn climb(
+pub fn climb(
     (gravity, maps): (GravitySpec, Spec),
     masses: bool,
     (obs, region): (&[Observation], &JointBox),
@@ -398,67 +398,5 @@ fn unscored(gravity: Gravity, maps: bool, skipped: Option<String>) -> Rung {
         skipped,
         spread: None,
         errors: Vec::new(),
-    }
-}
-
-/// The ladder in the calibration's document.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
-#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct LadderDocument {
-    /// The groups of postures held out in turn (posture `i` in group `i mod folds`); 0 when
-    /// the ladder was not climbed (too few postures: its first rung fitted).
-    pub folds: usize,
-    /// The rungs, simplest first: the gravity models without maps, then with them.
-    pub rungs: Vec<RungDocument>,
-    /// The rung fitted: the simplest within one standard error of the best held-out error.
-    pub chosen: usize,
-    /// The lower ends of the region of axis angles where the robot is used, over which each
-    /// rung's `workspace_sd_mm` is taken (the fitted and held-out postures and the setup's test
-    /// postures, widened by 10 % of each axis's range and at least 5 deg, within the joint limits
-    /// and the setup's bounds), deg.
-    pub region_lower_deg: [f64; 6],
-    /// The upper ends of that region, deg.
-    pub region_upper_deg: [f64; 6],
-}
-
-/// A rung of the ladder in the document.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
-#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct RungDocument {
-    /// Its gravity terms: `none`, `arm`, `lumped`, `lumped-links` or `masses`.
-    pub gravity: &'static str,
-    /// Whether it fits the joint error maps (chosen inside each training set).
-    pub maps: bool,
-    /// Its held-out RMS error over the groups (the nested figure), mm; `null` when not scored
-    /// (a fit that does not converge, is ill-conditioned or fails; a model skipped because it
-    /// extrapolates keeps its figure).
-    pub held_out_rms_mm: Option<f64>,
-    /// Why it was skipped; `null` when scored.
-    pub skipped: Option<String>,
-    /// The RMS standard deviation of its gravity model's predicted positions over postures
-    /// spread over the region where the robot is used (`region_lower_deg` to
-    /// `region_upper_deg`), from the fit's covariance, mm: how far the readings determine it
-    /// where the robot works; `null` when not computed.
-    pub workspace_sd_mm: Option<f64>,
-}
-
-impl LadderDocument {
-    /// The document of `ladder`.
-    pub fn new(ladder: &Ladder) -> Self {
-        LadderDocument {
-            folds: ladder.folds,
-            rungs: (ladder.rungs.iter())
-                .map(|r| RungDocument {
-                    gravity: r.gravity.name(),
-                    maps: r.maps,
-                    held_out_rms_mm: r.rms.map(crate::app::document::mm),
-                    skipped: r.skipped.clone(),
-                    workspace_sd_mm: r.spread.map(crate::app::document::mm),
-                })
-                .collect(),
-            chosen: ladder.chosen,
-            region_lower_deg: ladder.region.lower.map(f64::to_degrees).into(),
-            region_upper_deg: ladder.region.upper.map(f64::to_degrees).into(),
-        }
     }
 }

@@ -9,8 +9,8 @@ use super::{Warning, WarningKind};
 use nalgebra::Vector6;
 use stiffid_core::common::warning::joint_list;
 use stiffid_core::io::readings::point_name;
-use stiffid_metrology::calibration::error_model::Observation;
-use stiffid_metrology::calibration::validation::Validation;
+use crate::calibration::error_model::Observation;
+use crate::calibration::validation::Validation;
 
 /// How far a held-out posture's axis angle may lie beyond the fitted postures' range before it
 /// is named as outside it: 1 degree.

@@ -17,7 +17,7 @@
 use nalgebra::Vector6;
 use stiffid_core::common::limits::JointBox;
 use stiffid_core::Setup;
-use stiffid_metrology::calibration::error_model::Observation;
+use crate::calibration::error_model::Observation;
 
 /// The share of each axis's range by which the region is widened on either side: 10 %.
 pub const MARGIN_SHARE: f64 = 0.1;
