@@ -6,14 +6,14 @@ use crate::error::{raise, value};
 use nalgebra::Vector6;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use stiffid_core::common::choice::Choice;
-use stiffid_core::common::limits::{self, check_count};
-use stiffid_core::Setup;
 use stiffid::app::purpose::{CalibrationOptions, Purpose};
 use stiffid::app::{evaluate, select};
 use stiffid::app::{
     evaluate::document::Document as Evaluated, select::document::Document as Selected,
 };
+use stiffid_core::common::choice::Choice;
+use stiffid_core::common::limits::{self, check_count};
+use stiffid_core::Setup;
 use stiffid_design::distinct::Distinctness;
 use stiffid_design::SearchOptions;
 

@@ -408,9 +408,7 @@ fn check_text(c: Option<&stiffid::app::calibrate::drift::CheckDocument>) -> Stri
 }
 
 /// The ladder's lines: each rung's held-out error over groups of postures, the one fitted.
-fn ladder_text(
-    ladder: Option<&stiffid::app::calibrate::document::LadderDocument>,
-) -> String {
+fn ladder_text(ladder: Option<&stiffid::app::calibrate::document::LadderDocument>) -> String {
     let Some(l) = ladder else {
         return String::new();
     };

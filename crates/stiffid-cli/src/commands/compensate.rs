@@ -11,16 +11,16 @@ use crate::report::{self, compensation};
 use anyhow::{anyhow, bail, Result};
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use stiffid_core::common::words::{count, number};
-use stiffid_core::observation::deflection::Frame;
-use stiffid_core::robot::ExternalAxes;
-use stiffid_core::{Error, Progress, Setup};
 use stiffid::app::compensate::document::{
     csv_line, external_header, external_values, header, values, Document, Names, GENERATOR,
 };
 use stiffid::app::compensate::dynamics::OperationDynamics;
 use stiffid::app::compensate::stream::Points;
 use stiffid::app::compensate::{self as job, Input, Report, Request};
+use stiffid_core::common::words::{count, number};
+use stiffid_core::observation::deflection::Frame;
+use stiffid_core::robot::ExternalAxes;
+use stiffid_core::{Error, Progress, Setup};
 use stiffid_machining::compensate::{
     Aggregate, Compensated, FreeOption, Freedom, MapVariable, Objective, Options, PathPoint,
 };

@@ -8,9 +8,9 @@ use crate::output::{self, json, ReportDir};
 use crate::progress::Bars;
 use anyhow::Result;
 use std::path::{Path, PathBuf};
-use stiffid_core::common::limits;
 use stiffid::app::simulate::document::{deviation_csv, Document};
 use stiffid::app::simulate::{self as job, Group, Request};
+use stiffid_core::common::limits;
 use stiffid_design::study::simulate::Options;
 
 /// Arguments of `stiffid simulate`.

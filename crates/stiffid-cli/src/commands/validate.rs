@@ -8,11 +8,11 @@ use crate::output::{self, print_json_or};
 use crate::progress::Bars;
 use anyhow::Result;
 use std::path::PathBuf;
-use stiffid_core::common::words::count;
-use stiffid_core::Progress;
 use stiffid::app::measurements::Data;
 use stiffid::app::validate::document::Document;
 use stiffid::app::validate::{self as job, Request};
+use stiffid_core::common::words::count;
+use stiffid_core::Progress;
 
 /// Arguments of `stiffid validate`.
 #[derive(clap::Args)]

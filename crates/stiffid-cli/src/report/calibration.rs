@@ -132,10 +132,7 @@ fn compose(w: &mut dyn Writer, doc: &Document, figures: &[Figure], scene: &Scene
 
 /// The ladder of models: each rung's held-out figure and why it was skipped, the chosen one's
 /// beside the geometry's, the region where the spread was judged.
-fn ladder_section(
-    w: &mut dyn Writer,
-    l: &stiffid::app::calibrate::document::LadderDocument,
-) {
+fn ladder_section(w: &mut dyn Writer, l: &stiffid::app::calibrate::document::LadderDocument) {
     w.heading(2, "The model chosen");
     let geometry = l.rungs.first().and_then(|r| r.held_out_rms_mm);
     let chosen = l.rungs.get(l.chosen).and_then(|r| r.held_out_rms_mm);

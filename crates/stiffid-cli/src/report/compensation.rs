@@ -9,11 +9,11 @@ use super::tables::{num, Table};
 use crate::output::{Fill, ReportDir};
 use anyhow::Result;
 use std::path::Path;
-use stiffid_core::common::words::count;
-use stiffid_core::Setup;
 use stiffid::app::compensate::document::GENERATOR;
 use stiffid::app::compensate::document::{Document, SegmentDocument};
 use stiffid::app::compensate::Report;
+use stiffid_core::common::words::count;
+use stiffid_core::Setup;
 use stiffid_machining::compensate::Compensated;
 use stiffid_view::{glb, Scene};
 
@@ -64,8 +64,7 @@ pub fn write(dir: ReportDir, setup: &Setup, view: &View) -> Result<()> {
     };
     dir.write_with(FILES[1], &csv)?;
     dir.write_all(&figures::files(&figures))?;
-    let scene =
-        stiffid::app::compensate::scene::scene(setup, &view.document.summary.scene)?;
+    let scene = stiffid::app::compensate::scene::scene(setup, &view.document.summary.scene)?;
     let html = page(
         &format!("stiffid compensation: {}", setup.name()),
         GENERATOR,

@@ -1,10 +1,9 @@
 //! The measurements the identify and validate jobs read: a measurement file, raw readings under
 //! load steps, or arrays, turned into the base frame, with where each measurement came from.
 
-use stiffid_identify::steps::LoadSteps;
+use crate::app::in_data;
 use nalgebra::Vector6;
 use std::io::{BufRead, BufReader, Read};
-use crate::app::in_data;
 use stiffid_core::common::warning::Warning;
 use stiffid_core::io::measurements::{self, Labels};
 use stiffid_core::io::read_text;
@@ -13,6 +12,7 @@ use stiffid_core::observation::Measurement;
 use stiffid_core::robot::external::ExternalValues;
 use stiffid_core::setup::plausibility;
 use stiffid_core::{Error, Result, Setup};
+use stiffid_identify::steps::LoadSteps;
 
 /// The measurements to identify from, or to validate a stiffness on.
 pub enum Data<R> {

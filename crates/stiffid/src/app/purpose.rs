@@ -3,11 +3,11 @@
 //! calibration design of a setup that the last three score groups with
 //! ([`stiffid_design::observability`]).
 
-use stiffid_design::observability::{CalibrationCriterion, CalibrationDesign, Placed, TableDesign};
-use stiffid_design::{random_group, CalibrationGoal, Criterion, Goal};
 use stiffid_core::common::error::JobOption;
 use stiffid_core::robot::external::{AxisKind, ExternalAxes, ExternalValues};
 use stiffid_core::{Error, Result, Setup};
+use stiffid_design::observability::{CalibrationCriterion, CalibrationDesign, Placed, TableDesign};
+use stiffid_design::{random_group, CalibrationGoal, Criterion, Goal};
 use stiffid_metrology::calibration::error_model::MeasuredIn;
 use stiffid_metrology::calibration::gravity::Gravity;
 use stiffid_metrology::calibration::{self, Geometry};

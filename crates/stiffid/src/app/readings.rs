@@ -1,11 +1,11 @@
 //! The readings of a cell: what the register and calibrate jobs read.
 
-use stiffid_metrology::register::{self, suspect, Registration, Suspect};
-use nalgebra::Vector3;
 use crate::app::{in_data, Warning};
+use nalgebra::Vector3;
 use stiffid_core::io::readings::{self, Readings};
 use stiffid_core::setup::plausibility;
 use stiffid_core::{Error, Result, Setup};
+use stiffid_metrology::register::{self, suspect, Registration, Suspect};
 
 /// Readings of a cell: what the register and calibrate jobs read.
 pub struct Request<'a> {

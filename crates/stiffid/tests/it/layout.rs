@@ -74,19 +74,38 @@ fn science_below_views_below_jobs_below_front_ends() {
         let deps = crate_dependencies(name);
         let allowed = |d: &String| d == "stiffid-core" || SCIENCE.contains(&d.as_str());
         let above: Vec<&String> = deps.iter().filter(|d| !allowed(d)).collect();
-        assert!(above.is_empty(), "{name} depends on {above:?}, above the science");
+        assert!(
+            above.is_empty(),
+            "{name} depends on {above:?}, above the science"
+        );
         assert!(deps.contains("stiffid-core"), "{name}: {deps:?}");
     }
     let view = crate_dependencies("stiffid-view");
-    assert_eq!(view, ["stiffid-core".to_string()].into(), "stiffid-view: {view:?}");
+    assert_eq!(
+        view,
+        ["stiffid-core".to_string()].into(),
+        "stiffid-view: {view:?}"
+    );
     let jobs = crate_dependencies("stiffid");
-    let library: BTreeSet<String> = CRATES[..CRATES.len() - 1].iter().map(|c| c.to_string()).collect();
-    assert_eq!(jobs, library, "the facade (the jobs) stands on every library crate, nothing above");
+    let library: BTreeSet<String> = CRATES[..CRATES.len() - 1]
+        .iter()
+        .map(|c| c.to_string())
+        .collect();
+    assert_eq!(
+        jobs, library,
+        "the facade (the jobs) stands on every library crate, nothing above"
+    );
     for above in ["stiffid-figures", "stiffid-cli", "stiffid-py"] {
         let deps = crate_dependencies(above);
-        assert!(deps.contains("stiffid"), "{above} uses the jobs through the facade: {deps:?}");
+        assert!(
+            deps.contains("stiffid"),
+            "{above} uses the jobs through the facade: {deps:?}"
+        );
     }
-    assert!(!crate_dir("stiffid-calibrate").exists(), "the calibration jobs are the facade's");
+    assert!(
+        !crate_dir("stiffid-calibrate").exists(),
+        "the calibration jobs are the facade's"
+    );
 }
 
 /// The jobs live in the facade: no other library crate has an `app/` folder.
@@ -731,4 +750,53 @@ fn every_document_type_names_its_kind() {
     }
     assert!(found >= 15, "{found} document types found");
     assert!(missing.is_empty(), "documents without a kind: {missing:?}");
+}
+
+/// The `pub` items of a library crate's files (outside their tests): every `pub` function,
+/// type, trait, constant, static, module and `pub use` line (a `pub(crate)` or `pub(super)`
+/// item is not public; a field or a method of a type is counted with its type).
+fn public_items(name: &str) -> usize {
+    let kinds = [
+        "fn ", "struct ", "enum ", "trait ", "type ", "const ", "static ", "mod ", "use ",
+    ];
+    (library_files(name).iter())
+        .flat_map(|(_, code)| strip(code).lines().map(str::to_string).collect::<Vec<_>>())
+        .filter(|l| {
+            let rest = l.trim_start().strip_prefix("pub ");
+            let rest = rest.map(|r| r.trim_start_matches("async ").trim_start_matches("unsafe "));
+            rest.is_some_and(|r| kinds.iter().any(|k| r.starts_with(k)))
+        })
+        .count()
+}
+
+/// The public items of every library crate, as docs/ARCHITECTURE.md's table "Public items"
+/// lists them (`| `crate` | count |`): a change of the surface changes the table with it.
+#[test]
+fn the_public_item_counts_are_the_ones_architecture_lists() {
+    let architecture =
+        std::fs::read_to_string(crate_dir("stiffid").join("../../docs/ARCHITECTURE.md")).unwrap();
+    let listed: BTreeMap<String, usize> = (architecture.lines())
+        .filter_map(|l| {
+            let cells: Vec<&str> = l.split('|').map(str::trim).collect();
+            let name = cells.get(1)?.strip_prefix('`')?.strip_suffix('`')?;
+            let count = cells.get(2)?.parse().ok()?;
+            CRATES.contains(&name).then(|| (name.to_string(), count))
+        })
+        .collect();
+    let counted: BTreeMap<String, usize> = (CRATES.iter())
+        .map(|c| (c.to_string(), public_items(c)))
+        .collect();
+    let total: usize = counted.values().sum();
+    assert_eq!(
+        counted, listed,
+        "public items per crate (total {total}) against docs/ARCHITECTURE.md's table"
+    );
+    let listed_total = (architecture.lines()).find_map(|l| {
+        l.strip_prefix("| all library crates | ")?
+            .split(' ')
+            .next()?
+            .parse()
+            .ok()
+    });
+    assert_eq!(listed_total, Some(total), "the table's total");
 }

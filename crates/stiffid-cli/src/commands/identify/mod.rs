@@ -10,10 +10,10 @@ use crate::progress::Bars;
 use crate::report::identification;
 use anyhow::Result;
 use std::path::PathBuf;
-use stiffid_core::Progress;
 use stiffid::app::identify::document::{drives, springs};
 use stiffid::app::identify::{self as job, Options, Report, Request};
 use stiffid::app::measurements::Data;
+use stiffid_core::Progress;
 use stiffid_identify::Loss;
 
 mod models;

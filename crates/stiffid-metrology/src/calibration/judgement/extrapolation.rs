@@ -6,11 +6,11 @@
 //! keeps them and says so, rather than refusing them as readings of another robot.
 
 use super::{Warning, WarningKind};
+use crate::calibration::error_model::Observation;
+use crate::calibration::validation::Validation;
 use nalgebra::Vector6;
 use stiffid_core::common::warning::joint_list;
 use stiffid_core::io::readings::point_name;
-use crate::calibration::error_model::Observation;
-use crate::calibration::validation::Validation;
 
 /// How far a held-out posture's axis angle may lie beyond the fitted postures' range before it
 /// is named as outside it: 1 degree.

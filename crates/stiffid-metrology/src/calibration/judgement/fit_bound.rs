@@ -18,13 +18,13 @@
 //! standard normal's quantile at `(1 + p) / 2`. The assumption is stated in the document; a
 //! robot's errors with heavier tails than a normal's are covered less than `p`.
 
-use statrs::distribution::{ContinuousCDF, Normal};
-use stiffid_core::model::prediction::Interval;
-use stiffid_core::Result;
 use crate::calibration::error_model::{Estimate, Observation};
 use crate::calibration::fit::Fit;
 use crate::calibration::validation::Fold;
 use crate::calibration::ErrorModel;
+use statrs::distribution::{ContinuousCDF, Normal};
+use stiffid_core::model::prediction::Interval;
+use stiffid_core::Result;
 
 /// The readings whose Jacobian is computed together.
 const CHUNK: usize = 1024;

@@ -2,11 +2,11 @@
 //! about the fit (convergence, identifiability, misfit).
 
 use super::{Warning, WarningKind, MIN_DEGREES_OF_FREEDOM, MISFIT_RATIO, WEAK_CONDITION};
+use crate::calibration::fit::{self, Fit};
+use crate::calibration::ErrorModel;
 use nalgebra::DVector;
 use stiffid_core::common::limits;
 use stiffid_core::io::readings::Readings as Data;
-use crate::calibration::fit::{self, Fit};
-use crate::calibration::ErrorModel;
 
 /// The reading with the longest residual (`residuals`: three coordinates per reading of `data`,
 /// m), as a clause of the misfit warning: one bad reading raises the noise ratio as a missing

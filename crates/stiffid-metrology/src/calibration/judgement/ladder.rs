@@ -36,15 +36,15 @@
 
 use super::maps::{assess, assess_given, Assessed};
 use super::WEAK_CONDITION;
-use stiffid_core::common::choice::Choice;
-use stiffid_core::common::limits::JointBox;
-use stiffid_core::Result;
 use crate::calibration::error_model::Observation;
 use crate::calibration::fit::{stop_warning, Fit, Options};
 use crate::calibration::gravity::Gravity;
 use crate::calibration::maps::{Spec, FOLDS};
 use crate::calibration::spread::region_sd;
 use crate::calibration::{motions, ErrorModel, Estimate};
+use stiffid_core::common::choice::Choice;
+use stiffid_core::common::limits::JointBox;
+use stiffid_core::Result;
 
 /// The gravity models of `--gravity auto`, in order of complexity ([`Gravity::Masses`] only on a
 /// robot with link masses).

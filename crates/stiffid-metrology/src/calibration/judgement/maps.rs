@@ -2,13 +2,13 @@
 //! cross-validation inside the fitted readings, its nested held-out gain, and the fit with the
 //! maps chosen.
 
-use nalgebra::Vector6;
-use stiffid_core::common::error::JobOption;
-use stiffid_core::{Error, Result};
 use crate::calibration::error_model::Observation;
 use crate::calibration::fit::{self, Fit, Options};
 use crate::calibration::maps::{self, Choice, JointMaps, Linear, Nested, Spec};
 use crate::calibration::ErrorModel;
+use nalgebra::Vector6;
+use stiffid_core::common::error::JobOption;
+use stiffid_core::{Error, Result};
 
 /// The most work the maps' choice takes on: readings x (map coefficients)^2, the cost of its
 /// cross-validated fits (about 1.2e-7 s of CPU each: a minute of CPU at this bound, half of it

@@ -14,10 +14,10 @@
 //! (the experiment's bounds: no posture of the campaign's lies beyond them). A setup that names
 //! postures over the whole joint limits (its test postures) judges the models there.
 
+use crate::calibration::error_model::Observation;
 use nalgebra::Vector6;
 use stiffid_core::common::limits::JointBox;
 use stiffid_core::Setup;
-use crate::calibration::error_model::Observation;
 
 /// The share of each axis's range by which the region is widened on either side: 10 %.
 pub const MARGIN_SHARE: f64 = 0.1;

@@ -2,10 +2,10 @@
 //! calibrate --json`, Python's `calibrate(...)`.
 
 use super::{Held, Report};
-use serde::Serialize;
 use crate::app::document::parameters::{stiffness, ParameterStiffness};
 use crate::app::document::{finite, mm};
 use crate::app::Warning;
+use serde::Serialize;
 use stiffid_core::common::choice::Choice;
 use stiffid_core::io::readings::point_name;
 use stiffid_metrology::calibration::error_model::Target;
@@ -15,8 +15,8 @@ use stiffid_metrology::calibration::identifiability::CORRELATION_INSEPARABLE;
 use stiffid_metrology::calibration::validation::Validation;
 use stiffid_view as scene;
 
-use super::maps_document::maps_document;
 pub use super::ladder_document::{LadderDocument, RungDocument};
+use super::maps_document::maps_document;
 pub use super::maps_document::{MapTried, MapsDocument, MapsNested};
 
 /// The robot calibration: every parameter with its value and standard deviation, what the
@@ -380,10 +380,7 @@ impl Document {
             })
             .collect(),
             maps: maps_document(&report.maps),
-            ladder: report
-                .ladder
-                .as_ref()
-                .map(LadderDocument::new),
+            ladder: report.ladder.as_ref().map(LadderDocument::new),
             check: (report.check.as_ref())
                 .map(|c| super::drift::CheckDocument::new(c, &report.nominal, &report.labels)),
             validation: report.validation.as_ref().map(held),

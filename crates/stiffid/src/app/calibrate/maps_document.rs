@@ -1,7 +1,7 @@
 //! The joint error maps' part of the calibration document ([`super::document::Document::maps`]).
 
-use serde::Serialize;
 use crate::app::document::mm;
+use serde::Serialize;
 
 /// The joint error maps ([`stiffid_metrology::calibration::maps`]).
 #[derive(Debug, Clone, PartialEq, Serialize)]

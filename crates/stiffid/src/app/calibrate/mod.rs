@@ -28,12 +28,12 @@ mod part;
 pub mod scene;
 pub mod update;
 
+use stiffid_metrology::calibration::judgement::judge::{judge, largest_residual};
+use stiffid_metrology::calibration::judgement::maps;
 pub use stiffid_metrology::calibration::judgement::{extrapolation, fit_bound, ladder, region};
 pub use stiffid_metrology::calibration::judgement::{
     MIN_DEGREES_OF_FREEDOM, MISFIT_RATIO, WEAK_CONDITION,
 };
-use stiffid_metrology::calibration::judgement::judge::{judge, largest_residual};
-use stiffid_metrology::calibration::judgement::maps;
 
 pub use compliance::{fitted_compliance, FittedCompliance};
 pub use extrapolation::Outside;
@@ -42,10 +42,11 @@ pub use maps::{Maps, MAX_MAP_WORK};
 pub use update::MIN_POSTURES as MIN_UPDATE_POSTURES;
 pub use update::{Refit, Refits};
 
+use crate::app::in_data;
+use crate::app::readings::{read, refuse_implausible, Request as Readings};
+use crate::app::{Warning, WarningKind};
 use checks::{cross_validation_size, interval_level, refuse_repeated};
 use nalgebra::{DVector, Vector3};
-use crate::app::in_data;
-use crate::app::{Warning, WarningKind};
 use stiffid_core::common::error::JobOption;
 use stiffid_core::common::limits;
 use stiffid_core::common::progress::Progress;
@@ -53,7 +54,6 @@ use stiffid_core::io::readings::Readings as Data;
 use stiffid_core::observation::deflection::base_wrench;
 use stiffid_core::observation::frames::DisplacementFrame;
 use stiffid_core::{Error, Result, Setup};
-use crate::app::readings::{read, refuse_implausible, Request as Readings};
 use stiffid_metrology::calibration::error_model::{MeasuredIn, Observation};
 use stiffid_metrology::calibration::fit::{self, Fit};
 use stiffid_metrology::calibration::gravity::{self, Gravity};

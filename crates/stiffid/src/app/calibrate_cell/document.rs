@@ -2,9 +2,9 @@
 //! calibrate-cell --json`, Python's `calibrate_cell(...)`.
 
 use crate::app::calibrate_cell::Report;
-use serde::Serialize;
 use crate::app::document::transform::Transform;
 use crate::app::document::{mm, mm3};
+use serde::Serialize;
 
 /// The calibrate-cell document: the transform, the measuring points and the robot's unloaded
 /// absolute error.

@@ -5,12 +5,12 @@
 
 pub mod document;
 
-use nalgebra::Vector3;
 use crate::app::in_data;
-use crate::app::Warning;
-use stiffid_core::Result;
 pub use crate::app::readings::Request;
 use crate::app::readings::{read, refuse_implausible};
+use crate::app::Warning;
+use nalgebra::Vector3;
+use stiffid_core::Result;
 use stiffid_metrology::cell_calibration::{self, Calibration};
 
 /// What the calibrate job found.

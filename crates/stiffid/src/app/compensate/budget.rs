@@ -3,11 +3,11 @@
 //! summary ([`BudgetSummary`]) and the refusal of a path whose bound exceeds the largest error
 //! accepted (`--max-error-mm`).
 
-use stiffid_machining::compensate::{budget::PARTS, Compensated};
-use serde::Serialize;
 use crate::app::document::{finite, mm};
+use serde::Serialize;
 use stiffid_core::common::error::JobOption;
 use stiffid_core::{Error, Result};
+use stiffid_machining::compensate::{budget::PARTS, Compensated};
 
 /// The budget's columns of the CSV and of every JSON point, mm: the bound, then its parts
 /// ([`PARTS`]: an absent part empty), then with the free tool axis the bound at the path's own

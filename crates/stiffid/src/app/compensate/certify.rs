@@ -13,8 +13,8 @@
 //! A program compensated again takes the new bounds in the place of the ones an earlier
 //! compensation wrote (a bound comment of its form), never beside them.
 
-use stiffid_machining::program::{BoundComment, Dialect};
 use std::collections::HashMap;
+use stiffid_machining::program::{BoundComment, Dialect};
 
 /// The comment of a bound `bound` (m) at `level`.
 fn words(bound: f64, level: f64) -> String {

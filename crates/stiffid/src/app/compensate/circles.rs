@@ -2,12 +2,12 @@
 //! ([`stiffid_machining::program::generate::arcs`]): which targets are written and how, in the
 //! controller's kinematics, and the bound of each motion written.
 
+use nalgebra::Vector3;
+use stiffid_core::{Result, Robot};
 use stiffid_machining::gcode::ArcBlock;
 use stiffid_machining::program::generate::arcs::{self, Circular, Form};
 use stiffid_machining::program::generate::{Move, Settings, Target};
 use stiffid_machining::program::Dialect;
-use nalgebra::Vector3;
-use stiffid_core::{Result, Robot};
 
 /// The targets and moves a program of `dialect` is written with, the arcs `arcs` as circular
 /// moves where they stay within `tolerance` (m, the chord tolerance), with what each written
@@ -22,8 +22,9 @@ pub(super) fn circular(
     tolerance: f64,
 ) -> (Vec<Target>, Vec<Move>, Circular, Option<Form>) {
     let form = (dialect.controller().generator()).and_then(|g| g.circular(settings.targets));
-    let cartesian = stiffid_machining::program::generate::written_targets(dialect, settings.targets)
-        == stiffid_machining::program::generate::Targets::Cartesian;
+    let cartesian =
+        stiffid_machining::program::generate::written_targets(dialect, settings.targets)
+            == stiffid_machining::program::generate::Targets::Cartesian;
     let positions: Option<Vec<Vector3<f64>>> = match (cartesian, controller) {
         (true, _) => Some(targets.iter().map(|t| t.pose.translation.vector).collect()),
         (false, Ok(robot)) => Some(

@@ -1,10 +1,10 @@
 //! The columns of the compensate CSV and of every JSON point ([`header`], [`values`]), and the
 //! CSV's lines ([`csv_line`]).
 
-use stiffid_machining::compensate::Compensated;
-use stiffid_machining::dynamics::Dynamics;
 use nalgebra::Vector6;
 use stiffid_core::robot::ExternalAxes;
+use stiffid_machining::compensate::Compensated;
+use stiffid_machining::dynamics::Dynamics;
 
 fn names(prefix: &str, items: &[&str], unit: &str) -> Vec<String> {
     items.iter().map(|i| format!("{prefix}{i}{unit}")).collect()

@@ -5,13 +5,12 @@
 
 pub use super::free::FreeVariable;
 use crate::app::compensate::{Report, Segment};
-use stiffid_machining::compensate::Compensated;
-use nalgebra::Vector6;
-use serde::Serialize;
-use serde_json::{Map, Value};
 use crate::app::document::finite;
 use crate::app::document::mm;
 use crate::app::document::parameters::{stiffness, ParameterStiffness};
+use nalgebra::Vector6;
+use serde::Serialize;
+use serde_json::{Map, Value};
 use stiffid_core::common::limits::Violation;
 use stiffid_core::common::stop::Stop;
 use stiffid_core::common::warning::{Warning, WarningKind};
@@ -19,6 +18,7 @@ use stiffid_core::io::stiffness::RegionSection;
 use stiffid_core::model::region::{self, Region};
 use stiffid_core::robot::external::{ExternalAxes, ExternalValues};
 use stiffid_core::Coordinates;
+use stiffid_machining::compensate::Compensated;
 
 pub use super::columns::{csv_line, external_header, external_values, header, values, DYNAMICS};
 

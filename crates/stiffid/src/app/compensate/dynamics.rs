@@ -3,12 +3,12 @@
 //! natural frequency, and a [`WarningKind::Chatter`] warning for an operation with a point
 //! within [`CLOSE`] of a tooth-passing harmonic.
 
+use crate::app::document::finite;
+use serde::Serialize;
+use stiffid_core::common::warning::{Warning, WarningKind};
 use stiffid_machining::compensate::PathPoint;
 use stiffid_machining::dynamics::{Dynamics, CLOSE};
 use stiffid_machining::process::{Kind, Process};
-use serde::Serialize;
-use crate::app::document::finite;
-use stiffid_core::common::warning::{Warning, WarningKind};
 
 /// The dynamics of one operation of a program. Units in the key names.
 #[derive(Debug, Clone, PartialEq, Serialize)]

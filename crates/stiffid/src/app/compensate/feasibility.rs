@@ -1,8 +1,8 @@
 //! What the feasibility checks of the free variables kept out of the optimisation
 //! ([`stiffid_machining::compensate::Feasible`]): their limits and how many states each removed.
 
-use stiffid_machining::compensate::{Options, Removed};
 use serde::Serialize;
+use stiffid_machining::compensate::{Options, Removed};
 
 /// The feasibility of the moved postures of the free variables (`--free tool-rotation`,
 /// `--free station`, `--free positioner`, `--free tilt`, `--free lead-tilt`; with `--free configuration` a configuration whose posture

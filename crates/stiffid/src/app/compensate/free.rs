@@ -2,10 +2,10 @@
 //! [`FreeVariable`] each, in the units of `--free`), and what they minimise together
 //! (`minimise`, `objective`).
 
-use stiffid_machining::compensate::{Free, FreeVariables};
 use serde::Serialize;
 use stiffid_core::common::choice::Choice;
 use stiffid_core::common::words::as_given;
+use stiffid_machining::compensate::{Free, FreeVariables};
 
 /// One free variable of a compensation (`--free NAME=-R..R/STEP`).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

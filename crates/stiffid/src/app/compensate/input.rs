@@ -4,10 +4,10 @@
 
 use super::written::program_tool;
 use super::{generate, in_input, output, Input};
+use stiffid_core::{Result, Setup};
 use stiffid_machining::compensate::Options;
 use stiffid_machining::program::Context;
 use stiffid_machining::{self as machining, Language, Program};
-use stiffid_core::{Result, Setup};
 
 /// The program of a program input, checked against its output and options, read and its
 /// Cartesian targets resolved on `setup`'s controller (as the controller moves to them);

@@ -37,6 +37,12 @@ pub mod stream;
 mod written;
 
 use crate::app::compensate::document::Summary;
+use crate::app::{Warning, WarningKind};
+use input::read_checked;
+pub use input::{read_program, read_program_in};
+use stiffid_core::model::Parameter;
+use stiffid_core::observation::deflection::Frame;
+use stiffid_core::{Coordinates, Error, Result, Setup};
 use stiffid_machining::compensate::{self, Compensated, Compliance, Options, PathPoint, CHUNK};
 use stiffid_machining::dynamics::Dynamics;
 use stiffid_machining::process::Process;
@@ -44,12 +50,6 @@ use stiffid_machining::program::generate::{self, generate, Settings};
 use stiffid_machining::program::rename::renamed;
 use stiffid_machining::{self as machining, Language, Program};
 use stiffid_machining::{cell, path};
-use input::read_checked;
-pub use input::{read_program, read_program_in};
-use crate::app::{Warning, WarningKind};
-use stiffid_core::model::Parameter;
-use stiffid_core::observation::deflection::Frame;
-use stiffid_core::{Coordinates, Error, Result, Setup};
 use written::{generated, written_name};
 
 /// The path to compensate.
@@ -627,8 +627,8 @@ fn map_of(
         .free
         .keeping(|f| !matches!(f, compensate::Free::Configuration(_)));
     // A program's wrenches hold the tool's weight (machining::compensate).
-    let weighted =
-        outcome.program.is_some() && stiffid_machining::weight::tool_load(setup.arm(), compliance).is_some();
+    let weighted = outcome.program.is_some()
+        && stiffid_machining::weight::tool_load(setup.arm(), compliance).is_some();
     let at = (&in_chosen, setup.cell());
     let map = compensate::map(setup.arm(), compliance, points, at, (chosen, weighted));
     map.map(Some).map_err(|e| in_input(&outcome.name, e))

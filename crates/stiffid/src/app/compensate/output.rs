@@ -2,12 +2,12 @@
 //! a lean, a tool axis' rotation or runs' configurations G-code cannot carry.
 
 use super::configurations::name;
-use stiffid_machining::compensate::{Configurations, Options, Run};
-use stiffid_machining::program::generate::Settings;
-use stiffid_machining::Language;
 #[cfg(doc)]
 use stiffid_core::JobOption;
 use stiffid_core::{Error, Result};
+use stiffid_machining::compensate::{Configurations, Options, Run};
+use stiffid_machining::program::generate::Settings;
+use stiffid_machining::Language;
 
 /// Refuses an output language a program cannot be written in: a robot program stays in its own.
 pub(super) fn check_output(language: Language, output: Language) -> Result<()> {

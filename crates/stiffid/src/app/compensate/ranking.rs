@@ -11,12 +11,12 @@
 //! Below [`DISAGREEMENT_RHO`] they do not: the document's `model_ranking` lists the points whose
 //! ranks differ most with both values and ranks, and a warning of kind `model-form` says so.
 
-use stiffid_machining::compensate::Compensated;
 use serde::Serialize;
 use stiffid_core::common::warning::{Warning, WarningKind};
 use stiffid_core::math::{ranks, spearman};
 use stiffid_core::model::FormModel;
 use stiffid_core::setup::Arm;
+use stiffid_machining::compensate::Compensated;
 
 /// Spearman's rho below which the two models rank the postures differently: at 0.5 a model
 /// explains a quarter of the other's rank variance; the two models of the same data agreeing

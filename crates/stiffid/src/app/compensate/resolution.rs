@@ -3,12 +3,12 @@
 //! (`[controller] pulses_per_deg = [1, ..]`: a whole degree, about 20 mm at the TCP of a
 //! GP-sized arm) could not keep a bound of tenths of a mm however well it is compensated.
 
-use stiffid_machining::compensate::Compensated;
-use stiffid_machining::program::Dialect;
-use stiffid_machining::{Language, Program};
 use nalgebra::{Vector3, Vector6};
 use stiffid_core::robot::ik::tool_pose;
 use stiffid_core::{Error, Result, Robot, Setup};
+use stiffid_machining::compensate::Compensated;
+use stiffid_machining::program::Dialect;
+use stiffid_machining::{Language, Program};
 
 /// The TCP motion (m) of writing posture `q` (rad) in whole pulses at `per_deg` pulses per
 /// degree: the distance between the TCP `tcp` (flange frame, m) at `q` and at `q` with each axis

@@ -5,11 +5,11 @@
 //! shows in `report.html` and writes as `scene.glb`, and Python's `stiffid.scene(setup,
 //! document=...)`.
 
-use stiffid_machining::compensate::Compensated;
 use nalgebra::Vector6;
 use serde::{Deserialize, Serialize};
 use stiffid_core::robot::external::{ExternalAxes, ExternalValues};
 use stiffid_core::{Error, Setup};
+use stiffid_machining::compensate::Compensated;
 use stiffid_view::{self as scene, stance, Extras, PathPoint, Scene};
 
 /// What the compensation's scene draws, as its document records it.

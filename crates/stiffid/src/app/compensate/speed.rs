@@ -4,13 +4,6 @@
 //! its largest speed along the path at the path's own values and at those chosen.
 
 use super::{in_input, Input};
-use stiffid_machining::compensate::{
-    has_speed_limits, move_times, speed_shares, Compensated, Options, PathPoint, Rate, Target,
-};
-use stiffid_machining::program::external::cell_values;
-use stiffid_machining::program::speed::Speed;
-use stiffid_machining::program::JointProgram;
-use stiffid_machining::{path, Program};
 use nalgebra::{Vector3, Vector6};
 use serde::Serialize;
 use std::sync::Arc;
@@ -19,6 +12,13 @@ use stiffid_core::common::words::{as_given, count};
 use stiffid_core::robot::external::ExternalValues;
 use stiffid_core::robot::ik::tool_pose;
 use stiffid_core::{Result, Robot, Setup};
+use stiffid_machining::compensate::{
+    has_speed_limits, move_times, speed_shares, Compensated, Options, PathPoint, Rate, Target,
+};
+use stiffid_machining::program::external::cell_values;
+use stiffid_machining::program::speed::Speed;
+use stiffid_machining::program::JointProgram;
+use stiffid_machining::{path, Program};
 
 /// Why the moves were not checked without a limit.
 const NO_LIMITS: &str =

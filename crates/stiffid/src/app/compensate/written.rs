@@ -3,13 +3,15 @@
 //! ([`generated`]) in the controller's kinematics and frames.
 
 use super::certify;
-use stiffid_machining::program::generate::arcs::{self, Circular, Form};
-use stiffid_machining::program::generate::{self, generate_with, moves, Plan, Settings, Target, Tool};
-use stiffid_machining::program::Dialect;
-use stiffid_machining::{self as machining, Language, Program};
 use crate::app::{Warning, WarningKind};
 use stiffid_core::robot::ExternalAxes;
 use stiffid_core::{Error, Result, Setup};
+use stiffid_machining::program::generate::arcs::{self, Circular, Form};
+use stiffid_machining::program::generate::{
+    self, generate_with, moves, Plan, Settings, Target, Tool,
+};
+use stiffid_machining::program::Dialect;
+use stiffid_machining::{self as machining, Language, Program};
 
 /// A compensated G-code program written as a new robot program in `dialect`
 /// ([`write_robot_program`]), each target's bound at `level` in a comment: the main program's

@@ -2,9 +2,9 @@
 //! candidate of the model comparison together with the setup's model
 //! ([`stiffid_design::candidates`]).
 
-use stiffid_design::candidates::{Verdict, Verdicts};
 use serde::Serialize;
 use stiffid_core::model::ParameterKind;
+use stiffid_design::candidates::{Verdict, Verdicts};
 use stiffid_identify::compare::document::DroppedDoc;
 use stiffid_identify::compare::nonlinear_separation;
 

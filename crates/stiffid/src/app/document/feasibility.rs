@@ -1,8 +1,8 @@
 //! The cell's feasibility checks of a group of postures ([`stiffid_core::cell::Checker`]) in documents:
 //! `feasibility` of the evaluate document, the skipped postures of a pool.
 
-use stiffid_core::cell::{Check, Feasibility};
 use serde::Serialize;
+use stiffid_core::cell::{Check, Feasibility};
 
 /// One posture's checks in the cell.
 #[derive(Debug, Clone, PartialEq, Serialize)]

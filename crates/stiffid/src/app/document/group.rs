@@ -3,13 +3,13 @@
 //! identifies each parameter of the model (evaluate, plan), its postures that are not distinct
 //! (select, plan) and its simulated deviation rates (simulate, the study's summary).
 
+use crate::app::document::{finite, mm};
+use serde::Serialize;
+use stiffid_core::model::Parameter as ModelParameter;
+use stiffid_core::Setup;
 use stiffid_design::distinct::Near;
 use stiffid_design::study::simulate::GroupSimulation;
 use stiffid_design::{Criterion, Evaluation};
-use serde::Serialize;
-use crate::app::document::{finite, mm};
-use stiffid_core::model::Parameter as ModelParameter;
-use stiffid_core::Setup;
 
 /// Every criterion of a group, and its predicted deviation rates.
 #[derive(Debug, Clone, PartialEq, Serialize)]

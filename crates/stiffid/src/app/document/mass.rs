@@ -2,9 +2,9 @@
 //! natural frequencies and mode shapes
 //! ([`stiffid_core::robot::dynamics`], [`stiffid_core::observation::dynamics`]).
 
-use stiffid_core::robot::dynamics::modes::Modes;
 use nalgebra::Vector3;
 use serde::Serialize;
+use stiffid_core::robot::dynamics::modes::Modes;
 
 /// One mode of the undamped elastic robot.
 #[derive(Debug, Clone, PartialEq, Serialize)]

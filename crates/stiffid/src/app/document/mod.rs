@@ -23,8 +23,8 @@ pub use stiffid_view as scene;
 /// The JSON Schemas of the documents' fields that hold one of a choice's names.
 #[cfg(feature = "schema")]
 pub mod schema {
-    use stiffid_core::common::choice::{names, Choice};
     use schemars::{json_schema, Schema};
+    use stiffid_core::common::choice::{names, Choice};
 
     pub use stiffid_core::common::kind::Kind;
 

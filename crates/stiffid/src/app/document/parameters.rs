@@ -1,9 +1,9 @@
 //! The stiffness of every parameter of a model in a document: named, with its kind and unit.
 
 use super::finite;
-use stiffid_core::model::{Parameter, ParameterKind};
 use nalgebra::DVector;
 use serde::Serialize;
+use stiffid_core::model::{Parameter, ParameterKind};
 
 /// One parameter's stiffness, in its unit: the key `stiffness` with `unit` beside it, as the
 /// stiffness file has it ([`stiffid_core::io::stiffness::ParameterStiffness`]).

@@ -3,10 +3,10 @@
 //! ([`crate::app::document::group`]), and every posture's feasibility.
 
 use crate::app::document::candidates::CandidatesDoc;
+use crate::app::document::feasibility::{self, Posture};
 use crate::app::document::group::{parameters, CalibrationDoc, Criteria, Parameter};
 use crate::app::evaluate::Report;
 use serde::Serialize;
-use crate::app::document::feasibility::{self, Posture};
 use stiffid_core::Setup;
 
 /// The evaluate document: the criteria, every posture's feasibility in the cell, and how well the

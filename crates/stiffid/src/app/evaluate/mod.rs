@@ -7,16 +7,16 @@
 pub mod document;
 
 use super::purpose::{self, CalibrationOptions, Purpose};
-use stiffid_design::candidates::{pool, verdicts, Verdicts};
-use stiffid_design::observability::CalibrationCriteria;
-use stiffid_design::{evaluate, unidentifiable, Evaluation};
-use nalgebra::Vector6;
 use crate::app::Warning;
+use nalgebra::Vector6;
 use stiffid_core::cell::{Checker, Feasibility};
 use stiffid_core::common::error::JobOption;
 use stiffid_core::math::lsq::Factor;
 use stiffid_core::observation::rope_observation_matrix;
 use stiffid_core::{Error, Result, Setup};
+use stiffid_design::candidates::{pool, verdicts, Verdicts};
+use stiffid_design::observability::CalibrationCriteria;
+use stiffid_design::{evaluate, unidentifiable, Evaluation};
 
 /// The group to evaluate.
 pub struct Request<'a> {

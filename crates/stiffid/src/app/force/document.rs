@@ -2,8 +2,8 @@
 //! `process_force(...)`.
 
 use crate::app::force::Report;
-use stiffid_machining::process::OperationForce;
 use serde::Serialize;
+use stiffid_machining::process::OperationForce;
 
 /// The force document.
 #[derive(Debug, Clone, PartialEq, Serialize)]

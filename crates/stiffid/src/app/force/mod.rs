@@ -4,9 +4,9 @@
 
 pub mod document;
 
+use stiffid_core::{Error, Result};
 use stiffid_machining::process::milling::MIN_RESOLUTION_DEG;
 use stiffid_machining::process::{self, OperationForce, Process};
-use stiffid_core::{Error, Result};
 
 /// The most a peak's angular resolution may be, deg.
 pub const MAX_RESOLUTION_DEG: f64 = 10.0;

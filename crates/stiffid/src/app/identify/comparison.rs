@@ -5,16 +5,16 @@
 //! arrays.
 
 use crate::app::measurements::{angle_warnings, on_measurements, Data};
-use stiffid_identify::compare::{
-    bootstrap, compare, default_pool, pool_by_name, Bootstrap, Comparison, Document, Dropped,
-    Resampling,
-};
-use std::io::Read;
 use crate::app::Warning;
+use std::io::Read;
 use stiffid_core::common::error::JobOption;
 use stiffid_core::common::progress::Progress;
 use stiffid_core::model::fragment;
 use stiffid_core::{Error, Result, Setup};
+use stiffid_identify::compare::{
+    bootstrap, compare, default_pool, pool_by_name, Bootstrap, Comparison, Document, Dropped,
+    Resampling,
+};
 
 /// What to compare.
 pub(super) struct Request<'a, R> {

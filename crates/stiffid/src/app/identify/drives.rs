@@ -8,25 +8,25 @@
 //! cross-validation need the whole observation matrix ([`Observations`]).
 
 use super::{Fit, Folds};
+use crate::app::in_data;
 use crate::app::measurements::{
     angle_warnings, arrays_origin, header_has_loads, read_file, Data, Loaded, Origin,
 };
-use stiffid_identify::prediction::calibrate;
-use crate::app::in_data;
 use stiffid_core::model::prediction::Calibration;
+use stiffid_identify::prediction::calibrate;
 
-use stiffid_identify::adequacy::UNIT_FACTOR;
-use stiffid_identify::offsets::{self, Offset};
-use stiffid_identify::steps::{self, linearity, Linearity};
-use stiffid_identify::{
-    cross_validate, least_squares, streamed, Adequacy, CrossValidation, Identification, UnitCheck,
-};
 use std::io::{BufReader, Read};
 use stiffid_core::common::warning::{joint_list, Warning, WarningKind};
 use stiffid_core::io::read_text;
 use stiffid_core::observation::{Measurement, Observations};
 use stiffid_core::setup::Noise;
 use stiffid_core::{Result, Setup};
+use stiffid_identify::adequacy::UNIT_FACTOR;
+use stiffid_identify::offsets::{self, Offset};
+use stiffid_identify::steps::{self, linearity, Linearity};
+use stiffid_identify::{
+    cross_validate, least_squares, streamed, Adequacy, CrossValidation, Identification, UnitCheck,
+};
 
 /// What to identify and how (checked together by [`super::Options`]).
 pub(super) struct Request<'a, R> {

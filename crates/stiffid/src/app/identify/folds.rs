@@ -4,11 +4,11 @@
 //! from, and the warning names the folds.
 
 use crate::app::measurements::Origin;
-use stiffid_identify::cross_validation::CrossValidation;
 use crate::app::{Warning, WarningKind};
 use stiffid_core::common::limits::{STIFFNESS_NM_PER_RAD, STIFFNESS_N_PER_MM};
 use stiffid_core::model::prediction::Calibration;
 use stiffid_core::model::{Model, ParameterKind};
+use stiffid_identify::cross_validation::CrossValidation;
 
 /// `calibration` when every fold of `cv` is physical (each parameter's compliance of `model` a
 /// stiffness within its kind's range, as a stiffness file's reader checks it); otherwise `None`

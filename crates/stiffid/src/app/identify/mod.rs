@@ -25,15 +25,15 @@ pub use drives::{noise_floor, row_noise_variance};
 pub use options::Options;
 
 use crate::app::measurements::Data;
-use stiffid_identify::Loss;
-use stiffid_identify::Method;
+use crate::app::Warning;
 use document::Document;
 use options::Plan;
 use std::io::Read;
-use crate::app::Warning;
 use stiffid_core::common::error::JobOption;
 use stiffid_core::common::progress::Progress;
 use stiffid_core::{Error, Result, Setup};
+use stiffid_identify::Loss;
+use stiffid_identify::Method;
 
 /// The fit.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

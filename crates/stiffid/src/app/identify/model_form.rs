@@ -3,9 +3,9 @@
 //! ([`stiffid_core::io::stiffness::ModelFormSection`]) for compensation's error budget, and the
 //! recommended model fitted to every posture, which compensation sets beside the file's own.
 
-use stiffid_identify::compare::{Bootstrap, Comparison};
 use stiffid_core::io::stiffness::{FormModelSection, FormSpring, ModelFormSection};
 use stiffid_core::model::Spring;
+use stiffid_identify::compare::{Bootstrap, Comparison};
 
 /// The section of the bootstrap `b`, `springs` the virtual springs of the setup's model then
 /// the candidates (parameter `j >= 6` is `springs[j - 6]`): the resamples' supported models,

@@ -3,9 +3,9 @@
 //! ([`Error::OptionCombination`]).
 
 use super::{Fit, Folds};
+use stiffid_core::{Error, JobOption, Result};
 use stiffid_identify::compare::Resampling;
 use stiffid_identify::Loss;
-use stiffid_core::{Error, JobOption, Result};
 
 /// The options of `stiffid identify` and of Python's `identify`, as set by the user: the fit,
 /// the cross-validation, the offsets and the model comparison. [`Options::default`] is a

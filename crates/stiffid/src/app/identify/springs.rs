@@ -10,16 +10,16 @@
 use super::drives::{noise_floor, Request};
 use super::{Fit as Method, Folds};
 use crate::app::measurements::{angle_warnings, on_measurements, Origin};
-use stiffid_identify::cross_validation::{cross_validate_model, CrossValidation};
-use stiffid_identify::prediction::calibrate;
-use stiffid_identify::svd::{fit_by, Fit};
-use std::io::Read;
 use crate::app::{Warning, WarningKind};
+use std::io::Read;
 use stiffid_core::common::words::count;
 use stiffid_core::model::prediction::Calibration;
 use stiffid_core::observation::{Measurement, Observations};
 use stiffid_core::JobOption;
 use stiffid_core::{Error, Result, Setup};
+use stiffid_identify::cross_validation::{cross_validate_model, CrossValidation};
+use stiffid_identify::prediction::calibrate;
+use stiffid_identify::svd::{fit_by, Fit};
 
 /// What the identify job found over a model.
 #[derive(Debug, Clone)]

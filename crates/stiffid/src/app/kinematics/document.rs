@@ -6,10 +6,10 @@
 use crate::app::document::mass::{self, ModeShape};
 use crate::app::document::{finite, mm, rows};
 use crate::app::kinematics::Report;
+use serde::Serialize;
 use stiffid_core::common::warning::Warning;
 use stiffid_core::robot::kinematics::Coordinates;
 use stiffid_core::Robot;
-use serde::Serialize;
 
 /// The kinematics of one posture: mm and degrees for positions and angles, SI (m/rad, rad/rad)
 /// for the Jacobian, rows `[v; omega]`; base frame.
@@ -63,7 +63,7 @@ pub struct Document {
     /// The external axes' values, in the cell's order (empty for a robot without external
     /// axes).
     pub external: Vec<ExternalValue>,
-    /// The Jacobian columns of the external axes (`crate::app::kinematics`, module docs):
+    /// The Jacobian columns of the external axes (`stiffid::app::kinematics`, module docs):
     /// row-major, 6 rows vx, vy, vz (m/m or m/rad), wx, wy, wz (0 or rad/rad) of one column per
     /// external axis in the cell's order: the tool point's velocity relative to the part, cell
     /// frame; `null` without external axes.

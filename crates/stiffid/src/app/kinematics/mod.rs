@@ -21,12 +21,12 @@
 
 pub mod document;
 
+use nalgebra::{Isometry3, Matrix6, Vector3, Vector6};
 use stiffid_core::common::warning::Warning;
 use stiffid_core::robot::dynamics::modes::{self, Modes};
 use stiffid_core::robot::dynamics::{operational_inertia, MassModel};
 use stiffid_core::robot::kinematics::{Coordinates, Frames};
 use stiffid_core::{common::limits, dexterity, setup::prior, Result, Robot};
-use nalgebra::{Isometry3, Matrix6, Vector3, Vector6};
 
 /// What to compute.
 #[derive(Debug, Clone)]

@@ -2,8 +2,8 @@
 //! `stiffid.place(...)`.
 
 use super::{Evaluation, Report};
-use serde::Serialize;
 use crate::app::document::mm;
+use serde::Serialize;
 use stiffid_core::common::choice::Choice;
 
 /// The place document.

@@ -4,13 +4,13 @@
 //! [`super`]) and the path's error bounds.
 
 use super::work::{self, Work};
-use stiffid_machining as machining;
-use stiffid_machining::compensate::{self, Compensated, Compliance, Options};
 use nalgebra::Isometry3;
 use stiffid_core::cell::{CheckKind, Checker};
 use stiffid_core::math::jacobi;
 use stiffid_core::robot::kinematics::Coordinates;
 use stiffid_core::Setup;
+use stiffid_machining as machining;
+use stiffid_machining::compensate::{self, Compensated, Compliance, Options};
 
 /// The cell's checks a placement must pass at every point: the bodies against the floor, the
 /// obstacles and each other (the rope, the tracker's sight and the experiment's bounds belong

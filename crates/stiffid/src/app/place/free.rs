@@ -2,9 +2,9 @@
 //! grammar of `compensate --free` ([`stiffid_machining::compensate::grammar`]).
 
 use super::{Free, Region};
-use stiffid_machining::compensate::grammar::{invalid, parts};
 use stiffid_core::common::words::number;
 use stiffid_core::Result;
+use stiffid_machining::compensate::grammar::{invalid, parts};
 
 /// What `place --free` takes, for its errors.
 const EXPECTED: &str = "expected z (the part's height: z=LO..HI, mm from its own, default -100..100) or tilt (about the base x and y axes: tilt=-T..T, deg, default -10..10); x, y and the rotation are always free (--region-mm, --rotation-deg)";

@@ -44,7 +44,6 @@ pub use evaluate::Evaluation;
 pub use work::{check_language, read_path, read_program, Work};
 pub use written::with_workpiece;
 
-use stiffid_machining::compensate::{Aggregate, Compliance, Options};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use search::{Effort, Space};
 use std::collections::HashMap;
@@ -52,6 +51,7 @@ use std::sync::Mutex;
 use stiffid_core::cell::Checker;
 use stiffid_core::common::words::number;
 use stiffid_core::{Error, Result, Setup};
+use stiffid_machining::compensate::{Aggregate, Compliance, Options};
 
 /// Where the part may go, SI, base frame.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -1,14 +1,14 @@
 //! What is placed: a G-code program cut under a process, or a path file's points; each as the
 //! part frame carries it, and what cannot move with the part refused naming why.
 
-use stiffid_machining::compensate::{PathPoint, Target};
-use stiffid_machining::process::Process;
-use stiffid_machining::program::{cartesian, Dialect};
-use stiffid_machining::{Language, Program};
 use nalgebra::Isometry3;
 use stiffid_core::common::choice::Choice;
 use stiffid_core::observation::deflection::Frame;
 use stiffid_core::{Error, Result, Setup};
+use stiffid_machining::compensate::{PathPoint, Target};
+use stiffid_machining::process::Process;
+use stiffid_machining::program::{cartesian, Dialect};
+use stiffid_machining::{Language, Program};
 
 /// The work placed with the part.
 #[derive(Debug, Clone, Copy)]
@@ -75,7 +75,8 @@ pub fn read_program(
     };
     let machine = stiffid_machining::gcode::Machine::of(setup, Some(process));
     let context = stiffid_machining::program::Context::of(setup).with_machine(&machine);
-    let program = stiffid_machining::read_in(text, language, chord_tolerance, &context).map_err(in_file)?;
+    let program =
+        stiffid_machining::read_in(text, language, chord_tolerance, &context).map_err(in_file)?;
     check_program(setup, &program).map_err(in_file)?;
     Ok(program)
 }

@@ -2,14 +2,14 @@
 //! DIR` (which renders `plan.html` from it) and its `plan.csv` ([`Document::csv`]), Python's
 //! `stiffid.plan`.
 
+use crate::app::document::feasibility::describe;
 use crate::app::document::group::{parameters, NearDoc, Parameter};
+use crate::app::document::{csv_text, finite, finite_each, mm};
 use crate::app::plan::{Posture, Report};
-use stiffid_design::unidentifiable;
 use serde::Serialize;
 use std::collections::BTreeMap;
-use crate::app::document::feasibility::describe;
-use crate::app::document::{csv_text, finite, finite_each, mm};
 use stiffid_core::Setup;
+use stiffid_design::unidentifiable;
 use stiffid_view as scene;
 
 /// The measurement plan: the setup's load and bodies, what the group predicts, and what each

@@ -10,14 +10,14 @@
 
 pub mod document;
 
-use stiffid_design::criteria::predicted_deviation_pct;
-use stiffid_design::distinct::{near_pairs, Near};
-use stiffid_design::{Criterion, Evaluation, Evaluator};
-use nalgebra::{Vector3, Vector6};
 use crate::app::Warning;
+use nalgebra::{Vector3, Vector6};
 use stiffid_core::cell::{Checker, Feasibility};
 use stiffid_core::observation::stiffness::rope_displacements;
 use stiffid_core::{Result, Setup};
+use stiffid_design::criteria::predicted_deviation_pct;
+use stiffid_design::distinct::{near_pairs, Near};
+use stiffid_design::{Criterion, Evaluation, Evaluator};
 
 /// Most postures a plan takes: each posture's leave-one-out factors the group without it, so the
 /// work grows with the square of the count.

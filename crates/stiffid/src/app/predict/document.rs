@@ -5,11 +5,11 @@
 use crate::app::document::mass::{self, ModeShape};
 use crate::app::document::{interval_mm, mm, rows};
 use crate::app::predict::{Point, Report};
+use nalgebra::{Matrix6, Vector6};
+use serde::Serialize;
 use stiffid_core::common::limits::Violation;
 use stiffid_core::common::warning::Warning;
 use stiffid_core::io::stiffness::RegionSection;
-use nalgebra::{Matrix6, Vector6};
-use serde::Serialize;
 
 /// The forward model of one posture under one wrench.
 #[derive(Debug, Clone, PartialEq, Serialize)]

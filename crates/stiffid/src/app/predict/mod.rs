@@ -8,6 +8,7 @@
 
 pub mod document;
 
+use nalgebra::{Matrix6, Vector3, Vector6};
 use stiffid_core::common::limits::Violation;
 use stiffid_core::common::warning::Warning;
 use stiffid_core::model::prediction::{requested_level, Interval};
@@ -20,7 +21,6 @@ use stiffid_core::robot::dynamics::free_mass;
 use stiffid_core::robot::kinematics::Frames;
 use stiffid_core::setup::Arm;
 use stiffid_core::{Result, Setup};
-use nalgebra::{Matrix6, Vector3, Vector6};
 
 /// What to predict.
 #[derive(Debug, Clone)]

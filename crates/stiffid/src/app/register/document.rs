@@ -1,10 +1,10 @@
 //! The documents of the register job ([`crate::app::register`]): `stiffid register --json`,
 //! `stiffid register --count N --json`, Python's `register(...)`.
 
-use crate::app::register;
-use serde::Serialize;
 use crate::app::document::transform::{Transform, TransformStd};
 use crate::app::document::{degrees, mm, mm3};
+use crate::app::register;
+use serde::Serialize;
 
 /// The register document: the tracker's transform, its quality and uncertainty.
 #[derive(Debug, Clone, PartialEq, Serialize)]

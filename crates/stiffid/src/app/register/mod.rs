@@ -7,14 +7,14 @@
 pub mod document;
 
 use crate::app::in_data;
+use crate::app::readings::refuse_implausible;
+pub use crate::app::readings::{read, Request};
 use crate::app::Warning;
 use stiffid_core::cell::{CheckKind, Checker};
 use stiffid_core::common::error::JobOption;
 use stiffid_core::io::readings::Readings;
 use stiffid_core::{Result, Setup};
 use stiffid_design::registration::{self as design, Design};
-use crate::app::readings::refuse_implausible;
-pub use crate::app::readings::{read, Request};
 use stiffid_metrology::register::{self, Registration};
 
 /// What the register job found.

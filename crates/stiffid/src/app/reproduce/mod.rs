@@ -4,10 +4,10 @@
 
 pub mod document;
 
-use stiffid_design::study::{self, findings, Findings, Options, Study};
 use crate::app::Warning;
 use stiffid_core::common::progress::Progress;
 use stiffid_core::{Result, Setup};
+use stiffid_design::study::{self, findings, Findings, Options, Study};
 
 /// The study to run.
 pub struct Request<'a> {

@@ -17,13 +17,13 @@ use super::choose::{choose, Found};
 use super::station::setup_at;
 use super::{min_margins, size, CalibrationReport, Method, Report, Request, Station};
 use crate::app::purpose::{self, Purpose};
+use std::time::Instant;
+use stiffid_core::common::error::JobOption;
+use stiffid_core::{Error, Result};
 use stiffid_design::distinct::{near_pairs_by, Near};
 use stiffid_design::observability::{CalibrationDesign, Placed};
 use stiffid_design::search::design_margin;
 use stiffid_design::{evaluate, Termination};
-use std::time::Instant;
-use stiffid_core::common::error::JobOption;
-use stiffid_core::{Error, Result};
 
 /// Whether `r` designs a campaign over its stations: a calibration (`--for calibration`) on a
 /// robot with a carrier, at two or more stations.

@@ -3,11 +3,11 @@
 use super::{in_pool, Method, Request, TARGET_PCT};
 use super::{DISTINCT_DEG, DISTINCT_MM};
 use crate::app::purpose::{self, Purpose};
-use stiffid_design::pool::MAX_POOL;
 use stiffid_core::cell::Checker;
 use stiffid_core::common::error::JobOption;
 use stiffid_core::common::limits::{self, check_count};
 use stiffid_core::{Error, Result};
+use stiffid_design::pool::MAX_POOL;
 
 /// The request's parts fit its method, and its counts are in range.
 pub(super) fn check(r: &Request) -> Result<()> {

@@ -3,12 +3,12 @@
 
 use super::{Candidates, Method, Request, Unconstrained};
 use crate::app::purpose::Purpose;
-use stiffid_design::target::{smallest_group, TargetOutcome};
-use stiffid_design::{self as design, evaluate, Goal, PoolMethod, SearchOutcome, Termination};
 use nalgebra::Vector6;
 use stiffid_core::cell::Checker;
 use stiffid_core::common::error::JobOption;
 use stiffid_core::{Error, Result, Setup};
+use stiffid_design::target::{smallest_group, TargetOutcome};
+use stiffid_design::{self as design, evaluate, Goal, PoolMethod, SearchOutcome, Termination};
 
 /// What one search or pool choice found.
 pub(super) struct Found {

@@ -2,15 +2,15 @@
 //! `Setup.select`.
 
 use crate::app::document::candidates::CandidatesDoc;
-use crate::app::document::group::{CalibrationDoc, Criteria, NearDoc};
-use crate::app::select::{CandidatesReport, PoolReport, Report, Unconstrained};
-use stiffid_design::target::{TargetOutcome, TargetStep};
-use stiffid_design::Termination;
-use serde::Serialize;
 use crate::app::document::feasibility::describe;
+use crate::app::document::group::{CalibrationDoc, Criteria, NearDoc};
 use crate::app::document::{degrees, finite, mm};
+use crate::app::select::{CandidatesReport, PoolReport, Report, Unconstrained};
+use serde::Serialize;
 use stiffid_core::common::choice::Choice;
 use stiffid_core::Setup;
+use stiffid_design::target::{TargetOutcome, TargetStep};
+use stiffid_design::Termination;
 
 /// The select document: the group found, how, why the search stopped, and its criteria.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -390,10 +390,10 @@ impl Free {
 
 #[cfg(feature = "schema")]
 mod schema {
-    use crate::app::select::Method;
-    use stiffid_design::{Solver, Termination};
-    use schemars::{json_schema, Schema, SchemaGenerator};
     use crate::app::document::schema::one_of;
+    use crate::app::select::Method;
+    use schemars::{json_schema, Schema, SchemaGenerator};
+    use stiffid_design::{Solver, Termination};
 
     pub fn method(_: &mut SchemaGenerator) -> Schema {
         one_of::<Method>()

@@ -20,6 +20,14 @@ use choose::{choose, smallest, unconstrained, Found};
 use pool::{in_pool, Candidates};
 
 use super::purpose::{self, CalibrationOptions, Purpose};
+use crate::app::Warning;
+use nalgebra::Vector6;
+use std::time::Instant;
+use stiffid_core::cell::Check;
+use stiffid_core::common::error::JobOption;
+use stiffid_core::common::limits::Range;
+use stiffid_core::common::progress::Progress;
+use stiffid_core::{Error, Result, Setup};
 use stiffid_design::candidates::{self, Verdicts};
 use stiffid_design::distinct::{near_pairs_by, Distinctness, Near};
 use stiffid_design::identifiable;
@@ -29,14 +37,6 @@ use stiffid_design::target::TargetOutcome;
 use stiffid_design::{
     evaluate, Criterion, Evaluation, Gradient, PoolMethod, SearchOptions, Solver, Termination,
 };
-use nalgebra::Vector6;
-use std::time::Instant;
-use crate::app::Warning;
-use stiffid_core::cell::Check;
-use stiffid_core::common::error::JobOption;
-use stiffid_core::common::limits::Range;
-use stiffid_core::common::progress::Progress;
-use stiffid_core::{Error, Result, Setup};
 
 /// How the group is chosen.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

@@ -1,11 +1,11 @@
 //! The pool of candidate postures: the unusable ones marked, the best group chosen from it.
 
 use super::{Found, PoolInput, PoolReport, Request, Skipped};
+use stiffid_core::cell::Check;
+use stiffid_core::{Error, Result};
 use stiffid_design::distinct::distinct_pool;
 use stiffid_design::search::design_checker;
 use stiffid_design::{self as design, Goal, PoolMethod, PoolOptions, Termination};
-use stiffid_core::cell::Check;
-use stiffid_core::{Error, Result};
 
 /// An error `field: message` about the pool `name`.
 pub(super) fn in_pool(name: &str, field: &str, message: String) -> Error {

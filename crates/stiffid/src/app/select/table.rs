@@ -18,12 +18,12 @@
 
 use super::{CalibrationReport, Report, Request};
 use crate::app::purpose::{self, Purpose};
-use stiffid_design::observability::Placed;
-use stiffid_design::search::design_checker;
 use rayon::prelude::*;
 use stiffid_core::cell::{capsule_box, Capsule, Part, Thing};
 use stiffid_core::robot::external::{ExternalAxes, ExternalValues};
 use stiffid_core::{Error, Result, Setup};
+use stiffid_design::observability::Placed;
+use stiffid_design::search::design_checker;
 
 /// About how many candidate angles of the positioner a group's table readings are chosen among.
 pub const CANDIDATE_ANGLES: usize = 64;

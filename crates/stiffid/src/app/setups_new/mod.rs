@@ -4,12 +4,12 @@
 //! length, a nominal stiffness from the payload, a tool scaled to the reach), and the optional
 //! fields commented out.
 
+use nalgebra::{Vector3, Vector6};
+use std::path::{Path, PathBuf};
 use stiffid_core::common::error::JobOption;
 use stiffid_core::robot::presets;
 use stiffid_core::setup::{prior, Tool};
 use stiffid_core::{Error, Result, Robot};
-use nalgebra::{Vector3, Vector6};
-use std::path::{Path, PathBuf};
 
 /// What the setup is for.
 pub struct Request<'a> {

@@ -2,13 +2,13 @@
 //! `--out DIR/simulation.json`), its `deviation_rates.csv`, Python's `simulate`; each group's part
 //! ([`Group`]) as the study's summary has it too.
 
+use crate::app::document::csv_text;
 use crate::app::document::group::Group;
 use crate::app::simulate::Report;
-use stiffid_design::study::simulate::GroupSimulation;
 use serde::Serialize;
-use crate::app::document::csv_text;
 use stiffid_core::model::Parameter;
 use stiffid_core::Setup;
+use stiffid_design::study::simulate::GroupSimulation;
 
 /// A parameter of the simulated model: its name and the unit of its stiffness.
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -5,12 +5,12 @@
 
 pub mod document;
 
-use stiffid_design::study::simulate::{monte_carlo_reporting, GroupSimulation, Options};
-use nalgebra::Vector6;
 use crate::app::Warning;
+use nalgebra::Vector6;
 use stiffid_core::common::progress::Progress;
 use stiffid_core::model::Parameter;
 use stiffid_core::{common::limits, Result, Setup};
+use stiffid_design::study::simulate::{monte_carlo_reporting, GroupSimulation, Options};
 
 /// A group of postures to simulate.
 #[derive(Debug, Clone)]

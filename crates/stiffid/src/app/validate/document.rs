@@ -1,10 +1,10 @@
 //! The document of the validate job ([`crate::app::validate`]): `stiffid validate --json`,
 //! Python's `validate(...)`.
 
-use crate::app::validate::Report;
-use serde::Serialize;
 use crate::app::document::parameters::{stiffness, ParameterStiffness};
 use crate::app::document::{interval_mm, mm};
+use crate::app::validate::Report;
+use serde::Serialize;
 use stiffid_core::io::stiffness::RegionSection;
 use stiffid_core::Setup;
 

@@ -4,13 +4,13 @@
 pub mod document;
 
 use super::measurements::{angle_warnings, on_measurements, Data, Origin};
-use stiffid_identify::validate::{compare_at, Validation};
-use std::io::Read;
 use crate::app::Warning;
+use std::io::Read;
 use stiffid_core::common::limits::Violation;
 use stiffid_core::model::region::{self, PostureRange, Region};
 use stiffid_core::model::Compliance;
 use stiffid_core::{Result, Setup};
+use stiffid_identify::validate::{compare_at, Validation};
 
 /// What to validate on what.
 pub struct Request<'a, R> {

@@ -1,19 +1,19 @@
 //! The document of the identify job ([`crate::app::identify`]) for the six drive springs: `stiffid identify --json`, the
 //! stiffness file of `--out`, Python's `identify(...).to_dict()`.
 
-use crate::app::identify::drives::Report;
-use crate::app::measurements::Origin;
-use stiffid_identify::{Adequacy, Identification, RobustFit, Uncertainty};
-use nalgebra::DVector;
-use serde::Serialize;
 use crate::app::document::parameters::{stiffness, ParameterStiffness};
 use crate::app::document::{finite, finite_each, mm};
+use crate::app::identify::drives::Report;
+use crate::app::measurements::Origin;
+use nalgebra::DVector;
+use serde::Serialize;
 use stiffid_core::common::warning::WarningKind;
 use stiffid_core::io::stiffness::{PredictionSection, RegionSection};
 use stiffid_core::model::prediction::Calibration;
 use stiffid_core::model::Model;
 use stiffid_core::model::PostureRange;
 use stiffid_core::{Coordinates, Setup};
+use stiffid_identify::{Adequacy, Identification, RobustFit, Uncertainty};
 
 /// The relative standard error of a stiffness (its standard error over its magnitude) above
 /// which the document calls it poorly determined (`poorly_determined`): the stiffness is then

@@ -9,8 +9,8 @@ pub mod drives;
 pub mod scene;
 pub mod springs;
 
-pub use stiffid_identify::compare::Document as Comparison;
 use serde::Serialize;
+pub use stiffid_identify::compare::Document as Comparison;
 
 /// `stiffid identify --json`: the identification of the setup's model or the model comparison.
 /// Each form carries its own `kind` (its struct's tag), so the union needs none of its own.

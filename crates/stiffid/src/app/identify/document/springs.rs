@@ -4,16 +4,16 @@
 //! rotational springs, N/mm for translational ones) and every stiffness is in that unit.
 
 use super::drives::{prediction, region, Residual, Robust};
+use crate::app::document::{finite, mm};
 use crate::app::identify::springs::Report;
-use stiffid_identify::compare::document::{fit_doc, FitDoc};
-use stiffid_identify::cross_validation::CrossValidation;
 use nalgebra::DVector;
 use serde::Serialize;
-use crate::app::document::{finite, mm};
 use stiffid_core::common::warning::Warning;
 use stiffid_core::io::stiffness::{ModelFormSection, PredictionSection, RegionSection};
 use stiffid_core::model::Parameter;
 use stiffid_core::Setup;
+use stiffid_identify::compare::document::{fit_doc, FitDoc};
+use stiffid_identify::cross_validation::CrossValidation;
 
 /// The identify document over a model. With `parameters` and `compliance_covariance_si`, what a
 /// stiffness file holds ([`stiffid_core::io::stiffness`]).

@@ -11,9 +11,9 @@ pub use setup::SetupJson;
 
 use crate::app::document::group::{CriteriaValues, Group};
 use crate::app::reproduce::Report;
-use stiffid_design::study::Study;
 use nalgebra::{Vector3, Vector6};
 use serde::Serialize;
+use stiffid_design::study::Study;
 
 /// The value of the `generator` key that marks a directory as a report of ours.
 pub const GENERATOR: &str = "stiffid reproduce";

@@ -1,10 +1,10 @@
 //! The cross-validation folds a stiffness file carries (`stiffid::app::identify::folds`).
 
 use nalgebra::{DVector, Vector6};
-use stiffid_core::common::warning::WarningKind;
-use stiffid_core::model::prediction::Calibration;
 use stiffid::app::identify::folds::*;
 use stiffid::app::measurements::Origin;
+use stiffid_core::common::warning::WarningKind;
+use stiffid_core::model::prediction::Calibration;
 use stiffid_identify::cross_validation::{CrossValidation, Fold};
 
 fn fold(posture: usize, compliance: DVector<f64>) -> Fold {

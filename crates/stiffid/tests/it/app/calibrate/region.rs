@@ -2,9 +2,9 @@
 //! fit where the jackknife+ has none (`fit_bound`).
 
 use nalgebra::Vector6;
-use stiffid::common::limits::JointBox;
 use stiffid::app::calibrate::fit_bound::half_width;
 use stiffid::app::calibrate::region::region;
+use stiffid::common::limits::JointBox;
 
 fn deg(v: [f64; 6]) -> Vector6<f64> {
     Vector6::from(v).map(f64::to_radians)

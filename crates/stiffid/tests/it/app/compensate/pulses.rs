@@ -3,8 +3,8 @@
 //! a whole degree per pulse) are refused naming the field, the controller's own are written.
 
 use nalgebra::Vector6;
-use stiffid::app::compensate::{self, Input};
 use stiffid::app::compensate::resolution::rounding;
+use stiffid::app::compensate::{self, Input};
 use stiffid::machining::compensate::Options;
 use stiffid::machining::program::generate::Settings;
 use stiffid::machining::program::Dialect;

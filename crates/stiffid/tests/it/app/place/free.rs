@@ -1,9 +1,9 @@
 //! `place --free` (`stiffid::app::place::Free::parse`): the height and tilt in the
 //! grammar of `compensate --free`, each from the part's own.
 
+use stiffid::app::place::{Free, Region};
 use stiffid_core::common::error::JobOption;
 use stiffid_core::Error;
-use stiffid::app::place::{Free, Region};
 
 /// The part's own height, m.
 const OWN_Z: f64 = 0.4;

@@ -1,3 +1,0 @@
-//! The identify crate's jobs (`stiffid::app`).
-
-mod identify;

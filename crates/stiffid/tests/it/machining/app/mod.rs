@@ -1,4 +1,0 @@
-//! The machining crate's jobs (`stiffid::app`).
-
-mod compensate;
-mod place;
