@@ -15,7 +15,7 @@ use stiffid::Error;
 
 /// The milling example's cell with the controller's `pulses_per_deg`.
 fn setup(per_deg: &str) -> stiffid::Setup {
-    let text = include_str!("../../../../../../../examples/milling/fanuc-milling.toml");
+    let text = include_str!("../../../../../../examples/milling/fanuc-milling.toml");
     let text = format!("{text}\n[controller]\npulses_per_deg = {per_deg}\n");
     stiffid::setup::parse(&text, "cell.toml", |name, _| presets::get(name)).unwrap()
 }
@@ -24,13 +24,13 @@ fn setup(per_deg: &str) -> stiffid::Setup {
 /// (m), or the error.
 fn job(setup: &stiffid::Setup) -> stiffid::Result<Vec<f64>> {
     let compliance = stiffid::io::stiffness::parse(include_str!(
-        "../../../../../../../examples/milling/stiffness.json"
+        "../../../../../../examples/milling/stiffness.json"
     ))
     .unwrap()
     .compliance(setup.model())
     .unwrap();
     let process = stiffid::machining::process::file::parse(
-        include_str!("../../../../../../../examples/milling/aluminium.toml"),
+        include_str!("../../../../../../examples/milling/aluminium.toml"),
         "aluminium.toml",
     )
     .unwrap();
@@ -39,7 +39,7 @@ fn job(setup: &stiffid::Setup) -> stiffid::Result<Vec<f64>> {
         compliance,
         input: Input::Program {
             name: "pocket.nc".into(),
-            text: include_str!("../../../../../../../examples/milling/pocket.nc"),
+            text: include_str!("../../../../../../examples/milling/pocket.nc"),
             data: None,
             language: Language::GCode,
             process_name: "aluminium.toml".into(),
