@@ -800,3 +800,41 @@ fn the_public_item_counts_are_the_ones_architecture_lists() {
     });
     assert_eq!(listed_total, Some(total), "the table's total");
 }
+
+/// The places where a front end (`stiffid-cli`, `stiffid-py`) still builds a job's document
+/// from its report (`Document::new(&report, ..)`, a scene from a report) instead of receiving
+/// it from the job: at most this many, and never more (the aim is none).
+const FRONT_END_DOCUMENTS: usize = 28;
+
+/// Each place in a front end's code where a document is built: `file:line`.
+fn front_end_documents() -> Vec<String> {
+    let mut found = Vec::new();
+    for front in ["stiffid-cli", "stiffid-py"] {
+        let mut files = Vec::new();
+        every_source(&src_of(front), &mut files);
+        files.sort();
+        for file in files {
+            let code = strip(&std::fs::read_to_string(&file).unwrap());
+            for (n, line) in code.lines().enumerate() {
+                let builds = line.match_indices("Document::new(").count()
+                    + line.match_indices("document::scene(").count();
+                let at = format!("{}:{}", file.display(), n + 1);
+                found.extend(std::iter::repeat_n(at, builds));
+            }
+        }
+    }
+    found
+}
+
+#[test]
+fn front_ends_build_no_more_documents() {
+    let found = front_end_documents();
+    assert!(
+        (found.iter()).any(|f| f.contains("stiffid-cli/src/report/plan.rs")),
+        "{found:#?}"
+    );
+    assert!(
+        found.len() <= FRONT_END_DOCUMENTS,
+        "a front end builds a document the job should return: {found:#?}"
+    );
+}
