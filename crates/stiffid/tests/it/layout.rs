@@ -1,8 +1,11 @@
 //! The library's layout by concern (docs/ARCHITECTURE.md): crates that stand on each other
-//! without a circle, no import circle between the files of a crate (a folder's `mod.rs` and
-//! `lib.rs` included), no job folder of an `app/` importing another, no library file over 700
-//! lines, each crate's public surface the one docs/ARCHITECTURE.md lists, and no unit test in a
-//! crate whose tests are off (`[lib] test = false`: compiled once, its tests in tests/it).
+//! without a circle, on floors (core, the science, the views, the jobs: no science crate on the
+//! views or the jobs, no `app/` folder outside the jobs crate `stiffid`), no import circle
+//! between the files of a crate (a folder's `mod.rs` and `lib.rs` included), no job folder of
+//! `app/` importing another, no library file over 700 lines, each crate's public surface and
+//! count of public items the ones docs/ARCHITECTURE.md lists, no more documents built by the
+//! front ends, and no unit test in a crate whose tests are off (`[lib] test = false`: compiled
+//! once, its tests in tests/it).
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
