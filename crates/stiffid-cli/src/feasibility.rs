@@ -1,7 +1,7 @@
 //! The cell's feasibility checks of a group of postures, as text, from their document
-//! ([`stiffid_core::app::document::feasibility`]).
+//! ([`stiffid::app::document::feasibility`]).
 
-use stiffid_core::app::document::feasibility::{Posture, Violation};
+use stiffid::app::document::feasibility::{Posture, Violation};
 
 /// One line per posture: feasible with its smallest clearance, or the failing checks.
 pub fn text(postures: &[Posture]) -> String {

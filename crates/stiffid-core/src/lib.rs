@@ -4,8 +4,7 @@
 //! geometry, external axes, URDF and robot files), the stiffness model ([`model`]), the setup of an
 //! experiment or a cell ([`setup`]), the observation matrix of the Virtual Joint Method
 //! ([`observation`]), the cell's checks ([`cell`]), the file formats ([`io`]), the linear algebra
-//! ([`math`]) and the errors, limits and warnings ([`common`]); the jobs' pattern and their shared
-//! documents ([`app`]), with the jobs that need nothing more (kinematics, predict, setups new).
+//! ([`math`]) and the errors, limits and warnings ([`common`]).
 //!
 //! ## Conventions
 //! - SI inside: metres, radians, newtons, newton-metres, Nm/rad. Files speak mm and degrees.
@@ -15,7 +14,6 @@
 #![deny(missing_docs)]
 #![deny(rustdoc::broken_intra_doc_links, rustdoc::private_intra_doc_links)]
 
-pub mod app;
 pub mod cell;
 pub mod common;
 pub mod io;

@@ -10,7 +10,6 @@
 #![deny(missing_docs)]
 #![deny(rustdoc::broken_intra_doc_links, rustdoc::private_intra_doc_links)]
 
-pub mod app;
 pub mod candidates;
 pub mod criteria;
 pub mod distinct;

@@ -29,7 +29,6 @@
 #![deny(rustdoc::broken_intra_doc_links, rustdoc::private_intra_doc_links)]
 
 pub mod adequacy;
-pub mod app;
 pub mod compare;
 pub mod cross_validation;
 pub mod nonnegative;

@@ -51,7 +51,6 @@
 #![deny(missing_docs)]
 #![deny(rustdoc::broken_intra_doc_links, rustdoc::private_intra_doc_links)]
 
-pub mod app;
 pub mod cell;
 pub mod compensate;
 pub mod cutting;

@@ -4,7 +4,6 @@
 #![deny(missing_docs)]
 #![deny(rustdoc::broken_intra_doc_links, rustdoc::private_intra_doc_links)]
 
-pub mod app;
 pub mod calibration;
 pub mod cell_calibration;
 pub mod register;

@@ -1,5 +1,5 @@
 //! `stiffid.calibrate`: the robot calibration job of `stiffid calibrate`
-//! ([`stiffid_calibrate::app::calibrate`]) and the calibrated robot's files.
+//! ([`stiffid::app::calibrate`]) and the calibrated robot's files.
 
 use crate::documents::{to_python, warn};
 use crate::error::{self, raise, value};
@@ -8,9 +8,9 @@ use crate::setup::Setup;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
-use stiffid_calibrate::app::calibrate::document::Document;
-use stiffid_calibrate::app::calibrate::{self as job, Tolerances};
-use stiffid_metrology::app::readings::Request as Readings;
+use stiffid::app::calibrate::document::Document;
+use stiffid::app::calibrate::{self as job, Tolerances};
+use stiffid::app::readings::Request as Readings;
 
 /// Calibrates the robot from the ``readings`` of a campaign (a CSV path in the ``stiffid
 /// register --data`` format: ``posture,point,q1_deg..q6_deg,x_tracker_mm,y_tracker_mm,z_tracker_mm``

@@ -1,5 +1,5 @@
 //! `stiffid.identify(..., compare_models=True)`: the model-comparison job
-//! ([`stiffid_identify::app::identify::comparison`]), its document as `stiffid identify --compare-models --json`
+//! ([`stiffid::app::identify::comparison`]), its document as `stiffid identify --compare-models --json`
 //! writes it, plus the selection path as arrays and names.
 
 use crate::documents;
@@ -7,7 +7,7 @@ use crate::setup::Setup;
 use numpy::IntoPyArray;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use stiffid_identify::app::identify::comparison::Report;
+use stiffid::app::identify::comparison::Report;
 use stiffid_identify::compare::document::{Document, ModelDoc};
 
 /// The comparison's document as `stiffid identify --compare-models --json` writes it, with the

@@ -10,9 +10,9 @@ use nalgebra::Vector6;
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
 use std::path::{Path, PathBuf};
+use stiffid::app::compensate::document::{values, Document, Names, Row, DYNAMICS};
+use stiffid::app::compensate::{self as job, Input, Request};
 use stiffid_core::observation::deflection::Frame;
-use stiffid_machining::app::compensate::document::{values, Document, Names, Row, DYNAMICS};
-use stiffid_machining::app::compensate::{self as job, Input, Request};
 use stiffid_machining::compensate::{
     free, Aggregate, Compensated, FreeOption, Freedom, MapVariable, Objective, Options, PathPoint,
     Variable,
@@ -179,7 +179,7 @@ pub fn compensate<'py>(
     let mut results: Vec<Compensated> = Vec::new();
     let mut rows: Vec<Row> = Vec::new();
     let mut dynamics: Vec<Vec<Option<f64>>> = Vec::new();
-    let at = (stiffid_machining::app::compensate::document::header().iter())
+    let at = (stiffid::app::compensate::document::header().iter())
         .position(|h| h == DYNAMICS[0])
         .unwrap_or(0);
     let report = py
@@ -279,7 +279,7 @@ fn job_options<'py>(
 fn program_items(
     py: Python<'_>,
     out: &Bound<'_, PyDict>,
-    p: &stiffid_machining::app::compensate::ProgramReport,
+    p: &stiffid::app::compensate::ProgramReport,
 ) -> PyResult<()> {
     out.set_item("program", &p.text)?;
     let subprograms = PyDict::new(py);

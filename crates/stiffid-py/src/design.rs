@@ -1,19 +1,19 @@
 //! `Setup.evaluate` and `Setup.select`: the library's evaluate and select jobs
-//! ([`stiffid_design::app::evaluate`], [`stiffid_design::app::select`]), their documents as dicts.
+//! ([`stiffid::app::evaluate`], [`stiffid::app::select`]), their documents as dicts.
 
 use crate::documents::{to_python, warn};
 use crate::error::{raise, value};
 use nalgebra::Vector6;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use stiffid::app::purpose::{CalibrationOptions, Purpose};
+use stiffid::app::{evaluate, select};
+use stiffid::app::{
+    evaluate::document::Document as Evaluated, select::document::Document as Selected,
+};
 use stiffid_core::common::choice::Choice;
 use stiffid_core::common::limits::{self, check_count};
 use stiffid_core::Setup;
-use stiffid_design::app::purpose::{CalibrationOptions, Purpose};
-use stiffid_design::app::{evaluate, select};
-use stiffid_design::app::{
-    evaluate::document::Document as Evaluated, select::document::Document as Selected,
-};
 use stiffid_design::distinct::Distinctness;
 use stiffid_design::SearchOptions;
 

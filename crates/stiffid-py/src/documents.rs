@@ -1,4 +1,4 @@
-//! The library's documents ([`stiffid_core::app::document`]) as Python objects, and the jobs' warnings as
+//! The library's documents ([`stiffid::app::document`]) as Python objects, and the jobs' warnings as
 //! `UserWarning`s: the one way Python results are built, so they equal the command's JSON.
 
 use crate::error::value;

@@ -1,6 +1,6 @@
 //! `stiffid.process_force` and `stiffid.read_program`: the process forces of a process file
-//! ([`stiffid_machining::app::force`]) and the path of a machining program
-//! ([`stiffid_machining::app::compensate::read_program`]), as the command reads them.
+//! ([`stiffid::app::force`]) and the path of a machining program
+//! ([`stiffid::app::compensate::read_program`]), as the command reads them.
 
 use crate::arrays;
 use crate::documents::to_python;
@@ -9,8 +9,8 @@ use nalgebra::Vector6;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
-use stiffid_machining::app::force::document::Document;
-use stiffid_machining::app::{compensate, force};
+use stiffid::app::force::document::Document;
+use stiffid::app::{compensate, force};
 use stiffid_machining::gcode::{Machine, Motion};
 use stiffid_machining::process::file;
 use stiffid_machining::program::speed::Speed;

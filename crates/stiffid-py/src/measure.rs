@@ -13,14 +13,14 @@ use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
 use std::fs::File;
 use std::path::PathBuf;
+use stiffid::app::identify::document::drives::Document;
+use stiffid::app::identify::document::springs::Document as ModelDocument;
+use stiffid::app::identify::{self as job, Options, Report, Request};
+use stiffid::app::measurements::Data;
+use stiffid::app::validate as validation;
+use stiffid::app::validate::document::Document as Checked;
 use stiffid_core::io::Capped;
 use stiffid_core::observation::Measurement;
-use stiffid_identify::app::identify::document::drives::Document;
-use stiffid_identify::app::identify::document::springs::Document as ModelDocument;
-use stiffid_identify::app::identify::{self as job, Options, Report, Request};
-use stiffid_identify::app::measurements::Data;
-use stiffid_identify::app::validate as validation;
-use stiffid_identify::app::validate::document::Document as Checked;
 use stiffid_identify::Loss;
 
 /// The job's measurements: a CSV path (the `stiffid identify --data` format, read by the job

@@ -1,12 +1,12 @@
 //! The setup's elastostatic model in Python: its parameters with their nominal stiffness
-//! ([`stiffid_core::app::document::parameters`]) and a setup with another `[model]` table
+//! ([`stiffid::app::document::parameters`]) and a setup with another `[model]` table
 //! ([`stiffid_core::model::parse_fragment`]).
 
 use crate::error::raise;
 use nalgebra::DVector;
 use pyo3::prelude::*;
 use pyo3::types::PyList;
-use stiffid_core::app::document::parameters;
+use stiffid::app::document::parameters;
 use stiffid_core::Setup;
 
 /// The parameters of `setup`'s model with their nominal stiffness (`None` where the setup has

@@ -1,5 +1,5 @@
 //! `stiffid.place`: where to clamp the part so that a G-code program's error bound is least
-//! ([`stiffid_machining::app::place`]), as `stiffid place` does.
+//! ([`stiffid::app::place`]), as `stiffid place` does.
 
 use crate::documents::to_python;
 use crate::error::{self, raise};
@@ -7,10 +7,10 @@ use crate::setup::Setup;
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
 use std::path::PathBuf;
+use stiffid::app::place::document::Document;
+use stiffid::app::place::search::Effort;
+use stiffid::app::place::{self as job, Region, Request, Work};
 use stiffid_core::observation::deflection::Frame;
-use stiffid_machining::app::place::document::Document;
-use stiffid_machining::app::place::search::Effort;
-use stiffid_machining::app::place::{self as job, Region, Request, Work};
 use stiffid_machining::compensate::Aggregate;
 use stiffid_machining::process::file;
 use stiffid_machining::Language;

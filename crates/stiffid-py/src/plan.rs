@@ -1,4 +1,4 @@
-//! `stiffid.plan`: the measurement plan job ([`stiffid_design::app::plan`]) whose document `stiffid
+//! `stiffid.plan`: the measurement plan job ([`stiffid::app::plan`]) whose document `stiffid
 //! select --report DIR` writes as `plan.json`.
 
 use crate::arrays::postures;
@@ -7,8 +7,8 @@ use crate::error::raise;
 use crate::setup::Setup;
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
-use stiffid_design::app::plan::document::Document;
-use stiffid_design::app::plan::{self as job, Request};
+use stiffid::app::plan::document::Document;
+use stiffid::app::plan::{self as job, Request};
 
 /// The measurement plan of the group ``postures_deg`` (axis angles, deg, shape ``(n, 6)``, within
 /// the joint limits; at most 10000), as chosen by ``criterion`` (named in the plan; default

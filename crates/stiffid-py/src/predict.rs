@@ -1,5 +1,5 @@
 //! `stiffid.predict` and `stiffid.deflection`: the predict job of `stiffid predict`
-//! ([`stiffid_core::app::predict`]), for one posture or for each of many.
+//! ([`stiffid::app::predict`]), for one posture or for each of many.
 
 use crate::arrays::{self, rows};
 use crate::documents;
@@ -8,8 +8,8 @@ use crate::setup::Setup;
 use nalgebra::{Vector3, Vector6};
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict, PyList};
-use stiffid_core::app::predict as job;
-use stiffid_core::app::predict::document::Document;
+use stiffid::app::predict as job;
+use stiffid::app::predict::document::Document;
 use stiffid_core::common::limits;
 use stiffid_core::model::Compliance;
 use stiffid_core::observation::deflection::Frame;

@@ -1,7 +1,7 @@
 //! `stiffid.register` and `stiffid.calibrate_cell`: the tracker's transform from raw readings
-//! ([`stiffid_calibrate::app::register`]) and the transform with the measuring points fitted together
-//! ([`stiffid_calibrate::app::calibrate_cell`]), as the command computes them; the postures to register in
-//! ([`stiffid_calibrate::app::register::propose`]).
+//! ([`stiffid::app::register`]) and the transform with the measuring points fitted together
+//! ([`stiffid::app::calibrate_cell`]), as the command computes them; the postures to register in
+//! ([`stiffid::app::register::propose`]).
 
 use crate::count;
 use crate::documents::{to_python, warn};
@@ -10,10 +10,10 @@ use crate::setup::Setup;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
-use stiffid_calibrate::app::calibrate_cell as calibrate_job;
-use stiffid_calibrate::app::calibrate_cell::document::Calibration;
-use stiffid_calibrate::app::register as register_job;
-use stiffid_calibrate::app::register::document::{Document, Proposal};
+use stiffid::app::calibrate_cell as calibrate_job;
+use stiffid::app::calibrate_cell::document::Calibration;
+use stiffid::app::register as register_job;
+use stiffid::app::register::document::{Document, Proposal};
 use stiffid_design::registration as design;
 
 /// The readings of `path` as a job's request runs on them.

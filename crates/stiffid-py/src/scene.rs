@@ -10,7 +10,7 @@ use nalgebra::Vector6;
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyBytes, PyDict};
 use serde_json::Value;
-use stiffid_design::app::plan::{self as job, Request};
+use stiffid::app::plan::{self as job, Request};
 use stiffid_view::{glb, page, MAX_POSTURES};
 
 /// The 3D scene of a plan, an identification, a calibration or a compensation
@@ -103,7 +103,7 @@ pub fn scene(
         Some(d) if kind == "identify-drives" || kind == "identify-springs" => {
             let group = given(postures_deg)?;
             let text = d.to_string();
-            py.detach(|| stiffid_identify::app::identify::document::scene::scene(s, &group, &[], &text))
+            py.detach(|| stiffid::app::identify::document::scene::scene(s, &group, &[], &text))
                 .map_err(raise)?
         }
         Some(_) if postures_deg.is_some() && own(&kind) => {
@@ -114,12 +114,12 @@ pub fn scene(
         }
         Some(d) if kind == "calibrate" => {
             let text = d.to_string();
-            py.detach(|| stiffid_calibrate::app::calibrate::scene::scene(s, &text))
+            py.detach(|| stiffid::app::calibrate::scene::scene(s, &text))
                 .map_err(raise)?
         }
         Some(d) if kind == "compensate" => {
             let text = d.to_string();
-            py.detach(|| stiffid_machining::app::compensate::scene::of_document(s, &text))
+            py.detach(|| stiffid::app::compensate::scene::of_document(s, &text))
                 .map_err(raise)?
                 .ok_or_else(|| value("document: the compensation's path is empty: no scene"))?
         }

@@ -135,7 +135,7 @@ impl Setup {
             let checker = stiffid_core::cell::Checker::new(setup);
             group.iter().map(|q| checker.feasibility(q)).collect()
         });
-        let document = stiffid_core::app::document::feasibility::postures(&checks);
+        let document = stiffid::app::document::feasibility::postures(&checks);
         crate::documents::to_object(py, &document)
     }
 

@@ -1,12 +1,12 @@
 //! `stiffid.setups_new`: the new-setup job of `stiffid setups new`
-//! ([`stiffid_core::app::setups_new`]).
+//! ([`stiffid::app::setups_new`]).
 
 use crate::documents::warn;
 use crate::error::{self, raise, value, Failure};
 use crate::output;
 use pyo3::prelude::*;
 use std::path::{Path, PathBuf};
-use stiffid_core::app::setups_new::{self as job, relative_to, robot_reference};
+use stiffid::app::setups_new::{self as job, relative_to, robot_reference};
 use stiffid_core::robot::Bodies;
 use stiffid_core::setup::reference::{self, Meshes};
 

@@ -6,11 +6,11 @@ use crate::error::{raise, value};
 use crate::setup::Setup;
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict, PyList};
+use stiffid::app::reproduce as job_reproduce;
+use stiffid::app::reproduce::document::Summary;
+use stiffid::app::simulate as job;
+use stiffid::app::simulate::document::Document;
 use stiffid_core::common::limits::{self, check_count};
-use stiffid_design::app::reproduce as job_reproduce;
-use stiffid_design::app::reproduce::document::Summary;
-use stiffid_design::app::simulate as job;
-use stiffid_design::app::simulate::document::Document;
 use stiffid_design::study::simulate as monte_carlo;
 use stiffid_design::study::Options;
 

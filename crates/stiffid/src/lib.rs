@@ -2,16 +2,18 @@
 //!
 //! Joint stiffness identification of 6-axis serial industrial robots, the design of its
 //! experiment (which postures to measure in), calibration and deflection compensation for robotic
-//! machining: the library under one name. Each concern is a crate of its own, re-exported here:
+//! machining: the jobs ([`app`]: one entry point per use case, run the same way by the command
+//! and the Python package) and the library under one name. Each concern below the jobs is a
+//! crate of its own, re-exported here:
 //!
 //! - `stiffid-core` ([`robot`], [`model`], [`setup`], [`observation`], [`cell`], [`io`],
-//!   [`math`], [`common`], the jobs' pattern in [`app`]): what every stage stands on;
-//! - `stiffid-view` ([`app::document::scene`]): the 3D scenes (glTF, three.js page);
+//!   [`math`], [`common`]): what every stage stands on;
 //! - `stiffid-metrology` ([`metrology`]): registration, cell and robot calibration;
 //! - `stiffid-identify` ([`identify`]): the stiffness identification;
 //! - `stiffid-design` ([`design`], [`study`]): the experiment design and the paper's study;
-//! - `stiffid-calibrate`: the calibration jobs;
-//! - `stiffid-machining` ([`machining`]): machining programs and their compensation.
+//! - `stiffid-machining` ([`machining`]): machining programs and their compensation;
+//! - `stiffid-view` ([`app::document::scene`]): the 3D scenes (glTF, three.js page), above the
+//!   science and below the jobs.
 //!
 //! The model is the Virtual Joint Method of Zhang, Guo, Sun and Sun, "Method of Postures Selection
 //! for Industrial Robot Joint Stiffness Identification", IEEE Access 9, 2021,
@@ -41,23 +43,7 @@ pub use stiffid_identify as identify;
 pub use stiffid_machining as machining;
 pub use stiffid_metrology as metrology;
 
-pub mod app {
-    //! The jobs of every crate under one path: one entry point per use case, run the same way by
-    //! every front end (the pattern: `stiffid_core::app`).
-    pub use stiffid_calibrate::app::{calibrate, calibrate_cell, register};
-    pub use stiffid_core::app::{in_data, kinematics, predict, setups_new, Warning, WarningKind};
-    pub use stiffid_design::app::{evaluate, plan, purpose, reproduce, select, simulate};
-    pub use stiffid_identify::app::{identify, measurements, validate};
-    pub use stiffid_machining::app::{compensate, force, place};
-    pub use stiffid_metrology::app::readings;
-
-    pub mod document {
-        //! The documents' parts the jobs share.
-        pub use stiffid_core::app::document::*;
-        pub use stiffid_design::app::document::{candidates, group};
-        pub use stiffid_view as scene;
-    }
-}
+pub mod app;
 
 /// The Rust examples of the README, run as doctests.
 #[doc = include_str!("../../../README.md")]

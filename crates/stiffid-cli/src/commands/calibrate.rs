@@ -1,6 +1,6 @@
 //! `stiffid calibrate`: the robot's geometric errors, gravity terms, the tracker's registration
 //! and the measuring points fitted together from unloaded readings
-//! ([`stiffid_calibrate::app::calibrate`]), with held-out validation, and the calibrated robot
+//! ([`stiffid::app::calibrate`]), with held-out validation, and the calibrated robot
 //! written as a robot file and a URDF.
 
 use crate::load;
@@ -9,10 +9,10 @@ use crate::progress::Bars;
 use crate::report::calibration;
 use anyhow::{bail, Result};
 use std::path::PathBuf;
-use stiffid_calibrate::app::calibrate::document::Document;
-use stiffid_calibrate::app::calibrate::GravitySpec;
-use stiffid_calibrate::app::calibrate::{self as job, Tolerances};
-use stiffid_metrology::app::readings::Request as Readings;
+use stiffid::app::calibrate::document::Document;
+use stiffid::app::calibrate::GravitySpec;
+use stiffid::app::calibrate::{self as job, Tolerances};
+use stiffid::app::readings::Request as Readings;
 use stiffid_metrology::calibration::identifiability::CORRELATION_INSEPARABLE;
 use stiffid_metrology::calibration::maps::Spec;
 use stiffid_metrology::calibration::Geometry;
@@ -386,7 +386,7 @@ fn percent(level: f64) -> String {
 }
 
 /// The check's lines (`--update`): the bound, the readings outside it and the verdict.
-fn check_text(c: Option<&stiffid_calibrate::app::calibrate::drift::CheckDocument>) -> String {
+fn check_text(c: Option<&stiffid::app::calibrate::drift::CheckDocument>) -> String {
     let Some(c) = c else {
         return String::new();
     };
@@ -408,9 +408,7 @@ fn check_text(c: Option<&stiffid_calibrate::app::calibrate::drift::CheckDocument
 }
 
 /// The ladder's lines: each rung's held-out error over groups of postures, the one fitted.
-fn ladder_text(
-    ladder: Option<&stiffid_calibrate::app::calibrate::ladder::LadderDocument>,
-) -> String {
+fn ladder_text(ladder: Option<&stiffid::app::calibrate::document::LadderDocument>) -> String {
     let Some(l) = ladder else {
         return String::new();
     };
@@ -457,7 +455,7 @@ model chosen by {k} groups of postures held out (RMS, mm):
 }
 
 /// The maps' lines: the choice, the figure it was tuned on and the nested held-out gain.
-fn maps_text(m: &stiffid_calibrate::app::calibrate::document::MapsDocument) -> String {
+fn maps_text(m: &stiffid::app::calibrate::document::MapsDocument) -> String {
     if let Some(why) = &m.skipped {
         return format!("\njoint error maps: none ({why})\n");
     }

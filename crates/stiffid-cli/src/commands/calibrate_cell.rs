@@ -1,11 +1,11 @@
 //! `stiffid calibrate-cell`: the tracker's transform and the measuring points in the flange frame
-//! fitted together from unloaded readings ([`stiffid_calibrate::app::calibrate_cell`]), each point's shift from
+//! fitted together from unloaded readings ([`stiffid::app::calibrate_cell`]), each point's shift from
 //! the setup's value with its standard deviation, and the corrected fragment of the setup file.
 
 use crate::commands::cell_readings::{self, three, Outcome};
 use anyhow::Result;
-use stiffid_calibrate::app::calibrate_cell as job;
-use stiffid_calibrate::app::calibrate_cell::document::Calibration;
+use stiffid::app::calibrate_cell as job;
+use stiffid::app::calibrate_cell::document::Calibration;
 
 /// Arguments of `stiffid calibrate-cell`: `--data` is every measuring point read in postures
 /// that turn the flange (more coordinates than 6 + 3 per point read); `--out` gets the corrected

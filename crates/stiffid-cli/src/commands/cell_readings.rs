@@ -8,7 +8,7 @@ use crate::output::{self, print_json_or, OutFile};
 use anyhow::{bail, Result};
 use serde::Serialize;
 use std::path::PathBuf;
-use stiffid_calibrate::app::register::Request;
+use stiffid::app::register::Request;
 use stiffid_core::common::warning::Warning;
 use stiffid_core::Setup;
 

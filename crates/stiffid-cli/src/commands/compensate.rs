@@ -1,5 +1,5 @@
-//! `stiffid compensate`: arguments to a request of [`stiffid_machining::app::compensate`], the rows of its
-//! CSV and JSON document ([`stiffid_machining::app::compensate::document`]) written as the job computes them,
+//! `stiffid compensate`: arguments to a request of [`stiffid::app::compensate`], the rows of its
+//! CSV and JSON document ([`stiffid::app::compensate::document`]) written as the job computes them,
 //! then the compensated program, the text or JSON, and the report.
 
 use crate::commands::common::choice;
@@ -11,16 +11,16 @@ use crate::report::{self, compensation};
 use anyhow::{anyhow, bail, Result};
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use stiffid::app::compensate::document::{
+    csv_line, external_header, external_values, header, values, Document, Names, GENERATOR,
+};
+use stiffid::app::compensate::dynamics::OperationDynamics;
+use stiffid::app::compensate::stream::Points;
+use stiffid::app::compensate::{self as job, Input, Report, Request};
 use stiffid_core::common::words::{count, number};
 use stiffid_core::observation::deflection::Frame;
 use stiffid_core::robot::ExternalAxes;
 use stiffid_core::{Error, Progress, Setup};
-use stiffid_machining::app::compensate::document::{
-    csv_line, external_header, external_values, header, values, Document, Names, GENERATOR,
-};
-use stiffid_machining::app::compensate::dynamics::OperationDynamics;
-use stiffid_machining::app::compensate::stream::Points;
-use stiffid_machining::app::compensate::{self as job, Input, Report, Request};
 use stiffid_machining::compensate::{
     Aggregate, Compensated, FreeOption, Freedom, MapVariable, Objective, Options, PathPoint,
 };
@@ -492,7 +492,7 @@ fn options(args: &Args, setup: &Setup) -> Result<Options> {
 }
 
 /// What the error that remains is made of, and whether the program meets `--max-error-mm`.
-fn made_of(b: &stiffid_machining::app::compensate::budget::BudgetSummary) -> String {
+fn made_of(b: &stiffid::app::compensate::budget::BudgetSummary) -> String {
     let parts: Vec<String> = (b.made_of.iter())
         .filter(|p| p.part != "left")
         .map(|p| match p.max_mm {

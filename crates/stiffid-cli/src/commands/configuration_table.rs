@@ -1,7 +1,7 @@
 //! The text table of `stiffid compensate --free configuration`: every configuration of the arm, its
 //! objective or why it cannot take the path, and the one chosen; per run, each run's choice.
 
-use stiffid_machining::app::compensate::configurations::{ConfigurationsDocument, RunRow};
+use stiffid::app::compensate::configurations::{ConfigurationsDocument, RunRow};
 
 /// A length in mm with four decimals, `-` for none.
 fn value(v: Option<f64>) -> String {

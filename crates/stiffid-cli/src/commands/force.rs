@@ -6,9 +6,9 @@ use crate::output::print_json_or;
 use crate::progress::Bars;
 use anyhow::Result;
 use std::path::PathBuf;
+use stiffid::app::force::document::Document;
+use stiffid::app::force::{self, Request};
 use stiffid_core::Progress;
-use stiffid_machining::app::force::document::Document;
-use stiffid_machining::app::force::{self, Request};
 use stiffid_machining::process::file;
 
 /// Arguments of `stiffid force`.

@@ -3,8 +3,8 @@
 use crate::commands::common::choice;
 use crate::{load, output};
 use anyhow::{Context, Result};
-use stiffid_core::app::kinematics as job;
-use stiffid_core::app::kinematics::document::Document;
+use stiffid::app::kinematics as job;
+use stiffid::app::kinematics::document::Document;
 use stiffid_core::{common::limits, Coordinates};
 
 /// Arguments of `stiffid kinematics`.

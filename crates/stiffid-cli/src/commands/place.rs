@@ -1,5 +1,5 @@
 //! `stiffid place`: where to clamp the part so that a program's error bound is least
-//! ([`stiffid_machining::app::place`]); writes the setup with that `[workpiece]`.
+//! ([`stiffid::app::place`]); writes the setup with that `[workpiece]`.
 
 use crate::commands::common::{choice, Stiffness};
 use crate::load;
@@ -7,11 +7,11 @@ use crate::output::{print_json_or, OutFile};
 use crate::progress::Bars;
 use anyhow::{anyhow, bail, Context, Result};
 use std::path::{Path, PathBuf};
+use stiffid::app::place::document::{Document, Placement};
+use stiffid::app::place::search::Effort;
+use stiffid::app::place::{self, Region, Request, Work};
 use stiffid_core::observation::deflection::Frame;
 use stiffid_core::Progress;
-use stiffid_machining::app::place::document::{Document, Placement};
-use stiffid_machining::app::place::search::Effort;
-use stiffid_machining::app::place::{self, Region, Request, Work};
 use stiffid_machining::compensate::{Aggregate, Options};
 use stiffid_machining::process::file;
 use stiffid_machining::Language;

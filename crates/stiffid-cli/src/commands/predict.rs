@@ -8,8 +8,8 @@ use crate::output::print_json_or;
 use anyhow::{bail, Result};
 use nalgebra::Vector6;
 use std::path::PathBuf;
-use stiffid_core::app::predict;
-use stiffid_core::app::predict::document::Document;
+use stiffid::app::predict;
+use stiffid::app::predict::document::Document;
 use stiffid_core::common::limits;
 use stiffid_core::observation::deflection::Frame;
 

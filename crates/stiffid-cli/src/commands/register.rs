@@ -1,15 +1,15 @@
 //! `stiffid register`: the laser tracker's transform to the robot base from measuring points read
-//! by the tracker at known axis angles ([`stiffid_calibrate::app::register`]: Umeyama's least-squares rigid
+//! by the tracker at known axis angles ([`stiffid::app::register`]: Umeyama's least-squares rigid
 //! transform), its residuals and standard deviation, and the `[tracker]` fragment of the setup
 //! file; or, with `--count N`, the registration postures to read
-//! ([`stiffid_calibrate::app::register::propose`]).
+//! ([`stiffid::app::register::propose`]).
 
 use crate::commands::cell_readings::{self, three, Outcome};
 use crate::output::print_json_or;
 use crate::progress::Bars;
 use anyhow::Result;
-use stiffid_calibrate::app::register as job;
-use stiffid_calibrate::app::register::document::{Document, Proposal};
+use stiffid::app::register as job;
+use stiffid::app::register::document::{Document, Proposal};
 use stiffid_core::Progress;
 use stiffid_design::registration as design;
 

@@ -6,10 +6,10 @@ use crate::{load, output};
 use anyhow::Result;
 use std::path::PathBuf;
 use std::time::Instant;
+use stiffid::app::reproduce::document::{sentences, GENERATOR};
+use stiffid::app::reproduce::{self as job, Report, Request};
 use stiffid_core::common::limits;
 use stiffid_core::Progress;
-use stiffid_design::app::reproduce::document::{sentences, GENERATOR};
-use stiffid_design::app::reproduce::{self as job, Report, Request};
 use stiffid_design::study::{Options, DEFAULT_STARTS, DEFAULT_TRIALS};
 use stiffid_design::Solver;
 

@@ -68,24 +68,22 @@ pub fn schema(name: &str) -> Result<Schema> {
         bail!("{name:?}: expected one of {}", names.join(", "));
     };
     let mut schema = match name {
-        "kinematics" => closed::<stiffid_core::app::kinematics::document::Document>(),
-        "evaluate" => closed::<stiffid_design::app::evaluate::document::Document>(),
-        "select" => closed::<stiffid_design::app::select::document::Document>(),
-        "plan" => closed::<stiffid_design::app::plan::document::Document>(),
-        "predict" => closed::<stiffid_core::app::predict::document::Document>(),
-        "identify" => closed::<stiffid_identify::app::identify::document::Document>(),
-        "validate" => closed::<stiffid_identify::app::validate::document::Document>(),
-        "compensate" => closed::<stiffid_machining::app::compensate::document::Document>(),
-        "place" => closed::<stiffid_machining::app::place::document::Document>(),
-        "force" => closed::<stiffid_machining::app::force::document::Document>(),
-        "simulate" => closed::<stiffid_design::app::simulate::document::Document>(),
-        "reproduce" => closed::<stiffid_design::app::reproduce::document::Summary<'static>>(),
-        "register" => closed::<stiffid_calibrate::app::register::document::Document>(),
-        "register-postures" => closed::<stiffid_calibrate::app::register::document::Proposal>(),
-        "calibrate-cell" => {
-            closed::<stiffid_calibrate::app::calibrate_cell::document::Calibration>()
-        }
-        "calibrate" => closed::<stiffid_calibrate::app::calibrate::document::Document>(),
+        "kinematics" => closed::<stiffid::app::kinematics::document::Document>(),
+        "evaluate" => closed::<stiffid::app::evaluate::document::Document>(),
+        "select" => closed::<stiffid::app::select::document::Document>(),
+        "plan" => closed::<stiffid::app::plan::document::Document>(),
+        "predict" => closed::<stiffid::app::predict::document::Document>(),
+        "identify" => closed::<stiffid::app::identify::document::Document>(),
+        "validate" => closed::<stiffid::app::validate::document::Document>(),
+        "compensate" => closed::<stiffid::app::compensate::document::Document>(),
+        "place" => closed::<stiffid::app::place::document::Document>(),
+        "force" => closed::<stiffid::app::force::document::Document>(),
+        "simulate" => closed::<stiffid::app::simulate::document::Document>(),
+        "reproduce" => closed::<stiffid::app::reproduce::document::Summary<'static>>(),
+        "register" => closed::<stiffid::app::register::document::Document>(),
+        "register-postures" => closed::<stiffid::app::register::document::Proposal>(),
+        "calibrate-cell" => closed::<stiffid::app::calibrate_cell::document::Calibration>(),
+        "calibrate" => closed::<stiffid::app::calibrate::document::Document>(),
         _ => open::<StiffnessFile>(),
     };
     schema.insert("title".into(), (*what).into());

@@ -1,11 +1,11 @@
 //! `stiffid setups new --robot R`: a complete, commented setup for the user's own robot
-//! ([`stiffid_core::app::setups_new`]). The text is loaded back before it is written, so it always
+//! ([`stiffid::app::setups_new`]). The text is loaded back before it is written, so it always
 //! loads as written.
 
 use crate::{load, output};
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
-use stiffid_core::app::setups_new::{self as job, relative_to, robot_reference};
+use stiffid::app::setups_new::{self as job, relative_to, robot_reference};
 use stiffid_core::Robot;
 
 /// Arguments of `stiffid setups new`.

@@ -1,5 +1,5 @@
 //! `stiffid simulate`: Monte Carlo identification with groups of postures from files
-//! (Zhang et al. 2021, Section IV-A): the files read into a [`stiffid_design::app::simulate::Request`],
+//! (Zhang et al. 2021, Section IV-A): the files read into a [`stiffid::app::simulate::Request`],
 //! the job run, its report rendered.
 
 use crate::commands::common::Common;
@@ -8,9 +8,9 @@ use crate::output::{self, json, ReportDir};
 use crate::progress::Bars;
 use anyhow::Result;
 use std::path::{Path, PathBuf};
+use stiffid::app::simulate::document::{deviation_csv, Document};
+use stiffid::app::simulate::{self as job, Group, Request};
 use stiffid_core::common::limits;
-use stiffid_design::app::simulate::document::{deviation_csv, Document};
-use stiffid_design::app::simulate::{self as job, Group, Request};
 use stiffid_design::study::simulate::Options;
 
 /// Arguments of `stiffid simulate`.

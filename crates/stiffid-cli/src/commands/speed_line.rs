@@ -1,8 +1,8 @@
 //! The compensate text's line of the axes' speed limits at the program's feed, from its
-//! document ([`stiffid_machining::app::compensate::speed::SpeedLimits`]).
+//! document ([`stiffid::app::compensate::speed::SpeedLimits`]).
 
+use stiffid::app::compensate::speed::{AxisSpeed, SpeedLimits};
 use stiffid_core::common::words::count;
-use stiffid_machining::app::compensate::speed::{AxisSpeed, SpeedLimits};
 
 /// One line: why the moves were not checked, or the highest share of an axis's speed at the
 /// path's own values and at those chosen, with its axis and line, and the moves whose

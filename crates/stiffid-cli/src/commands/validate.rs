@@ -1,6 +1,6 @@
 //! `stiffid validate`: predicted against measured displacements for an identified stiffness
 //! (Zhang et al. 2021, Eq. 22, Table 7), over every parameter of the setup's model: the arguments
-//! turned into a [`stiffid_identify::app::validate::Request`], the job run, its document rendered.
+//! turned into a [`stiffid::app::validate::Request`], the job run, its document rendered.
 
 use crate::commands::common::{Common, Stiffness};
 use crate::load;
@@ -8,11 +8,11 @@ use crate::output::{self, print_json_or};
 use crate::progress::Bars;
 use anyhow::Result;
 use std::path::PathBuf;
+use stiffid::app::measurements::Data;
+use stiffid::app::validate::document::Document;
+use stiffid::app::validate::{self as job, Request};
 use stiffid_core::common::words::count;
 use stiffid_core::Progress;
-use stiffid_identify::app::measurements::Data;
-use stiffid_identify::app::validate::document::Document;
-use stiffid_identify::app::validate::{self as job, Request};
 
 /// Arguments of `stiffid validate`.
 #[derive(clap::Args)]

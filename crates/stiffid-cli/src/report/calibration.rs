@@ -10,7 +10,7 @@ use super::tables::{num, Table};
 use crate::output::{json, ReportDir};
 use anyhow::Result;
 use std::path::Path;
-use stiffid_calibrate::app::calibrate::document::Document;
+use stiffid::app::calibrate::document::Document;
 use stiffid_core::common::words::apart;
 use stiffid_core::Setup;
 use stiffid_view::{glb, Scene};
@@ -34,7 +34,7 @@ pub fn write(dir: ReportDir, setup: &Setup, doc: &Document) -> Result<()> {
         &serde_json::to_value(doc)?,
     )?)?;
     let text = json(doc)?;
-    let scene = stiffid_calibrate::app::calibrate::scene::scene(setup, &text)?;
+    let scene = stiffid::app::calibrate::scene::scene(setup, &text)?;
     let html = KIND.page(&format!("stiffid calibration: {}", doc.setup), |w| {
         compose(w, doc, &figures, &scene)
     });
@@ -132,10 +132,7 @@ fn compose(w: &mut dyn Writer, doc: &Document, figures: &[Figure], scene: &Scene
 
 /// The ladder of models: each rung's held-out figure and why it was skipped, the chosen one's
 /// beside the geometry's, the region where the spread was judged.
-fn ladder_section(
-    w: &mut dyn Writer,
-    l: &stiffid_calibrate::app::calibrate::ladder::LadderDocument,
-) {
+fn ladder_section(w: &mut dyn Writer, l: &stiffid::app::calibrate::document::LadderDocument) {
     w.heading(2, "The model chosen");
     let geometry = l.rungs.first().and_then(|r| r.held_out_rms_mm);
     let chosen = l.rungs.get(l.chosen).and_then(|r| r.held_out_rms_mm);

@@ -9,8 +9,8 @@ use super::tables::{num, Table};
 use crate::output::{json, ReportDir};
 use anyhow::Result;
 use nalgebra::Vector3;
+use stiffid::app::select::document::Document;
 use stiffid_core::Setup;
-use stiffid_design::app::select::document::Document;
 
 /// The generator mark of `plan.html`, as the stiffness plan's (one plan directory either way).
 const GENERATOR: &str = "stiffid select";

@@ -9,11 +9,11 @@ use super::tables::{num, Table};
 use crate::output::{Fill, ReportDir};
 use anyhow::Result;
 use std::path::Path;
+use stiffid::app::compensate::document::GENERATOR;
+use stiffid::app::compensate::document::{Document, SegmentDocument};
+use stiffid::app::compensate::Report;
 use stiffid_core::common::words::count;
 use stiffid_core::Setup;
-use stiffid_machining::app::compensate::document::GENERATOR;
-use stiffid_machining::app::compensate::document::{Document, SegmentDocument};
-use stiffid_machining::app::compensate::Report;
 use stiffid_machining::compensate::Compensated;
 use stiffid_view::{glb, Scene};
 
@@ -64,8 +64,7 @@ pub fn write(dir: ReportDir, setup: &Setup, view: &View) -> Result<()> {
     };
     dir.write_with(FILES[1], &csv)?;
     dir.write_all(&figures::files(&figures))?;
-    let scene =
-        stiffid_machining::app::compensate::scene::scene(setup, &view.document.summary.scene)?;
+    let scene = stiffid::app::compensate::scene::scene(setup, &view.document.summary.scene)?;
     let html = page(
         &format!("stiffid compensation: {}", setup.name()),
         GENERATOR,
@@ -79,7 +78,7 @@ pub fn write(dir: ReportDir, setup: &Setup, view: &View) -> Result<()> {
 }
 
 /// What the error that remains after compensation is made of, in mm.
-fn remains(s: &stiffid_machining::app::compensate::document::SummaryDocument) -> String {
+fn remains(s: &stiffid::app::compensate::document::SummaryDocument) -> String {
     let b = &s.budget;
     let parts: Vec<String> = (b.made_of.iter())
         .map(|p| match p.max_mm {

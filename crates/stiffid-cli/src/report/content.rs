@@ -3,8 +3,8 @@
 
 use super::figures::Figure;
 use super::tables::{self, Table};
-use stiffid_design::app::reproduce::document::Summary;
-use stiffid_design::app::reproduce::Report;
+use stiffid::app::reproduce::document::Summary;
+use stiffid::app::reproduce::Report;
 use stiffid_design::study::paper_table4;
 use stiffid_view::Scene;
 

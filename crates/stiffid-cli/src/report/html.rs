@@ -4,8 +4,8 @@ use super::content::compose;
 pub use super::content::Writer;
 use super::figures::Figure;
 use super::tables::Table;
-use stiffid_design::app::reproduce::document::{Summary, GENERATOR};
-use stiffid_design::app::reproduce::Report;
+use stiffid::app::reproduce::document::{Summary, GENERATOR};
+use stiffid::app::reproduce::Report;
 
 use stiffid_view::page::{self as scene_page, escape};
 use stiffid_view::Scene;

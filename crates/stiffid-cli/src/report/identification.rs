@@ -38,7 +38,7 @@ pub fn write(dir: ReportDir, json: &str, setup: &Setup, postures: Option<Posture
     let doc: Value = serde_json::from_str(json)?;
     let figures = report::draw(&stiffid_figures::identify::figures(&doc)?)?;
     let scene = postures
-        .map(|(p, e)| stiffid_identify::app::identify::document::scene::scene(setup, &p, &e, json))
+        .map(|(p, e)| stiffid::app::identify::document::scene::scene(setup, &p, &e, json))
         .transpose()?;
     let name = doc["setup"].as_str().unwrap_or_default();
     let html = KIND.page(&format!("stiffid identification: {name}"), |w| {

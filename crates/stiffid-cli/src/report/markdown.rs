@@ -3,8 +3,8 @@
 use super::content::{compose, Writer};
 use super::figures::Figure;
 use super::tables::Table;
-use stiffid_design::app::reproduce::document::Summary;
-use stiffid_design::app::reproduce::Report;
+use stiffid::app::reproduce::document::Summary;
+use stiffid::app::reproduce::Report;
 use stiffid_view::Scene;
 
 struct Markdown(String);

@@ -19,10 +19,10 @@ use crate::output::ReportDir;
 use anyhow::Result;
 use figures::Figure;
 use std::path::Path;
+use stiffid::app::reproduce::document::Summary;
+use stiffid::app::reproduce::Report;
+use stiffid::app::simulate::document::deviation_csv;
 use stiffid_core::io::postures;
-use stiffid_design::app::reproduce::document::Summary;
-use stiffid_design::app::reproduce::Report;
-use stiffid_design::app::simulate::document::deviation_csv;
 
 pub use stiffid_figures::reproduce::{criteria_values, CRITERIA};
 

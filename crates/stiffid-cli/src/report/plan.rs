@@ -1,6 +1,6 @@
 //! The measurement plan of `stiffid select --report DIR`: `plan.html` (self-contained, figures
 //! inline), `plan.csv` (one row per posture), `plan.json` (the plan job's document,
-//! [`stiffid_design::app::plan`], which the other files render) and `figures/` (SVG and PNG): what the
+//! [`stiffid::app::plan`], which the other files render) and `figures/` (SVG and PNG): what the
 //! operator needs to carry the experiment out in their cell.
 
 use super::content::Writer;
@@ -11,10 +11,10 @@ use crate::output::{json, ReportDir};
 use anyhow::Result;
 use nalgebra::Vector6;
 use std::path::Path;
+use stiffid::app::plan::document::{Bodies, Document};
+use stiffid::app::plan::{self as job, Request};
 use stiffid_core::common::words::{count, is_are};
 use stiffid_core::Setup;
-use stiffid_design::app::plan::document::{Bodies, Document};
-use stiffid_design::app::plan::{self as job, Request};
 use stiffid_design::target::TargetOutcome;
 use stiffid_design::Criterion;
 use stiffid_view::{glb, Scene};

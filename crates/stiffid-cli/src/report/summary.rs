@@ -1,13 +1,13 @@
-//! `summary.json` of `stiffid reproduce`: its document ([`stiffid_design::app::reproduce::document`]) as
+//! `summary.json` of `stiffid reproduce`: its document ([`stiffid::app::reproduce::document`]) as
 //! text, and how a report directory is recognised as ours.
 
 use anyhow::Result;
 use serde_json::Value;
 use std::path::Path;
-use stiffid_design::app::reproduce::document::Summary;
+use stiffid::app::reproduce::document::Summary;
 
 /// Whether `path` is a regular file `summary.json` (never waiting on a FIFO) whose `generator` is `generator` (e.g.
-/// [`stiffid_design::app::reproduce::document::GENERATOR`]).
+/// [`stiffid::app::reproduce::document::GENERATOR`]).
 pub fn is_ours(path: &Path, generator: &str) -> bool {
     stiffid_core::io::input::open(path)
         .ok()

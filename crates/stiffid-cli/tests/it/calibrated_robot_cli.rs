@@ -7,7 +7,7 @@ use crate::calibrate_cli::{model, postures, readings, truth, SETUP};
 use crate::common::{json, numbers, stiffid, temp_dir, write_file};
 use nalgebra::{DVector, Isometry3, Vector3, Vector6};
 use std::path::{Path, PathBuf};
-use stiffid_design::app::purpose::{self, CalibrationOptions};
+use stiffid::app::purpose::{self, CalibrationOptions};
 use stiffid_metrology::calibration::ErrorModel;
 
 /// Calibrates on noise-free readings in `d`: the robot file, the error model and the true values.

@@ -4,7 +4,7 @@
 
 use crate::common::{assert_success, json, stiffid, temp_dir, write_file};
 use nalgebra::{Vector3, Vector6};
-use stiffid_core::app::{kinematics, predict};
+use stiffid::app::{kinematics, predict};
 use stiffid_core::observation::deflection::Frame;
 
 const COMAU: &str = include_str!("../../../stiffid/presets/comau-smart5-nj165-3.0.toml");

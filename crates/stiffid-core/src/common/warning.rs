@@ -36,7 +36,7 @@ pub enum WarningKind {
     /// the cell's body checks refuse it ([`crate::robot::Bodies::Missing`]).
     Meshes,
     /// A model's residuals exceed what the tracker noise explains by more than
-    /// `stiffid_calibrate::app::calibrate::MISFIT_RATIO` times: the model misses something.
+    /// `stiffid::app::calibrate::MISFIT_RATIO` times: the model misses something.
     Misfit,
     /// A generated robot program states a feed only to its nearest unit (an LS feed in neither
     /// whole mm/sec nor whole cm/min).
@@ -72,7 +72,7 @@ pub enum WarningKind {
     /// calibration, not applied twice.
     Calibrated,
     /// The stiffness file's model and the recommended model the data support rank a path's
-    /// postures differently (`stiffid_machining::app::compensate`, its `model_ranking`).
+    /// postures differently (`stiffid::app::compensate`, its `model_ranking`).
     ModelForm,
 }
 

@@ -3,7 +3,7 @@
 //! radians under `_deg` names). Each warning ([`WarningKind::Plausibility`]) names the likely
 //! cause; nothing is refused. The command line prints them when it loads a setup or reads postures,
 //! Python raises them as `UserWarning`s, and the identify job reports the radians warning of its
-//! data (`stiffid_identify::app::identify`).
+//! data (`stiffid::app::identify`).
 
 use super::Setup;
 use crate::common::warning::{Warning, WarningKind};

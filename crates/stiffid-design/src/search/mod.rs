@@ -21,7 +21,7 @@ pub mod sqp;
 mod termination;
 
 pub use constraints::{cell_constraints, CellConstraints};
-pub(crate) use constraints::{design_checker, design_margin};
+pub use constraints::{design_checker, design_margin};
 pub use global::{global, global_for};
 pub(super) use local::check_count;
 pub use local::{local, local_for};

@@ -6,7 +6,7 @@ use crate::{colour, failed, Drawing, Plot};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use stiffid_machining::app::compensate::document::SegmentDocument;
+use stiffid::app::compensate::document::SegmentDocument;
 use stiffid_machining::compensate::Compensated;
 
 struct Force<'a>(&'a [(usize, Compensated)]);

@@ -9,9 +9,9 @@ pub mod map;
 pub mod path;
 
 use crate::Drawing;
+use stiffid::app::compensate::document::Document;
+use stiffid::app::compensate::Report;
 use stiffid_core::Setup;
-use stiffid_machining::app::compensate::document::Document;
-use stiffid_machining::app::compensate::Report;
 use stiffid_machining::compensate::Compensated;
 
 /// The results of the points the job's summary kept for the figures ([`Report::summary`]'s

@@ -521,7 +521,7 @@ impl JointTarget {
 
 /// A value (deg or mm) as the nearest whole number of pulses at `per_unit` pulses per unit
 /// (INFORM's pulse form): exact to half a pulse.
-pub(crate) fn whole_pulses(value: f64, per_unit: f64) -> i64 {
+pub fn whole_pulses(value: f64, per_unit: f64) -> i64 {
     (value * per_unit).round() as i64
 }
 

@@ -31,6 +31,7 @@ pub mod fit;
 pub mod gravity;
 pub mod identifiability;
 pub mod intervals;
+pub mod judgement;
 pub mod maps;
 pub mod motions;
 pub mod robot_file;

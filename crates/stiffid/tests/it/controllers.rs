@@ -5,7 +5,7 @@
 //! implements the trait for a language with only its required items.
 
 use nalgebra::{Isometry3, Vector3, Vector6};
-use stiffid::machining::app::compensate::certify;
+use stiffid::app::compensate::certify;
 use stiffid::machining::program::generate::{
     check_name, default_name_length, generate, max_name_length, written_targets, Move, Plan,
     Settings, Target, Targets, Tool,

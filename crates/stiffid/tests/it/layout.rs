@@ -1,22 +1,33 @@
 //! The library's layout by concern (docs/ARCHITECTURE.md): crates that stand on each other
-//! without a circle, no import circle between the files of a crate (a folder's `mod.rs` and
-//! `lib.rs` included), no job folder of an `app/` importing another, no library file over 700
-//! lines, each crate's public surface the one docs/ARCHITECTURE.md lists, and no unit test in a
-//! crate whose tests are off (`[lib] test = false`: compiled once, its tests in tests/it).
+//! without a circle, on floors (core, the science, the views, the jobs: no science crate on the
+//! views or the jobs, no `app/` folder outside the jobs crate `stiffid`), no import circle
+//! between the files of a crate (a folder's `mod.rs` and `lib.rs` included), no job folder of
+//! `app/` importing another, no library file over 700 lines, each crate's public surface and
+//! count of public items the ones docs/ARCHITECTURE.md lists, no more documents built by the
+//! front ends, and no unit test in a crate whose tests are off (`[lib] test = false`: compiled
+//! once, its tests in tests/it).
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
-/// The library crates, from the ground up, and this facade last.
-const CRATES: [&str; 8] = [
+/// The library crates, from the ground up: core, the science, the views, and this facade (the
+/// jobs) last.
+const CRATES: [&str; 7] = [
     "stiffid-core",
-    "stiffid-view",
     "stiffid-metrology",
     "stiffid-identify",
     "stiffid-design",
-    "stiffid-calibrate",
     "stiffid-machining",
+    "stiffid-view",
     "stiffid",
+];
+
+/// The science crates: each depends only on core and the science it uses.
+const SCIENCE: [&str; 4] = [
+    "stiffid-metrology",
+    "stiffid-identify",
+    "stiffid-design",
+    "stiffid-machining",
 ];
 
 fn crate_dir(name: &str) -> PathBuf {
@@ -42,7 +53,8 @@ fn sources(dir: &Path, out: &mut Vec<PathBuf>) {
     }
 }
 
-/// The library crates a crate's manifest depends on (`[dependencies]`, not the dev-dependencies).
+/// The workspace's crates a crate's manifest depends on (`[dependencies]`, not the
+/// dev-dependencies).
 fn crate_dependencies(name: &str) -> BTreeSet<String> {
     let manifest = std::fs::read_to_string(crate_dir(name).join("Cargo.toml")).unwrap();
     let deps = (manifest
@@ -51,9 +63,61 @@ fn crate_dependencies(name: &str) -> BTreeSet<String> {
     .unwrap_or_default();
     (deps.lines())
         .filter_map(|l| l.split(['.', ' ', '=']).next())
-        .filter(|d| CRATES.contains(d))
+        .filter(|d| d.starts_with("stiffid"))
         .map(String::from)
         .collect()
+}
+
+/// The floors: a science crate depends only on core and the science below it (not on the
+/// views, the jobs or a front end); the views only on core; the jobs (the facade) on every
+/// library crate and on nothing above (the figures and the front ends stand on it).
+#[test]
+fn science_below_views_below_jobs_below_front_ends() {
+    for name in SCIENCE {
+        let deps = crate_dependencies(name);
+        let allowed = |d: &String| d == "stiffid-core" || SCIENCE.contains(&d.as_str());
+        let above: Vec<&String> = deps.iter().filter(|d| !allowed(d)).collect();
+        assert!(
+            above.is_empty(),
+            "{name} depends on {above:?}, above the science"
+        );
+        assert!(deps.contains("stiffid-core"), "{name}: {deps:?}");
+    }
+    let view = crate_dependencies("stiffid-view");
+    assert_eq!(
+        view,
+        ["stiffid-core".to_string()].into(),
+        "stiffid-view: {view:?}"
+    );
+    let jobs = crate_dependencies("stiffid");
+    let library: BTreeSet<String> = CRATES[..CRATES.len() - 1]
+        .iter()
+        .map(|c| c.to_string())
+        .collect();
+    assert_eq!(
+        jobs, library,
+        "the facade (the jobs) stands on every library crate, nothing above"
+    );
+    for above in ["stiffid-figures", "stiffid-cli", "stiffid-py"] {
+        let deps = crate_dependencies(above);
+        assert!(
+            deps.contains("stiffid"),
+            "{above} uses the jobs through the facade: {deps:?}"
+        );
+    }
+    assert!(
+        !crate_dir("stiffid-calibrate").exists(),
+        "the calibration jobs are the facade's"
+    );
+}
+
+/// The jobs live in the facade: no other library crate has an `app/` folder.
+#[test]
+fn only_the_facade_holds_jobs() {
+    for name in CRATES {
+        let app = src_of(name).join("app");
+        assert_eq!(app.is_dir(), name == "stiffid", "{}", app.display());
+    }
 }
 
 #[test]
@@ -443,7 +507,7 @@ fn job_folder<'a>(name: &str, file: &'a str) -> Option<&'a str> {
     (job != "document" && src_of(name).join("app").join(job).is_dir()).then_some(job)
 }
 
-/// The job folders of other crates that a file's code names (`stiffid_design::app::select`).
+/// The job folders of other crates that a file's code names (`stiffid::app::select`).
 fn other_jobs(code: &str) -> Vec<String> {
     let code = strip(code);
     let mut found = Vec::new();
@@ -494,25 +558,22 @@ fn no_job_folder_imports_another() {
             }
         }
     }
-    let design = file_graph("stiffid-design");
+    let jobs = file_graph("stiffid");
     assert!(
-        (design["app/plan/document"].iter()).any(|t| t.starts_with("app/document")),
-        "{design:?}"
+        (jobs["app/plan/document"].iter()).any(|t| t.starts_with("app/document")),
+        "{jobs:?}"
     );
     assert!(
         crossing.is_empty(),
         "move what jobs share to an app/document: {crossing:#?}"
     );
+    assert_eq!(job_folder("stiffid", "app/select/document"), Some("select"));
+    assert_eq!(job_folder("stiffid", "app/select"), Some("select"));
+    assert_eq!(job_folder("stiffid", "app/document/mass"), None);
+    assert_eq!(job_folder("stiffid", "app/readings"), None);
     assert_eq!(
-        job_folder("stiffid-design", "app/select/document"),
-        Some("select")
-    );
-    assert_eq!(job_folder("stiffid-design", "app/select"), Some("select"));
-    assert_eq!(job_folder("stiffid-core", "app/document/mass"), None);
-    assert_eq!(job_folder("stiffid-metrology", "app/readings"), None);
-    assert_eq!(
-        other_jobs("use stiffid_core::app::predict::Request;"),
-        ["stiffid-core: predict"]
+        other_jobs("use stiffid::app::predict::Request;"),
+        ["stiffid: predict"]
     );
 }
 
@@ -592,7 +653,7 @@ fn the_public_surface_is_the_one_architecture_lists() {
     }
     let core =
         public_surface(&std::fs::read_to_string(src_of("stiffid-core").join("lib.rs")).unwrap());
-    assert!(core.contains("app") && core.contains("Setup"), "{core:?}");
+    assert!(!core.contains("app") && core.contains("Setup"), "{core:?}");
     // The parsers themselves.
     let lib = "#![deny(x)]\npub mod a;\nmod hidden;\npub use x::{B, c::D};\n/// pub mod not_code;\npub fn e() {}\nimpl X {\n    pub fn inner() {}\n}\npub struct F;\n#[cfg(doctest)]\npub struct G;\npub use h as i;\n";
     assert_eq!(
@@ -692,4 +753,91 @@ fn every_document_type_names_its_kind() {
     }
     assert!(found >= 15, "{found} document types found");
     assert!(missing.is_empty(), "documents without a kind: {missing:?}");
+}
+
+/// The `pub` items of a library crate's files (outside their tests): every `pub` function,
+/// type, trait, constant, static, module and `pub use` line (a `pub(crate)` or `pub(super)`
+/// item is not public; a field or a method of a type is counted with its type).
+fn public_items(name: &str) -> usize {
+    let kinds = [
+        "fn ", "struct ", "enum ", "trait ", "type ", "const ", "static ", "mod ", "use ",
+    ];
+    (library_files(name).iter())
+        .flat_map(|(_, code)| strip(code).lines().map(str::to_string).collect::<Vec<_>>())
+        .filter(|l| {
+            let rest = l.trim_start().strip_prefix("pub ");
+            let rest = rest.map(|r| r.trim_start_matches("async ").trim_start_matches("unsafe "));
+            rest.is_some_and(|r| kinds.iter().any(|k| r.starts_with(k)))
+        })
+        .count()
+}
+
+/// The public items of every library crate, as docs/ARCHITECTURE.md's table "Public items"
+/// lists them (`| `crate` | count |`): a change of the surface changes the table with it.
+#[test]
+fn the_public_item_counts_are_the_ones_architecture_lists() {
+    let architecture =
+        std::fs::read_to_string(crate_dir("stiffid").join("../../docs/ARCHITECTURE.md")).unwrap();
+    let listed: BTreeMap<String, usize> = (architecture.lines())
+        .filter_map(|l| {
+            let cells: Vec<&str> = l.split('|').map(str::trim).collect();
+            let name = cells.get(1)?.strip_prefix('`')?.strip_suffix('`')?;
+            let count = cells.get(2)?.parse().ok()?;
+            CRATES.contains(&name).then(|| (name.to_string(), count))
+        })
+        .collect();
+    let counted: BTreeMap<String, usize> = (CRATES.iter())
+        .map(|c| (c.to_string(), public_items(c)))
+        .collect();
+    let total: usize = counted.values().sum();
+    assert_eq!(
+        counted, listed,
+        "public items per crate (total {total}) against docs/ARCHITECTURE.md's table"
+    );
+    let listed_total = (architecture.lines()).find_map(|l| {
+        l.strip_prefix("| all library crates | ")?
+            .split(' ')
+            .next()?
+            .parse()
+            .ok()
+    });
+    assert_eq!(listed_total, Some(total), "the table's total");
+}
+
+/// The places where a front end (`stiffid-cli`, `stiffid-py`) still builds a job's document
+/// from its report (`Document::new(&report, ..)`, a scene from a report) instead of receiving
+/// it from the job: at most this many, and never more (the aim is none).
+const FRONT_END_DOCUMENTS: usize = 28;
+
+/// Each place in a front end's code where a document is built: `file:line`.
+fn front_end_documents() -> Vec<String> {
+    let mut found = Vec::new();
+    for front in ["stiffid-cli", "stiffid-py"] {
+        let mut files = Vec::new();
+        every_source(&src_of(front), &mut files);
+        files.sort();
+        for file in files {
+            let code = strip(&std::fs::read_to_string(&file).unwrap());
+            for (n, line) in code.lines().enumerate() {
+                let builds = line.match_indices("Document::new(").count()
+                    + line.match_indices("document::scene(").count();
+                let at = format!("{}:{}", file.display(), n + 1);
+                found.extend(std::iter::repeat_n(at, builds));
+            }
+        }
+    }
+    found
+}
+
+#[test]
+fn front_ends_build_no_more_documents() {
+    let found = front_end_documents();
+    assert!(
+        (found.iter()).any(|f| f.contains("stiffid-cli/src/report/plan.rs")),
+        "{found:#?}"
+    );
+    assert!(
+        found.len() <= FRONT_END_DOCUMENTS,
+        "a front end builds a document the job should return: {found:#?}"
+    );
 }

@@ -3,11 +3,11 @@
 //! `mod NAME;` below; `common` holds the shared helpers, `mutate` the property tests' mutations.
 
 mod active_set;
+mod app;
 mod arcs_true_robot;
 mod bodies;
 mod bootstrap;
 mod budget;
-mod calibrate;
 mod calibrate_cell;
 mod calibration_update;
 mod calibration_update_cell;

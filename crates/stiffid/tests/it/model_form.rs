@@ -6,12 +6,12 @@
 use crate::candidates::{measure, paper_with, ELBOW};
 use nalgebra::{DVector, Vector3, Vector6};
 use std::io::Empty;
+use stiffid::app::compensate::ranking::{Ranking, RankingDocument};
 use stiffid::app::identify::{run, Options, Report, Request};
 use stiffid::app::measurements::Data;
 use stiffid::design::random_group;
 use stiffid::identify::compare::bootstrap::percentile;
 use stiffid::identify::compare::{bootstrap, compare, Resampling};
-use stiffid::machining::app::compensate::ranking::{Ranking, RankingDocument};
 use stiffid::machining::compensate::{self, Options as CompensateOptions, PathPoint, Target};
 use stiffid::observation::deflection::{Frame, Points};
 use stiffid::observation::Measurement;

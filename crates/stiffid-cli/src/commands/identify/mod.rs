@@ -1,7 +1,7 @@
 //! `stiffid identify`: joint stiffness from a measurement file (Zhang et al. 2021, Eq. 10-14), with
 //! standard errors, 95% confidence intervals, the model check against the tracker noise,
 //! residuals, and optionally a robust or non-negative fit and cross-validation: the arguments
-//! turned into a [`stiffid_identify::app::identify::Request`], the job run, its report rendered.
+//! turned into a [`stiffid::app::identify::Request`], the job run, its report rendered.
 
 use crate::commands::common::{choice, Common};
 use crate::load;
@@ -10,10 +10,10 @@ use crate::progress::Bars;
 use crate::report::identification;
 use anyhow::Result;
 use std::path::PathBuf;
+use stiffid::app::identify::document::{drives, springs};
+use stiffid::app::identify::{self as job, Options, Report, Request};
+use stiffid::app::measurements::Data;
 use stiffid_core::Progress;
-use stiffid_identify::app::identify::document::{drives, springs};
-use stiffid_identify::app::identify::{self as job, Options, Report, Request};
-use stiffid_identify::app::measurements::Data;
 use stiffid_identify::Loss;
 
 mod models;

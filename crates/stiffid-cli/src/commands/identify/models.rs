@@ -2,11 +2,11 @@
 //! fits ([`stiffid_identify::svd`], [`stiffid_identify::compare`]) rendered as text.
 
 use super::text;
+use stiffid::app::identify::document::springs::{CrossValidationDoc, Document};
+use stiffid::app::identify::springs::Report;
 use stiffid_core::common::words::count;
 use stiffid_core::Setup;
 use stiffid_identify::adequacy::Verdict;
-use stiffid_identify::app::identify::document::springs::{CrossValidationDoc, Document};
-use stiffid_identify::app::identify::springs::Report;
 use stiffid_identify::compare::document::{BootstrapDoc, Document as CompareDocument, ModelDoc};
 use stiffid_identify::compare::{parameter_docs, Comparison};
 use stiffid_identify::svd::Fit;

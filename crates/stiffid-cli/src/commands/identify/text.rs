@@ -1,15 +1,15 @@
 //! The text report of `stiffid identify` and its warnings. Numbers that are not finite print as
 //! words, never as `NaN` or `inf`.
 
+use stiffid::app::identify::document::drives::{
+    CrossValidation, Document, Intervals, LoadStep, PointOffset, Residual, Robust,
+};
+use stiffid::app::identify::drives::Report;
+use stiffid::app::identify::Fit;
 use stiffid_core::io::stiffness::PredictionSection;
 use stiffid_core::robot::kinematics::Coordinates;
 use stiffid_core::Setup;
 use stiffid_identify::adequacy::{Verdict, SIGNIFICANCE};
-use stiffid_identify::app::identify::document::drives::{
-    CrossValidation, Document, Intervals, LoadStep, PointOffset, Residual, Robust,
-};
-use stiffid_identify::app::identify::drives::Report;
-use stiffid_identify::app::identify::Fit;
 
 /// `v` with `decimals` decimals, or `n/a` if it is not finite.
 fn num(v: f64, decimals: usize) -> String {

@@ -1,7 +1,7 @@
 //! `stiffid select`: the group of postures that minimises a design criterion (local SQP from a
 //! start group, global multistart, or the best of a pool of postures), optionally the smallest
 //! group for a target accuracy and a measurement plan (`--report`): the arguments made into a
-//! [`stiffid_design::app::select::Request`], the job run, its report rendered.
+//! [`stiffid::app::select::Request`], the job run, its report rendered.
 
 mod target;
 
@@ -13,11 +13,11 @@ use crate::progress::Bars;
 use crate::report::{campaign, plan};
 use anyhow::{bail, Result};
 use std::path::PathBuf;
+use stiffid::app::select::document::{Document, Free, Pool};
+use stiffid::app::select::{self as job, Method, PoolInput, Report, Request};
 use stiffid_core::common::limits::{self, short};
 use stiffid_core::common::words::count;
 use stiffid_core::{io::postures, Setup};
-use stiffid_design::app::select::document::{Document, Free, Pool};
-use stiffid_design::app::select::{self as job, Method, PoolInput, Report, Request};
 use stiffid_design::distinct::Distinctness;
 use stiffid_design::observability::CalibrationCriterion;
 use stiffid_design::{Criterion, Gradient, SearchOptions, Solver};

@@ -3,8 +3,8 @@
 mod markdown;
 
 use std::path::Path;
+use stiffid::app::reproduce::document::GENERATOR;
 use stiffid_cli::report::{self, holds};
-use stiffid_design::app::reproduce::document::GENERATOR;
 
 fn open(dir: &Path, force: bool) -> anyhow::Result<stiffid_cli::output::ReportDir> {
     report::open(dir, "--out", Some(force), GENERATOR, &holds)

@@ -1,6 +1,5 @@
 //! The stiffid_core crate's tests, through its public paths.
 
-mod app;
 mod cell;
 mod common;
 mod io;

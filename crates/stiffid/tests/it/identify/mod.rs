@@ -2,7 +2,6 @@
 //! noise, confidence intervals that cover the truth at their nominal rate, robust mode, validation
 //! (Eq. 22) and the errors.
 
-mod app;
 mod nonnegative;
 mod robust;
 

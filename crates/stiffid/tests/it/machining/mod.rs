@@ -1,6 +1,5 @@
 //! The machining crate's tests (`stiffid_machining`), through its public paths: programs, compensation, placement.
 
-mod app;
 mod compensate;
 mod dynamics;
 pub(crate) mod program;

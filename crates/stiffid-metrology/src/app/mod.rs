@@ -1,3 +1,0 @@
-//! What the metrology jobs share: the tracker readings they read and check.
-
-pub mod readings;

@@ -1,0 +1,402 @@
+//! The model a calibration fits when it is not told (`--gravity auto`, `--maps auto`): a ladder
+//! of nested models climbed by a cross-validation that holds out groups of postures.
+//!
+//! # The rungs
+//! In order of complexity, each gravity model ([`GRAVITY_RUNGS`]: the rigid robot, the arm's
+//! three terms (skipped, saying why, on a robot that is not an anthropomorphic arm), the lumped
+//! bodies, the lumped links, the known masses where the robot gives them) without joint error
+//! maps and then with the maps of `--maps` (chosen by [`crate::calibration::maps`]
+//! inside every training set). A fixed `--gravity` is a ladder of one gravity model, `--maps none`
+//! or fixed maps one maps variant; a ladder of one rung is not climbed.
+//!
+//! # The held-out figure
+//! Each rung is fitted to every reading (its gravity terms bounded by
+//! [`crate::calibration::fit::GravityPrior`]); a rung whose fit does not converge or
+//! whose scaled Jacobian's condition exceeds [`super::WEAK_CONDITION`] is skipped (the simpler
+//! model kept), and so is a gravity model that extrapolates: one whose expected error where the
+//! robot is used ([`super::region`]: the postures of the campaign and of the setup, with a
+//! margin) exceeds the geometry's, the expected error being the held-out error (below) and the
+//! RMS standard deviation of the predictions over that region ([`region_sd`], where the
+//! readings leave the terms to their prior) in quadrature: bias and variance. The groups held
+//! out among the fitted postures cannot show what the spread shows; postures the robot never
+//! takes do not turn a model down.
+//! The postures are dealt into [`FOLDS`] groups (posture `i` in group `i mod K`); each group is
+//! predicted by the rung refitted without it (linearised at the rung's fit, as the maps' choice:
+//! [`crate::calibration::maps::nested`], the maps chosen on each training set at the
+//! first gravity model's fit and kept for the others, each one's ridge chosen anew:
+//! [`crate::calibration::maps::nested_given`]), which gives every held-out posture
+//! its squared error under every rung, paired.
+//!
+//! # The choice (one standard error)
+//! The rung with the least held-out error is the best; the job fits the simplest rung whose
+//! held-out squared error exceeds the best's by at most one standard error of their paired
+//! per-posture differences and by no more than any simpler rung's: a model is never chosen
+//! over a simpler one that predicts the held-out postures better. With fewer than
+//! [`MIN_POSTURES`] distinct postures the ladder is not climbed and its first rung is fitted.
+
+use super::maps::{assess, assess_given, Assessed};
+use super::WEAK_CONDITION;
+use crate::calibration::error_model::Observation;
+use crate::calibration::fit::{stop_warning, Fit, Options};
+use crate::calibration::gravity::Gravity;
+use crate::calibration::maps::{Spec, FOLDS};
+use crate::calibration::spread::region_sd;
+use crate::calibration::{motions, ErrorModel, Estimate};
+use stiffid_core::common::choice::Choice;
+use stiffid_core::common::limits::JointBox;
+use stiffid_core::Result;
+
+/// The gravity models of `--gravity auto`, in order of complexity ([`Gravity::Masses`] only on a
+/// robot with link masses).
+pub const GRAVITY_RUNGS: [Gravity; 5] = [
+    Gravity::None,
+    Gravity::Arm,
+    Gravity::Lumped,
+    Gravity::LumpedLinks,
+    Gravity::Masses,
+];
+
+/// The fewest distinct postures with which the ladder is climbed: two per group.
+pub const MIN_POSTURES: usize = 2 * FOLDS;
+
+/// Which gravity terms a calibration fits: chosen by the ladder, or given.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum GravitySpec {
+    /// Chosen by the ladder (module docs).
+    #[default]
+    Auto,
+    /// These.
+    Fixed(Gravity),
+}
+
+impl Choice for GravitySpec {
+    const FIELD: &'static str = "gravity";
+    const ALL: &'static [Self] = &[
+        GravitySpec::Auto,
+        GravitySpec::Fixed(Gravity::None),
+        GravitySpec::Fixed(Gravity::Arm),
+        GravitySpec::Fixed(Gravity::Masses),
+        GravitySpec::Fixed(Gravity::Lumped),
+        GravitySpec::Fixed(Gravity::LumpedLinks),
+    ];
+    fn name(self) -> &'static str {
+        match self {
+            GravitySpec::Auto => "auto",
+            GravitySpec::Fixed(g) => g.name(),
+        }
+    }
+    fn help(self) -> &'static str {
+        match self {
+            GravitySpec::Auto => {
+                "Chosen with the maps by a cross-validation holding out groups of postures"
+            }
+            GravitySpec::Fixed(g) => g.help(),
+        }
+    }
+}
+
+stiffid_core::common::choice::by_name!(GravitySpec);
+
+impl GravitySpec {
+    /// The gravity models to try on a robot with (`masses`) or without link masses.
+    pub fn rungs(self, masses: bool) -> Vec<Gravity> {
+        match self {
+            GravitySpec::Fixed(g) => vec![g],
+            GravitySpec::Auto => (GRAVITY_RUNGS.iter().copied())
+                .filter(|&g| masses || g != Gravity::Masses)
+                .collect(),
+        }
+    }
+}
+
+/// One rung of the ladder.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Rung {
+    /// Its gravity terms.
+    pub gravity: Gravity,
+    /// Whether it fits the joint error maps of `--maps` (chosen inside each training set).
+    pub maps: bool,
+    /// Its held-out RMS error over the groups, m; `None` when not scored (a skipped rung keeps
+    /// it when it was scored before it was found to extrapolate).
+    pub rms: Option<f64>,
+    /// Why it was skipped (a fit that does not converge, is ill-conditioned, fails or
+    /// extrapolates).
+    pub skipped: Option<String>,
+    /// The RMS standard deviation of its gravity model's predictions over the region where the
+    /// robot is used ([`Ladder::region`], [`region_sd`]), m; `None` when not computed.
+    pub spread: Option<f64>,
+    /// Per held-out posture (the groups' in order), its sum of squared errors, m^2; empty when
+    /// not scored.
+    pub errors: Vec<f64>,
+}
+
+/// The ladder climbed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Ladder {
+    /// The groups of postures held out in turn.
+    pub folds: usize,
+    /// The rungs, simplest first.
+    pub rungs: Vec<Rung>,
+    /// The rung chosen (an index of `rungs`).
+    pub chosen: usize,
+    /// The region of axis angles where the robot is used ([`super::region`]), rad: where the
+    /// rungs' spread is judged.
+    pub region: JointBox,
+}
+
+/// The rung chosen among `rungs` (simplest first) by the one-standard-error rule (module docs);
+/// the first when none was scored.
+pub fn choose(rungs: &[Rung]) -> usize {
+    let total = |r: &Rung| r.errors.iter().sum::<f64>();
+    let scored: Vec<usize> = (0..rungs.len())
+        .filter(|&i| rungs[i].skipped.is_none() && !rungs[i].errors.is_empty())
+        .collect();
+    let Some(&best) = scored
+        .iter()
+        .min_by(|&&a, &&b| total(&rungs[a]).total_cmp(&total(&rungs[b])))
+    else {
+        return 0;
+    };
+    let within = |i: usize| {
+        let d: Vec<f64> = (rungs[i].errors.iter().zip(&rungs[best].errors))
+            .map(|(a, b)| a - b)
+            .collect();
+        let n = d.len() as f64;
+        let mean = d.iter().sum::<f64>() / n;
+        let var = d.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0).max(1.0);
+        mean <= (var / n).sqrt()
+    };
+    let mut simplest = f64::INFINITY;
+    for &i in &scored {
+        let t = total(&rungs[i]);
+        if within(i) && t <= simplest {
+            return i;
+        }
+        simplest = simplest.min(t);
+    }
+    best
+}
+
+/// One gravity model fitted to every reading.
+pub struct Fitted {
+    /// The error model (with its error motions and loads).
+    pub model: ErrorModel,
+    /// The fit's start.
+    pub start: Estimate,
+    /// The fit.
+    pub fit: Fit,
+    /// With external axes: the error motions' choice.
+    pub error_motions: Option<motions::Choice>,
+}
+
+/// What the ladder chose: the rung's fit, its maps assessed and whether they are kept (or why
+/// not), and the ladder (`None` for a ladder of one rung).
+pub struct Climbed {
+    /// The chosen gravity model's fit.
+    pub fitted: Fitted,
+    /// Its maps assessed.
+    pub assessed: Assessed,
+    /// Whether the maps are kept, or why not.
+    pub keep: std::result::Result<(), String>,
+    /// The ladder.
+    pub ladder: Option<Ladder>,
+}
+
+/// Climbs the ladder of `gravity` and `maps` (module docs), fitting each gravity model with
+/// `fit` to `obs`, after `check` of the first model's fit (what refuses readings before any
+/// choice is fitted).
+///
+/// # Errors
+/// Those of `fit`, `check` and [`assess`] for the first gravity model (a later one that fails is
+/// skipped).
+pub fn climb(
+    (gravity, maps): (GravitySpec, Spec),
+    masses: bool,
+    (obs, region): (&[Observation], &JointBox),
+    options: &Options,
+    (fit, check): (
+        impl Fn(Gravity) -> Result<Fitted>,
+        impl Fn(&Fitted) -> Result<()>,
+    ),
+) -> Result<Climbed> {
+    let gravities = gravity.rungs(masses);
+    let variants: &[bool] = match maps {
+        Spec::Auto => &[false, true],
+        Spec::None => &[false],
+        Spec::Fixed(_) => &[true],
+    };
+    let mut postures: Vec<usize> = obs.iter().map(|o| o.posture).collect();
+    postures.sort_unstable();
+    postures.dedup();
+    let climbed = gravities.len() * variants.len() > 1 && postures.len() >= MIN_POSTURES;
+    let first = fit(gravities[0])?;
+    check(&first)?;
+    let assessed = assess(maps, &first.model, &first.fit, obs, options, climbed)?;
+    if !climbed {
+        let ladder = (gravities.len() * variants.len() > 1).then(|| Ladder {
+            folds: 0,
+            rungs: vec![unscored(gravities[0], variants[0], None)],
+            chosen: 0,
+            region: *region,
+        });
+        let keep = match ladder {
+            Some(_) => Err(format!(
+                "{} distinct postures, fewer than the {MIN_POSTURES} with which the model is chosen",
+                postures.len()
+            )),
+            None => Ok(()),
+        };
+        return Ok(Climbed {
+            fitted: first,
+            assessed,
+            keep: keep.and(match variants[0] {
+                true => Ok(()),
+                false => Err("--maps none".into()),
+            }),
+            ladder,
+        });
+    }
+    // The maps each outer fold chose for the first gravity model, kept for the others.
+    let choices = (assessed.nested.as_ref()).map_or_else(Vec::new, |n| n.choices.clone());
+    let mut fits: Vec<std::result::Result<(Fitted, Assessed), String>> =
+        vec![Ok((first, assessed))];
+    for &g in &gravities[1..] {
+        let tried = fit(g).and_then(|f| {
+            let a = assess_given(maps, (&f.model, &f.fit), obs, options, &choices)?;
+            Ok((f, a))
+        });
+        fits.push(tried.map_err(|e| e.to_string()).and_then(|(f, a)| {
+            judged(&f.fit)?;
+            Ok((f, a))
+        }));
+    }
+    // The rungs without maps first, then with them: the maps are the larger family.
+    let order: Vec<(usize, bool)> = (variants.iter())
+        .flat_map(|&v| (0..gravities.len()).map(move |g| (g, v)))
+        .collect();
+    let like = obs.iter().find(|o| !o.table).unwrap_or(&obs[0]);
+    let spreads: Vec<Option<f64>> = (fits.iter())
+        .map(|f| {
+            (f.as_ref().ok()).and_then(|(f, _)| region_sd(&f.model, &f.fit, like, region).ok())
+        })
+        .collect();
+    let mut rungs: Vec<Rung> = (order.iter())
+        .map(|&(g, v)| Rung {
+            spread: spreads[g],
+            ..rung(gravities[g], v, &fits[g])
+        })
+        .collect();
+    extrapolating(&mut rungs, &order);
+    let chosen = choose(&rungs);
+    let (g, with_maps) = order[chosen];
+    let why = (!with_maps).then(|| {
+        let none = rungs[chosen].rms.unwrap_or(f64::NAN) * 1e3;
+        format!("the ladder chose the model without maps ({none:.4} mm held out)")
+    });
+    let Ok((fitted, assessed)) = fits.swap_remove(g) else {
+        unreachable!("a skipped rung is never chosen");
+    };
+    Ok(Climbed {
+        fitted,
+        assessed,
+        keep: why.map_or(Ok(()), Err),
+        ladder: Some(Ladder {
+            folds: FOLDS.min(postures.len()),
+            rungs,
+            chosen,
+            region: *region,
+        }),
+    })
+}
+
+/// Skips the rungs (`order`: each one's gravity model's index and whether it fits maps) of every
+/// gravity model that extrapolates: whose expected error where the robot is used, its held-out
+/// error without maps and its spread there in quadrature, exceeds the first gravity model's
+/// (module docs).
+fn extrapolating(rungs: &mut [Rung], order: &[(usize, bool)]) {
+    // Per gravity model: its held-out error without maps and its spread, squared and summed.
+    let expected = |rungs: &[Rung], g: usize| {
+        let i = (0..order.len()).find(|&i| order[i] == (g, false))?;
+        let (rms, spread) = (rungs[i].rms?, rungs[i].spread?);
+        Some((rms * rms + spread * spread).sqrt())
+    };
+    let Some(base) = expected(rungs, 0) else {
+        return;
+    };
+    let worse: Vec<(usize, f64)> = (1..=order.iter().map(|o| o.0).max().unwrap_or(0))
+        .filter_map(|g| expected(rungs, g).filter(|&e| e > base).map(|e| (g, e)))
+        .collect();
+    for (r, &(g, _)) in rungs.iter_mut().zip(order) {
+        let Some(&(_, e)) = worse.iter().find(|w| w.0 == g) else {
+            continue;
+        };
+        r.skipped = Some(format!(
+            "it extrapolates: its predictions over the region where the robot is used spread by {:.3} mm, and with its held-out error it is expected {:.3} mm off there against {:.3} mm for the geometry (the postures leave its gravity terms to their bound)",
+            r.spread.unwrap_or(f64::NAN) * 1e3,
+            e * 1e3,
+            base * 1e3
+        ));
+    }
+}
+
+/// `Err` why a gravity model's fit is not a rung: it did not converge, or its scaled Jacobian's
+/// condition exceeds [`WEAK_CONDITION`].
+fn judged(fit: &Fit) -> std::result::Result<(), String> {
+    if let Some(w) = stop_warning(fit.stop, fit.iterations) {
+        return Err(w.message);
+    }
+    let condition = fit.identifiability.condition;
+    match condition > WEAK_CONDITION {
+        true => Err(format!(
+            "the condition number of its scaled Jacobian is {condition:.3e}, above {WEAK_CONDITION:.0e}"
+        )),
+        false => Ok(()),
+    }
+}
+
+/// The rung of gravity `gravity` with (`maps`) or without the maps, from its fit and
+/// assessment (or why it has none).
+fn rung(
+    gravity: Gravity,
+    maps: bool,
+    fitted: &std::result::Result<(Fitted, Assessed), String>,
+) -> Rung {
+    let assessed = match fitted {
+        Err(e) => return unscored(gravity, maps, Some(e.clone())),
+        Ok((_, a)) => a,
+    };
+    let Some(nested) = &assessed.nested else {
+        return unscored(gravity, maps, Some("not scored".into()));
+    };
+    match (maps, &assessed.maps.skipped) {
+        (true, Some(why)) => unscored(gravity, maps, Some(format!("no map considered: {why}"))),
+        (true, None) => Rung {
+            gravity,
+            maps,
+            rms: Some(nested.rms),
+            skipped: None,
+            spread: None,
+            errors: nested.errors.clone(),
+        },
+        (false, _) => Rung {
+            gravity,
+            maps,
+            rms: Some(nested.none_rms),
+            skipped: None,
+            spread: None,
+            errors: nested.none_errors.clone(),
+        },
+    }
+}
+
+/// A rung not scored.
+fn unscored(gravity: Gravity, maps: bool, skipped: Option<String>) -> Rung {
+    Rung {
+        gravity,
+        maps,
+        rms: None,
+        skipped,
+        spread: None,
+        errors: Vec::new(),
+    }
+}

@@ -1,0 +1,26 @@
+//! How a calibration chooses its model and judges it: the ladder of gravity models and joint
+//! error maps scored by their held-out error ([`ladder`], [`maps`]) over the region where the
+//! robot is used ([`region`]), the held-out readings the calibration extrapolates to
+//! ([`extrapolation`]), the bound of a held-out reading's error from the fit ([`fit_bound`]) and
+//! the warnings about a fit ([`judge`]). The calibrate job (`stiffid::app::calibrate`) runs
+//! them; they need only the calibration's error model, its fit and the setup.
+
+pub mod extrapolation;
+pub mod fit_bound;
+pub mod judge;
+pub mod ladder;
+pub mod maps;
+pub mod region;
+
+use stiffid_core::common::warning::{Warning, WarningKind};
+
+/// The noise ratio above which the calibration warns that the model misses something.
+pub const MISFIT_RATIO: f64 = 3.0;
+
+/// The residual degrees of freedom below which the calibration warns that the readings are too
+/// few.
+pub const MIN_DEGREES_OF_FREEDOM: usize = 10;
+
+/// The condition number of the scaled identification Jacobian above which the calibration warns
+/// that some parameters are weakly determined.
+pub const WEAK_CONDITION: f64 = 1e6;

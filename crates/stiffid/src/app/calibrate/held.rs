@@ -1,0 +1,81 @@
+//! What a calibration is judged by: the leave-one-posture-out cross-validation, and the held-out
+//! readings with their prediction intervals.
+
+use super::checks::cross_validation_size;
+use super::chosen::Chosen;
+use super::{fit_bound, held_out, Bounds, Held, Request, MAX_CROSS_VALIDATION_POSTURES};
+use crate::app::{in_data, Warning, WarningKind};
+use stiffid_core::Result;
+use stiffid_metrology::calibration::error_model::Observation;
+use stiffid_metrology::calibration::intervals::Intervals;
+use stiffid_metrology::calibration::validation::{self, Validation};
+use stiffid_metrology::calibration::ErrorModel;
+
+/// The held-out validation (`validate`, with intervals from the fitted postures' folds when
+/// they are at most [`MAX_CROSS_VALIDATION_POSTURES`]) and the cross-validation
+/// (`cross_validate`) of the model `chosen` fitted to `obs`, beside the `nominal` errors
+/// (`reference`), the fitted readings' `labels`, the intervals' `level`.
+///
+/// # Errors
+/// Those of [`validation::cross_validate`], [`validation::leave_one_out_linearised`] (as
+/// [`stiffid_core::Error::Input`] naming the readings) and [`held_out`].
+pub(super) fn held(
+    request: &Request<'_>,
+    (chosen, reference, obs): (&Chosen, &ErrorModel, &[Observation]),
+    (nominal, labels, level): (&Validation, &[String], f64),
+    warnings: &mut Vec<Warning>,
+) -> Result<(Option<Held>, Option<Held>)> {
+    let name = &request.readings.name;
+    let (model, fitted, options) = (&chosen.model, &chosen.fit, &chosen.options);
+    let with_intervals = request.validate.is_some() && cross_validation_size(obs).is_ok();
+    if request.validate.is_some() && !with_intervals {
+        warnings.push(Warning::new(
+            WarningKind::LeftOut,
+            format!(
+                "the held-out readings get no prediction intervals: they take one fold per fitted posture, at most {MAX_CROSS_VALIDATION_POSTURES}"
+            ),
+        ));
+    }
+    let cross_validation = match request.cross_validate {
+        false => None,
+        true => Some(Held {
+            name: "cross-validation".into(),
+            calibrated: validation::cross_validate(model, obs, fitted, options, request.progress)
+                .map_err(|e| in_data(name, e))?,
+            nominal: nominal.clone(),
+            labels: labels.to_vec(),
+            intervals: None,
+            outside: Default::default(),
+            coverage: None,
+            from_fit: 0,
+        }),
+    };
+    // The intervals' folds: linearised at the fit (with the maps' ridge rows).
+    let folds =
+        with_intervals.then(|| validation::leave_one_out_linearised(model, obs, fitted, options));
+    let intervals = match folds {
+        None => None,
+        Some(f) => {
+            let f = f.map_err(|e| in_data(name, e))?;
+            Some((Intervals::new(&f), fit_bound::held_out_variance(&f)))
+        }
+    };
+    let validation = match &request.validate {
+        None => None,
+        Some((held_name, text)) => Some(held_out(
+            request,
+            (model, reference, obs),
+            &fitted.estimate,
+            intervals.as_ref().map(|(i, held)| Bounds {
+                intervals: i,
+                level,
+                fit: fitted,
+                held_variance: *held,
+            }),
+            held_name,
+            text,
+            warnings,
+        )?),
+    };
+    Ok((validation, cross_validation))
+}

@@ -1,0 +1,90 @@
+//! A program input of the compensate job read and checked before anything is computed: its
+//! output, options and settings, its text, and its Cartesian targets resolved as the controller
+//! moves to them.
+
+use super::written::program_tool;
+use super::{generate, in_input, output, Input};
+use stiffid_core::{Result, Setup};
+use stiffid_machining::compensate::Options;
+use stiffid_machining::program::Context;
+use stiffid_machining::{self as machining, Language, Program};
+
+/// The program of a program input, checked against its output and options, read and its
+/// Cartesian targets resolved on `setup`'s controller (as the controller moves to them);
+/// `None` for a path file.
+///
+/// # Errors
+/// Those of [`output::check_output`], [`output::check_lean`], [`output::check_tool_axis`],
+/// [`Settings::validate`], [`output::check_settings`],
+/// [`generate::check_payload`], [`machining::read_in`] (with the setup's pulses and tools) and
+/// [`machining::resolve`] (the program's
+/// as [`Error::Input`] naming its file).
+pub(super) fn read_checked(
+    setup: &Setup,
+    input: &Input,
+    options: &Options,
+) -> Result<Option<Program>> {
+    let Input::Program {
+        name,
+        text,
+        data,
+        language,
+        chord_tolerance,
+        output,
+        settings,
+        process,
+        ..
+    } = input
+    else {
+        return Ok(None);
+    };
+    let (language, output) = (*language, *output);
+    output::check_output(language, output).map_err(|e| in_input(name, e))?;
+    output::check_lean(options, output)?;
+    output::check_tool_axis(options, output)?;
+    settings.validate()?;
+    output::check_settings(language, output, settings)?;
+    if let (Language::GCode, Language::Robot(d)) = (language, output) {
+        generate::check_payload(d, settings.targets, &program_tool(setup))?;
+        generate::check_pulses(d, setup.workcell().controller().pulses.as_ref())?;
+    }
+    let machine = stiffid_machining::gcode::Machine::of(setup, Some(process));
+    let context = Context::of(setup).with_data(*data).with_machine(&machine);
+    let program = read_program_in(name, text, language, *chord_tolerance, &context)?;
+    // A Cartesian program's targets as the controller moves to them (a copy only then).
+    match machining::resolve(&program, setup, None, options) {
+        Ok(std::borrow::Cow::Owned(p)) => Ok(Some(p)),
+        Ok(std::borrow::Cow::Borrowed(_)) => Ok(Some(program)),
+        Err(e) => Err(in_input(name, e)),
+    }
+}
+
+/// Reads a program file's text in `language` (G-code arcs split to `chord_tolerance`, m), its
+/// errors placed in the file `name`.
+///
+/// # Errors
+/// Those of [`machining::read`], as [`Error::Input`](stiffid_core::Error::Input).
+pub fn read_program(
+    name: &str,
+    text: &str,
+    language: Language,
+    chord_tolerance: f64,
+) -> Result<Program> {
+    read_program_in(name, text, language, chord_tolerance, &Context::default())
+}
+
+/// [`read_program`] with what a setup says of the program in `context` (an INFORM job's pulses
+/// and tool files, [`Context::of`]; KRL's `.dat`; a G-code program's controller, its work offsets,
+/// start and home positions and tool lengths, [`stiffid_machining::gcode::Machine::of`]).
+///
+/// # Errors
+/// Those of [`machining::read_in`], as [`Error::Input`](stiffid_core::Error::Input).
+pub fn read_program_in(
+    name: &str,
+    text: &str,
+    language: Language,
+    chord_tolerance: f64,
+    context: &Context,
+) -> Result<Program> {
+    machining::read_in(text, language, chord_tolerance, context).map_err(|e| in_input(name, e))
+}

@@ -1,0 +1,60 @@
+//! The force job: the mean cutting force (and, if asked, its peak over a revolution) of every
+//! operation of a process file, in its feed frame ([`stiffid_machining::process`]: Altintas, *Manufacturing
+//! Automation*, 2nd ed., ch. 2.4, for milling; the specific-energy model for drilling).
+
+pub mod document;
+
+use stiffid_core::{Error, Result};
+use stiffid_machining::process::milling::MIN_RESOLUTION_DEG;
+use stiffid_machining::process::{self, OperationForce, Process};
+
+/// The most a peak's angular resolution may be, deg.
+pub const MAX_RESOLUTION_DEG: f64 = 10.0;
+
+/// The forces to compute.
+pub struct Request<'a> {
+    /// The process file's name.
+    pub name: String,
+    /// The process.
+    pub process: &'a Process,
+    /// The peak force over one revolution on a grid of spindle angles this far apart, deg
+    /// ([`MIN_RESOLUTION_DEG`] to [`MAX_RESOLUTION_DEG`]; in degrees as the process file and the
+    /// document state it); `None` for none.
+    pub peak_resolution_deg: Option<f64>,
+}
+
+/// The forces of every operation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Report {
+    /// The process file's name.
+    pub name: String,
+    /// The peak's angular resolution, deg, if asked.
+    pub peak_resolution_deg: Option<f64>,
+    /// One per operation, in file order.
+    pub operations: Vec<OperationForce>,
+}
+
+/// Runs the force job.
+///
+/// # Errors
+/// [`Error::InvalidField`] (`peak_resolution_deg`) for a resolution outside its range.
+pub fn run(request: &Request<'_>) -> Result<Report> {
+    if let Some(deg) = request.peak_resolution_deg
+        && !(MIN_RESOLUTION_DEG..=MAX_RESOLUTION_DEG).contains(&deg)
+    {
+        return Err(Error::InvalidField {
+            field: "peak_resolution_deg".into(),
+            message: format!(
+                "{deg}: expected a number >= {MIN_RESOLUTION_DEG} and <= {MAX_RESOLUTION_DEG}"
+            ),
+        });
+    }
+    Ok(Report {
+        name: request.name.clone(),
+        peak_resolution_deg: request.peak_resolution_deg,
+        operations: process::forces(
+            request.process,
+            request.peak_resolution_deg.map(f64::to_radians),
+        ),
+    })
+}

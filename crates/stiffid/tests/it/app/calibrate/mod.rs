@@ -1,0 +1,7 @@
+//! The calibrate job's parts (`stiffid::app::calibrate`).
+
+mod document;
+mod drift;
+mod extrapolation;
+mod ladder;
+mod region;

@@ -1,0 +1,4 @@
+//! The compensate job's parts (`stiffid::app::compensate`).
+
+mod certify;
+mod pulses;

@@ -1,0 +1,3 @@
+//! The identify job's parts (`stiffid::app::identify`).
+
+mod folds;

@@ -1,0 +1,5 @@
+//! The place job's parts (`stiffid::app::place`).
+
+mod free;
+mod search;
+mod written;

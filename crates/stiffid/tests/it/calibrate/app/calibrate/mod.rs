@@ -1,7 +1,0 @@
-//! The calibrate job's parts (`stiffid_calibrate::app::calibrate`).
-
-mod document;
-mod drift;
-mod extrapolation;
-mod ladder;
-mod region;

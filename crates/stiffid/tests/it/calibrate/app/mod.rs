@@ -1,3 +1,0 @@
-//! The calibrate crate's jobs (`stiffid_calibrate::app`).
-
-mod calibrate;

@@ -1,3 +1,0 @@
-//! The calibrate crate's tests (`stiffid_calibrate`), through its public paths.
-
-mod app;

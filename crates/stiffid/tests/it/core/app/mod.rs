@@ -1,2 +1,0 @@
-mod document;
-mod setups_new;

@@ -1,3 +1,0 @@
-//! The identify job's parts (`stiffid_identify::app::identify`).
-
-mod folds;

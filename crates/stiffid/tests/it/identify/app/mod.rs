@@ -1,3 +1,0 @@
-//! The identify crate's jobs (`stiffid_identify::app`).
-
-mod identify;

@@ -1,4 +1,0 @@
-//! The compensate job's parts (`stiffid_machining::app::compensate`).
-
-mod certify;
-mod pulses;

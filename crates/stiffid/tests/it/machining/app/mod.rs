@@ -1,4 +1,0 @@
-//! The machining crate's jobs (`stiffid_machining::app`).
-
-mod compensate;
-mod place;
