@@ -3,11 +3,11 @@
 //! at the path's first point, whether it takes the path or why not, its objective, and the one
 //! chosen; with one configuration per run (`--free configuration=run`), each run's.
 
-use stiffid_machining::program::cartesian::flags::ConfigurationData;
-use stiffid_machining::program::{krl::StatusTurn, ls::Config, rapid::ConfData};
 use serde::Serialize;
 use stiffid_core::common::choice::Choice;
 use stiffid_machining::compensate::{Aggregate, Branch, Configurations, Run};
+use stiffid_machining::program::cartesian::flags::ConfigurationData;
+use stiffid_machining::program::{krl::StatusTurn, ls::Config, rapid::ConfData};
 
 /// Every configuration of the arm evaluated over the path, and the one chosen.
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -97,7 +97,8 @@ pub fn read_program_with(
     let machine = stiffid_machining::gcode::Machine::of(setup, Some(process));
     let mut context = stiffid_machining::program::Context::of(setup).with_machine(&machine);
     context.data = data;
-    let program = stiffid_machining::read_in(text, language, chord_tolerance, &context).map_err(in_file)?;
+    let program =
+        stiffid_machining::read_in(text, language, chord_tolerance, &context).map_err(in_file)?;
     check_program(setup, &program).map_err(in_file)?;
     Ok(program)
 }

@@ -43,6 +43,13 @@ use stiffid_core::common::warning::{Warning, WarningKind};
 use stiffid_core::math::linalg::CappedSvd;
 use stiffid_core::{Error, Result};
 
+mod leave_one_out;
+mod noise;
+
+pub(super) use leave_one_out::leave_one_out_linearised;
+use noise::fit_with;
+pub use noise::{fit_at_stated_noise, MAX_REWEIGHTS, NOISE_TOLERANCE};
+
 /// Most Levenberg-Marquardt iterations.
 pub const MAX_ITERATIONS: usize = 100;
 
@@ -51,13 +58,6 @@ pub const MAX_READINGS: usize = 100_000;
 
 /// The scaled step length below which the fit has converged.
 pub const STEP_TOLERANCE: f64 = 1e-13;
-
-/// Most fits of the noise's fixed point ([`GravityPrior`] weighed against the residuals' noise:
-/// module docs, *Thin readings*).
-pub const MAX_REWEIGHTS: usize = 4;
-
-/// The relative change of the noise under which its fixed point is reached.
-pub const NOISE_TOLERANCE: f64 = 0.05;
 
 /// A warning ([`WarningKind::NotConverged`]) when the fit stopped at its limit of `iterations`
 /// ([`Stop::IterationLimit`]) with the cost still falling: the calibration may still move.
@@ -199,41 +199,6 @@ pub fn fit_within(
     fit_with(model, observations, start, options, (limit, true))
 }
 
-/// [`fit_within`] at most `limit` iterations, the gravity prior weighed against the residuals'
-/// noise when `reweigh` and the model has gravity terms ([`reweighed`]; module docs, *Thin
-/// readings*): fitted anew from `start` with the noise per coordinate of the last fit's
-/// residuals (`|r|^2 / (3n - p_e)`, `p_e` its effective parameters) while it exceeds the
-/// prior's noise by more than [`NOISE_TOLERANCE`], at most [`MAX_REWEIGHTS`] times; the
-/// last fit's iterations and stop.
-fn fit_with(
-    model: &ErrorModel,
-    observations: &[Observation],
-    start: &Estimate,
-    options: &Options,
-    (limit, reweigh): (usize, bool),
-) -> Result<Fit> {
-    let mut fit = fit_once(model, observations, start, options, limit)?;
-    let Some(prior) = options.gravity.filter(|_| reweigh && reweighed(model)) else {
-        return Ok(fit);
-    };
-    let mut noise = prior.noise;
-    for _ in 0..MAX_REWEIGHTS {
-        let dof = 3.0 * observations.len() as f64 - fit.effective_parameters;
-        let sigma = (fit.residuals.norm_squared() / dof.max(1.0)).sqrt();
-        if !(sigma.is_finite() && sigma > noise * (1.0 + NOISE_TOLERANCE)) {
-            break;
-        }
-        noise = sigma;
-        let weighed = Options {
-            gravity: Some(GravityPrior { noise, ..prior }),
-            ..*options
-        };
-        fit = fit_once(model, observations, start, &weighed, limit)?;
-    }
-    fit.gravity_noise = (noise > prior.noise).then_some(noise);
-    Ok(fit)
-}
-
 /// One fit of [`fit_with`], the prior's weights as `options` give them.
 fn fit_once(
     model: &ErrorModel,
@@ -286,113 +251,6 @@ fn fit_once(
     };
     let (estimate, iterations, stop) = problem.minimise(start.recentre(), limit)?;
     problem.finish(estimate, identifiability, iterations, stop)
-}
-
-/// [`fit`] with the gravity prior weighed against the noise [`GravityPrior::noise`] states
-/// only, never the residuals' (the comparison of the module docs' *Thin readings*).
-///
-/// # Errors
-/// Those of [`fit`].
-pub fn fit_at_stated_noise(
-    model: &ErrorModel,
-    observations: &[Observation],
-    start: &Estimate,
-    options: &Options,
-) -> Result<Fit> {
-    fit_with(model, observations, start, options, (MAX_ITERATIONS, false))
-}
-
-/// Leave-one-posture-out linearised at the fit `fit` of `observations` (with the options it was
-/// fitted with, the maps' ridge rows among them): per posture, in increasing order, the estimate
-/// of the fit without it, the full fit moved by the change that dropping the posture makes in
-/// the linearised problem. With `A = U S V^T` the scaled Jacobian of the fitted parameters and
-/// its prior rows, `U_p` the rows of posture `p`, `r_p` its residuals and `H = U_p U_p^T` its
-/// leverage, the change is `dx = V S^-1 U_p^T (I - H)^-1 r_p` (Sherman-Morrison-Woodbury on the
-/// kept rows' normal equations, never formed): exact to second order in the change of the
-/// parameters, as the maps' choice is, and taken from the full fit even where its iterations
-/// stopped short in a weakly determined direction (the folds differ from the full fit by what
-/// their posture changes, not by the rest of the full fit's own descent). Each fold comes with
-/// its estimate (re-centred) and the change of the values from the full fit's (SI, the frame's
-/// perturbation in the frame's six values), whose product with the Jacobian at the full fit is
-/// the linearised change of any prediction.
-///
-/// # Errors
-/// Those of [`ErrorModel::residuals`] and [`ErrorModel::jacobian_of`]; [`Error::NotFinite`] when
-/// the SVD does not converge; [`Error::InvalidField`] (`readings`) when a posture alone
-/// determines a parameter (its leverage 1: without it the fit is undetermined).
-pub(super) fn leave_one_out_linearised(
-    model: &ErrorModel,
-    observations: &[Observation],
-    fit: &Fit,
-    options: &Options,
-) -> Result<Vec<(usize, Estimate, DVector<f64>)>> {
-    // The prior as the fit weighed it.
-    let options = &Options {
-        gravity: (options.gravity).map(|g| GravityPrior {
-            noise: fit.gravity_noise.unwrap_or(g.noise),
-            ..g
-        }),
-        ..*options
-    };
-    let scales = model.column_scales_of(options.length, observations);
-    let fitted = &fit.fitted;
-    let regularised = regularised(model, options);
-    let problem = Problem {
-        model,
-        observations,
-        fitted,
-        scales: DVector::from_iterator(fitted.len(), fitted.iter().map(|&c| scales[c])),
-        priors: regularised.then(|| prior_weights(model, fitted, options, observations.len())),
-        noise: options.priors.map(|p| p.noise),
-        nominal: model.nominal(),
-    };
-    let a = problem.jacobian(&fit.estimate)?;
-    let r = problem.residuals(&fit.estimate)?;
-    let svd = a.capped_svd(true, true).ok_or_else(not_converged)?;
-    let (u, v_t) = (
-        svd.u.ok_or_else(not_converged)?,
-        svd.v_t.ok_or_else(not_converged)?,
-    );
-    let s = &svd.singular_values;
-    let largest = s.iter().copied().fold(0.0, f64::max);
-    let kept: Vec<usize> = (0..s.len()).filter(|&i| s[i] > 1e-12 * largest).collect();
-    let u = u.select_columns(kept.iter());
-    // V S^-1, the kept singular values.
-    let vs = DMatrix::from_fn(v_t.ncols(), kept.len(), |row, c| {
-        v_t[(kept[c], row)] / s[kept[c]]
-    });
-    let mut postures: Vec<usize> = observations.iter().map(|o| o.posture).collect();
-    postures.sort_unstable();
-    postures.dedup();
-    postures
-        .iter()
-        .map(|&p| {
-            let rows: Vec<usize> = (observations.iter().enumerate())
-                .filter(|(_, o)| o.posture == p)
-                .flat_map(|(i, _)| 3 * i..3 * i + 3)
-                .collect();
-            let u_p = u.select_rows(rows.iter());
-            let r_p = DVector::from_iterator(rows.len(), rows.iter().map(|&i| r[i]));
-            let kept_rows = DMatrix::identity(rows.len(), rows.len()) - &u_p * u_p.transpose();
-            let z = kept_rows
-                .lu()
-                .solve(&r_p)
-                .filter(|z| z.iter().all(|v| v.is_finite()));
-            let z = z.ok_or_else(|| Error::InvalidField {
-                field: "readings".into(),
-                message: format!(
-                    "posture {} alone determines a parameter: without it the calibration is undetermined; read more postures",
-                    p + 1
-                ),
-            })?;
-            let dx = &vs * u_p.tr_mul(&z);
-            Ok((
-                p,
-                problem.step(&fit.estimate, &dx),
-                problem.change(&dx),
-            ))
-        })
-        .collect()
 }
 
 /// The start of a fit: the nominal values, and the frame registered on the nominal positions
@@ -495,12 +353,6 @@ fn check(observations: &[Observation], options: &Options) -> Result<()> {
         ));
     }
     Ok(())
-}
-
-/// Whether the fit of `model` weighs its gravity prior against the residuals' noise: a model with
-/// gravity terms and no maps (the maps' coefficients have their own ridge).
-fn reweighed(model: &ErrorModel) -> bool {
-    !model.gravity().is_empty() && model.map_start().is_none()
 }
 
 /// Whether the fit of `model` with `options` has prior rows: priors on the joint errors, maps (their

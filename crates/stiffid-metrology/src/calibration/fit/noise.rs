@@ -1,0 +1,67 @@
+//! The gravity prior weighed against the residuals' noise (the module docs' *Thin readings*).
+
+use super::{fit_once, Fit, GravityPrior, Options, MAX_ITERATIONS};
+use crate::calibration::error_model::{ErrorModel, Estimate, Observation};
+use stiffid_core::Result;
+
+/// Most fits of the noise's fixed point ([`GravityPrior`] weighed against the residuals' noise:
+/// module docs, *Thin readings*).
+pub const MAX_REWEIGHTS: usize = 4;
+
+/// The relative change of the noise under which its fixed point is reached.
+pub const NOISE_TOLERANCE: f64 = 0.05;
+
+/// [`fit_within`] at most `limit` iterations, the gravity prior weighed against the residuals'
+/// noise when `reweigh` and the model has gravity terms ([`reweighed`]; module docs, *Thin
+/// readings*): fitted anew from `start` with the noise per coordinate of the last fit's
+/// residuals (`|r|^2 / (3n - p_e)`, `p_e` its effective parameters) while it exceeds the
+/// prior's noise by more than [`NOISE_TOLERANCE`], at most [`MAX_REWEIGHTS`] times; the
+/// last fit's iterations and stop.
+pub(super) fn fit_with(
+    model: &ErrorModel,
+    observations: &[Observation],
+    start: &Estimate,
+    options: &Options,
+    (limit, reweigh): (usize, bool),
+) -> Result<Fit> {
+    let mut fit = fit_once(model, observations, start, options, limit)?;
+    let Some(prior) = options.gravity.filter(|_| reweigh && reweighed(model)) else {
+        return Ok(fit);
+    };
+    let mut noise = prior.noise;
+    for _ in 0..MAX_REWEIGHTS {
+        let dof = 3.0 * observations.len() as f64 - fit.effective_parameters;
+        let sigma = (fit.residuals.norm_squared() / dof.max(1.0)).sqrt();
+        if !(sigma.is_finite() && sigma > noise * (1.0 + NOISE_TOLERANCE)) {
+            break;
+        }
+        noise = sigma;
+        let weighed = Options {
+            gravity: Some(GravityPrior { noise, ..prior }),
+            ..*options
+        };
+        fit = fit_once(model, observations, start, &weighed, limit)?;
+    }
+    fit.gravity_noise = (noise > prior.noise).then_some(noise);
+    Ok(fit)
+}
+
+/// [`fit`] with the gravity prior weighed against the noise [`GravityPrior::noise`] states
+/// only, never the residuals' (the comparison of the module docs' *Thin readings*).
+///
+/// # Errors
+/// Those of [`fit`].
+pub fn fit_at_stated_noise(
+    model: &ErrorModel,
+    observations: &[Observation],
+    start: &Estimate,
+    options: &Options,
+) -> Result<Fit> {
+    fit_with(model, observations, start, options, (MAX_ITERATIONS, false))
+}
+
+/// Whether the fit of `model` weighs its gravity prior against the residuals' noise: a model with
+/// gravity terms and no maps (the maps' coefficients have their own ridge).
+fn reweighed(model: &ErrorModel) -> bool {
+    !model.gravity().is_empty() && model.map_start().is_none()
+}
