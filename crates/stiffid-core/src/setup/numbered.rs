@@ -10,7 +10,7 @@
 //! ```
 //!
 //! A tool is given in the controller's flange frame, a base in the controller's world frame
-//! (module docs of [`super::workcell`]), as the controller's own tables hold them. Numbers run
+//! (module docs of `setup::workcell`), as the controller's own tables hold them. Numbers run
 //! from 0 to [`MAX_FRAME_NUMBER`]; what a number the table lacks means (the flange, the world, or
 //! a frame stiffid cannot know) is each language's rule.
 

@@ -2,7 +2,7 @@
 //! variable, its range and its step) and the run's one objective ([`Freedom`]), parsed and checked
 //! here for the command line (`--free tool-rotation=-90..90/5`) and Python
 //! (`free=["tool-rotation=-90..90/5"]`) into [`FreeVariables`]. The grammar's one parser,
-//! [`FreeOption::parse`], also reads `place --free` ([`crate::app::place`]).
+//! [`FreeOption::parse`], also reads `place --free` (`stiffid::app::place`).
 
 use super::grammar::{self, invalid};
 use super::options::Options;

@@ -1,5 +1,5 @@
 //! The grammar of a free variable's text, one for `compensate --free` ([`super::FreeOption`])
-//! and `place --free` ([`crate::app::place::Free::parse`]): `NAME`, `NAME=LO..HI`,
+//! and `place --free` (`stiffid::app::place::Free::parse`): `NAME`, `NAME=LO..HI`,
 //! `NAME=LO..HI/STEP` or `NAME=/STEP`, the range and step in the variable's unit (mm or deg)
 //! from its own value; each command says which names, ranges and steps it takes.
 

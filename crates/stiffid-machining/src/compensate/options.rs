@@ -54,7 +54,7 @@ pub struct Options {
     /// ([`super::Budget`]).
     pub force_tolerance: f64,
     /// The largest error bound the compensate job accepts anywhere on the path, m (> 0, finite):
-    /// a path with a point above it is refused ([`crate::app::compensate::run`]); `None` accepts
+    /// a path with a point above it is refused (`stiffid::app::compensate::run`); `None` accepts
     /// any.
     pub max_error: Option<f64>,
     /// What every posture the free variables move a point to must keep: the joint-limit margin,

@@ -29,7 +29,7 @@ pub enum Variable {
 }
 
 impl Variable {
-    /// The variable's name as [`super::Free::parse`] reads it.
+    /// The variable's name as `super::Free::parse` reads it.
     pub fn name(&self) -> &str {
         match self {
             Variable::ToolRotation => "tool-rotation",

@@ -29,7 +29,7 @@ pub struct Settings {
     /// The robot's largest TCP speed, m/s (> 0, at most 10): a faster feed is refused.
     pub max_tcp_speed: f64,
     /// The longest program name the controller takes; `None`: the dialect's
-    /// ([`default_name_length`]).
+    /// (`default_name_length`).
     pub name_length: Option<usize>,
     /// The most moves in one program file (within [`MOVES_PER_FILE`]).
     pub moves_per_file: usize,

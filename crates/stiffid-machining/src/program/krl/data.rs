@@ -5,7 +5,7 @@
 
 use std::fmt::Write;
 
-/// The `.src` text `src` of the program `name` (one [`super::generate`] wrote: every motion
+/// The `.src` text `src` of the program `name` (one `super::generate` wrote: every motion
 /// `PTP`, `LIN` or `CIRC` to literal aggregates) with its points named `XP1`, `XP2`, .. in
 /// order, and its `.dat`: the points declared (`E6POS` for a Cartesian aggregate, `E6AXIS`
 /// for axis angles), their values as written.

@@ -1,6 +1,6 @@
 //! FANUC LS: the `/MN` section's motions `J P[i] 100% FINE ;`, `L P[i] 50mm/sec CNT100 ;` and
-//! `C P[i] .. P[j] ..` (the via point and the end: two targets; [`motion`]), their terminations
-//! and options ([`options`]), to the `/POS` section's positions in joint representation,
+//! `C P[i] .. P[j] ..` (the via point and the end: two targets; `motion`), their terminations
+//! and options (`options`), to the `/POS` section's positions in joint representation,
 //! `P[1]{ GP1: UF : 0, UT : 1, J1= 0.000 deg, J2= ... J6= ... deg };` over one or more lines.
 //! Group 1 (`GP1`: the robot's `J1`..`J6` and its extended axes `E1`..`E3`, such as a track)
 //! and group 2 (`GP2`: `J1`.., a positioner) are read, mm for a linear axis and deg for a rotary
@@ -9,9 +9,9 @@
 //! target plus the position's increments (every axis of both groups). A position in Cartesian
 //! representation (`CONFIG : '..'`, `X = .. mm` to `R = .. deg`, in its `UF` and `UT`) is a
 //! Cartesian target ([`super::cartesian`]) in the frames the controller holds by number
-//! ([`numbered`]); an `INC` motion to one is refused. The instructions around the motions are
+//! (`numbered`); an `INC` motion to one is refused. The instructions around the motions are
 //! passed over, followed (`UFRAME_NUM`, `UTOOL_NUM`) or refused naming the line
-//! ([`statements`]). The rules come from the FANUC R-30iA/R-30iB HandlingTool Operator's Manual;
+//! (`statements`). The rules come from the FANUC R-30iA/R-30iB HandlingTool Operator's Manual;
 //! docs/programs/ls.md gives each with its source.
 
 mod cartesian;

@@ -46,11 +46,11 @@ pub(super) fn fit_with(
     Ok(fit)
 }
 
-/// [`fit`] with the gravity prior weighed against the noise [`GravityPrior::noise`] states
+/// [`fit`](super::fit) with the gravity prior weighed against the noise [`GravityPrior::noise`] states
 /// only, never the residuals' (the comparison of the module docs' *Thin readings*).
 ///
 /// # Errors
-/// Those of [`fit`].
+/// Those of [`fit`](super::fit).
 pub fn fit_at_stated_noise(
     model: &ErrorModel,
     observations: &[Observation],
