@@ -98,7 +98,7 @@ use stiffid_machining::Language;
 /// ``.src`` is read with the ``.dat`` beside it (same folder and stem, as the controller pairs
 /// them) and ``data`` is that ``.dat`` compensated (``None`` without one); a KRL program written
 /// from G-code has its points in ``data``, its ``.dat`` (``DEFDAT``, ``DECL E6POS XP1=..``), to be
-/// written beside it (a sub-program's ``.dat`` is written by ``stiffid compensate`` only). Points
+/// written beside it, and each sub-program's in ``subprogram_data`` (name: text). Points
 /// without a process force are warned about (``UserWarning``) as the command does.
 #[pyfunction]
 #[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free=None, minimise=None, program_name=None, targets=None, max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_pct=20.0, objective=None, map=None, margin_deg=None, max_condition=None, refine=None, figures=false, **retired))]
@@ -274,8 +274,9 @@ fn job_options<'py>(
     Ok(options)
 }
 
-/// A compensated program's items: `program`, its text, `subprograms`, and `data` (a KRL
-/// program's compensated `.dat`, or `None`).
+/// A compensated program's items: `program`, its text, `subprograms`, `data` (a KRL
+/// program's compensated `.dat`, or `None`) and `subprogram_data` (each KRL sub-program's `.dat`
+/// by its name; empty in another language).
 fn program_items(
     py: Python<'_>,
     out: &Bound<'_, PyDict>,
@@ -288,6 +289,13 @@ fn program_items(
     }
     out.set_item("subprograms", subprograms)?;
     out.set_item("data", p.data.as_deref())?;
+    let subprogram_data = PyDict::new(py);
+    for f in &p.subprograms {
+        if let Some(data) = &f.data {
+            subprogram_data.set_item(&f.name, data)?;
+        }
+    }
+    out.set_item("subprogram_data", subprogram_data)?;
     Ok(())
 }
 

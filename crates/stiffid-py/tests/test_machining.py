@@ -185,3 +185,21 @@ def test_read_program_reads_a_stored_inform_job_with_the_setups_pulses(tmp_path)
     np.testing.assert_allclose(read["q_deg"], np.array(positions) / pulses, rtol=0, atol=1e-12)
     np.testing.assert_array_equal(read["line"], [15, 16, 17])
     np.testing.assert_allclose(read["feed_mm_s"][1:], [10.0, 10.0])
+
+
+def test_krl_subprograms_data_equal_the_command(cli, tmp_path):
+    """A KRL program split into sub-programs: each one's .dat (its points) is the file the command
+    writes beside it, and the main program's is ``data``."""
+    setup, stiffness = MILLING / "kuka-milling.toml", MILLING / "kuka-stiffness.json"
+    out = tmp_path / "WALL.src"
+    cli("compensate", "--setup", setup, "--stiffness", stiffness, "--program", POCKET, "--process", PROCESS,
+        "--out", out, "--moves-per-file", "100", "--json")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        mine = stiffid.compensate(stiffid.Setup.from_file(setup), stiffness=stiffness, program=POCKET,
+                                  process=PROCESS, output="krl", program_name="wall", moves_per_file=100)
+    assert mine["program"] == out.read_text() and mine["data"] == out.with_suffix(".dat").read_text()
+    assert len(mine["subprograms"]) > 1 and list(mine["subprogram_data"]) == list(mine["subprograms"])
+    for name, data in mine["subprogram_data"].items():
+        assert data.startswith(f"&ACCESS RVP\n&REL 1\nDEFDAT {name}\n")
+        assert (tmp_path / f"{name}.dat").read_text() == data
