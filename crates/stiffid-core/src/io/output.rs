@@ -124,8 +124,7 @@ pub fn temporary(dir: &Path) -> std::io::Result<(PathBuf, File)> {
     temporaries::remove_stale(dir);
     let n = COUNT.fetch_add(1, Ordering::Relaxed);
     let path = dir.join(temporaries::name(std::process::id(), n));
-    temporaries::record(&path);
-    let file = File::options().write(true).create_new(true).open(&path)?;
+    let file = temporaries::make(&path)?;
     Ok((path, file))
 }
 

@@ -4,6 +4,7 @@
 //! `SIGKILL` or a power cut) removed by the next run that writes into the same directory.
 
 use std::collections::HashSet;
+use std::fs::File;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
@@ -27,20 +28,29 @@ fn owner(file_name: &str) -> Option<u32> {
     pid.parse().ok()
 }
 
-/// Records `path`, a temporary file about to be made.
-pub(super) fn record(path: &Path) {
-    MADE.lock()
-        .unwrap_or_else(|e| e.into_inner())
-        .push(path.to_path_buf());
+/// Makes the temporary file `path` (created exclusively, for writing) and records it, both under
+/// the lock [`remove_temporaries`] takes: a removal sees every temporary made before it, and
+/// none is made after it (a signal between the two steps would leave a file behind).
+///
+/// # Errors
+/// When it cannot be created (nothing is recorded).
+pub(super) fn make(path: &Path) -> std::io::Result<File> {
+    let mut made = MADE.lock().unwrap_or_else(|e| e.into_inner());
+    let file = File::options().write(true).create_new(true).open(path)?;
+    made.push(path.to_path_buf());
+    Ok(file)
 }
 
 /// Removes every temporary file this process made that is still there: what a run interrupted
 /// by `SIGINT`, `SIGTERM` or `SIGHUP` does before it exits (the command installs the handler).
+/// The run exits next, so the record stays locked to the end: a thread that asks for a new
+/// temporary meanwhile waits rather than leave one behind.
 pub fn remove_temporaries() {
-    let made = std::mem::take(&mut *MADE.lock().unwrap_or_else(|e| e.into_inner()));
-    for path in made {
+    let mut made = MADE.lock().unwrap_or_else(|e| e.into_inner());
+    for path in made.drain(..) {
         let _ = std::fs::remove_file(path);
     }
+    std::mem::forget(made);
 }
 
 /// Removes, once per directory and process, the temporary files in `dir` whose process is gone:
