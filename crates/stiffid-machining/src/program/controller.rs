@@ -11,7 +11,9 @@
 //! the Cartesian solve, the names' checks, the bounds' comments) is shared and asks the trait.
 
 use super::cartesian::flags::{ConfigurationData, Flags};
-pub use super::descriptor::{AxisNames, Descriptor, FileName, NameRules};
+pub use super::descriptor::{
+    Arcs, AxisNames, Descriptor, ExternalGroup, FileName, NameRules, Writing,
+};
 use super::generate::{Part, Plan, Targets};
 use super::{JointTarget, Units};
 use nalgebra::{UnitQuaternion, Vector3};
@@ -242,7 +244,9 @@ impl<C: Controller> DynController for C {
     }
 }
 
-/// Writes new programs in a language (module docs of [`super::generate`]).
+/// Writes new programs in a language (module docs of [`super::generate`]): the four methods
+/// that write its text, and what its programs can hold as data ([`Generator::writing`]), which
+/// the other methods read by default.
 pub trait Generator: Sync {
     /// The main program's header: the tool, the frames and the motion settings; `main` its
     /// name and `subs` its sub-programs'.
@@ -256,37 +260,56 @@ pub trait Generator: Sync {
     fn calls(&self, subs: &[String]) -> String;
     /// The whole file of program `name` (`main`: the main program).
     fn wrap(&self, name: &str, header: &str, body: &str, main: bool) -> String;
-    /// The most moves (or calls) one file holds, where the language limits them.
-    fn lines_per_file(&self) -> Option<usize>;
-    /// What a sub-program's routine name adds before the program's name (RAPID `r`).
-    fn routine_prefix(&self) -> &'static str;
-    /// Whether a program with `targets` states the tool's mass and centre of mass.
-    fn needs_mass(&self, targets: Targets) -> bool;
+    /// What its programs can hold and how they write it, as data.
+    fn writing(&self) -> &'static Writing;
+
+    /// The most moves (or calls) one file holds, where the language limits them
+    /// ([`Writing::lines_per_file`]).
+    fn lines_per_file(&self) -> Option<usize> {
+        self.writing().lines_per_file
+    }
+    /// What a sub-program's routine name adds before the program's name (RAPID `r`;
+    /// [`Writing::routine_prefix`]).
+    fn routine_prefix(&self) -> &'static str {
+        self.writing().routine_prefix
+    }
+    /// Whether a program with `targets` states the tool's mass and centre of mass
+    /// ([`Writing::states_mass`], whatever the targets).
+    fn needs_mass(&self, targets: Targets) -> bool {
+        let _ = targets;
+        self.writing().states_mass
+    }
     /// Whether a Cartesian target is written as a pose; `false`: every target is written as its
-    /// axis angles, whatever [`super::generate::Targets`] asks (INFORM's pulses).
+    /// axis angles, whatever [`super::generate::Targets`] asks (INFORM's pulses;
+    /// [`Writing::cartesian`]).
     fn writes_cartesian(&self) -> bool {
-        true
+        self.writing().cartesian
     }
     /// Whether a program states its axes in encoder pulses, which the setup must give
-    /// (`[controller] pulses_per_deg`).
+    /// (`[controller] pulses_per_deg`; [`Writing::pulses`]).
     fn needs_pulses(&self) -> bool {
-        false
+        self.writing().pulses
     }
     /// How the language writes a circular move in a program of `targets`
-    /// ([`super::generate::arcs`]); `None`: its arcs are written as their chord points. By
-    /// default the via point and the end, with Cartesian targets only (joint targets are
-    /// interpolated axis by axis).
+    /// ([`super::generate::arcs`]; [`Writing::arcs`]); `None`: its arcs are written as their
+    /// chord points.
     fn circular(&self, targets: Targets) -> Option<super::generate::arcs::Form> {
-        (targets == Targets::Cartesian).then_some(super::generate::arcs::Form::ViaEnd)
+        let arcs = self.writing().arcs?;
+        (arcs.joint_targets || targets == Targets::Cartesian).then_some(arcs.form)
     }
-    /// The most external axes of `role` a program holds.
-    fn most_external(&self, role: Role) -> usize;
+    /// The most external axes of `role` a program holds ([`Writing::carrier`],
+    /// [`Writing::positioner`]).
+    fn most_external(&self, role: Role) -> usize {
+        group(self.writing(), role).most
+    }
     /// Where a program writes the external axes of `role`, for messages (KRL `E1..E6`).
-    fn external_form(&self, role: Role) -> &'static str;
-    /// How the language writes the G-code's process words ([`super::generate::Process`]);
-    /// `None`: it writes none (a program with process words is refused).
+    fn external_form(&self, role: Role) -> &'static str {
+        group(self.writing(), role).form
+    }
+    /// How the language writes the G-code's process words ([`super::generate::Process`];
+    /// [`Writing::process`]); `None`: it writes none (a program with process words is refused).
     fn process_form(&self) -> Option<&'static super::generate::ProcessForm> {
-        None
+        self.writing().process
     }
     /// Checks what the language can state of `settings` (LS: a whole percent of joint speed).
     ///
@@ -294,6 +317,14 @@ pub trait Generator: Sync {
     /// [`stiffid_core::Error::InvalidField`] naming the setting's setup field.
     fn check_settings(&self, _settings: &super::generate::Settings) -> Result<()> {
         Ok(())
+    }
+}
+
+/// The external axes of `role` a language's programs hold.
+fn group(writing: &Writing, role: Role) -> ExternalGroup {
+    match role {
+        Role::Carrier => writing.carrier,
+        Role::Positioner => writing.positioner,
     }
 }
 

@@ -97,3 +97,53 @@ impl AxisNames {
         }
     }
 }
+
+/// What a language's new programs can hold and how they write it, as data: what each data method
+/// of [`super::Generator`] gives ([`super::Generator::writing`]), declared once in the language's
+/// `generate.rs`.
+#[derive(Debug, Clone, Copy)]
+pub struct Writing {
+    /// The most moves (or calls) one file holds, where the language limits them (LS's lines of a
+    /// program, INFORM's positions of a job).
+    pub lines_per_file: Option<usize>,
+    /// What a sub-program's routine name adds before the program's name (RAPID `r`).
+    pub routine_prefix: &'static str,
+    /// Whether every program states the tool's mass and centre of mass (RAPID's `tooldata`).
+    pub states_mass: bool,
+    /// Whether a Cartesian target is written as a pose; `false`: every target is written as its
+    /// axis angles (INFORM's pulses).
+    pub cartesian: bool,
+    /// Whether a program states its axes in encoder pulses, which the setup must give
+    /// (`[controller] pulses_per_deg`).
+    pub pulses: bool,
+    /// How it writes a circular move; `None`: its arcs are written as their chord points.
+    pub arcs: Option<Arcs>,
+    /// The external axes a program holds under the arm (a track).
+    pub carrier: ExternalGroup,
+    /// The external axes a program holds under the workpiece (a positioner).
+    pub positioner: ExternalGroup,
+    /// How it writes the G-code's process words; `None`: it writes none (a program with process
+    /// words is refused).
+    pub process: Option<&'static super::generate::ProcessForm>,
+}
+
+/// How a language writes a circular move ([`Writing::arcs`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Arcs {
+    /// The positions it states ([`super::generate::arcs`]).
+    pub form: super::generate::arcs::Form,
+    /// Whether a program of joint targets writes its arcs too (INFORM's `MOVC` of taught
+    /// positions); `false`: with Cartesian targets only (joint targets are interpolated axis by
+    /// axis).
+    pub joint_targets: bool,
+}
+
+/// The external axes of one role a language's program holds ([`Writing::carrier`],
+/// [`Writing::positioner`]).
+#[derive(Debug, Clone, Copy)]
+pub struct ExternalGroup {
+    /// The most axes.
+    pub most: usize,
+    /// Where a program writes them, for messages (KRL `E1 to E6`).
+    pub form: &'static str,
+}

@@ -71,8 +71,8 @@ pub mod speed;
 pub(crate) use super::text::lines;
 pub use super::text::number_at;
 pub use controller::{
-    AxisNames, BoundComment, Controller, Descriptor, DynController, FileName, Generator, NameRules,
-    Read,
+    Arcs, AxisNames, BoundComment, Controller, Descriptor, DynController, ExternalGroup, FileName,
+    Generator, NameRules, Read, Writing,
 };
 use nalgebra::{Isometry3, Translation3};
 use std::ops::Range;

@@ -1,12 +1,12 @@
 //! KUKA KRL (`.src`): `DEF NAME( )` ... `END` (module docs of [`crate::program::generate`]).
 
 use crate::program::cartesian::flags::ConfigurationData;
+use crate::program::generate::arcs::Form;
 use crate::program::generate::{
     in_work, number, v, zyx_deg, Move, Part, Plan, Target, Targets, RAPID_PERCENT,
 };
-use crate::program::Generator;
+use crate::program::{Arcs, ExternalGroup, Generator, Writing};
 use std::fmt::Write;
-use stiffid_core::robot::external::Role;
 use stiffid_core::Result;
 
 /// The motion set-up at the top of the main program.
@@ -152,6 +152,30 @@ pub(crate) fn wrap(name: &str, header: &str, body: &str) -> String {
 pub const KSS_HEADER: &str =
     "&ACCESS RVP\n&REL 1\n&PARAM TEMPLATE = C:\\KRC\\Roboter\\Template\\vorgabe\n&PARAM EDITMASK = *\n";
 
+/// What a KRL program holds and how it writes it: `CIRC` with Cartesian targets, up to six
+/// external axes `E1` to `E6`, the carrier's then the positioner's, in its `E6POS`/`E6AXIS` (KUKA System Software 8.x
+/// operating and programming instructions), the process words in `$` system variables.
+static WRITING: Writing = Writing {
+    lines_per_file: None,
+    routine_prefix: "",
+    states_mass: false,
+    cartesian: true,
+    pulses: false,
+    arcs: Some(Arcs {
+        form: Form::ViaEnd,
+        joint_targets: false,
+    }),
+    carrier: ExternalGroup {
+        most: 6,
+        form: "E1 to E6",
+    },
+    positioner: ExternalGroup {
+        most: 6,
+        form: "E1 to E6",
+    },
+    process: Some(&super::process::FORM),
+};
+
 impl Generator for super::Krl {
     fn header(&self, plan: &Plan, _main: &str, _subs: &[String]) -> String {
         header(plan)
@@ -165,23 +189,7 @@ impl Generator for super::Krl {
     fn wrap(&self, name: &str, header: &str, body: &str, _main: bool) -> String {
         wrap(name, header, body)
     }
-    fn lines_per_file(&self) -> Option<usize> {
-        None
-    }
-    fn routine_prefix(&self) -> &'static str {
-        ""
-    }
-    fn needs_mass(&self, _targets: Targets) -> bool {
-        false
-    }
-    /// `E1` to `E6`, the carrier's then the positioner's.
-    fn most_external(&self, _role: Role) -> usize {
-        6
-    }
-    fn external_form(&self, _role: Role) -> &'static str {
-        "E1 to E6"
-    }
-    fn process_form(&self) -> Option<&'static crate::program::generate::ProcessForm> {
-        Some(&super::process::FORM)
+    fn writing(&self) -> &'static Writing {
+        &WRITING
     }
 }

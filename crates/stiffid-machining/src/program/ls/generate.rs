@@ -1,11 +1,12 @@
 //! FANUC LS (`.ls`): `/PROG NAME`, `/ATTR`, `/MN`, `/POS`, `/END` (module docs of [`crate::program::generate`]).
 
 use crate::program::cartesian::flags::ConfigurationData;
+use crate::program::generate::arcs::Form;
 use crate::program::generate::LS_MAX_LINES;
 use crate::program::generate::{
     in_world, number, stated_feed, v, zyx_deg, Move, Part, Plan, Settings, Target, Targets,
 };
-use crate::program::Generator;
+use crate::program::{Arcs, ExternalGroup, Generator, Writing};
 use nalgebra::Isometry3;
 use std::fmt::Write;
 use stiffid_core::robot::external::Role;
@@ -218,6 +219,30 @@ fn attributes(groups: &str, lines: usize) -> String {
     )
 }
 
+/// What an LS program holds and how it writes it: at most [`LS_MAX_LINES`] lines with its
+/// header, `C` moves with Cartesian targets, group 1's extended axes `E1` to `E3` under the arm
+/// and group 2's `J1` to `J6` for a positioner (FANUC Operator's Manual, TP programs).
+static WRITING: Writing = Writing {
+    lines_per_file: Some(LS_MAX_LINES - LS_HEADER_LINES),
+    routine_prefix: "",
+    states_mass: false,
+    cartesian: true,
+    pulses: false,
+    arcs: Some(Arcs {
+        form: Form::ViaEnd,
+        joint_targets: false,
+    }),
+    carrier: ExternalGroup {
+        most: 3,
+        form: "group 1's extended axes E1 to E3",
+    },
+    positioner: ExternalGroup {
+        most: 6,
+        form: "group 2's J1 to J6",
+    },
+    process: Some(&super::process::FORM),
+};
+
 impl Generator for super::FanucLs {
     fn header(&self, plan: &Plan, _main: &str, _subs: &[String]) -> String {
         header(plan)
@@ -232,31 +257,7 @@ impl Generator for super::FanucLs {
         wrap(name, header, body)
     }
     /// [`LS_MAX_LINES`] numbered lines, the main program's header included.
-    fn lines_per_file(&self) -> Option<usize> {
-        Some(LS_MAX_LINES - LS_HEADER_LINES)
-    }
-    fn routine_prefix(&self) -> &'static str {
-        ""
-    }
-    fn needs_mass(&self, _targets: Targets) -> bool {
-        false
-    }
     /// A carrier in group 1's extended axes `E1` to `E3`, a positioner in group 2's `J1`..
-    fn most_external(&self, role: Role) -> usize {
-        match role {
-            Role::Carrier => 3,
-            Role::Positioner => 6,
-        }
-    }
-    fn external_form(&self, role: Role) -> &'static str {
-        match role {
-            Role::Carrier => "group 1's extended axes E1 to E3",
-            Role::Positioner => "group 2's J1 to J6",
-        }
-    }
-    fn process_form(&self) -> Option<&'static crate::program::generate::ProcessForm> {
-        Some(&super::process::FORM)
-    }
     /// A joint move's speed is a whole percent (`J P[1] 20% FINE`).
     fn check_settings(&self, settings: &Settings) -> Result<()> {
         let pct = settings.rapid_joint_pct;
@@ -267,6 +268,9 @@ impl Generator for super::FanucLs {
                 message: format!("{pct}: an LS joint move states a whole percent of the joint speed, 1 to 100 (J P[1] 20% FINE)"),
             }),
         }
+    }
+    fn writing(&self) -> &'static Writing {
+        &WRITING
     }
 }
 

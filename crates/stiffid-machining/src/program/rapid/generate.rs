@@ -2,10 +2,10 @@
 //! `PROC rNAME_01()` (module docs of [`crate::program::generate`]).
 
 use crate::program::cartesian::flags::ConfigurationData;
+use crate::program::generate::arcs::Form;
 use crate::program::generate::{in_work, number, v, Move, Part, Plan, Target, Targets};
-use crate::program::Generator;
+use crate::program::{Arcs, ExternalGroup, Generator, Writing};
 use std::fmt::Write;
-use stiffid_core::robot::external::Role;
 use stiffid_core::Result;
 
 /// The data the moves use, declared in the main module.
@@ -152,6 +152,32 @@ pub(crate) fn wrap(name: &str, header: &str, body: &str, main: bool) -> String {
     }
 }
 
+/// What a RAPID module holds and how it writes it: a sub-program's routine is its module's name
+/// after an `r`; a `tooldata` states the tool's mass in every program (the controller refuses a
+/// tool of no mass; joint targets move with it too); `MoveC` with Cartesian targets; up to six
+/// external axes `eax_a` to `eax_f`, the carrier's then the positioner's, in its `extjoint`
+/// (ABB RAPID Reference Manual).
+static WRITING: Writing = Writing {
+    lines_per_file: None,
+    routine_prefix: "r",
+    states_mass: true,
+    cartesian: true,
+    pulses: false,
+    arcs: Some(Arcs {
+        form: Form::ViaEnd,
+        joint_targets: false,
+    }),
+    carrier: ExternalGroup {
+        most: EXTAX,
+        form: "eax_a to eax_f",
+    },
+    positioner: ExternalGroup {
+        most: EXTAX,
+        form: "eax_a to eax_f",
+    },
+    process: Some(&super::process::FORM),
+};
+
 impl Generator for super::Rapid {
     fn header(&self, plan: &Plan, main: &str, subs: &[String]) -> String {
         header(plan, main, subs)
@@ -165,26 +191,7 @@ impl Generator for super::Rapid {
     fn wrap(&self, name: &str, header: &str, body: &str, main: bool) -> String {
         wrap(name, header, body, main)
     }
-    fn lines_per_file(&self) -> Option<usize> {
-        None
-    }
-    /// A sub-program's routine is its module's name after an `r`.
-    fn routine_prefix(&self) -> &'static str {
-        "r"
-    }
-    /// A `tooldata` states the tool's mass: the controller refuses a tool of no mass; joint
-    /// targets move with it too.
-    fn needs_mass(&self, _targets: Targets) -> bool {
-        true
-    }
-    /// `eax_a` to `eax_f`, the carrier's then the positioner's.
-    fn most_external(&self, _role: Role) -> usize {
-        EXTAX
-    }
-    fn external_form(&self, _role: Role) -> &'static str {
-        "eax_a to eax_f"
-    }
-    fn process_form(&self) -> Option<&'static crate::program::generate::ProcessForm> {
-        Some(&super::process::FORM)
+    fn writing(&self) -> &'static Writing {
+        &WRITING
     }
 }

@@ -2,7 +2,7 @@
 //! `//INST` (`NOP`, the moves, `END`) (module docs of [`crate::program::generate`]).
 //!
 //! Every target is written as its axis angles in whole encoder pulses (`///POSTYPE PULSE`,
-//! `C00000=S,L,U,R,B,T`), whatever [`Targets`] asks: stiffid reads no rectangular position back
+//! `C00000=S,L,U,R,B,T`), whatever [`Targets`](crate::program::generate::Targets) asks: stiffid reads no rectangular position back
 //! ([`super`]), so a job it writes states none. The pulses per degree are the setup's
 //! (`[controller] pulses_per_deg`, [`Pulses`]), which read it back ([`crate::program::Context`]):
 //! the job states them in no comment (a comment line is at most 32 characters on the pendant,
@@ -10,11 +10,12 @@
 //! group (the positioner's, `EC00000`) are written in pulses with `external_pulses`, else in
 //! `///ANGLE` form (mm, deg).
 
+use crate::program::generate::arcs::Form;
 use crate::program::generate::date::Stamp;
 use crate::program::generate::{
-    missing_pulses, number, stated_feed, v, zyx_deg, Move, Part, Plan, Settings, Target, Targets,
+    missing_pulses, number, stated_feed, v, zyx_deg, Move, Part, Plan, Settings, Target,
 };
-use crate::program::{whole_pulses, Generator};
+use crate::program::{whole_pulses, Arcs, ExternalGroup, Generator, Writing};
 use std::fmt::Write;
 use stiffid_core::robot::external::Role;
 use stiffid_core::setup::Pulses;
@@ -115,6 +116,33 @@ fn external(
     s
 }
 
+/// What an INFORM job holds and how it writes it: at most [`MAX_POSITIONS`] teaching positions,
+/// every target in encoder pulses (`C` positions, never a pose), three `MOVC` positions (start,
+/// via, end) whatever the targets (a `MOVC` between pulse positions moves the tool on the circle
+/// through their poses in the controller's kinematics, as a `MOVL` moves it on a line), a base
+/// axis group `BC` of up to 3 axes and a station group `EC` of up to 6 (YASKAWA INFORM language
+/// manual).
+static WRITING: Writing = Writing {
+    lines_per_file: Some(MAX_POSITIONS),
+    routine_prefix: "",
+    states_mass: false,
+    cartesian: false,
+    pulses: true,
+    arcs: Some(Arcs {
+        form: Form::StartViaEnd,
+        joint_targets: true,
+    }),
+    carrier: ExternalGroup {
+        most: 3,
+        form: "a base axis group BC of 3 axes",
+    },
+    positioner: ExternalGroup {
+        most: 6,
+        form: "a station group EC of 6 axes",
+    },
+    process: Some(&crate::program::inform::process::FORM),
+};
+
 impl Generator for super::Inform {
     /// The main job's comments of the tool file [`TOOL`] it moves with: the tool frame from the
     /// controller's flange (X, Y, Z mm; Rx, Ry, Rz deg with `R = Rz Ry Rx`) and, when the setup
@@ -206,45 +234,6 @@ impl Generator for super::Inform {
         );
         text.replace('\n', "\r\n")
     }
-    /// [`MAX_POSITIONS`] teaching positions.
-    fn lines_per_file(&self) -> Option<usize> {
-        Some(MAX_POSITIONS)
-    }
-    fn routine_prefix(&self) -> &'static str {
-        ""
-    }
-    fn needs_mass(&self, _targets: Targets) -> bool {
-        false
-    }
-    /// Three `MOVC` positions (start, via, end), whatever the targets: a `MOVC` between pulse
-    /// positions moves the tool on the circle through their poses in the controller's
-    /// kinematics, as a `MOVL` moves it on a line.
-    fn circular(&self, _targets: Targets) -> Option<crate::program::generate::arcs::Form> {
-        Some(crate::program::generate::arcs::Form::StartViaEnd)
-    }
-    /// Pulse positions only.
-    fn writes_cartesian(&self) -> bool {
-        false
-    }
-    fn needs_pulses(&self) -> bool {
-        true
-    }
-    /// A base axis group `BC` of up to 3 axes, a station group `EC` of up to 6.
-    fn most_external(&self, role: Role) -> usize {
-        match role {
-            Role::Carrier => 3,
-            Role::Positioner => 6,
-        }
-    }
-    fn external_form(&self, role: Role) -> &'static str {
-        match role {
-            Role::Carrier => "a base axis group BC of 3 axes",
-            Role::Positioner => "a station group EC of 6 axes",
-        }
-    }
-    fn process_form(&self) -> Option<&'static crate::program::generate::ProcessForm> {
-        Some(&crate::program::inform::process::FORM)
-    }
     /// A joint speed `VJ=` in hundredths of a percent.
     fn check_settings(&self, settings: &Settings) -> Result<()> {
         let steps = settings.rapid_joint_pct * 100.0;
@@ -255,5 +244,8 @@ impl Generator for super::Inform {
                 message: format!("{}: an INFORM joint move states the joint speed in hundredths of a percent (VJ=20.00)", settings.rapid_joint_pct),
             }),
         }
+    }
+    fn writing(&self) -> &'static Writing {
+        &WRITING
     }
 }

@@ -154,3 +154,104 @@ fn the_controller_trait_requires_at_most_ten_methods() {
     assert_eq!(others.len(), 2, "{others:?}");
     assert!(others[0].starts_with("type Flags") && others[1].starts_with("const LANGUAGE"));
 }
+
+#[test]
+fn the_generator_trait_requires_the_writing_and_its_data() {
+    let source = include_str!("../../../../../stiffid-machining/src/program/controller.rs");
+    let (methods, others) = required(source, "Generator");
+    let names: Vec<&str> = (methods.iter())
+        .map(|m| m[3..].split('(').next().unwrap())
+        .collect();
+    assert_eq!(
+        names,
+        ["header", "body", "calls", "wrap", "writing"],
+        "{methods:?}"
+    );
+    assert!(others.is_empty(), "{others:?}");
+}
+
+/// Each language's generator as its data say, through the trait's defaults: the most lines of a
+/// file, the routines' prefix, whether the tool's mass is stated, Cartesian targets, pulses, the
+/// arcs with Cartesian and joint targets, the external axes of each role and where they are
+/// written (each from its controller's manual, as the language's `WRITING` says).
+#[test]
+fn each_generator_reads_its_writing() {
+    use stiffid::machining::program::generate::arcs::Form;
+    use stiffid::machining::program::generate::Targets;
+    use stiffid::machining::program::Dialect;
+    use stiffid::robot::external::Role;
+    type Row = (
+        Dialect,
+        Option<usize>,
+        &'static str,
+        [bool; 3],
+        [Option<Form>; 2],
+        (usize, &'static str),
+        (usize, &'static str),
+    );
+    let via = Some(Form::ViaEnd);
+    let rows: [Row; 4] = [
+        (
+            Dialect::Krl,
+            None,
+            "",
+            [false, true, false],
+            [via, None],
+            (6, "E1 to E6"),
+            (6, "E1 to E6"),
+        ),
+        (
+            Dialect::Rapid,
+            None,
+            "r",
+            [true, true, false],
+            [via, None],
+            (6, "eax_a to eax_f"),
+            (6, "eax_a to eax_f"),
+        ),
+        (
+            Dialect::FanucLs,
+            Some(9999 - 9),
+            "",
+            [false, true, false],
+            [via, None],
+            (3, "group 1's extended axes E1 to E3"),
+            (6, "group 2's J1 to J6"),
+        ),
+        (
+            Dialect::Inform,
+            Some(100_000),
+            "",
+            [false, false, true],
+            [Some(Form::StartViaEnd); 2],
+            (3, "a base axis group BC of 3 axes"),
+            (6, "a station group EC of 6 axes"),
+        ),
+    ];
+    for (dialect, lines, prefix, [mass, cartesian, pulses], arcs, carrier, positioner) in rows {
+        let g = dialect.controller().generator().expect("a generator");
+        assert_eq!(g.lines_per_file(), lines, "{dialect:?}");
+        assert_eq!(g.routine_prefix(), prefix, "{dialect:?}");
+        for targets in Targets::ALL {
+            assert_eq!(g.needs_mass(targets), mass, "{dialect:?}");
+        }
+        assert_eq!(
+            (g.writes_cartesian(), g.needs_pulses()),
+            (cartesian, pulses),
+            "{dialect:?}"
+        );
+        assert_eq!(
+            [g.circular(Targets::Cartesian), g.circular(Targets::Joint)],
+            arcs,
+            "{dialect:?}"
+        );
+        for (role, (most, form)) in [(Role::Carrier, carrier), (Role::Positioner, positioner)] {
+            assert_eq!(
+                (g.most_external(role), g.external_form(role)),
+                (most, form),
+                "{dialect:?}"
+            );
+        }
+        assert!(g.process_form().is_some(), "{dialect:?}");
+    }
+}
