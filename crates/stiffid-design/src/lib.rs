@@ -20,6 +20,7 @@ pub mod observability;
 pub mod pool;
 pub mod registration;
 pub mod search;
+pub mod selection;
 pub mod study;
 pub mod target;
 

@@ -4,7 +4,7 @@
 //! ([`stiffid_design::observability`]).
 
 use stiffid_core::common::error::JobOption;
-use stiffid_core::robot::external::{AxisKind, ExternalAxes, ExternalValues};
+use stiffid_core::robot::external::AxisKind;
 use stiffid_core::{Error, Result, Setup};
 use stiffid_design::observability::{CalibrationCriterion, CalibrationDesign, Placed, TableDesign};
 use stiffid_design::{random_group, CalibrationGoal, Criterion, Goal};
@@ -269,36 +269,7 @@ pub fn design(setup: &Setup, options: &CalibrationOptions) -> Result<Calibration
 /// reflectors are read at in a calibration design's reference campaign.
 pub const REFERENCE_TABLE_ANGLES: usize = 16;
 
-/// About `count` values of the positioner's axes of `axes`: a grid of `round(count^(1/k))`
-/// values per axis (`k` positioner axes), each at the middles of equal parts of its travel
-/// (never its ends: a turntable's two ends are one angle), the carrier's axes at their values
-/// in `carrier` (SI, the cell's order). Only `carrier` without a positioner.
-pub fn table_grid(
-    axes: &ExternalAxes,
-    count: usize,
-    carrier: &ExternalValues,
-) -> Vec<ExternalValues> {
-    let k = axes.len() - axes.carrier_len();
-    let per = (count.max(1) as f64)
-        .powf(1.0 / k.max(1) as f64)
-        .round()
-        .max(1.0) as usize;
-    let mut grid = vec![carrier.as_slice().to_vec()];
-    for (i, a) in axes.axes().iter().enumerate().skip(axes.carrier_len()) {
-        grid = (grid.iter())
-            .flat_map(|e| {
-                (0..per).map(move |j| {
-                    let mut e = e.clone();
-                    e[i] = a.lower + (j as f64 + 0.5) / per as f64 * (a.upper - a.lower);
-                    e
-                })
-            })
-            .collect();
-    }
-    (grid.iter())
-        .map(|e| ExternalValues::new(e).expect("the cell's axes"))
-        .collect()
-}
+pub use stiffid_design::selection::table::table_grid;
 
 /// The order of a track's error motions a calibration design assumes (`calibrate` chooses its
 /// own from the readings, `--error-motions`): a bow and a twist along the rail are of order 2

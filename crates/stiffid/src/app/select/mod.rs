@@ -16,14 +16,13 @@ pub use check::{check_given, Given};
 pub use station::{Station, MAX_STATIONS};
 pub use table::CANDIDATE_ANGLES;
 
-use choose::{choose, smallest, unconstrained, Found};
+use choose::{choose, smallest, unconstrained};
 use pool::{in_pool, Candidates};
 
 use super::purpose::{self, CalibrationOptions, Purpose};
 use crate::app::Warning;
 use nalgebra::Vector6;
 use std::time::Instant;
-use stiffid_core::cell::Check;
 use stiffid_core::common::error::JobOption;
 use stiffid_core::common::limits::Range;
 use stiffid_core::common::progress::Progress;
@@ -267,27 +266,8 @@ pub struct PoolReport {
     pub not_distinct: Vec<(usize, usize)>,
 }
 
-/// A pool posture that cannot be measured.
-#[derive(Debug, Clone)]
-pub struct Skipped {
-    /// Its number in the pool (1-based).
-    pub posture: usize,
-    /// The checks it fails.
-    pub checks: Vec<Check>,
-}
-
-/// The same search without the cell's checks.
-#[derive(Debug, Clone)]
-pub struct Unconstrained {
-    /// Its group (axis angles, rad).
-    pub postures: Vec<Vector6<f64>>,
-    /// Its criterion.
-    pub value: f64,
-    /// Why its search stopped.
-    pub termination: Termination,
-    /// Every criterion of its group (on the setup: the criteria do not depend on the cell).
-    pub evaluation: Evaluation,
-}
+pub use stiffid_design::selection::pool::Skipped;
+pub use stiffid_design::selection::search::Unconstrained;
 
 /// Selects the group.
 ///
@@ -376,7 +356,7 @@ fn run_on(request: &Request) -> Result<Report> {
     let pool = request
         .pool
         .as_ref()
-        .map(|p| Candidates::new(request, p))
+        .map(|p| pool::screened(request, p))
         .transpose()?;
     let started = Instant::now();
     let (found, target) = match request.target_pct {
@@ -434,7 +414,7 @@ fn run_on(request: &Request) -> Result<Report> {
         termination: found.terminations.first().map(|_| found.termination),
         terminations: found.terminations,
         elapsed_s,
-        pool: pool.map(|p| p.report(found.chosen)),
+        pool: pool.map(|p| pool::report(p, found.chosen)),
         target,
         unconstrained,
         warnings: near.iter().map(Near::warning).collect(),
