@@ -24,12 +24,14 @@ pub struct Station {
     pub value: f64,
 }
 
-/// The selection `run` at each station to try ([`stations`] of `given`), the one of the smallest
-/// `value` kept (the first of equal ones): its station, its result and every station's value in
-/// order.
+/// The selection `run` at each station to try, the one of the smallest `value` kept (the first
+/// of equal ones): its station, its result and every station's value in order. The stations
+/// tried are those `given`; on a cell whose only external axes are a positioner's (the arm on a
+/// fixed base: the positioner moves the part, never the arm), none given means the positioner
+/// at its zero, `e = 0` (its carried obstacles where the setup draws them).
 ///
 /// # Errors
-/// Those of [`stations`] and [`setup_at`]; those of `run`.
+/// Those of [`check`] for a cell with a carrier and of [`setup_at`]; those of `run`.
 pub fn best<T>(
     setup: &Setup,
     given: &[ExternalValues],
@@ -66,7 +68,7 @@ fn refuse(message: String) -> Error {
 ///
 /// # Errors
 /// Those of [`check`] for a cell with a carrier.
-pub fn stations(setup: &Setup, given: &[ExternalValues]) -> Result<Vec<ExternalValues>> {
+fn stations(setup: &Setup, given: &[ExternalValues]) -> Result<Vec<ExternalValues>> {
     let axes = setup.robot().external();
     match axes.filter(|a| given.is_empty() && a.carrier_len() == 0) {
         Some(a) => Ok(vec![ExternalValues::new(&vec![0.0; a.len()])?]),

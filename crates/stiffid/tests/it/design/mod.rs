@@ -6,5 +6,6 @@ mod observability;
 mod pool;
 mod registration;
 mod search;
+mod selection;
 mod study;
 mod termination;
