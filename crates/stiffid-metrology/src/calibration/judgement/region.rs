@@ -9,10 +9,12 @@
 //!
 //! The region is the joint-space hull of the postures the campaign and the setup name (the
 //! fitted postures, the held-out postures of `--validate`, the setup's test postures
-//! `[test] postures_deg`): the postures a joint-interpolated move between two of them passes
-//! through. It is sampled by [`SAMPLES`] postures, each on the segment between two of the named
-//! postures drawn at random (seeded: [`SEED`]), at a uniform share of the way, cut to the robot's
-//! joint limits and the setup's `[bounds]`. Not the box of each axis's range: its corners pair
+//! `[test] postures_deg`): those postures and the postures a joint-interpolated move between two
+//! of them passes through. It is sampled by [`SAMPLES`] postures drawn at random (seeded:
+//! [`SEED`]): half of them named postures, where the robot is measured or used, and half on the
+//! segment between two named postures at a uniform share of the way (a sample of the moves alone
+//! would weigh the hull's middle and leave its ends, the postures named, nearly unsampled), cut
+//! to the robot's joint limits and the setup's `[bounds]`. Not the box of each axis's range: its corners pair
 //! extreme angles of several axes that no named posture pairs (a campaign that keeps the forearm
 //! level moves joints 2 and 3 together), postures the robot is neither measured in nor used in,
 //! where a gravity model the campaign determines well would be turned down. A setup that names
@@ -53,13 +55,23 @@ pub fn region(postures: &[Vector6<f64>], limits: &JointBox, bounds: &JointBox) -
     // the limits'.
     let lower = limits.lower.sup(&bounds.lower);
     let upper = limits.upper.inf(&bounds.upper);
-    let (lower, upper) = (lower.zip_map(&upper, f64::min), upper.zip_map(&lower, f64::max));
+    let (lower, upper) = (
+        lower.zip_map(&upper, f64::min),
+        upper.zip_map(&lower, f64::max),
+    );
     let mut rng = ChaCha8Rng::seed_from_u64(SEED);
     let n = postures.len();
     let sample: Vec<Vector6<f64>> = (0..SAMPLES)
-        .map(|_| {
-            let (a, b) = (&postures[rng.random_range(0..n)], &postures[rng.random_range(0..n)]);
-            let t: f64 = rng.random();
+        .map(|k| {
+            let (a, b) = (
+                &postures[rng.random_range(0..n)],
+                &postures[rng.random_range(0..n)],
+            );
+            // Every other sample a named posture itself, the others on the moves between them.
+            let t: f64 = match k % 2 {
+                0 => 0.0,
+                _ => rng.random(),
+            };
             (a + (b - a) * t).sup(&lower).inf(&upper)
         })
         .collect();
@@ -67,7 +79,10 @@ pub fn region(postures: &[Vector6<f64>], limits: &JointBox, bounds: &JointBox) -
         (sample.iter()).fold(Vector6::repeat(init), |acc, q| acc.zip_map(q, pick))
     };
     Region {
-        bounds: JointBox::new(fold(f64::INFINITY, f64::min), fold(f64::NEG_INFINITY, f64::max)),
+        bounds: JointBox::new(
+            fold(f64::INFINITY, f64::min),
+            fold(f64::NEG_INFINITY, f64::max),
+        ),
         postures: sample,
     }
 }
