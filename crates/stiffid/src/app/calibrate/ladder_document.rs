@@ -16,8 +16,8 @@ pub struct LadderDocument {
     pub chosen: usize,
     /// The lower ends of the box of the region where the robot is used, over which each rung's
     /// `workspace_sd_mm` is taken (the joint-space hull of the fitted and held-out postures and
-    /// the setup's test postures: 512 postures each on the segment between two of them, within
-    /// the joint limits and the setup's bounds), deg.
+    /// the setup's test postures: 512 postures, half of them those and half on the segment
+    /// between two of them, within the joint limits and the setup's bounds), deg.
     pub region_lower_deg: [f64; 6],
     /// The upper ends of that region, deg.
     pub region_upper_deg: [f64; 6],
