@@ -40,10 +40,25 @@ pub fn region_sd(
     like: &Observation,
     region: &JointBox,
 ) -> Result<f64> {
-    let observations: Vec<Observation> = gravity::spanning(region)
-        .into_iter()
-        .enumerate()
-        .map(|(posture, q)| Observation {
+    postures_sd(model, fit, like, &gravity::spanning(region))
+}
+
+/// [`workspace_sd`] over the postures `qs` (axis angles, rad): the RMS over them of the
+/// predicted position's standard deviation (3D, m); 0 without postures.
+///
+/// # Errors
+/// Those of [`ErrorModel::jacobian_of`].
+pub fn postures_sd(
+    model: &ErrorModel,
+    fit: &Fit,
+    like: &Observation,
+    qs: &[Vector6<f64>],
+) -> Result<f64> {
+    if qs.is_empty() {
+        return Ok(0.0);
+    }
+    let observations: Vec<Observation> = (qs.iter().enumerate())
+        .map(|(posture, &q)| Observation {
             posture,
             q,
             measured: Vector3::zeros(),

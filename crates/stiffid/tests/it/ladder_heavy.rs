@@ -141,8 +141,8 @@ fn a_heavy_robot_measured_where_it_works_gets_gravity_terms() {
         .find(|r| r.gravity == Gravity::Arm)
         .unwrap();
     assert!(arm.rms.is_some() && arm.skipped.is_none(), "{arm:#?}");
-    // The region is the narrow one with its margin, not the joint limits: joint 2 within
-    // 0..12 deg widened by 5 deg on either side.
+    // The region is the narrow one, not the joint limits: joint 2 within 0..12 deg (the box
+    // of the postures' hull, within the old box's 5 deg margin on either side).
     assert!(ladder.region.lower[1] >= (-5.0f64 - 1e-9).to_radians());
     assert!(ladder.region.upper[1] <= (17.0f64 + 1e-9).to_radians());
     let (a, g) = (held_out(&auto), held_out(&geometry));
@@ -185,8 +185,8 @@ fn a_99_7_bound_from_the_fit_where_the_jackknife_has_none() {
 #[ignore = "a measurement, minutes long"]
 fn measure() {
     let splits: u64 = std::env::var("SPLITS").map_or(10, |s| s.parse().unwrap());
-    // Test postures at the joint limits' corners: the region is the joint limits (the screen
-    // as it was before it judged where the robot is used).
+    // Test postures at the joint limits' corners: the region spans the joint limits from the
+    // postures to those corners (close to the screen before it judged where the robot is used).
     let everywhere = "[test]\npostures_deg = [[-185.0, -60.0, -132.0, -360.0, -125.0, -360.0], [185.0, 76.0, 180.0, 360.0, 125.0, 360.0]]";
     let cases = [
         (false, false, ""),

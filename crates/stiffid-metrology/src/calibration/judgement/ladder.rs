@@ -14,12 +14,16 @@
 //! [`crate::calibration::fit::GravityPrior`]); a rung whose fit does not converge or
 //! whose scaled Jacobian's condition exceeds [`super::WEAK_CONDITION`] is skipped (the simpler
 //! model kept), and so is a gravity model that extrapolates: one whose expected error where the
-//! robot is used ([`super::region`]: the postures of the campaign and of the setup, with a
-//! margin) exceeds the geometry's, the expected error being the held-out error (below) and the
-//! RMS standard deviation of the predictions over that region ([`region_sd`], where the
-//! readings leave the terms to their prior) in quadrature: bias and variance. The groups held
-//! out among the fitted postures cannot show what the spread shows; postures the robot never
-//! takes do not turn a model down.
+//! robot is used ([`super::region`]: the joint-space hull of the postures of the campaign and of
+//! the setup) exceeds the geometry's by more than the held-out figures resolve, the expected
+//! error being the held-out error without maps (below) and the RMS standard deviation of the
+//! predictions over that region ([`postures_sd`], where the readings leave the terms to their
+//! prior) in quadrature: bias and variance, both at the noise of the fits without maps; its
+//! square may exceed the geometry's by one standard error of the difference of their held-out
+//! mean squared errors (the paired per-posture differences), as the choice below allows: a
+//! difference the groups cannot resolve does not turn a model down. The groups held out among
+//! the fitted postures cannot show what the spread shows; postures the robot never takes do not
+//! turn a model down.
 //! The postures are dealt into [`FOLDS`] groups (posture `i` in group `i mod K`); each group is
 //! predicted by the rung refitted without it (linearised at the rung's fit, as the maps' choice:
 //! [`crate::calibration::maps::nested`], the maps chosen on each training set at the
@@ -35,12 +39,13 @@
 //! [`MIN_POSTURES`] distinct postures the ladder is not climbed and its first rung is fitted.
 
 use super::maps::{assess, assess_given, Assessed};
+use super::region::Region;
 use super::WEAK_CONDITION;
 use crate::calibration::error_model::Observation;
 use crate::calibration::fit::{stop_warning, Fit, Options};
 use crate::calibration::gravity::Gravity;
 use crate::calibration::maps::{Spec, FOLDS};
-use crate::calibration::spread::region_sd;
+use crate::calibration::spread::postures_sd;
 use crate::calibration::{motions, ErrorModel, Estimate};
 use stiffid_core::common::choice::Choice;
 use stiffid_core::common::limits::JointBox;
@@ -123,7 +128,7 @@ pub struct Rung {
     /// extrapolates).
     pub skipped: Option<String>,
     /// The RMS standard deviation of its gravity model's predictions over the region where the
-    /// robot is used ([`Ladder::region`], [`region_sd`]), m; `None` when not computed.
+    /// robot is used ([`Ladder::region`], [`postures_sd`]), m; `None` when not computed.
     pub spread: Option<f64>,
     /// Per held-out posture (the groups' in order), its sum of squared errors, m^2; empty when
     /// not scored.
@@ -139,8 +144,9 @@ pub struct Ladder {
     pub rungs: Vec<Rung>,
     /// The rung chosen (an index of `rungs`).
     pub chosen: usize,
-    /// The region of axis angles where the robot is used ([`super::region`]), rad: where the
-    /// rungs' spread is judged.
+    /// The box of the axis angles of the region where the robot is used
+    /// ([`super::region::Region::bounds`]), rad: the region over which the rungs' spread is
+    /// judged lies within it.
     pub region: JointBox,
 }
 
@@ -212,7 +218,7 @@ pub struct Climbed {
 pub fn climb(
     (gravity, maps): (GravitySpec, Spec),
     masses: bool,
-    (obs, region): (&[Observation], &JointBox),
+    (obs, region): (&[Observation], &Region),
     options: &Options,
     (fit, check): (
         impl Fn(Gravity) -> Result<Fitted>,
@@ -237,7 +243,7 @@ pub fn climb(
             folds: 0,
             rungs: vec![unscored(gravities[0], variants[0], None)],
             chosen: 0,
-            region: *region,
+            region: region.bounds,
         });
         let keep = match ladder {
             Some(_) => Err(format!(
@@ -277,7 +283,8 @@ pub fn climb(
     let like = obs.iter().find(|o| !o.table).unwrap_or(&obs[0]);
     let spreads: Vec<Option<f64>> = (fits.iter())
         .map(|f| {
-            (f.as_ref().ok()).and_then(|(f, _)| region_sd(&f.model, &f.fit, like, region).ok())
+            (f.as_ref().ok())
+                .and_then(|(f, _)| postures_sd(&f.model, &f.fit, like, &region.postures).ok())
         })
         .collect();
     let mut rungs: Vec<Rung> = (order.iter())
@@ -304,39 +311,59 @@ pub fn climb(
             folds: FOLDS.min(postures.len()),
             rungs,
             chosen,
-            region: *region,
+            region: region.bounds,
         }),
     })
 }
 
 /// Skips the rungs (`order`: each one's gravity model's index and whether it fits maps) of every
-/// gravity model that extrapolates: whose expected error where the robot is used, its held-out
-/// error without maps and its spread there in quadrature, exceeds the first gravity model's
-/// (module docs).
+/// gravity model that extrapolates: whose expected squared error where the robot is used, its
+/// held-out error without maps and its spread there in quadrature, exceeds the geometry's by more
+/// than one standard error of their held-out difference (module docs).
 fn extrapolating(rungs: &mut [Rung], order: &[(usize, bool)]) {
-    // Per gravity model: its held-out error without maps and its spread, squared and summed.
-    let expected = |rungs: &[Rung], g: usize| {
-        let i = (0..order.len()).find(|&i| order[i] == (g, false))?;
-        let (rms, spread) = (rungs[i].rms?, rungs[i].spread?);
-        Some((rms * rms + spread * spread).sqrt())
+    let without = |g: usize| (0..order.len()).find(|&i| order[i] == (g, false));
+    let expected = |r: &Rung| Some(r.rms?.hypot(r.spread?));
+    let Some(base) = without(0).map(|i| &rungs[i]) else {
+        return;
     };
-    let Some(base) = expected(rungs, 0) else {
+    let Some(e0) = expected(base) else {
         return;
     };
     let worse: Vec<(usize, f64)> = (1..=order.iter().map(|o| o.0).max().unwrap_or(0))
-        .filter_map(|g| expected(rungs, g).filter(|&e| e > base).map(|e| (g, e)))
+        .filter_map(|g| {
+            let rung = &rungs[without(g)?];
+            let e = expected(rung)?;
+            (e * e > e0 * e0 + resolution(base, rung)).then_some((g, e))
+        })
         .collect();
     for (r, &(g, _)) in rungs.iter_mut().zip(order) {
         let Some(&(_, e)) = worse.iter().find(|w| w.0 == g) else {
             continue;
         };
         r.skipped = Some(format!(
-            "it extrapolates: its predictions over the region where the robot is used spread by {:.3} mm, and with its held-out error it is expected {:.3} mm off there against {:.3} mm for the geometry (the postures leave its gravity terms to their bound)",
+            "it extrapolates: its predictions over the region where the robot is used spread by {:.3} mm, and with its held-out error it is expected {:.3} mm off there against {:.3} mm for the geometry, beyond what the held-out figures resolve (the postures leave its gravity terms to their bound)",
             r.spread.unwrap_or(f64::NAN) * 1e3,
             e * 1e3,
-            base * 1e3
+            e0 * 1e3
         ));
     }
+}
+
+/// One standard error of the difference of the held-out mean squared errors (per reading, m^2)
+/// of `a` and `b` over their paired per-posture errors; 0 when either is not scored.
+fn resolution(a: &Rung, b: &Rung) -> f64 {
+    let n = a.errors.len();
+    let total: f64 = a.errors.iter().sum();
+    let Some(rms) = a.rms.filter(|&r| r > 0.0 && n >= 2 && b.errors.len() == n) else {
+        return 0.0;
+    };
+    let readings = total / (rms * rms);
+    let d: Vec<f64> = (a.errors.iter().zip(&b.errors))
+        .map(|(x, y)| x - y)
+        .collect();
+    let mean = d.iter().sum::<f64>() / n as f64;
+    let var = d.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
+    (n as f64 * var).sqrt() / readings
 }
 
 /// `Err` why a gravity model's fit is not a rung: it did not converge, or its scaled Jacobian's

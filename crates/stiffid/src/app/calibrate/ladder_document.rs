@@ -14,10 +14,10 @@ pub struct LadderDocument {
     pub rungs: Vec<RungDocument>,
     /// The rung fitted: the simplest within one standard error of the best held-out error.
     pub chosen: usize,
-    /// The lower ends of the region of axis angles where the robot is used, over which each
-    /// rung's `workspace_sd_mm` is taken (the fitted and held-out postures and the setup's test
-    /// postures, widened by 10 % of each axis's range and at least 5 deg, within the joint limits
-    /// and the setup's bounds), deg.
+    /// The lower ends of the box of the region where the robot is used, over which each rung's
+    /// `workspace_sd_mm` is taken (the joint-space hull of the fitted and held-out postures and
+    /// the setup's test postures: 512 postures, half of them those and half on the segment
+    /// between two of them, within the joint limits and the setup's bounds), deg.
     pub region_lower_deg: [f64; 6],
     /// The upper ends of that region, deg.
     pub region_upper_deg: [f64; 6],
@@ -38,7 +38,7 @@ pub struct RungDocument {
     /// Why it was skipped; `null` when scored.
     pub skipped: Option<String>,
     /// The RMS standard deviation of its gravity model's predicted positions over postures
-    /// spread over the region where the robot is used (`region_lower_deg` to
+    /// spread over the region where the robot is used (within `region_lower_deg` to
     /// `region_upper_deg`), from the fit's covariance, mm: how far the readings determine it
     /// where the robot works; `null` when not computed.
     pub workspace_sd_mm: Option<f64>,

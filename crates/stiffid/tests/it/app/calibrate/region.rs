@@ -1,46 +1,56 @@
-//! Where the robot is used (`stiffid::app::calibrate::region`) and the bound from the
+//! Where the robot is used (`stiffid::app::calibrate::region`: the postures' joint-space hull) and the bound from the
 //! fit where the jackknife+ has none (`fit_bound`).
 
 use nalgebra::Vector6;
 use stiffid::app::calibrate::fit_bound::half_width;
-use stiffid::app::calibrate::region::region;
+use stiffid::app::calibrate::region::{region, SAMPLES};
 use stiffid::common::limits::JointBox;
+use stiffid::metrology::calibration::gravity::SPANNING_POSTURES;
 
 fn deg(v: [f64; 6]) -> Vector6<f64> {
     Vector6::from(v).map(f64::to_radians)
 }
 
 #[test]
-fn the_region_is_the_postures_box_with_its_margin_within_the_limits() {
+fn the_region_is_the_postures_hull_within_the_limits_and_bounds() {
     let limits = JointBox::new(deg([-180.0; 6]), deg([180.0; 6]));
     let bounds = JointBox::new(
         deg([-180.0, -180.0, -180.0, -180.0, -180.0, 8.0]),
         deg([180.0; 6]),
     );
+    // A campaign that keeps the forearm level: joint 3 = -joint 2 at every posture.
     let postures = [
-        deg([-10.0, 0.0, 100.0, 0.0, 175.0, 10.0]),
-        deg([90.0, 2.0, 120.0, 0.0, 178.0, 20.0]),
+        deg([-10.0, -40.0, 40.0, 0.0, 170.0, 10.0]),
+        deg([90.0, 40.0, -40.0, 0.0, 179.0, 20.0]),
+        deg([20.0, 0.0, 0.0, 30.0, 175.0, 0.0]),
     ];
     let r = region(&postures, &limits, &bounds);
-    // Joint 1: -10..90 widened by 10 % of 100 deg; joint 2: 0..2 by the 5 deg least margin;
-    // joint 3: 100..120 by 5 deg (10 % is 2 deg); joint 5 cut at the limit; joint 6's lower end
-    // cut at the bounds' 8 deg.
-    let expected_lower = [-20.0, -5.0, 95.0, -5.0, 170.0, 8.0];
-    let expected_upper = [100.0, 7.0, 125.0, 5.0, 180.0, 25.0];
-    for j in 0..6 {
-        assert!(
-            (r.lower[j].to_degrees() - expected_lower[j]).abs() < 1e-9,
-            "{j}: {}",
-            r.lower[j].to_degrees()
-        );
-        assert!(
-            (r.upper[j].to_degrees() - expected_upper[j]).abs() < 1e-9,
-            "{j}: {}",
-            r.upper[j].to_degrees()
-        );
+    assert_eq!(r.postures.len(), SAMPLES);
+    for q in &r.postures {
+        let d = q.map(f64::to_degrees);
+        // On a segment between two postures: joint 3 stays -joint 2, joint 4 within 0..30 deg.
+        assert!((d[2] + d[1]).abs() < 1e-9, "{d:?}");
+        assert!((-1e-9..=30.0 + 1e-9).contains(&d[3]), "{d:?}");
+        // Joint 6 cut at the bounds' 8 deg, joint 5 within the postures' 170..179 deg.
+        assert!(d[5] >= 8.0 - 1e-9 && d[5] <= 20.0 + 1e-9, "{d:?}");
+        assert!((170.0 - 1e-9..=179.0 + 1e-9).contains(&d[4]), "{d:?}");
+        for j in 0..6 {
+            assert!(r.bounds.lower[j] <= q[j] && q[j] <= r.bounds.upper[j]);
+        }
     }
-    // No posture: the joint limits.
-    assert_eq!(region(&[], &limits, &bounds), limits);
+    // The box's corner that pairs joint 2 at 40 deg with joint 3 at 40 deg is not in it, though
+    // both angles are in the postures' ranges: no sampled posture comes within 20 deg of it.
+    let corner = |q: &Vector6<f64>| (q[1].to_degrees() - 40.0).hypot(q[2].to_degrees() - 40.0);
+    let nearest = r.postures.iter().map(corner).fold(f64::INFINITY, f64::min);
+    assert!(nearest > 20.0, "{nearest}");
+    // The sample spans the segments: joint 2 comes within 2 deg of both ends of its range.
+    assert!(r.bounds.lower[1].to_degrees() < -38.0 && r.bounds.upper[1].to_degrees() > 38.0);
+    // The same postures give the same region.
+    assert_eq!(region(&postures, &limits, &bounds), r);
+    // No posture: the joint limits, sampled over.
+    let none = region(&[], &limits, &bounds);
+    assert_eq!(none.bounds, limits);
+    assert_eq!(none.postures.len(), SPANNING_POSTURES);
 }
 
 #[test]
