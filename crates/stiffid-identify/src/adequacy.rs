@@ -27,13 +27,13 @@ use statrs::distribution::{ChiSquared, ContinuousCDF};
 pub const SIGNIFICANCE: f64 = 0.01;
 
 /// The 0.975 quantile of the standard normal distribution: the 95% intervals of a known variance.
-pub const Z975: f64 = 1.959_963_984_540_054;
+pub(crate) const Z975: f64 = 1.959_963_984_540_054;
 
 /// A stiffness this many times off its nominal value (either way) counts as off.
 pub const UNIT_FACTOR: f64 = 30.0;
 
 /// How many of the six joints must be off, the same way, for the unit warning.
-pub const UNIT_JOINTS: usize = 4;
+pub(crate) const UNIT_JOINTS: usize = 4;
 
 /// The residuals against the setup's tracker noise (module docs).
 #[derive(Debug, Clone, PartialEq)]
@@ -74,7 +74,7 @@ pub enum Verdict {
 impl Verdict {
     /// The verdict of `rss / sigma^2 = chi2` with `dof` degrees of freedom; `None` without
     /// degrees of freedom or for a statistic that is not finite.
-    pub fn of(chi2: f64, dof: usize) -> Option<Verdict> {
+    pub(crate) fn of(chi2: f64, dof: usize) -> Option<Verdict> {
         let c = ChiSquared::new(dof as f64).ok()?;
         if !chi2.is_finite() {
             return None;
@@ -108,14 +108,14 @@ impl Adequacy {
     }
 
     /// `P(X <= chi2)` for `X ~ chi2(dof)`: small when the residuals are far below the noise.
-    pub fn lower_p_value(&self) -> f64 {
+    pub(crate) fn lower_p_value(&self) -> f64 {
         ChiSquared::new(self.dof as f64).map_or(f64::NAN, |c| c.cdf(self.chi2))
     }
 
     /// Whether the residuals are far below the tracker noise: [`Adequacy::lower_p_value`] `<`
     /// [`SIGNIFICANCE`] (noise-free or simulated data, or a `reading_sd_mm` too large: the
     /// intervals from the tracker noise are then too wide).
-    pub fn below_noise(&self) -> bool {
+    pub(crate) fn below_noise(&self) -> bool {
         self.lower_p_value() < SIGNIFICANCE
     }
 }

@@ -187,6 +187,6 @@ fn transform_std(model: &ErrorModel, result: &fit::Fit, frame: &Isometry3<f64>) 
 ///
 /// # Errors
 /// Those of [`observations`] and [`fit()`].
-pub fn calibrate(setup: &Setup, readings: &Readings) -> Result<Calibration> {
+pub(crate) fn calibrate(setup: &Setup, readings: &Readings) -> Result<Calibration> {
     fit(setup, &observations(setup, readings)?)
 }

@@ -105,12 +105,12 @@ impl Columns {
     }
 
     /// The column of the first axis, when the file gives any.
-    pub fn first(&self) -> Option<usize> {
+    pub(crate) fn first(&self) -> Option<usize> {
         self.columns.first().map(|c| c.0)
     }
 
     /// The column (0-based) of axis `k` (0-based, the cell's order).
-    pub fn column(&self, k: usize) -> usize {
+    pub(crate) fn column(&self, k: usize) -> usize {
         self.columns[k].0
     }
 
@@ -161,7 +161,7 @@ impl Columns {
 
 /// Whether a column's name has the form of an external axis's: `e<digits>_mm` or
 /// `e<digits>_deg`.
-pub fn external_like(name: &str) -> bool {
+pub(crate) fn external_like(name: &str) -> bool {
     let Some(rest) = name.strip_prefix('e') else {
         return false;
     };

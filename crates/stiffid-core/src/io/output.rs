@@ -88,12 +88,12 @@ fn names_a_directory(path: &Path) -> bool {
 }
 
 /// What a non-regular file is, in words: "a directory", "a device", "a FIFO", "a socket".
-pub fn kind(path: &Path) -> &'static str {
+pub(crate) fn kind(path: &Path) -> &'static str {
     std::fs::metadata(path).map_or("not a regular file", |m| kind_of(m.file_type()))
 }
 
 /// What a file of type `file_type` is, in words ([`kind`]).
-pub fn kind_of(file_type: std::fs::FileType) -> &'static str {
+pub(crate) fn kind_of(file_type: std::fs::FileType) -> &'static str {
     #[cfg(unix)]
     {
         use std::os::unix::fs::FileTypeExt;

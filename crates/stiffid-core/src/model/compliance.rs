@@ -46,12 +46,12 @@ impl Compliance {
     }
 
     /// The number of parameters.
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.h.len()
     }
 
     /// Never: a model has at least the six drives.
-    pub fn is_empty(&self) -> bool {
+    pub(crate) fn is_empty(&self) -> bool {
         self.h.is_empty()
     }
 

@@ -113,13 +113,13 @@ impl SpringLoads {
     }
 
     /// The placed springs (base frame).
-    pub fn placed(&self) -> &[Placed] {
+    pub(crate) fn placed(&self) -> &[Placed] {
         &self.placed
     }
 
     /// `g(J_f,s^T W)` of each spring: the load, Nm (rotation) or N (translation), through the
     /// spring's law ([`crate::model::Law::response`]; the load itself for a spring).
-    pub fn loads(&self) -> &[f64] {
+    pub(crate) fn loads(&self) -> &[f64] {
         &self.loads
     }
 

@@ -21,7 +21,7 @@ pub struct RopeLoad {
 impl RopeLoad {
     /// The wrench `[f; m]` (N, Nm, base frame) at a loading point `p1` (base frame, m). A loading
     /// point at the anchor gets a zero wrench.
-    pub fn wrench(&self, p1: &Vector3<f64>) -> Vector6<f64> {
+    pub(crate) fn wrench(&self, p1: &Vector3<f64>) -> Vector6<f64> {
         let d = self.anchor - p1;
         let n = d.norm();
         let f = if n > 0.0 {
@@ -64,7 +64,7 @@ impl Noise {
     /// The noise levels of a setup file that gives none (`[noise] level_multiples` left out):
     /// the reading noise as given, `[1.0]`. A setup used only to identify and compensate
     /// simulates nothing.
-    pub fn one_level() -> Vec<f64> {
+    pub(crate) fn one_level() -> Vec<f64> {
         vec![1.0]
     }
 
@@ -113,7 +113,7 @@ impl Experiment {
 
     /// Whether the setup gives the rope load and the loading point: a calibration-only setup
     /// leaves out `[loading]` and `tool.loading_point_mm`.
-    pub fn loading_given(&self) -> bool {
+    pub(crate) fn loading_given(&self) -> bool {
         self.missing.is_empty()
     }
 

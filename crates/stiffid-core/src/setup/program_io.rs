@@ -29,12 +29,12 @@ pub const RAPID_SPEED_MM_S: Range = Range::new(1.0, 10_000.0, "mm/s");
 /// `BAS(#VEL_PTP)`, FANUC `J .. %`, Yaskawa `VJ=`), percent of the axes' top speed.
 pub const RAPID_JOINT_PCT: Range = Range::new(0.01, 100.0, "%");
 /// The most actions of one `[controller.io]` event.
-pub const MAX_ACTIONS: usize = 8;
+pub(crate) const MAX_ACTIONS: usize = 8;
 /// The most arguments of one call.
-pub const MAX_ARGUMENTS: usize = 8;
+pub(crate) const MAX_ARGUMENTS: usize = 8;
 /// The longest routine or signal name accepted on load (each language's own limit is checked
 /// when a program is written).
-pub const MAX_NAME: usize = 64;
+pub(crate) const MAX_NAME: usize = 64;
 
 /// A process event of a G-code program: the words that raise it and the `[controller.io]` key
 /// that maps it.
@@ -95,7 +95,7 @@ impl ProcessEvent {
 
     /// The placeholder its actions may use: `{rpm}` for the spindle's speed and turning,
     /// `{tool}` for the tool events.
-    pub fn placeholder(self) -> Option<Placeholder> {
+    pub(crate) fn placeholder(self) -> Option<Placeholder> {
         match self {
             ProcessEvent::SpindleSpeed | ProcessEvent::SpindleCw | ProcessEvent::SpindleCcw => {
                 Some(Placeholder::Rpm)
@@ -176,7 +176,7 @@ impl Io {
     }
 
     /// Whether no event is mapped.
-    pub fn is_empty(&self) -> bool {
+    pub(crate) fn is_empty(&self) -> bool {
         self.actions.is_empty()
     }
 
@@ -198,7 +198,7 @@ impl Io {
     /// than [`MAX_ACTIONS`], an action of neither form, a name that is no identifier or longer
     /// than [`MAX_NAME`], more than [`MAX_ARGUMENTS`] arguments, an argument neither a finite
     /// number nor the event's placeholder.
-    pub fn read(table: &BTreeMap<String, IoValue>) -> Result<Self> {
+    pub(crate) fn read(table: &BTreeMap<String, IoValue>) -> Result<Self> {
         let mut actions = BTreeMap::new();
         for (key, value) in table {
             let Some(event) = ProcessEvent::ALL.into_iter().find(|e| e.key() == key) else {
@@ -221,7 +221,7 @@ impl Io {
 /// A `[controller.io]` value as the file gives it: one action or a list.
 #[derive(Debug, Clone, serde::Deserialize)]
 #[serde(untagged)]
-pub enum IoValue {
+pub(crate) enum IoValue {
     /// One action.
     One(String),
     /// Several, in order.
@@ -347,7 +347,7 @@ impl ProgramSettings {
     ///
     /// # Errors
     /// [`Error::InvalidField`] naming the field; those of [`Io::read`].
-    pub fn read(
+    pub(crate) fn read(
         rapid_speed_mm_s: Option<f64>,
         rapid_joint_pct: Option<f64>,
         home_deg: Option<[f64; 6]>,

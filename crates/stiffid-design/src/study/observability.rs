@@ -22,16 +22,16 @@ use stiffid_metrology::calibration::error_model::{MeasuredIn, Observation};
 use stiffid_metrology::calibration::{fit, gravity, validation, ErrorModel, Estimate, Geometry};
 
 /// Most groups of the study.
-pub const MAX_GROUPS: usize = 10_000;
+pub(crate) const MAX_GROUPS: usize = 10_000;
 
 /// Most postures a group.
-pub const MAX_SIZE: usize = 200;
+pub(crate) const MAX_SIZE: usize = 200;
 
 /// The test (held-out) postures of the study.
-pub const TEST_POSTURES: usize = 30;
+pub(crate) const TEST_POSTURES: usize = 30;
 
 /// The reference postures that fix the kept parameters.
-pub const REFERENCE_POSTURES: usize = 60;
+pub(crate) const REFERENCE_POSTURES: usize = 60;
 
 /// The criteria's names in [`CalibrationStudy::rho`] order.
 pub const CRITERIA: [&str; 6] = ["o1", "o3", "o4", "o5", "d-optimality", "test-pose"];

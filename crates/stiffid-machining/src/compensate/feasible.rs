@@ -42,9 +42,9 @@ pub struct Feasible {
 
 impl Feasible {
     /// The default of [`Feasible::margin`], deg.
-    pub const DEFAULT_MARGIN_DEG: f64 = 5.0;
+    pub(crate) const DEFAULT_MARGIN_DEG: f64 = 5.0;
     /// The default of [`Feasible::max_condition`].
-    pub const DEFAULT_MAX_CONDITION: f64 = 1000.0;
+    pub(crate) const DEFAULT_MAX_CONDITION: f64 = 1000.0;
 
     /// The defaults for `setup`: a margin of [`Feasible::DEFAULT_MARGIN_DEG`], a condition
     /// number of at most [`Feasible::DEFAULT_MAX_CONDITION`] and, when the setup has a `[cell]`,
@@ -63,7 +63,7 @@ impl Feasible {
     /// # Errors
     /// [`Error::InvalidOption`] ([`JobOption::MarginDeg`] or [`JobOption::MaxCondition`]) with
     /// the value given.
-    pub fn validate(&self) -> Result<()> {
+    pub(crate) fn validate(&self) -> Result<()> {
         if !(0.0..=std::f64::consts::FRAC_PI_2).contains(&self.margin) {
             return Err(Error::InvalidOption {
                 option: JobOption::MarginDeg,
@@ -152,7 +152,7 @@ impl<'a> Checks<'a> {
     /// The obstacles the tool touches at the path's own posture `own` (rad; none without one)
     /// with the external axes at `e`: the part or stock being cut, whose contact with the tool
     /// is no collision of a moved posture ([`Checks::fails`]).
-    pub fn touching(&self, own: Option<&Vector6<f64>>, e: &ExternalValues) -> Vec<usize> {
+    pub(crate) fn touching(&self, own: Option<&Vector6<f64>>, e: &ExternalValues) -> Vec<usize> {
         let (Some(checker), Some(q)) = (&self.checker, own) else {
             return Vec::new();
         };
@@ -166,7 +166,7 @@ impl<'a> Checks<'a> {
     /// external axes at `e` (the arm on its carriage there), `None` when it passes every check;
     /// the tool's contact with an obstacle of `touching` (those it touches at the path's own
     /// posture, [`Checks::touching`]) is not a collision.
-    pub fn fails(
+    pub(crate) fn fails(
         &self,
         q: &Vector6<f64>,
         e: &ExternalValues,

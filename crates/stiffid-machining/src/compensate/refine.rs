@@ -16,10 +16,10 @@ use stiffid_core::{Error, Result};
 pub const MAX_LEVELS: usize = 4;
 /// Each level's band: the previous level's line plus or minus this many of its cells, on every
 /// axis (`4 BAND + 1` values of the halved step per axis).
-pub const BAND: usize = 1;
+pub(crate) const BAND: usize = 1;
 /// The most `states^2 x points` of one level's dynamic programming (every band state's
 /// predecessors at every point).
-pub const MAX_TRANSITIONS: f64 = 2e9;
+pub(crate) const MAX_TRANSITIONS: f64 = 2e9;
 
 /// A refined band's column and each point's external values (the checks'), from each point's
 /// values on every axis of the grid (offsets from the path's own, rad or m, the grid's axis
@@ -46,7 +46,7 @@ impl Layout {
     }
 
     /// The rotation, the lead and the tilt of `values` (rad; 0 for an axis not free).
-    pub fn turn_lean(&self, values: &[f64]) -> [f64; 3] {
+    pub(crate) fn turn_lean(&self, values: &[f64]) -> [f64; 3] {
         let (lead, tilt) = self.lean.map_or((0.0, 0.0), |k| (values[k], values[k + 1]));
         let phi = match self.rotation {
             true => values[values.len() - 1],

@@ -81,10 +81,10 @@ use stiffid_core::{Error, Result, Setup};
 
 /// Decimals of a written joint value, deg (1e-9 deg: the compensation's precision; controllers
 /// round to their own).
-pub const DECIMALS: usize = 9;
+pub(crate) const DECIMALS: usize = 9;
 
 /// The most joint targets a program may hold.
-pub const MAX_TARGETS: usize = 1_000_000;
+pub(crate) const MAX_TARGETS: usize = 1_000_000;
 
 /// The registry: each controller language's variant of [`Dialect`], its doc line and its
 /// controller (a unit struct of its folder implementing [`Controller`]). A new language adds
@@ -337,7 +337,7 @@ pub fn parse_in(text: &str, dialect: Dialect, context: &Context) -> Result<Joint
 
 /// Per external axis of a program (its order), the unit its values are written in (`mm` or
 /// `deg`) and the line of the first, where the language says (LS).
-pub type Units = Vec<Option<(&'static str, u64)>>;
+pub(crate) type Units = Vec<Option<(&'static str, u64)>>;
 
 impl JointProgram {
     /// The program with the axis angles of target `i` replaced by `q_deg[i]` (deg) where they
@@ -379,7 +379,7 @@ impl JointProgram {
     }
 
     /// The data file's text as read (KRL's `.dat`), if one was.
-    pub fn data(&self) -> Option<&str> {
+    pub(crate) fn data(&self) -> Option<&str> {
         self.data_at.map(|at| &self.text[at..])
     }
 

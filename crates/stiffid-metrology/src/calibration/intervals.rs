@@ -94,7 +94,7 @@ impl Intervals {
     }
 
     /// `jackknife+`: one fold per posture.
-    pub fn method(&self) -> &'static str {
+    pub(crate) fn method(&self) -> &'static str {
         "jackknife+"
     }
 

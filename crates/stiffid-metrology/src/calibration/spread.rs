@@ -24,7 +24,7 @@ use stiffid_core::Result;
 ///
 /// # Errors
 /// Those of [`ErrorModel::jacobian_of`].
-pub fn workspace_sd(model: &ErrorModel, fit: &Fit, like: &Observation) -> Result<f64> {
+pub(crate) fn workspace_sd(model: &ErrorModel, fit: &Fit, like: &Observation) -> Result<f64> {
     region_sd(model, fit, like, model.robot().limits())
 }
 
@@ -34,7 +34,7 @@ pub fn workspace_sd(model: &ErrorModel, fit: &Fit, like: &Observation) -> Result
 ///
 /// # Errors
 /// Those of [`ErrorModel::jacobian_of`].
-pub fn region_sd(
+pub(crate) fn region_sd(
     model: &ErrorModel,
     fit: &Fit,
     like: &Observation,

@@ -76,13 +76,13 @@ impl MassModel {
 
     /// This model with every body's mass and inertia known to the relative standard deviation
     /// `sd` (a fraction; 0, the default: exact), independent between bodies (module docs).
-    pub fn with_relative_sd(mut self, sd: f64) -> Self {
+    pub(crate) fn with_relative_sd(mut self, sd: f64) -> Self {
         self.relative_sd = sd;
         self
     }
 
     /// The relative standard deviation of every body's mass and inertia ([`Self::with_relative_sd`]).
-    pub fn relative_sd(&self) -> f64 {
+    pub(crate) fn relative_sd(&self) -> f64 {
         self.relative_sd
     }
 
@@ -109,7 +109,7 @@ impl MassModel {
     /// The standard deviation (kg) of the [`held_mass`] along the unit direction `u` (base frame)
     /// at the point whose Jacobian is `jacobian` (6x6, base frame, axis coordinates), from the
     /// model's [`Self::relative_sd`] (module docs); `None` where the Jacobian is singular.
-    pub fn held_mass_sd(
+    pub(crate) fn held_mass_sd(
         &self,
         robot: &Robot,
         frames: &Frames,
@@ -142,7 +142,7 @@ impl MassModel {
     }
 
     /// The six bodies in the base frame in the posture `frames`, the tool joined to link 6.
-    pub fn world(&self, frames: &Frames) -> [LinkMass; 6] {
+    pub(crate) fn world(&self, frames: &Frames) -> [LinkMass; 6] {
         let mut world: [LinkMass; 6] =
             std::array::from_fn(|k| self.links[k].moved(&frames.joints[k]));
         if let Some(tool) = &self.tool {
@@ -172,14 +172,14 @@ impl MassModel {
     }
 
     /// The total mass moved by joint 1 (every link and the tool), kg.
-    pub fn total(&self) -> f64 {
+    pub(crate) fn total(&self) -> f64 {
         self.links.iter().map(|l| l.mass).sum::<f64>() + self.tool.map_or(0.0, |t| t.mass)
     }
 }
 
 /// The mass matrix's Cholesky factor, where it is positive definite (a posture where some
 /// joint moves no mass is not).
-pub fn factor(m: &Matrix6<f64>) -> Option<Cholesky<f64, nalgebra::U6>> {
+pub(crate) fn factor(m: &Matrix6<f64>) -> Option<Cholesky<f64, nalgebra::U6>> {
     m.iter().all(|v| v.is_finite()).then_some(())?;
     Cholesky::new(*m)
 }

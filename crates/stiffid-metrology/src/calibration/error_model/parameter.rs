@@ -80,7 +80,7 @@ impl Component {
     ];
 
     /// The name in parameter names: `theta`, `d`, `a`, `alpha`, `beta`, `b`.
-    pub fn name(self) -> &'static str {
+    pub(crate) fn name(self) -> &'static str {
         match self {
             Component::Theta => "theta",
             Component::D => "d",
@@ -194,7 +194,7 @@ pub enum AxisPart {
 
 impl AxisPart {
     /// Whether it is an angle (rad) rather than a length (m).
-    pub fn is_angle(self) -> bool {
+    pub(crate) fn is_angle(self) -> bool {
         match self {
             AxisPart::Direction(_) | AxisPart::Offset => true,
             AxisPart::Motion { motion, .. } => motion >= 3,
@@ -291,7 +291,7 @@ impl Parameter {
     }
 
     /// The value (SI) in the document's unit.
-    pub fn to_document(&self, si: f64) -> f64 {
+    pub(crate) fn to_document(&self, si: f64) -> f64 {
         si * self.document_factor()
     }
 

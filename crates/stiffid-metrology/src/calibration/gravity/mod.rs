@@ -47,7 +47,7 @@
 //!   (joint 1 vertical, joints 2 and 3 horizontal and parallel within [`ARM_TOLERANCE`]); any
 //!   other robot is refused, naming the joint.
 
-pub use arm::{ARM_BODIES, ARM_TOLERANCE};
+pub(crate) use arm::{ARM_BODIES, ARM_TOLERANCE};
 use nalgebra::{DVectorView, Matrix6, Vector3, Vector6};
 
 mod arm;
@@ -62,7 +62,7 @@ pub const G: f64 = 9.80665;
 /// The bodies of [`Gravity::Lumped`] (links, 0-based): the turret (no term: joint 1 is vertical
 /// on every floor robot, and its terms merge), the upper arm, the forearm with link 3 lumped in,
 /// the wrist with link 5 and the tool lumped in.
-pub const BODIES: [usize; 4] = [0, 1, 2, 4];
+pub(crate) const BODIES: [usize; 4] = [0, 1, 2, 4];
 
 /// Which gravity terms a calibration fits.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
@@ -178,7 +178,7 @@ impl Term {
     }
 
     /// The unit in documents.
-    pub fn unit(self) -> &'static str {
+    pub(crate) fn unit(self) -> &'static str {
         match self {
             Term::Compliance { .. } => "urad/(N m)",
             Term::Lumped { moment: 0, .. } => "urad kg/(N m)",
@@ -187,7 +187,7 @@ impl Term {
     }
 
     /// The factor from SI to the document's unit.
-    pub fn document_factor(self) -> f64 {
+    pub(crate) fn document_factor(self) -> f64 {
         1e6
     }
 
@@ -480,7 +480,7 @@ impl Terms {
 
     /// The regressor of every term at axis angles `q` (rad): the torque (N m) of a compliance
     /// term, the unit torque of a lumped one (module docs).
-    pub fn regressors(&self, q: &Vector6<f64>) -> Vec<f64> {
+    pub(crate) fn regressors(&self, q: &Vector6<f64>) -> Vec<f64> {
         if self.terms.is_empty() {
             return Vec::new();
         }
@@ -521,7 +521,7 @@ impl Terms {
     }
 
     /// [`Terms::deflection`] from the regressors of the posture ([`Terms::regressors`]).
-    pub fn deflection_from(
+    pub(crate) fn deflection_from(
         &self,
         values: &DVectorView<'_, f64>,
         regressors: &[f64],
@@ -539,7 +539,7 @@ impl Terms {
     /// Each term's largest regressor magnitude (N m, or N m per unit mass moment) over
     /// [`SPANNING_POSTURES`] postures spread over the robot's joint limits ([`spanning`]): the
     /// largest torque through which a term deflects its joint anywhere the robot can go.
-    pub fn peaks(&self) -> &[f64] {
+    pub(crate) fn peaks(&self) -> &[f64] {
         &self.peaks
     }
 
@@ -557,7 +557,7 @@ impl Terms {
     }
 
     /// The RMS of each term's regressor over the postures `qs` (axis angles, rad).
-    pub fn regressor_rms(&self, qs: &[Vector6<f64>]) -> Vec<f64> {
+    pub(crate) fn regressor_rms(&self, qs: &[Vector6<f64>]) -> Vec<f64> {
         let mut sum = vec![0.0; self.terms.len()];
         for q in qs {
             for (s, y) in sum.iter_mut().zip(self.regressors(q)) {

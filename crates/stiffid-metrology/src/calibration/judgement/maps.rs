@@ -51,7 +51,7 @@ pub struct Assessed {
 /// # Errors
 /// [`Error::InvalidOption`] ([`JobOption::Maps`]) for fixed maps beyond [`MAX_MAP_WORK`] or a
 /// backlash term without directions; those of [`Linear::at`] and [`maps::nested`].
-pub fn assess(
+pub(crate) fn assess(
     spec: Spec,
     model: &ErrorModel,
     fitted: &Fit,
@@ -68,7 +68,7 @@ pub fn assess(
 ///
 /// # Errors
 /// Those of [`assess`] and [`maps::nested_given`].
-pub fn assess_given(
+pub(crate) fn assess_given(
     spec: Spec,
     (model, fitted): (&ErrorModel, &Fit),
     observations: &[Observation],

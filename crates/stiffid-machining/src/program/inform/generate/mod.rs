@@ -21,11 +21,11 @@ use stiffid_core::setup::Pulses;
 use stiffid_core::Result;
 
 /// The job's comment (`///COMM`): what the pendant shows beside its name (32 characters at most).
-pub const COMM: &str = "stiffid";
+pub(crate) const COMM: &str = "stiffid";
 
 /// The tool file the moves use (`///TOOL 1`) when the controller holds the tool in none of its
 /// tool files the setup gives (`[controller] tools`), whose values the job's comments state.
-pub const TOOL: u32 = 1;
+pub(crate) const TOOL: u32 = 1;
 
 /// The tool file a job of `plan` moves with: the one the controller holds its tool in
 /// ([`crate::program::generate::numbered`]), else [`TOOL`].
@@ -35,7 +35,7 @@ fn tool_file(plan: &Plan) -> u32 {
 
 /// The most teaching positions of one kind in a job: a position's number has five digits
 /// (`C00000` to `C99999`).
-pub const MAX_POSITIONS: usize = 100_000;
+pub(crate) const MAX_POSITIONS: usize = 100_000;
 
 /// A path speed's resolution, mm/s: `V=` states tenths of a mm/s.
 const SPEED_STEP_MM_S: f64 = 0.1;
