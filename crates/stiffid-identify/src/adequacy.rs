@@ -107,17 +107,6 @@ impl Adequacy {
         self.p_value < SIGNIFICANCE
     }
 
-    /// `P(X <= chi2)` for `X ~ chi2(dof)`: small when the residuals are far below the noise.
-    pub(crate) fn lower_p_value(&self) -> f64 {
-        ChiSquared::new(self.dof as f64).map_or(f64::NAN, |c| c.cdf(self.chi2))
-    }
-
-    /// Whether the residuals are far below the tracker noise: [`Adequacy::lower_p_value`] `<`
-    /// [`SIGNIFICANCE`] (noise-free or simulated data, or a `reading_sd_mm` too large: the
-    /// intervals from the tracker noise are then too wide).
-    pub(crate) fn below_noise(&self) -> bool {
-        self.lower_p_value() < SIGNIFICANCE
-    }
 }
 
 impl Identification {

@@ -327,7 +327,7 @@ impl Model {
     }
 
     /// Never: a model has at least the six drives.
-    pub(crate) fn is_empty(&self) -> bool {
+    pub fn is_empty(&self) -> bool {
         false
     }
 

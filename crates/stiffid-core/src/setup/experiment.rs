@@ -111,12 +111,6 @@ impl Experiment {
         &self.load
     }
 
-    /// Whether the setup gives the rope load and the loading point: a calibration-only setup
-    /// leaves out `[loading]` and `tool.loading_point_mm`.
-    pub(crate) fn loading_given(&self) -> bool {
-        self.missing.is_empty()
-    }
-
     /// Nothing, when the setup gives the rope load and the loading point, for `needed_by` (a job
     /// or computation, named in the error).
     ///

@@ -98,7 +98,6 @@ pub use arm::{
 };
 pub use builder::{SetupBuilder, DEFAULT_FRAME_SD};
 pub use cell::{Cell, Obstacle, Tracker, MAX_LENGTH_MM, MAX_OBSTACLES};
-pub(crate) use controller_robot::SAME_ROBOT_MM;
 pub use experiment::{Experiment, Noise, RopeLoad};
 pub use file::{
     builtin, builtin_names, builtin_text, parse, parse_with, RobotRequest, MAX_PACKAGE_PATHS,
@@ -164,7 +163,7 @@ impl Setup {
 
     /// The experiment: load, noise, bounds, test postures, nominal stiffness, characteristic
     /// length, candidate springs.
-    pub(crate) fn experiment(&self) -> &Experiment {
+    pub fn experiment(&self) -> &Experiment {
         &self.experiment
     }
 

@@ -175,11 +175,6 @@ impl Io {
         self.actions.get(&event).map(Vec::as_slice)
     }
 
-    /// Whether no event is mapped.
-    pub(crate) fn is_empty(&self) -> bool {
-        self.actions.is_empty()
-    }
-
     /// `io` with `event` mapped to `actions` (checked as on load).
     ///
     /// # Errors

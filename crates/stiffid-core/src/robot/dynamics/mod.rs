@@ -171,10 +171,6 @@ impl MassModel {
         }
     }
 
-    /// The total mass moved by joint 1 (every link and the tool), kg.
-    pub(crate) fn total(&self) -> f64 {
-        self.links.iter().map(|l| l.mass).sum::<f64>() + self.tool.map_or(0.0, |t| t.mass)
-    }
 }
 
 /// The mass matrix's Cholesky factor, where it is positive definite (a posture where some

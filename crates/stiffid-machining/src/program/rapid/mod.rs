@@ -158,10 +158,6 @@ fn no_motion(routines: &[(String, u64)]) -> String {
     format!("no motion instruction in the module (MoveAbsJ, MoveL, MoveJ, MoveC); it holds {holds}: give stiffid the module with the path's motions")
 }
 
-/// The value RAPID writes for an external axis that is not used: `9E9` (any value from
-/// `8.9E9` on is taken as it).
-pub(crate) const UNUSED: f64 = 9e9;
-
 /// The instruction's name: the statement's first word, lower case, up to a switch or argument.
 fn first_word(body: &str) -> String {
     body.trim_start()

@@ -487,12 +487,6 @@ impl ErrorModel {
         });
     }
 
-    /// The orders of each external axis's fitted error motions (0 for a rotary axis), or none
-    /// without external axes.
-    pub(crate) fn external_orders(&self) -> Option<&[usize]> {
-        self.external.as_ref().map(|x| x.orders.as_slice())
-    }
-
     /// The external axes at `values` as a robot file holds them (the directions, error motions,
     /// lines and offsets fitted), or `None` without external axes.
     ///

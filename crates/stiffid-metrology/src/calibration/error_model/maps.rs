@@ -173,11 +173,6 @@ impl ErrorModel {
         (0..6).find(|&j| maps.terms.has(j)).map(|j| maps.starts[j])
     }
 
-    /// The harmonics of each joint's fitted map (0 for none).
-    pub(crate) fn map_harmonics(&self) -> [usize; 6] {
-        self.maps.as_ref().map_or([0; 6], |m| m.terms.harmonics)
-    }
-
     /// The robot's error maps at `values`: a joint with a fitted map takes its coefficients
     /// (and the nominal robot's harmonics beyond them), with a fitted backlash term its half
     /// backlash, every other joint and term the nominal robot's.

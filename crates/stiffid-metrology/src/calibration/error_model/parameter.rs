@@ -270,7 +270,7 @@ pub struct Parameter {
 }
 
 impl Parameter {
-    /// The unit in documents (mm, deg, ...), [`Parameter::to_document`] converts to it.
+    /// The unit in documents (mm, deg, ...).
     pub fn unit(&self) -> &'static str {
         match self.target {
             Target::Frame(i) if i < 3 => "mm",
@@ -288,11 +288,6 @@ impl Parameter {
             Target::Gravity(term) => term.unit(),
             Target::Compliance { kind, .. } => compliance_unit(kind),
         }
-    }
-
-    /// The value (SI) in the document's unit.
-    pub(crate) fn to_document(&self, si: f64) -> f64 {
-        si * self.document_factor()
     }
 
     /// The factor from SI to the document's unit.

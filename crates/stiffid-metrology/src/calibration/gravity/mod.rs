@@ -36,7 +36,7 @@
 //! - [`Gravity::Arm`]: masses unknown, three physical terms ([`Terms::arm`]) for a heavy
 //!   robot and thin data: the weight of the upper arm and of the forearm (with the wrist and the
 //!   tool) on the springs of joints 2 and 3, their centres on the links' axes. The upper arm's
-//!   axis runs from joint 2's axis to joint 3's ([`ARM_BODIES`]: link 1), the forearm's from
+//!   axis runs from joint 2's axis to joint 3's (link 1, 0-based), the forearm's from
 //!   joint 3's axis to the wrist point (on joint 4's axis, nearest joint 5's: link 2), both
 //!   across the joints' axes; with `phi_2` and `phi_23` their angles above the horizontal,
 //!   `dq_2 = a cos phi_2 + b cos phi_23` and `dq_3 = c cos phi_23`, each a compliance times a
@@ -47,7 +47,6 @@
 //!   (joint 1 vertical, joints 2 and 3 horizontal and parallel within [`ARM_TOLERANCE`]); any
 //!   other robot is refused, naming the joint.
 
-pub(crate) use arm::{ARM_BODIES, ARM_TOLERANCE};
 use nalgebra::{DVectorView, Matrix6, Vector3, Vector6};
 
 mod arm;
