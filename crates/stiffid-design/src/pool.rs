@@ -33,7 +33,7 @@ use stiffid_core::{Error, Result};
 pub const MAX_POOL: usize = 10_000;
 
 /// Most postures in a group chosen from a pool.
-pub(crate) const MAX_GROUP: usize = 60;
+pub const MAX_GROUP: usize = 60;
 
 /// The group chosen from a pool.
 #[derive(Debug, Clone, PartialEq)]

@@ -86,7 +86,7 @@ impl Method {
 /// sum_p (a_p - r b_p)^2 / B^2` (the delta method of a ratio estimator; Cochran, *Sampling
 /// Techniques*, 3rd ed., 1977, ch. 6), and `1 - sqrt(r)` the standard error `se(r) / (2 sqrt(r))`;
 /// `NaN` for one posture.
-pub(crate) fn explained_share(per_posture: &[[f64; 2]]) -> [f64; 2] {
+pub fn explained_share(per_posture: &[[f64; 2]]) -> [f64; 2] {
     let n = per_posture.len() as f64;
     let [a, b] = per_posture
         .iter()
@@ -201,7 +201,7 @@ pub const BLOCK: usize = 1024;
 /// `BLOCK k .. BLOCK (k + 1)` whatever the parts, so the result does not depend on how the
 /// measurements are cut into parts, nor on the number of threads. Memory: one block, and what
 /// [`Check`] keeps per posture.
-pub(crate) struct InBlocks<'a> {
+pub struct InBlocks<'a> {
     arm: &'a Arm,
     check: Check,
     /// The measurements of the block being filled.
@@ -212,7 +212,7 @@ pub(crate) struct InBlocks<'a> {
 
 /// The solution of [`InBlocks`], before the residuals.
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) struct Solved {
+pub struct Solved {
     /// The compliance, `(Psi^T Psi)^-1` and `cond_2(Psi)`.
     pub solution: Solution,
     /// The number of distinct postures.
@@ -281,7 +281,7 @@ impl<'a> InBlocks<'a> {
     /// # Errors
     /// [`Error::InvalidField`] when every displacement is zero; those of [`Reduced::try_solve`]
     /// ([`Error::TooFewRows`], [`Error::Unidentifiable`], [`Error::NotFinite`]).
-    pub(crate) fn solve(&mut self) -> Result<Solved> {
+    pub fn solve(&mut self) -> Result<Solved> {
         if !self.arm.model().is_drives_only() {
             return Err(six_parameters_only());
         }
@@ -318,7 +318,7 @@ impl Solved {
     ///
     /// # Panics
     /// Unless there are three residuals and three predictions per measurement.
-    pub(crate) fn finish(self, (residuals, predicted): (Vec<f64>, Vec<f64>)) -> Identification {
+    pub fn finish(self, (residuals, predicted): (Vec<f64>, Vec<f64>)) -> Identification {
         assert_eq!(residuals.len(), 3 * self.measurements);
         assert_eq!(predicted.len(), 3 * self.measurements);
         finish(

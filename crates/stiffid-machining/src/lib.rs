@@ -76,7 +76,7 @@ use stiffid_core::{Error, Result};
 
 /// The largest change of an axis angle compensation may make, deg; more means another
 /// configuration (or a point next to a singularity).
-pub(crate) const MAX_CORRECTION_DEG: f64 = 1.0;
+pub const MAX_CORRECTION_DEG: f64 = 1.0;
 
 /// A machining program as read.
 #[derive(Debug, Clone, PartialEq)]

@@ -161,7 +161,7 @@ impl Columns {
 
 /// Whether a column's name has the form of an external axis's: `e<digits>_mm` or
 /// `e<digits>_deg`.
-pub(crate) fn external_like(name: &str) -> bool {
+pub fn external_like(name: &str) -> bool {
     let Some(rest) = name.strip_prefix('e') else {
         return false;
     };

@@ -45,7 +45,7 @@ use nalgebra::{DVector, Isometry3, Point3, Unit as UnitVector, Vector3, Vector6}
 pub use crate::common::limits::MAX_VIRTUAL_SPRINGS;
 
 /// Longest spring name, characters.
-pub(crate) const MAX_NAME_CHARS: usize = 40;
+pub const MAX_NAME_CHARS: usize = 40;
 
 /// What a virtual joint does.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]

@@ -25,10 +25,10 @@ use crate::common::warning::{Warning, WarningKind};
 use nalgebra::Vector6;
 
 /// The margin that widens the identification postures' range of every axis, deg.
-pub(crate) const MARGIN_DEG: f64 = 5.0;
+pub const MARGIN_DEG: f64 = 5.0;
 
 /// The largest margin a stiffness file may state, deg.
-pub(crate) const MAX_MARGIN_DEG: f64 = 360.0;
+pub const MAX_MARGIN_DEG: f64 = 360.0;
 
 /// What a compliance says about the postures it was identified from.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -127,7 +127,7 @@ impl Region {
 
 /// The warning for a stiffness file that does not record its identification postures' region:
 /// nothing is checked.
-pub(crate) fn unrecorded_warning() -> Warning {
+pub fn unrecorded_warning() -> Warning {
     Warning::new(
         WarningKind::Extrapolation,
         "the stiffness file does not record the postures it was identified from (no `region`: a nominal stiffness written by hand, or a file from an older stiffid), so no posture is checked for extrapolation; a file from `identify --out` records them",

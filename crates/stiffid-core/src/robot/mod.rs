@@ -302,7 +302,7 @@ impl Robot {
     /// The robot recording the mount it was calibrated on: the pedestal's pose in the cell
     /// (the calibration setup's `[robot_base]`, the controller's world in the base frame; the
     /// identity without one), which its base already holds.
-    pub(crate) fn with_mount(self, mount: Option<Isometry3<f64>>) -> Self {
+    pub fn with_mount(self, mount: Option<Isometry3<f64>>) -> Self {
         Self { mount, ..self }
     }
 
@@ -317,7 +317,7 @@ impl Robot {
     /// setup's `[workpiece] reflectors_mm` are given in, in the calibrated cell frame with
     /// every external axis at 0 (m), the setup's `[workpiece] base_from_part` for every setup
     /// pointing at the robot.
-    pub(crate) fn with_part(self, part: Option<Isometry3<f64>>) -> Self {
+    pub fn with_part(self, part: Option<Isometry3<f64>>) -> Self {
         Self { part, ..self }
     }
 
@@ -403,7 +403,7 @@ impl Robot {
     /// [`Robot::mapped`] approached with the last motions' signs `direction` (-1.0 or 1.0 per
     /// axis, 0.0 for the mean of the two approaches): `q + e(q) + b d`, `b` each axis's half
     /// backlash ([`ErrorMap::angle_from`]).
-    pub(crate) fn mapped_from(
+    pub fn mapped_from(
         &self,
         q: &nalgebra::Vector6<f64>,
         direction: &nalgebra::Vector6<f64>,

@@ -21,7 +21,7 @@ pub struct RopeLoad {
 impl RopeLoad {
     /// The wrench `[f; m]` (N, Nm, base frame) at a loading point `p1` (base frame, m). A loading
     /// point at the anchor gets a zero wrench.
-    pub(crate) fn wrench(&self, p1: &Vector3<f64>) -> Vector6<f64> {
+    pub fn wrench(&self, p1: &Vector3<f64>) -> Vector6<f64> {
         let d = self.anchor - p1;
         let n = d.norm();
         let f = if n > 0.0 {

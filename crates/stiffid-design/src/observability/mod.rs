@@ -488,7 +488,7 @@ pub fn readings(model: &ErrorModel, postures: &[Placed]) -> Vec<Observation> {
 /// # Errors
 /// [`Error::InvalidField`] (`parameters`) when `test` has other columns than `j`;
 /// [`Error::NotFinite`] when `j` is not finite or its SVD does not converge.
-pub(crate) fn criteria(
+pub fn criteria(
     j: &DMatrix<f64>,
     postures: usize,
     test: &DMatrix<f64>,

@@ -22,10 +22,10 @@ use stiffid_metrology::calibration::error_model::{MeasuredIn, Observation};
 use stiffid_metrology::calibration::{fit, gravity, validation, ErrorModel, Estimate, Geometry};
 
 /// Most groups of the study.
-pub(crate) const MAX_GROUPS: usize = 10_000;
+pub const MAX_GROUPS: usize = 10_000;
 
 /// Most postures a group.
-pub(crate) const MAX_SIZE: usize = 200;
+pub const MAX_SIZE: usize = 200;
 
 /// The test (held-out) postures of the study.
 pub(crate) const TEST_POSTURES: usize = 30;

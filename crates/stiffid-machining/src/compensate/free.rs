@@ -46,7 +46,7 @@ pub struct Freedom {
 }
 
 /// The most `--free` options of one run.
-pub(crate) const MAX_FREE: usize = 8;
+pub const MAX_FREE: usize = 8;
 
 /// The options that `free` replaced (command-line spelling, without `--`), each with the option
 /// that replaces it (`free` or `minimise`) and how to write its value there.

@@ -155,7 +155,7 @@ pub enum Free {
 
 impl Free {
     /// The variable this one moves.
-    pub(crate) fn variable(&self) -> Variable {
+    pub fn variable(&self) -> Variable {
         match self {
             Free::ToolRotation(_) => Variable::ToolRotation,
             Free::LeadTilt(_) => Variable::LeadTilt,
@@ -199,7 +199,7 @@ impl Free {
     ///
     /// # Errors
     /// Those of [`FreeRange::checked`] and [`LeadTilt::checked`].
-    pub(crate) fn validate(&self) -> Result<()> {
+    pub fn validate(&self) -> Result<()> {
         let variable = self.variable();
         let s = variable.scale();
         match self {

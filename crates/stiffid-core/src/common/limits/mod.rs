@@ -58,7 +58,7 @@ impl std::fmt::Display for Range {
 
 /// Encoder pulses per degree (or per mm) of a controller's axis (`[controller] pulses_per_deg`,
 /// `external_pulses`; an INFORM job's `'stiffid:` comments): from 1e-6 to 1e9.
-pub(crate) const PULSES: Range = Range::new(1e-6, 1e9, "pulses per deg or mm");
+pub const PULSES: Range = Range::new(1e-6, 1e9, "pulses per deg or mm");
 
 /// An axis's largest speed in a robot, setup or URDF file (`max_speed_deg_s`, `max_speed_mm_s`):
 /// above 0, at most 10 000 deg/s or mm/s ([`check_speeds`]).
@@ -142,7 +142,7 @@ pub(crate) const AXIS: Range = Range::new(-1e6, 1e6, "");
 pub const TOOL_MASS_KG: Range = Range::new(1e-3, 1e4, "kg");
 
 /// The relative standard deviation of the robot's and the tool's masses (`[masses] sd_pct`).
-pub(crate) const MASS_SD_PERCENT: Range = Range::new(0.0, 100.0, "%");
+pub const MASS_SD_PERCENT: Range = Range::new(0.0, 100.0, "%");
 
 /// How far each frame of the robot model may be from the true robot's, per coordinate
 /// (`[robot_accuracy] frame_sd_mm` and `frame_sd_mrad`).
@@ -187,7 +187,7 @@ pub const MAX_AXIS_MAP_COND: f64 = 1e8;
 /// Largest input file accepted, bytes (256 MiB): room for a measurement file of 2 million rows
 /// (1e6 rows take about 119 MB), and a bound on the memory one file (or `/dev/zero`) can take.
 /// Both front ends read at most one byte more and hand the bytes to [`crate::io::text`].
-pub(crate) const MAX_INPUT_BYTES: u64 = 256 << 20;
+pub const MAX_INPUT_BYTES: u64 = 256 << 20;
 
 /// Most noise levels of a setup (with [`MAX_RUNS`], a bound on a simulation's memory: levels x
 /// runs results of one group at a time).
@@ -260,15 +260,15 @@ pub const MAX_GROUP_POSTURES: usize = 10_000;
 pub const MAX_GROUPS: usize = 100;
 
 /// Most measuring points of a setup.
-pub(crate) const MAX_MEASURING_POINTS: usize = 100;
+pub const MAX_MEASURING_POINTS: usize = 100;
 
 /// Most reflectors on a positioner's table: a setup's `[workpiece] reflectors_mm`, a readings
 /// file's `T1` ...
-pub(crate) const MAX_TABLE_REFLECTORS: usize = 100;
+pub const MAX_TABLE_REFLECTORS: usize = 100;
 
 /// Most parameters of a model in a stiffness file: the six drives and
 /// [`MAX_VIRTUAL_SPRINGS`] virtual springs.
-pub(crate) const MAX_PARAMETERS: usize = 6 + MAX_VIRTUAL_SPRINGS;
+pub const MAX_PARAMETERS: usize = 6 + MAX_VIRTUAL_SPRINGS;
 
 /// Most virtual springs a model may have.
 pub const MAX_VIRTUAL_SPRINGS: usize = 64;
@@ -278,7 +278,7 @@ pub(crate) const MAX_TEST_POSTURES: usize = 10_000;
 
 /// Deepest element nesting accepted in a URDF file (real ones nest about 5 deep); checked before
 /// the XML parser sees the text.
-pub(crate) const MAX_XML_DEPTH: usize = 64;
+pub const MAX_XML_DEPTH: usize = 64;
 
 /// Longest text of a value quoted in an error message, in characters; longer ones are cut with
 /// an ellipsis.

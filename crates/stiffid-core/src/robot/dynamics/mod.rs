@@ -76,13 +76,13 @@ impl MassModel {
 
     /// This model with every body's mass and inertia known to the relative standard deviation
     /// `sd` (a fraction; 0, the default: exact), independent between bodies (module docs).
-    pub(crate) fn with_relative_sd(mut self, sd: f64) -> Self {
+    pub fn with_relative_sd(mut self, sd: f64) -> Self {
         self.relative_sd = sd;
         self
     }
 
     /// The relative standard deviation of every body's mass and inertia ([`Self::with_relative_sd`]).
-    pub(crate) fn relative_sd(&self) -> f64 {
+    pub fn relative_sd(&self) -> f64 {
         self.relative_sd
     }
 
@@ -109,7 +109,7 @@ impl MassModel {
     /// The standard deviation (kg) of the [`held_mass`] along the unit direction `u` (base frame)
     /// at the point whose Jacobian is `jacobian` (6x6, base frame, axis coordinates), from the
     /// model's [`Self::relative_sd`] (module docs); `None` where the Jacobian is singular.
-    pub(crate) fn held_mass_sd(
+    pub fn held_mass_sd(
         &self,
         robot: &Robot,
         frames: &Frames,

@@ -89,7 +89,7 @@ pub struct Tolerances {
 
 /// Largest summed constraint violation of a point that counts as feasible for the stops, unless
 /// the problem says otherwise ([`Nlp::feasible`]).
-pub(crate) const FEASIBLE: f64 = 1e-10;
+pub const FEASIBLE: f64 = 1e-10;
 /// Weight of the relaxation variable of an incompatible QP, relative to `B`'s largest diagonal.
 const RELAXATION: f64 = 1e4;
 /// Most trial points of one line search.

@@ -106,7 +106,7 @@ impl ErrorModel {
     /// (base frame, N, N m, at the loading point): the rows of `Psi`
     /// ([`stiffid_core::observation::write_posture_block`]) on the nominal chain with the setup's
     /// points; `None` without loads or without a wrench.
-    pub(crate) fn load_rows(
+    pub fn load_rows(
         &self,
         q: &Vector6<f64>,
         k: usize,

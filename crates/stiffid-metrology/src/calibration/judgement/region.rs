@@ -20,10 +20,10 @@ use stiffid_core::common::limits::JointBox;
 use stiffid_core::Setup;
 
 /// The share of each axis's range by which the region is widened on either side: 10 %.
-pub(crate) const MARGIN_SHARE: f64 = 0.1;
+pub const MARGIN_SHARE: f64 = 0.1;
 
 /// The least widening of the region on either side of each axis's range: 5 deg.
-pub(crate) const MARGIN_RAD: f64 = 5.0 * std::f64::consts::PI / 180.0;
+pub const MARGIN_RAD: f64 = 5.0 * std::f64::consts::PI / 180.0;
 
 /// The region of `postures` (axis angles, rad; module docs) within `limits` and `bounds`; `limits`
 /// when there is no posture.

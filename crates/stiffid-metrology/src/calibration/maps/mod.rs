@@ -70,14 +70,14 @@ pub fn name(h: &JointMaps) -> String {
 }
 
 /// The harmonic counts `--maps auto` tries per joint.
-pub(crate) const HARMONICS: [usize; 4] = [4, 8, 16, 32];
+pub const HARMONICS: [usize; 4] = [4, 8, 16, 32];
 
 /// The harmonics of a joint named without a count (`--maps J2`).
-pub(crate) const DEFAULT_HARMONICS: usize = 16;
+pub const DEFAULT_HARMONICS: usize = 16;
 
 /// The ridges `mu` tried (dimensionless, per reading): up to 1, since from 50 postures a
 /// joint's 32 harmonics may need a stronger hold than from 100.
-pub(crate) const RIDGES: [f64; 11] = [
+pub const RIDGES: [f64; 11] = [
     1e-6, 1e-5, 1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2, 1e-1, 3e-1, 1.0,
 ];
 
@@ -101,7 +101,7 @@ pub const LEAST_GAIN: f64 = 0.02;
 
 /// The fewest distinct postures with which `--maps auto` considers maps (below it, none): five
 /// folds of at least six postures.
-pub(crate) const MIN_POSTURES: usize = 30;
+pub const MIN_POSTURES: usize = 30;
 
 /// Which maps a calibration fits.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
