@@ -106,7 +106,6 @@ impl Adequacy {
     pub fn model_error_dominates(&self) -> bool {
         self.p_value < SIGNIFICANCE
     }
-
 }
 
 impl Identification {

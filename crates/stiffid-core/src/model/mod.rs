@@ -25,7 +25,7 @@
 mod compliance;
 mod family;
 pub(crate) mod file;
-pub mod form;
+pub(crate) mod form;
 mod law;
 pub mod prediction;
 pub mod region;

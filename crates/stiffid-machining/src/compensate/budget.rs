@@ -182,7 +182,11 @@ fn normal_quantile(p: f64) -> f64 {
 
 /// The compensation's part at `level` (module docs) of the deflection `d` under the compliance
 /// `compliance`; `None` without a covariance or a prediction calibration.
-pub(crate) fn compensation(d: &PointDeflection, compliance: &Compliance, level: f64) -> Option<f64> {
+pub(crate) fn compensation(
+    d: &PointDeflection,
+    compliance: &Compliance,
+    level: f64,
+) -> Option<f64> {
     if let Some(p) = &compliance.prediction {
         return Some(match &p.deflection {
             Some(deflection) => calibrated(d, &compliance.h, deflection, level),

@@ -170,7 +170,6 @@ impl MassModel {
             }
         }
     }
-
 }
 
 /// The mass matrix's Cholesky factor, where it is positive definite (a posture where some

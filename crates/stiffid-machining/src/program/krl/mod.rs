@@ -19,7 +19,7 @@
 //! page `docs/programs/krl.md` lists each rule with its source.
 
 pub mod cartesian;
-pub mod data;
+pub(crate) mod data;
 mod declare;
 mod flow;
 mod frames;
@@ -30,7 +30,7 @@ mod names;
 mod process;
 mod read;
 pub mod speed;
-pub mod status;
+pub(crate) mod status;
 pub use status::{StatusPart, StatusTurn};
 
 use super::controller::{BoundComment, Controller, Generator, Read};

@@ -20,7 +20,7 @@
 
 mod arguments;
 mod cartesian;
-pub mod confdata;
+pub(crate) mod confdata;
 mod flow;
 mod generate;
 mod names;
