@@ -53,7 +53,7 @@
 
 pub mod cell;
 pub mod compensate;
-pub(crate) mod cutting;
+pub mod cutting;
 pub mod dynamics;
 pub mod gcode;
 pub mod path;

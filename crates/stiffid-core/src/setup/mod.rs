@@ -84,7 +84,7 @@ mod controller_robot;
 mod experiment;
 mod file;
 pub mod load_steps;
-pub(crate) mod numbered;
+pub mod numbered;
 pub mod plausibility;
 pub mod prior;
 mod program_frames;

@@ -201,7 +201,7 @@ pub mod tool_axis;
 mod validate;
 pub mod variables;
 
-pub(crate) use budget::Budget;
+pub use budget::Budget;
 pub use configuration::{posed, Branch, Configurations, Run};
 pub use feasible::{Feasible, Removed};
 pub use free::{FreeOption, Freedom};

@@ -18,10 +18,10 @@
 //! mean force and moment into the base-frame wrench on the tool that compensation takes.
 
 pub(crate) mod covering;
-pub(crate) mod drilling;
+pub mod drilling;
 pub mod file;
 pub mod milling;
-pub(crate) mod presets;
+pub mod presets;
 
 use nalgebra::{Matrix3, Rotation3, Vector3, Vector6};
 use serde::Serialize;

@@ -37,7 +37,7 @@
 //! [`MAX_READINGS`] rows. `stiffid_metrology::register` turns the unloaded readings into the tracker's
 //! transform, `stiffid_identify::steps` the loaded ones into displacements.
 
-pub(crate) mod direction;
+pub mod direction;
 mod name;
 pub use name::point_name;
 

@@ -39,7 +39,7 @@
 //!
 //! Equations and sources: docs/model.md, section "Calibration", "Joint error maps".
 
-pub(crate) mod linear;
+pub mod linear;
 
 pub use super::error_model::JointMaps;
 pub use linear::{extended, Linear};
