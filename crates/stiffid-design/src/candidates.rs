@@ -150,7 +150,7 @@ pub struct Designable {
 pub const PROBE_POSTURES: usize = 60;
 
 /// The seed of that group ([`crate::random_group`]).
-pub const PROBE_SEED: u64 = 1;
+pub(crate) const PROBE_SEED: u64 = 1;
 
 /// The linear candidates of `pool`, in its order, that a design can identify together with the
 /// setup's model: each is kept unless the seeded group of [`PROBE_POSTURES`] postures over the

@@ -300,7 +300,7 @@ pub fn classical(setup: &Setup, postures: &[Vector6<f64>]) -> f64 {
 /// and normalised by the setup's characteristic length; `+infinity` at a singularity. Without a
 /// characteristic length it is normalised by 1 m, so that no NaN reaches a decomposition (the
 /// criteria that need one are NaN then: [`Evaluation`], [`Evaluator::value`](super::Evaluator::value)).
-pub fn tcp_dexterity(setup: &Setup, frames: &Frames) -> f64 {
+pub(crate) fn tcp_dexterity(setup: &Setup, frames: &Frames) -> f64 {
     let j = frames.jacobian(&setup.tool().tcp, setup.springs());
     let l = setup.characteristic_length().unwrap_or(PLACEHOLDER_LENGTH);
     dexterity(&j, l)

@@ -186,7 +186,7 @@ fn exchange(
 }
 
 /// Whether `v` is lower than `than` by more than rounding (so an exchange loop cannot cycle).
-pub fn improves(v: f64, than: f64) -> bool {
+pub(crate) fn improves(v: f64, than: f64) -> bool {
     v < than && (than.is_infinite() || than - v > 1e-12 * than.abs())
 }
 

@@ -74,7 +74,7 @@ pub enum Verdict {
 impl Verdict {
     /// The verdict of `rss / sigma^2 = chi2` with `dof` degrees of freedom; `None` without
     /// degrees of freedom or for a statistic that is not finite.
-    pub fn of(chi2: f64, dof: usize) -> Option<Verdict> {
+    pub(crate) fn of(chi2: f64, dof: usize) -> Option<Verdict> {
         let c = ChiSquared::new(dof as f64).ok()?;
         if !chi2.is_finite() {
             return None;
@@ -105,18 +105,6 @@ impl Adequacy {
     /// Whether the model error dominates: `p_value <` [`SIGNIFICANCE`].
     pub fn model_error_dominates(&self) -> bool {
         self.p_value < SIGNIFICANCE
-    }
-
-    /// `P(X <= chi2)` for `X ~ chi2(dof)`: small when the residuals are far below the noise.
-    pub fn lower_p_value(&self) -> f64 {
-        ChiSquared::new(self.dof as f64).map_or(f64::NAN, |c| c.cdf(self.chi2))
-    }
-
-    /// Whether the residuals are far below the tracker noise: [`Adequacy::lower_p_value`] `<`
-    /// [`SIGNIFICANCE`] (noise-free or simulated data, or a `reading_sd_mm` too large: the
-    /// intervals from the tracker noise are then too wide).
-    pub fn below_noise(&self) -> bool {
-        self.lower_p_value() < SIGNIFICANCE
     }
 }
 

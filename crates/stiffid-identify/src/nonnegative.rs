@@ -165,7 +165,7 @@ fn free_columns(a: &Matrix6<f64>, free: &[bool; 6]) -> DMatrix<f64> {
 /// `(A_F^T A_F)^-1` of the free columns `F` (those not `active`), embedded in a 6x6 matrix with
 /// zero rows and columns for the active ones: the covariance per unit noise variance of the
 /// compliances with the active ones fixed at their bound.
-pub fn unit_covariance(a: &Matrix6<f64>, active: &[bool; 6]) -> Matrix6<f64> {
+pub(crate) fn unit_covariance(a: &Matrix6<f64>, active: &[bool; 6]) -> Matrix6<f64> {
     let free = active.map(|a| !a);
     let mut out = Matrix6::zeros();
     if !free.iter().any(|f| *f) {

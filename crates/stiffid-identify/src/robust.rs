@@ -61,7 +61,7 @@ impl Loss {
     }
 
     /// The weight `w(u)` of a residual `u` in units of the scale, in `[0, 1]`.
-    pub fn weight(self, u: f64) -> f64 {
+    pub(crate) fn weight(self, u: f64) -> f64 {
         let c = self.tuning_constant();
         match self {
             Loss::Huber if u.abs() <= c => 1.0,

@@ -134,7 +134,7 @@ pub struct Fit {
 
 impl Fit {
     /// `sqrt(|r|^2 / m)`, m.
-    pub fn residual_rms(&self) -> f64 {
+    pub(crate) fn residual_rms(&self) -> f64 {
         (self.rss / self.rows as f64).sqrt()
     }
 
@@ -158,13 +158,13 @@ impl Fit {
     }
 
     /// Akaike's information criterion of the Gaussian fit, `m ln(rss / m) + 2 r`.
-    pub fn aic(&self) -> f64 {
+    pub(crate) fn aic(&self) -> f64 {
         let m = self.rows as f64;
         m * (self.rss / m).ln() + 2.0 * self.identifiability.rank as f64
     }
 
     /// The Bayesian information criterion, `m ln(rss / m) + r ln m`.
-    pub fn bic(&self) -> f64 {
+    pub(crate) fn bic(&self) -> f64 {
         let m = self.rows as f64;
         m * (self.rss / m).ln() + self.identifiability.rank as f64 * m.ln()
     }
@@ -527,7 +527,7 @@ impl HeldOut {
 
     /// The mean over postures of their mean `delta_b^2` (m^2), and its standard error
     /// (the postures' sample standard deviation over `sqrt(postures)`).
-    pub fn mse_and_se(&self) -> (f64, f64) {
+    pub(crate) fn mse_and_se(&self) -> (f64, f64) {
         let n = self.posture_mse.len() as f64;
         let mean = self.posture_mse.iter().sum::<f64>() / n;
         let var = self

@@ -52,7 +52,7 @@ impl Uncertainty {
 
     /// As [`Uncertainty::new`] with a given quantile of the 95% intervals (e.g. 1.96 for a known
     /// variance).
-    pub fn with_quantile(
+    pub(crate) fn with_quantile(
         h: &Vector6<f64>,
         unit_covariance: &Matrix6<f64>,
         residual_variance: f64,

@@ -75,7 +75,7 @@ pub fn feeds(poses: &[Isometry3<f64>]) -> Vec<Option<Vector3<f64>>> {
 ///
 /// # Panics
 /// If `joint`, `poses` and `covered` differ in length.
-pub fn cutting<'a>(
+pub(crate) fn cutting<'a>(
     joint: &[bool],
     poses: &[Isometry3<f64>],
     covered: Vec<Option<(usize, &'a Operation)>>,

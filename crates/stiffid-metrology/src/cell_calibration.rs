@@ -181,12 +181,3 @@ fn transform_std(model: &ErrorModel, result: &fit::Fit, frame: &Isometry3<f64>) 
     let moved = to * cov * to.transpose();
     std::array::from_fn(|a| moved[(a, a)].max(0.0).sqrt())
 }
-
-/// Calibrates the cell of `setup` from the unloaded readings of a readings file ([`fit()`] from
-/// the setup's measuring points).
-///
-/// # Errors
-/// Those of [`observations`] and [`fit()`].
-pub fn calibrate(setup: &Setup, readings: &Readings) -> Result<Calibration> {
-    fit(setup, &observations(setup, readings)?)
-}

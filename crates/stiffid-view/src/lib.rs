@@ -420,7 +420,7 @@ impl Drawn<'_> {
 
 /// The ellipsoid of the translational compliance `c` (3x3, m/N) at `centre` scaled to `force`;
 /// `None` when `c` is not finite.
-pub fn ellipsoid(c: &Matrix3<f64>, centre: &Vector3<f64>, force: f64) -> Option<Ellipsoid> {
+pub(crate) fn ellipsoid(c: &Matrix3<f64>, centre: &Vector3<f64>, force: f64) -> Option<Ellipsoid> {
     if !c.iter().all(|v| v.is_finite()) {
         return None;
     }

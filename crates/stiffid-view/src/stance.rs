@@ -45,7 +45,7 @@ impl Stance {
     }
 
     /// The axis angles, rad.
-    pub fn q(&self) -> Vector6<f64> {
+    pub(crate) fn q(&self) -> Vector6<f64> {
         Vector6::from(self.q_deg).map(f64::to_radians)
     }
 

@@ -186,7 +186,7 @@ pub enum Thing {
 
 impl Thing {
     /// Its name in reports, obstacles by their names in the setup.
-    pub fn name(self, setup: &Setup) -> String {
+    pub(crate) fn name(self, setup: &Setup) -> String {
         match self {
             Thing::Part(p) => p.to_string(),
             Thing::Floor => "floor".into(),

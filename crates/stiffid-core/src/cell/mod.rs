@@ -26,9 +26,9 @@ mod check;
 mod distance;
 mod feasibility;
 mod motion;
+pub use motion::MarginGradients;
 
 pub use bodies::{bodies, capsules, Body, Capsule, Part, Solid};
 pub use check::{CheckKind, Margin, Thing};
 pub use distance::{body_body, body_box, body_floor, capsule_box, capsule_capsule, capsule_floor};
 pub use feasibility::{feasibility, Check, Checker, Feasibility, FAR_MARGIN};
-pub use motion::MarginGradients;

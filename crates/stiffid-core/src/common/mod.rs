@@ -4,7 +4,7 @@
 pub mod choice;
 pub mod error;
 pub(crate) mod exact;
-pub mod job_option;
+pub(crate) mod job_option;
 #[cfg(feature = "schema")]
 pub mod kind;
 pub mod limits;

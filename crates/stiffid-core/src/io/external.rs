@@ -105,12 +105,12 @@ impl Columns {
     }
 
     /// The column of the first axis, when the file gives any.
-    pub fn first(&self) -> Option<usize> {
+    pub(crate) fn first(&self) -> Option<usize> {
         self.columns.first().map(|c| c.0)
     }
 
     /// The column (0-based) of axis `k` (0-based, the cell's order).
-    pub fn column(&self, k: usize) -> usize {
+    pub(crate) fn column(&self, k: usize) -> usize {
         self.columns[k].0
     }
 

@@ -93,7 +93,7 @@ pub fn kind(path: &Path) -> &'static str {
 }
 
 /// What a file of type `file_type` is, in words ([`kind`]).
-pub fn kind_of(file_type: std::fs::FileType) -> &'static str {
+pub(crate) fn kind_of(file_type: std::fs::FileType) -> &'static str {
     #[cfg(unix)]
     {
         use std::os::unix::fs::FileTypeExt;

@@ -45,16 +45,6 @@ impl Compliance {
         }
     }
 
-    /// The number of parameters.
-    pub fn len(&self) -> usize {
-        self.h.len()
-    }
-
-    /// Never: a model has at least the six drives.
-    pub fn is_empty(&self) -> bool {
-        self.h.is_empty()
-    }
-
     /// The six drive compliances, rad/Nm.
     pub fn drives_h(&self) -> Vector6<f64> {
         Vector6::from_fn(|j, _| self.h[j])

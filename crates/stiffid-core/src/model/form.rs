@@ -37,7 +37,7 @@ pub struct ModelForm {
 
 impl ModelForm {
     /// The number of parameter sets over every model.
-    pub fn sets(&self) -> usize {
+    pub(crate) fn sets(&self) -> usize {
         self.models.iter().map(|m| m.sets.len()).sum()
     }
 

@@ -25,7 +25,7 @@
 mod compliance;
 mod family;
 pub(crate) mod file;
-pub mod form;
+pub(crate) mod form;
 mod law;
 pub mod prediction;
 pub mod region;
@@ -62,7 +62,7 @@ impl Kind {
     /// The unit of a nominal stiffness in files (`nominal_stiffness_nm_per_rad`,
     /// `nominal_stiffness_n_per_mm`), whatever the spring's law: a lost motion's or a
     /// load-dependent compliance's nominal stiffness is a stiffness too.
-    pub fn stiffness_unit(self) -> Unit {
+    pub(crate) fn stiffness_unit(self) -> Unit {
         match self {
             Kind::Rotation => Unit::NmPerRad,
             Kind::Translation => Unit::NPerMm,
@@ -121,7 +121,7 @@ impl Unit {
     }
 
     /// The unit as a field-name suffix (`nm_per_rad`, `n_per_mm`, `urad`, `urad_per_knm2`).
-    pub fn suffix(self) -> &'static str {
+    pub(crate) fn suffix(self) -> &'static str {
         match self {
             Unit::NmPerRad => "nm_per_rad",
             Unit::NPerMm => "n_per_mm",
@@ -288,7 +288,7 @@ pub struct Model {
 }
 
 /// The names of the drive parameters.
-pub const DRIVE_NAMES: [&str; 6] = ["k1", "k2", "k3", "k4", "k5", "k6"];
+pub(crate) const DRIVE_NAMES: [&str; 6] = ["k1", "k2", "k3", "k4", "k5", "k6"];
 
 impl Model {
     /// The six drive springs alone, in `coordinates`.
@@ -483,7 +483,7 @@ fn invalid(field: &str, message: String) -> Error {
 ///
 /// # Errors
 /// [`Error::InvalidField`] for a non-finite or zero vector.
-pub fn unit_axis(v: Vector3<f64>, field: &str) -> Result<UnitVector<Vector3<f64>>> {
+pub(crate) fn unit_axis(v: Vector3<f64>, field: &str) -> Result<UnitVector<Vector3<f64>>> {
     crate::common::limits::check(field, v.as_slice(), &crate::common::limits::AXIS)?;
     UnitVector::try_new(v, 1e-12).ok_or_else(|| {
         invalid(

@@ -98,11 +98,6 @@ impl Calibration {
         }
     }
 
-    /// The number of scores `N`.
-    pub fn scores(&self) -> usize {
-        self.folds.iter().map(|f| f.scores.len()).sum()
-    }
-
     /// The empirical `level` quantile of the scores (P1) pooled over the folds: the
     /// `ceil(level N)`-th smallest of the `N` scores, so that a share `level` of the held-out
     /// errors are within it times the predicted displacement plus the noise floor; `None`

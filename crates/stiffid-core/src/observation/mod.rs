@@ -112,17 +112,6 @@ impl SpringLoads {
         Self { placed, loads }
     }
 
-    /// The placed springs (base frame).
-    pub fn placed(&self) -> &[Placed] {
-        &self.placed
-    }
-
-    /// `g(J_f,s^T W)` of each spring: the load, Nm (rotation) or N (translation), through the
-    /// spring's law ([`crate::model::Law::response`]; the load itself for a spring).
-    pub fn loads(&self) -> &[f64] {
-        &self.loads
-    }
-
     /// Writes the three rows of the measuring point `point` (flange frame, m) into columns
     /// `6..6 + count` of `psi` from row `row`: `J_m,s[0..3] (J_f,s^T W)` per spring.
     pub fn write_rows(

@@ -101,7 +101,7 @@ struct HeldOutFile {
 }
 
 /// The most held-out errors a robot file carries.
-pub const MAX_HELD_OUT: usize = 1_000_000;
+pub(crate) const MAX_HELD_OUT: usize = 1_000_000;
 
 /// The `[held_out]` table checked: `source` `validate` or `cross-validate`, 1 to
 /// [`MAX_HELD_OUT`] errors, each finite, within [0, 1000] mm; sorted.
@@ -199,7 +199,7 @@ pub(crate) struct TransformFile {
 
 impl TransformFile {
     /// The transform in SI units.
-    pub fn isometry(&self) -> Isometry3<f64> {
+    pub(crate) fn isometry(&self) -> Isometry3<f64> {
         let [x, y, z] = self.xyz_mm.map(|v| v * 1e-3);
         let [r, p, w] = self.rpy_deg.map(f64::to_radians);
         Isometry3::from_parts(

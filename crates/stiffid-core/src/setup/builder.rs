@@ -347,7 +347,7 @@ impl SetupBuilder {
     /// robot's: the standard deviation of each coordinate of its position (m) and of its
     /// orientation (rad), independent (default [`DEFAULT_FRAME_SD`]; 0 and 0 for a calibrated
     /// robot; each within [`limits::FRAME_SD`] in mm and mrad).
-    pub fn with_frame_sd(mut self, position: f64, orientation: f64) -> Self {
+    pub(crate) fn with_frame_sd(mut self, position: f64, orientation: f64) -> Self {
         self.frame_sd = (position, orientation);
         self
     }

@@ -79,13 +79,13 @@ impl Obstacle {
     }
 
     /// Whether the point `p` (cell frame, m) lies inside the box or on its boundary.
-    pub fn contains(&self, p: &Vector3<f64>) -> bool {
+    pub(crate) fn contains(&self, p: &Vector3<f64>) -> bool {
         let p = self.local(p);
         (0..3).all(|i| p[i] >= self.min[i] && p[i] <= self.max[i])
     }
 
     /// The point of the box nearest `p` (cell frame, m): `p` itself inside.
-    pub fn nearest(&self, p: &Vector3<f64>) -> Vector3<f64> {
+    pub(crate) fn nearest(&self, p: &Vector3<f64>) -> Vector3<f64> {
         let inside = (self.local(p)).zip_zip_map(&self.min, &self.max, |v, lo, hi| v.clamp(lo, hi));
         match self.turned() {
             false => inside,
@@ -94,7 +94,7 @@ impl Obstacle {
     }
 
     /// Whether its frame is not the cell's (a box to turn into its frame for a distance).
-    pub fn turned(&self) -> bool {
+    pub(crate) fn turned(&self) -> bool {
         self.pose != Isometry3::identity()
     }
 

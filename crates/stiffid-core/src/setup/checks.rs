@@ -102,7 +102,7 @@ pub(super) fn check_tool(
 }
 
 /// The closest a positioner axis's line may pass to the tool's TCP with the arm at zero, m.
-pub const POSITIONER_CLEARANCE: f64 = 1e-3;
+pub(crate) const POSITIONER_CLEARANCE: f64 = 1e-3;
 
 /// Refuses a positioner axis whose line passes through the tool's TCP (`tcp`, flange frame, m)
 /// within [`POSITIONER_CLEARANCE`], with the arm at zero axis angles and the carrier at the

@@ -11,7 +11,7 @@ use nalgebra::Vector6;
 /// still be the same robot, mm: a calibration moves a robot's flange by a few millimetres
 /// (geometric errors of industrial robots: 1 to 5 mm before calibration), another robot model by
 /// decimetres.
-pub const SAME_ROBOT_MM: f64 = 20.0;
+pub(crate) const SAME_ROBOT_MM: f64 = 20.0;
 
 /// Refuses a `[controller] robot` that is a calibrated file (with nominal kinematics), or whose
 /// flange lies more than [`SAME_ROBOT_MM`] from the setup's robot's at any of 13 postures spread

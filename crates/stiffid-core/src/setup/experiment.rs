@@ -64,7 +64,7 @@ impl Noise {
     /// The noise levels of a setup file that gives none (`[noise] level_multiples` left out):
     /// the reading noise as given, `[1.0]`. A setup used only to identify and compensate
     /// simulates nothing.
-    pub fn one_level() -> Vec<f64> {
+    pub(crate) fn one_level() -> Vec<f64> {
         vec![1.0]
     }
 
@@ -109,12 +109,6 @@ impl Experiment {
     /// calibration-only setup, which has none: [`Experiment::require_loading`]).
     pub fn load(&self) -> &RopeLoad {
         &self.load
-    }
-
-    /// Whether the setup gives the rope load and the loading point: a calibration-only setup
-    /// leaves out `[loading]` and `tool.loading_point_mm`.
-    pub fn loading_given(&self) -> bool {
-        self.missing.is_empty()
     }
 
     /// Nothing, when the setup gives the rope load and the loading point, for `needed_by` (a job

@@ -98,14 +98,13 @@ pub use arm::{
 };
 pub use builder::{SetupBuilder, DEFAULT_FRAME_SD};
 pub use cell::{Cell, Obstacle, Tracker, MAX_LENGTH_MM, MAX_OBSTACLES};
-pub use controller_robot::SAME_ROBOT_MM;
 pub use experiment::{Experiment, Noise, RopeLoad};
 pub use file::{
     builtin, builtin_names, builtin_text, parse, parse_with, RobotRequest, MAX_PACKAGE_PATHS,
 };
 pub use numbered::NumberedFrames;
 pub use program_frames::{offset_name, ProgramFrames, MAX_EXTENDED_OFFSET, MAX_OFFSETS};
-pub use program_io::ProgramSettings;
+pub(crate) use program_io::ProgramSettings;
 pub use workcell::{CellConstraints, Controller, Kinematics, Pulses, Workcell};
 
 use crate::common::limits::JointBox;

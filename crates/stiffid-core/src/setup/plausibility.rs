@@ -12,13 +12,13 @@ use crate::Robot;
 use nalgebra::Vector6;
 
 /// Below this reach (m) at the middle of the bounds, the robot's lengths look like a unit slip.
-pub const MIN_REACH_M: f64 = 0.1;
+pub(crate) const MIN_REACH_M: f64 = 0.1;
 
 /// Above this reach (m), the robot's lengths look like millimetres read as metres.
-pub const MAX_REACH_M: f64 = 20.0;
+pub(crate) const MAX_REACH_M: f64 = 20.0;
 
 /// Below this distance (m) from the flange, every tool point looks like metres read as mm.
-pub const MIN_TOOL_M: f64 = 1e-3;
+pub(crate) const MIN_TOOL_M: f64 = 1e-3;
 
 /// The warnings of `setup` (module docs), each one sentence naming the field and the likely
 /// cause, and the setup file's notes ([`Setup::notes`]: an old field and what it meant); empty

@@ -21,7 +21,7 @@ pub const LENGTH_SAMPLES: usize = 512;
 pub const LENGTH_RANGE_M: (f64, f64) = (0.05, 20.0);
 
 /// The payload (kg) of the reference robot of [`nominal_stiffness`]: the COMAU SMART5 NJ 165-3.0.
-pub const REFERENCE_PAYLOAD_KG: f64 = 165.0;
+pub(crate) const REFERENCE_PAYLOAD_KG: f64 = 165.0;
 
 /// The joint stiffness (Nm/rad) of the reference robot: Zhang et al. 2021, Table 2.
 pub const REFERENCE_STIFFNESS_NM_PER_RAD: [f64; 6] = [

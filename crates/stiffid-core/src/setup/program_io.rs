@@ -95,7 +95,7 @@ impl ProcessEvent {
 
     /// The placeholder its actions may use: `{rpm}` for the spindle's speed and turning,
     /// `{tool}` for the tool events.
-    pub fn placeholder(self) -> Option<Placeholder> {
+    pub(crate) fn placeholder(self) -> Option<Placeholder> {
         match self {
             ProcessEvent::SpindleSpeed | ProcessEvent::SpindleCw | ProcessEvent::SpindleCcw => {
                 Some(Placeholder::Rpm)
@@ -173,11 +173,6 @@ impl Io {
     /// The actions of `event`; `None` when it is not mapped.
     pub fn get(&self, event: ProcessEvent) -> Option<&[Action]> {
         self.actions.get(&event).map(Vec::as_slice)
-    }
-
-    /// Whether no event is mapped.
-    pub fn is_empty(&self) -> bool {
-        self.actions.is_empty()
     }
 
     /// `io` with `event` mapped to `actions` (checked as on load).

@@ -212,7 +212,7 @@ impl<'a> Evaluator<'a> {
     }
 
     /// The TCP dexterity `k(J_N)` of one posture's terms (Eq. 21).
-    pub fn dexterity(&self, terms: &PostureTerms) -> f64 {
+    pub(crate) fn dexterity(&self, terms: &PostureTerms) -> f64 {
         *terms
             .dexterity
             .get_or_init(|| tcp_dexterity(self.setup, &terms.frames))

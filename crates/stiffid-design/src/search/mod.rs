@@ -147,7 +147,7 @@ impl Gradient {
     pub const ALL: [Gradient; 2] = [Gradient::Exact, Gradient::FiniteDifference];
 
     /// The name used on the command line and in files: `exact` or `fd`.
-    pub fn name(self) -> &'static str {
+    pub(crate) fn name(self) -> &'static str {
         match self {
             Gradient::Exact => "exact",
             Gradient::FiniteDifference => "fd",

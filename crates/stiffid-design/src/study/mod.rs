@@ -13,7 +13,6 @@ mod table4;
 mod trials;
 
 pub use findings::{criterion_values, findings, Findings, StartCheck, Versus, CRITERION_VALUES};
-pub use observability::{calibration_study, CalibrationStudy};
 pub use stiffid_core::math::spearman;
 pub use table4::{paper_table4, TABLE4};
 use trials::{judge, paper_searches};

@@ -356,7 +356,7 @@ fn identify_once(
 
 /// The seed of run `run` at level `level` of group `group`: the four numbers mixed by SplitMix64
 /// steps, so neighbouring runs get unrelated streams.
-pub fn run_seed(seed: u64, group: usize, level: usize, run: usize) -> u64 {
+pub(crate) fn run_seed(seed: u64, group: usize, level: usize, run: usize) -> u64 {
     [group as u64, level as u64, run as u64]
         .into_iter()
         .fold(splitmix64(seed), |acc, x| splitmix64(acc ^ x))

@@ -76,7 +76,7 @@ pub struct Spread {
 
 /// One resample's recommended model: its parameters (indices in [`Comparison::parameters`],
 /// ascending) with their SI values ([`Spread::median`]).
-pub type Chosen = Vec<(usize, f64)>;
+pub(crate) type Chosen = Vec<(usize, f64)>;
 
 /// A model one resample's data support ([`super::supported`]): its parameters (indices in
 /// [`Comparison::parameters`], the setup's model's first, then the springs in the order the

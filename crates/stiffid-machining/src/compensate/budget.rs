@@ -120,7 +120,7 @@ impl Budget {
 /// A TCP's deflection under a wrench ([`PointDeflection`], which it dereferences to) and the
 /// model-form part of its budget.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Deflected {
+pub(crate) struct Deflected {
     /// The deflection under the compensation's model.
     pub point: PointDeflection,
     /// The model-form part at the level, m ([`model_form`]); `None` without a `model_form`.
@@ -138,7 +138,7 @@ impl std::ops::Deref for Deflected {
 /// sets of `form` at the posture `frames`, under `wrench` (base frame) at the tool point `tcp`
 /// (flange frame, m), `t` (m, base frame) the translation the compensation removes; `None`
 /// when `form` holds no set.
-pub fn model_form(
+pub(crate) fn model_form(
     form: &ModelForm,
     frames: &Frames,
     tcp: &Vector3<f64>,
@@ -182,7 +182,11 @@ fn normal_quantile(p: f64) -> f64 {
 
 /// The compensation's part at `level` (module docs) of the deflection `d` under the compliance
 /// `compliance`; `None` without a covariance or a prediction calibration.
-pub fn compensation(d: &PointDeflection, compliance: &Compliance, level: f64) -> Option<f64> {
+pub(crate) fn compensation(
+    d: &PointDeflection,
+    compliance: &Compliance,
+    level: f64,
+) -> Option<f64> {
     if let Some(p) = &compliance.prediction {
         return Some(match &p.deflection {
             Some(deflection) => calibrated(d, &compliance.h, deflection, level),

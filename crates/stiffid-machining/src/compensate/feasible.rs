@@ -152,7 +152,7 @@ impl<'a> Checks<'a> {
     /// The obstacles the tool touches at the path's own posture `own` (rad; none without one)
     /// with the external axes at `e`: the part or stock being cut, whose contact with the tool
     /// is no collision of a moved posture ([`Checks::fails`]).
-    pub fn touching(&self, own: Option<&Vector6<f64>>, e: &ExternalValues) -> Vec<usize> {
+    pub(crate) fn touching(&self, own: Option<&Vector6<f64>>, e: &ExternalValues) -> Vec<usize> {
         let (Some(checker), Some(q)) = (&self.checker, own) else {
             return Vec::new();
         };
@@ -166,7 +166,7 @@ impl<'a> Checks<'a> {
     /// external axes at `e` (the arm on its carriage there), `None` when it passes every check;
     /// the tool's contact with an obstacle of `touching` (those it touches at the path's own
     /// posture, [`Checks::touching`]) is not a collision.
-    pub fn fails(
+    pub(crate) fn fails(
         &self,
         q: &Vector6<f64>,
         e: &ExternalValues,

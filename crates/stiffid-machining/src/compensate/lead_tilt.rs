@@ -187,13 +187,13 @@ pub(super) struct Lean<'a> {
 
 impl Lean<'_> {
     /// Whether the lean is none.
-    pub fn zero(&self) -> bool {
+    pub(crate) fn zero(&self) -> bool {
         self.lead == 0.0 && self.tilt == 0.0
     }
 
     /// Whether the lean `(lead, tilt)` (rad; this lean's own, or a refined line's at the
     /// point) is within point `i`'s cone.
-    pub fn inside(&self, i: usize, lead: f64, tilt: f64) -> bool {
+    pub(crate) fn inside(&self, i: usize, lead: f64, tilt: f64) -> bool {
         lead.hypot(tilt) <= self.cones[i] * (1.0 + 1e-12)
     }
 }
@@ -218,7 +218,7 @@ impl Leaning {
     }
 
     /// The number of lean states (1 without a free lean).
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.leans.states.len()
     }
 
@@ -234,12 +234,12 @@ impl Leaning {
     }
 
     /// The offsets of the lead and of the tilt, rad, ascending (empty without a free lean).
-    pub fn offsets(&self) -> &[f64] {
+    pub(crate) fn offsets(&self) -> &[f64] {
         &self.leans.offsets
     }
 
     /// The grid's spacing and largest step of the lead and the tilt, rad.
-    pub fn step(&self) -> f64 {
+    pub(crate) fn step(&self) -> f64 {
         self.leans.step
     }
 }

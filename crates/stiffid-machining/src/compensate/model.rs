@@ -85,13 +85,13 @@ impl<'a> Model<'a> {
 
     /// The model with prediction intervals at `level` (default
     /// [`stiffid_core::model::prediction::DEFAULT_LEVEL`]).
-    pub fn at_level(self, level: f64) -> Self {
+    pub(crate) fn at_level(self, level: f64) -> Self {
         Self { level, ..self }
     }
 
     /// The model taking at most `max_iterations` Newton steps per point (at least 1; default
     /// [`MAX_ITERATIONS`]).
-    pub fn with_max_iterations(self, max_iterations: usize) -> Self {
+    pub(crate) fn with_max_iterations(self, max_iterations: usize) -> Self {
         Self {
             max_iterations: max_iterations.max(1),
             ..self
@@ -100,7 +100,7 @@ impl<'a> Model<'a> {
 
     /// The model whose error budget takes the process force model's relative error
     /// `force_tolerance` (default [`super::budget::DEFAULT_FORCE_TOLERANCE`]).
-    pub fn with_force_tolerance(self, force_tolerance: f64) -> Self {
+    pub(crate) fn with_force_tolerance(self, force_tolerance: f64) -> Self {
         Self {
             force_tolerance,
             ..self
@@ -109,7 +109,7 @@ impl<'a> Model<'a> {
 
     /// The error budget ([`super::Budget`]) of a point whose deflection under its wrench is `d`,
     /// compensated to the residual `left` (m).
-    pub fn budget(&self, d: &super::budget::Deflected, left: f64) -> super::Budget {
+    pub(crate) fn budget(&self, d: &super::budget::Deflected, left: f64) -> super::Budget {
         let held = self.arm.robot().held_out();
         super::Budget::new(
             left,

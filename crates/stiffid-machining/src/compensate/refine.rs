@@ -46,7 +46,7 @@ impl Layout {
     }
 
     /// The rotation, the lead and the tilt of `values` (rad; 0 for an axis not free).
-    pub fn turn_lean(&self, values: &[f64]) -> [f64; 3] {
+    pub(crate) fn turn_lean(&self, values: &[f64]) -> [f64; 3] {
         let (lead, tilt) = self.lean.map_or((0.0, 0.0), |k| (values[k], values[k + 1]));
         let phi = match self.rotation {
             true => values[values.len() - 1],

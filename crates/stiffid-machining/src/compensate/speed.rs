@@ -78,7 +78,7 @@ impl<'a> Pace<'a> {
 
     /// Whether the move to point `i` from `from` to `to` (axis angles, rad; external values,
     /// SI) keeps every axis within its largest speed; any move to a point without a time.
-    pub fn allows(
+    pub(crate) fn allows(
         &self,
         i: usize,
         from: (&Vector6<f64>, &ExternalValues),

@@ -176,12 +176,12 @@ pub struct Grid<'a> {
 
 impl Grid<'_> {
     /// The number of states.
-    pub fn states(&self) -> usize {
+    pub(crate) fn states(&self) -> usize {
         self.axes.iter().map(|a| a.values.len()).product()
     }
 
     /// The index on each axis of state `s`.
-    pub fn indices(&self, mut s: usize) -> Vec<usize> {
+    pub(crate) fn indices(&self, mut s: usize) -> Vec<usize> {
         let mut out = vec![0; self.axes.len()];
         for (k, a) in self.axes.iter().enumerate().rev() {
             out[k] = s % a.values.len();
@@ -191,7 +191,7 @@ impl Grid<'_> {
     }
 
     /// The state of the path's own values.
-    pub fn zero(&self) -> usize {
+    pub(crate) fn zero(&self) -> usize {
         (self.axes.iter()).fold(0, |s, a| s * a.values.len() + a.zero)
     }
 

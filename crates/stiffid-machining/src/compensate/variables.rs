@@ -30,7 +30,7 @@ pub enum Variable {
 
 impl Variable {
     /// The variable's name as `super::Free::parse` reads it.
-    pub fn name(&self) -> &str {
+    pub(crate) fn name(&self) -> &str {
         match self {
             Variable::ToolRotation => "tool-rotation",
             Variable::LeadTilt => "lead-tilt",
@@ -185,13 +185,13 @@ impl Free {
     }
 
     /// Whether it moves the tool axis: its rotation or its lead and tilt.
-    pub fn is_tool_axis(&self) -> bool {
+    pub(crate) fn is_tool_axis(&self) -> bool {
         matches!(self, Free::ToolRotation(_) | Free::LeadTilt(_))
     }
 
     /// Whether `self` and `other` move the same variable (the configuration whatever its
     /// scope).
-    pub fn same_variable(&self, other: &Free) -> bool {
+    pub(crate) fn same_variable(&self, other: &Free) -> bool {
         std::mem::discriminant(self) == std::mem::discriminant(other)
     }
 

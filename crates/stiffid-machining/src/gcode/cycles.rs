@@ -24,7 +24,7 @@ use stiffid_core::Result;
 
 /// How far above the depth reached a `G83` peck's rapid re-approach stops, mm (LinuxCNC's
 /// 0.010 inch).
-pub const PECK_CLEARANCE_MM: f64 = 0.254;
+pub(crate) const PECK_CLEARANCE_MM: f64 = 0.254;
 
 /// One hole of a drilling canned cycle, part frame.
 #[derive(Debug, Clone, PartialEq)]

@@ -36,7 +36,7 @@ impl Machine {
     }
 
     /// The length of tool `n` (m), `None` when the table lacks it.
-    pub fn tool_length(&self, n: Option<u32>) -> Option<f64> {
+    pub(crate) fn tool_length(&self, n: Option<u32>) -> Option<f64> {
         let exact = n.and_then(|n| self.tool_lengths.iter().find(|(t, _)| *t == Some(n)));
         exact
             .or_else(|| self.tool_lengths.iter().find(|(t, _)| t.is_none()))

@@ -72,7 +72,7 @@ mod words;
 mod write;
 
 pub use arc::{ArcBlock, ARC_END_MAX_MM, ARC_END_RELATIVE, ARC_END_TOLERANCE_MM};
-pub use cycles::{Cycle, PECK_CLEARANCE_MM};
+pub use cycles::Cycle;
 pub use machine::{Machine, ProgramFrames};
 pub use process::{Comment, ProcessWord};
 pub use words::MAX_FEED;

@@ -39,12 +39,12 @@ impl Drilling {
     }
 
     /// The force on the tool, feed frame (`[0, 0, F]`), N.
-    pub fn force(&self) -> Vector3<f64> {
+    pub(crate) fn force(&self) -> Vector3<f64> {
         Vector3::new(0.0, 0.0, self.thrust())
     }
 
     /// The moment on the tool, feed frame (`[0, 0, T]`), Nm.
-    pub fn moment(&self) -> Vector3<f64> {
+    pub(crate) fn moment(&self) -> Vector3<f64> {
         Vector3::new(0.0, 0.0, self.torque())
     }
 }

@@ -113,7 +113,7 @@ impl Milling {
 
     /// `G(psi)`: the antiderivative of the force per unit edge length over the immersion angle
     /// (module docs), N.
-    pub fn antiderivative(&self, psi: f64) -> Vector3<f64> {
+    pub(crate) fn antiderivative(&self, psi: f64) -> Vector3<f64> {
         let k = &self.coefficients;
         let c = self.feed_per_tooth;
         let (s, co) = psi.sin_cos();

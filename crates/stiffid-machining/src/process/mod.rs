@@ -82,7 +82,7 @@ pub enum Kind {
 
 impl Operation {
     /// The mean force (N) and moment (Nm) on the tool, feed frame.
-    pub fn mean_wrench(&self) -> (Vector3<f64>, Vector3<f64>) {
+    pub(crate) fn mean_wrench(&self) -> (Vector3<f64>, Vector3<f64>) {
         match &self.kind {
             Kind::Milling(m) => (m.mean_force(), m.mean_moment()),
             Kind::Drilling(d) => (d.force(), d.moment()),

@@ -12,7 +12,7 @@ use super::milling::Coefficients;
 
 /// A material preset: its name, the coefficients and where they come from.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Preset {
+pub(crate) struct Preset {
     /// The name a process file uses (`preset = "al7075-t6"`).
     pub name: &'static str,
     /// The material and the tool.
@@ -38,7 +38,7 @@ const fn si(cutting: [f64; 3], edge: [f64; 3]) -> Coefficients {
 }
 
 /// Every preset.
-pub const PRESETS: [Preset; 2] = [
+pub(crate) const PRESETS: [Preset; 2] = [
     Preset {
         name: "al7075-t6",
         material: "aluminium 7075-T6, cemented carbide end mill, dry",
@@ -54,6 +54,6 @@ pub const PRESETS: [Preset; 2] = [
 ];
 
 /// The preset named `name`.
-pub fn find(name: &str) -> Option<&'static Preset> {
+pub(crate) fn find(name: &str) -> Option<&'static Preset> {
     PRESETS.iter().find(|p| p.name == name)
 }

@@ -70,7 +70,7 @@ pub enum FileName {
 
 impl FileName {
     /// The program name of a file `stem`; `None`: not the file's.
-    pub fn name(self, stem: &str) -> Option<String> {
+    pub(crate) fn name(self, stem: &str) -> Option<String> {
         match self {
             FileName::Stem => Some(stem.to_string()),
             FileName::Upper => Some(stem.to_ascii_uppercase()),
@@ -90,7 +90,7 @@ pub enum AxisNames {
 
 impl AxisNames {
     /// The name of the `k`-th external axis (0-based).
-    pub fn name(self, k: usize) -> String {
+    pub(crate) fn name(self, k: usize) -> String {
         match self {
             AxisNames::Numbered(prefix) => format!("{prefix}{}", k + 1),
             AxisNames::Lettered(prefix) => format!("{prefix}{}", (b'a' + k as u8) as char),

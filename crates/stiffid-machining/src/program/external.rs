@@ -139,7 +139,7 @@ fn check_units(program: &JointProgram, cell: Option<&ExternalAxes>) -> Result<()
 /// Each target's external values in the program's order (mm or deg) from the cell's SI values
 /// `e` (as [`cell_values`] returned them, or changed), for [`JointProgram::write_with_external`]:
 /// the axes past the cell's as read.
-pub fn program_values(
+pub(crate) fn program_values(
     program: &JointProgram,
     e: &[Vec<f64>],
     cell: Option<&ExternalAxes>,

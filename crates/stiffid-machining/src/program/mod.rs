@@ -337,7 +337,7 @@ pub fn parse_in(text: &str, dialect: Dialect, context: &Context) -> Result<Joint
 
 /// Per external axis of a program (its order), the unit its values are written in (`mm` or
 /// `deg`) and the line of the first, where the language says (LS).
-pub type Units = Vec<Option<(&'static str, u64)>>;
+pub(crate) type Units = Vec<Option<(&'static str, u64)>>;
 
 impl JointProgram {
     /// The program with the axis angles of target `i` replaced by `q_deg[i]` (deg) where they
@@ -379,7 +379,7 @@ impl JointProgram {
     }
 
     /// The data file's text as read (KRL's `.dat`), if one was.
-    pub fn data(&self) -> Option<&str> {
+    pub(crate) fn data(&self) -> Option<&str> {
         self.data_at.map(|at| &self.text[at..])
     }
 

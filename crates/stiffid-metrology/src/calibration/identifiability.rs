@@ -38,7 +38,7 @@ pub const CORRELATION_INSEPARABLE: f64 = 0.999;
 const COEFFICIENT_LISTED: f64 = 1e-3;
 
 /// A correlation of two kept parameters: `(i, j, rho)`, `i < j` their indices.
-pub type Correlation = (usize, usize, f64);
+pub(crate) type Correlation = (usize, usize, f64);
 
 /// A parameter the readings do not separate from the kept ones.
 #[derive(Debug, Clone, PartialEq)]
@@ -69,7 +69,7 @@ pub struct Identifiability {
 
 /// The triangular factor `R` (`n x n`, `n` the columns) of `a` (`m x n`): `a^T a = R^T R`.
 /// `a` itself when it has fewer rows than columns.
-pub fn triangular(a: &DMatrix<f64>) -> DMatrix<f64> {
+pub(crate) fn triangular(a: &DMatrix<f64>) -> DMatrix<f64> {
     let (m, n) = a.shape();
     if m <= n {
         return a.clone();

@@ -93,11 +93,6 @@ impl Intervals {
         }
     }
 
-    /// `jackknife+`: one fold per posture.
-    pub fn method(&self) -> &'static str {
-        "jackknife+"
-    }
-
     /// The number of folds.
     pub fn folds(&self) -> usize {
         self.folds.len()

@@ -18,19 +18,9 @@ use nalgebra::{Vector3, Vector6};
 use stiffid_core::common::limits::JointBox;
 use stiffid_core::Result;
 
-/// The RMS over [`gravity::spanning`] postures of the robot's joint limits of the standard
+/// The RMS over [`gravity::spanning`] postures of `region` (axis angles, rad) of the standard
 /// deviation (3D, m) of the position `fit` predicts for the measuring point and external axes of
 /// `like` (a reading of the fit: its point, carrier and table), section docs.
-///
-/// # Errors
-/// Those of [`ErrorModel::jacobian_of`].
-pub fn workspace_sd(model: &ErrorModel, fit: &Fit, like: &Observation) -> Result<f64> {
-    region_sd(model, fit, like, model.robot().limits())
-}
-
-/// [`workspace_sd`] over `region` (axis angles, rad) rather than the robot's joint limits: the
-/// RMS over [`gravity::spanning`] postures of `region` of the predicted position's standard
-/// deviation (3D, m).
 ///
 /// # Errors
 /// Those of [`ErrorModel::jacobian_of`].

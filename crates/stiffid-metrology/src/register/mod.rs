@@ -191,7 +191,7 @@ impl Registration {
 
     /// The transform as a setup file writes it: translation (mm) and fixed-axis roll, pitch, yaw
     /// (deg, `R = Rz(yaw) Ry(pitch) Rx(roll)`).
-    pub fn xyz_mm_rpy_deg(&self) -> ([f64; 3], [f64; 3]) {
+    pub(crate) fn xyz_mm_rpy_deg(&self) -> ([f64; 3], [f64; 3]) {
         let t = self.base_from_tracker.translation.vector * 1e3;
         let (r, p, y) = self.base_from_tracker.rotation.euler_angles();
         ([t.x, t.y, t.z], [r, p, y].map(f64::to_degrees))

@@ -104,7 +104,7 @@ impl JointBox {
     }
 
     /// The box grown by `margin` (rad) at both ends of every axis, e.g. to accept rounding.
-    pub fn widened(&self, margin: f64) -> Self {
+    pub(crate) fn widened(&self, margin: f64) -> Self {
         Self::new(
             self.lower.add_scalar(-margin),
             self.upper.add_scalar(margin),
@@ -115,7 +115,7 @@ impl JointBox {
 impl Violation {
     /// The error naming `field` (the angle as the user gave it) and `within` (the box), with the
     /// value given and the range in degrees.
-    pub fn error(&self, field: String, within: &'static str) -> Error {
+    pub(crate) fn error(&self, field: String, within: &'static str) -> Error {
         Error::OutsideBox {
             field,
             value_deg: self.value.to_degrees(),

@@ -136,7 +136,7 @@ pub const STIFFNESS_NM_PER_RAD: Range = Range::new(1.0, 1e10, "Nm/rad");
 pub const STIFFNESS_N_PER_MM: Range = Range::new(1e-3, 1e10, "N/mm");
 
 /// Components of a spring's axis (any length; it is normalised), dimensionless.
-pub const AXIS: Range = Range::new(-1e6, 1e6, "");
+pub(crate) const AXIS: Range = Range::new(-1e6, 1e6, "");
 
 /// A tool's mass (`[tool] mass_kg`).
 pub const TOOL_MASS_KG: Range = Range::new(1e-3, 1e4, "kg");
@@ -146,7 +146,7 @@ pub const MASS_SD_PERCENT: Range = Range::new(0.0, 100.0, "%");
 
 /// How far each frame of the robot model may be from the true robot's, per coordinate
 /// (`[robot_accuracy] frame_sd_mm` and `frame_sd_mrad`).
-pub const FRAME_SD: Range = Range::new(0.0, 100.0, "");
+pub(crate) const FRAME_SD: Range = Range::new(0.0, 100.0, "");
 
 /// The rope load of a setup.
 pub const LOAD_N: Range = Range::new(1e-3, 1e7, "N");
@@ -169,7 +169,7 @@ pub const TOLERANCE_DEG: Range = Range::new(1e-6, 90.0, "deg");
 pub const MARGIN_MM: Range = Range::new(0.0, 1e3, "mm");
 
 /// The old `[noise] variance_mm2`, the variance of one displacement coordinate.
-pub const VARIANCE_MM2: Range = Range::new(1e-12, 1e4, "mm^2");
+pub(crate) const VARIANCE_MM2: Range = Range::new(1e-12, 1e4, "mm^2");
 
 /// A noise level, as a multiple of the variance.
 pub const LEVEL_MULTIPLE: Range = Range::new(1e-6, 1e6, "");
@@ -178,7 +178,7 @@ pub const LEVEL_MULTIPLE: Range = Range::new(1e-6, 1e6, "");
 pub const CHARACTERISTIC_LENGTH_MM: Range = Range::new(1.0, 1e5, "mm");
 
 /// An entry of a robot's axis map matrix.
-pub const AXIS_MAP_ENTRY: Range = Range::new(-1e3, 1e3, "");
+pub(crate) const AXIS_MAP_ENTRY: Range = Range::new(-1e3, 1e3, "");
 
 /// The largest 2-norm condition number of an axis map matrix: beyond it the map between axis and
 /// kinematic angles loses more than half the digits.
@@ -191,7 +191,7 @@ pub const MAX_INPUT_BYTES: u64 = 256 << 20;
 
 /// Most noise levels of a setup (with [`MAX_RUNS`], a bound on a simulation's memory: levels x
 /// runs results of one group at a time).
-pub const MAX_LEVELS: usize = 20;
+pub(crate) const MAX_LEVELS: usize = 20;
 
 /// Most Monte Carlo runs per group and noise level (`--runs`).
 pub const MAX_RUNS: u64 = 100_000;
@@ -274,7 +274,7 @@ pub const MAX_PARAMETERS: usize = 6 + MAX_VIRTUAL_SPRINGS;
 pub const MAX_VIRTUAL_SPRINGS: usize = 64;
 
 /// Most test postures of a setup.
-pub const MAX_TEST_POSTURES: usize = 10_000;
+pub(crate) const MAX_TEST_POSTURES: usize = 10_000;
 
 /// Deepest element nesting accepted in a URDF file (real ones nest about 5 deep); checked before
 /// the XML parser sees the text.

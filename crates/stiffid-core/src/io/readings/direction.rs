@@ -9,7 +9,7 @@ use crate::Result;
 use nalgebra::Vector6;
 
 /// The direction columns' names, joint order.
-pub const DIR: [&str; 6] = ["dir1", "dir2", "dir3", "dir4", "dir5", "dir6"];
+pub(crate) const DIR: [&str; 6] = ["dir1", "dir2", "dir3", "dir4", "dir5", "dir6"];
 
 /// The direction columns in `names` (0-based), `None` when the header has none.
 ///

@@ -114,7 +114,7 @@ pub const DOCUMENT_KEYS: &[&str] = &[
 
 /// The keys of [`DOCUMENT_KEYS`] as files written before every percentage's key ended in `_pct`
 /// spelt them: read and ignored alike, so those files still read.
-pub const FORMER_KEYS: &[&str] = &["std_error_percent", "poorly_determined_above_percent"];
+pub(crate) const FORMER_KEYS: &[&str] = &["std_error_percent", "poorly_determined_above_percent"];
 
 /// What a stiffness file holds, as its JSON keys (the identify document's others,
 /// [`DOCUMENT_KEYS`], are ignored).

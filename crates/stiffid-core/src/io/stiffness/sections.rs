@@ -333,7 +333,7 @@ impl RegionSection {
     }
 
     /// The range it holds, SI.
-    pub fn range(&self) -> PostureRange {
+    pub(crate) fn range(&self) -> PostureRange {
         let rad = |v: &[f64; 6]| Vector6::from_column_slice(v).map(f64::to_radians);
         PostureRange {
             range: JointBox::new(rad(&self.lower_deg), rad(&self.upper_deg)),

@@ -142,7 +142,7 @@ impl MassModel {
     }
 
     /// The six bodies in the base frame in the posture `frames`, the tool joined to link 6.
-    pub fn world(&self, frames: &Frames) -> [LinkMass; 6] {
+    pub(crate) fn world(&self, frames: &Frames) -> [LinkMass; 6] {
         let mut world: [LinkMass; 6] =
             std::array::from_fn(|k| self.links[k].moved(&frames.joints[k]));
         if let Some(tool) = &self.tool {
@@ -170,16 +170,11 @@ impl MassModel {
             }
         }
     }
-
-    /// The total mass moved by joint 1 (every link and the tool), kg.
-    pub fn total(&self) -> f64 {
-        self.links.iter().map(|l| l.mass).sum::<f64>() + self.tool.map_or(0.0, |t| t.mass)
-    }
 }
 
 /// The mass matrix's Cholesky factor, where it is positive definite (a posture where some
 /// joint moves no mass is not).
-pub fn factor(m: &Matrix6<f64>) -> Option<Cholesky<f64, nalgebra::U6>> {
+pub(crate) fn factor(m: &Matrix6<f64>) -> Option<Cholesky<f64, nalgebra::U6>> {
     m.iter().all(|v| v.is_finite()).then_some(())?;
     Cholesky::new(*m)
 }

@@ -68,7 +68,7 @@ impl ErrorMotions {
     }
 
     /// Whether there are none.
-    pub fn is_empty(&self) -> bool {
+    pub(crate) fn is_empty(&self) -> bool {
         self.coefficients.is_empty()
     }
 

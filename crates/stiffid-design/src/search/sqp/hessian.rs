@@ -47,7 +47,7 @@ impl Hessian {
     }
 
     /// The largest diagonal entry of `B`.
-    pub fn largest_diagonal(&self) -> f64 {
+    pub(crate) fn largest_diagonal(&self) -> f64 {
         (0..self.n)
             .map(|k| self.b[k + self.n * k])
             .fold(0.0, f64::max)

@@ -39,7 +39,7 @@ use qp::{Active, Qp, QpError, Row};
 use stiffid_core::math::linalg::dot;
 
 /// The constraint gradients' nonzeros: `(index, coefficient)` pairs, one list per constraint.
-pub type SparseRows = Vec<Vec<(usize, f64)>>;
+pub(crate) type SparseRows = Vec<Vec<(usize, f64)>>;
 
 /// The values at a point: the objective and every constraint (`c_j <= 0` is feasible).
 #[derive(Debug, Clone, PartialEq)]
@@ -321,7 +321,7 @@ fn lagrangian(g: &Gradients, lambda: &[f64]) -> Vec<f64> {
 }
 
 /// The summed violation `sum_j max(0, c_j)`.
-pub fn violation(c: &[f64]) -> f64 {
+pub(crate) fn violation(c: &[f64]) -> f64 {
     c.iter().map(|c| c.max(0.0)).sum()
 }
 

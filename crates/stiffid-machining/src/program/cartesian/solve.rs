@@ -21,7 +21,7 @@ use stiffid_core::robot::ik;
 use stiffid_core::Robot;
 
 /// Seeded random starts after the start and its wrist flip.
-pub const RANDOM_STARTS: usize = 48;
+pub(crate) const RANDOM_STARTS: usize = 48;
 
 /// Why no solution was taken: the configurations reached instead, or the closest miss.
 pub(crate) enum Miss {

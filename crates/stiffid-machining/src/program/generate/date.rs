@@ -6,7 +6,7 @@
 use stiffid_core::{Error, Result};
 
 /// The environment variable of the date ([module docs](self)).
-pub const VARIABLE: &str = "SOURCE_DATE_EPOCH";
+pub(crate) const VARIABLE: &str = "SOURCE_DATE_EPOCH";
 /// The latest date taken, seconds since 1970 (9999-12-31 23:59:59 UTC).
 pub const MAX_EPOCH_S: i64 = 253_402_300_799;
 
@@ -52,7 +52,7 @@ impl Stamp {
 /// # Errors
 /// [`Error::InvalidField`] (`SOURCE_DATE_EPOCH`) for a value that is not a whole number of
 /// seconds from 0 to [`MAX_EPOCH_S`].
-pub fn stamp() -> Result<Stamp> {
+pub(crate) fn stamp() -> Result<Stamp> {
     match std::env::var(VARIABLE) {
         Err(_) => Ok(Stamp::at(0)),
         Ok(v) => match v.trim().parse::<i64>() {

@@ -139,7 +139,7 @@ pub enum Move {
 
 impl Move {
     /// The feed of a cutting move (linear or circular), m/s; `None` for a rapid move.
-    pub fn feed(self) -> Option<f64> {
+    pub(crate) fn feed(self) -> Option<f64> {
         match self {
             Move::Rapid => None,
             Move::Feed(f) | Move::ArcStart(f) | Move::ArcVia(f) | Move::ArcEnd(f) => Some(f),
@@ -458,12 +458,12 @@ pub struct Part<'a> {
 
 impl Part<'_> {
     /// The lines written before its `k`-th target (0-based within the part).
-    pub fn before(&self, k: usize) -> &str {
+    pub(crate) fn before(&self, k: usize) -> &str {
         self.inserted.get(self.first + k).map_or("", String::as_str)
     }
 
     /// The lines written after its last target: the program's end's, for the last part.
-    pub fn after(&self) -> &str {
+    pub(crate) fn after(&self) -> &str {
         let end = self.first + self.targets.len();
         match self.last {
             true => self.inserted.get(end).map_or("", String::as_str),

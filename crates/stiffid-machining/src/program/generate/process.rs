@@ -54,7 +54,7 @@ impl ProcessForm {
     /// (the controllers' files are ASCII or their code pages; a line break would end the
     /// comment) written as `?`, a forbidden one ([`ProcessForm::comment_forbidden`]) as a
     /// blank, at most [`ProcessForm::comment_length`] characters.
-    pub fn comment_text(&self, text: &str) -> String {
+    pub(crate) fn comment_text(&self, text: &str) -> String {
         let mut out: String = (text.chars())
             .map(|c| match c {
                 c if self.comment_forbidden.contains(c) => ' ',
@@ -69,7 +69,7 @@ impl ProcessForm {
     }
 
     /// A whole comment line of `text` ([`ProcessForm::comment_text`]).
-    pub fn comment_line(&self, text: &str) -> String {
+    pub(crate) fn comment_line(&self, text: &str) -> String {
         let (open, close) = self.comment;
         format!("{}{open}{}{close}\n", self.indent, self.comment_text(text))
     }

@@ -259,7 +259,7 @@ fn target(
 
 /// Yaskawa INFORM (module docs).
 #[derive(Debug, Clone, Copy)]
-pub struct Inform;
+pub(crate) struct Inform;
 
 impl Controller for Inform {
     /// No Cartesian target is read from a job: the posture's shoulder, elbow and wrist.

@@ -14,7 +14,7 @@ pub(super) struct Flow {
 
 impl Flow {
     /// Reads the line `line` whose first word (upper case) is `first`.
-    pub fn line(&mut self, line: u64, first: &str) {
+    pub(crate) fn line(&mut self, line: u64, first: &str) {
         match first {
             "IF" | "SWITCH" | "FOR" | "WHILE" | "REPEAT" | "LOOP" => {
                 self.open.push((first.to_string(), line));
@@ -31,7 +31,7 @@ impl Flow {
     }
 
     /// The outermost construct open, if any: its word and line.
-    pub fn inside(&self) -> Option<&(String, u64)> {
+    pub(crate) fn inside(&self) -> Option<&(String, u64)> {
         self.open.first()
     }
 }

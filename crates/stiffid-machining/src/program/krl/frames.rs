@@ -139,7 +139,7 @@ impl Frames {
     /// Reads the statement `code` (its comment removed) on `line` if it sets a frame or the
     /// frame data; whether it did (`BAS(#PTP_PARAMS)`/`#CP_PARAMS` also set the speed, which
     /// the caller reads too).
-    pub fn set(&mut self, line: u64, code: &str, fdats: &Fdats) -> bool {
+    pub(crate) fn set(&mut self, line: u64, code: &str, fdats: &Fdats) -> bool {
         let c = compact(code);
         let held = |what: &str| Frame::Unknown(line, what.to_string());
         if let Some(v) = c.strip_prefix("$IPO_MODE=") {
@@ -242,7 +242,7 @@ impl Frames {
     /// `WITH $TOOL = .., $BASE = .., $IPO_MODE = ..`; refused frames as [`Frame::Unknown`].
     /// With a frame of its own, the frames in force after the motion are the controller's
     /// (`WITH` holds for the motion): both become unknown.
-    pub fn motion(&mut self, line: u64, code: &str, fdats: &Fdats) -> (Frame, Frame) {
+    pub(crate) fn motion(&mut self, line: u64, code: &str, fdats: &Fdats) -> (Frame, Frame) {
         let c = compact(code);
         let with = c.split_once("WITH").map_or("", |(_, w)| w);
         let items = split_top(with);
@@ -305,7 +305,7 @@ impl Frames {
 
     /// Every frame and the frame data become the controller's from `line`, for the reason
     /// `why` (a frame set inside a loop or branch, a call of a routine that sets one).
-    pub fn unsettle(&mut self, line: u64, why: String) {
+    pub(crate) fn unsettle(&mut self, line: u64, why: String) {
         self.act = Some((line, Err(why.clone())));
         (self.base, self.tool) = (Frame::Unknown(line, why.clone()), Frame::Unknown(line, why));
     }

@@ -30,7 +30,7 @@ mod names;
 mod process;
 mod read;
 pub mod speed;
-pub mod status;
+pub(crate) mod status;
 pub use status::{StatusPart, StatusTurn};
 
 use super::controller::{BoundComment, Controller, Generator, Read};

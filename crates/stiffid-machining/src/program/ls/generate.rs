@@ -16,7 +16,7 @@ use stiffid_core::Result;
 const CONTINUATION: &str = "    :  ";
 
 /// The `COMMENT` of every program: at most 16 characters, what the pendant shows.
-pub const COMMENT: &str = "stiffid";
+pub(crate) const COMMENT: &str = "stiffid";
 
 /// The frames set up at the top of the main program: user frame 0 (the world), tool frame 1,
 /// whose values (the tool frame from the controller's flange) the remarks state, one per line

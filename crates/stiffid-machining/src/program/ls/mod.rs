@@ -15,7 +15,7 @@
 //! docs/programs/ls.md gives each with its source.
 
 mod cartesian;
-pub mod config;
+pub(crate) mod config;
 pub mod generate;
 mod motion;
 mod names;

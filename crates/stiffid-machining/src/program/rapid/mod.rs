@@ -20,7 +20,7 @@
 
 mod arguments;
 mod cartesian;
-pub mod confdata;
+pub(crate) mod confdata;
 mod flow;
 mod generate;
 mod names;
@@ -157,10 +157,6 @@ fn no_motion(routines: &[(String, u64)]) -> String {
     };
     format!("no motion instruction in the module (MoveAbsJ, MoveL, MoveJ, MoveC); it holds {holds}: give stiffid the module with the path's motions")
 }
-
-/// The value RAPID writes for an external axis that is not used: `9E9` (any value from
-/// `8.9E9` on is taken as it).
-pub const UNUSED: f64 = 9e9;
 
 /// The instruction's name: the statement's first word, lower case, up to a switch or argument.
 fn first_word(body: &str) -> String {
@@ -549,7 +545,7 @@ fn joint(target: JointTarget) -> JointTarget {
 
 /// ABB RAPID (module docs).
 #[derive(Debug, Clone, Copy)]
-pub struct Rapid;
+pub(crate) struct Rapid;
 
 impl Controller for Rapid {
     type Flags = ConfData;

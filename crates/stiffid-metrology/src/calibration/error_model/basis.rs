@@ -16,7 +16,7 @@ pub struct Basis {
 
 impl Basis {
     /// The basis of the joint axis `w` (unit).
-    pub fn of(w: &Unit<Vector3<f64>>) -> Self {
+    pub(crate) fn of(w: &Unit<Vector3<f64>>) -> Self {
         let w = w.into_inner();
         let pick = (0..3)
             .min_by(|&a, &b| w[a].abs().total_cmp(&w[b].abs()))
@@ -32,7 +32,7 @@ impl Basis {
 
     /// `E = Trans(a u + b v) Rot(u, alpha) Rot(v, beta) Trans(d w)` of the errors
     /// `[theta, d, a, alpha, beta, b]` (theta is not part of it: it adds to the joint angle).
-    pub fn error(&self, e: &[f64; 6]) -> Isometry3<f64> {
+    pub(crate) fn error(&self, e: &[f64; 6]) -> Isometry3<f64> {
         let [_, d, a, alpha, beta, b] = *e;
         let shift = Isometry3::from_parts(
             Translation3::from(self.u * a + self.v * b),

@@ -487,12 +487,6 @@ impl ErrorModel {
         });
     }
 
-    /// The orders of each external axis's fitted error motions (0 for a rotary axis), or none
-    /// without external axes.
-    pub fn external_orders(&self) -> Option<&[usize]> {
-        self.external.as_ref().map(|x| x.orders.as_slice())
-    }
-
     /// The external axes at `values` as a robot file holds them (the directions, error motions,
     /// lines and offsets fitted), or `None` without external axes.
     ///
@@ -548,7 +542,7 @@ impl ErrorModel {
     /// station, and would make joint 1's errors differ from the tracker's registration by that
     /// much: identifiable in name, with a condition number of 1e9, and every fit then amplifies
     /// the noise into them.
-    pub fn structural(&self, values: &DVector<f64>) -> DVector<f64> {
+    pub(crate) fn structural(&self, values: &DVector<f64>) -> DVector<f64> {
         let mut out = values.clone();
         for (c, p) in self.parameters.iter().enumerate() {
             if let Target::External {

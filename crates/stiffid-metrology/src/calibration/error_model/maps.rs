@@ -38,12 +38,12 @@ impl JointMaps {
     }
 
     /// Whether joint `joint` (0-based) has a map or a backlash term.
-    pub fn has(&self, joint: usize) -> bool {
+    pub(crate) fn has(&self, joint: usize) -> bool {
         self.harmonics[joint] > 0 || self.backlash[joint]
     }
 
     /// The coefficients they fit: `2 H` per map, one per backlash term.
-    pub fn coefficients(&self) -> usize {
+    pub(crate) fn coefficients(&self) -> usize {
         let maps: usize = self.harmonics.iter().sum();
         2 * maps + self.backlash.iter().filter(|&&b| b).count()
     }
@@ -171,11 +171,6 @@ impl ErrorModel {
     pub fn map_start(&self) -> Option<usize> {
         let maps = self.maps.as_ref()?;
         (0..6).find(|&j| maps.terms.has(j)).map(|j| maps.starts[j])
-    }
-
-    /// The harmonics of each joint's fitted map (0 for none).
-    pub fn map_harmonics(&self) -> [usize; 6] {
-        self.maps.as_ref().map_or([0; 6], |m| m.terms.harmonics)
     }
 
     /// The robot's error maps at `values`: a joint with a fitted map takes its coefficients

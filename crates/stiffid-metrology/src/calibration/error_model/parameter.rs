@@ -80,7 +80,7 @@ impl Component {
     ];
 
     /// The name in parameter names: `theta`, `d`, `a`, `alpha`, `beta`, `b`.
-    pub fn name(self) -> &'static str {
+    pub(crate) fn name(self) -> &'static str {
         match self {
             Component::Theta => "theta",
             Component::D => "d",
@@ -194,7 +194,7 @@ pub enum AxisPart {
 
 impl AxisPart {
     /// Whether it is an angle (rad) rather than a length (m).
-    pub fn is_angle(self) -> bool {
+    pub(crate) fn is_angle(self) -> bool {
         match self {
             AxisPart::Direction(_) | AxisPart::Offset => true,
             AxisPart::Motion { motion, .. } => motion >= 3,
@@ -270,7 +270,7 @@ pub struct Parameter {
 }
 
 impl Parameter {
-    /// The unit in documents (mm, deg, ...), [`Parameter::to_document`] converts to it.
+    /// The unit in documents (mm, deg, ...).
     pub fn unit(&self) -> &'static str {
         match self.target {
             Target::Frame(i) if i < 3 => "mm",
@@ -288,11 +288,6 @@ impl Parameter {
             Target::Gravity(term) => term.unit(),
             Target::Compliance { kind, .. } => compliance_unit(kind),
         }
-    }
-
-    /// The value (SI) in the document's unit.
-    pub fn to_document(&self, si: f64) -> f64 {
-        si * self.document_factor()
     }
 
     /// The factor from SI to the document's unit.

@@ -4,10 +4,6 @@
 use nalgebra::{Vector3, Vector6};
 use stiffid_core::{Error, Result, Robot};
 
-/// The links of [`super::Gravity::Arm`] (0-based): the upper arm and the forearm (with the
-/// wrist and the tool).
-pub const ARM_BODIES: [usize; 2] = [1, 2];
-
 /// How far (rad, the sine of the angle) joint 1 may lean from the vertical, joint 2 from the
 /// horizontal and joint 3 from joint 2's direction for [`super::Gravity::Arm`]: 0.01 rad, the
 /// torques' error then within 1% of the weight's.

@@ -36,7 +36,7 @@
 //! - [`Gravity::Arm`]: masses unknown, three physical terms ([`Terms::arm`]) for a heavy
 //!   robot and thin data: the weight of the upper arm and of the forearm (with the wrist and the
 //!   tool) on the springs of joints 2 and 3, their centres on the links' axes. The upper arm's
-//!   axis runs from joint 2's axis to joint 3's ([`ARM_BODIES`]: link 1), the forearm's from
+//!   axis runs from joint 2's axis to joint 3's (link 1, 0-based), the forearm's from
 //!   joint 3's axis to the wrist point (on joint 4's axis, nearest joint 5's: link 2), both
 //!   across the joints' axes; with `phi_2` and `phi_23` their angles above the horizontal,
 //!   `dq_2 = a cos phi_2 + b cos phi_23` and `dq_3 = c cos phi_23`, each a compliance times a
@@ -47,10 +47,10 @@
 //!   (joint 1 vertical, joints 2 and 3 horizontal and parallel within [`ARM_TOLERANCE`]); any
 //!   other robot is refused, naming the joint.
 
-pub use arm::{ARM_BODIES, ARM_TOLERANCE};
 use nalgebra::{DVectorView, Matrix6, Vector3, Vector6};
 
 mod arm;
+pub use arm::ARM_TOLERANCE;
 use serde::Serialize;
 use stiffid_core::common::limits::JointBox;
 use stiffid_core::robot::kinematics::Coordinates;
@@ -178,7 +178,7 @@ impl Term {
     }
 
     /// The unit in documents.
-    pub fn unit(self) -> &'static str {
+    pub(crate) fn unit(self) -> &'static str {
         match self {
             Term::Compliance { .. } => "urad/(N m)",
             Term::Lumped { moment: 0, .. } => "urad kg/(N m)",
@@ -187,7 +187,7 @@ impl Term {
     }
 
     /// The factor from SI to the document's unit.
-    pub fn document_factor(self) -> f64 {
+    pub(crate) fn document_factor(self) -> f64 {
         1e6
     }
 
@@ -480,7 +480,7 @@ impl Terms {
 
     /// The regressor of every term at axis angles `q` (rad): the torque (N m) of a compliance
     /// term, the unit torque of a lumped one (module docs).
-    pub fn regressors(&self, q: &Vector6<f64>) -> Vec<f64> {
+    pub(crate) fn regressors(&self, q: &Vector6<f64>) -> Vec<f64> {
         if self.terms.is_empty() {
             return Vec::new();
         }
@@ -521,7 +521,7 @@ impl Terms {
     }
 
     /// [`Terms::deflection`] from the regressors of the posture ([`Terms::regressors`]).
-    pub fn deflection_from(
+    pub(crate) fn deflection_from(
         &self,
         values: &DVectorView<'_, f64>,
         regressors: &[f64],
@@ -557,7 +557,7 @@ impl Terms {
     }
 
     /// The RMS of each term's regressor over the postures `qs` (axis angles, rad).
-    pub fn regressor_rms(&self, qs: &[Vector6<f64>]) -> Vec<f64> {
+    pub(crate) fn regressor_rms(&self, qs: &[Vector6<f64>]) -> Vec<f64> {
         let mut sum = vec![0.0; self.terms.len()];
         for q in qs {
             for (s, y) in sum.iter_mut().zip(self.regressors(q)) {

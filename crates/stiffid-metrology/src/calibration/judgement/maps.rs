@@ -68,7 +68,7 @@ pub fn assess(
 ///
 /// # Errors
 /// Those of [`assess`] and [`maps::nested_given`].
-pub fn assess_given(
+pub(crate) fn assess_given(
     spec: Spec,
     (model, fitted): (&ErrorModel, &Fit),
     observations: &[Observation],

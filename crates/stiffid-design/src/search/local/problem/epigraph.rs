@@ -32,7 +32,7 @@ pub(super) struct Epigraph<'p, 'a> {
 impl<'p, 'a> Epigraph<'p, 'a> {
     /// Whether `problem` is searched in epigraph form: a maximum-type criterion with exact
     /// gradients.
-    pub fn applies(problem: &Problem) -> bool {
+    pub(crate) fn applies(problem: &Problem) -> bool {
         let maximum = matches!(
             problem.criterion,
             Criterion::Classical | Criterion::Zhang2021

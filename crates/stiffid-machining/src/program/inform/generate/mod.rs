@@ -22,11 +22,11 @@ use stiffid_core::setup::Pulses;
 use stiffid_core::Result;
 
 /// The job's comment (`///COMM`): what the pendant shows beside its name (32 characters at most).
-pub const COMM: &str = "stiffid";
+pub(crate) const COMM: &str = "stiffid";
 
 /// The tool file the moves use (`///TOOL 1`) when the controller holds the tool in none of its
 /// tool files the setup gives (`[controller] tools`), whose values the job's comments state.
-pub const TOOL: u32 = 1;
+pub(crate) const TOOL: u32 = 1;
 
 /// The tool file a job of `plan` moves with: the one the controller holds its tool in
 /// ([`crate::program::generate::numbered`]), else [`TOOL`].
