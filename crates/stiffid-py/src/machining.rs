@@ -39,8 +39,8 @@ pub fn process_force<'py>(
         process: &parsed,
         peak_resolution_deg,
     };
-    let report = force::run(&request).map_err(raise)?;
-    to_python(py, &Document::new(&report), &[])
+    let outcome = force::run(&request).map_err(raise)?;
+    to_python(py, &outcome.document, &[])
 }
 
 /// The path of the machining program ``program`` as ``stiffid compensate --program`` reads it:

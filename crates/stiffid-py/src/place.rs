@@ -135,9 +135,9 @@ pub fn place<'py>(
             seed: crate::count::seed("seed", seed)?,
         },
     };
-    let report = py.detach(|| job::run(&request)).map_err(raise)?;
-    let out = to_python(py, &Document::new(&report, &own.unwrap_or_default()), &[])?;
-    out.set_item("setup_text", &report.setup_text)?;
+    let outcome = py.detach(|| job::run(&request)).map_err(raise)?;
+    let out = to_python(py, &outcome.document, &[])?;
+    out.set_item("setup_text", &outcome.setup_text)?;
     Ok(out)
 }
 

@@ -50,10 +50,11 @@ pub fn plan<'py>(
         postures: &group,
         target_pct,
         external: &external,
+        scene: false,
     };
-    let report = py.detach(|| job::run(&request)).map_err(raise)?;
-    warn(py, &report.warnings)?;
-    to_python(py, &Document::new(&report, s), &[])
+    let outcome = py.detach(|| job::run(&request)).map_err(raise)?;
+    warn(py, &outcome.warnings)?;
+    to_python(py, &outcome.document, &[])
 }
 
 /// Each row of external values (mm, deg) in SI; rows of another length, or for a robot without

@@ -215,9 +215,9 @@ impl Robot {
             external,
             workpiece: None,
         };
-        let report = py.detach(|| job::run(request)).map_err(raise)?;
-        crate::documents::warn(py, &report.warnings)?;
-        crate::documents::to_python(py, &Document::new(&report, &self.inner), &[])
+        let outcome = py.detach(|| job::run(&request)).map_err(raise)?;
+        crate::documents::warn(py, &outcome.warnings)?;
+        crate::documents::to_python(py, &outcome.document, &[])
     }
 
     /// The robot's own characteristic length (mm) for the point ``point_mm`` (flange frame, mm;

@@ -60,11 +60,12 @@ pub fn simulate<'py>(
             runs: count("runs", runs, 1, limits::MAX_RUNS)?,
             seed,
         },
+        progress: &(),
     };
-    let report = py.detach(|| job::run(&request)).map_err(raise)?;
-    warn(py, &report.warnings)?;
+    let outcome = py.detach(|| job::run(&request)).map_err(raise)?;
+    warn(py, &outcome.warnings)?;
     let out = PyList::empty(py);
-    for g in Document::new(&report, &setup.inner).groups {
+    for g in outcome.document.groups {
         out.append(to_python(py, &g, &RATES)?)?;
     }
     Ok(out)

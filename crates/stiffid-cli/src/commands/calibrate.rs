@@ -175,7 +175,7 @@ pub fn run(args: &Args) -> Result<()> {
         },
         urdf: args.urdf_out.is_some(),
     };
-    let stiffid::app::Outcome { report, document } = job::run(&request)?;
+    let document = job::run(&request)?.document;
     // Checked before anything is written.
     let stiffness_text = match (&stiffness_out, document.stiffness_file_out()) {
         (None, _) => None,
