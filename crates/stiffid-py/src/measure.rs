@@ -298,7 +298,9 @@ pub fn identify<'py>(
         (_, Document::Drives(document)) => documents::to_python(py, document, &ARRAYS)?,
         (_, Document::Springs(document)) => documents::to_python(py, document, &MODEL_ARRAYS)?,
         (_, Document::Comparison(_)) => {
-            return Err(value("the identify job returned a document of another form than its report"))
+            return Err(value(
+                "the identify job returned a document of another form than its report",
+            ))
         }
     };
     Ok(document.into_any())

@@ -150,7 +150,8 @@ fn find(request: &Request<'_>) -> Result<Report> {
         workpiece,
     } = request;
     let (robot, q, point, coordinates) = (*robot, *q, *point, *coordinates);
-    let (characteristic_length, stiffness, workpiece) = (*characteristic_length, *stiffness, *workpiece);
+    let (characteristic_length, stiffness, workpiece) =
+        (*characteristic_length, *stiffness, *workpiece);
     let external = external.clone();
     let field = |a: usize| format!("q_deg[{}]", a + 1);
     robot.limits().check(&q, "the robot's limits", field)?;
