@@ -38,7 +38,7 @@ mod written;
 
 use crate::app::compensate::document::{Names, Summary};
 use crate::app::{Warning, WarningKind};
-use input::read_checked;
+use input::{check_tcp, read_checked};
 pub use input::{read_program, read_program_in};
 use stiffid_core::model::Parameter;
 use stiffid_core::observation::deflection::Frame;
@@ -261,17 +261,6 @@ where
         }
     };
     Ok(finish(setup, compliance, options, tally, outcome)?)
-}
-
-/// Refuses a setup without the tool's centre point.
-fn check_tcp(setup: &Setup) -> Result<()> {
-    match setup.tcp_given() {
-        true => Ok(()),
-        false => Err(Error::InvalidField {
-            field: "tool.tcp_mm".into(),
-            message: format!("missing in setup {}: compensation moves the cutting tool's centre point, which the setup must give ([tool] tcp_mm); measuring point 1 is a measuring target, not the tool", setup.name()),
-        }),
-    }
 }
 
 /// Whether the compensation moves a free variable (the tool's rotation, its lean, an external
