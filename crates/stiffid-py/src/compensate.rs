@@ -10,7 +10,7 @@ use nalgebra::Vector6;
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
 use std::path::{Path, PathBuf};
-use stiffid::app::compensate::document::{values, Document, Names, Row, DYNAMICS};
+use stiffid::app::compensate::document::{values, Names, Row, DYNAMICS};
 use stiffid::app::compensate::{self as job, Input, Request};
 use stiffid_core::observation::deflection::Frame;
 use stiffid_machining::compensate::{

@@ -8,9 +8,6 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use stiffid::app::purpose::{CalibrationOptions, Purpose};
 use stiffid::app::{evaluate, select};
-use stiffid::app::{
-    evaluate::document::Document as Evaluated, select::document::Document as Selected,
-};
 use stiffid_core::common::choice::Choice;
 use stiffid_core::common::limits::{self, check_count};
 use stiffid_core::Setup;

@@ -9,7 +9,6 @@ use nalgebra::Vector6;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
-use stiffid::app::force::document::Document;
 use stiffid::app::{compensate, force};
 use stiffid_machining::gcode::{Machine, Motion};
 use stiffid_machining::process::file;

@@ -7,7 +7,6 @@ use crate::error::raise;
 use crate::setup::Setup;
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
-use stiffid::app::plan::document::Document;
 use stiffid::app::plan::{self as job, Request};
 
 /// The measurement plan of the group ``postures_deg`` (axis angles, deg, shape ``(n, 6)``, within

@@ -11,9 +11,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
 use stiffid::app::calibrate_cell as calibrate_job;
-use stiffid::app::calibrate_cell::document::Calibration;
 use stiffid::app::register as register_job;
-use stiffid::app::register::document::{Document, Proposal};
 use stiffid_design::registration as design;
 
 /// The readings of `path` as a job's request runs on them.

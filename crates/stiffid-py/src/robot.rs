@@ -8,7 +8,6 @@ use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict, PyList};
 use std::path::{Path, PathBuf};
-use stiffid::app::kinematics::document::Document;
 use stiffid::app::kinematics::{self as job, characteristic_length_or_derived};
 use stiffid_core::common::limits;
 use stiffid_core::io::postures;

@@ -9,7 +9,6 @@ use pyo3::types::{PyAny, PyDict, PyList};
 use stiffid::app::reproduce as job_reproduce;
 use stiffid::app::reproduce::document::Summary;
 use stiffid::app::simulate as job;
-use stiffid::app::simulate::document::Document;
 use stiffid_core::common::limits::{self, check_count};
 use stiffid_design::study::simulate as monte_carlo;
 use stiffid_design::study::Options;
