@@ -219,6 +219,7 @@ fn request<'a>(
     Request {
         readings: Readings {
             setup,
+            setup_name: "bench".into(),
             name: "bench.csv".into(),
             text,
             force: false,
@@ -264,7 +265,7 @@ fn cpu() -> f64 {
 /// Runs `request` once, printing its CPU and wall time.
 fn once(name: &str, request: &Request) -> Report {
     let (c, t) = (cpu(), std::time::Instant::now());
-    let report = calibrate::run(request).unwrap();
+    let report = calibrate::run(request).unwrap().report;
     println!(
         "{name}: {:.2} s CPU, {:.2} s wall; {} {}",
         cpu() - c,

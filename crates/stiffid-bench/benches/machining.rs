@@ -75,6 +75,7 @@ fn benches(c: &mut Criterion) {
                         settings: Settings::default(),
                     },
                     options: Options::for_setup(&s),
+                    names: Default::default(),
                 };
                 compensate::run(request, |_, _, _, _| Ok::<(), stiffid::Error>(())).unwrap()
             })

@@ -74,6 +74,8 @@ fn compare_models(c: &mut Bench) {
     let job = |bootstrap| {
         run(Request {
             setup: &setup,
+            setup_name: "fanuc-r2000ic-165f".into(),
+            progress: &(),
             data: Data::File {
                 name: "measurements.csv".into(),
                 reader: black_box(text.as_bytes()),

@@ -123,6 +123,7 @@ pub fn calibrate<'py>(
     let request = job::Request {
         readings: Readings {
             setup: &setup.inner,
+            setup_name: setup.given.clone(),
             name: readings.display().to_string(),
             text: &text,
             force,
@@ -144,8 +145,7 @@ pub fn calibrate<'py>(
         weight,
         urdf: urdf_out.is_some(),
     };
-    let report = py.detach(|| job::run(&request)).map_err(raise)?;
-    let document = Document::new(&report, &setup.given);
+    let document = py.detach(|| job::run(&request)).map_err(raise)?.document;
     let writes = writes(
         &document,
         [

@@ -3,7 +3,6 @@
 //! writes it, plus the selection path as arrays and names.
 
 use crate::documents;
-use crate::setup::Setup;
 use numpy::IntoPyArray;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -15,12 +14,11 @@ use stiffid_identify::compare::document::{Document, ModelDoc};
 /// (key `fragment`).
 pub fn compare_models<'py>(
     py: Python<'py>,
-    setup: &Setup,
     report: &Report,
+    document: &Document,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let document = report.document(&setup.given);
-    let d = documents::to_python(py, &document, &[])?;
-    d.set_item("table", table(py, &document)?)?;
+    let d = documents::to_python(py, document, &[])?;
+    d.set_item("table", table(py, document)?)?;
     d.set_item("fragment", report.fragment())?;
     Ok(d)
 }

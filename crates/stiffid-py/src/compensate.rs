@@ -10,7 +10,7 @@ use nalgebra::Vector6;
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
 use std::path::{Path, PathBuf};
-use stiffid::app::compensate::document::{values, Document, Names, Row, DYNAMICS};
+use stiffid::app::compensate::document::{values, Names, Row, DYNAMICS};
 use stiffid::app::compensate::{self as job, Input, Request};
 use stiffid_core::observation::deflection::Frame;
 use stiffid_machining::compensate::{
@@ -169,11 +169,20 @@ pub fn compensate<'py>(
     let settings = (targets, max_tcp_speed_mm_s, name_length, moves_per_file);
     let texts = (name.as_str(), (text.as_str(), data.as_deref()), frame);
     let input = input_of(texts, (&program, &process), how, settings)?;
+    let names = Names {
+        setup: setup.given.clone(),
+        stiffness: stiffness
+            .extract::<PathBuf>()
+            .map_or("arrays".into(), |p| p.display().to_string()),
+        out: String::new(),
+        program_out: String::new(),
+    };
     let request = Request {
         setup: s,
         compliance,
         input,
         options,
+        names,
     };
     let mut points: Vec<PathPoint> = Vec::new();
     let mut results: Vec<Compensated> = Vec::new();
@@ -182,7 +191,7 @@ pub fn compensate<'py>(
     let at = (stiffid::app::compensate::document::header().iter())
         .position(|h| h == DYNAMICS[0])
         .unwrap_or(0);
-    let report = py
+    let outcome = py
         .detach(|| {
             job::run(
                 request,
@@ -199,21 +208,18 @@ pub fn compensate<'py>(
             )
         })
         .map_err(raise)?;
+    let stiffid::app::Outcome {
+        report,
+        mut document,
+    } = outcome;
     warn(py, &report.warnings)?;
-    let names = Names {
-        setup: setup.given.clone(),
-        stiffness: stiffness
-            .extract::<PathBuf>()
-            .map_or("arrays".into(), |p| p.display().to_string()),
-        out: String::new(),
-        program_out: String::new(),
-    };
     let out = table(py, &results, &points)?;
     for (k, name) in DYNAMICS.iter().enumerate() {
         let column = dynamics.iter().map(|v| v[k].unwrap_or(f64::NAN));
         out.set_item(*name, arrays::vec1(py, column))?;
     }
-    let document = Document::new(&report, &names, rows);
+    // The job's document gets the rows the sink received.
+    document.points = rows;
     out.set_item("document", to_python(py, &document, &[])?)?;
     if figures {
         let sample = stiffid_figures::compensate::sample(&report);

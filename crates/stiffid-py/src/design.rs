@@ -8,9 +8,6 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use stiffid::app::purpose::{CalibrationOptions, Purpose};
 use stiffid::app::{evaluate, select};
-use stiffid::app::{
-    evaluate::document::Document as Evaluated, select::document::Document as Selected,
-};
 use stiffid_core::common::choice::Choice;
 use stiffid_core::common::limits::{self, check_count};
 use stiffid_core::Setup;
@@ -70,9 +67,9 @@ pub fn evaluate<'py>(
         postures: group,
         candidates,
     };
-    let report = py.detach(|| evaluate::run(&request)).map_err(raise)?;
-    warn(py, &report.warnings)?;
-    to_python(py, &Evaluated::new(&report, setup), &CRITERIA_ARRAYS)
+    let outcome = py.detach(|| evaluate::run(&request)).map_err(raise)?;
+    warn(py, &outcome.warnings)?;
+    to_python(py, &outcome.document, &CRITERIA_ARRAYS)
 }
 
 /// The arguments of `Setup.select`, the shapes of the arrays checked.
@@ -179,9 +176,9 @@ pub fn select<'py>(py: Python<'py>, setup: &Setup, r: Request) -> PyResult<Bound
         stations: stations(setup, &r.stations)?,
         progress: &(),
     };
-    let report = py.detach(|| select::run(&request)).map_err(raise)?;
-    warn(py, &report.warnings)?;
-    to_python(py, &Selected::new(&report, setup), &["postures_deg"])
+    let outcome = py.detach(|| select::run(&request)).map_err(raise)?;
+    warn(py, &outcome.warnings)?;
+    to_python(py, &outcome.document, &["postures_deg"])
 }
 
 /// The size of a searched group: 2 to 100 postures.

@@ -9,7 +9,6 @@ use nalgebra::Vector6;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
-use stiffid::app::force::document::Document;
 use stiffid::app::{compensate, force};
 use stiffid_machining::gcode::{Machine, Motion};
 use stiffid_machining::process::file;
@@ -39,8 +38,8 @@ pub fn process_force<'py>(
         process: &parsed,
         peak_resolution_deg,
     };
-    let report = force::run(&request).map_err(raise)?;
-    to_python(py, &Document::new(&report), &[])
+    let outcome = force::run(&request).map_err(raise)?;
+    to_python(py, &outcome.document, &[])
 }
 
 /// The path of the machining program ``program`` as ``stiffid compensate --program`` reads it:

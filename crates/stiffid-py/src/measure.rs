@@ -13,12 +13,10 @@ use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
 use std::fs::File;
 use std::path::PathBuf;
-use stiffid::app::identify::document::drives::Document;
-use stiffid::app::identify::document::springs::Document as ModelDocument;
+use stiffid::app::identify::document::Document;
 use stiffid::app::identify::{self as job, Options, Report, Request};
 use stiffid::app::measurements::Data;
 use stiffid::app::validate as validation;
-use stiffid::app::validate::document::Document as Checked;
 use stiffid_core::io::Capped;
 use stiffid_core::observation::Measurement;
 use stiffid_identify::Loss;
@@ -278,13 +276,15 @@ pub fn identify<'py>(
     let data = job_data(s, measurements, [q_deg, wrench, displacement_mm], point)?;
     let request = Request {
         setup: s,
+        setup_name: setup.given.clone(),
         data,
         options,
+        progress: &(),
     };
-    let report = py.detach(|| job::run(request)).map_err(raise)?;
-    documents::warn(py, report.warnings())?;
-    let document = match &report {
-        Report::Comparison(r) => {
+    let outcome = py.detach(|| job::run(request)).map_err(raise)?;
+    documents::warn(py, outcome.warnings())?;
+    let document = match (&outcome.report, &outcome.document) {
+        (Report::Comparison(r), Document::Comparison(document)) => {
             if let Some(file) = &stiffness_file {
                 let spell = |o: stiffid_core::common::error::JobOption| o.name().to_string();
                 let text = r.stiffness_file_text(&setup.given, s, &spell);
@@ -293,15 +293,14 @@ pub fn identify<'py>(
                     None => return Err(value("stiffness_out: only with bootstrap=N")),
                 }
             }
-            compare::compare_models(py, setup, r)?
+            compare::compare_models(py, r, document)?
         }
-        Report::Drives(r) => {
-            let document = Document::new(r, &setup.given, &setup.inner);
-            documents::to_python(py, &document, &ARRAYS)?
-        }
-        Report::Springs(r) => {
-            let document = ModelDocument::new(r, &setup.given, &setup.inner);
-            documents::to_python(py, &document, &MODEL_ARRAYS)?
+        (_, Document::Drives(document)) => documents::to_python(py, document, &ARRAYS)?,
+        (_, Document::Springs(document)) => documents::to_python(py, document, &MODEL_ARRAYS)?,
+        (_, Document::Comparison(_)) => {
+            return Err(value(
+                "the identify job returned a document of another form than its report",
+            ))
         }
     };
     Ok(document.into_any())
@@ -343,15 +342,16 @@ pub fn validate<'py>(
         crate::stiffness::compliance(s, stiffness_nm_per_rad, None, "stiffness_nm_per_rad")?;
     let data = job_data(s, measurements, [q_deg, wrench, displacement_mm], point)?;
     let request = validation::Request {
+        setup_name: setup.given.clone(),
         setup: s,
         compliance: &compliance,
         data,
         level,
     };
-    let report = py.detach(|| validation::run(request)).map_err(raise)?;
-    documents::warn(py, &report.warnings)?;
-    let document = Checked::new(&report, &setup.given, s);
-    let d = documents::to_python(py, &document, &[])?;
+    let outcome = py.detach(|| validation::run(request)).map_err(raise)?;
+    documents::warn(py, &outcome.warnings)?;
+    let document = &outcome.document;
+    let d = documents::to_python(py, document, &[])?;
     let checks = &document.checks;
     let delta_b = checks.iter().map(|c| c.delta_b_mm);
     d.set_item("delta_b_mm", arrays::vec1(py, delta_b))?;

@@ -7,7 +7,6 @@ use crate::setup::Setup;
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
 use std::path::PathBuf;
-use stiffid::app::place::document::Document;
 use stiffid::app::place::search::Effort;
 use stiffid::app::place::{self as job, Region, Request, Work};
 use stiffid_core::observation::deflection::Frame;
@@ -135,9 +134,9 @@ pub fn place<'py>(
             seed: crate::count::seed("seed", seed)?,
         },
     };
-    let report = py.detach(|| job::run(&request)).map_err(raise)?;
-    let out = to_python(py, &Document::new(&report, &own.unwrap_or_default()), &[])?;
-    out.set_item("setup_text", &report.setup_text)?;
+    let outcome = py.detach(|| job::run(&request)).map_err(raise)?;
+    let out = to_python(py, &outcome.document, &[])?;
+    out.set_item("setup_text", &outcome.setup_text)?;
     Ok(out)
 }
 

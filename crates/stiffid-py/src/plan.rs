@@ -7,7 +7,6 @@ use crate::error::raise;
 use crate::setup::Setup;
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
-use stiffid::app::plan::document::Document;
 use stiffid::app::plan::{self as job, Request};
 
 /// The measurement plan of the group ``postures_deg`` (axis angles, deg, shape ``(n, 6)``, within
@@ -50,10 +49,11 @@ pub fn plan<'py>(
         postures: &group,
         target_pct,
         external: &external,
+        scene: false,
     };
-    let report = py.detach(|| job::run(&request)).map_err(raise)?;
-    warn(py, &report.warnings)?;
-    to_python(py, &Document::new(&report, s), &[])
+    let outcome = py.detach(|| job::run(&request)).map_err(raise)?;
+    warn(py, &outcome.warnings)?;
+    to_python(py, &outcome.document, &[])
 }
 
 /// Each row of external values (mm, deg) in SI; rows of another length, or for a robot without

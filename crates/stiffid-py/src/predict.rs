@@ -188,7 +188,8 @@ impl Options {
         wrench: Vector6<f64>,
     ) -> stiffid_core::Result<Document> {
         let s = &setup.inner;
-        let report = job::run(job::Request {
+        let outcome = job::run(&job::Request {
+            setup_name: setup.given.clone(),
             setup: s,
             q,
             wrench,
@@ -197,7 +198,7 @@ impl Options {
             compliance: self.compliance.clone(),
             level: self.level,
         })?;
-        Ok(Document::new(&report, &setup.given))
+        Ok(outcome.document)
     }
 }
 

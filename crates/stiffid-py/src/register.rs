@@ -11,9 +11,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
 use stiffid::app::calibrate_cell as calibrate_job;
-use stiffid::app::calibrate_cell::document::Calibration;
 use stiffid::app::register as register_job;
-use stiffid::app::register::document::{Document, Proposal};
 use stiffid_design::registration as design;
 
 /// The readings of `path` as a job's request runs on them.
@@ -25,6 +23,7 @@ fn with_request<T>(
     let text = error::read(&path)?;
     let request = register_job::Request {
         setup: &setup.inner,
+        setup_name: setup.given.clone(),
         name: path.display().to_string(),
         text: &text,
         force,
@@ -86,6 +85,7 @@ pub fn register<'py>(
             let defaults = design::Options::default();
             let request = register_job::DesignRequest {
                 setup: &setup.inner,
+                setup_name: setup.given.clone(),
                 postures: n,
                 options: design::Options {
                     seed,
@@ -94,11 +94,11 @@ pub fn register<'py>(
                 },
                 force,
             };
-            let report = py
+            let proposed = py
                 .detach(|| register_job::propose(&request))
                 .map_err(raise)?;
-            warn(py, &report.warnings)?;
-            return to_python(py, &Proposal::new(&report, &setup.given), &[]);
+            warn(py, &proposed.warnings)?;
+            return to_python(py, &proposed.document, &[]);
         }
         _ => {
             return Err(raise(stiffid_core::Error::InvalidField {
@@ -108,11 +108,11 @@ pub fn register<'py>(
             }))
         }
     };
-    let report = with_request(setup, (readings, force), |r| {
+    let outcome = with_request(setup, (readings, force), |r| {
         py.detach(|| register_job::run(r))
     })?;
-    warn(py, &report.warnings)?;
-    to_python(py, &Document::new(&report, &setup.given), &[])
+    warn(py, &outcome.warnings)?;
+    to_python(py, &outcome.document, &[])
 }
 
 /// Calibrates the cell from unloaded ``readings`` (the ``register`` format) of postures that turn
@@ -132,9 +132,9 @@ pub fn calibrate_cell<'py>(
     readings: PathBuf,
     force: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let report = with_request(setup, (readings, force), |r| {
+    let outcome = with_request(setup, (readings, force), |r| {
         py.detach(|| calibrate_job::run(r))
     })?;
-    warn(py, &report.warnings)?;
-    to_python(py, &Calibration::new(&report, &setup.given), &[])
+    warn(py, &outcome.warnings)?;
+    to_python(py, &outcome.document, &[])
 }

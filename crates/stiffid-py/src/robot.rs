@@ -8,7 +8,6 @@ use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict, PyList};
 use std::path::{Path, PathBuf};
-use stiffid::app::kinematics::document::Document;
 use stiffid::app::kinematics::{self as job, characteristic_length_or_derived};
 use stiffid_core::common::limits;
 use stiffid_core::io::postures;
@@ -215,9 +214,9 @@ impl Robot {
             external,
             workpiece: None,
         };
-        let report = py.detach(|| job::run(request)).map_err(raise)?;
-        crate::documents::warn(py, &report.warnings)?;
-        crate::documents::to_python(py, &Document::new(&report, &self.inner), &[])
+        let outcome = py.detach(|| job::run(&request)).map_err(raise)?;
+        crate::documents::warn(py, &outcome.warnings)?;
+        crate::documents::to_python(py, &outcome.document, &[])
     }
 
     /// The robot's own characteristic length (mm) for the point ``point_mm`` (flange frame, mm;

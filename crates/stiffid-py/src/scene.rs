@@ -137,7 +137,7 @@ fn own(kind: &str) -> bool {
     matches!(kind, "plan" | "calibrate" | "compensate")
 }
 
-/// The plan's scene of `group` ([`job::document::scene`]) at the external values `external`
+/// The plan's scene of `group` ([`job::Outcome::scene`]) at the external values `external`
 /// (SI, one row per posture; empty: every axis at 0).
 fn plan_scene(
     py: Python<'_>,
@@ -151,9 +151,12 @@ fn plan_scene(
         postures: group,
         target_pct: None,
         external,
+        scene: true,
     };
-    py.detach(|| job::run(&request).and_then(|r| job::document::scene(&r, s)))
-        .map_err(raise)
+    let outcome = py.detach(|| job::run(&request)).map_err(raise)?;
+    outcome
+        .scene
+        .ok_or_else(|| value("the plan job returned no scene"))
 }
 
 /// A plan document's external values (`postures[].e1_mm`, .., the cell's columns), SI; empty

@@ -9,7 +9,6 @@ use pyo3::types::{PyAny, PyDict, PyList};
 use stiffid::app::reproduce as job_reproduce;
 use stiffid::app::reproduce::document::Summary;
 use stiffid::app::simulate as job;
-use stiffid::app::simulate::document::Document;
 use stiffid_core::common::limits::{self, check_count};
 use stiffid_design::study::simulate as monte_carlo;
 use stiffid_design::study::Options;
@@ -60,11 +59,12 @@ pub fn simulate<'py>(
             runs: count("runs", runs, 1, limits::MAX_RUNS)?,
             seed,
         },
+        progress: &(),
     };
-    let report = py.detach(|| job::run(&request)).map_err(raise)?;
-    warn(py, &report.warnings)?;
+    let outcome = py.detach(|| job::run(&request)).map_err(raise)?;
+    warn(py, &outcome.warnings)?;
     let out = PyList::empty(py);
-    for g in Document::new(&report, &setup.inner).groups {
+    for g in outcome.document.groups {
         out.append(to_python(py, &g, &RATES)?)?;
     }
     Ok(out)

@@ -149,6 +149,7 @@ pub fn run(args: &Args) -> Result<()> {
     let request = job::Request {
         readings: Readings {
             setup: &setup,
+            setup_name: args.common.setup.clone(),
             name: path.display().to_string(),
             text: &content,
             force: args.force,
@@ -174,8 +175,7 @@ pub fn run(args: &Args) -> Result<()> {
         },
         urdf: args.urdf_out.is_some(),
     };
-    let report = job::run(&request)?;
-    let document = Document::new(&report, &args.common.setup);
+    let document = job::run(&request)?.document;
     // Checked before anything is written.
     let stiffness_text = match (&stiffness_out, document.stiffness_file_out()) {
         (None, _) => None,

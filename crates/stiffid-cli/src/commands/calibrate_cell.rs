@@ -20,10 +20,8 @@ pub struct Args {
 /// Runs `stiffid calibrate-cell`.
 pub fn run(args: &Args) -> Result<()> {
     let setup = args.readings.setup()?;
-    let name = &args.readings.common.setup;
     let job = |request: &job::Request<'_>| {
-        let report = job::run(request)?;
-        let document = Calibration::new(&report, name);
+        let stiffid::app::Outcome { report, document } = job::run(request)?;
         Ok(Outcome {
             fragment: document.fragment.clone(),
             document,

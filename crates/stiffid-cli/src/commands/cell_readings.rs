@@ -66,6 +66,7 @@ impl Args {
         let out = self.prepare_out()?;
         let request = Request {
             setup,
+            setup_name: self.common.setup.clone(),
             name: path.display().to_string(),
             text: &content,
             force: self.force,

@@ -246,24 +246,27 @@ pub fn run(args: &Args) -> Result<()> {
         .then(|| out.writer().map(Points::new))
         .transpose()?;
     let mut sinks = Sinks { csv, cell, rows };
+    let names = names(args);
     let request = Request {
         setup: &setup,
         compliance,
         input,
         options,
+        names: names.clone(),
     };
     // The points are counted as they come (a program's are known only once its arcs are split).
     let bars = Bars::new(false);
     bars.begin("points compensated", 0);
-    let report = match job::run(request, |first, p, r, d| {
+    let outcome = match job::run(request, |first, p, r, d| {
         bars.advance(first + p.len());
         sinks.write(first, p, r, d).map_err(Failure::Output)
     }) {
-        Ok(report) => report,
+        Ok(outcome) => outcome,
         Err(Failure::Output(e)) => return Err(e),
         Err(Failure::Library(e)) => return Err(e.into()),
     };
     bars.end();
+    let stiffid::app::Outcome { report, document } = outcome;
     output::warnings(&report.warnings);
     let Sinks { mut csv, rows, .. } = sinks;
     csv.sync()?;
@@ -273,8 +276,8 @@ pub fn run(args: &Args) -> Result<()> {
     ) {
         o.write(d.as_bytes())?;
     }
-    let names = names(args);
-    finish(args, &setup, &report, &names, csv, rows, &out, report_dir)?;
+    let written = (&report, &document, &names);
+    finish(args, &setup, written, csv, rows, &out, report_dir)?;
     Ok(())
 }
 
@@ -354,8 +357,7 @@ fn names(args: &Args) -> Names {
 fn finish(
     args: &Args,
     setup: &Setup,
-    report: &Report,
-    names: &Names,
+    (report, typed, names): (&Report, &Document, &Names),
     csv: Writer,
     rows: Option<Points<Writer>>,
     out: &OutFile,
@@ -370,7 +372,6 @@ fn finish(
         write_subprograms(&args.out, &p.subprograms)?;
     }
     // The document without its points, which the library writes from the rows stored.
-    let typed = Document::new(report, names, Vec::new());
     let rows_path = rows.as_ref().map(|r| r.path().to_path_buf());
     let json = |w: &mut dyn Write| match &rows_path {
         Some(p) => typed
@@ -383,7 +384,7 @@ fn finish(
             report,
             csv: csv.path(),
             summary: &json,
-            document: &typed,
+            document: typed,
         };
         compensation::write(dir, setup, &view)?;
     }
@@ -392,7 +393,7 @@ fn finish(
     }
     match (args.common.json, &rows_path) {
         (true, Some(_)) => write_stdout_with(&json),
-        _ => print(&human(args, setup, report, names)),
+        _ => print(&human(args, setup, report, names, typed)),
     }
 }
 
@@ -522,13 +523,12 @@ fn made_of(b: &stiffid::app::compensate::budget::BudgetSummary) -> String {
 
 /// The text summary: what was compensated, the error bound, the free variables, what was
 /// written.
-fn human(args: &Args, setup: &Setup, report: &Report, names: &Names) -> String {
-    let doc = Document::new(report, names, Vec::new());
-    let mut text = head(setup, report, names, &doc);
-    text += &bound(&doc);
+fn human(args: &Args, setup: &Setup, report: &Report, names: &Names, doc: &Document) -> String {
+    let mut text = head(setup, report, names, doc);
+    text += &bound(doc);
     text += &made_of(&doc.summary.budget);
-    text += &free(&doc);
-    text += &written(args, report, names, &doc);
+    text += &free(doc);
+    text += &written(args, report, names, doc);
     text
 }
 

@@ -144,12 +144,12 @@ pub fn run(args: &Args) -> Result<()> {
         calibration: args.purpose.options(),
         candidates: args.candidates.clone(),
     };
-    let report = job::run(&request).map_err(|e| match e {
+    let stiffid::app::Outcome { report, document } = job::run(&request).map_err(|e| match e {
         Error::InvalidOption { .. } => e.into(),
         e => anyhow::Error::new(e).context(args.postures.display().to_string()),
     })?;
     output::warnings(&report.warnings);
-    let doc = Document::new(&report, &setup);
+    let doc = document;
     if args.common.json {
         return output::print(&json(&doc)?);
     }

@@ -40,15 +40,15 @@ pub fn run(args: &Args) -> Result<()> {
     // The job reports no count: a spinner while the peaks are searched.
     let bars = Bars::new(false);
     bars.begin("forces", 0);
-    let report = force::run(&request);
+    let outcome = force::run(&request);
     bars.end();
-    let report = report.map_err(|e| match e {
+    let outcome = outcome.map_err(|e| match e {
         stiffid_core::Error::InvalidField { field, message } => {
             anyhow::anyhow!("--{}: {message}", field.replace('_', "-"))
         }
         e => e.into(),
     })?;
-    print_json_or(args.json, &Document::new(&report), human)
+    print_json_or(args.json, &outcome.document, human)
 }
 
 fn human(d: &Document) -> String {

@@ -81,12 +81,12 @@ pub fn run(args: &Args) -> Result<()> {
         external,
         workpiece,
     };
-    let report = job::run(request).with_context(|| match args.characteristic_length_mm {
+    let outcome = job::run(&request).with_context(|| match args.characteristic_length_mm {
         Some(_) => "--characteristic-length-mm",
         None => "give --characteristic-length-mm",
     })?;
-    output::warnings(&report.warnings);
-    output::print_json_or(args.json, &Document::new(&report, &robot), text)
+    output::warnings(&outcome.warnings);
+    output::print_json_or(args.json, &outcome.document, text)
 }
 
 fn text(r: &Document) -> String {

@@ -179,12 +179,11 @@ pub fn run(args: &Args) -> Result<()> {
     };
     let bars = Bars::new(false);
     bars.begin("placements", 0);
-    let report = place::run(&request);
+    let outcome = place::run(&request);
     bars.end();
-    let report = report.map_err(option_error)?;
+    let stiffid::app::Outcome { report, document } = outcome.map_err(option_error)?;
     check_loads(&report.setup_text, &args.out)?;
     out.write(report.setup_text.as_bytes())?;
-    let document = Document::new(&report, &own.unwrap_or_default());
     print_json_or(args.json, &document, |d| human(d, &args.out))
 }
 

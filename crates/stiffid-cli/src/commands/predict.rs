@@ -65,7 +65,8 @@ pub fn run(args: &Args) -> Result<()> {
         Some(path) => Some(load::stiffness(path, &setup)?),
         None => None,
     };
-    let report = predict::run(predict::Request {
+    let outcome = predict::run(&predict::Request {
+        setup_name: args.common.setup.clone(),
         setup: &setup,
         q,
         wrench,
@@ -74,9 +75,8 @@ pub fn run(args: &Args) -> Result<()> {
         compliance,
         level: args.level,
     })?;
-    crate::output::warnings(&report.warnings);
-    let document = Document::new(&report, &args.common.setup);
-    print_json_or(args.common.json, &document, human)
+    crate::output::warnings(&outcome.warnings);
+    print_json_or(args.common.json, &outcome.document, human)
 }
 
 fn human(r: &Document) -> String {

@@ -41,13 +41,11 @@ pub struct Args {
 /// Runs `stiffid register`.
 pub fn run(args: &Args) -> Result<()> {
     let setup = args.readings.setup()?;
-    let name = &args.readings.common.setup;
     if let Some(n) = args.count {
         return propose(args, &setup, n as usize);
     }
     let job = |request: &job::Request<'_>| {
-        let report = job::run(request)?;
-        let document = Document::new(&report, name);
+        let stiffid::app::Outcome { report, document } = job::run(request)?;
         Ok(Outcome {
             fragment: document.fragment.clone(),
             document,
@@ -63,6 +61,7 @@ fn propose(args: &Args, setup: &stiffid_core::Setup, n: usize) -> Result<()> {
     let defaults = design::Options::default();
     let request = job::DesignRequest {
         setup,
+        setup_name: args.readings.common.setup.clone(),
         postures: n,
         options: design::Options {
             seed: args.seed,
@@ -74,10 +73,9 @@ fn propose(args: &Args, setup: &stiffid_core::Setup, n: usize) -> Result<()> {
     // The exchange runs report nothing as they go: a spinner says the choice is running.
     let bars = Bars::new(false);
     bars.begin("registration postures", 0);
-    let report = job::propose(&request);
+    let proposed = job::propose(&request);
     bars.end();
-    let report = report?;
-    let document = Proposal::new(&report, &args.readings.common.setup);
+    let document = proposed?.document;
     if let Some(out) = &out {
         out.write(document.readings_template.as_bytes())?;
     }

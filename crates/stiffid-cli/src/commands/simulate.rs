@@ -69,10 +69,11 @@ pub fn run(args: &Args) -> Result<()> {
             runs: args.runs as usize,
             seed: args.seed,
         },
+        progress: &Bars::new(false),
     };
-    let report = job::run_with_progress(&request, &Bars::new(false))?;
+    let stiffid::app::Outcome { report, document } = job::run(&request)?;
     output::warnings(&report.warnings);
-    let doc = Document::new(&report, &setup);
+    let doc = document;
     let (sims, levels) = (&report.simulations, &setup.noise().levels);
     if let Some(dir) = out {
         dir.write(FILES[0], deviation_csv(&names, sims, levels).as_bytes())?;

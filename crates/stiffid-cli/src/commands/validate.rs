@@ -40,7 +40,8 @@ pub fn run(args: &Args) -> Result<()> {
     // The job reports no count: a spinner says it is reading and predicting.
     let bars = Bars::new(false);
     bars.begin("validation", 0);
-    let report = job::run(Request {
+    let outcome = job::run(Request {
+        setup_name: args.common.setup.clone(),
         setup: &setup,
         compliance: &compliance,
         data: Data::File {
@@ -50,10 +51,9 @@ pub fn run(args: &Args) -> Result<()> {
         level: args.level,
     });
     bars.end();
-    let report = report?;
-    output::warnings(&report.warnings);
-    let doc = Document::new(&report, &args.common.setup, &setup);
-    print_json_or(args.common.json, &doc, human)
+    let outcome = outcome?;
+    output::warnings(&outcome.warnings);
+    print_json_or(args.common.json, &outcome.document, human)
 }
 
 fn human(r: &Document) -> String {

@@ -89,10 +89,14 @@ pub fn write(
         postures,
         target_pct: target.map(|t| t.target_pct),
         external,
+        scene: true,
     };
-    let report = job::run(&request)?;
-    let doc = Document::new(&report, setup);
-    let scene = job::document::scene(&report, setup)?;
+    let job::Outcome {
+        document: doc,
+        scene,
+        ..
+    } = job::run(&request)?;
+    let scene = scene.ok_or_else(|| anyhow::anyhow!("the plan job returned no scene"))?;
     let plan = Plan {
         setup,
         postures,

@@ -65,7 +65,8 @@ fn predict_gives_the_librarys_modes_effective_mass_and_surge() {
         |_, _| stiffid_core::robot::file::parse(&robot_text(false), "robot.toml"),
     )
     .unwrap();
-    let report = predict::run(predict::Request {
+    let outcome = predict::run(&predict::Request {
+        setup_name: setup_path.clone(),
         setup: &setup,
         q: Vector6::new(10.0, -20.0, -100.0, 30.0, 40.0, 50.0).map(f64::to_radians),
         wrench: Vector6::new(200.0, -100.0, -1500.0, 0.0, 0.0, 0.0),
@@ -75,8 +76,7 @@ fn predict_gives_the_librarys_modes_effective_mass_and_surge() {
         level: None,
     })
     .unwrap();
-    let library =
-        serde_json::to_value(predict::document::Document::new(&report, &setup_path)).unwrap();
+    let library = serde_json::to_value(&outcome.document).unwrap();
     for key in [
         "natural_frequencies_hz",
         "mode_shapes",
@@ -136,7 +136,7 @@ fn kinematics_gives_the_librarys_frequencies_with_a_stiffness() {
     assert_success(&out);
     let v = json(&out);
     let robot = stiffid_core::robot::file::parse(&robot_text(false), "robot.toml").unwrap();
-    let report = kinematics::run(kinematics::Request {
+    let report = kinematics::run(&kinematics::Request {
         robot: &robot,
         q: Vector6::new(10.0, -20.0, -100.0, 30.0, 40.0, 50.0).map(f64::to_radians),
         point: Vector3::new(0.15, 0.0, 0.2),
@@ -149,7 +149,7 @@ fn kinematics_gives_the_librarys_frequencies_with_a_stiffness() {
         workpiece: None,
     })
     .unwrap();
-    let expected = report.modes.unwrap().frequencies;
+    let expected = report.report.modes.unwrap().frequencies;
     let got: Vec<f64> = serde_json::from_value(v["natural_frequencies_hz"].clone()).unwrap();
     assert_eq!(got, expected.to_vec());
     // Without a stiffness: the mass matrix, no frequencies.

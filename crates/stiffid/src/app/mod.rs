@@ -3,20 +3,25 @@
 //! # The pattern
 //! A job is a module with
 //! - a typed **request** (`Request`): everything the job needs, in SI units and library types
-//!   (a [`Setup`](stiffid_core::Setup), the data or where to read it, the choices as library enums);
-//! - `run(&Request) -> Result<Report>`: the whole job (every check and every decision about what
-//!   to compute), and nothing about how the result is shown;
-//! - a typed **report** (`Report`): what the job found, in SI units, with
-//!   `warnings: Vec<Warning>`: results the user must look at before trusting them (a likely unit
-//!   mistake, a stiffness that is not physical).
+//!   (a [`Setup`](stiffid_core::Setup), the data or where to read it, the choices as library enums,
+//!   the names its document states: the setup's as the user gave it, the files written), and
+//!   where the job reports progress (a `progress: &dyn Progress` field) if it takes long;
+//! - `run(&Request) -> Result<Outcome>`: the whole job (every check and every decision about what
+//!   to compute), and nothing about how the result is shown. The one job that streams its rows,
+//!   [`compensate`], takes a second argument, the sink that receives them in path order;
+//! - an **outcome** (`Outcome`, an [`Outcome`]`<Report, Document>`, or the job's own struct
+//!   where it returns more, a scene or a written file): the typed **report** (`Report`) of what
+//!   the job found, in SI units, with `warnings: Vec<Warning>`: results the user must look at
+//!   before trusting them (a likely unit mistake, a stiffness that is not physical); and the
+//!   **document** the job writes (the JSON stiffid writes, mm and deg with units in every key,
+//!   its types in the job's `document` module and in [`crate::app::document`]).
 //!
-//! The output documents (the JSON and CSV stiffid writes, units in every key) are built from the
-//! reports in [`crate::app::document`]. Front ends only parse, call and render: the command line
-//! (`stiffid`) turns its arguments into a request, calls `run`, prints each warning as
-//! `warning: MESSAGE` on stderr and renders the report as text or its document as JSON; the
-//! Python package raises each warning as a `UserWarning` with the same message and returns the
-//! document as dicts and arrays. The same call therefore gives the same document and the same
-//! warnings from both.
+//! Front ends only parse, call and render: the command line (`stiffid`) turns its arguments into
+//! a request, calls `run`, prints each warning as `warning: MESSAGE` on stderr and renders the
+//! report as text or prints the document as JSON; the Python package raises each warning as a
+//! `UserWarning` with the same message and returns the document as dicts and arrays. Neither
+//! builds a document: the same call therefore gives the same document and the same warnings from
+//! both.
 //!
 //! Errors are [`stiffid_core::Error`]s that speak of fields and files (`folds`, `data.csv: line 4`),
 //! never of one front end's options; each front end adds its own hints.
@@ -46,6 +51,25 @@ pub mod document;
 pub use stiffid_core::common::warning::{Warning, WarningKind};
 
 use stiffid_core::Error;
+
+/// What a job returns: the report of what it found (SI units) and the document it writes (mm,
+/// deg, units in every key). It reads as its report (`outcome.warnings`, `&outcome` where a
+/// `&Report` is expected).
+#[derive(Debug, Clone)]
+pub struct Outcome<R, D> {
+    /// What the job found, SI units.
+    pub report: R,
+    /// The document the job writes: `--json` and the Python function's result.
+    pub document: D,
+}
+
+impl<R, D> std::ops::Deref for Outcome<R, D> {
+    type Target = R;
+
+    fn deref(&self) -> &R {
+        &self.report
+    }
+}
 
 /// `error` about the data named `name`.
 pub fn in_data(name: &str, error: Error) -> Error {

@@ -11,6 +11,9 @@ use stiffid_metrology::register::{self, suspect, Registration, Suspect};
 pub struct Request<'a> {
     /// The setup: robot, tool (its measuring points), tracker.
     pub setup: &'a Setup,
+    /// The setup as the user named it (a built-in setup's name or a file's path): what the
+    /// job's document states.
+    pub setup_name: String,
     /// The readings file's name (for errors and the document).
     pub name: String,
     /// Its text: `posture,point,q1_deg..q6_deg,x_tracker_mm,y_tracker_mm,z_tracker_mm`

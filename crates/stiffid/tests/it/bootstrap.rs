@@ -65,6 +65,8 @@ fn the_bootstrap_is_seeded_and_independent_of_the_thread_count() {
             .unwrap()
             .install(|| {
                 let report = run(Request::<Empty> {
+                    progress: &(),
+                    setup_name: "setup".into(),
                     setup: &declared,
                     data: Data::Measurements(data.clone()),
                     options: Options {
@@ -76,7 +78,7 @@ fn the_bootstrap_is_seeded_and_independent_of_the_thread_count() {
                     },
                 })
                 .unwrap();
-                let Report::Comparison(report) = report else {
+                let Report::Comparison(report) = report.report else {
                     panic!("not a comparison")
                 };
                 serde_json::to_string(&report.document("paper")).unwrap()
@@ -253,6 +255,8 @@ fn the_bootstrap_reports_each_resample_as_progress() {
     let heard = Heard::default();
     let request = Request::<Empty> {
         setup: &declared,
+        setup_name: "declared".into(),
+        progress: &heard,
         data: Data::Measurements(data),
         options: Options {
             compare_models: true,
@@ -262,7 +266,7 @@ fn the_bootstrap_reports_each_resample_as_progress() {
             ..Options::default()
         },
     };
-    stiffid::app::identify::run_with_progress(request, &heard).unwrap();
+    stiffid::app::identify::run(request).unwrap();
     let stages = heard.0.into_inner().unwrap();
     assert_eq!(stages, [("bootstrap resamples".to_string(), 12, 12)]);
 }

@@ -194,6 +194,7 @@ fn a_bound_above_the_largest_error_accepted_is_refused_naming_the_worst_points()
         text += &format!("{},{},0,{}\n", deg.join(","), 100.0 * i as f64, -300.0);
     }
     let request = |max_error| Request {
+        names: Default::default(),
         setup: &s,
         compliance: compliance.clone(),
         input: Input::Path {

@@ -171,7 +171,7 @@ pub(super) fn readings_by(
 
 /// `calibrate --update` of `setup` on `data` (held-out `held`).
 fn update(setup: &Setup, data: &str, held: Option<&str>) -> stiffid::Result<Report> {
-    calibrate::run(&request(setup, data, held, true))
+    calibrate::run(&request(setup, data, held, true)).map(|o| o.report)
 }
 
 pub(super) fn request<'a>(
@@ -182,6 +182,7 @@ pub(super) fn request<'a>(
 ) -> calibrate::Request<'a> {
     calibrate::Request {
         readings: Readings {
+            setup_name: "setup".into(),
             setup,
             name: "check.csv".into(),
             text: data,
@@ -231,7 +232,7 @@ pub(super) fn check_postures(setup: &Setup) -> Vec<Vector6<f64>> {
     let report = select::run(&request).unwrap();
     let calibration = report.calibration.as_ref().unwrap();
     assert_eq!(calibration.options.geometry, Some(Geometry::Offsets));
-    report.postures
+    report.report.postures
 }
 
 /// Noise-free, the update from the 10 designed postures recovers the drifted robot: the

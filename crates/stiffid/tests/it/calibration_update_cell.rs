@@ -111,6 +111,7 @@ fn update(setup: &Setup, data: &str, held: Option<&str>, list: &str) -> stiffid:
         refit: Refits::parse(list).unwrap(),
         ..request(setup, data, held, true)
     })
+    .map(|o| o.report)
 }
 
 /// The value of parameter `name` in `report`, SI.

@@ -59,6 +59,7 @@ fn update_with(
         weight,
         ..request(setup, data, Some(held), true)
     })
+    .map(|o| o.report)
 }
 
 /// The fitted joint offsets' drift of joints 2 to 5, deg, against the true drift: the largest

@@ -19,6 +19,8 @@ use stiffid::setup::{Controller, Kinematics, Tracker};
 /// The six drives identified from load-step readings `text` (tracker frame) on `setup`.
 pub(crate) fn identified(setup: &stiffid::Setup, text: &str) -> Compliance {
     let report = identify::run(Request {
+        progress: &(),
+        setup_name: "setup".into(),
         setup,
         data: Data::File {
             name: "load-steps.csv".into(),
@@ -27,7 +29,7 @@ pub(crate) fn identified(setup: &stiffid::Setup, text: &str) -> Compliance {
         options: Default::default(),
     })
     .unwrap();
-    let identify::Report::Drives(r) = report else {
+    let identify::Report::Drives(r) = report.report else {
         panic!("not the six drives")
     };
     let id = &r.identification;

@@ -371,6 +371,7 @@ fn unreadable(
 /// The compensate job refuses the KRL program `text` naming its file and the line `line`.
 fn refused_by_the_job(s: &Setup, options: Options, text: &str, line: u64) {
     let request = stiffid::app::compensate::Request {
+        names: Default::default(),
         setup: s,
         compliance: compliance(s),
         input: stiffid::app::compensate::Input::Program {

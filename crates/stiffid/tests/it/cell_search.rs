@@ -214,7 +214,7 @@ fn a_design_keeps_its_margin_where_one_without_hugs_a_line_of_sight() {
     let (free, held) = (choose(None), choose(Some(0.02)));
     let skipped = held.pool.as_ref().unwrap().skipped.len();
     assert!(
-        skipped >= 1 && free.pool.unwrap().skipped.is_empty(),
+        skipped >= 1 && free.report.pool.unwrap().skipped.is_empty(),
         "{skipped}"
     );
     assert!(

@@ -509,6 +509,7 @@ fn the_streamed_compensate_document_is_the_whole_one() {
         text += &format!("{},{},0,{}\n", deg.join(","), 50.0 * i as f64, -300.0);
     }
     let request = Request {
+        names: Default::default(),
         setup: &s,
         compliance: s.model_compliance("test").unwrap(),
         input: Input::Path {

@@ -80,6 +80,7 @@ fn compensate_with(
 ) -> stiffid::Result<(stiffid::app::compensate::Report, Rows)> {
     let mut rows = Vec::new();
     let request = Request {
+        names: Default::default(),
         setup: s,
         compliance: s.model_compliance("test").unwrap(),
         input: Input::Program {
@@ -109,7 +110,7 @@ fn compensate_with(
             Ok::<(), stiffid::Error>(())
         },
     )?;
-    Ok((report, rows))
+    Ok((report.report, rows))
 }
 
 #[test]

@@ -207,6 +207,7 @@ fn drill_with(
     )
     .unwrap();
     let request = job::Request {
+        names: Default::default(),
         setup: s,
         compliance,
         input: Input::Program {
@@ -223,7 +224,7 @@ fn drill_with(
         },
         options,
     };
-    job::run::<Error, _>(request, |_, _, _, _| Ok(()))
+    job::run::<Error, _>(request, |_, _, _, _| Ok(())).map(|o| o.report)
 }
 
 #[test]

@@ -163,10 +163,14 @@ fn evaluate_reports_the_candidates() {
         calibration: Default::default(),
         candidates,
     };
-    let all = evaluate::run(&request(None)).unwrap().candidates.unwrap();
+    let all = evaluate::run(&request(None))
+        .unwrap()
+        .report
+        .candidates
+        .unwrap();
     assert_eq!(all.candidates.len(), default_pool(&setup).candidates.len());
     let tilt = evaluate::run(&request(Some(vec!["tilt".into()]))).unwrap();
-    let tilt = tilt.candidates.unwrap();
+    let tilt = tilt.report.candidates.unwrap();
     assert!(tilt.candidates.iter().all(|c| c.family == "tilt"));
     assert!(!tilt.dropped.is_empty(), "tilt1_z is along joint 1's axis");
     let err = evaluate::run(&request(Some(vec!["elbow".into()]))).unwrap_err();

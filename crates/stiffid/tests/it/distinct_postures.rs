@@ -106,6 +106,7 @@ fn the_plan_flags_near_postures() {
     let near_a = a + Vector6::repeat(0.5_f64.to_radians());
     let run = |group: &[Vector6<f64>]| {
         let request = Request {
+            scene: false,
             setup: &setup,
             criterion: stiffid::design::Criterion::RelativeA,
             postures: group,

@@ -137,7 +137,7 @@ fn close(a: &[f64], b: &[f64], tolerance: f64, what: &str) {
 }
 
 fn run(robot: &Robot, q: Vector6<f64>, e: Vec<f64>, point: Vector3<f64>) -> kinematics::Report {
-    kinematics::run(kinematics::Request {
+    kinematics::run(&kinematics::Request {
         robot,
         q,
         point,
@@ -148,6 +148,7 @@ fn run(robot: &Robot, q: Vector6<f64>, e: Vec<f64>, point: Vector3<f64>) -> kine
         workpiece: None,
     })
     .unwrap()
+    .report
 }
 
 #[test]
@@ -212,7 +213,7 @@ fn a_part_on_a_tilt_rotate_positioner_turns_under_the_tool_to_1e9() {
         [500.0, -80.0, 300.0],
     ] {
         let e = axes.to_si(&display);
-        let report = kinematics::run(kinematics::Request {
+        let report = kinematics::run(&kinematics::Request {
             robot: &robot,
             q,
             point,
@@ -290,15 +291,17 @@ fn the_kinematics_of_a_cell_need_its_axes_values() {
         external: e,
         workpiece: None,
     };
-    let missing = kinematics::run(request(vec![])).unwrap_err().to_string();
+    let missing = kinematics::run(&request(vec![])).unwrap_err().to_string();
     assert!(missing.contains("e1_mm track"), "{missing}");
-    let outside = kinematics::run(request(vec![6.5])).unwrap_err().to_string();
+    let outside = kinematics::run(&request(vec![6.5]))
+        .unwrap_err()
+        .to_string();
     assert!(
         outside.contains("e1_mm (track)") && outside.contains("0 to 6000 mm"),
         "{outside}"
     );
     let plain = presets::get(ARM).unwrap();
-    let extra = kinematics::run(kinematics::Request {
+    let extra = kinematics::run(&kinematics::Request {
         robot: &plain,
         ..request(vec![1.0])
     })
@@ -307,7 +310,7 @@ fn the_kinematics_of_a_cell_need_its_axes_values() {
     assert!(extra.contains("no external axes"), "{extra}");
     // A robot without external axes: exactly as before.
     let before = plain.frames(&q);
-    let report = kinematics::run(kinematics::Request {
+    let report = kinematics::run(&kinematics::Request {
         robot: &plain,
         ..request(vec![])
     })

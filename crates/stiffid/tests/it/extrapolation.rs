@@ -28,6 +28,8 @@ fn fanuc() -> Setup {
 /// The stiffness file identify writes from the FANUC data (`identify --out`), as JSON.
 fn stiffness_file(setup: &Setup) -> serde_json::Value {
     let request = identify::Request {
+        progress: &(),
+        setup_name: "setup".into(),
         setup,
         data: Data::File {
             name: "measurements.csv".into(),
@@ -62,7 +64,8 @@ fn posture(q2_deg: Option<f64>) -> Vector6<f64> {
 }
 
 fn predicted(setup: &Setup, c: &Compliance, q: Vector6<f64>) -> predict::Report {
-    predict::run(predict::Request {
+    predict::run(&predict::Request {
+        setup_name: "setup".into(),
         setup,
         q,
         wrench: Vector6::new(0.0, 0.0, -1000.0, 0.0, 0.0, 0.0),
@@ -72,6 +75,7 @@ fn predicted(setup: &Setup, c: &Compliance, q: Vector6<f64>) -> predict::Report 
         level: None,
     })
     .unwrap()
+    .report
 }
 
 fn extrapolation(warnings: &[Warning]) -> Vec<&str> {
@@ -144,7 +148,8 @@ fn predict_flags_a_posture_with_one_axis_beyond_the_identification_range() {
     );
     assert_eq!(doc["region"]["postures"], 43);
     // The nominal stiffness is not identified from postures: nothing to check, nothing said.
-    let nominal = predict::run(predict::Request {
+    let nominal = predict::run(&predict::Request {
+        setup_name: "setup".into(),
         setup: &setup,
         q: posture(Some(48.5)),
         wrench: Vector6::new(0.0, 0.0, -1000.0, 0.0, 0.0, 0.0),
@@ -235,6 +240,7 @@ fn a_region_out_of_shape_is_refused_naming_the_field() {
 
 fn validated(setup: &Setup, c: &Compliance, text: &str) -> validate::Report {
     validate::run(validate::Request {
+        setup_name: "setup".into(),
         setup,
         compliance: c,
         data: Data::File {
@@ -244,6 +250,7 @@ fn validated(setup: &Setup, c: &Compliance, text: &str) -> validate::Report {
         level: None,
     })
     .unwrap()
+    .report
 }
 
 #[test]
@@ -295,6 +302,7 @@ fn compensate_flags_each_path_point_beyond_the_identification_range() {
         text += &format!("{},0,0,-500\n", deg.join(","));
     }
     let request = compensate::Request {
+        names: Default::default(),
         setup: &setup,
         options: stiffid::machining::compensate::Options::for_setup(&setup),
         compliance: c,
@@ -341,6 +349,8 @@ fn compensate_flags_each_path_point_beyond_the_identification_range() {
 fn a_fold_with_a_score_more_or_less_is_refused_naming_it() {
     let setup = fanuc();
     let request = identify::Request {
+        progress: &(),
+        setup_name: "setup".into(),
         setup: &setup,
         data: Data::File {
             name: "measurements.csv".into(),

@@ -74,6 +74,7 @@ fn compensated(
     options.q0 = *q0;
     let inform = Language::Robot(Dialect::Inform);
     let request = compensate::Request {
+        names: Default::default(),
         setup,
         compliance: compliance.clone(),
         input: Input::Program {
@@ -97,7 +98,7 @@ fn compensated(
     })
     .unwrap();
     (
-        crate::common::program_text(report.program.unwrap()),
+        crate::common::program_text(report.report.program.unwrap()),
         results,
     )
 }

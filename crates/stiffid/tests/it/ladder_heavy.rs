@@ -85,6 +85,7 @@ fn at_level(
 ) -> Report {
     calibrate::run(&calibrate::Request {
         readings: stiffid::app::readings::Request {
+            setup_name: "setup".into(),
             setup,
             name: "fit.csv".into(),
             text: data,
@@ -106,6 +107,7 @@ fn at_level(
         urdf: false,
     })
     .unwrap()
+    .report
 }
 
 /// The readings of 36 narrow postures of the true robot of `seed`, split 24 fitted, 12 held out.

@@ -89,6 +89,8 @@ fn identify(setup: &Setup, text: &str, offsets: bool) -> stiffid::Result<Report>
         ..Options::default()
     };
     job::run(Request {
+        progress: &(),
+        setup_name: "setup".into(),
         setup,
         data: Data::File {
             name: "readings.csv".into(),
@@ -96,7 +98,7 @@ fn identify(setup: &Setup, text: &str, offsets: bool) -> stiffid::Result<Report>
         },
         options,
     })
-    .map(|r| match r {
+    .map(|r| match r.report {
         job::Report::Drives(r) => *r,
         _ => panic!("not the six drives"),
     })
@@ -389,6 +391,8 @@ fn offsets_with_a_robust_nonnegative_or_cross_validated_fit_are_refused_saying_w
     let text = campaign.readings(&setup);
     let run = |options: Options| {
         job::run(Request {
+            progress: &(),
+            setup_name: "setup".into(),
             setup: &setup,
             data: Data::File {
                 name: "readings.csv".into(),
@@ -453,6 +457,7 @@ fn validate_and_the_model_comparison_read_load_step_readings() {
     .readings(&setup);
     let compliance = setup.model_compliance("test").unwrap();
     let report = stiffid::app::validate::run(stiffid::app::validate::Request {
+        setup_name: "setup".into(),
         setup: &setup,
         compliance: &compliance,
         data: Data::File {
@@ -471,6 +476,8 @@ fn validate_and_the_model_comparison_read_load_step_readings() {
     assert!(v.measured[0] > 1e-4);
     let drives = identify(&setup, &text, false).unwrap();
     let compared = job::run(Request {
+        progress: &(),
+        setup_name: "setup".into(),
         setup: &setup,
         data: Data::File {
             name: "readings.csv".into(),
@@ -483,7 +490,7 @@ fn validate_and_the_model_comparison_read_load_step_readings() {
         },
     })
     .unwrap();
-    let job::Report::Comparison(c) = compared else {
+    let job::Report::Comparison(c) = compared.report else {
         panic!("not the comparison")
     };
     let k = setup.nominal_stiffness().unwrap();

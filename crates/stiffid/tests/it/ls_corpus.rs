@@ -126,6 +126,7 @@ pub(crate) fn compensated_with(
     )
     .unwrap();
     let request = compensate::Request {
+        names: Default::default(),
         setup: s,
         compliance: compliance.clone(),
         input: Input::Program {
@@ -148,7 +149,7 @@ pub(crate) fn compensated_with(
         Ok(())
     })?;
     Ok((
-        crate::common::program_text(report.program.unwrap()),
+        crate::common::program_text(report.report.program.unwrap()),
         results,
     ))
 }

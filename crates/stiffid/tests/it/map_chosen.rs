@@ -76,6 +76,7 @@ fn the_rotation_map_holds_the_chosen_lean_and_its_chosen_cells_are_the_bounds() 
         text += &format!("{},-800,400,180,0,0,-300,200,-250\n", 1300 + 50 * i);
     }
     let request = Request {
+        names: Default::default(),
         setup: &s,
         compliance: s.model_compliance("test").unwrap(),
         input: Input::Path {
@@ -93,7 +94,7 @@ fn the_rotation_map_holds_the_chosen_lean_and_its_chosen_cells_are_the_bounds() 
     .unwrap();
     // The lean chosen somewhere: a map at no lean would not hold these bounds.
     assert!(results.iter().any(|r| r.lead != 0.0 || r.tilt != 0.0));
-    let map = report.map.unwrap();
+    let map = report.report.map.unwrap();
     assert_eq!(map.variable, MapVariable::Rotation);
     for (c, r) in map.chosen.iter().zip(&results) {
         assert_eq!(*c, r.tool_rotation);

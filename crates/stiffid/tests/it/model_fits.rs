@@ -179,6 +179,8 @@ fn leave_one_posture_out_on_the_fanuc_data_explains_84_percent() {
     // Every fit cross-validated, one posture out.
     let run = |setup: &Setup| {
         identify::run(Request {
+            progress: &(),
+            setup_name: "setup".into(),
             setup,
             data: Data::File {
                 name: "measurements.csv".into(),
@@ -191,7 +193,7 @@ fn leave_one_posture_out_on_the_fanuc_data_explains_84_percent() {
         })
         .unwrap()
     };
-    let Report::Springs(report) = run(&model) else {
+    let Report::Springs(report) = run(&model).report else {
         panic!("not a model with virtual springs")
     };
     assert_eq!(report.fit.parameters.len(), 8);
@@ -205,7 +207,7 @@ fn leave_one_posture_out_on_the_fanuc_data_explains_84_percent() {
     let press = held_out(&obs).unwrap();
     assert!((press.explained() / cv.explained() - 1.0).abs() < 1e-9);
     // The six drives alone take the job's fast path (QR).
-    let Report::Drives(drives) = run(&fanuc) else {
+    let Report::Drives(drives) = run(&fanuc).report else {
         panic!("not the six drives")
     };
     let drives = drives.cross_validation.unwrap().explained();

@@ -96,6 +96,8 @@ fn direct(
 fn the_model_form_part_is_the_spread_over_the_resamples() {
     let (s, data) = simulated();
     let report = run(Request::<Empty> {
+        progress: &(),
+        setup_name: "setup".into(),
         setup: &s,
         data: Data::Measurements(data.clone()),
         options: Options {
@@ -107,7 +109,7 @@ fn the_model_form_part_is_the_spread_over_the_resamples() {
         },
     })
     .unwrap();
-    let Report::Comparison(report) = report else {
+    let Report::Comparison(report) = report.report else {
         panic!("not a comparison")
     };
     let file = report.stiffness_file("paper", &s).unwrap();
@@ -204,6 +206,8 @@ fn fanuc(
         "/../../examples/data/fanuc-r2000ic-165f/measurements.csv"
     );
     let report = run(Request {
+        progress: &(),
+        setup_name: "setup".into(),
         setup: &s,
         data: Data::File {
             name: "measurements.csv".into(),
@@ -216,7 +220,7 @@ fn fanuc(
         },
     })
     .unwrap();
-    let Report::Comparison(report) = report else {
+    let Report::Comparison(report) = report.report else {
         panic!("not a comparison")
     };
     let text = serde_json::to_string(&report.stiffness_file("fanuc", &s).unwrap()).unwrap();

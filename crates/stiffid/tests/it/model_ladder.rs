@@ -31,6 +31,7 @@ fn readings(case: &Case, seed: u64, n: usize, rigid: bool) -> String {
 fn calibrated(case: &Case, data: &str) -> Report {
     calibrate::run(&calibrate::Request {
         readings: stiffid::app::readings::Request {
+            setup_name: "setup".into(),
             setup: &case.setup,
             name: "fit.csv".into(),
             text: data,
@@ -52,6 +53,7 @@ fn calibrated(case: &Case, data: &str) -> Report {
         urdf: false,
     })
     .unwrap()
+    .report
 }
 
 /// The held-out RMS of the ladder's rung of `gravity` (without maps), m.
@@ -160,6 +162,7 @@ fn validated_ladder(
 ) -> ((f64, f64, Gravity), Option<calibrate::ladder::Ladder>) {
     let report = calibrate::run(&calibrate::Request {
         readings: stiffid::app::readings::Request {
+            setup_name: "setup".into(),
             setup: &case.setup,
             name: "fit.csv".into(),
             text: data,
@@ -182,7 +185,7 @@ fn validated_ladder(
     })
     .unwrap();
     let v = &report.validation.as_ref().unwrap().calibrated;
-    ((v.rms, v.max, report.gravity), report.ladder)
+    ((v.rms, v.max, report.gravity), report.report.ladder)
 }
 
 /// A campaign whose postures leave the sag's joints a thin sweep (joints 2 and 3 within 8 deg,
@@ -262,6 +265,7 @@ fn forced_mirrored_readings_drop_the_maps_that_fail() {
     let mirrored: String = data.lines().enumerate().map(mirror).collect();
     let report = calibrate::run(&calibrate::Request {
         readings: stiffid::app::readings::Request {
+            setup_name: "setup".into(),
             setup: &case.setup,
             name: "fit.csv".into(),
             text: &mirrored,

@@ -275,6 +275,7 @@ fn the_compensate_document_lists_every_parameter_of_the_model() {
     let text =
         "q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,fx_n,fy_n,fz_n\n10,20,-80,5,30,0,100,0,-500\n";
     let request = Request {
+        names: Default::default(),
         setup: &s,
         compliance,
         input: Input::Path {

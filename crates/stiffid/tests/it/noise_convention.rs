@@ -107,12 +107,14 @@ fn the_model_check_tests_displacements_against_two_readings() {
         })
         .collect();
     let report = identify::run(Request::<&[u8]> {
+        progress: &(),
+        setup_name: "setup".into(),
         setup: &setup,
         data: Data::Measurements(data),
         options: Options::default(),
     })
     .unwrap();
-    let Report::Drives(report) = report else {
+    let Report::Drives(report) = report.report else {
         panic!("not the six drives")
     };
     let a = report.adequacy.as_ref().unwrap();

@@ -519,6 +519,7 @@ fn options_that_mean_nothing_where_given_are_refused_by_the_jobs() {
     );
     let proposal = register::DesignRequest {
         setup: &setup,
+        setup_name: "setup".into(),
         postures: 4,
         options: Default::default(),
         force: true,
@@ -529,6 +530,7 @@ fn options_that_mean_nothing_where_given_are_refused_by_the_jobs() {
         "only with readings",
     );
     let prediction = |level| predict::Request {
+        setup_name: "setup".into(),
         setup: &setup,
         q: group[0],
         wrench: nalgebra::Vector6::new(0.0, 0.0, -500.0, 0.0, 0.0, 0.0),
@@ -538,9 +540,9 @@ fn options_that_mean_nothing_where_given_are_refused_by_the_jobs() {
         level,
     };
     refused_option(
-        predict::run(prediction(Some(0.9))).map(drop),
+        predict::run(&prediction(Some(0.9))).map(drop),
         JobOption::Level,
         "prediction data",
     );
-    assert!(predict::run(prediction(None)).is_ok());
+    assert!(predict::run(&prediction(None)).is_ok());
 }

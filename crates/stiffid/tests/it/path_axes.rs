@@ -70,6 +70,7 @@ fn compensated(s: &Setup, text: &str) -> stiffid::Result<(Vec<PathPoint>, Vec<Co
     let compliance = s.model_compliance("test")?;
     let (mut points, mut results) = (Vec::new(), Vec::new());
     let request = Request {
+        names: Default::default(),
         setup: s,
         compliance,
         input: Input::Path {

@@ -24,6 +24,7 @@ fn a_plans_postures_stand_where_they_are_read() {
         .collect();
     let run = |external: &[Vec<f64>]| {
         plan::run(&Request {
+            scene: false,
             setup: &setup,
             criterion: stiffid::design::Criterion::RelativeA,
             postures: &q,
@@ -35,6 +36,7 @@ fn a_plans_postures_stand_where_they_are_read() {
     let (there, at_zero) = (run(&e), run(&vec![vec![0.0; 3]; 3]));
     // Without the values the plan is refused: it would stand every posture at every axis 0.
     let none = plan::run(&Request {
+        scene: false,
         setup: &setup,
         criterion: stiffid::design::Criterion::RelativeA,
         postures: &q,

@@ -104,6 +104,7 @@ fn program(setup: &stiffid::Setup, dialect: Dialect) -> (String, Vec<Compensated
     )
     .unwrap();
     let request = compensate::Request {
+        names: Default::default(),
         setup,
         compliance,
         input: Input::Program {
@@ -130,7 +131,7 @@ fn program(setup: &stiffid::Setup, dialect: Dialect) -> (String, Vec<Compensated
     })
     .unwrap();
     (
-        crate::common::program_text(report.program.unwrap()),
+        crate::common::program_text(report.report.program.unwrap()),
         results,
     )
 }

@@ -142,6 +142,7 @@ fn rotated(case: &Case, s: &Setup) -> Result<(Report, Postures), Error> {
     let (text, dialect, name) = &case.program;
     let stiffness = stiffid::io::stiffness::parse(case.stiffness).unwrap();
     let request = compensate::Request {
+        names: Default::default(),
         setup: s,
         compliance: stiffness.compliance(s.model()).unwrap(),
         input: Input::Program {
@@ -167,7 +168,7 @@ fn rotated(case: &Case, s: &Setup) -> Result<(Report, Postures), Error> {
             Ok::<(), Error>(())
         },
     )?;
-    Ok((report, [own, chosen]))
+    Ok((report.report, [own, chosen]))
 }
 
 /// Each move's highest share of a joint's largest speed of 1 deg/s along the postures `q` (rad)

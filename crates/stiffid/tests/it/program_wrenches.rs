@@ -190,6 +190,7 @@ fn written(c: &Cell, gcode: &'static str, dialect: Dialect) -> String {
         ..c.compliance.clone()
     };
     let request = compensate::Request {
+        names: Default::default(),
         setup: &c.setup,
         compliance: zero,
         input: Input::Program {
@@ -210,7 +211,7 @@ fn written(c: &Cell, gcode: &'static str, dialect: Dialect) -> String {
         Ok::<(), stiffid::Error>(())
     })
     .unwrap();
-    crate::common::program_text(report.program.unwrap())
+    crate::common::program_text(report.report.program.unwrap())
 }
 
 #[test]

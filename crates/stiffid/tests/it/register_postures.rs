@@ -161,6 +161,7 @@ fn the_template_of_a_cell_with_external_axes_registers() {
     let setup = base.to_builder().with_robot(robot).build().unwrap();
     let request = job::DesignRequest {
         setup: &setup,
+        setup_name: "setup.toml".into(),
         postures: 5,
         options: Options::default(),
         force: false,
@@ -191,6 +192,7 @@ fn the_template_of_a_cell_with_external_axes_registers() {
         filled += &format!("{},{:?},{:?},{:?}\n", cells[..10].join(","), t.x, t.y, t.z);
     }
     let registered = job::run(&job::Request {
+        setup_name: "setup".into(),
         setup: &setup,
         name: "registration.csv".into(),
         text: &filled,

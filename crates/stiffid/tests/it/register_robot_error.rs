@@ -74,12 +74,13 @@ fn the_stated_deviation_covers_the_robots_own_error() {
         let text = readings(&nominal, &postures, &mut rng, nominal.noise().reading_sd());
         let fit = |setup: &Setup| {
             let request = Request {
+                setup_name: "setup".into(),
                 setup,
                 name: "r.csv".into(),
                 text: &text,
                 force: false,
             };
-            run(&request).unwrap().registration
+            run(&request).unwrap().report.registration
         };
         for (setup, count) in [(&nominal, &mut covered), (&taken_exact, &mut covered_exact)] {
             let r = fit(setup);

@@ -39,7 +39,7 @@ fn joint_positions_equal_the_kinematics_job_and_link_frames_carry_the_chain() {
         let s = with_nominal(&setup, &postures);
         assert_eq!(s.postures.len(), 6);
         for (p, q) in s.postures.iter().zip(&postures) {
-            let report = kinematics::run(kinematics::Request {
+            let report = kinematics::run(&kinematics::Request {
                 robot: setup.robot(),
                 q: *q,
                 point: setup.tool().tcp,
@@ -171,6 +171,8 @@ fn identification_scene_draws_the_documents_displacements_and_compliance() {
     let s = stiffid::setup::builtin("fanuc-r2000ic-165f").unwrap();
     let setup = s.to_builder().with_tcp(s.tool().tcp).build().unwrap();
     let request = identify::Request {
+        progress: &(),
+        setup_name: "setup".into(),
         setup: &setup,
         data: Data::File {
             name: "measurements.csv".into(),
@@ -417,7 +419,7 @@ fn track_and_positioner_stand_at_each_postures_station() {
     assert_eq!(names[8..], ["track", "carriage", "positioner table"]);
     for ((p, q), e) in s.postures.iter().zip(&postures).zip(&stations) {
         assert_eq!(&p.external, e);
-        let report = kinematics::run(kinematics::Request {
+        let report = kinematics::run(&kinematics::Request {
             robot: setup.robot(),
             q: *q,
             point: setup.tool().tcp,

@@ -53,7 +53,7 @@ fn assert_at_kinematics(setup: &Setup, scene: &Scene, q: &[Vector6<f64>], e: &[V
             assert!((got - want).abs() < 1e-12, "{got} vs {want}");
         }
         assert_eq!(p.external.len(), e.len());
-        let report = kinematics::run(kinematics::Request {
+        let report = kinematics::run(&kinematics::Request {
             robot: setup.robot(),
             q: *q,
             point: setup.tool().tcp,
@@ -109,6 +109,7 @@ fn a_calibrations_scene_stands_each_posture_at_its_readings_station() {
     let text = readings(&setup, &q, &e);
     let report = calibrate::run(&calibrate::Request {
         readings: stiffid::app::readings::Request {
+            setup_name: "setup".into(),
             setup: &setup,
             name: "readings.csv".into(),
             text: &text,
@@ -179,6 +180,8 @@ fn an_identifications_scene_stands_each_posture_at_its_measurements_station() {
         }
     }
     let report = identify::run(identify::Request {
+        progress: &(),
+        setup_name: "setup".into(),
         setup: &setup,
         data: Data::<&[u8]>::Measurements(data),
         options: identify::Options::default(),
@@ -218,6 +221,7 @@ fn a_compensations_scene_stands_at_the_path_points_stations() {
         );
     }
     let request = compensate::Request {
+        names: Default::default(),
         setup: &setup,
         compliance: setup.model_compliance("test").unwrap(),
         input: compensate::Input::Path {

@@ -193,6 +193,7 @@ fn a_seven_parameter_model_agrees_with_the_prediction_at_2000_runs() {
             postures: group,
         }],
         options: Options { runs: 20, seed: 1 },
+        progress: &(),
     })
     .unwrap();
     let doc = stiffid::app::simulate::document::Document::new(&report, &model);

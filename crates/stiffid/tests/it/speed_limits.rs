@@ -64,6 +64,7 @@ fn on_track(s: &Setup, text: &str) -> (Document, Vec<f64>) {
         ..Options::for_setup(s)
     };
     let request = compensate::Request {
+        names: Default::default(),
         setup: s,
         compliance: s.model_compliance("test").unwrap(),
         input: Input::Path {

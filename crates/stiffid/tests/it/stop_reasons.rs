@@ -31,6 +31,8 @@ fn the_nonnegative_fit_says_why_it_stopped_in_the_identify_document() {
         .collect();
     let run = |data: &[stiffid::observation::Measurement], nonnegative: bool| {
         let report = identify::run(Request::<&[u8]> {
+            progress: &(),
+            setup_name: "setup".into(),
             setup: &setup,
             data: Data::Measurements(data.to_vec()),
             options: Options {
@@ -131,6 +133,7 @@ fn comau_path() -> (Setup, String) {
 fn compensated(max_iterations: usize) -> Result<(Report, Vec<Compensated>), Error> {
     let (s, text) = comau_path();
     let request = Request {
+        names: Default::default(),
         setup: &s,
         compliance: s.model_compliance("test").unwrap(),
         input: Input::Path {
@@ -151,7 +154,7 @@ fn compensated(max_iterations: usize) -> Result<(Report, Vec<Compensated>), Erro
             Ok::<(), Error>(())
         },
     )?;
-    Ok((report, results))
+    Ok((report.report, results))
 }
 
 /// The compensate document's `summary` of `report`, as JSON.

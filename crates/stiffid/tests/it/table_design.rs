@@ -100,7 +100,7 @@ pub(crate) fn designed(setup: &Setup) -> (select::Report, Vec<Placed>) {
     let placed = (report.postures.iter().copied())
         .zip(report.placed.iter().copied())
         .collect();
-    (report, placed)
+    (report.report, placed)
 }
 
 /// Every tool point and every table reflector at each of `placed`.

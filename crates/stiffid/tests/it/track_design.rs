@@ -54,6 +54,7 @@ fn designed(case: &Case, stations: Vec<ExternalValues>) -> select::Report {
         progress: &(),
     })
     .unwrap()
+    .report
 }
 
 /// The fixed-base arm of [`true_robot::dh_case`] with the tracker.

@@ -236,6 +236,7 @@ pub(crate) fn compensated(
     text: &str,
 ) -> (Vec<PathPoint>, Vec<Compensated>) {
     let request = compensate::Request {
+        names: Default::default(),
         setup,
         compliance: compliance.clone(),
         input: Input::Path {

@@ -276,6 +276,7 @@ fn reflectors_no_rigid_transform_explains_are_refused() {
             .unwrap();
         let request = stiffid::app::calibrate::Request {
             readings: stiffid::app::readings::Request {
+                setup_name: "setup".into(),
                 setup: &setup,
                 name: "fit.csv".into(),
                 text: &data,

@@ -476,6 +476,7 @@ pub(crate) fn calibrated(
     let setup = &case.setup;
     let report = calibrate::run(&calibrate::Request {
         readings: stiffid::app::readings::Request {
+            setup_name: "setup".into(),
             setup,
             name: "fit.csv".into(),
             text: data,
@@ -612,6 +613,7 @@ pub(crate) fn written_with(
     let mut options = Options::for_setup(setup);
     options.q0 = *q0;
     let request = compensate::Request {
+        names: Default::default(),
         setup,
         compliance: compliance.clone(),
         input: Input::Program {
@@ -646,7 +648,7 @@ pub(crate) fn written_with(
     })
     .unwrap();
     (
-        crate::common::program_text(report.program.unwrap()),
+        crate::common::program_text(report.report.program.unwrap()),
         results,
     )
 }

@@ -10,7 +10,7 @@ use crate::progress::Bars;
 use crate::report::identification;
 use anyhow::Result;
 use std::path::PathBuf;
-use stiffid::app::identify::document::{drives, springs};
+use stiffid::app::identify::document::Document;
 use stiffid::app::identify::{self as job, Options, Report, Request};
 use stiffid::app::measurements::Data;
 use stiffid_core::Progress;
@@ -121,22 +121,24 @@ pub fn run(args: &Args) -> Result<()> {
     let bars = Bars::new(false);
     let request = Request {
         setup: &setup,
+        setup_name: args.common.setup.clone(),
         data: Data::File {
             name: args.data.display().to_string(),
             reader,
         },
         options,
+        progress: &bars,
     };
     // A spinner for the whole job, replaced by the bootstrap's bar when there is one.
     bars.begin("identification", 0);
-    let report = job::run_with_progress(request, &bars);
+    let outcome = job::run(request);
     bars.end();
-    let report = report?;
+    let stiffid::app::Outcome { report, document } = outcome?;
     output::warnings(report.warnings());
     let name = &args.common.setup;
     // The document's JSON is its form's (each form names itself in `kind`).
-    let (json_text, text) = match &report {
-        Report::Comparison(r) => {
+    let (json_text, text) = match (&report, document) {
+        (Report::Comparison(r), Document::Comparison(doc)) => {
             if let Some(out) = &out {
                 out.write(r.fragment().as_bytes())?;
             }
@@ -145,7 +147,6 @@ pub fn run(args: &Args) -> Result<()> {
             {
                 out.write(text.as_bytes())?;
             }
-            let doc = r.document(name);
             if let Some(dir) = report_dir {
                 identification::write(dir, &json(&doc)?, &setup, None)?;
             }
@@ -154,14 +155,13 @@ pub fn run(args: &Args) -> Result<()> {
                 false => output::print(&models::text(&doc, &r.comparison, &setup)),
             };
         }
-        Report::Drives(r) => {
-            let doc = drives::Document::new(r, name, &setup);
+        (Report::Drives(r), Document::Drives(doc)) => {
             (json(&doc)?, text::human(r, &doc, name, &setup))
         }
-        Report::Springs(r) => {
-            let doc = springs::Document::new(r, name, &setup);
+        (Report::Springs(r), Document::Springs(doc)) => {
             (json(&doc)?, models::model_text(r, &doc, &setup))
         }
+        _ => anyhow::bail!("the identify job returned a document of another form than its report"),
     };
     if let Some(out) = &out {
         job::check_stiffness_file(&json_text, &setup, &output::flag)?;

@@ -206,7 +206,10 @@ pub fn run(args: &Args) -> Result<()> {
         stations: stations(&args.station, &setup)?,
         progress: &bars,
     };
-    let report = job::run(&request)?;
+    let stiffid::app::Outcome {
+        report,
+        document: mut doc,
+    } = job::run(&request)?;
     output::warnings(&report.warnings);
     let placed: Vec<Vec<f64>> = report
         .placed
@@ -222,7 +225,6 @@ pub fn run(args: &Args) -> Result<()> {
     if let (Some(files), Some(t)) = (&target_files, &report.target) {
         target::write_figure(files, t)?;
     }
-    let mut doc = Document::new(&report, &setup);
     doc.out = Some(args.out.display().to_string());
     doc.report = args.report.as_ref().map(|d| d.display().to_string());
     let report_dir = match (report_dir, campaign) {

@@ -128,6 +128,7 @@ fn held_postures(request: &Request<'_>) -> Option<Vec<nalgebra::Vector6<f64>>> {
     let (name, text) = request.validate.as_ref()?;
     let readings = crate::app::readings::Request {
         setup: request.readings.setup,
+        setup_name: request.readings.setup_name.clone(),
         name: name.clone(),
         text,
         force: true,

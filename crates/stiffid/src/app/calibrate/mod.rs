@@ -269,6 +269,9 @@ fn observations(setup: &Setup, data: &Data, unloaded_only: bool) -> (Vec<Observa
     (obs, measured_in)
 }
 
+/// The calibrate job's report and its document.
+pub type Outcome = crate::app::Outcome<Report, document::Document>;
+
 /// Runs the job.
 ///
 /// # Errors
@@ -279,7 +282,14 @@ fn observations(setup: &Setup, data: &Data, unloaded_only: bool) -> (Vec<Observa
 /// (`validate`) when the held-out readings are in another frame than the fitted;
 /// [`Error::InvalidOption`] ([`JobOption::Level`]) for a level outside
 /// [`stiffid_core::model::prediction::LEVEL`] or without `validate`.
-pub fn run(request: &Request<'_>) -> Result<Report> {
+pub fn run(request: &Request<'_>) -> Result<Outcome> {
+    let report = find(request)?;
+    let document = document::Document::new(&report, &request.readings.setup_name);
+    Ok(Outcome { report, document })
+}
+
+/// What [`run`] finds, before its document.
+fn find(request: &Request<'_>) -> Result<Report> {
     let setup = request.readings.setup;
     let name = &request.readings.name;
     let (data, mut warnings) = read(&request.readings)?;
@@ -413,6 +423,7 @@ fn held_out(
 ) -> Result<Held> {
     let readings = Readings {
         setup: request.readings.setup,
+        setup_name: request.readings.setup_name.clone(),
         name: name.to_string(),
         text,
         force: request.readings.force,

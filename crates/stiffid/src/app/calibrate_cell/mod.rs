@@ -28,6 +28,9 @@ pub struct Report {
     pub warnings: Vec<Warning>,
 }
 
+/// The calibrate-cell job's report and its document.
+pub type Outcome = crate::app::Outcome<Report, document::Calibration>;
+
 /// Runs the calibrate job.
 ///
 /// # Errors
@@ -36,7 +39,14 @@ pub struct Report {
 /// [`stiffid_core::Error::Input`] naming the file; unless [`Request::force`], readings that are a
 /// mirror image (of the nominal robot's points) or leave a residual beyond
 /// [`stiffid_metrology::register::residual_limit`], naming the reading.
-pub fn run(request: &Request<'_>) -> Result<Report> {
+pub fn run(request: &Request<'_>) -> Result<Outcome> {
+    let report = find(request)?;
+    let document = document::Calibration::new(&report, &request.setup_name);
+    Ok(Outcome { report, document })
+}
+
+/// What [`run`] finds, before its document.
+fn find(request: &Request<'_>) -> Result<Report> {
     let (data, mut warnings) = read(request)?;
     let name = &request.name;
     let setup_points = request.setup.tool().measuring_points.clone();

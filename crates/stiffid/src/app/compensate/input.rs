@@ -4,7 +4,7 @@
 
 use super::written::program_tool;
 use super::{generate, in_input, output, Input};
-use stiffid_core::{Result, Setup};
+use stiffid_core::{Error, Result, Setup};
 use stiffid_machining::compensate::Options;
 use stiffid_machining::program::Context;
 use stiffid_machining::{self as machining, Language, Program};
@@ -87,4 +87,15 @@ pub fn read_program_in(
     context: &Context,
 ) -> Result<Program> {
     machining::read_in(text, language, chord_tolerance, context).map_err(|e| in_input(name, e))
+}
+
+/// Refuses a setup without the tool's centre point.
+pub(super) fn check_tcp(setup: &Setup) -> Result<()> {
+    match setup.tcp_given() {
+        true => Ok(()),
+        false => Err(Error::InvalidField {
+            field: "tool.tcp_mm".into(),
+            message: format!("missing in setup {}: compensation moves the cutting tool's centre point, which the setup must give ([tool] tcp_mm); measuring point 1 is a measuring target, not the tool", setup.name()),
+        }),
+    }
 }

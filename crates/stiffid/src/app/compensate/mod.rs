@@ -36,9 +36,9 @@ pub mod speed;
 pub mod stream;
 mod written;
 
-use crate::app::compensate::document::Summary;
+use crate::app::compensate::document::{Names, Summary};
 use crate::app::{Warning, WarningKind};
-use input::read_checked;
+use input::{check_tcp, read_checked};
 pub use input::{read_program, read_program_in};
 use stiffid_core::model::Parameter;
 use stiffid_core::observation::deflection::Frame;
@@ -103,7 +103,13 @@ pub struct Request<'a> {
     pub input: Input<'a>,
     /// Where inverse kinematics starts, its options, the free tool axis.
     pub options: Options,
+    /// The names of the inputs and outputs the document states: the setup as the user named it,
+    /// the stiffness file, the files the front end writes.
+    pub names: Names,
 }
+
+/// The compensate job's report and its document (without the points: the sink receives them).
+pub type Outcome = crate::app::Outcome<Report, document::Document>;
 
 /// A compensated program.
 #[derive(Debug, Clone, PartialEq)]
@@ -209,7 +215,19 @@ pub struct Report {
 /// [`path::points`], [`compensate::stream`], [`machining::read`] and [`machining::compensate()`]
 /// (a malformed program, a point outside the joint limits or whose compensation changes the
 /// configuration, naming the line); and those of `sink`.
-pub fn run<E, F>(request: Request<'_>, mut sink: F) -> std::result::Result<Report, E>
+pub fn run<E, F>(request: Request<'_>, sink: F) -> std::result::Result<Outcome, E>
+where
+    E: From<Error>,
+    F: FnMut(usize, &[PathPoint], &[Compensated], &[Dynamics]) -> std::result::Result<(), E>,
+{
+    let names = request.names.clone();
+    let report = find(request, sink)?;
+    let document = document::Document::new(&report, &names, Vec::new());
+    Ok(Outcome { report, document })
+}
+
+/// What [`run`] finds, before its document.
+fn find<E, F>(request: Request<'_>, mut sink: F) -> std::result::Result<Report, E>
 where
     E: From<Error>,
     F: FnMut(usize, &[PathPoint], &[Compensated], &[Dynamics]) -> std::result::Result<(), E>,
@@ -219,6 +237,7 @@ where
         compliance,
         input,
         options,
+        ..
     } = request;
     options.validate()?;
     check_tcp(setup)?;
@@ -242,17 +261,6 @@ where
         }
     };
     Ok(finish(setup, compliance, options, tally, outcome)?)
-}
-
-/// Refuses a setup without the tool's centre point.
-fn check_tcp(setup: &Setup) -> Result<()> {
-    match setup.tcp_given() {
-        true => Ok(()),
-        false => Err(Error::InvalidField {
-            field: "tool.tcp_mm".into(),
-            message: format!("missing in setup {}: compensation moves the cutting tool's centre point, which the setup must give ([tool] tcp_mm); measuring point 1 is a measuring target, not the tool", setup.name()),
-        }),
-    }
 }
 
 /// Whether the compensation moves a free variable (the tool's rotation, its lean, an external
@@ -316,7 +324,7 @@ impl<'a> Tally<'a> {
 
 /// What a path's or a program's job gives besides the points: the input's name, the program,
 /// the warnings, the points to map, the configurations evaluated.
-struct Outcome {
+struct Computed {
     name: String,
     program: Option<ProgramReport>,
     warnings: Vec<Warning>,
@@ -324,9 +332,9 @@ struct Outcome {
     configurations: Option<compensate::Configurations>,
 }
 
-impl Outcome {
+impl Computed {
     fn named(name: String) -> Self {
-        Outcome {
+        Computed {
             name,
             program: None,
             warnings: Vec::new(),
@@ -363,7 +371,7 @@ fn path_job<E, A>(
     (name, text, frame): (String, &str, Frame),
     options: &Options,
     add: &mut A,
-) -> std::result::Result<Outcome, E>
+) -> std::result::Result<Computed, E>
 where
     E: From<Error>,
     A: FnMut(usize, &[PathPoint], &[Compensated], &[Dynamics]) -> std::result::Result<(), E>,
@@ -374,7 +382,7 @@ where
         Ok(points.map(|p| p.and_then(|p| cell::on_carriage(robot, p))))
     };
     let all = || placed(text).and_then(Iterator::collect::<Result<Vec<PathPoint>>>);
-    let mut out = Outcome::named(name);
+    let mut out = Computed::named(name);
     if options.map {
         out.mapped = Some(all().map_err(|e| in_input(&out.name, e))?);
     }
@@ -424,7 +432,7 @@ fn program_job<E, A>(
     (input, program): (Input<'_>, Program),
     options: &Options,
     add: &mut A,
-) -> std::result::Result<Outcome, E>
+) -> std::result::Result<Computed, E>
 where
     E: From<Error>,
     A: FnMut(usize, &[PathPoint], &[Compensated], &[Dynamics]) -> std::result::Result<(), E>,
@@ -457,7 +465,7 @@ where
         .map_err(|e| in_input(&name, e))?;
     output::check_runs(compensated.configurations.as_ref(), output)?;
     resolution::check(setup, (&program, output), &compensated.results)?;
-    let mut out = Outcome::named(name);
+    let mut out = Computed::named(name);
     out.mapped = options.map.then(|| match &compensated.configurations {
         Some(c) => c.in_chosen(setup.arm(), &compensated.points),
         None => compensated.points.clone(),
@@ -559,7 +567,7 @@ fn finish(
     compliance: Compliance,
     options: Options,
     tally: Tally<'_>,
-    outcome: Outcome,
+    outcome: Computed,
 ) -> Result<Report> {
     let Tally {
         summary,
@@ -571,7 +579,7 @@ fn finish(
         summary.budget.refuse_above(max_error, options.level)?;
     }
     let map = map_of(setup, &compliance, &options, &outcome, &chosen)?;
-    let Outcome {
+    let Computed {
         name,
         program,
         mut warnings,
@@ -615,7 +623,7 @@ fn map_of(
     setup: &Setup,
     compliance: &Compliance,
     options: &Options,
-    outcome: &Outcome,
+    outcome: &Computed,
     chosen: &[compensate::ChosenValues],
 ) -> Result<Option<compensate::Map>> {
     let Some(points) = &outcome.mapped else {

@@ -55,6 +55,9 @@ pub struct Report {
     pub warnings: Vec<Warning>,
 }
 
+/// The evaluate job's report and its document.
+pub type Outcome = crate::app::Outcome<Report, document::Document>;
+
 /// Evaluates the group.
 ///
 /// # Errors
@@ -64,7 +67,14 @@ pub struct Report {
 /// [`purpose::check`] (options that mean nothing for the purpose), [`Error::InvalidOption`]
 /// ([`JobOption::Candidates`]) for candidates with for = calibration or check, [`purpose::design`] and
 /// [`stiffid_design::observability::CalibrationDesign::evaluate`]; [`pool`]'s for the candidates; [`verdicts`]'.
-pub fn run(request: &Request) -> Result<Report> {
+pub fn run(request: &Request) -> Result<Outcome> {
+    let report = find(request)?;
+    let document = document::Document::new(&report, request.setup);
+    Ok(Outcome { report, document })
+}
+
+/// What [`run`] finds, before its document.
+fn find(request: &Request) -> Result<Report> {
     let (setup, postures) = (request.setup, request.postures);
     purpose::check(request.purpose, &request.calibration)?;
     if !request.purpose.calibration_only() {

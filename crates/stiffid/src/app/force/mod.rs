@@ -34,11 +34,14 @@ pub struct Report {
     pub operations: Vec<OperationForce>,
 }
 
+/// The force job's report and its document.
+pub type Outcome = crate::app::Outcome<Report, document::Document>;
+
 /// Runs the force job.
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`peak_resolution_deg`) for a resolution outside its range.
-pub fn run(request: &Request<'_>) -> Result<Report> {
+pub fn run(request: &Request<'_>) -> Result<Outcome> {
     if let Some(deg) = request.peak_resolution_deg
         && !(MIN_RESOLUTION_DEG..=MAX_RESOLUTION_DEG).contains(&deg)
     {
@@ -49,12 +52,14 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
             ),
         });
     }
-    Ok(Report {
+    let report = Report {
         name: request.name.clone(),
         peak_resolution_deg: request.peak_resolution_deg,
         operations: process::forces(
             request.process,
             request.peak_resolution_deg.map(f64::to_radians),
         ),
-    })
+    };
+    let document = document::Document::new(&report);
+    Ok(Outcome { report, document })
 }

@@ -91,11 +91,20 @@ pub struct Request<'a, R> {
     /// The setup: robot, tool, the model to fit (the six drives alone take the fast path),
     /// tracker noise, nominal stiffness, candidate springs.
     pub setup: &'a Setup,
+    /// The setup as the user named it (a built-in setup's name or a file's path): what the
+    /// document states.
+    pub setup_name: String,
     /// The measurements.
     pub data: Data<R>,
     /// The fit, the cross-validation, the offsets and the model comparison.
     pub options: Options,
+    /// Told of the model comparison's bootstrap resamples (one stage, `bootstrap resamples`);
+    /// the other paths report nothing. `&()` for none.
+    pub progress: &'a dyn Progress,
 }
+
+/// The identify job's report and its document (each form's).
+pub type Outcome = crate::app::Outcome<Report, Document>;
 
 /// What the identify job found, by what was asked.
 #[derive(Debug, Clone)]
@@ -164,23 +173,21 @@ impl Report {
 /// Those of [`Options`]' check ([`stiffid_core::Error::OptionCombination`],
 /// [`stiffid_core::Error::InvalidOption`]); errors about the data as [`stiffid_core::Error::Input`] naming the
 /// data (a file's line and column, or the measurement's number), from the path taken.
-pub fn run<R: Read + Send>(request: Request<'_, R>) -> Result<Report> {
-    run_with_progress(request, &())
+pub fn run<R: Read + Send>(request: Request<'_, R>) -> Result<Outcome> {
+    let (setup, setup_name) = (request.setup, request.setup_name.clone());
+    let report = find(request)?;
+    let document = report.document(&setup_name, setup);
+    Ok(Outcome { report, document })
 }
 
-/// [`run`], the model comparison's bootstrap reporting its resamples to `progress` (one stage,
-/// `bootstrap resamples`); the other paths report nothing.
-///
-/// # Errors
-/// Those of [`run`].
-pub fn run_with_progress<R: Read + Send>(
-    request: Request<'_, R>,
-    progress: &dyn Progress,
-) -> Result<Report> {
+/// What [`run`] finds, before its document.
+fn find<R: Read + Send>(request: Request<'_, R>) -> Result<Report> {
     let Request {
         setup,
         data,
         options,
+        progress,
+        ..
     } = request;
     match options.plan()? {
         Plan::Compare {

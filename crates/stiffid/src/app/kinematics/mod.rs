@@ -120,6 +120,9 @@ pub fn characteristic_length_or_derived(
     }
 }
 
+/// The kinematics job's report and its document.
+pub type Outcome = crate::app::Outcome<Report, document::Document>;
+
 /// Runs the kinematics job.
 ///
 /// # Errors
@@ -128,7 +131,14 @@ pub fn characteristic_length_or_derived(
 /// [`limits::CHARACTERISTIC_LENGTH_MM`] or `stiffness_nm_per_rad` for a stiffness outside
 /// [`limits::STIFFNESS_NM_PER_RAD`], and without a length those of
 /// [`prior::robot_characteristic_length`]; for the external axes, those of [`check_external`].
-pub fn run(request: Request<'_>) -> Result<Report> {
+pub fn run(request: &Request<'_>) -> Result<Outcome> {
+    let report = find(request)?;
+    let document = document::Document::new(&report, request.robot);
+    Ok(Outcome { report, document })
+}
+
+/// What [`run`] finds, before its document.
+fn find(request: &Request<'_>) -> Result<Report> {
     let Request {
         robot,
         q,
@@ -139,6 +149,10 @@ pub fn run(request: Request<'_>) -> Result<Report> {
         external,
         workpiece,
     } = request;
+    let (robot, q, point, coordinates) = (*robot, *q, *point, *coordinates);
+    let (characteristic_length, stiffness, workpiece) =
+        (*characteristic_length, *stiffness, *workpiece);
+    let external = external.clone();
     let field = |a: usize| format!("q_deg[{}]", a + 1);
     robot.limits().check(&q, "the robot's limits", field)?;
     check_external(robot, &external, "external")?;

@@ -246,6 +246,9 @@ fn cost(objective: Aggregate, e: &Evaluation) -> f64 {
     }
 }
 
+/// The place job's report and its document (its placement beside the setup's own).
+pub type Outcome = crate::app::Outcome<Report, document::Document>;
+
 /// Runs the place job (module docs).
 ///
 /// # Errors
@@ -253,7 +256,15 @@ fn cost(objective: Aggregate, e: &Evaluation) -> f64 {
 /// without `[workpiece]` or `[tool] tcp_mm`, work the part cannot carry ([`Work::check`]: a robot
 /// program's joint targets, a path file's axis angles), and no feasible placement in the region (naming why the
 /// setup's own placement fails); those of [`Options::validate`].
-pub fn run(request: &Request<'_>) -> Result<Report> {
+pub fn run(request: &Request<'_>) -> Result<Outcome> {
+    let report = find(request)?;
+    let own = request.setup.workpiece().copied().unwrap_or_default();
+    let document = document::Document::new(&report, &own);
+    Ok(Outcome { report, document })
+}
+
+/// What [`run`] finds, before its document.
+fn find(request: &Request<'_>) -> Result<Report> {
     check(request)?;
     let setup = request.setup;
     let own = *setup.workpiece().ok_or_else(|| Error::InvalidField {

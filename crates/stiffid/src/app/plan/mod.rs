@@ -43,6 +43,28 @@ pub struct Request<'a> {
     /// displacements, [`stiffid_core::Robot::frames_at`]), its checks with the boxes the positioner
     /// carries turned ([`Checker::feasibility_at`]), its scene. Empty: every axis at 0.
     pub external: &'a [Vec<f64>],
+    /// Also the plan's 3D scene ([`document::scene`]): in [`Outcome::scene`].
+    pub scene: bool,
+}
+
+/// The plan job's report, its document and, if asked, its scene. It reads as its report.
+#[derive(Debug, Clone)]
+pub struct Outcome {
+    /// What the plan found, SI units.
+    pub report: Report,
+    /// The plan's document (`plan.json`, Python's `stiffid.plan`).
+    pub document: document::Document,
+    /// With [`Request::scene`]: the plan's 3D scene (`plan.html`, `plan.glb`, Python's
+    /// `stiffid.scene`).
+    pub scene: Option<stiffid_view::Scene>,
+}
+
+impl std::ops::Deref for Outcome {
+    type Target = Report;
+
+    fn deref(&self) -> &Report {
+        &self.report
+    }
 }
 
 /// What the plan says about one posture.
@@ -91,8 +113,22 @@ pub struct Report {
 /// [`stiffid_core::Error::InvalidField`] (`postures`) for none or more than [`MAX_POSTURES`];
 /// external values (field `external`) not one list per posture of values within the axes'
 /// limits, or none for a robot with external axes; [`stiffid_core::Error::MissingField`] for a setup without a nominal stiffness; the errors
-/// of [`Setup::check_bodies`].
-pub fn run(request: &Request) -> Result<Report> {
+/// of [`Setup::check_bodies`]; with [`Request::scene`], those of [`document::scene`].
+pub fn run(request: &Request) -> Result<Outcome> {
+    let report = find(request)?;
+    let document = document::Document::new(&report, request.setup);
+    let scene = (request.scene)
+        .then(|| document::scene(&report, request.setup))
+        .transpose()?;
+    Ok(Outcome {
+        report,
+        document,
+        scene,
+    })
+}
+
+/// What [`run`] finds, before its document.
+fn find(request: &Request) -> Result<Report> {
     let (setup, postures) = (request.setup, request.postures);
     setup.require_loading("plan (where the rope pulls)")?;
     stiffid_core::common::limits::check_count("postures", postures.len(), 1, MAX_POSTURES)?;

@@ -25,6 +25,9 @@ use stiffid_core::{Result, Setup};
 /// What to predict.
 #[derive(Debug, Clone)]
 pub struct Request<'a> {
+    /// The setup as the user named it (a built-in setup's name or a file's path): what the
+    /// document states.
+    pub setup_name: String,
     /// The setup: robot, tool, model.
     pub setup: &'a Setup,
     /// Axis angles q1..q6, rad, within the robot's limits.
@@ -109,6 +112,9 @@ pub struct Mass {
     pub surge: Option<Surge>,
 }
 
+/// The predict job's report and its document.
+pub type Outcome = crate::app::Outcome<Report, document::Document>;
+
 /// Runs the predict job.
 ///
 /// # Errors
@@ -117,7 +123,14 @@ pub struct Mass {
 /// [`stiffid_core::Error::OutsideBox`] (field `q_deg[i]`) for an axis angle outside the robot's limits;
 /// without a compliance, those of [`stiffid_core::Setup::model_compliance`] (no nominal stiffness); with one, those
 /// of [`Compliance::check`] (not one value per parameter of the setup's model).
-pub fn run(request: Request<'_>) -> Result<Report> {
+pub fn run(request: &Request<'_>) -> Result<Outcome> {
+    let report = find(request)?;
+    let document = document::Document::new(&report, &request.setup_name);
+    Ok(Outcome { report, document })
+}
+
+/// What [`run`] finds, before its document.
+fn find(request: &Request<'_>) -> Result<Report> {
     let Request {
         setup,
         q,
@@ -126,7 +139,9 @@ pub fn run(request: Request<'_>) -> Result<Report> {
         at,
         compliance,
         level,
+        ..
     } = request;
+    let (q, wrench, frame, at, level) = (*q, *wrench, *frame, *at, *level);
     let field = |a: usize| format!("q_deg[{}]", a + 1);
     setup
         .robot()
@@ -135,7 +150,7 @@ pub fn run(request: Request<'_>) -> Result<Report> {
     let compliance = match compliance {
         Some(c) => {
             c.check(setup.model())?;
-            c
+            c.clone()
         }
         None => setup.model_compliance("predict without a stiffness")?,
     };

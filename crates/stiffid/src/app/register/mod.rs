@@ -33,6 +33,9 @@ pub struct Report {
     pub frame_sd: (f64, f64),
 }
 
+/// The register job's report and its document.
+pub type Outcome = crate::app::Outcome<Report, document::Document>;
+
 /// Runs the register job.
 ///
 /// # Errors
@@ -41,7 +44,14 @@ pub struct Report {
 /// [`stiffid_core::Error::Input`] naming the file; unless [`Request::force`], readings that are a
 /// mirror image or leave a residual beyond [`register::residual_limit`] ([`register::suspect`]),
 /// naming the reading.
-pub fn run(request: &Request<'_>) -> Result<Report> {
+pub fn run(request: &Request<'_>) -> Result<Outcome> {
+    let report = find(request)?;
+    let document = document::Document::new(&report, &request.setup_name);
+    Ok(Outcome { report, document })
+}
+
+/// What [`run`] finds, before its document.
+fn find(request: &Request<'_>) -> Result<Report> {
     let (data, warnings) = read(request)?;
     let name = &request.name;
     let points = register::correspondences(request.setup, &data).map_err(|e| in_data(name, e))?;
@@ -63,6 +73,9 @@ pub fn run(request: &Request<'_>) -> Result<Report> {
 pub struct DesignRequest<'a> {
     /// The setup: robot, tool (its measuring points), bounds, cell, tracker, noise.
     pub setup: &'a Setup,
+    /// The setup as the user named it (a built-in setup's name or a file's path): what the
+    /// proposal states.
+    pub setup_name: String,
     /// How many postures (1 to [`design::MAX_POSTURES`]).
     pub postures: usize,
     /// The seed, the candidates and the exchange runs.
@@ -90,13 +103,23 @@ pub struct DesignReport {
     pub warnings: Vec<Warning>,
 }
 
+/// The postures proposed and their document.
+pub type Proposed = crate::app::Outcome<DesignReport, document::Proposal>;
+
 /// Proposes the registration postures that minimise the rotation's standard deviation
 /// ([`design::design`]).
 ///
 /// # Errors
 /// [`stiffid_core::Error::InvalidOption`] ([`JobOption::Force`]) with [`DesignRequest::force`]; those
 /// of [`design::design`].
-pub fn propose(request: &DesignRequest<'_>) -> Result<DesignReport> {
+pub fn propose(request: &DesignRequest<'_>) -> Result<Proposed> {
+    let report = find_proposal(request)?;
+    let document = document::Proposal::new(&report, &request.setup_name);
+    Ok(Proposed { report, document })
+}
+
+/// What [`propose`] finds, before its document.
+fn find_proposal(request: &DesignRequest<'_>) -> Result<DesignReport> {
     if request.force {
         return Err(stiffid_core::Error::InvalidOption {
             option: JobOption::Force,

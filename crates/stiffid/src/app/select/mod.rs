@@ -269,6 +269,10 @@ pub struct PoolReport {
 pub use stiffid_design::selection::pool::Skipped;
 pub use stiffid_design::selection::search::Unconstrained;
 
+/// The select job's report and its document (without the files the front end writes: its
+/// `out` and `report` are `None`).
+pub type Outcome = crate::app::Outcome<Report, document::Document>;
+
 /// Selects the group.
 ///
 /// # Errors
@@ -281,7 +285,14 @@ pub use stiffid_design::selection::search::Unconstrained;
 /// target or too few postures for the model and the candidates (naming the count needed),
 /// [`JobOption::Candidates`] without it, those of [`candidates::pool`] and
 /// [`candidates::design_setup`]; the searches' errors; a group that cannot identify every parameter (for a calibration: separate its parameters, [`Error::Input`] of an [`Error::InvalidField`] `calibration`).
-pub fn run(request: &Request) -> Result<Report> {
+pub fn run(request: &Request) -> Result<Outcome> {
+    let report = find(request)?;
+    let document = document::Document::new(&report, request.setup);
+    Ok(Outcome { report, document })
+}
+
+/// What [`run`] finds, before its document.
+fn find(request: &Request) -> Result<Report> {
     check(request)?;
     table::check(request)?;
     let report = if campaign::is_campaign(request) {

@@ -29,6 +29,9 @@ pub struct Request<'a> {
     pub groups: Vec<Group>,
     /// Runs per group and level, and the seed.
     pub options: Options,
+    /// Told of one stage, `Monte Carlo identification`, one unit per run (groups x levels x
+    /// runs); `&()` for none.
+    pub progress: &'a dyn Progress,
 }
 
 /// What the simulation found.
@@ -49,22 +52,24 @@ pub struct Report {
     pub warnings: Vec<Warning>,
 }
 
+/// The simulate job's report and its document.
+pub type Outcome = crate::app::Outcome<Report, document::Document>;
+
 /// Simulates every group.
 ///
 /// # Errors
 /// [`stiffid_core::Error::InvalidField`] (`groups`) for no group or more than [`limits::MAX_GROUPS`]; the
 /// errors of [`monte_carlo`](stiffid_design::study::simulate::monte_carlo) (among them a virtual spring without a nominal stiffness, the
 /// truth of the simulation, and a group that cannot identify every parameter of the model).
-pub fn run(request: &Request) -> Result<Report> {
-    run_with_progress(request, &())
+pub fn run(request: &Request) -> Result<Outcome> {
+    let report = find(request)?;
+    let document = document::Document::new(&report, request.setup);
+    Ok(Outcome { report, document })
 }
 
-/// [`run`], reporting one stage to `progress`, `Monte Carlo identification`, one unit per run
-/// (groups x levels x runs).
-///
-/// # Errors
-/// Those of [`run`].
-pub fn run_with_progress(request: &Request, progress: &dyn Progress) -> Result<Report> {
+/// What [`run`] finds, before its document.
+fn find(request: &Request) -> Result<Report> {
+    let progress = request.progress;
     let setup = request.setup;
     setup.require_loading("simulate (the rope load of every posture)")?;
     limits::check_count("groups", request.groups.len(), 1, limits::MAX_GROUPS)?;

@@ -14,6 +14,9 @@ use stiffid_identify::validate::{compare_at, Validation};
 
 /// What to validate on what.
 pub struct Request<'a, R> {
+    /// The setup as the user named it (a built-in setup's name or a file's path): what the
+    /// document states.
+    pub setup_name: String,
     /// The setup: robot, tool, model.
     pub setup: &'a Setup,
     /// The compliance of every parameter of the setup's model (e.g. a stiffness file's,
@@ -47,18 +50,30 @@ pub struct Report {
     pub warnings: Vec<Warning>,
 }
 
+/// The validate job's report and its document.
+pub type Outcome = crate::app::Outcome<Report, document::Document>;
+
 /// Runs the validate job.
 ///
 /// # Errors
 /// Errors about the data are [`stiffid_core::Error::Input`] naming the data (a file's line and column,
 /// or the measurement's number): those of [`stiffid_core::io::measurements::parse`] and of
 /// [`compare`](stiffid_identify::validate::compare) (the compliance against the model, the measurements against the setup).
-pub fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {
+pub fn run<R: Read>(request: Request<'_, R>) -> Result<Outcome> {
+    let (setup, setup_name) = (request.setup, request.setup_name.clone());
+    let report = find(request)?;
+    let document = document::Document::new(&report, &setup_name, setup);
+    Ok(Outcome { report, document })
+}
+
+/// What [`run`] finds, before its document.
+fn find<R: Read>(request: Request<'_, R>) -> Result<Report> {
     let Request {
         setup,
         compliance,
         data,
         level,
+        ..
     } = request;
     let level =
         stiffid_core::model::prediction::requested_level(level, compliance.prediction.is_some())?;

@@ -35,6 +35,7 @@ fn job(setup: &stiffid::Setup) -> stiffid::Result<Vec<f64>> {
     )
     .unwrap();
     let request = compensate::Request {
+        names: Default::default(),
         setup,
         compliance,
         input: Input::Program {

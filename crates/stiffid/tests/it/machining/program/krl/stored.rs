@@ -111,6 +111,7 @@ fn compensated(
     )
     .unwrap();
     let request = compensate::Request {
+        names: Default::default(),
         setup,
         compliance,
         input: Input::Program {
@@ -133,7 +134,7 @@ fn compensated(
         Ok(())
     })
     .unwrap();
-    let p = report.program.unwrap();
+    let p = report.report.program.unwrap();
     (p.text, p.data, results)
 }
 

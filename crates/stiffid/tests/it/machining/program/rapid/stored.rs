@@ -176,6 +176,7 @@ fn compensated(
     let mut options = Options::for_setup(setup);
     options.q0 = *q0;
     let request = compensate::Request {
+        names: Default::default(),
         setup,
         compliance: compliance.clone(),
         input: Input::Program {
@@ -198,7 +199,7 @@ fn compensated(
         Ok(())
     })
     .unwrap();
-    (report.program.unwrap().text, results)
+    (report.report.program.unwrap().text, results)
 }
 
 /// What the stored module compensated on `setup` (its part set, its tracker registered at
