@@ -4,24 +4,28 @@
 //! With `r` the residuals at the fit, `G` the scaled columns of the fitted parameters and `M` the
 //! scaled columns of the candidate maps, a split's training rows `T` give the geometry's columns
 //! `G_T = U S V^T` (SVD, the part below `1e-10` of the largest singular value dropped) and, for
-//! the map columns `M_T` of a choice, `P M_T = M_T - U U^T M_T = W Sigma Z^T` (SVD); the ridge
-//! `lambda` gives the maps' step `y = -Z diag(sigma / (sigma^2 + lambda)) W^T P r_T`, the
-//! geometry's `-V S^-1 U^T (r_T + M_T y)`, and the held-out rows `V` the errors
+//! the map columns `M_T` of a choice, `A_M = P M_T = M_T - U U^T M_T`; the ridge `lambda` gives
+//! the maps' step `y = -(A_M^T A_M + lambda I)^-1 A_M^T P r_T`, the geometry's
+//! `-V S^-1 U^T (r_T + M_T y)`, and the held-out rows `V` the errors
 //!
 //! ```text
 //! e_V = (r_V - A U^T r_T) + (M_V - A U^T M_T) y,        A = G_V V S^-1
 //! ```
 //!
-//! exactly the least squares of the linearised model with the ridge rows on the maps alone, for
-//! every `lambda` from one SVD (never the normal equations).
+//! exactly the least squares of the linearised model with the ridge rows on the maps alone (the
+//! geometry's columns by SVD, never their normal equations).
 //!
 //! A split projects every candidate column once (`P M_T` and `M_V - A U^T M_T`, all joints; a
-//! choice of fixed maps or none scores on [`Linear::restricted`] to its own columns);
-//! where the training rows outnumber them it keeps the triangular factor `R` of the Householder
-//! QR `P M_T = Q R` and `Q^T P r_T` instead: the columns `S` of a choice have the same singular
-//! values and right singular vectors `Z` in `R` as in `P M_T`, from a matrix no taller than it is
-//! wide. `W` is never formed: `sigma_i g_i = z_i^T (P M_T)_S^T P r_T`, so the maps' step is
-//! `y = -Z diag(1 / (sigma^2 + lambda)) Z^T (P M_T)_S^T P r_T` over the nonzero `sigma`.
+//! choice of fixed maps or none scores on [`Linear::restricted`] to its own columns) and keeps
+//! their Gram matrix `(P M_T)^T P M_T` and `(P M_T)^T P r_T`: a choice's are their blocks. The
+//! maps' step solves the ridge's normal equations by a Cholesky factor per `lambda`, in the
+//! smaller of the two sides: `A_M^T A_M + lambda I` where the training rows are as many as the
+//! choice's columns or more, else `y = -A_M^T (A_M A_M^T + lambda I)^-1 P r_T` (the same step).
+//! The ridge bounds their condition by `(sigma_max^2 + lambda) / lambda`; a `lambda` below
+//! `1e-9` of the largest diagonal entry, or a factor that fails, takes the SVD
+//! `A_M = W Sigma Z^T` instead: `y = -Z diag(1 / (sigma^2 + lambda)) Z^T A_M^T P r_T` over the
+//! nonzero `sigma`. Both agree with the augmented system solved directly to `1e-9` of the
+//! held-out errors (`maps_kernel_tests.rs`).
 
 use super::super::error_model::{JointMaps, Observation, Target};
 use super::super::fit::Fit;
@@ -59,12 +63,14 @@ pub struct Split {
     /// `r_V - A U^T r_T`.
     base: DVector<f64>,
     /// Every candidate map column projected, `P M_T` (all of [`Linear::maps`]' columns, joint
-    /// after joint), or its triangular factor `R` (`P M_T = Q R`) where it has more rows than
-    /// columns: the same singular values and right singular vectors for any subset of columns.
+    /// after joint).
     projected_maps: DMatrix<f64>,
-    /// `P r_T`, or `Q^T P r_T` beside `R`: `projected_maps[:, S]^T` times it is
-    /// `(P M_T)[:, S]^T P r_T` for any subset `S`.
+    /// `P r_T`.
     projected: DVector<f64>,
+    /// `(P M_T)^T P M_T`, every candidate column: a choice's ridge matrix is its block.
+    gram: DMatrix<f64>,
+    /// `(P M_T)^T P r_T`, every candidate column.
+    moment: DVector<f64>,
     /// Every candidate map column on the held-out rows, `M_V - A U^T M_T`.
     held_maps: DMatrix<f64>,
 }
@@ -197,9 +203,13 @@ impl Linear {
         let m_t = self.columns_of(&all, &train_rows);
         let utm = u.tr_mul(&m_t);
         let held_maps = self.columns_of(&all, &test_rows) - &a * &utm;
-        let (projected_maps, projected) = compressed(m_t - &u * utm, projected);
+        let projected_maps = m_t - &u * utm;
+        // Products through the matrix kernel (`tr_mul` takes a dot product per entry).
+        let pm_t = projected_maps.transpose();
         Ok(Split {
             base: r_v - &a * &utr,
+            gram: &pm_t * &projected_maps,
+            moment: &pm_t * &projected,
             projected,
             projected_maps,
             held_maps,
@@ -302,49 +312,82 @@ impl Linear {
             return Ok(vec![per_posture(&split.base); lambdas.len()]);
         }
         let chosen = self.indices(choice);
-        let pm = split.projected_maps.select_columns(chosen.iter());
-        let mv = split.held_maps.select_columns(chosen.iter());
-        // `Z^T (P M_T)^T P r_T`: its entry i is `s_i g_i` (`g = W^T P r_T`), without `W`.
-        let b = pm.tr_mul(&split.projected);
-        let svd = pm.capped_svd(false, true).ok_or_else(not_converged)?;
-        let z_t = svd.v_t.ok_or_else(not_converged)?;
-        let sg = &z_t * b;
-        let mvz = mv * z_t.transpose();
-        Ok(lambdas
-            .iter()
-            .map(|&lambda| {
-                let weights = DVector::from_iterator(
-                    sg.len(),
-                    (svd.singular_values.iter().zip(sg.iter())).map(|(s, sg)| {
-                        let d = s * s + lambda;
-                        match d > 0.0 && *s > 0.0 {
-                            true => -sg / d,
-                            false => 0.0,
-                        }
-                    }),
-                );
-                per_posture(&(&split.base + &mvz * weights))
-            })
+        let steps = match ridge_steps(split, &chosen, lambdas) {
+            Some(steps) => steps,
+            None => svd_steps(split, &chosen, lambdas)?,
+        };
+        let moved = split.held_maps.select_columns(chosen.iter()) * steps;
+        Ok((0..lambdas.len())
+            .map(|k| per_posture(&(&split.base + moved.column(k))))
             .collect())
     }
 }
 
-/// `(P M_T, P r_T)` as they are when `P M_T` has no more rows than columns, else its triangular
-/// factor `R` and `Q^T P r_T` (Householder QR of `[P M_T | P r_T]`): any subset of the columns
-/// has the same singular values and right singular vectors in `R` as in `P M_T`, and the same
-/// products with the right-hand side, from a matrix as tall as it is wide.
-fn compressed(pm: DMatrix<f64>, pr: DVector<f64>) -> (DMatrix<f64>, DVector<f64>) {
-    let (m, n) = pm.shape();
-    if m <= n {
-        return (pm, pr);
+/// The least share of the ridge matrix's largest diagonal entry a ridge `lambda` must reach for
+/// [`ridge_steps`]: it bounds the condition of `C + lambda I` (`C` the Gram matrix of the
+/// smaller side) by about its order times its inverse.
+const LEAST_RIDGE: f64 = 1e-9;
+
+/// The maps' steps `y = -(A^T A + lambda I)^-1 A^T P r_T` of the columns `chosen` (`A` their
+/// `P M_T`) at each `lambda` (one column each), from a Cholesky factor per `lambda` of the
+/// smaller of the two Gram matrices: `A^T A` (a block of the split's) where the training rows
+/// are as many as the columns or more, else `A A^T` (`y = -A^T (A A^T + lambda I)^-1 P r_T`).
+/// The ridge bounds their condition (module docs); `None` where a `lambda` is below
+/// [`LEAST_RIDGE`] of the largest diagonal entry or a factor fails (the SVD then).
+fn ridge_steps(split: &Split, chosen: &[usize], lambdas: &[f64]) -> Option<DMatrix<f64>> {
+    let (m, p) = (split.projected_maps.nrows(), chosen.len());
+    let wide = m < p;
+    let (c, rhs, a) = match wide {
+        false => (
+            DMatrix::from_fn(p, p, |i, j| split.gram[(chosen[i], chosen[j])]),
+            DVector::from_fn(p, |i, _| split.moment[chosen[i]]),
+            None,
+        ),
+        true => {
+            let a = split.projected_maps.select_columns(chosen.iter());
+            (&a * a.transpose(), split.projected.clone(), Some(a))
+        }
+    };
+    let largest = c.diagonal().max();
+    let mut solved = DMatrix::zeros(c.nrows(), lambdas.len());
+    for (k, &lambda) in lambdas.iter().enumerate() {
+        if !(lambda > LEAST_RIDGE * largest) {
+            return None;
+        }
+        let mut shifted = c.clone();
+        for i in 0..shifted.nrows() {
+            shifted[(i, i)] += lambda;
+        }
+        let x = nalgebra::Cholesky::new(shifted)?.solve(&rhs);
+        solved.set_column(k, &(-x));
     }
-    let mut a = pm.insert_column(n, 0.0);
-    a.column_mut(n).copy_from(&pr);
-    let mut taus = vec![0.0; n];
-    stiffid_core::math::linalg::householder_qr_columns(a.as_mut_slice(), m, &mut taus);
-    let r = DMatrix::from_fn(n, n, |i, c| if i <= c { a[(i, c)] } else { 0.0 });
-    let qtr = a.column(n).rows(0, n).into_owned();
-    (r, qtr)
+    Some(match a {
+        Some(a) => a.transpose() * solved,
+        None => solved,
+    })
+}
+
+/// [`ridge_steps`] from the SVD of the chosen columns' `P M_T = W Sigma Z^T`:
+/// `y = -Z diag(1 / (sigma^2 + lambda)) Z^T A^T P r_T` over the nonzero `sigma`.
+///
+/// # Errors
+/// [`Error::NotFinite`] when the SVD does not converge.
+fn svd_steps(split: &Split, chosen: &[usize], lambdas: &[f64]) -> Result<DMatrix<f64>> {
+    let pm = split.projected_maps.select_columns(chosen.iter());
+    // `Z^T (P M_T)^T P r_T`: its entry i is `s_i g_i` (`g = W^T P r_T`), without `W`.
+    let b = DVector::from_fn(chosen.len(), |i, _| split.moment[chosen[i]]);
+    let svd = pm.capped_svd(false, true).ok_or_else(not_converged)?;
+    let z_t = svd.v_t.ok_or_else(not_converged)?;
+    let sg = &z_t * b;
+    let s = &svd.singular_values;
+    let weights = DMatrix::from_fn(sg.len(), lambdas.len(), |i, k| {
+        let d = s[i] * s[i] + lambdas[k];
+        match d > 0.0 && s[i] > 0.0 {
+            true => -sg[i] / d,
+            false => 0.0,
+        }
+    });
+    Ok(z_t.transpose() * weights)
 }
 
 fn not_converged() -> Error {
