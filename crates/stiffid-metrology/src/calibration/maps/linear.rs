@@ -351,7 +351,7 @@ fn ridge_steps(split: &Split, chosen: &[usize], lambdas: &[f64]) -> Option<DMatr
     let largest = c.diagonal().max();
     let mut solved = DMatrix::zeros(c.nrows(), lambdas.len());
     for (k, &lambda) in lambdas.iter().enumerate() {
-        if !(lambda > LEAST_RIDGE * largest) {
+        if !lambda.is_finite() || lambda <= LEAST_RIDGE * largest {
             return None;
         }
         let mut shifted = c.clone();

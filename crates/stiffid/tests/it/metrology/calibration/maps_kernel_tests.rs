@@ -1,7 +1,8 @@
-//! The maps' held-out errors on a split ([`Linear::errors`]) against the ridge least squares of
+//! The maps' held-out errors on a split ([`Linear::errors`]: Cholesky factors of the ridge's
+//! normal equations) against the ridge least squares of
 //! the linearised model solved directly (nalgebra's SVD of the whole augmented system), with
-//! fewer training rows than candidate columns and with more (where the split keeps the projected
-//! columns' triangular factor); and the nested figure of choices given back equal to the one
+//! fewer training rows than candidate columns (the factors of `A A^T`) and with more (of
+//! `A^T A`); and the nested figure of choices given back equal to the one
 //! that chose them.
 
 use super::fit;
@@ -88,7 +89,8 @@ fn assert_split_matches(n: usize, restricted: bool) {
         assert_eq!(narrow.maps.iter().map(|m| m.ncols()).sum::<usize>(), 48);
     }
     let split = used.split(&train, &test).unwrap();
-    for lambda in [1e-4, 1e-2, 1.0] {
+    // From below the least ridge a calibration takes (1e-6 per reading, 40 readings or more).
+    for lambda in [1e-6, 1e-4, 1e-2, 1.0] {
         let got = used
             .errors(&split, &choice, &[lambda])
             .unwrap()
@@ -112,14 +114,14 @@ fn a_splits_errors_are_the_ridge_least_squares_with_fewer_rows_than_columns() {
 #[test]
 fn a_restricted_linearisations_errors_are_the_ridge_least_squares() {
     // The choice's 48 columns alone, from 120 training rows and from 600 (both more rows than
-    // columns: the triangular factor kept).
+    // columns).
     assert_split_matches(50, true);
     assert_split_matches(250, true);
 }
 
 #[test]
 fn a_splits_errors_are_the_ridge_least_squares_with_more_rows_than_columns() {
-    // 200 training postures: 600 rows, 384 candidate columns (the triangular factor kept).
+    // 200 training postures: 600 rows, 384 candidate columns.
     assert_split_matches(250, false);
 }
 
