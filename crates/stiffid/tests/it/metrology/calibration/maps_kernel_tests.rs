@@ -89,8 +89,9 @@ fn assert_split_matches(n: usize, restricted: bool) {
         assert_eq!(narrow.maps.iter().map(|m| m.ncols()).sum::<usize>(), 48);
     }
     let split = used.split(&train, &test).unwrap();
-    // From below the least ridge a calibration takes (1e-6 per reading, 40 readings or more).
-    for lambda in [1e-6, 1e-4, 1e-2, 1.0] {
+    // From the least ridge a calibration takes on these training readings (one per posture).
+    let least = maps::RIDGES[0] * train.len() as f64;
+    for lambda in [least, 1e-4, 1e-2, 1.0] {
         let got = used
             .errors(&split, &choice, &[lambda])
             .unwrap()
