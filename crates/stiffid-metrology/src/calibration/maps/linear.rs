@@ -30,7 +30,7 @@
 use super::super::error_model::{JointMaps, Observation, Target};
 use super::super::fit::Fit;
 use super::super::{ErrorModel, Estimate};
-use nalgebra::{DMatrix, DVector};
+use nalgebra::{Bidiagonal, DMatrix, DVector};
 use stiffid_core::math::linalg::CappedSvd;
 use stiffid_core::{Error, Result};
 
@@ -62,15 +62,12 @@ pub struct Split {
     test_posture: Vec<usize>,
     /// `r_V - A U^T r_T`.
     base: DVector<f64>,
-    /// Every candidate map column projected, `P M_T` (all of [`Linear::maps`]' columns, joint
-    /// after joint).
-    projected_maps: DMatrix<f64>,
-    /// `P r_T`.
-    projected: DVector<f64>,
-    /// `(P M_T)^T P M_T`, every candidate column: a choice's ridge matrix is its block.
-    gram: DMatrix<f64>,
-    /// `(P M_T)^T P r_T`, every candidate column.
-    moment: DVector<f64>,
+    /// `R` of the Householder QR `P M_T = Q R` of every candidate map column (all of
+    /// [`Linear::maps`]' columns, joint after joint; `min(m, n)` rows, upper trapezoidal): a
+    /// choice's columns are `Q` times its columns of `R`.
+    factor: DMatrix<f64>,
+    /// `Q^T P r_T` (the rows of [`Split::factor`]).
+    rotated: DVector<f64>,
     /// Every candidate map column on the held-out rows, `M_V - A U^T M_T`.
     held_maps: DMatrix<f64>,
 }
@@ -203,15 +200,14 @@ impl Linear {
         let m_t = self.columns_of(&all, &train_rows);
         let utm = u.tr_mul(&m_t);
         let held_maps = self.columns_of(&all, &test_rows) - &a * &utm;
-        let projected_maps = m_t - &u * utm;
-        // Products through the matrix kernel (`tr_mul` takes a dot product per entry).
-        let pm_t = projected_maps.transpose();
+        let qr = (m_t - &u * utm).qr();
+        let mut rotated = projected;
+        qr.q_tr_mul(&mut rotated);
+        let factor = qr.unpack_r();
         Ok(Split {
             base: r_v - &a * &utr,
-            gram: &pm_t * &projected_maps,
-            moment: &pm_t * &projected,
-            projected,
-            projected_maps,
+            rotated: rotated.rows(0, factor.nrows()).into_owned(),
+            factor,
             held_maps,
             test_posture,
         })
@@ -312,10 +308,7 @@ impl Linear {
             return Ok(vec![per_posture(&split.base); lambdas.len()]);
         }
         let chosen = self.indices(choice);
-        let steps = match ridge_steps(split, &chosen, lambdas) {
-            Some(steps) => steps,
-            None => svd_steps(split, &chosen, lambdas)?,
-        };
+        let steps = ridge_steps(split, &chosen, lambdas);
         let moved = split.held_maps.select_columns(chosen.iter()) * steps;
         Ok((0..lambdas.len())
             .map(|k| per_posture(&(&split.base + moved.column(k))))
@@ -323,71 +316,94 @@ impl Linear {
     }
 }
 
-/// The least share of the ridge matrix's largest diagonal entry a ridge `lambda` must reach for
-/// [`ridge_steps`]: it bounds the condition of `C + lambda I` (`C` the Gram matrix of the
-/// smaller side) by about its order times its inverse.
-const LEAST_RIDGE: f64 = 1e-9;
-
-/// The maps' steps `y = -(A^T A + lambda I)^-1 A^T P r_T` of the columns `chosen` (`A` their
-/// `P M_T`) at each `lambda` (one column each), from a Cholesky factor per `lambda` of the
-/// smaller of the two Gram matrices: `A^T A` (a block of the split's) where the training rows
-/// are as many as the columns or more, else `A A^T` (`y = -A^T (A A^T + lambda I)^-1 P r_T`).
-/// The ridge bounds their condition (module docs); `None` where a `lambda` is below
-/// [`LEAST_RIDGE`] of the largest diagonal entry or a factor fails (the SVD then).
-fn ridge_steps(split: &Split, chosen: &[usize], lambdas: &[f64]) -> Option<DMatrix<f64>> {
-    let (m, p) = (split.projected_maps.nrows(), chosen.len());
-    let wide = m < p;
-    let (c, rhs, a) = match wide {
-        false => (
-            DMatrix::from_fn(p, p, |i, j| split.gram[(chosen[i], chosen[j])]),
-            DVector::from_fn(p, |i, _| split.moment[chosen[i]]),
-            None,
-        ),
-        true => {
-            let a = split.projected_maps.select_columns(chosen.iter());
-            (&a * a.transpose(), split.projected.clone(), Some(a))
+/// The maps' steps `y = -argmin |A y - P r_T|^2 + lambda |y|^2` of the columns `chosen` (`A`
+/// their `P M_T`, `Q S` with `S` their columns of the split's `R`) at each `lambda > 0` (one
+/// column each), by Eldén's method: one bidiagonalisation `S = W B Z^T` (`B` upper bidiagonal,
+/// `k = min(rows, columns)`), then per `lambda` the ridge of `B` in `O(k)` ([`bidiagonal_ridge`]),
+/// `y = -Z z`. Where `S` has fewer rows than columns, `S^T` is bidiagonalised and `B^T` (lower)
+/// solved with its rows and columns in reverse order (upper).
+fn ridge_steps(split: &Split, chosen: &[usize], lambdas: &[f64]) -> DMatrix<f64> {
+    // `R`'s rows below the last chosen column are zero in the chosen columns.
+    let rows = chosen.iter().max().map_or(0, |&c| c + 1);
+    let rows = rows.min(split.factor.nrows());
+    let mut steps = DMatrix::zeros(chosen.len(), lambdas.len());
+    if rows == 0 {
+        return steps;
+    }
+    let s = split.factor.rows(0, rows).select_columns(chosen.iter());
+    let c = split.rotated.rows(0, rows);
+    let tall = rows >= chosen.len();
+    let bi = Bidiagonal::new(if tall { s } else { s.transpose() });
+    let (d, e) = (bi.diagonal(), bi.off_diagonal());
+    let (u, v_t) = (bi.u(), bi.v_t());
+    // The ridge of `B z = c'`, `y = Z z`: tall, `c' = W^T c`, `Z = V`; wide (`S^T = U B V^T`),
+    // `B^T z = V^T c`, `Z = U`, reversed.
+    let (c, back) = match tall {
+        true => (u.tr_mul(&c), v_t.transpose()),
+        false => (&v_t * c, u),
+    };
+    let order = |x: &DVector<f64>| -> Vec<f64> {
+        match tall {
+            true => x.iter().copied().collect(),
+            false => x.iter().rev().copied().collect(),
         }
     };
-    let largest = c.diagonal().max();
-    let mut solved = DMatrix::zeros(c.nrows(), lambdas.len());
+    let (d, e, c) = (order(&d), order(&e), order(&c));
     for (k, &lambda) in lambdas.iter().enumerate() {
-        if !lambda.is_finite() || lambda <= LEAST_RIDGE * largest {
-            return None;
+        let mut z = bidiagonal_ridge(&d, &e, &c, lambda);
+        if !tall {
+            z.reverse();
         }
-        let mut shifted = c.clone();
-        for i in 0..shifted.nrows() {
-            shifted[(i, i)] += lambda;
-        }
-        let x = nalgebra::Cholesky::new(shifted)?.solve(&rhs);
-        solved.set_column(k, &(-x));
+        steps.set_column(k, &(-(&back * DVector::from_vec(z))));
     }
-    Some(match a {
-        Some(a) => a.transpose() * solved,
-        None => solved,
-    })
+    steps
 }
 
-/// [`ridge_steps`] from the SVD of the chosen columns' `P M_T = W Sigma Z^T`:
-/// `y = -Z diag(1 / (sigma^2 + lambda)) Z^T A^T P r_T` over the nonzero `sigma`.
-///
-/// # Errors
-/// [`Error::NotFinite`] when the SVD does not converge.
-fn svd_steps(split: &Split, chosen: &[usize], lambdas: &[f64]) -> Result<DMatrix<f64>> {
-    let pm = split.projected_maps.select_columns(chosen.iter());
-    // `Z^T (P M_T)^T P r_T`: its entry i is `s_i g_i` (`g = W^T P r_T`), without `W`.
-    let b = DVector::from_fn(chosen.len(), |i, _| split.moment[chosen[i]]);
-    let svd = pm.capped_svd(false, true).ok_or_else(not_converged)?;
-    let z_t = svd.v_t.ok_or_else(not_converged)?;
-    let sg = &z_t * b;
-    let s = &svd.singular_values;
-    let weights = DMatrix::from_fn(sg.len(), lambdas.len(), |i, k| {
-        let d = s[i] * s[i] + lambdas[k];
-        match d > 0.0 && s[i] > 0.0 {
-            true => -sg[i] / d,
-            false => 0.0,
+/// `argmin |B z - c|^2 + lambda |z|^2` for `B` upper bidiagonal (`d` its diagonal, `e` its
+/// superdiagonal; `lambda >= 0`), by Givens rotations of `[B; sqrt(lambda) I]` (Eldén, "Algorithms
+/// for the regularization of ill-conditioned least squares problems", BIT 17, 1977): per column
+/// one rotation of `B`'s row into the ridge row (leaving a fill in the next column) and one of
+/// that fill into the next ridge row, then back substitution on the upper bidiagonal `R`. A
+/// column with neither data nor ridge (`R`'s diagonal zero) takes no step.
+fn bidiagonal_ridge(d: &[f64], e: &[f64], c: &[f64], lambda: f64) -> Vec<f64> {
+    let k = d.len();
+    let mu = lambda.max(0.0).sqrt();
+    let (mut diagonal, mut upper, mut rhs) = (vec![0.0; k], vec![0.0; k], vec![0.0; k]);
+    // The ridge row of the current column: its entry there and its right-hand side.
+    let (mut beta, mut g) = (mu, 0.0);
+    for i in 0..k {
+        let (cos, sin, r) = givens(d[i], beta);
+        diagonal[i] = r;
+        rhs[i] = cos * c[i] + sin * g;
+        if i + 1 < k {
+            upper[i] = cos * e[i];
+            // The ridge row left with `-sin e_i` in column `i + 1` and `cos g - sin c_i`,
+            // rotated into the next ridge row (`mu` there, right-hand side 0).
+            let left = cos * g - sin * c[i];
+            let (_, sin_next, t) = givens(mu, -sin * e[i]);
+            (beta, g) = (t, sin_next * left);
         }
-    });
-    Ok(z_t.transpose() * weights)
+    }
+    let mut z = vec![0.0; k];
+    for i in (0..k).rev() {
+        let next = if i + 1 < k { upper[i] * z[i + 1] } else { 0.0 };
+        z[i] = if diagonal[i] > 0.0 {
+            (rhs[i] - next) / diagonal[i]
+        } else {
+            0.0
+        };
+    }
+    z
+}
+
+/// The rotation `(cos, sin)` taking `(a, b)` to `(r, 0)`, `r = |(a, b)|`; the identity for
+/// `(0, 0)`.
+fn givens(a: f64, b: f64) -> (f64, f64, f64) {
+    let r = a.hypot(b);
+    match r > 0.0 {
+        true => (a / r, b / r, r),
+        false => (1.0, 0.0, 0.0),
+    }
 }
 
 fn not_converged() -> Error {
