@@ -33,7 +33,7 @@
 //! (rayon), the result independent of the thread count. [`nested_given`] scores the choices
 //! another linearisation of the same postures made (a calibration's ladder chooses the harmonics
 //! once, at its first gravity model), each fold's ridge chosen anew. Where the maps are fixed
-//! (or none), the splits project and factor the columns of these maps alone
+//! (or none), the splits project the columns of these maps alone
 //! ([`Linear::restricted`]): the later rungs and each outer fold's figure cost the columns they
 //! use, not the candidates'.
 //!
@@ -364,7 +364,7 @@ pub fn lowers(current: (&[f64], f64), candidate: (&[f64], f64), accept: f64) -> 
 /// # Errors
 /// [`Error::NotFinite`] when an SVD does not converge.
 pub fn choose(linear: &Linear, postures: &[usize], spec: Spec) -> Result<Choice> {
-    // Fixed maps or none: the splits project and compress their columns alone.
+    // Fixed maps or none: the splits project their columns alone.
     let narrow = match spec {
         Spec::Auto => None,
         Spec::None => Some(linear.restricted(&JointMaps::NONE)),
