@@ -136,7 +136,7 @@ pub(super) struct Checks<'a> {
 impl<'a> Checks<'a> {
     /// The checks of `feasible` for the arm of `model`, the collisions with a `[cell]`, the
     /// speeds with move times and limits.
-    pub fn new(model: &Model<'a>, feasible: &'a Feasible) -> Self {
+    pub(super) fn new(model: &Model<'a>, feasible: &'a Feasible) -> Self {
         let robot = model.arm.robot();
         let checker = feasible.cell.as_deref().map(Checker::new);
         Checks {

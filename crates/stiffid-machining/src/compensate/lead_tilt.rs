@@ -151,7 +151,7 @@ struct Leans {
 impl Leans {
     /// The leans of `free` within cones up to `largest`, rad; `None` without `free`: the one
     /// state `(0, 0)`.
-    pub fn new(free: Option<&LeadTilt>, largest: f64) -> Self {
+    pub(crate) fn new(free: Option<&LeadTilt>, largest: f64) -> Self {
         let Some(free) = free else {
             return Leans {
                 offsets: Vec::new(),
@@ -208,7 +208,7 @@ pub(super) struct Leaning {
 impl Leaning {
     /// The leaning of `free` for points at `poses` (their nominal TCP poses, in one frame) with
     /// their `cones` (rad, one per point); the one state of no lean without `free`.
-    pub fn new(free: Option<&LeadTilt>, poses: &[Isometry3<f64>], cones: Vec<f64>) -> Self {
+    pub(super) fn new(free: Option<&LeadTilt>, poses: &[Isometry3<f64>], cones: Vec<f64>) -> Self {
         let largest = cones.iter().copied().fold(0.0, f64::max);
         Leaning {
             leans: Leans::new(free, largest),
@@ -223,7 +223,7 @@ impl Leaning {
     }
 
     /// State `k`'s lean of every point; `None` without a free lean.
-    pub fn at(&self, k: usize) -> Option<Lean<'_>> {
+    pub(super) fn at(&self, k: usize) -> Option<Lean<'_>> {
         let (lead, tilt) = self.leans.states[k];
         (!self.leans.offsets.is_empty()).then_some(Lean {
             lead,

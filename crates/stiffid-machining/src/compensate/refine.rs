@@ -38,7 +38,11 @@ pub(super) struct Layout {
 impl Layout {
     /// The layout of `external` free external axes, `leaning`'s axes (none without a free
     /// lean) and the rotation if free.
-    pub fn new(external: usize, leaning: &super::lead_tilt::Leaning, rotation: bool) -> Self {
+    pub(super) fn new(
+        external: usize,
+        leaning: &super::lead_tilt::Leaning,
+        rotation: bool,
+    ) -> Self {
         Layout {
             lean: (!leaning.offsets().is_empty()).then_some(external),
             rotation,

@@ -127,7 +127,7 @@ fn numbered(line: u64, n: i64, base: bool) -> Frame {
 
 impl Frames {
     /// Before any line: neither frame set.
-    pub fn new(unset: impl Fn(&str) -> Frame) -> Self {
+    pub(super) fn new(unset: impl Fn(&str) -> Frame) -> Self {
         Frames {
             base: unset("$BASE"),
             tool: unset("$TOOL"),

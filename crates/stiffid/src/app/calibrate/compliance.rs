@@ -81,7 +81,7 @@ pub fn fitted_compliance(
 /// The gravity terms of `model` at their values in `fit` (fitted or held), the tool of mass
 /// `tool` in them (its mass, kg, and centre of mass, m, flange frame); `None` without gravity terms. The calibrated robot file carries them
 /// (`[gravity]`, [`stiffid_core::robot::weight_file`]).
-pub fn own_weight(
+pub(super) fn own_weight(
     model: &ErrorModel,
     fit: &Fit,
     tool: (Option<f64>, Option<nalgebra::Vector3<f64>>),

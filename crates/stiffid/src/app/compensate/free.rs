@@ -68,7 +68,7 @@ impl FreeVariable {
 
 /// The names of what `free`'s variables minimise (`deflection`, `surge` or `bound`) and how
 /// their costs add up (`sum` or `max`); `None` when nothing is free.
-pub fn objective(free: &FreeVariables) -> Option<(&'static str, &'static str)> {
+pub(super) fn objective(free: &FreeVariables) -> Option<(&'static str, &'static str)> {
     free.any()
         .then(|| (free.minimise.name(), free.aggregate.name()))
 }

@@ -216,7 +216,7 @@ pub(super) struct Tracker<'a> {
 
 impl Tracker<'_> {
     /// Adds the point of index `i` (0-based, path order) with its result.
-    pub fn add(&mut self, i: usize, p: &PathPoint, r: &Compensated) {
+    pub(super) fn add(&mut self, i: usize, p: &PathPoint, r: &Compensated) {
         let Some(times) = &self.times else { return };
         let chosen_e = match r.external.is_empty() {
             true => p.external,
@@ -242,7 +242,7 @@ impl Tracker<'_> {
     }
 
     /// The document's object.
-    pub fn document(&self) -> SpeedLimits {
+    pub(super) fn document(&self) -> SpeedLimits {
         let robot = self.robot;
         let mut axes: Vec<(String, f64, bool)> = (0..6)
             .map(|k| (format!("q{}", k + 1), robot.max_speeds()[k], true))
@@ -280,7 +280,7 @@ impl Tracker<'_> {
     }
 
     /// The warning that some moves' programmed speeds are not read, naming the first.
-    pub fn warning(&self) -> Option<Warning> {
+    pub(super) fn warning(&self) -> Option<Warning> {
         let (line, why) = self.not_read.first()?;
         let n = self.not_read.len();
         Some(Warning::new(

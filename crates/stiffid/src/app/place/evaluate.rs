@@ -59,7 +59,7 @@ pub struct Evaluation {
 
 impl Context<'_> {
     /// The evaluation of the part at `pose`, or why it is not feasible there.
-    pub fn evaluate(&self, pose: &Isometry3<f64>) -> Result<Evaluation, String> {
+    pub(super) fn evaluate(&self, pose: &Isometry3<f64>) -> Result<Evaluation, String> {
         let arm = self.setup.arm();
         let (lines, results) = self.compensate(pose).map_err(|e| e.to_string())?;
         let robot = arm.robot();

@@ -41,7 +41,7 @@ impl<'p, 'a> Epigraph<'p, 'a> {
     }
 
     /// The problem from the angles `x0` (within the bounds), `t` at their worst `ln k(J_N)`.
-    pub fn new(problem: &'p Problem<'a>, x0: &[f64]) -> Self {
+    pub(super) fn new(problem: &'p Problem<'a>, x0: &[f64]) -> Self {
         let evaluator = &problem.evaluator;
         let worst = postures(x0)
             .iter()
@@ -58,7 +58,7 @@ impl<'p, 'a> Epigraph<'p, 'a> {
     }
 
     /// Runs our SQP from the start; why it stopped.
-    pub fn minimise(&self, tolerances: Tolerances) -> Termination {
+    pub(super) fn minimise(&self, tolerances: Tolerances) -> Termination {
         sqp::minimise(self, &self.x0, tolerances)
     }
 
