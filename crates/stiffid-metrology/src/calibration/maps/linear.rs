@@ -13,7 +13,11 @@
 //! ```
 //!
 //! exactly the least squares of the linearised model with the ridge rows on the maps alone (the
-//! geometry's columns by SVD, never their normal equations).
+//! geometry's columns by SVD, never their normal equations). The held-out rows' map columns `M_V`
+//! are tapered beyond the training postures' range of their axis's angle
+//! ([`stiffid_core::robot::error_map::taper`], the backlash term's kept), as the calibrated
+//! robot's maps taper beyond the fitted postures' range: a split predicts its held-out postures as
+//! the calibrated robot predicts a new one.
 //!
 //! A split projects every candidate column once (`P M_T` and `M_V - A U^T M_T`, all joints; a
 //! choice of fixed maps or none scores on [`Linear::restricted`] to its own columns) and keeps the
