@@ -37,8 +37,8 @@ use super::super::error_model::{JointMaps, Observation, Target};
 use super::super::fit::Fit;
 use super::super::{ErrorModel, Estimate};
 use nalgebra::{Bidiagonal, DMatrix, DVector, Vector6};
-use stiffid_core::robot::error_map;
 use stiffid_core::math::linalg::CappedSvd;
+use stiffid_core::robot::error_map;
 use stiffid_core::{Error, Result};
 
 /// The singular values below this share of the largest are dropped from the geometry's.
