@@ -123,8 +123,9 @@ fn assert_split_matches(n: usize, restricted: bool, choice: &JointMaps) {
             .swap_remove(0);
         let want = direct(&linear, choice, &train, &test, lambda);
         // At 1e-12 the augmented system's condition bounds any two stable solutions' agreement:
-        // its SVD and its Householder QR differ by up to 1e-8 of the errors there.
-        let tolerance = if lambda < least { 1e-7 } else { 1e-9 };
+        // its SVD and its Householder QR differ by up to 1e-8 of the errors there, and by up to
+        // 2e-7 where held-out postures beyond the training range have their maps tapered.
+        let tolerance = if lambda < least { 5e-7 } else { 1e-9 };
         for (g, w) in got.iter().zip(&want) {
             assert!(
                 (g - w).abs() <= tolerance * w.max(1e-12),
