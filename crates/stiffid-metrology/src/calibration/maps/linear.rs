@@ -13,7 +13,11 @@
 //! ```
 //!
 //! exactly the least squares of the linearised model with the ridge rows on the maps alone (the
-//! geometry's columns by SVD, never their normal equations).
+//! geometry's columns by SVD, never their normal equations). The held-out rows' map columns `M_V`
+//! are tapered beyond the training postures' range of their axis's angle
+//! ([`stiffid_core::robot::error_map::taper`], the backlash term's kept), as the calibrated
+//! robot's maps taper beyond the fitted postures' range: a split predicts its held-out postures as
+//! the calibrated robot predicts a new one.
 //!
 //! A split projects every candidate column once (`P M_T` and `M_V - A U^T M_T`, all joints; a
 //! choice of fixed maps or none scores on [`Linear::restricted`] to its own columns) and keeps the
@@ -32,8 +36,9 @@
 use super::super::error_model::{JointMaps, Observation, Target};
 use super::super::fit::Fit;
 use super::super::{ErrorModel, Estimate};
-use nalgebra::{Bidiagonal, DMatrix, DVector};
+use nalgebra::{Bidiagonal, DMatrix, DVector, Vector6};
 use stiffid_core::math::linalg::CappedSvd;
+use stiffid_core::robot::error_map;
 use stiffid_core::{Error, Result};
 
 /// The singular values below this share of the largest are dropped from the geometry's.
@@ -56,6 +61,10 @@ pub struct Linear {
     pub candidates: JointMaps,
     /// The rows of each posture, in posture order.
     pub rows: Vec<Vec<usize>>,
+    /// The axis angles of each posture, in posture order (rad): a split tapers its held-out rows'
+    /// map columns beyond its training postures' range as the calibrated robot's maps taper
+    /// beyond the fitted postures' ([`Linear::split`]).
+    pub angles: Vec<Vector6<f64>>,
 }
 
 /// A split's training part, prepared once for every choice of maps.
@@ -143,9 +152,11 @@ impl Linear {
         postures.sort_unstable();
         postures.dedup();
         let mut rows = vec![Vec::new(); postures.len()];
+        let mut angles = vec![Vector6::zeros(); postures.len()];
         for (i, o) in observations.iter().enumerate() {
             if let Ok(p) = postures.binary_search(&o.posture) {
                 rows[p].extend(3 * i..3 * i + 3);
+                angles[p] = o.q;
             }
         }
         Ok(Linear {
@@ -155,6 +166,7 @@ impl Linear {
             harmonics: largest,
             candidates: harmonics,
             rows,
+            angles,
         })
     }
 
@@ -201,7 +213,7 @@ impl Linear {
         let all = self.all_columns();
         let m_t = self.columns_of(&all, &train_rows);
         let utm = u.tr_mul(&m_t);
-        let held_maps = self.columns_of(&all, &test_rows) - &a * &utm;
+        let held_maps = self.tapered(&all, test, train) - &a * &utm;
         let qr = (m_t - &u * utm).qr();
         let mut rotated = projected;
         qr.q_tr_mul(&mut rotated);
@@ -238,6 +250,7 @@ impl Linear {
             harmonics: keep.harmonics.iter().copied().max().unwrap_or(0),
             candidates: *keep,
             rows: self.rows.clone(),
+            angles: self.angles.clone(),
         }
     }
 
@@ -276,6 +289,38 @@ impl Linear {
         (self.columns(choice).into_iter())
             .map(|(j, k)| offsets[j] + k)
             .collect()
+    }
+
+    /// The map columns `cols` on the rows of the postures `test`, each joint's series columns
+    /// tapered beyond the `train` postures' range of its axis angle as the calibrated robot's map
+    /// tapers beyond the fitted postures' ([`error_map::taper`]; its backlash term kept): a
+    /// held-out posture beyond the training range is predicted as the calibrated robot predicts a
+    /// posture beyond the fitted range.
+    fn tapered(&self, cols: &[(usize, usize)], test: &[usize], train: &[usize]) -> DMatrix<f64> {
+        let range = |j: usize| {
+            (train.iter().map(|&p| self.angles[p][j]))
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+                    (lo.min(v), hi.max(v))
+                })
+        };
+        let ranges: [(f64, f64); 6] = std::array::from_fn(range);
+        let mut rows = Vec::new();
+        let mut weights: Vec<[f64; 6]> = Vec::new();
+        for &p in test {
+            let w: [f64; 6] =
+                std::array::from_fn(|j| error_map::taper(self.angles[p][j], ranges[j]));
+            rows.extend(self.rows[p].iter().copied());
+            weights.extend(std::iter::repeat_n(w, self.rows[p].len()));
+        }
+        let mut m = self.columns_of(cols, &rows);
+        for (c, &(j, k)) in cols.iter().enumerate() {
+            if k < 2 * self.sine(j) {
+                for r in 0..rows.len() {
+                    m[(r, c)] *= weights[r][j];
+                }
+            }
+        }
+        m
     }
 
     /// The map columns `cols` on `rows`.

@@ -15,7 +15,9 @@
 //! # The choice ([`choose`])
 //! The postures are dealt into [`FOLDS`] folds (posture `p` of the training postures in fold
 //! `p mod K`); each candidate's held-out error is the sum over folds of the errors of the fold's
-//! postures predicted by the fit of the others, at its best ridge. First each joint alone, at each
+//! postures predicted by the fit of the others, at its best ridge (a held-out posture beyond the
+//! others' range of an axis with that axis's map tapered as the calibrated robot's:
+//! [`Linear::split`]). First each joint alone, at each
 //! harmonic count, and each joint's backlash term alone (with directions); then, from no map,
 //! these in the order of their own held-out error, each kept when it lowers the held-out error by
 //! more than [`MAP_ACCEPT`] standard errors of the paired per-posture differences (a one-sided

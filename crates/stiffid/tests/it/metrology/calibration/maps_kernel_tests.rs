@@ -10,6 +10,7 @@ use super::maps::{self, JointMaps, Linear, Spec};
 use super::maps_tests::{identified, model, noisy, options, truth};
 use super::tests::{postures, readings};
 use nalgebra::{DMatrix, DVector};
+use stiffid_core::robot::error_map;
 
 /// A UR10 campaign of `n` postures at one point with maps on joints 2 and 5, linearised at its
 /// geometric fit with every joint's 32 harmonics (384 columns) as candidates.
@@ -38,7 +39,9 @@ fn map_columns(linear: &Linear, choice: &JointMaps) -> DMatrix<f64> {
 }
 
 /// Per test posture, the sum of squared errors of the linearised model's ridge least squares
-/// (`min |r_T + G_T dx + M_T y|^2 + lambda |y|^2`) solved as one system.
+/// (`min |r_T + G_T dx + M_T y|^2 + lambda |y|^2`) solved as one system, the test posture's map
+/// columns tapered beyond the training postures' range of their joint's angle as a calibrated
+/// robot's maps taper beyond the fitted range.
 fn direct(
     linear: &Linear,
     choice: &JointMaps,
@@ -63,12 +66,23 @@ fn direct(
         a[(tr.len() + k, g + k)] = lambda.sqrt();
     }
     let x = a.svd(true, true).solve(&b, 1e-12).unwrap();
+    let joints: Vec<usize> = (0..6)
+        .flat_map(|j| std::iter::repeat_n(j, 2 * choice.harmonics[j]))
+        .collect();
+    let range = |j: usize| {
+        let angles = train.iter().map(|&p| linear.angles[p][j]);
+        (
+            angles.clone().fold(f64::INFINITY, f64::min),
+            angles.fold(f64::NEG_INFINITY, f64::max),
+        )
+    };
     let mut out = vec![0.0; test.len()];
     for (t, &p) in test.iter().enumerate() {
+        let taper = |c: usize| error_map::taper(linear.angles[p][joints[c]], range(joints[c]));
         for &r in &linear.rows[p] {
-            let e = linear.residuals[r]
-                + linear.geometry.row(r).dot(&x.rows(0, g).transpose())
-                + m.row(r).dot(&x.rows(g, s).transpose());
+            let maps: f64 = (0..s).map(|c| taper(c) * m[(r, c)] * x[g + c]).sum();
+            let e =
+                linear.residuals[r] + linear.geometry.row(r).dot(&x.rows(0, g).transpose()) + maps;
             out[t] += e * e;
         }
     }
@@ -109,8 +123,9 @@ fn assert_split_matches(n: usize, restricted: bool, choice: &JointMaps) {
             .swap_remove(0);
         let want = direct(&linear, choice, &train, &test, lambda);
         // At 1e-12 the augmented system's condition bounds any two stable solutions' agreement:
-        // its SVD and its Householder QR differ by up to 1e-8 of the errors there.
-        let tolerance = if lambda < least { 1e-7 } else { 1e-9 };
+        // its SVD and its Householder QR differ by up to 1e-8 of the errors there, and by up to
+        // 2e-7 where held-out postures beyond the training range have their maps tapered.
+        let tolerance = if lambda < least { 5e-7 } else { 1e-9 };
         for (g, w) in got.iter().zip(&want) {
             assert!(
                 (g - w).abs() <= tolerance * w.max(1e-12),
