@@ -17,11 +17,13 @@
 //!
 //! A split projects every candidate column once (`P M_T` and `M_V - A U^T M_T`, all joints; a
 //! choice of fixed maps or none scores on [`Linear::restricted`] to its own columns) and keeps the
-//! Householder QR `P M_T = Q R` as `R` and `Q^T P r_T`: a choice's columns are `Q S`, `S` its
+//! Householder QR `P M_T = Q R` as `R` and `Q^T P r_T` (`P r_T` taken through the reflections as
+//! one more column, `Q` never formed): a choice's columns are `Q S`, `S` its
 //! columns of `R` (their rows down to the last chosen column), so its ridge least squares is that
 //! of `S` with `Q^T P r_T`, exactly. The maps' step follows Eldén's method (L. Eldén, "Algorithms
 //! for the regularization of ill-conditioned least squares problems", BIT 17, 1977): one
-//! bidiagonalisation `S = W B Z^T` per choice (of `S^T` where `S` has fewer rows than columns),
+//! bidiagonalisation `S = W B Z^T` per choice (of `S^T` where `S` has fewer rows than columns;
+//! `W` and `Z` kept as their reflections and applied to the right-hand side and the steps),
 //! then per `lambda` the ridge `min |B z - W^T Q^T P r_T|^2 + lambda |z|^2` by Givens rotations
 //! of `[B; sqrt(lambda) I]` in `O(k)` (two per column, `k` the order of `B`), `y = -Z z`:
 //! orthogonal transformations throughout, never the ridge's normal equations, at any `lambda > 0`.
