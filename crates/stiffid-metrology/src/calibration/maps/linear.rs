@@ -21,11 +21,13 @@
 //!
 //! A split projects every candidate column once (`P M_T` and `M_V - A U^T M_T`, all joints; a
 //! choice of fixed maps or none scores on [`Linear::restricted`] to its own columns) and keeps the
-//! Householder QR `P M_T = Q R` as `R` and `Q^T P r_T`: a choice's columns are `Q S`, `S` its
+//! Householder QR `P M_T = Q R` as `R` and `Q^T P r_T` (`P r_T` taken through the reflections as
+//! one more column, `Q` never formed): a choice's columns are `Q S`, `S` its
 //! columns of `R` (their rows down to the last chosen column), so its ridge least squares is that
 //! of `S` with `Q^T P r_T`, exactly. The maps' step follows Eldén's method (L. Eldén, "Algorithms
 //! for the regularization of ill-conditioned least squares problems", BIT 17, 1977): one
-//! bidiagonalisation `S = W B Z^T` per choice (of `S^T` where `S` has fewer rows than columns),
+//! bidiagonalisation `S = W B Z^T` per choice (of `S^T` where `S` has fewer rows than columns;
+//! `W` and `Z` kept as their reflections and applied to the right-hand side and the steps),
 //! then per `lambda` the ridge `min |B z - W^T Q^T P r_T|^2 + lambda |z|^2` by Givens rotations
 //! of `[B; sqrt(lambda) I]` in `O(k)` (two per column, `k` the order of `B`), `y = -Z z`:
 //! orthogonal transformations throughout, never the ridge's normal equations, at any `lambda > 0`.
@@ -36,7 +38,8 @@
 use super::super::error_model::{JointMaps, Observation, Target};
 use super::super::fit::Fit;
 use super::super::{ErrorModel, Estimate};
-use nalgebra::{Bidiagonal, DMatrix, DVector, Vector6};
+use super::reflections::{self, Bidiagonal};
+use nalgebra::{DMatrix, DVector, Vector6};
 use stiffid_core::math::linalg::CappedSvd;
 use stiffid_core::robot::error_map;
 use stiffid_core::{Error, Result};
@@ -214,13 +217,10 @@ impl Linear {
         let m_t = self.columns_of(&all, &train_rows);
         let utm = u.tr_mul(&m_t);
         let held_maps = self.tapered(&all, test, train) - &a * &utm;
-        let qr = (m_t - &u * utm).qr();
-        let mut rotated = projected;
-        qr.q_tr_mul(&mut rotated);
-        let factor = qr.unpack_r();
+        let (factor, rotated) = compressed(m_t - &u * utm, &projected);
         Ok(Split {
             base: r_v - &a * &utr,
-            rotated: rotated.rows(0, factor.nrows()).into_owned(),
+            rotated,
             factor,
             held_maps,
             test_posture,
@@ -384,32 +384,58 @@ fn ridge_steps(split: &Split, chosen: &[usize], lambdas: &[f64]) -> DMatrix<f64>
         return steps;
     }
     let s = split.factor.rows(0, rows).select_columns(chosen.iter());
-    let c = split.rotated.rows(0, rows);
+    let mut c: Vec<f64> = split.rotated.rows(0, rows).iter().copied().collect();
     let tall = rows >= chosen.len();
-    let bi = Bidiagonal::new(if tall { s } else { s.transpose() });
-    let (d, e) = (bi.diagonal(), bi.off_diagonal());
-    let (u, v_t) = (bi.u(), bi.v_t());
-    // The ridge of `B z = c'`, `y = Z z`: tall, `c' = W^T c`, `Z = V`; wide (`S^T = U B V^T`),
-    // `B^T z = V^T c`, `Z = U`, reversed.
-    let (c, back) = match tall {
-        true => (u.tr_mul(&c), v_t.transpose()),
-        false => (&v_t * c, u),
+    let bi = match tall {
+        true => Bidiagonal::new(s.as_slice().to_vec(), rows),
+        false => Bidiagonal::new(s.transpose().as_slice().to_vec(), chosen.len()),
     };
-    let order = |x: &DVector<f64>| -> Vec<f64> {
+    // The ridge of `B z = c'`: tall, `c' = W^T c` (its first `k`), `y = Z z`; wide
+    // (`S^T = W B Z^T`), `B^T z = Z^T c`, `y = W z`, reversed.
+    match tall {
+        true => bi.left_tr(&mut c),
+        false => bi.right_tr(&mut c),
+    }
+    let k = bi.diagonal.len();
+    c.truncate(k);
+    let order = |x: &[f64]| -> Vec<f64> {
         match tall {
-            true => x.iter().copied().collect(),
+            true => x.to_vec(),
             false => x.iter().rev().copied().collect(),
         }
     };
-    let (d, e, c) = (order(&d), order(&e), order(&c));
-    for (k, &lambda) in lambdas.iter().enumerate() {
+    let (d, e, c) = (order(&bi.diagonal), order(&bi.upper), order(&c));
+    for (i, &lambda) in lambdas.iter().enumerate() {
         let mut z = bidiagonal_ridge(&d, &e, &c, lambda);
-        if !tall {
-            z.reverse();
-        }
-        steps.set_column(k, &(-(&back * DVector::from_vec(z))));
+        let y = match tall {
+            true => {
+                bi.right(&mut z);
+                z
+            }
+            false => {
+                z.reverse();
+                z.resize(chosen.len(), 0.0);
+                bi.left(&mut z);
+                z
+            }
+        };
+        steps.set_column(i, &(-DVector::from_vec(y)));
     }
     steps
+}
+
+/// The QR `P M_T = Q R` of a split's projected map columns `projected` (`m x n`) with
+/// `Q^T P r_T` (`projected_r`): `R` (`min(m, n) x n`, upper trapezoidal) and the first
+/// `min(m, n)` entries of `Q^T P r_T` (module docs), by Householder reflections, the right-hand
+/// side taken through them as one more column.
+fn compressed(projected: DMatrix<f64>, projected_r: &DVector<f64>) -> (DMatrix<f64>, DVector<f64>) {
+    let (m, n) = projected.shape();
+    let k = m.min(n);
+    let mut a = projected.insert_column(n, 0.0);
+    a.set_column(n, projected_r);
+    reflections::qr(a.as_mut_slice(), m, k);
+    let factor = DMatrix::from_fn(k, n, |r, c| if r <= c { a[(r, c)] } else { 0.0 });
+    (factor, a.column(n).rows(0, k).into_owned())
 }
 
 /// `argmin |B z - c|^2 + lambda |z|^2` for `B` upper bidiagonal (`d` its diagonal, `e` its

@@ -42,6 +42,7 @@
 //! Equations and sources: docs/model.md, section "Calibration", "Joint error maps".
 
 pub mod linear;
+mod reflections;
 
 pub use super::error_model::JointMaps;
 pub use linear::{extended, Linear};
