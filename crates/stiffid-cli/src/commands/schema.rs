@@ -77,7 +77,7 @@ pub fn schema(name: &str) -> Result<Schema> {
         "validate" => closed::<stiffid::app::validate::document::Document>(),
         "compensate" => closed::<stiffid::app::compensate::document::Document>(),
         "place" => closed::<stiffid::app::place::document::Document>(),
-        "force" => closed::<stiffid::app::force::document::Document>(),
+        "force" => closed::<stiffid::app::force::Report>(),
         "simulate" => closed::<stiffid::app::simulate::document::Document>(),
         "reproduce" => closed::<stiffid::app::reproduce::document::Summary<'static>>(),
         "register" => closed::<stiffid::app::register::document::Document>(),
