@@ -136,5 +136,5 @@ pub fn calibrate_cell<'py>(
         py.detach(|| calibrate_job::run(r))
     })?;
     warn(py, &outcome.warnings)?;
-    to_python(py, &outcome.document, &[])
+    to_python(py, outcome.document(), &[])
 }

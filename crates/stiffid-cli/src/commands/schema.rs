@@ -82,7 +82,7 @@ pub fn schema(name: &str) -> Result<Schema> {
         "reproduce" => closed::<stiffid::app::reproduce::document::Summary<'static>>(),
         "register" => closed::<stiffid::app::register::document::Document>(),
         "register-postures" => closed::<stiffid::app::register::document::Proposal>(),
-        "calibrate-cell" => closed::<stiffid::app::calibrate_cell::document::Calibration>(),
+        "calibrate-cell" => closed::<stiffid::app::calibrate_cell::Report>(),
         "calibrate" => closed::<stiffid::app::calibrate::document::Document>(),
         _ => open::<StiffnessFile>(),
     };
