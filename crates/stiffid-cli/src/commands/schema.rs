@@ -80,7 +80,7 @@ pub fn schema(name: &str) -> Result<Schema> {
         "force" => closed::<stiffid::app::force::Report>(),
         "simulate" => closed::<stiffid::app::simulate::document::Document>(),
         "reproduce" => closed::<stiffid::app::reproduce::document::Summary<'static>>(),
-        "register" => closed::<stiffid::app::register::document::Document>(),
+        "register" => closed::<stiffid::app::register::Report>(),
         "register-postures" => closed::<stiffid::app::register::document::Proposal>(),
         "calibrate-cell" => closed::<stiffid::app::calibrate_cell::Report>(),
         "calibrate" => closed::<stiffid::app::calibrate::document::Document>(),

@@ -84,6 +84,14 @@ pub fn deg<S: Serializer>(v: &f64, s: S) -> Written<S> {
     s.serialize_f64(v.to_degrees())
 }
 
+/// An angle in rad, written in mrad (`v * 1e3`). Schema: `f64`.
+///
+/// # Errors
+/// The serialiser's.
+pub fn mrad<S: Serializer>(v: &f64, s: S) -> Written<S> {
+    s.serialize_f64(v * 1e3)
+}
+
 /// A posture's axis angles q1..q6 in rad, written as six numbers in deg. Schema: `[f64; 6]`.
 ///
 /// # Errors
