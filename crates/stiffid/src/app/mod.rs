@@ -14,7 +14,9 @@
 //!   the job found, in SI units, with `warnings: Vec<Warning>`: results the user must look at
 //!   before trusting them (a likely unit mistake, a stiffness that is not physical); and the
 //!   **document** the job writes (the JSON stiffid writes, mm and deg with units in every key,
-//!   its types in the job's `document` module and in [`crate::app::document`]).
+//!   its types in the job's `document` module and in [`crate::app::document`]), or, as an
+//!   `Outcome<Report>`, none of its own: the report serialises to the document itself, its SI
+//!   fields written in the document's units by the adapters of [`document::units`].
 //!
 //! Front ends only parse, call and render: the command line (`stiffid`) turns its arguments into
 //! a request, calls `run`, prints each warning as `warning: MESSAGE` on stderr and renders the
