@@ -47,7 +47,7 @@ pub fn run(args: &Args) -> Result<()> {
         }
         e => e.into(),
     })?;
-    print_json_or(args.json, outcome.document(), human)
+    print_json_or(args.json, outcome.written(), human)
 }
 
 fn human(d: &Report) -> String {

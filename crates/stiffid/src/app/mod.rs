@@ -56,7 +56,7 @@ use stiffid_core::Error;
 
 /// What a job returns: the report of what it found (SI units) and the document it writes (mm,
 /// deg, units in every key). It reads as its report (`outcome.warnings`, `&outcome` where a
-/// `&Report` is expected), and [`Outcome::document`] is the document for every job: the
+/// `&Report` is expected), and [`Outcome::written`] is the document for every job: the
 /// `document` value where the job builds one (`Outcome<Report, Document>`), the report itself
 /// where the report serialises to its document through the unit adapters
 /// ([`document::units`]; `Outcome<Report>`, the document [`Itself`]).
@@ -76,14 +76,14 @@ pub struct Itself;
 
 /// Where an [`Outcome`]'s document is, given its report `R`: a document value of its own (any
 /// serialisable type) or the report itself ([`Itself`]).
-pub trait Written<R> {
+pub trait Writes<R> {
     /// The type serialised as the document.
     type Document: serde::Serialize;
     /// The document, from this value and the outcome's `report`.
     fn of<'a>(&'a self, report: &'a R) -> &'a Self::Document;
 }
 
-impl<R, D: serde::Serialize> Written<R> for D {
+impl<R, D: serde::Serialize> Writes<R> for D {
     type Document = D;
 
     fn of<'a>(&'a self, _: &'a R) -> &'a D {
@@ -91,7 +91,7 @@ impl<R, D: serde::Serialize> Written<R> for D {
     }
 }
 
-impl<R: serde::Serialize> Written<R> for Itself {
+impl<R: serde::Serialize> Writes<R> for Itself {
     type Document = R;
 
     fn of<'a>(&'a self, report: &'a R) -> &'a R {
@@ -99,9 +99,9 @@ impl<R: serde::Serialize> Written<R> for Itself {
     }
 }
 
-impl<R, D: Written<R>> Outcome<R, D> {
+impl<R, D: Writes<R>> Outcome<R, D> {
     /// The document the job writes (`--json`, the Python function's result).
-    pub fn document(&self) -> &D::Document {
+    pub fn written(&self) -> &D::Document {
         self.document.of(&self.report)
     }
 }

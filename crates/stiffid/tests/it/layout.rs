@@ -745,7 +745,11 @@ fn every_document_type_names_its_kind() {
                     continue;
                 }
                 let attributes: Vec<&&str> = (lines[..i].iter().rev())
-                    .take_while(|l| l.starts_with("#[") || l.starts_with("///"))
+                    .take_while(|l| {
+                        // An attribute over several lines: its inner lines and its `)]`.
+                        let inner = l.starts_with(' ') || l.starts_with(")]");
+                        l.starts_with("#[") || l.starts_with("///") || inner
+                    })
                     .collect();
                 if report && !attributes.iter().any(|l| l.contains("Serialize")) {
                     continue;

@@ -68,6 +68,10 @@ pub struct Report {
     /// and raised, not written.
     #[serde(skip)]
     pub warnings: Vec<Warning>,
+    /// The fit in SI (the transform, its residuals and covariance), for a library user: its
+    /// numbers are written in the fields above.
+    #[serde(skip)]
+    pub registration: Registration,
 }
 
 /// One reading's residual.
@@ -112,11 +116,12 @@ pub fn run(request: &Request<'_>) -> Result<Outcome> {
 fn report(
     request: &Request<'_>,
     data: &Readings,
-    fit: &Registration,
+    fit: Registration,
     frame_sd: (f64, f64),
     warnings: Vec<Warning>,
 ) -> Report {
-    let unloaded = (data.readings.iter().zip(&data.lines)).filter(|(r, _)| r.unloaded() && !r.table);
+    let unloaded =
+        (data.readings.iter().zip(&data.lines)).filter(|(r, _)| r.unloaded() && !r.table);
     let points = unloaded
         .zip(&fit.residuals)
         .map(|((r, line), residual)| Residual {
@@ -140,6 +145,7 @@ fn report(
         points,
         fragment: fit.fragment(),
         warnings,
+        registration: fit,
     }
 }
 
@@ -151,10 +157,9 @@ fn find(request: &Request<'_>) -> Result<Report> {
     let registration = register::fit(&points).map_err(|e| in_data(name, e))?;
     let robot = register::robot_covariance(request.setup, &data, &registration);
     let registration = registration.with_robot(robot.map_err(|e| in_data(name, e))?);
-    let fit = &registration;
-    refuse_implausible(request, &data, Some(fit), &fit.residuals)?;
+    refuse_implausible(request, &data, Some(&registration), &registration.residuals)?;
     let frame_sd = request.setup.arm().frame_sd();
-    Ok(report(request, &data, fit, frame_sd, warnings))
+    Ok(report(request, &data, registration, frame_sd, warnings))
 }
 
 /// Registration postures to propose: `stiffid register --count N`.
