@@ -39,7 +39,7 @@ pub fn process_force<'py>(
         peak_resolution_deg,
     };
     let outcome = force::run(&request).map_err(raise)?;
-    to_python(py, &outcome.document, &[])
+    to_python(py, outcome.written(), &[])
 }
 
 /// The path of the machining program ``program`` as ``stiffid compensate --program`` reads it:

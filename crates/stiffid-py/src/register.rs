@@ -112,7 +112,7 @@ pub fn register<'py>(
         py.detach(|| register_job::run(r))
     })?;
     warn(py, &outcome.warnings)?;
-    to_python(py, &outcome.document, &[])
+    to_python(py, outcome.written(), &[])
 }
 
 /// Calibrates the cell from unloaded ``readings`` (the ``register`` format) of postures that turn
@@ -136,5 +136,5 @@ pub fn calibrate_cell<'py>(
         py.detach(|| calibrate_job::run(r))
     })?;
     warn(py, &outcome.warnings)?;
-    to_python(py, &outcome.document, &[])
+    to_python(py, outcome.written(), &[])
 }

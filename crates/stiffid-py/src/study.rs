@@ -131,7 +131,10 @@ pub fn reproduce<'py>(
         options,
         progress: &(),
     };
-    let report = py.detach(|| job_reproduce::run(&request)).map_err(raise)?;
+    let report = py
+        .detach(|| job_reproduce::run(&request))
+        .map_err(raise)?
+        .report;
     warn(py, &report.warnings)?;
     let out = study_document(py, &report)?;
     if figures {

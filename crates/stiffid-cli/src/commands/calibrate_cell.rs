@@ -5,7 +5,8 @@
 use crate::commands::cell_readings::{self, three, Outcome};
 use anyhow::Result;
 use stiffid::app::calibrate_cell as job;
-use stiffid::app::calibrate_cell::document::Calibration;
+use stiffid::app::calibrate_cell::Report;
+use stiffid::app::document::{mm, mm3};
 
 /// Arguments of `stiffid calibrate-cell`: `--data` is every measuring point read in postures
 /// that turn the flange (more coordinates than 6 + 3 per point read); `--out` gets the corrected
@@ -21,17 +22,17 @@ pub struct Args {
 pub fn run(args: &Args) -> Result<()> {
     let setup = args.readings.setup()?;
     let job = |request: &job::Request<'_>| {
-        let stiffid::app::Outcome { report, document } = job::run(request)?;
+        let report = job::run(request)?.report;
         Ok(Outcome {
-            fragment: document.fragment.clone(),
-            document,
-            warnings: report.warnings,
+            fragment: report.fragment.clone(),
+            warnings: report.warnings.clone(),
+            document: report,
         })
     };
     args.readings.run(&setup, job, text_of)
 }
 
-fn text_of(d: &Calibration) -> String {
+fn text_of(d: &Report) -> String {
     let t = &d.transform;
     let mut text = format!(
         "cell calibration from {} unloaded readings (setup {}, {} iterations)\n\
@@ -46,12 +47,12 @@ fn text_of(d: &Calibration) -> String {
         three(t.rpy_deg, 5),
         three(t.std.translation_std_mm, 4),
         three(t.std.rotation_std_deg, 5),
-        d.absolute_error_rms_mm,
-        d.noise_std_mm,
+        mm(d.absolute_error_rms),
+        mm(d.noise_std),
     );
     for p in &d.points {
-        let std = p.std_mm.map_or("not read".to_string(), |s| three(s, 4));
-        text += &format!("{:>5}  [{}]  [{}]\n", p.point, three(p.shift_mm, 4), std);
+        let std = p.std.map_or("not read".to_string(), |s| three(mm3(&s), 4));
+        text += &format!("{:>5}  [{}]  [{}]\n", p.point, three(mm3(&p.shift), 4), std);
     }
     text + "\n" + &d.fragment
 }

@@ -6,8 +6,7 @@ use crate::output::print_json_or;
 use crate::progress::Bars;
 use anyhow::Result;
 use std::path::PathBuf;
-use stiffid::app::force::document::Document;
-use stiffid::app::force::{self, Request};
+use stiffid::app::force::{self, Report, Request};
 use stiffid_core::Progress;
 use stiffid_machining::process::file;
 
@@ -48,13 +47,13 @@ pub fn run(args: &Args) -> Result<()> {
         }
         e => e.into(),
     })?;
-    print_json_or(args.json, &outcome.document, human)
+    print_json_or(args.json, outcome.written(), human)
 }
 
-fn human(d: &Document) -> String {
+fn human(d: &Report) -> String {
     let mut s = format!(
         "mean force on the tool over one revolution, feed frame [feed, normal, axial], N ({}):\n",
-        d.process
+        d.name
     );
     let v = |x: &[f64; 3]| format!("[{:.1}, {:.1}, {:.1}]", x[0], x[1], x[2]);
     for o in &d.operations {

@@ -8,8 +8,10 @@ use crate::commands::cell_readings::{self, three, Outcome};
 use crate::output::print_json_or;
 use crate::progress::Bars;
 use anyhow::Result;
+use stiffid::app::document::{mm, mm3};
 use stiffid::app::register as job;
-use stiffid::app::register::document::{Document, Proposal};
+use stiffid::app::register::document::Proposal;
+use stiffid::app::register::Report;
 use stiffid_core::Progress;
 use stiffid_design::registration as design;
 
@@ -45,11 +47,11 @@ pub fn run(args: &Args) -> Result<()> {
         return propose(args, &setup, n as usize);
     }
     let job = |request: &job::Request<'_>| {
-        let stiffid::app::Outcome { report, document } = job::run(request)?;
+        let report = job::run(request)?.report;
         Ok(Outcome {
-            fragment: document.fragment.clone(),
-            document,
-            warnings: report.warnings,
+            fragment: report.fragment.clone(),
+            warnings: report.warnings.clone(),
+            document: report,
         })
     };
     args.readings.run(&setup, job, text_of)
@@ -113,7 +115,7 @@ fn proposal_text(d: &Proposal) -> String {
     )
 }
 
-fn text_of(d: &Document) -> String {
+fn text_of(d: &Report) -> String {
     let t = &d.transform;
     let mut text = format!(
         "registration of {} points (setup {})\n\
@@ -128,12 +130,12 @@ fn text_of(d: &Document) -> String {
         three(t.rpy_deg, 5),
         three(t.std.translation_std_mm, 4),
         three(t.std.rotation_std_deg, 5),
-        d.robot_frame_sd_mm,
-        d.robot_frame_sd_mrad,
+        mm(d.robot_frame_sd),
+        d.robot_frame_sd_angle * 1e3,
         three(d.noise_only_std.translation_std_mm, 4),
         three(d.noise_only_std.rotation_std_deg, 5),
-        d.residual_rms_mm,
-        d.noise_std_mm,
+        mm(d.residual_rms),
+        mm(d.noise_std),
     );
     for p in &d.points {
         text += &format!(
@@ -141,8 +143,8 @@ fn text_of(d: &Document) -> String {
             stiffid_core::common::limits::short(&p.posture),
             p.point,
             p.line,
-            p.residual_norm_mm,
-            three(p.residual_mm, 4)
+            mm(p.residual_norm),
+            three(mm3(&p.residual), 4)
         );
     }
     text + "\n" + &d.fragment

@@ -70,7 +70,7 @@ pub fn run(args: &Args) -> Result<()> {
         options,
         progress: &bars,
     };
-    let mut report = job::run(&request)?;
+    let mut report = job::run(&request)?.report;
     output::warnings(&report.warnings);
     bars.begin("figures", 1);
     let figures = figures::all(

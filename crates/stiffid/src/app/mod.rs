@@ -14,7 +14,9 @@
 //!   the job found, in SI units, with `warnings: Vec<Warning>`: results the user must look at
 //!   before trusting them (a likely unit mistake, a stiffness that is not physical); and the
 //!   **document** the job writes (the JSON stiffid writes, mm and deg with units in every key,
-//!   its types in the job's `document` module and in [`crate::app::document`]).
+//!   its types in the job's `document` module and in [`crate::app::document`]), or, as an
+//!   `Outcome<Report>`, none of its own: the report serialises to the document itself, its SI
+//!   fields written in the document's units by the adapters of [`document::units`].
 //!
 //! Front ends only parse, call and render: the command line (`stiffid`) turns its arguments into
 //! a request, calls `run`, prints each warning as `warning: MESSAGE` on stderr and renders the
@@ -54,13 +56,54 @@ use stiffid_core::Error;
 
 /// What a job returns: the report of what it found (SI units) and the document it writes (mm,
 /// deg, units in every key). It reads as its report (`outcome.warnings`, `&outcome` where a
-/// `&Report` is expected).
+/// `&Report` is expected), and [`Outcome::written`] is the document for every job: the
+/// `document` value where the job builds one (`Outcome<Report, Document>`), the report itself
+/// where the report serialises to its document through the unit adapters
+/// ([`document::units`]; `Outcome<Report>`, the document [`Itself`]).
 #[derive(Debug, Clone)]
-pub struct Outcome<R, D> {
+pub struct Outcome<R, D = Itself> {
     /// What the job found, SI units.
     pub report: R,
-    /// The document the job writes: `--json` and the Python function's result.
+    /// The document the job writes: `--json` and the Python function's result; [`Itself`] where
+    /// the report is the document.
     pub document: D,
+}
+
+/// The document of an [`Outcome`] whose report serialises to the document itself (its keys with
+/// their units, its `kind`): no second value to build or hold.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Itself;
+
+/// Where an [`Outcome`]'s document is, given its report `R`: a document value of its own (any
+/// serialisable type) or the report itself ([`Itself`]).
+pub trait Writes<R> {
+    /// The type serialised as the document.
+    type Document: serde::Serialize;
+    /// The document, from this value and the outcome's `report`.
+    fn of<'a>(&'a self, report: &'a R) -> &'a Self::Document;
+}
+
+impl<R, D: serde::Serialize> Writes<R> for D {
+    type Document = D;
+
+    fn of<'a>(&'a self, _: &'a R) -> &'a D {
+        self
+    }
+}
+
+impl<R: serde::Serialize> Writes<R> for Itself {
+    type Document = R;
+
+    fn of<'a>(&'a self, report: &'a R) -> &'a R {
+        report
+    }
+}
+
+impl<R, D: Writes<R>> Outcome<R, D> {
+    /// The document the job writes (`--json`, the Python function's result).
+    pub fn written(&self) -> &D::Document {
+        self.document.of(&self.report)
+    }
 }
 
 impl<R, D> std::ops::Deref for Outcome<R, D> {

@@ -199,7 +199,7 @@ fn the_template_of_a_cell_with_external_axes_registers() {
         force: false,
     })
     .unwrap();
-    let fit = registered.registration.base_from_tracker;
+    let fit = registered.report.registration.base_from_tracker;
     assert!((fit.translation.vector - truth.translation.vector).norm() < 1e-9);
     assert!((fit.rotation * truth.rotation.inverse()).angle() < 1e-9);
 }

@@ -17,6 +17,7 @@ pub mod group;
 pub mod mass;
 pub mod parameters;
 pub mod transform;
+pub mod units;
 
 pub use stiffid_view as scene;
 

@@ -2,8 +2,7 @@
 //! operation of a process file, in its feed frame ([`stiffid_machining::process`]: Altintas, *Manufacturing
 //! Automation*, 2nd ed., ch. 2.4, for milling; the specific-energy model for drilling).
 
-pub mod document;
-
+use serde::Serialize;
 use stiffid_core::{Error, Result};
 use stiffid_machining::process::milling::MIN_RESOLUTION_DEG;
 use stiffid_machining::process::{self, OperationForce, Process};
@@ -23,19 +22,27 @@ pub struct Request<'a> {
     pub peak_resolution_deg: Option<f64>,
 }
 
-/// The forces of every operation.
-#[derive(Debug, Clone, PartialEq)]
+/// The force document.
+///
+/// The report is its own document (`stiffid force --json`, Python's `process_force(...)`):
+/// nothing in it needs a unit converted.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(tag = "kind", rename = "force")]
+#[cfg_attr(feature = "schema", schemars(description = "The force document."))]
+#[cfg_attr(feature = "schema", schemars(transform = crate::app::document::schema::Kind("force")))]
 pub struct Report {
-    /// The process file's name.
+    /// The process file.
+    #[serde(rename = "process")]
     pub name: String,
-    /// The peak's angular resolution, deg, if asked.
+    /// The peak's angular resolution, deg, or `null`.
     pub peak_resolution_deg: Option<f64>,
-    /// One per operation, in file order.
+    /// One entry per operation, in file order.
     pub operations: Vec<OperationForce>,
 }
 
-/// The force job's report and its document.
-pub type Outcome = crate::app::Outcome<Report, document::Document>;
+/// The force job's report, which is its document.
+pub type Outcome = crate::app::Outcome<Report>;
 
 /// Runs the force job.
 ///
@@ -60,6 +67,8 @@ pub fn run(request: &Request<'_>) -> Result<Outcome> {
             request.peak_resolution_deg.map(f64::to_radians),
         ),
     };
-    let document = document::Document::new(&report);
-    Ok(Outcome { report, document })
+    Ok(Outcome {
+        report,
+        document: crate::app::Itself,
+    })
 }

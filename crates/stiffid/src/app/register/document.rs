@@ -1,95 +1,11 @@
-//! The documents of the register job ([`crate::app::register`]): `stiffid register --json`,
-//! `stiffid register --count N --json`, Python's `register(...)`.
+//! The document of the register job's proposal ([`crate::app::register::propose`]): `stiffid
+//! register --count N --json`, Python's `register(setup, count=N)` (the register report is its
+//! own document, [`crate::app::register::Report`]).
 
-use crate::app::document::transform::{Transform, TransformStd};
-use crate::app::document::{degrees, mm, mm3};
+use crate::app::document::transform::TransformStd;
+use crate::app::document::{degrees, mm};
 use crate::app::register;
 use serde::Serialize;
-
-/// The register document: the tracker's transform, its quality and uncertainty.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-#[serde(tag = "kind", rename = "register")]
-#[cfg_attr(feature = "schema", schemars(transform = crate::app::document::schema::Kind("register")))]
-pub struct Document {
-    /// The setup as given.
-    pub setup: String,
-    /// The readings file.
-    pub data: String,
-    /// The tracker frame in the robot base frame.
-    #[serde(flatten)]
-    pub transform: Transform,
-    /// RMS of the residual lengths, mm.
-    pub residual_rms_mm: f64,
-    /// Noise per coordinate estimated from the residuals, mm.
-    pub noise_std_mm: f64,
-    /// How far each frame of the robot model may be from the true robot's, per coordinate of
-    /// its position, mm (the setup's `[robot_accuracy] frame_sd_mm`): its part is in `std`.
-    pub robot_frame_sd_mm: f64,
-    /// The same of its orientation, mrad (`frame_sd_mrad`).
-    pub robot_frame_sd_mrad: f64,
-    /// The standard deviations the tracker noise alone gives (`std` without the robot's part).
-    pub noise_only_std: TransformStd,
-    /// Every unloaded reading's residual, in file order.
-    pub points: Vec<Residual>,
-    /// The `[tracker]` fragment of the setup file.
-    pub fragment: String,
-}
-
-/// One reading's residual.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct Residual {
-    /// The posture's label.
-    pub posture: String,
-    /// The measuring point (1-based).
-    pub point: usize,
-    /// The line of the readings file.
-    pub line: u64,
-    /// Base-frame point minus the transformed tracker reading, mm.
-    pub residual_mm: [f64; 3],
-    /// Its length, mm.
-    pub residual_norm_mm: f64,
-}
-
-impl Document {
-    /// The document of `report`, for the setup named `setup_name` (as the user gave it).
-    pub fn new(report: &register::Report, setup_name: &str) -> Self {
-        let (data, fit) = (&report.readings, &report.registration);
-        let unloaded = data
-            .readings
-            .iter()
-            .zip(&data.lines)
-            .filter(|(r, _)| r.unloaded() && !r.table);
-        let points = unloaded
-            .zip(&fit.residuals)
-            .map(|((r, line), residual)| Residual {
-                posture: data.labels[r.posture].clone(),
-                point: r.point + 1,
-                line: *line,
-                residual_mm: mm3(residual),
-                residual_norm_mm: mm(residual.norm()),
-            })
-            .collect();
-        Document {
-            setup: setup_name.to_string(),
-            data: report.data_name.clone(),
-            transform: Transform::new(&fit.base_from_tracker, fit.std().into()),
-            residual_rms_mm: mm(fit.rms),
-            noise_std_mm: mm(fit.sigma),
-            robot_frame_sd_mm: report.frame_sd.0 * 1e3,
-            robot_frame_sd_mrad: report.frame_sd.1 * 1e3,
-            noise_only_std: TransformStd::new(
-                (fit.covariance - fit.robot_covariance)
-                    .diagonal()
-                    .map(|v| v.max(0.0).sqrt())
-                    .into(),
-            ),
-            points,
-            fragment: fit.fragment(),
-        }
-    }
-}
 
 /// The registration postures proposed (`stiffid register --count N --json`, Python's
 /// `register(setup, postures=N)`).

@@ -6,10 +6,14 @@
 
 pub mod document;
 
+use crate::app::document::transform::{Transform, TransformStd};
+use crate::app::document::units;
 use crate::app::in_data;
 use crate::app::readings::refuse_implausible;
 pub use crate::app::readings::{read, Request};
 use crate::app::Warning;
+use nalgebra::Vector3;
+use serde::Serialize;
 use stiffid_core::cell::{CheckKind, Checker};
 use stiffid_core::common::error::JobOption;
 use stiffid_core::io::readings::Readings;
@@ -17,24 +21,80 @@ use stiffid_core::{Result, Setup};
 use stiffid_design::registration::{self as design, Design};
 use stiffid_metrology::register::{self, Registration};
 
-/// What the register job found.
-#[derive(Debug, Clone)]
+/// The register document: the tracker's transform, its quality and uncertainty.
+///
+/// The report is its own document (`stiffid register --json`, Python's `register(...)`): SI
+/// lengths and angles written in mm and mrad by the unit adapters
+/// ([`crate::app::document::units`]); the transform as a setup file writes it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(tag = "kind", rename = "register")]
+#[cfg_attr(
+    feature = "schema",
+    schemars(
+        description = "The register document: the tracker's transform, its quality and uncertainty."
+    )
+)]
+#[cfg_attr(feature = "schema", schemars(transform = crate::app::document::schema::Kind("register")))]
 pub struct Report {
-    /// The readings file's name.
+    /// The setup as given.
+    pub setup: String,
+    /// The readings file.
+    #[serde(rename = "data")]
     pub data_name: String,
-    /// The readings (their labels and lines name the residuals).
-    pub readings: Readings,
-    /// The transform, its residuals (one per unloaded reading, in file order) and covariance.
-    pub registration: Registration,
-    /// Inputs to look at before trusting the result (angles that look like radians).
+    /// The tracker frame in the robot base frame.
+    #[serde(flatten)]
+    pub transform: Transform,
+    /// RMS of the residual lengths, mm.
+    #[serde(rename = "residual_rms_mm", serialize_with = "units::mm")]
+    pub residual_rms: f64,
+    /// Noise per coordinate estimated from the residuals, mm.
+    #[serde(rename = "noise_std_mm", serialize_with = "units::mm")]
+    pub noise_std: f64,
+    /// How far each frame of the robot model may be from the true robot's, per coordinate of
+    /// its position, mm (the setup's `[robot_accuracy] frame_sd_mm`): its part is in `std`.
+    #[serde(rename = "robot_frame_sd_mm", serialize_with = "units::mm")]
+    pub robot_frame_sd: f64,
+    /// The same of its orientation, mrad (`frame_sd_mrad`).
+    #[serde(rename = "robot_frame_sd_mrad", serialize_with = "units::mrad")]
+    pub robot_frame_sd_angle: f64,
+    /// The standard deviations the tracker noise alone gives (`std` without the robot's part).
+    pub noise_only_std: TransformStd,
+    /// Every unloaded reading's residual, in file order.
+    pub points: Vec<Residual>,
+    /// The `[tracker]` fragment of the setup file.
+    pub fragment: String,
+    /// Inputs to look at before trusting the result (angles that look like radians): printed
+    /// and raised, not written.
+    #[serde(skip)]
     pub warnings: Vec<Warning>,
-    /// The robot model's frame standard deviations the covariance holds, m and rad
-    /// ([`stiffid_core::setup::Arm::frame_sd`]).
-    pub frame_sd: (f64, f64),
+    /// The fit in SI (the transform, its residuals and covariance), for a library user: its
+    /// numbers are written in the fields above.
+    #[serde(skip)]
+    pub registration: Registration,
 }
 
-/// The register job's report and its document.
-pub type Outcome = crate::app::Outcome<Report, document::Document>;
+/// One reading's residual.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct Residual {
+    /// The posture's label.
+    pub posture: String,
+    /// The measuring point (1-based).
+    pub point: usize,
+    /// The line of the readings file.
+    pub line: u64,
+    /// Base-frame point minus the transformed tracker reading, mm.
+    #[serde(rename = "residual_mm", serialize_with = "units::mm3")]
+    #[cfg_attr(feature = "schema", schemars(with = "[f64; 3]"))]
+    pub residual: Vector3<f64>,
+    /// Its length, mm.
+    #[serde(rename = "residual_norm_mm", serialize_with = "units::mm")]
+    pub residual_norm: f64,
+}
+
+/// The register job's report, which is its document.
+pub type Outcome = crate::app::Outcome<Report>;
 
 /// Runs the register job.
 ///
@@ -45,9 +105,48 @@ pub type Outcome = crate::app::Outcome<Report, document::Document>;
 /// mirror image or leave a residual beyond [`register::residual_limit`] ([`register::suspect`]),
 /// naming the reading.
 pub fn run(request: &Request<'_>) -> Result<Outcome> {
-    let report = find(request)?;
-    let document = document::Document::new(&report, &request.setup_name);
-    Ok(Outcome { report, document })
+    Ok(Outcome {
+        report: find(request)?,
+        document: crate::app::Itself,
+    })
+}
+
+/// The report of `fit` from `data`, with the robot model's frame standard deviations
+/// `frame_sd` (m, rad).
+fn report(
+    request: &Request<'_>,
+    data: &Readings,
+    fit: Registration,
+    frame_sd: (f64, f64),
+    warnings: Vec<Warning>,
+) -> Report {
+    let unloaded =
+        (data.readings.iter().zip(&data.lines)).filter(|(r, _)| r.unloaded() && !r.table);
+    let points = unloaded
+        .zip(&fit.residuals)
+        .map(|((r, line), residual)| Residual {
+            posture: data.labels[r.posture].clone(),
+            point: r.point + 1,
+            line: *line,
+            residual: *residual,
+            residual_norm: residual.norm(),
+        })
+        .collect();
+    let noise_only = (fit.covariance - fit.robot_covariance).diagonal();
+    Report {
+        setup: request.setup_name.clone(),
+        data_name: request.name.clone(),
+        transform: Transform::new(&fit.base_from_tracker, fit.std().into()),
+        residual_rms: fit.rms,
+        noise_std: fit.sigma,
+        robot_frame_sd: frame_sd.0,
+        robot_frame_sd_angle: frame_sd.1,
+        noise_only_std: TransformStd::new(noise_only.map(|v| v.max(0.0).sqrt()).into()),
+        points,
+        fragment: fit.fragment(),
+        warnings,
+        registration: fit,
+    }
 }
 
 /// What [`run`] finds, before its document.
@@ -58,15 +157,9 @@ fn find(request: &Request<'_>) -> Result<Report> {
     let registration = register::fit(&points).map_err(|e| in_data(name, e))?;
     let robot = register::robot_covariance(request.setup, &data, &registration);
     let registration = registration.with_robot(robot.map_err(|e| in_data(name, e))?);
-    let fit = &registration;
-    refuse_implausible(request, &data, Some(fit), &fit.residuals)?;
-    Ok(Report {
-        data_name: name.clone(),
-        readings: data,
-        registration,
-        warnings,
-        frame_sd: request.setup.arm().frame_sd(),
-    })
+    refuse_implausible(request, &data, Some(&registration), &registration.residuals)?;
+    let frame_sd = request.setup.arm().frame_sd();
+    Ok(report(request, &data, registration, frame_sd, warnings))
 }
 
 /// Registration postures to propose: `stiffid register --count N`.

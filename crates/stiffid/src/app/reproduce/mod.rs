@@ -20,7 +20,8 @@ pub struct Request<'a> {
     pub progress: &'a dyn Progress,
 }
 
-/// What the study found.
+/// What the study found. It serialises to its document, `summary.json`, through the borrowed
+/// view [`document::Summary`] (mm and deg, units in every key), built as it is written.
 #[derive(Debug, Clone)]
 pub struct Report {
     /// The study: every group, its simulation and validation, the start-group check.
@@ -31,19 +32,33 @@ pub struct Report {
     pub warnings: Vec<Warning>,
 }
 
+impl serde::Serialize for Report {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        document::Summary::new(self).serialize(s)
+    }
+}
+
+/// The reproduce job's report, which is its document (serialised through
+/// [`document::Summary`]).
+pub type Outcome = crate::app::Outcome<Report>;
+
 /// Runs the study.
 ///
 /// # Errors
 /// The errors of [`study::run`]: counts out of range, a setup without a nominal stiffness or a
 /// characteristic length.
-pub fn run(request: &Request) -> Result<Report> {
+pub fn run(request: &Request) -> Result<Outcome> {
     request
         .setup
         .require_loading("reproduce (the rope load of the study)")?;
     let study = study::run(request.setup, &request.options, request.progress)?;
-    Ok(Report {
+    let report = Report {
         findings: findings(&study),
         study,
         warnings: Vec::new(),
+    };
+    Ok(Outcome {
+        report,
+        document: crate::app::Itself,
     })
 }
