@@ -15,7 +15,7 @@ use nalgebra::{DMatrix, DVector, Matrix6, Vector6};
 
 /// The 15 column pairs of a 6-column matrix in five rounds of three disjoint pairs:
 /// [`round_robin`]`(6)`, spelt out so the six-column kernel allocates nothing.
-pub const PAIRS_6: [(usize, usize); 15] = [
+pub(crate) const PAIRS_6: [(usize, usize); 15] = [
     (0, 1),
     (2, 5),
     (3, 4),
@@ -36,7 +36,7 @@ pub const PAIRS_6: [(usize, usize); 15] = [
 /// Every pair `i < j` of `n` columns once, in rounds of disjoint pairs (the circle method: column 0
 /// fixed, the others turning one place a round; for odd `n` a missing column `n` sits out a pair a
 /// round).
-pub fn round_robin(n: usize) -> Vec<(usize, usize)> {
+pub(crate) fn round_robin(n: usize) -> Vec<(usize, usize)> {
     let m = n + n % 2;
     let mut pairs = Vec::with_capacity(n * n.saturating_sub(1) / 2);
     for round in 0..m.saturating_sub(1) {
@@ -151,13 +151,13 @@ fn columns_6(r: &Matrix6<f64>) -> [[f64; 6]; 6] {
 }
 
 /// The singular values of a 6x6 matrix, in no particular order (NaN for NaN input).
-pub fn singular_values(r: &Matrix6<f64>) -> Vector6<f64> {
+pub(crate) fn singular_values(r: &Matrix6<f64>) -> Vector6<f64> {
     let mut s = Vector6::zeros();
     sweep(&mut columns_6(r), None, &PAIRS_6, s.as_mut_slice());
     s
 }
 
-/// The singular values of a 6x6 matrix `r` ([`singular_values`]) and its right singular vectors:
+/// The singular values of a 6x6 matrix `r` (by `singular_values`) and its right singular vectors:
 /// column k of the matrix is the unit vector `v_k` with `|r v_k| = s_k`.
 pub fn singular_values_and_vectors(r: &Matrix6<f64>) -> (Vector6<f64>, Matrix6<f64>) {
     let mut v = columns_6(&Matrix6::identity());
@@ -166,7 +166,7 @@ pub fn singular_values_and_vectors(r: &Matrix6<f64>) -> (Vector6<f64>, Matrix6<f
     (s, Matrix6::from_fn(|i, j| v[j][i]))
 }
 
-/// `s_max / s_min` of a 6x6 matrix ([`singular_values`]): `+infinity` (or NaN for NaN input) when
+/// `s_max / s_min` of a 6x6 matrix (by `singular_values`): `+infinity` (or NaN for NaN input) when
 /// singular.
 pub fn cond(a: &Matrix6<f64>) -> f64 {
     let s = singular_values(a);

@@ -48,13 +48,13 @@ where
 /// Householder QR in place of the column-major `m x 6` matrix `a` (LAPACK `dgeqrf`): on return `R`
 /// is on and above the diagonal and the reflector vectors `v_k` (with `v_k[k] = 1` implied) below
 /// it. Returns the `tau_k`.
-pub fn householder_qr(a: &mut [f64], m: usize) -> Vector6<f64> {
+pub(crate) fn householder_qr(a: &mut [f64], m: usize) -> Vector6<f64> {
     let mut taus = Vector6::zeros();
     householder_qr_columns(a, m, taus.as_mut_slice());
     taus
 }
 
-/// [`householder_qr`] of the column-major `m x n` matrix `a`, `n = taus.len() <= m` columns (the
+/// `householder_qr` of the column-major `m x n` matrix `a`, `n = taus.len() <= m` columns (the
 /// same operations in the same order for six): the `tau_k` are written to `taus`.
 #[inline(always)]
 pub fn householder_qr_columns(a: &mut [f64], m: usize, taus: &mut [f64]) {
@@ -85,7 +85,7 @@ pub fn householder_qr_columns(a: &mut [f64], m: usize, taus: &mut [f64]) {
 /// The inverse of a 6x6 matrix by Gauss-Jordan elimination with partial pivoting, on a fixed-size
 /// array (no allocation, no dimension bookkeeping); `None` when a pivot is exactly zero. Accurate
 /// to `cond(a)` times rounding, as an LU-based inverse.
-pub fn inverse(a: &Matrix6<f64>) -> Option<Matrix6<f64>> {
+pub(crate) fn inverse(a: &Matrix6<f64>) -> Option<Matrix6<f64>> {
     // Rows of [a | I].
     let mut m: [[f64; 12]; 6] = std::array::from_fn(|i| {
         std::array::from_fn(|j| {
@@ -146,8 +146,8 @@ pub fn triangular_factor(a: DMatrix<f64>) -> Matrix6<f64> {
     upper_triangle(a.as_slice(), m)
 }
 
-/// The upper triangle `R` (6x6) of the in-place result of [`householder_qr`] on `a` with `m` rows.
-pub fn upper_triangle(a: &[f64], m: usize) -> Matrix6<f64> {
+/// The upper triangle `R` (6x6) of the in-place result of `householder_qr` on `a` with `m` rows.
+pub(crate) fn upper_triangle(a: &[f64], m: usize) -> Matrix6<f64> {
     Matrix6::from_fn(|i, j| if i <= j { a[j * m + i] } else { 0.0 })
 }
 

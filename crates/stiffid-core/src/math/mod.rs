@@ -8,3 +8,8 @@ pub mod lsq;
 mod spearman;
 
 pub use spearman::{ranks, spearman};
+
+#[cfg(test)]
+mod jacobi_tests;
+#[cfg(test)]
+mod linalg_tests;

@@ -114,7 +114,7 @@ impl Calibration {
     }
 
     /// The number of parameters of the folds' compliance.
-    pub fn parameters(&self) -> usize {
+    pub(crate) fn parameters(&self) -> usize {
         self.folds.first().map_or(0, |f| f.compliance.len())
     }
 

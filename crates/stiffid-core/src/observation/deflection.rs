@@ -34,7 +34,7 @@ pub enum Frame {
 
 impl Frame {
     /// Both, base first.
-    pub const ALL: [Frame; 2] = [Frame::Base, Frame::Tool];
+    pub(crate) const ALL: [Frame; 2] = [Frame::Base, Frame::Tool];
 
     /// The name in files, options and documents: `base` or `tool`.
     pub fn name(self) -> &'static str {

@@ -22,9 +22,8 @@ pub mod frames;
 mod measurement;
 pub mod stiffness;
 
-pub use measurement::{
-    assemble, check, Check, Measurement, Observations, MAX_DISPLACEMENT, MAX_FORCE, MAX_MOMENT,
-};
+pub use measurement::{assemble, Check, Measurement, Observations};
+pub use measurement::{check, MAX_DISPLACEMENT, MAX_FORCE, MAX_MOMENT};
 
 use crate::model::Placed;
 use crate::observation::stiffness::joint_torques;

@@ -28,7 +28,7 @@ pub struct Tool {
 impl Tool {
     /// Every point of the tool, flange frame, m: the loading point, the measuring points, the
     /// tool centre point.
-    pub fn points(&self) -> impl Iterator<Item = &Vector3<f64>> {
+    pub(crate) fn points(&self) -> impl Iterator<Item = &Vector3<f64>> {
         std::iter::once(&self.loading_point)
             .chain(&self.measuring_points)
             .chain(std::iter::once(&self.tcp))

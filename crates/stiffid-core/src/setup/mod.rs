@@ -92,10 +92,12 @@ pub mod program_io;
 pub mod reference;
 mod workcell;
 
+pub use arm::Arm;
 pub use arm::{
-    default_geometry, default_tool_radius, nearest_measuring_point, Arm, Payload, RobotGeometry,
-    Tool, DEFAULT_RADIUS_FRACTIONS, GRAVITY, MIN_TOOL_RADIUS,
+    default_geometry, default_tool_radius, nearest_measuring_point, RobotGeometry, Tool,
+    DEFAULT_RADIUS_FRACTIONS, MIN_TOOL_RADIUS,
 };
+pub use arm::{Payload, GRAVITY};
 pub use builder::{SetupBuilder, DEFAULT_FRAME_SD};
 pub use cell::{Cell, Obstacle, Tracker, MAX_LENGTH_MM, MAX_OBSTACLES};
 pub use experiment::{Experiment, Noise, RopeLoad};
@@ -104,7 +106,7 @@ pub use file::{
 };
 pub use numbered::NumberedFrames;
 pub use program_frames::{offset_name, ProgramFrames, MAX_EXTENDED_OFFSET, MAX_OFFSETS};
-pub(crate) use program_io::ProgramSettings;
+pub use program_io::ProgramSettings;
 pub use workcell::{CellConstraints, Controller, Kinematics, Pulses, Workcell};
 
 use crate::common::limits::JointBox;
@@ -302,7 +304,7 @@ impl Setup {
     }
 
     /// Cell constraints for posture search ([`Workcell::constraints`]).
-    pub fn constraints(&self) -> &CellConstraints {
+    pub(crate) fn constraints(&self) -> &CellConstraints {
         self.workcell.constraints()
     }
 

@@ -64,7 +64,7 @@ pub enum ProcessEvent {
 
 impl ProcessEvent {
     /// Every event, in the order of the reference's table.
-    pub const ALL: [ProcessEvent; 10] = [
+    pub(crate) const ALL: [ProcessEvent; 10] = [
         ProcessEvent::SpindleSpeed,
         ProcessEvent::SpindleCw,
         ProcessEvent::SpindleCcw,
@@ -342,7 +342,7 @@ impl ProgramSettings {
     ///
     /// # Errors
     /// [`Error::InvalidField`] naming the field; those of [`Io::read`].
-    pub fn read(
+    pub(crate) fn read(
         rapid_speed_mm_s: Option<f64>,
         rapid_joint_pct: Option<f64>,
         home_deg: Option<[f64; 6]>,

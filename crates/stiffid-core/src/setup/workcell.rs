@@ -166,7 +166,7 @@ pub struct Workcell {
 
 impl Workcell {
     /// Optional cell constraints for posture search.
-    pub fn constraints(&self) -> &CellConstraints {
+    pub(crate) fn constraints(&self) -> &CellConstraints {
         &self.constraints
     }
 

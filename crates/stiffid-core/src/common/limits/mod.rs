@@ -101,7 +101,7 @@ pub fn check_speeds(field: &str, values: &[f64]) -> Result<()> {
 }
 
 /// A capsule radius of a robot file's `[robot_geometry]`: 1 um to 10 m.
-pub const BODY_RADIUS_MM: Range = Range::new(1e-3, 1e4, "mm");
+pub(crate) const BODY_RADIUS_MM: Range = Range::new(1e-3, 1e4, "mm");
 
 /// Any length or position in a robot or setup file (link lengths, offsets, tool points, anchor):
 /// at most 100 m from the origin.
@@ -112,11 +112,11 @@ pub const LENGTH_MM: Range = Range::new(-1e5, 1e5, "mm");
 pub const EXTERNAL_VALUE: Range = Range::new(-1e5, 1e5, "mm or deg");
 
 /// A link's mass in a robot file (`mass_kg`): 0 to 100 t.
-pub const MASS_KG: Range = Range::new(0.0, 1e5, "kg");
+pub(crate) const MASS_KG: Range = Range::new(0.0, 1e5, "kg");
 
 /// A component of an inertia tensor (a robot file's `inertia_kg_m2`, a URDF's `<inertia>`, a
 /// setup's `[tool] inertia_kg_m2`): at most 1e6 kg m^2 in magnitude (100 t at 100 m).
-pub const INERTIA_KG_M2: Range = Range::new(-1e6, 1e6, "kg m^2");
+pub(crate) const INERTIA_KG_M2: Range = Range::new(-1e6, 1e6, "kg m^2");
 
 /// [`LENGTH_MM`] in metres (URDF files).
 pub const LENGTH_M: Range = Range::new(-100.0, 100.0, "m");

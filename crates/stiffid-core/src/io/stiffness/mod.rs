@@ -47,13 +47,12 @@ mod covariance;
 mod model_form;
 mod sections;
 
-pub use covariance::{check_covariance, check_covariance_of};
-pub use model_form::{
-    FormLaw, FormModelSection, FormSpring, ModelFormSection, MAX_COMPLIANCE_SI, MAX_MODEL_FORM_SETS,
-};
-pub use sections::{
-    FoldSection, GravitySection, GravityTerm, PredictionSection, RegionSection, MAX_GRAVITY_TERMS,
-};
+pub use covariance::check_covariance;
+pub use covariance::check_covariance_of;
+pub use model_form::{FormLaw, MAX_COMPLIANCE_SI, MAX_MODEL_FORM_SETS};
+pub use model_form::{FormModelSection, FormSpring, ModelFormSection};
+pub use sections::{FoldSection, GravitySection, GravityTerm, MAX_GRAVITY_TERMS};
+pub use sections::{PredictionSection, RegionSection};
 
 use crate::common::limits::{self, MAX_PARAMETERS, STIFFNESS_NM_PER_RAD, STIFFNESS_N_PER_MM};
 use crate::model::{Compliance, Model, ParameterKind, Region};

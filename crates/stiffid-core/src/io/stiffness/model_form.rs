@@ -145,7 +145,7 @@ impl ModelFormSection {
     /// more than [`MAX_MODEL_FORM_SETS`] sets, a spring that is not one (as a setup's
     /// `[model]` checks it) or is not among `springs`, a set without one finite value per
     /// parameter or with a value beyond [`MAX_COMPLIANCE_SI`].
-    pub fn form(&self, coordinates: Coordinates) -> Result<ModelForm> {
+    pub(crate) fn form(&self, coordinates: Coordinates) -> Result<ModelForm> {
         let sets: usize = self.models.iter().map(|m| m.compliance_si.len()).sum();
         limits::check_count("model_form.compliance_si", sets, 0, MAX_MODEL_FORM_SETS)?;
         let springs = (self.springs.iter().enumerate())

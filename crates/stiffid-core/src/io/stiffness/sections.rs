@@ -39,19 +39,6 @@ pub struct GravityTerm {
 }
 
 impl GravitySection {
-    /// The section of `weight`.
-    pub fn new(weight: &crate::model::OwnWeight) -> Self {
-        Self {
-            model: weight.gravity.clone(),
-            terms: (weight.terms.iter())
-                .map(|(name, v)| GravityTerm {
-                    name: name.clone(),
-                    value_si: *v,
-                })
-                .collect(),
-        }
-    }
-
     /// Checks the count and that every value is finite.
     pub(super) fn check(&self) -> Result<()> {
         limits::check_count("gravity.terms", self.terms.len(), 1, MAX_GRAVITY_TERMS)?;

@@ -73,7 +73,7 @@ impl ErrorMotions {
     }
 
     /// The six error motions at normalised position `u`: `[t; r]`, m and rad, axis frame.
-    pub fn at(&self, u: f64) -> [f64; 6] {
+    pub(crate) fn at(&self, u: f64) -> [f64; 6] {
         let mut out = [0.0; 6];
         let mut power = 1.0;
         for c in &self.coefficients {
@@ -87,7 +87,7 @@ impl ErrorMotions {
 
     /// The carriage's error transform at normalised position `u`, in the frame whose axes are
     /// the axis's frame `axes` (its rotation in the carriage's frame): `Trans(A t) Rot(A r)`.
-    pub fn pose(&self, axes: &UnitQuaternion<f64>, u: f64) -> Isometry3<f64> {
+    pub(crate) fn pose(&self, axes: &UnitQuaternion<f64>, u: f64) -> Isometry3<f64> {
         let m = self.at(u);
         let t = axes * Vector3::new(m[0], m[1], m[2]);
         let r = axes * Vector3::new(m[3], m[4], m[5]);

@@ -25,7 +25,7 @@ pub enum Coordinates {
 
 impl Coordinates {
     /// Both, axis first.
-    pub const ALL: [Coordinates; 2] = [Coordinates::Axis, Coordinates::Kinematic];
+    pub(crate) const ALL: [Coordinates; 2] = [Coordinates::Axis, Coordinates::Kinematic];
 
     /// The name in files, options and documents: `axis` or `kinematic`.
     pub fn name(self) -> &'static str {

@@ -1,3 +1,1 @@
-mod jacobi;
-mod linalg;
 mod spearman;

@@ -1,5 +1,7 @@
+//! The linear-algebra kernels' tests: QR, triangular factors, inverses and products against known matrices.
+
+use super::linalg::*;
 use nalgebra::{DMatrix, Matrix6, Vector6};
-use stiffid_core::math::linalg::*;
 
 /// A fixed, well-conditioned 9x6 matrix (column-major), not triangular, not symmetric.
 fn sample() -> DMatrix<f64> {

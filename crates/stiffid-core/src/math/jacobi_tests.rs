@@ -1,7 +1,9 @@
+//! The Jacobi SVD kernels' tests: round-robin pairs, singular values and vectors against known matrices.
+
+use super::jacobi::*;
+use super::linalg::triangular_factor;
 use nalgebra::{DMatrix, Matrix6, Vector6};
 use nalgebra::{Rotation3, Vector3};
-use stiffid_core::math::jacobi::*;
-use stiffid_core::math::linalg::triangular_factor;
 
 #[test]
 fn round_robin_pairs_every_column_once_in_disjoint_rounds() {
