@@ -80,14 +80,14 @@ pub(super) struct Bidiagonal {
     /// `G_i`'s vector after its first entry (1).
     right_tails: Vec<Vec<f64>>,
     /// `B`'s diagonal (`n`).
-    pub diagonal: Vec<f64>,
+    pub(super) diagonal: Vec<f64>,
     /// `B`'s superdiagonal (`n - 1`).
-    pub upper: Vec<f64>,
+    pub(super) upper: Vec<f64>,
 }
 
 impl Bidiagonal {
     /// Bidiagonalises the column-major `a` of `m` rows (`m >= columns >= 1`).
-    pub fn new(mut a: Vec<f64>, m: usize) -> Self {
+    pub(super) fn new(mut a: Vec<f64>, m: usize) -> Self {
         let n = a.len() / m;
         let (mut left, mut right) = (vec![0.0; n], vec![0.0; n.saturating_sub(1)]);
         let (mut diagonal, mut upper) = (vec![0.0; n], vec![0.0; n.saturating_sub(1)]);
@@ -143,7 +143,7 @@ impl Bidiagonal {
     }
 
     /// `x = W^T x` (`m` entries).
-    pub fn left_tr(&self, x: &mut [f64]) {
+    pub(super) fn left_tr(&self, x: &mut [f64]) {
         for i in (0..self.n).filter(|&i| self.left[i] != 0.0) {
             let tail = &self.a[i * self.m + i + 1..(i + 1) * self.m];
             reflect(tail, self.left[i], &mut x[i..]);
@@ -151,7 +151,7 @@ impl Bidiagonal {
     }
 
     /// `x = W x` (`m` entries).
-    pub fn left(&self, x: &mut [f64]) {
+    pub(super) fn left(&self, x: &mut [f64]) {
         for i in (0..self.n).rev().filter(|&i| self.left[i] != 0.0) {
             let tail = &self.a[i * self.m + i + 1..(i + 1) * self.m];
             reflect(tail, self.left[i], &mut x[i..]);
@@ -159,14 +159,14 @@ impl Bidiagonal {
     }
 
     /// `x = Z^T x` (`n` entries).
-    pub fn right_tr(&self, x: &mut [f64]) {
+    pub(super) fn right_tr(&self, x: &mut [f64]) {
         for i in (0..self.n.saturating_sub(1)).filter(|&i| self.right[i] != 0.0) {
             reflect(&self.right_tails[i], self.right[i], &mut x[i + 1..]);
         }
     }
 
     /// `x = Z x` (`n` entries).
-    pub fn right(&self, x: &mut [f64]) {
+    pub(super) fn right(&self, x: &mut [f64]) {
         for i in (0..self.n.saturating_sub(1)).rev() {
             if self.right[i] != 0.0 {
                 reflect(&self.right_tails[i], self.right[i], &mut x[i + 1..]);
