@@ -46,7 +46,7 @@ pub const MAX_CANDIDATES: usize = 100_000;
 pub const MAX_POSTURES: usize = crate::pool::MAX_GROUP;
 
 /// Random groups of the comparison ([`Design::random_median_rotation_std`]).
-pub const RANDOM_GROUPS: usize = 101;
+pub(crate) const RANDOM_GROUPS: usize = 101;
 
 /// Halvings of the coordinate search's step ([`polish`]).
 const POLISH_HALVINGS: i32 = 8;
@@ -125,7 +125,7 @@ impl Design {
 /// What one candidate posture's points contribute: their count, sum (m) and inertia about the
 /// base origin, `sum (|b|^2 I - b b^T)` (m^2).
 #[derive(Debug, Clone, Copy)]
-pub struct Moments {
+pub(crate) struct Moments {
     count: f64,
     sum: Vector3<f64>,
     inertia: Matrix3<f64>,
@@ -133,7 +133,7 @@ pub struct Moments {
 
 impl Moments {
     /// The moments of `points` (m).
-    pub fn of(points: &[Vector3<f64>]) -> Self {
+    pub(crate) fn of(points: &[Vector3<f64>]) -> Self {
         Self {
             count: points.len() as f64,
             sum: points.iter().sum(),
@@ -151,7 +151,7 @@ fn inertia(b: &Vector3<f64>) -> Matrix3<f64> {
 /// centroid by the parallel-axis theorem, inverted by Cholesky; `+infinity` when singular
 /// (collinear points) or with fewer than
 /// [`MIN_POINTS`] points.
-pub fn criterion<'a>(moments: impl Iterator<Item = &'a Moments>) -> f64 {
+pub(crate) fn criterion<'a>(moments: impl Iterator<Item = &'a Moments>) -> f64 {
     let (mut count, mut sum, mut inertia_origin) = (0.0, Vector3::zeros(), Matrix3::zeros());
     for m in moments {
         count += m.count;
@@ -171,7 +171,7 @@ pub fn criterion<'a>(moments: impl Iterator<Item = &'a Moments>) -> f64 {
 
 /// Where a cell's external axes stand while the registration postures are read: each axis at
 /// the value of its travel nearest zero (SI, the cell's order; empty without external axes).
-pub fn station(setup: &Setup) -> Vec<f64> {
+pub(crate) fn station(setup: &Setup) -> Vec<f64> {
     setup.robot().external().map_or(Vec::new(), |axes| {
         (axes.axes().iter())
             .map(|a| 0.0f64.clamp(a.lower, a.upper))
@@ -180,7 +180,7 @@ pub fn station(setup: &Setup) -> Vec<f64> {
 }
 
 /// The measuring points of posture `q` with the external axes at `e`, cell frame, m.
-pub fn points(setup: &Setup, q: &Vector6<f64>, e: &[f64]) -> Vec<Vector3<f64>> {
+pub(crate) fn points(setup: &Setup, q: &Vector6<f64>, e: &[f64]) -> Vec<Vector3<f64>> {
     let frames = setup.robot().frames_at(q, e);
     let tool = &setup.tool().measuring_points;
     tool.iter().map(|p| frames.point(p)).collect()

@@ -53,7 +53,7 @@
 
 pub mod cell;
 pub mod compensate;
-pub mod cutting;
+pub(crate) mod cutting;
 pub mod dynamics;
 pub mod gcode;
 pub mod path;
@@ -76,7 +76,7 @@ use stiffid_core::{Error, Result};
 
 /// The largest change of an axis angle compensation may make, deg; more means another
 /// configuration (or a point next to a singularity).
-pub const MAX_CORRECTION_DEG: f64 = 1.0;
+pub(crate) const MAX_CORRECTION_DEG: f64 = 1.0;
 
 /// A machining program as read.
 #[derive(Debug, Clone, PartialEq)]
@@ -681,3 +681,6 @@ fn check_configuration(points: &[PathPoint], results: &[Compensated]) -> Result<
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod dynamics_tests;

@@ -59,7 +59,7 @@ pub use table::{TableChoice, TableDesign};
 
 /// A singular value below this share of the largest counts as zero: the group does not
 /// separate the kept parameters.
-pub const RANK_TOLERANCE: f64 = 1e-10;
+pub(crate) const RANK_TOLERANCE: f64 = 1e-10;
 
 /// The calibration criteria of a group of postures.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -256,19 +256,19 @@ impl CalibrationDesign {
 
     /// The kept parameters' scales (one per [`CalibrationDesign::kept`], in its order): the
     /// column scaling of the design Jacobian (module docs).
-    pub fn scales(&self) -> &[f64] {
+    pub(crate) fn scales(&self) -> &[f64] {
         &self.layout.scales
     }
 
     /// The design a step at one station with a carrier is reduced to (the arm's columns,
     /// [`CalibrationDesign::on_station`] with fixed postures); `None` for any other design.
-    pub fn reduced(&self) -> Option<&CalibrationDesign> {
+    pub(crate) fn reduced(&self) -> Option<&CalibrationDesign> {
         self.reduced.as_deref()
     }
 
     /// This design scored on the whole Jacobian, every column, not reduced: what the reduced
     /// scoring equals.
-    pub fn whole(&self) -> CalibrationDesign {
+    pub(crate) fn whole(&self) -> CalibrationDesign {
         CalibrationDesign {
             reduced: None,
             ..self.clone()
@@ -276,7 +276,7 @@ impl CalibrationDesign {
     }
 
     /// The tracker's noise per coordinate, m.
-    pub fn noise(&self) -> f64 {
+    pub(crate) fn noise(&self) -> f64 {
         self.noise
     }
 
@@ -305,7 +305,7 @@ impl CalibrationDesign {
     ///
     /// # Errors
     /// [`Error::NotFinite`] for a non-finite posture.
-    pub fn jacobian_placed(&self, postures: &[Placed]) -> Result<DMatrix<f64>> {
+    pub(crate) fn jacobian_placed(&self, postures: &[Placed]) -> Result<DMatrix<f64>> {
         if !(postures.iter()).all(|(q, e)| q.iter().chain(e.as_slice()).all(|v| v.is_finite())) {
             return Err(Error::NotFinite {
                 what: "a posture of the calibration design".into(),
@@ -335,7 +335,7 @@ impl CalibrationDesign {
     ///
     /// # Errors
     /// [`Error::NotFinite`] for a non-finite posture.
-    pub fn jacobian(&self, postures: &[Vector6<f64>]) -> Result<DMatrix<f64>> {
+    pub(crate) fn jacobian(&self, postures: &[Vector6<f64>]) -> Result<DMatrix<f64>> {
         let placed: Vec<Placed> = postures.iter().map(|q| (*q, self.station)).collect();
         self.jacobian_placed(&placed)
     }
@@ -393,7 +393,7 @@ impl CalibrationDesign {
     /// The value of `criterion` for `postures` (rad) as a search minimises it
     /// ([`CalibrationCriterion::loss`]): `+infinity` for a group that does not separate the
     /// kept parameters or a non-finite posture.
-    pub fn value(&self, criterion: CalibrationCriterion, postures: &[Vector6<f64>]) -> f64 {
+    pub(crate) fn value(&self, criterion: CalibrationCriterion, postures: &[Vector6<f64>]) -> f64 {
         let d = self.scorer(criterion);
         match d.jacobian(postures) {
             Ok(j) => score::Scored::new(j, criterion, d).map_or(f64::INFINITY, |s| s.value),
@@ -455,7 +455,7 @@ fn stack(a: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
 
 /// The model's nominal values with the gravity terms at zero: the rigid nominal chain, where the
 /// design Jacobian is taken.
-pub fn rigid(model: &ErrorModel) -> nalgebra::DVector<f64> {
+pub(crate) fn rigid(model: &ErrorModel) -> nalgebra::DVector<f64> {
     let mut x = model.nominal();
     x.rows_mut(model.gravity_start(), model.gravity().len())
         .fill(0.0);
@@ -463,7 +463,7 @@ pub fn rigid(model: &ErrorModel) -> nalgebra::DVector<f64> {
 }
 
 /// Unloaded readings of every measuring point of `model` at every posture, posture-major.
-pub fn readings(model: &ErrorModel, postures: &[Placed]) -> Vec<Observation> {
+pub(crate) fn readings(model: &ErrorModel, postures: &[Placed]) -> Vec<Observation> {
     (postures.iter().enumerate())
         .flat_map(|(i, (q, e))| {
             (0..model.points()).map(move |k| Observation {
@@ -488,7 +488,7 @@ pub fn readings(model: &ErrorModel, postures: &[Placed]) -> Vec<Observation> {
 /// # Errors
 /// [`Error::InvalidField`] (`parameters`) when `test` has other columns than `j`;
 /// [`Error::NotFinite`] when `j` is not finite or its SVD does not converge.
-pub fn criteria(
+pub(crate) fn criteria(
     j: &DMatrix<f64>,
     postures: usize,
     test: &DMatrix<f64>,
@@ -541,3 +541,6 @@ pub fn criteria(
         predicted_rms,
     })
 }
+
+#[cfg(test)]
+mod tests;

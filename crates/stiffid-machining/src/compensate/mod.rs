@@ -178,7 +178,7 @@
 //! singular posture) the point keeps that angle.
 
 use nalgebra::{Isometry3, Vector6};
-pub use stiffid_core::common::stop::Stop;
+pub(crate) use stiffid_core::common::stop::Stop;
 use stiffid_core::observation::deflection::Frame;
 
 pub mod budget;
@@ -192,16 +192,16 @@ mod map;
 mod model;
 mod options;
 pub mod refine;
-pub mod runs;
+pub(crate) mod runs;
 mod scope;
 mod speed;
 mod station;
 mod stream;
-pub mod tool_axis;
+pub(crate) mod tool_axis;
 mod validate;
-pub mod variables;
+pub(crate) mod variables;
 
-pub use budget::Budget;
+pub(crate) use budget::Budget;
 pub use configuration::{posed, Branch, Configurations, Run};
 pub use feasible::{Feasible, Removed};
 pub use free::{FreeOption, Freedom};
@@ -225,15 +225,15 @@ pub use variables::{
 /// The residual the Newton steps aim at, m.
 pub const TOLERANCE_M: f64 = 1e-10;
 /// The residual rotation the Newton steps aim at, rad.
-pub const TOLERANCE_RAD: f64 = 1e-10;
+pub(crate) const TOLERANCE_RAD: f64 = 1e-10;
 /// The residual a compensated point must reach: 0.1 micrometre.
 pub const REQUIRED_M: f64 = 1e-7;
 /// The residual rotation a compensated point must reach: 1 microradian.
-pub const REQUIRED_RAD: f64 = 1e-6;
+pub(crate) const REQUIRED_RAD: f64 = 1e-6;
 /// Newton steps at most per point, and the default of [`Options::max_iterations`].
 pub const MAX_ITERATIONS: usize = 30;
 /// The relative weight of the free tool axis' tie-breaking cost (module docs).
-pub const TIE_BREAK: f64 = 1e-6;
+pub(crate) const TIE_BREAK: f64 = 1e-6;
 
 /// Where a path point is: axis angles, or a TCP pose reached by inverse kinematics.
 #[derive(Debug, Clone, PartialEq)]
@@ -325,3 +325,21 @@ pub struct Compensated {
     /// removed ([`Feasible`]); zero without.
     pub removed: Removed,
 }
+
+#[cfg(test)]
+mod budget_tests;
+
+#[cfg(test)]
+mod free_tests;
+
+#[cfg(test)]
+mod refine_tests;
+
+#[cfg(test)]
+mod runs_tests;
+
+#[cfg(test)]
+mod tool_axis_tests;
+
+#[cfg(test)]
+mod variables_tests;

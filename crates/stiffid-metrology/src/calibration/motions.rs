@@ -15,7 +15,7 @@
 //!
 //! Equations and sources: docs/model.md, section "Calibration", "External axes".
 
-pub use super::maps::{ACCEPT, FOLDS, LEAST_GAIN};
+pub(crate) use super::maps::{ACCEPT, FOLDS, LEAST_GAIN};
 
 use super::error_model::{ErrorModel, Observation};
 use super::fit::{self, Fit, Options};
@@ -26,7 +26,7 @@ use stiffid_core::robot::external::AxisKind;
 use stiffid_core::{Error, Result};
 
 /// The highest order `--error-motions auto` tries per linear axis.
-pub const MAX_ORDER_TRIED: usize = 6;
+pub(crate) const MAX_ORDER_TRIED: usize = 6;
 
 /// Which orders a calibration fits.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -135,7 +135,7 @@ fn highest(model: &ErrorModel, observations: &[Observation]) -> Vec<usize> {
 ///
 /// # Errors
 /// Those of [`ErrorModel::with_external`], [`fit::start`] and [`fit::fit`].
-pub fn fitted(
+pub(crate) fn fitted(
     base: &ErrorModel,
     orders: &[usize],
     tables: usize,

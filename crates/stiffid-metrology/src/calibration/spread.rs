@@ -24,7 +24,7 @@ use stiffid_core::Result;
 ///
 /// # Errors
 /// Those of [`ErrorModel::jacobian_of`].
-pub fn region_sd(
+pub(crate) fn region_sd(
     model: &ErrorModel,
     fit: &Fit,
     like: &Observation,
@@ -38,7 +38,7 @@ pub fn region_sd(
 ///
 /// # Errors
 /// Those of [`ErrorModel::jacobian_of`].
-pub fn postures_sd(
+pub(crate) fn postures_sd(
     model: &ErrorModel,
     fit: &Fit,
     like: &Observation,

@@ -81,8 +81,8 @@ mod maps;
 mod parameter;
 mod tables;
 
-pub use basis::Basis;
-pub use external::{MAX_FITTED_ORDER, MOTIONS};
+pub(crate) use basis::Basis;
+pub(crate) use external::{MAX_FITTED_ORDER, MOTIONS};
 use loads::Loads;
 pub use maps::JointMaps;
 pub use parameter::{AxisPart, Component, Geometry, Kind, MeasuredIn, Parameter, Target};
@@ -93,10 +93,10 @@ use nalgebra::{DVector, Isometry3, Translation3, UnitQuaternion, Vector3, Vector
 use stiffid_core::{Error, Joint, Result, Robot};
 
 /// Most measuring points a calibration fits.
-pub const MAX_POINTS: usize = 100;
+pub(crate) const MAX_POINTS: usize = 100;
 
 /// The share of the largest regressor RMS of its unit below which a gravity term has no effect.
-pub const NO_EFFECT: f64 = 1e-9;
+pub(crate) const NO_EFFECT: f64 = 1e-9;
 
 /// No direction of approach: the mean of the two ([`Observation::direction`]).
 const MEAN: Vector6<f64> = Vector6::new(0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
@@ -417,7 +417,7 @@ impl ErrorModel {
 
     /// The axis angles `q + dq_g` at which the robot stands when commanded `q` (rad), with the
     /// gravity terms of `values`.
-    pub fn deflected(&self, values: &DVector<f64>, q: &Vector6<f64>) -> Vector6<f64> {
+    pub(crate) fn deflected(&self, values: &DVector<f64>, q: &Vector6<f64>) -> Vector6<f64> {
         q + self
             .gravity
             .deflection(&values.rows(self.gravity_start, self.gravity.len()), q)
@@ -526,7 +526,7 @@ impl ErrorModel {
     ///
     /// # Errors
     /// Those of [`ErrorModel::positions`].
-    pub fn residuals(
+    pub(crate) fn residuals(
         &self,
         estimate: &Estimate,
         observations: &[Observation],

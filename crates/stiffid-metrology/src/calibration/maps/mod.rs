@@ -39,7 +39,7 @@
 //!
 //! Equations and sources: docs/model.md, section "Calibration", "Joint error maps".
 
-pub mod linear;
+pub(crate) mod linear;
 
 pub use super::error_model::JointMaps;
 pub use linear::{extended, Linear};
@@ -70,10 +70,10 @@ pub fn name(h: &JointMaps) -> String {
 }
 
 /// The harmonic counts `--maps auto` tries per joint.
-pub const HARMONICS: [usize; 4] = [4, 8, 16, 32];
+pub(crate) const HARMONICS: [usize; 4] = [4, 8, 16, 32];
 
 /// The harmonics of a joint named without a count (`--maps J2`).
-pub const DEFAULT_HARMONICS: usize = 16;
+pub(crate) const DEFAULT_HARMONICS: usize = 16;
 
 /// The ridges `mu` tried (dimensionless, per reading): up to 1, since from 50 postures a
 /// joint's 32 harmonics may need a stronger hold than from 100.
@@ -82,7 +82,7 @@ pub const RIDGES: [f64; 11] = [
 ];
 
 /// The folds of the inner and of the outer cross-validation.
-pub const FOLDS: usize = 5;
+pub(crate) const FOLDS: usize = 5;
 
 /// The standard errors of the paired per-posture differences by which a carrier's error motion
 /// order must lower the held-out error to be kept ([`super::motions`]).
@@ -97,11 +97,11 @@ pub const ACCEPT: f64 = 3.0;
 pub const MAP_ACCEPT: f64 = 2.5;
 
 /// The least share of the held-out squared error a map must remove to be kept.
-pub const LEAST_GAIN: f64 = 0.02;
+pub(crate) const LEAST_GAIN: f64 = 0.02;
 
 /// The fewest distinct postures with which `--maps auto` considers maps (below it, none): five
 /// folds of at least six postures.
-pub const MIN_POSTURES: usize = 30;
+pub(crate) const MIN_POSTURES: usize = 30;
 
 /// Which maps a calibration fits.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
