@@ -256,28 +256,23 @@ impl CalibrationDesign {
 
     /// The kept parameters' scales (one per [`CalibrationDesign::kept`], in its order): the
     /// column scaling of the design Jacobian (module docs).
-    pub(crate) fn scales(&self) -> &[f64] {
+    pub fn scales(&self) -> &[f64] {
         &self.layout.scales
     }
 
     /// The design a step at one station with a carrier is reduced to (the arm's columns,
     /// [`CalibrationDesign::on_station`] with fixed postures); `None` for any other design.
-    pub(crate) fn reduced(&self) -> Option<&CalibrationDesign> {
+    pub fn reduced(&self) -> Option<&CalibrationDesign> {
         self.reduced.as_deref()
     }
 
     /// This design scored on the whole Jacobian, every column, not reduced: what the reduced
     /// scoring equals.
-    pub(crate) fn whole(&self) -> CalibrationDesign {
+    pub fn whole(&self) -> CalibrationDesign {
         CalibrationDesign {
             reduced: None,
             ..self.clone()
         }
-    }
-
-    /// The tracker's noise per coordinate, m.
-    pub(crate) fn noise(&self) -> f64 {
-        self.noise
     }
 
     /// The design of a campaign's next group: read at `station` (the external axes' values, SI,

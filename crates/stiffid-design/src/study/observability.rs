@@ -22,23 +22,23 @@ use stiffid_metrology::calibration::error_model::{MeasuredIn, Observation};
 use stiffid_metrology::calibration::{fit, gravity, validation, ErrorModel, Estimate, Geometry};
 
 /// Most groups of the study.
-pub(crate) const MAX_GROUPS: usize = 10_000;
+pub const MAX_GROUPS: usize = 10_000;
 
 /// Most postures a group.
-pub(crate) const MAX_SIZE: usize = 200;
+pub const MAX_SIZE: usize = 200;
 
 /// The test (held-out) postures of the study.
-pub(crate) const TEST_POSTURES: usize = 30;
+pub const TEST_POSTURES: usize = 30;
 
 /// The reference postures that fix the kept parameters.
-pub(crate) const REFERENCE_POSTURES: usize = 60;
+pub const REFERENCE_POSTURES: usize = 60;
 
 /// The criteria's names in [`CalibrationStudy::rho`] order.
-pub(crate) const CRITERIA: [&str; 6] = ["o1", "o3", "o4", "o5", "d-optimality", "test-pose"];
+pub const CRITERIA: [&str; 6] = ["o1", "o3", "o4", "o5", "d-optimality", "test-pose"];
 
 /// The study's outcome.
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) struct CalibrationStudy {
+pub struct CalibrationStudy {
     /// Each group's criteria.
     pub criteria: Vec<CalibrationCriteria>,
     /// Each group's held-out RMS position error, m.
@@ -69,7 +69,7 @@ pub fn postures(robot: &Robot, n: usize, rng: &mut ChaCha8Rng) -> Vec<Vector6<f6
 /// [`Error::InvalidField`] (`groups`, `size`, `draws`) for a count out of its range (3 to
 /// [`MAX_GROUPS`] groups, 1 to [`MAX_SIZE`] postures, 1 to 100 draws), (`noise`) for a noise
 /// not positive and finite; those of the fit.
-pub(crate) fn calibration_study(
+pub fn calibration_study(
     groups: usize,
     size: usize,
     noise: f64,
@@ -156,7 +156,7 @@ pub(crate) fn calibration_study(
 
 /// Every measuring point of `model` read at every posture of `qs` from `truth`, with Gaussian
 /// noise `sd` per coordinate (tracker frame, m).
-pub(crate) fn read(
+pub fn read(
     model: &ErrorModel,
     truth: &Estimate,
     qs: &[Vector6<f64>],

@@ -35,7 +35,7 @@ pub mod judgement;
 pub mod maps;
 pub mod motions;
 pub mod robot_file;
-pub(crate) mod spread;
+pub mod spread;
 pub mod validation;
 
 pub use error_model::{

@@ -15,7 +15,7 @@
 //!
 //! Equations and sources: docs/model.md, section "Calibration", "External axes".
 
-pub(crate) use super::maps::{ACCEPT, FOLDS, LEAST_GAIN};
+pub use super::maps::{ACCEPT, FOLDS, LEAST_GAIN};
 
 use super::error_model::{ErrorModel, Observation};
 use super::fit::{self, Fit, Options};

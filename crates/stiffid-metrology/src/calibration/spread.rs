@@ -24,7 +24,7 @@ use stiffid_core::Result;
 ///
 /// # Errors
 /// Those of [`ErrorModel::jacobian_of`].
-pub(crate) fn region_sd(
+pub fn region_sd(
     model: &ErrorModel,
     fit: &Fit,
     like: &Observation,

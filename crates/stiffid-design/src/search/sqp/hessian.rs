@@ -117,7 +117,8 @@ impl Hessian {
     }
 
     /// The Hessian approximation `B` itself, `n x n` column-major (what [`Hessian::inverse`]
-    /// inverts).
+    /// inverts); the tests' view of it.
+    #[cfg(test)]
     pub(crate) fn matrix(&self) -> &[f64] {
         &self.b
     }

@@ -30,7 +30,7 @@ use stiffid_core::robot::external::{
 use stiffid_core::{Error, Result};
 
 /// The motions' names in parameter names, ISO 230-1's six in [`ErrorMotions`] order.
-pub(crate) const MOTIONS: [&str; 6] = [
+pub const MOTIONS: [&str; 6] = [
     "positioning",
     "straightness_y",
     "straightness_z",
@@ -328,7 +328,7 @@ impl External {
 }
 
 /// The most orders [`ErrorModel::with_external`] fits per linear axis.
-pub(crate) const MAX_FITTED_ORDER: usize = MAX_ORDER;
+pub const MAX_FITTED_ORDER: usize = MAX_ORDER;
 
 impl ErrorModel {
     /// The model with the robot's external axes ([`stiffid_core::Robot::external`]): per linear carrier

@@ -82,7 +82,7 @@ mod parameter;
 mod tables;
 
 pub(crate) use basis::Basis;
-pub(crate) use external::{MAX_FITTED_ORDER, MOTIONS};
+pub use external::{MAX_FITTED_ORDER, MOTIONS};
 use loads::Loads;
 pub use maps::JointMaps;
 pub use parameter::{AxisPart, Component, Geometry, Kind, MeasuredIn, Parameter, Target};
@@ -417,7 +417,7 @@ impl ErrorModel {
 
     /// The axis angles `q + dq_g` at which the robot stands when commanded `q` (rad), with the
     /// gravity terms of `values`.
-    pub(crate) fn deflected(&self, values: &DVector<f64>, q: &Vector6<f64>) -> Vector6<f64> {
+    pub fn deflected(&self, values: &DVector<f64>, q: &Vector6<f64>) -> Vector6<f64> {
         q + self
             .gravity
             .deflection(&values.rows(self.gravity_start, self.gravity.len()), q)

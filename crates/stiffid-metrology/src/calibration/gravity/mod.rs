@@ -50,7 +50,7 @@
 use nalgebra::{DVectorView, Matrix6, Vector3, Vector6};
 
 mod arm;
-pub(crate) use arm::ARM_TOLERANCE;
+pub use arm::ARM_TOLERANCE;
 use serde::Serialize;
 use stiffid_core::common::limits::JointBox;
 use stiffid_core::robot::kinematics::Coordinates;

@@ -82,7 +82,7 @@ pub const RIDGES: [f64; 11] = [
 ];
 
 /// The folds of the inner and of the outer cross-validation.
-pub(crate) const FOLDS: usize = 5;
+pub const FOLDS: usize = 5;
 
 /// The standard errors of the paired per-posture differences by which a carrier's error motion
 /// order must lower the held-out error to be kept ([`super::motions`]).
@@ -97,7 +97,7 @@ pub const ACCEPT: f64 = 3.0;
 pub const MAP_ACCEPT: f64 = 2.5;
 
 /// The least share of the held-out squared error a map must remove to be kept.
-pub(crate) const LEAST_GAIN: f64 = 0.02;
+pub const LEAST_GAIN: f64 = 0.02;
 
 /// The fewest distinct postures with which `--maps auto` considers maps (below it, none): five
 /// folds of at least six postures.
