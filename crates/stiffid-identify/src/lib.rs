@@ -150,8 +150,8 @@ impl Identification {
 }
 
 /// Identifies the joint compliance and stiffness by linear least squares (Eq. 13-14), with
-/// standard errors and 95% confidence intervals (module docs), in bounded memory: [`InBlocks`]
-/// over all the measurements, then their residuals ([`residuals`]). The result is the same
+/// standard errors and 95% confidence intervals (module docs), in bounded memory: `InBlocks`
+/// over all the measurements, then their residuals (`residuals`). The result is the same
 /// whatever the number of threads, and equal to [`Observations::least_squares`] to rounding
 /// (the same QR, in another order). The other fits ([`Observations::robust`],
 /// [`Observations::nonnegative`]) and cross-validation need the whole [`Observations`].
@@ -192,7 +192,7 @@ pub fn least_squares(arm: &Arm, measurements: &[Measurement]) -> Result<Identifi
     Ok(solved.finish(residuals))
 }
 
-/// Measurements per block of [`InBlocks`]: 3072 rows of `Psi`, 147 kB.
+/// Measurements per block of `InBlocks`: 3072 rows of `Psi`, 147 kB.
 pub const BLOCK: usize = 1024;
 
 /// Least squares over measurements given a part at a time (a file read in chunks), in bounded
@@ -210,7 +210,7 @@ pub(crate) struct InBlocks<'a> {
     deflected: bool,
 }
 
-/// The solution of [`InBlocks`], before the residuals.
+/// The solution of `InBlocks`, before the residuals.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Solved {
     /// The compliance, `(Psi^T Psi)^-1` and `cond_2(Psi)`.
@@ -314,7 +314,7 @@ impl<'a> InBlocks<'a> {
 
 impl Solved {
     /// The identification with `residuals` and `predicted` (`delta - Psi h` and `Psi h` of every
-    /// measurement, [`residuals`]).
+    /// measurement, `residuals`).
     ///
     /// # Panics
     /// Unless there are three residuals and three predictions per measurement.
