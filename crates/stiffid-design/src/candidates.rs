@@ -147,7 +147,7 @@ pub struct Designable {
 }
 
 /// The postures of the seeded group over the setup's bounds that [`designable`] probes.
-pub(crate) const PROBE_POSTURES: usize = 60;
+pub const PROBE_POSTURES: usize = 60;
 
 /// The seed of that group ([`crate::random_group`]).
 pub(crate) const PROBE_SEED: u64 = 1;
@@ -161,7 +161,7 @@ pub(crate) const PROBE_SEED: u64 = 1;
 ///
 /// # Errors
 /// [`Error::NotFinite`] for a non-finite observation matrix.
-pub(crate) fn designable(setup: &Setup, pool: &Pool) -> Result<Designable> {
+pub fn designable(setup: &Setup, pool: &Pool) -> Result<Designable> {
     let probe = crate::random_group(&setup.without_cell(), PROBE_POSTURES, PROBE_SEED);
     let psi = observation(setup, &probe, &pool.candidates, &[1.0]);
     let n = setup.model().len();
@@ -304,7 +304,7 @@ fn separation(psi: DMatrix<f64>) -> f64 {
 /// that over the square of the setup's characteristic length (N/m; 1 m without one), the
 /// stiffness at the flange of a rotation at that lever arm. `None` without the drives' nominal
 /// stiffness.
-pub(crate) fn candidate_nominal_stiffness(setup: &Setup, kind: Kind) -> Option<f64> {
+pub fn candidate_nominal_stiffness(setup: &Setup, kind: Kind) -> Option<f64> {
     let drives = setup.nominal_stiffness()?;
     let mean = drives.iter().map(|k| k.ln()).sum::<f64>() / 6.0;
     let lever = setup.characteristic_length().unwrap_or(1.0);

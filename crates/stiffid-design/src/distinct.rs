@@ -18,10 +18,10 @@ use stiffid_core::{Result, Robot};
 /// Axis angles closer than this in every joint make two postures near, rad (2 deg).
 pub const JOINT_TOLERANCE: f64 = 2.0 * std::f64::consts::PI / 180.0;
 /// Flange origins closer than this (with [`ANGLE_TOLERANCE`]) make two postures near, m (10 mm).
-pub(crate) const POSITION_TOLERANCE: f64 = 0.010;
+pub const POSITION_TOLERANCE: f64 = 0.010;
 /// Flange orientations closer than this (with [`POSITION_TOLERANCE`]) make two postures near,
 /// rad (2 deg).
-pub(crate) const ANGLE_TOLERANCE: f64 = 2.0 * std::f64::consts::PI / 180.0;
+pub const ANGLE_TOLERANCE: f64 = 2.0 * std::f64::consts::PI / 180.0;
 
 /// How far apart two postures must be to count as distinct (module docs); the default is the
 /// flagging's ([`JOINT_TOLERANCE`], [`POSITION_TOLERANCE`], [`ANGLE_TOLERANCE`]).

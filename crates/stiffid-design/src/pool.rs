@@ -33,7 +33,7 @@ use stiffid_core::{Error, Result};
 pub const MAX_POOL: usize = 10_000;
 
 /// Most postures in a group chosen from a pool.
-pub(crate) const MAX_GROUP: usize = 60;
+pub const MAX_GROUP: usize = 60;
 
 /// The group chosen from a pool.
 #[derive(Debug, Clone, PartialEq)]
@@ -148,7 +148,7 @@ impl<'a> Pool<'a> {
     /// # Errors
     /// Those of [`Pool::best`]; (field `pool`) no group of `n` usable postures with a finite
     /// value.
-    pub(crate) fn best_for(
+    pub fn best_for(
         &self,
         goal: &super::Goal,
         n: usize,
@@ -212,7 +212,7 @@ impl<'a> Pool<'a> {
 
     /// The criterion of a group of usable postures (positions in [`Pool::usable`]) from its
     /// information matrix.
-    pub(crate) fn value(&self, criterion: Criterion, group: &[usize]) -> f64 {
+    pub fn value(&self, criterion: Criterion, group: &[usize]) -> f64 {
         let Some(information) = Information::sum(group.iter().map(|&k| &self.information[k]))
         else {
             return f64::INFINITY;

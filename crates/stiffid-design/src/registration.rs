@@ -46,7 +46,7 @@ pub const MAX_CANDIDATES: usize = 100_000;
 pub const MAX_POSTURES: usize = crate::pool::MAX_GROUP;
 
 /// Random groups of the comparison ([`Design::random_median_rotation_std`]).
-pub(crate) const RANDOM_GROUPS: usize = 101;
+pub const RANDOM_GROUPS: usize = 101;
 
 /// Halvings of the coordinate search's step ([`polish`]).
 const POLISH_HALVINGS: i32 = 8;
@@ -171,7 +171,7 @@ pub(crate) fn criterion<'a>(moments: impl Iterator<Item = &'a Moments>) -> f64 {
 
 /// Where a cell's external axes stand while the registration postures are read: each axis at
 /// the value of its travel nearest zero (SI, the cell's order; empty without external axes).
-pub(crate) fn station(setup: &Setup) -> Vec<f64> {
+pub fn station(setup: &Setup) -> Vec<f64> {
     setup.robot().external().map_or(Vec::new(), |axes| {
         (axes.axes().iter())
             .map(|a| 0.0f64.clamp(a.lower, a.upper))

@@ -20,10 +20,10 @@ use stiffid_core::setup::Setup;
 use stiffid_core::Error;
 
 /// The smallest group size tried.
-pub(crate) const MIN_POSTURES: usize = 2;
+pub const MIN_POSTURES: usize = 2;
 
 /// The largest group size tried.
-pub(crate) const MAX_POSTURES: usize = 60;
+pub const MAX_POSTURES: usize = 60;
 
 /// How far above the target the `1/sqrt(N)` extrapolation to the largest size must be before the
 /// search stops early: 1.25 (the law is approximate; a target within 25% of the extrapolation is
@@ -32,7 +32,7 @@ pub const STOP_MARGIN: f64 = 1.25;
 
 /// Consecutive sizes whose extrapolation must say "out of reach" before the search stops early (one
 /// poorly chosen group must not end it).
-pub(crate) const STOP_STEPS: usize = 2;
+pub const STOP_STEPS: usize = 2;
 
 /// One group size tried.
 #[derive(Debug, Clone, PartialEq)]
@@ -159,7 +159,7 @@ pub fn smallest_group<E: From<Error>>(
 
 /// The worst rate (%) at `n` postures extrapolated from `step` by the `1/sqrt(N)` law:
 /// `worst_pct * sqrt(len / n)`; `+infinity` for a rank-deficient step.
-pub(crate) fn extrapolate(step: &TargetStep, n: usize) -> f64 {
+pub fn extrapolate(step: &TargetStep, n: usize) -> f64 {
     step.worst_pct() * (step.postures.len() as f64 / n as f64).sqrt()
 }
 

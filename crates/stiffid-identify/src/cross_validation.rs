@@ -40,12 +40,12 @@ use stiffid_core::observation::Observations;
 use stiffid_core::{Error, Result};
 
 /// The smallest Cholesky pivot of `I - H_oo` (module docs) for a fold to count as identifiable.
-pub(crate) const MIN_PIVOT: f64 = 1e-7;
+pub const MIN_PIVOT: f64 = 1e-7;
 
 /// The most `folds x measurements` of a refitted (bounded or robust) cross-validation: each
 /// fold's fit costs about 13 us of CPU per measurement, so the bound is about a minute of CPU (2
 /// folds of the 1.48 million rows of a 256 MiB file: 38 s).
-pub(crate) const MAX_REFIT_WORK: usize = 4_000_000;
+pub const MAX_REFIT_WORK: usize = 4_000_000;
 
 /// One fold: the fit without some postures and its predictions of them.
 #[derive(Debug, Clone, PartialEq)]
@@ -103,7 +103,7 @@ impl CrossValidation {
 /// residuals are the data's rounding: no tracker measures a displacement to a part in a million
 /// (0.01 mm of noise on a 1 mm deflection is 1e-2), while data computed by a model and written
 /// with six or more significant digits fit it this well.
-pub(crate) const EXACT_SHARE: f64 = 1e-6;
+pub const EXACT_SHARE: f64 = 1e-6;
 
 /// Whether a fit with `residuals` explains `delta` (m) to the data's rounding ([`EXACT_SHARE`]).
 fn exact(residuals: &DVector<f64>, delta: &DVector<f64>) -> bool {
@@ -358,7 +358,7 @@ fn linear_folds(
 /// QR factor, any number of columns `p`) from a least-squares problem: the change of the solution
 /// `h - h_(-o) = R^-1 A^T x` and the held-out residuals `x = (I - A A^T)^-1 e_o`, `A = Psi_o
 /// R^-1` (module docs); `None` when `I - A A^T` is singular to working precision.
-pub(crate) fn without_rows(
+pub fn without_rows(
     psi_o: &DMatrix<f64>,
     r_inv: &DMatrix<f64>,
     e_o: &DVector<f64>,

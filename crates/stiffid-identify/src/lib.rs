@@ -183,7 +183,7 @@ impl Identification {
 /// ```
 ///
 /// # Errors
-/// Those of [`InBlocks::push`] and [`InBlocks::solve`].
+/// Those of `InBlocks::push` and `InBlocks::solve` (the blocks of rows).
 pub fn least_squares(arm: &Arm, measurements: &[Measurement]) -> Result<Identification> {
     let mut blocks = InBlocks::new(arm);
     blocks.push(measurements)?;

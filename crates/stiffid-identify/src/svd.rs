@@ -39,10 +39,10 @@ use stiffid_core::{Error, Result};
 
 /// Relative singular value of the column-scaled `Psi` at or below which a direction is not
 /// identified.
-pub(crate) const RANK_TOLERANCE: f64 = 1e-8;
+pub const RANK_TOLERANCE: f64 = 1e-8;
 
 /// The share of a null vector from which a parameter is named in an unidentifiable combination.
-pub(crate) const SHARE: f64 = 0.05;
+pub const SHARE: f64 = 0.05;
 
 /// A combination of compliances the data cannot see (module docs).
 #[derive(Debug, Clone, PartialEq)]
@@ -318,7 +318,7 @@ pub fn fit(obs: &Observations, parameters: &[Parameter]) -> Result<Fit> {
 ///
 /// # Errors
 /// As [`fit`].
-pub(crate) fn fit_robust(obs: &Observations, parameters: &[Parameter], loss: Loss) -> Result<Fit> {
+pub fn fit_robust(obs: &Observations, parameters: &[Parameter], loss: Loss) -> Result<Fit> {
     check_shape(obs, parameters)?;
     let start = Scaled::new(&obs.psi)?.solve(&obs.delta);
     let solve = |a: DMatrix<f64>, b: &DVector<f64>| {
@@ -348,7 +348,7 @@ pub fn fit_by(obs: &Observations, parameters: &[Parameter], method: Method) -> R
 ///
 /// # Errors
 /// Those of [`fit`] for a non-finite or short `psi`.
-pub(crate) fn inverse_factor(psi: &DMatrix<f64>) -> Result<DMatrix<f64>> {
+pub fn inverse_factor(psi: &DMatrix<f64>) -> Result<DMatrix<f64>> {
     let scaled = Scaled::new(psi)?;
     let r = scaled.rank;
     let mut a = scaled.v.columns(0, r).into_owned();
@@ -367,7 +367,7 @@ pub(crate) fn inverse_factor(psi: &DMatrix<f64>) -> Result<DMatrix<f64>> {
 ///
 /// # Errors
 /// As [`fit`].
-pub(crate) fn fit_nonnegative(obs: &Observations, parameters: &[Parameter]) -> Result<Fit> {
+pub fn fit_nonnegative(obs: &Observations, parameters: &[Parameter]) -> Result<Fit> {
     check_shape(obs, parameters)?;
     let scaled = Scaled::new(&obs.psi)?;
     let h = scaled.solve(&obs.delta);
@@ -505,7 +505,7 @@ pub struct HeldOut {
     /// Per posture, the mean of `delta_b^2` over its measurements, m^2.
     pub posture_mse: Vec<f64>,
     /// Per posture, the sums of `delta_b^2` and of `|delta|^2` over its measurements, m^2 (what
-    /// [`crate::explained_share`] takes).
+    /// `explained_share` takes).
     pub posture_sums: Vec<[f64; 2]>,
     /// `RMS(delta_b)`, m.
     pub rms_delta_b: f64,
@@ -520,8 +520,8 @@ impl HeldOut {
     }
 
     /// The standard error of [`HeldOut::explained`] over the postures (the delta method on the
-    /// ratio of the postures' sums, [`crate::explained_share`]).
-    pub(crate) fn explained_std_error(&self) -> f64 {
+    /// ratio of the postures' sums, `explained_share`).
+    pub fn explained_std_error(&self) -> f64 {
         explained_share(&self.posture_sums)[1]
     }
 

@@ -143,7 +143,7 @@ pub fn program(
 ///
 /// # Panics
 /// If `operations` and `poses` differ in length.
-pub(crate) fn exit_thrusts(
+pub fn exit_thrusts(
     process: &Process,
     poses: &[Isometry3<f64>],
     operations: &[Option<usize>],

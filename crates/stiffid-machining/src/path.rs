@@ -46,7 +46,7 @@ const FRAME: &str = "frame";
 const FEED: &str = "feed_mm_s";
 
 /// The accepted feed of a path file's `feed_mm_s`, mm/s: above 0, at most 10 000.
-pub(crate) const FEED_MM_S: limits::Range = limits::Range::new(0.0, 1e4, "mm/s");
+pub const FEED_MM_S: limits::Range = limits::Range::new(0.0, 1e4, "mm/s");
 
 /// The error at `line`, in no column.
 fn problem(line: u64, problem: ColumnProblem) -> Error {

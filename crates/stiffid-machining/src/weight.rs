@@ -26,7 +26,7 @@ use stiffid_metrology::calibration::gravity::{self, Gravity};
 
 /// The own weight's deflection of one robot: its gravity model and term values.
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) struct Weight {
+pub struct Weight {
     model: gravity::Terms,
     values: DVector<f64>,
 }
@@ -43,7 +43,7 @@ impl Weight {
     /// file, or other springs); (`tool.mass_kg`) when lumped terms hold a tool of another mass
     /// than `tool`'s, (`tool.centre_of_mass_mm`) one whose weight acts elsewhere
     /// ([`TOOL_MOMENT_TOLERANCE_NM`]).
-    pub(crate) fn new(
+    pub fn new(
         robot: &Robot,
         springs: Coordinates,
         own: &OwnWeight,
@@ -104,7 +104,7 @@ impl Weight {
     /// # Errors
     /// Those of [`Weight::new`]; [`Error::InvalidField`] (`gravity`) when both carry terms and
     /// they differ, naming both.
-    pub(crate) fn of(arm: &Arm, compliance: &Compliance) -> Result<Option<Self>> {
+    pub fn of(arm: &Arm, compliance: &Compliance) -> Result<Option<Self>> {
         let own = match (arm.robot().own_weight(), &compliance.own_weight) {
             (Some(r), Some(s)) if (&r.gravity, &r.terms) != (&s.gravity, &s.terms) => {
                 return Err(Error::InvalidField {

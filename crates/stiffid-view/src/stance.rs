@@ -54,7 +54,7 @@ impl Stance {
     ///
     /// # Errors
     /// [`Error::InvalidField`] (`field`) when an axis's column is missing.
-    pub(crate) fn external_si(&self, robot: &Robot, field: &str) -> stiffid_core::Result<Vec<f64>> {
+    pub fn external_si(&self, robot: &Robot, field: &str) -> stiffid_core::Result<Vec<f64>> {
         let Some(axes) = robot.external() else {
             return Ok(Vec::new());
         };

@@ -59,7 +59,7 @@ pub use table::{TableChoice, TableDesign};
 
 /// A singular value below this share of the largest counts as zero: the group does not
 /// separate the kept parameters.
-pub(crate) const RANK_TOLERANCE: f64 = 1e-10;
+pub const RANK_TOLERANCE: f64 = 1e-10;
 
 /// The calibration criteria of a group of postures.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -300,7 +300,7 @@ impl CalibrationDesign {
     ///
     /// # Errors
     /// [`Error::NotFinite`] for a non-finite posture.
-    pub(crate) fn jacobian_placed(&self, postures: &[Placed]) -> Result<DMatrix<f64>> {
+    pub fn jacobian_placed(&self, postures: &[Placed]) -> Result<DMatrix<f64>> {
         if !(postures.iter()).all(|(q, e)| q.iter().chain(e.as_slice()).all(|v| v.is_finite())) {
             return Err(Error::NotFinite {
                 what: "a posture of the calibration design".into(),
@@ -330,7 +330,7 @@ impl CalibrationDesign {
     ///
     /// # Errors
     /// [`Error::NotFinite`] for a non-finite posture.
-    pub(crate) fn jacobian(&self, postures: &[Vector6<f64>]) -> Result<DMatrix<f64>> {
+    pub fn jacobian(&self, postures: &[Vector6<f64>]) -> Result<DMatrix<f64>> {
         let placed: Vec<Placed> = postures.iter().map(|q| (*q, self.station)).collect();
         self.jacobian_placed(&placed)
     }
@@ -388,7 +388,7 @@ impl CalibrationDesign {
     /// The value of `criterion` for `postures` (rad) as a search minimises it
     /// ([`CalibrationCriterion::loss`]): `+infinity` for a group that does not separate the
     /// kept parameters or a non-finite posture.
-    pub(crate) fn value(&self, criterion: CalibrationCriterion, postures: &[Vector6<f64>]) -> f64 {
+    pub fn value(&self, criterion: CalibrationCriterion, postures: &[Vector6<f64>]) -> f64 {
         let d = self.scorer(criterion);
         match d.jacobian(postures) {
             Ok(j) => score::Scored::new(j, criterion, d).map_or(f64::INFINITY, |s| s.value),
@@ -483,7 +483,7 @@ pub(crate) fn readings(model: &ErrorModel, postures: &[Placed]) -> Vec<Observati
 /// # Errors
 /// [`Error::InvalidField`] (`parameters`) when `test` has other columns than `j`;
 /// [`Error::NotFinite`] when `j` is not finite or its SVD does not converge.
-pub(crate) fn criteria(
+pub fn criteria(
     j: &DMatrix<f64>,
     postures: usize,
     test: &DMatrix<f64>,

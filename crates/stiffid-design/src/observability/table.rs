@@ -106,7 +106,7 @@ impl CalibrationDesign {
     ///
     /// # Errors
     /// Those of [`ErrorModel::jacobian_of`].
-    pub(crate) fn table_rows(&self, angles: &[ExternalValues], part: bool) -> Result<DMatrix<f64>> {
+    pub fn table_rows(&self, angles: &[ExternalValues], part: bool) -> Result<DMatrix<f64>> {
         let l = &self.layout;
         let observations = readings(l.model.tables(), angles);
         let mut out = DMatrix::zeros(3 * observations.len(), self.kept.len());

@@ -18,7 +18,7 @@
 
 pub mod bootstrap;
 pub mod document;
-pub(crate) mod pool;
+pub mod pool;
 
 pub use bootstrap::{bootstrap, Bootstrap, Resampling};
 pub use document::{parameter_docs, Document};
@@ -94,7 +94,7 @@ pub struct Nested {
     /// `1 - RMS(delta_b) / RMS(|delta|)` over every posture predicted by the model chosen without it.
     pub held_out_explained: f64,
     /// Its standard error over the postures (the delta method on the ratio of the postures'
-    /// sums, [`crate::explained_share`]).
+    /// sums, `explained_share`).
     pub held_out_explained_std_error: f64,
     /// That `RMS(delta_b)`, m.
     pub rms_delta_b: f64,
@@ -175,7 +175,7 @@ fn load_levels(measurements: &[Measurement]) -> usize {
 /// Fewest postures a comparison takes: every model is judged by its error on postures left out
 /// one at a time, and the nested estimate leaves one out of the selection too, so the selection
 /// in each outer fold still has a posture to hold out.
-pub(crate) const MIN_POSTURES: usize = 3;
+pub const MIN_POSTURES: usize = 3;
 
 /// Compares models by forward selection of `candidates` (module docs) on `measurements`,
 /// starting from `setup`'s model; `nested` runs the outer cross-validation.
@@ -269,7 +269,7 @@ fn recommend(models: &[Row]) -> usize {
 /// The models the data support: the indices of the models on the path (physical and
 /// identified) whose held-out mean square is within one standard error of the best one's, the
 /// margin of the one-standard-error rule (module docs), smallest first.
-pub(crate) fn supported(models: &[Row]) -> Vec<usize> {
+pub fn supported(models: &[Row]) -> Vec<usize> {
     let ok = |r: &Row| r.physical && r.identified;
     let best = models
         .iter()

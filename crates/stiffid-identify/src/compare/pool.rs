@@ -43,7 +43,7 @@ use stiffid_core::Frames;
 use stiffid_core::{Result, Robot, Setup};
 
 /// The shortest link that gets `bend` candidates, m (shorter, its middle is its joint).
-pub(crate) const MIN_BEND_LENGTH: f64 = 0.05;
+pub const MIN_BEND_LENGTH: f64 = 0.05;
 
 /// A candidate left out of the pool, and why.
 #[derive(Debug, Clone, PartialEq)]
@@ -76,7 +76,7 @@ pub fn nonlinear_separation(load_levels: usize) -> String {
 }
 
 /// The candidate families by name, for `--candidates`.
-pub(crate) const CANDIDATE_FAMILIES: [&str; 8] = [
+pub const CANDIDATE_FAMILIES: [&str; 8] = [
     "tilt", "bend", "carriage", "base", "tool", "lost", "load", "declared",
 ];
 

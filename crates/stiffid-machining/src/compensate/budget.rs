@@ -162,7 +162,7 @@ pub(crate) fn model_form(
 /// `nu = (sum l)^2 / sum l^2` (Patnaik 1949, "The non-central chi-square and F-distributions and
 /// their applications", Biometrika 36): exact for one non-zero eigenvalue and for equal ones.
 /// 0 for a zero `c`.
-pub(crate) fn length_quantile(c: &Matrix3<f64>, level: f64) -> f64 {
+pub fn length_quantile(c: &Matrix3<f64>, level: f64) -> f64 {
     let l = c.symmetric_eigenvalues().map(|v| v.max(0.0));
     let (s1, s2) = (l.sum(), l.map(|v| v * v).sum());
     if !(s1 > 0.0 && s2 > 0.0) {

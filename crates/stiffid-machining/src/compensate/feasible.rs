@@ -42,9 +42,9 @@ pub struct Feasible {
 
 impl Feasible {
     /// The default of [`Feasible::margin`], deg.
-    pub(crate) const DEFAULT_MARGIN_DEG: f64 = 5.0;
+    pub const DEFAULT_MARGIN_DEG: f64 = 5.0;
     /// The default of [`Feasible::max_condition`].
-    pub(crate) const DEFAULT_MAX_CONDITION: f64 = 1000.0;
+    pub const DEFAULT_MAX_CONDITION: f64 = 1000.0;
 
     /// The defaults for `setup`: a margin of [`Feasible::DEFAULT_MARGIN_DEG`], a condition
     /// number of at most [`Feasible::DEFAULT_MAX_CONDITION`] and, when the setup has a `[cell]`,
@@ -63,7 +63,7 @@ impl Feasible {
     /// # Errors
     /// [`Error::InvalidOption`] ([`JobOption::MarginDeg`] or [`JobOption::MaxCondition`]) with
     /// the value given.
-    pub(crate) fn validate(&self) -> Result<()> {
+    pub fn validate(&self) -> Result<()> {
         if !(0.0..=std::f64::consts::FRAC_PI_2).contains(&self.margin) {
             return Err(Error::InvalidOption {
                 option: JobOption::MarginDeg,

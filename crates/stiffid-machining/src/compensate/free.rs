@@ -46,11 +46,11 @@ pub struct Freedom {
 }
 
 /// The most `--free` options of one run.
-pub(crate) const MAX_FREE: usize = 8;
+pub const MAX_FREE: usize = 8;
 
 /// The options that `free` replaced (command-line spelling, without `--`), each with the option
 /// that replaces it (`free` or `minimise`) and how to write its value there.
-pub(crate) const RETIRED: &[(&str, &str, &str)] = &[
+pub const RETIRED: &[(&str, &str, &str)] = &[
     ("free-tool-axis", "free", "tool-rotation=-90..90/2"),
     ("max-step-deg", "free", "tool-rotation=-R..R/STEP"),
     ("tool-axis-range-deg", "free", "tool-rotation=-R..R/STEP"),

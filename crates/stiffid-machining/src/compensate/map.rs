@@ -67,13 +67,13 @@ pub struct Map {
 
 impl Map {
     /// The grid's step without a free tool axis, deg.
-    pub(crate) const DEFAULT_STEP_DEG: f64 = 5.0;
+    pub const DEFAULT_STEP_DEG: f64 = 5.0;
     /// The grid's range without a free tool axis, deg.
-    pub(crate) const DEFAULT_RANGE_DEG: f64 = 90.0;
+    pub const DEFAULT_RANGE_DEG: f64 = 90.0;
     /// The track map's step without a free station, mm.
-    pub(crate) const DEFAULT_STATION_STEP_MM: f64 = 50.0;
+    pub const DEFAULT_STATION_STEP_MM: f64 = 50.0;
     /// The track map's range without a free station, mm.
-    pub(crate) const DEFAULT_STATION_RANGE_MM: f64 = 1000.0;
+    pub const DEFAULT_STATION_RANGE_MM: f64 = 1000.0;
 }
 
 /// What the compensation chose at one path point besides the point itself: the values the

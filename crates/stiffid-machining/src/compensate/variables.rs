@@ -155,7 +155,7 @@ pub enum Free {
 
 impl Free {
     /// The variable this one moves.
-    pub(crate) fn variable(&self) -> Variable {
+    pub fn variable(&self) -> Variable {
         match self {
             Free::ToolRotation(_) => Variable::ToolRotation,
             Free::LeadTilt(_) => Variable::LeadTilt,
@@ -199,7 +199,7 @@ impl Free {
     ///
     /// # Errors
     /// Those of [`FreeRange::checked`] and [`LeadTilt::checked`].
-    pub(crate) fn validate(&self) -> Result<()> {
+    pub fn validate(&self) -> Result<()> {
         let variable = self.variable();
         let s = variable.scale();
         match self {
@@ -490,17 +490,17 @@ impl FreeVariables {
     }
 
     /// The track station, m ("The free station"), if free.
-    pub(crate) fn station(&self) -> Option<FreeRange> {
+    pub fn station(&self) -> Option<FreeRange> {
         find!(self, Station)
     }
 
     /// The positioner's last axis, the table's turn ("The free positioner"), if free.
-    pub(crate) fn positioner(&self) -> Option<FreeRange> {
+    pub fn positioner(&self) -> Option<FreeRange> {
         find!(self, Positioner)
     }
 
     /// A two-axis positioner's first axis, the tilt, if free.
-    pub(crate) fn tilt(&self) -> Option<FreeRange> {
+    pub fn tilt(&self) -> Option<FreeRange> {
         find!(self, Tilt)
     }
 

@@ -72,7 +72,7 @@ mod words;
 mod write;
 
 pub use arc::{ArcBlock, ARC_END_MAX_MM, ARC_END_RELATIVE, ARC_END_TOLERANCE_MM};
-pub(crate) use cycles::Cycle;
+pub use cycles::Cycle;
 pub use machine::{Machine, ProgramFrames};
 pub use process::{Comment, ProcessWord};
 pub use words::MAX_FEED;
@@ -87,9 +87,9 @@ use words::words;
 /// The most path points (after splitting arcs).
 pub const MAX_POINTS: usize = 1_000_000;
 /// The most blocks (lines).
-pub(crate) const MAX_BLOCKS: usize = 1_000_000;
+pub const MAX_BLOCKS: usize = 1_000_000;
 /// The accepted chord tolerance, mm.
-pub(crate) const CHORD_TOLERANCE_MM: stiffid_core::common::limits::Range =
+pub const CHORD_TOLERANCE_MM: stiffid_core::common::limits::Range =
     stiffid_core::common::limits::Range::new(1e-6, 10.0, "mm");
 
 /// Rapid or cutting motion.

@@ -62,7 +62,7 @@ use stiffid_core::common::limits::{self, Range};
 use stiffid_core::{Error, Result};
 
 /// The most operations a process file may hold.
-pub(crate) const MAX_OPERATIONS: usize = 1000;
+pub const MAX_OPERATIONS: usize = 1000;
 
 const DIAMETER: Range = Range::new(1e-3, 200.0, "mm");
 const FLUTES: Range = Range::new(1.0, 12.0, "");

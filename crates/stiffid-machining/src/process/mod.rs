@@ -18,10 +18,10 @@
 //! mean force and moment into the base-frame wrench on the tool that compensation takes.
 
 pub(crate) mod covering;
-pub(crate) mod drilling;
+pub mod drilling;
 pub mod file;
 pub mod milling;
-pub(crate) mod presets;
+pub mod presets;
 
 use nalgebra::{Matrix3, Rotation3, Vector3, Vector6};
 use serde::Serialize;
@@ -92,11 +92,7 @@ impl Operation {
     /// The mean wrench `[f; m]` on the tool in the base frame, for a cut fed along `feed` (base
     /// frame, any length) with the tool z axis `tool_z` (base frame, unit, spindle to tip); `None`
     /// for a milling cut fed along the tool axis (a plunge: no lateral feed to define the frame).
-    pub(crate) fn base_wrench(
-        &self,
-        feed: &Vector3<f64>,
-        tool_z: &Vector3<f64>,
-    ) -> Option<Vector6<f64>> {
+    pub fn base_wrench(&self, feed: &Vector3<f64>, tool_z: &Vector3<f64>) -> Option<Vector6<f64>> {
         let frame = match &self.kind {
             Kind::Milling(_) => feed_frame(feed, tool_z)?,
             Kind::Drilling(_) => {
@@ -115,7 +111,7 @@ impl Operation {
 /// along the axis (a plunge): 0.01, within 0.57 deg of the axis. A plunge written as a robot
 /// program's targets stays one: rounded to their decimals, or to an INFORM job's whole pulses
 /// (at 1000 pulses per degree, about 40 um on a 2.5 m reach, 0.4% of a 10 mm plunge).
-pub(crate) const PLUNGE: f64 = 1e-2;
+pub const PLUNGE: f64 = 1e-2;
 
 /// The feed frame in the base frame (module docs): `x` the part of `feed` across the tool axis,
 /// `z = -tool_z`, `y = z x x`. `None` when `feed` has no part across the axis (relative

@@ -81,10 +81,10 @@ use stiffid_core::{Error, Result, Setup};
 
 /// Decimals of a written joint value, deg (1e-9 deg: the compensation's precision; controllers
 /// round to their own).
-pub(crate) const DECIMALS: usize = 9;
+pub const DECIMALS: usize = 9;
 
 /// The most joint targets a program may hold.
-pub(crate) const MAX_TARGETS: usize = 1_000_000;
+pub const MAX_TARGETS: usize = 1_000_000;
 
 /// The registry: each controller language's variant of [`Dialect`], its doc line and its
 /// controller (a unit struct of its folder implementing [`Controller`]). A new language adds

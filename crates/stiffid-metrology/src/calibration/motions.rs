@@ -26,7 +26,7 @@ use stiffid_core::robot::external::AxisKind;
 use stiffid_core::{Error, Result};
 
 /// The highest order `--error-motions auto` tries per linear axis.
-pub(crate) const MAX_ORDER_TRIED: usize = 6;
+pub const MAX_ORDER_TRIED: usize = 6;
 
 /// Which orders a calibration fits.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -135,7 +135,7 @@ fn highest(model: &ErrorModel, observations: &[Observation]) -> Vec<usize> {
 ///
 /// # Errors
 /// Those of [`ErrorModel::with_external`], [`fit::start`] and [`fit::fit`].
-pub(crate) fn fitted(
+pub fn fitted(
     base: &ErrorModel,
     orders: &[usize],
     tables: usize,

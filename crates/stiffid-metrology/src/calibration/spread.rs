@@ -38,7 +38,7 @@ pub fn region_sd(
 ///
 /// # Errors
 /// Those of [`ErrorModel::jacobian_of`].
-pub(crate) fn postures_sd(
+pub fn postures_sd(
     model: &ErrorModel,
     fit: &Fit,
     like: &Observation,

@@ -110,7 +110,7 @@ impl fmt::Debug for Flags {
 
 /// Where a part of the data sits and how it is written back: a language's
 /// [`ConfigurationData::Part`].
-pub(crate) struct Part(Box<dyn ErasedPart>);
+pub struct Part(Box<dyn ErasedPart>);
 
 impl Part {
     /// The part `part` of a language's data.

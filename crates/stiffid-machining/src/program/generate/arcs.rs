@@ -34,7 +34,7 @@ use std::f64::consts::PI;
 use std::ops::Range;
 
 /// The most one circular move turns, deg.
-pub(crate) const MAX_SWEEP_DEG: f64 = 180.0;
+pub const MAX_SWEEP_DEG: f64 = 180.0;
 
 /// How far past [`MAX_SWEEP_DEG`] a compensated piece may turn, deg: a full circle's
 /// compensated points are not exactly a circle, and it is two moves, not three.

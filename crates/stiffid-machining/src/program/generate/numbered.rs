@@ -15,9 +15,9 @@ use nalgebra::Isometry3;
 use stiffid_core::setup::NumberedFrames;
 
 /// How far (mm) a table's frame may lie from the program's tool or part frame and be taken.
-pub(crate) const MATCH_MM: f64 = 0.001;
+pub const MATCH_MM: f64 = 0.001;
 /// How far (deg) a table's frame may turn from the program's tool or part frame and be taken.
-pub(crate) const MATCH_DEG: f64 = 0.001;
+pub const MATCH_DEG: f64 = 0.001;
 
 /// The program's tool and part frame as the controller holds them by number, with the table's
 /// frame (lengths in m; the tool in the controller's flange frame, the base in its world).

@@ -19,7 +19,7 @@
 //! page `docs/programs/krl.md` lists each rule with its source.
 
 pub mod cartesian;
-pub(crate) mod data;
+pub mod data;
 mod declare;
 mod flow;
 mod frames;

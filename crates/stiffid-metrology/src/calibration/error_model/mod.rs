@@ -81,7 +81,7 @@ mod maps;
 mod parameter;
 mod tables;
 
-pub(crate) use basis::Basis;
+pub use basis::Basis;
 pub use external::{MAX_FITTED_ORDER, MOTIONS};
 use loads::Loads;
 pub use maps::JointMaps;
@@ -93,10 +93,10 @@ use nalgebra::{DVector, Isometry3, Translation3, UnitQuaternion, Vector3, Vector
 use stiffid_core::{Error, Joint, Result, Robot};
 
 /// Most measuring points a calibration fits.
-pub(crate) const MAX_POINTS: usize = 100;
+pub const MAX_POINTS: usize = 100;
 
 /// The share of the largest regressor RMS of its unit below which a gravity term has no effect.
-pub(crate) const NO_EFFECT: f64 = 1e-9;
+pub const NO_EFFECT: f64 = 1e-9;
 
 /// No direction of approach: the mean of the two ([`Observation::direction`]).
 const MEAN: Vector6<f64> = Vector6::new(0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
@@ -526,7 +526,7 @@ impl ErrorModel {
     ///
     /// # Errors
     /// Those of [`ErrorModel::positions`].
-    pub(crate) fn residuals(
+    pub fn residuals(
         &self,
         estimate: &Estimate,
         observations: &[Observation],

@@ -54,10 +54,10 @@ pub use noise::{fit_at_stated_noise, MAX_REWEIGHTS, NOISE_TOLERANCE};
 pub const MAX_ITERATIONS: usize = 100;
 
 /// Most readings a calibration fits.
-pub(crate) const MAX_READINGS: usize = 100_000;
+pub const MAX_READINGS: usize = 100_000;
 
 /// The scaled step length below which the fit has converged.
-pub(crate) const STEP_TOLERANCE: f64 = 1e-13;
+pub const STEP_TOLERANCE: f64 = 1e-13;
 
 /// A warning ([`WarningKind::NotConverged`]) when the fit stopped at its limit of `iterations`
 /// ([`Stop::IterationLimit`]) with the cost still falling: the calibration may still move.

@@ -62,7 +62,7 @@ pub const G: f64 = 9.80665;
 /// The bodies of [`Gravity::Lumped`] (links, 0-based): the turret (no term: joint 1 is vertical
 /// on every floor robot, and its terms merge), the upper arm, the forearm with link 3 lumped in,
 /// the wrist with link 5 and the tool lumped in.
-pub(crate) const BODIES: [usize; 4] = [0, 1, 2, 4];
+pub const BODIES: [usize; 4] = [0, 1, 2, 4];
 
 /// Which gravity terms a calibration fits.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
@@ -539,7 +539,7 @@ impl Terms {
     /// Each term's largest regressor magnitude (N m, or N m per unit mass moment) over
     /// [`SPANNING_POSTURES`] postures spread over the robot's joint limits ([`spanning`]): the
     /// largest torque through which a term deflects its joint anywhere the robot can go.
-    pub(crate) fn peaks(&self) -> &[f64] {
+    pub fn peaks(&self) -> &[f64] {
         &self.peaks
     }
 

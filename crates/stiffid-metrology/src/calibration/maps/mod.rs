@@ -39,7 +39,7 @@
 //!
 //! Equations and sources: docs/model.md, section "Calibration", "Joint error maps".
 
-pub(crate) mod linear;
+pub mod linear;
 
 pub use super::error_model::JointMaps;
 pub use linear::{extended, Linear};
@@ -70,10 +70,10 @@ pub fn name(h: &JointMaps) -> String {
 }
 
 /// The harmonic counts `--maps auto` tries per joint.
-pub(crate) const HARMONICS: [usize; 4] = [4, 8, 16, 32];
+pub const HARMONICS: [usize; 4] = [4, 8, 16, 32];
 
 /// The harmonics of a joint named without a count (`--maps J2`).
-pub(crate) const DEFAULT_HARMONICS: usize = 16;
+pub const DEFAULT_HARMONICS: usize = 16;
 
 /// The ridges `mu` tried (dimensionless, per reading): up to 1, since from 50 postures a
 /// joint's 32 harmonics may need a stronger hold than from 100.
@@ -101,7 +101,7 @@ pub const LEAST_GAIN: f64 = 0.02;
 
 /// The fewest distinct postures with which `--maps auto` considers maps (below it, none): five
 /// folds of at least six postures.
-pub(crate) const MIN_POSTURES: usize = 30;
+pub const MIN_POSTURES: usize = 30;
 
 /// Which maps a calibration fits.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
