@@ -81,7 +81,7 @@ impl PoolMethod {
 
 /// The group chosen.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Chosen {
+pub(crate) struct Chosen {
     /// Candidate indices, in the order the search left them.
     pub group: Vec<usize>,
     /// Enumeration or exchange.
@@ -96,7 +96,7 @@ pub struct Chosen {
 /// stream `r` of `options.seed`; the lowest run index on ties). The same options give the same
 /// group whatever the thread count. `n <= u` and `options` valid ([`PoolOptions::validate`]) are
 /// the caller's to check.
-pub fn best(
+pub(crate) fn best(
     u: usize,
     n: usize,
     options: &PoolOptions,
@@ -191,7 +191,7 @@ pub(crate) fn improves(v: f64, than: f64) -> bool {
 }
 
 /// The next combination of `group.len()` of `0..u` in lexicographic order; false after the last.
-pub fn next_combination(group: &mut [usize], u: usize) -> bool {
+pub(crate) fn next_combination(group: &mut [usize], u: usize) -> bool {
     let n = group.len();
     let Some(i) = (0..n).rev().find(|&i| group[i] < u - n + i) else {
         return false;
@@ -204,7 +204,7 @@ pub fn next_combination(group: &mut [usize], u: usize) -> bool {
 }
 
 /// `C(u, n)`, `u128::MAX` when larger.
-pub fn binomial(u: usize, n: usize) -> u128 {
+pub(crate) fn binomial(u: usize, n: usize) -> u128 {
     if n > u {
         return 0;
     }

@@ -13,8 +13,8 @@
 pub mod candidates;
 pub mod criteria;
 pub mod distinct;
-pub mod evaluator;
-pub mod exchange;
+pub(crate) mod evaluator;
+pub(crate) mod exchange;
 mod identifiable;
 pub mod observability;
 pub mod pool;
@@ -33,3 +33,12 @@ pub use search::{
     global, global_for, local, local_for, random_group, CalibrationGoal, Goal, Gradient,
     SearchOptions, SearchOutcome, Solver, Termination, PROBE_DRAWS,
 };
+
+#[cfg(test)]
+mod exchange_tests;
+
+#[cfg(test)]
+mod pool_tests;
+
+#[cfg(test)]
+mod registration_tests;

@@ -125,7 +125,7 @@ impl Design {
 /// What one candidate posture's points contribute: their count, sum (m) and inertia about the
 /// base origin, `sum (|b|^2 I - b b^T)` (m^2).
 #[derive(Debug, Clone, Copy)]
-pub struct Moments {
+pub(crate) struct Moments {
     count: f64,
     sum: Vector3<f64>,
     inertia: Matrix3<f64>,
@@ -133,7 +133,7 @@ pub struct Moments {
 
 impl Moments {
     /// The moments of `points` (m).
-    pub fn of(points: &[Vector3<f64>]) -> Self {
+    pub(crate) fn of(points: &[Vector3<f64>]) -> Self {
         Self {
             count: points.len() as f64,
             sum: points.iter().sum(),
@@ -151,7 +151,7 @@ fn inertia(b: &Vector3<f64>) -> Matrix3<f64> {
 /// centroid by the parallel-axis theorem, inverted by Cholesky; `+infinity` when singular
 /// (collinear points) or with fewer than
 /// [`MIN_POINTS`] points.
-pub fn criterion<'a>(moments: impl Iterator<Item = &'a Moments>) -> f64 {
+pub(crate) fn criterion<'a>(moments: impl Iterator<Item = &'a Moments>) -> f64 {
     let (mut count, mut sum, mut inertia_origin) = (0.0, Vector3::zeros(), Matrix3::zeros());
     for m in moments {
         count += m.count;
@@ -180,7 +180,7 @@ pub fn station(setup: &Setup) -> Vec<f64> {
 }
 
 /// The measuring points of posture `q` with the external axes at `e`, cell frame, m.
-pub fn points(setup: &Setup, q: &Vector6<f64>, e: &[f64]) -> Vec<Vector3<f64>> {
+pub(crate) fn points(setup: &Setup, q: &Vector6<f64>, e: &[f64]) -> Vec<Vector3<f64>> {
     let frames = setup.robot().frames_at(q, e);
     let tool = &setup.tool().measuring_points;
     tool.iter().map(|p| frames.point(p)).collect()

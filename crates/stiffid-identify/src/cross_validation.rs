@@ -88,7 +88,7 @@ pub struct CrossValidation {
     /// Root mean square of the measured displacement magnitudes, m.
     pub rms_measured: f64,
     /// The standard error of [`CrossValidation::explained`] over the postures
-    /// ([`explained_share`]).
+    /// (`explained_share`).
     pub explained_std_error: f64,
 }
 

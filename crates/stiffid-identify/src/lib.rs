@@ -86,7 +86,7 @@ impl Method {
 /// sum_p (a_p - r b_p)^2 / B^2` (the delta method of a ratio estimator; Cochran, *Sampling
 /// Techniques*, 3rd ed., 1977, ch. 6), and `1 - sqrt(r)` the standard error `se(r) / (2 sqrt(r))`;
 /// `NaN` for one posture.
-pub fn explained_share(per_posture: &[[f64; 2]]) -> [f64; 2] {
+pub(crate) fn explained_share(per_posture: &[[f64; 2]]) -> [f64; 2] {
     let n = per_posture.len() as f64;
     let [a, b] = per_posture
         .iter()
@@ -150,8 +150,8 @@ impl Identification {
 }
 
 /// Identifies the joint compliance and stiffness by linear least squares (Eq. 13-14), with
-/// standard errors and 95% confidence intervals (module docs), in bounded memory: [`InBlocks`]
-/// over all the measurements, then their residuals ([`residuals`]). The result is the same
+/// standard errors and 95% confidence intervals (module docs), in bounded memory: `InBlocks`
+/// over all the measurements, then their residuals (`residuals`). The result is the same
 /// whatever the number of threads, and equal to [`Observations::least_squares`] to rounding
 /// (the same QR, in another order). The other fits ([`Observations::robust`],
 /// [`Observations::nonnegative`]) and cross-validation need the whole [`Observations`].
@@ -183,7 +183,7 @@ impl Identification {
 /// ```
 ///
 /// # Errors
-/// Those of [`InBlocks::push`] and [`InBlocks::solve`].
+/// Those of `InBlocks::push` and `InBlocks::solve` (the blocks of rows).
 pub fn least_squares(arm: &Arm, measurements: &[Measurement]) -> Result<Identification> {
     let mut blocks = InBlocks::new(arm);
     blocks.push(measurements)?;
@@ -192,7 +192,7 @@ pub fn least_squares(arm: &Arm, measurements: &[Measurement]) -> Result<Identifi
     Ok(solved.finish(residuals))
 }
 
-/// Measurements per block of [`InBlocks`]: 3072 rows of `Psi`, 147 kB.
+/// Measurements per block of `InBlocks`: 3072 rows of `Psi`, 147 kB.
 pub const BLOCK: usize = 1024;
 
 /// Least squares over measurements given a part at a time (a file read in chunks), in bounded
@@ -201,7 +201,7 @@ pub const BLOCK: usize = 1024;
 /// `BLOCK k .. BLOCK (k + 1)` whatever the parts, so the result does not depend on how the
 /// measurements are cut into parts, nor on the number of threads. Memory: one block, and what
 /// [`Check`] keeps per posture.
-pub struct InBlocks<'a> {
+pub(crate) struct InBlocks<'a> {
     arm: &'a Arm,
     check: Check,
     /// The measurements of the block being filled.
@@ -210,9 +210,9 @@ pub struct InBlocks<'a> {
     deflected: bool,
 }
 
-/// The solution of [`InBlocks`], before the residuals.
+/// The solution of `InBlocks`, before the residuals.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Solved {
+pub(crate) struct Solved {
     /// The compliance, `(Psi^T Psi)^-1` and `cond_2(Psi)`.
     pub solution: Solution,
     /// The number of distinct postures.
@@ -223,7 +223,7 @@ pub struct Solved {
 
 impl<'a> InBlocks<'a> {
     /// No measurements yet.
-    pub fn new(arm: &'a Arm) -> Self {
+    pub(crate) fn new(arm: &'a Arm) -> Self {
         Self {
             arm,
             check: Check::default(),
@@ -237,7 +237,7 @@ impl<'a> InBlocks<'a> {
     ///
     /// # Errors
     /// Those of [`stiffid_core::observation::check`], numbering measurements over all parts.
-    pub fn push(&mut self, measurements: &[Measurement]) -> Result<()> {
+    pub(crate) fn push(&mut self, measurements: &[Measurement]) -> Result<()> {
         self.check.push(self.arm, measurements, None)?;
         self.deflected |= measurements
             .iter()
@@ -281,7 +281,7 @@ impl<'a> InBlocks<'a> {
     /// # Errors
     /// [`Error::InvalidField`] when every displacement is zero; those of [`Reduced::try_solve`]
     /// ([`Error::TooFewRows`], [`Error::Unidentifiable`], [`Error::NotFinite`]).
-    pub fn solve(&mut self) -> Result<Solved> {
+    pub(crate) fn solve(&mut self) -> Result<Solved> {
         if !self.arm.model().is_drives_only() {
             return Err(six_parameters_only());
         }
@@ -298,13 +298,13 @@ impl<'a> InBlocks<'a> {
     }
 
     /// The axis angles of `posture` (those of its first measurement), if it was pushed.
-    pub fn angles(&self, posture: usize) -> Option<&Vector6<f64>> {
+    pub(crate) fn angles(&self, posture: usize) -> Option<&Vector6<f64>> {
         self.check.angles(posture)
     }
 
     /// The external axis values of `posture` (those of its first measurement), if it was
     /// pushed.
-    pub fn external(
+    pub(crate) fn external(
         &self,
         posture: usize,
     ) -> Option<&stiffid_core::robot::external::ExternalValues> {
@@ -314,11 +314,11 @@ impl<'a> InBlocks<'a> {
 
 impl Solved {
     /// The identification with `residuals` and `predicted` (`delta - Psi h` and `Psi h` of every
-    /// measurement, [`residuals`]).
+    /// measurement, `residuals`).
     ///
     /// # Panics
     /// Unless there are three residuals and three predictions per measurement.
-    pub fn finish(self, (residuals, predicted): (Vec<f64>, Vec<f64>)) -> Identification {
+    pub(crate) fn finish(self, (residuals, predicted): (Vec<f64>, Vec<f64>)) -> Identification {
         assert_eq!(residuals.len(), 3 * self.measurements);
         assert_eq!(predicted.len(), 3 * self.measurements);
         finish(
@@ -336,7 +336,7 @@ impl Solved {
 /// `delta - Psi h` and `Psi h` of some measurements (checked), three per measurement in the row
 /// order of [`stiffid_core::observation`], computed in parallel blocks of [`BLOCK`] (the same values
 /// whatever the blocks).
-pub fn residuals(
+pub(crate) fn residuals(
     arm: &Arm,
     h: &Vector6<f64>,
     measurements: &[Measurement],
@@ -542,3 +542,9 @@ fn finish(
         nonnegative_stop: None,
     }
 }
+
+#[cfg(test)]
+mod nonnegative_tests;
+
+#[cfg(test)]
+mod robust_tests;

@@ -34,7 +34,7 @@ pub struct Bounded {
 
 /// The bounded fit of any number of unknowns ([`solve_general`]).
 #[derive(Debug, Clone, PartialEq)]
-pub struct BoundedGeneral {
+pub(crate) struct BoundedGeneral {
     /// The minimiser, every entry `>= 0`.
     pub h: DVector<f64>,
     /// Which entries are held at the bound 0 (the active constraints).
@@ -56,14 +56,14 @@ pub fn solve(a: &Matrix6<f64>, b: &Vector6<f64>) -> Bounded {
 
 /// `min |a x - b|` subject to `x >= 0` for an `m x n` matrix `a` of full column rank (module docs;
 /// any `m >= n`: the triangular factor or the whole observation matrix).
-pub fn solve_general(a: &DMatrix<f64>, b: &DVector<f64>) -> BoundedGeneral {
+pub(crate) fn solve_general(a: &DMatrix<f64>, b: &DVector<f64>) -> BoundedGeneral {
     solve_within(a, b, MAX_STEPS_PER_UNKNOWN * a.ncols())
 }
 
 /// [`solve_general`] in at most `steps` active-set steps (each frees one unknown): `a` is `m x n`
 /// with `m >= n` and full column rank, `b` has `m` entries. A fit cut at the limit says so in its
 /// `stop` ([`Stop::IterationLimit`]), with the unknowns freed so far.
-pub fn solve_within(a: &DMatrix<f64>, b: &DVector<f64>, steps: usize) -> BoundedGeneral {
+pub(crate) fn solve_within(a: &DMatrix<f64>, b: &DVector<f64>, steps: usize) -> BoundedGeneral {
     let n = a.ncols();
     let tolerance =
         10.0 * f64::EPSILON * a.abs().column_sum().max() * n as f64 * b.norm().max(1e-300);

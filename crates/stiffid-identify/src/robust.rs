@@ -154,7 +154,7 @@ impl RobustFit {
 /// # Errors
 /// Those of `solve`, e.g. [`stiffid_core::Error::Unidentifiable`] if the rows left with weight make
 /// `Psi` rank deficient.
-pub fn fit<S>(
+pub(crate) fn fit<S>(
     psi: &DMatrix<f64>,
     delta: &DVector<f64>,
     start: DVector<f64>,
@@ -174,7 +174,7 @@ pub fn fit<S>(
 ///
 /// # Errors
 /// Those of `solve`.
-pub fn iterate<S>(
+pub(crate) fn iterate<S>(
     psi: &DMatrix<f64>,
     delta: &DVector<f64>,
     mut h: DVector<f64>,
@@ -217,7 +217,7 @@ pub fn iterate<S>(
 /// of the middle two for an even count), floored at `f64::EPSILON * size` (`size` the data's
 /// largest magnitude, same unit) and at `f64::MIN_POSITIVE`, so that an exact fit of most rows
 /// (noise-free data) does not divide by zero. `residuals` is not empty.
-pub fn mad_scale(residuals: &DVector<f64>, size: f64) -> f64 {
+pub(crate) fn mad_scale(residuals: &DVector<f64>, size: f64) -> f64 {
     let mut abs: Vec<f64> = residuals.iter().map(|r| r.abs()).collect();
     abs.sort_by(f64::total_cmp);
     let n = abs.len();

@@ -2,12 +2,12 @@
 //! ([`Reader`]), and never held whole.
 //!
 //! 1. Every chunk is turned into the base frame, checked and reduced by QR in blocks
-//!    ([`InBlocks`]); what each row reports (label, line, measuring point) is kept, and what its
-//!    residual needs besides its posture's axis angles (which [`InBlocks`] keeps): its wrench
+//!    (`InBlocks`); what each row reports (label, line, measuring point) is kept, and what its
+//!    residual needs besides its posture's axis angles (which `InBlocks` keeps): its wrench
 //!    (the forces alone when the file has no moment columns and gives the wrench in the base
 //!    frame: the moments are then zero) and its displacement.
 //! 2. After the solve, the residuals `delta - Psi h` of every row are computed from what was
-//!    kept ([`residuals`]), in place of the displacements.
+//!    kept (`residuals`), in place of the displacements.
 //!
 //! The result equals [`least_squares`](super::least_squares) on the whole parsed file to the
 //! bit (the same blocks, merged in the same order; the same residual of each row), whatever the
@@ -56,7 +56,7 @@ impl Rows {
 /// [`least_squares`](super::least_squares) on the parsed file in the base frame.
 ///
 /// # Errors
-/// Those of [`Reader::new`] and [`Reader::for_each_chunk`], and those of [`InBlocks`] explained
+/// Those of [`Reader::new`] and [`Reader::for_each_chunk`], and those of `InBlocks` explained
 /// as [`stiffid_core::Error::Column`] (line and column of the measurement).
 pub fn least_squares<R: BufRead + Send>(
     setup: &Setup,

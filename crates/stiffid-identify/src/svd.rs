@@ -505,7 +505,7 @@ pub struct HeldOut {
     /// Per posture, the mean of `delta_b^2` over its measurements, m^2.
     pub posture_mse: Vec<f64>,
     /// Per posture, the sums of `delta_b^2` and of `|delta|^2` over its measurements, m^2 (what
-    /// [`crate::explained_share`] takes).
+    /// `explained_share` takes).
     pub posture_sums: Vec<[f64; 2]>,
     /// `RMS(delta_b)`, m.
     pub rms_delta_b: f64,
@@ -520,7 +520,7 @@ impl HeldOut {
     }
 
     /// The standard error of [`HeldOut::explained`] over the postures (the delta method on the
-    /// ratio of the postures' sums, [`crate::explained_share`]).
+    /// ratio of the postures' sums, `explained_share`).
     pub fn explained_std_error(&self) -> f64 {
         explained_share(&self.posture_sums)[1]
     }

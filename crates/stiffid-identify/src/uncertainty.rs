@@ -35,7 +35,7 @@ pub struct Uncertainty {
 impl Uncertainty {
     /// The uncertainty of compliance `h` given `Cov(h) / s^2` (`unit_covariance`), `s^2` and the
     /// degrees of freedom; `None` for zero degrees of freedom.
-    pub fn new(
+    pub(crate) fn new(
         h: &Vector6<f64>,
         unit_covariance: &Matrix6<f64>,
         residual_variance: f64,

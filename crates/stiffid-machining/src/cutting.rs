@@ -24,11 +24,11 @@ use nalgebra::{Isometry3, Vector3};
 
 /// The largest angle between a drilling point's feed and the tool axis (towards the tip) at
 /// which the drill cuts, deg.
-pub const DRILL_CONE_DEG: f64 = 45.0;
+pub(crate) const DRILL_CONE_DEG: f64 = 45.0;
 
 /// Whether each point is reached by a joint move: a G-code rapid move (`G0`), a robot
 /// program's joint motion ([`crate::program::JointProgram::joint_moves`]).
-pub fn joint_moves(program: &Program) -> Vec<bool> {
+pub(crate) fn joint_moves(program: &Program) -> Vec<bool> {
     match program {
         Program::GCode(g) => g.points.iter().map(|p| p.motion == Motion::Rapid).collect(),
         Program::Robot(r) => r.joint_moves(),
@@ -39,7 +39,7 @@ pub fn joint_moves(program: &Program) -> Vec<bool> {
 /// [`joint_moves`]) or fed by a G-code canned cycle in the air or in the hole already drilled
 /// ([`crate::gcode::GCode::drilled_in_air`]: the feed from `R` to the surface, a peck's
 /// re-entry).
-pub fn idle(program: &Program, joint: &[bool]) -> Vec<bool> {
+pub(crate) fn idle(program: &Program, joint: &[bool]) -> Vec<bool> {
     match program {
         Program::GCode(g) => (g.drilled_in_air().into_iter())
             .zip(joint)
@@ -52,7 +52,7 @@ pub fn idle(program: &Program, joint: &[bool]) -> Vec<bool> {
 /// Each point's feed: the TCP's motion from the previous point (the first point takes the
 /// second's), in the frame of `poses`; a point that does not move (a dwell) keeps the feed
 /// before it; `None` where no point has moved yet.
-pub fn feeds(poses: &[Isometry3<f64>]) -> Vec<Option<Vector3<f64>>> {
+pub(crate) fn feeds(poses: &[Isometry3<f64>]) -> Vec<Option<Vector3<f64>>> {
     let mut previous = None;
     (0..poses.len())
         .map(|i| {

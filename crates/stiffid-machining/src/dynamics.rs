@@ -63,7 +63,7 @@ pub struct Harmonic {
 
 impl Harmonic {
     /// The harmonic of `tooth_passing` (Hz) nearest `first` (Hz), module docs.
-    pub fn nearest(first: f64, tooth_passing: f64) -> Self {
+    pub(crate) fn nearest(first: f64, tooth_passing: f64) -> Self {
         let order = (first / tooth_passing).round().max(1.0);
         Harmonic {
             order: order as u32,

@@ -12,7 +12,7 @@
 //!    frame into the base frame along the path's own feed direction (the TCP's motion from the
 //!    previous point; the first point takes the second's) and the tool axis
 //!    ([`Operation::base_wrench`]). Where the tool cuts is one rule for every language
-//!    ([`cutting`]): joint moves (G-code `G0`, `PTP`, `MoveJ`, `MoveAbsJ`, `J`, `MOVJ`), a
+//!    (`cutting`): joint moves (G-code `G0`, `PTP`, `MoveJ`, `MoveAbsJ`, `J`, `MOVJ`), a
 //!    drill's retracts and moves across its axis, and points no operation covers cut nothing. A
 //!    drilling cycle's feed cuts from where the drill meets material (the part's surface, the
 //!    depth a peck reached: [`gcode::Cycle`]) to its end, both compensated under the thrust, so
@@ -26,7 +26,7 @@
 //!    [`Operation::cone`]; a rapid move, a point no operation covers and a drilling point none), refusing any whose compensated
 //!    axis angles leave the joint limits (naming its line); the free tool axis may minimise the
 //!    surge at the drilling exits ([`dynamics::exit_thrusts`]).
-//! 4. Compensated targets that move more than [`MAX_CORRECTION_DEG`] from the nominal ones, or
+//! 4. Compensated targets that move more than 1 degree from the nominal ones, or
 //!    change the sign of axis 5 (a wrist flip), change the robot's configuration: refused naming
 //!    the line.
 //! 5. The program is written back in its own format: robot programs with the compensated axis
@@ -53,7 +53,7 @@
 
 pub mod cell;
 pub mod compensate;
-pub mod cutting;
+pub(crate) mod cutting;
 pub mod dynamics;
 pub mod gcode;
 pub mod path;
@@ -76,7 +76,7 @@ use stiffid_core::{Error, Result};
 
 /// The largest change of an axis angle compensation may make, deg; more means another
 /// configuration (or a point next to a singularity).
-pub const MAX_CORRECTION_DEG: f64 = 1.0;
+pub(crate) const MAX_CORRECTION_DEG: f64 = 1.0;
 
 /// A machining program as read.
 #[derive(Debug, Clone, PartialEq)]
@@ -681,3 +681,6 @@ fn check_configuration(points: &[PathPoint], results: &[Compensated]) -> Result<
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod dynamics_tests;

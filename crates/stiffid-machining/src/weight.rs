@@ -91,7 +91,7 @@ impl Weight {
     }
 
     /// The deflection in axis angles (rad) of the robot commanded to `q` (rad).
-    pub fn deflection(&self, q: &Vector6<f64>) -> Vector6<f64> {
+    pub(crate) fn deflection(&self, q: &Vector6<f64>) -> Vector6<f64> {
         self.model.deflection(&self.values.as_view(), q)
     }
 }

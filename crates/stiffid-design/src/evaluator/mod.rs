@@ -96,12 +96,12 @@ impl<'a> Evaluator<'a> {
     }
 
     /// The number of parameters of the setup's model (6 for the drives alone).
-    pub fn parameters(&self) -> usize {
+    pub(crate) fn parameters(&self) -> usize {
         self.wide.as_ref().map_or(6, |w| w.scaling.len())
     }
 
     /// The setup evaluated.
-    pub fn setup(&self) -> &Setup {
+    pub(crate) fn setup(&self) -> &Setup {
         self.setup
     }
 
@@ -195,7 +195,7 @@ impl<'a> Evaluator<'a> {
     /// The information matrix `S_i^T S_i` (`n x n`, unitless at noise level 1) of one posture's
     /// terms: a group's `S^T S` is the sum over its postures. For exchange algorithms
     /// ([`super::pool`]).
-    pub fn information(&self, terms: &PostureTerms) -> Information {
+    pub(crate) fn information(&self, terms: &PostureTerms) -> Information {
         match &self.wide {
             None => {
                 let d = Matrix6::from_diagonal(&self.scaling);
@@ -224,7 +224,7 @@ impl<'a> Evaluator<'a> {
     /// sees). `+infinity` when `S^T S` is not positive definite. Equal to [`Evaluator::value`] of
     /// the group up to rounding (the Cholesky factor of `S^T S` loses about `cond(S)^2 eps`
     /// relative in the smallest singular value, which ranks groups as well; reports re-evaluate).
-    pub fn value_from_information(
+    pub(crate) fn value_from_information(
         &self,
         criterion: Criterion,
         information: &Information,
@@ -327,7 +327,7 @@ impl<'a> Evaluator<'a> {
     }
 
     /// The classical index `max_i k(J_N)_i` of the postures' terms (Eq. 21; 0 without terms).
-    pub fn classical(&self, terms: &[&PostureTerms]) -> f64 {
+    pub(crate) fn classical(&self, terms: &[&PostureTerms]) -> f64 {
         terms.iter().map(|t| self.dexterity(t)).fold(0.0, f64::max)
     }
 
@@ -469,7 +469,7 @@ impl Wide {
 // The six-drive variant stays inline: it is the fast path of the search and the pool.
 #[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, PartialEq)]
-pub enum Information {
+pub(crate) enum Information {
     /// The six drives alone.
     Six(Matrix6<f64>),
     /// A model with virtual springs (`n x n`).
@@ -478,7 +478,7 @@ pub enum Information {
 
 impl Information {
     /// The sum of `terms` (in order, from zero); `None` without terms.
-    pub fn sum<'a>(mut terms: impl Iterator<Item = &'a Information>) -> Option<Self> {
+    pub(crate) fn sum<'a>(mut terms: impl Iterator<Item = &'a Information>) -> Option<Self> {
         let first = terms.next()?;
         Some(match first {
             Information::Six(m) => {
@@ -610,3 +610,6 @@ fn finite(v: f64) -> f64 {
 pub fn evaluate(setup: &Setup, postures: &[Vector6<f64>]) -> Evaluation {
     Evaluator::new(setup).evaluation(postures)
 }
+
+#[cfg(test)]
+mod tests;

@@ -275,11 +275,6 @@ impl CalibrationDesign {
         }
     }
 
-    /// The tracker's noise per coordinate, m.
-    pub fn noise(&self) -> f64 {
-        self.noise
-    }
-
     /// The design of a campaign's next group: read at `station` (the external axes' values, SI,
     /// the cell's order), after the postures `chosen` (read where each stands), whose rows join
     /// every group's in the criteria (their count too).
@@ -455,7 +450,7 @@ fn stack(a: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
 
 /// The model's nominal values with the gravity terms at zero: the rigid nominal chain, where the
 /// design Jacobian is taken.
-pub fn rigid(model: &ErrorModel) -> nalgebra::DVector<f64> {
+pub(crate) fn rigid(model: &ErrorModel) -> nalgebra::DVector<f64> {
     let mut x = model.nominal();
     x.rows_mut(model.gravity_start(), model.gravity().len())
         .fill(0.0);
@@ -463,7 +458,7 @@ pub fn rigid(model: &ErrorModel) -> nalgebra::DVector<f64> {
 }
 
 /// Unloaded readings of every measuring point of `model` at every posture, posture-major.
-pub fn readings(model: &ErrorModel, postures: &[Placed]) -> Vec<Observation> {
+pub(crate) fn readings(model: &ErrorModel, postures: &[Placed]) -> Vec<Observation> {
     (postures.iter().enumerate())
         .flat_map(|(i, (q, e))| {
             (0..model.points()).map(move |k| Observation {
@@ -541,3 +536,6 @@ pub fn criteria(
         predicted_rms,
     })
 }
+
+#[cfg(test)]
+mod tests;

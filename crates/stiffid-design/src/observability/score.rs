@@ -52,7 +52,7 @@ pub enum CalibrationCriterion {
 
 impl CalibrationCriterion {
     /// Every criterion, in report order.
-    pub const ALL: [CalibrationCriterion; 6] = [
+    pub(crate) const ALL: [CalibrationCriterion; 6] = [
         CalibrationCriterion::O1,
         CalibrationCriterion::O3,
         CalibrationCriterion::O4,

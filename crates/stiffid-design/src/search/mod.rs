@@ -17,7 +17,7 @@ mod constraints;
 mod global;
 mod local;
 mod sample;
-pub mod sqp;
+pub(crate) mod sqp;
 mod termination;
 
 pub use constraints::{cell_constraints, CellConstraints};
@@ -144,7 +144,7 @@ pub enum Gradient {
 
 impl Gradient {
     /// Both, exact first.
-    pub const ALL: [Gradient; 2] = [Gradient::Exact, Gradient::FiniteDifference];
+    pub(crate) const ALL: [Gradient; 2] = [Gradient::Exact, Gradient::FiniteDifference];
 
     /// The name used on the command line and in files: `exact` or `fd`.
     pub(crate) fn name(self) -> &'static str {
@@ -195,7 +195,7 @@ pub enum Solver {
 
 impl Solver {
     /// Every solver, the default first.
-    pub const ALL: [Solver; 3] = [Solver::Auto, Solver::Slsqp, Solver::ActiveSet];
+    pub(crate) const ALL: [Solver; 3] = [Solver::Auto, Solver::Slsqp, Solver::ActiveSet];
 
     /// The solvers a search runs: what [`Solver::resolve`] returns.
     pub const CONCRETE: [Solver; 2] = [Solver::Slsqp, Solver::ActiveSet];
@@ -381,3 +381,6 @@ pub struct SearchOutcome {
     /// [`Termination::count`].
     pub terminations: Vec<Termination>,
 }
+
+#[cfg(test)]
+mod termination_tests;

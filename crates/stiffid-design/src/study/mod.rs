@@ -354,3 +354,6 @@ fn validation_error(setup: &Setup, truth: &[Vec<Vector3<f64>>], k: &Vector6<f64>
         })
         .collect()
 }
+
+#[cfg(test)]
+mod observability_tests;

@@ -28,10 +28,10 @@ pub const MAX_GROUPS: usize = 10_000;
 pub const MAX_SIZE: usize = 200;
 
 /// The test (held-out) postures of the study.
-pub(crate) const TEST_POSTURES: usize = 30;
+pub const TEST_POSTURES: usize = 30;
 
 /// The reference postures that fix the kept parameters.
-pub(crate) const REFERENCE_POSTURES: usize = 60;
+pub const REFERENCE_POSTURES: usize = 60;
 
 /// The criteria's names in [`CalibrationStudy::rho`] order.
 pub const CRITERIA: [&str; 6] = ["o1", "o3", "o4", "o5", "d-optimality", "test-pose"];

@@ -94,7 +94,7 @@ pub struct Nested {
     /// `1 - RMS(delta_b) / RMS(|delta|)` over every posture predicted by the model chosen without it.
     pub held_out_explained: f64,
     /// Its standard error over the postures (the delta method on the ratio of the postures'
-    /// sums, [`crate::explained_share`]).
+    /// sums, `explained_share`).
     pub held_out_explained_std_error: f64,
     /// That `RMS(delta_b)`, m.
     pub rms_delta_b: f64,

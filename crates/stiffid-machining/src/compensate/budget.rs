@@ -73,7 +73,7 @@ pub const PARTS: [&str; 5] = ["left", "compensation", "calibration", "force", "m
 
 impl Budget {
     /// The budget of these parts (m), the bound combined (module docs).
-    pub fn new(
+    pub(crate) fn new(
         left: f64,
         compensation: Option<f64>,
         calibration: Option<f64>,

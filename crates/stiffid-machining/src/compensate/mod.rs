@@ -178,7 +178,7 @@
 //! singular posture) the point keeps that angle.
 
 use nalgebra::{Isometry3, Vector6};
-pub use stiffid_core::common::stop::Stop;
+pub(crate) use stiffid_core::common::stop::Stop;
 use stiffid_core::observation::deflection::Frame;
 
 pub mod budget;
@@ -192,16 +192,16 @@ mod map;
 mod model;
 mod options;
 pub mod refine;
-pub mod runs;
+pub(crate) mod runs;
 mod scope;
 mod speed;
 mod station;
 mod stream;
-pub mod tool_axis;
+pub(crate) mod tool_axis;
 mod validate;
-pub mod variables;
+pub(crate) mod variables;
 
-pub use budget::Budget;
+pub(crate) use budget::Budget;
 pub use configuration::{posed, Branch, Configurations, Run};
 pub use feasible::{Feasible, Removed};
 pub use free::{FreeOption, Freedom};
@@ -325,3 +325,21 @@ pub struct Compensated {
     /// removed ([`Feasible`]); zero without.
     pub removed: Removed,
 }
+
+#[cfg(test)]
+mod budget_tests;
+
+#[cfg(test)]
+mod free_tests;
+
+#[cfg(test)]
+mod refine_tests;
+
+#[cfg(test)]
+mod runs_tests;
+
+#[cfg(test)]
+mod tool_axis_tests;
+
+#[cfg(test)]
+mod variables_tests;

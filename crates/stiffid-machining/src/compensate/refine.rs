@@ -62,7 +62,7 @@ impl Layout {
 
 /// A line through the grid: each point's values on every axis (offsets from the path's own,
 /// rad or m) and its cell (posture and cost).
-pub struct Line {
+pub(crate) struct Line {
     /// Per point, per axis of the grid, the value.
     pub values: Vec<Vec<f64>>,
     /// Per point the posture and the cost at the values.
@@ -160,7 +160,7 @@ pub(super) fn refine(
 
 /// One level's band around a line: per axis its step, the most steps between points, the
 /// values within the range (in steps), and the line in steps.
-pub struct Band {
+pub(crate) struct Band {
     /// Per axis the step, rad or m.
     step: Vec<f64>,
     /// Per axis the most steps between consecutive points.
@@ -178,7 +178,7 @@ const WIDTH: i64 = 2 * BAND as i64;
 
 impl Band {
     /// The band of `level` (1 first) of `grid`'s axes around `line`.
-    pub fn new(grid: &Grid, line: &Line, level: usize) -> Self {
+    pub(crate) fn new(grid: &Grid, line: &Line, level: usize) -> Self {
         let fine = (1u64 << level) as f64;
         let step: Vec<f64> = (grid.axes.iter())
             .map(|a| a.max_step / a.reach as f64 / fine)
@@ -203,12 +203,12 @@ impl Band {
     }
 
     /// The number of states: `(2 WIDTH + 1)^axes`.
-    pub fn states(&self) -> usize {
+    pub(crate) fn states(&self) -> usize {
         (2 * WIDTH as usize + 1).pow(self.step.len() as u32)
     }
 
     /// The state whose offsets are all 0 (the line itself).
-    pub fn centre(&self) -> usize {
+    pub(crate) fn centre(&self) -> usize {
         self.states() / 2
     }
 
@@ -313,7 +313,7 @@ impl Band {
     /// `aggregate`, the tie-breaking costs scaled by `scales`), every axis changing by at most
     /// its reach between points and, with speed limits `pace`, every move but the path's own
     /// between two points within them (as the tool axis choice's).
-    pub fn shortest(
+    pub(crate) fn shortest(
         &self,
         (cells, external): (&[Column], &[Vec<ExternalValues>]),
         scales: &[f64],

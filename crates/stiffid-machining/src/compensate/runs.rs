@@ -136,7 +136,7 @@ pub(crate) fn choose(
 /// The runs' point ranges from their starts (the first run starts at 0 whatever `starts`
 /// says; a start repeated or beyond the path is none), none empty: `starts` point indices,
 /// `n` the path's points.
-pub fn ranges(starts: &[usize], n: usize) -> Vec<Range<usize>> {
+pub(crate) fn ranges(starts: &[usize], n: usize) -> Vec<Range<usize>> {
     let mut bounds: Vec<usize> = starts.iter().copied().filter(|&s| s > 0 && s < n).collect();
     bounds.sort_unstable();
     bounds.dedup();

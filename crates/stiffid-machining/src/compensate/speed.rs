@@ -63,7 +63,7 @@ pub fn has_speed_limits(robot: &Robot) -> bool {
 }
 
 /// The speed limits of one path: the robot's axes and each point's move time.
-pub struct Pace<'a> {
+pub(crate) struct Pace<'a> {
     robot: &'a Robot,
     times: &'a [Option<f64>],
 }
@@ -71,7 +71,7 @@ pub struct Pace<'a> {
 impl<'a> Pace<'a> {
     /// The limits of `robot` at the move `times` (s, one per point, [`move_times`]); `None`
     /// without times or without any limit: no move is refused.
-    pub fn new(robot: &'a Robot, times: Option<&'a [Option<f64>]>) -> Option<Self> {
+    pub(crate) fn new(robot: &'a Robot, times: Option<&'a [Option<f64>]>) -> Option<Self> {
         let times = times?;
         has_speed_limits(robot).then_some(Pace { robot, times })
     }

@@ -154,7 +154,7 @@ pub(super) fn choose(
 }
 
 /// One axis of the grid of the free variables (the tool rotation, the track station).
-pub struct Axis<'a> {
+pub(crate) struct Axis<'a> {
     /// The values (offsets from the path's own), ascending, rad or m.
     pub values: &'a [f64],
     /// The most cells one step between points may move.
@@ -169,7 +169,7 @@ pub struct Axis<'a> {
 
 /// The grid of the free variables: its states are the combinations of the axes' values, the
 /// last axis' index running fastest.
-pub struct Grid<'a> {
+pub(crate) struct Grid<'a> {
     /// The axes, at least one.
     pub axes: Vec<Axis<'a>>,
 }
@@ -284,7 +284,7 @@ impl Value {
 /// speed limits; the path's own move, `grid.zero` to `grid.zero`, always is); returns the
 /// angle index of each point on the path of least value (module docs of [`super`]),
 /// `grid.zero` everywhere when no path is feasible.
-pub fn shortest(
+pub(crate) fn shortest(
     costs: &[Vec<Option<f64>>],
     grid: &Grid,
     scales: &[f64],
@@ -347,7 +347,7 @@ pub fn shortest(
 
 /// One state's posture and cost at every path point; `None` where inverse kinematics fails
 /// or the cost cannot be computed.
-pub type Column = Vec<Option<(Vector6<f64>, f64)>>;
+pub(crate) type Column = Vec<Option<(Vector6<f64>, f64)>>;
 
 /// How a state of the grid moves each point's pose from the path's own: turned by `phi` about
 /// tool z, leaned by `lean` ([`super::lean`]), then, on a moved track station, taken by each

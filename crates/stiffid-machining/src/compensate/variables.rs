@@ -180,7 +180,7 @@ impl Free {
     }
 
     /// Whether it is an external axis: the station, the positioner or the tilt.
-    pub fn is_external(&self) -> bool {
+    pub(crate) fn is_external(&self) -> bool {
         matches!(self, Free::Station(_) | Free::Positioner(_) | Free::Tilt(_))
     }
 
@@ -329,20 +329,20 @@ impl FreeRange {
 
     /// The rotation grid's spacing: `step` divided into whole cells of at most 5 deg, and the
     /// number of cells one step may move.
-    pub fn cells(&self) -> (f64, usize) {
+    pub(crate) fn cells(&self) -> (f64, usize) {
         let cells = (self.step / 5f64.to_radians()).ceil().max(1.0);
         (self.step / cells, cells as usize)
     }
 
     /// The rotation grid's angles, rad, ascending, `0` among them: `2 floor(range / spacing) +
     /// 1` ([`FreeRange::cells`]).
-    pub fn angles(&self) -> Vec<f64> {
+    pub(crate) fn angles(&self) -> Vec<f64> {
         offsets(self.range, self.cells().0)
     }
 
     /// The number of the rotation grid's angles, as a float (it may be astronomically large for
     /// a tiny step).
-    pub fn angle_count(&self) -> f64 {
+    pub(crate) fn angle_count(&self) -> f64 {
         2.0 * (self.range / self.cells().0 + 1e-9).floor() + 1.0
     }
 
@@ -470,7 +470,7 @@ macro_rules! find {
 
 impl FreeVariables {
     /// The free variables `free` minimising `minimise`, their costs added up by `aggregate`.
-    pub fn new(free: Vec<Free>, minimise: Objective, aggregate: Aggregate) -> Self {
+    pub(crate) fn new(free: Vec<Free>, minimise: Objective, aggregate: Aggregate) -> Self {
         FreeVariables {
             free,
             minimise,
@@ -531,7 +531,7 @@ impl FreeVariables {
     }
 
     /// Whether the tool axis is free: its rotation or its lead and tilt.
-    pub fn frees_tool_axis(&self) -> bool {
+    pub(crate) fn frees_tool_axis(&self) -> bool {
         self.free.iter().any(Free::is_tool_axis)
     }
 

@@ -468,3 +468,6 @@ fn not_converged() -> Error {
         what: "the registration's singular value decomposition (did not converge)".into(),
     }
 }
+
+#[cfg(test)]
+mod tests;

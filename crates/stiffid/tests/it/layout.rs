@@ -47,7 +47,7 @@ fn sources(dir: &Path, out: &mut Vec<PathBuf>) {
             if name != "tests" {
                 sources(&path, out);
             }
-        } else if name.ends_with(".rs") && name != "tests.rs" {
+        } else if name.ends_with(".rs") && name != "tests.rs" && !name.ends_with("_tests.rs") {
             out.push(path);
         }
     }

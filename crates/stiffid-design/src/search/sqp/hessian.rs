@@ -17,7 +17,7 @@ use stiffid_core::math::linalg::{axpy, dot};
 const REFACTOR: usize = 64;
 
 /// A damped-BFGS `B` and `H = B^-1` (both column-major `n x n`, symmetric).
-pub struct Hessian {
+pub(crate) struct Hessian {
     n: usize,
     b: Vec<f64>,
     h: Vec<f64>,
@@ -29,7 +29,7 @@ pub struct Hessian {
 
 impl Hessian {
     /// The identity of size `n` (and its inverse), the start of the updates.
-    pub fn identity(n: usize) -> Self {
+    pub(crate) fn identity(n: usize) -> Self {
         let mut b = vec![0.0; n * n];
         (0..n).for_each(|k| b[k + n * k] = 1.0);
         Self {
@@ -42,7 +42,7 @@ impl Hessian {
     }
 
     /// `H = B^-1` (column-major `n x n`).
-    pub fn inverse(&self) -> &[f64] {
+    pub(crate) fn inverse(&self) -> &[f64] {
         &self.h
     }
 
@@ -64,7 +64,7 @@ impl Hessian {
     }
 
     /// Powell's damped BFGS update with the step `s` and the gradient change `y` (module docs).
-    pub fn update(&mut self, s: &[f64], y: &[f64]) {
+    pub(crate) fn update(&mut self, s: &[f64], y: &[f64]) {
         let n = self.n;
         let sy0 = dot(s, y);
         if self.fresh && sy0 > 0.0 {
@@ -117,8 +117,9 @@ impl Hessian {
     }
 
     /// The Hessian approximation `B` itself, `n x n` column-major (what [`Hessian::inverse`]
-    /// inverts).
-    pub fn matrix(&self) -> &[f64] {
+    /// inverts); the tests' view of it.
+    #[cfg(test)]
+    pub(crate) fn matrix(&self) -> &[f64] {
         &self.b
     }
 }

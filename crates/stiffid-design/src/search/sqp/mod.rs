@@ -30,8 +30,8 @@
 //!   problem maps a failed evaluation to a large finite value).
 //! - **Deterministic**: one thread, fixed-order arithmetic: the same problem gives the same bits.
 
-pub mod hessian;
-pub mod qp;
+pub(crate) mod hessian;
+pub(crate) mod qp;
 
 use super::termination::Termination;
 use hessian::Hessian;
@@ -43,7 +43,7 @@ pub(crate) type SparseRows = Vec<Vec<(usize, f64)>>;
 
 /// The values at a point: the objective and every constraint (`c_j <= 0` is feasible).
 #[derive(Debug, Clone, PartialEq)]
-pub struct Values {
+pub(crate) struct Values {
     /// The objective.
     pub f: f64,
     /// Every constraint, in order.
@@ -52,7 +52,7 @@ pub struct Values {
 
 /// The gradients at a point: the objective's (dense) and the constraints' (sparse).
 #[derive(Debug, Clone, PartialEq)]
-pub struct Gradients {
+pub(crate) struct Gradients {
     /// The objective's gradient, one entry per variable.
     pub f: Vec<f64>,
     /// Each constraint's gradient, its nonzeros.
@@ -60,7 +60,7 @@ pub struct Gradients {
 }
 
 /// A problem for [`minimise`]: its bounds, values and gradients, and its evaluation budget.
-pub trait Nlp {
+pub(crate) trait Nlp {
     /// The bounds on the variables (`lower <= upper`; infinite for a free variable).
     fn bounds(&self) -> (&[f64], &[f64]);
     /// The values at `x` (within the bounds).
@@ -80,7 +80,7 @@ pub trait Nlp {
 
 /// Tolerances of [`minimise`].
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Tolerances {
+pub(crate) struct Tolerances {
     /// Stop when a step changes `f` by less than this.
     pub ftol: f64,
     /// Stop when a step moves every variable by less than this.
@@ -89,7 +89,7 @@ pub struct Tolerances {
 
 /// Largest summed constraint violation of a point that counts as feasible for the stops, unless
 /// the problem says otherwise ([`Nlp::feasible`]).
-pub const FEASIBLE: f64 = 1e-10;
+pub(crate) const FEASIBLE: f64 = 1e-10;
 /// Weight of the relaxation variable of an incompatible QP, relative to `B`'s largest diagonal.
 const RELAXATION: f64 = 1e4;
 /// Most trial points of one line search.
@@ -99,7 +99,7 @@ const ARMIJO: f64 = 0.1;
 
 /// Minimises the problem from `x0` (module docs); returns why it stopped. The problem keeps the
 /// points it evaluated (the best one is the caller's to choose).
-pub fn minimise(nlp: &impl Nlp, x0: &[f64], tolerances: Tolerances) -> Termination {
+pub(crate) fn minimise(nlp: &impl Nlp, x0: &[f64], tolerances: Tolerances) -> Termination {
     let mut search = Search::new(nlp, x0);
     loop {
         if let Some(stop) = search.step(tolerances) {
@@ -334,3 +334,6 @@ fn penalty(c: &[f64], mu: &[f64]) -> f64 {
 fn merit(v: &Values, mu: &[f64]) -> f64 {
     v.f + penalty(&v.c, mu)
 }
+
+#[cfg(test)]
+mod tests;

@@ -29,7 +29,7 @@ use stiffid_core::math::linalg::{axpy, dot};
 
 /// A sparse inequality row `a^T d <= b`: `(index, coefficient)` pairs, indices below `n`.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Row {
+pub(crate) struct Row {
     /// The nonzeros of `a`.
     pub a: Vec<(usize, f64)>,
     /// The bound `b`.
@@ -38,7 +38,7 @@ pub struct Row {
 
 /// Why a QP has no solution.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum QpError {
+pub(crate) enum QpError {
     /// No point satisfies the constraints.
     Infeasible,
     /// `B` is not (numerically) positive definite ([`inverse`]).
@@ -49,7 +49,7 @@ pub enum QpError {
 
 /// The solution of a QP.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Solution {
+pub(crate) struct Solution {
     /// The minimiser (`n`).
     pub d: Vec<f64>,
     /// The multiplier of every row (`>= 0`; 0 if inactive).
@@ -63,7 +63,7 @@ pub struct Solution {
 
 /// The active constraints of a QP's solution (bounds and rows), in the order they were added.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
-pub struct Active(Vec<Constraint>);
+pub(crate) struct Active(Vec<Constraint>);
 
 /// A constraint: bound `i` below (`Lower`) or above, or row `j`; in the `n^T d >= c` form.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -74,7 +74,7 @@ enum Constraint {
 }
 
 /// The data of a QP: `H = B^-1` (column-major `n x n`), `g`, the bounds on `d` and the rows.
-pub struct Qp<'a> {
+pub(crate) struct Qp<'a> {
     /// `H = B^-1`, column-major `n x n`, symmetric positive definite.
     pub inverse: &'a [f64],
     /// The objective's gradient `g` (`n`).
@@ -100,7 +100,7 @@ const DEPENDENT: f64 = 1e-10;
 
 impl Qp<'_> {
     /// Solves the QP (module docs).
-    pub fn solve(&self) -> Result<Solution, QpError> {
+    pub(crate) fn solve(&self) -> Result<Solution, QpError> {
         self.solve_from(&Active::default())
     }
 
@@ -109,7 +109,7 @@ impl Qp<'_> {
     /// (`Qp::warm_start`) instead of the unconstrained minimum, so that an active set that
     /// changes little between steps costs few changes. The minimiser is the same (the QP is
     /// strictly convex); only the path to it is shorter.
-    pub fn solve_from(&self, warm: &Active) -> Result<Solution, QpError> {
+    pub(crate) fn solve_from(&self, warm: &Active) -> Result<Solution, QpError> {
         let n = self.gradient.len();
         let mut s = State::new(self);
         self.warm_start(&mut s, &warm.0);
@@ -425,7 +425,7 @@ impl State {
 ///
 /// # Errors
 /// [`QpError::NotPositiveDefinite`] when a pivot is not positive (relative to `B`'s diagonal).
-pub fn inverse(b: &[f64], n: usize) -> Result<Vec<f64>, QpError> {
+pub(crate) fn inverse(b: &[f64], n: usize) -> Result<Vec<f64>, QpError> {
     let j = inverse_cholesky(b, n)?;
     // H = J J^T with J = L^-T upper triangular.
     let mut h = vec![0.0; n * n];

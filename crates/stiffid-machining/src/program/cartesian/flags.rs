@@ -11,7 +11,7 @@ use stiffid_core::robot::configuration::Configuration;
 /// The shoulder, elbow and wrist a posture or configuration data name, as
 /// [`stiffid_core::robot::configuration`] reads them: the wrist centre behind axis 1, the elbow
 /// down, axis 5 negative (or zero, where the controller counts it so).
-pub type Branch = (bool, bool, bool);
+pub(crate) type Branch = (bool, bool, bool);
 
 /// A language's configuration data: what picks one of the up to eight inverse-kinematics
 /// solutions of a pose, as the controller's manual defines it from the posture.
@@ -114,12 +114,12 @@ pub struct Part(Box<dyn ErasedPart>);
 
 impl Part {
     /// The part `part` of a language's data.
-    pub fn new<P: fmt::Debug + Copy + PartialEq + Send + Sync + 'static>(part: P) -> Self {
+    pub(crate) fn new<P: fmt::Debug + Copy + PartialEq + Send + Sync + 'static>(part: P) -> Self {
         Part(Box::new(part))
     }
 
     /// The text of this part of `flags`; their whole text where they are another language's.
-    pub fn text(&self, flags: &Flags) -> String {
+    pub(crate) fn text(&self, flags: &Flags) -> String {
         (flags.0.part(self.0.any())).unwrap_or_else(|| flags.text())
     }
 }

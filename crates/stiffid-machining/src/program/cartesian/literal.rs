@@ -6,7 +6,7 @@ use std::ops::Range;
 
 /// One member of a literal.
 #[derive(Debug, Clone, PartialEq)]
-pub enum Node {
+pub(crate) enum Node {
     /// `[..]`.
     List(Vec<Node>),
     /// A number and its span.
@@ -19,7 +19,7 @@ pub enum Node {
 
 impl Node {
     /// The members of a list, `None` for anything else.
-    pub fn list(&self) -> Option<&[Node]> {
+    pub(crate) fn list(&self) -> Option<&[Node]> {
         match self {
             Node::List(items) => Some(items),
             _ => None,
@@ -27,7 +27,7 @@ impl Node {
     }
 
     /// The `n` numbers of a list of numbers, with their spans.
-    pub fn numbers(&self, n: usize) -> Option<Vec<(f64, Range<usize>)>> {
+    pub(crate) fn numbers(&self, n: usize) -> Option<Vec<(f64, Range<usize>)>> {
         let items = self.list().filter(|i| i.len() == n)?;
         items
             .iter()
@@ -39,7 +39,7 @@ impl Node {
     }
 
     /// Whether a word is `TRUE` (`Some(true)`), `FALSE`, or neither (`None`).
-    pub fn boolean(&self) -> Option<bool> {
+    pub(crate) fn boolean(&self) -> Option<bool> {
         match self {
             Node::Word(w) if w == "TRUE" => Some(true),
             Node::Word(w) if w == "FALSE" => Some(false),
@@ -50,7 +50,7 @@ impl Node {
 
 /// The literal opening with `[` at or after blanks from byte `from` of `code`, and the byte
 /// after its closing `]`; `None` when there is no well-formed literal there.
-pub fn parse(code: &str, from: usize) -> Option<(Node, usize)> {
+pub(crate) fn parse(code: &str, from: usize) -> Option<(Node, usize)> {
     let bytes = code.as_bytes();
     let skip = |mut i: usize| {
         while i < bytes.len() && bytes[i].is_ascii_whitespace() {

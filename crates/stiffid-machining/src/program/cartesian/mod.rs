@@ -187,3 +187,9 @@ pub(crate) fn words(f: &Isometry3<f64>) -> String {
         number(c)
     )
 }
+
+#[cfg(test)]
+mod literal_tests;
+
+#[cfg(test)]
+mod flags_tests;

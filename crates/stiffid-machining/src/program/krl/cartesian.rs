@@ -113,7 +113,7 @@ fn bits(line: u64, code: &str, after: usize, name: &str) -> Result<(u64, Range<u
 /// that sets neither. `$BASE`/`$TOOL` = a literal frame (all six members), `$NULLFRAME`,
 /// `$WORLD` (a base); anything else (`BASE_DATA[n]`, `BAS(#BASE, n)`, a variable) is held on
 /// the controller.
-pub fn frame_set(line: u64, code: &str) -> Option<(bool, Frame)> {
+pub(crate) fn frame_set(line: u64, code: &str) -> Option<(bool, Frame)> {
     let t = code.trim();
     let upper = t.to_ascii_uppercase();
     let compact: String = upper.chars().filter(|c| !c.is_whitespace()).collect();

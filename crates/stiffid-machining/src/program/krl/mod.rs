@@ -77,7 +77,7 @@ pub fn data_out(out: &std::path::Path) -> std::path::PathBuf {
 
 /// KUKA KRL (module docs).
 #[derive(Debug, Clone, Copy)]
-pub struct Krl;
+pub(crate) struct Krl;
 
 impl Controller for Krl {
     type Flags = StatusTurn;
@@ -146,3 +146,6 @@ impl Controller for Krl {
 fn abc(a: f64, b: f64, c: f64) -> UnitQuaternion<f64> {
     UnitQuaternion::from_euler_angles(c.to_radians(), b.to_radians(), a.to_radians())
 }
+
+#[cfg(test)]
+mod cartesian_tests;

@@ -363,7 +363,7 @@ fn split_keeping_offsets(l: &str) -> Vec<(usize, &str)> {
 
 /// FANUC LS (module docs).
 #[derive(Debug, Clone, Copy)]
-pub struct FanucLs;
+pub(crate) struct FanucLs;
 
 impl Controller for FanucLs {
     type Flags = Config;

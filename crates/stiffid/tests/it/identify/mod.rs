@@ -2,9 +2,6 @@
 //! noise, confidence intervals that cover the truth at their nominal rate, robust mode, validation
 //! (Eq. 22) and the errors.
 
-mod nonnegative;
-mod robust;
-
 use crate::common;
 use stiffid::identify::Identify;
 use stiffid::model::Compliance;

@@ -2,4 +2,3 @@
 //! calibration from tracker readings and the tracker's registration.
 
 mod calibration;
-mod register;

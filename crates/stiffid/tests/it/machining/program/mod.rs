@@ -1,7 +1,6 @@
 //! The controllers' programs (`stiffid_machining::program`).
 
 mod arcs;
-mod cartesian;
 mod comments;
 mod controller;
 mod generate;

@@ -1,6 +1,4 @@
 //! KUKA's KRL (`stiffid_machining::program::krl`).
-
-mod cartesian;
 mod corpus;
 mod inline;
 mod stored;

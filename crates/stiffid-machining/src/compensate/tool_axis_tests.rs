@@ -1,7 +1,7 @@
-//! The dynamic programming over the free angles (`stiffid_machining::compensate::tool_axis`).
+//! The dynamic programming over the free angles (`crate::compensate::tool_axis`).
 
-use stiffid_machining::compensate::tool_axis::*;
-use stiffid_machining::compensate::Aggregate;
+use crate::compensate::tool_axis::*;
+use crate::compensate::Aggregate;
 
 /// Every path of angle indices over `n` points on `g` angles whose consecutive indices
 /// differ by at most `reach` and whose moves `allowed` takes (the own angle `zero` kept

@@ -1,6 +1,6 @@
-//! A path's runs (`stiffid_machining::compensate::runs`).
+//! A path's runs (`crate::compensate::runs`).
 
-use stiffid_machining::compensate::runs::*;
+use crate::compensate::runs::*;
 
 #[test]
 fn a_run_is_a_cut_and_the_joint_moves_before_it() {

@@ -1,11 +1,11 @@
-//! The tracker's registration to the robot base (`stiffid_metrology::register`): the
+//! The tracker's registration to the robot base (`crate::register`): the
 //! transform, its standard deviation against Monte Carlo, and the suspect readings refused.
 
+use crate::register::*;
 use nalgebra::{Isometry3, Point3, Vector3, Vector6};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
-use stiffid_metrology::register::*;
 
 fn truth() -> Isometry3<f64> {
     Isometry3::new(Vector3::new(3.2, -1.9, 0.4), Vector3::new(0.2, -0.1, 2.8))

@@ -1,9 +1,9 @@
-//! The `--free` texts (`stiffid_machining::compensate::free`).
+//! The `--free` texts (`crate::compensate::free`).
 
+use crate::compensate::free::*;
+use crate::compensate::{Scope, Variable};
 use stiffid_core::common::error::JobOption;
 use stiffid_core::Error;
-use stiffid_machining::compensate::free::*;
-use stiffid_machining::compensate::{Scope, Variable};
 
 #[test]
 fn the_texts_of_free_parse_to_their_variable_range_and_step() {

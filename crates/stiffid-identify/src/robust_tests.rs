@@ -1,10 +1,10 @@
-//! Robust identification (`stiffid_identify::robust`): the MAD scale and the reweighting's stops.
+//! Robust identification (`crate::robust`): the MAD scale and the reweighting's stops.
 
+use crate::robust::*;
 use nalgebra::{DMatrix, DVector};
 use stiffid_core::common::stop::Stop;
 use stiffid_core::common::warning::WarningKind;
 use stiffid_core::Result;
-use stiffid_identify::robust::*;
 
 #[test]
 fn mad_scale_is_the_median_absolute_residual_times_the_gaussian_factor() {

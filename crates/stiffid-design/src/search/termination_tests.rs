@@ -1,6 +1,6 @@
-//! Why a search stopped (`stiffid_design::Termination`).
+//! Why a search stopped (`crate::Termination`).
 
-use stiffid_design::Termination;
+use crate::Termination;
 
 #[test]
 fn names_round_trip_and_are_distinct() {

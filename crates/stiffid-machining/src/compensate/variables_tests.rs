@@ -1,6 +1,6 @@
-//! The free variables' ranges and steps (`stiffid_machining::compensate::variables`).
+//! The free variables' ranges and steps (`crate::compensate::variables`).
 
-use stiffid_machining::compensate::variables::*;
+use crate::compensate::variables::*;
 
 #[test]
 fn ranges_and_steps_are_checked_at_their_limits_in_si() {

@@ -1,14 +1,14 @@
-//! The controllers' configuration data (`stiffid_machining::program::cartesian::flags`, each
+//! The controllers' configuration data (`crate::program::cartesian::flags`, each
 //! language's own type in its folder).
 
+use crate::program::cartesian::flags::*;
+use crate::program::krl::{StatusPart, StatusTurn};
+use crate::program::ls::Config;
+use crate::program::rapid::ConfData;
+use crate::program::Dialect;
 use nalgebra::Vector6;
-use stiffid::robot::configuration::Configuration;
-use stiffid::robot::presets;
-use stiffid_machining::program::cartesian::flags::*;
-use stiffid_machining::program::krl::{StatusPart, StatusTurn};
-use stiffid_machining::program::ls::Config;
-use stiffid_machining::program::rapid::ConfData;
-use stiffid_machining::program::Dialect;
+use stiffid_core::robot::configuration::Configuration;
+use stiffid_core::robot::presets;
 
 fn arm(robot: &str, q_deg: [f64; 6]) -> Configuration {
     let robot = presets::get(robot).unwrap();

@@ -1,15 +1,15 @@
-//! The SQP and its quadratic programs (`stiffid_design::search::sqp`).
+//! The SQP and its quadratic programs (`crate::search::sqp`).
 
 //! The QP against known solutions and the KKT conditions; the SQP on small problems with known
 //! minimisers, active constraints and an infeasible start.
 
+use crate::search::sqp::hessian::Hessian;
+use crate::search::sqp::qp::{inverse, Qp, QpError, Row};
+use crate::search::sqp::*;
+use crate::Termination;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::cell::Cell;
-use stiffid_design::search::sqp::hessian::Hessian;
-use stiffid_design::search::sqp::qp::{inverse, Qp, QpError, Row};
-use stiffid_design::search::sqp::*;
-use stiffid_design::Termination;
 
 fn identity(n: usize) -> Vec<f64> {
     let mut b = vec![0.0; n * n];

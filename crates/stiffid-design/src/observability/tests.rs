@@ -1,5 +1,7 @@
-//! The calibration's observability criteria (`stiffid_design::observability`).
+//! The calibration's observability criteria (`crate::observability`).
 
+use crate::observability::*;
+use crate::study::observability as study;
 use nalgebra::{DMatrix, Vector6};
 use nalgebra::{Isometry3, Vector3};
 use rand::{Rng, SeedableRng};
@@ -7,8 +9,6 @@ use rand_chacha::ChaCha8Rng;
 use stiffid_core::robot::external::ExternalValues;
 use stiffid_core::robot::presets;
 use stiffid_core::Robot;
-use stiffid_design::observability::*;
-use stiffid_design::study::observability as study;
 use stiffid_metrology::calibration::error_model::{MeasuredIn, Target};
 use stiffid_metrology::calibration::ErrorModel;
 use stiffid_metrology::calibration::{fit, gravity, validation, Estimate, Geometry};

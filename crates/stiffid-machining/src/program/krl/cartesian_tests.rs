@@ -1,7 +1,7 @@
-//! KRL's frames (`stiffid_machining::program::krl::cartesian`).
+//! KRL's frames (`crate::program::krl::cartesian`).
 
-use stiffid_machining::program::cartesian::Frame;
-use stiffid_machining::program::krl::cartesian::*;
+use crate::program::cartesian::Frame;
+use crate::program::krl::cartesian::*;
 
 #[test]
 fn frames_are_set_by_literals_and_refused_when_the_controller_holds_them() {

@@ -1,7 +1,7 @@
-//! The error budget (`stiffid_machining::compensate::budget`).
+//! The error budget (`crate::compensate::budget`).
 
+use crate::compensate::budget::*;
 use nalgebra::Matrix3;
-use stiffid_machining::compensate::budget::*;
 
 #[test]
 fn the_length_quantile_is_exact_for_equal_and_single_eigenvalues() {

@@ -1,6 +1,6 @@
-//! The best group of a pool by enumeration or exchange (`stiffid_design::exchange`).
+//! The best group of a pool by enumeration or exchange (`crate::exchange`).
 
-use stiffid_design::exchange::*;
+use crate::exchange::*;
 
 #[test]
 fn combinations_are_all_visited_once_in_order() {

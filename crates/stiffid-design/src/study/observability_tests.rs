@@ -1,6 +1,6 @@
-//! The calibration criteria's study (`stiffid_design::study::observability`).
+//! The calibration criteria's study (`crate::study::observability`).
 
-use stiffid_design::study::observability::*;
+use crate::study::observability::*;
 
 /// At a small size every criterion ranks the groups the right way round: the indices
 /// against the held-out error, the predicted error with it.

@@ -1,12 +1,12 @@
-//! The registration design (`stiffid_design::registration`): its criterion against the SVD.
+//! The registration design (`crate::registration`): its criterion against the SVD.
 
+use crate::registration::*;
 use nalgebra::Vector3;
-use stiffid_design::registration::*;
 
 #[test]
 fn the_criterion_from_moments_equals_the_covariance_by_svd() {
     let setup = stiffid_core::setup::builtin("zhang2021-comau-nj165").unwrap();
-    let group = stiffid_design::random_group(&setup, 4, 5);
+    let group = crate::random_group(&setup, 4, 5);
     let all: Vec<Vector3<f64>> = group.iter().flat_map(|q| points(&setup, q, &[])).collect();
     let moments: Vec<Moments> = group
         .iter()

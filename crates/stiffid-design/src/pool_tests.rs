@@ -1,10 +1,10 @@
-//! The pool's criteria from information matrices (`stiffid_design::pool`).
+//! The pool's criteria from information matrices (`crate::pool`).
 
+use crate::evaluator::Information;
+use crate::pool::*;
+use crate::random_group;
+use crate::{Criterion, Evaluator};
 use nalgebra::Matrix6;
-use stiffid_design::evaluator::Information;
-use stiffid_design::pool::*;
-use stiffid_design::random_group;
-use stiffid_design::{Criterion, Evaluator};
 
 #[test]
 fn criteria_from_the_information_matrix_equal_those_from_qr() {

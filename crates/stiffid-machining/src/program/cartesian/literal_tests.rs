@@ -1,6 +1,6 @@
-//! RAPID's nested literals (`stiffid_machining::program::cartesian::literal`).
+//! RAPID's nested literals (`crate::program::cartesian::literal`).
 
-use stiffid_machining::program::cartesian::literal::*;
+use crate::program::cartesian::literal::*;
 
 #[test]
 fn nested_literals_keep_every_numbers_span() {

@@ -1,15 +1,15 @@
-//! The design's evaluator (`stiffid_design::Evaluator`, `evaluate`): criteria by QR against other ways.
+//! The design's evaluator (`crate::Evaluator`, `evaluate`): criteria by QR against other ways.
 
 //! The n-parameter evaluator (a model with virtual springs) against the criteria computed from
 //! the whole observation matrix by nalgebra's SVD, and its exact gradients against central
 //! differences.
 
+use crate::evaluator::*;
+use crate::random_group;
+use crate::Criterion;
 use nalgebra::{DMatrix, Vector6};
 use stiffid_core::observation::rope_observation_matrix;
 use stiffid_core::setup::Setup;
-use stiffid_design::evaluator::*;
-use stiffid_design::random_group;
-use stiffid_design::Criterion;
 
 /// The paper's setup (or the FANUC one, one measuring point) with a `[model]` fragment appended.
 pub(crate) fn with_model(builtin: &str, model: &str) -> Setup {
@@ -125,7 +125,7 @@ fn wide_criteria_equal_their_definitions() {
         assert!(rel(e.test_pose, test) < 1e-8);
         assert_eq!(e.identifiability.identified, vec![true; n]);
         assert_eq!(e.identifiability.rank, n);
-        let pool = stiffid_design::Pool::new(&setup, &group, &[]).unwrap();
+        let pool = crate::Pool::new(&setup, &group, &[]).unwrap();
         for criterion in Criterion::ALL {
             assert_eq!(evaluator.value(criterion, &group), e.value(criterion));
             let terms: Vec<PostureTerms> = group.iter().map(|q| evaluator.posture(q)).collect();

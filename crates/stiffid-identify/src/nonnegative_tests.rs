@@ -1,10 +1,10 @@
-//! Non-negative least squares (`stiffid_identify::nonnegative`): a bound held, a fit cut at its
+//! Non-negative least squares (`crate::nonnegative`): a bound held, a fit cut at its
 //! step limit.
 
+use crate::nonnegative::*;
 use nalgebra::{DMatrix, DVector};
 use stiffid_core::common::stop::Stop;
 use stiffid_core::common::warning::WarningKind;
-use stiffid_identify::nonnegative::*;
 
 #[test]
 fn a_negative_unconstrained_entry_is_held_at_its_bound_and_the_fit_converges() {

@@ -1,12 +1,12 @@
-//! The refined band's dynamic programming (`stiffid_machining::compensate::refine`).
+//! The refined band's dynamic programming (`crate::compensate::refine`).
 
+use crate::compensate::refine::*;
+use crate::compensate::tool_axis::Axis;
+use crate::compensate::tool_axis::{Column, Grid};
+use crate::compensate::Aggregate;
 use nalgebra::Vector6;
 use rand::{Rng, SeedableRng};
 use stiffid_core::robot::external::ExternalValues;
-use stiffid_machining::compensate::refine::*;
-use stiffid_machining::compensate::tool_axis::Axis;
-use stiffid_machining::compensate::tool_axis::{Column, Grid};
-use stiffid_machining::compensate::Aggregate;
 
 /// The aggregate of `costs`.
 fn total(costs: &[f64], aggregate: Aggregate) -> f64 {

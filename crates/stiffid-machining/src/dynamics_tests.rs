@@ -1,6 +1,6 @@
-//! The tooth-passing harmonics (`stiffid_machining::dynamics`).
+//! The tooth-passing harmonics (`crate::dynamics`).
 
-use stiffid_machining::dynamics::Harmonic;
+use crate::dynamics::Harmonic;
 
 #[test]
 fn the_nearest_harmonic_and_its_distance() {

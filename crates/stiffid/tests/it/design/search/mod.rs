@@ -1,3 +1,0 @@
-//! The posture searches (`stiffid_design::search`).
-
-mod sqp;

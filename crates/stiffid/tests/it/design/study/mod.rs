@@ -1,3 +1,0 @@
-//! The paper's study (`stiffid_design::study`).
-
-mod observability;

@@ -1,4 +1,0 @@
-//! Cartesian targets in programs (`stiffid_machining::program::cartesian`).
-
-mod flags;
-mod literal;
