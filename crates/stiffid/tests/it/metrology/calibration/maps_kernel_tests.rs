@@ -1,6 +1,6 @@
 //! The maps' held-out errors on a split ([`Linear::errors`]: Eldén's bidiagonal ridge steps on
 //! the split's QR factor) against the ridge least squares of the linearised model solved directly
-//! (nalgebra's SVD of the whole augmented system), from a ridge of `1e-12` up, with fewer training
+//! (nalgebra's Householder QR of the whole augmented system), from a ridge of `1e-12` up, with fewer training
 //! rows than candidate columns and with more, a choice with more columns than training rows (the
 //! bidiagonalisation of its transpose) and with fewer; and the nested figure of choices given back
 //! equal to the one that chose them.
@@ -65,7 +65,13 @@ fn direct(
     for k in 0..s {
         a[(tr.len() + k, g + k)] = lambda.sqrt();
     }
-    let x = a.svd(true, true).solve(&b, 1e-12).unwrap();
+    // Householder QR of the whole augmented system (full column rank: the ridge rows).
+    let qr = a.qr();
+    let mut qtb = b;
+    qr.q_tr_mul(&mut qtb);
+    let x = (qr.r())
+        .solve_upper_triangular(&qtb.rows(0, g + s).into_owned())
+        .unwrap();
     let joints: Vec<usize> = (0..6)
         .flat_map(|j| std::iter::repeat_n(j, 2 * choice.harmonics[j]))
         .collect();
