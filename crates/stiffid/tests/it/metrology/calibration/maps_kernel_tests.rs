@@ -1,10 +1,9 @@
-//! The maps' held-out errors on a split ([`Linear::errors`]: Eldén's bidiagonal ridge steps on
-//! the split's QR factor) against the ridge least squares of the linearised model solved directly
-//! (nalgebra's Householder QR of the whole augmented system), from a ridge of `1e-12` up, with fewer training
-//! rows than candidate columns and with more, a choice with more columns than training rows (the
-//! bidiagonalisation of its transpose) and with fewer; and the nested figure of choices given back
-//! equal to the one that chose them.
-
+//! The maps' held-out errors on a split ([`Linear::errors`]: Eldén's bidiagonal ridge steps on the
+//! split's QR factor) against the ridge least squares of the linearised model solved directly
+//! (nalgebra's Householder QR of the whole augmented system), from a ridge of `1e-12` up, with
+//! fewer training rows than candidate columns and with more, a choice with more columns than
+//! training rows (the bidiagonalisation of its transpose) and with fewer; and the nested figure of
+//! choices given back equal to the one that chose them.
 use super::fit;
 use super::maps::{self, JointMaps, Linear, Spec};
 use super::maps_tests::{identified, model, noisy, options, truth};
