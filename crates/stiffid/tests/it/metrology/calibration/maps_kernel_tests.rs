@@ -4,6 +4,7 @@
 //! fewer training rows than candidate columns and with more, a choice with more columns than
 //! training rows (the bidiagonalisation of its transpose) and with fewer; and the nested figure of
 //! choices given back equal to the one that chose them.
+
 use super::fit;
 use super::maps::{self, JointMaps, Linear, Spec};
 use super::maps_tests::{identified, model, noisy, options, truth};
