@@ -7,8 +7,8 @@ pub mod document;
 
 use crate::app::document::group::Group as Rates;
 use crate::app::Warning;
-use serde::Serialize;
 use nalgebra::Vector6;
+use serde::Serialize;
 use stiffid_core::common::progress::Progress;
 use stiffid_core::model::Parameter;
 use stiffid_core::{common::limits, Result, Setup};
