@@ -64,8 +64,8 @@ pub fn simulate<'py>(
     let outcome = py.detach(|| job::run(&request)).map_err(raise)?;
     warn(py, &outcome.warnings)?;
     let out = PyList::empty(py);
-    for g in outcome.document.groups {
-        out.append(to_python(py, &g, &RATES)?)?;
+    for g in &outcome.report.groups {
+        out.append(to_python(py, g, &RATES)?)?;
     }
     Ok(out)
 }

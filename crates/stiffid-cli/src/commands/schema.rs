@@ -78,7 +78,7 @@ pub fn schema(name: &str) -> Result<Schema> {
         "compensate" => closed::<stiffid::app::compensate::document::Document>(),
         "place" => closed::<stiffid::app::place::document::Document>(),
         "force" => closed::<stiffid::app::force::Report>(),
-        "simulate" => closed::<stiffid::app::simulate::document::Document>(),
+        "simulate" => closed::<stiffid::app::simulate::Report>(),
         "reproduce" => closed::<stiffid::app::reproduce::document::Summary<'static>>(),
         "register" => closed::<stiffid::app::register::Report>(),
         "register-postures" => closed::<stiffid::app::register::document::Proposal>(),

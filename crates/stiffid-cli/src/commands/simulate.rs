@@ -8,8 +8,8 @@ use crate::output::{self, json, ReportDir};
 use crate::progress::Bars;
 use anyhow::Result;
 use std::path::{Path, PathBuf};
-use stiffid::app::simulate::document::{deviation_csv, Document};
-use stiffid::app::simulate::{self as job, Group, Request};
+use stiffid::app::simulate::document::deviation_csv;
+use stiffid::app::simulate::{self as job, Group, Report, Request};
 use stiffid_core::common::limits;
 use stiffid_design::study::simulate::Options;
 
@@ -71,18 +71,18 @@ pub fn run(args: &Args) -> Result<()> {
         },
         progress: &Bars::new(false),
     };
-    let stiffid::app::Outcome { report, document } = job::run(&request)?;
-    output::warnings(&report.warnings);
-    let doc = document;
-    let (sims, levels) = (&report.simulations, &setup.noise().levels);
+    let outcome = job::run(&request)?;
+    output::warnings(&outcome.warnings);
+    let doc = outcome.written();
+    let (sims, levels) = (&doc.simulations, &doc.levels);
     if let Some(dir) = out {
         dir.write(FILES[0], deviation_csv(&names, sims, levels).as_bytes())?;
-        dir.write(FILES[1], json(&doc)?.as_bytes())?;
+        dir.write(FILES[1], json(doc)?.as_bytes())?;
         dir.finish()?;
     }
     match args.common.json {
-        true => output::print(&json(&doc)?),
-        false => output::print(&tables(&doc)),
+        true => output::print(&json(doc)?),
+        false => output::print(&tables(doc)),
     }
 }
 
@@ -113,7 +113,7 @@ fn group_names(paths: &[PathBuf]) -> Vec<String> {
 }
 
 /// Every group's rates per level and parameter (drives, then virtual springs).
-fn tables(doc: &Document) -> String {
+fn tables(doc: &Report) -> String {
     let mut s = format!(
         "mean deviation rate % (+- std over {} runs) [first-order prediction]\n",
         doc.runs

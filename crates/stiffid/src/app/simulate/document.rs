@@ -1,13 +1,11 @@
 //! The document of the simulate job ([`crate::app::simulate`]): `stiffid simulate --json` (and
-//! `--out DIR/simulation.json`), its `deviation_rates.csv`, Python's `simulate`; each group's part
-//! ([`Group`]) as the study's summary has it too.
+//! `--out DIR/simulation.json`), its `deviation_rates.csv`, Python's `simulate`; the report is the document
+//! ([`super::Report`]); here its parts: each group's
+//! ([`Group`](crate::app::document::group::Group), as the study's summary has it too) and the parameters' names ([`Named`]).
 
 use crate::app::document::csv_text;
-use crate::app::document::group::Group;
-use crate::app::simulate::Report;
-use serde::Serialize;
+use serde::{Serialize, Serializer};
 use stiffid_core::model::Parameter;
-use stiffid_core::Setup;
 use stiffid_design::study::simulate::GroupSimulation;
 
 /// A parameter of the simulated model: its name and the unit of its stiffness.
@@ -29,40 +27,13 @@ impl From<&Parameter> for Named {
     }
 }
 
-/// The simulate document.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-#[serde(tag = "kind", rename = "simulate")]
-#[cfg_attr(feature = "schema", schemars(transform = crate::app::document::schema::Kind("simulate")))]
-pub struct Document {
-    /// The setup's name.
-    pub setup: String,
-    /// The seed of the measurement noise.
-    pub seed: u64,
-    /// Monte Carlo runs per group and noise level.
-    pub runs: usize,
-    /// The noise level multiples of the setup's variance.
-    pub levels: Vec<f64>,
-    /// The parameters simulated, in the order of the rates' columns.
-    pub parameters: Vec<Named>,
-    /// One per group, in the order given.
-    pub groups: Vec<Group>,
-}
-
-impl Document {
-    /// The document of a simulate report on `setup`.
-    pub fn new(r: &Report, setup: &Setup) -> Self {
-        Self {
-            setup: setup.name().into(),
-            seed: r.seed,
-            runs: r.runs,
-            levels: setup.noise().levels.clone(),
-            parameters: r.parameters.iter().map(Named::from).collect(),
-            groups: (r.names.iter().zip(&r.simulations))
-                .map(|(n, s)| Group::new(n, s, &r.parameters))
-                .collect(),
-        }
-    }
+/// The parameters of a model written as their names and units ([`Named`]). Schema:
+/// `Vec<Named>`.
+///
+/// # Errors
+/// The serialiser's.
+pub fn named<S: Serializer>(parameters: &[Parameter], s: S) -> Result<S::Ok, S::Error> {
+    s.collect_seq(parameters.iter().map(Named::from))
 }
 
 /// `deviation_rates.csv`: one row per group, noise level and joint.

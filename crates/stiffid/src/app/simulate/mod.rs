@@ -5,8 +5,10 @@
 
 pub mod document;
 
+use crate::app::document::group::Group as Rates;
 use crate::app::Warning;
 use nalgebra::Vector6;
+use serde::Serialize;
 use stiffid_core::common::progress::Progress;
 use stiffid_core::model::Parameter;
 use stiffid_core::{common::limits, Result, Setup};
@@ -34,26 +36,41 @@ pub struct Request<'a> {
     pub progress: &'a dyn Progress,
 }
 
-/// What the simulation found.
-#[derive(Debug, Clone)]
+/// What the simulation found. It is its own document (`stiffid simulate --json`, `--out
+/// DIR/simulation.json`, Python's `simulate`): every field it writes is a count or a rate, with
+/// no unit to convert; each group's part
+/// ([`Group`](crate::app::document::group::Group)) as the study's summary has it too.
+#[derive(Debug, Clone, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(tag = "kind", rename = "simulate")]
+#[cfg_attr(feature = "schema", schemars(description = "The simulate document."))]
+#[cfg_attr(feature = "schema", schemars(transform = crate::app::document::schema::Kind("simulate")))]
 pub struct Report {
-    /// The groups' names, in order.
-    pub names: Vec<String>,
-    /// Each group's simulation, in order.
-    pub simulations: Vec<GroupSimulation>,
-    /// The parameters simulated (the six drives, then the model's virtual springs), in the order
-    /// of the rates' columns.
-    pub parameters: Vec<Parameter>,
-    /// Runs per group and level.
-    pub runs: usize,
-    /// The seed of the noise.
+    /// The setup's name.
+    pub setup: String,
+    /// The seed of the measurement noise.
     pub seed: u64,
+    /// Monte Carlo runs per group and noise level.
+    pub runs: usize,
+    /// The noise level multiples of the setup's variance.
+    pub levels: Vec<f64>,
+    /// The parameters simulated, in the order of the rates' columns.
+    #[serde(serialize_with = "document::named")]
+    #[cfg_attr(feature = "schema", schemars(with = "Vec<document::Named>"))]
+    pub parameters: Vec<Parameter>,
+    /// One per group, in the order given.
+    pub groups: Vec<Rates>,
+    /// Each group's simulation, in the order given (for `deviation_rates.csv`,
+    /// [`document::deviation_csv`]).
+    #[serde(skip)]
+    pub simulations: Vec<GroupSimulation>,
     /// None today: the job's warnings, for the pattern ([`crate::app`]).
+    #[serde(skip)]
     pub warnings: Vec<Warning>,
 }
 
-/// The simulate job's report and its document.
-pub type Outcome = crate::app::Outcome<Report, document::Document>;
+/// The simulate job's report, which is its document.
+pub type Outcome = crate::app::Outcome<Report>;
 
 /// Simulates every group.
 ///
@@ -62,9 +79,10 @@ pub type Outcome = crate::app::Outcome<Report, document::Document>;
 /// errors of [`monte_carlo`](stiffid_design::study::simulate::monte_carlo) (among them a virtual spring without a nominal stiffness, the
 /// truth of the simulation, and a group that cannot identify every parameter of the model).
 pub fn run(request: &Request) -> Result<Outcome> {
-    let report = find(request)?;
-    let document = document::Document::new(&report, request.setup);
-    Ok(Outcome { report, document })
+    Ok(Outcome {
+        report: find(request)?,
+        document: crate::app::Itself,
+    })
 }
 
 /// What [`run`] finds, before its document.
@@ -75,12 +93,18 @@ fn find(request: &Request) -> Result<Report> {
     limits::check_count("groups", request.groups.len(), 1, limits::MAX_GROUPS)?;
     let groups: Vec<Vec<Vector6<f64>>> =
         request.groups.iter().map(|g| g.postures.clone()).collect();
+    let simulations = monte_carlo_reporting(setup, &groups, &request.options, progress)?;
+    let parameters = setup.model().parameters();
     Ok(Report {
-        names: request.groups.iter().map(|g| g.name.clone()).collect(),
-        simulations: monte_carlo_reporting(setup, &groups, &request.options, progress)?,
-        parameters: setup.model().parameters(),
-        runs: request.options.runs,
+        setup: setup.name().into(),
         seed: request.options.seed,
+        runs: request.options.runs,
+        levels: setup.noise().levels.clone(),
+        groups: (request.groups.iter().zip(&simulations))
+            .map(|(g, s)| Rates::new(&g.name, s, &parameters))
+            .collect(),
+        parameters,
+        simulations,
         warnings: Vec::new(),
     })
 }
