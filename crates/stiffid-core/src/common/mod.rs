@@ -13,3 +13,5 @@ pub mod stop;
 pub mod threads;
 pub mod warning;
 pub mod words;
+#[cfg(test)]
+mod words_tests;

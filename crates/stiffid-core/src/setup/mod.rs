@@ -87,6 +87,8 @@ pub mod load_steps;
 pub mod numbered;
 pub mod plausibility;
 pub mod prior;
+#[cfg(test)]
+mod prior_tests;
 mod program_frames;
 pub mod program_io;
 pub mod reference;

@@ -29,6 +29,8 @@
 
 mod columns;
 pub mod plain;
+#[cfg(test)]
+mod plain_tests;
 
 pub use columns::Layout;
 
@@ -419,7 +421,7 @@ impl Parsed {
     }
 
     /// Parses `text` with the `csv` crate (quoted fields, errors).
-    pub fn by_csv(layout: &Layout, text: &[u8], first: u64) -> Self {
+    pub(crate) fn by_csv(layout: &Layout, text: &[u8], first: u64) -> Self {
         let mut parsed = Self {
             rows: Vec::with_capacity(text.len() / 64),
             labels: String::new(),

@@ -16,6 +16,8 @@
 //! `s sqrt(sum_k (w^T M_k w)^2)` ([`MassModel::held_mass_sd`]), exactly (no linearisation).
 
 pub mod body;
+#[cfg(test)]
+mod body_tests;
 mod crba;
 pub mod modes;
 
