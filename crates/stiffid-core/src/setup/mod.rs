@@ -87,8 +87,6 @@ pub mod load_steps;
 pub mod numbered;
 pub mod plausibility;
 pub mod prior;
-#[cfg(test)]
-mod prior_tests;
 mod program_frames;
 pub mod program_io;
 pub mod reference;
@@ -537,3 +535,6 @@ impl Setup {
             .wrench(&frames.point(&self.tool().loading_point))
     }
 }
+
+#[cfg(test)]
+mod prior_tests;

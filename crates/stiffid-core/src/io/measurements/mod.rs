@@ -29,8 +29,6 @@
 
 mod columns;
 pub mod plain;
-#[cfg(test)]
-mod plain_tests;
 
 pub use columns::Layout;
 
@@ -668,3 +666,6 @@ fn commented_row(text: &[u8], fields: usize, first: u64) -> Option<(u64, Error)>
     );
     Some((line, unreadable(line, &message)))
 }
+
+#[cfg(test)]
+mod plain_tests;
