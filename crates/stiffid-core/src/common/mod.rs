@@ -13,3 +13,6 @@ pub mod stop;
 pub mod threads;
 pub mod warning;
 pub mod words;
+
+#[cfg(test)]
+mod words_tests;

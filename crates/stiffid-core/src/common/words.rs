@@ -65,7 +65,7 @@ pub fn as_given(v: f64) -> f64 {
 /// `value` with 2 decimals, or as many more (up to 9) as tell it apart from the nearer end of
 /// `[lower, upper]` printed the same way: `35.001` is not shown as `35.00` beside a limit `35.00`
 /// (2 decimals if they are equal).
-pub fn distinct(value: f64, lower: f64, upper: f64) -> String {
+pub(crate) fn distinct(value: f64, lower: f64, upper: f64) -> String {
     let nearer = match (value - lower).abs() < (value - upper).abs() {
         true => lower,
         false => upper,

@@ -535,3 +535,6 @@ impl Setup {
             .wrench(&frames.point(&self.tool().loading_point))
     }
 }
+
+#[cfg(test)]
+mod prior_tests;

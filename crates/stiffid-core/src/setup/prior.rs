@@ -159,7 +159,7 @@ fn median_dexterity(jacobians: &[Matrix6<f64>], l: f64) -> f64 {
 }
 
 /// The minimiser of a unimodal `f` on `[a, b]`, to an interval of width `tol`.
-pub fn golden_section(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64, tol: f64) -> f64 {
+pub(crate) fn golden_section(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64, tol: f64) -> f64 {
     let r = (5f64.sqrt() - 1.0) / 2.0;
     let (mut c, mut d) = (b - r * (b - a), a + r * (b - a));
     let (mut fc, mut fd) = (f(c), f(d));

@@ -25,7 +25,7 @@ pub fn components(i: &Matrix3<f64>) -> [f64; 6] {
 /// Why `i` (kg m^2, about the centre of mass) is no rigid body's inertia tensor, if it is not: a
 /// principal moment below zero or one above the sum of the other two (the triangle inequality
 /// every mass distribution keeps), beyond rounding (1e-9 of the largest moment).
-pub fn physical(i: &Matrix3<f64>) -> std::result::Result<(), String> {
+pub(crate) fn physical(i: &Matrix3<f64>) -> std::result::Result<(), String> {
     let moments = i.symmetric_eigenvalues();
     let scale = moments.amax();
     let tolerance = 1e-9 * scale;

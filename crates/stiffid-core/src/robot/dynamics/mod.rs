@@ -205,3 +205,6 @@ pub fn free_mass(lambda: &Matrix6<f64>, u: &Vector3<f64>) -> Option<f64> {
     let block = mobility.fixed_view::<3, 3>(0, 0);
     Some(1.0 / (u.transpose() * block * u)[0])
 }
+
+#[cfg(test)]
+mod body_tests;

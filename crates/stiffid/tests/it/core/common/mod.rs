@@ -1,3 +1,2 @@
 mod limits;
 mod stop;
-mod words;

@@ -1,6 +1,5 @@
 mod external;
 mod input;
-mod measurements;
 mod output;
 mod postures;
 mod readings;

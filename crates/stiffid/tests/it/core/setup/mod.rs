@@ -1,5 +1,4 @@
 mod controller_robot;
 mod load_steps;
 mod numbered;
-mod prior;
 mod reference;

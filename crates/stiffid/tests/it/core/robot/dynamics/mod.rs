@@ -1,2 +1,1 @@
-mod body;
 mod modes;

@@ -1,4 +1,6 @@
-use stiffid_core::common::words::*;
+//! The words' tests: counts, short numbers, distinct and apart values.
+
+use super::words::*;
 
 #[test]
 fn one_is_singular_and_every_other_count_plural() {

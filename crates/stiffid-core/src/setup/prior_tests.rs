@@ -1,4 +1,6 @@
-use stiffid_core::setup::prior::*;
+//! The priors' tests: the golden-section search and the stiffness prior.
+
+use super::prior::*;
 
 #[test]
 fn golden_section_finds_the_minimum_of_a_parabola() {

@@ -1,7 +1,9 @@
+//! The link bodies' tests: sums, moves and the tensors no body has.
+
+use super::body::*;
+use crate::robot::LinkMass;
 use nalgebra::{Isometry3, Matrix3};
 use nalgebra::{Translation3, UnitQuaternion, Vector3};
-use stiffid_core::robot::dynamics::body::*;
-use stiffid_core::robot::LinkMass;
 
 /// A solid box of sides a, b, c (m) and mass m: I = m/12 diag(b^2+c^2, a^2+c^2, a^2+b^2).
 fn cuboid(m: f64, a: f64, b: f64, c: f64, centre: Vector3<f64>) -> LinkMass {
