@@ -419,7 +419,7 @@ impl Parsed {
     }
 
     /// Parses `text` with the `csv` crate (quoted fields, errors).
-    pub(crate) fn by_csv(layout: &Layout, text: &[u8], first: u64) -> Self {
+    pub fn by_csv(layout: &Layout, text: &[u8], first: u64) -> Self {
         let mut parsed = Self {
             rows: Vec::with_capacity(text.len() / 64),
             labels: String::new(),
@@ -666,6 +666,3 @@ fn commented_row(text: &[u8], fields: usize, first: u64) -> Option<(u64, Error)>
     );
     Some((line, unreadable(line, &message)))
 }
-
-#[cfg(test)]
-mod plain_tests;

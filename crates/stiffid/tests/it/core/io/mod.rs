@@ -1,5 +1,6 @@
 mod external;
 mod input;
+mod measurements;
 mod output;
 mod postures;
 mod readings;
