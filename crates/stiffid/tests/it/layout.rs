@@ -838,7 +838,8 @@ fn builds(line: &str, types: &BTreeSet<String>) -> usize {
             })
             .count()
     };
-    let other_types = (types.iter()).filter(|t| !t.ends_with("Document") && !STREAMED.contains(&t.as_str()));
+    let other_types =
+        (types.iter()).filter(|t| !t.ends_with("Document") && !STREAMED.contains(&t.as_str()));
     line.match_indices("Document::new(").count()
         + line.match_indices("document::scene(").count()
         + other_types.map(named).sum::<usize>()
