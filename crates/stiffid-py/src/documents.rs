@@ -18,9 +18,7 @@ pub fn to_python<'py>(
     document: &impl Serialize,
     arrays: &[&str],
 ) -> PyResult<Bound<'py, PyDict>> {
-    let value = serde_json::to_value(document)
-        .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?;
-    let Value::Object(map) = value else {
+    let Value::Object(map) = to_json(document)? else {
         unreachable!("every document is a JSON object")
     };
     let dict = PyDict::new(py);
@@ -36,9 +34,14 @@ pub fn to_python<'py>(
 
 /// `document` (any value: a list of records, a number) as Python objects, as [`to_python`].
 pub fn to_object<'py>(py: Python<'py>, document: &impl Serialize) -> PyResult<Bound<'py, PyAny>> {
-    let value = serde_json::to_value(document)
-        .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?;
-    object(py, &value)
+    object(py, &to_json(document)?)
+}
+
+/// `document` as a JSON value (the library's documents always serialise; a failure is a
+/// `RuntimeError`).
+pub fn to_json(document: &impl Serialize) -> PyResult<Value> {
+    serde_json::to_value(document)
+        .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))
 }
 
 /// A JSON value as the Python object of the same type.

@@ -350,9 +350,8 @@ pub fn validate<'py>(
     };
     let outcome = py.detach(|| validation::run(request)).map_err(raise)?;
     documents::warn(py, &outcome.warnings)?;
-    let document = &outcome.document;
-    let d = documents::to_python(py, document, &[])?;
-    let checks = &document.checks;
+    let d = documents::to_python(py, outcome.written(), &[])?;
+    let checks = outcome.document().checks;
     let delta_b = checks.iter().map(|c| c.delta_b_mm);
     d.set_item("delta_b_mm", arrays::vec1(py, delta_b))?;
     let measured: Vec<[f64; 3]> = checks.iter().map(|c| c.measured_mm).collect();

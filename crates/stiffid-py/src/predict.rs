@@ -9,7 +9,6 @@ use nalgebra::{Vector3, Vector6};
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict, PyList};
 use stiffid::app::predict as job;
-use stiffid::app::predict::document::Document;
 use stiffid_core::common::limits;
 use stiffid_core::model::Compliance;
 use stiffid_core::observation::deflection::Frame;
@@ -180,13 +179,13 @@ impl Options {
         })
     }
 
-    /// The predict job's document of posture `q` (rad) under `wrench`.
+    /// The predict job's report (its document) of posture `q` (rad) under `wrench`.
     fn run(
         &self,
         setup: &Setup,
         q: Vector6<f64>,
         wrench: Vector6<f64>,
-    ) -> stiffid_core::Result<Document> {
+    ) -> stiffid_core::Result<job::Report> {
         let s = &setup.inner;
         let outcome = job::run(&job::Request {
             setup_name: setup.given.clone(),
@@ -198,7 +197,7 @@ impl Options {
             compliance: self.compliance.clone(),
             level: self.level,
         })?;
-        Ok(outcome.document)
+        Ok(outcome.report)
     }
 }
 

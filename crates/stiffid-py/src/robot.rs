@@ -216,7 +216,7 @@ impl Robot {
         };
         let outcome = py.detach(|| job::run(&request)).map_err(raise)?;
         crate::documents::warn(py, &outcome.warnings)?;
-        crate::documents::to_python(py, &outcome.document, &[])
+        crate::documents::to_python(py, outcome.written(), &[])
     }
 
     /// The robot's own characteristic length (mm) for the point ``point_mm`` (flange frame, mm;

@@ -1,13 +1,12 @@
 //! `stiffid.simulate` and `stiffid.reproduce`: the Monte Carlo identification of groups of
 //! postures and the paper's simulation study, over [`stiffid_design::study::simulate`] and [`stiffid_design::study`].
 
-use crate::documents::{to_python, warn};
+use crate::documents::{to_json, to_python, warn};
 use crate::error::{raise, value};
 use crate::setup::Setup;
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict, PyList};
 use stiffid::app::reproduce as job_reproduce;
-use stiffid::app::reproduce::document::Summary;
 use stiffid::app::simulate as job;
 use stiffid_core::common::limits::{self, check_count};
 use stiffid_design::study::simulate as monte_carlo;
@@ -131,14 +130,11 @@ pub fn reproduce<'py>(
         options,
         progress: &(),
     };
-    let report = py
-        .detach(|| job_reproduce::run(&request))
-        .map_err(raise)?
-        .report;
-    warn(py, &report.warnings)?;
-    let out = study_document(py, &report)?;
+    let outcome = py.detach(|| job_reproduce::run(&request)).map_err(raise)?;
+    warn(py, &outcome.warnings)?;
+    let out = study_document(py, outcome.written())?;
     if figures {
-        let drawings = stiffid_figures::reproduce::figures(&report.study);
+        let drawings = stiffid_figures::reproduce::figures(&outcome.study);
         out.set_item("figures", crate::figures::svgs(py, &drawings)?)?;
     }
     Ok(out)
@@ -150,17 +146,17 @@ const GROUP_ARRAYS: [&str; 2] = ["postures_deg", "validation_error_mm"];
 /// The keys of a study's document returned as NumPy arrays (its groups' besides).
 const STUDY_ARRAYS: [&str; 2] = ["levels", "test_deflection_mm"];
 
-/// The document of `report` (``summary.json``) as a dict, with [`STUDY_ARRAYS`] and each group's
-/// [`RATES`] and [`GROUP_ARRAYS`] as NumPy arrays.
+/// The document `report` is written as (``summary.json``) as a dict, with [`STUDY_ARRAYS`] and
+/// each group's [`RATES`] and [`GROUP_ARRAYS`] as NumPy arrays.
 fn study_document<'py>(
     py: Python<'py>,
     report: &job_reproduce::Report,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let summary = Summary::new(report);
+    let summary = to_json(report)?;
     let out = to_python(py, &summary, &STUDY_ARRAYS)?;
     let groups = PyList::empty(py);
     let arrays: Vec<&str> = RATES.into_iter().chain(GROUP_ARRAYS).collect();
-    for g in &summary.groups {
+    for g in summary["groups"].as_array().into_iter().flatten() {
         groups.append(to_python(py, g, &arrays)?)?;
     }
     out.set_item("groups", groups)?;

@@ -86,10 +86,10 @@ pub fn run(args: &Args) -> Result<()> {
         None => "give --characteristic-length-mm",
     })?;
     output::warnings(&outcome.warnings);
-    output::print_json_or(args.json, &outcome.document, text)
+    output::print_json_or(args.json, outcome.written(), |r| text(&r.document()))
 }
 
-fn text(r: &Document) -> String {
+fn text(r: &Document<'_>) -> String {
     let (unit, var) = match r.coordinates {
         Coordinates::Axis => ("axis angles", "q"),
         Coordinates::Kinematic => ("kinematic angles", "theta"),

@@ -76,10 +76,12 @@ pub fn run(args: &Args) -> Result<()> {
         level: args.level,
     })?;
     crate::output::warnings(&outcome.warnings);
-    print_json_or(args.common.json, &outcome.document, human)
+    print_json_or(args.common.json, outcome.written(), |r| {
+        human(&r.document())
+    })
 }
 
-fn human(r: &Document) -> String {
+fn human(r: &Document<'_>) -> String {
     header(r) + &joints(r) + &points(r) + &tcp(r) + &cartesian(r) + &mass(r)
 }
 
@@ -101,7 +103,7 @@ fn ranges(i: &[[Option<f64>; 2]; 3]) -> String {
 }
 
 /// The setup, the posture and the wrench.
-fn header(r: &Document) -> String {
+fn header(r: &Document<'_>) -> String {
     format!(
         "setup {}, q = ({}) deg\nwrench at ({}) mm (flange frame), {} frame: f = ({}) N, m = ({}) Nm\n\n",
         r.setup,
@@ -114,7 +116,7 @@ fn header(r: &Document) -> String {
 }
 
 /// Per joint its stiffness, torque and deflection.
-fn joints(r: &Document) -> String {
+fn joints(r: &Document<'_>) -> String {
     let mut s = String::new();
     s += &format!(
         "joint                    {}\n",
@@ -134,7 +136,7 @@ fn joints(r: &Document) -> String {
 
 /// Each measuring point's position and displacement, the prediction intervals when the
 /// stiffness file gives them.
-fn points(r: &Document) -> String {
+fn points(r: &Document<'_>) -> String {
     let mut s = String::new();
     s += "\npoint   position mm (x, y, z)                displacement mm (x, y, z)            |d| mm\n";
     for p in &r.measuring_points {
@@ -171,7 +173,7 @@ fn points(r: &Document) -> String {
 
 /// The flange's rotation and the TCP's deflection and rotation (with their standard deviations
 /// and prediction interval when known).
-fn tcp(r: &Document) -> String {
+fn tcp(r: &Document<'_>) -> String {
     let mut s = String::new();
     let [a, b, c] = r.flange_rotation_mrad;
     s += &format!("\nflange rotation (base frame): ({a:.5}, {b:.5}, {c:.5}) mrad\n");
@@ -204,7 +206,7 @@ fn tcp(r: &Document) -> String {
 }
 
 /// The Cartesian compliance and stiffness at the loaded point.
-fn cartesian(r: &Document) -> String {
+fn cartesian(r: &Document<'_>) -> String {
     let mut s = String::new();
     s += "\nCartesian compliance C_x at the loaded point, base frame, rows dx dy dz (mm) drx dry drz (mrad), per fx fy fz (kN) mx my mz (kNm):\n";
     for line in &r.cartesian_compliance.matrix_mm_mrad_per_kn_knm {
@@ -223,7 +225,7 @@ fn cartesian(r: &Document) -> String {
 }
 
 /// The mass lines: natural frequencies and the surge, where the robot gives its masses.
-fn mass(r: &Document) -> String {
+fn mass(r: &Document<'_>) -> String {
     let Some(f) = &r.natural_frequencies_hz else {
         return String::new();
     };

@@ -68,13 +68,13 @@ pub fn schema(name: &str) -> Result<Schema> {
         bail!("{name:?}: expected one of {}", names.join(", "));
     };
     let mut schema = match name {
-        "kinematics" => closed::<stiffid::app::kinematics::document::Document>(),
+        "kinematics" => closed::<stiffid::app::kinematics::document::Document<'static>>(),
         "evaluate" => closed::<stiffid::app::evaluate::document::Document>(),
         "select" => closed::<stiffid::app::select::document::Document>(),
         "plan" => closed::<stiffid::app::plan::document::Document>(),
-        "predict" => closed::<stiffid::app::predict::document::Document>(),
+        "predict" => closed::<stiffid::app::predict::document::Document<'static>>(),
         "identify" => closed::<stiffid::app::identify::document::Document>(),
-        "validate" => closed::<stiffid::app::validate::document::Document>(),
+        "validate" => closed::<stiffid::app::validate::document::Document<'static>>(),
         "compensate" => closed::<stiffid::app::compensate::document::Document>(),
         "place" => closed::<stiffid::app::place::document::Document>(),
         "force" => closed::<stiffid::app::force::Report>(),

@@ -53,10 +53,12 @@ pub fn run(args: &Args) -> Result<()> {
     bars.end();
     let outcome = outcome?;
     output::warnings(&outcome.warnings);
-    print_json_or(args.common.json, &outcome.document, human)
+    print_json_or(args.common.json, outcome.written(), |r| {
+        human(&r.document())
+    })
 }
 
-fn human(r: &Document) -> String {
+fn human(r: &Document<'_>) -> String {
     let k: Vec<String> = r
         .parameters
         .iter()

@@ -3,7 +3,7 @@
 
 use super::figures::Figure;
 use super::tables::{self, Table};
-use stiffid::app::reproduce::document::Summary;
+use stiffid::app::reproduce::document::{search_words, sentences};
 use stiffid::app::reproduce::Report;
 use stiffid_design::study::paper_table4;
 use stiffid_view::Scene;
@@ -28,8 +28,8 @@ fn find<'a>(figures: &'a [Figure], name: &str) -> Option<&'a Figure> {
     figures.iter().find(|f| f.name == name)
 }
 
-/// Writes the whole report of `report`, whose document is `summary`.
-pub fn compose(report: &Report, summary: &Summary, figures: &[Figure], w: &mut dyn Writer) {
+/// Writes the whole report of `report`.
+pub fn compose(report: &Report, figures: &[Figure], w: &mut dyn Writer) {
     let (study, f) = (&report.study, &report.findings);
     let s = &study.setup;
     w.heading(1, "Posture selection for joint stiffness identification: the simulation study of Zhang et al. (2021)");
@@ -38,7 +38,7 @@ pub fn compose(report: &Report, summary: &Summary, figures: &[Figure], w: &mut d
         s.name(), s.robot().name(), study.groups.len(), stiffid_design::study::POSTURES, study.runs, study.seed, study.elapsed_s
     ));
     w.heading(2, "Findings");
-    w.list(&summary.findings.sentences);
+    w.list(&sentences(f, study));
     w.table(&tables::groups(study));
     w.heading(
         2,
@@ -74,7 +74,8 @@ pub fn compose(report: &Report, summary: &Summary, figures: &[Figure], w: &mut d
         w.heading(3, &group.title);
         w.paragraph(&format!(
             "{}. Postures in `{}.csv`.",
-            summary.groups[g].search, group.name
+            search_words(&group.origin, study.seed),
+            group.name
         ));
         w.table(&tables::postures(study, g));
         if let Some(fig) = find(figures, &format!("postures_{}", group.name)) {

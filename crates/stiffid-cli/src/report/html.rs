@@ -4,7 +4,7 @@ use super::content::compose;
 pub use super::content::Writer;
 use super::figures::Figure;
 use super::tables::Table;
-use stiffid::app::reproduce::document::{Summary, GENERATOR};
+use stiffid::app::reproduce::document::GENERATOR;
 use stiffid::app::reproduce::Report;
 
 use stiffid_view::page::{self as scene_page, escape};
@@ -98,10 +98,10 @@ pub fn page(title: &str, generator: &str, body: impl FnOnce(&mut dyn Writer)) ->
 }
 
 /// The text of `report.html`.
-pub fn report(report: &Report, summary: &Summary, figures: &[Figure]) -> String {
+pub fn report(report: &Report, figures: &[Figure]) -> String {
     page(
         &format!("stiffid report: {}", report.study.setup.name()),
         GENERATOR,
-        |w| compose(report, summary, figures, w),
+        |w| compose(report, figures, w),
     )
 }

@@ -3,7 +3,6 @@
 use super::content::{compose, Writer};
 use super::figures::Figure;
 use super::tables::Table;
-use stiffid::app::reproduce::document::Summary;
 use stiffid::app::reproduce::Report;
 use stiffid_view::Scene;
 
@@ -73,8 +72,8 @@ impl Writer for Markdown {
 }
 
 /// The text of `report.md`.
-pub fn report(report: &Report, summary: &Summary, figures: &[Figure]) -> String {
+pub fn report(report: &Report, figures: &[Figure]) -> String {
     let mut w = Markdown(String::new());
-    compose(report, summary, figures, &mut w);
+    compose(report, figures, &mut w);
     w.0
 }

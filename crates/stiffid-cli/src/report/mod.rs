@@ -19,7 +19,6 @@ use crate::output::ReportDir;
 use anyhow::Result;
 use figures::Figure;
 use std::path::Path;
-use stiffid::app::reproduce::document::Summary;
 use stiffid::app::reproduce::Report;
 use stiffid::app::simulate::document::deviation_csv;
 use stiffid_core::io::postures;
@@ -62,8 +61,7 @@ const FILES: [&str; 4] = [
 /// directory is recognisably ours from then on.
 pub fn write(dir: ReportDir, report: &Report, figures: &[Figure]) -> Result<()> {
     let study = &report.study;
-    let doc = Summary::new(report);
-    dir.write(FILES[0], summary::json(&doc)?.as_bytes())?;
+    dir.write(FILES[0], summary::json(report)?.as_bytes())?;
     let names: Vec<String> = study.groups.iter().map(|g| g.name.clone()).collect();
     let sims: Vec<_> = study.groups.iter().map(|g| g.simulation.clone()).collect();
     let mut texts: Vec<(String, String)> = study
@@ -75,8 +73,8 @@ pub fn write(dir: ReportDir, report: &Report, figures: &[Figure]) -> Result<()> 
         FILES[1].into(),
         deviation_csv(&names, &sims, &study.setup.noise().levels),
     ));
-    texts.push((FILES[2].into(), markdown::report(report, &doc, figures)));
-    texts.push((FILES[3].into(), html::report(report, &doc, figures)));
+    texts.push((FILES[2].into(), markdown::report(report, figures)));
+    texts.push((FILES[3].into(), html::report(report, figures)));
     let mut files = figures::files(figures);
     files.extend(
         texts

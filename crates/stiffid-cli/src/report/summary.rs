@@ -4,7 +4,7 @@
 use anyhow::Result;
 use serde_json::Value;
 use std::path::Path;
-use stiffid::app::reproduce::document::Summary;
+use stiffid::app::reproduce::Report;
 
 /// Whether `path` is a regular file `summary.json` (never waiting on a FIFO) whose `generator` is `generator` (e.g.
 /// [`stiffid::app::reproduce::document::GENERATOR`]).
@@ -16,8 +16,8 @@ pub fn is_ours(path: &Path, generator: &str) -> bool {
         .is_some_and(|v| v["generator"] == generator)
 }
 
-/// The text of `summary.json`.
-pub fn json(summary: &Summary) -> Result<String> {
+/// The text of `summary.json`: the document `report` serialises to.
+pub fn json(report: &Report) -> Result<String> {
     // Through a `Value`: its keys in alphabetical order, as summary.json has always had them.
-    crate::output::json(&serde_json::to_value(summary)?)
+    crate::output::json(&serde_json::to_value(report)?)
 }

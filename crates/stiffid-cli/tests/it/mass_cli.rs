@@ -76,7 +76,7 @@ fn predict_gives_the_librarys_modes_effective_mass_and_surge() {
         level: None,
     })
     .unwrap();
-    let library = serde_json::to_value(&outcome.document).unwrap();
+    let library = serde_json::to_value(outcome.written()).unwrap();
     for key in [
         "natural_frequencies_hz",
         "mode_shapes",

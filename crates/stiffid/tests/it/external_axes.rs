@@ -263,7 +263,7 @@ fn a_part_on_a_tilt_rotate_positioner_turns_under_the_tool_to_1e9() {
             );
         }
         let point_in_part = part.try_inverse().unwrap() * x.push(1.0);
-        let document = kinematics::document::Document::new(&report, &robot);
+        let document = report.document();
         close(
             &document.point_in_part_mm.unwrap(),
             (point_in_part.xyz() * 1e3).as_slice(),

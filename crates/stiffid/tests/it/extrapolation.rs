@@ -113,7 +113,7 @@ fn predict_flags_a_posture_with_one_axis_beyond_the_identification_range() {
         let inside = predicted(&setup, &c, posture(q2));
         assert_eq!(inside.outside_region, Some(vec![]));
         assert!(extrapolation(&inside.warnings).is_empty());
-        let doc = serde_json::to_value(predict::document::Document::new(&inside, "f")).unwrap();
+        let doc = serde_json::to_value(&inside).unwrap();
         assert_eq!(doc["extrapolates"], false);
         assert_eq!(doc["outside_region"], serde_json::json!([]));
     }
@@ -134,7 +134,7 @@ fn predict_flags_a_posture_with_one_axis_beyond_the_identification_range() {
         "{}",
         warnings[0]
     );
-    let doc = serde_json::to_value(predict::document::Document::new(&outside, "f")).unwrap();
+    let doc = serde_json::to_value(&outside).unwrap();
     assert_eq!(doc["extrapolates"], true);
     assert_eq!(doc["outside_region"][0]["axis"], 2);
     assert!((doc["outside_region"][0]["q_deg"].as_f64().unwrap() - 48.5).abs() < 1e-9);
@@ -179,7 +179,7 @@ fn a_stiffness_file_without_its_region_is_read_and_said_once_unchecked() {
         "{}",
         warnings[0]
     );
-    let doc = serde_json::to_value(predict::document::Document::new(&report, "f")).unwrap();
+    let doc = serde_json::to_value(&report).unwrap();
     assert_eq!(doc["extrapolates"], serde_json::Value::Null);
     // Validation over 43 postures says it once too.
     let v = validated(&setup, &c, DATA);
@@ -259,7 +259,7 @@ fn validate_flags_each_posture_beyond_the_identification_range() {
     let c = compliance(&setup, &stiffness_file(&setup));
     let inside = validated(&setup, &c, DATA);
     assert!(extrapolation(&inside.warnings).is_empty());
-    let doc = validate::document::Document::new(&inside, "f", &setup);
+    let doc = inside.document();
     assert_eq!(doc.extrapolated_postures, Some(0));
     assert!(doc.checks.iter().all(|c| c.extrapolates == Some(false)));
     // Posture 2's axis 2 moved to 60 deg (its one measurement), the others as measured.
@@ -269,11 +269,11 @@ fn validate_flags_each_posture_beyond_the_identification_range() {
     );
     assert_ne!(moved, DATA);
     let outside = validated(&setup, &c, &moved);
-    let doc = validate::document::Document::new(&outside, "f", &setup);
+    let doc = outside.document();
     assert_eq!(doc.extrapolated_postures, Some(1));
     let flagged: Vec<&str> = (doc.checks.iter())
         .filter(|c| c.extrapolates == Some(true))
-        .map(|c| c.posture.as_str())
+        .map(|c| c.posture)
         .collect();
     assert_eq!(flagged, ["2"]);
     let warnings = extrapolation(&outside.warnings);

@@ -50,7 +50,7 @@ fn joint_positions_equal_the_kinematics_job_and_link_frames_carry_the_chain() {
                 workpiece: None,
             })
             .unwrap();
-            let doc = kinematics::document::Document::new(&report, setup.robot());
+            let doc = report.document();
             for j in 0..6 {
                 let got = vector(p.joint_positions_m[j]) * 1e3;
                 let want = vector(doc.joint_positions_mm[j]);
@@ -430,7 +430,7 @@ fn track_and_positioner_stand_at_each_postures_station() {
             workpiece: None,
         })
         .unwrap();
-        let doc = kinematics::document::Document::new(&report, setup.robot());
+        let doc = report.document();
         for j in 0..6 {
             let got = vector(p.joint_positions_m[j]) * 1e3;
             let want = vector(doc.joint_positions_mm[j]);

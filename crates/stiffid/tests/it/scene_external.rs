@@ -64,7 +64,7 @@ fn assert_at_kinematics(setup: &Setup, scene: &Scene, q: &[Vector6<f64>], e: &[V
             workpiece: None,
         })
         .unwrap();
-        let doc = kinematics::document::Document::new(&report, setup.robot());
+        let doc = report.document();
         for j in 0..6 {
             let got = Vector3::from(p.joint_positions_m[j]) * 1e3;
             let want = Vector3::from(doc.joint_positions_mm[j]);

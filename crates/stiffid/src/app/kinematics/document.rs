@@ -1,15 +1,17 @@
 //! The document of the kinematics job ([`crate::app::kinematics`]): `stiffid kinematics --json`,
 //! Python's `Robot.kinematics(...)`. Millimetres and degrees for positions and angles, SI (m/rad,
 //! rad/rad) for the Jacobian, rows `[v; omega]`; base frame (the cell frame of a robot with
-//! external axes, [`crate::app::kinematics`]).
+//! external axes, [`crate::app::kinematics`]). The report is the document
+//! ([`super::Report`]), written through the borrowed view [`Document`]
+//! ([`super::Report::document`]), built as it is written.
 
 use crate::app::document::mass::{self, ModeShape};
 use crate::app::document::{finite, mm, rows};
 use crate::app::kinematics::Report;
 use serde::Serialize;
 use stiffid_core::common::warning::Warning;
+use stiffid_core::robot::external::{ExternalAxes, Role};
 use stiffid_core::robot::kinematics::Coordinates;
-use stiffid_core::Robot;
 
 /// The kinematics of one posture: mm and degrees for positions and angles, SI (m/rad, rad/rad)
 /// for the Jacobian, rows `[v; omega]`; base frame.
@@ -17,11 +19,11 @@ use stiffid_core::Robot;
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(tag = "kind", rename = "kinematics")]
 #[cfg_attr(feature = "schema", schemars(transform = crate::app::document::schema::Kind("kinematics")))]
-pub struct Document {
+pub struct Document<'a> {
     /// The robot's name.
-    pub robot: String,
+    pub robot: &'a str,
     /// Where the robot comes from (for a URDF: the file and the tip link used).
-    pub robot_source: String,
+    pub robot_source: &'a str,
     /// Axis angles q1..q6, deg.
     pub q_deg: [f64; 6],
     /// The joint coordinates of the Jacobian's columns.
@@ -76,7 +78,7 @@ pub struct Document {
     /// The point's position in the part's frame, mm; `null` as `part_position_mm`.
     pub point_in_part_mm: Option<[f64; 3]>,
     /// What to look at before trusting the document (placeholder masses).
-    pub warnings: Vec<Warning>,
+    pub warnings: &'a [Warning],
 }
 
 /// One external axis's value.
@@ -93,14 +95,16 @@ pub struct ExternalValue {
     pub value: f64,
 }
 
-impl Document {
-    /// The document of `report` on `robot`.
-    pub fn new(report: &Report, robot: &Robot) -> Self {
+impl Report {
+    /// The document this report is written as: its view in mm and degrees (what it serialises
+    /// to).
+    pub fn document(&self) -> Document<'_> {
+        let report = self;
         let f = &report.frames;
         let (frequencies, shapes) = mass::modes(report.modes.as_ref(), &report.point_directions);
         Document {
-            robot: robot.name().to_string(),
-            robot_source: robot.source().to_string(),
+            robot: &report.robot,
+            robot_source: &report.robot_source,
             q_deg: report.q.map(f64::to_degrees).into(),
             coordinates: report.coordinates,
             characteristic_length_mm: mm(report.characteristic_length),
@@ -119,7 +123,8 @@ impl Document {
             operational_inertia_si: report.operational_inertia.as_ref().map(rows),
             natural_frequencies_hz: frequencies,
             mode_shapes: shapes,
-            external: external_values(robot, &report.external),
+            external: (report.external_axes.as_ref())
+                .map_or(Vec::new(), |axes| external_values(axes, &report.external)),
             external_jacobian: (!report.external_jacobian.is_empty()).then(|| {
                 (0..6)
                     .map(|r| report.external_jacobian.iter().map(|c| c[r]).collect())
@@ -133,23 +138,20 @@ impl Document {
                 let x = f.point(&report.point);
                 p.inverse_transform_point(&x.into()).coords.map(mm).into()
             }),
-            warnings: report.warnings.clone(),
+            warnings: &report.warnings,
         }
     }
 }
 
-/// The values `e` (SI, the cell's order) of `robot`'s external axes in mm and deg, named.
-pub fn external_values(robot: &Robot, e: &[f64]) -> Vec<ExternalValue> {
-    let Some(axes) = robot.external() else {
-        return Vec::new();
-    };
+/// The values `e` (SI, the cell's order) of the external axes `axes` in mm and deg, named.
+fn external_values(axes: &ExternalAxes, e: &[f64]) -> Vec<ExternalValue> {
     (axes.axes().iter().zip(axes.column_names()).zip(e))
         .map(|((a, column), v)| ExternalValue {
             column,
             name: a.name.clone(),
             role: match a.role {
-                stiffid_core::robot::external::Role::Carrier => "carrier",
-                stiffid_core::robot::external::Role::Positioner => "positioner",
+                Role::Carrier => "carrier",
+                Role::Positioner => "positioner",
             },
             value: a.to_display(*v),
         })

@@ -22,9 +22,11 @@
 pub mod document;
 
 use nalgebra::{Isometry3, Matrix6, Vector3, Vector6};
+use serde::Serialize;
 use stiffid_core::common::warning::Warning;
 use stiffid_core::robot::dynamics::modes::{self, Modes};
 use stiffid_core::robot::dynamics::{operational_inertia, MassModel};
+use stiffid_core::robot::external::ExternalAxes;
 use stiffid_core::robot::kinematics::{Coordinates, Frames};
 use stiffid_core::{common::limits, dexterity, setup::prior, Result, Robot};
 
@@ -46,7 +48,7 @@ pub struct Request<'a> {
     /// [`limits::STIFFNESS_NM_PER_RAD`]: for the natural frequencies; `None`: none computed.
     pub stiffness: Option<Vector6<f64>>,
     /// The external axes' values `e` (SI: m for a linear axis, rad for a rotary one) in the
-    /// cell's order ([`stiffid_core::robot::external::ExternalAxes`]), within their travel; empty for a
+    /// cell's order ([`ExternalAxes`]), within their travel; empty for a
     /// robot without external axes.
     pub external: Vec<f64>,
     /// The part's frame at `e = 0`, cell frame, m (a setup's `[workpiece]`); `None`: the
@@ -55,9 +57,18 @@ pub struct Request<'a> {
     pub workpiece: Option<Isometry3<f64>>,
 }
 
-/// What the kinematics job found.
+/// What the kinematics job found. It serialises to its document (`stiffid kinematics --json`,
+/// Python's `Robot.kinematics(...)`) through the borrowed view [`document::Document`]
+/// ([`Report::document`]: mm and degrees, built as it is written).
 #[derive(Debug, Clone)]
 pub struct Report {
+    /// The robot's name.
+    pub robot: String,
+    /// Where the robot comes from (for a URDF: the file and the tip link used).
+    pub robot_source: String,
+    /// The robot's external axes (their names, roles and units, for the document), `None`
+    /// without.
+    pub external_axes: Option<ExternalAxes>,
     /// Axis angles, rad.
     pub q: Vector6<f64>,
     /// The point of the Jacobian, flange frame, m.
@@ -120,8 +131,15 @@ pub fn characteristic_length_or_derived(
     }
 }
 
-/// The kinematics job's report and its document.
-pub type Outcome = crate::app::Outcome<Report, document::Document>;
+impl Serialize for Report {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        self.document().serialize(s)
+    }
+}
+
+/// The kinematics job's report, which is its document (serialised through
+/// [`document::Document`]).
+pub type Outcome = crate::app::Outcome<Report>;
 
 /// Runs the kinematics job.
 ///
@@ -132,9 +150,10 @@ pub type Outcome = crate::app::Outcome<Report, document::Document>;
 /// [`limits::STIFFNESS_NM_PER_RAD`], and without a length those of
 /// [`prior::robot_characteristic_length`]; for the external axes, those of [`check_external`].
 pub fn run(request: &Request<'_>) -> Result<Outcome> {
-    let report = find(request)?;
-    let document = document::Document::new(&report, request.robot);
-    Ok(Outcome { report, document })
+    Ok(Outcome {
+        report: find(request)?,
+        document: crate::app::Itself,
+    })
 }
 
 /// What [`run`] finds, before its document.
@@ -185,6 +204,9 @@ fn find(request: &Request<'_>) -> Result<Report> {
         .and_then(|(m, c)| modes::modes(&m, &c));
     let point_directions = modes::point_directions(&jacobian, modes.as_ref());
     Ok(Report {
+        robot: robot.name().to_string(),
+        robot_source: robot.source().to_string(),
+        external_axes: robot.external().cloned(),
         operational_inertia: mass_matrix.and_then(|m| operational_inertia(&m, &jacobian)),
         mass_matrix,
         modes,
@@ -205,7 +227,7 @@ fn find(request: &Request<'_>) -> Result<Report> {
 }
 
 /// Whether `e` (SI, the cell's order) are the values of `robot`'s external axes within their
-/// travel ([`stiffid_core::robot::external::ExternalAxes::check`]), or empty for a robot without.
+/// travel ([`ExternalAxes::check`]), or empty for a robot without.
 ///
 /// # Errors
 /// [`stiffid_core::Error::InvalidField`] (`field`) when the robot has external axes and `e` is empty
@@ -217,11 +239,7 @@ pub fn check_external(robot: &Robot, e: &[f64], field: &str) -> Result<()> {
 
 /// The Jacobian columns of the external axes for the tool point at `x` (cell frame, m): the
 /// tool point's velocity relative to the part per unit of each axis (module docs).
-pub fn external_columns(
-    axes: &stiffid_core::robot::external::ExternalAxes,
-    e: &[f64],
-    x: &Vector3<f64>,
-) -> Vec<Vector6<f64>> {
+pub fn external_columns(axes: &ExternalAxes, e: &[f64], x: &Vector3<f64>) -> Vec<Vector6<f64>> {
     let carrier = axes.carrier_columns(e).into_iter().map(|d| {
         let mut c = Vector6::zeros();
         c.fixed_rows_mut::<3>(0).copy_from(&d);

@@ -1,6 +1,7 @@
 //! The document of the predict job ([`crate::app::predict`]): `stiffid predict --json`, Python's
 //! `predict(...)`. `*_std_*` keys are standard deviations from the compliance covariance, `null`
-//! without one.
+//! without one. The report is the document ([`super::Report`]), written through the borrowed
+//! view [`Document`] ([`super::Report::document`]), built as it is written.
 
 use crate::app::document::mass::{self, ModeShape};
 use crate::app::document::{interval_mm, mm, rows};
@@ -16,9 +17,9 @@ use stiffid_core::io::stiffness::RegionSection;
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(tag = "kind", rename = "predict")]
 #[cfg_attr(feature = "schema", schemars(transform = crate::app::document::schema::Kind("predict")))]
-pub struct Document {
+pub struct Document<'a> {
     /// The setup as given.
-    pub setup: String,
+    pub setup: &'a str,
     /// Axis angles q1..q6, deg.
     pub q_deg: [f64; 6],
     /// The wrench as given, fx, fy, fz (N), mx, my, mz (Nm), in `wrench_frame`.
@@ -104,7 +105,7 @@ pub struct Document {
     pub region: Option<RegionSection>,
     /// What to look at before trusting the document (placeholder masses, a posture outside the
     /// region the stiffness was identified from).
-    pub warnings: Vec<Warning>,
+    pub warnings: &'a [Warning],
 }
 
 /// One axis of a posture outside the region the stiffness was identified from.
@@ -189,9 +190,11 @@ pub struct StiffnessDocument {
     pub matrix_n_nm_per_um_urad: [[f64; 6]; 6],
 }
 
-impl Document {
-    /// The document of `report`, on the setup named `setup_name` (as the user gave it).
-    pub fn new(report: &Report, setup_name: &str) -> Self {
+impl Report {
+    /// The document this report is written as: its view in mm, mrad and N (what it serialises
+    /// to).
+    pub fn document(&self) -> Document<'_> {
+        let report = self;
         let tcp = &report.tcp;
         let d = &tcp.deflection;
         let (c, k) = (&report.cartesian_compliance, &report.cartesian_stiffness);
@@ -203,7 +206,7 @@ impl Document {
         };
         let surge = mass.and_then(|m| m.surge.as_ref());
         Document {
-            setup: setup_name.to_string(),
+            setup: &report.setup,
             q_deg: report.q.map(f64::to_degrees).into(),
             wrench_n_nm: report.wrench.into(),
             wrench_frame: report.frame.name(),
@@ -266,7 +269,7 @@ impl Document {
                 .map(AxisOutside::new)
                 .collect(),
             region: RegionSection::of(&report.compliance.region),
-            warnings: report.warnings.clone(),
+            warnings: &report.warnings,
         }
     }
 }

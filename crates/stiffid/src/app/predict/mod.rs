@@ -9,6 +9,7 @@
 pub mod document;
 
 use nalgebra::{Matrix6, Vector3, Vector6};
+use serde::Serialize;
 use stiffid_core::common::limits::Violation;
 use stiffid_core::common::warning::Warning;
 use stiffid_core::model::prediction::{requested_level, Interval};
@@ -62,9 +63,13 @@ pub struct Point {
     pub interval: Option<Interval>,
 }
 
-/// What the predict job found.
+/// What the predict job found. It serialises to its document (`stiffid predict --json`,
+/// Python's `predict(...)`) through the borrowed view [`document::Document`]
+/// ([`Report::document`]: mm, mrad and N, built as it is written).
 #[derive(Debug, Clone)]
 pub struct Report {
+    /// The setup as the user named it (a built-in setup's name or a file's path).
+    pub setup: String,
     /// Axis angles, rad.
     pub q: Vector6<f64>,
     /// The wrench as given, N and Nm, in `frame`.
@@ -112,8 +117,15 @@ pub struct Mass {
     pub surge: Option<Surge>,
 }
 
-/// The predict job's report and its document.
-pub type Outcome = crate::app::Outcome<Report, document::Document>;
+impl Serialize for Report {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        self.document().serialize(s)
+    }
+}
+
+/// The predict job's report, which is its document (serialised through
+/// [`document::Document`]).
+pub type Outcome = crate::app::Outcome<Report>;
 
 /// Runs the predict job.
 ///
@@ -124,9 +136,10 @@ pub type Outcome = crate::app::Outcome<Report, document::Document>;
 /// without a compliance, those of [`stiffid_core::Setup::model_compliance`] (no nominal stiffness); with one, those
 /// of [`Compliance::check`] (not one value per parameter of the setup's model).
 pub fn run(request: &Request<'_>) -> Result<Outcome> {
-    let report = find(request)?;
-    let document = document::Document::new(&report, &request.setup_name);
-    Ok(Outcome { report, document })
+    Ok(Outcome {
+        report: find(request)?,
+        document: crate::app::Itself,
+    })
 }
 
 /// What [`run`] finds, before its document.
@@ -193,6 +206,7 @@ fn find(request: &Request<'_>) -> Result<Report> {
         )
     };
     Ok(Report {
+        setup: request.setup_name.clone(),
         measuring_points: setup.tool().measuring_points.iter().map(point).collect(),
         tcp: point(&setup.tool().tcp),
         cartesian_compliance: cartesian::compliance(setup.arm(), &frames, &at, &compliance.h),

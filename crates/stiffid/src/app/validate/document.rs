@@ -1,27 +1,27 @@
 //! The document of the validate job ([`crate::app::validate`]): `stiffid validate --json`,
-//! Python's `validate(...)`.
+//! Python's `validate(...)`. The report is the document ([`super::Report`]), written through
+//! the borrowed view [`Document`] ([`super::Report::document`]), built as it is written.
 
 use crate::app::document::parameters::{stiffness, ParameterStiffness};
 use crate::app::document::{interval_mm, mm};
 use crate::app::validate::Report;
 use serde::Serialize;
 use stiffid_core::io::stiffness::RegionSection;
-use stiffid_core::Setup;
 
 /// Measured against predicted displacements (Eq. 22), mm.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(tag = "kind", rename = "validate")]
 #[cfg_attr(feature = "schema", schemars(transform = crate::app::document::schema::Kind("validate")))]
-pub struct Document {
+pub struct Document<'a> {
     /// The setup as given.
-    pub setup: String,
+    pub setup: &'a str,
     /// The measurements (a file's name, or `arrays`).
-    pub data: String,
+    pub data: &'a str,
     /// The stiffness validated: every parameter of the setup's model, in its unit.
     pub parameters: Vec<ParameterStiffness>,
     /// Every measurement, in the data's order.
-    pub checks: Vec<Check>,
+    pub checks: Vec<Check<'a>>,
     /// Mean of `delta_b` over the measurements, mm.
     pub mean_delta_b_mm: f64,
     /// Largest `delta_b`, mm.
@@ -69,9 +69,9 @@ pub struct PredictionIntervals {
 /// One measurement against its prediction.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct Check {
+pub struct Check<'a> {
     /// The posture's label (a file's; for arrays its number, 1-based).
-    pub posture: String,
+    pub posture: &'a str,
     /// The measuring point (1-based).
     pub point: usize,
     /// The line in the file (left out for arrays).
@@ -93,21 +93,22 @@ pub struct Check {
     pub extrapolates: Option<bool>,
 }
 
-impl Document {
-    /// The document of `report`, validated on `setup` (named `setup_name`, as the user gave it).
-    pub fn new(report: &Report, setup_name: &str, setup: &Setup) -> Self {
+impl Report {
+    /// The document this report is written as: its view in mm (what it serialises to).
+    pub fn document(&self) -> Document<'_> {
+        let report = self;
         let v = &report.validation;
         let origin = &report.origin;
         Document {
-            setup: setup_name.to_string(),
-            data: report.data_name.clone(),
-            parameters: stiffness(&setup.model().parameters(), &report.compliance.h),
+            setup: &report.setup,
+            data: &report.data_name,
+            parameters: stiffness(&report.parameters, &report.compliance.h),
             checks: v
                 .checks
                 .iter()
                 .enumerate()
                 .map(|(i, c)| Check {
-                    posture: origin.label(i).to_string(),
+                    posture: origin.label(i),
                     point: c.point + 1,
                     line: origin.lines.as_ref().map(|l| l[i]),
                     measured_mm: c.measured.map(mm).into(),

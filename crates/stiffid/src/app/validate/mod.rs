@@ -5,10 +5,11 @@ pub mod document;
 
 use super::measurements::{angle_warnings, on_measurements, Data, Origin};
 use crate::app::Warning;
+use serde::Serialize;
 use std::io::Read;
 use stiffid_core::common::limits::Violation;
 use stiffid_core::model::region::{self, PostureRange, Region};
-use stiffid_core::model::Compliance;
+use stiffid_core::model::{Compliance, Parameter};
 use stiffid_core::{Result, Setup};
 use stiffid_identify::validate::{compare_at, Validation};
 
@@ -30,11 +31,17 @@ pub struct Request<'a, R> {
     pub level: Option<f64>,
 }
 
-/// What the validate job found.
+/// What the validate job found. It serialises to its document (`stiffid validate --json`,
+/// Python's `validate(...)`) through the borrowed view [`document::Document`]
+/// ([`Report::document`]: mm, built as it is written).
 #[derive(Debug, Clone)]
 pub struct Report {
+    /// The setup as the user named it (a built-in setup's name or a file's path).
+    pub setup: String,
     /// The data's name (a file's, or `arrays`).
     pub data_name: String,
+    /// The parameters of the setup's model, in the order of the compliance's values.
+    pub parameters: Vec<Parameter>,
     /// The compliance validated.
     pub compliance: Compliance,
     /// Every measurement against its prediction, and the summary.
@@ -50,8 +57,15 @@ pub struct Report {
     pub warnings: Vec<Warning>,
 }
 
-/// The validate job's report and its document.
-pub type Outcome = crate::app::Outcome<Report, document::Document>;
+impl Serialize for Report {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        self.document().serialize(s)
+    }
+}
+
+/// The validate job's report, which is its document (serialised through
+/// [`document::Document`]).
+pub type Outcome = crate::app::Outcome<Report>;
 
 /// Runs the validate job.
 ///
@@ -60,20 +74,20 @@ pub type Outcome = crate::app::Outcome<Report, document::Document>;
 /// or the measurement's number): those of [`stiffid_core::io::measurements::parse`] and of
 /// [`compare`](stiffid_identify::validate::compare) (the compliance against the model, the measurements against the setup).
 pub fn run<R: Read>(request: Request<'_, R>) -> Result<Outcome> {
-    let (setup, setup_name) = (request.setup, request.setup_name.clone());
-    let report = find(request)?;
-    let document = document::Document::new(&report, &setup_name, setup);
-    Ok(Outcome { report, document })
+    Ok(Outcome {
+        report: find(request)?,
+        document: crate::app::Itself,
+    })
 }
 
 /// What [`run`] finds, before its document.
 fn find<R: Read>(request: Request<'_, R>) -> Result<Report> {
     let Request {
+        setup_name,
         setup,
         compliance,
         data,
         level,
-        ..
     } = request;
     let level =
         stiffid_core::model::prediction::requested_level(level, compliance.prediction.is_some())?;
@@ -90,6 +104,8 @@ fn find<R: Read>(request: Request<'_, R>) -> Result<Report> {
         warnings.extend(extrapolated(r, &origin, outside));
     }
     Ok(Report {
+        setup: setup_name,
+        parameters: setup.model().parameters(),
         outside_region,
         data_name,
         compliance: compliance.clone(),

@@ -154,7 +154,7 @@ pub struct FindingsJson {
 
 impl<'a> Summary<'a> {
     /// The summary of a reproduce report (the study's `elapsed_s` as it stands).
-    pub fn new(report: &'a Report) -> Self {
+    pub(crate) fn new(report: &'a Report) -> Self {
         let (study, f) = (&report.study, &report.findings);
         Summary {
             generator: GENERATOR,
