@@ -108,6 +108,6 @@ impl From<&Verdicts> for CandidatesDoc {
 ///
 /// # Errors
 /// The serialiser's.
-pub fn verdicts<S: Serializer>(v: &Option<Verdicts>, s: S) -> Result<S::Ok, S::Error> {
+pub(crate) fn verdicts<S: Serializer>(v: &Option<Verdicts>, s: S) -> Result<S::Ok, S::Error> {
     v.as_ref().map(CandidatesDoc::from).serialize(s)
 }

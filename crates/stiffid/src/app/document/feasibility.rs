@@ -62,7 +62,7 @@ pub fn postures(checks: &[Feasibility]) -> Vec<Posture> {
 ///
 /// # Errors
 /// The serialiser's.
-pub fn each<S: Serializer>(checks: &[Feasibility], s: S) -> Result<S::Ok, S::Error> {
+pub(crate) fn each<S: Serializer>(checks: &[Feasibility], s: S) -> Result<S::Ok, S::Error> {
     postures(checks).serialize(s)
 }
 

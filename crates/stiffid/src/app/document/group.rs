@@ -4,8 +4,8 @@
 //! (select, plan) and its simulated deviation rates (simulate, the study's summary).
 //!
 //! A report holds these in SI, as the design library gives them ([`Evaluation`], [`Near`], ...);
-//! the serde adapters here ([`criteria`], [`parameters`], [`calibration`], [`near`]) write them as
-//! the parts below, so that the report serialises to its document itself.
+//! the crate's serde adapters here (`criteria`, `parameters`, `calibration`, `near`) write them
+//! as the parts below, so that the report serialises to its document itself.
 
 use crate::app::document::{finite, mm};
 use crate::app::purpose::CalibrationOptions;
@@ -332,7 +332,7 @@ type Written<S> = Result<<S as Serializer>::Ok, <S as Serializer>::Error>;
 ///
 /// # Errors
 /// The serialiser's.
-pub fn criteria<S: Serializer>(e: &Evaluation, s: S) -> Written<S> {
+pub(crate) fn criteria<S: Serializer>(e: &Evaluation, s: S) -> Written<S> {
     Criteria::from(e).serialize(s)
 }
 
@@ -341,7 +341,7 @@ pub fn criteria<S: Serializer>(e: &Evaluation, s: S) -> Written<S> {
 ///
 /// # Errors
 /// The serialiser's.
-pub fn parameters<S: Serializer>(p: &[ParameterQuality], s: S) -> Written<S> {
+pub(crate) fn parameters<S: Serializer>(p: &[ParameterQuality], s: S) -> Written<S> {
     s.collect_seq(p.iter().map(Parameter::from))
 }
 
@@ -350,7 +350,7 @@ pub fn parameters<S: Serializer>(p: &[ParameterQuality], s: S) -> Written<S> {
 ///
 /// # Errors
 /// The serialiser's.
-pub fn calibration<S: Serializer>(
+pub(crate) fn calibration<S: Serializer>(
     c: &Option<(CalibrationOptions, CalibrationCriteria)>,
     s: S,
 ) -> Written<S> {
@@ -362,6 +362,6 @@ pub fn calibration<S: Serializer>(
 ///
 /// # Errors
 /// The serialiser's.
-pub fn near<S: Serializer>(pairs: &[Near], s: S) -> Written<S> {
+pub(crate) fn near<S: Serializer>(pairs: &[Near], s: S) -> Written<S> {
     s.collect_seq(pairs.iter().map(NearDoc::from))
 }

@@ -34,7 +34,7 @@ pub struct Bodies {
 
 impl Bodies {
     /// The bodies of `setup` (m).
-    pub fn of(setup: &Setup) -> Self {
+    pub(crate) fn of(setup: &Setup) -> Self {
         let shapes = setup.shapes().map(|g| g.shapes.len());
         Bodies {
             collision_shapes: shapes,

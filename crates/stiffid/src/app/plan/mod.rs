@@ -12,7 +12,7 @@ pub mod document;
 
 use crate::app::document::{group, units};
 use crate::app::Warning;
-use document::{Bodies, Checks, Without};
+use document::Bodies;
 use nalgebra::{Vector3, Vector6};
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -111,11 +111,11 @@ pub struct Posture {
     /// Predicted deviation rate of each joint at noise multiple 1 without this posture, %
     /// (`+infinity` where the rest cannot identify the joint).
     #[serde(flatten, serialize_with = "document::without")]
-    #[cfg_attr(feature = "schema", schemars(with = "Without"))]
+    #[cfg_attr(feature = "schema", schemars(with = "document::Without"))]
     pub without_pct: [f64; 6],
     /// The posture's checks in the cell.
     #[serde(flatten, serialize_with = "document::checks")]
-    #[cfg_attr(feature = "schema", schemars(with = "Checks"))]
+    #[cfg_attr(feature = "schema", schemars(with = "document::Checks"))]
     pub feasibility: Feasibility,
     /// Where it is read: the external axes' values (SI, the cell's order); empty when not given
     /// ([`Request::external`]).
