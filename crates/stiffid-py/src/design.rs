@@ -69,7 +69,7 @@ pub fn evaluate<'py>(
     };
     let outcome = py.detach(|| evaluate::run(&request)).map_err(raise)?;
     warn(py, &outcome.warnings)?;
-    to_python(py, &outcome.document, &CRITERIA_ARRAYS)
+    to_python(py, outcome.written(), &CRITERIA_ARRAYS)
 }
 
 /// The arguments of `Setup.select`, the shapes of the arrays checked.

@@ -53,7 +53,7 @@ pub fn plan<'py>(
     };
     let outcome = py.detach(|| job::run(&request)).map_err(raise)?;
     warn(py, &outcome.warnings)?;
-    to_python(py, &outcome.document, &[])
+    to_python(py, &outcome.report, &[])
 }
 
 /// Each row of external values (mm, deg) in SI; rows of another length, or for a robot without

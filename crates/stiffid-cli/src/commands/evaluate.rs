@@ -7,9 +7,9 @@ use crate::{feasibility, load};
 use anyhow::Result;
 use std::path::PathBuf;
 use stiffid::app::document::candidates::CandidatesDoc;
+use stiffid::app::document::feasibility::postures;
 use stiffid::app::document::group::{CalibrationDoc, Criteria, Infinite, InfiniteCriterion};
-use stiffid::app::evaluate::document::Document;
-use stiffid::app::evaluate::{self as job, Request};
+use stiffid::app::evaluate::{self as job, Report, Request};
 use stiffid::app::purpose::{CalibrationOptions, Purpose};
 use stiffid_core::common::limits::short;
 use stiffid_core::common::words::count;
@@ -111,22 +111,24 @@ calibration criteria (geometry {}, gravity {}, {} identifiable parameters; the i
 
 /// The parameters' lines of `stiffid evaluate`: identified or not, and the predicted deviation
 /// rate at noise multiple 1; the combinations the group cannot separate.
-fn parameters_text(doc: &Document) -> String {
+fn parameters_text(report: &Report) -> String {
     let mut s =
         "\nparameters: identified by the group, predicted deviation rate at noise level 1\n"
             .to_string();
-    for p in &doc.parameters {
-        let pct = p
-            .predicted_deviation_pct
-            .map_or("-".to_string(), |v| format!("{v:.4} %"));
+    for p in &report.parameters {
+        let pct = match p.predicted_deviation_pct {
+            v if v.is_finite() => format!("{v:.4} %"),
+            _ => "-".to_string(),
+        };
         let id = if p.identified {
             "identified"
         } else {
             "NOT identified"
         };
-        s += &format!("  {:<12} {:<7} {:<15} {pct}\n", p.name, p.unit, id);
+        let unit = p.parameter.unit.symbol();
+        s += &format!("  {:<12} {unit:<7} {id:<15} {pct}\n", p.parameter.name);
     }
-    for c in &doc.unidentifiable {
+    for c in &report.unidentifiable {
         s += &format!("  cannot separate: {c}\n");
     }
     s
@@ -144,15 +146,15 @@ pub fn run(args: &Args) -> Result<()> {
         calibration: args.purpose.options(),
         candidates: args.candidates.clone(),
     };
-    let stiffid::app::Outcome { report, document } = job::run(&request).map_err(|e| match e {
+    let outcome = job::run(&request).map_err(|e| match e {
         Error::InvalidOption { .. } => e.into(),
         e => anyhow::Error::new(e).context(args.postures.display().to_string()),
     })?;
-    output::warnings(&report.warnings);
-    let doc = document;
+    output::warnings(&outcome.warnings);
     if args.common.json {
-        return output::print(&json(&doc)?);
+        return output::print(&json(outcome.written())?);
     }
+    let report = &outcome.report;
     let e = &report.evaluation;
     let mut s = format!(
         "{} of {} on setup {}\n",
@@ -160,17 +162,18 @@ pub fn run(args: &Args) -> Result<()> {
         args.postures.display(),
         short(setup.name())
     );
-    if let Some(c) = &doc.calibration {
-        s += &calibration_text(c);
+    let feasibility = postures(&report.feasibility);
+    if let Some((o, c)) = &report.calibration {
+        s += &calibration_text(&CalibrationDoc::new(o, c));
         if args.purpose.purpose.calibration_only() {
-            s += &feasibility::text(&doc.feasibility);
+            s += &feasibility::text(&feasibility);
             return output::print(&s);
         }
         s += "\nstiffness criteria\n";
     }
-    s += &criteria_text(&doc.criteria, &setup);
+    s += &criteria_text(&Criteria::from(e), &setup);
     if !setup.model().is_drives_only() || !separable(e) {
-        s += &parameters_text(&doc);
+        s += &parameters_text(report);
     }
     s += "\npredicted mean deviation rate, % (first order)\n";
     let not_computed = match setup.try_model_nominal_compliance("the prediction") {
@@ -183,10 +186,10 @@ pub fn run(args: &Args) -> Result<()> {
     } else {
         s += &deviation_text(&setup, e);
     }
-    if let Some(c) = &doc.candidates {
-        s += &candidates_text(c);
+    if let Some(v) = &report.candidates {
+        s += &candidates_text(&CandidatesDoc::from(v));
     }
-    s += &feasibility::text(&doc.feasibility);
+    s += &feasibility::text(&feasibility);
     output::print(&s)
 }
 

@@ -69,9 +69,9 @@ pub fn schema(name: &str) -> Result<Schema> {
     };
     let mut schema = match name {
         "kinematics" => closed::<stiffid::app::kinematics::document::Document<'static>>(),
-        "evaluate" => closed::<stiffid::app::evaluate::document::Document>(),
+        "evaluate" => closed::<stiffid::app::evaluate::Report>(),
         "select" => closed::<stiffid::app::select::document::Document>(),
-        "plan" => closed::<stiffid::app::plan::document::Document>(),
+        "plan" => closed::<stiffid::app::plan::Report>(),
         "predict" => closed::<stiffid::app::predict::document::Document<'static>>(),
         "identify" => closed::<stiffid::app::identify::document::Document>(),
         "validate" => closed::<stiffid::app::validate::document::Document<'static>>(),

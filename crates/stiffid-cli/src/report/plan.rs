@@ -11,8 +11,9 @@ use crate::output::{json, ReportDir};
 use anyhow::Result;
 use nalgebra::Vector6;
 use std::path::Path;
-use stiffid::app::plan::document::{Bodies, Document};
-use stiffid::app::plan::{self as job, Request};
+use stiffid::app::document::{finite, mm};
+use stiffid::app::plan::document::{self as document, Bodies, Checks, Without};
+use stiffid::app::plan::{self as job, Report, Request};
 use stiffid_core::common::words::{count, is_are};
 use stiffid_core::Setup;
 use stiffid_design::target::TargetOutcome;
@@ -36,12 +37,12 @@ pub fn open(dir: &Path, force: bool) -> Result<ReportDir> {
     })
 }
 
-/// A measurement plan to render: the plan document, the setup and the group drawn, the target
-/// curve if any.
+/// A measurement plan to render: the plan (its document), the setup and the group drawn, the
+/// target curve if any.
 struct Plan<'a> {
     setup: &'a Setup,
     postures: &'a [Vector6<f64>],
-    doc: Document,
+    doc: Report,
     target: Option<&'a TargetOutcome>,
 }
 
@@ -91,11 +92,7 @@ pub fn write(
         external,
         scene: true,
     };
-    let job::Outcome {
-        document: doc,
-        scene,
-        ..
-    } = job::run(&request)?;
+    let job::Outcome { report: doc, scene } = job::run(&request)?;
     let scene = scene.ok_or_else(|| anyhow::anyhow!("the plan job returned no scene"))?;
     let plan = Plan {
         setup,
@@ -115,7 +112,7 @@ pub fn write(
     let files = vec![
         ("plan.html".to_string(), page.into_bytes()),
         ("plan.glb".into(), glb::glb(&scene)),
-        ("plan.csv".into(), plan.doc.csv().into_bytes()),
+        ("plan.csv".into(), document::csv(&plan.doc).into_bytes()),
         ("plan.json".into(), json(&plan.doc)?.into_bytes()),
     ];
     dir.write_all(&files)?;
@@ -138,13 +135,15 @@ fn find<'a>(figures: &'a [Figure], name: &str) -> Option<&'a Figure> {
 
 /// What the cell's checks and the drawings take the robot's bodies to be.
 fn bodies_sentence(b: &Bodies) -> String {
-    let tool = b.tool_radius_mm;
-    match (b.collision_shapes, &b.link_radii_mm) {
+    let tool = mm(b.tool_radius);
+    match (b.collision_shapes, &b.link_radii) {
         (Some(n), _) => format!(
             "The cell's checks and the drawings use the robot's own {n} collision shapes (its URDF's, meshes as convex hulls) and a tool capsule of radius {tool:.0} mm."
         ),
         (None, radii) => {
-            let radii: Vec<String> = radii.iter().flatten().map(|r| format!("{r:.0}")).collect();
+            let radii: Vec<String> = (radii.iter().flatten())
+                .map(|r| format!("{:.0}", mm(*r)))
+                .collect();
             format!(
                 "The cell's checks and the drawings use capsules for the robot's bodies (radii {} mm for the base and links 1-6) and the tool (radius {tool:.0} mm).",
                 radii.join(", ")
@@ -155,7 +154,7 @@ fn bodies_sentence(b: &Bodies) -> String {
 
 /// The body of `plan.html`.
 fn compose(
-    plan: &Document,
+    plan: &Report,
     figures: &[Figure],
     scene: &Scene,
     provenance: &Provenance,
@@ -170,8 +169,8 @@ fn compose(
         "Robot {}, {} measuring point(s), a load of {} N hung from the loading point by a rope over the anchor (pulley) at ({}) mm, base frame. Postures chosen by the design criterion `{}`.",
         plan.robot,
         plan.measuring_points,
-        plan.load_n,
-        fixed(&plan.anchor_mm, 3).join(", "),
+        plan.load,
+        fixed(&plan.anchor.map(mm).into(), 3).join(", "),
         plan.criterion
     ));
     w.paragraph(&format!(
@@ -189,10 +188,10 @@ fn compose(
     w.scene(scene, "plan.glb");
     w.heading(2, "Predicted accuracy");
     w.paragraph("The predicted mean deviation rate |k_identified - k_true| / k_true of each joint (first order, `100 sqrt(2/pi) sqrt(m) sqrt([(S^T S)^-1]_jj)`) at the setup's noise levels, if every posture is measured as planned.");
-    if !plan.load_steps_n.is_empty() {
+    if !plan.load_steps.is_empty() {
         w.paragraph(&format!(
             "With the load steps, every reading carries the tracker noise and each posture's unloaded reading is shared by its steps: the least squares over every step is worth one load of {} N with {} times the variance of one reading per displacement coordinate (docs/model.md, load steps in the design).",
-            plan.load_n,
+            plan.load,
             num(plan.displacement_variance_multiple)
         ));
     }
@@ -211,16 +210,19 @@ fn compose(
             w.figure(f);
         }
     }
-    if !plan.near_postures.is_empty() {
-        let pairs: Vec<String> = (plan.near_postures.iter())
-            .map(|p| match p.same_pose_other_branch {
+    if !plan.near.is_empty() {
+        let pairs: Vec<String> = (plan.near.iter())
+            .map(|p| match p.same_pose_other_branch() {
                 true => format!(
                     "{} and {} (the same flange pose on another branch)",
-                    p.postures[0], p.postures[1]
+                    p.a + 1,
+                    p.b + 1
                 ),
                 false => format!(
                     "{} and {} (axis angles within {:.2} deg)",
-                    p.postures[0], p.postures[1], p.joint_distance_deg
+                    p.a + 1,
+                    p.b + 1,
+                    p.joint_distance.to_degrees()
                 ),
             })
             .collect();
@@ -247,8 +249,8 @@ fn compose(
 
 /// What to read in each posture: unloaded and loaded, or unloaded and at every load step of the
 /// setup (`[loading] steps_n`).
-fn measure_item(plan: &Document) -> String {
-    let steps = &plan.load_steps_n;
+fn measure_item(plan: &Report) -> String {
+    let steps = &plan.load_steps;
     if steps.is_empty() {
         return "Measure every measuring point with the tracker unloaded, hang the load, measure again: the difference is the displacement.".into();
     }
@@ -257,21 +259,21 @@ fn measure_item(plan: &Document) -> String {
         "Measure every measuring point with the tracker unloaded, then at each load step, rising: {} N ({} steps; the rope pulls the same way at every step). Write every reading, the unloaded ones with load 0, into a readings CSV with a `load_n` column (docs/reference.md, Readings CSV): each step's displacement is its reading minus the unloaded one, and at step f it is f / {} of the displacement below.",
         levels.join(", "),
         steps.len(),
-        plan.load_n
+        plan.load
     )
 }
 
 /// The group's predicted deviation rate per joint at each noise level of the setup.
-fn accuracy(plan: &Document) -> Table {
+fn accuracy(plan: &Report) -> Table {
     let mut header = vec!["noise level (x variance)".to_string()];
     header.extend((1..=6).map(|j| format!("joint {j}, %")));
     let rows = plan
         .noise_levels
         .iter()
-        .zip(&plan.predicted_deviation_pct)
+        .zip(&plan.evaluation.predicted_deviation_pct)
         .map(|(m, rates)| {
             let mut row = vec![num(*m)];
-            row.extend(rates.iter().map(|r| pct(*r)));
+            row.extend(rates.iter().map(|r| pct(finite(*r))));
             row
         })
         .collect();
@@ -280,7 +282,7 @@ fn accuracy(plan: &Document) -> Table {
 
 /// Per parameter of the model: identified or not, predicted deviation rate at noise multiple 1;
 /// then the combinations the group cannot separate.
-fn parameters_table(plan: &Document) -> Table {
+fn parameters_table(plan: &Report) -> Table {
     let header = [
         "parameter",
         "unit",
@@ -294,10 +296,10 @@ fn parameters_table(plan: &Document) -> Table {
         .iter()
         .map(|p| {
             vec![
-                p.name.clone(),
-                p.unit.to_string(),
+                p.parameter.name.clone(),
+                p.parameter.unit.symbol().to_string(),
                 if p.identified { "yes" } else { "NO" }.to_string(),
-                pct(p.predicted_deviation_pct),
+                pct(finite(p.predicted_deviation_pct)),
             ]
         })
         .collect();
@@ -312,7 +314,7 @@ fn parameters_table(plan: &Document) -> Table {
     Table { header, rows }
 }
 
-fn postures_table(plan: &Document) -> Table {
+fn postures_table(plan: &Report) -> Table {
     let mut header: Vec<String> = [
         "posture",
         "q1..q6, deg",
@@ -334,25 +336,26 @@ fn postures_table(plan: &Document) -> Table {
         .postures
         .iter()
         .map(|r| {
+            let checks = Checks::from(&r.feasibility);
             vec![
                 r.posture.to_string(),
-                fixed(&r.q_deg, 2).join(", "),
-                fixed(&r.rope_direction, 3).join(", "),
-                format!("{:.0}", r.rope_length_mm),
-                format!("{:.0}", r.loading_point_z_mm),
-                r.min_clearance_mm.map_or("-".into(), |c| format!("{c:.0}")),
-                match r.failed_checks.is_empty() {
+                fixed(&r.q.map(f64::to_degrees).into(), 2).join(", "),
+                fixed(&r.rope_direction.into(), 3).join(", "),
+                format!("{:.0}", mm(r.rope_length)),
+                format!("{:.0}", mm(r.loading_point_z)),
+                (checks.min_clearance_mm).map_or("-".into(), |c| format!("{c:.0}")),
+                match checks.failed_checks.is_empty() {
                     true => "pass".into(),
-                    false => format!("FAIL: {}", r.failed_checks.join("; ")),
+                    false => format!("FAIL: {}", checks.failed_checks.join("; ")),
                 },
-                pct(r.without_worst_pct),
+                pct(Without::from(&r.without_pct).without_worst_pct),
             ]
         })
         .collect();
     Table { header, rows }
 }
 
-fn displacements_table(plan: &Document) -> Table {
+fn displacements_table(plan: &Report) -> Table {
     let mut header = vec!["posture".to_string()];
     header.extend((1..=plan.measuring_points).map(|k| format!("point {k}: dx, dy, dz, mm")));
     let rows = plan
@@ -360,7 +363,7 @@ fn displacements_table(plan: &Document) -> Table {
         .iter()
         .map(|r| {
             let mut row = vec![r.posture.to_string()];
-            row.extend(r.displacements_mm.iter().map(|d| fixed(d, 3).join(", ")));
+            row.extend((r.displacements.iter()).map(|d| fixed(&d.map(mm).into(), 3).join(", ")));
             row
         })
         .collect();

@@ -2,7 +2,7 @@
 //! candidate of the model comparison together with the setup's model
 //! ([`stiffid_design::candidates`]).
 
-use serde::Serialize;
+use serde::{Serialize, Serializer};
 use stiffid_core::model::ParameterKind;
 use stiffid_design::candidates::{Verdict, Verdicts};
 use stiffid_identify::compare::document::DroppedDoc;
@@ -101,4 +101,13 @@ impl From<&Verdicts> for CandidatesDoc {
             dropped: v.dropped.iter().map(DroppedDoc::from).collect(),
         }
     }
+}
+
+/// How a group identifies each candidate (the design library's [`Verdicts`]) or none, written
+/// as a [`CandidatesDoc`] or `null`. Schema: `Option<CandidatesDoc>`.
+///
+/// # Errors
+/// The serialiser's.
+pub(crate) fn verdicts<S: Serializer>(v: &Option<Verdicts>, s: S) -> Result<S::Ok, S::Error> {
+    v.as_ref().map(CandidatesDoc::from).serialize(s)
 }

@@ -1,7 +1,7 @@
 //! The cell's feasibility checks of a group of postures ([`stiffid_core::cell::Checker`]) in documents:
 //! `feasibility` of the evaluate document, the skipped postures of a pool.
 
-use serde::Serialize;
+use serde::{Serialize, Serializer};
 use stiffid_core::cell::{Check, Feasibility};
 
 /// One posture's checks in the cell.
@@ -56,6 +56,14 @@ pub fn postures(checks: &[Feasibility]) -> Vec<Posture> {
             violations: f.violations().map(violation).collect(),
         })
         .collect()
+}
+
+/// Each posture's checks in the cell, written as [`postures`] has them. Schema: `Vec<Posture>`.
+///
+/// # Errors
+/// The serialiser's.
+pub(crate) fn each<S: Serializer>(checks: &[Feasibility], s: S) -> Result<S::Ok, S::Error> {
+    postures(checks).serialize(s)
 }
 
 fn violation(c: &Check) -> Violation {

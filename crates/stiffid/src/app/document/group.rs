@@ -2,12 +2,18 @@
 //! evaluate and select documents, the study's summary), its calibration criteria, how well it
 //! identifies each parameter of the model (evaluate, plan), its postures that are not distinct
 //! (select, plan) and its simulated deviation rates (simulate, the study's summary).
+//!
+//! A report holds these in SI, as the design library gives them ([`Evaluation`], [`Near`], ...);
+//! the crate's serde adapters here (`criteria`, `parameters`, `calibration`, `near`) write them
+//! as the parts below, so that the report serialises to its document itself.
 
 use crate::app::document::{finite, mm};
-use serde::Serialize;
+use crate::app::purpose::CalibrationOptions;
+use serde::{Serialize, Serializer};
 use stiffid_core::model::Parameter as ModelParameter;
-use stiffid_core::Setup;
+use stiffid_design::criteria::ParameterQuality;
 use stiffid_design::distinct::Near;
+use stiffid_design::observability::CalibrationCriteria;
 use stiffid_design::study::simulate::GroupSimulation;
 use stiffid_design::{Criterion, Evaluation};
 
@@ -170,17 +176,15 @@ pub struct Parameter {
     pub predicted_deviation_pct: Option<f64>,
 }
 
-/// Every parameter of `setup`'s model, drives first, as the group of `e` identifies it.
-pub fn parameters(e: &Evaluation, setup: &Setup) -> Vec<Parameter> {
-    e.parameters(setup)
-        .into_iter()
-        .map(|p| Parameter {
-            name: p.parameter.name,
+impl From<&ParameterQuality> for Parameter {
+    fn from(p: &ParameterQuality) -> Self {
+        Self {
+            name: p.parameter.name.clone(),
             unit: p.parameter.unit.symbol(),
             identified: p.identified,
             predicted_deviation_pct: finite(p.predicted_deviation_pct),
-        })
-        .collect()
+        }
+    }
 }
 
 /// The calibration criteria of a group (docs/model.md, "Design for calibration"), over the
@@ -216,10 +220,7 @@ pub struct CalibrationDoc {
 
 impl CalibrationDoc {
     /// The document of the options `o` and the criteria `c`.
-    pub fn new(
-        o: &crate::app::purpose::CalibrationOptions,
-        c: &stiffid_design::observability::CalibrationCriteria,
-    ) -> Self {
+    pub fn new(o: &CalibrationOptions, c: &CalibrationCriteria) -> Self {
         use stiffid_core::common::choice::Choice;
         Self {
             criterion: o.criterion().name(),
@@ -321,4 +322,46 @@ impl Group {
                 .collect(),
         }
     }
+}
+
+/// What a serde serialiser returns.
+type Written<S> = Result<<S as Serializer>::Ok, <S as Serializer>::Error>;
+
+/// A group's evaluation written as its [`Criteria`] (flattened into a document). Schema:
+/// `Criteria`.
+///
+/// # Errors
+/// The serialiser's.
+pub(crate) fn criteria<S: Serializer>(e: &Evaluation, s: S) -> Written<S> {
+    Criteria::from(e).serialize(s)
+}
+
+/// How well a group identifies every parameter of the model ([`Evaluation::parameters`]),
+/// written as [`Parameter`]s. Schema: `Vec<Parameter>`.
+///
+/// # Errors
+/// The serialiser's.
+pub(crate) fn parameters<S: Serializer>(p: &[ParameterQuality], s: S) -> Written<S> {
+    s.collect_seq(p.iter().map(Parameter::from))
+}
+
+/// The calibration options and a group's calibration criteria (SI) or none, written as a
+/// [`CalibrationDoc`] or `null`. Schema: `Option<CalibrationDoc>`.
+///
+/// # Errors
+/// The serialiser's.
+pub(crate) fn calibration<S: Serializer>(
+    c: &Option<(CalibrationOptions, CalibrationCriteria)>,
+    s: S,
+) -> Written<S> {
+    (c.as_ref().map(|(o, c)| CalibrationDoc::new(o, c))).serialize(s)
+}
+
+/// The pairs of postures of a group that are not distinct, written as [`NearDoc`]s. Schema:
+/// `Vec<NearDoc>`.
+///
+/// # Errors
+/// The serialiser's.
+pub(crate) fn near<S: Serializer>(pairs: &[Near], s: S) -> Written<S> {
+    s.collect_seq(pairs.iter().map(NearDoc::from))
 }

@@ -118,3 +118,29 @@ pub fn deg6_each<S: Serializer>(postures: &[Vector6<f64>], s: S) -> Written<S> {
 pub fn interval_mm<S: Serializer>(v: &Option<Interval>, s: S) -> Written<S> {
     v.map(super::interval_mm).serialize(s)
 }
+
+/// Seven lengths in m (the base's and links 1-6's) or none, written as seven numbers in mm or
+/// `null`. Schema: `Option<[f64; 7]>`.
+///
+/// # Errors
+/// The serialiser's.
+pub fn mm7_option<S: Serializer>(v: &Option<[f64; 7]>, s: S) -> Written<S> {
+    v.map(|v| v.map(super::mm)).serialize(s)
+}
+
+/// A unit vector (no unit), written as three numbers. Schema: `[f64; 3]`.
+///
+/// # Errors
+/// The serialiser's.
+pub fn plain3<S: Serializer>(v: &Vector3<f64>, s: S) -> Written<S> {
+    <[f64; 3]>::from(*v).serialize(s)
+}
+
+/// A choice (a criterion, a purpose, ...) written as its name (`relative-a`). Schema: one of
+/// its names (`schema_with`, e.g. [`crate::app::document::schema::one_of`]).
+///
+/// # Errors
+/// The serialiser's.
+pub fn name<S: Serializer, T: stiffid_core::common::choice::Choice>(v: &T, s: S) -> Written<S> {
+    s.serialize_str(v.name())
+}

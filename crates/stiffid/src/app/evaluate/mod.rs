@@ -4,17 +4,18 @@
 //! model the group identifies, and which candidates of the model comparison it identifies
 //! together with the model ([`stiffid_design::candidates`]).
 
-pub mod document;
-
 use super::purpose::{self, CalibrationOptions, Purpose};
+use crate::app::document::{candidates, feasibility, group};
 use crate::app::Warning;
 use nalgebra::Vector6;
+use serde::Serialize;
 use stiffid_core::cell::{Checker, Feasibility};
 use stiffid_core::common::error::JobOption;
 use stiffid_core::math::lsq::Factor;
 use stiffid_core::observation::rope_observation_matrix;
 use stiffid_core::{Error, Result, Setup};
 use stiffid_design::candidates::{pool, verdicts, Verdicts};
+use stiffid_design::criteria::ParameterQuality;
 use stiffid_design::observability::CalibrationCriteria;
 use stiffid_design::{evaluate, unidentifiable, Evaluation};
 
@@ -35,28 +36,62 @@ pub struct Request<'a> {
     pub candidates: Option<Vec<String>>,
 }
 
-/// What the evaluation found.
-#[derive(Debug, Clone)]
+/// What the evaluation found. It is its own document (`stiffid evaluate --json`, Python's
+/// `Setup.evaluate`): the criteria, every posture's feasibility in the cell, and how well the
+/// group identifies each parameter, its SI values written in the document's units by the parts
+/// of [`crate::app::document::group`], [`feasibility`] and [`candidates`].
+#[derive(Debug, Clone, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(tag = "kind", rename = "evaluate")]
+#[cfg_attr(
+    feature = "schema",
+    schemars(
+        description = "The evaluate document: the criteria, every posture's feasibility in the cell, and how well the\ngroup identifies each parameter."
+    )
+)]
+#[cfg_attr(feature = "schema", schemars(transform = crate::app::document::schema::Kind("evaluate")))]
 pub struct Report {
     /// Every criterion, the relative standard deviations and the predicted deviation rates.
+    #[serde(flatten, serialize_with = "group::criteria")]
+    #[cfg_attr(feature = "schema", schemars(with = "group::Criteria"))]
     pub evaluation: Evaluation,
-    /// Each posture's checks in the cell, in order.
+    /// Every posture's checks in the cell, in the order of the group.
+    #[serde(serialize_with = "feasibility::each")]
+    #[cfg_attr(feature = "schema", schemars(with = "Vec<feasibility::Posture>"))]
     pub feasibility: Vec<Feasibility>,
-    /// The combinations of the model's parameters the group cannot separate (empty when it
-    /// identifies every parameter), e.g. `0.71 k6 - 0.71 flange_rz`.
+    /// Every parameter of the setup's model, drives first: whether the group identifies it and
+    /// how well.
+    #[serde(serialize_with = "group::parameters")]
+    #[cfg_attr(feature = "schema", schemars(with = "Vec<group::Parameter>"))]
+    pub parameters: Vec<ParameterQuality>,
+    /// The combinations of parameters the group cannot separate (e.g. `0.71 k6 - 0.71 twin6`);
+    /// empty when it identifies every parameter.
     pub unidentifiable: Vec<String>,
-    /// With [`Purpose::Calibration`] or [`Purpose::Both`]: the calibration options and the
-    /// group's calibration criteria.
+    /// With `--for calibration` or `both`: the group's calibration criteria.
+    #[serde(
+        skip_serializing_if = "Option::is_none",
+        serialize_with = "group::calibration"
+    )]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<group::CalibrationDoc>"))]
     pub calibration: Option<(CalibrationOptions, CalibrationCriteria)>,
-    /// With a purpose with the stiffness: how the group identifies each candidate of the model
+    /// Unless `--for calibration`: how the group identifies each candidate of the model
     /// comparison together with the setup's model.
+    #[serde(
+        skip_serializing_if = "Option::is_none",
+        serialize_with = "candidates::verdicts"
+    )]
+    #[cfg_attr(
+        feature = "schema",
+        schemars(with = "Option<candidates::CandidatesDoc>")
+    )]
     pub candidates: Option<Verdicts>,
     /// None today: the job's warnings, for the pattern ([`crate::app`]).
+    #[serde(skip)]
     pub warnings: Vec<Warning>,
 }
 
-/// The evaluate job's report and its document.
-pub type Outcome = crate::app::Outcome<Report, document::Document>;
+/// The evaluate job's report, which is its document.
+pub type Outcome = crate::app::Outcome<Report>;
 
 /// Evaluates the group.
 ///
@@ -68,9 +103,10 @@ pub type Outcome = crate::app::Outcome<Report, document::Document>;
 /// ([`JobOption::Candidates`]) for candidates with for = calibration or check, [`purpose::design`] and
 /// [`stiffid_design::observability::CalibrationDesign::evaluate`]; [`pool`]'s for the candidates; [`verdicts`]'.
 pub fn run(request: &Request) -> Result<Outcome> {
-    let report = find(request)?;
-    let document = document::Document::new(&report, request.setup);
-    Ok(Outcome { report, document })
+    Ok(Outcome {
+        report: find(request)?,
+        document: crate::app::Itself,
+    })
 }
 
 /// What [`run`] finds, before its document.
@@ -112,6 +148,7 @@ fn find(request: &Request) -> Result<Report> {
         candidates,
         feasibility: postures.iter().map(|q| checker.feasibility(q)).collect(),
         unidentifiable: unidentifiable(&evaluation, setup),
+        parameters: evaluation.parameters(setup),
         evaluation,
         calibration,
         warnings: Vec::new(),

@@ -10,14 +10,18 @@
 
 pub mod document;
 
+use crate::app::document::{group, units};
 use crate::app::Warning;
+use document::Bodies;
 use nalgebra::{Vector3, Vector6};
+use serde::Serialize;
+use std::collections::BTreeMap;
 use stiffid_core::cell::{Checker, Feasibility};
 use stiffid_core::observation::stiffness::rope_displacements;
 use stiffid_core::{Result, Setup};
-use stiffid_design::criteria::predicted_deviation_pct;
+use stiffid_design::criteria::{predicted_deviation_pct, ParameterQuality};
 use stiffid_design::distinct::{near_pairs, Near};
-use stiffid_design::{Criterion, Evaluation, Evaluator};
+use stiffid_design::{unidentifiable, Criterion, Evaluation, Evaluator};
 
 /// Most postures a plan takes: each posture's leave-one-out factors the group without it, so the
 /// work grows with the square of the count.
@@ -47,13 +51,13 @@ pub struct Request<'a> {
     pub scene: bool,
 }
 
-/// The plan job's report, its document and, if asked, its scene. It reads as its report.
+/// The plan job's report, which is its document, and, if asked, its scene. It reads as its
+/// report.
 #[derive(Debug, Clone)]
 pub struct Outcome {
-    /// What the plan found, SI units.
+    /// What the plan found, SI units; the plan's document (`plan.json`, Python's
+    /// `stiffid.plan`).
     pub report: Report,
-    /// The plan's document (`plan.json`, Python's `stiffid.plan`).
-    pub document: document::Document,
     /// With [`Request::scene`]: the plan's 3D scene (`plan.html`, `plan.glb`, Python's
     /// `stiffid.scene`).
     pub scene: Option<stiffid_view::Scene>,
@@ -67,43 +71,140 @@ impl std::ops::Deref for Outcome {
     }
 }
 
-/// What the plan says about one posture.
-#[derive(Debug, Clone)]
+/// What the plan says about one posture: what it asks of the operator, and what it expects.
+#[derive(Debug, Clone, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[cfg_attr(
+    feature = "schema",
+    schemars(
+        rename = "PlannedPosture",
+        description = "What the plan asks of the operator in one posture, and what it expects."
+    )
+)]
 pub struct Posture {
-    /// Axis angles, rad.
+    /// 1-based position in the group.
+    pub posture: usize,
+    /// Axis angles q1..q6, deg.
+    #[serde(rename = "q_deg", serialize_with = "units::deg6")]
+    #[cfg_attr(feature = "schema", schemars(with = "[f64; 6]"))]
     pub q: Vector6<f64>,
+    /// Where it is read with external axes: each axis's value by its column's name (`e1_mm`,
+    /// `e2_deg`, ...: mm for a linear axis, deg for a rotary one), the station or the table's
+    /// angles; none when the plan was given none.
+    #[serde(flatten)]
+    pub columns: BTreeMap<String, f64>,
     /// Unit vector from the loading point to the rope anchor, base frame.
+    #[serde(serialize_with = "units::plain3")]
+    #[cfg_attr(feature = "schema", schemars(with = "[f64; 3]"))]
     pub rope_direction: Vector3<f64>,
-    /// Distance from the loading point to the anchor, m.
+    /// Distance from the loading point to the anchor, mm.
+    #[serde(rename = "rope_length_mm", serialize_with = "units::mm")]
     pub rope_length: f64,
-    /// Height of the loading point (base z), m.
+    /// Height of the loading point (base z), mm.
+    #[serde(rename = "loading_point_z_mm", serialize_with = "units::mm")]
     pub loading_point_z: f64,
-    /// Displacement of every measuring point under the load with the nominal stiffness, m, base
-    /// frame.
+    /// Expected displacement `[dx, dy, dz]` of every measuring point under the load with the
+    /// nominal stiffness, base frame, mm.
+    #[serde(rename = "displacements_mm", serialize_with = "units::mm3_each")]
+    #[cfg_attr(feature = "schema", schemars(with = "Vec<[f64; 3]>"))]
     pub displacements: Vec<Vector3<f64>>,
-    /// Predicted deviation rate of each joint at noise multiple 1 without this posture, %.
+    /// Predicted deviation rate of each joint at noise multiple 1 without this posture, %
+    /// (`+infinity` where the rest cannot identify the joint).
+    #[serde(flatten, serialize_with = "document::without")]
+    #[cfg_attr(feature = "schema", schemars(with = "document::Without"))]
     pub without_pct: [f64; 6],
     /// The posture's checks in the cell.
+    #[serde(flatten, serialize_with = "document::checks")]
+    #[cfg_attr(feature = "schema", schemars(with = "document::Checks"))]
     pub feasibility: Feasibility,
     /// Where it is read: the external axes' values (SI, the cell's order); empty when not given
     /// ([`Request::external`]).
+    #[serde(skip)]
     pub external: Vec<f64>,
 }
 
-/// A measurement plan.
-#[derive(Debug, Clone)]
+/// A measurement plan: the setup's load and bodies, what the group predicts, and what each
+/// posture asks of the operator. It is its own document (`plan.json` of `stiffid select --report
+/// DIR`, Python's `stiffid.plan`; its `plan.csv`, [`document::csv`]).
+#[derive(Debug, Clone, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(tag = "kind", rename = "plan")]
+#[cfg_attr(
+    feature = "schema",
+    schemars(
+        description = "The measurement plan: the setup's load and bodies, what the group predicts, and what each\nposture asks of the operator."
+    )
+)]
+#[cfg_attr(feature = "schema", schemars(transform = crate::app::document::schema::Kind("plan")))]
 pub struct Report {
-    /// The criterion that chose the group.
+    /// The setup's name.
+    pub setup: String,
+    /// The robot's name.
+    pub robot: String,
+    /// The criterion that chose the group (`relative-a`, ...).
+    #[serde(serialize_with = "units::name")]
+    #[cfg_attr(
+        feature = "schema",
+        schemars(schema_with = "crate::app::document::criterion")
+    )]
     pub criterion: Criterion,
+    /// The number of measuring points of the tool.
+    pub measuring_points: usize,
+    /// The load hung from the loading point, N.
+    #[serde(rename = "load_n")]
+    pub load: f64,
+    /// The rope's anchor (pulley), base frame, mm.
+    #[serde(rename = "anchor_mm", serialize_with = "units::mm3")]
+    #[cfg_attr(feature = "schema", schemars(with = "[f64; 3]"))]
+    pub anchor: Vector3<f64>,
+    /// The load steps of `[loading] steps_n`, rising, N; empty without load steps.
+    #[serde(rename = "load_steps_n")]
+    pub load_steps: Vec<f64>,
+    /// The variance of one displacement coordinate at the rope load, in multiples of the
+    /// variance of one reading (docs/model.md, the noise convention and load steps in the
+    /// design): 2 without load steps (a loaded minus an unloaded reading).
+    pub displacement_variance_multiple: f64,
+    /// What the cell's checks and the drawings take the robot's bodies to be; `null` without
+    /// `[cell]` or `[tracker]`.
+    pub bodies: Option<Bodies>,
+    /// The predicted deviation rate (%) the group was chosen to reach; `null` for a group of a
+    /// given size.
+    pub target_pct: Option<f64>,
+    /// The setup's noise levels, multiples of its variance.
+    pub noise_levels: Vec<f64>,
+    /// The whole group's criteria and predicted deviation rates; written as its predicted mean
+    /// deviation rate of each joint at each noise level, percent, `[levels][6]`.
+    #[serde(
+        rename = "predicted_deviation_pct",
+        serialize_with = "document::predicted"
+    )]
+    #[cfg_attr(
+        feature = "schema",
+        schemars(
+            with = "Vec<[Option<f64>; 6]>",
+            description = "Predicted mean deviation rate of each joint at each noise level, percent, `[levels][6]`,\n`100 sqrt(2/pi) sqrt(m) sqrt([(S^T S)^-1]_jj)` (`null` for a joint the group cannot\nidentify)."
+        )
+    )]
+    pub evaluation: Evaluation,
+    /// Whether the setup's model has virtual springs beside the drives.
+    pub virtual_springs: bool,
+    /// Every parameter of the setup's model, drives first: whether the group identifies it and
+    /// how well.
+    #[serde(serialize_with = "group::parameters")]
+    #[cfg_attr(feature = "schema", schemars(with = "Vec<group::Parameter>"))]
+    pub parameters: Vec<ParameterQuality>,
+    /// The combinations of parameters the group cannot separate; empty when it identifies every
+    /// parameter.
+    pub unidentifiable: Vec<String>,
     /// Each posture, in the order of the group.
     pub postures: Vec<Posture>,
-    /// The whole group's criteria and predicted deviation rates.
-    pub evaluation: Evaluation,
-    /// The predicted deviation rate (%) the group was chosen to reach, if it was.
-    pub target_pct: Option<f64>,
-    /// The pairs of postures that are not distinct.
+    /// Pairs of postures that are not distinct (axis angles within 2 deg, or the same flange
+    /// pose within 10 mm and 2 deg: a wrist flip counts); empty when all are.
+    #[serde(rename = "near_postures", serialize_with = "group::near")]
+    #[cfg_attr(feature = "schema", schemars(with = "Vec<group::NearDoc>"))]
     pub near: Vec<Near>,
     /// A warning per pair of postures that are not distinct ([`Near::warning`]).
+    #[serde(skip)]
     pub warnings: Vec<Warning>,
 }
 
@@ -116,15 +217,10 @@ pub struct Report {
 /// of [`Setup::check_bodies`]; with [`Request::scene`], those of [`document::scene`].
 pub fn run(request: &Request) -> Result<Outcome> {
     let report = find(request)?;
-    let document = document::Document::new(&report, request.setup);
     let scene = (request.scene)
         .then(|| document::scene(&report, request.setup))
         .transpose()?;
-    Ok(Outcome {
-        report,
-        document,
-        scene,
-    })
+    Ok(Outcome { report, scene })
 }
 
 /// What [`run`] finds, before its document.
@@ -160,7 +256,9 @@ fn find(request: &Request) -> Result<Report> {
             let lp = frames.point(&setup.tool().loading_point);
             let rope = setup.load().anchor - lp;
             Posture {
+                posture: i + 1,
                 q: *q,
+                columns: document::columns(setup, e),
                 rope_direction: rope.normalize(),
                 rope_length: rope.norm(),
                 loading_point_z: lp.z,
@@ -172,11 +270,26 @@ fn find(request: &Request) -> Result<Report> {
         })
         .collect();
     let near = near_pairs(setup.robot(), postures);
+    let evaluation = evaluator.evaluation(postures);
+    let shows_bodies = setup.cell().is_some() || setup.tracker().is_some();
     Ok(Report {
+        setup: setup.name().to_string(),
+        robot: setup.robot().name().to_string(),
         criterion: request.criterion,
-        postures: planned,
-        evaluation: evaluator.evaluation(postures),
+        measuring_points: setup.tool().measuring_points.len(),
+        load: setup.load().load,
+        anchor: setup.load().anchor,
+        load_steps: setup.load_steps().to_vec(),
+        displacement_variance_multiple: setup.displacement_variance()
+            / setup.noise().reading_variance,
+        bodies: shows_bodies.then(|| Bodies::of(setup)),
         target_pct: request.target_pct,
+        noise_levels: setup.noise().levels.clone(),
+        virtual_springs: !setup.model().is_drives_only(),
+        parameters: evaluation.parameters(setup),
+        unidentifiable: unidentifiable(&evaluation, setup),
+        evaluation,
+        postures: planned,
         warnings: near.iter().map(Near::warning).collect(),
         near,
     })
