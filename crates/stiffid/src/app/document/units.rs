@@ -118,3 +118,19 @@ pub fn deg6_each<S: Serializer>(postures: &[Vector6<f64>], s: S) -> Written<S> {
 pub fn interval_mm<S: Serializer>(v: &Option<Interval>, s: S) -> Written<S> {
     v.map(super::interval_mm).serialize(s)
 }
+
+/// An angle in rad or none, written in mrad (`v * 1e3`) or `null`. Schema: `Option<f64>`.
+///
+/// # Errors
+/// The serialiser's.
+pub fn mrad_option<S: Serializer>(v: &Option<f64>, s: S) -> Written<S> {
+    v.map(|v| v * 1e3).serialize(s)
+}
+
+/// An angle in rad or none, written in deg or `null`. Schema: `Option<f64>`.
+///
+/// # Errors
+/// The serialiser's.
+pub fn deg_option<S: Serializer>(v: &Option<f64>, s: S) -> Written<S> {
+    v.map(f64::to_degrees).serialize(s)
+}
