@@ -22,6 +22,7 @@ pub mod document;
 pub mod drift;
 mod files;
 mod held;
+mod held_document;
 mod ladder_document;
 mod maps_document;
 mod part;

@@ -104,7 +104,7 @@ impl<'a> Placement<'a> {
 
 impl<'a> Document<'a> {
     /// The document of `report` ([`Report::document`]).
-    pub fn new(report: &'a Report) -> Self {
+    pub(crate) fn new(report: &'a Report) -> Self {
         let gain =
             |from: &Evaluation| 100.0 * (1.0 - report.cost(&report.placed) / report.cost(from));
         let own_placement = match &report.own {

@@ -39,10 +39,11 @@ fn intervals_of_postures_outside_the_fitted_ranges_do_not_hold() {
     let o = doc.errors[1].outside_range.as_ref().unwrap();
     assert!((o.distance.to_degrees() - 12.5).abs() < 1e-12, "{}", o.distance);
     assert_eq!(o.joints, [2, 5]);
-    let without = held(&Held {
+    let h = Held {
         intervals: None,
         ..h
-    });
+    };
+    let without = held(&h);
     assert_eq!(without.errors[1].interval_holds, None);
     assert!(without.errors[1].outside_range.is_some());
 }
