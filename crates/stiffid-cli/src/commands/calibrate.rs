@@ -10,9 +10,9 @@ use crate::report::calibration;
 use anyhow::{bail, Result};
 use std::path::PathBuf;
 use stiffid::app::calibrate::document::Document;
-use stiffid::app::document::mm;
 use stiffid::app::calibrate::GravitySpec;
 use stiffid::app::calibrate::{self as job, Tolerances};
+use stiffid::app::document::mm;
 use stiffid::app::readings::Request as Readings;
 use stiffid_metrology::calibration::identifiability::CORRELATION_INSEPARABLE;
 use stiffid_metrology::calibration::maps::Spec;
@@ -191,10 +191,7 @@ pub fn run(args: &Args) -> Result<()> {
         ),
     };
     let robot_text = match (&out, document.robot_file_out()) {
-        (Some(_), None) => bail!(
-            "--out: {}",
-            document.robot_file_error.unwrap_or_default()
-        ),
+        (Some(_), None) => bail!("--out: {}", document.robot_file_error.unwrap_or_default()),
         (_, text) => text,
     };
     let urdf_text = match (&urdf_out, document.urdf) {

@@ -15,10 +15,10 @@ use stiffid_metrology::calibration::gravity::Gravity;
 use stiffid_metrology::calibration::identifiability::CORRELATION_INSEPARABLE;
 use stiffid_view as scene;
 
+use super::held_document::label;
 pub use super::held_document::{
     held, IntervalsDocument, OutsideRange, PointError, ValidationDocument,
 };
-use super::held_document::label;
 pub use super::ladder_document::{LadderDocument, RungDocument};
 use super::maps_document::maps_document;
 pub use super::maps_document::{MapTried, MapsDocument, MapsNested};

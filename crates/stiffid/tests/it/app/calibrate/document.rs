@@ -37,7 +37,11 @@ fn intervals_of_postures_outside_the_fitted_ranges_do_not_hold() {
     assert_eq!(doc.errors[0].outside_range, None);
     assert_eq!(doc.errors[1].interval_holds, Some(false));
     let o = doc.errors[1].outside_range.as_ref().unwrap();
-    assert!((o.distance.to_degrees() - 12.5).abs() < 1e-12, "{}", o.distance);
+    assert!(
+        (o.distance.to_degrees() - 12.5).abs() < 1e-12,
+        "{}",
+        o.distance
+    );
     assert_eq!(o.joints, [2, 5]);
     let h = Held {
         intervals: None,
