@@ -145,7 +145,8 @@ pub fn calibrate<'py>(
         weight,
         urdf: urdf_out.is_some(),
     };
-    let document = py.detach(|| job::run(&request)).map_err(raise)?.document;
+    let report = py.detach(|| job::run(&request)).map_err(raise)?.report;
+    let document = report.document();
     let writes = writes(
         &document,
         [
@@ -154,7 +155,7 @@ pub fn calibrate<'py>(
             stiffness_file.as_ref(),
         ],
     )?;
-    warn(py, &document.warnings)?;
+    warn(py, document.warnings)?;
     for (file, text) in writes {
         file.write(text.as_bytes())?;
     }
@@ -215,14 +216,14 @@ fn writes<'a>(
     [out, urdf, stiffness]: [Option<&'a output::OutFile>; 3],
 ) -> PyResult<Vec<(&'a output::OutFile, String)>> {
     let texts = [
-        ("out", document.robot_file_out(), document.robot_file_error.clone()),
-        ("urdf_out", document.urdf.clone(), document.urdf_error.clone()),
+        ("out", document.robot_file_out(), document.robot_file_error),
+        ("urdf_out", document.urdf.map(String::from), document.urdf_error),
         (
             "stiffness_out",
             document.stiffness_file_out(),
-            Some(document.stiffness_file_error.clone().unwrap_or_else(|| {
-                "no compliance is fitted: loaded readings (load steps) or a gravity model (gravity=\"masses\", \"lumped\", \"lumped-links\" or \"arm\") fit them".into()
-            })),
+            Some(document.stiffness_file_error.unwrap_or(
+                "no compliance is fitted: loaded readings (load steps) or a gravity model (gravity=\"masses\", \"lumped\", \"lumped-links\" or \"arm\") fit them",
+            )),
         ),
     ];
     let mut writes = Vec::new();

@@ -12,6 +12,7 @@ use std::path::PathBuf;
 use stiffid::app::calibrate::document::Document;
 use stiffid::app::calibrate::GravitySpec;
 use stiffid::app::calibrate::{self as job, Tolerances};
+use stiffid::app::document::mm;
 use stiffid::app::readings::Request as Readings;
 use stiffid_metrology::calibration::identifiability::CORRELATION_INSEPARABLE;
 use stiffid_metrology::calibration::maps::Spec;
@@ -175,32 +176,27 @@ pub fn run(args: &Args) -> Result<()> {
         },
         urdf: args.urdf_out.is_some(),
     };
-    let document = job::run(&request)?.document;
+    let report = job::run(&request)?.report;
+    let document = report.document();
     // Checked before anything is written.
     let stiffness_text = match (&stiffness_out, document.stiffness_file_out()) {
         (None, _) => None,
         (Some(_), Some(text)) => Some(text),
         (Some(_), None) => bail!(
             "--stiffness-out: {}",
-            document.stiffness_file_error.clone().unwrap_or_else(|| {
+            document.stiffness_file_error.map(String::from).unwrap_or_else(|| {
                 "no compliance is fitted: loaded readings (load steps) or a gravity model (--gravity masses, lumped, lumped-links or arm) fit them"
                     .into()
             })
         ),
     };
     let robot_text = match (&out, document.robot_file_out()) {
-        (Some(_), None) => bail!(
-            "--out: {}",
-            document.robot_file_error.clone().unwrap_or_default()
-        ),
+        (Some(_), None) => bail!("--out: {}", document.robot_file_error.unwrap_or_default()),
         (_, text) => text,
     };
-    let urdf_text = match (&urdf_out, &document.urdf) {
-        (Some(_), None) => bail!(
-            "--urdf-out: {}",
-            document.urdf_error.clone().unwrap_or_default()
-        ),
-        (_, text) => text.clone(),
+    let urdf_text = match (&urdf_out, document.urdf) {
+        (Some(_), None) => bail!("--urdf-out: {}", document.urdf_error.unwrap_or_default()),
+        (_, text) => text,
     };
     if let Some((o, text)) = out.as_ref().zip(robot_text) {
         o.write(text.as_bytes())?;
@@ -214,10 +210,10 @@ pub fn run(args: &Args) -> Result<()> {
     if let Some(dir) = report_dir {
         calibration::write(dir, &setup, &document)?;
     }
-    output::warnings(&document.warnings);
+    output::warnings(document.warnings);
     print_json_or(args.common.json, &document, text_of)?;
     // A drifted robot fails the check's gate, after its update is written.
-    if let Some(check) = &document.check {
+    if let Some(check) = document.check {
         output::staged::commit()?;
         check.gate()?;
     }
@@ -297,10 +293,10 @@ fn text_of(d: &Document) -> String {
         d.geometry,
         d.gravity,
         d.iterations,
-        d.residual_rms_mm,
+        mm(d.residual_rms),
         nominal_label(d.measured_in),
-        d.nominal_rms_mm,
-        d.noise_std_mm,
+        mm(d.nominal_rms),
+        mm(d.noise_std),
         d.noise_ratio
             .map_or(String::new(), |r| format!(" ({r:.2} x the setup's)")),
         d.rank,
@@ -341,18 +337,18 @@ fn text_of(d: &Document) -> String {
             c.a, c.b, c.rho
         );
     }
-    text += &check_text(d.check.as_ref());
+    text += &check_text(d.check);
     text += &ladder_text(d.ladder.as_ref());
     text += &maps_text(&d.maps);
     for v in d.validation.iter().chain(&d.cross_validation) {
         text += &format!(
             "\nheld out ({}): RMS {:.4} mm, max {:.4} mm over {} readings ({}: {:.4} mm)\n",
             v.data,
-            v.rms_mm,
-            v.max_mm,
+            mm(v.rms),
+            mm(v.max),
             v.errors.len(),
             nominal_label(d.measured_in),
-            v.nominal_rms_mm
+            mm(v.nominal_rms)
         );
         if let Some(i) = &v.intervals {
             text += &format!(
@@ -362,8 +358,8 @@ fn text_of(d: &Document) -> String {
                 i.folds,
                 i.coverage_pct,
                 i.coordinates,
-                i.median_width_mm
-                    .map_or(String::new(), |w| format!(", median width {w:.4} mm"))
+                i.median_width
+                    .map_or(String::new(), |w| format!(", median width {:.4} mm", mm(w)))
             );
             if i.from_fit > 0 {
                 text += &format!(
@@ -373,7 +369,7 @@ fn text_of(d: &Document) -> String {
             }
         }
     }
-    text + "\n" + &d.fragment
+    text + "\n" + d.fragment
 }
 
 /// `level` in percent, to the tenth where it has one (99.7, not 100).
@@ -386,7 +382,7 @@ fn percent(level: f64) -> String {
 }
 
 /// The check's lines (`--update`): the bound, the readings outside it and the verdict.
-fn check_text(c: Option<&stiffid::app::calibrate::drift::CheckDocument>) -> String {
+fn check_text(c: Option<&stiffid::app::calibrate::drift::Check>) -> String {
     let Some(c) = c else {
         return String::new();
     };
@@ -394,7 +390,7 @@ fn check_text(c: Option<&stiffid::app::calibrate::drift::CheckDocument>) -> Stri
         "\ncheck before the update: {} of {} readings beyond {:.4} mm ({:.0}% bound of the calibration's {} held-out errors, {}): {:.1}% outside, an undrifted robot explains up to {}\n  {}\n",
         c.outside,
         c.readings,
-        c.bound_mm,
+        mm(c.bound),
         100.0 * c.level,
         c.held_out,
         c.source,

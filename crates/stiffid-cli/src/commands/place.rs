@@ -7,6 +7,7 @@ use crate::output::{print_json_or, OutFile};
 use crate::progress::Bars;
 use anyhow::{anyhow, bail, Context, Result};
 use std::path::{Path, PathBuf};
+use stiffid::app::document::{mm, mm3};
 use stiffid::app::place::document::{Document, Placement};
 use stiffid::app::place::search::Effort;
 use stiffid::app::place::{self, Region, Request, Work};
@@ -181,10 +182,10 @@ pub fn run(args: &Args) -> Result<()> {
     bars.begin("placements", 0);
     let outcome = place::run(&request);
     bars.end();
-    let stiffid::app::Outcome { report, document } = outcome.map_err(option_error)?;
+    let report = outcome.map_err(option_error)?.report;
     check_loads(&report.setup_text, &args.out)?;
     out.write(report.setup_text.as_bytes())?;
-    print_json_or(args.json, &document, |d| human(d, &args.out))
+    print_json_or(args.json, &report.document(), |d| human(d, &args.out))
 }
 
 /// The library's error, a field that is an option named as the option (`--region-mm`).
@@ -234,20 +235,21 @@ fn check_loads(text: &str, out: &Path) -> Result<()> {
 
 fn human(d: &Document, out: &Path) -> String {
     let line = |name: &str, p: &Placement| {
-        match (p.peak_bound_mm, p.mean_bound_mm) {
+        let xyz_mm = mm3(&p.xyz);
+        match (p.peak_bound.map(mm), p.mean_bound.map(mm)) {
         (Some(peak), Some(mean)) => format!(
             "{name:<11} xyz [{:.1}, {:.1}, {:.1}] mm, rpy [{:.2}, {:.2}, {:.2}] deg: peak bound {peak:.4} mm (line {}), mean {mean:.4} mm, joint-limit margin {:.1} deg, condition {:.1}\n",
-            p.xyz_mm[0], p.xyz_mm[1], p.xyz_mm[2], p.rpy_deg[0], p.rpy_deg[1], p.rpy_deg[2],
+            xyz_mm[0], xyz_mm[1], xyz_mm[2], p.rpy_deg[0], p.rpy_deg[1], p.rpy_deg[2],
             p.worst_line.unwrap_or(0),
-            p.min_limit_margin_deg.unwrap_or(f64::NAN),
+            p.min_limit_margin.map_or(f64::NAN, f64::to_degrees),
             p.max_condition.unwrap_or(f64::NAN),
         ),
         _ => format!(
             "{name:<11} xyz [{:.1}, {:.1}, {:.1}] mm: not feasible ({})\n",
-            p.xyz_mm[0],
-            p.xyz_mm[1],
-            p.xyz_mm[2],
-            p.reason.as_deref().unwrap_or("")
+            xyz_mm[0],
+            xyz_mm[1],
+            xyz_mm[2],
+            p.reason.unwrap_or("")
         ),
     }
     };

@@ -76,14 +76,14 @@ pub fn schema(name: &str) -> Result<Schema> {
         "identify" => closed::<stiffid::app::identify::document::Document>(),
         "validate" => closed::<stiffid::app::validate::document::Document<'static>>(),
         "compensate" => closed::<stiffid::app::compensate::document::Document>(),
-        "place" => closed::<stiffid::app::place::document::Document>(),
+        "place" => closed::<stiffid::app::place::document::Document<'static>>(),
         "force" => closed::<stiffid::app::force::Report>(),
         "simulate" => closed::<stiffid::app::simulate::Report>(),
         "reproduce" => closed::<stiffid::app::reproduce::document::Summary<'static>>(),
         "register" => closed::<stiffid::app::register::Report>(),
         "register-postures" => closed::<stiffid::app::register::document::Proposal>(),
         "calibrate-cell" => closed::<stiffid::app::calibrate_cell::Report>(),
-        "calibrate" => closed::<stiffid::app::calibrate::document::Document>(),
+        "calibrate" => closed::<stiffid::app::calibrate::document::Document<'static>>(),
         _ => open::<StiffnessFile>(),
     };
     schema.insert("title".into(), (*what).into());

@@ -11,6 +11,7 @@ use crate::output::{json, ReportDir};
 use anyhow::Result;
 use std::path::Path;
 use stiffid::app::calibrate::document::Document;
+use stiffid::app::document::mm;
 use stiffid_core::common::words::apart;
 use stiffid_core::Setup;
 use stiffid_view::{glb, Scene};
@@ -54,13 +55,13 @@ fn compose(w: &mut dyn Writer, doc: &Document, figures: &[Figure], scene: &Scene
     ));
     let mut summary = format!(
         "RMS error of the fitted readings: {} mm with the nominal robot ({}), {} mm calibrated; the noise estimated from the residuals is {} mm per coordinate",
-        num(doc.nominal_rms_mm),
+        num(mm(doc.nominal_rms)),
         match doc.measured_in {
             "base" => "in the base frame, nothing registered",
             _ => "the tracker registered on them",
         },
-        num(doc.residual_rms_mm),
-        num(doc.noise_std_mm)
+        num(mm(doc.residual_rms)),
+        num(mm(doc.noise_std))
     );
     if let Some(r) = doc.noise_ratio {
         summary += &format!(", {} times the setup's tracker noise", num(r));
@@ -73,13 +74,13 @@ fn compose(w: &mut dyn Writer, doc: &Document, figures: &[Figure], scene: &Scene
         summary += &format!(
             " Held out ({}): RMS {} mm (max {} mm), nominal {} mm.",
             v.data,
-            num(v.rms_mm),
-            num(v.max_mm),
-            num(v.nominal_rms_mm)
+            num(mm(v.rms)),
+            num(mm(v.max)),
+            num(mm(v.nominal_rms))
         );
     }
     w.paragraph(&summary);
-    for warning in &doc.warnings {
+    for warning in doc.warnings {
         w.paragraph(&format!("Warning: {}", warning.message));
     }
     if let Some(l) = &doc.ladder {
@@ -188,10 +189,10 @@ fn errors_table(doc: &Document) -> Table {
         .map(|e| {
             vec![
                 e.set.to_string(),
-                e.posture.clone(),
+                e.posture.to_string(),
                 e.point_name.clone(),
-                format!("{:.4}", e.before_norm_mm),
-                format!("{:.4}", e.after_norm_mm),
+                format!("{:.4}", mm(e.before_norm)),
+                format!("{:.4}", mm(e.after_norm)),
             ]
         })
         .collect();

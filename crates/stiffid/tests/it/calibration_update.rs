@@ -6,7 +6,7 @@ use nalgebra::{Isometry3, Point3, Vector3, Vector6};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
-use stiffid::app::calibrate::{self, document::Document, Report};
+use stiffid::app::calibrate::{self, Report};
 use stiffid::app::readings::Request as Readings;
 use stiffid::metrology::calibration::gravity::Gravity;
 use stiffid::metrology::calibration::maps::Spec;
@@ -298,7 +298,7 @@ fn the_check_tells_a_drifted_robot_from_an_undrifted_one() {
         let report = update(&setup, &data, None).unwrap();
         let check = report.check.as_ref().unwrap();
         assert_eq!(check.drifted, drifted);
-        let document = Document::new(&report, "setup.toml");
+        let document = report.document();
         let c = document.check.as_ref().unwrap();
         assert_eq!(c.readings, 30);
         assert_eq!(c.drifted, drifted);

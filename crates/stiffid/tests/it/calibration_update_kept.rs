@@ -8,7 +8,7 @@ use super::calibration_update::{
     check_postures, drifted, readings_by, request, robot, setup, DRIFT, OFFSETS,
 };
 use nalgebra::{DVector, Vector6};
-use stiffid::app::calibrate::{self, document::Document, Refit, Refits, Report};
+use stiffid::app::calibrate::{self, Refit, Refits, Report};
 use stiffid::metrology::calibration::gravity::Terms;
 use stiffid::model::OwnWeight;
 use stiffid::{Coordinates, Setup};
@@ -96,7 +96,7 @@ fn the_update_keeps_the_calibrations_sag() {
     let rms = report.validation.as_ref().unwrap().calibrated.rms;
     assert!(rms < 1e-12, "{rms:e}");
     assert!(offset_miss(&report) < 1e-9, "{:e}", offset_miss(&report));
-    let document = Document::new(&report, "setup.toml");
+    let document = report.document();
     assert_eq!(document.held.len(), own.terms.len());
     assert!(document.held.iter().all(|n| n.starts_with("gravity.")));
     assert!(document
@@ -170,7 +170,7 @@ fn an_update_with_gravity_refits_the_sag() {
     );
     assert!(r < 1e-8 && k > 1e-5, "refit {r:e}, kept {k:e}");
     assert!(offset_miss(&refit) < 1e-6, "{:e}", offset_miss(&refit));
-    assert!(Document::new(&refit, "s").held.is_empty());
+    assert!(refit.document().held.is_empty());
 }
 
 /// A list without base, with an unknown name or a name twice is refused naming `update`;
@@ -216,7 +216,7 @@ fn update_lists_are_checked() {
         "{e}"
     );
     let report = update_with(&setup, &data, &held, "offsets,base", Some(own)).unwrap();
-    let document = Document::new(&report, "setup.toml");
+    let document = report.document();
     assert!(
         document.held.iter().any(|n| n == "point1.x"),
         "{:?}",

@@ -8,7 +8,7 @@ use crate::true_robot::{dh_case, postures, Case, Truth};
 use nalgebra::Vector6;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use stiffid::app::calibrate::{self, document::Document, GravitySpec, Report};
+use stiffid::app::calibrate::{self, GravitySpec, Report};
 use stiffid::metrology::calibration::gravity::Gravity;
 use stiffid::metrology::calibration::maps::Spec;
 use stiffid::metrology::calibration::Geometry;
@@ -90,7 +90,7 @@ fn a_robot_that_sags_gets_gravity_terms() {
     assert!(geometry > 5.0 * chosen, "{geometry} against {chosen}");
     assert!(chosen < 1e-4, "{chosen}");
     // The document shows the ladder and the model fitted.
-    let document = Document::new(&report, "setup.toml");
+    let document = report.document();
     let shown = document.ladder.as_ref().unwrap();
     assert_eq!(shown.rungs.len(), 5);
     assert_eq!(document.gravity, shown.rungs[shown.chosen].gravity);

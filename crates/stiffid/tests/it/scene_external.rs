@@ -131,7 +131,7 @@ fn a_calibrations_scene_stands_each_posture_at_its_readings_station() {
         urdf: false,
     })
     .unwrap();
-    let doc = calibrate::document::Document::new(&report, "track-cell.toml");
+    let doc = report.document();
     let json = serde_json::to_string(&doc).unwrap();
     let mut value: serde_json::Value = serde_json::from_str(&json).unwrap();
     let e1 = value["postures"][1]["e1_mm"].as_f64().unwrap();

@@ -452,7 +452,7 @@ fn read_points(text: &str) -> Vec<(String, String)> {
 fn held_points(document: &Document) -> Vec<(String, String)> {
     let mut out: Vec<(String, String)> = (document.errors.iter())
         .filter(|e| e.set == "validation")
-        .map(|e| (e.posture.clone(), e.point_name.clone()))
+        .map(|e| (e.posture.to_string(), e.point_name.clone()))
         .collect();
     out.sort();
     out
@@ -498,7 +498,7 @@ pub(crate) fn calibrated(
         urdf: false,
     })
     .unwrap();
-    let document = Document::new(&report, "setup.toml");
+    let document = report.document();
     assert_eq!(held_points(&document), read_points(held), "held-out points");
     let compliance = document.stiffness_file.as_ref().map(|file| {
         let file = serde_json::to_string(file).unwrap();

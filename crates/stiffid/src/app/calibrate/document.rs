@@ -3,8 +3,9 @@
 
 use super::{Held, Report};
 use crate::app::document::parameters::{stiffness, ParameterStiffness};
-use crate::app::document::{finite, mm};
+use crate::app::document::{finite, units};
 use crate::app::Warning;
+use nalgebra::Vector3;
 use serde::Serialize;
 use stiffid_core::common::choice::Choice;
 use stiffid_core::io::readings::point_name;
@@ -12,24 +13,37 @@ use stiffid_metrology::calibration::error_model::Target;
 use stiffid_metrology::calibration::fit::GRAVITY_DEFLECTION;
 use stiffid_metrology::calibration::gravity::Gravity;
 use stiffid_metrology::calibration::identifiability::CORRELATION_INSEPARABLE;
-use stiffid_metrology::calibration::validation::Validation;
 use stiffid_view as scene;
 
+use super::held_document::label;
+pub use super::held_document::{
+    held, IntervalsDocument, OutsideRange, PointError, ValidationDocument,
+};
 pub use super::ladder_document::{LadderDocument, RungDocument};
 use super::maps_document::maps_document;
 pub use super::maps_document::{MapTried, MapsDocument, MapsNested};
 
 /// The robot calibration: every parameter with its value and standard deviation, what the
 /// readings determine, the residual and held-out errors, the calibrated robot's files.
+///
+/// A view of the report ([`Report::document`]), built as it is written: its lengths and angles
+/// are the report's, in SI, written in the units their keys name by the unit adapters
+/// ([`units`]).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(tag = "kind", rename = "calibrate")]
+#[cfg_attr(
+    feature = "schema",
+    schemars(
+        description = "The robot calibration: every parameter with its value and standard deviation, what the\nreadings determine, the residual and held-out errors, the calibrated robot's files."
+    )
+)]
 #[cfg_attr(feature = "schema", schemars(transform = crate::app::document::schema::Kind("calibrate")))]
-pub struct Document {
+pub struct Document<'a> {
     /// The setup as given.
-    pub setup: String,
+    pub setup: &'a str,
     /// The readings file.
-    pub data: String,
+    pub data: &'a str,
     /// The joint errors fitted: `none`, `offsets` or `full`.
     pub geometry: &'static str,
     /// The gravity terms fitted: `none`, `arm`, `masses`, `lumped` or `lumped-links` (with `--gravity
@@ -38,7 +52,8 @@ pub struct Document {
     /// With gravity terms: their bound, the prior standard deviation of each term's deflection
     /// at the largest torque it meets within the robot's joint limits, mrad (what holds a term
     /// the readings do not determine at its nominal value); `null` without gravity terms.
-    pub gravity_prior_mrad: Option<f64>,
+    #[serde(rename = "gravity_prior_mrad", serialize_with = "units::mrad_option")]
+    pub gravity_prior: Option<f64>,
     /// The frame of the readings: `tracker` or `base`.
     pub measured_in: &'static str,
     /// Readings fitted: the unloaded, and the loaded ones with load steps.
@@ -59,13 +74,16 @@ pub struct Document {
     /// Pairs of identified parameters correlated above 0.9 in absolute value.
     pub correlations: Vec<Correlation>,
     /// RMS of the fitted readings' 3D residuals, mm.
-    pub residual_rms_mm: f64,
+    #[serde(rename = "residual_rms_mm", serialize_with = "units::mm")]
+    pub residual_rms: f64,
     /// The same with the nominal robot, the tracker registered (readings in the tracker's frame;
     /// in the base frame nothing is registered) and the setup's measuring points, mm: where the
     /// calibration starts.
-    pub nominal_rms_mm: f64,
+    #[serde(rename = "nominal_rms_mm", serialize_with = "units::mm")]
+    pub nominal_rms: f64,
     /// Noise per coordinate estimated from the residuals, mm.
-    pub noise_std_mm: f64,
+    #[serde(rename = "noise_std_mm", serialize_with = "units::mm")]
+    pub noise_std: f64,
     /// `noise_std_mm` over the setup's tracker noise: about 1 when the model explains the
     /// readings to the noise; `null` without a noise.
     pub noise_ratio: Option<f64>,
@@ -78,7 +96,7 @@ pub struct Document {
     /// registered on the same readings, the setup's measuring points) and after it: the fitted
     /// readings (`set` `fitted`), then the held-out ones (`validation`, `--validate`), then each
     /// posture predicted by the fit of the others (`cross-validation`, `--cross-validate`).
-    pub errors: Vec<BeforeAfter>,
+    pub errors: Vec<BeforeAfter<'a>>,
     /// Each fitted posture (the first [`scene::MAX_POSTURES`]): its label, axis angles and
     /// external axes' values, in the order of the readings; what the scene draws
     /// ([`super::scene`]).
@@ -93,29 +111,34 @@ pub struct Document {
     /// With `--update`: the check readings' errors with the calibrated robot before the update
     /// against the calibration's held-out error bound, and whether it drifted beyond them;
     /// `null` otherwise, or without `[held_out]` in the robot file.
-    pub check: Option<super::drift::CheckDocument>,
+    pub check: Option<&'a super::drift::Check>,
     /// The held-out readings' errors (`--validate`), if asked.
-    pub validation: Option<ValidationDocument>,
+    pub validation: Option<ValidationDocument<'a>>,
     /// The leave-one-posture-out errors (`--cross-validate`), if asked.
-    pub cross_validation: Option<ValidationDocument>,
+    pub cross_validation: Option<ValidationDocument<'a>>,
     /// The calibrated robot as a robot TOML file; `null` when it cannot be one:
     /// `robot_file_error` says why.
-    pub robot_file: Option<String>,
+    pub robot_file: Option<&'a str>,
     /// Why there is no robot file.
-    pub robot_file_error: Option<String>,
+    pub robot_file_error: Option<&'a str>,
     /// The calibrated robot as a URDF, taking the robot file's axis angles; `null` when it
     /// cannot be one (an axis map that couples or scales axes): `urdf_error` says why.
-    pub urdf: Option<String>,
+    pub urdf: Option<&'a str>,
     /// Why there is no URDF.
-    pub urdf_error: Option<String>,
+    pub urdf_error: Option<&'a str>,
     /// The setup fragment: the tracker's registration, the measuring points and the corrected
     /// TCP.
-    pub fragment: String,
+    pub fragment: &'a str,
     /// With the setup's `[tool] tcp_mm`: the TCP moved with the fitted measuring points (what
     /// merges into them, joint 6's `theta` and `d` and the flange's errors, moves the tool), flange
     /// frame, mm: the `tcp_mm` to use with the calibrated robot.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub tcp_mm: Option<[f64; 3]>,
+    #[serde(
+        rename = "tcp_mm",
+        serialize_with = "units::mm3_option",
+        skip_serializing_if = "Option::is_none"
+    )]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<[f64; 3]>"))]
+    pub tcp: Option<Vector3<f64>>,
     /// With loaded readings (load steps) or `gravity` `masses`: the stiffness of every
     /// parameter of the setup's model, as a stiffness file holds it (what `calibrate
     /// --stiffness-out` writes, `predict` and `compensate --stiffness` read); the fitted
@@ -123,9 +146,9 @@ pub struct Document {
     /// zero variance; `null` otherwise.
     pub stiffness_file: Option<StiffnessSection>,
     /// Why there is no stiffness file with loaded readings or `masses`.
-    pub stiffness_file_error: Option<String>,
+    pub stiffness_file_error: Option<&'a str>,
     /// Results to look at before trusting the calibration.
-    pub warnings: Vec<Warning>,
+    pub warnings: &'a [Warning],
 }
 
 /// The calibrated compliance as a stiffness file ([`stiffid_core::io::stiffness`]), `kind` first.
@@ -195,25 +218,31 @@ pub struct Merged {
 /// One reading's error before and after the calibration.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct BeforeAfter {
+pub struct BeforeAfter<'a> {
     /// `fitted`, `validation` (held out) or `cross-validation` (held out by the fit of the other
     /// postures).
     pub set: &'static str,
     /// The posture's label.
-    pub posture: String,
+    pub posture: &'a str,
     /// The measuring point (1-based), or the table reflector's number (`point_name`).
     pub point: usize,
     /// The point as the readings name it: `1`, `2`, ... a measuring point of the tool (`point`),
     /// `T1`, `T2`, ... a reflector on the positioner's table (numbered apart from the tool's).
     pub point_name: String,
     /// Predicted minus read with the nominal robot, base frame, mm.
-    pub before_mm: [f64; 3],
+    #[serde(rename = "before_mm", serialize_with = "units::mm3")]
+    #[cfg_attr(feature = "schema", schemars(with = "[f64; 3]"))]
+    pub before: Vector3<f64>,
     /// Predicted minus read with the calibration, base frame, mm.
-    pub after_mm: [f64; 3],
+    #[serde(rename = "after_mm", serialize_with = "units::mm3")]
+    #[cfg_attr(feature = "schema", schemars(with = "[f64; 3]"))]
+    pub after: Vector3<f64>,
     /// The length of `before_mm`, mm.
-    pub before_norm_mm: f64,
+    #[serde(rename = "before_norm_mm", serialize_with = "units::mm")]
+    pub before_norm: f64,
     /// The length of `after_mm`, mm.
-    pub after_norm_mm: f64,
+    #[serde(rename = "after_norm_mm", serialize_with = "units::mm")]
+    pub after_norm: f64,
 }
 
 /// Two correlated parameters.
@@ -228,107 +257,9 @@ pub struct Correlation {
     pub rho: f64,
 }
 
-/// Held-out errors.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct ValidationDocument {
-    /// The readings (`cross-validation` for leave-one-posture-out).
-    pub data: String,
-    /// RMS of the 3D position error of every held-out reading, mm.
-    pub rms_mm: f64,
-    /// The largest, mm.
-    pub max_mm: f64,
-    /// The nominal robot's RMS on the same readings, mm: the tracker registered on them for
-    /// readings in the tracker's frame; as it is for readings in the base frame (`measured_in`
-    /// `base`: nothing registered).
-    pub nominal_rms_mm: f64,
-    /// The prediction intervals of the held-out readings' errors and how well they covered
-    /// them (`--validate`, with at most 5000 fitted postures); `null` for the cross-validation.
-    pub intervals: Option<IntervalsDocument>,
-    /// The share of the held-out coordinates inside their prediction intervals (`intervals`'
-    /// `coverage`); `null` without intervals.
-    pub coverage: Option<f64>,
-    /// Every held-out reading's error.
-    pub errors: Vec<PointError>,
-}
-
-/// The prediction intervals of held-out readings' errors: jackknife+ over the fitted postures,
-/// built from their leave-one-posture-out errors; where too few held-out values give the
-/// jackknife+ no finite end at the level, the fit's Gaussian bound.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct IntervalsDocument {
-    /// `jackknife+`; `jackknife+ and the fit's Gaussian bound` when some ends come from the fit
-    /// (`from_fit`); `the fit's Gaussian bound` when every end does.
-    pub method: &'static str,
-    /// The held-out coordinates whose interval ends come from the fit's Gaussian bound: the
-    /// jackknife+ over `folds` postures has too few held-out values for a finite end at `level`
-    /// (it needs `held_out_needed`). That bound takes each coordinate's error as normal with the
-    /// variance of the fitted postures' leave-one-posture-out errors plus the fit's covariance
-    /// carried to the reading: a Gaussian assumption, which heavier tails break.
-    pub from_fit: usize,
-    /// The held-out values (three per fitted reading) the jackknife+ needs for a finite end at
-    /// `level`: 19 at 95 %, 333 at 99.7 %.
-    pub held_out_needed: usize,
-    /// How the fit's Gaussian bound is built, where it is used; `null` otherwise.
-    pub assumption: Option<&'static str>,
-    /// The intervals' level (`--level`, default 0.95).
-    pub level: f64,
-    /// The folds (fitted postures) they are built from.
-    pub folds: usize,
-    /// The share of the held-out coordinates inside their intervals: near `level` when the
-    /// held-out postures are like the fitted ones.
-    pub coverage: f64,
-    /// `coverage`, %.
-    pub coverage_pct: f64,
-    /// Held-out coordinates inside their intervals.
-    pub covered: usize,
-    /// Held-out coordinates (three per reading).
-    pub coordinates: usize,
-    /// The median over the held-out readings of the intervals' mean width over x, y and z, mm.
-    pub median_width_mm: Option<f64>,
-}
-
-/// One held-out reading's error.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct PointError {
-    /// The posture's label.
-    pub posture: String,
-    /// The measuring point (1-based), or the table reflector's number (`point_name`).
-    pub point: usize,
-    /// The point as the readings name it: `1`, `2`, ... a measuring point of the tool (`point`),
-    /// `T1`, `T2`, ... a reflector on the positioner's table (numbered apart from the tool's).
-    pub point_name: String,
-    /// Predicted minus read, base frame, mm.
-    pub error_mm: [f64; 3],
-    /// Its length, mm.
-    pub error_norm_mm: f64,
-    /// The prediction interval `[lower, upper]` of each coordinate of `error_mm`, mm (`null`
-    /// ends: too few fitted readings for the level); `null` without intervals.
-    pub interval_mm: Option<[[Option<f64>; 2]; 3]>,
-    /// Whether `interval_mm` holds: `false` where the posture lies outside the fitted postures'
-    /// axis ranges (`outside_range`; the intervals are built from the fitted postures and say
-    /// nothing there), `true` within; `null` without intervals.
-    pub interval_holds: Option<bool>,
-    /// How far the posture lies outside the fitted postures' axis ranges, when more than 1 deg
-    /// (`--validate`); `null` within them.
-    pub outside_range: Option<OutsideRange>,
-}
-
-/// A held-out posture outside the fitted postures' axis ranges.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct OutsideRange {
-    /// The largest distance of an axis angle beyond its fitted range, deg.
-    pub distance_deg: f64,
-    /// The joints beyond their fitted range by more than 1 deg (1-based, ascending).
-    pub joints: Vec<usize>,
-}
-
-impl Document {
-    /// The document of `report`, for the setup named `setup_name` (as the user gave it).
-    pub fn new(report: &Report, setup_name: &str) -> Self {
+impl<'a> Document<'a> {
+    /// The document of `report` ([`Report::document`]).
+    pub(crate) fn new(report: &'a Report) -> Self {
         let model = &report.model;
         let fit = &report.fit;
         let params = model.parameters();
@@ -343,12 +274,11 @@ impl Document {
             })
             .collect();
         Document {
-            setup: setup_name.to_string(),
-            data: report.data_name.clone(),
+            setup: &report.setup,
+            data: &report.data_name,
             geometry: Choice::name(report.geometry),
             gravity: Choice::name(report.gravity),
-            gravity_prior_mrad: (report.gravity != Gravity::None)
-                .then_some(GRAVITY_DEFLECTION * 1e3),
+            gravity_prior: (report.gravity != Gravity::None).then_some(GRAVITY_DEFLECTION),
             measured_in: match model.measured_in() {
                 stiffid_metrology::calibration::error_model::MeasuredIn::Tracker => "tracker",
                 stiffid_metrology::calibration::error_model::MeasuredIn::Base => "base",
@@ -362,9 +292,9 @@ impl Document {
             rank: id.rank,
             condition: finite(id.condition),
             correlations,
-            residual_rms_mm: mm(fit.rms),
-            nominal_rms_mm: mm(report.nominal.rms),
-            noise_std_mm: mm(fit.sigma),
+            residual_rms: fit.rms,
+            nominal_rms: report.nominal.rms,
+            noise_std: fit.sigma,
             noise_ratio: finite(report.noise_ratio),
             iterations: fit.iterations,
             stop_reason: fit.stop,
@@ -381,22 +311,21 @@ impl Document {
             .collect(),
             maps: maps_document(&report.maps),
             ladder: report.ladder.as_ref().map(LadderDocument::new),
-            check: (report.check.as_ref())
-                .map(|c| super::drift::CheckDocument::new(c, &report.nominal, &report.labels)),
+            check: report.check.as_ref(),
             validation: report.validation.as_ref().map(held),
             cross_validation: report.cross_validation.as_ref().map(held),
-            robot_file: report.robot_toml.as_ref().ok().cloned(),
-            robot_file_error: report.robot_toml.as_ref().err().cloned(),
-            urdf: report.urdf.as_ref().ok().cloned(),
-            urdf_error: report.urdf.as_ref().err().cloned(),
-            fragment: report.fragment.clone(),
-            tcp_mm: report.tcp.map(|t| [mm(t.x), mm(t.y), mm(t.z)]),
+            robot_file: report.robot_toml.as_deref().ok(),
+            robot_file_error: report.robot_toml.as_ref().err().map(String::as_str),
+            urdf: report.urdf.as_deref().ok(),
+            urdf_error: report.urdf.as_ref().err().map(String::as_str),
+            fragment: &report.fragment,
+            tcp: report.tcp,
             stiffness_file: stiffness_section(report),
             stiffness_file_error: match &report.compliance {
-                Some(Err(e)) => Some(e.clone()),
+                Some(Err(e)) => Some(e),
                 _ => None,
             },
-            warnings: report.warnings.clone(),
+            warnings: &report.warnings,
         }
     }
 }
@@ -497,12 +426,12 @@ fn stiffness_section(report: &Report) -> Option<StiffnessSection> {
     })
 }
 
-impl Document {
+impl Document<'_> {
     /// The text of the calibrated robot file (`stiffid calibrate --out`, Python's `out=`): the
     /// robot TOML with the setup's tracker and measuring points from this calibration in comments
     /// at its end; `None` when there is no robot file (`robot_file_error` says why).
     pub fn robot_file_out(&self) -> Option<String> {
-        let text = self.robot_file.as_ref()?;
+        let text = self.robot_file?;
         let fragment: String = (self.fragment.lines())
             .map(|l| format!("# {}\n", l.trim_start_matches("# ")))
             .collect();
@@ -525,56 +454,8 @@ fn frame_vector(t: &nalgebra::Isometry3<f64>) -> [f64; 6] {
     [p.x, p.y, p.z, r.x, r.y, r.z]
 }
 
-/// The section of held-out readings `h`: an interval holds unless [`Held::outside`] names it.
-pub fn held(h: &Held) -> ValidationDocument {
-    let intervals = h.coverage.as_ref().map(|c| {
-        let mut widths: Vec<f64> = (h.intervals.iter().flatten())
-            .map(|i| i.iter().map(|c| c[1] - c[0]).sum::<f64>() / 3.0)
-            .filter(|w| w.is_finite())
-            .collect();
-        widths.sort_by(f64::total_cmp);
-        IntervalsDocument {
-            method: match (h.from_fit, c.coordinates) {
-                (0, _) => "jackknife+",
-                (f, n) if f == n => "the fit's Gaussian bound",
-                _ => "jackknife+ and the fit's Gaussian bound",
-            },
-            from_fit: h.from_fit,
-            held_out_needed: stiffid_core::model::prediction::held_out_needed(c.level),
-            assumption: (h.from_fit > 0).then_some(super::fit_bound::ASSUMPTION),
-            level: c.level,
-            folds: c.folds,
-            coverage: c.coverage(),
-            coverage_pct: 100.0 * c.coverage(),
-            covered: c.covered,
-            coordinates: c.coordinates,
-            median_width_mm: widths.get(widths.len() / 2).map(|w| mm(*w)),
-        }
-    });
-    let mut errors = errors(&h.calibrated, &h.labels);
-    for (e, p) in errors.iter_mut().zip(&h.calibrated.errors) {
-        e.outside_range = h.outside.get(&p.posture).map(|o| OutsideRange {
-            distance_deg: o.distance.to_degrees(),
-            joints: o.joints.iter().map(|j| j + 1).collect(),
-        });
-    }
-    for (e, i) in errors.iter_mut().zip(h.intervals.iter().flatten()) {
-        e.interval_mm = Some(crate::app::document::interval_mm(*i));
-        e.interval_holds = Some(e.outside_range.is_none());
-    }
-    ValidationDocument {
-        data: h.name.clone(),
-        rms_mm: mm(h.calibrated.rms),
-        max_mm: mm(h.calibrated.max),
-        nominal_rms_mm: mm(h.nominal.rms),
-        coverage: intervals.as_ref().map(|i| i.coverage),
-        intervals,
-        errors,
-    }
-}
-
 /// Every reading's error before and after ([`Document::errors`]).
-fn before_after(report: &Report) -> Vec<BeforeAfter> {
+fn before_after(report: &Report) -> Vec<BeforeAfter<'_>> {
     let sets = [
         (
             "fitted",
@@ -607,32 +488,17 @@ fn before_after(report: &Report) -> Vec<BeforeAfter> {
                 .zip(&after.errors)
                 .map(|(b, a)| BeforeAfter {
                     set,
-                    posture: labels.get(a.posture).cloned().unwrap_or_default(),
+                    posture: label(labels, a.posture),
                     point: a.point + 1,
                     point_name: point_name(a.point, a.table),
-                    before_mm: [mm(b.error.x), mm(b.error.y), mm(b.error.z)],
-                    after_mm: [mm(a.error.x), mm(a.error.y), mm(a.error.z)],
-                    before_norm_mm: mm(b.error.norm()),
-                    after_norm_mm: mm(a.error.norm()),
+                    before: b.error,
+                    after: a.error,
+                    before_norm: b.error.norm(),
+                    after_norm: a.error.norm(),
                 }),
         );
     }
     all
-}
-
-fn errors(v: &Validation, labels: &[String]) -> Vec<PointError> {
-    (v.errors.iter())
-        .map(|e| PointError {
-            posture: labels.get(e.posture).cloned().unwrap_or_default(),
-            point: e.point + 1,
-            point_name: point_name(e.point, e.table),
-            error_mm: [mm(e.error.x), mm(e.error.y), mm(e.error.z)],
-            error_norm_mm: mm(e.error.norm()),
-            interval_mm: None,
-            interval_holds: None,
-            outside_range: None,
-        })
-        .collect()
 }
 
 /// The calibrated robot file's `[held_out]` table ([`stiffid_core::robot::HeldOut`]): the lengths of

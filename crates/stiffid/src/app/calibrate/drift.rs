@@ -16,6 +16,7 @@
 //! far more precise than the check's (simulated, noise-free) would otherwise call a robot drifted
 //! by nanometres.
 
+use crate::app::document::{mm, units};
 use serde::Serialize;
 use stiffid_core::common::error::JobOption;
 use stiffid_core::common::warning::{Warning, WarningKind};
@@ -25,56 +26,108 @@ use stiffid_metrology::calibration::validation::Validation;
 /// The false-alarm rate of the drift verdict on an undrifted robot.
 pub const SIGNIFICANCE: f64 = 0.01;
 
-/// The check of a calibrated robot (module docs).
-#[derive(Debug, Clone, PartialEq)]
+/// The check of a calibrated robot (module docs), as the calibration's document writes it
+/// ([`super::document::Document::check`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[cfg_attr(
+    feature = "schema",
+    schemars(
+        rename = "CheckDocument",
+        description = "The check in the calibration's document."
+    )
+)]
 pub struct Check {
-    /// The level of the bound.
+    /// The level of the bound (`--level`, default 0.95).
     pub level: f64,
-    /// Where the calibration's held-out errors come from: `validate` or `cross-validate`.
+    /// Where the calibration's held-out errors come from (`[held_out] source`): `validate` or
+    /// `cross-validate`.
     pub source: String,
-    /// The held-out errors' count.
+    /// The count of the calibration's held-out errors.
     pub held_out: usize,
-    /// The bound on an error's length, m.
+    /// The bound on a reading's error length: the calibration's held-out errors' conformal
+    /// quantile at `level`, mm.
+    #[serde(rename = "bound_mm", serialize_with = "units::mm")]
     pub bound: f64,
-    /// Per check reading (in the order of the errors checked): beyond the bound.
-    pub outside: Vec<bool>,
-    /// The most readings beyond the bound an undrifted robot explains ([`SIGNIFICANCE`]).
+    /// The check readings' count.
+    pub readings: usize,
+    /// The check readings whose error with the calibrated robot (before the update) lies beyond
+    /// the bound.
+    pub outside: usize,
+    /// `outside` over `readings`.
+    pub share_outside: f64,
+    /// The most readings outside an undrifted robot explains (one-sided binomial test at 1 %).
     pub allowed: usize,
-    /// Whether the robot drifted beyond its intervals: more than `allowed` readings outside.
+    /// Whether the robot drifted beyond its intervals: `outside` above `allowed`.
     pub drifted: bool,
+    /// Each check reading: its posture, point, error length with the calibrated robot and whether
+    /// it lies beyond the bound.
+    pub errors: Vec<CheckedReading>,
+}
+
+/// One check reading.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+pub struct CheckedReading {
+    /// The posture's label.
+    pub posture: String,
+    /// The measuring point (1-based), or the table reflector's number (`point_name`).
+    pub point: usize,
+    /// The point as the readings name it: `1`, `2`, ... a measuring point of the tool (`point`),
+    /// `T1`, `T2`, ... a reflector on the positioner's table (numbered apart from the tool's).
+    pub point_name: String,
+    /// The error's length with the calibrated robot, mm.
+    #[serde(rename = "error_mm", serialize_with = "units::mm")]
+    pub error: f64,
+    /// Beyond the bound.
+    pub outside: bool,
 }
 
 /// The check of `errors` (the check readings' errors with the calibrated `robot`, read with
-/// `noise` per coordinate, m) at `level`; `None` when the robot carries no held-out errors or
-/// too few for the level (the bound infinite).
-pub fn check(robot: &Robot, errors: &Validation, level: f64, noise: f64) -> Option<Check> {
+/// `noise` per coordinate, m; posture labels `labels`) at `level`; `None` when the robot carries
+/// no held-out errors or too few for the level (the bound infinite).
+pub fn check(
+    robot: &Robot,
+    (errors, labels): (&Validation, &[String]),
+    level: f64,
+    noise: f64,
+) -> Option<Check> {
     let held = robot.held_out()?;
     let bound = held.quantile(level);
     if !bound.is_finite() {
         return None;
     }
     let bound = bound.max(noise_length(noise, level));
-    let outside: Vec<bool> = errors
-        .errors
-        .iter()
-        .map(|e| e.error.norm() > bound)
+    let errors: Vec<CheckedReading> = (errors.errors.iter())
+        .map(|e| CheckedReading {
+            posture: labels.get(e.posture).cloned().unwrap_or_default(),
+            point: e.point + 1,
+            point_name: stiffid_core::io::readings::point_name(e.point, e.table),
+            error: e.error.norm(),
+            outside: e.error.norm() > bound,
+        })
         .collect();
-    let allowed = allowed(outside.len(), 1.0 - level, SIGNIFICANCE);
+    let readings = errors.len();
+    let outside = errors.iter().filter(|e| e.outside).count();
+    let allowed = allowed(readings, 1.0 - level, SIGNIFICANCE);
     Some(Check {
         level,
         source: held.source.clone(),
         held_out: held.errors.len(),
         bound,
-        drifted: outside.iter().filter(|&&o| o).count() > allowed,
+        readings,
         outside,
+        share_outside: outside as f64 / readings.max(1) as f64,
         allowed,
+        drifted: outside > allowed,
+        errors,
     })
 }
 
 /// [`check`], or a warning ([`WarningKind::LeftOut`]) in `warnings` saying why there is none.
 pub fn checked(
     robot: &Robot,
-    errors: &Validation,
+    errors: (&Validation, &[String]),
     (level, noise): (f64, f64),
     warnings: &mut Vec<Warning>,
 ) -> Option<Check> {
@@ -119,85 +172,12 @@ pub fn allowed(n: usize, p: f64, alpha: f64) -> usize {
     n
 }
 
-/// The check in the calibration's document.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct CheckDocument {
-    /// The level of the bound (`--level`, default 0.95).
-    pub level: f64,
-    /// Where the calibration's held-out errors come from (`[held_out] source`): `validate` or
-    /// `cross-validate`.
-    pub source: String,
-    /// The count of the calibration's held-out errors.
-    pub held_out: usize,
-    /// The bound on a reading's error length: the calibration's held-out errors' conformal
-    /// quantile at `level`, mm.
-    pub bound_mm: f64,
-    /// The check readings' count.
-    pub readings: usize,
-    /// The check readings whose error with the calibrated robot (before the update) lies beyond
-    /// the bound.
-    pub outside: usize,
-    /// `outside` over `readings`.
-    pub share_outside: f64,
-    /// The most readings outside an undrifted robot explains (one-sided binomial test at 1 %).
-    pub allowed: usize,
-    /// Whether the robot drifted beyond its intervals: `outside` above `allowed`.
-    pub drifted: bool,
-    /// Each check reading: its posture, point, error length with the calibrated robot and whether
-    /// it lies beyond the bound.
-    pub errors: Vec<CheckedReading>,
-}
-
-/// One check reading.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct CheckedReading {
-    /// The posture's label.
-    pub posture: String,
-    /// The measuring point (1-based), or the table reflector's number (`point_name`).
-    pub point: usize,
-    /// The point as the readings name it: `1`, `2`, ... a measuring point of the tool (`point`),
-    /// `T1`, `T2`, ... a reflector on the positioner's table (numbered apart from the tool's).
-    pub point_name: String,
-    /// The error's length with the calibrated robot, mm.
-    pub error_mm: f64,
-    /// Beyond the bound.
-    pub outside: bool,
-}
-
-impl CheckDocument {
-    /// The document of `check` of `errors` (posture labels `labels`).
-    pub fn new(check: &Check, errors: &Validation, labels: &[String]) -> Self {
-        let outside = check.outside.iter().filter(|&&o| o).count();
-        let readings = check.outside.len();
-        CheckDocument {
-            level: check.level,
-            source: check.source.clone(),
-            held_out: check.held_out,
-            bound_mm: check.bound * 1e3,
-            readings,
-            outside,
-            share_outside: outside as f64 / readings.max(1) as f64,
-            allowed: check.allowed,
-            drifted: check.drifted,
-            errors: (errors.errors.iter().zip(&check.outside))
-                .map(|(e, &outside)| CheckedReading {
-                    posture: labels.get(e.posture).cloned().unwrap_or_default(),
-                    point: e.point + 1,
-                    point_name: stiffid_core::io::readings::point_name(e.point, e.table),
-                    error_mm: e.error.norm() * 1e3,
-                    outside,
-                })
-                .collect(),
-        }
-    }
-
+impl Check {
     /// The check as a gate: a robot that drifted beyond its intervals fails it. The update's
     /// outputs stand (the command writes them, then exits with code 1).
     ///
     /// # Errors
-    /// [`Error::Gate`] ([`JobOption::Update`]) when [`CheckDocument::drifted`].
+    /// [`Error::Gate`] ([`JobOption::Update`]) when [`Check::drifted`].
     pub fn gate(&self) -> Result<()> {
         match self.drifted {
             false => Ok(()),
@@ -205,7 +185,7 @@ impl CheckDocument {
                 option: JobOption::Update,
                 message: format!(
                     "the robot drifted beyond its intervals: {} of {} check readings beyond {:.4} mm, an undrifted robot explains up to {}",
-                    self.outside, self.readings, self.bound_mm, self.allowed
+                    self.outside, self.readings, mm(self.bound), self.allowed
                 ),
             }),
         }

@@ -22,6 +22,7 @@ pub mod document;
 pub mod drift;
 mod files;
 mod held;
+mod held_document;
 mod ladder_document;
 mod maps_document;
 mod part;
@@ -178,9 +179,13 @@ pub struct Held {
     pub outside: std::collections::BTreeMap<usize, Outside>,
 }
 
-/// What the job found.
+/// What the job found. It serialises to its document, `stiffid calibrate --json`, through the
+/// borrowed view [`document::Document`] ([`Report::document`]: mm and deg, units in every key),
+/// built as it is written.
 #[derive(Debug, Clone)]
 pub struct Report {
+    /// The setup as the user named it (the request's `setup_name`).
+    pub setup: String,
     /// The readings file's name.
     pub data_name: String,
     /// The error model.
@@ -269,8 +274,23 @@ fn observations(setup: &Setup, data: &Data, unloaded_only: bool) -> (Vec<Observa
     (obs, measured_in)
 }
 
-/// The calibrate job's report and its document.
-pub type Outcome = crate::app::Outcome<Report, document::Document>;
+impl Report {
+    /// The document this report is written as (`stiffid calibrate --json`, Python's
+    /// `calibrate(...)`), to read: what the command's text and report page print.
+    pub fn document(&self) -> document::Document<'_> {
+        document::Document::new(self)
+    }
+}
+
+impl serde::Serialize for Report {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        self.document().serialize(s)
+    }
+}
+
+/// The calibrate job's report, which is its document (serialised through
+/// [`document::Document`]).
+pub type Outcome = crate::app::Outcome<Report>;
 
 /// Runs the job.
 ///
@@ -283,12 +303,13 @@ pub type Outcome = crate::app::Outcome<Report, document::Document>;
 /// [`Error::InvalidOption`] ([`JobOption::Level`]) for a level outside
 /// [`stiffid_core::model::prediction::LEVEL`] or without `validate`.
 pub fn run(request: &Request<'_>) -> Result<Outcome> {
-    let report = find(request)?;
-    let document = document::Document::new(&report, &request.readings.setup_name);
-    Ok(Outcome { report, document })
+    Ok(Outcome {
+        report: find(request)?,
+        document: crate::app::Itself,
+    })
 }
 
-/// What [`run`] finds, before its document.
+/// What [`run`] finds.
 fn find(request: &Request<'_>) -> Result<Report> {
     let setup = request.readings.setup;
     let name = &request.readings.name;
@@ -316,7 +337,7 @@ fn find(request: &Request<'_>) -> Result<Report> {
         .then(|| {
             drift::checked(
                 setup.robot(),
-                &nominal,
+                (&nominal, &data.labels),
                 (level, setup.noise().reading_sd()),
                 &mut warnings,
             )
@@ -344,6 +365,7 @@ fn find(request: &Request<'_>) -> Result<Report> {
     let held = (validation.as_ref(), cross_validation.as_ref());
     let files = files::files(request, &chosen, held, &mut warnings)?;
     Ok(Report {
+        setup: request.readings.setup_name.clone(),
         data_name: name.clone(),
         labels: data.labels.clone(),
         readings: obs.len(),

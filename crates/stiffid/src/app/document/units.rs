@@ -144,3 +144,19 @@ pub fn plain3<S: Serializer>(v: &Vector3<f64>, s: S) -> Written<S> {
 pub fn name<S: Serializer, T: stiffid_core::common::choice::Choice>(v: &T, s: S) -> Written<S> {
     s.serialize_str(v.name())
 }
+
+/// An angle in rad or none, written in mrad (`v * 1e3`) or `null`. Schema: `Option<f64>`.
+///
+/// # Errors
+/// The serialiser's.
+pub fn mrad_option<S: Serializer>(v: &Option<f64>, s: S) -> Written<S> {
+    v.map(|v| v * 1e3).serialize(s)
+}
+
+/// An angle in rad or none, written in deg or `null`. Schema: `Option<f64>`.
+///
+/// # Errors
+/// The serialiser's.
+pub fn deg_option<S: Serializer>(v: &Option<f64>, s: S) -> Written<S> {
+    v.map(f64::to_degrees).serialize(s)
+}

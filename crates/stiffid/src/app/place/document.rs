@@ -2,25 +2,31 @@
 //! `stiffid.place(...)`.
 
 use super::{Evaluation, Report};
-use crate::app::document::mm;
+use crate::app::document::units;
+use nalgebra::{Isometry3, Vector3};
 use serde::Serialize;
 use stiffid_core::common::choice::Choice;
 
 /// The place document.
+///
+/// A view of the report ([`Report::document`]), built as it is written: its lengths and angles
+/// are the report's, in SI, written in the units their keys name by the unit adapters
+/// ([`units`]).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(tag = "kind", rename = "place")]
+#[cfg_attr(feature = "schema", schemars(description = "The place document."))]
 #[cfg_attr(feature = "schema", schemars(transform = crate::app::document::schema::Kind("place")))]
-pub struct Document {
+pub struct Document<'a> {
     /// What the placement minimised: `max` (the path's largest error bound) or `sum`.
-    pub objective: String,
+    pub objective: &'static str,
     /// The placement chosen.
-    pub placed: Placement,
+    pub placed: Placement<'a>,
     /// The setup's own placement.
-    pub own: Placement,
+    pub own: Placement<'a>,
     /// The placement a reach check alone picks (the largest smallest distance to the joint
     /// limits over the region).
-    pub reach_only: Placement,
+    pub reach_only: Placement<'a>,
     /// The objective's fall from the own placement to the chosen one, percent of the own
     /// (positive: better); `null` when the own placement is not feasible.
     pub gain_vs_own_pct: Option<f64>,
@@ -34,74 +40,82 @@ pub struct Document {
 /// One placement of the part and its figures.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct Placement {
+pub struct Placement<'a> {
     /// The part frame's origin in the robot base frame, mm (`[workpiece] base_from_part`).
-    pub xyz_mm: [f64; 3],
+    #[serde(rename = "xyz_mm", serialize_with = "units::mm3")]
+    #[cfg_attr(feature = "schema", schemars(with = "[f64; 3]"))]
+    pub xyz: Vector3<f64>,
     /// Its orientation, fixed-axis roll, pitch, yaw, deg.
     pub rpy_deg: [f64; 3],
     /// Whether every point is reachable and passes the checks; `false` only for the own
     /// placement, its figures then `null`.
     pub feasible: bool,
     /// Why not, when not feasible.
-    pub reason: Option<String>,
+    pub reason: Option<&'a str>,
     /// The path's largest error bound, mm.
-    pub peak_bound_mm: Option<f64>,
+    #[serde(rename = "peak_bound_mm", serialize_with = "units::mm_option")]
+    pub peak_bound: Option<f64>,
     /// The mean of the points' bounds, mm.
-    pub mean_bound_mm: Option<f64>,
+    #[serde(rename = "mean_bound_mm", serialize_with = "units::mm_option")]
+    pub mean_bound: Option<f64>,
     /// The program line of the largest bound.
     pub worst_line: Option<u64>,
     /// The smallest distance of an axis angle to its joint limits over the path, deg.
-    pub min_limit_margin_deg: Option<f64>,
+    #[serde(rename = "min_limit_margin_deg", serialize_with = "units::deg_option")]
+    pub min_limit_margin: Option<f64>,
     /// The largest condition number of the TCP Jacobian over the path.
     pub max_condition: Option<f64>,
     /// The smallest clearance of the cell's bodies over the path, mm; `null` without a cell.
-    pub min_clearance_mm: Option<f64>,
+    #[serde(rename = "min_clearance_mm", serialize_with = "units::mm_option")]
+    pub min_clearance: Option<f64>,
 }
 
-impl Placement {
-    fn feasible(e: &Evaluation) -> Self {
-        let (r, p, y) = e.base_from_part.rotation.euler_angles();
+impl<'a> Placement<'a> {
+    /// The placement `base_from_part`, with none of the figures.
+    fn at(base_from_part: &Isometry3<f64>) -> Self {
+        let (r, p, y) = base_from_part.rotation.euler_angles();
         Placement {
-            xyz_mm: (e.base_from_part.translation.vector * 1e3).into(),
+            xyz: base_from_part.translation.vector,
             rpy_deg: [r, p, y].map(|a| a.to_degrees() + 0.0),
-            feasible: true,
+            feasible: false,
             reason: None,
-            peak_bound_mm: Some(mm(e.peak)),
-            mean_bound_mm: Some(mm(e.sum / e.points as f64)),
+            peak_bound: None,
+            mean_bound: None,
+            worst_line: None,
+            min_limit_margin: None,
+            max_condition: None,
+            min_clearance: None,
+        }
+    }
+
+    fn feasible(e: &Evaluation) -> Self {
+        Placement {
+            feasible: true,
+            peak_bound: Some(e.peak),
+            mean_bound: Some(e.sum / e.points as f64),
             worst_line: Some(e.worst_line),
-            min_limit_margin_deg: Some(e.limit_margin.to_degrees()),
+            min_limit_margin: Some(e.limit_margin),
             max_condition: Some(e.condition),
-            min_clearance_mm: e.clearance.map(mm),
+            min_clearance: e.clearance,
+            ..Placement::at(&e.base_from_part)
         }
     }
 }
 
-impl Document {
-    /// The document of `report`; `own` is the setup's own part frame (for an own placement that
-    /// is not feasible).
-    pub fn new(report: &Report, own: &nalgebra::Isometry3<f64>) -> Self {
+impl<'a> Document<'a> {
+    /// The document of `report` ([`Report::document`]).
+    pub(crate) fn new(report: &'a Report) -> Self {
         let gain =
             |from: &Evaluation| 100.0 * (1.0 - report.cost(&report.placed) / report.cost(from));
         let own_placement = match &report.own {
             Ok(e) => Placement::feasible(e),
-            Err(reason) => {
-                let (r, p, y) = own.rotation.euler_angles();
-                Placement {
-                    xyz_mm: (own.translation.vector * 1e3).into(),
-                    rpy_deg: [r, p, y].map(|a| a.to_degrees() + 0.0),
-                    feasible: false,
-                    reason: Some(reason.clone()),
-                    peak_bound_mm: None,
-                    mean_bound_mm: None,
-                    worst_line: None,
-                    min_limit_margin_deg: None,
-                    max_condition: None,
-                    min_clearance_mm: None,
-                }
-            }
+            Err(reason) => Placement {
+                reason: Some(reason),
+                ..Placement::at(&report.own_frame)
+            },
         };
         Document {
-            objective: report.objective.name().into(),
+            objective: report.objective.name(),
             placed: Placement::feasible(&report.placed),
             own: own_placement,
             reach_only: Placement::feasible(&report.reach),

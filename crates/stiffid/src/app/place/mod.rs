@@ -214,13 +214,17 @@ impl Request<'_> {
     pub const MAX_STARTS: usize = 16;
 }
 
-/// What the place job found.
+/// What the place job found. It serialises to its document, `stiffid place --json`, through the
+/// borrowed view [`document::Document`] ([`Report::document`]: its placement beside the setup's
+/// own, mm and deg), built as it is written.
 #[derive(Debug, Clone)]
 pub struct Report {
     /// The placement chosen.
     pub placed: Evaluation,
     /// The setup's own placement, or why it is not feasible.
     pub own: std::result::Result<Evaluation, String>,
+    /// The setup's own part frame in the robot base frame (`[workpiece] base_from_part`), m.
+    pub own_frame: Isometry3<f64>,
     /// The placement a reach check alone picks: the largest smallest distance to the joint
     /// limits over the region.
     pub reach: Evaluation,
@@ -237,6 +241,18 @@ impl Report {
     pub fn cost(&self, e: &Evaluation) -> f64 {
         cost(self.objective, e)
     }
+
+    /// The document this report is written as (`stiffid place --json`, Python's
+    /// `stiffid.place(...)`), to read: what the command's text prints.
+    pub fn document(&self) -> document::Document<'_> {
+        document::Document::new(self)
+    }
+}
+
+impl serde::Serialize for Report {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        self.document().serialize(s)
+    }
 }
 
 fn cost(objective: Aggregate, e: &Evaluation) -> f64 {
@@ -246,8 +262,8 @@ fn cost(objective: Aggregate, e: &Evaluation) -> f64 {
     }
 }
 
-/// The place job's report and its document (its placement beside the setup's own).
-pub type Outcome = crate::app::Outcome<Report, document::Document>;
+/// The place job's report, which is its document (serialised through [`document::Document`]).
+pub type Outcome = crate::app::Outcome<Report>;
 
 /// Runs the place job (module docs).
 ///
@@ -257,13 +273,13 @@ pub type Outcome = crate::app::Outcome<Report, document::Document>;
 /// program's joint targets, a path file's axis angles), and no feasible placement in the region (naming why the
 /// setup's own placement fails); those of [`Options::validate`].
 pub fn run(request: &Request<'_>) -> Result<Outcome> {
-    let report = find(request)?;
-    let own = request.setup.workpiece().copied().unwrap_or_default();
-    let document = document::Document::new(&report, &own);
-    Ok(Outcome { report, document })
+    Ok(Outcome {
+        report: find(request)?,
+        document: crate::app::Itself,
+    })
 }
 
-/// What [`run`] finds, before its document.
+/// What [`run`] finds.
 fn find(request: &Request<'_>) -> Result<Report> {
     check(request)?;
     let setup = request.setup;
@@ -341,6 +357,7 @@ fn find(request: &Request<'_>) -> Result<Report> {
         setup_text: with_workpiece(request.setup_text, &placed.base_from_part),
         placed,
         own: own_evaluation,
+        own_frame: own,
         reach,
         objective,
         evaluations,

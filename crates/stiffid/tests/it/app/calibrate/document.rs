@@ -37,12 +37,17 @@ fn intervals_of_postures_outside_the_fitted_ranges_do_not_hold() {
     assert_eq!(doc.errors[0].outside_range, None);
     assert_eq!(doc.errors[1].interval_holds, Some(false));
     let o = doc.errors[1].outside_range.as_ref().unwrap();
-    assert!((o.distance_deg - 12.5).abs() < 1e-12, "{}", o.distance_deg);
+    assert!(
+        (o.distance.to_degrees() - 12.5).abs() < 1e-12,
+        "{}",
+        o.distance
+    );
     assert_eq!(o.joints, [2, 5]);
-    let without = held(&Held {
+    let h = Held {
         intervals: None,
         ..h
-    });
+    };
+    let without = held(&h);
     assert_eq!(without.errors[1].interval_holds, None);
     assert!(without.errors[1].outside_range.is_some());
 }
