@@ -45,10 +45,12 @@ use stiffid_core::{Error, Result};
 
 mod leave_one_out;
 mod noise;
+mod strength;
 
 pub(super) use leave_one_out::leave_one_out_linearised;
 use noise::fit_with;
 pub use noise::{fit_at_stated_noise, MAX_REWEIGHTS, NOISE_TOLERANCE};
+pub use strength::STRENGTHS;
 
 /// Most Levenberg-Marquardt iterations.
 pub const MAX_ITERATIONS: usize = 100;
@@ -165,6 +167,10 @@ pub struct Fit {
     /// residuals' rather than the one [`GravityPrior::noise`] states (module docs, *Thin
     /// readings*); `None` where it was the stated one.
     pub gravity_noise: Option<f64>,
+    /// The deflection the gravity prior bounds its terms by, rad, where cross-validation over
+    /// the postures chose it tighter than [`GravityPrior::deflection`] (module docs, *Thin
+    /// readings*); `None` where it is the stated one.
+    pub gravity_deflection: Option<f64>,
 }
 
 /// Fits `model` to `observations` from `start` (module docs).
@@ -551,6 +557,7 @@ impl Problem<'_> {
             iterations,
             stop,
             gravity_noise: None,
+            gravity_deflection: None,
         })
     }
 }

@@ -1,6 +1,6 @@
 //! The gravity prior weighed against the residuals' noise (the module docs' *Thin readings*).
 
-use super::{fit_once, Fit, GravityPrior, Options, MAX_ITERATIONS};
+use super::{fit_once, strength, Fit, GravityPrior, Options, MAX_ITERATIONS};
 use crate::calibration::error_model::{ErrorModel, Estimate, Observation};
 use stiffid_core::Result;
 
@@ -41,6 +41,26 @@ pub(super) fn fit_with(
             ..*options
         };
         fit = fit_once(model, observations, start, &weighed, limit)?;
+    }
+    let weighed = GravityPrior { noise, ..prior };
+    let with = |gravity| Options {
+        gravity: Some(gravity),
+        ..*options
+    };
+    let strength = strength::chosen(model, observations, &fit, &with(weighed))?;
+    if strength > 1.0 {
+        let deflection = prior.deflection / strength;
+        fit = fit_once(
+            model,
+            observations,
+            start,
+            &with(GravityPrior {
+                deflection,
+                ..weighed
+            }),
+            limit,
+        )?;
+        fit.gravity_deflection = Some(deflection);
     }
     fit.gravity_noise = (noise > prior.noise).then_some(noise);
     Ok(fit)
