@@ -70,13 +70,15 @@ pub(super) fn choose(
     progress.begin("fit", 0);
     let held = held_postures(request);
     let region = super::region::of(setup, obs, held.as_deref());
+    // A gravity model given, not chosen: no ladder judges it.
+    let given = matches!(gravity, ladder::GravitySpec::Fixed(_));
     let climbed = ladder::climb(
         (gravity, maps_spec),
         setup.robot().masses().is_some(),
         (obs, &region),
         &options,
         (
-            |g| fitted(request, (obs, measured_in, tables), geometry, g, &options),
+            |g| fitted(request, (obs, measured_in, tables), (geometry, given), g, &options),
             // Readings that determine nothing are refused before any choice is fitted.
             |f: &ladder::Fitted| super::checks::refuse_repeated(setup, obs, &f.model, &f.fit),
         ),
@@ -143,17 +145,19 @@ fn held_postures(request: &Request<'_>) -> Option<Vec<nalgebra::Vector6<f64>>> {
 }
 
 /// The calibration of `gravity` fitted to the readings `obs` (in `measured_in`, with the
-/// cell's `tables`): the error model with its error motions and loads, its start and its fit.
+/// cell's `tables`): the error model with its error motions and loads, its start and its fit;
+/// a `given` gravity model (no ladder judges it) with its bound's strength chosen by the
+/// readings ([`fit::fit_choosing_strength`]).
 ///
 /// # Errors
 /// Those of [`model`], [`update::kept`], [`ErrorModel::with_tables`], [`update::external`],
 /// [`stiffid_metrology::calibration::motions::choose`], [`update::identifiable`],
-/// [`ErrorModel::with_loads`], [`fit::start`] and [`fit::fit`];
+/// [`ErrorModel::with_loads`], [`fit::start`] and [`fit::fit_choosing_strength`];
 /// [`Error::InvalidField`] (`readings`) for base-frame readings with external axes.
 pub(super) fn fitted(
     request: &Request<'_>,
     (obs, measured_in, tables): (&[Observation], MeasuredIn, usize),
-    geometry: Geometry,
+    (geometry, given): (Geometry, bool),
     gravity: Gravity,
     options: &Options,
 ) -> Result<ladder::Fitted> {
@@ -187,7 +191,10 @@ pub(super) fn fitted(
         false => model,
     };
     let start = fit::start(&model, obs)?;
-    let fit = fit::fit(&model, obs, &start, options)?;
+    let fit = match given {
+        true => fit::fit_choosing_strength(&model, obs, &start, options)?,
+        false => fit::fit(&model, obs, &start, options)?,
+    };
     Ok(ladder::Fitted {
         model,
         start,
