@@ -93,14 +93,9 @@ pub(super) fn chosen(
     let best = (0..STRENGTHS)
         .min_by(|&x, &y| total(x).total_cmp(&total(y)))
         .unwrap_or(0);
-    let strongest = (0..STRENGTHS).rev().find(|&k| {
-        k == best
-            || !lowers(
-                (&errors[k], total(k)),
-                (&errors[best], total(best)),
-                1.0,
-            )
-    });
+    let strongest = (0..STRENGTHS)
+        .rev()
+        .find(|&k| k == best || !lowers((&errors[k], total(k)), (&errors[best], total(best)), 1.0));
     Ok(10f64.powf(strongest.unwrap_or(0) as f64 / 2.0))
 }
 

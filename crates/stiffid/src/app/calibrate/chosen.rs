@@ -2,7 +2,7 @@
 //! ([`super::ladder`]), the maps chosen on every posture ([`super::maps`]), their range.
 
 use super::{ladder, maps, update, Maps, Request};
-use crate::app::in_data;
+use crate::app::{in_data, Warning, WarningKind};
 use stiffid_core::{Error, Result};
 use stiffid_metrology::calibration::error_model::{MeasuredIn, Observation};
 use stiffid_metrology::calibration::fit::{
@@ -78,7 +78,15 @@ pub(super) fn choose(
         (obs, &region),
         &options,
         (
-            |g| fitted(request, (obs, measured_in, tables), (geometry, given), g, &options),
+            |g| {
+                fitted(
+                    request,
+                    (obs, measured_in, tables),
+                    (geometry, given),
+                    g,
+                    &options,
+                )
+            },
             // Readings that determine nothing are refused before any choice is fitted.
             |f: &ladder::Fitted| super::checks::refuse_repeated(setup, obs, &f.model, &f.fit),
         ),
@@ -201,4 +209,20 @@ pub(super) fn fitted(
         fit,
         error_motions,
     })
+}
+
+/// A warning ([`WarningKind::Unidentifiable`]) when the readings held the gravity terms of a
+/// model given at their nominal values: the bound's strength chosen by the readings
+/// ([`fit::fit_choosing_strength`]) a hundred times the stated one or more, the terms deflecting
+/// at most 30 urad at their largest torque (0.03 mm at 1 m, a tracker's noise).
+pub(super) fn held_gravity(fit: &Fit) -> Option<Warning> {
+    let d = (fit.gravity_deflection).filter(|&d| d <= 1e-2 * GRAVITY_DEFLECTION)?;
+    Some(Warning::new(
+        WarningKind::Unidentifiable,
+        format!(
+            "the readings do not tell the gravity terms from what no term of the model holds: cross-validation over the postures held them at their nominal values (a bound of {:.4} mrad of deflection at their largest torque, against the stated {:.0} mrad), and the model predicts about as the geometry alone; spread the postures over joints 2, 3 and 5",
+            d * 1e3,
+            GRAVITY_DEFLECTION * 1e3
+        ),
+    ))
 }
