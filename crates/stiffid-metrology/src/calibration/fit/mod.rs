@@ -41,7 +41,7 @@
 //! five groups, each group predicted by the fit of the others linearised at this fit, at the
 //! prior's weight times `10^(k/2)` (`k = 0..`[`STRENGTHS`], the deflection divided alike); the
 //! strongest whose held-out squared error the best's does not lower by more than one standard
-//! error of the paired per-posture differences (the ladder's one-standard-error rule) is fitted
+//! error of the paired per-posture differences and 2 % (a one-standard-error rule) is fitted
 //! anew from the same start ([`Fit::gravity_deflection`]). Where the readings determine the
 //! terms the stronger priors predict the held-out groups worse and the stated bound stays; where
 //! they do not, the terms are held towards their nominal values (0 for a lumped term, the

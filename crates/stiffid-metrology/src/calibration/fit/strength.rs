@@ -25,8 +25,8 @@ const FEWEST_POSTURES: usize = 10;
 /// the fit weighed it): each group of postures predicted by the linearised fit of the others at
 /// each of [`STRENGTHS`] strengths, the joint errors' priors kept as they are; the strongest
 /// whose held-out squared error the best's does not lower by more than one standard error of
-/// the paired per-posture differences (the one-standard-error rule of the ladder,
-/// [`lowers`]). 1 with fewer than [`FEWEST_POSTURES`] distinct postures.
+/// the paired per-posture differences and 2 % (a one-standard-error rule, by the calibration's
+/// acceptance rule [`lowers`]). 1 with fewer than [`FEWEST_POSTURES`] distinct postures.
 ///
 /// # Errors
 /// Those of [`ErrorModel::residuals`] and [`ErrorModel::jacobian_of`]; [`stiffid_core::Error::NotFinite`]
