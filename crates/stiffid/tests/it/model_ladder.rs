@@ -29,6 +29,11 @@ fn readings(case: &Case, seed: u64, n: usize, rigid: bool) -> String {
 }
 
 fn calibrated(case: &Case, data: &str) -> Report {
+    calibrated_as(case, data, GravitySpec::Auto)
+}
+
+/// The calibration of `data` with the gravity model `gravity`.
+fn calibrated_as(case: &Case, data: &str, gravity: GravitySpec) -> Report {
     calibrate::run(&calibrate::Request {
         readings: stiffid::app::readings::Request {
             setup_name: "setup".into(),
@@ -38,7 +43,7 @@ fn calibrated(case: &Case, data: &str) -> Report {
             force: false,
         },
         geometry: Geometry::Full,
-        gravity: GravitySpec::Auto,
+        gravity,
         validate: None,
         reregister: false,
         cross_validate: false,
@@ -293,4 +298,23 @@ fn forced_mirrored_readings_drop_the_maps_that_fail() {
         "{why}"
     );
     assert!(report.model.map_start().is_none());
+}
+
+/// A gravity model given on a robot that does not sag (its drives rigid): the readings hold its
+/// terms at their nominal values (the bound's strength chosen by them) and the calibration says
+/// so; on the robot that sags the terms are fitted, and nothing is said.
+#[test]
+fn a_given_gravity_model_the_readings_hold_at_nominal_says_so() {
+    let case = dh_case();
+    for (rigid, said) in [(true, true), (false, false)] {
+        let data = readings(&case, 15, 40, rigid);
+        let report = calibrated_as(&case, &data, GravitySpec::Fixed(Gravity::Lumped));
+        println!(
+            "rigid {rigid}: bound {:?} rad",
+            report.fit.gravity_deflection
+        );
+        let held = (report.warnings.iter())
+            .any(|w| w.message.contains("held them at their nominal values"));
+        assert_eq!(held, said, "{:?}", report.warnings);
+    }
 }

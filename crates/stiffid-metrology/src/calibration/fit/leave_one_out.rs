@@ -34,7 +34,7 @@ pub(in crate::calibration) fn leave_one_out_linearised(
     let options = &Options {
         gravity: (options.gravity).map(|g| GravityPrior {
             noise: fit.gravity_noise.unwrap_or(g.noise),
-            ..g
+            deflection: fit.gravity_deflection.unwrap_or(g.deflection),
         }),
         ..*options
     };

@@ -31,8 +31,24 @@
 //! most [`MAX_REWEIGHTS`] fits; each from the same start): the prior's Gaussian with the noise
 //! the readings show, which leaves it as stated where the model fits to the tracker's noise
 //! (every noise-free or well-modelled campaign: the fit is unchanged there). [`Fit::gravity_noise`]
-//! gives the noise used; [`fit_at_stated_noise`] fits without it. Every fit converges on its
-//! step and its cost as above and says why it stopped ([`stop_warning`]).
+//! gives the noise used; [`fit_at_stated_noise`] fits without it.
+//!
+//! *The prior's strength chosen by the readings.* The stated bound is the weakest prior a fit
+//! takes: a misfit no model term holds, seen on a few dozen postures, is one the gravity terms can
+//! follow within 3 mrad, and a gravity model that no ladder judges (given, not chosen) has
+//! nothing else to hold it. [`fit_choosing_strength`] then chooses the prior's strength by
+//! cross-validation over the postures, as the maps choose their ridge: the postures dealt into
+//! five groups, each group predicted by the fit of the others linearised at this fit, at the
+//! prior's weight times `10^(k/2)` (`k = 0..`[`STRENGTHS`], the deflection divided alike); the
+//! strongest whose held-out squared error the best's does not lower by more than one standard
+//! error of the paired per-posture differences and 2 % (a one-standard-error rule) is fitted
+//! anew from the same start ([`Fit::gravity_deflection`]). Where the readings determine the
+//! terms the stronger priors predict the held-out groups worse and the stated bound stays; where
+//! they do not, the terms are held towards their nominal values (0 for a lumped term, the
+//! setup's compliance for known masses) and the model predicts as the geometry alone does. Each
+//! candidate is one least-squares solve by SVD of the training rows' triangular factor stacked
+//! on the prior rows (never the normal equations). Every fit converges on its step and its cost
+//! as above and says why it stopped ([`stop_warning`]).
 
 use super::error_model::{ErrorModel, Estimate, Kind, MeasuredIn, Observation, Target};
 use super::identifiability::{self, Identifiability};
@@ -45,10 +61,12 @@ use stiffid_core::{Error, Result};
 
 mod leave_one_out;
 mod noise;
+mod strength;
 
 pub(super) use leave_one_out::leave_one_out_linearised;
 use noise::fit_with;
-pub use noise::{fit_at_stated_noise, MAX_REWEIGHTS, NOISE_TOLERANCE};
+pub use noise::{fit_at_stated_noise, fit_choosing_strength, MAX_REWEIGHTS, NOISE_TOLERANCE};
+pub use strength::STRENGTHS;
 
 /// Most Levenberg-Marquardt iterations.
 pub const MAX_ITERATIONS: usize = 100;
@@ -165,6 +183,10 @@ pub struct Fit {
     /// residuals' rather than the one [`GravityPrior::noise`] states (module docs, *Thin
     /// readings*); `None` where it was the stated one.
     pub gravity_noise: Option<f64>,
+    /// The deflection the gravity prior bounds its terms by, rad, where cross-validation over
+    /// the postures chose it tighter than [`GravityPrior::deflection`] (module docs, *Thin
+    /// readings*); `None` where it is the stated one.
+    pub gravity_deflection: Option<f64>,
 }
 
 /// Fits `model` to `observations` from `start` (module docs).
@@ -196,7 +218,7 @@ pub fn fit_within(
     options: &Options,
     limit: usize,
 ) -> Result<Fit> {
-    fit_with(model, observations, start, options, (limit, true))
+    fit_with(model, observations, start, options, (limit, true, false))
 }
 
 /// One fit of [`fit_with`], the prior's weights as `options` give them.
@@ -551,6 +573,7 @@ impl Problem<'_> {
             iterations,
             stop,
             gravity_noise: None,
+            gravity_deflection: None,
         })
     }
 }

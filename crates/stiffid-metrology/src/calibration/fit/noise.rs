@@ -1,6 +1,6 @@
 //! The gravity prior weighed against the residuals' noise (the module docs' *Thin readings*).
 
-use super::{fit_once, Fit, GravityPrior, Options, MAX_ITERATIONS};
+use super::{fit_once, strength, Fit, GravityPrior, Options, MAX_ITERATIONS};
 use crate::calibration::error_model::{ErrorModel, Estimate, Observation};
 use stiffid_core::Result;
 
@@ -15,20 +15,25 @@ pub const NOISE_TOLERANCE: f64 = 0.05;
 /// noise when `reweigh` and the model has gravity terms ([`reweighed`]; module docs, *Thin
 /// readings*): fitted anew from `start` with the noise per coordinate of the last fit's
 /// residuals (`|r|^2 / (3n - p_e)`, `p_e` its effective parameters) while it exceeds the
-/// prior's noise by more than [`NOISE_TOLERANCE`], at most [`MAX_REWEIGHTS`] times; the
-/// last fit's iterations and stop.
+/// prior's noise by more than [`NOISE_TOLERANCE`], at most [`MAX_REWEIGHTS`] times; then, when
+/// `choose`, the prior's strength chosen by cross-validation ([`strength::chosen`]) and, where it
+/// is tighter than stated, fitted anew from `start` at it; the last fit's iterations and stop.
 pub(super) fn fit_with(
     model: &ErrorModel,
     observations: &[Observation],
     start: &Estimate,
     options: &Options,
-    (limit, reweigh): (usize, bool),
+    (limit, reweigh, choose): (usize, bool, bool),
 ) -> Result<Fit> {
     let mut fit = fit_once(model, observations, start, options, limit)?;
     let Some(prior) = options.gravity.filter(|_| reweigh && reweighed(model)) else {
         return Ok(fit);
     };
     let mut noise = prior.noise;
+    let with = |gravity| Options {
+        gravity: Some(gravity),
+        ..*options
+    };
     for _ in 0..MAX_REWEIGHTS {
         let dof = 3.0 * observations.len() as f64 - fit.effective_parameters;
         let sigma = (fit.residuals.norm_squared() / dof.max(1.0)).sqrt();
@@ -36,18 +41,63 @@ pub(super) fn fit_with(
             break;
         }
         noise = sigma;
-        let weighed = Options {
-            gravity: Some(GravityPrior { noise, ..prior }),
-            ..*options
-        };
-        fit = fit_once(model, observations, start, &weighed, limit)?;
+        fit = fit_once(
+            model,
+            observations,
+            start,
+            &with(GravityPrior { noise, ..prior }),
+            limit,
+        )?;
+    }
+    let weighed = GravityPrior { noise, ..prior };
+    let strength = match choose {
+        true => strength::chosen(model, observations, &fit, &with(weighed))?,
+        false => 1.0,
+    };
+    if strength > 1.0 {
+        let deflection = prior.deflection / strength;
+        fit = fit_once(
+            model,
+            observations,
+            start,
+            &with(GravityPrior {
+                deflection,
+                ..weighed
+            }),
+            limit,
+        )?;
+        fit.gravity_deflection = Some(deflection);
     }
     fit.gravity_noise = (noise > prior.noise).then_some(noise);
     Ok(fit)
 }
 
+/// [`fit`](super::fit) with the gravity prior's strength chosen by the readings (module docs,
+/// *The prior's strength chosen by the readings*): the fit of a gravity model that no ladder
+/// judges (`--gravity` given), whose terms the readings may not tell from a misfit. The same as
+/// [`fit`](super::fit) for a model without gravity terms or with maps.
+///
+/// # Errors
+/// Those of [`fit`](super::fit); [`stiffid_core::Error::NotFinite`] when an SVD of the choice
+/// does not converge.
+pub fn fit_choosing_strength(
+    model: &ErrorModel,
+    observations: &[Observation],
+    start: &Estimate,
+    options: &Options,
+) -> Result<Fit> {
+    fit_with(
+        model,
+        observations,
+        start,
+        options,
+        (MAX_ITERATIONS, true, true),
+    )
+}
+
 /// [`fit`](super::fit) with the gravity prior weighed against the noise [`GravityPrior::noise`] states
-/// only, never the residuals' (the comparison of the module docs' *Thin readings*).
+/// only, never the residuals' (the comparison of the module docs' *Thin
+/// readings*).
 ///
 /// # Errors
 /// Those of [`fit`](super::fit).
@@ -57,7 +107,13 @@ pub fn fit_at_stated_noise(
     start: &Estimate,
     options: &Options,
 ) -> Result<Fit> {
-    fit_with(model, observations, start, options, (MAX_ITERATIONS, false))
+    fit_with(
+        model,
+        observations,
+        start,
+        options,
+        (MAX_ITERATIONS, false, false),
+    )
 }
 
 /// Whether the fit of `model` weighs its gravity prior against the residuals' noise: a model with

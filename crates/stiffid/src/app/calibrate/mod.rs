@@ -359,6 +359,7 @@ fn find(request: &Request<'_>) -> Result<Report> {
         &mut warnings,
     )?;
     warnings.extend(judge(model, fitted, noise_ratio, name));
+    warnings.extend(chosen::held_gravity(fitted));
     if let Some(w) = warnings.iter_mut().find(|w| w.kind == WarningKind::Misfit) {
         w.message += &largest_residual(&data, &fitted.residuals);
     }
