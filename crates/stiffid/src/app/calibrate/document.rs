@@ -51,7 +51,8 @@ pub struct Document<'a> {
     pub gravity: &'static str,
     /// With gravity terms: their bound, the prior standard deviation of each term's deflection
     /// at the largest torque it meets within the robot's joint limits, mrad (what holds a term
-    /// the readings do not determine at its nominal value); `null` without gravity terms.
+    /// the readings do not determine at its nominal value; for a gravity model given, the
+    /// strength the cross-validation over the postures chose); `null` without gravity terms.
     #[serde(rename = "gravity_prior_mrad", serialize_with = "units::mrad_option")]
     pub gravity_prior: Option<f64>,
     /// The frame of the readings: `tracker` or `base`.
@@ -278,7 +279,8 @@ impl<'a> Document<'a> {
             data: &report.data_name,
             geometry: Choice::name(report.geometry),
             gravity: Choice::name(report.gravity),
-            gravity_prior: (report.gravity != Gravity::None).then_some(GRAVITY_DEFLECTION),
+            gravity_prior: (report.gravity != Gravity::None)
+                .then(|| fit.gravity_deflection.unwrap_or(GRAVITY_DEFLECTION)),
             measured_in: match model.measured_in() {
                 stiffid_metrology::calibration::error_model::MeasuredIn::Tracker => "tracker",
                 stiffid_metrology::calibration::error_model::MeasuredIn::Base => "base",
