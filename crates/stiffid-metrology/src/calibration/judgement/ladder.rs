@@ -328,35 +328,29 @@ pub fn climb(
     })
 }
 
-/// Skips the rungs (`order`: each one's gravity model's index and whether it fits maps) of every
-/// gravity model that extrapolates: whose expected squared error where the robot is used, its
-/// held-out error without maps and its spread there in quadrature, exceeds the geometry's by more
-/// than one standard error of their held-out difference (module docs).
+/// Skips the rungs (`order`: each one's gravity model's index and whether it fits maps) that
+/// extrapolate: whose expected squared error where the robot is used, its own held-out error
+/// and its gravity model's spread there in quadrature, exceeds that of the geometry with the
+/// same maps variant by more than one standard error of their held-out difference (module docs).
 fn extrapolating(rungs: &mut [Rung], order: &[(usize, bool)]) {
-    let without = |g: usize| (0..order.len()).find(|&i| order[i] == (g, false));
     let expected = |r: &Rung| Some(r.rms?.hypot(r.spread?));
-    let Some(base) = without(0).map(|i| &rungs[i]) else {
-        return;
-    };
-    let Some(e0) = expected(base) else {
-        return;
-    };
-    let worse: Vec<(usize, f64)> = (1..=order.iter().map(|o| o.0).max().unwrap_or(0))
-        .filter_map(|g| {
-            let rung = &rungs[without(g)?];
-            let e = expected(rung)?;
-            (e * e > e0 * e0 + resolution(base, rung)).then_some((g, e))
+    let worse: Vec<Option<(f64, f64)>> = (order.iter().enumerate())
+        .map(|(i, &(g, maps))| {
+            let base = &rungs[(g > 0).then(|| order.iter().position(|&o| o == (0, maps)))??];
+            let (e0, e) = (expected(base)?, expected(&rungs[i])?);
+            (e * e > e0 * e0 + resolution(base, &rungs[i])).then_some((e, e0))
         })
         .collect();
-    for (r, &(g, _)) in rungs.iter_mut().zip(order) {
-        let Some(&(_, e)) = worse.iter().find(|w| w.0 == g) else {
+    for (r, worse) in rungs.iter_mut().zip(worse) {
+        let Some((e, e0)) = worse else {
             continue;
         };
         r.skipped = Some(format!(
-            "it extrapolates: its predictions over the region where the robot is used spread by {:.3} mm, and with its held-out error it is expected {:.3} mm off there against {:.3} mm for the geometry, beyond what the held-out figures resolve (the postures leave its gravity terms to their bound)",
+            "it extrapolates: its predictions over the region where the robot is used spread by {:.3} mm, and with its held-out error it is expected {:.3} mm off there against {:.3} mm for the geometry{}, beyond what the held-out figures resolve (the postures leave its gravity terms to their bound)",
             r.spread.unwrap_or(f64::NAN) * 1e3,
             e * 1e3,
-            e0 * 1e3
+            e0 * 1e3,
+            if r.maps { " with maps" } else { "" }
         ));
     }
 }
