@@ -332,7 +332,7 @@ pub fn climb(
 /// extrapolate: whose expected squared error where the robot is used, its own held-out error
 /// and its gravity model's spread there in quadrature, exceeds that of the geometry with the
 /// same maps variant by more than one standard error of their held-out difference (module docs).
-fn extrapolating(rungs: &mut [Rung], order: &[(usize, bool)]) {
+pub(super) fn extrapolating(rungs: &mut [Rung], order: &[(usize, bool)]) {
     let expected = |r: &Rung| Some(r.rms?.hypot(r.spread?));
     let worse: Vec<Option<(f64, f64)>> = (order.iter().enumerate())
         .map(|(i, &(g, maps))| {

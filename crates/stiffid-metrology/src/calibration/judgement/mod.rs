@@ -12,6 +12,9 @@ pub mod ladder;
 pub mod maps;
 pub mod region;
 
+#[cfg(test)]
+mod ladder_tests;
+
 use stiffid_core::common::warning::{Warning, WarningKind};
 
 /// The noise ratio above which the calibration warns that the model misses something.
