@@ -300,21 +300,9 @@ pub fn climb(
         let none = rungs[chosen].rms.unwrap_or(f64::NAN) * 1e3;
         format!("the ladder chose the model without maps ({none:.4} mm held out)")
     });
-    // A later gravity model with maps fits the maps its held-out figure scored: those chosen at
-    // the first gravity model's fit, on every posture.
-    let given = match (&fits[0], with_maps && g > 0 && maps == Spec::Auto) {
-        (Ok((_, first)), true) => (first.linear.as_ref())
-            .map(|linear| {
-                let all: Vec<usize> = (0..first.maps.postures).collect();
-                crate::calibration::maps::choose(linear, &all, maps)
-            })
-            .transpose()?,
-        _ => None,
-    };
-    let Ok((fitted, mut assessed)) = fits.swap_remove(g) else {
+    let Ok((fitted, assessed)) = fits.swap_remove(g) else {
         unreachable!("a skipped rung is never chosen");
     };
-    assessed.given = given;
     Ok(Climbed {
         fitted,
         assessed,

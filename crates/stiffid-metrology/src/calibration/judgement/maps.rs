@@ -43,11 +43,6 @@ pub struct Assessed {
     /// The held-out errors of the outer folds, without maps and with them (without alone when
     /// no map is considered): the ladder's; `None` when neither maps nor the ladder need them.
     pub nested: Option<Nested>,
-    /// The maps the ladder chose on every posture at its first gravity model's fit, when it
-    /// chose a later gravity model with maps: the maps its held-out figure scored
-    /// ([`maps::nested_given`]), which [`fit_maps`] fits with the ridge chosen anew; `None`
-    /// otherwise (the maps chosen at this fit).
-    pub given: Option<Choice>,
 }
 
 /// Assesses the maps of `spec` on `model`'s fit `fitted` to `observations` (module docs); with
@@ -130,7 +125,6 @@ fn assess_with(
                 maps: report,
                 linear: None,
                 nested: None,
-                given: None,
             })
         }
     };
@@ -147,7 +141,6 @@ fn assess_with(
         maps: report,
         linear,
         nested: Some(nested),
-        given: None,
     })
 }
 
@@ -190,9 +183,8 @@ fn skipped(
 
 /// The model, fit and options after the maps `assessed` (`keep`: the maps are fitted, else none
 /// is and `why` says why): those given without maps, else the model with the maps chosen on every
-/// posture (or those the ladder chose, [`Assessed::given`], their ridge chosen anew) fitted from
-/// the calibration's start ([`fit::start`]) with the chosen ridge (what the readings determine
-/// analysed where `fitted` analysed it).
+/// posture fitted from the calibration's start ([`fit::start`]) with the chosen ridge (what the
+/// readings determine analysed where `fitted` analysed it).
 ///
 /// # Errors
 /// Those of [`ErrorModel::with_maps`], [`maps::choose`], [`fit::start`] and [`fit::fit`].
@@ -206,7 +198,6 @@ pub fn fit_maps(
     let Assessed {
         maps: mut report,
         linear,
-        given,
         ..
     } = assessed;
     if let Err(why) = keep {
@@ -216,23 +207,7 @@ pub fn fit_maps(
         return Ok((model, fitted, options, report));
     };
     let all: Vec<usize> = (0..report.postures).collect();
-    let choice = match given {
-        // The ladder's maps at this fit: the ridge alone chosen, the record of the choice kept.
-        Some(given) => {
-            let spec = match given.maps.is_none() {
-                true => Spec::None,
-                false => Spec::Fixed(given.maps),
-            };
-            let ridge = maps::choose(&linear, &all, spec)?;
-            Choice {
-                ridge: ridge.ridge,
-                rms: ridge.rms,
-                none_rms: ridge.none_rms,
-                ..given
-            }
-        }
-        None => maps::choose(&linear, &all, report.spec)?,
-    };
+    let choice = maps::choose(&linear, &all, report.spec)?;
     let chosen = choice.maps;
     let ridge = choice.ridge;
     report.choice = Some(choice);
