@@ -13,15 +13,18 @@
 //! Each rung is fitted to every reading (its gravity terms bounded by
 //! [`crate::calibration::fit::GravityPrior`]); a rung whose fit does not converge or
 //! whose scaled Jacobian's condition exceeds [`super::WEAK_CONDITION`] is skipped (the simpler
-//! model kept), and so is a gravity model that extrapolates: one whose expected error where the
-//! robot is used ([`super::region`]: the joint-space hull of the postures of the campaign and of
-//! the setup) exceeds the geometry's by more than the held-out figures resolve, the expected
-//! error being the held-out error without maps (below) and the RMS standard deviation of the
-//! predictions over that region ([`postures_sd`], where the readings leave the terms to their
-//! prior) in quadrature: bias and variance, both at the noise of the fits without maps; its
-//! square may exceed the geometry's by one standard error of the difference of their held-out
-//! mean squared errors (the paired per-posture differences), as the choice below allows: a
-//! difference the groups cannot resolve does not turn a model down. The groups held out among
+//! model kept), and so is a rung that extrapolates: one whose expected error where the robot is
+//! used ([`super::region`]: the joint-space hull of the postures of the campaign and of the
+//! setup) exceeds that of the geometry with the same maps variant by more than the held-out
+//! figures resolve, the expected error being the rung's own held-out error (below: with maps,
+//! the error with its maps) and the RMS standard deviation of its gravity model's predictions
+//! over that region ([`postures_sd`], where the readings leave the terms to their prior, at the
+//! noise of the fit without maps) in quadrature: bias and variance; its square may exceed the
+//! geometry's by one standard error of the difference of their held-out mean squared errors
+//! (the paired per-posture differences), as the choice below allows: a difference the groups
+//! cannot resolve does not turn a model down. A gravity model that extrapolates without maps
+//! is judged again with them: what the maps hold (an axis's periodic error) no longer biases its
+//! held-out error. The groups held out among
 //! the fitted postures cannot show what the spread shows; postures the robot never takes do not
 //! turn a model down.
 //! The postures are dealt into [`FOLDS`] groups (posture `i` in group `i mod K`); each group is
