@@ -13,15 +13,18 @@
 //! Each rung is fitted to every reading (its gravity terms bounded by
 //! [`crate::calibration::fit::GravityPrior`]); a rung whose fit does not converge or
 //! whose scaled Jacobian's condition exceeds [`super::WEAK_CONDITION`] is skipped (the simpler
-//! model kept), and so is a gravity model that extrapolates: one whose expected error where the
-//! robot is used ([`super::region`]: the joint-space hull of the postures of the campaign and of
-//! the setup) exceeds the geometry's by more than the held-out figures resolve, the expected
-//! error being the held-out error without maps (below) and the RMS standard deviation of the
-//! predictions over that region ([`postures_sd`], where the readings leave the terms to their
-//! prior) in quadrature: bias and variance, both at the noise of the fits without maps; its
-//! square may exceed the geometry's by one standard error of the difference of their held-out
-//! mean squared errors (the paired per-posture differences), as the choice below allows: a
-//! difference the groups cannot resolve does not turn a model down. The groups held out among
+//! model kept), and so is a rung that extrapolates: one whose expected error where the robot is
+//! used ([`super::region`]: the joint-space hull of the postures of the campaign and of the
+//! setup) exceeds that of the geometry with the same maps variant by more than the held-out
+//! figures resolve, the expected error being the rung's own held-out error (below: with maps,
+//! the error with its maps) and the RMS standard deviation of its gravity model's predictions
+//! over that region ([`postures_sd`], where the readings leave the terms to their prior, at the
+//! noise of the fit without maps) in quadrature: bias and variance; its square may exceed the
+//! geometry's by one standard error of the difference of their held-out mean squared errors
+//! (the paired per-posture differences), as the choice below allows: a difference the groups
+//! cannot resolve does not turn a model down. A gravity model that extrapolates without maps
+//! is judged again with them: what the maps hold (an axis's periodic error) no longer biases its
+//! held-out error. The groups held out among
 //! the fitted postures cannot show what the spread shows; postures the robot never takes do not
 //! turn a model down.
 //! The postures are dealt into [`FOLDS`] groups (posture `i` in group `i mod K`); each group is
@@ -316,35 +319,29 @@ pub fn climb(
     })
 }
 
-/// Skips the rungs (`order`: each one's gravity model's index and whether it fits maps) of every
-/// gravity model that extrapolates: whose expected squared error where the robot is used, its
-/// held-out error without maps and its spread there in quadrature, exceeds the geometry's by more
-/// than one standard error of their held-out difference (module docs).
-fn extrapolating(rungs: &mut [Rung], order: &[(usize, bool)]) {
-    let without = |g: usize| (0..order.len()).find(|&i| order[i] == (g, false));
+/// Skips the rungs (`order`: each one's gravity model's index and whether it fits maps) that
+/// extrapolate: whose expected squared error where the robot is used, its own held-out error
+/// and its gravity model's spread there in quadrature, exceeds that of the geometry with the
+/// same maps variant by more than one standard error of their held-out difference (module docs).
+pub(super) fn extrapolating(rungs: &mut [Rung], order: &[(usize, bool)]) {
     let expected = |r: &Rung| Some(r.rms?.hypot(r.spread?));
-    let Some(base) = without(0).map(|i| &rungs[i]) else {
-        return;
-    };
-    let Some(e0) = expected(base) else {
-        return;
-    };
-    let worse: Vec<(usize, f64)> = (1..=order.iter().map(|o| o.0).max().unwrap_or(0))
-        .filter_map(|g| {
-            let rung = &rungs[without(g)?];
-            let e = expected(rung)?;
-            (e * e > e0 * e0 + resolution(base, rung)).then_some((g, e))
+    let worse: Vec<Option<(f64, f64)>> = (order.iter().enumerate())
+        .map(|(i, &(g, maps))| {
+            let base = &rungs[(g > 0).then(|| order.iter().position(|&o| o == (0, maps)))??];
+            let (e0, e) = (expected(base)?, expected(&rungs[i])?);
+            (e * e > e0 * e0 + resolution(base, &rungs[i])).then_some((e, e0))
         })
         .collect();
-    for (r, &(g, _)) in rungs.iter_mut().zip(order) {
-        let Some(&(_, e)) = worse.iter().find(|w| w.0 == g) else {
+    for (r, worse) in rungs.iter_mut().zip(worse) {
+        let Some((e, e0)) = worse else {
             continue;
         };
         r.skipped = Some(format!(
-            "it extrapolates: its predictions over the region where the robot is used spread by {:.3} mm, and with its held-out error it is expected {:.3} mm off there against {:.3} mm for the geometry, beyond what the held-out figures resolve (the postures leave its gravity terms to their bound)",
+            "it extrapolates: its predictions over the region where the robot is used spread by {:.3} mm, and with its held-out error it is expected {:.3} mm off there against {:.3} mm for the geometry{}, beyond what the held-out figures resolve (the postures leave its gravity terms to their bound)",
             r.spread.unwrap_or(f64::NAN) * 1e3,
             e * 1e3,
-            e0 * 1e3
+            e0 * 1e3,
+            if r.maps { " with maps" } else { "" }
         ));
     }
 }
