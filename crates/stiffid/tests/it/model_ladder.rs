@@ -317,7 +317,7 @@ fn a_given_gravity_model_the_readings_hold_at_nominal_says_so() {
             .any(|w| w.message.contains("held them at their nominal values"));
         assert_eq!(held, said, "{:?}", report.warnings);
         // The document states the bound the fit used, the chosen one where it was chosen.
-        let document = serde_json::to_value(report.written()).unwrap();
+        let document = serde_json::to_value(report.document()).unwrap();
         let stated = document["gravity_prior_mrad"].as_f64().unwrap();
         let used = report.fit.gravity_deflection.unwrap_or(3e-3) * 1e3;
         assert_eq!(stated, used, "{document}");
