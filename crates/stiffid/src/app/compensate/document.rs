@@ -251,7 +251,7 @@ pub struct Row(pub Map<String, Value>);
 
 impl Row {
     /// The row of `values` (one per column of [`header`]).
-    pub fn new(values: &[Option<f64>]) -> Self {
+    pub(crate) fn new(values: &[Option<f64>]) -> Self {
         let map = header()
             .into_iter()
             .zip(values.iter().map(|v| serde_json::json!(v)))
