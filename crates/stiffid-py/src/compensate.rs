@@ -10,7 +10,8 @@ use nalgebra::Vector6;
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
 use std::path::{Path, PathBuf};
-use stiffid::app::compensate::document::{values, Names, Row, DYNAMICS};
+use stiffid::app::compensate::document::{values, Names, DYNAMICS};
+use stiffid::app::compensate::stream::Rows;
 use stiffid::app::compensate::{self as job, Input, Request};
 use stiffid_core::observation::deflection::Frame;
 use stiffid_machining::compensate::{
@@ -186,7 +187,7 @@ pub fn compensate<'py>(
     };
     let mut points: Vec<PathPoint> = Vec::new();
     let mut results: Vec<Compensated> = Vec::new();
-    let mut rows: Vec<Row> = Vec::new();
+    let mut rows = Rows::default();
     let mut dynamics: Vec<Vec<Option<f64>>> = Vec::new();
     let at = (stiffid::app::compensate::document::header().iter())
         .position(|h| h == DYNAMICS[0])
@@ -199,7 +200,7 @@ pub fn compensate<'py>(
                     for (k, ((p, r), d)) in p.iter().zip(r).zip(d).enumerate() {
                         let v = values(first + k, p.line, r, d);
                         dynamics.push(v[at..at + DYNAMICS.len()].to_vec());
-                        rows.push(Row::new(&v));
+                        rows.push(&v);
                     }
                     points.extend_from_slice(p);
                     results.extend_from_slice(r);
@@ -219,7 +220,7 @@ pub fn compensate<'py>(
         out.set_item(*name, arrays::vec1(py, column))?;
     }
     // The job's document gets the rows the sink received.
-    document.points = rows;
+    document.points = rows.into_points();
     out.set_item("document", to_python(py, &document, &[])?)?;
     if figures {
         let sample = stiffid_figures::compensate::sample(&report);

@@ -489,11 +489,12 @@ fn inverse_kinematics_refuses_a_configuration_change_naming_the_point() {
 }
 
 /// The compensate document written with its points streamed from storage is, byte for byte, the
-/// document holding them written whole; storage that ends inside a point is an error.
+/// document holding them written whole (the rows kept in memory, as Python's are); storage that
+/// ends inside a point is an error.
 #[test]
 fn the_streamed_compensate_document_is_the_whole_one() {
-    use stiffid::app::compensate::document::{values, Document, Names, Row};
-    use stiffid::app::compensate::stream::Points as Stored;
+    use stiffid::app::compensate::document::{values, Document, Names};
+    use stiffid::app::compensate::stream::{Points as Stored, Rows};
     use stiffid::app::compensate::{run, Input, Request};
     use stiffid::machining::dynamics::Dynamics;
     let paper = setup::builtin("zhang2021-comau-nj165").unwrap();
@@ -519,20 +520,21 @@ fn the_streamed_compensate_document_is_the_whole_one() {
         },
         options: Options::for_setup(&s),
     };
-    let mut rows = Vec::new();
+    let mut rows = Rows::default();
     let mut stored = Stored::new(Vec::new());
     let report = run(
         request,
         |first, p: &[PathPoint], r: &[compensate::Compensated], d: &[Dynamics]| {
             for (k, ((p, r), d)) in p.iter().zip(r).zip(d).enumerate() {
                 let v = values(first + k, p.line, r, d);
-                rows.push(Row::new(&v));
+                rows.push(&v);
                 stored.push(&v).unwrap();
             }
             Ok::<(), Error>(())
         },
     )
     .unwrap();
+    let rows = rows.into_points();
     assert_eq!(rows.len(), q.len().min(4));
     assert!(rows.len() >= 2);
     let names = Names::default();

@@ -820,11 +820,6 @@ fn the_public_item_counts_are_the_ones_architecture_lists() {
 /// (every job's `run` returns its document, and a view of it comes from the job's report).
 const FRONT_END_DOCUMENTS: usize = 0;
 
-/// The types of a job's document a front end builds: compensate's `Row`, one streamed point of
-/// its document, from the values the job hands the front end's sink as it computes them (Python
-/// collects them into the document's `points`; docs/ARCHITECTURE.md, "Jobs and documents").
-const STREAMED: [&str; 1] = ["Row"];
-
 /// How many documents the line of code `line` builds: a `Document::new(`, a
 /// `document::scene(`, or a `NAME::new(` of one of the `types` of the jobs' documents
 /// ([`job_document_types`]).
@@ -838,8 +833,7 @@ fn builds(line: &str, types: &BTreeSet<String>) -> usize {
             })
             .count()
     };
-    let other_types =
-        (types.iter()).filter(|t| !t.ends_with("Document") && !STREAMED.contains(&t.as_str()));
+    let other_types = (types.iter()).filter(|t| !t.ends_with("Document"));
     line.match_indices("Document::new(").count()
         + line.match_indices("document::scene(").count()
         + other_types.map(named).sum::<usize>()
@@ -903,7 +897,7 @@ fn front_ends_build_no_documents() {
     // The scan sees a build in code and none in a comment, a view of a job's document by its
     // type's name (reproduce's `Summary`) but not a type of another name that ends like it.
     let types = job_document_types();
-    for name in ["Document", "Summary", "Proposal", "Named", STREAMED[0]] {
+    for name in ["Document", "Summary", "Proposal", "Named", "Row"] {
         assert!(types.contains(name), "{name} among {types:?}");
     }
     let sample = "let doc = Document::new(&report, setup); // Document::new(&report)\n\

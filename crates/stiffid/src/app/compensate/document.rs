@@ -251,7 +251,7 @@ pub struct Row(pub Map<String, Value>);
 
 impl Row {
     /// The row of `values` (one per column of [`header`]).
-    pub fn new(values: &[Option<f64>]) -> Self {
+    pub(crate) fn new(values: &[Option<f64>]) -> Self {
         let map = header()
             .into_iter()
             .zip(values.iter().map(|v| serde_json::json!(v)))
@@ -306,8 +306,8 @@ fn may_be_empty(name: &str) -> bool {
 }
 
 impl Document {
-    /// The document of `report`, named by `names`, with `points` (the rows; empty when the front
-    /// end streams them itself).
+    /// The document of `report`, named by `names`, with `points` (the rows a
+    /// [`super::stream::Rows`] kept; empty when the front end streams them itself).
     pub fn new(report: &Report, names: &Names, points: Vec<Row>) -> Self {
         Document {
             generator: GENERATOR,

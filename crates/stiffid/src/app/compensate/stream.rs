@@ -1,9 +1,11 @@
-//! The compensate document of a path of any length in bounded memory: each point's values kept
-//! outside memory as they come ([`Points`]), then the JSON document written with its `points`
-//! read back one by one ([`Document::write_json`]). The front end gives the storage (a temporary
-//! file) and the output; no JSON text is spliced.
+//! The points of the compensate document as the job's sink receives them. A path of any length
+//! in bounded memory: each point's values kept outside memory as they come ([`Points`]), then
+//! the JSON document written with its `points` read back one by one ([`Document::write_json`]);
+//! the front end gives the storage (a temporary file) and the output, and no JSON text is
+//! spliced. Or the document's rows kept in memory ([`Rows`]), for a front end that returns the
+//! document whole (Python's).
 
-use crate::app::compensate::document::{header, Document};
+use crate::app::compensate::document::{header, Document, Row};
 use serde::ser::{Error as _, SerializeMap, SerializeSeq};
 use serde::{Serialize, Serializer};
 use serde_json::{Map, Value};
@@ -52,6 +54,24 @@ impl<W: Write> Points<W> {
     }
 }
 
+/// The rows of a compensate document's `points` as they come, kept in memory: each point's
+/// values made the row the document holds (one value per column of [`header`], `null` for an
+/// empty cell), as [`Document::write_json`] writes what a [`Points`] stored.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Rows(Vec<Row>);
+
+impl Rows {
+    /// Adds one point's values ([`crate::app::compensate::document::values`]).
+    pub fn push(&mut self, values: &[Option<f64>]) {
+        self.0.push(Row::new(values));
+    }
+
+    /// The rows, in the order pushed: the document's `points`.
+    pub fn into_points(self) -> Vec<Row> {
+        self.0
+    }
+}
+
 impl Document {
     /// Writes the document to `out` as pretty JSON with a final line break, keys in alphabetical
     /// order (as [`serde_json::Value`] orders them), its `points` (empty in `self`) read one by
@@ -86,7 +106,7 @@ impl<R: Read> Serialize for Streamed<'_, R> {
         let mut map = serializer.serialize_map(Some(self.document.len()))?;
         for (key, value) in self.document {
             match key.as_str() {
-                "points" => map.serialize_entry(key, &Rows(self))?,
+                "points" => map.serialize_entry(key, &Stored(self))?,
                 _ => map.serialize_entry(key, value)?,
             }
         }
@@ -95,9 +115,9 @@ impl<R: Read> Serialize for Streamed<'_, R> {
 }
 
 /// The `points` array, read point by point.
-struct Rows<'s, 'a, R>(&'s Streamed<'a, R>);
+struct Stored<'s, 'a, R>(&'s Streamed<'a, R>);
 
-impl<R: Read> Serialize for Rows<'_, '_, R> {
+impl<R: Read> Serialize for Stored<'_, '_, R> {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let columns = &self.0.columns;
         let mut reader = self.0.points.borrow_mut();

@@ -123,7 +123,7 @@ pub struct AxisOutside {
 
 impl AxisOutside {
     /// The documents' form of `v`.
-    pub fn new(v: &Violation) -> Self {
+    pub(crate) fn new(v: &Violation) -> Self {
         AxisOutside {
             axis: v.axis + 1,
             q_deg: v.value.to_degrees(),
