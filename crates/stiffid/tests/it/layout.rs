@@ -4,8 +4,9 @@
 //! between the files of a crate (a folder's `mod.rs` and `lib.rs` included), no job folder of
 //! `app/` importing another, no library file over 700 lines, each crate's public surface and
 //! count of public items the ones docs/ARCHITECTURE.md lists, no more documents built by the
-//! front ends, and no unit test in a crate whose tests are off (`[lib] test = false`: compiled
-//! once, its tests in tests/it).
+//! front ends, no unit test in a crate whose tests are off (`[lib] test = false`: compiled once,
+//! its tests in tests/it), and every field the jobs write through a unit adapter documenting the
+//! unit it holds and the one it is written in.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -916,4 +917,87 @@ fn front_ends_build_no_documents() {
         FRONT_END_DOCUMENTS,
         "a front end builds a document the job should return: {found:#?}"
     );
+}
+
+/// The fields of Rust source `code` written through a unit adapter of `app/document/units.rs`
+/// (`serialize_with = "units::..."`, in a field's attributes, not in a comment): each one's line
+/// (1-based, the adapter's) and its doc comment, its lines joined by a space (empty without one).
+fn adapted_fields(code: &str) -> Vec<(usize, String)> {
+    let lines: Vec<&str> = code.lines().map(str::trim).collect();
+    let mut fields = Vec::new();
+    for (i, line) in lines.iter().enumerate() {
+        if line.starts_with("//") || !line.contains("serialize_with = \"units::") {
+            continue;
+        }
+        // Up over the field's attributes (an attribute over several lines: its `key = value`
+        // lines and its `)]`), then its doc comment.
+        let above = lines[..i].iter().rev().skip_while(|l| {
+            let attribute = l.starts_with("#[") || l.starts_with(")]") || l.contains('=');
+            attribute && !l.starts_with("//")
+        });
+        let mut doc: Vec<&str> = (above.map_while(|l| l.strip_prefix("///")))
+            .map(str::trim)
+            .collect();
+        doc.reverse();
+        fields.push((i + 1, doc.join(" ")));
+    }
+    fields
+}
+
+/// Every field the jobs write through a unit adapter holds one unit (SI) and is written in
+/// another: its doc comment, which a Rust user reads and the document's schema describes the key
+/// with, says both (`: m, written in mm.`, the convention of `app/document/units.rs`).
+#[test]
+fn every_field_written_through_a_unit_adapter_says_both_units() {
+    let said = |doc: &str| doc.contains("written in");
+    let (mut found, mut silent) = (0, Vec::new());
+    for (file, code) in library_files("stiffid") {
+        if !file.starts_with("app") {
+            continue;
+        }
+        for (line, doc) in adapted_fields(&code) {
+            found += 1;
+            if !said(&doc) {
+                silent.push(format!("stiffid/src/{}:{line}: {doc:?}", file.display()));
+            }
+        }
+    }
+    assert!(found >= 45, "{found} fields written through a unit adapter");
+    assert!(
+        silent.is_empty(),
+        "say the unit a field holds and the one it is written in (`: m, written in mm.`): {silent:#?}"
+    );
+    // The scan finds a field's doc over its attributes (one over several lines among them), a
+    // field without a doc, and no adapter named in a comment; a doc naming the written unit only
+    // fails.
+    let sample = "pub struct S {\n\
+                  /// A length: m, written\n\
+                  /// in mm.\n\
+                  #[serde(rename = \"a_mm\", serialize_with = \"units::mm\")]\n\
+                  pub a: f64,\n\
+                  /// A length, mm (`serialize_with = \"units::mm\"`).\n\
+                  #[cfg_attr(feature = \"schema\", schemars(with = \"Option<f64>\"))]\n\
+                  #[serde(\n\
+                      rename = \"b_mm\",\n\
+                      serialize_with = \"units::mm_option\"\n\
+                  )]\n\
+                  pub b: Option<f64>,\n\
+                  #[serde(serialize_with = \"units::plain3\")]\n\
+                  pub c: Vector3<f64>,\n\
+                  }\n";
+    let fields = adapted_fields(sample);
+    let docs: Vec<(usize, &str)> = fields.iter().map(|(l, d)| (*l, d.as_str())).collect();
+    assert_eq!(
+        docs,
+        [
+            (4, "A length: m, written in mm."),
+            (10, "A length, mm (`serialize_with = \"units::mm\"`)."),
+            (13, ""),
+        ]
+    );
+    let silent: Vec<usize> = (fields.iter())
+        .filter(|(_, d)| !said(d))
+        .map(|(l, _)| *l)
+        .collect();
+    assert_eq!(silent, [10, 13]);
 }

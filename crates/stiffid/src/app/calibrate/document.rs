@@ -49,10 +49,11 @@ pub struct Document<'a> {
     /// The gravity terms fitted: `none`, `arm`, `masses`, `lumped` or `lumped-links` (with `--gravity
     /// auto`, the ladder's choice).
     pub gravity: &'static str,
-    /// With gravity terms: their bound, the prior standard deviation of each term's deflection
-    /// at the largest torque it meets within the robot's joint limits, mrad (what holds a term
-    /// the readings do not determine at its nominal value; for a gravity model given, the
-    /// strength the cross-validation over the postures chose); `null` without gravity terms.
+    /// With gravity terms: their bound, the prior standard deviation of each term's deflection at
+    /// the largest torque it meets within the robot's joint limits (what holds a term the readings
+    /// do not determine at its nominal value; for a gravity model given, the strength the
+    /// cross-validation over the postures chose): rad, written in mrad; `null` without gravity
+    /// terms.
     #[serde(rename = "gravity_prior_mrad", serialize_with = "units::mrad_option")]
     pub gravity_prior: Option<f64>,
     /// The frame of the readings: `tracker` or `base`.
@@ -74,15 +75,15 @@ pub struct Document<'a> {
     pub condition: Option<f64>,
     /// Pairs of identified parameters correlated above 0.9 in absolute value.
     pub correlations: Vec<Correlation>,
-    /// RMS of the fitted readings' 3D residuals, mm.
+    /// RMS of the fitted readings' 3D residuals: m, written in mm.
     #[serde(rename = "residual_rms_mm", serialize_with = "units::mm")]
     pub residual_rms: f64,
-    /// The same with the nominal robot, the tracker registered (readings in the tracker's frame;
-    /// in the base frame nothing is registered) and the setup's measuring points, mm: where the
-    /// calibration starts.
+    /// The same with the nominal robot, the tracker registered (readings in the tracker's frame; in
+    /// the base frame nothing is registered) and the setup's measuring points: m, written in mm;
+    /// where the calibration starts.
     #[serde(rename = "nominal_rms_mm", serialize_with = "units::mm")]
     pub nominal_rms: f64,
-    /// Noise per coordinate estimated from the residuals, mm.
+    /// Noise per coordinate estimated from the residuals: m, written in mm.
     #[serde(rename = "noise_std_mm", serialize_with = "units::mm")]
     pub noise_std: f64,
     /// `noise_std_mm` over the setup's tracker noise: about 1 when the model explains the
@@ -132,7 +133,7 @@ pub struct Document<'a> {
     pub fragment: &'a str,
     /// With the setup's `[tool] tcp_mm`: the TCP moved with the fitted measuring points (what
     /// merges into them, joint 6's `theta` and `d` and the flange's errors, moves the tool), flange
-    /// frame, mm: the `tcp_mm` to use with the calibrated robot.
+    /// frame: m, written in mm; the `tcp_mm` to use with the calibrated robot.
     #[serde(
         rename = "tcp_mm",
         serialize_with = "units::mm3_option",
@@ -230,18 +231,18 @@ pub struct BeforeAfter<'a> {
     /// The point as the readings name it: `1`, `2`, ... a measuring point of the tool (`point`),
     /// `T1`, `T2`, ... a reflector on the positioner's table (numbered apart from the tool's).
     pub point_name: String,
-    /// Predicted minus read with the nominal robot, base frame, mm.
+    /// Predicted minus read with the nominal robot, base frame: m, written in mm.
     #[serde(rename = "before_mm", serialize_with = "units::mm3")]
     #[cfg_attr(feature = "schema", schemars(with = "[f64; 3]"))]
     pub before: Vector3<f64>,
-    /// Predicted minus read with the calibration, base frame, mm.
+    /// Predicted minus read with the calibration, base frame: m, written in mm.
     #[serde(rename = "after_mm", serialize_with = "units::mm3")]
     #[cfg_attr(feature = "schema", schemars(with = "[f64; 3]"))]
     pub after: Vector3<f64>,
-    /// The length of `before_mm`, mm.
+    /// The length of `before_mm`: m, written in mm.
     #[serde(rename = "before_norm_mm", serialize_with = "units::mm")]
     pub before_norm: f64,
-    /// The length of `after_mm`, mm.
+    /// The length of `after_mm`: m, written in mm.
     #[serde(rename = "after_norm_mm", serialize_with = "units::mm")]
     pub after_norm: f64,
 }

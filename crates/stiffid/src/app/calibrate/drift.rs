@@ -45,8 +45,8 @@ pub struct Check {
     pub source: String,
     /// The count of the calibration's held-out errors.
     pub held_out: usize,
-    /// The bound on a reading's error length: the calibration's held-out errors' conformal
-    /// quantile at `level`, mm.
+    /// The bound on a reading's error length, the calibration's held-out errors' conformal quantile
+    /// at `level`: m, written in mm.
     #[serde(rename = "bound_mm", serialize_with = "units::mm")]
     pub bound: f64,
     /// The check readings' count.
@@ -76,7 +76,7 @@ pub struct CheckedReading {
     /// The point as the readings name it: `1`, `2`, ... a measuring point of the tool (`point`),
     /// `T1`, `T2`, ... a reflector on the positioner's table (numbered apart from the tool's).
     pub point_name: String,
-    /// The error's length with the calibrated robot, mm.
+    /// The error's length with the calibrated robot: m, written in mm.
     #[serde(rename = "error_mm", serialize_with = "units::mm")]
     pub error: f64,
     /// Beyond the bound.

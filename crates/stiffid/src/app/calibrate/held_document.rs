@@ -15,15 +15,15 @@ use stiffid_metrology::calibration::validation::Validation;
 pub struct ValidationDocument<'a> {
     /// The readings (`cross-validation` for leave-one-posture-out).
     pub data: &'a str,
-    /// RMS of the 3D position error of every held-out reading, mm.
+    /// RMS of the 3D position error of every held-out reading: m, written in mm.
     #[serde(rename = "rms_mm", serialize_with = "units::mm")]
     pub rms: f64,
-    /// The largest, mm.
+    /// The largest: m, written in mm.
     #[serde(rename = "max_mm", serialize_with = "units::mm")]
     pub max: f64,
-    /// The nominal robot's RMS on the same readings, mm: the tracker registered on them for
-    /// readings in the tracker's frame; as it is for readings in the base frame (`measured_in`
-    /// `base`: nothing registered).
+    /// The nominal robot's RMS on the same readings: m, written in mm; the tracker registered on
+    /// them for readings in the tracker's frame; as it is for readings in the base frame
+    /// (`measured_in` `base`: nothing registered).
     #[serde(rename = "nominal_rms_mm", serialize_with = "units::mm")]
     pub nominal_rms: f64,
     /// The prediction intervals of the held-out readings' errors and how well they covered
@@ -69,7 +69,8 @@ pub struct IntervalsDocument {
     pub covered: usize,
     /// Held-out coordinates (three per reading).
     pub coordinates: usize,
-    /// The median over the held-out readings of the intervals' mean width over x, y and z, mm.
+    /// The median over the held-out readings of the intervals' mean width over x, y and z: m,
+    /// written in mm.
     #[serde(rename = "median_width_mm", serialize_with = "units::mm_option")]
     pub median_width: Option<f64>,
 }
@@ -85,15 +86,15 @@ pub struct PointError<'a> {
     /// The point as the readings name it: `1`, `2`, ... a measuring point of the tool (`point`),
     /// `T1`, `T2`, ... a reflector on the positioner's table (numbered apart from the tool's).
     pub point_name: String,
-    /// Predicted minus read, base frame, mm.
+    /// Predicted minus read, base frame: m, written in mm.
     #[serde(rename = "error_mm", serialize_with = "units::mm3")]
     #[cfg_attr(feature = "schema", schemars(with = "[f64; 3]"))]
     pub error: Vector3<f64>,
-    /// Its length, mm.
+    /// Its length: m, written in mm.
     #[serde(rename = "error_norm_mm", serialize_with = "units::mm")]
     pub error_norm: f64,
-    /// The prediction interval `[lower, upper]` of each coordinate of `error_mm`, mm (`null`
-    /// ends: too few fitted readings for the level); `null` without intervals.
+    /// The prediction interval `[lower, upper]` of each coordinate of `error_mm`: m, written in mm
+    /// (`null` ends: too few fitted readings for the level); `null` without intervals.
     #[serde(rename = "interval_mm", serialize_with = "units::interval_mm")]
     #[cfg_attr(feature = "schema", schemars(with = "Option<[[Option<f64>; 2]; 3]>"))]
     pub interval: Option<Interval>,
@@ -110,7 +111,7 @@ pub struct PointError<'a> {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct OutsideRange {
-    /// The largest distance of an axis angle beyond its fitted range, deg.
+    /// The largest distance of an axis angle beyond its fitted range: rad, written in deg.
     #[serde(rename = "distance_deg", serialize_with = "units::deg")]
     pub distance: f64,
     /// The joints beyond their fitted range by more than 1 deg (1-based, ascending).

@@ -42,11 +42,11 @@ pub struct Report {
     pub transform: Transform,
     /// Every measuring point of the setup.
     pub points: Vec<ToolPoint>,
-    /// RMS of the residual lengths, mm: the robot's unloaded absolute positioning error at these
-    /// postures (with the tracker noise).
+    /// RMS of the residual lengths: m, written in mm; the robot's unloaded absolute positioning
+    /// error at these postures (with the tracker noise).
     #[serde(rename = "absolute_error_rms_mm", serialize_with = "units::mm")]
     pub absolute_error_rms: f64,
-    /// Noise per coordinate estimated from the residuals, mm.
+    /// Noise per coordinate estimated from the residuals: m, written in mm.
     #[serde(rename = "noise_std_mm", serialize_with = "units::mm")]
     pub noise_std: f64,
     /// Unloaded readings used.
@@ -71,19 +71,20 @@ pub struct Report {
 pub struct ToolPoint {
     /// The measuring point (1-based).
     pub point: usize,
-    /// The setup's value, flange frame, mm.
+    /// The setup's value, flange frame: m, written in mm.
     #[serde(rename = "setup_mm", serialize_with = "units::mm3")]
     #[cfg_attr(feature = "schema", schemars(with = "[f64; 3]"))]
     pub setup: Vector3<f64>,
-    /// The fitted value, flange frame, mm.
+    /// The fitted value, flange frame: m, written in mm.
     #[serde(rename = "fitted_mm", serialize_with = "units::mm3")]
     #[cfg_attr(feature = "schema", schemars(with = "[f64; 3]"))]
     pub fitted: Vector3<f64>,
-    /// Fitted minus setup, mm.
+    /// Fitted minus setup: m, written in mm.
     #[serde(rename = "shift_mm", serialize_with = "units::mm3")]
     #[cfg_attr(feature = "schema", schemars(with = "[f64; 3]"))]
     pub shift: Vector3<f64>,
-    /// Standard deviation of the fitted coordinates, mm; `null` for a point never read.
+    /// Standard deviation of the fitted coordinates: m, written in mm; `null` for a point never
+    /// read.
     #[serde(rename = "std_mm", serialize_with = "units::mm3_option")]
     #[cfg_attr(feature = "schema", schemars(with = "Option<[f64; 3]>"))]
     pub std: Option<Vector3<f64>>,

@@ -6,13 +6,19 @@
 //! (`v * 1e3`, `f64::to_degrees`), so a document written through an adapter has the same numbers,
 //! to the bit, as one copied field by field. A field written through an adapter names the type
 //! its JSON has for its schema, `#[cfg_attr(feature = "schema", schemars(with = "..."))]`; each
-//! adapter's documentation says which:
+//! adapter's documentation says which.
+//!
+//! The documentation of a field written through an adapter (its schema's description too) says
+//! the unit the field holds, then the one it is written in, after a colon, as the example's
+//! `offset` does: `m, written in mm`, `rad, written in deg`, `no unit, written in plain numbers`
+//! (a unit vector), `a choice, written in its name` (a choice).
 //!
 //! ```
 //! # use serde::Serialize;
 //! # use stiffid::app::document::units;
 //! #[derive(Serialize)]
 //! struct Probe {
+//!     /// The probe's offset, base frame: m, written in mm.
 //!     #[serde(rename = "offset_mm", serialize_with = "units::mm3")]
 //!     // #[cfg_attr(feature = "schema", schemars(with = "[f64; 3]"))]
 //!     offset: nalgebra::Vector3<f64>,

@@ -41,7 +41,8 @@ pub struct Document<'a> {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct Placement<'a> {
-    /// The part frame's origin in the robot base frame, mm (`[workpiece] base_from_part`).
+    /// The part frame's origin in the robot base frame (`[workpiece] base_from_part`): m, written
+    /// in mm.
     #[serde(rename = "xyz_mm", serialize_with = "units::mm3")]
     #[cfg_attr(feature = "schema", schemars(with = "[f64; 3]"))]
     pub xyz: Vector3<f64>,
@@ -52,20 +53,22 @@ pub struct Placement<'a> {
     pub feasible: bool,
     /// Why not, when not feasible.
     pub reason: Option<&'a str>,
-    /// The path's largest error bound, mm.
+    /// The path's largest error bound: m, written in mm.
     #[serde(rename = "peak_bound_mm", serialize_with = "units::mm_option")]
     pub peak_bound: Option<f64>,
-    /// The mean of the points' bounds, mm.
+    /// The mean of the points' bounds: m, written in mm.
     #[serde(rename = "mean_bound_mm", serialize_with = "units::mm_option")]
     pub mean_bound: Option<f64>,
     /// The program line of the largest bound.
     pub worst_line: Option<u64>,
-    /// The smallest distance of an axis angle to its joint limits over the path, deg.
+    /// The smallest distance of an axis angle to its joint limits over the path: rad, written in
+    /// deg.
     #[serde(rename = "min_limit_margin_deg", serialize_with = "units::deg_option")]
     pub min_limit_margin: Option<f64>,
     /// The largest condition number of the TCP Jacobian over the path.
     pub max_condition: Option<f64>,
-    /// The smallest clearance of the cell's bodies over the path, mm; `null` without a cell.
+    /// The smallest clearance of the cell's bodies over the path: m, written in mm; `null` without
+    /// a cell.
     #[serde(rename = "min_clearance_mm", serialize_with = "units::mm_option")]
     pub min_clearance: Option<f64>,
 }

@@ -23,11 +23,12 @@ pub struct Bodies {
     /// The number of the robot's own collision shapes (its URDF's, meshes as convex hulls);
     /// `null` when capsules stand for the links.
     pub collision_shapes: Option<usize>,
-    /// The capsules' radii for the base and links 1-6, mm; `null` with collision shapes.
+    /// The capsules' radii for the base and links 1-6: m, written in mm; `null` with collision
+    /// shapes.
     #[serde(rename = "link_radii_mm", serialize_with = "units::mm7_option")]
     #[cfg_attr(feature = "schema", schemars(with = "Option<[f64; 7]>"))]
     pub link_radii: Option<[f64; 7]>,
-    /// The radius of the tool's capsule, mm.
+    /// The radius of the tool's capsule: m, written in mm.
     #[serde(rename = "tool_radius_mm", serialize_with = "units::mm")]
     pub tool_radius: f64,
 }

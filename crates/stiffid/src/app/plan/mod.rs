@@ -84,7 +84,7 @@ impl std::ops::Deref for Outcome {
 pub struct Posture {
     /// 1-based position in the group.
     pub posture: usize,
-    /// Axis angles q1..q6, deg.
+    /// Axis angles q1..q6: rad, written in deg.
     #[serde(rename = "q_deg", serialize_with = "units::deg6")]
     #[cfg_attr(feature = "schema", schemars(with = "[f64; 6]"))]
     pub q: Vector6<f64>,
@@ -93,18 +93,19 @@ pub struct Posture {
     /// angles; none when the plan was given none.
     #[serde(flatten)]
     pub columns: BTreeMap<String, f64>,
-    /// Unit vector from the loading point to the rope anchor, base frame.
+    /// Unit vector from the loading point to the rope anchor, base frame: no unit, written in plain
+    /// numbers.
     #[serde(serialize_with = "units::plain3")]
     #[cfg_attr(feature = "schema", schemars(with = "[f64; 3]"))]
     pub rope_direction: Vector3<f64>,
-    /// Distance from the loading point to the anchor, mm.
+    /// Distance from the loading point to the anchor: m, written in mm.
     #[serde(rename = "rope_length_mm", serialize_with = "units::mm")]
     pub rope_length: f64,
-    /// Height of the loading point (base z), mm.
+    /// Height of the loading point (base z): m, written in mm.
     #[serde(rename = "loading_point_z_mm", serialize_with = "units::mm")]
     pub loading_point_z: f64,
     /// Expected displacement `[dx, dy, dz]` of every measuring point under the load with the
-    /// nominal stiffness, base frame, mm.
+    /// nominal stiffness, base frame: m, written in mm.
     #[serde(rename = "displacements_mm", serialize_with = "units::mm3_each")]
     #[cfg_attr(feature = "schema", schemars(with = "Vec<[f64; 3]>"))]
     pub displacements: Vec<Vector3<f64>>,
@@ -141,7 +142,7 @@ pub struct Report {
     pub setup: String,
     /// The robot's name.
     pub robot: String,
-    /// The criterion that chose the group (`relative-a`, ...).
+    /// The criterion that chose the group: a choice, written in its name (`relative-a`, ...).
     #[serde(serialize_with = "units::name")]
     #[cfg_attr(
         feature = "schema",
@@ -153,7 +154,7 @@ pub struct Report {
     /// The load hung from the loading point, N.
     #[serde(rename = "load_n")]
     pub load: f64,
-    /// The rope's anchor (pulley), base frame, mm.
+    /// The rope's anchor (pulley), base frame: m, written in mm.
     #[serde(rename = "anchor_mm", serialize_with = "units::mm3")]
     #[cfg_attr(feature = "schema", schemars(with = "[f64; 3]"))]
     pub anchor: Vector3<f64>,

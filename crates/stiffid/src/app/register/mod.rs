@@ -45,17 +45,18 @@ pub struct Report {
     /// The tracker frame in the robot base frame.
     #[serde(flatten)]
     pub transform: Transform,
-    /// RMS of the residual lengths, mm.
+    /// RMS of the residual lengths: m, written in mm.
     #[serde(rename = "residual_rms_mm", serialize_with = "units::mm")]
     pub residual_rms: f64,
-    /// Noise per coordinate estimated from the residuals, mm.
+    /// Noise per coordinate estimated from the residuals: m, written in mm.
     #[serde(rename = "noise_std_mm", serialize_with = "units::mm")]
     pub noise_std: f64,
-    /// How far each frame of the robot model may be from the true robot's, per coordinate of
-    /// its position, mm (the setup's `[robot_accuracy] frame_sd_mm`): its part is in `std`.
+    /// How far each frame of the robot model may be from the true robot's, per coordinate of its
+    /// position (the setup's `[robot_accuracy] frame_sd_mm`): m, written in mm; its part is in
+    /// `std`.
     #[serde(rename = "robot_frame_sd_mm", serialize_with = "units::mm")]
     pub robot_frame_sd: f64,
-    /// The same of its orientation, mrad (`frame_sd_mrad`).
+    /// The same of its orientation (`frame_sd_mrad`): rad, written in mrad.
     #[serde(rename = "robot_frame_sd_mrad", serialize_with = "units::mrad")]
     pub robot_frame_sd_angle: f64,
     /// The standard deviations the tracker noise alone gives (`std` without the robot's part).
@@ -84,11 +85,11 @@ pub struct Residual {
     pub point: usize,
     /// The line of the readings file.
     pub line: u64,
-    /// Base-frame point minus the transformed tracker reading, mm.
+    /// Base-frame point minus the transformed tracker reading: m, written in mm.
     #[serde(rename = "residual_mm", serialize_with = "units::mm3")]
     #[cfg_attr(feature = "schema", schemars(with = "[f64; 3]"))]
     pub residual: Vector3<f64>,
-    /// Its length, mm.
+    /// Its length: m, written in mm.
     #[serde(rename = "residual_norm_mm", serialize_with = "units::mm")]
     pub residual_norm: f64,
 }
