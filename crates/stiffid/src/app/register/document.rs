@@ -33,17 +33,19 @@ pub struct Proposal<'a> {
     pub postures: Vec<ProposedPosture>,
     /// Measuring points read per posture.
     pub measuring_points: usize,
-    /// The tracker noise per coordinate of one reading (the setup's, level multiple 1), mm.
+    /// The tracker noise per coordinate of one reading (the setup's, level multiple 1): m,
+    /// written in mm.
     #[serde(rename = "noise_std_mm", serialize_with = "units::mm")]
     pub noise_std: f64,
     /// Predicted standard deviations of the transform at that noise (linearised).
     #[serde(flatten)]
     pub std: TransformStd,
-    /// The criterion minimised: the root of the summed variances of the three rotation angles,
-    /// deg.
+    /// The criterion minimised: the root of the summed variances of the three rotation angles:
+    /// rad, written in deg.
     #[serde(rename = "rotation_std_total_deg", serialize_with = "units::deg")]
     pub rotation_std_total: f64,
-    /// The same, median over 101 groups of as many feasible candidates drawn at random, deg.
+    /// The same, median over 101 groups of as many feasible candidates drawn at random: rad,
+    /// written in deg.
     #[serde(
         rename = "random_median_rotation_std_total_deg",
         serialize_with = "units::deg"
@@ -71,7 +73,7 @@ pub struct Proposal<'a> {
 pub struct ProposedPosture {
     /// Its label, `R1`, `R2`, ...
     pub posture: String,
-    /// Axis angles q1..q6, deg.
+    /// Axis angles q1..q6: rad, written in deg.
     #[serde(rename = "q_deg", serialize_with = "units::deg6")]
     #[cfg_attr(feature = "schema", schemars(with = "[f64; 6]"))]
     pub q: Vector6<f64>,
