@@ -10,8 +10,8 @@ use nalgebra::Vector6;
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
 use std::path::{Path, PathBuf};
-use stiffid::app::compensate::document::{values, Names, DYNAMICS};
-use stiffid::app::compensate::stream::Rows;
+use stiffid::app::compensate::document::{Names, DYNAMICS};
+use stiffid::app::compensate::stream::{chunk_values, Rows};
 use stiffid::app::compensate::{self as job, Input, Request};
 use stiffid_core::observation::deflection::Frame;
 use stiffid_machining::compensate::{
@@ -197,8 +197,7 @@ pub fn compensate<'py>(
             job::run(
                 request,
                 |first, p: &[PathPoint], r: &[Compensated], d: &[Dynamics]| {
-                    for (k, ((p, r), d)) in p.iter().zip(r).zip(d).enumerate() {
-                        let v = values(first + k, p.line, r, d);
+                    for v in chunk_values(first, p, r, d) {
                         dynamics.push(v[at..at + DYNAMICS.len()].to_vec());
                         rows.push(&v);
                     }

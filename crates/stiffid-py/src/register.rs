@@ -98,7 +98,7 @@ pub fn register<'py>(
                 .detach(|| register_job::propose(&request))
                 .map_err(raise)?;
             warn(py, &proposed.warnings)?;
-            return to_python(py, &proposed.document, &[]);
+            return to_python(py, proposed.written(), &[]);
         }
         _ => {
             return Err(raise(stiffid_core::Error::InvalidField {

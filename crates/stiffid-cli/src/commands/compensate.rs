@@ -12,10 +12,10 @@ use anyhow::{anyhow, bail, Result};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use stiffid::app::compensate::document::{
-    csv_line, external_header, external_values, header, values, Document, Names, GENERATOR,
+    csv_line, external_header, external_values, header, Document, Names, GENERATOR,
 };
 use stiffid::app::compensate::dynamics::OperationDynamics;
-use stiffid::app::compensate::stream::Points;
+use stiffid::app::compensate::stream::{chunk_values, Points};
 use stiffid::app::compensate::{self as job, Input, Report, Request};
 use stiffid_core::common::words::{count, number};
 use stiffid_core::observation::deflection::Frame;
@@ -187,9 +187,7 @@ impl Sinks<'_> {
         results: &[Compensated],
         dynamics: &[Dynamics],
     ) -> Result<()> {
-        for (k, ((p, r), d)) in points.iter().zip(results).zip(dynamics).enumerate() {
-            let index = first + k;
-            let v = values(index, p.line, r, d);
+        for (v, r) in chunk_values(first, points, results, dynamics).zip(results) {
             let e = external_values(self.cell, r);
             writeln!(self.csv, "{}", csv_line(&[&v[..], &e[..]].concat()))?;
             if let Some(rows) = self.rows.as_mut() {

@@ -10,7 +10,6 @@ use crate::progress::Bars;
 use anyhow::Result;
 use stiffid::app::document::{mm, mm3};
 use stiffid::app::register as job;
-use stiffid::app::register::document::Proposal;
 use stiffid::app::register::Report;
 use stiffid_core::Progress;
 use stiffid_design::registration as design;
@@ -77,14 +76,15 @@ fn propose(args: &Args, setup: &stiffid_core::Setup, n: usize) -> Result<()> {
     bars.begin("registration postures", 0);
     let proposed = job::propose(&request);
     bars.end();
-    let document = proposed?.document;
+    let report = proposed?.report;
     if let Some(out) = &out {
-        out.write(document.readings_template.as_bytes())?;
+        out.write(report.document().readings_template.as_bytes())?;
     }
-    print_json_or(args.readings.common.json, &document, proposal_text)
+    print_json_or(args.readings.common.json, &report, proposal_text)
 }
 
-fn proposal_text(d: &Proposal) -> String {
+fn proposal_text(report: &job::DesignReport) -> String {
+    let d = report.document();
     let mut text = format!(
         "{} registration postures (setup {}, seed {}): {} measuring points each\n\
          chosen from the {} of {} candidates that pass the checks {} ({}, {} groups evaluated)\n\
@@ -100,18 +100,20 @@ fn proposal_text(d: &Proposal) -> String {
         d.evaluations,
     );
     for p in &d.postures {
-        let q: Vec<String> = p.q_deg.iter().map(|v| format!("{v:9.3}")).collect();
+        let q: Vec<String> = (p.q.iter())
+            .map(|v| format!("{:9.3}", v.to_degrees()))
+            .collect();
         text += &format!("{:<8} {}\n", p.posture, q.join(" "));
     }
     text + &format!(
         "\npredicted at the tracker noise {:.4} mm per coordinate:\n\
          standard deviation: translation [{}] mm, rotation [{}] deg\n\
          rotation, root of the summed variances: {:.6} deg (median of 101 random feasible groups: {:.6} deg)\n",
-        d.noise_std_mm,
+        mm(d.noise_std),
         three(d.std.translation_std_mm, 4),
         three(d.std.rotation_std_deg, 6),
-        d.rotation_std_total_deg,
-        d.random_median_rotation_std_total_deg,
+        d.rotation_std_total.to_degrees(),
+        d.random_median_rotation_std_total.to_degrees(),
     )
 }
 

@@ -81,7 +81,7 @@ pub fn schema(name: &str) -> Result<Schema> {
         "simulate" => closed::<stiffid::app::simulate::Report>(),
         "reproduce" => closed::<stiffid::app::reproduce::document::Summary<'static>>(),
         "register" => closed::<stiffid::app::register::Report>(),
-        "register-postures" => closed::<stiffid::app::register::document::Proposal>(),
+        "register-postures" => closed::<stiffid::app::register::document::Proposal<'static>>(),
         "calibrate-cell" => closed::<stiffid::app::calibrate_cell::Report>(),
         "calibrate" => closed::<stiffid::app::calibrate::document::Document<'static>>(),
         _ => open::<StiffnessFile>(),

@@ -143,7 +143,7 @@ fn impossible_requests_are_refused_with_the_field() {
 /// tracker readings registers as it is: the tracker's transform back to 1e-9.
 #[test]
 fn the_template_of_a_cell_with_external_axes_registers() {
-    use stiffid::app::register::{self as job, document::Proposal};
+    use stiffid::app::register as job;
     use stiffid::robot::external::{ExternalAxes, ExternalAxis};
     let base = cell();
     let axes = ExternalAxes::new(vec![
@@ -168,7 +168,7 @@ fn the_template_of_a_cell_with_external_axes_registers() {
     };
     let report = job::propose(&request).unwrap();
     assert_eq!(report.design.external, vec![0.2, 10f64.to_radians()]);
-    let template = Proposal::new(&report, "setup.toml").readings_template;
+    let template = report.document().readings_template;
     let mut lines = template.lines();
     assert_eq!(
         lines.next().unwrap(),

@@ -3,15 +3,32 @@
 //! the JSON document written with its `points` read back one by one ([`Document::write_json`]);
 //! the front end gives the storage (a temporary file) and the output, and no JSON text is
 //! spliced. Or the document's rows kept in memory ([`Rows`]), for a front end that returns the
-//! document whole (Python's).
+//! document whole (Python's). Either way each point of a chunk is made its values by
+//! [`chunk_values`].
 
-use crate::app::compensate::document::{header, Document, Row};
+use crate::app::compensate::document::{header, values, Document, Row};
 use serde::ser::{Error as _, SerializeMap, SerializeSeq};
 use serde::{Serialize, Serializer};
 use serde_json::{Map, Value};
 use std::cell::RefCell;
 use std::collections::BTreeMap;
 use std::io::{Read, Write};
+use stiffid_machining::compensate::{Compensated, PathPoint};
+use stiffid_machining::dynamics::Dynamics;
+
+/// The values of each point of a chunk the job's sink receives ([`crate::app::compensate::run`]:
+/// the chunk's first point's index `first`, 0-based, its points, results and dynamics), in order:
+/// one per column of [`header`] ([`values`]), what a [`Points`] or [`Rows`] keeps and the CSV
+/// writes.
+pub fn chunk_values<'a>(
+    first: usize,
+    points: &'a [PathPoint],
+    results: &'a [Compensated],
+    dynamics: &'a [Dynamics],
+) -> impl Iterator<Item = Vec<Option<f64>>> + 'a {
+    (points.iter().zip(results).zip(dynamics).enumerate())
+        .map(move |(k, ((p, r), d))| values(first + k, p.line, r, d))
+}
 
 /// The points of a compensate document as they come, written to `W`: each point's values (one per
 /// column of [`header`]) as 8 little-endian bytes each, an empty cell as NaN (which JSON writes as

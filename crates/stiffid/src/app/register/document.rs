@@ -3,35 +3,54 @@
 //! own document, [`crate::app::register::Report`]).
 
 use crate::app::document::transform::TransformStd;
-use crate::app::document::{degrees, mm};
-use crate::app::register;
+use crate::app::document::units;
+use crate::app::register::DesignReport;
+use nalgebra::Vector6;
 use serde::Serialize;
 
 /// The registration postures proposed (`stiffid register --count N --json`, Python's
 /// `register(setup, postures=N)`).
+///
+/// A view of the report ([`DesignReport::document`]), built as it is written: its lengths and
+/// angles are the design's, in SI, written in the units their keys name by the unit adapters
+/// ([`units`]).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(tag = "kind", rename = "register-postures")]
+#[cfg_attr(
+    feature = "schema",
+    schemars(
+        description = "The registration postures proposed (`stiffid register --count N --json`, Python's\n`register(setup, postures=N)`)."
+    )
+)]
 #[cfg_attr(feature = "schema", schemars(transform = crate::app::document::schema::Kind("register-postures")))]
-pub struct Proposal {
+pub struct Proposal<'a> {
     /// The setup as given.
-    pub setup: String,
+    pub setup: &'a str,
     /// The seed of the candidates, the exchange runs and the random groups.
     pub seed: u64,
     /// The postures, `R1`, `R2`, ...: axis angles, deg.
     pub postures: Vec<ProposedPosture>,
     /// Measuring points read per posture.
     pub measuring_points: usize,
-    /// The tracker noise per coordinate of one reading (the setup's, level multiple 1), mm.
-    pub noise_std_mm: f64,
+    /// The tracker noise per coordinate of one reading (the setup's, level multiple 1): m,
+    /// written in mm.
+    #[serde(rename = "noise_std_mm", serialize_with = "units::mm")]
+    pub noise_std: f64,
     /// Predicted standard deviations of the transform at that noise (linearised).
     #[serde(flatten)]
     pub std: TransformStd,
-    /// The criterion minimised: the root of the summed variances of the three rotation angles,
-    /// deg.
-    pub rotation_std_total_deg: f64,
-    /// The same, median over 101 groups of as many feasible candidates drawn at random, deg.
-    pub random_median_rotation_std_total_deg: f64,
+    /// The criterion minimised: the root of the summed variances of the three rotation angles:
+    /// rad, written in deg.
+    #[serde(rename = "rotation_std_total_deg", serialize_with = "units::deg")]
+    pub rotation_std_total: f64,
+    /// The same, median over 101 groups of as many feasible candidates drawn at random: rad,
+    /// written in deg.
+    #[serde(
+        rename = "random_median_rotation_std_total_deg",
+        serialize_with = "units::deg"
+    )]
+    pub random_median_rotation_std_total: f64,
     /// Candidate postures drawn in the bounds.
     pub candidates: usize,
     /// Candidates that pass the cell's checks.
@@ -54,30 +73,32 @@ pub struct Proposal {
 pub struct ProposedPosture {
     /// Its label, `R1`, `R2`, ...
     pub posture: String,
-    /// Axis angles q1..q6, deg.
-    pub q_deg: [f64; 6],
+    /// Axis angles q1..q6: rad, written in deg.
+    #[serde(rename = "q_deg", serialize_with = "units::deg6")]
+    #[cfg_attr(feature = "schema", schemars(with = "[f64; 6]"))]
+    pub q: Vector6<f64>,
 }
 
-impl Proposal {
-    /// The document of `report`, for the setup named `setup_name` (as the user gave it).
-    pub fn new(report: &register::DesignReport, setup_name: &str) -> Self {
+impl<'a> Proposal<'a> {
+    /// The document of `report`.
+    pub(crate) fn new(report: &'a DesignReport) -> Self {
         let d = &report.design;
-        let postures: Vec<ProposedPosture> = (degrees(&d.postures).into_iter().enumerate())
-            .map(|(i, q_deg)| ProposedPosture {
+        let postures: Vec<ProposedPosture> = (d.postures.iter().enumerate())
+            .map(|(i, q)| ProposedPosture {
                 posture: format!("R{}", i + 1),
-                q_deg,
+                q: *q,
             })
             .collect();
         let template = template(report, &postures);
         Proposal {
-            setup: setup_name.to_string(),
+            setup: &report.setup,
             seed: report.seed,
             postures,
             measuring_points: report.measuring_points,
-            noise_std_mm: mm(d.noise_std),
+            noise_std: d.noise_std,
             std: TransformStd::new(d.std().into()),
-            rotation_std_total_deg: d.rotation_std.to_degrees(),
-            random_median_rotation_std_total_deg: d.random_median_rotation_std.to_degrees(),
+            rotation_std_total: d.rotation_std,
+            random_median_rotation_std_total: d.random_median_rotation_std,
             candidates: d.candidates,
             feasible: d.feasible,
             checks: report.checks.iter().map(|k| k.key()).collect(),
@@ -90,7 +111,7 @@ impl Proposal {
 
 /// The readings CSV of `postures` to fill in: one row per posture and measuring point, the
 /// external axes' columns (`e1_mm`, ...) at the design's station, the tracker's columns empty.
-fn template(report: &register::DesignReport, postures: &[ProposedPosture]) -> String {
+fn template(report: &DesignReport, postures: &[ProposedPosture]) -> String {
     let header = stiffid_core::io::readings::header();
     let (header, external) = match &report.external {
         Some(axes) => {
@@ -106,7 +127,10 @@ fn template(report: &register::DesignReport, postures: &[ProposedPosture]) -> St
     };
     let mut text = header + "\n";
     for p in postures {
-        let q: Vec<String> = p.q_deg.iter().map(|v| format!("{v:.6}")).collect();
+        let q: Vec<String> =
+            p.q.iter()
+                .map(|v| format!("{:.6}", v.to_degrees()))
+                .collect();
         for point in 1..=report.measuring_points {
             text += &format!("{},{point},{},{external},,\n", p.posture, q.join(","));
         }

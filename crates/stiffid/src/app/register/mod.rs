@@ -180,8 +180,13 @@ pub struct DesignRequest<'a> {
 }
 
 /// The registration postures proposed.
+///
+/// The report is its document (`stiffid register --count N --json`, Python's `register(setup,
+/// count=N)`), written through the view [`document::Proposal`] ([`DesignReport::document`]).
 #[derive(Debug, Clone)]
 pub struct DesignReport {
+    /// The setup as the user named it ([`DesignRequest::setup_name`]).
+    pub setup: String,
     /// The postures and their predicted covariance ([`design::design`]).
     pub design: Design,
     /// The cell's checks the postures pass (those that apply without the load).
@@ -197,8 +202,22 @@ pub struct DesignReport {
     pub warnings: Vec<Warning>,
 }
 
-/// The postures proposed and their document.
-pub type Proposed = crate::app::Outcome<DesignReport, document::Proposal>;
+impl DesignReport {
+    /// The document this report is written as (`stiffid register --count N --json`, Python's
+    /// `register(setup, count=N)`), to read: what the command's text prints and `--out` writes.
+    pub fn document(&self) -> document::Proposal<'_> {
+        document::Proposal::new(self)
+    }
+}
+
+impl Serialize for DesignReport {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        self.document().serialize(s)
+    }
+}
+
+/// The postures proposed, which are their document (serialised through [`document::Proposal`]).
+pub type Proposed = crate::app::Outcome<DesignReport>;
 
 /// Proposes the registration postures that minimise the rotation's standard deviation
 /// ([`design::design`]).
@@ -207,9 +226,10 @@ pub type Proposed = crate::app::Outcome<DesignReport, document::Proposal>;
 /// [`stiffid_core::Error::InvalidOption`] ([`JobOption::Force`]) with [`DesignRequest::force`]; those
 /// of [`design::design`].
 pub fn propose(request: &DesignRequest<'_>) -> Result<Proposed> {
-    let report = find_proposal(request)?;
-    let document = document::Proposal::new(&report, &request.setup_name);
-    Ok(Proposed { report, document })
+    Ok(Proposed {
+        report: find_proposal(request)?,
+        document: crate::app::Itself,
+    })
 }
 
 /// What [`propose`] finds, before its document.
@@ -228,6 +248,7 @@ fn find_proposal(request: &DesignRequest<'_>) -> Result<DesignReport> {
         .copied()
         .collect();
     Ok(DesignReport {
+        setup: request.setup_name.clone(),
         design,
         checks,
         measuring_points: request.setup.tool().measuring_points.len(),
