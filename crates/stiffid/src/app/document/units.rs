@@ -143,7 +143,7 @@ pub fn plain3<S: Serializer>(v: &Vector3<f64>, s: S) -> Written<S> {
 }
 
 /// A choice (a criterion, a purpose, ...) written as its name (`relative-a`). Schema: one of
-/// its names (`schema_with`, e.g. [`crate::app::document::schema::one_of`]).
+/// its names (`schema_with`, e.g. `app::document::schema::one_of`, behind the `schema` feature).
 ///
 /// # Errors
 /// The serialiser's.

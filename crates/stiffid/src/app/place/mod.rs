@@ -20,7 +20,7 @@
 //! its joint limits, the TCP Jacobian's condition number stays below
 //! [`Request::max_condition`] (away from singularities) and, with a `[cell]`, every posture
 //! passes the cell's floor, obstacle and self-collision checks. Its cost is the path's largest
-//! error bound ([`stiffid_machining::compensate::Budget`], `--objective max`) or their sum.
+//! error bound ([`stiffid_machining::compensate::budget::Budget`], `--objective max`) or their sum.
 //!
 //! The search ([`search`]) is global: a grid over x, y and the rotation, seeded random samples
 //! over every coordinate, then compass searches from the best distinct placements; the result

@@ -1,6 +1,6 @@
 //! The parts of the plan's document ([`crate::app::plan`]; the report is the document,
 //! [`super::Report`]): `plan.json` of `stiffid select --report DIR` (which renders `plan.html`
-//! from it) and its `plan.csv` ([`csv`]), Python's `stiffid.plan`; the robot's bodies
+//! from it) and its `plan.csv` ([`csv()`]), Python's `stiffid.plan`; the robot's bodies
 //! ([`Bodies`]), each posture's leave-one-out rates ([`Without`]) and checks ([`Checks`]).
 
 use crate::app::document::feasibility::describe;
