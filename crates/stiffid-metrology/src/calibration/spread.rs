@@ -33,7 +33,7 @@ pub fn region_sd(
     postures_sd(model, fit, like, &gravity::spanning(region))
 }
 
-/// [`workspace_sd`] over the postures `qs` (axis angles, rad): the RMS over them of the
+/// [`region_sd`] over the postures `qs` (axis angles, rad): the RMS over them of the
 /// predicted position's standard deviation (3D, m); 0 without postures.
 ///
 /// # Errors
