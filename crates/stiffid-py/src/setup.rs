@@ -131,11 +131,7 @@ impl Setup {
         let (group, _) = postures(postures_deg, "postures_deg", within, most)?;
         let setup = &self.inner;
         setup.check_bodies().map_err(crate::error::raise)?;
-        let checks: Vec<_> = py.detach(|| {
-            let checker = stiffid_core::cell::Checker::new(setup);
-            group.iter().map(|q| checker.feasibility(q)).collect()
-        });
-        let document = stiffid::app::document::feasibility::postures(&checks);
+        let document = py.detach(|| stiffid::app::evaluate::feasibility(setup, &group));
         crate::documents::to_object(py, &document)
     }
 

@@ -7,7 +7,6 @@ use crate::{feasibility, load};
 use anyhow::Result;
 use std::path::PathBuf;
 use stiffid::app::document::candidates::CandidatesDoc;
-use stiffid::app::document::feasibility::postures;
 use stiffid::app::document::group::{CalibrationDoc, Criteria, Infinite, InfiniteCriterion};
 use stiffid::app::evaluate::{self as job, Report, Request};
 use stiffid::app::purpose::{CalibrationOptions, Purpose};
@@ -162,16 +161,16 @@ pub fn run(args: &Args) -> Result<()> {
         args.postures.display(),
         short(setup.name())
     );
-    let feasibility = postures(&report.feasibility);
-    if let Some((o, c)) = &report.calibration {
-        s += &calibration_text(&CalibrationDoc::new(o, c));
+    let feasibility = report.postures();
+    if let Some(c) = &report.calibration_criteria() {
+        s += &calibration_text(c);
         if args.purpose.purpose.calibration_only() {
             s += &feasibility::text(&feasibility);
             return output::print(&s);
         }
         s += "\nstiffness criteria\n";
     }
-    s += &criteria_text(&Criteria::from(e), &setup);
+    s += &criteria_text(&report.criteria(), &setup);
     if !setup.model().is_drives_only() || !separable(e) {
         s += &parameters_text(report);
     }
@@ -186,8 +185,8 @@ pub fn run(args: &Args) -> Result<()> {
     } else {
         s += &deviation_text(&setup, e);
     }
-    if let Some(v) = &report.candidates {
-        s += &candidates_text(&CandidatesDoc::from(v));
+    if let Some(v) = &report.candidate_verdicts() {
+        s += &candidates_text(v);
     }
     s += &feasibility::text(&feasibility);
     output::print(&s)

@@ -12,7 +12,7 @@ use anyhow::Result;
 use nalgebra::Vector6;
 use std::path::Path;
 use stiffid::app::document::{finite, mm};
-use stiffid::app::plan::document::{self as document, Bodies, Checks, Without};
+use stiffid::app::plan::document::{self as document, Bodies};
 use stiffid::app::plan::{self as job, Report, Request};
 use stiffid_core::common::words::{count, is_are};
 use stiffid_core::Setup;
@@ -336,7 +336,7 @@ fn postures_table(plan: &Report) -> Table {
         .postures
         .iter()
         .map(|r| {
-            let checks = Checks::from(&r.feasibility);
+            let checks = r.checks();
             vec![
                 r.posture.to_string(),
                 fixed(&r.q.map(f64::to_degrees).into(), 2).join(", "),
@@ -348,7 +348,7 @@ fn postures_table(plan: &Report) -> Table {
                     true => "pass".into(),
                     false => format!("FAIL: {}", checks.failed_checks.join("; ")),
                 },
-                pct(Without::from(&r.without_pct).without_worst_pct),
+                pct(r.without().without_worst_pct),
             ]
         })
         .collect();

@@ -815,35 +815,45 @@ fn the_public_item_counts_are_the_ones_architecture_lists() {
     assert_eq!(listed_total, Some(total), "the table's total");
 }
 
-/// The places where a front end (`stiffid-cli`, `stiffid-py`) builds a job's document from its
-/// report (`Document::new(&report, ..)`, `Summary::new(&report)` or any `::new(` of a type of a
-/// job's document module, a scene from a report) instead of receiving it from the job: none
-/// (every job's `run` returns its document, and a view of it comes from the job's report).
+/// The places where a front end (`stiffid-cli`, `stiffid-py`) builds a job's document or a part
+/// of one from its report (`Document::new(&report, ..)`, `Summary::new(&report)`, any `::new(`
+/// or `::from(` of a type of a job's document module or of the documents' parts,
+/// `app/document/`, the feasibility's `postures`, a scene from a report) instead of receiving it
+/// from the job: none (every job's `run` returns its document, and a view of it or of a part
+/// comes from the job's report).
 const FRONT_END_DOCUMENTS: usize = 0;
 
-/// How many documents the line of code `line` builds: a `Document::new(`, a
-/// `document::scene(`, or a `NAME::new(` of one of the `types` of the jobs' documents
-/// ([`job_document_types`]).
+/// How many documents or parts of one the line of code `line` builds: a `Document::new(`, a
+/// `document::scene(`, a `NAME::new(` or `NAME::from(` of one of the `types` of the documents
+/// ([`job_document_types`]), or a mention of the feasibility's `feasibility::postures` (its
+/// call or its import).
 fn builds(line: &str, types: &BTreeSet<String>) -> usize {
-    let named = |name: &String| {
-        let call = format!("{name}::new(");
-        line.match_indices(&call)
-            .filter(|(i, _)| {
-                let before = line[..*i].chars().next_back();
-                !before.is_some_and(|c| c.is_alphanumeric() || c == '_')
-            })
+    // `word` in `line` as a whole word: neither a letter, a digit nor `_` before it, nor one
+    // after it when `whole` (an opening parenthesis ends the call words).
+    let calls = |word: &str, whole: bool| {
+        let word_char = |c: char| c.is_alphanumeric() || c == '_';
+        (line.match_indices(word))
+            .filter(|(i, _)| !line[..*i].chars().next_back().is_some_and(word_char))
+            .filter(|(i, _)| !whole || !line[*i + word.len()..].starts_with(word_char))
             .count()
     };
-    let other_types = (types.iter()).filter(|t| !t.ends_with("Document"));
+    let named = |name: &String| {
+        // `Document::new(` is counted below for any type of that ending.
+        let new = (!name.ends_with("Document")).then(|| calls(&format!("{name}::new("), false));
+        new.unwrap_or(0) + calls(&format!("{name}::from("), false)
+    };
     line.match_indices("Document::new(").count()
         + line.match_indices("document::scene(").count()
-        + other_types.map(named).sum::<usize>()
+        + calls("feasibility::postures", true)
+        + types.iter().map(named).sum::<usize>()
 }
 
 /// The types (structs and enums, public or not) of every job's document module,
-/// `app/<job>/document.rs` and the files under `app/<job>/document/`.
+/// `app/<job>/document.rs` and the files under `app/<job>/document/`, and of the documents'
+/// parts, the files of `app/document/`.
 fn job_document_types() -> BTreeSet<String> {
     let mut files = Vec::new();
+    every_source(&src_of("stiffid").join("app/document"), &mut files);
     for job in std::fs::read_dir(src_of("stiffid").join("app")).unwrap() {
         let job = job.unwrap().path();
         if job.join("document.rs").is_file() {
@@ -896,17 +906,36 @@ fn front_end_documents() -> (Vec<String>, Vec<PathBuf>) {
 #[test]
 fn front_ends_build_no_documents() {
     // The scan sees a build in code and none in a comment, a view of a job's document by its
-    // type's name (reproduce's `Summary`) but not a type of another name that ends like it.
+    // type's name (reproduce's `Summary`) but not a type of another name that ends like it, a
+    // part of a document (`app/document/`'s, a job's document's) by `::new(` or `::from(`, and
+    // the feasibility's `postures` called or imported, but not a name that starts like it.
     let types = job_document_types();
-    for name in ["Document", "Summary", "Proposal", "Named", "Row"] {
+    for name in [
+        "Document",
+        "Summary",
+        "Proposal",
+        "Named",
+        "Row",
+        "Criteria",
+        "CalibrationDoc",
+        "CandidatesDoc",
+        "Posture",
+        "Checks",
+        "Without",
+    ] {
         assert!(types.contains(name), "{name} among {types:?}");
     }
     let sample = "let doc = Document::new(&report, setup); // Document::new(&report)\n\
                   let scene = job::document::scene(&report, setup)?;\n\
                   let summary = Summary::new(&report); let s = document::Summary::new(&r);\n\
-                  let other = MySummary::new(); let text = \"Summary::new(\";";
+                  let other = MySummary::new(); let text = \"Summary::new(\";\n\
+                  let c = Criteria::from(e); let k = CandidatesDoc::from(v); // Checks::from(f)\n\
+                  let w = document::Without::from(&r.without_pct); let m = MyCriteria::from(e);\n\
+                  let d = CalibrationDoc::new(o, c); let t = String::from(\"Criteria::from(\");\n\
+                  use stiffid::app::document::feasibility::postures;\n\
+                  let p = feasibility::postures(&checks); let q = feasibility::postures_deg(&g);";
     let seen: usize = strip(sample).lines().map(|l| builds(l, &types)).sum();
-    assert_eq!(seen, 4);
+    assert_eq!(seen, 10);
     let (found, scanned) = front_end_documents();
     // It reads both front ends, the command's plan report among them.
     for file in ["stiffid-cli/src/report/plan.rs", "stiffid-py/src/plan.rs"] {

@@ -79,8 +79,9 @@ impl From<&Verdict> for CandidateDoc {
     }
 }
 
-impl From<&Verdicts> for CandidatesDoc {
-    fn from(v: &Verdicts) -> Self {
+impl CandidatesDoc {
+    /// The document of the verdicts `v`.
+    pub(crate) fn of(v: &Verdicts) -> Self {
         let nonlinear = (v.candidates.iter()).any(|c| {
             matches!(
                 c.parameter.kind,
@@ -109,5 +110,5 @@ impl From<&Verdicts> for CandidatesDoc {
 /// # Errors
 /// The serialiser's.
 pub(crate) fn verdicts<S: Serializer>(v: &Option<Verdicts>, s: S) -> Result<S::Ok, S::Error> {
-    v.as_ref().map(CandidatesDoc::from).serialize(s)
+    v.as_ref().map(CandidatesDoc::of).serialize(s)
 }

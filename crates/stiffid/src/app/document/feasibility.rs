@@ -42,7 +42,7 @@ pub struct Violation {
 }
 
 /// The documents of the feasibility of each posture of a group, in order.
-pub fn postures(checks: &[Feasibility]) -> Vec<Posture> {
+pub(crate) fn postures(checks: &[Feasibility]) -> Vec<Posture> {
     checks
         .iter()
         .enumerate()

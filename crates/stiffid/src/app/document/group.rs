@@ -145,8 +145,9 @@ impl From<&Evaluation> for CriteriaValues {
     }
 }
 
-impl From<&Evaluation> for Criteria {
-    fn from(e: &Evaluation) -> Self {
+impl Criteria {
+    /// The document of the evaluation `e`.
+    pub(crate) fn of(e: &Evaluation) -> Self {
         // NaN only without a nominal stiffness (stiffid_design::Evaluation).
         let scaled = !e.relative_std.iter().any(|v| v.is_nan());
         Self {
@@ -220,7 +221,7 @@ pub struct CalibrationDoc {
 
 impl CalibrationDoc {
     /// The document of the options `o` and the criteria `c`.
-    pub fn new(o: &CalibrationOptions, c: &CalibrationCriteria) -> Self {
+    pub(crate) fn new(o: &CalibrationOptions, c: &CalibrationCriteria) -> Self {
         use stiffid_core::common::choice::Choice;
         Self {
             criterion: o.criterion().name(),
@@ -333,7 +334,7 @@ type Written<S> = Result<<S as Serializer>::Ok, <S as Serializer>::Error>;
 /// # Errors
 /// The serialiser's.
 pub(crate) fn criteria<S: Serializer>(e: &Evaluation, s: S) -> Written<S> {
-    Criteria::from(e).serialize(s)
+    Criteria::of(e).serialize(s)
 }
 
 /// How well a group identifies every parameter of the model ([`Evaluation::parameters`]),

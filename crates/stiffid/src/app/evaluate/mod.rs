@@ -90,6 +90,45 @@ pub struct Report {
     pub warnings: Vec<Warning>,
 }
 
+impl Report {
+    /// The criteria as the document writes them (its `classical`, ..., `cond_psi`, the relative
+    /// standard deviations, the predicted deviation rates and why a criterion is infinite).
+    pub fn criteria(&self) -> group::Criteria {
+        group::Criteria::of(&self.evaluation)
+    }
+
+    /// Every posture's checks in the cell as the document writes them (its `feasibility`), in
+    /// the order of the group.
+    pub fn postures(&self) -> Vec<feasibility::Posture> {
+        feasibility::postures(&self.feasibility)
+    }
+
+    /// With the calibration: its criteria as the document writes them (its `calibration`).
+    pub fn calibration_criteria(&self) -> Option<group::CalibrationDoc> {
+        (self.calibration.as_ref()).map(|(o, c)| group::CalibrationDoc::new(o, c))
+    }
+
+    /// Unless for the calibration alone: how the group identifies each candidate, as the
+    /// document writes it (its `candidates`).
+    pub fn candidate_verdicts(&self) -> Option<candidates::CandidatesDoc> {
+        self.candidates.as_ref().map(candidates::CandidatesDoc::of)
+    }
+}
+
+/// Each posture's checks in the cell (the setup's bounds, floor, obstacles, self-collision,
+/// rope, line of sight, incidence, `[constraints]`), as the document's `feasibility` has them:
+/// what the evaluate job writes of `postures` (axis angles, rad) without its criteria.
+/// Python's `Setup.feasibility`.
+pub fn feasibility(setup: &Setup, postures: &[Vector6<f64>]) -> Vec<feasibility::Posture> {
+    feasibility::postures(&checks(setup, postures))
+}
+
+/// Each posture's checks in the cell, in the order of `postures` (axis angles, rad).
+fn checks(setup: &Setup, postures: &[Vector6<f64>]) -> Vec<Feasibility> {
+    let checker = Checker::new(setup);
+    postures.iter().map(|q| checker.feasibility(q)).collect()
+}
+
 /// The evaluate job's report, which is its document.
 pub type Outcome = crate::app::Outcome<Report>;
 
@@ -143,10 +182,9 @@ fn find(request: &Request) -> Result<Report> {
         )?),
     };
     let evaluation = evaluate(setup, postures);
-    let checker = Checker::new(setup);
     Ok(Report {
         candidates,
-        feasibility: postures.iter().map(|q| checker.feasibility(q)).collect(),
+        feasibility: checks(setup, postures),
         unidentifiable: unidentifiable(&evaluation, setup),
         parameters: evaluation.parameters(setup),
         evaluation,

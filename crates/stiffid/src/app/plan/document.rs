@@ -56,8 +56,9 @@ pub struct Without {
     pub without_worst_pct: Option<f64>,
 }
 
-impl From<&[f64; 6]> for Without {
-    fn from(without: &[f64; 6]) -> Self {
+impl Without {
+    /// The rates of `without` (%, infinite where the rest cannot identify the joint).
+    pub(crate) fn of(without: &[f64; 6]) -> Self {
         let worst = without.iter().copied().fold(0.0, f64::max);
         Self {
             without_pct: finite_each(*without),
@@ -84,8 +85,9 @@ pub struct Checks {
     pub failed_checks: Vec<String>,
 }
 
-impl From<&Feasibility> for Checks {
-    fn from(f: &Feasibility) -> Self {
+impl Checks {
+    /// The checks of the posture's feasibility `f`.
+    pub(crate) fn of(f: &Feasibility) -> Self {
         Self {
             min_clearance_mm: f.min_clearance().map(mm),
             min_margin_mm: f.min_margin().map(|c| mm(c.margin)),
@@ -100,7 +102,7 @@ impl From<&Feasibility> for Checks {
 /// # Errors
 /// The serialiser's.
 pub(crate) fn without<S: Serializer>(without: &[f64; 6], s: S) -> Written<S> {
-    Without::from(without).serialize(s)
+    Without::of(without).serialize(s)
 }
 
 /// A posture's checks in the cell, written as [`Checks`] (flattened). Schema: `Checks`.
@@ -108,7 +110,7 @@ pub(crate) fn without<S: Serializer>(without: &[f64; 6], s: S) -> Written<S> {
 /// # Errors
 /// The serialiser's.
 pub(crate) fn checks<S: Serializer>(f: &Feasibility, s: S) -> Written<S> {
-    Checks::from(f).serialize(s)
+    Checks::of(f).serialize(s)
 }
 
 /// A group's predicted mean deviation rate of each joint at each noise level, percent, `null`
@@ -181,7 +183,7 @@ pub fn csv(plan: &Report) -> String {
         );
         let without = r.without_pct.map(|v| finite(v).unwrap_or(f64::INFINITY));
         cells.extend(fixed(&without, 4));
-        let checks = Checks::from(&r.feasibility);
+        let checks = r.checks();
         let one = |v: Option<f64>| v.map_or(String::new(), |c| format!("{c:.1}"));
         cells.push(one(checks.min_clearance_mm));
         cells.push(one(checks.min_margin_mm));

@@ -124,6 +124,20 @@ pub struct Posture {
     pub external: Vec<f64>,
 }
 
+impl Posture {
+    /// The posture's checks in the cell as the plan writes them (its `min_clearance_mm`,
+    /// `min_margin_mm`, `min_margin_check` and `failed_checks`).
+    pub fn checks(&self) -> document::Checks {
+        document::Checks::of(&self.feasibility)
+    }
+
+    /// The posture's leave-one-out rates as the plan writes them (its `without_pct` and
+    /// `without_worst_pct`, percent, `None` where the rest cannot identify a joint).
+    pub fn without(&self) -> document::Without {
+        document::Without::of(&self.without_pct)
+    }
+}
+
 /// A measurement plan: the setup's load and bodies, what the group predicts, and what each
 /// posture asks of the operator. It is its own document (`plan.json` of `stiffid select --report
 /// DIR`, Python's `stiffid.plan`; its `plan.csv`, [`document::csv`]).

@@ -146,7 +146,7 @@ impl From<&CandidatesReport> for ForCandidates {
                 })
                 .map(|v| v.parameter.name.clone())
                 .collect(),
-            identified: CandidatesDoc::from(&c.verdicts),
+            identified: CandidatesDoc::of(&c.verdicts),
         }
     }
 }
@@ -275,7 +275,7 @@ impl Document {
             postures_deg: degrees(&r.postures),
             margin_mm: stiffid_core::common::words::as_given(mm(r.margin)),
             min_margin_mm: r.min_margins.iter().map(|m| m.map(mm)).collect(),
-            criteria: Criteria::from(&r.evaluation),
+            criteria: Criteria::of(&r.evaluation),
             calibration: (r.calibration.as_ref())
                 .map(|c| CalibrationDoc::new(&c.options, &c.criteria)),
             calibration_weight: (r.calibration.as_ref())
@@ -379,7 +379,7 @@ impl Free {
             value: finite(u.value),
             termination: u.termination.name(),
             postures_deg: degrees(&u.postures),
-            criteria: Criteria::from(&u.evaluation),
+            criteria: Criteria::of(&u.evaluation),
             cost_pct: finite(100.0 * (r.value / u.value - 1.0)),
             feasible_predicted_average_pct: finite(feasible),
             predicted_average_pct: finite(free),
