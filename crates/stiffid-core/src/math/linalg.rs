@@ -160,8 +160,35 @@ pub(crate) fn column_norms(a: &[f64], m: usize) -> Vector6<f64> {
     })
 }
 
+/// The shortest vectors [`dot`] and [`axpy`] take through their AVX code on a processor that has
+/// it: below it the call costs more than the wider instructions save.
+const WIDE: usize = 32;
+
 /// `a . b` over the shorter length, with four partial sums (independent chains run in parallel).
+///
+/// On an x86-64 processor with AVX, vectors of [`WIDE`] entries or more are summed with 256-bit
+/// instructions: the same four partial sums in the same order, multiplications and additions
+/// separately rounded (no fused multiply-add), so the result is the same to the last bit on
+/// every processor.
 pub fn dot(a: &[f64], b: &[f64]) -> f64 {
+    #[cfg(target_arch = "x86_64")]
+    if a.len().min(b.len()) >= WIDE && std::arch::is_x86_feature_detected!("avx") {
+        // SAFETY: the processor has AVX (checked above).
+        return unsafe { dot_avx(a, b) };
+    }
+    dot_portable(a, b)
+}
+
+/// [`dot`] compiled for AVX.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+fn dot_avx(a: &[f64], b: &[f64]) -> f64 {
+    dot_portable(a, b)
+}
+
+/// [`dot`]'s arithmetic, inlined into each of its compilations.
+#[inline(always)]
+fn dot_portable(a: &[f64], b: &[f64]) -> f64 {
     let n = a.len().min(b.len());
     let (a, b) = (a[..n].chunks_exact(4), b[..n].chunks_exact(4));
     let rest: f64 = a
@@ -179,7 +206,130 @@ pub fn dot(a: &[f64], b: &[f64]) -> f64 {
     (s[0] + s[1]) + (s[2] + s[3]) + rest
 }
 
-/// `y += alpha x`, element by element.
+/// The dots of `a` with each of four vectors `b` (over the shortest length of all five), each
+/// summed as [`dot`] sums it, so each equals [`dot`]`(a, b[j])` to the last bit: computed
+/// together, their four chains of partial sums run side by side (a [`dot`] alone waits on its
+/// one chain's additions).
+pub fn dot4(a: &[f64], b: [&[f64]; 4]) -> [f64; 4] {
+    #[cfg(target_arch = "x86_64")]
+    if a.len() >= WIDE && std::arch::is_x86_feature_detected!("avx") {
+        // SAFETY: the processor has AVX (checked above).
+        return unsafe { dot4_avx(a, b) };
+    }
+    dot4_portable(a, b)
+}
+
+/// [`dot4`] compiled for AVX.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+fn dot4_avx(a: &[f64], b: [&[f64]; 4]) -> [f64; 4] {
+    dot4_portable(a, b)
+}
+
+/// [`dot4`]'s arithmetic, inlined into each of its compilations.
+#[inline(always)]
+fn dot4_portable(a: &[f64], b: [&[f64]; 4]) -> [f64; 4] {
+    let n = b.iter().map(|v| v.len()).fold(a.len(), usize::min);
+    let whole = n - n % 4;
+    let mut s = [[0.0; 4]; 4];
+    let (b0, b1, b2, b3) = (
+        &b[0][..whole],
+        &b[1][..whole],
+        &b[2][..whole],
+        &b[3][..whole],
+    );
+    for (c, x) in a[..whole].chunks_exact(4).enumerate() {
+        let at = 4 * c;
+        for i in 0..4 {
+            s[0][i] += x[i] * b0[at + i];
+            s[1][i] += x[i] * b1[at + i];
+            s[2][i] += x[i] * b2[at + i];
+            s[3][i] += x[i] * b3[at + i];
+        }
+    }
+    std::array::from_fn(|j| {
+        let rest: f64 = (a[whole..n].iter().zip(&b[j][whole..n]))
+            .map(|(x, y)| x * y)
+            .sum();
+        (s[j][0] + s[j][1]) + (s[j][2] + s[j][3]) + rest
+    })
+}
+
+/// `y += alpha x`, element by element (with AVX-512 or AVX where the processor has it: the same
+/// result, each element one multiplication and one addition).
 pub fn axpy(alpha: f64, x: &[f64], y: &mut [f64]) {
+    #[cfg(target_arch = "x86_64")]
+    if y.len().min(x.len()) >= WIDE {
+        if std::arch::is_x86_feature_detected!("avx512f") {
+            // SAFETY: the processor has AVX-512 (checked above).
+            return unsafe { axpy_avx512(alpha, x, y) };
+        }
+        if std::arch::is_x86_feature_detected!("avx") {
+            // SAFETY: the processor has AVX (checked above).
+            return unsafe { axpy_avx(alpha, x, y) };
+        }
+    }
+    axpy_portable(alpha, x, y)
+}
+
+/// [`axpy`] compiled for AVX-512.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+fn axpy_avx512(alpha: f64, x: &[f64], y: &mut [f64]) {
+    axpy_portable(alpha, x, y)
+}
+
+/// [`axpy`] compiled for AVX.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+fn axpy_avx(alpha: f64, x: &[f64], y: &mut [f64]) {
+    axpy_portable(alpha, x, y)
+}
+
+/// [`axpy`]'s arithmetic, inlined into each of its compilations.
+#[inline(always)]
+fn axpy_portable(alpha: f64, x: &[f64], y: &mut [f64]) {
     y.iter_mut().zip(x).for_each(|(y, x)| *y += alpha * x);
+}
+
+/// `y += alpha[0] x[0]`, then `+= alpha[1] x[1]`, ... (over the shortest length): four [`axpy`]
+/// in one pass over `y`, each element summed in the same order, so the same result to the last
+/// bit.
+pub fn axpy4(alpha: [f64; 4], x: [&[f64]; 4], y: &mut [f64]) {
+    #[cfg(target_arch = "x86_64")]
+    if y.len() >= WIDE {
+        if std::arch::is_x86_feature_detected!("avx512f") {
+            // SAFETY: the processor has AVX-512 (checked above).
+            return unsafe { axpy4_avx512(alpha, x, y) };
+        }
+        if std::arch::is_x86_feature_detected!("avx") {
+            // SAFETY: the processor has AVX (checked above).
+            return unsafe { axpy4_avx(alpha, x, y) };
+        }
+    }
+    axpy4_portable(alpha, x, y)
+}
+
+/// [`axpy4`] compiled for AVX-512.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+fn axpy4_avx512(alpha: [f64; 4], x: [&[f64]; 4], y: &mut [f64]) {
+    axpy4_portable(alpha, x, y)
+}
+
+/// [`axpy4`] compiled for AVX.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+fn axpy4_avx(alpha: [f64; 4], x: [&[f64]; 4], y: &mut [f64]) {
+    axpy4_portable(alpha, x, y)
+}
+
+/// [`axpy4`]'s arithmetic, inlined into each of its compilations.
+#[inline(always)]
+fn axpy4_portable(alpha: [f64; 4], x: [&[f64]; 4], y: &mut [f64]) {
+    let n = x.iter().map(|v| v.len()).fold(y.len(), usize::min);
+    let (x0, x1, x2, x3) = (&x[0][..n], &x[1][..n], &x[2][..n], &x[3][..n]);
+    for (i, y) in y[..n].iter_mut().enumerate() {
+        *y = *y + alpha[0] * x0[i] + alpha[1] * x1[i] + alpha[2] * x2[i] + alpha[3] * x3[i];
+    }
 }

@@ -71,3 +71,63 @@ fn inverse_is_nalgebras_with_every_row_swap() {
     assert!((got - want).amax() < 1e-14 * want.amax(), "{got} vs {want}");
     assert!((a * got - Matrix6::identity()).amax() < 1e-14);
 }
+
+/// A vector of `n` entries of mixed sizes and signs (no two sums reorder to the same bits).
+fn mixed(n: usize, seed: f64) -> Vec<f64> {
+    (0..n)
+        .map(|i| (seed + 0.37 * i as f64).sin() * 10f64.powi((i % 7) as i32 - 3))
+        .collect()
+}
+
+/// [`dot`] summed as documented: four partial sums over whole chunks of four, then the rest.
+fn dot_reference(a: &[f64], b: &[f64]) -> f64 {
+    let n = a.len().min(b.len());
+    let whole = n - n % 4;
+    let mut s = [0.0; 4];
+    for i in 0..whole {
+        s[i % 4] += a[i] * b[i];
+    }
+    let rest: f64 = (whole..n).map(|i| a[i] * b[i]).sum();
+    (s[0] + s[1]) + (s[2] + s[3]) + rest
+}
+
+#[test]
+fn dot_and_dot4_sum_in_the_documented_order_to_the_last_bit_at_every_length() {
+    for n in (0..80).chain([255, 256, 257, 1001]) {
+        let a = mixed(n, 0.1);
+        let b: Vec<Vec<f64>> = (0..4).map(|j| mixed(n + j, 1.0 + j as f64)).collect();
+        let four = dot4(&a, [&b[0], &b[1], &b[2], &b[3]]);
+        for j in 0..4 {
+            let reference = dot_reference(&a, &b[j][..n]);
+            assert_eq!(
+                dot(&a, &b[j]).to_bits(),
+                reference.to_bits(),
+                "dot, n = {n}"
+            );
+            assert_eq!(four[j].to_bits(), reference.to_bits(), "dot4 {j}, n = {n}");
+        }
+    }
+}
+
+#[test]
+fn axpy4_is_four_axpy_in_turn_to_the_last_bit_at_every_length() {
+    for n in (0..80).chain([255, 256, 257, 1001]) {
+        let x: Vec<Vec<f64>> = (0..4).map(|j| mixed(n, 2.0 + j as f64)).collect();
+        let alpha = [0.3, -1.7e3, 2.5e-4, -0.9];
+        let mut once = mixed(n, 7.0);
+        let mut turns = once.clone();
+        axpy4(alpha, [&x[0], &x[1], &x[2], &x[3]], &mut once);
+        for j in 0..4 {
+            axpy(alpha[j], &x[j], &mut turns);
+        }
+        let mut plain = mixed(n, 7.0);
+        for j in 0..4 {
+            for i in 0..n {
+                plain[i] += alpha[j] * x[j][i];
+            }
+        }
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<u64>>();
+        assert_eq!(bits(&once), bits(&turns), "n = {n}");
+        assert_eq!(bits(&turns), bits(&plain), "n = {n}");
+    }
+}

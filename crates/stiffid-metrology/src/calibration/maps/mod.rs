@@ -43,6 +43,8 @@
 
 pub mod linear;
 mod reflections;
+#[cfg(test)]
+mod reflections_tests;
 
 pub use super::error_model::JointMaps;
 pub use linear::{extended, Linear};

@@ -7,9 +7,11 @@
 //! - [`Bidiagonal`], the Golub-Kahan bidiagonalisation `S = W B Z^T` of a choice's columns of the
 //!   split's `R` (`dgebd2`), for Eldén's ridge steps.
 //!
-//! Column-major slices throughout, with the core's four-way `dot` and `axpy`.
+//! Column-major slices throughout, with the core's four-way `dot` and `axpy`; a reflection is
+//! applied to four columns at a time ([`reflect_columns`]), each column's result that of the
+//! reflection applied to it alone, to the last bit.
 
-use stiffid_core::math::linalg::{axpy, dot};
+use stiffid_core::math::linalg::{axpy, axpy4, dot, dot4};
 
 /// The reflections a trailing column is taken through while it sits in cache: a block of them
 /// is `BLOCK` columns of the matrix (2400 rows: 600 KiB, within a 1 MiB L2).
@@ -32,10 +34,37 @@ fn reflector(x: &mut [f64]) -> f64 {
 }
 
 /// `y = (I - tau v v^T) y`, `v = (1, tail)`.
-fn reflect(tail: &[f64], tau: f64, y: &mut [f64]) {
+pub(super) fn reflect(tail: &[f64], tau: f64, y: &mut [f64]) {
     let w = tau * (y[0] + dot(tail, &y[1..]));
     y[0] -= w;
     axpy(-w, tail, &mut y[1..]);
+}
+
+/// Each of the column-major `columns` (`m` rows each), from its row `from`, taken through the
+/// reflection of [`reflect`] (`tail` of `m - from - 1` entries): four columns at a time, their
+/// dots with `tail` summed together ([`dot4`]), each column's result that of [`reflect`] alone.
+pub(super) fn reflect_columns(tail: &[f64], tau: f64, columns: &mut [f64], m: usize, from: usize) {
+    let mut groups = columns.chunks_exact_mut(4 * m);
+    for g in &mut groups {
+        let (c0, rest) = g.split_at_mut(m);
+        let (c1, rest) = rest.split_at_mut(m);
+        let (c2, c3) = rest.split_at_mut(m);
+        let mut cs = [
+            &mut c0[from..],
+            &mut c1[from..],
+            &mut c2[from..],
+            &mut c3[from..],
+        ];
+        let d = dot4(tail, [&cs[0][1..], &cs[1][1..], &cs[2][1..], &cs[3][1..]]);
+        for (c, d) in cs.iter_mut().zip(d) {
+            let w = tau * (c[0] + d);
+            c[0] -= w;
+            axpy(-w, tail, &mut c[1..]);
+        }
+    }
+    for c in groups.into_remainder().chunks_exact_mut(m) {
+        reflect(tail, tau, &mut c[from..]);
+    }
 }
 
 /// Householder QR in place of the column-major matrix `a` of `m` rows, its first `reflections`
@@ -53,14 +82,13 @@ pub(super) fn qr(a: &mut [f64], m: usize, reflections: usize) -> Vec<f64> {
             if taus[k] == 0.0 {
                 continue;
             }
-            for c in right[..(k1 - k - 1) * m].chunks_exact_mut(m) {
-                reflect(&col[1..], taus[k], &mut c[k..]);
-            }
+            reflect_columns(&col[1..], taus[k], &mut right[..(k1 - k - 1) * m], m, k);
         }
         let (panel, trailing) = a.split_at_mut(k1 * m);
-        for c in trailing.chunks_exact_mut(m) {
+        for group in trailing.chunks_mut(4 * m) {
             for k in (k0..k1).filter(|&k| taus[k] != 0.0) {
-                reflect(&panel[k * m + k + 1..(k + 1) * m], taus[k], &mut c[k..]);
+                let tail = &panel[k * m + k + 1..(k + 1) * m];
+                reflect_columns(tail, taus[k], group, m, k);
             }
         }
     }
@@ -100,9 +128,7 @@ impl Bidiagonal {
             left[i] = reflector(col);
             diagonal[i] = col[0];
             if left[i] != 0.0 {
-                for c in rest.chunks_exact_mut(m) {
-                    reflect(&col[1..], left[i], &mut c[i..]);
-                }
+                reflect_columns(&col[1..], left[i], rest, m, i);
             }
             if i + 1 == n {
                 break;
@@ -122,8 +148,20 @@ impl Bidiagonal {
             // `A_2 = A_2 (I - tau v v^T)`, `A_2` rows `i + 1..`: `w = A_2 v`, `A_2 -= tau w v^T`.
             let w = &mut w[..m - i - 1];
             w.fill(0.0);
-            for (k, c) in rest.chunks_exact(m).enumerate() {
-                axpy(if k == 0 { 1.0 } else { row[k] }, &c[i + 1..], w);
+            let v = |k: usize| if k == 0 { 1.0 } else { row[k] };
+            let mut columns = rest.chunks_exact(4 * m);
+            for (g, four) in (&mut columns).enumerate() {
+                let c = |j: usize| &four[j * m + i + 1..(j + 1) * m];
+                let k = 4 * g;
+                axpy4(
+                    [v(k), v(k + 1), v(k + 2), v(k + 3)],
+                    [c(0), c(1), c(2), c(3)],
+                    w,
+                );
+            }
+            let done = rest.len() / (4 * m) * 4;
+            for (k, c) in columns.remainder().chunks_exact(m).enumerate() {
+                axpy(v(done + k), &c[i + 1..], w);
             }
             for (k, c) in rest.chunks_exact_mut(m).enumerate() {
                 let v = if k == 0 { 1.0 } else { row[k] };
