@@ -43,8 +43,6 @@
 
 pub mod linear;
 mod reflections;
-#[cfg(test)]
-mod reflections_tests;
 
 pub use super::error_model::JointMaps;
 pub use linear::{extended, Linear};
@@ -552,3 +550,6 @@ fn outer(
         errors,
     })
 }
+
+#[cfg(test)]
+mod reflections_tests;
