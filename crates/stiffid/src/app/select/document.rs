@@ -3,7 +3,7 @@
 
 use crate::app::document::candidates::CandidatesDoc;
 use crate::app::document::feasibility::describe;
-use crate::app::document::group::{self, CalibrationDoc, Criteria, NearDoc};
+use crate::app::document::group::{self, CalibrationDoc, Criteria};
 use crate::app::document::{finite, units};
 use crate::app::select::{CandidatesReport, PoolReport, Report, Unconstrained};
 use nalgebra::Vector6;
@@ -131,7 +131,7 @@ pub struct Document<'a> {
     /// Pairs of postures that are not distinct (axis angles within 2 deg, or the same flange
     /// pose within 10 mm and 2 deg: a wrist flip counts; or the distances of `distinct`).
     #[serde(rename = "near_postures", serialize_with = "group::near")]
-    #[cfg_attr(feature = "schema", schemars(with = "Vec<NearDoc>"))]
+    #[cfg_attr(feature = "schema", schemars(with = "Vec<group::NearDoc>"))]
     pub near: &'a [Near],
     /// With `--for-candidates`: the candidates designed for and how the group identifies each
     /// together with the setup's model (as `evaluate`'s `candidates`).
