@@ -91,10 +91,7 @@ pub struct Document<'a> {
     /// How many local searches (the global search's starts; one for a local search) stopped for
     /// each reason, every reason listed; absent for a pool choice.
     #[serde(skip_serializing_if = "Option::is_none", serialize_with = "counts")]
-    #[cfg_attr(
-        feature = "schema",
-        schemars(with = "Option<Vec<TerminationCount>>")
-    )]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<Vec<TerminationCount>>"))]
     pub terminations: Option<&'a [Termination]>,
     /// The group found, axis angles q1..q6, one row per posture: rad, written in deg.
     #[serde(rename = "postures_deg", serialize_with = "units::deg6_each")]
@@ -345,10 +342,7 @@ fn station(axes: Option<&ExternalAxes>, e: &ExternalValues) -> BTreeMap<String, 
 
 /// The local searches' `terminations`, written as how many are of each reason, every reason
 /// listed, or `null`. Schema: `Option<Vec<TerminationCount>>`.
-fn counts<S: Serializer>(
-    terminations: &Option<&[Termination]>,
-    s: S,
-) -> Result<S::Ok, S::Error> {
+fn counts<S: Serializer>(terminations: &Option<&[Termination]>, s: S) -> Result<S::Ok, S::Error> {
     let count = |all: &[Termination]| -> Vec<TerminationCount> {
         (Termination::ALL.iter())
             .map(|t| TerminationCount {
