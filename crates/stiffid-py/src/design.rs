@@ -175,10 +175,12 @@ pub fn select<'py>(py: Python<'py>, setup: &Setup, r: Request) -> PyResult<Bound
         candidates: r.candidates,
         stations: stations(setup, &r.stations)?,
         progress: &(),
+        out: None,
+        report_dir: None,
     };
     let outcome = py.detach(|| select::run(&request)).map_err(raise)?;
     warn(py, &outcome.warnings)?;
-    to_python(py, &outcome.document, &["postures_deg"])
+    to_python(py, outcome.written(), &["postures_deg"])
 }
 
 /// The size of a searched group: 2 to 100 postures.

@@ -10,23 +10,25 @@ use crate::output::{json, ReportDir};
 use anyhow::Result;
 use nalgebra::Vector3;
 use stiffid::app::select::document::Document;
+use stiffid::app::select::Report;
 use stiffid_core::Setup;
 
 /// The generator mark of `plan.html`, as the stiffness plan's (one plan directory either way).
 const GENERATOR: &str = "stiffid select";
 
 /// Writes `plan.html`, `plan.csv` (`csv`: the postures file `--out` writes, the table of the
-/// page) and `plan.json` of the campaign `doc` chosen on `setup` by `command` into `dir`, each
+/// page) and `plan.json` of the campaign `report` chosen on `setup` by `command` into `dir`, each
 /// file whole.
 pub fn write(
     dir: ReportDir,
     setup: &Setup,
-    doc: &Document,
+    report: &Report,
     csv: &str,
     command: &str,
 ) -> Result<()> {
+    let doc = &report.document();
     let table = postures_table(doc);
-    let n = doc.postures_deg.len();
+    let n = doc.postures.len();
     let title = format!("Calibration campaign: {n} postures on {}", setup.name());
     let page = html::page(&title, GENERATOR, |w| {
         w.heading(1, &title);
@@ -41,7 +43,7 @@ pub fn write(
     let files = vec![
         ("plan.html".to_string(), page.into_bytes()),
         ("plan.csv".into(), csv.as_bytes().to_vec()),
-        ("plan.json".into(), json(doc)?.into_bytes()),
+        ("plan.json".into(), json(report)?.into_bytes()),
     ];
     dir.write_all(&files)?;
     dir.finish()
@@ -132,11 +134,11 @@ fn postures_table(doc: &Document) -> Table {
     let mut header = vec!["posture".to_string()];
     header.extend((1..=6).map(|j| format!("q{j}_deg")));
     header.extend(columns.iter().cloned());
-    let rows = (doc.postures_deg.iter().enumerate())
+    let rows = (doc.postures.iter().enumerate())
         .map(|(i, q)| {
             let mut row = vec![(i + 1).to_string()];
             let e = |c: &String| at(i).and_then(|s| s.get(c)).copied().unwrap_or(f64::NAN);
-            row.extend(q.iter().map(|v| format!("{v:.6}")));
+            row.extend(q.iter().map(|v| format!("{:.6}", v.to_degrees())));
             row.extend(columns.iter().map(|c| format!("{:.6}", e(c))));
             row
         })

@@ -228,6 +228,8 @@ pub(super) fn check_postures(setup: &Setup) -> Vec<Vector6<f64>> {
         candidates: None,
         stations: Vec::new(),
         progress: &(),
+        out: None,
+        report_dir: None,
     };
     let report = select::run(&request).unwrap();
     let calibration = report.calibration.as_ref().unwrap();

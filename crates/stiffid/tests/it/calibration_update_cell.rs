@@ -231,6 +231,8 @@ fn the_check_designed_on_the_cell_updates_it() {
         candidates: None,
         stations,
         progress: &(),
+        out: None,
+        report_dir: None,
     })
     .unwrap();
     assert_eq!((report.postures.len(), report.stations.len()), (10, 3));

@@ -208,6 +208,8 @@ fn a_design_keeps_its_margin_where_one_without_hugs_a_line_of_sight() {
             candidates: None,
             stations: Vec::new(),
             progress: &(),
+            out: None,
+            report_dir: None,
         })
         .unwrap()
     };

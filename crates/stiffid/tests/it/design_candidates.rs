@@ -200,6 +200,8 @@ fn global<'a>(setup: &'a Setup, n: usize, for_candidates: bool) -> select::Reque
         candidates: None,
         stations: Vec::new(),
         progress: &(),
+        out: None,
+        report_dir: None,
     }
 }
 

@@ -72,6 +72,8 @@ fn a_pool_choice_with_distinct_has_no_near_postures() {
             candidates: None,
             stations: Vec::new(),
             progress: &(),
+            out: None,
+            report_dir: None,
         })
     };
     let free = run(8, None).unwrap();

@@ -428,6 +428,8 @@ fn select_cases(
         candidates: None,
         stations: Vec::new(),
         progress: &(),
+        out: None,
+        report_dir: None,
     };
     let weight = CalibrationOptions {
         weight: Some(0.3),

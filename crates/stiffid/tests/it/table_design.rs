@@ -95,6 +95,8 @@ pub(crate) fn designed(setup: &Setup) -> (select::Report, Vec<Placed>) {
         candidates: None,
         stations: vec![ExternalValues::new(&[0.0, 0.0]).unwrap()],
         progress: &(),
+        out: None,
+        report_dir: None,
     })
     .unwrap();
     let placed = (report.postures.iter().copied())

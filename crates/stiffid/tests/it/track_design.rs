@@ -52,6 +52,8 @@ fn designed(case: &Case, stations: Vec<ExternalValues>) -> select::Report {
         candidates: None,
         stations,
         progress: &(),
+        out: None,
+        report_dir: None,
     })
     .unwrap()
     .report

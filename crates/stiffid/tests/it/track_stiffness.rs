@@ -199,6 +199,8 @@ fn at(setup: &Setup, stations: Vec<ExternalValues>) -> stiffid::app::select::Req
         candidates: None,
         stations,
         progress: &(),
+        out: None,
+        report_dir: None,
     }
 }
 

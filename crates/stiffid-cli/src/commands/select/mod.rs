@@ -13,10 +13,11 @@ use crate::progress::Bars;
 use crate::report::{campaign, plan};
 use anyhow::{bail, Result};
 use std::path::PathBuf;
+use stiffid::app::document::mm;
 use stiffid::app::select::document::{Document, Free, Pool};
 use stiffid::app::select::{self as job, Method, PoolInput, Report, Request};
 use stiffid_core::common::limits::{self, short};
-use stiffid_core::common::words::count;
+use stiffid_core::common::words::{as_given, count};
 use stiffid_core::{io::postures, Setup};
 use stiffid_design::distinct::Distinctness;
 use stiffid_design::observability::CalibrationCriterion;
@@ -205,11 +206,10 @@ pub fn run(args: &Args) -> Result<()> {
         candidates: args.candidates.clone(),
         stations: stations(&args.station, &setup)?,
         progress: &bars,
+        out: Some(args.out.display().to_string()),
+        report_dir: args.report.as_ref().map(|d| d.display().to_string()),
     };
-    let stiffid::app::Outcome {
-        report,
-        document: mut doc,
-    } = job::run(&request)?;
+    let report = job::run(&request)?.report;
     output::warnings(&report.warnings);
     let placed: Vec<Vec<f64>> = report
         .placed
@@ -225,12 +225,10 @@ pub fn run(args: &Args) -> Result<()> {
     if let (Some(files), Some(t)) = (&target_files, &report.target) {
         target::write_figure(files, t)?;
     }
-    doc.out = Some(args.out.display().to_string());
-    doc.report = args.report.as_ref().map(|d| d.display().to_string());
     let report_dir = match (report_dir, campaign) {
         (Some(dir), true) => {
             let command = crate::commands::common::command_line();
-            campaign::write(dir, &setup, &doc, &csv, &command)?;
+            campaign::write(dir, &setup, &report, &csv, &command)?;
             None
         }
         (dir, _) => dir,
@@ -239,8 +237,8 @@ pub fn run(args: &Args) -> Result<()> {
         write_plan(dir, args, &setup, &report, placed)?;
     }
     match args.common.json {
-        true => output::print(&json(&doc)?),
-        false => output::print(&text(args, &setup, &report, &doc)),
+        true => output::print(&json(&report)?),
+        false => output::print(&text(args, &setup, &report, &report.document())),
     }
 }
 
@@ -363,13 +361,13 @@ fn text(args: &Args, setup: &Setup, r: &Report, doc: &Document) -> String {
 /// The margin kept and each posture's smallest margin, in words; empty without the cell's
 /// checks of lengths.
 fn margin_text(doc: &Document) -> String {
-    let smallest: Vec<String> = (doc.min_margin_mm.iter())
-        .map(|m| m.map_or("-".into(), |m| format!("{m:.1}")))
+    let smallest: Vec<String> = (doc.min_margins.iter())
+        .map(|m| m.map_or("-".into(), |m| format!("{:.1}", mm(m))))
         .collect();
-    match doc.min_margin_mm.iter().any(Option::is_some) {
+    match doc.min_margins.iter().any(Option::is_some) {
         true => format!(
             "margin kept to every constraint of the cell: {} mm; each posture's smallest: {} mm\n",
-            number(doc.margin_mm),
+            number(as_given(mm(doc.margin))),
             smallest.join(", ")
         ),
         false => String::new(),

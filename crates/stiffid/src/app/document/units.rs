@@ -58,6 +58,24 @@ pub fn mm_option<S: Serializer>(v: &Option<f64>, s: S) -> Written<S> {
     v.map(super::mm).serialize(s)
 }
 
+/// A length in m, written in mm as the user gave it: rounded to 12 significant digits where
+/// that reads shorter ([`stiffid_core::common::words::as_given`]: a margin given as 0.9 mm,
+/// held as 0.0009 m, is written `0.9`, not `0.9000000000000001`). Schema: `f64`.
+///
+/// # Errors
+/// The serialiser's.
+pub fn mm_as_given<S: Serializer>(v: &f64, s: S) -> Written<S> {
+    s.serialize_f64(stiffid_core::common::words::as_given(super::mm(*v)))
+}
+
+/// Lengths in m or none, written in mm or `null` each. Schema: `Vec<Option<f64>>`.
+///
+/// # Errors
+/// The serialiser's.
+pub fn mm_option_each<S: Serializer>(v: &[Option<f64>], s: S) -> Written<S> {
+    s.collect_seq(v.iter().map(|v| v.map(super::mm)))
+}
+
 /// A vector in m, written as three numbers in mm. Schema: `[f64; 3]`.
 ///
 /// # Errors

@@ -124,5 +124,10 @@ fn report(
         placed: all.iter().map(|p| p.1).collect(),
         postures,
         candidates: None,
+        // Named by `run`.
+        setup: String::new(),
+        external_axes: None,
+        out: None,
+        report_dir: None,
     })
 }

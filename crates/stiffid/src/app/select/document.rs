@@ -3,23 +3,36 @@
 
 use crate::app::document::candidates::CandidatesDoc;
 use crate::app::document::feasibility::describe;
-use crate::app::document::group::{CalibrationDoc, Criteria, NearDoc};
-use crate::app::document::{degrees, finite, mm};
+use crate::app::document::group::{self, CalibrationDoc, Criteria};
+use crate::app::document::{finite, units};
 use crate::app::select::{CandidatesReport, PoolReport, Report, Unconstrained};
-use serde::Serialize;
+use nalgebra::Vector6;
+use serde::{Serialize, Serializer};
+use std::collections::BTreeMap;
 use stiffid_core::common::choice::Choice;
-use stiffid_core::Setup;
+use stiffid_core::robot::external::{ExternalAxes, ExternalValues};
+use stiffid_design::distinct::Near;
 use stiffid_design::target::{TargetOutcome, TargetStep};
 use stiffid_design::Termination;
 
 /// The select document: the group found, how, why the search stopped, and its criteria.
+///
+/// A view of the report ([`Report::document`]), built as it is written: its lengths and angles
+/// are the report's, in SI, written in the units their keys name by the unit adapters
+/// ([`units`]).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(tag = "kind", rename = "select")]
+#[cfg_attr(
+    feature = "schema",
+    schemars(
+        description = "The select document: the group found, how, why the search stopped, and its criteria."
+    )
+)]
 #[cfg_attr(feature = "schema", schemars(transform = crate::app::document::schema::Kind("select")))]
-pub struct Document {
+pub struct Document<'a> {
     /// The setup's name.
-    pub setup: String,
+    pub setup: &'a str,
     /// What the group is designed for: `stiffness`, `calibration` or `both`.
     #[serde(rename = "for")]
     pub purpose: &'static str,
@@ -63,7 +76,7 @@ pub struct Document {
     /// With external axes (a track): where the arm stands for the group, one value per axis
     /// named as the data files' columns (`e1_mm`, `e2_deg`, ...); absent without.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub station: Option<std::collections::BTreeMap<String, f64>>,
+    pub station: Option<BTreeMap<String, f64>>,
     /// With external axes: every station tried, in the request's order, with its group's value
     /// (`null` if infinite); the group is the smallest's.
     #[serde(skip_serializing_if = "Vec::is_empty")]
@@ -74,20 +87,27 @@ pub struct Document {
     /// (`for` `calibration`): each posture's station with the positioner's angles chosen for
     /// the table's readings at that posture (`e2_deg`, ...). Absent otherwise.
     #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub posture_stations: Vec<std::collections::BTreeMap<String, f64>>,
+    pub posture_stations: Vec<BTreeMap<String, f64>>,
     /// How many local searches (the global search's starts; one for a local search) stopped for
     /// each reason, every reason listed; absent for a pool choice.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub terminations: Option<Vec<TerminationCount>>,
-    /// The group found, axis angles q1..q6, deg, one row per posture.
-    pub postures_deg: Vec<[f64; 6]>,
+    #[serde(skip_serializing_if = "Option::is_none", serialize_with = "counts")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<Vec<TerminationCount>>"))]
+    pub terminations: Option<&'a [Termination]>,
+    /// The group found, axis angles q1..q6, one row per posture: rad, written in deg.
+    #[serde(rename = "postures_deg", serialize_with = "units::deg6_each")]
+    #[cfg_attr(feature = "schema", schemars(with = "Vec<[f64; 6]>"))]
+    pub postures: &'a [Vector6<f64>],
     /// The margin every posture was chosen to keep to every constraint of the cell (line of
-    /// sight, incidence, floor, obstacles, bodies, rope, `[constraints]`), mm: `margin_mm`, else
-    /// the tracker's `registration_uncertainty_mm`, else 0.
-    pub margin_mm: f64,
+    /// sight, incidence, floor, obstacles, bodies, rope, `[constraints]`): `margin_mm`, else the
+    /// tracker's `registration_uncertainty_mm`, else 0: m, written in mm.
+    #[serde(rename = "margin_mm", serialize_with = "units::mm_as_given")]
+    pub margin: f64,
     /// Each posture's smallest margin to a constraint of the cell's lengths (every check but the
-    /// bounds and the incidence), mm, in the order of `postures_deg`; `null` without such checks.
-    pub min_margin_mm: Vec<Option<f64>>,
+    /// bounds and the incidence), in the order of `postures_deg`; `null` without such checks: m,
+    /// written in mm.
+    #[serde(rename = "min_margin_mm", serialize_with = "units::mm_option_each")]
+    #[cfg_attr(feature = "schema", schemars(with = "Vec<Option<f64>>"))]
+    pub min_margins: &'a [Option<f64>],
     /// Every criterion of the group found.
     pub criteria: Criteria,
     /// With `for` `calibration` or `both`: the group's calibration criteria.
@@ -98,53 +118,56 @@ pub struct Document {
     pub calibration_weight: Option<f64>,
     /// With a pool: the pool and the postures chosen from it.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub pool: Option<Pool>,
+    pub pool: Option<Pool<'a>>,
     /// With a target: every group size tried.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub target: Option<Target>,
     /// With cell checks, for a local or global search: the same search without them.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub unconstrained: Option<Free>,
+    pub unconstrained: Option<Free<'a>>,
     /// Pairs of postures that are not distinct (axis angles within 2 deg, or the same flange
     /// pose within 10 mm and 2 deg: a wrist flip counts; or the distances of `distinct`).
-    pub near_postures: Vec<NearDoc>,
+    #[serde(rename = "near_postures", serialize_with = "group::near")]
+    #[cfg_attr(feature = "schema", schemars(with = "Vec<group::NearDoc>"))]
+    pub near: &'a [Near],
     /// With `--for-candidates`: the candidates designed for and how the group identifies each
     /// together with the setup's model (as `evaluate`'s `candidates`).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub candidates: Option<ForCandidates>,
+    pub candidates: Option<ForCandidates<'a>>,
     /// The postures file written (the command's `--out`).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub out: Option<String>,
+    pub out: Option<&'a str>,
     /// The measurement plan's directory (the command's `--report`).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub report: Option<String>,
+    pub report: Option<&'a str>,
 }
 
 /// A design for the candidates of the model comparison.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct ForCandidates {
+pub struct ForCandidates<'a> {
     /// The linear candidates the group was designed for (added to the model of the design, whose
     /// parameters the `criteria` are over), by name.
-    pub designed: Vec<String>,
+    pub designed: &'a [String],
     /// The lost motion and load-dependent candidates, left out of the design (what separates
     /// them is the load levels of each posture, which the postures do not give), by name.
-    pub nonlinear: Vec<String>,
+    pub nonlinear: Vec<&'a str>,
     /// How the group chosen identifies each candidate together with the setup's model.
     #[serde(flatten)]
     pub identified: CandidatesDoc,
 }
 
-impl From<&CandidatesReport> for ForCandidates {
-    fn from(c: &CandidatesReport) -> Self {
+impl<'a> ForCandidates<'a> {
+    /// The design for the candidates `c`.
+    fn new(c: &'a CandidatesReport) -> Self {
         use stiffid_core::model::ParameterKind::{Rotation, Translation};
         Self {
-            designed: c.designed.clone(),
+            designed: &c.designed,
             nonlinear: (c.verdicts.candidates.iter())
                 .filter(|v| {
                     v.needs_load_steps || !matches!(v.parameter.kind, Rotation | Translation)
                 })
-                .map(|v| v.parameter.name.clone())
+                .map(|v| v.parameter.name.as_str())
                 .collect(),
             identified: CandidatesDoc::of(&c.verdicts),
         }
@@ -165,9 +188,9 @@ pub struct TerminationCount {
 /// The pool and what was chosen from it.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct Pool {
+pub struct Pool<'a> {
     /// The pool file (`arrays` for a pool given as arrays).
-    pub file: String,
+    pub file: &'a str,
     /// Postures in the pool.
     pub postures: usize,
     /// Postures that pass every check of the cell.
@@ -177,10 +200,11 @@ pub struct Pool {
     /// How the group was chosen (`enumeration` or `exchange`).
     pub method: &'static str,
     /// The chosen postures' numbers in the pool (1-based).
-    pub chosen: Vec<usize>,
+    pub chosen: &'a [usize],
     /// With `distinct`: the usable postures left out because they are near one kept before
     /// them, `[left out, kept]`, numbers in the pool (1-based).
-    pub not_distinct: Vec<[usize; 2]>,
+    #[cfg_attr(feature = "schema", schemars(with = "Vec<[usize; 2]>"))]
+    pub not_distinct: &'a [(usize, usize)],
 }
 
 /// A pool posture that cannot be measured, and why.
@@ -224,14 +248,16 @@ pub struct Step {
 /// The unconstrained optimum beside the feasible one: what feasibility costs.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct Free {
+pub struct Free<'a> {
     /// Its criterion (`null` if infinite).
     pub value: Option<f64>,
     /// Why its search stopped.
     #[cfg_attr(feature = "schema", schemars(schema_with = "schema::termination"))]
     pub termination: &'static str,
-    /// Axis angles q1..q6, deg, one row per posture.
-    pub postures_deg: Vec<[f64; 6]>,
+    /// Axis angles q1..q6, one row per posture: rad, written in deg.
+    #[serde(rename = "postures_deg", serialize_with = "units::deg6_each")]
+    #[cfg_attr(feature = "schema", schemars(with = "Vec<[f64; 6]>"))]
+    pub postures: &'a [Vector6<f64>],
     /// Every criterion of the unconstrained group.
     pub criteria: Criteria,
     /// What the cell's checks cost: the feasible group's minimised value over the unconstrained
@@ -246,12 +272,12 @@ pub struct Free {
     pub predicted_average_change_pct: Option<f64>,
 }
 
-impl Document {
-    /// The document of a select report on `setup` (`out` and `report` left out: the command
-    /// fills them in).
-    pub fn new(r: &Report, setup: &Setup) -> Self {
+impl<'a> Document<'a> {
+    /// The document of `r` ([`Report::document`]).
+    pub(crate) fn new(r: &'a Report) -> Self {
+        let axes = r.external_axes.as_ref();
         Self {
-            setup: setup.name().into(),
+            setup: &r.setup,
             purpose: r.purpose.name(),
             criterion: r.criterion.name(),
             search: r.method.name(),
@@ -263,31 +289,31 @@ impl Document {
             evaluations: r.evaluations,
             elapsed_s: r.elapsed_s,
             termination: r.termination.map(Termination::name),
-            station: (r.station.as_ref()).map(|e| station(setup, e)),
+            station: (r.station.as_ref()).map(|e| station(axes, e)),
             stations: (r.stations.iter())
                 .map(|s| StationDoc {
-                    external: station(setup, &s.e),
+                    external: station(axes, &s.e),
                     value: finite(s.value),
                 })
                 .collect(),
-            posture_stations: r.placed.iter().map(|e| station(setup, e)).collect(),
-            terminations: r.termination.map(|_| counts(&r.terminations)),
-            postures_deg: degrees(&r.postures),
-            margin_mm: stiffid_core::common::words::as_given(mm(r.margin)),
-            min_margin_mm: r.min_margins.iter().map(|m| m.map(mm)).collect(),
+            posture_stations: r.placed.iter().map(|e| station(axes, e)).collect(),
+            terminations: r.termination.map(|_| r.terminations.as_slice()),
+            postures: &r.postures,
+            margin: r.margin,
+            min_margins: &r.min_margins,
             criteria: Criteria::of(&r.evaluation),
             calibration: (r.calibration.as_ref())
                 .map(|c| CalibrationDoc::new(&c.options, &c.criteria)),
             calibration_weight: (r.calibration.as_ref())
                 .filter(|c| c.weight < 1.0)
                 .map(|c| c.weight),
-            pool: r.pool.as_ref().map(Pool::from),
-            target: r.target.as_ref().map(Target::from),
+            pool: r.pool.as_ref().map(Pool::new),
+            target: r.target.as_ref().map(Target::new),
             unconstrained: r.unconstrained.as_ref().map(|u| Free::new(r, u)),
-            near_postures: r.near.iter().map(NearDoc::from).collect(),
-            candidates: r.candidates.as_ref().map(ForCandidates::from),
-            out: None,
-            report: None,
+            near: &r.near,
+            candidates: r.candidates.as_ref().map(ForCandidates::new),
+            out: r.out.as_deref(),
+            report: r.report_dir.as_deref(),
         }
     }
 }
@@ -298,17 +324,15 @@ impl Document {
 pub struct StationDoc {
     /// The external axis values, `e1_mm`, `e2_deg`, ...
     #[serde(flatten)]
-    pub external: std::collections::BTreeMap<String, f64>,
+    pub external: BTreeMap<String, f64>,
     /// Its group's value minimised (`null` if infinite).
     pub value: Option<f64>,
 }
 
-/// External axis values (SI) by their columns' names, in mm and deg.
-fn station(
-    setup: &Setup,
-    e: &stiffid_core::robot::external::ExternalValues,
-) -> std::collections::BTreeMap<String, f64> {
-    let Some(axes) = setup.robot().external() else {
+/// External axis values `e` (SI) of the axes `axes` by their columns' names, in mm and deg;
+/// empty without axes.
+fn station(axes: Option<&ExternalAxes>, e: &ExternalValues) -> BTreeMap<String, f64> {
+    let Some(axes) = axes else {
         return Default::default();
     };
     (axes.column_names().into_iter())
@@ -316,20 +340,25 @@ fn station(
         .collect()
 }
 
-/// How many of `terminations` are of each reason, every reason listed.
-fn counts(terminations: &[Termination]) -> Vec<TerminationCount> {
-    let all = Termination::ALL.iter();
-    all.map(|t| TerminationCount {
-        termination: t.name(),
-        searches: t.count(terminations),
-    })
-    .collect()
+/// The local searches' `terminations`, written as how many are of each reason, every reason
+/// listed, or `null`. Schema: `Option<Vec<TerminationCount>>`.
+fn counts<S: Serializer>(terminations: &Option<&[Termination]>, s: S) -> Result<S::Ok, S::Error> {
+    let count = |all: &[Termination]| -> Vec<TerminationCount> {
+        (Termination::ALL.iter())
+            .map(|t| TerminationCount {
+                termination: t.name(),
+                searches: t.count(all),
+            })
+            .collect()
+    };
+    terminations.map(count).serialize(s)
 }
 
-impl From<&PoolReport> for Pool {
-    fn from(p: &PoolReport) -> Self {
+impl<'a> Pool<'a> {
+    /// The pool `p` and what was chosen from it.
+    fn new(p: &'a PoolReport) -> Self {
         Self {
-            file: p.name.clone(),
+            file: &p.name,
             postures: p.total,
             usable: p.usable,
             skipped: (p.skipped.iter())
@@ -340,24 +369,26 @@ impl From<&PoolReport> for Pool {
                 })
                 .collect(),
             method: p.method.name(),
-            chosen: p.chosen.clone(),
-            not_distinct: p.not_distinct.iter().map(|&(a, b)| [a, b]).collect(),
+            chosen: &p.chosen,
+            not_distinct: &p.not_distinct,
         }
     }
 }
 
-impl From<&TargetOutcome> for Target {
-    fn from(t: &TargetOutcome) -> Self {
+impl Target {
+    /// Every group size tried for the target `t`.
+    fn new(t: &TargetOutcome) -> Self {
         Self {
             target_pct: t.target_pct,
             postures: t.steps.last().map_or(0, |s| s.postures.len()),
-            steps: t.steps.iter().map(Step::from).collect(),
+            steps: t.steps.iter().map(Step::new).collect(),
         }
     }
 }
 
-impl From<&TargetStep> for Step {
-    fn from(s: &TargetStep) -> Self {
+impl Step {
+    /// The group size tried `s`.
+    fn new(s: &TargetStep) -> Self {
         let (j, worst) = s.worst_joint();
         Self {
             postures: s.postures.len(),
@@ -368,9 +399,9 @@ impl From<&TargetStep> for Step {
     }
 }
 
-impl Free {
+impl<'a> Free<'a> {
     /// The unconstrained optimum `u` of the search `r`, beside `r`'s feasible group.
-    fn new(r: &Report, u: &Unconstrained) -> Self {
+    fn new(r: &Report, u: &'a Unconstrained) -> Self {
         let (feasible, free) = (
             r.evaluation.predicted_average_pct(),
             u.evaluation.predicted_average_pct(),
@@ -378,7 +409,7 @@ impl Free {
         Self {
             value: finite(u.value),
             termination: u.termination.name(),
-            postures_deg: degrees(&u.postures),
+            postures: &u.postures,
             criteria: Criteria::of(&u.evaluation),
             cost_pct: finite(100.0 * (r.value / u.value - 1.0)),
             feasible_predicted_average_pct: finite(feasible),

@@ -143,6 +143,12 @@ pub struct Request<'a> {
     /// (`global search (relative-a)` with its starts as the total; a local search and the choice
     /// from a pool with total 0).
     pub progress: &'a dyn Progress,
+    /// The postures file the front end writes, as the document names it (the command's
+    /// `--out`); `None` when it writes none.
+    pub out: Option<String>,
+    /// The measurement plan's directory the front end writes, as the document names it (the
+    /// command's `--report`); `None` when it writes none.
+    pub report_dir: Option<String>,
 }
 
 /// The accepted target, %.
@@ -150,9 +156,16 @@ pub const TARGET_PCT: Range = Range::new(1e-6, 1e4, "%");
 
 pub use stiffid_design::distinct::{DISTINCT_DEG, DISTINCT_MM};
 
-/// What the selection found.
+/// What the selection found. It serialises to its document, `stiffid select --json`, through
+/// the borrowed view [`document::Document`] ([`Report::document`]: mm and deg, units in every
+/// key), built as it is written.
 #[derive(Debug, Clone)]
 pub struct Report {
+    /// The setup's name.
+    pub setup: String,
+    /// The robot's external axes (their names and units, which name the stations' values in the
+    /// document), `None` without.
+    pub external_axes: Option<stiffid_core::robot::external::ExternalAxes>,
     /// How it was chosen.
     pub method: Method,
     /// The stiffness criterion minimised (unused for [`Purpose::Calibration`]).
@@ -220,6 +233,10 @@ pub struct Report {
     /// table ([`Purpose::Calibration`]), each posture's station with the positioner's angles
     /// chosen for the table's readings at that posture (`table`); empty otherwise.
     pub placed: Vec<stiffid_core::robot::external::ExternalValues>,
+    /// The postures file the front end writes ([`Request::out`]).
+    pub out: Option<String>,
+    /// The measurement plan's directory the front end writes ([`Request::report_dir`]).
+    pub report_dir: Option<String>,
 }
 
 /// A design for the candidates ([`Request::for_candidates`]).
@@ -269,9 +286,23 @@ pub struct PoolReport {
 pub use stiffid_design::selection::pool::Skipped;
 pub use stiffid_design::selection::search::Unconstrained;
 
-/// The select job's report and its document (without the files the front end writes: its
-/// `out` and `report` are `None`).
-pub type Outcome = crate::app::Outcome<Report, document::Document>;
+impl Report {
+    /// The document this report is written as (`stiffid select --json`, Python's
+    /// `Setup.select`), to read: what the command's text and campaign plan print.
+    pub fn document(&self) -> document::Document<'_> {
+        document::Document::new(self)
+    }
+}
+
+impl serde::Serialize for Report {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        self.document().serialize(s)
+    }
+}
+
+/// The select job's report, which is its document (serialised through
+/// [`document::Document`]).
+pub type Outcome = crate::app::Outcome<Report>;
 
 /// Selects the group.
 ///
@@ -286,12 +317,22 @@ pub type Outcome = crate::app::Outcome<Report, document::Document>;
 /// [`JobOption::Candidates`] without it, those of [`candidates::pool`] and
 /// [`candidates::design_setup`]; the searches' errors; a group that cannot identify every parameter (for a calibration: separate its parameters, [`Error::Input`] of an [`Error::InvalidField`] `calibration`).
 pub fn run(request: &Request) -> Result<Outcome> {
-    let report = find(request)?;
-    let document = document::Document::new(&report, request.setup);
-    Ok(Outcome { report, document })
+    let setup = request.setup;
+    let report = Report {
+        setup: setup.name().into(),
+        external_axes: setup.robot().external().cloned(),
+        out: request.out.clone(),
+        report_dir: request.report_dir.clone(),
+        ..find(request)?
+    };
+    Ok(Outcome {
+        report,
+        document: crate::app::Itself,
+    })
 }
 
-/// What [`run`] finds, before its document.
+/// What [`run`] finds, without the names [`run`] gives it (the setup's, its external axes', the
+/// front end's files).
 fn find(request: &Request) -> Result<Report> {
     check(request)?;
     table::check(request)?;
@@ -437,6 +478,11 @@ fn run_on(request: &Request) -> Result<Report> {
         min_margins: min_margins(request.setup, request.options.margin, &found.postures),
         postures: found.postures,
         candidates: None,
+        // Named by `run`.
+        setup: String::new(),
+        external_axes: None,
+        out: None,
+        report_dir: None,
     })
 }
 
