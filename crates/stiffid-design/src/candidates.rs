@@ -29,7 +29,7 @@
 //! together by any group: [`designable`] keeps, in the pool's order, each that a generic group
 //! separates from the model and the candidates kept before it, and names the others with the
 //! combination no group can see. A candidate needs a nominal stiffness for the scaled
-//! criteria: its own when declared with one, else [`candidate_nominal_stiffness`]: a candidate is
+//! criteria: its own when declared with one, else `candidate_nominal_stiffness`: a candidate is
 //! asked to be identified as well as a spring as compliant as the drives. The nonlinear candidates
 //! stay out of the design: what separates them is the load levels of each posture, which the
 //! choice of postures does not give (their verdict on the group is reported all the same).
@@ -304,7 +304,7 @@ fn separation(psi: DMatrix<f64>) -> f64 {
 /// that over the square of the setup's characteristic length (N/m; 1 m without one), the
 /// stiffness at the flange of a rotation at that lever arm. `None` without the drives' nominal
 /// stiffness.
-pub fn candidate_nominal_stiffness(setup: &Setup, kind: Kind) -> Option<f64> {
+pub(crate) fn candidate_nominal_stiffness(setup: &Setup, kind: Kind) -> Option<f64> {
     let drives = setup.nominal_stiffness()?;
     let mean = drives.iter().map(|k| k.ln()).sum::<f64>() / 6.0;
     let lever = setup.characteristic_length().unwrap_or(1.0);

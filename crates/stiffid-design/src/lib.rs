@@ -29,9 +29,10 @@ pub use evaluator::{evaluate, Evaluator, PostureTerms};
 pub use exchange::{PoolMethod, PoolOptions};
 pub use identifiable::{identifiable, unidentifiable};
 pub use pool::{Pool, PoolChoice};
+pub(crate) use search::local_for;
 pub use search::{
-    global, global_for, local, local_for, random_group, CalibrationGoal, Goal, Gradient,
-    SearchOptions, SearchOutcome, Solver, Termination, PROBE_DRAWS,
+    global, global_for, local, random_group, CalibrationGoal, Goal, Gradient, SearchOptions,
+    SearchOutcome, Solver, Termination, PROBE_DRAWS,
 };
 
 #[cfg(test)]

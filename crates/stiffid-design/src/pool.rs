@@ -148,7 +148,7 @@ impl<'a> Pool<'a> {
     /// # Errors
     /// Those of [`Pool::best`]; (field `pool`) no group of `n` usable postures with a finite
     /// value.
-    pub fn best_for(
+    pub(crate) fn best_for(
         &self,
         goal: &super::Goal,
         n: usize,

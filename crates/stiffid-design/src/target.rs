@@ -78,7 +78,7 @@ pub struct TargetOutcome {
     /// The largest group size allowed.
     pub max_postures: usize,
     /// When the search stopped early: the worst rate (%) the last step extrapolates to at
-    /// [`TargetOutcome::max_postures`] by the `1/sqrt(N)` law ([`extrapolate`]), above
+    /// [`TargetOutcome::max_postures`] by the `1/sqrt(N)` law (`extrapolate`), above
     /// [`STOP_MARGIN`] times the target. `None` when every size up to the largest was tried or
     /// the target was reached.
     pub extrapolated_pct: Option<f64>,
@@ -159,7 +159,7 @@ pub fn smallest_group<E: From<Error>>(
 
 /// The worst rate (%) at `n` postures extrapolated from `step` by the `1/sqrt(N)` law:
 /// `worst_pct * sqrt(len / n)`; `+infinity` for a rank-deficient step.
-pub fn extrapolate(step: &TargetStep, n: usize) -> f64 {
+pub(crate) fn extrapolate(step: &TargetStep, n: usize) -> f64 {
     step.worst_pct() * (step.postures.len() as f64 / n as f64).sqrt()
 }
 

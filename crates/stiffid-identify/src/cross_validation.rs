@@ -149,7 +149,7 @@ pub fn cross_validate(
 
 /// Cross-validates a model of any number of parameters ([`super::svd`]) as
 /// [`cross_validate`]: `full` is the fit of all of `obs` by `method` ([`svd::fit_by`]);
-/// least-squares folds come from its column-scaled SVD ([`svd::inverse_factor`]), bounded and
+/// least-squares folds come from its column-scaled SVD (`svd::inverse_factor`), bounded and
 /// robust folds are refitted. A fold whose other postures do not identify every parameter is
 /// refused.
 ///
@@ -358,7 +358,7 @@ fn linear_folds(
 /// QR factor, any number of columns `p`) from a least-squares problem: the change of the solution
 /// `h - h_(-o) = R^-1 A^T x` and the held-out residuals `x = (I - A A^T)^-1 e_o`, `A = Psi_o
 /// R^-1` (module docs); `None` when `I - A A^T` is singular to working precision.
-pub fn without_rows(
+pub(crate) fn without_rows(
     psi_o: &DMatrix<f64>,
     r_inv: &DMatrix<f64>,
     e_o: &DVector<f64>,

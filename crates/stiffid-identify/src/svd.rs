@@ -123,12 +123,12 @@ pub struct Fit {
     pub postures: usize,
     /// `m - r`, r the scaled rank.
     pub dof: usize,
-    /// Which compliances are held at 0, for a bounded fit ([`fit_nonnegative`]).
+    /// Which compliances are held at 0, for a bounded fit (`fit_nonnegative`).
     pub active_bounds: Option<Vec<bool>>,
-    /// Why the bounded fit's active-set steps stopped ([`fit_nonnegative`]; converged when the
+    /// Why the bounded fit's active-set steps stopped (`fit_nonnegative`; converged when the
     /// least-squares fit is already non-negative); `None` for another fit.
     pub nonnegative_stop: Option<stiffid_core::common::stop::Stop>,
-    /// The iteratively reweighted fit, for a robust fit ([`fit_robust`]).
+    /// The iteratively reweighted fit, for a robust fit (`fit_robust`).
     pub robust: Option<RobustFit>,
 }
 
@@ -318,7 +318,7 @@ pub fn fit(obs: &Observations, parameters: &[Parameter]) -> Result<Fit> {
 ///
 /// # Errors
 /// As [`fit`].
-pub fn fit_robust(obs: &Observations, parameters: &[Parameter], loss: Loss) -> Result<Fit> {
+pub(crate) fn fit_robust(obs: &Observations, parameters: &[Parameter], loss: Loss) -> Result<Fit> {
     check_shape(obs, parameters)?;
     let start = Scaled::new(&obs.psi)?.solve(&obs.delta);
     let solve = |a: DMatrix<f64>, b: &DVector<f64>| {
@@ -329,7 +329,7 @@ pub fn fit_robust(obs: &Observations, parameters: &[Parameter], loss: Loss) -> R
     Ok(finish(obs, parameters, &scaled, h, None, Some(fit)))
 }
 
-/// The fit of `obs` by `method`: [`fit`], [`fit_nonnegative`] or [`fit_robust`].
+/// The fit of `obs` by `method`: [`fit`], `fit_nonnegative` or `fit_robust`.
 ///
 /// # Errors
 /// Those of the fit.
@@ -348,7 +348,7 @@ pub fn fit_by(obs: &Observations, parameters: &[Parameter], method: Method) -> R
 ///
 /// # Errors
 /// Those of [`fit`] for a non-finite or short `psi`.
-pub fn inverse_factor(psi: &DMatrix<f64>) -> Result<DMatrix<f64>> {
+pub(crate) fn inverse_factor(psi: &DMatrix<f64>) -> Result<DMatrix<f64>> {
     let scaled = Scaled::new(psi)?;
     let r = scaled.rank;
     let mut a = scaled.v.columns(0, r).into_owned();
@@ -367,7 +367,7 @@ pub fn inverse_factor(psi: &DMatrix<f64>) -> Result<DMatrix<f64>> {
 ///
 /// # Errors
 /// As [`fit`].
-pub fn fit_nonnegative(obs: &Observations, parameters: &[Parameter]) -> Result<Fit> {
+pub(crate) fn fit_nonnegative(obs: &Observations, parameters: &[Parameter]) -> Result<Fit> {
     check_shape(obs, parameters)?;
     let scaled = Scaled::new(&obs.psi)?;
     let h = scaled.solve(&obs.delta);

@@ -5,7 +5,7 @@
 //! **Drilling exits.** A point of a drilling operation is an exit when the drill leaves the
 //! material after it: the next point belongs to no operation or another one, or moves back
 //! against the tool's z (a retract, by more than a nanometre), or the path ends there
-//! ([`exit_thrusts`]). At an exit the thrust `F` of the operation (`k_f f D / 2`,
+//! (`exit_thrusts`). At an exit the thrust `F` of the operation (`k_f f D / 2`,
 //! [`crate::process::drilling`]) acts along the tool axis; its sudden release gives
 //! the surge `F sqrt(c / m)` with the held effective mass `m = u^T Lambda_vv u`
 //! ([`stiffid_core::observation::dynamics::surge`]). A `G83` peck's every bottom is an exit (the last
@@ -143,7 +143,7 @@ pub fn program(
 ///
 /// # Panics
 /// If `operations` and `poses` differ in length.
-pub fn exit_thrusts(
+pub(crate) fn exit_thrusts(
     process: &Process,
     poses: &[Isometry3<f64>],
     operations: &[Option<usize>],

@@ -11,7 +11,7 @@
 //!    one without a selector), its mean force and moment over a revolution, turned from the feed
 //!    frame into the base frame along the path's own feed direction (the TCP's motion from the
 //!    previous point; the first point takes the second's) and the tool axis
-//!    ([`Operation::base_wrench`]). Where the tool cuts is one rule for every language
+//!    (`Operation::base_wrench`). Where the tool cuts is one rule for every language
 //!    (`cutting`): joint moves (G-code `G0`, `PTP`, `MoveJ`, `MoveAbsJ`, `J`, `MOVJ`), a
 //!    drill's retracts and moves across its axis, and points no operation covers cut nothing. A
 //!    drilling cycle's feed cuts from where the drill meets material (the part's surface, the
@@ -21,11 +21,11 @@
 //!    and is counted. With the
 //!    setup's `[tool] mass_kg` and `centre_of_mass_mm`, the tool's weight joins every point's
 //!    wrench ([`stiffid_core::setup::Payload::wrench`]).
-//! 3. [`compensate::path_with_exits`] compensates every point (with
+//! 3. `compensate::path_with_exits` compensates every point (with
 //!    [`compensate::FreeVariables::lead_tilt`], each point's cone its operation's
 //!    [`Operation::cone`]; a rapid move, a point no operation covers and a drilling point none), refusing any whose compensated
 //!    axis angles leave the joint limits (naming its line); the free tool axis may minimise the
-//!    surge at the drilling exits ([`dynamics::exit_thrusts`]).
+//!    surge at the drilling exits (`dynamics::exit_thrusts`).
 //! 4. Compensated targets that move more than 1 degree from the nominal ones, or
 //!    change the sign of axis 5 (a wrist flip), change the robot's configuration: refused naming
 //!    the line.
@@ -37,7 +37,7 @@
 //!    where the controller must be sent so that the loaded tool lands on the programmed one). With a free station or positioner
 //!    ([`compensate::FreeVariables::station`], [`compensate::FreeVariables::positioner`]) the
 //!    values chosen replace the program's in every target (G-code: every point written carries
-//!    all its mapped external axes, [`gcode::GCode::write_with_external`]), and the targets are
+//!    all its mapped external axes, `gcode::GCode::write_with_external`), and the targets are
 //!    the compensated postures there. With a free configuration
 //!    ([`compensate::FreeVariables::configuration`]) the whole program is compensated in every
 //!    configuration of the arm and the best kept ([`compensate::FreeVariables::configuration`]): one
@@ -252,11 +252,11 @@ pub fn read_in(
 /// `program` with its Cartesian targets' axis angles ([`program::cartesian`]: the controller's
 /// inverse kinematics in the configuration each names, from `options`' start posture), on
 /// `setup`'s controller; with `placed`, the part frame at that pose (the setup's base frame)
-/// carries the targets ([`program::cartesian::resolve_placed`]). Any other program as it is.
+/// carries the targets (`program::cartesian::resolve_placed`). Any other program as it is.
 ///
 /// # Errors
 /// Those of [`stiffid_core::Setup::controller_robot`], [`program::cartesian::resolve`] and
-/// [`program::cartesian::resolve_placed`] (naming the line).
+/// `program::cartesian::resolve_placed` (naming the line).
 pub fn resolve<'a>(
     program: &'a Program,
     setup: &stiffid_core::Setup,

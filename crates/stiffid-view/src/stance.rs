@@ -54,7 +54,7 @@ impl Stance {
     ///
     /// # Errors
     /// [`Error::InvalidField`] (`field`) when an axis's column is missing.
-    pub fn external_si(&self, robot: &Robot, field: &str) -> stiffid_core::Result<Vec<f64>> {
+    pub(crate) fn external_si(&self, robot: &Robot, field: &str) -> stiffid_core::Result<Vec<f64>> {
         let Some(axes) = robot.external() else {
             return Ok(Vec::new());
         };
@@ -83,7 +83,7 @@ pub type Postures = (Vec<Vector6<f64>>, Vec<Vec<f64>>);
 /// external values (all at zero) when no stance has any.
 ///
 /// # Errors
-/// Those of [`Stance::external_si`] when some stance has external values.
+/// Those of `Stance::external_si` when some stance has external values.
 pub fn postures(robot: &Robot, stances: &[Stance], field: &str) -> stiffid_core::Result<Postures> {
     let q = stances.iter().map(Stance::q).collect();
     if stances.iter().all(|s| s.external.is_empty()) {

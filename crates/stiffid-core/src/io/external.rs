@@ -63,7 +63,7 @@ impl Columns {
     ///
     /// # Errors
     /// [`Error::Column`] at `line`: [`ColumnProblem::Measurement`] naming a column of the form of
-    /// an external axis's (`e<digits>_mm` or `e<digits>_deg`, [`external_like`]) that the cell
+    /// an external axis's (`e<digits>_mm` or `e<digits>_deg`, `external_like`) that the cell
     /// lacks or gives in the other unit, the message listing the cell's axes;
     /// [`ColumnProblem::Missing`] for an axis of the cell without its column.
     pub fn against(names: &[String], line: u64, cell: Option<&ExternalAxes>) -> Result<Self> {
@@ -161,7 +161,7 @@ impl Columns {
 
 /// Whether a column's name has the form of an external axis's: `e<digits>_mm` or
 /// `e<digits>_deg`.
-pub fn external_like(name: &str) -> bool {
+pub(crate) fn external_like(name: &str) -> bool {
     let Some(rest) = name.strip_prefix('e') else {
         return false;
     };

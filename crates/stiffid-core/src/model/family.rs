@@ -37,7 +37,7 @@ pub enum Family {
 }
 
 /// The families and their names in files.
-pub const FAMILIES: [(&str, Family); 4] = [
+pub(crate) const FAMILIES: [(&str, Family); 4] = [
     ("tilt", Family::Tilt),
     ("tool", Family::Tool),
     ("base", Family::Base),
@@ -210,7 +210,7 @@ pub fn is_family_name(name: &str) -> bool {
 ///
 /// # Errors
 /// [`crate::Error::InvalidField`] (`model.spring`) naming the spring.
-pub fn check_declared_names(declared: &[Spring]) -> crate::Result<()> {
+pub(crate) fn check_declared_names(declared: &[Spring]) -> crate::Result<()> {
     match declared.iter().find(|s| is_family_name(&s.name)) {
         Some(s) => Err(crate::Error::InvalidField {
             field: "model.spring".into(),

@@ -32,7 +32,8 @@ pub mod region;
 
 pub use crate::robot::OwnWeight;
 pub use compliance::Compliance;
-pub use family::{check_declared_names, is_family_name, Family, FAMILIES};
+pub(crate) use family::check_declared_names;
+pub use family::{is_family_name, Family};
 pub use file::{fragment, parse as parse_fragment};
 pub use form::{FormModel, ModelForm};
 pub use law::{Law, DEFAULT_SMOOTHING};
@@ -358,7 +359,7 @@ impl Model {
 
     /// The nominal compliance of every parameter (rad/Nm, m/N), drives from `drives` (Nm/rad),
     /// when every spring has a nominal stiffness.
-    pub fn nominal_compliance(&self, drives: &Vector6<f64>) -> Option<DVector<f64>> {
+    pub(crate) fn nominal_compliance(&self, drives: &Vector6<f64>) -> Option<DVector<f64>> {
         let springs: Option<Vec<f64>> = self
             .springs
             .iter()

@@ -102,7 +102,7 @@ impl Calibration {
     /// `ceil(level N)`-th smallest of the `N` scores, so that a share `level` of the held-out
     /// errors are within it times the predicted displacement plus the noise floor; `None`
     /// without scores.
-    pub fn score_quantile(&self, level: f64) -> Option<f64> {
+    pub(crate) fn score_quantile(&self, level: f64) -> Option<f64> {
         let mut scores: Vec<f64> = self
             .folds
             .iter()

@@ -39,7 +39,7 @@ pub enum Region {
     NotIdentified,
     /// Identified, but its stiffness file does not record from which postures (a file written
     /// before stiffness files carried the region): not checked, and said once
-    /// ([`unrecorded_warning`]).
+    /// (`unrecorded_warning`).
     Unrecorded,
     /// The axis ranges of the postures it was identified from.
     Postures(PostureRange),
@@ -127,7 +127,7 @@ impl Region {
 
 /// The warning for a stiffness file that does not record its identification postures' region:
 /// nothing is checked.
-pub fn unrecorded_warning() -> Warning {
+pub(crate) fn unrecorded_warning() -> Warning {
     Warning::new(
         WarningKind::Extrapolation,
         "the stiffness file does not record the postures it was identified from (no `region`: a nominal stiffness written by hand, or a file from an older stiffid), so no posture is checked for extrapolation; a file from `identify --out` records them",

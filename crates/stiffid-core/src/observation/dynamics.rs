@@ -14,7 +14,7 @@
 //! other five directions, `m = u^T Lambda_vv u` ([`crate::robot::dynamics::held_mass`]): the tool
 //! surges at `v = sqrt(2 E / m) = F sqrt(c / m)`. `c` is linear in the parameters' compliance,
 //! `c = sum_p h_p (u^T J_p)^2`, so its variance is `g^T Cov(h) g` with `g_p = (u^T J_p)^2`; with
-//! the mass model's standard deviation `std(m)` ([`MassModel::held_mass_sd`], from the setup's
+//! the mass model's standard deviation `std(m)` (`MassModel::held_mass_sd`, from the setup's
 //! `[masses] sd_pct`), `std(v) = v sqrt((std(c) / 2c)^2 + (std(m) / 2m)^2)` (first order, the
 //! two independent).
 
@@ -122,7 +122,7 @@ pub struct Surge {
     pub compliance: f64,
     /// The effective mass along it with the other five directions held, `u^T Lambda_vv u`, kg.
     pub mass: f64,
-    /// Its standard deviation from the mass model's ([`MassModel::held_mass_sd`]), kg; `None`
+    /// Its standard deviation from the mass model's (`MassModel::held_mass_sd`), kg; `None`
     /// where the masses are taken as exact (no `[masses] sd_pct`).
     pub mass_std: Option<f64>,
     /// The stored energy `F^2 c / 2`, J.

@@ -15,7 +15,7 @@ pub(crate) fn names(table: &'static Table) -> impl Iterator<Item = &'static str>
 /// # Errors
 /// [`Error::Unknown`] of `kind` ("robot preset", "setup"), listing the names of `table`, if no
 /// entry has this name.
-pub fn text(table: &'static Table, kind: &'static str, name: &str) -> Result<&'static str> {
+pub(crate) fn text(table: &'static Table, kind: &'static str, name: &str) -> Result<&'static str> {
     table
         .iter()
         .find(|(n, _)| *n == name)

@@ -302,11 +302,11 @@ impl Robot {
     /// The robot recording the mount it was calibrated on: the pedestal's pose in the cell
     /// (the calibration setup's `[robot_base]`, the controller's world in the base frame; the
     /// identity without one), which its base already holds.
-    pub fn with_mount(self, mount: Option<Isometry3<f64>>) -> Self {
+    pub(crate) fn with_mount(self, mount: Option<Isometry3<f64>>) -> Self {
         Self { mount, ..self }
     }
 
-    /// The mount a calibrated robot was calibrated on ([`Robot::with_mount`]), when its file
+    /// The mount a calibrated robot was calibrated on (`Robot::with_mount`), when its file
     /// records it.
     pub fn mount(&self) -> Option<&Isometry3<f64>> {
         self.mount.as_ref()
@@ -317,11 +317,11 @@ impl Robot {
     /// setup's `[workpiece] reflectors_mm` are given in, in the calibrated cell frame with
     /// every external axis at 0 (m), the setup's `[workpiece] base_from_part` for every setup
     /// pointing at the robot.
-    pub fn with_part(self, part: Option<Isometry3<f64>>) -> Self {
+    pub(crate) fn with_part(self, part: Option<Isometry3<f64>>) -> Self {
         Self { part, ..self }
     }
 
-    /// The part's frame a calibrated robot's calibration located ([`Robot::with_part`]), when
+    /// The part's frame a calibrated robot's calibration located (`Robot::with_part`), when
     /// its file records it.
     pub fn part(&self) -> Option<&Isometry3<f64>> {
         self.part.as_ref()
@@ -403,7 +403,7 @@ impl Robot {
     /// [`Robot::mapped`] approached with the last motions' signs `direction` (-1.0 or 1.0 per
     /// axis, 0.0 for the mean of the two approaches): `q + e(q) + b d`, `b` each axis's half
     /// backlash ([`ErrorMap::angle_from`]).
-    pub fn mapped_from(
+    pub(crate) fn mapped_from(
         &self,
         q: &nalgebra::Vector6<f64>,
         direction: &nalgebra::Vector6<f64>,

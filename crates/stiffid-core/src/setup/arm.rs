@@ -115,7 +115,7 @@ impl Arm {
 
     /// Whether the tool centre point was given (`[tool] tcp_mm`), not taken from measuring
     /// point 1.
-    pub fn tcp_given(&self) -> bool {
+    pub(crate) fn tcp_given(&self) -> bool {
         self.tcp_given
     }
 
@@ -192,12 +192,12 @@ pub struct RobotGeometry {
 pub const DEFAULT_RADIUS_FRACTIONS: [f64; 7] = [0.08, 0.06, 0.045, 0.04, 0.03, 0.025, 0.02];
 
 /// Smallest default tool radius, m (10 mm).
-pub const MIN_TOOL_RADIUS: f64 = 0.01;
+pub(crate) const MIN_TOOL_RADIUS: f64 = 0.01;
 
 /// The default [`RobotGeometry`] of a robot and tool: link radii
 /// [`DEFAULT_RADIUS_FRACTIONS`] of the robot's size (the summed length of its base and link
 /// segments, the same in every posture; 4.33 m and radii 346, 260, 195, 173, 130, 108, 87 mm for
-/// the COMAU NJ 165), and [`default_tool_radius`].
+/// the COMAU NJ 165), and `default_tool_radius`.
 pub fn default_geometry(robot: &Robot, tool: &Tool) -> RobotGeometry {
     let frames = robot.frames(&Vector6::zeros());
     let size: f64 = polylines(&frames)
@@ -214,13 +214,13 @@ pub fn default_geometry(robot: &Robot, tool: &Tool) -> RobotGeometry {
 /// the flange z axis, at least [`MIN_TOOL_RADIUS`]. The measuring points (reflectors) sit on the
 /// outside of the tool, so a body that reached them would hide them from the tracker: the tool
 /// capsule stands for the spindle or the bar that carries them, not for their envelope.
-pub fn default_tool_radius(tool: &Tool) -> f64 {
+pub(crate) fn default_tool_radius(tool: &Tool) -> f64 {
     (0.5 * nearest_measuring_point(tool)).max(MIN_TOOL_RADIUS)
 }
 
 /// The distance of the measuring point nearest the flange z axis from it, m (infinite without
 /// measuring points).
-pub fn nearest_measuring_point(tool: &Tool) -> f64 {
+pub(crate) fn nearest_measuring_point(tool: &Tool) -> f64 {
     (tool.measuring_points.iter())
         .map(|p| p.xy().norm())
         .fold(f64::INFINITY, f64::min)

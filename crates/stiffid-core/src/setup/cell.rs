@@ -26,10 +26,10 @@ use crate::{common::limits, Result};
 use nalgebra::{Isometry3, Vector3};
 
 /// Most obstacles a cell may list.
-pub const MAX_OBSTACLES: usize = 100;
+pub(crate) const MAX_OBSTACLES: usize = 100;
 
 /// Largest clearance, link radius or tool radius accepted, mm (10 m: beyond any industrial cell).
-pub const MAX_LENGTH_MM: f64 = 10_000.0;
+pub(crate) const MAX_LENGTH_MM: f64 = 10_000.0;
 
 /// The cell around the robot (docs/guide.md, "The cell"), base frame, m.
 #[derive(Debug, Clone, PartialEq)]

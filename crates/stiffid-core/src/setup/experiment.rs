@@ -106,7 +106,7 @@ pub struct Experiment {
 
 impl Experiment {
     /// The loading of the simulation and of the posture search (a zero load in a
-    /// calibration-only setup, which has none: [`Experiment::require_loading`]).
+    /// calibration-only setup, which has none: `Experiment::require_loading`).
     pub fn load(&self) -> &RopeLoad {
         &self.load
     }
@@ -117,7 +117,7 @@ impl Experiment {
     /// # Errors
     /// [`Error::MissingField`] naming the first field the setup left out (`loading`, the
     /// table with `load_n` and `anchor_mm`, or `tool.loading_point_mm`) and `needed_by`.
-    pub fn require_loading(&self, needed_by: &str) -> Result<()> {
+    pub(crate) fn require_loading(&self, needed_by: &str) -> Result<()> {
         match self.missing.first() {
             None => Ok(()),
             Some(field) => Err(Error::MissingField {
@@ -157,7 +157,7 @@ impl Experiment {
     }
 
     /// Test (validation) postures, axis angles, rad.
-    pub fn test_postures(&self) -> &[Vector6<f64>] {
+    pub(crate) fn test_postures(&self) -> &[Vector6<f64>] {
         &self.test_postures
     }
 
@@ -184,7 +184,7 @@ impl Experiment {
 
     /// The nominal compliance `h = 1 / k` (Eq. 8), rad/Nm, if the setup gives a nominal
     /// stiffness.
-    pub fn nominal_compliance(&self) -> Option<Vector6<f64>> {
+    pub(crate) fn nominal_compliance(&self) -> Option<Vector6<f64>> {
         self.nominal_stiffness.map(|k| k.map(|k| 1.0 / k))
     }
 
@@ -209,7 +209,7 @@ impl Experiment {
 
     /// The declared candidate springs (`[[model.spring]]` with `candidate = true`): not in the
     /// model, candidates of the model comparison (`stiffid_identify::compare`).
-    pub fn candidate_springs(&self) -> &[Spring] {
+    pub(crate) fn candidate_springs(&self) -> &[Spring] {
         &self.candidate_springs
     }
 }

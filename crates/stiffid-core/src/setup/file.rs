@@ -260,7 +260,7 @@ pub fn builtin(name: &str) -> Result<Setup> {
 
 /// Parses a setup TOML. `source_name` (the file name) is used in errors; `resolve_robot` turns the
 /// `robot` field (and the optional `robot_tip`) into a [`Robot`] (a preset, or a file the caller
-/// reads). [`parse_with`] also hands over the setup's `package_paths`.
+/// reads). `parse_with` also hands over the setup's `package_paths`.
 ///
 /// # Errors
 /// [`Error::Parse`] for malformed TOML, unknown or missing keys and wrong types;
@@ -283,7 +283,7 @@ where
 /// `package_paths` (as written, relative to the setup file) where a URDF's `package://` meshes
 /// are looked for ([`crate::robot::collision`]).
 #[derive(Debug, Clone, Copy)]
-pub struct RobotRequest<'a> {
+pub(crate) struct RobotRequest<'a> {
     /// The `robot` field: a preset name or a robot file.
     pub reference: &'a str,
     /// The `robot_tip` field (URDF only).
@@ -305,7 +305,7 @@ pub const MAX_PACKAGE_PATHS: usize = 64;
 /// Those of [`parse`]; [`Error::InvalidField`] (`package_paths`) for more than
 /// [`MAX_PACKAGE_PATHS`] paths or an empty one, (`controller.kinematics`) for a kinematics other
 /// than `nominal` or `calibrated`, or `[controller] robot` with `kinematics = "calibrated"`.
-pub fn parse_with<F>(text: &str, source_name: &str, mut resolve_robot: F) -> Result<Setup>
+pub(crate) fn parse_with<F>(text: &str, source_name: &str, mut resolve_robot: F) -> Result<Setup>
 where
     F: FnMut(&RobotRequest) -> Result<Robot>,
 {

@@ -92,20 +92,17 @@ pub mod program_io;
 pub mod reference;
 mod workcell;
 
-pub use arm::Arm;
-pub use arm::{
-    default_geometry, default_tool_radius, nearest_measuring_point, RobotGeometry, Tool,
-    DEFAULT_RADIUS_FRACTIONS, MIN_TOOL_RADIUS,
-};
+pub(crate) use arm::nearest_measuring_point;
+pub use arm::{default_geometry, RobotGeometry, Tool};
+pub use arm::{Arm, DEFAULT_RADIUS_FRACTIONS};
 pub use arm::{Payload, GRAVITY};
 pub use builder::{SetupBuilder, DEFAULT_FRAME_SD};
-pub use cell::{Cell, Obstacle, Tracker, MAX_LENGTH_MM, MAX_OBSTACLES};
+pub use cell::{Cell, Obstacle, Tracker};
 pub use experiment::{Experiment, Noise, RopeLoad};
-pub use file::{
-    builtin, builtin_names, builtin_text, parse, parse_with, RobotRequest, MAX_PACKAGE_PATHS,
-};
+pub(crate) use file::parse_with;
+pub use file::{builtin, builtin_names, builtin_text, parse, MAX_PACKAGE_PATHS};
 pub use numbered::NumberedFrames;
-pub use program_frames::{offset_name, ProgramFrames, MAX_EXTENDED_OFFSET, MAX_OFFSETS};
+pub use program_frames::ProgramFrames;
 pub use program_io::ProgramSettings;
 pub use workcell::{CellConstraints, Controller, Kinematics, Pulses, Workcell};
 
@@ -194,7 +191,7 @@ impl Setup {
         self.arm.model()
     }
 
-    /// The declared candidate springs ([`Experiment::candidate_springs`]).
+    /// The declared candidate springs (`Experiment::candidate_springs`).
     pub fn candidate_springs(&self) -> &[Spring] {
         self.experiment.candidate_springs()
     }
@@ -235,10 +232,10 @@ impl Setup {
         self.experiment.load()
     }
 
-    /// Nothing when the setup gives the loading, for `needed_by` ([`Experiment::require_loading`]).
+    /// Nothing when the setup gives the loading, for `needed_by` (`Experiment::require_loading`).
     ///
     /// # Errors
-    /// As [`Experiment::require_loading`].
+    /// As `Experiment::require_loading`.
     pub fn require_loading(&self, needed_by: &str) -> Result<()> {
         self.experiment.require_loading(needed_by)
     }
@@ -298,7 +295,7 @@ impl Setup {
         self.experiment.try_characteristic_length(needed_by)
     }
 
-    /// Test (validation) postures, axis angles, rad ([`Experiment::test_postures`]).
+    /// Test (validation) postures, axis angles, rad (`Experiment::test_postures`).
     pub fn test_postures(&self) -> &[Vector6<f64>] {
         self.experiment.test_postures()
     }
@@ -394,7 +391,7 @@ impl Setup {
         self.workcell.tracker()
     }
 
-    /// Whether the tool centre point was given ([`Arm::tcp_given`]).
+    /// Whether the tool centre point was given (`Arm::tcp_given`).
     pub fn tcp_given(&self) -> bool {
         self.arm.tcp_given()
     }
@@ -405,7 +402,7 @@ impl Setup {
     }
 
     /// The reflectors fixed on the positioner's table or on a fixed part, cell frame at `e = 0`,
-    /// m ([`Workcell::table_reflectors`]).
+    /// m (`Workcell::table_reflectors`).
     pub fn table_reflectors(&self) -> Vec<Vector3<f64>> {
         self.workcell.table_reflectors()
     }
@@ -439,7 +436,7 @@ impl Setup {
         }
     }
 
-    /// The nominal compliance `h = 1 / k` (Eq. 8), rad/Nm ([`Experiment::nominal_compliance`]).
+    /// The nominal compliance `h = 1 / k` (Eq. 8), rad/Nm (`Experiment::nominal_compliance`).
     pub fn nominal_compliance(&self) -> Option<Vector6<f64>> {
         self.experiment.nominal_compliance()
     }

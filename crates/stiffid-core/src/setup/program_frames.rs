@@ -22,17 +22,17 @@ use crate::{Error, Result};
 use nalgebra::{Isometry3, UnitQuaternion, Vector3};
 
 /// The highest `P` of an additional work offset `G54.1 P..` (Haas's 99; FANUC's 48 or 300).
-pub const MAX_EXTENDED_OFFSET: u32 = 99;
+pub(crate) const MAX_EXTENDED_OFFSET: u32 = 99;
 
 /// The most work offsets `[workpiece.offsets]` may give (`G53`, `G55`..`G59.3` and every
 /// `G54.1 P..`).
-pub const MAX_OFFSETS: usize = 9 + MAX_EXTENDED_OFFSET as usize;
+pub(crate) const MAX_OFFSETS: usize = 9 + MAX_EXTENDED_OFFSET as usize;
 
 /// `[workpiece]`'s fields for a G-code program (module docs): all in the `G54` part frame
 /// (`base_from_part`), m; all optional.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct ProgramFrames {
-    /// Each work offset given, by its canonical name ([`offset_name`]), with its frame in the
+    /// Each work offset given, by its canonical name (`offset_name`), with its frame in the
     /// `G54` part frame (`part_from_offset`), m.
     pub offsets: Vec<(String, Isometry3<f64>)>,
     /// The tool tip (the TCP) when the program starts, `G54` part frame, m.
@@ -48,7 +48,7 @@ pub struct ProgramFrames {
 }
 
 impl ProgramFrames {
-    /// The frame of the offset named `name` (canonical, [`offset_name`]) in the `G54` part
+    /// The frame of the offset named `name` (canonical, `offset_name`) in the `G54` part
     /// frame: the identity for `G54`, `None` when the setup does not give it.
     pub fn offset(&self, name: &str) -> Option<Isometry3<f64>> {
         if name == "G54" {
@@ -63,7 +63,7 @@ impl ProgramFrames {
 
 /// The canonical name of a work offset as a setup or a program writes it (`g55`, `G59.1`,
 /// `G54.1 P2`, `G54.1P2`, `G53`), or `None` for anything else (`G54.1 P0`, `G60`).
-pub fn offset_name(text: &str) -> Option<String> {
+pub(crate) fn offset_name(text: &str) -> Option<String> {
     let t: String = text
         .split_whitespace()
         .collect::<String>()

@@ -196,7 +196,7 @@ impl Workcell {
     /// cell without a positioner, on the part or its fixture (`T1`, `T2`, ... of a readings
     /// file), in the cell frame with every axis at 0 (the part's frame `base_from_part`
     /// applied), m; empty without.
-    pub fn table_reflectors(&self) -> Vec<Vector3<f64>> {
+    pub(crate) fn table_reflectors(&self) -> Vec<Vector3<f64>> {
         let part = self.workpiece.unwrap_or_default();
         (self.table_reflectors.iter())
             .map(|p| (part * nalgebra::Point3::from(*p)).coords)

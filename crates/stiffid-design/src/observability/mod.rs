@@ -254,18 +254,6 @@ impl CalibrationDesign {
         &self.kept
     }
 
-    /// The kept parameters' scales (one per [`CalibrationDesign::kept`], in its order): the
-    /// column scaling of the design Jacobian (module docs).
-    pub fn scales(&self) -> &[f64] {
-        &self.layout.scales
-    }
-
-    /// The design a step at one station with a carrier is reduced to (the arm's columns,
-    /// [`CalibrationDesign::on_station`] with fixed postures); `None` for any other design.
-    pub fn reduced(&self) -> Option<&CalibrationDesign> {
-        self.reduced.as_deref()
-    }
-
     /// This design scored on the whole Jacobian, every column, not reduced: what the reduced
     /// scoring equals.
     pub fn whole(&self) -> CalibrationDesign {
@@ -300,7 +288,7 @@ impl CalibrationDesign {
     ///
     /// # Errors
     /// [`Error::NotFinite`] for a non-finite posture.
-    pub fn jacobian_placed(&self, postures: &[Placed]) -> Result<DMatrix<f64>> {
+    pub(crate) fn jacobian_placed(&self, postures: &[Placed]) -> Result<DMatrix<f64>> {
         if !(postures.iter()).all(|(q, e)| q.iter().chain(e.as_slice()).all(|v| v.is_finite())) {
             return Err(Error::NotFinite {
                 what: "a posture of the calibration design".into(),

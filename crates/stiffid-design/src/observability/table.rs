@@ -106,7 +106,7 @@ impl CalibrationDesign {
     ///
     /// # Errors
     /// Those of [`ErrorModel::jacobian_of`].
-    pub fn table_rows(&self, angles: &[ExternalValues], part: bool) -> Result<DMatrix<f64>> {
+    pub(crate) fn table_rows(&self, angles: &[ExternalValues], part: bool) -> Result<DMatrix<f64>> {
         let l = &self.layout;
         let observations = readings(l.model.tables(), angles);
         let mut out = DMatrix::zeros(3 * observations.len(), self.kept.len());
@@ -127,7 +127,7 @@ impl CalibrationDesign {
     /// the reference angles of a new design), fixed rows of every group scored.
     ///
     /// # Errors
-    /// Those of [`CalibrationDesign::table_rows`].
+    /// Those of `CalibrationDesign::table_rows`.
     pub fn with_table_angles(&self, angles: &[ExternalValues]) -> Result<Self> {
         let rows = self.table_rows(angles, false)?;
         let t = self.table.nrows();
@@ -158,7 +158,7 @@ impl CalibrationDesign {
     /// # Errors
     /// [`Error::InvalidField`] (`table`) with no candidate or a count of 0, or `allowed` with
     /// another shape or a reading with no candidate allowed; those of
-    /// [`CalibrationDesign::table_rows`] and [`CalibrationDesign::jacobian_placed`].
+    /// `CalibrationDesign::table_rows` and `CalibrationDesign::jacobian_placed`.
     pub fn choose_table_angles(
         &self,
         criterion: CalibrationCriterion,

@@ -104,7 +104,7 @@ fn predicted_error_matches_a_monte_carlo_of_calibrations() {
         let p = &model.parameters()[c];
         let at = d.kept().iter().position(|&k| k == c).unwrap();
         let size = match p.kind {
-            stiffid_metrology::calibration::Kind::Gravity => 1e-4 * d.scales()[at],
+            stiffid_metrology::calibration::Kind::Gravity => 1e-4 * d.layout.scales[at],
             _ => 1e-3,
         };
         truth[c] += size * (2.0 * rng.random::<f64>() - 1.0);
@@ -368,12 +368,15 @@ fn a_track_campaign_is_designed_with_the_tracks_columns() {
 #[test]
 fn a_step_at_a_station_reduced_to_the_arm_equals_the_whole_jacobian() {
     let (robot, d, stations) = track_design();
-    assert!(d.on_station(stations[0], &[]).unwrap().reduced().is_none());
+    assert!(d.on_station(stations[0], &[]).unwrap().reduced.is_none());
     let fixed: Vec<Placed> = (postures(&robot, 30, 11).iter().enumerate())
         .map(|(i, q)| (*q, stations[1 + i % 5]))
         .collect();
     let here = d.on_station(stations[2], &fixed).unwrap();
-    let reduced = here.reduced().expect("a step on the track is reduced");
+    let reduced = here
+        .reduced
+        .as_deref()
+        .expect("a step on the track is reduced");
     assert!(reduced.kept().len() < here.kept().len());
     let whole = here.whole();
     let group = postures(&robot, 12, 13);

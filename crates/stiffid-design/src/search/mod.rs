@@ -24,7 +24,8 @@ pub use constraints::{cell_constraints, CellConstraints};
 pub use constraints::{design_checker, design_margin};
 pub use global::{global, global_for};
 pub(super) use local::check_count;
-pub use local::{local, local_for};
+pub use local::local;
+pub(crate) use local::local_for;
 pub use sample::{random_group, CONSTRAINT_TRIES, PROBE_DRAWS};
 pub use termination::Termination;
 

@@ -112,12 +112,12 @@ impl<'a> Screened<'a> {
         self.pool.usable().len()
     }
 
-    /// The best group of `n` usable postures for `goal` ([`Pool::best_for`]), `progress` told
+    /// The best group of `n` usable postures for `goal` (`Pool::best_for`), `progress` told
     /// of the choice.
     ///
     /// # Errors
     /// In the pool: `postures` when more are asked for than pass the cell's checks and are
-    /// distinct (naming the checks failed most often); those of [`Pool::best_for`].
+    /// distinct (naming the checks failed most often); those of `Pool::best_for`.
     pub fn best(
         &self,
         goal: &Goal,

@@ -74,7 +74,7 @@ impl From<SearchOutcome> for Found {
 /// The group of `n` postures on `setup` for `goal`, chosen `how`.
 ///
 /// # Errors
-/// Those of the search ([`design::local_for`], [`design::global_for`]) or of
+/// Those of the search (`design::local_for`, [`design::global_for`]) or of
 /// [`Screened::best`].
 pub fn choose(setup: &Setup, goal: &Goal, how: How, n: usize, s: Searching) -> Result<Found> {
     let (options, progress) = (s.options, s.progress);

@@ -78,7 +78,7 @@ pub struct Spread {
 /// ascending) with their SI values ([`Spread::median`]).
 pub(crate) type Chosen = Vec<(usize, f64)>;
 
-/// A model one resample's data support ([`super::supported`]): its parameters (indices in
+/// A model one resample's data support (`super::supported`): its parameters (indices in
 /// [`Comparison::parameters`], the setup's model's first, then the springs in the order the
 /// selection added them) and the compliance-side value of each, SI (rad/Nm, m/N; a lost motion
 /// in rad or m, a load-dependent compliance in rad/Nm^2).

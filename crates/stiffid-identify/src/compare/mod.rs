@@ -269,7 +269,7 @@ fn recommend(models: &[Row]) -> usize {
 /// The models the data support: the indices of the models on the path (physical and
 /// identified) whose held-out mean square is within one standard error of the best one's, the
 /// margin of the one-standard-error rule (module docs), smallest first.
-pub fn supported(models: &[Row]) -> Vec<usize> {
+pub(crate) fn supported(models: &[Row]) -> Vec<usize> {
     let ok = |r: &Row| r.physical && r.identified;
     let best = models
         .iter()

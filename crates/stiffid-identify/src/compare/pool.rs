@@ -5,7 +5,7 @@
 //! The pool, in this order:
 //! - the setup's declared candidates (`[[model.spring]]` with `candidate = true`), first; a
 //!   declared candidate named like a family's is refused
-//!   ([`stiffid_core::model::check_declared_names`]);
+//!   (`stiffid_core::model::check_declared_names`);
 //! - `tilt<k>_x`, `tilt<k>_y`, `tilt<k>_z` (k = 1..6): rotations about the three axes of link k's
 //!   frame through its origin (the tilt of joint k's bearing, the bending lumped at the joint);
 //! - `bend<k>_x`, `bend<k>_y`, `bend<k>_z` (k = 1..5): rotations about the same three axes through

@@ -9,7 +9,7 @@
 //!   rows of the observation matrix at the point, `S` the folds' jackknife covariance, `rho` the
 //!   model's held-out error); with a compliance covariance alone `C = Cov(d)` (its translation
 //!   block). The part is the `level` quantile of `|e|` for `e ~ N(0, C)`
-//!   ([`length_quantile`]); with the deflection calibration scaled by `kappa / z`, the held-out
+//!   (`length_quantile`); with the deflection calibration scaled by `kappa / z`, the held-out
 //!   studentised scores' quantile over the normal's (`z = Phi^-1((1 + level) / 2)`), so that it
 //!   carries the shape of the held-out errors. A stiffness file with held-out residuals but no
 //!   deflection calibration gives the length of the per-coordinate half-widths of its
@@ -162,7 +162,7 @@ pub(crate) fn model_form(
 /// `nu = (sum l)^2 / sum l^2` (Patnaik 1949, "The non-central chi-square and F-distributions and
 /// their applications", Biometrika 36): exact for one non-zero eigenvalue and for equal ones.
 /// 0 for a zero `c`.
-pub fn length_quantile(c: &Matrix3<f64>, level: f64) -> f64 {
+pub(crate) fn length_quantile(c: &Matrix3<f64>, level: f64) -> f64 {
     let l = c.symmetric_eigenvalues().map(|v| v.max(0.0));
     let (s1, s2) = (l.sum(), l.map(|v| v * v).sum());
     if !(s1 > 0.0 && s2 > 0.0) {

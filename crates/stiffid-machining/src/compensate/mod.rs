@@ -170,7 +170,7 @@
 //! cannot take it, the best other one is, with a warning; when none can, the path's own error.
 //!
 //! With [`Objective::Surge`] the same dynamic programming minimises the breakthrough surge of a
-//! drilling program instead ([`path_with_exits`], [`crate::dynamics`]): a drilling
+//! drilling program instead (`path_with_exits`, [`crate::dynamics`]): a drilling
 //! exit's cost is the surge of its thrust at the turned posture, taken only where it is no larger
 //! than at the path's own angle; every other point costs nothing but the tie-breaking cost, here
 //! [`TIE_BREAK`] times the path's largest surge (a rotation about the drill axis changes neither
@@ -217,7 +217,7 @@ pub use speed::{has_speed_limits, move_times, speed_shares, Rate};
 pub(crate) use station::on_track;
 pub use station::path_on_track;
 pub(crate) use stream::path_in_cones;
-pub use stream::{path, path_with_exits, stream, CHUNK};
+pub use stream::{path, stream, CHUNK};
 pub use variables::{
     Aggregate, Free, FreeRange, FreeVariables, LeadTilt, Limits, Objective, Variable,
     CONFIGURATION_SEEDS, LEAD_TILT_MAX_CONE_DEG, MAX_CONFIGURATION_POINTS, MAX_GRID_CELLS,

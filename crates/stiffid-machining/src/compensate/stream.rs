@@ -25,7 +25,7 @@ use stiffid_core::{Error, Result};
 /// [`Error::InvalidField`] for `options` outside their limits ([`Options::validate`]) or a free
 /// tool axis grid beyond [`super::MAX_GRID_CELLS`];
 /// [`Error::InvalidOption`] ([`JobOption::Minimise`]) for the surge objective, which
-/// needs a drilling program ([`path_with_exits`]);
+/// needs a drilling program (`path_with_exits`);
 /// [`Error::Column`] naming the line of the first point (in path order) that fails: axis angles
 /// outside the joint limits ([`ColumnProblem::Outside`], `q1_deg..q6_deg`), a pose inverse
 /// kinematics cannot reach ([`ColumnProblem::Uncompensated`] with [`Error::Unreachable`]'s
@@ -52,7 +52,7 @@ pub fn path(
 ///
 /// # Panics
 /// If `thrusts` is neither empty nor one per point.
-pub fn path_with_exits(
+pub(crate) fn path_with_exits(
     arm: &Arm,
     compliance: &Compliance,
     points: &[PathPoint],

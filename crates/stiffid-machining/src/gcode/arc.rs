@@ -48,10 +48,10 @@ pub(super) fn plane_axes(plane: u8) -> (usize, usize, usize) {
 /// changes linearly from the start's to the end's along the arc (LinuxCNC's spiral).
 pub const ARC_END_TOLERANCE_MM: f64 = 0.005;
 /// The most an arc's end may lie off the circle in any case, mm (grbl's 0.5 mm).
-pub const ARC_END_MAX_MM: f64 = 0.5;
+pub(crate) const ARC_END_MAX_MM: f64 = 0.5;
 /// The most an arc's end may lie off the circle beyond [`ARC_END_TOLERANCE_MM`], relative to
 /// the radius (grbl's and LinuxCNC's 0.1 %).
-pub const ARC_END_RELATIVE: f64 = 1e-3;
+pub(crate) const ARC_END_RELATIVE: f64 = 1e-3;
 
 /// Whether an arc of start radius `r0` and end radius `r1` (m) is accepted
 /// ([`ARC_END_TOLERANCE_MM`]).

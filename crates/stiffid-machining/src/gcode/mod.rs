@@ -56,7 +56,7 @@
 //! becomes `G1`), in the program's own units and distance mode, each block's words in its own
 //! work offset's frame and tool length offset; rapids before the first point and `G28`/`G30`
 //! blocks as found (the controller goes where its own positions are). Only positions are corrected: a
-//! 3-axis program has no words for the tool's rotation. [`GCode::write_with_external`] also writes
+//! 3-axis program has no words for the tool's rotation. `GCode::write_with_external` also writes
 //! the mapped external axes' values of every point (a station chosen by the compensation): the
 //! block's own external words are dropped and every written point carries all of them, in the
 //! header's order, in the program's units and distance mode.
@@ -71,7 +71,7 @@ mod process;
 mod words;
 mod write;
 
-pub use arc::{ArcBlock, ARC_END_MAX_MM, ARC_END_RELATIVE, ARC_END_TOLERANCE_MM};
+pub use arc::{ArcBlock, ARC_END_TOLERANCE_MM};
 pub use cycles::Cycle;
 pub use machine::{Machine, ProgramFrames};
 pub use process::{Comment, ProcessWord};

@@ -22,7 +22,7 @@ impl GCode {
     /// Those of [`GCode::write`]; [`Error::InvalidField`] (`external`) for another number of
     /// rows than points, a row of another length than the letters mapped, or a value that is
     /// not finite.
-    pub fn write_with_external(
+    pub(crate) fn write_with_external(
         &self,
         positions: &[Vector3<f64>],
         external: &[Vec<f64>],

@@ -14,7 +14,7 @@
 //! turns clockwise seen from the spindle (M03). The tool frame of stiffid's setups has its `z` axis
 //! out of the flange, from the spindle towards the tip, so the feed frame's `z` is the tool's `-z`.
 //! [`feed_frame`] builds the feed frame in the robot base frame from the path's own feed direction
-//! (the TCP's motion) and the tool axis, and [`Operation::base_wrench`] turns the operation's
+//! (the TCP's motion) and the tool axis, and `Operation::base_wrench` turns the operation's
 //! mean force and moment into the base-frame wrench on the tool that compensation takes.
 
 pub(crate) mod covering;
@@ -92,7 +92,11 @@ impl Operation {
     /// The mean wrench `[f; m]` on the tool in the base frame, for a cut fed along `feed` (base
     /// frame, any length) with the tool z axis `tool_z` (base frame, unit, spindle to tip); `None`
     /// for a milling cut fed along the tool axis (a plunge: no lateral feed to define the frame).
-    pub fn base_wrench(&self, feed: &Vector3<f64>, tool_z: &Vector3<f64>) -> Option<Vector6<f64>> {
+    pub(crate) fn base_wrench(
+        &self,
+        feed: &Vector3<f64>,
+        tool_z: &Vector3<f64>,
+    ) -> Option<Vector6<f64>> {
         let frame = match &self.kind {
             Kind::Milling(_) => feed_frame(feed, tool_z)?,
             Kind::Drilling(_) => {

@@ -5,40 +5,24 @@
 //! A reading's predicted position `mu(x)` has the covariance `J_f C J_f^T` (`J_f` the Jacobian of
 //! [`ErrorModel::jacobian_of`] at the fit, its fitted parameters' columns; `C` the fit's
 //! covariance, [`Fit::covariance`], the posterior of the priors where the fit has them). Its
-//! trace is the position's variance. Over [`gravity::spanning`] postures of the robot's joint
-//! limits it measures what the readings leave open: a term the readings hold only through its
-//! prior (gravity terms fitted on a thin sweep of the joints that carry the weight) spreads the
+//! trace is the position's variance. Over [`super::gravity::spanning`] postures of the robot's
+//! joint limits it measures what the readings leave open: a term the readings hold only through
+//! its prior (gravity terms fitted on a thin sweep of the joints that carry the weight) spreads the
 //! predictions there by the prior's size, millimetres, where a term they determine spreads them
 //! by about the noise over the square root of the readings.
 
 use super::error_model::{ErrorModel, Observation};
 use super::fit::Fit;
-use super::gravity;
 use nalgebra::{Vector3, Vector6};
-use stiffid_core::common::limits::JointBox;
 use stiffid_core::Result;
 
-/// The RMS over [`gravity::spanning`] postures of `region` (axis angles, rad) of the standard
-/// deviation (3D, m) of the position `fit` predicts for the measuring point and external axes of
-/// `like` (a reading of the fit: its point, carrier and table), section docs.
+/// The RMS over the postures `qs` (axis angles, rad) of the standard deviation (3D, m) of the
+/// position `fit` predicts for the measuring point and external axes of `like` (a reading of the
+/// fit: its point, carrier and table), section docs; 0 without postures.
 ///
 /// # Errors
 /// Those of [`ErrorModel::jacobian_of`].
-pub fn region_sd(
-    model: &ErrorModel,
-    fit: &Fit,
-    like: &Observation,
-    region: &JointBox,
-) -> Result<f64> {
-    postures_sd(model, fit, like, &gravity::spanning(region))
-}
-
-/// [`region_sd`] over the postures `qs` (axis angles, rad): the RMS over them of the
-/// predicted position's standard deviation (3D, m); 0 without postures.
-///
-/// # Errors
-/// Those of [`ErrorModel::jacobian_of`].
-pub fn postures_sd(
+pub(crate) fn postures_sd(
     model: &ErrorModel,
     fit: &Fit,
     like: &Observation,

@@ -58,7 +58,7 @@ impl Origin {
     }
 
     /// The labels of dense posture numbers.
-    pub fn labels_of(&self, postures: &[usize]) -> Vec<String> {
+    pub(crate) fn labels_of(&self, postures: &[usize]) -> Vec<String> {
         postures
             .iter()
             .map(|&p| self.label(self.first_of_posture[p]).to_string())

@@ -115,7 +115,7 @@ impl<R, D> std::ops::Deref for Outcome<R, D> {
 }
 
 /// `error` about the data named `name`.
-pub fn in_data(name: &str, error: Error) -> Error {
+pub(crate) fn in_data(name: &str, error: Error) -> Error {
     Error::Input {
         source_name: name.to_string(),
         error: Box::new(error),

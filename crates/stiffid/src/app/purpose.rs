@@ -282,7 +282,7 @@ pub const REFERENCE_STATIONS: usize = 6;
 
 /// The search goal of `purpose` with the stiffness criterion `criterion` and the calibration
 /// design `design` (required unless [`Purpose::Stiffness`]).
-pub fn goal<'a>(
+pub(crate) fn goal<'a>(
     purpose: Purpose,
     criterion: Criterion,
     design: Option<&'a CalibrationDesign>,

@@ -29,7 +29,7 @@ pub struct Request<'a> {
 /// The readings of `request`, and the warnings about them.
 ///
 /// # Errors
-/// Those of [`readings::parse`] and [`refuse_other_scale`], as [`stiffid_core::Error::Input`] naming
+/// Those of [`readings::parse`] and `refuse_other_scale`, as [`stiffid_core::Error::Input`] naming
 /// the file.
 pub fn read(request: &Request<'_>) -> Result<(Readings, Vec<Warning>)> {
     let Request {
@@ -57,7 +57,7 @@ pub fn read(request: &Request<'_>) -> Result<(Readings, Vec<Warning>)> {
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`readings`) with both spreads and the likely unit.
-pub fn refuse_other_scale(setup: &Setup, data: &Readings) -> Result<()> {
+pub(crate) fn refuse_other_scale(setup: &Setup, data: &Readings) -> Result<()> {
     let points = &setup.tool().measuring_points;
     let pairs: Vec<register::Correspondence> = (data.readings.iter())
         .filter(|r| !r.table)
@@ -113,7 +113,7 @@ pub fn refuse_other_scale(setup: &Setup, data: &Readings) -> Result<()> {
 /// [`Error::InvalidField`] in an [`Error::Input`] naming the file: `readings` for a mirror image
 /// (both RMS), or the reading's line, posture and point with `residual_norm_mm` (its length and
 /// the limit).
-pub fn refuse_implausible(
+pub(crate) fn refuse_implausible(
     request: &Request<'_>,
     data: &Readings,
     registration: Option<&Registration>,

@@ -61,7 +61,7 @@ impl std::fmt::Display for Range {
 pub const PULSES: Range = Range::new(1e-6, 1e9, "pulses per deg or mm");
 
 /// An axis's largest speed in a robot, setup or URDF file (`max_speed_deg_s`, `max_speed_mm_s`):
-/// above 0, at most 10 000 deg/s or mm/s ([`check_speeds`]).
+/// above 0, at most 10 000 deg/s or mm/s (`check_speeds`).
 pub const AXIS_SPEED: Range = Range::new(0.0, 1e4, "deg/s or mm/s");
 
 /// Checks every largest speed of `values` (mm/s where `field` ends in `_mm_s`, else deg/s):
@@ -70,7 +70,7 @@ pub const AXIS_SPEED: Range = Range::new(0.0, 1e4, "deg/s or mm/s");
 ///
 /// # Errors
 /// [`Error::InvalidField`] for the first value that is not.
-pub fn check_speeds(field: &str, values: &[f64]) -> Result<()> {
+pub(crate) fn check_speeds(field: &str, values: &[f64]) -> Result<()> {
     let unit = match field.ends_with("_mm_s") {
         true => "mm/s",
         false => "deg/s",

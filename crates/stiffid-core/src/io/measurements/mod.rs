@@ -22,7 +22,7 @@
 //! ([`MeasurementFile::wrench_frame`], [`MeasurementFile::displacement_frame`]);
 //! [`MeasurementFile::to_base_frame`] turns them into the base frame ([`crate::observation::frames`]).
 //!
-//! [`Reader`] reads a file of any size from a [`BufRead`] chunk by chunk ([`Reader::next_chunk`]):
+//! [`Reader`] reads a file of any size from a [`BufRead`] chunk by chunk (`Reader::next_chunk`):
 //! the text is never whole, and the lines of a chunk are parsed in parallel (pieces of
 //! [`PIECE_BYTES`] at line boundaries, results in file order: the same whatever the number of
 //! threads). [`parse`] is the reader over a `&str`.
@@ -132,7 +132,7 @@ impl MeasurementFile {
     }
 }
 
-/// Some consecutive rows of a measurement file ([`Reader::next_chunk`]).
+/// Some consecutive rows of a measurement file (`Reader::next_chunk`).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Chunk {
     /// One per row, SI units, point 0-based, in the file's frames; postures numbered over the
@@ -241,7 +241,7 @@ impl<R: BufRead> Reader<R> {
     /// # Errors
     /// As [`parse`], for the first bad row of the chunk (in file order); [`ColumnProblem::NoRows`]
     /// at the end of a source without rows; [`ColumnProblem::Unreadable`] when the source fails.
-    pub fn next_chunk(&mut self) -> Result<Option<Chunk>> {
+    pub(crate) fn next_chunk(&mut self) -> Result<Option<Chunk>> {
         let mut chunk = Chunk::default();
         Ok(self.read_chunk(&mut chunk)?.then_some(chunk))
     }
@@ -282,12 +282,12 @@ impl<R: BufRead> Reader<R> {
 }
 
 impl<R: BufRead + Send> Reader<R> {
-    /// Calls `each` with every chunk ([`Reader::next_chunk`]), in file order; the next chunk's
+    /// Calls `each` with every chunk (`Reader::next_chunk`), in file order; the next chunk's
     /// text is read and parsed while the current one's postures are numbered and `each` works on
     /// it (in parallel, with rayon), so at most two chunks are held.
     ///
     /// # Errors
-    /// The first of `each`'s, then those of [`Reader::next_chunk`], in file order: an error in a
+    /// The first of `each`'s, then those of `Reader::next_chunk`, in file order: an error in a
     /// chunk comes before a reading error in the next one.
     pub fn for_each_chunk(
         &mut self,

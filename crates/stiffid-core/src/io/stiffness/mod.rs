@@ -49,7 +49,7 @@ mod sections;
 
 pub use covariance::check_covariance;
 pub use covariance::check_covariance_of;
-pub use model_form::{FormLaw, MAX_COMPLIANCE_SI, MAX_MODEL_FORM_SETS};
+pub use model_form::{FormLaw, MAX_MODEL_FORM_SETS};
 pub use model_form::{FormModelSection, FormSpring, ModelFormSection};
 pub use sections::{FoldSection, GravitySection, GravityTerm, MAX_GRAVITY_TERMS};
 pub use sections::{PredictionSection, RegionSection};

@@ -25,7 +25,7 @@ pub const MAX_MODEL_FORM_SETS: usize = 20_000;
 /// The largest magnitude of a parameter set's value (SI: rad/Nm for a drive or a rotation
 /// spring, m/N for a translation, rad/Nm^2 for a load-dependent law): a stiffness of 1 Nm/rad,
 /// 1e-3 N/mm, softer than any robot's ([`limits::STIFFNESS_NM_PER_RAD`]).
-pub const MAX_COMPLIANCE_SI: f64 = 1.0;
+pub(crate) const MAX_COMPLIANCE_SI: f64 = 1.0;
 
 /// The models the data support and their resampled parameter sets (module docs).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -78,9 +78,10 @@ pub struct PredictionSection {
     /// `sigma_0`, the scale's noise floor: the standard deviation of one displacement coordinate
     /// from the setup's tracker noise, mm; finite, >= 0.
     pub noise_floor_mm: f64,
-    /// The 95% quantile of the held-out scores ([`Calibration::score_quantile`]): 95% of the
-    /// held-out errors are within this share of the predicted displacement plus
-    /// `noise_floor_mm`; `null` without scores. Written for the reader, ignored when read.
+    /// The 95% quantile of the held-out scores (the `ceil(0.95 N)`-th smallest of the `N` scores
+    /// pooled over the folds): 95% of the held-out errors are within this share of the
+    /// predicted displacement plus `noise_floor_mm`; `null` without scores. Written for the
+    /// reader, ignored when read.
     #[serde(default)]
     pub score_q95: Option<f64>,
     /// `score_q95` in %. Written for the reader, ignored when read.

@@ -10,10 +10,10 @@
 //! columns in axis coordinates `q` (`theta = A q + c`: `M_q = A^T M_theta A`).
 //!
 //! **How well the masses are known.** A model may carry a relative standard deviation `s` of every
-//! body's mass and inertia ([`MassModel::with_relative_sd`]), independent between bodies. `M` is
+//! body's mass and inertia (`MassModel::with_relative_sd`), independent between bodies. `M` is
 //! linear in the bodies, `M = sum_k M_k` ([`MassModel::parts`]), and so is the held mass along `u`:
 //! `m = w^T M w = sum_k w^T M_k w` with `w = J^-1 [u; 0]`, so its standard deviation is
-//! `s sqrt(sum_k (w^T M_k w)^2)` ([`MassModel::held_mass_sd`]), exactly (no linearisation).
+//! `s sqrt(sum_k (w^T M_k w)^2)` (`MassModel::held_mass_sd`), exactly (no linearisation).
 
 pub mod body;
 mod crba;
@@ -76,13 +76,13 @@ impl MassModel {
 
     /// This model with every body's mass and inertia known to the relative standard deviation
     /// `sd` (a fraction; 0, the default: exact), independent between bodies (module docs).
-    pub fn with_relative_sd(mut self, sd: f64) -> Self {
+    pub(crate) fn with_relative_sd(mut self, sd: f64) -> Self {
         self.relative_sd = sd;
         self
     }
 
     /// The relative standard deviation of every body's mass and inertia ([`Self::with_relative_sd`]).
-    pub fn relative_sd(&self) -> f64 {
+    pub(crate) fn relative_sd(&self) -> f64 {
         self.relative_sd
     }
 
@@ -109,7 +109,7 @@ impl MassModel {
     /// The standard deviation (kg) of the [`held_mass`] along the unit direction `u` (base frame)
     /// at the point whose Jacobian is `jacobian` (6x6, base frame, axis coordinates), from the
     /// model's [`Self::relative_sd`] (module docs); `None` where the Jacobian is singular.
-    pub fn held_mass_sd(
+    pub(crate) fn held_mass_sd(
         &self,
         robot: &Robot,
         frames: &Frames,

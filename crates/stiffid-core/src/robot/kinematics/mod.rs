@@ -124,7 +124,7 @@ impl Robot {
     /// [`Robot::update_frames`] with the chain's first frame at `base` (cell frame), approached
     /// with the last motions' signs `direction` (-1.0 or 1.0 per axis, 0.0 for the mean of the
     /// two approaches): the axes turn by
-    /// [`Robot::mapped_from`], their backlash included.
+    /// `Robot::mapped_from`, their backlash included.
     pub fn update_frames_from(
         &self,
         base: &Isometry3<f64>,

@@ -74,7 +74,7 @@ pub fn local(
 /// # Errors
 /// Those of [`local`]; [`Error::InvalidField`] (`postures`) for a group too small to separate
 /// the calibration's kept parameters.
-pub fn local_for(
+pub(crate) fn local_for(
     setup: &Setup,
     goal: &Goal,
     start: &[Vector6<f64>],

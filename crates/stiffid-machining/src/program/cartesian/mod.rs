@@ -47,9 +47,8 @@ mod resolve;
 mod solve;
 
 pub use flags::Flags;
-pub use resolve::{
-    check_placed, is_cartesian, resolve, resolve_placed, Controller, SAME_M, SAME_RAD,
-};
+pub use resolve::{check_placed, resolve, Controller, SAME_M, SAME_RAD};
+pub(crate) use resolve::{is_cartesian, resolve_placed};
 pub(crate) use resolve::{same, Writer};
 
 use super::generate::{number, v, zyx_deg};

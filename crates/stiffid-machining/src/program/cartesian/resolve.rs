@@ -92,7 +92,7 @@ impl Writer {
 }
 
 /// Whether a program has Cartesian targets.
-pub fn is_cartesian(program: &JointProgram) -> bool {
+pub(crate) fn is_cartesian(program: &JointProgram) -> bool {
     program.targets.iter().any(|t| t.cartesian.is_some())
 }
 
@@ -129,7 +129,7 @@ pub fn resolve(
 /// # Errors
 /// Those of [`resolve`]; [`Error::Program`](stiffid_core::Error::Program) naming the line of a joint target (axis angles do
 /// not move with the part) or of a target in another frame than the part's.
-pub fn resolve_placed(
+pub(crate) fn resolve_placed(
     program: &JointProgram,
     controller: &Controller,
     base_from_part: &Isometry3<f64>,
@@ -139,14 +139,14 @@ pub fn resolve_placed(
     resolve_in(program, controller, Some(base_from_part), (start, options))
 }
 
-/// The checks of [`resolve_placed`] that hold wherever the part is placed: every target a
+/// The checks of `resolve_placed` that hold wherever the part is placed: every target a
 /// Cartesian one, for the setup's tool, in the part frame. A placement search runs them once,
 /// before it tries any placement.
 ///
 /// # Errors
 /// [`Error::Program`](stiffid_core::Error::Program) naming the line of the first target (or of the frame it states) that
 /// fails: a joint target, a tool that is not the setup's or that the program leaves to the
-/// controller, a frame that is not the part's (as [`resolve_placed`]).
+/// controller, a frame that is not the part's (as `resolve_placed`).
 pub fn check_placed(program: &JointProgram, controller: &Controller) -> Result<()> {
     let part = Isometry3::identity();
     for t in &program.targets {

@@ -44,7 +44,7 @@
 //! EDITMASK` before `DEF`; LS the whole `/ATTR` (owner, comment, sizes, dates, line count,
 //! protection, task attributes, motion groups, control code); INFORM `///DATE` and `///COMM`.
 //! The dates are reproducible ([`date`]). A KRL program's points are in the `.dat` beside it
-//! ([`File::data`], [`crate::program::krl::data::split`]), as KUKA System Software stores a
+//! ([`File::data`], `crate::program::krl::data::split`), as KUKA System Software stores a
 //! module.
 //!
 //! ## Controller rules
@@ -105,9 +105,7 @@ pub use names::{
     MAX_FILES,
 };
 pub use process::{place, place_comments, Process, ProcessForm};
-pub use settings::{
-    Settings, MIN_FEED, MOVES_PER_FILE, NAME_LENGTH, RAPID_PERCENT, RAPID_SPEED_MM_S,
-};
+pub use settings::{Settings, MIN_FEED, MOVES_PER_FILE, RAPID_PERCENT, RAPID_SPEED_MM_S};
 
 use super::{Dialect, DECIMALS};
 use crate::gcode::{Motion, Point};
@@ -290,7 +288,7 @@ pub struct File {
     /// Its text.
     pub text: String,
     /// A KRL program's `.dat` (its points, `DEFDAT NAME` .. `ENDDAT`), to be written beside it
-    /// under its name with `.dat` ([`crate::program::krl::data::split`]); `None` in another
+    /// under its name with `.dat` (`crate::program::krl::data::split`); `None` in another
     /// language.
     pub data: Option<String>,
 }

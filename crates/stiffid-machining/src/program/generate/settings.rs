@@ -16,7 +16,7 @@ pub const MIN_FEED: f64 = 1e-6;
 /// The range of [`Settings::moves_per_file`].
 pub const MOVES_PER_FILE: std::ops::RangeInclusive<usize> = 100..=1_000_000;
 /// The range of [`Settings::name_length`].
-pub const NAME_LENGTH: std::ops::RangeInclusive<usize> = 8..=64;
+pub(crate) const NAME_LENGTH: std::ops::RangeInclusive<usize> = 8..=64;
 
 /// How programs are written (module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -10,7 +10,7 @@ use std::fmt::Write;
 /// order, and its `.dat`: the points declared (`E6POS` for a Cartesian aggregate, `E6AXIS`
 /// for axis angles), their values as written.
 #[must_use]
-pub fn split(name: &str, src: &str) -> (String, String) {
+pub(crate) fn split(name: &str, src: &str) -> (String, String) {
     let mut out = String::with_capacity(src.len());
     let mut decls = String::new();
     let mut n = 0usize;

@@ -30,7 +30,7 @@ use stiffid_core::robot::external::{
 use stiffid_core::{Error, Result};
 
 /// The motions' names in parameter names, ISO 230-1's six in [`ErrorMotions`] order.
-pub const MOTIONS: [&str; 6] = [
+pub(crate) const MOTIONS: [&str; 6] = [
     "positioning",
     "straightness_y",
     "straightness_z",

@@ -126,7 +126,7 @@ impl ErrorModel {
 
     /// The Jacobian of [`ErrorModel::residuals`] (and of [`ErrorModel::predict`]) at `values`:
     /// [`ErrorModel::jacobian`] of the observations' postures and points, with, for a loaded
-    /// reading, the compliances' columns (its observation rows, [`ErrorModel::load_rows`]) and
+    /// reading, the compliances' columns (its observation rows, `ErrorModel::load_rows`) and
     /// the frame's rotation about the deflected point.
     ///
     /// # Errors
@@ -159,7 +159,7 @@ impl ErrorModel {
 
     /// [`ErrorModel::column_scales`] at the observations' postures, with, for a compliance
     /// under the applied wrenches ([`Target::Compliance`]), `1 / rms`, `rms` the RMS length of
-    /// its observation rows ([`ErrorModel::load_rows`]) over the loaded readings: a compliance
+    /// its observation rows (`ErrorModel::load_rows`) over the loaded readings: a compliance
     /// that moves a loaded reading by 1 m RMS (0 below [`NO_EFFECT`] times the largest of its
     /// unit's); for a drive's gravity compliance with known masses, the smaller of that and its
     /// gravity scale (either where the other is 0).

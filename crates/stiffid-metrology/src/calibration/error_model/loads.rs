@@ -106,7 +106,7 @@ impl ErrorModel {
     /// (base frame, N, N m, at the loading point): the rows of `Psi`
     /// ([`stiffid_core::observation::write_posture_block`]) on the nominal chain with the setup's
     /// points; `None` without loads or without a wrench.
-    pub fn load_rows(
+    pub(crate) fn load_rows(
         &self,
         q: &Vector6<f64>,
         k: usize,
@@ -126,7 +126,7 @@ impl ErrorModel {
     /// The deflection (base frame, m) of measuring point `k` at commanded `q` under `wrench`
     /// with the compliances of `values` (SI): [`ErrorModel::load_rows`] times them, zero without
     /// loads or wrench.
-    pub fn load_deflection(
+    pub(crate) fn load_deflection(
         &self,
         values: &DVector<f64>,
         q: &Vector6<f64>,

@@ -82,7 +82,7 @@ mod parameter;
 mod tables;
 
 pub use basis::Basis;
-pub use external::{MAX_FITTED_ORDER, MOTIONS};
+pub use external::MAX_FITTED_ORDER;
 use loads::Loads;
 pub use maps::JointMaps;
 pub use parameter::{AxisPart, Component, Geometry, Kind, MeasuredIn, Parameter, Target};
@@ -391,8 +391,8 @@ impl ErrorModel {
 
     /// The robot with the joint errors of `values` (joint `i`'s `pre` becomes `pre_i E_i` and
     /// its offset gains `theta_i`; module docs) and the error maps of `values`
-    /// ([`ErrorModel::with_maps`]). Its `frames` at the deflected posture
-    /// ([`ErrorModel::deflected`]) give the predicted positions.
+    /// ([`ErrorModel::with_maps`]). Its `frames` at the deflected posture (`q + dq_g` at the
+    /// commanded `q`, with the gravity terms of `values`) give the predicted positions.
     ///
     /// # Errors
     /// [`Error::InvalidField`] when a value is not finite or a map's coefficient beyond its
@@ -413,14 +413,6 @@ impl ErrorModel {
             Some(maps) => robot.with_error_maps(maps),
             None => robot,
         })
-    }
-
-    /// The axis angles `q + dq_g` at which the robot stands when commanded `q` (rad), with the
-    /// gravity terms of `values`.
-    pub fn deflected(&self, values: &DVector<f64>, q: &Vector6<f64>) -> Vector6<f64> {
-        q + self
-            .gravity
-            .deflection(&values.rows(self.gravity_start, self.gravity.len()), q)
     }
 
     /// The predicted base-frame positions (m) of `(q, point)` pairs (axis angles, rad; points
@@ -501,7 +493,7 @@ impl ErrorModel {
 
     /// The predicted base-frame positions (m) of `observations` at `values`: those of
     /// [`ErrorModel::positions`] plus, for a loaded reading, the deflection under its wrench
-    /// ([`ErrorModel::load_deflection`]), the frame's perturbation applied.
+    /// (`ErrorModel::load_deflection`), the frame's perturbation applied.
     ///
     /// # Errors
     /// Those of [`ErrorModel::positions`].

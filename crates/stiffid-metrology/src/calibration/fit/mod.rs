@@ -111,7 +111,7 @@ pub struct Priors {
 /// A bound on what the gravity terms deflect, as Gaussian priors centred on their nominal
 /// values: each term's prior standard deviation is the value that deflects its joint by
 /// `deflection` at the largest torque it meets anywhere in the robot's joint limits
-/// ([`crate::calibration::gravity::Terms::peaks`]): each term's row `(x - x_0) sigma_t y / d`
+/// (`crate::calibration::gravity::Terms::peaks`): each term's row `(x - x_0) sigma_t y / d`
 /// (`y` its peak regressor, `d` the deflection, `sigma_t` the noise), a Gaussian prior as
 /// [`Priors`] are. Where the readings determine a term the prior does not move it (a deflection
 /// of 1 mrad moves a point 1 m away by 1 mm, forty times a tracker's noise, at every reading);

@@ -50,7 +50,6 @@
 use nalgebra::{DVectorView, Matrix6, Vector3, Vector6};
 
 mod arm;
-pub use arm::ARM_TOLERANCE;
 use serde::Serialize;
 use stiffid_core::common::limits::JointBox;
 use stiffid_core::robot::kinematics::Coordinates;
@@ -121,6 +120,7 @@ impl stiffid_core::common::choice::Choice for Gravity {
 
 stiffid_core::common::choice::by_name!(Gravity);
 
+pub use arm::ARM_TOLERANCE;
 pub use stiffid_core::robot::LinkMass;
 
 /// `robot` with `tool` (a body in the flange frame: the setup's [`stiffid_core::setup::Payload::body`])
@@ -539,7 +539,7 @@ impl Terms {
     /// Each term's largest regressor magnitude (N m, or N m per unit mass moment) over
     /// [`SPANNING_POSTURES`] postures spread over the robot's joint limits ([`spanning`]): the
     /// largest torque through which a term deflects its joint anywhere the robot can go.
-    pub fn peaks(&self) -> &[f64] {
+    pub(crate) fn peaks(&self) -> &[f64] {
         &self.peaks
     }
 
@@ -569,7 +569,7 @@ impl Terms {
     }
 }
 
-/// The postures of [`Terms::peaks`].
+/// The postures of `Terms::peaks`.
 pub const SPANNING_POSTURES: usize = 512;
 
 /// [`SPANNING_POSTURES`] postures spread over `limits` (axis angles, rad): the Halton sequence

@@ -18,7 +18,7 @@
 //! setup) exceeds that of the geometry with the same maps variant by more than the held-out
 //! figures resolve, the expected error being the rung's own held-out error (below: with maps,
 //! the error with its maps) and the RMS standard deviation of its gravity model's predictions
-//! over that region ([`postures_sd`], where the readings leave the terms to their prior, at the
+//! over that region (`postures_sd`, where the readings leave the terms to their prior, at the
 //! noise of the fit without maps) in quadrature: bias and variance; its square may exceed the
 //! geometry's by one standard error of the difference of their held-out mean squared errors
 //! (the paired per-posture differences), as the choice below allows: a difference the groups
@@ -131,7 +131,7 @@ pub struct Rung {
     /// extrapolates).
     pub skipped: Option<String>,
     /// The RMS standard deviation of its gravity model's predictions over the region where the
-    /// robot is used ([`Ladder::region`], [`postures_sd`]), m; `None` when not computed.
+    /// robot is used ([`Ladder::region`], `postures_sd`), m; `None` when not computed.
     pub spread: Option<f64>,
     /// Per held-out posture (the groups' in order), its sum of squared errors, m^2; empty when
     /// not scored.
@@ -216,7 +216,7 @@ pub struct Climbed {
 /// choice is fitted).
 ///
 /// # Errors
-/// Those of `fit`, `check` and [`assess`] for the first gravity model (a later one that fails is
+/// Those of `fit`, `check` and `assess` for the first gravity model (a later one that fails is
 /// skipped).
 pub fn climb(
     (gravity, maps): (GravitySpec, Spec),

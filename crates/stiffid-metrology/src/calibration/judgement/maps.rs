@@ -51,7 +51,7 @@ pub struct Assessed {
 /// # Errors
 /// [`Error::InvalidOption`] ([`JobOption::Maps`]) for fixed maps beyond [`MAX_MAP_WORK`] or a
 /// backlash term without directions; those of [`Linear::at`] and [`maps::nested`].
-pub fn assess(
+pub(crate) fn assess(
     spec: Spec,
     model: &ErrorModel,
     fitted: &Fit,

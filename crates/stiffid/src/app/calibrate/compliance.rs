@@ -35,7 +35,7 @@ pub struct FittedCompliance {
 /// # Errors
 /// Why there is none, in words: the setup gives no nominal stiffness, or a fitted compliance is
 /// not positive (no spring).
-pub fn fitted_compliance(
+pub(crate) fn fitted_compliance(
     setup: &Setup,
     model: &ErrorModel,
     fit: &Fit,

@@ -36,7 +36,8 @@ pub use stiffid_metrology::calibration::judgement::{
     MIN_DEGREES_OF_FREEDOM, MISFIT_RATIO, WEAK_CONDITION,
 };
 
-pub use compliance::{fitted_compliance, FittedCompliance};
+pub(crate) use compliance::fitted_compliance;
+pub use compliance::FittedCompliance;
 pub use extrapolation::Outside;
 pub use ladder::{GravitySpec, Ladder, Rung};
 pub use maps::{Maps, MAX_MAP_WORK};
@@ -241,7 +242,7 @@ pub struct Report {
     pub tcp: Option<nalgebra::Vector3<f64>>,
     /// With gravity terms or loaded readings: the compliance of every parameter of the
     /// setup's model (and the gravity terms), as a
-    /// stiffness file holds it ([`fitted_compliance`]), or why there is none.
+    /// stiffness file holds it (`fitted_compliance`), or why there is none.
     pub compliance: Option<std::result::Result<FittedCompliance, String>>,
     /// Inputs and results to look at before trusting the result.
     pub warnings: Vec<Warning>,

@@ -66,10 +66,10 @@ pub struct Worst {
 
 impl Worst {
     /// The worst points kept.
-    pub const KEPT: usize = 10;
+    pub(crate) const KEPT: usize = 10;
 
     /// Adds a point from `line`.
-    pub fn add(&mut self, line: u64, r: &Compensated) {
+    pub(crate) fn add(&mut self, line: u64, r: &Compensated) {
         let b = &r.budget;
         let (part, value) = b.dominant();
         self.sum += b.bound;
@@ -151,7 +151,7 @@ impl Worst {
     ///
     /// # Errors
     /// [`Error::Gate`] ([`JobOption::MaxErrorMm`]).
-    pub fn refuse_above(&self, max_error: f64, level: f64) -> Result<()> {
+    pub(crate) fn refuse_above(&self, max_error: f64, level: f64) -> Result<()> {
         let above: Vec<String> = (self.points.iter())
             .filter(|w| w.0 > max_error || w.0.is_nan())
             .map(|w| {

@@ -362,7 +362,7 @@ fn segment(s: &Segment) -> SegmentDocument {
 /// Points kept for the report's figures, at most (every k-th point, k a power of 2).
 pub const SAMPLE: usize = 20_000;
 
-/// The largest and mean values along a path, accumulated point by point ([`Summary::add`]),
+/// The largest and mean values along a path, accumulated point by point (`Summary::add`),
 /// with the sample and the ten largest deflections a report shows.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Summary {
@@ -449,7 +449,7 @@ impl Summary {
 
     /// The summary of a path whose lead and tilt are free: it states the leans chosen
     /// ([`LeanSummary`]).
-    pub fn with_lean(self) -> Self {
+    pub(crate) fn with_lean(self) -> Self {
         Self {
             lean: Some([0.0; 4]),
             ..self
@@ -458,7 +458,7 @@ impl Summary {
 
     /// Adds point `i` (0-based) of the path, from `line` of its file, at the external values
     /// `e` (SI, the cell's order; empty without external axes).
-    pub fn add(&mut self, i: usize, line: u64, r: &Compensated, e: &ExternalValues) {
+    pub(crate) fn add(&mut self, i: usize, line: u64, r: &Compensated, e: &ExternalValues) {
         let d = norm(&r.deflection);
         if d > self.max_deflection.0 || self.points == 0 {
             self.max_deflection = (d, line);
@@ -555,7 +555,7 @@ impl Summary {
     /// [`stiffid_machining::compensate::TOLERANCE_RAD`]: the points are kept (within
     /// [`stiffid_machining::compensate::REQUIRED_M`] and
     /// [`stiffid_machining::compensate::REQUIRED_RAD`]), their compensation less exact.
-    pub fn stop_warning(&self, max_iterations: usize) -> Option<Warning> {
+    pub(crate) fn stop_warning(&self, max_iterations: usize) -> Option<Warning> {
         let (n, lines) = (self.not_converged, &self.not_converged_lines);
         (n > 0).then(|| {
             let shown: Vec<String> = lines.iter().map(u64::to_string).collect();
@@ -584,7 +584,7 @@ impl Summary {
     /// The warnings about the region the stiffness was identified from (`region`, the
     /// compliance's): the path points outside it ([`WarningKind::Extrapolation`], naming the
     /// first lines and their axes), or that the stiffness file does not record it.
-    pub fn region_warnings(&self, region: &Region) -> Vec<Warning> {
+    pub(crate) fn region_warnings(&self, region: &Region) -> Vec<Warning> {
         let mut out = Vec::from_iter(region.unrecorded_warning());
         if let (Region::Postures(r), Some(n)) = (region, self.extrapolated)
             && n > 0
@@ -604,13 +604,8 @@ impl Summary {
     }
 
     /// The mean TCP deflection, m.
-    pub fn mean_deflection(&self) -> f64 {
+    pub(crate) fn mean_deflection(&self) -> f64 {
         self.sum_deflection / self.points.max(1) as f64
-    }
-
-    /// The largest TCP deflection (m) and its line.
-    pub fn max_deflection(&self) -> (f64, u64) {
-        self.max_deflection
     }
 
     /// With the free tool axis: the mean deflection before and after (m) and the range of the

@@ -47,7 +47,7 @@ pub struct OperationDynamics {
 
 /// The dynamics of every operation of `process` that cuts a point, in process order, and a
 /// chatter warning for each milling operation with a point within [`CLOSE`] of a harmonic.
-pub fn operations(
+pub(crate) fn operations(
     process: &Process,
     points: &[PathPoint],
     operations: &[Option<usize>],

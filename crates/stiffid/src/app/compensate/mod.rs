@@ -135,7 +135,7 @@ pub struct ProgramReport {
     pub data: Option<String>,
     /// Each segment's force and deflection, in program order.
     pub segments: Vec<Segment>,
-    /// Each operation's drilling surge or milling frequencies ([`dynamics::operations`]); empty
+    /// Each operation's drilling surge or milling frequencies (`dynamics::operations`); empty
     /// without a mass model.
     pub dynamics: Vec<dynamics::OperationDynamics>,
 }

@@ -77,7 +77,7 @@ fn violation(c: &Check) -> Violation {
 
 /// A failed check of the cell in words: its kind, the tightest pair and by how much it fails (mm
 /// or deg), e.g. `floor (tool - floor) fails by 12 mm`.
-pub fn describe(c: &Check) -> String {
+pub(crate) fn describe(c: &Check) -> String {
     let by = match c.kind.is_angle() {
         true => format!("{:.1} deg", -c.margin.to_degrees()),
         false => format!("{:.0} mm", -c.margin * 1e3),

@@ -22,7 +22,7 @@ pub struct ModeShape {
 
 /// The natural frequencies (Hz, ascending) and the mode shapes of `modes`, with the tool point's
 /// direction of each (`directions`, zeros where none).
-pub fn modes(
+pub(crate) fn modes(
     modes: Option<&Modes>,
     directions: &[Vector3<f64>; 6],
 ) -> (Option<[f64; 6]>, Option<Vec<ModeShape>>) {

@@ -30,7 +30,7 @@ pub mod schema {
     pub use stiffid_core::common::kind::Kind;
 
     /// A string that is one of `T`'s names.
-    pub fn one_of<T: Choice>() -> Schema {
+    pub(crate) fn one_of<T: Choice>() -> Schema {
         json_schema!({ "type": "string", "enum": names::<T>() })
     }
 }
@@ -47,7 +47,7 @@ pub fn finite(v: f64) -> Option<f64> {
 }
 
 /// [`finite`] of each of `values`.
-pub fn finite_each<const N: usize>(values: impl Into<[f64; N]>) -> [Option<f64>; N] {
+pub(crate) fn finite_each<const N: usize>(values: impl Into<[f64; N]>) -> [Option<f64>; N] {
     values.into().map(finite)
 }
 

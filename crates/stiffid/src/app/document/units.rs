@@ -148,7 +148,7 @@ pub fn interval_mm<S: Serializer>(v: &Option<Interval>, s: S) -> Written<S> {
 ///
 /// # Errors
 /// The serialiser's.
-pub fn mm7_option<S: Serializer>(v: &Option<[f64; 7]>, s: S) -> Written<S> {
+pub(crate) fn mm7_option<S: Serializer>(v: &Option<[f64; 7]>, s: S) -> Written<S> {
     v.map(|v| v.map(super::mm)).serialize(s)
 }
 
@@ -156,7 +156,7 @@ pub fn mm7_option<S: Serializer>(v: &Option<[f64; 7]>, s: S) -> Written<S> {
 ///
 /// # Errors
 /// The serialiser's.
-pub fn plain3<S: Serializer>(v: &Vector3<f64>, s: S) -> Written<S> {
+pub(crate) fn plain3<S: Serializer>(v: &Vector3<f64>, s: S) -> Written<S> {
     <[f64; 3]>::from(*v).serialize(s)
 }
 
@@ -173,7 +173,7 @@ pub fn name<S: Serializer, T: stiffid_core::common::choice::Choice>(v: &T, s: S)
 ///
 /// # Errors
 /// The serialiser's.
-pub fn mrad_option<S: Serializer>(v: &Option<f64>, s: S) -> Written<S> {
+pub(crate) fn mrad_option<S: Serializer>(v: &Option<f64>, s: S) -> Written<S> {
     v.map(|v| v * 1e3).serialize(s)
 }
 
@@ -181,6 +181,6 @@ pub fn mrad_option<S: Serializer>(v: &Option<f64>, s: S) -> Written<S> {
 ///
 /// # Errors
 /// The serialiser's.
-pub fn deg_option<S: Serializer>(v: &Option<f64>, s: S) -> Written<S> {
+pub(crate) fn deg_option<S: Serializer>(v: &Option<f64>, s: S) -> Written<S> {
     v.map(f64::to_degrees).serialize(s)
 }

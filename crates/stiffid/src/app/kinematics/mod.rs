@@ -239,7 +239,11 @@ pub fn check_external(robot: &Robot, e: &[f64], field: &str) -> Result<()> {
 
 /// The Jacobian columns of the external axes for the tool point at `x` (cell frame, m): the
 /// tool point's velocity relative to the part per unit of each axis (module docs).
-pub fn external_columns(axes: &ExternalAxes, e: &[f64], x: &Vector3<f64>) -> Vec<Vector6<f64>> {
+pub(crate) fn external_columns(
+    axes: &ExternalAxes,
+    e: &[f64],
+    x: &Vector3<f64>,
+) -> Vec<Vector6<f64>> {
     let carrier = axes.carrier_columns(e).into_iter().map(|d| {
         let mut c = Vector6::zeros();
         c.fixed_rows_mut::<3>(0).copy_from(&d);

@@ -41,7 +41,7 @@ mod work;
 pub mod written;
 
 pub use evaluate::Evaluation;
-pub use work::{check_language, read_path, read_program, read_program_with, Work};
+pub use work::{read_path, read_program, read_program_with, Work};
 pub use written::with_workpiece;
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
@@ -209,7 +209,7 @@ impl Request<'_> {
     /// The most grid values per coordinate.
     pub const MAX_GRID: usize = 21;
     /// The most samples.
-    pub const MAX_SAMPLES: usize = 10_000;
+    pub(crate) const MAX_SAMPLES: usize = 10_000;
     /// The most compass searches.
     pub const MAX_STARTS: usize = 16;
 }
@@ -238,7 +238,7 @@ pub struct Report {
 
 impl Report {
     /// The value of the objective at an evaluation, m.
-    pub fn cost(&self, e: &Evaluation) -> f64 {
+    pub(crate) fn cost(&self, e: &Evaluation) -> f64 {
         cost(self.objective, e)
     }
 

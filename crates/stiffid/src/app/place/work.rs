@@ -49,12 +49,12 @@ pub fn read_path(
 
 /// Reads a program file's text (`name` for its errors; G-code arcs split into chords of at
 /// most `chord_tolerance`, m; a G-code program read on the controller `setup` and `process`'s
-/// tool lengths describe, [`stiffid_machining::gcode::Machine::of`]) for placement on `setup`: its language ([`check_language`]), the
+/// tool lengths describe, [`stiffid_machining::gcode::Machine::of`]) for placement on `setup`: its language (`check_language`), the
 /// program ([`stiffid_machining::read`]), and what the part cannot carry ([`Work::check`]),
 /// refused before any placement is tried.
 ///
 /// # Errors
-/// Those of [`check_language`] and [`Work::check`]; those of [`stiffid_machining::read`] and
+/// Those of `check_language` and [`Work::check`]; those of [`stiffid_machining::read`] and
 /// [`Work::check`]'s naming a line ([`Error::Program`]: a tool that is not the setup's, a
 /// frame that is not the part's) as [`Error::Input`] naming the file, as `compensate` names
 /// them.
@@ -152,7 +152,7 @@ impl Work<'_> {
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`program`) naming the language, its joint targets and what to give.
-pub fn check_language(language: Language) -> Result<()> {
+pub(crate) fn check_language(language: Language) -> Result<()> {
     match language {
         Language::Robot(d) if d.controller().part_forms().is_none() => Err(Error::InvalidField {
             field: "program".into(),

@@ -28,7 +28,7 @@ use stiffid_design::{unidentifiable, Criterion, Evaluation, Evaluator};
 pub const MAX_POSTURES: usize = 1000;
 
 /// What the setup's nominal stiffness is needed for here, in [`stiffid_core::Error::MissingField`].
-pub const NEEDED_BY: &str = "the measurement plan (its expected displacements)";
+pub(crate) const NEEDED_BY: &str = "the measurement plan (its expected displacements)";
 
 /// The group to plan.
 pub struct Request<'a> {

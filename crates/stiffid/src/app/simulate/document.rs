@@ -32,7 +32,7 @@ impl From<&Parameter> for Named {
 ///
 /// # Errors
 /// The serialiser's.
-pub fn named<S: Serializer>(parameters: &[Parameter], s: S) -> Result<S::Ok, S::Error> {
+pub(crate) fn named<S: Serializer>(parameters: &[Parameter], s: S) -> Result<S::Ok, S::Error> {
     s.collect_seq(parameters.iter().map(Named::from))
 }
 

@@ -6,7 +6,7 @@
 mod sentences;
 mod setup;
 
-pub use sentences::{search_words, sentences, CRITERION_KEYS};
+pub use sentences::{search_words, sentences};
 pub use setup::SetupJson;
 
 use crate::app::document::group::{CriteriaValues, Group};

@@ -5,7 +5,7 @@ use stiffid_design::study::{Findings, Origin, Study};
 
 /// The keys of the design criteria in documents, in the order of
 /// [`stiffid_design::study::criterion_values`] and [`Findings::rank_correlation`].
-pub const CRITERION_KEYS: [&str; 7] = [
+pub(crate) const CRITERION_KEYS: [&str; 7] = [
     "classical",
     "zhang2021",
     "scaled_cond",
