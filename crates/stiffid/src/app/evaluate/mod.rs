@@ -39,7 +39,8 @@ pub struct Request<'a> {
 /// What the evaluation found. It is its own document (`stiffid evaluate --json`, Python's
 /// `Setup.evaluate`): the criteria, every posture's feasibility in the cell, and how well the
 /// group identifies each parameter, its SI values written in the document's units by the parts
-/// of [`crate::app::document::group`], [`feasibility`] and [`candidates`].
+/// of [`crate::app::document::group`], [`crate::app::document::feasibility`] and
+/// [`crate::app::document::candidates`].
 #[derive(Debug, Clone, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(tag = "kind", rename = "evaluate")]
