@@ -1,10 +1,10 @@
 //! The text report of `stiffid identify` and its warnings. Numbers that are not finite print as
 //! words, never as `NaN` or `inf`.
 
+use stiffid::app::document::{mm, mm3};
 use stiffid::app::identify::document::drives::{
     CrossValidation, Document, Intervals, LoadStep, PointOffset, Residual, Robust,
 };
-use stiffid::app::document::{mm, mm3};
 use stiffid::app::identify::drives::Report;
 use stiffid::app::identify::Fit;
 use stiffid_core::io::stiffness::PredictionSection;

@@ -116,10 +116,11 @@ impl Report {
         let Some(file) = self.stiffness_file() else {
             return Ok(None);
         };
-        let text = serde_json::to_string_pretty(&file.document()).map_err(|e| Error::InvalidOption {
-            option: JobOption::Out,
-            message: format!("not written: {e}"),
-        })? + "\n";
+        let text =
+            serde_json::to_string_pretty(&file.document()).map_err(|e| Error::InvalidOption {
+                option: JobOption::Out,
+                message: format!("not written: {e}"),
+            })? + "\n";
         super::check_stiffness_file(&text, setup, spell)?;
         Ok(Some(text))
     }

@@ -104,14 +104,6 @@ pub struct Report {
     pub warnings: Vec<Warning>,
 }
 
-impl Report {
-    /// The document this report is written as (`stiffid identify --json` and its `--out`,
-    /// Python's `identify`), to read: what the command's text prints.
-    pub fn document(&self) -> super::document::drives::Document<'_> {
-        super::document::drives::Document::new(self)
-    }
-}
-
 /// What identification from a file found besides the compliances.
 struct Found {
     identification: Identification,

@@ -167,6 +167,23 @@ impl Report {
     }
 }
 
+impl drives::Report {
+    /// The document this report is written as (`stiffid identify --json` and its `--out`,
+    /// Python's `identify`), to read: what the command's text prints.
+    pub fn document(&self) -> document::drives::Document<'_> {
+        document::drives::Document::new(self)
+    }
+}
+
+impl springs::Report {
+    /// The document this report is written as (`stiffid identify --json` and its `--out` for a
+    /// model with virtual springs, the stiffness file of `--stiffness-out`), to read: what the
+    /// command's text prints.
+    pub fn document(&self) -> document::springs::Document<'_> {
+        document::springs::Document::new(self)
+    }
+}
+
 impl serde::Serialize for Report {
     fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
         self.document().serialize(s)

@@ -49,15 +49,6 @@ pub struct Report {
     pub model_form: Option<stiffid_core::io::stiffness::ModelFormSection>,
 }
 
-impl Report {
-    /// The document this report is written as (`stiffid identify --json` and its `--out` for a
-    /// model with virtual springs, the stiffness file of `--stiffness-out`), to read: what the
-    /// command's text prints.
-    pub fn document(&self) -> super::document::springs::Document<'_> {
-        super::document::springs::Document::new(self)
-    }
-}
-
 /// Runs the identify job over the setup's model (any number of parameters; the six drives alone
 /// give the same compliance as [`super::drives`] to rounding).
 ///
