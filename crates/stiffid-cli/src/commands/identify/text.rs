@@ -136,7 +136,7 @@ load steps (* beyond the tracker noise, p < 0.01):
         s += &format!(
             "{:<16}  {:>5}  {:>11}  {:>9}{} {:<10}{} {:>9}{}
 ",
-            stiffid_core::common::limits::short(&l.posture),
+            stiffid_core::common::limits::short(l.posture),
             l.levels,
             opt(l.slope_mm_per_kn, 4),
             opt(l.zero_load_offset.map(mm), 4),
@@ -165,7 +165,7 @@ offsets fitted beside the compliances (base frame):
         s += &format!(
             "{:<16}  {:>5}  {:>11}  {:>8}  {:>8}
 ",
-            stiffid_core::common::limits::short(&o.posture),
+            stiffid_core::common::limits::short(o.posture),
             o.point,
             num(x, 4),
             num(y, 4),
