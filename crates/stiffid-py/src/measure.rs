@@ -13,7 +13,6 @@ use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
 use std::fs::File;
 use std::path::PathBuf;
-use stiffid::app::identify::document::Document;
 use stiffid::app::identify::{self as job, Options, Report, Request};
 use stiffid::app::measurements::Data;
 use stiffid::app::validate as validation;
@@ -283,25 +282,20 @@ pub fn identify<'py>(
     };
     let outcome = py.detach(|| job::run(request)).map_err(raise)?;
     documents::warn(py, outcome.warnings())?;
-    let document = match (&outcome.report, &outcome.document) {
-        (Report::Comparison(r), Document::Comparison(document)) => {
+    let document = match &outcome.report {
+        Report::Comparison(r) => {
             if let Some(file) = &stiffness_file {
                 let spell = |o: stiffid_core::common::error::JobOption| o.name().to_string();
-                let text = r.stiffness_file_text(&setup.given, s, &spell);
+                let text = r.stiffness_file_text(s, &spell);
                 match text.map_err(raise)? {
                     Some(text) => file.write(text.as_bytes())?,
                     None => return Err(value("stiffness_out: only with bootstrap=N")),
                 }
             }
-            compare::compare_models(py, r, document)?
+            compare::compare_models(py, r, &r.document())?
         }
-        (_, Document::Drives(document)) => documents::to_python(py, document, &ARRAYS)?,
-        (_, Document::Springs(document)) => documents::to_python(py, document, &MODEL_ARRAYS)?,
-        (_, Document::Comparison(_)) => {
-            return Err(value(
-                "the identify job returned a document of another form than its report",
-            ))
-        }
+        Report::Drives(r) => documents::to_python(py, &r.document(), &ARRAYS)?,
+        Report::Springs(r) => documents::to_python(py, &r.document(), &MODEL_ARRAYS)?,
     };
     Ok(document.into_any())
 }

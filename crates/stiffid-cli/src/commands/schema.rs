@@ -73,7 +73,7 @@ pub fn schema(name: &str) -> Result<Schema> {
         "select" => closed::<stiffid::app::select::document::Document>(),
         "plan" => closed::<stiffid::app::plan::Report>(),
         "predict" => closed::<stiffid::app::predict::document::Document<'static>>(),
-        "identify" => closed::<stiffid::app::identify::document::Document>(),
+        "identify" => closed::<stiffid::app::identify::document::Document<'static>>(),
         "validate" => closed::<stiffid::app::validate::document::Document<'static>>(),
         "compensate" => closed::<stiffid::app::compensate::document::Document>(),
         "place" => closed::<stiffid::app::place::document::Document<'static>>(),

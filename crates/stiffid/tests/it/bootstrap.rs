@@ -66,7 +66,7 @@ fn the_bootstrap_is_seeded_and_independent_of_the_thread_count() {
             .install(|| {
                 let report = run(Request::<Empty> {
                     progress: &(),
-                    setup_name: "setup".into(),
+                    setup_name: "paper".into(),
                     setup: &declared,
                     data: Data::Measurements(data.clone()),
                     options: Options {
@@ -81,7 +81,7 @@ fn the_bootstrap_is_seeded_and_independent_of_the_thread_count() {
                 let Report::Comparison(report) = report.report else {
                     panic!("not a comparison")
                 };
-                serde_json::to_string(&report.document("paper")).unwrap()
+                serde_json::to_string(&report.document()).unwrap()
             })
     };
     let one = json(1);

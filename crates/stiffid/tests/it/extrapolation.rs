@@ -38,7 +38,7 @@ fn stiffness_file(setup: &Setup) -> serde_json::Value {
         options: Options::default(),
     };
     let report = identify::run(request).unwrap();
-    serde_json::to_value(report.document("fanuc", setup)).unwrap()
+    serde_json::to_value(report.document()).unwrap()
 }
 
 fn compliance(setup: &Setup, file: &serde_json::Value) -> Compliance {
@@ -362,7 +362,7 @@ fn a_fold_with_a_score_more_or_less_is_refused_naming_it() {
         },
     };
     let report = identify::run(request).unwrap();
-    let file = serde_json::to_value(report.document("fanuc", &setup)).unwrap();
+    let file = serde_json::to_value(report.document()).unwrap();
     assert!(stiffness::parse(&file.to_string()).is_ok());
     let scores = file["prediction"]["folds"][1]["scores"]
         .as_array()

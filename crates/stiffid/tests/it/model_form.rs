@@ -112,8 +112,8 @@ fn the_model_form_part_is_the_spread_over_the_resamples() {
     let Report::Comparison(report) = report.report else {
         panic!("not a comparison")
     };
-    let file = report.stiffness_file("paper", &s).unwrap();
-    let text = serde_json::to_string(&file).unwrap();
+    let file = report.stiffness_file().unwrap();
+    let text = serde_json::to_string(&file.document()).unwrap();
     let compliance = stiffid::io::stiffness::parse(&text)
         .unwrap()
         .compliance(s.model())
@@ -223,7 +223,7 @@ fn fanuc(
     let Report::Comparison(report) = report.report else {
         panic!("not a comparison")
     };
-    let text = serde_json::to_string(&report.stiffness_file("fanuc", &s).unwrap()).unwrap();
+    let text = serde_json::to_string(&report.stiffness_file().unwrap().document()).unwrap();
     let drives = stiffid::io::stiffness::parse(&text)
         .unwrap()
         .compliance(s.model())

@@ -172,7 +172,7 @@ fn identification_scene_draws_the_documents_displacements_and_compliance() {
     let setup = s.to_builder().with_tcp(s.tool().tcp).build().unwrap();
     let request = identify::Request {
         progress: &(),
-        setup_name: "setup".into(),
+        setup_name: "fanuc".into(),
         setup: &setup,
         data: Data::File {
             name: "measurements.csv".into(),
@@ -182,7 +182,7 @@ fn identification_scene_draws_the_documents_displacements_and_compliance() {
         options: identify::Options::default(),
     };
     let report = identify::run(request).unwrap();
-    let text = serde_json::to_string(&report.document("fanuc", &setup)).unwrap();
+    let text = serde_json::to_string(&report.document()).unwrap();
     let doc: serde_json::Value = serde_json::from_str(&text).unwrap();
     let postures = report.postures().unwrap();
     let scene = identify::document::scene::scene(&setup, postures, &[], &text).unwrap();

@@ -188,7 +188,7 @@ fn an_identifications_scene_stands_each_posture_at_its_measurements_station() {
     })
     .unwrap();
     assert!(h.len() >= 6);
-    let text = serde_json::to_string(&report.document("track", &setup)).unwrap();
+    let text = serde_json::to_string(&report.document()).unwrap();
     let external = report.external().unwrap();
     assert_eq!(external, e);
     let scene =

@@ -32,7 +32,7 @@ fn the_nonnegative_fit_says_why_it_stopped_in_the_identify_document() {
     let run = |data: &[stiffid::observation::Measurement], nonnegative: bool| {
         let report = identify::run(Request::<&[u8]> {
             progress: &(),
-            setup_name: "setup".into(),
+            setup_name: "paper".into(),
             setup: &setup,
             data: Data::Measurements(data.to_vec()),
             options: Options {
@@ -41,7 +41,7 @@ fn the_nonnegative_fit_says_why_it_stopped_in_the_identify_document() {
             },
         })
         .unwrap();
-        let document = serde_json::to_value(report.document("paper", &setup)).unwrap();
+        let document = serde_json::to_value(report.document()).unwrap();
         (report.warnings().to_vec(), document)
     };
     for data in [&measured, &flipped] {

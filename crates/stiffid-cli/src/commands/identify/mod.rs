@@ -10,7 +10,6 @@ use crate::progress::Bars;
 use crate::report::identification;
 use anyhow::Result;
 use std::path::PathBuf;
-use stiffid::app::identify::document::Document;
 use stiffid::app::identify::{self as job, Options, Report, Request};
 use stiffid::app::measurements::Data;
 use stiffid_core::Progress;
@@ -133,35 +132,31 @@ pub fn run(args: &Args) -> Result<()> {
     bars.begin("identification", 0);
     let outcome = job::run(request);
     bars.end();
-    let stiffid::app::Outcome { report, document } = outcome?;
+    let report = outcome?.report;
     output::warnings(report.warnings());
     let name = &args.common.setup;
     // The document's JSON is its form's (each form names itself in `kind`).
-    let (json_text, text) = match (&report, document) {
-        (Report::Comparison(r), Document::Comparison(doc)) => {
+    let json_text = json(&report)?;
+    let text = match &report {
+        Report::Comparison(r) => {
             if let Some(out) = &out {
                 out.write(r.fragment().as_bytes())?;
             }
             if let Some(out) = &stiffness_out
-                && let Some(text) = r.stiffness_file_text(name, &setup, &output::flag)?
+                && let Some(text) = r.stiffness_file_text(&setup, &output::flag)?
             {
                 out.write(text.as_bytes())?;
             }
             if let Some(dir) = report_dir {
-                identification::write(dir, &json(&doc)?, &setup, None)?;
+                identification::write(dir, &json_text, &setup, None)?;
             }
             return match args.common.json {
-                true => output::print(&json(&doc)?),
-                false => output::print(&models::text(&doc, &r.comparison, &setup)),
+                true => output::print(&json_text),
+                false => output::print(&models::text(&r.document(), &r.comparison, &setup)),
             };
         }
-        (Report::Drives(r), Document::Drives(doc)) => {
-            (json(&doc)?, text::human(r, &doc, name, &setup))
-        }
-        (Report::Springs(r), Document::Springs(doc)) => {
-            (json(&doc)?, models::model_text(r, &doc, &setup))
-        }
-        _ => anyhow::bail!("the identify job returned a document of another form than its report"),
+        Report::Drives(r) => text::human(r, &r.document(), name, &setup),
+        Report::Springs(r) => models::model_text(r, &r.document(), &setup),
     };
     if let Some(out) = &out {
         job::check_stiffness_file(&json_text, &setup, &output::flag)?;

@@ -2,6 +2,7 @@
 //! fits ([`stiffid_identify::svd`], [`stiffid_identify::compare`]) rendered as text.
 
 use super::text;
+use stiffid::app::document::mm;
 use stiffid::app::identify::document::springs::{CrossValidationDoc, Document};
 use stiffid::app::identify::springs::Report;
 use stiffid_core::common::words::count;
@@ -178,7 +179,7 @@ pub fn model_text(report: &Report, doc: &Document, setup: &Setup) -> String {
         s += &format!(
             "{} reweighting: scale {:.4} mm, {} iterations{}, {} below weight 0.5\n",
             robust.loss,
-            robust.scale_mm,
+            mm(robust.scale),
             robust.iterations,
             if robust.converged {
                 ""
@@ -238,8 +239,8 @@ fn cross_validation_text(cv: &CrossValidationDoc) -> String {
     }
     s += &format!(
         "held out: RMS delta_b {:.4} mm of RMS {:.4} mm measured: {:.1}% explained (standard error {:.1}, over the postures)\n",
-        cv.rms_delta_b_mm,
-        cv.rms_measured_mm,
+        mm(cv.rms_delta_b),
+        mm(cv.rms_measured),
         cv.explained_pct,
         cv.explained_std_error_pct
     );

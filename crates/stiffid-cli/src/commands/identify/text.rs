@@ -1,6 +1,7 @@
 //! The text report of `stiffid identify` and its warnings. Numbers that are not finite print as
 //! words, never as `NaN` or `inf`.
 
+use stiffid::app::document::{mm, mm3};
 use stiffid::app::identify::document::drives::{
     CrossValidation, Document, Intervals, LoadStep, PointOffset, Residual, Robust,
 };
@@ -67,7 +68,7 @@ pub fn human(run: &Report, doc: &Document, setup_name: &str, setup: &Setup) -> S
         id.rows,
         stiffid_core::common::words::count(id.postures, "posture"),
         num(id.cond_psi, 4),
-        num(doc.residual_rms_mm, 4)
+        num(mm(doc.residual_rms), 4)
     );
     let Some(u) = &id.uncertainty else {
         s += "\n\njoint  stiffness Nm/rad  compliance rad/Nm\n";
@@ -84,7 +85,7 @@ pub fn human(run: &Report, doc: &Document, setup_name: &str, setup: &Setup) -> S
     };
     s += &format!(
         ", residual standard deviation s {} mm ({} degrees of freedom, t = {:.4})\n",
-        opt(doc.residual_std_mm, 4),
+        opt(doc.residual_std.map(mm), 4),
         u.dof,
         u.t_quantile
     );
@@ -135,14 +136,14 @@ load steps (* beyond the tracker noise, p < 0.01):
         s += &format!(
             "{:<16}  {:>5}  {:>11}  {:>9}{} {:<10}{} {:>9}{}
 ",
-            stiffid_core::common::limits::short(&l.posture),
+            stiffid_core::common::limits::short(l.posture),
             l.levels,
             opt(l.slope_mm_per_kn, 4),
-            opt(l.zero_load_offset_mm, 4),
+            opt(l.zero_load_offset.map(mm), 4),
             mark(l.offset_flagged),
             opt(l.r_squared, 6),
             mark(l.nonlinear),
-            opt(l.hysteresis_mm, 4),
+            opt(l.hysteresis.map(mm), 4),
             mark(l.hysteresis_flagged),
         );
     }
@@ -160,11 +161,11 @@ offsets fitted beside the compliances (base frame):
 "
     .to_string();
     for o in offsets {
-        let [x, y, z] = o.offset_mm;
+        let [x, y, z] = mm3(&o.offset);
         s += &format!(
             "{:<16}  {:>5}  {:>11}  {:>8}  {:>8}
 ",
-            stiffid_core::common::limits::short(&o.posture),
+            stiffid_core::common::limits::short(o.posture),
             o.point,
             num(x, 4),
             num(y, 4),
@@ -185,7 +186,7 @@ fn model_check(run: &Report, doc: &Document) -> String {
     let head = format!(
         "model check: s is {} x the tracker noise sigma = {:.4} mm (chi-square {} with {} degrees of freedom, p {p})",
         num(a.noise_ratio, 2),
-        doc.noise_std_mm,
+        mm(doc.noise_std),
         num(a.chi2, 1),
         a.dof
     );
@@ -289,7 +290,7 @@ fn bounds_and_physics(doc: &Document) -> String {
 fn largest_residuals(largest: &[Residual]) -> String {
     let mut s = "\nlargest residuals (measured - fitted), mm (all of them: --json):\n".to_string();
     for r in largest {
-        let [x, y, z] = r.residual_mm;
+        let [x, y, z] = mm3(&r.residual);
         s += &format!(
             "  line {:>4}  posture {:>4}  point {}  ({x:+.4}, {y:+.4}, {z:+.4})  |{:.4}|\n",
             line(r.line),
@@ -310,7 +311,7 @@ fn down_weighted(robust: &Robust) -> String {
          down-weighted rows (weight < {}), lowest weight first:\n",
         robust.loss,
         robust.tuning_constant,
-        robust.scale_mm,
+        mm(robust.scale),
         robust.iterations,
         if robust.converged { "" } else { " (not converged)" },
         stiffid_identify::robust::DOWN_WEIGHTED
@@ -323,7 +324,7 @@ fn down_weighted(robust: &Robust) -> String {
             row.point,
             row.coordinate,
             row.weight,
-            row.residual_mm
+            mm(row.residual)
         );
     }
     match rows.len() {
@@ -361,7 +362,7 @@ fn cross_validation(doc: &Document, cv: &CrossValidation) -> String {
             f + 1,
             shown,
             k.join(" "),
-            fold.rms_delta_b_mm
+            mm(fold.rms_delta_b)
         );
     }
     s += "\nspread across folds:\njoint  full fit Nm/rad  fold mean   fold std  std/full        min         max\n";
@@ -379,8 +380,8 @@ fn cross_validation(doc: &Document, cv: &CrossValidation) -> String {
     }
     s += &format!(
         "held out: RMS delta_b {:.4} mm against measured deflections of RMS {:.4} mm: the model explains {:.1}% (standard error {:.1}, over the postures) of the held-out deflection\n",
-        cv.rms_delta_b_mm,
-        cv.rms_measured_mm,
+        mm(cv.rms_delta_b),
+        mm(cv.rms_measured),
         cv.explained_pct,
         cv.explained_std_error_pct
     );

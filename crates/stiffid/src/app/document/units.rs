@@ -76,6 +76,14 @@ pub fn mm_option_each<S: Serializer>(v: &[Option<f64>], s: S) -> Written<S> {
     s.collect_seq(v.iter().map(|v| v.map(super::mm)))
 }
 
+/// Lengths in m, written in mm each. Schema: `Vec<f64>`.
+///
+/// # Errors
+/// The serialiser's.
+pub fn mm_each<S: Serializer>(v: &[f64], s: S) -> Written<S> {
+    s.collect_seq(v.iter().map(|v| super::mm(*v)))
+}
+
 /// A vector in m, written as three numbers in mm. Schema: `[f64; 3]`.
 ///
 /// # Errors

@@ -20,6 +20,8 @@ use stiffid_identify::compare::{
 pub(super) struct Request<'a, R> {
     /// The setup: its model is where the selection starts, its tracker noise judges the fit.
     pub setup: &'a Setup,
+    /// The setup as the user named it ([`super::Request::setup_name`]).
+    pub setup_name: String,
     /// The measurements.
     pub data: Data<R>,
     /// The candidates by name ([`pool_by_name`]: single candidates such as `tilt3_z`, `bend2_y`
@@ -36,6 +38,10 @@ pub(super) struct Request<'a, R> {
 /// What the comparison found.
 #[derive(Debug, Clone)]
 pub struct Report {
+    /// The setup as the user named it ([`super::Request::setup_name`]).
+    pub setup: String,
+    /// The setup's tracker noise (SI).
+    pub noise: stiffid_core::setup::Noise,
     /// The data's name (a file's, or `arrays`).
     pub data_name: String,
     /// Where each measurement came from.
@@ -56,10 +62,11 @@ pub struct Report {
 }
 
 impl Report {
-    /// The document (`stiffid identify --compare-models --json`), `setup` named as given.
-    pub fn document(&self, setup: &str) -> Document {
+    /// The document (`stiffid identify --compare-models --json`): a value of its own
+    /// ([`stiffid_identify::compare::Comparison::document`]), built from the report.
+    pub fn document(&self) -> Document {
         self.comparison.document(
-            setup,
+            &self.setup,
             &self.data_name,
             self.noise_variance,
             &self.dropped,
@@ -67,18 +74,16 @@ impl Report {
         )
     }
 
-    /// The stiffness file of `stiffid identify --compare-models --bootstrap N --stiffness-out`
-    /// (`setup` named `setup_name` as given): the setup's model fitted to every posture, as
-    /// `identify` writes it, with the models the data support and their resampled parameter
-    /// sets (`model_form`, [`stiffid_core::io::stiffness::ModelFormSection`]); `None` without a
-    /// bootstrap.
-    pub fn stiffness_file(
-        &self,
-        setup_name: &str,
-        setup: &Setup,
-    ) -> Option<super::document::springs::Document> {
+    /// The stiffness file of `stiffid identify --compare-models --bootstrap N --stiffness-out`:
+    /// the setup's model fitted to every posture, as `identify` writes it (the report of that
+    /// fit, which is its document), with the models the data support and their resampled
+    /// parameter sets (`model_form`, [`stiffid_core::io::stiffness::ModelFormSection`]); `None`
+    /// without a bootstrap.
+    pub fn stiffness_file(&self) -> Option<super::springs::Report> {
         let b = self.bootstrap.as_ref()?;
-        let fit = super::springs::Report {
+        Some(super::springs::Report {
+            setup: self.setup.clone(),
+            noise: self.noise.clone(),
             data_name: self.data_name.clone(),
             method: super::Fit::LeastSquares,
             fit: self.comparison.setup_fit.clone(),
@@ -86,37 +91,36 @@ impl Report {
             cross_validation: None,
             prediction: None,
             warnings: self.warnings.clone(),
-        };
-        let mut doc = super::document::springs::Document::new(&fit, setup_name, setup);
-        doc.model_form = Some(super::model_form::section(
-            b,
-            &self.comparison,
-            &self.springs,
-        ));
-        Some(doc)
+            model_form: Some(super::model_form::section(
+                b,
+                &self.comparison,
+                &self.springs,
+            )),
+        })
     }
 
     /// The text of the stiffness file of `stiffid identify --compare-models --bootstrap N
     /// --stiffness-out` and of Python's `identify(..., stiffness_out=...)`:
     /// [`Report::stiffness_file`] as pretty JSON ending in a line end, read back as `validate`,
-    /// `predict` and `compensate` read it ([`super::check_stiffness_file`], its options as the
-    /// front end `spell`s them) before anything is written; `None` without a bootstrap.
+    /// `predict` and `compensate` read it ([`super::check_stiffness_file`] against `setup`, its
+    /// options as the front end `spell`s them) before anything is written; `None` without a
+    /// bootstrap.
     ///
     /// # Errors
     /// Those of [`super::check_stiffness_file`].
     pub fn stiffness_file_text(
         &self,
-        setup_name: &str,
         setup: &Setup,
         spell: &dyn Fn(JobOption) -> String,
     ) -> Result<Option<String>> {
-        let Some(file) = self.stiffness_file(setup_name, setup) else {
+        let Some(file) = self.stiffness_file() else {
             return Ok(None);
         };
-        let text = serde_json::to_string_pretty(&file).map_err(|e| Error::InvalidOption {
-            option: JobOption::Out,
-            message: format!("not written: {e}"),
-        })? + "\n";
+        let text =
+            serde_json::to_string_pretty(&file.document()).map_err(|e| Error::InvalidOption {
+                option: JobOption::Out,
+                message: format!("not written: {e}"),
+            })? + "\n";
         super::check_stiffness_file(&text, setup, spell)?;
         Ok(Some(text))
     }
@@ -143,6 +147,7 @@ impl Report {
 pub(super) fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {
     let Request {
         setup,
+        setup_name,
         data,
         candidates,
         bootstrap: resampling,
@@ -164,6 +169,8 @@ pub(super) fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {
     })?;
     let warnings = angle_warnings(&data_name, &origin);
     Ok(Report {
+        setup: setup_name,
+        noise: setup.noise().clone(),
         springs: setup.model().with(&pool.candidates)?.springs().to_vec(),
         origin,
         data_name,

@@ -32,6 +32,8 @@ use stiffid_identify::{
 pub(super) struct Request<'a, R> {
     /// The setup: robot, tool, tracker noise, nominal stiffness.
     pub setup: &'a Setup,
+    /// The setup as the user named it ([`super::Request::setup_name`]).
+    pub setup_name: String,
     /// The measurements.
     pub data: Data<R>,
     /// The fit.
@@ -67,6 +69,12 @@ pub fn noise_floor(noise: &Noise) -> f64 {
 /// What the identify job found.
 #[derive(Debug, Clone)]
 pub struct Report {
+    /// The setup as the user named it ([`super::Request::setup_name`]).
+    pub setup: String,
+    /// Where the setup's springs sit: in the drives or on the kinematic joints.
+    pub springs: stiffid_core::Coordinates,
+    /// The setup's tracker noise (SI).
+    pub noise: Noise,
     /// The data's name (a file's, or `arrays`).
     pub data_name: String,
     /// The fit asked for.
@@ -115,6 +123,7 @@ struct Found {
 pub(super) fn run<R: Read + Send>(request: Request<'_, R>) -> Result<Report> {
     let Request {
         setup,
+        setup_name,
         data,
         fit: how,
         folds,
@@ -161,6 +170,9 @@ pub(super) fn run<R: Read + Send>(request: Request<'_, R>) -> Result<Report> {
         setup.model(),
     );
     let mut report = Report {
+        setup: setup_name,
+        springs: setup.springs(),
+        noise: setup.noise().clone(),
         data_name,
         fit: how,
         adequacy: identification.adequacy(row_noise_variance(

@@ -1,7 +1,8 @@
 //! The identify job: the stiffness of the setup's model from measurements (Zhang et al. 2021,
 //! Eq. 10-14), with its uncertainty, or the model chosen by the data. One request ([`Request`]:
 //! the setup, whose model says what to fit, the data and the [`Options`]), one report
-//! ([`Report`]) and one document ([`document::Document`]), whatever is asked:
+//! ([`Report`]), which is its document ([`document::Document`], a view of it), whatever is
+//! asked:
 //!
 //! - the six drive springs (a setup's model without virtual springs): least squares by QR, the
 //!   job's fast path ([`drives`]: streamed in blocks from a file, robust and non-negative fits,
@@ -26,7 +27,6 @@ pub use options::Options;
 
 use crate::app::measurements::Data;
 use crate::app::Warning;
-use document::Document;
 use options::Plan;
 use std::io::Read;
 use stiffid_core::common::error::JobOption;
@@ -103,10 +103,13 @@ pub struct Request<'a, R> {
     pub progress: &'a dyn Progress,
 }
 
-/// The identify job's report and its document (each form's).
-pub type Outcome = crate::app::Outcome<Report, Document>;
+/// The identify job's report, which is its document (serialised through
+/// [`document::Document`]).
+pub type Outcome = crate::app::Outcome<Report>;
 
-/// What the identify job found, by what was asked.
+/// What the identify job found, by what was asked. It serialises to its document, `stiffid
+/// identify --json`, through the borrowed view [`document::Document`] ([`Report::document`]:
+/// mm, units in every key), built as it is written.
 #[derive(Debug, Clone)]
 pub enum Report {
     /// The six drive springs.
@@ -152,17 +155,38 @@ impl Report {
         })
     }
 
-    /// The document (`stiffid identify --json`), `setup_name` the setup as given.
-    pub fn document(&self, setup_name: &str, setup: &Setup) -> Document {
+    /// The document this report is written as (`stiffid identify --json`, Python's
+    /// `identify`), to read: its form's ([`drives::Report::document`],
+    /// [`springs::Report::document`], [`comparison::Report::document`]).
+    pub fn document(&self) -> document::Document<'_> {
         match self {
-            Report::Drives(r) => Document::Drives(Box::new(document::drives::Document::new(
-                r, setup_name, setup,
-            ))),
-            Report::Springs(r) => Document::Springs(Box::new(document::springs::Document::new(
-                r, setup_name, setup,
-            ))),
-            Report::Comparison(r) => Document::Comparison(Box::new(r.document(setup_name))),
+            Report::Drives(r) => document::Document::Drives(Box::new(r.document())),
+            Report::Springs(r) => document::Document::Springs(Box::new(r.document())),
+            Report::Comparison(r) => document::Document::Comparison(Box::new(r.document())),
         }
+    }
+}
+
+impl drives::Report {
+    /// The document this report is written as (`stiffid identify --json` and its `--out`,
+    /// Python's `identify`), to read: what the command's text prints.
+    pub fn document(&self) -> document::drives::Document<'_> {
+        document::drives::Document::new(self)
+    }
+}
+
+impl springs::Report {
+    /// The document this report is written as (`stiffid identify --json` and its `--out` for a
+    /// model with virtual springs, the stiffness file of `--stiffness-out`), to read: what the
+    /// command's text prints.
+    pub fn document(&self) -> document::springs::Document<'_> {
+        document::springs::Document::new(self)
+    }
+}
+
+impl serde::Serialize for Report {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        self.document().serialize(s)
     }
 }
 
@@ -174,20 +198,20 @@ impl Report {
 /// [`stiffid_core::Error::InvalidOption`]); errors about the data as [`stiffid_core::Error::Input`] naming the
 /// data (a file's line and column, or the measurement's number), from the path taken.
 pub fn run<R: Read + Send>(request: Request<'_, R>) -> Result<Outcome> {
-    let (setup, setup_name) = (request.setup, request.setup_name.clone());
-    let report = find(request)?;
-    let document = report.document(&setup_name, setup);
-    Ok(Outcome { report, document })
+    Ok(Outcome {
+        report: find(request)?,
+        document: crate::app::Itself,
+    })
 }
 
-/// What [`run`] finds, before its document.
+/// What [`run`] finds.
 fn find<R: Read + Send>(request: Request<'_, R>) -> Result<Report> {
     let Request {
         setup,
+        setup_name,
         data,
         options,
         progress,
-        ..
     } = request;
     match options.plan()? {
         Plan::Compare {
@@ -195,6 +219,7 @@ fn find<R: Read + Send>(request: Request<'_, R>) -> Result<Report> {
             bootstrap,
         } => comparison::run(comparison::Request {
             setup,
+            setup_name,
             data,
             candidates: candidates.as_deref(),
             bootstrap,
@@ -208,6 +233,7 @@ fn find<R: Read + Send>(request: Request<'_, R>) -> Result<Report> {
         } => {
             let request = drives::Request {
                 setup,
+                setup_name,
                 data,
                 fit,
                 folds,

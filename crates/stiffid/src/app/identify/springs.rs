@@ -24,6 +24,10 @@ use stiffid_identify::svd::{fit_by, Fit};
 /// What the identify job found over a model.
 #[derive(Debug, Clone)]
 pub struct Report {
+    /// The setup as the user named it ([`super::Request::setup_name`]).
+    pub setup: String,
+    /// The setup's tracker noise (SI).
+    pub noise: stiffid_core::setup::Noise,
     /// The data's name (a file's, or `arrays`).
     pub data_name: String,
     /// The fit asked for.
@@ -39,6 +43,10 @@ pub struct Report {
     /// Results to look at before trusting them (parameters the data cannot separate,
     /// compliances that are not positive).
     pub warnings: Vec<Warning>,
+    /// The stiffness file of the model comparison's bootstrap
+    /// ([`super::comparison::Report::stiffness_file`]): the models the data support and their
+    /// resampled parameter sets; `None` otherwise.
+    pub model_form: Option<stiffid_core::io::stiffness::ModelFormSection>,
 }
 
 /// Runs the identify job over the setup's model (any number of parameters; the six drives alone
@@ -52,6 +60,7 @@ pub struct Report {
 pub(super) fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {
     let Request {
         setup,
+        setup_name,
         data,
         fit: method,
         folds,
@@ -78,6 +87,8 @@ pub(super) fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {
     warnings.extend(folds);
     warnings.extend(angle_warnings(&data_name, &origin));
     Ok(Report {
+        setup: setup_name,
+        noise: setup.noise().clone(),
         data_name,
         method,
         fit,
@@ -85,6 +96,7 @@ pub(super) fn run<R: Read>(request: Request<'_, R>) -> Result<Report> {
         cross_validation,
         prediction,
         warnings,
+        model_form: None,
     })
 }
 

@@ -2,17 +2,17 @@
 //! stiffness file of `--out`, Python's `identify(...).to_dict()`.
 
 use crate::app::document::parameters::{stiffness, ParameterStiffness};
-use crate::app::document::{finite, finite_each, mm};
+use crate::app::document::{finite, finite_each, mm, units};
 use crate::app::identify::drives::Report;
 use crate::app::measurements::Origin;
-use nalgebra::DVector;
+use nalgebra::{DVector, Vector3};
 use serde::Serialize;
 use stiffid_core::common::warning::WarningKind;
 use stiffid_core::io::stiffness::{PredictionSection, RegionSection};
 use stiffid_core::model::prediction::Calibration;
 use stiffid_core::model::Model;
 use stiffid_core::model::PostureRange;
-use stiffid_core::{Coordinates, Setup};
+use stiffid_core::Coordinates;
 use stiffid_identify::{Adequacy, Identification, RobustFit, Uncertainty};
 
 /// The relative standard error of a stiffness (its standard error over its magnitude) above
@@ -40,15 +40,25 @@ fn std_error_pct(id: &Identification, u: &Uncertainty) -> [Option<f64>; 6] {
 /// The identify document. Units in the key names; intervals `[lower, upper]`; `null` for a number
 /// that is not finite (an unbounded end, an infinite stiffness) or when there are no degrees of
 /// freedom.
+///
+/// A view of the report ([`Report::document`]), built as it is written: its names are the
+/// report's, its lengths the report's in SI, written in the units their keys name by the unit
+/// adapters ([`units`]).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(tag = "kind", rename = "identify-drives")]
+#[cfg_attr(
+    feature = "schema",
+    schemars(
+        description = "The identify document. Units in the key names; intervals `[lower, upper]`; `null` for a number\nthat is not finite (an unbounded end, an infinite stiffness) or when there are no degrees of\nfreedom."
+    )
+)]
 #[cfg_attr(feature = "schema", schemars(transform = crate::app::document::schema::Kind("identify-drives")))]
-pub struct Document {
+pub struct Document<'a> {
     /// The setup as given.
-    pub setup: String,
+    pub setup: &'a str,
     /// The measurements (a file's name, or `arrays`).
-    pub data: String,
+    pub data: &'a str,
     /// Where the springs sit: in the drives (`axis`) or on the kinematic joints.
     pub springs: Coordinates,
     /// The fit: `least-squares`, `nonnegative-least-squares`, `huber` or `tukey`.
@@ -104,12 +114,14 @@ pub struct Document {
     pub degrees_of_freedom: Option<usize>,
     /// Student's t quantile of the 95% intervals.
     pub t_quantile: Option<f64>,
-    /// Standard deviation of the residuals, mm.
-    pub residual_std_mm: Option<f64>,
-    /// The setup's tracker noise on one row's coordinate that the model check uses, mm: a
+    /// Standard deviation of the residuals: m, written in mm.
+    #[serde(rename = "residual_std_mm", serialize_with = "units::mm_option")]
+    pub residual_std: Option<f64>,
+    /// The setup's tracker noise on one row's coordinate that the model check uses, a
     /// displacement's (a loaded minus an unloaded reading: `sqrt(2)` times `reading_sd_mm`), or
-    /// with offsets fitted one reading's (`reading_sd_mm`).
-    pub noise_std_mm: f64,
+    /// with offsets fitted one reading's (`reading_sd_mm`): m, written in mm.
+    #[serde(rename = "noise_std_mm", serialize_with = "units::mm")]
+    pub noise_std: f64,
     /// `residual_std_mm / noise_std_mm`: about 1 if the model is adequate.
     pub noise_ratio: Option<f64>,
     /// `dof s^2 / sigma^2`: the residual variance against the tracker noise variance.
@@ -122,25 +134,26 @@ pub struct Document {
     pub tracker_noise: Option<Intervals>,
     /// A warning when most joints are far off the setup's nominal stiffness the same way (a unit
     /// mistake?).
-    pub unit_warning: Option<String>,
+    pub unit_warning: Option<&'a str>,
     /// `cond_2(Psi)` of the observation matrix, SI units.
     pub cond_psi: f64,
-    /// RMS of the residuals, mm.
-    pub residual_rms_mm: f64,
+    /// RMS of the residuals: m, written in mm.
+    #[serde(rename = "residual_rms_mm", serialize_with = "units::mm")]
+    pub residual_rms: f64,
     /// Every measurement's residual (measured - fitted), in the data's order.
-    pub residuals: Vec<Residual>,
+    pub residuals: Vec<Residual<'a>>,
     /// The [`LARGEST_RESIDUALS`] (5) measurements with the longest residuals (or all of them if
     /// fewer), the longest first.
-    pub largest_residuals: Vec<Residual>,
+    pub largest_residuals: Vec<Residual<'a>>,
     /// With a robust fit: the reweighting.
-    pub robust: Option<Robust>,
+    pub robust: Option<Robust<'a>>,
     /// With cross-validation: the cross-validation over postures.
-    pub cross_validation: Option<CrossValidation>,
+    pub cross_validation: Option<CrossValidation<'a>>,
     /// With raw readings under load steps: each posture's linearity, zero-load offset and
     /// hysteresis (`stiffid_identify::steps`).
-    pub load_steps: Option<Vec<LoadStep>>,
+    pub load_steps: Option<Vec<LoadStep<'a>>>,
     /// With offsets fitted beside the compliances: one per posture and measuring point.
-    pub offsets: Option<Vec<PointOffset>>,
+    pub offsets: Option<Vec<PointOffset<'a>>>,
     /// With cross-validation: the held-out residuals that prediction intervals are built from
     /// (the stiffness file's `prediction`, [`stiffid_core::io::stiffness::PredictionSection`]).
     pub prediction: Option<PredictionSection>,
@@ -154,9 +167,9 @@ pub struct Document {
 /// setup's tracker noise; a flag is a p-value below 0.01.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct LoadStep {
+pub struct LoadStep<'a> {
     /// The posture's label.
-    pub posture: String,
+    pub posture: &'a str,
     /// Distinct non-zero loads on the rising branch.
     pub levels: usize,
     /// Readings of the posture, the unloaded references excepted.
@@ -164,13 +177,16 @@ pub struct LoadStep {
     /// Deflection per load (RMS over the measuring points of the slopes' lengths), mm/kN;
     /// `null` with fewer than two non-zero loads.
     pub slope_mm_per_kn: Option<f64>,
-    /// The straight lines' deflection at zero load (RMS over the measuring points), mm.
-    pub zero_load_offset_mm: Option<f64>,
+    /// The straight lines' deflection at zero load, RMS over the measuring points: m, written in
+    /// mm.
+    #[serde(rename = "zero_load_offset_mm", serialize_with = "units::mm_option")]
+    pub zero_load_offset: Option<f64>,
     /// `R^2` of the straight lines.
     pub r_squared: Option<f64>,
-    /// RMS length of falling minus rising readings at the same step, mm; `null` without falling
-    /// readings.
-    pub hysteresis_mm: Option<f64>,
+    /// RMS length of falling minus rising readings at the same step, `null` without falling
+    /// readings: m, written in mm.
+    #[serde(rename = "hysteresis_mm", serialize_with = "units::mm_option")]
+    pub hysteresis: Option<f64>,
     /// P-value of the zero-load offset.
     pub offset_p_value: Option<f64>,
     /// P-value of the residuals about the straight lines.
@@ -188,13 +204,15 @@ pub struct LoadStep {
 /// The offset of one measuring point in one posture, fitted beside the compliances.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct PointOffset {
+pub struct PointOffset<'a> {
     /// The posture's label.
-    pub posture: String,
+    pub posture: &'a str,
     /// The measuring point (1-based).
     pub point: usize,
-    /// The offset, base frame, mm.
-    pub offset_mm: [f64; 3],
+    /// The offset, base frame: m, written in mm.
+    #[serde(rename = "offset_mm", serialize_with = "units::mm3")]
+    #[cfg_attr(feature = "schema", schemars(with = "[f64; 3]"))]
+    pub offset: Vector3<f64>,
 }
 
 /// Standard errors and intervals computed from a known variance.
@@ -221,50 +239,59 @@ pub struct Intervals {
 /// One measurement's residual.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct Residual {
+pub struct Residual<'a> {
     /// The posture's label (a file's; for arrays its number, 1-based).
-    pub posture: String,
+    pub posture: &'a str,
     /// The measuring point (1-based).
     pub point: usize,
     /// The line in the file (left out for arrays).
     #[serde(skip_serializing_if = "Option::is_none")]
     #[cfg_attr(feature = "schema", schemars(with = "u64"))]
     pub line: Option<u64>,
-    /// Measured minus fitted displacement, x, y, z, mm.
-    pub residual_mm: [f64; 3],
+    /// Measured minus fitted displacement, x, y, z: m, written in mm.
+    #[serde(rename = "residual_mm", serialize_with = "units::mm3")]
+    #[cfg_attr(feature = "schema", schemars(with = "[f64; 3]"))]
+    pub residual: Vector3<f64>,
     /// The length of `residual_mm`, mm.
     pub norm_mm: f64,
     /// The measured displacement, base frame, x, y, z, mm: `predicted_mm + residual_mm`.
     pub measured_mm: [f64; 3],
-    /// The displacement the fit predicts, base frame, x, y, z, mm (with fitted offsets, its
-    /// point's offset included).
-    pub predicted_mm: [f64; 3],
+    /// The displacement the fit predicts, base frame, x, y, z (with fitted offsets, its point's
+    /// offset included): m, written in mm.
+    #[serde(rename = "predicted_mm", serialize_with = "units::mm3")]
+    #[cfg_attr(feature = "schema", schemars(with = "[f64; 3]"))]
+    pub predicted: Vector3<f64>,
 }
 
-impl Residual {
+impl<'a> Residual<'a> {
     /// Measurement `i`'s residual of `residuals` and prediction of `predicted` (m, three per
     /// measurement), labelled from `origin`.
     pub fn new(
-        origin: &Origin,
+        origin: &'a Origin,
         i: usize,
         residuals: &DVector<f64>,
         predicted: &DVector<f64>,
     ) -> Self {
-        let r = residuals.fixed_rows::<3>(3 * i).map(mm);
-        let p = predicted.fixed_rows::<3>(3 * i).map(mm);
+        let residual: Vector3<f64> = residuals.fixed_rows::<3>(3 * i).into();
+        let predicted: Vector3<f64> = predicted.fixed_rows::<3>(3 * i).into();
+        let (r, p) = (residual.map(mm), predicted.map(mm));
         Residual {
-            posture: origin.label(i).to_string(),
+            posture: origin.label(i),
             point: origin.points[i] + 1,
             line: origin.lines.as_ref().map(|l| l[i]),
-            residual_mm: r.into(),
+            residual,
             norm_mm: r.norm(),
             measured_mm: (p + r).into(),
-            predicted_mm: p.into(),
+            predicted,
         }
     }
 
     /// Every measurement's residual ([`Residual::new`]).
-    pub fn all(origin: &Origin, residuals: &DVector<f64>, predicted: &DVector<f64>) -> Vec<Self> {
+    pub fn all(
+        origin: &'a Origin,
+        residuals: &DVector<f64>,
+        predicted: &DVector<f64>,
+    ) -> Vec<Self> {
         (0..residuals.len() / 3)
             .map(|i| Residual::new(origin, i, residuals, predicted))
             .collect()
@@ -274,13 +301,14 @@ impl Residual {
 /// The robust fit's reweighting.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct Robust {
+pub struct Robust<'a> {
     /// `huber` or `tukey`.
     pub loss: &'static str,
     /// The tuning constant, MAD scales.
     pub tuning_constant: f64,
-    /// The robust residual scale, mm.
-    pub scale_mm: f64,
+    /// The robust residual scale: m, written in mm.
+    #[serde(rename = "scale_mm", serialize_with = "units::mm")]
+    pub scale: f64,
     /// Reweighting iterations.
     pub iterations: usize,
     /// Whether the weights converged.
@@ -288,15 +316,15 @@ pub struct Robust {
     /// Why the reweighting stopped: `converged` or `iteration-limit` (a warning says so).
     pub stop_reason: stiffid_core::common::stop::Stop,
     /// Every row with a weight below 1.
-    pub down_weighted: Vec<Row>,
+    pub down_weighted: Vec<Row<'a>>,
 }
 
 /// One down-weighted row.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct Row {
+pub struct Row<'a> {
     /// The posture's label.
-    pub posture: String,
+    pub posture: &'a str,
     /// The measuring point (1-based).
     pub point: usize,
     /// The line in the file (left out for arrays).
@@ -307,14 +335,15 @@ pub struct Row {
     pub coordinate: char,
     /// Its final weight, 0 to 1.
     pub weight: f64,
-    /// Its residual, mm.
-    pub residual_mm: f64,
+    /// Its residual: m, written in mm.
+    #[serde(rename = "residual_mm", serialize_with = "units::mm")]
+    pub residual: f64,
 }
 
 /// The cross-validation over postures.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct CrossValidation {
+pub struct CrossValidation<'a> {
     /// Number of folds.
     pub folds: usize,
     /// Mean over the folds of each stiffness, Nm/rad.
@@ -328,10 +357,12 @@ pub struct CrossValidation {
     /// `stiffness_std_nm_per_rad` as a percentage of the full fit's stiffness (its magnitude),
     /// %; `null` unless finite.
     pub stiffness_std_pct: [Option<f64>; 6],
-    /// RMS prediction error of the left-out measurements (Eq. 22), mm.
-    pub rms_delta_b_mm: f64,
-    /// RMS of the measured displacements, mm.
-    pub rms_measured_mm: f64,
+    /// RMS prediction error of the left-out measurements (Eq. 22): m, written in mm.
+    #[serde(rename = "rms_delta_b_mm", serialize_with = "units::mm")]
+    pub rms_delta_b: f64,
+    /// RMS of the measured displacements: m, written in mm.
+    #[serde(rename = "rms_measured_mm", serialize_with = "units::mm")]
+    pub rms_measured: f64,
     /// `1 - rms_delta_b_mm / rms_measured_mm`.
     pub explained: f64,
     /// The standard error of `explained` over the postures (delta method of the ratio, the
@@ -342,31 +373,34 @@ pub struct CrossValidation {
     /// `explained_std_error`, %.
     pub explained_std_error_pct: f64,
     /// Folds whose removal moves a stiffness by more than its standard error in the full fit.
-    pub influential_postures: Vec<Influential>,
+    pub influential_postures: Vec<Influential<'a>>,
     /// Every fold.
-    pub per_fold: Vec<Fold>,
+    pub per_fold: Vec<Fold<'a>>,
 }
 
 /// One fold.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct Fold {
+pub struct Fold<'a> {
     /// The postures left out (labels).
-    pub postures: Vec<String>,
+    pub postures: Vec<&'a str>,
     /// The stiffness fitted without them, Nm/rad.
     pub stiffness_nm_per_rad: [Option<f64>; 6],
-    /// RMS prediction error of the left-out measurements, mm.
-    pub rms_delta_b_mm: f64,
-    /// Prediction error of each left-out measurement (Eq. 22), mm.
-    pub delta_b_mm: Vec<f64>,
+    /// RMS prediction error of the left-out measurements: m, written in mm.
+    #[serde(rename = "rms_delta_b_mm", serialize_with = "units::mm")]
+    pub rms_delta_b: f64,
+    /// Prediction error of each left-out measurement (Eq. 22): m, written in mm.
+    #[serde(rename = "delta_b_mm", serialize_with = "units::mm_each")]
+    #[cfg_attr(feature = "schema", schemars(with = "Vec<f64>"))]
+    pub delta_b: &'a [f64],
 }
 
 /// An influential fold.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct Influential {
+pub struct Influential<'a> {
     /// The postures left out (labels).
-    pub postures: Vec<String>,
+    pub postures: &'a [String],
     /// The joints (1-based) it moves.
     pub joints: Vec<usize>,
 }
@@ -387,22 +421,22 @@ impl Intervals {
     }
 }
 
-impl Document {
-    /// The document of `report`, identified on `setup` (named `setup_name`, as the user gave it).
-    pub fn new(report: &Report, setup_name: &str, setup: &Setup) -> Self {
+impl<'a> Document<'a> {
+    /// The view of `report` ([`Report::document`]).
+    pub fn new(report: &'a Report) -> Self {
         let id = &report.identification;
         let u = id.uncertainty.as_ref();
         let a = report.adequacy.as_ref();
         let noise = a.map(|a| Intervals::new(id, &a.from_noise));
         Document {
-            setup: setup_name.to_string(),
-            data: report.data_name.clone(),
-            springs: setup.springs(),
+            setup: &report.setup,
+            data: &report.data_name,
+            springs: report.springs,
             method: report.fit.name(),
             rows: id.rows,
             postures: id.postures,
             parameters: stiffness(
-                &Model::drives(setup.springs()).parameters(),
+                &Model::drives(report.springs).parameters(),
                 &DVector::from_column_slice(id.compliance.as_slice()),
             ),
             compliance_covariance_si: u.map(|u| {
@@ -431,8 +465,8 @@ impl Document {
             }),
             degrees_of_freedom: u.map(|u| u.dof),
             t_quantile: u.map(|u| u.t_quantile),
-            residual_std_mm: u.map(|u| mm(u.residual_variance.sqrt())),
-            noise_std_mm: mm(a.map_or(setup.noise().displacement_sd(), |a| a.noise_variance.sqrt())),
+            residual_std: u.map(|u| u.residual_variance.sqrt()),
+            noise_std: a.map_or(report.noise.displacement_sd(), |a| a.noise_variance.sqrt()),
             noise_ratio: a.map(|a| a.noise_ratio),
             chi2_statistic: a.map(|a| a.chi2),
             chi2_p_value: a.map(|a| a.p_value),
@@ -442,9 +476,9 @@ impl Document {
                 .warnings
                 .iter()
                 .find(|w| w.kind == WarningKind::Units)
-                .map(|w| w.message.clone()),
+                .map(|w| w.message.as_str()),
             cond_psi: id.cond_psi,
-            residual_rms_mm: mm(id.residual_rms),
+            residual_rms: id.residual_rms,
             residuals: residuals(report),
             largest_residuals: largest_residuals(report),
             robust: robust(report),
@@ -479,15 +513,15 @@ pub(crate) fn prediction(
     Some(PredictionSection::new(calibration, labels.collect()))
 }
 
-fn load_steps(report: &Report) -> Option<Vec<LoadStep>> {
+fn load_steps(report: &Report) -> Option<Vec<LoadStep<'_>>> {
     let rows = report.load_steps.as_ref()?.iter().map(|l| LoadStep {
-        posture: report.origin.labels.get(l.posture).to_string(),
+        posture: report.origin.labels.get(l.posture),
         levels: l.levels,
         readings: l.readings,
         slope_mm_per_kn: l.slope_m_per_n.map(|v| v * 1e6),
-        zero_load_offset_mm: l.offset_m.map(mm),
+        zero_load_offset: l.offset_m,
         r_squared: l.r_squared,
-        hysteresis_mm: l.hysteresis_m.map(mm),
+        hysteresis: l.hysteresis_m,
         offset_p_value: l.offset_p_value,
         linearity_p_value: l.linearity_p_value,
         hysteresis_p_value: l.hysteresis_p_value,
@@ -498,29 +532,29 @@ fn load_steps(report: &Report) -> Option<Vec<LoadStep>> {
     Some(rows.collect())
 }
 
-fn offsets(report: &Report) -> Option<Vec<PointOffset>> {
+fn offsets(report: &Report) -> Option<Vec<PointOffset<'_>>> {
     let origin = &report.origin;
     let rows = report.offsets.as_ref()?.iter().map(|o| PointOffset {
-        posture: origin.labels.get(o.posture).to_string(),
+        posture: origin.labels.get(o.posture),
         point: o.point + 1,
-        offset_mm: o.offset.map(mm).into(),
+        offset: o.offset,
     });
     Some(rows.collect())
 }
 
 /// The residual of measurement `i` of `report`.
-fn residual(report: &Report, i: usize) -> Residual {
+fn residual(report: &Report, i: usize) -> Residual<'_> {
     let id = &report.identification;
     Residual::new(&report.origin, i, &id.residuals, &id.predicted)
 }
 
-fn residuals(report: &Report) -> Vec<Residual> {
+fn residuals(report: &Report) -> Vec<Residual<'_>> {
     let id = &report.identification;
     Residual::all(&report.origin, &id.residuals, &id.predicted)
 }
 
 /// The [`LARGEST_RESIDUALS`] longest residuals of `report`, the longest first.
-fn largest_residuals(report: &Report) -> Vec<Residual> {
+fn largest_residuals(report: &Report) -> Vec<Residual<'_>> {
     let residuals = &report.identification.residuals;
     let norm = |i: usize| residuals.fixed_rows::<3>(3 * i).norm();
     let n = residuals.len() / 3;
@@ -534,7 +568,7 @@ fn largest_residuals(report: &Report) -> Vec<Residual> {
     order.into_iter().map(|i| residual(report, i)).collect()
 }
 
-fn robust(report: &Report) -> Option<Robust> {
+fn robust(report: &Report) -> Option<Robust<'_>> {
     let id = &report.identification;
     Some(Robust::new(
         id.robust.as_ref()?,
@@ -543,14 +577,14 @@ fn robust(report: &Report) -> Option<Robust> {
     ))
 }
 
-impl Robust {
+impl<'a> Robust<'a> {
     /// The reweighting `fit` of the measurements of `origin`, with the unweighted `residuals`
     /// (m, three per measurement).
-    pub fn new(fit: &RobustFit, origin: &Origin, residuals: &DVector<f64>) -> Self {
+    pub fn new(fit: &RobustFit, origin: &'a Origin, residuals: &DVector<f64>) -> Self {
         Robust {
             loss: fit.loss.name(),
             tuning_constant: fit.loss.tuning_constant(),
-            scale_mm: mm(fit.scale),
+            scale: fit.scale,
             iterations: fit.iterations,
             converged: fit.converged(),
             stop_reason: fit.stop,
@@ -558,12 +592,12 @@ impl Robust {
                 .down_weighted()
                 .into_iter()
                 .map(|row| Row {
-                    posture: origin.label(row / 3).to_string(),
+                    posture: origin.label(row / 3),
                     point: origin.points[row / 3] + 1,
                     line: origin.lines.as_ref().map(|l| l[row / 3]),
                     coordinate: ['x', 'y', 'z'][row % 3],
                     weight: fit.weights[row],
-                    residual_mm: mm(residuals[row]),
+                    residual: residuals[row],
                 })
                 .collect(),
         }
@@ -575,7 +609,13 @@ fn six(values: &[f64]) -> [Option<f64>; 6] {
     std::array::from_fn(|j| finite(values[j]))
 }
 
-fn cross_validation(report: &Report) -> Option<CrossValidation> {
+/// The labels of `postures` (numbered as in `origin`).
+pub(crate) fn labels<'a>(origin: &'a Origin, postures: &[usize]) -> Vec<&'a str> {
+    let label = |p: &usize| origin.label(origin.first_of_posture[*p]);
+    postures.iter().map(label).collect()
+}
+
+fn cross_validation(report: &Report) -> Option<CrossValidation<'_>> {
     let cv = report.cross_validation.as_ref()?;
     Some(CrossValidation {
         folds: cv.folds.len(),
@@ -586,8 +626,8 @@ fn cross_validation(report: &Report) -> Option<CrossValidation> {
         stiffness_std_pct: std::array::from_fn(|j| {
             finite(100.0 * cv.stiffness_std[j] / report.identification.stiffness[j].abs())
         }),
-        rms_delta_b_mm: mm(cv.rms_delta_b),
-        rms_measured_mm: mm(cv.rms_measured),
+        rms_delta_b: cv.rms_delta_b,
+        rms_measured: cv.rms_measured,
         explained: cv.explained(),
         explained_std_error: cv.explained_std_error,
         explained_pct: 100.0 * cv.explained(),
@@ -596,7 +636,7 @@ fn cross_validation(report: &Report) -> Option<CrossValidation> {
             .influential
             .iter()
             .map(|(postures, joints)| Influential {
-                postures: postures.clone(),
+                postures,
                 joints: joints.iter().map(|j| j + 1).collect(),
             })
             .collect(),
@@ -604,10 +644,10 @@ fn cross_validation(report: &Report) -> Option<CrossValidation> {
             .folds
             .iter()
             .map(|f| Fold {
-                postures: report.origin.labels_of(&f.postures),
+                postures: labels(&report.origin, &f.postures),
                 stiffness_nm_per_rad: six(f.stiffness.as_slice()),
-                rms_delta_b_mm: mm(f.rms_delta_b),
-                delta_b_mm: f.delta_b.iter().map(|d| mm(*d)).collect(),
+                rms_delta_b: f.rms_delta_b,
+                delta_b: &f.delta_b,
             })
             .collect(),
     })

@@ -14,14 +14,24 @@ pub use stiffid_identify::compare::Document as Comparison;
 
 /// `stiffid identify --json`: the identification of the setup's model or the model comparison.
 /// Each form carries its own `kind` (its struct's tag), so the union needs none of its own.
+///
+/// A view of the report ([`super::Report::document`]), built as it is written: the drives' and
+/// a model's forms borrow from their reports; the model comparison's is its own value, built
+/// from its report then.
 #[derive(Debug, Serialize)]
 #[serde(untagged)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub enum Document {
+#[cfg_attr(
+    feature = "schema",
+    schemars(
+        description = "`stiffid identify --json`: the identification of the setup's model or the model comparison.\nEach form carries its own `kind` (its struct's tag), so the union needs none of its own."
+    )
+)]
+pub enum Document<'a> {
     /// The six drive springs (the setup's model without virtual springs), fitted by QR.
-    Drives(Box<drives::Document>),
+    Drives(Box<drives::Document<'a>>),
     /// A model with virtual springs, fitted by the column-scaled SVD.
-    Springs(Box<springs::Document>),
+    Springs(Box<springs::Document<'a>>),
     /// The model comparison (`compare_models`).
     Comparison(Box<Comparison>),
 }
