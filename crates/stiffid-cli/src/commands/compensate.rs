@@ -630,7 +630,7 @@ fn free(doc: &Document<'_>) -> String {
     }
     // Why the speeds were not checked matters where a free variable moves the axes.
     if doc.speed_limits.not_checked_because.is_none() || doc.feasibility.is_some() {
-        text += &crate::commands::speed_line::line(&doc.speed_limits);
+        text += &crate::commands::speed_line::line(doc.speed_limits);
     }
     if let Some(levels) = doc.refine.filter(|&l| l > 0) {
         text += &format!("the free variables' grid refined {levels} time(s) around the line chosen on it, each level halving every step\n");

@@ -201,7 +201,7 @@ fn compose(
     }
     if let Some(p) = &document.program {
         w.heading(2, "Force and deflection per segment");
-        w.table(&segments(&p.segments));
+        w.table(&segments(p.segments));
     }
     w.heading(2, "The ten largest deflections");
     let sample = &view.report.summary.sample;
