@@ -208,22 +208,19 @@ pub fn compensate<'py>(
             )
         })
         .map_err(raise)?;
-    let stiffid::app::Outcome {
-        report,
-        mut document,
-    } = outcome;
+    let mut report = outcome.report;
     warn(py, &report.warnings)?;
     let out = table(py, &results, &points)?;
     for (k, name) in DYNAMICS.iter().enumerate() {
         let column = dynamics.iter().map(|v| v[k].unwrap_or(f64::NAN));
         out.set_item(*name, arrays::vec1(py, column))?;
     }
-    // The job's document gets the rows the sink received.
-    document.points = rows.into_points();
-    out.set_item("document", to_python(py, &document, &[])?)?;
+    // The job's report, its document, gets the rows the sink received.
+    report.points = rows.into_points();
+    out.set_item("document", to_python(py, &report, &[])?)?;
     if figures {
         let sample = stiffid_figures::compensate::sample(&report);
-        let drawings = stiffid_figures::compensate::figures(s, &sample, &report, &document);
+        let drawings = stiffid_figures::compensate::figures(s, &sample, &report);
         out.set_item("figures", crate::figures::svgs(py, &drawings)?)?;
     }
     if let Some(p) = &report.program {

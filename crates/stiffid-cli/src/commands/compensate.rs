@@ -17,6 +17,7 @@ use stiffid::app::compensate::document::{
 use stiffid::app::compensate::dynamics::OperationDynamics;
 use stiffid::app::compensate::stream::{chunk_values, Points};
 use stiffid::app::compensate::{self as job, Input, Report, Request};
+use stiffid::app::document::{finite, mm};
 use stiffid_core::common::words::{count, number};
 use stiffid_core::observation::deflection::Frame;
 use stiffid_core::robot::ExternalAxes;
@@ -244,13 +245,12 @@ pub fn run(args: &Args) -> Result<()> {
         .then(|| out.writer().map(Points::new))
         .transpose()?;
     let mut sinks = Sinks { csv, cell, rows };
-    let names = names(args);
     let request = Request {
         setup: &setup,
         compliance,
         input,
         options,
-        names: names.clone(),
+        names: names(args),
     };
     // The points are counted as they come (a program's are known only once its arcs are split).
     let bars = Bars::new(false);
@@ -264,7 +264,7 @@ pub fn run(args: &Args) -> Result<()> {
         Err(Failure::Library(e)) => return Err(e.into()),
     };
     bars.end();
-    let stiffid::app::Outcome { report, document } = outcome;
+    let report = outcome.report;
     output::warnings(&report.warnings);
     let Sinks { mut csv, rows, .. } = sinks;
     csv.sync()?;
@@ -274,8 +274,7 @@ pub fn run(args: &Args) -> Result<()> {
     ) {
         o.write(d.as_bytes())?;
     }
-    let written = (&report, &document, &names);
-    finish(args, &setup, written, csv, rows, &out, report_dir)?;
+    finish(args, &setup, &report, csv, rows, &out, report_dir)?;
     Ok(())
 }
 
@@ -355,12 +354,13 @@ fn names(args: &Args) -> Names {
 fn finish(
     args: &Args,
     setup: &Setup,
-    (report, typed, names): (&Report, &Document, &Names),
+    report: &Report,
     csv: Writer,
     rows: Option<Points<Writer>>,
     out: &OutFile,
     report_dir: Option<output::ReportDir>,
 ) -> Result<()> {
+    let typed = report.document();
     let mut rows = rows.map(Points::into_inner);
     if let Some(rows) = rows.as_mut() {
         rows.sync()?;
@@ -382,7 +382,7 @@ fn finish(
             report,
             csv: csv.path(),
             summary: &json,
-            document: typed,
+            document: &typed,
         };
         compensation::write(dir, setup, &view)?;
     }
@@ -391,7 +391,7 @@ fn finish(
     }
     match (args.common.json, &rows_path) {
         (true, Some(_)) => write_stdout_with(&json),
-        _ => print(&human(args, setup, report, names, typed)),
+        _ => print(&human(args, setup, report, &typed)),
     }
 }
 
@@ -521,17 +521,17 @@ fn made_of(b: &stiffid::app::compensate::budget::BudgetSummary) -> String {
 
 /// The text summary: what was compensated, the error bound, the free variables, what was
 /// written.
-fn human(args: &Args, setup: &Setup, report: &Report, names: &Names, doc: &Document) -> String {
-    let mut text = head(setup, report, names, doc);
+fn human(args: &Args, setup: &Setup, report: &Report, doc: &Document<'_>) -> String {
+    let mut text = head(setup, report, doc);
     text += &bound(doc);
     text += &made_of(&doc.summary.budget);
     text += &free(doc);
-    text += &written(args, report, names, doc);
+    text += &written(args, report, doc);
     text
 }
 
 /// The summary's first lines: the points, the deflection, the residual, the intervals.
-fn head(setup: &Setup, report: &Report, names: &Names, doc: &Document) -> String {
+fn head(setup: &Setup, report: &Report, doc: &Document<'_>) -> String {
     let d = &doc.summary;
     let mut text = format!(
         "{} path points of {} compensated (setup {}, stiffness {}{})\n\
@@ -540,14 +540,14 @@ fn head(setup: &Setup, report: &Report, names: &Names, doc: &Document) -> String
         d.points,
         report.input,
         setup.name(),
-        names.stiffness,
+        doc.stiffness,
         if report.compliance.covariance.is_some() { ", with its covariance: standard deviations in the CSV" } else { "" },
-        d.max_deflection_mm,
+        mm(d.max_deflection),
         d.max_deflection_line,
-        d.mean_deflection_mm,
-        d.max_rotation_mrad,
-        d.max_residual_um,
-        d.max_residual_urad,
+        mm(d.mean_deflection),
+        d.max_rotation * 1e3,
+        d.max_residual_position * 1e6,
+        d.max_residual_rotation * 1e6,
         d.max_iterations,
         d.stop_reason
     );
@@ -555,7 +555,7 @@ fn head(setup: &Setup, report: &Report, names: &Names, doc: &Document) -> String
         text += &format!(
             "prediction intervals of the TCP deflection ({:.0}%, from the held-out residuals of the identification) in the CSV; the widest {}\n",
             100.0 * level,
-            d.max_interval_width_mm
+            d.max_interval_width.and_then(|w| finite(mm(w)))
                 .map_or("is unbounded (too few held-out residuals for the level)".into(), |w| format!("is {w:.4} mm wide"))
         );
     }
@@ -563,7 +563,7 @@ fn head(setup: &Setup, report: &Report, names: &Names, doc: &Document) -> String
 }
 
 /// The error bound's line.
-fn bound(doc: &Document) -> String {
+fn bound(doc: &Document<'_>) -> String {
     let b = &doc.summary.budget;
     format!(
         "error bound at {}%: largest {} (line {}), mean {}{}{}\n",
@@ -594,23 +594,26 @@ fn bound(doc: &Document) -> String {
 
 /// The free variables' lines: the tool axis, lead and tilt, the feasibility, the speeds, the
 /// grid's refinement, the configurations.
-fn free(doc: &Document) -> String {
+fn free(doc: &Document<'_>) -> String {
     let (d, mut text) = (&doc.summary, String::new());
     let rotation = doc.free.iter().any(|f| f.variable == "tool-rotation");
     if let (Some(f), true, Some(minimise)) = (&d.free_tool_axis, rotation, doc.minimise) {
-        let [lo, hi] = f.tool_rotation_range_deg;
+        let [lo, hi] = f.tool_rotation_range.map(f64::to_degrees);
         text += &format!(
             "free tool axis (minimising the {}): mean TCP deflection {:.4} mm before, {:.4} mm after ({:+.1}%), tool rotation within [{lo:.1}, {hi:.1}] deg\n",
             minimise,
-            f.mean_deflection_before_mm,
-            f.mean_deflection_after_mm,
+            mm(f.mean_deflection_before),
+            mm(f.mean_deflection_after),
             f.mean_change_pct,
         );
     }
     if let Some(l) = &d.free_lead_tilt {
         text += &format!(
             "lead and tilt: largest lead {:.2} deg, largest tilt {:.2} deg, largest lean {:.2} deg, mean lean {:.2} deg\n",
-            l.max_lead_deg, l.max_tilt_deg, l.max_lean_deg, l.mean_lean_deg
+            l.max_lead.to_degrees(),
+            l.max_tilt.to_degrees(),
+            l.max_lean.to_degrees(),
+            l.mean_lean.to_degrees()
         );
     }
     if let Some(f) = &doc.feasibility {
@@ -627,7 +630,7 @@ fn free(doc: &Document) -> String {
     }
     // Why the speeds were not checked matters where a free variable moves the axes.
     if doc.speed_limits.not_checked_because.is_none() || doc.feasibility.is_some() {
-        text += &crate::commands::speed_line::line(&doc.speed_limits);
+        text += &crate::commands::speed_line::line(doc.speed_limits);
     }
     if let Some(levels) = doc.refine.filter(|&l| l > 0) {
         text += &format!("the free variables' grid refined {levels} time(s) around the line chosen on it, each level halving every step\n");
@@ -639,8 +642,8 @@ fn free(doc: &Document) -> String {
 }
 
 /// The program and the files written.
-fn written(args: &Args, report: &Report, names: &Names, doc: &Document) -> String {
-    let mut text = String::new();
+fn written(args: &Args, report: &Report, doc: &Document<'_>) -> String {
+    let (names, mut text) = (&report.names, String::new());
     if let Some(p) = &doc.program {
         text += &format!(
             "program ({}, process {}): {}, process force up to {:.1} N\n",
@@ -649,7 +652,7 @@ fn written(args: &Args, report: &Report, names: &Names, doc: &Document) -> Strin
             count(p.segments.len(), "segment"),
             p.max_force_n
         );
-        for o in &p.dynamics {
+        for o in p.dynamics {
             text += &dynamics_line(o);
         }
     }

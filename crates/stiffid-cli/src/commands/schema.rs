@@ -75,7 +75,7 @@ pub fn schema(name: &str) -> Result<Schema> {
         "predict" => closed::<stiffid::app::predict::document::Document<'static>>(),
         "identify" => closed::<stiffid::app::identify::document::Document<'static>>(),
         "validate" => closed::<stiffid::app::validate::document::Document<'static>>(),
-        "compensate" => closed::<stiffid::app::compensate::document::Document>(),
+        "compensate" => closed::<stiffid::app::compensate::document::Document<'static>>(),
         "place" => closed::<stiffid::app::place::document::Document<'static>>(),
         "force" => closed::<stiffid::app::force::Report>(),
         "simulate" => closed::<stiffid::app::simulate::Report>(),

@@ -10,8 +10,9 @@ use crate::output::{Fill, ReportDir};
 use anyhow::Result;
 use std::path::Path;
 use stiffid::app::compensate::document::GENERATOR;
-use stiffid::app::compensate::document::{Document, SegmentDocument};
-use stiffid::app::compensate::Report;
+use stiffid::app::compensate::document::{Document, SummaryDocument};
+use stiffid::app::compensate::{Report, Segment};
+use stiffid::app::document::mm;
 use stiffid_core::common::words::count;
 use stiffid_core::Setup;
 use stiffid_machining::compensate::Compensated;
@@ -46,14 +47,14 @@ pub struct View<'a> {
     /// What writes `summary.json`.
     pub summary: Fill<'a>,
     /// The document without its points.
-    pub document: &'a Document,
+    pub document: &'a Document<'a>,
 }
 
 /// Writes every file of the report into `dir`, each whole; `summary.json` first, so the
 /// directory is recognisably ours from then on.
 pub fn write(dir: ReportDir, setup: &Setup, view: &View) -> Result<()> {
     let sample = stiffid_figures::compensate::sample(view.report);
-    let drawings = stiffid_figures::compensate::figures(setup, &sample, view.report, view.document);
+    let drawings = stiffid_figures::compensate::figures(setup, &sample, view.report);
     let figures = figures::all(&drawings, Png::No)?;
     if let Some(map) = &view.report.map {
         dir.write(MAP_CSV, figures::map::csv(map).as_bytes())?;
@@ -78,7 +79,7 @@ pub fn write(dir: ReportDir, setup: &Setup, view: &View) -> Result<()> {
 }
 
 /// What the error that remains after compensation is made of, in mm.
-fn remains(s: &stiffid::app::compensate::document::SummaryDocument) -> String {
+fn remains(s: &SummaryDocument) -> String {
     let b = &s.budget;
     let parts: Vec<String> = (b.made_of.iter())
         .map(|p| match p.max_mm {
@@ -95,8 +96,8 @@ fn remains(s: &stiffid::app::compensate::document::SummaryDocument) -> String {
         "After compensation the error that remains at {}% is made of: {} (left: the compensation's residual; compensation: the predicted deflection's error; calibration: the calibrated robot's held-out error; force: the process force model's tolerance; model form: the spread over the models the data support). The compensated axis angles reproduce the model itself to {:.2e} um and {:.2e} urad, {} Newton steps per point at most.",
         b.level * 100.0,
         parts.join("; "),
-        s.max_residual_um,
-        s.max_residual_urad,
+        s.max_residual_position * 1e6,
+        s.max_residual_rotation * 1e6,
         s.max_iterations
     );
     if let Some(m) = &b.meets {
@@ -132,10 +133,10 @@ fn compose(
     let mut items = vec![
         format!(
             "Largest TCP deflection {} mm (line {}), mean {} mm; largest tool rotation {} mrad.",
-            num(s.max_deflection_mm),
+            num(mm(s.max_deflection)),
             s.max_deflection_line,
-            num(s.mean_deflection_mm),
-            num(s.max_rotation_mrad)
+            num(mm(s.mean_deflection)),
+            num(s.max_rotation * 1e3)
         ),
         remains(s),
     ];
@@ -144,8 +145,8 @@ fn compose(
     if let (Some(free), true) = (&s.free_tool_axis, rotation) {
         items.push(format!(
             "Free tool axis: sum of the TCP deflections {} mm before, {} mm after the optimisation of the rotation about tool z.",
-            num(free.sum_deflection_before_mm),
-            num(free.sum_deflection_after_mm)
+            num(mm(free.sum_deflection_before)),
+            num(mm(free.sum_deflection_after))
         ));
     }
     if let Some(p) = &document.program {
@@ -200,7 +201,7 @@ fn compose(
     }
     if let Some(p) = &document.program {
         w.heading(2, "Force and deflection per segment");
-        w.table(&segments(&p.segments));
+        w.table(&segments(p.segments));
     }
     w.heading(2, "The ten largest deflections");
     let sample = &view.report.summary.sample;
@@ -218,7 +219,7 @@ fn compose(
 }
 
 /// The segments' table (at most the first 200 rows; the JSON has them all).
-fn segments(segments: &[SegmentDocument]) -> Table {
+fn segments(segments: &[Segment]) -> Table {
     Table {
         header: [
             "line",
@@ -239,10 +240,10 @@ fn segments(segments: &[SegmentDocument]) -> Table {
                     s.line.to_string(),
                     s.operation.clone().unwrap_or_else(|| "-".into()),
                     s.points.to_string(),
-                    num(s.force_n),
-                    num(s.deflection_before_mm),
-                    s.deflection_std_mm.map_or("-".into(), |v| num(2.0 * v)),
-                    format!("{:.2e}", s.deflection_after_mm),
+                    num(s.force),
+                    num(mm(s.deflection_before)),
+                    s.deflection_std.map_or("-".into(), |v| num(2.0 * mm(v))),
+                    format!("{:.2e}", mm(s.deflection_after)),
                 ]
             })
             .collect(),

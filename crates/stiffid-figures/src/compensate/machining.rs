@@ -6,7 +6,8 @@ use crate::{colour, failed, Drawing, Plot};
 use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use stiffid::app::compensate::document::SegmentDocument;
+use stiffid::app::compensate::Segment;
+use stiffid::app::document::mm;
 use stiffid_machining::compensate::Compensated;
 
 struct Force<'a>(&'a [(usize, Compensated)]);
@@ -75,14 +76,14 @@ impl Plot for Force<'_> {
     }
 }
 
-struct Segments<'a>(&'a [SegmentDocument]);
+struct Segments<'a>(&'a [Segment]);
 
 /// A value drawn per segment, mm.
-type Value = dyn Fn(&SegmentDocument) -> f64;
+type Value = dyn Fn(&Segment) -> f64;
 
 /// The figure `segments`: each program segment's largest deflection before and after
 /// compensation.
-pub fn segments(segments: &[SegmentDocument]) -> Drawing<'_> {
+pub fn segments(segments: &[Segment]) -> Drawing<'_> {
     Drawing::new(
         "segments",
         "The largest TCP deflection of each program segment (a program line: a G-code block with \
@@ -102,10 +103,10 @@ impl Plot for Segments<'_> {
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
         let s = self.0;
-        let std = |g: &SegmentDocument| g.deflection_std_mm.map_or(0.0, |v| 2.0 * v);
+        let std = |g: &Segment| g.deflection_std.map_or(0.0, |v| 2.0 * mm(v));
         let hi = s
             .iter()
-            .map(|g| g.deflection_before_mm.max(std(g)))
+            .map(|g| mm(g.deflection_before).max(std(g)))
             .fold(0.0, f64::max)
             .max(1e-6)
             * 1.1;
@@ -126,15 +127,15 @@ impl Plot for Segments<'_> {
             x_label: &line_of,
         };
         let mut chart = line_chart(root, &axes)?;
-        let points = |g: &dyn Fn(&SegmentDocument) -> f64| -> Vec<(f64, f64)> {
+        let points = |g: &dyn Fn(&Segment) -> f64| -> Vec<(f64, f64)> {
             s.iter()
                 .enumerate()
                 .map(|(k, v)| (k as f64 + 1.0, g(v)))
                 .collect()
         };
         let mut drawn: Vec<(&Value, RGBColor)> =
-            vec![(&|v: &SegmentDocument| v.deflection_before_mm, BLACK)];
-        if s.iter().any(|g| g.deflection_std_mm.is_some()) {
+            vec![(&|v: &Segment| mm(v.deflection_before), BLACK)];
+        if s.iter().any(|g| g.deflection_std.is_some()) {
             drawn.push((&std, colour(2)));
         }
         for (g, c) in drawn {

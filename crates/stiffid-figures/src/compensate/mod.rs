@@ -1,5 +1,5 @@
 //! The figures of a compensation (`stiffid compensate --report`, Python's `stiffid.compensate(...,
-//! figures=True)`), from the compensate job's report and document: the TCP deflection along the
+//! figures=True)`), from the compensate job's report: the TCP deflection along the
 //! path before and after ([`path::deflection`]), the path over the robot ([`path::path`]), for a
 //! program the process force and each segment's deflection ([`machining`]), with the map of the
 //! free rotation the map ([`map`]).
@@ -9,7 +9,6 @@ pub mod map;
 pub mod path;
 
 use crate::Drawing;
-use stiffid::app::compensate::document::Document;
 use stiffid::app::compensate::Report;
 use stiffid_core::Setup;
 use stiffid_machining::compensate::Compensated;
@@ -25,17 +24,15 @@ pub fn sample(report: &Report) -> Vec<Compensated> {
         .collect()
 }
 
-/// Every figure of the compensation on `setup` whose job returned `report` and `document`, in
-/// report order: `deflection`, `path`, for a program `force` and `segments`, with the map `map`;
+/// Every figure of the compensation on `setup` whose job returned `report`, in report order: `deflection`, `path`, for a program `force` and `segments`, with the map `map`;
 /// `sample` is [`sample`] of `report`.
 pub fn figures<'a>(
     setup: &'a Setup,
     sample: &'a [Compensated],
     report: &'a Report,
-    document: &'a Document,
 ) -> Vec<Drawing<'a>> {
     let mut all = vec![path::deflection(sample), path::path(setup, sample)];
-    if let Some(p) = &document.program {
+    if let Some(p) = &report.program {
         all.push(machining::force(&report.summary.sample));
         all.push(machining::segments(&p.segments));
     }

@@ -493,7 +493,7 @@ fn inverse_kinematics_refuses_a_configuration_change_naming_the_point() {
 /// ends inside a point is an error.
 #[test]
 fn the_streamed_compensate_document_is_the_whole_one() {
-    use stiffid::app::compensate::document::{values, Document, Names};
+    use stiffid::app::compensate::document::values;
     use stiffid::app::compensate::stream::{Points as Stored, Rows};
     use stiffid::app::compensate::{run, Input, Request};
     use stiffid::machining::dynamics::Dynamics;
@@ -522,7 +522,7 @@ fn the_streamed_compensate_document_is_the_whole_one() {
     };
     let mut rows = Rows::default();
     let mut stored = Stored::new(Vec::new());
-    let report = run(
+    let mut report = run(
         request,
         |first, p: &[PathPoint], r: &[compensate::Compensated], d: &[Dynamics]| {
             for (k, ((p, r), d)) in p.iter().zip(r).zip(d).enumerate() {
@@ -537,14 +537,16 @@ fn the_streamed_compensate_document_is_the_whole_one() {
     let rows = rows.into_points();
     assert_eq!(rows.len(), q.len().min(4));
     assert!(rows.len() >= 2);
-    let names = Names::default();
-    let whole = Document::new(&report, &names, rows);
-    let whole =
-        serde_json::to_string_pretty(&serde_json::to_value(&whole).unwrap()).unwrap() + "\n";
+    // The report holding the rows is the whole document; without them, its head.
+    let head = report.report.clone();
+    report.report.points = rows;
+    let whole = serde_json::to_string_pretty(&serde_json::to_value(&report.report).unwrap())
+        .unwrap()
+        + "\n";
     // Empty cells (no covariance: the standard deviations) are null in both.
     assert!(whole.contains("\"dx_std_mm\": null"), "{whole}");
     let bytes = stored.into_inner();
-    let head = Document::new(&report, &names, Vec::new());
+    let head = head.document();
     let mut streamed = Vec::new();
     head.write_json(&bytes[..], &mut streamed).unwrap();
     assert_eq!(String::from_utf8(streamed).unwrap(), whole);

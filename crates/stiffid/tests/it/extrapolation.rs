@@ -5,7 +5,7 @@
 //! region is read with one warning that nothing is checked.
 
 use nalgebra::Vector6;
-use stiffid::app::compensate::document::{header, values, Document as CompensateDocument, Names};
+use stiffid::app::compensate::document::{header, values};
 use stiffid::app::compensate::{self, Input};
 use stiffid::app::identify::{self, Options};
 use stiffid::app::measurements::Data;
@@ -338,7 +338,7 @@ fn compensate_flags_each_path_point_beyond_the_identification_range() {
         "{}",
         warnings[0]
     );
-    let doc = CompensateDocument::new(&report, &Names::default(), Vec::new());
+    let doc = report.document();
     assert_eq!(doc.summary.extrapolated, Some(1));
     assert_eq!(doc.region.map(|r| r.postures), Some(43));
 }

@@ -267,7 +267,6 @@ fn the_stiffness_file_carries_every_parameter_of_the_model() {
 /// spring, in N/mm for the translational one.
 #[test]
 fn the_compensate_document_lists_every_parameter_of_the_model() {
-    use stiffid::app::compensate::document::{Document, Names};
     use stiffid::app::compensate::{run, Input, Request};
     let s = extended();
     let compliance = s.model_compliance("test").unwrap();
@@ -286,7 +285,7 @@ fn the_compensate_document_lists_every_parameter_of_the_model() {
         options: compensate::Options::for_setup(&s),
     };
     let report = run(request, |_, _, _, _| Ok::<(), stiffid::Error>(())).unwrap();
-    let doc = Document::new(&report, &Names::default(), Vec::new());
+    let doc = report.document();
     let json = serde_json::to_value(&doc).unwrap();
     let parameters = json["parameters"].as_array().unwrap();
     let names: Vec<&str> = parameters

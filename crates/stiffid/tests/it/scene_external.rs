@@ -232,19 +232,18 @@ fn a_compensations_scene_stands_at_the_path_points_stations() {
         options: stiffid::machining::compensate::Options::for_setup(&setup),
     };
     let mut results = Vec::new();
-    let report = compensate::run::<stiffid::Error, _>(request, |_, _, r, _| {
+    let mut report = compensate::run::<stiffid::Error, _>(request, |_, _, r, _| {
         results.extend_from_slice(r);
         Ok(())
     })
     .unwrap();
-    let names = compensate::document::Names {
+    report.report.names = compensate::document::Names {
         setup: "track-cell.toml".into(),
         stiffness: "nominal".into(),
         out: "out.csv".into(),
         program_out: String::new(),
     };
-    let doc = compensate::document::Document::new(&report, &names, Vec::new());
-    let json = serde_json::to_string(&doc).unwrap();
+    let json = serde_json::to_string(&report.report).unwrap();
     let scene = compensate::scene::of_document(&setup, &json)
         .unwrap()
         .unwrap();

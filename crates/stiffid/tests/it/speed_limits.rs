@@ -8,7 +8,7 @@
 
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 use std::sync::Arc;
-use stiffid::app::compensate::{self, document::Document, Input};
+use stiffid::app::compensate::{self, document::Document, Input, Report};
 use stiffid::machining::compensate::{
     self as comp, speed_shares, Aggregate, Compensated, Free, FreeVariables, Objective, Options,
     PathPoint, Target,
@@ -53,8 +53,8 @@ fn trim(feed: f64) -> (String, Vec<f64>) {
 }
 
 /// The trim line compensated with the station free (+-1500 mm in 50 mm steps, the worst
-/// bound): the document and each point's station chosen, mm.
-fn on_track(s: &Setup, text: &str) -> (Document, Vec<f64>) {
+/// bound): the report (its document) and each point's station chosen, mm.
+fn on_track(s: &Setup, text: &str) -> (Report, Vec<f64>) {
     let options = Options {
         free: FreeVariables {
             free: vec![Free::Station(crate::compensate::station(1500.0, 50.0))],
@@ -83,8 +83,7 @@ fn on_track(s: &Setup, text: &str) -> (Document, Vec<f64>) {
         },
     )
     .unwrap();
-    let names = compensate::document::Names::default();
-    (Document::new(&report, &names, Vec::new()), stations)
+    (report.report, stations)
 }
 
 /// The track's highest share of `mm_s` along the path: each move's `|de| / (v dt)`, `dt` the
@@ -100,11 +99,13 @@ fn a_slow_track_keeps_the_free_station_within_its_speed() {
     let (feed, mm_s) = (100.0, 40.0);
     let (text, x) = trim(feed);
     let (free, unlimited) = on_track(&track_cell(None), &text);
+    let free = free.document();
     // Without the limit the optimum follows the tool: 50 mm steps in 0.5 s, 2.5 times 40 mm/s.
     let before = highest_share(&unlimited, &x, (feed, mm_s));
     assert!((before - 2.5).abs() < 1e-9, "{before}");
     assert!(!free.speed_limits.checked);
-    let (doc, limited) = on_track(&track_cell(Some(mm_s)), &text);
+    let (limited_report, limited) = on_track(&track_cell(Some(mm_s)), &text);
+    let doc = limited_report.document();
     let after = highest_share(&limited, &x, (feed, mm_s));
     assert!(after <= 1.0 + 1e-12, "{after}");
     assert!(doc.speed_limits.checked);
@@ -114,7 +115,7 @@ fn a_slow_track_keeps_the_free_station_within_its_speed() {
     assert!(track.chosen_highest_share.unwrap() <= 1.0);
     assert!(doc.feasibility.as_ref().unwrap().moves_refused_speed > 0);
     // A limit never lowers the worst bound.
-    let peak = |d: &Document| d.summary.budget.max_bound_mm.unwrap();
+    let peak = |d: &Document<'_>| d.summary.budget.max_bound_mm.unwrap();
     assert!(peak(&doc) >= peak(&free) - 1e-12);
 }
 

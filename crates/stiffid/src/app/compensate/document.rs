@@ -5,9 +5,8 @@
 
 pub use super::free::FreeVariable;
 use crate::app::compensate::{Report, Segment};
-use crate::app::document::finite;
-use crate::app::document::mm;
 use crate::app::document::parameters::{stiffness, ParameterStiffness};
+use crate::app::document::units;
 use nalgebra::Vector6;
 use serde::Serialize;
 use serde_json::{Map, Value};
@@ -26,21 +25,30 @@ pub use super::columns::{csv_line, external_header, external_values, header, val
 pub const GENERATOR: &str = "stiffid compensate";
 
 /// The compensate document. Units in the key names.
+///
+/// A view of the report ([`Report::document`]), built as it is written: its lengths and angles
+/// are the report's, in SI, written in the units their keys name by the unit adapters
+/// ([`units`]); its `points` are the report's (empty where the front end streams them:
+/// [`Document::write_json`]).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(tag = "kind", rename = "compensate")]
+#[cfg_attr(
+    feature = "schema",
+    schemars(description = "The compensate document. Units in the key names.")
+)]
 #[cfg_attr(feature = "schema", schemars(transform = crate::app::document::schema::Kind("compensate")))]
-pub struct Document {
+pub struct Document<'a> {
     /// `stiffid compensate`: marks a report directory as ours.
     pub generator: &'static str,
     /// The setup as given.
-    pub setup: String,
+    pub setup: &'a str,
     /// The stiffness file (or `arrays`).
-    pub stiffness: String,
+    pub stiffness: &'a str,
     /// The path file, or the program file.
-    pub path: String,
+    pub path: &'a str,
     /// The CSV written (the front end's name for it; empty when none is written).
-    pub out: String,
+    pub out: &'a str,
     /// Where the springs sit.
     pub springs: Coordinates,
     /// The joint stiffness used, Nm/rad.
@@ -71,11 +79,11 @@ pub struct Document {
     pub objective: Option<&'static str>,
     /// With a free variable: the feasibility checks of its moved postures and the states each
     /// removed; else `null`.
-    pub feasibility: Option<super::feasibility::Feasibility>,
+    pub feasibility: Option<&'a super::feasibility::Feasibility>,
     /// The axes' speed limits at the program's feed: whether the free variables' moves were
     /// checked against them, and each axis's highest share of its largest speed along the path
     /// at the path's own values and at those chosen.
-    pub speed_limits: super::speed::SpeedLimits,
+    pub speed_limits: &'a super::speed::SpeedLimits,
     /// With a free variable: the levels its grid was refined around the line chosen on it
     /// (`--refine`, 0 to 4: each halves every free variable's step in a band around the
     /// previous level's line); else `null`.
@@ -85,18 +93,18 @@ pub struct Document {
     pub configurations: Option<super::configurations::ConfigurationsDocument>,
     /// With a program: the program, its process and each segment's force and deflection; else
     /// `null`.
-    pub program: Option<Program>,
+    pub program: Option<Program<'a>>,
     /// The largest and mean values along the path.
     pub summary: SummaryDocument,
     /// With a stiffness file whose `model_form` holds a recommended model other than its own
     /// (`identify --compare-models --bootstrap N --stiffness-out`): Spearman's rho of the two
     /// models' deflections over the points, whether they rank the postures alike, and the points
     /// whose ranks differ most ([`super::ranking`]); else `null`.
-    pub model_ranking: Option<super::ranking::RankingDocument>,
+    pub model_ranking: Option<&'a super::ranking::RankingDocument>,
     /// Results to look at before trusting them (points without a force).
-    pub warnings: Vec<Warning>,
+    pub warnings: &'a [Warning],
     /// One object per path point: the columns of the CSV by name.
-    pub points: Vec<Row>,
+    pub points: &'a [Row],
 }
 
 /// The names the front end gives the inputs and outputs of a compensation.
@@ -115,69 +123,56 @@ pub struct Names {
 /// A compensated program: what was read, and each segment's force and deflection.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct Program {
+pub struct Program<'a> {
     /// The program's language: `gcode`, `krl`, `rapid`, `ls` or `inform`.
     pub language: &'static str,
     /// The compensated program's language (the program's own, or a robot program's for G-code).
     pub output_language: &'static str,
     /// The process file.
-    pub process: String,
+    pub process: &'a str,
     /// The compensated program written (empty when none is).
-    pub out: String,
+    pub out: &'a str,
     /// A generated program's sub-programs, in the order its main program calls them (empty
     /// unless it is split): each written beside the main program, in a file of its name.
-    pub subprograms: Vec<String>,
+    pub subprograms: Vec<&'a str>,
     /// One entry per segment (a program line with at least one point), in program order.
-    pub segments: Vec<SegmentDocument>,
+    pub segments: &'a [Segment],
     /// The largest process force on the tool over the program (of `segments`), N.
     pub max_force_n: f64,
     /// Each operation's breakthrough surge (drilling: the largest over its exits) or first
     /// natural frequency against its tooth-passing frequency (milling); empty when the robot
     /// gives no masses.
-    pub dynamics: Vec<crate::app::compensate::dynamics::OperationDynamics>,
+    pub dynamics: &'a [crate::app::compensate::dynamics::OperationDynamics],
 }
 
-/// One segment of a program: the points of one line (a G-code block's arc points, a robot
-/// program's target).
+/// The largest and mean values along the path: a view of the [`Summary`], its lengths and
+/// angles in SI written in the units their keys name.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct SegmentDocument {
-    /// The program line, 1-based.
-    pub line: u64,
-    /// The operation that cuts there (its name), `null` for a rapid move or a block no operation
-    /// covers.
-    pub operation: Option<String>,
-    /// Path points of the segment.
-    pub points: usize,
-    /// The largest process force on the tool over the segment, N.
-    pub force_n: f64,
-    /// The largest TCP deflection under the force, uncompensated, mm.
-    pub deflection_before_mm: f64,
-    /// The largest TCP deflection left after compensation (the residual), mm.
-    pub deflection_after_mm: f64,
-    /// With a compliance covariance: the largest standard deviation of the uncompensated
-    /// deflection's length (what compensation cannot remove), mm; else `null`.
-    pub deflection_std_mm: Option<f64>,
-}
-
-/// The largest and mean values along the path.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[cfg_attr(
+    feature = "schema",
+    schemars(description = "The largest and mean values along the path.")
+)]
 pub struct SummaryDocument {
     /// Path points.
     pub points: usize,
-    /// The largest TCP deflection, mm.
-    pub max_deflection_mm: f64,
+    /// The largest TCP deflection: m, written in mm.
+    #[serde(rename = "max_deflection_mm", serialize_with = "units::mm")]
+    pub max_deflection: f64,
     /// Its line in the path file.
     pub max_deflection_line: u64,
-    /// The mean TCP deflection, mm.
-    pub mean_deflection_mm: f64,
-    /// The largest tool rotation, mrad.
-    pub max_rotation_mrad: f64,
-    /// The largest position residual of the compensated axis angles, um.
-    pub max_residual_um: f64,
-    /// The largest rotation residual, urad.
-    pub max_residual_urad: f64,
+    /// The mean TCP deflection: m, written in mm.
+    #[serde(rename = "mean_deflection_mm", serialize_with = "units::mm")]
+    pub mean_deflection: f64,
+    /// The largest tool rotation: rad, written in mrad.
+    #[serde(rename = "max_rotation_mrad", serialize_with = "units::mrad")]
+    pub max_rotation: f64,
+    /// The largest position residual of the compensated axis angles: m, written in um.
+    #[serde(rename = "max_residual_um", serialize_with = "units::um")]
+    pub max_residual_position: f64,
+    /// The largest rotation residual: rad, written in urad.
+    #[serde(rename = "max_residual_urad", serialize_with = "units::urad")]
+    pub max_residual_rotation: f64,
     /// The most Newton steps of a point.
     pub max_iterations: usize,
     /// Why the Newton steps stopped along the path: `converged` when every point's residual fell
@@ -192,8 +187,14 @@ pub struct SummaryDocument {
     /// when the stiffness records no region.
     pub extrapolated: Option<usize>,
     /// With prediction intervals: the widest interval of a TCP deflection coordinate along the
-    /// path (`upper - lower`), mm; `null` without intervals or when one is unbounded.
-    pub max_interval_width_mm: Option<f64>,
+    /// path (`upper - lower`); `null` without intervals or when one is unbounded: m, written in
+    /// mm.
+    #[serde(
+        rename = "max_interval_width_mm",
+        serialize_with = "units::mm_finite_option"
+    )]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<f64>"))]
+    pub max_interval_width: Option<f64>,
     /// With `--free tool-rotation`: what the rotation about tool z gained; else `null`.
     pub free_tool_axis: Option<FreeSummary>,
     /// With `--free lead-tilt`: the leans chosen; else `null`.
@@ -201,10 +202,16 @@ pub struct SummaryDocument {
     /// The error budget along the path: the largest and mean bound at the level, the parts
     /// absent, the worst points and what dominates their bound (the points' `bound_*` columns).
     pub budget: super::budget::BudgetSummary,
-    /// The largest error predicted to remain after compensation, mm: the standard deviation of
-    /// the TCP deflection's length `|d|` from the compliance's covariance (the compensation
-    /// removes the predicted deflection, not its uncertainty); `null` without a covariance.
-    pub max_remaining_error_mm: Option<f64>,
+    /// The largest error predicted to remain after compensation: the standard deviation of the
+    /// TCP deflection's length `|d|` from the compliance's covariance (the compensation removes
+    /// the predicted deflection, not its uncertainty); `null` without a covariance: m, written
+    /// in mm.
+    #[serde(
+        rename = "max_remaining_error_mm",
+        serialize_with = "units::mm_finite_option"
+    )]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<f64>"))]
+    pub max_remaining_error: Option<f64>,
     /// What the 3D scene draws (`compensate --report`'s, Python's `stiffid.scene`): the
     /// postures at the first point and at the largest deflection, the sampled path and its
     /// error.
@@ -215,16 +222,22 @@ pub struct SummaryDocument {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct FreeSummary {
-    /// Sum of the TCP deflections with the path's rotation, mm.
-    pub sum_deflection_before_mm: f64,
-    /// Sum of the TCP deflections with the rotations chosen, mm.
-    pub sum_deflection_after_mm: f64,
-    /// The smallest and largest rotation chosen, deg.
-    pub tool_rotation_range_deg: [f64; 2],
-    /// The mean TCP deflection with the path's rotation, mm.
-    pub mean_deflection_before_mm: f64,
-    /// The mean TCP deflection with the rotations chosen, mm.
-    pub mean_deflection_after_mm: f64,
+    /// Sum of the TCP deflections with the path's rotation: m, written in mm.
+    #[serde(rename = "sum_deflection_before_mm", serialize_with = "units::mm")]
+    pub sum_deflection_before: f64,
+    /// Sum of the TCP deflections with the rotations chosen: m, written in mm.
+    #[serde(rename = "sum_deflection_after_mm", serialize_with = "units::mm")]
+    pub sum_deflection_after: f64,
+    /// The smallest and largest rotation chosen: rad, written in deg.
+    #[serde(rename = "tool_rotation_range_deg", serialize_with = "units::deg2")]
+    #[cfg_attr(feature = "schema", schemars(with = "[f64; 2]"))]
+    pub tool_rotation_range: [f64; 2],
+    /// The mean TCP deflection with the path's rotation: m, written in mm.
+    #[serde(rename = "mean_deflection_before_mm", serialize_with = "units::mm")]
+    pub mean_deflection_before: f64,
+    /// The mean TCP deflection with the rotations chosen: m, written in mm.
+    #[serde(rename = "mean_deflection_after_mm", serialize_with = "units::mm")]
+    pub mean_deflection_after: f64,
     /// How much the rotations chosen change the mean TCP deflection, %: negative when they
     /// lower it.
     pub mean_change_pct: f64,
@@ -235,14 +248,19 @@ pub struct FreeSummary {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct LeanSummary {
-    /// The largest lead (towards the feed) in magnitude, deg.
-    pub max_lead_deg: f64,
-    /// The largest tilt (across the feed) in magnitude, deg.
-    pub max_tilt_deg: f64,
-    /// The largest angle of the axis to the path's own, `sqrt(lead^2 + tilt^2)`, deg.
-    pub max_lean_deg: f64,
-    /// The mean of that angle over the path's points, deg.
-    pub mean_lean_deg: f64,
+    /// The largest lead (towards the feed) in magnitude: rad, written in deg.
+    #[serde(rename = "max_lead_deg", serialize_with = "units::deg")]
+    pub max_lead: f64,
+    /// The largest tilt (across the feed) in magnitude: rad, written in deg.
+    #[serde(rename = "max_tilt_deg", serialize_with = "units::deg")]
+    pub max_tilt: f64,
+    /// The largest angle of the axis to the path's own, `sqrt(lead^2 + tilt^2)`: rad, written in
+    /// deg.
+    #[serde(rename = "max_lean_deg", serialize_with = "units::deg")]
+    pub max_lean: f64,
+    /// The mean of that angle over the path's points: rad, written in deg.
+    #[serde(rename = "mean_lean_deg", serialize_with = "units::deg")]
+    pub mean_lean: f64,
 }
 
 /// One path point: the columns of [`header`] by name, `null` for an empty cell.
@@ -305,16 +323,16 @@ fn may_be_empty(name: &str) -> bool {
         || name.starts_with("bound_")
 }
 
-impl Document {
-    /// The document of `report`, named by `names`, with `points` (the rows a
-    /// [`super::stream::Rows`] kept; empty when the front end streams them itself).
-    pub fn new(report: &Report, names: &Names, points: Vec<Row>) -> Self {
+impl<'a> Document<'a> {
+    /// The document of `report` ([`Report::document`]).
+    pub(crate) fn new(report: &'a Report) -> Self {
+        let names = &report.names;
         Document {
             generator: GENERATOR,
-            setup: names.setup.clone(),
-            stiffness: names.stiffness.clone(),
-            path: report.input.clone(),
-            out: names.out.clone(),
+            setup: &names.setup,
+            stiffness: &names.stiffness,
+            path: &report.input,
+            out: &names.out,
             springs: report.springs,
             stiffness_nm_per_rad: report.compliance.drives_h().map(|h| 1.0 / h).into(),
             parameters: stiffness(&report.parameters, &report.compliance.h),
@@ -324,38 +342,26 @@ impl Document {
             free: FreeVariable::all(&report.free),
             minimise: super::free::objective(&report.free).map(|o| o.0),
             objective: super::free::objective(&report.free).map(|o| o.1),
-            feasibility: report.feasibility.clone(),
-            speed_limits: report.speed_limits.clone(),
+            feasibility: report.feasibility.as_ref(),
+            speed_limits: &report.speed_limits,
             refine: report.refine,
             configurations: (report.configurations.as_ref())
                 .map(super::configurations::ConfigurationsDocument::new),
             program: report.program.as_ref().map(|p| Program {
                 language: p.language.name(),
                 output_language: p.output.name(),
-                process: p.process.clone(),
-                out: names.program_out.clone(),
-                subprograms: p.subprograms.iter().map(|f| f.name.clone()).collect(),
-                segments: p.segments.iter().map(segment).collect(),
+                process: &p.process,
+                out: &names.program_out,
+                subprograms: p.subprograms.iter().map(|f| f.name.as_str()).collect(),
+                segments: &p.segments,
                 max_force_n: p.segments.iter().map(|s| s.force).fold(0.0, f64::max),
-                dynamics: p.dynamics.clone(),
+                dynamics: &p.dynamics,
             }),
             summary: report.summary.document(),
-            model_ranking: report.model_ranking.clone(),
-            warnings: report.warnings.clone(),
-            points,
+            model_ranking: report.model_ranking.as_ref(),
+            warnings: &report.warnings,
+            points: &report.points,
         }
-    }
-}
-
-fn segment(s: &Segment) -> SegmentDocument {
-    SegmentDocument {
-        line: s.line,
-        operation: s.operation.clone(),
-        points: s.points,
-        force_n: s.force,
-        deflection_before_mm: mm(s.deflection_before),
-        deflection_after_mm: mm(s.deflection_after),
-        deflection_std_mm: s.deflection_std.map(mm),
     }
 }
 
@@ -608,25 +614,17 @@ impl Summary {
         self.sum_deflection / self.points.max(1) as f64
     }
 
-    /// With the free tool axis: the mean deflection before and after (m) and the range of the
-    /// rotations chosen (rad).
-    pub fn free_tool_axis(&self) -> Option<(f64, f64, [f64; 2])> {
-        let n = self.points.max(1) as f64;
-        self.free
-            .map(|(before, after, lo, hi)| (before / n, after / n, [lo.min(hi), hi.max(lo)]))
-    }
-
-    /// The summary in document units.
+    /// The summary as the document writes it: a view of its values, in SI.
     pub fn document(&self) -> SummaryDocument {
-        let means = self.free_tool_axis();
+        let n = self.points.max(1) as f64;
         SummaryDocument {
             points: self.points,
-            max_deflection_mm: mm(self.max_deflection.0),
+            max_deflection: self.max_deflection.0,
             max_deflection_line: self.max_deflection.1,
-            mean_deflection_mm: mm(self.mean_deflection()),
-            max_rotation_mrad: self.max_rotation * 1e3,
-            max_residual_um: self.max_residual_position * 1e6,
-            max_residual_urad: self.max_residual_rotation * 1e6,
+            mean_deflection: self.mean_deflection(),
+            max_rotation: self.max_rotation,
+            max_residual_position: self.max_residual_position,
+            max_residual_rotation: self.max_residual_rotation,
             max_iterations: self.max_iterations,
             stop_reason: match self.not_converged {
                 0 => Stop::Converged,
@@ -634,8 +632,8 @@ impl Summary {
             },
             not_converged: self.not_converged,
             extrapolated: self.extrapolated,
-            max_interval_width_mm: self.max_interval_width.and_then(|w| finite(mm(w))),
-            max_remaining_error_mm: self.max_norm_std.and_then(|w| finite(mm(w))),
+            max_interval_width: self.max_interval_width,
+            max_remaining_error: self.max_norm_std,
             budget: self.budget.document(self.level),
             scene: super::scene::ScenePart::new(
                 &self.sample,
@@ -644,25 +642,22 @@ impl Summary {
                 self.axes.as_ref(),
             ),
             free_lead_tilt: self.lean.map(|[lead, tilt, most, sum]| LeanSummary {
-                max_lead_deg: lead.to_degrees(),
-                max_tilt_deg: tilt.to_degrees(),
-                max_lean_deg: most.to_degrees(),
-                mean_lean_deg: (sum / self.points.max(1) as f64).to_degrees(),
+                max_lead: lead,
+                max_tilt: tilt,
+                max_lean: most,
+                mean_lean: sum / n,
             }),
-            free_tool_axis: self
-                .free
-                .zip(means)
-                .map(|((before, after, lo, hi), means)| {
-                    let (mean_before, mean_after, _) = means;
-                    FreeSummary {
-                        sum_deflection_before_mm: mm(before),
-                        sum_deflection_after_mm: mm(after),
-                        tool_rotation_range_deg: [lo.to_degrees(), hi.to_degrees()],
-                        mean_deflection_before_mm: mm(mean_before),
-                        mean_deflection_after_mm: mm(mean_after),
-                        mean_change_pct: 100.0 * (mean_after / mean_before - 1.0),
-                    }
-                }),
+            free_tool_axis: self.free.map(|(before, after, lo, hi)| {
+                let (mean_before, mean_after) = (before / n, after / n);
+                FreeSummary {
+                    sum_deflection_before: before,
+                    sum_deflection_after: after,
+                    tool_rotation_range: [lo, hi],
+                    mean_deflection_before: mean_before,
+                    mean_deflection_after: mean_after,
+                    mean_change_pct: 100.0 * (mean_after / mean_before - 1.0),
+                }
+            }),
         }
     }
 }

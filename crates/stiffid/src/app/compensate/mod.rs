@@ -32,6 +32,7 @@ pub mod ranking;
 pub mod resolution;
 pub mod scene;
 mod segments;
+pub use segments::{ProgramReport, Segment};
 pub mod speed;
 pub mod stream;
 mod written;
@@ -108,58 +109,9 @@ pub struct Request<'a> {
     pub names: Names,
 }
 
-/// The compensate job's report and its document (without the points: the sink receives them).
-pub type Outcome = crate::app::Outcome<Report, document::Document>;
-
-/// A compensated program.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ProgramReport {
-    /// Its language.
-    pub language: Language,
-    /// The language of the compensated program.
-    pub output: Language,
-    /// The process file's name.
-    pub process: String,
-    /// The program, compensated, in its own format (robot programs with the compensated axis
-    /// angles and every other byte as read, G-code with the compensated positions), or a G-code
-    /// path as a new robot program of the compensated targets (its main program when it is
-    /// split).
-    pub text: String,
-    /// A generated program's sub-programs, in call order (empty unless it is split): each
-    /// written to a file of its name next to the main program's.
-    pub subprograms: Vec<generate::File>,
-    /// For a KRL program read with its `.dat` ([`Input::Program`]'s `data`): the `.dat`
-    /// compensated (its `DEFDAT` renamed with the program's `DEF`); for a G-code path written as
-    /// a KRL program, its points' `.dat` ([`generate::File`]'s `data`). To be written beside the
-    /// program under its stem with `.dat`, together with it.
-    pub data: Option<String>,
-    /// Each segment's force and deflection, in program order.
-    pub segments: Vec<Segment>,
-    /// Each operation's drilling surge or milling frequencies (`dynamics::operations`); empty
-    /// without a mass model.
-    pub dynamics: Vec<dynamics::OperationDynamics>,
-}
-
-/// The points of one program line (a G-code block's arc points, a robot program's target).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Segment {
-    /// The program line, 1-based.
-    pub line: u64,
-    /// The name of the operation that cuts there; `None` for a rapid move or a block no
-    /// operation covers.
-    pub operation: Option<String>,
-    /// Path points of the segment.
-    pub points: usize,
-    /// The largest process force on the tool, N.
-    pub force: f64,
-    /// The largest TCP deflection, uncompensated, m.
-    pub deflection_before: f64,
-    /// The largest TCP deflection left after compensation (the residual), m.
-    pub deflection_after: f64,
-    /// With a compliance covariance: the largest standard deviation of the deflection's length,
-    /// m.
-    pub deflection_std: Option<f64>,
-}
+/// The compensate job's report, which is its document (serialised through
+/// [`document::Document`]; without the points: the sink receives them).
+pub type Outcome = crate::app::Outcome<Report>;
 
 /// What the compensate job found.
 #[derive(Debug, Clone)]
@@ -200,6 +152,27 @@ pub struct Report {
     pub model_ranking: Option<ranking::RankingDocument>,
     /// Points without a process force (plunges, rapid moves, blocks no operation covers).
     pub warnings: Vec<Warning>,
+    /// The names of the inputs and outputs the document states ([`Request::names`]).
+    pub names: Names,
+    /// The document's points: the rows a front end that returns the document whole keeps as
+    /// the sink receives them ([`stream::Rows`]); empty from [`run`], and where the front end
+    /// streams them ([`document::Document::write_json`]).
+    pub points: Vec<document::Row>,
+}
+
+impl Report {
+    /// The document this report is written as (`stiffid compensate --json`, the report's
+    /// `summary.json`, Python's `stiffid.compensate`'s `document`), to read: what the command's
+    /// text and report print.
+    pub fn document(&self) -> document::Document<'_> {
+        document::Document::new(self)
+    }
+}
+
+impl serde::Serialize for Report {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        self.document().serialize(s)
+    }
 }
 
 /// Runs the compensate job; `sink(first, points, results, dynamics)` gets every chunk of points
@@ -220,13 +193,13 @@ where
     E: From<Error>,
     F: FnMut(usize, &[PathPoint], &[Compensated], &[Dynamics]) -> std::result::Result<(), E>,
 {
-    let names = request.names.clone();
-    let report = find(request, sink)?;
-    let document = document::Document::new(&report, &names, Vec::new());
-    Ok(Outcome { report, document })
+    Ok(Outcome {
+        report: find(request, sink)?,
+        document: crate::app::Itself,
+    })
 }
 
-/// What [`run`] finds, before its document.
+/// What [`run`] finds.
 fn find<E, F>(request: Request<'_>, mut sink: F) -> std::result::Result<Report, E>
 where
     E: From<Error>,
@@ -237,7 +210,7 @@ where
         compliance,
         input,
         options,
-        ..
+        names,
     } = request;
     options.validate()?;
     check_tcp(setup)?;
@@ -260,7 +233,7 @@ where
             (Input::Program { .. }, None) => unreachable!("read_checked reads every program"),
         }
     };
-    Ok(finish(setup, compliance, options, tally, outcome)?)
+    Ok(finish(setup, (compliance, names), options, tally, outcome)?)
 }
 
 /// Whether the compensation moves a free variable (the tool's rotation, its lean, an external
@@ -556,15 +529,15 @@ where
     Ok((operations, warnings))
 }
 
-/// The report: the largest error refused above `--max-error-mm`, the map of the free variable,
-/// the warnings of the configurations, the speeds, the solver's stops and the compliance's
-/// region.
+/// The report, its inputs and outputs named by `names`: the largest error refused above
+/// `--max-error-mm`, the map of the free variable, the warnings of the configurations, the
+/// speeds, the solver's stops and the compliance's region.
 ///
 /// # Errors
 /// Those of [`budget::Worst::refuse_above`] and [`compensate::map`].
 fn finish(
     setup: &Setup,
-    compliance: Compliance,
+    (compliance, names): (Compliance, Names),
     options: Options,
     tally: Tally<'_>,
     outcome: Computed,
@@ -611,6 +584,8 @@ fn finish(
         configurations,
         model_ranking,
         warnings,
+        names,
+        points: Vec::new(),
     })
 }
 

@@ -1,8 +1,78 @@
-//! A compensated program's segments: its points grouped by line, in order, with the largest
-//! force, deflection before and after, and standard deviation of each line.
+//! A compensated program as the report holds it ([`ProgramReport`]), and its segments: its points
+//! grouped by line, in order, with the largest force, deflection before and after, and standard
+//! deviation of each line ([`Segment`]).
 
-use super::Segment;
+use super::dynamics;
+#[cfg(doc)]
+use super::Input;
+use crate::app::document::units;
 use stiffid_machining::process::Process;
+use stiffid_machining::program::generate;
+use stiffid_machining::Language;
+
+/// A compensated program.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ProgramReport {
+    /// Its language.
+    pub language: Language,
+    /// The language of the compensated program.
+    pub output: Language,
+    /// The process file's name.
+    pub process: String,
+    /// The program, compensated, in its own format (robot programs with the compensated axis
+    /// angles and every other byte as read, G-code with the compensated positions), or a G-code
+    /// path as a new robot program of the compensated targets (its main program when it is
+    /// split).
+    pub text: String,
+    /// A generated program's sub-programs, in call order (empty unless it is split): each
+    /// written to a file of its name next to the main program's.
+    pub subprograms: Vec<generate::File>,
+    /// For a KRL program read with its `.dat` ([`Input::Program`]'s `data`): the `.dat`
+    /// compensated (its `DEFDAT` renamed with the program's `DEF`); for a G-code path written as
+    /// a KRL program, its points' `.dat` ([`generate::File`]'s `data`). To be written beside the
+    /// program under its stem with `.dat`, together with it.
+    pub data: Option<String>,
+    /// Each segment's force and deflection, in program order.
+    pub segments: Vec<Segment>,
+    /// Each operation's drilling surge or milling frequencies (`dynamics::operations`); empty
+    /// without a mass model.
+    pub dynamics: Vec<dynamics::OperationDynamics>,
+}
+
+/// One segment of a program: the points of one line (a G-code block's arc points, a robot
+/// program's target).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[cfg_attr(
+    feature = "schema",
+    schemars(
+        rename = "SegmentDocument",
+        description = "One segment of a program: the points of one line (a G-code block's arc points, a robot\nprogram's target)."
+    )
+)]
+pub struct Segment {
+    /// The program line, 1-based.
+    pub line: u64,
+    /// The operation that cuts there (its name), `null` for a rapid move or a block no operation
+    /// covers.
+    pub operation: Option<String>,
+    /// Path points of the segment.
+    pub points: usize,
+    /// The largest process force on the tool over the segment, N.
+    #[serde(rename = "force_n")]
+    pub force: f64,
+    /// The largest TCP deflection under the force, uncompensated: m, written in mm.
+    #[serde(rename = "deflection_before_mm", serialize_with = "units::mm")]
+    pub deflection_before: f64,
+    /// The largest TCP deflection left after compensation (the residual): m, written in mm.
+    #[serde(rename = "deflection_after_mm", serialize_with = "units::mm")]
+    pub deflection_after: f64,
+    /// With a compliance covariance: the largest standard deviation of the uncompensated
+    /// deflection's length (what compensation cannot remove); else `null`: m, written in mm.
+    #[serde(rename = "deflection_std_mm", serialize_with = "units::mm_option")]
+    #[cfg_attr(feature = "schema", schemars(with = "Option<f64>"))]
+    pub deflection_std: Option<f64>,
+}
 
 /// The segments of a compensated program: its points grouped by line, in order.
 pub(super) fn segments(c: &stiffid_machining::Report, process: &Process) -> Vec<Segment> {

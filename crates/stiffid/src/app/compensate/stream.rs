@@ -89,7 +89,7 @@ impl Rows {
     }
 }
 
-impl Document {
+impl Document<'_> {
     /// Writes the document to `out` as pretty JSON with a final line break, keys in alphabetical
     /// order (as [`serde_json::Value`] orders them), its `points` (empty in `self`) read one by
     /// one from `points`: what a [`Points`] wrote. The same bytes as the document holding those

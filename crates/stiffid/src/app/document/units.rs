@@ -192,3 +192,35 @@ pub(crate) fn mrad_option<S: Serializer>(v: &Option<f64>, s: S) -> Written<S> {
 pub(crate) fn deg_option<S: Serializer>(v: &Option<f64>, s: S) -> Written<S> {
     v.map(f64::to_degrees).serialize(s)
 }
+
+/// A length in m or none, written in mm, `null` when none or not finite. Schema: `Option<f64>`.
+///
+/// # Errors
+/// The serialiser's.
+pub fn mm_finite_option<S: Serializer>(v: &Option<f64>, s: S) -> Written<S> {
+    v.and_then(|v| super::finite(super::mm(v))).serialize(s)
+}
+
+/// A length in m, written in um (`v * 1e6`). Schema: `f64`.
+///
+/// # Errors
+/// The serialiser's.
+pub fn um<S: Serializer>(v: &f64, s: S) -> Written<S> {
+    s.serialize_f64(v * 1e6)
+}
+
+/// An angle in rad, written in urad (`v * 1e6`). Schema: `f64`.
+///
+/// # Errors
+/// The serialiser's.
+pub fn urad<S: Serializer>(v: &f64, s: S) -> Written<S> {
+    s.serialize_f64(v * 1e6)
+}
+
+/// Two angles in rad (a range), written as two numbers in deg. Schema: `[f64; 2]`.
+///
+/// # Errors
+/// The serialiser's.
+pub fn deg2<S: Serializer>(v: &[f64; 2], s: S) -> Written<S> {
+    v.map(f64::to_degrees).serialize(s)
+}
