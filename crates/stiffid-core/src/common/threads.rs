@@ -7,7 +7,7 @@ use crate::common::limits::short;
 
 /// Most worker threads `RAYON_NUM_THREADS` may ask for: more only cost memory (each thread its
 /// stack), and 5000 of them under a 4 GB memory cap could not start.
-pub(crate) const MAX_THREADS: usize = 256;
+pub const MAX_THREADS: usize = 256;
 
 /// Starts the worker threads `RAYON_NUM_THREADS` asks for (0 or unset: one per core, started by
 /// the first parallel job). Once per process: a later call returns the first one's result (the

@@ -43,7 +43,7 @@ use std::io::Read;
 /// let e = stiffid_core::io::text("bin.csv", vec![0xff, 0xfe]).unwrap_err();
 /// assert_eq!(e.to_string(), "bin.csv: not UTF-8 text (invalid byte at offset 0)");
 /// ```
-pub(crate) fn text(source_name: &str, bytes: Vec<u8>) -> Result<String> {
+pub fn text(source_name: &str, bytes: Vec<u8>) -> Result<String> {
     let error = |message: String| Error::Parse {
         source_name: source_name.to_string(),
         message,

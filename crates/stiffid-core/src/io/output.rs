@@ -88,7 +88,7 @@ fn names_a_directory(path: &Path) -> bool {
 }
 
 /// What a non-regular file is, in words: "a directory", "a device", "a FIFO", "a socket".
-pub(crate) fn kind(path: &Path) -> &'static str {
+pub fn kind(path: &Path) -> &'static str {
     std::fs::metadata(path).map_or("not a regular file", |m| kind_of(m.file_type()))
 }
 

@@ -55,7 +55,7 @@ pub struct Postures {
 }
 
 /// The header of a postures file of `robot`: [`HEADER`], then its external axes' columns.
-pub(crate) fn header(robot: &Robot) -> Vec<String> {
+pub fn header(robot: &Robot) -> Vec<String> {
     let mut names: Vec<String> = HEADER.iter().map(|h| h.to_string()).collect();
     names.extend(robot.external().map_or(Vec::new(), |a| a.column_names()));
     names

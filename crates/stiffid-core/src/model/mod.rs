@@ -46,7 +46,7 @@ use nalgebra::{DVector, Isometry3, Point3, Unit as UnitVector, Vector3, Vector6}
 pub use crate::common::limits::MAX_VIRTUAL_SPRINGS;
 
 /// Longest spring name, characters.
-pub(crate) const MAX_NAME_CHARS: usize = 40;
+pub const MAX_NAME_CHARS: usize = 40;
 
 /// What a virtual joint does.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -328,7 +328,7 @@ impl Model {
     }
 
     /// Never: a model has at least the six drives.
-    pub(crate) fn is_empty(&self) -> bool {
+    pub fn is_empty(&self) -> bool {
         false
     }
 
@@ -394,7 +394,7 @@ impl Model {
     /// link, so every spring moves it. With it, `tau = J_a^T W` are the loads of every parameter
     /// (Nm or N), `J_b diag(h) J_a^T W` a tool point's deflection and `J diag(h) J^T` the
     /// Cartesian compliance ([`crate::observation::cartesian`]).
-    pub(crate) fn jacobian(&self, frames: &Frames, point: &Vector3<f64>) -> nalgebra::Matrix6xX<f64> {
+    pub fn jacobian(&self, frames: &Frames, point: &Vector3<f64>) -> nalgebra::Matrix6xX<f64> {
         let mut j = nalgebra::Matrix6xX::zeros(self.len());
         j.fixed_columns_mut::<6>(0)
             .copy_from(&frames.jacobian(point, self.coordinates));

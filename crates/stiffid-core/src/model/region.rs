@@ -25,10 +25,10 @@ use crate::common::warning::{Warning, WarningKind};
 use nalgebra::Vector6;
 
 /// The margin that widens the identification postures' range of every axis, deg.
-pub(crate) const MARGIN_DEG: f64 = 5.0;
+pub const MARGIN_DEG: f64 = 5.0;
 
 /// The largest margin a stiffness file may state, deg.
-pub(crate) const MAX_MARGIN_DEG: f64 = 360.0;
+pub const MAX_MARGIN_DEG: f64 = 360.0;
 
 /// What a compliance says about the postures it was identified from.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]

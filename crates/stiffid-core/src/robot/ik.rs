@@ -29,7 +29,7 @@ use rand_chacha::ChaCha8Rng;
 
 /// Metres per radian of the rotation rows of the error and the Jacobian (a characteristic length
 /// of the workspace), so one step weighs a millimetre and a milliradian alike.
-pub(crate) const ROTATION_WEIGHT: f64 = 1.0;
+pub const ROTATION_WEIGHT: f64 = 1.0;
 
 /// The pose of the tool point `point` (flange frame, m): its position in the base frame (m) and the
 /// flange's orientation.

@@ -153,7 +153,7 @@ impl Arm {
     /// Capsule radii of the robot and tool bodies, m: the setup's `[robot_geometry]`, else the
     /// robot's ([`Bodies::Capsules`]), else scaled to the robot's size. The robot's capsules are
     /// its bodies in the cell unless [`Arm::shapes`] has its own; the tool's always are.
-    pub(crate) fn geometry(&self) -> &RobotGeometry {
+    pub fn geometry(&self) -> &RobotGeometry {
         &self.geometry
     }
 

@@ -23,7 +23,7 @@ use std::collections::BTreeMap;
 
 /// The largest frame number of a table (`number`, from 0): every controller's tables are
 /// smaller (KUKA 16 tools and 32 bases, FANUC 10 tools and 9 user frames, Yaskawa 64 tools).
-pub(crate) const MAX_FRAME_NUMBER: u32 = 999;
+pub const MAX_FRAME_NUMBER: u32 = 999;
 
 /// A table of frames by number (module docs), lengths in m.
 #[derive(Debug, Clone, Default, PartialEq)]

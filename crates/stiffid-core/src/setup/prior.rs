@@ -15,16 +15,16 @@ use rand_chacha::ChaCha8Rng;
 use std::f64::consts::PI;
 
 /// Postures sampled for [`characteristic_length`].
-pub(crate) const LENGTH_SAMPLES: usize = 512;
+pub const LENGTH_SAMPLES: usize = 512;
 
 /// The search interval of [`characteristic_length`], m.
-pub(crate) const LENGTH_RANGE_M: (f64, f64) = (0.05, 20.0);
+pub const LENGTH_RANGE_M: (f64, f64) = (0.05, 20.0);
 
 /// The payload (kg) of the reference robot of [`nominal_stiffness`]: the COMAU SMART5 NJ 165-3.0.
 pub(crate) const REFERENCE_PAYLOAD_KG: f64 = 165.0;
 
 /// The joint stiffness (Nm/rad) of the reference robot: Zhang et al. 2021, Table 2.
-pub(crate) const REFERENCE_STIFFNESS_NM_PER_RAD: [f64; 6] = [
+pub const REFERENCE_STIFFNESS_NM_PER_RAD: [f64; 6] = [
     950_000.0,
     3_000_000.0,
     900_000.0,
@@ -35,7 +35,7 @@ pub(crate) const REFERENCE_STIFFNESS_NM_PER_RAD: [f64; 6] = [
 
 /// The largest payload [`nominal_stiffness`] accepts, kg (the heaviest serial industrial robots
 /// carry about 2.3 t).
-pub(crate) const MAX_PAYLOAD_KG: f64 = 2500.0;
+pub const MAX_PAYLOAD_KG: f64 = 2500.0;
 
 /// The characteristic length L (m) that minimises the median dexterity `k(J_N)` of the point `tcp`
 /// (flange frame, m) over [`LENGTH_SAMPLES`] postures drawn uniformly within `[lower, upper]` (axis
@@ -84,7 +84,7 @@ pub fn characteristic_length(
 }
 
 /// The seed of [`robot_characteristic_length`].
-pub(crate) const ROBOT_LENGTH_SEED: u64 = 1;
+pub const ROBOT_LENGTH_SEED: u64 = 1;
 
 /// The characteristic length L (m) of `robot` for the point `point` (flange frame, m) when no
 /// length is given: [`characteristic_length`] over the robot's joint limits (an unlimited axis

@@ -29,12 +29,12 @@ pub const RAPID_SPEED_MM_S: Range = Range::new(1.0, 10_000.0, "mm/s");
 /// `BAS(#VEL_PTP)`, FANUC `J .. %`, Yaskawa `VJ=`), percent of the axes' top speed.
 pub const RAPID_JOINT_PCT: Range = Range::new(0.01, 100.0, "%");
 /// The most actions of one `[controller.io]` event.
-pub(crate) const MAX_ACTIONS: usize = 8;
+pub const MAX_ACTIONS: usize = 8;
 /// The most arguments of one call.
-pub(crate) const MAX_ARGUMENTS: usize = 8;
+pub const MAX_ARGUMENTS: usize = 8;
 /// The longest routine or signal name accepted on load (each language's own limit is checked
 /// when a program is written).
-pub(crate) const MAX_NAME: usize = 64;
+pub const MAX_NAME: usize = 64;
 
 /// A process event of a G-code program: the words that raise it and the `[controller.io]` key
 /// that maps it.
@@ -193,7 +193,7 @@ impl Io {
     /// than [`MAX_ACTIONS`], an action of neither form, a name that is no identifier or longer
     /// than [`MAX_NAME`], more than [`MAX_ARGUMENTS`] arguments, an argument neither a finite
     /// number nor the event's placeholder.
-    pub(crate) fn read(table: &BTreeMap<String, IoValue>) -> Result<Self> {
+    pub fn read(table: &BTreeMap<String, IoValue>) -> Result<Self> {
         let mut actions = BTreeMap::new();
         for (key, value) in table {
             let Some(event) = ProcessEvent::ALL.into_iter().find(|e| e.key() == key) else {
@@ -216,7 +216,7 @@ impl Io {
 /// A `[controller.io]` value as the file gives it: one action or a list.
 #[derive(Debug, Clone, serde::Deserialize)]
 #[serde(untagged)]
-pub(crate) enum IoValue {
+pub enum IoValue {
     /// One action.
     One(String),
     /// Several, in order.
@@ -369,7 +369,7 @@ impl ProgramSettings {
     ///
     /// # Errors
     /// [`Error::OutsideBox`] naming `controller.home_deg[i]`, the value and the axis's range.
-    pub(crate) fn check(&self, robot: &Robot) -> Result<()> {
+    pub fn check(&self, robot: &Robot) -> Result<()> {
         let Some(h) = self.home_deg else {
             return Ok(());
         };

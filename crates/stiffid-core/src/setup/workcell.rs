@@ -123,7 +123,7 @@ impl Pulses {
     /// [`crate::Error::InvalidField`] naming `controller.pulses_per_deg[i]` or
     /// `controller.external_pulses[i]` (a value outside the range or not finite), or
     /// `controller.external_pulses` (another count than the cell's axes).
-    pub(crate) fn check(&self, external: usize) -> crate::Result<()> {
+    pub fn check(&self, external: usize) -> crate::Result<()> {
         use crate::common::limits::{check, PULSES};
         check("controller.pulses_per_deg", &self.per_deg, &PULSES)?;
         check("controller.external_pulses", &self.external, &PULSES)?;
@@ -171,17 +171,17 @@ impl Workcell {
     }
 
     /// The floor, clearance and obstacles; `None`: no body checks (the paper's study).
-    pub(crate) fn cell(&self) -> Option<&Cell> {
+    pub fn cell(&self) -> Option<&Cell> {
         self.cell.as_ref()
     }
 
     /// The laser tracker, for the line-of-sight and incidence checks.
-    pub(crate) fn tracker(&self) -> Option<&Tracker> {
+    pub fn tracker(&self) -> Option<&Tracker> {
         self.tracker.as_ref()
     }
 
     /// `[workpiece] base_from_part`: a G-code program's part frame in the robot base frame, m.
-    pub(crate) fn workpiece(&self) -> Option<&Isometry3<f64>> {
+    pub fn workpiece(&self) -> Option<&Isometry3<f64>> {
         self.workpiece.as_ref()
     }
 

@@ -53,7 +53,7 @@ pub struct Origin {
 
 impl Origin {
     /// The label of measurement `i`'s posture.
-    pub fn label(&self, i: usize) -> &str {
+    pub(crate) fn label(&self, i: usize) -> &str {
         self.labels.get(self.postures[i])
     }
 

@@ -58,11 +58,11 @@ impl std::fmt::Display for Range {
 
 /// Encoder pulses per degree (or per mm) of a controller's axis (`[controller] pulses_per_deg`,
 /// `external_pulses`; an INFORM job's `'stiffid:` comments): from 1e-6 to 1e9.
-pub(crate) const PULSES: Range = Range::new(1e-6, 1e9, "pulses per deg or mm");
+pub const PULSES: Range = Range::new(1e-6, 1e9, "pulses per deg or mm");
 
 /// An axis's largest speed in a robot, setup or URDF file (`max_speed_deg_s`, `max_speed_mm_s`):
 /// above 0, at most 10 000 deg/s or mm/s (`check_speeds`).
-pub(crate) const AXIS_SPEED: Range = Range::new(0.0, 1e4, "deg/s or mm/s");
+pub const AXIS_SPEED: Range = Range::new(0.0, 1e4, "deg/s or mm/s");
 
 /// Checks every largest speed of `values` (mm/s where `field` ends in `_mm_s`, else deg/s):
 /// finite, above 0 and within [`AXIS_SPEED`]; the error names `field`, the value found and its
@@ -119,7 +119,7 @@ pub(crate) const MASS_KG: Range = Range::new(0.0, 1e5, "kg");
 pub(crate) const INERTIA_KG_M2: Range = Range::new(-1e6, 1e6, "kg m^2");
 
 /// [`LENGTH_MM`] in metres (URDF files).
-pub(crate) const LENGTH_M: Range = Range::new(-100.0, 100.0, "m");
+pub const LENGTH_M: Range = Range::new(-100.0, 100.0, "m");
 
 /// Any angle in a robot or setup file (DH angles, joint limits, bounds, postures, roll-pitch-yaw).
 pub const ANGLE_DEG: Range = Range::new(-1e4, 1e4, "deg");
@@ -139,17 +139,17 @@ pub const STIFFNESS_N_PER_MM: Range = Range::new(1e-3, 1e10, "N/mm");
 pub(crate) const AXIS: Range = Range::new(-1e6, 1e6, "");
 
 /// A tool's mass (`[tool] mass_kg`).
-pub(crate) const TOOL_MASS_KG: Range = Range::new(1e-3, 1e4, "kg");
+pub const TOOL_MASS_KG: Range = Range::new(1e-3, 1e4, "kg");
 
 /// The relative standard deviation of the robot's and the tool's masses (`[masses] sd_pct`).
-pub(crate) const MASS_SD_PERCENT: Range = Range::new(0.0, 100.0, "%");
+pub const MASS_SD_PERCENT: Range = Range::new(0.0, 100.0, "%");
 
 /// How far each frame of the robot model may be from the true robot's, per coordinate
 /// (`[robot_accuracy] frame_sd_mm` and `frame_sd_mrad`).
 pub(crate) const FRAME_SD: Range = Range::new(0.0, 100.0, "");
 
 /// The rope load of a setup.
-pub(crate) const LOAD_N: Range = Range::new(1e-3, 1e7, "N");
+pub const LOAD_N: Range = Range::new(1e-3, 1e7, "N");
 
 /// Forces and moments on the command line, per component (measurement files: the magnitude
 /// limits of [`crate::observation::MAX_FORCE`] and [`crate::observation::MAX_MOMENT`]).
@@ -182,12 +182,12 @@ pub(crate) const AXIS_MAP_ENTRY: Range = Range::new(-1e3, 1e3, "");
 
 /// The largest 2-norm condition number of an axis map matrix: beyond it the map between axis and
 /// kinematic angles loses more than half the digits.
-pub(crate) const MAX_AXIS_MAP_COND: f64 = 1e8;
+pub const MAX_AXIS_MAP_COND: f64 = 1e8;
 
 /// Largest input file accepted, bytes (256 MiB): room for a measurement file of 2 million rows
 /// (1e6 rows take about 119 MB), and a bound on the memory one file (or `/dev/zero`) can take.
 /// Both front ends read at most one byte more and hand the bytes to [`crate::io::text`].
-pub(crate) const MAX_INPUT_BYTES: u64 = 256 << 20;
+pub const MAX_INPUT_BYTES: u64 = 256 << 20;
 
 /// Most noise levels of a setup (with [`MAX_RUNS`], a bound on a simulation's memory: levels x
 /// runs results of one group at a time).
@@ -260,15 +260,15 @@ pub const MAX_GROUP_POSTURES: usize = 10_000;
 pub const MAX_GROUPS: usize = 100;
 
 /// Most measuring points of a setup.
-pub(crate) const MAX_MEASURING_POINTS: usize = 100;
+pub const MAX_MEASURING_POINTS: usize = 100;
 
 /// Most reflectors on a positioner's table: a setup's `[workpiece] reflectors_mm`, a readings
 /// file's `T1` ...
-pub(crate) const MAX_TABLE_REFLECTORS: usize = 100;
+pub const MAX_TABLE_REFLECTORS: usize = 100;
 
 /// Most parameters of a model in a stiffness file: the six drives and
 /// [`MAX_VIRTUAL_SPRINGS`] virtual springs.
-pub(crate) const MAX_PARAMETERS: usize = 6 + MAX_VIRTUAL_SPRINGS;
+pub const MAX_PARAMETERS: usize = 6 + MAX_VIRTUAL_SPRINGS;
 
 /// Most virtual springs a model may have.
 pub const MAX_VIRTUAL_SPRINGS: usize = 64;
@@ -278,7 +278,7 @@ pub(crate) const MAX_TEST_POSTURES: usize = 10_000;
 
 /// Deepest element nesting accepted in a URDF file (real ones nest about 5 deep); checked before
 /// the XML parser sees the text.
-pub(crate) const MAX_XML_DEPTH: usize = 64;
+pub const MAX_XML_DEPTH: usize = 64;
 
 /// Longest text of a value quoted in an error message, in characters; longer ones are cut with
 /// an ellipsis.

@@ -56,10 +56,10 @@ use std::collections::HashMap;
 pub const MAX_READINGS: usize = 100_000;
 
 /// Most reflectors fixed in the cell (`T1` ...) a readings file names.
-pub(crate) const MAX_TABLE_REFLECTORS: usize = crate::common::limits::MAX_TABLE_REFLECTORS;
+pub const MAX_TABLE_REFLECTORS: usize = crate::common::limits::MAX_TABLE_REFLECTORS;
 
 /// Largest load step number (`load_step`).
-pub(crate) const MAX_LOAD_STEP: u32 = 1000;
+pub const MAX_LOAD_STEP: u32 = 1000;
 
 const POSTURE: &str = "posture";
 const POINT: &str = "point";

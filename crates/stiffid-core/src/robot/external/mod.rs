@@ -41,10 +41,10 @@ use crate::{Error, Result};
 use nalgebra::{Isometry3, Translation3, Unit, UnitQuaternion, Vector3};
 
 /// Most linear axes of a carrier (a gantry).
-pub(crate) const MAX_CARRIER_AXES: usize = 3;
+pub const MAX_CARRIER_AXES: usize = 3;
 
 /// Most rotary axes of a positioner (a tilt-rotate table).
-pub(crate) const MAX_POSITIONER_AXES: usize = 2;
+pub const MAX_POSITIONER_AXES: usize = 2;
 
 /// Most external axes of a cell: a carrier's and a positioner's.
 pub const MAX_AXES: usize = MAX_CARRIER_AXES + MAX_POSITIONER_AXES;

@@ -327,7 +327,7 @@ impl Frames {
 /// The dexterity index from which a posture counts as singular: `1e-3 / f64::EPSILON` (about
 /// 4.5e12), where the inverse keeps fewer than 3 correct digits. A wrist angle of 1e-6 rad from
 /// the singularity still gives a finite index of about 1e6.
-pub(crate) const NUMERICALLY_SINGULAR: f64 = 1e-3 / f64::EPSILON;
+pub const NUMERICALLY_SINGULAR: f64 = 1e-3 / f64::EPSILON;
 
 /// Dexterity index `k(J_N) = (1/6) sqrt(tr(A) tr(A^-1))`, `A = J_N J_N^T`,
 /// `J_N = diag(I/L, I) J` (Zhang et al. 2021, Eq. 20-21; the Frobenius-norm condition number of the

@@ -85,7 +85,7 @@ impl Flags {
     }
 
     /// As the program writes them, for messages.
-    pub fn text(&self) -> String {
+    pub(crate) fn text(&self) -> String {
         self.0.text()
     }
 }

@@ -19,7 +19,7 @@ impl Config {
     ///
     /// # Errors
     /// What the text lacks or has too many of, naming it.
-    pub fn parse(text: &str) -> Result<Self, String> {
+    pub(crate) fn parse(text: &str) -> Result<Self, String> {
         let (letters, turns) = text.split_once(',').unwrap_or((text, ""));
         let letters: String = letters.chars().filter(|c| !c.is_whitespace()).collect();
         let letters = letters.to_ascii_uppercase();

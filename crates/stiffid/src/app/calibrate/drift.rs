@@ -125,7 +125,7 @@ pub fn check(
 }
 
 /// [`check`], or a warning ([`WarningKind::LeftOut`]) in `warnings` saying why there is none.
-pub fn checked(
+pub(crate) fn checked(
     robot: &Robot,
     errors: (&Validation, &[String]),
     (level, noise): (f64, f64),

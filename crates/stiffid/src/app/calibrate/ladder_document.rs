@@ -46,7 +46,7 @@ pub struct RungDocument {
 
 impl LadderDocument {
     /// The document of `ladder`.
-    pub fn new(ladder: &Ladder) -> Self {
+    pub(crate) fn new(ladder: &Ladder) -> Self {
         LadderDocument {
             folds: ladder.folds,
             rungs: (ladder.rungs.iter())

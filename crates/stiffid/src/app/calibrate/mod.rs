@@ -291,7 +291,7 @@ impl serde::Serialize for Report {
 
 /// The calibrate job's report, which is its document (serialised through
 /// [`document::Document`]).
-pub type Outcome = crate::app::Outcome<Report>;
+pub(crate) type Outcome = crate::app::Outcome<Report>;
 
 /// Runs the job.
 ///

@@ -142,7 +142,7 @@ impl Refits {
     }
 
     /// The list, in the order given.
-    pub fn list(&self) -> &[Refit] {
+    pub(crate) fn list(&self) -> &[Refit] {
         &self.0
     }
 }

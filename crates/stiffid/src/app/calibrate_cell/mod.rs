@@ -91,7 +91,7 @@ pub struct ToolPoint {
 }
 
 /// The calibrate-cell job's report, which is its document.
-pub type Outcome = crate::app::Outcome<Report>;
+pub(crate) type Outcome = crate::app::Outcome<Report>;
 
 /// Runs the calibrate job.
 ///

@@ -92,12 +92,12 @@ impl Worst {
     }
 
     /// The largest bound, m (0 without points).
-    pub fn max(&self) -> f64 {
+    pub(crate) fn max(&self) -> f64 {
         self.points.first().map_or(0.0, |w| w.0)
     }
 
     /// The summary at `level`.
-    pub fn document(&self, level: f64) -> BudgetSummary {
+    pub(crate) fn document(&self, level: f64) -> BudgetSummary {
         BudgetSummary {
             level,
             max_bound_mm: self.points.first().and_then(|w| finite(mm(w.0))),

@@ -173,7 +173,7 @@ fn run_row(k: usize, r: &Run, aggregate: Aggregate) -> RunRow {
 }
 
 /// The name of a configuration ([`ConfigurationRow::name`]).
-pub fn name(c: &stiffid_core::robot::configuration::Configuration) -> String {
+pub(crate) fn name(c: &stiffid_core::robot::configuration::Configuration) -> String {
     format!(
         "{}, elbow {}, axis 5 {}",
         if c.behind() { "back" } else { "front" },

@@ -424,7 +424,7 @@ fn norm(d: &Vector6<f64>) -> f64 {
 impl Summary {
     /// An empty summary; `free`: the free tool axis was asked for; `level`: the bound's;
     /// `axes`: the cell's external axes.
-    pub fn new(free: bool, level: f64, axes: Option<&ExternalAxes>) -> Self {
+    pub(crate) fn new(free: bool, level: f64, axes: Option<&ExternalAxes>) -> Self {
         Self {
             points: 0,
             max_deflection: (0.0, 0),

@@ -36,7 +36,7 @@ pub struct Feasibility {
 impl Feasibility {
     /// The feasibility of `options` with the states `removed` over the path; `None` without a
     /// free variable.
-    pub fn new(options: &Options, removed: Removed) -> Option<Self> {
+    pub(crate) fn new(options: &Options, removed: Removed) -> Option<Self> {
         if options.free.tool_rotation().is_none()
             && options.free.lead_tilt().is_none()
             && options.free.configuration().is_none()

@@ -33,7 +33,7 @@ pub struct FreeVariable {
 
 impl FreeVariable {
     /// The free variable `free` in the units of `--free` (mm for the station, deg otherwise).
-    pub fn new(free: &Free) -> Self {
+    pub(crate) fn new(free: &Free) -> Self {
         let (range, step, unit) = match free {
             Free::Station(f) => (Some(f.range * 1e3), Some(f.step * 1e3), Some("mm")),
             Free::ToolRotation(f) | Free::Positioner(f) | Free::Tilt(f) => (
@@ -61,7 +61,7 @@ impl FreeVariable {
     }
 
     /// Every free variable of `free`, in its order.
-    pub fn all(free: &FreeVariables) -> Vec<Self> {
+    pub(crate) fn all(free: &FreeVariables) -> Vec<Self> {
         free.free.iter().map(FreeVariable::new).collect()
     }
 }

@@ -111,7 +111,7 @@ pub struct Request<'a> {
 
 /// The compensate job's report, which is its document (serialised through
 /// [`document::Document`]; without the points: the sink receives them).
-pub type Outcome = crate::app::Outcome<Report>;
+pub(crate) type Outcome = crate::app::Outcome<Report>;
 
 /// What the compensate job found.
 #[derive(Debug, Clone)]

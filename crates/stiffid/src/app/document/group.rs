@@ -241,7 +241,7 @@ impl CalibrationDoc {
 /// Two postures of the group that are not distinct.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct NearDoc {
+pub(crate) struct NearDoc {
     /// The two postures' numbers in the group (1-based).
     pub postures: [usize; 2],
     /// The largest difference of their axis angles, deg.
@@ -290,7 +290,7 @@ pub struct Group {
 
 impl Group {
     /// The document of group `name`'s simulation of a model with `parameters` (drives first).
-    pub fn new(name: &str, sim: &GroupSimulation, parameters: &[ModelParameter]) -> Self {
+    pub(crate) fn new(name: &str, sim: &GroupSimulation, parameters: &[ModelParameter]) -> Self {
         let join = |drives: &[[f64; 6]], springs: &[Vec<f64>]| -> Vec<Vec<f64>> {
             drives
                 .iter()

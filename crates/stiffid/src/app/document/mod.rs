@@ -52,7 +52,7 @@ pub(crate) fn finite_each<const N: usize>(values: impl Into<[f64; N]>) -> [Optio
 }
 
 /// A matrix as an array of rows.
-pub fn rows<const R: usize, const C: usize>(m: &nalgebra::SMatrix<f64, R, C>) -> [[f64; C]; R] {
+pub(crate) fn rows<const R: usize, const C: usize>(m: &nalgebra::SMatrix<f64, R, C>) -> [[f64; C]; R] {
     std::array::from_fn(|r| std::array::from_fn(|c| m[(r, c)]))
 }
 

@@ -21,7 +21,7 @@ pub struct Transform {
 
 impl Transform {
     /// `base_from_tracker` (SI) with the standard deviations `std` (m, then rad).
-    pub fn new(base_from_tracker: &Isometry3<f64>, std: [f64; 6]) -> Self {
+    pub(crate) fn new(base_from_tracker: &Isometry3<f64>, std: [f64; 6]) -> Self {
         let (r, p, y) = base_from_tracker.rotation.euler_angles();
         Transform {
             xyz_mm: mm3(&base_from_tracker.translation.vector),
@@ -44,7 +44,7 @@ pub struct TransformStd {
 
 impl TransformStd {
     /// Of the standard deviations `std` (m, then rad).
-    pub fn new(std: [f64; 6]) -> Self {
+    pub(crate) fn new(std: [f64; 6]) -> Self {
         TransformStd {
             translation_std_mm: [mm(std[0]), mm(std[1]), mm(std[2])],
             rotation_std_deg: [std[3], std[4], std[5]].map(f64::to_degrees),

@@ -64,7 +64,7 @@ pub fn mm_option<S: Serializer>(v: &Option<f64>, s: S) -> Written<S> {
 ///
 /// # Errors
 /// The serialiser's.
-pub fn mm_as_given<S: Serializer>(v: &f64, s: S) -> Written<S> {
+pub(crate) fn mm_as_given<S: Serializer>(v: &f64, s: S) -> Written<S> {
     s.serialize_f64(stiffid_core::common::words::as_given(super::mm(*v)))
 }
 
@@ -72,7 +72,7 @@ pub fn mm_as_given<S: Serializer>(v: &f64, s: S) -> Written<S> {
 ///
 /// # Errors
 /// The serialiser's.
-pub fn mm_option_each<S: Serializer>(v: &[Option<f64>], s: S) -> Written<S> {
+pub(crate) fn mm_option_each<S: Serializer>(v: &[Option<f64>], s: S) -> Written<S> {
     s.collect_seq(v.iter().map(|v| v.map(super::mm)))
 }
 
@@ -80,7 +80,7 @@ pub fn mm_option_each<S: Serializer>(v: &[Option<f64>], s: S) -> Written<S> {
 ///
 /// # Errors
 /// The serialiser's.
-pub fn mm_each<S: Serializer>(v: &[f64], s: S) -> Written<S> {
+pub(crate) fn mm_each<S: Serializer>(v: &[f64], s: S) -> Written<S> {
     s.collect_seq(v.iter().map(|v| super::mm(*v)))
 }
 
@@ -173,7 +173,7 @@ pub(crate) fn plain3<S: Serializer>(v: &Vector3<f64>, s: S) -> Written<S> {
 ///
 /// # Errors
 /// The serialiser's.
-pub fn name<S: Serializer, T: stiffid_core::common::choice::Choice>(v: &T, s: S) -> Written<S> {
+pub(crate) fn name<S: Serializer, T: stiffid_core::common::choice::Choice>(v: &T, s: S) -> Written<S> {
     s.serialize_str(v.name())
 }
 
@@ -197,7 +197,7 @@ pub(crate) fn deg_option<S: Serializer>(v: &Option<f64>, s: S) -> Written<S> {
 ///
 /// # Errors
 /// The serialiser's.
-pub fn mm_finite_option<S: Serializer>(v: &Option<f64>, s: S) -> Written<S> {
+pub(crate) fn mm_finite_option<S: Serializer>(v: &Option<f64>, s: S) -> Written<S> {
     v.and_then(|v| super::finite(super::mm(v))).serialize(s)
 }
 
@@ -205,7 +205,7 @@ pub fn mm_finite_option<S: Serializer>(v: &Option<f64>, s: S) -> Written<S> {
 ///
 /// # Errors
 /// The serialiser's.
-pub fn um<S: Serializer>(v: &f64, s: S) -> Written<S> {
+pub(crate) fn um<S: Serializer>(v: &f64, s: S) -> Written<S> {
     s.serialize_f64(v * 1e6)
 }
 
@@ -213,7 +213,7 @@ pub fn um<S: Serializer>(v: &f64, s: S) -> Written<S> {
 ///
 /// # Errors
 /// The serialiser's.
-pub fn urad<S: Serializer>(v: &f64, s: S) -> Written<S> {
+pub(crate) fn urad<S: Serializer>(v: &f64, s: S) -> Written<S> {
     s.serialize_f64(v * 1e6)
 }
 
@@ -221,6 +221,6 @@ pub fn urad<S: Serializer>(v: &f64, s: S) -> Written<S> {
 ///
 /// # Errors
 /// The serialiser's.
-pub fn deg2<S: Serializer>(v: &[f64; 2], s: S) -> Written<S> {
+pub(crate) fn deg2<S: Serializer>(v: &[f64; 2], s: S) -> Written<S> {
     v.map(f64::to_degrees).serialize(s)
 }

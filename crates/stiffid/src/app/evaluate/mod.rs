@@ -131,7 +131,7 @@ fn checks(setup: &Setup, postures: &[Vector6<f64>]) -> Vec<Feasibility> {
 }
 
 /// The evaluate job's report, which is its document.
-pub type Outcome = crate::app::Outcome<Report>;
+pub(crate) type Outcome = crate::app::Outcome<Report>;
 
 /// Evaluates the group.
 ///

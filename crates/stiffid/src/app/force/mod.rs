@@ -42,7 +42,7 @@ pub struct Report {
 }
 
 /// The force job's report, which is its document.
-pub type Outcome = crate::app::Outcome<Report>;
+pub(crate) type Outcome = crate::app::Outcome<Report>;
 
 /// Runs the force job.
 ///

@@ -49,7 +49,7 @@ pub enum Fit {
 
 impl Fit {
     /// The fit as the method of every cross-validation fold.
-    pub fn method(self) -> Method {
+    pub(crate) fn method(self) -> Method {
         match self {
             Fit::Robust(loss) => Method::Robust(loss),
             Fit::Nonnegative => Method::Nonnegative,
@@ -70,7 +70,7 @@ impl Fit {
 
 /// The folds of a cross-validation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Folds {
+pub(crate) enum Folds {
     /// One fold per posture.
     LeaveOneOut,
     /// This many folds (2 to the number of postures).
@@ -79,7 +79,7 @@ pub enum Folds {
 
 impl Folds {
     /// The number of folds over `postures` postures.
-    pub fn count(self, postures: usize) -> usize {
+    pub(crate) fn count(self, postures: usize) -> usize {
         match self {
             Folds::LeaveOneOut => postures,
             Folds::Count(k) => k,
@@ -105,7 +105,7 @@ pub struct Request<'a, R> {
 
 /// The identify job's report, which is its document (serialised through
 /// [`document::Document`]).
-pub type Outcome = crate::app::Outcome<Report>;
+pub(crate) type Outcome = crate::app::Outcome<Report>;
 
 /// What the identify job found, by what was asked. It serialises to its document, `stiffid
 /// identify --json`, through the borrowed view [`document::Document`] ([`Report::document`]:

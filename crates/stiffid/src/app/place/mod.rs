@@ -111,7 +111,7 @@ impl Region {
     /// # Errors
     /// [`Error::InvalidField`] naming the range (`region_mm`, `rotation_deg`, `free`: the height
     /// `z` in the base frame or the `tilt`) and the values, in mm and deg.
-    pub fn validate(&self) -> Result<()> {
+    pub(crate) fn validate(&self) -> Result<()> {
         let m = Self::MAX_EXTENT_M;
         let deg = 180.0 / std::f64::consts::PI;
         let mut ranges = vec![
@@ -207,11 +207,11 @@ impl Request<'_> {
         seed: 1,
     };
     /// The most grid values per coordinate.
-    pub const MAX_GRID: usize = 21;
+    pub(crate) const MAX_GRID: usize = 21;
     /// The most samples.
     pub(crate) const MAX_SAMPLES: usize = 10_000;
     /// The most compass searches.
-    pub const MAX_STARTS: usize = 16;
+    pub(crate) const MAX_STARTS: usize = 16;
 }
 
 /// What the place job found. It serialises to its document, `stiffid place --json`, through the
@@ -263,7 +263,7 @@ fn cost(objective: Aggregate, e: &Evaluation) -> f64 {
 }
 
 /// The place job's report, which is its document (serialised through [`document::Document`]).
-pub type Outcome = crate::app::Outcome<Report>;
+pub(crate) type Outcome = crate::app::Outcome<Report>;
 
 /// Runs the place job (module docs).
 ///

@@ -125,7 +125,7 @@ impl Serialize for Report {
 
 /// The predict job's report, which is its document (serialised through
 /// [`document::Document`]).
-pub type Outcome = crate::app::Outcome<Report>;
+pub(crate) type Outcome = crate::app::Outcome<Report>;
 
 /// Runs the predict job.
 ///

@@ -95,7 +95,7 @@ pub struct Residual {
 }
 
 /// The register job's report, which is its document.
-pub type Outcome = crate::app::Outcome<Report>;
+pub(crate) type Outcome = crate::app::Outcome<Report>;
 
 /// Runs the register job.
 ///
@@ -217,7 +217,7 @@ impl Serialize for DesignReport {
 }
 
 /// The postures proposed, which are their document (serialised through [`document::Proposal`]).
-pub type Proposed = crate::app::Outcome<DesignReport>;
+pub(crate) type Proposed = crate::app::Outcome<DesignReport>;
 
 /// Proposes the registration postures that minimise the rotation's standard deviation
 /// ([`design::design`]).

@@ -40,7 +40,7 @@ impl serde::Serialize for Report {
 
 /// The reproduce job's report, which is its document (serialised through
 /// [`document::Summary`]).
-pub type Outcome = crate::app::Outcome<Report>;
+pub(crate) type Outcome = crate::app::Outcome<Report>;
 
 /// Runs the study.
 ///

@@ -177,7 +177,7 @@ impl<'a> ForCandidates<'a> {
 /// How many local searches stopped for one reason.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct TerminationCount {
+pub(crate) struct TerminationCount {
     /// The reason.
     #[cfg_attr(feature = "schema", schemars(schema_with = "schema::termination"))]
     pub termination: &'static str,
@@ -426,17 +426,17 @@ mod schema {
     use schemars::{json_schema, Schema, SchemaGenerator};
     use stiffid_design::{Solver, Termination};
 
-    pub fn method(_: &mut SchemaGenerator) -> Schema {
+    pub(crate) fn method(_: &mut SchemaGenerator) -> Schema {
         one_of::<Method>()
     }
 
     /// The solvers a search runs (never `auto`).
-    pub fn solver(_: &mut SchemaGenerator) -> Schema {
+    pub(crate) fn solver(_: &mut SchemaGenerator) -> Schema {
         let names: Vec<&str> = Solver::CONCRETE.iter().map(|s| s.name()).collect();
         json_schema!({ "type": "string", "enum": names })
     }
 
-    pub fn termination(_: &mut SchemaGenerator) -> Schema {
+    pub(crate) fn termination(_: &mut SchemaGenerator) -> Schema {
         let names: Vec<&str> = Termination::ALL.iter().map(|t| t.name()).collect();
         json_schema!({ "type": "string", "enum": names })
     }

@@ -50,7 +50,7 @@ pub enum Method {
 
 impl Method {
     /// Every method.
-    pub const ALL: [Method; 3] = [Method::Local, Method::Global, Method::Pool];
+    pub(crate) const ALL: [Method; 3] = [Method::Local, Method::Global, Method::Pool];
 }
 
 impl stiffid_core::common::choice::Choice for Method {
@@ -302,7 +302,7 @@ impl serde::Serialize for Report {
 
 /// The select job's report, which is its document (serialised through
 /// [`document::Document`]).
-pub type Outcome = crate::app::Outcome<Report>;
+pub(crate) type Outcome = crate::app::Outcome<Report>;
 
 /// Selects the group.
 ///

@@ -70,7 +70,7 @@ pub struct Report {
 }
 
 /// The simulate job's report, which is its document.
-pub type Outcome = crate::app::Outcome<Report>;
+pub(crate) type Outcome = crate::app::Outcome<Report>;
 
 /// Simulates every group.
 ///

@@ -266,7 +266,7 @@ pub struct Residual<'a> {
 impl<'a> Residual<'a> {
     /// Measurement `i`'s residual of `residuals` and prediction of `predicted` (m, three per
     /// measurement), labelled from `origin`.
-    pub fn new(
+    pub(crate) fn new(
         origin: &'a Origin,
         i: usize,
         residuals: &DVector<f64>,
@@ -287,7 +287,7 @@ impl<'a> Residual<'a> {
     }
 
     /// Every measurement's residual ([`Residual::new`]).
-    pub fn all(
+    pub(crate) fn all(
         origin: &'a Origin,
         residuals: &DVector<f64>,
         predicted: &DVector<f64>,
@@ -423,7 +423,7 @@ impl Intervals {
 
 impl<'a> Document<'a> {
     /// The view of `report` ([`Report::document`]).
-    pub fn new(report: &'a Report) -> Self {
+    pub(crate) fn new(report: &'a Report) -> Self {
         let id = &report.identification;
         let u = id.uncertainty.as_ref();
         let a = report.adequacy.as_ref();
@@ -580,7 +580,7 @@ fn robust(report: &Report) -> Option<Robust<'_>> {
 impl<'a> Robust<'a> {
     /// The reweighting `fit` of the measurements of `origin`, with the unweighted `residuals`
     /// (m, three per measurement).
-    pub fn new(fit: &RobustFit, origin: &'a Origin, residuals: &DVector<f64>) -> Self {
+    pub(crate) fn new(fit: &RobustFit, origin: &'a Origin, residuals: &DVector<f64>) -> Self {
         Robust {
             loss: fit.loss.name(),
             tuning_constant: fit.loss.tuning_constant(),

@@ -144,7 +144,7 @@ pub struct FoldDoc<'a> {
 
 impl<'a> Document<'a> {
     /// The view of `report` ([`Report::document`]).
-    pub fn new(report: &'a Report) -> Self {
+    pub(crate) fn new(report: &'a Report) -> Self {
         let f = &report.fit;
         let variance = report.noise.displacement_variance();
         Document {
