@@ -43,7 +43,7 @@ use crate::robot::kinematics::{Coordinates, Frames};
 use crate::{Error, Result};
 use nalgebra::{DVector, Isometry3, Point3, Unit as UnitVector, Vector3, Vector6};
 
-pub use crate::common::limits::MAX_VIRTUAL_SPRINGS;
+pub(crate) use crate::common::limits::MAX_VIRTUAL_SPRINGS;
 
 /// Longest spring name, characters.
 pub const MAX_NAME_CHARS: usize = 40;

@@ -103,7 +103,7 @@ pub(crate) use file::parse_with;
 pub use file::{builtin, builtin_names, builtin_text, parse, MAX_PACKAGE_PATHS};
 pub use numbered::NumberedFrames;
 pub use program_frames::ProgramFrames;
-pub use program_io::ProgramSettings;
+pub(crate) use program_io::ProgramSettings;
 pub use workcell::{CellConstraints, Controller, Kinematics, Pulses, Workcell};
 
 use crate::common::limits::JointBox;

@@ -42,7 +42,7 @@
 //! written from G-code state it ([`super::generate`]).
 
 pub mod flags;
-pub mod literal;
+pub(crate) mod literal;
 mod resolve;
 mod solve;
 

@@ -18,8 +18,8 @@
 //! (`motion`); loops and branches are refused only where they hold a motion (`flow`). The guide's
 //! page `docs/programs/krl.md` lists each rule with its source.
 
-pub mod cartesian;
-pub mod data;
+pub(crate) mod cartesian;
+pub(crate) mod data;
 mod declare;
 mod flow;
 mod frames;

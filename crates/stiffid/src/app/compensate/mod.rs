@@ -23,7 +23,7 @@ mod columns;
 pub mod configurations;
 pub mod document;
 pub mod dynamics;
-pub mod feasibility;
+pub(crate) mod feasibility;
 mod free;
 mod home;
 mod input;

@@ -14,20 +14,20 @@
 pub mod candidates;
 pub mod feasibility;
 pub mod group;
-pub mod mass;
+pub(crate) mod mass;
 pub mod parameters;
-pub mod transform;
+pub(crate) mod transform;
 pub mod units;
 
 pub use stiffid_view as scene;
 
 /// The JSON Schemas of the documents' fields that hold one of a choice's names.
 #[cfg(feature = "schema")]
-pub mod schema {
+pub(crate) mod schema {
     use schemars::{json_schema, Schema};
     use stiffid_core::common::choice::{names, Choice};
 
-    pub use stiffid_core::common::kind::Kind;
+    pub(crate) use stiffid_core::common::kind::Kind;
 
     /// A string that is one of `T`'s names.
     pub(crate) fn one_of<T: Choice>() -> Schema {
@@ -52,7 +52,9 @@ pub(crate) fn finite_each<const N: usize>(values: impl Into<[f64; N]>) -> [Optio
 }
 
 /// A matrix as an array of rows.
-pub(crate) fn rows<const R: usize, const C: usize>(m: &nalgebra::SMatrix<f64, R, C>) -> [[f64; C]; R] {
+pub(crate) fn rows<const R: usize, const C: usize>(
+    m: &nalgebra::SMatrix<f64, R, C>,
+) -> [[f64; C]; R] {
     std::array::from_fn(|r| std::array::from_fn(|c| m[(r, c)]))
 }
 

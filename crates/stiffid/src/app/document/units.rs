@@ -173,7 +173,10 @@ pub(crate) fn plain3<S: Serializer>(v: &Vector3<f64>, s: S) -> Written<S> {
 ///
 /// # Errors
 /// The serialiser's.
-pub(crate) fn name<S: Serializer, T: stiffid_core::common::choice::Choice>(v: &T, s: S) -> Written<S> {
+pub(crate) fn name<S: Serializer, T: stiffid_core::common::choice::Choice>(
+    v: &T,
+    s: S,
+) -> Written<S> {
     s.serialize_str(v.name())
 }
 

@@ -154,7 +154,7 @@ pub struct Request<'a> {
 /// The accepted target, %.
 pub const TARGET_PCT: Range = Range::new(1e-6, 1e4, "%");
 
-pub use stiffid_design::distinct::{DISTINCT_DEG, DISTINCT_MM};
+pub(crate) use stiffid_design::distinct::{DISTINCT_DEG, DISTINCT_MM};
 
 /// What the selection found. It serialises to its document, `stiffid select --json`, through
 /// the borrowed view [`document::Document`] ([`Report::document`]: mm and deg, units in every

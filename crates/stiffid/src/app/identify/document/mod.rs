@@ -10,7 +10,7 @@ pub mod scene;
 pub mod springs;
 
 use serde::Serialize;
-pub use stiffid_identify::compare::Document as Comparison;
+pub(crate) use stiffid_identify::compare::Document as Comparison;
 
 /// `stiffid identify --json`: the identification of the setup's model or the model comparison.
 /// Each form carries its own `kind` (its struct's tag), so the union needs none of its own.
