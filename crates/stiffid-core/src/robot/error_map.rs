@@ -33,7 +33,7 @@ pub const MAX_COEFFICIENT: f64 = 10.0 * std::f64::consts::PI / 180.0;
 
 /// The width `W` of the ramp over which a map's series tapers to zero beyond its fitted range,
 /// deg ([`taper`]).
-pub const TAPER_DEG: f64 = 10.0;
+pub const TAPER_DEG: f64 = 20.0;
 
 /// The factor `w(d)` of a map's series at the axis angle `q` (rad) with the fitted range
 /// `(lo, hi)` (rad): exactly 1 within it, `(1 + cos(pi d / W)) / 2` at the distance `d` beyond it

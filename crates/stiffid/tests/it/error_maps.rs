@@ -287,7 +287,8 @@ fn a_map_tapers_to_zero_beyond_its_range_in_the_robot_file() {
             "{deg}"
         );
     }
-    for deg in [-40.0, 60.0, 150.0] {
+    let ramp = stiffid::robot::error_map::TAPER_DEG;
+    for deg in [-30.0 - ramp, 50.0 + ramp, 150.0] {
         assert_eq!(
             ranged.frames(&at(deg)).flange,
             none.frames(&at(deg)).flange,
@@ -299,9 +300,10 @@ fn a_map_tapers_to_zero_beyond_its_range_in_the_robot_file() {
             "{deg}"
         );
     }
-    let q = 55f64.to_radians();
+    let mid = 50.0 + ramp / 2.0;
+    let q = mid.to_radians();
     let half = 0.5 * error(&COS1, &SIN1, q);
-    assert!((ranged.mapped(&at(55.0))[0] - (q + half)).abs() < 1e-16);
+    assert!((ranged.mapped(&at(mid))[0] - (q + half)).abs() < 1e-16);
     let model = ErrorModel::new(
         &free,
         &[Vector3::new(0.0, 0.0, 0.1)],

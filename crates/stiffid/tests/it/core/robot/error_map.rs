@@ -96,15 +96,23 @@ fn a_map_tapers_to_zero_beyond_its_fitted_range() {
         let q = f64::to_radians(deg);
         assert_eq!(map.angle(q).to_bits(), free.angle(q).to_bits(), "{deg}");
     }
-    for deg in [-40.0, -40.001, -100.0, 60.0, 60.5, 170.0] {
+    let ramp = TAPER_DEG;
+    for deg in [
+        -30.0 - ramp,
+        -30.001 - ramp,
+        -100.0,
+        50.0 + ramp,
+        50.5 + ramp,
+        170.0,
+    ] {
         let q = f64::to_radians(deg);
         assert_eq!(map.angle(q), 0.0, "{deg}");
         // The backlash is the gear's, kept everywhere.
         assert!((map.angle_from(q, -1.0) + 2e-4).abs() < 1e-18, "{deg}");
     }
-    let mid = 55f64.to_radians();
+    let mid = (50.0 + ramp / 2.0).to_radians();
     assert!((map.angle(mid) - 0.5 * free.angle(mid)).abs() < 1e-18);
-    let quarter = 52.5f64.to_radians();
+    let quarter = (50.0 + ramp / 4.0).to_radians();
     let w = 0.5 * (1.0 + (std::f64::consts::PI / 4.0).cos());
     assert!((map.angle(quarter) - w * free.angle(quarter)).abs() < 1e-18);
     // The slope of e(q) w(q) by central differences is continuous across both ends of each
@@ -119,14 +127,20 @@ fn a_map_tapers_to_zero_beyond_its_fitted_range() {
             assert!((left - right).abs() < 1e-6, "{q}: {left} {right}");
         }
     }
-    let q = 57f64.to_radians();
+    let q = (50.0 + 0.7 * ramp).to_radians();
     let d = q - hi;
     let width = TAPER_DEG.to_radians();
     let dw = -0.5 * std::f64::consts::PI / width * (std::f64::consts::PI * d / width).sin();
     let product = slope(&free, q) * map.taper(q) + free.angle(q) * dw;
     assert!((slope(&map, q) - product).abs() < 1e-8, "{}", product);
     let maps: [ErrorMap; 6] = std::array::from_fn(|_| map.clone());
-    let q = Vector6::from_fn(|i, _| f64::to_radians(-60.0 + 25.0 * i as f64));
+    // Past the ramp below, within the range, past the ramp above.
+    let beyond = |i: usize| match i {
+        0 => -40.0 - ramp,
+        5 => 60.0 + ramp,
+        _ => -35.0 + 20.0 * i as f64,
+    };
+    let q = Vector6::from_fn(|i, _| beyond(i).to_radians());
     let each: [f64; 6] = std::array::from_fn(|i| map.angle(q[i]));
     assert_eq!(angles(&maps, &q), each);
     assert!(each[0] == 0.0 && each[1] != 0.0 && each[5] == 0.0);
