@@ -350,6 +350,15 @@ fn text_of(d: &Document) -> String {
             nominal_label(d.measured_in),
             mm(v.nominal_rms)
         );
+        if let (Some(within), Some(beyond)) = (v.within_range_rms, v.beyond_range_rms) {
+            text += &format!(
+                "  within the fitted postures' axis ranges: RMS {:.4} mm over {} readings; beyond them by more than 1 deg (extrapolated): RMS {:.4} mm over {}\n",
+                mm(within),
+                v.errors.len() - v.beyond_range_readings,
+                mm(beyond),
+                v.beyond_range_readings
+            );
+        }
         if let Some(i) = &v.intervals {
             text += &format!(
                 "  {}% prediction intervals ({}, {} folds): {:.1}% of {} held-out coordinates inside{}\n",

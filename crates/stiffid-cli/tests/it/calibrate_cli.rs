@@ -131,6 +131,22 @@ fn calibrate_predicts_held_out_readings_and_writes_robot_files() {
     assert!(v["rms_mm"].as_f64().unwrap() < 1e-6, "{v}");
     assert!(v["nominal_rms_mm"].as_f64().unwrap() > 0.1);
     assert_eq!(v["errors"].as_array().unwrap().len(), 10 * model.points());
+    // The RMS within and beyond the fitted ranges: the readings flagged `outside_range`
+    // counted, the two parts' squares adding up to the whole's.
+    let errors = v["errors"].as_array().unwrap();
+    let beyond = errors
+        .iter()
+        .filter(|e| !e["outside_range"].is_null())
+        .count();
+    assert_eq!(v["beyond_range_readings"].as_u64(), Some(beyond as u64));
+    let part = |key: &str, n: usize| v[key].as_f64().map_or(0.0, |r| r * r * n as f64);
+    let whole =
+        part("within_range_rms_mm", errors.len() - beyond) + part("beyond_range_rms_mm", beyond);
+    let rms = v["rms_mm"].as_f64().unwrap();
+    assert!(
+        (whole - rms * rms * errors.len() as f64).abs() < 1e-12,
+        "{v}"
+    );
     // 6R arm, 4 points: 24 + 12.
     assert_eq!(doc["rank"].as_u64(), Some(36));
     let merged: Vec<&str> = (doc["merged"].as_array().unwrap().iter())

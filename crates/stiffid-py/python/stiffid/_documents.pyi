@@ -228,6 +228,8 @@ CalibrateStance = TypedDict("CalibrateStance", {
 CalibrateStop = Literal["converged", "stalled", "damping-exhausted", "iteration-limit"]
 
 CalibrateValidationDocument = TypedDict("CalibrateValidationDocument", {
+    "beyond_range_readings": int,
+    "beyond_range_rms_mm": Optional[float],
     "coverage": Optional[float],
     "data": str,
     "errors": list[CalibratePointError],
@@ -235,6 +237,7 @@ CalibrateValidationDocument = TypedDict("CalibrateValidationDocument", {
     "max_mm": float,
     "nominal_rms_mm": float,
     "rms_mm": float,
+    "within_range_rms_mm": Optional[float],
 })
 
 CalibrateWarning = TypedDict("CalibrateWarning", {

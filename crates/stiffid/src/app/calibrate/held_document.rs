@@ -21,6 +21,19 @@ pub struct ValidationDocument<'a> {
     /// The largest: m, written in mm.
     #[serde(rename = "max_mm", serialize_with = "units::mm")]
     pub max: f64,
+    /// RMS of the 3D position error of the held-out readings whose posture lies within the
+    /// fitted postures' axis ranges (`outside_range` null): m, written in mm; `null` without such
+    /// readings.
+    #[serde(rename = "within_range_rms_mm", serialize_with = "units::mm_option")]
+    pub within_range_rms: Option<f64>,
+    /// The same of the readings whose posture lies beyond them by more than 1 deg
+    /// (`outside_range` set), where the calibration extrapolates: m, written in mm; `null`
+    /// without such readings.
+    #[serde(rename = "beyond_range_rms_mm", serialize_with = "units::mm_option")]
+    pub beyond_range_rms: Option<f64>,
+    /// The held-out readings whose posture lies beyond the fitted postures' axis ranges by more
+    /// than 1 deg (`outside_range` set).
+    pub beyond_range_readings: usize,
     /// The nominal robot's RMS on the same readings: m, written in mm; the tracker registered on
     /// them for readings in the tracker's frame; as it is for readings in the base frame
     /// (`measured_in` `base`: nothing registered).
@@ -155,15 +168,33 @@ pub fn held(h: &Held) -> ValidationDocument<'_> {
         e.interval = Some(*i);
         e.interval_holds = Some(e.outside_range.is_none());
     }
+    let beyond = errors.iter().filter(|e| e.outside_range.is_some()).count();
     ValidationDocument {
         data: &h.name,
         rms: h.calibrated.rms,
         max: h.calibrated.max,
+        within_range_rms: rms_where(&errors, false),
+        beyond_range_rms: rms_where(&errors, true),
+        beyond_range_readings: beyond,
         nominal_rms: h.nominal.rms,
         coverage: intervals.as_ref().map(|i| i.coverage),
         intervals,
         errors,
     }
+}
+
+/// The RMS of the error lengths of `errors` beyond the fitted range (`beyond`) or within it, m;
+/// `None` without such readings.
+fn rms_where(errors: &[PointError], beyond: bool) -> Option<f64> {
+    let (mut sum, mut n) = (0.0, 0usize);
+    for e in errors
+        .iter()
+        .filter(|e| e.outside_range.is_some() == beyond)
+    {
+        sum += e.error_norm * e.error_norm;
+        n += 1;
+    }
+    (n > 0).then(|| (sum / n as f64).sqrt())
 }
 
 /// The label of posture `k` of `labels`, empty beyond them.
