@@ -26,7 +26,7 @@
 //! **The design setup.** [`design_setup`] adds the linear candidates to the setup's model, so
 //! that the design criteria and searches, which work over any number of parameters, choose a group
 //! for the model and the candidates together. Not every set of candidates can be identified
-//! together by any group: [`designable`] keeps, in the pool's order, each that a generic group
+//! together by any group: `designable` keeps, in the pool's order, each that a generic group
 //! separates from the model and the candidates kept before it, and names the others with the
 //! combination no group can see. A candidate needs a nominal stiffness for the scaled
 //! criteria: its own when declared with one, else `candidate_nominal_stiffness`: a candidate is
@@ -68,7 +68,7 @@ pub struct Verdicts {
     pub load_levels: usize,
     /// Each candidate of the pool, in its order.
     pub candidates: Vec<Verdict>,
-    /// The linear candidates a design can identify together with the model ([`designable`]):
+    /// The linear candidates a design can identify together with the model (`designable`):
     /// what `select --for-candidates` designs for.
     pub designable: Designable,
     /// The combinations of the model's parameters and every designable candidate at once that
@@ -147,7 +147,7 @@ pub struct Designable {
 }
 
 /// The postures of the seeded group over the setup's bounds that [`designable`] probes.
-pub const PROBE_POSTURES: usize = 60;
+pub(crate) const PROBE_POSTURES: usize = 60;
 
 /// The seed of that group ([`crate::random_group`]).
 pub(crate) const PROBE_SEED: u64 = 1;
@@ -161,7 +161,7 @@ pub(crate) const PROBE_SEED: u64 = 1;
 ///
 /// # Errors
 /// [`Error::NotFinite`] for a non-finite observation matrix.
-pub fn designable(setup: &Setup, pool: &Pool) -> Result<Designable> {
+pub(crate) fn designable(setup: &Setup, pool: &Pool) -> Result<Designable> {
     let probe = crate::random_group(&setup.without_cell(), PROBE_POSTURES, PROBE_SEED);
     let psi = observation(setup, &probe, &pool.candidates, &[1.0]);
     let n = setup.model().len();
@@ -314,7 +314,7 @@ pub(crate) fn candidate_nominal_stiffness(setup: &Setup, kind: Kind) -> Option<f
     })
 }
 
-/// `setup` with every designable candidate of `pool` ([`designable`]) added to its model
+/// `setup` with every designable candidate of `pool` (`designable`) added to its model
 /// (module docs), without declared candidates; and the designable candidates.
 ///
 /// # Errors

@@ -32,7 +32,7 @@ impl PoolOptions {
     ///
     /// # Errors
     /// [`stiffid_core::Error::InvalidField`] naming the field (`PoolOptions.restarts`), the value and the range.
-    pub fn validate(&self) -> Result<()> {
+    pub(crate) fn validate(&self) -> Result<()> {
         let restarts = self.restarts as u64;
         limits::check_integer(
             "PoolOptions.restarts",

@@ -109,7 +109,7 @@ pub struct Design {
     pub method: PoolMethod,
     /// Groups evaluated.
     pub evaluations: usize,
-    /// The external axes' values the postures are read at ([`station`]; SI, the cell's order,
+    /// The external axes' values the postures are read at (`station`; SI, the cell's order,
     /// empty without external axes).
     pub external: Vec<f64>,
 }
@@ -171,7 +171,7 @@ pub(crate) fn criterion<'a>(moments: impl Iterator<Item = &'a Moments>) -> f64 {
 
 /// Where a cell's external axes stand while the registration postures are read: each axis at
 /// the value of its travel nearest zero (SI, the cell's order; empty without external axes).
-pub fn station(setup: &Setup) -> Vec<f64> {
+pub(crate) fn station(setup: &Setup) -> Vec<f64> {
     setup.robot().external().map_or(Vec::new(), |axes| {
         (axes.axes().iter())
             .map(|a| 0.0f64.clamp(a.lower, a.upper))

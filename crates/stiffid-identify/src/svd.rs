@@ -521,7 +521,7 @@ impl HeldOut {
 
     /// The standard error of [`HeldOut::explained`] over the postures (the delta method on the
     /// ratio of the postures' sums, `explained_share`).
-    pub fn explained_std_error(&self) -> f64 {
+    pub(crate) fn explained_std_error(&self) -> f64 {
         explained_share(&self.posture_sums)[1]
     }
 

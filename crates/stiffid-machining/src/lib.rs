@@ -35,7 +35,7 @@
 //!    targets are compensated with the external axes as they give them); G-code with the compensated TCP positions in the part
 //!    frame (the controller's forward kinematics of the compensated posture, [`compensate_for`]:
 //!    where the controller must be sent so that the loaded tool lands on the programmed one). With a free station or positioner
-//!    ([`compensate::FreeVariables::station`], [`compensate::FreeVariables::positioner`]) the
+//!    (`compensate::FreeVariables::station`, `compensate::FreeVariables::positioner`) the
 //!    values chosen replace the program's in every target (G-code: every point written carries
 //!    all its mapped external axes, `gcode::GCode::write_with_external`), and the targets are
 //!    the compensated postures there. With a free configuration

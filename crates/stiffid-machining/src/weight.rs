@@ -10,7 +10,7 @@
 //!
 //! The calibrated robot file carries the terms (`[gravity]`, [`stiffid_core::Robot::own_weight`]), so any
 //! stiffness file combines with it; a stiffness file written before carries them in its `gravity`
-//! section, read when the robot has none ([`Weight::of`]). The tool's weight enters once: with
+//! section, read when the robot has none (`Weight::of`). The tool's weight enters once: with
 //! `masses` the setup's tool joins link 6 ([`gravity::with_tool`]), lumped terms hold the tool the
 //! robot carried in the calibration; either way the process compliance does not carry it again
 //! ([`tool_load`]).
@@ -26,7 +26,7 @@ use stiffid_metrology::calibration::gravity::{self, Gravity};
 
 /// The own weight's deflection of one robot: its gravity model and term values.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Weight {
+pub(crate) struct Weight {
     model: gravity::Terms,
     values: DVector<f64>,
 }
@@ -43,7 +43,7 @@ impl Weight {
     /// file, or other springs); (`tool.mass_kg`) when lumped terms hold a tool of another mass
     /// than `tool`'s, (`tool.centre_of_mass_mm`) one whose weight acts elsewhere
     /// ([`TOOL_MOMENT_TOLERANCE_NM`]).
-    pub fn new(
+    pub(crate) fn new(
         robot: &Robot,
         springs: Coordinates,
         own: &OwnWeight,
@@ -125,7 +125,7 @@ impl Weight {
 
 /// The tool whose weight the process compliance carries at every point (its wrench joins the
 /// process's): the setup's tool, unless the sag under the robot's own weight already holds it
-/// ([`Weight::of`]: with `masses` the tool joins link 6, lumped terms hold it).
+/// (`Weight::of`: with `masses` the tool joins link 6, lumped terms hold it).
 pub fn tool_load<'a>(arm: &'a Arm, compliance: &Compliance) -> Option<&'a Payload> {
     let sagging = arm.robot().own_weight().is_some() || compliance.own_weight.is_some();
     arm.payload().filter(|_| !sagging)

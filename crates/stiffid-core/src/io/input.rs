@@ -12,7 +12,7 @@ use std::path::Path;
 /// # Errors
 /// The operating system's error for a file that cannot be opened (`NotFound`, ...);
 /// `ErrorKind::InvalidInput` with "is a directory, expected a file" or "is a FIFO (or a device,
-/// a socket), not a regular file; give a file" ([`super::output::kind`]) for anything but a
+/// a socket), not a regular file; give a file" (`super::output::kind`) for anything but a
 /// regular file.
 ///
 /// # Examples

@@ -22,7 +22,7 @@ use super::temporaries;
 /// # Errors
 /// [`Error::InvalidField`] with the field `what` (the option or argument, e.g. `--out`) and the
 /// path: the path ends with a separator, `.` or `..` (a directory's spelling, even where nothing
-/// exists), exists and is not a regular file ([`kind`]), is a dangling symlink, its
+/// exists), exists and is not a regular file (`kind`), is a dangling symlink, its
 /// directory does not exist, or it is an input of the run.
 pub fn resolve(
     path: &Path,
@@ -88,7 +88,7 @@ fn names_a_directory(path: &Path) -> bool {
 }
 
 /// What a non-regular file is, in words: "a directory", "a device", "a FIFO", "a socket".
-pub fn kind(path: &Path) -> &'static str {
+pub(crate) fn kind(path: &Path) -> &'static str {
     std::fs::metadata(path).map_or("not a regular file", |m| kind_of(m.file_type()))
 }
 

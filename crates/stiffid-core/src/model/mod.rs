@@ -394,7 +394,11 @@ impl Model {
     /// link, so every spring moves it. With it, `tau = J_a^T W` are the loads of every parameter
     /// (Nm or N), `J_b diag(h) J_a^T W` a tool point's deflection and `J diag(h) J^T` the
     /// Cartesian compliance ([`crate::observation::cartesian`]).
-    pub fn jacobian(&self, frames: &Frames, point: &Vector3<f64>) -> nalgebra::Matrix6xX<f64> {
+    pub(crate) fn jacobian(
+        &self,
+        frames: &Frames,
+        point: &Vector3<f64>,
+    ) -> nalgebra::Matrix6xX<f64> {
         let mut j = nalgebra::Matrix6xX::zeros(self.len());
         j.fixed_columns_mut::<6>(0)
             .copy_from(&frames.jacobian(point, self.coordinates));

@@ -7,7 +7,7 @@
 //! (rad), base frame. With a = b this is [`crate::observation::cartesian::compliance`] times `W`.
 //!
 //! **Over the model** ([`crate::model`]): the Jacobians are augmented by one column per virtual
-//! spring (`[J_q | J_s]`, [`crate::model::Model::jacobian`]), `tau` holds every parameter's load
+//! spring (`[J_q | J_s]`, `crate::model::Model::jacobian`), `tau` holds every parameter's load
 //! (Nm or N) and `h` every parameter's compliance, so the same three lines give the deflection
 //! `J_b diag(h) J_a^T W = (J_q,b K^-1 J_q,a^T + sum_s c_s J_s,b J_s,a^T) W`.
 //!
@@ -106,7 +106,7 @@ pub struct PointDeflection {
 impl Points<'_> {
     /// The deflection under `wrench` (`[f; m]`, N and Nm, base frame, at the loaded point) with
     /// the compliance `h` of every parameter of the arm's model (rad/Nm, m/N; drives first),
-    /// by the augmented Jacobians ([`crate::model::Model::jacobian`]).
+    /// by the augmented Jacobians (`crate::model::Model::jacobian`).
     ///
     /// # Panics
     /// If `h` does not have one value per parameter ([`crate::model::Compliance::check`]).

@@ -153,13 +153,13 @@ impl Arm {
     /// Capsule radii of the robot and tool bodies, m: the setup's `[robot_geometry]`, else the
     /// robot's ([`Bodies::Capsules`]), else scaled to the robot's size. The robot's capsules are
     /// its bodies in the cell unless [`Arm::shapes`] has its own; the tool's always are.
-    pub fn geometry(&self) -> &RobotGeometry {
+    pub(crate) fn geometry(&self) -> &RobotGeometry {
         &self.geometry
     }
 
     /// The robot's collision shapes (a URDF's `<collision>` elements, [`Bodies::Shapes`]) that
     /// the cell's checks and drawings use for the base and links 1-6; `None`: capsules
-    /// ([`Arm::geometry`]), also when the setup gives `[robot_geometry] link_radius_mm`, the
+    /// (`Arm::geometry`), also when the setup gives `[robot_geometry] link_radius_mm`, the
     /// user's override.
     pub fn shapes(&self) -> Option<&CollisionGeometry> {
         match &self.shapes {

@@ -21,7 +21,7 @@ pub struct RopeLoad {
 impl RopeLoad {
     /// The wrench `[f; m]` (N, Nm, base frame) at a loading point `p1` (base frame, m). A loading
     /// point at the anchor gets a zero wrench.
-    pub fn wrench(&self, p1: &Vector3<f64>) -> Vector6<f64> {
+    pub(crate) fn wrench(&self, p1: &Vector3<f64>) -> Vector6<f64> {
         let d = self.anchor - p1;
         let n = d.norm();
         let f = if n > 0.0 {
@@ -33,7 +33,7 @@ impl RopeLoad {
     }
 
     /// The gradient with respect to the loading point `p1` (base frame, m) of `e . f(p1)`, f the
-    /// force of [`RopeLoad::wrench`] and `e` a weight on it (per N): with `d = P2 - p1`,
+    /// force of `RopeLoad::wrench` and `e` a weight on it (per N): with `d = P2 - p1`,
     /// `u = d / |d|`, `df = -(G / |d|) (I - u u^T) dp1`, so the gradient is
     /// `-(G / |d|) (e - (u . e) u)` (per m). Zero at the anchor, where the wrench is zero.
     pub fn force_gradient(&self, p1: &Vector3<f64>, e: &Vector3<f64>) -> Vector3<f64> {
@@ -50,7 +50,7 @@ impl RopeLoad {
 /// Laser-tracker noise: white Gaussian on every coordinate of every reading (docs/model.md, "The
 /// noise convention"). A displacement is a loaded minus an unloaded reading, so its variance per
 /// coordinate is twice the reading's ([`Noise::displacement_variance`]); with load steps the
-/// displacement at the rope load has [`Experiment::displacement_variance`].
+/// displacement at the rope load has `Experiment::displacement_variance`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Noise {
     /// Variance `sigma_r^2` of one coordinate of one tracker reading at multiple 1, m^2
@@ -107,7 +107,7 @@ pub struct Experiment {
 impl Experiment {
     /// The loading of the simulation and of the posture search (a zero load in a
     /// calibration-only setup, which has none: `Experiment::require_loading`).
-    pub fn load(&self) -> &RopeLoad {
+    pub(crate) fn load(&self) -> &RopeLoad {
         &self.load
     }
 
@@ -129,12 +129,12 @@ impl Experiment {
 
     /// The load levels applied in each posture, N, rising (`[loading] steps_n`); empty for one
     /// load per posture, the rope load ([`crate::setup::load_steps`]).
-    pub fn load_steps(&self) -> &[f64] {
+    pub(crate) fn load_steps(&self) -> &[f64] {
         &self.load_steps
     }
 
     /// Measurement noise.
-    pub fn noise(&self) -> &Noise {
+    pub(crate) fn noise(&self) -> &Noise {
         &self.noise
     }
 
@@ -144,7 +144,7 @@ impl Experiment {
     /// variance); with them, that of the displacement their readings are worth
     /// ([`crate::setup::load_steps::StepWeights::variance_factor`] times the reading variance,
     /// also 2 for one step at the rope load).
-    pub fn displacement_variance(&self) -> f64 {
+    pub(crate) fn displacement_variance(&self) -> f64 {
         match StepWeights::new(self.load.load, &self.load_steps) {
             None => self.noise.displacement_variance(),
             Some(w) => self.noise.reading_variance * w.variance_factor(),
@@ -152,7 +152,7 @@ impl Experiment {
     }
 
     /// Experiment bounds, axis coordinates, rad.
-    pub fn bounds(&self) -> &JointBox {
+    pub(crate) fn bounds(&self) -> &JointBox {
         &self.bounds
     }
 
@@ -165,7 +165,7 @@ impl Experiment {
     /// criteria scaled by it (relative-a, d-optimal, scaled-cond), the predicted deviation rates,
     /// simulation and the study need it; [`Experiment::try_nominal_stiffness`] says so when it
     /// is missing.
-    pub fn nominal_stiffness(&self) -> Option<&Vector6<f64>> {
+    pub(crate) fn nominal_stiffness(&self) -> Option<&Vector6<f64>> {
         self.nominal_stiffness.as_ref()
     }
 
@@ -175,7 +175,7 @@ impl Experiment {
     /// # Errors
     /// [`Error::MissingField`] (`nominal_stiffness_nm_per_rad`) naming `needed_by`, with where a
     /// value comes from.
-    pub fn try_nominal_stiffness(&self, needed_by: &str) -> Result<&Vector6<f64>> {
+    pub(crate) fn try_nominal_stiffness(&self, needed_by: &str) -> Result<&Vector6<f64>> {
         self.nominal_stiffness().ok_or_else(|| Error::MissingField {
             field: "nominal_stiffness_nm_per_rad",
             needed_by: needed_by.to_string(),
@@ -190,7 +190,7 @@ impl Experiment {
 
     /// Characteristic length `L` of the dexterity index (Eq. 20), m, if the setup gives one (the
     /// classical and zhang2021 criteria need it).
-    pub fn characteristic_length(&self) -> Option<f64> {
+    pub(crate) fn characteristic_length(&self) -> Option<f64> {
         self.characteristic_length
     }
 
@@ -199,7 +199,7 @@ impl Experiment {
     /// # Errors
     /// [`Error::MissingField`] (`characteristic_length_mm`) naming `needed_by`, with where a value
     /// comes from.
-    pub fn try_characteristic_length(&self, needed_by: &str) -> Result<f64> {
+    pub(crate) fn try_characteristic_length(&self, needed_by: &str) -> Result<f64> {
         self.characteristic_length
             .ok_or_else(|| Error::MissingField {
                 field: "characteristic_length_mm",

@@ -227,7 +227,7 @@ impl Setup {
         })
     }
 
-    /// The loading ([`Experiment::load`]).
+    /// The loading (`Experiment::load`).
     pub fn load(&self) -> &RopeLoad {
         self.experiment.load()
     }
@@ -240,18 +240,18 @@ impl Setup {
         self.experiment.require_loading(needed_by)
     }
 
-    /// Measurement noise ([`Experiment::noise`]).
+    /// Measurement noise (`Experiment::noise`).
     pub fn noise(&self) -> &Noise {
         self.experiment.noise()
     }
 
-    /// The load levels applied in each posture, N ([`Experiment::load_steps`]).
+    /// The load levels applied in each posture, N (`Experiment::load_steps`).
     pub fn load_steps(&self) -> &[f64] {
         self.experiment.load_steps()
     }
 
     /// The variance of one displacement coordinate at the rope load, at noise level multiple 1,
-    /// m^2 ([`Experiment::displacement_variance`]).
+    /// m^2 (`Experiment::displacement_variance`).
     pub fn displacement_variance(&self) -> f64 {
         self.experiment.displacement_variance()
     }
@@ -262,13 +262,13 @@ impl Setup {
         &self.notes
     }
 
-    /// Experiment bounds, axis coordinates ([`Experiment::bounds`]).
+    /// Experiment bounds, axis coordinates (`Experiment::bounds`).
     pub fn bounds(&self) -> &JointBox {
         self.experiment.bounds()
     }
 
     /// Nominal joint stiffness, Nm/rad, if the setup gives one
-    /// ([`Experiment::nominal_stiffness`]).
+    /// (`Experiment::nominal_stiffness`).
     pub fn nominal_stiffness(&self) -> Option<&Vector6<f64>> {
         self.experiment.nominal_stiffness()
     }
@@ -276,13 +276,13 @@ impl Setup {
     /// The nominal joint stiffness, Nm/rad, for `needed_by` (named in the error).
     ///
     /// # Errors
-    /// As [`Experiment::try_nominal_stiffness`].
+    /// As `Experiment::try_nominal_stiffness`.
     pub fn try_nominal_stiffness(&self, needed_by: &str) -> Result<&Vector6<f64>> {
         self.experiment.try_nominal_stiffness(needed_by)
     }
 
     /// Characteristic length `L` of the dexterity index (Eq. 20), m, if the setup gives one
-    /// ([`Experiment::characteristic_length`]).
+    /// (`Experiment::characteristic_length`).
     pub fn characteristic_length(&self) -> Option<f64> {
         self.experiment.characteristic_length()
     }
@@ -290,7 +290,7 @@ impl Setup {
     /// The characteristic length, m, for `needed_by` (named in the error).
     ///
     /// # Errors
-    /// As [`Experiment::try_characteristic_length`].
+    /// As `Experiment::try_characteristic_length`.
     pub fn try_characteristic_length(&self, needed_by: &str) -> Result<f64> {
         self.experiment.try_characteristic_length(needed_by)
     }
@@ -305,12 +305,12 @@ impl Setup {
         self.workcell.constraints()
     }
 
-    /// The floor, clearance and obstacles ([`Workcell::cell`]).
+    /// The floor, clearance and obstacles (`Workcell::cell`).
     pub fn cell(&self) -> Option<&Cell> {
         self.workcell.cell()
     }
 
-    /// Capsule radii of the robot and tool bodies ([`Arm::geometry`]).
+    /// Capsule radii of the robot and tool bodies (`Arm::geometry`).
     pub fn geometry(&self) -> &RobotGeometry {
         self.arm.geometry()
     }
@@ -386,7 +386,7 @@ impl Setup {
         })
     }
 
-    /// The laser tracker ([`Workcell::tracker`]).
+    /// The laser tracker (`Workcell::tracker`).
     pub fn tracker(&self) -> Option<&Tracker> {
         self.workcell.tracker()
     }
@@ -407,7 +407,7 @@ impl Setup {
         self.workcell.table_reflectors()
     }
 
-    /// A G-code program's part frame in the robot base frame, m ([`Workcell::workpiece`]).
+    /// A G-code program's part frame in the robot base frame, m (`Workcell::workpiece`).
     pub fn workpiece(&self) -> Option<&Isometry3<f64>> {
         self.workcell.workpiece()
     }

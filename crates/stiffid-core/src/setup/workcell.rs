@@ -171,17 +171,17 @@ impl Workcell {
     }
 
     /// The floor, clearance and obstacles; `None`: no body checks (the paper's study).
-    pub fn cell(&self) -> Option<&Cell> {
+    pub(crate) fn cell(&self) -> Option<&Cell> {
         self.cell.as_ref()
     }
 
     /// The laser tracker, for the line-of-sight and incidence checks.
-    pub fn tracker(&self) -> Option<&Tracker> {
+    pub(crate) fn tracker(&self) -> Option<&Tracker> {
         self.tracker.as_ref()
     }
 
     /// `[workpiece] base_from_part`: a G-code program's part frame in the robot base frame, m.
-    pub fn workpiece(&self) -> Option<&Isometry3<f64>> {
+    pub(crate) fn workpiece(&self) -> Option<&Isometry3<f64>> {
         self.workpiece.as_ref()
     }
 

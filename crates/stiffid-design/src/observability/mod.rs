@@ -268,7 +268,7 @@ impl CalibrationDesign {
     /// every group's in the criteria (their count too).
     ///
     /// # Errors
-    /// Those of [`CalibrationDesign::jacobian`].
+    /// Those of `CalibrationDesign::jacobian`.
     pub fn on_station(&self, station: ExternalValues, chosen: &[Placed]) -> Result<Self> {
         let fixed = stack(&self.table, &self.jacobian_placed(chosen)?);
         let mut design = CalibrationDesign {
@@ -318,7 +318,7 @@ impl CalibrationDesign {
     ///
     /// # Errors
     /// [`Error::NotFinite`] for a non-finite posture.
-    pub fn jacobian(&self, postures: &[Vector6<f64>]) -> Result<DMatrix<f64>> {
+    pub(crate) fn jacobian(&self, postures: &[Vector6<f64>]) -> Result<DMatrix<f64>> {
         let placed: Vec<Placed> = postures.iter().map(|q| (*q, self.station)).collect();
         self.jacobian_placed(&placed)
     }
@@ -327,7 +327,7 @@ impl CalibrationDesign {
     ///
     /// # Errors
     /// [`Error::InvalidField`] (`postures`) with no posture; those of
-    /// [`CalibrationDesign::jacobian`] and [`criteria`].
+    /// `CalibrationDesign::jacobian` and `criteria`.
     pub fn evaluate(&self, postures: &[Vector6<f64>]) -> Result<CalibrationCriteria> {
         if postures.is_empty() {
             return Err(Error::InvalidField {
@@ -364,7 +364,7 @@ impl CalibrationDesign {
         )
     }
 
-    /// [`CalibrationDesign::value`] of a campaign's `postures`, each read where it stands, after
+    /// `CalibrationDesign::value` of a campaign's `postures`, each read where it stands, after
     /// the fixed postures of [`CalibrationDesign::on_station`] (none on a new design).
     pub fn value_placed(&self, criterion: CalibrationCriterion, postures: &[Placed]) -> f64 {
         match self.jacobian_placed(postures) {
@@ -376,7 +376,7 @@ impl CalibrationDesign {
     /// The value of `criterion` for `postures` (rad) as a search minimises it
     /// ([`CalibrationCriterion::loss`]): `+infinity` for a group that does not separate the
     /// kept parameters or a non-finite posture.
-    pub fn value(&self, criterion: CalibrationCriterion, postures: &[Vector6<f64>]) -> f64 {
+    pub(crate) fn value(&self, criterion: CalibrationCriterion, postures: &[Vector6<f64>]) -> f64 {
         let d = self.scorer(criterion);
         match d.jacobian(postures) {
             Ok(j) => score::Scored::new(j, criterion, d).map_or(f64::INFINITY, |s| s.value),
@@ -384,7 +384,7 @@ impl CalibrationDesign {
         }
     }
 
-    /// [`CalibrationDesign::value`] and the exact gradient of its logarithm with respect to
+    /// `CalibrationDesign::value` and the exact gradient of its logarithm with respect to
     /// every posture's axis angles (1/rad, one per posture; zero for an infinite value), from
     /// the derivative of the criterion with respect to the Jacobian (`score`) and of the
     /// Jacobian with respect to the postures (`jacobian`).
@@ -471,7 +471,7 @@ pub(crate) fn readings(model: &ErrorModel, postures: &[Placed]) -> Vec<Observati
 /// # Errors
 /// [`Error::InvalidField`] (`parameters`) when `test` has other columns than `j`;
 /// [`Error::NotFinite`] when `j` is not finite or its SVD does not converge.
-pub fn criteria(
+pub(crate) fn criteria(
     j: &DMatrix<f64>,
     postures: usize,
     test: &DMatrix<f64>,

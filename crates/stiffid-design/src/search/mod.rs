@@ -106,7 +106,7 @@ impl<'a> Goal<'a> {
 
     /// The goal's value at `postures` (axis angles, rad), `evaluator` scoring the stiffness
     /// criterion: `+infinity` when a part is not positive and finite.
-    pub fn value(&self, evaluator: &Evaluator, postures: &[Vector6<f64>]) -> f64 {
+    pub(crate) fn value(&self, evaluator: &Evaluator, postures: &[Vector6<f64>]) -> f64 {
         let Some(c) = self.calibration else {
             return evaluator.value(self.stiffness, postures);
         };

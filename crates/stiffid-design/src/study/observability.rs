@@ -28,7 +28,7 @@ pub const MAX_GROUPS: usize = 10_000;
 pub const MAX_SIZE: usize = 200;
 
 /// The test (held-out) postures of the study.
-pub(crate) const TEST_POSTURES: usize = 30;
+pub const TEST_POSTURES: usize = 30;
 
 /// The reference postures that fix the kept parameters.
 pub const REFERENCE_POSTURES: usize = 60;

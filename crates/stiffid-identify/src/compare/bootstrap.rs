@@ -82,7 +82,7 @@ pub(crate) type Chosen = Vec<(usize, f64)>;
 /// [`Comparison::parameters`], the setup's model's first, then the springs in the order the
 /// selection added them) and the compliance-side value of each, SI (rad/Nm, m/N; a lost motion
 /// in rad or m, a load-dependent compliance in rad/Nm^2).
-pub type Supported = (Vec<usize>, Vec<f64>);
+pub(crate) type Supported = (Vec<usize>, Vec<f64>);
 
 /// The result of [`bootstrap`].
 #[derive(Debug, Clone, PartialEq)]
@@ -92,7 +92,7 @@ pub struct Bootstrap {
     /// Each resample's recommended model, by resample index; `None` when its data cannot
     /// identify it (module docs).
     pub models: Vec<Option<Chosen>>,
-    /// Each resample's supported models ([`Supported`]), by resample index; empty when its data
+    /// Each resample's supported models (`Supported`), by resample index; empty when its data
     /// cannot identify its recommended model.
     pub supported: Vec<Vec<Supported>>,
     /// The resamples whose data cannot identify their recommended model (module docs).

@@ -56,7 +56,7 @@ pub struct Row {
     /// needed to identify the model.
     pub held_out_explained: Option<f64>,
     /// The standard error of `held_out_explained` over the postures
-    /// ([`HeldOut::explained_std_error`]).
+    /// (`HeldOut::explained_std_error`).
     pub held_out_explained_std_error: Option<f64>,
     /// `RMS(delta_b)` held out, m.
     pub held_out_rms_delta_b: Option<f64>,

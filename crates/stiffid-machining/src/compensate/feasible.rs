@@ -63,7 +63,7 @@ impl Feasible {
     /// # Errors
     /// [`Error::InvalidOption`] ([`JobOption::MarginDeg`] or [`JobOption::MaxCondition`]) with
     /// the value given.
-    pub fn validate(&self) -> Result<()> {
+    pub(crate) fn validate(&self) -> Result<()> {
         if !(0.0..=std::f64::consts::FRAC_PI_2).contains(&self.margin) {
             return Err(Error::InvalidOption {
                 option: JobOption::MarginDeg,

@@ -49,7 +49,7 @@
 //! deflection, condition number and distance to the joint limits at every angle of the grid.
 //!
 //! ## The free station
-//! On a robot on a track the station is free too: with [`FreeVariables::station`], [`path_on_track`] moves
+//! On a robot on a track the station is free too: with `FreeVariables::station`, [`path_on_track`] moves
 //! the carrier's first axis at every point of a path file (and [`crate::compensate()`]
 //! at every target of a program, written back with the stations chosen) by an offset from the
 //! path's own station on a grid of `max_step` spacing within `+-range` (and the axis's travel), jointly
@@ -110,7 +110,7 @@
 //! ([`Removed::speed`]).
 //!
 //! ## The free positioner
-//! With [`FreeVariables::positioner`] the positioner's last axis (the table's turn; a turntable's only
+//! With `FreeVariables::positioner` the positioner's last axis (the table's turn; a turntable's only
 //! axis) is a variable of the same grid, with its own range and step (deg), alone or jointly
 //! with the station and the rotation (the states are their combinations). Turning the table
 //! turns the part, so each point's target in the arm's frame moves by
@@ -118,7 +118,7 @@
 //! `P(e') = P(e)`), the process force turns with the part (the cut follows it: a path file's
 //! wrench too), and a program's tool weight stays along the cell's `-z` at the turned tool. The
 //! same rules hold: the axis's travel, one grid step at most between points, no point worse
-//! than at the path's own values. With [`FreeVariables::tilt`] a two-axis positioner's first
+//! than at the path's own values. With `FreeVariables::tilt` a two-axis positioner's first
 //! axis (the tilt, which carries the table's axis) is a variable of the grid too, by the same
 //! shift with both angles in `P(e')`.
 //!
@@ -318,7 +318,7 @@ pub struct Compensated {
     /// this point's residual, m.
     pub bound_before: Option<f64>,
     /// The values of the cell's external axes at the point (SI, the cell's order): the station
-    /// and table angle chosen by [`FreeVariables::station`] and [`FreeVariables::positioner`], else the path's or the
+    /// and table angle chosen by `FreeVariables::station` and `FreeVariables::positioner`, else the path's or the
     /// program's own; empty for a robot without external axes.
     pub external: stiffid_core::robot::external::ExternalValues,
     /// With a free variable: the states of its grid at this point that the feasibility checks

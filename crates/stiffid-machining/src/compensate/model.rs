@@ -51,10 +51,10 @@ impl<'a> Model<'a> {
     /// The model of `arm` (its TCP, drive springs and virtual springs) with the compliance
     /// `compliance` of every parameter of the arm's model; with the calibrated robot's
     /// [`stiffid_core::model::OwnWeight`] (or the compliance's), the sag under the robot's own weight
-    /// ([`Weight::of`]).
+    /// (`Weight::of`).
     ///
     /// # Errors
-    /// Those of [`Compliance::check`] and [`Weight::of`]; [`Error::InvalidField`] when the
+    /// Those of [`Compliance::check`] and `Weight::of`; [`Error::InvalidField`] when the
     /// springs are kinematic and the robot's axis map is singular.
     pub fn new(arm: &'a Arm, compliance: &'a Compliance) -> Result<Self> {
         compliance.check(arm.model())?;
@@ -121,7 +121,7 @@ impl<'a> Model<'a> {
     }
 
     /// The TCP pose of the robot commanded to `q` (rad) and loaded by `wrench` (base frame) at the
-    /// TCP, sagging under its own weight with a [`Weight`] (module docs).
+    /// TCP, sagging under its own weight with a `Weight` (module docs).
     pub fn loaded_pose(&self, q: &Vector6<f64>, wrench: &Vector6<f64>) -> Isometry3<f64> {
         self.loaded(&self.arm.robot().frames(q), q, wrench)
     }

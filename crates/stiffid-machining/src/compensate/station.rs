@@ -23,7 +23,7 @@ use stiffid_core::{Error, Result};
 
 /// Compensates the points of a path file of a cell with a carrier (a track), as
 /// [`crate::path::points`] gives them (a pose is a point of the part, each point with
-/// its external values), with the track station free ([`super::FreeVariables::station`]) and, with
+/// its external values), with the track station free (`super::FreeVariables::station`) and, with
 /// [`super::FreeVariables::tool_rotation`], the tool rotation too; each result's
 /// [`Compensated::external`] holds the station chosen. The results are in the arm's frame on
 /// its carriage at that station ([`crate::cell::path_to_cell`] takes them to the

@@ -136,7 +136,7 @@ pub struct LeadTilt {
 }
 
 /// One free variable with its bounds in SI units: what a compensation may move from the path's
-/// own value at every point ([`Free::variable`] names it as `--free` does).
+/// own value at every point (`Free::variable` names it as `--free` does).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Free {
     /// The rotation about the tool z axis, rad (module docs of [`super`], "The free tool axis").
@@ -155,7 +155,7 @@ pub enum Free {
 
 impl Free {
     /// The variable this one moves.
-    pub fn variable(&self) -> Variable {
+    pub(crate) fn variable(&self) -> Variable {
         match self {
             Free::ToolRotation(_) => Variable::ToolRotation,
             Free::LeadTilt(_) => Variable::LeadTilt,
@@ -199,7 +199,7 @@ impl Free {
     ///
     /// # Errors
     /// Those of [`FreeRange::checked`] and [`LeadTilt::checked`].
-    pub fn validate(&self) -> Result<()> {
+    pub(crate) fn validate(&self) -> Result<()> {
         let variable = self.variable();
         let s = variable.scale();
         match self {
@@ -490,17 +490,17 @@ impl FreeVariables {
     }
 
     /// The track station, m ("The free station"), if free.
-    pub fn station(&self) -> Option<FreeRange> {
+    pub(crate) fn station(&self) -> Option<FreeRange> {
         find!(self, Station)
     }
 
     /// The positioner's last axis, the table's turn ("The free positioner"), if free.
-    pub fn positioner(&self) -> Option<FreeRange> {
+    pub(crate) fn positioner(&self) -> Option<FreeRange> {
         find!(self, Positioner)
     }
 
     /// A two-axis positioner's first axis, the tilt, if free.
-    pub fn tilt(&self) -> Option<FreeRange> {
+    pub(crate) fn tilt(&self) -> Option<FreeRange> {
         find!(self, Tilt)
     }
 
@@ -540,12 +540,12 @@ impl FreeVariables {
         !self.free.is_empty()
     }
 
-    /// Checks every variable ([`Free::validate`]), that none is given twice, and the
+    /// Checks every variable (`Free::validate`), that none is given twice, and the
     /// objective: the surge only for the tool rotation alone (a drilling exit's, whose axis is
     /// the hole's).
     ///
     /// # Errors
-    /// Those of [`Free::validate`]; [`Error::InvalidOption`] ([`JobOption::Free`]) for a
+    /// Those of `Free::validate`; [`Error::InvalidOption`] ([`JobOption::Free`]) for a
     /// variable given twice, ([`JobOption::Minimise`]) for the surge with another free
     /// variable.
     pub fn validate(&self) -> Result<()> {

@@ -108,7 +108,7 @@ impl Intervals {
     /// takes it; the part of a geometric change it would absorb too is kept, erring wide).
     ///
     /// # Errors
-    /// Those of [`ErrorModel::residuals`], [`ErrorModel::jacobian_of`] and
+    /// Those of `ErrorModel::residuals`, [`ErrorModel::jacobian_of`] and
     /// [`super::fit::start_at`].
     pub fn of(
         &self,

@@ -135,7 +135,7 @@ fn highest(model: &ErrorModel, observations: &[Observation]) -> Vec<usize> {
 ///
 /// # Errors
 /// Those of [`ErrorModel::with_external`], [`fit::start`] and [`fit::fit`].
-pub fn fitted(
+pub(crate) fn fitted(
     base: &ErrorModel,
     orders: &[usize],
     tables: usize,
@@ -198,7 +198,7 @@ fn score(
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`external_axis`) when the robot has no external axes; those of
-/// [`fitted`] for every candidate and fold.
+/// `fitted` for every candidate and fold.
 pub fn choose(
     base: &ErrorModel,
     tables: usize,

@@ -2,7 +2,7 @@
 //!
 //! The error of a held-out reading is `b(x, q) - T t` (base frame, m), the predicted position
 //! of its measuring point minus the tracker's reading mapped by the calibrated registration
-//! ([`crate::calibration::ErrorModel::residuals`]). [`cross_validate`] holds out one posture at a
+//! (`crate::calibration::ErrorModel::residuals`). [`cross_validate`] holds out one posture at a
 //! time (all its points), fits the rest and predicts it: the leave-one-posture-out error, the
 //! prediction error of the model on postures like the campaign's.
 
@@ -52,7 +52,7 @@ impl Validation {
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`readings`) with no reading; those of
-/// [`ErrorModel::residuals`].
+/// `ErrorModel::residuals`.
 pub fn validate(
     model: &ErrorModel,
     estimate: &Estimate,

@@ -93,12 +93,12 @@ pub struct CalibrationOptions {
     /// The calibration criterion; `None` for the default ([`CalibrationOptions::criterion`]).
     pub criterion: Option<CalibrationCriterion>,
     /// The joint errors the calibration fits; `None` for the default
-    /// ([`CalibrationOptions::geometry`]).
+    /// (`CalibrationOptions::geometry`).
     pub geometry: Option<Geometry>,
-    /// The gravity terms it fits; `None` for the default ([`CalibrationOptions::gravity`]).
+    /// The gravity terms it fits; `None` for the default (`CalibrationOptions::gravity`).
     pub gravity: Option<Gravity>,
     /// With [`Purpose::Both`] only, the weight `w` of the calibration's log-criterion, in
-    /// `(0, 1)`; `None` for the default ([`CalibrationOptions::weight`]).
+    /// `(0, 1)`; `None` for the default (`CalibrationOptions::weight`).
     pub weight: Option<f64>,
 }
 
@@ -109,18 +109,18 @@ impl CalibrationOptions {
     }
 
     /// The joint errors the calibration fits (default [`Geometry::Full`], as `calibrate`).
-    pub fn geometry(&self) -> Geometry {
+    pub(crate) fn geometry(&self) -> Geometry {
         self.geometry.unwrap_or(Geometry::Full)
     }
 
     /// The gravity terms it fits (default [`Gravity::None`], as `calibrate`).
-    pub fn gravity(&self) -> Gravity {
+    pub(crate) fn gravity(&self) -> Gravity {
         self.gravity.unwrap_or(Gravity::None)
     }
 
     /// The weight of the calibration's log-criterion with [`Purpose::Both`] (default 0.5: each
     /// design's relative improvement counts the same).
-    pub fn weight(&self) -> f64 {
+    pub(crate) fn weight(&self) -> f64 {
         self.weight.unwrap_or(0.5)
     }
 

@@ -10,7 +10,7 @@ impl ErrorModel {
     /// pair (axis angles, rad; points 0-based), one column per parameter, base frame, m per unit
     /// of the parameter (m/m, m/rad, m per gravity-term unit). Exact where the frame's six values
     /// are zero (as the fit keeps them); it is also the Jacobian of
-    /// [`ErrorModel::residuals`].
+    /// `ErrorModel::residuals`.
     ///
     /// # Errors
     /// [`Error::InvalidField`] when a value is not finite; [`Error::InvalidField`] (`point`) for a
@@ -124,7 +124,7 @@ impl ErrorModel {
         Ok(j)
     }
 
-    /// The Jacobian of [`ErrorModel::residuals`] (and of [`ErrorModel::predict`]) at `values`:
+    /// The Jacobian of `ErrorModel::residuals` (and of [`ErrorModel::predict`]) at `values`:
     /// [`ErrorModel::jacobian`] of the observations' postures and points, with, for a loaded
     /// reading, the compliances' columns (its observation rows, `ErrorModel::load_rows`) and
     /// the frame's rotation about the deflected point.

@@ -518,7 +518,7 @@ impl ErrorModel {
     ///
     /// # Errors
     /// Those of [`ErrorModel::positions`].
-    pub fn residuals(
+    pub(crate) fn residuals(
         &self,
         estimate: &Estimate,
         observations: &[Observation],

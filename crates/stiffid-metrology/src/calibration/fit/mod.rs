@@ -2,7 +2,7 @@
 //! deviations.
 //!
 //! The parameters kept by [`crate::calibration::identifiability`] at the start (the merged stay
-//! nominal) minimise `|r(x)|^2`, `r` the residuals of [`ErrorModel::residuals`], by
+//! nominal) minimise `|r(x)|^2`, `r` the residuals of `ErrorModel::residuals`, by
 //! Levenberg-Marquardt (Marquardt 1963) in the scaled parameters `x_s = x / s`
 //! ([`ErrorModel::column_scales`]): each iteration factors `[J_s | r]` by Householder QR once
 //! (`J_s` the scaled Jacobian) and `R = U S V^T` by SVD once, then solves `[R; sqrt(lambda) I]

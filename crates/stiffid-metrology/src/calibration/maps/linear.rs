@@ -106,7 +106,7 @@ impl Linear {
     /// are those of the observations, in ascending order of their index.
     ///
     /// # Errors
-    /// Those of [`ErrorModel::with_maps`], [`ErrorModel::residuals`] and
+    /// Those of [`ErrorModel::with_maps`], `ErrorModel::residuals` and
     /// [`ErrorModel::jacobian_of`].
     pub fn at(
         model: &ErrorModel,

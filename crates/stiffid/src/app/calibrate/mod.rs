@@ -237,7 +237,7 @@ pub struct Report {
     /// The setup fragment: the tracker's registration, the measuring points and the corrected
     /// TCP.
     pub fragment: String,
-    /// With the setup's `[tool] tcp_mm`: the TCP moved with the measuring points ([`tcp`]), flange
+    /// With the setup's `[tool] tcp_mm`: the TCP moved with the measuring points (`tcp`), flange
     /// frame, m: what compensation uses with the calibrated robot.
     pub tcp: Option<nalgebra::Vector3<f64>>,
     /// With gravity terms or loaded readings: the compliance of every parameter of the
@@ -546,7 +546,11 @@ fn held_out(
 /// transform from the setup's measuring points to the fitted ones (Umeyama's least squares,
 /// [`stiffid_metrology::register::fit`]; with fewer than three points not on one line, their mean
 /// shift).
-pub fn tcp(setup: &Setup, model: &ErrorModel, values: &DVector<f64>) -> Option<Vector3<f64>> {
+pub(crate) fn tcp(
+    setup: &Setup,
+    model: &ErrorModel,
+    values: &DVector<f64>,
+) -> Option<Vector3<f64>> {
     use stiffid_metrology::register::{fit, Correspondence};
     if !setup.tcp_given() {
         return None;

@@ -64,7 +64,9 @@ pub fn mm(v: f64) -> f64 {
 }
 
 /// A prediction interval (m) in mm, `null` for an unbounded end.
-pub fn interval_mm(interval: stiffid_core::model::prediction::Interval) -> [[Option<f64>; 2]; 3] {
+pub(crate) fn interval_mm(
+    interval: stiffid_core::model::prediction::Interval,
+) -> [[Option<f64>; 2]; 3] {
     interval.map(|c| c.map(|v| finite(mm(v))))
 }
 
@@ -74,7 +76,7 @@ pub fn mm3(v: &nalgebra::Vector3<f64>) -> [f64; 3] {
 }
 
 /// Axis angles (rad) of a group as rows of degrees, q1..q6.
-pub fn degrees(postures: &[nalgebra::Vector6<f64>]) -> Vec<[f64; 6]> {
+pub(crate) fn degrees(postures: &[nalgebra::Vector6<f64>]) -> Vec<[f64; 6]> {
     let row = |q: &nalgebra::Vector6<f64>| std::array::from_fn(|a| q[a].to_degrees());
     postures.iter().map(row).collect()
 }

@@ -203,7 +203,7 @@ pub fn csv(plan: &Report) -> String {
 /// # Errors
 /// [`stiffid_core::Error::MissingField`] for a setup without a nominal stiffness; those of
 /// [`scene::scene`].
-pub fn scene(report: &Report, setup: &Setup) -> stiffid_core::Result<scene::Scene> {
+pub(crate) fn scene(report: &Report, setup: &Setup) -> stiffid_core::Result<scene::Scene> {
     let h = setup.try_model_nominal_compliance(super::NEEDED_BY)?;
     let postures: Vec<_> = report.postures.iter().map(|p| p.q).collect();
     let predicted: Vec<_> = report

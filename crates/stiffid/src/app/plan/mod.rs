@@ -47,7 +47,7 @@ pub struct Request<'a> {
     /// displacements, [`stiffid_core::Robot::frames_at`]), its checks with the boxes the positioner
     /// carries turned ([`Checker::feasibility_at`]), its scene. Empty: every axis at 0.
     pub external: &'a [Vec<f64>],
-    /// Also the plan's 3D scene ([`document::scene`]): in [`Outcome::scene`].
+    /// Also the plan's 3D scene (`document::scene`): in [`Outcome::scene`].
     pub scene: bool,
 }
 
@@ -229,7 +229,7 @@ pub struct Report {
 /// [`stiffid_core::Error::InvalidField`] (`postures`) for none or more than [`MAX_POSTURES`];
 /// external values (field `external`) not one list per posture of values within the axes'
 /// limits, or none for a robot with external axes; [`stiffid_core::Error::MissingField`] for a setup without a nominal stiffness; the errors
-/// of [`Setup::check_bodies`]; with [`Request::scene`], those of [`document::scene`].
+/// of [`Setup::check_bodies`]; with [`Request::scene`], those of `document::scene`.
 pub fn run(request: &Request) -> Result<Outcome> {
     let report = find(request)?;
     let scene = (request.scene)

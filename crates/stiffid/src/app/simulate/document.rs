@@ -1,7 +1,7 @@
 //! The document of the simulate job ([`crate::app::simulate`]): `stiffid simulate --json` (and
 //! `--out DIR/simulation.json`), its `deviation_rates.csv`, Python's `simulate`; the report is the document
 //! ([`super::Report`]); here its parts: each group's
-//! ([`Group`](crate::app::document::group::Group), as the study's summary has it too) and the parameters' names ([`Named`]).
+//! ([`Group`](crate::app::document::group::Group), as the study's summary has it too) and the parameters' names (`Named`).
 
 use crate::app::document::csv_text;
 use serde::{Serialize, Serializer};
@@ -11,7 +11,7 @@ use stiffid_design::study::simulate::GroupSimulation;
 /// A parameter of the simulated model: its name and the unit of its stiffness.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct Named {
+pub(crate) struct Named {
     /// `k1` .. `k6`, then the virtual springs' names.
     pub name: String,
     /// `Nm/rad` (drives, rotations) or `N/mm` (translations).

@@ -24,7 +24,7 @@ pub const POORLY_DETERMINED: f64 = 0.25;
 /// Whether each stiffness of `id` is poorly determined: its standard error in `u` above
 /// [`POORLY_DETERMINED`] times its magnitude (`false` for a stiffness or an error that is not a
 /// number).
-pub fn poorly_determined(id: &Identification, u: &Uncertainty) -> [bool; 6] {
+pub(crate) fn poorly_determined(id: &Identification, u: &Uncertainty) -> [bool; 6] {
     std::array::from_fn(|j| u.stiffness_std_error[j] / id.stiffness[j].abs() > POORLY_DETERMINED)
 }
 
@@ -97,7 +97,7 @@ pub struct Document<'a> {
     /// ([`POORLY_DETERMINED`]), %.
     pub poorly_determined_above_pct: f64,
     /// Whether each stiffness is poorly determined: `std_error_nm_per_rad` above
-    /// [`POORLY_DETERMINED`] (0.25) times its magnitude ([`poorly_determined`]); measure postures
+    /// [`POORLY_DETERMINED`] (0.25) times its magnitude (`poorly_determined`); measure postures
     /// that load these joints more. `null` without degrees of freedom.
     pub poorly_determined: Option<[bool; 6]>,
     /// 95% confidence interval of each stiffness, symmetric in the stiffness, Nm/rad.
