@@ -68,7 +68,7 @@ pub struct Verdicts {
     pub load_levels: usize,
     /// Each candidate of the pool, in its order.
     pub candidates: Vec<Verdict>,
-    /// The linear candidates a design can identify together with the model (`designable`):
+    /// The linear candidates a design can identify together with the model:
     /// what `select --for-candidates` designs for.
     pub designable: Designable,
     /// The combinations of the model's parameters and every designable candidate at once that

@@ -10,7 +10,7 @@
 //!
 //! The calibrated robot file carries the terms (`[gravity]`, [`stiffid_core::Robot::own_weight`]), so any
 //! stiffness file combines with it; a stiffness file written before carries them in its `gravity`
-//! section, read when the robot has none (`Weight::of`). The tool's weight enters once: with
+//! section, read when the robot has none. The tool's weight enters once: with
 //! `masses` the setup's tool joins link 6 ([`gravity::with_tool`]), lumped terms hold the tool the
 //! robot carried in the calibration; either way the process compliance does not carry it again
 //! ([`tool_load`]).

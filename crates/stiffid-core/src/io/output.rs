@@ -22,7 +22,7 @@ use super::temporaries;
 /// # Errors
 /// [`Error::InvalidField`] with the field `what` (the option or argument, e.g. `--out`) and the
 /// path: the path ends with a separator, `.` or `..` (a directory's spelling, even where nothing
-/// exists), exists and is not a regular file (`kind`), is a dangling symlink, its
+/// exists), exists and is not a regular file, is a dangling symlink, its
 /// directory does not exist, or it is an input of the run.
 pub fn resolve(
     path: &Path,

@@ -32,9 +32,8 @@ use nalgebra::{DVector, Matrix6, Vector3};
 
 /// `C_x = J_p diag(h) J_p^T` (6x6, symmetric, base frame, SI blocks as in the module docs) of the
 /// tool point `point` (flange frame, m) in the posture `frames`, with the compliance `h` of every
-/// parameter of the arm's model (rad/Nm, m/N; drives first): `J_p` the augmented Jacobian
-/// (`crate::model::Model::jacobian`), so that with virtual springs
-/// `C_x = J_q K^-1 J_q^T + sum_s c_s J_s J_s^T`.
+/// parameter of the arm's model (rad/Nm, m/N; drives first): `J_p` the augmented Jacobian, so
+/// that with virtual springs `C_x = J_q K^-1 J_q^T + sum_s c_s J_s J_s^T`.
 ///
 /// # Panics
 /// If `h` does not have one value per parameter.

@@ -106,7 +106,7 @@ pub struct PointDeflection {
 impl Points<'_> {
     /// The deflection under `wrench` (`[f; m]`, N and Nm, base frame, at the loaded point) with
     /// the compliance `h` of every parameter of the arm's model (rad/Nm, m/N; drives first),
-    /// by the augmented Jacobians (`crate::model::Model::jacobian`).
+    /// by the augmented Jacobians.
     ///
     /// # Panics
     /// If `h` does not have one value per parameter ([`crate::model::Compliance::check`]).

@@ -158,9 +158,8 @@ impl Arm {
     }
 
     /// The robot's collision shapes (a URDF's `<collision>` elements, [`Bodies::Shapes`]) that
-    /// the cell's checks and drawings use for the base and links 1-6; `None`: capsules
-    /// (`Arm::geometry`), also when the setup gives `[robot_geometry] link_radius_mm`, the
-    /// user's override.
+    /// the cell's checks and drawings use for the base and links 1-6; `None`: capsules, also when
+    /// the setup gives `[robot_geometry] link_radius_mm`, the user's override.
     pub fn shapes(&self) -> Option<&CollisionGeometry> {
         match &self.shapes {
             Bodies::Shapes(s) => Some(s),

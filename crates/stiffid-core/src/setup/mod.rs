@@ -227,7 +227,7 @@ impl Setup {
         })
     }
 
-    /// The loading (`Experiment::load`).
+    /// The loading.
     pub fn load(&self) -> &RopeLoad {
         self.experiment.load()
     }
@@ -240,18 +240,18 @@ impl Setup {
         self.experiment.require_loading(needed_by)
     }
 
-    /// Measurement noise (`Experiment::noise`).
+    /// Measurement noise.
     pub fn noise(&self) -> &Noise {
         self.experiment.noise()
     }
 
-    /// The load levels applied in each posture, N (`Experiment::load_steps`).
+    /// The load levels applied in each posture, N.
     pub fn load_steps(&self) -> &[f64] {
         self.experiment.load_steps()
     }
 
     /// The variance of one displacement coordinate at the rope load, at noise level multiple 1,
-    /// m^2 (`Experiment::displacement_variance`).
+    /// m^2.
     pub fn displacement_variance(&self) -> f64 {
         self.experiment.displacement_variance()
     }
@@ -262,13 +262,12 @@ impl Setup {
         &self.notes
     }
 
-    /// Experiment bounds, axis coordinates (`Experiment::bounds`).
+    /// Experiment bounds, axis coordinates.
     pub fn bounds(&self) -> &JointBox {
         self.experiment.bounds()
     }
 
-    /// Nominal joint stiffness, Nm/rad, if the setup gives one
-    /// (`Experiment::nominal_stiffness`).
+    /// Nominal joint stiffness, Nm/rad, if the setup gives one.
     pub fn nominal_stiffness(&self) -> Option<&Vector6<f64>> {
         self.experiment.nominal_stiffness()
     }
@@ -281,8 +280,7 @@ impl Setup {
         self.experiment.try_nominal_stiffness(needed_by)
     }
 
-    /// Characteristic length `L` of the dexterity index (Eq. 20), m, if the setup gives one
-    /// (`Experiment::characteristic_length`).
+    /// Characteristic length `L` of the dexterity index (Eq. 20), m, if the setup gives one.
     pub fn characteristic_length(&self) -> Option<f64> {
         self.experiment.characteristic_length()
     }
@@ -305,12 +303,12 @@ impl Setup {
         self.workcell.constraints()
     }
 
-    /// The floor, clearance and obstacles (`Workcell::cell`).
+    /// The floor, clearance and obstacles.
     pub fn cell(&self) -> Option<&Cell> {
         self.workcell.cell()
     }
 
-    /// Capsule radii of the robot and tool bodies (`Arm::geometry`).
+    /// Capsule radii of the robot and tool bodies.
     pub fn geometry(&self) -> &RobotGeometry {
         self.arm.geometry()
     }
@@ -386,7 +384,7 @@ impl Setup {
         })
     }
 
-    /// The laser tracker (`Workcell::tracker`).
+    /// The laser tracker.
     pub fn tracker(&self) -> Option<&Tracker> {
         self.workcell.tracker()
     }
@@ -407,7 +405,7 @@ impl Setup {
         self.workcell.table_reflectors()
     }
 
-    /// A G-code program's part frame in the robot base frame, m (`Workcell::workpiece`).
+    /// A G-code program's part frame in the robot base frame, m.
     pub fn workpiece(&self) -> Option<&Isometry3<f64>> {
         self.workcell.workpiece()
     }

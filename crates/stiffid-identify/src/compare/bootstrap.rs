@@ -92,7 +92,7 @@ pub struct Bootstrap {
     /// Each resample's recommended model, by resample index; `None` when its data cannot
     /// identify it (module docs).
     pub models: Vec<Option<Chosen>>,
-    /// Each resample's supported models (`Supported`), by resample index; empty when its data
+    /// Each resample's supported models, by resample index; empty when its data
     /// cannot identify its recommended model.
     pub supported: Vec<Vec<Supported>>,
     /// The resamples whose data cannot identify their recommended model (module docs).

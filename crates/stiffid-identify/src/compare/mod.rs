@@ -55,8 +55,7 @@ pub struct Row {
     /// `1 - RMS(delta_b) / RMS(|delta|)` with each posture left out; `None` when some posture is
     /// needed to identify the model.
     pub held_out_explained: Option<f64>,
-    /// The standard error of `held_out_explained` over the postures
-    /// (`HeldOut::explained_std_error`).
+    /// The standard error of `held_out_explained` over the postures.
     pub held_out_explained_std_error: Option<f64>,
     /// `RMS(delta_b)` held out, m.
     pub held_out_rms_delta_b: Option<f64>,

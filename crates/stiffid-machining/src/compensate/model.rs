@@ -50,8 +50,7 @@ pub struct Newton {
 impl<'a> Model<'a> {
     /// The model of `arm` (its TCP, drive springs and virtual springs) with the compliance
     /// `compliance` of every parameter of the arm's model; with the calibrated robot's
-    /// [`stiffid_core::model::OwnWeight`] (or the compliance's), the sag under the robot's own weight
-    /// (`Weight::of`).
+    /// [`stiffid_core::model::OwnWeight`] (or the compliance's), the sag under the robot's own weight.
     ///
     /// # Errors
     /// Those of [`Compliance::check`] and `Weight::of`; [`Error::InvalidField`] when the

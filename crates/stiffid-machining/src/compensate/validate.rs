@@ -18,7 +18,7 @@ impl Options {
     /// # Errors
     /// [`Error::InvalidField`] naming the field, the value and the range;
     /// [`Error::InvalidOption`] for the free variables' ranges, steps and objective
-    /// ([`super::FreeVariables::validate`]) and the feasibility's (`super::Feasible::validate`);
+    /// ([`super::FreeVariables::validate`]) and the feasibility's;
     /// ([`JobOption::Refine`]) for more than [`super::refine::MAX_LEVELS`] levels, or levels
     /// without a free variable whose grid they refine.
     pub fn validate(&self) -> Result<()> {

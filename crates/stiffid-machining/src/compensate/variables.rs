@@ -540,7 +540,7 @@ impl FreeVariables {
         !self.free.is_empty()
     }
 
-    /// Checks every variable (`Free::validate`), that none is given twice, and the
+    /// Checks every variable, that none is given twice, and the
     /// objective: the surge only for the tool rotation alone (a drilling exit's, whose axis is
     /// the hole's).
     ///

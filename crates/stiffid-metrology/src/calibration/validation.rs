@@ -1,10 +1,10 @@
 //! The held-out position error: readings the fit did not see, predicted by the calibrated model.
 //!
 //! The error of a held-out reading is `b(x, q) - T t` (base frame, m), the predicted position
-//! of its measuring point minus the tracker's reading mapped by the calibrated registration
-//! (`crate::calibration::ErrorModel::residuals`). [`cross_validate`] holds out one posture at a
-//! time (all its points), fits the rest and predicts it: the leave-one-posture-out error, the
-//! prediction error of the model on postures like the campaign's.
+//! of its measuring point minus the tracker's reading mapped by the calibrated registration.
+//! [`cross_validate`] holds out one posture at a time (all its points), fits the rest and
+//! predicts it: the leave-one-posture-out error, the prediction error of the model on postures
+//! like the campaign's.
 
 use super::error_model::{ErrorModel, Estimate, Observation};
 use super::fit::{self, Options};

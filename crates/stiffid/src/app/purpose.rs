@@ -92,13 +92,12 @@ pub const REFERENCE_SEED: u64 = 1;
 pub struct CalibrationOptions {
     /// The calibration criterion; `None` for the default ([`CalibrationOptions::criterion`]).
     pub criterion: Option<CalibrationCriterion>,
-    /// The joint errors the calibration fits; `None` for the default
-    /// (`CalibrationOptions::geometry`).
+    /// The joint errors the calibration fits; `None` for the default.
     pub geometry: Option<Geometry>,
-    /// The gravity terms it fits; `None` for the default (`CalibrationOptions::gravity`).
+    /// The gravity terms it fits; `None` for the default.
     pub gravity: Option<Gravity>,
     /// With [`Purpose::Both`] only, the weight `w` of the calibration's log-criterion, in
-    /// `(0, 1)`; `None` for the default (`CalibrationOptions::weight`).
+    /// `(0, 1)`; `None` for the default.
     pub weight: Option<f64>,
 }
 

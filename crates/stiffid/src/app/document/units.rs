@@ -132,7 +132,7 @@ pub fn deg6<S: Serializer>(q: &Vector6<f64>, s: S) -> Written<S> {
     <[f64; 6]>::from(q.map(f64::to_degrees)).serialize(s)
 }
 
-/// Postures' axis angles in rad, written as rows of six numbers in deg (`super::degrees`).
+/// Postures' axis angles in rad, written as rows of six numbers in deg.
 /// Schema: `Vec<[f64; 6]>`.
 ///
 /// # Errors
@@ -142,7 +142,7 @@ pub fn deg6_each<S: Serializer>(postures: &[Vector6<f64>], s: S) -> Written<S> {
 }
 
 /// A prediction interval in m or none, written in mm, `[lower, upper]` per coordinate with
-/// `null` for an unbounded end (`super::interval_mm`), or `null`. Schema:
+/// `null` for an unbounded end, or `null`. Schema:
 /// `Option<[[Option<f64>; 2]; 3]>`.
 ///
 /// # Errors

@@ -47,7 +47,7 @@ pub struct Request<'a> {
     /// displacements, [`stiffid_core::Robot::frames_at`]), its checks with the boxes the positioner
     /// carries turned ([`Checker::feasibility_at`]), its scene. Empty: every axis at 0.
     pub external: &'a [Vec<f64>],
-    /// Also the plan's 3D scene (`document::scene`): in [`Outcome::scene`].
+    /// Also the plan's 3D scene: in [`Outcome::scene`].
     pub scene: bool,
 }
 

@@ -243,7 +243,7 @@ pub struct Report {
 #[derive(Debug, Clone)]
 pub struct CandidatesReport {
     /// The linear candidates designed for (added to the model of the design), by name: the
-    /// designable ones (`candidates::designable`).
+    /// designable ones.
     pub designed: Vec<String>,
     /// How the group chosen identifies each candidate of the pool with the setup's model (and
     /// the linear candidates no group can identify with the others, `designable.left_out`).

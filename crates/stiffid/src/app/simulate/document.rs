@@ -1,7 +1,7 @@
 //! The document of the simulate job ([`crate::app::simulate`]): `stiffid simulate --json` (and
 //! `--out DIR/simulation.json`), its `deviation_rates.csv`, Python's `simulate`; the report is the document
 //! ([`super::Report`]); here its parts: each group's
-//! ([`Group`](crate::app::document::group::Group), as the study's summary has it too) and the parameters' names (`Named`).
+//! ([`Group`](crate::app::document::group::Group), as the study's summary has it too) and the parameters' names.
 
 use crate::app::document::csv_text;
 use serde::{Serialize, Serializer};

@@ -97,7 +97,7 @@ pub struct Document<'a> {
     /// ([`POORLY_DETERMINED`]), %.
     pub poorly_determined_above_pct: f64,
     /// Whether each stiffness is poorly determined: `std_error_nm_per_rad` above
-    /// [`POORLY_DETERMINED`] (0.25) times its magnitude (`poorly_determined`); measure postures
+    /// [`POORLY_DETERMINED`] (0.25) times its magnitude; measure postures
     /// that load these joints more. `null` without degrees of freedom.
     pub poorly_determined: Option<[bool; 6]>,
     /// 95% confidence interval of each stiffness, symmetric in the stiffness, Nm/rad.
