@@ -34,6 +34,7 @@ pub mod intervals;
 pub mod judgement;
 pub mod maps;
 pub mod motions;
+mod reflections;
 pub mod robot_file;
 pub mod spread;
 pub mod validation;
@@ -69,3 +70,6 @@ pub fn model(
         g,
     )
 }
+
+#[cfg(test)]
+mod reflections_tests;

@@ -5,9 +5,10 @@
 //! nominal) minimise `|r(x)|^2`, `r` the residuals of `ErrorModel::residuals`, by
 //! Levenberg-Marquardt (Marquardt 1963) in the scaled parameters `x_s = x / s`
 //! ([`ErrorModel::column_scales`]): each iteration factors `[J_s | r]` by Householder QR once
-//! (`J_s` the scaled Jacobian) and `R = U S V^T` by SVD once, then solves `[R; sqrt(lambda) I]
-//! dx_s = -[Q^T r; 0]` for each trial `lambda` from that SVD (never the normal equations), accepts the step when the cost falls (and divides `lambda` by 10) or
-//! multiplies `lambda` by 10 and tries again. The frame's perturbation is folded into the frame
+//! (`J_s` the scaled Jacobian) and bidiagonalises `R = W B Z^T` once, then solves
+//! `[R; sqrt(lambda) I] dx_s = -[Q^T r; 0]` for each trial `lambda` from that bidiagonal form by
+//! Eldén's rotations (never the normal equations), accepts the step when the cost falls (and
+//! divides `lambda` by 10) or multiplies `lambda` by 10 and tries again. The frame's perturbation is folded into the frame
 //! after every step ([`Estimate::recentre`]).
 //!
 //! Standard deviations: the covariance of the fitted parameters is `sigma^2 (J^T J)^-1` at the
@@ -52,6 +53,7 @@
 
 use super::error_model::{ErrorModel, Estimate, Kind, MeasuredIn, Observation, Target};
 use super::identifiability::{self, Identifiability};
+use super::reflections::{bidiagonal_ridge, Bidiagonal};
 use crate::register::Correspondence;
 use nalgebra::{DMatrix, DVector};
 use stiffid_core::common::stop::Stop;
@@ -606,43 +608,44 @@ fn factor(j: &DMatrix<f64>, r: &DVector<f64>) -> (DMatrix<f64>, DVector<f64>) {
     (rt, a.column(n).rows(0, k).into_owned())
 }
 
-/// The damped steps of one iteration from one SVD `R = U S V^T` of the triangular factor: the
-/// least-squares solution of `[R; sqrt(lambda) I] dx = -[Q^T r; 0]` is `dx = -V diag(s_i / (s_i^2
-/// + lambda)) U^T Q^T r` for every `lambda` (never the normal equations).
+/// The damped steps of one iteration from one bidiagonalisation of the triangular factor,
+/// `R = W B Z^T` (`R` with zero rows below where it has fewer rows than columns): the least-squares
+/// solution of `[R; sqrt(lambda) I] dx = -[Q^T r; 0]` is `dx = -Z z`, `z` the ridge solution of
+/// `B z = W^T Q^T r` at `lambda`, by Givens rotations in `O(n)` per `lambda` (Eldén, "Algorithms
+/// for the regularization of ill-conditioned least squares problems", BIT 17, 1977: the maps'
+/// ridge steps' method, [`super::maps::linear`]): orthogonal transformations throughout, never
+/// the normal equations, and no singular vectors formed.
 struct Damped {
-    /// `U^T Q^T r`.
-    projected: DVector<f64>,
-    singular: DVector<f64>,
-    v: DMatrix<f64>,
+    bidiagonal: Bidiagonal,
+    /// `W^T Q^T r` (the first `n` entries).
+    projected: Vec<f64>,
 }
 
 impl Damped {
     fn new(rt: DMatrix<f64>, qtr: &DVector<f64>) -> Result<Self> {
-        let svd = rt.capped_svd(true, true).ok_or_else(not_converged)?;
-        let (u, v_t) = (
-            svd.u.ok_or_else(not_converged)?,
-            svd.v_t.ok_or_else(not_converged)?,
-        );
+        let n = rt.ncols();
+        if n == 0 || rt.iter().chain(qtr.iter()).any(|v| !v.is_finite()) {
+            return Err(Error::NotFinite {
+                what: "the calibration's Jacobian or residuals".into(),
+            });
+        }
+        let square = rt.resize_vertically(n, 0.0);
+        let bidiagonal = Bidiagonal::new(square.as_slice().to_vec(), n);
+        let mut projected: Vec<f64> = qtr.iter().copied().collect();
+        projected.resize(n, 0.0);
+        bidiagonal.left_tr(&mut projected);
         Ok(Damped {
-            projected: u.tr_mul(qtr),
-            singular: svd.singular_values,
-            v: v_t.transpose(),
+            bidiagonal,
+            projected,
         })
     }
 
     /// The step at damping `lambda`.
     fn step(&self, lambda: f64) -> DVector<f64> {
-        let weights = DVector::from_iterator(
-            self.singular.len(),
-            (self.singular.iter().zip(self.projected.iter())).map(|(s, g)| {
-                let d = s * s + lambda;
-                match d > 0.0 {
-                    true => -s * g / d,
-                    false => 0.0,
-                }
-            }),
-        );
-        &self.v * weights
+        let b = &self.bidiagonal;
+        let mut z = bidiagonal_ridge(&b.diagonal, &b.upper, &self.projected, lambda);
+        b.right(&mut z);
+        -DVector::from_vec(z)
     }
 }
 
@@ -651,3 +654,6 @@ fn not_converged() -> Error {
         what: "the calibration's SVD did not converge".into(),
     }
 }
+
+#[cfg(test)]
+mod damped_tests;

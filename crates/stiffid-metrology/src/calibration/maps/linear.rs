@@ -37,8 +37,8 @@
 
 use super::super::error_model::{JointMaps, Observation, Target};
 use super::super::fit::Fit;
+use super::super::reflections::{self, bidiagonal_ridge, Bidiagonal};
 use super::super::{ErrorModel, Estimate};
-use super::reflections::{self, Bidiagonal};
 use nalgebra::{DMatrix, DVector, Vector6};
 use stiffid_core::math::linalg::CappedSvd;
 use stiffid_core::robot::error_map;
@@ -436,53 +436,6 @@ fn compressed(projected: DMatrix<f64>, projected_r: &DVector<f64>) -> (DMatrix<f
     reflections::qr(a.as_mut_slice(), m, k);
     let factor = DMatrix::from_fn(k, n, |r, c| if r <= c { a[(r, c)] } else { 0.0 });
     (factor, a.column(n).rows(0, k).into_owned())
-}
-
-/// `argmin |B z - c|^2 + lambda |z|^2` for `B` upper bidiagonal (`d` its diagonal, `e` its
-/// superdiagonal; `lambda >= 0`), by Givens rotations of `[B; sqrt(lambda) I]` (Eldén, "Algorithms
-/// for the regularization of ill-conditioned least squares problems", BIT 17, 1977): per column
-/// one rotation of `B`'s row into the ridge row (leaving a fill in the next column) and one of
-/// that fill into the next ridge row, then back substitution on the upper bidiagonal `R`. A
-/// column with neither data nor ridge (`R`'s diagonal zero) takes no step.
-fn bidiagonal_ridge(d: &[f64], e: &[f64], c: &[f64], lambda: f64) -> Vec<f64> {
-    let k = d.len();
-    let mu = lambda.max(0.0).sqrt();
-    let (mut diagonal, mut upper, mut rhs) = (vec![0.0; k], vec![0.0; k], vec![0.0; k]);
-    // The ridge row of the current column: its entry there and its right-hand side.
-    let (mut beta, mut g) = (mu, 0.0);
-    for i in 0..k {
-        let (cos, sin, r) = givens(d[i], beta);
-        diagonal[i] = r;
-        rhs[i] = cos * c[i] + sin * g;
-        if i + 1 < k {
-            upper[i] = cos * e[i];
-            // The ridge row left with `-sin e_i` in column `i + 1` and `cos g - sin c_i`,
-            // rotated into the next ridge row (`mu` there, right-hand side 0).
-            let left = cos * g - sin * c[i];
-            let (_, sin_next, t) = givens(mu, -sin * e[i]);
-            (beta, g) = (t, sin_next * left);
-        }
-    }
-    let mut z = vec![0.0; k];
-    for i in (0..k).rev() {
-        let next = if i + 1 < k { upper[i] * z[i + 1] } else { 0.0 };
-        z[i] = if diagonal[i] > 0.0 {
-            (rhs[i] - next) / diagonal[i]
-        } else {
-            0.0
-        };
-    }
-    z
-}
-
-/// The rotation `(cos, sin)` taking `(a, b)` to `(r, 0)`, `r = |(a, b)|`; the identity for
-/// `(0, 0)`.
-fn givens(a: f64, b: f64) -> (f64, f64, f64) {
-    let r = a.hypot(b);
-    match r > 0.0 {
-        true => (a / r, b / r, r),
-        false => (1.0, 0.0, 0.0),
-    }
 }
 
 fn not_converged() -> Error {

@@ -42,7 +42,6 @@
 //! Equations and sources: docs/model.md, section "Calibration", "Joint error maps".
 
 pub mod linear;
-mod reflections;
 
 pub use super::error_model::JointMaps;
 pub use linear::{extended, Linear};
@@ -550,6 +549,3 @@ fn outer(
         errors,
     })
 }
-
-#[cfg(test)]
-mod reflections_tests;

@@ -1,11 +1,13 @@
-//! Householder reductions of the maps' splits, their orthogonal factors kept as reflections
-//! (LAPACK's storage: each reflection's vector below the diagonal, or right of the
-//! superdiagonal, where it zeroed) and applied to vectors, never formed:
+//! Householder reductions of the maps' splits and of the fit's triangular factor, their
+//! orthogonal factors kept as reflections (LAPACK's storage: each reflection's vector below the
+//! diagonal, or right of the superdiagonal, where it zeroed) and applied to vectors, never
+//! formed:
 //! - [`qr`], the QR of a split's projected map columns with its right-hand side as one more
 //!   column (`dgeqr2`'s operations, each trailing column taken through a block of reflections at a
 //!   time while it sits in cache: the same operations in the same order as column after column);
-//! - [`Bidiagonal`], the Golub-Kahan bidiagonalisation `S = W B Z^T` of a choice's columns of the
-//!   split's `R` (`dgebd2`), for Eldén's ridge steps.
+//! - [`Bidiagonal`], the Golub-Kahan bidiagonalisation `S = W B Z^T` (`dgebd2`) of a choice's
+//!   columns of a split's `R` and of the fit's `R` at each iteration, for Eldén's ridge steps
+//!   ([`bidiagonal_ridge`]: every ridge or damping `lambda` in `O(k)` once `B` is known).
 //!
 //! Column-major slices throughout, with the core's four-way `dot` and `axpy`; a reflection is
 //! applied to four columns at a time ([`reflect_columns`]), each column's result that of the
@@ -210,5 +212,52 @@ impl Bidiagonal {
                 reflect(&self.right_tails[i], self.right[i], &mut x[i + 1..]);
             }
         }
+    }
+}
+
+/// `argmin |B z - c|^2 + lambda |z|^2` for `B` upper bidiagonal (`d` its diagonal, `e` its
+/// superdiagonal; `lambda >= 0`), by Givens rotations of `[B; sqrt(lambda) I]` (Eldén, "Algorithms
+/// for the regularization of ill-conditioned least squares problems", BIT 17, 1977): per column
+/// one rotation of `B`'s row into the ridge row (leaving a fill in the next column) and one of
+/// that fill into the next ridge row, then back substitution on the upper bidiagonal `R`. A
+/// column with neither data nor ridge (`R`'s diagonal zero) takes no step.
+pub(super) fn bidiagonal_ridge(d: &[f64], e: &[f64], c: &[f64], lambda: f64) -> Vec<f64> {
+    let k = d.len();
+    let mu = lambda.max(0.0).sqrt();
+    let (mut diagonal, mut upper, mut rhs) = (vec![0.0; k], vec![0.0; k], vec![0.0; k]);
+    // The ridge row of the current column: its entry there and its right-hand side.
+    let (mut beta, mut g) = (mu, 0.0);
+    for i in 0..k {
+        let (cos, sin, r) = givens(d[i], beta);
+        diagonal[i] = r;
+        rhs[i] = cos * c[i] + sin * g;
+        if i + 1 < k {
+            upper[i] = cos * e[i];
+            // The ridge row left with `-sin e_i` in column `i + 1` and `cos g - sin c_i`,
+            // rotated into the next ridge row (`mu` there, right-hand side 0).
+            let left = cos * g - sin * c[i];
+            let (_, sin_next, t) = givens(mu, -sin * e[i]);
+            (beta, g) = (t, sin_next * left);
+        }
+    }
+    let mut z = vec![0.0; k];
+    for i in (0..k).rev() {
+        let next = if i + 1 < k { upper[i] * z[i + 1] } else { 0.0 };
+        z[i] = if diagonal[i] > 0.0 {
+            (rhs[i] - next) / diagonal[i]
+        } else {
+            0.0
+        };
+    }
+    z
+}
+
+/// The rotation `(cos, sin)` taking `(a, b)` to `(r, 0)`, `r = |(a, b)|`; the identity for
+/// `(0, 0)`.
+fn givens(a: f64, b: f64) -> (f64, f64, f64) {
+    let r = a.hypot(b);
+    match r > 0.0 {
+        true => (a / r, b / r, r),
+        false => (1.0, 0.0, 0.0),
     }
 }
