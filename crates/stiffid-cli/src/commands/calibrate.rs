@@ -342,19 +342,19 @@ fn text_of(d: &Document) -> String {
     text += &maps_text(&d.maps);
     for v in d.validation.iter().chain(&d.cross_validation) {
         text += &format!(
-            "\nheld out ({}): RMS {:.4} mm, max {:.4} mm over {} readings ({}: {:.4} mm)\n",
+            "\nheld out ({}): RMS {:.4} mm, max {:.4} mm over {} ({}: {:.4} mm)\n",
             v.data,
             mm(v.rms),
             mm(v.max),
-            v.errors.len(),
+            readings(v.errors.len()),
             nominal_label(d.measured_in),
             mm(v.nominal_rms)
         );
         if let (Some(within), Some(beyond)) = (v.within_range_rms, v.beyond_range_rms) {
             text += &format!(
-                "  within the fitted postures' axis ranges: RMS {:.4} mm over {} readings; beyond them by more than 1 deg (extrapolated): RMS {:.4} mm over {}\n",
+                "  within the fitted postures' axis ranges: RMS {:.4} mm over {}; beyond them by more than 1 deg (extrapolated): RMS {:.4} mm over {}\n",
                 mm(within),
-                v.errors.len() - v.beyond_range_readings,
+                readings(v.errors.len() - v.beyond_range_readings),
                 mm(beyond),
                 v.beyond_range_readings
             );
@@ -483,4 +483,12 @@ fn maps_text(m: &stiffid::app::calibrate::document::MapsDocument) -> String {
         );
     }
     text
+}
+
+/// `n` readings, in words: `1 reading`, `2 readings`.
+fn readings(n: usize) -> String {
+    match n {
+        1 => "1 reading".into(),
+        n => format!("{n} readings"),
+    }
 }

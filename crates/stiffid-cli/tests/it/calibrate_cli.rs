@@ -4,7 +4,7 @@
 
 use crate::common;
 
-use common::{json, refused, stiffid, temp_dir, write_file};
+use common::{assert_success, assert_usage_error, json, refused, stiffid, temp_dir, write_file};
 use nalgebra::{DVector, Isometry3, Point3, Vector3, Vector6};
 use serde_json::Value;
 use std::path::Path;
@@ -631,6 +631,57 @@ fn calibrate_with_loaded_readings_writes_the_stiffness_file() {
     assert!((0..6).all(|j| cov[(j, j)] > 0.0));
     let text = String::from_utf8(stiffid(&args[..7]).stdout).unwrap();
     assert!(text.contains("from 300 readings"), "{text}");
+}
+
+/// Two held-out readings cannot register the tracker on the nominal robot: the calibrated
+/// robot still predicts them, the nominal's errors there take the fitted readings'
+/// registration with a warning `left-out`, and `--reregister` (which registers the calibrated
+/// robot on them) is refused naming the file.
+#[test]
+fn validate_with_two_readings_registers_the_nominal_on_the_fitted_readings() {
+    let d = temp_dir("calibrate-two-held");
+    let model = model();
+    let x = truth(&model);
+    let tracker = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.0, 0.0, 2.5));
+    let data = write_file(
+        &d,
+        "fit.csv",
+        &readings(&model, &x, &tracker, &postures(25, 1)),
+    );
+    let all = readings(&model, &x, &tracker, &postures(10, 2));
+    let two: Vec<&str> = all.lines().take(3).collect();
+    let held = write_file(&d, "held.csv", &(two.join("\n") + "\n"));
+    let args = |extra: &[&'static str]| {
+        let mut a = vec![
+            "calibrate",
+            "--setup",
+            SETUP,
+            "--data",
+            data.to_str().unwrap(),
+        ];
+        a.extend(["--validate", held.to_str().unwrap()]);
+        a.extend(extra);
+        a.into_iter().map(String::from).collect::<Vec<String>>()
+    };
+    let run = |a: Vec<String>| stiffid(&a.iter().map(String::as_str).collect::<Vec<&str>>());
+    let doc = json(&run(args(&["--json"])));
+    let v = &doc["validation"];
+    assert_eq!(v["errors"].as_array().unwrap().len(), 2);
+    assert!(v["rms_mm"].as_f64().unwrap() < 1e-6, "{v}");
+    let nominal = v["nominal_rms_mm"].as_f64().unwrap();
+    assert!(nominal > 0.1 && nominal.is_finite(), "{nominal}");
+    let left_out: Vec<&Value> = (doc["warnings"].as_array().unwrap().iter())
+        .filter(|w| w["kind"] == "left-out")
+        .collect();
+    assert_eq!(left_out.len(), 1, "{}", doc["warnings"]);
+    assert!(left_out[0]["message"]
+        .as_str()
+        .unwrap()
+        .contains("registered on the fitted readings"));
+    let text = run(args(&[]));
+    assert_success(&text);
+    assert!(String::from_utf8_lossy(&text.stdout).contains("over 2 readings ("));
+    assert_usage_error(&run(args(&["--reregister"])), &["held.csv", "3 points"]);
 }
 
 /// `--validate --level`: each held-out reading's error gets its jackknife+ interval from the

@@ -6,7 +6,8 @@ use super::chosen::Chosen;
 use super::{fit_bound, held_out, Bounds, Held, Request, MAX_CROSS_VALIDATION_POSTURES};
 use crate::app::{in_data, Warning, WarningKind};
 use stiffid_core::Result;
-use stiffid_metrology::calibration::error_model::Observation;
+use stiffid_metrology::calibration::error_model::{MeasuredIn, Observation};
+use stiffid_metrology::calibration::fit;
 use stiffid_metrology::calibration::intervals::Intervals;
 use stiffid_metrology::calibration::validation::{self, Validation};
 use stiffid_metrology::calibration::ErrorModel;
@@ -78,4 +79,38 @@ pub(super) fn held(
         )?),
     };
     Ok((validation, cross_validation))
+}
+
+/// The errors of the nominal `reference` on the held-out readings `held`, the tracker registered
+/// on them; where their measured positions cannot register it (fewer than
+/// [`stiffid_metrology::register::MIN_POINTS`] not on one line), registered on the fitted
+/// readings `fitted` instead, saying so (a warning `left-out`).
+///
+/// # Errors
+/// Those of [`fit::start`] and [`validation::validate`], naming the readings `name`.
+pub(super) fn nominal(
+    reference: &ErrorModel,
+    (held, fitted): (&[Observation], &[Observation]),
+    name: &str,
+    warnings: &mut Vec<Warning>,
+) -> Result<Validation> {
+    let positions: Vec<_> = (held.iter().filter(|o| !o.table))
+        .map(|o| o.measured)
+        .collect();
+    let registers = reference.measured_in() == MeasuredIn::Base
+        || stiffid_metrology::register::rotation_std_per_noise(&positions).is_finite();
+    if !registers {
+        warnings.push(Warning::new(
+            WarningKind::LeftOut,
+            format!(
+                "{name}: {} held-out position{} cannot register the tracker on the nominal robot (it takes {} not on one line): the nominal robot's errors there (nominal_rms_mm) are with the tracker registered on the fitted readings",
+                positions.len(),
+                if positions.len() == 1 { "" } else { "s" },
+                stiffid_metrology::register::MIN_POINTS
+            ),
+        ));
+    }
+    let start = fit::start(reference, if registers { held } else { fitted })
+        .map_err(|e| in_data(name, e))?;
+    validation::validate(reference, &start, held).map_err(|e| in_data(name, e))
 }

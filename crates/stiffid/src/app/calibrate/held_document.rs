@@ -35,8 +35,9 @@ pub struct ValidationDocument<'a> {
     /// than 1 deg (`outside_range` set).
     pub beyond_range_readings: usize,
     /// The nominal robot's RMS on the same readings: m, written in mm; the tracker registered on
-    /// them for readings in the tracker's frame; as it is for readings in the base frame
-    /// (`measured_in` `base`: nothing registered).
+    /// them for readings in the tracker's frame (on the fitted readings, with a warning
+    /// `left-out`, where they are fewer than 3 positions not on one line); as it is for readings
+    /// in the base frame (`measured_in` `base`: nothing registered).
     #[serde(rename = "nominal_rms_mm", serialize_with = "units::mm")]
     pub nominal_rms: f64,
     /// The prediction intervals of the held-out readings' errors and how well they covered

@@ -333,7 +333,7 @@ fn find(request: &Request<'_>) -> Result<Report> {
     refuse_implausible(&request.readings, &data, None, &residuals)?;
     refuse_repeated(setup, &obs, model, fitted).map_err(|e| in_data(name, e))?;
     let reference = update::reference(request, model, reference(setup, model)?)?;
-    let nominal = nominal(&reference, &obs, name)?;
+    let nominal = held::nominal(&reference, (&obs, &obs), name, &mut warnings)?;
     let check = (request.update)
         .then(|| {
             drift::checked(
@@ -416,12 +416,6 @@ fn reference(setup: &Setup, model: &ErrorModel) -> Result<ErrorModel> {
     }
 }
 
-/// The errors of the nominal `reference` on `obs` (named `name`), the tracker registered on them.
-fn nominal(reference: &ErrorModel, obs: &[Observation], name: &str) -> Result<Validation> {
-    let start = fit::start(reference, obs).map_err(|e| in_data(name, e))?;
-    validation::validate(reference, &start, obs)
-}
-
 /// What the held-out readings' intervals are built from.
 struct Bounds<'a> {
     /// The jackknife+ of the fitted postures' folds.
@@ -495,7 +489,7 @@ fn held_out(
     let held = Held {
         name: name.to_string(),
         calibrated,
-        nominal: nominal(reference, &obs, name)?,
+        nominal: held::nominal(reference, (&obs, fitted), name, warnings)?,
         labels: data.labels.clone(),
         intervals,
         coverage,
