@@ -20,15 +20,17 @@
 //! the calibrated robot predicts a new one.
 //!
 //! A split projects every candidate column once (`P M_T` and `M_V - A U^T M_T`, all joints; a
-//! choice of fixed maps or none scores on [`Linear::restricted`] to its own columns) and keeps the
-//! Householder QR `P M_T = Q R` as `R` and `Q^T P r_T` (`P r_T` taken through the reflections as
-//! one more column, `Q` never formed): a choice's columns are `Q S`, `S` its
+//! choice of fixed maps or none scores on [`Linear::restricted`] to its own columns), `P M_T` in
+//! the coordinates of the complement of `U` (`P = C C^T`, `C^T M_T` the `m - p` rows that `P`
+//! does not zero, `p` the geometry's kept columns: the reflections that reduce `U` give them), and
+//! keeps the Householder QR `C^T M_T = Q R` as `R` and `Q^T C^T r_T` (`C^T r_T` taken through the
+//! reflections as one more column, `Q` never formed): a choice's columns are `C Q S`, `S` its
 //! columns of `R` (their rows down to the last chosen column), so its ridge least squares is that
-//! of `S` with `Q^T P r_T`, exactly. The maps' step follows Eldén's method (L. Eldén, "Algorithms
+//! of `S` with `Q^T C^T r_T`, exactly. The maps' step follows Eldén's method (L. Eldén, "Algorithms
 //! for the regularization of ill-conditioned least squares problems", BIT 17, 1977): one
 //! bidiagonalisation `S = W B Z^T` per choice (of `S^T` where `S` has fewer rows than columns;
 //! `W` and `Z` kept as their reflections and applied to the right-hand side and the steps),
-//! then per `lambda` the ridge `min |B z - W^T Q^T P r_T|^2 + lambda |z|^2` by Givens rotations
+//! then per `lambda` the ridge `min |B z - W^T Q^T C^T r_T|^2 + lambda |z|^2` by Givens rotations
 //! of `[B; sqrt(lambda) I]` in `O(k)` (two per column, `k` the order of `B`), `y = -Z z`:
 //! orthogonal transformations throughout, never the ridge's normal equations, at any `lambda > 0`.
 //! It agrees with the augmented system solved directly to `1e-9` of the held-out errors from the
@@ -76,11 +78,11 @@ pub struct Split {
     test_posture: Vec<usize>,
     /// `r_V - A U^T r_T`.
     base: DVector<f64>,
-    /// `R` of the Householder QR `P M_T = Q R` of every candidate map column (all of
-    /// [`Linear::maps`]' columns, joint after joint; `min(m, n)` rows, upper trapezoidal): a
-    /// choice's columns are `Q` times its columns of `R`.
+    /// `R` of the Householder QR `C^T M_T = Q R` of every candidate map column (all of
+    /// [`Linear::maps`]' columns, joint after joint; `min(m - p, n)` rows, upper trapezoidal): a
+    /// choice's projected columns are `C Q` times its columns of `R`.
     factor: DMatrix<f64>,
-    /// `Q^T P r_T` (the rows of [`Split::factor`]).
+    /// `Q^T C^T r_T` (the rows of [`Split::factor`]).
     rotated: DVector<f64>,
     /// Every candidate map column on the held-out rows, `M_V - A U^T M_T`.
     held_maps: DMatrix<f64>,
@@ -212,12 +214,11 @@ impl Linear {
             test_rows.iter().map(|&i| self.residuals[i]),
         );
         let utr = u.tr_mul(&r_t);
-        let projected = r_t - &u * &utr;
         let all = self.all_columns();
         let m_t = self.columns_of(&all, &train_rows);
         let utm = u.tr_mul(&m_t);
         let held_maps = self.tapered(&all, test, train) - &a * &utm;
-        let (factor, rotated) = compressed(m_t - &u * utm, &projected);
+        let (factor, rotated) = compressed(&u, m_t, &r_t);
         Ok(Split {
             base: r_v - &a * &utr,
             rotated,
@@ -370,7 +371,7 @@ impl Linear {
 }
 
 /// The maps' steps `y = -argmin |A y - P r_T|^2 + lambda |y|^2` of the columns `chosen` (`A`
-/// their `P M_T`, `Q S` with `S` their columns of the split's `R`) at each `lambda > 0` (one
+/// their `P M_T`, `C Q S` with `S` their columns of the split's `R`) at each `lambda > 0` (one
 /// column each), by Eldén's method: one bidiagonalisation `S = W B Z^T` (`B` upper bidiagonal,
 /// `k = min(rows, columns)`), then per `lambda` the ridge of `B` in `O(k)` ([`bidiagonal_ridge`]),
 /// `y = -Z z`. Where `S` has fewer rows than columns, `S^T` is bidiagonalised and `B^T` (lower)
@@ -424,18 +425,37 @@ fn ridge_steps(split: &Split, chosen: &[usize], lambdas: &[f64]) -> DMatrix<f64>
     steps
 }
 
-/// The QR `P M_T = Q R` of a split's projected map columns `projected` (`m x n`) with
-/// `Q^T P r_T` (`projected_r`): `R` (`min(m, n) x n`, upper trapezoidal) and the first
-/// `min(m, n)` entries of `Q^T P r_T` (module docs), by Householder reflections, the right-hand
-/// side taken through them as one more column.
-fn compressed(projected: DMatrix<f64>, projected_r: &DVector<f64>) -> (DMatrix<f64>, DVector<f64>) {
-    let (m, n) = projected.shape();
-    let k = m.min(n);
-    let mut a = projected.insert_column(n, 0.0);
-    a.set_column(n, projected_r);
-    reflections::qr(a.as_mut_slice(), m, k);
-    let factor = DMatrix::from_fn(k, n, |r, c| if r <= c { a[(r, c)] } else { 0.0 });
-    (factor, a.column(n).rows(0, k).into_owned())
+/// The QR of a split's projected map columns `P M_T` (`P = I - U U^T`, `u` the geometry's
+/// orthonormal `m x p` columns `U`) with `P r_T`, in the coordinates of the complement of `U`:
+/// the `p` reflections that reduce `U` take `[M_T | r_T]` to `[U^T; C^T] [M_T | r_T]` (up to the
+/// signs of `U^T`'s rows), `C` (`m x (m - p)`) orthonormal with `P = C C^T`, so that
+/// `|P (M_T y - r_T)| = |C^T M_T y - C^T r_T|`: the projected least squares in `m - p` rows,
+/// without the `p` rows `P` leaves zero. Then `C^T M_T = Q R` by Householder reflections, the
+/// right-hand side taken through them as one more column: `R` (`min(m - p, n) x n`, upper
+/// trapezoidal) and the first `min(m - p, n)` entries of `Q^T C^T r_T` (module docs).
+fn compressed(
+    u: &DMatrix<f64>,
+    m_t: DMatrix<f64>,
+    r_t: &DVector<f64>,
+) -> (DMatrix<f64>, DVector<f64>) {
+    let (m, p) = u.shape();
+    let n = m_t.ncols();
+    let rows = m - p;
+    if rows == 0 {
+        return (DMatrix::zeros(0, n), DVector::zeros(0));
+    }
+    let mut a = Vec::with_capacity(m * (p + n + 1));
+    a.extend_from_slice(u.as_slice());
+    a.extend_from_slice(m_t.as_slice());
+    a.extend_from_slice(r_t.as_slice());
+    reflections::qr(&mut a, m, p);
+    let mut c: Vec<f64> = (a[p * m..].chunks_exact(m))
+        .flat_map(|column| column[p..].iter().copied())
+        .collect();
+    let k = rows.min(n);
+    reflections::qr(&mut c, rows, k);
+    let factor = DMatrix::from_fn(k, n, |r, j| if r <= j { c[j * rows + r] } else { 0.0 });
+    (factor, DVector::from_fn(k, |r, _| c[n * rows + r]))
 }
 
 fn not_converged() -> Error {
