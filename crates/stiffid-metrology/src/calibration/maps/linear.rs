@@ -218,7 +218,7 @@ impl Linear {
         let m_t = self.columns_of(&all, &train_rows);
         let utm = u.tr_mul(&m_t);
         let held_maps = self.tapered(&all, test, train) - &a * &utm;
-        let (factor, rotated) = compressed(&u, m_t, &r_t);
+        let (factor, rotated) = compressed(&u, (m_t, &utm), (&r_t, &utr));
         Ok(Split {
             base: r_v - &a * &utr,
             rotated,
@@ -426,36 +426,52 @@ fn ridge_steps(split: &Split, chosen: &[usize], lambdas: &[f64]) -> DMatrix<f64>
 }
 
 /// The QR of a split's projected map columns `P M_T` (`P = I - U U^T`, `u` the geometry's
-/// orthonormal `m x p` columns `U`) with `P r_T`, in the coordinates of the complement of `U`:
-/// the `p` reflections that reduce `U` take `[M_T | r_T]` to `[U^T; C^T] [M_T | r_T]` (up to the
-/// signs of `U^T`'s rows), `C` (`m x (m - p)`) orthonormal with `P = C C^T`, so that
-/// `|P (M_T y - r_T)| = |C^T M_T y - C^T r_T|`: the projected least squares in `m - p` rows,
-/// without the `p` rows `P` leaves zero. Then `C^T M_T = Q R` by Householder reflections, the
-/// right-hand side taken through them as one more column: `R` (`min(m - p, n) x n`, upper
-/// trapezoidal) and the first `min(m - p, n)` entries of `Q^T C^T r_T` (module docs).
+/// orthonormal `m x p` columns `U`; `utm = U^T M_T`, `utr = U^T r_T`) with `P r_T`: `R`
+/// (`min(rows, n) x n`, upper trapezoidal) and the first `min(rows, n)` entries of the
+/// right-hand side taken through the same reflections as one more column (module docs).
+///
+/// Where `m - p < n`, in the coordinates of the complement of `U`: the `p` reflections that
+/// reduce `U` take `[M_T | r_T]` to `[U^T; C^T] [M_T | r_T]` (up to the signs of `U^T`'s rows),
+/// `C` (`m x (m - p)`) orthonormal with `P = C C^T`, so `|P (M_T y - r_T)| = |C^T M_T y - C^T
+/// r_T|`: the least squares in `m - p` rows (`rows`), without the `p` rows `P` leaves zero, and
+/// every choice's bidiagonalisation that much smaller. Elsewhere `R` has `n` rows either way and
+/// `P M_T` is formed by matrix products (`rows = m`), faster than `p` reflections through
+/// columns of `m` rows.
 fn compressed(
     u: &DMatrix<f64>,
-    m_t: DMatrix<f64>,
-    r_t: &DVector<f64>,
+    (m_t, utm): (DMatrix<f64>, &DMatrix<f64>),
+    (r_t, utr): (&DVector<f64>, &DVector<f64>),
 ) -> (DMatrix<f64>, DVector<f64>) {
     let (m, p) = u.shape();
     let n = m_t.ncols();
-    let rows = m - p;
-    if rows == 0 {
-        return (DMatrix::zeros(0, n), DVector::zeros(0));
+    let (mut c, rows) = match m - p >= n {
+        true => {
+            let mut a = (m_t - u * utm).insert_column(n, 0.0);
+            a.set_column(n, &(r_t - u * utr));
+            (a.as_slice().to_vec(), m)
+        }
+        false => (complement(u, &m_t, r_t), m - p),
+    };
+    let k = rows.min(n);
+    if k > 0 {
+        reflections::qr(&mut c, rows, k);
     }
-    let mut a = Vec::with_capacity(m * (p + n + 1));
+    let factor = DMatrix::from_fn(k, n, |r, j| if r <= j { c[j * rows + r] } else { 0.0 });
+    (factor, DVector::from_fn(k, |r, _| c[n * rows + r]))
+}
+
+/// `C^T [M_T | r_T]` (column-major, `m - p` rows) of [`compressed`]: `[U | M_T | r_T]` through
+/// the `p` reflections that reduce `U`, the rows below `p` of the columns after `U`.
+fn complement(u: &DMatrix<f64>, m_t: &DMatrix<f64>, r_t: &DVector<f64>) -> Vec<f64> {
+    let (m, p) = u.shape();
+    let mut a = Vec::with_capacity(m * (p + m_t.ncols() + 1));
     a.extend_from_slice(u.as_slice());
     a.extend_from_slice(m_t.as_slice());
     a.extend_from_slice(r_t.as_slice());
     reflections::qr(&mut a, m, p);
-    let mut c: Vec<f64> = (a[p * m..].chunks_exact(m))
+    (a[p * m..].chunks_exact(m))
         .flat_map(|column| column[p..].iter().copied())
-        .collect();
-    let k = rows.min(n);
-    reflections::qr(&mut c, rows, k);
-    let factor = DMatrix::from_fn(k, n, |r, j| if r <= j { c[j * rows + r] } else { 0.0 });
-    (factor, DVector::from_fn(k, |r, _| c[n * rows + r]))
+        .collect()
 }
 
 fn not_converged() -> Error {
