@@ -78,7 +78,7 @@ fn approached(
 fn calibrate_fits_the_backlash_and_writes_it_to_the_robot_file() {
     let d = temp_dir("calibrate-backlash");
     let (model, x) = backlash_truth();
-    let tracker = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.0, 0.0, 2.5));
+    let tracker = crate::calibrate_cli::tracker();
     let data = write_file(
         &d,
         "fit.csv",

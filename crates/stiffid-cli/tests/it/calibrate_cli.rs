@@ -63,6 +63,12 @@ pub(crate) fn truth(model: &ErrorModel) -> DVector<f64> {
     x
 }
 
+/// The campaigns' tracker: 3 m ahead of the base, 2 m to its right, 1.5 m up, turned 2.5 rad
+/// about the vertical.
+pub(crate) fn tracker() -> Isometry3<f64> {
+    Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.0, 0.0, 2.5))
+}
+
 /// Readings of every measuring point at `postures`, by a tracker at `tracker`.
 pub(crate) fn readings(
     model: &ErrorModel,
@@ -96,7 +102,7 @@ fn calibrate_predicts_held_out_readings_and_writes_robot_files() {
     let d = temp_dir("calibrate");
     let model = model();
     let x = truth(&model);
-    let tracker = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.0, 0.0, 2.5));
+    let tracker = tracker();
     let data = write_file(
         &d,
         "fit.csv",
@@ -416,7 +422,7 @@ fn calibrate_with_masses_writes_the_stiffness_file() {
     let mut x = truth(&model);
     let start = model.gravity_start();
     x.rows_mut(start, 6).copy_from(&springs);
-    let tracker = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.0, 0.0, 2.5));
+    let tracker = tracker();
     let data = write_file(
         &d,
         "fit.csv",
@@ -587,7 +593,7 @@ fn calibrate_with_loaded_readings_writes_the_stiffness_file() {
     for &c in &columns {
         x[c] *= 1.3;
     }
-    let tracker = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.0, 0.0, 2.5));
+    let tracker = tracker();
     let data = write_file(
         &d,
         "loaded.csv",
@@ -642,7 +648,7 @@ fn validate_with_two_readings_registers_the_nominal_on_the_fitted_readings() {
     let d = temp_dir("calibrate-two-held");
     let model = model();
     let x = truth(&model);
-    let tracker = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.0, 0.0, 2.5));
+    let tracker = tracker();
     let data = write_file(
         &d,
         "fit.csv",
@@ -732,7 +738,7 @@ fn calibrate_gives_held_out_readings_intervals_and_their_coverage() {
     let d = temp_dir("calibrate-intervals");
     let model = model();
     let x = truth(&model);
-    let tracker = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.0, 0.0, 2.5));
+    let tracker = tracker();
     let data = write_file(
         &d,
         "fit.csv",

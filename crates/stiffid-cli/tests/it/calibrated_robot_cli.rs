@@ -5,7 +5,7 @@
 
 use crate::calibrate_cli::{model, postures, readings, truth, SETUP};
 use crate::common::{json, numbers, stiffid, temp_dir, write_file};
-use nalgebra::{DVector, Isometry3, Vector3, Vector6};
+use nalgebra::{DVector, Vector3, Vector6};
 use std::path::{Path, PathBuf};
 use stiffid::app::purpose::{self, CalibrationOptions};
 use stiffid_metrology::calibration::ErrorModel;
@@ -14,7 +14,7 @@ use stiffid_metrology::calibration::ErrorModel;
 fn calibrated(d: &Path) -> (PathBuf, ErrorModel, DVector<f64>) {
     let model = model();
     let x = truth(&model);
-    let tracker = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.0, 0.0, 2.5));
+    let tracker = crate::calibrate_cli::tracker();
     let data = write_file(
         d,
         "fit.csv",

@@ -37,7 +37,7 @@ fn calibrate_locates_a_fixed_part_from_its_reflectors() {
     let d = temp_dir("fixed-part");
     let model = model();
     let x = truth(&model);
-    let tracker = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.0, 0.0, 2.5));
+    let tracker = crate::calibrate_cli::tracker();
     let part = Isometry3::new(
         Vector3::new(1.5, 0.2, 0.6),
         Vector3::z() * 30f64.to_radians(),
@@ -210,7 +210,7 @@ fn reflectors_the_setup_does_not_place_are_named() {
     let d = temp_dir("fixed-part-unplaced");
     let model = model();
     let x = truth(&model);
-    let tracker = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.0, 0.0, 2.5));
+    let tracker = crate::calibrate_cli::tracker();
     let mut text = readings(&model, &x, &tracker, &postures(25, 1));
     let line = text.lines().nth(1).unwrap().to_string();
     let first: Vec<&str> = line.split(',').collect();

@@ -421,11 +421,10 @@ fn test_pose_without_test_postures_is_not_computed() {
 #[test]
 fn joint_error_maps_beyond_their_work_bound_are_refused_or_skipped() {
     use crate::calibrate_cli::{model, postures, readings, truth, SETUP};
-    use nalgebra::{Isometry3, Vector3};
     let d = temp_dir("maps-work");
     let model = model();
     let x = truth(&model);
-    let tracker = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.0, 0.0, 2.5));
+    let tracker = crate::calibrate_cli::tracker();
     // 250 postures of 4 points: 1000 readings x 768^2 coefficients = 5.9e8 > 5e8.
     let data = write_file(
         &d,

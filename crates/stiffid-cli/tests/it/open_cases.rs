@@ -227,7 +227,7 @@ fn a_calibrated_robot_locates_its_part_in_an_update() {
     let d = temp_dir("open-part-update");
     let model = model();
     let x = truth(&model);
-    let tracker = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.0, 0.0, 2.5));
+    let tracker = crate::calibrate_cli::tracker();
     let setup = stiffid_core::setup::builtin_text(SETUP).unwrap();
     let first = write_file(&d, "setup.toml", setup);
     let fit = write_file(

@@ -4,7 +4,6 @@
 
 use crate::calibrate_cli::{model, postures, readings, truth, SETUP};
 use crate::common::{json, stiffid, temp_dir, write_file};
-use nalgebra::{Isometry3, Vector3};
 use serde_json::Value;
 use std::path::Path;
 
@@ -69,7 +68,7 @@ fn the_calibration_report_renders_the_document() {
     let d = temp_dir("report-calibrate");
     let model = model();
     let x = truth(&model);
-    let tracker = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.0, 0.0, 2.5));
+    let tracker = crate::calibrate_cli::tracker();
     let fit = readings(&model, &x, &tracker, &postures(16, 1));
     let held = readings(&model, &x, &tracker, &postures(6, 2));
     let data = write_file(&d, "fit.csv", &noisy(&fit, 0.02, 3));

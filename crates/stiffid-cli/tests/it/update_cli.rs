@@ -16,7 +16,7 @@ fn arg(p: &Path) -> String {
 /// A calibration of the true robot `x` (25 postures, 8 held out) written to `robot.toml` in
 /// `d`, and a setup on it.
 fn calibrated_setup(d: &Path, model: &ErrorModel, x: &DVector<f64>) -> PathBuf {
-    let tracker = Isometry3::new(Vector3::new(3.0, -2.0, 1.5), Vector3::new(0.0, 0.0, 2.5));
+    let tracker = crate::calibrate_cli::tracker();
     let fit = write_file(
         d,
         "fit.csv",
