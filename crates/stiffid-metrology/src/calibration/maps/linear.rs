@@ -20,13 +20,14 @@
 //! the calibrated robot predicts a new one.
 //!
 //! A split projects every candidate column once (`P M_T` and `M_V - A U^T M_T`, all joints; a
-//! choice of fixed maps or none scores on [`Linear::restricted`] to its own columns), `P M_T` in
-//! the coordinates of the complement of `U` (`P = C C^T`, `C^T M_T` the `m - p` rows that `P`
-//! does not zero, `p` the geometry's kept columns: the reflections that reduce `U` give them), and
-//! keeps the Householder QR `C^T M_T = Q R` as `R` and `Q^T C^T r_T` (`C^T r_T` taken through the
-//! reflections as one more column, `Q` never formed): a choice's columns are `C Q S`, `S` its
-//! columns of `R` (their rows down to the last chosen column), so its ridge least squares is that
-//! of `S` with `Q^T C^T r_T`, exactly. The maps' step follows Eldén's method (L. Eldén, "Algorithms
+//! choice of fixed maps or none scores on [`Linear::restricted`] to its own columns) and keeps the
+//! Householder QR `C^T M_T = Q R` as `R` and `Q^T C^T r_T` (`C^T r_T` taken through the
+//! reflections as one more column, `Q` never formed), `C` orthonormal with `P = C C^T`: where the
+//! `m` training rows are fewer than the geometry's `p` kept columns and the candidates' together,
+//! `C^T M_T` is `P M_T` in the `m - p` coordinates of the complement of `U` (the rows `P` does not
+//! zero; the reflections that reduce `U` give them), elsewhere `P M_T` itself (`C = P`, `m`
+//! rows). A choice's projected columns are `C Q S`, `S` its columns of `R` (their rows down to the
+//! last chosen column), so its ridge least squares is that of `S` with `Q^T C^T r_T`, exactly. The maps' step follows Eldén's method (L. Eldén, "Algorithms
 //! for the regularization of ill-conditioned least squares problems", BIT 17, 1977): one
 //! bidiagonalisation `S = W B Z^T` per choice (of `S^T` where `S` has fewer rows than columns;
 //! `W` and `Z` kept as their reflections and applied to the right-hand side and the steps),
@@ -79,8 +80,8 @@ pub struct Split {
     /// `r_V - A U^T r_T`.
     base: DVector<f64>,
     /// `R` of the Householder QR `C^T M_T = Q R` of every candidate map column (all of
-    /// [`Linear::maps`]' columns, joint after joint; `min(m - p, n)` rows, upper trapezoidal): a
-    /// choice's projected columns are `C Q` times its columns of `R`.
+    /// [`Linear::maps`]' columns, joint after joint; at most `m - p` or `m` rows, upper
+    /// trapezoidal; module docs): a choice's projected columns are `C Q` times its columns of `R`.
     factor: DMatrix<f64>,
     /// `Q^T C^T r_T` (the rows of [`Split::factor`]).
     rotated: DVector<f64>,
