@@ -22,12 +22,13 @@
 //! A split projects every candidate column once (`P M_T` and `M_V - A U^T M_T`, all joints; a
 //! choice of fixed maps or none scores on [`Linear::restricted`] to its own columns) and keeps the
 //! Householder QR `C^T M_T = Q R` as `R` and `Q^T C^T r_T` (`C^T r_T` taken through the
-//! reflections as one more column, `Q` never formed), `P = C C^T`: where the
-//! `m` training rows are fewer than the geometry's `p` kept columns and the candidates' together,
-//! `C` is the orthonormal complement of `U` and `C^T M_T` is `P M_T` in its `m - p` coordinates
-//! (the rows `P` does not zero; the reflections that reduce `U` give them), elsewhere `P M_T` itself (`C = P`, `m`
-//! rows). A choice's projected columns are `C Q S`, `S` its columns of `R` (their rows down to the
-//! last chosen column), so its ridge least squares is that of `S` with `Q^T C^T r_T`, exactly. The maps' step follows Eldén's method (L. Eldén, "Algorithms
+//! reflections as one more column, `Q` never formed), `P = C C^T`: where the `m` training rows
+//! are fewer than the geometry's `p` kept columns and the candidates' together, `C` is the
+//! orthonormal complement of `U` and `C^T M_T` is `P M_T` in its `m - p` coordinates (the rows
+//! `P` does not zero; the reflections that reduce `U` give them), elsewhere `P M_T` itself
+//! (`C = P`, `m` rows). A choice's projected columns are `C Q S`, `S` its columns of `R` (their
+//! rows down to the last chosen column), so its ridge least squares is that of `S` with
+//! `Q^T C^T r_T`, exactly. The maps' step follows Eldén's method (L. Eldén, "Algorithms
 //! for the regularization of ill-conditioned least squares problems", BIT 17, 1977): one
 //! bidiagonalisation `S = W B Z^T` per choice (of `S^T` where `S` has fewer rows than columns;
 //! `W` and `Z` kept as their reflections and applied to the right-hand side and the steps),
