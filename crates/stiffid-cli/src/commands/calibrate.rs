@@ -9,7 +9,7 @@ use crate::progress::Bars;
 use crate::report::calibration;
 use anyhow::{bail, Result};
 use std::path::PathBuf;
-use stiffid::app::calibrate::document::Document;
+use stiffid::app::calibrate::document::{Document, Parameter};
 use stiffid::app::calibrate::GravitySpec;
 use stiffid::app::calibrate::{self as job, Tolerances};
 use stiffid::app::document::mm;
@@ -304,7 +304,7 @@ fn text_of(d: &Document) -> String {
         d.condition.map_or("-".into(), |c| format!("{c:.3e}")),
     );
     text += "\nparameter          unit          nominal          value             sd\n";
-    for p in d.parameters.iter().filter(|p| p.identified) {
+    for p in (d.parameters.iter()).filter(|p| p.identified && harmonic(p).is_none()) {
         let sd = match (p.sd, p.inseparable_from.is_empty()) {
             (_, false) => "inseparable".into(),
             (Some(s), true) => format!("{s:.6}"),
@@ -315,6 +315,7 @@ fn text_of(d: &Document) -> String {
             p.name, p.unit, p.nominal, p.value, sd
         );
     }
+    text += &map_coefficients_text(d);
     text += &inseparable_text(d);
     text += &gravity_file_text(d);
     if !d.merged.is_empty() {
@@ -491,4 +492,51 @@ fn readings(n: usize) -> String {
         1 => "1 reading".into(),
         n => format!("{n} readings"),
     }
+}
+
+/// A joint error map's harmonic coefficient (`joint3.map.cos12`): its map's name (`joint3.map`)
+/// and its own (`cos12`).
+fn harmonic(p: &Parameter) -> Option<(&str, &str)> {
+    let (map, own) = p.name.split_once(".map.")?;
+    (own.starts_with("cos") || own.starts_with("sin")).then(|| (&p.name[..map.len() + 4], own))
+}
+
+/// The fitted joint error maps' harmonic coefficients, a line per map (the parameter table would
+/// list up to 128 a joint): their harmonics, the largest with its name, the range of their
+/// standard deviations; each one is in `--json` and the calibrated robot file.
+fn map_coefficients_text(d: &Document) -> String {
+    let mut maps: Vec<(&str, Vec<&Parameter>)> = Vec::new();
+    for p in d.parameters.iter().filter(|p| p.identified) {
+        let Some((map, _)) = harmonic(p) else {
+            continue;
+        };
+        match maps.iter_mut().find(|(m, _)| *m == map) {
+            Some((_, ps)) => ps.push(p),
+            None => maps.push((map, vec![p])),
+        }
+    }
+    let mut text = String::new();
+    for (map, ps) in &maps {
+        let largest = (ps.iter()).max_by(|a, b| a.value.abs().total_cmp(&b.value.abs()));
+        let sd = (ps.iter().filter_map(|p| p.sd)).fold((f64::INFINITY, 0.0f64), |(lo, hi), s| {
+            (lo.min(s), hi.max(s))
+        });
+        let Some(largest) = largest else {
+            continue;
+        };
+        text += &format!(
+            "{map:<18} deg           {} harmonics, largest {:.6} ({}), sd {}\n",
+            ps.len() / 2,
+            largest.value,
+            harmonic(largest).map_or("", |(_, own)| own),
+            match sd.0.is_finite() {
+                true => format!("{:.6} to {:.6}", sd.0, sd.1),
+                false => "-".into(),
+            }
+        );
+    }
+    if !text.is_empty() {
+        text += "(each map coefficient in --json and the calibrated robot file)\n";
+    }
+    text
 }

@@ -454,6 +454,29 @@ fn joint_error_maps_beyond_their_work_bound_are_refused_or_skipped() {
     let v = json(&stiffid(&[&args[..], &maps].concat()));
     assert_eq!(v["maps"]["asked"], "J2:8,J3:8");
     assert!(v["maps"]["skipped"].is_null() && v["maps"]["nested"].is_object());
+    // The text shows a map's coefficients in one line, the largest with its value.
+    let out = stiffid(&[&args[..5], &maps].concat());
+    assert_success(&out);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        !text.contains(".map.cos") && !text.contains(".map.sin"),
+        "{text}"
+    );
+    for j in ["joint2", "joint3"] {
+        let prefix = format!("{j}.map.");
+        let largest = (v["parameters"].as_array().unwrap().iter())
+            .filter(|p| p["name"].as_str().unwrap().starts_with(&prefix))
+            .map(|p| p["value"].as_f64().unwrap())
+            .max_by(|a, b| a.abs().total_cmp(&b.abs()))
+            .unwrap();
+        let line = (text.lines())
+            .find(|l| l.starts_with(&format!("{j}.map ")))
+            .unwrap();
+        assert!(
+            line.contains(&format!("8 harmonics, largest {largest:.6}")),
+            "{line}"
+        );
+    }
     // 900 postures: 3600 readings x 384^2 = 5.3e8: auto fits none, and says why.
     let many = write_file(
         &d,
