@@ -30,7 +30,7 @@
 //! The postures are dealt into [`FOLDS`] groups (posture `i` in group `i mod K`); each group is
 //! predicted by the rung refitted without it (linearised at the rung's fit, as the maps' choice:
 //! [`crate::calibration::maps::nested`], the maps chosen on each training set at the
-//! first gravity model's fit and kept for the others, each one's ridge chosen anew:
+//! first gravity model's fit and kept, with their ridges, for the others:
 //! [`crate::calibration::maps::nested_given`]), which gives every held-out posture
 //! its squared error under every rung, paired.
 //!
@@ -265,13 +265,16 @@ pub fn climb(
             ladder,
         });
     }
-    // The maps each outer fold chose for the first gravity model, kept for the others.
-    let choices = (assessed.nested.as_ref()).map_or_else(Vec::new, |n| n.choices.clone());
+    // The maps and ridge each outer fold chose for the first gravity model, kept for the others.
+    let first_nested = assessed.nested.clone();
     let mut fits: Vec<std::result::Result<(Fitted, Assessed), String>> =
         vec![Ok((first, assessed))];
     for &g in &gravities[1..] {
         let tried = fit(g).and_then(|f| {
-            let a = assess_given(maps, (&f.model, &f.fit), obs, options, &choices)?;
+            let a = match &first_nested {
+                Some(n) => assess_given(maps, (&f.model, &f.fit), obs, options, n)?,
+                None => assess(maps, &f.model, &f.fit, obs, options, true)?,
+            };
             Ok((f, a))
         });
         fits.push(tried.map_err(|e| e.to_string()).and_then(|(f, a)| {

@@ -63,8 +63,9 @@ pub(crate) fn assess(
 }
 
 /// [`assess`] for the ladder's later gravity models: the nested figure of the maps each outer
-/// fold of the first gravity model's assessment chose (`first`, [`Nested::choices`]), each
-/// fold's ridge chosen anew ([`maps::nested_given`]): the harmonics chosen once on the ladder.
+/// fold of the first gravity model's assessment chose, with the ridge it chose (`first`,
+/// [`Nested::choices`], [`Nested::ridges`]; [`maps::nested_given`]): the maps chosen once on
+/// the ladder.
 ///
 /// # Errors
 /// Those of [`assess`] and [`maps::nested_given`].
@@ -73,7 +74,7 @@ pub(crate) fn assess_given(
     (model, fitted): (&ErrorModel, &Fit),
     observations: &[Observation],
     options: &Options,
-    first: &[JointMaps],
+    first: &Nested,
 ) -> Result<Assessed> {
     assess_with(
         spec,
@@ -92,7 +93,7 @@ fn assess_with(
     observations: &[Observation],
     options: &Options,
     ladder: bool,
-    given: Option<&[JointMaps]>,
+    given: Option<&Nested>,
 ) -> Result<Assessed> {
     let mut postures: Vec<usize> = observations.iter().map(|o| o.posture).collect();
     postures.sort_unstable();
@@ -130,7 +131,7 @@ fn assess_with(
     };
     let linear = Linear::at(model, fitted, observations, options.length, candidates)?;
     let nested = match given {
-        Some(choices) => maps::nested_given(&linear, &all, choices)?,
+        Some(first) => maps::nested_given(&linear, &all, first)?,
         None => maps::nested(&linear, &all, considered)?,
     };
     if report.skipped.is_none() {

@@ -32,9 +32,9 @@
 //! An outer cross-validation of [`FOLDS`] folds makes the whole choice on each outer fold's
 //! training postures and predicts its held-out postures with it, beside the geometry alone on the
 //! same split: the held-out gain of choosing maps by cross-validation. Folds run in parallel
-//! (rayon), the result independent of the thread count. [`nested_given`] scores the choices
-//! another linearisation of the same postures made (a calibration's ladder chooses the harmonics
-//! once, at its first gravity model), each fold's ridge chosen anew. Where the maps are fixed
+//! (rayon), the result independent of the thread count. [`nested_given`] scores the choices and
+//! ridges another linearisation of the same postures made (a calibration's ladder chooses the
+//! maps once, at its first gravity model): one refit per outer fold. Where the maps are fixed
 //! (or none), the splits project the columns of these maps alone
 //! ([`Linear::restricted`]): the later rungs and each outer fold's figure cost the columns they
 //! use, not the candidates'.
@@ -231,6 +231,8 @@ pub struct Nested {
     pub rms: f64,
     /// The maps each outer fold chose.
     pub choices: Vec<JointMaps>,
+    /// The ridge each outer fold chose with its maps (`mu`, [`RIDGES`]).
+    pub ridges: Vec<f64>,
     /// Per held-out posture (the outer folds' in order: fold `k` holds the postures `i` with
     /// `i mod K = k`), the sum of its squared errors without maps, m^2.
     pub none_errors: Vec<f64>,
@@ -488,31 +490,29 @@ pub fn nested(linear: &Linear, postures: &[usize], spec: Spec) -> Result<Nested>
     })
 }
 
-/// [`nested`] with the maps of each outer fold given, `choices` (one per fold, in the order of
-/// [`Nested::choices`]: those another linearisation of the same postures chose), each fold's
-/// ridge chosen on its training postures as [`choose`] chooses it for fixed maps: the held-out
-/// figure of a choice already made, at the cost of one candidate per fold.
+/// [`nested`] with each outer fold's maps and ridge given: those `first` chose
+/// ([`Nested::choices`], [`Nested::ridges`]: another linearisation of the same postures, a
+/// calibration's first gravity model), each fold refitted with them on its training postures
+/// and scored on its held-out ones: the held-out figure of a choice already made, at the cost of
+/// one candidate per fold.
 ///
 /// # Errors
-/// [`Error::InvalidField`] (`choices`) unless there is one per outer fold; those of [`choose`].
-pub fn nested_given(linear: &Linear, postures: &[usize], choices: &[JointMaps]) -> Result<Nested> {
-    if choices.len() != FOLDS.min(postures.len()) {
+/// [`Error::InvalidField`] (`choices`) unless `first` has one choice and one ridge per outer
+/// fold; those of [`Linear::split`] and [`Linear::errors`].
+pub fn nested_given(linear: &Linear, postures: &[usize], first: &Nested) -> Result<Nested> {
+    let folds = FOLDS.min(postures.len());
+    if first.choices.len() != folds || first.ridges.len() != folds {
         return Err(Error::InvalidField {
             field: "choices".into(),
             message: format!(
-                "expected one choice of maps per outer fold ({}), got {}",
-                FOLDS.min(postures.len()),
-                choices.len()
+                "expected one choice of maps and one ridge per outer fold ({folds}), got {} and {}",
+                first.choices.len(),
+                first.ridges.len()
             ),
         });
     }
-    outer(linear, postures, |k, train| {
-        let spec = match choices[k].is_none() {
-            true => Spec::None,
-            false => Spec::Fixed(choices[k]),
-        };
-        let choice = choose(linear, train, spec)?;
-        Ok((choice.maps, choice.ridge))
+    outer(linear, postures, |k, _| {
+        Ok((first.choices[k], first.ridges[k]))
     })
 }
 
@@ -533,7 +533,7 @@ fn outer(
             let with = linear.errors(&split, &maps, &[ridge * n as f64])?;
             let none = linear.errors(&split, &JointMaps::NONE, &[0.0])?;
             let first = |mut e: Vec<Vec<f64>>| e.swap_remove(0);
-            Ok((first(with), first(none), maps))
+            Ok((first(with), first(none), maps, ridge))
         })
         .collect::<Result<Vec<_>>>()?;
     let readings: usize = postures.iter().map(|&p| linear.rows[p].len() / 3).sum();
@@ -545,6 +545,7 @@ fn outer(
         rms: rms(&errors),
         none_rms: rms(&none_errors),
         choices: outer.iter().map(|o| o.2).collect(),
+        ridges: outer.iter().map(|o| o.3).collect(),
         none_errors,
         errors,
     })

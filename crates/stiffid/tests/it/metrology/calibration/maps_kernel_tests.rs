@@ -175,10 +175,15 @@ fn the_nested_figure_of_the_choices_given_is_the_nested_figure() {
     let all: Vec<usize> = (0..60).collect();
     let nested = maps::nested(&linear, &all, Spec::Auto).unwrap();
     assert!(nested.choices.iter().any(|c| !c.is_none()), "{nested:?}");
-    let given = maps::nested_given(&linear, &all, &nested.choices).unwrap();
+    let given = maps::nested_given(&linear, &all, &nested).unwrap();
     assert_eq!(given.choices, nested.choices);
+    assert_eq!(given.ridges, nested.ridges);
     for (g, w) in given.errors.iter().zip(&nested.errors) {
         assert!((g - w).abs() <= 1e-12 * w.max(1e-30), "{g:e} vs {w:e}");
     }
-    assert!(maps::nested_given(&linear, &all, &nested.choices[1..]).is_err());
+    let short = maps::Nested {
+        ridges: nested.ridges[1..].to_vec(),
+        ..nested.clone()
+    };
+    assert!(maps::nested_given(&linear, &all, &short).is_err());
 }
