@@ -34,6 +34,11 @@ fn calibrated(case: &Case, data: &str) -> Report {
 
 /// The calibration of `data` with the gravity model `gravity`.
 fn calibrated_as(case: &Case, data: &str, gravity: GravitySpec) -> Report {
+    calibrated_with(case, data, gravity, Spec::None)
+}
+
+/// The calibration of `data` with the gravity model `gravity` and the maps `maps`.
+fn calibrated_with(case: &Case, data: &str, gravity: GravitySpec, maps: Spec) -> Report {
     calibrate::run(&calibrate::Request {
         readings: stiffid::app::readings::Request {
             setup_name: "setup".into(),
@@ -49,7 +54,7 @@ fn calibrated_as(case: &Case, data: &str, gravity: GravitySpec) -> Report {
         cross_validate: false,
         priors: None,
         progress: &(),
-        maps: Spec::None,
+        maps,
         error_motions: Default::default(),
         level: None,
         update: false,
@@ -111,6 +116,30 @@ fn a_rigid_robot_gets_the_geometry_alone() {
     assert_eq!(ladder.chosen, 0);
     // Nothing left to explain: the geometry predicts held out to the tracker's noise.
     assert!(held_out(&report, Gravity::None).unwrap() < 5e-5);
+}
+
+#[test]
+fn where_auto_keeps_no_map_the_rungs_with_maps_are_skipped_saying_so() {
+    // No joint error in the truth: the choice on every posture keeps none, so no nested figure
+    // is made and every rung with maps is the one without.
+    let case = dh_case();
+    let data = readings(&case, 12, 40, true);
+    let report = calibrated_with(&case, &data, GravitySpec::Auto, Spec::Auto);
+    let choice = report.maps.choice.as_ref().unwrap();
+    assert!(choice.maps.is_none(), "{choice:?}");
+    assert!(!choice.tried.is_empty());
+    assert!(report.maps.nested.is_none() && report.maps.skipped.is_none());
+    let ladder = report.ladder.as_ref().unwrap();
+    for r in &ladder.rungs {
+        match r.maps {
+            true => assert!(r.skipped.as_ref().unwrap().contains("keeps none"), "{r:?}"),
+            false => assert!(r.rms.is_some(), "{r:?}"),
+        }
+    }
+    // The same model as without maps, to the last bit.
+    let without = calibrated_with(&case, &data, GravitySpec::Auto, Spec::None);
+    assert_eq!(report.gravity, without.gravity);
+    assert_eq!(report.fit.estimate.values, without.fit.estimate.values);
 }
 
 #[test]

@@ -52,6 +52,15 @@ impl JointMaps {
     pub fn any_backlash(&self) -> bool {
         self.backlash.contains(&true)
     }
+
+    /// These maps and `other` together: each joint's larger harmonic count, a backlash term
+    /// where either has one.
+    pub(crate) fn union(&self, other: &JointMaps) -> JointMaps {
+        JointMaps {
+            harmonics: std::array::from_fn(|j| self.harmonics[j].max(other.harmonics[j])),
+            backlash: std::array::from_fn(|j| self.backlash[j] || other.backlash[j]),
+        }
+    }
 }
 
 impl From<[usize; 6]> for JointMaps {

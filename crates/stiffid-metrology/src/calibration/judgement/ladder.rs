@@ -6,7 +6,8 @@
 //! three terms (skipped, saying why, on a robot that is not an anthropomorphic arm), the lumped
 //! bodies, the lumped links, the known masses where the robot gives them) without joint error
 //! maps and then with the maps of `--maps` (chosen by [`crate::calibration::maps`]
-//! inside every training set). A fixed `--gravity` is a ladder of one gravity model, `--maps none`
+//! inside every training set; where `auto` keeps no map on every posture, the rungs with maps are
+//! the ones without and are skipped saying so). A fixed `--gravity` is a ladder of one gravity model, `--maps none`
 //! or fixed maps one maps variant; a ladder of one rung is not climbed.
 //!
 //! # The held-out figure
@@ -30,7 +31,8 @@
 //! The postures are dealt into [`FOLDS`] groups (posture `i` in group `i mod K`); each group is
 //! predicted by the rung refitted without it (linearised at the rung's fit, as the maps' choice:
 //! [`crate::calibration::maps::nested`], the maps chosen on each training set at the
-//! first gravity model's fit and kept, with their ridges, for the others:
+//! first gravity model's fit and kept, with their ridges, for the others, as the maps chosen on
+//! every posture there are:
 //! [`crate::calibration::maps::nested_given`]), which gives every held-out posture
 //! its squared error under every rung, paired.
 //!
@@ -41,7 +43,7 @@
 //! over a simpler one that predicts the held-out postures better. With fewer than
 //! [`MIN_POSTURES`] distinct postures the ladder is not climbed and its first rung is fitted.
 
-use super::maps::{assess, assess_given, Assessed};
+use super::maps::{assess, assess_given, keeps_none, Assessed};
 use super::region::Region;
 use super::WEAK_CONDITION;
 use crate::calibration::error_model::Observation;
@@ -240,7 +242,7 @@ pub fn climb(
     let climbed = gravities.len() * variants.len() > 1 && postures.len() >= MIN_POSTURES;
     let first = fit(gravities[0])?;
     check(&first)?;
-    let assessed = assess(maps, &first.model, &first.fit, obs, options, climbed)?;
+    let assessed = assess(maps, (&first.model, &first.fit), obs, options, climbed)?;
     if !climbed {
         let ladder = (gravities.len() * variants.len() > 1).then(|| Ladder {
             folds: 0,
@@ -265,23 +267,23 @@ pub fn climb(
             ladder,
         });
     }
-    // The maps and ridge each outer fold chose for the first gravity model, kept for the others.
-    let first_nested = assessed.nested.clone();
-    let mut fits: Vec<std::result::Result<(Fitted, Assessed), String>> =
-        vec![Ok((first, assessed))];
-    for &g in &gravities[1..] {
-        let tried = fit(g).and_then(|f| {
-            let a = match &first_nested {
-                Some(n) => assess_given(maps, (&f.model, &f.fit), obs, options, n)?,
-                None => assess(maps, &f.model, &f.fit, obs, options, true)?,
-            };
-            Ok((f, a))
-        });
-        fits.push(tried.map_err(|e| e.to_string()).and_then(|(f, a)| {
-            judged(&f.fit)?;
-            Ok((f, a))
-        }));
-    }
+    // The maps chosen for the first gravity model, on every posture and in each outer fold
+    // (with their ridges), kept for the others.
+    let later: Vec<std::result::Result<(Fitted, Assessed), String>> = (gravities[1..].iter())
+        .map(|&g| {
+            let tried = fit(g).and_then(|f| {
+                let a = assess_given((&f.model, &f.fit), obs, options, &assessed)?;
+                Ok((f, a))
+            });
+            tried.map_err(|e| e.to_string()).and_then(|(f, a)| {
+                judged(&f.fit)?;
+                Ok((f, a))
+            })
+        })
+        .collect();
+    let kept_none = keeps_none(&assessed.maps);
+    let mut fits = vec![Ok((first, assessed))];
+    fits.extend(later);
     // The rungs without maps first, then with them: the maps are the larger family.
     let order: Vec<(usize, bool)> = (variants.iter())
         .flat_map(|&v| (0..gravities.len()).map(move |g| (g, v)))
@@ -302,7 +304,8 @@ pub fn climb(
     extrapolating(&mut rungs, &order);
     let chosen = choose(&rungs);
     let (g, with_maps) = order[chosen];
-    let why = (!with_maps).then(|| {
+    // Where `auto` keeps no map, the maps' choice says so, not the ladder.
+    let why = (!with_maps && !kept_none).then(|| {
         let none = rungs[chosen].rms.unwrap_or(f64::NAN) * 1e3;
         format!("the ladder chose the model without maps ({none:.4} mm held out)")
     });
@@ -397,6 +400,11 @@ fn rung(
     };
     match (maps, &assessed.maps.skipped) {
         (true, Some(why)) => unscored(gravity, maps, Some(format!("no map considered: {why}"))),
+        (true, None) if keeps_none(&assessed.maps) => unscored(
+            gravity,
+            maps,
+            Some("the maps' choice on every posture keeps none: the model without maps".into()),
+        ),
         (true, None) => Rung {
             gravity,
             maps,

@@ -1,6 +1,13 @@
 //! The joint error maps of a calibration ([`crate::calibration::maps`]): the choice by
 //! cross-validation inside the fitted readings, its nested held-out gain, and the fit with the
 //! maps chosen.
+//!
+//! The choice is made once, on every posture at the first fit assessed (a ladder's first gravity
+//! model), with its nested figure around it; a ladder's later gravity models keep both (the maps
+//! chosen on every posture, and each outer fold's maps and ridge), so the figure of a rung scores
+//! the maps that rung fits; their ridge alone is chosen again at the fit of the model fitted.
+//! Where `--maps auto` keeps no map on every posture, no nested figure is made: the model with
+//! maps is the one without.
 
 use crate::calibration::error_model::Observation;
 use crate::calibration::fit::{self, Fit, Options};
@@ -31,69 +38,35 @@ pub struct Maps {
     pub skipped: Option<String>,
 }
 
-/// The maps of `spec` assessed at a fit: the report with the nested held-out figure (the choice
-/// not yet made on every posture), and the linearised fit the choice is made on; or, when no map
-/// is considered, the report saying why (and for the ladder the held-out errors without maps).
+/// The maps of `spec` assessed at a fit: the report with the choice on every posture and its
+/// nested held-out figure; or, when no map is considered, the report saying why (and for the
+/// ladder the held-out errors without maps).
 pub struct Assessed {
-    /// What the maps' choice found so far.
+    /// What the maps' choice found.
     pub maps: Maps,
-    /// The calibration linearised at the fit with the candidate maps' columns, when maps are
-    /// considered.
-    pub linear: Option<Linear>,
+    /// Whether the choice was made at this fit; else at the first gravity model's, and the
+    /// ridge of its maps is chosen again at this fit before they are fitted ([`fit_maps`]).
+    pub own_fit: bool,
     /// The held-out errors of the outer folds, without maps and with them (without alone when
-    /// no map is considered): the ladder's; `None` when neither maps nor the ladder need them.
+    /// no map is considered or `auto` keeps none): the ladder's; `None` when neither maps nor
+    /// the ladder need them.
     pub nested: Option<Nested>,
 }
 
-/// Assesses the maps of `spec` on `model`'s fit `fitted` to `observations` (module docs); with
-/// `ladder` the held-out errors without maps too when no map is considered.
+/// Assesses the maps of `spec` on `model`'s fit `fitted` to `observations` (module docs): the
+/// choice on every posture and its nested figure; with `ladder` the held-out errors without maps
+/// too when no map is considered.
 ///
 /// # Errors
 /// [`Error::InvalidOption`] ([`JobOption::Maps`]) for fixed maps beyond [`MAX_MAP_WORK`] or a
-/// backlash term without directions; those of [`Linear::at`] and [`maps::nested`].
+/// backlash term without directions; those of [`Linear::at`], [`maps::choose`] and
+/// [`maps::nested`].
 pub(crate) fn assess(
     spec: Spec,
-    model: &ErrorModel,
-    fitted: &Fit,
-    observations: &[Observation],
-    options: &Options,
-    ladder: bool,
-) -> Result<Assessed> {
-    assess_with(spec, (model, fitted), observations, options, ladder, None)
-}
-
-/// [`assess`] for the ladder's later gravity models: the nested figure of the maps each outer
-/// fold of the first gravity model's assessment chose, with the ridge it chose (`first`,
-/// [`Nested::choices`], [`Nested::ridges`]; [`maps::nested_given`]): the maps chosen once on
-/// the ladder.
-///
-/// # Errors
-/// Those of [`assess`] and [`maps::nested_given`].
-pub(crate) fn assess_given(
-    spec: Spec,
-    (model, fitted): (&ErrorModel, &Fit),
-    observations: &[Observation],
-    options: &Options,
-    first: &Nested,
-) -> Result<Assessed> {
-    assess_with(
-        spec,
-        (model, fitted),
-        observations,
-        options,
-        true,
-        Some(first),
-    )
-}
-
-/// [`assess`], the outer folds' maps chosen anew or `given`.
-fn assess_with(
-    spec: Spec,
     (model, fitted): (&ErrorModel, &Fit),
     observations: &[Observation],
     options: &Options,
     ladder: bool,
-    given: Option<&Nested>,
 ) -> Result<Assessed> {
     let mut postures: Vec<usize> = observations.iter().map(|o| o.posture).collect();
     postures.sort_unstable();
@@ -118,31 +91,77 @@ fn assess_with(
     }
     report.skipped = skipped(spec, postures.len(), observations.len(), candidates)?;
     let all: Vec<usize> = (0..postures.len()).collect();
-    let (candidates, considered) = match (&report.skipped, ladder) {
-        (None, _) => (candidates, spec),
-        (Some(_), true) => (JointMaps::NONE, Spec::None),
+    let candidates = match (&report.skipped, ladder) {
+        (None, _) => candidates,
+        (Some(_), true) => JointMaps::NONE,
         (Some(_), false) => {
             return Ok(Assessed {
                 maps: report,
-                linear: None,
+                own_fit: true,
                 nested: None,
             })
         }
     };
     let linear = Linear::at(model, fitted, observations, options.length, candidates)?;
-    let nested = match given {
-        Some(first) => maps::nested_given(&linear, &all, first)?,
-        None => maps::nested(&linear, &all, considered)?,
-    };
     if report.skipped.is_none() {
+        report.choice = Some(maps::choose(&linear, &all, spec)?);
+    }
+    // Where `auto` keeps no map on every posture, the model with maps is the one without.
+    let outer = match (&report.choice, spec) {
+        (Some(c), Spec::Auto) if !c.maps.is_none() => spec,
+        (Some(_), Spec::Fixed(_)) => spec,
+        _ => Spec::None,
+    };
+    let nested = maps::nested(&linear, &all, outer)?;
+    if outer != Spec::None {
         report.nested = Some(nested.clone());
     }
-    let linear = (report.skipped.is_none()).then_some(linear);
     Ok(Assessed {
         maps: report,
-        linear,
+        own_fit: true,
         nested: Some(nested),
     })
+}
+
+/// [`assess`] for the ladder's later gravity models: the first gravity model's assessment
+/// `first` kept, its choice on every posture and the nested figure of the maps and ridge each of
+/// its outer folds chose ([`Nested::choices`], [`Nested::ridges`]; [`maps::nested_given`]): the
+/// maps chosen once on the ladder.
+///
+/// # Errors
+/// Those of [`Linear::at`] and [`maps::nested_given`].
+pub(crate) fn assess_given(
+    (model, fitted): (&ErrorModel, &Fit),
+    observations: &[Observation],
+    options: &Options,
+    first: &Assessed,
+) -> Result<Assessed> {
+    let all: Vec<usize> = (0..first.maps.postures).collect();
+    let Some(first_nested) = &first.nested else {
+        return Ok(Assessed {
+            maps: first.maps.clone(),
+            own_fit: false,
+            nested: None,
+        });
+    };
+    let candidates = (first_nested.choices.iter()).fold(JointMaps::NONE, |a, c| a.union(c));
+    let linear = Linear::at(model, fitted, observations, options.length, candidates)?;
+    let nested = maps::nested_given(&linear, &all, first_nested)?;
+    let maps = Maps {
+        nested: first.maps.nested.as_ref().map(|_| nested.clone()),
+        ..first.maps.clone()
+    };
+    Ok(Assessed {
+        maps,
+        own_fit: false,
+        nested: Some(nested),
+    })
+}
+
+/// Whether `auto` chose no map on every posture ([`assess`]): the model with maps is the one
+/// without.
+pub(crate) fn keeps_none(maps: &Maps) -> bool {
+    maps.spec == Spec::Auto && maps.choice.as_ref().is_some_and(|c| c.maps.is_none())
 }
 
 /// Why no map is considered, if none is.
@@ -184,11 +203,13 @@ fn skipped(
 
 /// The model, fit and options after the maps `assessed` (`keep`: the maps are fitted, else none
 /// is and `why` says why): those given without maps, else the model with the maps chosen on every
-/// posture fitted from the calibration's start ([`fit::start`]) with the chosen ridge (what the
-/// readings determine analysed where `fitted` analysed it).
+/// posture ([`assess`]) fitted from the calibration's start ([`fit::start`]) with the chosen
+/// ridge, chosen again at `fitted` where the maps were chosen at another fit (what the readings
+/// determine analysed where `fitted` analysed it).
 ///
 /// # Errors
-/// Those of [`ErrorModel::with_maps`], [`maps::choose`], [`fit::start`] and [`fit::fit`].
+/// Those of [`ErrorModel::with_maps`], [`Linear::at`], [`maps::choose`], [`fit::start`] and
+/// [`fit::fit`].
 pub fn fit_maps(
     assessed: Assessed,
     keep: std::result::Result<(), String>,
@@ -198,23 +219,32 @@ pub fn fit_maps(
 ) -> Result<(ErrorModel, Fit, Options, Maps)> {
     let Assessed {
         maps: mut report,
-        linear,
+        own_fit,
         ..
     } = assessed;
     if let Err(why) = keep {
         report.skipped = report.skipped.or(Some(why));
+        report.choice = None;
     }
-    let Some(linear) = linear.filter(|_| report.skipped.is_none()) else {
+    let Some(choice) = report.choice.as_ref() else {
         return Ok((model, fitted, options, report));
     };
-    let all: Vec<usize> = (0..report.postures).collect();
-    let choice = maps::choose(&linear, &all, report.spec)?;
     let chosen = choice.maps;
-    let ridge = choice.ridge;
-    report.choice = Some(choice);
     if chosen.is_none() {
         return Ok((model, fitted, options, report));
     }
+    let ridge = match own_fit {
+        true => choice.ridge,
+        false => {
+            let linear = Linear::at(&model, &fitted, observations, options.length, chosen)?;
+            let all: Vec<usize> = (0..report.postures).collect();
+            let again = maps::choose(&linear, &all, Spec::Fixed(chosen))?;
+            if let Some(c) = report.choice.as_mut() {
+                c.ridge = again.ridge;
+            }
+            again.ridge
+        }
+    };
     let mapped = model.clone().with_maps(chosen)?;
     // From the calibration's own start, not from the geometric fit: what the readings determine
     // is analysed where the geometric fit analysed it (at the fitted geometry, parallel axes

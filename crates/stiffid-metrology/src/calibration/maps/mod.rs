@@ -402,7 +402,7 @@ pub fn choose(linear: &Linear, postures: &[usize], spec: Spec) -> Result<Choice>
                 .collect();
             // Forward: the terms in that order, each kept when it lowers the error enough.
             for (term, _) in alone {
-                let choice = union(&chosen, &term);
+                let choice = chosen.union(&term);
                 let s = inner.score(&choice)?;
                 let kept = better(&current, &s);
                 record(choice, &s, kept);
@@ -468,15 +468,6 @@ fn alone(
         alone.push((choice, s.total));
     }
     Ok(alone)
-}
-
-/// The maps of `a` and `b` together: each joint's larger harmonic count, a backlash term where
-/// either has one.
-fn union(a: &JointMaps, b: &JointMaps) -> JointMaps {
-    JointMaps {
-        harmonics: std::array::from_fn(|j| a.harmonics[j].max(b.harmonics[j])),
-        backlash: std::array::from_fn(|j| a.backlash[j] || b.backlash[j]),
-    }
 }
 
 /// The held-out gain of [`choose`] by an outer cross-validation over `postures` (module docs).

@@ -28,7 +28,8 @@ pub struct MapsDocument {
     /// Every candidate the choice evaluated, in order.
     pub tried: Vec<MapTried>,
     /// The held-out gain of the choice (the honest figure): an outer cross-validation that makes
-    /// the whole choice on each fold's training postures; `null` when maps were not considered.
+    /// the whole choice on each fold's training postures; `null` when maps were not considered
+    /// or `auto` keeps none on every posture (the model with maps is then the one without).
     pub nested: Option<MapsNested>,
 }
 

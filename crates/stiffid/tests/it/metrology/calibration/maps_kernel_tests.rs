@@ -187,3 +187,53 @@ fn the_nested_figure_of_the_choices_given_is_the_nested_figure() {
     };
     assert!(maps::nested_given(&linear, &all, &short).is_err());
 }
+
+/// The maps fitted after an assessment made at another fit (a ladder's later gravity model) have
+/// their ridge chosen again at the fit they are fitted at; an assessment made at that fit keeps
+/// its own.
+#[test]
+fn maps_chosen_at_another_fit_have_their_ridge_chosen_again() {
+    use stiffid::metrology::calibration::judgement::maps::{fit_maps, Assessed, Maps};
+    let geometry = model();
+    let qs = postures(geometry.robot(), 60, 503);
+    let kept = identified(&geometry, &qs);
+    let mapped = geometry.clone().with_maps([0, 8, 0, 0, 4, 0]).unwrap();
+    let truth = truth(&mapped, &kept, 2e-4, 3);
+    let data = noisy(readings(&mapped, &truth, &qs), 2e-5, 3);
+    let start = fit::start(&geometry, &data).unwrap();
+    let fitted = fit::fit(&geometry, &data, &start, &options(0.0)).unwrap();
+    let linear = Linear::at(&geometry, &fitted, &data, 1.0, Spec::Auto.candidates(false)).unwrap();
+    let all: Vec<usize> = (0..60).collect();
+    let choice = maps::choose(&linear, &all, Spec::Auto).unwrap();
+    assert!(!choice.maps.is_none(), "{choice:?}");
+    // A ridge no cross-validation chooses, as if chosen elsewhere.
+    let elsewhere = maps::Choice {
+        ridge: 123.0,
+        ..choice.clone()
+    };
+    let ridge_after = |own_fit: bool| {
+        let assessed = Assessed {
+            maps: Maps {
+                spec: Spec::Auto,
+                postures: 60,
+                choice: Some(elsewhere.clone()),
+                nested: None,
+                skipped: None,
+            },
+            own_fit,
+            nested: None,
+        };
+        let fitted_maps = fit_maps(
+            assessed,
+            Ok(()),
+            (geometry.clone(), fitted.clone()),
+            &data,
+            options(0.0),
+        );
+        let (_, _, options, report) = fitted_maps.unwrap();
+        assert_eq!(report.choice.unwrap().ridge, options.ridge);
+        options.ridge
+    };
+    assert_eq!(ridge_after(true), 123.0);
+    assert_eq!(ridge_after(false), choice.ridge);
+}
