@@ -23,7 +23,7 @@
 //! more than [`MAP_ACCEPT`] standard errors of the paired per-posture differences (a one-sided
 //! test at about 0.6 %) and by [`LEAST_GAIN`] of it: the choice keeps no map on a robot without
 //! one. Then jointly: the first `k` joints of that order (`k` from 2) together at each harmonic
-//! count, the one with the least held-out error replacing the forward choice where it has less
+//! count up to the largest any of them chose alone, the one with the least held-out error replacing the forward choice where it has less
 //! and lowers the error without maps by the same rule (one joint at a time stops early where
 //! several joints' maps each gain a little). The choice is made on the linearised fit ([`linear`]): exact to second order in
 //! the parameters' change from the fit, a few nanometres on a calibrated robot.
@@ -400,6 +400,10 @@ pub fn choose(linear: &Linear, postures: &[usize], spec: Spec) -> Result<Choice>
             let order: Vec<usize> = (alone.iter())
                 .filter_map(|(m, _)| (0..6).find(|&j| m.harmonics[j] > 0))
                 .collect();
+            // Each joint's best harmonic count alone.
+            let best: [usize; 6] = std::array::from_fn(|j| {
+                alone.iter().map(|(m, _)| m.harmonics[j]).max().unwrap_or(0)
+            });
             // Forward: the terms in that order, each kept when it lowers the error enough.
             for (term, _) in alone {
                 let choice = chosen.union(&term);
@@ -410,11 +414,14 @@ pub fn choose(linear: &Linear, postures: &[usize], spec: Spec) -> Result<Choice>
                     (chosen, current) = (choice, s);
                 }
             }
-            // Jointly: the first joints of that order together, at each harmonic count; the
+            // Jointly: the first joints of that order together, at each harmonic count up to the
+            // largest any of them chose alone (more harmonics than each joint's own best fit
+            // the noise of every joint at once, at the cost of the widest candidates); the
             // best of these replaces the forward choice when its held-out error is lower and it
             // lowers the error without maps by the same rule.
             for k in 2..=order.len() {
-                for &h in &HARMONICS {
+                let largest = order[..k].iter().map(|&j| best[j]).max().unwrap_or(0);
+                for &h in HARMONICS.iter().filter(|&&h| h <= largest) {
                     let mut set = JointMaps::NONE;
                     for &j in &order[..k] {
                         set.harmonics[j] = h;
