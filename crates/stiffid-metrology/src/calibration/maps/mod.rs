@@ -31,7 +31,10 @@
 //! # The honest figure ([`nested`])
 //! An outer cross-validation of [`FOLDS`] folds makes the whole choice on each outer fold's
 //! training postures and predicts its held-out postures with it, beside the geometry alone on the
-//! same split: the held-out gain of choosing maps by cross-validation. Folds run in parallel
+//! same split: the held-out gain of choosing maps by cross-validation. Inside outer fold `k` the
+//! choice's inner folds are the other outer folds, each trained on the postures of neither: the
+//! two outer folds of a pair share its split and each candidate's steps on it, so the `K` choices
+//! cost `K (K - 1) / 2` splits, not `K^2` (with 3 outer folds or more). Folds run in parallel
 //! (rayon), the result independent of the thread count. [`nested_given`] scores the choices and
 //! ridges another linearisation of the same postures made (a calibration's ladder chooses the
 //! maps once, at its first gravity model): one refit per outer fold. Where the maps are fixed
@@ -41,11 +44,13 @@
 //!
 //! Equations and sources: docs/model.md, section "Calibration", "Joint error maps".
 
+mod inner;
 pub mod linear;
 
 pub use super::error_model::JointMaps;
 pub use linear::{extended, Linear};
 
+use inner::{folds, Inner, Pairs, Scored};
 use rayon::prelude::*;
 use stiffid_core::common::error::JobOption;
 use stiffid_core::robot::error_map::MAX_HARMONICS;
@@ -240,101 +245,6 @@ pub struct Nested {
     pub errors: Vec<f64>,
 }
 
-/// The folds of `postures`: fold `k` holds `postures[i]` with `i mod K = k`, `K = min(FOLDS, n)`.
-fn folds(postures: &[usize]) -> Vec<(Vec<usize>, Vec<usize>)> {
-    let k = FOLDS.min(postures.len());
-    (0..k)
-        .map(|f| {
-            let in_fold = |keep: bool| {
-                (postures.iter().enumerate())
-                    .filter(|(i, _)| (i % k == f) == keep)
-                    .map(|(_, p)| *p)
-                    .collect::<Vec<usize>>()
-            };
-            (in_fold(false), in_fold(true))
-        })
-        .collect()
-}
-
-/// The inner cross-validation of some postures: its splits, prepared once.
-struct Inner<'a> {
-    linear: &'a Linear,
-    splits: Vec<linear::Split>,
-    /// The readings of the held-out postures, all folds.
-    readings: usize,
-    /// The training readings of each split (the ridge's `n`).
-    train_readings: Vec<usize>,
-    /// The candidates scored so far: the forward and joint steps meet some again.
-    scored: std::sync::Mutex<Vec<(JointMaps, Scored)>>,
-}
-
-/// A candidate's held-out errors at its best ridge.
-#[derive(Clone)]
-struct Scored {
-    ridge: f64,
-    /// Per held-out posture (all folds, in order), the sum of squared errors, m^2.
-    errors: Vec<f64>,
-    total: f64,
-}
-
-impl<'a> Inner<'a> {
-    fn new(linear: &'a Linear, postures: &[usize]) -> Result<Self> {
-        let parts = folds(postures);
-        let readings_of = |ps: &[usize]| ps.iter().map(|&p| linear.rows[p].len() / 3).sum();
-        let splits = (parts.par_iter())
-            .map(|(train, test)| linear.split(train, test))
-            .collect::<Result<Vec<_>>>()?;
-        Ok(Inner {
-            linear,
-            readings: readings_of(postures),
-            train_readings: parts.iter().map(|(t, _)| readings_of(t)).collect(),
-            splits,
-            scored: Default::default(),
-        })
-    }
-
-    /// The held-out errors of `choice` at its best ridge of [`RIDGES`], scored once.
-    fn score(&self, choice: &JointMaps) -> Result<Scored> {
-        let known = |memo: &[(JointMaps, Scored)]| {
-            (memo.iter().find(|(m, _)| m == choice)).map(|(_, s)| s.clone())
-        };
-        let memo = self.scored.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some(s) = known(&memo) {
-            return Ok(s);
-        }
-        drop(memo);
-        let s = self.scored_anew(choice)?;
-        let mut memo = self.scored.lock().unwrap_or_else(|e| e.into_inner());
-        memo.push((*choice, s.clone()));
-        Ok(s)
-    }
-
-    /// [`Self::score`] computed.
-    fn scored_anew(&self, choice: &JointMaps) -> Result<Scored> {
-        let per_fold = (self.splits.par_iter().zip(&self.train_readings))
-            .map(|(s, &n)| {
-                let lambdas: Vec<f64> = RIDGES.iter().map(|mu| mu * n as f64).collect();
-                self.linear.errors(s, choice, &lambdas)
-            })
-            .collect::<Result<Vec<_>>>()?;
-        let totals: Vec<f64> = (0..RIDGES.len())
-            .map(|r| per_fold.iter().flat_map(|f| &f[r]).sum())
-            .collect();
-        let best = (0..RIDGES.len())
-            .min_by(|&a, &b| totals[a].total_cmp(&totals[b]))
-            .unwrap_or(0);
-        Ok(Scored {
-            ridge: RIDGES[best],
-            errors: per_fold.iter().flat_map(|f| f[best].clone()).collect(),
-            total: totals[best],
-        })
-    }
-
-    fn rms(&self, s: &Scored) -> f64 {
-        (s.total / self.readings.max(1) as f64).sqrt()
-    }
-}
-
 /// Whether `candidate` lowers the held-out error of `current` by more than [`MAP_ACCEPT`]
 /// standard errors of the paired per-posture differences and by [`LEAST_GAIN`] of it.
 fn better(current: &Scored, candidate: &Scored) -> bool {
@@ -368,13 +278,25 @@ pub fn lowers(current: (&[f64], f64), candidate: (&[f64], f64), accept: f64) -> 
 /// # Errors
 /// [`Error::NotFinite`] when an SVD does not converge.
 pub fn choose(linear: &Linear, postures: &[usize], spec: Spec) -> Result<Choice> {
-    // Fixed maps or none: the splits project their columns alone.
-    let narrow = match spec {
+    let narrow = narrowed(linear, spec);
+    choose_on(
+        &Inner::new(narrow.as_ref().unwrap_or(linear), postures)?,
+        spec,
+    )
+}
+
+/// `linear` with the columns of fixed maps alone, or none, for `spec` (`None` for
+/// [`Spec::Auto`]): the splits project these alone.
+fn narrowed(linear: &Linear, spec: Spec) -> Option<Linear> {
+    match spec {
         Spec::Auto => None,
         Spec::None => Some(linear.restricted(&JointMaps::NONE)),
         Spec::Fixed(h) => Some(linear.restricted(&h)),
-    };
-    let inner = Inner::new(narrow.as_ref().unwrap_or(linear), postures)?;
+    }
+}
+
+/// [`choose`] on the inner cross-validation `inner`.
+fn choose_on(inner: &Inner, spec: Spec) -> Result<Choice> {
     let none = inner.score(&JointMaps::NONE)?;
     let none_rms = inner.rms(&none);
     let mut tried = Vec::new();
@@ -395,7 +317,7 @@ pub fn choose(linear: &Linear, postures: &[usize], spec: Spec) -> Result<Choice>
             (chosen, current) = (h, s);
         }
         Spec::Auto => {
-            let mut alone = alone(&inner, &mut record)?;
+            let mut alone = alone(inner, &mut record)?;
             alone.sort_by(|a, b| a.1.total_cmp(&b.1));
             let order: Vec<usize> = (alone.iter())
                 .filter_map(|(m, _)| (0..6).find(|&j| m.harmonics[j] > 0))
@@ -482,8 +404,13 @@ fn alone(
 /// # Errors
 /// Those of [`choose`].
 pub fn nested(linear: &Linear, postures: &[usize], spec: Spec) -> Result<Nested> {
-    outer(linear, postures, |_, train| {
-        let choice = choose(linear, train, spec)?;
+    let narrow = narrowed(linear, spec);
+    let pairs = Pairs::new(narrow.as_ref().unwrap_or(linear), postures)?;
+    outer(linear, postures, |k, train| {
+        let choice = match &pairs {
+            Some(pairs) => choose_on(&pairs.inner(k), spec)?,
+            None => choose(linear, train, spec)?,
+        };
         Ok((choice.maps, choice.ridge))
     })
 }
@@ -548,3 +475,6 @@ fn outer(
         errors,
     })
 }
+
+#[cfg(test)]
+mod inner_tests;

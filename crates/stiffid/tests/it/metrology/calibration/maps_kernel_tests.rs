@@ -237,3 +237,21 @@ fn maps_chosen_at_another_fit_have_their_ridge_chosen_again() {
     assert_eq!(ridge_after(true), 123.0);
     assert_eq!(ridge_after(false), choice.ridge);
 }
+
+/// The nested figure (its outer folds' choices in parallel, sharing their inner splits and each
+/// candidate's steps on them) is the same whatever the thread count.
+#[test]
+fn the_nested_figure_is_the_same_on_one_thread_and_on_four() {
+    let linear = linear(60, 4);
+    let all: Vec<usize> = (0..60).collect();
+    let on = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| maps::nested(&linear, &all, Spec::Auto).unwrap())
+    };
+    let one = on(1);
+    assert!(one.choices.iter().any(|c| !c.is_none()), "{one:?}");
+    assert_eq!(one, on(4));
+}
