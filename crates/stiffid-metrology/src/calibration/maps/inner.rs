@@ -199,8 +199,10 @@ impl<'a> Pairs<'a> {
             .collect();
         let pairs = (pairs.par_iter())
             .map(|&(a, b)| {
-                let train: Vec<usize> = (postures.iter().copied())
-                    .filter(|p| !folds[a].contains(p) && !folds[b].contains(p))
+                // Posture `i` of `postures` is in fold `i mod k` ([`folds`]).
+                let train: Vec<usize> = (postures.iter().enumerate())
+                    .filter(|(i, _)| i % k != a && i % k != b)
+                    .map(|(_, &p)| p)
                     .collect();
                 let test = [folds[a].as_slice(), folds[b].as_slice()].concat();
                 Ok(Arc::new(Trained::new(linear, &train, &test)?))
