@@ -11,7 +11,7 @@ pub const MAX_REWEIGHTS: usize = 4;
 /// The relative change of the noise under which its fixed point is reached.
 pub const NOISE_TOLERANCE: f64 = 0.05;
 
-/// [`fit_within`] at most `limit` iterations, the gravity prior weighed against the residuals'
+/// [`super::fit_within`] at most `limit` iterations, the gravity prior weighed against the residuals'
 /// noise when `reweigh` and the model has gravity terms ([`reweighed`]; module docs, *Thin
 /// readings*): fitted anew from `start` with the noise per coordinate of the last fit's
 /// residuals (`|r|^2 / (3n - p_e)`, `p_e` its effective parameters) while it exceeds the

@@ -203,7 +203,7 @@ fn skipped(
 
 /// The model, fit and options after the maps `assessed` (`keep`: the maps are fitted, else none
 /// is and `why` says why): those given without maps, else the model with the maps chosen on every
-/// posture ([`assess`]) fitted from the calibration's start ([`fit::start`]) with the chosen
+/// posture (the assessment's) fitted from the calibration's start ([`fit::start`]) with the chosen
 /// ridge, chosen again at `fitted` where the maps were chosen at another fit (what the readings
 /// determine analysed where `fitted` analysed it).
 ///
