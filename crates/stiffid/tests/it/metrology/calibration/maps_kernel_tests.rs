@@ -5,16 +5,18 @@
 //! training rows (the bidiagonalisation of its transpose) and with fewer; and the nested figure of
 //! choices given back equal to the one that chose them.
 
-use super::fit;
+use super::error_model::Observation;
+use super::fit::{self, Fit};
 use super::maps::{self, JointMaps, Linear, Spec};
 use super::maps_tests::{identified, model, noisy, options, truth};
 use super::tests::{postures, readings};
+use super::ErrorModel;
 use nalgebra::{DMatrix, DVector};
 use stiffid_core::robot::error_map;
 
-/// A UR10 campaign of `n` postures at one point with maps on joints 2 and 5, linearised at its
-/// geometric fit with every joint's 32 harmonics (384 columns) as candidates.
-fn linear(n: usize, seed: u64) -> Linear {
+/// A UR10 campaign of `n` postures at one point with maps on joints 2 and 5: the geometric
+/// model, the readings and the model's fit to them.
+fn campaign(n: usize, seed: u64) -> (ErrorModel, Vec<Observation>, Fit) {
     let geometry = model();
     let qs = postures(geometry.robot(), n, 500 + seed);
     let kept = identified(&geometry, &qs);
@@ -23,6 +25,13 @@ fn linear(n: usize, seed: u64) -> Linear {
     let data = noisy(readings(&mapped, &truth, &qs), 2e-5, seed);
     let start = fit::start(&geometry, &data).unwrap();
     let fitted = fit::fit(&geometry, &data, &start, &options(0.0)).unwrap();
+    (geometry, data, fitted)
+}
+
+/// [`campaign`] linearised at its geometric fit with every joint's 32 harmonics (384 columns) as
+/// candidates.
+fn linear(n: usize, seed: u64) -> Linear {
+    let (geometry, data, fitted) = campaign(n, seed);
     Linear::at(&geometry, &fitted, &data, 1.0, Spec::Auto.candidates(false)).unwrap()
 }
 
@@ -194,14 +203,7 @@ fn the_nested_figure_of_the_choices_given_is_the_nested_figure() {
 #[test]
 fn maps_chosen_at_another_fit_have_their_ridge_chosen_again() {
     use stiffid::metrology::calibration::judgement::maps::{fit_maps, Assessed, Maps};
-    let geometry = model();
-    let qs = postures(geometry.robot(), 60, 503);
-    let kept = identified(&geometry, &qs);
-    let mapped = geometry.clone().with_maps([0, 8, 0, 0, 4, 0]).unwrap();
-    let truth = truth(&mapped, &kept, 2e-4, 3);
-    let data = noisy(readings(&mapped, &truth, &qs), 2e-5, 3);
-    let start = fit::start(&geometry, &data).unwrap();
-    let fitted = fit::fit(&geometry, &data, &start, &options(0.0)).unwrap();
+    let (geometry, data, fitted) = campaign(60, 3);
     let linear = Linear::at(&geometry, &fitted, &data, 1.0, Spec::Auto.candidates(false)).unwrap();
     let all: Vec<usize> = (0..60).collect();
     let choice = maps::choose(&linear, &all, Spec::Auto).unwrap();
