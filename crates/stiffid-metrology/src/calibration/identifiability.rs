@@ -75,8 +75,7 @@ pub(crate) fn triangular(a: &DMatrix<f64>) -> DMatrix<f64> {
         return a.clone();
     }
     let mut work = a.clone();
-    let mut taus = vec![0.0; n];
-    stiffid_core::math::linalg::householder_qr_columns(work.as_mut_slice(), m, &mut taus);
+    super::reflections::qr(work.as_mut_slice(), m, n);
     DMatrix::from_fn(n, n, |i, j| if i <= j { work[(i, j)] } else { 0.0 })
 }
 

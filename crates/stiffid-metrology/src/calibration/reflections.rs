@@ -3,7 +3,8 @@
 //! diagonal, or right of the superdiagonal, where it zeroed) and applied to vectors, never
 //! formed:
 //! - [`qr`], the QR of a split's projected map columns with its right-hand side as one more
-//!   column (`dgeqr2`'s operations, each trailing column taken through a block of reflections at a
+//!   column, of the fit's Jacobian with its residuals and of the identifiability analysis's
+//!   scaled Jacobian (`dgeqr2`'s operations, each trailing column taken through a block of reflections at a
 //!   time while it sits in cache: the same operations in the same order as column after column);
 //! - [`Bidiagonal`], the Golub-Kahan bidiagonalisation `S = W B Z^T` (`dgebd2`) of a choice's
 //!   columns of a split's `R` and of the fit's `R` at each iteration, for Eldén's ridge steps

@@ -596,14 +596,13 @@ fn effective_parameters(
 }
 
 /// `R` (`n x n`) and `Q^T r` (`n`) of the QR factorisation of `j` (`m x n`, `m >= n`), from one
-/// Householder pass over `[j | r]`.
+/// Householder pass over `[j | r]` (`reflections::qr`: blocks of columns, four at a time).
 fn factor(j: &DMatrix<f64>, r: &DVector<f64>) -> (DMatrix<f64>, DVector<f64>) {
     let (m, n) = j.shape();
     let mut a = j.clone().insert_column(n, 0.0);
     a.column_mut(n).copy_from(r);
-    let mut taus = vec![0.0; n.min(m)];
-    stiffid_core::math::linalg::householder_qr_columns(a.as_mut_slice(), m, &mut taus);
     let k = n.min(m);
+    super::reflections::qr(a.as_mut_slice(), m, k);
     let rt = DMatrix::from_fn(k, n, |i, c| if i <= c { a[(i, c)] } else { 0.0 });
     (rt, a.column(n).rows(0, k).into_owned())
 }
