@@ -35,7 +35,7 @@
 //! choice of postures does not give (their verdict on the group is reported all the same).
 
 use nalgebra::{DMatrix, Vector6};
-use stiffid_core::math::linalg::householder_qr_columns;
+use stiffid_core::math::householder;
 use stiffid_core::model::{Kind, Parameter, Spring};
 use stiffid_core::observation::write_posture_block;
 use stiffid_core::{Error, Result, Setup};
@@ -294,8 +294,7 @@ fn separation(psi: DMatrix<f64>) -> f64 {
     }
     let m = psi.nrows().max(n);
     let mut a = psi.resize_vertically(m, 0.0);
-    let mut taus = vec![0.0; n];
-    householder_qr_columns(a.as_mut_slice(), m, &mut taus);
+    householder::qr(a.as_mut_slice(), m, n);
     (a[(n - 1, n - 1)].abs() / norm).min(1.0)
 }
 

@@ -1,7 +1,7 @@
 //! The Jacobi SVD kernels' tests: round-robin pairs, singular values and vectors against known matrices.
 
+use super::householder::triangular_factor;
 use super::jacobi::*;
-use super::linalg::triangular_factor;
 use nalgebra::{DMatrix, Matrix6, Vector6};
 use nalgebra::{Rotation3, Vector3};
 

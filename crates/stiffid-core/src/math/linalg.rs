@@ -1,6 +1,7 @@
-//! Dense kernels for the `m x 6` least-squares problems of stiffid: Householder QR specialised to
-//! six columns, the 6x6 inverse and fixed-order products (the singular values of the triangular
-//! factor are [`crate::math::jacobi`]'s).
+//! Dense kernels for the `m x 6` least-squares problems of stiffid: the 6x6 inverse, fixed-order
+//! products, column norms, and the vector kernels every reduction runs on (`dot`, `dot4`, `axpy`,
+//! `axpy4`, with AVX where the processor has it); the QR is [`crate::math::householder`]'s and the
+//! singular values of its triangular factor are [`crate::math::jacobi`]'s.
 //!
 //! The six-column case is small enough that general-purpose routines spend most of their time on
 //! bookkeeping; these kernels keep [`crate::math::lsq::Factor`] and the design evaluator
@@ -8,8 +9,7 @@
 
 use nalgebra::allocator::Allocator;
 use nalgebra::{
-    DMatrix, DefaultAllocator, Dim, DimDiff, DimMin, DimMinimum, DimSub, Matrix6, OMatrix, Vector6,
-    SVD, U1,
+    DefaultAllocator, Dim, DimDiff, DimMin, DimMinimum, DimSub, Matrix6, OMatrix, Vector6, SVD, U1,
 };
 
 /// The iteration cap of every nalgebra SVD stiffid runs (`try_svd`'s `max_niter`): nalgebra's
@@ -42,43 +42,6 @@ where
 {
     fn capped_svd(self, u: bool, v_t: bool) -> Option<SVD<f64, R, C>> {
         self.try_svd(u, v_t, f64::EPSILON, SVD_MAX_ITERATIONS)
-    }
-}
-
-/// Householder QR in place of the column-major `m x 6` matrix `a` (LAPACK `dgeqrf`): on return `R`
-/// is on and above the diagonal and the reflector vectors `v_k` (with `v_k[k] = 1` implied) below
-/// it. Returns the `tau_k`.
-pub(crate) fn householder_qr(a: &mut [f64], m: usize) -> Vector6<f64> {
-    let mut taus = Vector6::zeros();
-    householder_qr_columns(a, m, taus.as_mut_slice());
-    taus
-}
-
-/// `householder_qr` of the column-major `m x n` matrix `a`, `n = taus.len() <= m` columns (the
-/// same operations in the same order for six): the `tau_k` are written to `taus`.
-#[inline(always)]
-pub fn householder_qr_columns(a: &mut [f64], m: usize, taus: &mut [f64]) {
-    for k in 0..taus.len() {
-        let (left, right) = a.split_at_mut((k + 1) * m);
-        let col = &mut left[k * m + k..];
-        let alpha = col[0];
-        let tail = dot(&col[1..], &col[1..]).sqrt();
-        if tail == 0.0 {
-            continue;
-        }
-        let beta = -alpha.signum() * (alpha * alpha + tail * tail).sqrt();
-        let tau = (beta - alpha) / beta;
-        let inv = 1.0 / (alpha - beta);
-        col[1..].iter_mut().for_each(|x| *x *= inv);
-        col[0] = beta;
-        taus[k] = tau;
-        let v = &col[1..];
-        for c in right.chunks_exact_mut(m) {
-            let c = &mut c[k..];
-            let w = tau * (c[0] + dot(v, &c[1..]));
-            c[0] -= w;
-            axpy(-w, v, &mut c[1..]);
-        }
     }
 }
 
@@ -135,20 +98,6 @@ pub fn times_6x6(a: &[f64], m: usize, y: &Matrix6<f64>) -> Vec<f64> {
         }
     }
     out
-}
-
-/// `R_A` of the Householder QR `A = Q_A R_A` (6x6, upper triangular, `A^T A = R_A^T R_A`) of an
-/// `m x 6` matrix; zero rows are appended to a matrix of fewer than 6 rows (they change neither).
-pub fn triangular_factor(a: DMatrix<f64>) -> Matrix6<f64> {
-    let m = a.nrows().max(6);
-    let mut a = a.resize_vertically(m, 0.0);
-    householder_qr(a.as_mut_slice(), m);
-    upper_triangle(a.as_slice(), m)
-}
-
-/// The upper triangle `R` (6x6) of the in-place result of `householder_qr` on `a` with `m` rows.
-pub(crate) fn upper_triangle(a: &[f64], m: usize) -> Matrix6<f64> {
-    Matrix6::from_fn(|i, j| if i <= j { a[j * m + i] } else { 0.0 })
 }
 
 /// The Euclidean norms of the six columns of the column-major `a` with `m` rows (NaN or infinity

@@ -1,5 +1,7 @@
-//! The linear-algebra kernels' tests: QR, triangular factors, inverses and products against known matrices.
+//! The linear-algebra kernels' tests: the six-column QR and triangular factors
+//! ([`super::householder`]), inverses and products against known matrices.
 
+use super::householder::{householder_qr, upper_triangle};
 use super::linalg::*;
 use nalgebra::{DMatrix, Matrix6, Vector6};
 

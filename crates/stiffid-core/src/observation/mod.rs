@@ -166,7 +166,7 @@ pub fn points_factor(tool: &Tool) -> Matrix6<f64> {
             _ => -p.cross_matrix()[(r % 3, c - 3)],
         }
     });
-    crate::math::linalg::triangular_factor(rows)
+    crate::math::householder::triangular_factor(rows)
 }
 
 /// The compact block `C = R_P J_b diag(tau)` of one posture under the setup's rope-mass load

@@ -23,8 +23,8 @@
 use super::criteria::{predicted_deviation_pct, tcp_dexterity, Criterion, Evaluation};
 use nalgebra::{DMatrix, DVector, Matrix6, Vector6};
 use std::cell::OnceCell;
+use stiffid_core::math::householder::{self, triangular_factor};
 use stiffid_core::math::jacobi::{cond, cond_n};
-use stiffid_core::math::linalg::{householder_qr_columns, triangular_factor};
 use stiffid_core::math::lsq::Factor;
 use stiffid_core::observation::{compact_posture_block, points_factor, rope_observation_matrix};
 use stiffid_core::setup::Setup;
@@ -455,8 +455,7 @@ impl Wide {
         let a = rope_observation_matrix(setup, setup.test_postures());
         let m = a.nrows().max(n);
         let mut a = a.resize_vertically(m, 0.0);
-        let mut taus = vec![0.0; n];
-        householder_qr_columns(a.as_mut_slice(), m, &mut taus);
+        householder::qr(a.as_mut_slice(), m, n);
         let test_factor = DMatrix::from_fn(n, n, |i, j| if i <= j { a[(i, j)] } else { 0.0 });
         Self {
             scaling,

@@ -10,8 +10,8 @@
 //! [`stiffid_core::math::linalg::times_6x6`]); no general matrix product that picks its kernel at run time.
 
 use nalgebra::{DMatrix, DVector};
+use stiffid_core::math::householder;
 use stiffid_core::math::jacobi::{cond_n, singular_values_and_vectors_n};
-use stiffid_core::math::linalg::householder_qr_columns;
 use stiffid_core::math::lsq::RANK_TOLERANCE;
 
 /// The factor of a full-rank group with `n > 6` parameters: `Psi = Q R`, `S = Q R_s`,
@@ -39,8 +39,7 @@ impl WideGroup {
         if !largest.is_finite() || norms.iter().any(|&c| c <= largest * RANK_TOLERANCE) {
             return None;
         }
-        let mut taus = vec![0.0; n];
-        householder_qr_columns(&mut psi, m, &mut taus);
+        householder::qr(&mut psi, m, n);
         let r = DMatrix::from_fn(n, n, |i, j| if i <= j { psi[j * m + i] } else { 0.0 });
         let r_inv = upper_inverse(&r)?;
         let bound = r.norm() * r_inv.norm();

@@ -20,6 +20,7 @@
 //! the weakly separated pairs (Sun and Hollerbach 2008 on observability).
 
 use nalgebra::{DMatrix, DVector};
+use stiffid_core::math::householder;
 use stiffid_core::math::linalg::CappedSvd;
 use stiffid_core::{Error, Result};
 
@@ -75,7 +76,7 @@ pub(crate) fn triangular(a: &DMatrix<f64>) -> DMatrix<f64> {
         return a.clone();
     }
     let mut work = a.clone();
-    super::reflections::qr(work.as_mut_slice(), m, n);
+    householder::qr(work.as_mut_slice(), m, n);
     DMatrix::from_fn(n, n, |i, j| if i <= j { work[(i, j)] } else { 0.0 })
 }
 

@@ -1,102 +1,13 @@
-//! Householder reductions of the maps' splits and of the fit's triangular factor, their
-//! orthogonal factors kept as reflections (LAPACK's storage: each reflection's vector below the
-//! diagonal, or right of the superdiagonal, where it zeroed) and applied to vectors, never
-//! formed:
-//! - [`qr`], the QR of a split's projected map columns with its right-hand side as one more
-//!   column, of the fit's Jacobian with its residuals and of the identifiability analysis's
-//!   scaled Jacobian (`dgeqr2`'s operations, each trailing column taken through a block of reflections at a
-//!   time while it sits in cache: the same operations in the same order as column after column);
-//! - [`Bidiagonal`], the Golub-Kahan bidiagonalisation `S = W B Z^T` (`dgebd2`) of a choice's
-//!   columns of a split's `R` and of the fit's `R` at each iteration, for Eldén's ridge steps
-//!   ([`bidiagonal_ridge`]: every ridge or damping `lambda` in `O(k)` once `B` is known).
-//!
-//! Column-major slices throughout, with the core's four-way `dot` and `axpy`; a reflection is
-//! applied to four columns at a time ([`reflect_columns`]), each column's result that of the
-//! reflection applied to it alone, to the last bit.
+//! The Golub-Kahan bidiagonalisation `S = W B Z^T` ([`Bidiagonal`], LAPACK's `dgebd2`) of a
+//! choice's columns of a maps split's `R` and of the fit's `R` at each iteration, its orthogonal
+//! factors kept as reflections (each one's vector below the diagonal, or right of the
+//! superdiagonal, where it zeroed) and applied to vectors, never formed; and Eldén's ridge steps
+//! on it ([`bidiagonal_ridge`]: every ridge or damping `lambda` in `O(k)` once `B` is known). The
+//! reflections are the core's ([`stiffid_core::math::householder`]), applied four columns at a
+//! time.
 
-use stiffid_core::math::linalg::{axpy, axpy4, dot, dot4};
-
-/// The reflections a trailing column is taken through while it sits in cache: a block of them
-/// is `BLOCK` columns of the matrix (2400 rows: 600 KiB, within a 1 MiB L2).
-const BLOCK: usize = 32;
-
-/// Makes `x` into a reflection `H = I - tau v v^T` with `H x = beta e_1`: returns `tau`, leaves
-/// `beta` in `x[0]` and `v[1..]` in `x[1..]` (`v[0] = 1`); `tau = 0` (the identity, `x` unchanged)
-/// where `x[1..]` is zero.
-fn reflector(x: &mut [f64]) -> f64 {
-    let alpha = x[0];
-    let tail = dot(&x[1..], &x[1..]).sqrt();
-    if tail == 0.0 {
-        return 0.0;
-    }
-    let beta = -alpha.signum() * (alpha * alpha + tail * tail).sqrt();
-    let inv = 1.0 / (alpha - beta);
-    x[1..].iter_mut().for_each(|v| *v *= inv);
-    x[0] = beta;
-    (beta - alpha) / beta
-}
-
-/// `y = (I - tau v v^T) y`, `v = (1, tail)`.
-pub(super) fn reflect(tail: &[f64], tau: f64, y: &mut [f64]) {
-    let w = tau * (y[0] + dot(tail, &y[1..]));
-    y[0] -= w;
-    axpy(-w, tail, &mut y[1..]);
-}
-
-/// Each of the column-major `columns` (`m` rows each), from its row `from`, taken through the
-/// reflection of [`reflect`] (`tail` of `m - from - 1` entries): four columns at a time, their
-/// dots with `tail` summed together ([`dot4`]), each column's result that of [`reflect`] alone.
-pub(super) fn reflect_columns(tail: &[f64], tau: f64, columns: &mut [f64], m: usize, from: usize) {
-    let mut groups = columns.chunks_exact_mut(4 * m);
-    for g in &mut groups {
-        let (c0, rest) = g.split_at_mut(m);
-        let (c1, rest) = rest.split_at_mut(m);
-        let (c2, c3) = rest.split_at_mut(m);
-        let mut cs = [
-            &mut c0[from..],
-            &mut c1[from..],
-            &mut c2[from..],
-            &mut c3[from..],
-        ];
-        let d = dot4(tail, [&cs[0][1..], &cs[1][1..], &cs[2][1..], &cs[3][1..]]);
-        for (c, d) in cs.iter_mut().zip(d) {
-            let w = tau * (c[0] + d);
-            c[0] -= w;
-            axpy(-w, tail, &mut c[1..]);
-        }
-    }
-    for c in groups.into_remainder().chunks_exact_mut(m) {
-        reflect(tail, tau, &mut c[from..]);
-    }
-}
-
-/// Householder QR in place of the column-major matrix `a` of `m` rows, its first `reflections`
-/// columns reduced (`reflections <= min(m, columns)`) and every column after them taken through
-/// the reflections: `R` on and above the diagonal of those columns, `Q^T` times the others in
-/// theirs. Returns the `tau`s.
-pub(super) fn qr(a: &mut [f64], m: usize, reflections: usize) -> Vec<f64> {
-    let mut taus = vec![0.0; reflections];
-    for k0 in (0..reflections).step_by(BLOCK) {
-        let k1 = (k0 + BLOCK).min(reflections);
-        for k in k0..k1 {
-            let (left, right) = a.split_at_mut((k + 1) * m);
-            let col = &mut left[k * m + k..];
-            taus[k] = reflector(col);
-            if taus[k] == 0.0 {
-                continue;
-            }
-            reflect_columns(&col[1..], taus[k], &mut right[..(k1 - k - 1) * m], m, k);
-        }
-        let (panel, trailing) = a.split_at_mut(k1 * m);
-        for group in trailing.chunks_mut(4 * m) {
-            for k in (k0..k1).filter(|&k| taus[k] != 0.0) {
-                let tail = &panel[k * m + k + 1..(k + 1) * m];
-                reflect_columns(tail, taus[k], group, m, k);
-            }
-        }
-    }
-    taus
-}
+use stiffid_core::math::householder::{reflect, reflect_columns, reflector};
+use stiffid_core::math::linalg::{axpy, axpy4};
 
 /// The bidiagonalisation `S = W B Z^T` of an `m x n` matrix, `m >= n >= 1`: `B` upper bidiagonal,
 /// `W = H_0 .. H_{n-1}` and `Z = G_0 .. G_{n-2}` kept as their reflections.

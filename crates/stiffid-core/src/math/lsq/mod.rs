@@ -15,9 +15,10 @@ mod reduced;
 
 pub use reduced::{Reduced, Solution};
 
+use crate::math::householder::{householder_qr, upper_triangle};
 use crate::math::jacobi::singular_values;
 use crate::math::linalg::CappedSvd;
-use crate::math::linalg::{axpy, column_norms, dot, householder_qr, upper_triangle};
+use crate::math::linalg::{axpy, column_norms, dot};
 use crate::{Error, Result};
 use nalgebra::{DMatrix, DVector, Matrix6, Vector6};
 

@@ -12,7 +12,8 @@
 //! result is then the same, to the bit, whatever the number of threads.
 
 use super::checked_inverse;
-use crate::math::linalg::{column_norms, householder_qr, upper_triangle};
+use crate::math::householder::{householder_qr, upper_triangle};
+use crate::math::linalg::column_norms;
 use crate::{Error, Result};
 use nalgebra::{DMatrix, DVector, Matrix6, Vector6};
 

@@ -58,6 +58,7 @@ use crate::register::Correspondence;
 use nalgebra::{DMatrix, DVector};
 use stiffid_core::common::stop::Stop;
 use stiffid_core::common::warning::{Warning, WarningKind};
+use stiffid_core::math::householder;
 use stiffid_core::math::linalg::CappedSvd;
 use stiffid_core::{Error, Result};
 
@@ -596,13 +597,13 @@ fn effective_parameters(
 }
 
 /// `R` (`n x n`) and `Q^T r` (`n`) of the QR factorisation of `j` (`m x n`, `m >= n`), from one
-/// Householder pass over `[j | r]` (`reflections::qr`: blocks of columns, four at a time).
+/// Householder pass over `[j | r]` (`householder::qr`: blocks of columns, four at a time).
 fn factor(j: &DMatrix<f64>, r: &DVector<f64>) -> (DMatrix<f64>, DVector<f64>) {
     let (m, n) = j.shape();
     let mut a = j.clone().insert_column(n, 0.0);
     a.column_mut(n).copy_from(r);
     let k = n.min(m);
-    super::reflections::qr(a.as_mut_slice(), m, k);
+    householder::qr(a.as_mut_slice(), m, k);
     let rt = DMatrix::from_fn(k, n, |i, c| if i <= c { a[(i, c)] } else { 0.0 });
     (rt, a.column(n).rows(0, k).into_owned())
 }

@@ -41,9 +41,10 @@
 
 use super::super::error_model::{JointMaps, Observation, Target};
 use super::super::fit::Fit;
-use super::super::reflections::{self, bidiagonal_ridge, Bidiagonal};
+use super::super::reflections::{bidiagonal_ridge, Bidiagonal};
 use super::super::{ErrorModel, Estimate};
 use nalgebra::{DMatrix, DVector, Vector6};
+use stiffid_core::math::householder;
 use stiffid_core::math::linalg::CappedSvd;
 use stiffid_core::robot::error_map;
 use stiffid_core::{Error, Result};
@@ -456,7 +457,7 @@ fn compressed(
     };
     let k = rows.min(n);
     if k > 0 {
-        reflections::qr(&mut c, rows, k);
+        householder::qr(&mut c, rows, k);
     }
     let factor = DMatrix::from_fn(k, n, |r, j| if r <= j { c[j * rows + r] } else { 0.0 });
     (factor, DVector::from_fn(k, |r, _| c[n * rows + r]))
@@ -470,7 +471,7 @@ fn complement(u: &DMatrix<f64>, m_t: &DMatrix<f64>, r_t: &DVector<f64>) -> Vec<f
     a.extend_from_slice(u.as_slice());
     a.extend_from_slice(m_t.as_slice());
     a.extend_from_slice(r_t.as_slice());
-    reflections::qr(&mut a, m, p);
+    householder::qr(&mut a, m, p);
     (a[p * m..].chunks_exact(m))
         .flat_map(|column| column[p..].iter().copied())
         .collect()
