@@ -119,6 +119,10 @@ fn ls_cases() -> Vec<(String, Reads)> {
         // Options that change neither the path nor its end, an output early, a register's CNT.
         (ls("   1:J P[1] R[1:joint speed]% CNT R[2:corner value] ;\n   2:L P[2] 50mm/sec FINE TB .5sec,CALL X PTH\n    :  Arc Start[1] ;", &pos), Targets(&[(4, Q1), (5, Q2)])),
         (ls("   1:J P[1] 100% FINE ;\n   2:L P[2] 50mm/sec FINE Arc Weld[1] ;", &pos), Refused(5, "Arc Start[..] or Arc End[..]")),
+        // Unnumbered lines after a closed instruction are instructions of their own: a motion, a
+        // call between two motions.
+        (ls("   1:J P[1] 100% FINE ;\n    :L P[2] 50mm/sec FINE ;", &pos), Targets(&[(4, Q1), (5, Q2)])),
+        (ls("   1:J P[1] 100% FINE ;\n    :  CALL SUB ;\n    :L P[2] 50mm/sec FINE ;", &pos), Refused(5, "a call between two motions")),
         (ls("   1:J P[9] 100% FINE ;", &pos), Refused(4, "no position P[9]")),
         // Around the motions: what cannot change the path passes, what can is refused.
         (ls("   1:UFRAME_NUM=0 ;\n   2:  PAYLOAD[1] ;\n   3:  RUN LOG ;\n   4:J P[1] 100% FINE ;\n   5:  DO[1]=ON ;\n   6:  WAIT 1.00(sec) ;\n   7:  R[1]=R[1]+1 ;\n   8:  // L P[9] 10mm/sec FINE ;\n   9:L P[2] 50mm/sec FINE ;\n  10:  CALL SUB ;", &pos), Targets(&[(7, Q1), (12, Q2)])),

@@ -75,10 +75,15 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>, Unit
 }
 
 /// The `/MN` instructions: the line of each and its text (continuation lines `   :` joined),
-/// without the line number and the closing `;`; comments (`!`, `//`) dropped.
+/// without the line number and the closing `;`; comments (`!`, `//`) dropped. A line without a
+/// number (`   :`) continues the instruction before it while that one is open (its line did not
+/// end with `;`: a circular move's end, a motion's options on the next line); after a closed one
+/// it is an instruction of its own, as generators that leave the numbering to the controller
+/// write them.
 fn instructions(text: &str) -> Vec<(u64, String)> {
     let mut out: Vec<(u64, String)> = Vec::new();
     let mut in_mn = false;
+    let mut open = false;
     for (line, _, l) in super::lines(text) {
         let t = l.trim();
         if t.starts_with('/') {
@@ -91,15 +96,15 @@ fn instructions(text: &str) -> Vec<(u64, String)> {
         let Some((number, body)) = t.split_once(':') else {
             continue;
         };
+        let closed = body.trim_end().ends_with(';');
         let body = body.trim_end().trim_end_matches(';');
-        match number.trim() {
-            "" => {
-                if let Some(last) = out.last_mut() {
-                    last.1.push(' ');
-                    last.1.push_str(body);
-                }
+        let number = number.trim();
+        match out.last_mut() {
+            Some(last) if number.is_empty() && open => {
+                last.1.push(' ');
+                last.1.push_str(body);
             }
-            n if n.chars().all(|c| c.is_ascii_digit()) => {
+            _ if number.chars().all(|c| c.is_ascii_digit()) => {
                 let b = body.trim_start();
                 if !(b.starts_with('!') || b.starts_with("//")) {
                     out.push((line, body.to_string()));
@@ -107,6 +112,7 @@ fn instructions(text: &str) -> Vec<(u64, String)> {
             }
             _ => {}
         }
+        open = !closed;
     }
     out
 }
