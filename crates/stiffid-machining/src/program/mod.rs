@@ -314,7 +314,7 @@ pub fn parse_in(text: &str, dialect: Dialect, context: &Context) -> Result<Joint
         let hint = dialect.controller().motions();
         return Err(at(
             1,
-            format!("no motion to a joint target found (expected {hint})"),
+            format!("no motion to a target found (expected {hint})"),
         ));
     }
     if targets.len() > MAX_TARGETS {

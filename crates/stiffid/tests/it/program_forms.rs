@@ -133,7 +133,7 @@ fn ls_cases() -> Vec<(String, Reads)> {
         (ls("   1:J P[1] 100% FINE ;\n   2:  Weave Sine[1] ;\n   3:L P[2] 50mm/sec FINE ;\n   4:  Weave End ;", &pos), Refused(5, "weave across the path")),
         (ls("   1:LBL[1] ;\n   2:J P[1] 100% FINE ;\n   3:JMP LBL[1] ;", &pos), Refused(6, "jump")),
         (ls("   1:J P[1] 100% FINE ;", &[]), Refused(4, "no position P[1]")),
-        (ls("", &pos), Refused(1, "no motion to a joint target")),
+        (ls("", &pos), Refused(1, "no motion to a target found")),
     ]
 }
 

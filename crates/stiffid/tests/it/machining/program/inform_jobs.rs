@@ -260,19 +260,19 @@ fn the_real_jobs_are_refused_naming_line_and_construct() {
         (
             "MOTOROS2_INIT_ROS_SINGLE_ARM.JBI",
             1,
-            "no motion to a joint target",
+            "no motion to a target found",
         ),
         (
             "MOTOROS2_INIT_ROS_TWO_ARMS.JBI",
             9,
             "///GROUP2 RB2: a job of robot RB2",
         ),
-        ("ROSI_ROS_R1B1.JBI", 1, "no motion to a joint target"),
-        ("ROSI_ROS_S1.JBI", 1, "no motion to a joint target"),
+        ("ROSI_ROS_R1B1.JBI", 1, "no motion to a target found"),
+        ("ROSI_ROS_S1.JBI", 1, "no motion to a target found"),
         (
             "ROSI_INIT_ROS_CALL_JOB_MAIN.JBI",
             1,
-            "no motion to a joint target",
+            "no motion to a target found",
         ),
     ];
     let files = std::fs::read_dir(dir).unwrap();
