@@ -71,6 +71,10 @@ pub(super) fn words(line: u64, start: usize, l: &str, s: &mut State) -> Result<V
                 format!("{letter}: expected a number after the letter"),
             )
         })?;
+        let digits = &l[span.clone()];
+        if digits.contains(['e', 'E']) {
+            return Err(at(line, format!("{letter}{digits}: a number with an exponent is no G-code number (a controller reads {letter}{} and then a word E); write it out", &digits[..digits.find(['e', 'E']).unwrap_or(0)])));
+        }
         out.push(Word {
             letter,
             value,
