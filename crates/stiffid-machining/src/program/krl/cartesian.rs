@@ -135,13 +135,41 @@ pub(crate) fn frame_set(line: u64, code: &str) -> Option<(bool, Frame)> {
     let frame = match value_upper.as_str() {
         "$NULLFRAME" => Frame::World,
         "$WORLD" if base => Frame::World,
-        _ if value.starts_with('{') => match literal(value) {
-            Some(f) => Frame::Stated(line, f),
-            None => Frame::Unknown(line, format!("{name} on line {line}: expected a frame {{X .., Y .., Z .., A .., B .., C ..}} with all six members")),
+        _ if value.starts_with('{') => match linked(value) {
+            Ok(f) => Frame::Stated(line, f),
+            Err(why) => Frame::Unknown(line, format!("{name} on line {line}: {why}")),
         },
         other => held(&stiffid_core::common::limits::short(other)),
     };
     Some((base, frame))
+}
+
+/// The frame of literal frames linked by KRL's geometric operator, `{..} : {..} : ..` (each
+/// operand in the frame of the one before it: their product, left to right), m; `Err` why not
+/// (an operand that is not a whole literal frame: the controller's frame or a variable).
+fn linked(value: &str) -> std::result::Result<Isometry3<f64>, String> {
+    let mut frame = Isometry3::identity();
+    let mut rest = value.trim();
+    while !rest.is_empty() {
+        let close = rest.find('}').filter(|_| rest.starts_with('{'));
+        let Some(f) = close.and_then(|c| literal(&rest[..=c])) else {
+            return Err(format!("expected a frame {{X .., Y .., Z .., A .., B .., C ..}} with all six members, or literal frames linked by ':', at '{}'", stiffid_core::common::limits::short(rest)));
+        };
+        frame *= f;
+        rest = rest[close.unwrap_or(0) + 1..].trim_start();
+        if let Some(next) = rest.strip_prefix(':') {
+            rest = next.trim_start();
+            if rest.is_empty() {
+                return Err("':' without a frame after it".into());
+            }
+        } else if !rest.is_empty() {
+            return Err(format!(
+                "'{}' after the frame: expected ':' and a frame, or nothing",
+                stiffid_core::common::limits::short(rest)
+            ));
+        }
+    }
+    Ok(frame)
 }
 
 /// A literal frame `{X .., Y .., Z .., A .., B .., C ..}` (optionally `{FRAME: ..}`), m.
