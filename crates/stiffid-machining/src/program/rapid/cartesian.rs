@@ -19,7 +19,12 @@ pub(crate) fn robtarget(line: u64, code: &str, from: usize) -> Result<JointTarge
     let bad = |what: &str| {
         at(line, format!("robtarget: expected [[x,y,z],[q1,q2,q3,q4],[cf1,cf4,cf6,cfx],[eax_a,..,eax_f]], {what}"))
     };
-    let (node, _) = literal::parse(code, from).ok_or_else(|| bad("not a literal"))?;
+    let (node, _) = literal::parse(code, from).ok_or_else(|| {
+        bad(&format!(
+            "not a literal (balanced brackets, nested at most {} deep)",
+            literal::MAX_DEPTH
+        ))
+    })?;
     let parts = node
         .list()
         .filter(|p| p.len() == 4)

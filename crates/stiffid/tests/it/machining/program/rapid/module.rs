@@ -124,3 +124,23 @@ pub(super) fn resolved(setup: &Setup, text: &str) -> stiffid::Result<Program> {
     )?;
     Ok(machining::resolve(&p, setup, None, &Options::for_setup(setup))?.into_owned())
 }
+
+/// A `robtarget` literal nested a million brackets deep, which the reader, recursing into each
+/// bracket, overflowed the stack on (the process aborted): refused naming its line and the
+/// nesting the data types have.
+#[test]
+fn a_literal_nested_deeper_than_any_data_type_is_refused_naming_its_line() {
+    let deep = format!("{}1{}", "[".repeat(1_000_000), "]".repeat(1_000_000));
+    let text = format!("MODULE M\n  CONST robtarget p1 := {deep};\n  PROC main()\n    MoveL p1, v100, fine, tool0;\n  ENDPROC\nENDMODULE\n");
+    match stiffid::machining::program::parse(&text, stiffid::machining::program::Dialect::Rapid) {
+        Err(stiffid::Error::Program { line, message }) => {
+            assert_eq!(line, 2, "{message}");
+            assert!(
+                message.contains("robtarget")
+                    && message.contains("not a literal (balanced brackets, nested at most 8 deep)"),
+                "{message}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+}
