@@ -245,6 +245,19 @@ fn malformed_axes() -> Vec<Malformed> {
             22,
             "third motion group",
         ),
+        // A motion without its line number was passed over: the program lost a target.
+        (
+            LS.replace("   2:L P[2] 50mm/sec CNT100 ;", "L P[2] 50mm/sec CNT100 ;"),
+            Dialect::FanucLs,
+            4,
+            "'L P[2] 50mm/sec CNT100 ;': expected a numbered instruction ('4: L P[4] ..') or a continuation (': ..') in /MN",
+        ),
+        (
+            LS.replace("   2:L P[2]", "   2 L P[2]"),
+            Dialect::FanucLs,
+            4,
+            "'2 L P[2] 50mm/sec CNT100 ;': expected a numbered instruction",
+        ),
     ]
 }
 

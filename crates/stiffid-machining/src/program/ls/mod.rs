@@ -42,7 +42,7 @@ use stiffid_core::Result;
 /// program's external axes.
 pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>, Units)> {
     let (positions, axes, units) = positions(text)?;
-    let instructions = instructions(text);
+    let instructions = instructions(text)?;
     let motions: Vec<bool> = (instructions.iter())
         .map(|(_, t)| motion::rest(t.trim()).is_some())
         .collect();
@@ -75,8 +75,10 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>, Unit
 }
 
 /// The `/MN` instructions: the line of each and its text (continuation lines `   :` joined),
-/// without the line number and the closing `;`; comments (`!`, `//`) dropped.
-fn instructions(text: &str) -> Vec<(u64, String)> {
+/// without the line number and the closing `;`; comments (`!`, `//`) dropped. A line of `/MN`
+/// that is neither blank, numbered (`  4:`) nor a continuation (`   :`) is refused: the
+/// controller loads no such line, and passed over it would drop what it holds (a motion).
+fn instructions(text: &str) -> Result<Vec<(u64, String)>> {
     let mut out: Vec<(u64, String)> = Vec::new();
     let mut in_mn = false;
     for (line, _, l) in super::lines(text) {
@@ -88,9 +90,13 @@ fn instructions(text: &str) -> Vec<(u64, String)> {
         if !in_mn {
             continue;
         }
-        let Some((number, body)) = t.split_once(':') else {
+        if t.is_empty() {
             continue;
+        }
+        let unnumbered = || {
+            at(line, format!("'{}': expected a numbered instruction ('4: L P[4] ..') or a continuation (': ..') in /MN", stiffid_core::common::limits::short(t)))
         };
+        let (number, body) = t.split_once(':').ok_or_else(unnumbered)?;
         let body = body.trim_end().trim_end_matches(';');
         match number.trim() {
             "" => {
@@ -105,10 +111,10 @@ fn instructions(text: &str) -> Vec<(u64, String)> {
                     out.push((line, body.to_string()));
                 }
             }
-            _ => {}
+            _ => return Err(unnumbered()),
         }
     }
-    out
+    Ok(out)
 }
 
 /// A position being read: its index, first line, the six axes, group 1's extended axes and
