@@ -245,6 +245,19 @@ fn malformed_axes() -> Vec<Malformed> {
             22,
             "third motion group",
         ),
+        // A group's number was its first digit: GP12 was read as group 1.
+        (
+            LS.replace("   GP2:\n\tUF : 0, UT : 1,\n\tJ1=    45.250", "   GP12:\n\tUF : 0, UT : 1,\n\tJ1=    45.250"),
+            Dialect::FanucLs,
+            22,
+            "GP12: a third motion group",
+        ),
+        (
+            LS.replacen("   GP1:", "   GP1_0:", 1),
+            Dialect::FanucLs,
+            7,
+            "GP1_0: expected a motion group number, GP1 or GP2",
+        ),
         // A motion without its line number was passed over: the program lost a target.
         (
             LS.replace("   2:L P[2] 50mm/sec CNT100 ;", "L P[2] 50mm/sec CNT100 ;"),

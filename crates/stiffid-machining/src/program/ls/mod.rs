@@ -219,14 +219,7 @@ impl Open {
     ) -> Result<()> {
         let mut item_t = item.trim();
         if let Some(g) = item_t.strip_prefix("GP") {
-            self.group = g
-                .trim_start()
-                .bytes()
-                .next()
-                .map_or(0, |d| d.wrapping_sub(b'0'));
-            if !(1..=2).contains(&self.group) {
-                return Err(at(line, format!("{}: a third motion group; stiffid reads group 1 (the robot and its extended axes) and group 2 (a positioner)", stiffid_core::common::limits::short(item_t.trim_end_matches(':')))));
-            }
+            self.group = group(line, item_t, g)?;
             self.first_group |= self.group == 1;
             item_t = item_t.split_once(':').map_or("", |(_, r)| r.trim());
         }
@@ -322,6 +315,17 @@ fn assemble(
     let keys = (1..=n1).map(|k| (1, k)).chain((1..=n2).map(|k| (2, k)));
     let units = keys.map(|key| units.get(&key).copied()).collect();
     Ok((out, axes.collect(), units))
+}
+
+/// The motion group `GPn:` opens (`g`: the item `item` after `GP`), 1 or 2; a third group or
+/// no number is refused naming the line.
+fn group(line: u64, item: &str, g: &str) -> Result<u8> {
+    let shown = stiffid_core::common::limits::short(item.trim_end_matches(':'));
+    match g.split(':').next().unwrap_or("").trim().parse::<u32>() {
+        Ok(n @ 1..=2) => Ok(n as u8),
+        Ok(_) => Err(at(line, format!("{shown}: a third motion group; stiffid reads group 1 (the robot and its extended axes) and group 2 (a positioner)"))),
+        Err(_) => Err(at(line, format!("{shown}: expected a motion group number, GP1 or GP2"))),
+    }
 }
 
 /// Refuses a value of a position given a second time (`given`): which one the controller takes
