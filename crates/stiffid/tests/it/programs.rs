@@ -252,6 +252,17 @@ fn malformed_gcode_is_refused_naming_the_line() {
             "F0: expected a feed rate",
         ),
         (format!("{HEADER}G1 X10 F1e7\n"), 2, "feed rate"),
+        // Two motions in one block: the last one was run, silently.
+        (
+            format!("{HEADER}G0 X0 Y0 Z5\nG0 G1 X10 F100\n"),
+            3,
+            "G1: a second motion in one block (G0 before it): give one of G0-G3, G81-G83 per block",
+        ),
+        (
+            format!("{HEADER}G0 X0 Y0 Z5\nG1 X10 F100 G81 Z-5 R2\n"),
+            3,
+            "G81: a second motion in one block (G1 before it)",
+        ),
         (
             format!("{HEADER}G0 X10 Y0 Z0\nM98 P100\n"),
             3,
