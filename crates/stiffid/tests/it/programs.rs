@@ -263,6 +263,17 @@ fn malformed_gcode_is_refused_naming_the_line() {
             3,
             "G81: a second motion in one block (G1 before it)",
         ),
+        // A spindle speed out of range was written into the robot program's spindle call.
+        (
+            format!("{HEADER}S-1 M3\nG0 X10 Y0 Z0\n"),
+            2,
+            "S-1: expected a spindle speed from 0 to 100000 rev/min",
+        ),
+        (
+            format!("{HEADER}G0 X10 Y0 Z0 S1e300\n"),
+            2,
+            "S1e300: expected a spindle speed",
+        ),
         (
             format!("{HEADER}G0 X10 Y0 Z0\nM98 P100\n"),
             3,
