@@ -3,7 +3,7 @@
 
 use crate::program::cartesian::flags::Part;
 use crate::program::cartesian::literal::{self, Node};
-use crate::program::cartesian::{Cartesian, Flags, Frame};
+use crate::program::cartesian::{within_limits, Cartesian, Flags, Frame};
 use crate::program::rapid::ConfData;
 use crate::program::{at, Dialect, JointTarget};
 use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion};
@@ -43,6 +43,7 @@ pub(crate) fn robtarget(line: u64, code: &str, from: usize) -> Result<JointTarge
     let external = parts[3]
         .numbers(6)
         .ok_or_else(|| bad("the external axes are not 6 numbers"))?;
+    within_limits(line, &["x", "y", "z"], &pose[..3])?;
     check_unit(line, &pose[3..])?;
     if conf.iter().any(|(v, _)| v.fract() != 0.0) {
         return Err(bad("the confdata are not whole numbers"));
