@@ -7,6 +7,7 @@ use super::words::{check_words, Word};
 use super::{at, cycles, may_move, Block, GCode, Motion, State};
 use nalgebra::Vector3;
 use std::ops::Range;
+use stiffid_core::common::words::number;
 use stiffid_core::Result;
 
 pub(super) const SUBSET: &str = "G0-G4, G17-G21, G28, G30, G40, G43, G44, G49, G53-G59.3, G54.1, G61, G61.1, G64, G80-G83, G90, G90.1, G91, G91.1, G94, G98, G99";
@@ -450,6 +451,9 @@ fn positions(
     s: &State,
     tolerance: f64,
 ) -> Result<Vec<Vector3<f64>>> {
+    if let Some((p, _)) = &given.cycle.dwell {
+        return Err(at(line, format!("P{}: an arc's number of turns (LinuxCNC's G2/G3 P) is not read: write each turn as an arc of its own", number(*p))));
+    }
     let scale = if s.inch { 25.4e-3 } else { 1e-3 };
     arc(
         line,

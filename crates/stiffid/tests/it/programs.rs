@@ -263,6 +263,12 @@ fn malformed_gcode_is_refused_naming_the_line() {
             3,
             "G81: a second motion in one block (G1 before it)",
         ),
+        // An arc's number of turns (LinuxCNC) was ignored: five turns read as one.
+        (
+            format!("{HEADER}G0 X0 Y0 Z0\nG1 X10 F100\nG2 X10 Y0 I-10 J0 P5\n"),
+            4,
+            "P5: an arc's number of turns (LinuxCNC's G2/G3 P) is not read",
+        ),
         // A spindle speed out of range was written into the robot program's spindle call.
         (
             format!("{HEADER}S-1 M3\nG0 X10 Y0 Z0\n"),
