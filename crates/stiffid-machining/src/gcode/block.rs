@@ -7,6 +7,7 @@ use super::words::{check_words, Word};
 use super::{at, cycles, may_move, Block, GCode, Motion, State};
 use nalgebra::Vector3;
 use std::ops::Range;
+use stiffid_core::common::limits::LENGTH_MM;
 use stiffid_core::common::words::number;
 use stiffid_core::Result;
 
@@ -455,6 +456,18 @@ fn positions(
         return Err(at(line, format!("P{}: an arc's number of turns (LinuxCNC's G2/G3 P) is not read: write each turn as an arc of its own", number(*p))));
     }
     let scale = if s.inch { 25.4e-3 } else { 1e-3 };
+    let words = ['I', 'J', 'K'].into_iter().zip(given.centre);
+    for (letter, v) in words.chain([('R', given.radius)]) {
+        if let Some(v) = v.filter(|v| !LENGTH_MM.contains(v * scale * 1e3)) {
+            return Err(at(
+                line,
+                format!(
+                    "{letter}{}: an arc's centre or radius beyond 100 m",
+                    number(v)
+                ),
+            ));
+        }
+    }
     arc(
         line,
         s,

@@ -252,6 +252,46 @@ fn malformed_gcode_is_refused_naming_the_line() {
             "F0: expected a feed rate",
         ),
         (format!("{HEADER}G1 X10 F1e7\n"), 2, "feed rate"),
+        (
+            format!("{HEADER}G0 X10 Y0 Z0\nM98 P100\n"),
+            3,
+            "M98: subprogram",
+        ),
+        (
+            format!("{HEADER}G0 X10 Y0 Z0\nM30\nG1 X20\n"),
+            4,
+            "end of the program (M2/M30 on line 3)",
+        ),
+    ];
+    refused_naming_the_line(&cases);
+    assert!(matches!(
+        gcode::parse(&format!("{HEADER}G1 X1\n"), 0.0),
+        Err(Error::InvalidOption {
+            option: stiffid::JobOption::ChordToleranceMm,
+            ..
+        })
+    ));
+}
+
+/// Each G-code `text` refused by [`gcode::parse`] naming its `line` and saying `word`.
+fn refused_naming_the_line(cases: &[(String, u64, &str)]) {
+    for (text, line, word) in cases {
+        match gcode::parse(text, 1e-5) {
+            Err(Error::Program { line: l, message }) => {
+                assert_eq!(l, *line, "{message}");
+                assert!(message.contains(word), "{word}: {message}");
+            }
+            other => panic!("{word}: {other:?}"),
+        }
+    }
+}
+
+/// Blocks the subset used to read wrongly, now refused naming the line (found by mutation
+/// fuzzing): a motion, an arc's turns or a spindle speed read other than as written, an arc
+/// computed from a radius beyond the numbers.
+#[test]
+fn gcode_blocks_read_wrongly_before_are_refused_naming_the_line() {
+    let cases = [
         // Two motions in one block: the last one was run, silently.
         (
             format!("{HEADER}G0 X0 Y0 Z5\nG0 G1 X10 F100\n"),
@@ -269,6 +309,18 @@ fn malformed_gcode_is_refused_naming_the_line() {
             4,
             "P5: an arc's number of turns (LinuxCNC's G2/G3 P) is not read",
         ),
+        // An arc's radius or centre beyond the limits: 1e308 made the centre NaN ("the arc's
+        // end is NaN mm off its circle").
+        (
+            format!("{HEADER}G0 X0 Y0 Z0\nG1 X10 F100\nG2 X11 Y0 R1e308\n"),
+            4,
+            "R1e308: an arc's centre or radius beyond 100 m",
+        ),
+        (
+            format!("G20\n{HEADER}G0 X0 Y0 Z0\nG1 X1 F100\nG2 X1 Y0 I-4000 J0\n"),
+            5,
+            "I-4000: an arc's centre or radius beyond 100 m",
+        ),
         // A spindle speed out of range was written into the robot program's spindle call.
         (
             format!("{HEADER}S-1 M3\nG0 X10 Y0 Z0\n"),
@@ -280,33 +332,8 @@ fn malformed_gcode_is_refused_naming_the_line() {
             2,
             "S1e300: expected a spindle speed",
         ),
-        (
-            format!("{HEADER}G0 X10 Y0 Z0\nM98 P100\n"),
-            3,
-            "M98: subprogram",
-        ),
-        (
-            format!("{HEADER}G0 X10 Y0 Z0\nM30\nG1 X20\n"),
-            4,
-            "end of the program (M2/M30 on line 3)",
-        ),
     ];
-    for (text, line, word) in cases {
-        match gcode::parse(&text, 1e-5) {
-            Err(Error::Program { line: l, message }) => {
-                assert_eq!(l, line, "{message}");
-                assert!(message.contains(word), "{word}: {message}");
-            }
-            other => panic!("{word}: {other:?}"),
-        }
-    }
-    assert!(matches!(
-        gcode::parse(&format!("{HEADER}G1 X1\n"), 0.0),
-        Err(Error::InvalidOption {
-            option: stiffid::JobOption::ChordToleranceMm,
-            ..
-        })
-    ));
+    refused_naming_the_line(&cases);
 }
 
 /// A G-code program saved with a byte-order mark (as editors on Windows do) reads as without
