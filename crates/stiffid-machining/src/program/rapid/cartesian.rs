@@ -60,8 +60,12 @@ pub(crate) fn robtarget(line: u64, code: &str, from: usize) -> Result<JointTarge
     Ok(JointTarget::cartesian(line, c).with_external(external))
 }
 
-/// Refuses an orientation that is not a unit quaternion.
+/// Refuses an orientation that is not a unit quaternion (a component beyond 1 first: the
+/// norm of `[1e308, 0, 0, 0]` is no number).
 fn check_unit(line: u64, q: &[(f64, std::ops::Range<usize>)]) -> Result<()> {
+    if let Some((v, _)) = q.iter().find(|(v, _)| v.abs() > 1.0 + UNIT) {
+        return Err(at(line, format!("the orientation's quaternion has a component {}: expected a unit quaternion, each component within -1 to 1", stiffid_core::common::words::number(*v))));
+    }
     let norm = q.iter().map(|(v, _)| v * v).sum::<f64>().sqrt();
     match (norm - 1.0).abs() <= UNIT {
         true => Ok(()),
@@ -81,6 +85,7 @@ fn pose(line: u64, node: &Node) -> Result<Isometry3<f64>> {
     let parts = node.list().filter(|p| p.len() == 2).ok_or_else(bad)?;
     let p = parts[0].numbers(3).ok_or_else(bad)?;
     let q = parts[1].numbers(4).ok_or_else(bad)?;
+    within_limits(line, &["x", "y", "z"], &p)?;
     check_unit(line, &q)?;
     let r = UnitQuaternion::from_quaternion(Quaternion::new(q[0].0, q[1].0, q[2].0, q[3].0));
     Ok(Isometry3::from_parts(

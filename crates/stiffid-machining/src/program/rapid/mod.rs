@@ -277,12 +277,36 @@ fn statements(code: &str) -> Vec<Statement> {
     out
 }
 
+/// For a declaration of data a motion reads (`words`, lower case, of the statement on `line`: a
+/// `jointtarget`, `speeddata` or [`cartesian::is_data`]) of a name declared before (`names`:
+/// each name's first line), its kind, name and why a motion cannot read it: RAPID refuses a
+/// name declared twice in a module, and of two in two routines, which one a motion uses is
+/// the routine's scope, which the reader does not follow.
+fn declared_twice<'a>(
+    line: u64,
+    words: &[&'a str],
+    names: &mut HashMap<String, u64>,
+) -> Option<(&'a str, String, String)> {
+    let ["const" | "var" | "pers", kind, name, ..] = words else {
+        return None;
+    };
+    if !matches!(*kind, "jointtarget" | "speeddata") && !cartesian::is_data(kind) {
+        return None;
+    }
+    let name = name.trim_end_matches(';');
+    let name = name.split('{').next().unwrap_or(name);
+    let first = names.insert(name.to_string(), line)?;
+    let why = format!("{kind} {name} is declared twice, on line {first} and on line {line}: the controller refuses a name declared twice in a module, and of two in two routines which one a motion uses depends on the scope, which stiffid does not follow; give each its own name");
+    Some((kind, name.to_string(), why))
+}
+
 /// The data declared in the module ([`Data`]).
 fn declarations(code: &str, statements: &[Statement]) -> Result<Data> {
     let mut declared = Declared::new();
     let mut frames = HashMap::new();
     let mut speeds = RapidSpeeds::new();
     let mut assignments = Vec::new();
+    let mut names = HashMap::new();
     for s in statements {
         let body = &code[s.span.clone()];
         let lower = body.to_ascii_lowercase();
@@ -291,6 +315,7 @@ fn declarations(code: &str, statements: &[Statement]) -> Result<Data> {
             .filter(|w| !w.is_empty())
             .skip_while(|w| matches!(*w, "local" | "task"))
             .collect();
+        let twice = declared_twice(s.line, &words, &mut names);
         match words.as_slice() {
             ["const" | "var" | "pers", "jointtarget", name, ..] => {
                 let name = name.trim_end_matches(';');
@@ -343,6 +368,12 @@ fn declarations(code: &str, statements: &[Statement]) -> Result<Data> {
                 assignments.push((name.to_string(), s.line));
             }
             _ => {}
+        }
+        match twice {
+            Some(("speeddata", name, why)) => _ = speeds.insert(name, Err(why)),
+            Some(("jointtarget" | "robtarget", name, why)) => _ = declared.insert(name, Err(why)),
+            Some((_, name, why)) => _ = frames.insert(name, Frame::Unknown(s.line, why)),
+            None => {}
         }
     }
     let known = |name: &String| {
