@@ -36,6 +36,7 @@ use super::{at, number_at, six, JointTarget};
 use nalgebra::{UnitQuaternion, Vector3};
 use speed::RapidSpeeds;
 use std::collections::HashMap;
+use stiffid_core::common::limits::short;
 use stiffid_core::Result;
 
 /// A `jointtarget` or `robtarget` declared in the module: its target, or why it is none.
@@ -71,6 +72,7 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
     for s in &statements {
         let body = &code[s.span.clone()];
         let first = first_word(body);
+        well_formed(s.line, &body.trim_start()[..first.len()])?;
         let words: Vec<String> = body
             .split_whitespace()
             .take(3)
@@ -165,6 +167,26 @@ fn first_word(body: &str) -> String {
         .next()
         .unwrap_or("")
         .to_ascii_lowercase()
+}
+
+/// Refuses a statement whose first word (`first`) RAPID cannot read: a character
+/// other than a letter, a digit, `_`, a component's `.` or an index's `{}` (a header's `%%%`
+/// and a byte-order mark aside), such as `Mov%eL`, `MoveL]` or `MovéL`, which the controller refuses to load;
+/// passed over, a motion written so would be lost.
+fn well_formed(line: u64, first: &str) -> Result<()> {
+    // A byte-order mark opening the file (editors on Windows write one) is no character of it.
+    let word = first.trim_start_matches('\u{feff}');
+    let allowed = |c: char| c.is_ascii_alphanumeric() || matches!(c, '_' | '.' | '{' | '}');
+    match word.starts_with('%') || word.chars().all(allowed) {
+        true => Ok(()),
+        false => Err(at(
+            line,
+            format!(
+                "'{}': not a RAPID statement (names are letters, digits and _)",
+                short(first)
+            ),
+        )),
+    }
 }
 
 /// `text` with every comment (`!` outside a string, to the line's end) blanked, byte for byte.
