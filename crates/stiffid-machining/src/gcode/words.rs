@@ -214,7 +214,8 @@ const MAX_SPINDLE_RPM: f64 = 1e5;
 /// What the subset refuses in the words of one block, before any is applied: a letter given twice
 /// (`G` and `M` aside: several modal groups may share a block), a feed rate outside
 /// `(0, MAX_FEED]`, a spindle speed outside `[0, MAX_SPINDLE_RPM]` (it is written into the robot
-/// program's spindle calls, `{rpm}`), a subprogram call or return (`M97`, `M98`, `M99`: the path would go where
+/// program's spindle calls, `{rpm}`), an `M` code not a whole number from 0 to 999 (it is written
+/// into the robot program as an event or comment), a subprogram call or return (`M97`, `M98`, `M99`: the path would go where
 /// this file does not say). `M2`/`M30` end the program: a motion after them is refused.
 pub(super) fn check_words(line: u64, words: &[Word], s: &mut State) -> Result<()> {
     for (i, w) in words.iter().enumerate() {
@@ -237,6 +238,15 @@ pub(super) fn check_words(line: u64, words: &[Word], s: &mut State) -> Result<()
                     line,
                     format!(
                         "S{}: expected a spindle speed from 0 to {MAX_SPINDLE_RPM} rev/min",
+                        number(w.value)
+                    ),
+                ));
+            }
+            'M' if !(w.value.fract() == 0.0 && (0.0..=999.0).contains(&w.value)) => {
+                return Err(at(
+                    line,
+                    format!(
+                        "M{}: expected an M code, a whole number from 0 to 999",
                         number(w.value)
                     ),
                 ));

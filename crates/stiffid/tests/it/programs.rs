@@ -321,6 +321,17 @@ fn gcode_blocks_read_wrongly_before_are_refused_naming_the_line() {
             5,
             "I-4000: an arc's centre or radius beyond 100 m",
         ),
+        // An M code that is none was written into the robot program as an unknown one.
+        (
+            format!("{HEADER}G0 X10 Y0 Z0\nM-30\n"),
+            3,
+            "M-30: expected an M code, a whole number from 0 to 999",
+        ),
+        (
+            format!("{HEADER}G0 X10 Y0 Z0 M3.5\n"),
+            2,
+            "M3.5: expected an M code",
+        ),
         // A spindle speed out of range was written into the robot program's spindle call.
         (
             format!("{HEADER}S-1 M3\nG0 X10 Y0 Z0\n"),
