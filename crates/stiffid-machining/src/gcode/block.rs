@@ -7,6 +7,8 @@ use super::words::{check_words, Word};
 use super::{at, cycles, may_move, Block, GCode, Motion, State};
 use nalgebra::Vector3;
 use std::ops::Range;
+use stiffid_core::common::limits::LENGTH_MM;
+use stiffid_core::common::words::number;
 use stiffid_core::Result;
 
 pub(super) const SUBSET: &str = "G0-G4, G17-G21, G28, G30, G40, G43, G44, G49, G53-G59.3, G54.1, G61, G61.1, G64, G80-G83, G90, G90.1, G91, G91.1, G94, G98, G99";
@@ -142,9 +144,9 @@ impl Given {
             g @ (43 | 44 | 49) => self.length = Some(g),
             64 => self.g64 = true,
             61 => {}
-            g @ 0..=3 => self.motion = Some((g, w.span.clone())),
+            g @ 0..=3 => self.motion = Some((self.one_motion(line, g)?, w.span.clone())),
             g @ 81..=83 => {
-                self.motion = Some((g, w.span.clone()));
+                self.motion = Some((self.one_motion(line, g)?, w.span.clone()));
                 self.drop.push(w.span.clone());
             }
             g @ (98 | 99) => {
@@ -162,6 +164,15 @@ impl Given {
             g => return Err(unsupported(line, &format!("G{g}"))),
         }
         Ok(())
+    }
+
+    /// The motion `G{g}`, refused when the block gave one already (`G0 G1 X1`): one motion
+    /// per block (RS274/NGC's modal group 1), which of two a controller runs is its own.
+    fn one_motion(&self, line: u64, g: u8) -> Result<u8> {
+        match &self.motion {
+            Some((first, _)) => Err(at(line, format!("G{g}: a second motion in one block (G{first} before it): give one of G0-G3, G81-G83 per block"))),
+            None => Ok(g),
+        }
     }
 
     /// A `G` word with a decimal: `G54.1`, `G59.1`-`G59.3`, `G61.1`, `G90.1`, `G91.1`.
@@ -441,7 +452,22 @@ fn positions(
     s: &State,
     tolerance: f64,
 ) -> Result<Vec<Vector3<f64>>> {
+    if let Some((p, _)) = &given.cycle.dwell {
+        return Err(at(line, format!("P{}: an arc's number of turns (LinuxCNC's G2/G3 P) is not read: write each turn as an arc of its own", number(*p))));
+    }
     let scale = if s.inch { 25.4e-3 } else { 1e-3 };
+    let words = ['I', 'J', 'K'].into_iter().zip(given.centre);
+    for (letter, v) in words.chain([('R', given.radius)]) {
+        if let Some(v) = v.filter(|v| !LENGTH_MM.contains(v * scale * 1e3)) {
+            return Err(at(
+                line,
+                format!(
+                    "{letter}{}: an arc's centre or radius beyond 100 m",
+                    number(v)
+                ),
+            ));
+        }
+    }
     arc(
         line,
         s,

@@ -4,6 +4,7 @@
 use super::{at, State};
 use nalgebra::UnitQuaternion;
 use std::ops::Range;
+use stiffid_core::common::words::number;
 use stiffid_core::Result;
 
 /// A word: letter, value and span (bytes of the text).
@@ -211,9 +212,14 @@ pub(super) fn comment(line: u64, text: &str, s: &mut State) -> Result<()> {
 /// The largest feed rate `F` accepted (mm/min, or inch/min after `G20`).
 pub const MAX_FEED: f64 = 1e6;
 
+/// The largest spindle speed `S` accepted (rev/min), the process file's `spindle_rpm`'s.
+const MAX_SPINDLE_RPM: f64 = 1e5;
+
 /// What the subset refuses in the words of one block, before any is applied: a letter given twice
 /// (`G` and `M` aside: several modal groups may share a block), a feed rate outside
-/// `(0, MAX_FEED]`, a subprogram call or return (`M97`, `M98`, `M99`: the path would go where
+/// `(0, MAX_FEED]`, a spindle speed outside `[0, MAX_SPINDLE_RPM]` (it is written into the robot
+/// program's spindle calls, `{rpm}`), an `M` code not a whole number from 0 to 999 (it is written
+/// into the robot program as an event or comment), a subprogram call or return (`M97`, `M98`, `M99`: the path would go where
 /// this file does not say). `M2`/`M30` end the program: a motion after them is refused.
 pub(super) fn check_words(line: u64, words: &[Word], s: &mut State) -> Result<()> {
     for (i, w) in words.iter().enumerate() {
@@ -227,7 +233,25 @@ pub(super) fn check_words(line: u64, words: &[Word], s: &mut State) -> Result<()
                     line,
                     format!(
                         "F{}: expected a feed rate in (0, {MAX_FEED}] (mm/min, inch/min after G20)",
-                        w.value
+                        number(w.value)
+                    ),
+                ));
+            }
+            'S' if !(0.0..=MAX_SPINDLE_RPM).contains(&w.value) => {
+                return Err(at(
+                    line,
+                    format!(
+                        "S{}: expected a spindle speed from 0 to {MAX_SPINDLE_RPM} rev/min",
+                        number(w.value)
+                    ),
+                ));
+            }
+            'M' if !(w.value.fract() == 0.0 && (0.0..=999.0).contains(&w.value)) => {
+                return Err(at(
+                    line,
+                    format!(
+                        "M{}: expected an M code, a whole number from 0 to 999",
+                        number(w.value)
                     ),
                 ));
             }

@@ -29,6 +29,7 @@
 //! fastest the program lets it go.
 
 use super::{at, number_at, JointProgram};
+use stiffid_core::common::words::number;
 use stiffid_core::Result;
 
 /// The largest path speed read, mm/s (10 m/s: beyond every industrial arm's).
@@ -63,11 +64,18 @@ impl JointProgram {
 
 /// A path speed of `mm_s` (mm/s) stated on `line` by `what`, checked against its limits.
 pub(super) fn path(line: u64, what: &str, mm_s: f64) -> Result<Speed> {
+    // A speed given in m/s and converted may have left the numbers (1e308 m/s).
+    let speed = match mm_s.is_finite() {
+        true => format!("{} mm/s", number(mm_s)),
+        false => "more than any number of mm/s".into(),
+    };
     match mm_s > 0.0 && mm_s <= MAX_PATH_SPEED_MM_S {
         true => Ok(Speed::Path(mm_s * 1e-3)),
         false => Err(at(
             line,
-            format!("{what}: a path speed of {mm_s} mm/s; expected one in (0, {MAX_PATH_SPEED_MM_S}] mm/s"),
+            format!(
+                "{what}: a path speed of {speed}; expected one in (0, {MAX_PATH_SPEED_MM_S}] mm/s"
+            ),
         )),
     }
 }
@@ -78,7 +86,10 @@ pub(super) fn duration(line: u64, what: &str, s: f64) -> Result<Speed> {
         true => Ok(Speed::Duration(s)),
         false => Err(at(
             line,
-            format!("{what}: a move of {s} s; expected a time in (0, {MAX_DURATION_S}] s"),
+            format!(
+                "{what}: a move of {} s; expected a time in (0, {MAX_DURATION_S}] s",
+                number(s)
+            ),
         )),
     }
 }

@@ -365,7 +365,47 @@ fn unreadable(
             line_of(rapid, "MoveJ"),
             "tooldata tmill: not declared",
         ),
+        // A position or angle beyond the limits: 1e300 mm reached inverse kinematics as an
+        // infinite distance ("inf mm away"), 1e300 deg was read as some orientation.
+        (
+            Dialect::FanucLs,
+            replaced(
+                ls,
+                &format!("X = {} mm", first_value(ls, "X = ", " mm")),
+                "X = 1e300 mm",
+            ),
+            position_line(ls, 0),
+            "X 1e300: outside -100000 to 100000 mm",
+        ),
+        (
+            Dialect::FanucLs,
+            replaced(
+                ls,
+                &format!("R = {} deg", first_value(ls, "R = ", " deg")),
+                "R = -1e300 deg",
+            ),
+            position_line(ls, 0),
+            "R -1e300: outside -10000 to 10000 deg",
+        ),
+        (
+            Dialect::Rapid,
+            replaced(
+                rapid,
+                &format!("MoveJ [[{},", first_value(rapid, "MoveJ [[", ",")),
+                "MoveJ [[1e300,",
+            ),
+            line_of(rapid, "MoveJ"),
+            "MoveJ: x 1e300: outside -100000 to 100000 mm",
+        ),
     ]
+}
+
+/// The text of `text` between the first `before` of a target (after an LS program's `/POS`)
+/// and the `after` that follows it.
+fn first_value<'a>(text: &'a str, before: &str, after: &str) -> &'a str {
+    let targets = text.find("/POS").unwrap_or(0);
+    let from = targets + text[targets..].find(before).unwrap() + before.len();
+    &text[from..from + text[from..].find(after).unwrap()]
 }
 
 /// The compensate job refuses the KRL program `text` naming its file and the line `line`.

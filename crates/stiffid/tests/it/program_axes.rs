@@ -245,6 +245,45 @@ fn malformed_axes() -> Vec<Malformed> {
             22,
             "third motion group",
         ),
+        // A group's number was its first digit: GP12 was read as group 1.
+        (
+            LS.replace("   GP2:\n\tUF : 0, UT : 1,\n\tJ1=    45.250", "   GP12:\n\tUF : 0, UT : 1,\n\tJ1=    45.250"),
+            Dialect::FanucLs,
+            22,
+            "GP12: a third motion group",
+        ),
+        (
+            LS.replacen("   GP1:", "   GP1_0:", 1),
+            Dialect::FanucLs,
+            7,
+            "GP1_0: expected a motion group number, GP1 or GP2",
+        ),
+        // A motion without its line number was passed over: the program lost a target.
+        (
+            LS.replace("   2:L P[2] 50mm/sec CNT100 ;", "L P[2] 50mm/sec CNT100 ;"),
+            Dialect::FanucLs,
+            4,
+            "'L P[2] 50mm/sec CNT100 ;': expected a numbered instruction ('4: L P[4] ..') or a continuation (': ..') in /MN",
+        ),
+        // A motion whose keyword is lost or mistyped was passed over as an instruction.
+        (
+            LS.replace("   2:L P[2]", "   2:X P[2]"),
+            Dialect::FanucLs,
+            4,
+            "X P[2] 50mm/sec CNT100: names a position P[i] but is no motion stiffid reads",
+        ),
+        (
+            LS.replace("   2:L P[2]", "   2:L] P[2]"),
+            Dialect::FanucLs,
+            4,
+            "L] P[2] 50mm/sec CNT100: names a position P[i]",
+        ),
+        (
+            LS.replace("   2:L P[2]", "   2 L P[2]"),
+            Dialect::FanucLs,
+            4,
+            "'2 L P[2] 50mm/sec CNT100 ;': expected a numbered instruction",
+        ),
     ]
 }
 
@@ -666,4 +705,17 @@ fn ls_units_are_checked_against_the_axes_kinds() {
         message.contains("E1 in deg: the same axis is in mm on line 11"),
         "{message}"
     );
+}
+
+/// A position register set from a position (`PR[1]=P[2]`) names the position in its value, not
+/// as a motion: passed over, the two motions read.
+#[test]
+fn a_position_assigned_to_a_register_is_no_motion() {
+    let text = LS.replace(
+        "   2:L P[2] 50mm/sec CNT100 ;\n",
+        "   2:L P[2] 50mm/sec CNT100 ;\n   3:  PR[1]=P[2] ;\n",
+    );
+    assert!(text.contains("PR[1]=P[2]"));
+    let p = program::parse(&text, Dialect::FanucLs).unwrap();
+    assert_eq!(p.targets.iter().map(|t| t.line).collect::<Vec<_>>(), [3, 4]);
 }

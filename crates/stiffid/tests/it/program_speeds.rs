@@ -283,4 +283,12 @@ fn unread_speeds_are_counted_and_bad_ones_refused_naming_the_line() {
             }
         }
     }
+    // 1e308 m/s is no number of mm/s: the message said "a path speed of inf mm/s".
+    let text = crate::common::pocket_krl().replacen("$VEL.CP = 0.03\n", "$VEL.CP = 1e308\n", 1);
+    let e = rotated(&krl(text), &s).unwrap_err().to_string();
+    assert!(
+        e.contains(&format!("line {line}"))
+            && e.contains("$VEL.CP = 1e308 m/s: a path speed of more than any number of mm/s; expected one in (0, 10000] mm/s"),
+        "{e}"
+    );
 }

@@ -251,7 +251,7 @@ fn malformed_gcode_is_refused_naming_the_line() {
             2,
             "F0: expected a feed rate",
         ),
-        (format!("{HEADER}G1 X10 F1e7\n"), 2, "feed rate"),
+        (format!("{HEADER}G1 X10 F10000000\n"), 2, "feed rate"),
         (
             format!("{HEADER}G0 X10 Y0 Z0\nM98 P100\n"),
             3,
@@ -263,15 +263,7 @@ fn malformed_gcode_is_refused_naming_the_line() {
             "end of the program (M2/M30 on line 3)",
         ),
     ];
-    for (text, line, word) in cases {
-        match gcode::parse(&text, 1e-5) {
-            Err(Error::Program { line: l, message }) => {
-                assert_eq!(l, line, "{message}");
-                assert!(message.contains(word), "{word}: {message}");
-            }
-            other => panic!("{word}: {other:?}"),
-        }
-    }
+    refused_naming_the_line(&cases);
     assert!(matches!(
         gcode::parse(&format!("{HEADER}G1 X1\n"), 0.0),
         Err(Error::InvalidOption {
@@ -279,6 +271,80 @@ fn malformed_gcode_is_refused_naming_the_line() {
             ..
         })
     ));
+}
+
+/// Each G-code `text` refused by [`gcode::parse`] naming its `line` and saying `word`.
+fn refused_naming_the_line(cases: &[(String, u64, &str)]) {
+    for (text, line, word) in cases {
+        match gcode::parse(text, 1e-5) {
+            Err(Error::Program { line: l, message }) => {
+                assert_eq!(l, *line, "{message}");
+                assert!(message.contains(word), "{word}: {message}");
+            }
+            other => panic!("{word}: {other:?}"),
+        }
+    }
+}
+
+/// Blocks the subset used to read wrongly, now refused naming the line (found by mutation
+/// fuzzing): a motion, an arc's turns or a spindle speed read other than as written, an arc
+/// computed from a radius beyond the numbers.
+#[test]
+fn gcode_blocks_read_wrongly_before_are_refused_naming_the_line() {
+    let cases = [
+        // Two motions in one block: the last one was run, silently.
+        (
+            format!("{HEADER}G0 X0 Y0 Z5\nG0 G1 X10 F100\n"),
+            3,
+            "G1: a second motion in one block (G0 before it): give one of G0-G3, G81-G83 per block",
+        ),
+        (
+            format!("{HEADER}G0 X0 Y0 Z5\nG1 X10 F100 G81 Z-5 R2\n"),
+            3,
+            "G81: a second motion in one block (G1 before it)",
+        ),
+        // An arc's number of turns (LinuxCNC) was ignored: five turns read as one.
+        (
+            format!("{HEADER}G0 X0 Y0 Z0\nG1 X10 F100\nG2 X10 Y0 I-10 J0 P5\n"),
+            4,
+            "P5: an arc's number of turns (LinuxCNC's G2/G3 P) is not read",
+        ),
+        // An arc's radius or centre beyond the limits: a radius of 1e308 mm made the centre NaN
+        // ("the arc's end is NaN mm off its circle").
+        (
+            format!("{HEADER}G0 X0 Y0 Z0\nG1 X10 F100\nG2 X11 Y0 R1000000000\n"),
+            4,
+            "R1e9: an arc's centre or radius beyond 100 m",
+        ),
+        (
+            format!("G20\n{HEADER}G0 X0 Y0 Z0\nG1 X1 F100\nG2 X1 Y0 I-4000 J0\n"),
+            5,
+            "I-4000: an arc's centre or radius beyond 100 m",
+        ),
+        // An M code that is none was written into the robot program as an unknown one.
+        (
+            format!("{HEADER}G0 X10 Y0 Z0\nM-30\n"),
+            3,
+            "M-30: expected an M code, a whole number from 0 to 999",
+        ),
+        (
+            format!("{HEADER}G0 X10 Y0 Z0 M3.5\n"),
+            2,
+            "M3.5: expected an M code",
+        ),
+        // A spindle speed out of range was written into the robot program's spindle call.
+        (
+            format!("{HEADER}S-1 M3\nG0 X10 Y0 Z0\n"),
+            2,
+            "S-1: expected a spindle speed from 0 to 100000 rev/min",
+        ),
+        (
+            format!("{HEADER}G0 X10 Y0 Z0 S1000000000\n"),
+            2,
+            "S1e9: expected a spindle speed",
+        ),
+    ];
+    refused_naming_the_line(&cases);
 }
 
 /// A G-code program saved with a byte-order mark (as editors on Windows do) reads as without

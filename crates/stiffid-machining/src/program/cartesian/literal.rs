@@ -48,9 +48,20 @@ impl Node {
     }
 }
 
+/// The deepest nesting of brackets a literal may have: RAPID's data types nest three deep
+/// (`tooldata`'s `tload`), and a deeper literal is no literal of theirs (nor, read
+/// recursively, one to exhaust the stack on).
+pub(crate) const MAX_DEPTH: usize = 8;
+
 /// The literal opening with `[` at or after blanks from byte `from` of `code`, and the byte
-/// after its closing `]`; `None` when there is no well-formed literal there.
+/// after its closing `]`; `None` when there is no well-formed literal there, or one nested
+/// deeper than [`MAX_DEPTH`].
 pub(crate) fn parse(code: &str, from: usize) -> Option<(Node, usize)> {
+    parse_within(code, from, MAX_DEPTH)
+}
+
+/// [`parse`] with `depth` more levels of brackets allowed.
+fn parse_within(code: &str, from: usize, depth: usize) -> Option<(Node, usize)> {
     let bytes = code.as_bytes();
     let skip = |mut i: usize| {
         while i < bytes.len() && bytes[i].is_ascii_whitespace() {
@@ -61,13 +72,14 @@ pub(crate) fn parse(code: &str, from: usize) -> Option<(Node, usize)> {
     let at = skip(from);
     match *bytes.get(at)? {
         b'[' => {
+            let depth = depth.checked_sub(1)?;
             let mut items = Vec::new();
             let mut i = skip(at + 1);
             if bytes.get(i) == Some(&b']') {
                 return Some((Node::List(items), i + 1));
             }
             loop {
-                let (item, next) = parse(code, i)?;
+                let (item, next) = parse_within(code, i, depth)?;
                 items.push(item);
                 let next = skip(next);
                 match *bytes.get(next)? {

@@ -55,7 +55,31 @@ use super::generate::{number, v, zyx_deg};
 use super::Dialect;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use std::ops::Range;
+use stiffid_core::common::{limits, words};
 use stiffid_core::robot::configuration::Configuration;
+
+/// Refuses a pose's number outside the limits (`names` and `numbers` in the dialect's order):
+/// a position (the first three) beyond [`limits::LENGTH_MM`], an angle (the others) beyond
+/// [`limits::ANGLE_DEG`]. A position of 1e300 mm would reach inverse kinematics as an infinite
+/// distance, an angle of 1e300 deg any orientation at all.
+pub(crate) fn within_limits(
+    line: u64,
+    names: &[&str],
+    numbers: &[(f64, Range<usize>)],
+) -> stiffid_core::Result<()> {
+    for (k, (name, (v, _))) in names.iter().zip(numbers).enumerate() {
+        let range = match k < 3 {
+            true => &limits::LENGTH_MM,
+            false => &limits::ANGLE_DEG,
+        };
+        if !range.contains(*v) {
+            let (v, min, max) = (words::number(*v), words::number(range.min), range.max);
+            let message = format!("{name} {v}: outside {min} to {max} {}", range.unit);
+            return Err(super::at(line, message));
+        }
+    }
+    Ok(())
+}
 
 /// A frame a target is given in, or a tool it is given for, as the program states it.
 #[derive(Debug, Clone, PartialEq)]

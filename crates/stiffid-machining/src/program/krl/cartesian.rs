@@ -2,7 +2,7 @@
 //! `Z`, `A`, `B`, `C`, `S`, `T` of an aggregate, and the `$BASE` and `$TOOL` a program sets.
 
 use crate::program::cartesian::flags::Part;
-use crate::program::cartesian::{Cartesian, Flags, Frame};
+use crate::program::cartesian::{within_limits, Cartesian, Flags, Frame};
 use crate::program::krl::{StatusPart, StatusTurn};
 use crate::program::{at, number_at, Dialect};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
@@ -35,20 +35,9 @@ pub(crate) fn target(
         let (v, span) = number_at(code, *after)
             .filter(|(_, s)| ends_member(code, s.end))
             .ok_or_else(|| at(line, format!("{name}: expected a number, then ',' or '}}'")))?;
-        // Lengths within the limits' range of any length (mm), angles within +-1e4 deg.
-        let (most, unit) = match pose.len() < 3 {
-            true => (stiffid_core::common::limits::LENGTH_MM.max, "mm"),
-            false => (1e4, "deg"),
-        };
-        if v.is_nan() || v.abs() > most {
-            let v = stiffid_core::common::words::number(v);
-            return Err(at(
-                line,
-                format!("{name} {v}: outside -{most} to {most} {unit}"),
-            ));
-        }
         pose.push((v, start + span.start..start + span.end));
     }
+    within_limits(line, &POSE, &pose)?;
     let mut c = Cartesian::new(Dialect::Krl, &pose);
     let status = members.iter().find(|(n, _)| n == "S");
     let turn = members.iter().find(|(n, _)| n == "T");

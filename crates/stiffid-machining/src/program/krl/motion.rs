@@ -105,18 +105,17 @@ fn one(
     Ok((target, open + name.len()))
 }
 
-/// Refuses a word after a motion's target(s) that is not an approximation or `WITH`: a
-/// geometric operator, an offset, or a circle's angle (`CA`).
+/// Refuses a word after a motion's target(s), up to its `WITH` clause, that is not an
+/// approximation: a geometric operator, an offset, a circle's angle (`CA`), or anything else
+/// (`LIN XP1 C_DIS XX`, which the controller refuses to load).
 fn check_after(line: u64, first: &str, after: &str) -> Result<()> {
     let extra = after
         .split(|c: char| c.is_whitespace() || c == ',')
-        .find(|w| !w.is_empty())
-        .filter(|w| {
+        .filter(|w| !w.is_empty())
+        .take_while(|w| !w.eq_ignore_ascii_case("WITH"))
+        .find(|w| {
             let w = w.to_ascii_uppercase();
-            !matches!(
-                w.as_str(),
-                "C_PTP" | "C_DIS" | "C_VEL" | "C_ORI" | "C_SPL" | "WITH"
-            )
+            !matches!(w.as_str(), "C_PTP" | "C_DIS" | "C_VEL" | "C_ORI" | "C_SPL")
         });
     match extra {
         Some(w) if w.eq_ignore_ascii_case("CA") => Err(at(line, format!("{first}: CA, a circular angle: the motion ends elsewhere than its end point, on the circle; write the end point the controller reaches"))),

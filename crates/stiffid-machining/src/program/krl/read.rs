@@ -10,6 +10,7 @@ use super::speed;
 use crate::program::cartesian::Frame;
 use crate::program::{at, JointTarget};
 use std::collections::HashMap;
+use stiffid_core::common::limits::short;
 use stiffid_core::Result;
 
 /// Every joint target of the `.src` `text` (with its `.dat` `data` when given), in the order of
@@ -41,6 +42,7 @@ pub(crate) fn targets(text: &str, data: Option<&str>) -> Result<(Vec<JointTarget
         let code = l.split(';').next().unwrap_or("");
         let words = words(code);
         let first = words.first().map(String::as_str).unwrap_or("");
+        well_formed(line, first)?;
         if let Some(name) = routine_name(&words) {
             main.get_or_insert_with(|| (name.clone(), line));
             current = Some((name, line));
@@ -89,6 +91,20 @@ pub(crate) fn targets(text: &str, data: Option<&str>) -> Result<(Vec<JointTarget
     }
     let n = out.iter().map(|t| t.external.len()).max().unwrap_or(0);
     Ok((out, (1..=n).map(|k| format!("E{k}")).collect()))
+}
+
+/// Refuses a statement whose first word (`first`) KRL cannot read: a character outside ASCII
+/// (but a byte-order mark),
+/// a quote, a backslash or a closing bracket without its opening one (`LIN]`, `LI\N`, `LIéN`),
+/// which the controller refuses to load; passed over, a motion written so would be dropped.
+fn well_formed(line: u64, first: &str) -> Result<()> {
+    // A byte-order mark opening the file (editors on Windows write one) is no character of it.
+    let first = first.trim_start_matches('\u{feff}');
+    let stray = |c: char| !c.is_ascii() || matches!(c, '"' | '\'' | '\\' | '}' | ')' | '`');
+    match first.contains(stray) || (first.contains(']') && !first.contains('[')) {
+        true => Err(at(line, format!("'{}': not a KRL statement (keywords, names and system variables are ASCII letters, digits, _ and $, indices in [..])", short(first)))),
+        false => Ok(()),
+    }
 }
 
 /// A routine of the file: its upper-case name and the line of its `DEF`.

@@ -2,7 +2,7 @@
 //! `UT : n`, `CONFIG : '..'`, `X = .. mm` to `R = .. deg`.
 
 use crate::program::cartesian::flags::Part;
-use crate::program::cartesian::{Cartesian, Flags, Frame};
+use crate::program::cartesian::{within_limits, Cartesian, Flags, Frame};
 use crate::program::ls::Config;
 use crate::program::{at, Dialect};
 use std::ops::Range;
@@ -95,6 +95,7 @@ pub(crate) fn target(
             ),
         )
     })?;
+    within_limits(line, &POSE.map(|(name, _)| name), &values)?;
     let mut c = Cartesian::new(Dialect::FanucLs, &values);
     if let Some((flags, span)) = config {
         c.flags = Some(flags);

@@ -42,7 +42,7 @@ use stiffid_core::Result;
 /// program's external axes.
 pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>, Units)> {
     let (positions, axes, units) = positions(text)?;
-    let instructions = instructions(text);
+    let instructions = instructions(text)?;
     let motions: Vec<bool> = (instructions.iter())
         .map(|(_, t)| motion::rest(t.trim()).is_some())
         .collect();
@@ -79,8 +79,10 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>, Unit
 /// number (`   :`) continues the instruction before it while that one is open (its line did not
 /// end with `;`: a circular move's end, a motion's options on the next line); after a closed one
 /// it is an instruction of its own, as generators that leave the numbering to the controller
-/// write them.
-fn instructions(text: &str) -> Vec<(u64, String)> {
+/// write them. A line of `/MN` that is neither blank, numbered (`  4:`) nor unnumbered (`   :`)
+/// is refused: the controller loads no such line, and passed over it would drop what it holds
+/// (a motion).
+fn instructions(text: &str) -> Result<Vec<(u64, String)>> {
     let mut out: Vec<(u64, String)> = Vec::new();
     let mut in_mn = false;
     let mut open = false;
@@ -93,9 +95,13 @@ fn instructions(text: &str) -> Vec<(u64, String)> {
         if !in_mn {
             continue;
         }
-        let Some((number, body)) = t.split_once(':') else {
+        if t.is_empty() {
             continue;
+        }
+        let unnumbered = || {
+            at(line, format!("'{}': expected a numbered instruction ('4: L P[4] ..') or a continuation (': ..') in /MN", stiffid_core::common::limits::short(t)))
         };
+        let (number, body) = t.split_once(':').ok_or_else(unnumbered)?;
         let closed = body.trim_end().ends_with(';');
         let body = body.trim_end().trim_end_matches(';');
         let number = number.trim();
@@ -110,11 +116,11 @@ fn instructions(text: &str) -> Vec<(u64, String)> {
                     out.push((line, body.to_string()));
                 }
             }
-            _ => {}
+            _ => return Err(unnumbered()),
         }
         open = !closed;
     }
-    out
+    Ok(out)
 }
 
 /// A position being read: its index, first line, the six axes, group 1's extended axes and
@@ -219,14 +225,7 @@ impl Open {
     ) -> Result<()> {
         let mut item_t = item.trim();
         if let Some(g) = item_t.strip_prefix("GP") {
-            self.group = g
-                .trim_start()
-                .bytes()
-                .next()
-                .map_or(0, |d| d.wrapping_sub(b'0'));
-            if !(1..=2).contains(&self.group) {
-                return Err(at(line, format!("{}: a third motion group; stiffid reads group 1 (the robot and its extended axes) and group 2 (a positioner)", stiffid_core::common::limits::short(item_t.trim_end_matches(':')))));
-            }
+            self.group = group(line, item_t, g)?;
             self.first_group |= self.group == 1;
             item_t = item_t.split_once(':').map_or("", |(_, r)| r.trim());
         }
@@ -322,6 +321,17 @@ fn assemble(
     let keys = (1..=n1).map(|k| (1, k)).chain((1..=n2).map(|k| (2, k)));
     let units = keys.map(|key| units.get(&key).copied()).collect();
     Ok((out, axes.collect(), units))
+}
+
+/// The motion group `GPn:` opens (`g`: the item `item` after `GP`), 1 or 2; a third group or
+/// no number is refused naming the line.
+fn group(line: u64, item: &str, g: &str) -> Result<u8> {
+    let shown = stiffid_core::common::limits::short(item.trim_end_matches(':'));
+    match g.split(':').next().unwrap_or("").trim().parse::<u32>() {
+        Ok(n @ 1..=2) => Ok(n as u8),
+        Ok(_) => Err(at(line, format!("{shown}: a third motion group; stiffid reads group 1 (the robot and its extended axes) and group 2 (a positioner)"))),
+        Err(_) => Err(at(line, format!("{shown}: expected a motion group number, GP1 or GP2"))),
+    }
 }
 
 /// Refuses a value of a position given a second time (`given`): which one the controller takes

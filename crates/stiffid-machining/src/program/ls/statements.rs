@@ -11,7 +11,8 @@
 //!   and that is refused), `RUN` (a task started alongside: the controller refuses a second
 //!   program holding a motion group the first holds, so it cannot move this program's groups),
 //!   a `CALL` before the first motion or after the last, and every other instruction that neither
-//!   moves nor selects a frame.
+//!   moves nor selects a frame (nor names a position `P[i]` but in an assignment's value: a
+//!   motion whose keyword is lost, `X P[8] ..`, is refused).
 //! - Followed: `UFRAME_NUM=n` and `UTOOL_NUM=n`, the user and tool frame numbers in force for
 //!   the motions after them ([`Selected`]).
 //! - Refused naming the line, in a program with motions: a jump, branch or loop (`JMP`, `IF`,
@@ -66,6 +67,9 @@ pub(super) fn instruction(line: u64, t: &str, place: Place, selected: &mut Selec
         .unwrap_or("");
     let any_motion = place.after_first || place.before_last;
     let refuse = |why: &str| Err(at(line, format!("{}: {why}", short(t.trim()))));
+    if names_a_position(&upper) {
+        return refuse("names a position P[i] but is no motion stiffid reads (J, L or C P[i] ..); passed over, its target would be lost");
+    }
     if let Some(n) = upper.strip_prefix("UFRAME_NUM") {
         selected.user = Some(number(line, t, n));
         return Ok(());
@@ -95,6 +99,17 @@ pub(super) fn instruction(line: u64, t: &str, place: Place, selected: &mut Selec
         return refuse("the program sets a frame's value, which stiffid reads from the setup's [controller] tools and bases (as the controller holds them before the program runs): set the frame on the controller and give it in the setup");
     }
     Ok(())
+}
+
+/// Whether the instruction (upper case, not a motion) names a position `P[i]` outside an
+/// assignment's value (`PR[1]=P[3]` copies one): a motion its keyword lost (`X P[8] ..`,
+/// `L] P[8] ..`), which the controller refuses to load.
+fn names_a_position(upper: &str) -> bool {
+    let before_value = upper.split('=').next().unwrap_or(upper);
+    before_value.match_indices("P[").any(|(i, _)| {
+        let previous = before_value[..i].chars().next_back();
+        !previous.is_some_and(|c| c.is_ascii_alphanumeric() || c == '_' || c == '$')
+    })
 }
 
 /// The number after `UFRAME_NUM`/`UTOOL_NUM` (`rest`, upper case) of instruction `t`.

@@ -3,7 +3,7 @@
 
 use crate::program::cartesian::flags::Part;
 use crate::program::cartesian::literal::{self, Node};
-use crate::program::cartesian::{Cartesian, Flags, Frame};
+use crate::program::cartesian::{within_limits, Cartesian, Flags, Frame};
 use crate::program::rapid::ConfData;
 use crate::program::{at, Dialect, JointTarget};
 use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion};
@@ -19,7 +19,12 @@ pub(crate) fn robtarget(line: u64, code: &str, from: usize) -> Result<JointTarge
     let bad = |what: &str| {
         at(line, format!("robtarget: expected [[x,y,z],[q1,q2,q3,q4],[cf1,cf4,cf6,cfx],[eax_a,..,eax_f]], {what}"))
     };
-    let (node, _) = literal::parse(code, from).ok_or_else(|| bad("not a literal"))?;
+    let (node, _) = literal::parse(code, from).ok_or_else(|| {
+        bad(&format!(
+            "not a literal (balanced brackets, nested at most {} deep)",
+            literal::MAX_DEPTH
+        ))
+    })?;
     let parts = node
         .list()
         .filter(|p| p.len() == 4)
@@ -38,6 +43,7 @@ pub(crate) fn robtarget(line: u64, code: &str, from: usize) -> Result<JointTarge
     let external = parts[3]
         .numbers(6)
         .ok_or_else(|| bad("the external axes are not 6 numbers"))?;
+    within_limits(line, &["x", "y", "z"], &pose[..3])?;
     check_unit(line, &pose[3..])?;
     if conf.iter().any(|(v, _)| v.fract() != 0.0) {
         return Err(bad("the confdata are not whole numbers"));
@@ -54,8 +60,12 @@ pub(crate) fn robtarget(line: u64, code: &str, from: usize) -> Result<JointTarge
     Ok(JointTarget::cartesian(line, c).with_external(external))
 }
 
-/// Refuses an orientation that is not a unit quaternion.
+/// Refuses an orientation that is not a unit quaternion (a component beyond 1 first: the
+/// norm of `[1e308, 0, 0, 0]` is no number).
 fn check_unit(line: u64, q: &[(f64, std::ops::Range<usize>)]) -> Result<()> {
+    if let Some((v, _)) = q.iter().find(|(v, _)| v.abs() > 1.0 + UNIT) {
+        return Err(at(line, format!("the orientation's quaternion has a component {}: expected a unit quaternion, each component within -1 to 1", stiffid_core::common::words::number(*v))));
+    }
     let norm = q.iter().map(|(v, _)| v * v).sum::<f64>().sqrt();
     match (norm - 1.0).abs() <= UNIT {
         true => Ok(()),
@@ -75,6 +85,7 @@ fn pose(line: u64, node: &Node) -> Result<Isometry3<f64>> {
     let parts = node.list().filter(|p| p.len() == 2).ok_or_else(bad)?;
     let p = parts[0].numbers(3).ok_or_else(bad)?;
     let q = parts[1].numbers(4).ok_or_else(bad)?;
+    within_limits(line, &["x", "y", "z"], &p)?;
     check_unit(line, &q)?;
     let r = UnitQuaternion::from_quaternion(Quaternion::new(q[0].0, q[1].0, q[2].0, q[3].0));
     Ok(Isometry3::from_parts(

@@ -36,6 +36,7 @@ use super::{at, number_at, six, JointTarget};
 use nalgebra::{UnitQuaternion, Vector3};
 use speed::RapidSpeeds;
 use std::collections::HashMap;
+use stiffid_core::common::limits::short;
 use stiffid_core::Result;
 
 /// A `jointtarget` or `robtarget` declared in the module: its target, or why it is none.
@@ -71,6 +72,7 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
     for s in &statements {
         let body = &code[s.span.clone()];
         let first = first_word(body);
+        well_formed(s.line, &body.trim_start()[..first.len()])?;
         let words: Vec<String> = body
             .split_whitespace()
             .take(3)
@@ -165,6 +167,26 @@ fn first_word(body: &str) -> String {
         .next()
         .unwrap_or("")
         .to_ascii_lowercase()
+}
+
+/// Refuses a statement whose first word (`first`) RAPID cannot read: a character
+/// other than a letter, a digit, `_`, a component's `.` or an index's `{}` (a header's `%%%`
+/// and a byte-order mark aside), such as `Mov%eL`, `MoveL]` or `MovéL`, which the controller refuses to load;
+/// passed over, a motion written so would be lost.
+fn well_formed(line: u64, first: &str) -> Result<()> {
+    // A byte-order mark opening the file (editors on Windows write one) is no character of it.
+    let word = first.trim_start_matches('\u{feff}');
+    let allowed = |c: char| c.is_ascii_alphanumeric() || matches!(c, '_' | '.' | '{' | '}');
+    match word.starts_with('%') || word.chars().all(allowed) {
+        true => Ok(()),
+        false => Err(at(
+            line,
+            format!(
+                "'{}': not a RAPID statement (names are letters, digits and _)",
+                short(first)
+            ),
+        )),
+    }
 }
 
 /// `text` with every comment (`!` outside a string, to the line's end) blanked, byte for byte.
@@ -277,12 +299,36 @@ fn statements(code: &str) -> Vec<Statement> {
     out
 }
 
+/// For a declaration of data a motion reads (`words`, lower case, of the statement on `line`: a
+/// `jointtarget`, `speeddata` or [`cartesian::is_data`]) of a name declared before (`names`:
+/// each name's first line), its kind, name and why a motion cannot read it: RAPID refuses a
+/// name declared twice in a module, and of two in two routines, which one a motion uses is
+/// the routine's scope, which the reader does not follow.
+fn declared_twice<'a>(
+    line: u64,
+    words: &[&'a str],
+    names: &mut HashMap<String, u64>,
+) -> Option<(&'a str, String, String)> {
+    let ["const" | "var" | "pers", kind, name, ..] = words else {
+        return None;
+    };
+    if !matches!(*kind, "jointtarget" | "speeddata") && !cartesian::is_data(kind) {
+        return None;
+    }
+    let name = name.trim_end_matches(';');
+    let name = name.split('{').next().unwrap_or(name);
+    let first = names.insert(name.to_string(), line)?;
+    let why = format!("{kind} {name} is declared twice, on line {first} and on line {line}: the controller refuses a name declared twice in a module, and of two in two routines which one a motion uses depends on the scope, which stiffid does not follow; give each its own name");
+    Some((kind, name.to_string(), why))
+}
+
 /// The data declared in the module ([`Data`]).
 fn declarations(code: &str, statements: &[Statement]) -> Result<Data> {
     let mut declared = Declared::new();
     let mut frames = HashMap::new();
     let mut speeds = RapidSpeeds::new();
     let mut assignments = Vec::new();
+    let mut names = HashMap::new();
     for s in statements {
         let body = &code[s.span.clone()];
         let lower = body.to_ascii_lowercase();
@@ -291,6 +337,7 @@ fn declarations(code: &str, statements: &[Statement]) -> Result<Data> {
             .filter(|w| !w.is_empty())
             .skip_while(|w| matches!(*w, "local" | "task"))
             .collect();
+        let twice = declared_twice(s.line, &words, &mut names);
         match words.as_slice() {
             ["const" | "var" | "pers", "jointtarget", name, ..] => {
                 let name = name.trim_end_matches(';');
@@ -343,6 +390,12 @@ fn declarations(code: &str, statements: &[Statement]) -> Result<Data> {
                 assignments.push((name.to_string(), s.line));
             }
             _ => {}
+        }
+        match twice {
+            Some(("speeddata", name, why)) => _ = speeds.insert(name, Err(why)),
+            Some(("jointtarget" | "robtarget", name, why)) => _ = declared.insert(name, Err(why)),
+            Some((_, name, why)) => _ = frames.insert(name, Frame::Unknown(s.line, why)),
+            None => {}
         }
     }
     let known = |name: &String| {

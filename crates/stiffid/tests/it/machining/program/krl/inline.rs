@@ -200,6 +200,47 @@ fn circles_read_both_points_and_refuse_what_ends_elsewhere() {
     );
 }
 
+/// A motion KRL cannot read was passed over, dropping its target: a keyword with a stray
+/// character (`LIN]`, `LIéN`), or a word after the approximation (`C_DIS XX`). Refused naming
+/// the line.
+#[test]
+fn a_motion_krl_cannot_read_is_refused_not_passed_over() {
+    let line = line_of(SRC, "CIRC XP3");
+    for (motion, needle) in [
+        ("CIRC] XP3, XP4 C_DIS", "'CIRC]': not a KRL statement"),
+        (
+            "CI\u{e9}RC XP3, XP4 C_DIS",
+            "'CI\u{e9}RC': not a KRL statement",
+        ),
+        ("\\CIRC XP3, XP4 C_DIS", "'\\CIRC': not a KRL statement"),
+        (
+            "CIRC XP3, XP4 C_DIS XX",
+            "CIRC: 'XX' after the target is not followed",
+        ),
+    ] {
+        let src = SRC.replace("CIRC XP3, XP4 C_DIS", motion);
+        match parse_with_data(&src, Some(DAT), Dialect::Krl) {
+            Err(Error::Program { line: l, message }) => {
+                assert_eq!(l, line, "{message}");
+                assert!(message.contains(needle), "{needle}: {message}");
+            }
+            other => panic!("{motion}: {other:?}"),
+        }
+    }
+    // A WITH clause holds expressions: the words after it are the controller's.
+    let with = SRC.replace(
+        "CIRC XP3, XP4 C_DIS",
+        "CIRC XP3, XP4 C_DIS WITH $VEL.CP = 0.1",
+    );
+    let read = |src: &str| {
+        parse_with_data(src, Some(DAT), Dialect::Krl)
+            .unwrap()
+            .targets
+            .len()
+    };
+    assert_eq!(read(&with), read(SRC));
+}
+
 #[test]
 fn motions_outside_loops_and_branches_run_and_inside_are_refused() {
     let wrapped = SRC

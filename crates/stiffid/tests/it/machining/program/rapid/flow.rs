@@ -104,3 +104,27 @@ fn motions_whose_path_the_program_does_not_hold_are_refused_naming_them() {
         assert!(message.contains(words), "{message}\n{text}");
     }
 }
+
+/// A motion whose instruction has a stray character (`Mov%eL`, `MoveL]`, a letter outside ASCII)
+/// was passed over as a statement stiffid does not read, dropping its target: refused naming
+/// the line, as the controller refuses to load it.
+#[test]
+fn a_statement_rapid_cannot_read_is_refused_not_passed_over() {
+    for (instruction, shown) in [
+        ("Mov%eAbsJ", "'Mov%eAbsJ'"),
+        ("MoveAbsJ]", "'MoveAbsJ]'"),
+        ("MoveAbs\u{e9}J", "'MoveAbs\u{e9}J'"),
+    ] {
+        let text = module(&format!(
+            "    {}\n    {}",
+            motion(1.0),
+            motion(2.0).replace("MoveAbsJ", instruction)
+        ));
+        let (line, message) = refused(&text);
+        assert_eq!(line, 4, "{message}");
+        assert!(
+            message.contains(&format!("{shown}: not a RAPID statement")),
+            "{message}"
+        );
+    }
+}

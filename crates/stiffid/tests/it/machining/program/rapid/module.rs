@@ -6,6 +6,7 @@
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector6};
 use stiffid::machining::compensate::Options;
 use stiffid::machining::program::cartesian::flags::ConfigurationData;
+use stiffid::machining::program::cartesian::Frame;
 use stiffid::machining::program::rapid::ConfData;
 use stiffid::machining::{self, Language, Program};
 use stiffid::robot::configuration::Configuration;
@@ -123,4 +124,78 @@ pub(super) fn resolved(setup: &Setup, text: &str) -> stiffid::Result<Program> {
         1e-4,
     )?;
     Ok(machining::resolve(&p, setup, None, &Options::for_setup(setup))?.into_owned())
+}
+
+/// A `robtarget` literal nested a million brackets deep, which the reader, recursing into each
+/// bracket, overflowed the stack on (the process aborted): refused naming its line and the
+/// nesting the data types have.
+#[test]
+fn a_literal_nested_deeper_than_any_data_type_is_refused_naming_its_line() {
+    let deep = format!("{}1{}", "[".repeat(1_000_000), "]".repeat(1_000_000));
+    let text = format!("MODULE M\n  CONST robtarget p1 := {deep};\n  PROC main()\n    MoveL p1, v100, fine, tool0;\n  ENDPROC\nENDMODULE\n");
+    match stiffid::machining::program::parse(&text, stiffid::machining::program::Dialect::Rapid) {
+        Err(stiffid::Error::Program { line, message }) => {
+            assert_eq!(line, 2, "{message}");
+            assert!(
+                message.contains("robtarget")
+                    && message.contains("not a literal (balanced brackets, nested at most 8 deep)"),
+                "{message}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+/// Data a motion reads, refused naming its line: a frame's position beyond 100 m (1e308 mm made
+/// the pose "inf mm away" from reach), a quaternion component beyond 1 (its norm was "inf"), a
+/// name declared twice (the last declaration was read).
+#[test]
+fn data_beyond_the_limits_or_declared_twice_is_refused_naming_its_line() {
+    let target = "[[500,0,400],[0,0,1,0],[0,0,0,0],[9E9,9E9,9E9,9E9,9E9,9E9]]";
+    let module = |data: &str, target: &str| {
+        format!("MODULE M\n{data}\n  PROC main()\n    MoveL {target}, v100, fine, tool0\\WObj:=wp;\n  ENDPROC\nENDMODULE\n")
+    };
+    let wobj = |xyz: &str| {
+        format!("  PERS wobjdata wp := [FALSE,TRUE,\"\",[[{xyz}],[1,0,0,0]],[[0,0,0],[1,0,0,0]]];")
+    };
+    let parse = |text: &str| {
+        stiffid::machining::program::parse(text, stiffid::machining::program::Dialect::Rapid)
+    };
+    // The work object is refused by the motion in it, when its frame is resolved.
+    let p = parse(&module(&wobj("1e308,0,550"), target)).unwrap();
+    match &p.targets[0].cartesian.as_ref().unwrap().frame {
+        Frame::Unknown(2, why) => assert!(
+            why.contains("x 1e308: outside -100000 to 100000 mm"),
+            "{why}"
+        ),
+        other => panic!("{other:?}"),
+    }
+    let twice = format!(
+        "{}\n  CONST robtarget p1 := {target};\n  CONST robtarget P1 := {target};",
+        wobj("0,0,0")
+    );
+    let cases = [
+        (
+            module(
+                &wobj("0,0,0"),
+                &target.replace("[0,0,1,0]", "[0,0,1e308,0]"),
+            ),
+            4,
+            "the orientation's quaternion has a component 1e308: expected a unit quaternion",
+        ),
+        (
+            module(&twice, "p1"),
+            6,
+            "robtarget p1 is declared twice, on line 3 and on line 4",
+        ),
+    ];
+    for (text, line, needle) in cases {
+        match parse(&text) {
+            Err(stiffid::Error::Program { line: l, message }) => {
+                assert_eq!(l, line, "{message}\n{text}");
+                assert!(message.contains(needle), "{message}");
+            }
+            other => panic!("{needle}: {other:?}\n{text}"),
+        }
+    }
 }
