@@ -55,6 +55,7 @@ pub(super) fn block(
     tolerance: f64,
 ) -> Result<()> {
     check_words(line, words, s)?;
+    super::groups::one_per_group(line, words)?;
     let inch_before = s.inch;
     let mut given = Given::default();
     for w in words {
@@ -144,9 +145,9 @@ impl Given {
             g @ (43 | 44 | 49) => self.length = Some(g),
             64 => self.g64 = true,
             61 => {}
-            g @ 0..=3 => self.motion = Some((self.one_motion(line, g)?, w.span.clone())),
+            g @ 0..=3 => self.motion = Some((g, w.span.clone())),
             g @ 81..=83 => {
-                self.motion = Some((self.one_motion(line, g)?, w.span.clone()));
+                self.motion = Some((g, w.span.clone()));
                 self.drop.push(w.span.clone());
             }
             g @ (98 | 99) => {
@@ -164,15 +165,6 @@ impl Given {
             g => return Err(unsupported(line, &format!("G{g}"))),
         }
         Ok(())
-    }
-
-    /// The motion `G{g}`, refused when the block gave one already (`G0 G1 X1`): one motion
-    /// per block (RS274/NGC's modal group 1), which of two a controller runs is its own.
-    fn one_motion(&self, line: u64, g: u8) -> Result<u8> {
-        match &self.motion {
-            Some((first, _)) => Err(at(line, format!("G{g}: a second motion in one block (G{first} before it): give one of G0-G3, G81-G83 per block"))),
-            None => Ok(g),
-        }
     }
 
     /// A `G` word with a decimal: `G54.1`, `G59.1`-`G59.3`, `G61.1`, `G90.1`, `G91.1`.

@@ -43,8 +43,8 @@
 //! saying it belongs to the CAM post; `G92`, `G93`, `G95`, `G28.1` saying why), as are
 //! parameters and expressions (`#`, `[`), O-word subprograms and loops, block delete `/`, polar
 //! words `@ ^`, an arc whose end is off its circle beyond [`ARC_END_TOLERANCE_MM`], an arc of
-//! radius below 1 um, a letter given twice in one block (but `G` and `M`), two motions in one
-//! block (`G0 G1`), an arc with a number of turns `P` or a centre or radius beyond 100 m, a feed rate `F` outside `(0, MAX_FEED]`, a spindle speed `S` outside
+//! radius below 1 um, a letter given twice in one block (but `G` and `M`), two codes of one
+//! modal group in one block (`G0 G1`, `G90 G91`, `M3 M4`), an arc with a number of turns `P` or a centre or radius beyond 100 m, a feed rate `F` outside `(0, MAX_FEED]`, a spindle speed `S` outside
 //! `[0, 100000]` rev/min, an `M` code not a whole number from 0 to 999, a subprogram call or return (`M97`, `M98`, `M99`), a motion after the
 //! program's end (`M2`, `M30`), a work offset, home position or tool length the [`Machine`] does
 //! not give, and more than [`MAX_POINTS`] points.
@@ -65,6 +65,7 @@
 mod arc;
 mod block;
 mod cycles;
+mod groups;
 mod home;
 mod machine;
 mod modal;

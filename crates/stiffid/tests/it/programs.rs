@@ -296,12 +296,39 @@ fn gcode_blocks_read_wrongly_before_are_refused_naming_the_line() {
         (
             format!("{HEADER}G0 X0 Y0 Z5\nG0 G1 X10 F100\n"),
             3,
-            "G1: a second motion in one block (G0 before it): give one of G0-G3, G81-G83 per block",
+            "G1: a second code of the motion (G0-G3, G81-G83) group in one block (G0 before it)",
         ),
         (
             format!("{HEADER}G0 X0 Y0 Z5\nG1 X10 F100 G81 Z-5 R2\n"),
             3,
-            "G81: a second motion in one block (G1 before it)",
+            "G81: a second code of the motion (G0-G3, G81-G83) group in one block (G1 before it)",
+        ),
+        // Two codes of another modal group: the last one was in force, silently; mist and
+        // flood together are one coolant state.
+        (
+            format!("{HEADER}G0 X0 Y0 Z5\nG91 G90 G1 X10 F100\n"),
+            3,
+            "G90: a second code of the distance mode (G90, G91) group in one block (G91 before it)",
+        ),
+        (
+            format!("{HEADER}G0 X0 Y0 Z5\nG17 G18 G1 X10 F100\n"),
+            3,
+            "G18: a second code of the plane (G17-G19) group in one block",
+        ),
+        (
+            format!("{HEADER}G0 X0 Y0 Z5 G54 G55\n"),
+            2,
+            "G55: a second code of the work offset (G54-G59.3) group in one block",
+        ),
+        (
+            format!("{HEADER}G0 X0 Y0 Z5 M3 M4\n"),
+            2,
+            "M4: a second code of the spindle (M3-M5) group in one block (M3 before it)",
+        ),
+        (
+            format!("{HEADER}G0 X0 Y0 Z5 M7 M8 M9\n"),
+            2,
+            "M9: a second code of the coolant off (M9) group in one block (M7 before it)",
         ),
         // An arc's number of turns (LinuxCNC) was ignored: five turns read as one.
         (
