@@ -719,3 +719,35 @@ fn a_position_assigned_to_a_register_is_no_motion() {
     let p = program::parse(&text, Dialect::FanucLs).unwrap();
     assert_eq!(p.targets.iter().map(|t| t.line).collect::<Vec<_>>(), [3, 4]);
 }
+
+/// An LS program of 200 000 positions reads in time: each new position's number was checked
+/// against every position read before it (a scan, quadratic in the positions: about 40 s for
+/// these), now against a set. Every target is read, in order, with its values.
+#[test]
+fn a_long_ls_program_reads_every_position_in_linear_time() {
+    let n = 200_000;
+    let mut text = String::from("/PROG  LONG\n/MN\n");
+    for i in 1..=n {
+        text += &format!("{i:6}:J P[{i}] 100% FINE ;\n");
+    }
+    text += "/POS\n";
+    for i in 1..=n {
+        let j1 = f64::from(i % 1000) * 0.01;
+        text += &format!("P[{i}]{{\n   GP1:\n\tUF : 0, UT : 1,\n\tJ1= {j1:.3} deg,\tJ2= -16.000 deg,\tJ3= -28.000 deg,\n\tJ4= 3.000 deg,\tJ5= -62.000 deg,\tJ6= 144.000 deg\n}};\n");
+    }
+    text += "/END\n";
+    let started = std::time::Instant::now();
+    let p = program::parse(&text, Dialect::FanucLs).unwrap();
+    let seconds = started.elapsed().as_secs_f64();
+    assert_eq!(p.targets.len(), n as usize);
+    for (k, t) in p.targets.iter().enumerate().step_by(9973) {
+        let i = k as u32 + 1;
+        assert_eq!(t.line, u64::from(i) + 2);
+        assert!(
+            (t.q_deg[0] - f64::from(i % 1000) * 0.01).abs() < 1e-12,
+            "{k}"
+        );
+        assert_eq!(t.q_deg[5], 144.0);
+    }
+    assert!(seconds < 20.0, "{seconds} s");
+}
