@@ -2,7 +2,7 @@
 //! `Z`, `A`, `B`, `C`, `S`, `T` of an aggregate, and the `$BASE` and `$TOOL` a program sets.
 
 use crate::program::cartesian::flags::Part;
-use crate::program::cartesian::{within_limits, Cartesian, Flags, Frame};
+use crate::program::cartesian::{outside_limits, within_limits, Cartesian, Flags, Frame};
 use crate::program::krl::{StatusPart, StatusTurn};
 use crate::program::{at, number_at, Dialect};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
@@ -125,16 +125,33 @@ pub(crate) fn frame_set(line: u64, code: &str) -> Option<(bool, Frame)> {
         "$NULLFRAME" => Frame::World,
         "$WORLD" if base => Frame::World,
         _ if value.starts_with('{') => match literal(value) {
-            Some(f) => Frame::Stated(line, f),
-            None => Frame::Unknown(line, format!("{name} on line {line}: expected a frame {{X .., Y .., Z .., A .., B .., C ..}} with all six members")),
+            Ok(f) => Frame::Stated(line, f),
+            Err(why) => Frame::Unknown(line, format!("{name} on line {line}: {why}")),
         },
         other => held(&stiffid_core::common::limits::short(other)),
     };
     Some((base, frame))
 }
 
-/// A literal frame `{X .., Y .., Z .., A .., B .., C ..}` (optionally `{FRAME: ..}`), m.
-fn literal(value: &str) -> Option<Isometry3<f64>> {
+/// A literal frame `{X .., Y .., Z .., A .., B .., C ..}` (optionally `{FRAME: ..}`), m, or
+/// why it is none: not all six members once, or one beyond the limits ([`outside_limits`]).
+fn literal(value: &str) -> std::result::Result<Isometry3<f64>, String> {
+    let members =
+        || "expected a frame {X .., Y .., Z .., A .., B .., C ..} with all six members".to_string();
+    let v = members_of(value).ok_or_else(members)?;
+    if let Some(why) = outside_limits(&POSE, v.iter().copied()) {
+        return Err(why);
+    }
+    let r =
+        UnitQuaternion::from_euler_angles(v[5].to_radians(), v[4].to_radians(), v[3].to_radians());
+    Ok(Isometry3::from_parts(
+        Translation3::new(v[0] * 1e-3, v[1] * 1e-3, v[2] * 1e-3),
+        r,
+    ))
+}
+
+/// The six members of a literal frame, each given once, in [`POSE`]'s order.
+fn members_of(value: &str) -> Option<Vec<f64>> {
     let inner = value.strip_prefix('{')?.split('}').next()?;
     let inner = inner.split_once(':').map_or(inner, |(_, r)| r);
     let mut v = [None; 6];
@@ -149,13 +166,5 @@ fn literal(value: &str) -> Option<Isometry3<f64>> {
         v[k] = Some(v[k].map_or(x, |_| f64::NAN));
     }
     let v: Vec<f64> = v.into_iter().collect::<Option<Vec<f64>>>()?;
-    if v.iter().any(|x| !x.is_finite()) {
-        return None;
-    }
-    let r =
-        UnitQuaternion::from_euler_angles(v[5].to_radians(), v[4].to_radians(), v[3].to_radians());
-    Some(Isometry3::from_parts(
-        Translation3::new(v[0] * 1e-3, v[1] * 1e-3, v[2] * 1e-3),
-        r,
-    ))
+    v.iter().all(|x| x.is_finite()).then_some(v)
 }
