@@ -1,7 +1,9 @@
 //! A 100 000-block G-code program compensated end to end on the FANUC R-2000iC/165F milling cell
 //! (read, process forces, inverse kinematics, compensation, the program written back, as G-code
 //! or as a FANUC LS program of Cartesian targets split into sub-programs): the compensate job as
-//! `stiffid compensate --program` runs it (goal: under 2 s on 2 cores).
+//! `stiffid compensate --program` runs it (goal: under 2 s on 2 cores); and a FANUC LS program of
+//! 200 000 joint positions read (each position's number checked against the others by a set:
+//! linear in the positions, where a scan of the ones before took about 40 s).
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::Isometry3;
@@ -30,6 +32,30 @@ fn raster() -> String {
         s += &format!("G1 Y{:.3}\n", y + 2.0);
     }
     s
+}
+
+/// An LS program of `n` joint motions to as many positions.
+fn long_ls(n: u32) -> String {
+    let mut text = String::from("/PROG  LONG\n/MN\n");
+    for i in 1..=n {
+        text += &format!("{i:6}:J P[{i}] 100% FINE ;\n");
+    }
+    text += "/POS\n";
+    for i in 1..=n {
+        let j1 = f64::from(i % 1000) * 0.01;
+        text += &format!("P[{i}]{{\n   GP1:\n\tUF : 0, UT : 1,\n\tJ1= {j1:.3} deg,\tJ2= -16.000 deg,\tJ3= -28.000 deg,\n\tJ4= 3.000 deg,\tJ5= -62.000 deg,\tJ6= 144.000 deg\n}};\n");
+    }
+    text + "/END\n"
+}
+
+fn reading(c: &mut Criterion) {
+    let text = long_ls(200_000);
+    let mut group = c.benchmark_group("read a program");
+    group.sample_size(10);
+    group.bench_function("FANUC LS, 200 000 positions", |b| {
+        b.iter(|| stiffid::machining::program::parse(&text, Dialect::FanucLs).unwrap())
+    });
+    group.finish();
 }
 
 fn benches(c: &mut Criterion) {
@@ -84,5 +110,5 @@ fn benches(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(machining, benches);
+criterion_group!(machining, benches, reading);
 criterion_main!(machining);

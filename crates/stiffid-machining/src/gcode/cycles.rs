@@ -244,8 +244,8 @@ fn hole(line: u64, w: &Words, other_geometry: bool, scale: f64, s: &State) -> Re
         _ => None,
     };
     let dwell = match (code, &s.cycle.dwell) {
-        (82, Some(p)) => Some(p.clone()),
-        (82, None) => return refuse("a dwell P is needed"),
+        (82, Some(p)) if p.0 >= 0.0 => Some(p.clone()),
+        (82, _) => return refuse("a dwell P of 0 or more is needed"),
         (_, Some(_)) => return refuse("P (a dwell) belongs to G82"),
         _ => None,
     };

@@ -182,6 +182,12 @@ fn cutter_compensation_unit_changes_under_a_feed_and_malformed_cycles_are_refuse
         ("G81 X10 Y0 Z-5 R2 Q1 F100", 4, "belongs to G83"),
         ("G81 X10 Y0 Z-5 R2 P100 F100", 4, "belongs to G82"),
         ("G82 X10 Y0 Z-5 R2 F100", 4, "dwell P"),
+        // A negative dwell was written back as read (G4 P-1).
+        (
+            "G82 X10 Y0 Z-5 R2 P-1 F100",
+            4,
+            "G82: a dwell P of 0 or more is needed",
+        ),
         ("G81 X10 Y0 Z-5 R2 F100\nR3", 5, "controllers differ"),
         ("G81 X10 Y0 Z-5 R2 F100\nG80\nX20", 6, "after G80"),
         ("G1 X1 Q2 F100", 4, "Q: a peck depth outside"),

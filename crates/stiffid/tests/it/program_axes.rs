@@ -719,3 +719,32 @@ fn a_position_assigned_to_a_register_is_no_motion() {
     let p = program::parse(&text, Dialect::FanucLs).unwrap();
     assert_eq!(p.targets.iter().map(|t| t.line).collect::<Vec<_>>(), [3, 4]);
 }
+
+/// A long LS program reads every position, in order, with its values (each new position's
+/// number is checked against the others by a set; the time, linear in the positions, is the
+/// `machining` bench's: 200 000 positions).
+#[test]
+fn a_long_ls_program_reads_every_position() {
+    let n = 20_000;
+    let mut text = String::from("/PROG  LONG\n/MN\n");
+    for i in 1..=n {
+        text += &format!("{i:6}:J P[{i}] 100% FINE ;\n");
+    }
+    text += "/POS\n";
+    for i in 1..=n {
+        let j1 = f64::from(i % 1000) * 0.01;
+        text += &format!("P[{i}]{{\n   GP1:\n\tUF : 0, UT : 1,\n\tJ1= {j1:.3} deg,\tJ2= -16.000 deg,\tJ3= -28.000 deg,\n\tJ4= 3.000 deg,\tJ5= -62.000 deg,\tJ6= 144.000 deg\n}};\n");
+    }
+    text += "/END\n";
+    let p = program::parse(&text, Dialect::FanucLs).unwrap();
+    assert_eq!(p.targets.len(), n as usize);
+    for (k, t) in p.targets.iter().enumerate().step_by(997) {
+        let i = k as u32 + 1;
+        assert_eq!(t.line, u64::from(i) + 2);
+        assert!(
+            (t.q_deg[0] - f64::from(i % 1000) * 0.01).abs() < 1e-12,
+            "{k}"
+        );
+        assert_eq!(t.q_deg[5], 144.0);
+    }
+}

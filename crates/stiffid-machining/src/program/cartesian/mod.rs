@@ -67,18 +67,27 @@ pub(crate) fn within_limits(
     names: &[&str],
     numbers: &[(f64, Range<usize>)],
 ) -> stiffid_core::Result<()> {
-    for (k, (name, (v, _))) in names.iter().zip(numbers).enumerate() {
+    match outside_limits(names, numbers.iter().map(|(v, _)| *v)) {
+        Some(message) => Err(super::at(line, message)),
+        None => Ok(()),
+    }
+}
+
+/// The first of a pose's `values` ([`within_limits`]) outside its limits, said: `X 1e300:
+/// outside -100000 to 100000 mm`.
+pub(crate) fn outside_limits(
+    names: &[&str],
+    values: impl IntoIterator<Item = f64>,
+) -> Option<String> {
+    (names.iter().zip(values).enumerate()).find_map(|(k, (name, v))| {
         let range = match k < 3 {
             true => &limits::LENGTH_MM,
             false => &limits::ANGLE_DEG,
         };
-        if !range.contains(*v) {
-            let (v, min, max) = (words::number(*v), words::number(range.min), range.max);
-            let message = format!("{name} {v}: outside {min} to {max} {}", range.unit);
-            return Err(super::at(line, message));
-        }
-    }
-    Ok(())
+        let (shown, min, max) = (words::number(v), words::number(range.min), range.max);
+        (!range.contains(v))
+            .then(|| format!("{name} {shown}: outside {min} to {max} {}", range.unit))
+    })
 }
 
 /// A frame a target is given in, or a tool it is given for, as the program states it.

@@ -2,7 +2,7 @@
 //! `Z`, `A`, `B`, `C`, `S`, `T` of an aggregate, and the `$BASE` and `$TOOL` a program sets.
 
 use crate::program::cartesian::flags::Part;
-use crate::program::cartesian::{within_limits, Cartesian, Flags, Frame};
+use crate::program::cartesian::{outside_limits, within_limits, Cartesian, Flags, Frame};
 use crate::program::krl::{StatusPart, StatusTurn};
 use crate::program::{at, number_at, Dialect};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
@@ -140,12 +140,11 @@ fn linked(value: &str) -> std::result::Result<Isometry3<f64>, String> {
     let mut frame = Isometry3::identity();
     let mut rest = value.trim();
     while !rest.is_empty() {
-        let close = rest.find('}').filter(|_| rest.starts_with('{'));
-        let Some(f) = close.and_then(|c| literal(&rest[..=c])) else {
+        let Some(close) = rest.find('}').filter(|_| rest.starts_with('{')) else {
             return Err(format!("expected a frame {{X .., Y .., Z .., A .., B .., C ..}} with all six members, or literal frames linked by ':', at '{}'", stiffid_core::common::limits::short(rest)));
         };
-        frame *= f;
-        rest = rest[close.unwrap_or(0) + 1..].trim_start();
+        frame *= literal(&rest[..=close])?;
+        rest = rest[close + 1..].trim_start();
         if let Some(next) = rest.strip_prefix(':') {
             rest = next.trim_start();
             if rest.is_empty() {
@@ -161,8 +160,25 @@ fn linked(value: &str) -> std::result::Result<Isometry3<f64>, String> {
     Ok(frame)
 }
 
-/// A literal frame `{X .., Y .., Z .., A .., B .., C ..}` (optionally `{FRAME: ..}`), m.
-fn literal(value: &str) -> Option<Isometry3<f64>> {
+/// A literal frame `{X .., Y .., Z .., A .., B .., C ..}` (optionally `{FRAME: ..}`), m, or
+/// why it is none: not all six members once, or one beyond the limits ([`outside_limits`]).
+fn literal(value: &str) -> std::result::Result<Isometry3<f64>, String> {
+    let members =
+        || "expected a frame {X .., Y .., Z .., A .., B .., C ..} with all six members".to_string();
+    let v = members_of(value).ok_or_else(members)?;
+    if let Some(why) = outside_limits(&POSE, v.iter().copied()) {
+        return Err(why);
+    }
+    let r =
+        UnitQuaternion::from_euler_angles(v[5].to_radians(), v[4].to_radians(), v[3].to_radians());
+    Ok(Isometry3::from_parts(
+        Translation3::new(v[0] * 1e-3, v[1] * 1e-3, v[2] * 1e-3),
+        r,
+    ))
+}
+
+/// The six members of a literal frame, each given once, in [`POSE`]'s order.
+fn members_of(value: &str) -> Option<Vec<f64>> {
     let inner = value.strip_prefix('{')?.split('}').next()?;
     let inner = inner.split_once(':').map_or(inner, |(_, r)| r);
     let mut v = [None; 6];
@@ -177,13 +193,5 @@ fn literal(value: &str) -> Option<Isometry3<f64>> {
         v[k] = Some(v[k].map_or(x, |_| f64::NAN));
     }
     let v: Vec<f64> = v.into_iter().collect::<Option<Vec<f64>>>()?;
-    if v.iter().any(|x| !x.is_finite()) {
-        return None;
-    }
-    let r =
-        UnitQuaternion::from_euler_angles(v[5].to_radians(), v[4].to_radians(), v[3].to_radians());
-    Some(Isometry3::from_parts(
-        Translation3::new(v[0] * 1e-3, v[1] * 1e-3, v[2] * 1e-3),
-        r,
-    ))
+    v.iter().all(|x| x.is_finite()).then_some(v)
 }

@@ -35,7 +35,7 @@ use super::{at, number_at, six, Found, JointTarget, Units};
 use cartesian::Value;
 use nalgebra::{UnitQuaternion, Vector3};
 use statements::{Place, Selected};
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use stiffid_core::Result;
 
 /// Every joint target of `text`, in the order of the `/MN` motions (module docs), and the
@@ -144,6 +144,7 @@ struct Open {
 /// `E1`.. then group 2's `J1`.. (`GP2 J1`), and their units.
 fn positions(text: &str) -> Result<(HashMap<u64, JointTarget>, Vec<String>, Units)> {
     let mut read: Vec<Open> = Vec::new();
+    let mut numbers = HashSet::new();
     let mut units: AxisUnits = HashMap::new();
     let mut in_pos = false;
     let mut open: Option<Open> = None;
@@ -160,7 +161,7 @@ fn positions(text: &str) -> Result<(HashMap<u64, JointTarget>, Vec<String>, Unit
             if let Some(o) = &open {
                 return Err(at(o.first, "position without its closing '};'".into()));
             }
-            open = Some(Open::new(line, inner, &read)?);
+            open = Some(Open::new(line, inner, &mut numbers)?);
         }
         let Some(o) = open.as_mut() else {
             continue;
@@ -190,14 +191,15 @@ fn positions(text: &str) -> Result<(HashMap<u64, JointTarget>, Vec<String>, Unit
 type AxisUnits = HashMap<(u8, usize), (&'static str, u64)>;
 
 impl Open {
-    /// The position opened on `line` by `P[` and `inner`, its number not among `read`'s.
-    fn new(line: u64, inner: &str, read: &[Open]) -> Result<Self> {
+    /// The position opened on `line` by `P[` and `inner`, its number not among `numbers` (the
+    /// numbers opened before, a set: a scan of the positions read made reading quadratic).
+    fn new(line: u64, inner: &str, numbers: &mut HashSet<u64>) -> Result<Self> {
         let index = inner
             .split([':', ']'])
             .next()
             .and_then(|i| i.trim().parse::<u64>().ok())
             .ok_or_else(|| at(line, "P[: expected a position number".into()))?;
-        if read.iter().any(|o| o.index == index) {
+        if !numbers.insert(index) {
             return Err(at(line, format!("P[{index}] defined twice in /POS")));
         }
         Ok(Open {

@@ -307,3 +307,33 @@ fn targets_in_the_dat_are_written_back_into_it_and_nothing_else() {
     assert!(matches!(p.write(&q), Err(Error::InvalidField { field, .. }) if field == "data"));
     assert_eq!(p.write(&[q[0], p.targets[1].q_deg]).unwrap(), src);
 }
+
+/// A literal `$BASE` or `$TOOL` beyond the limits (a position beyond 100 m, an angle beyond 1e4
+/// deg) is no frame: 1e308 mm reached inverse kinematics as "inf mm away". The motions in it are
+/// refused naming the line that set it and the member.
+#[test]
+fn a_literal_frame_beyond_the_limits_is_refused_naming_its_member() {
+    for (frame, member) in [
+        (
+            "$BASE = {X 1e308, Y 0, Z 0, A 0, B 0, C 0}",
+            "X 1e308: outside -100000 to 100000 mm",
+        ),
+        (
+            "$TOOL = {X 0, Y 0, Z 250, A 0, B 0, C -2e4}",
+            "C -20000: outside -10000 to 10000 deg",
+        ),
+    ] {
+        let src = format!("DEF a( )\n$BASE = $WORLD\n$TOOL = $NULLFRAME\n{frame}\nLIN {{X 1, Y 2, Z 3, A 0, B 0, C 0, S 2, T 0}}\nEND\n");
+        let p = parse_with_data(&src, None, Dialect::Krl).unwrap();
+        let (base, tool) = frames(&p, 0);
+        let set = if frame.starts_with("$BASE") {
+            base
+        } else {
+            tool
+        };
+        match set {
+            Frame::Unknown(4, why) => assert!(why.contains(member), "{why}"),
+            other => panic!("{frame}: {other:?}"),
+        }
+    }
+}
