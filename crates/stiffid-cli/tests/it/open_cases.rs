@@ -452,6 +452,29 @@ fn a_krl_point_declared_twice_or_out_of_range_is_refused_naming_it() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// A linear motion the arm cannot make without changing its configuration from the target
+/// before it (here the pocket's first cut started from an axis posture, shoulder and elbow
+/// elsewhere) is refused saying so, with the configurations that reach it.
+#[test]
+fn a_linear_motion_that_would_change_the_configuration_is_refused_saying_so() {
+    let dir = temp_dir("open-krl-kept");
+    let axes = |_: &str| "DECL E6AXIS XP1={A1 0, A2 -90, A3 90, A4 0, A5 0, A6 0}\n".to_string();
+    let args = krl_with_dat(&dir, &axes);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let message = refused(
+        &dir,
+        &args,
+        &[
+            "cut.src",
+            "without changing the arm's configuration from the target before it",
+            "a linear or circular motion keeps them",
+            "inverse kinematics reaches it in S 'B",
+        ],
+    );
+    assert!(!message.contains("in the configuration S"), "{message}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// Reflector rows beside load steps (in `d`, with its `second.toml`, the arm's axis angles `q`
 /// of a posture): refused, the message saying how to locate the part.
 fn reflectors_beside_load_steps_are_refused(d: &std::path::Path, q: &str) {

@@ -204,7 +204,12 @@ fn resolve_in(
             (dialect, &accept),
             options,
         )
-        .map_err(|miss| at(line, missed(&wanted, miss)))?;
+        .map_err(|miss| {
+            at(
+                line,
+                missed(&wanted, kept.is_some().then_some(c.follows), miss),
+            )
+        })?;
         let q = on_truth(controller, &target, q, options).map_err(|why| at(line, why))?;
         c.base_from_frame = Some(frame);
         t.q_deg = q.map(f64::to_degrees).into();
@@ -220,15 +225,26 @@ fn resolve_in(
     Ok(out)
 }
 
-/// The message of a pose not reached in the configuration `wanted`.
-fn missed(wanted: &Flags, miss: Miss) -> String {
-    match miss {
-        Miss::Elsewhere(found) => format!(
+/// The message of a pose not reached in the configuration `wanted`, or (`kept`: whether the
+/// motion is linear or circular) without a change of the arm's configuration from the target
+/// before it.
+fn missed(wanted: &Flags, kept: Option<bool>, miss: Miss) -> String {
+    let found = |found: &[Flags]| found.iter().map(Flags::text).collect::<Vec<_>>().join(", ");
+    match (miss, kept) {
+        (Miss::Elsewhere(f), None) => format!(
             "the pose is out of reach in the configuration {} within the joint limits; inverse kinematics reaches it in {}",
             wanted.text(),
-            found.iter().map(Flags::text).collect::<Vec<_>>().join(", ")
+            found(&f)
         ),
-        Miss::Unreachable(why) => format!("the pose is out of reach: {why}"),
+        (Miss::Elsewhere(f), Some(follows)) => format!(
+            "the pose is out of reach within the joint limits without changing the arm's configuration from the target before it (its shoulder, elbow and wrist: {}); inverse kinematics reaches it in {} only by changing it: a joint motion to it, or a target between them",
+            match follows {
+                true => "a linear or circular motion keeps them",
+                false => "the target gives no configuration data of its own",
+            },
+            found(&f)
+        ),
+        (Miss::Unreachable(why), _) => format!("the pose is out of reach: {why}"),
     }
 }
 
