@@ -173,6 +173,15 @@ pub(super) fn comment(line: u64, text: &str, s: &mut State) -> Result<()> {
             }
             s.rotary = true;
         }
+        "rotary" => {
+            return Err(at(
+                line,
+                format!(
+                    "rotary = {}: expected abc (A B C words turn the tool)",
+                    stiffid_core::common::limits::short(value.trim())
+                ),
+            ))
+        }
         "external" => {
             let letters: Vec<char> = value
                 .split_whitespace()
