@@ -22,10 +22,11 @@
 //! axis on the arm's path to the tool: the error names the joint, the link and the arm's joint).
 //!
 //! Before the XML parser sees the text, its element nesting is bounded
-//! ([`crate::common::limits::MAX_XML_DEPTH`]), so a hostile file cannot overflow the stack. Every joint
-//! must name declared links, no link may be the child of two joints, every link must hang from
-//! one root, and every number of an origin, axis or limit must be finite and within the limits
-//! ([`crate::common::limits::LENGTH_M`], [`crate::common::limits::ANGLE_RAD`]).
+//! ([`crate::common::limits::MAX_XML_DEPTH`]), so a hostile file cannot overflow the stack. Each
+//! link and joint name must be declared once, every joint must name declared links, no link may
+//! be the child of two joints, every link must hang from one root, and every number of an origin,
+//! axis or limit must be finite and within the limits ([`crate::common::limits::LENGTH_M`],
+//! [`crate::common::limits::ANGLE_RAD`]).
 
 use super::{Joint, LinkMass, Robot};
 use crate::common::limits::{self, JointBox};
@@ -258,12 +259,14 @@ fn tag_end(b: &[u8], from: usize) -> (usize, bool) {
     (b.len(), false)
 }
 
-/// Checks the links and joints form one tree (every joint between declared links, no link the
-/// child of two joints, one root) and returns each joint by its child link.
+/// Checks the links and joints form one tree (each link and joint name declared once, every
+/// joint between declared links, no link the child of two joints, one root) and returns each
+/// joint by its child link.
 pub(super) fn tree(
     urdf: &urdf_rs::Robot,
 ) -> std::result::Result<HashMap<&str, &urdf_rs::Joint>, String> {
-    let links: HashSet<&str> = urdf.links.iter().map(|l| l.name.as_str()).collect();
+    let links = unique("link", urdf.links.iter().map(|l| l.name.as_str()))?;
+    unique("joint", urdf.joints.iter().map(|j| j.name.as_str()))?;
     let mut by_child = HashMap::new();
     for j in &urdf.joints {
         for (role, link) in [("parent", &j.parent.link), ("child", &j.child.link)] {
@@ -301,6 +304,24 @@ pub(super) fn tree(
             limits::short(&roots.join(", "))
         )),
     }
+}
+
+/// The names of the elements `kind` (links or joints), each declared once: a second element of
+/// one name would be passed over where the name is looked up (its mass, its origin written back).
+fn unique<'a>(
+    kind: &str,
+    names: impl Iterator<Item = &'a str>,
+) -> std::result::Result<HashSet<&'a str>, String> {
+    let mut seen = HashSet::new();
+    for name in names {
+        if !seen.insert(name) {
+            return Err(format!(
+                "{kind} '{}' is declared twice",
+                limits::short(name)
+            ));
+        }
+    }
+    Ok(seen)
 }
 
 /// A loop of parent links, as `a -> b -> a`, if any.
