@@ -635,6 +635,11 @@ fn urdf_diagnostics_name_the_problem() {
             "joint 'joint_1' is declared twice",
         ),
         (
+            "</robot>",
+            "</robot>\n<robot name=\"second\"/>",
+            "an element follows the document's root element: '<robot name=\"second\"/>'",
+        ),
+        (
             "<axis xyz=\"0 0 1\"/>",
             "<axis xyz=\"NaN 0 1\"/>",
             "joint 'joint_1': axis xyz[1]: NaN",

@@ -66,7 +66,7 @@ pub fn parse(text: &str, source_name: &str, tip: Option<&str>) -> Result<Robot> 
         source_name: source_name.to_string(),
         message,
     };
-    check_depth(text).map_err(parse_error)?;
+    check_elements(text).map_err(parse_error)?;
     check_text(text).map_err(parse_error)?;
     let urdf = urdf_rs::read_from_string(text)
         .map_err(|e| parse_error(limits::one_line(&e.to_string())))?;
@@ -204,11 +204,13 @@ fn chain_to<'a>(
     Ok(path)
 }
 
-/// Fails if the element nesting of `text` is deeper than [`limits::MAX_XML_DEPTH`]. Comments,
-/// CDATA, declarations and quoted attribute values are skipped, so nothing hides an element.
-fn check_depth(text: &str) -> std::result::Result<(), String> {
+/// Fails if the element nesting of `text` is deeper than [`limits::MAX_XML_DEPTH`], or if an
+/// element follows the document's root element (the XML reader stops at the root's end and
+/// drops it). Comments, CDATA, declarations and quoted attribute values are skipped, so nothing
+/// hides an element.
+fn check_elements(text: &str) -> std::result::Result<(), String> {
     let b = text.as_bytes();
-    let (mut i, mut depth) = (0, 0usize);
+    let (mut i, mut depth, mut roots) = (0, 0usize, 0usize);
     let skip_to = |from: usize, end: &str| {
         text[from..]
             .find(end)
@@ -228,6 +230,10 @@ fn check_depth(text: &str) -> std::result::Result<(), String> {
             i = skip_to(i, ">");
         } else {
             let (end, self_closing) = tag_end(b, i + 1);
+            roots += usize::from(depth == 0);
+            if roots > 1 {
+                return Err(second_root(&text[i..end]));
+            }
             if !self_closing {
                 depth += 1;
                 if depth > limits::MAX_XML_DEPTH {
@@ -241,6 +247,14 @@ fn check_depth(text: &str) -> std::result::Result<(), String> {
         }
     }
     Ok(())
+}
+
+/// The error of an element `tag` after the document's root element.
+fn second_root(tag: &str) -> String {
+    format!(
+        "an element follows the document's root element: '{}' (a URDF holds one <robot>)",
+        limits::short(tag)
+    )
 }
 
 /// The index after the `>` ending the tag that starts before `from`, and whether it is `/>`;
