@@ -625,6 +625,21 @@ fn urdf_diagnostics_name_the_problem() {
             "the links are not connected: 2 links have no parent joint (world, island)",
         ),
         (
+            "<link name=\"link_5\"/>",
+            "<link name=\"link_5\"/><link name=\"link_5\"/>",
+            "link 'link_5' is declared twice",
+        ),
+        (
+            "<joint name=\"d_1\" type=\"fixed\">",
+            "<joint name=\"joint_1\" type=\"fixed\">",
+            "joint 'joint_1' is declared twice",
+        ),
+        (
+            "</robot>",
+            "</robot>\n<robot name=\"second\"/>",
+            "an element follows the document's root element: '<robot name=\"second\"/>'",
+        ),
+        (
             "<axis xyz=\"0 0 1\"/>",
             "<axis xyz=\"NaN 0 1\"/>",
             "joint 'joint_1': axis xyz[1]: NaN",

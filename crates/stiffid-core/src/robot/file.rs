@@ -173,6 +173,7 @@ struct ErrorMapFile {
     sin_deg: Vec<f64>,
     #[serde(default)]
     half_backlash_deg: f64,
+    #[serde(default, deserialize_with = "crate::common::exact::option")]
     range_deg: Option<[f64; 2]>,
 }
 

@@ -22,10 +22,11 @@
 //! axis on the arm's path to the tool: the error names the joint, the link and the arm's joint).
 //!
 //! Before the XML parser sees the text, its element nesting is bounded
-//! ([`crate::common::limits::MAX_XML_DEPTH`]), so a hostile file cannot overflow the stack. Every joint
-//! must name declared links, no link may be the child of two joints, every link must hang from
-//! one root, and every number of an origin, axis or limit must be finite and within the limits
-//! ([`crate::common::limits::LENGTH_M`], [`crate::common::limits::ANGLE_RAD`]).
+//! ([`crate::common::limits::MAX_XML_DEPTH`]), so a hostile file cannot overflow the stack. Each
+//! link and joint name must be declared once, every joint must name declared links, no link may
+//! be the child of two joints, every link must hang from one root, and every number of an origin,
+//! axis or limit must be finite and within the limits ([`crate::common::limits::LENGTH_M`],
+//! [`crate::common::limits::ANGLE_RAD`]).
 
 use super::{Joint, LinkMass, Robot};
 use crate::common::limits::{self, JointBox};
@@ -65,7 +66,7 @@ pub fn parse(text: &str, source_name: &str, tip: Option<&str>) -> Result<Robot> 
         source_name: source_name.to_string(),
         message,
     };
-    check_depth(text).map_err(parse_error)?;
+    check_elements(text).map_err(parse_error)?;
     check_text(text).map_err(parse_error)?;
     let urdf = urdf_rs::read_from_string(text)
         .map_err(|e| parse_error(limits::one_line(&e.to_string())))?;
@@ -203,11 +204,13 @@ fn chain_to<'a>(
     Ok(path)
 }
 
-/// Fails if the element nesting of `text` is deeper than [`limits::MAX_XML_DEPTH`]. Comments,
-/// CDATA, declarations and quoted attribute values are skipped, so nothing hides an element.
-fn check_depth(text: &str) -> std::result::Result<(), String> {
+/// Fails if the element nesting of `text` is deeper than [`limits::MAX_XML_DEPTH`], or if an
+/// element follows the document's root element (the XML reader stops at the root's end and
+/// drops it). Comments, CDATA, declarations and quoted attribute values are skipped, so nothing
+/// hides an element.
+fn check_elements(text: &str) -> std::result::Result<(), String> {
     let b = text.as_bytes();
-    let (mut i, mut depth) = (0, 0usize);
+    let (mut i, mut depth, mut roots) = (0, 0usize, 0usize);
     let skip_to = |from: usize, end: &str| {
         text[from..]
             .find(end)
@@ -227,6 +230,10 @@ fn check_depth(text: &str) -> std::result::Result<(), String> {
             i = skip_to(i, ">");
         } else {
             let (end, self_closing) = tag_end(b, i + 1);
+            roots += usize::from(depth == 0);
+            if roots > 1 {
+                return Err(second_root(&text[i..end]));
+            }
             if !self_closing {
                 depth += 1;
                 if depth > limits::MAX_XML_DEPTH {
@@ -240,6 +247,14 @@ fn check_depth(text: &str) -> std::result::Result<(), String> {
         }
     }
     Ok(())
+}
+
+/// The error of an element `tag` after the document's root element.
+fn second_root(tag: &str) -> String {
+    format!(
+        "an element follows the document's root element: '{}' (a URDF holds one <robot>)",
+        limits::short(tag)
+    )
 }
 
 /// The index after the `>` ending the tag that starts before `from`, and whether it is `/>`;
@@ -258,12 +273,14 @@ fn tag_end(b: &[u8], from: usize) -> (usize, bool) {
     (b.len(), false)
 }
 
-/// Checks the links and joints form one tree (every joint between declared links, no link the
-/// child of two joints, one root) and returns each joint by its child link.
+/// Checks the links and joints form one tree (each link and joint name declared once, every
+/// joint between declared links, no link the child of two joints, one root) and returns each
+/// joint by its child link.
 pub(super) fn tree(
     urdf: &urdf_rs::Robot,
 ) -> std::result::Result<HashMap<&str, &urdf_rs::Joint>, String> {
-    let links: HashSet<&str> = urdf.links.iter().map(|l| l.name.as_str()).collect();
+    let links = unique("link", urdf.links.iter().map(|l| l.name.as_str()))?;
+    unique("joint", urdf.joints.iter().map(|j| j.name.as_str()))?;
     let mut by_child = HashMap::new();
     for j in &urdf.joints {
         for (role, link) in [("parent", &j.parent.link), ("child", &j.child.link)] {
@@ -301,6 +318,24 @@ pub(super) fn tree(
             limits::short(&roots.join(", "))
         )),
     }
+}
+
+/// The names of the elements `kind` (links or joints), each declared once: a second element of
+/// one name would be passed over where the name is looked up (its mass, its origin written back).
+fn unique<'a>(
+    kind: &str,
+    names: impl Iterator<Item = &'a str>,
+) -> std::result::Result<HashSet<&'a str>, String> {
+    let mut seen = HashSet::new();
+    for name in names {
+        if !seen.insert(name) {
+            return Err(format!(
+                "{kind} '{}' is declared twice",
+                limits::short(name)
+            ));
+        }
+    }
+    Ok(seen)
 }
 
 /// A loop of parent links, as `a -> b -> a`, if any.

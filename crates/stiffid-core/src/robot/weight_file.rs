@@ -66,6 +66,7 @@ struct TermFile {
 pub struct GravityFile {
     model: String,
     tool_mass_kg: Option<f64>,
+    #[serde(default, deserialize_with = "crate::common::exact::option")]
     tool_centre_of_mass_mm: Option<[f64; 3]>,
     terms: Vec<TermFile>,
 }

@@ -337,3 +337,22 @@ fn a_map_tapers_to_zero_beyond_its_range_in_the_robot_file() {
         "{e}"
     );
 }
+
+/// A map's `range_deg` of other than two angles is refused naming its length (a third angle was
+/// dropped).
+#[test]
+fn a_range_of_three_angles_is_refused() {
+    for range in ["[-30.0, 50.0, 99.0]", "[-30.0]"] {
+        let bad = TABLE
+            .replace(
+                "ERROR1",
+                &format!("error_map = {{ cos_deg = [0.01], range_deg = {range} }}"),
+            )
+            .replace("ERROR3", "");
+        let e = file::parse(&bad, "bad.toml").unwrap_err().to_string();
+        assert!(
+            e.contains("bad.toml") && e.contains("range_deg") && e.contains("an array of length 2"),
+            "{e}"
+        );
+    }
+}

@@ -14,11 +14,12 @@ fn own() -> OwnWeight {
     }
 }
 
+#[derive(Deserialize)]
+struct F {
+    gravity: Option<GravityFile>,
+}
+
 fn read(text: &str) -> Result<Option<OwnWeight>> {
-    #[derive(Deserialize)]
-    struct F {
-        gravity: Option<GravityFile>,
-    }
     let f: F = toml::from_str(text).expect("TOML");
     build(f.gravity, "robot.toml")
 }
@@ -42,13 +43,22 @@ fn bad_tables_name_the_field() {
     assert!(e.contains("gravity.terms[1].value_si"), "{e}");
 }
 
-/// A tool's centre of mass in the table: finite, within the lengths' range, only with its mass.
+/// A tool's centre of mass in the table: three numbers, finite, within the lengths' range, only
+/// with its mass.
 #[test]
 fn a_bad_tool_centre_names_the_field() {
     for bad in ["nan", "1e9"] {
         let text = toml(&own()).replace("125.0]", &format!("{bad}]"));
         let e = read(&text).unwrap_err().to_string();
         assert!(e.contains("gravity.tool_centre_of_mass_mm"), "{e}");
+    }
+    for bad in ["125.0, 7.0]", "]"] {
+        let text = toml(&own()).replace("125.0]", bad).replace(", ]", "]");
+        let e = toml::from_str::<F>(&text).err().expect(&text).to_string();
+        assert!(
+            e.contains("tool_centre_of_mass_mm") && e.contains("an array of length 3"),
+            "{e}"
+        );
     }
     let alone = toml(&own()).replace("tool_mass_kg = 12.5\n", "");
     let e = read(&alone).unwrap_err().to_string();
