@@ -1,4 +1,4 @@
-//! Design for the candidates of the model comparison ([`stiffid_identify::compare::pool`]):
+//! Design for the candidates of the model comparison (`stiffid_identify::compare::pool`):
 //! whether a group of postures identifies each candidate together with the setup's model, and the
 //! setup a group is designed on so that it identifies them all (`select --for-candidates`).
 //!
@@ -47,7 +47,7 @@ use stiffid_identify::svd::identifiability;
 pub struct Verdict {
     /// The candidate as a parameter: its name, kind and unit.
     pub parameter: Parameter,
-    /// Its family ([`stiffid_identify::compare::pool::CANDIDATE_FAMILIES`]).
+    /// Its family (`stiffid_identify::compare::pool::CANDIDATE_FAMILIES`).
     pub family: &'static str,
     /// The group identifies the model's parameters and the candidate together.
     pub identified: bool,

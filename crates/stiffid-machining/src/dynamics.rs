@@ -6,7 +6,7 @@
 //! material after it: the next point belongs to no operation or another one, or moves back
 //! against the tool's z (a retract, by more than a nanometre), or the path ends there
 //! (`exit_thrusts`). At an exit the thrust `F` of the operation (`k_f f D / 2`,
-//! [`crate::process::drilling`]) acts along the tool axis; its sudden release gives
+//! `crate::process::drilling`) acts along the tool axis; its sudden release gives
 //! the surge `F sqrt(c / m)` with the held effective mass `m = u^T Lambda_vv u`
 //! ([`stiffid_core::observation::dynamics::surge`]). A `G83` peck's every bottom is an exit (the last
 //! one is the breakthrough). The free tool axis can choose the rotation about the tool z that

@@ -15,7 +15,7 @@
 //!    (`cutting`): joint moves (G-code `G0`, `PTP`, `MoveJ`, `MoveAbsJ`, `J`, `MOVJ`), a
 //!    drill's retracts and moves across its axis, and points no operation covers cut nothing. A
 //!    drilling cycle's feed cuts from where the drill meets material (the part's surface, the
-//!    depth a peck reached: [`gcode::Cycle`]) to its end, both compensated under the thrust, so
+//!    depth a peck reached: `gcode::Cycle`) to its end, both compensated under the thrust, so
 //!    the drill runs along the compensated hole axis while it cuts; its `R` level and a peck's
 //!    re-approach are unloaded. A milling point fed along the tool axis (a plunge) gets no force
 //!    and is counted. With the

@@ -104,7 +104,7 @@ impl Weight {
     /// # Errors
     /// Those of [`Weight::new`]; [`Error::InvalidField`] (`gravity`) when both carry terms and
     /// they differ, naming both.
-    pub fn of(arm: &Arm, compliance: &Compliance) -> Result<Option<Self>> {
+    pub(crate) fn of(arm: &Arm, compliance: &Compliance) -> Result<Option<Self>> {
         let own = match (arm.robot().own_weight(), &compliance.own_weight) {
             (Some(r), Some(s)) if (&r.gravity, &r.terms) != (&s.gravity, &s.terms) => {
                 return Err(Error::InvalidField {

@@ -48,9 +48,9 @@ pub mod app;
 /// The Rust examples of the README, run as doctests.
 #[doc = include_str!("../../../README.md")]
 #[cfg(doctest)]
-pub struct ReadmeDoctests;
+pub(crate) struct ReadmeDoctests;
 
 /// The Rust examples of the user guide (`docs/guide.md`), run as doctests.
 #[doc = include_str!("../../../docs/guide.md")]
 #[cfg(doctest)]
-pub struct GuideDoctests;
+pub(crate) struct GuideDoctests;

@@ -248,7 +248,7 @@ impl<'a> Checker<'a> {
 
     /// [`Checker::margins`] (with its broad phase: a far pair's gradient is its spheres' gap's)
     /// and what their gradients with respect to the six axis angles (m/rad,
-    /// or rad/rad for angles) are worked out from, on demand ([`MarginGradients::gradient`]), so
+    /// or rad/rad for angles) are worked out from, on demand (`MarginGradients::gradient`), so
     /// that a caller pays only for the gradients it uses: exact, from the witness points of each
     /// distance (the normal times the difference of the witness points' velocities) and the
     /// derivatives of the incidence angle and the heights. Where the closest points of a pair are

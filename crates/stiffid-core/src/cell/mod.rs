@@ -26,7 +26,6 @@ mod check;
 mod distance;
 mod feasibility;
 mod motion;
-pub use motion::MarginGradients;
 
 pub use bodies::{bodies, capsules, Body, Capsule, Part, Solid};
 pub use check::{CheckKind, Margin, Thing};

@@ -55,7 +55,7 @@ pub struct Postures {
 }
 
 /// The header of a postures file of `robot`: [`HEADER`], then its external axes' columns.
-pub fn header(robot: &Robot) -> Vec<String> {
+pub(crate) fn header(robot: &Robot) -> Vec<String> {
     let mut names: Vec<String> = HEADER.iter().map(|h| h.to_string()).collect();
     names.extend(robot.external().map_or(Vec::new(), |a| a.column_names()));
     names
@@ -65,7 +65,7 @@ pub fn header(robot: &Robot) -> Vec<String> {
 /// the angles, mm or deg, each within its travel; returned in SI.
 ///
 /// # Errors
-/// Those of [`parse`], the header expected being [`header`] (a column of an axis the robot
+/// Those of [`parse`], the header expected being `header` (a column of an axis the robot
 /// lacks is a header error saying so), and a value of an external axis that is not a finite
 /// number or outside its travel (naming the line, the column and the axis).
 pub fn parse_cell(text: &str, robot: &Robot, bounds: Option<&JointBox>) -> Result<Postures> {

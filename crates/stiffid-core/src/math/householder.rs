@@ -40,7 +40,7 @@ pub fn reflect(tail: &[f64], tau: f64, y: &mut [f64]) {
 
 /// Each of the column-major `columns` (`m` rows each), from its row `from`, taken through the
 /// reflection of [`reflect`] (`tail` of `m - from - 1` entries): four columns at a time, their
-/// dots with `tail` summed together ([`dot4`]), each column's result that of [`reflect`] alone.
+/// dots with `tail` summed together (`dot4`), each column's result that of [`reflect`] alone.
 pub fn reflect_columns(tail: &[f64], tau: f64, columns: &mut [f64], m: usize, from: usize) {
     let mut groups = columns.chunks_exact_mut(4 * m);
     for g in &mut groups {

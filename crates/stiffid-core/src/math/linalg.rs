@@ -159,7 +159,7 @@ fn dot_portable(a: &[f64], b: &[f64]) -> f64 {
 /// summed as [`dot`] sums it, so each equals [`dot`]`(a, b[j])` to the last bit: computed
 /// together, their four chains of partial sums run side by side (a [`dot`] alone waits on its
 /// one chain's additions).
-pub fn dot4(a: &[f64], b: [&[f64]; 4]) -> [f64; 4] {
+pub(crate) fn dot4(a: &[f64], b: [&[f64]; 4]) -> [f64; 4] {
     #[cfg(target_arch = "x86_64")]
     if a.len() >= WIDE && std::arch::is_x86_feature_detected!("avx") {
         // SAFETY: the processor has AVX (checked above).

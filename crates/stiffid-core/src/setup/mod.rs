@@ -4,7 +4,7 @@
 //! - the [`Arm`] ([`Setup::arm`]): the robot, its tool points, the elastostatic model, the tool's
 //!   payload and the robot's bodies; kinematics, deflection, prediction and compensation need
 //!   this alone;
-//! - the [`Experiment`] ([`Setup::experiment`]): the rope load and its steps, the noise, the
+//! - the [`Experiment`] (`Setup::experiment`): the rope load and its steps, the noise, the
 //!   bounds, the test postures, the nominal stiffness and the characteristic length, with the
 //!   arm what design, simulation and identification need;
 //! - the [`Workcell`] ([`Setup::workcell`]): the cell's floor and obstacles, the tracker, the
@@ -84,7 +84,7 @@ mod controller_robot;
 mod experiment;
 mod file;
 pub mod load_steps;
-pub mod numbered;
+pub(crate) mod numbered;
 pub mod plausibility;
 pub mod prior;
 mod program_frames;
@@ -158,12 +158,6 @@ impl Setup {
     /// The arm: robot, tool, model, payload, bodies.
     pub fn arm(&self) -> &Arm {
         &self.arm
-    }
-
-    /// The experiment: load, noise, bounds, test postures, nominal stiffness, characteristic
-    /// length, candidate springs.
-    pub fn experiment(&self) -> &Experiment {
-        &self.experiment
     }
 
     /// The workcell: cell, tracker, constraints, workpiece.

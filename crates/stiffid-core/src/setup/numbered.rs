@@ -11,7 +11,7 @@
 //!
 //! A tool is given in the controller's flange frame, a base in the controller's world frame
 //! (module docs of `setup::workcell`), as the controller's own tables hold them. Numbers run
-//! from 0 to [`MAX_FRAME_NUMBER`]; what a number the table lacks means (the flange, the world, or
+//! from 0 to `MAX_FRAME_NUMBER`; what a number the table lacks means (the flange, the world, or
 //! a frame stiffid cannot know) is each language's rule.
 
 use crate::common::limits::{self, check_count};
@@ -23,7 +23,7 @@ use std::collections::BTreeMap;
 
 /// The largest frame number of a table (`number`, from 0): every controller's tables are
 /// smaller (KUKA 16 tools and 32 bases, FANUC 10 tools and 9 user frames, Yaskawa 64 tools).
-pub const MAX_FRAME_NUMBER: u32 = 999;
+pub(crate) const MAX_FRAME_NUMBER: u32 = 999;
 
 /// A table of frames by number (module docs), lengths in m.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -51,7 +51,7 @@ impl NumberedFrames {
     ///
     /// # Errors
     /// [`Error::InvalidField`] naming `field[i].number` for a number above
-    /// [`MAX_FRAME_NUMBER`] or given twice, or `field` for more than `MAX_FRAME_NUMBER + 1`
+    /// `MAX_FRAME_NUMBER` or given twice, or `field` for more than `MAX_FRAME_NUMBER + 1`
     /// frames.
     pub fn new(field: &str, frames: &[(u32, Isometry3<f64>)]) -> Result<Self> {
         check_count(field, frames.len(), 0, MAX_FRAME_NUMBER as usize + 1)?;
@@ -96,7 +96,7 @@ pub(super) struct NumberedFrameFile {
 /// The table `field` (`controller.tools`) of the file's `entries`, each checked.
 ///
 /// # Errors
-/// [`Error::InvalidField`] naming `field[i].number` (negative, above [`MAX_FRAME_NUMBER`] or
+/// [`Error::InvalidField`] naming `field[i].number` (negative, above `MAX_FRAME_NUMBER` or
 /// given twice), `field[i].xyz_mm` or `field[i].rpy_deg` (outside [`limits::LENGTH_MM`] or
 /// [`limits::ANGLE_DEG`]), or `field` (too many entries).
 pub(super) fn read(field: &str, entries: &[NumberedFrameFile]) -> Result<NumberedFrames> {

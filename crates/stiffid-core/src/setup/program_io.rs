@@ -29,12 +29,12 @@ pub const RAPID_SPEED_MM_S: Range = Range::new(1.0, 10_000.0, "mm/s");
 /// `BAS(#VEL_PTP)`, FANUC `J .. %`, Yaskawa `VJ=`), percent of the axes' top speed.
 pub const RAPID_JOINT_PCT: Range = Range::new(0.01, 100.0, "%");
 /// The most actions of one `[controller.io]` event.
-pub const MAX_ACTIONS: usize = 8;
+pub(crate) const MAX_ACTIONS: usize = 8;
 /// The most arguments of one call.
-pub const MAX_ARGUMENTS: usize = 8;
+pub(crate) const MAX_ARGUMENTS: usize = 8;
 /// The longest routine or signal name accepted on load (each language's own limit is checked
 /// when a program is written).
-pub const MAX_NAME: usize = 64;
+pub(crate) const MAX_NAME: usize = 64;
 
 /// A process event of a G-code program: the words that raise it and the `[controller.io]` key
 /// that maps it.
@@ -178,7 +178,7 @@ impl Io {
     /// `io` with `event` mapped to `actions` (checked as on load).
     ///
     /// # Errors
-    /// As [`Io::read`].
+    /// As `Io::read`.
     pub fn with(mut self, event: ProcessEvent, actions: &[&str]) -> Result<Self> {
         let texts: Vec<String> = actions.iter().map(|a| a.to_string()).collect();
         self.actions.insert(event, read_actions(event, &texts)?);
@@ -193,7 +193,7 @@ impl Io {
     /// than [`MAX_ACTIONS`], an action of neither form, a name that is no identifier or longer
     /// than [`MAX_NAME`], more than [`MAX_ARGUMENTS`] arguments, an argument neither a finite
     /// number nor the event's placeholder.
-    pub fn read(table: &BTreeMap<String, IoValue>) -> Result<Self> {
+    pub(crate) fn read(table: &BTreeMap<String, IoValue>) -> Result<Self> {
         let mut actions = BTreeMap::new();
         for (key, value) in table {
             let Some(event) = ProcessEvent::ALL.into_iter().find(|e| e.key() == key) else {
@@ -216,7 +216,7 @@ impl Io {
 /// A `[controller.io]` value as the file gives it: one action or a list.
 #[derive(Debug, Clone, serde::Deserialize)]
 #[serde(untagged)]
-pub enum IoValue {
+pub(crate) enum IoValue {
     /// One action.
     One(String),
     /// Several, in order.

@@ -66,7 +66,7 @@ pub struct Controller {
     pub pulses: Option<Pulses>,
     /// `[controller] tools`: the tool frames the controller holds by number (KUKA
     /// `TOOL_DATA[n]`, FANUC `UTOOL[n]`, a Yaskawa tool file), each in the controller's flange
-    /// frame, m ([`super::numbered`]); empty without.
+    /// frame, m (`super::numbered`); empty without.
     pub tools: NumberedFrames,
     /// `[controller] bases`: the base and user frames the controller holds by number (KUKA
     /// `BASE_DATA[n]`, FANUC `UFRAME[n]`, a Yaskawa user frame), each in the controller's world

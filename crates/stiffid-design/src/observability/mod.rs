@@ -59,7 +59,7 @@ pub use table::{TableChoice, TableDesign};
 
 /// A singular value below this share of the largest counts as zero: the group does not
 /// separate the kept parameters.
-pub const RANK_TOLERANCE: f64 = 1e-10;
+pub(crate) const RANK_TOLERANCE: f64 = 1e-10;
 
 /// The calibration criteria of a group of postures.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -256,7 +256,8 @@ impl CalibrationDesign {
 
     /// This design scored on the whole Jacobian, every column, not reduced: what the reduced
     /// scoring equals.
-    pub fn whole(&self) -> CalibrationDesign {
+    #[cfg(test)]
+    pub(crate) fn whole(&self) -> CalibrationDesign {
         CalibrationDesign {
             reduced: None,
             ..self.clone()

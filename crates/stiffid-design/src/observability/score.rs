@@ -63,7 +63,8 @@ impl CalibrationCriterion {
 
     /// The value a search minimises for the criteria `c`: the reciprocal of an index (1/m, or
     /// 1/m^2 for D-optimality), the predicted RMS error (m).
-    pub fn loss(self, c: &super::CalibrationCriteria) -> f64 {
+    #[cfg(test)]
+    pub(crate) fn loss(self, c: &super::CalibrationCriteria) -> f64 {
         let inverse = |v: f64| if v > 0.0 { 1.0 / v } else { f64::INFINITY };
         match self {
             CalibrationCriterion::O1 => inverse(c.o1),

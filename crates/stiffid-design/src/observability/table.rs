@@ -76,7 +76,7 @@ impl TableDesign {
 pub struct TableChoice {
     /// The candidates chosen (indices), one per reading of the table, in the order chosen.
     pub chosen: Vec<usize>,
-    /// The loss of the group with the table read there ([`CalibrationCriterion::loss`]).
+    /// The loss of the group with the table read there (`CalibrationCriterion::loss`).
     pub value: f64,
 }
 

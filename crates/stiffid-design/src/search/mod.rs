@@ -37,7 +37,7 @@ use stiffid_core::{common::limits, Result};
 /// What a search minimises: a stiffness criterion, a calibration criterion, or both.
 ///
 /// With a calibration part of weight `w`, the objective is `c_s^(1-w) c_c^w` (`c_s` the stiffness
-/// criterion, `c_c` the calibration criterion's loss, [`CalibrationCriterion::loss`]), so its
+/// criterion, `c_c` the calibration criterion's loss, `CalibrationCriterion::loss`), so its
 /// logarithm, what the SQP minimises, is the weighted sum `(1-w) ln c_s + w ln c_c` of the
 /// log-criteria: each criterion's relative improvement counts with its weight, whatever their
 /// units and scales (no normalisation constant changes the minimiser), and `w = 1` is the

@@ -156,7 +156,7 @@ pub fn calibration_study(
 
 /// Every measuring point of `model` read at every posture of `qs` from `truth`, with Gaussian
 /// noise `sd` per coordinate (tracker frame, m).
-pub fn read(
+pub(crate) fn read(
     model: &ErrorModel,
     truth: &Estimate,
     qs: &[Vector6<f64>],

@@ -18,7 +18,7 @@
 
 pub mod bootstrap;
 pub mod document;
-pub mod pool;
+pub(crate) mod pool;
 
 pub use bootstrap::{bootstrap, Bootstrap, Resampling};
 pub use document::{parameter_docs, Document};

@@ -43,7 +43,7 @@ use stiffid_core::Frames;
 use stiffid_core::{Result, Robot, Setup};
 
 /// The shortest link that gets `bend` candidates, m (shorter, its middle is its joint).
-pub const MIN_BEND_LENGTH: f64 = 0.05;
+pub(crate) const MIN_BEND_LENGTH: f64 = 0.05;
 
 /// A candidate left out of the pool, and why.
 #[derive(Debug, Clone, PartialEq)]
@@ -59,7 +59,7 @@ pub struct Dropped {
 pub struct Pool {
     /// The candidates, in the order of the module docs.
     pub candidates: Vec<Spring>,
-    /// Each candidate's family ([`CANDIDATE_FAMILIES`]), in the order of `candidates`.
+    /// Each candidate's family (`CANDIDATE_FAMILIES`), in the order of `candidates`.
     pub families: Vec<&'static str>,
     /// Those dropped, with the reason.
     pub dropped: Vec<Dropped>,
@@ -76,7 +76,7 @@ pub fn nonlinear_separation(load_levels: usize) -> String {
 }
 
 /// The candidate families by name, for `--candidates`.
-pub const CANDIDATE_FAMILIES: [&str; 8] = [
+pub(crate) const CANDIDATE_FAMILIES: [&str; 8] = [
     "tilt", "bend", "carriage", "base", "tool", "lost", "load", "declared",
 ];
 
@@ -211,7 +211,7 @@ fn reason(probes: &[Frames], spring: &Spring, kept: &[Spring], model: &[Spring])
 }
 
 /// The pool of the module docs: the candidates of the families named in `families` (all of
-/// [`CANDIDATE_FAMILIES`] for `None`) or named one by one in `names`, each kept unless it
+/// `CANDIDATE_FAMILIES` for `None`) or named one by one in `names`, each kept unless it
 /// duplicates a drive, a spring of the setup's model or an earlier candidate (then in `dropped`
 /// with the reason), and never one already in the setup's model (by name).
 fn build(setup: &Setup, wanted: &dyn Fn(&str, &Spring) -> bool) -> Pool {
@@ -250,7 +250,7 @@ pub fn default_pool(setup: &Setup) -> Pool {
     build(setup, &|_, _| true)
 }
 
-/// The pool of the candidates named in `names`: families ([`CANDIDATE_FAMILIES`]; `declared`
+/// The pool of the candidates named in `names`: families (`CANDIDATE_FAMILIES`; `declared`
 /// the setup's declared candidates) or single candidates by name (`tilt3_z`, `bend2_y`,
 /// `tool_y`, a declared spring's name), in the pool's order, without repeats.
 ///

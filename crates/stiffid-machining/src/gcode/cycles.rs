@@ -50,7 +50,7 @@ pub struct Cycle {
 }
 
 impl GCode {
-    /// Whether each point is fed by a canned cycle without cutting ([`Cycle::entry`]): a feed
+    /// Whether each point is fed by a canned cycle without cutting (`Cycle::entry`): a feed
     /// that ends at or above the material's level, which is the hole's entry until a feed has
     /// gone deeper and then the depth reached (the feed from `R` down to the surface, a peck's
     /// re-entry down to the depth the last peck reached, a peck that stays above the surface).

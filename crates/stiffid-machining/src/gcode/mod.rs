@@ -7,7 +7,7 @@
 //!   from the start, in every distance mode) or the radius `R` (negative: the arc over 180 deg);
 //!   a helix moves linearly along the normal. `G17`/`G18`/`G19` choose the XY, ZX, YZ plane.
 //! - Drilling canned cycles `G81`, `G82`, `G83` with `G98`/`G99`, ended by `G80` or `G0`-`G3`:
-//!   each hole read as the moves it makes ([`Cycle`], module `cycles`); after `G80` a motion
+//!   each hole read as the moves it makes (`Cycle`, module `cycles`); after `G80` a motion
 //!   needs its `G0`-`G3`.
 //! - As the controller runs it ([`parse_on`] with a [`Machine`]: the setup's `[workpiece]` and the
 //!   process's tool lengths; `docs/programs/gcode.md` names each rule's source): an axis is
@@ -74,7 +74,7 @@ mod words;
 mod write;
 
 pub use arc::{ArcBlock, ARC_END_TOLERANCE_MM};
-pub use cycles::Cycle;
+pub(crate) use cycles::Cycle;
 pub use machine::{Machine, ProgramFrames};
 pub use process::{Comment, ProcessWord};
 pub use words::MAX_FEED;

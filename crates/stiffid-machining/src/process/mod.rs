@@ -4,8 +4,8 @@
 //! - [`milling`]: the mechanistic model with linear edge forces (Altintas, *Manufacturing
 //!   Automation*, 2nd ed., 2012, ch. 2.4): mean force over a revolution in closed form, the
 //!   instantaneous force and its peak.
-//! - [`drilling`]: thrust and torque from a specific-energy model.
-//! - [`presets`]: cutting coefficients of common materials, each with its published source.
+//! - `drilling`: thrust and torque from a specific-energy model.
+//! - `presets`: cutting coefficients of common materials, each with its published source.
 //! - [`mod@file`]: the process file (TOML) that names the operations of a job.
 //!
 //! ## The feed frame
@@ -18,10 +18,10 @@
 //! mean force and moment into the base-frame wrench on the tool that compensation takes.
 
 pub(crate) mod covering;
-pub mod drilling;
+pub(crate) mod drilling;
 pub mod file;
 pub mod milling;
-pub mod presets;
+pub(crate) mod presets;
 
 use nalgebra::{Matrix3, Rotation3, Vector3, Vector6};
 use serde::Serialize;

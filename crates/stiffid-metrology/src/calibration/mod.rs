@@ -17,7 +17,7 @@
 //! - [`motions`]: the orders of a carrier's error motions, chosen by cross-validation.
 //! - [`fit`]: Levenberg-Marquardt over the identifiable parameters, standard deviations, the
 //!   noise-ratio model check.
-//! - [`spread`]: the uncertainty of the predictions over the robot's joint limits, from the fit's
+//! - `spread`: the uncertainty of the predictions over the robot's joint limits, from the fit's
 //!   covariance.
 //! - [`validation`]: the held-out position error of readings not fitted.
 //! - [`intervals`]: prediction intervals of the position error from the held-out errors of
@@ -36,7 +36,7 @@ pub mod maps;
 pub mod motions;
 mod reflections;
 pub mod robot_file;
-pub mod spread;
+pub(crate) mod spread;
 pub mod validation;
 
 pub use error_model::{

@@ -25,7 +25,7 @@ pub enum Purpose {
     Both,
     /// The check of a calibrated robot (`calibrate --update`): the calibration design of what
     /// drifts between sessions, the joint offsets, the frame and the measuring points
-    /// ([`CalibrationOptions::of`]), D-optimal by default, [`CHECK_POSTURES`] postures by default.
+    /// (`CalibrationOptions::of`), D-optimal by default, [`CHECK_POSTURES`] postures by default.
     Check,
 }
 
@@ -127,7 +127,7 @@ impl CalibrationOptions {
     /// joint offsets, no gravity terms) and, unless given, the D-optimal criterion (the
     /// determinant of the information of the offsets, the frame and the points); the options
     /// as given otherwise.
-    pub fn of(self, purpose: Purpose) -> Self {
+    pub(crate) fn of(self, purpose: Purpose) -> Self {
         match purpose {
             Purpose::Check => CalibrationOptions {
                 criterion: Some(self.criterion.unwrap_or(CalibrationCriterion::DOptimality)),

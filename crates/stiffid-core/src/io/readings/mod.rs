@@ -31,13 +31,13 @@
 //!   `fx_n,fy_n,fz_n[,mx_nm,my_nm,mz_nm]` in the base frame or `fx_tool_n,...[,mx_tool_nm,...]` in
 //!   the tool (flange) frame (moments optional, zero when absent; forces and moments within
 //!   [`crate::common::limits::WRENCH`]). Load and force columns come together.
-//! - Directions (optional, a backlash term's): `dir1..dir6`, one posture's alike ([`direction`]).
+//! - Directions (optional, a backlash term's): `dir1..dir6`, one posture's alike (`direction`).
 //!
 //! Columns may come in any order; lines starting with `#` are comments. At most
 //! [`MAX_READINGS`] rows. `stiffid_metrology::register` turns the unloaded readings into the tracker's
 //! transform, `stiffid_identify::steps` the loaded ones into displacements.
 
-pub mod direction;
+pub(crate) mod direction;
 mod name;
 pub use name::point_name;
 

@@ -1,7 +1,7 @@
 //! The configuration data of a Cartesian target: each language states its own type in its
 //! folder (its [`crate::program::Controller::Flags`], implementing [`ConfigurationData`], from
 //! the posture's [`stiffid_core::robot::configuration`]); the shared code (the solve, the
-//! writing back) holds them as [`Flags`] and each part's form as [`Part`], whatever the
+//! writing back) holds them as [`Flags`] and each part's form as `Part`, whatever the
 //! language.
 
 use std::any::Any;
@@ -75,7 +75,8 @@ impl Flags {
     }
 
     /// The data as the language's own type `F`, if they are of it.
-    pub fn get<F: ConfigurationData>(&self) -> Option<&F> {
+    #[cfg(test)]
+    pub(crate) fn get<F: ConfigurationData>(&self) -> Option<&F> {
         self.0.any().downcast_ref()
     }
 
@@ -110,7 +111,7 @@ impl fmt::Debug for Flags {
 
 /// Where a part of the data sits and how it is written back: a language's
 /// [`ConfigurationData::Part`].
-pub struct Part(Box<dyn ErasedPart>);
+pub(crate) struct Part(Box<dyn ErasedPart>);
 
 impl Part {
     /// The part `part` of a language's data.

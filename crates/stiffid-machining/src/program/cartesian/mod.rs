@@ -101,7 +101,7 @@ pub enum Frame {
     Stated(u64, Isometry3<f64>),
     /// A frame held on the controller by number (KRL `BASE_DATA[n]`, `TOOL_DATA[n]`, LS
     /// `UF : n`, `UT : n`), on `line`: read from the setup's `[controller] bases` or `tools`
-    /// ([`stiffid_core::setup::numbered`]), refused where the setup does not give it.
+    /// (`stiffid_core::setup::numbered`), refused where the setup does not give it.
     Numbered(u64, u32),
     /// The setup's own frame of its role (its `[workpiece]` part frame for a base, its `[tool]`
     /// for a tool), which the program declares on `line` that it moves in (an LS remark

@@ -40,7 +40,7 @@
 //! nothing else to hold it. [`fit_choosing_strength`] then chooses the prior's strength by
 //! cross-validation over the postures, as the maps choose their ridge: the postures dealt into
 //! five groups, each group predicted by the fit of the others linearised at this fit, at the
-//! prior's weight times `10^(k/2)` (`k = 0..`[`STRENGTHS`], the deflection divided alike); the
+//! prior's weight times `10^(k/2)` (`k = 0..STRENGTHS`, the deflection divided alike); the
 //! strongest whose held-out squared error the best's does not lower by more than one standard
 //! error of the paired per-posture differences and 2 % (a one-standard-error rule) is fitted
 //! anew from the same start ([`Fit::gravity_deflection`]). Where the readings determine the
@@ -69,7 +69,6 @@ mod strength;
 pub(super) use leave_one_out::leave_one_out_linearised;
 use noise::fit_with;
 pub use noise::{fit_at_stated_noise, fit_choosing_strength, MAX_REWEIGHTS, NOISE_TOLERANCE};
-pub use strength::STRENGTHS;
 
 /// Most Levenberg-Marquardt iterations.
 pub const MAX_ITERATIONS: usize = 100;
@@ -121,7 +120,7 @@ pub struct Priors {
 /// where they do not (postures that sweep the weight's joints over a few degrees), it
 /// holds the term near its nominal value instead of letting it grow along what the fitted
 /// postures cannot see, and the fit's covariance says how far it stays open
-/// ([`crate::calibration::spread`]).
+/// (`crate::calibration::spread`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GravityPrior {
     /// The prior standard deviation of each term's deflection at its largest torque, rad.

@@ -11,7 +11,7 @@ use stiffid_core::Result;
 /// The candidate strengths: the gravity prior's weight times `10^(k/2)`, `k = 0..STRENGTHS`
 /// (its deflection divided alike: from the stated bound to ten thousand times tighter, where
 /// the terms stay at their nominal values).
-pub const STRENGTHS: usize = 9;
+pub(crate) const STRENGTHS: usize = 9;
 
 /// The groups the postures are dealt into (posture `i`, in ascending order, in group `i mod
 /// GROUPS`), as the ladder's.

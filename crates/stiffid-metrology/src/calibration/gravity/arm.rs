@@ -7,7 +7,7 @@ use stiffid_core::{Error, Result, Robot};
 /// How far (rad, the sine of the angle) joint 1 may lean from the vertical, joint 2 from the
 /// horizontal and joint 3 from joint 2's direction for [`super::Gravity::Arm`]: 0.01 rad, the
 /// torques' error then within 1% of the weight's.
-pub const ARM_TOLERANCE: f64 = 0.01;
+pub(crate) const ARM_TOLERANCE: f64 = 0.01;
 
 /// The unit axis of the upper arm (in link 1's frame) and of the forearm (in link 2's), zero for
 /// the other links: from joint 2's axis to joint 3's, and from joint 3's axis to the wrist point

@@ -44,7 +44,7 @@
 //!   and 3). The regressor of a term is the lumped one ([`Gravity::Lumped`]) of its link's first
 //!   moment along the axis: a sub-model of `lumped`, its `A` and `C` terms with the centres
 //!   on the axes (`B = D = 0` in the axes' angles). It holds on an anthropomorphic arm only
-//!   (joint 1 vertical, joints 2 and 3 horizontal and parallel within [`ARM_TOLERANCE`]); any
+//!   (joint 1 vertical, joints 2 and 3 horizontal and parallel within `ARM_TOLERANCE`); any
 //!   other robot is refused, naming the joint.
 
 use nalgebra::{DVectorView, Matrix6, Vector3, Vector6};
@@ -120,7 +120,6 @@ impl stiffid_core::common::choice::Choice for Gravity {
 
 stiffid_core::common::choice::by_name!(Gravity);
 
-pub use arm::ARM_TOLERANCE;
 pub use stiffid_core::robot::LinkMass;
 
 /// `robot` with `tool` (a body in the flange frame: the setup's [`stiffid_core::setup::Payload::body`])
@@ -333,7 +332,7 @@ impl Terms {
     ///
     /// # Errors
     /// [`Error::InvalidField`] (`gravity`) naming the joint when the robot is not an
-    /// anthropomorphic arm ([`ARM_TOLERANCE`]): joint 1 not vertical, joint 2 not horizontal,
+    /// anthropomorphic arm (`ARM_TOLERANCE`): joint 1 not vertical, joint 2 not horizontal,
     /// joint 3 not parallel to joint 2, or a link without length across its joints' axes.
     pub fn arm(robot: &Robot, coordinates: Coordinates) -> Result<Self> {
         let axes = arm::axes(robot)?;

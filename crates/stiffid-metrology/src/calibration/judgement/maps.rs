@@ -22,7 +22,7 @@ use stiffid_core::{Error, Result};
 /// UR10's 2773 readings of series C, every joint's maps chosen, take 17 s of CPU; about 20 s at
 /// this bound, half of it on two cores). `--maps auto` (up to 32 harmonics per joint, 384 coefficients) chooses maps on
 /// up to 3390 readings; `--maps J1,J3:16` (64 coefficients) on up to 122 070.
-pub const MAX_MAP_WORK: f64 = 5e8;
+pub(crate) const MAX_MAP_WORK: f64 = 5e8;
 
 /// What the maps' choice found.
 #[derive(Debug, Clone, PartialEq)]

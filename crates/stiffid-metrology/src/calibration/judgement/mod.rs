@@ -15,11 +15,11 @@ pub mod region;
 use stiffid_core::common::warning::{Warning, WarningKind};
 
 /// The noise ratio above which the calibration warns that the model misses something.
-pub const MISFIT_RATIO: f64 = 3.0;
+pub(crate) const MISFIT_RATIO: f64 = 3.0;
 
 /// The residual degrees of freedom below which the calibration warns that the readings are too
 /// few.
-pub const MIN_DEGREES_OF_FREEDOM: usize = 10;
+pub(crate) const MIN_DEGREES_OF_FREEDOM: usize = 10;
 
 /// The condition number of the scaled identification Jacobian above which the calibration warns
 /// that some parameters are weakly determined.

@@ -25,7 +25,7 @@
 //! one. Then jointly: the first `k` joints of that order (`k` from 2) together at each harmonic
 //! count up to the largest any of them chose alone, the one with the least held-out error replacing the forward choice where it has less
 //! and lowers the error without maps by the same rule (one joint at a time stops early where
-//! several joints' maps each gain a little). The choice is made on the linearised fit ([`linear`]): exact to second order in
+//! several joints' maps each gain a little). The choice is made on the linearised fit (`linear`): exact to second order in
 //! the parameters' change from the fit, a few nanometres on a calibrated robot.
 //!
 //! # The honest figure ([`nested`])
@@ -45,7 +45,7 @@
 //! Equations and sources: docs/model.md, section "Calibration", "Joint error maps".
 
 mod inner;
-pub mod linear;
+pub(crate) mod linear;
 
 pub use super::error_model::JointMaps;
 pub use linear::{extended, Linear};

@@ -86,7 +86,7 @@ pub struct CheckedReading {
 /// The check of `errors` (the check readings' errors with the calibrated `robot`, read with
 /// `noise` per coordinate, m; posture labels `labels`) at `level`; `None` when the robot carries
 /// no held-out errors or too few for the level (the bound infinite).
-pub fn check(
+pub(crate) fn check(
     robot: &Robot,
     (errors, labels): (&Validation, &[String]),
     level: f64,

@@ -9,11 +9,11 @@
 //! --gravity none` is the cell calibration of `calibrate-cell`.
 //!
 //! With [`Request::update`], a calibrated robot refitted from check readings after their check
-//! ([`drift`]). Limits: at most [`MAX_READINGS`] readings (the readings file's own limit), at most
+//! ([`drift`]). Limits: at most `MAX_READINGS` readings (the readings file's own limit), at most
 //! [`stiffid_metrology::calibration::error_model::MAX_POINTS`] measuring points, more coordinates than
 //! identifiable parameters, at most [`MAX_CROSS_VALIDATION_POSTURES`] postures with
 //! cross-validation (one fit per posture; beyond it, held-out readings get no intervals), at
-//! least [`MIN_UPDATE_POSTURES`] postures with `update`.
+//! least `MIN_UPDATE_POSTURES` postures with `update`.
 
 mod checks;
 mod chosen;
@@ -27,21 +27,17 @@ mod ladder_document;
 mod maps_document;
 mod part;
 pub mod scene;
-pub mod update;
+pub(crate) mod update;
 
 use stiffid_metrology::calibration::judgement::judge::{judge, largest_residual};
 use stiffid_metrology::calibration::judgement::maps;
 pub use stiffid_metrology::calibration::judgement::{extrapolation, fit_bound, ladder, region};
-pub use stiffid_metrology::calibration::judgement::{
-    MIN_DEGREES_OF_FREEDOM, MISFIT_RATIO, WEAK_CONDITION,
-};
 
 pub(crate) use compliance::fitted_compliance;
-pub use compliance::FittedCompliance;
+pub(crate) use compliance::FittedCompliance;
 pub use extrapolation::Outside;
 pub use ladder::{GravitySpec, Ladder, Rung};
-pub use maps::{Maps, MAX_MAP_WORK};
-pub use update::MIN_POSTURES as MIN_UPDATE_POSTURES;
+pub(crate) use maps::Maps;
 pub use update::{Refit, Refits};
 
 use crate::app::in_data;
@@ -62,8 +58,6 @@ use stiffid_metrology::calibration::gravity::{self, Gravity};
 use stiffid_metrology::calibration::intervals::{self, Coverage, Intervals};
 use stiffid_metrology::calibration::validation::{self, Validation};
 use stiffid_metrology::calibration::{ErrorModel, Estimate, Geometry};
-
-pub use stiffid_core::io::readings::MAX_READINGS;
 
 /// Most postures cross-validation takes (one Gauss-Newton step from the full fit per posture;
 /// the held-out readings' intervals the same folds).

@@ -43,11 +43,11 @@ use stiffid_metrology::calibration::{robot_file, ErrorModel, Geometry};
 
 /// The fewest distinct postures an update reads (the readings must separate the six offsets
 /// from the frame and the points).
-pub const MIN_POSTURES: usize = 5;
+pub(crate) const MIN_POSTURES: usize = 5;
 
 /// The random postures of the generic campaign the check readings are compared with (module
 /// docs).
-pub const REFERENCE_POSTURES: usize = 60;
+pub(crate) const REFERENCE_POSTURES: usize = 60;
 
 /// What an update refits (module docs).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

@@ -3,7 +3,7 @@
 //! `stiffid compensate --json`, the report's `summary.json`) and its summary ([`Summary`],
 //! accumulated point by point so that a path of any length is summarised in bounded memory).
 
-pub use super::free::FreeVariable;
+pub(crate) use super::free::FreeVariable;
 use crate::app::compensate::{Report, Segment};
 use crate::app::document::parameters::{stiffness, ParameterStiffness};
 use crate::app::document::units;

@@ -64,7 +64,7 @@ pub enum Infinite {
 impl Infinite {
     /// Why the value `value` of `criterion` (`None`: `cond(Psi)`) in `e` is infinite; `None` if
     /// it is not (finite, or NaN: not computed).
-    pub fn of(e: &Evaluation, criterion: Option<Criterion>, value: f64) -> Option<Self> {
+    pub(crate) fn of(e: &Evaluation, criterion: Option<Criterion>, value: f64) -> Option<Self> {
         let singular = matches!(criterion, Some(Criterion::Classical | Criterion::Zhang2021))
             && e.classical.is_infinite();
         if !value.is_infinite() {
@@ -165,7 +165,7 @@ impl Criteria {
 /// How well a group identifies one parameter of the setup's model.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct Parameter {
+pub(crate) struct Parameter {
     /// `k1` .. `k6`, or the virtual spring's name.
     pub name: String,
     /// The unit of its stiffness: `Nm/rad` or `N/mm`.

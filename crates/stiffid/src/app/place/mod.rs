@@ -7,7 +7,7 @@
 //! targets in the part frame (a KRL `$BASE` or a RAPID work object equal to the setup's
 //! `[workpiece]`, an LS user frame `UF : n`; [`stiffid_machining::program::cartesian`]), the
 //! controller's inverse kinematics in the shoulder, elbow and wrist their configuration data
-//! name at every placement. A robot program with joint targets is refused ([`Work::check`]):
+//! name at every placement. A robot program with joint targets is refused (`Work::check`):
 //! axis angles stay where they are when the part moves, as are targets in another frame. The
 //! part frame moves within a region of the cell: its origin's x and y in the robot base frame within
 //! [`Region::x`] and [`Region::y`], turned about the base z axis (the table's normal, through the
@@ -269,7 +269,7 @@ pub(crate) type Outcome = crate::app::Outcome<Report>;
 ///
 /// # Errors
 /// [`Error::InvalidField`] for a region, margin, condition or effort outside its limits, a setup
-/// without `[workpiece]` or `[tool] tcp_mm`, work the part cannot carry ([`Work::check`]: a robot
+/// without `[workpiece]` or `[tool] tcp_mm`, work the part cannot carry (`Work::check`: a robot
 /// program's joint targets, a path file's axis angles), and no feasible placement in the region (naming why the
 /// setup's own placement fails); those of [`Options::validate`].
 pub fn run(request: &Request<'_>) -> Result<Outcome> {

@@ -50,12 +50,12 @@ pub fn read_path(
 /// Reads a program file's text (`name` for its errors; G-code arcs split into chords of at
 /// most `chord_tolerance`, m; a G-code program read on the controller `setup` and `process`'s
 /// tool lengths describe, [`stiffid_machining::gcode::Machine::of`]) for placement on `setup`: its language (`check_language`), the
-/// program ([`stiffid_machining::read`]), and what the part cannot carry ([`Work::check`]),
+/// program ([`stiffid_machining::read`]), and what the part cannot carry (`Work::check`),
 /// refused before any placement is tried.
 ///
 /// # Errors
-/// Those of `check_language` and [`Work::check`]; those of [`stiffid_machining::read`] and
-/// [`Work::check`]'s naming a line ([`Error::Program`]: a tool that is not the setup's, a
+/// Those of `check_language` and `Work::check`; those of [`stiffid_machining::read`] and
+/// `Work::check`'s naming a line ([`Error::Program`]: a tool that is not the setup's, a
 /// frame that is not the part's) as [`Error::Input`] naming the file, as `compensate` names
 /// them.
 pub fn read_program(
@@ -125,7 +125,7 @@ impl Work<'_> {
     /// [`Error::InvalidField`] (`program`, `path`) naming why; [`Error::Program`] naming the
     /// line of a target for another tool or in another frame; those of
     /// [`Setup::controller_robot`].
-    pub fn check(&self, setup: &Setup) -> Result<()> {
+    pub(crate) fn check(&self, setup: &Setup) -> Result<()> {
         let refuse = |field: &str, message: String| {
             Err(Error::InvalidField {
                 field: field.into(),

@@ -13,7 +13,7 @@ mod table;
 
 use check::check;
 pub use check::{check_given, Given};
-pub use station::{Station, MAX_STATIONS};
+pub(crate) use station::Station;
 pub use table::CANDIDATE_ANGLES;
 
 use choose::{choose, smallest, unconstrained};
@@ -136,7 +136,7 @@ pub struct Request<'a> {
     /// [`Purpose::Calibration`] on a robot with a carrier, the group is one campaign over all
     /// of them, its postures dealt over the stations and designed together with the track's
     /// parameters ([`Report::placed`]). Empty for a robot without external axes;
-    /// 1 to [`MAX_STATIONS`] with them (empty on a cell whose only external axes are a
+    /// 1 to `MAX_STATIONS` with them (empty on a cell whose only external axes are a
     /// positioner's: the positioner at zero).
     pub stations: Vec<stiffid_core::robot::external::ExternalValues>,
     /// Where the searches report their progress (`&()` for nowhere): each search begins a stage
@@ -184,7 +184,7 @@ pub struct Report {
     /// The group chosen (axis angles, rad).
     pub postures: Vec<Vector6<f64>>,
     /// The value minimised for the start group (`None` for a pool choice): the stiffness
-    /// criterion, the calibration criterion's loss ([`CalibrationCriterion::loss`]) or their
+    /// criterion, the calibration criterion's loss (`CalibrationCriterion::loss`) or their
     /// weighted geometric mean ([`Goal`](stiffid_design::Goal)).
     pub start_value: Option<f64>,
     /// The value minimised for the group chosen.
@@ -283,8 +283,8 @@ pub struct PoolReport {
     pub not_distinct: Vec<(usize, usize)>,
 }
 
-pub use stiffid_design::selection::pool::Skipped;
-pub use stiffid_design::selection::search::Unconstrained;
+pub(crate) use stiffid_design::selection::pool::Skipped;
+pub(crate) use stiffid_design::selection::search::Unconstrained;
 
 impl Report {
     /// The document this report is written as (`stiffid select --json`, Python's

@@ -5,7 +5,7 @@ use super::{Report, Request};
 use stiffid_core::robot::external::ExternalValues;
 use stiffid_core::Result;
 use stiffid_design::selection::station as design;
-pub use stiffid_design::selection::station::{Station, MAX_STATIONS};
+pub(crate) use stiffid_design::selection::station::Station;
 
 /// The selection at each of the request's stations, the best kept with every station's value
 /// ([`Report::station`], [`Report::stations`]); `run` selects on one setup.
