@@ -645,6 +645,16 @@ fn urdf_diagnostics_name_the_problem() {
             "joint 'joint_1': axis xyz[1]: NaN",
         ),
         (
+            "<axis xyz=\"0 0 1\"/>",
+            "<axis xyz=\"0 0 1\"/><orgin xyz=\"0 0 0.1\"/>",
+            "<orgin> in a <joint> is not a URDF element; did you mean <origin>?",
+        ),
+        (
+            "<link name=\"link_5\"/>",
+            "<link name=\"link_5\"><inertial><mas value=\"1\"/></inertial></link>",
+            "<mas> in a <inertial> is not a URDF element; did you mean <mass>?",
+        ),
+        (
             "lower=\"-3.2\" upper=\"3.2\"",
             "lower=\"3.2\" upper=\"-3.2\"",
             "joint 'joint_1': limit lower = 3.2 is not below upper = -3.2",
@@ -660,6 +670,45 @@ fn urdf_diagnostics_name_the_problem() {
         write_file(&dir, "r.urdf", &urdf.replacen(from, to, 1));
         kinematics_refused(&dir, "{dir}/r.urdf", "0,0,0,0,0,0", &["r.urdf", mention]);
     }
+    // The line of a misspelt element is named; legacy and extension elements a URDF reader
+    // passes over (`<joint_properties>`, `<drake:gear_ratio>`) pass, the robot unchanged.
+    let misspelt = urdf.replacen("<axis xyz=\"0 0 1\"/>", "<axis xyz=\"0 0 1\"/><orgin/>", 1);
+    let line = 1 + misspelt[..misspelt.find("<orgin/>").unwrap()]
+        .matches('\n')
+        .count();
+    write_file(&dir, "r.urdf", &misspelt);
+    kinematics_refused(
+        &dir,
+        "{dir}/r.urdf",
+        "0,0,0,0,0,0",
+        &[&format!("line {line}: <orgin>")],
+    );
+    let kinematics = |urdf: &str| {
+        write_file(&dir, "r.urdf", urdf);
+        let r = dir.join("r.urdf");
+        let out = stiffid(&[
+            "kinematics",
+            "--robot",
+            r.to_str().unwrap(),
+            "--q-deg",
+            "10,20,30,40,50,60",
+        ]);
+        assert_success(&out);
+        out.stdout
+    };
+    let extended = urdf
+        .replacen(
+            "<robot name=\"comau_nj165_test\">",
+            "<robot name=\"comau_nj165_test\" xmlns:drake=\"http://drake.mit.edu\">",
+            1,
+        )
+        .replacen(
+            "<axis xyz=\"0 0 1\"/>",
+            "<axis xyz=\"0 0 1\"/><joint_properties damping=\"0\"/><drake:gear_ratio value=\"1\"/>",
+            1,
+        );
+    assert_ne!(extended, urdf);
+    assert_eq!(kinematics(&extended), kinematics(&urdf));
     // A well-conditioned axis map of determinant 1e-18 is accepted; a singular one is not.
     let preset = stiffid_core::robot::presets::text("kuka-kr210-robond").unwrap();
     let scaled = "\n[axis_map]\nmatrix = [[0.001,0,0,0,0,0],[0,0.001,0,0,0,0],[0,0,0.001,0,0,0],[0,0,0,0.001,0,0],[0,0,0,0,0.001,0],[0,0,0,0,0,0.001]]\noffset_deg = [0,0,0,0,0,0]\n";

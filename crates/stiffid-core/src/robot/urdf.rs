@@ -55,7 +55,8 @@ pub struct UrdfSource {
 /// `tool0` and `base`). The robot's `source` names the tip link used.
 ///
 /// # Errors
-/// [`Error::Parse`] for malformed XML or nesting deeper than [`limits::MAX_XML_DEPTH`];
+/// [`Error::Parse`] for malformed XML, nesting deeper than [`limits::MAX_XML_DEPTH`], an element
+/// after the root, or a misspelt element of a joint or of a link's inertial, visual or collision;
 /// [`Error::Chain`] when a joint names an undeclared link, a link is the child of two joints, the
 /// links do not hang from one root, the tip link is missing or ambiguous, a joint in the chain is
 /// not revolute or fixed, has a non-finite or out-of-range number or an inverted limit, the
@@ -204,13 +205,15 @@ fn chain_to<'a>(
     Ok(path)
 }
 
-/// Fails if the element nesting of `text` is deeper than [`limits::MAX_XML_DEPTH`], or if an
+/// Fails if the element nesting of `text` is deeper than [`limits::MAX_XML_DEPTH`], if an
 /// element follows the document's root element (the XML reader stops at the root's end and
-/// drops it). Comments, CDATA, declarations and quoted attribute values are skipped, so nothing
-/// hides an element.
+/// drops it), or if a joint, or a link's inertial, visual or collision, holds a misspelt element
+/// ([`misspelt`]: `<orgin>`, which the XML reader would pass over). Comments, CDATA, declarations and quoted
+/// attribute values are skipped, so nothing hides an element.
 fn check_elements(text: &str) -> std::result::Result<(), String> {
     let b = text.as_bytes();
     let (mut i, mut depth, mut roots) = (0, 0usize, 0usize);
+    let mut open: Vec<&str> = Vec::new();
     let skip_to = |from: usize, end: &str| {
         text[from..]
             .find(end)
@@ -227,6 +230,7 @@ fn check_elements(text: &str) -> std::result::Result<(), String> {
             i = skip_to(i, ">");
         } else if rest.starts_with("</") {
             depth = depth.saturating_sub(1);
+            open.pop();
             i = skip_to(i, ">");
         } else {
             let (end, self_closing) = tag_end(b, i + 1);
@@ -234,7 +238,17 @@ fn check_elements(text: &str) -> std::result::Result<(), String> {
             if roots > 1 {
                 return Err(second_root(&text[i..end]));
             }
+            let name = element_name(&text[i + 1..end]);
+            if let Some(meant) = misspelt(&open, name) {
+                let line = text[..i].matches('\n').count() + 1;
+                let parent = open.last().copied().unwrap_or_default();
+                return Err(format!(
+                    "line {line}: <{}> in a <{parent}> is not a URDF element; did you mean <{meant}>? (URDF readers pass over an element they do not know, leaving its value at the default)",
+                    limits::short(name)
+                ));
+            }
             if !self_closing {
+                open.push(name);
                 depth += 1;
                 if depth > limits::MAX_XML_DEPTH {
                     return Err(format!(
@@ -247,6 +261,48 @@ fn check_elements(text: &str) -> std::result::Result<(), String> {
         }
     }
     Ok(())
+}
+
+/// The name of the element whose tag, after its `<`, is `tag`.
+fn element_name(tag: &str) -> &str {
+    let end = tag
+        .find(|c: char| c.is_whitespace() || c == '/' || c == '>')
+        .unwrap_or(tag.len());
+    &tag[..end]
+}
+
+/// The element of the URDF format that `name`, opened inside the elements `open` (outermost
+/// first), is probably a misspelling of: one defined in a joint or in a link's inertial, visual
+/// or collision (ROS wiki, urdf/XML/joint and urdf/XML/link) within two edits of `name` and not
+/// `name`. URDF readers pass over an element they do not know (legacy and extension elements,
+/// `<joint_properties>`, `<drake:gear_ratio>`, pass here too), so a misspelt `<orgin>` would
+/// leave the joint's frame at zero without a word.
+fn misspelt<'a>(open: &[&str], name: &str) -> Option<&'a str> {
+    let defined: &[&'a str] = match open {
+        [.., "robot", "joint"] => &[
+            "origin",
+            "parent",
+            "child",
+            "axis",
+            "calibration",
+            "dynamics",
+            "limit",
+            "mimic",
+            "safety_controller",
+        ],
+        [.., "robot", "link", "inertial"] => &["origin", "mass", "inertia"],
+        [.., "robot", "link", "visual"] => &["origin", "geometry", "material"],
+        [.., "robot", "link", "collision"] => &["origin", "geometry"],
+        _ => return None,
+    };
+    if defined.contains(&name) {
+        return None;
+    }
+    (defined.iter())
+        .map(|d| (crate::io::edit_distance(name, d), *d))
+        .filter(|(distance, _)| *distance <= 2)
+        .min()
+        .map(|(_, d)| d)
 }
 
 /// The error of an element `tag` after the document's root element.
