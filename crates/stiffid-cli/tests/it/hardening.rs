@@ -670,8 +670,38 @@ fn urdf_diagnostics_name_the_problem() {
         write_file(&dir, "r.urdf", &urdf.replacen(from, to, 1));
         kinematics_refused(&dir, "{dir}/r.urdf", "0,0,0,0,0,0", &["r.urdf", mention]);
     }
-    // The line of a misspelt element is named; legacy and extension elements a URDF reader
-    // passes over (`<joint_properties>`, `<drake:gear_ratio>`) pass, the robot unchanged.
+    // A well-conditioned axis map of determinant 1e-18 is accepted; a singular one is not.
+    let preset = stiffid_core::robot::presets::text("kuka-kr210-robond").unwrap();
+    let scaled = "\n[axis_map]\nmatrix = [[0.001,0,0,0,0,0],[0,0.001,0,0,0,0],[0,0,0.001,0,0,0],[0,0,0,0.001,0,0],[0,0,0,0,0.001,0],[0,0,0,0,0,0.001]]\noffset_deg = [0,0,0,0,0,0]\n";
+    assert!(!preset.contains("\n[axis_map]"));
+    write_file(&dir, "r.toml", &format!("{preset}{scaled}"));
+    let r = dir.join("r.toml");
+    assert_success(&stiffid(&[
+        "kinematics",
+        "--robot",
+        r.to_str().unwrap(),
+        "--q-deg",
+        "0,0,0,0,0,0",
+    ]));
+    write_file(
+        &dir,
+        "r.toml",
+        &format!("{preset}{}", scaled.replace("0.001]]", "0]]")),
+    );
+    kinematics_refused(
+        &dir,
+        "{dir}/r.toml",
+        "0,0,0,0,0,0",
+        &["axis_map.matrix", "condition number is inf"],
+    );
+}
+
+/// The line of a misspelt URDF element is named; legacy and extension elements a URDF reader
+/// passes over (`<joint_properties>`, `<drake:gear_ratio>`) pass, the robot unchanged.
+#[test]
+fn urdf_misspelt_elements_are_named_and_extensions_pass() {
+    let dir = temp_dir("urdf-misspelt");
+    let urdf = urdf_fixture();
     let misspelt = urdf.replacen("<axis xyz=\"0 0 1\"/>", "<axis xyz=\"0 0 1\"/><orgin/>", 1);
     let line = 1 + misspelt[..misspelt.find("<orgin/>").unwrap()]
         .matches('\n')
@@ -709,30 +739,6 @@ fn urdf_diagnostics_name_the_problem() {
         );
     assert_ne!(extended, urdf);
     assert_eq!(kinematics(&extended), kinematics(&urdf));
-    // A well-conditioned axis map of determinant 1e-18 is accepted; a singular one is not.
-    let preset = stiffid_core::robot::presets::text("kuka-kr210-robond").unwrap();
-    let scaled = "\n[axis_map]\nmatrix = [[0.001,0,0,0,0,0],[0,0.001,0,0,0,0],[0,0,0.001,0,0,0],[0,0,0,0.001,0,0],[0,0,0,0,0.001,0],[0,0,0,0,0,0.001]]\noffset_deg = [0,0,0,0,0,0]\n";
-    assert!(!preset.contains("\n[axis_map]"));
-    write_file(&dir, "r.toml", &format!("{preset}{scaled}"));
-    let r = dir.join("r.toml");
-    assert_success(&stiffid(&[
-        "kinematics",
-        "--robot",
-        r.to_str().unwrap(),
-        "--q-deg",
-        "0,0,0,0,0,0",
-    ]));
-    write_file(
-        &dir,
-        "r.toml",
-        &format!("{preset}{}", scaled.replace("0.001]]", "0]]")),
-    );
-    kinematics_refused(
-        &dir,
-        "{dir}/r.toml",
-        "0,0,0,0,0,0",
-        &["axis_map.matrix", "condition number is inf"],
-    );
 }
 
 #[test]
