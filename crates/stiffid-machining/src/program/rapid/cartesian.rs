@@ -141,6 +141,8 @@ pub(crate) fn motion(
     named: &dyn Fn(&str) -> Result<JointTarget>,
     frames: &HashMap<String, Frame>,
 ) -> Result<Vec<JointTarget>> {
+    let joined = super::arguments::switches_joined(args);
+    let args = joined.as_str();
     let parts = super::arguments::top_level(args);
     let Some(tool) = parts.get(points + 2).filter(|_| parts.len() >= points + 3) else {
         let what = match points {

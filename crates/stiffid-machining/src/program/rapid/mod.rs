@@ -548,9 +548,10 @@ fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Vec<Joi
         let end = s.span.end - usize::from(code[..s.span.end].ends_with(';'));
         let args = &code[from..end];
         let points = if first == "movec" { 2 } else { 1 };
-        let argument = arguments::top_level(args)
+        let joined = arguments::switches_joined(args);
+        let argument = arguments::top_level(&joined)
             .get(points)
-            .map(|r| &args[r.clone()]);
+            .map(|r| &joined[r.clone()]);
         let mut targets = cartesian::motion(line, (code, from, args), points, &named, &data.frames)
             .map_err(|e| match e {
                 stiffid_core::Error::Program { line, message } if !message.starts_with(name) => {

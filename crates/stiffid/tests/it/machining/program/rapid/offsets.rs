@@ -90,6 +90,32 @@ fn module_of_postures() -> (stiffid::Setup, String, Vec<Vector6<f64>>) {
     (s, text, qs)
 }
 
+/// An optional argument set apart by a comma (`tool, \\WObj:=wobj`, `v100, \\V:=120`, as RoboDK's
+/// ABB post writes them) is read as without it: the work object is not dropped (the point would
+/// be read in the world frame), the postures are those of the module without commas, the module
+/// written back byte for byte; `tool, \\Corr` is refused as `tool\\Corr` is.
+#[test]
+fn optional_arguments_after_a_comma_are_read_as_without_it() {
+    let (s, text, qs) = module_of_postures();
+    let commas = text
+        .replace("tSpindle\\WObj", "tSpindle, \\WObj")
+        .replace("v100, z1,", "v100,\\V:=120, z1 , \\Z:=2,");
+    assert_eq!(commas.matches(", \\WObj").count(), 4);
+    let Program::Robot(p) = resolved(&s, &commas).unwrap() else {
+        panic!("a robot program")
+    };
+    assert_eq!(p.targets.len(), qs.len());
+    for (t, q) in p.targets.iter().zip(&qs) {
+        let d = (Vector6::from(t.q_deg) - q.map(f64::to_degrees)).amax();
+        assert!(d < 1e-6, "line {}: {d} deg", t.line);
+    }
+    let same: Vec<[f64; 6]> = p.targets.iter().map(|t| t.q_deg).collect();
+    assert_eq!(p.write(&same).unwrap(), commas);
+    let corrected = commas.replacen("wobjPart;", "wobjPart, \\Corr;", 2);
+    let e = resolved(&s, &corrected).unwrap_err().to_string();
+    assert!(e.contains("line ") && e.contains("\\Corr"), "{e}");
+}
+
 #[test]
 fn a_module_with_offsets_and_a_turned_tool_resolves_to_its_postures_and_writes_back_where_they_land(
 ) {
