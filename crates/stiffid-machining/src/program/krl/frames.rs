@@ -103,6 +103,13 @@ pub(super) struct Frames {
     act: Option<(u64, FdatRead)>,
     /// The line of `$IPO_MODE = #TCP` in force (an external TCP).
     external: Option<u64>,
+    /// The entries of the controller's tables the program assigns (`BASE_DATA[n] = {..}`,
+    /// `TOOL_DATA[n] = {..}`, or a member of one): by base (`true`) or tool and number, the
+    /// frame a later selection of the number takes instead of the setup's.
+    table: HashMap<(bool, u32), Frame>,
+    /// Per tool (0) and base (1), why every entry of its table is the controller's from a line
+    /// on: an assignment to an entry whose index is not a number.
+    any_entry: [Option<Frame>; 2],
 }
 
 /// `code` upper case without blanks.
@@ -133,6 +140,8 @@ impl Frames {
             tool: unset("$TOOL"),
             act: None,
             external: None,
+            table: HashMap::new(),
+            any_entry: [None, None],
         }
     }
 
@@ -141,6 +150,50 @@ impl Frames {
     /// the caller reads too).
     pub(crate) fn set(&mut self, line: u64, code: &str, fdats: &Fdats) -> bool {
         let c = compact(code);
+        if let Some((base, n, frame)) = table_entry(line, &c, code) {
+            match n {
+                Some(n) => _ = self.table.insert((base, n), frame),
+                None => self.any_entry[usize::from(base)] = Some(frame),
+            }
+            return true;
+        }
+        if let Some(member) = ["$BASE.", "$TOOL."].iter().find(|m| c.starts_with(**m)) {
+            let why = format!("a member of {} assigned ({}): stiffid reads a whole frame; set {} = {{X .., Y .., Z .., A .., B .., C ..}}", &member[..5], short(code.trim()), &member[..5]);
+            *(if member.starts_with("$BASE") {
+                &mut self.base
+            } else {
+                &mut self.tool
+            }) = Frame::Unknown(line, why);
+            return true;
+        }
+        let before = (self.base.clone(), self.tool.clone());
+        let set = self.select(line, code, &c, fdats);
+        // A number selected here takes the program's entry; one selected before keeps the
+        // frame it copied then (KRL assigns frames by value).
+        if self.base != before.0 {
+            self.base = self.from_table(self.base.clone(), true);
+        }
+        if self.tool != before.1 {
+            self.tool = self.from_table(self.tool.clone(), false);
+        }
+        set
+    }
+
+    /// A numbered frame (`base` or tool) as the program's own assignment of its table entry
+    /// holds it, if it assigns one; `frame` otherwise.
+    fn from_table(&self, frame: Frame, base: bool) -> Frame {
+        match (frame, &self.any_entry[usize::from(base)]) {
+            (Frame::Numbered(..), Some(any)) => any.clone(),
+            (Frame::Numbered(l, n), None) => {
+                (self.table.get(&(base, n)).cloned()).unwrap_or(Frame::Numbered(l, n))
+            }
+            (other, _) => other,
+        }
+    }
+
+    /// [`Frames::set`] past the table's entries: a statement `code` (`c` compact) that selects
+    /// a frame, sets the frame data or applies them.
+    fn select(&mut self, line: u64, code: &str, c: &str, fdats: &Fdats) -> bool {
         let held = |what: &str| Frame::Unknown(line, what.to_string());
         if let Some(v) = c.strip_prefix("$IPO_MODE=") {
             self.external = (v != "#BASE").then_some(line);
@@ -194,7 +247,7 @@ impl Frames {
             let why = format!("line {line} sets a correction frame of the BAS package ({}), which stiffid does not apply", short(code.trim()));
             (self.base, self.tool) = (held(&why), held(&why));
         } else if let Some((base, frame)) =
-            assigned(line, &c).or_else(|| super::cartesian::frame_set(line, code))
+            assigned(line, c).or_else(|| super::cartesian::frame_set(line, code))
         {
             *(if base { &mut self.base } else { &mut self.tool }) = frame;
         } else {
@@ -254,8 +307,10 @@ impl Frames {
                 continue;
             };
             match name {
-                "$TOOL" => tool = self.with_frame(line, value, false, fdats),
-                "$BASE" => base = self.with_frame(line, value, true, fdats),
+                "$TOOL" => {
+                    tool = self.from_table(self.with_frame(line, value, false, fdats), false)
+                }
+                "$BASE" => base = self.from_table(self.with_frame(line, value, true, fdats), true),
                 "$IPO_MODE" => {
                     external = match with_ipo(value, fdats) {
                         Some(false) => None,
@@ -309,6 +364,39 @@ impl Frames {
         self.act = Some((line, Err(why.clone())));
         (self.base, self.tool) = (Frame::Unknown(line, why.clone()), Frame::Unknown(line, why));
     }
+}
+
+/// An assignment to an entry of the controller's base or tool table on `line` (`c` compact,
+/// `code` as written): whether a base (`true`) or a tool, the entry's number (`None` for an
+/// index that is not a literal number: any entry), and the frame it holds from then on: the
+/// literal frame of `BASE_DATA[n] = {..}` as `$BASE = {..}` reads it, or a frame refused naming
+/// the line (a member assigned, `BASE_DATA[n].X = ..`; a value or index the program does not
+/// state).
+fn table_entry(line: u64, c: &str, code: &str) -> Option<(bool, Option<u32>, Frame)> {
+    let (base, rest) = match c {
+        _ if c.starts_with("BASE_DATA[") => (true, &c["BASE_DATA[".len()..]),
+        _ if c.starts_with("TOOL_DATA[") => (false, &c["TOOL_DATA[".len()..]),
+        _ => return None,
+    };
+    let table = if base { "BASE_DATA" } else { "TOOL_DATA" };
+    let (index, after) = rest.split_once(']').unwrap_or((rest, ""));
+    let n = index.parse::<u32>().ok();
+    let refused = |what: String| {
+        Frame::Unknown(line, format!("{what} assigned ({}), which stiffid does not follow; assign {table}[n] = {{X .., Y .., Z .., A .., B .., C ..}} with n a number", short(code.trim())))
+    };
+    let frame = match (n, after.strip_prefix('=')) {
+        (None, _) => refused(format!("an entry of {table} whose index is not a number")),
+        (Some(_), None) => refused(format!("a member of an entry of {table}")),
+        (Some(_), Some(_)) => {
+            let name = if base { "$BASE" } else { "$TOOL" };
+            let value = code.split_once('=').map_or("", |(_, v)| v);
+            match super::cartesian::frame_set(line, &format!("{name} = {value}")) {
+                Some((_, frame)) => frame,
+                None => refused(format!("an entry of {table}")),
+            }
+        }
+    };
+    Some((base, n, frame))
 }
 
 /// `$TOOL = TOOL_DATA[n]` or `$BASE = BASE_DATA[n]` (compact, `n` a literal): the frame.

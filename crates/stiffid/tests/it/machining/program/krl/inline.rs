@@ -3,6 +3,7 @@
 //! $TOOL = STOOL2(..)`), `CIRC`, loops and branches; every frame applied or refused, never
 //! ignored.
 
+use nalgebra::Vector3;
 use stiffid_core::Error;
 use stiffid_machining::program::cartesian::Frame;
 use stiffid_machining::program::{parse_with_data, Dialect, JointProgram};
@@ -148,6 +149,57 @@ fn frames_stiffid_cannot_know_are_refused_naming_their_line_never_ignored() {
     let p = parse_with_data(numbered, None, Dialect::Krl).unwrap();
     assert_eq!(frames(&p, 0), (Frame::World, Frame::Numbered(2, 4)));
     assert_eq!(frames(&p, 1), (Frame::Numbered(6, 7), Frame::World));
+}
+
+/// A program that assigns an entry of the controller's base or tool table (`BASE_DATA[2] = {..}`,
+/// as RoboDK's KUKA posts write before their motions) selects that frame by the number from
+/// then on, not the setup's table; a selection before the assignment keeps the number; a member
+/// assigned (`BASE_DATA[2].X = ..`, `$BASE.X = ..`) or an entry of a variable index refuses the
+/// motions after it, naming the line.
+#[test]
+fn a_table_entry_the_program_assigns_is_the_frame_its_number_selects() {
+    let src = |middle: &str| {
+        format!("DEF a( )\n$BASE = BASE_DATA[2]\n{middle}\n$TOOL = TOOL_DATA[3]\nLIN {{X 1, Y 2, Z 3, A 0, B 0, C 0}}\n$BASE = BASE_DATA[2]\nLIN {{X 1, Y 2, Z 4, A 0, B 0, C 0}}\nEND\n")
+    };
+    let assigned = "BASE_DATA[2] = {FRAME: X 1500,Y 300,Z 400,A 90,B 0,C 0}\nTOOL_DATA[3] = {X 0,Y 0,Z 250,A 0,B 0,C 0}";
+    let p = parse_with_data(&src(assigned), None, Dialect::Krl).unwrap();
+    // The first motion: the base selected before the assignment (its number), the tool after.
+    let (base, tool) = frames(&p, 0);
+    assert_eq!(base, Frame::Numbered(2, 2));
+    let Frame::Stated(4, t) = tool else {
+        panic!("{tool:?}")
+    };
+    assert!((t.translation.vector - Vector3::new(0.0, 0.0, 0.25)).norm() < 1e-12);
+    // The second: the base selected again, the program's entry.
+    let Frame::Stated(3, b) = frames(&p, 1).0 else {
+        panic!("{:?}", frames(&p, 1).0)
+    };
+    assert!((b.translation.vector - Vector3::new(1.5, 0.3, 0.4)).norm() < 1e-12);
+    let turned = b.rotation * Vector3::x();
+    assert!(
+        (turned - Vector3::y()).norm() < 1e-12,
+        "A 90 turns x onto y: {turned}"
+    );
+    for (middle, line, needle) in [
+        (
+            "BASE_DATA[2].X = 1500",
+            3,
+            "a member of an entry of BASE_DATA",
+        ),
+        (
+            "BASE_DATA[I] = {X 0,Y 0,Z 0,A 0,B 0,C 0}",
+            3,
+            "whose index is not a number",
+        ),
+        ("$BASE.X = 1500", 3, "a member of $BASE"),
+    ] {
+        let p = parse_with_data(&src(middle), None, Dialect::Krl).unwrap();
+        let base = frames(&p, if middle.starts_with('$') { 0 } else { 1 }).0;
+        assert!(
+            matches!(&base, Frame::Unknown(l, why) if *l == line && why.contains(needle)),
+            "{middle}: {base:?}"
+        );
+    }
 }
 
 #[test]
