@@ -171,17 +171,17 @@ impl Frames {
         // A number selected here takes the program's entry; one selected before keeps the
         // frame it copied then (KRL assigns frames by value).
         if self.base != before.0 {
-            self.base = self.from_table(self.base.clone(), true);
+            self.base = self.as_assigned(self.base.clone(), true);
         }
         if self.tool != before.1 {
-            self.tool = self.from_table(self.tool.clone(), false);
+            self.tool = self.as_assigned(self.tool.clone(), false);
         }
         set
     }
 
     /// A numbered frame (`base` or tool) as the program's own assignment of its table entry
     /// holds it, if it assigns one; `frame` otherwise.
-    fn from_table(&self, frame: Frame, base: bool) -> Frame {
+    fn as_assigned(&self, frame: Frame, base: bool) -> Frame {
         match (frame, &self.any_entry[usize::from(base)]) {
             (Frame::Numbered(..), Some(any)) => any.clone(),
             (Frame::Numbered(l, n), None) => {
@@ -308,9 +308,9 @@ impl Frames {
             };
             match name {
                 "$TOOL" => {
-                    tool = self.from_table(self.with_frame(line, value, false, fdats), false)
+                    tool = self.as_assigned(self.with_frame(line, value, false, fdats), false)
                 }
-                "$BASE" => base = self.from_table(self.with_frame(line, value, true, fdats), true),
+                "$BASE" => base = self.as_assigned(self.with_frame(line, value, true, fdats), true),
                 "$IPO_MODE" => {
                     external = match with_ipo(value, fdats) {
                         Some(false) => None,
