@@ -193,7 +193,7 @@ impl Registration {
     /// (deg, `R = Rz(yaw) Ry(pitch) Rx(roll)`).
     pub(crate) fn xyz_mm_rpy_deg(&self) -> ([f64; 3], [f64; 3]) {
         let t = self.base_from_tracker.translation.vector * 1e3;
-        let (r, p, y) = self.base_from_tracker.rotation.euler_angles();
+        let [r, p, y] = stiffid_core::robot::file::rpy(&self.base_from_tracker.rotation);
         ([t.x, t.y, t.z], [r, p, y].map(f64::to_degrees))
     }
 

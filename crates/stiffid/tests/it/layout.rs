@@ -1030,3 +1030,17 @@ fn every_field_written_through_a_unit_adapter_says_both_units() {
         .collect();
     assert_eq!(silent, [10, 13]);
 }
+
+/// Every angle triple the library writes (CSV columns, documents, robot programs' A B C and W P R,
+/// URDF and robot files) comes from `robot::file::rpy`, which gives the rotation back at any
+/// pitch: nalgebra's `euler_angles()` misses it by degrees within 1e-6 deg of pitch +-90 (a
+/// KUKA `B 90`, a tool pointing down a ROS `tool0`), so no library file calls it.
+#[test]
+fn angles_are_written_by_rpy_not_by_euler_angles() {
+    let calls: Vec<String> = (CRATES.iter())
+        .flat_map(|c| library_files(c))
+        .filter(|(_, code)| strip(code).contains(".euler_angles()"))
+        .map(|(path, _)| path.display().to_string())
+        .collect();
+    assert!(calls.is_empty(), "{calls:?}");
+}

@@ -591,6 +591,6 @@ pub(crate) fn in_world(plan: &Plan, pose: &Isometry3<f64>) -> (Vector3<f64>, Uni
 
 /// KUKA's A, B, C and FANUC's R, P, W (deg): `R = Rz(A) Ry(B) Rx(C)`.
 pub(crate) fn zyx_deg(r: &UnitQuaternion<f64>) -> [f64; 3] {
-    let (roll, pitch, yaw) = r.euler_angles();
+    let [roll, pitch, yaw] = stiffid_core::robot::file::rpy(r);
     [yaw.to_degrees(), pitch.to_degrees(), roll.to_degrees()]
 }
