@@ -132,6 +132,9 @@ fn ls_cases() -> Vec<(String, Reads)> {
         (ls("   1:J P[1] 100% FINE ;\n   2:  END ;\n   3:L P[2] 50mm/sec FINE ;", &pos), Refused(5, "the program ends here")),
         (ls("   1:J P[1] 100% FINE ;\n   2:  Weave Sine[1] ;\n   3:L P[2] 50mm/sec FINE ;\n   4:  Weave End ;", &pos), Refused(5, "weave across the path")),
         (ls("   1:LBL[1] ;\n   2:J P[1] 100% FINE ;\n   3:JMP LBL[1] ;", &pos), Refused(6, "jump")),
+        // ArcTool touch sensing shifts the motions up to its end by an offset found at run time.
+        (ls("   1:J P[1] 100% FINE ;\n   2:  Touch Offset PR[20] ;\n   3:L P[2] 50mm/sec FINE ;\n   4:  Touch Offset End ;", &pos), Refused(5, "Touch Offset PR[20]: touch sensing (ArcTool) shifts every motion after it")),
+        (ls("   1:J P[1] 100% FINE ;\n   2:L P[2] 50mm/sec FINE ;\n   3:  Touch Offset End ;", &pos), Targets(&[(4, Q1), (5, Q2)])),
         (ls("   1:J P[1] 100% FINE ;", &[]), Refused(4, "no position P[1]")),
         (ls("", &pos), Refused(1, "no motion to a target found")),
     ]

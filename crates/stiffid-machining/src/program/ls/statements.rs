@@ -17,9 +17,12 @@
 //!   the motions after them ([`Selected`]).
 //! - Refused naming the line, in a program with motions: a jump, branch or loop (`JMP`, `IF`,
 //!   `SELECT`, `FOR`, `WAIT .. TIMEOUT,LBL[..]`, any instruction naming a label but the label
-//!   itself: the order the controller runs would not be the file's); a `CALL` between two motions (the called program may move the robot between
-//!   them); `END` or `ABORT` before a motion; `Weave ..` and `Track ..` (ArcTool: weaving and
-//!   seam tracking move the tool off the programmed path) before a motion; a frame's value set by the program
+//!   itself: the order the controller runs would not be the file's); a `CALL` between two
+//!   motions (the called program may move the robot between them); `END` or `ABORT` before a
+//!   motion; `Weave ..` and `Track ..` (ArcTool: weaving and seam tracking move the tool off
+//!   the programmed path) before a motion; `Touch Offset PR[i]` (ArcTool touch sensing: the
+//!   motions up to `Touch Offset End` are shifted by the offset it finds at run time, held in
+//!   the register on the controller) before a motion; a frame's value set by the program
 //!   (`UFRAME[i]=`, `UTOOL[i]=`, a system variable of the frames, `$MNUFRAME`, `$MNUTOOL`,
 //!   `$UFRAME`, `$UTOOL`) before a motion; a frame number in a register (`UFRAME_NUM=R[i]`).
 
@@ -90,6 +93,9 @@ pub(super) fn instruction(line: u64, t: &str, place: Place, selected: &mut Selec
     if process_path && place.before_last {
         return refuse("the motions after it weave across the path or follow a sensor (ArcTool), so the path the controller runs is not the file's: remove it or compensate the program without it");
     }
+    if touch_offset(&upper) && place.before_last {
+        return refuse("touch sensing (ArcTool) shifts every motion after it, up to Touch Offset End, by the offset the sensing finds at run time, held in a position register on the controller, not in this program; apply the offset to the positions and remove the Touch Offset lines");
+    }
     if matches!(first, "END" | "ABORT") && place.before_last {
         return refuse(
             "the program ends here, before the motions after it: remove them or the instruction",
@@ -99,6 +105,15 @@ pub(super) fn instruction(line: u64, t: &str, place: Place, selected: &mut Selec
         return refuse("the program sets a frame's value, which stiffid reads from the setup's [controller] tools and bases (as the controller holds them before the program runs): set the frame on the controller and give it in the setup");
     }
     Ok(())
+}
+
+/// Whether the instruction (upper case) opens a touch offset (`TOUCH OFFSET PR[i]`, ArcTool's
+/// touch sensing; its closing `TOUCH OFFSET END` does not).
+fn touch_offset(upper: &str) -> bool {
+    let mut words = upper.split_whitespace();
+    words.next() == Some("TOUCH")
+        && words.next().is_some_and(|w| w.starts_with("OFFSET"))
+        && !upper.ends_with("END")
 }
 
 /// Whether the instruction (upper case, not a motion) names a position `P[i]` outside an
