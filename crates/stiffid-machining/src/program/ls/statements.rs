@@ -13,8 +13,9 @@
 //!   a `CALL` before the first motion or after the last, and every other instruction that neither
 //!   moves nor selects a frame (nor names a position `P[i]` but in an assignment's value: a
 //!   motion whose keyword is lost, `X P[8] ..`, is refused).
-//! - Followed: `UFRAME_NUM=n` and `UTOOL_NUM=n`, the user and tool frame numbers in force for
-//!   the motions after them ([`Selected`]).
+//! - Followed: `UFRAME_NUM=n` and `UTOOL_NUM=n` (also `UFRAME_NUM[GP1]=n`, naming the robot's
+//!   motion group), the user and tool frame numbers in force for the motions after them
+//!   ([`Selected`]); another group's (`UTOOL_NUM[GP2]=n`) is refused naming the line.
 //! - Refused naming the line, in a program with motions: a jump, branch or loop (`JMP`, `IF`,
 //!   `SELECT`, `FOR`, `WAIT .. TIMEOUT,LBL[..]`, any instruction naming a label but the label
 //!   itself: the order the controller runs would not be the file's); a `CALL` between two
@@ -74,11 +75,11 @@ pub(super) fn instruction(line: u64, t: &str, place: Place, selected: &mut Selec
         return refuse("names a position P[i] but is no motion stiffid reads (J, L or C P[i] ..); passed over, its target would be lost");
     }
     if let Some(n) = upper.strip_prefix("UFRAME_NUM") {
-        selected.user = Some(number(line, t, n));
+        selected.user = Some(number(line, t, n)?);
         return Ok(());
     }
     if let Some(n) = upper.strip_prefix("UTOOL_NUM") {
-        selected.tool = Some(number(line, t, n));
+        selected.tool = Some(number(line, t, n)?);
         return Ok(());
     }
     let jump = matches!(first, "JMP" | "IF" | "SELECT" | "FOR" | "ENDFOR")
@@ -127,13 +128,28 @@ fn names_a_position(upper: &str) -> bool {
     })
 }
 
-/// The number after `UFRAME_NUM`/`UTOOL_NUM` (`rest`, upper case) of instruction `t`.
-fn number(line: u64, t: &str, rest: &str) -> Number {
-    let n = rest.trim_start().strip_prefix('=').map(str::trim);
-    match n.and_then(|n| n.parse::<u32>().ok()) {
+/// The number after `UFRAME_NUM`/`UTOOL_NUM` (`rest`, upper case) of instruction `t` on
+/// `line`, also in the form naming the motion group, `UTOOL_NUM[GP1]=4` (as ROBOGUIDE writes
+/// it), where the group is the robot's, group 1.
+///
+/// # Errors
+/// Naming the line, a selection for another motion group (`UTOOL_NUM[GP2]=1`).
+fn number(line: u64, t: &str, rest: &str) -> Result<Number> {
+    let mut rest = rest.trim_start();
+    if let Some(inner) = rest.strip_prefix('[') {
+        let (group, after) = inner.split_once(']').unwrap_or((inner, ""));
+        let group = group.trim();
+        let number = group.strip_prefix("GP").map(|g| g.trim().parse::<u32>());
+        if !matches!(number, Some(Ok(1))) {
+            return Err(at(line, format!("{}: selects the frame of motion group {}; stiffid reads motion group 1 as the robot and follows only its frames (UFRAME_NUM=n, UTOOL_NUM=n, or with [GP1]): compensate a program of group 1", short(t.trim()), short(group))));
+        }
+        rest = after.trim_start();
+    }
+    let n = rest.strip_prefix('=').map(str::trim);
+    Ok(match n.and_then(|n| n.parse::<u32>().ok()) {
         Some(n) => Number::Literal(line, n),
         None => Number::Unread(line, short(t.trim()).to_string()),
-    }
+    })
 }
 
 /// Whether the instruction (upper case) assigns a frame's value: `UFRAME[i]=`, `UTOOL[i]=`, or
