@@ -839,3 +839,36 @@ fn ls_frame_selections_naming_group_1_are_read_as_the_plain_ones() {
         }
     }
 }
+
+/// A German program's frame selections, `BENUTZER_NUM=n` and `WKZ_NUM=n`, are read as
+/// `UFRAME_NUM=n` and `UTOOL_NUM=n`: the same axis angles, and a tool frame other than the
+/// positions' refused naming the motion's line.
+#[test]
+fn ls_german_frame_selections_are_read_as_the_english_ones() {
+    let (s, _, part) = ls_frames_case();
+    let named = named_part_frame(&part);
+    let german = |tool: &str| {
+        named
+            .replacen("UFRAME_NUM=1", "BENUTZER_NUM=1", 1)
+            .replacen("UTOOL_NUM=1", &format!("WKZ_NUM={tool}"), 1)
+    };
+    let q_named = ls_resolved(&s, &named).unwrap();
+    assert_eq!(ls_resolved(&s, &german("1")).unwrap(), q_named);
+    let other = german("2");
+    let motion = other
+        .lines()
+        .position(|l| l.contains(":L P[") || l.contains(":J P["))
+        .unwrap() as u64
+        + 1;
+    match ls_resolved(&s, &other) {
+        Err(Error::Program { line, message }) => {
+            assert_eq!(line, motion, "{message}");
+            let needle = format!(
+                "UT : 1: the position is in frame 1, and UTOOL_NUM=2 on line {} is in force",
+                line_of(&other, "WKZ_NUM=2")
+            );
+            assert!(message.contains(&needle), "{message}");
+        }
+        other => panic!("{other:?}"),
+    }
+}

@@ -135,6 +135,14 @@ fn ls_cases() -> Vec<(String, Reads)> {
         // ArcTool touch sensing shifts the motions up to its end by an offset found at run time.
         (ls("   1:J P[1] 100% FINE ;\n   2:  Touch Offset PR[20] ;\n   3:L P[2] 50mm/sec FINE ;\n   4:  Touch Offset End ;", &pos), Refused(5, "Touch Offset PR[20]: touch sensing (ArcTool) shifts every motion after it")),
         (ls("   1:J P[1] 100% FINE ;\n   2:L P[2] 50mm/sec FINE ;\n   3:  Touch Offset End ;", &pos), Targets(&[(4, Q1), (5, Q2)])),
+        // A program in German: its keywords read as their English twins.
+        (ls("   1:  LABEL[1] ;\n   2:J P[1] 100% FINE ;\n   3:L P[2] 500mm/sek FINE ;\n   4:  WENN (F[1]),SPRUNG LABEL[1] ;", &pos), Refused(7, "WENN (F[1]),SPRUNG LABEL[1]: a jump")),
+        (ls("   1:J P[1] 100% FINE ;\n   2:  SONST,SPRUNG LABEL[2] ;\n   3:L P[2] 50mm/sec FINE ;", &pos), Refused(5, "a jump")),
+        (ls("   1:J P[1] 100% FINE ;\n   2:  AUFRUF MAKRO000 ;\n   3:L P[2] 50mm/sec FINE ;", &pos), Refused(5, "AUFRUF MAKRO000: a call between two motions")),
+        (ls("   1:J P[1] 100% FINE ;\n   2:  ENDE ;\n   3:L P[2] 50mm/sec FINE ;", &pos), Refused(5, "the program ends here")),
+        (ls("   1:J P[1] 100% FINE ;\n   2:L P[2] 10mm/sek CNT0 ACC250 Interrupt,LABEL[1] ;", &pos), Refused(5, "INTERRUPT,LABEL[1]: a jump")),
+        (ls("   1:J P[1] 100% FINE ;\n   2:L P[2] 50mm/sec FINE WKZ_Offset ,PR[2] ;", &pos), Refused(5, "the offset is held on the controller")),
+        (ls("   1:  AUFRUF INIT ;\n   2:  LABEL[1] ;\n   3:J P[1] 100% FINE ;\n   4:L P[2] 50mm/sek CNT0 ;\n   5:  AUFRUF MAKRO000 ;\n   6:  ENDE ;", &pos), Targets(&[(6, Q1), (7, Q2)])),
         (ls("   1:J P[1] 100% FINE ;", &[]), Refused(4, "no position P[1]")),
         (ls("", &pos), Refused(1, "no motion to a target found")),
     ]

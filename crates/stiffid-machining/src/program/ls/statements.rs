@@ -26,6 +26,10 @@
 //!   the register on the controller) before a motion; a frame's value set by the program
 //!   (`UFRAME[i]=`, `UTOOL[i]=`, a system variable of the frames, `$MNUFRAME`, `$MNUTOOL`,
 //!   `$UFRAME`, `$UTOOL`) before a motion; a frame number in a register (`UFRAME_NUM=R[i]`).
+//!
+//! A program a controller set to German writes is read as its English twin: `WENN` (`IF`),
+//! `SPRUNG` (`JMP`), `SONST` (`ELSE`), `LABEL[i]` (`LBL[i]`), `AUFRUF` (`CALL`), `ENDE`
+//! (`END`), `BENUTZER_NUM` (`UFRAME_NUM`), `WKZ_NUM` (`UTOOL_NUM`) ([`GERMAN`]).
 
 use crate::program::at;
 use stiffid_core::common::limits::short;
@@ -64,7 +68,7 @@ pub(super) struct Place {
 /// # Errors
 /// Naming the line, an instruction refused at its `place` (module docs).
 pub(super) fn instruction(line: u64, t: &str, place: Place, selected: &mut Selected) -> Result<()> {
-    let upper = t.trim().to_ascii_uppercase();
+    let upper = english(&t.trim().to_ascii_uppercase());
     let first = upper
         .split(|c: char| c.is_whitespace() || c == '[' || c == '(' || c == '=')
         .next()
@@ -106,6 +110,41 @@ pub(super) fn instruction(line: u64, t: &str, place: Place, selected: &mut Selec
         return refuse("the program sets a frame's value, which stiffid reads from the setup's [controller] tools and bases (as the controller holds them before the program runs): set the frame on the controller and give it in the setup");
     }
     Ok(())
+}
+
+/// The keywords a FANUC controller set to German writes in its programs (as seen in real
+/// controller backups), and the English ones they stand for.
+const GERMAN: &[(&str, &str)] = &[
+    ("WENN", "IF"),
+    ("SPRUNG", "JMP"),
+    ("SONST", "ELSE"),
+    ("LABEL", "LBL"),
+    ("AUFRUF", "CALL"),
+    ("ENDE", "END"),
+    ("BENUTZER_NUM", "UFRAME_NUM"),
+    ("WKZ_NUM", "UTOOL_NUM"),
+];
+
+/// The instruction `upper` (upper case) with its German keywords ([`GERMAN`]) in English, word
+/// by word, so that a German program is read as its English twin.
+fn english(upper: &str) -> String {
+    let mut out = String::with_capacity(upper.len());
+    let mut word = String::new();
+    let flush = |word: &mut String, out: &mut String| {
+        let g = GERMAN.iter().find(|(g, _)| *g == word.as_str());
+        out.push_str(g.map_or(word.as_str(), |(_, e)| e));
+        word.clear();
+    };
+    for c in upper.chars() {
+        if c.is_ascii_alphanumeric() || c == '_' {
+            word.push(c);
+        } else {
+            flush(&mut word, &mut out);
+            out.push(c);
+        }
+    }
+    flush(&mut word, &mut out);
+    out
 }
 
 /// Whether the instruction (upper case) opens a touch offset (`TOUCH OFFSET PR[i]`, ArcTool's
