@@ -786,3 +786,89 @@ fn ls_frames_not_stated_or_not_in_force_are_refused_naming_the_line() {
         }
     }
 }
+
+/// The frame selections naming the motion group (`UTOOL_NUM[GP1]=n`, as ROBOGUIDE and SimPRO
+/// write them) are read as group 1's plain ones; a register stays refused, and another group's
+/// selection is refused naming its line.
+#[test]
+fn ls_frame_selections_naming_group_1_are_read_as_the_plain_ones() {
+    let (s, _, part) = ls_frames_case();
+    let named = named_part_frame(&part);
+    let group_one = named
+        .replacen("UFRAME_NUM=1", "UFRAME_NUM[GP1]=1", 1)
+        .replacen("UTOOL_NUM=1", "UTOOL_NUM[GP1]=1", 1);
+    let q_named = ls_resolved(&s, &named).unwrap();
+    assert_eq!(ls_resolved(&s, &group_one).unwrap(), q_named);
+    let other_tool = named.replacen("UTOOL_NUM=1", "UTOOL_NUM[GP1]=2", 1);
+    let register = named.replacen("UTOOL_NUM=1", "UTOOL_NUM[GP1]=R[5]", 1);
+    let other_group = named.replacen("UFRAME_NUM=1", "UFRAME_NUM[GP2]=1", 1);
+    let first_motion = |text: &str| {
+        text.lines()
+            .position(|l| l.contains(":L P[") || l.contains(":J P["))
+            .unwrap() as u64
+            + 1
+    };
+    let cases = [
+        (
+            &register,
+            line_of(&register, "UTOOL_NUM[GP1]=R[5]"),
+            "UTOOL_NUM[GP1]=R[5]: the frame number is held in a register".to_string(),
+        ),
+        // Group 1's tool frame 2 selected: the positions' tool frame 1 is not the one in force.
+        (
+            &other_tool,
+            first_motion(&other_tool),
+            format!(
+                "UT : 1: the position is in frame 1, and UTOOL_NUM=2 on line {} is in force",
+                line_of(&other_tool, "UTOOL_NUM[GP1]=2")
+            ),
+        ),
+        (
+            &other_group,
+            line_of(&other_group, "UFRAME_NUM[GP2]=1"),
+            "UFRAME_NUM[GP2]=1: selects the frame of motion group GP2".to_string(),
+        ),
+    ];
+    for (text, line, needle) in &cases {
+        match ls_resolved(&s, text) {
+            Err(Error::Program { line: l, message }) => {
+                assert_eq!(l, *line, "{needle}: {message}");
+                assert!(message.contains(needle.as_str()), "{needle}: {message}");
+            }
+            other => panic!("{needle}: {other:?}\n{text}"),
+        }
+    }
+}
+
+/// A German program's frame selections, `BENUTZER_NUM=n` and `WKZ_NUM=n`, are read as
+/// `UFRAME_NUM=n` and `UTOOL_NUM=n`: the same axis angles, and a tool frame other than the
+/// positions' refused naming the motion's line.
+#[test]
+fn ls_german_frame_selections_are_read_as_the_english_ones() {
+    let (s, _, part) = ls_frames_case();
+    let named = named_part_frame(&part);
+    let german = |tool: &str| {
+        named
+            .replacen("UFRAME_NUM=1", "BENUTZER_NUM=1", 1)
+            .replacen("UTOOL_NUM=1", &format!("WKZ_NUM={tool}"), 1)
+    };
+    let q_named = ls_resolved(&s, &named).unwrap();
+    assert_eq!(ls_resolved(&s, &german("1")).unwrap(), q_named);
+    let other = german("2");
+    let motion = other
+        .lines()
+        .position(|l| l.contains(":L P[") || l.contains(":J P["))
+        .unwrap() as u64
+        + 1;
+    match ls_resolved(&s, &other) {
+        Err(Error::Program { line, message }) => {
+            assert_eq!(line, motion, "{message}");
+            let needle = format!(
+                "UT : 1: the position is in frame 1, and UTOOL_NUM=2 on line {} is in force",
+                line_of(&other, "WKZ_NUM=2")
+            );
+            assert!(message.contains(&needle), "{message}");
+        }
+        other => panic!("{other:?}"),
+    }
+}

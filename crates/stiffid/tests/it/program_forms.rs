@@ -93,6 +93,9 @@ fn ls(mn: &str, positions: &[(u64, [f64; 6])]) -> String {
     s + "/END\n"
 }
 
+/// The `/POS` line and a Cartesian position `P[1]` in the world for tool frame 1.
+const CARTESIAN_P1: &str = "/POS\nP[1]{\n   GP1:\n\tUF : 0, UT : 1,\t\tCONFIG : 'N U T, 0, 0, 0',\n\tX = 1194.000 mm,\tY = 924.900 mm,\tZ = 539.500 mm,\n\tW = 163.100 deg,\tP = 1.500 deg,\tR = -1.000 deg\n};\n";
+
 fn ls_cases() -> Vec<(String, Reads)> {
     let pos = [(1, Q1), (2, Q2)];
     let inc = [(1, Q1), (2, [0.5, 0.0, -1.0, 0.0, 0.0, 2.0])];
@@ -104,6 +107,8 @@ fn ls_cases() -> Vec<(String, Reads)> {
         (ls("   1:J P[1] 100% FINE ;\n   2:L P[2] 10mm/sec FINE INC ;", &inc), Targets(&[(4, Q1), (5, [1.5, 2.0, 2.0, 4.0, 5.0, 8.0])])),
         (ls("   1:J P[1] 100% CNT100 ;\n   2:L P[2] 10mm/sec FINE INC ;", &inc), Refused(5, "end the previous motion FINE")),
         (ls("   1:L P[2] 10mm/sec FINE INC ;", &inc), Refused(4, "INC")),
+        // A joint increment from a Cartesian position: its start angles are the controller's.
+        (ls("   1:J P[1] 100% FINE ;\n   2:J P[2] 50% FINE INC ;", &inc[1..]).replace("/POS\n", CARTESIAN_P1), Refused(5, "J P[2] INC: an increment of the axis angles from the previous target (line 4), a Cartesian position")),
         (ls("   1:J P[1] 100% FINE ;\n   2:L P[2] 50mm/sec FINE Offset,PR[1] ;", &pos), Refused(5, "OFFSET,PR[1]: the offset is held on the controller")),
         (ls("   1:J P[1] 100% FINE ;\n   2:L P[2] 50mm/sec FINE Tool_Offset ;", &pos), Refused(5, "offset is held on the controller")),
         (ls("   1:J PR[1] 100% FINE ;", &pos), Refused(4, "position register")),
@@ -132,6 +137,17 @@ fn ls_cases() -> Vec<(String, Reads)> {
         (ls("   1:J P[1] 100% FINE ;\n   2:  END ;\n   3:L P[2] 50mm/sec FINE ;", &pos), Refused(5, "the program ends here")),
         (ls("   1:J P[1] 100% FINE ;\n   2:  Weave Sine[1] ;\n   3:L P[2] 50mm/sec FINE ;\n   4:  Weave End ;", &pos), Refused(5, "weave across the path")),
         (ls("   1:LBL[1] ;\n   2:J P[1] 100% FINE ;\n   3:JMP LBL[1] ;", &pos), Refused(6, "jump")),
+        // ArcTool touch sensing shifts the motions up to its end by an offset found at run time.
+        (ls("   1:J P[1] 100% FINE ;\n   2:  Touch Offset PR[20] ;\n   3:L P[2] 50mm/sec FINE ;\n   4:  Touch Offset End ;", &pos), Refused(5, "Touch Offset PR[20]: touch sensing (ArcTool) shifts every motion after it")),
+        (ls("   1:J P[1] 100% FINE ;\n   2:L P[2] 50mm/sec FINE ;\n   3:  Touch Offset End ;", &pos), Targets(&[(4, Q1), (5, Q2)])),
+        // A program in German: its keywords read as their English twins.
+        (ls("   1:  LABEL[1] ;\n   2:J P[1] 100% FINE ;\n   3:L P[2] 500mm/sek FINE ;\n   4:  WENN (F[1]),SPRUNG LABEL[1] ;", &pos), Refused(7, "WENN (F[1]),SPRUNG LABEL[1]: a jump")),
+        (ls("   1:J P[1] 100% FINE ;\n   2:  SONST,SPRUNG LABEL[2] ;\n   3:L P[2] 50mm/sec FINE ;", &pos), Refused(5, "a jump")),
+        (ls("   1:J P[1] 100% FINE ;\n   2:  AUFRUF MAKRO000 ;\n   3:L P[2] 50mm/sec FINE ;", &pos), Refused(5, "AUFRUF MAKRO000: a call between two motions")),
+        (ls("   1:J P[1] 100% FINE ;\n   2:  ENDE ;\n   3:L P[2] 50mm/sec FINE ;", &pos), Refused(5, "the program ends here")),
+        (ls("   1:J P[1] 100% FINE ;\n   2:L P[2] 10mm/sek CNT0 ACC250 Interrupt,LABEL[1] ;", &pos), Refused(5, "INTERRUPT,LABEL[1]: a jump")),
+        (ls("   1:J P[1] 100% FINE ;\n   2:L P[2] 50mm/sec FINE WKZ_Offset ,PR[2] ;", &pos), Refused(5, "the offset is held on the controller")),
+        (ls("   1:  AUFRUF INIT ;\n   2:  LABEL[1] ;\n   3:J P[1] 100% FINE ;\n   4:L P[2] 50mm/sek CNT0 ;\n   5:  AUFRUF MAKRO000 ;\n   6:  ENDE ;", &pos), Targets(&[(6, Q1), (7, Q2)])),
         (ls("   1:J P[1] 100% FINE ;", &[]), Refused(4, "no position P[1]")),
         (ls("", &pos), Refused(1, "no motion to a target found")),
     ]

@@ -27,15 +27,16 @@ pub(super) struct Instructions {
 }
 
 /// Instructions that cannot move the robot or change a frame: input and output, timers and
-/// waits, arithmetic on B, I, D, R and S variables, messages, arc-welding and weaving
-/// conditions, synchronisation with other tasks.
+/// waits, arithmetic on B, I, D, R and S variables, messages, arc-welding conditions,
+/// synchronisation with other tasks. Weaving (`WVON` .. `WVOF`) is read apart: refused where a
+/// motion weaves.
 const ACCEPTED: &[&str] = &[
     "NOP", "TIMER", "DOUT", "DIN", "AOUT", "WAIT", "PULSE", "SET", "SETE", "GETE", "GETS", "CLEAR",
     "INC", "DEC", "ADD", "SUB", "MUL", "DIV", "AND", "OR", "NOT", "XOR", "MSG", "ARCON", "ARCOF",
-    "ARCSET", "ARCCTS", "ARCCTE", "WVON", "WVOF", "AWELD", "VWELD", "SPEED", "TSYNC", "SKILLSND",
-    "HPVELON", "HPVELOF", "PAUSE", "CWAIT", "ADVINIT", "ADVSTOP", "SETREG", "GETREG", "SYSTART",
-    "SYEND", "HAND", "HSEN", "GETARG", "CNVRT", "GETPOS", "SETFILE", "GETFILE", "ARATION",
-    "ARATIOF", "TOOLON", "TOOLOF", "SVSPOT", "SPOT", "GUNCHG",
+    "ARCSET", "ARCCTS", "ARCCTE", "AWELD", "VWELD", "SPEED", "TSYNC", "SKILLSND", "HPVELON",
+    "HPVELOF", "PAUSE", "CWAIT", "ADVINIT", "ADVSTOP", "SETREG", "GETREG", "SYSTART", "SYEND",
+    "HAND", "HSEN", "GETARG", "CNVRT", "GETPOS", "SETFILE", "GETFILE", "ARATION", "ARATIOF",
+    "TOOLON", "TOOLOF", "SVSPOT", "SPOT", "GUNCHG",
 ];
 
 /// Instructions that change the order the controller runs (a jump, a call, a loop, a branch).
@@ -74,6 +75,7 @@ pub(super) fn instructions(text: &str) -> Result<Instructions> {
     };
     let (mut in_inst, mut last) = (false, None::<(u64, String)>);
     let mut control: Option<(u64, String)> = None;
+    let mut weaving: Option<(u64, String)> = None;
     for (line, _, l) in crate::program::lines(text) {
         let t = l.trim();
         if let Some(section) = t.strip_prefix("//").filter(|s| !s.starts_with('/')) {
@@ -102,7 +104,16 @@ pub(super) fn instructions(text: &str) -> Result<Instructions> {
             continue;
         }
         match first.as_str() {
-            "MOVJ" | "MOVL" | "MOVC" => out.motions.push(motion(line, &first, &words[1..])?),
+            "MOVJ" | "MOVL" | "MOVC" => {
+                if let Some((w, text)) = &weaving {
+                    return Err(at(*w, format!("{}: weaving (WVON) moves the tool across the path in the motions after it, up to WVOF, so the path the controller runs is not the job's: remove it or compensate the job without it", short(text))));
+                }
+                out.motions.push(motion(line, &first, &words[1..])?);
+            }
+            "WVON" => {
+                weaving.get_or_insert((line, t.to_string()));
+            }
+            "WVOF" => weaving = None,
             "END" => {}
             w if ACCEPTED.contains(&w) => {}
             _ => return Err(refused(line, &first, t)),

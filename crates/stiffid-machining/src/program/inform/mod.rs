@@ -41,8 +41,9 @@
 //! ## Accepted around the motions
 //! What cannot move the robot or change a frame: input and output (`DOUT`, `DIN`, `WAIT`,
 //! `PULSE`, `AOUT`), `TIMER`, arithmetic on B, I, D, R and S variables (`SET`, `ADD`, ..),
-//! arc welding and weaving (`ARCON`, `ARCOF`, `ARCSET`, `WVON`, `WVOF`), `SPEED`, `MSG`,
-//! `TSYNC`, labels (`*LABEL`) in a job without a `JUMP`, and comments.
+//! arc welding (`ARCON`, `ARCOF`, `ARCSET`), weaving switched on and off with no motion between
+//! (`WVON`, `WVOF`), `SPEED`, `MSG`, `TSYNC`, labels (`*LABEL`) in a job without a `JUMP`, and
+//! comments.
 //!
 //! ## Refused, naming the line
 //! - a motion to a Cartesian position (`///RECTAN` under `///POSTYPE BASE`, `ROBOT`, `USER`,
@@ -54,6 +55,7 @@
 //!   motion on a conveyor), a motion with `UNTIL` (a search) or with another group's own motion
 //!   (`+MOVJ`), a shift (`SFTON`, `SFTOF`, `MSHIFT`), any tag outside the list above, and any
 //!   instruction stiffid does not know;
+//! - `WVON` with a motion after it before `WVOF`: weaving moves the tool across the path;
 //! - `JUMP`, `CALL`, `MACRO`, `IF`, `IFTHEN`, `FOR`, `WHILE`, `SWITCH` in a job with motions
 //!   (the order the controller runs, or the motions of the job it calls, would not be the
 //!   file's);

@@ -131,7 +131,8 @@ fn position<'p>(
 }
 
 /// `target` (an `INC` motion's increments) made absolute from `previous`, the target before it
-/// when that motion ended `FINE`.
+/// when that motion ended `FINE` and it is a joint position (a Cartesian one's axis angles are
+/// not known while reading: refused).
 fn increment(
     line: u64,
     what: &str,
@@ -144,6 +145,9 @@ fn increment(
     let Some(previous) = previous else {
         return Err(at(line, format!("{what} INC: an increment from where the robot is, which only a previous motion ending FINE in this program fixes; end the previous motion FINE or write the position absolute")));
     };
+    if previous.cartesian.is_some() {
+        return Err(at(line, format!("{what} INC: an increment of the axis angles from the previous target (line {}), a Cartesian position: the angles the robot starts from are those the controller's inverse kinematics reaches it with, and stiffid adds an increment only to a joint position's angles; write this position absolute, or the previous one in joint representation", previous.line)));
+    }
     for (q, p) in target.q_deg.iter_mut().zip(previous.q_deg) {
         *q += p;
     }

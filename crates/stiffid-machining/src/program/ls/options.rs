@@ -11,8 +11,9 @@
 //!   instruction they run early or late (an output, a point-logic or a program call: a program
 //!   called there runs without a motion group, so it cannot move the robot).
 //! - Refused: `COORD` (coordinated motion: the path is relative to the leader group, a
-//!   positioner that moves during it), `Offset`, `Tool_Offset`, `VOFFSET` (an offset held on the
-//!   controller), `Skip,LBL[..]` (a jump when the skip condition holds), and every other option
+//!   positioner that moves during it), `Offset`, `Tool_Offset` (`WKZ_Offset` in a German
+//!   program), `VOFFSET` (an offset held on the controller), `Skip,LBL[..]` and any option naming
+//!   a label (`Interrupt,LABEL[..]` in a German program: a jump), and every other option
 //!   (`Wjnt`, `RTCP`, `Weave`, `CTV`, ...): stiffid does not follow them.
 
 use crate::program::at;
@@ -84,11 +85,15 @@ fn option(line: u64, what: &str, w: &str, after: &[String], o: &mut Options) -> 
             return refuse("coordinated motion: the path is relative to the leader group (a positioner) that moves during it; stiffid reads a positioner's axes as the program's targets, not a path relative to it: write the motion without COORD")
         }
         a if a.starts_with("ACC") || a.starts_with("EV") || a.starts_with("IND.EV") => {}
-        o if o.starts_with("OFFSET") || o.starts_with("TOOL_OFFSET") || o.starts_with("VOFFSET") => {
+        o if o.starts_with("OFFSET")
+            || o.starts_with("TOOL_OFFSET")
+            || o.starts_with("WKZ_OFFSET")
+            || o.starts_with("VOFFSET") =>
+        {
             return refuse("the offset is held on the controller (a position register or vision offset), not in this program; apply it to the positions and remove it")
         }
-        s if s.starts_with("SKIP") => {
-            return refuse("a jump when the skip condition holds; the path the controller runs would not be the file's: remove it")
+        s if s.starts_with("SKIP") || s.contains("LBL[") || s.contains("LABEL[") => {
+            return refuse("a jump to a label when its condition holds (a skip); the path the controller runs would not be the file's: remove it")
         }
         _ => {
             return refuse("an option stiffid does not follow (the path or its end would not be the program's); remove it or compensate the program without it")

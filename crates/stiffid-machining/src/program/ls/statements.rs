@@ -13,15 +13,23 @@
 //!   a `CALL` before the first motion or after the last, and every other instruction that neither
 //!   moves nor selects a frame (nor names a position `P[i]` but in an assignment's value: a
 //!   motion whose keyword is lost, `X P[8] ..`, is refused).
-//! - Followed: `UFRAME_NUM=n` and `UTOOL_NUM=n`, the user and tool frame numbers in force for
-//!   the motions after them ([`Selected`]).
+//! - Followed: `UFRAME_NUM=n` and `UTOOL_NUM=n` (also `UFRAME_NUM[GP1]=n`, naming the robot's
+//!   motion group), the user and tool frame numbers in force for the motions after them
+//!   ([`Selected`]); another group's (`UTOOL_NUM[GP2]=n`) is refused naming the line.
 //! - Refused naming the line, in a program with motions: a jump, branch or loop (`JMP`, `IF`,
 //!   `SELECT`, `FOR`, `WAIT .. TIMEOUT,LBL[..]`, any instruction naming a label but the label
-//!   itself: the order the controller runs would not be the file's); a `CALL` between two motions (the called program may move the robot between
-//!   them); `END` or `ABORT` before a motion; `Weave ..` and `Track ..` (ArcTool: weaving and
-//!   seam tracking move the tool off the programmed path) before a motion; a frame's value set by the program
+//!   itself: the order the controller runs would not be the file's); a `CALL` between two
+//!   motions (the called program may move the robot between them); `END` or `ABORT` before a
+//!   motion; `Weave ..` and `Track ..` (ArcTool: weaving and seam tracking move the tool off
+//!   the programmed path) before a motion; `Touch Offset PR[i]` (ArcTool touch sensing: the
+//!   motions up to `Touch Offset End` are shifted by the offset it finds at run time, held in
+//!   the register on the controller) before a motion; a frame's value set by the program
 //!   (`UFRAME[i]=`, `UTOOL[i]=`, a system variable of the frames, `$MNUFRAME`, `$MNUTOOL`,
 //!   `$UFRAME`, `$UTOOL`) before a motion; a frame number in a register (`UFRAME_NUM=R[i]`).
+//!
+//! A program a controller set to German writes is read as its English twin: `WENN` (`IF`),
+//! `SPRUNG` (`JMP`), `SONST` (`ELSE`), `LABEL[i]` (`LBL[i]`), `AUFRUF` (`CALL`), `ENDE`
+//! (`END`), `BENUTZER_NUM` (`UFRAME_NUM`), `WKZ_NUM` (`UTOOL_NUM`) ([`GERMAN`]).
 
 use crate::program::at;
 use stiffid_core::common::limits::short;
@@ -60,7 +68,7 @@ pub(super) struct Place {
 /// # Errors
 /// Naming the line, an instruction refused at its `place` (module docs).
 pub(super) fn instruction(line: u64, t: &str, place: Place, selected: &mut Selected) -> Result<()> {
-    let upper = t.trim().to_ascii_uppercase();
+    let upper = english(&t.trim().to_ascii_uppercase());
     let first = upper
         .split(|c: char| c.is_whitespace() || c == '[' || c == '(' || c == '=')
         .next()
@@ -71,11 +79,11 @@ pub(super) fn instruction(line: u64, t: &str, place: Place, selected: &mut Selec
         return refuse("names a position P[i] but is no motion stiffid reads (J, L or C P[i] ..); passed over, its target would be lost");
     }
     if let Some(n) = upper.strip_prefix("UFRAME_NUM") {
-        selected.user = Some(number(line, t, n));
+        selected.user = Some(number(line, t, n)?);
         return Ok(());
     }
     if let Some(n) = upper.strip_prefix("UTOOL_NUM") {
-        selected.tool = Some(number(line, t, n));
+        selected.tool = Some(number(line, t, n)?);
         return Ok(());
     }
     let jump = matches!(first, "JMP" | "IF" | "SELECT" | "FOR" | "ENDFOR")
@@ -90,6 +98,9 @@ pub(super) fn instruction(line: u64, t: &str, place: Place, selected: &mut Selec
     if process_path && place.before_last {
         return refuse("the motions after it weave across the path or follow a sensor (ArcTool), so the path the controller runs is not the file's: remove it or compensate the program without it");
     }
+    if touch_offset(&upper) && place.before_last {
+        return refuse("touch sensing (ArcTool) shifts every motion after it, up to Touch Offset End, by the offset the sensing finds at run time, held in a position register on the controller, not in this program; apply the offset to the positions and remove the Touch Offset lines");
+    }
     if matches!(first, "END" | "ABORT") && place.before_last {
         return refuse(
             "the program ends here, before the motions after it: remove them or the instruction",
@@ -99,6 +110,50 @@ pub(super) fn instruction(line: u64, t: &str, place: Place, selected: &mut Selec
         return refuse("the program sets a frame's value, which stiffid reads from the setup's [controller] tools and bases (as the controller holds them before the program runs): set the frame on the controller and give it in the setup");
     }
     Ok(())
+}
+
+/// The keywords a FANUC controller set to German writes in its programs (as seen in real
+/// controller backups), and the English ones they stand for.
+const GERMAN: &[(&str, &str)] = &[
+    ("WENN", "IF"),
+    ("SPRUNG", "JMP"),
+    ("SONST", "ELSE"),
+    ("LABEL", "LBL"),
+    ("AUFRUF", "CALL"),
+    ("ENDE", "END"),
+    ("BENUTZER_NUM", "UFRAME_NUM"),
+    ("WKZ_NUM", "UTOOL_NUM"),
+];
+
+/// The instruction `upper` (upper case) with its German keywords ([`GERMAN`]) in English, word
+/// by word, so that a German program is read as its English twin.
+fn english(upper: &str) -> String {
+    let mut out = String::with_capacity(upper.len());
+    let mut word = String::new();
+    let flush = |word: &mut String, out: &mut String| {
+        let g = GERMAN.iter().find(|(g, _)| *g == word.as_str());
+        out.push_str(g.map_or(word.as_str(), |(_, e)| e));
+        word.clear();
+    };
+    for c in upper.chars() {
+        if c.is_ascii_alphanumeric() || c == '_' {
+            word.push(c);
+        } else {
+            flush(&mut word, &mut out);
+            out.push(c);
+        }
+    }
+    flush(&mut word, &mut out);
+    out
+}
+
+/// Whether the instruction (upper case) opens a touch offset (`TOUCH OFFSET PR[i]`, ArcTool's
+/// touch sensing; its closing `TOUCH OFFSET END` does not).
+fn touch_offset(upper: &str) -> bool {
+    let mut words = upper.split_whitespace();
+    words.next() == Some("TOUCH")
+        && words.next().is_some_and(|w| w.starts_with("OFFSET"))
+        && !upper.ends_with("END")
 }
 
 /// Whether the instruction (upper case, not a motion) names a position `P[i]` outside an
@@ -112,13 +167,28 @@ fn names_a_position(upper: &str) -> bool {
     })
 }
 
-/// The number after `UFRAME_NUM`/`UTOOL_NUM` (`rest`, upper case) of instruction `t`.
-fn number(line: u64, t: &str, rest: &str) -> Number {
-    let n = rest.trim_start().strip_prefix('=').map(str::trim);
-    match n.and_then(|n| n.parse::<u32>().ok()) {
+/// The number after `UFRAME_NUM`/`UTOOL_NUM` (`rest`, upper case) of instruction `t` on
+/// `line`, also in the form naming the motion group, `UTOOL_NUM[GP1]=4` (as ROBOGUIDE writes
+/// it), where the group is the robot's, group 1.
+///
+/// # Errors
+/// Naming the line, a selection for another motion group (`UTOOL_NUM[GP2]=1`).
+fn number(line: u64, t: &str, rest: &str) -> Result<Number> {
+    let mut rest = rest.trim_start();
+    if let Some(inner) = rest.strip_prefix('[') {
+        let (group, after) = inner.split_once(']').unwrap_or((inner, ""));
+        let group = group.trim();
+        let number = group.strip_prefix("GP").map(|g| g.trim().parse::<u32>());
+        if !matches!(number, Some(Ok(1))) {
+            return Err(at(line, format!("{}: selects the frame of motion group {}; stiffid reads motion group 1 as the robot and follows only its frames (UFRAME_NUM=n, UTOOL_NUM=n, or with [GP1]): compensate a program of group 1", short(t.trim()), short(group))));
+        }
+        rest = after.trim_start();
+    }
+    let n = rest.strip_prefix('=').map(str::trim);
+    Ok(match n.and_then(|n| n.parse::<u32>().ok()) {
         Some(n) => Number::Literal(line, n),
         None => Number::Unread(line, short(t.trim()).to_string()),
-    }
+    })
 }
 
 /// Whether the instruction (upper case) assigns a frame's value: `UFRAME[i]=`, `UTOOL[i]=`, or

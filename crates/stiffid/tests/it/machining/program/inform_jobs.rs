@@ -173,8 +173,8 @@ fn tool_files_are_checked_against_the_setups_tool() {
     );
 }
 
-/// What changes the path or cannot be known is refused naming its line: a shift, a position
-/// variable, a jump, an unknown instruction, a speed that is not a number, a job cut off, a NUL.
+/// What changes the path or cannot be known is refused naming its line: a shift, weaving, a
+/// position variable, a jump, an unknown instruction, a speed that is not a number, a job cut off, a NUL.
 #[test]
 fn what_can_change_the_path_is_refused_naming_the_line() {
     let p = pulses();
@@ -183,6 +183,11 @@ fn what_can_change_the_path_is_refused_naming_the_line() {
             STORED.replace("ARCOF AEF#(1)", "SFTON P001 UF#(1)"),
             26,
             "SFTON: a shift",
+        ),
+        (
+            STORED.replace("ARCON ASF#(1)", "ARCON ASF#(1)\r\nWVON WEV#(1)"),
+            22,
+            "WVON WEV#(1): weaving (WVON) moves the tool across the path",
         ),
         (
             STORED.replace("MOVL C00001", "MOVL P001"),
@@ -237,6 +242,10 @@ fn what_can_change_the_path_is_refused_naming_the_line() {
         assert_eq!(at, line, "{words}: {message}");
         assert!(message.contains(words), "{words}: {message}");
     }
+    // Weaving switched on and off with no motion between moves nothing: the job reads.
+    let idle = STORED.replace("ARCON ASF#(1)", "ARCON ASF#(1)\r\nWVON WEV#(1)\r\nWVOF");
+    let read = parse_in(&idle, Dialect::Inform, &with(&p)).unwrap();
+    assert_eq!(read.targets.len(), 5);
 }
 
 /// The real jobs of the corpus (tests/data/programs/inform, SOURCES.md): each refused naming
