@@ -61,6 +61,11 @@ pub(super) fn block(
     for w in words {
         given.word(line, w, s)?;
     }
+    if words.iter().any(|w| w.letter == 'M' && w.value == 6.0) {
+        // The tool change loads the tool selected (this block's T, else the last one), before
+        // the block's tool length offset (LinuxCNC's order of execution).
+        (s.changed, s.tool_number) = (true, s.selected);
+    }
     super::process::gather(line, words, s);
     given.modes(line, s)?;
     motion_and_feed(line, &given, inch_before, s)?;
@@ -109,7 +114,12 @@ impl Given {
                 if v < 0.0 || v.fract() != 0.0 || v > 1e6 {
                     return Err(at(line, format!("T{v}: expected a tool number 0..1000000")));
                 }
-                s.tool_number = Some(v as u32);
+                s.selected = Some(v as u32);
+                if !s.changed {
+                    // No tool change yet: the program's T is the tool in use (a machine
+                    // without a tool changer).
+                    s.tool_number = s.selected;
+                }
             }
             'F' => self.feed = Some(v),
             'Q' => {

@@ -228,6 +228,48 @@ fn tool_length_offsets_place_the_tip_with_the_process_tool_table() {
 }
 
 #[test]
+fn a_t_word_after_a_tool_change_preselects_and_the_tool_in_use_is_the_one_m6_loaded() {
+    let m = tools();
+    // Fusion 360's Haas and Fanuc posts: the next tool selected right after the change. T1
+    // (50 mm) is in the spindle, G43 H1 programs its tip: the cut is at Z-1, not 30 mm lower
+    // with T2's 80 mm.
+    let g = read(
+        "T1 M6\nT2\nG54 G0 X0 Y0\nG43 Z15 H1\nG1 Z-1 F300\nX20\nG0 Z15\n",
+        &m,
+    );
+    let want = [
+        (5, mm(0.0, 0.0, 15.0)),
+        (6, mm(0.0, 0.0, -1.0)),
+        (7, mm(20.0, 0.0, -1.0)),
+        (8, mm(20.0, 0.0, 15.0)),
+    ];
+    assert_eq!(g.points.len(), want.len());
+    for (p, (line, q)) in g.points.iter().zip(want) {
+        assert_eq!((p.line, p.tool_number), (line, Some(1)));
+        assert_relative_eq!(p.position, q, epsilon = 1e-9);
+    }
+    // The tool select event names the tool selected.
+    let select = g.process.iter().find(|w| w.line == 3).unwrap();
+    assert_eq!((select.words.as_str(), select.tool), ("T2", Some(2)));
+    // M6 alone loads the last T selected before it; G43 without H in its block takes the tool
+    // it loaded (T2, 80 mm): the tip programmed.
+    let g = read(
+        "T1 M6\nG43 H1 G0 X0 Y0 Z10\nT2\nG0 X5\nM6 G43 Z12\nG0 X6\n",
+        &m,
+    );
+    let tools: Vec<(u64, Option<u32>)> = g.points.iter().map(|p| (p.line, p.tool_number)).collect();
+    let want = [(3, Some(1)), (5, Some(1)), (6, Some(2)), (7, Some(2))];
+    assert_eq!(tools, want);
+    assert_relative_eq!(g.points[1].position, mm(5.0, 0.0, 10.0), epsilon = 1e-9);
+    assert_relative_eq!(g.points[2].position, mm(5.0, 0.0, 12.0), epsilon = 1e-9);
+    assert_relative_eq!(g.points[3].position, mm(6.0, 0.0, 12.0), epsilon = 1e-9);
+    // Without any M6 (a machine without a tool changer), the T is the tool in use.
+    let g = read("T2\nG43 G0 X0 Y0 Z10\n", &m);
+    assert_eq!(g.points[0].tool_number, Some(2));
+    assert_relative_eq!(g.points[0].position, mm(0.0, 0.0, 10.0), epsilon = 1e-9);
+}
+
+#[test]
 fn arcs_end_within_grbls_and_linuxcncs_tolerance_and_centres_in_either_mode() {
     let m = Machine::default();
     // Fusion's 3-decimal rounding: 1.587 and 1.588 mm radii, 1 um off; the end is reached.
