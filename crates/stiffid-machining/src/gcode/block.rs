@@ -359,7 +359,7 @@ pub(super) fn moves(line: u64, given: &Given, s: &State) -> Result<bool> {
 }
 
 /// A straight or circular move: its points added to `out`, and its block (a `G53` block's
-/// coordinates in the machine's frame).
+/// coordinates in the machine's frame, of the spindle's gauge line).
 fn motion(
     line: u64,
     span: Range<usize>,
@@ -374,7 +374,17 @@ fn motion(
         false => s.frame.clone(),
     };
     let lift = s.lift();
-    let here = convert((s.position, s.known), (&s.frame, lift), (&frame, lift));
+    // G53's coordinates are the spindle's, the tool length offset not applied (LinuxCNC's
+    // find_ends, FANUC).
+    let block_lift = match given.g53 {
+        true => s.spindle_lift(),
+        false => lift,
+    };
+    let here = convert(
+        (s.position, s.known),
+        (&s.frame, lift),
+        (&frame, block_lift),
+    );
     let (end, known) = end_point(line, &given.target, here, s)?;
     if !known.iter().all(|k| *k) {
         if s.motion != 0 {
@@ -382,7 +392,7 @@ fn motion(
             return Err(refuse_unknown(line, &what, known));
         }
         s.pending.get_or_insert(line);
-        (s.position, s.known) = convert((end, known), (&frame, lift), (&s.frame, lift));
+        (s.position, s.known) = convert((end, known), (&frame, block_lift), (&s.frame, lift));
         return Ok(());
     }
     if s.motion != 0 && !here.1.iter().all(|k| *k) {
@@ -403,10 +413,10 @@ fn motion(
         Motion::Feed
     };
     let first = out.points.len();
-    push_points(line, &positions, motion, &frame, s, out)?;
-    (s.position, s.known) = convert((end, known), (&frame, lift), (&s.frame, lift));
+    push_points(line, &positions, motion, (&frame, block_lift), s, out)?;
+    (s.position, s.known) = convert((end, known), (&frame, block_lift), (&s.frame, lift));
     let arc_word = given.motion.filter(|(g, _)| *g >= 2).map(|(_, span)| span);
-    let to_program = super::machine::to_program(&frame, lift.unwrap_or(0.0));
+    let to_program = super::machine::to_program(&frame, block_lift.unwrap_or(0.0));
     out.blocks.push(Block {
         line: span,
         points: first..out.points.len(),

@@ -13,7 +13,8 @@
 //!   process's tool lengths; `docs/programs/gcode.md` names each rule's source): an axis is
 //!   unknown until a block gives it or the setup states the start (rapids before make no point;
 //!   a feed, arc or cycle from there is refused, module `modal`); work offsets `G54`-`G59`,
-//!   `G59.1`-`G59.3`, `G54.1 Pn` and machine coordinates `G53` in the setup's frames; `G28`/`G30`
+//!   `G59.1`-`G59.3`, `G54.1 Pn` and machine coordinates `G53` (of the spindle, the tool
+//!   length offset not applied) in the setup's frames; `G28`/`G30`
 //!   to the setup's positions (module `home`); tool length offsets `G43 Hn`/`G44`/`G49` with the
 //!   tools' lengths (module `machine`); arc centres `G90.1`/`G91.1`; an arc's end off its circle
 //!   within grbl's and LinuxCNC's tolerance ([`ARC_END_TOLERANCE_MM`]), reached along a spiral.

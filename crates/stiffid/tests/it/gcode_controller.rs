@@ -228,6 +228,42 @@ fn tool_length_offsets_place_the_tip_with_the_process_tool_table() {
 }
 
 #[test]
+fn g53_places_the_spindle_without_the_tool_length_offset_under_g43_and_g49() {
+    // Machine Z0 is 200 mm above the part's origin; T1 is 50 mm long. G53 Z0 puts the gauge
+    // line at Z200 of the part, the tip at Z150, whatever offset is in force.
+    let mut m = tools();
+    m.frames.offsets = vec![("G53".into(), Isometry3::translation(-0.5, -0.4, 0.2))];
+    for offset in ["G43 H1", "G49"] {
+        let text = format!("T1 M6\n{offset} G0 X0 Y0 Z20\nG53 G0 Z0\nG53 G1 X510 F300\nG0 Z20\n");
+        let g = read(&text, &m);
+        // Z20 under G43 H1 is the tip; under G49 the gauge line, the tip 50 mm below it.
+        let z = if offset == "G49" { -30.0 } else { 20.0 };
+        let want = [
+            (3, mm(0.0, 0.0, z)),
+            (4, mm(0.0, 0.0, 150.0)),
+            (5, mm(10.0, 0.0, 150.0)),
+            (6, mm(10.0, 0.0, z)),
+        ];
+        assert_eq!(g.points.len(), want.len(), "{offset}");
+        for (p, (line, q)) in g.points.iter().zip(want) {
+            assert_eq!(p.line, line, "{offset}");
+            assert_relative_eq!(p.position, q, epsilon = 1e-9);
+        }
+        // Written back, the G53 blocks are the spindle's machine coordinates again.
+        let positions: Vec<_> = g.points.iter().map(|p| p.position).collect();
+        let written = g.write(&positions).unwrap();
+        assert!(
+            written.contains("G53 G0 X500.000000 Y400.000000 Z0.000000"),
+            "{written}"
+        );
+        let again = gcode::parse_on(&written, 1e-5, &m).unwrap();
+        for (a, b) in again.points.iter().zip(&g.points) {
+            assert_relative_eq!(a.position, b.position, epsilon = 1e-9);
+        }
+    }
+}
+
+#[test]
 fn a_t_word_after_a_tool_change_preselects_and_the_tool_in_use_is_the_one_m6_loaded() {
     let m = tools();
     // Fusion 360's Haas and Fanuc posts: the next tool selected right after the change. T1
