@@ -336,6 +336,13 @@ fn arcs_end_within_grbls_and_linuxcncs_tolerance_and_centres_in_either_mode() {
         3,
         "0.6000 mm off",
     );
+    // An R short of half the chord (5 mm) by more than LinuxCNC's 0.00127 mm, both in mm.
+    refused(
+        "G0 X0 Y0 Z5\nG1 Z0 F100\nG2 X10 Y0 R4\n",
+        &m,
+        4,
+        "R4.0000 mm is shorter than half the chord (5.0000 mm)",
+    );
     // G90.1: I J K are the centre itself.
     let absolute = read("G90.1\nG0 X10 Y5 Z0\nG3 X0 Y15 I0 J5\n", &m);
     let incremental = read("G91.1\nG0 X10 Y5 Z0\nG3 X0 Y15 I-10 J0\n", &m);
