@@ -161,8 +161,9 @@ pub(super) fn centre_from_radius(
         return Err(at(
             line,
             format!(
-                "R{:.4} mm is shorter than half the chord ({half:.4} mm)",
-                r * 1e3
+                "R{:.4} mm is shorter than half the chord ({:.4} mm)",
+                r * 1e3,
+                half * 1e3
             ),
         ));
     }

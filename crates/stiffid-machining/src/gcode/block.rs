@@ -61,6 +61,11 @@ pub(super) fn block(
     for w in words {
         given.word(line, w, s)?;
     }
+    if words.iter().any(|w| w.letter == 'M' && w.value == 6.0) {
+        // The tool change loads the tool selected (this block's T, else the last one), before
+        // the block's tool length offset (LinuxCNC's order of execution).
+        (s.changed, s.tool_number) = (true, s.selected);
+    }
     super::process::gather(line, words, s);
     given.modes(line, s)?;
     motion_and_feed(line, &given, inch_before, s)?;
@@ -109,7 +114,12 @@ impl Given {
                 if v < 0.0 || v.fract() != 0.0 || v > 1e6 {
                     return Err(at(line, format!("T{v}: expected a tool number 0..1000000")));
                 }
-                s.tool_number = Some(v as u32);
+                s.selected = Some(v as u32);
+                if !s.changed {
+                    // No tool change yet: the program's T is the tool in use (a machine
+                    // without a tool changer).
+                    s.tool_number = s.selected;
+                }
             }
             'F' => self.feed = Some(v),
             'Q' => {
@@ -349,7 +359,7 @@ pub(super) fn moves(line: u64, given: &Given, s: &State) -> Result<bool> {
 }
 
 /// A straight or circular move: its points added to `out`, and its block (a `G53` block's
-/// coordinates in the machine's frame).
+/// coordinates in the machine's frame, of the spindle's gauge line).
 fn motion(
     line: u64,
     span: Range<usize>,
@@ -364,7 +374,17 @@ fn motion(
         false => s.frame.clone(),
     };
     let lift = s.lift();
-    let here = convert((s.position, s.known), (&s.frame, lift), (&frame, lift));
+    // G53's coordinates are the spindle's, the tool length offset not applied (LinuxCNC's
+    // find_ends, FANUC).
+    let block_lift = match given.g53 {
+        true => s.spindle_lift(),
+        false => lift,
+    };
+    let here = convert(
+        (s.position, s.known),
+        (&s.frame, lift),
+        (&frame, block_lift),
+    );
     let (end, known) = end_point(line, &given.target, here, s)?;
     if !known.iter().all(|k| *k) {
         if s.motion != 0 {
@@ -372,7 +392,7 @@ fn motion(
             return Err(refuse_unknown(line, &what, known));
         }
         s.pending.get_or_insert(line);
-        (s.position, s.known) = convert((end, known), (&frame, lift), (&s.frame, lift));
+        (s.position, s.known) = convert((end, known), (&frame, block_lift), (&s.frame, lift));
         return Ok(());
     }
     if s.motion != 0 && !here.1.iter().all(|k| *k) {
@@ -393,10 +413,10 @@ fn motion(
         Motion::Feed
     };
     let first = out.points.len();
-    push_points(line, &positions, motion, &frame, s, out)?;
-    (s.position, s.known) = convert((end, known), (&frame, lift), (&s.frame, lift));
+    push_points(line, &positions, motion, (&frame, block_lift), s, out)?;
+    (s.position, s.known) = convert((end, known), (&frame, block_lift), (&s.frame, lift));
     let arc_word = given.motion.filter(|(g, _)| *g >= 2).map(|(_, span)| span);
-    let to_program = super::machine::to_program(&frame, lift.unwrap_or(0.0));
+    let to_program = super::machine::to_program(&frame, block_lift.unwrap_or(0.0));
     out.blocks.push(Block {
         line: span,
         points: first..out.points.len(),

@@ -26,6 +26,10 @@ use stiffid_core::Result;
 /// 0.010 inch).
 pub(crate) const PECK_CLEARANCE_MM: f64 = 0.254;
 
+/// Two levels of a cycle closer than this are one, m (a nanometre: far below a controller's
+/// resolution, far above floating point's error in m).
+const LEVEL_TOLERANCE: f64 = 1e-9;
+
 /// One hole of a drilling canned cycle, part frame.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Cycle {
@@ -295,12 +299,17 @@ fn moves(hole: &Hole, s: &State) -> (Vec<(Vector3<f64>, Motion)>, usize) {
     go(hole.at_xy(above), Motion::Rapid, &mut moves);
     go(hole.at_xy(retract), Motion::Rapid, &mut moves);
     let (mut reached, surface) = (retract, s.surface);
+    let mut pecks = 0.0;
     let bottom_index = loop {
-        // A peck too small to change the level in floating point goes to the bottom.
+        // The n-th peck's level counted from R, not stepped from the last (six steps of 0.75
+        // mm in m from R3 end 2e-19 m above Z-1.5, which would take one more peck); a level
+        // within LEVEL_TOLERANCE of the bottom, or a peck too small to change the level, is
+        // the bottom, as LinuxCNC's loop (in the program's units) ends there.
+        pecks += 1.0;
         let next = hole
             .peck
-            .map(|q| (reached - q).max(depth))
-            .filter(|n| *n < reached)
+            .map(|q| retract - pecks * q)
+            .filter(|n| *n > depth + LEVEL_TOLERANCE && *n < reached)
             .unwrap_or(depth);
         let from = match reached < retract {
             true => {
@@ -313,7 +322,7 @@ fn moves(hole: &Hole, s: &State) -> (Vec<(Vector3<f64>, Motion)>, usize) {
         };
         // Where the drill meets material: the part's surface, or the depth a peck reached.
         let entry = reached.min(surface);
-        if entry < from && entry > next {
+        if entry < from && entry > next + LEVEL_TOLERANCE {
             go(hole.at_xy(entry), Motion::Feed, &mut moves);
             // The same point again, where the thrust starts: the drill arrives unloaded and
             // cuts from there under its thrust ([`GCode::drilled_in_air`]).

@@ -81,7 +81,8 @@ fn rapid(
 ) -> Result<()> {
     if known.iter().all(|k| *k) {
         let frame = s.frame.clone();
-        push_points(line, &[end], Motion::Rapid, &frame, s, out)?;
+        let lift = s.lift();
+        push_points(line, &[end], Motion::Rapid, (&frame, lift), s, out)?;
     } else {
         s.pending.get_or_insert(line);
     }

@@ -8,7 +8,9 @@
 //! length offset in force applied as LinuxCNC and FANUC apply it, along the frame's `Z`: with
 //! `h` the offset in force (`G43 Hn`: tool `n`'s length; `G44 Hn`: minus it; `G49`: 0) and `L`
 //! the length of the tool in use (`T`), the tip is at the programmed point `+ (h - L) Z`; with
-//! `G43 H` of the tool in use, the programmed point is the tip. A process without tool lengths
+//! `G43 H` of the tool in use, the programmed point is the tip. A `G53` block's coordinates are
+//! the spindle's gauge line in machine coordinates, the offset not applied (`h = 0` under `G43`
+//! and `G49` alike, as LinuxCNC and FANUC). A process without tool lengths
 //! reads every program as the tip's path (`G43`/`G44` refused).
 
 use nalgebra::{Isometry3, Translation3, Vector3};

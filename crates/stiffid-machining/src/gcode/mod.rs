@@ -13,7 +13,8 @@
 //!   process's tool lengths; `docs/programs/gcode.md` names each rule's source): an axis is
 //!   unknown until a block gives it or the setup states the start (rapids before make no point;
 //!   a feed, arc or cycle from there is refused, module `modal`); work offsets `G54`-`G59`,
-//!   `G59.1`-`G59.3`, `G54.1 Pn` and machine coordinates `G53` in the setup's frames; `G28`/`G30`
+//!   `G59.1`-`G59.3`, `G54.1 Pn` and machine coordinates `G53` (of the spindle, the tool
+//!   length offset not applied) in the setup's frames; `G28`/`G30`
 //!   to the setup's positions (module `home`); tool length offsets `G43 Hn`/`G44`/`G49` with the
 //!   tools' lengths (module `machine`); arc centres `G90.1`/`G91.1`; an arc's end off its circle
 //!   within grbl's and LinuxCNC's tolerance ([`ARC_END_TOLERANCE_MM`]), reached along a spiral.
@@ -24,8 +25,10 @@
 //!   mm/min under `G21`, inch/min under `G20`), kept with every point for the robot programs
 //!   written from the path; a change of units while an `F` is in force needs the `F` again in
 //!   its block (controllers differ on whether the feed follows the units). `S`, `M`, `N`, `O`, `P`
-//!   words are kept and not interpreted (`P` and `Q` are a cycle's dwell and peck); `T` sets the
-//!   tool number (which selects the process operation and the tool length).
+//!   words are kept and not interpreted (`P` and `Q` are a cycle's dwell and peck); `T` selects
+//!   a tool and `M6` loads it: the tool in the spindle (which selects the process operation and
+//!   the tool length) is the one the last `M6` loaded (a `T` alone after an `M6` pre-selects the
+//!   next tool), or, before the program's first `M6`, the last `T`.
 //! - Comments `( ... )` and `; ...`; those on lines of their own are kept in path order
 //!   ([`Comment`], written in a robot program at their place). A comment `(operation: NAME)`
 //!   selects the process operation named `NAME` from there on. Header comments state the tool orientation:
@@ -114,7 +117,9 @@ pub struct Point {
     pub orientation: UnitQuaternion<f64>,
     /// Rapid or cutting.
     pub motion: Motion,
-    /// The tool number in force (`T` word).
+    /// The tool in the spindle: the tool number the last `M6` loaded (`Tn M6`, or `M6` alone
+    /// loading the last `T` selected before it); before the program's first `M6`, the last `T`
+    /// (a program for a machine without a tool changer).
     pub tool_number: Option<u32>,
     /// The operation named in force (`(operation: NAME)`), shared by every point it covers (an
     /// arc's thousands of chords hold one copy of the name).
@@ -182,7 +187,13 @@ struct State {
     plane: u8,
     inch: bool,
     incremental: bool,
+    /// The tool in the spindle: the one the last `M6` loaded (its block's `T`, else the last
+    /// `T` selected before it); before the program's first `M6`, the last `T`.
     tool_number: Option<u32>,
+    /// The last tool selected (`T`), which an `M6` loads.
+    selected: Option<u32>,
+    /// An `M6` has been read: from there on a `T` alone only selects the next tool.
+    changed: bool,
     operation: Option<std::sync::Arc<str>>,
     tool: Option<UnitQuaternion<f64>>,
     rotary: bool,
@@ -263,6 +274,8 @@ pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<G
         inch: false,
         incremental: false,
         tool_number: None,
+        selected: None,
+        changed: false,
         operation: None,
         tool: machine.frames.tool,
         rotary: false,

@@ -37,6 +37,15 @@ impl State {
         Some(self.length_offset - length)
     }
 
+    /// The tip's lift from the spindle's gauge line, the tool length offset not applied: the
+    /// point `G53`'s coordinates place (LinuxCNC, FANUC), under `G43` and `G49` alike.
+    pub(super) fn spindle_lift(&self) -> Lift {
+        if self.machine.tool_lengths.is_empty() {
+            return Some(0.0);
+        }
+        Some(-self.machine.tool_length(self.tool_number)?)
+    }
+
     /// Puts `frame` in force, the position carried into it.
     pub(super) fn set_frame(&mut self, frame: Frame) {
         let lift = self.lift();
@@ -55,9 +64,15 @@ impl State {
         self.length_offset = h;
     }
 
-    /// The tip at the programmed point `p` of the frame in force, `G54` part frame, m.
-    pub(super) fn tip(&self, line: u64, p: &Vector3<f64>, frame: &Frame) -> Result<Vector3<f64>> {
-        let lift = self.lift().ok_or_else(|| {
+    /// The tip at the programmed point `p` of `frame` with `lift` (`None`: the tool in use has
+    /// no length), `G54` part frame, m.
+    pub(super) fn tip(
+        &self,
+        line: u64,
+        p: &Vector3<f64>,
+        (frame, lift): (&Frame, Lift),
+    ) -> Result<Vector3<f64>> {
+        let lift = lift.ok_or_else(|| {
             let tool = self.tool_number.map_or("no T word yet".into(), |t| format!("T{t}"));
             at(line, format!("the tool in use ({tool}) has no length in the process's tool table ([tool] length_mm of the operation with its tool_number), and the tool length offset G43/G44/G49 in force needs it to place the tip"))
         })?;
@@ -140,13 +155,13 @@ pub(super) fn end_point(
     Ok((end, known))
 }
 
-/// The points at `positions` (programmed, in `frame`) added to `out` as tips in the `G54`
-/// part frame.
+/// The points at `positions` (programmed, in `frame` with `lift`) added to `out` as tips in the
+/// `G54` part frame.
 pub(super) fn push_points(
     line: u64,
     positions: &[Vector3<f64>],
     motion: Motion,
-    frame: &super::machine::Frame,
+    (frame, lift): (&Frame, Lift),
     s: &mut State,
     out: &mut GCode,
 ) -> Result<()> {
@@ -160,7 +175,7 @@ pub(super) fn push_points(
     for p in positions {
         out.points.push(Point {
             line,
-            position: s.tip(line, p, frame)?,
+            position: s.tip(line, p, (frame, lift))?,
             orientation,
             motion,
             tool_number: s.tool_number,

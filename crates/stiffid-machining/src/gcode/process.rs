@@ -22,7 +22,7 @@ pub struct ProcessWord {
     pub words: String,
     /// The spindle speed in force (the last `S`, rev/min).
     pub rpm: Option<f64>,
-    /// The tool number in force (the last `T`).
+    /// The last tool selected (the last `T`, which an `M6` loads): the tool a tool event names.
     pub tool: Option<u32>,
 }
 
@@ -99,7 +99,7 @@ pub(super) fn gather(line: u64, words: &[Word], s: &mut State) {
 }
 
 fn push(s: &mut State, line: u64, event: Option<ProcessEvent>, words: String) {
-    let (rpm, tool) = (s.rpm, s.tool_number);
+    let (rpm, tool) = (s.rpm, s.selected);
     s.process.push(ProcessWord {
         line,
         event,

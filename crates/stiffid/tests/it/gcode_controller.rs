@@ -228,6 +228,84 @@ fn tool_length_offsets_place_the_tip_with_the_process_tool_table() {
 }
 
 #[test]
+fn g53_places_the_spindle_without_the_tool_length_offset_under_g43_and_g49() {
+    // Machine Z0 is 200 mm above the part's origin; T1 is 50 mm long. G53 Z0 puts the gauge
+    // line at Z200 of the part, the tip at Z150, whatever offset is in force.
+    let mut m = tools();
+    m.frames.offsets = vec![("G53".into(), Isometry3::translation(-0.5, -0.4, 0.2))];
+    for offset in ["G43 H1", "G49"] {
+        let text = format!("T1 M6\n{offset} G0 X0 Y0 Z20\nG53 G0 Z0\nG53 G1 X510 F300\nG0 Z20\n");
+        let g = read(&text, &m);
+        // Z20 under G43 H1 is the tip; under G49 the gauge line, the tip 50 mm below it.
+        let z = if offset == "G49" { -30.0 } else { 20.0 };
+        let want = [
+            (3, mm(0.0, 0.0, z)),
+            (4, mm(0.0, 0.0, 150.0)),
+            (5, mm(10.0, 0.0, 150.0)),
+            (6, mm(10.0, 0.0, z)),
+        ];
+        assert_eq!(g.points.len(), want.len(), "{offset}");
+        for (p, (line, q)) in g.points.iter().zip(want) {
+            assert_eq!(p.line, line, "{offset}");
+            assert_relative_eq!(p.position, q, epsilon = 1e-9);
+        }
+        // Written back, the G53 blocks are the spindle's machine coordinates again.
+        let positions: Vec<_> = g.points.iter().map(|p| p.position).collect();
+        let written = g.write(&positions).unwrap();
+        assert!(
+            written.contains("G53 G0 X500.000000 Y400.000000 Z0.000000"),
+            "{written}"
+        );
+        let again = gcode::parse_on(&written, 1e-5, &m).unwrap();
+        for (a, b) in again.points.iter().zip(&g.points) {
+            assert_relative_eq!(a.position, b.position, epsilon = 1e-9);
+        }
+    }
+}
+
+#[test]
+fn a_t_word_after_a_tool_change_preselects_and_the_tool_in_use_is_the_one_m6_loaded() {
+    let m = tools();
+    // Fusion 360's Haas and Fanuc posts: the next tool selected right after the change. T1
+    // (50 mm) is in the spindle, G43 H1 programs its tip: the cut is at Z-1, not 30 mm lower
+    // with T2's 80 mm.
+    let g = read(
+        "T1 M6\nT2\nG54 G0 X0 Y0\nG43 Z15 H1\nG1 Z-1 F300\nX20\nG0 Z15\n",
+        &m,
+    );
+    let want = [
+        (5, mm(0.0, 0.0, 15.0)),
+        (6, mm(0.0, 0.0, -1.0)),
+        (7, mm(20.0, 0.0, -1.0)),
+        (8, mm(20.0, 0.0, 15.0)),
+    ];
+    assert_eq!(g.points.len(), want.len());
+    for (p, (line, q)) in g.points.iter().zip(want) {
+        assert_eq!((p.line, p.tool_number), (line, Some(1)));
+        assert_relative_eq!(p.position, q, epsilon = 1e-9);
+    }
+    // The tool select event names the tool selected.
+    let select = g.process.iter().find(|w| w.line == 3).unwrap();
+    assert_eq!((select.words.as_str(), select.tool), ("T2", Some(2)));
+    // M6 alone loads the last T selected before it; G43 without H in its block takes the tool
+    // it loaded (T2, 80 mm): the tip programmed.
+    let g = read(
+        "T1 M6\nG43 H1 G0 X0 Y0 Z10\nT2\nG0 X5\nM6 G43 Z12\nG0 X6\n",
+        &m,
+    );
+    let tools: Vec<(u64, Option<u32>)> = g.points.iter().map(|p| (p.line, p.tool_number)).collect();
+    let want = [(3, Some(1)), (5, Some(1)), (6, Some(2)), (7, Some(2))];
+    assert_eq!(tools, want);
+    assert_relative_eq!(g.points[1].position, mm(5.0, 0.0, 10.0), epsilon = 1e-9);
+    assert_relative_eq!(g.points[2].position, mm(5.0, 0.0, 12.0), epsilon = 1e-9);
+    assert_relative_eq!(g.points[3].position, mm(6.0, 0.0, 12.0), epsilon = 1e-9);
+    // Without any M6 (a machine without a tool changer), the T is the tool in use.
+    let g = read("T2\nG43 G0 X0 Y0 Z10\n", &m);
+    assert_eq!(g.points[0].tool_number, Some(2));
+    assert_relative_eq!(g.points[0].position, mm(0.0, 0.0, 10.0), epsilon = 1e-9);
+}
+
+#[test]
 fn arcs_end_within_grbls_and_linuxcncs_tolerance_and_centres_in_either_mode() {
     let m = Machine::default();
     // Fusion's 3-decimal rounding: 1.587 and 1.588 mm radii, 1 um off; the end is reached.
@@ -257,6 +335,13 @@ fn arcs_end_within_grbls_and_linuxcncs_tolerance_and_centres_in_either_mode() {
         &m,
         3,
         "0.6000 mm off",
+    );
+    // An R short of half the chord (5 mm) by more than LinuxCNC's 0.00127 mm, both in mm.
+    refused(
+        "G0 X0 Y0 Z5\nG1 Z0 F100\nG2 X10 Y0 R4\n",
+        &m,
+        4,
+        "R4.0000 mm is shorter than half the chord (5.0000 mm)",
     );
     // G90.1: I J K are the centre itself.
     let absolute = read("G90.1\nG0 X10 Y5 Z0\nG3 X0 Y15 I0 J5\n", &m);

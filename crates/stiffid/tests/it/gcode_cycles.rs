@@ -112,6 +112,34 @@ fn canned_cycles_make_the_moves_of_their_definition() {
 }
 
 #[test]
+fn a_peck_cycle_ends_at_its_bottom_whatever_the_pecks_sum_to_in_floating_point() {
+    // Six pecks of 0.75 mm from R3 to Z-1.5 (LinuxCNC's: each out to R and back to 0.254 mm
+    // above the depth reached; below the surface, Z0, the depth reached stated twice where the
+    // drill meets material again), then out to the starting level: no seventh peck at the
+    // bottom.
+    let text =
+        format!("{HEADER}G21 G90 G17\nG0 X0 Y0 Z10\nG98 G83 X0 Y0 Z-1.5 R3 Q0.75 F200\nG80\n");
+    let (r, f) = (true, false);
+    let mut want = vec![(3, [0.0, 0.0, 10.0], r), (4, [0.0, 0.0, 3.0], r)];
+    for (k, depth) in [2.25, 1.5, 0.75, 0.0, -0.75, -1.5].into_iter().enumerate() {
+        if k > 0 {
+            let reached: f64 = 3.0 - 0.75 * k as f64;
+            want.push((4, [0.0, 0.0, 3.0], r));
+            want.push((4, [0.0, 0.0, reached + 0.254], r));
+            if reached <= 0.0 && reached > depth {
+                want.extend([(4, [0.0, 0.0, reached], f); 2]);
+            }
+        }
+        want.push((4, [0.0, 0.0, depth], f));
+    }
+    want.push((4, [0.0, 0.0, 10.0], r));
+    let got = moves(&text);
+    assert_eq!(got, want);
+    let g = gcode::parse(&text, 1e-5).unwrap();
+    assert_eq!(g.points[g.points.len() - 2].position.z, -1.5e-3);
+}
+
+#[test]
 fn canned_cycles_are_written_back_as_their_moves() {
     let text = format!(
         "{HEADER}G21 G90 G17\nG0 X0 Y0 Z10\nN10 G99 G82 X10 Y20 Z-5 R2 P500 F120 M8\nX30\nG80\nG0 Z20\n"
