@@ -42,6 +42,16 @@ pub(super) fn motion(
         }
         _ => return Ok(None),
     };
+    // `PTP $AXIS_ACT` (RoboDK's KUKA posts begin with it) and `LIN $POS_ACT`: a motion to where
+    // the robot stands, which moves nothing.
+    let target = code.trim_start()[first.len()..].trim();
+    if !circle
+        && ["$AXIS_ACT", "$POS_ACT"]
+            .iter()
+            .any(|v| target.eq_ignore_ascii_case(v))
+    {
+        return Ok(None);
+    }
     let mut from = code.len() - code.trim_start()[first.len()..].len();
     let mut out = Vec::with_capacity(2);
     for k in 0..=usize::from(circle) {

@@ -202,6 +202,24 @@ fn a_table_entry_the_program_assigns_is_the_frame_its_number_selects() {
     }
 }
 
+/// `PTP $AXIS_ACT` (RoboDK's KUKA posts begin with it) and `LIN $POS_ACT` move to where the robot
+/// stands: no target, the motions around them read; any other system variable is refused.
+#[test]
+fn a_motion_to_where_the_robot_stands_moves_nothing() {
+    let src = |first: &str| {
+        format!("DEF a( )\n$BASE = {{X 0, Y 0, Z 0, A 0, B 0, C 0}}\n$TOOL = {{X 0, Y 0, Z 0, A 0, B 0, C 0}}\n{first}\nPTP {{A1 0, A2 -90, A3 90, A4 0, A5 45, A6 0}}\nlin $pos_act\nLIN {{X 1, Y 2, Z 4, A 0, B 0, C 0}}\nEND\n")
+    };
+    let p = parse_with_data(&src("PTP $AXIS_ACT"), None, Dialect::Krl).unwrap();
+    let lines: Vec<u64> = p.targets.iter().map(|t| t.line).collect();
+    assert_eq!(lines, [5, 7]);
+    match parse_with_data(&src("PTP $AXIS_ACT_MES"), None, Dialect::Krl) {
+        Err(Error::Program { line: 4, message }) => {
+            assert!(message.contains("system variable"), "{message}")
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
 #[test]
 fn a_point_in_a_missing_dat_is_refused_naming_the_line_and_the_point() {
     let line = line_of(SRC, "PTP XP1");
