@@ -893,3 +893,56 @@ fn the_free_rotation_is_the_exhaustive_optimum_of_the_reported_bound_on_a_small_
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A G-code program that states no units (neither `G20` nor `G21`) before its first motion is
+/// read in mm with a warning of kind `units` naming that motion's line; stated, no warning.
+#[test]
+fn a_gcode_program_without_units_is_read_in_mm_with_a_warning() {
+    let dir = temp_dir("no-units");
+    let pocket = std::fs::read_to_string(example("milling/pocket.nc")).unwrap();
+    let bare = pocket.replacen("G21 G90 G17", "G90 G17", 1);
+    assert_ne!(bare, pocket);
+    let units_warnings = |text: &str, name: &str| {
+        let nc = dir.join(name);
+        std::fs::write(&nc, text).unwrap();
+        let out = dir.join(format!("out-{name}"));
+        let (setup, stiffness, process) = (
+            example("milling/fanuc-milling.toml"),
+            example("milling/stiffness.json"),
+            example("milling/aluminium.toml"),
+        );
+        let r = json(&stiffid(&[
+            "compensate",
+            "--setup",
+            &setup,
+            "--stiffness",
+            &stiffness,
+            "--program",
+            nc.to_str().unwrap(),
+            "--process",
+            &process,
+            "--out",
+            out.to_str().unwrap(),
+            "--json",
+        ]));
+        let warnings = r["warnings"].as_array().unwrap().clone();
+        (
+            r["points"].clone(),
+            warnings
+                .into_iter()
+                .filter(|w| w["kind"] == "units")
+                .collect::<Vec<_>>(),
+        )
+    };
+    let (stated, none) = units_warnings(&pocket, "stated.nc");
+    assert!(none.is_empty(), "{none:?}");
+    let (bare_points, warned) = units_warnings(&bare, "bare.nc");
+    assert_eq!(warned.len(), 1, "{warned:?}");
+    let message = warned[0]["message"].as_str().unwrap();
+    assert!(
+        message.contains("line 7") && message.contains("G21"),
+        "{message}"
+    );
+    assert_eq!(bare_points, stated, "read in mm either way");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

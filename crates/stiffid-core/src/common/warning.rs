@@ -16,8 +16,9 @@ pub enum WarningKind {
     Negative,
     /// Some identified compliances are zero or not finite: the joint looks rigid.
     Rigid,
-    /// The identified stiffness is far off the setup's nominal the same way on most joints: a
-    /// unit mistake is likely.
+    /// A unit mistake is likely or possible: the identified stiffness is far off the setup's
+    /// nominal the same way on most joints, or a G-code program states no units (`G20`, `G21`)
+    /// before it moves and is read in mm.
     Units,
     /// An input passes every range check but looks like a unit slip (lengths in metres where
     /// millimetres are meant, angles in radians under `_deg` names):

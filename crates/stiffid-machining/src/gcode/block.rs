@@ -167,8 +167,8 @@ impl Given {
             80 if s.motion >= 81 => s.motion = NO_MOTION,
             g @ (41 | 42) => return Err(at(line, format!("G{g}: cutter radius compensation belongs to the CAM post: post the path of the tool centre (compensation in the computer, G40)"))),
             g @ 17..=19 => s.plane = g,
-            20 => s.inch = true,
-            21 => s.inch = false,
+            20 => (s.inch, s.units_stated) = (true, true),
+            21 => (s.inch, s.units_stated) = (false, true),
             90 => s.incremental = false,
             91 => s.incremental = true,
             4 | 40 | 80 | 94 => {}

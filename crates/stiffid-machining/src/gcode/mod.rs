@@ -173,6 +173,10 @@ pub struct GCode {
     pub process: Vec<ProcessWord>,
     /// The comments on lines of their own, in path order ([`Comment`]).
     pub comments: Vec<Comment>,
+    /// The line of the first motion when no `G20` or `G21` comes before it: the program does
+    /// not state its units and is read in mm, the units a controller is in at its start being
+    /// its own setting (LinuxCNC's ini, Haas setting 9, a FANUC parameter).
+    pub unstated_units: Option<u64>,
     blocks: Vec<Block>,
     text: String,
     /// The tip at the start (the setup's), `G54` part frame, m: where an incremental first
@@ -186,6 +190,8 @@ struct State {
     motion: u8,
     plane: u8,
     inch: bool,
+    /// Whether a `G20` or `G21` has been read.
+    units_stated: bool,
     incremental: bool,
     /// The tool in the spindle: the one the last `M6` loaded (its block's `T`, else the last
     /// `T` selected before it); before the program's first `M6`, the last `T`.
@@ -272,6 +278,7 @@ pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<G
         motion: 0,
         plane: 17,
         inch: false,
+        units_stated: false,
         incremental: false,
         tool_number: None,
         selected: None,
@@ -305,6 +312,7 @@ pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<G
         external: (Vec::new(), 0),
         process: Vec::new(),
         comments: Vec::new(),
+        unstated_units: None,
         blocks: Vec::new(),
         text: text.to_string(),
         start: machine.frames.start,
@@ -319,6 +327,7 @@ pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<G
             let kept = comments.into_iter().map(|text| Comment { line, text });
             s.comments.extend(kept);
         }
+        let first = out.points.is_empty();
         block(
             line,
             start..start + l.len(),
@@ -327,6 +336,9 @@ pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<G
             &mut out,
             chord_tolerance,
         )?;
+        if first && !out.points.is_empty() && !s.units_stated {
+            out.unstated_units = Some(line);
+        }
         if out.points.len() > MAX_POINTS {
             return Err(at(
                 line,

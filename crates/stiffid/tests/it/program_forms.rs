@@ -31,7 +31,7 @@ fn krl_cases() -> Vec<(String, Reads)> {
         // Motions the file does not say exactly.
         (krl("DECL E6POS XP1={X 1,Y 2,Z 3,A 0,B 0,C 0,S 6}\nLIN XP1"), Refused(2, "only one of S and T")),
         (krl("PTP XP9"), Refused(2, "not a point declared in the .src, and no .dat beside it")),
-        (krl("PTP $AXIS_ACT"), Refused(2, "a system variable")),
+        (krl("PTP $AXIS_RET"), Refused(2, "a system variable")),
         (krl(&format!("{KRL_DECLS}\nSPL XP1")), Refused(4, "spline")),
         (krl(&format!("{KRL_DECLS}\nSPLINE\nSLIN XP1\nENDSPLINE")), Refused(4, "spline")),
         (krl(&format!("PTP {lit1}\nCIRC {lit1}, {lit1}")), Refused(3, "a circle through axis angles")),

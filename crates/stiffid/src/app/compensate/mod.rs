@@ -218,7 +218,8 @@ where
     let (options, speeds) = speed::prepare(setup, &input, read.as_ref(), options)?;
     let mut tally = Tally::new(setup, &options, speeds);
     tally.ranking = ranking::Ranking::new(setup.arm(), compliance.model_form.as_ref());
-    let outcome = {
+    let units = read.as_ref().and_then(unstated_units);
+    let mut outcome = {
         let mut add = |first: usize, p: &[PathPoint], r: &[Compensated], d: &[Dynamics]| {
             tally.add(setup, first, p, r, options.map);
             sink(first, p, r, d)
@@ -233,7 +234,22 @@ where
             (Input::Program { .. }, None) => unreachable!("read_checked reads every program"),
         }
     };
+    outcome.warnings.extend(units);
     Ok(finish(setup, (compliance, names), options, tally, outcome)?)
+}
+
+/// The warning that a G-code program states no units (`G20` or `G21`) before its first motion:
+/// it is read in mm, the units a controller is in at its start being its own setting.
+fn unstated_units(program: &Program) -> Option<Warning> {
+    let Program::GCode(g) = program else {
+        return None;
+    };
+    g.unstated_units.map(|line| {
+        Warning::new(
+            WarningKind::Units,
+            format!("the program states no units (G20 or G21) before its first motion, line {line}: read in mm, as LinuxCNC and grbl start; a controller set to inches (Haas setting 9, a FANUC parameter) runs it 25.4 times larger: write G21 (or G20) at its start"),
+        )
+    })
 }
 
 /// Whether the compensation moves a free variable (the tool's rotation, its lean, an external

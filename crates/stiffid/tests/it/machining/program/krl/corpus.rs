@@ -19,7 +19,7 @@ const REFUSED: [(&str, u64, &str); 10] = [
     ("rsi_iiqka_os2.src", 85, "RSI_MOVECORR"),
     ("rsi_axis_corr_kss.src", 81, "RSI_MOVECORR"),
     // KR C2 RSI: a PTP to the axes where the robot stands.
-    ("rsi_kr_c2.src", 105, "$AXIS_ACT: a system variable"),
+    ("rsi_kr_c2.src", 106, "HOME is assigned on line 68"),
     // EKI drivers: targets received at run time.
     ("kuka_eki_hw_interface.src", 67, "joint_pos_tgt"),
     ("motion_eki.src", 79, "$axis_act_meas: a system variable"),
