@@ -432,10 +432,15 @@ fn motion(
     Ok(())
 }
 
-/// `G53`'s frame (LinuxCNC: absolute machine coordinates, `G0` or `G1` only).
+/// `G53`'s frame: machine coordinates with `G0` or `G1` (LinuxCNC refuses it with an arc) in
+/// `G90`; in `G91` controllers differ (LinuxCNC reads its words as absolute machine
+/// coordinates, Mitsubishi's M700V as increments), so it is refused there.
 fn machine_frame(line: u64, s: &State) -> Result<super::machine::Frame> {
-    if s.incremental || s.motion >= 2 {
-        return Err(at(line, "G53: machine coordinates are read in G90 with G0 or G1 (LinuxCNC), not in G91 or with an arc".into()));
+    if s.motion >= 2 {
+        return Err(at(line, "G53: machine coordinates move with G0 or G1 only, not with an arc (LinuxCNC refuses it)".into()));
+    }
+    if s.incremental {
+        return Err(at(line, "G53 in G91: controllers differ on what its words are (LinuxCNC reads absolute machine coordinates, Mitsubishi's M700V increments); write G90 before it".into()));
     }
     super::modal::frame(line, "G53".into(), s)
 }

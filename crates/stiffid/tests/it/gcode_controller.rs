@@ -154,7 +154,13 @@ fn work_offsets_place_the_path_in_the_setups_frames_and_write_it_back_in_them() 
         "G0 X1 Y2 Z3\nG91 G53 G0 Z0\n",
         &m,
         3,
-        "G53: machine coordinates are read in G90",
+        "G53 in G91: controllers differ",
+    );
+    refused(
+        "G0 X1 Y2 Z3\nG53 G2 X1 Y2 R5\n",
+        &m,
+        3,
+        "G53: machine coordinates move with G0 or G1 only",
     );
     refused(
         "G53 G0 Z0\n",
