@@ -72,9 +72,17 @@ fn read(
         Place::Src => (0, ""),
         Place::Dat(o) => (o, " of the .dat"),
     };
+    // The routines of the .src met so far: a declaration in one after the first (the module's
+    // main routine, whose motions are read) is local to it, seen by none of those motions.
+    let mut routines = 0;
     for (line, start, l) in crate::program::lines(text) {
         let code = l.split(';').next().unwrap_or("");
         let words = words(code);
+        let first = words.iter().find(|w| *w != "GLOBAL").map(String::as_str);
+        routines += usize::from(matches!(first, Some("DEF" | "DEFFCT")));
+        if routines > 1 && matches!(place, Place::Src) {
+            continue;
+        }
         let w: Vec<&str> = words
             .iter()
             .map(String::as_str)

@@ -220,6 +220,35 @@ fn a_motion_to_where_the_robot_stands_moves_nothing() {
     }
 }
 
+/// A declaration in a routine after the module's main one is local to it (KRL): two routines
+/// may each declare `target`, and the main routine's motions see neither; a name declared twice
+/// in the main routine is still refused.
+#[test]
+fn declarations_of_later_routines_are_their_own() {
+    let fns = "DEFFCT INT F1( )\n  DECL E6POS target = {X 1, Y 2, Z 3, A 0, B 0, C 0, S 2, T 0}\n  RETURN 0\nENDFCT\nDEFFCT INT F2( )\n  DECL E6POS target = {X 9, Y 9, Z 9, A 0, B 0, C 0, S 2, T 0}\n  RETURN 0\nENDFCT\n";
+    let main = |body: &str| format!("DEF a( )\n{body}\nEND\n{fns}");
+    let p = parse_with_data(
+        &main("PTP {A1 0, A2 -90, A3 90, A4 0, A5 45, A6 0}"),
+        None,
+        Dialect::Krl,
+    )
+    .unwrap();
+    assert_eq!(p.targets.len(), 1);
+    match parse_with_data(&main("PTP target"), None, Dialect::Krl) {
+        Err(Error::Program { line: 2, message }) => {
+            assert!(message.contains("not a point declared"), "{message}")
+        }
+        other => panic!("{other:?}"),
+    }
+    let twice = "DECL E6AXIS p = {A1 0, A2 -90, A3 90, A4 0, A5 45, A6 0}\nDECL E6AXIS p = {A1 1, A2 -90, A3 90, A4 0, A5 45, A6 0}\nPTP p";
+    match parse_with_data(&main(twice), None, Dialect::Krl) {
+        Err(Error::Program { line: 3, message }) => {
+            assert!(message.contains("declared twice"), "{message}")
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
 #[test]
 fn a_point_in_a_missing_dat_is_refused_naming_the_line_and_the_point() {
     let line = line_of(SRC, "PTP XP1");
