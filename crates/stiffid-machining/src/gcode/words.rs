@@ -56,6 +56,11 @@ pub(super) fn words(line: u64, start: usize, l: &str, s: &mut State) -> Result<V
         if c == '#' || c == '[' {
             return Err(at(line, format!("'{c}': parameters and expressions (#1 = 2.5, #<name>, [#1 * 2]) are not evaluated; have the post write numbers")));
         }
+        if c == '/' {
+            // A `/` within a block: controls that read it skip the words after it with their
+            // block delete switch on; LinuxCNC reads block delete at a line's start only.
+            return Err(at(line, "/ within the block: a block delete of the words after it on controls that read it there, an error on others (LinuxCNC), and whether they run depends on the block delete switch, which the program does not say; remove the '/' (run them) or the words".into()));
+        }
         if !letter.is_ascii_alphabetic() {
             return Err(at(
                 line,

@@ -377,6 +377,7 @@ fn what_real_posts_write_is_read_or_refused_naming_the_line() {
     );
     for (text, construct) in [
         ("/G0 X1 Y2 Z3\n", "/: a block delete line"),
+        ("G0 X1 Y2 Z3 /M8\n", "/ within the block: a block delete of the words after it"),
         ("#1 = 2.5\n", "'#': parameters and expressions"),
         ("G0 X[1 + 2] Y0 Z0\n", "'[': parameters and expressions"),
         ("o100 sub\n", "O-word 'o100 sub'"),
