@@ -69,6 +69,9 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
     let mut current: Option<(String, u64)> = None;
     let mut flow = flow::Flow::default();
     let mut flow_of_motions: Option<flow::Flow> = None;
+    // `ConfJ \Off`, `ConfL \Off` in force (joint, linear): the controller does not hold the
+    // motions to their confdata (*RAPID Instructions*, ConfJ, ConfL).
+    let mut conf_off = [false, false];
     for s in &statements {
         let body = &code[s.span.clone()];
         let first = first_word(body);
@@ -114,9 +117,20 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
             let name = &body.trim_start()[..first.len()];
             flow.check(name, s.line, None)?;
         }
-        let found = motion(s, &code, &first, &data)?;
+        if let Some(k) = ["confj", "confl"].iter().position(|c| *c == first) {
+            conf_off[k] = rest.to_ascii_lowercase().starts_with("\\off");
+        }
+        let mut found = motion(s, &code, &first, &data)?;
         if found.is_empty() {
             continue;
+        }
+        let linear = matches!(first.as_str(), "movel" | "movec");
+        if conf_off[usize::from(linear)] && (linear || first == "movej") {
+            // Configuration monitoring off: the motion keeps the arm's configuration from the
+            // posture before it, whatever its confdata says.
+            for c in found.iter_mut().filter_map(|t| t.cartesian.as_deref_mut()) {
+                c.follows = true;
+            }
         }
         match (&routine, &current) {
             (Some((a, a_line)), Some((b, b_line))) if a != b => {

@@ -286,3 +286,46 @@ fn the_setups_tool_turn_is_roll_pitch_yaw_about_fixed_axes_within_its_limits() {
     };
     assert!(message.contains("tool.tcp_rpy_deg"), "{message}");
 }
+
+/// `ConfL \Off` (RoboDK's ABB post writes it in every module): a `MoveL` keeps the arm's
+/// configuration from the posture before it whatever its `confdata` says, as the controller
+/// does with configuration monitoring off; with `ConfL \On` the `confdata` chooses.
+#[test]
+fn conf_l_off_keeps_the_configuration_of_the_posture_before() {
+    let s = setup(TOOL_RPY_DEG);
+    let qs = postures(&s, 2);
+    let poses: Vec<Isometry3<f64>> = qs.iter().map(|q| in_wobj(&s, TOOL_RPY_DEG, q)).collect();
+    // The second pose with the confdata of the wrist flipped (the same pose).
+    let mut flipped = qs[1];
+    flipped[3] += std::f64::consts::PI;
+    flipped[4] = -flipped[4];
+    flipped[5] += std::f64::consts::PI;
+    let module = |conf: &str| {
+        let mut text = format!("MODULE Cell\n{}", data(&s, TOOL_RPY_DEG));
+        text += &format!(
+            "  CONST robtarget p0:={};\n",
+            robtarget(&s, &poses[0], &qs[0])
+        );
+        text += &format!(
+            "  CONST robtarget p1:={};\n",
+            robtarget(&s, &poses[1], &flipped)
+        );
+        text += &format!("  PROC main()\n    ConfL {conf};\n");
+        text += "    MoveJ p0, v500, fine, tSpindle\\WObj:=wobjPart;\n";
+        text += "    MoveL p1, v100, z1, tSpindle\\WObj:=wobjPart;\n  ENDPROC\nENDMODULE\n";
+        text
+    };
+    let Program::Robot(off) = resolved(&s, &module("\\Off")).unwrap() else {
+        panic!("a robot program")
+    };
+    let d = (Vector6::from(off.targets[1].q_deg) - qs[1].map(f64::to_degrees)).amax();
+    assert!(d < 1e-6, "{d} deg");
+    let on = resolved(&s, &module("\\On"));
+    let kept = on.as_ref().ok().and_then(|p| match p {
+        Program::Robot(p) => {
+            Some((Vector6::from(p.targets[1].q_deg) - qs[1].map(f64::to_degrees)).amax())
+        }
+        _ => None,
+    });
+    assert!(kept.is_none_or(|d| d > 1.0), "{kept:?}");
+}
