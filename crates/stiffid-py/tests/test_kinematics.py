@@ -162,7 +162,7 @@ def test_input_files_have_the_commands_limits(robot, tmp_path):
     with pytest.raises(ValueError, match=r"is a directory, expected a file"):
         stiffid.Setup.from_file(tmp_path)
     (tmp_path / "bin.csv").write_bytes(b"posture\xff\xfe")
-    with pytest.raises(ValueError, match=r"bin.csv: not UTF-8 text \(invalid byte at offset 7\)"):
+    with pytest.raises(ValueError, match=r"bin.csv: not UTF-8 text \(invalid byte 0xFF at offset 7, line 1, column 8\); Latin-1"):
         robot.read_postures(tmp_path / "bin.csv")
 
 

@@ -34,14 +34,23 @@ use std::io::Read;
 ///
 /// # Errors
 /// [`Error::Parse`] naming `source_name`: larger than the input limit, or not UTF-8 text (with
-/// the offset of the first invalid byte).
+/// the first invalid byte, its offset, line and column).
 ///
 /// # Examples
 /// ```
 /// let text = stiffid_core::io::text("group.csv", b"q1_deg,q2_deg".to_vec()).unwrap();
 /// assert_eq!(text, "q1_deg,q2_deg");
 /// let e = stiffid_core::io::text("bin.csv", vec![0xff, 0xfe]).unwrap_err();
-/// assert_eq!(e.to_string(), "bin.csv: not UTF-8 text (invalid byte at offset 0)");
+/// assert_eq!(
+///     e.to_string(),
+///     "bin.csv: not UTF-8 text (invalid byte 0xFF at offset 0, line 1, column 1); Latin-1 or \
+///      Windows-1252 text, as some controllers write their files? convert it to UTF-8 (iconv -f \
+///      windows-1252 -t utf-8)"
+/// );
+/// let e = stiffid_core::io::text("p.src", b"DEF p( )\n; Z\xfcrich".to_vec()).unwrap_err();
+/// assert!(e.to_string().contains("invalid byte 0xFC at offset 12, line 2, column 4"));
+/// let e = stiffid_core::io::text("b.bin", vec![b'a', 0x80]).unwrap_err();
+/// assert!(e.to_string().ends_with("line 1, column 2)"), "no Latin-1 letter: no hint");
 /// ```
 pub fn text(source_name: &str, bytes: Vec<u8>) -> Result<String> {
     let error = |message: String| Error::Parse {
@@ -51,12 +60,28 @@ pub fn text(source_name: &str, bytes: Vec<u8>) -> Result<String> {
     if bytes.len() as u64 > MAX_INPUT_BYTES {
         return Err(error(too_large()));
     }
-    String::from_utf8(bytes).map_err(|e| {
-        error(format!(
-            "not UTF-8 text (invalid byte at offset {})",
-            e.utf8_error().valid_up_to()
-        ))
-    })
+    String::from_utf8(bytes)
+        .map_err(|e| error(not_utf8(e.as_bytes(), e.utf8_error().valid_up_to())))
+}
+
+/// The message for `bytes` that are not UTF-8 from byte `at` on: the byte, its offset, line and
+/// column, and the likely cause when it is one of Latin-1's letters (a controller's backup,
+/// written in ISO 8859-1 or Windows-1252).
+fn not_utf8(bytes: &[u8], at: usize) -> String {
+    let before = &bytes[..at];
+    let line = before.iter().filter(|b| **b == b'\n').count() + 1;
+    let line_start = before
+        .iter()
+        .rposition(|b| *b == b'\n')
+        .map_or(0, |n| n + 1);
+    let column = at - line_start + 1;
+    let byte = bytes[at];
+    let latin = if byte >= 0xa0 {
+        "; Latin-1 or Windows-1252 text, as some controllers write their files? convert it to UTF-8 (iconv -f windows-1252 -t utf-8)"
+    } else {
+        ""
+    };
+    format!("not UTF-8 text (invalid byte 0x{byte:02X} at offset {at}, line {line}, column {column}){latin}")
 }
 
 /// The text of an input read from `reader` (a file the caller opened): at most
