@@ -37,6 +37,10 @@
 //! [flange]                              # optional: last DH frame to the flange frame
 //! xyz_mm = [0, 0, 0]
 //! rpy_deg = [0, 0, 0]
+//! [controller_world]                    # optional: the controller's world frame (where a
+//! xyz_mm = [0, 0, 670]                  #   program's positions are: FANUC's world, user frame
+//! rpy_deg = [0, 0, 0]                   #   0, at the height of axis 2) in the base frame;
+//!                                       #   default the base frame (KUKA, ABB: at the foot)
 //! [robot_geometry]                      # optional: capsule radii of the base and links 1-6
 //! link_radius_mm = [350, 260, 195, 175, 130, 110, 90]   # default scaled to the robot's size
 //! [held_out]                            # optional (stiffid calibrate --out writes it): the
@@ -83,6 +87,7 @@ struct RobotFile {
     axis_map: Option<AxisMapFile>,
     base: Option<TransformFile>,
     flange: Option<TransformFile>,
+    controller_world: Option<TransformFile>,
     robot_geometry: Option<GeometryFile>,
     #[serde(default)]
     external_axis: Vec<super::external::file::AxisFile>,
@@ -316,6 +321,7 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
     let maps = error_maps(&file.joint, source_name)?;
     let base = transform(file.base, "base", source_name)?;
     let flange = transform(file.flange, "flange", source_name)?;
+    let world = transform(file.controller_world, "controller_world", source_name)?;
     let bodies = bodies(file.robot_geometry, source_name)?;
     let held = held_out(file.held_out, source_name)?;
     let mount = match file.mount {
@@ -337,6 +343,7 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
         .and_then(|r| r.with_axis_map(axis_map))
         .and_then(|r| r.with_base(base))
         .and_then(|r| r.with_flange(flange))
+        .and_then(|r| r.with_controller_world(world))
         .and_then(|r| r.with_max_speeds(speeds))
         .map(|r| {
             r.with_bodies(bodies)

@@ -65,6 +65,8 @@ pub struct Robot {
     limits: JointBox,
     base: Isometry3<f64>,
     flange: Isometry3<f64>,
+    /// The controller's world frame in the robot base frame ([`Robot::controller_world`]).
+    controller_world: Isometry3<f64>,
     bodies: Bodies,
     masses: Option<[LinkMass; 6]>,
     urdf: Option<std::sync::Arc<urdf::UrdfSource>>,
@@ -179,6 +181,7 @@ impl Robot {
             limits,
             base: Isometry3::identity(),
             flange: Isometry3::identity(),
+            controller_world: Isometry3::identity(),
             bodies: Bodies::Scaled,
             masses: None,
             urdf: None,
@@ -259,6 +262,25 @@ impl Robot {
             return Err(invalid("base".into(), "expected finite numbers"));
         }
         Ok(Self { base, ..self })
+    }
+
+    /// The robot whose controller states a program's positions in the frame `world`, given in
+    /// the robot base frame (m): a robot file's `[controller_world]`, a URDF's ROS-Industrial
+    /// `base` link.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (`controller_world`) when it is not finite.
+    pub fn with_controller_world(self, world: Isometry3<f64>) -> Result<Self> {
+        if !finite(&world) {
+            return Err(invalid(
+                "controller_world".into(),
+                "expected finite numbers",
+            ));
+        }
+        Ok(Self {
+            controller_world: world,
+            ..self
+        })
     }
 
     /// The robot with this flange transform (last joint frame to the flange, m).
@@ -471,6 +493,16 @@ impl Robot {
     /// Base transform: world (robot base frame of all results) to the chain's first frame, m.
     pub fn base(&self) -> &Isometry3<f64> {
         &self.base
+    }
+
+    /// The controller's world frame in the robot base frame, m: the frame the robot's
+    /// controller states a program's positions in before any base or user frame (FANUC's world,
+    /// user frame 0, lies on axis 1 at the height of axis 2; KUKA's and ABB's at the foot, the
+    /// identity). A robot file's `[controller_world]`, a URDF's ROS-Industrial `base` link
+    /// ("base_link to `<vendor>` World Coordinates"); the identity without one. A setup places
+    /// it in the cell after its `[robot_base]` ([`crate::Setup::program_world`]).
+    pub fn controller_world(&self) -> &Isometry3<f64> {
+        &self.controller_world
     }
 
     /// Flange transform: last joint frame to the flange frame, m.

@@ -349,7 +349,7 @@ where
     if let Some(c) = &controller.robot {
         super::controller_robot::check(&robot, c, &file.robot, source_name)?;
     }
-    controller.world = mount.unwrap_or_default();
+    controller.mount = mount.unwrap_or_default();
     controller.adapter = transform(file.robot_flange, "robot_flange", source_name)?;
     let steps = file.loading.as_ref().is_some_and(|l| !l.steps_n.is_empty());
     let (reading_variance, note) = file

@@ -428,6 +428,14 @@ impl Setup {
         }
     }
 
+    /// The controller's world frame in the setup's base (cell) frame, m: the frame a program's
+    /// positions, base and user frames are stated in, for every language read and written. The
+    /// mount ([`Controller::mount`], the setup's `[robot_base]`) times the robot's own
+    /// [`Robot::controller_world`] (FANUC's world at the height of axis 2).
+    pub fn program_world(&self) -> Isometry3<f64> {
+        self.workcell.controller().mount * self.robot().controller_world()
+    }
+
     /// The nominal compliance `h = 1 / k` (Eq. 8), rad/Nm (`Experiment::nominal_compliance`).
     pub fn nominal_compliance(&self) -> Option<Vector6<f64>> {
         self.experiment.nominal_compliance()

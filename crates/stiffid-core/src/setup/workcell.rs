@@ -42,10 +42,10 @@ crate::common::choice::by_name!(Kinematics);
 /// (the calibration "filters" them), so that its inverse kinematics returns those angles.
 ///
 /// The frames the controller speaks in are its own: its world frame (FANUC's user frame 0,
-/// KUKA's `$WORLD`, ABB's world) is the robot file's base frame, where the setup's
-/// `[robot_base]` (a pedestal) is not, and its flange is the robot file's, before the setup's
-/// `[robot_flange]` (an adapter plate). A generated program states its positions, base and work
-/// object in that world and its tool from that flange.
+/// KUKA's `$WORLD`, ABB's world) is the robot's [`Robot::controller_world`] on the setup's
+/// `[robot_base]` (a pedestal) ([`super::Setup::program_world`]), and its flange is the robot
+/// file's, before the setup's `[robot_flange]` (an adapter plate). A program read or written
+/// states its positions, base and work object in that world and its tool from that flange.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Controller {
     /// Which kinematics.
@@ -53,9 +53,11 @@ pub struct Controller {
     /// `[controller] robot`: the robot file the controller runs (with the setup's
     /// `[robot_base]` and `[robot_flange]`), if given.
     pub robot: Option<Robot>,
-    /// The controller's world frame in the setup's base (cell) frame: the setup's
-    /// `[robot_base]`, the identity without one. Lengths in m.
-    pub world: Isometry3<f64>,
+    /// The robot's mount in the setup's base (cell) frame: the setup's `[robot_base]` (or the
+    /// one a calibrated robot file records), the identity without one. Lengths in m. The
+    /// controller's world is the robot's [`Robot::controller_world`] on it
+    /// ([`super::Setup::program_world`]).
+    pub mount: Isometry3<f64>,
     /// The mounted flange (the tool's frame of reference, where `[tool]` points are given) in
     /// the controller's flange frame: the setup's `[robot_flange]` adapter, the identity without
     /// one. Lengths in m.

@@ -214,6 +214,10 @@ pub fn robot_toml(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
     let _ = writeln!(t, "]\noffset_deg = [{}]", offsets.join(", "));
     let _ = write!(t, "\n[base]\n{}", transform(&table.base));
     let _ = write!(t, "\n[flange]\n{}", transform(&table.flange));
+    if *robot.controller_world() != Isometry3::identity() {
+        let world = transform(robot.controller_world());
+        let _ = write!(t, "\n[controller_world]\n{world}");
+    }
     if let Bodies::Capsules(r) = nominal.bodies() {
         let radii: Vec<String> = r.iter().map(|v| format!("{:?}", v * 1e3)).collect();
         let _ = writeln!(
@@ -295,7 +299,8 @@ pub fn own_weight_in_table(
 }
 
 /// Whether `back`, a written file read back, has `robot`'s flange at the same axis angles
-/// within [`READ_BACK`] of the robot's size (m) and [`READ_BACK`] rad, at three postures.
+/// within [`READ_BACK`] of the robot's size (m) and [`READ_BACK`] rad, at three postures, and
+/// its controller's world.
 fn read_back(robot: &Robot, back: &Robot) -> std::result::Result<(), String> {
     let q = [
         Vector6::zeros(),
@@ -303,8 +308,11 @@ fn read_back(robot: &Robot, back: &Robot) -> std::result::Result<(), String> {
         Vector6::new(-1.1, 0.9, -0.7, 1.3, -0.5, 2.1),
     ];
     let (mut distance, mut angle) = (0.0_f64, 0.0_f64);
-    for q in &q {
-        let (a, b) = (robot.frames(q).flange, back.frames(q).flange);
+    let flanges = q
+        .iter()
+        .map(|q| (robot.frames(q).flange, back.frames(q).flange));
+    let worlds = (*robot.controller_world(), *back.controller_world());
+    for (a, b) in flanges.chain([worlds]) {
         distance = distance.max((a.translation.vector - b.translation.vector).norm());
         angle = angle.max(stiffid_core::robot::file::angle_between(
             &a.rotation,
@@ -315,7 +323,7 @@ fn read_back(robot: &Robot, back: &Robot) -> std::result::Result<(), String> {
     match distance <= tolerance && angle <= READ_BACK {
         true => Ok(()),
         false => Err(format!(
-            "read back, its flange misses the calibrated robot's by {:.3e} mm and {:.3e} deg (at most {:.3e} mm, {:.3e} deg)",
+            "read back, its flange or controller world misses the calibrated robot's by {:.3e} mm and {:.3e} deg (at most {:.3e} mm, {:.3e} deg)",
             distance * 1e3,
             angle.to_degrees(),
             tolerance * 1e3,
@@ -417,9 +425,18 @@ pub fn urdf(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
     }
     let _ = writeln!(
         t,
-        "  <joint name=\"flange\" type=\"fixed\">\n    <parent link=\"link6\"/><child link=\"flange\"/>\n    {}\n  </joint>\n</robot>",
+        "  <joint name=\"flange\" type=\"fixed\">\n    <parent link=\"link6\"/><child link=\"flange\"/>\n    {}\n  </joint>",
         urdf_write::origin_xml(&(before * robot.flange()))
     );
+    if *robot.controller_world() != Isometry3::identity() {
+        // ROS-Industrial's `base` link: the controller's world.
+        let _ = writeln!(
+            t,
+            "  <link name=\"base\"/>\n  <joint name=\"base_link-base\" type=\"fixed\">\n    <parent link=\"base_link\"/><child link=\"base\"/>\n    {}\n  </joint>",
+            urdf_write::origin_xml(robot.controller_world())
+        );
+    }
+    let _ = writeln!(t, "</robot>");
     let back = stiffid_core::robot::urdf::parse(&t, "the calibrated URDF", Some("flange"))?;
     read_back(&robot, &back).map_err(|e| not_urdf(&e))?;
     Ok(t)

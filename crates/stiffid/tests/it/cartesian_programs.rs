@@ -74,7 +74,7 @@ fn written(
             payload: Some((10.0, Vector3::new(0.0, 0.0, 0.1))),
         },
         work: part,
-        world: Isometry3::identity(),
+        world: s.program_world(),
         external: None,
         approximation: 1e-5,
         numbers: Default::default(),
@@ -99,7 +99,8 @@ fn named_part_frame(text: &str) -> String {
 /// An LS program's positions put in user frame 1 (the part's place) instead of the world, and
 /// user frame 1 selected (`UFRAME_NUM=1`).
 fn positions_in_user_frame(s: &Setup, text: &str) -> String {
-    let part = *s.workpiece().unwrap();
+    // The part frame in the controller's world (FANUC's, 670 mm above the setup's base frame).
+    let part = s.program_world().inv_mul(s.workpiece().unwrap());
     // The world positions of the writer moved into the part frame: X, Y and Z less the part's
     // origin (the example's part frame is not turned).
     assert!(part.rotation.angle() < 1e-12);
@@ -188,7 +189,7 @@ fn the_configuration_data_choose_the_solution_of_a_pose() {
                     payload: Some((10.0, Vector3::new(0.0, 0.0, 0.1))),
                 },
                 work: *s.workpiece().unwrap(),
-                world: Isometry3::identity(),
+                world: s.program_world(),
                 external: None,
                 approximation: 1e-5,
                 numbers: Default::default(),
@@ -667,8 +668,9 @@ fn ls_user_and_tool_frames_are_read_by_number_or_as_the_program_declares_them() 
             "bases = [{{ number = 1, xyz_mm = {base}, rpy_deg = [0, 0, 0] }}]\n{tcp}"
         ))
     };
-    let q_table = resolve_on(&table("[1300, -700, 400]"), &part).unwrap();
-    let q_off = resolve_on(&table("[1300, -690, 400]"), &part).unwrap();
+    // The part frame in the controller's world: 670 mm above the base frame, z 400 is -270.
+    let q_table = resolve_on(&table("[1300, -700, -270]"), &part).unwrap();
+    let q_off = resolve_on(&table("[1300, -690, -270]"), &part).unwrap();
     for q in [&q_named, &q_table] {
         for (a, b) in q.iter().flatten().zip(q_world.iter().flatten()) {
             assert!((a - b).abs() < 1e-9, "{a} {b}");

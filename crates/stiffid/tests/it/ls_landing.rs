@@ -98,7 +98,7 @@ fn an_ls_program_stored_in_frames_by_number_lands_on_the_true_robot() {
     let compliance = compliance.unwrap();
     let q0 = q0(&case);
     let (setup, part) = with_part(&setup, &q0);
-    let world = setup.workcell().controller().world;
+    let world = setup.program_world();
     let user = fixture(&(world.inverse() * part));
     let setup = with_frames(&setup, &user);
     let nominal = case.setup.robot();

@@ -64,3 +64,35 @@ fn bad_offsets_name_the_table_and_the_value() {
     let e = setup::parse(&unknown, "bad.toml", |r, _| presets::get(r)).unwrap_err();
     assert!(e.to_string().contains("z_mm"), "{e}");
 }
+
+/// A robot file's `[controller_world]` (where its controller's programs state positions) sits
+/// on the setup's pedestal: the program's world is `[robot_base]` times it. Out of range, it is
+/// refused naming the table.
+#[test]
+fn the_controllers_world_rides_on_the_pedestal() {
+    let world = "[controller_world]\nxyz_mm = [0.0, 0.0, 670.0]\nrpy_deg = [0.0, 0.0, 90.0]\n";
+    let robot_text = format!("{}\n{world}", presets::text(PRESET).unwrap());
+    let robot = file::parse(&robot_text, "comau-world.toml").unwrap();
+    let mounted = paper_setup(&format!("[robot_base]\n{BASE}"), robot.clone());
+    // [robot_base]: 100, -50, 500 mm turned 30 deg about z; the world 670 mm above, 90 deg more.
+    let at = mounted.program_world();
+    assert_relative_eq!(
+        at.translation.vector,
+        Vector3::new(0.1, -0.05, 1.17),
+        epsilon = 1e-15
+    );
+    assert_relative_eq!(at.rotation.angle(), 120f64.to_radians(), epsilon = 1e-14);
+    assert_relative_eq!(
+        paper_setup("", robot).program_world().translation.vector,
+        Vector3::new(0.0, 0.0, 0.67),
+        epsilon = 1e-15
+    );
+    let bad = robot_text.replace("670.0", "1e9");
+    let e = file::parse(&bad, "comau-world.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("controller_world.xyz_mm") && e.contains("comau-world.toml"),
+        "{e}"
+    );
+}

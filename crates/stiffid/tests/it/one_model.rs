@@ -280,7 +280,7 @@ fn the_calibrated_mount_is_recorded_and_not_given_twice() {
     })
     .unwrap();
     let c = s.workcell().controller();
-    assert!((c.world.translation.vector - lift).norm() < 1e-15);
+    assert!((c.mount.translation.vector - lift).norm() < 1e-15);
     assert_eq!(s.robot().base(), file.base());
     let nominal = stiffid::robot::file::parse(&nominal_text, "nominal.toml").unwrap();
     let controller = c.robot.as_ref().unwrap();

@@ -222,6 +222,7 @@ fn controller_view(dialect: Dialect, text: &str) -> (Isometry3<f64>, Vec<Isometr
 fn programs_state_the_tool_and_positions_in_the_controllers_frames() {
     // The controller runs the robot file as it is: no pedestal, no adapter.
     let controller = presets::get("fanuc-r2000ic-165f").unwrap();
+    assert_eq!(controller.controller_world().translation.z, 0.670);
     let adapter = UnitQuaternion::from_axis_angle(&nalgebra::Vector3::z_axis(), 30f64.to_radians());
     for (setup, turn) in [
         (mounted_setup(), UnitQuaternion::identity()),
@@ -248,7 +249,9 @@ fn programs_state_the_tool_and_positions_in_the_controllers_frames() {
             let mut worst: (f64, f64) = (0.0, 0.0);
             for (target, r) in targets.iter().zip(&results) {
                 let q: Vector6<f64> = r.q_compensated;
-                let reached = controller.frames(&q).flange * tool;
+                // In the controller's world (FANUC's: 670 mm above the robot file's base).
+                let reached =
+                    (controller.controller_world()).inv_mul(&controller.frames(&q).flange) * tool;
                 worst.0 = worst
                     .0
                     .max((reached.translation.vector - target.translation.vector).norm());
@@ -273,7 +276,7 @@ fn written_cartesian_programs_read_back_to_their_targets() {
     ] {
         let robot = setup.controller_robot().unwrap();
         let tcp = setup.tool().tcp;
-        let world = setup.workcell().controller().world;
+        let world = setup.program_world();
         for dialect in [Dialect::Krl, Dialect::Rapid, Dialect::FanucLs] {
             let (text, results) = program(&setup, dialect);
             let read = stiffid::machining::read(&text, Language::Robot(dialect), 1e-4).unwrap();
@@ -326,4 +329,59 @@ fn written_cartesian_programs_read_back_to_their_targets() {
             assert!(q_error <= read_back, "{dialect:?}: {q_error} deg");
         }
     }
+}
+
+/// FANUC's world (user frame 0) lies on axis 1 at the height of axis 2 (ROS-Industrial's
+/// `fanuc_r2000ic_support`: 670 mm above the R-2000iC/165F's foot). With the wrist bent down at
+/// `J5 = -90 deg` and every other axis at 0, the R-2000iC/165F's flange is 312 + 1280 = 1592 mm
+/// out and 1075 + 225 - 215 = 1085 mm above axis 2 (its data sheet's arm lengths): the LS
+/// position written there says so, and the position read back is that posture again.
+#[test]
+fn an_ls_position_is_in_fanucs_world_at_the_height_of_axis_2() {
+    use nalgebra::Vector3;
+    use stiffid::machining::program::generate::{generate, Move, Plan, Target, Tool};
+    let text = include_str!("../../../../examples/milling/fanuc-milling.toml")
+        .replace("tcp_mm = [6.9, 245.3, 319.3]", "tcp_mm = [0, 0, 0]");
+    let setup = stiffid::setup::parse(&text, "flange.toml", |n, _| presets::get(n)).unwrap();
+    assert_eq!(
+        setup.program_world(),
+        Isometry3::translation(0.0, 0.0, 0.670)
+    );
+    let robot = setup.robot();
+    let q = Vector6::new(0.0, 0.0, 0.0, 0.0, -90f64.to_radians(), 0.0);
+    let targets = [Target::new(robot, &Vector3::zeros(), &q)];
+    let flange = setup.program_world().inv_mul(&targets[0].pose);
+    assert!((flange.translation.vector * 1e3 - Vector3::new(1592.0, 0.0, 1085.0)).norm() < 1e-9);
+    assert!((flange.rotation * Vector3::z() + Vector3::z()).norm() < 1e-12);
+    let plan = Plan {
+        dialect: Dialect::FanucLs,
+        name: "DOWN",
+        targets: &targets,
+        moves: &[Move::Rapid],
+        tool: Tool {
+            frame: Isometry3::identity(),
+            payload: None,
+        },
+        work: Isometry3::identity(),
+        world: setup.program_world(),
+        external: None,
+        approximation: 1e-5,
+        numbers: Default::default(),
+        pulses: None,
+        settings: Settings::default(),
+    };
+    let ls = generate(&plan).unwrap().files.remove(0).text;
+    assert!(ls.contains("UF : 0, UT : 1,"), "{ls}");
+    assert!(
+        ls.contains("X = 1592.000000000 mm,\tY = 0.000000000 mm,\tZ = 1085.000000000 mm,"),
+        "{ls}"
+    );
+    let read = stiffid::machining::read(&ls, Language::Robot(Dialect::FanucLs), 1e-4).unwrap();
+    let resolved =
+        stiffid::machining::resolve(&read, &setup, None, &Options::for_setup(&setup)).unwrap();
+    let stiffid::machining::Program::Robot(p) = resolved.as_ref() else {
+        panic!("a robot program")
+    };
+    let back = Vector6::from(p.targets[0].q_deg).map(f64::to_radians);
+    assert!((back - q).amax() < 1e-9, "{back}");
 }

@@ -515,7 +515,7 @@ pub(crate) fn calibrated(
         .unwrap();
     assert_eq!(robot.own_weight().is_some(), gravity != Gravity::None);
     // It records the mount it was calibrated on.
-    assert_eq!(robot.mount(), Some(&setup.workcell().controller().world));
+    assert_eq!(robot.mount(), Some(&setup.workcell().controller().mount));
     let controller = Controller {
         kinematics: Kinematics::Nominal,
         robot: Some(setup.robot().clone()),

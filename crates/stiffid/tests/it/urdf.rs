@@ -335,3 +335,35 @@ fn broken_urdfs_name_their_cause() {
     let message = chain_error("comau-nj165-two-leaves.urdf", Some("nothing"));
     assert!(message.contains("no link named"), "{message}");
 }
+
+/// The KUKA test URDF with ROS-Industrial's `base` link ("base_link to KUKA World
+/// Coordinates") hanging from `parent` by a fixed joint: 675 mm up, turned half a turn.
+fn with_base_link(parent: &str) -> String {
+    let base = format!(
+        r#"<link name="base"/>
+  <joint name="base_link-base" type="fixed">
+    <parent link="{parent}"/>
+    <child link="base"/>
+    <origin xyz="0 0 0.675" rpy="0 0 3.141592653589793"/>
+  </joint>
+</robot>"#
+    );
+    data("kuka-kr210-robond.urdf").replace("</robot>", &base)
+}
+
+#[test]
+fn the_ros_industrial_base_link_is_the_controllers_world() {
+    let plain = urdf::parse(&data("kuka-kr210-robond.urdf"), "kr210.urdf", None).unwrap();
+    assert_eq!(*plain.controller_world(), Isometry3::identity());
+    // From the root through fixed joints only (base_footprint, base_link, base): the world.
+    let robot = urdf::parse(&with_base_link("base_link"), "kr210.urdf", None).unwrap();
+    assert_eq!(robot.joints(), plain.joints());
+    assert_eq!(robot.flange(), plain.flange());
+    let world = robot.controller_world();
+    assert!((world.translation.vector - Vector3::new(0.0, 0.0, 0.675)).norm() < 1e-15);
+    let half = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), std::f64::consts::PI);
+    assert!(world.rotation.angle_to(&half) < 1e-12);
+    // A `base` the arm moves (on link_1) is no controller's world.
+    let moved = urdf::parse(&with_base_link("link_1"), "kr210.urdf", Some("link_6")).unwrap();
+    assert_eq!(*moved.controller_world(), Isometry3::identity());
+}

@@ -89,7 +89,10 @@ pub fn parse(text: &str, source_name: &str, tip: Option<&str>) -> Result<Robot> 
     };
     let path = chain_to(&tip, &by_child, urdf.joints.len()).map_err(chain_error)?;
     let source = format!("{source_name}, tip link '{}'", limits::short(&tip));
-    let mut robot = fold(&path, &urdf.name, &source).map_err(chain_error)?;
+    let world = controller_world(&by_child, urdf.joints.len()).map_err(chain_error)?;
+    let mut robot = fold(&path, &urdf.name, &source)
+        .and_then(|r| r.with_controller_world(world).map_err(|e| e.to_string()))
+        .map_err(chain_error)?;
     let turning = positioner(&urdf, &by_child, &path).map_err(chain_error)?;
     if !turning.is_empty() {
         let mut axes = robot.external().map_or(Vec::new(), |a| a.axes().to_vec());
@@ -194,6 +197,24 @@ fn chain_to<'a>(
     }
     path.reverse();
     Ok(path)
+}
+
+/// The controller's world frame in the root link's frame: the ROS-Industrial `base` link
+/// ("base_link to <vendor> World Coordinates", REP 199's `base`), when it hangs from the root
+/// through fixed joints only; the identity otherwise (no such link, or the root itself).
+fn controller_world(
+    by_child: &HashMap<&str, &urdf_rs::Joint>,
+    joint_count: usize,
+) -> std::result::Result<Isometry3<f64>, String> {
+    let path = chain_to("base", by_child, joint_count)?;
+    if path
+        .iter()
+        .any(|j| !matches!(j.joint_type, JointType::Fixed))
+    {
+        return Ok(Isometry3::identity());
+    }
+    path.iter()
+        .try_fold(Isometry3::identity(), |at, j| Ok(at * pose(j)?))
 }
 
 /// Checks the links and joints form one tree (each link and joint name declared once, every

@@ -32,7 +32,7 @@ pub struct Controller<'a> {
     /// The tool frame as the controller holds it: in its flange frame (after the setup's
     /// `[robot_flange]` adapter), m.
     pub tool: Isometry3<f64>,
-    /// The controller's world in the setup's base frame (`[robot_base]`), m.
+    /// The controller's world in the setup's base frame ([`Setup::program_world`]), m.
     pub world: Isometry3<f64>,
     /// The part frame in the setup's base frame (`[workpiece] base_from_part`), if given.
     pub part: Option<Isometry3<f64>>,
@@ -55,7 +55,7 @@ impl<'a> Controller<'a> {
             tcp: setup.tool().tcp,
             tcp_rotation: setup.tool().rotation,
             tool: c.adapter * setup.tool().frame(),
-            world: c.world,
+            world: setup.program_world(),
             part: setup.workpiece().copied(),
             tools: &c.tools,
             bases: &c.bases,

@@ -514,7 +514,7 @@ pub(super) fn robot_file(
             });
             // The mount it was calibrated on: the setup's, or the one its calibrated robot
             // records (an update).
-            let mount = robot_file::mount_table(&setup.workcell().controller().world);
+            let mount = robot_file::mount_table(&setup.workcell().controller().mount);
             let part = part.map_or(String::new(), robot_file::part_table);
             let held = held_out(request, setup, validation, cross_validation);
             Ok(t + &held + &mount + &part + &sag)

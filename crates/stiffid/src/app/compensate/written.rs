@@ -180,7 +180,7 @@ fn write_robot_program(
         tool: program_tool(setup),
         work: setup.workpiece().copied().unwrap_or_default(),
         external: setup.robot().external(),
-        world: setup.workcell().controller().world,
+        world: setup.program_world(),
         approximation: chord_tolerance,
         numbers: numbers(setup),
         pulses: setup.workcell().controller().pulses.as_ref(),
@@ -195,9 +195,7 @@ fn write_robot_program(
 /// ([`generate::numbered`]).
 fn numbers(setup: &Setup) -> generate::numbered::Numbers {
     let c = setup.workcell().controller();
-    let part = c
-        .world
-        .inv_mul(&setup.workpiece().copied().unwrap_or_default());
+    let part = (setup.program_world()).inv_mul(&setup.workpiece().copied().unwrap_or_default());
     generate::numbered::Numbers::of((&c.tools, &c.bases), &program_tool(setup).frame, &part)
 }
 

@@ -243,7 +243,7 @@ fn plan<'a>(
             payload: Some((10.0, Vector3::new(0.0, 0.0, 0.1))),
         },
         work: *s.workpiece().unwrap(),
-        world: Isometry3::identity(),
+        world: s.program_world(),
         external: None,
         approximation: 1e-5,
         numbers: Default::default(),
@@ -301,12 +301,18 @@ fn each_language_writes_its_circular_moves_and_reads_them_back() {
         }
         if dialect == Dialect::FanucLs {
             // The LS reader of the corpus's tests (string searches, not stiffid's): the via
-            // point and the end of each `C`, in order, each the written target's world position.
+            // point and the end of each `C`, in order, each the written target's position in
+            // the controller's world (FANUC's, 670 mm above the base frame).
             let read = crate::ls_corpus::independent(&text);
             assert_eq!(read.len(), written.len());
+            let world = s.program_world().translation.vector;
+            assert_eq!(world, Vector3::new(0.0, 0.0, 0.670));
             for (r, w) in read.iter().zip(&written) {
                 let p = Vector3::new(r.values[0], r.values[1], r.values[2]) * 1e-3;
-                assert!((p - w.pose.translation.vector).norm() < 1e-11, "{r:?}");
+                assert!(
+                    (p + world - w.pose.translation.vector).norm() < 1e-11,
+                    "{r:?}"
+                );
             }
         }
         let back = match dialect {

@@ -17,7 +17,8 @@ use stiffid_machining::program::{parse_in, Context, Dialect};
 const SETUP: &str = include_str!("../../../../../../examples/milling/fanuc-milling.toml");
 
 /// The milling setup whose controller holds a tool 1 (not the setup's), the setup's tool as 3
-/// (`tool`: its values) and the part frame as base 2 (`base`).
+/// (`tool`: its values) and the part frame as base 2 (`base`, in the controller's world: FANUC's,
+/// 670 mm above the setup's base frame, so the part's origin at z 400 mm is at z -270 mm).
 fn setup(tool: &str, base: &str) -> Setup {
     let text = format!("{SETUP}\n[controller]\ntools = [{{ number = 1, xyz_mm = [0, 0, 100] }}, {{ number = 3, xyz_mm = {tool} }}]\nbases = [{{ number = 2, xyz_mm = {base} }}]\n");
     stiffid::setup::parse(&text, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap()
@@ -43,10 +44,14 @@ fn plan<'a>(
             payload: Some((10.0, Vector3::new(0.0, 0.0, 0.1))),
         },
         work,
-        world: c.world,
+        world: s.program_world(),
         external: None,
         approximation: 1e-5,
-        numbers: Numbers::of((&c.tools, &c.bases), &tool, &c.world.inv_mul(&work)),
+        numbers: Numbers::of(
+            (&c.tools, &c.bases),
+            &tool,
+            &s.program_world().inv_mul(&work),
+        ),
         pulses: Some(p),
         settings: Settings::default(),
     }
@@ -102,7 +107,7 @@ fn read_back(
 
 #[test]
 fn a_tool_and_base_the_controller_holds_are_selected_by_number_and_read_back() {
-    let s = setup("[6.9, 245.3, 319.3]", "[1300, -700, 400]");
+    let s = setup("[6.9, 245.3, 319.3]", "[1300, -700, -270]");
     let (t, m) = square(&s);
     let pulses = Pulses {
         per_deg: [1341.25, 1341.25, 1150.5, 873.4, 873.4, 532.7],
@@ -137,7 +142,7 @@ fn a_tool_and_base_the_controller_holds_are_selected_by_number_and_read_back() {
         if dialect == Dialect::FanucLs {
             // The corpus tests' independent LS reader: user frame 2, tool frame 3, each
             // position the target's in user frame 2.
-            let base = *s.workcell().controller().bases.get(2).unwrap();
+            let base = s.program_world() * s.workcell().controller().bases.get(2).unwrap();
             for (r, w) in crate::ls_corpus::independent(text).iter().zip(&t) {
                 assert_eq!(r.frames, (2, 3));
                 let p = Vector3::new(r.values[0], r.values[1], r.values[2]) * 1e-3;
@@ -157,7 +162,7 @@ fn a_tool_and_base_the_controller_holds_are_selected_by_number_and_read_back() {
 #[test]
 fn frames_the_controller_does_not_hold_are_stated() {
     // The tool 0.01 mm and the base 0.01 mm off the setup's: not the same frames.
-    let s = setup("[6.91, 245.3, 319.3]", "[1300, -700.01, 400]");
+    let s = setup("[6.91, 245.3, 319.3]", "[1300, -700.01, -270]");
     let (t, m) = square(&s);
     let pulses = Pulses {
         per_deg: [1341.25; 6],
@@ -171,7 +176,7 @@ fn frames_the_controller_does_not_hold_are_stated() {
         "{krl}"
     );
     assert!(
-        krl.contains("$BASE = {X 1300, Y -700, Z 400, A 0, B 0, C 0}\n"),
+        krl.contains("$BASE = {X 1300, Y -700, Z -270, A 0, B 0, C 0}\n"),
         "{krl}"
     );
     let ls = generate(&plan(&s, Dialect::FanucLs, &t, &m, &pulses))

@@ -102,7 +102,7 @@ pub(super) fn in_wobj(setup: &Setup, tool_rpy_deg: [f64; 3], q: &Vector6<f64>) -
     let mut at = ik::tool_pose(&robot.frames(q), &setup.tool().tcp);
     at.rotation *= rpy(tool_rpy_deg);
     let (u, o) = wobj();
-    (setup.workcell().controller().world * u * o).inverse() * at
+    (setup.program_world() * u * o).inverse() * at
 }
 
 /// A `robtarget` literal of `pose` (m) with the `confdata` of `q`.

@@ -48,7 +48,7 @@ const CUT: [(f64, f64); 8] = [
 fn module(setup: &Setup, nominal: &Robot, q0: &Vector6<f64>) -> String {
     let c = setup.workcell().controller();
     let part = *setup.workpiece().unwrap();
-    let wobj = c.world.inverse() * part;
+    let wobj = setup.program_world().inverse() * part;
     let turn = rpy(TOOL_RPY_DEG);
     let tool = Isometry3::from_parts(Translation3::from(setup.tool().tcp), turn);
     // The tool down the part's -z.
@@ -220,7 +220,7 @@ pub(crate) fn stored_landing(
     let (out, results) = compensated(&turned, compliance, q0, &text);
     let (tool, targets) = controller_view(&out);
     assert_eq!(targets.len(), results.len(), "{out}");
-    let world = turned.workcell().controller().world;
+    let world = turned.program_world();
     assert_eq!(
         turned.workcell().controller().adapter,
         Isometry3::identity()
