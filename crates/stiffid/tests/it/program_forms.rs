@@ -132,6 +132,11 @@ fn ls_cases() -> Vec<(String, Reads)> {
         // Around the motions: what cannot change the path passes, what can is refused.
         (ls("   1:UFRAME_NUM=0 ;\n   2:  PAYLOAD[1] ;\n   3:  RUN LOG ;\n   4:J P[1] 100% FINE ;\n   5:  DO[1]=ON ;\n   6:  WAIT 1.00(sec) ;\n   7:  R[1]=R[1]+1 ;\n   8:  // L P[9] 10mm/sec FINE ;\n   9:L P[2] 50mm/sec FINE ;\n  10:  CALL SUB ;", &pos), Targets(&[(7, Q1), (12, Q2)])),
         (ls("   1:J P[1] 100% FINE ;\n   2:  CALL SUB ;\n   3:L P[2] 50mm/sec FINE ;", &pos), Refused(5, "a call between two motions")),
+        // A macro instruction: a program run by its name, which may move the robot.
+        (ls("   1:J P[1] 100% FINE ;\n   2:  GO_HOME ;\n   3:L P[2] 50mm/sec FINE ;", &pos), Refused(5, "GO_HOME: a macro (a program the controller runs by its name) between two motions")),
+        (ls("   1:J P[1] 100% FINE ;\n   2:  Open_Grip(2) ;\n   3:L P[2] 50mm/sec FINE ;", &pos), Refused(5, "Open_Grip(2): a macro")),
+        (ls("   1:  GO_HOME ;\n   2:J P[1] 100% FINE ;\n   3:L P[2] 50mm/sec FINE ;\n   4:  PAUSE ;\n   5:  TC_ONLINE (ON) ;\n   6:  GO_HOME ;", &pos), Targets(&[(5, Q1), (6, Q2)])),
+        (ls("   1:J P[1] 100% FINE ;\n   2:  PAUSE ;\n   3:  TC_ONLINE (DI[43]) ;\n   4:L P[2] 50mm/sec FINE ;", &pos), Targets(&[(4, Q1), (7, Q2)])),
         (ls("   1:J P[1] 100% FINE ;\n   2:  WAIT DI[1]=ON TIMEOUT,LBL[1] ;\n   3:L P[2] 50mm/sec FINE ;", &pos), Refused(5, "jump")),
         (ls("   1:  UFRAME[1]=PR[1] ;\n   2:J P[1] 100% FINE ;", &pos), Refused(4, "sets a frame's value")),
         (ls("   1:J P[1] 100% FINE ;\n   2:  END ;\n   3:L P[2] 50mm/sec FINE ;", &pos), Refused(5, "the program ends here")),

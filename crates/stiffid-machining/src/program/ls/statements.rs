@@ -19,7 +19,9 @@
 //! - Refused naming the line, in a program with motions: a jump, branch or loop (`JMP`, `IF`,
 //!   `SELECT`, `FOR`, `WAIT .. TIMEOUT,LBL[..]`, any instruction naming a label but the label
 //!   itself: the order the controller runs would not be the file's); a `CALL` between two
-//!   motions (the called program may move the robot between them); `END` or `ABORT` before a
+//!   motions (the called program may move the robot between them), and so a macro instruction
+//!   there (a program run by its name alone, `GO_HOME`, or with arguments, `OPEN_GRIP(1)`);
+//!   `END` or `ABORT` before a
 //!   motion; `Weave ..` and `Track ..` (ArcTool: weaving and seam tracking move the tool off
 //!   the programmed path) before a motion; `Touch Offset PR[i]` (ArcTool touch sensing: the
 //!   motions up to `Touch Offset End` are shifted by the offset it finds at run time, held in
@@ -94,6 +96,9 @@ pub(super) fn instruction(line: u64, t: &str, place: Place, selected: &mut Selec
     if first == "CALL" && place.after_first && place.before_last {
         return refuse("a call between two motions; the called program may move the robot between them, off the path the file gives: call it before the first motion or after the last");
     }
+    if macro_call(&upper) && place.after_first && place.before_last {
+        return refuse("a macro (a program the controller runs by its name) between two motions; it may move the robot between them, off the path the file gives: run it before the first motion or after the last");
+    }
     let process_path = matches!(first, "WEAVE" | "TRACK") && !upper.ends_with("END");
     if process_path && place.before_last {
         return refuse("the motions after it weave across the path or follow a sensor (ArcTool), so the path the controller runs is not the file's: remove it or compensate the program without it");
@@ -110,6 +115,33 @@ pub(super) fn instruction(line: u64, t: &str, place: Place, selected: &mut Selec
         return refuse("the program sets a frame's value, which stiffid reads from the setup's [controller] tools and bases (as the controller holds them before the program runs): set the frame on the controller and give it in the setup");
     }
     Ok(())
+}
+
+/// The instructions of one word alone (no macro, though written as one).
+const ONE_WORD: &[&str] = &[
+    "END",
+    "PAUSE",
+    "ABORT",
+    "ELSE",
+    "ENDIF",
+    "ENDFOR",
+    "ENDSELECT",
+];
+
+/// Whether `upper` is a macro instruction: a program's name alone (letters, digits and `_`,
+/// a letter first), or with its arguments in parentheses (`OPEN_GRIPPER(1)`), not one of the
+/// instructions of one word ([`ONE_WORD`]).
+fn macro_call(upper: &str) -> bool {
+    let t = upper.trim();
+    let name = t
+        .split_once('(')
+        .map_or(t, |(name, rest)| match rest.ends_with(')') {
+            true => name,
+            false => "",
+        });
+    name.starts_with(|c: char| c.is_ascii_alphabetic())
+        && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+        && !ONE_WORD.contains(&name)
 }
 
 /// The keywords a FANUC controller set to German writes in its programs (as seen in real
