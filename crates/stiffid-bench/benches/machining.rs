@@ -89,6 +89,7 @@ fn benches(c: &mut Criterion) {
                     setup: &s,
                     compliance: compliance.clone(),
                     input: Input::Program {
+                        encoding: Default::default(),
                         name: "raster.nc".into(),
                         text: &text,
                         data: None,

@@ -13,6 +13,7 @@ use std::path::{Path, PathBuf};
 use stiffid::app::compensate::document::{Names, DYNAMICS};
 use stiffid::app::compensate::stream::{chunk_values, Rows};
 use stiffid::app::compensate::{self as job, Input, Request};
+use stiffid_core::io::Encoding;
 use stiffid_core::observation::deflection::Frame;
 use stiffid_machining::compensate::{
     free, Aggregate, Compensated, FreeOption, Freedom, MapVariable, Objective, Options, PathPoint,
@@ -160,15 +161,19 @@ pub fn compensate<'py>(
             ))
         }
     };
-    let text = error::read(&file_path)?;
     // A KRL program's .dat beside it, read with it (its compensated copy is ``data``).
-    let data = (program.as_deref())
-        .and_then(stiffid_machining::program::krl::data_beside)
-        .map(|p| error::read(&p))
-        .transpose()?;
+    let (text, data, encoding) = match &process {
+        None => (error::read(&file_path)?, None, Encoding::Utf8),
+        Some(_) => error::read_program(&file_path)?,
+    };
     let how = (output, program_name, chord_tolerance_mm);
     let settings = (targets, max_tcp_speed_mm_s, name_length, moves_per_file);
-    let texts = (name.as_str(), (text.as_str(), data.as_deref()), frame);
+    let texts = (
+        name.as_str(),
+        (text.as_str(), data.as_deref()),
+        frame,
+        encoding,
+    );
     let input = input_of(texts, (&program, &process), how, settings)?;
     let names = Names {
         setup: setup.given.clone(),
@@ -277,7 +282,8 @@ fn job_options<'py>(
     Ok(options)
 }
 
-/// A compensated program's items: `program`, its text, `subprograms`, `data` (a KRL
+/// A compensated program's items: `program`, its text, `encoding` (`utf-8`, or `latin-1` for
+/// a program read as Latin-1: its files are to be written in it), `subprograms`, `data` (a KRL
 /// program's compensated `.dat`, or `None`) and `subprogram_data` (each KRL sub-program's `.dat`
 /// by its name; empty in another language).
 fn program_items(
@@ -286,6 +292,7 @@ fn program_items(
     p: &stiffid::app::compensate::ProgramReport,
 ) -> PyResult<()> {
     out.set_item("program", &p.text)?;
+    out.set_item("encoding", p.encoding.name())?;
     let subprograms = PyDict::new(py);
     for f in &p.subprograms {
         subprograms.set_item(&f.name, &f.text)?;
@@ -306,7 +313,7 @@ fn program_items(
 /// how its output is written.
 #[allow(clippy::type_complexity)]
 fn input_of<'t>(
-    (name, (text, data), frame): (&str, (&'t str, Option<&'t str>), Frame),
+    (name, (text, data), frame, encoding): (&str, (&'t str, Option<&'t str>), Frame, Encoding),
     (program, process): (&Option<PathBuf>, &Option<PathBuf>),
     (output, program_name, chord_tolerance_mm): (Option<&str>, Option<String>, f64),
     (targets, max_tcp_speed_mm_s, name_length, moves_per_file): (
@@ -349,6 +356,7 @@ fn input_of<'t>(
                 ..Settings::default()
             };
             Input::Program {
+                encoding,
                 name: name.to_string(),
                 text,
                 data,

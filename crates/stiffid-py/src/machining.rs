@@ -79,7 +79,8 @@ pub fn read_program<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let name = program.display().to_string();
     let language = Language::of_file(&name).map_err(raise)?;
-    let text = error::read(&program)?;
+    // A KRL program's .dat beside it, read with it as compensate does.
+    let (text, data, _) = error::read_program(&program)?;
     let process = match process {
         Some(p) => {
             let text = error::read(&p)?;
@@ -101,7 +102,8 @@ pub fn read_program<'py>(
         Some(s) => Context::of(&s.inner),
         None => Context::default(),
     }
-    .with_machine(&machine);
+    .with_machine(&machine)
+    .with_data(data.as_deref());
     let tolerance = chord_tolerance_mm * 1e-3;
     let read =
         compensate::read_program_in(&name, &text, language, tolerance, &context).map_err(raise)?;

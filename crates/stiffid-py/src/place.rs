@@ -81,11 +81,8 @@ pub fn place<'py>(
         (Some(program), Some(process_path), None) => {
             let name = program.display().to_string();
             let language = Language::of_file(&name).map_err(raise)?;
-            let text = error::read(program)?;
             // A KRL program's .dat beside it, read with it as compensate does.
-            let data = (stiffid_machining::program::krl::data_beside(program))
-                .map(|p| error::read(&p))
-                .transpose()?;
+            let (text, data, _) = error::read_program(program)?;
             let tolerance = chord_tolerance_mm * 1e-3;
             let process_name = process_path.display().to_string();
             parsed = file::parse(&error::read(process_path)?, &process_name).map_err(raise)?;

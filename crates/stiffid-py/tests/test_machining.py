@@ -203,3 +203,25 @@ def test_krl_subprograms_data_equal_the_command(cli, tmp_path):
     for name, data in mine["subprogram_data"].items():
         assert data.startswith(f"&ACCESS RVP\n&REL 1\nDEFDAT {name}\n")
         assert (tmp_path / f"{name}.dat").read_text() == data
+
+
+def test_a_latin1_program_gives_its_encoding_and_the_commands_bytes(cli, tmp_path):
+    """A KRL program with a Latin-1 remark: ``encoding`` is ``latin-1``, the warning of kind
+    ``encoding`` is the command's, and the program written in it is the command's file byte for
+    byte."""
+    setup, stiffness = MILLING / "kuka-milling.toml", MILLING / "kuka-stiffness.json"
+    src = (MILLING / "pocket.src").read_bytes().replace(b"DEF POCKET( )\n", b"DEF POCKET( )\n; Fr\xe4sen\n")
+    (tmp_path / "pocket.src").write_bytes(src)
+    (tmp_path / "pocket.dat").write_bytes((MILLING / "pocket.dat").read_bytes())
+    out = tmp_path / "out.src"
+    theirs = cli("compensate", "--setup", setup, "--stiffness", stiffness, "--program", tmp_path / "pocket.src",
+                 "--process", PROCESS, "--out", out, "--json")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        mine = stiffid.compensate(stiffid.Setup.from_file(setup), stiffness=stiffness,
+                                  program=tmp_path / "pocket.src", process=PROCESS, program_name="out")
+    assert mine["encoding"] == "latin-1"
+    encoding = [w["message"] for w in theirs["warnings"] if w["kind"] == "encoding"]
+    assert len(encoding) == 1 and encoding[0] in [str(w.message) for w in caught]
+    assert mine["program"].encode("latin-1") == out.read_bytes()
+    assert b"; Fr\xe4sen\n" in out.read_bytes()

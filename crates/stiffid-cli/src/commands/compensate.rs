@@ -16,9 +16,10 @@ use stiffid::app::compensate::document::{
 };
 use stiffid::app::compensate::dynamics::OperationDynamics;
 use stiffid::app::compensate::stream::{chunk_values, Points};
-use stiffid::app::compensate::{self as job, Input, Report, Request};
+use stiffid::app::compensate::{self as job, Input, ProgramReport, Report, Request};
 use stiffid::app::document::{finite, mm};
 use stiffid_core::common::words::{count, number};
+use stiffid_core::io::Encoding;
 use stiffid_core::observation::deflection::Frame;
 use stiffid_core::robot::ExternalAxes;
 use stiffid_core::{Error, Progress, Setup};
@@ -209,12 +210,12 @@ pub fn run(args: &Args) -> Result<()> {
         (Some(p), _) | (None, Some(p)) => (p.display().to_string(), p.clone()),
         (None, None) => bail!("expected --path or --program"),
     };
-    let text = load::read(&input_path)?;
     // A KRL program's .dat beside it: read with it, and written compensated beside --out.
-    let data_path = (args.program.as_deref().zip(args.process.as_ref()))
-        .and_then(|(p, _)| stiffid_machining::program::krl::data_beside(p));
-    let data = data_path.as_deref().map(load::read).transpose()?;
-    let input = input(args, name.clone(), (&text, data.as_deref()))?;
+    let (text, data, encoding) = match &args.process {
+        None => (load::read(&input_path)?, None, Encoding::Utf8),
+        Some(_) => load::read_program(&input_path)?,
+    };
+    let input = input(args, name.clone(), (&text, data.as_deref()), encoding)?;
     let out = OutFile::prepare(&args.out, "--out")?;
     // A G-code path written as a KRL program has its points' .dat beside it too.
     let krl_out = (args.out.extension().and_then(|e| e.to_str()))
@@ -272,7 +273,7 @@ pub fn run(args: &Args) -> Result<()> {
         &data_out,
         report.program.as_ref().and_then(|p| p.data.as_ref()),
     ) {
-        o.write(d.as_bytes())?;
+        o.write(&report.program.as_ref().map_or(Vec::new(), |p| p.bytes(d)))?;
     }
     finish(args, &setup, &report, csv, rows, &out, report_dir)?;
     Ok(())
@@ -286,6 +287,7 @@ fn input<'t>(
     args: &Args,
     name: String,
     (text, data): (&'t str, Option<&'t str>),
+    encoding: Encoding,
 ) -> Result<Input<'t>> {
     let Some(process) = &args.process else {
         return Ok(Input::Path {
@@ -307,6 +309,7 @@ fn input<'t>(
     let process_name = process.display().to_string();
     let parsed = file::parse(&load::read(process)?, &process_name)?;
     Ok(Input::Program {
+        encoding,
         name,
         text,
         data,
@@ -366,8 +369,8 @@ fn finish(
         rows.sync()?;
     }
     if let Some(p) = &report.program {
-        out.write(p.text.as_bytes())?;
-        write_subprograms(&args.out, &p.subprograms)?;
+        out.write(&p.bytes(&p.text))?;
+        write_subprograms(&args.out, p)?;
     }
     // The document without its points, which the library writes from the rows stored.
     let rows_path = rows.as_ref().map(|r| r.path().to_path_buf());
@@ -430,10 +433,8 @@ fn check_subprogram_files(out: &Path) -> Result<()> {
 
 /// A split program's sub-programs, each beside the main program in a file of its name with the
 /// main program's extension (and a KRL sub-program's `.dat` beside it).
-fn write_subprograms(
-    out: &Path,
-    files: &[stiffid_machining::program::generate::File],
-) -> Result<()> {
+fn write_subprograms(out: &Path, program: &ProgramReport) -> Result<()> {
+    let files = &program.subprograms;
     let extension = out.extension().and_then(|e| e.to_str()).unwrap_or("");
     let dir = out.parent().unwrap_or(Path::new(""));
     let prepared = files
@@ -454,10 +455,10 @@ fn write_subprograms(
         })
         .collect::<Result<Vec<_>>>()?;
     for (o, f) in prepared {
-        o.write(f.text.as_bytes())?;
+        o.write(&program.bytes(&f.text))?;
     }
     for (o, d) in data {
-        o.write(d.as_bytes())?;
+        o.write(&program.bytes(d))?;
     }
     Ok(())
 }

@@ -123,11 +123,8 @@ pub fn run(args: &Args) -> Result<()> {
         (Some(program_path), Some(process_path), None) => {
             let name = program_path.display().to_string();
             let language = Language::of_file(&name).map_err(|e| anyhow!("--program {e}"))?;
-            let text = load::read(program_path)?;
             // A KRL program's .dat beside it, read with it as compensate does.
-            let data = (stiffid_machining::program::krl::data_beside(program_path))
-                .map(|p| load::read(&p))
-                .transpose()?;
+            let (text, data, _) = load::read_program(program_path)?;
             let tolerance = args.chord_tolerance_mm * 1e-3;
             let process_name = process_path.display().to_string();
             process = file::parse(&load::read(process_path)?, &process_name)?;

@@ -75,6 +75,9 @@ pub enum WarningKind {
     /// The stiffness file's model and the recommended model the data support rank a path's
     /// postures differently (`stiffid::app::compensate`, its `model_ranking`).
     ModelForm,
+    /// A program's files are not UTF-8: read as Latin-1 and written back in it
+    /// ([`crate::io::program_texts`]).
+    Encoding,
 }
 
 impl WarningKind {
@@ -103,6 +106,7 @@ impl WarningKind {
             WarningKind::Speed => "speed",
             WarningKind::Calibrated => "calibrated",
             WarningKind::ModelForm => "model-form",
+            WarningKind::Encoding => "encoding",
         }
     }
 }

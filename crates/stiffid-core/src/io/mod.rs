@@ -64,17 +64,115 @@ pub fn text(source_name: &str, bytes: Vec<u8>) -> Result<String> {
         .map_err(|e| error(not_utf8(e.as_bytes(), e.utf8_error().valid_up_to())))
 }
 
-/// The message for `bytes` that are not UTF-8 from byte `at` on: the byte, its offset, line and
-/// column, and the likely cause when it is one of Latin-1's letters (a controller's backup,
-/// written in ISO 8859-1 or Windows-1252).
-fn not_utf8(bytes: &[u8], at: usize) -> String {
+/// The character encoding a program's files were read in ([`program_texts`]), which its
+/// compensated copy is written in ([`Encoding::encode`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum Encoding {
+    /// UTF-8 (ASCII is UTF-8).
+    #[default]
+    Utf8,
+    /// ISO 8859-1: each byte one character (U+0000 to U+00FF), as the controllers' files in
+    /// ISO 8859-1 or Windows-1252 (European backups: KUKA, FANUC, ABB) are read byte for byte.
+    Latin1,
+}
+
+impl Encoding {
+    /// `utf-8` or `latin-1`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Encoding::Utf8 => "utf-8",
+            Encoding::Latin1 => "latin-1",
+        }
+    }
+
+    /// `text` as the bytes of a file in this encoding: a file read in it is written back byte
+    /// for byte where its text is unchanged.
+    ///
+    /// # Errors
+    /// For [`Encoding::Latin1`], the first character beyond U+00FF, with its line.
+    ///
+    /// # Examples
+    /// ```
+    /// use stiffid_core::io::Encoding;
+    /// assert_eq!(Encoding::Latin1.encode("; Z\u{fc}rich").unwrap(), b"; Z\xfcrich");
+    /// assert!(Encoding::Latin1.encode("a\n\u{20ac}").unwrap_err().contains("line 2"));
+    /// ```
+    pub fn encode(self, text: &str) -> std::result::Result<Vec<u8>, String> {
+        if self == Encoding::Utf8 {
+            return Ok(text.as_bytes().to_vec());
+        }
+        let mut line = 1;
+        (text.chars())
+            .map(|c| {
+                line += usize::from(c == '\n');
+                u8::try_from(u32::from(c)).map_err(|_| {
+                    format!("'{c}' (U+{:04X}) on line {line} has no byte in Latin-1, the encoding the program was read in", u32::from(c))
+                })
+            })
+            .collect()
+    }
+}
+
+/// The texts of a program's files (a KRL `.src` and its `.dat`) from their bytes as read, named
+/// by `files`' names: UTF-8 when every file is; else each read as Latin-1 ([`Encoding::Latin1`],
+/// byte for byte), the encoding of controllers' European backups, when no file holds a control
+/// character other than a tab, a line or page break and DOS's end-of-file mark (a text file).
+///
+/// # Errors
+/// [`Error::Parse`] naming the file: larger than the input limit, or neither UTF-8 nor text (a
+/// control byte, named with its offset, line and column).
+///
+/// # Examples
+/// ```
+/// use stiffid_core::io::{program_texts, Encoding};
+/// let (texts, encoding) = program_texts(vec![("p.src", b"; Z\xfcrich\r\n".to_vec())]).unwrap();
+/// assert_eq!((texts[0].as_str(), encoding), ("; Z\u{fc}rich\r\n", Encoding::Latin1));
+/// assert!(program_texts(vec![("p.src", vec![0xfc, 0x00])]).is_err());
+/// ```
+pub fn program_texts(files: Vec<(&str, Vec<u8>)>) -> Result<(Vec<String>, Encoding)> {
+    if files.iter().all(|(_, b)| std::str::from_utf8(b).is_ok()) {
+        let texts = files.into_iter().map(|(name, b)| text(name, b));
+        return Ok((texts.collect::<Result<_>>()?, Encoding::Utf8));
+    }
+    let control = |b: &u8| *b < 0x20 && !matches!(b, b'\t' | b'\n' | b'\r' | 0x0c | 0x1a);
+    let texts = files.into_iter().map(|(name, bytes)| {
+        if bytes.len() as u64 > MAX_INPUT_BYTES {
+            return text(name, bytes);
+        }
+        match bytes.iter().position(control) {
+            Some(at) => Err(Error::Parse {
+                source_name: name.to_string(),
+                message: not_text(&bytes, at),
+            }),
+            None => Ok(bytes.into_iter().map(char::from).collect()),
+        }
+    });
+    Ok((texts.collect::<Result<_>>()?, Encoding::Latin1))
+}
+
+/// The message for a program's `bytes`, neither UTF-8 nor text: the control byte at `at`, its
+/// offset, line and column.
+fn not_text(bytes: &[u8], at: usize) -> String {
+    let (line, column) = line_column(bytes, at);
+    format!("neither UTF-8 nor Latin-1 text: a control byte 0x{:02X} at offset {at}, line {line}, column {column} (an encrypted module or a binary file?)", bytes[at])
+}
+
+/// The line and column (1-based) of byte `at` of `bytes`.
+fn line_column(bytes: &[u8], at: usize) -> (usize, usize) {
     let before = &bytes[..at];
     let line = before.iter().filter(|b| **b == b'\n').count() + 1;
     let line_start = before
         .iter()
         .rposition(|b| *b == b'\n')
         .map_or(0, |n| n + 1);
-    let column = at - line_start + 1;
+    (line, at - line_start + 1)
+}
+
+/// The message for `bytes` that are not UTF-8 from byte `at` on: the byte, its offset, line and
+/// column, and the likely cause when it is one of Latin-1's letters (a controller's backup,
+/// written in ISO 8859-1 or Windows-1252).
+fn not_utf8(bytes: &[u8], at: usize) -> String {
+    let (line, column) = line_column(bytes, at);
     let byte = bytes[at];
     let latin = if byte >= 0xa0 {
         "; Latin-1 or Windows-1252 text, as some controllers write their files? convert it to UTF-8 (iconv -f windows-1252 -t utf-8)"
@@ -96,6 +194,16 @@ fn not_utf8(bytes: &[u8], at: usize) -> String {
 /// assert_eq!(text, "q1_deg");
 /// ```
 pub fn read_text(source_name: &str, reader: impl Read) -> Result<String> {
+    text(source_name, read_bytes(source_name, reader)?)
+}
+
+/// The bytes of an input read from `reader` (a file the caller opened): at most
+/// [`MAX_INPUT_BYTES`] + 1, so that more than the limit tells the file is larger ([`text`],
+/// [`program_texts`] refuse it).
+///
+/// # Errors
+/// [`Error::Parse`] naming `source_name`: a read error (`cannot read: ...`).
+pub fn read_bytes(source_name: &str, reader: impl Read) -> Result<Vec<u8>> {
     let mut bytes = Vec::new();
     reader
         .take(MAX_INPUT_BYTES + 1)
@@ -104,7 +212,7 @@ pub fn read_text(source_name: &str, reader: impl Read) -> Result<String> {
             source_name: source_name.to_string(),
             message: format!("cannot read: {e}"),
         })?;
-    text(source_name, bytes)
+    Ok(bytes)
 }
 
 /// "larger than the input limit of 256 MiB": the one wording of [`text`] and [`Capped`].

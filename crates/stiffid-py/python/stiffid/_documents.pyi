@@ -245,7 +245,7 @@ CalibrateWarning = TypedDict("CalibrateWarning", {
     "message": str,
 })
 
-CalibrateWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed", "calibrated", "model-form"]
+CalibrateWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed", "calibrated", "model-form", "encoding"]
 
 StiffnessDocument = TypedDict("StiffnessDocument", {
     "compliance_covariance_si": list[list[float]],
@@ -585,7 +585,7 @@ CompensateWarning = TypedDict("CompensateWarning", {
     "message": str,
 })
 
-CompensateWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed", "calibrated", "model-form"]
+CompensateWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed", "calibrated", "model-form", "encoding"]
 
 CompensateWorstPoint = TypedDict("CompensateWorstPoint", {
     "bound_mm": Optional[float],
@@ -977,7 +977,7 @@ IdentifyWarning = TypedDict("IdentifyWarning", {
     "message": str,
 })
 
-IdentifyWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed", "calibrated", "model-form"]
+IdentifyWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed", "calibrated", "model-form", "encoding"]
 
 IdentifyComparisonDocument = TypedDict("IdentifyComparisonDocument", {
     "bootstrap": NotRequired[Optional[IdentifyBootstrapDoc]],
@@ -1119,7 +1119,7 @@ KinematicsWarning = TypedDict("KinematicsWarning", {
     "message": str,
 })
 
-KinematicsWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed", "calibrated", "model-form"]
+KinematicsWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed", "calibrated", "model-form", "encoding"]
 
 # place: docs/schemas/place.schema.json
 
@@ -1300,7 +1300,7 @@ PredictWarning = TypedDict("PredictWarning", {
     "message": str,
 })
 
-PredictWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed", "calibrated", "model-form"]
+PredictWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed", "calibrated", "model-form", "encoding"]
 
 # register-postures: docs/schemas/register-postures.schema.json
 

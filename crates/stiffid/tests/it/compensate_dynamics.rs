@@ -84,6 +84,7 @@ fn compensate_with(
         setup: s,
         compliance: s.model_compliance("test").unwrap(),
         input: Input::Program {
+            encoding: Default::default(),
             name: "p.nc".into(),
             text: program,
             data: None,

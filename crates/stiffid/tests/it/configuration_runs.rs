@@ -211,6 +211,7 @@ fn drill_with(
         setup: s,
         compliance,
         input: Input::Program {
+            encoding: Default::default(),
             name: "drill.nc".into(),
             text,
             data: None,

@@ -78,6 +78,7 @@ fn compensated(
         setup,
         compliance: compliance.clone(),
         input: Input::Program {
+            encoding: Default::default(),
             name: "weld.jbi".into(),
             text: job,
             data: None,

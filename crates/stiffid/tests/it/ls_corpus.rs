@@ -126,6 +126,7 @@ pub(crate) fn compensated_with(
         setup: s,
         compliance: compliance.clone(),
         input: Input::Program {
+            encoding: Default::default(),
             name: name.into(),
             text,
             data: None,

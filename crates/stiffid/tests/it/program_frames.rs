@@ -108,6 +108,7 @@ fn program(setup: &stiffid::Setup, dialect: Dialect) -> (String, Vec<Compensated
         setup,
         compliance,
         input: Input::Program {
+            encoding: Default::default(),
             name: "pocket.nc".into(),
             text: &straight(),
             data: None,

@@ -146,6 +146,7 @@ fn rotated(case: &Case, s: &Setup) -> Result<(Report, Postures), Error> {
         setup: s,
         compliance: stiffness.compliance(s.model()).unwrap(),
         input: Input::Program {
+            encoding: Default::default(),
             name: name.to_string(),
             text,
             data: None,

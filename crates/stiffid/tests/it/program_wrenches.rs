@@ -194,6 +194,7 @@ fn written(c: &Cell, gcode: &'static str, dialect: Dialect) -> String {
         setup: &c.setup,
         compliance: zero,
         input: Input::Program {
+            encoding: Default::default(),
             name: "pocket.nc".into(),
             text: gcode,
             data: None,

@@ -617,6 +617,7 @@ pub(crate) fn written_with(
         setup,
         compliance: compliance.clone(),
         input: Input::Program {
+            encoding: Default::default(),
             name: "rectangle.nc".into(),
             text: gcode,
             data: None,

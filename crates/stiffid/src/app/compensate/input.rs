@@ -1,9 +1,12 @@
 //! A program input of the compensate job read and checked before anything is computed: its
 //! output, options and settings, its text, and its Cartesian targets resolved as the controller
-//! moves to them.
+//! moves to them; the warnings about the input itself (its encoding, a G-code program's
+//! unstated units).
 
 use super::written::program_tool;
 use super::{generate, in_input, output, Input};
+use crate::app::{Warning, WarningKind};
+use stiffid_core::io::Encoding;
 use stiffid_core::{Error, Result, Setup};
 use stiffid_machining::compensate::Options;
 use stiffid_machining::program::Context;
@@ -98,4 +101,28 @@ pub(super) fn check_tcp(setup: &Setup) -> Result<()> {
             message: format!("missing in setup {}: compensation moves the cutting tool's centre point, which the setup must give ([tool] tcp_mm); measuring point 1 is a measuring target, not the tool", setup.name()),
         }),
     }
+}
+
+/// The warning that the program's files are not UTF-8 (read and written as Latin-1).
+pub(super) fn encoding_warning(name: &str, encoding: Encoding) -> Option<Warning> {
+    (encoding == Encoding::Latin1).then(|| {
+        Warning::new(
+            WarningKind::Encoding,
+            format!("{name} is not UTF-8 text: read as Latin-1 (ISO 8859-1, each byte one character), as controllers write ISO 8859-1 or Windows-1252 files; the compensated program is written in it, every byte not compensated as read"),
+        )
+    })
+}
+
+/// The warning that a G-code program states no units (`G20` or `G21`) before its first motion:
+/// it is read in mm, the units a controller is in at its start being its own setting.
+pub(super) fn unstated_units(program: &Program) -> Option<Warning> {
+    let Program::GCode(g) = program else {
+        return None;
+    };
+    g.unstated_units.map(|line| {
+        Warning::new(
+            WarningKind::Units,
+            format!("the program states no units (G20 or G21) before its first motion, line {line}: read in mm, as LinuxCNC and grbl start; a controller set to inches (Haas setting 9, a FANUC parameter) runs it 25.4 times larger: write G21 (or G20) at its start"),
+        )
+    })
 }

@@ -39,8 +39,9 @@ mod written;
 
 use crate::app::compensate::document::{Names, Summary};
 use crate::app::{Warning, WarningKind};
-use input::{check_tcp, read_checked};
+use input::{check_tcp, encoding_warning, read_checked, unstated_units};
 pub use input::{read_program, read_program_in};
+use stiffid_core::io::Encoding;
 use stiffid_core::model::Parameter;
 use stiffid_core::observation::deflection::Frame;
 use stiffid_core::{Coordinates, Error, Result, Setup};
@@ -91,6 +92,9 @@ pub enum Input<'t> {
         out_name: String,
         /// How a generated robot program is written.
         settings: Settings,
+        /// The encoding its files were read in ([`stiffid_core::io::program_texts`]), which the
+        /// compensated program is written in ([`ProgramReport::encoding`]).
+        encoding: Encoding,
     },
 }
 
@@ -236,20 +240,6 @@ where
     };
     outcome.warnings.extend(units);
     Ok(finish(setup, (compliance, names), options, tally, outcome)?)
-}
-
-/// The warning that a G-code program states no units (`G20` or `G21`) before its first motion:
-/// it is read in mm, the units a controller is in at its start being its own setting.
-fn unstated_units(program: &Program) -> Option<Warning> {
-    let Program::GCode(g) = program else {
-        return None;
-    };
-    g.unstated_units.map(|line| {
-        Warning::new(
-            WarningKind::Units,
-            format!("the program states no units (G20 or G21) before its first motion, line {line}: read in mm, as LinuxCNC and grbl start; a controller set to inches (Haas setting 9, a FANUC parameter) runs it 25.4 times larger: write G21 (or G20) at its start"),
-        )
-    })
 }
 
 /// Whether the compensation moves a free variable (the tool's rotation, its lean, an external
@@ -435,6 +425,7 @@ where
         output,
         out_name,
         settings,
+        encoding,
         ..
     } = input
     else {
@@ -492,7 +483,7 @@ where
         }
         _ => (compensated.program.clone(), Vec::new()),
     };
-    out.program = Some(ProgramReport {
+    let report = ProgramReport {
         language,
         output,
         process: process_name,
@@ -501,7 +492,11 @@ where
         text,
         subprograms,
         data,
-    });
+        encoding,
+    };
+    report.check_encoding(&out_name)?;
+    out.warnings.extend(encoding_warning(&out.name, encoding));
+    out.program = Some(report);
     Ok(out)
 }
 

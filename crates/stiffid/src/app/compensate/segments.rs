@@ -6,6 +6,7 @@ use super::dynamics;
 #[cfg(doc)]
 use super::Input;
 use crate::app::document::units;
+use stiffid_core::io::Encoding;
 use stiffid_machining::process::Process;
 use stiffid_machining::program::generate;
 use stiffid_machining::Language;
@@ -37,6 +38,42 @@ pub struct ProgramReport {
     /// Each operation's drilling surge or milling frequencies (`dynamics::operations`); empty
     /// without a mass model.
     pub dynamics: Vec<dynamics::OperationDynamics>,
+    /// The encoding the program was read in, which its files are written in
+    /// ([`ProgramReport::bytes`]).
+    pub encoding: Encoding,
+}
+
+impl ProgramReport {
+    /// `text`, one of the program's files (its `text`, `data` or a sub-program's), as the bytes
+    /// to write: in the encoding the program was read in ([`Encoding::encode`]; the job has
+    /// checked every file holds only its characters).
+    pub fn bytes(&self, text: &str) -> Vec<u8> {
+        (self.encoding.encode(text)).unwrap_or_else(|_| text.as_bytes().to_vec())
+    }
+
+    /// Checks every file of the program can be written in its encoding.
+    ///
+    /// # Errors
+    /// [`stiffid_core::Error::InvalidField`] naming `out_name` and the first character the
+    /// encoding has no byte for (a name or remark from the setup in a Latin-1 program).
+    pub(crate) fn check_encoding(&self, out_name: &str) -> stiffid_core::Result<()> {
+        let subprograms = self.subprograms.iter();
+        let texts = [Some(&self.text), self.data.as_ref()].into_iter().flatten();
+        let texts = texts.chain(
+            subprograms
+                .flat_map(|f| [Some(&f.text), f.data.as_ref()])
+                .flatten(),
+        );
+        for t in texts {
+            self.encoding
+                .encode(t)
+                .map_err(|message| stiffid_core::Error::InvalidField {
+                    field: out_name.to_string(),
+                    message,
+                })?;
+        }
+        Ok(())
+    }
 }
 
 /// One segment of a program: the points of one line (a G-code block's arc points, a robot

@@ -39,6 +39,7 @@ fn job(setup: &stiffid::Setup) -> stiffid::Result<Vec<f64>> {
         setup,
         compliance,
         input: Input::Program {
+            encoding: Default::default(),
             name: "pocket.nc".into(),
             text: include_str!("../../../../../../examples/milling/pocket.nc"),
             data: None,

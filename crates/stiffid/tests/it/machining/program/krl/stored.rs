@@ -115,6 +115,7 @@ fn compensated(
         setup,
         compliance,
         input: Input::Program {
+            encoding: Default::default(),
             name: "POCKET.src".into(),
             text,
             data,

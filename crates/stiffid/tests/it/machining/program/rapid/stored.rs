@@ -180,6 +180,7 @@ fn compensated(
         setup,
         compliance: compliance.clone(),
         input: Input::Program {
+            encoding: Default::default(),
             name: "Rect.mod".into(),
             text,
             data: None,
