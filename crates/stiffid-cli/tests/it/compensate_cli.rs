@@ -1044,3 +1044,76 @@ fn a_latin1_program_is_compensated_and_written_back_in_latin1() {
     assert!(!bad_dir.join("out.src").exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `G53 G0 Z0.` retracts (Fusion 360's Haas posts) in a setup without a `G53` frame: no point,
+/// the same path as without them, and one warning of kind `left-out` naming their lines.
+#[test]
+fn gcode_g53_rapids_without_the_setups_frame_make_no_point_with_a_warning() {
+    let dir = temp_dir("g53-retract");
+    let pocket = std::fs::read_to_string(example("milling/pocket.nc")).unwrap();
+    let retracted = pocket
+        .replacen("G21 G90 G17\n", "G21 G90 G17\nG53 G0 Z0.\n", 1)
+        .replacen("M05\n", "G53 G0 Z0.\nM05\n", 1);
+    let lines: Vec<usize> = (retracted.lines().enumerate())
+        .filter(|(_, l)| l.starts_with("G53"))
+        .map(|(i, _)| i + 1)
+        .collect();
+    assert_eq!(lines.len(), 2);
+    let read = |text: &str, name: &str| {
+        let nc = dir.join(name);
+        std::fs::write(&nc, text).unwrap();
+        let out = dir.join(format!("out-{name}"));
+        let (setup, stiffness, process) = (
+            example("milling/fanuc-milling.toml"),
+            example("milling/stiffness.json"),
+            example("milling/aluminium.toml"),
+        );
+        let r = json(&stiffid(&[
+            "compensate",
+            "--setup",
+            &setup,
+            "--stiffness",
+            &stiffness,
+            "--program",
+            nc.to_str().unwrap(),
+            "--process",
+            &process,
+            "--out",
+            out.to_str().unwrap(),
+            "--json",
+        ]));
+        let warnings = r["warnings"].as_array().unwrap().clone();
+        let g53: Vec<_> = warnings
+            .into_iter()
+            .filter(|w| w["message"].as_str().unwrap().contains("G53"))
+            .collect();
+        (r["points"].clone(), g53)
+    };
+    let (plain, none) = read(&pocket, "plain.nc");
+    assert!(none.is_empty(), "{none:?}");
+    let (points, warned) = read(&retracted, "retracted.nc");
+    assert_eq!(warned.len(), 1, "{warned:?}");
+    assert_eq!(warned[0]["kind"], "left-out");
+    let message = warned[0]["message"].as_str().unwrap();
+    let named = format!("lines {}, {}", lines[0], lines[1]);
+    assert!(
+        message.starts_with("2 G53 rapids") && message.contains(&named),
+        "{message}"
+    );
+    // The same points (one line later, after the first retract) at the same places.
+    let places = |points: &serde_json::Value| -> Vec<(f64, [f64; 3])> {
+        (points.as_array().unwrap().iter())
+            .map(|p| {
+                let at = |k: &str| p[k].as_f64().unwrap();
+                (at("line"), [at("x_mm"), at("y_mm"), at("z_mm")])
+            })
+            .collect()
+    };
+    let (read, want) = (places(&points), places(&plain));
+    assert_eq!(read.len(), want.len(), "the retracts make no point");
+    for ((line, p), (l, q)) in read.iter().zip(&want) {
+        assert_eq!(*line, l + 1.0);
+        assert!((0..3).all(|k| (p[k] - q[k]).abs() <= 1e-6), "{p:?} {q:?}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -69,6 +69,9 @@ pub(super) fn block(
     super::process::gather(line, words, s);
     given.modes(line, s)?;
     motion_and_feed(line, &given, inch_before, s)?;
+    if given.g53 && (given.home.is_some() || s.motion >= 81 && s.motion != NO_MOTION) {
+        return Err(g53_outside_g0_g1(line, &given, s));
+    }
     if let Some(code) = given.home {
         let other = given.centre_given() || given.radius.is_some() || given.abc || given.external;
         return super::home::home(line, span, (given.target, other), code, s, out);
@@ -369,30 +372,39 @@ fn motion(
     tolerance: f64,
 ) -> Result<()> {
     may_move(line, s)?;
-    let frame = match given.g53 {
-        true => machine_frame(line, s)?,
-        false => s.frame.clone(),
-    };
     let lift = s.lift();
     // G53's coordinates are the spindle's, the tool length offset not applied (LinuxCNC's
-    // find_ends, FANUC).
-    let block_lift = match given.g53 {
-        true => s.spindle_lift(),
-        false => lift,
+    // find_ends, FANUC): the position is carried as the gauge line's, the programmed point
+    // raised by the offset in force (known whatever the tool in use), with the spindle's lift
+    // on both sides.
+    let (frame, block_lift, (from_lift, raise)) = match given.g53 {
+        true => match machine_frame(line, s)? {
+            Some(frame) => {
+                let spindle = s.spindle_lift();
+                (frame, spindle, (spindle, s.length_offset))
+            }
+            None => return unplaced_machine_move(line, &given, s, out),
+        },
+        false => (s.frame.clone(), lift, (lift, 0.0)),
     };
+    let raised = s.position + Vector3::z() * raise;
     let here = convert(
-        (s.position, s.known),
-        (&s.frame, lift),
+        (raised, s.known),
+        (&s.frame, from_lift),
         (&frame, block_lift),
     );
     let (end, known) = end_point(line, &given.target, here, s)?;
+    let back = |end, known, s: &State| {
+        let (p, k) = convert((end, known), (&frame, block_lift), (&s.frame, from_lift));
+        (p - Vector3::z() * raise, k)
+    };
     if !known.iter().all(|k| *k) {
         if s.motion != 0 {
             let what = format!("G{}: a feed move", s.motion);
             return Err(refuse_unknown(line, &what, known));
         }
         s.pending.get_or_insert(line);
-        (s.position, s.known) = convert((end, known), (&frame, block_lift), (&s.frame, lift));
+        (s.position, s.known) = back(end, known, s);
         return Ok(());
     }
     if s.motion != 0 && !here.1.iter().all(|k| *k) {
@@ -401,6 +413,13 @@ fn motion(
             g => format!("G{g}: an arc"),
         };
         return Err(refuse_unknown(line, &what, here.1));
+    }
+    if s.motion == 0 && block_lift.is_none() && s.tool_number.is_none() {
+        // Before any T the spindle holds whatever tool the machine holds, whose length the
+        // program does not say: the rapid's programmed point is known, its tip is not.
+        s.untooled.get_or_insert(line);
+        (s.position, s.known) = back(end, known, s);
+        return Ok(());
     }
     let positions = if s.motion >= 2 {
         positions(line, &given, end, s, tolerance)?
@@ -414,7 +433,7 @@ fn motion(
     };
     let first = out.points.len();
     push_points(line, &positions, motion, (&frame, block_lift), s, out)?;
-    (s.position, s.known) = convert((end, known), (&frame, block_lift), (&s.frame, lift));
+    (s.position, s.known) = back(end, known, s);
     let arc_word = given.motion.filter(|(g, _)| *g >= 2).map(|(_, span)| span);
     let to_program = super::machine::to_program(&frame, block_lift.unwrap_or(0.0));
     out.blocks.push(Block {
@@ -434,15 +453,50 @@ fn motion(
 
 /// `G53`'s frame: machine coordinates with `G0` or `G1` (LinuxCNC refuses it with an arc) in
 /// `G90`; in `G91` controllers differ (LinuxCNC reads its words as absolute machine
-/// coordinates, Mitsubishi's M700V as increments), so it is refused there.
-fn machine_frame(line: u64, s: &State) -> Result<super::machine::Frame> {
+/// coordinates, Mitsubishi's M700V as increments), so it is refused there. `None` for a rapid
+/// when the setup gives no `G53` frame ([`unplaced_machine_move`]).
+fn machine_frame(line: u64, s: &State) -> Result<Option<super::machine::Frame>> {
     if s.motion >= 2 {
         return Err(at(line, "G53: machine coordinates move with G0 or G1 only, not with an arc (LinuxCNC refuses it)".into()));
     }
     if s.incremental {
         return Err(at(line, "G53 in G91: controllers differ on what its words are (LinuxCNC reads absolute machine coordinates, Mitsubishi's M700V increments); write G90 before it".into()));
     }
-    super::modal::frame(line, "G53".into(), s)
+    match s.machine.frames.offset("G53") {
+        Some(part_from) => Ok(Some(super::machine::Frame { name: "G53".into(), part_from })),
+        None if s.motion == 0 => Ok(None),
+        None => Err(at(line, "G53: the setup gives no frame for machine coordinates, which a feed (G1) to them needs: give it under [workpiece.offsets] (G53 = { xyz_mm = [..], rpy_deg = [..] }, its frame in the G54 part frame); a rapid (G0 or the G0 in force) to machine coordinates without it makes the axes it names unknown".into())),
+    }
+}
+
+/// A `G53` rapid the setup gives no frame for: the machine goes where the setup does not say
+/// (a retract to machine Z0, a park), so the axes it names are unknown until the program gives
+/// them again, as at the program's start (module docs of `modal`), and it makes no point. The
+/// line is kept ([`GCode::unplaced_g53`]): the robot goes from the point before it to the next
+/// one in one move.
+fn unplaced_machine_move(line: u64, given: &Given, s: &mut State, out: &mut GCode) -> Result<()> {
+    for (known, target) in s.known.iter_mut().zip(&given.target) {
+        *known &= target.is_none();
+    }
+    s.pending.get_or_insert(line);
+    out.unplaced_g53.push(line);
+    Ok(())
+}
+
+/// The error for `G53` in a block `G0`/`G1` does not move: a canned cycle in force, `G28`,
+/// `G30` (LinuxCNC refuses `G53` unless `G0` or `G1` is in force).
+fn g53_outside_g0_g1(line: u64, given: &Given, s: &State) -> stiffid_core::Error {
+    let (what, fix) = match given.home {
+        Some(g) => (
+            format!("with G{g} in its block"),
+            format!("write the G{g} and the G53 move in blocks of their own"),
+        ),
+        None => (
+            format!("while the canned cycle G{} is in force", s.motion),
+            "end the cycle with G80 and write G53 G0 (or G53 G1) in a block of its own".to_string(),
+        ),
+    };
+    at(line, format!("G53 {what}: machine coordinates move with G0 or G1 only (LinuxCNC refuses G53 unless G0 or G1 is in force); {fix}"))
 }
 
 /// The error for a motion that needs every axis known and lacks one.

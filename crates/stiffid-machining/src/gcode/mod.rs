@@ -14,7 +14,8 @@
 //!   unknown until a block gives it or the setup states the start (rapids before make no point;
 //!   a feed, arc or cycle from there is refused, module `modal`); work offsets `G54`-`G59`,
 //!   `G59.1`-`G59.3`, `G54.1 Pn` and machine coordinates `G53` (of the spindle, the tool
-//!   length offset not applied) in the setup's frames; `G28`/`G30`
+//!   length offset not applied; `G0`/`G1` only) in the setup's frames (without the setup's
+//!   `G53` frame a `G53` rapid makes no point and the axes it names unknown, a feed is refused); `G28`/`G30`
 //!   to the setup's positions (module `home`); tool length offsets `G43 Hn`/`G44`/`G49` with the
 //!   tools' lengths (module `machine`); arc centres `G90.1`/`G91.1`; an arc's end off its circle
 //!   within grbl's and LinuxCNC's tolerance ([`ARC_END_TOLERANCE_MM`]), reached along a spiral.
@@ -177,6 +178,10 @@ pub struct GCode {
     /// not state its units and is read in mm, the units a controller is in at its start being
     /// its own setting (LinuxCNC's ini, Haas setting 9, a FANUC parameter).
     pub unstated_units: Option<u64>,
+    /// The lines of the `G53` rapids read without the setup's `G53` frame: each made no point
+    /// and left the axes it names unknown until the program gives them again, so the robot goes
+    /// from the point before it to the next one in one move.
+    pub unplaced_g53: Vec<u64>,
     blocks: Vec<Block>,
     text: String,
     /// The tip at the start (the setup's), `G54` part frame, m: where an incremental first
@@ -224,6 +229,9 @@ struct State {
     known: [bool; 3],
     /// The line of the first motion with an axis unknown, before any point.
     pending: Option<u64>,
+    /// The line of the first rapid that made no point because no tool was named yet (its tip
+    /// depends on the length of the tool the machine holds).
+    untooled: Option<u64>,
     /// The work offset in force.
     frame: machine::Frame,
     /// The tool length offset in force (`G43`: +length, `G44`: -length, `G49`: 0), m.
@@ -300,6 +308,7 @@ pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<G
         surface: 0.0,
         known: [false; 3],
         pending: None,
+        untooled: None,
         frame: machine::Frame::default(),
         length_offset: 0.0,
         ij_absolute: false,
@@ -313,6 +322,7 @@ pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<G
         process: Vec::new(),
         comments: Vec::new(),
         unstated_units: None,
+        unplaced_g53: Vec::new(),
         blocks: Vec::new(),
         text: text.to_string(),
         start: machine.frames.start,
@@ -347,6 +357,9 @@ pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<G
         }
     }
     if out.points.is_empty() {
+        if let Some(line) = s.untooled {
+            return Err(s.no_length(line));
+        }
         if let Some(line) = s.pending {
             return Err(at(line, format!("no motion reaches a point whose X, Y and Z are all known (from line {line} on; {})", modal::UNKNOWN_HELP)));
         }

@@ -72,15 +72,20 @@ impl State {
         p: &Vector3<f64>,
         (frame, lift): (&Frame, Lift),
     ) -> Result<Vector3<f64>> {
-        let lift = lift.ok_or_else(|| {
-            let tool = self.tool_number.map_or("no T word yet".into(), |t| format!("T{t}"));
-            at(line, format!("the tool in use ({tool}) has no length in the process's tool table ([tool] length_mm of the operation with its tool_number), and the tool length offset G43/G44/G49 in force needs it to place the tip"))
-        })?;
+        let lift = lift.ok_or_else(|| self.no_length(line))?;
         if frame.part_from == nalgebra::Isometry3::identity() && lift == 0.0 {
             // The part frame itself: the programmed point, to the last bit.
             return Ok(*p);
         }
         Ok((frame.part_from * Point3::from(p + Vector3::z() * lift)).coords)
+    }
+
+    /// The error for a point while the tool in use has no length in the table.
+    pub(super) fn no_length(&self, line: u64) -> stiffid_core::Error {
+        match self.tool_number {
+            Some(t) => at(line, format!("the tool in use (T{t}) has no length in the process's tool table ([tool] length_mm of the operation with its tool_number), and the tool length offset G43/G44/G49 in force needs it to place the tip")),
+            None => at(line, "no tool named yet (no T word before this line): the spindle holds whatever tool the machine holds, whose length the program does not say, and the tip depends on it; name the tool (T1 M6) before this motion, or give one length for every tool (a process of one operation without tool_number)".into()),
+        }
     }
 
     /// An error unless every axis is known (module docs), naming what moves from there.

@@ -163,10 +163,10 @@ fn work_offsets_place_the_path_in_the_setups_frames_and_write_it_back_in_them() 
         "G53: machine coordinates move with G0 or G1 only",
     );
     refused(
-        "G53 G0 Z0\n",
+        "G0 X1 Y2 Z3\nG1 Z1 F100\nG53 Z0\n",
         &Machine::default(),
-        2,
-        "G53: the setup gives no frame",
+        4,
+        "G53: the setup gives no frame for machine coordinates, which a feed (G1) to them needs",
     );
 }
 
@@ -267,6 +267,117 @@ fn g53_places_the_spindle_without_the_tool_length_offset_under_g43_and_g49() {
             assert_relative_eq!(a.position, b.position, epsilon = 1e-9);
         }
     }
+}
+
+#[test]
+fn a_g53_rapid_without_the_setups_frame_leaves_the_axes_it_names_unknown() {
+    // Fusion 360's Haas post: "G53 G0 Z0." before the first tool, between tools and at the
+    // end; the setup gives no G53 frame. Each retract makes no point and leaves Z unknown: the
+    // next point is where X, Y and Z are stated again (G43 H of the tool in use: the tip).
+    let m = tools();
+    let text = "G21 G90\nG53 G0 Z0.\nT1 M6\nG54\nG0 X10. Y10.\nG43 Z15. H1\nG1 Z-1. F300.\nX20.\nG0 Z15.\nG53 G0 Z0.\nT2 M6\nG0 X30. Y0.\nG43 Z15. H2\nG1 Z-2.\nG0 Z15.\nG53 G0 Z0.\nM30\n";
+    let g = read(text, &m);
+    let want = [
+        (7, Some(1), mm(10.0, 10.0, 15.0)),
+        (8, Some(1), mm(10.0, 10.0, -1.0)),
+        (9, Some(1), mm(20.0, 10.0, -1.0)),
+        (10, Some(1), mm(20.0, 10.0, 15.0)),
+        (14, Some(2), mm(30.0, 0.0, 15.0)),
+        (15, Some(2), mm(30.0, 0.0, -2.0)),
+        (16, Some(2), mm(30.0, 0.0, 15.0)),
+    ];
+    assert_eq!(g.points.len(), want.len());
+    for (p, (line, tool, q)) in g.points.iter().zip(want) {
+        assert_eq!((p.line, p.tool_number), (line, tool));
+        assert_relative_eq!(p.position, q, epsilon = 1e-12);
+    }
+    assert_eq!(g.unplaced_g53, vec![3, 11, 17]);
+    // Written back, the G53 blocks are as found: the controller goes where its machine is.
+    let positions: Vec<_> = g.points.iter().map(|p| p.position).collect();
+    let written = g.write(&positions).unwrap();
+    assert_eq!(written.matches("\nG53 G0 Z0.\n").count(), 3, "{written}");
+    // What moves from the place the G53 rapid left unknown is refused naming the line.
+    refused(
+        "T1 M6 G43 H1\nG0 X1 Y2 Z3\nG53 G0 Z0\nG1 X5 F100\n",
+        &m,
+        5,
+        "G1: a feed move from or to a place not known: Z has no value yet",
+    );
+    refused(
+        "T1 M6 G43 H1\nG0 X1 Y2 Z3\nG53 G0 Z0\nG81 X5 Y5 Z-2 R2 F100\n",
+        &m,
+        5,
+        "Z",
+    );
+    refused(
+        "G53 G0 Z0\nM30\n",
+        &m,
+        2,
+        "no motion reaches a point whose X, Y and Z are all known",
+    );
+}
+
+#[test]
+fn g53_before_the_first_tool_places_the_spindle_and_the_tip_once_a_tool_is_named() {
+    // Machine Z0 is 200 mm above the part's origin, the start is stated, T1 is 50 mm long.
+    // Before any T the spindle holds whatever tool the machine holds: the retract makes no
+    // point (its tip is not known), and after T1 M6 the tip is T1's length below the gauge
+    // line, which stayed at machine Z0 (part Z 200).
+    let mut m = tools();
+    m.frames.offsets = vec![("G53".into(), Isometry3::translation(-0.5, -0.4, 0.2))];
+    m.frames.start = Some(mm(0.0, 0.0, 100.0));
+    let g = read(
+        "G21 G90\nG53 G0 Z0.\nT1 M6\nG54 G0 X10. Y10.\nG43 Z15. H1\nG1 Z-1. F300.\n",
+        &m,
+    );
+    let want = [
+        (5, mm(10.0, 10.0, 200.0 - 50.0)),
+        (6, mm(10.0, 10.0, 15.0)),
+        (7, mm(10.0, 10.0, -1.0)),
+    ];
+    assert_eq!(path(&g).len(), want.len());
+    for ((line, p), (l, q)) in path(&g).into_iter().zip(want) {
+        assert_eq!(line, l);
+        assert_relative_eq!(p, q, epsilon = 1e-12);
+    }
+    assert!(g.unplaced_g53.is_empty());
+    // A feed, or no point at all, before any tool is named: refused naming the line.
+    refused(
+        "G53 G0 Z0.\nG1 X5 F100\n",
+        &m,
+        3,
+        "no tool named yet (no T word before this line)",
+    );
+    refused("G53 G0 Z0.\nM30\n", &m, 2, "no tool named yet");
+    // G43 H1 in force before the first tool: G53 Z0 places the gauge line whatever the tool
+    // in use, so after T1 M6 the tip is 50 mm below machine Z0 (part Z 150), not at it.
+    let mut m = tools();
+    m.frames.offsets = vec![("G53".into(), Isometry3::translation(-0.5, -0.4, 0.2))];
+    let g = read("G43 H1\nG53 G0 Z0.\nT1 M6\nG0 X0 Y0\n", &m);
+    assert_eq!(path(&g).len(), 1);
+    assert_eq!(path(&g)[0].0, 5);
+    assert_relative_eq!(path(&g)[0].1, mm(0.0, 0.0, 150.0), epsilon = 1e-12);
+}
+
+#[test]
+fn g53_outside_a_g0_or_g1_block_is_refused_naming_the_line() {
+    // LinuxCNC refuses G53 unless G0 or G1 is in force; read in a canned cycle, the hole would
+    // be drilled at the G54 coordinates of the words, 500 mm off.
+    let mut m = Machine::default();
+    m.frames.offsets = vec![("G53".into(), Isometry3::translation(-0.5, -0.4, 0.2))];
+    refused(
+        "G0 X0 Y0 Z20\nG98 G81 X10 Y10 Z-3 R2 F100\nG53 X20 Y10\n",
+        &m,
+        4,
+        "G53 while the canned cycle G81 is in force",
+    );
+    m.frames.g28 = Some(mm(0.0, 0.0, 150.0));
+    refused(
+        "G0 X0 Y0 Z20\nG53 G28 Z0\n",
+        &m,
+        3,
+        "G53 with G28 in its block",
+    );
 }
 
 #[test]

@@ -1,7 +1,7 @@
 //! A program input of the compensate job read and checked before anything is computed: its
 //! output, options and settings, its text, and its Cartesian targets resolved as the controller
 //! moves to them; the warnings about the input itself (its encoding, a G-code program's
-//! unstated units).
+//! unstated units and unplaced G53 rapids).
 
 use super::written::program_tool;
 use super::{generate, in_input, output, Input};
@@ -123,6 +123,30 @@ pub(super) fn unstated_units(program: &Program) -> Option<Warning> {
         Warning::new(
             WarningKind::Units,
             format!("the program states no units (G20 or G21) before its first motion, line {line}: read in mm, as LinuxCNC and grbl start; a controller set to inches (Haas setting 9, a FANUC parameter) runs it 25.4 times larger: write G21 (or G20) at its start"),
+        )
+    })
+}
+
+/// The warning that a G-code program's `G53` rapids were read without the setup's `G53` frame:
+/// they make no point, and the robot goes from the point before each to the next in one move.
+pub(super) fn unplaced_g53(program: &Program) -> Option<Warning> {
+    let Program::GCode(g) = program else {
+        return None;
+    };
+    let lines = &g.unplaced_g53;
+    let shown: Vec<String> = lines.iter().take(5).map(u64::to_string).collect();
+    let more = match lines.len() {
+        n if n > 5 => format!(" and {} more", n - 5),
+        _ => String::new(),
+    };
+    let (what, word) = match lines.len() {
+        1 => ("1 G53 rapid".to_string(), "line"),
+        n => (format!("{n} G53 rapids"), "lines"),
+    };
+    (!lines.is_empty()).then(|| {
+        Warning::new(
+            WarningKind::LeftOut,
+            format!("{what} in machine coordinates, which the setup does not place (no [workpiece.offsets] G53), make no point ({word} {}{more}): the axes each names are unknown until the program gives them again, and the robot goes from the point before it to the next point in one move, without that retract; give the G53 frame to have them", shown.join(", ")),
         )
     })
 }

@@ -39,7 +39,7 @@ mod written;
 
 use crate::app::compensate::document::{Names, Summary};
 use crate::app::{Warning, WarningKind};
-use input::{check_tcp, encoding_warning, read_checked, unstated_units};
+use input::{check_tcp, encoding_warning, read_checked, unplaced_g53, unstated_units};
 pub use input::{read_program, read_program_in};
 use stiffid_core::io::Encoding;
 use stiffid_core::model::Parameter;
@@ -223,6 +223,7 @@ where
     let mut tally = Tally::new(setup, &options, speeds);
     tally.ranking = ranking::Ranking::new(setup.arm(), compliance.model_form.as_ref());
     let units = read.as_ref().and_then(unstated_units);
+    let g53 = read.as_ref().and_then(unplaced_g53);
     let mut outcome = {
         let mut add = |first: usize, p: &[PathPoint], r: &[Compensated], d: &[Dynamics]| {
             tally.add(setup, first, p, r, options.map);
@@ -239,6 +240,7 @@ where
         }
     };
     outcome.warnings.extend(units);
+    outcome.warnings.extend(g53);
     Ok(finish(setup, (compliance, names), options, tally, outcome)?)
 }
 
