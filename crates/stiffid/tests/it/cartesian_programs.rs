@@ -672,7 +672,11 @@ fn ls_user_and_tool_frames_are_read_by_number_or_as_the_program_declares_them() 
     // The part frame in the controller's world: 670 mm above the base frame, z 400 is -270.
     let q_table = resolve_on(&table("[1300, -700, -270]"), &part).unwrap();
     let q_off = resolve_on(&table("[1300, -690, -270]"), &part).unwrap();
-    for q in [&q_named, &q_table] {
+    // `UF : F, UT : F`: the frames in force where the motions run (UFRAME_NUM=0, UTOOL_NUM=1).
+    let floating = world.replace("UF : 0, UT : 1", "UF : F, UT : F");
+    assert_ne!(floating, world);
+    let q_floating = resolve(&floating).unwrap();
+    for q in [&q_named, &q_table, &q_floating] {
         for (a, b) in q.iter().flatten().zip(q_world.iter().flatten()) {
             assert!((a - b).abs() < 1e-9, "{a} {b}");
         }
@@ -689,7 +693,6 @@ fn ls_user_and_tool_frames_are_read_by_number_or_as_the_program_declares_them() 
 fn ls_frames_not_stated_or_not_in_force_are_refused_naming_the_line() {
     let (s, _, part) = ls_frames_case();
     let named = named_part_frame(&part);
-    let resolve_on = ls_resolved;
     // The second position's frames as `with`.
     let second = |text: &str, with: &str| {
         let at = text.match_indices("UF : 1, UT : 1").nth(1).unwrap().0;
@@ -779,8 +782,13 @@ fn ls_frames_not_stated_or_not_in_force_are_refused_naming_the_line() {
             ),
         ),
     ];
-    for (setup, text, line, needle) in &cases {
-        match resolve_on(setup, text) {
+    assert_refused(&cases);
+}
+
+/// Each case's text resolved on its setup is refused naming its line with its message.
+fn assert_refused(cases: &[(&Setup, &str, u64, String)]) {
+    for (setup, text, line, needle) in cases {
+        match ls_resolved(setup, text) {
             Err(Error::Program { line: l, message }) => {
                 assert_eq!(l, *line, "{needle}: {message}");
                 assert!(message.contains(needle.as_str()), "{needle}: {message}");
@@ -788,6 +796,49 @@ fn ls_frames_not_stated_or_not_in_force_are_refused_naming_the_line() {
             other => panic!("{needle}: {other:?}\n{text}"),
         }
     }
+}
+
+/// A position in the frame in force where the program selects none, a position never taught
+/// and a frame number beyond the controllers' are refused naming the line.
+#[test]
+fn ls_positions_in_no_frame_in_force_or_never_taught_are_refused_naming_the_line() {
+    let (s, _, part) = ls_frames_case();
+    let motion = |text: &str| {
+        let first = text
+            .lines()
+            .position(|l| l.contains(":L P[") || l.contains(":J P["));
+        first.unwrap() as u64 + 1
+    };
+    // The frame in force where none is selected; a position never taught; a number too large.
+    let floating =
+        (part.replacen("UF : 1, UT : 1", "UF : F, UT : 1", 1)).replace("  UFRAME_NUM=1 ;\n", "");
+    let untaught = {
+        let at = part.find("\tX = ").unwrap() + "\tX = ".len();
+        let end = at + part[at..].find(" mm").unwrap();
+        format!("{}********{}", &part[..at], &part[end..])
+    };
+    let large = part.replacen("UF : 1, UT : 1", "UF : 1000, UT : 1", 1);
+    let cases: Vec<(&Setup, &str, u64, String)> = vec![
+        (
+            &s,
+            &floating,
+            motion(&floating),
+            "UF : F: the position is in the frame in force where it runs, and no UFRAME_NUM=n before this motion selects one".into(),
+        ),
+        (
+            &s,
+            &untaught,
+            line_of(&untaught, "********"),
+            "X = ********: the position was never taught".into(),
+        ),
+        (
+            &s,
+            &large,
+            line_of(&large, "UF : 1000"),
+            "UF : 1000: expected a frame number, 0 to 999, or F (the frame in force)".into(),
+        ),
+    ];
+    assert_refused(&cases);
 }
 
 /// The frame selections naming the motion group (`UTOOL_NUM[GP1]=n`, as ROBOGUIDE and SimPRO

@@ -6,6 +6,7 @@ use crate::program::cartesian::{within_limits, Cartesian, Flags, Frame};
 use crate::program::ls::Config;
 use crate::program::{at, Dialect};
 use std::ops::Range;
+use stiffid_core::common::limits::short;
 use stiffid_core::Result;
 
 /// The pose's members in the order a target takes them, with their units.
@@ -67,11 +68,34 @@ pub(crate) fn frame_number(line: u64, piece: &str) -> Result<Option<(bool, u32)>
         _ => return Ok(None),
     };
     let n = t[2..].trim_start().strip_prefix(':').map(str::trim);
-    match n.and_then(|n| n.parse::<u32>().ok()) {
-        Some(n) => Ok(Some((user, n))),
-        None => Err(at(line, format!("{}: expected a frame number", &t[..2]))),
+    match n {
+        Some("F") => Ok(Some((user, IN_FORCE))),
+        Some(n) => match n.parse::<u32>() {
+            Ok(n) if n <= MAX_FRAME => Ok(Some((user, n))),
+            _ => Err(at(
+                line,
+                format!(
+                    "{} : {}: expected a frame number, 0 to {MAX_FRAME}, or F (the frame in force)",
+                    &t[..2],
+                    short(n)
+                ),
+            )),
+        },
+        None => Err(at(
+            line,
+            format!("{}: expected ': n', a frame number", &t[..2]),
+        )),
     }
 }
+
+/// The largest frame number a position names (a controller holds far fewer: `UFRAME[1..9]`, up
+/// to 61 with the extended frames option).
+const MAX_FRAME: u32 = 999;
+
+/// The number stiffid gives a position's `UF : F` or `UT : F`: the frame in force where its
+/// motion runs (the one `UFRAME_NUM=`/`UTOOL_NUM=` selected before it, [`super::numbered`]), as
+/// FANUC's position registers are by default. No frame the controller holds has it.
+pub(crate) const IN_FORCE: u32 = u32::MAX;
 
 /// The Cartesian target of a position read on `line`: its six pose values, its `CONFIG`, user
 /// and tool frame numbers.

@@ -353,8 +353,10 @@ fn value(
     name: &str,
     units: &[&'static str],
 ) -> Result<(f64, std::ops::Range<usize>, &'static str)> {
-    let (v, span) =
-        number_at(l, from).ok_or_else(|| at(line, format!("{name}: expected a number")))?;
+    let (v, span) = number_at(l, from).ok_or_else(|| match l[from..].trim_start() {
+        t if t.starts_with('*') => at(line, format!("{name} = ********: the position was never taught (the pendant shows its values as asterisks); teach it, or remove the motion to it")),
+        _ => at(line, format!("{name}: expected a number")),
+    })?;
     let unit = l[span.end..].trim_start();
     match units.iter().find(|u| unit.starts_with(*u)) {
         Some(u) => Ok((v, span, u)),

@@ -3,6 +3,9 @@
 //! [`crate::program::cartesian`]).
 //!
 //! - `UF : 0` is the controller's world; `UT : 0` its flange (the tool frame of no tool).
+//! - `UF : F`, `UT : F` is the frame in force where the motion runs: the number the last
+//!   `UFRAME_NUM=`/`UTOOL_NUM=` before it selects (as a FANUC position register follows the
+//!   frames selected when it is used), refused naming the line where the program selects none.
 //! - `UF : n` (n >= 1) is the setup's `[controller] bases` frame `n`, `UT : n` its `tools` frame
 //!   `n` ([`Frame::Numbered`]), refused naming the line where the setup does not give it;
 //!   unless a remark declares the number the setup's own frame: `! stiffid: user_frame = n ;`
@@ -19,6 +22,7 @@
 //!   line. A number selected from a register
 //!   (`UFRAME_NUM=R[i]`) is refused naming that line for every Cartesian position after it.
 
+use super::cartesian::IN_FORCE;
 use super::statements::{Number, Selected};
 use crate::program::cartesian::Frame;
 use crate::program::{at, lines, JointTarget};
@@ -76,11 +80,18 @@ fn frame(
     (line, kind): (u64, Kind),
 ) -> Frame {
     let (word, instruction) = kind.words();
-    let (l, n) = match given {
+    let (l, mut n) = match given {
         Frame::Numbered(l, n) => (*l, *n),
         Frame::World => (line, 0),
         other => return other.clone(),
     };
+    if n == IN_FORCE {
+        match selected {
+            Some(Number::Literal(_, m)) => n = *m,
+            Some(Number::Unread(..)) => {}
+            None => return Frame::Unknown(line, format!("{word} : F: the position is in the frame in force where it runs, and no {instruction}=n before this motion selects one: the controller's, which the program does not say; select it by number ({instruction}=n) before the motion")),
+        }
+    }
     match selected {
         Some(Number::Literal(s, m)) if *m != n => {
             return Frame::Unknown(line, format!("{word} : {n}: the position is in frame {n}, and {instruction}={m} on line {s} is in force: the controller stops such a motion with a frame-number mismatch alarm, or, with the check switched off, moves in frame {m}; select {instruction}={n} before the motion or give the position in frame {m}"));
