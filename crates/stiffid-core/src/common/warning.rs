@@ -21,8 +21,9 @@ pub enum WarningKind {
     /// before it moves and is read in mm.
     Units,
     /// An input passes every range check but looks like a unit slip (lengths in metres where
-    /// millimetres are meant, angles in radians under `_deg` names):
-    /// [`crate::setup::plausibility`].
+    /// millimetres are meant, angles in radians under `_deg` names:
+    /// [`crate::setup::plausibility`]) or a convention slip (a FANUC LS program's joint values
+    /// on a URDF robot whose axes the setup does not couple).
     Plausibility,
     /// Under load steps, some postures' zero-load offset, departure from a straight line or
     /// hysteresis exceeds what the tracker noise explains (`stiffid_identify::steps`).

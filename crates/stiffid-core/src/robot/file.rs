@@ -184,7 +184,7 @@ struct ErrorMapFile {
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct AxisMapFile {
+pub(crate) struct AxisMapFile {
     #[serde(deserialize_with = "crate::common::exact::matrix")]
     matrix: [[f64; 6]; 6],
     #[serde(deserialize_with = "crate::common::exact::array")]
@@ -337,7 +337,7 @@ fn build(file: RobotFile, source_name: &str) -> Result<Robot> {
     let external = super::external::file::build(&file.external_axis, source_name)?;
     let axis_map = match file.axis_map {
         None => AxisMap::default(),
-        Some(m) => axis_map(&m, source_name)?,
+        Some(m) => axis_map(&m, "axis_map", source_name)?,
     };
     Robot::new(file.name, file.source, joints, JointBox::new(lower, upper))
         .and_then(|r| r.with_axis_map(axis_map))
@@ -495,14 +495,16 @@ pub(crate) fn transform(
     Ok(t.isometry())
 }
 
-fn axis_map(m: &AxisMapFile, source_name: &str) -> Result<AxisMap> {
+/// The axis map of the table `name` (a robot file's `[axis_map]`, a setup's
+/// `[robot_axis_map]`), its entries checked against the limits.
+pub(crate) fn axis_map(m: &AxisMapFile, name: &str, source_name: &str) -> Result<AxisMap> {
     for (r, row) in m.matrix.iter().enumerate() {
-        let field = format!("axis_map.matrix[{}]", r + 1);
+        let field = format!("{name}.matrix[{}]", r + 1);
         check_in(source_name, &field, row, &limits::AXIS_MAP_ENTRY)?;
     }
     check_in(
         source_name,
-        "axis_map.offset_deg",
+        &format!("{name}.offset_deg"),
         &m.offset_deg,
         &limits::ANGLE_DEG,
     )?;

@@ -23,6 +23,7 @@ struct SetupFile {
     description: String,
     robot: String,
     robot_tip: Option<String>,
+    robot_axis_map: Option<crate::robot::file::AxisMapFile>,
     #[serde(default)]
     package_paths: Vec<String>,
     robot_base: Option<TransformFile>,
@@ -497,6 +498,9 @@ fn mounted(
     src: &str,
     mount: Option<Isometry3<f64>>,
 ) -> Result<Robot> {
+    if let Some(m) = &f.robot_axis_map {
+        robot = axis_mapped(robot, m, src)?;
+    }
     if let Some(v) = &f.max_speed_deg_s {
         robot = robot.with_max_speeds(crate::robot::file::max_speeds(Some(v), src)?)?;
     }
@@ -512,6 +516,24 @@ fn mounted(
         robot = robot.with_flange(flange)?;
     }
     Ok(robot)
+}
+
+/// `robot` with the setup's `[robot_axis_map]` (a URDF robot, whose joints turn by their own
+/// positions, run by a controller whose axes couple them: FANUC's J2/J3 interaction).
+///
+/// # Errors
+/// [`Error::InvalidField`] (`robot_axis_map.matrix[r]`, `.offset_deg`) out of range or a matrix
+/// that cannot be inverted, and (`robot_axis_map`) where the robot file gives another
+/// `[axis_map]`.
+fn axis_mapped(robot: Robot, m: &crate::robot::file::AxisMapFile, src: &str) -> Result<Robot> {
+    let map = crate::robot::file::axis_map(m, "robot_axis_map", src)?;
+    if *robot.axis_map() != crate::robot::AxisMap::default() && *robot.axis_map() != map {
+        return Err(Error::InvalidField {
+            field: format!("{src}: robot_axis_map"),
+            message: format!("the robot file '{}' gives its own [axis_map], another one: give the map in one place (the setup's [robot_axis_map] is for a URDF robot)", robot.name()),
+        });
+    }
+    robot.with_axis_map(map).map_err(|e| in_file(e, src))
 }
 
 fn deg6(v: &[f64; 6]) -> Vector6<f64> {

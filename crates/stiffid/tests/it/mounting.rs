@@ -96,3 +96,138 @@ fn the_controllers_world_rides_on_the_pedestal() {
         "{e}"
     );
 }
+
+/// The FANUC R-2000iC/165F as ROS-Industrial's `fanuc_r2000ic_support` describes it (its
+/// `r2000ic165f_macro.xacro`: joint origins and axes), a URDF whose joint 3 turns relative to
+/// link 2.
+const R2000IC_URDF: &str = r#"<robot name="fanuc_r2000ic165f">
+  <link name="base_link"/><link name="link_1"/><link name="link_2"/><link name="link_3"/>
+  <link name="link_4"/><link name="link_5"/><link name="link_6"/>
+  <joint name="joint_1" type="revolute"><origin xyz="0 0 0.670"/><parent link="base_link"/><child link="link_1"/><axis xyz="0 0 1"/><limit lower="-3.2288" upper="3.2288" effort="0" velocity="2.26"/></joint>
+  <joint name="joint_2" type="revolute"><origin xyz="0.312 0 0"/><parent link="link_1"/><child link="link_2"/><axis xyz="0 1 0"/><limit lower="-1.0472" upper="1.3264" effort="0" velocity="2.0"/></joint>
+  <joint name="joint_3" type="revolute"><origin xyz="0 0 1.075"/><parent link="link_2"/><child link="link_3"/><axis xyz="0 -1 0"/><limit lower="-2.3038" upper="3.1416" effort="0" velocity="2.18"/></joint>
+  <joint name="joint_4" type="revolute"><origin xyz="0 0 0.225"/><parent link="link_3"/><child link="link_4"/><axis xyz="-1 0 0"/><limit lower="-6.2832" upper="6.2832" effort="0" velocity="3.14"/></joint>
+  <joint name="joint_5" type="revolute"><origin xyz="1.280 0 0"/><parent link="link_4"/><child link="link_5"/><axis xyz="0 -1 0"/><limit lower="-2.1817" upper="2.1817" effort="0" velocity="3.14"/></joint>
+  <joint name="joint_6" type="revolute"><origin xyz="0.215 0 0"/><parent link="link_5"/><child link="link_6"/><axis xyz="-1 0 0"/><limit lower="-6.2832" upper="6.2832" effort="0" velocity="4.54"/></joint>
+</robot>"#;
+
+/// A FANUC's J3 is measured from the horizontal (the J2/J3 interaction), a URDF's joint 3 from
+/// link 2: with the setup's `[robot_axis_map]` (`joint 3 = J2 + J3`) the ROS-Industrial URDF
+/// puts the flange where the built-in robot (the data's DH table and axis map) does at the same
+/// axis angles; without it, far from there. A map beside the robot file's own is refused.
+#[test]
+fn a_urdf_robot_takes_the_controllers_coupled_axes_from_the_setup() {
+    let coupled = "robot_axis_map = { matrix = [[1,0,0,0,0,0], [0,1,0,0,0,0], [0,1,1,0,0,0], [0,0,0,1,0,0], [0,0,0,0,1,0], [0,0,0,0,0,1]], offset_deg = [0,0,0,0,0,0] }\n";
+    let text = setup::builtin_text("fanuc-r2000ic-165f").unwrap();
+    let on_urdf = |extra: &str| {
+        let with = text.replacen("\n[tool]", &format!("\n{extra}\n[tool]"), 1);
+        setup::parse(&with, "urdf.toml", |_, _| {
+            stiffid::robot::urdf::parse(R2000IC_URDF, "r2000ic.urdf", None)
+        })
+        .unwrap()
+    };
+    let preset = presets::get("fanuc-r2000ic-165f").unwrap();
+    let (mapped, plain) = (on_urdf(coupled), on_urdf(""));
+    let mut apart = 0.0f64;
+    for q_deg in [
+        [0.0, 0.0, 0.0, 0.0, -90.0, 0.0],
+        [-60.0, -16.7, -28.9, 3.8, -62.9, 144.9],
+        [20.0, 30.0, 10.0, -40.0, 50.0, 60.0],
+    ] {
+        let q = Vector6::from(q_deg).map(f64::to_radians);
+        let at = preset.frames(&q).flange.translation.vector;
+        let urdf = mapped.robot().frames(&q).flange.translation.vector;
+        assert_relative_eq!(urdf, at, epsilon = 1e-9);
+        apart = apart.max((plain.robot().frames(&q).flange.translation.vector - at).norm());
+    }
+    assert!(apart > 0.3, "{apart} m");
+    // The built-in robot has its own map: another one in the setup is refused.
+    let other = setup::builtin_text("fanuc-r2000ic-165f").unwrap().replacen(
+        "\n[tool]",
+        &format!("\n{coupled}\n[tool]"),
+        1,
+    );
+    let e = setup::parse(&other, "twice.toml", |r, _| presets::get(r)).unwrap_err();
+    assert!(e.to_string().contains("robot_axis_map"), "{e}");
+}
+
+/// The warnings of kind `plausibility` of compensating an LS program of two joint positions on
+/// `setup` (the milling example's stiffness and process).
+fn ls_plausibility(setup: &stiffid::Setup) -> Vec<String> {
+    use stiffid::app::compensate::{self, Input};
+    let pos = |i: u32, q: [f64; 6]| {
+        format!("P[{i}]{{\n   GP1:\n\tUF : 0, UT : 1,\n\tJ1= {:.3} deg,\tJ2= {:.3} deg,\tJ3= {:.3} deg,\n\tJ4= {:.3} deg,\tJ5= {:.3} deg,\tJ6= {:.3} deg\n}};\n", q[0], q[1], q[2], q[3], q[4], q[5])
+    };
+    let text = format!(
+        "/PROG  TWO\n/MN\n   1:J P[1] 100% FINE ;\n   2:J P[2] 100% FINE ;\n/POS\n{}{}/END\n",
+        pos(1, [-60.0, -16.7, -28.9, 3.8, -62.9, 144.9]),
+        pos(2, [-62.0, -15.0, -27.0, 3.8, -62.9, 144.9])
+    );
+    let compliance =
+        stiffid::io::stiffness::parse(include_str!("../../../../examples/milling/stiffness.json"))
+            .unwrap()
+            .compliance(setup.model())
+            .unwrap();
+    let process = stiffid::machining::process::file::parse(
+        include_str!("../../../../examples/milling/aluminium.toml"),
+        "aluminium.toml",
+    )
+    .unwrap();
+    let request = compensate::Request {
+        names: Default::default(),
+        setup,
+        compliance,
+        input: Input::Program {
+            encoding: Default::default(),
+            name: "two.ls".into(),
+            text: &text,
+            data: None,
+            language: stiffid::machining::Language::Robot(
+                stiffid::machining::program::Dialect::FanucLs,
+            ),
+            process_name: "aluminium.toml".into(),
+            process,
+            chord_tolerance: 1e-5,
+            output: stiffid::machining::Language::Robot(
+                stiffid::machining::program::Dialect::FanucLs,
+            ),
+            out_name: "two.ls".into(),
+            settings: Default::default(),
+        },
+        options: stiffid::machining::compensate::Options::for_setup(setup),
+    };
+    let report = compensate::run(request, |_, _: &[_], _: &[_], _: &[_]| {
+        Ok::<(), stiffid::Error>(())
+    })
+    .unwrap();
+    (report.report.warnings.iter())
+        .filter(|w| w.kind == stiffid::app::WarningKind::Plausibility)
+        .map(|w| w.message.clone())
+        .collect()
+}
+
+/// An LS program's joint positions on a URDF robot whose axes the setup does not couple warn
+/// (kind `plausibility`) naming the first joint position's line; coupled, or on the built-in
+/// robot (its own axis map), they do not.
+#[test]
+fn ls_joint_positions_on_an_uncoupled_urdf_robot_warn() {
+    let coupled = "robot_axis_map = { matrix = [[1,0,0,0,0,0], [0,1,0,0,0,0], [0,1,1,0,0,0], [0,0,0,1,0,0], [0,0,0,0,1,0], [0,0,0,0,0,1]], offset_deg = [0,0,0,0,0,0] }\n";
+    let text = include_str!("../../../../examples/milling/fanuc-milling.toml");
+    let on = |extra: &str, urdf: bool| {
+        let with = text.replacen("\n[tool]", &format!("\n{extra}\n[tool]"), 1);
+        setup::parse(&with, "cell.toml", |r, _| match urdf {
+            true => stiffid::robot::urdf::parse(R2000IC_URDF, "r2000ic.urdf", None),
+            false => presets::get(r),
+        })
+        .unwrap()
+    };
+    let warned = ls_plausibility(&on("", true));
+    assert_eq!(warned.len(), 1, "{warned:?}");
+    assert!(
+        warned[0].contains("(line 3 the first)") && warned[0].contains("robot_axis_map"),
+        "{}",
+        warned[0]
+    );
+    assert!(ls_plausibility(&on(coupled, true)).is_empty());
+    assert!(ls_plausibility(&on("", false)).is_empty());
+}

@@ -9,7 +9,7 @@ use crate::app::{Warning, WarningKind};
 use stiffid_core::io::Encoding;
 use stiffid_core::{Error, Result, Setup};
 use stiffid_machining::compensate::Options;
-use stiffid_machining::program::Context;
+use stiffid_machining::program::{Context, Dialect};
 use stiffid_machining::{self as machining, Language, Program};
 
 /// The program of a program input, checked against its output and options, read and its
@@ -147,6 +147,24 @@ pub(super) fn unplaced_g53(program: &Program) -> Option<Warning> {
         Warning::new(
             WarningKind::LeftOut,
             format!("{what} in machine coordinates, which the setup does not place (no [workpiece.offsets] G53), make no point ({word} {}{more}): the axes each names are unknown until the program gives them again, and the robot goes from the point before it to the next point in one move, without that retract; give the G53 frame to have them", shown.join(", ")),
+        )
+    })
+}
+
+/// The warning that an LS program's joint positions are read on a URDF robot whose axes the
+/// setup does not couple (no `robot_axis_map`): a FANUC measures J3 from the horizontal, a URDF's
+/// joint 3 turns relative to link 2.
+pub(super) fn uncoupled_ls(setup: &Setup, program: &Program) -> Option<Warning> {
+    let Program::Robot(p) = program else {
+        return None;
+    };
+    let robot = setup.robot();
+    let joint = p.targets.iter().find(|t| t.cartesian.is_none())?;
+    let uncoupled = *robot.axis_map() == stiffid_core::robot::AxisMap::default();
+    (p.dialect == Dialect::FanucLs && robot.urdf_source().is_some() && uncoupled).then(|| {
+        Warning::new(
+            WarningKind::Plausibility,
+            format!("the LS program's joint positions (line {} the first) are read as the URDF robot's joint positions: a FANUC measures J3 from the horizontal (the J2/J3 interaction), a URDF's joint 3 from link 2, so on a FANUC each J3 is another posture unless the setup couples the axes (robot_axis_map, joint 3 = J2 + J3 for ROS-Industrial's FANUC URDFs)", joint.line),
         )
     })
 }
