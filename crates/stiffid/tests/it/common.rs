@@ -250,3 +250,21 @@ pub fn pocket_krl() -> &'static str {
     });
     &TEXT
 }
+
+/// The milling example's stiffness file (the FANUC's real data) as the compliance of `setup`'s
+/// model.
+pub fn milling_compliance(setup: &Setup) -> stiffid::machining::compensate::Compliance {
+    stiffid::io::stiffness::parse(include_str!("../../../../examples/milling/stiffness.json"))
+        .unwrap()
+        .compliance(setup.model())
+        .unwrap()
+}
+
+/// The milling example's process file (aluminium).
+pub fn milling_process() -> stiffid::machining::process::Process {
+    stiffid::machining::process::file::parse(
+        include_str!("../../../../examples/milling/aluminium.toml"),
+        "aluminium.toml",
+    )
+    .unwrap()
+}

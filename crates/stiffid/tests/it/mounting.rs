@@ -163,16 +163,10 @@ fn ls_plausibility(setup: &stiffid::Setup) -> Vec<String> {
         pos(1, [-60.0, -16.7, -28.9, 3.8, -62.9, 144.9]),
         pos(2, [-62.0, -15.0, -27.0, 3.8, -62.9, 144.9])
     );
-    let compliance =
-        stiffid::io::stiffness::parse(include_str!("../../../../examples/milling/stiffness.json"))
-            .unwrap()
-            .compliance(setup.model())
-            .unwrap();
-    let process = stiffid::machining::process::file::parse(
-        include_str!("../../../../examples/milling/aluminium.toml"),
-        "aluminium.toml",
-    )
-    .unwrap();
+    let (compliance, process) = (
+        crate::common::milling_compliance(setup),
+        crate::common::milling_process(),
+    );
     let request = compensate::Request {
         names: Default::default(),
         setup,

@@ -93,16 +93,10 @@ fn straight() -> String {
 }
 
 fn program(setup: &stiffid::Setup, dialect: Dialect) -> (String, Vec<Compensated>) {
-    let compliance =
-        stiffid::io::stiffness::parse(include_str!("../../../../examples/milling/stiffness.json"))
-            .unwrap()
-            .compliance(setup.model())
-            .unwrap();
-    let process = stiffid::machining::process::file::parse(
-        include_str!("../../../../examples/milling/aluminium.toml"),
-        "aluminium.toml",
-    )
-    .unwrap();
+    let (compliance, process) = (
+        crate::common::milling_compliance(setup),
+        crate::common::milling_process(),
+    );
     let request = compensate::Request {
         names: Default::default(),
         setup,
