@@ -67,3 +67,72 @@ fn a_point_in_a_missing_dat_is_refused_naming_the_line_and_the_point() {
     assert!(!dir.join("c2.src").exists() && !dir.join("c2.dat").exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `PTP XHOME` (KUKA's home position, which the controller's `$config.dat` holds) goes to the
+/// setup's `[controller] home_deg`: a target of the path there, its line written back as read;
+/// without `home_deg` it is refused naming the line and the field.
+#[test]
+fn ptp_xhome_goes_to_the_setups_home_posture() {
+    let dir = temp_dir("krl-xhome");
+    std::fs::write(
+        dir.join("CUT.SRC"),
+        SRC.replace("PTP XP1", "PTP XHOME\r\nPTP XP1"),
+    )
+    .unwrap();
+    std::fs::write(dir.join("CUT.DAT"), DAT).unwrap();
+    let setup = std::fs::read_to_string(example("milling/kuka-milling.toml")).unwrap();
+    std::fs::write(
+        dir.join("home.toml"),
+        format!("{setup}\n[controller]\nhome_deg = [0, 20, 10, 0, 60, 0]\n"),
+    )
+    .unwrap();
+    let run_on = |setup: &Path, out: &str| {
+        stiffid(&[
+            "compensate",
+            "--setup",
+            setup.to_str().unwrap(),
+            "--stiffness",
+            &example("milling/kuka-stiffness.json"),
+            "--program",
+            dir.join("CUT.SRC").to_str().unwrap(),
+            "--process",
+            &example("milling/aluminium.toml"),
+            "--out",
+            dir.join(out).to_str().unwrap(),
+            "--csv",
+            dir.join(format!("{out}.csv")).to_str().unwrap(),
+        ])
+    };
+    let o = run_on(&dir.join("home.toml"), "C2.SRC");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let src = std::fs::read_to_string(dir.join("C2.SRC")).unwrap();
+    let kept: Vec<&str> = src
+        .lines()
+        .map(|l| l.split(" ; bound").next().unwrap())
+        .collect();
+    assert_eq!(
+        kept,
+        ["DEF C2( )", "PTP XHOME", "PTP XP1", "PTP XP2", "END"]
+    );
+    // Not compensated (the controller holds it): no bound, and a warning naming its line.
+    assert!(src.contains("\nPTP XHOME\r\n"), "{src}");
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        stderr.contains("the motions to XHOME (lines 2)"),
+        "{stderr}"
+    );
+    // The home posture is the path's first point, on line 2.
+    let csv = std::fs::read_to_string(dir.join("C2.SRC.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let row: Vec<&str> = csv.lines().nth(1).unwrap().split(',').collect();
+    let col = |name: &str| row[header.iter().position(|h| *h == name).unwrap()];
+    assert_eq!(col("line"), "2");
+    for (k, q) in [0.0, 20.0, 10.0, 0.0, 60.0, 0.0].iter().enumerate() {
+        let read: f64 = col(&format!("q{}_deg", k + 1)).parse().unwrap();
+        assert!((read - q).abs() < 1e-9, "q{}: {read}", k + 1);
+    }
+    let refused = run_on(Path::new(&example("milling/kuka-milling.toml")), "C3.SRC");
+    assert_usage_error(&refused, &["line 2", "PTP XHOME", "[controller] home_deg"]);
+    assert!(!dir.join("C3.SRC").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -160,6 +160,9 @@ pub struct JointTarget {
     /// How the controller moves to it: a joint motion, or a linear one at its programmed
     /// speed ([`speed`]).
     pub speed: speed::Speed,
+    /// A point the controller holds, not the file (KRL's `XHOME`, from the setup's
+    /// `[controller] home_deg`): compensated as every target, never written back.
+    held: bool,
 }
 
 impl JointTarget {
@@ -170,6 +173,29 @@ impl JointTarget {
             incremental,
             ..self.clone()
         }
+    }
+
+    /// The point the controller holds at axis angles `q_deg` (deg), moved to by a joint motion
+    /// on `line` (KRL's `XHOME`): not in the file, never written back.
+    pub(crate) fn held(line: u64, q_deg: [f64; 6]) -> Self {
+        JointTarget {
+            line,
+            q_deg,
+            external: Vec::new(),
+            spans: Default::default(),
+            external_spans: Vec::new(),
+            origin: line,
+            incremental: false,
+            cartesian: None,
+            speed: speed::Speed::Joint,
+            held: true,
+        }
+    }
+
+    /// Whether the controller holds the point, not the file (KRL's `XHOME`): it is never
+    /// written back, so its compensation is not applied.
+    pub fn is_held(&self) -> bool {
+        self.held
     }
 
     /// A Cartesian target on `line` (its axis angles NaN until resolved).
@@ -184,6 +210,7 @@ impl JointTarget {
             incremental: false,
             cartesian: Some(Box::new(c)),
             speed: speed::Speed::Unread(NOT_READ.into()),
+            held: false,
         }
     }
 
@@ -246,6 +273,9 @@ pub struct Context<'a> {
     /// A G-code program's controller: its work offsets, start and home positions and tool
     /// lengths ([`crate::gcode::Machine::of`]); `None`: none of them known.
     pub machine: Option<&'a crate::gcode::Machine>,
+    /// The controller's home posture, deg (`[controller] home_deg`): where a KRL program's
+    /// `PTP XHOME` goes (the controller's `$config.dat` holds it); `None`: not known.
+    pub home_deg: Option<[f64; 6]>,
 }
 
 impl<'a> Context<'a> {
@@ -257,6 +287,7 @@ impl<'a> Context<'a> {
             tool: Some((c.adapter * Translation3::from(setup.tool().tcp), &c.tools)),
             data: None,
             machine: None,
+            home_deg: c.program.home_deg,
         }
     }
 
@@ -422,7 +453,7 @@ impl JointProgram {
         // Each number to write: its span, the target, its text, whether it changed.
         let mut edits: Vec<(Range<usize>, usize, String, bool)> =
             Vec::with_capacity(6 * self.targets.len());
-        for (i, t) in self.targets.iter().enumerate() {
+        for (i, t) in self.targets.iter().enumerate().filter(|(_, t)| !t.held) {
             let values = |j: usize| {
                 let e = external[j].iter().map(|v| v.unwrap_or(0.0));
                 q_deg[j].iter().copied().chain(e).collect::<Vec<f64>>()
@@ -571,6 +602,7 @@ pub(crate) fn six(
         incremental: false,
         cartesian: None,
         speed: speed::Speed::Unread(NOT_READ.into()),
+        held: false,
     })
 }
 

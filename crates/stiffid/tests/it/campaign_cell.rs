@@ -266,6 +266,7 @@ fn read_back(text: &str, dialect: Dialect) -> Vec<ReadBack> {
         external: vec![PULSES_PER_MM],
     };
     let context = stiffid::machining::program::Context {
+        home_deg: None,
         pulses: Some(&pulses),
         tool: None,
         data: None,

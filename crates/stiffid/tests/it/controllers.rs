@@ -261,6 +261,7 @@ fn each_generating_controller_writes_the_cells_external_axes_in_its_form() {
         // Read back: the six angles and the two external values.
         // INFORM's pulses are the setup's (the job states none).
         let context = program::Context {
+            home_deg: None,
             pulses: Some(&pulses),
             tool: None,
             data,

@@ -113,7 +113,7 @@ impl Controller for Krl {
         self.read_in(text, &super::Context::default())
     }
     fn read_in(&self, text: &str, context: &super::Context) -> Result<Read> {
-        let (targets, axes) = read::targets(text, context.data)?;
+        let (targets, axes) = read::targets(text, (context.data, context.home_deg))?;
         Ok(Read {
             targets,
             axes,

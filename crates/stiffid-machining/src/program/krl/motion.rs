@@ -13,6 +13,8 @@ pub(super) struct Context<'a> {
     pub declared: &'a Declarations,
     /// Whether the `.dat` was read.
     pub data: bool,
+    /// The controller's home posture, deg (`[controller] home_deg`): `XHOME`'s value.
+    pub home: Option<[f64; 6]>,
 }
 
 /// The targets of a motion line (one, or for `CIRC` the auxiliary point then the end point),
@@ -108,6 +110,10 @@ fn one(
         Some((_, Ok(t))) => t.moved_to(line, false),
         Some((_, Err(why))) => return Err(at(line, format!("{first} {name}: {why}"))),
         None if name.is_empty() => return Err(at(line, format!("{first}: expected a point or an aggregate {{..}}"))),
+        None if upper == "XHOME" => match context.home {
+            Some(q) => JointTarget::held(line, q),
+            None => return Err(at(line, format!("{first} {name}: the home position, which the controller's $config.dat holds: give it in the setup ([controller] home_deg), or declare {name} in the program's .dat as E6AXIS"))),
+        },
         None if name.starts_with('$') => return Err(at(line, format!("{first} {name}: a system variable, whose value is the controller's at run time: give the motion a point declared in the .src or its .dat"))),
         None if context.data => return Err(at(line, format!("{first} {name}: not a point declared in the .src or its .dat ($config.dat or a system variable holds it, which stiffid cannot know): declare it in the .dat as E6POS or E6AXIS"))),
         None => return Err(at(line, format!("{first} {name}: not a point declared in the .src, and no .dat beside it (the .src's stem with .dat) declares it: give the .dat beside the .src, or declare the point in it as E6POS or E6AXIS"))),

@@ -13,19 +13,24 @@ use std::collections::HashMap;
 use stiffid_core::common::limits::short;
 use stiffid_core::Result;
 
-/// Every joint target of the `.src` `text` (with its `.dat` `data` when given), in the order of
-/// its motions (module docs), and the program's external axes: `E1` to the highest `E`n any
+/// Every joint target of the `.src` `text` (with its `.dat` `data` when given; `XHOME` the
+/// controller's `home` posture, deg, when known), in the order of its motions (module docs), and
+/// the program's external axes: `E1` to the highest `E`n any
 /// target gives.
 ///
 /// # Errors
 /// [`stiffid_core::Error::Program`] naming the line: a motion outside the subset, to a point
 /// neither file declares, inside a loop or branch, in a routine other than the program's first,
 /// a `GOTO` in a program with motions.
-pub(crate) fn targets(text: &str, data: Option<&str>) -> Result<(Vec<JointTarget>, Vec<String>)> {
+pub(crate) fn targets(
+    text: &str,
+    (data, home): (Option<&str>, Option<[f64; 6]>),
+) -> Result<(Vec<JointTarget>, Vec<String>)> {
     let declared = declarations(text, data)?;
     let context = Context {
         declared: &declared,
         data: data.is_some(),
+        home,
     };
     let setters = frame_routines(text, &declared);
     let mut out = Vec::new();

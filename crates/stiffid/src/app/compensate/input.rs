@@ -1,7 +1,8 @@
 //! A program input of the compensate job read and checked before anything is computed: its
 //! output, options and settings, its text, and its Cartesian targets resolved as the controller
 //! moves to them; the warnings about the input itself (its encoding, a G-code program's
-//! unstated units and unplaced G53 rapids).
+//! unstated units and unplaced G53 rapids, an LS program's uncoupled axes, the points the
+//! controller holds).
 
 use super::written::program_tool;
 use super::{generate, in_input, output, Input};
@@ -165,6 +166,29 @@ pub(super) fn uncoupled_ls(setup: &Setup, program: &Program) -> Option<Warning> 
         Warning::new(
             WarningKind::Plausibility,
             format!("the LS program's joint positions (line {} the first) are read as the URDF robot's joint positions: a FANUC measures J3 from the horizontal (the J2/J3 interaction), a URDF's joint 3 from link 2, so on a FANUC each J3 is another posture unless the setup couples the axes (robot_axis_map, joint 3 = J2 + J3 for ROS-Industrial's FANUC URDFs)", joint.line),
+        )
+    })
+}
+
+/// The lines of a robot program's motions to points the controller holds (KRL's `XHOME`).
+pub(super) fn held_lines(program: &Program) -> Vec<u64> {
+    match program {
+        Program::Robot(p) => (p.targets.iter())
+            .filter(|t| t.is_held())
+            .map(|t| t.line)
+            .collect(),
+        Program::GCode(_) => Vec::new(),
+    }
+}
+
+/// The warning that the motions on `lines` go to the controller's home (KRL's `XHOME`, at the
+/// setup's `[controller] home_deg`), which the program does not hold: not compensated.
+pub(super) fn held_warning(lines: &[u64]) -> Option<Warning> {
+    let shown: Vec<String> = lines.iter().map(u64::to_string).collect();
+    (!lines.is_empty()).then(|| {
+        Warning::new(
+            WarningKind::LeftOut,
+            format!("the motions to XHOME (lines {}) go to the controller's home position, which its $config.dat holds and the setup gives ([controller] home_deg): they are read at the home posture, and written as read, not compensated (no bound)", shown.join(", ")),
         )
     })
 }

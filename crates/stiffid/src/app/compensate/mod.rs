@@ -40,7 +40,8 @@ mod written;
 use crate::app::compensate::document::{Names, Summary};
 use crate::app::{Warning, WarningKind};
 use input::{
-    check_tcp, encoding_warning, read_checked, uncoupled_ls, unplaced_g53, unstated_units,
+    check_tcp, encoding_warning, held_lines, held_warning, read_checked, uncoupled_ls,
+    unplaced_g53, unstated_units,
 };
 pub use input::{read_program, read_program_in};
 use stiffid_core::io::Encoding;
@@ -478,8 +479,11 @@ where
                 Some(to) => renamed(&compensated.program, d, to),
                 None => compensated.program.clone(),
             };
+            let held = held_lines(&program);
+            out.warnings.extend(held_warning(&held));
             let lines: Vec<(u64, f64)> = (compensated.points.iter())
                 .zip(&compensated.results)
+                .filter(|(p, _)| !held.contains(&p.line))
                 .map(|(p, r)| (p.line, r.budget.bound))
                 .collect();
             (

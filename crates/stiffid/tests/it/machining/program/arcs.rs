@@ -318,6 +318,7 @@ fn each_language_writes_its_circular_moves_and_reads_them_back() {
         let back = match dialect {
             Dialect::Inform => {
                 let context = Context {
+                    home_deg: None,
                     pulses: Some(&pulses),
                     tool: None,
                     data: None,

@@ -116,6 +116,7 @@ fn generated_programs_carry_the_headers_their_controllers_write() {
         external: Vec::new(),
     };
     let context = Context {
+        home_deg: None,
         pulses: Some(&pulses),
         tool: None,
         data: None,

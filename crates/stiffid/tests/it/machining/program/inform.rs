@@ -14,6 +14,7 @@ use stiffid_machining::program::{parse, parse_in, Context, Dialect};
 /// What a setup with the controller's pulses `p` tells the reader.
 fn with(p: &Pulses) -> Context<'_> {
     Context {
+        home_deg: None,
         pulses: Some(p),
         tool: None,
         data: None,

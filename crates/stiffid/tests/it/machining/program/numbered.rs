@@ -82,6 +82,7 @@ fn read_back(
             let c = s.workcell().controller();
             let tool = Isometry3::from(Translation3::from(s.tool().tcp));
             let context = Context {
+                home_deg: None,
                 pulses: Some(pulses),
                 tool: Some((tool, &c.tools)),
                 data: None,
