@@ -369,12 +369,18 @@ fn gravity_lumped_bodies_recovered() {
 /// robot file calibrates again: its own calibration's files reproduce it.
 #[test]
 fn calibrated_robot_files_reproduce_positions() {
-    let urdf_robot = urdf::parse(
-        include_str!("../../../data/comau-nj165.urdf"),
-        "comau-nj165.urdf",
-        None,
-    )
-    .unwrap();
+    // A controller's world away from the base frame (a FANUC's at the height of axis 2, turned):
+    // the calibrated files carry it; a URDF's as ROS-Industrial's `base` link.
+    let world = Isometry3::new(
+        Vector3::new(0.01, -0.02, 0.675),
+        Vector3::new(0.0, 0.0, 1.0),
+    );
+    let base = format!(
+        "<link name=\"base\"/><joint name=\"base_link-base\" type=\"fixed\"><parent link=\"world\"/><child link=\"base\"/>{}</joint></robot>",
+        stiffid_core::robot::urdf_write::origin_xml(&world)
+    );
+    let text = include_str!("../../../data/comau-nj165.urdf").replace("</robot>", &base);
+    let urdf_robot = urdf::parse(&text, "comau-nj165.urdf", None).unwrap();
     let robots = [
         fanuc(),
         presets::get("comau-smart5-nj165-3.0").unwrap(),
@@ -382,6 +388,7 @@ fn calibrated_robot_files_reproduce_positions() {
         ur10(),
         urdf_robot,
     ];
+    let robots = robots.map(|r| r.with_controller_world(world).unwrap());
     for (n, robot) in robots.iter().enumerate() {
         for measured_in in [MeasuredIn::Tracker, MeasuredIn::Base] {
             let mut robot = robot.clone();
@@ -454,6 +461,14 @@ fn calibrated_files_agree(robot: &Robot, measured_in: MeasuredIn, seed: u64, n: 
         }
     }
     from_urdf.iter().for_each(same_limits);
+    for written in [Some(&from_toml), from_urdf.as_ref()].into_iter().flatten() {
+        let (a, b) = (written.controller_world(), robot.controller_world());
+        assert!(
+            (a.translation.vector - b.translation.vector).norm() < 1e-12
+                && a.rotation.angle_to(&b.rotation) < 1e-12,
+            "robot {n}: controller world {a} vs {b}"
+        );
+    }
     toml
 }
 
