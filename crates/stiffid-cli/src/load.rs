@@ -122,17 +122,13 @@ fn existing(path: &Path) -> Option<Result<String>> {
 /// and the encoding they were read in: UTF-8, else Latin-1 ([`io::program_texts`]), with the
 /// file's name in the error. Each file is remembered as an input ([`input_at`]).
 pub fn read_program(path: &Path) -> Result<(String, Option<String>, io::Encoding)> {
-    let data = stiffid_machining::program::krl::data_beside(path);
-    let mut files = Vec::new();
-    for p in [Some(path), data.as_deref()].into_iter().flatten() {
-        let name = p.display().to_string();
-        let bytes = io::read_bytes(&name, open(p)?.into_inner())?;
-        files.push((name, bytes));
-    }
-    let named = files.iter().map(|(n, b)| (n.as_str(), b.clone())).collect();
-    let (mut texts, encoding) = io::program_texts(named)?;
-    let data = (texts.len() == 2).then(|| texts.remove(1));
-    Ok((texts.remove(0), data, encoding))
+    let read = |p: &Path| -> Result<Vec<u8>> {
+        Ok(io::read_bytes(
+            &p.display().to_string(),
+            open(p)?.into_inner(),
+        )?)
+    };
+    stiffid_machining::program::read_files(path, read, anyhow::Error::from)
 }
 
 /// The text of a file, with its name in the error: at most [`limits::MAX_INPUT_BYTES`], UTF-8

@@ -134,17 +134,9 @@ pub fn read(path: &Path) -> Result<String, PyErr> {
 /// and the encoding they were read in: UTF-8, else Latin-1 ([`io::program_texts`]); the errors
 /// of [`read`].
 pub fn read_program(path: &Path) -> Result<(String, Option<String>, io::Encoding), PyErr> {
-    let data = stiffid_machining::program::krl::data_beside(path);
-    let mut files = Vec::new();
-    for p in [Some(path), data.as_deref()].into_iter().flatten() {
-        let name = p.display().to_string();
-        let bytes = io::read_bytes(&name, open(p)?.into_inner()).map_err(raise)?;
-        files.push((name, bytes));
-    }
-    let named = files.iter().map(|(n, b)| (n.as_str(), b.clone())).collect();
-    let (mut texts, encoding) = io::program_texts(named).map_err(raise)?;
-    let data = (texts.len() == 2).then(|| texts.remove(1));
-    Ok((texts.remove(0), data, encoding))
+    let read =
+        |p: &Path| io::read_bytes(&p.display().to_string(), open(p)?.into_inner()).map_err(raise);
+    stiffid_machining::program::read_files(path, read, raise)
 }
 
 /// The file at `path` opened for reading, the path in the error (`FileNotFoundError` or

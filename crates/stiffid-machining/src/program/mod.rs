@@ -278,6 +278,29 @@ pub struct Context<'a> {
     pub home_deg: Option<[f64; 6]>,
 }
 
+/// The text of the program at `path`, of its `.dat` when it is a KRL program with one beside it
+/// ([`krl::data_beside`]), and the encoding they were read in: UTF-8, else Latin-1
+/// ([`stiffid_core::io::program_texts`]). `read` gives a file's bytes (a front end's reading,
+/// with the file's name in its error); `wrap` turns a text's error into the caller's.
+///
+/// # Errors
+/// Those of `read`, and of [`stiffid_core::io::program_texts`] through `wrap`.
+pub fn read_files<E>(
+    path: &std::path::Path,
+    mut read: impl FnMut(&std::path::Path) -> std::result::Result<Vec<u8>, E>,
+    wrap: impl Fn(Error) -> E,
+) -> std::result::Result<(String, Option<String>, stiffid_core::io::Encoding), E> {
+    let data = krl::data_beside(path);
+    let mut files = Vec::new();
+    for p in [Some(path), data.as_deref()].into_iter().flatten() {
+        files.push((p.display().to_string(), read(p)?));
+    }
+    let named = files.iter().map(|(n, b)| (n.as_str(), b.clone())).collect();
+    let (mut texts, encoding) = stiffid_core::io::program_texts(named).map_err(wrap)?;
+    let data = (texts.len() == 2).then(|| texts.remove(1));
+    Ok((texts.remove(0), data, encoding))
+}
+
 impl<'a> Context<'a> {
     /// What `setup` says of its programs.
     pub fn of(setup: &'a Setup) -> Self {
