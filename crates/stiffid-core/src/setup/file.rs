@@ -533,7 +533,16 @@ fn axis_mapped(robot: Robot, m: &crate::robot::file::AxisMapFile, src: &str) -> 
             message: format!("the robot file '{}' gives its own [axis_map], another one: give the map in one place (the setup's [robot_axis_map] is for a URDF robot)", robot.name()),
         });
     }
-    robot.with_axis_map(map).map_err(|e| in_file(e, src))
+    let renamed = |e: Error| match e {
+        Error::InvalidField { field, message } => Error::InvalidField {
+            field: field.replacen("axis_map", "robot_axis_map", 1),
+            message,
+        },
+        other => other,
+    };
+    robot
+        .with_axis_map(map)
+        .map_err(|e| in_file(renamed(e), src))
 }
 
 fn deg6(v: &[f64; 6]) -> Vector6<f64> {

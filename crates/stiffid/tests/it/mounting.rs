@@ -141,6 +141,22 @@ fn a_urdf_robot_takes_the_controllers_coupled_axes_from_the_setup() {
         apart = apart.max((plain.robot().frames(&q).flange.translation.vector - at).norm());
     }
     assert!(apart > 0.3, "{apart} m");
+    // A map that cannot be inverted is refused naming the setup's field.
+    let singular = coupled.replacen("[[1,0,0", "[[0,0,0", 1);
+    let with = setup::builtin_text("fanuc-r2000ic-165f").unwrap().replacen(
+        "\n[tool]",
+        &format!("\n{singular}\n[tool]"),
+        1,
+    );
+    let e = setup::parse(&with, "urdf.toml", |_, _| {
+        stiffid::robot::urdf::parse(R2000IC_URDF, "r2000ic.urdf", None)
+    })
+    .unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("urdf.toml: robot_axis_map.matrix: expected an invertible"),
+        "{e}"
+    );
     // The built-in robot has its own map: another one in the setup is refused.
     let other = setup::builtin_text("fanuc-r2000ic-165f").unwrap().replacen(
         "\n[tool]",
