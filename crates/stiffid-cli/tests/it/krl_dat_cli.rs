@@ -134,5 +134,10 @@ fn ptp_xhome_goes_to_the_setups_home_posture() {
     let refused = run_on(Path::new(&example("milling/kuka-milling.toml")), "C3.SRC");
     assert_usage_error(&refused, &["line 2", "PTP XHOME", "[controller] home_deg"]);
     assert!(!dir.join("C3.SRC").exists());
+    // A path motion there (under the process's force) would not be compensated: refused.
+    let lin = SRC.replace("PTP XP1", "LIN XHOME\r\nPTP XP1");
+    std::fs::write(dir.join("CUT.SRC"), lin).unwrap();
+    let refused = run_on(&dir.join("home.toml"), "C4.SRC");
+    assert_usage_error(&refused, &["line 2", "LIN XHOME", "move there with PTP"]);
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -111,7 +111,8 @@ fn one(
         Some((_, Err(why))) => return Err(at(line, format!("{first} {name}: {why}"))),
         None if name.is_empty() => return Err(at(line, format!("{first}: expected a point or an aggregate {{..}}"))),
         None if upper == "XHOME" => match context.home {
-            Some(q) => JointTarget::held(line, q),
+            Some(q) if matches!(first, "PTP" | "SPTP") => JointTarget::held(line, q),
+            Some(_) => return Err(at(line, format!("{first} {name}: a path motion to the home position, which the controller holds and stiffid does not compensate: move there with PTP"))),
             None => return Err(at(line, format!("{first} {name}: the home position, which the controller's $config.dat holds: give it in the setup ([controller] home_deg), or declare {name} in the program's .dat as E6AXIS"))),
         },
         None if name.starts_with('$') => return Err(at(line, format!("{first} {name}: a system variable, whose value is the controller's at run time: give the motion a point declared in the .src or its .dat"))),
