@@ -3,7 +3,8 @@
 //! campaigns read with tracker noise (0.02 mm per coordinate):
 //! - `ur10 100x1`: a UR10 (Universal Robots' DH table) read at one point 109 mm along the flange
 //!   axis at 100 postures, the true robot with 0.5 mm / 0.5 mrad geometric errors and a joint
-//!   error map on joints 2 and 5 (as the real UR10's tracker data calls for);
+//!   error map on joints 2 and 5 (a small picked model: the real UR10's tracker data calls for
+//!   maps of 32 harmonics on five or six joints, docs/performance.md);
 //! - `loaded 100x3x1`: the COMAU of the built-in `zhang2021-comau-nj165` setup, its first
 //!   measuring point read unloaded and under two wrenches at 100 postures within the setup's
 //!   bounds (300 readings), the drives 30 % more compliant than the setup's nominal;

@@ -115,8 +115,9 @@ const WIDE: usize = 32;
 
 /// `a . b` over the shorter length, with four partial sums (independent chains run in parallel).
 ///
-/// On an x86-64 processor with AVX, vectors of 32 entries or more are summed with 256-bit
-/// instructions: the same four partial sums in the same order, multiplications and additions
+/// On an x86-64 processor with AVX, vectors of 32 entries or more are summed with packed AVX
+/// instructions (the compiler packs the four sums two to an instruction): the same four partial
+/// sums in the same order, multiplications and additions
 /// separately rounded (no fused multiply-add), so the result is the same to the last bit on
 /// every processor.
 pub fn dot(a: &[f64], b: &[f64]) -> f64 {
