@@ -2,7 +2,9 @@
 //! controller knows it: its nominal kinematics, not a calibrated file, and not another robot. A
 //! controller of another robot would put every Cartesian target decimetres to metres away; a
 //! calibrated file run as the nominal one would move every target by the calibration's
-//! correction (millimetres) without a word.
+//! correction (millimetres) without a word. One controller has one world: a controller's robot
+//! whose world ([`Robot::controller_world`]) is not the setup robot's would leave a program's
+//! positions read in one and written in the other.
 
 use crate::{Error, Result, Robot};
 use nalgebra::Vector6;
@@ -16,11 +18,13 @@ pub(crate) const SAME_ROBOT_MM: f64 = 20.0;
 /// Refuses a `[controller] robot` that is a calibrated file (with nominal kinematics), or whose
 /// flange lies more than [`SAME_ROBOT_MM`] from the setup's robot's at any of 13 postures spread
 /// over the setup robot's joint limits (the centre, and each axis at a quarter and three
-/// quarters of its range). `reference` is the setup's `robot` field, `src` the file name.
+/// quarters of its range), or whose controller's world lies more than
+/// [`super::calibrated::PART_TOLERANCE_M`] or [`super::calibrated::PART_TOLERANCE_RAD`] from the
+/// setup robot's. `reference` is the setup's `robot` field, `src` the file name.
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`controller.robot`) naming both robots, and for another robot the
-/// posture and the distance.
+/// posture and the distance, for another world both worlds and how far apart they are.
 pub(super) fn check(robot: &Robot, controller: &Robot, reference: &str, src: &str) -> Result<()> {
     let fail = |message: String| Error::InvalidField {
         field: format!("{src}: controller.robot"),
@@ -44,7 +48,7 @@ pub(super) fn check(robot: &Robot, controller: &Robot, reference: &str, src: &st
         (d.is_nan() || d > SAME_ROBOT_MM).then_some((q, d))
     });
     match far {
-        None => Ok(()),
+        None => same_world(robot, controller, reference).map_err(fail),
         Some((q, d)) => Err(fail(format!(
             "'{}' is not the setup's robot '{reference}' ('{}'): at the axis angles [{}] deg their flanges are {} mm apart (more than {SAME_ROBOT_MM} mm, more than any calibration moves a robot); name the robot file the controller of this robot runs",
             controller.name(),
@@ -59,4 +63,32 @@ pub(super) fn check(robot: &Robot, controller: &Robot, reference: &str, src: &st
 fn flange_distance_mm(a: &Robot, b: &Robot, q: &Vector6<f64>) -> f64 {
     let (fa, fb) = (a.frames(q).flange, b.frames(q).flange);
     (fa.translation.vector - fb.translation.vector).norm() * 1e3
+}
+
+/// Whether the controller's robot places the controller's world where the setup's robot does
+/// (within [`super::calibrated::PART_TOLERANCE_M`] and [`super::calibrated::PART_TOLERANCE_RAD`]),
+/// else why not: the program's positions are stated in that world, and a world taken from one
+/// file while the controller runs the other moves every position by the difference.
+fn same_world(
+    robot: &Robot,
+    controller: &Robot,
+    reference: &str,
+) -> std::result::Result<(), String> {
+    let (a, b) = (robot.controller_world(), controller.controller_world());
+    let origin = (a.translation.vector - b.translation.vector).norm();
+    let angle = a.rotation.angle_to(&b.rotation);
+    use super::calibrated::{words, PART_TOLERANCE_M, PART_TOLERANCE_RAD};
+    if origin <= PART_TOLERANCE_M && angle <= PART_TOLERANCE_RAD {
+        return Ok(());
+    }
+    let short = crate::common::words::number;
+    Err(format!(
+        "'{}' places the controller's world (where a program's positions are) at {} in its base frame, the setup's robot '{reference}' ('{}') at {}: {} mm and {} deg apart, and one controller has one world; give both robot files the controller's world ([controller_world]; a URDF: its ROS-Industrial base link)",
+        controller.name(),
+        words(b),
+        robot.name(),
+        words(a),
+        short(origin * 1e3),
+        short(angle.to_degrees())
+    ))
 }

@@ -241,3 +241,35 @@ fn ls_joint_positions_on_an_uncoupled_urdf_robot_warn() {
     assert!(ls_plausibility(&on(coupled, true)).is_empty());
     assert!(ls_plausibility(&on("", false)).is_empty());
 }
+
+/// A `[controller] robot` whose controller's world is not the setup robot's is refused naming
+/// both worlds: one controller has one world, and the program's positions were read and written
+/// in the setup robot's (the FANUC's 670 mm left out without a word). With the same world, the
+/// setup's program world is it.
+#[test]
+fn a_controllers_robot_of_another_world_is_refused() {
+    let preset = presets::text("fanuc-r2000ic-165f").unwrap();
+    let at = preset.find("[controller_world]").unwrap();
+    let without = file::parse(&preset[..at], "fanuc.toml").unwrap();
+    let text = include_str!("../../../../examples/milling/fanuc-milling.toml");
+    let text = text.replace("robot = \"fanuc-r2000ic-165f\"", "robot = \"fanuc.toml\"");
+    let with = format!("{text}\n[controller]\nrobot = \"fanuc-r2000ic-165f\"\n");
+    let on = |robot: stiffid::Robot| {
+        setup::parse(&with, "cell.toml", move |r, _| match r {
+            "fanuc-r2000ic-165f" => presets::get(r),
+            _ => Ok(robot.clone()),
+        })
+    };
+    let e = on(without).unwrap_err().to_string();
+    assert!(
+        e.contains("cell.toml: controller.robot")
+            && e.contains("at xyz_mm = [0, 0, 670], rpy_deg = [0, 0, 0] in its base frame")
+            && e.contains("at xyz_mm = [0, 0, 0], rpy_deg = [0, 0, 0]: 670 mm and 0 deg apart"),
+        "{e}"
+    );
+    let same = on(presets::get("fanuc-r2000ic-165f").unwrap()).unwrap();
+    assert_eq!(
+        same.program_world().translation.vector,
+        Vector3::new(0.0, 0.0, 0.670)
+    );
+}
