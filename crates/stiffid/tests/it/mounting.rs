@@ -273,3 +273,51 @@ fn a_controllers_robot_of_another_world_is_refused() {
         Vector3::new(0.0, 0.0, 0.670)
     );
 }
+
+/// The setup's `[robot_axis_map]` is the URDF robot's: a `[controller] robot` with its own
+/// `[axis_map]` (the built-in FANUC, whose axes are the controller's already) keeps it and is
+/// accepted beside the coupled URDF (it was refused as a robot file of another map); a
+/// `[controller] robot` without one (the URDF again) takes the setup's.
+#[test]
+fn a_controllers_robot_of_its_own_axis_map_keeps_it() {
+    let coupled = "robot_axis_map = { matrix = [[1,0,0,0,0,0], [0,1,0,0,0,0], [0,1,1,0,0,0], [0,0,0,1,0,0], [0,0,0,0,1,0], [0,0,0,0,0,1]], offset_deg = [0,0,0,0,0,0] }";
+    // ROS-Industrial's `base` link: FANUC's world, 670 mm above base_link.
+    let urdf = R2000IC_URDF.replace("</robot>", "<link name=\"base\"/><joint name=\"base_link-base\" type=\"fixed\"><origin xyz=\"0 0 0.670\"/><parent link=\"base_link\"/><child link=\"base\"/></joint></robot>");
+    let text = include_str!("../../../../examples/milling/fanuc-milling.toml").replace(
+        "robot = \"fanuc-r2000ic-165f\"",
+        &format!("robot = \"r2000ic.urdf\"\n{coupled}"),
+    );
+    let on = |controller: &str| {
+        let with = format!("{text}\n[controller]\nrobot = \"{controller}\"\n");
+        setup::parse(&with, "cell.toml", |r, _| match r {
+            "r2000ic.urdf" => stiffid::robot::urdf::parse(&urdf, r, None),
+            _ => presets::get(r),
+        })
+        .unwrap()
+    };
+    let preset = presets::get("fanuc-r2000ic-165f").unwrap();
+    let j3 = Vector6::new(0.0, 1.0, 1.0, 0.0, 0.0, 0.0);
+    for (name, row3) in [
+        // The preset's row 3: theta_3 = -q_2 - q_3.
+        (
+            "fanuc-r2000ic-165f",
+            Vector6::new(0.0, -1.0, -1.0, 0.0, 0.0, 0.0),
+        ),
+        ("r2000ic.urdf", j3),
+    ] {
+        let setup = on(name);
+        let controller = setup.controller_robot().unwrap();
+        assert_eq!(controller.axis_map().matrix.row(2).transpose(), row3);
+        let q = Vector6::new(-60.0, -16.7, -28.9, 3.8, -62.9, 144.9).map(f64::to_radians);
+        assert_relative_eq!(
+            controller.frames(&q).flange.translation.vector,
+            preset.frames(&q).flange.translation.vector,
+            epsilon = 1e-9
+        );
+        assert_relative_eq!(
+            setup.program_world().translation.vector,
+            Vector3::new(0.0, 0.0, 0.670),
+            epsilon = 1e-15
+        );
+    }
+}
