@@ -536,10 +536,16 @@ fn mounted(
 /// # Errors
 /// [`Error::InvalidField`] (`robot_axis_map.matrix[r]`, `.offset_deg`) out of range or a matrix
 /// that cannot be inverted, and (`robot_axis_map`) where the robot file gives another
-/// `[axis_map]`.
+/// `[axis_map]` (an entry or offset more than 1e-12 from the setup's).
 fn axis_mapped(robot: Robot, m: &crate::robot::file::AxisMapFile, src: &str) -> Result<Robot> {
     let map = crate::robot::file::axis_map(m, "robot_axis_map", src)?;
-    if *robot.axis_map() != crate::robot::AxisMap::default() && *robot.axis_map() != map {
+    let own = robot.axis_map();
+    // A calibrated file writes the map it was calibrated with in degrees: read back, an offset
+    // may differ from the setup's in the last bit.
+    let apart = (own.matrix - map.matrix)
+        .amax()
+        .max((own.offset - map.offset).amax());
+    if *own != crate::robot::AxisMap::default() && apart > 1e-12 {
         return Err(Error::InvalidField {
             field: format!("{src}: robot_axis_map"),
             message: format!("the robot file '{}' gives its own [axis_map], another one: give the map in one place (the setup's [robot_axis_map] is for a URDF robot)", robot.name()),

@@ -321,3 +321,30 @@ fn a_controllers_robot_of_its_own_axis_map_keeps_it() {
         );
     }
 }
+
+/// A calibrated robot file writes its axis map's offsets in degrees (`calibrate --out`: 3 deg
+/// as 3.0000000000000004 after the round trip through radians); the setup that gave the map
+/// (`robot_axis_map`, 3 deg) reads it as the same map, not as the file's own other one.
+#[test]
+fn the_setups_axis_map_is_the_one_a_calibrated_file_writes_back() {
+    let written = 3f64.to_radians().to_degrees();
+    assert_eq!(written, 3.0000000000000004);
+    let offsets = |third: f64| format!("offset_deg = [0, 0, {third:?}, 0, 0, 0]");
+    let preset = presets::text("fanuc-r2000ic-165f").unwrap();
+    let robot = file::parse(
+        &preset.replace("offset_deg = [0, 0, 0, 0, 0, 0]", &offsets(written)),
+        "cal.toml",
+    )
+    .unwrap();
+    let map = format!("robot_axis_map = {{ matrix = [[1,0,0,0,0,0], [0,1,0,0,0,0], [0,-1,-1,0,0,0], [0,0,0,-1,0,0], [0,0,0,0,-1,0], [0,0,0,0,0,-1]], {} }}", offsets(3.0));
+    let text = include_str!("../../../../examples/milling/fanuc-milling.toml").replace(
+        "robot = \"fanuc-r2000ic-165f\"",
+        &format!("robot = \"cal.toml\"\n{map}"),
+    );
+    let setup = setup::parse(&text, "cell.toml", |_, _| Ok(robot.clone())).unwrap();
+    assert_eq!(setup.robot().axis_map().offset[2], 3f64.to_radians());
+    // Another map is still refused.
+    let other = text.replace("offset_deg = [0, 0, 3.0,", "offset_deg = [0, 0, 3.001,");
+    let e = setup::parse(&other, "cell.toml", |_, _| Ok(robot.clone())).unwrap_err();
+    assert!(e.to_string().contains("cell.toml: robot_axis_map"), "{e}");
+}
