@@ -281,8 +281,9 @@ fn a_controllers_robot_of_another_world_is_refused() {
 #[test]
 fn a_controllers_robot_of_its_own_axis_map_keeps_it() {
     let coupled = "robot_axis_map = { matrix = [[1,0,0,0,0,0], [0,1,0,0,0,0], [0,1,1,0,0,0], [0,0,0,1,0,0], [0,0,0,0,1,0], [0,0,0,0,0,1]], offset_deg = [0,0,0,0,0,0] }";
-    // ROS-Industrial's `base` link: FANUC's world, 670 mm above base_link.
-    let urdf = R2000IC_URDF.replace("</robot>", "<link name=\"base\"/><joint name=\"base_link-base\" type=\"fixed\"><origin xyz=\"0 0 0.670\"/><parent link=\"base_link\"/><child link=\"base\"/></joint></robot>");
+    // ROS-Industrial's `base` link: FANUC's world, 670 mm above base_link; its `tool0`: FANUC's
+    // flange frame (z along the tool).
+    let urdf = R2000IC_URDF.replace("</robot>", "<link name=\"base\"/><joint name=\"base_link-base\" type=\"fixed\"><origin xyz=\"0 0 0.670\"/><parent link=\"base_link\"/><child link=\"base\"/></joint><link name=\"tool0\"/><joint name=\"link_6-tool0\" type=\"fixed\"><origin rpy=\"3.141592653589793 -1.5707963267948966 0\"/><parent link=\"link_6\"/><child link=\"tool0\"/></joint></robot>");
     let text = include_str!("../../../../examples/milling/fanuc-milling.toml").replace(
         "robot = \"fanuc-r2000ic-165f\"",
         &format!("robot = \"r2000ic.urdf\"\n{coupled}"),
@@ -290,7 +291,7 @@ fn a_controllers_robot_of_its_own_axis_map_keeps_it() {
     let on = |controller: &str| {
         let with = format!("{text}\n[controller]\nrobot = \"{controller}\"\n");
         setup::parse(&with, "cell.toml", |r, _| match r {
-            "r2000ic.urdf" => stiffid::robot::urdf::parse(&urdf, r, None),
+            "r2000ic.urdf" => stiffid::robot::urdf::parse(&urdf, r, Some("tool0")),
             _ => presets::get(r),
         })
         .unwrap()
@@ -309,11 +310,13 @@ fn a_controllers_robot_of_its_own_axis_map_keeps_it() {
         let controller = setup.controller_robot().unwrap();
         assert_eq!(controller.axis_map().matrix.row(2).transpose(), row3);
         let q = Vector6::new(-60.0, -16.7, -28.9, 3.8, -62.9, 144.9).map(f64::to_radians);
+        let (at, want) = (controller.frames(&q).flange, preset.frames(&q).flange);
         assert_relative_eq!(
-            controller.frames(&q).flange.translation.vector,
-            preset.frames(&q).flange.translation.vector,
+            at.translation.vector,
+            want.translation.vector,
             epsilon = 1e-9
         );
+        assert!(at.rotation.angle_to(&want.rotation) < 1e-9);
         assert_relative_eq!(
             setup.program_world().translation.vector,
             Vector3::new(0.0, 0.0, 0.670),
