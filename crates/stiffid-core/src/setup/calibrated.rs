@@ -114,7 +114,7 @@ pub(super) const PART_TOLERANCE_RAD: f64 = 1e-6;
 
 /// A frame as a setup or robot file writes it (`xyz_mm = [..], rpy_deg = [..]`), short numbers
 /// (no negative zero).
-fn words(m: &Isometry3<f64>) -> String {
+pub(super) fn words(m: &Isometry3<f64>) -> String {
     let short = |v: f64| crate::common::words::number(v + 0.0);
     let p = m.translation.vector * 1e3;
     let [r, pi, y] = crate::robot::file::rpy(&m.rotation);

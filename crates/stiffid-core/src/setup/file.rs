@@ -341,7 +341,12 @@ where
             message: "missing: [workpiece] gives the part's frame in the robot base frame (base_from_part = { xyz_mm = [..], rpy_deg = [..] }); only a setup whose calibrated robot file records the part ([part]) leaves it out".into(),
         });
     }
-    let robot = mounted(robot, &file, source_name, mount)?;
+    let robot = mounted(
+        robot,
+        &file,
+        source_name,
+        (mount, file.robot_axis_map.as_ref()),
+    )?;
     let mut controller = match file.controller.take() {
         None => super::Controller::default(),
         Some(c) => controller(c, &file, source_name, &mut resolve_robot, mount)?,
@@ -424,7 +429,11 @@ where
                 package_paths: &file.package_paths,
                 field: "controller.robot",
             })?;
-            Some(mounted(robot, file, source_name, mount)?)
+            // A robot file of its own axis map states the controller's axes already: the
+            // setup's map (a URDF robot's) is not applied to it again.
+            let own_map = *robot.axis_map() != crate::robot::AxisMap::default();
+            let map = file.robot_axis_map.as_ref().filter(|_| !own_map);
+            Some(mounted(robot, file, source_name, (mount, map))?)
         }
     };
     Ok(super::Controller {
@@ -491,14 +500,17 @@ fn in_file(e: Error, source_name: &str) -> Error {
 /// (`external_axis = []` takes them away: the arm on a fixed base); its `max_speed_deg_s`
 /// replaces the robot's axis speeds. `mount` is `[robot_base]`, or the mount a calibrated
 /// robot's file records; a calibrated robot file holds its mount, which is not applied to it
-/// again ([`calibrated::mount`]).
+/// again ([`calibrated::mount`]). `map` is the setup's `[robot_axis_map]` where it applies.
 fn mounted(
     mut robot: Robot,
     f: &SetupFile,
     src: &str,
-    mount: Option<Isometry3<f64>>,
+    (mount, map): (
+        Option<Isometry3<f64>>,
+        Option<&crate::robot::file::AxisMapFile>,
+    ),
 ) -> Result<Robot> {
-    if let Some(m) = &f.robot_axis_map {
+    if let Some(m) = map {
         robot = axis_mapped(robot, m, src)?;
     }
     if let Some(v) = &f.max_speed_deg_s {
@@ -524,10 +536,16 @@ fn mounted(
 /// # Errors
 /// [`Error::InvalidField`] (`robot_axis_map.matrix[r]`, `.offset_deg`) out of range or a matrix
 /// that cannot be inverted, and (`robot_axis_map`) where the robot file gives another
-/// `[axis_map]`.
+/// `[axis_map]` (an entry or offset more than 1e-12 from the setup's).
 fn axis_mapped(robot: Robot, m: &crate::robot::file::AxisMapFile, src: &str) -> Result<Robot> {
     let map = crate::robot::file::axis_map(m, "robot_axis_map", src)?;
-    if *robot.axis_map() != crate::robot::AxisMap::default() && *robot.axis_map() != map {
+    let own = robot.axis_map();
+    // A calibrated file writes the map it was calibrated with in degrees: read back, an offset
+    // may differ from the setup's in the last bit.
+    let apart = (own.matrix - map.matrix)
+        .amax()
+        .max((own.offset - map.offset).amax());
+    if *own != crate::robot::AxisMap::default() && apart > 1e-12 {
         return Err(Error::InvalidField {
             field: format!("{src}: robot_axis_map"),
             message: format!("the robot file '{}' gives its own [axis_map], another one: give the map in one place (the setup's [robot_axis_map] is for a URDF robot)", robot.name()),

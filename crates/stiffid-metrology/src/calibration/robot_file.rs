@@ -349,8 +349,9 @@ fn read_back(robot: &Robot, back: &Robot) -> std::result::Result<(), String> {
 /// # Errors
 /// Those of [`calibrated`]; [`Error::InvalidField`] (`robot`) when the axis map couples axes or
 /// scales them (a URDF joint turns by its own position: the robot file carries the map), when
-/// the nominal URDF's text cannot carry the correction (a chain joint not found in it) or the
-/// document read back misses the calibrated robot.
+/// a robot read from a URDF was calibrated on a mount (the setup's `[robot_base]`, which its own
+/// document cannot hold), when the nominal URDF's text cannot carry the correction (a chain
+/// joint not found in it) or the document read back misses the calibrated robot.
 pub fn urdf(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
     let robot = calibrated(model, estimate)?.with_error_maps(Default::default());
     if let Some(source) = model.robot().urdf_source() {
@@ -473,6 +474,10 @@ fn edited_urdf(nominal: &Robot, calibrated: &Robot, source: &UrdfSource) -> Resu
         field: "robot".into(),
         message: format!("the calibrated robot cannot be written as a URDF: {message}"),
     };
+    // A URDF robot's own base is its root link: anything else is the setup's mount.
+    if *nominal.base() != Isometry3::identity() {
+        return Err(invalid(format!("it was calibrated on a mount ({}, the setup's [robot_base]), which its own URDF cannot hold (its root link and what hangs from it stay at the robot's foot), and a setup reading the calibrated URDF does not mount it again: use the robot file (--out), which records the mount", mount_words(nominal.base()))));
+    }
     // From the previous joint's frame to joint `i`'s at `theta = 0` (the axis map applies to
     // both robots alike and stays out).
     let step = |r: &Robot, i: usize| {
@@ -520,6 +525,22 @@ fn transform(t: &Isometry3<f64>) -> String {
         r.to_degrees(),
         p.to_degrees(),
         y.to_degrees()
+    )
+}
+
+/// A mount as a setup writes it, short numbers: `xyz_mm = [..], rpy_deg = [..]`.
+fn mount_words(t: &Isometry3<f64>) -> String {
+    let short = |v: f64| stiffid_core::common::words::number(v + 0.0);
+    let p = t.translation.vector * 1e3;
+    let [r, pi, y] = stiffid_core::robot::file::rpy(&t.rotation).map(f64::to_degrees);
+    format!(
+        "xyz_mm = [{}, {}, {}], rpy_deg = [{}, {}, {}]",
+        short(p.x),
+        short(p.y),
+        short(p.z),
+        short(r),
+        short(pi),
+        short(y)
     )
 }
 

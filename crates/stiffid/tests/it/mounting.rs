@@ -241,3 +241,113 @@ fn ls_joint_positions_on_an_uncoupled_urdf_robot_warn() {
     assert!(ls_plausibility(&on(coupled, true)).is_empty());
     assert!(ls_plausibility(&on("", false)).is_empty());
 }
+
+/// A `[controller] robot` whose controller's world is not the setup robot's is refused naming
+/// both worlds: one controller has one world, and the program's positions were read and written
+/// in the setup robot's (the FANUC's 670 mm left out without a word). With the same world, the
+/// setup's program world is it.
+#[test]
+fn a_controllers_robot_of_another_world_is_refused() {
+    let preset = presets::text("fanuc-r2000ic-165f").unwrap();
+    let at = preset.find("[controller_world]").unwrap();
+    let without = file::parse(&preset[..at], "fanuc.toml").unwrap();
+    let text = include_str!("../../../../examples/milling/fanuc-milling.toml");
+    let text = text.replace("robot = \"fanuc-r2000ic-165f\"", "robot = \"fanuc.toml\"");
+    let with = format!("{text}\n[controller]\nrobot = \"fanuc-r2000ic-165f\"\n");
+    let on = |robot: stiffid::Robot| {
+        setup::parse(&with, "cell.toml", move |r, _| match r {
+            "fanuc-r2000ic-165f" => presets::get(r),
+            _ => Ok(robot.clone()),
+        })
+    };
+    let e = on(without).unwrap_err().to_string();
+    assert!(
+        e.contains("cell.toml: controller.robot")
+            && e.contains("at xyz_mm = [0, 0, 670], rpy_deg = [0, 0, 0] in its base frame")
+            && e.contains("at xyz_mm = [0, 0, 0], rpy_deg = [0, 0, 0]: 670 mm and 0 deg apart"),
+        "{e}"
+    );
+    let same = on(presets::get("fanuc-r2000ic-165f").unwrap()).unwrap();
+    assert_eq!(
+        same.program_world().translation.vector,
+        Vector3::new(0.0, 0.0, 0.670)
+    );
+}
+
+/// The setup's `[robot_axis_map]` is the URDF robot's: a `[controller] robot` with its own
+/// `[axis_map]` (the built-in FANUC, whose axes are the controller's already) keeps it and is
+/// accepted beside the coupled URDF (it was refused as a robot file of another map); a
+/// `[controller] robot` without one (the URDF again) takes the setup's.
+#[test]
+fn a_controllers_robot_of_its_own_axis_map_keeps_it() {
+    let coupled = "robot_axis_map = { matrix = [[1,0,0,0,0,0], [0,1,0,0,0,0], [0,1,1,0,0,0], [0,0,0,1,0,0], [0,0,0,0,1,0], [0,0,0,0,0,1]], offset_deg = [0,0,0,0,0,0] }";
+    // ROS-Industrial's `base` link: FANUC's world, 670 mm above base_link; its `tool0`: FANUC's
+    // flange frame (z along the tool).
+    let urdf = R2000IC_URDF.replace("</robot>", "<link name=\"base\"/><joint name=\"base_link-base\" type=\"fixed\"><origin xyz=\"0 0 0.670\"/><parent link=\"base_link\"/><child link=\"base\"/></joint><link name=\"tool0\"/><joint name=\"link_6-tool0\" type=\"fixed\"><origin rpy=\"3.141592653589793 -1.5707963267948966 0\"/><parent link=\"link_6\"/><child link=\"tool0\"/></joint></robot>");
+    let text = include_str!("../../../../examples/milling/fanuc-milling.toml").replace(
+        "robot = \"fanuc-r2000ic-165f\"",
+        &format!("robot = \"r2000ic.urdf\"\n{coupled}"),
+    );
+    let on = |controller: &str| {
+        let with = format!("{text}\n[controller]\nrobot = \"{controller}\"\n");
+        setup::parse(&with, "cell.toml", |r, _| match r {
+            "r2000ic.urdf" => stiffid::robot::urdf::parse(&urdf, r, Some("tool0")),
+            _ => presets::get(r),
+        })
+        .unwrap()
+    };
+    let preset = presets::get("fanuc-r2000ic-165f").unwrap();
+    let j3 = Vector6::new(0.0, 1.0, 1.0, 0.0, 0.0, 0.0);
+    for (name, row3) in [
+        // The preset's row 3: theta_3 = -q_2 - q_3.
+        (
+            "fanuc-r2000ic-165f",
+            Vector6::new(0.0, -1.0, -1.0, 0.0, 0.0, 0.0),
+        ),
+        ("r2000ic.urdf", j3),
+    ] {
+        let setup = on(name);
+        let controller = setup.controller_robot().unwrap();
+        assert_eq!(controller.axis_map().matrix.row(2).transpose(), row3);
+        let q = Vector6::new(-60.0, -16.7, -28.9, 3.8, -62.9, 144.9).map(f64::to_radians);
+        let (at, want) = (controller.frames(&q).flange, preset.frames(&q).flange);
+        assert_relative_eq!(
+            at.translation.vector,
+            want.translation.vector,
+            epsilon = 1e-9
+        );
+        assert!(at.rotation.angle_to(&want.rotation) < 1e-9);
+        assert_relative_eq!(
+            setup.program_world().translation.vector,
+            Vector3::new(0.0, 0.0, 0.670),
+            epsilon = 1e-15
+        );
+    }
+}
+
+/// A calibrated robot file writes its axis map's offsets in degrees (`calibrate --out`: 3 deg
+/// as 3.0000000000000004 after the round trip through radians); the setup that gave the map
+/// (`robot_axis_map`, 3 deg) reads it as the same map, not as the file's own other one.
+#[test]
+fn the_setups_axis_map_is_the_one_a_calibrated_file_writes_back() {
+    let written = 3f64.to_radians().to_degrees();
+    assert_eq!(written, 3.0000000000000004);
+    let offsets = |third: f64| format!("offset_deg = [0, 0, {third:?}, 0, 0, 0]");
+    let preset = presets::text("fanuc-r2000ic-165f").unwrap();
+    let robot = file::parse(
+        &preset.replace("offset_deg = [0, 0, 0, 0, 0, 0]", &offsets(written)),
+        "cal.toml",
+    )
+    .unwrap();
+    let map = format!("robot_axis_map = {{ matrix = [[1,0,0,0,0,0], [0,1,0,0,0,0], [0,-1,-1,0,0,0], [0,0,0,-1,0,0], [0,0,0,0,-1,0], [0,0,0,0,0,-1]], {} }}", offsets(3.0));
+    let text = include_str!("../../../../examples/milling/fanuc-milling.toml").replace(
+        "robot = \"fanuc-r2000ic-165f\"",
+        &format!("robot = \"cal.toml\"\n{map}"),
+    );
+    let setup = setup::parse(&text, "cell.toml", |_, _| Ok(robot.clone())).unwrap();
+    assert_eq!(setup.robot().axis_map().offset[2], 3f64.to_radians());
+    // Another map is still refused.
+    let other = text.replace("offset_deg = [0, 0, 3.0,", "offset_deg = [0, 0, 3.001,");
+    let e = setup::parse(&other, "cell.toml", |_, _| Ok(robot.clone())).unwrap_err();
+    assert!(e.to_string().contains("cell.toml: robot_axis_map"), "{e}");
+}

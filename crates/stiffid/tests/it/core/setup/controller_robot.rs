@@ -64,3 +64,23 @@ fn a_calibrated_file_as_the_nominal_controller_is_refused() {
     assert!(m.contains("is a calibrated robot file"), "{m}");
     assert!(m.contains("kinematics = \"calibrated\""), "{m}");
 }
+
+/// The setup's robot with its flange's axes turned another way (ROS's x along the tool where a
+/// controller has z: a URDF's tip beside the built-in robot) puts every flange in the same place
+/// but the setup's `[tool]` in another frame than the controller's tool: refused naming the
+/// angle and what to give. A flange turned 0.5 deg (what a calibration could correct) passes.
+#[test]
+fn a_controller_of_another_flange_frame_is_refused() {
+    let turned = |deg: f64| {
+        comau(" as ROS sees it", "[axis_map]", "[axis_map]")
+            + &format!("\n[flange]\nxyz_mm = [0.0, 0.0, 0.0]\nrpy_deg = [0.0, {deg:?}, 0.0]\n")
+    };
+    let m = refused("robot = \"robot.toml\"\n", &turned(90.0));
+    assert!(
+        m.contains("with another flange frame")
+            && m.contains("their flanges are turned 90 deg apart (more than 1 deg")
+            && m.contains("robot_tip"),
+        "{m}"
+    );
+    read("robot = \"robot.toml\"\n", &turned(0.5)).unwrap();
+}

@@ -588,3 +588,48 @@ fn the_fit_says_why_it_stopped_and_warns_at_its_iteration_limit() {
     assert!(done.iterations < fit::MAX_ITERATIONS);
     assert_eq!(fit::stop_warning(done.stop, done.iterations), None);
 }
+
+/// A URDF robot calibrated on a mount (the setup's `[robot_base]`: 500 mm up, turned): its own
+/// URDF written back cannot hold the mount (its root link and meshes stay at the foot), and a
+/// setup reading it as a calibrated robot does not mount it again: refused, saying to use the
+/// robot file, which records it. Without a mount it is written.
+#[test]
+fn a_urdf_robot_calibrated_on_a_mount_has_no_urdf_back() {
+    let text = include_str!("../../../data/comau-nj165.urdf");
+    let foot = urdf::parse(text, "comau-nj165.urdf", None).unwrap();
+    let mount = Isometry3::new(Vector3::new(0.1, -0.05, 0.5), Vector3::new(0.0, 0.0, 0.5));
+    let mounted = foot.clone().with_base(mount).unwrap();
+    for (robot, on_mount) in [(foot, false), (mounted, true)] {
+        let terms = gravity::Terms::none(&robot);
+        let model = ErrorModel::new(
+            &robot,
+            &points(),
+            MeasuredIn::Tracker,
+            Geometry::Full,
+            terms,
+        )
+        .unwrap();
+        let estimate = Estimate {
+            frame: tracker(),
+            values: perturbed(&model, 3, None, 0.0),
+        }
+        .recentre();
+        match (robot_file::urdf(&model, &estimate), on_mount) {
+            (Ok(_), false) => {}
+            (Err(e), true) => assert!(
+                e.to_string()
+                    .contains("calibrated on a mount (xyz_mm = [100, -50, 500]")
+                    && e.to_string().contains("--out"),
+                "{e}"
+            ),
+            (other, _) => panic!("on a mount {on_mount}: {other:?}"),
+        }
+        // The robot file holds the mount: its flange is the mounted robot's.
+        let toml = robot_file::robot_toml(&model, &estimate).unwrap();
+        let from_toml = stiffid_core::robot::file::parse(&toml, "out.toml").unwrap();
+        let q = Vector6::new(0.1, 0.2, -0.3, 0.4, 0.5, 0.6);
+        let at = from_toml.frames(&q).flange.translation.vector;
+        let want = model.robot().frames(&q).flange.translation.vector;
+        assert!((at - want).norm() < 0.05, "{at} vs {want}");
+    }
+}
