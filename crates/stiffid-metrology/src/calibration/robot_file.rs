@@ -349,10 +349,17 @@ fn read_back(robot: &Robot, back: &Robot) -> std::result::Result<(), String> {
 /// # Errors
 /// Those of [`calibrated`]; [`Error::InvalidField`] (`robot`) when the axis map couples axes or
 /// scales them (a URDF joint turns by its own position: the robot file carries the map), when
-/// a robot read from a URDF was calibrated on a mount (the setup's `[robot_base]`, which its own
-/// document cannot hold), when the nominal URDF's text cannot carry the correction (a chain
-/// joint not found in it) or the document read back misses the calibrated robot.
-pub fn urdf(model: &ErrorModel, estimate: &Estimate) -> Result<String> {
+/// the robot was calibrated on a mount `mount` (the calibration setup's `[robot_base]`; not the
+/// identity) — a URDF has no place to record it apart from the robot: a robot read from a URDF
+/// would get its own document back at its foot, a generated one would carry the mount in its
+/// first joint but not in the controller's world (its `base` link), and a setup reading a
+/// calibrated robot does not mount it again; the robot file records the mount —, when the
+/// nominal URDF's text cannot carry the correction (a chain joint not found in it) or the
+/// document read back misses the calibrated robot.
+pub fn urdf(model: &ErrorModel, estimate: &Estimate, mount: &Isometry3<f64>) -> Result<String> {
+    if *mount != Isometry3::identity() {
+        return Err(not_urdf(&format!("it was calibrated on a mount ({}, the setup's [robot_base]), which a URDF cannot record apart from the robot, and a setup reading the calibrated robot does not mount it again: use the robot file (--out), which records the mount", mount_words(mount))));
+    }
     let robot = calibrated(model, estimate)?.with_error_maps(Default::default());
     if let Some(source) = model.robot().urdf_source() {
         return edited_urdf(model.robot(), &robot, source);
@@ -474,10 +481,6 @@ fn edited_urdf(nominal: &Robot, calibrated: &Robot, source: &UrdfSource) -> Resu
         field: "robot".into(),
         message: format!("the calibrated robot cannot be written as a URDF: {message}"),
     };
-    // A URDF robot's own base is its root link: anything else is the setup's mount.
-    if *nominal.base() != Isometry3::identity() {
-        return Err(invalid(format!("it was calibrated on a mount ({}, the setup's [robot_base]), which its own URDF cannot hold (its root link and what hangs from it stay at the robot's foot), and a setup reading the calibrated URDF does not mount it again: use the robot file (--out), which records the mount", mount_words(nominal.base()))));
-    }
     // From the previous joint's frame to joint `i`'s at `theta = 0` (the axis map applies to
     // both robots alike and stays out).
     let step = |r: &Robot, i: usize| {

@@ -40,7 +40,8 @@ pub(super) fn files(
         held,
         (own_weight.as_ref(), part.as_ref()),
     );
-    let urdf = robot_file::urdf(model, &fitted.estimate).map_err(|e| e.to_string());
+    let mount = setup.workcell().controller().mount;
+    let urdf = robot_file::urdf(model, &fitted.estimate, &mount).map_err(|e| e.to_string());
     let asked = request.urdf && urdf.is_ok();
     if let (true, Some(note)) = (asked, robot_file::urdf_leaves_out(model, &fitted.estimate)) {
         warnings.push(Warning::new(WarningKind::LeftOut, note));
