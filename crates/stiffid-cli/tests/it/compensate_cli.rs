@@ -949,8 +949,9 @@ fn a_gcode_program_without_units_is_read_in_mm_with_a_warning() {
 
 /// A KRL program and its `.dat` with German remarks in Latin-1 (as a KUKA controller's backup
 /// holds them): read byte for byte with a warning of kind `encoding`, compensated as the same
-/// program in UTF-8, and written back in Latin-1, the remarks' bytes as read. A file with a
-/// control byte is no text: refused naming the file, the byte and its line.
+/// program in UTF-8, and written back in Latin-1, the remarks' bytes as read; a `.src` with a
+/// UTF-8 byte order mark beside the Latin-1 `.dat` keeps it. A file with a control byte is no
+/// text: refused naming the file, the byte and its line.
 #[test]
 fn a_latin1_program_is_compensated_and_written_back_in_latin1() {
     let dir = temp_dir("latin1");
@@ -1033,6 +1034,17 @@ fn a_latin1_program_is_compensated_and_written_back_in_latin1() {
         let expected = remark(&std::fs::read(plain_dir.join(file)).unwrap(), after, bytes);
         assert!(written == expected, "{file}");
     }
+    // The .src saved with a UTF-8 byte order mark (an editor's) beside the controller's Latin-1
+    // .dat: read as the same program, the mark written back as it was.
+    let marked = [&b"\xef\xbb\xbf"[..], &src].concat();
+    let (output, marked_dir) = run("marked", (&marked, &latin_dat));
+    assert!(
+        moved(&json(&output), 0.0) == moved(&plain, 0.0),
+        "the points differ"
+    );
+    let written = std::fs::read(marked_dir.join("out.src")).unwrap();
+    let expected = std::fs::read(plain_dir.join("out.src")).unwrap();
+    assert!(written == [&b"\xef\xbb\xbf"[..], &expected].concat());
     // A control byte (an encrypted module, a binary file): no text.
     let binary = remark(&latin_src, b"; Fr", b"\x00");
     let (refused, bad_dir) = run("binary", (&binary, &latin_dat));
