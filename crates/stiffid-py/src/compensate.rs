@@ -283,7 +283,8 @@ fn job_options<'py>(
 }
 
 /// A compensated program's items: `program`, its text, `encoding` (`utf-8`, or `latin-1` for
-/// a program read as Latin-1: its files are to be written in it), `subprograms`, `data` (a KRL
+/// a program read as Latin-1: its files are to be written in it, a leading U+FEFF as UTF-8's
+/// byte order mark), `subprograms`, `data` (a KRL
 /// program's compensated `.dat`, or `None`) and `subprogram_data` (each KRL sub-program's `.dat`
 /// by its name; empty in another language).
 fn program_items(

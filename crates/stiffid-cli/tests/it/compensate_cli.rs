@@ -7,7 +7,8 @@ use common::{
     assert_failed_gate, assert_success, assert_usage_error, example, identify_fanuc, json, numbers,
     stiffid, temp_dir, write_file,
 };
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::process::Output;
 
 const FANUC_Q: &str = "--q-deg=-59.991,-16.693,-28.93,3.788,-62.93,144.919";
 
@@ -947,6 +948,57 @@ fn a_gcode_program_without_units_is_read_in_mm_with_a_warning() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// `text` with `remark` inserted after the first `after`.
+fn with_remark(text: &[u8], after: &[u8], remark: &[u8]) -> Vec<u8> {
+    let at = text.windows(after.len()).position(|w| w == after).unwrap() + after.len();
+    [&text[..at], remark, &text[at..]].concat()
+}
+
+/// `compensate --json` of the KRL pocket written as `src` and `dat` into `dir/name`, to
+/// `out.src` there: the output and the folder.
+fn run_pocket(dir: &Path, name: &str, (src, dat): (&[u8], &[u8])) -> (Output, PathBuf) {
+    let sub = dir.join(name);
+    std::fs::create_dir_all(&sub).unwrap();
+    std::fs::write(sub.join("pocket.src"), src).unwrap();
+    std::fs::write(sub.join("pocket.dat"), dat).unwrap();
+    let output = stiffid(&[
+        "compensate",
+        "--setup",
+        &example("milling/kuka-milling.toml"),
+        "--stiffness",
+        &example("milling/kuka-stiffness.json"),
+        "--program",
+        sub.join("pocket.src").to_str().unwrap(),
+        "--process",
+        &example("milling/aluminium.toml"),
+        "--out",
+        sub.join("out.src").to_str().unwrap(),
+        "--json",
+    ]);
+    (output, sub)
+}
+
+/// The points of a compensate document, each `by` lines further down.
+fn points_moved(r: &serde_json::Value, by: f64) -> Vec<serde_json::Value> {
+    let mut points = r["points"].as_array().unwrap().clone();
+    for p in &mut points {
+        p["line"] = serde_json::json!(p["line"].as_f64().unwrap() + by);
+    }
+    points
+}
+
+/// The messages of a document's warnings of kind `encoding`.
+fn encoding_warnings(r: &serde_json::Value) -> Vec<String> {
+    let w = r["warnings"].as_array().unwrap();
+    w.iter()
+        .filter(|w| w["kind"] == "encoding")
+        .map(|w| w["message"].as_str().unwrap().to_string())
+        .collect()
+}
+
+/// "; Punkte für die Tasche" in ISO 8859-1, after the pocket's `DEFDAT`.
+const LATIN_REMARK: &[u8] = b"; Punkte f\xfcr die Tasche\n";
+
 /// A KRL program and its `.dat` with German remarks in Latin-1 (as a KUKA controller's backup
 /// holds them): read byte for byte with a warning of kind `encoding`, compensated as the same
 /// program in UTF-8, and written back in Latin-1, the remarks' bytes as read. A file with a
@@ -956,64 +1008,19 @@ fn a_latin1_program_is_compensated_and_written_back_in_latin1() {
     let dir = temp_dir("latin1");
     let src = std::fs::read(example("milling/pocket.src")).unwrap();
     let dat = std::fs::read(example("milling/pocket.dat")).unwrap();
-    let remark = |text: &[u8], after: &[u8], remark: &[u8]| {
-        let at = text.windows(after.len()).position(|w| w == after).unwrap() + after.len();
-        [&text[..at], remark, &text[at..]].concat()
-    };
     // "; Fräsen der Tasche" and "; Punkte für die Tasche" in ISO 8859-1.
-    let run = |name: &str, (src, dat): (&[u8], &[u8])| {
-        let sub = dir.join(name);
-        std::fs::create_dir_all(&sub).unwrap();
-        std::fs::write(sub.join("pocket.src"), src).unwrap();
-        std::fs::write(sub.join("pocket.dat"), dat).unwrap();
-        let out = sub.join("out.src");
-        let (setup, stiffness, process) = (
-            example("milling/kuka-milling.toml"),
-            example("milling/kuka-stiffness.json"),
-            example("milling/aluminium.toml"),
-        );
-        let output = stiffid(&[
-            "compensate",
-            "--setup",
-            &setup,
-            "--stiffness",
-            &stiffness,
-            "--program",
-            sub.join("pocket.src").to_str().unwrap(),
-            "--process",
-            &process,
-            "--out",
-            out.to_str().unwrap(),
-            "--json",
-        ]);
-        (output, sub)
-    };
-    let latin_src = remark(&src, b"DEF POCKET( )\n", b"; Fr\xe4sen der Tasche\n");
-    let latin_dat = remark(&dat, b"DEFDAT POCKET\n", b"; Punkte f\xfcr die Tasche\n");
-    let (plain, plain_dir) = run("utf8", (&src, &dat));
-    let (latin, latin_dir) = run("latin1", (&latin_src, &latin_dat));
+    let latin_src = with_remark(&src, b"DEF POCKET( )\n", b"; Fr\xe4sen der Tasche\n");
+    let latin_dat = with_remark(&dat, b"DEFDAT POCKET\n", LATIN_REMARK);
+    let (plain, plain_dir) = run_pocket(&dir, "utf8", (&src, &dat));
+    let (latin, latin_dir) = run_pocket(&dir, "latin1", (&latin_src, &latin_dat));
     let (plain, latin) = (json(&plain), json(&latin));
     // The same points, each a line further down (the remark).
-    let moved = |r: &serde_json::Value, by: f64| -> Vec<serde_json::Value> {
-        let mut points = r["points"].as_array().unwrap().clone();
-        for p in &mut points {
-            p["line"] = serde_json::json!(p["line"].as_f64().unwrap() + by);
-        }
-        points
-    };
     assert!(
-        moved(&plain, 1.0) == moved(&latin, 0.0),
+        points_moved(&plain, 1.0) == points_moved(&latin, 0.0),
         "the points differ"
     );
-    let kinds = |r: &serde_json::Value| -> Vec<String> {
-        let w = r["warnings"].as_array().unwrap();
-        w.iter()
-            .filter(|w| w["kind"] == "encoding")
-            .map(|w| w["message"].as_str().unwrap().to_string())
-            .collect()
-    };
-    assert!(kinds(&plain).is_empty());
-    let warned = kinds(&latin);
+    assert!(encoding_warnings(&plain).is_empty());
+    let warned = encoding_warnings(&latin);
     assert_eq!(warned.len(), 1, "{warned:?}");
     assert!(warned[0].contains("pocket.src is not UTF-8 text: read as Latin-1"));
     // The files written: the UTF-8 run's with the remarks' Latin-1 bytes, no UTF-8 in them.
@@ -1023,25 +1030,49 @@ fn a_latin1_program_is_compensated_and_written_back_in_latin1() {
             &b"DEF out( )\n"[..],
             &b"; Fr\xe4sen der Tasche\n"[..],
         ),
-        (
-            "out.dat",
-            &b"DEFDAT out\n"[..],
-            &b"; Punkte f\xfcr die Tasche\n"[..],
-        ),
+        ("out.dat", &b"DEFDAT out\n"[..], LATIN_REMARK),
     ] {
         let written = std::fs::read(latin_dir.join(file)).unwrap();
-        let expected = remark(&std::fs::read(plain_dir.join(file)).unwrap(), after, bytes);
+        let expected = with_remark(&std::fs::read(plain_dir.join(file)).unwrap(), after, bytes);
         assert!(written == expected, "{file}");
     }
     // A control byte (an encrypted module, a binary file): no text.
-    let binary = remark(&latin_src, b"; Fr", b"\x00");
-    let (refused, bad_dir) = run("binary", (&binary, &latin_dat));
+    let binary = with_remark(&latin_src, b"; Fr", b"\x00");
+    let (refused, bad_dir) = run_pocket(&dir, "binary", (&binary, &latin_dat));
     let message = assert_usage_error(&refused, &["pocket.src", "control byte 0x00", "line 6"]);
     assert!(
         message.contains("neither UTF-8 nor Latin-1 text"),
         "{message}"
     );
     assert!(!bad_dir.join("out.src").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A `.src` saved with a UTF-8 byte order mark (an editor's) beside the controller's Latin-1
+/// `.dat` (both read as Latin-1): read as the same program, the warning naming the `.dat` (the
+/// file that is not UTF-8), the mark written back as it was.
+#[test]
+fn a_src_with_a_byte_order_mark_beside_a_latin1_dat_keeps_it() {
+    let dir = temp_dir("latin1-bom");
+    let src = std::fs::read(example("milling/pocket.src")).unwrap();
+    let dat = std::fs::read(example("milling/pocket.dat")).unwrap();
+    let latin_dat = with_remark(&dat, b"DEFDAT POCKET\n", LATIN_REMARK);
+    let (plain, plain_dir) = run_pocket(&dir, "utf8", (&src, &dat));
+    let marked_src = [&b"\xef\xbb\xbf"[..], &src].concat();
+    let (marked, marked_dir) = run_pocket(&dir, "marked", (&marked_src, &latin_dat));
+    let (plain, marked) = (json(&plain), json(&marked));
+    assert!(
+        points_moved(&marked, 0.0) == points_moved(&plain, 0.0),
+        "the points differ"
+    );
+    let warned = encoding_warnings(&marked);
+    assert!(
+        warned.len() == 1 && warned[0].contains("the .dat beside"),
+        "{warned:?}"
+    );
+    let written = std::fs::read(marked_dir.join("out.src")).unwrap();
+    let expected = std::fs::read(plain_dir.join("out.src")).unwrap();
+    assert!(written == [&b"\xef\xbb\xbf"[..], &expected].concat());
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

@@ -58,6 +58,61 @@ fn a_krl_program_and_its_dat_are_compensated_together() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// Where a case-sensitive file system holds `cut.dat` and `cut.DAT` (a program
+/// and the pair compensate wrote as `cut.SRC`), `cut.src` reads `cut.dat` and `cut.SRC` reads
+/// `cut.DAT`, as the compensated `.dat` is named after `--out`: the program is never read with
+/// the points of another.
+#[test]
+fn a_src_reads_the_dat_whose_case_follows_its_own() {
+    let dir = temp_dir("krl-dat-case");
+    std::fs::write(dir.join("cut.src"), SRC).unwrap();
+    std::fs::write(dir.join("cut.dat"), DAT).unwrap();
+    // The other .dat, as sorted before cut.dat: its points 10 deg further on axis 1.
+    let other = DAT
+        .replace("A1 0.0", "A1 10.0")
+        .replace("A1 5.0", "A1 15.0");
+    std::fs::write(dir.join("cut.DAT"), &other).unwrap();
+    std::fs::write(dir.join("cut.SRC"), SRC).unwrap();
+    let first_axis = |program: &str, out: &str| {
+        let csv = dir.join(format!("{out}.csv"));
+        let o = stiffid(&[
+            "compensate",
+            "--setup",
+            &example("milling/kuka-milling.toml"),
+            "--stiffness",
+            &example("milling/kuka-stiffness.json"),
+            "--program",
+            dir.join(program).to_str().unwrap(),
+            "--process",
+            &example("milling/aluminium.toml"),
+            "--out",
+            dir.join(out).to_str().unwrap(),
+            "--csv",
+            csv.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let csv = std::fs::read_to_string(csv).unwrap();
+        let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+        let q1 = header.iter().position(|h| *h == "q1_deg").unwrap();
+        let rows = csv.lines().skip(1);
+        rows.map(|r| r.split(',').nth(q1).unwrap().parse::<f64>().unwrap())
+            .collect::<Vec<f64>>()
+    };
+    // Axis 1 is read as declared (joint motions: no force, compensated by the tool's weight
+    // alone, which does not turn axis 1 of an upright arm).
+    let lower = first_axis("cut.src", "a.src");
+    assert!(
+        (lower[0] - 0.0).abs() < 1e-6 && (lower[1] - 5.0).abs() < 1e-6,
+        "{lower:?}"
+    );
+    let upper = first_axis("cut.SRC", "b.src");
+    assert!(
+        (upper[0] - 10.0).abs() < 1e-6 && (upper[1] - 15.0).abs() < 1e-6,
+        "{upper:?}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 #[test]
 fn a_point_in_a_missing_dat_is_refused_naming_the_line_and_the_point() {
     let dir = temp_dir("krl-no-dat");

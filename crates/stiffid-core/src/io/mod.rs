@@ -86,7 +86,8 @@ impl Encoding {
     }
 
     /// `text` as the bytes of a file in this encoding: a file read in it is written back byte
-    /// for byte where its text is unchanged.
+    /// for byte where its text is unchanged (for [`Encoding::Latin1`], a byte order mark
+    /// starting the text as UTF-8's, as [`program_texts`] read it).
     ///
     /// # Errors
     /// For [`Encoding::Latin1`], the first character beyond U+00FF, with its line.
@@ -95,28 +96,49 @@ impl Encoding {
     /// ```
     /// use stiffid_core::io::Encoding;
     /// assert_eq!(Encoding::Latin1.encode("; Z\u{fc}rich").unwrap(), b"; Z\xfcrich");
+    /// assert_eq!(Encoding::Latin1.encode("\u{feff}; \u{fc}").unwrap(), b"\xef\xbb\xbf; \xfc");
     /// assert!(Encoding::Latin1.encode("a\n\u{20ac}").unwrap_err().contains("line 2"));
     /// ```
     pub fn encode(self, text: &str) -> std::result::Result<Vec<u8>, String> {
         if self == Encoding::Utf8 {
             return Ok(text.as_bytes().to_vec());
         }
+        let (mark, text) = match text.strip_prefix(BOM) {
+            Some(rest) => (BOM.as_bytes(), rest),
+            None => (&[][..], text),
+        };
         let mut line = 1;
-        (text.chars())
-            .map(|c| {
-                line += usize::from(c == '\n');
-                u8::try_from(u32::from(c)).map_err(|_| {
-                    format!("'{c}' (U+{:04X}) on line {line} has no byte in Latin-1, the encoding the program was read in", u32::from(c))
-                })
+        let bytes = (text.chars()).map(|c| {
+            line += usize::from(c == '\n');
+            u8::try_from(u32::from(c)).map_err(|_| {
+                format!("'{c}' (U+{:04X}) on line {line} has no byte in Latin-1, the encoding the program was read in", u32::from(c))
             })
-            .collect()
+        });
+        mark.iter().copied().map(Ok).chain(bytes).collect()
+    }
+}
+
+/// The byte order mark: U+FEFF, in UTF-8 the bytes EF BB BF.
+const BOM: &str = "\u{feff}";
+
+/// `bytes` read as Latin-1, each byte one character, but a UTF-8 byte order mark at the start
+/// (a file an editor saved beside a controller's, no Latin-1 text's first three characters),
+/// read as the mark.
+fn latin1(bytes: Vec<u8>) -> String {
+    match bytes.strip_prefix(BOM.as_bytes()) {
+        Some(rest) => BOM
+            .chars()
+            .chain(rest.iter().map(|b| char::from(*b)))
+            .collect(),
+        None => bytes.into_iter().map(char::from).collect(),
     }
 }
 
 /// The texts of a program's files (a KRL `.src` and its `.dat`) from their bytes as read, named
 /// by `files`' names: UTF-8 when every file is; else each read as Latin-1 ([`Encoding::Latin1`],
-/// byte for byte), the encoding of controllers' European backups, when no file holds a control
-/// character other than a tab, a line or page break and DOS's end-of-file mark (a text file).
+/// byte for byte, a UTF-8 byte order mark at a file's start read as the mark), the encoding of
+/// controllers' European backups, when no file holds a control character other than a tab, a
+/// line or page break and DOS's end-of-file mark (a text file).
 ///
 /// # Errors
 /// [`Error::Parse`] naming the file: larger than the input limit, or neither UTF-8 nor text (a
@@ -128,6 +150,10 @@ impl Encoding {
 /// let (texts, encoding) = program_texts(vec![("p.src", b"; Z\xfcrich\r\n".to_vec())]).unwrap();
 /// assert_eq!((texts[0].as_str(), encoding), ("; Z\u{fc}rich\r\n", Encoding::Latin1));
 /// assert!(program_texts(vec![("p.src", vec![0xfc, 0x00])]).is_err());
+/// // A .src saved with a byte order mark beside a Latin-1 .dat: the mark read as one.
+/// let files = vec![("p.src", b"\xef\xbb\xbfDEF p( )".to_vec()), ("p.dat", b"; \xe9".to_vec())];
+/// let (texts, _) = program_texts(files).unwrap();
+/// assert_eq!(texts[0], "\u{feff}DEF p( )");
 /// ```
 pub fn program_texts(files: Vec<(&str, Vec<u8>)>) -> Result<(Vec<String>, Encoding)> {
     if files.iter().all(|(_, b)| std::str::from_utf8(b).is_ok()) {
@@ -144,7 +170,7 @@ pub fn program_texts(files: Vec<(&str, Vec<u8>)>) -> Result<(Vec<String>, Encodi
                 source_name: name.to_string(),
                 message: not_text(&bytes, at),
             }),
-            None => Ok(bytes.into_iter().map(char::from).collect()),
+            None => Ok(latin1(bytes)),
         }
     });
     Ok((texts.collect::<Result<_>>()?, Encoding::Latin1))

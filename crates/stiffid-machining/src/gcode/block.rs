@@ -401,7 +401,7 @@ fn motion(
     if !known.iter().all(|k| *k) {
         if s.motion != 0 {
             let what = format!("G{}: a feed move", s.motion);
-            return Err(refuse_unknown(line, &what, known));
+            return Err(refuse_unknown(line, &what, known, s));
         }
         s.pending.get_or_insert(line);
         (s.position, s.known) = back(end, known, s);
@@ -412,7 +412,7 @@ fn motion(
             1 => "G1: a feed move".to_string(),
             g => format!("G{g}: an arc"),
         };
-        return Err(refuse_unknown(line, &what, here.1));
+        return Err(refuse_unknown(line, &what, here.1, s));
     }
     if s.motion == 0 && block_lift.is_none() && s.tool_number.is_none() {
         // Before any T the spindle holds whatever tool the machine holds, whose length the
@@ -475,9 +475,8 @@ fn machine_frame(line: u64, s: &State) -> Result<Option<super::machine::Frame>> 
 /// line is kept ([`GCode::unplaced_g53`]): the robot goes from the point before it to the next
 /// one in one move.
 fn unplaced_machine_move(line: u64, given: &Given, s: &mut State, out: &mut GCode) -> Result<()> {
-    for (known, target) in s.known.iter_mut().zip(&given.target) {
-        *known &= target.is_none();
-    }
+    let named = given.target.map(|t| t.is_some());
+    s.leave_unknown(line, named, UNPLACED_G53);
     s.pending.get_or_insert(line);
     out.unplaced_g53.push(line);
     Ok(())
@@ -499,19 +498,14 @@ fn g53_outside_g0_g1(line: u64, given: &Given, s: &State) -> stiffid_core::Error
     at(line, format!("G53 {what}: machine coordinates move with G0 or G1 only (LinuxCNC refuses G53 unless G0 or G1 is in force); {fix}"))
 }
 
+/// Why a `G53` rapid the setup does not place leaves the axes it names unknown.
+const UNPLACED_G53: &str = "a G53 rapid there went to machine coordinates, which the setup does not place: no [workpiece.offsets] G53";
+
 /// The error for a motion that needs every axis known and lacks one.
-fn refuse_unknown(line: u64, what: &str, known: [bool; 3]) -> stiffid_core::Error {
-    let missing: Vec<&str> = (["X", "Y", "Z"].iter().zip(known))
-        .filter(|(_, k)| !k)
-        .map(|(l, _)| *l)
-        .collect();
+fn refuse_unknown(line: u64, what: &str, known: [bool; 3], s: &State) -> stiffid_core::Error {
     at(
         line,
-        format!(
-            "{what} from or to a place not known: {} has no value yet ({})",
-            missing.join(" "),
-            super::modal::UNKNOWN_HELP
-        ),
+        format!("{what} from or to a place not known: {}", s.unknown(known)),
     )
 }
 

@@ -11,6 +11,9 @@ use nalgebra::Vector3;
 use std::ops::Range;
 use stiffid_core::Result;
 
+/// Why a `G28`/`G30` before the tool's length is known leaves the axes it moves unknown.
+const HOME_UNPLACED: &str = "a home return (G28/G30) there, while no tool length placed the tip in the program's coordinates";
+
 /// A `G28`/`G30` block: its points added to `out`, its block kept as found.
 pub(super) fn home(
     line: u64,
@@ -37,9 +40,8 @@ pub(super) fn home(
         // tool's length, not known yet: the axes moved are not known until the program
         // gives them (module docs of `modal`).
         s.pending.get_or_insert(line);
-        for k in 0..3 {
-            s.known[k] &= named.iter().any(|n| *n) && !named[k];
-        }
+        let moved = named.map(|n| n || !named.iter().any(|n| *n));
+        s.leave_unknown(line, moved, HOME_UNPLACED);
         return Ok(());
     };
     let home = to_program * nalgebra::Point3::from(tip);

@@ -229,6 +229,9 @@ struct State {
     known: [bool; 3],
     /// The line of the first motion with an axis unknown, before any point.
     pending: Option<u64>,
+    /// Per axis, the block that last left it unknown once known (a `G53` rapid the setup does
+    /// not place, a `G28`/`G30` before the tool's length is known): its line and why.
+    left_unknown: [Option<(u64, &'static str)>; 3],
     /// The line of the first rapid that made no point because no tool was named yet (its tip
     /// depends on the length of the tool the machine holds).
     untooled: Option<u64>,
@@ -308,6 +311,7 @@ pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<G
         surface: 0.0,
         known: [false; 3],
         pending: None,
+        left_unknown: [None; 3],
         untooled: None,
         frame: machine::Frame::default(),
         length_offset: 0.0,

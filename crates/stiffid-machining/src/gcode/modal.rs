@@ -92,13 +92,33 @@ impl State {
     pub(super) fn known(&self, line: u64, what: &str) -> Result<()> {
         match self.known.iter().position(|k| !k) {
             None => Ok(()),
-            Some(i) => Err(at(
-                line,
-                format!(
-                    "{what} from a place not known: {} has no value yet ({UNKNOWN_HELP})",
-                    ['X', 'Y', 'Z'][i]
-                ),
-            )),
+            Some(i) => {
+                let mut known = [true; 3];
+                known[i] = false;
+                Err(at(
+                    line,
+                    format!("{what} from a place not known: {}", self.unknown(known)),
+                ))
+            }
+        }
+    }
+
+    /// The axes `known` says are not, and why: the block that left one unknown
+    /// ([`State::left_unknown`]), else the program's start ([`UNKNOWN_HELP`]).
+    pub(super) fn unknown(&self, known: [bool; 3]) -> String {
+        let missing = (0..3).filter(|k| !known[*k]);
+        let names: Vec<&str> = missing.clone().map(|k| ["X", "Y", "Z"][k]).collect();
+        let names = names.join(" ");
+        match missing.filter_map(|k| self.left_unknown[k]).max() {
+            Some((line, why)) => format!("{names} has no value since line {line} ({why}): give it again in a rapid (G0) before this move"),
+            None => format!("{names} has no value yet ({UNKNOWN_HELP})"),
+        }
+    }
+
+    /// Leaves the axes `named` unknown from the block on `line`, saying `why`.
+    pub(super) fn leave_unknown(&mut self, line: u64, named: [bool; 3], why: &'static str) {
+        for k in (0..3).filter(|k| named[*k]) {
+            (self.known[k], self.left_unknown[k]) = (false, Some((line, why)));
         }
     }
 

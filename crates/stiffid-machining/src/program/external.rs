@@ -83,12 +83,15 @@ fn target_values(
             .unwrap_or_else(|| program.dialect.controller().external_axis(k));
         let display = t.external.get(k).copied().flatten().ok_or_else(|| Error::Program {
             line: t.line,
-            message: format!(
-                "{named}: no value for the cell's external axis {} ({}){}: the controller would keep the axis where it is, which the program does not say; give its value in every target",
-                k + 1,
-                axis.name,
-                program.dialect.controller().unused_axis()
-            ),
+            message: match t.is_held() {
+                true => format!("{named}: no value for the cell's external axis {} ({}) at the home position: the setup's [controller] home_deg gives the six axis angles only; declare the home position with its external axes in the program's .dat (DECL E6AXIS XHOME={{A1 .., A6 .., {named} ..}}, as the controller's $config.dat holds it)", k + 1, axis.name),
+                false => format!(
+                    "{named}: no value for the cell's external axis {} ({}){}: the controller would keep the axis where it is, which the program does not say; give its value in every target",
+                    k + 1,
+                    axis.name,
+                    program.dialect.controller().unused_axis()
+                ),
+            },
         })?;
         let si = axis.to_si(display);
         let slack = 1e-9 * (axis.upper - axis.lower);

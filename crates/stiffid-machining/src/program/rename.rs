@@ -51,12 +51,12 @@ pub fn renamed_data(text: &str, name: &str) -> String {
 }
 
 /// The byte span in `text` of the name on the first line where `keyword` finds the end of the
-/// declaring keyword (an offset in the line with its leading blanks removed): the identifier
-/// after the blanks that follow it.
+/// declaring keyword (an offset in the line with its leading blanks, and a byte order mark,
+/// removed): the identifier after the blanks that follow it.
 fn declared(text: &str, keyword: impl Fn(&str) -> Option<usize>) -> Option<(usize, usize)> {
     let mut offset = 0;
     for line in text.split_inclusive('\n') {
-        let trimmed = line.trim_start();
+        let trimmed = line.trim_start_matches('\u{feff}').trim_start();
         let indent = line.len() - trimmed.len();
         if let Some(after) = keyword(trimmed) {
             let rest = &trimmed[after..];

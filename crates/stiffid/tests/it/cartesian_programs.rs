@@ -818,7 +818,16 @@ fn ls_positions_in_no_frame_in_force_or_never_taught_are_refused_naming_the_line
         format!("{}********{}", &part[..at], &part[end..])
     };
     let large = part.replacen("UF : 1, UT : 1", "UF : 1000, UT : 1", 1);
-    let cases: Vec<(&Setup, &str, u64, String)> = vec![
+    // A selection that is neither a frame number nor a register's (the controller loads
+    // neither): refused as such, not as "held in a register".
+    let selections = [
+        "UFRAME_NUM=-1",
+        "UFRAME_NUM=1000",
+        "UFRAME_NUM=1.5",
+        "UFRAME_NUM=",
+    ]
+    .map(|sel| (sel, part.replacen("UFRAME_NUM=1 ;", &format!("{sel} ;"), 1)));
+    let mut cases: Vec<(&Setup, &str, u64, String)> = vec![
         (
             &s,
             &floating,
@@ -838,6 +847,10 @@ fn ls_positions_in_no_frame_in_force_or_never_taught_are_refused_naming_the_line
             "UF : 1000: expected a frame number, 0 to 999, or F (the frame in force)".into(),
         ),
     ];
+    for (sel, text) in &selections {
+        let message = format!("{sel}: expected = and a frame number, 0 to 999 (as a position's UF : n), or a register (R[i])");
+        cases.push((&s, text, line_of(text, sel), message));
+    }
     assert_refused(&cases);
 }
 

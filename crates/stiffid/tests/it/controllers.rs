@@ -141,6 +141,29 @@ fn each_controller_reads_its_target_and_writes_it_back() {
     }
 }
 
+/// A program beginning with a byte order mark (a file saved as UTF-8 with one) is renamed as
+/// without it, the mark kept: the name it declares on its first line (KRL's `DEF`, LS's
+/// `/PROG`, a `.dat`'s `DEFDAT`) follows the file's.
+#[test]
+fn a_program_with_a_byte_order_mark_is_renamed_as_without_it() {
+    for row in rows() {
+        let (d, c) = (row.dialect, row.dialect.controller());
+        let name = c.program_name("cut_c");
+        let name = name.as_deref().unwrap_or("cut_c");
+        let marked = format!("\u{feff}{}", row.program);
+        assert_eq!(
+            rename::renamed(&marked, d, name),
+            format!("\u{feff}{}", rename::renamed(row.program, d, name)),
+            "{d:?}"
+        );
+    }
+    let dat = "\u{feff}DEFDAT cut\nENDDAT\n";
+    assert_eq!(
+        rename::renamed_data(dat, "cut_c"),
+        "\u{feff}DEFDAT cut_c\nENDDAT\n"
+    );
+}
+
 #[test]
 fn each_controller_renames_and_certifies_its_program() {
     for row in rows() {

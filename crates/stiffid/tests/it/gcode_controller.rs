@@ -296,18 +296,33 @@ fn a_g53_rapid_without_the_setups_frame_leaves_the_axes_it_names_unknown() {
     let positions: Vec<_> = g.points.iter().map(|p| p.position).collect();
     let written = g.write(&positions).unwrap();
     assert_eq!(written.matches("\nG53 G0 Z0.\n").count(), 3, "{written}");
-    // What moves from the place the G53 rapid left unknown is refused naming the line.
+    // What moves from the place the G53 rapid left unknown is refused naming the line, and
+    // the G53 rapid's (Z was given on line 3: not "no value yet", which blames the start).
+    let since = "Z has no value since line 4 (a G53 rapid there went to machine coordinates, which the setup does not place";
     refused(
         "T1 M6 G43 H1\nG0 X1 Y2 Z3\nG53 G0 Z0\nG1 X5 F100\n",
         &m,
         5,
-        "G1: a feed move from or to a place not known: Z has no value yet",
+        &format!("G1: a feed move from or to a place not known: {since}"),
+    );
+    refused(
+        "T1 M6 G43 H1\nG0 X1 Y2 Z3\nG53 G0 Z0\nG0 X7 Y7\nG1 Z-1 F100\n",
+        &m,
+        6,
+        since,
     );
     refused(
         "T1 M6 G43 H1\nG0 X1 Y2 Z3\nG53 G0 Z0\nG81 X5 Y5 Z-2 R2 F100\n",
         &m,
         5,
-        "Z",
+        &format!("G81: a canned cycle from a place not known: {since}"),
+    );
+    // A home return while the tool in use has no length: the axes it moves, from its line.
+    refused(
+        "G0 X1 Y2 Z3\nG28 Z10\nT1 M6 G43 H1\nG1 X5 F100\n",
+        &m,
+        5,
+        "Z has no value since line 3 (a home return (G28/G30) there",
     );
     refused(
         "G53 G0 Z0\nM30\n",

@@ -40,8 +40,11 @@ use nalgebra::{UnitQuaternion, Vector3};
 use stiffid_core::Result;
 
 /// The `.dat` beside the KRL program `src` (a `.src`, any case): the file of the same folder
-/// and stem whose extension is `dat` in any case, as KUKA System Software pairs them; `None`
-/// for another file or where there is none.
+/// and stem whose extension is `dat` in any case, as KUKA System Software pairs them; where
+/// several are (`X.dat` and `X.DAT` on a case-sensitive file system: a program and the one
+/// compensate wrote as `X.SRC`), the one whose case follows the `.src`'s as [`data_out`] names
+/// it (`X.src` with `X.dat`, `X.SRC` with `X.DAT`); `None` for another file or where there is
+/// none.
 pub fn data_beside(src: &std::path::Path) -> Option<std::path::PathBuf> {
     let extension = src.extension()?.to_str()?;
     if !extension.eq_ignore_ascii_case("src") {
@@ -62,7 +65,11 @@ pub fn data_beside(src: &std::path::Path) -> Option<std::path::PathBuf> {
         })
         .collect();
     found.sort();
-    found.into_iter().next()
+    let paired = data_out(src);
+    let paired = found
+        .iter()
+        .position(|p| p.file_name() == paired.file_name());
+    (!found.is_empty()).then(|| found.swap_remove(paired.unwrap_or(0)))
 }
 
 /// The path the compensated `.dat` of a KRL program written to `out` takes: beside it, its

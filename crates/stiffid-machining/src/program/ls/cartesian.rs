@@ -90,7 +90,7 @@ pub(crate) fn frame_number(line: u64, piece: &str) -> Result<Option<(bool, u32)>
 
 /// The largest frame number a position names (a controller holds far fewer: `UFRAME[1..9]`, up
 /// to 61 with the extended frames option).
-const MAX_FRAME: u32 = 999;
+pub(super) const MAX_FRAME: u32 = 999;
 
 /// The number stiffid gives a position's `UF : F` or `UT : F`: the frame in force where its
 /// motion runs (the one `UFRAME_NUM=`/`UTOOL_NUM=` selected before it, [`super::numbered`]), as

@@ -33,6 +33,7 @@
 //! `SPRUNG` (`JMP`), `SONST` (`ELSE`), `LABEL[i]` (`LBL[i]`), `AUFRUF` (`CALL`), `ENDE`
 //! (`END`), `BENUTZER_NUM` (`UFRAME_NUM`), `WKZ_NUM` (`UTOOL_NUM`) ([`GERMAN`]).
 
+use super::cartesian::MAX_FRAME;
 use crate::program::at;
 use stiffid_core::common::limits::short;
 use stiffid_core::Result;
@@ -204,7 +205,10 @@ fn names_a_position(upper: &str) -> bool {
 /// it), where the group is the robot's, group 1.
 ///
 /// # Errors
-/// Naming the line, a selection for another motion group (`UTOOL_NUM[GP2]=1`).
+/// Naming the line, a selection for another motion group (`UTOOL_NUM[GP2]=1`), or of a value
+/// that is neither a frame number (0 to 999, as a position's `UF : n`) nor a register's
+/// (`R[i]`, `AR[i]`, an expression in parentheses): `UFRAME_NUM=-1`, `UFRAME_NUM=1000`,
+/// `UFRAME_NUM=`, which the controller does not load.
 fn number(line: u64, t: &str, rest: &str) -> Result<Number> {
     let mut rest = rest.trim_start();
     if let Some(inner) = rest.strip_prefix('[') {
@@ -216,11 +220,14 @@ fn number(line: u64, t: &str, rest: &str) -> Result<Number> {
         }
         rest = after.trim_start();
     }
-    let n = rest.strip_prefix('=').map(str::trim);
-    Ok(match n.and_then(|n| n.parse::<u32>().ok()) {
-        Some(n) => Number::Literal(line, n),
-        None => Number::Unread(line, short(t.trim()).to_string()),
-    })
+    let n = rest.strip_prefix('=').map(str::trim).unwrap_or("");
+    match n.parse::<u32>() {
+        Ok(n) if n <= MAX_FRAME => Ok(Number::Literal(line, n)),
+        _ if n.starts_with(|c: char| c.is_ascii_alphabetic() || c == '(' || c == '$') => {
+            Ok(Number::Unread(line, short(t.trim()).to_string()))
+        }
+        _ => Err(at(line, format!("{}: expected = and a frame number, 0 to {MAX_FRAME} (as a position's UF : n), or a register (R[i])", short(t.trim())))),
+    }
 }
 
 /// Whether the instruction (upper case) assigns a frame's value: `UFRAME[i]=`, `UTOOL[i]=`, or

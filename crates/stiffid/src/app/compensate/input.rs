@@ -104,12 +104,23 @@ pub(super) fn check_tcp(setup: &Setup) -> Result<()> {
     }
 }
 
-/// The warning that the program's files are not UTF-8 (read and written as Latin-1).
-pub(super) fn encoding_warning(name: &str, encoding: Encoding) -> Option<Warning> {
+/// The warning that the program's files (its `text`, a KRL program's `data`, read as Latin-1)
+/// are not all UTF-8, naming the one that is not: the program `name`, or the `.dat` beside it
+/// when the program alone is UTF-8 (both are read and written as Latin-1).
+pub(super) fn encoding_warning(
+    name: &str,
+    encoding: Encoding,
+    (text, data): (&str, Option<&str>),
+) -> Option<Warning> {
+    let utf8 = |t: &str| (encoding.encode(t)).is_ok_and(|b| std::str::from_utf8(&b).is_ok());
+    let which = match data {
+        Some(d) if utf8(text) && !utf8(d) => format!("the .dat beside {name}"),
+        _ => name.to_string(),
+    };
     (encoding == Encoding::Latin1).then(|| {
         Warning::new(
             WarningKind::Encoding,
-            format!("{name} is not UTF-8 text: read as Latin-1 (ISO 8859-1, each byte one character), as controllers write ISO 8859-1 or Windows-1252 files; the compensated program is written in it, every byte not compensated as read"),
+            format!("{which} is not UTF-8 text: read as Latin-1 (ISO 8859-1, each byte one character), as controllers write ISO 8859-1 or Windows-1252 files; the compensated program is written in it, every byte not compensated as read"),
         )
     })
 }

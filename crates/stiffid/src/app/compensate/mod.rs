@@ -433,7 +433,8 @@ where
         out_name,
         settings,
         encoding,
-        ..
+        text: source,
+        data: source_data,
     } = input
     else {
         unreachable!("a program's input")
@@ -505,7 +506,8 @@ where
         encoding,
     };
     report.check_encoding(&out_name)?;
-    out.warnings.extend(encoding_warning(&out.name, encoding));
+    out.warnings
+        .extend(encoding_warning(&out.name, encoding, (source, source_data)));
     out.program = Some(report);
     Ok(out)
 }
