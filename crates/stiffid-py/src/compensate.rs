@@ -283,31 +283,44 @@ fn job_options<'py>(
 }
 
 /// A compensated program's items: `program`, its text, `encoding` (`utf-8`, or `latin-1` for
-/// a program read as Latin-1: its files are to be written in it, a leading U+FEFF as UTF-8's
-/// byte order mark), `subprograms`, `data` (a KRL
-/// program's compensated `.dat`, or `None`) and `subprogram_data` (each KRL sub-program's `.dat`
-/// by its name; empty in another language).
+/// a program read as Latin-1: each text is then the characters of its file's bytes, which
+/// `text.encode("latin-1")` gives back, a UTF-8 byte order mark's three included), `subprograms`,
+/// `data` (a KRL program's compensated `.dat`, or `None`) and `subprogram_data` (each KRL
+/// sub-program's `.dat` by its name; empty in another language).
 fn program_items(
     py: Python<'_>,
     out: &Bound<'_, PyDict>,
     p: &stiffid::app::compensate::ProgramReport,
 ) -> PyResult<()> {
-    out.set_item("program", &p.text)?;
+    let text = |t: &str| file_text(t, p.encoding);
+    out.set_item("program", text(&p.text)?)?;
     out.set_item("encoding", p.encoding.name())?;
     let subprograms = PyDict::new(py);
     for f in &p.subprograms {
-        subprograms.set_item(&f.name, &f.text)?;
+        subprograms.set_item(&f.name, text(&f.text)?)?;
     }
     out.set_item("subprograms", subprograms)?;
-    out.set_item("data", p.data.as_deref())?;
+    out.set_item("data", p.data.as_deref().map(text).transpose()?)?;
     let subprogram_data = PyDict::new(py);
     for f in &p.subprograms {
         if let Some(data) = &f.data {
-            subprogram_data.set_item(&f.name, data)?;
+            subprogram_data.set_item(&f.name, text(data)?)?;
         }
     }
     out.set_item("subprogram_data", subprogram_data)?;
     Ok(())
+}
+
+/// A program file's text as Python gets it: in `encoding`'s bytes ([`Encoding::encode`]), each
+/// byte one character for a Latin-1 file (the text `text.encode("latin-1")` writes byte for
+/// byte), the text itself for a UTF-8 one.
+fn file_text(text: &str, encoding: Encoding) -> PyResult<String> {
+    match encoding {
+        Encoding::Utf8 => Ok(text.to_string()),
+        Encoding::Latin1 => (encoding.encode(text))
+            .map(|bytes| bytes.into_iter().map(char::from).collect())
+            .map_err(pyo3::exceptions::PyValueError::new_err),
+    }
 }
 
 /// The path (`program` and `process` `None`) or the program to compensate, named `name`, and

@@ -206,11 +206,12 @@ def test_krl_subprograms_data_equal_the_command(cli, tmp_path):
 
 
 def test_a_latin1_program_gives_its_encoding_and_the_commands_bytes(cli, tmp_path):
-    """A KRL program with a Latin-1 remark: ``encoding`` is ``latin-1``, the warning of kind
-    ``encoding`` is the command's, and the program written in it is the command's file byte for
-    byte."""
+    """A KRL program with a Latin-1 remark, its file beginning with a UTF-8 byte order mark (an
+    editor's): ``encoding`` is ``latin-1``, the warning of kind ``encoding`` is the command's,
+    and the program written in it is the command's file byte for byte, the mark included."""
     setup, stiffness = MILLING / "kuka-milling.toml", MILLING / "kuka-stiffness.json"
     src = (MILLING / "pocket.src").read_bytes().replace(b"DEF POCKET( )\n", b"DEF POCKET( )\n; Fr\xe4sen\n")
+    src = b"\xef\xbb\xbf" + src
     (tmp_path / "pocket.src").write_bytes(src)
     (tmp_path / "pocket.dat").write_bytes((MILLING / "pocket.dat").read_bytes())
     out = tmp_path / "out.src"
@@ -224,4 +225,4 @@ def test_a_latin1_program_gives_its_encoding_and_the_commands_bytes(cli, tmp_pat
     encoding = [w["message"] for w in theirs["warnings"] if w["kind"] == "encoding"]
     assert len(encoding) == 1 and encoding[0] in [str(w.message) for w in caught]
     assert mine["program"].encode("latin-1") == out.read_bytes()
-    assert b"; Fr\xe4sen\n" in out.read_bytes()
+    assert out.read_bytes().startswith(b"\xef\xbb\xbf") and b"; Fr\xe4sen\n" in out.read_bytes()
