@@ -1002,7 +1002,7 @@ const LATIN_REMARK: &[u8] = b"; Punkte f\xfcr die Tasche\n";
 /// A KRL program and its `.dat` with German remarks in Latin-1 (as a KUKA controller's backup
 /// holds them): read byte for byte with a warning of kind `encoding`, compensated as the same
 /// program in UTF-8, and written back in Latin-1, the remarks' bytes as read. A file with a
-/// control byte is no text: refused naming the file, the byte and its line.
+/// control byte is no text, in Latin-1 or UTF-8: refused naming the file, the byte and its line.
 #[test]
 fn a_latin1_program_is_compensated_and_written_back_in_latin1() {
     let dir = temp_dir("latin1");
@@ -1036,15 +1036,17 @@ fn a_latin1_program_is_compensated_and_written_back_in_latin1() {
         let expected = with_remark(&std::fs::read(plain_dir.join(file)).unwrap(), after, bytes);
         assert!(written == expected, "{file}");
     }
-    // A control byte (an encrypted module, a binary file): no text.
-    let binary = with_remark(&latin_src, b"; Fr", b"\x00");
-    let (refused, bad_dir) = run_pocket(&dir, "binary", (&binary, &latin_dat));
-    let message = assert_usage_error(&refused, &["pocket.src", "control byte 0x00", "line 6"]);
-    assert!(
-        message.contains("neither UTF-8 nor Latin-1 text"),
-        "{message}"
-    );
-    assert!(!bad_dir.join("out.src").exists());
+    // A control byte (an encrypted module, a binary file): no text, in Latin-1 or in UTF-8.
+    for (name, src, dat) in [
+        ("binary", &latin_src, &latin_dat),
+        ("binary-utf8", &src, &dat),
+    ] {
+        let binary = with_remark(src, b"DEF POCKET( )\n", b"; Fr\x00");
+        let (refused, bad_dir) = run_pocket(&dir, name, (&binary, dat));
+        let message = assert_usage_error(&refused, &["pocket.src", "control byte 0x00", "line 6"]);
+        assert!(message.contains("not text"), "{message}");
+        assert!(!bad_dir.join("out.src").exists());
+    }
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

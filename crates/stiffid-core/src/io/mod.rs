@@ -137,12 +137,12 @@ fn latin1(bytes: Vec<u8>) -> String {
 /// The texts of a program's files (a KRL `.src` and its `.dat`) from their bytes as read, named
 /// by `files`' names: UTF-8 when every file is; else each read as Latin-1 ([`Encoding::Latin1`],
 /// byte for byte, a UTF-8 byte order mark at a file's start read as the mark), the encoding of
-/// controllers' European backups, when no file holds a control character other than a tab, a
-/// line or page break and DOS's end-of-file mark (a text file).
+/// controllers' European backups. Either way a program is text: no file may hold a control
+/// character other than a tab, a line or page break and DOS's end-of-file mark.
 ///
 /// # Errors
-/// [`Error::Parse`] naming the file: larger than the input limit, or neither UTF-8 nor text (a
-/// control byte, named with its offset, line and column).
+/// [`Error::Parse`] naming the file: larger than the input limit, not text (a control byte,
+/// named with its offset, line and column), or neither UTF-8 nor Latin-1.
 ///
 /// # Examples
 /// ```
@@ -150,37 +150,47 @@ fn latin1(bytes: Vec<u8>) -> String {
 /// let (texts, encoding) = program_texts(vec![("p.src", b"; Z\xfcrich\r\n".to_vec())]).unwrap();
 /// assert_eq!((texts[0].as_str(), encoding), ("; Z\u{fc}rich\r\n", Encoding::Latin1));
 /// assert!(program_texts(vec![("p.src", vec![0xfc, 0x00])]).is_err());
+/// // A NUL in a UTF-8 file: no text either.
+/// assert!(program_texts(vec![("p.nc", b"G1 X1\0\n".to_vec())]).is_err());
 /// // A .src saved with a byte order mark beside a Latin-1 .dat: the mark read as one.
 /// let files = vec![("p.src", b"\xef\xbb\xbfDEF p( )".to_vec()), ("p.dat", b"; \xe9".to_vec())];
 /// let (texts, _) = program_texts(files).unwrap();
 /// assert_eq!(texts[0], "\u{feff}DEF p( )");
 /// ```
 pub fn program_texts(files: Vec<(&str, Vec<u8>)>) -> Result<(Vec<String>, Encoding)> {
-    if files.iter().all(|(_, b)| std::str::from_utf8(b).is_ok()) {
-        let texts = files.into_iter().map(|(name, b)| text(name, b));
-        return Ok((texts.collect::<Result<_>>()?, Encoding::Utf8));
-    }
     let control = |b: &u8| *b < 0x20 && !matches!(b, b'\t' | b'\n' | b'\r' | 0x0c | 0x1a);
-    let texts = files.into_iter().map(|(name, bytes)| {
-        if bytes.len() as u64 > MAX_INPUT_BYTES {
-            return text(name, bytes);
-        }
-        match bytes.iter().position(control) {
-            Some(at) => Err(Error::Parse {
+    for (name, bytes) in files
+        .iter()
+        .filter(|(_, b)| b.len() as u64 <= MAX_INPUT_BYTES)
+    {
+        if let Some(at) = bytes.iter().position(control) {
+            return Err(Error::Parse {
                 source_name: name.to_string(),
-                message: not_text(&bytes, at),
-            }),
-            None => Ok(latin1(bytes)),
+                message: not_text(bytes, at),
+            });
         }
-    });
-    Ok((texts.collect::<Result<_>>()?, Encoding::Latin1))
+    }
+    let utf8 = files.iter().all(|(_, b)| std::str::from_utf8(b).is_ok());
+    let texts =
+        files.into_iter().map(
+            |(name, bytes)| match utf8 || bytes.len() as u64 > MAX_INPUT_BYTES {
+                true => text(name, bytes),
+                false => Ok(latin1(bytes)),
+            },
+        );
+    let encoding = if utf8 {
+        Encoding::Utf8
+    } else {
+        Encoding::Latin1
+    };
+    Ok((texts.collect::<Result<_>>()?, encoding))
 }
 
-/// The message for a program's `bytes`, neither UTF-8 nor text: the control byte at `at`, its
+/// The message for a program's `bytes` that are not text: the control byte at `at`, its
 /// offset, line and column.
 fn not_text(bytes: &[u8], at: usize) -> String {
     let (line, column) = line_column(bytes, at);
-    format!("neither UTF-8 nor Latin-1 text: a control byte 0x{:02X} at offset {at}, line {line}, column {column} (an encrypted module or a binary file?)", bytes[at])
+    format!("not text: a control byte 0x{:02X} at offset {at}, line {line}, column {column} (an encrypted module or a binary file?)", bytes[at])
 }
 
 /// The line and column (1-based) of byte `at` of `bytes`.
