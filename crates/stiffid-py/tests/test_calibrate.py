@@ -242,3 +242,33 @@ def test_an_update_with_a_list_and_the_stiffness_file_equals_the_command(paper, 
         stiffid.calibrate(calibrated, held, update_parameters="offsets,base")
     with pytest.raises(stiffid.InputError, match=r"needs base"):
         stiffid.calibrate(calibrated, held, update=True, update_parameters="offsets,tool")
+
+
+def test_a_refusal_names_the_keywords_python_spells_as_the_command_its_flags(paper, cli, campaign, tmp_path):
+    """A calibration's refusal that tells what to give or leave out names the keyword beside the
+    command's flag, the same message from both: ``level`` without held-out readings, and readings
+    that are a mirror image of the robot's points (two tracker columns swapped) that ``force``
+    fits anyway."""
+    import subprocess
+
+    from conftest import cli_path
+
+    d, _, fit, _ = campaign
+    setup = tmp_path / "setup.toml"
+    setup.write_text(cli("setups", "show", SETUP, parse=False))
+    lines = fit.read_text().splitlines()
+    swapped = [lines[0]] + [",".join(v[:-3] + [v[-2], v[-3], v[-1]]) for v in (line.split(",") for line in lines[1:])]
+    mirrored = tmp_path / "mirrored.csv"
+    mirrored.write_text("\n".join(swapped) + "\n")
+    for kwargs, flags, keyword in [
+        ({"level": 0.9}, ["--level", "0.9"], "(Python validate= or update=True)"),
+        ({}, [], "--force (Python force=True) fits"),
+    ]:
+        readings = fit if kwargs else mirrored
+        with pytest.raises(stiffid.InputError) as mine:
+            stiffid.calibrate(paper, readings, **kwargs)
+        out = subprocess.run([str(cli_path()), "calibrate", "--setup", setup, "--data", readings, *flags],
+                             capture_output=True, text=True)
+        assert out.returncode == 2 and keyword in str(mine.value), str(mine.value)
+        theirs = out.stderr.strip().removeprefix("error: ")
+        assert theirs.split(": ", 1)[1] == str(mine.value).split(": ", 1)[1], (theirs, str(mine.value))

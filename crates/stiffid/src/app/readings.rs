@@ -136,7 +136,7 @@ pub(crate) fn refuse_implausible(
         Some(Suspect::Mirrored { rms, mirror_rms }) => Error::InvalidField {
             field: "readings".into(),
             message: format!(
-                "the tracker's readings are a mirror image of the robot's points: the best rotation leaves a residual RMS of {:.3} mm, a reflection {:.3} mm; expected readings in a right-handed tracker frame (an axis flipped, or two coordinate columns swapped?); --force fits the best rotation anyway",
+                "the tracker's readings are a mirror image of the robot's points: the best rotation leaves a residual RMS of {:.3} mm, a reflection {:.3} mm; expected readings in a right-handed tracker frame (an axis flipped, or two coordinate columns swapped?); --force (Python force=True) fits the best rotation anyway",
                 rms * 1e3,
                 mirror_rms * 1e3
             ),
@@ -160,7 +160,7 @@ pub(crate) fn refuse_implausible(
                     reading.point + 1
                 ),
                 message: format!(
-                    "{:.3}: expected at most {:.3} mm (the larger of {} mm, twice a robot's unloaded absolute error, and {} times the tracker noise {:.4} mm): a reading of another point or posture, or axis angles that are not the robot's; --force fits the readings anyway",
+                    "{:.3}: expected at most {:.3} mm (the larger of {} mm, twice a robot's unloaded absolute error, and {} times the tracker noise {:.4} mm): a reading of another point or posture, or axis angles that are not the robot's; --force (Python force=True) fits the readings anyway",
                     length * 1e3,
                     limit * 1e3,
                     register::RESIDUAL_LIMIT * 1e3,

@@ -20,7 +20,7 @@ pub(super) fn interval_level(request: &Request<'_>) -> Result<f64> {
         (None, _) => Ok(DEFAULT_LEVEL),
         (Some(_), None) if !request.update => Err(Error::InvalidOption {
             option: JobOption::Level,
-            message: "only with --validate or --update: the level is that of the held-out readings' prediction intervals or of the check's bound".into(),
+            message: "only with --validate or --update (Python validate= or update=True): the level is that of the held-out readings' prediction intervals or of the check's bound".into(),
         }),
         (Some(l), _) => check_level("level", l)
             .map(|_| l)

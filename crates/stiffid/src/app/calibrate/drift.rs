@@ -135,7 +135,7 @@ pub(crate) fn checked(
     if check.is_none() {
         warnings.push(Warning::new(
             WarningKind::LeftOut,
-            "no check of the readings against the calibration's intervals: the robot file carries no [held_out] errors (calibrate with --validate or --cross-validate), or too few for the level",
+            "no check of the readings against the calibration's intervals: the robot file carries no [held_out] errors (calibrate with --validate or --cross-validate, Python validate= or cross_validate=True), or too few for the level",
         ));
     }
     check

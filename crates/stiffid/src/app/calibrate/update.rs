@@ -204,7 +204,7 @@ pub(super) fn settings(
             message: format!("the stiffness file's gravity terms: {e}"),
         })?,
         None if request.refit.contains(Refit::Gravity) => {
-            return refuse("gravity: the update refits the calibration's gravity terms, and neither the calibrated robot file ([gravity]) nor a stiffness file (--stiffness) holds any".into())
+            return refuse("gravity: the update refits the calibration's gravity terms, and neither the calibrated robot file ([gravity]) nor a stiffness file (--stiffness, Python stiffness=) holds any".into())
         }
         None => Gravity::None,
     };
@@ -467,7 +467,7 @@ pub(super) fn weight<'r>(request: &'r Request<'_>) -> Result<Option<&'r OwnWeigh
             Err(Error::InvalidOption {
                 option: JobOption::Update,
                 message: format!(
-                    "the calibrated robot file's [gravity] ({} terms) and the stiffness file's gravity section ({} terms) differ: the robot file carries the calibration's sag, leave out --stiffness",
+                    "the calibrated robot file's [gravity] ({} terms) and the stiffness file's gravity section ({} terms) differ: the robot file carries the calibration's sag, leave out --stiffness (Python stiffness=)",
                     r.gravity, s.gravity
                 ),
             })
