@@ -29,7 +29,7 @@ fn negative(name: &str, given: i64) -> PyErr {
 }
 
 /// The number argument `name`, which may be left out: an `InputError` naming it for a bool
-/// (`True` is not 1 here) or anything but an int or a float.
+/// (`True` is not 1 here), an int beyond a float's range or anything but an int or a float.
 pub fn real(name: &str, given: Option<&Bound<'_, PyAny>>) -> PyResult<Option<f64>> {
     let Some(v) = given else {
         return Ok(None);
@@ -37,8 +37,15 @@ pub fn real(name: &str, given: Option<&Bound<'_, PyAny>>) -> PyResult<Option<f64
     if v.is_instance_of::<PyBool>() {
         return Err(value(format!("{name}: {v} is a bool: expected a number")));
     }
-    let got = || value(format!("{name}: expected a number, got {}", v.get_type()));
-    v.extract::<f64>().map(Some).map_err(|_| got())
+    v.extract::<f64>().map(Some).map_err(|e| {
+        match e.is_instance_of::<pyo3::exceptions::PyOverflowError>(v.py()) {
+            // An int beyond a float's range is a number still: say so, not "got int".
+            true => value(format!(
+                "{name}: an int too large for a float (at most about 1.8e308): expected a number"
+            )),
+            false => value(format!("{name}: expected a number, got {}", v.get_type())),
+        }
+    })
 }
 
 /// A number argument read by PyO3 (`#[pyo3(from_py_with = count::number)]`): an int or a float,

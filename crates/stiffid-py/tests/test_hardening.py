@@ -138,3 +138,17 @@ def test_every_argument_of_the_wrong_type_is_an_input_error_naming_it(paper, tmp
         paper.select(distinct="yes")
     with pytest.raises(stiffid.InputError, match=r"^name: "):
         stiffid.Robot.preset(7)
+
+
+@pytest.mark.parametrize(
+    "name, call",
+    [
+        ("max_error_mm", lambda s: _pocket(max_error_mm=10**400)),
+        ("level", lambda s: stiffid.calibrate(s, MILLING / "path.csv", level=10**400)),
+    ],
+)
+def test_an_int_beyond_a_float_is_refused_as_too_large_not_as_no_number(paper, name, call):
+    """An int too large for a float is a number: the refusal names the argument and says it is too
+    large, not that an int is no number."""
+    with pytest.raises(stiffid.InputError, match=rf"^{name}: an int too large for a float \(at most about 1.8e308\): expected a number$"):
+        call(paper)
