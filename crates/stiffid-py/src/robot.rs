@@ -58,7 +58,7 @@ impl Robot {
         py: Python<'_>,
         path: PathBuf,
         tip: Option<&str>,
-        package_paths: Vec<PathBuf>,
+        #[pyo3(from_py_with = crate::robot::package_paths)] package_paths: Vec<PathBuf>,
     ) -> PyResult<Self> {
         let inner = from_path(&path, tip, &package_paths)?;
         let warning = stiffid_core::setup::plausibility::meshes(&inner);
@@ -454,6 +454,23 @@ fn from_path(
         package_paths,
     };
     reference::robot_with_meshes(&reference, tip, read, &meshes).map_err(|e: Failure| e.0)
+}
+
+/// The `package_paths` argument read by PyO3 (`#[pyo3(from_py_with = robot::package_paths)]`):
+/// a sequence of directories; one path given alone (a str or an `os.PathLike`, which PyO3 would
+/// refuse as "Can't extract `str` to `Vec`") is refused saying to give a list.
+pub fn package_paths(given: &Bound<'_, PyAny>) -> PyResult<Vec<PathBuf>> {
+    let os_path_like = given.py().import("os")?.getattr("PathLike")?;
+    if given.is_instance_of::<pyo3::types::PyString>()
+        || given.is_instance_of::<pyo3::types::PyBytes>()
+        || given.is_instance(&os_path_like)?
+    {
+        let repr = given.repr()?;
+        return Err(crate::error::value(format!(
+            "{repr} is one path: expected a list of directories (package_paths=[{repr}])"
+        )));
+    }
+    given.extract()
 }
 
 /// At most [`stiffid_core::setup::MAX_PACKAGE_PATHS`] package paths.

@@ -52,7 +52,7 @@ impl Setup {
     pub(crate) fn from_file(
         py: Python<'_>,
         path: PathBuf,
-        package_paths: Vec<PathBuf>,
+        #[pyo3(from_py_with = crate::robot::package_paths)] package_paths: Vec<PathBuf>,
     ) -> PyResult<Self> {
         let text = error::read(&path)?;
         let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
@@ -71,7 +71,7 @@ impl Setup {
         text: &str,
         source_name: &str,
         base_dir: Option<PathBuf>,
-        package_paths: Vec<PathBuf>,
+        #[pyo3(from_py_with = crate::robot::package_paths)] package_paths: Vec<PathBuf>,
     ) -> PyResult<Self> {
         let dir = base_dir.unwrap_or_default();
         Self::parse(py, text, source_name, &dir, &package_paths)

@@ -1,6 +1,8 @@
 """Hostile arguments through Python: each an InputError naming the argument, and what is
 accepted is what the command accepts."""
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -152,3 +154,19 @@ def test_an_int_beyond_a_float_is_refused_as_too_large_not_as_no_number(paper, n
     large, not that an int is no number."""
     with pytest.raises(stiffid.InputError, match=rf"^{name}: an int too large for a float \(at most about 1.8e308\): expected a number$"):
         call(paper)
+
+
+@pytest.mark.parametrize("given", ["/tmp", b"/tmp", Path("/tmp")])
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda p: stiffid.Setup.from_file(MILLING / "kuka-milling.toml", package_paths=p),
+        lambda p: stiffid.Setup.from_toml((MILLING / "kuka-milling.toml").read_text(), package_paths=p),
+        lambda p: stiffid.Robot.from_file(MILLING / "kuka-milling.toml", package_paths=p),
+    ],
+)
+def test_one_path_for_package_paths_is_refused_saying_to_give_a_list(given, call):
+    """``package_paths`` is a list of directories: one path given alone is refused naming the
+    argument and saying to give a list (not "Can't extract `str` to `Vec`")."""
+    with pytest.raises(stiffid.InputError, match=r"^package_paths: .* is one path: expected a list of directories \(package_paths=\["):
+        call(given)
