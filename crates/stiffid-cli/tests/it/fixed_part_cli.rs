@@ -240,3 +240,57 @@ fn reflectors_the_setup_does_not_place_are_named() {
     let file = std::fs::read_to_string(&robot).unwrap();
     assert!(!file.contains("[part]"), "{file}");
 }
+
+/// A held-out reading of a reflector the fitted readings never read (`T1` in `--validate`, none
+/// in `--data`; `T2` where the fitted readings read `T1` alone) is refused naming its line and
+/// the reflectors the fit located: the calibration has no position to predict it from.
+#[test]
+fn held_out_reflectors_the_fit_never_read_are_refused() {
+    let d = temp_dir("fixed-part-held-reflector");
+    let model = model();
+    let x = truth(&model);
+    let tracker = crate::calibrate_cli::tracker();
+    // A reflector read beside the first posture of `text`, at its axis angles.
+    let reflector = |text: &str, k: usize| {
+        let line = text.lines().nth(1).unwrap().to_string();
+        let first: Vec<&str> = line.split(',').collect();
+        format!("P1,T{k},{},1500.0,200.0,600.0\n", first[2..8].join(","))
+    };
+    let arm = readings(&model, &x, &tracker, &postures(25, 1));
+    write_file(&d, "fit.csv", &arm);
+    write_file(&d, "fit-t1.csv", &(arm.clone() + &reflector(&arm, 1)));
+    let held = readings(&model, &x, &tracker, &postures(5, 2));
+    write_file(&d, "held-t1.csv", &(held.clone() + &reflector(&held, 1)));
+    write_file(&d, "held-t2.csv", &(held.clone() + &reflector(&held, 2)));
+    // The reflector's row comes after the 5 postures' 4 points and the header: line 22.
+    let cases = [
+        ("{dir}/fit.csv", "{dir}/held-t1.csv", "T1", "locate none"),
+        ("{dir}/fit-t1.csv", "{dir}/held-t2.csv", "T2", "locate T1:"),
+    ];
+    for (fit, held, name, located) in cases {
+        let args = [
+            "calibrate",
+            "--setup",
+            SETUP,
+            "--data",
+            fit,
+            "--validate",
+            held,
+        ];
+        let message = format!("reflector {name} is not read in the fitted readings");
+        refused(&d, &args, &["line 22", &message, located]);
+    }
+    // Read in the fitted readings too, the held-out reflector is predicted.
+    let doc = json(&stiffid(&[
+        "calibrate",
+        "--setup",
+        SETUP,
+        "--data",
+        d.join("fit-t1.csv").to_str().unwrap(),
+        "--validate",
+        d.join("held-t1.csv").to_str().unwrap(),
+        "--json",
+    ]));
+    let errors = doc["validation"]["errors"].as_array().unwrap();
+    assert_eq!(errors.len(), 5 * model.points() + 1);
+}
