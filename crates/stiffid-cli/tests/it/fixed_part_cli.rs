@@ -294,3 +294,44 @@ fn held_out_reflectors_the_fit_never_read_are_refused() {
     let errors = doc["validation"]["errors"].as_array().unwrap();
     assert_eq!(errors.len(), 5 * model.points() + 1);
 }
+
+/// A reflector read beside one posture only has no reading in the fold that holds that posture
+/// out: the cross-validation leaves it out with a warning, instead of an "error" of the fit's
+/// start (hundreds of mm) in its RMS and in the robot file's `[held_out]`.
+#[test]
+fn cross_validation_leaves_out_a_reflector_read_once() {
+    let d = temp_dir("fixed-part-cross-validated");
+    let model = model();
+    let x = truth(&model);
+    let tracker = crate::calibrate_cli::tracker();
+    let mut text = readings(&model, &x, &tracker, &postures(25, 1));
+    let line = text.lines().nth(1).unwrap().to_string();
+    let first: Vec<&str> = line.split(',').collect();
+    text += &format!("P1,T1,{},1500.0,200.0,600.0\n", first[2..8].join(","));
+    let data = write_file(&d, "fit.csv", &text);
+    let robot = d.join("robot.toml");
+    let doc = json(&stiffid(&[
+        "calibrate",
+        "--setup",
+        SETUP,
+        "--data",
+        data.to_str().unwrap(),
+        "--cross-validate",
+        "--out",
+        robot.to_str().unwrap(),
+        "--json",
+    ]));
+    let cv = &doc["cross_validation"];
+    assert_eq!(cv["errors"].as_array().unwrap().len(), 25 * model.points());
+    assert!(cv["max_mm"].as_f64().unwrap() < 1e-6, "{}", cv["max_mm"]);
+    let warnings = doc["warnings"].to_string();
+    assert!(
+        warnings.contains("reflector T1 read in one posture only"),
+        "{warnings}"
+    );
+    let file = std::fs::read_to_string(&robot).unwrap();
+    let held: toml::Value = toml::from_str(&file).unwrap();
+    let errors = numbers(&serde_json::to_value(&held["held_out"]["errors_mm"]).unwrap());
+    assert_eq!(errors.len(), 25 * model.points());
+    assert!(errors.iter().all(|e| *e < 1e-3), "{errors:?}");
+}
