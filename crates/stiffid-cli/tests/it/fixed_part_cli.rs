@@ -335,3 +335,40 @@ fn cross_validation_leaves_out_a_reflector_read_once() {
     assert_eq!(errors.len(), 25 * model.points());
     assert!(errors.iter().all(|e| *e < 1e-3), "{errors:?}");
 }
+
+/// The held-out reading of a reflector the fitted readings read beside one posture only: the
+/// fold holding that posture out has no reading of it, and its interval leaves that fold out
+/// (with it, one side of the interval reached the fit's start, 100 mm and more away).
+#[test]
+fn intervals_of_a_reflector_read_once_leave_out_the_fold_without_it() {
+    let d = temp_dir("fixed-part-intervals");
+    let model = model();
+    let x = truth(&model);
+    let tracker = crate::calibrate_cli::tracker();
+    let reflector = |text: &str| {
+        let line = text.lines().nth(1).unwrap().to_string();
+        let first: Vec<&str> = line.split(',').collect();
+        format!("P1,T1,{},1500.0,200.0,600.0\n", first[2..8].join(","))
+    };
+    let fit = readings(&model, &x, &tracker, &postures(25, 1));
+    let held = readings(&model, &x, &tracker, &postures(5, 2));
+    let data = write_file(&d, "fit.csv", &(fit.clone() + &reflector(&fit)));
+    let held = write_file(&d, "held.csv", &(held.clone() + &reflector(&held)));
+    let doc = json(&stiffid(&[
+        "calibrate",
+        "--setup",
+        SETUP,
+        "--data",
+        data.to_str().unwrap(),
+        "--validate",
+        held.to_str().unwrap(),
+        "--json",
+    ]));
+    let errors = doc["validation"]["errors"].as_array().unwrap();
+    let t1 = errors.iter().find(|e| e["point_name"] == "T1").unwrap();
+    assert!(t1["error_norm_mm"].as_f64().unwrap() < 1e-6, "{t1}");
+    for side in t1["interval_mm"].as_array().unwrap() {
+        let [lo, hi] = [side[0].as_f64().unwrap(), side[1].as_f64().unwrap()];
+        assert!(lo <= 0.0 && hi >= 0.0 && hi - lo < 0.01, "{t1}");
+    }
+}
