@@ -372,3 +372,28 @@ fn intervals_of_a_reflector_read_once_leave_out_the_fold_without_it() {
         assert!(lo <= 0.0 && hi >= 0.0 && hi - lo < 0.01, "{t1}");
     }
 }
+
+/// A reflector read at two places (a reading of another reflector under its name) is refused
+/// naming the reflector as the file does, `T1`, not the tool's measuring point 1.
+#[test]
+fn a_reflector_read_at_two_places_is_named_as_a_reflector() {
+    let d = temp_dir("fixed-part-two-places");
+    let model = model();
+    let x = truth(&model);
+    let tracker = crate::calibrate_cli::tracker();
+    let mut text = readings(&model, &x, &tracker, &postures(25, 1));
+    let angles = |n: usize| {
+        let line = text.lines().nth(n).unwrap().to_string();
+        line.split(',')
+            .skip(2)
+            .take(6)
+            .collect::<Vec<_>>()
+            .join(",")
+    };
+    let (first, second) = (angles(1), angles(5));
+    text += &format!("P1,T1,{first},1500.0,200.0,600.0\n");
+    text += &format!("P2,T1,{second},2500.0,200.0,600.0\n");
+    write_file(&d, "fit.csv", &text);
+    let args = ["calibrate", "--setup", SETUP, "--data", "{dir}/fit.csv"];
+    refused(&d, &args, &["point T1), residual_norm_mm"]);
+}
