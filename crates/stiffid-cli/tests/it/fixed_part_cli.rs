@@ -240,3 +240,160 @@ fn reflectors_the_setup_does_not_place_are_named() {
     let file = std::fs::read_to_string(&robot).unwrap();
     assert!(!file.contains("[part]"), "{file}");
 }
+
+/// A held-out reading of a reflector the fitted readings never read (`T1` in `--validate`, none
+/// in `--data`; `T2` where the fitted readings read `T1` alone) is refused naming its line and
+/// the reflectors the fit located: the calibration has no position to predict it from.
+#[test]
+fn held_out_reflectors_the_fit_never_read_are_refused() {
+    let d = temp_dir("fixed-part-held-reflector");
+    let model = model();
+    let x = truth(&model);
+    let tracker = crate::calibrate_cli::tracker();
+    // A reflector read beside the first posture of `text`, at its axis angles.
+    let reflector = |text: &str, k: usize| {
+        let line = text.lines().nth(1).unwrap().to_string();
+        let first: Vec<&str> = line.split(',').collect();
+        format!("P1,T{k},{},1500.0,200.0,600.0\n", first[2..8].join(","))
+    };
+    let arm = readings(&model, &x, &tracker, &postures(25, 1));
+    write_file(&d, "fit.csv", &arm);
+    write_file(&d, "fit-t1.csv", &(arm.clone() + &reflector(&arm, 1)));
+    let held = readings(&model, &x, &tracker, &postures(5, 2));
+    write_file(&d, "held-t1.csv", &(held.clone() + &reflector(&held, 1)));
+    write_file(&d, "held-t2.csv", &(held.clone() + &reflector(&held, 2)));
+    // The reflector's row comes after the 5 postures' 4 points and the header: line 22.
+    let cases = [
+        ("{dir}/fit.csv", "{dir}/held-t1.csv", "T1", "locate none"),
+        ("{dir}/fit-t1.csv", "{dir}/held-t2.csv", "T2", "locate T1:"),
+    ];
+    for (fit, held, name, located) in cases {
+        let args = [
+            "calibrate",
+            "--setup",
+            SETUP,
+            "--data",
+            fit,
+            "--validate",
+            held,
+        ];
+        let message = format!("reflector {name} is not read in the fitted readings");
+        refused(&d, &args, &["line 22", &message, located]);
+    }
+    // Read in the fitted readings too, the held-out reflector is predicted.
+    let doc = json(&stiffid(&[
+        "calibrate",
+        "--setup",
+        SETUP,
+        "--data",
+        d.join("fit-t1.csv").to_str().unwrap(),
+        "--validate",
+        d.join("held-t1.csv").to_str().unwrap(),
+        "--json",
+    ]));
+    let errors = doc["validation"]["errors"].as_array().unwrap();
+    assert_eq!(errors.len(), 5 * model.points() + 1);
+}
+
+/// A reflector read beside one posture only has no reading in the fold that holds that posture
+/// out: the cross-validation leaves it out with a warning, instead of an "error" of the fit's
+/// start (hundreds of mm) in its RMS and in the robot file's `[held_out]`.
+#[test]
+fn cross_validation_leaves_out_a_reflector_read_once() {
+    let d = temp_dir("fixed-part-cross-validated");
+    let model = model();
+    let x = truth(&model);
+    let tracker = crate::calibrate_cli::tracker();
+    let mut text = readings(&model, &x, &tracker, &postures(25, 1));
+    let line = text.lines().nth(1).unwrap().to_string();
+    let first: Vec<&str> = line.split(',').collect();
+    text += &format!("P1,T1,{},1500.0,200.0,600.0\n", first[2..8].join(","));
+    let data = write_file(&d, "fit.csv", &text);
+    let robot = d.join("robot.toml");
+    let doc = json(&stiffid(&[
+        "calibrate",
+        "--setup",
+        SETUP,
+        "--data",
+        data.to_str().unwrap(),
+        "--cross-validate",
+        "--out",
+        robot.to_str().unwrap(),
+        "--json",
+    ]));
+    let cv = &doc["cross_validation"];
+    assert_eq!(cv["errors"].as_array().unwrap().len(), 25 * model.points());
+    assert!(cv["max_mm"].as_f64().unwrap() < 1e-6, "{}", cv["max_mm"]);
+    let warnings = doc["warnings"].to_string();
+    assert!(
+        warnings.contains("reflector T1 read in one posture only"),
+        "{warnings}"
+    );
+    let file = std::fs::read_to_string(&robot).unwrap();
+    let held: toml::Value = toml::from_str(&file).unwrap();
+    let errors = numbers(&serde_json::to_value(&held["held_out"]["errors_mm"]).unwrap());
+    assert_eq!(errors.len(), 25 * model.points());
+    assert!(errors.iter().all(|e| *e < 1e-3), "{errors:?}");
+}
+
+/// The held-out reading of a reflector the fitted readings read beside one posture only: the
+/// fold holding that posture out has no reading of it, and its interval leaves that fold out
+/// (with it, one side of the interval reached the fit's start, 100 mm and more away).
+#[test]
+fn intervals_of_a_reflector_read_once_leave_out_the_fold_without_it() {
+    let d = temp_dir("fixed-part-intervals");
+    let model = model();
+    let x = truth(&model);
+    let tracker = crate::calibrate_cli::tracker();
+    let reflector = |text: &str| {
+        let line = text.lines().nth(1).unwrap().to_string();
+        let first: Vec<&str> = line.split(',').collect();
+        format!("P1,T1,{},1500.0,200.0,600.0\n", first[2..8].join(","))
+    };
+    let fit = readings(&model, &x, &tracker, &postures(25, 1));
+    let held = readings(&model, &x, &tracker, &postures(5, 2));
+    let data = write_file(&d, "fit.csv", &(fit.clone() + &reflector(&fit)));
+    let held = write_file(&d, "held.csv", &(held.clone() + &reflector(&held)));
+    let doc = json(&stiffid(&[
+        "calibrate",
+        "--setup",
+        SETUP,
+        "--data",
+        data.to_str().unwrap(),
+        "--validate",
+        held.to_str().unwrap(),
+        "--json",
+    ]));
+    let errors = doc["validation"]["errors"].as_array().unwrap();
+    let t1 = errors.iter().find(|e| e["point_name"] == "T1").unwrap();
+    assert!(t1["error_norm_mm"].as_f64().unwrap() < 1e-6, "{t1}");
+    for side in t1["interval_mm"].as_array().unwrap() {
+        let [lo, hi] = [side[0].as_f64().unwrap(), side[1].as_f64().unwrap()];
+        assert!(lo <= 0.0 && hi >= 0.0 && hi - lo < 0.01, "{t1}");
+    }
+}
+
+/// A reflector read at two places (a reading of another reflector under its name) is refused
+/// naming the reflector as the file does, `T1`, not the tool's measuring point 1.
+#[test]
+fn a_reflector_read_at_two_places_is_named_as_a_reflector() {
+    let d = temp_dir("fixed-part-two-places");
+    let model = model();
+    let x = truth(&model);
+    let tracker = crate::calibrate_cli::tracker();
+    let mut text = readings(&model, &x, &tracker, &postures(25, 1));
+    let angles = |n: usize| {
+        let line = text.lines().nth(n).unwrap().to_string();
+        line.split(',')
+            .skip(2)
+            .take(6)
+            .collect::<Vec<_>>()
+            .join(",")
+    };
+    let (first, second) = (angles(1), angles(5));
+    text += &format!("P1,T1,{first},1500.0,200.0,600.0\n");
+    text += &format!("P2,T1,{second},2500.0,200.0,600.0\n");
+    write_file(&d, "fit.csv", &text);
+    let args = ["calibrate", "--setup", SETUP, "--data", "{dir}/fit.csv"];
+    refused(&d, &args, &["point T1), residual_norm_mm"]);
+}

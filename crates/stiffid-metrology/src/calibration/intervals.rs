@@ -52,6 +52,25 @@ pub struct Intervals {
     /// change of the values from the full fit's (SI): a fold predicts the full fit's errors plus
     /// the Jacobian times it. Empty for refitted folds.
     changes: Vec<DVector<f64>>,
+    /// Per fold, the reflectors fixed in the cell (0-based) that only its held-out posture
+    /// reads: the fold has no reading of them, so it predicts none of their readings.
+    lacks: Vec<Vec<usize>>,
+}
+
+/// Per fold, the reflectors fixed in the cell that no other fold's held-out posture reads.
+fn lone_reflectors(folds: &[Fold]) -> Vec<Vec<usize>> {
+    let reads = |f: &Fold, k: usize| (f.held.errors.iter()).any(|e| e.table && e.point == k);
+    (folds.iter().enumerate())
+        .map(|(i, f)| {
+            let mut ks: Vec<usize> = (f.held.errors.iter())
+                .filter(|e| e.table)
+                .map(|e| e.point)
+                .collect();
+            ks.dedup();
+            ks.retain(|&k| !(folds.iter().enumerate()).any(|(j, g)| j != i && reads(g, k)));
+            ks
+        })
+        .collect()
 }
 
 /// How well the intervals covered held-out readings.
@@ -80,16 +99,19 @@ impl Intervals {
     /// Jacobian at it times their change.
     pub fn new(folds: &[Fold]) -> Self {
         let changes: Option<Vec<DVector<f64>>> = folds.iter().map(|f| f.change.clone()).collect();
+        let lacks = lone_reflectors(folds);
         Intervals {
             changes: changes.unwrap_or_default(),
-            folds: (folds.iter())
-                .map(|f| {
+            folds: (folds.iter().zip(&lacks))
+                .map(|(f, lacks)| {
                     let scores = (f.held.errors.iter())
+                        .filter(|e| !(e.table && lacks.contains(&e.point)))
                         .flat_map(|e| [e.error.x.abs(), e.error.y.abs(), e.error.z.abs()])
                         .collect();
                     (f.estimate.recentre(), scores)
                 })
                 .collect(),
+            lacks,
         }
     }
 
@@ -100,7 +122,8 @@ impl Intervals {
 
     /// The interval at `level` of the error of each of `observations` at `estimate` (predicted
     /// minus read, base frame, m; the readings mapped by `estimate`'s frame), in their order
-    /// (module docs, C1). Each refitted fold maps the readings by its own frame, or with
+    /// (module docs, C1); a reading of a reflector fixed in the cell leaves out the folds whose
+    /// held-out posture alone reads it (they have no reading of it to predict from). Each refitted fold maps the readings by its own frame, or with
     /// `reregister` by the frame registered anew on `observations` at its values
     /// ([`super::fit::start_at`]: another series, the tracker moved). Linearised folds predict
     /// `estimate`'s errors plus the Jacobian at `estimate` times their change, which with
@@ -156,9 +179,12 @@ impl Intervals {
             let intervals: Vec<Interval> = (0..chunk.len())
                 .into_par_iter()
                 .map(|i| {
+                    let o = &chunk[i];
                     let folds: Vec<(Vector3<f64>, f64, &[f64])> = (each.iter())
                         .zip(&self.folds)
-                        .map(|(r, (_, scores))| {
+                        .zip(&self.lacks)
+                        .filter(|(_, lacks)| !(o.table && lacks.contains(&o.point)))
+                        .map(|((r, (_, scores)), _)| {
                             (
                                 r.fixed_rows::<3>(3 * i).into_owned(),
                                 1.0,

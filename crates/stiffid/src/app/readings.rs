@@ -157,7 +157,7 @@ pub(crate) fn refuse_implausible(
                 field: format!(
                     "line {line} (posture {}, point {}), residual_norm_mm",
                     stiffid_core::common::limits::short(&data.labels[reading.posture]),
-                    reading.point + 1
+                    readings::point_name(reading.point, reading.table)
                 ),
                 message: format!(
                     "{:.3}: expected at most {:.3} mm (the larger of {} mm, twice a robot's unloaded absolute error, and {} times the tracker noise {:.4} mm): a reading of another point or posture, or axis angles that are not the robot's; --force (Python force=True) fits the readings anyway",

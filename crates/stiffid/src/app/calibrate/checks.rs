@@ -100,3 +100,39 @@ pub(super) fn refuse_repeated(
         ),
     })
 }
+
+/// Refuses held-out readings of a reflector fixed in the cell (`T<k>`) that the fitted readings
+/// `fitted` do not read: the calibration located no such reflector, so nothing predicts its
+/// reading (the model fits the reflectors `T1` to `T<model.tables()>`).
+///
+/// # Errors
+/// [`Error::Column`] (`point`) on the first such reading's line, naming the reflector and those
+/// the fitted readings located.
+pub(super) fn refuse_unfitted_reflectors(
+    model: &ErrorModel,
+    held: &stiffid_core::io::readings::Readings,
+    fitted: &str,
+) -> Result<()> {
+    let fitted_count = model.tables();
+    let Some((reading, line)) =
+        (held.readings.iter().zip(&held.lines)).find(|(r, _)| r.table && r.point >= fitted_count)
+    else {
+        return Ok(());
+    };
+    let located = match fitted_count {
+        0 => "none".to_string(),
+        1 => "T1".to_string(),
+        n => format!("T1 to T{n}"),
+    };
+    Err(Error::Column {
+        line: *line,
+        column: None,
+        name: "point".into(),
+        problem: stiffid_core::ColumnProblem::Measurement {
+            message: format!(
+                "reflector T{} is not read in the fitted readings {fitted}, which locate {located}: the calibration predicts a held-out reflector's reading from where the fitted readings put it; read it in the fitted readings too, or leave the row out",
+                reading.point + 1
+            ),
+        },
+    })
+}

@@ -41,8 +41,12 @@ pub(super) fn held(
         false => None,
         true => Some(Held {
             name: "cross-validation".into(),
-            calibrated: validation::cross_validate(model, obs, fitted, options, request.progress)
-                .map_err(|e| in_data(name, e))?,
+            calibrated: without_lone_reflectors(
+                validation::cross_validate(model, obs, fitted, options, request.progress)
+                    .map_err(|e| in_data(name, e))?,
+                obs,
+                warnings,
+            ),
             nominal: nominal.clone(),
             labels: labels.to_vec(),
             intervals: None,
@@ -113,4 +117,45 @@ pub(super) fn nominal(
     let start = fit::start(reference, if registers { held } else { fitted })
         .map_err(|e| in_data(name, e))?;
     validation::validate(reference, &start, held).map_err(|e| in_data(name, e))
+}
+
+/// The cross-validation's errors `v` without those of a reflector fixed in the cell (`T<k>`) that
+/// no other posture of `obs` reads: the fold holding out its only posture has no reading of it,
+/// so its position there is the fit's start, not a prediction (errors of metres). A warning of
+/// kind `left-out` names the reflectors left out.
+fn without_lone_reflectors(
+    v: Validation,
+    obs: &[Observation],
+    warnings: &mut Vec<Warning>,
+) -> Validation {
+    let mut postures: Vec<Vec<usize>> = Vec::new();
+    for o in obs.iter().filter(|o| o.table) {
+        if postures.len() <= o.point {
+            postures.resize(o.point + 1, Vec::new());
+        }
+        if !postures[o.point].contains(&o.posture) {
+            postures[o.point].push(o.posture);
+        }
+    }
+    let lone: Vec<usize> = (0..postures.len())
+        .filter(|&k| postures[k].len() == 1)
+        .collect();
+    if lone.is_empty() {
+        return v;
+    }
+    let names: Vec<String> = lone.iter().map(|k| format!("T{}", k + 1)).collect();
+    warnings.push(Warning::new(
+        WarningKind::LeftOut,
+        format!(
+            "cross-validation: reflector{} {} read in one posture only: the fold that holds it out has no reading of {}, so nothing predicts {} there; left out of the cross-validation's errors (read each reflector beside two postures or more to cross-validate it)",
+            if lone.len() == 1 { "" } else { "s" },
+            names.join(", "),
+            if lone.len() == 1 { "it" } else { "them" },
+            if lone.len() == 1 { "its reading" } else { "their readings" },
+        ),
+    ));
+    let kept = (v.errors.into_iter())
+        .filter(|e| !(e.table && lone.contains(&e.point)))
+        .collect();
+    Validation::new(kept)
 }

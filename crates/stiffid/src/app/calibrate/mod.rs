@@ -442,6 +442,8 @@ fn held_out(
     };
     let (data, more) = read(&readings)?;
     warnings.extend(more);
+    checks::refuse_unfitted_reflectors(model, &data, &request.readings.name)
+        .map_err(|e| in_data(name, e))?;
     let (obs, measured_in) = observations(request.readings.setup, &data, !model.has_loads());
     if measured_in != model.measured_in() {
         return Err(Error::InvalidField {
