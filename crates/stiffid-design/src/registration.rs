@@ -46,7 +46,7 @@ pub const MAX_CANDIDATES: usize = 100_000;
 pub const MAX_POSTURES: usize = crate::pool::MAX_GROUP;
 
 /// Random groups of the comparison ([`Design::random_median_rotation_std`]).
-pub const RANDOM_GROUPS: usize = 101;
+pub(crate) const RANDOM_GROUPS: usize = 101;
 
 /// Halvings of the coordinate search's step ([`polish`]).
 const POLISH_HALVINGS: i32 = 8;

@@ -27,13 +27,13 @@ use statrs::distribution::{ChiSquared, ContinuousCDF};
 pub const SIGNIFICANCE: f64 = 0.01;
 
 /// The 0.975 quantile of the standard normal distribution: the 95% intervals of a known variance.
-pub const Z975: f64 = 1.959_963_984_540_054;
+pub(crate) const Z975: f64 = 1.959_963_984_540_054;
 
 /// A stiffness this many times off its nominal value (either way) counts as off.
 pub const UNIT_FACTOR: f64 = 30.0;
 
 /// How many of the six joints must be off, the same way, for the unit warning.
-pub const UNIT_JOINTS: usize = 4;
+pub(crate) const UNIT_JOINTS: usize = 4;
 
 /// The residuals against the setup's tracker noise (module docs).
 #[derive(Debug, Clone, PartialEq)]

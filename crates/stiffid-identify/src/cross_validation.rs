@@ -40,7 +40,7 @@ use stiffid_core::observation::Observations;
 use stiffid_core::{Error, Result};
 
 /// The smallest Cholesky pivot of `I - H_oo` (module docs) for a fold to count as identifiable.
-pub const MIN_PIVOT: f64 = 1e-7;
+pub(crate) const MIN_PIVOT: f64 = 1e-7;
 
 /// The most `folds x measurements` of a refitted (bounded or robust) cross-validation: each
 /// fold's fit costs about 13 us of CPU per measurement, so the bound is about a minute of CPU (2
@@ -103,7 +103,7 @@ impl CrossValidation {
 /// residuals are the data's rounding: no tracker measures a displacement to a part in a million
 /// (0.01 mm of noise on a 1 mm deflection is 1e-2), while data computed by a model and written
 /// with six or more significant digits fit it this well.
-pub const EXACT_SHARE: f64 = 1e-6;
+pub(crate) const EXACT_SHARE: f64 = 1e-6;
 
 /// Whether a fit with `residuals` explains `delta` (m) to the data's rounding ([`EXACT_SHARE`]).
 fn exact(residuals: &DVector<f64>, delta: &DVector<f64>) -> bool {

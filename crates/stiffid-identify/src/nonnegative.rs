@@ -18,7 +18,7 @@ use stiffid_core::common::stop::Stop;
 use stiffid_core::common::warning::{Warning, WarningKind};
 
 /// The most active-set steps (a variable freed) per unknown.
-pub const MAX_STEPS_PER_UNKNOWN: usize = 30;
+pub(crate) const MAX_STEPS_PER_UNKNOWN: usize = 30;
 
 /// The bounded fit.
 #[derive(Debug, Clone, PartialEq)]

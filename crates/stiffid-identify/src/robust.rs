@@ -27,7 +27,7 @@ use stiffid_core::Result;
 
 /// `1 / Phi^-1(3/4)`: turns the median absolute deviation of Gaussian errors into their standard
 /// deviation.
-pub const MAD_TO_SIGMA: f64 = 1.482_602_218_505_602;
+pub(crate) const MAD_TO_SIGMA: f64 = 1.482_602_218_505_602;
 
 /// Rows with a final weight below this count as down-weighted: a residual beyond about 2.6 scale
 /// units for both losses (Huber `2c = 2.69`, Tukey `0.541c = 2.53`). Tukey gives every non-zero
@@ -35,10 +35,10 @@ pub const MAD_TO_SIGMA: f64 = 1.482_602_218_505_602;
 pub const DOWN_WEIGHTED: f64 = 0.5;
 
 /// Iteration limit.
-pub const MAX_ITERATIONS: usize = 100;
+pub(crate) const MAX_ITERATIONS: usize = 100;
 
 /// Convergence: largest change of a compliance, relative to the largest compliance.
-pub const TOLERANCE: f64 = 1e-10;
+pub(crate) const TOLERANCE: f64 = 1e-10;
 
 /// The weight function of IRLS.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -39,10 +39,10 @@ use stiffid_core::{Error, Result};
 
 /// Relative singular value of the column-scaled `Psi` at or below which a direction is not
 /// identified.
-pub const RANK_TOLERANCE: f64 = 1e-8;
+pub(crate) const RANK_TOLERANCE: f64 = 1e-8;
 
 /// The share of a null vector from which a parameter is named in an unidentifiable combination.
-pub const SHARE: f64 = 0.05;
+pub(crate) const SHARE: f64 = 0.05;
 
 /// A combination of compliances the data cannot see (module docs).
 #[derive(Debug, Clone, PartialEq)]

@@ -162,7 +162,7 @@ impl<'a> Evaluator<'a> {
 
     /// The terms of one posture (axis angles, rad), to reuse across groups that share it (finite
     /// differences change one posture at a time).
-    pub fn posture(&self, q: &Vector6<f64>) -> PostureTerms {
+    pub(crate) fn posture(&self, q: &Vector6<f64>) -> PostureTerms {
         let frames = self.setup.robot().frames(q);
         let compact = compact_posture_block(self.setup, &frames, &self.points_factor);
         let mut springs = vec![0.0; 6 * (self.parameters() - 6)];
@@ -179,7 +179,7 @@ impl<'a> Evaluator<'a> {
 
     /// The value of `criterion` for the group of postures whose terms are given: the same as
     /// [`Evaluator::value`] of those postures.
-    pub fn value_of(&self, criterion: Criterion, terms: &[&PostureTerms]) -> f64 {
+    pub(crate) fn value_of(&self, criterion: Criterion, terms: &[&PostureTerms]) -> f64 {
         if !criterion.serves(self.setup) {
             return f64::NAN;
         }

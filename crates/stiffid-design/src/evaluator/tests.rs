@@ -250,3 +250,15 @@ fn leave_one_out_is_the_evaluation_of_the_others() {
         }
     }
 }
+
+#[test]
+fn cached_posture_terms_give_the_same_values() {
+    let setup = stiffid_core::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let group = random_group(&setup, 7, 2);
+    let fast = Evaluator::new(&setup);
+    let terms: Vec<_> = group.iter().map(|q| fast.posture(q)).collect();
+    let refs: Vec<_> = terms.iter().collect();
+    for c in Criterion::ALL {
+        assert_eq!(fast.value_of(c, &refs), fast.value(c, &group), "{c}");
+    }
+}

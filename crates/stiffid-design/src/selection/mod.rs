@@ -9,3 +9,12 @@ pub mod pool;
 pub mod search;
 pub mod station;
 pub mod table;
+
+#[cfg(test)]
+mod pool_tests;
+
+#[cfg(test)]
+mod station_tests;
+
+#[cfg(test)]
+mod table_tests;

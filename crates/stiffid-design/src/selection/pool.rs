@@ -46,7 +46,7 @@ pub struct Screened<'a> {
 
 /// The best group of a screened pool.
 #[derive(Debug, Clone)]
-pub struct Chosen {
+pub(crate) struct Chosen {
     /// Its postures (axis angles, rad), in the pool's order.
     pub postures: Vec<Vector6<f64>>,
     /// Their numbers in the pool (1-based), ascending.
@@ -118,7 +118,7 @@ impl<'a> Screened<'a> {
     /// # Errors
     /// In the pool: `postures` when more are asked for than pass the cell's checks and are
     /// distinct (naming the checks failed most often); those of `Pool::best_for`.
-    pub fn best(
+    pub(crate) fn best(
         &self,
         goal: &Goal,
         n: usize,

@@ -13,7 +13,7 @@ use stiffid_core::robot::external::ExternalValues;
 use stiffid_core::{Error, Result, Setup};
 
 /// Most stations one selection tries.
-pub const MAX_STATIONS: usize = 100;
+pub(crate) const MAX_STATIONS: usize = 100;
 
 /// One station tried, and the value its group reached.
 #[derive(Debug, Clone, PartialEq)]

@@ -28,7 +28,7 @@ use stiffid_core::{Error, Result, Setup};
 pub const CANDIDATE_ANGLES: usize = 64;
 
 /// How far before a table reflector its line of sight is checked, m.
-pub const SIGHT_END: f64 = 0.05;
+pub(crate) const SIGHT_END: f64 = 0.05;
 
 /// About `count` values of the positioner's axes of `axes`: a grid of `round(count^(1/k))`
 /// values per axis (`k` positioner axes), each at the middles of equal parts of its travel

@@ -29,7 +29,7 @@ pub struct Versus {
     pub joints_better: Vec<usize>,
 }
 
-/// The start-group check in numbers ([`super::start_trials`]).
+/// The start-group check in numbers ([`super::StartTrial`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct StartCheck {
     /// Start groups in which the `zhang2021` local search beats both the start group and the

@@ -3,8 +3,7 @@
 //! identification at every noise level of the setup (Fig. 8, Table 4), the deflection at the
 //! validation postures (Table 5), a check of the start group, and the [`findings`].
 //!
-//! [`run`] is the whole study as `stiffid reproduce` runs it; [`start_trials`] the start-group
-//! check alone.
+//! [`run`] is the whole study as `stiffid reproduce` runs it, the start-group check included.
 
 mod findings;
 pub mod observability;
@@ -15,8 +14,8 @@ mod trials;
 pub use findings::{criterion_values, findings, Findings, StartCheck, Versus, CRITERION_VALUES};
 pub use stiffid_core::math::spearman;
 pub use table4::{paper_table4, TABLE4};
+pub use trials::StartTrial;
 use trials::{judge, paper_searches};
-pub use trials::{start_trials, StartTrial};
 
 use crate::study::simulate::{
     monte_carlo_with_predictions, GroupSimulation, Options as SimulationOptions,
@@ -155,7 +154,7 @@ pub struct Study {
 /// Runs the study on a setup (its nominal stiffness is the true one): Group 1 a seeded random
 /// start group ([`crate::random_group`]); Groups 2 and 3 the paper's local searches on
 /// `classical` and `zhang2021` from it; Groups 4 and 5 global searches on `relative-a` and
-/// `d-optimal` ([`global`], `options.starts` starts); the start-group check ([`start_trials`];
+/// `d-optimal` ([`global`], `options.starts` starts); the start-group check ([`StartTrial`];
 /// its first start group is Group 1); then the Monte Carlo identification of every group at every
 /// noise level ([`crate::study::simulate`]) and the validation-posture deflections with each group's mean
 /// identified stiffness. Parallel (rayon): every search runs in one pool, so the two cores stay

@@ -5,7 +5,7 @@ use super::POSTURES;
 use crate::{evaluate, local, random_group, Criterion, SearchOptions, SearchOutcome};
 use nalgebra::Vector6;
 use rayon::prelude::*;
-use stiffid_core::common::progress::{Progress, Tally};
+use stiffid_core::common::progress::Tally;
 use stiffid_core::setup::Setup;
 use stiffid_core::Result;
 
@@ -30,27 +30,6 @@ impl StartTrial {
 
 fn predicted_average_pct(setup: &Setup, postures: &[Vector6<f64>]) -> f64 {
     evaluate(setup, postures).predicted_average_pct()
-}
-
-/// Runs the start-group check: for each seed, a start group of [`POSTURES`] postures
-/// ([`random_group`]), the `classical` and `zhang2021` local searches from it ([`local`] with
-/// `search`), and their predicted average deviation rates. All searches run as one parallel pool,
-/// same result whatever the thread count; `progress` hears one stage, one unit per search (two
-/// per seed).
-///
-/// # Errors
-/// The errors of [`local`].
-pub fn start_trials(
-    setup: &Setup,
-    seeds: std::ops::Range<u64>,
-    search: &SearchOptions,
-    progress: &dyn Progress,
-) -> Result<Vec<StartTrial>> {
-    let seeds: Vec<u64> = seeds.collect();
-    progress.begin("start-group check", 2 * seeds.len());
-    let searches = paper_searches(setup, &seeds, search, &Tally::new(progress));
-    progress.end();
-    Ok(judge(setup, &seeds, &searches?))
 }
 
 /// The paper's two local searches, in the order of [`PaperSearches`].

@@ -174,7 +174,7 @@ fn load_levels(measurements: &[Measurement]) -> usize {
 /// Fewest postures a comparison takes: every model is judged by its error on postures left out
 /// one at a time, and the nested estimate leaves one out of the selection too, so the selection
 /// in each outer fold still has a posture to hold out.
-pub const MIN_POSTURES: usize = 3;
+pub(crate) const MIN_POSTURES: usize = 3;
 
 /// Compares models by forward selection of `candidates` (module docs) on `measurements`,
 /// starting from `setup`'s model; `nested` runs the outer cross-validation.

@@ -25,10 +25,10 @@ use stiffid_core::math::linalg::CappedSvd;
 use stiffid_core::{Error, Result};
 
 /// The relative length of a column's unexplained part below which it merges.
-pub const RANK_TOLERANCE: f64 = 1e-7;
+pub(crate) const RANK_TOLERANCE: f64 = 1e-7;
 
 /// Correlations above this, in absolute value, are listed.
-pub const CORRELATION_REPORTED: f64 = 0.9;
+pub(crate) const CORRELATION_REPORTED: f64 = 0.9;
 
 /// Correlations above this, in absolute value, leave the two parameters not separately
 /// identifiable: the readings determine one combination of them, and each one's standard

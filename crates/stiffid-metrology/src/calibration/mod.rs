@@ -72,4 +72,37 @@ pub fn model(
 }
 
 #[cfg(test)]
+mod arm_tests;
+
+#[cfg(test)]
+mod backlash_tests;
+
+#[cfg(test)]
+mod external_tests;
+
+#[cfg(test)]
+mod fixed_tables_tests;
+
+#[cfg(test)]
+mod heavy_tests;
+
+#[cfg(test)]
+mod intervals_tests;
+
+#[cfg(test)]
+mod loaded_tests;
+
+#[cfg(test)]
+mod maps_kernel_tests;
+
+#[cfg(test)]
+mod maps_tests;
+
+#[cfg(test)]
 mod reflections_tests;
+
+#[cfg(test)]
+mod tests;
+
+#[cfg(test)]
+mod thin_tests;

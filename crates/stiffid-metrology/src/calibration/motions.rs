@@ -10,12 +10,12 @@
 //! predicted by the fit of the others, refitted from the fit of all the readings (the same
 //! model, the same Levenberg-Marquardt). From `K = 0` for every axis, each axis in turn tries
 //! each higher order and keeps it when it lowers the held-out error by more than [`ACCEPT`]
-//! standard errors of the paired per-posture differences and by [`LEAST_GAIN`] of it (a
+//! standard errors of the paired per-posture differences and by [`LEAST_GAIN`](super::maps::LEAST_GAIN) of it (a
 //! one-sided test at about 0.1 %): a straight, stiff rail keeps `K = 0`, its direction alone.
 //!
 //! Equations and sources: docs/model.md, section "Calibration", "External axes".
 
-pub use super::maps::{ACCEPT, FOLDS, LEAST_GAIN};
+pub(crate) use super::maps::{ACCEPT, FOLDS};
 
 use super::error_model::{ErrorModel, Observation};
 use super::fit::{self, Fit, Options};
@@ -26,7 +26,7 @@ use stiffid_core::robot::external::AxisKind;
 use stiffid_core::{Error, Result};
 
 /// The highest order `--error-motions auto` tries per linear axis.
-pub const MAX_ORDER_TRIED: usize = 6;
+pub(crate) const MAX_ORDER_TRIED: usize = 6;
 
 /// Which orders a calibration fits.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

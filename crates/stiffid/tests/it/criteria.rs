@@ -81,18 +81,6 @@ fn every_criterion_matches_its_definition() {
 }
 
 #[test]
-fn cached_posture_terms_give_the_same_values() {
-    let setup = paper();
-    let group = design::random_group(&setup, 7, 2);
-    let fast = Evaluator::new(&setup);
-    let terms: Vec<_> = group.iter().map(|q| fast.posture(q)).collect();
-    let refs: Vec<_> = terms.iter().collect();
-    for c in Criterion::ALL {
-        assert_eq!(fast.value_of(c, &refs), fast.value(c, &group), "{c}");
-    }
-}
-
-#[test]
 fn hand_case_predicted_deviation_rate() {
     // 100 sqrt(2/pi) sqrt(m) s: s = 0.01 at m = 4 gives 100 * 0.797885 * 2 * 0.01.
     let p = criteria::predicted_deviation_pct(&Vector6::repeat(0.01), 4.0);

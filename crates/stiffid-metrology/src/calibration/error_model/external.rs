@@ -328,7 +328,7 @@ impl External {
 }
 
 /// The most orders [`ErrorModel::with_external`] fits per linear axis.
-pub const MAX_FITTED_ORDER: usize = MAX_ORDER;
+pub(crate) const MAX_FITTED_ORDER: usize = MAX_ORDER;
 
 impl ErrorModel {
     /// The model with the robot's external axes ([`stiffid_core::Robot::external`]): per linear carrier
@@ -493,7 +493,7 @@ impl ErrorModel {
     /// # Errors
     /// [`Error::InvalidField`] when a fitted error motion is beyond
     /// [`stiffid_core::robot::external::ErrorMotions::new`]'s limits.
-    pub fn external_at(&self, values: &DVector<f64>) -> Result<Option<ExternalAxes>> {
+    pub(crate) fn external_at(&self, values: &DVector<f64>) -> Result<Option<ExternalAxes>> {
         self.external
             .as_ref()
             .map(|x| x.axes_at(values))
@@ -527,7 +527,7 @@ impl ErrorModel {
 
     /// The positioner's pose `P(e)` (cell frame from the part's frame at `e = 0`) at `values`;
     /// the identity without a positioner.
-    pub fn positioner_pose(&self, values: &DVector<f64>, e: &[f64]) -> Isometry3<f64> {
+    pub(crate) fn positioner_pose(&self, values: &DVector<f64>, e: &[f64]) -> Isometry3<f64> {
         match &self.external {
             Some(x) => x.positioner(values, e),
             None => Isometry3::identity(),

@@ -81,8 +81,8 @@ mod maps;
 mod parameter;
 mod tables;
 
-pub use basis::Basis;
-pub use external::MAX_FITTED_ORDER;
+pub(crate) use basis::Basis;
+pub(crate) use external::MAX_FITTED_ORDER;
 use loads::Loads;
 pub use maps::JointMaps;
 pub use parameter::{AxisPart, Component, Geometry, Kind, MeasuredIn, Parameter, Target};
@@ -96,7 +96,7 @@ use stiffid_core::{Error, Joint, Result, Robot};
 pub const MAX_POINTS: usize = 100;
 
 /// The share of the largest regressor RMS of its unit below which a gravity term has no effect.
-pub const NO_EFFECT: f64 = 1e-9;
+pub(crate) const NO_EFFECT: f64 = 1e-9;
 
 /// No direction of approach: the mean of the two ([`Observation::direction`]).
 const MEAN: Vector6<f64> = Vector6::new(0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
@@ -130,7 +130,7 @@ pub struct Estimate {
 impl Estimate {
     /// The estimate with the frame's six perturbation values folded into `frame` (and zeroed):
     /// `T <- (exp([dphi]x), dp)^-1 T`, so that `exp([dphi]x) b + dp = T t` becomes `b = T t`.
-    pub fn recentre(&self) -> Self {
+    pub(crate) fn recentre(&self) -> Self {
         let v = &self.values;
         let delta = Isometry3::from_parts(
             Translation3::new(v[0], v[1], v[2]),
@@ -397,7 +397,7 @@ impl ErrorModel {
     /// # Errors
     /// [`Error::InvalidField`] when a value is not finite or a map's coefficient beyond its
     /// limit ([`stiffid_core::robot::ErrorMap::new`]).
-    pub fn robot_at(&self, values: &DVector<f64>) -> Result<Robot> {
+    pub(crate) fn robot_at(&self, values: &DVector<f64>) -> Result<Robot> {
         let joints: [Joint; 6] = std::array::from_fn(|i| {
             let j = &self.robot.joints()[i];
             let e = self.joint_errors(values, i);

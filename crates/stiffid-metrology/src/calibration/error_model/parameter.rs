@@ -70,7 +70,7 @@ pub enum Component {
 
 impl Component {
     /// All six, in the order of the parameter list.
-    pub const ALL: [Component; 6] = [
+    pub(crate) const ALL: [Component; 6] = [
         Component::Theta,
         Component::D,
         Component::A,

@@ -71,13 +71,13 @@ use noise::fit_with;
 pub use noise::{fit_at_stated_noise, fit_choosing_strength, MAX_REWEIGHTS, NOISE_TOLERANCE};
 
 /// Most Levenberg-Marquardt iterations.
-pub const MAX_ITERATIONS: usize = 100;
+pub(crate) const MAX_ITERATIONS: usize = 100;
 
 /// Most readings a calibration fits.
-pub const MAX_READINGS: usize = 100_000;
+pub(crate) const MAX_READINGS: usize = 100_000;
 
 /// The scaled step length below which the fit has converged.
-pub const STEP_TOLERANCE: f64 = 1e-13;
+pub(crate) const STEP_TOLERANCE: f64 = 1e-13;
 
 /// A warning ([`WarningKind::NotConverged`]) when the fit stopped at its limit of `iterations`
 /// ([`Stop::IterationLimit`]) with the cost still falling: the calibration may still move.
@@ -213,7 +213,7 @@ pub fn fit(
 ///
 /// # Errors
 /// Those of [`fit`].
-pub fn fit_within(
+pub(crate) fn fit_within(
     model: &ErrorModel,
     observations: &[Observation],
     start: &Estimate,

@@ -61,7 +61,7 @@ pub const G: f64 = 9.80665;
 /// The bodies of [`Gravity::Lumped`] (links, 0-based): the turret (no term: joint 1 is vertical
 /// on every floor robot, and its terms merge), the upper arm, the forearm with link 3 lumped in,
 /// the wrist with link 5 and the tool lumped in.
-pub const BODIES: [usize; 4] = [0, 1, 2, 4];
+pub(crate) const BODIES: [usize; 4] = [0, 1, 2, 4];
 
 /// Which gravity terms a calibration fits.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
@@ -574,7 +574,7 @@ pub const SPANNING_POSTURES: usize = 512;
 /// [`SPANNING_POSTURES`] postures spread over `limits` (axis angles, rad): the Halton sequence
 /// in the first six primes (Halton 1960), its first point skipped; an axis with an infinite end
 /// spans one turn about 0 (the weight's torque repeats every turn).
-pub fn spanning(limits: &JointBox) -> Vec<Vector6<f64>> {
+pub(crate) fn spanning(limits: &JointBox) -> Vec<Vector6<f64>> {
     use std::f64::consts::PI;
     const PRIMES: [u64; 6] = [2, 3, 5, 7, 11, 13];
     let span = |i: usize| match limits.lower[i].is_finite() && limits.upper[i].is_finite() {

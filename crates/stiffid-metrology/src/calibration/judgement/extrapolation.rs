@@ -14,7 +14,7 @@ use stiffid_core::io::readings::point_name;
 
 /// How far a held-out posture's axis angle may lie beyond the fitted postures' range before it
 /// is named as outside it: 1 degree.
-pub const OUTSIDE_RAD: f64 = std::f64::consts::PI / 180.0;
+pub(crate) const OUTSIDE_RAD: f64 = std::f64::consts::PI / 180.0;
 
 /// The warning ([`WarningKind::Extrapolation`]) when the calibration misses held-out readings
 /// (`calibrated`, one error per observation of `held`) by more than `limit` (m) while the

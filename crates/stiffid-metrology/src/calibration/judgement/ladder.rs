@@ -58,7 +58,7 @@ use stiffid_core::Result;
 
 /// The gravity models of `--gravity auto`, in order of complexity ([`Gravity::Masses`] only on a
 /// robot with link masses).
-pub const GRAVITY_RUNGS: [Gravity; 5] = [
+pub(crate) const GRAVITY_RUNGS: [Gravity; 5] = [
     Gravity::None,
     Gravity::Arm,
     Gravity::Lumped,
@@ -67,7 +67,7 @@ pub const GRAVITY_RUNGS: [Gravity; 5] = [
 ];
 
 /// The fewest distinct postures with which the ladder is climbed: two per group.
-pub const MIN_POSTURES: usize = 2 * FOLDS;
+pub(crate) const MIN_POSTURES: usize = 2 * FOLDS;
 
 /// Which gravity terms a calibration fits: chosen by the ladder, or given.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

@@ -31,7 +31,7 @@ use stiffid_core::Setup;
 pub const SAMPLES: usize = 512;
 
 /// The seed of the region's sample: the same postures give the same region.
-pub const SEED: u64 = 0x5E_ED_0F_2E_61;
+pub(crate) const SEED: u64 = 0x5E_ED_0F_2E_61;
 
 /// The region where the robot is used (module docs).
 #[derive(Debug, Clone, PartialEq)]

@@ -77,23 +77,23 @@ pub fn name(h: &JointMaps) -> String {
 }
 
 /// The harmonic counts `--maps auto` tries per joint.
-pub const HARMONICS: [usize; 4] = [4, 8, 16, 32];
+pub(crate) const HARMONICS: [usize; 4] = [4, 8, 16, 32];
 
 /// The harmonics of a joint named without a count (`--maps J2`).
-pub const DEFAULT_HARMONICS: usize = 16;
+pub(crate) const DEFAULT_HARMONICS: usize = 16;
 
 /// The ridges `mu` tried (dimensionless, per reading): up to 1, since from 50 postures a
 /// joint's 32 harmonics may need a stronger hold than from 100.
-pub const RIDGES: [f64; 11] = [
+pub(crate) const RIDGES: [f64; 11] = [
     1e-6, 1e-5, 1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2, 1e-1, 3e-1, 1.0,
 ];
 
 /// The folds of the inner and of the outer cross-validation.
-pub const FOLDS: usize = 5;
+pub(crate) const FOLDS: usize = 5;
 
 /// The standard errors of the paired per-posture differences by which a carrier's error motion
 /// order must lower the held-out error to be kept ([`super::motions`]).
-pub const ACCEPT: f64 = 3.0;
+pub(crate) const ACCEPT: f64 = 3.0;
 
 /// The standard errors of the paired per-posture differences by which a joint's map must lower
 /// the held-out error to be kept: fewer than [`ACCEPT`], since the per-posture errors of a
@@ -101,10 +101,10 @@ pub const ACCEPT: f64 = 3.0;
 /// the UR10's series C by a quarter stood 2.5 to 3 standard errors out); the choice still keeps
 /// no map on a robot without one in 9 seeds of 10 or more from 50 postures (`maps_tests.rs`;
 /// at 2 standard errors, in 34 of 40).
-pub const MAP_ACCEPT: f64 = 2.5;
+pub(crate) const MAP_ACCEPT: f64 = 2.5;
 
 /// The least share of the held-out squared error a map must remove to be kept.
-pub const LEAST_GAIN: f64 = 0.02;
+pub(crate) const LEAST_GAIN: f64 = 0.02;
 
 /// The fewest distinct postures with which `--maps auto` considers maps (below it, none): five
 /// folds of at least six postures.
@@ -259,7 +259,7 @@ fn better(current: &Scored, candidate: &Scored) -> bool {
 /// current ones by more than `accept` standard errors of the paired per-posture differences
 /// and by [`LEAST_GAIN`] of the total: the acceptance rule of every choice by cross-validation
 /// in the calibration (the maps at [`MAP_ACCEPT`], the error motions' orders at [`ACCEPT`]).
-pub fn lowers(current: (&[f64], f64), candidate: (&[f64], f64), accept: f64) -> bool {
+pub(crate) fn lowers(current: (&[f64], f64), candidate: (&[f64], f64), accept: f64) -> bool {
     let n = current.0.len();
     if n < 2 {
         return false;
@@ -424,7 +424,7 @@ pub fn nested(linear: &Linear, postures: &[usize], spec: Spec) -> Result<Nested>
 /// # Errors
 /// [`Error::InvalidField`] (`choices`) unless `first` has one choice and one ridge per outer
 /// fold; those of [`Linear::split`] and [`Linear::errors`].
-pub fn nested_given(linear: &Linear, postures: &[usize], first: &Nested) -> Result<Nested> {
+pub(crate) fn nested_given(linear: &Linear, postures: &[usize], first: &Nested) -> Result<Nested> {
     let folds = FOLDS.min(postures.len());
     if first.choices.len() != folds || first.ridges.len() != folds {
         return Err(Error::InvalidField {

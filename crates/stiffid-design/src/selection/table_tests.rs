@@ -1,8 +1,8 @@
-//! The table's candidate angles (`stiffid_design::selection::table`).
+//! The table's candidate angles (`crate::selection::table`).
 
-use super::track_cell;
-use stiffid::robot::external::ExternalValues;
-use stiffid_design::selection::table::{check_sights, table_grid, CANDIDATE_ANGLES};
+use super::station_tests::track_cell;
+use crate::selection::table::{check_sights, table_grid, CANDIDATE_ANGLES};
+use stiffid_core::robot::external::ExternalValues;
 
 #[test]
 fn the_grid_is_the_middles_of_equal_parts_of_each_positioner_axis() {

@@ -1,17 +1,25 @@
-//! Where the arm stands for a group (`stiffid_design::selection::station`) and the campaign's
-//! stations (`stiffid_design::selection::campaign::check`).
+//! Where the arm stands for a group (`crate::selection::station`) and the campaign's
+//! stations (`crate::selection::campaign::check`).
 
-use super::track_cell;
-use stiffid::robot::external::ExternalValues;
-use stiffid::{Error, JobOption};
-use stiffid_design::selection::campaign;
-use stiffid_design::selection::station::{best, check, setup_at, MAX_STATIONS};
+use crate::selection::campaign;
+use crate::selection::station::{best, check, setup_at, MAX_STATIONS};
+use stiffid_core::robot::external::ExternalValues;
+use stiffid_core::robot::presets;
+use stiffid_core::setup;
+use stiffid_core::Setup;
+use stiffid_core::{Error, JobOption};
+
+/// The example track cell: a track (`e1`), a tilt-rotate positioner (`e2`, `e3`).
+pub(super) fn track_cell() -> Setup {
+    let text = include_str!("../../../../examples/track/track-cell.toml");
+    setup::parse(text, "track-cell.toml", |name, _| presets::get(name)).unwrap()
+}
 
 fn e(values: &[f64]) -> ExternalValues {
     ExternalValues::new(values).unwrap()
 }
 
-fn station_message(r: stiffid::Result<impl std::fmt::Debug>) -> String {
+fn station_message(r: stiffid_core::Result<impl std::fmt::Debug>) -> String {
     match r.unwrap_err() {
         Error::InvalidOption {
             option: JobOption::Station,
@@ -23,7 +31,7 @@ fn station_message(r: stiffid::Result<impl std::fmt::Debug>) -> String {
 
 #[test]
 fn stations_are_refused_where_the_robot_has_no_external_axes_and_needed_where_it_has() {
-    let fixed = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let fixed = stiffid_core::setup::builtin("zhang2021-comau-nj165").unwrap();
     let m = station_message(check(&fixed, &[e(&[1.0])]));
     assert_eq!(m, "the robot has no external axes: give no station");
     assert!(
@@ -59,7 +67,7 @@ fn the_best_station_is_the_smallest_value_the_first_of_equal_ones() {
     // Each station's "group value": 3, 1, 1, 2 (ties kept at the first).
     let values = [3.0, 1.0, 1.0, 2.0];
     let mut k = 0;
-    let run = |_: &stiffid::Setup| {
+    let run = |_: &stiffid_core::Setup| {
         k += 1;
         Ok((k, values[k - 1]))
     };

@@ -1,14 +1,14 @@
-//! A pool screened for a selection (`stiffid_design::selection::pool`).
+//! A pool screened for a selection (`crate::selection::pool`).
 
+use crate::distinct::Distinctness;
+use crate::selection::pool::Screened;
+use crate::{random_group, Criterion, Evaluator, Goal, PoolOptions};
 use nalgebra::Vector6;
-use stiffid::Error;
-use stiffid_design::distinct::Distinctness;
-use stiffid_design::selection::pool::Screened;
-use stiffid_design::{random_group, Criterion, Evaluator, Goal, PoolOptions};
+use stiffid_core::Error;
 
 #[test]
 fn a_near_posture_is_left_out_and_the_best_group_is_the_one_its_criterion_says() {
-    let setup = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let setup = stiffid_core::setup::builtin("zhang2021-comau-nj165").unwrap();
     let mut postures = random_group(&setup, 8, 5);
     // Posture 9 is posture 3 moved by 0.1 deg on axis 1: near it by any default distance.
     postures.push(postures[2] + Vector6::new(0.1_f64.to_radians(), 0.0, 0.0, 0.0, 0.0, 0.0));
