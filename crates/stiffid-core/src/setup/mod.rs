@@ -96,7 +96,8 @@ pub(crate) use arm::nearest_measuring_point;
 pub use arm::{default_geometry, RobotGeometry, Tool};
 pub use arm::{Arm, DEFAULT_RADIUS_FRACTIONS};
 pub use arm::{Payload, GRAVITY};
-pub use builder::{SetupBuilder, DEFAULT_FRAME_SD};
+pub use builder::SetupBuilder;
+pub use builder::DEFAULT_FRAME_SD;
 pub use cell::{Cell, Obstacle, Tracker};
 pub use experiment::{Experiment, Noise, RopeLoad};
 pub(crate) use file::parse_with;
@@ -533,5 +534,9 @@ impl Setup {
     }
 }
 
+#[cfg(test)]
+mod load_steps_tests;
+#[cfg(test)]
+mod numbered_tests;
 #[cfg(test)]
 mod prior_tests;
