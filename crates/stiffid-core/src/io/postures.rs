@@ -6,7 +6,7 @@
 //! A cell with external axes ([`crate::robot::external`]: a track, a positioner) has one more
 //! column per axis after the angles, in the cell's order, named with its unit
 //! ([`crate::robot::external::ExternalAxes::column_names`]: `e1_mm`, `e2_deg`, ...), each value
-//! within its axis's travel; [`parse_cell`] returns them, [`to_csv_cell`] writes them. A file of
+//! within its axis's travel; `parse_cell` returns them, [`to_csv_cell`] writes them. A file of
 //! a robot without external axes has none, and a column of an axis the cell lacks is refused.
 
 use crate::common::error::ColumnProblem;
@@ -15,7 +15,7 @@ use crate::{Error, Result, Robot};
 use nalgebra::Vector6;
 
 /// The header of a postures file.
-pub(crate) const HEADER: [&str; 7] = [
+pub const HEADER: [&str; 7] = [
     "posture", "q1_deg", "q2_deg", "q3_deg", "q4_deg", "q5_deg", "q6_deg",
 ];
 
@@ -38,8 +38,8 @@ pub(crate) const HEADER: [&str; 7] = [
 /// assert!(postures::to_csv(&group).starts_with(&postures::HEADER.join(",")));
 /// ```
 ///
-/// A cell with external axes: the file has their columns, checked as [`parse_cell`] checks
-/// them; their values are left out here ([`parse_cell`] returns them).
+/// A cell with external axes: the file has their columns, checked as `parse_cell` checks
+/// them; their values are left out here (`parse_cell` returns them).
 pub fn parse(text: &str, robot: &Robot, bounds: Option<&JointBox>) -> Result<Vec<Vector6<f64>>> {
     parse_cell(text, robot, bounds).map(|p| p.q)
 }
