@@ -15,4 +15,6 @@ pub mod warning;
 pub mod words;
 
 #[cfg(test)]
+mod stop_tests;
+#[cfg(test)]
 mod words_tests;

@@ -32,17 +32,9 @@ pub enum Stop {
 }
 
 impl Stop {
-    /// Every stop reason, in the order of the variants.
-    pub const ALL: [Stop; 4] = [
-        Stop::Converged,
-        Stop::Stalled,
-        Stop::DampingExhausted,
-        Stop::IterationLimit,
-    ];
-
     /// The name in documents and messages: `converged`, `stalled`, `damping-exhausted` or
     /// `iteration-limit`.
-    pub fn name(self) -> &'static str {
+    pub(crate) fn name(self) -> &'static str {
         match self {
             Stop::Converged => "converged",
             Stop::Stalled => "stalled",
@@ -56,4 +48,15 @@ impl fmt::Display for Stop {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
     }
+}
+
+#[cfg(test)]
+impl Stop {
+    /// Every stop reason, in the order of the variants.
+    pub(crate) const ALL: [Stop; 4] = [
+        Stop::Converged,
+        Stop::Stalled,
+        Stop::DampingExhausted,
+        Stop::IterationLimit,
+    ];
 }

@@ -29,7 +29,7 @@ impl Columns {
     /// # Errors
     /// [`Error::Column`] at `line`: an axis given in both units (`e2_mm` and `e2_deg`), or a gap
     /// (`e2_mm` without `e1_*`: missing column `e1_mm or e1_deg`).
-    pub fn find<S: AsRef<str>>(names: &[S], line: u64) -> Result<Self> {
+    pub(crate) fn find<S: AsRef<str>>(names: &[S], line: u64) -> Result<Self> {
         let position = |name: &str| names.iter().position(|n| n.as_ref() == name);
         let mut columns = Vec::new();
         for axis in 0..MAX_AXES {
@@ -94,16 +94,6 @@ impl Columns {
         Self::find(names, line)
     }
 
-    /// How many external axes the file gives.
-    pub fn len(&self) -> usize {
-        self.columns.len()
-    }
-
-    /// Whether it gives none.
-    pub fn is_empty(&self) -> bool {
-        self.columns.is_empty()
-    }
-
     /// The column of the first axis, when the file gives any.
     pub(crate) fn first(&self) -> Option<usize> {
         self.columns.first().map(|c| c.0)
@@ -112,11 +102,6 @@ impl Columns {
     /// The column (0-based) of axis `k` (0-based, the cell's order).
     pub(crate) fn column(&self, k: usize) -> usize {
         self.columns[k].0
-    }
-
-    /// Whether axis `k` (0-based, the cell's order) is given in deg (else mm).
-    pub fn in_degrees(&self, k: usize) -> bool {
-        self.columns[k].1
     }
 
     /// The values of one row (SI: mm to m, deg to rad), whose field `i` is `field(i)`;
@@ -177,5 +162,23 @@ fn column_error(line: u64, problem: ColumnProblem) -> Error {
         column: None,
         name: String::new(),
         problem,
+    }
+}
+
+#[cfg(test)]
+impl Columns {
+    /// How many external axes the file gives.
+    pub(crate) fn len(&self) -> usize {
+        self.columns.len()
+    }
+
+    /// Whether it gives none.
+    pub(crate) fn is_empty(&self) -> bool {
+        self.columns.is_empty()
+    }
+
+    /// Whether axis `k` (0-based, the cell's order) is given in deg (else mm).
+    pub(crate) fn in_degrees(&self, k: usize) -> bool {
+        self.columns[k].1
     }
 }

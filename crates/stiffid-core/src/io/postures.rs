@@ -6,7 +6,7 @@
 //! A cell with external axes ([`crate::robot::external`]: a track, a positioner) has one more
 //! column per axis after the angles, in the cell's order, named with its unit
 //! ([`crate::robot::external::ExternalAxes::column_names`]: `e1_mm`, `e2_deg`, ...), each value
-//! within its axis's travel; [`parse_cell`] returns them, [`to_csv_cell`] writes them. A file of
+//! within its axis's travel; `parse_cell` returns them, [`to_csv_cell`] writes them. A file of
 //! a robot without external axes has none, and a column of an axis the cell lacks is refused.
 
 use crate::common::error::ColumnProblem;
@@ -38,15 +38,15 @@ pub const HEADER: [&str; 7] = [
 /// assert!(postures::to_csv(&group).starts_with(&postures::HEADER.join(",")));
 /// ```
 ///
-/// A cell with external axes: the file has their columns, checked as [`parse_cell`] checks
-/// them; their values are left out here ([`parse_cell`] returns them).
+/// A cell with external axes: the file has their columns, checked as `parse_cell` checks
+/// them; their values are left out here (`parse_cell` returns them).
 pub fn parse(text: &str, robot: &Robot, bounds: Option<&JointBox>) -> Result<Vec<Vector6<f64>>> {
     parse_cell(text, robot, bounds).map(|p| p.q)
 }
 
 /// The postures of a cell: axis angles and external axes' values.
 #[derive(Debug, Clone, PartialEq, Default)]
-pub struct Postures {
+pub(crate) struct Postures {
     /// Axis angles, rad, one per row.
     pub q: Vec<Vector6<f64>>,
     /// The external axes' values, SI (m, rad) in the cell's order, one per row (each empty for a
@@ -68,7 +68,7 @@ pub(crate) fn header(robot: &Robot) -> Vec<String> {
 /// Those of [`parse`], the header expected being `header` (a column of an axis the robot
 /// lacks is a header error saying so), and a value of an external axis that is not a finite
 /// number or outside its travel (naming the line, the column and the axis).
-pub fn parse_cell(text: &str, robot: &Robot, bounds: Option<&JointBox>) -> Result<Postures> {
+pub(crate) fn parse_cell(text: &str, robot: &Robot, bounds: Option<&JointBox>) -> Result<Postures> {
     let expected = header(robot);
     let mut reader = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)

@@ -94,13 +94,13 @@ pub(crate) struct Springs {
 
 impl ModelFile {
     /// The virtual springs on `robot`, SI units, checked together in file order (the candidates
-    /// among them: names unique over both) by [`super::check_springs`], so that an error names
+    /// among them: names unique over both) by `super::check_springs`, so that an error names
     /// the file's `model.spring[i]`.
     ///
     /// # Errors
     /// [`Error::InvalidField`] naming the field: a zero or non-finite axis, a point or a stiffness
     /// in the other kind's unit, an unknown family or bad family links, and those of
-    /// [`super::check_springs`].
+    /// `super::check_springs`.
     pub(crate) fn springs(&self, robot: &Robot) -> Result<Springs> {
         let mut out = Vec::new();
         for (i, s) in self.spring.iter().enumerate() {

@@ -42,7 +42,7 @@ impl Law {
     /// The response `g(t)` to the load `t` (Nm or N) whose multiple by the parameter is the
     /// deflection (module docs).
     #[inline(always)]
-    pub fn response(self, t: f64) -> f64 {
+    pub(crate) fn response(self, t: f64) -> f64 {
         match self {
             Law::Linear => t,
             Law::LostMotion { smoothing } => t / t.hypot(smoothing),

@@ -46,7 +46,7 @@ use nalgebra::{DVector, Isometry3, Point3, Unit as UnitVector, Vector3, Vector6}
 pub(crate) use crate::common::limits::MAX_VIRTUAL_SPRINGS;
 
 /// Longest spring name, characters.
-pub const MAX_NAME_CHARS: usize = 40;
+pub(crate) const MAX_NAME_CHARS: usize = 40;
 
 /// What a virtual joint does.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -209,7 +209,7 @@ impl Spring {
         }
     }
 
-    /// Its generalised load's response ([`Law::response`]) under the wrench `[f; m]` (base
+    /// Its generalised load's response (`Law::response`) under the wrench `[f; m]` (base
     /// frame) at the loading point `p` (base frame) at a posture where it is `placed`.
     #[inline(always)]
     pub fn response(&self, placed: &Placed, p: &Vector3<f64>, wrench: &Vector6<f64>) -> f64 {
@@ -300,11 +300,11 @@ impl Model {
         }
     }
 
-    /// The drives in `coordinates` and the virtual springs `springs`, checked ([`check_springs`]).
+    /// The drives in `coordinates` and the virtual springs `springs`, checked (`check_springs`).
     ///
     /// # Errors
-    /// As [`check_springs`].
-    pub fn new(coordinates: Coordinates, springs: Vec<Spring>) -> Result<Self> {
+    /// As `check_springs`.
+    pub(crate) fn new(coordinates: Coordinates, springs: Vec<Spring>) -> Result<Self> {
         check_springs(&springs)?;
         Ok(Self {
             coordinates,
@@ -375,7 +375,7 @@ impl Model {
     /// The same model with the springs `more` added after its own.
     ///
     /// # Errors
-    /// As [`check_springs`] for the combined list.
+    /// As `check_springs` for the combined list.
     pub fn with(&self, more: &[Spring]) -> Result<Self> {
         let mut springs = self.springs.clone();
         springs.extend_from_slice(more);
@@ -411,7 +411,7 @@ impl Model {
 }
 
 /// Checks a list of virtual springs: at most [`MAX_VIRTUAL_SPRINGS`]; each name non-empty, at
-/// most [`MAX_NAME_CHARS`] letters, digits, `_` or `-`, unique and not a drive's (`k1` .. `k6`);
+/// most `MAX_NAME_CHARS` letters, digits, `_` or `-`, unique and not a drive's (`k1` .. `k6`);
 /// `link` 0 to 6; `axis` finite and non-zero; `point` finite within
 /// [`crate::common::limits::LENGTH_MM`]; a nominal stiffness within
 /// [`crate::common::limits::STIFFNESS_NM_PER_RAD`] (rotation) or [`crate::common::limits::STIFFNESS_N_PER_MM`]
@@ -419,7 +419,7 @@ impl Model {
 ///
 /// # Errors
 /// [`Error::InvalidField`] for the first problem.
-pub fn check_springs(springs: &[Spring]) -> Result<()> {
+pub(crate) fn check_springs(springs: &[Spring]) -> Result<()> {
     crate::common::limits::check_count("model.spring", springs.len(), 0, MAX_VIRTUAL_SPRINGS)?;
     for (i, s) in springs.iter().enumerate() {
         let field = |f: &str| format!("model.spring[{}].{f}", i + 1);
@@ -497,3 +497,10 @@ pub(crate) fn unit_axis(v: Vector3<f64>, field: &str) -> Result<UnitVector<Vecto
         )
     })
 }
+
+#[cfg(test)]
+mod law_tests;
+#[cfg(test)]
+mod model_tests;
+#[cfg(test)]
+mod region_tests;

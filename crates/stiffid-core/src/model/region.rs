@@ -92,7 +92,7 @@ impl PostureRange {
     }
 
     /// `axis 2 at 95.00 deg (identified over 10.00 .. 80.00)` for each of `outside`.
-    pub fn describe(&self, outside: &[Violation]) -> String {
+    pub(crate) fn describe(&self, outside: &[Violation]) -> String {
         let each: Vec<String> = outside
             .iter()
             .map(|v| {

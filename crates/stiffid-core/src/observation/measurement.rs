@@ -86,7 +86,7 @@ impl Observations {
 /// `q6`), a non-finite force or moment or one above [`MAX_FORCE`] / [`MAX_MOMENT`], a non-finite
 /// displacement or one above [`MAX_DISPLACEMENT`], or a posture measured at different axis
 /// angles (`posture`).
-pub fn check(arm: &Arm, measurements: &[Measurement]) -> Result<(usize, Vec<usize>)> {
+pub(crate) fn check(arm: &Arm, measurements: &[Measurement]) -> Result<(usize, Vec<usize>)> {
     let mut check = Check::default();
     let mut posture_index = Vec::with_capacity(measurements.len());
     check.push(arm, measurements, Some(&mut posture_index))?;

@@ -10,7 +10,7 @@
 //!
 //! and the chain turns by `q + e(q)`. Where the approach direction is known (the sign `d` of the
 //! joint's last motion, -1 or +1: the readings' `dir1..dir6`), a backlash term adds `b d`, `b`
-//! half the backlash (rad): `e(q, d) = e(q) + b d` ([`ErrorMap::angle_from`]); without a direction
+//! half the backlash (rad): `e(q, d) = e(q) + b d` (`ErrorMap::angle_from`); without a direction
 //! the robot stands at the mean of the two approaches, `e(q)`. A map fitted over a range of its
 //! axis's angles ([`ErrorMap::with_range`], the calibrated robot file's `range_deg`) holds its
 //! series there only: beyond it the series tapers to zero over [`TAPER_DEG`] by a cosine ramp,
@@ -130,7 +130,7 @@ impl ErrorMap {
     }
 
     /// The map with half the backlash `b` (rad): the angle error `+ b d` approached with the
-    /// last motion's sign `d` ([`ErrorMap::angle_from`]).
+    /// last motion's sign `d` (`ErrorMap::angle_from`).
     ///
     /// # Errors
     /// [`Error::InvalidField`] (`error_map`) when `b` is not finite or beyond
@@ -176,22 +176,9 @@ impl ErrorMap {
         &self.sin
     }
 
-    /// The error `e(q)` (rad) at the axis angle `q` (rad), the harmonics by the angle-addition
-    /// recurrence from one `sin_cos`: the harmonics `h` of each residue of `h mod 4` in their own
-    /// chain, each turned by `4 q` (a quarter of the dependent steps of one chain turned by
-    /// `q`); no `sin_cos` for an axis without harmonics. Beyond the fitted range it tapers
-    /// ([`taper`]).
-    #[inline]
-    pub fn angle(&self, q: f64) -> f64 {
-        match self.cos.is_empty() {
-            true => 0.0,
-            false => self.tapered(q, q.sin_cos()),
-        }
-    }
-
     /// The factor [`taper`] of the map's series at the axis angle `q` (rad): 1 without a range.
     #[inline]
-    pub fn taper(&self, q: f64) -> f64 {
+    pub(crate) fn taper(&self, q: f64) -> f64 {
         self.range.map_or(1.0, |r| taper(q, r))
     }
 
@@ -206,7 +193,7 @@ impl ErrorMap {
         }
     }
 
-    /// [`ErrorMap::angle`] from `(sin q, cos q)`.
+    /// `ErrorMap::angle` from `(sin q, cos q)`.
     #[inline]
     fn series(&self, (s1, c1): (f64, f64)) -> f64 {
         let (s2, c2) = (2.0 * s1 * c1, c1 * c1 - s1 * s1);
@@ -228,13 +215,6 @@ impl ErrorMap {
         (sum[0] + sum[1]) + (sum[2] + sum[3])
     }
 
-    /// The error `e(q) + b d` (rad) at the axis angle `q` (rad) approached with the last
-    /// motion's sign `direction` (-1.0 or 1.0).
-    #[inline]
-    pub fn angle_from(&self, q: f64, direction: f64) -> f64 {
-        self.angle(q) + self.backlash * direction
-    }
-
     /// The map whose coefficients and backlash are the sums of this one's and `other`'s (the
     /// longer's count), with this one's range (`other`'s without one).
     pub fn plus(&self, other: &ErrorMap) -> ErrorMap {
@@ -254,11 +234,34 @@ impl ErrorMap {
 }
 
 /// The errors `e(q_i)` (rad) of six axes' maps at the axis angles `q` (rad), each
-/// [`ErrorMap::angle`] of its own axis's angle (tapered beyond its range): every `sin_cos` taken
+/// `ErrorMap::angle` of its own axis's angle (tapered beyond its range): every `sin_cos` taken
 /// before the harmonics' sums, so that the axes' independent work overlaps.
 #[inline]
-pub fn angles(maps: &[ErrorMap; 6], q: &Vector6<f64>) -> [f64; 6] {
+pub(crate) fn angles(maps: &[ErrorMap; 6], q: &Vector6<f64>) -> [f64; 6] {
     let turns: [Option<(f64, f64)>; 6] =
         std::array::from_fn(|i| (!maps[i].cos.is_empty()).then(|| q[i].sin_cos()));
     std::array::from_fn(|i| turns[i].map_or(0.0, |t| maps[i].tapered(q[i], t)))
+}
+
+#[cfg(test)]
+impl ErrorMap {
+    /// The error `e(q)` (rad) at the axis angle `q` (rad), the harmonics by the angle-addition
+    /// recurrence from one `sin_cos`: the harmonics `h` of each residue of `h mod 4` in their own
+    /// chain, each turned by `4 q` (a quarter of the dependent steps of one chain turned by
+    /// `q`); no `sin_cos` for an axis without harmonics. Beyond the fitted range it tapers
+    /// ([`taper`]).
+    #[inline]
+    pub(crate) fn angle(&self, q: f64) -> f64 {
+        match self.cos.is_empty() {
+            true => 0.0,
+            false => self.tapered(q, q.sin_cos()),
+        }
+    }
+
+    /// The error `e(q) + b d` (rad) at the axis angle `q` (rad) approached with the last
+    /// motion's sign `direction` (-1.0 or 1.0).
+    #[inline]
+    pub(crate) fn angle_from(&self, q: f64, direction: f64) -> f64 {
+        self.angle(q) + self.backlash * direction
+    }
 }

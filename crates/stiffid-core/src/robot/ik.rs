@@ -6,7 +6,7 @@
 //! orientation. The error of a posture is `e = [p_target - p; phi]`, `phi` the rotation vector of
 //! `R_target R^T` (base frame). Each step solves `(J J^T + lambda^2 I) y = e`, `dq = J^T y`
 //! (damped least squares, Wampler 1986; Nakamura and Hanafusa 1986) with the rotation rows
-//! weighted by [`ROTATION_WEIGHT`], and adapts the damping Levenberg-Marquardt fashion: smaller
+//! weighted by `ROTATION_WEIGHT`, and adapts the damping Levenberg-Marquardt fashion: smaller
 //! after a step that lowers `|e|`, larger (and the step refused) otherwise. Near the solution the
 //! damping vanishes and the steps are Gauss-Newton's (quadratic convergence). Steps are clamped to
 //! the joint limits.
@@ -29,7 +29,7 @@ use rand_chacha::ChaCha8Rng;
 
 /// Metres per radian of the rotation rows of the error and the Jacobian (a characteristic length
 /// of the workspace), so one step weighs a millimetre and a milliradian alike.
-pub const ROTATION_WEIGHT: f64 = 1.0;
+pub(crate) const ROTATION_WEIGHT: f64 = 1.0;
 
 /// The pose of the tool point `point` (flange frame, m): its position in the base frame (m) and the
 /// flange's orientation.

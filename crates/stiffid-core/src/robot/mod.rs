@@ -410,7 +410,7 @@ impl Robot {
     }
 
     /// The axis angles the chain turns by at axis angles `q` (rad): `q + e(q)` with the error
-    /// maps ([`ErrorMap::angle`] of each axis's own angle), `q` without.
+    /// maps (`ErrorMap::angle` of each axis's own angle), `q` without.
     #[inline]
     pub fn mapped(&self, q: &nalgebra::Vector6<f64>) -> nalgebra::Vector6<f64> {
         match &self.error_maps {
@@ -424,7 +424,7 @@ impl Robot {
 
     /// [`Robot::mapped`] approached with the last motions' signs `direction` (-1.0 or 1.0 per
     /// axis, 0.0 for the mean of the two approaches): `q + e(q) + b d`, `b` each axis's half
-    /// backlash ([`ErrorMap::angle_from`]).
+    /// backlash (`ErrorMap::angle_from`).
     pub(crate) fn mapped_from(
         &self,
         q: &nalgebra::Vector6<f64>,
@@ -568,3 +568,8 @@ impl PartialEq for Bodies {
         }
     }
 }
+
+#[cfg(test)]
+mod error_map_tests;
+#[cfg(test)]
+mod weight_file_tests;

@@ -319,7 +319,7 @@ impl SetupBuilder {
 
     /// Reflectors fixed on the positioner's table or, in a cell without a positioner, on the
     /// part or its fixture, the part's frame ([`Self::with_workpiece`]), m (default none; at
-    /// most [`limits::MAX_TABLE_REFLECTORS`], each coordinate within [`limits::LENGTH_MM`]; they
+    /// most `limits::MAX_TABLE_REFLECTORS`, each coordinate within [`limits::LENGTH_MM`]; they
     /// need a workpiece), read as `T1`, `T2`, ... in that order: the points `select --for
     /// calibration` designs the positioner's angles for, and those the calibration locates the
     /// part from.
@@ -337,7 +337,7 @@ impl SetupBuilder {
 
     /// The relative standard deviation of every body's mass and inertia, the robot's links' and
     /// the tool's, independent between bodies (default 0: the masses taken as exact; a fraction,
-    /// within [`limits::MASS_SD_PERCENT`] as a percentage).
+    /// within `limits::MASS_SD_PERCENT` as a percentage).
     pub fn with_mass_sd(mut self, relative: f64) -> Self {
         self.mass_sd = relative;
         self
@@ -360,7 +360,7 @@ impl SetupBuilder {
     /// finite or outside its documented range, no measuring point or no noise level (or more than
     /// their limits), bounds not below each other, and an inconsistent cell (a box `carried_by` no
     /// positioner axis of the robot's) or tracker ([`Cell`],
-    /// [`Tracker`]) or virtual springs ([`crate::model::check_springs`]); [`Error::OutsideBox`](crate::Error::OutsideBox) with the field, the value and the range for bounds or
+    /// [`Tracker`]) or virtual springs (`crate::model::check_springs`); [`Error::OutsideBox`](crate::Error::OutsideBox) with the field, the value and the range for bounds or
     /// test postures outside the robot's limits.
     pub fn build(self) -> Result<Setup> {
         if self.name.trim().is_empty() {

@@ -66,7 +66,7 @@ pub(super) fn check_points(field: &str, points: &[Vector3<f64>]) -> Result<()> {
 }
 
 /// Refuses reflectors fixed in the cell (on the positioner's table, or on a fixed part)
-/// beyond [`limits::MAX_TABLE_REFLECTORS`] or [`limits::LENGTH_MM`], or without a workpiece
+/// beyond `limits::MAX_TABLE_REFLECTORS` or [`limits::LENGTH_MM`], or without a workpiece
 /// frame.
 pub(super) fn check_table_reflectors(reflectors: &[Vector3<f64>], workpiece: bool) -> Result<()> {
     let field = "workpiece.reflectors_mm";

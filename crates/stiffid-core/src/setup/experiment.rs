@@ -142,7 +142,7 @@ impl Experiment {
     /// m^2, that gives the compliances' covariance of the design: a loaded minus an unloaded
     /// reading without load steps ([`Noise::displacement_variance`], twice the reading
     /// variance); with them, that of the displacement their readings are worth
-    /// ([`crate::setup::load_steps::StepWeights::variance_factor`] times the reading variance,
+    /// (`crate::setup::load_steps::StepWeights::variance_factor` times the reading variance,
     /// also 2 for one step at the rope load).
     pub(crate) fn displacement_variance(&self) -> f64 {
         match StepWeights::new(self.load.load, &self.load_steps) {

@@ -44,7 +44,7 @@ impl StepWeights {
 
     /// The variance of `D` per unit reading variance: `F^2 (S2 + S1^2) / S2^2`, the sum of the
     /// squared weights.
-    pub fn variance_factor(&self) -> f64 {
+    pub(crate) fn variance_factor(&self) -> f64 {
         self.reference * self.reference + self.steps.iter().map(|w| w * w).sum::<f64>()
     }
 }

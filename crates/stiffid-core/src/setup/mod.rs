@@ -534,4 +534,8 @@ impl Setup {
 }
 
 #[cfg(test)]
+mod load_steps_tests;
+#[cfg(test)]
+mod numbered_tests;
+#[cfg(test)]
 mod prior_tests;

@@ -42,11 +42,6 @@ impl NumberedFrames {
         self.frames.keys().copied()
     }
 
-    /// Whether the table gives no frame.
-    pub fn is_empty(&self) -> bool {
-        self.frames.is_empty()
-    }
-
     /// A table of `frames` (number, frame); `field` names it in errors (`controller.tools`).
     ///
     /// # Errors
@@ -123,4 +118,12 @@ pub(super) fn read(field: &str, entries: &[NumberedFrameFile]) -> Result<Numbere
         frames.push((number, t.isometry()));
     }
     NumberedFrames::new(field, &frames)
+}
+
+#[cfg(test)]
+impl NumberedFrames {
+    /// Whether the table gives no frame.
+    pub(crate) fn is_empty(&self) -> bool {
+        self.frames.is_empty()
+    }
 }

@@ -15,16 +15,16 @@ use rand_chacha::ChaCha8Rng;
 use std::f64::consts::PI;
 
 /// Postures sampled for [`characteristic_length`].
-pub const LENGTH_SAMPLES: usize = 512;
+pub(crate) const LENGTH_SAMPLES: usize = 512;
 
 /// The search interval of [`characteristic_length`], m.
-pub const LENGTH_RANGE_M: (f64, f64) = (0.05, 20.0);
+pub(crate) const LENGTH_RANGE_M: (f64, f64) = (0.05, 20.0);
 
 /// The payload (kg) of the reference robot of [`nominal_stiffness`]: the COMAU SMART5 NJ 165-3.0.
 pub(crate) const REFERENCE_PAYLOAD_KG: f64 = 165.0;
 
 /// The joint stiffness (Nm/rad) of the reference robot: Zhang et al. 2021, Table 2.
-pub const REFERENCE_STIFFNESS_NM_PER_RAD: [f64; 6] = [
+pub(crate) const REFERENCE_STIFFNESS_NM_PER_RAD: [f64; 6] = [
     950_000.0,
     3_000_000.0,
     900_000.0,
@@ -38,12 +38,12 @@ pub const REFERENCE_STIFFNESS_NM_PER_RAD: [f64; 6] = [
 pub const MAX_PAYLOAD_KG: f64 = 2500.0;
 
 /// The characteristic length L (m) that minimises the median dexterity `k(J_N)` of the point `tcp`
-/// (flange frame, m) over [`LENGTH_SAMPLES`] postures drawn uniformly within `[lower, upper]` (axis
+/// (flange frame, m) over `LENGTH_SAMPLES` postures drawn uniformly within `[lower, upper]` (axis
 /// angles, rad; ChaCha8 seeded with `seed`), Jacobians in axis coordinates.
 ///
 /// The paper leaves L open; on its setup this choice gives about 1.2 m. Postures at a singularity
 /// (infinite dexterity) count as the worst values of the median. The median is minimised over
-/// [`LENGTH_RANGE_M`] by golden-section search on `log L`, to 0.1%.
+/// `LENGTH_RANGE_M` by golden-section search on `log L`, to 0.1%.
 ///
 /// # Errors
 /// [`Error::InvalidField`] if a bound is not finite or `lower > upper`, or if the robot is singular
@@ -84,7 +84,7 @@ pub fn characteristic_length(
 }
 
 /// The seed of [`robot_characteristic_length`].
-pub const ROBOT_LENGTH_SEED: u64 = 1;
+pub(crate) const ROBOT_LENGTH_SEED: u64 = 1;
 
 /// The characteristic length L (m) of `robot` for the point `point` (flange frame, m) when no
 /// length is given: [`characteristic_length`] over the robot's joint limits (an unlimited axis
@@ -108,7 +108,7 @@ fn within_a_turn(robot: &Robot) -> (Vector6<f64>, Vector6<f64>) {
 }
 
 /// The reach (m): the largest distance of the flange origin from the base origin over
-/// [`LENGTH_SAMPLES`] postures drawn uniformly within the joint limits (an unlimited axis within
+/// `LENGTH_SAMPLES` postures drawn uniformly within the joint limits (an unlimited axis within
 /// +-180 deg; ChaCha8 seeded with `seed`).
 pub fn reach(robot: &Robot, seed: u64) -> f64 {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);

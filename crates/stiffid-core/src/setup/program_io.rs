@@ -369,7 +369,7 @@ impl ProgramSettings {
     ///
     /// # Errors
     /// [`Error::OutsideBox`] naming `controller.home_deg[i]`, the value and the axis's range.
-    pub fn check(&self, robot: &Robot) -> Result<()> {
+    pub(crate) fn check(&self, robot: &Robot) -> Result<()> {
         let Some(h) = self.home_deg else {
             return Ok(());
         };

@@ -125,7 +125,7 @@ impl Pulses {
     /// [`crate::Error::InvalidField`] naming `controller.pulses_per_deg[i]` or
     /// `controller.external_pulses[i]` (a value outside the range or not finite), or
     /// `controller.external_pulses` (another count than the cell's axes).
-    pub fn check(&self, external: usize) -> crate::Result<()> {
+    pub(crate) fn check(&self, external: usize) -> crate::Result<()> {
         use crate::common::limits::{check, PULSES};
         check("controller.pulses_per_deg", &self.per_deg, &PULSES)?;
         check("controller.external_pulses", &self.external, &PULSES)?;

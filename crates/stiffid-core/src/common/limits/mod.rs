@@ -142,7 +142,7 @@ pub(crate) const AXIS: Range = Range::new(-1e6, 1e6, "");
 pub const TOOL_MASS_KG: Range = Range::new(1e-3, 1e4, "kg");
 
 /// The relative standard deviation of the robot's and the tool's masses (`[masses] sd_pct`).
-pub const MASS_SD_PERCENT: Range = Range::new(0.0, 100.0, "%");
+pub(crate) const MASS_SD_PERCENT: Range = Range::new(0.0, 100.0, "%");
 
 /// How far each frame of the robot model may be from the true robot's, per coordinate
 /// (`[robot_accuracy] frame_sd_mm` and `frame_sd_mrad`).
@@ -186,7 +186,7 @@ pub const MAX_AXIS_MAP_COND: f64 = 1e8;
 
 /// Largest input file accepted, bytes (256 MiB): room for a measurement file of 2 million rows
 /// (1e6 rows take about 119 MB), and a bound on the memory one file (or `/dev/zero`) can take.
-/// Both front ends read at most one byte more and hand the bytes to [`crate::io::text`].
+/// Both front ends read at most one byte more and hand the bytes to `crate::io::text`.
 pub const MAX_INPUT_BYTES: u64 = 256 << 20;
 
 /// Most noise levels of a setup (with [`MAX_RUNS`], a bound on a simulation's memory: levels x
@@ -264,11 +264,11 @@ pub const MAX_MEASURING_POINTS: usize = 100;
 
 /// Most reflectors on a positioner's table: a setup's `[workpiece] reflectors_mm`, a readings
 /// file's `T1` ...
-pub const MAX_TABLE_REFLECTORS: usize = 100;
+pub(crate) const MAX_TABLE_REFLECTORS: usize = 100;
 
 /// Most parameters of a model in a stiffness file: the six drives and
 /// [`MAX_VIRTUAL_SPRINGS`] virtual springs.
-pub const MAX_PARAMETERS: usize = 6 + MAX_VIRTUAL_SPRINGS;
+pub(crate) const MAX_PARAMETERS: usize = 6 + MAX_VIRTUAL_SPRINGS;
 
 /// Most virtual springs a model may have.
 pub const MAX_VIRTUAL_SPRINGS: usize = 64;
@@ -290,10 +290,10 @@ pub fn short(text: &str) -> String {
 }
 
 /// Longest error message, in characters (after [`one_line`]).
-pub const MAX_MESSAGE_CHARS: usize = 600;
+pub(crate) const MAX_MESSAGE_CHARS: usize = 600;
 
 /// A (parser's) multi-line message on one line for people: blank and `|` lines dropped, every word
-/// longer than [`MAX_QUOTED_CHARS`] cut ([`short`]), the whole at most [`MAX_MESSAGE_CHARS`], so a
+/// longer than [`MAX_QUOTED_CHARS`] cut ([`short`]), the whole at most `MAX_MESSAGE_CHARS`, so a
 /// 5 MB field never becomes a 5 MB message.
 pub fn one_line(message: &str) -> String {
     one_line_within(message, MAX_QUOTED_CHARS, MAX_MESSAGE_CHARS)
@@ -378,3 +378,6 @@ pub fn check_integer(field: &str, value: u64, min: u64, max: u64) -> Result<()> 
         message: format!("{value} is outside [{min}, {max}]"),
     })
 }
+
+#[cfg(test)]
+mod limits_tests;

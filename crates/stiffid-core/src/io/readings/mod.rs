@@ -56,7 +56,7 @@ use std::collections::HashMap;
 pub const MAX_READINGS: usize = 100_000;
 
 /// Most reflectors fixed in the cell (`T1` ...) a readings file names.
-pub const MAX_TABLE_REFLECTORS: usize = crate::common::limits::MAX_TABLE_REFLECTORS;
+pub(crate) const MAX_TABLE_REFLECTORS: usize = crate::common::limits::MAX_TABLE_REFLECTORS;
 
 /// Largest load step number (`load_step`).
 pub const MAX_LOAD_STEP: u32 = 1000;

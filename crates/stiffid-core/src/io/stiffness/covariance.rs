@@ -11,15 +11,7 @@ use nalgebra::{DMatrix, Matrix6};
 ///
 /// # Errors
 /// [`Error::InvalidField`](crate::Error::InvalidField) naming `compliance_covariance_rad2_per_nm2`.
-///
-/// # Examples
-/// ```
-/// use nalgebra::Matrix6;
-/// use stiffid_core::io::stiffness::check_covariance;
-/// assert!(check_covariance(&Matrix6::from_diagonal_element(1e-14)).is_ok());
-/// assert!(check_covariance(&Matrix6::from_diagonal_element(-1e-14)).is_err());
-/// ```
-pub fn check_covariance(c: &Matrix6<f64>) -> Result<()> {
+pub(crate) fn check_covariance(c: &Matrix6<f64>) -> Result<()> {
     let c = DMatrix::from_column_slice(6, 6, c.as_slice());
     check_covariance_of(&c, "compliance_covariance_rad2_per_nm2")
 }

@@ -47,11 +47,11 @@ mod covariance;
 mod model_form;
 mod sections;
 
-pub use covariance::check_covariance;
+pub(crate) use covariance::check_covariance;
 pub use covariance::check_covariance_of;
 pub use model_form::{FormLaw, MAX_MODEL_FORM_SETS};
 pub use model_form::{FormModelSection, FormSpring, ModelFormSection};
-pub use sections::{FoldSection, GravitySection, GravityTerm, MAX_GRAVITY_TERMS};
+pub use sections::{FoldSection, GravitySection, GravityTerm};
 pub use sections::{PredictionSection, RegionSection};
 
 use crate::common::limits::{self, MAX_PARAMETERS, STIFFNESS_NM_PER_RAD, STIFFNESS_N_PER_MM};
@@ -506,3 +506,8 @@ impl StiffnessFile {
         })
     }
 }
+
+#[cfg(test)]
+mod covariance_tests;
+#[cfg(test)]
+mod stiffness_tests;

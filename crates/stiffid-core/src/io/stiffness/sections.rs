@@ -11,7 +11,7 @@ use crate::Result;
 use nalgebra::{DVector, Vector6};
 use serde::{Deserialize, Serialize};
 
-pub use crate::robot::weight_file::MAX_GRAVITY_TERMS;
+pub(crate) use crate::robot::weight_file::MAX_GRAVITY_TERMS;
 
 /// The gravity terms a calibration fitted ([`crate::model::OwnWeight`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -17,7 +17,6 @@
 use crate::common::limits::{self, short};
 use crate::{Error, Result};
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
-use parry3d_f64::query;
 use parry3d_f64::shape::{self, Ball, ConvexPolyhedron, Cuboid, Cylinder};
 use std::collections::HashMap;
 use std::io::Cursor;
@@ -88,20 +87,6 @@ pub struct CollisionGeometry {
     pub shapes: Vec<LinkShape>,
     /// Links with collision elements that hang off the chain under a non-fixed joint.
     pub skipped: Vec<String>,
-}
-
-/// The signed distance between two posed shapes, m: the gap, or minus the penetration depth
-/// (parry's GJK, EPA inside); at most 10 km. Always GJK: parry's own box-to-box distance
-/// (`distance_cuboid_cuboid`, by separating axes) gives the sum of the gaps along the axes, not
-/// their norm, for boxes apart along more than one of their axes (3 m instead of `sqrt(3)` m for
-/// two unit cubes 2 m apart along every axis).
-pub fn distance(a: &Shape, pose_a: &Isometry3<f64>, b: &Shape, pose_b: &Isometry3<f64>) -> f64 {
-    let ((sa, fa), (sb, fb)) = (a.parry(), b.parry());
-    let (pa, pb) = (pose_a * fa, pose_b * fb);
-    match query::contact(&pa, sa, &pb, sb, FAR) {
-        Ok(Some(c)) => c.dist,
-        _ => FAR,
-    }
 }
 
 /// Distances beyond this (m) are not worked out: nothing in a robot cell is that far.
@@ -460,3 +445,26 @@ fn binary_size(bytes: &[u8]) -> std::result::Result<(), String> {
         )),
     }
 }
+
+#[cfg(test)]
+/// The signed distance between two posed shapes, m: the gap, or minus the penetration depth
+/// (parry's GJK, EPA inside); at most 10 km. Always GJK: parry's own box-to-box distance
+/// (`distance_cuboid_cuboid`, by separating axes) gives the sum of the gaps along the axes, not
+/// their norm, for boxes apart along more than one of their axes (3 m instead of `sqrt(3)` m for
+/// two unit cubes 2 m apart along every axis).
+pub(crate) fn distance(
+    a: &Shape,
+    pose_a: &Isometry3<f64>,
+    b: &Shape,
+    pose_b: &Isometry3<f64>,
+) -> f64 {
+    let ((sa, fa), (sb, fb)) = (a.parry(), b.parry());
+    let (pa, pb) = (pose_a * fa, pose_b * fb);
+    match parry3d_f64::query::contact(&pa, sa, &pb, sb, FAR) {
+        Ok(Some(c)) => c.dist,
+        _ => FAR,
+    }
+}
+
+#[cfg(test)]
+mod collision_tests;

@@ -41,10 +41,10 @@ use crate::{Error, Result};
 use nalgebra::{Isometry3, Translation3, Unit, UnitQuaternion, Vector3};
 
 /// Most linear axes of a carrier (a gantry).
-pub const MAX_CARRIER_AXES: usize = 3;
+pub(crate) const MAX_CARRIER_AXES: usize = 3;
 
 /// Most rotary axes of a positioner (a tilt-rotate table).
-pub const MAX_POSITIONER_AXES: usize = 2;
+pub(crate) const MAX_POSITIONER_AXES: usize = 2;
 
 /// Most external axes of a cell: a carrier's and a positioner's.
 pub const MAX_AXES: usize = MAX_CARRIER_AXES + MAX_POSITIONER_AXES;
@@ -211,8 +211,8 @@ impl ExternalAxes {
     ///
     /// # Errors
     /// [`Error::InvalidField`] (`external_axis[i]...`, 1-based in the order given) when there
-    /// are none or more than [`MAX_AXES`], more than [`MAX_CARRIER_AXES`] carrier axes or
-    /// [`MAX_POSITIONER_AXES`] positioner axes, a carrier axis is not linear or a positioner
+    /// are none or more than [`MAX_AXES`], more than `MAX_CARRIER_AXES` carrier axes or
+    /// `MAX_POSITIONER_AXES` positioner axes, a carrier axis is not linear or a positioner
     /// axis not rotary, a name is empty or repeated, a number is not finite, a travel is empty
     /// or beyond [`limits::LENGTH_M`] (linear) or [`limits::ANGLE_RAD`] (rotary), or a rotary
     /// axis carries error motions.
@@ -397,26 +397,9 @@ impl ExternalAxes {
         columns
     }
 
-    /// The Jacobian columns of the positioner's axes at `e` for a point of the part at `x`
-    /// (cell frame, m): per positioner axis, the point's velocity per radian, `d x (x - o)`
-    /// with `d` and `o` the axis's line at `e` (m/rad). The tool's velocity over the part is
-    /// the arm's minus these.
-    pub fn positioner_columns(&self, e: &[f64], x: &Vector3<f64>) -> Vec<Vector3<f64>> {
-        let start = self.carrier_len();
-        let mut turned = Isometry3::identity();
-        let mut columns = Vec::with_capacity(self.len() - start);
-        for (axis, angle) in self.axes[start..].iter().zip(e.iter().skip(start)) {
-            let d = turned.rotation * axis.direction.into_inner();
-            let o = turned * nalgebra::Point3::from(axis.point);
-            columns.push(d.cross(&(x - o.coords)));
-            turned *= turn_about_line(&axis.point, &axis.direction, angle + axis.offset);
-        }
-        columns
-    }
-
     /// The lines of the positioner's axes at `e` (SI, the cell's order): per positioner axis, its
     /// unit direction and a point on it (m), cell frame. A point `x` of the part moves by
-    /// `d x (x - o)` per radian ([`ExternalAxes::positioner_columns`]) and turns by `d`.
+    /// `d x (x - o)` per radian (`ExternalAxes::positioner_columns`) and turns by `d`.
     pub fn positioner_lines(&self, e: &[f64]) -> Vec<(Vector3<f64>, Vector3<f64>)> {
         let start = self.carrier_len();
         let mut turned = Isometry3::identity();
@@ -561,3 +544,26 @@ fn invalid(field: &str, message: String) -> Error {
         message,
     }
 }
+
+#[cfg(test)]
+impl ExternalAxes {
+    /// The Jacobian columns of the positioner's axes at `e` for a point of the part at `x`
+    /// (cell frame, m): per positioner axis, the point's velocity per radian, `d x (x - o)`
+    /// with `d` and `o` the axis's line at `e` (m/rad). The tool's velocity over the part is
+    /// the arm's minus these.
+    pub(crate) fn positioner_columns(&self, e: &[f64], x: &Vector3<f64>) -> Vec<Vector3<f64>> {
+        let start = self.carrier_len();
+        let mut turned = Isometry3::identity();
+        let mut columns = Vec::with_capacity(self.len() - start);
+        for (axis, angle) in self.axes[start..].iter().zip(e.iter().skip(start)) {
+            let d = turned.rotation * axis.direction.into_inner();
+            let o = turned * nalgebra::Point3::from(axis.point);
+            columns.push(d.cross(&(x - o.coords)));
+            turned *= turn_about_line(&axis.point, &axis.direction, angle + axis.offset);
+        }
+        columns
+    }
+}
+
+#[cfg(test)]
+mod external_tests;

@@ -327,7 +327,7 @@ impl Frames {
 /// The dexterity index from which a posture counts as singular: `1e-3 / f64::EPSILON` (about
 /// 4.5e12), where the inverse keeps fewer than 3 correct digits. A wrist angle of 1e-6 rad from
 /// the singularity still gives a finite index of about 1e6.
-pub const NUMERICALLY_SINGULAR: f64 = 1e-3 / f64::EPSILON;
+pub(crate) const NUMERICALLY_SINGULAR: f64 = 1e-3 / f64::EPSILON;
 
 /// Dexterity index `k(J_N) = (1/6) sqrt(tr(A) tr(A^-1))`, `A = J_N J_N^T`,
 /// `J_N = diag(I/L, I) J` (Zhang et al. 2021, Eq. 20-21; the Frobenius-norm condition number of the
@@ -335,7 +335,7 @@ pub const NUMERICALLY_SINGULAR: f64 = 1e-3 / f64::EPSILON;
 ///
 /// `jacobian` is 6x6 with rows `[v; omega]` (m/rad, rad/rad); `characteristic_length` L in m.
 /// 1 for an isotropic Jacobian, larger is worse; `+infinity` at a singularity (also a numerical
-/// one: a value of [`NUMERICALLY_SINGULAR`] or more, where the computed inverse is mostly rounding
+/// one: a value of `NUMERICALLY_SINGULAR` or more, where the computed inverse is mostly rounding
 /// noise: at an exactly singular posture rounding leaves values near `1 / f64::EPSILON`, 4.5e15)
 /// or for non-finite input. Since `tr(A) = |J_N|_F^2` and `tr(A^-1) = |J_N^-1|_F^2`, it is computed as
 /// `|J_N|_F |J_N^-1|_F / 6` without forming `A`.
@@ -352,7 +352,7 @@ fn normalise(jacobian: &Matrix6<f64>, characteristic_length: f64) -> Matrix6<f64
 }
 
 /// `k(J_N) = |J_N|_F |J_N^-1|_F / 6` and `J_N^-1`, where the index is finite and below
-/// [`NUMERICALLY_SINGULAR`] (a non-finite entry makes `|J_N|_F` non-finite: no inverse is tried).
+/// `NUMERICALLY_SINGULAR` (a non-finite entry makes `|J_N|_F` non-finite: no inverse is tried).
 fn index(jn: &Matrix6<f64>) -> Option<(f64, Matrix6<f64>)> {
     let norm = jn.norm();
     if !norm.is_finite() {

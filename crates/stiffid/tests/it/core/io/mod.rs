@@ -1,7 +1,3 @@
-mod external;
 mod input;
-mod measurements;
 mod output;
-mod postures;
 mod readings;
-mod stiffness;

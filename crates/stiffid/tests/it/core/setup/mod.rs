@@ -1,4 +1,2 @@
 mod controller_robot;
-mod load_steps;
-mod numbered;
 mod reference;

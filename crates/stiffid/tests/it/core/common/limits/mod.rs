@@ -12,21 +12,6 @@ fn short_cuts_long_text_on_a_character_boundary() {
 }
 
 #[test]
-fn one_line_cuts_long_words_and_long_messages() {
-    let field = "x".repeat(5_000_000);
-    let m = one_line(&format!(
-        "TOML parse error at line 1\n  |\n1 | name = \"{field}\"\n"
-    ));
-    assert!(
-        m.starts_with("TOML parse error at line 1 1 | name ="),
-        "{m}"
-    );
-    assert!(m.len() < 200, "{}", m.len());
-    let many = "word ".repeat(1000);
-    assert_eq!(one_line(&many).chars().count(), MAX_MESSAGE_CHARS + 3);
-}
-
-#[test]
 fn check_names_the_index_and_value() {
     let e = check("x_mm", &[1.0, f64::NAN], &LENGTH_MM).unwrap_err();
     assert_eq!(

@@ -1,4 +1,4 @@
-use stiffid_core::common::stop::*;
+use crate::common::stop::*;
 
 #[test]
 fn names_are_the_documents_strings() {

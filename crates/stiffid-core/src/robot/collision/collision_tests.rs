@@ -1,10 +1,10 @@
+use crate::robot::collision::*;
+use crate::Result;
 use nalgebra::Vector6;
 use nalgebra::{Isometry3, Vector3};
 use parry3d_f64::shape::Cuboid;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
-use stiffid_core::robot::collision::*;
-use stiffid_core::Result;
 
 /// The 12 triangles of an axis-aligned cube of side `side` centred on the origin.
 fn cube(side: f32) -> Vec<[[f32; 3]; 3]> {
@@ -101,7 +101,7 @@ fn geometry(package_paths: &[PathBuf]) -> Result<CollisionGeometry> {
 
 /// The posed shape of `link` at posture `q` (rad).
 fn posed(g: &CollisionGeometry, link: &str, q: &Vector6<f64>) -> (Shape, Isometry3<f64>) {
-    let robot = stiffid_core::robot::urdf::parse(URDF, "shapes.urdf", None).unwrap();
+    let robot = crate::robot::urdf::parse(URDF, "shapes.urdf", None).unwrap();
     let frames = robot.frames(q);
     let s = g.shapes.iter().find(|s| s.link == link).unwrap();
     let body = match s.body {

@@ -1,12 +1,12 @@
 //! The external axes against an independent model written here with 4x4 matrices and Rodrigues'
 //! formula, and their Jacobian columns against central differences.
 
+use crate::robot::external::ErrorMotions;
+use crate::Result;
 use nalgebra::{Isometry3, Translation3, Unit, Vector3};
-use stiffid_core::robot::external::ErrorMotions;
-use stiffid_core::Result;
 
+use crate::robot::external::*;
 use nalgebra::{Matrix3, Matrix4, Point3, Vector6};
-use stiffid_core::robot::external::*;
 
 /// A homogeneous 4x4 rotation about the line through `p` along unit `d` by `a` (Rodrigues).
 fn rodrigues(p: [f64; 3], d: [f64; 3], a: f64) -> Matrix4<f64> {
@@ -99,7 +99,7 @@ fn the_columns_are_the_derivatives_of_the_positions() {
 
 #[test]
 fn an_arm_on_a_track_is_the_arm_moved_along_it() {
-    let robot = stiffid_core::robot::presets::get("kuka-kr210-robond").unwrap();
+    let robot = crate::robot::presets::get("kuka-kr210-robond").unwrap();
     let fixed = robot.clone();
     let track = ExternalAxis::linear(
         "track",

@@ -1,5 +1,5 @@
+use crate::robot::error_map::*;
 use nalgebra::Vector6;
-use stiffid_core::robot::error_map::*;
 
 #[test]
 fn the_recurrence_is_the_series() {

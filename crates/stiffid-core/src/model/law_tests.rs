@@ -1,4 +1,4 @@
-use stiffid_core::model::*;
+use crate::model::*;
 
 #[test]
 fn responses() {

@@ -1,4 +1,4 @@
-use stiffid_core::setup::load_steps::*;
+use crate::setup::load_steps::*;
 
 #[test]
 fn one_step_at_the_rope_load_is_two_readings() {

@@ -1,5 +1,5 @@
+use crate::model::region::*;
 use nalgebra::Vector6;
-use stiffid_core::model::region::*;
 
 #[test]
 fn the_region_is_the_range_widened_by_the_margin() {

@@ -1,16 +1,16 @@
 //! `[controller] tools` and `bases`: the frames a controller holds by number, read as given
 //! (tools in the flange frame, bases in the world frame, mm and deg to m and rad) and checked.
 
+use crate::setup;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
-use stiffid::setup;
 
-fn read(controller: &str) -> stiffid::Result<stiffid::Setup> {
+fn read(controller: &str) -> crate::Result<crate::Setup> {
     let text = setup::builtin_text("zhang2021-comau-nj165")
         .unwrap()
         .to_string()
         + "\n[controller]\n"
         + controller;
-    setup::parse(&text, "cell.toml", |r, _| stiffid::robot::presets::get(r))
+    setup::parse(&text, "cell.toml", |r, _| crate::robot::presets::get(r))
 }
 
 #[test]
@@ -75,7 +75,7 @@ fn a_bad_numbered_frame_is_refused_naming_its_entry() {
         ),
     ] {
         match read(&format!("{controller}\n")) {
-            Err(stiffid::Error::InvalidField { field: f, message }) => {
+            Err(crate::Error::InvalidField { field: f, message }) => {
                 assert_eq!(f, field, "{controller}: {message}");
                 assert!(message.contains(words), "{controller}: {message}");
             }

@@ -1,5 +1,5 @@
-use stiffid_core::io::external::*;
-use stiffid_core::Error;
+use crate::io::external::*;
+use crate::Error;
 
 fn names(header: &str) -> Vec<String> {
     header.split(',').map(str::to_string).collect()

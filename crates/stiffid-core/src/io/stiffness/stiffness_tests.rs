@@ -1,8 +1,8 @@
+use crate::io::stiffness::check_covariance;
+use crate::io::stiffness::*;
+use crate::model::Model;
+use crate::Error;
 use nalgebra::{DMatrix, Matrix6};
-use stiffid_core::io::stiffness::check_covariance;
-use stiffid_core::io::stiffness::*;
-use stiffid_core::model::Model;
-use stiffid_core::Error;
 
 const K: &str = "[950000, 3000000, 900000, 250000, 200000, 150000]";
 
@@ -66,14 +66,12 @@ const DRIVES: [(&str, &str, &str, f64); 6] = [
 ];
 
 fn model_with_tool_y() -> Model {
-    let robot =
-        stiffid_core::robot::presets::get(stiffid_core::robot::presets::names().next().unwrap())
-            .unwrap();
-    let springs = stiffid_core::model::Family::Tool
+    let robot = crate::robot::presets::get(crate::robot::presets::names().next().unwrap()).unwrap();
+    let springs = crate::model::Family::Tool
         .springs(&robot, &[], None, None, "test")
         .unwrap();
     let y: Vec<_> = springs.into_iter().filter(|s| s.name == "tool_y").collect();
-    Model::new(stiffid_core::Coordinates::Axis, y).unwrap()
+    Model::new(crate::Coordinates::Axis, y).unwrap()
 }
 
 #[test]
