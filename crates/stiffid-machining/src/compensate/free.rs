@@ -50,7 +50,7 @@ pub const MAX_FREE: usize = 8;
 
 /// The options that `free` replaced (command-line spelling, without `--`), each with the option
 /// that replaces it (`free` or `minimise`) and how to write its value there.
-pub const RETIRED: &[(&str, &str, &str)] = &[
+pub(crate) const RETIRED: &[(&str, &str, &str)] = &[
     ("free-tool-axis", "free", "tool-rotation=-90..90/2"),
     ("max-step-deg", "free", "tool-rotation=-R..R/STEP"),
     ("tool-axis-range-deg", "free", "tool-rotation=-R..R/STEP"),
@@ -77,7 +77,7 @@ pub const RETIRED: &[(&str, &str, &str)] = &[
 ];
 
 /// The option replacing the retired option `name` (command-line spelling, without `--`) and how
-/// to write its value ([`RETIRED`]).
+/// to write its value (`RETIRED`).
 pub fn retired(name: &str) -> Option<(&'static str, &'static str)> {
     RETIRED
         .iter()

@@ -49,7 +49,7 @@ pub struct Cycle {
     /// `G83`'s peck depth `Q`, m.
     pub peck: Option<f64>,
     /// The level where the drill first meets material, m: the part's surface (`Z = 0` or
-    /// `(stiffid: surface_mm = Z)`), or `R` when that lies below it ([`GCode::drilled_in_air`]).
+    /// `(stiffid: surface_mm = Z)`), or `R` when that lies below it (`GCode::drilled_in_air`).
     pub entry: f64,
 }
 
@@ -61,7 +61,7 @@ impl GCode {
     /// The cycle states the point where the drill meets material twice: reached unloaded, then
     /// (a move of no length) under the thrust, from where the feed below cuts and carries it.
     /// `false` for every point outside a cycle.
-    pub fn drilled_in_air(&self) -> Vec<bool> {
+    pub(crate) fn drilled_in_air(&self) -> Vec<bool> {
         let mut levels: Vec<f64> = self.cycles.iter().map(|c| c.entry).collect();
         (self.points.iter().enumerate())
             .map(|(i, p)| match (p.cycle, p.motion) {

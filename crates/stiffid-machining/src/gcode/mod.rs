@@ -397,3 +397,6 @@ fn may_move(line: u64, s: &State) -> Result<UnitQuaternion<f64>> {
     }
     s.tool.ok_or_else(|| at(line, "no tool orientation: state it in a header comment before the first motion, e.g. (stiffid: tool_rpy_deg = 180 0 0)".into()))
 }
+
+#[cfg(test)]
+mod cycles_tests;

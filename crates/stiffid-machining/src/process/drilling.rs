@@ -29,12 +29,12 @@ pub struct Drilling {
 
 impl Drilling {
     /// The thrust `F = k_f f D / 2`, N.
-    pub fn thrust(&self) -> f64 {
+    pub(crate) fn thrust(&self) -> f64 {
         self.specific_thrust * self.feed_per_rev * self.diameter / 2.0
     }
 
     /// The torque `T = k_c f D^2 / 8`, Nm.
-    pub fn torque(&self) -> f64 {
+    pub(crate) fn torque(&self) -> f64 {
         self.specific_energy * self.feed_per_rev * self.diameter.powi(2) / 8.0
     }
 

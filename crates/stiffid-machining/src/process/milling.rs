@@ -38,7 +38,7 @@
 //! `phi + 2 pi j / N` along the axial depth, so its force is `[G]` over the part of that span inside
 //! the immersion (and its copies `+- 2 pi`), divided by `k_b`; without helix it is `a_p` times the
 //! force per unit length at `phi + 2 pi j / N`. The peak is the largest magnitude of that sum on a
-//! grid of spindle angles of the stated resolution ([`Milling::peak_force`]).
+//! grid of spindle angles of the stated resolution (`Milling::peak_force`).
 
 use nalgebra::Vector3;
 use std::f64::consts::PI;
@@ -102,7 +102,7 @@ impl Milling {
     }
 
     /// The immersion `[psi_st, psi_ex]`, rad.
-    pub fn immersion(&self) -> (f64, f64) {
+    pub(crate) fn immersion(&self) -> (f64, f64) {
         let ratio = (self.radial_depth / self.diameter).min(1.0);
         let swept = (1.0 - 2.0 * ratio).clamp(-1.0, 1.0).acos();
         match self.mode {
@@ -127,7 +127,7 @@ impl Milling {
 
     /// The force per unit edge length at immersion angle `psi` inside the immersion, N/m
     /// (module docs): `d G / d psi`.
-    pub fn per_length(&self, psi: f64) -> Vector3<f64> {
+    pub(crate) fn per_length(&self, psi: f64) -> Vector3<f64> {
         let k = &self.coefficients;
         let h = self.feed_per_tooth * psi.sin();
         let (t, r, a) = (
@@ -148,7 +148,7 @@ impl Milling {
 
     /// The mean force on the tool over one revolution, feed frame `[feed, normal, axial]`, N
     /// (closed form, module docs).
-    pub fn mean_force(&self) -> Vector3<f64> {
+    pub(crate) fn mean_force(&self) -> Vector3<f64> {
         let (st, ex) = self.immersion();
         let g = self.antiderivative(ex) - self.antiderivative(st);
         g * (self.flutes as f64 * self.axial_depth / (2.0 * PI))
@@ -158,7 +158,7 @@ impl Milling {
     /// axis at the bottom of the cut), feed frame, Nm (closed form, module docs): the cutting
     /// torque about the spindle axis, and the moments of the lateral forces acting up the flutes
     /// (on average at `a_p / 2` above the tip) and of the axial forces acting at the radius.
-    pub fn mean_moment(&self) -> Vector3<f64> {
+    pub(crate) fn mean_moment(&self) -> Vector3<f64> {
         let (st, ex) = self.immersion();
         let h = self.moment_antiderivative(ex) - self.moment_antiderivative(st);
         let per_revolution = self.flutes as f64 * self.axial_depth / (2.0 * PI);
@@ -183,7 +183,7 @@ impl Milling {
     }
 
     /// The force on the tool at spindle angle `phi` (rad), feed frame, N (module docs).
-    pub fn force_at(&self, phi: f64) -> Vector3<f64> {
+    pub(crate) fn force_at(&self, phi: f64) -> Vector3<f64> {
         let (st, ex) = self.immersion();
         let pitch = 2.0 * PI / self.flutes as f64;
         let lag = 2.0 * self.helix.abs().tan() / self.diameter * self.axial_depth;
@@ -215,7 +215,7 @@ impl Milling {
     /// The largest force magnitude over one revolution on a grid of spindle angles `resolution`
     /// (rad) apart, and the force there, feed frame, N. `resolution` is clamped to at least
     /// [`MIN_RESOLUTION_DEG`].
-    pub fn peak_force(&self, resolution: f64) -> Vector3<f64> {
+    pub(crate) fn peak_force(&self, resolution: f64) -> Vector3<f64> {
         let step = resolution.max(MIN_RESOLUTION_DEG.to_radians());
         let count = (2.0 * PI / step).ceil() as usize;
         (0..count)

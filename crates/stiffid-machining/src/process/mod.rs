@@ -13,7 +13,7 @@
 //! from the tip towards the spindle, `y = z x x` (the material of up milling is on `+y`); the tool
 //! turns clockwise seen from the spindle (M03). The tool frame of stiffid's setups has its `z` axis
 //! out of the flange, from the spindle towards the tip, so the feed frame's `z` is the tool's `-z`.
-//! [`feed_frame`] builds the feed frame in the robot base frame from the path's own feed direction
+//! `feed_frame` builds the feed frame in the robot base frame from the path's own feed direction
 //! (the TCP's motion) and the tool axis, and `Operation::base_wrench` turns the operation's
 //! mean force and moment into the base-frame wrench on the tool that compensation takes.
 
@@ -120,7 +120,7 @@ pub const PLUNGE: f64 = 1e-2;
 /// The feed frame in the base frame (module docs): `x` the part of `feed` across the tool axis,
 /// `z = -tool_z`, `y = z x x`. `None` when `feed` has no part across the axis (relative
 /// [`PLUNGE`]).
-pub fn feed_frame(feed: &Vector3<f64>, tool_z: &Vector3<f64>) -> Option<Rotation3<f64>> {
+pub(crate) fn feed_frame(feed: &Vector3<f64>, tool_z: &Vector3<f64>) -> Option<Rotation3<f64>> {
     let z = -tool_z.normalize();
     let across = feed - z * feed.dot(&z);
     if across.norm() <= PLUNGE * feed.norm() || !across.norm().is_finite() {
@@ -153,7 +153,7 @@ pub struct OperationForce {
 }
 
 /// The forces of every operation; with `peak_resolution` (rad) also the milling peak
-/// ([`milling::Milling::peak_force`]).
+/// (`Milling::peak_force`).
 pub fn forces(process: &Process, peak_resolution: Option<f64>) -> Vec<OperationForce> {
     process
         .operations
@@ -177,3 +177,6 @@ pub fn forces(process: &Process, peak_resolution: Option<f64>) -> Vec<OperationF
         })
         .collect()
 }
+
+#[cfg(test)]
+mod forces_tests;

@@ -268,7 +268,7 @@ pub struct Context<'a> {
     /// tools`, in its flange frame).
     pub tool: Option<(Isometry3<f64>, &'a NumberedFrames)>,
     /// The data file beside the program (KRL's `.dat`: its points and frame data), whose
-    /// targets there are written back into it ([`JointProgram::write_pair`]).
+    /// targets there are written back into it (`JointProgram::write_pair`).
     pub data: Option<&'a str>,
     /// A G-code program's controller: its work offsets, start and home positions and tool
     /// lengths ([`crate::gcode::Machine::of`]); `None`: none of them known.
@@ -279,7 +279,7 @@ pub struct Context<'a> {
 }
 
 /// The text of the program at `path`, of its `.dat` when it is a KRL program with one beside it
-/// ([`krl::data_beside`]), and the encoding they were read in: UTF-8, else Latin-1
+/// (`krl::data_beside`), and the encoding they were read in: UTF-8, else Latin-1
 /// ([`stiffid_core::io::program_texts`]). `read` gives a file's bytes (a front end's reading,
 /// with the file's name in its error); `wrap` turns a text's error into the caller's.
 ///
@@ -338,7 +338,7 @@ pub fn parse(text: &str, dialect: Dialect) -> Result<JointProgram> {
 }
 
 /// [`parse`] of a program with the data file beside it (KRL's `.dat`: its points, frame data),
-/// whose targets there are written back into it ([`JointProgram::write_pair`]).
+/// whose targets there are written back into it (`JointProgram::write_pair`).
 ///
 /// # Errors
 /// Those of [`parse_in`]; a motion to a point neither file declares, naming its line.
@@ -416,7 +416,7 @@ impl JointProgram {
     /// finite; [`Error::Program`] naming the line where two motions to one declared point would
     /// take different values, or of a Cartesian target of a program not resolved
     /// ([`cartesian::resolve`]); [`Error::InvalidField`] (`data`) for a program whose data file
-    /// changes, which only [`JointProgram::write_pair`] writes.
+    /// changes, which only `JointProgram::write_pair` writes.
     pub fn write_with_external(
         &self,
         q_deg: &[[f64; 6]],
@@ -443,7 +443,7 @@ impl JointProgram {
     ///
     /// # Errors
     /// Those of [`JointProgram::write_with_external`] but the data file's.
-    pub fn write_pair(
+    pub(crate) fn write_pair(
         &self,
         q_deg: &[[f64; 6]],
         external: &[Vec<Option<f64>>],
@@ -631,3 +631,9 @@ pub(crate) fn six(
 
 /// A target's speed before its motion instruction gives it.
 const NOT_READ: &str = "the motion's speed is not read";
+
+#[cfg(test)]
+mod speed_tests;
+
+#[cfg(test)]
+mod write_tests;

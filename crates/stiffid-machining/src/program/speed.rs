@@ -20,9 +20,9 @@
 //!   `vmax`, KRL `BAS(#INITMOV)` or an expression, no speed set before the first linear motion)
 //!   is [`Speed::Unread`]: stiffid does not evaluate it, and says why.
 //!
-//! Each language's reader sits in its controller's folder ([`super::krl::speed`],
-//! [`super::rapid::speed`], [`super::ls::speed`], [`super::inform::speed`]); this module holds
-//! what they share: the [`Speed`] they give and the limits they check.
+//! Each language's reader sits in its controller's folder (`krl::speed`, `rapid::speed`,
+//! `ls::speed`, `inform::speed`); this module holds what they share: the [`Speed`] they give and
+//! the limits they check.
 //!
 //! Overrides (KRL `$OV_PRO`, RAPID `VelSet`, the pendant's) and the controller's own slowing
 //! down (corners, acceleration) are not read: a move is taken at its programmed speed, the

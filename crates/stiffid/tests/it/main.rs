@@ -85,7 +85,6 @@ mod plan_external;
 mod pool;
 mod prediction;
 mod prior;
-mod process_forces;
 mod program_axes;
 mod program_forms;
 mod program_frames;

@@ -391,7 +391,7 @@ pub fn whole(moves: &[Move], form: Option<Form>) -> bool {
 
 /// The files of a program of `moves`, at most `per_file` each (> 0), none starting inside a
 /// circular move (at its end, or at its via point after a taught start).
-pub fn files(moves: &[Move], per_file: usize) -> Vec<Range<usize>> {
+pub(crate) fn files(moves: &[Move], per_file: usize) -> Vec<Range<usize>> {
     let mut out = Vec::new();
     let mut start = 0;
     while start < moves.len() {

@@ -12,7 +12,7 @@ pub const MAX_EPOCH_S: i64 = 253_402_300_799;
 
 /// A date and time, UTC.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Stamp {
+pub(crate) struct Stamp {
     /// The year, 1970 to 9999.
     pub year: i64,
     /// The month, 1 to 12.
@@ -25,7 +25,7 @@ pub struct Stamp {
 
 impl Stamp {
     /// The date `seconds` after 1970-01-01 00:00 UTC (0 to [`MAX_EPOCH_S`]).
-    pub fn at(seconds: i64) -> Self {
+    pub(crate) fn at(seconds: i64) -> Self {
         let (days, s) = (seconds.div_euclid(86_400), seconds.rem_euclid(86_400));
         // Howard Hinnant's days-to-civil algorithm.
         let z = days + 719_468;

@@ -594,3 +594,9 @@ pub(crate) fn zyx_deg(r: &UnitQuaternion<f64>) -> [f64; 3] {
     let [roll, pitch, yaw] = stiffid_core::robot::file::rpy(r);
     [yaw.to_degrees(), pitch.to_degrees(), roll.to_degrees()]
 }
+
+#[cfg(test)]
+mod date_tests;
+
+#[cfg(test)]
+mod arcs_tests;

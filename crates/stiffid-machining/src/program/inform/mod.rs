@@ -73,7 +73,7 @@ mod inst;
 mod pos;
 mod process;
 mod pulses;
-pub mod speed;
+pub(crate) mod speed;
 mod tool;
 
 use super::cartesian::flags::Posture;

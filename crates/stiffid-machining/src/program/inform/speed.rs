@@ -8,7 +8,7 @@ use stiffid_core::Result;
 ///
 /// # Errors
 /// A literal speed outside its limits, naming the line.
-pub fn speed(line: u64, word: &str, tags: &[&str]) -> Result<Speed> {
+pub(crate) fn speed(line: u64, word: &str, tags: &[&str]) -> Result<Speed> {
     if word.eq_ignore_ascii_case("MOVJ") {
         return Ok(Speed::Joint);
     }

@@ -12,7 +12,7 @@
 //! the BAS package select it (`frames`).
 //!
 //! As KUKA System Software stores a program: the `.dat` beside the `.src` (same folder and stem,
-//! [`data_beside`]) declares its points and frame data (`declare`); inline forms (`;FOLD PTP P1
+//! `data_beside`) declares its points and frame data (`declare`); inline forms (`;FOLD PTP P1
 //! .. Tool[1] Base[2]` with `FDAT_ACT = FP1` and `BAS(#PTP_PARAMS, ..)`, KSS 8's `SPTP .. WITH
 //! $TOOL = STOOL2(FP1), ..`) are read from their bodies; `CIRC` gives its auxiliary and end points
 //! (`motion`); loops and branches are refused only where they hold a motion (`flow`). The guide's
@@ -29,7 +29,7 @@ mod motion;
 mod names;
 mod process;
 mod read;
-pub mod speed;
+pub(crate) mod speed;
 pub(crate) mod status;
 pub use status::{StatusPart, StatusTurn};
 
@@ -45,7 +45,7 @@ use stiffid_core::Result;
 /// compensate wrote as `X.SRC`), the one whose case follows the `.src`'s as [`data_out`] names
 /// it (`X.src` with `X.dat`, `X.SRC` with `X.DAT`); `None` for another file or where there is
 /// none.
-pub fn data_beside(src: &std::path::Path) -> Option<std::path::PathBuf> {
+pub(crate) fn data_beside(src: &std::path::Path) -> Option<std::path::PathBuf> {
     let extension = src.extension()?.to_str()?;
     if !extension.eq_ignore_ascii_case("src") {
         return None;
@@ -156,3 +156,6 @@ fn abc(a: f64, b: f64, c: f64) -> UnitQuaternion<f64> {
 
 #[cfg(test)]
 mod cartesian_tests;
+
+#[cfg(test)]
+mod corpus_tests;

@@ -6,7 +6,7 @@ use stiffid_core::common::limits::short;
 use stiffid_core::Result;
 
 /// The KRL path speed in force while a program is read line by line (module docs).
-pub struct Krl {
+pub(crate) struct Krl {
     in_force: Speed,
 }
 
@@ -18,7 +18,7 @@ impl Default for Krl {
 
 impl Krl {
     /// Before any line: no speed set.
-    pub fn new() -> Self {
+    pub(crate) fn new() -> Self {
         let why = "no $VEL.CP set before it in the program: its speed is the controller's";
         Krl {
             in_force: Speed::Unread(why.into()),
@@ -29,7 +29,7 @@ impl Krl {
     ///
     /// # Errors
     /// A literal speed outside (0, 10] m/s, naming the line.
-    pub fn set(&mut self, line: u64, code: &str) -> Result<bool> {
+    pub(crate) fn set(&mut self, line: u64, code: &str) -> Result<bool> {
         let c = compact(code);
         // The value as written: after the `=` or the `,`, up to a closing `)`.
         let value = |after: char| {
@@ -61,7 +61,7 @@ impl Krl {
     ///
     /// # Errors
     /// A literal speed outside (0, 10] m/s, naming the line.
-    pub fn motion(&self, line: u64, first: &str, code: &str) -> Result<Speed> {
+    pub(crate) fn motion(&self, line: u64, first: &str, code: &str) -> Result<Speed> {
         if matches!(first, "PTP" | "SPTP") {
             return Ok(Speed::Joint);
         }

@@ -22,7 +22,7 @@ mod names;
 mod numbered;
 mod options;
 mod process;
-pub mod speed;
+pub(crate) mod speed;
 mod statements;
 
 pub use config::Config;

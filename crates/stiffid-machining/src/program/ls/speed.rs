@@ -10,7 +10,7 @@ use stiffid_core::Result;
 ///
 /// # Errors
 /// A literal speed or time outside its limits, naming the line.
-pub fn speed(line: u64, letter: &str, word: &str) -> Result<Speed> {
+pub(crate) fn speed(line: u64, letter: &str, word: &str) -> Result<Speed> {
     if letter == "J" {
         return Ok(Speed::Joint);
     }

@@ -26,7 +26,7 @@ mod generate;
 mod names;
 mod offset;
 mod process;
-pub mod speed;
+pub(crate) mod speed;
 pub use confdata::ConfData;
 
 use super::cartesian::{literal, Frame};

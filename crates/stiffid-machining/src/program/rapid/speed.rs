@@ -14,14 +14,14 @@ const RAPID_PREDEFINED: [u32; 25] = [
 
 /// A RAPID module's `speeddata` by lower-case name: its `v_tcp` (mm/s) and declaration's line,
 /// or why it has none in the file.
-pub type RapidSpeeds = HashMap<String, std::result::Result<(f64, u64), String>>;
+pub(crate) type RapidSpeeds = HashMap<String, std::result::Result<(f64, u64), String>>;
 
 /// The speed of the RAPID motion `first` (`movel`, `movec`: a path speed; `movej`, `moveabsj`) whose speed argument
 /// is `argument` (`v100`, `vcut\V:=120`, `v100\T:=2`), with the module's `declared` speeds.
 ///
 /// # Errors
 /// A literal speed or time outside its limits, naming the line.
-pub fn speed(
+pub(crate) fn speed(
     line: u64,
     first: &str,
     argument: Option<&str>,

@@ -180,32 +180,6 @@ fn inform_teaches_the_start_and_separates_two_arcs_by_a_linear_step() {
     );
 }
 
-#[test]
-fn a_file_never_ends_inside_a_circular_move() {
-    let f = FEED;
-    let moves = [
-        Move::Rapid,
-        Move::Feed(f),
-        Move::ArcVia(f),
-        Move::ArcEnd(f),
-        Move::Feed(f),
-    ];
-    assert_eq!(arcs::files(&moves, 3), [0..2, 2..5]);
-    assert_eq!(arcs::files(&moves, 4), [0..4, 4..5]);
-    assert_eq!(arcs::files(&moves, 2), [0..2, 2..4, 4..5]);
-    // A taught start (INFORM) goes with its via point and end.
-    let taught = [
-        Move::Rapid,
-        Move::Feed(f),
-        Move::ArcStart(f),
-        Move::ArcVia(f),
-        Move::ArcEnd(f),
-        Move::Feed(f),
-    ];
-    assert_eq!(arcs::files(&taught, 3), [0..2, 2..5, 5..6]);
-    assert_eq!(arcs::files(&taught, 4), [0..2, 2..6]);
-}
-
 const SETUP: &str = include_str!("../../../../../../examples/milling/fanuc-milling.toml");
 
 fn setup() -> Setup {

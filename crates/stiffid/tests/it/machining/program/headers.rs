@@ -6,26 +6,10 @@ use super::arcs::robot_targets;
 use nalgebra::{Isometry3, Translation3, Vector3};
 use stiffid::robot::presets;
 use stiffid_core::setup::Pulses;
-use stiffid_machining::program::generate::date::Stamp;
 use stiffid_machining::program::generate::{generate, Move, Plan, Settings, Tool};
 use stiffid_machining::program::{parse_in, Context, Dialect};
 
 const SETUP: &str = include_str!("../../../../../../examples/milling/fanuc-milling.toml");
-
-#[test]
-fn a_date_is_the_calendars() {
-    // Python's datetime.fromtimestamp(s, UTC) of each.
-    for (s, want) in [
-        (0, (1970, 1, 1, (0, 0, 0))),
-        (951_782_400, (2000, 2, 29, (0, 0, 0))),
-        (1_764_203_461, (2025, 11, 27, (0, 31, 1))),
-        (4_107_542_400, (2100, 3, 1, (0, 0, 0))),
-        (253_402_300_799, (9999, 12, 31, (23, 59, 59))),
-    ] {
-        let d = Stamp::at(s);
-        assert_eq!((d.year, d.month, d.day, d.time), want, "{s}");
-    }
-}
 
 /// Each language's program of two targets and, for KRL, its `.dat`.
 fn texts() -> Vec<(Dialect, String, Option<String>)> {

@@ -11,4 +11,3 @@ mod krl;
 mod numbered;
 mod process;
 pub(crate) mod rapid;
-mod speed;

@@ -1,4 +1,3 @@
 //! KUKA's KRL (`stiffid_machining::program::krl`).
-mod corpus;
 mod inline;
 mod stored;

@@ -2,12 +2,12 @@
 //! instantaneous chip-thickness model, the slot-milling relations of the mechanistic model, the
 //! drilling model, the feed frame and the process file's errors.
 
+use crate::process::milling::{Coefficients, Milling, Mode};
+use crate::process::{feed_frame, file, Kind};
 use approx::assert_relative_eq;
 use nalgebra::Vector3;
 use std::f64::consts::PI;
-use stiffid::machining::process::milling::{Coefficients, Milling, Mode};
-use stiffid::machining::process::{feed_frame, file, Kind};
-use stiffid::Error;
+use stiffid_core::Error;
 
 fn coefficients() -> Coefficients {
     Coefficients {

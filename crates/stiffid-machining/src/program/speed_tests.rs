@@ -1,10 +1,10 @@
-//! The controllers' speeds (`stiffid_machining::program::speed`).
+//! The controllers' speed readers (`crate::program::speed` and each language's `speed`).
 
-use stiffid_machining::program::inform::speed::speed as inform;
-use stiffid_machining::program::krl::speed::Krl;
-use stiffid_machining::program::ls::speed::speed as ls;
-use stiffid_machining::program::rapid::speed::{speed as rapid, RapidSpeeds};
-use stiffid_machining::program::speed::Speed;
+use crate::program::inform::speed::speed as inform;
+use crate::program::krl::speed::Krl;
+use crate::program::ls::speed::speed as ls;
+use crate::program::rapid::speed::{speed as rapid, RapidSpeeds};
+use crate::program::speed::Speed;
 
 fn mm_s(s: Speed) -> f64 {
     match s {

@@ -1,11 +1,15 @@
-//! The real KRL programs of `tests/data/programs/krl` (SOURCES.md): each as found, with the
-//! `.dat` beside it where there is one, refused naming the line and the construct that stops it
-//! (the independent reading of their motions is `crates/stiffid-py/tests/test_krl_corpus.py`).
+//! The real KRL programs of `crates/stiffid/tests/data/programs/krl` (SOURCES.md): each as
+//! found, with the `.dat` beside it where there is one, refused naming the line and the construct
+//! that stops it (the independent reading of their motions is
+//! `crates/stiffid-py/tests/test_krl_corpus.py`).
 
+use crate::program::{parse_with_data, Dialect};
 use stiffid_core::Error;
-use stiffid_machining::program::{parse_with_data, Dialect};
 
-const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/programs/krl");
+const DIR: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../stiffid/tests/data/programs/krl"
+);
 
 /// Each file, the line its refusal names and words of the construct the message must hold.
 const REFUSED: [(&str, u64, &str); 10] = [
@@ -30,10 +34,8 @@ const REFUSED: [(&str, u64, &str); 10] = [
 fn every_real_krl_program_is_refused_naming_its_line_and_construct() {
     for (file, line, needle) in REFUSED {
         let src = std::fs::read_to_string(format!("{DIR}/{file}")).unwrap();
-        let dat = stiffid_machining::program::krl::data_beside(std::path::Path::new(&format!(
-            "{DIR}/{file}"
-        )))
-        .map(|p| std::fs::read_to_string(p).unwrap());
+        let dat = crate::program::krl::data_beside(std::path::Path::new(&format!("{DIR}/{file}")))
+            .map(|p| std::fs::read_to_string(p).unwrap());
         assert_eq!(dat.is_some(), file == "kuka_eki_hw_interface.src", "{file}");
         match parse_with_data(&src, dat.as_deref(), Dialect::Krl) {
             Err(Error::Program { line: l, message }) => {
