@@ -209,10 +209,91 @@ fn library_files(name: &str) -> Vec<(PathBuf, String)> {
         .into_iter()
         .map(|f| {
             let text = std::fs::read_to_string(&f).unwrap();
-            let code = text.split("#[cfg(test)]").next().unwrap().to_string();
-            (f.strip_prefix(src_of(name)).unwrap().to_path_buf(), code)
+            let path = f.strip_prefix(src_of(name)).unwrap().to_path_buf();
+            (path, without_tests(&text))
         })
         .collect()
+}
+
+/// `text` without its `#[cfg(test)]` items: each such attribute with the item it marks, a
+/// `mod NAME;` line or a braced item to its closing brace (wherever it sits in the file, so no
+/// public item after a test module leaves the count).
+fn without_tests(text: &str) -> String {
+    let mut code = text.to_string();
+    while let Some(at) = code.find("#[cfg(test)]") {
+        let end = item_end(&code, at + "#[cfg(test)]".len());
+        code.replace_range(at..end, "");
+    }
+    code
+}
+
+/// Where the item starting at byte `from` of `code` ends: after its `;` at the top level, or
+/// after the brace that closes its first `{`; comments, strings and character literals skipped.
+fn item_end(code: &str, from: usize) -> usize {
+    let b = code.as_bytes();
+    let (mut i, mut depth) = (from, 0usize);
+    while i < b.len() {
+        match b[i] {
+            b'/' if b.get(i + 1) == Some(&b'/') => {
+                i = code[i..].find('\n').map_or(b.len(), |n| i + n);
+            }
+            b'/' if b.get(i + 1) == Some(&b'*') => {
+                i = code[i + 2..].find("*/").map_or(b.len(), |n| i + n + 4) - 1;
+            }
+            b'"' => i = string_end(code, i, None),
+            b'r' if !b[i - 1].is_ascii_alphanumeric()
+                && matches!(b.get(i + 1), Some(b'"' | b'#')) =>
+            {
+                let hashes = b[i + 1..].iter().take_while(|&&c| c == b'#').count();
+                i = string_end(code, i + 1 + hashes, Some(hashes));
+            }
+            b'\'' if b.get(i + 2) == Some(&b'\'') => i += 2,
+            b'\'' if b.get(i + 1) == Some(&b'\\') => {
+                i = code[i + 2..].find('\'').map_or(b.len(), |n| i + 2 + n);
+            }
+            b'{' => depth += 1,
+            b'}' if depth == 1 => return i + 1,
+            b'}' => depth -= 1,
+            b';' if depth == 0 => return i + 1,
+            _ => {}
+        }
+        i += 1;
+    }
+    b.len()
+}
+
+/// The byte of the closing quote of the string whose opening quote is at `open`: a raw string's
+/// when `raw` gives its count of `#` (a backslash escapes nothing there).
+fn string_end(code: &str, open: usize, raw: Option<usize>) -> usize {
+    let b = code.as_bytes();
+    let mut i = open + 1;
+    while i < b.len() {
+        match (b[i], raw) {
+            (b'\\', None) => i += 1,
+            (b'"', None) => return i,
+            (b'"', Some(h)) if b[i + 1..].iter().take(h).filter(|&&c| c == b'#').count() == h => {
+                return i + h;
+            }
+            _ => {}
+        }
+        i += 1;
+    }
+    b.len()
+}
+
+/// A test module or item leaves the code, wherever it sits; what follows it stays (a brace in a
+/// string, a comment or a character literal of the test does not end it early).
+#[test]
+fn test_items_leave_the_code_and_what_follows_them_stays() {
+    let text =
+        "pub fn a() {}\n#[cfg(test)]\nmod a_tests;\npub fn b() {}\n#[cfg(test)]\nmod t {\n    \
+                fn f() { let _ = (\"}\", r#\"}\"#, '}'); } // }\n}\npub fn c() {}\n";
+    let code = without_tests(text);
+    assert_eq!(code.matches("pub fn").count(), 3, "{code}");
+    assert!(
+        !code.contains("a_tests") && !code.contains("fn f"),
+        "{code}"
+    );
 }
 
 #[test]
