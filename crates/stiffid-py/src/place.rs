@@ -7,7 +7,7 @@ use crate::setup::Setup;
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
 use std::path::PathBuf;
-use stiffid::app::place::search::Effort;
+use stiffid::app::place::Effort;
 use stiffid::app::place::{self as job, Region, Request, Work};
 use stiffid_core::observation::deflection::Frame;
 use stiffid_machining::compensate::Aggregate;

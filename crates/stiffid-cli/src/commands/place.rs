@@ -9,7 +9,7 @@ use anyhow::{anyhow, bail, Context, Result};
 use std::path::{Path, PathBuf};
 use stiffid::app::document::{mm, mm3};
 use stiffid::app::place::document::{Document, Placement};
-use stiffid::app::place::search::Effort;
+use stiffid::app::place::Effort;
 use stiffid::app::place::{self, Region, Request, Work};
 use stiffid_core::observation::deflection::Frame;
 use stiffid_core::Progress;

@@ -8,11 +8,17 @@
 //!   default chosen per criterion ([`Solver::resolve`]);
 //! - [`global`]: many local searches in parallel from seeded space-filling starts, the best kept
 //!   (the paper's stated future work);
-//! - [`random_group`]: a seeded Latin-hypercube start group.
+//! - [`random_group`]: a seeded Latin-hypercube start group;
+//! - [`compass`]: a global search of a box for the least value of any function of a few
+//!   variables that may be undefined (a grid, seeded samples, compass searches): the workpiece
+//!   placement's search.
 //!
 //! The variables are the `6n` axis angles (rad) of the `n` postures, posture-major. Every point
 //! evaluated is clamped into the bounds, so no search ever returns a posture outside them.
 
+pub mod compass;
+#[cfg(test)]
+mod compass_tests;
 mod constraints;
 mod global;
 mod local;

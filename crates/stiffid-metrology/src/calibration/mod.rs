@@ -26,6 +26,9 @@
 //!
 //! Equations and sources: docs/model.md, section "Calibration".
 
+pub mod drift;
+#[cfg(test)]
+mod drift_tests;
 pub mod error_model;
 pub mod fit;
 pub mod gravity;

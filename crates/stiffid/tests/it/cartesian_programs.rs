@@ -4,7 +4,7 @@
 //! what cannot be read is refused naming the line.
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3, Vector6};
-use stiffid::app::place::{self, search::Effort, Region, Request, Work};
+use stiffid::app::place::{self, Effort, Region, Request, Work};
 use stiffid::machining::compensate::{self, Aggregate, Options};
 use stiffid::machining::program::generate::{generate, Move, Plan, Settings, Target, Tool};
 use stiffid::machining::program::Dialect;

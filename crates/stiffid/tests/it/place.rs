@@ -3,7 +3,7 @@
 //! the reach-only placement, a path file placed as the G-code of its points, and its refusals.
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3, Vector6};
-use stiffid::app::place::{self, search::Effort, Region, Request, Work};
+use stiffid::app::place::{self, Effort, Region, Request, Work};
 use stiffid::machining::compensate::{Aggregate, Compliance, Options, PathPoint, Target};
 use stiffid::machining::process::Process;
 use stiffid::machining::program::Dialect;

@@ -36,7 +36,6 @@
 pub mod document;
 mod evaluate;
 mod free;
-pub mod search;
 mod work;
 pub mod written;
 
@@ -45,12 +44,13 @@ pub use work::{read_path, read_program, read_program_with, Work};
 pub use written::with_workpiece;
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
-use search::{Effort, Space};
 use std::collections::HashMap;
 use std::sync::Mutex;
 use stiffid_core::cell::Checker;
 use stiffid_core::common::words::number;
 use stiffid_core::{Error, Result, Setup};
+pub use stiffid_design::search::compass::Effort;
+use stiffid_design::search::compass::{self, Space};
 use stiffid_machining::compensate::{Aggregate, Compliance, Options};
 
 /// Where the part may go, SI, base frame.
@@ -312,10 +312,10 @@ fn find(request: &Request<'_>) -> Result<Report> {
         })
     };
     let objective = request.objective;
-    let (best, _) = search::minimise(&space, &request.effort, |x| {
+    let (best, _) = compass::minimise(&space, &request.effort, |x| {
         at(x).map(|e| cost(objective, &e))
     });
-    let (reach, _) = search::minimise(&space, &request.effort, |x| at(x).map(|e| -e.limit_margin));
+    let (reach, _) = compass::minimise(&space, &request.effort, |x| at(x).map(|e| -e.limit_margin));
     let own_evaluation = context.evaluate(&own);
     let (Some(best), Some(reach)) = (best, reach) else {
         let why = match &own_evaluation {

@@ -1,7 +1,6 @@
 //! The calibrate job's parts (`stiffid::app::calibrate`).
 
 mod document;
-mod drift;
 mod extrapolation;
 mod ladder;
 mod region;

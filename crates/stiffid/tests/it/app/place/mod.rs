@@ -1,5 +1,4 @@
 //! The place job's parts (`stiffid::app::place`).
 
 mod free;
-mod search;
 mod written;

@@ -1,6 +1,6 @@
-//! The drift check of a calibrated robot (`stiffid::app::calibrate::drift`).
+//! The statistics of the drift check ([`super::drift`]).
 
-use stiffid::app::calibrate::drift::{allowed, noise_length};
+use super::drift::{allowed, noise_length};
 
 #[test]
 fn the_noise_floor_is_the_chi_quantile_of_three_coordinates() {

@@ -1,6 +1,6 @@
-//! The placement's search (`stiffid::app::place::search`).
+//! The compass search of a box ([`super::compass`]).
 
-use stiffid::app::place::search::*;
+use super::compass::*;
 
 fn space() -> Space {
     Space {

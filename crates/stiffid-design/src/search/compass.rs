@@ -90,7 +90,7 @@ where
 }
 
 /// The grid (every combination of the gridded coordinates' values) and the seeded samples.
-pub fn first_points(space: &Space, effort: &Effort) -> Vec<Vec<f64>> {
+pub(crate) fn first_points(space: &Space, effort: &Effort) -> Vec<Vec<f64>> {
     let n = space.lower.len();
     let middle: Vec<f64> = (0..n)
         .map(|k| (space.lower[k] + space.upper[k]) / 2.0)
