@@ -6,7 +6,7 @@
 //! load step (the rope wrench scaled by `f_s / F`; one block at the rope load without steps), with
 //! the setup's model's columns and then the candidate's, through its law ([`stiffid_core::model::Law`]).
 //! The group identifies the candidate when this matrix has full column-scaled rank, by the rule of
-//! `identify` ([`identifiability`]: singular values above [`stiffid_identify::svd::RANK_TOLERANCE`]
+//! `identify` ([`identifiability`]: singular values above `stiffid_identify::svd::RANK_TOLERANCE`
 //! times the largest); otherwise the combinations it cannot see are named. How well: the
 //! candidate's *separation* `|P psi_c| / |psi_c|`, `psi_c` its column and `P` the projector onto
 //! the complement of the model's columns (the last diagonal entry of the Householder QR of the

@@ -99,7 +99,7 @@ pub struct Design {
     /// The criterion at the setup's noise: `sigma sqrt(tr C_rr)`, rad.
     pub rotation_std: f64,
     /// The same for groups of `n` feasible candidates drawn at random: the median of
-    /// [`RANDOM_GROUPS`], rad.
+    /// `RANDOM_GROUPS`, rad.
     pub random_median_rotation_std: f64,
     /// Candidates drawn.
     pub candidates: usize,

@@ -16,7 +16,7 @@
 //!
 //! ## Unit check
 //! A displacement column in m instead of mm, or a force in kN instead of N, scales every
-//! identified stiffness by 1000. When most joints ([`UNIT_JOINTS`] of 6) are off the setup's
+//! identified stiffness by 1000. When most joints (`UNIT_JOINTS` of 6) are off the setup's
 //! nominal stiffness by more than [`UNIT_FACTOR`] in the same direction, a unit is the likely cause.
 
 use crate::{Identification, Uncertainty};
@@ -51,7 +51,7 @@ pub struct Adequacy {
     /// `P(X >= chi2)` for `X ~ chi2(dof)`: small when the residuals exceed the noise.
     pub p_value: f64,
     /// Standard errors and 95% intervals with the known variance `sigma^2` (normal quantile
-    /// [`Z975`]): what the data would give if the model were exact.
+    /// `Z975`): what the data would give if the model were exact.
     pub from_noise: Uncertainty,
 }
 
@@ -136,7 +136,7 @@ impl Identification {
     }
 
     /// The unit check against the nominal stiffness `nominal` (Nm/rad); `None` when fewer than
-    /// [`UNIT_JOINTS`] joints are off by more than [`UNIT_FACTOR`] the same way.
+    /// `UNIT_JOINTS` joints are off by more than [`UNIT_FACTOR`] the same way.
     pub fn unit_check(&self, nominal: &Vector6<f64>) -> Option<UnitCheck> {
         let ratios = self.stiffness.component_div(nominal);
         let off = |stiffer: bool| -> Vec<usize> {

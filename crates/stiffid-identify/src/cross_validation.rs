@@ -8,7 +8,7 @@
 //! says how much it depends on which postures were measured; a fold whose removal moves a
 //! stiffness by more than its standard error in the full fit is influential for that joint (with
 //! a standard error of zero, a noise-free fit, nothing is: influence is not computed). Nor is it
-//! for data exact to their rounding: a full fit whose residuals are at most [`EXACT_SHARE`] of
+//! for data exact to their rounding: a full fit whose residuals are at most `EXACT_SHARE` of
 //! the measured displacements (both as root sum of squares), where the standard errors and the
 //! folds' moves are both the rounding's.
 //!
@@ -24,7 +24,7 @@
 //! so a fold costs `O(m_o p^2 + m_o^3)` for its `m_o` held-out rows and the whole
 //! cross-validation one QR of `Psi` plus time linear in the rows. A fold is refused as
 //! unidentifiable when `I - H_oo` is singular to working precision (its Cholesky factor has a
-//! pivot below [`MIN_PIVOT`]): the other postures cannot identify every joint.
+//! pivot below `MIN_PIVOT`): the other postures cannot identify every joint.
 //!
 //! ## Bounded and robust fits: refitted
 //! The non-negative and robust fits are not linear in `delta`; each fold is refitted from its

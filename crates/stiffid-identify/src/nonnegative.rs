@@ -10,7 +10,7 @@
 //! QR); a free variable that would turn negative stops the step at the bound and is held there
 //! again. It ends when no held variable has a positive gradient (the Karush-Kuhn-Tucker conditions
 //! of the bounded problem, convex: the minimum is global). For 6 unknowns it takes a few steps;
-//! it stops at [`MAX_STEPS_PER_UNKNOWN`] steps per unknown otherwise ([`Stop::IterationLimit`],
+//! it stops at `MAX_STEPS_PER_UNKNOWN` steps per unknown otherwise ([`Stop::IterationLimit`],
 //! with a [`warning`]).
 
 use nalgebra::{DMatrix, DVector, Matrix6, Vector6};

@@ -5,15 +5,15 @@
 //!
 //! Each iteration, from the current compliance `h`:
 //! 1. residuals `r = delta - Psi h`;
-//! 2. scale `s = 1.4826 * median(|r_i|)` ([`MAD_TO_SIGMA`]: the median absolute residual, about
+//! 2. scale `s = 1.4826 * median(|r_i|)` (`MAD_TO_SIGMA`: the median absolute residual, about
 //!    zero, as an estimate of the noise standard deviation that is consistent for Gaussian errors
 //!    and insensitive to up to half the rows being outliers);
 //! 3. weights `w_i = w(r_i / s)` of the [`Loss`];
 //! 4. `h` = the least-squares solution of the rows scaled by `sqrt(w_i)` (`sqrt(w) Psi h = sqrt(w)
 //!    delta`), by QR as always.
 //!
-//! It stops when no compliance changes by more than [`TOLERANCE`] relative to the largest, or after
-//! [`MAX_ITERATIONS`]. Huber starts from the least-squares fit; Tukey, whose weights can reach zero
+//! It stops when no compliance changes by more than `TOLERANCE` relative to the largest, or after
+//! `MAX_ITERATIONS`. Huber starts from the least-squares fit; Tukey, whose weights can reach zero
 //! and whose objective is not convex, starts from the converged Huber fit (the usual practice, e.g.
 //! Holland & Welsch 1977; statsmodels RLM).
 //!
@@ -106,7 +106,7 @@ pub struct RobustFit {
     /// IRLS iterations taken with `loss` (after the Huber start, for Tukey).
     pub iterations: usize,
     /// Why the iterations stopped: [`Stop::Converged`], no compliance changed by more than
-    /// [`TOLERANCE`] relative to the largest; or [`Stop::IterationLimit`], [`MAX_ITERATIONS`]
+    /// `TOLERANCE` relative to the largest; or [`Stop::IterationLimit`], `MAX_ITERATIONS`
     /// reached with a compliance still changing (the weights and the compliances may still
     /// move).
     pub stop: Stop,
@@ -115,7 +115,7 @@ pub struct RobustFit {
 }
 
 impl RobustFit {
-    /// Whether the iterations met [`TOLERANCE`] before [`MAX_ITERATIONS`].
+    /// Whether the iterations met `TOLERANCE` before `MAX_ITERATIONS`.
     pub fn converged(&self) -> bool {
         self.stop == Stop::Converged
     }

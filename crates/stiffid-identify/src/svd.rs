@@ -6,11 +6,11 @@
 //! factored by the SVD `Psi S = U diag(s) V^T` (nalgebra, after a check for non-finite entries).
 //!
 //! ## Identifiability
-//! The scaled rank `r` counts the singular values above [`RANK_TOLERANCE`] times the largest; the
+//! The scaled rank `r` counts the singular values above `RANK_TOLERANCE` times the largest; the
 //! scaled condition number is `s_1 / s_n`. Each right singular vector `v` of a singular value at
 //! or below the tolerance is a combination `sum_j (S v)_j h_j` of compliances that the data cannot
 //! see: the data cannot separate the parameters with a visible share in it (more than
-//! [`SHARE`] of the unit vector `v`). Such parameters get no interval; every other compliance is
+//! `SHARE` of the unit vector `v`). Such parameters get no interval; every other compliance is
 //! an estimable function (orthogonal to the null space) with the usual interval.
 //!
 //! ## Fit and uncertainty

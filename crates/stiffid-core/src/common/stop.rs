@@ -5,7 +5,7 @@
 //! solver documents which reasons it gives; the posture search, whose reasons are those of an
 //! SQP, has its own (`stiffid_design::Termination`).
 //!
-//! Documents carry it as `stop_reason`, a kebab-case string ([`Stop::name`]); a result from a
+//! Documents carry it as `stop_reason`, a kebab-case string (`Stop::name`); a result from a
 //! solver stopped at its iteration limit comes with a warning of kind
 //! [`crate::common::warning::WarningKind::NotConverged`].
 

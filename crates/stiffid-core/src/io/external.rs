@@ -58,7 +58,7 @@ impl Columns {
     }
 
     /// The columns of the cell's external axes (`cell`'s, none without), in the cell's order:
-    /// [`Columns::find`] with each column named as the cell names it
+    /// `Columns::find` with each column named as the cell names it
     /// ([`ExternalAxes::column_names`]: the unit its axis's kind takes).
     ///
     /// # Errors

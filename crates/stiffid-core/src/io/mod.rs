@@ -1,6 +1,6 @@
 //! File formats read by stiffid, as `&str -> Result<_, Error>` functions (no file I/O here but the
 //! opening of [`input`] files and the writing of [`output`]): the
-//! caller reads the file and adds its name to errors. [`text`] turns the bytes a caller read into
+//! caller reads the file and adds its name to errors. `text` turns the bytes a caller read into
 //! the text of an input, within the input size limit (`limits::MAX_INPUT_BYTES`); [`Capped`]
 //! holds a reader of an input read in pieces to the same limit.
 //!
@@ -202,10 +202,10 @@ fn not_utf8(bytes: &[u8], at: usize) -> String {
 }
 
 /// The text of an input read from `reader` (a file the caller opened): at most
-/// [`MAX_INPUT_BYTES`] + 1 bytes are read, then [`text`].
+/// [`MAX_INPUT_BYTES`] + 1 bytes are read, then `text`.
 ///
 /// # Errors
-/// [`Error::Parse`] naming `source_name`: a read error (`cannot read: ...`), and those of [`text`].
+/// [`Error::Parse`] naming `source_name`: a read error (`cannot read: ...`), and those of `text`.
 ///
 /// # Examples
 /// ```
@@ -217,7 +217,7 @@ pub fn read_text(source_name: &str, reader: impl Read) -> Result<String> {
 }
 
 /// The bytes of an input read from `reader` (a file the caller opened): at most
-/// [`MAX_INPUT_BYTES`] + 1, so that more than the limit tells the file is larger ([`text`],
+/// [`MAX_INPUT_BYTES`] + 1, so that more than the limit tells the file is larger (`text`,
 /// [`program_texts`] refuse it).
 ///
 /// # Errors
@@ -243,7 +243,7 @@ fn too_large() -> String {
 }
 
 /// A reader of an input (a file the caller opened) that fails with "larger than the input limit"
-/// once more than [`MAX_INPUT_BYTES`] have been read from it: the limit of [`text`] for inputs
+/// once more than [`MAX_INPUT_BYTES`] have been read from it: the limit of `text` for inputs
 /// read in pieces (`identify::streamed`).
 ///
 /// # Examples

@@ -56,11 +56,11 @@ pub struct Observations {
 }
 
 impl Observations {
-    /// Checks every measurement ([`check`]) and stacks its three rows of `Psi` and `delta`
+    /// Checks every measurement (`check`) and stacks its three rows of `Psi` and `delta`
     /// (Eq. 10-11, [`assemble`]), in the row order of the [module docs](crate::observation).
     ///
     /// # Errors
-    /// Those of [`check`].
+    /// Those of `check`.
     pub fn from_measurements(arm: &Arm, measurements: &[Measurement]) -> Result<Self> {
         let (postures, posture_index) = check(arm, measurements)?;
         let n = measurements.len();
@@ -93,7 +93,7 @@ pub(crate) fn check(arm: &Arm, measurements: &[Measurement]) -> Result<(usize, V
     Ok((check.postures(), posture_index))
 }
 
-/// The checks of [`check`] over measurements given a part at a time (a file read in chunks):
+/// The checks of `check` over measurements given a part at a time (a file read in chunks):
 /// measurements are numbered over all parts, and a posture is compared with its first
 /// measurement in any earlier part. Memory: a table entry and the axis angles per posture.
 #[derive(Debug, Default)]
@@ -108,11 +108,11 @@ pub struct Check {
 }
 
 impl Check {
-    /// Checks the next measurements (those of [`check`]); pushes the dense posture number of each
+    /// Checks the next measurements (those of `check`); pushes the dense posture number of each
     /// onto `posture_index` if given.
     ///
     /// # Errors
-    /// Those of [`check`], numbering measurements over all parts.
+    /// Those of `check`, numbering measurements over all parts.
     pub fn push(
         &mut self,
         arm: &Arm,
@@ -165,7 +165,7 @@ impl Check {
     }
 }
 
-/// Writes the rows of `measurements` (checked by [`check`]) into `psi` (`3n x c`) and `delta`
+/// Writes the rows of `measurements` (checked by `check`) into `psi` (`3n x c`) and `delta`
 /// (`3n`), in the row order of the [module docs](crate::observation): the six drive columns and
 /// the first `c - 6` virtual springs of the arm's model ([`crate::model`]). Frames are computed
 /// once per run of measurements with the same axis angles, torques once per run with the same

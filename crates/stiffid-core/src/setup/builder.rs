@@ -297,7 +297,7 @@ impl SetupBuilder {
 
     /// The kinematics of the controller that runs a program (default: nominal, the setup's
     /// robot) and its axes' pulses (checked by [`Self::build`] against the robot's external
-    /// axes: [`super::Pulses::check`]).
+    /// axes: `super::Pulses::check`).
     pub fn with_controller(mut self, controller: Controller) -> Self {
         self.controller = controller;
         self

@@ -88,7 +88,7 @@ pub(crate) const ROBOT_LENGTH_SEED: u64 = 1;
 
 /// The characteristic length L (m) of `robot` for the point `point` (flange frame, m) when no
 /// length is given: [`characteristic_length`] over the robot's joint limits (an unlimited axis
-/// within +-180 deg), seeded with [`ROBOT_LENGTH_SEED`]. A setup's own length
+/// within +-180 deg), seeded with `ROBOT_LENGTH_SEED`. A setup's own length
 /// (`characteristic_length_mm`) is the one to use where there is a setup; this is for a robot
 /// alone (`stiffid kinematics`, Python `Robot.dexterity`).
 ///
@@ -130,7 +130,7 @@ pub fn payload_class_kg(reach: f64, reference_reach: f64) -> f64 {
 }
 
 /// A rough nominal joint stiffness (Nm/rad) for a robot of `payload_kg`: the reference robot's
-/// ([`REFERENCE_STIFFNESS_NM_PER_RAD`]) scaled in proportion to the payload, on the reasoning that
+/// (`REFERENCE_STIFFNESS_NM_PER_RAD`) scaled in proportion to the payload, on the reasoning that
 /// drives and gears are sized for the torques the payload causes. Expect the real values to differ
 /// by a factor of two or three; identify them, then use the identified ones.
 ///

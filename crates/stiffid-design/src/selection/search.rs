@@ -75,7 +75,7 @@ impl From<SearchOutcome> for Found {
 ///
 /// # Errors
 /// Those of the search (`design::local_for`, [`design::global_for`]) or of
-/// [`Screened::best`].
+/// `Screened::best`.
 pub fn choose(setup: &Setup, goal: &Goal, how: How, n: usize, s: Searching) -> Result<Found> {
     let (options, progress) = (s.options, s.progress);
     let outcome = match how {

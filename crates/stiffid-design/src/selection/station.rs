@@ -77,7 +77,7 @@ fn stations(setup: &Setup, given: &[ExternalValues]) -> Result<Vec<ExternalValue
 }
 
 /// Refuses stations on a robot without external axes, none on a robot with them, or more
-/// than [`MAX_STATIONS`].
+/// than `MAX_STATIONS`.
 ///
 /// # Errors
 /// [`Error::InvalidOption`] ([`JobOption::Station`]).

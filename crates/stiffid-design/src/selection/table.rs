@@ -9,7 +9,7 @@
 //! values the postures were designed at (so that each posture clears the boxes the positioner
 //! carries at one candidate at least, its own), those with the tracker's line of sight to a
 //! reflector through an obstacle of the cell left out (the sight from the tracker's head to
-//! [`SIGHT_END`] before the reflector, where its nest and the table are). The arm's own bodies
+//! `SIGHT_END` before the reflector, where its nest and the table are). The arm's own bodies
 //! are not checked against these sights. With boxes the positioner carries
 //! (`[[cell.obstacle]] carried_by`), a posture is read only at a candidate where its arm, its
 //! rope and its lines of sight clear those boxes turned there, by the cell's checks with the

@@ -182,7 +182,7 @@ pub(crate) const MIN_POSTURES: usize = 3;
 /// # Errors
 /// Those of [`Observations::from_measurements`] and of [`super::svd::fit`] for the setup's
 /// model; [`stiffid_core::Error::InvalidField`] for candidates that clash with the model's springs, and
-/// (`postures`) for fewer than [`MIN_POSTURES`] postures, postures whose every subset without
+/// (`postures`) for fewer than `MIN_POSTURES` postures, postures whose every subset without
 /// one cannot identify the setup's model (no held-out error to compare models by), or postures
 /// no model on the path fits physically and identified (a recommendation would be a negative
 /// stiffness).

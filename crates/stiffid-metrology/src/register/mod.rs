@@ -132,7 +132,7 @@ pub(crate) const MIN_SPREAD_M: f64 = 0.05;
 /// RMS distance from the centroid is the same in every frame): the RMS distance of the readings
 /// from their centroid over that of the robot's points from theirs, with the points' spread (m).
 /// 1 within the robot's errors for readings in mm as labelled, 0.001 for readings in metres.
-/// `None` when the points spread less than [`MIN_SPREAD_M`].
+/// `None` when the points spread less than `MIN_SPREAD_M`.
 pub fn spread_ratio(points: &[Correspondence]) -> Option<(f64, f64)> {
     let spread = |v: &[Vector3<f64>]| {
         let n = v.len().max(1) as f64;
@@ -258,7 +258,7 @@ pub fn correspondences(setup: &Setup, readings: &Readings) -> Result<Vec<Corresp
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`points`): fewer than [`MIN_POINTS`], a non-finite coordinate, or
-/// collinear points ([`COLLINEAR_RATIO`], [`COLLINEAR_M`], in either frame); [`Error::NotFinite`]
+/// collinear points (`COLLINEAR_RATIO`, `COLLINEAR_M`, in either frame); [`Error::NotFinite`]
 /// when an SVD does not converge.
 ///
 /// # Examples

@@ -16,7 +16,7 @@ pub(crate) fn check_covariance(c: &Matrix6<f64>) -> Result<()> {
     check_covariance_of(&c, "compliance_covariance_rad2_per_nm2")
 }
 
-/// [`check_covariance`] of a square matrix of any size (n x n, SI), the error naming `field`.
+/// `check_covariance` of a square matrix of any size (n x n, SI), the error naming `field`.
 ///
 /// # Errors
 /// [`Error::InvalidField`](crate::Error::InvalidField) naming `field`.

@@ -230,10 +230,10 @@ const EXPECTED: &str = "JSON with the key parameters (name, kind, unit, stiffnes
 /// # Errors
 /// [`Error::Json`] (line, column) for text that is not JSON with these keys and shapes;
 /// [`Error::InvalidField`] naming the key (and index) for: neither `parameters` nor
-/// `stiffness_nm_per_rad`, more than [`MAX_PARAMETERS`] parameters, a parameter whose unit is not
+/// `stiffness_nm_per_rad`, more than `MAX_PARAMETERS` parameters, a parameter whose unit is not
 /// its kind's or whose stiffness is null or outside [`limits::STIFFNESS_NM_PER_RAD`] /
 /// [`limits::STIFFNESS_N_PER_MM`], a covariance of the wrong shape or that is not finite,
-/// symmetric with a non-negative diagonal ([`check_covariance`]).
+/// symmetric with a non-negative diagonal (`check_covariance`).
 ///
 /// # Examples
 /// ```

@@ -347,7 +347,7 @@ impl ErrorModel {
     /// # Errors
     /// [`Error::InvalidField`] (`external_axis`) when the robot has no external axes, the
     /// model has reflectors, loads or maps already, `orders` has another length, an order
-    /// exceeds [`MAX_FITTED_ORDER`], or `tables` exceeds [`super::MAX_POINTS`].
+    /// exceeds `MAX_FITTED_ORDER`, or `tables` exceeds [`super::MAX_POINTS`].
     pub fn with_external(mut self, orders: &[usize], tables: usize) -> Result<Self> {
         let invalid = |message: String| Error::InvalidField {
             field: "external_axis".into(),

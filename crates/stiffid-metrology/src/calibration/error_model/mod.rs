@@ -12,7 +12,7 @@
 //!
 //! and adds `theta_i` to the joint angle, where `(u_i, v_i, w_i)` is a right-handed basis with
 //! `w_i` the joint axis and `u_i` the coordinate axis (x, then y, then z) most perpendicular to it
-//! ([`Basis`]). For a z axis `(u, v, w) = (x, y, z)`, and the six errors are exactly the
+//! (`Basis`). For a z axis `(u, v, w) = (x, y, z)`, and the six errors are exactly the
 //! Denavit-Hartenberg ones: in a modified-DH row `RotX(alpha_{i-1}) TransX(a_{i-1}) RotZ(theta_i)
 //! TransZ(d_i)` they are the errors of `a_{i-1}`, `alpha_{i-1}`, `theta_i`, `d_i`, Hayati's
 //! `beta_{i-1}` (a rotation about y, for consecutive (nearly) parallel axes, where `d`
@@ -38,7 +38,7 @@
 //! ([`crate::calibration::gravity`]), `T` the measurement frame in the base frame (the
 //! registration) and `(dp, dphi)` its six error parameters (kind `tracker`, or `base` for
 //! base-frame readings, where they are the base frame's error): a base-frame perturbation of the
-//! prediction, re-centred into `T` after every step of the fit ([`Estimate::recentre`]), so the
+//! prediction, re-centred into `T` after every step of the fit (`Estimate::recentre`), so the
 //! Jacobian is evaluated at `dp = dphi = 0`. The base frame's own errors and the tracker
 //! registration are one rigid transform: the registration absorbs them.
 //!
@@ -244,7 +244,7 @@ impl ErrorModel {
     /// of `geometry` and the gravity terms of `gravity`.
     ///
     /// Parameters, in order: the frame's six, three per measuring point, six per joint
-    /// ([`Component::ALL`] order; one per joint with [`Geometry::Offsets`]), the gravity terms.
+    /// (`Component::ALL` order; one per joint with [`Geometry::Offsets`]), the gravity terms.
     ///
     /// # Errors
     /// [`Error::InvalidField`] (`measuring_points_mm`) with no point or more than [`MAX_POINTS`],

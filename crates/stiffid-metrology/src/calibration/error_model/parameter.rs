@@ -50,7 +50,7 @@ pub enum MeasuredIn {
     Base,
 }
 
-/// One error of a joint, in its rotation frame's basis `(u, v, w)` ([`super::Basis`]).
+/// One error of a joint, in its rotation frame's basis `(u, v, w)` (`super::Basis`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Component {

@@ -9,7 +9,7 @@
 //! `[R; sqrt(lambda) I] dx_s = -[Q^T r; 0]` for each trial `lambda` from that bidiagonal form by
 //! Eldén's rotations (never the normal equations), accepts the step when the cost falls (and
 //! divides `lambda` by 10) or multiplies `lambda` by 10 and tries again. The frame's perturbation is folded into the frame
-//! after every step ([`Estimate::recentre`]).
+//! after every step (`Estimate::recentre`).
 //!
 //! Standard deviations: the covariance of the fitted parameters is `sigma^2 (J^T J)^-1` at the
 //! solution, `sigma^2 = |r|^2 / (3n - p)` the noise variance per coordinate estimated from the
@@ -83,10 +83,10 @@ pub(crate) const STEP_TOLERANCE: f64 = 1e-13;
 /// ([`Stop::IterationLimit`]) with the cost still falling: the calibration may still move.
 ///
 /// The fit's stop reasons: [`Stop::Converged`], an accepted step shorter than
-/// [`STEP_TOLERANCE`] (scaled, times one plus the number of parameters fitted);
+/// `STEP_TOLERANCE` (scaled, times one plus the number of parameters fitted);
 /// [`Stop::Stalled`], an accepted step lowered the cost by at most `1e-15` of it;
 /// [`Stop::DampingExhausted`], no damping of 30 tried (each ten times the last) lowered the cost:
-/// both minima within rounding; [`Stop::IterationLimit`], [`MAX_ITERATIONS`] taken with the cost
+/// both minima within rounding; [`Stop::IterationLimit`], `MAX_ITERATIONS` taken with the cost
 /// still falling.
 pub fn stop_warning(stop: Stop, iterations: usize) -> Option<Warning> {
     (stop == Stop::IterationLimit).then(|| {
@@ -194,7 +194,7 @@ pub struct Fit {
 /// Fits `model` to `observations` from `start` (module docs).
 ///
 /// # Errors
-/// [`Error::InvalidField`] (`readings`) with no reading, more than [`MAX_READINGS`], a
+/// [`Error::InvalidField`] (`readings`) with no reading, more than `MAX_READINGS`, a
 /// non-finite reading, or fewer coordinates than fitted parameters plus one;
 /// [`Error::InvalidField`] (`options`) for a non-positive length or prior; those of
 /// [`ErrorModel::jacobian`] and [`identifiability::analyse`]; [`Error::NotFinite`] when the fit

@@ -71,7 +71,7 @@ pub struct Linear {
     pub rows: Vec<Vec<usize>>,
     /// The axis angles of each posture, in posture order (rad): a split tapers its held-out rows'
     /// map columns beyond its training postures' range as the calibrated robot's maps taper
-    /// beyond the fitted postures' ([`Linear::split`]).
+    /// beyond the fitted postures' (`Linear::split`).
     pub angles: Vec<Vector6<f64>>,
 }
 

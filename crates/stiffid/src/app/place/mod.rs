@@ -22,7 +22,7 @@
 //! passes the cell's floor, obstacle and self-collision checks. Its cost is the path's largest
 //! error bound ([`stiffid_machining::compensate::budget::Budget`], `--objective max`) or their sum.
 //!
-//! The search ([`search`]) is global: a grid over x, y and the rotation, seeded random samples
+//! The search (`search`) is global: a grid over x, y and the rotation, seeded random samples
 //! over every coordinate, then compass searches from the best distinct placements; the result
 //! is the same for a seed whatever the number of threads. Beside it, the same search maximises
 //! the smallest distance to the joint limits alone (the placement a reach check picks, as CAM
