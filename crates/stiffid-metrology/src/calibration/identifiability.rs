@@ -9,14 +9,14 @@
 //! measuring points, the four (M)DH errors, Hayati's beta, the lateral `b`, the gravity terms),
 //! within a priority the one with the largest part not yet explained first (QR with column
 //! pivoting, Businger and Golub 1965). A column whose unexplained part is below
-//! `RANK_TOLERANCE` of its length is merged: it is, within the tolerance, a combination of the
+//! [`RANK_TOLERANCE`] of its length is merged: it is, within the tolerance, a combination of the
 //! columns kept, and the fit leaves it at its nominal value; the combination (the kept
 //! parameters with their coefficients, in scaled units) says into which it merges (joint 1's
 //! errors into the tracker's registration, joint 6's `theta` and `d` into the measuring points,
 //! `d` of the second of two parallel joints into the first's). A column with no effect at all
 //! (gravity about a vertical axis) merges into nothing. The kept columns' count is the rank, the
 //! condition number is that of their scaled columns, and the correlations of the kept
-//! parameters (from `(J^T J)^-1`) above `CORRELATION_REPORTED` in absolute value are listed:
+//! parameters (from `(J^T J)^-1`) above [`CORRELATION_REPORTED`] in absolute value are listed:
 //! the weakly separated pairs (Sun and Hollerbach 2008 on observability).
 
 use nalgebra::{DMatrix, DVector};
@@ -25,10 +25,10 @@ use stiffid_core::math::linalg::CappedSvd;
 use stiffid_core::{Error, Result};
 
 /// The relative length of a column's unexplained part below which it merges.
-pub(crate) const RANK_TOLERANCE: f64 = 1e-7;
+pub const RANK_TOLERANCE: f64 = 1e-7;
 
 /// Correlations above this, in absolute value, are listed.
-pub(crate) const CORRELATION_REPORTED: f64 = 0.9;
+pub const CORRELATION_REPORTED: f64 = 0.9;
 
 /// Correlations above this, in absolute value, leave the two parameters not separately
 /// identifiable: the readings determine one combination of them, and each one's standard
@@ -63,7 +63,7 @@ pub struct Identifiability {
     /// The condition number of the kept columns of the scaled Jacobian (largest over smallest
     /// singular value).
     pub condition: f64,
-    /// The kept parameters' correlations above `CORRELATION_REPORTED` in absolute value:
+    /// The kept parameters' correlations above [`CORRELATION_REPORTED`] in absolute value:
     /// `(i, j, rho)`, `i < j` parameter indices.
     pub correlations: Vec<Correlation>,
 }

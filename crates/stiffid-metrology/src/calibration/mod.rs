@@ -11,7 +11,7 @@
 //!   screws), with the column scaling; [`model`]: the error model of a setup, as `calibrate` fits it.
 //! - [`identifiability`]: which parameters the readings determine, by QR with column pivoting on
 //!   the column-scaled Jacobian: the rank, the condition number, the parameters merged and into
-//!   which, the correlations above `identifiability::CORRELATION_REPORTED`.
+//!   which, the correlations above [`identifiability::CORRELATION_REPORTED`].
 //! - [`gravity`]: the joint deflection under the robot's own weight, with known masses (the
 //!   compliances unknown) or lumped (compliance times mass moment).
 //! - [`motions`]: the orders of a carrier's error motions, chosen by cross-validation.
@@ -75,37 +75,4 @@ pub fn model(
 }
 
 #[cfg(test)]
-mod arm_tests;
-
-#[cfg(test)]
-mod backlash_tests;
-
-#[cfg(test)]
-mod external_tests;
-
-#[cfg(test)]
-mod fixed_tables_tests;
-
-#[cfg(test)]
-mod heavy_tests;
-
-#[cfg(test)]
-mod intervals_tests;
-
-#[cfg(test)]
-mod loaded_tests;
-
-#[cfg(test)]
-mod maps_kernel_tests;
-
-#[cfg(test)]
-mod maps_tests;
-
-#[cfg(test)]
 mod reflections_tests;
-
-#[cfg(test)]
-mod tests;
-
-#[cfg(test)]
-mod thin_tests;

@@ -1,7 +1,7 @@
 //! The calibrated robot, and the files that carry it: a robot TOML file (the DH table with
 //! Hayati's `beta_deg`, the axis map, base and flange) and a URDF with corrected joint origins.
 //!
-//! The calibrated chain is `ErrorModel::robot_at` of the fitted values; for readings in the
+//! The calibrated chain is [`ErrorModel::robot_at`] of the fitted values; for readings in the
 //! base frame its base becomes `T^-1 base` (the base frame's error, [`Estimate::frame`]), for
 //! tracker readings the registration stays with the tracker (its fragment). A DH table holds the
 //! errors exactly: in a modified-DH row `i`, `a`, `alpha` and Hayati's `beta` of joint `i` join
@@ -27,7 +27,7 @@ use stiffid_core::robot::CALIBRATED;
 /// readings.
 ///
 /// # Errors
-/// Those of `ErrorModel::robot_at` and [`Robot::with_base`].
+/// Those of [`ErrorModel::robot_at`] and [`Robot::with_base`].
 pub fn calibrated(model: &ErrorModel, estimate: &Estimate) -> Result<Robot> {
     let robot = model.robot_at(&estimate.values)?;
     let robot = match model.external_at(&estimate.values)? {

@@ -84,7 +84,7 @@ pub fn validate(
 pub struct Fold {
     /// The posture held out.
     pub posture: usize,
-    /// The fit of the other postures, re-centred (`Estimate::recentre`).
+    /// The fit of the other postures, re-centred ([`Estimate::recentre`]).
     pub estimate: Estimate,
     /// The held-out posture's errors predicted by it.
     pub held: Validation,

@@ -65,6 +65,7 @@ mod ls_landing;
 mod lsq;
 mod machining;
 mod map_chosen;
+mod metrology;
 mod model_fits;
 mod model_form;
 mod model_ladder;

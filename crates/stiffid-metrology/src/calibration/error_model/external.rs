@@ -328,7 +328,7 @@ impl External {
 }
 
 /// The most orders [`ErrorModel::with_external`] fits per linear axis.
-pub(crate) const MAX_FITTED_ORDER: usize = MAX_ORDER;
+pub const MAX_FITTED_ORDER: usize = MAX_ORDER;
 
 impl ErrorModel {
     /// The model with the robot's external axes ([`stiffid_core::Robot::external`]): per linear carrier
@@ -347,7 +347,7 @@ impl ErrorModel {
     /// # Errors
     /// [`Error::InvalidField`] (`external_axis`) when the robot has no external axes, the
     /// model has reflectors, loads or maps already, `orders` has another length, an order
-    /// exceeds `MAX_FITTED_ORDER`, or `tables` exceeds [`super::MAX_POINTS`].
+    /// exceeds [`MAX_FITTED_ORDER`], or `tables` exceeds [`super::MAX_POINTS`].
     pub fn with_external(mut self, orders: &[usize], tables: usize) -> Result<Self> {
         let invalid = |message: String| Error::InvalidField {
             field: "external_axis".into(),
@@ -493,7 +493,7 @@ impl ErrorModel {
     /// # Errors
     /// [`Error::InvalidField`] when a fitted error motion is beyond
     /// [`stiffid_core::robot::external::ErrorMotions::new`]'s limits.
-    pub(crate) fn external_at(&self, values: &DVector<f64>) -> Result<Option<ExternalAxes>> {
+    pub fn external_at(&self, values: &DVector<f64>) -> Result<Option<ExternalAxes>> {
         self.external
             .as_ref()
             .map(|x| x.axes_at(values))
@@ -527,7 +527,7 @@ impl ErrorModel {
 
     /// The positioner's pose `P(e)` (cell frame from the part's frame at `e = 0`) at `values`;
     /// the identity without a positioner.
-    pub(crate) fn positioner_pose(&self, values: &DVector<f64>, e: &[f64]) -> Isometry3<f64> {
+    pub fn positioner_pose(&self, values: &DVector<f64>, e: &[f64]) -> Isometry3<f64> {
         match &self.external {
             Some(x) => x.positioner(values, e),
             None => Isometry3::identity(),

@@ -12,7 +12,7 @@
 //!
 //! and adds `theta_i` to the joint angle, where `(u_i, v_i, w_i)` is a right-handed basis with
 //! `w_i` the joint axis and `u_i` the coordinate axis (x, then y, then z) most perpendicular to it
-//! (`Basis`). For a z axis `(u, v, w) = (x, y, z)`, and the six errors are exactly the
+//! ([`Basis`]). For a z axis `(u, v, w) = (x, y, z)`, and the six errors are exactly the
 //! Denavit-Hartenberg ones: in a modified-DH row `RotX(alpha_{i-1}) TransX(a_{i-1}) RotZ(theta_i)
 //! TransZ(d_i)` they are the errors of `a_{i-1}`, `alpha_{i-1}`, `theta_i`, `d_i`, Hayati's
 //! `beta_{i-1}` (a rotation about y, for consecutive (nearly) parallel axes, where `d`
@@ -38,7 +38,7 @@
 //! ([`crate::calibration::gravity`]), `T` the measurement frame in the base frame (the
 //! registration) and `(dp, dphi)` its six error parameters (kind `tracker`, or `base` for
 //! base-frame readings, where they are the base frame's error): a base-frame perturbation of the
-//! prediction, re-centred into `T` after every step of the fit (`Estimate::recentre`), so the
+//! prediction, re-centred into `T` after every step of the fit ([`Estimate::recentre`]), so the
 //! Jacobian is evaluated at `dp = dphi = 0`. The base frame's own errors and the tracker
 //! registration are one rigid transform: the registration absorbs them.
 //!
@@ -81,8 +81,8 @@ mod maps;
 mod parameter;
 mod tables;
 
-pub(crate) use basis::Basis;
-pub(crate) use external::MAX_FITTED_ORDER;
+pub use basis::Basis;
+pub use external::MAX_FITTED_ORDER;
 use loads::Loads;
 pub use maps::JointMaps;
 pub use parameter::{AxisPart, Component, Geometry, Kind, MeasuredIn, Parameter, Target};
@@ -96,7 +96,7 @@ use stiffid_core::{Error, Joint, Result, Robot};
 pub const MAX_POINTS: usize = 100;
 
 /// The share of the largest regressor RMS of its unit below which a gravity term has no effect.
-pub(crate) const NO_EFFECT: f64 = 1e-9;
+pub const NO_EFFECT: f64 = 1e-9;
 
 /// No direction of approach: the mean of the two ([`Observation::direction`]).
 const MEAN: Vector6<f64> = Vector6::new(0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
@@ -130,7 +130,7 @@ pub struct Estimate {
 impl Estimate {
     /// The estimate with the frame's six perturbation values folded into `frame` (and zeroed):
     /// `T <- (exp([dphi]x), dp)^-1 T`, so that `exp([dphi]x) b + dp = T t` becomes `b = T t`.
-    pub(crate) fn recentre(&self) -> Self {
+    pub fn recentre(&self) -> Self {
         let v = &self.values;
         let delta = Isometry3::from_parts(
             Translation3::new(v[0], v[1], v[2]),
@@ -244,7 +244,7 @@ impl ErrorModel {
     /// of `geometry` and the gravity terms of `gravity`.
     ///
     /// Parameters, in order: the frame's six, three per measuring point, six per joint
-    /// (`Component::ALL` order; one per joint with [`Geometry::Offsets`]), the gravity terms.
+    /// ([`Component::ALL`] order; one per joint with [`Geometry::Offsets`]), the gravity terms.
     ///
     /// # Errors
     /// [`Error::InvalidField`] (`measuring_points_mm`) with no point or more than [`MAX_POINTS`],
@@ -397,7 +397,7 @@ impl ErrorModel {
     /// # Errors
     /// [`Error::InvalidField`] when a value is not finite or a map's coefficient beyond its
     /// limit ([`stiffid_core::robot::ErrorMap::new`]).
-    pub(crate) fn robot_at(&self, values: &DVector<f64>) -> Result<Robot> {
+    pub fn robot_at(&self, values: &DVector<f64>) -> Result<Robot> {
         let joints: [Joint; 6] = std::array::from_fn(|i| {
             let j = &self.robot.joints()[i];
             let e = self.joint_errors(values, i);

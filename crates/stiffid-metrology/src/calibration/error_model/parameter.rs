@@ -50,7 +50,7 @@ pub enum MeasuredIn {
     Base,
 }
 
-/// One error of a joint, in its rotation frame's basis `(u, v, w)` (`super::Basis`).
+/// One error of a joint, in its rotation frame's basis `(u, v, w)` ([`super::Basis`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Component {
@@ -70,7 +70,7 @@ pub enum Component {
 
 impl Component {
     /// All six, in the order of the parameter list.
-    pub(crate) const ALL: [Component; 6] = [
+    pub const ALL: [Component; 6] = [
         Component::Theta,
         Component::D,
         Component::A,

@@ -9,7 +9,7 @@
 //! `[R; sqrt(lambda) I] dx_s = -[Q^T r; 0]` for each trial `lambda` from that bidiagonal form by
 //! Eldén's rotations (never the normal equations), accepts the step when the cost falls (and
 //! divides `lambda` by 10) or multiplies `lambda` by 10 and tries again. The frame's perturbation is folded into the frame
-//! after every step (`Estimate::recentre`).
+//! after every step ([`Estimate::recentre`]).
 //!
 //! Standard deviations: the covariance of the fitted parameters is `sigma^2 (J^T J)^-1` at the
 //! solution, `sigma^2 = |r|^2 / (3n - p)` the noise variance per coordinate estimated from the
@@ -71,22 +71,22 @@ use noise::fit_with;
 pub use noise::{fit_at_stated_noise, fit_choosing_strength, MAX_REWEIGHTS, NOISE_TOLERANCE};
 
 /// Most Levenberg-Marquardt iterations.
-pub(crate) const MAX_ITERATIONS: usize = 100;
+pub const MAX_ITERATIONS: usize = 100;
 
 /// Most readings a calibration fits.
-pub(crate) const MAX_READINGS: usize = 100_000;
+pub const MAX_READINGS: usize = 100_000;
 
 /// The scaled step length below which the fit has converged.
-pub(crate) const STEP_TOLERANCE: f64 = 1e-13;
+pub const STEP_TOLERANCE: f64 = 1e-13;
 
 /// A warning ([`WarningKind::NotConverged`]) when the fit stopped at its limit of `iterations`
 /// ([`Stop::IterationLimit`]) with the cost still falling: the calibration may still move.
 ///
 /// The fit's stop reasons: [`Stop::Converged`], an accepted step shorter than
-/// `STEP_TOLERANCE` (scaled, times one plus the number of parameters fitted);
+/// [`STEP_TOLERANCE`] (scaled, times one plus the number of parameters fitted);
 /// [`Stop::Stalled`], an accepted step lowered the cost by at most `1e-15` of it;
 /// [`Stop::DampingExhausted`], no damping of 30 tried (each ten times the last) lowered the cost:
-/// both minima within rounding; [`Stop::IterationLimit`], `MAX_ITERATIONS` taken with the cost
+/// both minima within rounding; [`Stop::IterationLimit`], [`MAX_ITERATIONS`] taken with the cost
 /// still falling.
 pub fn stop_warning(stop: Stop, iterations: usize) -> Option<Warning> {
     (stop == Stop::IterationLimit).then(|| {
@@ -194,7 +194,7 @@ pub struct Fit {
 /// Fits `model` to `observations` from `start` (module docs).
 ///
 /// # Errors
-/// [`Error::InvalidField`] (`readings`) with no reading, more than `MAX_READINGS`, a
+/// [`Error::InvalidField`] (`readings`) with no reading, more than [`MAX_READINGS`], a
 /// non-finite reading, or fewer coordinates than fitted parameters plus one;
 /// [`Error::InvalidField`] (`options`) for a non-positive length or prior; those of
 /// [`ErrorModel::jacobian`] and [`identifiability::analyse`]; [`Error::NotFinite`] when the fit
@@ -213,7 +213,7 @@ pub fn fit(
 ///
 /// # Errors
 /// Those of [`fit`].
-pub(crate) fn fit_within(
+pub fn fit_within(
     model: &ErrorModel,
     observations: &[Observation],
     start: &Estimate,

@@ -2,7 +2,7 @@
 //! of nested models climbed by a cross-validation that holds out groups of postures.
 //!
 //! # The rungs
-//! In order of complexity, each gravity model (`GRAVITY_RUNGS`: the rigid robot, the arm's
+//! In order of complexity, each gravity model ([`GRAVITY_RUNGS`]: the rigid robot, the arm's
 //! three terms (skipped, saying why, on a robot that is not an anthropomorphic arm), the lumped
 //! bodies, the lumped links, the known masses where the robot gives them) without joint error
 //! maps and then with the maps of `--maps` (chosen by [`crate::calibration::maps`]
@@ -13,7 +13,7 @@
 //! # The held-out figure
 //! Each rung is fitted to every reading (its gravity terms bounded by
 //! [`crate::calibration::fit::GravityPrior`]); a rung whose fit does not converge or
-//! whose scaled Jacobian's condition exceeds `super::WEAK_CONDITION` is skipped (the simpler
+//! whose scaled Jacobian's condition exceeds [`super::WEAK_CONDITION`] is skipped (the simpler
 //! model kept), and so is a rung that extrapolates: one whose expected error where the robot is
 //! used ([`super::region`]: the joint-space hull of the postures of the campaign and of the
 //! setup) exceeds that of the geometry with the same maps variant by more than the held-out
@@ -28,12 +28,12 @@
 //! held-out error. The groups held out among
 //! the fitted postures cannot show what the spread shows; postures the robot never takes do not
 //! turn a model down.
-//! The postures are dealt into `FOLDS` groups (posture `i` in group `i mod K`); each group is
+//! The postures are dealt into [`FOLDS`] groups (posture `i` in group `i mod K`); each group is
 //! predicted by the rung refitted without it (linearised at the rung's fit, as the maps' choice:
 //! [`crate::calibration::maps::nested`], the maps chosen on each training set at the
 //! first gravity model's fit and kept, with their ridges, for the others, as the maps chosen on
 //! every posture there are:
-//! `crate::calibration::maps::nested_given`), which gives every held-out posture
+//! [`crate::calibration::maps::nested_given`]), which gives every held-out posture
 //! its squared error under every rung, paired.
 //!
 //! # The choice (one standard error)
@@ -41,7 +41,7 @@
 //! held-out squared error exceeds the best's by at most one standard error of their paired
 //! per-posture differences and by no more than any simpler rung's: a model is never chosen
 //! over a simpler one that predicts the held-out postures better. With fewer than
-//! `MIN_POSTURES` distinct postures the ladder is not climbed and its first rung is fitted.
+//! [`MIN_POSTURES`] distinct postures the ladder is not climbed and its first rung is fitted.
 
 use super::maps::{assess, assess_given, keeps_none, Assessed};
 use super::region::Region;
@@ -58,7 +58,7 @@ use stiffid_core::Result;
 
 /// The gravity models of `--gravity auto`, in order of complexity ([`Gravity::Masses`] only on a
 /// robot with link masses).
-pub(crate) const GRAVITY_RUNGS: [Gravity; 5] = [
+pub const GRAVITY_RUNGS: [Gravity; 5] = [
     Gravity::None,
     Gravity::Arm,
     Gravity::Lumped,
@@ -67,7 +67,7 @@ pub(crate) const GRAVITY_RUNGS: [Gravity; 5] = [
 ];
 
 /// The fewest distinct postures with which the ladder is climbed: two per group.
-pub(crate) const MIN_POSTURES: usize = 2 * FOLDS;
+pub const MIN_POSTURES: usize = 2 * FOLDS;
 
 /// Which gravity terms a calibration fits: chosen by the ladder, or given.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

@@ -11,7 +11,7 @@
 //! fitted postures, the held-out postures of `--validate`, the setup's test postures
 //! `[test] postures_deg`): those postures and the postures a joint-interpolated move between two
 //! of them passes through. It is sampled by [`SAMPLES`] postures drawn at random (seeded:
-//! `SEED`): half of them named postures, where the robot is measured or used, and half on the
+//! [`SEED`]): half of them named postures, where the robot is measured or used, and half on the
 //! segment between two named postures at a uniform share of the way (a sample of the moves alone
 //! would weigh the hull's middle and leave its ends, the postures named, nearly unsampled), cut
 //! to the robot's joint limits and the setup's `[bounds]`. Not the box of each axis's range: its corners pair
@@ -31,7 +31,7 @@ use stiffid_core::Setup;
 pub const SAMPLES: usize = 512;
 
 /// The seed of the region's sample: the same postures give the same region.
-pub(crate) const SEED: u64 = 0x5E_ED_0F_2E_61;
+pub const SEED: u64 = 0x5E_ED_0F_2E_61;
 
 /// The region where the robot is used (module docs).
 #[derive(Debug, Clone, PartialEq)]
@@ -43,7 +43,7 @@ pub struct Region {
 }
 
 /// The region of `postures` (axis angles, rad; module docs) within `limits` and `bounds`; with
-/// no posture, `crate::calibration::gravity::spanning` postures of `limits`.
+/// no posture, [`crate::calibration::gravity::spanning`] postures of `limits`.
 pub fn region(postures: &[Vector6<f64>], limits: &JointBox, bounds: &JointBox) -> Region {
     if postures.is_empty() {
         return Region {

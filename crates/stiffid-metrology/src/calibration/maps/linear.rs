@@ -71,12 +71,12 @@ pub struct Linear {
     pub rows: Vec<Vec<usize>>,
     /// The axis angles of each posture, in posture order (rad): a split tapers its held-out rows'
     /// map columns beyond its training postures' range as the calibrated robot's maps taper
-    /// beyond the fitted postures' (`Linear::split`).
+    /// beyond the fitted postures' ([`Linear::split`]).
     pub angles: Vec<Vector6<f64>>,
 }
 
 /// A split's training part, prepared once for every choice of maps.
-pub(crate) struct Split {
+pub struct Split {
     /// The postures of the test rows (index into the split's test postures), one per row.
     test_posture: Vec<usize>,
     /// `r_V - A U^T r_T`.
@@ -183,7 +183,7 @@ impl Linear {
     ///
     /// # Errors
     /// [`Error::NotFinite`] when an SVD does not converge.
-    pub(crate) fn split(&self, train: &[usize], test: &[usize]) -> Result<Split> {
+    pub fn split(&self, train: &[usize], test: &[usize]) -> Result<Split> {
         let rows = |ps: &[usize]| -> Vec<usize> {
             ps.iter()
                 .flat_map(|&p| self.rows[p].iter().copied())
@@ -235,7 +235,7 @@ impl Linear {
     /// `sin 1..h`, then its backlash term's, `h` the joint's count in `keep`): the same held-out
     /// errors for any choice within `keep` (to rounding), from splits that project and compress
     /// only these columns. `keep` within [`Linear::candidates`].
-    pub(crate) fn restricted(&self, keep: &JointMaps) -> Linear {
+    pub fn restricted(&self, keep: &JointMaps) -> Linear {
         let maps = (0..6)
             .map(|j| {
                 let h = keep.harmonics[j];
@@ -342,7 +342,7 @@ impl Linear {
     /// # Errors
     /// [`Error::NotFinite`] when a step is not finite (a residual, a column or a ridge not
     /// finite).
-    pub(crate) fn errors(
+    pub fn errors(
         &self,
         split: &Split,
         choice: &JointMaps,

@@ -4,24 +4,24 @@
 //! tuned on).
 //!
 //! # The candidates
-//! A joint's map ([`stiffid_core::robot::ErrorMap`]) of `H` harmonics, `H` in `HARMONICS`, with the
-//! ridge `mu` in `RIDGES` ([`crate::calibration::fit::Options::ridge`]: a penalty of
+//! A joint's map ([`stiffid_core::robot::ErrorMap`]) of `H` harmonics, `H` in [`HARMONICS`], with the
+//! ridge `mu` in [`RIDGES`] ([`crate::calibration::fit::Options::ridge`]: a penalty of
 //! `mu` per reading on a scaled coefficient). `--maps J1,J3:16` fixes the joints and harmonics
-//! (a bare joint takes `DEFAULT_HARMONICS`) and chooses the ridge alone. Where the readings
+//! (a bare joint takes [`DEFAULT_HARMONICS`]) and chooses the ridge alone. Where the readings
 //! carry the directions of approach, a joint's backlash term is a candidate too (one column,
 //! [`crate::calibration::error_model::Target::Backlash`]): `J2:8b` is 8 harmonics
 //! and the backlash, `J2:b` the backlash alone.
 //!
 //! # The choice ([`choose`])
-//! The postures are dealt into `FOLDS` folds (posture `p` of the training postures in fold
+//! The postures are dealt into [`FOLDS`] folds (posture `p` of the training postures in fold
 //! `p mod K`); each candidate's held-out error is the sum over folds of the errors of the fold's
 //! postures predicted by the fit of the others, at its best ridge (a held-out posture beyond the
 //! others' range of an axis with that axis's map tapered as the calibrated robot's:
-//! `Linear::split`). First each joint alone, at each
+//! [`Linear::split`]). First each joint alone, at each
 //! harmonic count, and each joint's backlash term alone (with directions); then, from no map,
 //! these in the order of their own held-out error, each kept when it lowers the held-out error by
-//! more than `MAP_ACCEPT` standard errors of the paired per-posture differences (a one-sided
-//! test at about 0.6 %) and by `LEAST_GAIN` of it: the choice keeps no map on a robot without
+//! more than [`MAP_ACCEPT`] standard errors of the paired per-posture differences (a one-sided
+//! test at about 0.6 %) and by [`LEAST_GAIN`] of it: the choice keeps no map on a robot without
 //! one. Then jointly: the first `k` joints of that order (`k` from 2) together at each harmonic
 //! count up to the largest any of them chose alone, the one with the least held-out error replacing the forward choice where it has less
 //! and lowers the error without maps by the same rule (one joint at a time stops early where
@@ -29,17 +29,17 @@
 //! the parameters' change from the fit, a few nanometres on a calibrated robot.
 //!
 //! # The honest figure ([`nested`])
-//! An outer cross-validation of `FOLDS` folds makes the whole choice on each outer fold's
+//! An outer cross-validation of [`FOLDS`] folds makes the whole choice on each outer fold's
 //! training postures and predicts its held-out postures with it, beside the geometry alone on the
 //! same split: the held-out gain of choosing maps by cross-validation. Inside outer fold `k` the
 //! choice's inner folds are the other outer folds, each trained on the postures of neither: the
 //! two outer folds of a pair share its split and each candidate's steps on it, so the `K` choices
 //! cost `K (K - 1) / 2` splits, not `K^2` (with 3 outer folds or more). Folds run in parallel
-//! (rayon), the result independent of the thread count. `nested_given` scores the choices and
+//! (rayon), the result independent of the thread count. [`nested_given`] scores the choices and
 //! ridges another linearisation of the same postures made (a calibration's ladder chooses the
 //! maps once, at its first gravity model): one refit per outer fold. Where the maps are fixed
 //! (or none), the splits project the columns of these maps alone
-//! (`Linear::restricted`): the later rungs and each outer fold's figure cost the columns they
+//! ([`Linear::restricted`]): the later rungs and each outer fold's figure cost the columns they
 //! use, not the candidates'.
 //!
 //! Equations and sources: docs/model.md, section "Calibration", "Joint error maps".
@@ -77,23 +77,23 @@ pub fn name(h: &JointMaps) -> String {
 }
 
 /// The harmonic counts `--maps auto` tries per joint.
-pub(crate) const HARMONICS: [usize; 4] = [4, 8, 16, 32];
+pub const HARMONICS: [usize; 4] = [4, 8, 16, 32];
 
 /// The harmonics of a joint named without a count (`--maps J2`).
-pub(crate) const DEFAULT_HARMONICS: usize = 16;
+pub const DEFAULT_HARMONICS: usize = 16;
 
 /// The ridges `mu` tried (dimensionless, per reading): up to 1, since from 50 postures a
 /// joint's 32 harmonics may need a stronger hold than from 100.
-pub(crate) const RIDGES: [f64; 11] = [
+pub const RIDGES: [f64; 11] = [
     1e-6, 1e-5, 1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2, 1e-1, 3e-1, 1.0,
 ];
 
 /// The folds of the inner and of the outer cross-validation.
-pub(crate) const FOLDS: usize = 5;
+pub const FOLDS: usize = 5;
 
 /// The standard errors of the paired per-posture differences by which a carrier's error motion
 /// order must lower the held-out error to be kept ([`super::motions`]).
-pub(crate) const ACCEPT: f64 = 3.0;
+pub const ACCEPT: f64 = 3.0;
 
 /// The standard errors of the paired per-posture differences by which a joint's map must lower
 /// the held-out error to be kept: fewer than [`ACCEPT`], since the per-posture errors of a
@@ -101,10 +101,10 @@ pub(crate) const ACCEPT: f64 = 3.0;
 /// the UR10's series C by a quarter stood 2.5 to 3 standard errors out); the choice still keeps
 /// no map on a robot without one in 9 seeds of 10 or more from 50 postures (`maps_tests.rs`;
 /// at 2 standard errors, in 34 of 40).
-pub(crate) const MAP_ACCEPT: f64 = 2.5;
+pub const MAP_ACCEPT: f64 = 2.5;
 
 /// The least share of the held-out squared error a map must remove to be kept.
-pub(crate) const LEAST_GAIN: f64 = 0.02;
+pub const LEAST_GAIN: f64 = 0.02;
 
 /// The fewest distinct postures with which `--maps auto` considers maps (below it, none): five
 /// folds of at least six postures.
@@ -125,7 +125,7 @@ pub enum Spec {
 
 impl Spec {
     /// Parses `auto`, `none` or a list of joints `J1,J3:16,J4:8b,J5:b` (a joint `J1`..`J6`,
-    /// optionally `:H` harmonics, 1 to [`MAX_HARMONICS`], default `DEFAULT_HARMONICS`, a `b`
+    /// optionally `:H` harmonics, 1 to [`MAX_HARMONICS`], default [`DEFAULT_HARMONICS`], a `b`
     /// after them for a backlash term too, `:b` the backlash term alone).
     ///
     /// # Errors
@@ -183,7 +183,7 @@ impl Spec {
     }
 
     /// The maps the linearised fit needs columns for: every joint at the largest of
-    /// `HARMONICS` for [`Spec::Auto`], with a backlash term each where the readings carry
+    /// [`HARMONICS`] for [`Spec::Auto`], with a backlash term each where the readings carry
     /// `directions`; the fixed ones; none.
     pub fn candidates(self, directions: bool) -> JointMaps {
         match self {
@@ -206,7 +206,7 @@ pub struct Tried {
     pub ridge: f64,
     /// Its held-out RMS error (inner cross-validation), m.
     pub rms: f64,
-    /// Whether the choice kept it (a step of the forward selection that passed `ACCEPT`).
+    /// Whether the choice kept it (a step of the forward selection that passed [`ACCEPT`]).
     pub kept: bool,
 }
 
@@ -236,7 +236,7 @@ pub struct Nested {
     pub rms: f64,
     /// The maps each outer fold chose.
     pub choices: Vec<JointMaps>,
-    /// The ridge each outer fold chose with its maps (`mu`, `RIDGES`).
+    /// The ridge each outer fold chose with its maps (`mu`, [`RIDGES`]).
     pub ridges: Vec<f64>,
     /// Per held-out posture (the outer folds' in order: fold `k` holds the postures `i` with
     /// `i mod K = k`), the sum of its squared errors without maps, m^2.
@@ -259,7 +259,7 @@ fn better(current: &Scored, candidate: &Scored) -> bool {
 /// current ones by more than `accept` standard errors of the paired per-posture differences
 /// and by [`LEAST_GAIN`] of the total: the acceptance rule of every choice by cross-validation
 /// in the calibration (the maps at [`MAP_ACCEPT`], the error motions' orders at [`ACCEPT`]).
-pub(crate) fn lowers(current: (&[f64], f64), candidate: (&[f64], f64), accept: f64) -> bool {
+pub fn lowers(current: (&[f64], f64), candidate: (&[f64], f64), accept: f64) -> bool {
     let n = current.0.len();
     if n < 2 {
         return false;
@@ -424,7 +424,7 @@ pub fn nested(linear: &Linear, postures: &[usize], spec: Spec) -> Result<Nested>
 /// # Errors
 /// [`Error::InvalidField`] (`choices`) unless `first` has one choice and one ridge per outer
 /// fold; those of [`Linear::split`] and [`Linear::errors`].
-pub(crate) fn nested_given(linear: &Linear, postures: &[usize], first: &Nested) -> Result<Nested> {
+pub fn nested_given(linear: &Linear, postures: &[usize], first: &Nested) -> Result<Nested> {
     let folds = FOLDS.min(postures.len());
     if first.choices.len() != folds || first.ridges.len() != folds {
         return Err(Error::InvalidField {

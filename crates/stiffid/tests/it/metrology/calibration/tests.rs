@@ -295,7 +295,7 @@ fn fanuc_geometry_recovered_and_merged_named() {
 
 #[test]
 fn urdf_geometry_recovered() {
-    let text = include_str!("../../../stiffid/tests/data/comau-nj165.urdf");
+    let text = include_str!("../../../data/comau-nj165.urdf");
     let robot = urdf::parse(text, "comau-nj165.urdf", None).unwrap();
     let model = ErrorModel::new(
         &robot,
@@ -379,8 +379,7 @@ fn calibrated_robot_files_reproduce_positions() {
         "<link name=\"base\"/><joint name=\"base_link-base\" type=\"fixed\"><parent link=\"world\"/><child link=\"base\"/>{}</joint></robot>",
         stiffid_core::robot::urdf_write::origin_xml(&world)
     );
-    let text =
-        include_str!("../../../stiffid/tests/data/comau-nj165.urdf").replace("</robot>", &base);
+    let text = include_str!("../../../data/comau-nj165.urdf").replace("</robot>", &base);
     let urdf_robot = urdf::parse(&text, "comau-nj165.urdf", None).unwrap();
     let robots = [
         fanuc(),
@@ -598,7 +597,7 @@ fn the_fit_says_why_it_stopped_and_warns_at_its_iteration_limit() {
 /// is written.
 #[test]
 fn a_robot_calibrated_on_a_mount_has_no_urdf() {
-    let text = include_str!("../../../stiffid/tests/data/comau-nj165.urdf");
+    let text = include_str!("../../../data/comau-nj165.urdf");
     let foot = urdf::parse(text, "comau-nj165.urdf", None).unwrap();
     let preset = presets::get("kuka-kr210-robond").unwrap();
     let mount = Isometry3::new(Vector3::new(0.1, -0.05, 0.5), Vector3::new(0.0, 0.0, 0.5));
