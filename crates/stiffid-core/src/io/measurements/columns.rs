@@ -306,7 +306,7 @@ pub struct Layout {
 
 impl Layout {
     /// The layout of `header`, read at `line`.
-    pub(crate) fn new(header: Vec<String>, line: u64) -> Result<Self> {
+    pub fn new(header: Vec<String>, line: u64) -> Result<Self> {
         let columns = Columns::new(&header, line)?;
         Ok(Self { header, columns })
     }

@@ -1,3 +1,4 @@
 mod input;
+mod measurements;
 mod output;
 mod readings;

@@ -1,5 +1,5 @@
-use crate::io::measurements::{Layout, Parsed};
 use proptest::prelude::*;
+use stiffid_core::io::measurements::{Layout, Parsed};
 
 const HEADER: &str =
     "posture,point,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg,fx_n,fy_n,fz_n,dx_mm,dy_mm,dz_mm";
@@ -31,7 +31,7 @@ fn same_as_csv(text: &[u8], first: u64) -> bool {
     let layout = layout();
     let by_csv = Parsed::by_csv(&layout, text, first);
     let mut parsed = Parsed::default();
-    let plain = crate::io::measurements::plain::parse(&layout, text, first, &mut parsed);
+    let plain = stiffid_core::io::measurements::plain::parse(&layout, text, first, &mut parsed);
     if plain {
         assert_eq!(
             outcome(&parsed),
