@@ -29,7 +29,7 @@ impl Columns {
     /// # Errors
     /// [`Error::Column`] at `line`: an axis given in both units (`e2_mm` and `e2_deg`), or a gap
     /// (`e2_mm` without `e1_*`: missing column `e1_mm or e1_deg`).
-    pub(crate) fn find<S: AsRef<str>>(names: &[S], line: u64) -> Result<Self> {
+    pub fn find<S: AsRef<str>>(names: &[S], line: u64) -> Result<Self> {
         let position = |name: &str| names.iter().position(|n| n.as_ref() == name);
         let mut columns = Vec::new();
         for axis in 0..MAX_AXES {
@@ -162,23 +162,5 @@ fn column_error(line: u64, problem: ColumnProblem) -> Error {
         column: None,
         name: String::new(),
         problem,
-    }
-}
-
-#[cfg(test)]
-impl Columns {
-    /// How many external axes the file gives.
-    pub(crate) fn len(&self) -> usize {
-        self.columns.len()
-    }
-
-    /// Whether it gives none.
-    pub(crate) fn is_empty(&self) -> bool {
-        self.columns.is_empty()
-    }
-
-    /// Whether axis `k` (0-based, the cell's order) is given in deg (else mm).
-    pub(crate) fn in_degrees(&self, k: usize) -> bool {
-        self.columns[k].1
     }
 }

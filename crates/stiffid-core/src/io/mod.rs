@@ -35,7 +35,7 @@ use std::io::Read;
 /// # Errors
 /// [`Error::Parse`] naming `source_name`: larger than the input limit, or not UTF-8 text (with
 /// the first invalid byte, its offset, line and column).
-pub(crate) fn text(source_name: &str, bytes: Vec<u8>) -> Result<String> {
+pub fn text(source_name: &str, bytes: Vec<u8>) -> Result<String> {
     let error = |message: String| Error::Parse {
         source_name: source_name.to_string(),
         message,
@@ -448,10 +448,3 @@ pub fn csv_message(e: &csv::Error) -> String {
         _ => e.to_string(),
     }
 }
-
-#[cfg(test)]
-mod external_tests;
-#[cfg(test)]
-mod postures_tests;
-#[cfg(test)]
-mod text_tests;

@@ -46,7 +46,7 @@ pub fn parse(text: &str, robot: &Robot, bounds: Option<&JointBox>) -> Result<Vec
 
 /// The postures of a cell: axis angles and external axes' values.
 #[derive(Debug, Clone, PartialEq, Default)]
-pub(crate) struct Postures {
+pub struct Postures {
     /// Axis angles, rad, one per row.
     pub q: Vec<Vector6<f64>>,
     /// The external axes' values, SI (m, rad) in the cell's order, one per row (each empty for a
@@ -68,7 +68,7 @@ pub(crate) fn header(robot: &Robot) -> Vec<String> {
 /// Those of [`parse`], the header expected being `header` (a column of an axis the robot
 /// lacks is a header error saying so), and a value of an external axis that is not a finite
 /// number or outside its travel (naming the line, the column and the axis).
-pub(crate) fn parse_cell(text: &str, robot: &Robot, bounds: Option<&JointBox>) -> Result<Postures> {
+pub fn parse_cell(text: &str, robot: &Robot, bounds: Option<&JointBox>) -> Result<Postures> {
     let expected = header(robot);
     let mut reader = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)

@@ -304,7 +304,7 @@ impl Model {
     ///
     /// # Errors
     /// As `check_springs`.
-    pub(crate) fn new(coordinates: Coordinates, springs: Vec<Spring>) -> Result<Self> {
+    pub fn new(coordinates: Coordinates, springs: Vec<Spring>) -> Result<Self> {
         check_springs(&springs)?;
         Ok(Self {
             coordinates,

@@ -571,5 +571,3 @@ impl PartialEq for Bodies {
 
 #[cfg(test)]
 mod error_map_tests;
-#[cfg(test)]
-mod weight_file_tests;

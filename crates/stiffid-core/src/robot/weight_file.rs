@@ -63,7 +63,7 @@ struct TermFile {
 /// A robot file's `[gravity]` table.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(crate) struct GravityFile {
+pub struct GravityFile {
     model: String,
     tool_mass_kg: Option<f64>,
     #[serde(default, deserialize_with = "crate::common::exact::option")]
@@ -78,7 +78,7 @@ pub(crate) struct GravityFile {
 ///
 /// # Errors
 /// [`Error::InvalidField`] naming the file and the field.
-pub(crate) fn build(file: Option<GravityFile>, source_name: &str) -> Result<Option<OwnWeight>> {
+pub fn build(file: Option<GravityFile>, source_name: &str) -> Result<Option<OwnWeight>> {
     let Some(g) = file else { return Ok(None) };
     let invalid = |field: String, message: String| Error::InvalidField {
         field: format!("{source_name}: gravity.{field}"),

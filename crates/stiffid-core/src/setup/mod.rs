@@ -536,6 +536,4 @@ impl Setup {
 #[cfg(test)]
 mod load_steps_tests;
 #[cfg(test)]
-mod numbered_tests;
-#[cfg(test)]
 mod prior_tests;

@@ -119,11 +119,3 @@ pub(super) fn read(field: &str, entries: &[NumberedFrameFile]) -> Result<Numbere
     }
     NumberedFrames::new(field, &frames)
 }
-
-#[cfg(test)]
-impl NumberedFrames {
-    /// Whether the table gives no frame.
-    pub(crate) fn is_empty(&self) -> bool {
-        self.frames.is_empty()
-    }
-}

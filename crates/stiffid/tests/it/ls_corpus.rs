@@ -195,8 +195,18 @@ pub(crate) fn independent(text: &str) -> Vec<Position> {
             order.push(digits.parse::<u64>().unwrap());
         }
     }
+    // Where each position's block starts (its first `P[i`), found in one pass.
+    let mut starts = std::collections::HashMap::new();
+    for (start, _) in pos.match_indices("\nP[") {
+        let digits: String = (pos[start + 3..].chars())
+            .take_while(char::is_ascii_digit)
+            .collect();
+        if let Ok(i) = digits.parse::<u64>() {
+            starts.entry(i).or_insert(start);
+        }
+    }
     let block = |i: u64| {
-        let start = pos.find(&format!("\nP[{i}")).unwrap();
+        let start = starts[&i];
         let group1 = &pos[start..start + pos[start..].find("};").unwrap()];
         group1.split("GP2").next().unwrap().to_string()
     };

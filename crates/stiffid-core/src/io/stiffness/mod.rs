@@ -506,8 +506,3 @@ impl StiffnessFile {
         })
     }
 }
-
-#[cfg(test)]
-mod covariance_tests;
-#[cfg(test)]
-mod stiffness_tests;

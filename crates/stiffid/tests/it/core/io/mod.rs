@@ -1,4 +1,8 @@
+mod external;
 mod input;
 mod measurements;
 mod output;
+mod postures;
 mod readings;
+mod stiffness;
+mod text;

@@ -2,3 +2,4 @@ mod configuration;
 mod dynamics;
 mod file;
 mod urdf_write;
+mod weight_file;

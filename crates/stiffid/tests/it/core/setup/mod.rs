@@ -1,2 +1,3 @@
 mod controller_robot;
+mod numbered;
 mod reference;

@@ -112,14 +112,14 @@ fn choice(h2: usize, h5: usize) -> JointMaps {
     choice
 }
 
-/// The split's errors of `n` postures with the maps of `choice` (with `restricted`, from the
-/// linearisation restricted to the choice's columns) against [`direct`] on every candidate
-/// column's linearisation.
-fn assert_split_matches(n: usize, restricted: bool, choice: &JointMaps) {
-    let linear = linear(n, 7);
+/// The split's errors of [`linear`]'s postures with the maps of `choice` (with `restricted`,
+/// from the linearisation restricted to the choice's columns) against [`direct`] on every
+/// candidate column's linearisation.
+fn assert_split_matches(linear: &Linear, restricted: bool, choice: &JointMaps) {
+    let n = linear.rows.len();
     let (train, test): (Vec<usize>, Vec<usize>) = (0..n).partition(|p| p % 5 != 0);
     let narrow = linear.restricted(choice);
-    let used = if restricted { &narrow } else { &linear };
+    let used = if restricted { &narrow } else { linear };
     if restricted {
         let columns = 2 * choice.harmonics.iter().sum::<usize>();
         assert_eq!(
@@ -136,7 +136,7 @@ fn assert_split_matches(n: usize, restricted: bool, choice: &JointMaps) {
             .errors(&split, choice, &[lambda])
             .unwrap()
             .swap_remove(0);
-        let want = direct(&linear, choice, &train, &test, lambda);
+        let want = direct(linear, choice, &train, &test, lambda);
         // At 1e-12 the augmented system's condition bounds any two stable solutions' agreement:
         // its SVD and its Householder QR differ by up to 1e-8 of the errors there, and by up to
         // 2e-7 where held-out postures beyond the training range have their maps tapered.
@@ -153,29 +153,31 @@ fn assert_split_matches(n: usize, restricted: bool, choice: &JointMaps) {
 #[test]
 fn a_splits_errors_are_the_ridge_least_squares_with_fewer_rows_than_columns() {
     // 40 training postures at one point: 120 rows, 384 candidate columns; the choice's 48.
-    assert_split_matches(50, false, &choice(16, 8));
+    assert_split_matches(&linear(50, 7), false, &choice(16, 8));
 }
 
 #[test]
 fn a_choice_with_more_columns_than_training_rows_is_the_ridge_least_squares() {
     // 120 training rows, the choice's 128 columns (both joints at 32 harmonics).
-    assert_split_matches(50, false, &choice(32, 32));
-    assert_split_matches(50, true, &choice(32, 32));
+    let fifty = linear(50, 7);
+    assert_split_matches(&fifty, false, &choice(32, 32));
+    assert_split_matches(&fifty, true, &choice(32, 32));
 }
 
 #[test]
 fn a_restricted_linearisations_errors_are_the_ridge_least_squares() {
     // The choice's 48 columns alone, from 120 training rows and from 600 (both more rows than
     // columns).
-    assert_split_matches(50, true, &choice(16, 8));
-    assert_split_matches(250, true, &choice(16, 8));
+    assert_split_matches(&linear(50, 7), true, &choice(16, 8));
+    assert_split_matches(&linear(250, 7), true, &choice(16, 8));
 }
 
 #[test]
 fn a_splits_errors_are_the_ridge_least_squares_with_more_rows_than_columns() {
     // 200 training postures: 600 rows, 384 candidate columns; the choices' 48 and 128.
-    assert_split_matches(250, false, &choice(16, 8));
-    assert_split_matches(250, false, &choice(32, 32));
+    let many = linear(250, 7);
+    assert_split_matches(&many, false, &choice(16, 8));
+    assert_split_matches(&many, false, &choice(32, 32));
 }
 
 #[test]

@@ -1,12 +1,12 @@
-use crate::common::error::ColumnProblem;
-use crate::common::limits::MAX_GROUP_POSTURES;
-use crate::io::postures::*;
-use crate::{Error, Result};
 use approx::assert_relative_eq;
 use nalgebra::Vector6;
+use stiffid_core::common::error::ColumnProblem;
+use stiffid_core::common::limits::MAX_GROUP_POSTURES;
+use stiffid_core::io::postures::*;
+use stiffid_core::{Error, Result};
 
 fn parse_in_bounds(text: &str) -> Result<Vec<Vector6<f64>>> {
-    let s = crate::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let s = stiffid_core::setup::builtin("zhang2021-comau-nj165").unwrap();
     parse(text, s.robot(), Some(s.bounds()))
 }
 
@@ -67,7 +67,7 @@ fn a_semicolon_separated_file_gets_the_separator_hint() {
     assert!(!e.contains("';'"), "{e}");
     // A measurement file (whose columns are named, in any order) gets it too.
     let measurements = "posture;point;q1_deg;q2_deg;q3_deg;q4_deg;q5_deg;q6_deg;fx_n;fy_n;fz_n;dx_mm;dy_mm;dz_mm\n";
-    let e = crate::io::measurements::parse(measurements)
+    let e = stiffid_core::io::measurements::parse(measurements)
         .unwrap_err()
         .to_string();
     assert!(e.contains("columns with ';'"), "{e}");
@@ -75,10 +75,10 @@ fn a_semicolon_separated_file_gets_the_separator_hint() {
 
 #[test]
 fn a_cells_postures_carry_its_external_axes() {
-    let text = crate::robot::presets::text("comau-smart5-nj165-3.0").unwrap().to_string()
+    let text = stiffid_core::robot::presets::text("comau-smart5-nj165-3.0").unwrap().to_string()
         + "\n[[external_axis]]\nname = \"track\"\nrole = \"carrier\"\ndirection = [1, 0, 0]\nlimits_mm = [0, 6000]\n"
         + "[[external_axis]]\nname = \"turn\"\nrole = \"positioner\"\ndirection = [0, 0, 1]\nlimits_deg = [-180, 180]\n";
-    let cell = crate::robot::file::parse(&text, "cell.toml").unwrap();
+    let cell = stiffid_core::robot::file::parse(&text, "cell.toml").unwrap();
     let q = vec![Vector6::new(0.1, -0.2, -1.5, 0.4, 0.5, -0.6); 2];
     let e = vec![vec![1.25, 0.5], vec![5.5, -3.0]];
     let written = to_csv_cell(&q, &e, cell.external());
@@ -96,7 +96,7 @@ fn a_cells_postures_carry_its_external_axes() {
     // Without its columns, with an axis it lacks, outside the travel: refused, named.
     let e = parse(&to_csv(&q), &cell, None).unwrap_err().to_string();
     assert!(e.contains("e1_mm,e2_deg"), "{e}");
-    let plain = crate::robot::presets::get("comau-smart5-nj165-3.0").unwrap();
+    let plain = stiffid_core::robot::presets::get("comau-smart5-nj165-3.0").unwrap();
     let e = parse(&written, &plain, None).unwrap_err().to_string();
     assert!(e.contains("the robot has no external axes: e1_mm"), "{e}");
     let far = written.replace(",1250.000000,", ",7000.000000,");

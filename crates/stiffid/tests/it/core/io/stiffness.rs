@@ -1,8 +1,13 @@
-use crate::io::stiffness::check_covariance;
-use crate::io::stiffness::*;
-use crate::model::Model;
-use crate::Error;
 use nalgebra::{DMatrix, Matrix6};
+use stiffid_core::io::stiffness::*;
+use stiffid_core::model::Model;
+use stiffid_core::Error;
+
+/// The check of a 6 x 6 covariance of the drives' compliance, through the check of any size.
+fn check_covariance(c: &Matrix6<f64>) -> stiffid_core::Result<()> {
+    let c = DMatrix::from_column_slice(6, 6, c.as_slice());
+    check_covariance_of(&c, "compliance_covariance_rad2_per_nm2")
+}
 
 const K: &str = "[950000, 3000000, 900000, 250000, 200000, 150000]";
 
@@ -66,12 +71,14 @@ const DRIVES: [(&str, &str, &str, f64); 6] = [
 ];
 
 fn model_with_tool_y() -> Model {
-    let robot = crate::robot::presets::get(crate::robot::presets::names().next().unwrap()).unwrap();
-    let springs = crate::model::Family::Tool
+    let robot =
+        stiffid_core::robot::presets::get(stiffid_core::robot::presets::names().next().unwrap())
+            .unwrap();
+    let springs = stiffid_core::model::Family::Tool
         .springs(&robot, &[], None, None, "test")
         .unwrap();
     let y: Vec<_> = springs.into_iter().filter(|s| s.name == "tool_y").collect();
-    Model::new(crate::Coordinates::Axis, y).unwrap()
+    Model::new(stiffid_core::Coordinates::Axis, y).unwrap()
 }
 
 #[test]
@@ -208,4 +215,10 @@ fn a_file_with_its_kind_reads_as_one_without_as_written_before() {
     assert_eq!(old, new);
     let h = new.compliance(&Model::default()).unwrap().h;
     assert_eq!(h[1], 1.0 / 3_000_000.0);
+}
+
+#[test]
+fn a_positive_diagonal_covariance_passes_and_a_negative_one_is_refused() {
+    assert!(check_covariance(&Matrix6::from_diagonal_element(1e-14)).is_ok());
+    assert!(check_covariance(&Matrix6::from_diagonal_element(-1e-14)).is_err());
 }

@@ -1,6 +1,6 @@
-use crate::robot::weight_file::*;
-use crate::Result;
 use serde::Deserialize;
+use stiffid_core::robot::weight_file::*;
+use stiffid_core::Result;
 
 fn own() -> OwnWeight {
     OwnWeight {
