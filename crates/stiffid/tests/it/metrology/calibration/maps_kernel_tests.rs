@@ -84,18 +84,22 @@ fn direct(
     let joints: Vec<usize> = (0..6)
         .flat_map(|j| std::iter::repeat_n(j, 2 * choice.harmonics[j]))
         .collect();
-    let range = |j: usize| {
-        let angles = train.iter().map(|&p| linear.angles[p][j]);
-        (
-            angles.clone().fold(f64::INFINITY, f64::min),
-            angles.fold(f64::NEG_INFINITY, f64::max),
-        )
-    };
+    let range: Vec<(f64, f64)> = (0..6)
+        .map(|j| {
+            let angles = train.iter().map(|&p| linear.angles[p][j]);
+            (
+                angles.clone().fold(f64::INFINITY, f64::min),
+                angles.fold(f64::NEG_INFINITY, f64::max),
+            )
+        })
+        .collect();
     let mut out = vec![0.0; test.len()];
     for (t, &p) in test.iter().enumerate() {
-        let taper = |c: usize| error_map::taper(linear.angles[p][joints[c]], range(joints[c]));
+        let taper: Vec<f64> = (0..s)
+            .map(|c| error_map::taper(linear.angles[p][joints[c]], range[joints[c]]))
+            .collect();
         for &r in &linear.rows[p] {
-            let maps: f64 = (0..s).map(|c| taper(c) * m[(r, c)] * x[g + c]).sum();
+            let maps: f64 = (0..s).map(|c| taper[c] * m[(r, c)] * x[g + c]).sum();
             let e =
                 linear.residuals[r] + linear.geometry.row(r).dot(&x.rows(0, g).transpose()) + maps;
             out[t] += e * e;
