@@ -1,3 +1,6 @@
+//! The external axes' columns of a cell's files (`e1_mm`, `e2_deg`, ...): found in the cell's
+//! order, read in SI, gaps, two units and bad values refused.
+
 use stiffid_core::io::external::*;
 use stiffid_core::Error;
 

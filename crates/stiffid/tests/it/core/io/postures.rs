@@ -1,3 +1,6 @@
+//! Posture files: written and read back, errors naming the line and column, the separator hint,
+//! a cell's external axes, and the limit on the number of postures.
+
 use approx::assert_relative_eq;
 use nalgebra::Vector6;
 use stiffid_core::common::error::ColumnProblem;

@@ -1,3 +1,6 @@
+//! Stiffness files: the drives' stiffness and covariance, every parameter in its unit checked
+//! against the setup's model, the errors naming the key, and the files written before.
+
 use nalgebra::{DMatrix, Matrix6};
 use stiffid_core::io::stiffness::*;
 use stiffid_core::model::Model;

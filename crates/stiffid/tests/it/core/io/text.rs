@@ -1,3 +1,6 @@
+//! An input file's bytes as text: UTF-8 read, the first invalid byte named with its line and
+//! column.
+
 #[test]
 fn text_reads_utf8_and_names_the_first_invalid_byte() {
     let text = stiffid_core::io::text("group.csv", b"q1_deg,q2_deg".to_vec()).unwrap();

@@ -1,3 +1,6 @@
+//! The `[gravity]` table of a robot's own weight: written and read back exactly, a bad table or
+//! tool centre refused naming its field.
+
 use serde::Deserialize;
 use stiffid_core::robot::weight_file::*;
 use stiffid_core::Result;
