@@ -18,7 +18,7 @@
 //! per candidate. The chosen group's value is then recomputed from its observation matrix by QR
 //! ([`super::Evaluator::value`]).
 //!
-//! Limits: at most [`MAX_POOL`] pool postures; groups of 2 to [`MAX_GROUP`] postures.
+//! Limits: at most [`MAX_POOL`] pool postures; groups of 2 to 60 postures.
 
 use super::evaluator::Information;
 use super::exchange::{self, PoolMethod, PoolOptions};
@@ -33,7 +33,7 @@ use stiffid_core::{Error, Result};
 pub const MAX_POOL: usize = 10_000;
 
 /// Most postures in a group chosen from a pool.
-pub const MAX_GROUP: usize = 60;
+pub(crate) const MAX_GROUP: usize = 60;
 
 /// The group chosen from a pool.
 #[derive(Debug, Clone, PartialEq)]
@@ -118,7 +118,7 @@ impl<'a> Pool<'a> {
     ///
     /// # Errors
     /// [`Error::InvalidField`]: `options` outside their limits; `n`
-    /// below 2, above [`MAX_GROUP`] or above the usable postures; the `test-pose` criterion
+    /// below 2, above 60 or above the usable postures; the `test-pose` criterion
     /// without test postures; no group of `n` usable postures that identifies all six compliances
     /// (field `pool`). [`Error::MissingField`] for a criterion the setup lacks a field for
     /// ([`Criterion::check`]).

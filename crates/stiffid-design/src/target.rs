@@ -8,7 +8,7 @@
 //! A target out of reach is seen early: the information of a well-chosen group grows about in
 //! proportion to its size N, so its predicted rate falls about as `1/sqrt(N)` (on the paper's
 //! setup `rate * sqrt(N)` stays within 5% from 2 to 60 postures). The search stops as soon as
-//! [`STOP_STEPS`] sizes in a row extrapolate, by that law, to a rate at the largest size allowed
+//! 2 sizes in a row extrapolate, by that law, to a rate at the largest size allowed
 //! above [`STOP_MARGIN`] times the target ([`TargetOutcome::extrapolated_pct`]), instead of trying
 //! every size up to [`MAX_POSTURES`].
 
@@ -32,7 +32,7 @@ pub const STOP_MARGIN: f64 = 1.25;
 
 /// Consecutive sizes whose extrapolation must say "out of reach" before the search stops early (one
 /// poorly chosen group must not end it).
-pub const STOP_STEPS: usize = 2;
+pub(crate) const STOP_STEPS: usize = 2;
 
 /// One group size tried.
 #[derive(Debug, Clone, PartialEq)]

@@ -28,7 +28,7 @@
 //!
 //! ## Bounded and robust fits: refitted
 //! The non-negative and robust fits are not linear in `delta`; each fold is refitted from its
-//! rows. That costs `O(K m p^2)`: `folds x measurements` is at most [`MAX_REFIT_WORK`].
+//! rows. That costs `O(K m p^2)`: `folds x measurements` is at most 4 000 000.
 
 pub use super::Method;
 
@@ -45,7 +45,7 @@ pub(crate) const MIN_PIVOT: f64 = 1e-7;
 /// The most `folds x measurements` of a refitted (bounded or robust) cross-validation: each
 /// fold's fit costs about 13 us of CPU per measurement, so the bound is about a minute of CPU (2
 /// folds of the 1.48 million rows of a 256 MiB file: 38 s).
-pub const MAX_REFIT_WORK: usize = 4_000_000;
+pub(crate) const MAX_REFIT_WORK: usize = 4_000_000;
 
 /// One fold: the fit without some postures and its predictions of them.
 #[derive(Debug, Clone, PartialEq)]
@@ -124,7 +124,7 @@ struct Full {
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`folds`) unless `2 <= folds <= postures`, or for a bounded or robust
-/// `method` when `folds x measurements` exceeds [`MAX_REFIT_WORK`]; (`cross-validation fold N`)
+/// `method` when `folds x measurements` exceeds 4 000 000; (`cross-validation fold N`)
 /// when the postures left in a fold cannot identify every joint (the message says why).
 pub fn cross_validate(
     obs: &Observations,

@@ -46,7 +46,7 @@ const FRAME: &str = "frame";
 const FEED: &str = "feed_mm_s";
 
 /// The accepted feed of a path file's `feed_mm_s`, mm/s: above 0, at most 10 000.
-pub const FEED_MM_S: limits::Range = limits::Range::new(0.0, 1e4, "mm/s");
+pub(crate) const FEED_MM_S: limits::Range = limits::Range::new(0.0, 1e4, "mm/s");
 
 /// The error at `line`, in no column.
 fn problem(line: u64, problem: ColumnProblem) -> Error {
@@ -373,7 +373,7 @@ fn feed(record: &csv::StringRecord, names: &[&str], i: usize, line: u64) -> Resu
 ///
 /// # Errors
 /// Those of [`points`] for the rows up to the first one whose feed is not a number within
-/// [`FEED_MM_S`] and above 0 ([`Error::Column`] naming its line and column).
+/// [0, 10 000] mm/s and above 0 ([`Error::Column`] naming its line and column).
 pub fn feeds(text: &str) -> Result<Option<Vec<Option<f64>>>> {
     let mut reader = reader(text);
     let header = reader.headers().map_err(|e| unreadable(1, &e))?.clone();

@@ -53,9 +53,9 @@ use crate::{Error, Result};
 use nalgebra::{DMatrix, DVector, Vector3};
 
 /// The most folds a calibration holds.
-pub const MAX_FOLDS: usize = 100_000;
+pub(crate) const MAX_FOLDS: usize = 100_000;
 /// The most scores (held-out coordinates) a calibration holds.
-pub const MAX_SCORES: usize = 3_000_000;
+pub(crate) const MAX_SCORES: usize = 3_000_000;
 /// The level accepted: `[0.5, 0.999]`.
 pub const LEVEL: crate::common::limits::Range = crate::common::limits::Range::new(0.5, 0.999, "");
 /// The default level of the prediction intervals.

@@ -28,7 +28,7 @@ use nalgebra::Vector6;
 pub const MARGIN_DEG: f64 = 5.0;
 
 /// The largest margin a stiffness file may state, deg.
-pub const MAX_MARGIN_DEG: f64 = 360.0;
+pub(crate) const MAX_MARGIN_DEG: f64 = 360.0;
 
 /// What a compliance says about the postures it was identified from.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]

@@ -11,13 +11,13 @@ use std::collections::HashMap;
 
 /// Largest accepted displacement of a measuring point, m: a robot deflects by millimetres, so a
 /// larger value is a unit or transcription error.
-pub const MAX_DISPLACEMENT: f64 = 1.0;
+pub(crate) const MAX_DISPLACEMENT: f64 = 1.0;
 
 /// Largest accepted force magnitude, N.
-pub const MAX_FORCE: f64 = 1e6;
+pub(crate) const MAX_FORCE: f64 = 1e6;
 
 /// Largest accepted moment magnitude, Nm.
-pub const MAX_MOMENT: f64 = 1e6;
+pub(crate) const MAX_MOMENT: f64 = 1e6;
 
 /// One measured displacement: a measuring point in a posture under a wrench.
 #[derive(Debug, Clone, PartialEq)]

@@ -23,7 +23,6 @@ mod measurement;
 pub mod stiffness;
 
 pub use measurement::{assemble, Check, Measurement, Observations};
-pub use measurement::{MAX_DISPLACEMENT, MAX_FORCE, MAX_MOMENT};
 
 use crate::model::Placed;
 use crate::observation::stiffness::joint_torques;

@@ -29,7 +29,7 @@ use nalgebra::Vector6;
 pub const MAX_HARMONICS: usize = 64;
 
 /// The largest coefficient a map holds, rad (10 deg): an error map is a small correction.
-pub const MAX_COEFFICIENT: f64 = 10.0 * std::f64::consts::PI / 180.0;
+pub(crate) const MAX_COEFFICIENT: f64 = 10.0 * std::f64::consts::PI / 180.0;
 
 /// The width `W` of the ramp over which a map's series tapers to zero beyond its fitted range,
 /// deg ([`taper`]).
@@ -68,7 +68,7 @@ impl ErrorMap {
     ///
     /// # Errors
     /// [`Error::InvalidField`] (`error_map`) when the two differ in length, hold more than
-    /// [`MAX_HARMONICS`], or a coefficient is not finite or beyond [`MAX_COEFFICIENT`].
+    /// [`MAX_HARMONICS`], or a coefficient is not finite or beyond 10 deg.
     pub fn new(cos: Vec<f64>, sin: Vec<f64>) -> Result<Self> {
         let invalid = |message: String| Error::InvalidField {
             field: "error_map".into(),
@@ -134,7 +134,7 @@ impl ErrorMap {
     ///
     /// # Errors
     /// [`Error::InvalidField`] (`error_map`) when `b` is not finite or beyond
-    /// [`MAX_COEFFICIENT`].
+    /// 10 deg.
     pub fn with_backlash(self, b: f64) -> Result<Self> {
         if !(b.is_finite() && b.abs() <= MAX_COEFFICIENT) {
             return Err(Error::InvalidField {

@@ -219,7 +219,7 @@ impl Robot {
     ///
     /// # Errors
     /// [`Error::InvalidField`] (`axis_map.matrix`) when the matrix is not invertible: its
-    /// condition number is NaN or above [`limits::MAX_AXIS_MAP_COND`], or `axis_map.offset` when
+    /// condition number is NaN or above 1e8, or `axis_map.offset` when
     /// an offset is not finite.
     pub fn with_axis_map(self, axis_map: AxisMap) -> Result<Self> {
         let cond = crate::math::jacobi::cond(&axis_map.matrix);
@@ -542,7 +542,7 @@ fn invalid(field: String, message: &str) -> Error {
 #[derive(Debug, Clone, Default)]
 pub enum Bodies {
     /// None given: capsules along the chain, radii scaled to the robot's size
-    /// ([`crate::setup::DEFAULT_RADIUS_FRACTIONS`]).
+    /// ([`crate::setup::default_geometry`]).
     #[default]
     Scaled,
     /// Capsules along the chain with these radii of the base and links 1-6, m (a robot TOML

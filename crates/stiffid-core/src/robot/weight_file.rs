@@ -19,7 +19,7 @@ use std::fmt::Write;
 
 /// The most gravity terms a robot or stiffness file holds: four mass moments of six links for
 /// each of the six springs.
-pub const MAX_GRAVITY_TERMS: usize = 144;
+pub(crate) const MAX_GRAVITY_TERMS: usize = 144;
 
 /// The deflection under the robot's own weight as a calibration fitted it
 /// (`stiffid calibrate --gravity`, `stiffid_metrology::calibration::gravity`): the gravity model
@@ -72,8 +72,8 @@ pub struct GravityFile {
 }
 
 /// The own weight of a `[gravity]` table, checked: the model `masses`, `lumped`,
-/// `lumped-links` or `arm`, 1 to [`MAX_GRAVITY_TERMS`] terms with finite values, a tool mass within
-/// [`limits::TOOL_MASS_KG`], a tool's centre of mass within [`limits::LENGTH_MM`] and only with
+/// `lumped-links` or `arm`, 1 to 144 terms with finite values, a tool mass within
+/// [0.001, 10 000] kg, a tool's centre of mass within [`limits::LENGTH_MM`] and only with
 /// its mass.
 ///
 /// # Errors

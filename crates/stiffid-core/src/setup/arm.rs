@@ -47,7 +47,7 @@ impl Tool {
 /// matrix ([`Payload::body`], [`crate::robot::dynamics`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Payload {
-    /// The mass, kg (within [`crate::common::limits::TOOL_MASS_KG`]).
+    /// The mass, kg (within [0.001, 10 000] kg).
     pub mass: f64,
     /// The centre of mass, flange frame, m.
     pub centre: Vector3<f64>,
@@ -144,7 +144,7 @@ impl Arm {
 
     /// How far each frame of the robot model (joints 1-6 and the flange) may be from the true
     /// robot's: the standard deviation of each coordinate of its position (m) and orientation
-    /// (rad) (`[robot_accuracy]`, default [`super::DEFAULT_FRAME_SD`]): what a registration
+    /// (rad) (`[robot_accuracy]`, default 0.3 mm and 0.3 mrad): what a registration
     /// from the nominal robot cannot see (`stiffid_metrology::register::robot_covariance`).
     pub fn frame_sd(&self) -> (f64, f64) {
         self.frame_sd
@@ -188,13 +188,13 @@ pub struct RobotGeometry {
 
 /// Default radius of the base and links 1-6 as a fraction of the robot's size (the total length
 /// of its capsule segments): 8, 6, 4.5, 4, 3, 2.5 and 2 %.
-pub const DEFAULT_RADIUS_FRACTIONS: [f64; 7] = [0.08, 0.06, 0.045, 0.04, 0.03, 0.025, 0.02];
+pub(crate) const DEFAULT_RADIUS_FRACTIONS: [f64; 7] = [0.08, 0.06, 0.045, 0.04, 0.03, 0.025, 0.02];
 
 /// Smallest default tool radius, m (10 mm).
 pub(crate) const MIN_TOOL_RADIUS: f64 = 0.01;
 
 /// The default [`RobotGeometry`] of a robot and tool: link radii
-/// [`DEFAULT_RADIUS_FRACTIONS`] of the robot's size (the summed length of its base and link
+/// 8, 6, 4.5, 4, 3, 2.5 and 2 % of the robot's size (the summed length of its base and link
 /// segments, the same in every posture; 4.33 m and radii 346, 260, 195, 173, 130, 108, 87 mm for
 /// the COMAU NJ 165), and `default_tool_radius`.
 pub fn default_geometry(robot: &Robot, tool: &Tool) -> RobotGeometry {

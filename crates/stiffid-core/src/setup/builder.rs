@@ -96,7 +96,7 @@ impl Setup {
 /// per coordinate): a nominal industrial robot, whose joint frames are typically off by 0.1 to 0.5
 /// mm and mrad, 1 to 3 mm at the tool over the workspace (Nubiola and Bonev 2013, Robotics and
 /// Computer-Integrated Manufacturing 29(1)).
-pub const DEFAULT_FRAME_SD: (f64, f64) = (3e-4, 3e-4);
+pub(crate) const DEFAULT_FRAME_SD: (f64, f64) = (3e-4, 3e-4);
 
 /// Builds a [`Setup`] from SI values (m, rad, N, Nm/rad, m^2), argmin-style: `with_*` setters,
 /// then [`SetupBuilder::build`] checks every field as a setup file's are checked.
@@ -196,7 +196,7 @@ impl SetupBuilder {
         self
     }
 
-    /// The measuring points, flange frame, m (1 to [`limits::MAX_MEASURING_POINTS`]).
+    /// The measuring points, flange frame, m (1 to 100).
     pub fn with_measuring_points(mut self, points: Vec<Vector3<f64>>) -> Self {
         self.measuring_points = points;
         self
@@ -215,7 +215,7 @@ impl SetupBuilder {
     }
 
     /// The load levels applied in each posture, N (positive, rising, at most
-    /// [`crate::setup::load_steps::MAX_STEPS`]; empty: one load, the rope load).
+    /// 100; empty: one load, the rope load).
     pub fn with_load_steps(mut self, steps: Vec<f64>) -> Self {
         self.load_steps = steps;
         self
@@ -328,7 +328,7 @@ impl SetupBuilder {
         self
     }
 
-    /// The tool's mass and centre of mass (default none; the mass within [`limits::TOOL_MASS_KG`],
+    /// The tool's mass and centre of mass (default none; the mass within [0.001, 10 000] kg,
     /// the centre's coordinates within [`limits::LENGTH_MM`]).
     pub fn with_payload(mut self, payload: Payload) -> Self {
         self.payload = Some(payload);

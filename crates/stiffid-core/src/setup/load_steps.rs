@@ -16,7 +16,7 @@
 //! convention), and nothing changes.
 
 /// Most load steps of a setup (`[loading] steps_n`).
-pub const MAX_STEPS: usize = 100;
+pub(crate) const MAX_STEPS: usize = 100;
 
 /// The weights of the readings in the displacement `D` at the rope load (module docs).
 #[derive(Debug, Clone, PartialEq)]

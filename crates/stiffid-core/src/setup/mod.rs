@@ -93,10 +93,10 @@ pub mod reference;
 mod workcell;
 
 pub(crate) use arm::nearest_measuring_point;
+pub use arm::Arm;
 pub use arm::{default_geometry, RobotGeometry, Tool};
-pub use arm::{Arm, DEFAULT_RADIUS_FRACTIONS};
 pub use arm::{Payload, GRAVITY};
-pub use builder::{SetupBuilder, DEFAULT_FRAME_SD};
+pub use builder::SetupBuilder;
 pub use cell::{Cell, Obstacle, Tracker};
 pub use experiment::{Experiment, Noise, RopeLoad};
 pub(crate) use file::parse_with;

@@ -35,7 +35,7 @@ pub(crate) const REFERENCE_STIFFNESS_NM_PER_RAD: [f64; 6] = [
 
 /// The largest payload [`nominal_stiffness`] accepts, kg (the heaviest serial industrial robots
 /// carry about 2.3 t).
-pub const MAX_PAYLOAD_KG: f64 = 2500.0;
+pub(crate) const MAX_PAYLOAD_KG: f64 = 2500.0;
 
 /// The characteristic length L (m) that minimises the median dexterity `k(J_N)` of the point `tcp`
 /// (flange frame, m) over `LENGTH_SAMPLES` postures drawn uniformly within `[lower, upper]` (axis
@@ -123,7 +123,7 @@ pub fn reach(robot: &Robot, seed: u64) -> f64 {
 
 /// A rough payload class (kg) for a robot of `reach` (m) when its payload is not known: the
 /// reference robot's payload scaled by the cube of the reach ratio (geometric similarity: mass
-/// grows with the cube of size), within `[1,` [`MAX_PAYLOAD_KG`]`]`. `reference_reach` is the
+/// grows with the cube of size), within `[1, 2500]` kg. `reference_reach` is the
 /// reference robot's [`reach`]. A 0.9 m arm gets about 6 kg, a 3.2 m arm about 270 kg.
 pub fn payload_class_kg(reach: f64, reference_reach: f64) -> f64 {
     (REFERENCE_PAYLOAD_KG * (reach / reference_reach).powi(3)).clamp(1.0, MAX_PAYLOAD_KG)
@@ -135,7 +135,7 @@ pub fn payload_class_kg(reach: f64, reference_reach: f64) -> f64 {
 /// by a factor of two or three; identify them, then use the identified ones.
 ///
 /// # Errors
-/// [`Error::InvalidField`] (`payload_kg`) unless `0 < payload_kg <=` [`MAX_PAYLOAD_KG`].
+/// [`Error::InvalidField`] (`payload_kg`) unless `0 < payload_kg <= 2500`.
 pub fn nominal_stiffness(payload_kg: f64) -> Result<Vector6<f64>> {
     if !(payload_kg > 0.0 && payload_kg <= MAX_PAYLOAD_KG) {
         return Err(Error::InvalidField {

@@ -12,7 +12,7 @@ use stiffid_core::Result;
 
 /// Uniform redraws of a posture that fails the cell's checks before the least violating draw is
 /// kept.
-pub const CONSTRAINT_TRIES: usize = 1000;
+pub(crate) const CONSTRAINT_TRIES: usize = 1000;
 
 /// Uniform postures a global search draws before it starts, to stop at once when none of them
 /// passes the cell's checks.
@@ -52,7 +52,7 @@ pub(super) fn check_some_feasible(checker: &Checker, seed: u64) -> Result<()> {
 ///
 /// A posture that fails the cell's checks ([`stiffid_core::cell::Checker`]: floor, obstacles,
 /// self-collision, rope, line of sight, `[constraints]`) is redrawn uniformly in the box, up to
-/// [`CONSTRAINT_TRIES`] times (rejection sampling); if no draw passes, the least violating is kept
+/// 1000 times (rejection sampling); if no draw passes, the least violating is kept
 /// (the search then moves toward feasibility).
 ///
 /// The same `(setup, n, seed)` gives the same group on every machine: ChaCha8 seeded with `seed`,

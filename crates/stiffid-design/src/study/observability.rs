@@ -25,10 +25,10 @@ use stiffid_metrology::calibration::{fit, gravity, validation, ErrorModel, Estim
 pub const MAX_GROUPS: usize = 10_000;
 
 /// Most postures a group.
-pub const MAX_SIZE: usize = 200;
+pub(crate) const MAX_SIZE: usize = 200;
 
 /// The test (held-out) postures of the study.
-pub const TEST_POSTURES: usize = 30;
+pub(crate) const TEST_POSTURES: usize = 30;
 
 /// The reference postures that fix the kept parameters.
 pub const REFERENCE_POSTURES: usize = 60;
@@ -67,7 +67,7 @@ pub fn postures(robot: &Robot, n: usize, rng: &mut ChaCha8Rng) -> Vec<Vector6<f6
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`groups`, `size`, `draws`) for a count out of its range (3 to
-/// [`MAX_GROUPS`] groups, 1 to [`MAX_SIZE`] postures, 1 to 100 draws), (`noise`) for a noise
+/// [`MAX_GROUPS`] groups, 1 to 200 postures, 1 to 100 draws), (`noise`) for a noise
 /// not positive and finite; those of the fit.
 pub fn calibration_study(
     groups: usize,

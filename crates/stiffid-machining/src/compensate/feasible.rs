@@ -42,12 +42,12 @@ pub struct Feasible {
 
 impl Feasible {
     /// The default of [`Feasible::margin`], deg.
-    pub const DEFAULT_MARGIN_DEG: f64 = 5.0;
+    pub(crate) const DEFAULT_MARGIN_DEG: f64 = 5.0;
     /// The default of [`Feasible::max_condition`].
-    pub const DEFAULT_MAX_CONDITION: f64 = 1000.0;
+    pub(crate) const DEFAULT_MAX_CONDITION: f64 = 1000.0;
 
-    /// The defaults for `setup`: a margin of [`Feasible::DEFAULT_MARGIN_DEG`], a condition
-    /// number of at most [`Feasible::DEFAULT_MAX_CONDITION`] and, when the setup has a `[cell]`,
+    /// The defaults for `setup`: a margin of 5 deg, a condition
+    /// number of at most 1000 and, when the setup has a `[cell]`,
     /// its collision checks; no speed check ([`Feasible::move_times`]).
     pub fn for_setup(setup: &Setup) -> Self {
         Self {

@@ -46,7 +46,7 @@ pub struct Freedom {
 }
 
 /// The most `--free` options of one run.
-pub const MAX_FREE: usize = 8;
+pub(crate) const MAX_FREE: usize = 8;
 
 /// The options that `free` replaced (command-line spelling, without `--`), each with the option
 /// that replaces it (`free` or `minimise`) and how to write its value there.
@@ -202,7 +202,7 @@ impl Freedom {
     /// Without a free variable, the options that only mean something with one are refused.
     ///
     /// # Errors
-    /// [`Error::InvalidOption`] ([`JobOption::Free`]) for more than [`MAX_FREE`] variables, one
+    /// [`Error::InvalidOption`] ([`JobOption::Free`]) for more than 8 variables, one
     /// given twice or an unknown name; those of each variable's range and step
     /// ([`FreeRange::checked`], [`LeadTilt::checked`], [`FreeVariables::validate`]);
     /// [`Error::OptionCombination`] for `minimise`, `objective`, `margin_deg`, `max_condition` or

@@ -40,12 +40,12 @@ pub struct Map {
     /// The variable mapped.
     pub variable: MapVariable,
     /// With [`MapVariable::Rotation`], the columns: the rotations about tool z from the path's
-    /// own, rad, ascending (the grid of the free tool axis, or of [`Map::DEFAULT_STEP_DEG`] and
-    /// [`Map::DEFAULT_RANGE_DEG`] without one); empty for the track.
+    /// own, rad, ascending (the grid of the free tool axis, or of 5 deg and
+    /// 90 deg without one); empty for the track.
     pub angles: Vec<f64>,
     /// With [`MapVariable::Track`], the columns: the station's offsets from the path's own, m,
-    /// ascending (the grid of the free station, or of [`Map::DEFAULT_STATION_STEP_MM`] and
-    /// [`Map::DEFAULT_STATION_RANGE_MM`] without one); empty for the rotation.
+    /// ascending (the grid of the free station, or of 50 mm and
+    /// 1000 mm without one); empty for the rotation.
     pub stations: Vec<f64>,
     /// The error bound ([`super::Budget`], without the residual the Newton steps leave), m.
     pub bound: DMatrix<f64>,
@@ -67,13 +67,13 @@ pub struct Map {
 
 impl Map {
     /// The grid's step without a free tool axis, deg.
-    pub const DEFAULT_STEP_DEG: f64 = 5.0;
+    pub(crate) const DEFAULT_STEP_DEG: f64 = 5.0;
     /// The grid's range without a free tool axis, deg.
-    pub const DEFAULT_RANGE_DEG: f64 = 90.0;
+    pub(crate) const DEFAULT_RANGE_DEG: f64 = 90.0;
     /// The track map's step without a free station, mm.
-    pub const DEFAULT_STATION_STEP_MM: f64 = 50.0;
+    pub(crate) const DEFAULT_STATION_STEP_MM: f64 = 50.0;
     /// The track map's range without a free station, mm.
-    pub const DEFAULT_STATION_RANGE_MM: f64 = 1000.0;
+    pub(crate) const DEFAULT_STATION_RANGE_MM: f64 = 1000.0;
 }
 
 /// What the compensation chose at one path point besides the point itself: the values the

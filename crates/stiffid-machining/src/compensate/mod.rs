@@ -29,7 +29,7 @@
 //! angles, each angle's postures continued along the path by inverse kinematics; a point only takes
 //! an angle whose deflection is no larger than at the nominal angle (so the nominal path is always
 //! feasible and no point's deflection rises); the sum of the deflections is minimised, plus a
-//! tie-breaking cost of [`TIE_BREAK`] times each point's nominal deflection per full range away
+//! tie-breaking cost of 1e-6 times each point's nominal deflection per full range away
 //! from the path's own angle and per full step between points: where the angles tie (a TCP on
 //! the spindle axis turns nothing) the path keeps its own angle, and a rotation is smooth along
 //! the path, never a zig-zag between equal angles; a gain below about 1e-6 of the deflection is
@@ -69,7 +69,7 @@
 //! [`Options::refine`] `= L` (at most [`refine::MAX_LEVELS`]) the line the dynamic programming
 //! chose on the grid is refined `L` times ([`refine`]): at each level every free axis' step is
 //! halved and the states at each point are the previous level's values plus `k` halved steps,
-//! `|k| <= 2` [`refine::BAND`] on every axis (a band of +-[`refine::BAND`] of the previous
+//! `|k| <= 2` on every axis (a band of +-1 of the previous
 //! level's cells), within each axis' range, the travel and the cone. Each band state's postures
 //! are continued along the path by inverse kinematics at its per-point values, a state is taken
 //! where its cost is no larger than at the path's own values and its posture passes the checks
@@ -151,7 +151,7 @@
 //! choices, [`stiffid_core::robot::configuration`]). With [`FreeVariables::configuration`] the whole path is
 //! compensated in each ([`path_configurations`], [`crate::compensate()`]): the path's
 //! own as given, every other from its posture at the first point (inverse kinematics from
-//! [`CONFIGURATION_SEEDS`] seeded starts, the solution nearest to the path's own posture in
+//! 128 seeded starts, the solution nearest to the path's own posture in
 //! each configuration), continued point by point, a joint target solved from its nominal pose;
 //! the other free variables are chosen in each by their dynamic programming. A configuration
 //! cannot change along a continuous cut, so one holds the whole path ([`Scope::Program`]), or,
@@ -173,7 +173,7 @@
 //! drilling program instead (`path_with_exits`, [`crate::dynamics`]): a drilling
 //! exit's cost is the surge of its thrust at the turned posture, taken only where it is no larger
 //! than at the path's own angle; every other point costs nothing but the tie-breaking cost, here
-//! [`TIE_BREAK`] times the path's largest surge (a rotation about the drill axis changes neither
+//! 1e-6 times the path's largest surge (a rotation about the drill axis changes neither
 //! the exits nor the thrust). Where the surge cannot be computed at the path's own angle (a
 //! singular posture) the point keeps that angle.
 
@@ -220,8 +220,9 @@ pub(crate) use stream::path_in_cones;
 pub use stream::{path, stream, CHUNK};
 pub use variables::{
     Aggregate, Free, FreeRange, FreeVariables, LeadTilt, Limits, Objective, Variable,
-    CONFIGURATION_SEEDS, LEAD_TILT_MAX_CONE_DEG, MAX_CONFIGURATION_POINTS, MAX_GRID_CELLS,
+    MAX_CONFIGURATION_POINTS,
 };
+pub(crate) use variables::{CONFIGURATION_SEEDS, LEAD_TILT_MAX_CONE_DEG, MAX_GRID_CELLS};
 /// The residual the Newton steps aim at, m.
 pub const TOLERANCE_M: f64 = 1e-10;
 /// The residual rotation the Newton steps aim at, rad.
@@ -233,7 +234,7 @@ pub const REQUIRED_RAD: f64 = 1e-6;
 /// Newton steps at most per point, and the default of [`Options::max_iterations`].
 pub const MAX_ITERATIONS: usize = 30;
 /// The relative weight of the free tool axis' tie-breaking cost (module docs).
-pub const TIE_BREAK: f64 = 1e-6;
+pub(crate) const TIE_BREAK: f64 = 1e-6;
 
 /// Where a path point is: axis angles, or a TCP pose reached by inverse kinematics.
 #[derive(Debug, Clone, PartialEq)]

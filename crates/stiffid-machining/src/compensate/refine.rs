@@ -16,10 +16,10 @@ use stiffid_core::{Error, Result};
 pub const MAX_LEVELS: usize = 4;
 /// Each level's band: the previous level's line plus or minus this many of its cells, on every
 /// axis (`4 BAND + 1` values of the halved step per axis).
-pub const BAND: usize = 1;
+pub(crate) const BAND: usize = 1;
 /// The most `states^2 x points` of one level's dynamic programming (every band state's
 /// predecessors at every point).
-pub const MAX_TRANSITIONS: f64 = 2e9;
+pub(crate) const MAX_TRANSITIONS: f64 = 2e9;
 
 /// A refined band's column and each point's external values (the checks'), from each point's
 /// values on every axis of the grid (offsets from the path's own, rad or m, the grid's axis
@@ -73,7 +73,7 @@ pub(crate) struct Line {
 }
 
 /// Refuses more than [`MAX_LEVELS`] levels, and a band of more cells than
-/// [`super::MAX_GRID_CELLS`] or more transitions than [`MAX_TRANSITIONS`] on a
+/// 5 000 000 or more transitions than 2e9 on a
 /// grid of `axes` axes over `points` points.
 ///
 /// # Errors

@@ -32,7 +32,7 @@ use stiffid_core::{Error, Result};
 /// # Errors
 /// Those of [`super::path`]; those of [`on_carriage`] for a point's external values;
 /// [`Error::InvalidOption`] ([`JobOption::StationRange`]) for a robot without a carrier axis
-/// and for a grid of more than [`MAX_GRID_CELLS`] cells (stations x rotations x
+/// and for a grid of more than 5 000 000 cells (stations x rotations x
 /// points).
 pub fn path_on_track(
     arm: &Arm,

@@ -23,7 +23,7 @@ use stiffid_core::{Error, Result};
 ///
 /// # Errors
 /// [`Error::InvalidField`] for `options` outside their limits ([`Options::validate`]) or a free
-/// tool axis grid beyond [`super::MAX_GRID_CELLS`];
+/// tool axis grid beyond 5 000 000;
 /// [`Error::InvalidOption`] ([`JobOption::Minimise`]) for the surge objective, which
 /// needs a drilling program (`path_with_exits`);
 /// [`Error::Column`] naming the line of the first point (in path order) that fails: axis angles
@@ -195,7 +195,7 @@ pub const CHUNK: usize = 4096;
 /// parallel within a chunk, inverse kinematics continued from the previous chunk's last
 /// posture); `sink` gets each chunk's points and results, in path order, before the next chunk is
 /// read. With [`super::FreeVariables::tool_rotation`] or [`super::FreeVariables::lead_tilt`] the whole path is one problem (dynamic programming over the
-/// path): its points are collected (at most [`super::MAX_GRID_CELLS`] grid cells) and
+/// path): its points are collected (at most 5 000 000 grid cells) and
 /// compensated by [`path`], then given to `sink` chunk by chunk. The results equal [`path`]'s.
 /// Returns the number of points.
 ///

@@ -290,18 +290,18 @@ impl Variable {
 
 /// The largest cone's half angle of the lead and tilt, deg: of `--free lead-tilt=-CONE..CONE` and
 /// of a process file's `[tool_axis] cone_deg`.
-pub const LEAD_TILT_MAX_CONE_DEG: f64 = 30.0;
+pub(crate) const LEAD_TILT_MAX_CONE_DEG: f64 = 30.0;
 
 /// The most grid cells (states x path points) a free variable's optimisation may visit: each is
 /// one inverse kinematics solution kept in memory (about 70 bytes), so at most about 0.4 GB.
-pub const MAX_GRID_CELLS: f64 = 5e6;
+pub(crate) const MAX_GRID_CELLS: f64 = 5e6;
 
 /// The most path points a free configuration evaluates (every configuration holds the whole
 /// path).
 pub const MAX_CONFIGURATION_POINTS: usize = 100_000;
 
 /// Random starts of inverse kinematics that look for the configurations of the first point.
-pub const CONFIGURATION_SEEDS: usize = 128;
+pub(crate) const CONFIGURATION_SEEDS: usize = 128;
 
 impl FreeRange {
     /// The range and step of `variable` from the units of the command line (`range`: the half

@@ -46,7 +46,7 @@ pub(super) fn plane_axes(plane: u8) -> (usize, usize, usize) {
 /// `CENTER_ARC_RADIUS_TOLERANCE`, 0.028 mm or 0.0028 inch, or 0.1 % of the radius,
 /// `SPIRAL_RELATIVE_TOLERANCE`). As both controllers, the end is reached exactly: the radius
 /// changes linearly from the start's to the end's along the arc (LinuxCNC's spiral).
-pub const ARC_END_TOLERANCE_MM: f64 = 0.005;
+pub(crate) const ARC_END_TOLERANCE_MM: f64 = 0.005;
 /// The most an arc's end may lie off the circle in any case, mm (grbl's 0.5 mm).
 pub(crate) const ARC_END_MAX_MM: f64 = 0.5;
 /// The most an arc's end may lie off the circle beyond [`ARC_END_TOLERANCE_MM`], relative to

@@ -18,7 +18,7 @@
 //!   `G53` frame a `G53` rapid makes no point and the axes it names unknown, a feed is refused); `G28`/`G30`
 //!   to the setup's positions (module `home`); tool length offsets `G43 Hn`/`G44`/`G49` with the
 //!   tools' lengths (module `machine`); arc centres `G90.1`/`G91.1`; an arc's end off its circle
-//!   within grbl's and LinuxCNC's tolerance ([`ARC_END_TOLERANCE_MM`]), reached along a spiral.
+//!   within grbl's and LinuxCNC's tolerance (0.005 mm), reached along a spiral.
 //!   Every point is the tool tip in the `G54` part frame.
 //! - Modes: `G90`/`G91` absolute / incremental, `G20`/`G21` inch / mm; `G4` dwell, `G40`, `G61`,
 //!   `G61.1`, `G64` (its `P Q`), `G80`, `G94` are accepted and change nothing here; a line opening
@@ -46,7 +46,7 @@
 //! Any other G code or letter is refused naming its line (cutter radius compensation `G41`/`G42`
 //! saying it belongs to the CAM post; `G92`, `G93`, `G95`, `G28.1` saying why), as are
 //! parameters and expressions (`#`, `[`), O-word subprograms and loops, block delete `/`, polar
-//! words `@ ^`, an arc whose end is off its circle beyond [`ARC_END_TOLERANCE_MM`], an arc of
+//! words `@ ^`, an arc whose end is off its circle beyond 0.005 mm, an arc of
 //! radius below 1 um, a letter given twice in one block (but `G` and `M`), two codes of one
 //! modal group in one block (`G0 G1`, `G90 G91`, `M3 M4`), an arc with a number of turns `P` or a centre or radius beyond 100 m, a feed rate `F` outside `(0, MAX_FEED]`, a spindle speed `S` outside
 //! `[0, 100000]` rev/min, an `M` code not a whole number from 0 to 999, a subprogram call or return (`M97`, `M98`, `M99`), a motion after the
@@ -77,7 +77,7 @@ mod process;
 mod words;
 mod write;
 
-pub use arc::{ArcBlock, ARC_END_TOLERANCE_MM};
+pub use arc::ArcBlock;
 pub(crate) use cycles::Cycle;
 pub use machine::{Machine, ProgramFrames};
 pub use process::{Comment, ProcessWord};
@@ -93,9 +93,9 @@ use words::words;
 /// The most path points (after splitting arcs).
 pub const MAX_POINTS: usize = 1_000_000;
 /// The most blocks (lines).
-pub const MAX_BLOCKS: usize = 1_000_000;
+pub(crate) const MAX_BLOCKS: usize = 1_000_000;
 /// The accepted chord tolerance, mm.
-pub const CHORD_TOLERANCE_MM: stiffid_core::common::limits::Range =
+pub(crate) const CHORD_TOLERANCE_MM: stiffid_core::common::limits::Range =
     stiffid_core::common::limits::Range::new(1e-6, 10.0, "mm");
 
 /// Rapid or cutting motion.
@@ -270,11 +270,11 @@ pub fn parse(text: &str, chord_tolerance: f64) -> Result<GCode> {
 /// `machine`: its work offsets, start and home positions and tool lengths.
 ///
 /// # Errors
-/// [`Error::InvalidOption`] for a chord tolerance outside [`CHORD_TOLERANCE_MM`];
+/// [`Error::InvalidOption`] for a chord tolerance outside [1e-6, 10] mm;
 /// [`Error::Program`] naming the line for anything outside the subset, a malformed word, an arc
 /// off its circle, no tool orientation in the header or the setup, rotary words without
 /// `rotary = abc`, a work offset, home position or tool length `machine` lacks, a feed motion
-/// before every axis is known, no motion at all, or more than [`MAX_BLOCKS`] lines or
+/// before every axis is known, no motion at all, or more than 1 000 000 lines or
 /// [`MAX_POINTS`] points.
 pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<GCode> {
     stiffid_core::common::limits::check(

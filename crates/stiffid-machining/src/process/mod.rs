@@ -115,7 +115,7 @@ impl Operation {
 /// along the axis (a plunge): 0.01, within 0.57 deg of the axis. A plunge written as a robot
 /// program's targets stays one: rounded to their decimals, or to an INFORM job's whole pulses
 /// (at 1000 pulses per degree, about 40 um on a 2.5 m reach, 0.4% of a 10 mm plunge).
-pub const PLUNGE: f64 = 1e-2;
+pub(crate) const PLUNGE: f64 = 1e-2;
 
 /// The feed frame in the base frame (module docs): `x` the part of `feed` across the tool axis,
 /// `z = -tool_z`, `y = z x x`. `None` when `feed` has no part across the axis (relative

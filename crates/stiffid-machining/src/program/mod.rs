@@ -52,7 +52,7 @@
 //! The targets come in the order of the motion instructions, which is the order the path follows;
 //! a declared point moved to twice is one target per visit. [`JointProgram::write`] replaces the
 //! six numbers (a Cartesian target: its pose's numbers and, where they changed, its
-//! configuration data) of each target whose value changed (with [`DECIMALS`] decimals, INFORM in whole
+//! configuration data) of each target whose value changed (with 9 decimals, INFORM in whole
 //! pulses) and nothing else ([`JointProgram::write_with_external`] the external values too);
 //! a point visited twice takes one value, so the two visits' compensations must agree.
 
@@ -81,10 +81,10 @@ use stiffid_core::{Error, Result, Setup};
 
 /// Decimals of a written joint value, deg (1e-9 deg: the compensation's precision; controllers
 /// round to their own).
-pub const DECIMALS: usize = 9;
+pub(crate) const DECIMALS: usize = 9;
 
 /// The most joint targets a program may hold.
-pub const MAX_TARGETS: usize = 1_000_000;
+pub(crate) const MAX_TARGETS: usize = 1_000_000;
 
 /// The registry: each controller language's variant of [`Dialect`], its doc line and its
 /// controller (a unit struct of its folder implementing [`Controller`]). A new language adds
@@ -352,7 +352,7 @@ pub fn parse_with_data(text: &str, data: Option<&str>, dialect: Dialect) -> Resu
 /// [`Error::Program`] naming the line: every motion instruction outside the subset (module docs),
 /// a joint target with a missing, repeated or non-numeric axis value, a Cartesian target with a
 /// missing or malformed member or configuration data ([`cartesian`]), no motion to a target
-/// at all, or more than [`MAX_TARGETS`].
+/// at all, or more than 1 000 000.
 pub fn parse_in(text: &str, dialect: Dialect, context: &Context) -> Result<JointProgram> {
     let Read {
         mut targets,

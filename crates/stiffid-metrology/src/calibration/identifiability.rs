@@ -16,7 +16,7 @@
 //! `d` of the second of two parallel joints into the first's). A column with no effect at all
 //! (gravity about a vertical axis) merges into nothing. The kept columns' count is the rank, the
 //! condition number is that of their scaled columns, and the correlations of the kept
-//! parameters (from `(J^T J)^-1`) above [`CORRELATION_REPORTED`] in absolute value are listed:
+//! parameters (from `(J^T J)^-1`) above 0.9 in absolute value are listed:
 //! the weakly separated pairs (Sun and Hollerbach 2008 on observability).
 
 use nalgebra::{DMatrix, DVector};
@@ -28,7 +28,7 @@ use stiffid_core::{Error, Result};
 pub const RANK_TOLERANCE: f64 = 1e-7;
 
 /// Correlations above this, in absolute value, are listed.
-pub const CORRELATION_REPORTED: f64 = 0.9;
+pub(crate) const CORRELATION_REPORTED: f64 = 0.9;
 
 /// Correlations above this, in absolute value, leave the two parameters not separately
 /// identifiable: the readings determine one combination of them, and each one's standard
@@ -63,7 +63,7 @@ pub struct Identifiability {
     /// The condition number of the kept columns of the scaled Jacobian (largest over smallest
     /// singular value).
     pub condition: f64,
-    /// The kept parameters' correlations above [`CORRELATION_REPORTED`] in absolute value:
+    /// The kept parameters' correlations above 0.9 in absolute value:
     /// `(i, j, rho)`, `i < j` parameter indices.
     pub correlations: Vec<Correlation>,
 }

@@ -11,7 +11,7 @@
 //!   screws), with the column scaling; [`model`]: the error model of a setup, as `calibrate` fits it.
 //! - [`identifiability`]: which parameters the readings determine, by QR with column pivoting on
 //!   the column-scaled Jacobian: the rank, the condition number, the parameters merged and into
-//!   which, the correlations above [`identifiability::CORRELATION_REPORTED`].
+//!   which, the correlations above 0.9.
 //! - [`gravity`]: the joint deflection under the robot's own weight, with known masses (the
 //!   compliances unknown) or lumped (compliance times mass moment).
 //! - [`motions`]: the orders of a carrier's error motions, chosen by cross-validation.

@@ -46,11 +46,11 @@ pub const MIN_POINTS: usize = 3;
 
 /// Points whose second principal extent is below this share of the first (or below
 /// [`COLLINEAR_M`]) are collinear: the rotation about their line is not determined.
-pub const COLLINEAR_RATIO: f64 = 1e-4;
+pub(crate) const COLLINEAR_RATIO: f64 = 1e-4;
 
 /// Second principal extent (RMS distance from the best line, times `sqrt(n)`) below which points
 /// are collinear whatever their length, m (1 um: below a tracker's resolution).
-pub const COLLINEAR_M: f64 = 1e-6;
+pub(crate) const COLLINEAR_M: f64 = 1e-6;
 
 /// The shortest residual that is refused whatever the tracker noise, m: twice the largest unloaded
 /// absolute positioning error of uncalibrated industrial robots (0.5 to 5 mm over the workspace;
@@ -126,13 +126,13 @@ pub const SPREAD_RATIO_LIMIT: f64 = 1.25;
 /// The robot's points must spread at least this far (RMS distance from their centroid, m) for
 /// [`spread_ratio`] to judge the readings' scale: one posture, or postures close together, say
 /// nothing of it.
-pub const MIN_SPREAD_M: f64 = 0.05;
+pub(crate) const MIN_SPREAD_M: f64 = 0.05;
 
 /// How far the readings spread against the robot's points (`points`, pairs in any frames: the
 /// RMS distance from the centroid is the same in every frame): the RMS distance of the readings
 /// from their centroid over that of the robot's points from theirs, with the points' spread (m).
 /// 1 within the robot's errors for readings in mm as labelled, 0.001 for readings in metres.
-/// `None` when the points spread less than [`MIN_SPREAD_M`].
+/// `None` when the points spread less than 5 cm.
 pub fn spread_ratio(points: &[Correspondence]) -> Option<(f64, f64)> {
     let spread = |v: &[Vector3<f64>]| {
         let n = v.len().max(1) as f64;
@@ -258,7 +258,7 @@ pub fn correspondences(setup: &Setup, readings: &Readings) -> Result<Vec<Corresp
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`points`): fewer than [`MIN_POINTS`], a non-finite coordinate, or
-/// collinear points ([`COLLINEAR_RATIO`], [`COLLINEAR_M`], in either frame); [`Error::NotFinite`]
+/// collinear points (1e-4, 1 micrometre, in either frame); [`Error::NotFinite`]
 /// when an SVD does not converge.
 ///
 /// # Examples

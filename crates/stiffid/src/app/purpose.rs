@@ -25,7 +25,7 @@ pub enum Purpose {
     Both,
     /// The check of a calibrated robot (`calibrate --update`): the calibration design of what
     /// drifts between sessions, the joint offsets, the frame and the measuring points
-    /// (`CalibrationOptions::of`), D-optimal by default, [`CHECK_POSTURES`] postures by default.
+    /// (`CalibrationOptions::of`), D-optimal by default, 10 postures by default.
     Check,
 }
 
@@ -35,7 +35,7 @@ impl Purpose {
         matches!(self, Purpose::Calibration | Purpose::Check)
     }
 
-    /// The size of a searched group when none is given: [`CHECK_POSTURES`] for a check, 6
+    /// The size of a searched group when none is given: 10 for a check, 6
     /// otherwise.
     pub fn default_postures(self) -> usize {
         match self {
@@ -47,7 +47,7 @@ impl Purpose {
 
 /// The default size of a check campaign (`select --for check`; within the search's 2 to 100
 /// postures).
-pub const CHECK_POSTURES: usize = 10;
+pub(crate) const CHECK_POSTURES: usize = 10;
 
 impl stiffid_core::common::choice::Choice for Purpose {
     const FIELD: &'static str = "for";
@@ -85,7 +85,7 @@ pub const REFERENCE_POSTURES: usize = 60;
 
 /// The seed of the reference postures (fixed, so that `select` and `evaluate` score a group on
 /// the same design whatever the search's seed).
-pub const REFERENCE_SEED: u64 = 1;
+pub(crate) const REFERENCE_SEED: u64 = 1;
 
 /// The calibration a group is designed for, and how the two designs combine.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -195,7 +195,7 @@ pub fn check(purpose: Purpose, options: &CalibrationOptions) -> Result<()> {
 /// The calibration design of `setup`: the error model `calibrate` fits (readings in the tracker
 /// frame, the setup's measuring points, `options`' geometry and gravity), the characteristic
 /// length (1 m without one, as `calibrate`), [`REFERENCE_POSTURES`] reference postures
-/// ([`random_group`] of [`REFERENCE_SEED`], within the bounds and the cell), the setup's test postures (the
+/// ([`random_group`] of seed 1, within the bounds and the cell), the setup's test postures (the
 /// machining region; the reference postures without them) and the setup's noise per coordinate.
 ///
 /// # Errors
@@ -203,14 +203,14 @@ pub fn check(purpose: Purpose, options: &CalibrationOptions) -> Result<()> {
 /// by [`check`]).
 ///
 /// On a robot with a carrier (a track), the model has the track's parameters too (its direction
-/// and its error motions of order [`DESIGN_ORDER`], [`stiffid_metrology::calibration::ErrorModel::with_external`]; the
+/// and its error motions of order 3, [`stiffid_metrology::calibration::ErrorModel::with_external`]; the
 /// positioner's lines, which only reflectors on its table read, drop out as not identified),
-/// the reference postures are dealt over [`REFERENCE_STATIONS`] stations of the travel
+/// the reference postures are dealt over 6 stations of the travel
 /// ([`stiffid_core::robot::ExternalAxes::stations`]) and every test posture is read at each of them.
 /// With reflectors on a positioner's table (`[workpiece] reflectors_mm`; reflectors on a fixed
 /// part without a positioner change no design), the model has the
 /// positioner's lines and offsets and the reflectors' coordinates too, and the table is read at
-/// [`REFERENCE_TABLE_ANGLES`] angles ([`table_grid`]) for reference, for the part's test
+/// 16 angles ([`table_grid`]) for reference, for the part's test
 /// points and as the readings a group is scored with until `select` chooses its own
 /// ([`CalibrationDesign::new_with_table`]).
 pub fn design(setup: &Setup, options: &CalibrationOptions) -> Result<CalibrationDesign> {
@@ -266,18 +266,18 @@ pub fn design(setup: &Setup, options: &CalibrationOptions) -> Result<Calibration
 
 /// How many positioner angles (about: a grid of the same count of values per axis) the table's
 /// reflectors are read at in a calibration design's reference campaign.
-pub const REFERENCE_TABLE_ANGLES: usize = 16;
+pub(crate) const REFERENCE_TABLE_ANGLES: usize = 16;
 
 pub use stiffid_design::selection::table::table_grid;
 
 /// The order of a track's error motions a calibration design assumes (`calibrate` chooses its
 /// own from the readings, `--error-motions`): a bow and a twist along the rail are of order 2
 /// and 3.
-pub const DESIGN_ORDER: usize = 3;
+pub(crate) const DESIGN_ORDER: usize = 3;
 
 /// The stations of a track's travel the reference and test postures of a calibration design
 /// are read at.
-pub const REFERENCE_STATIONS: usize = 6;
+pub(crate) const REFERENCE_STATIONS: usize = 6;
 
 /// The search goal of `purpose` with the stiffness criterion `criterion` and the calibration
 /// design `design` (required unless [`Purpose::Stiffness`]).

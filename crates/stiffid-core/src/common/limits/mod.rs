@@ -62,7 +62,7 @@ pub const PULSES: Range = Range::new(1e-6, 1e9, "pulses per deg or mm");
 
 /// An axis's largest speed in a robot, setup or URDF file (`max_speed_deg_s`, `max_speed_mm_s`):
 /// above 0, at most 10 000 deg/s or mm/s (`check_speeds`).
-pub const AXIS_SPEED: Range = Range::new(0.0, 1e4, "deg/s or mm/s");
+pub(crate) const AXIS_SPEED: Range = Range::new(0.0, 1e4, "deg/s or mm/s");
 
 /// Checks every largest speed of `values` (mm/s where `field` ends in `_mm_s`, else deg/s):
 /// finite, above 0 and within [`AXIS_SPEED`]; the error names `field`, the value found and its
@@ -119,7 +119,7 @@ pub(crate) const MASS_KG: Range = Range::new(0.0, 1e5, "kg");
 pub(crate) const INERTIA_KG_M2: Range = Range::new(-1e6, 1e6, "kg m^2");
 
 /// [`LENGTH_MM`] in metres (URDF files).
-pub const LENGTH_M: Range = Range::new(-100.0, 100.0, "m");
+pub(crate) const LENGTH_M: Range = Range::new(-100.0, 100.0, "m");
 
 /// Any angle in a robot or setup file (DH angles, joint limits, bounds, postures, roll-pitch-yaw).
 pub const ANGLE_DEG: Range = Range::new(-1e4, 1e4, "deg");
@@ -139,7 +139,7 @@ pub const STIFFNESS_N_PER_MM: Range = Range::new(1e-3, 1e10, "N/mm");
 pub(crate) const AXIS: Range = Range::new(-1e6, 1e6, "");
 
 /// A tool's mass (`[tool] mass_kg`).
-pub const TOOL_MASS_KG: Range = Range::new(1e-3, 1e4, "kg");
+pub(crate) const TOOL_MASS_KG: Range = Range::new(1e-3, 1e4, "kg");
 
 /// The relative standard deviation of the robot's and the tool's masses (`[masses] sd_pct`).
 pub(crate) const MASS_SD_PERCENT: Range = Range::new(0.0, 100.0, "%");
@@ -152,7 +152,7 @@ pub(crate) const FRAME_SD: Range = Range::new(0.0, 100.0, "");
 pub const LOAD_N: Range = Range::new(1e-3, 1e7, "N");
 
 /// Forces and moments on the command line, per component (measurement files: the magnitude
-/// limits of [`crate::observation::MAX_FORCE`] and [`crate::observation::MAX_MOMENT`]).
+/// limits of 1e6 N and 1e6 Nm).
 pub const WRENCH: Range = Range::new(-1e7, 1e7, "N or Nm");
 
 /// The standard deviation of one coordinate of one tracker reading (`[noise] reading_sd_mm`).
@@ -182,7 +182,7 @@ pub(crate) const AXIS_MAP_ENTRY: Range = Range::new(-1e3, 1e3, "");
 
 /// The largest 2-norm condition number of an axis map matrix: beyond it the map between axis and
 /// kinematic angles loses more than half the digits.
-pub const MAX_AXIS_MAP_COND: f64 = 1e8;
+pub(crate) const MAX_AXIS_MAP_COND: f64 = 1e8;
 
 /// Largest input file accepted, bytes (256 MiB): room for a measurement file of 2 million rows
 /// (1e6 rows take about 119 MB), and a bound on the memory one file (or `/dev/zero`) can take.
@@ -260,7 +260,7 @@ pub const MAX_GROUP_POSTURES: usize = 10_000;
 pub const MAX_GROUPS: usize = 100;
 
 /// Most measuring points of a setup.
-pub const MAX_MEASURING_POINTS: usize = 100;
+pub(crate) const MAX_MEASURING_POINTS: usize = 100;
 
 /// Most reflectors on a positioner's table: a setup's `[workpiece] reflectors_mm`, a readings
 /// file's `T1` ...
@@ -278,7 +278,7 @@ pub(crate) const MAX_TEST_POSTURES: usize = 10_000;
 
 /// Deepest element nesting accepted in a URDF file (real ones nest about 5 deep); checked before
 /// the XML parser sees the text.
-pub const MAX_XML_DEPTH: usize = 64;
+pub(crate) const MAX_XML_DEPTH: usize = 64;
 
 /// Longest text of a value quoted in an error message, in characters; longer ones are cut with
 /// an ellipsis.

@@ -49,7 +49,7 @@ mod sections;
 
 pub(crate) use covariance::check_covariance;
 pub use covariance::check_covariance_of;
-pub use model_form::{FormLaw, MAX_MODEL_FORM_SETS};
+pub use model_form::FormLaw;
 pub use model_form::{FormModelSection, FormSpring, ModelFormSection};
 pub use sections::{FoldSection, GravitySection, GravityTerm};
 pub use sections::{PredictionSection, RegionSection};

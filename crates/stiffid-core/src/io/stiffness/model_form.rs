@@ -20,7 +20,7 @@ use serde::{Deserialize, Serialize};
 
 /// The most parameter sets a `model_form` holds: every supported model of every resample of the
 /// largest bootstrap ([`limits::MAX_BOOTSTRAP`]), ten models each.
-pub const MAX_MODEL_FORM_SETS: usize = 20_000;
+pub(crate) const MAX_MODEL_FORM_SETS: usize = 20_000;
 
 /// The largest magnitude of a parameter set's value (SI: rad/Nm for a drive or a rotation
 /// spring, m/N for a translation, rad/Nm^2 for a load-dependent law): a stiffness of 1 Nm/rad,
@@ -40,7 +40,7 @@ pub struct ModelFormSection {
     /// setup's families or candidates).
     pub springs: Vec<FormSpring>,
     /// The models, each with the parameter sets of the resamples that support it; at most
-    /// [`MAX_MODEL_FORM_SETS`] sets in all.
+    /// 20 000 sets in all.
     pub models: Vec<FormModelSection>,
     /// The comparison's recommended model fitted to every posture: one parameter set (its
     /// springs among `springs`); absent in files written before it was.

@@ -21,7 +21,7 @@ pub struct GravitySection {
     /// The gravity model: `masses` (the robot's link masses, the terms the joint compliances),
     /// `lumped`, `lumped-links` or `arm` (compliance times mass moment).
     pub model: String,
-    /// Each term, in the model's order; at most [`MAX_GRAVITY_TERMS`].
+    /// Each term, in the model's order; at most 144.
     pub terms: Vec<GravityTerm>,
 }
 
@@ -97,7 +97,7 @@ pub struct PredictionSection {
     /// ([`prediction::Deflection::scores`]), one per held-out coordinate; finite, >= 0.
     #[serde(default)]
     pub deflection_scores: Option<Vec<f64>>,
-    /// One per fold, at most [`prediction::MAX_FOLDS`], with at most [`prediction::MAX_SCORES`]
+    /// One per fold, at most 100 000, with at most 3 000 000
     /// scores in all.
     pub folds: Vec<FoldSection>,
 }
@@ -296,7 +296,7 @@ pub struct RegionSection {
     /// `lower_deg`.
     pub upper_deg: [f64; 6],
     /// The margin that widens every axis' range at both ends, deg, within
-    /// [0, [`crate::model::region::MAX_MARGIN_DEG`]] (written as
+    /// [0, 360] (written as
     /// [`crate::model::region::MARGIN_DEG`], 5).
     pub margin_deg: f64,
 }

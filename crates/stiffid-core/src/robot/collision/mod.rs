@@ -28,7 +28,7 @@ use urdf_rs::{Geometry, JointType};
 /// hull (a finely tessellated sphere) takes about 1 s at 80 000 triangles and 23 s at 320 000
 /// on one core, so a finer mesh is refused, asking for a decimated one (ROS-Industrial collision
 /// meshes have hundreds to a few thousand triangles).
-pub const MAX_MESH_TRIANGLES: usize = 100_000;
+pub(crate) const MAX_MESH_TRIANGLES: usize = 100_000;
 
 /// A convex shape in its own frame, m.
 #[derive(Debug, Clone)]
@@ -101,7 +101,7 @@ pub(crate) const FAR: f64 = 1e4;
 /// link and the mesh for a `package://` URL whose package is in none of the package paths (naming
 /// the package and the paths) or a mesh file that does not exist; [`Error::Parse`] naming the
 /// URDF, the link and the mesh: a mesh file that cannot be read or is no STL, more than
-/// [`MAX_MESH_TRIANGLES`] triangles, a mesh format other than STL, points that span no volume,
+/// 100 000 triangles, a mesh format other than STL, points that span no volume,
 /// non-finite or out-of-range sizes.
 pub fn parse(
     text: &str,

@@ -10,7 +10,7 @@ pub const MAX_ORDER: usize = 8;
 
 /// The largest translation coefficient, m (50 mm), and rotation coefficient, rad (0.1): error
 /// motions are small corrections.
-pub const MAX_COEFFICIENT: [f64; 2] = [0.05, 0.1];
+pub(crate) const MAX_COEFFICIENT: [f64; 2] = [0.05, 0.1];
 
 /// The error motions of a linear axis: for each order `k = 1..=K`, six coefficients
 /// `[positioning, straightness y, straightness z, roll, pitch, yaw]` (m, m, m, rad, rad, rad) of
@@ -30,7 +30,8 @@ impl ErrorMotions {
     ///
     /// # Errors
     /// [`Error::InvalidField`] (`error_motions`) when there are more than [`MAX_ORDER`] orders
-    /// or a coefficient is not finite or beyond [`MAX_COEFFICIENT`](super::MAX_COEFFICIENT).
+    /// or a coefficient is not finite or beyond 50 mm (a
+    /// translation) or 0.1 rad (a rotation).
     pub fn new(coefficients: Vec<[f64; 6]>) -> Result<Self> {
         let invalid = |message: String| Error::InvalidField {
             field: "error_motions".into(),

@@ -34,7 +34,7 @@
 
 mod error_motions;
 pub mod file;
-pub use error_motions::{ErrorMotions, MAX_COEFFICIENT, MAX_ORDER};
+pub use error_motions::{ErrorMotions, MAX_ORDER};
 
 use crate::common::limits;
 use crate::{Error, Result};
@@ -214,7 +214,7 @@ impl ExternalAxes {
     /// are none or more than [`MAX_AXES`], more than `MAX_CARRIER_AXES` carrier axes or
     /// `MAX_POSITIONER_AXES` positioner axes, a carrier axis is not linear or a positioner
     /// axis not rotary, a name is empty or repeated, a number is not finite, a travel is empty
-    /// or beyond [`limits::LENGTH_M`] (linear) or [`limits::ANGLE_RAD`] (rotary), or a rotary
+    /// or beyond [-100, 100] m (linear) or [`limits::ANGLE_RAD`] (rotary), or a rotary
     /// axis carries error motions.
     pub fn new(axes: Vec<ExternalAxis>) -> Result<Self> {
         if axes.is_empty() || axes.len() > MAX_AXES {

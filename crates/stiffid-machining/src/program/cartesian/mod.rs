@@ -47,7 +47,7 @@ mod resolve;
 mod solve;
 
 pub use flags::Flags;
-pub use resolve::{check_placed, resolve, Controller, SAME_M, SAME_RAD};
+pub use resolve::{check_placed, resolve, Controller};
 pub(crate) use resolve::{is_cartesian, resolve_placed};
 pub(crate) use resolve::{same, Writer};
 

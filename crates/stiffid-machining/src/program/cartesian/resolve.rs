@@ -12,9 +12,9 @@ use stiffid_core::{Result, Robot, Setup};
 
 /// How far a frame the program states may be from the setup's (its tool, its `[workpiece]`)
 /// and still be it: 1 micrometre.
-pub const SAME_M: f64 = 1e-6;
+pub(crate) const SAME_M: f64 = 1e-6;
 /// The same for the frames' orientations: 1 microradian.
-pub const SAME_RAD: f64 = 1e-6;
+pub(crate) const SAME_RAD: f64 = 1e-6;
 
 /// What a Cartesian target is resolved against: the controller's kinematics and frames, and
 /// the setup's robot.
@@ -104,7 +104,7 @@ pub(crate) fn is_cartesian(program: &JointProgram) -> bool {
 /// # Errors
 /// [`Error::Program`](stiffid_core::Error::Program) naming the target's line (or the line that states the frame): a frame
 /// the program leaves to the controller (KRL without `$BASE` or `$TOOL`, `BASE_DATA[n]`), a
-/// tool that is not the setup's ([`SAME_M`], [`SAME_RAD`]), an LS user frame without the
+/// tool that is not the setup's (1 micrometre, 1 microradian), an LS user frame without the
 /// setup's `[workpiece]`, the first target without configuration data, a pose out of reach in
 /// the configuration it names (with the configurations it is reached in), a robot with
 /// external axes (not read with Cartesian targets yet).

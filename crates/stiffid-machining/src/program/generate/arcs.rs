@@ -3,7 +3,7 @@
 //! three `MOVC` (start, via, end).
 //!
 //! A G-code arc (`G2`/`G3`, [`crate::gcode::GCode::arcs`]) is read as its chord points. After
-//! compensation each arc is split into pieces of at most [`MAX_SWEEP_DEG`] (a controller
+//! compensation each arc is split into pieces of at most 180 deg (a controller
 //! refuses a circle of 360 deg or more, and a piece of at most half a circle keeps its via point
 //! far from its start and end), and each piece is written as one circular move from its
 //! compensated start through its via point (the compensated chord point nearest its middle) to
@@ -34,7 +34,7 @@ use std::f64::consts::PI;
 use std::ops::Range;
 
 /// The most one circular move turns, deg.
-pub const MAX_SWEEP_DEG: f64 = 180.0;
+pub(crate) const MAX_SWEEP_DEG: f64 = 180.0;
 
 /// How far past [`MAX_SWEEP_DEG`] a compensated piece may turn, deg: a full circle's
 /// compensated points are not exactly a circle, and it is two moves, not three.

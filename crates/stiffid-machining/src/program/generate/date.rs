@@ -8,7 +8,7 @@ use stiffid_core::{Error, Result};
 /// The environment variable of the date ([module docs](self)).
 pub(crate) const VARIABLE: &str = "SOURCE_DATE_EPOCH";
 /// The latest date taken, seconds since 1970 (9999-12-31 23:59:59 UTC).
-pub const MAX_EPOCH_S: i64 = 253_402_300_799;
+pub(crate) const MAX_EPOCH_S: i64 = 253_402_300_799;
 
 /// A date and time, UTC.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

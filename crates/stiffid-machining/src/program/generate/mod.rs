@@ -68,7 +68,7 @@
 //!   program cannot state (below 1 cm/min, 0.1 mm/s) is refused naming the G-code line;
 //! - the LS `COMMENT` is at most 16 characters, and an LS file at most [`LS_MAX_LINES`]
 //!   numbered lines (the pendant's four digits): its sub-programs hold fewer moves when needed;
-//!   an INFORM job at most [`super::inform::generate::MAX_POSITIONS`] positions (five digits);
+//!   an INFORM job at most 100 000 positions (five digits);
 //! - no move is faster than [`Settings::max_tcp_speed`], RAPID's rapids (`vrapid`) included;
 //!   rapids move at [`Settings::rapid_speed`] (RAPID `vrapid`) and
 //!   [`Settings::rapid_joint_pct`] (KRL `BAS(#VEL_PTP)`, LS `J .. %` in whole percents, INFORM
@@ -102,10 +102,10 @@ pub use checks::{check_cell, check_payload, check_pulses, written_targets};
 use names::room_for;
 pub use names::{
     check_name, check_plan, default_name_length, max_name_length, moves_per_file, LS_MAX_LINES,
-    MAX_FILES,
 };
 pub use process::{place, place_comments, Process, ProcessForm};
-pub use settings::{Settings, MIN_FEED, MOVES_PER_FILE, RAPID_PERCENT, RAPID_SPEED_MM_S};
+pub use settings::{Settings, RAPID_SPEED_MM_S};
+pub(crate) use settings::{MIN_FEED, MOVES_PER_FILE, RAPID_PERCENT};
 
 use super::{Dialect, DECIMALS};
 use crate::gcode::{Motion, Point};
@@ -337,10 +337,10 @@ pub fn moves(points: &[Point], max_tcp_speed: f64) -> Result<Vec<Move>> {
 /// # Errors
 /// [`Error::InvalidOption`] for settings outside their limits (option named), a program name the
 /// controller does not accept or that leaves no room for the sub-programs' numbers
-/// ([`JobOption::ProgramName`]), more than [`MAX_FILES`] sub-programs
+/// ([`JobOption::ProgramName`]), more than 9999 sub-programs
 /// ([`JobOption::MovesPerFile`]); [`Error::InvalidField`] for no
-/// target or more than [`super::MAX_TARGETS`], an axis angle that is not finite (`targets`), a
-/// count of moves other than the targets' or a feed below [`MIN_FEED`] or not finite (`moves`),
+/// target or more than 1 000 000, an axis angle that is not finite (`targets`), a
+/// count of moves other than the targets' or a feed below 0.001 mm/s or not finite (`moves`),
 /// a RAPID program and a tool without mass (`tool.mass_kg`);
 /// [`Error::Program`] for a feed an LS program
 /// cannot state (naming the target's 1-based index as its line).

@@ -11,7 +11,7 @@ use stiffid_core::common::error::JobOption;
 use stiffid_core::{Error, Result};
 
 /// The most sub-programs a program is split into.
-pub const MAX_FILES: usize = 9999;
+pub(crate) const MAX_FILES: usize = 9999;
 
 /// The most numbered lines of an LS program's `/MN` section: the pendant numbers them with four
 /// digits (FANUC's line numbers run 1 to 9999).
@@ -39,7 +39,7 @@ pub fn moves_per_file(dialect: Dialect, settings: &Settings) -> usize {
 
 /// Checks, before any computation, that a program `name` of `targets` targets can be written in
 /// `dialect` with `settings`: the settings within their limits ([`Settings::validate`], the name
-/// length within [`max_name_length`]), at most [`MAX_FILES`] sub-programs (for LS, few enough for
+/// length within [`max_name_length`]), at most 9999 sub-programs (for LS, few enough for
 /// the main program's calls to fit [`LS_MAX_LINES`]) and every name the controller takes
 /// ([`check_name`]). Returns the names: the main program's, then its sub-programs'.
 ///

@@ -2,7 +2,7 @@
 //! its tables (the setup's `[controller] tools` and `bases`,
 //! [`stiffid_core::setup::NumberedFrames`]) that are the program's tool and part frame.
 //!
-//! A table's frame is the program's when it lies within [`MATCH_MM`] and [`MATCH_DEG`] of it:
+//! A table's frame is the program's when it lies within 0.001 mm and 0.001 deg of it:
 //! the values a user copies from the pendant into the setup, to its decimals. Then the program
 //! selects it by number instead of stating it (KRL `$TOOL = TOOL_DATA[n]`, `$BASE =
 //! BASE_DATA[m]`; LS `UTOOL_NUM=n`, `UFRAME_NUM=m`, positions `UT : n`, `UF : m` in user frame
@@ -15,9 +15,9 @@ use nalgebra::Isometry3;
 use stiffid_core::setup::NumberedFrames;
 
 /// How far (mm) a table's frame may lie from the program's tool or part frame and be taken.
-pub const MATCH_MM: f64 = 0.001;
+pub(crate) const MATCH_MM: f64 = 0.001;
 /// How far (deg) a table's frame may turn from the program's tool or part frame and be taken.
-pub const MATCH_DEG: f64 = 0.001;
+pub(crate) const MATCH_DEG: f64 = 0.001;
 
 /// The program's tool and part frame as the controller holds them by number, with the table's
 /// frame (lengths in m; the tool in the controller's flange frame, the base in its world).

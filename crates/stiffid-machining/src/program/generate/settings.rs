@@ -10,11 +10,11 @@ use stiffid_core::{Error, Result};
 pub const RAPID_SPEED_MM_S: f64 = 200.0;
 /// The default joint speed of rapid moves ([`Settings::rapid_joint_pct`]: KRL `BAS(#VEL_PTP)`,
 /// LS `J`, INFORM `VJ=`), percent of the axes' top speed; KRL's `BAS(#ACC_PTP)` always.
-pub const RAPID_PERCENT: u32 = 20;
+pub(crate) const RAPID_PERCENT: u32 = 20;
 /// The slowest feed written, m/s (0.001 mm/s): a slower one is refused, never written as 0.
-pub const MIN_FEED: f64 = 1e-6;
+pub(crate) const MIN_FEED: f64 = 1e-6;
 /// The range of [`Settings::moves_per_file`].
-pub const MOVES_PER_FILE: std::ops::RangeInclusive<usize> = 100..=1_000_000;
+pub(crate) const MOVES_PER_FILE: std::ops::RangeInclusive<usize> = 100..=1_000_000;
 /// The range of [`Settings::name_length`].
 pub(crate) const NAME_LENGTH: std::ops::RangeInclusive<usize> = 8..=64;
 
@@ -31,7 +31,7 @@ pub struct Settings {
     /// The longest program name the controller takes; `None`: the dialect's
     /// (`default_name_length`).
     pub name_length: Option<usize>,
-    /// The most moves in one program file (within [`MOVES_PER_FILE`]).
+    /// The most moves in one program file (100 to 1 000 000).
     pub moves_per_file: usize,
     /// The TCP speed of rapid moves where the language states one (RAPID `vrapid`, at most
     /// `max_tcp_speed`), m/s, within
@@ -46,7 +46,7 @@ pub struct Settings {
 
 impl Default for Settings {
     /// Cartesian targets (not asked), 2000 mm/s, the dialect's name length, 10 000 moves per
-    /// file, rapids at [`RAPID_SPEED_MM_S`] and [`RAPID_PERCENT`].
+    /// file, rapids at [`RAPID_SPEED_MM_S`] and 20 %.
     fn default() -> Self {
         Self {
             targets: Targets::Cartesian,

@@ -22,7 +22,7 @@
 //!   refused naming both. A value is the pulses divided by its number, and a compensated value
 //!   is written as the nearest whole pulse (the round trip is exact to half a pulse).
 //! - `///POSTYPE ANGLE` then `///ANGLE` (base and station axes): deg for a rotary axis, mm for a
-//!   linear one, written with [`super::DECIMALS`] decimals.
+//!   linear one, written with 9 decimals.
 //!
 //! ## Motions
 //! `MOVJ` (joint), `MOVL` (linear) and `MOVC` (circular: the controller moves on the circle

@@ -328,7 +328,7 @@ impl External {
 }
 
 /// The most orders [`ErrorModel::with_external`] fits per linear axis.
-pub const MAX_FITTED_ORDER: usize = MAX_ORDER;
+pub(crate) const MAX_FITTED_ORDER: usize = MAX_ORDER;
 
 impl ErrorModel {
     /// The model with the robot's external axes ([`stiffid_core::Robot::external`]): per linear carrier
@@ -347,7 +347,7 @@ impl ErrorModel {
     /// # Errors
     /// [`Error::InvalidField`] (`external_axis`) when the robot has no external axes, the
     /// model has reflectors, loads or maps already, `orders` has another length, an order
-    /// exceeds [`MAX_FITTED_ORDER`], or `tables` exceeds [`super::MAX_POINTS`].
+    /// exceeds [`stiffid_core::robot::external::MAX_ORDER`], or `tables` exceeds [`super::MAX_POINTS`].
     pub fn with_external(mut self, orders: &[usize], tables: usize) -> Result<Self> {
         let invalid = |message: String| Error::InvalidField {
             field: "external_axis".into(),

@@ -82,7 +82,7 @@ mod parameter;
 mod tables;
 
 pub use basis::Basis;
-pub use external::MAX_FITTED_ORDER;
+pub(crate) use external::MAX_FITTED_ORDER;
 use loads::Loads;
 pub use maps::JointMaps;
 pub use parameter::{AxisPart, Component, Geometry, Kind, MeasuredIn, Parameter, Target};
@@ -96,7 +96,7 @@ use stiffid_core::{Error, Joint, Result, Robot};
 pub const MAX_POINTS: usize = 100;
 
 /// The share of the largest regressor RMS of its unit below which a gravity term has no effect.
-pub const NO_EFFECT: f64 = 1e-9;
+pub(crate) const NO_EFFECT: f64 = 1e-9;
 
 /// No direction of approach: the mean of the two ([`Observation::direction`]).
 const MEAN: Vector6<f64> = Vector6::new(0.0, 0.0, 0.0, 0.0, 0.0, 0.0);

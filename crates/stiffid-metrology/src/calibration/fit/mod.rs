@@ -28,8 +28,8 @@
 //! extrapolate it to others. So a model with gravity terms and no maps is fitted again with
 //! the prior weighed against the noise of its residuals, `sigma^2 = |r|^2 / (3n - p_e)` (`p_e`
 //! the effective parameters, [`Fit::effective_parameters`]), while that exceeds the noise the
-//! prior was weighed against by more than [`NOISE_TOLERANCE`] (a fixed point of the noise, at
-//! most [`MAX_REWEIGHTS`] fits; each from the same start): the prior's Gaussian with the noise
+//! prior was weighed against by more than 5 % (a fixed point of the noise, at
+//! most 4 fits; each from the same start): the prior's Gaussian with the noise
 //! the readings show, which leaves it as stated where the model fits to the tracker's noise
 //! (every noise-free or well-modelled campaign: the fit is unchanged there). [`Fit::gravity_noise`]
 //! gives the noise used; [`fit_at_stated_noise`] fits without it.
@@ -68,7 +68,7 @@ mod strength;
 
 pub(super) use leave_one_out::leave_one_out_linearised;
 use noise::fit_with;
-pub use noise::{fit_at_stated_noise, fit_choosing_strength, MAX_REWEIGHTS, NOISE_TOLERANCE};
+pub use noise::{fit_at_stated_noise, fit_choosing_strength};
 
 /// Most Levenberg-Marquardt iterations.
 pub const MAX_ITERATIONS: usize = 100;
@@ -77,13 +77,13 @@ pub const MAX_ITERATIONS: usize = 100;
 pub const MAX_READINGS: usize = 100_000;
 
 /// The scaled step length below which the fit has converged.
-pub const STEP_TOLERANCE: f64 = 1e-13;
+pub(crate) const STEP_TOLERANCE: f64 = 1e-13;
 
 /// A warning ([`WarningKind::NotConverged`]) when the fit stopped at its limit of `iterations`
 /// ([`Stop::IterationLimit`]) with the cost still falling: the calibration may still move.
 ///
 /// The fit's stop reasons: [`Stop::Converged`], an accepted step shorter than
-/// [`STEP_TOLERANCE`] (scaled, times one plus the number of parameters fitted);
+/// 1e-13 (scaled, times one plus the number of parameters fitted);
 /// [`Stop::Stalled`], an accepted step lowered the cost by at most `1e-15` of it;
 /// [`Stop::DampingExhausted`], no damping of 30 tried (each ten times the last) lowered the cost:
 /// both minima within rounding; [`Stop::IterationLimit`], [`MAX_ITERATIONS`] taken with the cost

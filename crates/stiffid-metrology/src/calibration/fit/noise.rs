@@ -6,10 +6,10 @@ use stiffid_core::Result;
 
 /// Most fits of the noise's fixed point ([`GravityPrior`] weighed against the residuals' noise:
 /// module docs, *Thin readings*).
-pub const MAX_REWEIGHTS: usize = 4;
+pub(crate) const MAX_REWEIGHTS: usize = 4;
 
 /// The relative change of the noise under which its fixed point is reached.
-pub const NOISE_TOLERANCE: f64 = 0.05;
+pub(crate) const NOISE_TOLERANCE: f64 = 0.05;
 
 /// [`super::fit_within`] at most `limit` iterations, the gravity prior weighed against the residuals'
 /// noise when `reweigh` and the model has gravity terms ([`reweighed`]; module docs, *Thin

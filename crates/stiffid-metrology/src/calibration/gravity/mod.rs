@@ -23,7 +23,7 @@
 //!   vertical joint's terms not at all (gravity exerts no torque about it), a moment along a joint
 //!   axis not by that joint; [`crate::calibration::identifiability`] keeps the independent terms
 //!   and names the merged.
-//! - [`Gravity::Lumped`]: the same for three bodies ([`BODIES`]): the upper arm (link 1), the
+//! - [`Gravity::Lumped`]: the same for three bodies: the upper arm (link 1), the
 //!   forearm (link 2, with link 3, the forearm tube that joint 4 rolls, lumped in) and the wrist
 //!   (link 4, with the flange and the tool, link 5, lumped in). A lumped link's mass moments are
 //!   taken as fixed in its body's frame: exact for a centre on the rolling axis (joints 4 and 6
@@ -61,7 +61,7 @@ pub const G: f64 = 9.80665;
 /// The bodies of [`Gravity::Lumped`] (links, 0-based): the turret (no term: joint 1 is vertical
 /// on every floor robot, and its terms merge), the upper arm, the forearm with link 3 lumped in,
 /// the wrist with link 5 and the tool lumped in.
-pub const BODIES: [usize; 4] = [0, 1, 2, 4];
+pub(crate) const BODIES: [usize; 4] = [0, 1, 2, 4];
 
 /// Which gravity terms a calibration fits.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
@@ -321,7 +321,7 @@ impl Terms {
     }
 
     /// Unknown masses, three bodies (module docs, [`Gravity::Lumped`]): the lumped terms of
-    /// every spring (in `coordinates`) and every link of [`BODIES`] it carries.
+    /// every spring (in `coordinates`) and every body of [`Gravity::Lumped`] it carries.
     pub fn lumped_bodies(robot: &Robot, coordinates: Coordinates) -> Self {
         Self::lumped_links((robot, Gravity::Lumped), coordinates, &BODIES)
     }

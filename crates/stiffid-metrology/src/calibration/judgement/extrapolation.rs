@@ -14,7 +14,7 @@ use stiffid_core::io::readings::point_name;
 
 /// How far a held-out posture's axis angle may lie beyond the fitted postures' range before it
 /// is named as outside it: 1 degree.
-pub const OUTSIDE_RAD: f64 = std::f64::consts::PI / 180.0;
+pub(crate) const OUTSIDE_RAD: f64 = std::f64::consts::PI / 180.0;
 
 /// The warning ([`WarningKind::Extrapolation`]) when the calibration misses held-out readings
 /// (`calibrated`, one error per observation of `held`) by more than `limit` (m) while the
@@ -77,7 +77,7 @@ pub struct Outside {
 }
 
 /// The held-out postures (`held`'s posture indices, table observations left out) whose axis
-/// angles lie outside the `fitted` observations' ranges by more than [`OUTSIDE_RAD`], each with
+/// angles lie outside the `fitted` observations' ranges by more than 1 deg, each with
 /// its [`Outside`], and the count of distinct held-out postures.
 pub fn postures_outside(
     fitted: &[Observation],
@@ -110,7 +110,7 @@ pub fn postures_outside(
 }
 
 /// The warning ([`WarningKind::Extrapolation`]) when held-out postures (`held`, labelled by
-/// `labels`) lie outside the `fitted` observations' axis ranges by more than [`OUTSIDE_RAD`],
+/// `labels`) lie outside the `fitted` observations' axis ranges by more than 1 deg,
 /// whatever their errors: how many, the joints outside, and the farthest posture with its
 /// distance (deg) beyond the range and its joint; `None` when every held-out posture lies within.
 pub fn outside_ranges(

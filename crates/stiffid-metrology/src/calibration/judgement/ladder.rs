@@ -2,7 +2,7 @@
 //! of nested models climbed by a cross-validation that holds out groups of postures.
 //!
 //! # The rungs
-//! In order of complexity, each gravity model ([`GRAVITY_RUNGS`]: the rigid robot, the arm's
+//! In order of complexity, each gravity model (the rigid robot, the arm's
 //! three terms (skipped, saying why, on a robot that is not an anthropomorphic arm), the lumped
 //! bodies, the lumped links, the known masses where the robot gives them) without joint error
 //! maps and then with the maps of `--maps` (chosen by [`crate::calibration::maps`]
@@ -13,7 +13,7 @@
 //! # The held-out figure
 //! Each rung is fitted to every reading (its gravity terms bounded by
 //! [`crate::calibration::fit::GravityPrior`]); a rung whose fit does not converge or
-//! whose scaled Jacobian's condition exceeds [`super::WEAK_CONDITION`] is skipped (the simpler
+//! whose scaled Jacobian's condition exceeds 1e6 is skipped (the simpler
 //! model kept), and so is a rung that extrapolates: one whose expected error where the robot is
 //! used ([`super::region`]: the joint-space hull of the postures of the campaign and of the
 //! setup) exceeds that of the geometry with the same maps variant by more than the held-out
@@ -28,7 +28,7 @@
 //! held-out error. The groups held out among
 //! the fitted postures cannot show what the spread shows; postures the robot never takes do not
 //! turn a model down.
-//! The postures are dealt into [`FOLDS`] groups (posture `i` in group `i mod K`); each group is
+//! The postures are dealt into 5 groups (posture `i` in group `i mod K`); each group is
 //! predicted by the rung refitted without it (linearised at the rung's fit, as the maps' choice:
 //! [`crate::calibration::maps::nested`], the maps chosen on each training set at the
 //! first gravity model's fit and kept, with their ridges, for the others, as the maps chosen on
@@ -58,7 +58,7 @@ use stiffid_core::Result;
 
 /// The gravity models of `--gravity auto`, in order of complexity ([`Gravity::Masses`] only on a
 /// robot with link masses).
-pub const GRAVITY_RUNGS: [Gravity; 5] = [
+pub(crate) const GRAVITY_RUNGS: [Gravity; 5] = [
     Gravity::None,
     Gravity::Arm,
     Gravity::Lumped,

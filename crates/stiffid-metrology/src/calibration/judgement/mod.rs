@@ -23,7 +23,7 @@ pub(crate) const MIN_DEGREES_OF_FREEDOM: usize = 10;
 
 /// The condition number of the scaled identification Jacobian above which the calibration warns
 /// that some parameters are weakly determined.
-pub const WEAK_CONDITION: f64 = 1e6;
+pub(crate) const WEAK_CONDITION: f64 = 1e6;
 
 #[cfg(test)]
 mod ladder_tests;

@@ -4,16 +4,16 @@
 //! tuned on).
 //!
 //! # The candidates
-//! A joint's map ([`stiffid_core::robot::ErrorMap`]) of `H` harmonics, `H` in [`HARMONICS`], with the
+//! A joint's map ([`stiffid_core::robot::ErrorMap`]) of `H` harmonics, `H` in 4, 8, 16 or 32, with the
 //! ridge `mu` in [`RIDGES`] ([`crate::calibration::fit::Options::ridge`]: a penalty of
 //! `mu` per reading on a scaled coefficient). `--maps J1,J3:16` fixes the joints and harmonics
-//! (a bare joint takes [`DEFAULT_HARMONICS`]) and chooses the ridge alone. Where the readings
+//! (a bare joint takes 16) and chooses the ridge alone. Where the readings
 //! carry the directions of approach, a joint's backlash term is a candidate too (one column,
 //! [`crate::calibration::error_model::Target::Backlash`]): `J2:8b` is 8 harmonics
 //! and the backlash, `J2:b` the backlash alone.
 //!
 //! # The choice ([`choose`])
-//! The postures are dealt into [`FOLDS`] folds (posture `p` of the training postures in fold
+//! The postures are dealt into 5 folds (posture `p` of the training postures in fold
 //! `p mod K`); each candidate's held-out error is the sum over folds of the errors of the fold's
 //! postures predicted by the fit of the others, at its best ridge (a held-out posture beyond the
 //! others' range of an axis with that axis's map tapered as the calibrated robot's:
@@ -21,7 +21,7 @@
 //! harmonic count, and each joint's backlash term alone (with directions); then, from no map,
 //! these in the order of their own held-out error, each kept when it lowers the held-out error by
 //! more than [`MAP_ACCEPT`] standard errors of the paired per-posture differences (a one-sided
-//! test at about 0.6 %) and by [`LEAST_GAIN`] of it: the choice keeps no map on a robot without
+//! test at about 0.6 %) and by 2 % of it: the choice keeps no map on a robot without
 //! one. Then jointly: the first `k` joints of that order (`k` from 2) together at each harmonic
 //! count up to the largest any of them chose alone, the one with the least held-out error replacing the forward choice where it has less
 //! and lowers the error without maps by the same rule (one joint at a time stops early where
@@ -29,7 +29,7 @@
 //! the parameters' change from the fit, a few nanometres on a calibrated robot.
 //!
 //! # The honest figure ([`nested`])
-//! An outer cross-validation of [`FOLDS`] folds makes the whole choice on each outer fold's
+//! An outer cross-validation of 5 folds makes the whole choice on each outer fold's
 //! training postures and predicts its held-out postures with it, beside the geometry alone on the
 //! same split: the held-out gain of choosing maps by cross-validation. Inside outer fold `k` the
 //! choice's inner folds are the other outer folds, each trained on the postures of neither: the
@@ -77,10 +77,10 @@ pub fn name(h: &JointMaps) -> String {
 }
 
 /// The harmonic counts `--maps auto` tries per joint.
-pub const HARMONICS: [usize; 4] = [4, 8, 16, 32];
+pub(crate) const HARMONICS: [usize; 4] = [4, 8, 16, 32];
 
 /// The harmonics of a joint named without a count (`--maps J2`).
-pub const DEFAULT_HARMONICS: usize = 16;
+pub(crate) const DEFAULT_HARMONICS: usize = 16;
 
 /// The ridges `mu` tried (dimensionless, per reading): up to 1, since from 50 postures a
 /// joint's 32 harmonics may need a stronger hold than from 100.
@@ -89,7 +89,7 @@ pub const RIDGES: [f64; 11] = [
 ];
 
 /// The folds of the inner and of the outer cross-validation.
-pub const FOLDS: usize = 5;
+pub(crate) const FOLDS: usize = 5;
 
 /// The standard errors of the paired per-posture differences by which a carrier's error motion
 /// order must lower the held-out error to be kept ([`super::motions`]).
@@ -104,7 +104,7 @@ pub const ACCEPT: f64 = 3.0;
 pub const MAP_ACCEPT: f64 = 2.5;
 
 /// The least share of the held-out squared error a map must remove to be kept.
-pub const LEAST_GAIN: f64 = 0.02;
+pub(crate) const LEAST_GAIN: f64 = 0.02;
 
 /// The fewest distinct postures with which `--maps auto` considers maps (below it, none): five
 /// folds of at least six postures.
@@ -125,7 +125,7 @@ pub enum Spec {
 
 impl Spec {
     /// Parses `auto`, `none` or a list of joints `J1,J3:16,J4:8b,J5:b` (a joint `J1`..`J6`,
-    /// optionally `:H` harmonics, 1 to [`MAX_HARMONICS`], default [`DEFAULT_HARMONICS`], a `b`
+    /// optionally `:H` harmonics, 1 to [`MAX_HARMONICS`], default 16, a `b`
     /// after them for a backlash term too, `:b` the backlash term alone).
     ///
     /// # Errors
@@ -183,7 +183,7 @@ impl Spec {
     }
 
     /// The maps the linearised fit needs columns for: every joint at the largest of
-    /// [`HARMONICS`] for [`Spec::Auto`], with a backlash term each where the readings carry
+    /// 4, 8, 16 or 32 for [`Spec::Auto`], with a backlash term each where the readings carry
     /// `directions`; the fixed ones; none.
     pub fn candidates(self, directions: bool) -> JointMaps {
         match self {
@@ -257,7 +257,7 @@ fn better(current: &Scored, candidate: &Scored) -> bool {
 
 /// Whether the candidate's held-out errors (per held-out posture, and their total) lower the
 /// current ones by more than `accept` standard errors of the paired per-posture differences
-/// and by [`LEAST_GAIN`] of the total: the acceptance rule of every choice by cross-validation
+/// and by 2 % of the total: the acceptance rule of every choice by cross-validation
 /// in the calibration (the maps at [`MAP_ACCEPT`], the error motions' orders at [`ACCEPT`]).
 pub fn lowers(current: (&[f64], f64), candidate: (&[f64], f64), accept: f64) -> bool {
     let n = current.0.len();

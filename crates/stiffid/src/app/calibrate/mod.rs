@@ -11,7 +11,7 @@
 //! With [`Request::update`], a calibrated robot refitted from check readings after their check
 //! ([`drift`]). Limits: at most `MAX_READINGS` readings (the readings file's own limit), at most
 //! [`stiffid_metrology::calibration::error_model::MAX_POINTS`] measuring points, more coordinates than
-//! identifiable parameters, at most [`MAX_CROSS_VALIDATION_POSTURES`] postures with
+//! identifiable parameters, at most 5000 postures with
 //! cross-validation (one fit per posture; beyond it, held-out readings get no intervals), at
 //! least `MIN_UPDATE_POSTURES` postures with `update`.
 
@@ -61,7 +61,7 @@ use stiffid_metrology::calibration::{ErrorModel, Estimate, Geometry};
 
 /// Most postures cross-validation takes (one Gauss-Newton step from the full fit per posture;
 /// the held-out readings' intervals the same folds).
-pub const MAX_CROSS_VALIDATION_POSTURES: usize = 5000;
+pub(crate) const MAX_CROSS_VALIDATION_POSTURES: usize = 5000;
 
 /// Nominal tolerances of the joint errors, as priors.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -293,7 +293,7 @@ pub(crate) type Outcome = crate::app::Outcome<Report>;
 /// Those of [`read`], [`stiffid_metrology::calibration::model`], [`fit::start`], [`fit::fit`],
 /// the ladder's ([`ladder`]), [`validation::validate`] and [`validation::cross_validate`], as
 /// [`Error::Input`] naming the file;
-/// [`Error::InvalidField`] (`cross_validate`) beyond [`MAX_CROSS_VALIDATION_POSTURES`] postures,
+/// [`Error::InvalidField`] (`cross_validate`) beyond 5000 postures,
 /// (`validate`) when the held-out readings are in another frame than the fitted;
 /// [`Error::InvalidOption`] ([`JobOption::Level`]) for a level outside
 /// [`stiffid_core::model::prediction::LEVEL`] or without `validate`.

@@ -366,7 +366,7 @@ impl<'a> Document<'a> {
 }
 
 /// Points kept for the report's figures, at most (every k-th point, k a power of 2).
-pub const SAMPLE: usize = 20_000;
+pub(crate) const SAMPLE: usize = 20_000;
 
 /// The largest and mean values along a path, accumulated point by point (`Summary::add`),
 /// with the sample and the ten largest deflections a report shows.
@@ -398,7 +398,7 @@ pub struct Summary {
     /// With the free lead and tilt: the largest |lead|, |tilt| and lean angle, and the sum of
     /// the lean angles, rad.
     lean: Option<[f64; 4]>,
-    /// Every `stride`-th point (0-based index and result), at most [`SAMPLE`] + 1.
+    /// Every `stride`-th point (0-based index and result), at most 20 001.
     pub sample: Vec<(usize, Compensated)>,
     stride: usize,
     /// The ten largest deflections (0-based index and result), largest first.

@@ -8,7 +8,7 @@
 //! the posture chosen, under the point's wrench) side by side: Spearman's rank correlation `rho`
 //! of the two over the path's points ([`stiffid_core::math::spearman`]) says whether they rank
 //! the postures alike (where the arm is softest, which rotation of the spindle deflects least).
-//! Below [`DISAGREEMENT_RHO`] they do not: the document's `model_ranking` lists the points whose
+//! Below 0.5 they do not: the document's `model_ranking` lists the points whose
 //! ranks differ most with both values and ranks, and a warning of kind `model-form` says so.
 
 use serde::Serialize;
@@ -21,10 +21,10 @@ use stiffid_machining::compensate::Compensated;
 /// Spearman's rho below which the two models rank the postures differently: at 0.5 a model
 /// explains a quarter of the other's rank variance; the two models of the same data agreeing
 /// on where the arm is soft give 0.9 and more.
-pub const DISAGREEMENT_RHO: f64 = 0.5;
+pub(crate) const DISAGREEMENT_RHO: f64 = 0.5;
 
 /// The most points the document lists (those whose ranks differ most).
-pub const MAX_LISTED: usize = 10;
+pub(crate) const MAX_LISTED: usize = 10;
 
 /// The two models' translations at every point so far (module docs).
 pub struct Ranking {
@@ -47,11 +47,11 @@ pub struct RankingDocument {
     /// Spearman's rank correlation of the two models' deflections over the points; `null` for
     /// fewer than 3 points or a constant deflection.
     pub rho: Option<f64>,
-    /// The rho below which the models rank the postures differently ([`DISAGREEMENT_RHO`]).
+    /// The rho below which the models rank the postures differently (0.5).
     pub threshold_rho: f64,
     /// Whether they rank them alike (`rho` at least `threshold_rho`; `true` without a rho).
     pub agree: bool,
-    /// The points whose ranks differ most, at most [`MAX_LISTED`], largest difference first.
+    /// The points whose ranks differ most, at most 10, largest difference first.
     pub largest_rank_differences: Vec<RankedPoint>,
 }
 

@@ -8,7 +8,7 @@ use stiffid_machining::process::milling::MIN_RESOLUTION_DEG;
 use stiffid_machining::process::{self, OperationForce, Process};
 
 /// The most a peak's angular resolution may be, deg.
-pub const MAX_RESOLUTION_DEG: f64 = 10.0;
+pub(crate) const MAX_RESOLUTION_DEG: f64 = 10.0;
 
 /// The forces to compute.
 pub struct Request<'a> {
@@ -17,7 +17,7 @@ pub struct Request<'a> {
     /// The process.
     pub process: &'a Process,
     /// The peak force over one revolution on a grid of spindle angles this far apart, deg
-    /// ([`MIN_RESOLUTION_DEG`] to [`MAX_RESOLUTION_DEG`]; in degrees as the process file and the
+    /// ([`MIN_RESOLUTION_DEG`] to 10; in degrees as the process file and the
     /// document state it); `None` for none.
     pub peak_resolution_deg: Option<f64>,
 }

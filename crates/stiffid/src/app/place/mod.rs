@@ -77,11 +77,11 @@ pub struct Free {
 
 impl Region {
     /// The largest extent of a range of lengths, m.
-    pub const MAX_EXTENT_M: f64 = 20.0;
+    pub(crate) const MAX_EXTENT_M: f64 = 20.0;
     /// The largest tilt, deg.
-    pub const MAX_TILT_DEG: f64 = 45.0;
+    pub(crate) const MAX_TILT_DEG: f64 = 45.0;
     /// How far the part may move up or down from its own height by default, mm.
-    pub const DEFAULT_HEIGHT_MM: f64 = 100.0;
+    pub(crate) const DEFAULT_HEIGHT_MM: f64 = 100.0;
     /// The largest tilt by default (`--free tilt`), deg.
     pub const DEFAULT_TILT_DEG: f64 = 10.0;
 

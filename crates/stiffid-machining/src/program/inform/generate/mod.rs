@@ -36,7 +36,7 @@ fn tool_file(plan: &Plan) -> u32 {
 
 /// The most teaching positions of one kind in a job: a position's number has five digits
 /// (`C00000` to `C99999`).
-pub const MAX_POSITIONS: usize = 100_000;
+pub(crate) const MAX_POSITIONS: usize = 100_000;
 
 /// A path speed's resolution, mm/s: `V=` states tenths of a mm/s.
 const SPEED_STEP_MM_S: f64 = 0.1;

@@ -19,7 +19,7 @@ use stiffid_identify::{Adequacy, Identification, RobustFit, Uncertainty};
 /// which the document calls it poorly determined (`poorly_determined`): the stiffness is then
 /// far from linear in the compliance over its interval, the delta-method interval is unreliable
 /// and the interval from the compliance's (`ci95_from_compliance_nm_per_rad`) is the one to trust.
-pub const POORLY_DETERMINED: f64 = 0.25;
+pub(crate) const POORLY_DETERMINED: f64 = 0.25;
 
 /// Whether each stiffness of `id` is poorly determined: its standard error in `u` above
 /// [`POORLY_DETERMINED`] times its magnitude (`false` for a stiffness or an error that is not a
@@ -29,7 +29,7 @@ pub(crate) fn poorly_determined(id: &Identification, u: &Uncertainty) -> [bool; 
 }
 
 /// How many of the largest residuals the document lists (`largest_residuals`).
-pub const LARGEST_RESIDUALS: usize = 5;
+pub(crate) const LARGEST_RESIDUALS: usize = 5;
 
 /// The relative standard error of each stiffness of `id` in `u`: the standard error over the
 /// stiffness's magnitude, %, `None` unless finite.
@@ -94,10 +94,10 @@ pub struct Document<'a> {
     /// stiffness's magnitude, %; `null` unless finite, or without degrees of freedom.
     pub std_error_pct: Option<[Option<f64>; 6]>,
     /// The relative standard error above which a stiffness is poorly determined
-    /// ([`POORLY_DETERMINED`]), %.
+    /// (25 %), %.
     pub poorly_determined_above_pct: f64,
     /// Whether each stiffness is poorly determined: `std_error_nm_per_rad` above
-    /// [`POORLY_DETERMINED`] (0.25) times its magnitude; measure postures
+    /// 0.25 times its magnitude; measure postures
     /// that load these joints more. `null` without degrees of freedom.
     pub poorly_determined: Option<[bool; 6]>,
     /// 95% confidence interval of each stiffness, symmetric in the stiffness, Nm/rad.
@@ -142,7 +142,7 @@ pub struct Document<'a> {
     pub residual_rms: f64,
     /// Every measurement's residual (measured - fitted), in the data's order.
     pub residuals: Vec<Residual<'a>>,
-    /// The [`LARGEST_RESIDUALS`] (5) measurements with the longest residuals (or all of them if
+    /// The 5 measurements with the longest residuals (or all of them if
     /// fewer), the longest first.
     pub largest_residuals: Vec<Residual<'a>>,
     /// With a robust fit: the reweighting.
