@@ -26,12 +26,7 @@ pub(crate) struct Witness {
 }
 
 /// Signed distance between two capsules (a segment is a capsule of radius 0), m: the distance of
-/// their segments minus both radii.
-pub fn capsule_capsule(c1: &Capsule, c2: &Capsule) -> f64 {
-    capsule_capsule_witness(c1, c2).0
-}
-
-/// [`capsule_capsule`] and its witness: the closest points of the two segments, and their
+/// their segments minus both radii, with its witness: the closest points of the two segments, and their
 /// direction (where the segments cross, the normal of both segments, the direction in which the
 /// crossing lines separate).
 pub(crate) fn capsule_capsule_witness(c1: &Capsule, c2: &Capsule) -> (f64, Witness) {
@@ -61,12 +56,7 @@ fn at(a: &Point3<f64>, b: &Point3<f64>, location: SegmentPointLocation) -> Point
     shape::Segment::new(*a, *b).point_at(&location)
 }
 
-/// Signed distance of a capsule above the floor plane `z = floor_z`, m.
-pub fn capsule_floor(c: &Capsule, floor_z: f64) -> f64 {
-    capsule_floor_witness(c, floor_z).0
-}
-
-/// [`capsule_floor`] and its witness: the lower end of the segment, its foot on the floor, the
+/// Signed distance of a capsule above the floor plane `z = floor_z`, m, with its witness: the lower end of the segment, its foot on the floor, the
 /// normal pointing down.
 pub(crate) fn capsule_floor_witness(c: &Capsule, floor_z: f64) -> (f64, Witness) {
     let low = if c.a.z <= c.b.z { c.a } else { c.b };

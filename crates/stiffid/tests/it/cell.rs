@@ -2,7 +2,7 @@
 
 use approx::assert_relative_eq;
 use nalgebra::Vector3;
-use stiffid::cell::{self, Capsule, CheckKind, Checker, Part};
+use stiffid::cell::{self, Body, Capsule, CheckKind, Checker, Part};
 use stiffid::setup::Obstacle;
 use stiffid::Error;
 
@@ -27,10 +27,18 @@ fn unit_box() -> Obstacle {
 }
 
 #[test]
-fn capsule_over_the_floor_is_its_lowest_end_minus_its_radius() {
+fn a_capsule_over_the_floor_is_its_lowest_end_minus_its_radius() {
     let c = capsule([0.0, 0.0, 1.0], [1.0, 0.0, 0.5], 0.1);
-    assert_relative_eq!(cell::capsule_floor(&c, 0.2), 0.2, epsilon = 1e-12);
-    assert_relative_eq!(cell::capsule_floor(&c, 0.7), -0.3, epsilon = 1e-12);
+    assert_relative_eq!(
+        cell::body_floor(&Body::Capsule(c.clone()), 0.2),
+        0.2,
+        epsilon = 1e-12
+    );
+    assert_relative_eq!(
+        cell::body_floor(&Body::Capsule(c), 0.7),
+        -0.3,
+        epsilon = 1e-12
+    );
 }
 
 #[test]
@@ -56,22 +64,30 @@ fn capsule_against_a_box_outside_and_inside() {
 
 #[test]
 fn segment_against_a_capsule() {
-    // A segment is a capsule of radius 0. Crossing lines 1 apart.
+    // A segment is a capsule of radius 0; two capsules are measured by their segments. Crossing lines 1 apart.
     let segment = capsule([0.0, 0.0, 0.0], [2.0, 0.0, 0.0], 0.0);
     let c = capsule([1.0, 1.0, -1.0], [1.0, 1.0, 1.0], 0.3);
-    assert_relative_eq!(cell::capsule_capsule(&segment, &c), 0.7, epsilon = 1e-12);
+    assert_relative_eq!(
+        cell::body_body(&Body::Capsule(segment), &Body::Capsule(c)),
+        0.7,
+        epsilon = 1e-12
+    );
     // Closest at both ends: (1, 0, 0) and (2, 1, 0).
     let short = capsule([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], 0.0);
     let far = capsule([2.0, 1.0, 0.0], [2.0, 3.0, 0.0], 0.5);
     assert_relative_eq!(
-        cell::capsule_capsule(&short, &far),
+        cell::body_body(&Body::Capsule(short), &Body::Capsule(far)),
         2f64.sqrt() - 0.5,
         epsilon = 1e-12
     );
     // Overlapping parallel capsules: axes 0.2 apart, radii 0.3 each.
     let a = capsule([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], 0.3);
     let b = capsule([0.5, 0.2, 0.0], [2.0, 0.2, 0.0], 0.3);
-    assert_relative_eq!(cell::capsule_capsule(&a, &b), -0.4, epsilon = 1e-12);
+    assert_relative_eq!(
+        cell::body_body(&Body::Capsule(a), &Body::Capsule(b)),
+        -0.4,
+        epsilon = 1e-12
+    );
 }
 
 #[test]

@@ -43,7 +43,8 @@
 //! As the controllers write them: KRL `&ACCESS RVP`, `&REL 1`, `&PARAM TEMPLATE`, `&PARAM
 //! EDITMASK` before `DEF`; LS the whole `/ATTR` (owner, comment, sizes, dates, line count,
 //! protection, task attributes, motion groups, control code); INFORM `///DATE` and `///COMM`.
-//! The dates are reproducible ([`date`]). A KRL program's points are in the `.dat` beside it
+//! The dates are reproducible: `SOURCE_DATE_EPOCH` (seconds since 1970-01-01 00:00 UTC, the
+//! reproducible-builds convention) when the environment sets it, else 1970-01-01. A KRL program's points are in the `.dat` beside it
 //! ([`File::data`], `crate::program::krl::data::split`), as KUKA System Software stores a
 //! module.
 //!
@@ -91,7 +92,7 @@
 
 pub mod arcs;
 mod checks;
-pub mod date;
+pub(crate) mod date;
 mod names;
 pub mod numbered;
 mod process;
