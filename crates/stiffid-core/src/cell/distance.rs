@@ -226,7 +226,7 @@ pub(crate) fn body_box_witness(b: &Body, o: &Obstacle) -> (f64, Option<Witness>)
 }
 
 /// parry's contact query of two convex shapes (GJK apart, EPA inside; never its box-to-box
-/// shortcut, `crate::robot::collision::distance`): the signed distance and the witness.
+/// shortcut, which sums the gaps along the axes instead of taking their norm): the signed distance and the witness.
 fn contact(
     pa: &Isometry3<f64>,
     sa: &dyn shape::Shape,

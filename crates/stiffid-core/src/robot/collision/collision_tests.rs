@@ -6,6 +6,22 @@ use parry3d_f64::shape::Cuboid;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
+/// The signed distance between two posed shapes, m, as the cell's checks measure it
+/// ([`crate::cell::body_body`]: parry's GJK apart, EPA inside; never its box-to-box shortcut,
+/// which sums the gaps along the axes instead of taking their norm). The part and the bounding
+/// sphere play no part in the distance.
+fn distance(a: &Shape, pose_a: &Isometry3<f64>, b: &Shape, pose_b: &Isometry3<f64>) -> f64 {
+    let solid = |shape: &Shape, pose: &Isometry3<f64>| {
+        crate::cell::Body::Solid(crate::cell::Solid {
+            part: crate::cell::Part::Base,
+            shape: shape.clone(),
+            pose: *pose,
+            bound: (pose.translation.vector, f64::INFINITY),
+        })
+    };
+    crate::cell::body_body(&solid(a, pose_a), &solid(b, pose_b))
+}
+
 /// The 12 triangles of an axis-aligned cube of side `side` centred on the origin.
 fn cube(side: f32) -> Vec<[[f32; 3]; 3]> {
     let h = side / 2.0;

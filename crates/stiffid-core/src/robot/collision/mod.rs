@@ -447,24 +447,4 @@ fn binary_size(bytes: &[u8]) -> std::result::Result<(), String> {
 }
 
 #[cfg(test)]
-/// The signed distance between two posed shapes, m: the gap, or minus the penetration depth
-/// (parry's GJK, EPA inside); at most 10 km. Always GJK: parry's own box-to-box distance
-/// (`distance_cuboid_cuboid`, by separating axes) gives the sum of the gaps along the axes, not
-/// their norm, for boxes apart along more than one of their axes (3 m instead of `sqrt(3)` m for
-/// two unit cubes 2 m apart along every axis).
-pub(crate) fn distance(
-    a: &Shape,
-    pose_a: &Isometry3<f64>,
-    b: &Shape,
-    pose_b: &Isometry3<f64>,
-) -> f64 {
-    let ((sa, fa), (sb, fb)) = (a.parry(), b.parry());
-    let (pa, pb) = (pose_a * fa, pose_b * fb);
-    match parry3d_f64::query::contact(&pa, sa, &pb, sb, FAR) {
-        Ok(Some(c)) => c.dist,
-        _ => FAR,
-    }
-}
-
-#[cfg(test)]
 mod collision_tests;
