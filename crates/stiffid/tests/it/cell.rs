@@ -30,7 +30,7 @@ fn unit_box() -> Obstacle {
 fn a_capsule_over_the_floor_is_its_lowest_end_minus_its_radius() {
     let c = capsule([0.0, 0.0, 1.0], [1.0, 0.0, 0.5], 0.1);
     assert_relative_eq!(
-        cell::body_floor(&Body::Capsule(c.clone()), 0.2),
+        cell::body_floor(&Body::Capsule(c), 0.2),
         0.2,
         epsilon = 1e-12
     );
