@@ -5,9 +5,9 @@
 //!
 //! Two postures `a`, `b` are *near* when `max_j |q_a,j - q_b,j|` is below the joint distance
 //! ([`Distinctness::joint`], default [`JOINT_TOLERANCE`]) or when their flange origins lie within
-//! [`Distinctness::position`] (default 10 mm) and their flange orientations
-//! within [`Distinctness::angle`] (default 2 deg) of each other. A pool choice can
-//! forbid them ([`distinct_pool`]): it keeps the first of every near pair in pool order.
+//! [`Distinctness::position`] (default 10 mm) and their flange orientations within
+//! [`Distinctness::angle`] (default 2 deg) of each other. A pool choice can forbid them
+//! ([`distinct_pool`]): it keeps the first of every near pair in pool order.
 
 use nalgebra::{Isometry3, Vector6};
 use stiffid_core::common::error::JobOption;

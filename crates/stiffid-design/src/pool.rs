@@ -117,11 +117,10 @@ impl<'a> Pool<'a> {
     /// how). The same options give the same group whatever the thread count.
     ///
     /// # Errors
-    /// [`Error::InvalidField`]: `options` outside their limits; `n`
-    /// below 2, above 60 or above the usable postures; the `test-pose` criterion
-    /// without test postures; no group of `n` usable postures that identifies all six compliances
-    /// (field `pool`). [`Error::MissingField`] for a criterion the setup lacks a field for
-    /// ([`Criterion::check`]).
+    /// [`Error::InvalidField`]: `options` outside their limits; `n` below 2, above 60 or above the
+    /// usable postures; the `test-pose` criterion without test postures; no group of `n` usable
+    /// postures that identifies all six compliances (field `pool`). [`Error::MissingField`] for a
+    /// criterion the setup lacks a field for ([`Criterion::check`]).
     pub fn best(
         &self,
         criterion: Criterion,

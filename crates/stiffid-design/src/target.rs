@@ -6,11 +6,11 @@
 //! `100 sqrt(2/pi) sqrt([(S^T S)^-1]_jj)` percent for joint j at multiple 1.
 //!
 //! A target out of reach is seen early: the information of a well-chosen group grows about in
-//! proportion to its size N, so its predicted rate falls about as `1/sqrt(N)` (on the paper's
-//! setup `rate * sqrt(N)` stays within 5% from 2 to 60 postures). The search stops as soon as
-//! 2 sizes in a row extrapolate, by that law, to a rate at the largest size allowed
-//! above [`STOP_MARGIN`] times the target ([`TargetOutcome::extrapolated_pct`]), instead of trying
-//! every size up to [`MAX_POSTURES`].
+//! proportion to its size N, so its predicted rate falls about as `1/sqrt(N)` (on the paper's setup
+//! `rate * sqrt(N)` stays within 5% from 2 to 60 postures). The search stops as soon as 2 sizes in
+//! a row extrapolate, by that law, to a rate at the largest size allowed above [`STOP_MARGIN`]
+//! times the target ([`TargetOutcome::extrapolated_pct`]), instead of trying every size up to
+//! [`MAX_POSTURES`].
 
 use super::criteria::predicted_deviation_pct;
 use super::Evaluator;

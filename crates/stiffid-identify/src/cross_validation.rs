@@ -27,8 +27,8 @@
 //! pivot below `MIN_PIVOT`): the other postures cannot identify every joint.
 //!
 //! ## Bounded and robust fits: refitted
-//! The non-negative and robust fits are not linear in `delta`; each fold is refitted from its
-//! rows. That costs `O(K m p^2)`: `folds x measurements` is at most 4 000 000.
+//! The non-negative and robust fits are not linear in `delta`; each fold is refitted from its rows.
+//! That costs `O(K m p^2)`: `folds x measurements` is at most 4 000 000.
 
 pub use super::Method;
 
@@ -124,8 +124,8 @@ struct Full {
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`folds`) unless `2 <= folds <= postures`, or for a bounded or robust
-/// `method` when `folds x measurements` exceeds 4 000 000; (`cross-validation fold N`)
-/// when the postures left in a fold cannot identify every joint (the message says why).
+/// `method` when `folds x measurements` exceeds 4 000 000; (`cross-validation fold N`) when the
+/// postures left in a fold cannot identify every joint (the message says why).
 pub fn cross_validate(
     obs: &Observations,
     full: &Identification,

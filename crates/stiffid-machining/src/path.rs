@@ -372,8 +372,8 @@ fn feed(record: &csv::StringRecord, names: &[&str], i: usize, line: u64) -> Resu
 /// for a row whose `feed_mm_s` is empty; `None` for a file without the column.
 ///
 /// # Errors
-/// Those of [`points`] for the rows up to the first one whose feed is not a number within
-/// [0, 10 000] mm/s and above 0 ([`Error::Column`] naming its line and column).
+/// Those of [`points`] for the rows up to the first one whose feed is not a number within [0, 10
+/// 000] mm/s and above 0 ([`Error::Column`] naming its line and column).
 pub fn feeds(text: &str) -> Result<Option<Vec<Option<f64>>>> {
     let mut reader = reader(text);
     let header = reader.headers().map_err(|e| unreadable(1, &e))?.clone();

@@ -26,9 +26,9 @@ pub(crate) struct Witness {
 }
 
 /// Signed distance between two capsules (a segment is a capsule of radius 0), m: the distance of
-/// their segments minus both radii, with its witness: the closest points of the two segments, and their
-/// direction (where the segments cross, the normal of both segments, the direction in which the
-/// crossing lines separate).
+/// their segments minus both radii, with its witness: the closest points of the two segments, and
+/// their direction (where the segments cross, the normal of both segments, the direction in which
+/// the crossing lines separate).
 pub(crate) fn capsule_capsule_witness(c1: &Capsule, c2: &Capsule) -> (f64, Witness) {
     let p = |v: &Vector3<f64>| Point3::from(*v);
     let (a1, b1, a2, b2) = (p(&c1.a), p(&c1.b), p(&c2.a), p(&c2.b));
@@ -56,8 +56,8 @@ fn at(a: &Point3<f64>, b: &Point3<f64>, location: SegmentPointLocation) -> Point
     shape::Segment::new(*a, *b).point_at(&location)
 }
 
-/// Signed distance of a capsule above the floor plane `z = floor_z`, m, with its witness: the lower end of the segment, its foot on the floor, the
-/// normal pointing down.
+/// Signed distance of a capsule above the floor plane `z = floor_z`, m, with its witness: the lower
+/// end of the segment, its foot on the floor, the normal pointing down.
 pub(crate) fn capsule_floor_witness(c: &Capsule, floor_z: f64) -> (f64, Witness) {
     let low = if c.a.z <= c.b.z { c.a } else { c.b };
     let witness = Witness {
@@ -226,7 +226,8 @@ pub(crate) fn body_box_witness(b: &Body, o: &Obstacle) -> (f64, Option<Witness>)
 }
 
 /// parry's contact query of two convex shapes (GJK apart, EPA inside; never its box-to-box
-/// shortcut, which sums the gaps along the axes instead of taking their norm): the signed distance and the witness.
+/// shortcut, which sums the gaps along the axes instead of taking their norm): the signed distance
+/// and the witness.
 fn contact(
     pa: &Isometry3<f64>,
     sa: &dyn shape::Shape,

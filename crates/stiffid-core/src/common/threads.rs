@@ -1,7 +1,7 @@
 //! The worker threads of the parallel jobs (rayon's global pool), as the user's environment asks
-//! for them: `RAYON_NUM_THREADS`, capped at 256, started at once so that a count the
-//! machine cannot start is an error naming the setting, not a panic in the middle of a job. The
-//! command and the Python package call [`start`] before any job.
+//! for them: `RAYON_NUM_THREADS`, capped at 256, started at once so that a count the machine cannot
+//! start is an error naming the setting, not a panic in the middle of a job. The command and the
+//! Python package call [`start`] before any job.
 
 use crate::common::limits::short;
 
@@ -14,8 +14,8 @@ pub(crate) const MAX_THREADS: usize = 256;
 /// Python package starts them on import, and its `stiffid` script runs the command after it).
 ///
 /// # Errors
-/// A message naming the setting: a value that is not a number from 0 to 256, or
-/// threads that could not start.
+/// A message naming the setting: a value that is not a number from 0 to 256, or threads that could
+/// not start.
 pub fn start() -> Result<(), String> {
     static STARTED: std::sync::OnceLock<Result<(), String>> = std::sync::OnceLock::new();
     STARTED.get_or_init(start_once).clone()

@@ -133,8 +133,7 @@ impl ErrorMap {
     /// last motion's sign `d` (`ErrorMap::angle_from`).
     ///
     /// # Errors
-    /// [`Error::InvalidField`] (`error_map`) when `b` is not finite or beyond
-    /// 10 deg.
+    /// [`Error::InvalidField`] (`error_map`) when `b` is not finite or beyond 10 deg.
     pub fn with_backlash(self, b: f64) -> Result<Self> {
         if !(b.is_finite() && b.abs() <= MAX_COEFFICIENT) {
             return Err(Error::InvalidField {

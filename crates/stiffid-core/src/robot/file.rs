@@ -252,10 +252,10 @@ pub fn angle_between(a: &UnitQuaternion<f64>, b: &UnitQuaternion<f64>) -> f64 {
 /// # Errors
 /// [`Error::Parse`] for malformed TOML, unknown or missing keys and wrong types (the message names
 /// the key, line and column), [`Error::InvalidField`] for a joint count other than six, a number
-/// that is not finite or outside its range ([`crate::common::limits`]: lengths [`limits::LENGTH_MM`],
-/// angles [`limits::ANGLE_DEG`], speeds [0, 10 000] deg/s or mm/s), `lower_deg >= upper_deg` or an axis map whose condition number
-/// exceeds 1e8, and those of the `[[external_axis]]` tables
-/// ([`super::external::file`]: the file, the table and the field named).
+/// that is not finite or outside its range ([`crate::common::limits`]: lengths
+/// [`limits::LENGTH_MM`], angles [`limits::ANGLE_DEG`], speeds [0, 10 000] deg/s or mm/s),
+/// `lower_deg >= upper_deg` or an axis map whose condition number exceeds 1e8, and those of the
+/// `[[external_axis]]` tables ([`super::external::file`]: the file, the table and the field named).
 pub fn parse(text: &str, source_name: &str) -> Result<Robot> {
     let file: RobotFile = toml::from_str(text).map_err(|e| Error::Parse {
         source_name: source_name.to_string(),

@@ -218,9 +218,8 @@ impl Robot {
     /// The robot with this map from axis angles to kinematic angles.
     ///
     /// # Errors
-    /// [`Error::InvalidField`] (`axis_map.matrix`) when the matrix is not invertible: its
-    /// condition number is NaN or above 1e8, or `axis_map.offset` when
-    /// an offset is not finite.
+    /// [`Error::InvalidField`] (`axis_map.matrix`) when the matrix is not invertible: its condition
+    /// number is NaN or above 1e8, or `axis_map.offset` when an offset is not finite.
     pub fn with_axis_map(self, axis_map: AxisMap) -> Result<Self> {
         let cond = crate::math::jacobi::cond(&axis_map.matrix);
         if cond.is_nan() || cond > limits::MAX_AXIS_MAP_COND {

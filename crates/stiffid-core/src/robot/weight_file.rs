@@ -71,10 +71,9 @@ pub struct GravityFile {
     terms: Vec<TermFile>,
 }
 
-/// The own weight of a `[gravity]` table, checked: the model `masses`, `lumped`,
-/// `lumped-links` or `arm`, 1 to 144 terms with finite values, a tool mass within
-/// [0.001, 10 000] kg, a tool's centre of mass within [`limits::LENGTH_MM`] and only with
-/// its mass.
+/// The own weight of a `[gravity]` table, checked: the model `masses`, `lumped`, `lumped-links` or
+/// `arm`, 1 to 144 terms with finite values, a tool mass within [0.001, 10 000] kg, a tool's centre
+/// of mass within [`limits::LENGTH_MM`] and only with its mass.
 ///
 /// # Errors
 /// [`Error::InvalidField`] naming the file and the field.

@@ -143,9 +143,9 @@ impl Arm {
     }
 
     /// How far each frame of the robot model (joints 1-6 and the flange) may be from the true
-    /// robot's: the standard deviation of each coordinate of its position (m) and orientation
-    /// (rad) (`[robot_accuracy]`, default 0.3 mm and 0.3 mrad): what a registration
-    /// from the nominal robot cannot see (`stiffid_metrology::register::robot_covariance`).
+    /// robot's: the standard deviation of each coordinate of its position (m) and orientation (rad)
+    /// (`[robot_accuracy]`, default 0.3 mm and 0.3 mrad): what a registration from the nominal
+    /// robot cannot see (`stiffid_metrology::register::robot_covariance`).
     pub fn frame_sd(&self) -> (f64, f64) {
         self.frame_sd
     }
@@ -193,10 +193,10 @@ pub(crate) const DEFAULT_RADIUS_FRACTIONS: [f64; 7] = [0.08, 0.06, 0.045, 0.04, 
 /// Smallest default tool radius, m (10 mm).
 pub(crate) const MIN_TOOL_RADIUS: f64 = 0.01;
 
-/// The default [`RobotGeometry`] of a robot and tool: link radii
-/// 8, 6, 4.5, 4, 3, 2.5 and 2 % of the robot's size (the summed length of its base and link
-/// segments, the same in every posture; 4.33 m and radii 346, 260, 195, 173, 130, 108, 87 mm for
-/// the COMAU NJ 165), and `default_tool_radius`.
+/// The default [`RobotGeometry`] of a robot and tool: link radii 8, 6, 4.5, 4, 3, 2.5 and 2 % of
+/// the robot's size (the summed length of its base and link segments, the same in every posture;
+/// 4.33 m and radii 346, 260, 195, 173, 130, 108, 87 mm for the COMAU NJ 165), and
+/// `default_tool_radius`.
 pub fn default_geometry(robot: &Robot, tool: &Tool) -> RobotGeometry {
     let frames = robot.frames(&Vector6::zeros());
     let size: f64 = polylines(&frames)

@@ -214,8 +214,8 @@ impl SetupBuilder {
         self
     }
 
-    /// The load levels applied in each posture, N (positive, rising, at most
-    /// 100; empty: one load, the rope load).
+    /// The load levels applied in each posture, N (positive, rising, at most 100; empty: one load,
+    /// the rope load).
     pub fn with_load_steps(mut self, steps: Vec<f64>) -> Self {
         self.load_steps = steps;
         self
@@ -328,8 +328,8 @@ impl SetupBuilder {
         self
     }
 
-    /// The tool's mass and centre of mass (default none; the mass within [0.001, 10 000] kg,
-    /// the centre's coordinates within [`limits::LENGTH_MM`]).
+    /// The tool's mass and centre of mass (default none; the mass within [0.001, 10 000] kg, the
+    /// centre's coordinates within [`limits::LENGTH_MM`]).
     pub fn with_payload(mut self, payload: Payload) -> Self {
         self.payload = Some(payload);
         self

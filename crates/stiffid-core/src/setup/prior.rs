@@ -123,8 +123,8 @@ pub fn reach(robot: &Robot, seed: u64) -> f64 {
 
 /// A rough payload class (kg) for a robot of `reach` (m) when its payload is not known: the
 /// reference robot's payload scaled by the cube of the reach ratio (geometric similarity: mass
-/// grows with the cube of size), within `[1, 2500]` kg. `reference_reach` is the
-/// reference robot's [`reach`]. A 0.9 m arm gets about 6 kg, a 3.2 m arm about 270 kg.
+/// grows with the cube of size), within `[1, 2500]` kg. `reference_reach` is the reference robot's
+/// [`reach`]. A 0.9 m arm gets about 6 kg, a 3.2 m arm about 270 kg.
 pub fn payload_class_kg(reach: f64, reference_reach: f64) -> f64 {
     (REFERENCE_PAYLOAD_KG * (reach / reference_reach).powi(3)).clamp(1.0, MAX_PAYLOAD_KG)
 }

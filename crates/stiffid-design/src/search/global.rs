@@ -16,9 +16,9 @@ use stiffid_core::Result;
 
 /// Minimises `criterion` over groups of `postures` postures by [`SearchOptions::starts`] local
 /// searches ([`super::local`]) run in parallel (rayon) from Latin-hypercube start groups (as
-/// [`super::random_group`], each posture redrawn until it passes the cell's checks, at most
-/// 1000 times; start s uses stream `s + 1` of [`SearchOptions::seed`]), and
-/// keeps the best (the least violating first; the lowest start index on ties).
+/// [`super::random_group`], each posture redrawn until it passes the cell's checks, at most 1000
+/// times; start s uses stream `s + 1` of [`SearchOptions::seed`]), and keeps the best (the least
+/// violating first; the lowest start index on ties).
 ///
 /// Screening: every start first gets [`SearchOptions::screen_steps`] SQP steps; the
 /// [`SearchOptions::polished`] best of them (same order) then continue from where they stopped with

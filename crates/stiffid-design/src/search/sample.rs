@@ -52,8 +52,8 @@ pub(super) fn check_some_feasible(checker: &Checker, seed: u64) -> Result<()> {
 ///
 /// A posture that fails the cell's checks ([`stiffid_core::cell::Checker`]: floor, obstacles,
 /// self-collision, rope, line of sight, `[constraints]`) is redrawn uniformly in the box, up to
-/// 1000 times (rejection sampling); if no draw passes, the least violating is kept
-/// (the search then moves toward feasibility).
+/// 1000 times (rejection sampling); if no draw passes, the least violating is kept (the search then
+/// moves toward feasibility).
 ///
 /// The same `(setup, n, seed)` gives the same group on every machine: ChaCha8 seeded with `seed`,
 /// stream 0 ([`super::global`] uses streams 1, 2, ... for its starts).

@@ -67,8 +67,8 @@ pub fn postures(robot: &Robot, n: usize, rng: &mut ChaCha8Rng) -> Vec<Vector6<f6
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`groups`, `size`, `draws`) for a count out of its range (3 to
-/// [`MAX_GROUPS`] groups, 1 to 200 postures, 1 to 100 draws), (`noise`) for a noise
-/// not positive and finite; those of the fit.
+/// [`MAX_GROUPS`] groups, 1 to 200 postures, 1 to 100 draws), (`noise`) for a noise not positive
+/// and finite; those of the fit.
 pub fn calibration_study(
     groups: usize,
     size: usize,

@@ -46,9 +46,8 @@ impl Feasible {
     /// The default of [`Feasible::max_condition`].
     pub(crate) const DEFAULT_MAX_CONDITION: f64 = 1000.0;
 
-    /// The defaults for `setup`: a margin of 5 deg, a condition
-    /// number of at most 1000 and, when the setup has a `[cell]`,
-    /// its collision checks; no speed check ([`Feasible::move_times`]).
+    /// The defaults for `setup`: a margin of 5 deg, a condition number of at most 1000 and, when
+    /// the setup has a `[cell]`, its collision checks; no speed check ([`Feasible::move_times`]).
     pub fn for_setup(setup: &Setup) -> Self {
         Self {
             margin: Self::DEFAULT_MARGIN_DEG.to_radians(),

@@ -202,11 +202,10 @@ impl Freedom {
     /// Without a free variable, the options that only mean something with one are refused.
     ///
     /// # Errors
-    /// [`Error::InvalidOption`] ([`JobOption::Free`]) for more than 8 variables, one
-    /// given twice or an unknown name; those of each variable's range and step
-    /// ([`FreeRange::checked`], [`LeadTilt::checked`], [`FreeVariables::validate`]);
-    /// [`Error::OptionCombination`] for `minimise`, `objective`, `margin_deg`, `max_condition` or
-    /// `refine` without a free variable.
+    /// [`Error::InvalidOption`] ([`JobOption::Free`]) for more than 8 variables, one given twice or
+    /// an unknown name; those of each variable's range and step ([`FreeRange::checked`],
+    /// [`LeadTilt::checked`], [`FreeVariables::validate`]); [`Error::OptionCombination`] for
+    /// `minimise`, `objective`, `margin_deg`, `max_condition` or `refine` without a free variable.
     pub fn apply(&self, setup: &Setup, options: &mut Options) -> Result<()> {
         self.check_alone()?;
         if self.free.len() > MAX_FREE {

@@ -39,13 +39,13 @@ pub struct Map {
     pub lines: Vec<u64>,
     /// The variable mapped.
     pub variable: MapVariable,
-    /// With [`MapVariable::Rotation`], the columns: the rotations about tool z from the path's
-    /// own, rad, ascending (the grid of the free tool axis, or of 5 deg and
-    /// 90 deg without one); empty for the track.
+    /// With [`MapVariable::Rotation`], the columns: the rotations about tool z from the path's own,
+    /// rad, ascending (the grid of the free tool axis, or of 5 deg and 90 deg without one); empty
+    /// for the track.
     pub angles: Vec<f64>,
     /// With [`MapVariable::Track`], the columns: the station's offsets from the path's own, m,
-    /// ascending (the grid of the free station, or of 50 mm and
-    /// 1000 mm without one); empty for the rotation.
+    /// ascending (the grid of the free station, or of 50 mm and 1000 mm without one); empty for the
+    /// rotation.
     pub stations: Vec<f64>,
     /// The error bound ([`super::Budget`], without the residual the Newton steps leave), m.
     pub bound: DMatrix<f64>,

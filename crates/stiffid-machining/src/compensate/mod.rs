@@ -23,22 +23,22 @@
 //!
 //! ## The free tool axis
 //! In 5-axis milling and drilling the rotation about the spindle (tool z) is free. With
-//! [`FreeVariables::tool_rotation`], every path point's pose is turned about its tool z by the angle that minimises
-//! the TCP translation deflection, within the joint limits and with at most
+//! [`FreeVariables::tool_rotation`], every path point's pose is turned about its tool z by the
+//! angle that minimises the TCP translation deflection, within the joint limits and with at most
 //! its step ([`FreeRange::step`]) between consecutive points: dynamic programming over a grid of
 //! angles, each angle's postures continued along the path by inverse kinematics; a point only takes
 //! an angle whose deflection is no larger than at the nominal angle (so the nominal path is always
 //! feasible and no point's deflection rises); the sum of the deflections is minimised, plus a
-//! tie-breaking cost of 1e-6 times each point's nominal deflection per full range away
-//! from the path's own angle and per full step between points: where the angles tie (a TCP on
-//! the spindle axis turns nothing) the path keeps its own angle, and a rotation is smooth along
-//! the path, never a zig-zag between equal angles; a gain below about 1e-6 of the deflection is
-//! not worth a turn. The wrench stays fixed in the base frame (the process force does not turn
-//! with the spindle). This is the redundancy resolution of stiffness-oriented posture
-//! optimisation for robotic machining: Caro, Dumas, Garnier and Furet, "Workpiece placement
-//! optimization for machining operations with a KUKA KR270-2 robot", IEEE ICRA 2013; Xiong, Ding
-//! and Zhu, "Stiffness-based pose optimization of an industrial robot for five-axis milling",
-//! Robotics and Computer-Integrated Manufacturing 55, 2019.
+//! tie-breaking cost of 1e-6 times each point's nominal deflection per full range away from the
+//! path's own angle and per full step between points: where the angles tie (a TCP on the spindle
+//! axis turns nothing) the path keeps its own angle, and a rotation is smooth along the path, never
+//! a zig-zag between equal angles; a gain below about 1e-6 of the deflection is not worth a turn.
+//! The wrench stays fixed in the base frame (the process force does not turn with the spindle).
+//! This is the redundancy resolution of stiffness-oriented posture optimisation for robotic
+//! machining: Caro, Dumas, Garnier and Furet, "Workpiece placement optimization for machining
+//! operations with a KUKA KR270-2 robot", IEEE ICRA 2013; Xiong, Ding and Zhu, "Stiffness-based
+//! pose optimization of an industrial robot for five-axis milling", Robotics and
+//! Computer-Integrated Manufacturing 55, 2019.
 //!
 //! With [`Objective::Bound`] the cost of a point is its error bound ([`Budget`], without the
 //! residual the Newton steps leave), taken only where it is no larger than at the path's own
@@ -68,18 +68,17 @@
 //! `states^2` transitions per point and a column of inverse kinematics per state. With
 //! [`Options::refine`] `= L` (at most [`refine::MAX_LEVELS`]) the line the dynamic programming
 //! chose on the grid is refined `L` times ([`refine`]): at each level every free axis' step is
-//! halved and the states at each point are the previous level's values plus `k` halved steps,
-//! `|k| <= 2` on every axis (a band of +-1 of the previous
-//! level's cells), within each axis' range, the travel and the cone. Each band state's postures
-//! are continued along the path by inverse kinematics at its per-point values, a state is taken
-//! where its cost is no larger than at the path's own values and its posture passes the checks
-//! below, and a dynamic programming over the bands chooses the line of least value whose every
-//! free variable changes by at most its `max_step` between points (the user's step keeps its
-//! meaning: the refined line moves in finer steps, never faster), with the same tie-breaking
-//! costs. The previous line is in the band with its own postures, so the refined line's value
-//! (the sum, or the worst point's) is never above the grid's, and no point's cost rises above
-//! the path's own. One level costs `(4 BAND + 1)^axes` columns, 5 on one free axis: a fraction
-//! of a grid of the halved step everywhere.
+//! halved and the states at each point are the previous level's values plus `k` halved steps, `|k|
+//! <= 2` on every axis (a band of +-1 of the previous level's cells), within each axis' range, the
+//! travel and the cone. Each band state's postures are continued along the path by inverse
+//! kinematics at its per-point values, a state is taken where its cost is no larger than at the
+//! path's own values and its posture passes the checks below, and a dynamic programming over the
+//! bands chooses the line of least value whose every free variable changes by at most its
+//! `max_step` between points (the user's step keeps its meaning: the refined line moves in finer
+//! steps, never faster), with the same tie-breaking costs. The previous line is in the band with
+//! its own postures, so the refined line's value (the sum, or the worst point's) is never above the
+//! grid's, and no point's cost rises above the path's own. One level costs `(4 BAND + 1)^axes`
+//! columns, 5 on one free axis: a fraction of a grid of the halved step everywhere.
 //!
 //! ## Feasibility
 //! Every posture a free variable moves a point to must be feasible ([`Feasible`], the checks
@@ -148,34 +147,33 @@
 //!
 //! ## The free configuration
 //! A pose is reached in up to eight configurations of the arm (the shoulder, elbow and wrist
-//! choices, [`stiffid_core::robot::configuration`]). With [`FreeVariables::configuration`] the whole path is
-//! compensated in each ([`path_configurations`], [`crate::compensate()`]): the path's
-//! own as given, every other from its posture at the first point (inverse kinematics from
-//! 128 seeded starts, the solution nearest to the path's own posture in
-//! each configuration), continued point by point, a joint target solved from its nominal pose;
-//! the other free variables are chosen in each by their dynamic programming. A configuration
-//! cannot change along a continuous cut, so one holds the whole path ([`Scope::Program`]), or,
-//! with [`Scope::Run`], each run ([`starts`]: a cut and the joint moves that lead to it, where
-//! the arm may change configuration): each run is compensated alone in each configuration,
-//! from the posture the path's own reaches at its first point, so the other free variables'
-//! step limits start afresh at each run (the joint move between runs is a move of its own), and
-//! the runs' choices minimise the program's objective (the max over the runs, or the sum:
-//! per run). A configuration is refused for a path or a run at the
-//! first point inverse kinematics cannot reach in it, that its compensation fails, whose
-//! posture fails a check of [`Feasible`] or leaves the configuration. Of the others the one of
-//! least path objective is kept (each point's TCP deflection or bound, as the other free
-//! variables minimise, summed or the worst, [`Aggregate`]), the path's own on a tie: no path
-//! is worse than in its own configuration, which is kept whatever the checks say. When no
-//! other configuration takes the path, its own is kept with a warning; when the path's own
-//! cannot take it, the best other one is, with a warning; when none can, the path's own error.
+//! choices, [`stiffid_core::robot::configuration`]). With [`FreeVariables::configuration`] the
+//! whole path is compensated in each ([`path_configurations`], [`crate::compensate()`]): the path's
+//! own as given, every other from its posture at the first point (inverse kinematics from 128
+//! seeded starts, the solution nearest to the path's own posture in each configuration), continued
+//! point by point, a joint target solved from its nominal pose; the other free variables are chosen
+//! in each by their dynamic programming. A configuration cannot change along a continuous cut, so
+//! one holds the whole path ([`Scope::Program`]), or, with [`Scope::Run`], each run ([`starts`]: a
+//! cut and the joint moves that lead to it, where the arm may change configuration): each run is
+//! compensated alone in each configuration, from the posture the path's own reaches at its first
+//! point, so the other free variables' step limits start afresh at each run (the joint move between
+//! runs is a move of its own), and the runs' choices minimise the program's objective (the max over
+//! the runs, or the sum: per run). A configuration is refused for a path or a run at the first
+//! point inverse kinematics cannot reach in it, that its compensation fails, whose posture fails a
+//! check of [`Feasible`] or leaves the configuration. Of the others the one of least path objective
+//! is kept (each point's TCP deflection or bound, as the other free variables minimise, summed or
+//! the worst, [`Aggregate`]), the path's own on a tie: no path is worse than in its own
+//! configuration, which is kept whatever the checks say. When no other configuration takes the
+//! path, its own is kept with a warning; when the path's own cannot take it, the best other one is,
+//! with a warning; when none can, the path's own error.
 //!
 //! With [`Objective::Surge`] the same dynamic programming minimises the breakthrough surge of a
-//! drilling program instead (`path_with_exits`, [`crate::dynamics`]): a drilling
-//! exit's cost is the surge of its thrust at the turned posture, taken only where it is no larger
-//! than at the path's own angle; every other point costs nothing but the tie-breaking cost, here
-//! 1e-6 times the path's largest surge (a rotation about the drill axis changes neither
-//! the exits nor the thrust). Where the surge cannot be computed at the path's own angle (a
-//! singular posture) the point keeps that angle.
+//! drilling program instead (`path_with_exits`, [`crate::dynamics`]): a drilling exit's cost is the
+//! surge of its thrust at the turned posture, taken only where it is no larger than at the path's
+//! own angle; every other point costs nothing but the tie-breaking cost, here 1e-6 times the path's
+//! largest surge (a rotation about the drill axis changes neither the exits nor the thrust). Where
+//! the surge cannot be computed at the path's own angle (a singular posture) the point keeps that
+//! angle.
 
 use nalgebra::{Isometry3, Vector6};
 pub(crate) use stiffid_core::common::stop::Stop;

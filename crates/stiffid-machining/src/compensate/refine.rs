@@ -72,9 +72,8 @@ pub(crate) struct Line {
     pub external: Vec<ExternalValues>,
 }
 
-/// Refuses more than [`MAX_LEVELS`] levels, and a band of more cells than
-/// 5 000 000 or more transitions than 2e9 on a
-/// grid of `axes` axes over `points` points.
+/// Refuses more than [`MAX_LEVELS`] levels, and a band of more cells than 5 000 000 or more
+/// transitions than 2e9 on a grid of `axes` axes over `points` points.
 ///
 /// # Errors
 /// [`Error::InvalidOption`] ([`JobOption::Refine`]) naming the levels, states and points.

@@ -31,9 +31,8 @@ use stiffid_core::{Error, Result};
 ///
 /// # Errors
 /// Those of [`super::path`]; those of [`on_carriage`] for a point's external values;
-/// [`Error::InvalidOption`] ([`JobOption::StationRange`]) for a robot without a carrier axis
-/// and for a grid of more than 5 000 000 cells (stations x rotations x
-/// points).
+/// [`Error::InvalidOption`] ([`JobOption::StationRange`]) for a robot without a carrier axis and
+/// for a grid of more than 5 000 000 cells (stations x rotations x points).
 pub fn path_on_track(
     arm: &Arm,
     compliance: &Compliance,

@@ -23,15 +23,13 @@ use stiffid_core::{Error, Result};
 ///
 /// # Errors
 /// [`Error::InvalidField`] for `options` outside their limits ([`Options::validate`]) or a free
-/// tool axis grid beyond 5 000 000;
-/// [`Error::InvalidOption`] ([`JobOption::Minimise`]) for the surge objective, which
-/// needs a drilling program (`path_with_exits`);
-/// [`Error::Column`] naming the line of the first point (in path order) that fails: axis angles
-/// outside the joint limits ([`ColumnProblem::Outside`], `q1_deg..q6_deg`), a pose inverse
-/// kinematics cannot reach ([`ColumnProblem::Uncompensated`] with [`Error::Unreachable`]'s
-/// message, `x_mm..rz_deg`), or compensated axis angles outside the joint limits or a residual
-/// above 0.1 micrometre / 1 microradian (`Uncompensated` with the lines of the other points that
-/// fail, `q_compensated`).
+/// tool axis grid beyond 5 000 000; [`Error::InvalidOption`] ([`JobOption::Minimise`]) for the
+/// surge objective, which needs a drilling program (`path_with_exits`); [`Error::Column`] naming
+/// the line of the first point (in path order) that fails: axis angles outside the joint limits
+/// ([`ColumnProblem::Outside`], `q1_deg..q6_deg`), a pose inverse kinematics cannot reach
+/// ([`ColumnProblem::Uncompensated`] with [`Error::Unreachable`]'s message, `x_mm..rz_deg`), or
+/// compensated axis angles outside the joint limits or a residual above 0.1 micrometre / 1
+/// microradian (`Uncompensated` with the lines of the other points that fail, `q_compensated`).
 pub fn path(
     arm: &Arm,
     compliance: &Compliance,
@@ -190,14 +188,14 @@ fn cost<'a>(
 /// Path points per chunk of [`stream`].
 pub const CHUNK: usize = 4096;
 
-/// [`path`] for a path of any length in bounded memory: the points come from `points` (an
-/// iterator, e.g. a file's rows as they are parsed) and are compensated [`CHUNK`] at a time (in
-/// parallel within a chunk, inverse kinematics continued from the previous chunk's last
-/// posture); `sink` gets each chunk's points and results, in path order, before the next chunk is
-/// read. With [`super::FreeVariables::tool_rotation`] or [`super::FreeVariables::lead_tilt`] the whole path is one problem (dynamic programming over the
-/// path): its points are collected (at most 5 000 000 grid cells) and
-/// compensated by [`path`], then given to `sink` chunk by chunk. The results equal [`path`]'s.
-/// Returns the number of points.
+/// [`path`] for a path of any length in bounded memory: the points come from `points` (an iterator,
+/// e.g. a file's rows as they are parsed) and are compensated [`CHUNK`] at a time (in parallel
+/// within a chunk, inverse kinematics continued from the previous chunk's last posture); `sink`
+/// gets each chunk's points and results, in path order, before the next chunk is read. With
+/// [`super::FreeVariables::tool_rotation`] or [`super::FreeVariables::lead_tilt`] the whole path is
+/// one problem (dynamic programming over the path): its points are collected (at most 5 000 000
+/// grid cells) and compensated by [`path`], then given to `sink` chunk by chunk. The results equal
+/// [`path`]'s. Returns the number of points.
 ///
 /// # Errors
 /// Those of [`path`] (an uncompensated point names the other failing lines of its chunk, not of

@@ -44,14 +44,15 @@
 //!   path may write the arc as a circular move ([`crate::program::generate::arcs`]).
 //!
 //! Any other G code or letter is refused naming its line (cutter radius compensation `G41`/`G42`
-//! saying it belongs to the CAM post; `G92`, `G93`, `G95`, `G28.1` saying why), as are
-//! parameters and expressions (`#`, `[`), O-word subprograms and loops, block delete `/`, polar
-//! words `@ ^`, an arc whose end is off its circle beyond 0.005 mm, an arc of
-//! radius below 1 um, a letter given twice in one block (but `G` and `M`), two codes of one
-//! modal group in one block (`G0 G1`, `G90 G91`, `M3 M4`), an arc with a number of turns `P` or a centre or radius beyond 100 m, a feed rate `F` outside `(0, MAX_FEED]`, a spindle speed `S` outside
-//! `[0, 100000]` rev/min, an `M` code not a whole number from 0 to 999, a subprogram call or return (`M97`, `M98`, `M99`), a motion after the
-//! program's end (`M2`, `M30`), a work offset, home position or tool length the [`Machine`] does
-//! not give, and more than [`MAX_POINTS`] points.
+//! saying it belongs to the CAM post; `G92`, `G93`, `G95`, `G28.1` saying why), as are parameters
+//! and expressions (`#`, `[`), O-word subprograms and loops, block delete `/`, polar words `@ ^`,
+//! an arc whose end is off its circle beyond 0.005 mm, an arc of radius below 1 um, a letter given
+//! twice in one block (but `G` and `M`), two codes of one modal group in one block (`G0 G1`, `G90
+//! G91`, `M3 M4`), an arc with a number of turns `P` or a centre or radius beyond 100 m, a feed
+//! rate `F` outside `(0, MAX_FEED]`, a spindle speed `S` outside `[0, 100000]` rev/min, an `M` code
+//! not a whole number from 0 to 999, a subprogram call or return (`M97`, `M98`, `M99`), a motion
+//! after the program's end (`M2`, `M30`), a work offset, home position or tool length the
+//! [`Machine`] does not give, and more than [`MAX_POINTS`] points.
 //!
 //! ## What is written
 //! [`GCode::write`] keeps every line byte for byte but the motion blocks, where the `X Y Z I J K R`
@@ -270,12 +271,11 @@ pub fn parse(text: &str, chord_tolerance: f64) -> Result<GCode> {
 /// `machine`: its work offsets, start and home positions and tool lengths.
 ///
 /// # Errors
-/// [`Error::InvalidOption`] for a chord tolerance outside [1e-6, 10] mm;
-/// [`Error::Program`] naming the line for anything outside the subset, a malformed word, an arc
-/// off its circle, no tool orientation in the header or the setup, rotary words without
-/// `rotary = abc`, a work offset, home position or tool length `machine` lacks, a feed motion
-/// before every axis is known, no motion at all, or more than 1 000 000 lines or
-/// [`MAX_POINTS`] points.
+/// [`Error::InvalidOption`] for a chord tolerance outside [1e-6, 10] mm; [`Error::Program`] naming
+/// the line for anything outside the subset, a malformed word, an arc off its circle, no tool
+/// orientation in the header or the setup, rotary words without `rotary = abc`, a work offset, home
+/// position or tool length `machine` lacks, a feed motion before every axis is known, no motion at
+/// all, or more than 1 000 000 lines or [`MAX_POINTS`] points.
 pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<GCode> {
     stiffid_core::common::limits::check(
         "chord_tolerance_mm",

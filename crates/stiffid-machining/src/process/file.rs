@@ -39,12 +39,12 @@
 //! field of the setup ([`stiffid_core::setup`]); a process file that has one is refused, saying so.
 //!
 //! # Limits
-//! `diameter_mm` (0, 200]; `length_mm` (0, 1000]; `flutes` 1..=12; `helix_deg` [-60, 60]; `feed_per_tooth_mm` and
-//! `feed_per_rev_mm` (0, 5]; `spindle_rpm` [1, 100000]; `axial_depth_mm` (0, 200]; `radial_depth_mm` (0, diameter_mm];
-//! cutting coefficients and specific energies [0, 20000] N/mm^2 (`k_ac` [-20000, 20000]); edge
-//! coefficients [0, 1000] N/mm (`k_ae` [-1000, 1000]); at most 1000 operations;
-//! `lines` two 1-based line numbers, first <= last; `tool_axis.cone_deg` [0, 30]
-//! (30 deg).
+//! `diameter_mm` (0, 200]; `length_mm` (0, 1000]; `flutes` 1..=12; `helix_deg` [-60, 60];
+//! `feed_per_tooth_mm` and `feed_per_rev_mm` (0, 5]; `spindle_rpm` [1, 100000]; `axial_depth_mm`
+//! (0, 200]; `radial_depth_mm` (0, diameter_mm]; cutting coefficients and specific energies [0,
+//! 20000] N/mm^2 (`k_ac` [-20000, 20000]); edge coefficients [0, 1000] N/mm (`k_ae` [-1000, 1000]);
+//! at most 1000 operations; `lines` two 1-based line numbers, first <= last; `tool_axis.cone_deg`
+//! [0, 30] (30 deg).
 //!
 //! # Ambiguity
 //! Two operations with the same name, the same `tool_number` or overlapping `lines` are refused

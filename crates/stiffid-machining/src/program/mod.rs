@@ -49,12 +49,12 @@
 //! motions (the order the controller runs would not be the file's; RAPID refuses the ones that
 //! hold a motion, or jump in the routine of the motions, [`rapid`]).
 //!
-//! The targets come in the order of the motion instructions, which is the order the path follows;
-//! a declared point moved to twice is one target per visit. [`JointProgram::write`] replaces the
-//! six numbers (a Cartesian target: its pose's numbers and, where they changed, its
-//! configuration data) of each target whose value changed (with 9 decimals, INFORM in whole
-//! pulses) and nothing else ([`JointProgram::write_with_external`] the external values too);
-//! a point visited twice takes one value, so the two visits' compensations must agree.
+//! The targets come in the order of the motion instructions, which is the order the path follows; a
+//! declared point moved to twice is one target per visit. [`JointProgram::write`] replaces the six
+//! numbers (a Cartesian target: its pose's numbers and, where they changed, its configuration data)
+//! of each target whose value changed (with 9 decimals, INFORM in whole pulses) and nothing else
+//! ([`JointProgram::write_with_external`] the external values too); a point visited twice takes one
+//! value, so the two visits' compensations must agree.
 
 pub mod cartesian;
 mod controller;
@@ -349,10 +349,10 @@ pub fn parse_with_data(text: &str, data: Option<&str>, dialect: Dialect) -> Resu
 /// Parses the joint targets of `text` in `dialect` with what the setup says in `context`.
 ///
 /// # Errors
-/// [`Error::Program`] naming the line: every motion instruction outside the subset (module docs),
-/// a joint target with a missing, repeated or non-numeric axis value, a Cartesian target with a
-/// missing or malformed member or configuration data ([`cartesian`]), no motion to a target
-/// at all, or more than 1 000 000.
+/// [`Error::Program`] naming the line: every motion instruction outside the subset (module docs), a
+/// joint target with a missing, repeated or non-numeric axis value, a Cartesian target with a
+/// missing or malformed member or configuration data ([`cartesian`]), no motion to a target at all,
+/// or more than 1 000 000.
 pub fn parse_in(text: &str, dialect: Dialect, context: &Context) -> Result<JointProgram> {
     let Read {
         mut targets,

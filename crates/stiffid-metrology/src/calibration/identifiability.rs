@@ -1,22 +1,21 @@
 //! Which parameters the readings determine: QR with column pivoting on the column-scaled
 //! identification Jacobian.
 //!
-//! The Jacobian `J` ([`crate::calibration::ErrorModel::jacobian`], 3 rows per reading) is scaled
-//! by the parameters' typical sizes ([`crate::calibration::ErrorModel::column_scales`]) and
-//! reduced to its triangular factor (Householder QR: the columns' inner products, all the
-//! analysis needs). Each column is then normalised to unit length and the columns are taken in
-//! the order of their priority ([`crate::calibration::Parameter::priority`]: the frame and the
-//! measuring points, the four (M)DH errors, Hayati's beta, the lateral `b`, the gravity terms),
-//! within a priority the one with the largest part not yet explained first (QR with column
-//! pivoting, Businger and Golub 1965). A column whose unexplained part is below
-//! [`RANK_TOLERANCE`] of its length is merged: it is, within the tolerance, a combination of the
-//! columns kept, and the fit leaves it at its nominal value; the combination (the kept
-//! parameters with their coefficients, in scaled units) says into which it merges (joint 1's
-//! errors into the tracker's registration, joint 6's `theta` and `d` into the measuring points,
-//! `d` of the second of two parallel joints into the first's). A column with no effect at all
-//! (gravity about a vertical axis) merges into nothing. The kept columns' count is the rank, the
-//! condition number is that of their scaled columns, and the correlations of the kept
-//! parameters (from `(J^T J)^-1`) above 0.9 in absolute value are listed:
+//! The Jacobian `J` ([`crate::calibration::ErrorModel::jacobian`], 3 rows per reading) is scaled by
+//! the parameters' typical sizes ([`crate::calibration::ErrorModel::column_scales`]) and reduced to
+//! its triangular factor (Householder QR: the columns' inner products, all the analysis needs).
+//! Each column is then normalised to unit length and the columns are taken in the order of their
+//! priority ([`crate::calibration::Parameter::priority`]: the frame and the measuring points, the
+//! four (M)DH errors, Hayati's beta, the lateral `b`, the gravity terms), within a priority the one
+//! with the largest part not yet explained first (QR with column pivoting, Businger and Golub
+//! 1965). A column whose unexplained part is below [`RANK_TOLERANCE`] of its length is merged: it
+//! is, within the tolerance, a combination of the columns kept, and the fit leaves it at its
+//! nominal value; the combination (the kept parameters with their coefficients, in scaled units)
+//! says into which it merges (joint 1's errors into the tracker's registration, joint 6's `theta`
+//! and `d` into the measuring points, `d` of the second of two parallel joints into the first's). A
+//! column with no effect at all (gravity about a vertical axis) merges into nothing. The kept
+//! columns' count is the rank, the condition number is that of their scaled columns, and the
+//! correlations of the kept parameters (from `(J^T J)^-1`) above 0.9 in absolute value are listed:
 //! the weakly separated pairs (Sun and Hollerbach 2008 on observability).
 
 use nalgebra::{DMatrix, DVector};
@@ -63,8 +62,8 @@ pub struct Identifiability {
     /// The condition number of the kept columns of the scaled Jacobian (largest over smallest
     /// singular value).
     pub condition: f64,
-    /// The kept parameters' correlations above 0.9 in absolute value:
-    /// `(i, j, rho)`, `i < j` parameter indices.
+    /// The kept parameters' correlations above 0.9 in absolute value: `(i, j, rho)`, `i < j`
+    /// parameter indices.
     pub correlations: Vec<Correlation>,
 }
 

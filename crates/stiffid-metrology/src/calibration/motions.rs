@@ -2,16 +2,16 @@
 //! the postures inside the fitted readings, as the joint error maps are ([`super::maps`]).
 //!
 //! A linear axis's six error motions are polynomials of orders `1..K` in its normalised position
-//! ([`stiffid_core::robot::external::ErrorMotions`]). The candidates are `K = 0..K_max`, `K_max` the
-//! smaller of 6 and the axis's distinct positions in the readings less two (a
-//! polynomial of order `K` through fewer positions would only follow the noise). The postures
-//! are dealt into 5 folds (posture `p` of the readings in fold `p mod K`); a
-//! candidate's held-out error is the sum over folds of the errors of the fold's postures
-//! predicted by the fit of the others, refitted from the fit of all the readings (the same
-//! model, the same Levenberg-Marquardt). From `K = 0` for every axis, each axis in turn tries
-//! each higher order and keeps it when it lowers the held-out error by more than [`ACCEPT`]
-//! standard errors of the paired per-posture differences and by 2 % of it (a
-//! one-sided test at about 0.1 %): a straight, stiff rail keeps `K = 0`, its direction alone.
+//! ([`stiffid_core::robot::external::ErrorMotions`]). The candidates are `K = 0..K_max`, `K_max`
+//! the smaller of 6 and the axis's distinct positions in the readings less two (a polynomial of
+//! order `K` through fewer positions would only follow the noise). The postures are dealt into 5
+//! folds (posture `p` of the readings in fold `p mod K`); a candidate's held-out error is the sum
+//! over folds of the errors of the fold's postures predicted by the fit of the others, refitted
+//! from the fit of all the readings (the same model, the same Levenberg-Marquardt). From `K = 0`
+//! for every axis, each axis in turn tries each higher order and keeps it when it lowers the
+//! held-out error by more than [`ACCEPT`] standard errors of the paired per-posture differences and
+//! by 2 % of it (a one-sided test at about 0.1 %): a straight, stiff rail keeps `K = 0`, its
+//! direction alone.
 //!
 //! Equations and sources: docs/model.md, section "Calibration", "External axes".
 

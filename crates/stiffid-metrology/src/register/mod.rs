@@ -128,11 +128,11 @@ pub const SPREAD_RATIO_LIMIT: f64 = 1.25;
 /// nothing of it.
 pub(crate) const MIN_SPREAD_M: f64 = 0.05;
 
-/// How far the readings spread against the robot's points (`points`, pairs in any frames: the
-/// RMS distance from the centroid is the same in every frame): the RMS distance of the readings
-/// from their centroid over that of the robot's points from theirs, with the points' spread (m).
-/// 1 within the robot's errors for readings in mm as labelled, 0.001 for readings in metres.
-/// `None` when the points spread less than 5 cm.
+/// How far the readings spread against the robot's points (`points`, pairs in any frames: the RMS
+/// distance from the centroid is the same in every frame): the RMS distance of the readings from
+/// their centroid over that of the robot's points from theirs, with the points' spread (m). 1
+/// within the robot's errors for readings in mm as labelled, 0.001 for readings in metres. `None`
+/// when the points spread less than 5 cm.
 pub fn spread_ratio(points: &[Correspondence]) -> Option<(f64, f64)> {
     let spread = |v: &[Vector3<f64>]| {
         let n = v.len().max(1) as f64;
@@ -258,8 +258,8 @@ pub fn correspondences(setup: &Setup, readings: &Readings) -> Result<Vec<Corresp
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`points`): fewer than [`MIN_POINTS`], a non-finite coordinate, or
-/// collinear points (1e-4, 1 micrometre, in either frame); [`Error::NotFinite`]
-/// when an SVD does not converge.
+/// collinear points (1e-4, 1 micrometre, in either frame); [`Error::NotFinite`] when an SVD does
+/// not converge.
 ///
 /// # Examples
 /// ```

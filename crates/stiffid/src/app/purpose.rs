@@ -35,8 +35,7 @@ impl Purpose {
         matches!(self, Purpose::Calibration | Purpose::Check)
     }
 
-    /// The size of a searched group when none is given: 10 for a check, 6
-    /// otherwise.
+    /// The size of a searched group when none is given: 10 for a check, 6 otherwise.
     pub fn default_postures(self) -> usize {
         match self {
             Purpose::Check => CHECK_POSTURES,
@@ -193,26 +192,25 @@ pub fn check(purpose: Purpose, options: &CalibrationOptions) -> Result<()> {
 }
 
 /// The calibration design of `setup`: the error model `calibrate` fits (readings in the tracker
-/// frame, the setup's measuring points, `options`' geometry and gravity), the characteristic
-/// length (1 m without one, as `calibrate`), [`REFERENCE_POSTURES`] reference postures
-/// ([`random_group`] of seed 1, within the bounds and the cell), the setup's test postures (the
-/// machining region; the reference postures without them) and the setup's noise per coordinate.
+/// frame, the setup's measuring points, `options`' geometry and gravity), the characteristic length
+/// (1 m without one, as `calibrate`), [`REFERENCE_POSTURES`] reference postures ([`random_group`]
+/// of seed 1, within the bounds and the cell), the setup's test postures (the machining region; the
+/// reference postures without them) and the setup's noise per coordinate.
 ///
 /// # Errors
 /// Those of [`calibration::model`] and [`CalibrationDesign::new`] (the options are checked
 /// by [`check`]).
 ///
-/// On a robot with a carrier (a track), the model has the track's parameters too (its direction
-/// and its error motions of order 3, [`stiffid_metrology::calibration::ErrorModel::with_external`]; the
-/// positioner's lines, which only reflectors on its table read, drop out as not identified),
-/// the reference postures are dealt over 6 stations of the travel
-/// ([`stiffid_core::robot::ExternalAxes::stations`]) and every test posture is read at each of them.
-/// With reflectors on a positioner's table (`[workpiece] reflectors_mm`; reflectors on a fixed
-/// part without a positioner change no design), the model has the
-/// positioner's lines and offsets and the reflectors' coordinates too, and the table is read at
-/// 16 angles ([`table_grid`]) for reference, for the part's test
-/// points and as the readings a group is scored with until `select` chooses its own
-/// ([`CalibrationDesign::new_with_table`]).
+/// On a robot with a carrier (a track), the model has the track's parameters too (its direction and
+/// its error motions of order 3, [`stiffid_metrology::calibration::ErrorModel::with_external`]; the
+/// positioner's lines, which only reflectors on its table read, drop out as not identified), the
+/// reference postures are dealt over 6 stations of the travel
+/// ([`stiffid_core::robot::ExternalAxes::stations`]) and every test posture is read at each of
+/// them. With reflectors on a positioner's table (`[workpiece] reflectors_mm`; reflectors on a
+/// fixed part without a positioner change no design), the model has the positioner's lines and
+/// offsets and the reflectors' coordinates too, and the table is read at 16 angles ([`table_grid`])
+/// for reference, for the part's test points and as the readings a group is scored with until
+/// `select` chooses its own ([`CalibrationDesign::new_with_table`]).
 pub fn design(setup: &Setup, options: &CalibrationOptions) -> Result<CalibrationDesign> {
     let model = calibration::model(
         setup,

@@ -151,8 +151,8 @@ pub(crate) const FRAME_SD: Range = Range::new(0.0, 100.0, "");
 /// The rope load of a setup.
 pub const LOAD_N: Range = Range::new(1e-3, 1e7, "N");
 
-/// Forces and moments on the command line, per component (measurement files: the magnitude
-/// limits of 1e6 N and 1e6 Nm).
+/// Forces and moments on the command line, per component (measurement files: the magnitude limits
+/// of 1e6 N and 1e6 Nm).
 pub const WRENCH: Range = Range::new(-1e7, 1e7, "N or Nm");
 
 /// The standard deviation of one coordinate of one tracker reading (`[noise] reading_sd_mm`).

@@ -200,10 +200,10 @@ pub fn has_load_column(header_line: &str) -> bool {
 /// [`Error::Column`] naming the line, the column and the [`ColumnProblem`]: unknown (with a
 /// suggestion), repeated, missing or conflicting columns, a row with another field count, a value
 /// that is not a finite number, an empty label, a point that is not 1..=`points`, an angle outside
-/// the joint limits, a coordinate outside [`limits::LENGTH_MM`], a load step that is not an
-/// integer in `0..=1000`, a load outside `[0, `[`limits::LOAD_N`]`]`, a force or
-/// moment outside [`limits::WRENCH`], a posture label at two sets of axis angles, a point read
-/// twice in one posture (without load steps), no rows or more than [`MAX_READINGS`].
+/// the joint limits, a coordinate outside [`limits::LENGTH_MM`], a load step that is not an integer
+/// in `0..=1000`, a load outside `[0, `[`limits::LOAD_N`]`]`, a force or moment outside
+/// [`limits::WRENCH`], a posture label at two sets of axis angles, a point read twice in one
+/// posture (without load steps), no rows or more than [`MAX_READINGS`].
 ///
 /// # Examples
 /// ```

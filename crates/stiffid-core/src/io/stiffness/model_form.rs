@@ -39,8 +39,8 @@ pub struct ModelFormSection {
     /// Every virtual spring the models hold, defined in full (so the file does not depend on a
     /// setup's families or candidates).
     pub springs: Vec<FormSpring>,
-    /// The models, each with the parameter sets of the resamples that support it; at most
-    /// 20 000 sets in all.
+    /// The models, each with the parameter sets of the resamples that support it; at most 20 000
+    /// sets in all.
     pub models: Vec<FormModelSection>,
     /// The comparison's recommended model fitted to every posture: one parameter set (its
     /// springs among `springs`); absent in files written before it was.

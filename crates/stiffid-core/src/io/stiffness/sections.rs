@@ -97,8 +97,7 @@ pub struct PredictionSection {
     /// ([`prediction::Deflection::scores`]), one per held-out coordinate; finite, >= 0.
     #[serde(default)]
     pub deflection_scores: Option<Vec<f64>>,
-    /// One per fold, at most 100 000, with at most 3 000 000
-    /// scores in all.
+    /// One per fold, at most 100 000, with at most 3 000 000 scores in all.
     pub folds: Vec<FoldSection>,
 }
 
@@ -295,8 +294,7 @@ pub struct RegionSection {
     /// Per axis, the largest, deg; within [`crate::common::limits::ANGLE_DEG`], at least
     /// `lower_deg`.
     pub upper_deg: [f64; 6],
-    /// The margin that widens every axis' range at both ends, deg, within
-    /// [0, 360] (written as
+    /// The margin that widens every axis' range at both ends, deg, within [0, 360] (written as
     /// [`crate::model::region::MARGIN_DEG`], 5).
     pub margin_deg: f64,
 }

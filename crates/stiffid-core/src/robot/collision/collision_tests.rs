@@ -7,9 +7,9 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 /// The signed distance between two posed shapes, m, as the cell's checks measure it
-/// ([`crate::cell::body_body`]: parry's GJK apart, EPA inside; never its box-to-box shortcut,
-/// which sums the gaps along the axes instead of taking their norm). The part and the bounding
-/// sphere play no part in the distance.
+/// ([`crate::cell::body_body`]: parry's GJK apart, EPA inside; never its box-to-box shortcut, which
+/// sums the gaps along the axes instead of taking their norm). The part and the bounding sphere
+/// play no part in the distance.
 fn distance(a: &Shape, pose_a: &Isometry3<f64>, b: &Shape, pose_b: &Isometry3<f64>) -> f64 {
     let solid = |shape: &Shape, pose: &Isometry3<f64>| {
         crate::cell::Body::Solid(crate::cell::Solid {

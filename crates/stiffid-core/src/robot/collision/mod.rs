@@ -97,12 +97,11 @@ pub(crate) const FAR: f64 = 1e4;
 /// resolved in `package_paths`.
 ///
 /// # Errors
-/// Those of [`super::urdf::parse`] for the text; [`Error::MeshNotFound`] naming the URDF, the
-/// link and the mesh for a `package://` URL whose package is in none of the package paths (naming
-/// the package and the paths) or a mesh file that does not exist; [`Error::Parse`] naming the
-/// URDF, the link and the mesh: a mesh file that cannot be read or is no STL, more than
-/// 100 000 triangles, a mesh format other than STL, points that span no volume,
-/// non-finite or out-of-range sizes.
+/// Those of [`super::urdf::parse`] for the text; [`Error::MeshNotFound`] naming the URDF, the link
+/// and the mesh for a `package://` URL whose package is in none of the package paths (naming the
+/// package and the paths) or a mesh file that does not exist; [`Error::Parse`] naming the URDF, the
+/// link and the mesh: a mesh file that cannot be read or is no STL, more than 100 000 triangles, a
+/// mesh format other than STL, points that span no volume, non-finite or out-of-range sizes.
 pub fn parse(
     text: &str,
     source_name: &str,

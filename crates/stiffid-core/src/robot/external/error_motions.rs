@@ -29,9 +29,8 @@ impl ErrorMotions {
     /// The error motions of these coefficients, order 1 first (empty: none).
     ///
     /// # Errors
-    /// [`Error::InvalidField`] (`error_motions`) when there are more than [`MAX_ORDER`] orders
-    /// or a coefficient is not finite or beyond 50 mm (a
-    /// translation) or 0.1 rad (a rotation).
+    /// [`Error::InvalidField`] (`error_motions`) when there are more than [`MAX_ORDER`] orders or a
+    /// coefficient is not finite or beyond 50 mm (a translation) or 0.1 rad (a rotation).
     pub fn new(coefficients: Vec<[f64; 6]>) -> Result<Self> {
         let invalid = |message: String| Error::InvalidField {
             field: "error_motions".into(),

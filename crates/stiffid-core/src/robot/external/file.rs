@@ -70,12 +70,11 @@ enum RoleFile {
 /// `None` for no tables.
 ///
 /// # Errors
-/// [`Error::InvalidField`] naming the file, the table (`external_axis[i] (name)`) and the field
-/// for a missing travel (`limits_mm` on a carrier, `limits_deg` on a positioner), a field of the
-/// other kind of axis, a zero or non-finite direction, a number outside its range
-/// ([`limits::LENGTH_MM`], [`limits::ANGLE_DEG`], [0, 10 000] deg/s or mm/s), error motions beyond
-/// 50 mm or 0.1 rad or [`super::MAX_ORDER`], and everything
-/// [`ExternalAxes::new`] checks (counts, names, travel).
+/// [`Error::InvalidField`] naming the file, the table (`external_axis[i] (name)`) and the field for
+/// a missing travel (`limits_mm` on a carrier, `limits_deg` on a positioner), a field of the other
+/// kind of axis, a zero or non-finite direction, a number outside its range ([`limits::LENGTH_MM`],
+/// [`limits::ANGLE_DEG`], [0, 10 000] deg/s or mm/s), error motions beyond 50 mm or 0.1 rad or
+/// [`super::MAX_ORDER`], and everything [`ExternalAxes::new`] checks (counts, names, travel).
 pub fn build(tables: &[AxisFile], source_name: &str) -> Result<Option<ExternalAxes>> {
     if tables.is_empty() {
         return Ok(None);

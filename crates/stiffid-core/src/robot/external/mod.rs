@@ -210,12 +210,12 @@ impl ExternalAxes {
     /// in the order given).
     ///
     /// # Errors
-    /// [`Error::InvalidField`] (`external_axis[i]...`, 1-based in the order given) when there
-    /// are none or more than [`MAX_AXES`], more than `MAX_CARRIER_AXES` carrier axes or
-    /// `MAX_POSITIONER_AXES` positioner axes, a carrier axis is not linear or a positioner
-    /// axis not rotary, a name is empty or repeated, a number is not finite, a travel is empty
-    /// or beyond [-100, 100] m (linear) or [`limits::ANGLE_RAD`] (rotary), or a rotary
-    /// axis carries error motions.
+    /// [`Error::InvalidField`] (`external_axis[i]...`, 1-based in the order given) when there are
+    /// none or more than [`MAX_AXES`], more than `MAX_CARRIER_AXES` carrier axes or
+    /// `MAX_POSITIONER_AXES` positioner axes, a carrier axis is not linear or a positioner axis not
+    /// rotary, a name is empty or repeated, a number is not finite, a travel is empty or beyond
+    /// [-100, 100] m (linear) or [`limits::ANGLE_RAD`] (rotary), or a rotary axis carries error
+    /// motions.
     pub fn new(axes: Vec<ExternalAxis>) -> Result<Self> {
         if axes.is_empty() || axes.len() > MAX_AXES {
             return Err(invalid(

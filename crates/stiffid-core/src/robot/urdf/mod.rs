@@ -21,12 +21,11 @@
 //! chains are an error, and so is such a chain hanging from a link the arm moves (a positioner
 //! axis on the arm's path to the tool: the error names the joint, the link and the arm's joint).
 //!
-//! Before the XML parser sees the text, its element nesting is bounded
-//! (64 levels), so a hostile file cannot overflow the stack. Each
-//! link and joint name must be declared once, every joint must name declared links, no link may
-//! be the child of two joints, every link must hang from one root, and every number of an origin,
-//! axis or limit must be finite and within the limits ([-100, 100] m,
-//! [`crate::common::limits::ANGLE_RAD`]).
+//! Before the XML parser sees the text, its element nesting is bounded (64 levels), so a hostile
+//! file cannot overflow the stack. Each link and joint name must be declared once, every joint must
+//! name declared links, no link may be the child of two joints, every link must hang from one root,
+//! and every number of an origin, axis or limit must be finite and within the limits ([-100, 100]
+//! m, [`crate::common::limits::ANGLE_RAD`]).
 
 mod elements;
 
@@ -58,13 +57,13 @@ pub struct UrdfSource {
 /// `tool0` and `base`). The robot's `source` names the tip link used.
 ///
 /// # Errors
-/// [`Error::Parse`] for malformed XML, nesting deeper than 64 levels, an element
-/// after the root, or a misspelt element of a joint or of a link's inertial, visual or collision;
-/// [`Error::Chain`] when a joint names an undeclared link, a link is the child of two joints, the
-/// links do not hang from one root, the tip link is missing or ambiguous, a joint in the chain is
-/// not revolute or fixed, has a non-finite or out-of-range number or an inverted limit, the
-/// chain does not hold exactly six revolute joints, or a chain of one or two revolute joints (a
-/// positioner) hangs from a link the arm moves.
+/// [`Error::Parse`] for malformed XML, nesting deeper than 64 levels, an element after the root, or
+/// a misspelt element of a joint or of a link's inertial, visual or collision; [`Error::Chain`]
+/// when a joint names an undeclared link, a link is the child of two joints, the links do not hang
+/// from one root, the tip link is missing or ambiguous, a joint in the chain is not revolute or
+/// fixed, has a non-finite or out-of-range number or an inverted limit, the chain does not hold
+/// exactly six revolute joints, or a chain of one or two revolute joints (a positioner) hangs from
+/// a link the arm moves.
 pub fn parse(text: &str, source_name: &str, tip: Option<&str>) -> Result<Robot> {
     let parse_error = |message: String| Error::Parse {
         source_name: source_name.to_string(),

@@ -102,11 +102,11 @@ pub(crate) fn is_cartesian(program: &JointProgram) -> bool {
 /// back as it is.
 ///
 /// # Errors
-/// [`Error::Program`](stiffid_core::Error::Program) naming the target's line (or the line that states the frame): a frame
-/// the program leaves to the controller (KRL without `$BASE` or `$TOOL`, `BASE_DATA[n]`), a
-/// tool that is not the setup's (1 micrometre, 1 microradian), an LS user frame without the
-/// setup's `[workpiece]`, the first target without configuration data, a pose out of reach in
-/// the configuration it names (with the configurations it is reached in), a robot with
+/// [`Error::Program`](stiffid_core::Error::Program) naming the target's line (or the line that
+/// states the frame): a frame the program leaves to the controller (KRL without `$BASE` or `$TOOL`,
+/// `BASE_DATA[n]`), a tool that is not the setup's (1 micrometre, 1 microradian), an LS user frame
+/// without the setup's `[workpiece]`, the first target without configuration data, a pose out of
+/// reach in the configuration it names (with the configurations it is reached in), a robot with
 /// external axes (not read with Cartesian targets yet).
 pub fn resolve(
     program: &JointProgram,

@@ -3,15 +3,15 @@
 //! three `MOVC` (start, via, end).
 //!
 //! A G-code arc (`G2`/`G3`, [`crate::gcode::GCode::arcs`]) is read as its chord points. After
-//! compensation each arc is split into pieces of at most 180 deg (a controller
-//! refuses a circle of 360 deg or more, and a piece of at most half a circle keeps its via point
-//! far from its start and end), and each piece is written as one circular move from its
-//! compensated start through its via point (the compensated chord point nearest its middle) to
-//! its compensated end, when the circle through those three stays within the arc tolerance (the
-//! chord tolerance) of every compensated chord point of the piece, the points in order along
-//! it. Otherwise the arc is written as its chords, as a straight-line path would be, and a
-//! warning states the largest distance of its compensated points from that circle; the chords
-//! themselves are within the chord tolerance of the programmed arc (their sagitta).
+//! compensation each arc is split into pieces of at most 180 deg (a controller refuses a circle of
+//! 360 deg or more, and a piece of at most half a circle keeps its via point far from its start and
+//! end), and each piece is written as one circular move from its compensated start through its via
+//! point (the compensated chord point nearest its middle) to its compensated end, when the circle
+//! through those three stays within the arc tolerance (the chord tolerance) of every compensated
+//! chord point of the piece, the points in order along it. Otherwise the arc is written as its
+//! chords, as a straight-line path would be, and a warning states the largest distance of its
+//! compensated points from that circle; the chords themselves are within the chord tolerance of the
+//! programmed arc (their sagitta).
 //!
 //! An arc is written as chords also when it has fewer than two chords per piece, when the
 //! external axes move along it (the controller would move them during the circle), or when the

@@ -40,13 +40,13 @@
 //! INFORM tool file `n`.
 //!
 //! ## Headers
-//! As the controllers write them: KRL `&ACCESS RVP`, `&REL 1`, `&PARAM TEMPLATE`, `&PARAM
-//! EDITMASK` before `DEF`; LS the whole `/ATTR` (owner, comment, sizes, dates, line count,
-//! protection, task attributes, motion groups, control code); INFORM `///DATE` and `///COMM`.
-//! The dates are reproducible: `SOURCE_DATE_EPOCH` (seconds since 1970-01-01 00:00 UTC, the
-//! reproducible-builds convention) when the environment sets it, else 1970-01-01. A KRL program's points are in the `.dat` beside it
-//! ([`File::data`], `crate::program::krl::data::split`), as KUKA System Software stores a
-//! module.
+//! As the controllers write them: KRL `&ACCESS RVP`, `&REL 1`, `&PARAM TEMPLATE`, `&PARAM EDITMASK`
+//! before `DEF`; LS the whole `/ATTR` (owner, comment, sizes, dates, line count, protection, task
+//! attributes, motion groups, control code); INFORM `///DATE` and `///COMM`. The dates are
+//! reproducible: `SOURCE_DATE_EPOCH` (seconds since 1970-01-01 00:00 UTC, the reproducible-builds
+//! convention) when the environment sets it, else 1970-01-01. A KRL program's points are in the
+//! `.dat` beside it ([`File::data`], `crate::program::krl::data::split`), as KUKA System Software
+//! stores a module.
 //!
 //! ## Controller rules
 //! Every rule comes from the controller's manual (docs/reference.md lists the sources):
@@ -338,13 +338,11 @@ pub fn moves(points: &[Point], max_tcp_speed: f64) -> Result<Vec<Move>> {
 /// # Errors
 /// [`Error::InvalidOption`] for settings outside their limits (option named), a program name the
 /// controller does not accept or that leaves no room for the sub-programs' numbers
-/// ([`JobOption::ProgramName`]), more than 9999 sub-programs
-/// ([`JobOption::MovesPerFile`]); [`Error::InvalidField`] for no
-/// target or more than 1 000 000, an axis angle that is not finite (`targets`), a
-/// count of moves other than the targets' or a feed below 0.001 mm/s or not finite (`moves`),
-/// a RAPID program and a tool without mass (`tool.mass_kg`);
-/// [`Error::Program`] for a feed an LS program
-/// cannot state (naming the target's 1-based index as its line).
+/// ([`JobOption::ProgramName`]), more than 9999 sub-programs ([`JobOption::MovesPerFile`]);
+/// [`Error::InvalidField`] for no target or more than 1 000 000, an axis angle that is not finite
+/// (`targets`), a count of moves other than the targets' or a feed below 0.001 mm/s or not finite
+/// (`moves`), a RAPID program and a tool without mass (`tool.mass_kg`); [`Error::Program`] for a
+/// feed an LS program cannot state (naming the target's 1-based index as its line).
 pub fn generate(plan: &Plan) -> Result<Written> {
     generate_with(plan, &Process::default())
 }

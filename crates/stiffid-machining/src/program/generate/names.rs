@@ -39,9 +39,9 @@ pub fn moves_per_file(dialect: Dialect, settings: &Settings) -> usize {
 
 /// Checks, before any computation, that a program `name` of `targets` targets can be written in
 /// `dialect` with `settings`: the settings within their limits ([`Settings::validate`], the name
-/// length within [`max_name_length`]), at most 9999 sub-programs (for LS, few enough for
-/// the main program's calls to fit [`LS_MAX_LINES`]) and every name the controller takes
-/// ([`check_name`]). Returns the names: the main program's, then its sub-programs'.
+/// length within [`max_name_length`]), at most 9999 sub-programs (for LS, few enough for the main
+/// program's calls to fit [`LS_MAX_LINES`]) and every name the controller takes ([`check_name`]).
+/// Returns the names: the main program's, then its sub-programs'.
 ///
 /// # Errors
 /// [`Error::InvalidOption`] naming the option: [`JobOption::NameLength`] above the

@@ -2,14 +2,14 @@
 //! its tables (the setup's `[controller] tools` and `bases`,
 //! [`stiffid_core::setup::NumberedFrames`]) that are the program's tool and part frame.
 //!
-//! A table's frame is the program's when it lies within 0.001 mm and 0.001 deg of it:
-//! the values a user copies from the pendant into the setup, to its decimals. Then the program
-//! selects it by number instead of stating it (KRL `$TOOL = TOOL_DATA[n]`, `$BASE =
-//! BASE_DATA[m]`; LS `UTOOL_NUM=n`, `UFRAME_NUM=m`, positions `UT : n`, `UF : m` in user frame
-//! `m`; INFORM tool file `n`, `///TOOL n`), as a teach pendant writes it. Numbers from 1: number 0
-//! is the flange or the world on every controller (and no `TOOL_DATA[0]` exists); of several
-//! matching frames the lowest number is taken. A program with no matching frame states it as
-//! before (KRL `$TOOL = {..}`, LS user frame 0 and tool frame 1 with its values in remarks).
+//! A table's frame is the program's when it lies within 0.001 mm and 0.001 deg of it: the values a
+//! user copies from the pendant into the setup, to its decimals. Then the program selects it by
+//! number instead of stating it (KRL `$TOOL = TOOL_DATA[n]`, `$BASE = BASE_DATA[m]`; LS
+//! `UTOOL_NUM=n`, `UFRAME_NUM=m`, positions `UT : n`, `UF : m` in user frame `m`; INFORM tool file
+//! `n`, `///TOOL n`), as a teach pendant writes it. Numbers from 1: number 0 is the flange or the
+//! world on every controller (and no `TOOL_DATA[0]` exists); of several matching frames the lowest
+//! number is taken. A program with no matching frame states it as before (KRL `$TOOL = {..}`, LS
+//! user frame 0 and tool frame 1 with its values in remarks).
 
 use nalgebra::Isometry3;
 use stiffid_core::setup::NumberedFrames;

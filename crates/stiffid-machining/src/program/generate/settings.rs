@@ -45,8 +45,8 @@ pub struct Settings {
 }
 
 impl Default for Settings {
-    /// Cartesian targets (not asked), 2000 mm/s, the dialect's name length, 10 000 moves per
-    /// file, rapids at [`RAPID_SPEED_MM_S`] and 20 %.
+    /// Cartesian targets (not asked), 2000 mm/s, the dialect's name length, 10 000 moves per file,
+    /// rapids at [`RAPID_SPEED_MM_S`] and 20 %.
     fn default() -> Self {
         Self {
             targets: Targets::Cartesian,

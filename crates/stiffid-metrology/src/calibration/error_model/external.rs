@@ -345,9 +345,9 @@ impl ErrorModel {
     /// `orders` has one entry per axis (a rotary axis's is ignored).
     ///
     /// # Errors
-    /// [`Error::InvalidField`] (`external_axis`) when the robot has no external axes, the
-    /// model has reflectors, loads or maps already, `orders` has another length, an order
-    /// exceeds [`stiffid_core::robot::external::MAX_ORDER`], or `tables` exceeds [`super::MAX_POINTS`].
+    /// [`Error::InvalidField`] (`external_axis`) when the robot has no external axes, the model has
+    /// reflectors, loads or maps already, `orders` has another length, an order exceeds
+    /// [`stiffid_core::robot::external::MAX_ORDER`], or `tables` exceeds [`super::MAX_POINTS`].
     pub fn with_external(mut self, orders: &[usize], tables: usize) -> Result<Self> {
         let invalid = |message: String| Error::InvalidField {
             field: "external_axis".into(),

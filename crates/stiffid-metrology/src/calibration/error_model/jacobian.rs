@@ -157,12 +157,12 @@ impl ErrorModel {
         Ok(j)
     }
 
-    /// [`ErrorModel::column_scales`] at the observations' postures, with, for a compliance
-    /// under the applied wrenches ([`Target::Compliance`]), `1 / rms`, `rms` the RMS length of
-    /// its observation rows (`ErrorModel::load_rows`) over the loaded readings: a compliance
-    /// that moves a loaded reading by 1 m RMS (0 below 1e-9 times the largest of its
-    /// unit's); for a drive's gravity compliance with known masses, the smaller of that and its
-    /// gravity scale (either where the other is 0).
+    /// [`ErrorModel::column_scales`] at the observations' postures, with, for a compliance under
+    /// the applied wrenches ([`Target::Compliance`]), `1 / rms`, `rms` the RMS length of its
+    /// observation rows (`ErrorModel::load_rows`) over the loaded readings: a compliance that moves
+    /// a loaded reading by 1 m RMS (0 below 1e-9 times the largest of its unit's); for a drive's
+    /// gravity compliance with known masses, the smaller of that and its gravity scale (either
+    /// where the other is 0).
     pub fn column_scales_of(&self, length: f64, observations: &[Observation]) -> DVector<f64> {
         let qs: Vec<Vector6<f64>> = observations.iter().map(|o| o.q).collect();
         let mut scales = self.column_scales(length, &qs);
@@ -236,13 +236,13 @@ impl ErrorModel {
     /// The typical size of each parameter, by which the Jacobian's columns are multiplied to make
     /// them comparable (the column scaling of the identifiability analysis and the design
     /// criteria): 1 m for a length or a translation, `1 / length` rad for an angle (`length` the
-    /// characteristic length, m: an angle error that moves a point at that distance by as much as
-    /// a 1 m length error), and for a gravity term `1 / (length * y_rms)`, `y_rms` the RMS of its
-    /// regressor at the postures `qs` (axis angles, rad), the value that deflects the joint by
-    /// that angle; 0 (the column then has no effect) for a term whose regressor's RMS is below
-    /// 1e-9 times the largest of its unit's (a torque that rounding alone makes
-    /// non-zero, such as gravity's about a vertical axis). A scaled column is the position change
-    /// (m) of a typical parameter error.
+    /// characteristic length, m: an angle error that moves a point at that distance by as much as a
+    /// 1 m length error), and for a gravity term `1 / (length * y_rms)`, `y_rms` the RMS of its
+    /// regressor at the postures `qs` (axis angles, rad), the value that deflects the joint by that
+    /// angle; 0 (the column then has no effect) for a term whose regressor's RMS is below 1e-9
+    /// times the largest of its unit's (a torque that rounding alone makes non-zero, such as
+    /// gravity's about a vertical axis). A scaled column is the position change (m) of a typical
+    /// parameter error.
     pub fn column_scales(&self, length: f64, qs: &[Vector6<f64>]) -> DVector<f64> {
         let rms = self.gravity.regressor_rms(qs);
         DVector::from_iterator(

@@ -25,14 +25,14 @@
 //! robot's error; when it does not (an axis's encoder eccentricity, which only maps hold), the
 //! residuals scatter by several times the tracker's noise, and a prior weighed against the
 //! tracker's alone lets the gravity terms chase that misfit on a few dozen postures, then
-//! extrapolate it to others. So a model with gravity terms and no maps is fitted again with
-//! the prior weighed against the noise of its residuals, `sigma^2 = |r|^2 / (3n - p_e)` (`p_e`
-//! the effective parameters, [`Fit::effective_parameters`]), while that exceeds the noise the
-//! prior was weighed against by more than 5 % (a fixed point of the noise, at
-//! most 4 fits; each from the same start): the prior's Gaussian with the noise
-//! the readings show, which leaves it as stated where the model fits to the tracker's noise
-//! (every noise-free or well-modelled campaign: the fit is unchanged there). [`Fit::gravity_noise`]
-//! gives the noise used; [`fit_at_stated_noise`] fits without it.
+//! extrapolate it to others. So a model with gravity terms and no maps is fitted again with the
+//! prior weighed against the noise of its residuals, `sigma^2 = |r|^2 / (3n - p_e)` (`p_e` the
+//! effective parameters, [`Fit::effective_parameters`]), while that exceeds the noise the prior was
+//! weighed against by more than 5 % (a fixed point of the noise, at most 4 fits; each from the same
+//! start): the prior's Gaussian with the noise the readings show, which leaves it as stated where
+//! the model fits to the tracker's noise (every noise-free or well-modelled campaign: the fit is
+//! unchanged there). [`Fit::gravity_noise`] gives the noise used; [`fit_at_stated_noise`] fits
+//! without it.
 //!
 //! *The prior's strength chosen by the readings.* The stated bound is the weakest prior a fit
 //! takes: a misfit no model term holds, seen on a few dozen postures, is one the gravity terms can
@@ -82,12 +82,11 @@ pub(crate) const STEP_TOLERANCE: f64 = 1e-13;
 /// A warning ([`WarningKind::NotConverged`]) when the fit stopped at its limit of `iterations`
 /// ([`Stop::IterationLimit`]) with the cost still falling: the calibration may still move.
 ///
-/// The fit's stop reasons: [`Stop::Converged`], an accepted step shorter than
-/// 1e-13 (scaled, times one plus the number of parameters fitted);
-/// [`Stop::Stalled`], an accepted step lowered the cost by at most `1e-15` of it;
-/// [`Stop::DampingExhausted`], no damping of 30 tried (each ten times the last) lowered the cost:
-/// both minima within rounding; [`Stop::IterationLimit`], [`MAX_ITERATIONS`] taken with the cost
-/// still falling.
+/// The fit's stop reasons: [`Stop::Converged`], an accepted step shorter than 1e-13 (scaled, times
+/// one plus the number of parameters fitted); [`Stop::Stalled`], an accepted step lowered the cost
+/// by at most `1e-15` of it; [`Stop::DampingExhausted`], no damping of 30 tried (each ten times the
+/// last) lowered the cost: both minima within rounding; [`Stop::IterationLimit`],
+/// [`MAX_ITERATIONS`] taken with the cost still falling.
 pub fn stop_warning(stop: Stop, iterations: usize) -> Option<Warning> {
     (stop == Stop::IterationLimit).then(|| {
         Warning::new(

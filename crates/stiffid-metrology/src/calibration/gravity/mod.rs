@@ -320,8 +320,8 @@ impl Terms {
         )
     }
 
-    /// Unknown masses, three bodies (module docs, [`Gravity::Lumped`]): the lumped terms of
-    /// every spring (in `coordinates`) and every body of [`Gravity::Lumped`] it carries.
+    /// Unknown masses, three bodies (module docs, [`Gravity::Lumped`]): the lumped terms of every
+    /// spring (in `coordinates`) and every body of [`Gravity::Lumped`] it carries.
     pub fn lumped_bodies(robot: &Robot, coordinates: Coordinates) -> Self {
         Self::lumped_links((robot, Gravity::Lumped), coordinates, &BODIES)
     }

@@ -76,9 +76,9 @@ pub struct Outside {
     pub joints: Vec<usize>,
 }
 
-/// The held-out postures (`held`'s posture indices, table observations left out) whose axis
-/// angles lie outside the `fitted` observations' ranges by more than 1 deg, each with
-/// its [`Outside`], and the count of distinct held-out postures.
+/// The held-out postures (`held`'s posture indices, table observations left out) whose axis angles
+/// lie outside the `fitted` observations' ranges by more than 1 deg, each with its [`Outside`], and
+/// the count of distinct held-out postures.
 pub fn postures_outside(
     fitted: &[Observation],
     held: &[Observation],
@@ -110,9 +110,9 @@ pub fn postures_outside(
 }
 
 /// The warning ([`WarningKind::Extrapolation`]) when held-out postures (`held`, labelled by
-/// `labels`) lie outside the `fitted` observations' axis ranges by more than 1 deg,
-/// whatever their errors: how many, the joints outside, and the farthest posture with its
-/// distance (deg) beyond the range and its joint; `None` when every held-out posture lies within.
+/// `labels`) lie outside the `fitted` observations' axis ranges by more than 1 deg, whatever their
+/// errors: how many, the joints outside, and the farthest posture with its distance (deg) beyond
+/// the range and its joint; `None` when every held-out posture lies within.
 pub fn outside_ranges(
     name: &str,
     (fitted, held): (&[Observation], &[Observation]),

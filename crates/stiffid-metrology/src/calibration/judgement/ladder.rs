@@ -2,39 +2,36 @@
 //! of nested models climbed by a cross-validation that holds out groups of postures.
 //!
 //! # The rungs
-//! In order of complexity, each gravity model (the rigid robot, the arm's
-//! three terms (skipped, saying why, on a robot that is not an anthropomorphic arm), the lumped
-//! bodies, the lumped links, the known masses where the robot gives them) without joint error
-//! maps and then with the maps of `--maps` (chosen by [`crate::calibration::maps`]
-//! inside every training set; where `auto` keeps no map on every posture, the rungs with maps are
-//! the ones without and are skipped saying so). A fixed `--gravity` is a ladder of one gravity model, `--maps none`
-//! or fixed maps one maps variant; a ladder of one rung is not climbed.
+//! In order of complexity, each gravity model (the rigid robot, the arm's three terms (skipped,
+//! saying why, on a robot that is not an anthropomorphic arm), the lumped bodies, the lumped links,
+//! the known masses where the robot gives them) without joint error maps and then with the maps of
+//! `--maps` (chosen by [`crate::calibration::maps`] inside every training set; where `auto` keeps
+//! no map on every posture, the rungs with maps are the ones without and are skipped saying so). A
+//! fixed `--gravity` is a ladder of one gravity model, `--maps none` or fixed maps one maps
+//! variant; a ladder of one rung is not climbed.
 //!
 //! # The held-out figure
 //! Each rung is fitted to every reading (its gravity terms bounded by
-//! [`crate::calibration::fit::GravityPrior`]); a rung whose fit does not converge or
-//! whose scaled Jacobian's condition exceeds 1e6 is skipped (the simpler
-//! model kept), and so is a rung that extrapolates: one whose expected error where the robot is
-//! used ([`super::region`]: the joint-space hull of the postures of the campaign and of the
-//! setup) exceeds that of the geometry with the same maps variant by more than the held-out
-//! figures resolve, the expected error being the rung's own held-out error (below: with maps,
-//! the error with its maps) and the RMS standard deviation of its gravity model's predictions
-//! over that region (`postures_sd`, where the readings leave the terms to their prior, at the
-//! noise of the fit without maps) in quadrature: bias and variance; its square may exceed the
-//! geometry's by one standard error of the difference of their held-out mean squared errors
-//! (the paired per-posture differences), as the choice below allows: a difference the groups
-//! cannot resolve does not turn a model down. A gravity model that extrapolates without maps
-//! is judged again with them: what the maps hold (an axis's periodic error) no longer biases its
-//! held-out error. The groups held out among
-//! the fitted postures cannot show what the spread shows; postures the robot never takes do not
-//! turn a model down.
-//! The postures are dealt into 5 groups (posture `i` in group `i mod K`); each group is
-//! predicted by the rung refitted without it (linearised at the rung's fit, as the maps' choice:
-//! [`crate::calibration::maps::nested`], the maps chosen on each training set at the
-//! first gravity model's fit and kept, with their ridges, for the others, as the maps chosen on
-//! every posture there are:
-//! [`crate::calibration::maps::nested_given`]), which gives every held-out posture
-//! its squared error under every rung, paired.
+//! [`crate::calibration::fit::GravityPrior`]); a rung whose fit does not converge or whose scaled
+//! Jacobian's condition exceeds 1e6 is skipped (the simpler model kept), and so is a rung that
+//! extrapolates: one whose expected error where the robot is used ([`super::region`]: the
+//! joint-space hull of the postures of the campaign and of the setup) exceeds that of the geometry
+//! with the same maps variant by more than the held-out figures resolve, the expected error being
+//! the rung's own held-out error (below: with maps, the error with its maps) and the RMS standard
+//! deviation of its gravity model's predictions over that region (`postures_sd`, where the readings
+//! leave the terms to their prior, at the noise of the fit without maps) in quadrature: bias and
+//! variance; its square may exceed the geometry's by one standard error of the difference of their
+//! held-out mean squared errors (the paired per-posture differences), as the choice below allows: a
+//! difference the groups cannot resolve does not turn a model down. A gravity model that
+//! extrapolates without maps is judged again with them: what the maps hold (an axis's periodic
+//! error) no longer biases its held-out error. The groups held out among the fitted postures cannot
+//! show what the spread shows; postures the robot never takes do not turn a model down. The
+//! postures are dealt into 5 groups (posture `i` in group `i mod K`); each group is predicted by
+//! the rung refitted without it (linearised at the rung's fit, as the maps' choice:
+//! [`crate::calibration::maps::nested`], the maps chosen on each training set at the first gravity
+//! model's fit and kept, with their ridges, for the others, as the maps chosen on every posture
+//! there are: [`crate::calibration::maps::nested_given`]), which gives every held-out posture its
+//! squared error under every rung, paired.
 //!
 //! # The choice (one standard error)
 //! The rung with the least held-out error is the best; the job fits the simplest rung whose

@@ -4,43 +4,42 @@
 //! tuned on).
 //!
 //! # The candidates
-//! A joint's map ([`stiffid_core::robot::ErrorMap`]) of `H` harmonics, `H` in 4, 8, 16 or 32, with the
-//! ridge `mu` in [`RIDGES`] ([`crate::calibration::fit::Options::ridge`]: a penalty of
-//! `mu` per reading on a scaled coefficient). `--maps J1,J3:16` fixes the joints and harmonics
-//! (a bare joint takes 16) and chooses the ridge alone. Where the readings
-//! carry the directions of approach, a joint's backlash term is a candidate too (one column,
-//! [`crate::calibration::error_model::Target::Backlash`]): `J2:8b` is 8 harmonics
-//! and the backlash, `J2:b` the backlash alone.
+//! A joint's map ([`stiffid_core::robot::ErrorMap`]) of `H` harmonics, `H` in 4, 8, 16 or 32, with
+//! the ridge `mu` in [`RIDGES`] ([`crate::calibration::fit::Options::ridge`]: a penalty of `mu` per
+//! reading on a scaled coefficient). `--maps J1,J3:16` fixes the joints and harmonics (a bare joint
+//! takes 16) and chooses the ridge alone. Where the readings carry the directions of approach, a
+//! joint's backlash term is a candidate too (one column,
+//! [`crate::calibration::error_model::Target::Backlash`]): `J2:8b` is 8 harmonics and the backlash,
+//! `J2:b` the backlash alone.
 //!
 //! # The choice ([`choose`])
-//! The postures are dealt into 5 folds (posture `p` of the training postures in fold
-//! `p mod K`); each candidate's held-out error is the sum over folds of the errors of the fold's
-//! postures predicted by the fit of the others, at its best ridge (a held-out posture beyond the
-//! others' range of an axis with that axis's map tapered as the calibrated robot's:
-//! [`Linear::split`]). First each joint alone, at each
-//! harmonic count, and each joint's backlash term alone (with directions); then, from no map,
-//! these in the order of their own held-out error, each kept when it lowers the held-out error by
-//! more than [`MAP_ACCEPT`] standard errors of the paired per-posture differences (a one-sided
-//! test at about 0.6 %) and by 2 % of it: the choice keeps no map on a robot without
-//! one. Then jointly: the first `k` joints of that order (`k` from 2) together at each harmonic
-//! count up to the largest any of them chose alone, the one with the least held-out error replacing the forward choice where it has less
-//! and lowers the error without maps by the same rule (one joint at a time stops early where
-//! several joints' maps each gain a little). The choice is made on the linearised fit (`linear`): exact to second order in
-//! the parameters' change from the fit, a few nanometres on a calibrated robot.
+//! The postures are dealt into 5 folds (posture `p` of the training postures in fold `p mod K`);
+//! each candidate's held-out error is the sum over folds of the errors of the fold's postures
+//! predicted by the fit of the others, at its best ridge (a held-out posture beyond the others'
+//! range of an axis with that axis's map tapered as the calibrated robot's: [`Linear::split`]).
+//! First each joint alone, at each harmonic count, and each joint's backlash term alone (with
+//! directions); then, from no map, these in the order of their own held-out error, each kept when
+//! it lowers the held-out error by more than [`MAP_ACCEPT`] standard errors of the paired
+//! per-posture differences (a one-sided test at about 0.6 %) and by 2 % of it: the choice keeps no
+//! map on a robot without one. Then jointly: the first `k` joints of that order (`k` from 2)
+//! together at each harmonic count up to the largest any of them chose alone, the one with the
+//! least held-out error replacing the forward choice where it has less and lowers the error without
+//! maps by the same rule (one joint at a time stops early where several joints' maps each gain a
+//! little). The choice is made on the linearised fit (`linear`): exact to second order in the
+//! parameters' change from the fit, a few nanometres on a calibrated robot.
 //!
 //! # The honest figure ([`nested`])
-//! An outer cross-validation of 5 folds makes the whole choice on each outer fold's
-//! training postures and predicts its held-out postures with it, beside the geometry alone on the
-//! same split: the held-out gain of choosing maps by cross-validation. Inside outer fold `k` the
-//! choice's inner folds are the other outer folds, each trained on the postures of neither: the
-//! two outer folds of a pair share its split and each candidate's steps on it, so the `K` choices
-//! cost `K (K - 1) / 2` splits, not `K^2` (with 3 outer folds or more). Folds run in parallel
-//! (rayon), the result independent of the thread count. [`nested_given`] scores the choices and
-//! ridges another linearisation of the same postures made (a calibration's ladder chooses the
-//! maps once, at its first gravity model): one refit per outer fold. Where the maps are fixed
-//! (or none), the splits project the columns of these maps alone
-//! ([`Linear::restricted`]): the later rungs and each outer fold's figure cost the columns they
-//! use, not the candidates'.
+//! An outer cross-validation of 5 folds makes the whole choice on each outer fold's training
+//! postures and predicts its held-out postures with it, beside the geometry alone on the same
+//! split: the held-out gain of choosing maps by cross-validation. Inside outer fold `k` the
+//! choice's inner folds are the other outer folds, each trained on the postures of neither: the two
+//! outer folds of a pair share its split and each candidate's steps on it, so the `K` choices cost
+//! `K (K - 1) / 2` splits, not `K^2` (with 3 outer folds or more). Folds run in parallel (rayon),
+//! the result independent of the thread count. [`nested_given`] scores the choices and ridges
+//! another linearisation of the same postures made (a calibration's ladder chooses the maps once,
+//! at its first gravity model): one refit per outer fold. Where the maps are fixed (or none), the
+//! splits project the columns of these maps alone ([`Linear::restricted`]): the later rungs and
+//! each outer fold's figure cost the columns they use, not the candidates'.
 //!
 //! Equations and sources: docs/model.md, section "Calibration", "Joint error maps".
 
@@ -125,8 +124,8 @@ pub enum Spec {
 
 impl Spec {
     /// Parses `auto`, `none` or a list of joints `J1,J3:16,J4:8b,J5:b` (a joint `J1`..`J6`,
-    /// optionally `:H` harmonics, 1 to [`MAX_HARMONICS`], default 16, a `b`
-    /// after them for a backlash term too, `:b` the backlash term alone).
+    /// optionally `:H` harmonics, 1 to [`MAX_HARMONICS`], default 16, a `b` after them for a
+    /// backlash term too, `:b` the backlash term alone).
     ///
     /// # Errors
     /// [`Error::InvalidOption`] ([`JobOption::Maps`]) naming the part not understood.
@@ -182,9 +181,9 @@ impl Spec {
         Ok(Spec::Fixed(maps))
     }
 
-    /// The maps the linearised fit needs columns for: every joint at the largest of
-    /// 4, 8, 16 or 32 for [`Spec::Auto`], with a backlash term each where the readings carry
-    /// `directions`; the fixed ones; none.
+    /// The maps the linearised fit needs columns for: every joint at the largest of 4, 8, 16 or 32
+    /// for [`Spec::Auto`], with a backlash term each where the readings carry `directions`; the
+    /// fixed ones; none.
     pub fn candidates(self, directions: bool) -> JointMaps {
         match self {
             Spec::Auto => JointMaps {
@@ -256,9 +255,9 @@ fn better(current: &Scored, candidate: &Scored) -> bool {
 }
 
 /// Whether the candidate's held-out errors (per held-out posture, and their total) lower the
-/// current ones by more than `accept` standard errors of the paired per-posture differences
-/// and by 2 % of the total: the acceptance rule of every choice by cross-validation
-/// in the calibration (the maps at [`MAP_ACCEPT`], the error motions' orders at [`ACCEPT`]).
+/// current ones by more than `accept` standard errors of the paired per-posture differences and by
+/// 2 % of the total: the acceptance rule of every choice by cross-validation in the calibration
+/// (the maps at [`MAP_ACCEPT`], the error motions' orders at [`ACCEPT`]).
 pub fn lowers(current: (&[f64], f64), candidate: (&[f64], f64), accept: f64) -> bool {
     let n = current.0.len();
     if n < 2 {

@@ -10,10 +10,10 @@
 //!
 //! With [`Request::update`], a calibrated robot refitted from check readings after their check
 //! ([`drift`]). Limits: at most `MAX_READINGS` readings (the readings file's own limit), at most
-//! [`stiffid_metrology::calibration::error_model::MAX_POINTS`] measuring points, more coordinates than
-//! identifiable parameters, at most 5000 postures with
-//! cross-validation (one fit per posture; beyond it, held-out readings get no intervals), at
-//! least `MIN_UPDATE_POSTURES` postures with `update`.
+//! [`stiffid_metrology::calibration::error_model::MAX_POINTS`] measuring points, more coordinates
+//! than identifiable parameters, at most 5000 postures with cross-validation (one fit per posture;
+//! beyond it, held-out readings get no intervals), at least `MIN_UPDATE_POSTURES` postures with
+//! `update`.
 
 mod checks;
 mod chosen;
@@ -290,11 +290,10 @@ pub(crate) type Outcome = crate::app::Outcome<Report>;
 /// Runs the job.
 ///
 /// # Errors
-/// Those of [`read`], [`stiffid_metrology::calibration::model`], [`fit::start`], [`fit::fit`],
-/// the ladder's ([`ladder`]), [`validation::validate`] and [`validation::cross_validate`], as
-/// [`Error::Input`] naming the file;
-/// [`Error::InvalidField`] (`cross_validate`) beyond 5000 postures,
-/// (`validate`) when the held-out readings are in another frame than the fitted;
+/// Those of [`read`], [`stiffid_metrology::calibration::model`], [`fit::start`], [`fit::fit`], the
+/// ladder's ([`ladder`]), [`validation::validate`] and [`validation::cross_validate`], as
+/// [`Error::Input`] naming the file; [`Error::InvalidField`] (`cross_validate`) beyond 5000
+/// postures, (`validate`) when the held-out readings are in another frame than the fitted;
 /// [`Error::InvalidOption`] ([`JobOption::Level`]) for a level outside
 /// [`stiffid_core::model::prediction::LEVEL`] or without `validate`.
 pub fn run(request: &Request<'_>) -> Result<Outcome> {

@@ -2,14 +2,14 @@
 //!
 //! A stiffness file written by `identify --compare-models --bootstrap N --stiffness-out` holds the
 //! setup's model fitted to every posture (the six drives, for a setup whose `[model]` declares no
-//! spring) and, in its `model_form`, the comparison's recommended model fitted to the same
-//! postures ([`stiffid_core::model::ModelForm::recommended`]). Where the two differ, the job
-//! sets the TCP translation each predicts at every compensated point (the length `|dp|`, m, at
-//! the posture chosen, under the point's wrench) side by side: Spearman's rank correlation `rho`
-//! of the two over the path's points ([`stiffid_core::math::spearman`]) says whether they rank
-//! the postures alike (where the arm is softest, which rotation of the spindle deflects least).
-//! Below 0.5 they do not: the document's `model_ranking` lists the points whose
-//! ranks differ most with both values and ranks, and a warning of kind `model-form` says so.
+//! spring) and, in its `model_form`, the comparison's recommended model fitted to the same postures
+//! ([`stiffid_core::model::ModelForm::recommended`]). Where the two differ, the job sets the TCP
+//! translation each predicts at every compensated point (the length `|dp|`, m, at the posture
+//! chosen, under the point's wrench) side by side: Spearman's rank correlation `rho` of the two
+//! over the path's points ([`stiffid_core::math::spearman`]) says whether they rank the postures
+//! alike (where the arm is softest, which rotation of the spindle deflects least). Below 0.5 they
+//! do not: the document's `model_ranking` lists the points whose ranks differ most with both values
+//! and ranks, and a warning of kind `model-form` says so.
 
 use serde::Serialize;
 use stiffid_core::common::warning::{Warning, WarningKind};

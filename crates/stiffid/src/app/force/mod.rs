@@ -17,8 +17,8 @@ pub struct Request<'a> {
     /// The process.
     pub process: &'a Process,
     /// The peak force over one revolution on a grid of spindle angles this far apart, deg
-    /// ([`MIN_RESOLUTION_DEG`] to 10; in degrees as the process file and the
-    /// document state it); `None` for none.
+    /// ([`MIN_RESOLUTION_DEG`] to 10; in degrees as the process file and the document state it);
+    /// `None` for none.
     pub peak_resolution_deg: Option<f64>,
 }
 

@@ -10,18 +10,18 @@ use stiffid_machining::compensate::grammar::{invalid, parts};
 const EXPECTED: &str = "expected z (the part's height: z=LO..HI, mm from its own, default -100..100) or tilt (about the base x and y axes: tilt=-T..T, deg, default -10..10); x, y and the rotation are always free (--region-mm, --rotation-deg)";
 
 impl Free {
-    /// The height and tilt freed by `texts` (`place --free`, Python's `place(free=[...])`):
-    /// `z` or `z=LO..HI` (the part origin's height from its own `own_z`, m, within `LO..HI` mm;
-    /// default +-100 mm) and `tilt` or `tilt=-T..T` (the tilt about the
-    /// base x and y axes within +-T deg, `0 < T <= 45`; default
-    /// [`Region::DEFAULT_TILT_DEG`]), each at most once; a variable not given stays at its own
-    /// (the height `own_z`, no tilt). `None` when `texts` is empty: x, y and the rotation alone.
+    /// The height and tilt freed by `texts` (`place --free`, Python's `place(free=[...])`): `z` or
+    /// `z=LO..HI` (the part origin's height from its own `own_z`, m, within `LO..HI` mm; default
+    /// +-100 mm) and `tilt` or `tilt=-T..T` (the tilt about the base x and y axes within +-T deg,
+    /// `0 < T <= 45`; default [`Region::DEFAULT_TILT_DEG`]), each at most once; a variable not
+    /// given stays at its own (the height `own_z`, no tilt). `None` when `texts` is empty: x, y and
+    /// the rotation alone.
     ///
     /// # Errors
-    /// [`stiffid_core::Error::InvalidOption`] ([`stiffid_core::JobOption::Free`]) naming the
-    /// text: another name, a variable given twice, a step (the search is continuous), a tilt's
-    /// range not symmetric or beyond its limit, a height's beyond +-20 m; and
-    /// those of the grammar ([`parts`]).
+    /// [`stiffid_core::Error::InvalidOption`] ([`stiffid_core::JobOption::Free`]) naming the text:
+    /// another name, a variable given twice, a step (the search is continuous), a tilt's range not
+    /// symmetric or beyond its limit, a height's beyond +-20 m; and those of the grammar
+    /// ([`parts`]).
     pub fn parse<S: AsRef<str>>(texts: &[S], own_z: f64) -> Result<Option<Free>> {
         if texts.is_empty() {
             return Ok(None);

@@ -93,8 +93,7 @@ pub struct Document<'a> {
     /// The relative standard error of each stiffness: `std_error_nm_per_rad` over the
     /// stiffness's magnitude, %; `null` unless finite, or without degrees of freedom.
     pub std_error_pct: Option<[Option<f64>; 6]>,
-    /// The relative standard error above which a stiffness is poorly determined
-    /// (25 %), %.
+    /// The relative standard error above which a stiffness is poorly determined (25 %), %.
     pub poorly_determined_above_pct: f64,
     /// Whether each stiffness is poorly determined: `std_error_nm_per_rad` above
     /// 0.25 times its magnitude; measure postures
@@ -142,8 +141,7 @@ pub struct Document<'a> {
     pub residual_rms: f64,
     /// Every measurement's residual (measured - fitted), in the data's order.
     pub residuals: Vec<Residual<'a>>,
-    /// The 5 measurements with the longest residuals (or all of them if
-    /// fewer), the longest first.
+    /// The 5 measurements with the longest residuals (or all of them if fewer), the longest first.
     pub largest_residuals: Vec<Residual<'a>>,
     /// With a robust fit: the reweighting.
     pub robust: Option<Robust<'a>>,
