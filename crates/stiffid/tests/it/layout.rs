@@ -847,9 +847,9 @@ fn every_document_type_names_its_kind() {
     assert!(missing.is_empty(), "documents without a kind: {missing:?}");
 }
 
-/// The `pub` items of a library crate's files (outside their tests): every `pub` function,
-/// type, trait, constant, static, module and `pub use` line (a `pub(crate)` or `pub(super)`
-/// item is not public; a field or a method of a type is counted with its type).
+/// The `pub` items of a library crate's files (outside their tests): every `pub` function (a
+/// method too), type, trait, constant, static, module and `pub use` line (a `pub(crate)` or
+/// `pub(super)` item is not public; a field is counted with its type).
 fn public_items(name: &str) -> usize {
     let kinds = [
         "fn ", "struct ", "enum ", "trait ", "type ", "const ", "static ", "mod ", "use ",
