@@ -119,6 +119,9 @@ impl LoadSteps {
             out.falling.push(level < *highest);
             *highest = highest.max(level);
             let wrench = r.wrench - reference.wrench;
+            if let Load::Newtons(n) = load {
+                check_force(n, wrench.fixed_rows::<3>(0).norm(), line)?;
+            }
             out.loads_n.push(match load {
                 Load::Newtons(n) => n,
                 Load::Step(_) => wrench.fixed_rows::<3>(0).norm(),
@@ -196,6 +199,29 @@ pub fn generalised(
     id.residuals = &obs.delta - &id.predicted;
     id.residual_rms = (id.residuals.norm_squared() / id.residuals.len() as f64).sqrt();
     Ok(id)
+}
+
+/// How far, as a factor either way, a reading's force change from its reference may lie from
+/// its nominal load `load_n`: beyond it the file contradicts itself (a force in kN, a load in
+/// kg).
+const FORCE_FACTOR: f64 = 10.0;
+
+/// Nothing when the force change `force_n` (N) of a reading under the nominal load `load_n` (N,
+/// at line `line`) agrees with it within [`FORCE_FACTOR`] either way, or the load is 0.
+fn check_force(load_n: f64, force_n: f64, line: u64) -> Result<()> {
+    if load_n == 0.0 || (load_n / FORCE_FACTOR..=load_n * FORCE_FACTOR).contains(&force_n) {
+        return Ok(());
+    }
+    Err(Error::InvalidField {
+        field: "load_n".into(),
+        message: format!(
+            "line {line}: a load of {} N, but the force change from the point's unloaded reading \
+             (fx_n, fy_n, fz_n) is {} N: the file contradicts itself (forces in kN, a load in \
+             kg?); give both in N",
+            stiffid_core::common::words::number(load_n),
+            stiffid_core::common::words::number(force_n)
+        ),
+    })
 }
 
 fn loaded_first(readings: &Readings, posture: usize, point: usize, line: u64) -> Error {

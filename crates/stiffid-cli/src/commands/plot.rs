@@ -21,30 +21,55 @@ pub struct Args {
     /// figures of `stiffid plot`, unless --force).
     #[arg(long)]
     out: PathBuf,
-    /// Write into --out even if it holds other files.
+    /// Write into --out even if it holds other files (a file named as a figure is replaced; no
+    /// file but an earlier figure of `stiffid plot` is removed).
     #[arg(long)]
     force: bool,
 }
 
-/// Whether every file in `dir` is a figure `stiffid plot` writes.
+/// The comment every SVG figure of `stiffid plot` carries after its `<svg>` tag: what tells a
+/// figure of ours from a user's file of the same name, which the command never replaces or
+/// removes without `--force`, nor removes with it.
+const MARK: &str = "<!-- drawn by stiffid plot -->";
+
+/// Whether every file in `dir` is a figure `stiffid plot` wrote.
 fn only_our_figures(dir: &Path) -> bool {
     std::fs::read_dir(dir).is_ok_and(|entries| {
         entries
             .flatten()
-            .all(|e| is_our_figure(&e.file_name().to_string_lossy()))
+            .all(|e| is_our_figure(dir, Path::new(&e.file_name())))
     })
 }
 
-/// Whether `name` is the name of a figure `stiffid plot` writes.
-fn is_our_figure(name: &str) -> bool {
-    let stem = name
-        .strip_suffix(".svg")
-        .or_else(|| name.strip_suffix(".png"))
-        .unwrap_or("");
-    stem == "postures"
-        || stem
-            .strip_prefix("posture_")
-            .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
+/// Whether `rel` in `dir` is a figure `stiffid plot` wrote: named as one, and an SVG that
+/// carries [`MARK`], or a PNG beside such an SVG of the same name.
+fn is_our_figure(dir: &Path, rel: &Path) -> bool {
+    let name = rel.to_string_lossy();
+    let named = |stem: &str| {
+        stem == "postures"
+            || stem
+                .strip_prefix("posture_")
+                .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
+    };
+    let carries_mark = |svg: &Path| {
+        let mut head = [0u8; 256];
+        stiffid_core::io::input::open(svg)
+            .and_then(|mut f| std::io::Read::read(&mut f, &mut head))
+            .is_ok_and(|n| String::from_utf8_lossy(&head[..n]).contains(MARK))
+    };
+    match (name.strip_suffix(".svg"), name.strip_suffix(".png")) {
+        (Some(stem), _) => named(stem) && carries_mark(&dir.join(rel)),
+        (_, Some(stem)) => named(stem) && carries_mark(&dir.join(format!("{stem}.svg"))),
+        _ => false,
+    }
+}
+
+/// `svg` with [`MARK`] after its `<svg ...>` tag.
+fn marked(svg: &str) -> String {
+    match svg.find(">\n") {
+        Some(end) => format!("{}\n{MARK}{}", &svg[..=end], &svg[end + 1..]),
+        None => format!("{MARK}\n{svg}"),
+    }
 }
 
 /// Draws the postures and writes `postures.svg/.png` and `posture_NN.svg/.png`.
@@ -52,7 +77,7 @@ pub fn run(args: &Args) -> Result<()> {
     let setup = load::setup(&args.setup)?;
     setup.check_bodies()?;
     let group = load::postures(&args.postures, setup.robot(), None)?;
-    let holds = |rel: &Path| is_our_figure(&rel.to_string_lossy());
+    let holds = |rel: &Path| is_our_figure(&args.out, rel);
     let dir = ReportDir::prepare(
         &args.out,
         "--out",
@@ -66,7 +91,7 @@ pub fn run(args: &Args) -> Result<()> {
     let written = figures::all(&stiffid_figures::postures::each(&setup, &group), Png::Also)
         .and_then(|figures| {
             for f in &figures {
-                dir.write(&format!("{}.svg", f.name), f.svg.as_bytes())?;
+                dir.write(&format!("{}.svg", f.name), marked(&f.svg).as_bytes())?;
                 if let Some(png) = &f.png {
                     dir.write(&format!("{}.png", f.name), png)?;
                 }

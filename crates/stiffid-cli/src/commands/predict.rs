@@ -85,10 +85,10 @@ fn human(r: &Document<'_>) -> String {
     header(r) + &joints(r) + &points(r) + &tcp(r) + &cartesian(r) + &mass(r)
 }
 
-/// `v` in columns 12 wide with `digits` decimals.
+/// `v` in columns 12 wide with `digits` decimals, a wider value a blank apart.
 fn row(v: &[f64], digits: usize) -> String {
     v.iter()
-        .map(|x| format!("{x:>12.digits$}"))
+        .map(|x| format!(" {x:>11.digits$}"))
         .collect::<Vec<_>>()
         .join("")
 }

@@ -315,6 +315,37 @@ fn a_stiffness_files_prediction_data_and_its_two_stiffness_keys_are_checked() {
             && e.contains("where parameters gives drive 'k1'"),
         "{e}"
     );
+    // The drives' compliance and covariance, written twice, agree or the file is refused.
+    assert!(parse(&doc).is_ok());
+    let mut h = doc.clone();
+    h["compliance_rad_per_nm"][0] = 1.0.into();
+    let e = parse(&h).unwrap_err().to_string();
+    assert!(
+        e.starts_with("compliance_rad_per_nm[1]: 1 where the stiffness ")
+            && e.contains("contradicts itself"),
+        "{e}"
+    );
+    let mut zero = doc.clone();
+    zero["compliance_covariance_rad2_per_nm2"][1][1] = 0.0.into();
+    let e = parse(&zero).unwrap_err().to_string();
+    assert!(
+        e.starts_with("compliance_covariance_rad2_per_nm2[2][2]: 0 where compliance_covariance_si gives "),
+        "{e}"
+    );
+    let mut drives = doc.clone();
+    drives.as_object_mut().unwrap().remove("compliance_covariance_si");
+    let e = parse(&drives).unwrap_err().to_string();
+    assert!(
+        e.starts_with("compliance_covariance_rad2_per_nm2: beside parameters"),
+        "{e}"
+    );
+    let mut alone = serde_json::json!({"stiffness_nm_per_rad": doc["stiffness_nm_per_rad"]});
+    alone["compliance_covariance_si"] = doc["compliance_covariance_si"].clone();
+    let e = parse(&alone).unwrap_err().to_string();
+    assert!(
+        e.starts_with("compliance_covariance_si: without parameters"),
+        "{e}"
+    );
 }
 
 fn example(name: &str) -> String {

@@ -126,6 +126,11 @@ fn calibrate_predicts_held_out_readings_and_writes_robot_files() {
         robot.to_str().unwrap(),
         "--json",
     ];
+    // The fitted readings as the held-out ones judge nothing: refused, naming both.
+    let mut same = args;
+    same[6] = data.to_str().unwrap();
+    assert_usage_error(&stiffid(&same), &["validate", "the same readings as the fitted"]);
+    assert!(!robot.exists());
     let doc = json(&stiffid(&args));
     assert!(
         doc["residual_rms_mm"].as_f64().unwrap() < 1e-6,

@@ -391,6 +391,29 @@ fn input_files_have_a_size_limit() {
     );
 }
 
+/// A URDF revolute joint without `<limit>` is unlimited: a setup on it gives the experiment's
+/// bounds, or is refused naming them (never a bound of -inf the file does not hold).
+#[test]
+fn a_joint_without_limits_needs_the_experiments_bounds() {
+    let dir = scratch("unlimited");
+    let limit = r#"<limit lower="-3.2" upper="3.2" effort="1000" velocity="2"/>"#;
+    let urdf = urdf_fixture();
+    assert!(urdf.contains(limit));
+    write_file(&dir, "u.urdf", &urdf.replacen(limit, "", 1));
+    let robot = "robot = \"comau-smart5-nj165-3.0\"";
+    let bounded = setup_with(&dir, "bounded.toml", robot, "robot = \"u.urdf\"");
+    let text = std::fs::read_to_string(&bounded).unwrap();
+    let (head, tail) = text.split_once("[bounds]").unwrap();
+    let tail = tail.split_once("[test]").unwrap().1;
+    write_file(&dir, "unbounded.toml", &format!("{head}[test]{tail}"));
+    let evaluate = |setup: &'static str| ["evaluate", "--setup", setup, "--postures", "{dir}/g.csv"];
+    let line = refused(&dir, &evaluate("{dir}/unbounded.toml"), &["bounds", "joint 1 has no limits"]);
+    assert!(!line.contains("inf"), "{line}");
+    let d = dir.to_str().unwrap();
+    let args = evaluate("{dir}/bounded.toml").map(|a| a.replace("{dir}", d));
+    assert_success(&stiffid(&args.iter().map(String::as_str).collect::<Vec<_>>()));
+}
+
 #[test]
 fn non_finite_or_absurd_robot_geometry_is_refused() {
     let dir = temp_dir("geometry");

@@ -320,6 +320,24 @@ fn report_and_plot_write_figures_that_decode() {
         d.to_str().unwrap(),
     ]);
     assert_usage_error(&e, &["--force"]);
+    // Figures are known by their contents: a user's file named as one is neither removed nor
+    // replaced; with --force a file named as a figure the run writes is replaced, and no other
+    // is removed. The plot's own directory is written again without --force.
+    let plot = |out: &Path, postures: &Path, force: bool| {
+        let (setup, postures) = ("zhang2021-comau-nj165", postures.to_str().unwrap());
+        let mut args = vec!["plot", "--setup", setup, "--postures", postures];
+        args.extend(["--out", out.to_str().unwrap()]);
+        args.extend(force.then_some("--force"));
+        stiffid(&args)
+    };
+    let two = write_file(&d, "two.csv", &GROUP.lines().take(3).collect::<Vec<_>>().join("\n"));
+    assert!(plot(&figs, &two, false).status.success());
+    assert_eq!(std::fs::read_dir(&figs).unwrap().count(), 6, "the earlier figures removed");
+    let mine = write_file(&figs, "posture_05.svg", "my thesis figure");
+    assert_usage_error(&plot(&figs, &two, false), &["--force"]);
+    assert_eq!(std::fs::read_to_string(&mine).unwrap(), "my thesis figure");
+    assert!(plot(&figs, &two, true).status.success());
+    assert_eq!(std::fs::read_to_string(&mine).unwrap(), "my thesis figure");
 }
 
 #[test]

@@ -389,7 +389,10 @@ impl SetupBuilder {
         }
         check_load_steps(&self.load_steps)?;
         check_noise(&noise)?;
-        let bounds = self.bounds.unwrap_or(*self.robot.limits());
+        let bounds = match self.bounds {
+            Some(b) => b,
+            None => robot_bounds(&self.robot)?,
+        };
         check_bounds(&bounds, &self.robot)?;
         check_test_postures(&self.test_postures, &self.robot)?;
         if let Some(z) = self.constraints.loading_point_min_z {
@@ -516,4 +519,25 @@ fn check_part_and_tool(
         })?;
     }
     Ok(())
+}
+
+/// The experiment's bounds a setup without `[bounds]` takes: the robot's joint limits, each
+/// finite.
+///
+/// # Errors
+/// [`crate::Error::InvalidField`] (`bounds`) naming the first unlimited joint.
+fn robot_bounds(robot: &Robot) -> Result<JointBox> {
+    let b = *robot.limits();
+    match (0..6).find(|&i| !(b.lower[i].is_finite() && b.upper[i].is_finite())) {
+        None => Ok(b),
+        Some(i) => Err(invalid(
+            "bounds",
+            format!(
+                "missing: the robot's joint {} has no limits (a continuous joint, or a revolute \
+                 joint without <limit> in its URDF), and the postures need a range: give the \
+                 experiment's [bounds] lower_deg and upper_deg",
+                i + 1
+            ),
+        )),
+    }
 }

@@ -42,6 +42,8 @@ pub(super) struct Given {
     length: Option<u8>,
     /// `G64` (its `P` and `Q` are tolerances).
     g64: bool,
+    /// `G4`: a dwell.
+    g4: bool,
     /// The `H` word.
     h: Option<f64>,
 }
@@ -67,6 +69,9 @@ pub(super) fn block(
         (s.changed, s.tool_number) = (true, s.selected);
     }
     super::process::gather(line, words, s);
+    if given.g4 && given.moves_an_axis() {
+        return Err(at(line, "G4 with an axis word: FANUC and Haas read G4 X as the dwell's time in seconds, LinuxCNC as a move in the motion mode in force; write the dwell as G4 P in a block without axis words".into()));
+    }
     given.modes(line, s)?;
     motion_and_feed(line, &given, inch_before, s)?;
     if given.g53 && (given.home.is_some() || s.motion >= 81 && s.motion != NO_MOTION) {
@@ -174,7 +179,8 @@ impl Given {
             21 => (s.inch, s.units_stated) = (false, true),
             90 => s.incremental = false,
             91 => s.incremental = true,
-            4 | 40 | 80 | 94 => {}
+            4 => self.g4 = true,
+            40 | 80 | 94 => {}
             g => return Err(unsupported(line, &format!("G{g}"))),
         }
         Ok(())
@@ -276,6 +282,11 @@ impl Given {
         self.external = true;
         self.external_words.push(w.span.clone());
         Ok(())
+    }
+
+    /// Whether the block gives an axis word (X Y Z, a rotary or an external axis).
+    fn moves_an_axis(&self) -> bool {
+        self.target.iter().any(Option::is_some) || self.abc || self.external
     }
 
     pub(super) fn centre_given(&self) -> bool {

@@ -93,6 +93,9 @@ fn cutter_compensation_unit_changes_under_a_feed_and_malformed_cycles_are_refuse
         ("G81 X10 Y0 Z-5 R2 F100\nG80\nX20", 6, "after G80"),
         ("G1 X1 Q2 F100", 4, "Q: a peck depth outside"),
         ("G81 X10 Y0 Z-5 R2 F100 L3", 4, "'L'"),
+        // A dwell's X is its time on FANUC and Haas, a move on LinuxCNC.
+        ("G1 X10 F100\nG04 X2.", 5, "G4 with an axis word"),
+        ("G1 X10 F100\nG4 P2 Y20", 5, "G4 with an axis word"),
     ];
     for (body, line, word) in cases {
         let text = format!("{start}{body}\n");
@@ -110,6 +113,10 @@ fn cutter_compensation_unit_changes_under_a_feed_and_malformed_cycles_are_refuse
         Err(Error::Program { line: 3, message }) => assert!(message.contains("-Z"), "{message}"),
         other => panic!("{other:?}"),
     }
+    // A dwell alone moves nothing.
+    let g = gcode::parse(&format!("{start}G1 X10 F100\nG4 P2\nG1 Y10\n"), 1e-5).unwrap();
+    let last = g.points.last().unwrap().position;
+    assert!((last - Vector3::new(10e-3, 10e-3, 10e-3)).norm() < 1e-12, "{last}");
     // Feeds: per minute in the block's units, F given again with the change is accepted.
     let g = gcode::parse(&format!("{start}G1 X5 F600\nG20 G1 X1 F12\n"), 1e-5).unwrap();
     assert!((g.points[2].feed.unwrap() - 12.0 * 25.4e-3 / 60.0).abs() < 1e-15);

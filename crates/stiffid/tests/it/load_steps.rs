@@ -292,6 +292,14 @@ fn bad_load_step_files_are_named() {
     );
     let e = identify(&setup, &one_load, true).unwrap_err().to_string();
     assert!(e.contains("one load only"), "{e}");
+    // A load of 100 N whose force change is 0.1 N: the forces in kN.
+    let kn = one_load.replace(",0,50,-100,", ",0,0.05,-0.1,");
+    let e = identify(&setup, &kn, false).unwrap_err().to_string();
+    assert!(
+        e.contains("load_n: line 3: a load of 100 N, but the force change")
+            && e.contains("is 0.111803398875 N"),
+        "{e}"
+    );
     let step = format!("{HEADER}\n").replace("load_n", "load_step")
         + "A,1,0,0,-90,0,0,0,1.5,0,0,0,2000,0,2000\n";
     let e = identify(&setup, &step, false).unwrap_err().to_string();

@@ -494,7 +494,7 @@ fn select_cases(
 #[test]
 fn options_that_mean_nothing_where_given_are_refused_by_the_jobs() {
     use stiffid::app::purpose::{CalibrationOptions, Purpose};
-    use stiffid::app::{evaluate, predict, register, select};
+    use stiffid::app::{evaluate, predict, register, select, WarningKind};
     use stiffid::metrology::calibration::gravity::Gravity;
     use stiffid::JobOption;
     let setup = paper();
@@ -547,4 +547,18 @@ fn options_that_mean_nothing_where_given_are_refused_by_the_jobs() {
         "prediction data",
     );
     assert!(predict::run(&prediction(None)).is_ok());
+    // 500 N deflects the paper's robot by hundredths of a degree; 1e7 N by degrees, beyond
+    // the linear model: said.
+    let large = |r: &predict::Report| {
+        (r.warnings.iter()).any(|w| w.kind == WarningKind::Plausibility && w.message.contains("deflects"))
+    };
+    assert!(!large(&predict::run(&prediction(None)).unwrap()));
+    let heavy = predict::Request {
+        wrench: nalgebra::Vector6::new(0.0, 0.0, -1e7, 0.0, 0.0, 0.0),
+        ..prediction(None)
+    };
+    let report = predict::run(&heavy).unwrap();
+    let dq = &report.tcp.deflection.joint_deflections;
+    assert!(dq.amax() > 1f64.to_radians(), "{dq}");
+    assert!(large(&report), "{:?}", report.warnings);
 }

@@ -44,6 +44,7 @@
 //! that fit the data, so [`StiffnessFile::compliance`] refuses the file rather than predict with it.
 
 mod covariance;
+mod duplicates;
 mod model_form;
 mod sections;
 
@@ -294,6 +295,9 @@ pub fn parse(text: &str) -> Result<StiffnessFile> {
             if let Some(k) = &file.stiffness_nm_per_rad {
                 check_drives_agree(parameters, k)?;
             }
+            if let Some(rows) = &file.compliance_covariance_rad2_per_nm2 {
+                duplicates::check_covariances(parameters, &file.compliance_covariance_si, rows)?;
+            }
             if let Some(p) = &file.prediction {
                 p.check(&parameters.iter().map(|p| p.kind).collect::<Vec<_>>())?;
             }
@@ -306,6 +310,14 @@ pub fn parse(text: &str) -> Result<StiffnessFile> {
                     message: format!("missing: expected {EXPECTED}"),
                 })?;
             limits::check("stiffness_nm_per_rad", &k, &STIFFNESS_NM_PER_RAD)?;
+            if file.compliance_covariance_si.is_some() {
+                return Err(invalid(
+                    "compliance_covariance_si".into(),
+                    "without parameters it would be ignored: the covariance of the drives alone \
+                     is compliance_covariance_rad2_per_nm2 (6x6); give that, or parameters"
+                        .into(),
+                ));
+            }
             if let Some(rows) = file.compliance_covariance_rad2_per_nm2 {
                 check_covariance(&Matrix6::from_fn(|r, c| rows[r][c]))?;
             }
@@ -314,6 +326,7 @@ pub fn parse(text: &str) -> Result<StiffnessFile> {
             }
         }
     }
+    duplicates::check_compliance(text, &file)?;
     Ok(file)
 }
 

@@ -432,6 +432,16 @@ fn held_out(
     text: &str,
     warnings: &mut Vec<Warning>,
 ) -> Result<Held> {
+    if text == request.readings.text {
+        return Err(Error::InvalidField {
+            field: "validate".into(),
+            message: format!(
+                "{name}: the same readings as the fitted {}: the calibration would be judged on \
+                 the readings it was fitted to; give readings it was not fitted to",
+                request.readings.name
+            ),
+        });
+    }
     let readings = Readings {
         setup: request.readings.setup,
         setup_name: request.readings.setup_name.clone(),

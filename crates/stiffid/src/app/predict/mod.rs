@@ -11,7 +11,7 @@ pub mod document;
 use nalgebra::{Matrix6, Vector3, Vector6};
 use serde::Serialize;
 use stiffid_core::common::limits::Violation;
-use stiffid_core::common::warning::Warning;
+use stiffid_core::common::warning::{Warning, WarningKind};
 use stiffid_core::model::prediction::{requested_level, Interval};
 use stiffid_core::model::region::{extrapolation_warning, Region};
 use stiffid_core::model::Compliance;
@@ -205,10 +205,12 @@ fn find(request: &Request<'_>) -> Result<Report> {
             level,
         )
     };
+    let tcp = point(&setup.tool().tcp);
+    warnings.extend(large_deflection(&tcp.deflection.joint_deflections));
     Ok(Report {
         setup: request.setup_name.clone(),
         measuring_points: setup.tool().measuring_points.iter().map(point).collect(),
-        tcp: point(&setup.tool().tcp),
+        tcp,
         cartesian_compliance: cartesian::compliance(setup.arm(), &frames, &at, &compliance.h),
         cartesian_stiffness: cartesian::stiffness(setup.arm(), &frames, &at, &compliance.h),
         q,
@@ -252,4 +254,27 @@ fn point(
         std,
         interval,
     }
+}
+
+/// The joint deflection, rad, beyond which the linear model of small deflections (paper Eq. 7)
+/// says nothing: 1 deg, where a machining robot's joints deflect hundredths of a degree.
+const LARGE_DEFLECTION: f64 = 0.017_453_292_519_943_295;
+
+/// A warning when a drive of `dq` (every parameter's deflection, the six drives first, rad)
+/// deflects beyond [`LARGE_DEFLECTION`].
+fn large_deflection(dq: &nalgebra::DVector<f64>) -> Option<Warning> {
+    let j = (0..dq.len().min(6)).max_by(|&a, &b| dq[a].abs().total_cmp(&dq[b].abs()))?;
+    (dq[j].abs() > LARGE_DEFLECTION).then(|| {
+        Warning::new(
+            WarningKind::Plausibility,
+            format!(
+                "joint {} deflects {} deg under this wrench: the model is linear in small \
+                 deflections (hundredths of a degree on a machining robot) and says nothing of \
+                 this one; a stiffness in another unit than Nm/rad, or a wrench in another than \
+                 N and Nm?",
+                j + 1,
+                stiffid_core::common::words::number(dq[j].to_degrees())
+            ),
+        )
+    })
 }
