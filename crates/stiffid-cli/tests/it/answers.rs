@@ -329,11 +329,16 @@ fn a_stiffness_files_prediction_data_and_its_two_stiffness_keys_are_checked() {
     zero["compliance_covariance_rad2_per_nm2"][1][1] = 0.0.into();
     let e = parse(&zero).unwrap_err().to_string();
     assert!(
-        e.starts_with("compliance_covariance_rad2_per_nm2[2][2]: 0 where compliance_covariance_si gives "),
+        e.starts_with(
+            "compliance_covariance_rad2_per_nm2[2][2]: 0 where compliance_covariance_si gives "
+        ),
         "{e}"
     );
     let mut drives = doc.clone();
-    drives.as_object_mut().unwrap().remove("compliance_covariance_si");
+    drives
+        .as_object_mut()
+        .unwrap()
+        .remove("compliance_covariance_si");
     let e = parse(&drives).unwrap_err().to_string();
     assert!(
         e.starts_with("compliance_covariance_rad2_per_nm2: beside parameters"),

@@ -406,12 +406,19 @@ fn a_joint_without_limits_needs_the_experiments_bounds() {
     let (head, tail) = text.split_once("[bounds]").unwrap();
     let tail = tail.split_once("[test]").unwrap().1;
     write_file(&dir, "unbounded.toml", &format!("{head}[test]{tail}"));
-    let evaluate = |setup: &'static str| ["evaluate", "--setup", setup, "--postures", "{dir}/g.csv"];
-    let line = refused(&dir, &evaluate("{dir}/unbounded.toml"), &["bounds", "joint 1 has no limits"]);
+    let evaluate =
+        |setup: &'static str| ["evaluate", "--setup", setup, "--postures", "{dir}/g.csv"];
+    let line = refused(
+        &dir,
+        &evaluate("{dir}/unbounded.toml"),
+        &["bounds", "joint 1 has no limits"],
+    );
     assert!(!line.contains("inf"), "{line}");
     let d = dir.to_str().unwrap();
     let args = evaluate("{dir}/bounded.toml").map(|a| a.replace("{dir}", d));
-    assert_success(&stiffid(&args.iter().map(String::as_str).collect::<Vec<_>>()));
+    assert_success(&stiffid(
+        &args.iter().map(String::as_str).collect::<Vec<_>>(),
+    ));
 }
 
 #[test]

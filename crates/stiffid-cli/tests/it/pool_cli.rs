@@ -330,9 +330,17 @@ fn report_and_plot_write_figures_that_decode() {
         args.extend(force.then_some("--force"));
         stiffid(&args)
     };
-    let two = write_file(&d, "two.csv", &GROUP.lines().take(3).collect::<Vec<_>>().join("\n"));
+    let two = write_file(
+        &d,
+        "two.csv",
+        &GROUP.lines().take(3).collect::<Vec<_>>().join("\n"),
+    );
     assert!(plot(&figs, &two, false).status.success());
-    assert_eq!(std::fs::read_dir(&figs).unwrap().count(), 6, "the earlier figures removed");
+    assert_eq!(
+        std::fs::read_dir(&figs).unwrap().count(),
+        6,
+        "the earlier figures removed"
+    );
     let mine = write_file(&figs, "posture_05.svg", "my thesis figure");
     assert_usage_error(&plot(&figs, &two, false), &["--force"]);
     assert_eq!(std::fs::read_to_string(&mine).unwrap(), "my thesis figure");

@@ -389,10 +389,7 @@ impl SetupBuilder {
         }
         check_load_steps(&self.load_steps)?;
         check_noise(&noise)?;
-        let bounds = match self.bounds {
-            Some(b) => b,
-            None => robot_bounds(&self.robot)?,
-        };
+        let bounds = self.bounds.map_or_else(|| robot_bounds(&self.robot), Ok)?;
         check_bounds(&bounds, &self.robot)?;
         check_test_postures(&self.test_postures, &self.robot)?;
         if let Some(z) = self.constraints.loading_point_min_z {

@@ -116,7 +116,10 @@ fn cutter_compensation_unit_changes_under_a_feed_and_malformed_cycles_are_refuse
     // A dwell alone moves nothing.
     let g = gcode::parse(&format!("{start}G1 X10 F100\nG4 P2\nG1 Y10\n"), 1e-5).unwrap();
     let last = g.points.last().unwrap().position;
-    assert!((last - Vector3::new(10e-3, 10e-3, 10e-3)).norm() < 1e-12, "{last}");
+    assert!(
+        (last - Vector3::new(10e-3, 10e-3, 10e-3)).norm() < 1e-12,
+        "{last}"
+    );
     // Feeds: per minute in the block's units, F given again with the change is accepted.
     let g = gcode::parse(&format!("{start}G1 X5 F600\nG20 G1 X1 F12\n"), 1e-5).unwrap();
     assert!((g.points[2].feed.unwrap() - 12.0 * 25.4e-3 / 60.0).abs() < 1e-15);

@@ -550,7 +550,8 @@ fn options_that_mean_nothing_where_given_are_refused_by_the_jobs() {
     // 500 N deflects the paper's robot by hundredths of a degree; 1e7 N by degrees, beyond
     // the linear model: said.
     let large = |r: &predict::Report| {
-        (r.warnings.iter()).any(|w| w.kind == WarningKind::Plausibility && w.message.contains("deflects"))
+        (r.warnings.iter())
+            .any(|w| w.kind == WarningKind::Plausibility && w.message.contains("deflects"))
     };
     assert!(!large(&predict::run(&prediction(None)).unwrap()));
     let heavy = predict::Request {

@@ -84,7 +84,10 @@ pub(super) fn check_compliance(text: &str, file: &StiffnessFile) -> Result<()> {
         Some(None) => return Ok(()),
         Some(Some(h)) if h.len() != 6 => {
             let got = h.len();
-            return Err(invalid(field.into(), format!("expected six numbers, rad/Nm, got {got}")));
+            return Err(invalid(
+                field.into(),
+                format!("expected six numbers, rad/Nm, got {got}"),
+            ));
         }
         Some(Some(h)) => h,
     };
