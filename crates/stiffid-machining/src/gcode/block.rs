@@ -357,6 +357,9 @@ fn cycle(
 pub(super) fn moves(line: u64, given: &Given, s: &State) -> Result<bool> {
     let arc_only = s.motion >= 2 && (given.centre_given() || given.radius.is_some());
     let moves = given.target.iter().any(Option::is_some) || given.abc || given.external || arc_only;
+    if s.motion < 2 && (given.centre_given() || given.radius.is_some()) {
+        return Err(at(line, format!("I, J, K or R (an arc's centre or radius) in a G{} block: LinuxCNC refuses it, other controllers ignore it; leave them out of a straight move", s.motion)));
+    }
     if given.external && s.motion >= 2 {
         return Err(at(line, "an external axis moving along an arc: the cell's axes and the arc would not stay together; split the arc into G1 moves".into()));
     }

@@ -335,6 +335,9 @@ pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<G
         if line as usize > MAX_BLOCKS {
             return Err(at(line, format!("more than {MAX_BLOCKS} lines")));
         }
+        if l.contains('\r') {
+            return Err(at(line, "a carriage return inside the line: the file ends its lines with a carriage return alone (an old Mac's) or mixes line ends, and a controller ends a block at a line feed, so what follows it would be read as part of this block (inside a comment, dropped); convert the line ends to LF or CR LF".into()));
+        }
         let words = words(line, start, l, &mut s)?;
         let comments = std::mem::take(&mut s.line_comments);
         if words.is_empty() {

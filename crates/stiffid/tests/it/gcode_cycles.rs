@@ -96,6 +96,16 @@ fn cutter_compensation_unit_changes_under_a_feed_and_malformed_cycles_are_refuse
         // A dwell's X is its time on FANUC and Haas, a move on LinuxCNC.
         ("G1 X10 F100\nG04 X2.", 5, "G4 with an axis word"),
         ("G1 X10 F100\nG4 P2 Y20", 5, "G4 with an axis word"),
+        (
+            "G1 X10 I5 F100",
+            4,
+            "I, J, K or R (an arc's centre or radius) in a G1 block",
+        ),
+        (
+            "G1 X10 F100 ; a note\rG1 Y50",
+            4,
+            "a carriage return inside the line",
+        ),
     ];
     for (body, line, word) in cases {
         let text = format!("{start}{body}\n");
