@@ -108,7 +108,11 @@ pub fn fonts() -> Result<()> {
     Ok(())
 }
 
-/// `plot` as an SVG document.
+/// The comment every SVG figure carries on the line after its `<svg>` tag: what tells a figure
+/// stiffid wrote from a user's file of the same name in a report's directory.
+pub const MARK: &str = "<!-- drawn by stiffid -->";
+
+/// `plot` as an SVG document, [`MARK`] after its `<svg>` tag.
 ///
 /// # Errors
 /// Those of [`fonts`] and of drawing.
@@ -122,6 +126,8 @@ pub fn svg(plot: &impl Plot) -> Result<String> {
         plot.draw(&root)?;
         root.present().map_err(failed)?;
     }
+    let tag = svg.find('\n').map_or(svg.len(), |end| end + 1);
+    svg.insert_str(tag, &format!("{MARK}\n"));
     Ok(svg)
 }
 

@@ -27,11 +27,6 @@ pub struct Args {
     force: bool,
 }
 
-/// The comment every SVG figure of `stiffid plot` carries after its `<svg>` tag: what tells a
-/// figure of ours from a user's file of the same name, which the command never replaces or
-/// removes without `--force`, nor removes with it.
-const MARK: &str = "<!-- drawn by stiffid plot -->";
-
 /// Whether every file in `dir` is a figure `stiffid plot` wrote.
 fn only_our_figures(dir: &Path) -> bool {
     std::fs::read_dir(dir).is_ok_and(|entries| {
@@ -41,35 +36,17 @@ fn only_our_figures(dir: &Path) -> bool {
     })
 }
 
-/// Whether `rel` in `dir` is a figure `stiffid plot` wrote: named as one, and an SVG that
-/// carries [`MARK`], or a PNG beside such an SVG of the same name.
+/// Whether `rel` in `dir` is a figure `stiffid plot` wrote: named as one
+/// (`postures`, `posture_NN`), and stiffid's ([`figures::is_ours`]).
 fn is_our_figure(dir: &Path, rel: &Path) -> bool {
-    let name = rel.to_string_lossy();
-    let named = |stem: &str| {
-        stem == "postures"
-            || stem
-                .strip_prefix("posture_")
-                .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
-    };
-    let carries_mark = |svg: &Path| {
-        let mut head = [0u8; 256];
-        stiffid_core::io::input::open(svg)
-            .and_then(|mut f| std::io::Read::read(&mut f, &mut head))
-            .is_ok_and(|n| String::from_utf8_lossy(&head[..n]).contains(MARK))
-    };
-    match (name.strip_suffix(".svg"), name.strip_suffix(".png")) {
-        (Some(stem), _) => named(stem) && carries_mark(&dir.join(rel)),
-        (_, Some(stem)) => named(stem) && carries_mark(&dir.join(format!("{stem}.svg"))),
-        _ => false,
-    }
-}
-
-/// `svg` with [`MARK`] after its `<svg ...>` tag.
-fn marked(svg: &str) -> String {
-    match svg.find(">\n") {
-        Some(end) => format!("{}\n{MARK}{}", &svg[..=end], &svg[end + 1..]),
-        None => format!("{MARK}\n{svg}"),
-    }
+    let stem = rel
+        .file_stem()
+        .map(|s| s.to_string_lossy())
+        .unwrap_or_default();
+    let named = stem == "postures"
+        || (stem.strip_prefix("posture_"))
+            .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()));
+    named && figures::is_ours(dir, rel)
 }
 
 /// Draws the postures and writes `postures.svg/.png` and `posture_NN.svg/.png`.
@@ -91,7 +68,7 @@ pub fn run(args: &Args) -> Result<()> {
     let written = figures::all(&stiffid_figures::postures::each(&setup, &group), Png::Also)
         .and_then(|figures| {
             for f in &figures {
-                dir.write(&format!("{}.svg", f.name), marked(&f.svg).as_bytes())?;
+                dir.write(&format!("{}.svg", f.name), f.svg.as_bytes())?;
                 if let Some(png) = &f.png {
                     dir.write(&format!("{}.png", f.name), png)?;
                 }

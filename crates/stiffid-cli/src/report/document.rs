@@ -31,7 +31,8 @@ impl Kind {
     /// Those of [`ReportDir::prepare`].
     pub fn open(&self, dir: &Path) -> Result<ReportDir> {
         let holds = |rel: &Path| {
-            self.files.iter().any(|f| rel == Path::new(f)) || rel.starts_with("figures")
+            self.files.iter().any(|f| rel == Path::new(f))
+                || (rel.starts_with("figures") && super::figures::is_ours(dir, rel))
         };
         let mark = format!("content=\"{}\"", self.generator);
         ReportDir::prepare(dir, "--report", None, &holds, &|d| {

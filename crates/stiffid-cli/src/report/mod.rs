@@ -36,7 +36,9 @@ pub fn open(
     generator: &str,
     holds: &dyn Fn(&Path) -> bool,
 ) -> Result<ReportDir> {
-    ReportDir::prepare(dir, option, force, holds, &|d| {
+    let ours =
+        |rel: &Path| holds(rel) && (!rel.starts_with("figures") || figures::is_ours(dir, rel));
+    ReportDir::prepare(dir, option, force, &ours, &|d| {
         summary::is_ours(&d.join("summary.json"), generator)
     })
 }

@@ -29,7 +29,7 @@ pub fn open(dir: &Path, force: bool) -> Result<ReportDir> {
     let holds = |rel: &Path| {
         ["plan.html", "plan.csv", "plan.json", "plan.glb"]
             .contains(&rel.to_str().unwrap_or_default())
-            || rel.starts_with("figures")
+            || (rel.starts_with("figures") && super::figures::is_ours(dir, rel))
     };
     ReportDir::prepare(dir, "--report", Some(force), &holds, &|d| {
         std::fs::read_to_string(d.join("plan.html"))

@@ -282,6 +282,33 @@ fn report_and_plot_write_figures_that_decode() {
     ]));
     let html = std::fs::read_to_string(plan.join("plan.html")).unwrap();
     assert!(html.contains("<figure id=\"posture_04\">"));
+    // Written again with three postures: its fourth posture's figure goes, a user's file stays.
+    let mine = write_file(&plan.join("figures"), "my-photo.svg", "<svg>mine</svg>");
+    let (pool_path, plan_path) = (pool.to_str().unwrap(), plan.to_str().unwrap());
+    let again = [
+        "--pool", pool_path, "--count", "3", "--report", plan_path, "--json",
+    ];
+    json(&select(
+        &[
+            &again[..],
+            &["--out", d.join("three.csv").to_str().unwrap()],
+        ]
+        .concat(),
+    ));
+    assert!(!plan.join("figures/posture_04.svg").exists());
+    assert_eq!(std::fs::read_to_string(&mine).unwrap(), "<svg>mine</svg>");
+    json(&select(&[
+        "--pool",
+        pool.to_str().unwrap(),
+        "--count",
+        "4",
+        "--out",
+        d.join("best.csv").to_str().unwrap(),
+        "--report",
+        plan.to_str().unwrap(),
+        "--json",
+    ]));
+    let html = std::fs::read_to_string(plan.join("plan.html")).unwrap();
     assert!(!html.contains("src=\"http") && !html.contains("zhang2021-comau-nj165.toml"));
     let csv = std::fs::read_to_string(plan.join("plan.csv")).unwrap();
     let header = csv.lines().next().unwrap();

@@ -51,10 +51,19 @@ pub fn warnings(setup: &Setup) -> Vec<Warning> {
         .chain([&tool.loading_point])
         .map(|p| p.norm())
         .fold(0.0, f64::max);
+    let measuring = (tool.measuring_points.iter())
+        .map(|p| p.norm())
+        .fold(0.0, f64::max);
     if farthest < MIN_TOOL_M {
         out.push(plausibility(format!(
             "every tool point (loading_point_mm, measuring_points_mm) lies within {:.4} mm of the flange: given in metres instead of mm?",
             farthest * 1e3
+        )));
+    } else if measuring < MIN_TOOL_M {
+        out.push(plausibility(format!(
+            "every measuring point (measuring_points_mm) lies within {:.4} mm of the flange, the loading point {:.1} mm from it: the measuring points given in metres instead of mm?",
+            measuring * 1e3,
+            tool.loading_point.norm() * 1e3
         )));
     }
     out

@@ -223,12 +223,24 @@ fn unit_slips_get_a_plausibility_warning() {
     let metres: Vec<_> = tool.measuring_points.iter().map(|p| p * 1e-3).collect();
     let slipped = paper
         .to_builder()
-        .with_measuring_points(metres)
+        .with_measuring_points(metres.clone())
         .with_loading_point(tool.loading_point * 1e-3)
         .build()
         .unwrap();
     let w = warnings(&slipped);
-    assert!(w.len() == 1 && w[0].message.contains("metres"), "{w:?}");
+    assert!(
+        w.len() == 1 && w[0].message.contains("every tool point"),
+        "{w:?}"
+    );
+    // The measuring points alone in metres, the loading point in mm.
+    let points = paper.to_builder().with_measuring_points(metres);
+    let w = warnings(&points.build().unwrap());
+    assert!(
+        w.len() == 1
+            && w[0].message.contains("every measuring point")
+            && w[0].message.contains("the loading point 250.0 mm"),
+        "{w:?}"
+    );
     let postures = paper.test_postures();
     assert!(radians_as_degrees(postures).is_none());
     let radians: Vec<_> = postures.iter().map(|q| q.map(f64::to_radians)).collect();

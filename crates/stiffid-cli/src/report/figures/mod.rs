@@ -5,6 +5,7 @@ pub mod map;
 
 use anyhow::{Context, Result};
 use rayon::prelude::*;
+use std::path::Path;
 use stiffid_figures::Drawing;
 
 /// A rendered figure.
@@ -71,4 +72,19 @@ pub fn files(figures: &[Figure]) -> Vec<(String, &[u8])> {
         }
     }
     out
+}
+
+/// Whether `rel` (a path in the report directory `dir`) is a figure stiffid wrote: an SVG that
+/// carries [`stiffid_figures::MARK`], or a PNG beside such an SVG of the same stem. A user's file
+/// of a figure's name is not: it is never removed, and replaced only with `--force`.
+pub fn is_ours(dir: &Path, rel: &Path) -> bool {
+    let svg = match rel.extension().and_then(|e| e.to_str()) {
+        Some("svg") => rel.to_path_buf(),
+        Some("png") => rel.with_extension("svg"),
+        _ => return false,
+    };
+    let mut head = [0u8; 256];
+    stiffid_core::io::input::open(&dir.join(svg))
+        .and_then(|mut f| std::io::Read::read(&mut f, &mut head))
+        .is_ok_and(|n| String::from_utf8_lossy(&head[..n]).contains(stiffid_figures::MARK))
 }
