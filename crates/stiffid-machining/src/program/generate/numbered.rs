@@ -9,10 +9,13 @@
 //! `n`, `///TOOL n`), as a teach pendant writes it. Numbers from 1: number 0 is the flange or the
 //! world on every controller (and no `TOOL_DATA[0]` exists); of several matching frames the lowest
 //! number is taken. A program with no matching frame states it as before (KRL `$TOOL = {..}`, LS
-//! user frame 0 and tool frame 1 with its values in remarks).
+//! user frame 0; LS and INFORM select the lowest tool number from 1 the table holds no frame in,
+//! with its values in remarks or comments, and refuse when it holds another tool in all of 1 to
+//! 10).
 
 use nalgebra::Isometry3;
 use stiffid_core::setup::NumberedFrames;
+use stiffid_core::{Error, Result};
 
 /// How far (mm) a table's frame may lie from the program's tool or part frame and be taken.
 pub(crate) const MATCH_MM: f64 = 0.001;
@@ -27,7 +30,14 @@ pub struct Numbers {
     pub tool: Option<(u32, Isometry3<f64>)>,
     /// The part frame's (base, user frame) number and the table's frame.
     pub base: Option<(u32, Isometry3<f64>)>,
+    /// The tool numbers 1 to 10 the setup's table holds a frame in, bit `n - 1` for number `n`:
+    /// what a program whose tool the table does not hold must not select (LS, INFORM).
+    pub held_tools: u16,
 }
+
+/// The tool numbers a program whose tool the controller's table does not hold may select, from
+/// 1: FANUC's ten tool frames (INFORM's tool files go further).
+const FREE_TOOLS: u32 = 10;
 
 impl Numbers {
     /// The numbers of `tool` (controller's flange frame) in `tools` and of `base` (the part
@@ -37,10 +47,35 @@ impl Numbers {
         tool: &Isometry3<f64>,
         base: &Isometry3<f64>,
     ) -> Self {
+        let held = (1..=FREE_TOOLS).filter(|&n| tools.get(n).is_some());
         Self {
             tool: find(tools, tool),
             base: find(bases, base),
+            held_tools: held.fold(0, |bits, n| bits | 1 << (n - 1)),
         }
+    }
+
+    /// The tool number a program selects (LS `UTOOL_NUM`, INFORM `///TOOL`): the table's
+    /// number of its tool, else the lowest from 1 the table holds no frame in (a number holding
+    /// another tool would send another tool's tip along the path).
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (`controller.tools`) when the table holds another tool in every
+    /// number from 1 to 10.
+    pub(crate) fn tool_number(&self) -> Result<u32> {
+        if let Some((n, _)) = self.tool {
+            return Ok(n);
+        }
+        (1..=FREE_TOOLS)
+            .find(|n| self.held_tools & 1 << (n - 1) == 0)
+            .ok_or_else(|| Error::InvalidField {
+                field: "controller.tools".into(),
+                message: format!(
+                    "every tool number from 1 to {FREE_TOOLS} holds another tool than the \
+                     setup's, and the program selects its tool by number: give the setup's tool \
+                     as one of them, or leave a number free"
+                ),
+            })
     }
 }
 

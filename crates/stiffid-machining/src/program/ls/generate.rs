@@ -46,10 +46,11 @@ pub fn header(plan: &Plan) -> String {
 
 /// The user frame and the tool frame a program of `plan` runs in: those the controller holds
 /// its part frame and tool in ([`crate::program::generate::numbered`]), else user frame 0 (the
-/// world) and tool frame 1.
+/// world) and the lowest tool frame the setup's table leaves free (the body refuses a table
+/// with none free).
 fn frame_numbers(plan: &Plan) -> (u32, u32) {
     let uf = plan.numbers.base.map_or(0, |(n, _)| n);
-    (uf, plan.numbers.tool.map_or(1, |(n, _)| n))
+    (uf, plan.numbers.tool_number().unwrap_or(1))
 }
 
 /// A feed (m/s) as an LS speed: whole mm/sec, else whole cm/min, else the nearest cm/min (with a
@@ -70,6 +71,7 @@ pub fn speed(feed: f64) -> Option<(String, bool)> {
 
 /// The moves (`/MN` lines, unnumbered) and positions of one file, `/POS` between them.
 pub(crate) fn body(plan: &Plan, part: &Part, warnings: &mut Vec<String>) -> Result<String> {
+    plan.numbers.tool_number()?;
     let mut mn = String::with_capacity(part.targets.len() * 30);
     let mut pos = String::with_capacity(part.targets.len() * 200);
     let n = part.targets.len();

@@ -24,14 +24,11 @@ use stiffid_core::Result;
 /// The job's comment (`///COMM`): what the pendant shows beside its name (32 characters at most).
 pub(crate) const COMM: &str = "stiffid";
 
-/// The tool file the moves use (`///TOOL 1`) when the controller holds the tool in none of its
-/// tool files the setup gives (`[controller] tools`), whose values the job's comments state.
-pub(crate) const TOOL: u32 = 1;
-
-/// The tool file a job of `plan` moves with: the one the controller holds its tool in
-/// ([`crate::program::generate::numbered`]), else [`TOOL`].
+/// The tool file a job of `plan` moves with: the one the controller holds its tool in, else the
+/// lowest the setup's `[controller] tools` leaves free, whose values the job's comments state
+/// ([`crate::program::generate::numbered`]; the body refuses a table with none free).
 fn tool_file(plan: &Plan) -> u32 {
-    plan.numbers.tool.map_or(TOOL, |(n, _)| n)
+    plan.numbers.tool_number().unwrap_or(1)
 }
 
 /// The most teaching positions of one kind in a job: a position's number has five digits
@@ -144,7 +141,7 @@ static WRITING: Writing = Writing {
 };
 
 impl Generator for super::Inform {
-    /// The main job's comments of the tool file [`TOOL`] it moves with: the tool frame from the
+    /// The main job's comments of the tool file it moves with (`tool_file`): the tool frame from the
     /// controller's flange (X, Y, Z mm; Rx, Ry, Rz deg with `R = Rz Ry Rx`) and, when the setup
     /// gives them, the mass (W, kg) and centre of gravity (Xg, Yg, Zg, mm); a comment line is at
     /// most 32 characters on the pendant.
@@ -174,6 +171,7 @@ impl Generator for super::Inform {
     /// The moves (`//INST` lines after `NOP`) and the positions (`//POS` lines) of one job,
     /// `//POS` between them.
     fn body(&self, plan: &Plan, part: &Part, warnings: &mut Vec<String>) -> Result<String> {
+        plan.numbers.tool_number()?;
         let pulses = pulses(plan)?;
         let mut inst = String::new();
         let n = part.targets.len();

@@ -170,7 +170,9 @@ fn frames_the_controller_does_not_hold_are_stated() {
         external: Vec::new(),
     };
     let p = plan(&s, Dialect::Krl, &t, &m, &pulses);
-    assert_eq!(p.numbers, Numbers::default());
+    assert_eq!((p.numbers.tool, p.numbers.base), (None, None));
+    // Tool numbers 1 and 3 hold other tools.
+    assert_eq!(p.numbers.held_tools, 0b101);
     let krl = generate(&p).unwrap().files.remove(0).text;
     assert!(
         krl.contains("$TOOL = {X 6.9, Y 245.3, Z 319.3, A 0, B 0, C 0}\n"),
@@ -185,8 +187,28 @@ fn frames_the_controller_does_not_hold_are_stated() {
         .files
         .remove(0)
         .text;
+    // Tool frame 1 holds another tool: the lowest free one, 2, is set to the setup's.
     assert!(
-        ls.contains("  UFRAME_NUM=0 ;\n") && ls.contains("UF : 0, UT : 1,"),
+        ls.contains("  UFRAME_NUM=0 ;\n")
+            && ls.contains("UTOOL_NUM=2 ;")
+            && ls.contains("UF : 0, UT : 2,"),
         "{ls}"
     );
+    let jbi = generate(&plan(&s, Dialect::Inform, &t, &m, &pulses));
+    assert!(jbi.unwrap().files[0].text.contains("///TOOL 2\r\n"));
+    // Every tool number from 1 to 10 holds another tool: refused, naming the table.
+    let tools: Vec<String> = (1..=10)
+        .map(|n| format!("{{ number = {n}, xyz_mm = [0, 0, {}] }}", 10 * n))
+        .collect();
+    let text = format!("{SETUP}\n[controller]\ntools = [{}]\n", tools.join(", "));
+    let full = stiffid::setup::parse(&text, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap();
+    for dialect in [Dialect::FanucLs, Dialect::Inform] {
+        let e = generate(&plan(&full, dialect, &t, &m, &pulses))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("controller.tools: every tool number from 1 to 10 holds another"),
+            "{e}"
+        );
+    }
 }
