@@ -38,6 +38,11 @@ pub struct Descriptor {
     /// The words (with the blank after them) that start a motion line of a program stiffid
     /// wrote (`PTP `), for [`super::Controller::motion_lines`]'s default.
     pub motion_words: &'static [&'static str],
+    /// The highest tool and base (user frame) numbers a program selects on the controller
+    /// (KSS `TOOL_DATA[16]`, `BASE_DATA[32]`; FANUC `UTOOL[10]`, `UFRAME[9]`); a setup's table
+    /// entry beyond them is stated instead ([`super::generate::numbered`]); `(0, 0)`: the
+    /// language states its frames.
+    pub frame_numbers: (u32, u32),
 }
 
 /// The rules of a language's program names.

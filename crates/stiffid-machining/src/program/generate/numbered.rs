@@ -41,16 +41,18 @@ const FREE_TOOLS: u32 = 10;
 
 impl Numbers {
     /// The numbers of `tool` (controller's flange frame) in `tools` and of `base` (the part
-    /// frame in the controller's world) in `bases` (module docs).
+    /// frame in the controller's world) in `bases` (module docs), up to the language's highest
+    /// tool and base numbers `highest` ([`crate::program::Descriptor::frame_numbers`]).
     pub fn of(
         (tools, bases): (&NumberedFrames, &NumberedFrames),
         tool: &Isometry3<f64>,
         base: &Isometry3<f64>,
+        highest: (u32, u32),
     ) -> Self {
         let held = (1..=FREE_TOOLS).filter(|&n| tools.get(n).is_some());
         Self {
-            tool: find(tools, tool),
-            base: find(bases, base),
+            tool: find(tools, tool).filter(|(n, _)| *n <= highest.0),
+            base: find(bases, base).filter(|(n, _)| *n <= highest.1),
             held_tools: held.fold(0, |bits, n| bits | 1 << (n - 1)),
         }
     }

@@ -287,6 +287,7 @@ impl Controller for Inform {
         },
         bound_comment: BoundComment::LineBefore { marker: '\'' },
         motion_words: &["MOVJ ", "MOVL ", "MOVC "],
+        frame_numbers: (63, 63),
     };
 
     fn read(&self, text: &str) -> Result<Read> {

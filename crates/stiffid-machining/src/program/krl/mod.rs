@@ -114,6 +114,7 @@ impl Controller for Krl {
             statement: None,
         },
         motion_words: &["PTP ", "LIN ", "CIRC "],
+        frame_numbers: (16, 32),
     };
 
     fn read(&self, text: &str) -> Result<Read> {

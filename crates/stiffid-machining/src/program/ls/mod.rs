@@ -409,6 +409,7 @@ impl Controller for FanucLs {
         bound_comment: BoundComment::PositionComment,
         // The motion lines are those of `/MN` only (`motion_lines`).
         motion_words: &[],
+        frame_numbers: (10, 9),
     };
 
     fn read(&self, text: &str) -> Result<Read> {

@@ -641,6 +641,7 @@ impl Controller for Rapid {
             statement: Some(';'),
         },
         motion_words: &["MoveJ ", "MoveL ", "MoveC ", "MoveAbsJ "],
+        frame_numbers: (0, 0),
     };
 
     fn read(&self, text: &str) -> Result<Read> {

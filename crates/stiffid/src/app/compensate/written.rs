@@ -182,7 +182,7 @@ fn write_robot_program(
         external: setup.robot().external(),
         world: setup.program_world(),
         approximation: chord_tolerance,
-        numbers: numbers(setup),
+        numbers: numbers(setup, dialect),
         pulses: setup.workcell().controller().pulses.as_ref(),
         settings: *settings,
     };
@@ -193,10 +193,12 @@ fn write_robot_program(
 
 /// The setup's tool and part frame as its controller holds them by number
 /// ([`generate::numbered`]).
-fn numbers(setup: &Setup) -> generate::numbered::Numbers {
+fn numbers(setup: &Setup, dialect: Dialect) -> generate::numbered::Numbers {
     let c = setup.workcell().controller();
     let part = (setup.program_world()).inv_mul(&setup.workpiece().copied().unwrap_or_default());
-    generate::numbered::Numbers::of((&c.tools, &c.bases), &program_tool(setup).frame, &part)
+    let highest = dialect.controller().descriptor().frame_numbers;
+    let tool = &program_tool(setup).frame;
+    generate::numbered::Numbers::of((&c.tools, &c.bases), tool, &part, highest)
 }
 
 /// `settings` with the setup's rapid speeds (`[controller] rapid_speed_mm_s`,

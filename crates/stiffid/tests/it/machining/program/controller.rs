@@ -45,6 +45,7 @@ impl Controller for Val3 {
             statement: None,
         },
         motion_words: &["movej(", "movel("],
+        frame_numbers: (0, 0),
     };
 
     /// Refuses every program naming its first line: the test reads none.

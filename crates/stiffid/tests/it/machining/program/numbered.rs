@@ -51,6 +51,7 @@ fn plan<'a>(
             (&c.tools, &c.bases),
             &tool,
             &s.program_world().inv_mul(&work),
+            dialect.controller().descriptor().frame_numbers,
         ),
         pulses: Some(p),
         settings: Settings::default(),
@@ -194,6 +195,26 @@ fn frames_the_controller_does_not_hold_are_stated() {
             && ls.contains("UF : 0, UT : 2,"),
         "{ls}"
     );
+    // A table's number beyond the controller's (KSS holds TOOL_DATA[1..16], FANUC UTOOL[1..10]):
+    // the frame stated, not selected.
+    let text = format!(
+        "{SETUP}\n[controller]\ntools = [{{ number = 20, xyz_mm = [6.9, 245.3, 319.3] }}]\n"
+    );
+    let high = stiffid::setup::parse(&text, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap();
+    for (dialect, form) in [
+        (Dialect::Krl, "$TOOL = {X 6.9,"),
+        (Dialect::FanucLs, "UTOOL_NUM=1 ;"),
+    ] {
+        let p = plan(&high, dialect, &t, &m, &pulses);
+        assert_eq!(p.numbers.tool, None, "{dialect:?}");
+        let text = generate(&p).unwrap().files.remove(0).text;
+        assert!(
+            text.contains(form)
+                && !text.contains("TOOL_DATA[20]")
+                && !text.contains("UTOOL_NUM=20"),
+            "{dialect:?}: {text}"
+        );
+    }
     let jbi = generate(&plan(&s, Dialect::Inform, &t, &m, &pulses));
     assert!(jbi.unwrap().files[0].text.contains("///TOOL 2\r\n"));
     // Every tool number from 1 to 10 holds another tool: refused, naming the table.
