@@ -321,14 +321,26 @@ fn report_and_plot_write_figures_that_decode() {
         );
         assert!(!plan.join("figures").join(format!("{name}.png")).exists());
     }
+}
 
+/// `plot` writes a figure per posture and the group's, decodable, and writes again into its own
+/// directory; a directory with other files needs --force, and a user's file is never lost.
+#[test]
+fn plot_writes_figures_and_keeps_a_users_files() {
+    let d = temp_dir("plot");
+    let best = write_file(
+        &d,
+        "best.csv",
+        &GROUP.lines().take(5).collect::<Vec<_>>().join("\n"),
+    );
+    let pool = write_file(&d, "pool.csv", &pool_text());
     let figs = d.join("figs");
     let out = stiffid(&[
         "plot",
         "--setup",
         "zhang2021-comau-nj165",
         "--postures",
-        d.join("best.csv").to_str().unwrap(),
+        best.to_str().unwrap(),
         "--out",
         figs.to_str().unwrap(),
     ]);
