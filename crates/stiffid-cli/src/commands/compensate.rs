@@ -66,9 +66,9 @@ pub struct Args {
     #[arg(long)]
     out: PathBuf,
     /// With a G-code --program written as a robot program: Cartesian targets (the compensated
-    /// poses with their configuration, cutting moves linear) or joint targets (every move
-    /// axis-interpolated; an INFORM job always, with a warning when cartesian is given). Default:
-    /// cartesian.
+    /// poses with their configuration, cutting moves linear) or joint targets (the compensated
+    /// axis angles, reached by axis-interpolated moves in KRL and RAPID and linear ones in LS and
+    /// INFORM; an INFORM job always, with a warning when cartesian is given). Default: cartesian.
     #[arg(long, value_parser = choice::<Targets>(), requires = "program")]
     targets: Option<Targets>,
     /// With a G-code --program written as a robot program: the robot's largest TCP speed, mm/s

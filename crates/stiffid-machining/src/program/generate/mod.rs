@@ -152,7 +152,8 @@ pub enum Targets {
     /// Compensated poses with their configuration; cutting moves linear.
     #[default]
     Cartesian,
-    /// Compensated axis angles; every move axis-interpolated.
+    /// Compensated axis angles, reached by axis-interpolated moves in KRL and RAPID (`PTP`,
+    /// `MoveAbsJ`) and linear ones in LS and INFORM (`L`, `MOVL`).
     Joint,
 }
 
@@ -180,7 +181,9 @@ impl stiffid_core::common::choice::Choice for Targets {
             Targets::Cartesian => {
                 "Compensated poses with their configuration, cutting moves linear"
             }
-            Targets::Joint => "Compensated axis angles, every move axis-interpolated",
+            Targets::Joint => {
+                "Compensated axis angles, axis-interpolated in KRL and RAPID, linear in LS and INFORM"
+            }
         }
     }
 }
