@@ -233,3 +233,18 @@ pub fn postures(
     let text = read(path)?;
     postures::parse(&text, robot, bounds).with_context(|| path.display().to_string())
 }
+
+/// The arm's axis angles of the postures file `path` of a cell whatever its external axes'
+/// values: a search's start or pool, which `select` places at its own stations (`--station`).
+///
+/// # Errors
+/// As [`postures`], but for an external axis not at 0.
+pub fn arm_postures(
+    path: &Path,
+    robot: &Robot,
+    bounds: Option<&JointBox>,
+) -> Result<Vec<Vector6<f64>>> {
+    let text = read(path)?;
+    let cell = postures::parse_cell(&text, robot, bounds);
+    Ok(cell.with_context(|| path.display().to_string())?.q)
+}

@@ -39,9 +39,26 @@ pub const HEADER: [&str; 7] = [
 /// ```
 ///
 /// A cell with external axes: the file has their columns, checked as `parse_cell` checks
-/// them; their values are left out here (`parse_cell` returns them).
+/// them, each value 0 (the arm's postures at the cell's zero; `parse_cell` returns other
+/// values).
+///
+/// # Errors
+/// As `parse_cell`; [`Error::InvalidField`] naming the first posture and column whose external
+/// axis is not at 0: its postures would be read at a station they were not designed at.
 pub fn parse(text: &str, robot: &Robot, bounds: Option<&JointBox>) -> Result<Vec<Vector6<f64>>> {
-    parse_cell(text, robot, bounds).map(|p| p.q)
+    let postures = parse_cell(text, robot, bounds)?;
+    let moved = (postures.e.iter().enumerate())
+        .find_map(|(i, e)| Some(i).zip(e.iter().position(|v| *v != 0.0)));
+    match (moved, robot.external()) {
+        (Some((i, a)), Some(axes)) => Err(Error::InvalidField {
+            field: format!("posture {}: {}", i + 1, axes.column_names()[a]),
+            message: "not 0: the arm's postures are read here at the cell's external axes at \
+                      0, and this one at another station would be read at 0; give the postures \
+                      of one station at 0, or design across stations (select --station)"
+                .into(),
+        }),
+        _ => Ok(postures.q),
+    }
 }
 
 /// The postures of a cell: axis angles and external axes' values.

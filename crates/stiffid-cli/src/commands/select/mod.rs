@@ -151,13 +151,17 @@ pub fn run(args: &Args) -> Result<()> {
     let pool = match &args.pool {
         Some(path) => Some(PoolInput {
             name: path.display().to_string(),
-            postures: load::postures(path, setup.robot(), None)?,
+            postures: load::arm_postures(path, setup.robot(), None)?,
         }),
         None => None,
     };
     // Read (an input from now on, which --out cannot overwrite) and checked before searching.
     let start = match &args.start {
-        Some(path) => Some(load::postures(path, setup.robot(), Some(setup.bounds()))?),
+        Some(path) => Some(load::arm_postures(
+            path,
+            setup.robot(),
+            Some(setup.bounds()),
+        )?),
         None => None,
     };
     if let Some(pct) = args.target_pct {

@@ -111,6 +111,12 @@ fn a_cells_postures_carry_its_external_axes() {
     let nan = written.replace(",28.647890\n", ",x\n");
     let e = parse_cell(&nan, &cell, None).unwrap_err().to_string();
     assert!(e.contains("e2_deg"), "{e}");
+    // The arm's postures alone: at the cell's zero, another station refused naming it.
+    let e = parse(&written, &cell, None).unwrap_err().to_string();
+    assert!(e.starts_with("posture 1: e1_mm: not 0"), "{e}");
+    let zero = to_csv_cell(&q, &[vec![0.0, 0.0], vec![0.0, 0.0]], cell.external());
+    let back = parse(&zero, &cell, None).unwrap();
+    assert!((back[1] - q[1]).amax() < 1e-8, "{:?}", back[1]);
 }
 
 #[test]
