@@ -338,11 +338,28 @@ fn input_of<'t>(
     ),
 ) -> PyResult<Input<'t>> {
     let input = match (program, process) {
-        (None, None) => Input::Path {
-            name: name.to_string(),
-            text,
-            frame,
-        },
+        (None, None) => {
+            // The program's options, given (their defaults are the signature's): a path CSV is
+            // compensated point by point and writes no program.
+            let given = [
+                ("output", output.is_some()),
+                ("program_name", program_name.is_some()),
+                ("targets", targets.is_some()),
+                ("name_length", name_length.is_some()),
+                ("chord_tolerance_mm", chord_tolerance_mm != 0.01),
+                ("moves_per_file", moves_per_file != 10_000),
+            ];
+            if let Some((key, _)) = given.iter().find(|(_, given)| *given) {
+                return Err(error::value(format!(
+                    "{key}: only with program= (a path is compensated point by point and writes no program)"
+                )));
+            }
+            Input::Path {
+                name: name.to_string(),
+                text,
+                frame,
+            }
+        }
         (Some(_), Some(_)) if frame != Frame::Base => {
             return Err(error::value(
                 "frame: only with path= (the frame of a path CSV's wrenches): a program's wrench is its process file's, where the tool cuts",

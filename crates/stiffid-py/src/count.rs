@@ -17,9 +17,28 @@ pub fn optional(name: &str, given: Option<i64>) -> PyResult<Option<usize>> {
     given.map(|v| count(name, v)).transpose()
 }
 
-/// [`count`] as a `u64`: a seed.
+/// [`count`] as a `u64`: a seed that may be left out.
 pub fn seed(name: &str, given: i64) -> PyResult<u64> {
     u64::try_from(given).map_err(|_| negative(name, given))
+}
+
+/// The argument `seed` read by PyO3 (`#[pyo3(from_py_with = count::seed_of)]`): an int from 0
+/// to 2^64 - 1, as the command's `--seed` takes it (a run of the command is repeated from Python
+/// with its seed); never a bool.
+pub fn seed_of(given: &Bound<'_, PyAny>) -> PyResult<u64> {
+    no_bool(given, "a whole number").map_err(|e| value(format!("seed: {e}")))?;
+    given
+        .extract::<u64>()
+        .map_err(|e| match given.extract::<i64>() {
+            Ok(v) if v < 0 => negative("seed", v),
+            _ if e.is_instance_of::<pyo3::exceptions::PyOverflowError>(given.py()) => {
+                value(format!(
+                    "seed: {given} is more than {}: expected a whole number, 0 to {0}",
+                    u64::MAX
+                ))
+            }
+            _ => e,
+        })
 }
 
 fn negative(name: &str, given: i64) -> PyErr {

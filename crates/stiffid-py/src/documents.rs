@@ -108,9 +108,25 @@ pub fn warn(py: Python<'_>, warnings: &[Warning]) -> PyResult<()> {
     Ok(())
 }
 
+/// How deep the dicts and lists of a document given to a function may nest: the documents
+/// stiffid writes nest fewer than ten deep; a dict that holds itself nests without end.
+const MAX_DEPTH: usize = 64;
+
 /// A document of Python objects (dicts, lists, tuples, NumPy arrays, numbers, strings, None; an
-/// object with `to_dict`) as JSON; NaN as null.
+/// object with `to_dict`) as JSON; NaN as null. An `InputError` (`document`) for anything else,
+/// and for dicts and lists nested deeper than 64 (a dict that holds itself).
 pub fn json(o: &Bound<'_, PyAny>) -> PyResult<Value> {
+    json_within(o, MAX_DEPTH)
+}
+
+/// [`json`] of `o` nested at most `depth` deeper.
+fn json_within(o: &Bound<'_, PyAny>, depth: usize) -> PyResult<Value> {
+    let Some(depth) = depth.checked_sub(1) else {
+        return Err(value(format!(
+            "document: nested more than {MAX_DEPTH} deep (a dict or list that holds itself?)"
+        )));
+    };
+    let json = |o: &Bound<'_, PyAny>| json_within(o, depth);
     if o.is_none() {
         return Ok(Value::Null);
     }

@@ -52,7 +52,7 @@ pub fn place<'py>(
     objective: &str,
     #[pyo3(from_py_with = crate::count::number)] margin_deg: f64,
     #[pyo3(from_py_with = crate::count::number)] max_condition: f64,
-    #[pyo3(from_py_with = crate::count::whole)] seed: i64,
+    #[pyo3(from_py_with = crate::count::seed_of)] seed: u64,
     #[pyo3(from_py_with = crate::count::whole)] grid: i64,
     #[pyo3(from_py_with = crate::count::whole)] samples: i64,
     #[pyo3(from_py_with = crate::count::whole)] starts: i64,
@@ -128,7 +128,7 @@ pub fn place<'py>(
             grid: crate::count::count("grid", grid)?,
             samples: crate::count::count("samples", samples)?,
             starts: crate::count::count("starts", starts)?,
-            seed: crate::count::seed("seed", seed)?,
+            seed,
         },
     };
     let outcome = py.detach(|| job::run(&request)).map_err(raise)?;

@@ -63,7 +63,7 @@ pub fn register<'py>(
     setup: &Setup,
     readings: Option<PathBuf>,
     #[pyo3(from_py_with = crate::count::optional_whole)] count: Option<i64>,
-    #[pyo3(from_py_with = crate::count::whole)] seed: i64,
+    #[pyo3(from_py_with = crate::count::seed_of)] seed: u64,
     #[pyo3(from_py_with = crate::count::optional_whole)] candidates: Option<i64>,
     #[pyo3(from_py_with = crate::count::optional_whole)] restarts: Option<i64>,
     force: bool,
@@ -76,7 +76,6 @@ pub fn register<'py>(
         }));
     }
     let postures = count::optional("count", count)?;
-    let seed = count::seed("seed", seed)?;
     let candidates = count::optional("candidates", candidates)?;
     let restarts = count::optional("restarts", restarts)?;
     let readings = match (readings, postures) {

@@ -264,7 +264,7 @@ impl Robot {
         rotation_tolerance_deg: Option<&Bound<'_, PyAny>>,
         #[pyo3(from_py_with = crate::count::optional_whole)] max_iterations: Option<i64>,
         #[pyo3(from_py_with = crate::count::optional_whole)] restarts: Option<i64>,
-        #[pyo3(from_py_with = crate::count::whole)] seed: i64,
+        #[pyo3(from_py_with = crate::count::seed_of)] seed: u64,
     ) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
         let position_tolerance_mm =
             crate::count::real("position_tolerance_mm", position_tolerance_mm)?;
@@ -272,7 +272,6 @@ impl Robot {
             crate::count::real("rotation_tolerance_deg", rotation_tolerance_deg)?;
         let max_iterations = crate::count::optional("max_iterations", max_iterations)?;
         let restarts = crate::count::optional("restarts", restarts)?;
-        let seed = crate::count::seed("seed", seed)?;
         let limits = (self.inner.limits(), "the joint limits");
         let (q0, single) = arrays::postures(q0_deg, "q0_deg", limits, 1)?;
         if !single {

@@ -368,7 +368,7 @@ impl Setup {
         method: Option<&str>,
         start: Option<&Bound<'py, PyAny>>,
         #[pyo3(from_py_with = crate::count::optional_whole)] n: Option<i64>,
-        #[pyo3(from_py_with = crate::count::whole)] seed: i64,
+        #[pyo3(from_py_with = crate::count::seed_of)] seed: u64,
         #[pyo3(from_py_with = crate::count::optional_whole)] starts: Option<i64>,
         #[pyo3(from_py_with = crate::count::optional_whole)] screen_steps: Option<i64>,
         #[pyo3(from_py_with = crate::count::optional_whole)] polished: Option<i64>,
@@ -407,7 +407,7 @@ impl Setup {
             method,
             start,
             n: optional("n", n)?,
-            seed: crate::count::seed("seed", seed)?,
+            seed,
             starts: optional("starts", starts)?,
             screen_steps: optional("screen_steps", screen_steps)?,
             polished: optional("polished", polished)?,
@@ -442,12 +442,9 @@ impl Setup {
         &self,
         py: Python<'py>,
         #[pyo3(from_py_with = crate::count::whole)] n: i64,
-        #[pyo3(from_py_with = crate::count::whole)] seed: i64,
+        #[pyo3(from_py_with = crate::count::seed_of)] seed: u64,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let (n, seed) = (
-            crate::count::count("n", n)?,
-            crate::count::seed("seed", seed)?,
-        );
+        let (n, seed) = (crate::count::count("n", n)?, seed);
         design::check_postures(n)?;
         Ok(arrays::degrees(
             py,

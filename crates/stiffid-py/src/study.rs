@@ -34,9 +34,8 @@ pub fn simulate<'py>(
     setup: &Setup,
     groups: &Bound<'py, PyAny>,
     #[pyo3(from_py_with = crate::count::whole)] runs: i64,
-    #[pyo3(from_py_with = crate::count::whole)] seed: i64,
+    #[pyo3(from_py_with = crate::count::seed_of)] seed: u64,
 ) -> PyResult<Bound<'py, PyList>> {
-    let seed = crate::count::seed("seed", seed)?;
     let items: Vec<Bound<'py, PyAny>> = groups
         .try_iter()
         .map_err(|_| value("groups: expected a list of (n, 6) arrays"))?
@@ -103,13 +102,12 @@ pub fn reproduce<'py>(
     py: Python<'py>,
     setup: Option<&Setup>,
     #[pyo3(from_py_with = crate::count::whole)] runs: i64,
-    #[pyo3(from_py_with = crate::count::whole)] seed: i64,
+    #[pyo3(from_py_with = crate::count::seed_of)] seed: u64,
     #[pyo3(from_py_with = crate::count::whole)] starts: i64,
     #[pyo3(from_py_with = crate::count::whole)] trials: i64,
     solver: &str,
     figures: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let seed = crate::count::seed("seed", seed)?;
     let options = Options {
         runs: count("runs", runs, 1, limits::MAX_RUNS)?,
         seed,

@@ -170,3 +170,49 @@ def test_one_path_for_package_paths_is_refused_saying_to_give_a_list(given, call
     argument and saying to give a list (not "Can't extract `str` to `Vec`")."""
     with pytest.raises(stiffid.InputError, match=r"^package_paths: .* is one path: expected a list of directories \(package_paths=\["):
         call(given)
+
+
+def test_a_document_that_holds_itself_is_refused_not_a_crash():
+    setup = stiffid.Setup.builtin("zhang2021-comau-nj165")
+    looped = {"kind": "plan"}
+    looped["self"] = looped
+    with pytest.raises(stiffid.InputError, match=r"^document: nested more than 64 deep"):
+        stiffid.figures(looped, setup)
+    deep = {"kind": "plan"}
+    for _ in range(10000):
+        deep = {"kind": "plan", "a": deep}
+    with pytest.raises(stiffid.InputError, match=r"^document: nested more than 64 deep"):
+        stiffid.figures(deep, setup)
+
+
+def test_every_seed_the_command_takes_python_takes():
+    setup = stiffid.Setup.builtin("zhang2021-comau-nj165")
+    top = 2**64 - 1
+    assert setup.random_group(6, top).shape == (6, 6)
+    assert not np.array_equal(setup.random_group(6, top), setup.random_group(6, top - 1))
+    with pytest.raises(stiffid.InputError, match=r"^seed: 18446744073709551616 is more than"):
+        setup.random_group(6, 2**64)
+    with pytest.raises(stiffid.InputError, match=r"^seed: -1 is negative"):
+        setup.random_group(6, -1)
+
+
+def test_a_paths_compensation_refuses_the_options_of_a_program():
+    setup = stiffid.Setup.from_file(MILLING / "fanuc-milling.toml")
+    common = dict(path=MILLING / "path.csv", stiffness=MILLING / "stiffness.json")
+    for key, given in [("targets", "joint"), ("program_name", "X"), ("chord_tolerance_mm", 0.5), ("moves_per_file", 500)]:
+        with pytest.raises(stiffid.InputError, match=rf"^{key}: only with program="):
+            stiffid.compensate(setup, **common, **{key: given})
+
+
+def test_a_plans_target_outside_its_range_is_refused():
+    setup = stiffid.Setup.builtin("zhang2021-comau-nj165")
+    group = setup.random_group(6, 1)
+    for bad in [float("nan"), float("inf"), 0.0, -3.0]:
+        with pytest.raises(stiffid.InputError, match=r"^target_pct: "):
+            stiffid.plan(setup, group, target_pct=bad)
+
+
+def test_the_cartesian_stiffness_at_a_wrist_singularity_is_nan():
+    setup = stiffid.Setup.builtin("fanuc-r2000ic-165f")
+    assert np.isnan(stiffid.cartesian_stiffness(setup, [0, 10, -10, 0, 0, 0])).all()
+    assert np.isfinite(stiffid.cartesian_stiffness(setup, [0, 10, -10, 0, 3, 0])).all()

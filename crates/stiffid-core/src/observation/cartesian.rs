@@ -58,12 +58,27 @@ fn symmetric(a: Matrix6<f64>) -> Matrix6<f64> {
     (a + a.transpose()) * 0.5
 }
 
+/// The condition number of the point Jacobian `J_p` (SI) beyond which [`stiffness`] calls it
+/// singular: a wrist or elbow singularity, where the inverse's entries are rounding error.
+const MAX_COND_JACOBIAN: f64 = 1e10;
+
+/// The condition number of `C_x` beyond which [`stiffness`] calls it singular: its inverse loses
+/// every digit of a double.
+const MAX_COND_COMPLIANCE: f64 = 1e15;
+
+/// Whether `a`'s condition number exceeds `max` (or is no number).
+fn singular(a: &Matrix6<f64>, max: f64) -> bool {
+    let cond = crate::math::jacobi::cond(a);
+    cond.is_nan() || cond > max
+}
+
 /// `K_x = C_x^-1` (6x6, symmetric, base frame, SI blocks as in the module docs) of the tool point
 /// `point` (flange frame, m), with the compliance `h` of every parameter of the arm's model.
 /// For the drives alone it is computed from the inverse Jacobian, `J_p^-T diag(1/h) J_p^-1`, not
 /// by inverting `C_x` (whose condition number is the square of `J_p`'s); with virtual springs
-/// (`J_p` is 6 x n) by inverting `C_x`. `None` where it is singular (numerically: not invertible
-/// or non-finite).
+/// (`J_p` is 6 x n) by inverting `C_x`. `None` where it is singular (numerically: the condition
+/// number of `J_p` above 1e10, of `C_x` above 1e15, where the inverse's entries say nothing; or
+/// non-finite).
 ///
 /// # Panics
 /// If `h` does not have one value per parameter.
@@ -76,14 +91,24 @@ pub fn stiffness(
     assert_eq!(h.len(), arm.model().len(), "one compliance per parameter");
     let kx = match arm.model().is_drives_only() {
         true => {
-            let inv = frames.jacobian(point, arm.springs()).try_inverse()?;
+            let jp = frames.jacobian(point, arm.springs());
+            if singular(&jp, MAX_COND_JACOBIAN) {
+                return None;
+            }
+            let inv = jp.try_inverse()?;
             let mut kj = inv;
             for (r, mut row) in kj.row_iter_mut().enumerate() {
                 row *= 1.0 / h[r];
             }
             symmetric(inv.transpose() * kj)
         }
-        false => symmetric(compliance(arm, frames, point, h).try_inverse()?),
+        false => {
+            let cx = compliance(arm, frames, point, h);
+            if singular(&cx, MAX_COND_COMPLIANCE) {
+                return None;
+            }
+            symmetric(cx.try_inverse()?)
+        }
     };
     kx.iter().all(|v| v.is_finite()).then_some(kx)
 }

@@ -102,6 +102,25 @@ fn cartesian_compliance_over_the_model_is_j_k_inverse_j_transposed_by_hand() {
     }
 }
 
+/// At a wrist singularity (q5 = 0) `K_x` of the drives is no number (`None`), not the rounding
+/// error an inverse returns there (entries of 1e68 N/m); 0.05 rad away it is the inverse of
+/// `C_x`.
+#[test]
+fn the_cartesian_stiffness_at_a_wrist_singularity_is_none() {
+    let drives = stiffid::setup::builtin("fanuc-r2000ic-165f").unwrap();
+    let h = drives.model_compliance("test").unwrap().h;
+    let tcp = drives.tool().tcp;
+    let singular = Vector6::new(0.0, 10f64.to_radians(), -10f64.to_radians(), 0.0, 0.0, 0.0);
+    let frames = drives.robot().frames(&singular);
+    assert!(cartesian::stiffness(drives.arm(), &frames, &tcp, &h).is_none());
+    let near = drives
+        .robot()
+        .frames(&Vector6::new(0.0, 0.17, -0.17, 0.0, 0.05, 0.0));
+    let kx = cartesian::stiffness(drives.arm(), &near, &tcp, &h).unwrap();
+    let c = cartesian::compliance(drives.arm(), &near, &tcp, &h);
+    assert_relative_eq!(kx * c, Matrix6::identity(), epsilon = 1e-6);
+}
+
 #[test]
 fn a_tool_point_deflection_and_its_covariance_over_the_model_match_the_hand_built_jacobians() {
     let s = extended();

@@ -38,7 +38,7 @@ pub struct Request<'a> {
     pub criterion: Criterion,
     /// The group: axis angles (rad).
     pub postures: &'a [Vector6<f64>],
-    /// The predicted deviation rate (%) the group was chosen to reach, if it was.
+    /// The predicted deviation rate (%) the group was chosen to reach, if it was: 1e-6 to 1e4 %.
     pub target_pct: Option<f64>,
     /// With external axes: where each posture is read, the axes' values (SI, the cell's order,
     /// within their limits), one list per posture (a station, or a calibration's table angles,
@@ -243,6 +243,10 @@ fn find(request: &Request) -> Result<Report> {
     let (setup, postures) = (request.setup, request.postures);
     setup.require_loading("plan (where the rope pulls)")?;
     stiffid_core::common::limits::check_count("postures", postures.len(), 1, MAX_POSTURES)?;
+    if let Some(pct) = request.target_pct {
+        let range = &crate::app::select::TARGET_PCT;
+        stiffid_core::common::limits::check("target_pct", &[pct], range)?;
+    }
     stiffid_view::check_external(setup, postures.len(), request.external)?;
     if let (Some(axes), true) = (setup.robot().external(), request.external.is_empty()) {
         return Err(stiffid_core::Error::InvalidField {
