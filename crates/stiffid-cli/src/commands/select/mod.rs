@@ -165,7 +165,7 @@ pub fn run(args: &Args) -> Result<()> {
         None => None,
     };
     if let Some(pct) = args.target_pct {
-        limits::check("--target-pct", &[pct], &job::TARGET_PCT)?;
+        limits::check("--target-pct", &[pct], &limits::TARGET_PCT)?;
     }
     let out = OutFile::prepare(&args.out, "--out")?;
     let target_files = match (args.target_pct, &args.report) {

@@ -177,6 +177,10 @@ pub const LEVEL_MULTIPLE: Range = Range::new(1e-6, 1e6, "");
 /// The characteristic length `L` of the dexterity index (Eq. 20).
 pub const CHARACTERISTIC_LENGTH_MM: Range = Range::new(1.0, 1e5, "mm");
 
+/// The predicted mean deviation rate a group is chosen to reach (`select --target-pct`, a
+/// plan's `target_pct`), %.
+pub const TARGET_PCT: Range = Range::new(1e-6, 1e4, "%");
+
 /// An entry of a robot's axis map matrix.
 pub(crate) const AXIS_MAP_ENTRY: Range = Range::new(-1e3, 1e3, "");
 

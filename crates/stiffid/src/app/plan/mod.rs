@@ -244,7 +244,7 @@ fn find(request: &Request) -> Result<Report> {
     setup.require_loading("plan (where the rope pulls)")?;
     stiffid_core::common::limits::check_count("postures", postures.len(), 1, MAX_POSTURES)?;
     if let Some(pct) = request.target_pct {
-        let range = &crate::app::select::TARGET_PCT;
+        let range = &stiffid_core::common::limits::TARGET_PCT;
         stiffid_core::common::limits::check("target_pct", &[pct], range)?;
     }
     stiffid_view::check_external(setup, postures.len(), request.external)?;

@@ -1,6 +1,6 @@
 //! The request's checks: its parts fit its method, and its counts are in range.
 
-use super::{in_pool, Method, Request, TARGET_PCT};
+use super::{in_pool, Method, Request};
 use super::{DISTINCT_DEG, DISTINCT_MM};
 use crate::app::purpose::{self, Purpose};
 use stiffid_core::cell::Checker;
@@ -115,7 +115,7 @@ fn check_candidates_and_target(r: &Request) -> Result<()> {
         );
     }
     if let Some(pct) = r.target_pct {
-        limits::check("target_pct", &[pct], &TARGET_PCT)
+        limits::check("target_pct", &[pct], &limits::TARGET_PCT)
             .map_err(|e| e.for_option(JobOption::TargetPct))?;
         if r.purpose != Purpose::Stiffness {
             return invalid_option(

@@ -24,7 +24,6 @@ use crate::app::Warning;
 use nalgebra::Vector6;
 use std::time::Instant;
 use stiffid_core::common::error::JobOption;
-use stiffid_core::common::limits::Range;
 use stiffid_core::common::progress::Progress;
 use stiffid_core::{Error, Result, Setup};
 use stiffid_design::candidates::{self, Verdicts};
@@ -151,8 +150,6 @@ pub struct Request<'a> {
     pub report_dir: Option<String>,
 }
 
-/// The accepted target, %.
-pub const TARGET_PCT: Range = Range::new(1e-6, 1e4, "%");
 
 pub(crate) use stiffid_design::distinct::{DISTINCT_DEG, DISTINCT_MM};
 
