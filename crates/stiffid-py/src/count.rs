@@ -22,18 +22,20 @@ pub fn seed(name: &str, given: i64) -> PyResult<u64> {
     u64::try_from(given).map_err(|_| negative(name, given))
 }
 
-/// The argument `seed` read by PyO3 (`#[pyo3(from_py_with = count::seed_of)]`): an int from 0
-/// to 2^64 - 1, as the command's `--seed` takes it (a run of the command is repeated from Python
-/// with its seed); never a bool.
+/// A seed read by PyO3 (`#[pyo3(from_py_with = count::seed_of)]`): an int from 0 to 2^64 - 1,
+/// as the command's `--seed` takes it (a run of the command is repeated from Python with its
+/// seed); never a bool. The package's functions put the argument's name in front of the message.
 pub fn seed_of(given: &Bound<'_, PyAny>) -> PyResult<u64> {
-    no_bool(given, "a whole number").map_err(|e| value(format!("seed: {e}")))?;
+    no_bool(given, "a whole number")?;
     given
         .extract::<u64>()
         .map_err(|e| match given.extract::<i64>() {
-            Ok(v) if v < 0 => negative("seed", v),
+            Ok(v) if v < 0 => value(format!(
+                "{v} is negative: expected a whole number, 0 or more"
+            )),
             _ if e.is_instance_of::<pyo3::exceptions::PyOverflowError>(given.py()) => {
                 value(format!(
-                    "seed: {given} is more than {}: expected a whole number, 0 to {0}",
+                    "{given} is more than {}: expected a whole number, 0 to {0}",
                     u64::MAX
                 ))
             }

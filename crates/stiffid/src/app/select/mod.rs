@@ -150,7 +150,6 @@ pub struct Request<'a> {
     pub report_dir: Option<String>,
 }
 
-
 pub(crate) use stiffid_design::distinct::{DISTINCT_DEG, DISTINCT_MM};
 
 /// What the selection found. It serialises to its document, `stiffid select --json`, through
