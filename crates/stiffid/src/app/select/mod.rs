@@ -107,8 +107,9 @@ pub struct Request<'a> {
     /// start group; unused with a target.
     pub postures: usize,
     /// The smallest group whose predicted mean deviation rate at noise level multiple 1 is at
-    /// most this many percent on every parameter ([`TARGET_PCT`]; [`Method::Global`] or
-    /// [`Method::Pool`]; [`Purpose::Stiffness`] only).
+    /// most this many percent on every parameter
+    /// ([`stiffid_core::common::limits::TARGET_PCT`]; [`Method::Global`] or [`Method::Pool`];
+    /// [`Purpose::Stiffness`] only).
     pub target_pct: Option<f64>,
     /// The budget and tolerances of the searches; its seed seeds the random start group, the
     /// global starts and the pool's exchange runs.
