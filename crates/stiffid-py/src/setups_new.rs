@@ -13,7 +13,7 @@ use stiffid_core::setup::reference::{self, Meshes};
 /// A complete, commented setup TOML for your own ``robot`` (a preset name, a robot ``.toml`` file
 /// or a ``.urdf`` file, ``tip`` its tip link): every field with its unit and meaning, starting
 /// values derived from the robot (bounds 5 deg inside the joint limits, a characteristic length,
-/// a rough nominal stiffness from ``payload_kg``, the rated payload, 0 to 2500 kg, default a class
+/// a rough nominal stiffness from ``payload_kg``, the rated payload, 0.1 to 2500 kg, default a class
 /// guessed from the reach; a tool scaled to the reach) and the optional sections (cell, tracker,
 /// constraints) commented out; ``package_paths`` (directories holding ROS packages, at most 64)
 /// find a URDF's meshes and are written into the setup. The same text as ``stiffid setups new``

@@ -17,7 +17,7 @@ pub struct NewArgs {
     /// URDF only: the tip link of the chain.
     #[arg(long)]
     tip: Option<String>,
-    /// The robot's rated payload, kg (0 < payload <= 2500); sets the rough nominal stiffness.
+    /// The robot's rated payload, kg (0.1 to 2500); sets the rough nominal stiffness.
     /// Default: a class guessed from the robot's reach.
     #[arg(long)]
     payload_kg: Option<f64>,

@@ -169,11 +169,18 @@ fn setups_new_never_replaces_a_file_and_refuses_bad_payloads() {
         std::fs::read_to_string(&existing).unwrap(),
         "name = \"mine\"\n"
     );
-    for (bad, shown) in [("0", "0"), ("-5", "-5"), ("nan", "NaN"), ("1e308", "1e308")] {
+    let bad = [
+        ("0", "0"),
+        ("-5", "-5"),
+        ("nan", "NaN"),
+        ("1e308", "1e308"),
+        ("1e-4", "0.0001"),
+    ];
+    for (bad, shown) in bad {
         let payload = format!("--payload-kg={bad}");
         let out = stiffid(&["setups", "new", "--robot", "kuka-kr210-robond", &payload]);
         let message =
-            format!("error: --payload-kg: expected a payload in (0, 2500] kg, got {shown}\n");
+            format!("error: --payload-kg: expected a payload in [0.1, 2500] kg, got {shown}\n");
         assert_usage_error(&out, &[&message]);
     }
 }

@@ -37,6 +37,10 @@ pub(crate) const REFERENCE_STIFFNESS_NM_PER_RAD: [f64; 6] = [
 /// carry about 2.3 t).
 pub(crate) const MAX_PAYLOAD_KG: f64 = 2500.0;
 
+/// The smallest payload [`nominal_stiffness`] accepts, kg: below it the scaled prior falls under
+/// the stiffness a setup accepts (1 Nm/rad), and no robot that machines carries less.
+pub(crate) const MIN_PAYLOAD_KG: f64 = 0.1;
+
 /// The characteristic length L (m) that minimises the median dexterity `k(J_N)` of the point `tcp`
 /// (flange frame, m) over `LENGTH_SAMPLES` postures drawn uniformly within `[lower, upper]` (axis
 /// angles, rad; ChaCha8 seeded with `seed`), Jacobians in axis coordinates.
@@ -135,13 +139,13 @@ pub fn payload_class_kg(reach: f64, reference_reach: f64) -> f64 {
 /// by a factor of two or three; identify them, then use the identified ones.
 ///
 /// # Errors
-/// [`Error::InvalidField`] (`payload_kg`) unless `0 < payload_kg <= 2500`.
+/// [`Error::InvalidField`] (`payload_kg`) unless `0.1 <= payload_kg <= 2500`.
 pub fn nominal_stiffness(payload_kg: f64) -> Result<Vector6<f64>> {
-    if !(payload_kg > 0.0 && payload_kg <= MAX_PAYLOAD_KG) {
+    if !(MIN_PAYLOAD_KG..=MAX_PAYLOAD_KG).contains(&payload_kg) {
         return Err(Error::InvalidField {
             field: "payload_kg".into(),
             message: format!(
-                "expected a payload in (0, {MAX_PAYLOAD_KG}] kg, got {}",
+                "expected a payload in [{MIN_PAYLOAD_KG}, {MAX_PAYLOAD_KG}] kg, got {}",
                 crate::common::words::number(payload_kg)
             ),
         });

@@ -23,7 +23,7 @@ pub struct Request<'a> {
     /// The directories holding ROS packages, as the setup file names them (relative to its
     /// directory, [`relative_to`]).
     pub package_paths: &'a [String],
-    /// The robot's rated payload, kg (0 < payload <= 2500); `None`: a class guessed from the
+    /// The robot's rated payload, kg (0.1 to 2500); `None`: a class guessed from the
     /// robot's reach.
     pub payload_kg: Option<f64>,
 }
