@@ -47,7 +47,7 @@ pub fn figures<'py>(
         let setup = setup.ok_or_else(|| {
             value("setup: a plan's figures draw its robot in its cell: give the plan's setup")
         })?;
-        let group = plan_postures(&doc)?;
+        let group = plan_postures(&doc, &setup.inner)?;
         if group.len() > MAX_POSTURES {
             return Err(value(format!(
                 "document: a plan of {} postures; its figures are drawn for at most {MAX_POSTURES}",

@@ -110,7 +110,7 @@ pub fn scene(
             return Err(value("postures_deg: the document's postures are its own"));
         }
         Some(d) if kind == "plan" => {
-            plan_scene(py, s, &plan_postures(&d)?, &plan_external(s, &d)?)?
+            plan_scene(py, s, &plan_postures(&d, s)?, &plan_external(s, &d)?)?
         }
         Some(d) if kind == "calibrate" => {
             let text = d.to_string();
@@ -186,10 +186,20 @@ fn plan_external(s: &stiffid_core::Setup, d: &Value) -> PyResult<Vec<Vec<f64>>> 
     }
 }
 
-/// A plan document's postures (`postures[].q_deg`), rad.
-pub(crate) fn plan_postures(d: &Value) -> PyResult<Vec<Vector6<f64>>> {
-    let list = d["postures"].as_array().into_iter().flatten();
-    list.enumerate()
+/// A plan document's postures (`postures[].q_deg`), rad, drawn on `setup`: an `InputError`
+/// naming `setup` for a plan of another robot, `document` for a plan without postures.
+pub(crate) fn plan_postures(d: &Value, setup: &stiffid_core::Setup) -> PyResult<Vec<Vector6<f64>>> {
+    let robot = setup.robot().name();
+    if let Some(theirs) = d["robot"].as_str().filter(|r| *r != robot) {
+        return Err(value(format!(
+            "setup: the plan is of the robot '{}', this setup's is '{robot}': give the plan's setup",
+            stiffid_core::common::limits::short(theirs)
+        )));
+    }
+    let list = d["postures"].as_array().filter(|l| !l.is_empty());
+    let list = list.ok_or_else(|| value("document: a plan without postures (its `postures`)"))?;
+    list.iter()
+        .enumerate()
         .map(|(i, p)| {
             let q: Option<Vec<f64>> =
                 (p["q_deg"].as_array()).map(|a| a.iter().filter_map(Value::as_f64).collect());

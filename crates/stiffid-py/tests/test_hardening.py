@@ -216,3 +216,16 @@ def test_the_cartesian_stiffness_at_a_wrist_singularity_is_nan():
     setup = stiffid.Setup.builtin("fanuc-r2000ic-165f")
     assert np.isnan(stiffid.cartesian_stiffness(setup, [0, 10, -10, 0, 0, 0])).all()
     assert np.isfinite(stiffid.cartesian_stiffness(setup, [0, 10, -10, 0, 3, 0])).all()
+
+
+def test_a_plan_is_drawn_with_its_own_robot_and_its_postures():
+    paper = stiffid.Setup.builtin("zhang2021-comau-nj165")
+    fanuc = stiffid.Setup.builtin("fanuc-r2000ic-165f")
+    plan = stiffid.plan(paper, paper.random_group(6, 1))
+    assert len(stiffid.figures(plan, paper)) == 7
+    with pytest.raises(stiffid.InputError, match=r"^setup: the plan is of the robot 'COMAU"):
+        stiffid.figures(plan, fanuc)
+    with pytest.raises(stiffid.InputError, match=r"^setup: the plan is of the robot 'COMAU"):
+        stiffid.scene(fanuc, document=plan)
+    with pytest.raises(stiffid.InputError, match=r"^document: a plan without postures"):
+        stiffid.figures({"kind": "plan"}, paper)
