@@ -79,7 +79,21 @@ pub fn register<'py>(
     let candidates = count::optional("candidates", candidates)?;
     let restarts = count::optional("restarts", restarts)?;
     let readings = match (readings, postures) {
-        (Some(readings), None) => readings,
+        (Some(readings), None) => {
+            // The proposal's options (the seed's default is the signature's): readings are
+            // registered, nothing is drawn or exchanged.
+            let given = [
+                ("seed", seed != 1),
+                ("candidates", candidates.is_some()),
+                ("restarts", restarts.is_some()),
+            ];
+            if let Some((key, _)) = given.iter().find(|(_, given)| *given) {
+                return Err(error::value(format!(
+                    "{key}: only with count= (the proposal of registration postures)"
+                )));
+            }
+            readings
+        }
         (None, Some(n)) => {
             let defaults = design::Options::default();
             let request = register_job::DesignRequest {

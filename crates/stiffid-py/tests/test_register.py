@@ -41,6 +41,9 @@ def test_register_gives_the_transform_back_and_equals_the_command(paper, cli, tm
     assert doc["residual_rms_mm"] < 1e-6 and len(doc["points"]) == 16
     assert doc == cli("register", "--setup", "zhang2021-comau-nj165", "--data", path, "--json")
     assert_valid("register", doc)
+    for key in ["seed", "candidates", "restarts"]:
+        with pytest.raises(stiffid.InputError, match=rf"^{key}: only with count="):
+            stiffid.register(paper, path, **{key: 5})
 
 
 def test_calibrate_cell_finds_the_shift_and_equals_the_command(paper, cli, tmp_path):

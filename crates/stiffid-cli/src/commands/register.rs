@@ -29,13 +29,13 @@ pub struct Args {
     #[arg(long, conflicts_with = "data", value_parser = clap::value_parser!(u64).range(1..=design::MAX_POSTURES as u64))]
     count: Option<u64>,
     /// Seed of --count's candidates and exchange runs.
-    #[arg(long, default_value_t = 1, requires = "count")]
+    #[arg(long, default_value_t = 1, requires = "count", conflicts_with = "data")]
     seed: u64,
     /// Candidate postures drawn in the bounds for --count [default: 20000; 1 to 100000].
-    #[arg(long, requires = "count", value_parser = clap::value_parser!(u64).range(1..=design::MAX_CANDIDATES as u64))]
+    #[arg(long, requires = "count", conflicts_with = "data", value_parser = clap::value_parser!(u64).range(1..=design::MAX_CANDIDATES as u64))]
     candidates: Option<u64>,
     /// Exchange runs of --count, 1 to 50 [default: 8].
-    #[arg(long, requires = "count", value_parser = clap::value_parser!(u64).range(1..=stiffid_core::common::limits::MAX_POOL_RESTARTS))]
+    #[arg(long, requires = "count", conflicts_with = "data", value_parser = clap::value_parser!(u64).range(1..=stiffid_core::common::limits::MAX_POOL_RESTARTS))]
     restarts: Option<u64>,
 }
 

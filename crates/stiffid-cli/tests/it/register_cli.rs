@@ -3,7 +3,7 @@
 
 use crate::common;
 
-use common::{json, stiffid, temp_dir, write_file};
+use common::{assert_usage_error, json, stiffid, temp_dir, write_file};
 use nalgebra::{Isometry3, Point3, Vector3, Vector6};
 
 /// Readings of the paper setup's four measuring points in three postures, seen by a tracker at
@@ -106,6 +106,11 @@ fn bad_readings_exit_2_naming_file_line_and_column() {
         e.contains("two.csv: points: 2 given: a registration needs at least 3"),
         "{e}"
     );
+    // The proposal's options mean nothing with readings: refused, named.
+    for option in ["--seed", "--candidates", "--restarts"] {
+        let out = stiffid(&[&args[..], &[data.to_str().unwrap(), option, "5"]].concat());
+        assert_usage_error(&out, &[option, "cannot be used with", "--data"]);
+    }
 }
 
 #[test]
