@@ -27,8 +27,8 @@ pub(super) struct Instructions {
 }
 
 /// Instructions that cannot move the robot or change a frame: input and output, timers and
-/// waits, arithmetic on B, I, D, R and S variables, messages, arc-welding conditions,
-/// synchronisation with other tasks. Weaving (`WVON` .. `WVOF`) is read apart: refused where a
+/// waits, arithmetic on B, I, D, R and S variables, messages, user alarms and dialogs,
+/// arc-welding conditions, synchronisation with other tasks. Weaving (`WVON` .. `WVOF`) is read apart: refused where a
 /// motion weaves.
 const ACCEPTED: &[&str] = &[
     "NOP", "TIMER", "DOUT", "DIN", "AOUT", "WAIT", "PULSE", "SET", "SETE", "GETE", "GETS", "CLEAR",
@@ -36,7 +36,8 @@ const ACCEPTED: &[&str] = &[
     "ARCSET", "ARCCTS", "ARCCTE", "AWELD", "VWELD", "SPEED", "TSYNC", "SKILLSND", "HPVELON",
     "HPVELOF", "PAUSE", "CWAIT", "ADVINIT", "ADVSTOP", "SETREG", "GETREG", "SYSTART", "SYEND",
     "HAND", "HSEN", "GETARG", "CNVRT", "GETPOS", "SETFILE", "GETFILE", "ARATION", "ARATIOF",
-    "TOOLON", "TOOLOF", "SVSPOT", "SPOT", "GUNCHG",
+    "TOOLON", "TOOLOF", "SVSPOT", "SPOT", "GUNCHG", "SETUALM", "DIALOG", "CLS", "PRINT", "SQRT",
+    "SIN", "COS", "ATAN",
 ];
 
 /// Instructions that change the order the controller runs (a jump, a call, a loop, a branch).
@@ -93,8 +94,13 @@ pub(super) fn instructions(text: &str) -> Result<Instructions> {
             directive(line, comment, &mut out.directives)?;
             continue;
         }
+        let t = without_comment(t);
         let words: Vec<&str> = t.split_whitespace().collect();
         let first = words[0].to_ascii_uppercase();
+        if first == "COMM" {
+            // A line commented out on the pendant: the controller skips it.
+            continue;
+        }
         if first.starts_with('*') {
             // A label: where a JUMP goes, refused below when the job has one.
             continue;
@@ -124,6 +130,24 @@ pub(super) fn instructions(text: &str) -> Result<Instructions> {
         return Err(at(line, format!("{}: a jump, call, macro, loop or branch in a job with motions; the order the controller runs them (or the motions of the job it calls) would not be the file's: write the path as motions of one job", short(&word))));
     }
     Ok(out)
+}
+
+/// The instruction `t` without its instruction comment: the text from a `//` that follows a
+/// space outside a quoted string to the line's end (`MOVJ C00000 VJ=65.00  //FROM LEFT`, as
+/// the YRC1000 and DX200 store a comment given to an instruction on the pendant), trimmed.
+fn without_comment(t: &str) -> &str {
+    let mut quoted = false;
+    let bytes = t.as_bytes();
+    for (i, b) in bytes.iter().enumerate() {
+        match b {
+            b'"' => quoted = !quoted,
+            b'/' if !quoted && bytes.get(i + 1) == Some(&b'/') && i > 0 && bytes[i - 1] == b' ' => {
+                return t[..i].trim_end();
+            }
+            _ => {}
+        }
+    }
+    t
 }
 
 /// Refuses a job that moves a robot other than the controller's first (`///GROUP1 RB2`, a

@@ -42,8 +42,11 @@
 //! What cannot move the robot or change a frame: input and output (`DOUT`, `DIN`, `WAIT`,
 //! `PULSE`, `AOUT`), `TIMER`, arithmetic on B, I, D, R and S variables (`SET`, `ADD`, ..),
 //! arc welding (`ARCON`, `ARCOF`, `ARCSET`), weaving switched on and off with no motion between
-//! (`WVON`, `WVOF`), `SPEED`, `MSG`, `TSYNC`, labels (`*LABEL`) in a job without a `JUMP`, and
-//! comments.
+//! (`WVON`, `WVOF`), `SPEED`, `MSG`, user alarms and dialogs (`SETUALM`, `DIALOG`), `TSYNC`,
+//! labels (`*LABEL`) in a job without a `JUMP`, comments (`'..`), an instruction's comment
+//! (`MOVJ C00000 VJ=65.00  //FROM LEFT`: the text after `//`) and lines commented out on the
+//! pendant (`COMM CALL JOB:..`, `COMM MOVL C00003 ..`: the controller skips them, and so does
+//! stiffid; a position only such a line names is written back as found).
 //!
 //! ## Refused, naming the line
 //! - a motion to a Cartesian position (`///RECTAN` under `///POSTYPE BASE`, `ROBOT`, `USER`,

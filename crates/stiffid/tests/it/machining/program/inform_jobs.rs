@@ -104,6 +104,43 @@ fn a_stored_job_is_read_with_the_setups_pulses() {
     assert!(written.contains("MOVC C00003 V=10.0\r\n"));
 }
 
+/// What a YRC1000 backup holds around its motions and moves nothing: an instruction's comment
+/// after `//` (`MOVJ C00000 VJ=65.00  //FROM LEFT`), a line commented out on the pendant
+/// (`COMM CALL JOB:..`, `COMM MOVL C..`), a user alarm, a message with `//` inside its quotes:
+/// the job reads as without them, and written back keeps every one of those lines.
+#[test]
+fn comments_commented_out_lines_and_alarms_move_nothing() {
+    let p = pulses();
+    let plain = parse_in(STORED, Dialect::Inform, &with(&p)).unwrap();
+    let commented = STORED
+        .replace("VJ=25.00 PL=0\r\n", "VJ=25.00 PL=0  //FROM LEFT\r\n")
+        .replace("V=10.0 PL=0 NWAIT", "V=10.0 PL=0 NWAIT  //INTO")
+        .replace(
+            "SET B000 1\r\n",
+            "SET B000 1\r\nCOMM CALL JOB:SPINDLE_STOP\r\nCOMM MOVL C00004 V=15.0\r\nSETUALM 8000 \"CHECK\" 0\r\nMSG \"SEE http://a\"\r\n",
+        );
+    let read = parse_in(&commented, Dialect::Inform, &with(&p)).unwrap();
+    let q = |r: &JointProgram| r.targets.iter().map(|t| t.q_deg).collect::<Vec<_>>();
+    assert_eq!(q(&read), q(&plain));
+    let lines: Vec<u64> = read.targets.iter().map(|t| t.line).collect();
+    assert_eq!(lines, [19, 22, 23, 24, 25]);
+    let mut moved = q(&read);
+    moved[0][0] += 0.5;
+    let written = read.write(&moved).unwrap();
+    for kept in [
+        "MOVJ C00000 VJ=25.00 PL=0  //FROM LEFT\r\n",
+        "COMM CALL JOB:SPINDLE_STOP\r\nCOMM MOVL C00004 V=15.0\r\n",
+        "SETUALM 8000 \"CHECK\" 0\r\n",
+    ] {
+        assert!(written.contains(kept), "{written}");
+    }
+    // A `//` that does not follow a space is no comment: the tag is refused as before.
+    let glued = STORED.replace("VJ=25.00 PL=0", "VJ=25.00 PL=0//X");
+    let (line, message) = refused(parse_in(&glued, Dialect::Inform, &with(&p)));
+    assert_eq!(line, 19);
+    assert!(message.contains("PL=0//X"), "{message}");
+}
+
 /// The job's `'stiffid:` pulses are used when the setup gives none and refused, naming both,
 /// when they contradict the setup's or each other.
 #[test]
