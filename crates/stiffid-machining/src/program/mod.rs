@@ -56,6 +56,7 @@
 //! ([`JointProgram::write_with_external`] the external values too); a point visited twice takes one
 //! value, so the two visits' compensations must agree.
 
+pub mod backup;
 pub mod cartesian;
 mod controller;
 mod descriptor;
@@ -70,6 +71,7 @@ pub mod speed;
 
 pub(crate) use super::text::lines;
 pub use super::text::number_at;
+pub use backup::{Backup, BackupFile};
 pub use controller::{
     Arcs, AxisNames, BoundComment, Controller, Descriptor, DynController, ExternalGroup, FileName,
     Generator, NameRules, Read, Writing,
@@ -276,6 +278,9 @@ pub struct Context<'a> {
     /// The controller's home posture, deg (`[controller] home_deg`): where a KRL program's
     /// `PTP XHOME` goes (the controller's `$config.dat` holds it); `None`: not known.
     pub home_deg: Option<[f64; 6]>,
+    /// The files of the controller's backup the program is read with ([`backup`]): the frames
+    /// and tool files it holds by number; `None`: no backup given.
+    pub backup: Option<&'a Backup>,
 }
 
 /// The text of the program at `path`, of its `.dat` when it is a KRL program with one beside it
@@ -311,7 +316,13 @@ impl<'a> Context<'a> {
             data: None,
             machine: None,
             home_deg: c.program.home_deg,
+            backup: None,
         }
+    }
+
+    /// The context with the controller's backup `backup` ([`backup`]).
+    pub fn with_backup(self, backup: Option<&'a Backup>) -> Self {
+        Context { backup, ..self }
     }
 
     /// The context with the G-code controller `machine`.

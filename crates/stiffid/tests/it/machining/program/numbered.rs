@@ -84,6 +84,7 @@ fn read_back(
             let tool = Isometry3::from(Translation3::from(s.tool().tcp));
             let context = Context {
                 home_deg: None,
+                backup: None,
                 pulses: Some(pulses),
                 tool: Some((tool, &c.tools)),
                 data: None,
