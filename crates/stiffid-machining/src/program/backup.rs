@@ -63,6 +63,3 @@ fn same_name(a: &str, b: &str) -> bool {
 fn file_name(path: &str) -> &str {
     path.rsplit(['/', '\\']).next().unwrap_or(path)
 }
-
-#[cfg(test)]
-mod backup_tests;

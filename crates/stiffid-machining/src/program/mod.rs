@@ -644,6 +644,9 @@ pub(crate) fn six(
 const NOT_READ: &str = "the motion's speed is not read";
 
 #[cfg(test)]
+mod backup_tests;
+
+#[cfg(test)]
 mod speed_tests;
 
 #[cfg(test)]

@@ -1,4 +1,5 @@
-use super::*;
+use super::backup::Backup;
+use stiffid_core::Error;
 
 /// A file is found by its file name, case aside, whatever folder it came from; two files of
 /// one name are refused naming both.
