@@ -56,7 +56,6 @@
 //! ([`JointProgram::write_with_external`] the external values too); a point visited twice takes one
 //! value, so the two visits' compensations must agree.
 
-pub mod backup;
 pub mod cartesian;
 mod controller;
 mod descriptor;
@@ -71,7 +70,6 @@ pub mod speed;
 
 pub(crate) use super::text::lines;
 pub use super::text::number_at;
-pub use backup::{Backup, BackupFile};
 pub use controller::{
     Arcs, AxisNames, BoundComment, Controller, Descriptor, DynController, ExternalGroup, FileName,
     Generator, NameRules, Read, Writing,
@@ -278,9 +276,11 @@ pub struct Context<'a> {
     /// The controller's home posture, deg (`[controller] home_deg`): where a KRL program's
     /// `PTP XHOME` goes (the controller's `$config.dat` holds it); `None`: not known.
     pub home_deg: Option<[f64; 6]>,
-    /// The files of the controller's backup the program is read with ([`backup`]): the frames
-    /// and tool files it holds by number; `None`: no backup given.
-    pub backup: Option<&'a Backup>,
+    /// The files of the controller's backup given with the program (a front end reads them;
+    /// the library lists no folder): each file's name as given (its last component names it:
+    /// FANUC `SYSFRAME.VA`, Yaskawa `TOOL.CND`) and its text. Each language reads the files it
+    /// knows ([`Context::backup_file`], [`Context::backup_with`]); empty: none given.
+    pub backup: &'a [(String, String)],
 }
 
 /// The text of the program at `path`, of its `.dat` when it is a KRL program with one beside it
@@ -316,13 +316,30 @@ impl<'a> Context<'a> {
             data: None,
             machine: None,
             home_deg: c.program.home_deg,
-            backup: None,
+            backup: &[],
         }
     }
 
-    /// The context with the controller's backup `backup` ([`backup`]).
-    pub fn with_backup(self, backup: Option<&'a Backup>) -> Self {
+    /// The context with the controller backup's files `backup` (name and text).
+    pub fn with_backup(self, backup: &'a [(String, String)]) -> Self {
         Context { backup, ..self }
+    }
+
+    /// The backup's file named `file` (its last path component, case-insensitive): its name as
+    /// given and its text.
+    pub fn backup_file(&self, file: &str) -> Option<(&'a str, &'a str)> {
+        self.backup_with(|name| name.eq_ignore_ascii_case(file))
+            .into_iter()
+            .next()
+    }
+
+    /// The backup's files whose name (last path component) `wanted` takes, in the order given.
+    pub fn backup_with(&self, wanted: impl Fn(&str) -> bool) -> Vec<(&'a str, &'a str)> {
+        let backup: &'a [(String, String)] = self.backup;
+        (backup.iter())
+            .filter(|(name, _)| wanted(file_name(name)))
+            .map(|(n, t)| (n.as_str(), t.as_str()))
+            .collect()
     }
 
     /// The context with the G-code controller `machine`.
@@ -337,6 +354,11 @@ impl<'a> Context<'a> {
     pub fn with_data(self, data: Option<&'a str>) -> Self {
         Context { data, ..self }
     }
+}
+
+/// The last component of a file's name as given (`a/b/$config.dat`: `$config.dat`).
+fn file_name(name: &str) -> &str {
+    name.rsplit(['/', '\\']).next().unwrap_or(name)
 }
 
 /// Parses the joint targets of `text` in `dialect`, read on its own ([`parse_in`] with the
@@ -642,9 +664,6 @@ pub(crate) fn six(
 
 /// A target's speed before its motion instruction gives it.
 const NOT_READ: &str = "the motion's speed is not read";
-
-#[cfg(test)]
-mod backup_tests;
 
 #[cfg(test)]
 mod speed_tests;

@@ -267,7 +267,7 @@ fn read_back(text: &str, dialect: Dialect) -> Vec<ReadBack> {
     };
     let context = stiffid::machining::program::Context {
         home_deg: None,
-        backup: None,
+        backup: &[],
         pulses: Some(&pulses),
         tool: None,
         data: None,

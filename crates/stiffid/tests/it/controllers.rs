@@ -285,7 +285,7 @@ fn each_generating_controller_writes_the_cells_external_axes_in_its_form() {
         // INFORM's pulses are the setup's (the job states none).
         let context = program::Context {
             home_deg: None,
-            backup: None,
+            backup: &[],
             pulses: Some(&pulses),
             tool: None,
             data,

@@ -103,6 +103,11 @@ pub enum Frame {
     /// `UF : n`, `UT : n`), on `line`: read from the setup's `[controller] bases` or `tools`
     /// (`stiffid_core::setup::numbered`), refused where the setup does not give it.
     Numbered(u64, u32),
+    /// A frame held on the controller by number whose value the controller's backup gives
+    /// (FANUC `SYSFRAME.VA`, [`crate::program::backup`]): the line, the number, the frame (as
+    /// [`Frame::Stated`]) and where the backup states it; refused where the setup's
+    /// `[controller]` table gives that number another frame.
+    Held(u64, u32, Isometry3<f64>, String),
     /// The setup's own frame of its role (its `[workpiece]` part frame for a base, its `[tool]`
     /// for a tool), which the program declares on `line` that it moves in (an LS remark
     /// `! stiffid: user_frame = n ;` or `tool_frame = n`).

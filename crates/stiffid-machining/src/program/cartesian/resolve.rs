@@ -281,6 +281,9 @@ fn check_tool(tool: &Frame, line: u64, controller: &Controller) -> Result<()> {
         Frame::World => (Isometry3::identity(), line),
         Frame::Stated(l, f) => (*f, *l),
         Frame::Numbered(l, n) => (*numbered(controller.tools, (*l, *n), "tools")?, *l),
+        Frame::Held(l, n, f, source) => {
+            (held(controller.tools, (*l, *n), (f, source), "tools")?, *l)
+        }
     };
     if same(&stated, &controller.tool) {
         return Ok(());
@@ -323,9 +326,28 @@ fn base_frame(
             let f = numbered(c.bases, (*l, *n), "bases")?;
             base_frame(&Frame::Stated(*l, *f), line, (c, dialect), placed)
         }
+        Frame::Held(l, n, f, source) => {
+            let f = held(c.bases, (*l, *n), (f, source), "bases")?;
+            base_frame(&Frame::Stated(*l, f), line, (c, dialect), placed)
+        }
         Frame::Declared(l) => placed.copied().or(c.part).ok_or_else(|| {
             at(*l, "the program declares its user frame the part frame, and the setup gives none ([workpiece] base_from_part)".into())
         }),
+    }
+}
+
+/// The frame numbered `n` (on `line`) the controller's backup gives as `frame` (stated at
+/// `source`), refused where the setup's `[controller]` table `table` (`tools`, `bases`) gives
+/// that number another frame: one controller holds one.
+fn held(
+    frames: &NumberedFrames,
+    (line, n): (u64, u32),
+    (frame, source): (&Isometry3<f64>, &str),
+    table: &str,
+) -> Result<Isometry3<f64>> {
+    match frames.get(n) {
+        Some(given) if !same(given, frame) => Err(at(line, format!("frame number {n} of the controller's {table}: the backup's {source} gives {}, the setup's [controller] {table} {}; one controller holds one frame per number: remove the setup's entry or make the two agree", words(frame), words(given)))),
+        _ => Ok(*frame),
     }
 }
 

@@ -24,6 +24,8 @@ mod options;
 mod process;
 pub(crate) mod speed;
 mod statements;
+mod sysframe;
+mod va;
 
 pub use config::Config;
 
@@ -39,8 +41,12 @@ use std::collections::{HashMap, HashSet};
 use stiffid_core::Result;
 
 /// Every joint target of `text`, in the order of the `/MN` motions (module docs), and the
-/// program's external axes.
-pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>, Units)> {
+/// program's external axes; the frames the `context`'s backup holds by number taken from it
+/// (`sysframe`).
+pub(crate) fn targets(
+    text: &str,
+    context: &super::Context,
+) -> Result<(Vec<JointTarget>, Vec<String>, Units)> {
     let (positions, axes, units) = positions(text)?;
     let instructions = instructions(text)?;
     let motions: Vec<bool> = (instructions.iter())
@@ -71,6 +77,7 @@ pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>, Unit
         previous_fine = fine;
     }
     numbered::apply(text, &mut out, &in_force)?;
+    sysframe::apply(context, &mut out)?;
     Ok((out, axes, units))
 }
 
@@ -413,7 +420,10 @@ impl Controller for FanucLs {
     };
 
     fn read(&self, text: &str) -> Result<Read> {
-        let (targets, axes, units) = targets(text)?;
+        self.read_in(text, &super::Context::default())
+    }
+    fn read_in(&self, text: &str, context: &super::Context) -> Result<Read> {
+        let (targets, axes, units) = targets(text, context)?;
         Ok(Read {
             targets,
             axes,

@@ -293,7 +293,7 @@ fn each_language_writes_its_circular_moves_and_reads_them_back() {
             Dialect::Inform => {
                 let context = Context {
                     home_deg: None,
-                    backup: None,
+                    backup: &[],
                     pulses: Some(&pulses),
                     tool: None,
                     data: None,

@@ -101,7 +101,7 @@ fn generated_programs_carry_the_headers_their_controllers_write() {
     };
     let context = Context {
         home_deg: None,
-        backup: None,
+        backup: &[],
         pulses: Some(&pulses),
         tool: None,
         data: None,

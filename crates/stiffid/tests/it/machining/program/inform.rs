@@ -15,7 +15,7 @@ use stiffid_machining::program::{parse, parse_in, Context, Dialect};
 fn with(p: &Pulses) -> Context<'_> {
     Context {
         home_deg: None,
-        backup: None,
+        backup: &[],
         pulses: Some(p),
         tool: None,
         data: None,

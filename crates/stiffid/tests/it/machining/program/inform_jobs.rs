@@ -21,7 +21,7 @@ fn pulses() -> Pulses {
 fn with(p: &Pulses) -> Context<'_> {
     Context {
         home_deg: None,
-        backup: None,
+        backup: &[],
         pulses: Some(p),
         tool: None,
         data: None,
@@ -190,7 +190,7 @@ fn tool_files_are_checked_against_the_setups_tool() {
     .unwrap();
     let context = |tools| Context {
         home_deg: None,
-        backup: None,
+        backup: &[],
         pulses: Some(&p),
         tool: Some((tool, tools)),
         data: None,

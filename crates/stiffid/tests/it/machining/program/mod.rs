@@ -1,6 +1,7 @@
 //! The controllers' programs (`stiffid_machining::program`).
 
 mod arcs;
+mod backup;
 mod comments;
 mod controller;
 mod generate;

@@ -19,12 +19,12 @@ const SETUP: &str = include_str!("../../../../../../examples/milling/fanuc-milli
 /// The milling setup whose controller holds a tool 1 (not the setup's), the setup's tool as 3
 /// (`tool`: its values) and the part frame as base 2 (`base`, in the controller's world: FANUC's,
 /// 670 mm above the setup's base frame, so the part's origin at z 400 mm is at z -270 mm).
-fn setup(tool: &str, base: &str) -> Setup {
+pub(super) fn setup(tool: &str, base: &str) -> Setup {
     let text = format!("{SETUP}\n[controller]\ntools = [{{ number = 1, xyz_mm = [0, 0, 100] }}, {{ number = 3, xyz_mm = {tool} }}]\nbases = [{{ number = 2, xyz_mm = {base} }}]\n");
     stiffid::setup::parse(&text, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap()
 }
 
-fn plan<'a>(
+pub(super) fn plan<'a>(
     s: &Setup,
     dialect: Dialect,
     t: &'a [Target],
@@ -59,7 +59,7 @@ fn plan<'a>(
 }
 
 /// A square of 50 mm at 4 mm depth in the part frame.
-fn square(s: &Setup) -> (Vec<Target>, Vec<Move>) {
+pub(super) fn square(s: &Setup) -> (Vec<Target>, Vec<Move>) {
     let points: Vec<Vector3<f64>> = [(0.0, 0.0), (0.05, 0.0), (0.05, 0.05), (0.0, 0.05)]
         .iter()
         .map(|(x, y)| Vector3::new(*x, *y, -0.004))
@@ -84,7 +84,7 @@ fn read_back(
             let tool = Isometry3::from(Translation3::from(s.tool().tcp));
             let context = Context {
                 home_deg: None,
-                backup: None,
+                backup: &[],
                 pulses: Some(pulses),
                 tool: Some((tool, &c.tools)),
                 data: None,

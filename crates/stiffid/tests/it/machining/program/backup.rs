@@ -1,0 +1,148 @@
+//! Programs read with their controller's backup (`stiffid_machining::program::backup`): FANUC
+//! `SYSFRAME.VA`'s user and tool frames take the place of the setup's `[controller]` tables,
+//! agree with them or are refused naming both.
+
+use super::numbered::{plan, setup, square};
+use nalgebra::Vector6;
+use stiffid::machining::compensate::Options;
+use stiffid::machining::{self, Language, Program};
+use stiffid::robot::presets;
+use stiffid::Setup;
+use stiffid_core::setup::Pulses;
+use stiffid_core::Error;
+use stiffid_machining::program::generate::generate;
+use stiffid_machining::program::{Context, Dialect};
+
+const SETUP: &str = include_str!("../../../../../../examples/milling/fanuc-milling.toml");
+
+/// A number as a FANUC controller writes it in a `.VA` file: three decimals, no zero before
+/// the point (`-.500`).
+fn fanuc(v: f64) -> String {
+    let s = format!("{v:.3}");
+    match s.strip_prefix("-0.") {
+        Some(r) => format!("-.{r}"),
+        None => s.strip_prefix("0.").map_or(s.clone(), |r| format!(".{r}")),
+    }
+}
+
+/// A `SYSFRAME.VA` as an R-30iB backup writes it, user frame 2 at `base` and tool frame 3 at
+/// `tool` (X, Y, Z mm, W, P, R deg), the other entries unset or zero.
+fn sysframe(base: [f64; 6], tool: [f64; 6]) -> String {
+    let pose = |p: [f64; 6]| {
+        let v = p.map(fanuc);
+        format!(
+            "  Group: 1   Config: N D B, 0, 0, 0\n  X: {:>9}   Y: {:>9}   Z: {:>9}\n  W: {:>9}   P: {:>9}   R: {:>9}\n",
+            v[0], v[1], v[2], v[3], v[4], v[5]
+        )
+    };
+    format!(
+        "[*SYSTEM*]$MNUFRAME  Storage: SHADOW  Access: RW  : ARRAY[1,9] OF POSITION\n    [1,1] =\n{}    [1,2] = 'PART'\n{}    [1,3] =   '' Uninitialized\n[*SYSTEM*]$MNUFRAMENUM  Storage: CMOS  Access: RW  : ARRAY[1] OF BYTE\n  [1] = 2\n[*SYSTEM*]$MNUTOOL  Storage: SHADOW  Access: RW  : ARRAY[1,10] OF POSITION\n    [1,1] = '' Uninitialized\n    [1,3] = 'SPINDLE'\n{}[*SYSTEM*]$MNUTOOLNUM  Storage: CMOS  Access: RW  : ARRAY[1] OF BYTE\n  [1] = 3\n",
+        pose([0.0; 6]),
+        pose(base),
+        pose(tool)
+    )
+}
+
+/// The axis angles of LS program `text` read with `backup` and resolved on `s`.
+fn read(s: &Setup, text: &str, backup: &[(String, String)]) -> stiffid_core::Result<Vec<[f64; 6]>> {
+    let context = Context::default().with_backup(backup);
+    let read = machining::read_in(text, Language::Robot(Dialect::FanucLs), 1e-4, &context)?;
+    let read = machining::resolve(&read, s, None, &Options::for_setup(s))?;
+    let Program::Robot(r) = read.into_owned() else {
+        panic!()
+    };
+    Ok(r.targets.iter().map(|t| t.q_deg).collect())
+}
+
+fn message(e: Error) -> (u64, String) {
+    match e {
+        Error::Program { line, message } => (line, message),
+        other => panic!("{other:?}"),
+    }
+}
+
+/// An LS program in user frame 2 and tool frame 3 reads with a backup's `SYSFRAME.VA` on a setup
+/// without tables as with the tables; both agreeing, as either; a tool frame they give
+/// differently is refused naming both; an entry cut off names its file and line.
+#[test]
+fn sysframe_va_gives_the_frames_the_setups_tables_would() {
+    let tables = setup("[6.9, 245.3, 319.3]", "[1300, -700, -270]");
+    let (t, m) = square(&tables);
+    let pulses = Pulses {
+        per_deg: [1.0; 6],
+        external: Vec::new(),
+    };
+    let text = generate(&plan(&tables, Dialect::FanucLs, &t, &m, &pulses))
+        .unwrap()
+        .files
+        .remove(0)
+        .text;
+    assert!(text.contains("UF : 2, UT : 3,"), "{text}");
+    let plain = stiffid::setup::parse(SETUP, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap();
+    let va = sysframe(
+        [1300.0, -700.0, -270.0, 0.0, 0.0, 0.0],
+        [6.9, 245.3, 319.3, 0.0, 0.0, 0.0],
+    );
+    let backup = vec![("cell/SYSFRAME.VA".to_string(), va.clone())];
+    let close = |q: Vec<[f64; 6]>| {
+        assert_eq!(q.len(), t.len());
+        for (b, w) in q.iter().zip(&t) {
+            let off = (Vector6::from(*b) - Vector6::from(w.q_deg)).amax();
+            assert!(off <= 1e-6, "{off} deg");
+        }
+    };
+    close(read(&plain, &text, &backup).unwrap());
+    close(read(&tables, &text, &backup).unwrap());
+    let (_, without) = message(read(&plain, &text, &[]).unwrap_err());
+    assert!(
+        without.contains("frame number 3 of the controller's tools"),
+        "{without}"
+    );
+    let other = va.replace("X:     6.900", "X:     7.900");
+    let other = vec![("SYSFRAME.VA".to_string(), other)];
+    let (_, both) = message(read(&tables, &text, &other).unwrap_err());
+    assert!(
+        both.contains("frame number 3 of the controller's tools: the backup's SYSFRAME.VA line 15 ($MNUTOOL[1,3]) gives X 7.9 mm")
+            && both.contains("the setup's [controller] tools X 6.9 mm"),
+        "{both}"
+    );
+    // W, P, R as FANUC turns a frame (Rz(R) Ry(P) Rx(W)), the setup's rpy_deg the same way:
+    // the two agree; W and P swapped do not.
+    let turned = setup(
+        "[6.9, 245.3, 319.3]",
+        "[1300, -700, -270], rpy_deg = [1, 2, -0.5]",
+    );
+    let va_turned = |w: f64, p: f64| {
+        let va = sysframe(
+            [1300.0, -700.0, -270.0, w, p, -0.5],
+            [6.9, 245.3, 319.3, 0.0, 0.0, 0.0],
+        );
+        assert!(va.contains("R:     -.500"), "{va}");
+        vec![("SYSFRAME.VA".to_string(), va)]
+    };
+    let agreeing = read(&turned, &text, &va_turned(1.0, 2.0));
+    assert!(agreeing.is_ok(), "{agreeing:?}");
+    let (_, swapped) = message(read(&turned, &text, &va_turned(2.0, 1.0)).unwrap_err());
+    assert!(
+        swapped.contains("frame number 2 of the controller's bases"),
+        "{swapped}"
+    );
+    // The tool frame's W, P, R line lost.
+    let end = va.find("[*SYSTEM*]$MNUTOOLNUM").unwrap();
+    let start = va[..end - 1].rfind('\n').unwrap() + 1;
+    let cut = format!("{}{}", &va[..start], &va[end..]);
+    let cut = vec![("SYSFRAME.VA".to_string(), cut)];
+    match read(&plain, &text, &cut).unwrap_err() {
+        Error::Parse {
+            source_name,
+            message,
+        } => {
+            assert_eq!(source_name, "SYSFRAME.VA");
+            assert!(
+                message.starts_with("line 15: $MNUTOOL[1,3]: expected X:"),
+                "{message}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+}
