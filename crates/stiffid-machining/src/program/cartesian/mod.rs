@@ -49,7 +49,7 @@ mod solve;
 pub use flags::Flags;
 pub use resolve::{check_placed, resolve, Controller};
 pub(crate) use resolve::{is_cartesian, resolve_placed};
-pub(crate) use resolve::{same, Writer};
+pub(crate) use resolve::{same, Writer, SAME_M};
 
 use super::generate::{number, v, zyx_deg};
 use super::Dialect;

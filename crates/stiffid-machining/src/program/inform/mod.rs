@@ -78,6 +78,7 @@ mod process;
 mod pulses;
 pub(crate) mod speed;
 mod tool;
+mod toolcnd;
 
 use super::cartesian::flags::Posture;
 use super::controller::{BoundComment, Controller, Generator};

@@ -5,13 +5,33 @@ use super::inst::Motion;
 use super::pos::{Kind, Position};
 use super::Context;
 use crate::program::at;
-use crate::program::cartesian::{same, words};
+use crate::program::cartesian::{same, words, SAME_M};
+use nalgebra::Isometry3;
 use std::collections::HashMap;
 use stiffid_core::Result;
 
-/// Checks the tool file of each motion: one the setup's `[controller] tools` gives is the
-/// setup's tool (refused otherwise); one it does not give is taken as the setup's tool only in a
-/// job that never changes its tool file (refused naming the line where it changes).
+/// Tool file `n` (selected on `line`) as the controller holds it, and which says so: the
+/// backup's `TOOL.CND` (`backup`) or the setup's `[controller] tools`; refused where both give
+/// it and differ (one controller holds one tool file per number).
+fn held(
+    context: &Context,
+    backup: Option<&(Isometry3<f64>, String)>,
+    (line, n): (u64, u32),
+) -> Result<Option<(Isometry3<f64>, String)>> {
+    let table = context.tool.and_then(|(_, tools)| tools.get(n));
+    match (backup, table) {
+        (Some((b, source)), Some(t)) if !same(b, t) => Err(at(line, format!("tool file {n}: the backup's {source} gives {}, the setup's [controller] tools {}; one controller holds one tool file per number: remove the setup's entry or make the two agree", words(b), words(t)))),
+        (Some((b, source)), _) => Ok(Some((*b, format!("the backup's {source}")))),
+        (None, Some(t)) => Ok(Some((*t, "the setup's [controller] tools".into()))),
+        (None, None) => Ok(None),
+    }
+}
+
+/// Checks the tool file of each motion: one the backup's `TOOL.CND` or the setup's
+/// `[controller] tools` gives has the setup's tool centre point (within 1 um: a job's pulse
+/// positions do not depend on the tool's orientation; refused otherwise); one neither gives is
+/// taken as the setup's tool only in a job that never changes its tool file (refused naming
+/// the line where it changes).
 ///
 /// # Errors
 /// [`stiffid_core::Error::Program`] naming the line of the tool file refused.
@@ -20,17 +40,19 @@ pub(super) fn check(
     positions: &HashMap<(Kind, u64), Position>,
     context: &Context,
 ) -> Result<()> {
+    let backup = super::toolcnd::tools(context)?;
     let mut first: Option<(u64, u32, bool)> = None;
     for m in motions {
         let taught = positions.get(&(Kind::Robot, m.robot)).and_then(|p| p.tool);
         let Some((line, n)) = m.tool.map(|n| (m.line, n)).or(taught) else {
             continue;
         };
-        let held = context
-            .tool
-            .and_then(|(setup, tools)| tools.get(n).map(|t| (setup, t)));
-        if let Some((setup, held)) = held.filter(|(setup, held)| !same(setup, held)) {
-            return Err(at(line, format!("tool file {n}, which the setup's [controller] tools gives as {}, is not the setup's tool ({}: its [tool] tcp_mm, after [robot_flange]); compensation moves the setup's tool: write the job for it", words(held), words(&setup))));
+        let held = held(context, backup.get(&n), (line, n))?;
+        if let (Some((setup, _)), Some((held, said))) = (context.tool, &held) {
+            let off = (setup.translation.vector - held.translation.vector).norm();
+            if off > SAME_M {
+                return Err(at(line, format!("tool file {n}, which {said} gives as {}, is not the setup's tool ({}: its [tool] tcp_mm, after [robot_flange]); compensation moves the setup's tool: write the job for it", words(held), words(&setup))));
+            }
         }
         match first {
             None => first = Some((line, n, held.is_some())),

@@ -142,6 +142,87 @@ fn comments_commented_out_lines_and_alarms_move_nothing() {
     assert!(message.contains("PL=0//X"), "{message}");
 }
 
+/// A `TOOL.CND` as a YRC1000 backup writes it: per tool file its number, name, frame (X, Y, Z
+/// mm, Rx, Ry, Rz deg), centre of gravity, weight and inertia; tool file 1 at `frame`.
+fn tool_cnd(frame: &str) -> String {
+    let rest = "0.000,0.000,0.000\r\n0.000\r\n0.000,0.000,0.000\r\n0.000,0,1\r\n";
+    format!("//TOOL 0\r\n///NAME STANDARD TOOL\r\n0.000,0.000,0.000,0.0000,0.0000,0.0000\r\n{rest}//TOOL 1\r\n///NAME SPINDLE\r\n{frame}\r\n{rest}//TOOL 2\r\n///NAME\r\n0.000,0.000,250.000,0.0000,0.0000,0.0000\r\n{rest}")
+}
+
+/// The tool files of a backup's `TOOL.CND` take the place of the setup's `[controller] tools`:
+/// one at the setup's tool centre point reads (turned or not: pulse positions do not depend on
+/// it), a job changing between two such files reads, one elsewhere is refused, one the setup's
+/// table gives otherwise is refused naming both, a frame line cut off names the file's line.
+#[test]
+fn tool_cnd_gives_the_tool_files() {
+    let p = pulses();
+    let tool = Isometry3::translation(0.0, 0.0, 0.25);
+    let empty = NumberedFrames::default();
+    let other = NumberedFrames::new(
+        "controller.tools",
+        &[(1, Isometry3::translation(0.0, 0.0, 0.26))],
+    )
+    .unwrap();
+    let read = |text: &str, cnd: String, tools: &NumberedFrames| {
+        let backup = vec![("backup/TOOL.CND".to_string(), cnd)];
+        let context = Context {
+            tool: Some((tool, tools)),
+            ..with(&p)
+        };
+        parse_in(text, Dialect::Inform, &context.with_backup(&backup))
+    };
+    let turned = tool_cnd("0.000,0.000,250.000,0.0000,90.0000,0.0000");
+    assert!(read(STORED, turned.clone(), &empty).is_ok());
+    let changes = STORED.replace("MOVC C00003 V=10.0", "MOVC C00003 V=10.0 TOOL#(2)");
+    let (line, message) = refused(parse_in(
+        &changes,
+        Dialect::Inform,
+        &Context {
+            tool: Some((tool, &empty)),
+            ..with(&p)
+        },
+    ));
+    assert_eq!(line, 24, "{message}");
+    assert_eq!(
+        read(&changes, turned.clone(), &empty)
+            .unwrap()
+            .targets
+            .len(),
+        5
+    );
+    let (line, message) = refused(read(
+        STORED,
+        tool_cnd("0.000,0.000,260.000,0.0000,0.0000,0.0000"),
+        &empty,
+    ));
+    assert_eq!(line, 5);
+    assert!(
+        message.contains("tool file 1, which the backup's backup/TOOL.CND line 10 (tool file 1) gives as X 0 mm, Y 0 mm, Z 260 mm")
+            && message.contains("is not the setup's tool"),
+        "{message}"
+    );
+    let (line, message) = refused(read(STORED, turned.clone(), &other));
+    assert_eq!(line, 5);
+    assert!(
+        message.contains("tool file 1: the backup's backup/TOOL.CND line 10 (tool file 1) gives X 0 mm, Y 0 mm, Z 250 mm")
+            && message.contains("the setup's [controller] tools X 0 mm, Y 0 mm, Z 260 mm"),
+        "{message}"
+    );
+    match read(STORED, tool_cnd("0.000,0.000,250.000,0.0000"), &empty) {
+        Err(Error::Parse {
+            source_name,
+            message,
+        }) => {
+            assert_eq!(source_name, "backup/TOOL.CND");
+            assert!(
+                message.starts_with("line 10: tool file 1 (line 8): expected its frame"),
+                "{message}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
 /// The job's `'stiffid:` pulses are used when the setup gives none and refused, naming both,
 /// when they contradict the setup's or each other.
 #[test]
