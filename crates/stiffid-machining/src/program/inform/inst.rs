@@ -20,10 +20,12 @@ pub(super) struct Motion {
     pub tool: Option<u32>,
 }
 
-/// What `//INST` holds: the `'stiffid:` comments and the motions.
+/// What `//INST` holds: the `'stiffid:` comments, the motions, and the jumps, calls, loops and
+/// branches (each its line, word and text).
 pub(super) struct Instructions {
     pub directives: Directives,
     pub motions: Vec<Motion>,
+    pub control: Vec<(u64, String, String)>,
 }
 
 /// Instructions that cannot move the robot or change a frame: input and output, timers and
@@ -67,15 +69,15 @@ const CONTROL: &[&str] = &[
 /// (module docs of [`super`]).
 ///
 /// # Errors
-/// [`stiffid_core::Error::Program`] naming the line of an instruction refused, of a job that
-/// does not end with `END` (cut off), or of a jump or call in a job with motions.
+/// [`stiffid_core::Error::Program`] naming the line of an instruction refused, or of a job that
+/// does not end with `END` (cut off). Jumps and calls are the caller's ([`super::calls`]).
 pub(super) fn instructions(text: &str) -> Result<Instructions> {
     let mut out = Instructions {
         directives: Directives::default(),
         motions: Vec::new(),
+        control: Vec::new(),
     };
     let (mut in_inst, mut last) = (false, None::<(u64, String)>);
-    let mut control: Option<(u64, String)> = None;
     let mut weaving: Option<(u64, String)> = None;
     for (line, _, l) in crate::program::lines(text) {
         let t = l.trim();
@@ -106,7 +108,7 @@ pub(super) fn instructions(text: &str) -> Result<Instructions> {
             continue;
         }
         if CONTROL.contains(&first.as_str()) || first.starts_with("MACRO") {
-            control.get_or_insert((line, first));
+            out.control.push((line, first, t.to_string()));
             continue;
         }
         match first.as_str() {
@@ -126,9 +128,6 @@ pub(super) fn instructions(text: &str) -> Result<Instructions> {
         }
     }
     check_end(last)?;
-    if let (Some((line, word)), false) = (control, out.motions.is_empty()) {
-        return Err(at(line, format!("{}: a jump, call, macro, loop or branch in a job with motions; the order the controller runs them (or the motions of the job it calls) would not be the file's: write the path as motions of one job", short(&word))));
-    }
     Ok(out)
 }
 

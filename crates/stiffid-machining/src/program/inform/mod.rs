@@ -71,6 +71,7 @@
 //! ## Written
 //! A G-code path is written as a new job in pulses ([`generate`]) with the setup's pulses.
 
+mod calls;
 pub mod generate;
 mod inst;
 mod pos;
@@ -114,6 +115,7 @@ pub(crate) fn targets(text: &str, context: &Context) -> Result<Read> {
         form(positions, Kind::Station)?,
     ];
     let inst = inst::instructions(text)?;
+    calls::check(&inst, context)?;
     let first = inst.motions.first().map_or(1, |m| m.line);
     let mut pulses: Vec<Option<f64>> = vec![None; 6 + nb + ne];
     let used = |kind: Kind| inst.motions.iter().any(|m| m.uses(kind));

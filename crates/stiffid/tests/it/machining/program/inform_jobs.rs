@@ -223,6 +223,61 @@ fn tool_cnd_gives_the_tool_files() {
     }
 }
 
+/// A job that moves nothing as a controller stores it: I/O, a wait, and `then` (its last
+/// instructions before `END`).
+fn io_job(name: &str, then: &str) -> String {
+    format!("/JOB\r\n//NAME {name}\r\n//POS\r\n///NPOS 0,0,0,0,0,0\r\n//INST\r\n///DATE 2021/12/03 12:01\r\n///ATTR SC,RW\r\n///GROUP1 RB1\r\nNOP\r\nDOUT OT#(5) ON\r\nWAIT IN#(5)=ON T=5.00\r\n{then}END\r\n")
+}
+
+/// A `CALL JOB:` between motions is passed over when the backup holds the job called and it
+/// (and every job it calls) moves nothing; refused naming the line without the backup, when the
+/// called job moves, and for a chain of calls that loops.
+#[test]
+fn a_call_of_a_job_that_moves_nothing_is_passed_over() {
+    let p = pulses();
+    let calling = STORED.replace("SET B000 1", "CALL JOB:SPINDLE_ON");
+    let read = |backup: &[(String, String)]| {
+        parse_in(&calling, Dialect::Inform, &with(&p).with_backup(backup))
+    };
+    let (line, message) = refused(read(&[]));
+    assert_eq!(line, 27);
+    assert!(
+        message.contains("give the controller's backup holding SPINDLE_ON.JBI"),
+        "{message}"
+    );
+    let lamp = (
+        "JOBS/LAMP.JBI".to_string(),
+        io_job("LAMP", "TIMER T=0.50\r\n"),
+    );
+    let on = |then: &str| {
+        (
+            "JOBS/SPINDLE_ON.JBI".to_string(),
+            io_job("SPINDLE_ON", then),
+        )
+    };
+    let backup = [on("CALL JOB:LAMP IF IN#(2)=ON\r\n"), lamp.clone()];
+    let ok = read(&backup).unwrap();
+    assert_eq!(ok.targets.len(), 5);
+    let plain = parse_in(STORED, Dialect::Inform, &with(&p)).unwrap();
+    assert_eq!(ok.targets, plain.targets);
+    let moving = io_job("SPINDLE_ON", "").replace("NOP\r\n", "NOP\r\nMOVJ C00000 VJ=10.00\r\n");
+    let (line, message) = refused(read(&[
+        ("SPINDLE_ON.JBI".to_string(), moving),
+        lamp.clone(),
+    ]));
+    assert_eq!(line, 27);
+    assert!(
+        message.contains("(JOB:SPINDLE_ON, SPINDLE_ON.JBI line 10: MOVJ, a motion)"),
+        "{message}"
+    );
+    let looping = (
+        "LAMP.JBI".to_string(),
+        io_job("LAMP", "CALL JOB:SPINDLE_ON\r\n"),
+    );
+    let (_, message) = refused(read(&[on("CALL JOB:LAMP\r\n"), looping]));
+    assert!(message.contains("JOB:SPINDLE_ON calls itself"), "{message}");
+}
+
 /// The job's `'stiffid:` pulses are used when the setup gives none and refused, naming both,
 /// when they contradict the setup's or each other.
 #[test]
