@@ -227,6 +227,7 @@ fn request<'a>(
         },
         geometry: Geometry::Full,
         gravity,
+        gravity_bound: None,
         validate: None,
         reregister: false,
         cross_validate: false,

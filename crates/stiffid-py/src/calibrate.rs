@@ -23,7 +23,10 @@ use stiffid::app::readings::Request as Readings;
 /// holds out groups of postures, as ``--gravity auto``; ``"none"``; ``"arm"``, three terms: the
 /// upper arm's and the forearm's weight on joints 2 and 3 of an anthropomorphic arm; ``"masses"``, one compliance per joint with the
 /// robot's link masses and centres; ``"lumped"``, compliance times the mass moments of the upper
-/// arm, forearm and wrist; ``"lumped-links"``, of every link), the tracker's
+/// arm, forearm and wrist; ``"lumped-links"``, of every link; ``gravity_bound_mrad``, default
+/// 3, the bound on the gravity terms: each term's prior deflects its joint by that much at the
+/// largest torque it meets, the same for every gravity model, chosen or given, as
+/// ``--gravity-bound-mrad``), the tracker's
 /// registration and the measuring points, fitted together by Levenberg-Marquardt (docs/model.md,
 /// geometric and elastostatic calibration). ``validate``: held-out readings (same format) whose
 /// 3D position error the calibration predicts (``reregister=True``: the tracker registered anew
@@ -71,7 +74,7 @@ use stiffid::app::readings::Request as Readings;
 /// readings no rigid transform explains (as ``register``: a mirror image of the robot's points, a
 /// residual of the calibration beyond the larger of 10 mm and 1000 times the tracker noise).
 #[pyfunction]
-#[pyo3(signature = (setup, readings, *, geometry="full", gravity="auto", validate=None, reregister=false, cross_validate=false, tolerance_mm=None, tolerance_deg=None, maps="auto", error_motions="auto", level=None, update=false, update_parameters=None, stiffness=None, out=None, urdf_out=None, stiffness_out=None, force=false))]
+#[pyo3(signature = (setup, readings, *, geometry="full", gravity="auto", gravity_bound_mrad=3.0, validate=None, reregister=false, cross_validate=false, tolerance_mm=None, tolerance_deg=None, maps="auto", error_motions="auto", level=None, update=false, update_parameters=None, stiffness=None, out=None, urdf_out=None, stiffness_out=None, force=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn calibrate<'py>(
     py: Python<'py>,
@@ -79,6 +82,7 @@ pub fn calibrate<'py>(
     readings: PathBuf,
     geometry: &str,
     gravity: &str,
+    #[pyo3(from_py_with = crate::count::number)] gravity_bound_mrad: f64,
     validate: Option<PathBuf>,
     reregister: bool,
     cross_validate: bool,
@@ -130,6 +134,7 @@ pub fn calibrate<'py>(
         },
         geometry: geometry.parse().map_err(raise)?,
         gravity: gravity.parse().map_err(raise)?,
+        gravity_bound: Some(gravity_bound_mrad * 1e-3),
         validate: (validate.as_ref().zip(held.as_deref()))
             .map(|(p, t)| (p.display().to_string(), t)),
         reregister,

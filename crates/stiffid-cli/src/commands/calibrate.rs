@@ -45,6 +45,12 @@ pub struct Args {
     /// link each joint carries).
     #[arg(long, value_parser = choice::<GravitySpec>(), default_value = "auto")]
     gravity: GravitySpec,
+    /// The bound on the gravity terms, mrad [0.0001 to 100]: each term is fitted with a
+    /// Gaussian prior centred on its nominal value whose standard deviation deflects its joint
+    /// by this much at the largest torque it meets within the robot's joint limits, the same for
+    /// every gravity model, chosen by --gravity auto or given.
+    #[arg(long, default_value = "3")]
+    gravity_bound_mrad: f64,
     /// Held-out readings CSV (same format): their 3D position error with the calibration.
     #[arg(long)]
     validate: Option<PathBuf>,
@@ -157,6 +163,7 @@ pub fn run(args: &Args) -> Result<()> {
         },
         geometry: args.geometry,
         gravity: args.gravity,
+        gravity_bound: Some(args.gravity_bound_mrad * 1e-3),
         validate: (args.validate.as_ref().zip(held.as_deref()))
             .map(|(p, t)| (p.display().to_string(), t)),
         reregister: args.reregister,
@@ -285,13 +292,17 @@ fn gravity_file_text(d: &Document) -> String {
 
 fn text_of(d: &Document) -> String {
     let mut text = format!(
-        "robot calibration from {} readings (setup {}, geometry {}, gravity {}, {} iterations)\n\
+        "robot calibration from {} readings (setup {}, geometry {}, gravity {}{}, {} iterations)\n\
          residual RMS {:.4} mm ({}: {:.4} mm); noise per coordinate {:.4} mm{}\n\
          rank {} of {} parameters, condition number {}\n",
         d.readings,
         d.setup,
         d.geometry,
         d.gravity,
+        d.gravity_prior.map_or(String::new(), |b| format!(
+            " bounded by {} mrad",
+            stiffid_core::common::words::number(b * 1e3)
+        )),
         d.iterations,
         mm(d.residual_rms),
         nominal_label(d.measured_in),
@@ -447,6 +458,9 @@ model chosen by {k} groups of postures held out (RMS, mm):
     let chosen = l.rungs.get(l.chosen).and_then(|r| r.held_out_rms_mm);
     if let (Some(g), Some(c), true) = (geometry, chosen, l.chosen > 0) {
         text += &format!("  chosen {c:.4} mm held out against {g:.4} mm for the geometry alone\n");
+    }
+    if l.folds > 0 {
+        text += &format!("  why: {}\n", l.why);
     }
     if l.folds > 0 {
         let range: Vec<String> = (l.region_lower_deg.iter().zip(&l.region_upper_deg))

@@ -100,6 +100,9 @@ pub enum JobOption {
     /// calibrate: the nominal tolerances of the geometric errors (a length, mm, and an angle,
     /// deg), given together.
     Tolerances,
+    /// calibrate: the bound on the gravity terms, the joint deflection each is held to at the
+    /// largest torque it meets, mrad.
+    GravityBoundMrad,
     /// calibrate: the joint error maps fitted (auto, none or joints with harmonics).
     Maps,
     /// calibrate: the orders of a carrier's error motions fitted (auto or an order).
@@ -191,6 +194,7 @@ impl JobOption {
             JobOption::ForCandidates => "for_candidates",
             JobOption::Candidates => "candidates",
             JobOption::Tolerances => "tolerance_mm, tolerance_deg",
+            JobOption::GravityBoundMrad => "gravity_bound_mrad",
             JobOption::Maps => "maps",
             JobOption::ErrorMotions => "error_motions",
             JobOption::PayloadKg => "payload_kg",

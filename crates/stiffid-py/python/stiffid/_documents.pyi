@@ -129,11 +129,13 @@ CalibrateIntervalsDocument = TypedDict("CalibrateIntervalsDocument", {
 })
 
 CalibrateLadderDocument = TypedDict("CalibrateLadderDocument", {
+    "best": Optional[int],
     "chosen": int,
     "folds": int,
     "region_lower_deg": list[float],
     "region_upper_deg": list[float],
     "rungs": list[CalibrateRungDocument],
+    "why": str,
 })
 
 CalibrateMapTried = TypedDict("CalibrateMapTried", {

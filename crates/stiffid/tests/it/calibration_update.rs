@@ -190,6 +190,7 @@ pub(super) fn request<'a>(
         },
         geometry: Geometry::Full,
         gravity: stiffid::app::calibrate::GravitySpec::Fixed(Gravity::None),
+        gravity_bound: None,
         validate: held.map(|h| ("held.csv".to_string(), h)),
         reregister: false,
         cross_validate: false,

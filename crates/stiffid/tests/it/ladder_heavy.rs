@@ -93,6 +93,7 @@ fn at_level(
         },
         geometry: Geometry::Full,
         gravity,
+        gravity_bound: None,
         validate: Some(("held.csv".into(), held)),
         reregister: false,
         cross_validate: false,

@@ -117,6 +117,7 @@ fn a_calibrations_scene_stands_each_posture_at_its_readings_station() {
         },
         geometry: Geometry::Offsets,
         gravity: stiffid::app::calibrate::GravitySpec::Fixed(Gravity::None),
+        gravity_bound: None,
         validate: None,
         reregister: false,
         cross_validate: false,

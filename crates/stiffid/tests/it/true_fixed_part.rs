@@ -284,6 +284,7 @@ fn reflectors_no_rigid_transform_explains_are_refused() {
             },
             geometry: stiffid::metrology::calibration::Geometry::Full,
             gravity: stiffid::app::calibrate::GravitySpec::Fixed(Gravity::None),
+            gravity_bound: None,
             validate: None,
             reregister: false,
             cross_validate: false,

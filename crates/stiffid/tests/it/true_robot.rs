@@ -484,6 +484,7 @@ pub(crate) fn calibrated(
         },
         geometry: Geometry::Full,
         gravity: stiffid::app::calibrate::GravitySpec::Fixed(gravity),
+        gravity_bound: None,
         validate: Some(("held.csv".into(), held)),
         reregister: false,
         cross_validate: false,

@@ -161,6 +161,10 @@ pub const READING_SD_MM: Range = Range::new(1e-6, 1e2, "mm");
 /// A calibration prior's nominal tolerance of the joints' length errors (`--tolerance-mm`).
 pub const TOLERANCE_MM: Range = Range::new(1e-6, 1e3, "mm");
 
+/// The bound on a calibration's gravity terms: the joint deflection each is held to at the
+/// largest torque it meets (`--gravity-bound-mrad`).
+pub const GRAVITY_BOUND_MRAD: Range = Range::new(1e-4, 100.0, "mrad");
+
 /// A calibration prior's nominal tolerance of the joints' angle errors (`--tolerance-deg`).
 pub const TOLERANCE_DEG: Range = Range::new(1e-6, 90.0, "deg");
 

@@ -122,6 +122,12 @@ stiffid_core::common::choice::by_name!(Gravity);
 
 pub use stiffid_core::robot::LinkMass;
 
+/// Whether [`Gravity::Arm`] holds on `robot`: an anthropomorphic arm (joint 1 vertical, joints 2
+/// and 3 horizontal and parallel; [`arm`]'s check).
+pub fn takes_arm(robot: &Robot) -> bool {
+    arm::axes(robot).is_ok()
+}
+
 /// `robot` with `tool` (a body in the flange frame: the setup's [`stiffid_core::setup::Payload::body`])
 /// joined to link 6, when the robot gives link masses: the bodies [`Gravity::Masses`] weighs;
 /// `robot` itself without a tool or without masses.

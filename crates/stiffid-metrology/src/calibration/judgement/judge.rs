@@ -1,10 +1,13 @@
 //! What a calibration's fit is told about itself: the reading that fits worst, and the warnings
 //! about the fit (convergence, identifiability, misfit).
 
+use super::ladder::Ladder;
 use super::{Warning, WarningKind, MIN_DEGREES_OF_FREEDOM, MISFIT_RATIO, WEAK_CONDITION};
 use crate::calibration::fit::{self, Fit};
+use crate::calibration::gravity::Gravity;
 use crate::calibration::ErrorModel;
 use nalgebra::DVector;
+use stiffid_core::common::choice::Choice;
 use stiffid_core::common::limits;
 use stiffid_core::io::readings::Readings as Data;
 
@@ -28,8 +31,12 @@ pub fn largest_residual(data: &Data, residuals: &DVector<f64>) -> String {
     )
 }
 
-/// The warnings about the fit.
-pub fn judge(model: &ErrorModel, fit: &Fit, noise_ratio: f64, name: &str) -> Vec<Warning> {
+/// The warnings about the fit; `ladder` the models the calibration chose among, if it chose.
+pub fn judge(
+    (model, fit, ladder): (&ErrorModel, &Fit, Option<&Ladder>),
+    noise_ratio: f64,
+    name: &str,
+) -> Vec<Warning> {
     let not_converged = fit::stop_warning(fit.stop, fit.iterations);
     let mut w: Vec<Warning> = not_converged.into_iter().collect();
     let id = &fit.identifiability;
@@ -68,11 +75,36 @@ pub fn judge(model: &ErrorModel, fit: &Fit, noise_ratio: f64, name: &str) -> Vec
             format!(
                 "the residuals are {noise_ratio:.1} times the tracker noise: the model misses part of the robot's error{}",
                 match model.gravity().is_empty() {
-                    true => " (try --gravity lumped or masses)",
-                    false => "",
+                    true => untried_hint(model, ladder),
+                    false => String::new(),
                 }
             ),
         ));
     }
     w
+}
+
+/// The gravity models a misfit of the rigid model suggests: those the robot takes (`arm` on an
+/// anthropomorphic arm, `masses` with link masses, `lumped`) that `ladder` did not just try and
+/// turn down (scored and lost, or skipped); where it tried every one, it says so instead.
+fn untried_hint(model: &ErrorModel, ladder: Option<&Ladder>) -> String {
+    let robot = model.robot();
+    let takes = [Gravity::Arm, Gravity::Lumped, Gravity::Masses];
+    let takes: Vec<Gravity> = (takes.into_iter())
+        .filter(|&g| match g {
+            Gravity::Arm => crate::calibration::gravity::takes_arm(robot),
+            Gravity::Masses => robot.masses().is_some(),
+            _ => true,
+        })
+        .collect();
+    let tried = |g: Gravity| ladder.is_some_and(|l| l.rungs.iter().any(|r| r.gravity == g));
+    let untried: Vec<&str> = (takes.iter().copied())
+        .filter(|&g| !tried(g))
+        .map(|g| g.name())
+        .collect();
+    match (untried.is_empty(), ladder.is_some()) {
+        (false, _) => format!(" (try --gravity {})", untried.join(" or ")),
+        (true, true) => " (the ladder's gravity models predict the held-out groups no better: what the model misses is not the weight's sag; joint error maps (--maps) may hold it)".into(),
+        (true, false) => String::new(),
+    }
 }

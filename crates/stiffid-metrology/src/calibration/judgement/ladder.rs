@@ -298,6 +298,7 @@ pub fn climb(
             ..rung(gravities[g], v, &fits[g])
         })
         .collect();
+    diverged(&mut rungs, &order);
     extrapolating(&mut rungs, &order);
     let chosen = choose(&rungs);
     let (g, with_maps) = order[chosen];
@@ -346,6 +347,34 @@ pub(super) fn extrapolating(rungs: &mut [Rung], order: &[(usize, bool)]) {
             e0 * 1e3,
             if r.maps { " with maps" } else { "" }
         ));
+    }
+}
+
+/// Skips the rungs (`order` as [`extrapolating`]'s) whose held-out RMS over the groups exceeds
+/// [`super::diverged::DIVERGED`] times that of the geometry with the same maps variant: a group's
+/// fit without its postures diverged (undetermined along some direction), and its figure is no
+/// robot's error. Their figure is not kept (a figure of metres is not a result).
+pub(super) fn diverged(rungs: &mut [Rung], order: &[(usize, bool)]) {
+    let limit = super::diverged::DIVERGED;
+    let base: Vec<Option<f64>> = (order.iter())
+        .map(|&(_, maps)| {
+            let i = order.iter().position(|&o| o == (0, maps))?;
+            rungs[i].rms.filter(|_| rungs[i].skipped.is_none())
+        })
+        .collect();
+    for (r, base) in rungs.iter_mut().zip(base) {
+        let (Some(rms), Some(base)) = (r.rms, base) else {
+            continue;
+        };
+        if rms > limit * base || !rms.is_finite() {
+            r.skipped = Some(format!(
+                "its held-out error diverged: more than {limit:.0} times the geometry's{} over the groups ({:.4} mm), a group's fit without its postures undetermined along some direction",
+                if r.maps { " with maps" } else { "" },
+                base * 1e3
+            ));
+            r.rms = None;
+            r.errors.clear();
+        }
     }
 }
 

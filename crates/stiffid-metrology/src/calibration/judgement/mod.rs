@@ -1,16 +1,19 @@
 //! How a calibration chooses its model and judges it: the ladder of gravity models and joint
 //! error maps scored by their held-out error ([`ladder`], [`maps`]) over the region where the
 //! robot is used ([`region`]), the held-out readings the calibration extrapolates to
-//! ([`extrapolation`]), the bound of a held-out reading's error from the fit ([`fit_bound`]) and
-//! the warnings about a fit ([`judge`]). The calibrate job (`stiffid::app::calibrate`) runs
+//! ([`extrapolation`]), the bound of a held-out reading's error from the fit ([`fit_bound`]), the
+//! leave-one-posture-out folds that diverged, left out of the intervals ([`diverged`]), why the
+//! ladder fitted its rung ([`why`]) and the warnings about a fit ([`judge`]). The calibrate job (`stiffid::app::calibrate`) runs
 //! them; they need only the calibration's error model, its fit and the setup.
 
+pub mod diverged;
 pub mod extrapolation;
 pub mod fit_bound;
 pub mod judge;
 pub mod ladder;
 pub mod maps;
 pub mod region;
+pub mod why;
 
 use stiffid_core::common::warning::{Warning, WarningKind};
 
@@ -25,5 +28,7 @@ pub(crate) const MIN_DEGREES_OF_FREEDOM: usize = 10;
 /// that some parameters are weakly determined.
 pub(crate) const WEAK_CONDITION: f64 = 1e6;
 
+#[cfg(test)]
+mod diverged_tests;
 #[cfg(test)]
 mod ladder_tests;

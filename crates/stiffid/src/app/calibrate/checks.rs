@@ -3,9 +3,10 @@
 
 use super::{Request, MAX_CROSS_VALIDATION_POSTURES};
 use stiffid_core::common::error::JobOption;
+use stiffid_core::common::limits;
 use stiffid_core::{Error, Result, Setup};
 use stiffid_metrology::calibration::error_model::Observation;
-use stiffid_metrology::calibration::fit::Fit;
+use stiffid_metrology::calibration::fit::{self, Fit};
 use stiffid_metrology::calibration::ErrorModel;
 
 /// The level of the held-out readings' prediction intervals: `request.level`, else
@@ -25,6 +26,28 @@ pub(super) fn interval_level(request: &Request<'_>) -> Result<f64> {
         (Some(l), _) => check_level("level", l)
             .map(|_| l)
             .map_err(|e| e.for_option(JobOption::Level)),
+    }
+}
+
+/// The bound on the gravity terms of `request` (rad): [`fit::GRAVITY_DEFLECTION`] unless given.
+///
+/// # Errors
+/// [`Error::InvalidOption`] ([`JobOption::GravityBoundMrad`]) outside
+/// [`limits::GRAVITY_BOUND_MRAD`].
+pub(super) fn gravity_bound(request: &Request<'_>) -> Result<f64> {
+    let Some(bound) = request.gravity_bound else {
+        return Ok(fit::GRAVITY_DEFLECTION);
+    };
+    match limits::GRAVITY_BOUND_MRAD.contains(bound * 1e3) {
+        true => Ok(bound),
+        false => Err(Error::InvalidOption {
+            option: JobOption::GravityBoundMrad,
+            message: format!(
+                "expected {}, got {}",
+                limits::GRAVITY_BOUND_MRAD,
+                stiffid_core::common::words::number(bound * 1e3)
+            ),
+        }),
     }
 }
 

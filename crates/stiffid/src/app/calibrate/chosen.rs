@@ -2,12 +2,10 @@
 //! ([`super::ladder`]), the maps chosen on every posture ([`super::maps`]), their range.
 
 use super::{ladder, maps, update, Maps, Request};
-use crate::app::{in_data, Warning, WarningKind};
+use crate::app::in_data;
 use stiffid_core::{Error, Result};
 use stiffid_metrology::calibration::error_model::{MeasuredIn, Observation};
-use stiffid_metrology::calibration::fit::{
-    self, Fit, GravityPrior, Options, Priors, GRAVITY_DEFLECTION,
-};
+use stiffid_metrology::calibration::fit::{self, Fit, GravityPrior, Options, Priors};
 use stiffid_metrology::calibration::gravity::Gravity;
 use stiffid_metrology::calibration::{model, motions, ErrorModel, Estimate, Geometry};
 
@@ -32,11 +30,15 @@ pub(super) struct Chosen {
 }
 
 /// The fit's options: the setup's characteristic length, the request's priors, no ridge, the
-/// gravity terms bounded ([`GravityPrior`], [`GRAVITY_DEFLECTION`]).
-fn options(request: &Request<'_>) -> Options {
+/// gravity terms bounded ([`GravityPrior`]) by the request's bound
+/// ([`super::checks::gravity_bound`]), the same for every gravity model, chosen or given.
+///
+/// # Errors
+/// Those of [`super::checks::gravity_bound`].
+fn options(request: &Request<'_>) -> Result<Options> {
     let setup = request.readings.setup;
     let noise = setup.noise().reading_sd();
-    Options {
+    Ok(Options {
         length: setup.characteristic_length().unwrap_or(1.0),
         priors: request.priors.map(|t| Priors {
             length: t.length,
@@ -45,10 +47,10 @@ fn options(request: &Request<'_>) -> Options {
         }),
         ridge: 0.0,
         gravity: Some(GravityPrior {
-            deflection: GRAVITY_DEFLECTION,
+            deflection: super::checks::gravity_bound(request)?,
             noise,
         }),
-    }
+    })
 }
 
 /// The model of `request` fitted to `obs` (in `measured_in`, with the cell's `tables`): the
@@ -64,29 +66,19 @@ pub(super) fn choose(
     let setup = request.readings.setup;
     let name = &request.readings.name;
     let (geometry, gravity, maps_spec) = update::settings(request, setup, obs)?;
-    let options = options(request);
+    let options = options(request)?;
     // The fits and the maps' choice report no count: each a stage of total 0 (a spinner).
     let progress = request.progress;
     progress.begin("fit", 0);
     let held = held_postures(request);
     let region = super::region::of(setup, obs, held.as_deref());
-    // A gravity model given, not chosen: no ladder judges it.
-    let given = matches!(gravity, ladder::GravitySpec::Fixed(_));
     let climbed = ladder::climb(
         (gravity, maps_spec),
         setup.robot().masses().is_some(),
         (obs, &region),
         &options,
         (
-            |g| {
-                fitted(
-                    request,
-                    (obs, measured_in, tables),
-                    (geometry, given),
-                    g,
-                    &options,
-                )
-            },
+            |g| fitted(request, (obs, measured_in, tables), geometry, g, &options),
             // Readings that determine nothing are refused before any choice is fitted.
             |f: &ladder::Fitted| super::checks::refuse_repeated(setup, obs, &f.model, &f.fit),
         ),
@@ -153,19 +145,19 @@ fn held_postures(request: &Request<'_>) -> Option<Vec<nalgebra::Vector6<f64>>> {
 }
 
 /// The calibration of `gravity` fitted to the readings `obs` (in `measured_in`, with the
-/// cell's `tables`): the error model with its error motions and loads, its start and its fit;
-/// a `given` gravity model (no ladder judges it) with its bound's strength chosen by the
-/// readings ([`fit::fit_choosing_strength`]).
+/// cell's `tables`): the error model with its error motions and loads, its start and its fit,
+/// the gravity terms bounded as `options` state, the same whether the ladder chose the gravity
+/// model or the request gave it.
 ///
 /// # Errors
 /// Those of [`model`], [`update::kept`], [`ErrorModel::with_tables`], [`update::external`],
 /// [`stiffid_metrology::calibration::motions::choose`], [`update::identifiable`],
-/// [`ErrorModel::with_loads`], [`fit::start`] and [`fit::fit_choosing_strength`];
+/// [`ErrorModel::with_loads`], [`fit::start`] and [`fit::fit`];
 /// [`Error::InvalidField`] (`readings`) for base-frame readings with external axes.
 pub(super) fn fitted(
     request: &Request<'_>,
     (obs, measured_in, tables): (&[Observation], MeasuredIn, usize),
-    (geometry, given): (Geometry, bool),
+    geometry: Geometry,
     gravity: Gravity,
     options: &Options,
 ) -> Result<ladder::Fitted> {
@@ -199,30 +191,11 @@ pub(super) fn fitted(
         false => model,
     };
     let start = fit::start(&model, obs)?;
-    let fit = match given {
-        true => fit::fit_choosing_strength(&model, obs, &start, options)?,
-        false => fit::fit(&model, obs, &start, options)?,
-    };
+    let fit = fit::fit(&model, obs, &start, options)?;
     Ok(ladder::Fitted {
         model,
         start,
         fit,
         error_motions,
     })
-}
-
-/// A warning ([`WarningKind::Unidentifiable`]) when the readings held the gravity terms of a
-/// model given at their nominal values: the bound's strength chosen by the readings
-/// ([`fit::fit_choosing_strength`]) a hundred times the stated one or more, the terms deflecting
-/// at most 30 urad at their largest torque (0.03 mm at 1 m, a tracker's noise).
-pub(super) fn held_gravity(fit: &Fit) -> Option<Warning> {
-    let d = (fit.gravity_deflection).filter(|&d| d <= 1e-2 * GRAVITY_DEFLECTION)?;
-    Some(Warning::new(
-        WarningKind::Unidentifiable,
-        format!(
-            "the readings do not tell the gravity terms from what no term of the model holds: cross-validation over the postures held them at their nominal values (a bound of {:.4} mrad of deflection at their largest torque, against the stated {:.0} mrad), and the model predicts about as the geometry alone; spread the postures over joints 2, 3 and 5",
-            d * 1e3,
-            GRAVITY_DEFLECTION * 1e3
-        ),
-    ))
 }

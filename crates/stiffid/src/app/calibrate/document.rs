@@ -10,7 +10,6 @@ use serde::Serialize;
 use stiffid_core::common::choice::Choice;
 use stiffid_core::io::readings::point_name;
 use stiffid_metrology::calibration::error_model::Target;
-use stiffid_metrology::calibration::fit::GRAVITY_DEFLECTION;
 use stiffid_metrology::calibration::gravity::Gravity;
 use stiffid_metrology::calibration::identifiability::CORRELATION_INSEPARABLE;
 use stiffid_view as scene;
@@ -51,9 +50,8 @@ pub struct Document<'a> {
     pub gravity: &'static str,
     /// With gravity terms: their bound, the prior standard deviation of each term's deflection at
     /// the largest torque it meets within the robot's joint limits (what holds a term the readings
-    /// do not determine at its nominal value; for a gravity model given, the strength the
-    /// cross-validation over the postures chose): rad, written in mrad; `null` without gravity
-    /// terms.
+    /// do not determine at its nominal value; `--gravity-bound-mrad`, the same for every gravity
+    /// model, chosen by the ladder or given): rad, written in mrad; `null` without gravity terms.
     #[serde(rename = "gravity_prior_mrad", serialize_with = "units::mrad_option")]
     pub gravity_prior: Option<f64>,
     /// The frame of the readings: `tracker` or `base`.
@@ -280,8 +278,7 @@ impl<'a> Document<'a> {
             data: &report.data_name,
             geometry: Choice::name(report.geometry),
             gravity: Choice::name(report.gravity),
-            gravity_prior: (report.gravity != Gravity::None)
-                .then(|| fit.gravity_deflection.unwrap_or(GRAVITY_DEFLECTION)),
+            gravity_prior: (report.gravity != Gravity::None).then_some(report.gravity_bound),
             measured_in: match model.measured_in() {
                 stiffid_metrology::calibration::error_model::MeasuredIn::Tracker => "tracker",
                 stiffid_metrology::calibration::error_model::MeasuredIn::Base => "base",

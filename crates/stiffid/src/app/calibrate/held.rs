@@ -3,7 +3,7 @@
 
 use super::checks::cross_validation_size;
 use super::chosen::Chosen;
-use super::{fit_bound, held_out, Bounds, Held, Request, MAX_CROSS_VALIDATION_POSTURES};
+use super::{diverged, fit_bound, held_out, Bounds, Held, Request, MAX_CROSS_VALIDATION_POSTURES};
 use crate::app::{in_data, Warning, WarningKind};
 use stiffid_core::Result;
 use stiffid_metrology::calibration::error_model::{MeasuredIn, Observation};
@@ -61,7 +61,10 @@ pub(super) fn held(
     let intervals = match folds {
         None => None,
         Some(f) => {
-            let f = f.map_err(|e| in_data(name, e))?;
+            // A fold that diverged says one posture holds up the fit, not how far a new
+            // reading's error lies: left out of the intervals, saying so.
+            let (f, warning) = diverged::kept(f.map_err(|e| in_data(name, e))?, labels);
+            warnings.extend(warning);
             Some((Intervals::new(&f), fit_bound::held_out_variance(&f)))
         }
     };

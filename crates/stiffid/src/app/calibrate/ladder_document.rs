@@ -2,6 +2,7 @@
 
 use stiffid_core::common::choice::Choice;
 use stiffid_metrology::calibration::judgement::ladder::Ladder;
+use stiffid_metrology::calibration::judgement::why;
 
 /// The ladder in the calibration's document.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
@@ -14,6 +15,12 @@ pub struct LadderDocument {
     pub rungs: Vec<RungDocument>,
     /// The rung fitted: the simplest within one standard error of the best held-out error.
     pub chosen: usize,
+    /// The scored rung with the least held-out error (it differs from `chosen` where the
+    /// one-standard-error rule fitted a simpler rung); `null` when none was scored.
+    pub best: Option<usize>,
+    /// Why `chosen` was fitted, in words: where `best` differs, the one-standard-error rule with
+    /// its figures (the paired per-posture differences of the held-out squared errors).
+    pub why: String,
     /// The lower ends of the box of the region where the robot is used, over which each rung's
     /// `workspace_sd_mm` is taken (the joint-space hull of the fitted and held-out postures and
     /// the setup's test postures: 512 postures, half of them those and half on the segment
@@ -59,6 +66,8 @@ impl LadderDocument {
                 })
                 .collect(),
             chosen: ladder.chosen,
+            best: why::best(&ladder.rungs),
+            why: why::why(ladder),
             region_lower_deg: ladder.region.lower.map(f64::to_degrees).into(),
             region_upper_deg: ladder.region.upper.map(f64::to_degrees).into(),
         }

@@ -31,7 +31,9 @@ pub(crate) mod update;
 
 use stiffid_metrology::calibration::judgement::judge::{judge, largest_residual};
 use stiffid_metrology::calibration::judgement::maps;
-pub use stiffid_metrology::calibration::judgement::{extrapolation, fit_bound, ladder, region};
+pub use stiffid_metrology::calibration::judgement::{
+    diverged, extrapolation, fit_bound, ladder, region,
+};
 
 pub(crate) use compliance::fitted_compliance;
 pub(crate) use compliance::FittedCompliance;
@@ -107,6 +109,11 @@ pub struct Request<'a> {
     pub geometry: Geometry,
     /// The gravity terms fitted: chosen with the maps by [`ladder`] (`auto`), or given.
     pub gravity: GravitySpec,
+    /// The bound on the gravity terms, rad: the prior standard deviation of each term's joint
+    /// deflection at the largest torque it meets ([`fit::GravityPrior`]), the same for every
+    /// gravity model, chosen by the ladder or given; within [`limits::GRAVITY_BOUND_MRAD`];
+    /// `None` for [`fit::GRAVITY_DEFLECTION`].
+    pub gravity_bound: Option<f64>,
     /// Held-out readings (name, text), predicted by the calibration.
     pub validate: Option<(String, &'a str)>,
     /// Register the tracker anew on the held-out readings (another series: the tracker moved).
@@ -189,6 +196,8 @@ pub struct Report {
     pub geometry: Geometry,
     /// The gravity terms fitted.
     pub gravity: Gravity,
+    /// The bound on the gravity terms the fit used (every gravity model's, [`Request::gravity_bound`]), rad.
+    pub gravity_bound: f64,
     /// The fit.
     pub fit: Fit,
     /// The frame registered on the nominal robot (the start).
@@ -352,8 +361,11 @@ fn find(request: &Request<'_>) -> Result<Report> {
         (&nominal, &data.labels, level),
         &mut warnings,
     )?;
-    warnings.extend(judge(model, fitted, noise_ratio, name));
-    warnings.extend(chosen::held_gravity(fitted));
+    warnings.extend(judge(
+        (model, fitted, chosen.ladder.as_ref()),
+        noise_ratio,
+        name,
+    ));
     if let Some(w) = warnings.iter_mut().find(|w| w.kind == WarningKind::Misfit) {
         w.message += &largest_residual(&data, &fitted.residuals);
     }
@@ -366,6 +378,10 @@ fn find(request: &Request<'_>) -> Result<Report> {
         readings: obs.len(),
         geometry: chosen.geometry,
         gravity: chosen.model.gravity().kind(),
+        gravity_bound: chosen
+            .options
+            .gravity
+            .map_or(fit::GRAVITY_DEFLECTION, |g| g.deflection),
         start_frame: chosen.start.frame,
         model: chosen.model,
         fit: chosen.fit,
