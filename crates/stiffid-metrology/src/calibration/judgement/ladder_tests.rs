@@ -51,3 +51,57 @@ fn each_rung_is_screened_by_its_own_held_out_error() {
     assert!(why.contains("for the geometry with maps,"), "{rungs:#?}");
     assert_eq!(choose(&rungs), 2);
 }
+
+/// A rung that predicts the groups a little better than the geometry, within one standard error
+/// of the paired differences, loses to the simpler geometry, and the ladder's `why` names the
+/// rule with the figures; a rung whose held-out error diverged is skipped without its figure.
+#[test]
+fn the_ladder_says_why_a_better_rung_lost() {
+    use super::why::{best, why};
+    let order = [(0, false), (1, false), (2, false)];
+    let noisy = |gravity: Gravity, shift: f64, turn: f64| {
+        let mut r = scored(gravity, false, 5.0e-4, 1.7e-4);
+        for (i, e) in r.errors.iter_mut().enumerate() {
+            *e *= 1.0 + shift + 0.3 * (turn * i as f64).cos();
+        }
+        let total: f64 = r.errors.iter().sum();
+        r.rms = Some((total / 20.0).sqrt());
+        r
+    };
+    let mut rungs = vec![
+        noisy(Gravity::None, 0.0, 1.7),
+        noisy(Gravity::Arm, -0.03, 2.3),
+        scored(Gravity::Lumped, false, 3.0, 1.7e-4),
+    ];
+    diverged(&mut rungs, &order);
+    let lumped = &rungs[2];
+    assert!(lumped.rms.is_none() && lumped.errors.is_empty());
+    let skipped = lumped.skipped.as_deref().unwrap_or_default();
+    assert!(skipped.starts_with("its held-out error diverged: more than 30 times the geometry's"));
+    assert!(!skipped.contains("3000"), "{skipped}");
+    let ladder = Ladder {
+        folds: 5,
+        chosen: choose(&rungs),
+        rungs,
+        region: stiffid_core::common::limits::JointBox::new(
+            nalgebra::Vector6::repeat(-1.0),
+            nalgebra::Vector6::repeat(1.0),
+        ),
+    };
+    assert_eq!(ladder.chosen, 0);
+    assert_eq!(best(&ladder.rungs), Some(1));
+    let text = why(&ladder);
+    println!("{text}");
+    assert!(
+        text.starts_with("arm predicts the held-out groups best ("),
+        "{text}"
+    );
+    assert!(
+        text.contains("the one-standard-error rule fits the simplest rung"),
+        "{text}"
+    );
+    assert!(
+        text.contains("lower on average, one standard error"),
+        "{text}"
+    );
+}
