@@ -14,6 +14,7 @@
 //! (`statements`). The rules come from the FANUC R-30iA/R-30iB HandlingTool Operator's Manual;
 //! docs/programs/ls.md gives each with its source.
 
+mod calls;
 mod cartesian;
 pub(crate) mod config;
 pub mod generate;
@@ -64,6 +65,9 @@ pub(crate) fn targets(
     for (k, (line, instruction)) in instructions.iter().enumerate() {
         let t = instruction.trim();
         if !motions[k] {
+            if calls::passed_over(t, context) {
+                continue;
+            }
             let place = Place {
                 after_first: first.is_some_and(|f| f < k),
                 before_last: last.is_some_and(|l| l > k),

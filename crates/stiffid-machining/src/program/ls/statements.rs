@@ -20,7 +20,8 @@
 //!   `SELECT`, `FOR`, `WAIT .. TIMEOUT,LBL[..]`, any instruction naming a label but the label
 //!   itself: the order the controller runs would not be the file's); a `CALL` between two
 //!   motions (the called program may move the robot between them), and so a macro instruction
-//!   there (a program run by its name alone, `GO_HOME`, or with arguments, `OPEN_GRIP(1)`);
+//!   there (a program run by its name alone, `GO_HOME`, or with arguments, `OPEN_GRIP(1)`),
+//!   but one of a program the controller's backup holds that moves nothing ([`super::calls`]);
 //!   `END` or `ABORT` before a
 //!   motion; `Weave ..` and `Track ..` (ArcTool: weaving and seam tracking move the tool off
 //!   the programmed path) before a motion; `Touch Offset PR[i]` (ArcTool touch sensing: the
@@ -95,10 +96,10 @@ pub(super) fn instruction(line: u64, t: &str, place: Place, selected: &mut Selec
         return refuse("a jump, call, loop or branch in a program with motions; the order the controller runs them would not be the file's: write the path as straight-line motions");
     }
     if first == "CALL" && place.after_first && place.before_last {
-        return refuse("a call between two motions; the called program may move the robot between them, off the path the file gives: call it before the first motion or after the last");
+        return refuse("a call between two motions; the called program may move the robot between them, off the path the file gives: call it before the first motion or after the last, or give the controller's backup holding the program called (its .LS) if it moves nothing");
     }
     if macro_call(&upper) && place.after_first && place.before_last {
-        return refuse("a macro (a program the controller runs by its name) between two motions; it may move the robot between them, off the path the file gives: run it before the first motion or after the last");
+        return refuse("a macro (a program the controller runs by its name) between two motions; it may move the robot between them, off the path the file gives: run it before the first motion or after the last, or give the controller's backup holding it (its .LS) if it moves nothing");
     }
     let process_path = matches!(first, "WEAVE" | "TRACK") && !upper.ends_with("END");
     if process_path && place.before_last {
@@ -132,7 +133,7 @@ const ONE_WORD: &[&str] = &[
 /// Whether `upper` is a macro instruction: a program's name alone (letters, digits and `_`,
 /// a letter first), or with its arguments in parentheses (`OPEN_GRIPPER(1)`), not one of the
 /// instructions of one word ([`ONE_WORD`]).
-fn macro_call(upper: &str) -> bool {
+pub(super) fn macro_call(upper: &str) -> bool {
     let t = upper.trim();
     let name = t
         .split_once('(')
@@ -160,7 +161,7 @@ const GERMAN: &[(&str, &str)] = &[
 
 /// The instruction `upper` (upper case) with its German keywords ([`GERMAN`]) in English, word
 /// by word, so that a German program is read as its English twin.
-fn english(upper: &str) -> String {
+pub(super) fn english(upper: &str) -> String {
     let mut out = String::with_capacity(upper.len());
     let mut word = String::new();
     let flush = |word: &mut String, out: &mut String| {
@@ -232,7 +233,7 @@ fn number(line: u64, t: &str, rest: &str) -> Result<Number> {
 
 /// Whether the instruction (upper case) assigns a frame's value: `UFRAME[i]=`, `UTOOL[i]=`, or
 /// a system variable of the frames (`$MNUFRAME[..]=`, `$GROUP[..].$UTOOL=`).
-fn sets_frame(upper: &str) -> bool {
+pub(super) fn sets_frame(upper: &str) -> bool {
     let Some((lhs, _)) = upper.split_once('=') else {
         return false;
     };

@@ -146,3 +146,59 @@ fn sysframe_va_gives_the_frames_the_setups_tables_would() {
         other => panic!("{other:?}"),
     }
 }
+
+/// An LS program as a controller stores it: `mn` in `/MN`, joint positions `P[1]`, `P[2]`.
+fn ls_program(name: &str, mn: &str) -> String {
+    format!("/PROG  {name}\n/ATTR\nOWNER\t\t= MNEDITOR;\n/MN\n{mn}\n/POS\nP[1]{{\n   GP1:\n\tUF : 0, UT : 1,\n\tJ1= 1.000 deg,\tJ2= 2.000 deg,\tJ3= 3.000 deg,\n\tJ4= 4.000 deg,\tJ5= 5.000 deg,\tJ6= 6.000 deg\n}};\nP[2]{{\n   GP1:\n\tUF : 0, UT : 1,\n\tJ1= -10.000 deg,\tJ2= 20.500 deg,\tJ3= -30.000 deg,\n\tJ4= .000 deg,\tJ5= 45.000 deg,\tJ6= -60.000 deg\n}};\n/END\n")
+}
+
+/// A `CALL` or a macro between two LS motions is passed over when the backup holds the program
+/// called and it (and every program it calls) moves nothing; refused naming its line without
+/// the backup, when the called program moves, selects a frame, or the calls loop.
+#[test]
+fn an_ls_call_of_a_program_that_moves_nothing_is_passed_over() {
+    let main = ls_program(
+        "MAIN",
+        "   1:J P[1] 100% FINE ;\n   2:  CALL GRIP(1) ;\n   3:  SPINDLE_ON ;\n   4:L P[2] 50mm/sec FINE ;",
+    );
+    let io = |name: &str, then: &str| {
+        let mn = format!("   1:  DO[5]=ON ;\n   2:  WAIT DI[5]=ON TIMEOUT,LBL[9] ;\n   3:  {then} ;\n   4:  LBL[9] ;");
+        (
+            format!("backup/{name}.LS"),
+            ls_program(name, &mn)
+                .replace("P[1]{", "P[7]{")
+                .replace("P[2]{", "P[8]{"),
+        )
+    };
+    let read = |backup: &[(String, String)]| {
+        let context = Context::default().with_backup(backup);
+        stiffid_machining::program::parse_in(&main, Dialect::FanucLs, &context)
+    };
+    let (line, why) = message(read(&[]).unwrap_err());
+    assert_eq!(line, 6);
+    assert!(why.contains("a call between two motions"), "{why}");
+    let quiet = [io("GRIP", "R[1]=R[1]+1"), io("SPINDLE_ON", "CALL GRIP(2)")];
+    let q: Vec<[f64; 6]> = read(&quiet)
+        .unwrap()
+        .targets
+        .iter()
+        .map(|t| t.q_deg)
+        .collect();
+    assert_eq!(
+        q,
+        [
+            [1.0, 2.0, 3.0, 4.0, 5.0, 6.0],
+            [-10.0, 20.5, -30.0, 0.0, 45.0, -60.0]
+        ]
+    );
+    for (then, line) in [
+        ("L P[7] 10mm/sec FINE", 7),
+        ("UTOOL_NUM=2", 7),
+        ("CALL SPINDLE_ON", 7),
+    ] {
+        let backup = [io("GRIP", "R[1]=R[1]+1"), io("SPINDLE_ON", then)];
+        let (at, why) = message(read(&backup).unwrap_err());
+        assert_eq!(at, line, "{then}: {why}");
+        assert!(why.contains("SPINDLE_ON: a macro"), "{then}: {why}");
+    }
+}

@@ -1,0 +1,54 @@
+//! A call between two motions of a program (`CALL NAME`, `CALL NAME(1, 2)`, a macro `NAME` or
+//! `NAME(1)`) passed over when the controller's backup holds the program called (`NAME.LS`) and
+//! it moves nothing: no motion, no frame selected or set, no `ABORT`, and every program it
+//! calls in turn the same (followed [`DEPTH`] deep); the controller runs it between the motions
+//! and the path is the file's.
+
+use super::statements::{english, macro_call, sets_frame};
+use crate::program::Context;
+
+/// How deep calls are followed: a longer chain (or one that loops) is not passed over.
+const DEPTH: usize = 16;
+
+/// Whether instruction `t` is a call of a program of the `context`'s backup that moves nothing
+/// (module docs).
+pub(super) fn passed_over(t: &str, context: &Context) -> bool {
+    called(t).is_some_and(|name| moves_nothing(&name, context, &mut Vec::new()))
+}
+
+/// The program instruction `t` calls by name (`CALL NAME ..`, a macro `NAME(..)`), upper case.
+fn called(t: &str) -> Option<String> {
+    let upper = english(&t.trim().to_ascii_uppercase());
+    let name = match upper.strip_prefix("CALL ") {
+        Some(rest) => rest.trim_start(),
+        None if macro_call(&upper) => upper.as_str(),
+        None => return None,
+    };
+    let name = name.split(['(', ' ']).next().unwrap_or("");
+    (!name.is_empty()).then(|| name.to_string())
+}
+
+/// Whether program `name` of the backup moves nothing (module docs).
+fn moves_nothing(name: &str, context: &Context, chain: &mut Vec<String>) -> bool {
+    if chain.len() >= DEPTH || chain.iter().any(|c| c == name) {
+        return false;
+    }
+    let Some((_, text)) = context.backup_file(&format!("{name}.LS")) else {
+        return false;
+    };
+    let Ok(instructions) = super::instructions(text) else {
+        return false;
+    };
+    chain.push(name.to_string());
+    let nothing = instructions.iter().all(|(_, t)| {
+        let t = t.trim();
+        let upper = english(&t.to_ascii_uppercase());
+        let selects = upper.starts_with("UFRAME_NUM") || upper.starts_with("UTOOL_NUM");
+        let moves = super::motion::rest(t).is_some() || upper.contains("P[");
+        let stops = upper.starts_with("ABORT");
+        let calls_on = called(t).is_none_or(|n| moves_nothing(&n, context, chain));
+        !(selects || moves || stops || sets_frame(&upper)) && calls_on
+    });
+    chain.pop();
+    nothing
+}
