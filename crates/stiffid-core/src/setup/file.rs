@@ -74,6 +74,7 @@ struct MassesFile {
 #[serde(deny_unknown_fields)]
 struct ControllerFile {
     kinematics: Option<String>,
+    dialect: Option<String>,
     robot: Option<String>,
     robot_tip: Option<String>,
     #[serde(default, deserialize_with = "crate::common::exact::option")]
@@ -452,6 +453,9 @@ where
             &c.io,
         )
         .map_err(|e| in_file(e, source_name))?,
+        dialect: (c.dialect.as_deref().map(str::parse::<super::GcodeDialect>))
+            .transpose()
+            .map_err(|e| in_file(e, source_name))?,
         ..Default::default()
     })
 }

@@ -78,6 +78,9 @@ pub struct Controller {
     /// how a generated program moves to and from its path and what it does at the G-code's
     /// process words ([`super::program_io`]).
     pub program: super::ProgramSettings,
+    /// `[controller] dialect`: the controller a G-code program is written for, where
+    /// controllers read the same words differently; `None` when the setup does not say.
+    pub dialect: Option<super::GcodeDialect>,
 }
 
 /// How many encoder pulses make a unit of each axis on the controller (its axis parameters): a

@@ -71,6 +71,10 @@ pub(super) fn arc(
     tolerance: f64,
 ) -> Result<Vec<Vector3<f64>>> {
     let (u, v, n) = plane_axes(s.plane);
+    if ijk[n].is_some() {
+        let letter = ['I', 'J', 'K'][n];
+        return Err(at(line, format!("{letter}: a centre word off the arc's plane G{} (LinuxCNC refuses it; another controller may ignore it or read the arc in another plane): give the plane (G17 XY: I J, G18 ZX: I K, G19 YZ: J K) before the arc", s.plane)));
+    }
     let start = s.position;
     let (su, sv, eu, ev) = (start[u], start[v], end[u], end[v]);
     let ccw = s.motion == 3;

@@ -35,9 +35,9 @@ pub(super) struct Given {
     /// A work offset chosen (`54`..`59.3` as ten times the code, `541` for `G54.1`).
     offset: Option<u16>,
     /// `G53`: this block's coordinates are machine coordinates.
-    g53: bool,
+    pub(super) g53: bool,
     /// `G28` or `G30`.
-    home: Option<u8>,
+    pub(super) home: Option<u8>,
     /// `G43`, `G44` or `G49`.
     length: Option<u8>,
     /// `G64` (its `P` and `Q` are tolerances).
@@ -77,9 +77,13 @@ pub(super) fn block(
     if given.g53 && (given.home.is_some() || s.motion >= 81 && s.motion != NO_MOTION) {
         return Err(g53_outside_g0_g1(line, &given, s));
     }
+    super::dialect::before_motion(line, &given, s)?;
     if let Some(code) = given.home {
         let other = given.centre_given() || given.radius.is_some() || given.abc || given.external;
-        return super::home::home(line, span, (given.target, other), code, s, out);
+        let named = given.target.map(|t| t.is_some());
+        super::home::home(line, span, (given.target, other), code, s, out)?;
+        super::dialect::at_home(line, (code, named), s);
+        return Ok(());
     }
     if s.motion >= 81 && s.motion != NO_MOTION {
         return cycle(line, span, given, s, out);
@@ -89,6 +93,14 @@ pub(super) fn block(
     }
     if !moves(line, &given, s)? {
         return Ok(());
+    }
+    if given.g53 && s.incremental && s.motion < 2 {
+        // Absolute machine coordinates whatever the distance mode (the dialects that say so).
+        super::dialect::g53_in_g91(line, s)?;
+        s.incremental = false;
+        let moved = motion(line, span, given, s, out, tolerance);
+        s.incremental = true;
+        return moved;
     }
     motion(line, span, given, s, out, tolerance)
 }
@@ -225,9 +237,12 @@ impl Given {
             s.set_frame(super::modal::frame(line, name, s)?);
         }
         match self.length {
-            Some(49) => s.set_length_offset(0.0),
+            Some(49) => s.change_length_offset(line, 0.0),
             Some(g) => self.length_offset(line, g, s)?,
             None => {}
+        }
+        if self.length.is_some() {
+            s.home_cancel = None;
         }
         Ok(())
     }
@@ -235,6 +250,7 @@ impl Given {
     /// `G43`/`G44` with `H` (or, without, the tool in use as LinuxCNC reads it): the tool's
     /// length from the table put in force.
     fn length_offset(&self, line: u64, g: u8, s: &mut State) -> Result<()> {
+        super::dialect::length_offset_allowed(line, g, s)?;
         if s.machine.tool_lengths.is_empty() {
             return Err(at(line, format!("G{g}: a tool length offset needs the tools' lengths: give [tool] length_mm in the process's operations (with their tool_number)")));
         }
@@ -255,7 +271,7 @@ impl Given {
             return Err(at(line, format!("G{g} H{n}: the process's tool table has no length for tool {n} (give [tool] length_mm in the operation with tool_number = {n})")));
         };
         let h = if g == 44 { -length } else { length };
-        s.set_length_offset(h);
+        s.change_length_offset(line, h);
         Ok(())
     }
 
@@ -460,21 +476,23 @@ fn motion(
         incremental: s.incremental,
         to_program,
         verbatim: false,
+        take_up: std::mem::take(&mut s.take_up),
         cycle: None,
     });
+    if let (false, 0.0, Some(lift)) = (given.g53, s.length_offset, block_lift)
+        && lift < 0.0
+    {
+        out.no_length_offset.get_or_insert((line, -lift));
+    }
     Ok(())
 }
 
-/// `G53`'s frame: machine coordinates with `G0` or `G1` (LinuxCNC refuses it with an arc) in
-/// `G90`; in `G91` controllers differ (LinuxCNC reads its words as absolute machine
-/// coordinates, Mitsubishi's M700V as increments), so it is refused there. `None` for a rapid
-/// when the setup gives no `G53` frame ([`unplaced_machine_move`]).
+/// `G53`'s frame: machine coordinates with `G0` or `G1` (LinuxCNC refuses it with an arc), its
+/// words absolute (in `G91` as the dialect says: module `dialect`). `None` for a rapid when the
+/// setup gives no `G53` frame ([`unplaced_machine_move`]).
 fn machine_frame(line: u64, s: &State) -> Result<Option<super::machine::Frame>> {
     if s.motion >= 2 {
         return Err(at(line, "G53: machine coordinates move with G0 or G1 only, not with an arc (LinuxCNC refuses it)".into()));
-    }
-    if s.incremental {
-        return Err(at(line, "G53 in G91: controllers differ on what its words are (LinuxCNC reads absolute machine coordinates, Mitsubishi's M700V increments); write G90 before it".into()));
     }
     match s.machine.frames.offset("G53") {
         Some(part_from) => Ok(Some(super::machine::Frame { name: "G53".into(), part_from })),

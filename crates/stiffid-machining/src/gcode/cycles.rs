@@ -11,7 +11,11 @@
 //! Each feed has a point where the drill meets material, the part's surface (`Z = 0` of the part
 //! frame, or `(stiffid: surface_mm = Z)`) when below `R`, or the depth a peck reached, stated
 //! twice (the drill arrives there unloaded, then takes its thrust): the feed from there to its
-//! end cuts, the rest of the cycle moves in the air or in the hole drilled ([`crate::cutting`]). `Z`, `R`, `Q` and `P` stay in force within a cycle. Refused naming the line: a cycle under
+//! end cuts, the rest of the cycle moves in the air or in the hole drilled ([`crate::cutting`]).
+//! Each feed's end (a peck's, the bottom) is stated twice as well: reached under the thrust,
+//! then the same point as a rapid, without it, from where the exit (`G82`'s dwell, the rapid
+//! out) starts: the drill stops feeding there, and a robot that held the loaded pose while
+//! its thrust goes would leave the hole's axis. `Z`, `R`, `Q` and `P` stay in force within a cycle. Refused naming the line: a cycle under
 //! `G91` (controllers differ on what an incremental `R` and `Z` count from), outside the `G17`
 //! plane, with the tool not pointing along the part's `-Z`, with `I J K` or rotary words, without
 //! `Z` or `R` or a feed rate `F` in force, a bottom not below `R` or not below the part's surface, a `G83` without a positive `Q`, `P` outside `G82` and `Q`
@@ -158,6 +162,7 @@ pub(super) fn block(
         incremental: false,
         to_program: nalgebra::Isometry3::identity(),
         verbatim: false,
+        take_up: 0.0,
         cycle: None,
     };
     push(line, hole, &moves, bottom_index, block, s, out)
@@ -276,8 +281,8 @@ fn hole(line: u64, w: &Words, other_geometry: bool, scale: f64, s: &State) -> Re
     })
 }
 
-/// The hole's moves from the tool's position (module docs), and the index of the move that
-/// reaches the bottom.
+/// The hole's moves from the tool's position (module docs), and the index of the bottom's
+/// thrust-free point (where a `G82` dwells).
 fn moves(hole: &Hole, s: &State) -> (Vec<(Vector3<f64>, Motion)>, usize) {
     let (depth, retract) = (hole.depth, hole.retract);
     let mut moves: Vec<(Vector3<f64>, Motion)> = Vec::new();
@@ -329,6 +334,9 @@ fn moves(hole: &Hole, s: &State) -> (Vec<(Vector3<f64>, Motion)>, usize) {
             moves.push((hole.at_xy(entry), Motion::Feed));
         }
         go(hole.at_xy(next), Motion::Feed, &mut moves);
+        // The same point again, the thrust gone: the drill stops feeding there, and the exit
+        // (the dwell, the rapid out) starts from where it stands unloaded.
+        moves.push((hole.at_xy(next), Motion::Rapid));
         reached = next;
         if next <= depth {
             break moves.len() - 1;

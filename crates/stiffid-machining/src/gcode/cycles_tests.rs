@@ -28,7 +28,7 @@ fn moves(text: &str) -> Vec<(u64, [f64; 3], bool)> {
 fn canned_cycles_make_the_moves_of_their_definition() {
     // G81 with G98: over the hole at the starting level, down to R, feed to Z (through the
     // part's surface, Z = 0, where the drill meets material: stated twice, reached unloaded and
-    // then under the thrust), back up to the starting level (above R); the next block drills
+    // then under the thrust; the bottom stated twice, under the thrust and without it), back up to the starting level (above R); the next block drills
     // the next hole with the same Z and R.
     let g81 = format!(
         "{HEADER}G21 G90 G17\nG0 X0 Y0 Z10\nG98 G81 X10 Y20 Z-5 R2 F120\nX30\nG80\nG0 Z20\n"
@@ -43,12 +43,14 @@ fn canned_cycles_make_the_moves_of_their_definition() {
             (4, [10.0, 20.0, 0.0], !r),
             (4, [10.0, 20.0, 0.0], !r),
             (4, [10.0, 20.0, -5.0], !r),
+            (4, [10.0, 20.0, -5.0], r),
             (4, [10.0, 20.0, 10.0], r),
             (5, [30.0, 20.0, 10.0], r),
             (5, [30.0, 20.0, 2.0], r),
             (5, [30.0, 20.0, 0.0], !r),
             (5, [30.0, 20.0, 0.0], !r),
             (5, [30.0, 20.0, -5.0], !r),
+            (5, [30.0, 20.0, -5.0], r),
             (5, [30.0, 20.0, 10.0], r),
             (7, [30.0, 20.0, 20.0], r),
         ]
@@ -65,7 +67,7 @@ fn canned_cycles_make_the_moves_of_their_definition() {
         .filter(|(_, a)| **a)
         .map(|(i, _)| i)
         .collect();
-    assert_eq!(air, [3, 9]);
+    assert_eq!(air, [3, 10]);
     // G83 with G99 in inches: pecks of Q0.1 in from R0.05 in to Z-0.25 in, out to R after each,
     // back to 0.010 in (0.254 mm) above the depth reached, feed through the depth reached (where
     // the drill meets material again), retract to R.
@@ -78,16 +80,19 @@ fn canned_cycles_make_the_moves_of_their_definition() {
         (4, [1.0, 0.0, 0.0], !r),
         (4, [1.0, 0.0, 0.0], !r),
         (4, [1.0, 0.0, -0.05], !r),
+        (4, [1.0, 0.0, -0.05], r),
         (4, [1.0, 0.0, 0.05], r),
         (4, [1.0, 0.0, -0.04], r),
         (4, [1.0, 0.0, -0.05], !r),
         (4, [1.0, 0.0, -0.05], !r),
         (4, [1.0, 0.0, -0.15], !r),
+        (4, [1.0, 0.0, -0.15], r),
         (4, [1.0, 0.0, 0.05], r),
         (4, [1.0, 0.0, -0.14], r),
         (4, [1.0, 0.0, -0.15], !r),
         (4, [1.0, 0.0, -0.15], !r),
         (4, [1.0, 0.0, -0.25], !r),
+        (4, [1.0, 0.0, -0.25], r),
         (4, [1.0, 0.0, 0.05], r),
     ]
     .into_iter()
@@ -102,7 +107,7 @@ fn canned_cycles_make_the_moves_of_their_definition() {
         .filter(|(_, a)| **a)
         .map(|(i, _)| i)
         .collect();
-    assert_eq!(air, [3, 8, 13]);
+    assert_eq!(air, [3, 9, 15]);
     // The feed of the cycle: F4 inch/min.
     assert!((g.points[3].feed.unwrap() - 4.0 * 25.4e-3 / 60.0).abs() < 1e-15);
 }
@@ -127,6 +132,8 @@ fn a_peck_cycle_ends_at_its_bottom_whatever_the_pecks_sum_to_in_floating_point()
             }
         }
         want.push((4, [0.0, 0.0, depth], f));
+        // The thrust gone where the feed stops: the exit starts from there.
+        want.push((4, [0.0, 0.0, depth], r));
     }
     want.push((4, [0.0, 0.0, 10.0], r));
     let got = moves(&text);

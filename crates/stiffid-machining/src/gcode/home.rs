@@ -69,6 +69,7 @@ pub(super) fn home(
         incremental: s.incremental,
         to_program,
         verbatim: true,
+        take_up: 0.0,
         cycle: None,
     });
     Ok(())

@@ -14,7 +14,7 @@
 //! reads every program as the tip's path (`G43`/`G44` refused).
 
 use nalgebra::{Isometry3, Translation3, Vector3};
-pub use stiffid_core::setup::ProgramFrames;
+pub use stiffid_core::setup::{GcodeDialect, ProgramFrames};
 
 /// What the controller knows beyond the text (module docs); the default knows nothing: `G54`
 /// is the part frame, the start is unknown, no tool has a length.
@@ -26,6 +26,10 @@ pub struct Machine {
     /// tip, m; a `None` number is the length of every tool (a process of one operation
     /// without a `tool_number`). Empty: no tool length offsets (module docs).
     pub tool_lengths: Vec<(Option<u32>, f64)>,
+    /// The controller the program is written for (`[controller] dialect`), where controllers
+    /// read the same words differently (module `dialect`); `None`: the setup does not say, and
+    /// a block whose reading depends on it is refused.
+    pub dialect: Option<GcodeDialect>,
 }
 
 impl Machine {
@@ -34,6 +38,7 @@ impl Machine {
         Machine {
             frames: setup.workcell().program_frames().clone(),
             tool_lengths: process.map(|p| p.tool_lengths()).unwrap_or_default(),
+            dialect: setup.workcell().controller().dialect,
         }
     }
 

@@ -70,6 +70,7 @@
 mod arc;
 mod block;
 mod cycles;
+mod dialect;
 mod groups;
 mod home;
 mod machine;
@@ -80,7 +81,7 @@ mod write;
 
 pub use arc::ArcBlock;
 pub(crate) use cycles::Cycle;
-pub use machine::{Machine, ProgramFrames};
+pub use machine::{GcodeDialect, Machine, ProgramFrames};
 pub use process::{Comment, ProcessWord};
 pub use words::MAX_FEED;
 
@@ -155,6 +156,10 @@ struct Block {
     to_program: nalgebra::Isometry3<f64>,
     /// Written as found (`G28`, `G30`): the controller goes where its stored position is.
     verbatim: bool,
+    /// The change of the tool length offset the controller moves by in this block, along the
+    /// frame's `Z`, m (FANUC and Haas: an incremental `Z` after `G43` without a move; module
+    /// `dialect`): an incremental block's `Z` is written less it.
+    take_up: f64,
     /// A canned cycle's block: its points written as `G0`/`G1` blocks of their own, and the dwell
     /// `G4 P..` after the point of this index (within the block) with the `P` word as written.
     cycle: Option<Option<(usize, String)>>,
@@ -183,6 +188,10 @@ pub struct GCode {
     /// and left the axes it names unknown until the program gives them again, so the robot goes
     /// from the point before it to the next one in one move.
     pub unplaced_g53: Vec<u64>,
+    /// The first motion made while the tool in use has a length and no tool length offset
+    /// (`G43`) is in force, and that length (m): the program's coordinates are read as the
+    /// spindle's gauge line's, the tip that length below them.
+    pub no_length_offset: Option<(u64, f64)>,
     blocks: Vec<Block>,
     text: String,
     /// The tip at the start (the setup's), `G54` part frame, m: where an incremental first
@@ -248,9 +257,62 @@ struct State {
     retract_to_r: bool,
     /// The canned cycle's words in force.
     cycle: cycles::Modal,
+    /// The tool length offset change (the line of the first, and the sum of the changes of the
+    /// programmed `Z` where the tool is, m) a move that gives `Z` has not yet taken up (module
+    /// `dialect`).
+    offset_change: Option<(u64, f64)>,
+    /// The change this block's controller moves by (FANUC, Haas), m (module `dialect`).
+    take_up: f64,
+    /// The line of a `G28` made with a tool length offset in force, on a dialect whose rule is
+    /// not known (module `dialect`).
+    home_cancel: Option<u64>,
     /// The part's surface a canned cycle drills into, part frame `Z`, m (`(stiffid: surface_mm
     /// = Z)`, default 0).
     surface: f64,
+}
+
+impl State {
+    /// The state at the program's start on `machine`, nothing read yet.
+    fn new(machine: &Machine) -> Self {
+        State {
+            position: Vector3::zeros(),
+            abc: [0.0; 3],
+            motion: 0,
+            plane: 17,
+            inch: false,
+            units_stated: false,
+            incremental: false,
+            tool_number: None,
+            selected: None,
+            changed: false,
+            operation: None,
+            tool: machine.frames.tool,
+            rotary: false,
+            external: (Vec::new(), 0),
+            e: Vec::new(),
+            ended: None,
+            rpm: None,
+            process: Vec::new(),
+            line_comments: Vec::new(),
+            comments: Vec::new(),
+            feed: None,
+            feed_line: 0,
+            retract_to_r: false,
+            cycle: Default::default(),
+            surface: 0.0,
+            known: [false; 3],
+            pending: None,
+            left_unknown: [None; 3],
+            untooled: None,
+            frame: machine::Frame::default(),
+            length_offset: 0.0,
+            ij_absolute: false,
+            offset_change: None,
+            take_up: 0.0,
+            home_cancel: None,
+            machine: machine.clone(),
+        }
+    }
 }
 
 fn at(line: u64, message: String) -> Error {
@@ -283,41 +345,7 @@ pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<G
         &CHORD_TOLERANCE_MM,
     )
     .map_err(|e| e.for_option(JobOption::ChordToleranceMm))?;
-    let mut s = State {
-        position: Vector3::zeros(),
-        abc: [0.0; 3],
-        motion: 0,
-        plane: 17,
-        inch: false,
-        units_stated: false,
-        incremental: false,
-        tool_number: None,
-        selected: None,
-        changed: false,
-        operation: None,
-        tool: machine.frames.tool,
-        rotary: false,
-        external: (Vec::new(), 0),
-        e: Vec::new(),
-        ended: None,
-        rpm: None,
-        process: Vec::new(),
-        line_comments: Vec::new(),
-        comments: Vec::new(),
-        feed: None,
-        feed_line: 0,
-        retract_to_r: false,
-        cycle: Default::default(),
-        surface: 0.0,
-        known: [false; 3],
-        pending: None,
-        left_unknown: [None; 3],
-        untooled: None,
-        frame: machine::Frame::default(),
-        length_offset: 0.0,
-        ij_absolute: false,
-        machine: machine.clone(),
-    };
+    let mut s = State::new(machine);
     s.start();
     let mut out = GCode {
         points: Vec::new(),
@@ -327,6 +355,7 @@ pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<G
         comments: Vec::new(),
         unstated_units: None,
         unplaced_g53: Vec::new(),
+        no_length_offset: None,
         blocks: Vec::new(),
         text: text.to_string(),
         start: machine.frames.start,

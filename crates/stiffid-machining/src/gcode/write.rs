@@ -199,7 +199,9 @@ impl Words<'_> {
         let scale = if b.inch { 25.4e-3 } else { 1e-3 };
         let p = &self.positions[k];
         let v = if b.incremental {
-            b.to_program.rotation * (p - self.written) / scale
+            // The block's first point carries the offset's change the controller moves by.
+            let take_up = if k == b.points.start { b.take_up } else { 0.0 };
+            (b.to_program.rotation * (p - self.written) + Vector3::z() * take_up) / scale
         } else {
             (b.to_program * nalgebra::Point3::from(*p)).coords / scale
         };

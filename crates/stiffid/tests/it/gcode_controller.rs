@@ -177,6 +177,7 @@ fn tools() -> Machine {
             ..Default::default()
         },
         tool_lengths: vec![(Some(1), 0.05), (Some(2), 0.08)],
+        ..Default::default()
     }
 }
 

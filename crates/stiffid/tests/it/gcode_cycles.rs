@@ -30,10 +30,11 @@ fn canned_cycles_are_written_back_as_their_moves() {
     );
     assert!(
         out.contains(
-            "G1 X10.000000 Y20.000000 Z-5.000000\nG4 P500\nG0 X10.000000 Y20.000000 Z2.000000\n"
+            "G1 X10.000000 Y20.000000 Z-5.000000\nG0 X10.000000 Y20.000000 Z-5.000000\nG4 P500\nG0 X10.000000 Y20.000000 Z2.000000\n"
         ),
         "{out}"
     );
+    // The bottom stated again without the thrust, where the dwell and the exit start.
     assert_eq!(out.matches("G4 P500").count(), 2, "{out}");
     // Read back: the same moves, now plain G0/G1 blocks; a moved point goes where it is sent.
     let again = gcode::parse(&out, 1e-5).unwrap();

@@ -46,6 +46,7 @@ mod free_tilt;
 mod gcode_controller;
 mod gcode_corpus;
 mod gcode_cycles;
+mod gcode_dialect;
 mod gcode_true_robot;
 mod gradients;
 mod identify;

@@ -139,6 +139,21 @@ pub(super) fn unstated_units(program: &Program) -> Option<Warning> {
     })
 }
 
+/// The warning that a G-code program moves a tool of known length without a tool length
+/// offset (`G43`) in force: its coordinates are read as the spindle's gauge line's, the tip that
+/// length below them.
+pub(super) fn no_length_offset(program: &Program) -> Option<Warning> {
+    let Program::GCode(g) = program else {
+        return None;
+    };
+    g.no_length_offset.map(|(line, length)| {
+        Warning::new(
+            WarningKind::Plausibility,
+            format!("line {line} moves the tool, whose length the process gives ({:.3} mm), with no tool length offset (G43) in force: its coordinates are read as the spindle's gauge line's, the tip {:.3} mm below them, as a controller with that tool table runs it; if the program's coordinates are the tip's (a machine whose work Z was touched off with the tool), leave length_mm out of the process", length * 1e3, length * 1e3),
+        )
+    })
+}
+
 /// The warning that a G-code program's `G53` rapids were read without the setup's `G53` frame:
 /// they make no point, and the robot goes from the point before each to the next in one move.
 pub(super) fn unplaced_g53(program: &Program) -> Option<Warning> {

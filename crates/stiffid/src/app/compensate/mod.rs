@@ -40,8 +40,8 @@ mod written;
 use crate::app::compensate::document::{Names, Summary};
 use crate::app::{Warning, WarningKind};
 use input::{
-    check_tcp, encoding_warning, held_lines, held_warning, read_checked, uncoupled_ls,
-    unplaced_g53, unstated_units,
+    check_tcp, encoding_warning, held_lines, held_warning, no_length_offset, read_checked,
+    uncoupled_ls, unplaced_g53, unstated_units,
 };
 pub use input::{read_program, read_program_in};
 use stiffid_core::io::Encoding;
@@ -227,6 +227,7 @@ where
     tally.ranking = ranking::Ranking::new(setup.arm(), compliance.model_form.as_ref());
     let units = read.as_ref().and_then(unstated_units);
     let g53 = read.as_ref().and_then(unplaced_g53);
+    let length = read.as_ref().and_then(no_length_offset);
     let coupling = read.as_ref().and_then(|p| uncoupled_ls(setup, p));
     let mut outcome = {
         let mut add = |first: usize, p: &[PathPoint], r: &[Compensated], d: &[Dynamics]| {
@@ -245,6 +246,7 @@ where
     };
     outcome.warnings.extend(units);
     outcome.warnings.extend(g53);
+    outcome.warnings.extend(length);
     outcome.warnings.extend(coupling);
     Ok(finish(setup, (compliance, names), options, tally, outcome)?)
 }

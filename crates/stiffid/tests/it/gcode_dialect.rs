@@ -1,0 +1,222 @@
+//! G-code where controllers differ, read as the setup's `[controller] dialect` says or refused
+//! naming the line and the option: a tool length offset made without a move and `G91` after it
+//! (Haas and FANUC take the offset up in the next `Z` move, LinuxCNC re-expresses where the tool
+//! is), `G28` with an offset in force, `G53` under `G91`; and what every controller reads alike
+//! but a program may still mean otherwise (a tool of known length without `G43`).
+
+use approx::assert_relative_eq;
+use nalgebra::Vector3;
+use stiffid::machining::gcode::{self, GcodeDialect, Machine, ProgramFrames};
+use stiffid::Error;
+
+const DOWN: &str = "(stiffid: tool_rpy_deg = 180 0 0)\n";
+
+fn mm(x: f64, y: f64, z: f64) -> Vector3<f64> {
+    Vector3::new(x, y, z) * 1e-3
+}
+
+/// T1 of 76.2 mm (3 inch), as the Haas case's, on `dialect`.
+fn haas_tool(dialect: Option<GcodeDialect>) -> Machine {
+    Machine {
+        frames: ProgramFrames {
+            g28: Some(mm(0.0, 0.0, 300.0)),
+            ..Default::default()
+        },
+        tool_lengths: vec![(Some(1), 0.0762)],
+        dialect,
+    }
+}
+
+fn read(text: &str, m: &Machine) -> gcode::GCode {
+    gcode::parse_on(&format!("{DOWN}{text}"), 1e-5, m).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn refused(text: &str, m: &Machine, line: u64, words: &[&str]) {
+    match gcode::parse_on(&format!("{DOWN}{text}"), 1e-5, m) {
+        Err(Error::Program { line: l, message }) => {
+            assert_eq!(l, line, "{message}");
+            for w in words {
+                assert!(message.contains(w), "{w}: {message}");
+            }
+        }
+        other => panic!("{words:?}: {other:?}"),
+    }
+}
+
+fn assert_path(g: &gcode::GCode, want: &[(u64, Vector3<f64>)]) {
+    assert_eq!(g.points.len(), want.len(), "{:?}", g.points);
+    for (p, (line, q)) in g.points.iter().zip(want) {
+        assert_eq!(p.line, *line);
+        assert_relative_eq!(p.position, *q, epsilon = 1e-12);
+    }
+}
+
+/// `G43 H1` without a move, then cuts in `G91` (inch): the gauge line at Z7 under `G49` puts
+/// the tip at 7 - 3 = 4 inch.
+const G43_THEN_G91: &str =
+    "G20 G90 G17\nT1 M6\nG0 X0 Y0 Z7.\nG43 H1\nG91 G1 Z-1. F10.\nX1.\nY1.\nG90 G0 Z1.\n";
+
+#[test]
+fn a_g43_without_a_move_then_g91_is_read_as_each_dialect_runs_it() {
+    let inch = |x: f64, y: f64, z: f64| mm(x, y, z) * 25.4;
+    // Haas and FANUC: the first Z move takes the offset up; the increment counts from the
+    // programmed Z7, the tip 6 inch up after it (3 inch of offset less 1 inch of increment
+    // from where the tip was: 4 inch).
+    let haas = [
+        (4, inch(0.0, 0.0, 4.0)),
+        (6, inch(0.0, 0.0, 6.0)),
+        (7, inch(1.0, 0.0, 6.0)),
+        (8, inch(1.0, 1.0, 6.0)),
+        (9, inch(1.0, 1.0, 1.0)),
+    ];
+    for d in [GcodeDialect::Haas, GcodeDialect::Fanuc] {
+        let m = haas_tool(Some(d));
+        let g = read(G43_THEN_G91, &m);
+        assert_path(&g, &haas);
+        // Written back, the increment is the controller's: the tip's 2 inch less the 3 inch of
+        // the offset it moves by; read back on the same dialect, the same path.
+        let positions: Vec<_> = g.points.iter().map(|p| p.position).collect();
+        let written = g.write(&positions).unwrap();
+        assert!(
+            written.contains("G91 G1 X0.000000 Y0.000000 Z-1.000000 F10."),
+            "{written}"
+        );
+        let again = gcode::parse_on(&written, 1e-5, &m).unwrap();
+        assert_path(&again, &haas);
+        // Moved 0.1 mm, the points read back moved.
+        let moved: Vec<_> = positions.iter().map(|p| p + mm(0.0, 0.0, 0.1)).collect();
+        let again = gcode::parse_on(&g.write(&moved).unwrap(), 1e-5, &m).unwrap();
+        for (a, b) in again.points.iter().zip(&moved) {
+            assert_relative_eq!(a.position, *b, epsilon = 1e-9);
+        }
+    }
+    // LinuxCNC: G43 moves nothing and re-expresses where the tool is; the increment counts
+    // from the tip, 3 inch lower than on a Haas (76.2 mm).
+    let linuxcnc = [
+        (4, inch(0.0, 0.0, 4.0)),
+        (6, inch(0.0, 0.0, 3.0)),
+        (7, inch(1.0, 0.0, 3.0)),
+        (8, inch(1.0, 1.0, 3.0)),
+        (9, inch(1.0, 1.0, 1.0)),
+    ];
+    assert_path(
+        &read(G43_THEN_G91, &haas_tool(Some(GcodeDialect::LinuxCnc))),
+        &linuxcnc,
+    );
+    // Unstated: refused naming the line, the G43's line, the distance and the option.
+    refused(
+        G43_THEN_G91,
+        &haas_tool(None),
+        6,
+        &["line 5", "76.2000 mm apart", "[controller] dialect"],
+    );
+    // A Z given absolutely after the G43 reads alike everywhere: no dialect needed, and moves
+    // without Z in between stay where the tool is.
+    let g = read(
+        "G20 G90\nT1 M6\nG0 X0 Y0 Z7.\nG43 H1\nX1.\nZ1.\nG91 G1 Z-1. F10.\n",
+        &haas_tool(None),
+    );
+    assert_path(
+        &g,
+        &[
+            (4, inch(0.0, 0.0, 4.0)),
+            (6, inch(1.0, 0.0, 4.0)),
+            (7, inch(1.0, 0.0, 1.0)),
+            (8, inch(1.0, 0.0, 0.0)),
+        ],
+    );
+    // grbl has no tool table.
+    refused(
+        "T1 M6\nG43 H1 Z5\n",
+        &haas_tool(Some(GcodeDialect::Grbl)),
+        3,
+        &["grbl has no tool table"],
+    );
+}
+
+#[test]
+fn g28_with_a_tool_length_offset_and_g53_in_g91_are_read_as_each_dialect_says() {
+    // Haas cancels the offset at G28: Z10 after it is the gauge line's, the tip 76.2 mm lower.
+    let text = "G21 G90\nT1 M6\nG43 H1 G0 X0 Y0 Z10\nG28 G91 Z0\nG90 G0 Z10\n";
+    let g = read(text, &haas_tool(Some(GcodeDialect::Haas)));
+    assert_path(
+        &g,
+        &[
+            (4, mm(0.0, 0.0, 10.0)),
+            (5, mm(0.0, 0.0, 300.0)),
+            (6, mm(0.0, 0.0, 10.0 - 76.2)),
+        ],
+    );
+    let g = read(text, &haas_tool(Some(GcodeDialect::LinuxCnc)));
+    assert_eq!(g.points[2].position, mm(0.0, 0.0, 10.0));
+    for d in [None, Some(GcodeDialect::Fanuc)] {
+        refused(
+            text,
+            &haas_tool(d),
+            6,
+            &["G28 of line 5", "state G43 H.. or G49 again"],
+        );
+    }
+    // Stated again after the G28: read alike everywhere.
+    let again = "G21 G90\nT1 M6\nG43 H1 G0 X0 Y0 Z10\nG28 G91 Z0\nG90 G43 H1 G0 Z10\n";
+    assert_eq!(
+        read(again, &haas_tool(None)).points[2].position,
+        mm(0.0, 0.0, 10.0)
+    );
+    // G53 in G91: LinuxCNC and grbl read absolute machine coordinates.
+    let mut m = haas_tool(Some(GcodeDialect::LinuxCnc));
+    m.frames.offsets = vec![(
+        "G53".into(),
+        nalgebra::Isometry3::translation(-0.5, -0.4, 0.2),
+    )];
+    let g = read("T1 M6\nG43 H1 G0 X0 Y0 Z10\nG91\nG53 G0 Z0\n", &m);
+    assert_relative_eq!(
+        g.points[1].position,
+        mm(0.0, 0.0, 200.0 - 76.2),
+        epsilon = 1e-12
+    );
+    m.dialect = Some(GcodeDialect::Haas);
+    refused(
+        "T1 M6\nG43 H1 G0 X0 Y0 Z10\nG91\nG53 G0 Z0\n",
+        &m,
+        5,
+        &["G53 in G91", "\"haas\""],
+    );
+    m.dialect = None;
+    refused(
+        "T1 M6\nG43 H1 G0 X0 Y0 Z10\nG91\nG53 G0 Z0\n",
+        &m,
+        5,
+        &["[controller] dialect"],
+    );
+}
+
+#[test]
+fn a_tool_of_known_length_without_g43_is_named_and_an_arc_word_off_its_plane_refused() {
+    // One length for every tool (an operation without tool_number), no T, no G43: the tip is
+    // read 50 mm below the programmed point, and the first such motion is named.
+    let m = Machine {
+        tool_lengths: vec![(None, 0.05)],
+        ..Default::default()
+    };
+    let g = read("G21 G90\nG0 X0 Y0 Z10\nG1 Z-1 F100\n", &m);
+    assert_eq!(g.points[0].position, mm(0.0, 0.0, -40.0));
+    assert_eq!(g.no_length_offset, Some((3, 0.05)));
+    // Under G43 nothing is named.
+    let g = read("G21 G90\nT1 M6\nG43 H1 G0 X0 Y0 Z10\n", &m);
+    assert_eq!(g.no_length_offset, None);
+    // K in G17: LinuxCNC refuses the block (it was read in XY, the K ignored).
+    let m = Machine::default();
+    refused(
+        "G21 G90 G17\nG0 X0 Y0 Z0\nG3 X10 Z-10 I5 K0 F100\n",
+        &m,
+        4,
+        &["K: a centre word off the arc's plane G17"],
+    );
+    refused(
+        "G18\nG0 X0 Y0 Z0\nG2 X10 I5 J1 F100\n",
+        &m,
+        4,
+        &["J: a centre word off"],
+    );
+}
