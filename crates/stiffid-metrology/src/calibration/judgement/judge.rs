@@ -104,7 +104,13 @@ fn untried_hint(model: &ErrorModel, ladder: Option<&Ladder>) -> String {
         .collect();
     match (untried.is_empty(), ladder.is_some()) {
         (false, _) => format!(" (try --gravity {})", untried.join(" or ")),
-        (true, true) => " (the ladder's gravity models predict the held-out groups no better: what the model misses is not the weight's sag; joint error maps (--maps) may hold it)".into(),
+        (true, true) => format!(
+            " (the ladder's gravity models predict the held-out groups no better: what the model misses is not the weight's sag{})",
+            match model.map_start() {
+                Some(_) => "",
+                None => "; joint error maps (--maps) may hold it",
+            }
+        ),
         (true, false) => String::new(),
     }
 }

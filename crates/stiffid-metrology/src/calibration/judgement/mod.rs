@@ -31,4 +31,6 @@ pub(crate) const WEAK_CONDITION: f64 = 1e6;
 #[cfg(test)]
 mod diverged_tests;
 #[cfg(test)]
+mod judge_tests;
+#[cfg(test)]
 mod ladder_tests;
