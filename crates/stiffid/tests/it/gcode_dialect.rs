@@ -220,3 +220,68 @@ fn a_tool_of_known_length_without_g43_is_named_and_an_arc_word_off_its_plane_ref
         &["J: a centre word off"],
     );
 }
+
+#[test]
+fn hostile_sequences_of_offsets_homes_and_g53_never_panic_and_name_a_line() {
+    // Every pair of these blocks, then a G91 Z move, after a known start, on every dialect and
+    // none: read with finite points, or refused naming a line of the program.
+    let blocks = [
+        "G43 H1",
+        "G44 H1",
+        "G49",
+        "G43 H2",
+        "G91 G1 Z-1 F100",
+        "G90 G0 Z5",
+        "G91 X1",
+        "G28 G91 Z0",
+        "G28",
+        "G28 X0",
+        "G53 G0 Z0",
+        "G91 G53 G1 X1 F10",
+        "G81 X1 Y1 Z-1 R2 F50",
+        "G80",
+        "G43 H1 G91 Z-1e9",
+        "G43 H99999999",
+        "G3 X1 Y1 I1 K1 F10",
+        "G18 G2 X1 Z1 I1 J0 F10",
+    ];
+    let mut m = haas_tool(None);
+    m.tool_lengths.push((Some(2), 0.3));
+    m.frames.offsets = vec![(
+        "G53".into(),
+        nalgebra::Isometry3::translation(0.0, 0.0, 0.5),
+    )];
+    let dialects = [
+        None,
+        Some(GcodeDialect::LinuxCnc),
+        Some(GcodeDialect::Fanuc),
+        Some(GcodeDialect::Haas),
+        Some(GcodeDialect::Grbl),
+    ];
+    let (mut read, mut refused) = (0, 0);
+    for d in dialects {
+        m.dialect = d;
+        for a in blocks {
+            for b in blocks {
+                let c = "G91 G1 Z-1 F10";
+                let text = format!("{DOWN}G21 G90\nT1 M6\nG0 X0 Y0 Z10\n{a}\n{b}\n{c}\n");
+                match gcode::parse_on(&text, 1e-4, &m) {
+                    Ok(g) => {
+                        assert!(g
+                            .points
+                            .iter()
+                            .all(|p| p.position.iter().all(|v| v.is_finite())));
+                        read += 1;
+                    }
+                    Err(Error::Program { line, .. }) => {
+                        assert!((1..=7).contains(&line), "{text}");
+                        refused += 1;
+                    }
+                    Err(e) => panic!("{text}: {e}"),
+                }
+            }
+        }
+    }
+    assert_eq!(read + refused, 5 * blocks.len().pow(2));
+    assert!(read > 0 && refused > 0);
+}
