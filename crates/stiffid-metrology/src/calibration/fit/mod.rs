@@ -36,8 +36,8 @@
 //!
 //! *The prior's strength chosen by the readings.* The stated bound is the weakest prior a fit
 //! takes: a misfit no model term holds, seen on a few dozen postures, is one the gravity terms can
-//! follow within 3 mrad, and a gravity model that no ladder judges (given, not chosen) has
-//! nothing else to hold it. [`fit_choosing_strength`] then chooses the prior's strength by
+//! follow within the stated bound, and a model that no held-out judgement screens has nothing
+//! else to hold it. [`fit_choosing_strength`] chooses the prior's strength by
 //! cross-validation over the postures, as the maps choose their ridge: the postures dealt into
 //! five groups, each group predicted by the fit of the others linearised at this fit, at the
 //! prior's weight times `10^(k/2)` (`k = 0..STRENGTHS`, the deflection divided alike); the
@@ -128,7 +128,7 @@ pub struct GravityPrior {
     pub noise: f64,
 }
 
-/// The deflection of [`GravityPrior`] that the calibration uses: 3 mrad (0.17 deg), a heavy
+/// The deflection of [`GravityPrior`] that the calibration uses by default (`--gravity-bound-mrad`): 3 mrad (0.17 deg), a heavy
 /// robot's sag at its joint 2 and more (about 2 mrad for a 165 kg payload-class arm at its
 /// nominal stiffness under its own weight, far less for a light one).
 pub const GRAVITY_DEFLECTION: f64 = 3e-3;

@@ -73,8 +73,9 @@ pub(super) fn fit_with(
 }
 
 /// [`fit`](super::fit) with the gravity prior's strength chosen by the readings (module docs,
-/// *The prior's strength chosen by the readings*): the fit of a gravity model that no ladder
-/// judges (`--gravity` given), whose terms the readings may not tell from a misfit. The same as
+/// *The prior's strength chosen by the readings*), for a gravity model whose terms the readings
+/// may not tell from a misfit. `calibrate` does not use it: every gravity model there, chosen by
+/// the ladder or given, is fitted at the stated bound ([`fit`](super::fit)). The same as
 /// [`fit`](super::fit) for a model without gravity terms or with maps.
 ///
 /// # Errors

@@ -123,7 +123,7 @@ stiffid_core::common::choice::by_name!(Gravity);
 pub use stiffid_core::robot::LinkMass;
 
 /// Whether [`Gravity::Arm`] holds on `robot`: an anthropomorphic arm (joint 1 vertical, joints 2
-/// and 3 horizontal and parallel; [`arm`]'s check).
+/// and 3 horizontal and parallel; the `arm` module's check).
 pub fn takes_arm(robot: &Robot) -> bool {
     arm::axes(robot).is_ok()
 }

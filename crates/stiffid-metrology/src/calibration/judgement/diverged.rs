@@ -8,7 +8,7 @@
 //! left in, it inflates every bound built from the folds: the jackknife+'s quantiles (one fold
 //! is `1 / n` of its values) and the variance of the fit's Gaussian bound (a mean square, which
 //! one fold can make as large as it likes). A fold whose held-out RMS exceeds [`DIVERGED`] times
-//! the median fold's is left out of both, and the calibration says which and why ([`warning`]);
+//! the median fold's is left out of both, and the calibration says which and why (a `left-out` warning);
 //! the bounds rest on the other folds. A heavy-tailed but finite spread of the postures' errors
 //! stays in: on the real UR10 (series C, ten draws of 100 random poses, the default model) the
 //! largest leave-one-posture-out error is 3.2 to 9.9 times the median one (docs/model.md).
