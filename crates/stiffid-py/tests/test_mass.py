@@ -9,8 +9,8 @@ import pytest
 import stiffid
 
 ROOT = Path(__file__).resolve().parents[3]
-COMAU = (ROOT / "crates/stiffid/presets/comau-smart5-nj165-3.0.toml").read_text()
-SETUP = (ROOT / "crates/stiffid/setups/zhang2021-comau-nj165.toml").read_text()
+COMAU = (ROOT / "crates/stiffid-core/presets/comau-smart5-nj165-3.0.toml").read_text()
+SETUP = (ROOT / "crates/stiffid-core/setups/zhang2021-comau-nj165.toml").read_text()
 Q = [10, -20, -100, 30, 40, 50]
 K = [950000, 3000000, 900000, 250000, 200000, 150000]
 

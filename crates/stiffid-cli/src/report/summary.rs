@@ -9,15 +9,14 @@ use stiffid::app::reproduce::Report;
 /// Whether `path` is a regular file `summary.json` (never waiting on a FIFO) whose `generator` is `generator` (e.g.
 /// [`stiffid::app::reproduce::document::GENERATOR`]).
 pub fn is_ours(path: &Path, generator: &str) -> bool {
-    stiffid_core::io::input::open(path)
+    stiffid::internal::io::input::open(path)
         .ok()
-        .and_then(|f| stiffid_core::io::read_text("summary.json", f).ok())
+        .and_then(|f| stiffid::internal::io::read_text("summary.json", f).ok())
         .and_then(|t| serde_json::from_str::<Value>(&t).ok())
         .is_some_and(|v| v["generator"] == generator)
 }
 
 /// The text of `summary.json`: the document `report` serialises to.
 pub fn json(report: &Report) -> Result<String> {
-    // Through a `Value`: its keys in alphabetical order, as summary.json has always had them.
-    crate::output::json(&serde_json::to_value(report)?)
+    crate::output::json(report)
 }

@@ -7,15 +7,15 @@ use crate::{robot::builtin, Result};
 const PRESETS: &builtin::Table = &[
     (
         "comau-smart5-nj165-3.0",
-        include_str!("../../../stiffid/presets/comau-smart5-nj165-3.0.toml"),
+        include_str!("../../presets/comau-smart5-nj165-3.0.toml"),
     ),
     (
         "fanuc-r2000ic-165f",
-        include_str!("../../../stiffid/presets/fanuc-r2000ic-165f.toml"),
+        include_str!("../../presets/fanuc-r2000ic-165f.toml"),
     ),
     (
         "kuka-kr210-robond",
-        include_str!("../../../stiffid/presets/kuka-kr210-robond.toml"),
+        include_str!("../../presets/kuka-kr210-robond.toml"),
     ),
 ];
 

@@ -216,11 +216,11 @@ struct ConstraintsFile {
 const BUILTIN: &crate::robot::builtin::Table = &[
     (
         "zhang2021-comau-nj165",
-        include_str!("../../../stiffid/setups/zhang2021-comau-nj165.toml"),
+        include_str!("../../setups/zhang2021-comau-nj165.toml"),
     ),
     (
         "fanuc-r2000ic-165f",
-        include_str!("../../../stiffid/setups/fanuc-r2000ic-165f.toml"),
+        include_str!("../../setups/fanuc-r2000ic-165f.toml"),
     ),
 ];
 

@@ -90,8 +90,8 @@ impl Rows {
 }
 
 impl Document<'_> {
-    /// Writes the document to `out` as pretty JSON with a final line break, keys in alphabetical
-    /// order (as [`serde_json::Value`] orders them), its `points` (empty in `self`) read one by
+    /// Writes the document to `out` as pretty JSON with a final line break, `kind` first and the
+    /// other keys in alphabetical order (as [`serde_json::Value`] orders them), its `points` (empty in `self`) read one by
     /// one from `points`: what a [`Points`] wrote. The same bytes as the document holding those
     /// points, written whole.
     ///
@@ -121,8 +121,12 @@ struct Streamed<'a, R> {
 impl<R: Read> Serialize for Streamed<'_, R> {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let mut map = serializer.serialize_map(Some(self.document.len()))?;
+        if let Some(kind) = self.document.get("kind") {
+            map.serialize_entry("kind", kind)?;
+        }
         for (key, value) in self.document {
             match key.as_str() {
+                "kind" => {}
                 "points" => map.serialize_entry(key, &Stored(self))?,
                 _ => map.serialize_entry(key, value)?,
             }

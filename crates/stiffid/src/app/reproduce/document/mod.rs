@@ -29,7 +29,7 @@ fn deg(q: &Vector6<f64>) -> [f64; 6] {
 }
 
 /// `summary.json` of `stiffid reproduce`: the resolved setup, the options, and every group's
-/// postures, criteria and deviation rates (keys in alphabetical order in the file).
+/// postures, criteria and deviation rates (`kind` first, then the keys in the order below).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 #[serde(tag = "kind", rename = "reproduce")]
