@@ -9,13 +9,15 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::{Isometry3, Point3, Vector3, Vector6};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use stiffid::metrology::calibration::error_model::{MeasuredIn, Observation};
-use stiffid::metrology::calibration::fit::{self, Options};
-use stiffid::metrology::calibration::{
+use stiffid::internal::metrology::calibration::error_model::{MeasuredIn, Observation};
+use stiffid::internal::metrology::calibration::fit::{self, Options};
+use stiffid::internal::metrology::calibration::{
     gravity, motions, validation, ErrorModel, Estimate, Geometry,
 };
-use stiffid::robot::external::{ErrorMotions, ExternalAxes, ExternalAxis, ExternalValues};
-use stiffid::robot::presets;
+use stiffid::internal::robot::external::{
+    ErrorMotions, ExternalAxes, ExternalAxis, ExternalValues,
+};
+use stiffid::internal::robot::presets;
 
 /// The campaign and, with `track`, the arm on a 6 m track along x whose true error motions are
 /// of order 3 (0.1 mm, 0.1 mrad), with the model of the arm alone (the track's parameters are

@@ -18,13 +18,13 @@ use nalgebra::Vector3;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use stiffid::app::purpose::{self, CalibrationOptions};
-use stiffid::design::observability::{CalibrationCriterion, CalibrationDesign, Placed};
-use stiffid::design::{self, CalibrationGoal, Goal, SearchOptions};
-use stiffid::metrology::calibration::error_model::MeasuredIn;
-use stiffid::metrology::calibration::{gravity, ErrorModel, Geometry};
-use stiffid::robot::external::{ExternalAxes, ExternalAxis};
-use stiffid::robot::{presets, LinkMass};
-use stiffid::study::observability::postures;
+use stiffid::internal::design::observability::{CalibrationCriterion, CalibrationDesign, Placed};
+use stiffid::internal::design::{self, CalibrationGoal, Goal, SearchOptions};
+use stiffid::internal::metrology::calibration::error_model::MeasuredIn;
+use stiffid::internal::metrology::calibration::{gravity, ErrorModel, Geometry};
+use stiffid::internal::robot::external::{ExternalAxes, ExternalAxis};
+use stiffid::internal::robot::{presets, LinkMass};
+use stiffid::internal::study::observability::postures;
 use stiffid::Robot;
 
 /// The design on the preset with the gravity model `g`, and a group of 12 postures.
@@ -123,7 +123,7 @@ fn bench(c: &mut Criterion<Cpu>) {
         b.iter(|| design.value_and_log_gradient(test_pose, &group))
     });
     // The same group after 12 fixed, with and without the track's columns: a campaign's step.
-    let none = stiffid::robot::external::ExternalValues::NONE;
+    let none = stiffid::internal::robot::external::ExternalValues::NONE;
     let fixed: Vec<Placed> = group.iter().map(|q| (*q, none)).collect();
     let step = design.on_station(none, &fixed).unwrap();
     c.bench_function("calibration gradient 12+12 postures 55 parameters", |b| {
@@ -151,16 +151,16 @@ fn bench(c: &mut Criterion<Cpu>) {
 /// The paper's setup in the guide's cell (floor, clearance, the tracker at (3000, -2000, 1500)
 /// mm, line of sight and incidence).
 fn tracker_cell() -> stiffid::Setup {
-    let text = stiffid::setup::builtin_text("zhang2021-comau-nj165").unwrap().to_string()
+    let text = stiffid::internal::setup::builtin_text("zhang2021-comau-nj165").unwrap().to_string()
         + "\n[cell]\nfloor_z_mm = 0.0\nclearance_mm = 50.0\n[tracker]\nposition_mm = [3000.0, -2000.0, 1500.0]\n";
-    stiffid::setup::parse(&text, "cell.toml", |r, _| presets::get(r)).unwrap()
+    stiffid::internal::setup::parse(&text, "cell.toml", |r, _| presets::get(r)).unwrap()
 }
 
 fn search(c: &mut Criterion<Cpu>) {
     let setup = tracker_cell();
     let d = purpose::design(&setup, &CalibrationOptions::default()).unwrap();
     let goal = Goal {
-        stiffness: stiffid::design::Criterion::RelativeA,
+        stiffness: stiffid::internal::design::Criterion::RelativeA,
         calibration: Some(CalibrationGoal {
             design: &d,
             criterion: CalibrationCriterion::TestPose,

@@ -10,14 +10,17 @@ mod mesh_robot;
 
 use criterion::{criterion_group, criterion_main, Criterion as Bench};
 use std::hint::black_box;
-use stiffid::cell::Checker;
-use stiffid::design::{self, Criterion, SearchOptions, Solver};
+use stiffid::internal::cell::Checker;
+use stiffid::internal::design::{self, Criterion, SearchOptions, Solver};
 
 /// The paper setup in the guide's cell (docs/guide.md, "The cell").
 fn paper_cell() -> stiffid::Setup {
-    let text = stiffid::setup::builtin_text("zhang2021-comau-nj165").unwrap().to_string()
+    let text = stiffid::internal::setup::builtin_text("zhang2021-comau-nj165").unwrap().to_string()
         + "\n[cell]\nfloor_z_mm = 0.0\nclearance_mm = 50.0\n[tracker]\nposition_mm = [3000.0, -2000.0, 1500.0]\n";
-    stiffid::setup::parse(&text, "cell.toml", |r, _| stiffid::robot::presets::get(r)).unwrap()
+    stiffid::internal::setup::parse(&text, "cell.toml", |r, _| {
+        stiffid::internal::robot::presets::get(r)
+    })
+    .unwrap()
 }
 
 fn feasibility(c: &mut Bench) {
@@ -31,7 +34,9 @@ fn feasibility(c: &mut Bench) {
         b.iter(|| checker.margins(black_box(&q)))
     });
     c.bench_function("cell/capsules/one-posture", |b| {
-        b.iter(|| stiffid::cell::capsules(setup.arm(), &setup.robot().frames(black_box(&q))))
+        b.iter(|| {
+            stiffid::internal::cell::capsules(setup.arm(), &setup.robot().frames(black_box(&q)))
+        })
     });
     let group = design::random_group(&setup, 6, 1);
     let evaluator = design::Evaluator::new(&setup);
@@ -75,12 +80,12 @@ fn mesh_cell() -> stiffid::Setup {
         ))
     };
     let bytes = |p: &Path| files.get(p).cloned().map(Ok);
-    let meshes = stiffid::setup::reference::Meshes {
+    let meshes = stiffid::internal::setup::reference::Meshes {
         read: &bytes,
         package_paths: &[],
     };
     let toml = mesh_robot::setup_toml();
-    stiffid::setup::reference::setup_text_with_meshes(
+    stiffid::internal::setup::reference::setup_text_with_meshes(
         &toml,
         "pkg/cell.toml",
         Path::new("pkg"),

@@ -12,12 +12,12 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::{DVector, Vector6};
 use std::hint::black_box;
-use stiffid::design::{local, Criterion as Design, Gradient, SearchOptions, Solver};
-use stiffid::identify;
-use stiffid::math::lsq::Factor;
-use stiffid::observation::rope_observation_matrix;
-use stiffid::observation::Measurement;
-use stiffid::setup;
+use stiffid::internal::design::{local, Criterion as Design, Gradient, SearchOptions, Solver};
+use stiffid::internal::identify;
+use stiffid::internal::math::lsq::Factor;
+use stiffid::internal::observation::rope_observation_matrix;
+use stiffid::internal::observation::Measurement;
+use stiffid::internal::setup;
 
 const START: &str = include_str!("../../../bench/inputs/start-group.csv");
 const MEASUREMENTS: &str = include_str!("../../../bench/inputs/measurements.csv");
@@ -25,13 +25,13 @@ const MEASUREMENTS: &str = include_str!("../../../bench/inputs/measurements.csv"
 /// The start group (axis angles, rad), read by the library's parser.
 fn start_group() -> Vec<Vector6<f64>> {
     let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
-    stiffid::io::postures::parse(START, setup.robot(), None).unwrap()
+    stiffid::internal::io::postures::parse(START, setup.robot(), None).unwrap()
 }
 
 /// The measurements of `posture,point,q1_deg..q6_deg,fx_n,fy_n,fz_n,dx_mm,dy_mm,dz_mm`, read by the
 /// library's parser.
 fn measurements() -> Vec<Measurement> {
-    stiffid::io::measurements::parse(MEASUREMENTS)
+    stiffid::internal::io::measurements::parse(MEASUREMENTS)
         .unwrap()
         .measurements
 }

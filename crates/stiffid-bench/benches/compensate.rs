@@ -11,21 +11,21 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::{Translation3, Vector6};
 use std::hint::black_box;
-use stiffid::identify::cross_validation::{cross_validate, Method};
-use stiffid::identify::prediction::calibrate;
-use stiffid::identify::Identify;
-use stiffid::machining::compensate::{self, Options, PathPoint, Target};
-use stiffid::model::Compliance;
-use stiffid::observation::deflection::Frame;
-use stiffid::observation::Observations;
-use stiffid::robot::ik::{self, tool_pose};
-use stiffid::{observation::cartesian, setup};
+use stiffid::internal::identify::cross_validation::{cross_validate, Method};
+use stiffid::internal::identify::prediction::calibrate;
+use stiffid::internal::identify::Identify;
+use stiffid::internal::machining::compensate::{self, Options, PathPoint, Target};
+use stiffid::internal::model::Compliance;
+use stiffid::internal::observation::deflection::Frame;
+use stiffid::internal::observation::Observations;
+use stiffid::internal::robot::ik::{self, tool_pose};
+use stiffid::internal::{observation::cartesian, setup};
 
 /// The drives identified on the FANUC data with their jackknife+ calibration, as `identify
 /// --cross-validate --out` stores them.
 fn identified_with_prediction(s: &setup::Setup) -> Compliance {
     let text = include_str!("../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
-    let mut file = stiffid::io::measurements::parse(text).unwrap();
+    let mut file = stiffid::internal::io::measurements::parse(text).unwrap();
     file.to_base_frame(s).unwrap();
     let obs = Observations::from_measurements(s.arm(), &file.measurements).unwrap();
     let id = obs.least_squares().unwrap();
@@ -66,7 +66,7 @@ fn benches(c: &mut Criterion) {
             target: Target::Pose(Translation3::new(3e-5 * i as f64, -1e-5 * i as f64, 0.0) * start),
             wrench: Vector6::new(0.0, 200.0, 0.0, 0.0, 0.0, 0.0),
             frame: Frame::Tool,
-            external: stiffid::robot::external::ExternalValues::NONE,
+            external: stiffid::internal::robot::external::ExternalValues::NONE,
         })
         .collect();
     let compliance = s.model_compliance("the bench").unwrap();
@@ -146,11 +146,13 @@ fn benches(c: &mut Criterion) {
 /// minimising the worst point's bound.
 fn track(group: &mut criterion::BenchmarkGroup<criterion::measurement::WallTime>) {
     use nalgebra::{Isometry3, UnitQuaternion, Vector3};
-    use stiffid::machining::compensate::{Aggregate, Free, FreeRange, FreeVariables, Variable};
-    use stiffid::robot::external::ExternalValues;
+    use stiffid::internal::machining::compensate::{
+        Aggregate, Free, FreeRange, FreeVariables, Variable,
+    };
+    use stiffid::internal::robot::external::ExternalValues;
     let text = include_str!("../../../examples/track/track-cell.toml");
     let s = setup::parse(text, "track-cell.toml", |name, _| {
-        stiffid::robot::presets::get(name)
+        stiffid::internal::robot::presets::get(name)
     })
     .unwrap();
     let compliance = s.model_compliance("the bench").unwrap();

@@ -6,12 +6,12 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::Vector6;
 use std::hint::black_box;
-use stiffid::identify::cross_validation::Method;
-use stiffid::identify::Identify;
-use stiffid::identify::{cross_validate, Loss};
-use stiffid::io::measurements;
-use stiffid::observation::{Measurement, Observations};
-use stiffid::setup;
+use stiffid::internal::identify::cross_validation::Method;
+use stiffid::internal::identify::Identify;
+use stiffid::internal::identify::{cross_validate, Loss};
+use stiffid::internal::io::measurements;
+use stiffid::internal::observation::{Measurement, Observations};
+use stiffid::internal::setup;
 
 const FANUC: &str = include_str!("../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
 

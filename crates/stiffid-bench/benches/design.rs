@@ -6,10 +6,12 @@
 
 use criterion::{criterion_group, criterion_main, Criterion as Bench};
 use std::hint::black_box;
-use stiffid::design::{self, Criterion, Evaluator, Gradient, Pool, PoolOptions, SearchOptions};
+use stiffid::internal::design::{
+    self, Criterion, Evaluator, Gradient, Pool, PoolOptions, SearchOptions,
+};
 
 fn evaluation(c: &mut Bench) {
-    let setup = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let setup = stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap();
     let group = design::random_group(&setup, 6, 1);
     let evaluator = Evaluator::new(&setup);
     for criterion in Criterion::ALL {
@@ -28,7 +30,7 @@ fn evaluation(c: &mut Bench) {
 }
 
 fn search(c: &mut Bench) {
-    let setup = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let setup = stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap();
     let start = design::random_group(&setup, 6, 1);
     let options = SearchOptions::default();
     let mut g = c.benchmark_group("design/search");
@@ -72,7 +74,7 @@ fn search(c: &mut Bench) {
 }
 
 fn pool(c: &mut Bench) {
-    let setup = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let setup = stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap();
     let postures = design::random_group(&setup, 1000, 1);
     let options = PoolOptions::default();
     let mut g = c.benchmark_group("design/pool");

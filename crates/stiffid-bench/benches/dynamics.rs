@@ -3,18 +3,18 @@
 //! `zhang2021-comau-nj165` setup given link masses and inertia tensors (the drives' nominal
 //! stiffness). Goals: one posture under 20 us, 10 000 path postures under 0.2 s; and the
 //! compensate job's per-point dynamics of a 10 000-point program
-//! ([`stiffid::machining::dynamics::program`]: every point milled, so every point's modes).
+//! ([`stiffid::internal::machining::dynamics::program`]: every point milled, so every point's modes).
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::{Matrix3, Vector3, Vector6};
 use std::hint::black_box;
-use stiffid::machining;
-use stiffid::machining::compensate::{self, Options, PathPoint, Target};
-use stiffid::machining::process::file;
-use stiffid::observation::deflection::Frame;
-use stiffid::observation::dynamics;
-use stiffid::robot::LinkMass;
-use stiffid::setup;
+use stiffid::internal::machining;
+use stiffid::internal::machining::compensate::{self, Options, PathPoint, Target};
+use stiffid::internal::machining::process::file;
+use stiffid::internal::observation::deflection::Frame;
+use stiffid::internal::observation::dynamics;
+use stiffid::internal::robot::LinkMass;
+use stiffid::internal::setup;
 
 fn dynamics(c: &mut Criterion) {
     let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
@@ -59,7 +59,7 @@ fn dynamics(c: &mut Criterion) {
             target: Target::Posture(*q),
             wrench: Vector6::new(100.0, 0.0, 0.0, 0.0, 0.0, 0.0),
             frame: Frame::Base,
-            external: stiffid::robot::external::ExternalValues::NONE,
+            external: stiffid::internal::robot::external::ExternalValues::NONE,
         })
         .collect();
     let options = Options::for_setup(&setup);

@@ -3,16 +3,16 @@
 //! confidence intervals). Target: < 5 microseconds median. Also the kinematics that build `Psi` from
 //! the 24 measurements, and the whole path, for reference.
 
-use stiffid::identify::Identify;
+use stiffid::internal::identify::Identify;
 #[path = "../../stiffid/tests/it/common.rs"]
 mod common;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::Vector3;
 use std::hint::black_box;
-use stiffid::identify;
-use stiffid::observation::{Measurement, Observations};
-use stiffid::setup;
+use stiffid::internal::identify;
+use stiffid::internal::observation::{Measurement, Observations};
+use stiffid::internal::setup;
 
 fn bench(c: &mut Criterion) {
     let setup = setup::builtin("zhang2021-comau-nj165").expect("built-in setup");

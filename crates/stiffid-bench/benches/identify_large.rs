@@ -7,8 +7,8 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
-use stiffid::identify::streamed;
-use stiffid::setup;
+use stiffid::internal::identify::streamed;
+use stiffid::internal::setup;
 
 const FANUC: &str = include_str!("../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
 

@@ -6,9 +6,9 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::{Matrix6, Vector3};
 use std::hint::black_box;
-use stiffid::math::lsq::Factor;
-use stiffid::observation::rope_observation_matrix;
-use stiffid::{dexterity, setup, Coordinates};
+use stiffid::internal::math::lsq::Factor;
+use stiffid::internal::observation::rope_observation_matrix;
+use stiffid::{dexterity, internal::setup, Coordinates};
 
 fn kinematics(c: &mut Criterion) {
     let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
@@ -36,15 +36,15 @@ fn kinematics(c: &mut Criterion) {
     // as a calibration with maps writes them.
     let map = |k: f64| {
         let c: Vec<f64> = (1..=16).map(|h| k * 1e-5 / h as f64).collect();
-        stiffid::robot::ErrorMap::new(c.clone(), c).unwrap()
+        stiffid::internal::robot::ErrorMap::new(c.clone(), c).unwrap()
     };
     let mapped = setup.robot().clone().with_error_maps([
-        stiffid::robot::ErrorMap::default(),
+        stiffid::internal::robot::ErrorMap::default(),
         map(1.0),
         map(-2.0),
-        stiffid::robot::ErrorMap::default(),
+        stiffid::internal::robot::ErrorMap::default(),
         map(3.0),
-        stiffid::robot::ErrorMap::default(),
+        stiffid::internal::robot::ErrorMap::default(),
     ]);
     c.bench_function("frames (COMAU, error maps on 3 axes x 16 harmonics)", |b| {
         b.iter(|| mapped.frames(black_box(&q)))

@@ -23,18 +23,18 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 use stiffid::app::calibrate::{self, GravitySpec, Report, Request};
 use stiffid::app::readings::Request as Readings;
-use stiffid::common::choice::Choice;
-use stiffid::metrology::calibration::error_model::{MeasuredIn, Observation, Target};
-use stiffid::metrology::calibration::gravity;
-use stiffid::metrology::calibration::maps::Spec;
-use stiffid::metrology::calibration::{motions, ErrorModel, Geometry};
-use stiffid::robot::external::ExternalValues;
-use stiffid::robot::Robot;
+use stiffid::internal::common::choice::Choice;
+use stiffid::internal::metrology::calibration::error_model::{MeasuredIn, Observation, Target};
+use stiffid::internal::metrology::calibration::gravity;
+use stiffid::internal::metrology::calibration::maps::Spec;
+use stiffid::internal::metrology::calibration::{motions, ErrorModel, Geometry};
+use stiffid::internal::robot::external::ExternalValues;
+use stiffid::internal::robot::Robot;
 use stiffid::Setup;
 
 /// The UR10 (standard DH, Universal Robots' published table), joints within +-360 deg.
 fn ur10() -> Robot {
-    use stiffid::robot::dh::{self, Convention, Row};
+    use stiffid::internal::robot::dh::{self, Convention, Row};
     let half = std::f64::consts::FRAC_PI_2;
     let rows = [
         (0.0, half, 0.1273),
@@ -56,14 +56,16 @@ fn ur10() -> Robot {
         )
     });
     let two_pi = 2.0 * std::f64::consts::PI;
-    let limits =
-        stiffid::common::limits::JointBox::new(Vector6::repeat(-two_pi), Vector6::repeat(two_pi));
+    let limits = stiffid::internal::common::limits::JointBox::new(
+        Vector6::repeat(-two_pi),
+        Vector6::repeat(two_pi),
+    );
     Robot::new("UR10", "Universal Robots DH table", joints, limits).unwrap()
 }
 
 /// The COMAU setup with the UR10 and one measuring point 109 mm along the flange axis.
 fn ur10_setup() -> Setup {
-    let comau = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let comau = stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap();
     comau
         .to_builder()
         .with_robot(ur10())
@@ -114,8 +116,8 @@ fn readings(
     let noise = Normal::new(0.0, 2e-5).unwrap();
     let loaded = wrenches.len() > 1;
     let mut text = match loaded {
-        true => stiffid::io::readings::header_with_loads(),
-        false => stiffid::io::readings::header(),
+        true => stiffid::internal::io::readings::header_with_loads(),
+        false => stiffid::internal::io::readings::header(),
     } + "\n";
     for (i, q) in qs.iter().enumerate() {
         let deg: Vec<String> = q.iter().map(|v| format!("{:?}", v.to_degrees())).collect();
@@ -177,7 +179,7 @@ fn ur10_campaign(n: usize) -> (Setup, String) {
 
 /// The COMAU's loaded campaign of 100 postures x 3 load steps x its first measuring point.
 fn loaded_campaign() -> (Setup, String) {
-    let comau = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let comau = stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap();
     let first = comau.tool().measuring_points[0];
     let setup = (comau.to_builder())
         .with_measuring_points(vec![first])
@@ -273,7 +275,7 @@ fn once(name: &str, request: &Request) -> Report {
         cpu() - c,
         t.elapsed().as_secs_f64(),
         report.gravity.name(),
-        stiffid::metrology::calibration::maps::name(
+        stiffid::internal::metrology::calibration::maps::name(
             &report
                 .maps
                 .choice

@@ -8,12 +8,12 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use nalgebra::Isometry3;
 use stiffid::app::compensate::{self, Input, Request};
-use stiffid::machining::compensate::Options;
-use stiffid::machining::process::file;
-use stiffid::machining::program::generate::Settings;
-use stiffid::machining::program::Dialect;
-use stiffid::machining::Language;
-use stiffid::setup;
+use stiffid::internal::machining::compensate::Options;
+use stiffid::internal::machining::process::file;
+use stiffid::internal::machining::program::generate::Settings;
+use stiffid::internal::machining::program::Dialect;
+use stiffid::internal::machining::Language;
+use stiffid::internal::setup;
 
 /// A raster over 300 mm x 200 mm: 100 rows of 1000 blocks of 0.3 mm, 2 mm apart.
 fn raster() -> String {
@@ -53,7 +53,7 @@ fn reading(c: &mut Criterion) {
     let mut group = c.benchmark_group("read a program");
     group.sample_size(10);
     group.bench_function("FANUC LS, 200 000 positions", |b| {
-        b.iter(|| stiffid::machining::program::parse(&text, Dialect::FanucLs).unwrap())
+        b.iter(|| stiffid::internal::machining::program::parse(&text, Dialect::FanucLs).unwrap())
     });
     group.finish();
 }

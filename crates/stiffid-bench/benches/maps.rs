@@ -11,12 +11,14 @@ use nalgebra::{Isometry3, Point3, Vector3, Vector6};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
-use stiffid::metrology::calibration::error_model::{MeasuredIn, Observation};
-use stiffid::metrology::calibration::fit::{self, Options};
-use stiffid::metrology::calibration::maps::{self, Linear, Spec};
-use stiffid::metrology::calibration::{gravity, validation, ErrorModel, Geometry, Target};
-use stiffid::robot::external::ExternalValues;
-use stiffid::robot::presets;
+use stiffid::internal::metrology::calibration::error_model::{MeasuredIn, Observation};
+use stiffid::internal::metrology::calibration::fit::{self, Options};
+use stiffid::internal::metrology::calibration::maps::{self, Linear, Spec};
+use stiffid::internal::metrology::calibration::{
+    gravity, validation, ErrorModel, Geometry, Target,
+};
+use stiffid::internal::robot::external::ExternalValues;
+use stiffid::internal::robot::presets;
 
 const POSTURES: usize = 100;
 

@@ -10,7 +10,7 @@
 
 use criterion::{criterion_group, criterion_main, Criterion as Bench};
 use std::hint::black_box;
-use stiffid::design::{self, Criterion, Evaluator};
+use stiffid::internal::design::{self, Criterion, Evaluator};
 
 const EIGHT: &str = r#"
 [[model.spring]]
@@ -35,12 +35,15 @@ links = [1, 2, 3, 6]
 nominal_stiffness_nm_per_rad = 4e6
 "#;
 
-fn setup(model: &str) -> stiffid::setup::Setup {
-    let text = stiffid::setup::builtin_text("zhang2021-comau-nj165")
+fn setup(model: &str) -> stiffid::internal::setup::Setup {
+    let text = stiffid::internal::setup::builtin_text("zhang2021-comau-nj165")
         .unwrap()
         .to_string()
         + model;
-    stiffid::setup::parse(&text, "model.toml", |r, _| stiffid::robot::presets::get(r)).unwrap()
+    stiffid::internal::setup::parse(&text, "model.toml", |r, _| {
+        stiffid::internal::robot::presets::get(r)
+    })
+    .unwrap()
 }
 
 fn parameters(c: &mut Bench) {
@@ -69,7 +72,7 @@ fn parameters(c: &mut Bench) {
 fn compare_models(c: &mut Bench) {
     use stiffid::app::identify::{run, Options, Request};
     use stiffid::app::measurements::Data;
-    let setup = stiffid::setup::builtin("fanuc-r2000ic-165f").unwrap();
+    let setup = stiffid::internal::setup::builtin("fanuc-r2000ic-165f").unwrap();
     let text = include_str!("../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
     let job = |bootstrap| {
         run(Request {

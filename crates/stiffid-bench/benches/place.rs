@@ -6,20 +6,23 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use stiffid::app::place::{self, Region, Request, Work};
-use stiffid::machining::compensate::{Aggregate, Options};
-use stiffid::machining::{self, Language};
-use stiffid::robot::presets;
+use stiffid::internal::machining::compensate::{Aggregate, Options};
+use stiffid::internal::machining::{self, Language};
+use stiffid::internal::robot::presets;
 
 const SETUP: &str = include_str!("../../../examples/milling/fanuc-milling.toml");
 
 fn benches(c: &mut Criterion) {
-    let setup = stiffid::setup::parse(SETUP, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap();
-    let compliance =
-        stiffid::io::stiffness::parse(include_str!("../../../examples/milling/stiffness.json"))
-            .unwrap()
-            .compliance(setup.model())
+    let setup =
+        stiffid::internal::setup::parse(SETUP, "fanuc-milling.toml", |n, _| presets::get(n))
             .unwrap();
-    let process = stiffid::machining::process::file::parse(
+    let compliance = stiffid::internal::io::stiffness::parse(include_str!(
+        "../../../examples/milling/stiffness.json"
+    ))
+    .unwrap()
+    .compliance(setup.model())
+    .unwrap();
+    let process = stiffid::internal::machining::process::file::parse(
         include_str!("../../../examples/milling/aluminium.toml"),
         "aluminium.toml",
     )

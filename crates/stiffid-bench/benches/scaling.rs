@@ -12,11 +12,11 @@ use nalgebra::{DVector, Vector6};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::hint::black_box;
-use stiffid::design::evaluate;
-use stiffid::math::lsq::Factor;
-use stiffid::observation::rope_observation_matrix;
-use stiffid::study::simulate::{self, Options};
-use stiffid::{setup, Setup};
+use stiffid::internal::design::evaluate;
+use stiffid::internal::math::lsq::Factor;
+use stiffid::internal::observation::rope_observation_matrix;
+use stiffid::internal::study::simulate::{self, Options};
+use stiffid::{internal::setup, Setup};
 
 const POSTURES: [usize; 4] = [6, 24, 96, 384];
 

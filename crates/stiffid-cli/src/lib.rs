@@ -105,7 +105,7 @@ where
     I: IntoIterator<Item = T>,
     T: Into<std::ffi::OsString> + Clone,
 {
-    if let Err(message) = stiffid_core::common::threads::start() {
+    if let Err(message) = stiffid::internal::common::threads::start() {
         return report(&message);
     }
     signals::remove_temporaries_on_signals();
@@ -130,11 +130,11 @@ where
             };
         }
     };
-    if cli.package_path.len() > stiffid_core::setup::MAX_PACKAGE_PATHS {
+    if cli.package_path.len() > stiffid::internal::setup::MAX_PACKAGE_PATHS {
         return report(&format!(
             "--package-path: {} given, at most {}",
             cli.package_path.len(),
-            stiffid_core::setup::MAX_PACKAGE_PATHS
+            stiffid::internal::setup::MAX_PACKAGE_PATHS
         ));
     }
     load::set_package_paths(cli.package_path);
@@ -171,13 +171,11 @@ where
 }
 
 /// The exit code of a failed run: 1 for a gate the user set that the result failed
-/// ([`stiffid_core::Error::is_gate`]: `compensate --max-error-mm`, `calibrate --update`'s drift
+/// ([`stiffid::Error::is_gate`]: `compensate --max-error-mm`, `calibrate --update`'s drift
 /// check), 2 for every other error (bad input, no answer).
 fn exit_code(e: &anyhow::Error) -> u8 {
-    let error = e
-        .chain()
-        .find_map(|c| c.downcast_ref::<stiffid_core::Error>());
-    match error.is_some_and(stiffid_core::Error::is_gate) {
+    let error = e.chain().find_map(|c| c.downcast_ref::<stiffid::Error>());
+    match error.is_some_and(stiffid::Error::is_gate) {
         true => 1,
         false => 2,
     }
@@ -236,14 +234,12 @@ fn usage_error(e: &clap::Error) -> u8 {
 /// The command's own hint for a library error that a command can mend: which command writes a
 /// missing setup field, which shows why postures are infeasible.
 fn hint(e: &anyhow::Error) -> &'static str {
-    let error = e
-        .chain()
-        .find_map(|c| c.downcast_ref::<stiffid_core::Error>());
+    let error = e.chain().find_map(|c| c.downcast_ref::<stiffid::Error>());
     match error {
-        Some(stiffid_core::Error::MissingField { field, .. }) if !field.starts_with("test.") => {
+        Some(stiffid::Error::MissingField { field, .. }) if !field.starts_with("test.") => {
             "; `stiffid setups new --robot R` writes it"
         }
-        Some(stiffid_core::Error::Infeasible { .. }) => {
+        Some(stiffid::Error::Infeasible { .. }) => {
             "; `stiffid evaluate --postures FILE` shows every posture's checks"
         }
         _ => "",

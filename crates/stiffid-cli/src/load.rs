@@ -5,12 +5,12 @@ use nalgebra::{SVector, Vector6};
 use std::fs::File;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
-use stiffid_core::common::limits::{self, short, JointBox, Range};
-use stiffid_core::io::stiffness;
-use stiffid_core::io::{self, postures, Capped};
-use stiffid_core::model::Compliance;
-use stiffid_core::setup::reference;
-use stiffid_core::{Robot, Setup};
+use stiffid::internal::common::limits::{self, short, JointBox, Range};
+use stiffid::internal::io::stiffness;
+use stiffid::internal::io::{self, postures, Capped};
+use stiffid::internal::model::Compliance;
+use stiffid::internal::setup::reference;
+use stiffid::{Robot, Setup};
 
 /// Every file read so far (resolved path, and its device and inode where the system has them), so
 /// no output is written over one.
@@ -61,26 +61,26 @@ fn with_meshes<T>(f: impl FnOnce(&reference::Meshes) -> T) -> T {
 }
 
 /// A robot: a robot `.toml` or `.urdf` file if one exists at `arg`, else the preset named `arg`
-/// (`tip`: URDF tip link; `stiffid_core::setup::reference::robot_with_meshes`, a URDF's collision
+/// (`tip`: URDF tip link; `stiffid::internal::setup::reference::robot_with_meshes`, a URDF's collision
 /// meshes read). The error names what was tried.
 pub fn robot(arg: &str, tip: Option<&str>) -> Result<Robot> {
     let robot = with_meshes(|m| reference::robot_with_meshes(arg, tip, existing, m))?;
-    let warning = stiffid_core::setup::plausibility::meshes(&robot);
+    let warning = stiffid::internal::setup::plausibility::meshes(&robot);
     crate::output::warnings(&Vec::from_iter(warning));
     Ok(robot)
 }
 
 /// A setup from a setup `.toml` file if one exists at `arg`, else the built-in setup named
-/// `arg` (`stiffid_core::setup::reference::setup_with_meshes`). A robot file named in a setup file
+/// `arg` (`stiffid::internal::setup::reference::setup_with_meshes`). A robot file named in a setup file
 /// is looked for relative to the setup file, a URDF's meshes relative to the URDF or in the
 /// package paths.
 pub fn setup(arg: &str) -> Result<Setup> {
     with_meshes(|m| reference::setup_with_meshes(arg, existing, m)).map(plausible)
 }
 
-/// `setup`, its plausibility warnings ([`stiffid_core::setup::plausibility`]) printed on stderr.
+/// `setup`, its plausibility warnings ([`stiffid::internal::setup::plausibility`]) printed on stderr.
 fn plausible(setup: Setup) -> Setup {
-    crate::output::warnings(&stiffid_core::setup::plausibility::warnings(&setup));
+    crate::output::warnings(&stiffid::internal::setup::plausibility::warnings(&setup));
     setup
 }
 
@@ -97,12 +97,12 @@ pub fn setup_text_as_written(text: &str, source_name: &str, dir: &Path) -> Resul
 
 /// The bytes of the file at `path` (a URDF's mesh), `None` if nothing exists there: at most
 /// [`limits::MAX_INPUT_BYTES`], remembered as an input; the error names the file.
-fn bytes(path: &Path) -> Option<stiffid_core::Result<Vec<u8>>> {
+fn bytes(path: &Path) -> Option<stiffid::Result<Vec<u8>>> {
     use std::io::Read;
     if !path.exists() {
         return None;
     }
-    let failed = |e: String| stiffid_core::Error::Parse {
+    let failed = |e: String| stiffid::Error::Parse {
         source_name: path.display().to_string(),
         message: e,
     };
@@ -128,7 +128,7 @@ pub fn read_program(path: &Path) -> Result<(String, Option<String>, io::Encoding
             open(p)?.into_inner(),
         )?)
     };
-    stiffid_machining::program::read_files(path, read, anyhow::Error::from)
+    stiffid::internal::machining::program::read_files(path, read, anyhow::Error::from)
 }
 
 /// The text of a file, with its name in the error: at most [`limits::MAX_INPUT_BYTES`], UTF-8
@@ -176,7 +176,7 @@ pub fn posture(text: &str, option: &str, robot: &Robot) -> Result<(Vector6<f64>,
     let q = q_deg.map(f64::to_radians);
     let field = |a: usize| format!("{option}[{}]", a + 1);
     robot.limits().check(&q, "the robot's limits", field)?;
-    let warning = stiffid_core::setup::plausibility::radians_in_option(option, &q);
+    let warning = stiffid::internal::setup::plausibility::radians_in_option(option, &q);
     crate::output::warnings(&Vec::from_iter(warning));
     Ok((q_deg, q))
 }
@@ -213,7 +213,7 @@ pub fn numbers(text: &str, what: &str, range: &Range) -> Result<Vec<f64>> {
 }
 
 /// The compliance of every parameter of `setup`'s model from a stiffness file
-/// (`stiffid_core::io::stiffness`), e.g. the result of `stiffid identify --out`, checked against
+/// (`stiffid::internal::io::stiffness`), e.g. the result of `stiffid identify --out`, checked against
 /// the model; errors start with the file name.
 pub fn stiffness(path: &Path, setup: &Setup) -> Result<Compliance> {
     let text = read(path)?;
@@ -222,7 +222,7 @@ pub fn stiffness(path: &Path, setup: &Setup) -> Result<Compliance> {
     file.compliance(setup.model()).with_context(name)
 }
 
-/// A postures file (`stiffid_core::io::postures`), every posture within the robot's joint limits
+/// A postures file (`stiffid::internal::io::postures`), every posture within the robot's joint limits
 /// and, if given, the `bounds` (a setup's); angles in rad. Errors start with the file name, then
 /// the line and column.
 pub fn postures(

@@ -1,11 +1,11 @@
-//! Progress on stderr for the library's long jobs ([`stiffid_core::Progress`]): a bar per stage with a
+//! Progress on stderr for the library's long jobs ([`stiffid::Progress`]): a bar per stage with a
 //! total, a spinner with the count done for a stage without one; hidden when stderr is not a
 //! terminal.
 
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use std::sync::Mutex;
 use std::time::Duration;
-use stiffid_core::Progress;
+use stiffid::Progress;
 
 /// One line per stage.
 pub struct Bars {

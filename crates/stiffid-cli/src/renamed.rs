@@ -50,7 +50,7 @@ fn retired(command: &str, options: &[&str]) -> Option<String> {
     }
     options.iter().find_map(|a| {
         let name = a.strip_prefix("--")?.split('=').next()?;
-        let (option, value) = stiffid_machining::compensate::free::retired(name)?;
+        let (option, value) = stiffid::internal::machining::compensate::free::retired(name)?;
         Some(format!("--{name}: removed; write --{option} {value}"))
     })
 }

@@ -3,7 +3,7 @@
 //! directory of the run ([`crate::output::staged::interrupted`]) and exits with the shell's code
 //! for the signal, 128 + its number (130, 143, 129). `SIGKILL` cannot be caught: the next run
 //! writing into the same directory removes what such a run left
-//! ([`stiffid_core::io::output::temporary`]).
+//! ([`stiffid::internal::io::output::temporary`]).
 
 use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
 use std::sync::Once;

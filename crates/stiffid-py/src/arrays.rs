@@ -6,8 +6,8 @@ use nalgebra::{Vector3, Vector6};
 use numpy::ndarray::{Array2, Array3};
 use numpy::{AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayLikeDyn};
 use pyo3::prelude::*;
-use stiffid_core::common::limits::{self, JointBox};
-use stiffid_core::common::words::number;
+use stiffid::internal::common::limits::{self, JointBox};
+use stiffid::internal::common::words::number;
 
 /// Rows of `N` numbers from an array-like of shape `(N,)` (one row, `single`) or `(n, N)`.
 pub struct Rows<const N: usize> {

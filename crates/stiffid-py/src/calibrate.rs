@@ -141,9 +141,11 @@ pub fn calibrate<'py>(
         cross_validate,
         priors,
         progress: &(),
-        maps: stiffid_metrology::calibration::maps::Spec::parse(maps).map_err(raise)?,
-        error_motions: stiffid_metrology::calibration::motions::Spec::parse(error_motions)
-            .map_err(raise)?,
+        maps: stiffid::internal::metrology::calibration::maps::Spec::parse(maps).map_err(raise)?,
+        error_motions: stiffid::internal::metrology::calibration::motions::Spec::parse(
+            error_motions,
+        )
+        .map_err(raise)?,
         level,
         update,
         refit,
@@ -190,7 +192,7 @@ fn update_of(
     update: bool,
     update_parameters: Option<&str>,
     stiffness: Option<&PathBuf>,
-) -> PyResult<(job::Refits, Option<stiffid_core::model::OwnWeight>)> {
+) -> PyResult<(job::Refits, Option<stiffid::internal::model::OwnWeight>)> {
     if !update && (update_parameters.is_some() || stiffness.is_some()) {
         return Err(value(
             "update_parameters, stiffness: only with update=True (a calibrated robot updated from check readings)",
@@ -203,7 +205,7 @@ fn update_of(
     let weight = match stiffness {
         Some(p) => {
             let name = p.display().to_string();
-            let file = stiffid_core::io::stiffness::parse(&error::read(p)?)
+            let file = stiffid::internal::io::stiffness::parse(&error::read(p)?)
                 .map_err(|e| error::raise_in(&name, e))?;
             (file.compliance(setup.inner.model()))
                 .map_err(|e| error::raise_in(&name, e))?

@@ -1,6 +1,6 @@
 //! `stiffid.cartesian_compliance` and `stiffid.cartesian_stiffness`: the 6x6 Cartesian compliance
 //! and stiffness of a tool point over the setup's model (Salisbury 1980; Zhang et al. 2021, Eq.
-//! 4-6), over [`stiffid_core::observation::cartesian`].
+//! 4-6), over [`stiffid::internal::observation::cartesian`].
 
 use crate::arrays;
 use crate::robot::{point_or, MAX_POSTURES};
@@ -10,7 +10,7 @@ use nalgebra::Matrix6;
 use numpy::PyArray3;
 use pyo3::prelude::*;
 use pyo3::types::PyAny;
-use stiffid_core::observation::cartesian;
+use stiffid::internal::observation::cartesian;
 
 /// The Cartesian compliance ``C_x = J diag(h) J^T`` of the tool point ``point_mm`` (flange frame,
 /// mm, shape ``(3,)``; default the setup's loading point) in each posture ``q_deg`` (axis angles,
@@ -70,8 +70,8 @@ pub fn cartesian_stiffness<'py>(
 
 /// A 6x6 matrix of the setup, a posture's frames, the point (m) and the compliance.
 type Of = dyn Fn(
-        &stiffid_core::Setup,
-        &stiffid_core::Frames,
+        &stiffid::Setup,
+        &stiffid::Frames,
         &nalgebra::Vector3<f64>,
         &nalgebra::DVector<f64>,
     ) -> Matrix6<f64>

@@ -7,7 +7,7 @@ use numpy::IntoPyArray;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use stiffid::app::identify::comparison::Report;
-use stiffid_identify::compare::document::{Document, ModelDoc};
+use stiffid::internal::identify::compare::document::{Document, ModelDoc};
 
 /// The comparison's document as `stiffid identify --compare-models --json` writes it, with the
 /// table of the selection path (key `table`) and the recommended model as a `[model]` fragment

@@ -1,5 +1,5 @@
 //! `stiffid.compensate`: deflection compensation of a machining path, over
-//! [`stiffid_machining::compensate`] (Zhang et al. 2021, Eq. 4-6, with the loaded pose solved by Newton
+//! [`stiffid::internal::machining::compensate`] (Zhang et al. 2021, Eq. 4-6, with the loaded pose solved by Newton
 //! steps; the free tool axis after Caro et al., ICRA 2013, and Xiong et al., RCIM 2019).
 
 use crate::arrays;
@@ -13,16 +13,16 @@ use std::path::{Path, PathBuf};
 use stiffid::app::compensate::document::{Names, DYNAMICS};
 use stiffid::app::compensate::stream::{chunk_values, Rows};
 use stiffid::app::compensate::{self as job, Input, Request};
-use stiffid_core::io::Encoding;
-use stiffid_core::observation::deflection::Frame;
-use stiffid_machining::compensate::{
+use stiffid::internal::io::Encoding;
+use stiffid::internal::machining::compensate::{
     free, Aggregate, Compensated, FreeOption, Freedom, MapVariable, Objective, Options, PathPoint,
     Variable,
 };
-use stiffid_machining::dynamics::Dynamics;
-use stiffid_machining::process::file;
-use stiffid_machining::program::generate::{Settings, Targets};
-use stiffid_machining::Language;
+use stiffid::internal::machining::dynamics::Dynamics;
+use stiffid::internal::machining::process::file;
+use stiffid::internal::machining::program::generate::{Settings, Targets};
+use stiffid::internal::machining::Language;
+use stiffid::internal::observation::deflection::Frame;
 
 /// Compensates a machining path with the stiffness ``stiffness`` of every parameter of the setup's
 /// model: one number per parameter (the six drives, Nm/rad, then the virtual springs, Nm/rad or
@@ -208,7 +208,7 @@ pub fn compensate<'py>(
                     }
                     points.extend_from_slice(p);
                     results.extend_from_slice(r);
-                    Ok::<(), stiffid_core::Error>(())
+                    Ok::<(), stiffid::Error>(())
                 },
             )
         })
@@ -242,7 +242,7 @@ pub fn compensate<'py>(
 #[allow(clippy::type_complexity)]
 fn job_options<'py>(
     py: Python<'py>,
-    s: &stiffid_core::Setup,
+    s: &stiffid::Setup,
     q0_deg: Option<&Bound<'py, PyAny>>,
     (level, max_error_mm, force_tolerance_pct, map): (
         f64,
@@ -409,7 +409,7 @@ fn input_of<'t>(
 /// The dict of the free variable's map `m` (module docs of [`compensate`]).
 fn map_dict<'py>(
     py: Python<'py>,
-    m: &stiffid_machining::compensate::Map,
+    m: &stiffid::internal::machining::compensate::Map,
 ) -> PyResult<Bound<'py, PyDict>> {
     let map = PyDict::new(py);
     let matrix = |x: &nalgebra::DMatrix<f64>, scale: f64| {
@@ -462,7 +462,7 @@ fn map_over(map: Option<&Bound<'_, PyAny>>) -> PyResult<(bool, MapVariable)> {
 /// The compensation's options from the arguments.
 pub(crate) fn options(
     py: Python<'_>,
-    s: &stiffid_core::Setup,
+    s: &stiffid::Setup,
     q0_deg: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Options> {
     let mut options = Options::for_setup(s);
@@ -470,7 +470,8 @@ pub(crate) fn options(
         let r = s.robot();
         let within = (r.limits(), "the joint limits");
         options.q0 = arrays::postures(q, "q0_deg", within, 1)?.0[0];
-        let warning = stiffid_core::setup::plausibility::radians_in_option("q0_deg", &options.q0);
+        let warning =
+            stiffid::internal::setup::plausibility::radians_in_option("q0_deg", &options.q0);
         warn(py, &Vec::from_iter(warning))?;
     }
     Ok(options)
@@ -610,7 +611,7 @@ fn table<'py>(
     out.set_item("tilt_deg", column(&|c| c.tilt.to_degrees()))?;
     let bound = |c: &Compensated| c.budget.bound * 1e3;
     out.set_item("bound_mm", column(&bound))?;
-    let names = stiffid_machining::compensate::budget::PARTS;
+    let names = stiffid::internal::machining::compensate::budget::PARTS;
     for (k, name) in names.iter().enumerate() {
         let part = move |c: &Compensated| c.budget.parts()[k].map_or(f64::NAN, |v| v * 1e3);
         out.set_item(format!("bound_{name}_mm"), column(&part))?;

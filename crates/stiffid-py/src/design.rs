@@ -8,11 +8,11 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use stiffid::app::purpose::{CalibrationOptions, Purpose};
 use stiffid::app::{evaluate, select};
-use stiffid_core::common::choice::Choice;
-use stiffid_core::common::limits::{self, check_count};
-use stiffid_core::Setup;
-use stiffid_design::distinct::Distinctness;
-use stiffid_design::SearchOptions;
+use stiffid::internal::common::choice::Choice;
+use stiffid::internal::common::limits::{self, check_count};
+use stiffid::internal::design::distinct::Distinctness;
+use stiffid::internal::design::SearchOptions;
+use stiffid::Setup;
 
 /// The keys of the evaluate document returned as NumPy arrays.
 const CRITERIA_ARRAYS: [&str; 2] = ["relative_std", "predicted_deviation_pct"];
@@ -193,7 +193,7 @@ pub fn check_postures(n: usize) -> PyResult<()> {
 fn stations(
     setup: &Setup,
     given: &[Vec<f64>],
-) -> PyResult<Vec<stiffid_core::robot::external::ExternalValues>> {
+) -> PyResult<Vec<stiffid::internal::robot::external::ExternalValues>> {
     let Some(axes) = setup.robot().external() else {
         return match given.is_empty() {
             true => Ok(Vec::new()),
@@ -211,7 +211,7 @@ fn stations(
                     s.len()
                 )));
             }
-            stiffid_core::robot::external::ExternalValues::new(&axes.to_si(s)).map_err(raise)
+            stiffid::internal::robot::external::ExternalValues::new(&axes.to_si(s)).map_err(raise)
         })
         .collect()
 }

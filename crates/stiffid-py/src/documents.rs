@@ -9,7 +9,7 @@ use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use serde::Serialize;
 use serde_json::{Map, Number, Value};
 use std::ffi::CString;
-use stiffid_core::common::warning::Warning;
+use stiffid::internal::common::warning::Warning;
 
 /// `document` as Python objects (JSON's: dict, list, str, int, float, bool, None), with the keys
 /// of `arrays` (at the top level) as NumPy float arrays (`null` as NaN).

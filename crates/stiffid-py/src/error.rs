@@ -6,8 +6,8 @@ use pyo3::prelude::*;
 use pyo3::{PyErr, Python};
 use std::fs::File;
 use std::path::Path;
-use stiffid_core::io::{self, Capped};
-use stiffid_core::Error;
+use stiffid::internal::io::{self, Capped};
+use stiffid::Error;
 
 create_exception!(
     stiffid,
@@ -78,7 +78,7 @@ fn exception(e: &Error, message: String) -> PyErr {
 }
 
 /// A Python exception where the library's file lookups
-/// ([`stiffid_core::setup::reference`]) want an error that holds the library's errors.
+/// ([`stiffid::internal::setup::reference`]) want an error that holds the library's errors.
 pub struct Failure(pub PyErr);
 
 impl From<Error> for Failure {
@@ -99,9 +99,9 @@ pub fn read_if_exists(path: &Path) -> Option<Result<String, Failure>> {
 }
 
 /// The bytes of the file at `path` (a URDF's mesh) for the library's mesh lookups
-/// ([`stiffid_core::setup::reference::Meshes`]), `None` if nothing exists there: at most the input
+/// ([`stiffid::internal::setup::reference::Meshes`]), `None` if nothing exists there: at most the input
 /// limit ([`Capped`]); the error names the file.
-pub fn bytes(path: &Path) -> Option<stiffid_core::Result<Vec<u8>>> {
+pub fn bytes(path: &Path) -> Option<stiffid::Result<Vec<u8>>> {
     use std::io::Read;
     if !path.exists() {
         return None;
@@ -123,7 +123,7 @@ pub fn value(message: impl Into<String>) -> PyErr {
 }
 
 /// The text of a file, the path in the error (`FileNotFoundError` or `OSError`; `ValueError` for
-/// a directory, a file larger than the input limit or not UTF-8 text: [`stiffid_core::io::read_text`],
+/// a directory, a file larger than the input limit or not UTF-8 text: [`stiffid::internal::io::read_text`],
 /// the command's checks).
 pub fn read(path: &Path) -> Result<String, PyErr> {
     let name = path.display().to_string();
@@ -136,7 +136,7 @@ pub fn read(path: &Path) -> Result<String, PyErr> {
 pub fn read_program(path: &Path) -> Result<(String, Option<String>, io::Encoding), PyErr> {
     let read =
         |p: &Path| io::read_bytes(&p.display().to_string(), open(p)?.into_inner()).map_err(raise);
-    stiffid_machining::program::read_files(path, read, raise)
+    stiffid::internal::machining::program::read_files(path, read, raise)
 }
 
 /// The file at `path` opened for reading, the path in the error (`FileNotFoundError` or

@@ -9,8 +9,8 @@ use crate::setup::Setup;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use serde_json::Value;
+use stiffid::internal::view::MAX_POSTURES;
 use stiffid_figures::Drawing;
-use stiffid_view::MAX_POSTURES;
 
 /// The figures of ``document`` as a dict of SVG documents (str) keyed by the figure's name, in
 /// the order the command's reports show them, byte for byte their ``figures/<name>.svg``:

@@ -1,5 +1,5 @@
 //! `Robot.inverse_kinematics`: the axis angles that put a tool point at a pose, over
-//! [`stiffid_core::robot::ik`] (damped least squares within the joint limits, continued from a start
+//! [`stiffid::internal::robot::ik`] (damped least squares within the joint limits, continued from a start
 //! posture).
 
 use crate::arrays;
@@ -8,9 +8,9 @@ use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vect
 use numpy::{AllowTypeChange, PyArrayLikeDyn};
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict};
-use stiffid_core::common::limits::{self, check_count, Range, IK_TOLERANCE};
-use stiffid_core::robot::ik::{self, Options};
-use stiffid_core::Robot;
+use stiffid::internal::common::limits::{self, check_count, Range, IK_TOLERANCE};
+use stiffid::internal::robot::ik::{self, Options};
+use stiffid::Robot;
 
 /// Most poses of one call.
 pub const MAX_POSES: usize = 100_000;

@@ -3,7 +3,7 @@
 //! files and on the command line; Jacobians, compliances and stiffness in SI units, as the library
 //! computes them. Every key and attribute carries its unit in its name.
 //!
-//! Errors: [`stiffid_core::Error`] becomes `stiffid.Error` (a `ValueError`), as its subclass
+//! Errors: [`stiffid::Error`] becomes `stiffid.Error` (a `ValueError`), as its subclass
 //! `InputError` (bad input), `InfeasibleError` (a search that found nothing feasible, a pose out
 //! of reach) or `UnidentifiableError`, with the library's message. Long calls release the GIL.
 
@@ -43,7 +43,7 @@ fn _stiffid(m: &Bound<'_, PyModule>) -> PyResult<()> {
     error::register(m)?;
     // The worker threads RAYON_NUM_THREADS asks for, as the command starts them: a setting out
     // of range fails the import with the command's message.
-    stiffid_core::common::threads::start().map_err(error::value)?;
+    stiffid::internal::common::threads::start().map_err(error::value)?;
     m.add_class::<robot::Robot>()?;
     m.add_class::<setup::Setup>()?;
     m.add_function(wrap_pyfunction!(measure::identify, m)?)?;

@@ -10,11 +10,11 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
 use stiffid::app::{compensate, force};
-use stiffid_machining::gcode::{Machine, Motion};
-use stiffid_machining::process::file;
-use stiffid_machining::program::speed::Speed;
-use stiffid_machining::program::{Context, JointProgram};
-use stiffid_machining::{Language, Program};
+use stiffid::internal::machining::gcode::{Machine, Motion};
+use stiffid::internal::machining::process::file;
+use stiffid::internal::machining::program::speed::Speed;
+use stiffid::internal::machining::program::{Context, JointProgram};
+use stiffid::internal::machining::{Language, Program};
 
 /// The mean cutting force of every operation of the process file ``process`` (TOML, the format
 /// of ``stiffid force --process``), over one revolution, in the feed frame ``[feed, normal,
@@ -162,7 +162,7 @@ pub fn read_program<'py>(
 }
 
 /// A robot program's speeds into `out` (module docs of
-/// [`stiffid_machining::program::speed`]): `joint`, `feed_mm_s`, `time_s`, `speed_not_read`.
+/// [`stiffid::internal::machining::program::speed`]): `joint`, `feed_mm_s`, `time_s`, `speed_not_read`.
 fn speeds(py: Python<'_>, out: &Bound<'_, PyDict>, r: &JointProgram) -> PyResult<()> {
     let of = |f: fn(&Speed) -> f64| {
         let values = r.targets.iter().map(|t| f(&t.speed)).collect();

@@ -1,6 +1,6 @@
 //! `stiffid.identify` and `stiffid.validate`: joint stiffness from measured displacements
 //! (Zhang et al. 2021, Eq. 10-14) and its check on other measurements (Eq. 22), over
-//! [`stiffid_identify`] and [`stiffid_identify::validate`].
+//! [`stiffid::internal::identify`] and [`stiffid::internal::identify::validate`].
 
 use crate::arrays::{self, rows};
 use crate::compare;
@@ -16,16 +16,16 @@ use std::path::PathBuf;
 use stiffid::app::identify::{self as job, Options, Report, Request};
 use stiffid::app::measurements::Data;
 use stiffid::app::validate as validation;
-use stiffid_core::io::Capped;
-use stiffid_core::observation::Measurement;
-use stiffid_identify::Loss;
+use stiffid::internal::identify::Loss;
+use stiffid::internal::io::Capped;
+use stiffid::internal::observation::Measurement;
 
 /// The job's measurements: a CSV path (the `stiffid identify --data` format, read by the job
 /// and turned into the base frame) or the arrays `q_deg` (n, 6), `wrench` (n, 3 | 6: N, Nm, base
 /// frame) and `displacement_mm` (n * m, 3: loaded minus unloaded, base frame; posture-major, then
 /// measuring points 1..m).
 fn job_data(
-    setup: &stiffid_core::Setup,
+    setup: &stiffid::Setup,
     measurements: Option<&Bound<'_, PyAny>>,
     arrays: [Option<&Bound<'_, PyAny>>; 3],
     point: Option<Vec<i64>>,
@@ -54,7 +54,7 @@ fn job_data(
 }
 
 fn from_arrays(
-    setup: &stiffid_core::Setup,
+    setup: &stiffid::Setup,
     q: &Bound<'_, PyAny>,
     w: &Bound<'_, PyAny>,
     d: &Bound<'_, PyAny>,
@@ -96,7 +96,7 @@ fn from_arrays(
 /// The measuring points (0-based) each posture's rows are, in row order: `point` (1-based, as
 /// the setup's `measuring_points_mm` and the measurement files number them, each once), else
 /// every point of the setup.
-fn measured_points(setup: &stiffid_core::Setup, point: Option<Vec<i64>>) -> PyResult<Vec<usize>> {
+fn measured_points(setup: &stiffid::Setup, point: Option<Vec<i64>>) -> PyResult<Vec<usize>> {
     let count = setup.tool().measuring_points.len();
     let Some(given) = point else {
         return Ok((0..count).collect());
@@ -285,7 +285,7 @@ pub fn identify<'py>(
     let document = match &outcome.report {
         Report::Comparison(r) => {
             if let Some(file) = &stiffness_file {
-                let spell = |o: stiffid_core::common::error::JobOption| o.name().to_string();
+                let spell = |o: stiffid::internal::common::error::JobOption| o.name().to_string();
                 let text = r.stiffness_file_text(s, &spell);
                 match text.map_err(raise)? {
                     Some(text) => file.write(text.as_bytes())?,

@@ -1,13 +1,13 @@
 //! The setup's elastostatic model in Python: its parameters with their nominal stiffness
 //! ([`stiffid::app::document::parameters`]) and a setup with another `[model]` table
-//! ([`stiffid_core::model::parse_fragment`]).
+//! ([`stiffid::internal::model::parse_fragment`]).
 
 use crate::error::raise;
 use nalgebra::DVector;
 use pyo3::prelude::*;
 use pyo3::types::PyList;
 use stiffid::app::document::parameters;
-use stiffid_core::Setup;
+use stiffid::Setup;
 
 /// The parameters of `setup`'s model with their nominal stiffness (`None` where the setup has
 /// none), as the documents list them.
@@ -22,8 +22,8 @@ pub fn parameters<'py>(py: Python<'py>, setup: &Setup) -> PyResult<Bound<'py, Py
 
 /// `setup` with the virtual springs of the `[model]` fragment `toml` (named `source_name`).
 pub fn with_model(setup: &Setup, toml: &str, source_name: &str) -> PyResult<Setup> {
-    let springs =
-        stiffid_core::model::parse_fragment(toml, source_name, setup.robot()).map_err(raise)?;
+    let springs = stiffid::internal::model::parse_fragment(toml, source_name, setup.robot())
+        .map_err(raise)?;
     let built = setup.to_builder().with_virtual_springs(springs).build();
     built.map_err(|e| crate::error::raise_in(source_name, e))
 }

@@ -1,5 +1,5 @@
 //! The files Python writes (`calibrate(out=..., urdf_out=..., stiffness_out=...)`, `setups_new(out=...)`), by the
-//! command's rules ([`stiffid_core::io::output`]): each checked before the job runs (a new name in an
+//! command's rules ([`stiffid::internal::io::output`]): each checked before the job runs (a new name in an
 //! existing directory, or a regular file, through a symlink to one; never a directory, a device,
 //! a dangling symlink or a file the call reads), written whole after it succeeds, nothing left
 //! behind on failure.
@@ -7,7 +7,7 @@
 use crate::error::{raise, value};
 use pyo3::prelude::*;
 use std::path::{Path, PathBuf};
-use stiffid_core::io::output;
+use stiffid::internal::io::output;
 
 /// An output file, checked.
 #[derive(Clone)]

@@ -9,10 +9,10 @@ use pyo3::types::{PyAny, PyDict};
 use std::path::PathBuf;
 use stiffid::app::place::Effort;
 use stiffid::app::place::{self as job, Region, Request, Work};
-use stiffid_core::observation::deflection::Frame;
-use stiffid_machining::compensate::Aggregate;
-use stiffid_machining::process::file;
-use stiffid_machining::Language;
+use stiffid::internal::machining::compensate::Aggregate;
+use stiffid::internal::machining::process::file;
+use stiffid::internal::machining::Language;
+use stiffid::internal::observation::deflection::Frame;
 
 /// The placement of the part that minimises the error bound of the G-code ``program`` (cut with
 /// the process file ``process``), or of the path CSV ``path`` (each row's TCP pose in the part

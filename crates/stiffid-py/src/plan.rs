@@ -58,7 +58,7 @@ pub fn plan<'py>(
 
 /// Each row of external values (mm, deg) in SI; rows of another length, or for a robot without
 /// external axes, as given (the job refuses them naming `external`).
-pub(crate) fn in_si(s: &stiffid_core::Setup, rows: Vec<Vec<f64>>) -> PyResult<Vec<Vec<f64>>> {
+pub(crate) fn in_si(s: &stiffid::Setup, rows: Vec<Vec<f64>>) -> PyResult<Vec<Vec<f64>>> {
     let Some(axes) = s.robot().external() else {
         return Ok(rows);
     };

@@ -9,10 +9,10 @@ use nalgebra::{Vector3, Vector6};
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict, PyList};
 use stiffid::app::predict as job;
-use stiffid_core::common::limits;
-use stiffid_core::model::Compliance;
-use stiffid_core::observation::deflection::Frame;
-use stiffid_core::setup::plausibility::radians_in_option;
+use stiffid::internal::common::limits;
+use stiffid::internal::model::Compliance;
+use stiffid::internal::observation::deflection::Frame;
+use stiffid::internal::setup::plausibility::radians_in_option;
 
 /// The forward model (Zhang et al. 2021, Eq. 3-7) of one posture ``q_deg`` (shape ``(6,)``, deg,
 /// within the joint limits) under ``wrench`` (``[fx, fy, fz, mx, my, mz]``, N and Nm, in
@@ -122,7 +122,7 @@ pub fn deflection<'py>(
     let documents = documents.map_err(|b| raise_in(&format!("posture {}", b.0), b.1))?;
     // Each distinct warning once: the mass model's and a stiffness file without its region are
     // every posture's; a posture outside the region is its own.
-    let mut warnings: Vec<stiffid_core::common::warning::Warning> = Vec::new();
+    let mut warnings: Vec<stiffid::internal::common::warning::Warning> = Vec::new();
     for w in documents.iter().flat_map(|d| &d.warnings) {
         if !warnings.contains(w) {
             warnings.push(w.clone());
@@ -185,7 +185,7 @@ impl Options {
         setup: &Setup,
         q: Vector6<f64>,
         wrench: Vector6<f64>,
-    ) -> stiffid_core::Result<job::Report> {
+    ) -> stiffid::Result<job::Report> {
         let s = &setup.inner;
         let outcome = job::run(&job::Request {
             setup_name: setup.given.clone(),

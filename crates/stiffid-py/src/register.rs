@@ -12,13 +12,13 @@ use pyo3::types::PyDict;
 use std::path::PathBuf;
 use stiffid::app::calibrate_cell as calibrate_job;
 use stiffid::app::register as register_job;
-use stiffid_design::registration as design;
+use stiffid::internal::design::registration as design;
 
 /// The readings of `path` as a job's request runs on them.
 fn with_request<T>(
     setup: &Setup,
     (path, force): (PathBuf, bool),
-    job: impl FnOnce(&register_job::Request<'_>) -> stiffid_core::Result<T>,
+    job: impl FnOnce(&register_job::Request<'_>) -> stiffid::Result<T>,
 ) -> PyResult<T> {
     let text = error::read(&path)?;
     let request = register_job::Request {
@@ -70,7 +70,7 @@ pub fn register<'py>(
     postures: Option<Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     if postures.is_some() {
-        return Err(raise(stiffid_core::Error::InvalidField {
+        return Err(raise(stiffid::Error::InvalidField {
             field: "postures".into(),
             message: "renamed count (the number of registration postures to propose)".into(),
         }));
@@ -114,7 +114,7 @@ pub fn register<'py>(
             return to_python(py, proposed.written(), &[]);
         }
         _ => {
-            return Err(raise(stiffid_core::Error::InvalidField {
+            return Err(raise(stiffid::Error::InvalidField {
                 field: "readings".into(),
                 message: "give the readings to register from, or count=N to propose, not both"
                     .into(),

@@ -9,11 +9,11 @@ use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict, PyList};
 use std::path::{Path, PathBuf};
 use stiffid::app::kinematics::{self as job, characteristic_length_or_derived};
-use stiffid_core::common::limits;
-use stiffid_core::io::postures;
-use stiffid_core::robot::presets;
-use stiffid_core::setup::reference::{self, Meshes};
-use stiffid_core::{dexterity, Coordinates};
+use stiffid::internal::common::limits;
+use stiffid::internal::io::postures;
+use stiffid::internal::robot::presets;
+use stiffid::internal::setup::reference::{self, Meshes};
+use stiffid::{dexterity, Coordinates};
 
 /// Most postures of one vectorised call (an `(n, 6)` array): 1 000 000.
 pub const MAX_POSTURES: usize = 1_000_000;
@@ -23,7 +23,7 @@ pub const MAX_POSTURES: usize = 1_000_000;
 #[pyclass(frozen, module = "stiffid", name = "Robot")]
 #[derive(Clone)]
 pub struct Robot {
-    pub inner: stiffid_core::Robot,
+    pub inner: stiffid::Robot,
 }
 
 #[pymethods]
@@ -61,7 +61,7 @@ impl Robot {
         #[pyo3(from_py_with = crate::robot::package_paths)] package_paths: Vec<PathBuf>,
     ) -> PyResult<Self> {
         let inner = from_path(&path, tip, &package_paths)?;
-        let warning = stiffid_core::setup::plausibility::meshes(&inner);
+        let warning = stiffid::internal::setup::plausibility::meshes(&inner);
         crate::documents::warn(py, &Vec::from_iter(warning))?;
         Ok(Self { inner })
     }
@@ -202,7 +202,7 @@ impl Robot {
             .transpose()?;
         let q = Vector6::from(arrays::vector::<6>(q_deg, "q_deg", &limits::ANGLE_DEG)?);
         let q = q.map(f64::to_radians);
-        let warning = stiffid_core::setup::plausibility::radians_in_option("q_deg", &q);
+        let warning = stiffid::internal::setup::plausibility::radians_in_option("q_deg", &q);
         crate::documents::warn(py, &Vec::from_iter(warning))?;
         let request = job::Request {
             robot: &self.inner,
@@ -221,7 +221,7 @@ impl Robot {
 
     /// The robot's own characteristic length (mm) for the point ``point_mm`` (flange frame, mm;
     /// default the flange origin): the length that minimises the point's median dexterity over
-    /// 512 seeded postures within the joint limits (``stiffid_core::setup::prior``; about 1200 mm for the
+    /// 512 seeded postures within the joint limits (``stiffid::internal::setup::prior``; about 1200 mm for the
     /// paper's COMAU and tool). What ``dexterity`` uses when no length is given; a setup's
     /// ``characteristic_length_mm`` is the one to give where there is a setup. ``ValueError`` for
     /// a robot singular at most postures.
@@ -233,8 +233,8 @@ impl Robot {
     ) -> PyResult<f64> {
         let point = point(point_mm)?;
         let robot = &self.inner;
-        let l =
-            py.detach(|| stiffid_core::setup::prior::robot_characteristic_length(robot, &point));
+        let l = py
+            .detach(|| stiffid::internal::setup::prior::robot_characteristic_length(robot, &point));
         Ok(l.map_err(raise)? * 1e3)
     }
 
@@ -243,7 +243,7 @@ impl Robot {
     /// the base frame, translation in mm (the point's position) and the rotation of the flange,
     /// as ``flange_pose`` returns it for the flange origin; shape ``(4, 4)``, or ``(n, 4, 4)`` for
     /// a path. Damped least squares on the point's Jacobian within the joint limits
-    /// (``stiffid_core::robot::ik``), from ``q0_deg`` (shape ``(6,)``, deg, within the joint limits), each
+    /// (``stiffid::internal::robot::ik``), from ``q0_deg`` (shape ``(6,)``, deg, within the joint limits), each
     /// next pose from the previous solution (one branch along a path); if a start fails,
     /// ``restarts`` seeded random postures (default 8, ``seed``). Converged when the point is
     /// within ``position_tolerance_mm`` (default 1e-7 mm) and the rotation within
@@ -317,8 +317,8 @@ impl Robot {
             d.set_item("name", &a.name)?;
             d.set_item("column", column)?;
             let role = match a.role {
-                stiffid_core::robot::external::Role::Carrier => "carrier",
-                stiffid_core::robot::external::Role::Positioner => "positioner",
+                stiffid::internal::robot::external::Role::Carrier => "carrier",
+                stiffid::internal::robot::external::Role::Positioner => "positioner",
             };
             d.set_item("role", role)?;
             d.set_item(
@@ -349,7 +349,7 @@ impl Robot {
             None => None,
             Some(a) => {
                 let text = tables_json(py, a, "axes")?;
-                stiffid_core::robot::external::file::from_json(&text, "axes").map_err(raise)?
+                stiffid::internal::robot::external::file::from_json(&text, "axes").map_err(raise)?
             }
         };
         Ok(Self {
@@ -444,7 +444,7 @@ fn from_path(
     path: &Path,
     tip: Option<&str>,
     package_paths: &[PathBuf],
-) -> PyResult<stiffid_core::Robot> {
+) -> PyResult<stiffid::Robot> {
     check_package_paths(package_paths)?;
     let read = |p: &Path| Some(error::read(p).map_err(Failure));
     let reference = path.to_string_lossy();
@@ -472,8 +472,8 @@ pub fn package_paths(given: &Bound<'_, PyAny>) -> PyResult<Vec<PathBuf>> {
     given.extract()
 }
 
-/// At most [`stiffid_core::setup::MAX_PACKAGE_PATHS`] package paths.
+/// At most [`stiffid::internal::setup::MAX_PACKAGE_PATHS`] package paths.
 pub fn check_package_paths(paths: &[PathBuf]) -> PyResult<()> {
-    let most = stiffid_core::setup::MAX_PACKAGE_PATHS;
+    let most = stiffid::internal::setup::MAX_PACKAGE_PATHS;
     limits::check_count("package_paths", paths.len(), 0, most).map_err(raise)
 }

@@ -1,5 +1,5 @@
 //! `stiffid.scene`: the 3D scene of a group of postures, a plan, an identification, a
-//! calibration or a compensation ([`stiffid_view`]), built by the library as
+//! calibration or a compensation ([`stiffid::internal::view`]), built by the library as
 //! the commands' reports build it, shown inline in Jupyter and written as HTML or glTF binary.
 
 use crate::arrays::postures;
@@ -11,7 +11,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyBytes, PyDict};
 use serde_json::Value;
 use stiffid::app::plan::{self as job, Request};
-use stiffid_view::{glb, page, MAX_POSTURES};
+use stiffid::internal::view::{glb, page, MAX_POSTURES};
 
 /// The 3D scene of a plan, an identification, a calibration or a compensation
 /// (``stiffid.scene``): the robot at each posture in the cell, the tracker's lines of sight, the
@@ -20,7 +20,7 @@ use stiffid_view::{glb, page, MAX_POSTURES};
 /// in their pages and write it as ``.glb``.
 #[pyclass(frozen, module = "stiffid", name = "Scene")]
 pub struct Scene {
-    inner: stiffid_view::Scene,
+    inner: stiffid::internal::view::Scene,
 }
 
 #[pymethods]
@@ -141,13 +141,13 @@ fn own(kind: &str) -> bool {
 /// (SI, one row per posture; empty: every axis at 0).
 fn plan_scene(
     py: Python<'_>,
-    s: &stiffid_core::Setup,
+    s: &stiffid::Setup,
     group: &[Vector6<f64>],
     external: &[Vec<f64>],
-) -> PyResult<stiffid_view::Scene> {
+) -> PyResult<stiffid::internal::view::Scene> {
     let request = Request {
         setup: s,
-        criterion: stiffid_design::Criterion::RelativeA,
+        criterion: stiffid::internal::design::Criterion::RelativeA,
         postures: group,
         target_pct: None,
         external,
@@ -161,7 +161,7 @@ fn plan_scene(
 
 /// A plan document's external values (`postures[].e1_mm`, .., the cell's columns), SI; empty
 /// for a robot without external axes or a plan without them.
-fn plan_external(s: &stiffid_core::Setup, d: &Value) -> PyResult<Vec<Vec<f64>>> {
+fn plan_external(s: &stiffid::Setup, d: &Value) -> PyResult<Vec<Vec<f64>>> {
     let Some(axes) = s.robot().external() else {
         return Ok(Vec::new());
     };
@@ -188,12 +188,12 @@ fn plan_external(s: &stiffid_core::Setup, d: &Value) -> PyResult<Vec<Vec<f64>>> 
 
 /// A plan document's postures (`postures[].q_deg`), rad, drawn on `setup`: an `InputError`
 /// naming `setup` for a plan of another robot, `document` for a plan without postures.
-pub(crate) fn plan_postures(d: &Value, setup: &stiffid_core::Setup) -> PyResult<Vec<Vector6<f64>>> {
+pub(crate) fn plan_postures(d: &Value, setup: &stiffid::Setup) -> PyResult<Vec<Vector6<f64>>> {
     let robot = setup.robot().name();
     if let Some(theirs) = d["robot"].as_str().filter(|r| *r != robot) {
         return Err(value(format!(
             "setup: the plan is of the robot '{}', this setup's is '{robot}': give the plan's setup",
-            stiffid_core::common::limits::short(theirs)
+            stiffid::internal::common::limits::short(theirs)
         )));
     }
     let list = d["postures"].as_array().filter(|l| !l.is_empty());

@@ -9,13 +9,13 @@ use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict, PyList};
 use std::path::{Path, PathBuf};
-use stiffid_core::setup;
-use stiffid_core::setup::reference::{self, Meshes};
+use stiffid::internal::setup;
+use stiffid::internal::setup::reference::{self, Meshes};
 
 /// An experimental setup (read-only). Lengths in mm, angles in deg, stiffness in Nm/rad.
 #[pyclass(frozen, module = "stiffid", name = "Setup")]
 pub struct Setup {
-    pub inner: stiffid_core::Setup,
+    pub inner: stiffid::Setup,
     /// The files it was read from (the setup file, its robot file), which a call that writes
     /// files never writes over.
     pub files: Vec<PathBuf>,
@@ -92,7 +92,7 @@ impl Setup {
     /// ``Setup.with_model`` reads back.
     #[getter]
     fn model_toml(&self) -> String {
-        stiffid_core::model::fragment(self.inner.model().springs())
+        stiffid::internal::model::fragment(self.inner.model().springs())
     }
 
     /// The same setup with the model's virtual springs those of ``toml``: a setup file's
@@ -119,7 +119,7 @@ impl Setup {
     /// bodies and lines that must not touch; ``None`` without ``[cell]`` or ``[tracker]``) and
     /// ``violations`` (the failing checks: ``check``, e.g. ``"floor"``, ``margin_mm`` or
     /// ``margin_deg``, negative, and ``between``, the tightest pair, e.g. ``["link 3",
-    /// "floor"]``). Source: ``stiffid_core::cell``, docs/model.md.
+    /// "floor"]``). Source: ``stiffid::internal::cell``, docs/model.md.
     fn feasibility<'py>(
         &self,
         py: Python<'py>,
@@ -127,7 +127,7 @@ impl Setup {
     ) -> PyResult<Bound<'py, PyAny>> {
         let r = self.inner.robot();
         let within = (r.limits(), "the joint limits");
-        let most = stiffid_core::common::limits::MAX_GROUP_POSTURES;
+        let most = stiffid::internal::common::limits::MAX_GROUP_POSTURES;
         let (group, _) = postures(postures_deg, "postures_deg", within, most)?;
         let setup = &self.inner;
         setup.check_bodies().map_err(crate::error::raise)?;
@@ -448,7 +448,7 @@ impl Setup {
         design::check_postures(n)?;
         Ok(arrays::degrees(
             py,
-            &stiffid_design::random_group(&self.inner, n, seed),
+            &stiffid::internal::design::random_group(&self.inner, n, seed),
         ))
     }
 
@@ -496,7 +496,7 @@ impl Setup {
             obj,
             what,
             within,
-            stiffid_core::common::limits::MAX_GROUP_POSTURES,
+            stiffid::internal::common::limits::MAX_GROUP_POSTURES,
         )?
         .0)
     }
@@ -506,6 +506,12 @@ impl Setup {
     fn pool(&self, obj: &Bound<'_, PyAny>) -> PyResult<Vec<nalgebra::Vector6<f64>>> {
         let r = &self.inner.robot();
         let within = (r.limits(), "the joint limits");
-        Ok(postures(obj, "pool", within, stiffid_design::pool::MAX_POOL)?.0)
+        Ok(postures(
+            obj,
+            "pool",
+            within,
+            stiffid::internal::design::pool::MAX_POOL,
+        )?
+        .0)
     }
 }

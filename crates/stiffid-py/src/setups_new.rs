@@ -7,8 +7,8 @@ use crate::output;
 use pyo3::prelude::*;
 use std::path::{Path, PathBuf};
 use stiffid::app::setups_new::{self as job, relative_to, robot_reference};
-use stiffid_core::robot::Bodies;
-use stiffid_core::setup::reference::{self, Meshes};
+use stiffid::internal::robot::Bodies;
+use stiffid::internal::setup::reference::{self, Meshes};
 
 /// A complete, commented setup TOML for your own ``robot`` (a preset name, a robot ``.toml`` file
 /// or a ``.urdf`` file, ``tip`` its tip link): every field with its unit and meaning, starting
@@ -42,7 +42,7 @@ pub fn setups_new(
     let loaded = loaded.map_err(|e: Failure| e.0)?;
     warn(
         py,
-        &Vec::from_iter(stiffid_core::setup::plausibility::meshes(&loaded)),
+        &Vec::from_iter(stiffid::internal::setup::plausibility::meshes(&loaded)),
     )?;
     let file = match &out {
         Some(p) if p.symlink_metadata().is_ok() => {
@@ -58,7 +58,7 @@ pub fn setups_new(
     let robot_ref = robot_reference(robot, at, "robot").map_err(raise)?;
     let paths = (package_paths.iter())
         .map(|p| relative_to(p, at, "package_paths"))
-        .collect::<stiffid_core::Result<Vec<_>>>()
+        .collect::<stiffid::Result<Vec<_>>>()
         .map_err(raise)?;
     let request = job::Request {
         robot: &loaded,
@@ -74,7 +74,7 @@ pub fn setups_new(
     let written =
         reference::setup_text_with_meshes(&text, &name, dir, error::read_if_exists, &meshes(&[]))
             .map_err(|e: Failure| e.0)?;
-    let missing = |r: &stiffid_core::Robot| matches!(r.bodies(), Bodies::Missing(_));
+    let missing = |r: &stiffid::Robot| matches!(r.bodies(), Bodies::Missing(_));
     if missing(written.robot()) && !missing(&loaded) {
         return Err(value(
             "setups_new: the generated setup does not find the robot's meshes (please report this)",

@@ -7,10 +7,10 @@ use crate::error::{self, raise};
 use pyo3::prelude::*;
 use pyo3::types::PyAny;
 use std::path::PathBuf;
-use stiffid_core::common::limits;
-use stiffid_core::io::stiffness;
-use stiffid_core::model::{Compliance, ParameterKind};
-use stiffid_core::Setup;
+use stiffid::internal::common::limits;
+use stiffid::internal::io::stiffness;
+use stiffid::internal::model::{Compliance, ParameterKind};
+use stiffid::Setup;
 
 /// The compliance of every parameter of `setup`'s model from `obj`: the path of a stiffness JSON
 /// file (as `identify(...)` and `stiffid identify --out` write it; its covariance when present),
@@ -49,7 +49,7 @@ pub fn compliance(
         covariance,
         prediction: None,
         own_weight: None,
-        region: stiffid_core::model::Region::NotIdentified,
+        region: stiffid::internal::model::Region::NotIdentified,
         model_form: None,
     })
 }

@@ -1,5 +1,5 @@
 //! `stiffid.simulate` and `stiffid.reproduce`: the Monte Carlo identification of groups of
-//! postures and the paper's simulation study, over [`stiffid_design::study::simulate`] and [`stiffid_design::study`].
+//! postures and the paper's simulation study, over [`stiffid::internal::design::study::simulate`] and [`stiffid::internal::design::study`].
 
 use crate::documents::{to_json, to_python, warn};
 use crate::error::{raise, value};
@@ -8,9 +8,9 @@ use pyo3::prelude::*;
 use pyo3::types::{PyAny, PyDict, PyList};
 use stiffid::app::reproduce as job_reproduce;
 use stiffid::app::simulate as job;
-use stiffid_core::common::limits::{self, check_count};
-use stiffid_design::study::simulate as monte_carlo;
-use stiffid_design::study::Options;
+use stiffid::internal::common::limits::{self, check_count};
+use stiffid::internal::design::study::simulate as monte_carlo;
+use stiffid::internal::design::study::Options;
 
 /// A count within `[min, max]` (`field` names it in errors, a negative one too).
 fn count(field: &str, v: i64, min: u64, max: u64) -> PyResult<usize> {
@@ -119,7 +119,7 @@ pub fn reproduce<'py>(
     let setup = match setup {
         Some(s) => &s.inner,
         None => {
-            paper = stiffid_core::setup::builtin("zhang2021-comau-nj165").map_err(raise)?;
+            paper = stiffid::internal::setup::builtin("zhang2021-comau-nj165").map_err(raise)?;
             &paper
         }
     };

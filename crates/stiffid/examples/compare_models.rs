@@ -3,11 +3,11 @@
 //!
 //! `cargo run --release -p stiffid --example compare_models`
 
-use stiffid::identify::compare::{compare, default_candidates};
-use stiffid::io::measurements;
+use stiffid::internal::identify::compare::{compare, default_candidates};
+use stiffid::internal::io::measurements;
 
 fn main() -> stiffid::Result<()> {
-    let setup = stiffid::setup::builtin("fanuc-r2000ic-165f")?;
+    let setup = stiffid::internal::setup::builtin("fanuc-r2000ic-165f")?;
     let text = include_str!("../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
     let mut file = measurements::parse(text)?;
     file.to_base_frame(&setup)?;

@@ -2,18 +2,24 @@
 //!
 //! Joint stiffness identification of 6-axis serial industrial robots, the design of its
 //! experiment (which postures to measure in), calibration and deflection compensation for robotic
-//! machining: the jobs ([`app`]: one entry point per use case, run the same way by the command
-//! and the Python package) and the library under one name. Each concern below the jobs is a
-//! crate of its own, re-exported here:
+//! machining. The API is the jobs ([`app`]: one entry point per use case, each a request, a
+//! `run` and a typed report and document, run the same way by the command and the Python
+//! package), the nouns they share ([`Setup`], [`Robot`], [`Compliance`], [`Model`], [`Error`],
+//! [`Warning`], [`Progress`]) and a few one-step functions for a program of your own:
 //!
-//! - `stiffid-core` ([`robot`], [`model`], [`setup`], [`observation`], [`cell`], [`io`],
-//!   [`math`], [`common`]): what every stage stands on;
-//! - `stiffid-metrology` ([`metrology`]): registration, cell and robot calibration;
-//! - `stiffid-identify` ([`identify`]): the stiffness identification;
-//! - `stiffid-design` ([`design`], [`study`]): the experiment design and the paper's study;
-//! - `stiffid-machining` ([`machining`]): machining programs and their compensation;
-//! - `stiffid-view` ([`app::document::scene`]): the 3D scenes (glTF, three.js page), above the
-//!   science and below the jobs.
+//! - [`setup`]: the built-in setups and a setup file read;
+//! - [`robot`]: the built-in robot presets (kinematics are [`Robot`]'s and [`Frames`]' methods,
+//!   the dexterity index [`dexterity`]);
+//! - [`io`]: the measurement, postures and stiffness files, as `&str -> Result` functions;
+//! - [`identify`]: least squares by QR, with its uncertainty;
+//! - [`design`]: a seeded start group, the paper's local search, the global search, every
+//!   criterion of a group;
+//! - [`study`]: the paper's simulation study;
+//! - [`cell`]: the cell's checks of a posture.
+//!
+//! The crates below the jobs (core, metrology, identify, design, machining, view) are not API:
+//! the command and the Python package reach them through a hidden module, and their items may
+//! change in any release. The API is listed, item by item, in `crates/stiffid/public-api.txt`.
 //!
 //! The model is the Virtual Joint Method of Zhang, Guo, Sun and Sun, "Method of Postures Selection
 //! for Industrial Robot Joint Stiffness Identification", IEEE Access 9, 2021,
@@ -22,7 +28,7 @@
 //! measuring points of the same tool.
 //!
 //! Data flows one way:
-//! [`Setup`] -> postures -> [`observation`] matrix -> [`identify`] -> report.
+//! [`Setup`] -> postures -> observation matrix -> [`identify`] -> report.
 //!
 //! ## Conventions
 //! - SI inside: metres, radians, newtons, newton-metres, Nm/rad. Files speak mm and degrees.
@@ -32,16 +38,70 @@
 #![deny(missing_docs)]
 #![deny(rustdoc::broken_intra_doc_links, rustdoc::private_intra_doc_links)]
 
-pub use stiffid_core::{cell, common, io, math, model, observation, robot, setup};
+pub use stiffid_core::common::warning::Warning;
+pub use stiffid_core::model::{Compliance, Model};
 pub use stiffid_core::{
     dexterity, AxisMap, ColumnProblem, Coordinates, Error, Frames, JobOption, Joint,
     MeasurementField, Progress, Result, Robot, Setup,
 };
-pub use stiffid_design as design;
-pub use stiffid_design::study;
-pub use stiffid_identify as identify;
-pub use stiffid_machining as machining;
-pub use stiffid_metrology as metrology;
+
+/// Setups: the built-in ones ([`setup::builtin`], [`setup::builtin_names`]), a setup file's
+/// text read ([`setup::parse`]: its robot resolved by the caller), and the setup's parts,
+/// [`Setup`]'s accessors.
+pub mod setup {
+    pub use stiffid_core::setup::{builtin, builtin_names, parse, Arm, Experiment, Workcell};
+}
+
+/// Robots: the built-in presets ([`robot::presets`]); a robot's kinematics are
+/// [`Robot`]'s methods and [`Frames`]'.
+pub mod robot {
+    pub use stiffid_core::robot::presets;
+}
+
+/// The file formats the jobs read, as `&str -> Result` functions: measurements, postures and
+/// stiffness files (the reference's "File formats").
+pub mod io {
+    pub use stiffid_core::io::{measurements, postures, stiffness};
+}
+
+/// Stiffness identification in one step: [`identify::least_squares`] (the paper's Eq. 13-14 by
+/// QR) and what it returns.
+pub mod identify {
+    pub use stiffid_identify::{least_squares, Identification, Uncertainty};
+}
+
+/// Experiment design in one step each: a seeded start group, the paper's local search, the
+/// global search, and every criterion of a group.
+pub mod design {
+    pub use stiffid_design::{
+        evaluate, global, local, random_group, Criterion, Evaluation, Gradient, SearchOptions,
+        SearchOutcome, Solver,
+    };
+}
+
+/// The paper's simulation study (Zhang et al. 2021, section IV) in one step: [`study::run`].
+pub mod study {
+    pub use stiffid_design::study::{run, Findings, Group, Options, Study};
+}
+
+/// The cell's checks of a posture: [`cell::feasibility`] once, [`cell::Checker`] for many.
+pub mod cell {
+    pub use stiffid_core::cell::{feasibility, Checker};
+}
+
+/// Not API: the crates below the jobs, whole, for the command, the Python package, the benches
+/// and the tests of this repository. Their items change without notice; a program linking
+/// stiffid uses [`app`] and the items above.
+#[doc(hidden)]
+pub mod internal {
+    pub use stiffid_core::{cell, common, io, math, model, observation, robot, setup};
+    pub use stiffid_design as design;
+    pub use stiffid_design::study;
+    pub use stiffid_identify as identify;
+    pub use stiffid_machining as machining;
+    pub use stiffid_metrology as metrology;
+    pub use stiffid_view as view;
+}
 
 pub mod app;
 

@@ -14,9 +14,9 @@ use stiffid::app::calibrate::GravitySpec;
 use stiffid::app::calibrate::{self as job, Tolerances};
 use stiffid::app::document::mm;
 use stiffid::app::readings::Request as Readings;
-use stiffid_metrology::calibration::identifiability::CORRELATION_INSEPARABLE;
-use stiffid_metrology::calibration::maps::Spec;
-use stiffid_metrology::calibration::Geometry;
+use stiffid::internal::metrology::calibration::identifiability::CORRELATION_INSEPARABLE;
+use stiffid::internal::metrology::calibration::maps::Spec;
+use stiffid::internal::metrology::calibration::Geometry;
 
 use crate::commands::common::{choice, Common};
 
@@ -171,7 +171,9 @@ pub fn run(args: &Args) -> Result<()> {
         priors,
         progress: &bars,
         maps: Spec::parse(&args.maps)?,
-        error_motions: stiffid_metrology::calibration::motions::Spec::parse(&args.error_motions)?,
+        error_motions: stiffid::internal::metrology::calibration::motions::Spec::parse(
+            &args.error_motions,
+        )?,
         level: args.level,
         update: args.update.is_some(),
         refit: (args.update.as_deref().map(job::Refits::parse))

@@ -9,8 +9,8 @@ use anyhow::{bail, Result};
 use serde::Serialize;
 use std::path::PathBuf;
 use stiffid::app::register::Request;
-use stiffid_core::common::warning::Warning;
-use stiffid_core::Setup;
+use stiffid::internal::common::warning::Warning;
+use stiffid::Setup;
 
 /// `--setup`, `--json`, `--data` and `--out`.
 #[derive(clap::Args)]
@@ -56,7 +56,7 @@ impl Args {
     pub fn run<D: Serialize>(
         &self,
         setup: &Setup,
-        job: impl FnOnce(&Request<'_>) -> stiffid_core::Result<Outcome<D>>,
+        job: impl FnOnce(&Request<'_>) -> stiffid::Result<Outcome<D>>,
         text: impl FnOnce(&D) -> String,
     ) -> Result<()> {
         let Some(path) = &self.data else {

@@ -6,9 +6,9 @@ use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use std::ffi::OsStr;
 use std::marker::PhantomData;
 use std::path::PathBuf;
-use stiffid_core::common::choice::Choice;
-use stiffid_core::model::Compliance;
-use stiffid_core::Setup;
+use stiffid::internal::common::choice::Choice;
+use stiffid::internal::model::Compliance;
+use stiffid::Setup;
 
 /// `--setup` and `--json`, of every command that works with a setup and prints a result.
 #[derive(clap::Args)]

@@ -18,18 +18,18 @@ use stiffid::app::compensate::dynamics::OperationDynamics;
 use stiffid::app::compensate::stream::{chunk_values, Points};
 use stiffid::app::compensate::{self as job, Input, ProgramReport, Report, Request};
 use stiffid::app::document::{finite, mm};
-use stiffid_core::common::words::{count, number};
-use stiffid_core::io::Encoding;
-use stiffid_core::observation::deflection::Frame;
-use stiffid_core::robot::ExternalAxes;
-use stiffid_core::{Error, Progress, Setup};
-use stiffid_machining::compensate::{
+use stiffid::internal::common::words::{count, number};
+use stiffid::internal::io::Encoding;
+use stiffid::internal::machining::compensate::{
     Aggregate, Compensated, FreeOption, Freedom, MapVariable, Objective, Options, PathPoint,
 };
-use stiffid_machining::dynamics::Dynamics;
-use stiffid_machining::process::file;
-use stiffid_machining::program::generate::{Settings, Targets};
-use stiffid_machining::Language;
+use stiffid::internal::machining::dynamics::Dynamics;
+use stiffid::internal::machining::process::file;
+use stiffid::internal::machining::program::generate::{Settings, Targets};
+use stiffid::internal::machining::Language;
+use stiffid::internal::observation::deflection::Frame;
+use stiffid::internal::robot::ExternalAxes;
+use stiffid::{Error, Progress, Setup};
 
 /// Arguments of `stiffid compensate`.
 #[derive(clap::Args)]
@@ -223,7 +223,7 @@ pub fn run(args: &Args) -> Result<()> {
     let data_out = (data.is_some() || krl_out)
         .then(|| {
             OutFile::prepare(
-                &stiffid_machining::program::krl::data_out(&args.out),
+                &stiffid::internal::machining::program::krl::data_out(&args.out),
                 "--out",
             )
         })
@@ -448,7 +448,7 @@ fn write_subprograms(out: &Path, program: &ProgramReport) -> Result<()> {
         .iter()
         .filter_map(|f| f.data.as_ref().map(|d| (f, d)))
         .map(|(f, d)| {
-            let path = stiffid_machining::program::krl::data_out(
+            let path = stiffid::internal::machining::program::krl::data_out(
                 &dir.join(format!("{}.{extension}", f.name)),
             );
             OutFile::prepare(&path, "--out").map(|o| (o, d))
@@ -465,7 +465,7 @@ fn write_subprograms(out: &Path, program: &ProgramReport) -> Result<()> {
 
 fn options(args: &Args, setup: &Setup) -> Result<Options> {
     let mut options = Options::for_setup(setup);
-    stiffid_core::model::prediction::check_level("--level", args.level)?;
+    stiffid::internal::model::prediction::check_level("--level", args.level)?;
     options.level = args.level;
     options.force_tolerance = args.force_tolerance_pct / 100.0;
     options.max_error = args.max_error_mm.map(|m| m * 1e-3);
@@ -478,7 +478,7 @@ fn options(args: &Args, setup: &Setup) -> Result<Options> {
         .free
         .iter()
         .map(|f| FreeOption::parse(f.as_str()))
-        .collect::<stiffid_core::Result<Vec<_>>>()?;
+        .collect::<stiffid::Result<Vec<_>>>()?;
     let freedom = Freedom {
         free,
         minimise: args.minimise,
@@ -572,7 +572,7 @@ fn bound(doc: &Document<'_>) -> String {
         b.max_bound_mm.map_or(
             format!(
                 "infinite (a finite bound needs at least {} held-out calibration errors)",
-                stiffid_core::model::prediction::held_out_needed(b.level)
+                stiffid::internal::model::prediction::held_out_needed(b.level)
             ),
             |m| format!("{m:.4} mm")
         ),
@@ -663,7 +663,8 @@ fn written(args: &Args, report: &Report, doc: &Document<'_>) -> String {
         }
     }
     if report.program.as_ref().is_some_and(|p| p.data.is_some()) && !names.program_out.is_empty() {
-        let dat = stiffid_machining::program::krl::data_out(Path::new(&names.program_out));
+        let dat =
+            stiffid::internal::machining::program::krl::data_out(Path::new(&names.program_out));
         text += &format!(
             "written: {} beside it (its points and data)\n",
             dat.display()

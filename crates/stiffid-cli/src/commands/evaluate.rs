@@ -10,13 +10,13 @@ use stiffid::app::document::candidates::CandidatesDoc;
 use stiffid::app::document::group::{CalibrationDoc, Criteria, Infinite, InfiniteCriterion};
 use stiffid::app::evaluate::{self as job, Report, Request};
 use stiffid::app::purpose::{CalibrationOptions, Purpose};
-use stiffid_core::common::limits::short;
-use stiffid_core::common::words::count;
-use stiffid_core::{Error, Setup};
-use stiffid_design::observability::CalibrationCriterion;
-use stiffid_design::{Criterion, Evaluation};
-use stiffid_metrology::calibration::gravity::Gravity;
-use stiffid_metrology::calibration::Geometry;
+use stiffid::internal::common::limits::short;
+use stiffid::internal::common::words::count;
+use stiffid::internal::design::observability::CalibrationCriterion;
+use stiffid::internal::design::{Criterion, Evaluation};
+use stiffid::internal::metrology::calibration::gravity::Gravity;
+use stiffid::internal::metrology::calibration::Geometry;
+use stiffid::{Error, Setup};
 
 /// Arguments of `stiffid evaluate`.
 #[derive(clap::Args)]

@@ -1,5 +1,5 @@
 //! `stiffid force`: the mean cutting force of every operation of a process file, feed frame
-//! ([`stiffid_machining::process`]).
+//! ([`stiffid::internal::machining::process`]).
 
 use crate::load;
 use crate::output::print_json_or;
@@ -7,8 +7,8 @@ use crate::progress::Bars;
 use anyhow::Result;
 use std::path::PathBuf;
 use stiffid::app::force::{self, Report, Request};
-use stiffid_core::Progress;
-use stiffid_machining::process::file;
+use stiffid::internal::machining::process::file;
+use stiffid::Progress;
 
 /// Arguments of `stiffid force`.
 #[derive(clap::Args)]
@@ -42,7 +42,7 @@ pub fn run(args: &Args) -> Result<()> {
     let outcome = force::run(&request);
     bars.end();
     let outcome = outcome.map_err(|e| match e {
-        stiffid_core::Error::InvalidField { field, message } => {
+        stiffid::Error::InvalidField { field, message } => {
             anyhow::anyhow!("--{}: {message}", field.replace('_', "-"))
         }
         e => e.into(),

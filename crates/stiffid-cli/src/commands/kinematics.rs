@@ -5,7 +5,7 @@ use crate::{load, output};
 use anyhow::{Context, Result};
 use stiffid::app::kinematics as job;
 use stiffid::app::kinematics::document::Document;
-use stiffid_core::{common::limits, Coordinates};
+use stiffid::{internal::common::limits, Coordinates};
 
 /// Arguments of `stiffid kinematics`.
 #[derive(clap::Args)]
@@ -181,7 +181,7 @@ fn text(r: &Document<'_>) -> String {
 }
 
 /// The values of `--external` in SI (the cell's order), checked by the job; empty without it.
-fn external(text: Option<&str>, robot: &stiffid_core::Robot) -> Result<Vec<f64>> {
+fn external(text: Option<&str>, robot: &stiffid::Robot) -> Result<Vec<f64>> {
     let Some(text) = text else {
         return Ok(Vec::new());
     };

@@ -11,11 +11,11 @@ use stiffid::app::document::{mm, mm3};
 use stiffid::app::place::document::{Document, Placement};
 use stiffid::app::place::Effort;
 use stiffid::app::place::{self, Region, Request, Work};
-use stiffid_core::observation::deflection::Frame;
-use stiffid_core::Progress;
-use stiffid_machining::compensate::{Aggregate, Options};
-use stiffid_machining::process::file;
-use stiffid_machining::Language;
+use stiffid::internal::machining::compensate::{Aggregate, Options};
+use stiffid::internal::machining::process::file;
+use stiffid::internal::machining::Language;
+use stiffid::internal::observation::deflection::Frame;
+use stiffid::Progress;
 
 /// Arguments of `stiffid place`.
 #[derive(clap::Args)]
@@ -87,7 +87,7 @@ pub struct Args {
     #[arg(long, default_value_t = 0.01)]
     chord_tolerance_mm: f64,
     /// The level of the error bound (0.5 to 0.999).
-    #[arg(long, default_value_t = stiffid_core::model::prediction::DEFAULT_LEVEL)]
+    #[arg(long, default_value_t = stiffid::internal::model::prediction::DEFAULT_LEVEL)]
     level: f64,
     /// The process force model's relative error in the error budget, percent (0 to 100).
     #[arg(long, default_value_t = 20.0)]
@@ -111,7 +111,7 @@ pub fn run(args: &Args) -> Result<()> {
     let setup_path = Path::new(&args.setup);
     let setup_text = match setup_path.is_file() {
         true => load::read(setup_path)?,
-        false => stiffid_core::setup::builtin_text(&args.setup)?.to_string(),
+        false => stiffid::internal::setup::builtin_text(&args.setup)?.to_string(),
     };
     let compliance = args.stiffness.load(&setup)?;
     let (program, process, path);
@@ -149,7 +149,7 @@ pub fn run(args: &Args) -> Result<()> {
         _ => bail!("expected --program and --process, or --path"),
     };
     let mut options = Options::for_setup(&setup);
-    stiffid_core::model::prediction::check_level("--level", args.level)?;
+    stiffid::internal::model::prediction::check_level("--level", args.level)?;
     options.level = args.level;
     options.force_tolerance = args.force_tolerance_pct / 100.0;
     if let Some(text) = &args.q0_deg {
@@ -186,9 +186,9 @@ pub fn run(args: &Args) -> Result<()> {
 }
 
 /// The library's error, a field that is an option named as the option (`--region-mm`).
-fn option_error(e: stiffid_core::Error) -> anyhow::Error {
+fn option_error(e: stiffid::Error) -> anyhow::Error {
     match e {
-        stiffid_core::Error::InvalidField { field, message } if !field.contains('.') => {
+        stiffid::Error::InvalidField { field, message } if !field.contains('.') => {
             anyhow!("--{}: {message}", field.replace('_', "-"))
         }
         e => e.into(),

@@ -6,7 +6,7 @@ use crate::progress::Bars;
 use crate::report::figures::{self, Png};
 use anyhow::Result;
 use std::path::{Path, PathBuf};
-use stiffid_core::Progress;
+use stiffid::Progress;
 
 /// Arguments of `stiffid plot`.
 #[derive(clap::Args)]

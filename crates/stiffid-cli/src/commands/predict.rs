@@ -10,8 +10,8 @@ use nalgebra::Vector6;
 use std::path::PathBuf;
 use stiffid::app::predict;
 use stiffid::app::predict::document::Document;
-use stiffid_core::common::limits;
-use stiffid_core::observation::deflection::Frame;
+use stiffid::internal::common::limits;
+use stiffid::internal::observation::deflection::Frame;
 
 /// Arguments of `stiffid predict`.
 #[derive(clap::Args)]

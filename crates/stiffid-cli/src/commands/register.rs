@@ -11,8 +11,8 @@ use anyhow::Result;
 use stiffid::app::document::{mm, mm3};
 use stiffid::app::register as job;
 use stiffid::app::register::Report;
-use stiffid_core::Progress;
-use stiffid_design::registration as design;
+use stiffid::internal::design::registration as design;
+use stiffid::Progress;
 
 /// Arguments of `stiffid register`: `--data` holds at least 3 points not on one line; `--out`
 /// gets the `[tracker] base_from_tracker` fragment. Or `--count N` proposes the postures to
@@ -35,7 +35,7 @@ pub struct Args {
     #[arg(long, requires = "count", conflicts_with = "data", value_parser = clap::value_parser!(u64).range(1..=design::MAX_CANDIDATES as u64))]
     candidates: Option<u64>,
     /// Exchange runs of --count, 1 to 50 [default: 8].
-    #[arg(long, requires = "count", conflicts_with = "data", value_parser = clap::value_parser!(u64).range(1..=stiffid_core::common::limits::MAX_POOL_RESTARTS))]
+    #[arg(long, requires = "count", conflicts_with = "data", value_parser = clap::value_parser!(u64).range(1..=stiffid::internal::common::limits::MAX_POOL_RESTARTS))]
     restarts: Option<u64>,
 }
 
@@ -57,7 +57,7 @@ pub fn run(args: &Args) -> Result<()> {
 }
 
 /// `--count N`: the proposal, and the readings template written with `--out`.
-fn propose(args: &Args, setup: &stiffid_core::Setup, n: usize) -> Result<()> {
+fn propose(args: &Args, setup: &stiffid::Setup, n: usize) -> Result<()> {
     let out = args.readings.prepare_out()?;
     let defaults = design::Options::default();
     let request = job::DesignRequest {
@@ -142,7 +142,7 @@ fn text_of(d: &Report) -> String {
     for p in &d.points {
         text += &format!(
             "{:<8} {:>5} {:>5}  {:.4} [{}]\n",
-            stiffid_core::common::limits::short(&p.posture),
+            stiffid::internal::common::limits::short(&p.posture),
             p.point,
             p.line,
             mm(p.residual_norm),

@@ -8,10 +8,10 @@ use std::path::PathBuf;
 use std::time::Instant;
 use stiffid::app::reproduce::document::{sentences, GENERATOR};
 use stiffid::app::reproduce::{self as job, Report, Request};
-use stiffid_core::common::limits;
-use stiffid_core::Progress;
-use stiffid_design::study::{Options, DEFAULT_STARTS, DEFAULT_TRIALS};
-use stiffid_design::Solver;
+use stiffid::internal::common::limits;
+use stiffid::internal::design::study::{Options, DEFAULT_STARTS, DEFAULT_TRIALS};
+use stiffid::internal::design::Solver;
+use stiffid::Progress;
 
 /// Arguments of `stiffid reproduce`.
 #[derive(clap::Args)]

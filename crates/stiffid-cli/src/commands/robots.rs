@@ -2,7 +2,7 @@
 
 use crate::output;
 use anyhow::Result;
-use stiffid_core::robot::presets;
+use stiffid::internal::robot::presets;
 
 /// Prints every preset: name, robot, source.
 pub fn run() -> Result<()> {

@@ -7,7 +7,7 @@ use anyhow::{bail, Result};
 use schemars::generate::SchemaSettings;
 use schemars::transform::RecursiveTransform;
 use schemars::{JsonSchema, Schema};
-use stiffid_core::io::stiffness::StiffnessFile;
+use stiffid::internal::io::stiffness::StiffnessFile;
 
 /// Arguments of `stiffid schema`.
 #[derive(clap::Args)]

@@ -2,7 +2,7 @@
 
 use crate::output;
 use anyhow::Result;
-use stiffid_core::setup;
+use stiffid::internal::setup;
 
 /// Arguments of `stiffid setups`.
 #[derive(clap::Args)]

@@ -6,7 +6,7 @@ use crate::{load, output};
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
 use stiffid::app::setups_new::{self as job, relative_to, robot_reference};
-use stiffid_core::Robot;
+use stiffid::Robot;
 
 /// Arguments of `stiffid setups new`.
 #[derive(clap::Args)]
@@ -39,7 +39,7 @@ pub fn run(args: &NewArgs) -> Result<()> {
     let package_paths = load::package_paths()
         .iter()
         .map(|p| relative_to(p, at, "--package-path"))
-        .collect::<stiffid_core::Result<Vec<_>>>()?;
+        .collect::<stiffid::Result<Vec<_>>>()?;
     let request = job::Request {
         robot: &robot,
         robot_ref: &robot_ref,
@@ -76,7 +76,7 @@ fn check_loads(text: &str, source_name: &str, args: &NewArgs, robot: &Robot) -> 
         .unwrap_or(Path::new(""));
     let setup = load::setup_text_as_written(text, source_name, dir)
         .context("setups new: the generated setup does not load (please report this)")?;
-    let missing = |r: &Robot| matches!(r.bodies(), stiffid_core::robot::Bodies::Missing(_));
+    let missing = |r: &Robot| matches!(r.bodies(), stiffid::internal::robot::Bodies::Missing(_));
     if missing(setup.robot()) && !missing(robot) {
         anyhow::bail!(
             "setups new: the generated setup does not find the robot's meshes (please report this)"

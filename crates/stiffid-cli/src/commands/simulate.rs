@@ -10,8 +10,8 @@ use anyhow::Result;
 use std::path::{Path, PathBuf};
 use stiffid::app::simulate::document::deviation_csv;
 use stiffid::app::simulate::{self as job, Group, Report, Request};
-use stiffid_core::common::limits;
-use stiffid_design::study::simulate::Options;
+use stiffid::internal::common::limits;
+use stiffid::internal::design::study::simulate::Options;
 
 /// Arguments of `stiffid simulate`.
 #[derive(clap::Args)]

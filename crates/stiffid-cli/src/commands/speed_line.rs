@@ -2,7 +2,7 @@
 //! document ([`stiffid::app::compensate::speed::SpeedLimits`]).
 
 use stiffid::app::compensate::speed::{AxisSpeed, SpeedLimits};
-use stiffid_core::common::words::count;
+use stiffid::internal::common::words::count;
 
 /// One line: why the moves were not checked, or the highest share of an axis's speed at the
 /// path's own values and at those chosen, with its axis and line, and the moves whose

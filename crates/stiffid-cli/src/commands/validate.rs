@@ -11,8 +11,8 @@ use std::path::PathBuf;
 use stiffid::app::measurements::Data;
 use stiffid::app::validate::document::Document;
 use stiffid::app::validate::{self as job, Request};
-use stiffid_core::common::words::count;
-use stiffid_core::Progress;
+use stiffid::internal::common::words::count;
+use stiffid::Progress;
 
 /// Arguments of `stiffid validate`.
 #[derive(clap::Args)]

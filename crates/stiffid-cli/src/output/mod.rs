@@ -18,8 +18,8 @@ pub use file::{OutFile, Writer};
 
 use anyhow::{Context, Result};
 use std::io::Write;
-use stiffid_core::common::error::combination;
-use stiffid_core::JobOption;
+use stiffid::internal::common::error::combination;
+use stiffid::JobOption;
 
 /// Writes `text` to stdout (locked, flushed): [`write_stdout`] of its bytes.
 ///
@@ -63,7 +63,7 @@ pub fn warn(text: &str) {
 }
 
 /// Every warning of a job's report on stderr ([`warn`]), as Python raises them.
-pub fn warnings(list: &[stiffid_core::common::warning::Warning]) {
+pub fn warnings(list: &[stiffid::internal::common::warning::Warning]) {
     for w in list {
         warn(&w.message);
     }
@@ -87,7 +87,7 @@ pub fn print_json_or<T: serde::Serialize>(
 }
 
 /// Longest word of an error line: a path may be this long; values quoted in messages are cut
-/// shorter where they are quoted ([`stiffid_core::common::limits::short`]).
+/// shorter where they are quoted ([`stiffid::internal::common::limits::short`]).
 const MAX_ERROR_WORD: usize = 4096;
 
 /// Longest error line.
@@ -96,7 +96,7 @@ const MAX_ERROR_CHARS: usize = 3 * MAX_ERROR_WORD;
 /// An error and its causes on one line, outermost first, as a safety net every word cut at
 /// [`MAX_ERROR_WORD`] characters and the whole at [`MAX_ERROR_CHARS`].
 pub fn one_line(message: &str) -> String {
-    stiffid_core::common::limits::one_line_within(message, MAX_ERROR_WORD, MAX_ERROR_CHARS)
+    stiffid::internal::common::limits::one_line_within(message, MAX_ERROR_WORD, MAX_ERROR_CHARS)
 }
 
 /// [`one_line`] of an error and its causes, outermost first.
@@ -107,12 +107,12 @@ pub fn one_line_chain(e: &anyhow::Error) -> String {
 
 /// One error of a chain in words; a job option's as the command names it ([`flag`]).
 fn named(e: &(dyn std::error::Error + 'static)) -> String {
-    match e.downcast_ref::<stiffid_core::Error>() {
+    match e.downcast_ref::<stiffid::Error>() {
         Some(
-            stiffid_core::Error::InvalidOption { option, message }
-            | stiffid_core::Error::Gate { option, message },
+            stiffid::Error::InvalidOption { option, message }
+            | stiffid::Error::Gate { option, message },
         ) => format!("{}: {message}", flag(*option)),
-        Some(stiffid_core::Error::OptionCombination {
+        Some(stiffid::Error::OptionCombination {
             option,
             with,
             needs,

@@ -37,7 +37,7 @@ pub fn scratch(dir: PathBuf) {
 
 /// What a run interrupted by a signal leaves: nothing of its own. Every staged temporary file and
 /// directory, the directories the run created, the report directories' temporary directories
-/// and every temporary file the run made ([`stiffid_core::io::output::remove_temporaries`]) are
+/// and every temporary file the run made ([`stiffid::internal::io::output::remove_temporaries`]) are
 /// removed; the files already there stay as they were.
 pub fn interrupted() {
     // A commit under way finishes first: its files are all put in place, not some.
@@ -46,7 +46,7 @@ pub fn interrupted() {
     for dir in std::mem::take(&mut *SCRATCH.lock().unwrap_or_else(|e| e.into_inner())) {
         let _ = std::fs::remove_dir_all(dir);
     }
-    stiffid_core::io::output::remove_temporaries();
+    stiffid::internal::io::output::remove_temporaries();
 }
 
 /// Handles held to the end of the run (report directories' locks).
@@ -205,8 +205,8 @@ pub fn discard() {
     release();
 }
 
-/// Puts `tmp` in place as `target` ([`stiffid_core::io::output::place`]), the error naming it.
+/// Puts `tmp` in place as `target` ([`stiffid::internal::io::output::place`]), the error naming it.
 fn place(tmp: &Path, target: &Path, new_only: bool) -> Result<()> {
-    stiffid_core::io::output::place(tmp, target, new_only)
+    stiffid::internal::io::output::place(tmp, target, new_only)
         .with_context(|| format!("{}: cannot write", target.display()))
 }

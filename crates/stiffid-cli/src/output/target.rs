@@ -1,11 +1,11 @@
-//! Where a write lands, and whether it may: the library's rules ([`stiffid_core::io::output`]) with
+//! Where a write lands, and whether it may: the library's rules ([`stiffid::internal::io::output`]) with
 //! the command's inputs, shared by [`super::OutFile`] and [`super::ReportDir`].
 
 use crate::load;
 use anyhow::{Context, Result};
 use std::fs::File;
 use std::path::{Path, PathBuf};
-use stiffid_core::io::output;
+use stiffid::internal::io::output;
 
 /// The file a write to `path` replaces or creates ([`output::resolve`]), never one the command
 /// read ([`load::input_at`]).

@@ -12,9 +12,9 @@ use anyhow::Result;
 use std::path::Path;
 use stiffid::app::calibrate::document::Document;
 use stiffid::app::document::mm;
-use stiffid_core::common::words::apart;
-use stiffid_core::Setup;
-use stiffid_view::{glb, Scene};
+use stiffid::internal::common::words::apart;
+use stiffid::internal::view::{glb, Scene};
+use stiffid::Setup;
 
 /// The calibration's report: `report.html`, `calibration.json`, `errors.glb`.
 const KIND: Kind = Kind {

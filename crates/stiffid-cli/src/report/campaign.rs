@@ -11,7 +11,7 @@ use anyhow::Result;
 use nalgebra::Vector3;
 use stiffid::app::select::document::Document;
 use stiffid::app::select::Report;
-use stiffid_core::Setup;
+use stiffid::Setup;
 
 /// The generator mark of `plan.html`, as the stiffness plan's (one plan directory either way).
 const GENERATOR: &str = "stiffid select";

@@ -13,10 +13,10 @@ use stiffid::app::compensate::document::GENERATOR;
 use stiffid::app::compensate::document::{Document, SummaryDocument};
 use stiffid::app::compensate::{Report, Segment};
 use stiffid::app::document::mm;
-use stiffid_core::common::words::count;
-use stiffid_core::Setup;
-use stiffid_machining::compensate::Compensated;
-use stiffid_view::{glb, Scene};
+use stiffid::internal::common::words::count;
+use stiffid::internal::machining::compensate::Compensated;
+use stiffid::internal::view::{glb, Scene};
+use stiffid::Setup;
 
 /// The fixed files of the report (besides `figures/`).
 const FILES: [&str; 4] = [
@@ -178,7 +178,7 @@ fn compose(
         None => format!(
             "Error bound at {}%: infinite (a finite bound needs at least {} held-out calibration errors).",
             b.level * 100.0,
-            stiffid_core::model::prediction::held_out_needed(b.level)
+            stiffid::internal::model::prediction::held_out_needed(b.level)
         ),
     });
     if !document.has_covariance {

@@ -5,8 +5,8 @@ use super::figures::Figure;
 use super::tables::{self, Table};
 use stiffid::app::reproduce::document::{search_words, sentences};
 use stiffid::app::reproduce::Report;
-use stiffid_design::study::paper_table4;
-use stiffid_view::Scene;
+use stiffid::internal::design::study::paper_table4;
+use stiffid::internal::view::Scene;
 
 /// A report format.
 pub trait Writer {
@@ -35,7 +35,7 @@ pub fn compose(report: &Report, figures: &[Figure], w: &mut dyn Writer) {
     w.heading(1, "Posture selection for joint stiffness identification: the simulation study of Zhang et al. (2021)");
     w.paragraph(&format!(
         "Reproduces Section IV-A of Zhang, Guo, Sun and Sun, \"Method of Postures Selection for Industrial Robot Joint Stiffness Identification\", IEEE Access 9 (2021), doi:10.1109/ACCESS.2021.3073671 (Figs. 5-8, Tables 3-4) on the setup `{}` ({}), and shows beside it what scale-free criteria searched globally achieve. {} groups of {} postures, {} Monte Carlo runs per group and noise level, seed {}; computed in {:.1} s.",
-        s.name(), s.robot().name(), study.groups.len(), stiffid_design::study::POSTURES, study.runs, study.seed, study.elapsed_s
+        s.name(), s.robot().name(), study.groups.len(), stiffid::internal::design::study::POSTURES, study.runs, study.seed, study.elapsed_s
     ));
     w.heading(2, "Findings");
     w.list(&sentences(f, study));

@@ -36,9 +36,9 @@ impl Kind {
         };
         let mark = format!("content=\"{}\"", self.generator);
         ReportDir::prepare(dir, "--report", None, &holds, &|d| {
-            stiffid_core::io::input::open(&d.join(PAGE))
+            stiffid::internal::io::input::open(&d.join(PAGE))
                 .ok()
-                .and_then(|f| stiffid_core::io::read_text(PAGE, f).ok())
+                .and_then(|f| stiffid::internal::io::read_text(PAGE, f).ok())
                 .is_some_and(|t| t.contains(&mark))
         })
     }

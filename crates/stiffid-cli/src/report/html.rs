@@ -7,8 +7,8 @@ use super::tables::Table;
 use stiffid::app::reproduce::document::GENERATOR;
 use stiffid::app::reproduce::Report;
 
-use stiffid_view::page::{self as scene_page, escape};
-use stiffid_view::Scene;
+use stiffid::internal::view::page::{self as scene_page, escape};
+use stiffid::internal::view::Scene;
 
 /// Escaped text with `code spans` as `<code>`.
 fn inline(text: &str) -> String {

@@ -14,9 +14,9 @@ use crate::output::ReportDir;
 use anyhow::Result;
 use serde_json::Value;
 use std::path::Path;
-use stiffid_core::Setup;
-use stiffid_view::stance::Postures;
-use stiffid_view::{glb, Scene};
+use stiffid::internal::view::stance::Postures;
+use stiffid::internal::view::{glb, Scene};
+use stiffid::Setup;
 
 /// The identification's report: `report.html`, `identify.json`, `identify.glb`.
 const KIND: Kind = Kind {
@@ -155,7 +155,7 @@ fn parameters_table(doc: &Value, parameters: &[Value]) -> Table {
                     match ends[..] {
                         // Both ends with the digits that tell them apart.
                         [Some(a), Some(b)] => {
-                            let ends = stiffid_core::common::words::apart(&[a, b], 4);
+                            let ends = stiffid::internal::common::words::apart(&[a, b], 4);
                             format!("{} to {}", ends[0], ends[1])
                         }
                         _ => {

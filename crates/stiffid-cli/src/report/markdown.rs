@@ -4,7 +4,7 @@ use super::content::{compose, Writer};
 use super::figures::Figure;
 use super::tables::Table;
 use stiffid::app::reproduce::Report;
-use stiffid_view::Scene;
+use stiffid::internal::view::Scene;
 
 struct Markdown(String);
 

@@ -21,7 +21,7 @@ use figures::Figure;
 use std::path::Path;
 use stiffid::app::reproduce::Report;
 use stiffid::app::simulate::document::deviation_csv;
-use stiffid_core::io::postures;
+use stiffid::internal::io::postures;
 
 pub use stiffid_figures::reproduce::{criteria_values, CRITERIA};
 

@@ -14,11 +14,11 @@ use std::path::Path;
 use stiffid::app::document::{finite, mm};
 use stiffid::app::plan::document::{self as document, Bodies};
 use stiffid::app::plan::{self as job, Report, Request};
-use stiffid_core::common::words::{count, is_are};
-use stiffid_core::Setup;
-use stiffid_design::target::TargetOutcome;
-use stiffid_design::Criterion;
-use stiffid_view::{glb, Scene};
+use stiffid::internal::common::words::{count, is_are};
+use stiffid::internal::design::target::TargetOutcome;
+use stiffid::internal::design::Criterion;
+use stiffid::internal::view::{glb, Scene};
+use stiffid::Setup;
 
 /// The generator mark of `plan.html`, by which a plan directory is recognised as ours.
 const GENERATOR: &str = "stiffid select";

@@ -1,7 +1,7 @@
 //! The report's tables as text cells, rendered by both [`super::html`] and [`super::markdown`].
 
 use super::{criteria_values, CRITERIA};
-use stiffid_design::study::{Findings, Study};
+use stiffid::internal::design::study::{Findings, Study};
 
 /// A table: header and rows of text cells.
 pub struct Table {
@@ -293,7 +293,7 @@ pub fn trials(study: &Study) -> Table {
     }
 }
 
-/// The paper's Table 4 ([`stiffid_design::study::TABLE4`], `[joint][group]`) beside this study's means for
+/// The paper's Table 4 ([`stiffid::internal::design::study::TABLE4`], `[joint][group]`) beside this study's means for
 /// Groups 1-3 at the same level.
 pub fn paper_table4(study: &Study, paper: &[[f64; 3]; 6]) -> Table {
     let l = study.validation_level;

@@ -250,7 +250,7 @@ fn a_fifo_given_as_an_input_file_is_refused_at_once() {
 #[test]
 fn a_stiffness_files_prediction_data_and_its_two_stiffness_keys_are_checked() {
     let doc = crate::common::json(&crate::common::identify_fanuc(&["--cross-validate"]));
-    let parse = |v: &serde_json::Value| stiffid_core::io::stiffness::parse(&v.to_string());
+    let parse = |v: &serde_json::Value| stiffid::internal::io::stiffness::parse(&v.to_string());
     parse(&doc).unwrap();
     let mut floor = doc.clone();
     floor["prediction"]["noise_floor_mm"] = 1e300.into();

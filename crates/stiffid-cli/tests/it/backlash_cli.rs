@@ -5,9 +5,9 @@
 use crate::calibrate_cli::{model, postures, readings, truth, SETUP};
 use crate::common::{json, refused, stiffid, temp_dir, write_file};
 use nalgebra::{DVector, Isometry3, Point3, Vector3, Vector6};
-use stiffid_metrology::calibration::error_model::{JointMaps, Observation};
-use stiffid_metrology::calibration::maps::Spec;
-use stiffid_metrology::calibration::ErrorModel;
+use stiffid::internal::metrology::calibration::error_model::{JointMaps, Observation};
+use stiffid::internal::metrology::calibration::maps::Spec;
+use stiffid::internal::metrology::calibration::ErrorModel;
 
 /// Half the backlash of joints 2 and 3, rad (0.3 and -0.2 mrad).
 const HALF: [f64; 2] = [3e-4, -2e-4];
@@ -38,7 +38,7 @@ fn approached(
     tracker: &Isometry3<f64>,
     qs: &[[f64; 6]],
 ) -> String {
-    let mut text = stiffid_core::io::readings::header() + ",dir1,dir2,dir3,dir4,dir5,dir6\n";
+    let mut text = stiffid::internal::io::readings::header() + ",dir1,dir2,dir3,dir4,dir5,dir6\n";
     for (i, q_deg) in qs.iter().enumerate() {
         let q = Vector6::from_iterator(q_deg.iter().map(|d| d.to_radians()));
         let direction = Vector6::from_fn(|j, _| match (i * 7 + j * 3) % 5 < 2 {
@@ -52,7 +52,7 @@ fn approached(
                 q,
                 measured: Vector3::zeros(),
                 wrench: Vector6::zeros(),
-                e: stiffid_core::robot::external::ExternalValues::NONE,
+                e: stiffid::internal::robot::external::ExternalValues::NONE,
                 table: false,
                 direction,
             };
@@ -120,7 +120,7 @@ fn calibrate_fits_the_backlash_and_writes_it_to_the_robot_file() {
     // The robot file holds them (deg) and reads them back (rad).
     let text = std::fs::read_to_string(&robot).unwrap();
     assert_eq!(text.matches("half_backlash_deg = ").count(), 2, "{text}");
-    let written = stiffid_core::robot::file::parse(&text, "robot.toml").unwrap();
+    let written = stiffid::internal::robot::file::parse(&text, "robot.toml").unwrap();
     let maps = written.error_maps().unwrap();
     for (joint, deg) in [(1, fitted[0]), (2, fitted[1])] {
         let got = maps[joint].backlash().to_degrees();

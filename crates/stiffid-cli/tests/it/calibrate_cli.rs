@@ -8,9 +8,9 @@ use common::{assert_success, assert_usage_error, json, refused, stiffid, temp_di
 use nalgebra::{DVector, Isometry3, Point3, Vector3, Vector6};
 use serde_json::Value;
 use std::path::Path;
-use stiffid_core::Setup;
-use stiffid_metrology::calibration::error_model::MeasuredIn;
-use stiffid_metrology::calibration::{gravity, ErrorModel, Geometry};
+use stiffid::internal::metrology::calibration::error_model::MeasuredIn;
+use stiffid::internal::metrology::calibration::{gravity, ErrorModel, Geometry};
+use stiffid::Setup;
 
 pub(crate) const SETUP: &str = "zhang2021-comau-nj165";
 
@@ -38,7 +38,7 @@ pub(crate) fn postures(n: usize, seed: u64) -> Vec<[f64; 6]> {
 }
 
 pub(crate) fn model() -> ErrorModel {
-    let setup = stiffid_core::setup::builtin(SETUP).unwrap();
+    let setup = stiffid::internal::setup::builtin(SETUP).unwrap();
     let robot = setup.robot();
     ErrorModel::new(
         robot,
@@ -76,7 +76,7 @@ pub(crate) fn readings(
     tracker: &Isometry3<f64>,
     qs: &[[f64; 6]],
 ) -> String {
-    let mut text = stiffid_core::io::readings::header() + "\n";
+    let mut text = stiffid::internal::io::readings::header() + "\n";
     for (i, q_deg) in qs.iter().enumerate() {
         let q = Vector6::from_iterator(q_deg.iter().map(|d| d.to_radians()));
         for k in 0..model.points() {
@@ -210,7 +210,8 @@ fn calibrate_predicts_held_out_readings_and_writes_robot_files() {
     assert_eq!(p["unit"], "deg");
     // The written robot file: the calibrated positions.
     let written =
-        stiffid_core::robot::file::parse(&std::fs::read_to_string(&robot).unwrap(), "r").unwrap();
+        stiffid::internal::robot::file::parse(&std::fs::read_to_string(&robot).unwrap(), "r")
+            .unwrap();
     let q = Vector6::new(0.3, -0.2, -1.4, 0.5, 0.9, -0.7);
     let c = model.point(&x, 1);
     let want = model.positions(&x, &[(q, 1)]).unwrap()[0];
@@ -367,7 +368,7 @@ fn calibrate_refuses_bad_input() {
 fn robot_with_masses(d: &Path) -> String {
     let masses = [250.0, 180.0, 120.0, 60.0, 20.0, 40.0];
     let mut robot_text = String::new();
-    for (i, part) in include_str!("../../../stiffid/presets/comau-smart5-nj165-3.0.toml")
+    for (i, part) in include_str!("../../../stiffid-core/presets/comau-smart5-nj165-3.0.toml")
         .split("[[joint]]\n")
         .enumerate()
     {
@@ -413,7 +414,8 @@ fn assert_nominal_reference(doc: &Value, rigid: &Value, reference: f64) {
 /// variance zero), noise-free readings to 1e-5 of it (the bound on the gravity terms, a prior
 /// centred on the setup's nominal compliance, moves a noise-free fit by a few millionths).
 fn assert_stiffness_file(k: &Path, setup: &Setup, springs: &Vector6<f64>) {
-    let file = stiffid_core::io::stiffness::parse(&std::fs::read_to_string(k).unwrap()).unwrap();
+    let file =
+        stiffid::internal::io::stiffness::parse(&std::fs::read_to_string(k).unwrap()).unwrap();
     let c = file.compliance(setup.model()).unwrap();
     for j in 0..6 {
         assert!(
@@ -432,14 +434,15 @@ fn assert_stiffness_file(k: &Path, setup: &Setup, springs: &Vector6<f64>) {
 #[test]
 fn calibrate_with_masses_writes_the_stiffness_file() {
     let d = temp_dir("calibrate-stiffness");
-    let setup = stiffid_core::setup::builtin(SETUP).unwrap();
+    let setup = stiffid::internal::setup::builtin(SETUP).unwrap();
     let robot_text = robot_with_masses(&d);
-    let setup_text = include_str!("../../../stiffid/setups/zhang2021-comau-nj165.toml").replace(
-        "robot = \"comau-smart5-nj165-3.0\"",
-        "robot = \"robot.toml\"",
-    );
+    let setup_text = include_str!("../../../stiffid-core/setups/zhang2021-comau-nj165.toml")
+        .replace(
+            "robot = \"comau-smart5-nj165-3.0\"",
+            "robot = \"robot.toml\"",
+        );
     let setup_file = write_file(&d, "setup.toml", &setup_text);
-    let robot = stiffid_core::robot::file::parse(&robot_text, "robot.toml").unwrap();
+    let robot = stiffid::internal::robot::file::parse(&robot_text, "robot.toml").unwrap();
     let nominal = setup.nominal_compliance().unwrap();
     let springs = Vector6::from_fn(|i, _| nominal[i] * if i == 0 { 1.0 } else { 1.3 });
     let g =
@@ -529,7 +532,7 @@ fn calibrate_with_masses_writes_the_stiffness_file() {
 
 /// The RMS 3D error (mm) of the rigid nominal robot (`nominal`, Geometry::None) predicting the
 /// readings of `truth` at `x` by a tracker at `tracker`, the tracker registered on them
-/// (Umeyama, [`stiffid_metrology::register::fit`]).
+/// (Umeyama, [`stiffid::internal::metrology::register::fit`]).
 fn nominal_rms_mm(
     nominal: &ErrorModel,
     x: &DVector<f64>,
@@ -548,13 +551,13 @@ fn nominal_rms_mm(
     }
     let correspondences: Vec<_> = (pairs.iter())
         .map(
-            |(base, tracker)| stiffid_metrology::register::Correspondence {
+            |(base, tracker)| stiffid::internal::metrology::register::Correspondence {
                 base: *base,
                 tracker: *tracker,
             },
         )
         .collect();
-    let t = stiffid_metrology::register::fit(&correspondences)
+    let t = stiffid::internal::metrology::register::fit(&correspondences)
         .unwrap()
         .base_from_tracker;
     let sum: f64 = (pairs.iter())
@@ -571,13 +574,13 @@ fn loaded_readings(
     tracker: &Isometry3<f64>,
     qs: &[[f64; 6]],
 ) -> String {
-    use stiffid_metrology::calibration::error_model::Observation;
+    use stiffid::internal::metrology::calibration::error_model::Observation;
     let wrenches = [
         Vector6::zeros(),
         Vector6::new(800.0, -300.0, -1200.0, 0.0, 0.0, 0.0),
         Vector6::new(-500.0, 900.0, 400.0, 0.0, 0.0, 0.0),
     ];
-    let mut text = stiffid_core::io::readings::header_with_loads() + "\n";
+    let mut text = stiffid::internal::io::readings::header_with_loads() + "\n";
     for (i, q_deg) in qs.iter().enumerate() {
         let q = Vector6::from_iterator(q_deg.iter().map(|d| d.to_radians()));
         for (step, wrench) in wrenches.iter().enumerate() {
@@ -588,7 +591,7 @@ fn loaded_readings(
                     q,
                     measured: Vector3::zeros(),
                     wrench: *wrench,
-                    e: stiffid_core::robot::external::ExternalValues::NONE,
+                    e: stiffid::internal::robot::external::ExternalValues::NONE,
                     table: false,
                     direction: Vector6::zeros(),
                 };
@@ -619,7 +622,7 @@ fn loaded_readings(
 #[test]
 fn calibrate_with_loaded_readings_writes_the_stiffness_file() {
     let d = temp_dir("calibrate-loaded");
-    let setup = stiffid_core::setup::builtin(SETUP).unwrap();
+    let setup = stiffid::internal::setup::builtin(SETUP).unwrap();
     let model = model().with_loads(&setup).unwrap();
     let mut x = truth(&model);
     let columns = model.compliance_columns().unwrap().to_vec();
@@ -655,7 +658,8 @@ fn calibrate_with_loaded_readings_writes_the_stiffness_file() {
         (p["kind"].as_str(), p["unit"].as_str()),
         (Some("compliance"), Some("urad/(N m)"))
     );
-    let file = stiffid_core::io::stiffness::parse(&std::fs::read_to_string(&k).unwrap()).unwrap();
+    let file =
+        stiffid::internal::io::stiffness::parse(&std::fs::read_to_string(&k).unwrap()).unwrap();
     let c = file.compliance(setup.model()).unwrap();
     for (j, &col) in columns.iter().enumerate() {
         assert!(

@@ -8,7 +8,7 @@ use crate::common::{json, numbers, stiffid, temp_dir, write_file};
 use nalgebra::{DVector, Vector3, Vector6};
 use std::path::{Path, PathBuf};
 use stiffid::app::purpose::{self, CalibrationOptions};
-use stiffid_metrology::calibration::ErrorModel;
+use stiffid::internal::metrology::calibration::ErrorModel;
 
 /// Calibrates on noise-free readings in `d`: the robot file, the error model and the true values.
 fn calibrated(d: &Path) -> (PathBuf, ErrorModel, DVector<f64>) {
@@ -36,7 +36,7 @@ fn calibrated(d: &Path) -> (PathBuf, ErrorModel, DVector<f64>) {
 
 /// The built-in setup with a cutting tool's centre point and its robot replaced by `robot`.
 fn setup_text(robot: &str) -> String {
-    (stiffid_core::setup::builtin_text(SETUP).unwrap())
+    (stiffid::internal::setup::builtin_text(SETUP).unwrap())
         .replace(
             "robot = \"comau-smart5-nj165-3.0\"",
             &format!("robot = \"{robot}\""),
@@ -50,16 +50,16 @@ fn setup_with(d: &Path, name: &str, robot: &str) -> PathBuf {
 }
 
 /// [`setup_text`] in the library, with the robot `robot` (a robot file, read here) or the preset.
-fn library_setup(robot: Option<&Path>) -> stiffid_core::Setup {
+fn library_setup(robot: Option<&Path>) -> stiffid::Setup {
     let text = setup_text(match robot {
         Some(_) => "robot.toml",
         None => "comau-smart5-nj165-3.0",
     });
-    stiffid_core::setup::parse(&text, "setup.toml", |name, _| match robot {
+    stiffid::internal::setup::parse(&text, "setup.toml", |name, _| match robot {
         Some(path) => {
-            stiffid_core::robot::file::parse(&std::fs::read_to_string(path).unwrap(), name)
+            stiffid::internal::robot::file::parse(&std::fs::read_to_string(path).unwrap(), name)
         }
-        None => stiffid_core::robot::presets::get(name),
+        None => stiffid::internal::robot::presets::get(name),
     })
     .unwrap()
 }
@@ -78,7 +78,7 @@ fn kinematics_and_predict_reproduce_the_calibrated_positions() {
     let d = temp_dir("calibrated-kinematics");
     let (robot, model, x) = calibrated(&d);
     let setup = setup_with(&d, "calibrated.toml", "robot.toml");
-    let nominal = stiffid_core::setup::builtin(SETUP).unwrap();
+    let nominal = stiffid::internal::setup::builtin(SETUP).unwrap();
     for (i, q) in postures(4, 7).iter().enumerate() {
         let q = Vector6::from_iterator(q.iter().map(|v| v.to_radians()));
         for k in 0..model.points() {
@@ -145,7 +145,7 @@ fn evaluate_and_select_design_on_the_calibrated_robot() {
         .map(|q| Vector6::from_iterator(q.iter().map(|v| v.to_radians())))
         .collect();
     let options = CalibrationOptions::default();
-    let on = |s: &stiffid_core::Setup, q: &[Vector6<f64>]| {
+    let on = |s: &stiffid::Setup, q: &[Vector6<f64>]| {
         let c = purpose::design(s, &options).unwrap().evaluate(q).unwrap();
         c.predicted_rms * 1e3
     };
@@ -240,7 +240,7 @@ fn compensate_lands_on_the_target_with_the_calibrated_robot() {
     for i in 0..5 {
         let mut q = calibrated.test_postures()[0];
         q[0] += 0.02 * i as f64;
-        let pose = stiffid_core::robot::ik::tool_pose(&calibrated.robot().frames(&q), &tcp);
+        let pose = stiffid::internal::robot::ik::tool_pose(&calibrated.robot().frames(&q), &tcp);
         let (rx, ry, rz) = pose.rotation.euler_angles();
         let t = pose.translation.vector * 1e3;
         path += &format!(
@@ -287,14 +287,15 @@ fn compensate_lands_on_the_target_with_the_calibrated_robot() {
         let qc = Vector6::from_fn(|i, _| column(&row, &format!("qc{}_deg", i + 1)).to_radians());
         let deflection =
             Vector3::from_fn(|i, _| column(&row, ["dx_mm", "dy_mm", "dz_mm"][i]) * 1e-3);
-        let reached = stiffid_core::robot::ik::tool_pose(&calibrated.robot().frames(&qc), &tcp)
-            .translation
-            .vector
-            + deflection;
+        let reached =
+            stiffid::internal::robot::ik::tool_pose(&calibrated.robot().frames(&qc), &tcp)
+                .translation
+                .vector
+                + deflection;
         let e = (reached - target.translation.vector).norm();
         assert!(e < 5e-6, "{e} m from the target");
         // The nominal robot at those angles misses by the calibration's size.
-        let off = stiffid_core::robot::ik::tool_pose(&nominal.robot().frames(&qc), &tcp);
+        let off = stiffid::internal::robot::ik::tool_pose(&nominal.robot().frames(&qc), &tcp);
         assert!((off.translation.vector + deflection - target.translation.vector).norm() > 1e-4);
     }
 }

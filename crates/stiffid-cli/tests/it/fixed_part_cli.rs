@@ -18,10 +18,12 @@ const ON_PART_MM: [[f64; 3]; 3] = [
 /// The built-in setup on `robot` with `[workpiece]` at `xyz_mm` (turned 30 deg about z) and,
 /// with `reflectors`, the reflectors on the part.
 fn setup_text(robot: &str, xyz_mm: [f64; 3], reflectors: bool) -> String {
-    let text = stiffid_core::setup::builtin_text(SETUP).unwrap().replace(
-        "robot = \"comau-smart5-nj165-3.0\"",
-        &format!("robot = \"{robot}\""),
-    );
+    let text = stiffid::internal::setup::builtin_text(SETUP)
+        .unwrap()
+        .replace(
+            "robot = \"comau-smart5-nj165-3.0\"",
+            &format!("robot = \"{robot}\""),
+        );
     let [x, y, z] = xyz_mm;
     let mut workpiece = format!(
         "\n[workpiece]\nbase_from_part = {{ xyz_mm = [{x:?}, {y:?}, {z:?}], rpy_deg = [0.0, 0.0, 30.0] }}\n"
@@ -83,7 +85,7 @@ fn calibrate_locates_a_fixed_part_from_its_reflectors() {
         "{warnings}"
     );
     let file = std::fs::read_to_string(&robot).unwrap();
-    let located = stiffid_core::robot::file::parse(&file, "robot.toml").unwrap();
+    let located = stiffid::internal::robot::file::parse(&file, "robot.toml").unwrap();
     let located = *located.part().expect("[part]");
     assert!((located.translation.vector - part.translation.vector).norm() < 1e-9);
     assert!(located.rotation.angle_to(&part.rotation) < 1e-9);

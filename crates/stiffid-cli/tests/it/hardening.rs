@@ -447,7 +447,7 @@ fn non_finite_or_absurd_robot_geometry_is_refused() {
         write_file(&dir, "r.urdf", &urdf.replacen(from, to, 1));
         kinematics_refused(&dir, "{dir}/r.urdf", "0,0,0,0,0,0", &["r.urdf", mention]);
     }
-    let preset = stiffid_core::robot::presets::text("comau-smart5-nj165-3.0").unwrap();
+    let preset = stiffid::internal::robot::presets::text("comau-smart5-nj165-3.0").unwrap();
     for (extra, mention) in [
         ("\n[base]\nxyz_mm = [nan, 0, 0]\n", "base.xyz_mm[1]: NaN"),
         (
@@ -701,7 +701,7 @@ fn urdf_diagnostics_name_the_problem() {
         kinematics_refused(&dir, "{dir}/r.urdf", "0,0,0,0,0,0", &["r.urdf", mention]);
     }
     // A well-conditioned axis map of determinant 1e-18 is accepted; a singular one is not.
-    let preset = stiffid_core::robot::presets::text("kuka-kr210-robond").unwrap();
+    let preset = stiffid::internal::robot::presets::text("kuka-kr210-robond").unwrap();
     let scaled = "\n[axis_map]\nmatrix = [[0.001,0,0,0,0,0],[0,0.001,0,0,0,0],[0,0,0.001,0,0,0],[0,0,0,0.001,0,0],[0,0,0,0,0.001,0],[0,0,0,0,0,0.001]]\noffset_deg = [0,0,0,0,0,0]\n";
     assert!(!preset.contains("\n[axis_map]"));
     write_file(&dir, "r.toml", &format!("{preset}{scaled}"));

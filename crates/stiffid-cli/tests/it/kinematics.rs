@@ -65,8 +65,8 @@ fn json_gives_the_comau_flange_check_position_and_an_si_jacobian() {
     let k = v["dexterity"].as_f64().unwrap();
     assert!(k > 1.0 && k.is_finite());
     // No length given: the robot's own, the one that minimises the median dexterity of the point.
-    let robot = stiffid_core::robot::presets::get(COMAU).unwrap();
-    let l = stiffid_core::setup::prior::robot_characteristic_length(
+    let robot = stiffid::internal::robot::presets::get(COMAU).unwrap();
+    let l = stiffid::internal::setup::prior::robot_characteristic_length(
         &robot,
         &nalgebra::Vector3::zeros(),
     )
@@ -161,7 +161,7 @@ fn malformed_robot_toml() {
 
 #[test]
 fn unknown_key_in_a_robot_toml() {
-    let preset = include_str!("../../../stiffid/presets/comau-smart5-nj165-3.0.toml");
+    let preset = include_str!("../../../stiffid-core/presets/comau-smart5-nj165-3.0.toml");
     let text = preset.replacen("d_mm = 830.0", "d_mm = 830.0\nlength_mm = 1.0", 1);
     assert_ne!(text, preset);
     let file = scratch("unknown-key-robot.toml", &text);
@@ -455,7 +455,7 @@ fn a_cell_with_external_axes_refuses_a_posture_without_their_values() {
         "track-robot.toml",
         &format!(
             "{}\n[[external_axis]]\nname = \"track\"\nrole = \"carrier\"\ndirection = [1, 0, 0]\nlimits_deg = [0, 90]\n",
-            stiffid_core::robot::presets::text("kuka-kr210-robond").unwrap()
+            stiffid::internal::robot::presets::text("kuka-kr210-robond").unwrap()
         ),
     );
     let out = stiffid(&["kinematics", "--robot", &robot, "--q-deg", q]);

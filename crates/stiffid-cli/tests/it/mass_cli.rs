@@ -5,10 +5,10 @@
 use crate::common::{assert_success, json, stiffid, temp_dir, write_file};
 use nalgebra::{Vector3, Vector6};
 use stiffid::app::{kinematics, predict};
-use stiffid_core::observation::deflection::Frame;
+use stiffid::internal::observation::deflection::Frame;
 
-const COMAU: &str = include_str!("../../../stiffid/presets/comau-smart5-nj165-3.0.toml");
-const SETUP: &str = include_str!("../../../stiffid/setups/zhang2021-comau-nj165.toml");
+const COMAU: &str = include_str!("../../../stiffid-core/presets/comau-smart5-nj165-3.0.toml");
+const SETUP: &str = include_str!("../../../stiffid-core/setups/zhang2021-comau-nj165.toml");
 
 /// The COMAU preset with a mass, centre and inertia tensor on each joint (`equal`: every mass
 /// 1 kg, ROS-Industrial's placeholders).
@@ -56,13 +56,13 @@ fn predict_gives_the_librarys_modes_effective_mass_and_surge() {
     let out = predict(true);
     assert_success(&out);
     let v = json(&out);
-    let setup = stiffid_core::setup::parse(
+    let setup = stiffid::internal::setup::parse(
         &SETUP.replace(
             "robot = \"comau-smart5-nj165-3.0\"",
             "robot = \"robot.toml\"",
         ),
         "setup.toml",
-        |_, _| stiffid_core::robot::file::parse(&robot_text(false), "robot.toml"),
+        |_, _| stiffid::internal::robot::file::parse(&robot_text(false), "robot.toml"),
     )
     .unwrap();
     let outcome = predict::run(&predict::Request {
@@ -135,13 +135,13 @@ fn kinematics_gives_the_librarys_frequencies_with_a_stiffness() {
     ]);
     assert_success(&out);
     let v = json(&out);
-    let robot = stiffid_core::robot::file::parse(&robot_text(false), "robot.toml").unwrap();
+    let robot = stiffid::internal::robot::file::parse(&robot_text(false), "robot.toml").unwrap();
     let report = kinematics::run(&kinematics::Request {
         robot: &robot,
         q: Vector6::new(10.0, -20.0, -100.0, 30.0, 40.0, 50.0).map(f64::to_radians),
         point: Vector3::new(0.15, 0.0, 0.2),
         characteristic_length: None,
-        coordinates: stiffid_core::Coordinates::Axis,
+        coordinates: stiffid::Coordinates::Axis,
         stiffness: Some(Vector6::new(
             950000.0, 3e6, 900000.0, 250000.0, 200000.0, 150000.0,
         )),

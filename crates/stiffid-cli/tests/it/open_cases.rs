@@ -13,7 +13,7 @@ fn axes(shift_mm: f64) -> String {
 
 /// The FANUC preset as a robot file named `name` with the cell's axes ([`axes`]).
 fn robot_file(dir: &std::path::Path, file: &str, name: &str, shift_mm: f64) -> String {
-    let preset = include_str!("../../../stiffid/presets/fanuc-r2000ic-165f.toml");
+    let preset = include_str!("../../../stiffid-core/presets/fanuc-r2000ic-165f.toml");
     let text = preset.replace(
         "name = \"FANUC R-2000iC/165F\"",
         &format!("name = \"{name}\""),
@@ -165,7 +165,7 @@ fn parameters_the_readings_do_not_separate_print_no_standard_deviation() {
 fn an_infinite_calibration_part_is_not_called_absent() {
     let dir = temp_dir("open-infinite");
     let base = std::fs::read_to_string(example("milling/fanuc-milling.toml")).unwrap();
-    let preset = include_str!("../../../stiffid/presets/fanuc-r2000ic-165f.toml");
+    let preset = include_str!("../../../stiffid-core/presets/fanuc-r2000ic-165f.toml");
     let errors: Vec<String> = (1..=30).map(|i| format!("{:?}", 0.01 * i as f64)).collect();
     let robot = preset.replace(
         "name = \"FANUC R-2000iC/165F\"",
@@ -228,7 +228,7 @@ fn a_calibrated_robot_locates_its_part_in_an_update() {
     let model = model();
     let x = truth(&model);
     let tracker = crate::calibrate_cli::tracker();
-    let setup = stiffid_core::setup::builtin_text(SETUP).unwrap();
+    let setup = stiffid::internal::setup::builtin_text(SETUP).unwrap();
     let first = write_file(&d, "setup.toml", setup);
     let fit = write_file(
         &d,
@@ -295,7 +295,7 @@ fn a_calibrated_robot_locates_its_part_in_an_update() {
     );
     common::assert_success(&out);
     let file = std::fs::read_to_string(&updated).unwrap();
-    let located = stiffid_core::robot::file::parse(&file, "updated.toml").unwrap();
+    let located = stiffid::internal::robot::file::parse(&file, "updated.toml").unwrap();
     let located = *located.part().expect("[part]");
     let off = (located.translation.vector - part.translation.vector).norm();
     let turn = located.rotation.angle_to(&part.rotation);
@@ -344,7 +344,7 @@ fn gravity_terms_name_their_robot_file_values() {
     let text = String::from_utf8(stiffid(&args).stdout).unwrap();
     let doc = common::json(&stiffid(&[&args[..], &["--json"]].concat()));
     let file = std::fs::read_to_string(&robot).unwrap();
-    let file = stiffid_core::robot::file::parse(&file, "robot.toml").unwrap();
+    let file = stiffid::internal::robot::file::parse(&file, "robot.toml").unwrap();
     let own = file.own_weight().expect("[gravity]");
     let mut turned = Vec::new();
     let mut fitted = 0;

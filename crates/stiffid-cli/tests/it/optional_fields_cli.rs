@@ -235,15 +235,15 @@ fn evaluate_names_the_virtual_springs_without_a_nominal_stiffness() {
 #[test]
 fn a_calibration_only_setup_calibrates_and_the_loaded_jobs_name_the_loading() {
     use crate::calibrate_cli::{postures, readings, truth};
-    use stiffid_metrology::calibration::error_model::MeasuredIn;
-    use stiffid_metrology::calibration::{gravity, ErrorModel, Geometry};
+    use stiffid::internal::metrology::calibration::error_model::MeasuredIn;
+    use stiffid::internal::metrology::calibration::{gravity, ErrorModel, Geometry};
     let dir = temp_dir("calibration-only");
     let text = "name = \"tracker-only\"\nrobot = \"kuka-kr210-robond\"\n\n[tool]\n\
         measuring_points_mm = [[80.0, 80.0, 260.0], [-80.0, 80.0, 260.0], [-80.0, -80.0, 260.0]]\n\n\
         [noise]\nreading_sd_mm = 0.01\nlevel_multiples = [1.0]\n";
     let setup = write_file(&dir, "tracker-only.toml", text);
     let setup = setup.to_str().unwrap();
-    let robot = stiffid_core::robot::presets::get("kuka-kr210-robond").unwrap();
+    let robot = stiffid::internal::robot::presets::get("kuka-kr210-robond").unwrap();
     let points = [
         [0.08, 0.08, 0.26],
         [-0.08, 0.08, 0.26],

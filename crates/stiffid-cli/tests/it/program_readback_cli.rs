@@ -11,7 +11,7 @@ use crate::common;
 
 use common::{assert_success, example, stiffid, temp_dir, write_file};
 use std::path::Path;
-use stiffid_machining::program::{self, Dialect};
+use stiffid::internal::machining::program::{self, Dialect};
 
 /// The targets: axis angles (deg, whole hundredths for INFORM's 100 pulses per degree) near the
 /// cell's test posture and the external values: track (mm, the first 100 mm from the end of its

@@ -14,8 +14,8 @@ fn readings(truth: &Isometry3<f64>) -> String {
 
 /// As [`readings`] with every measuring point shifted by `shift` (flange frame, m).
 fn shifted_readings(truth: &Isometry3<f64>, shift: Vector3<f64>) -> String {
-    let setup = stiffid_core::setup::builtin("zhang2021-comau-nj165").unwrap();
-    let mut text = stiffid_core::io::readings::header() + "\n";
+    let setup = stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let mut text = stiffid::internal::io::readings::header() + "\n";
     let postures = [
         [0.0, 0.0, -90.0, 0.0, 30.0, 0.0],
         [35.0, -20.0, -110.0, 40.0, -30.0, 60.0],
@@ -71,8 +71,8 @@ fn register_gives_the_transform_back_and_writes_the_fragment() {
         .unwrap()
         + "\n"
         + &fragment;
-    let s = stiffid_core::setup::parse(&setup, "s.toml", |r, _| {
-        stiffid_core::robot::presets::get(r)
+    let s = stiffid::internal::setup::parse(&setup, "s.toml", |r, _| {
+        stiffid::internal::robot::presets::get(r)
     })
     .unwrap();
     let back = s.tracker().unwrap().base_from_tracker.unwrap();
@@ -180,10 +180,10 @@ fn proposed_postures_filled_in_register_the_tracker() {
         Vector3::new(3.0, -2.0, 1.5),
         Vector3::new(0.0, 0.0, std::f64::consts::PI),
     );
-    let setup = stiffid_core::setup::parse(
+    let setup = stiffid::internal::setup::parse(
         &std::fs::read_to_string(&cell).unwrap(),
         "cell.toml",
-        |r, _| stiffid_core::robot::presets::get(r),
+        |r, _| stiffid::internal::robot::presets::get(r),
     )
     .unwrap();
     let mut filled = String::new();

@@ -115,7 +115,7 @@ fn keys(name: &str, def: Option<&str>) -> std::collections::BTreeSet<String> {
 /// A stiffness file is what `identify --out` and `calibrate --stiffness-out` write: every key of
 /// the identify documents (over the drives and over a model with virtual springs) and of the
 /// calibration's stiffness file is one the stiffness file reads or ignores
-/// (`stiffid_core::io::stiffness::DOCUMENT_KEYS`), else the files they write would be refused as
+/// (`stiffid::internal::io::stiffness::DOCUMENT_KEYS`), else the files they write would be refused as
 /// holding an unknown key; and every key ignored is one they write.
 #[test]
 fn a_stiffness_file_reads_every_key_the_documents_write() {
@@ -131,7 +131,7 @@ fn a_stiffness_file_reads_every_key_the_documents_write() {
     written.extend(keys("identify", Some(forms[1])));
     written.extend(keys("calibrate", Some("stiffness")));
     let mut read = keys("stiffness", None);
-    let ignored = ::stiffid_core::io::stiffness::DOCUMENT_KEYS;
+    let ignored = ::stiffid::internal::io::stiffness::DOCUMENT_KEYS;
     read.extend(ignored.iter().map(|k| k.to_string()));
     let refused: Vec<_> = written.difference(&read).collect();
     assert!(

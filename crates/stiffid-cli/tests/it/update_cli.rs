@@ -7,7 +7,7 @@ use crate::calibrate_cli::{model, postures, readings, truth, SETUP};
 use crate::common::{json, numbers, refused, stiffid, temp_dir, write_file};
 use nalgebra::{DVector, Isometry3, Vector3};
 use std::path::{Path, PathBuf};
-use stiffid_metrology::calibration::ErrorModel;
+use stiffid::internal::metrology::calibration::ErrorModel;
 
 fn arg(p: &Path) -> String {
     p.to_str().unwrap().to_string()
@@ -43,10 +43,12 @@ fn calibrated_setup(d: &Path, model: &ErrorModel, x: &DVector<f64>) -> PathBuf {
     assert!(std::fs::read_to_string(&robot)
         .unwrap()
         .contains("[held_out]"));
-    let setup_text = stiffid_core::setup::builtin_text(SETUP).unwrap().replace(
-        "robot = \"comau-smart5-nj165-3.0\"",
-        "robot = \"robot.toml\"",
-    );
+    let setup_text = stiffid::internal::setup::builtin_text(SETUP)
+        .unwrap()
+        .replace(
+            "robot = \"comau-smart5-nj165-3.0\"",
+            "robot = \"robot.toml\"",
+        );
     write_file(d, "calibrated.toml", &setup_text)
 }
 

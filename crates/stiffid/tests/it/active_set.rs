@@ -3,13 +3,13 @@
 //! from the study's start groups, the exact-gradient search no worse than finite
 //! differences in the cell, and the same bits whatever the thread count.
 
-use stiffid::design::{self, Criterion, Gradient, SearchOptions, Solver};
-use stiffid::setup::{self, Setup};
+use stiffid::internal::design::{self, Criterion, Gradient, SearchOptions, Solver};
+use stiffid::internal::setup::{self, Setup};
 
 fn tracker_cell() -> Setup {
     let text = include_str!("../../../../examples/cell/zhang2021-tracker.toml");
     setup::parse(text, "zhang2021-tracker.toml", |r, _| {
-        stiffid::robot::presets::get(r)
+        stiffid::internal::robot::presets::get(r)
     })
     .unwrap()
 }
@@ -53,7 +53,7 @@ fn no_worse_than_slsqp_on_relative_a_from_the_same_starts() {
                 "{name}, start {seed}"
             );
             assert!(ours.termination.is_converged(), "{name}, start {seed}");
-            let feasible = |q| stiffid::cell::feasibility(&setup, q).feasible();
+            let feasible = |q| stiffid::internal::cell::feasibility(&setup, q).feasible();
             assert!(ours.postures.iter().all(feasible), "{name}, start {seed}");
         }
     }

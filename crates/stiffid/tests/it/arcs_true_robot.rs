@@ -9,10 +9,10 @@
 use crate::gcode_true_robot::{corpus, prepared, Prepared};
 use crate::true_robot::{row, written_with};
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
-use stiffid::machining::program::generate::Targets;
-use stiffid::machining::program::Dialect;
-use stiffid::machining::Language;
-use stiffid::robot::ik;
+use stiffid::internal::machining::program::generate::Targets;
+use stiffid::internal::machining::program::Dialect;
+use stiffid::internal::machining::Language;
+use stiffid::internal::robot::ik;
 
 /// A motion of the program: to a pose, or on a circle through a via point to a pose (part
 /// frame, m).

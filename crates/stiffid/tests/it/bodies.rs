@@ -8,10 +8,12 @@ pub(crate) mod mesh_robot;
 use nalgebra::{Vector3, Vector6};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
-use stiffid::cell::{self, body_body, body_box, body_floor, Body, CheckKind, Checker, Part};
-use stiffid::robot::Bodies;
-use stiffid::setup::reference::{self, Meshes};
-use stiffid::setup::Obstacle;
+use stiffid::internal::cell::{
+    self, body_body, body_box, body_floor, Body, CheckKind, Checker, Part,
+};
+use stiffid::internal::robot::Bodies;
+use stiffid::internal::setup::reference::{self, Meshes};
+use stiffid::internal::setup::Obstacle;
 use stiffid::Setup;
 
 /// The mesh robot's files under the directory `pkg`.
@@ -148,12 +150,14 @@ fn feasibility_uses_the_hulls_and_the_broad_phase_keeps_every_smallest_margin() 
 fn a_body_wholly_below_the_floor_fails_the_broad_phase_too() {
     // A floor 3 m up: every link's bounding sphere lies below it, most far more than
     // FAR_MARGIN beyond their radius. The broad phase must not take them for far above it.
-    let text = stiffid::setup::builtin_text("zhang2021-comau-nj165")
+    let text = stiffid::internal::setup::builtin_text("zhang2021-comau-nj165")
         .unwrap()
         .to_string()
         + "\n[cell]\nfloor_z_mm = 3000.0\nclearance_mm = 50.0\n";
-    let setup =
-        stiffid::setup::parse(&text, "cell.toml", |r, _| stiffid::robot::presets::get(r)).unwrap();
+    let setup = stiffid::internal::setup::parse(&text, "cell.toml", |r, _| {
+        stiffid::internal::robot::presets::get(r)
+    })
+    .unwrap();
     let checker = Checker::new(&setup);
     let q = Vector6::new(0.0, 0.0, -90f64.to_radians(), 0.0, 30f64.to_radians(), 0.0);
     let f = checker.feasibility(&q);
@@ -179,7 +183,7 @@ fn package_urls_resolve_in_the_setups_and_the_given_package_paths_or_name_the_pa
     // Meshes not found: the setup loads (kinematics needs none), the cell's checks refuse it.
     let bare = setup_from(&without, &[]).unwrap();
     assert!(bare.shapes().is_none());
-    let warning = stiffid::setup::plausibility::warnings(&bare);
+    let warning = stiffid::internal::setup::plausibility::warnings(&bare);
     assert_eq!(warning.len(), 1, "{warning:?}");
     assert!(warning[0].message.contains("--package-path"), "{warning:?}");
     let e = bare.check_bodies().unwrap_err().to_string();
@@ -248,28 +252,28 @@ fn capsules_are_the_fallback_and_the_users_override() {
 
 #[test]
 fn robot_files_accept_robot_geometry() {
-    let preset = stiffid::robot::presets::text("comau-smart5-nj165-3.0").unwrap();
+    let preset = stiffid::internal::robot::presets::text("comau-smart5-nj165-3.0").unwrap();
     let text = format!(
         "{preset}\n[robot_geometry]\nlink_radius_mm = [350, 260, 195, 175, 130, 110, 90]\n"
     );
-    let robot = stiffid::robot::file::parse(&text, "r.toml").unwrap();
+    let robot = stiffid::internal::robot::file::parse(&text, "r.toml").unwrap();
     match &robot.bodies() {
         Bodies::Capsules(r) => close(r[2], 0.195, 1e-12),
         other => panic!("{other:?}"),
     }
     let files = HashMap::from([(PathBuf::from("r.toml"), text.clone())]);
     let read = |p: &Path| files.get(p).cloned().map(Ok::<_, stiffid::Error>);
-    let setup_text = stiffid::setup::builtin_text("zhang2021-comau-nj165")
+    let setup_text = stiffid::internal::setup::builtin_text("zhang2021-comau-nj165")
         .unwrap()
         .replace("robot = \"comau-smart5-nj165-3.0\"", "robot = \"r.toml\"");
     let setup = reference::setup_text(&setup_text, "s.toml", Path::new(""), read).unwrap();
     close(setup.geometry().link_radii[2], 0.195, 1e-12);
     let bad = text.replace("[350, 260", "[0, 260");
-    let e = stiffid::robot::file::parse(&bad, "r.toml")
+    let e = stiffid::internal::robot::file::parse(&bad, "r.toml")
         .unwrap_err()
         .to_string();
     assert!(e.contains("r.toml: robot_geometry.link_radius_mm"), "{e}");
-    let e = stiffid::robot::file::parse(&format!("{text}tool_radius_mm = 5\n"), "r.toml")
+    let e = stiffid::internal::robot::file::parse(&format!("{text}tool_radius_mm = 5\n"), "r.toml")
         .unwrap_err()
         .to_string();
     assert!(e.contains("tool_radius_mm"), "{e}");

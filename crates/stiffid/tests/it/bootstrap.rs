@@ -6,11 +6,11 @@ use crate::candidates::{measure, paper_with, ELBOW};
 use std::io::Empty;
 use stiffid::app::identify::{run, Options, Report, Request};
 use stiffid::app::measurements::Data;
-use stiffid::design::random_group;
-use stiffid::identify::compare::bootstrap::percentile;
-use stiffid::identify::compare::{bootstrap, compare, Bootstrap, Comparison, Resampling};
-use stiffid::observation::Measurement;
-use stiffid::setup::Setup;
+use stiffid::internal::design::random_group;
+use stiffid::internal::identify::compare::bootstrap::percentile;
+use stiffid::internal::identify::compare::{bootstrap, compare, Bootstrap, Comparison, Resampling};
+use stiffid::internal::observation::Measurement;
+use stiffid::internal::setup::Setup;
 
 /// A rotation about the x axis of link 2's frame (along the upper arm), declared as a candidate
 /// and absent from the truth.

@@ -7,13 +7,13 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
 use stiffid::app::compensate::{run, Input, Request};
-use stiffid::common::error::JobOption;
-use stiffid::machining::compensate::{
+use stiffid::internal::common::error::JobOption;
+use stiffid::internal::machining::compensate::{
     self, Aggregate, Compliance, Free, FreeVariables, Objective, Options, PathPoint, Target,
 };
-use stiffid::observation::deflection::{Frame, Points};
-use stiffid::robot::ik::tool_pose;
-use stiffid::{setup, Error, Setup};
+use stiffid::internal::observation::deflection::{Frame, Points};
+use stiffid::internal::robot::ik::tool_pose;
+use stiffid::{internal::setup, Error, Setup};
 
 /// The FANUC setup loaded at its TCP, with a correlated covariance of 2% to 12% of each
 /// compliance.
@@ -49,7 +49,7 @@ fn line_path(s: &Setup, n: usize) -> Vec<PathPoint> {
             ),
             wrench: Vector6::new(300.0, -100.0, -400.0, 0.0, 0.0, 0.0),
             frame: Frame::Tool,
-            external: stiffid::robot::external::ExternalValues::NONE,
+            external: stiffid::internal::robot::external::ExternalValues::NONE,
         })
         .collect()
 }
@@ -130,17 +130,17 @@ fn the_calibration_part_is_the_quantile_of_the_held_out_errors() {
         "name = \"arm (calibrated)\"\nconvention = \"modified-dh\"\n{joints}\n[held_out]\nsource = \"validate\"\nerrors_mm = [{}]\n",
         errors.join(", ")
     );
-    let robot = stiffid::robot::file::parse(&text, "robot.toml").unwrap();
+    let robot = stiffid::internal::robot::file::parse(&text, "robot.toml").unwrap();
     let q = robot.held_out().unwrap().quantile(0.95);
     let truth = 0.02e-3 * 7.8147f64.sqrt();
     assert!((q / truth - 1.0).abs() < 0.10, "{q} vs {truth}");
     // Too few errors for the level: infinite, never a smaller number.
     let few = text.replace(&format!("[{}]", errors.join(", ")), "[0.01, 0.02]");
-    let robot = stiffid::robot::file::parse(&few, "robot.toml").unwrap();
+    let robot = stiffid::internal::robot::file::parse(&few, "robot.toml").unwrap();
     assert_eq!(robot.held_out().unwrap().quantile(0.95), f64::INFINITY);
     // A negative length is refused naming the field.
     let bad = text.replace(&format!("[{}]", errors.join(", ")), "[-0.01]");
-    let e = stiffid::robot::file::parse(&bad, "robot.toml").unwrap_err();
+    let e = stiffid::internal::robot::file::parse(&bad, "robot.toml").unwrap_err();
     assert!(e.to_string().contains("held_out.errors_mm"), "{e}");
 }
 
@@ -296,7 +296,7 @@ fn with_held_out(s: &Setup, near: &[Vector6<f64>], n: usize, sigma_q: f64, seed:
         })
         .collect();
     errors.sort_by(f64::total_cmp);
-    let held = stiffid::robot::HeldOut {
+    let held = stiffid::internal::robot::HeldOut {
         source: "validate".into(),
         errors,
     };

@@ -7,12 +7,12 @@ use nalgebra::{Isometry3, Point3, Vector3, Vector6};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
-use stiffid::metrology::calibration::error_model::Observation;
-use stiffid::metrology::cell_calibration;
+use stiffid::internal::metrology::calibration::error_model::Observation;
+use stiffid::internal::metrology::cell_calibration;
 use stiffid::Setup;
 
 fn paper() -> Setup {
-    stiffid::setup::builtin("zhang2021-comau-nj165").unwrap()
+    stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap()
 }
 
 fn truth() -> Isometry3<f64> {
@@ -45,7 +45,7 @@ fn readings_at(
                 q: *q,
                 measured: tracker,
                 wrench: Vector6::zeros(),
-                e: stiffid::robot::external::ExternalValues::NONE,
+                e: stiffid::internal::robot::external::ExternalValues::NONE,
                 table: false,
                 direction: Vector6::zeros(),
             });

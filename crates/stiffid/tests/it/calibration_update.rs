@@ -8,9 +8,9 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 use stiffid::app::calibrate::{self, Report};
 use stiffid::app::readings::Request as Readings;
-use stiffid::metrology::calibration::gravity::Gravity;
-use stiffid::metrology::calibration::maps::Spec;
-use stiffid::metrology::calibration::Geometry;
+use stiffid::internal::metrology::calibration::gravity::Gravity;
+use stiffid::internal::metrology::calibration::maps::Spec;
+use stiffid::internal::metrology::calibration::Geometry;
 use stiffid::{Robot, Setup};
 
 /// A calibrated robot file: an odd DH table, an error map on joint 2 and the calibration's
@@ -85,7 +85,7 @@ pub(super) fn robot_text(offsets: &[f64; 6]) -> String {
 
 /// The robot of [`robot_text`].
 pub(super) fn robot(offsets: &[f64; 6]) -> Robot {
-    stiffid::robot::file::parse(&robot_text(offsets), "calibrated.toml").unwrap()
+    stiffid::internal::robot::file::parse(&robot_text(offsets), "calibrated.toml").unwrap()
 }
 
 pub(super) fn drifted() -> Robot {
@@ -101,11 +101,11 @@ pub(super) fn setup() -> Setup {
             Vector3::new(0.0, -0.06, 0.15),
         ])
         .with_loading_point(Vector3::new(0.0, 0.0, 0.15))
-        .with_load(stiffid::setup::RopeLoad {
+        .with_load(stiffid::internal::setup::RopeLoad {
             load: 500.0,
             anchor: Vector3::new(2.0, 1.5, 0.0),
         })
-        .with_noise(stiffid::setup::Noise {
+        .with_noise(stiffid::internal::setup::Noise {
             reading_variance: 1e-10,
             levels: vec![1.0],
         })
@@ -211,7 +211,7 @@ pub(super) fn check_postures(setup: &Setup) -> Vec<Vector6<f64>> {
     use stiffid::app::select;
     let request = select::Request {
         setup,
-        criterion: stiffid::design::Criterion::RelativeA,
+        criterion: stiffid::internal::design::Criterion::RelativeA,
         purpose: stiffid::app::purpose::Purpose::Check,
         calibration: Default::default(),
         method: select::Method::Global,
@@ -219,7 +219,7 @@ pub(super) fn check_postures(setup: &Setup) -> Vec<Vector6<f64>> {
         pool: None,
         postures: stiffid::app::purpose::Purpose::Check.default_postures(),
         target_pct: None,
-        options: stiffid::design::SearchOptions {
+        options: stiffid::internal::design::SearchOptions {
             starts: 4,
             ..Default::default()
         },
@@ -249,7 +249,7 @@ fn noise_free_drift_is_recovered_by_the_update() {
     assert_eq!(postures.len(), 10);
     let truth = drifted();
     let data = readings(&truth, &setup, &postures, "C", 0.0, 1);
-    let held_postures = stiffid::design::random_group(&setup, 20, 7);
+    let held_postures = stiffid::internal::design::random_group(&setup, 20, 7);
     let held = readings(&truth, &setup, &held_postures, "H", 0.0, 2);
     let report = update(&setup, &data, Some(&held)).unwrap();
     let validation = report.validation.as_ref().unwrap();
@@ -282,8 +282,10 @@ fn noise_free_drift_is_recovered_by_the_update() {
         "{file}"
     );
     assert!(file.contains("[held_out]"), "{file}");
-    let updated = stiffid::robot::file::parse(file, "updated.toml").unwrap();
-    assert!(updated.name().ends_with(stiffid::robot::CALIBRATED));
+    let updated = stiffid::internal::robot::file::parse(file, "updated.toml").unwrap();
+    assert!(updated
+        .name()
+        .ends_with(stiffid::internal::robot::CALIBRATED));
     // The drift verdict on the drifted robot.
     let check = report.check.as_ref().unwrap();
     assert!(check.drifted);
@@ -295,7 +297,7 @@ fn noise_free_drift_is_recovered_by_the_update() {
 #[test]
 fn the_check_tells_a_drifted_robot_from_an_undrifted_one() {
     let setup = setup();
-    let postures = stiffid::design::random_group(&setup, 10, 3);
+    let postures = stiffid::internal::design::random_group(&setup, 10, 3);
     for (truth, drifted) in [(robot(&OFFSETS), false), (self::drifted(), true)] {
         let data = readings(&truth, &setup, &postures, "C", 1e-5, 4);
         let report = update(&setup, &data, None).unwrap();
@@ -318,10 +320,10 @@ fn the_check_tells_a_drifted_robot_from_an_undrifted_one() {
 #[test]
 fn an_update_refuses_what_it_cannot_do() {
     let setup = setup();
-    let postures = stiffid::design::random_group(&setup, 10, 3);
+    let postures = stiffid::internal::design::random_group(&setup, 10, 3);
     let data = readings(&drifted(), &setup, &postures, "C", 0.0, 1);
     let plain = robot_text(&OFFSETS).replace(" (calibrated)", "");
-    let plain = stiffid::robot::file::parse(&plain, "nominal.toml").unwrap();
+    let plain = stiffid::internal::robot::file::parse(&plain, "nominal.toml").unwrap();
     let nominal = setup.to_builder().with_robot(plain).build().unwrap();
     let e = update(&nominal, &data, None).unwrap_err().to_string();
     assert!(
@@ -366,7 +368,7 @@ fn mirrored_readings_are_refused_before_any_fit() {
         }
     }
     let setup = setup();
-    let postures = stiffid::design::random_group(&setup, 30, 3);
+    let postures = stiffid::internal::design::random_group(&setup, 30, 3);
     let data = readings(&drifted(), &setup, &postures, "C", 1e-5, 1);
     let mirror = |(i, line): (usize, &str)| {
         let mut fields: Vec<String> = line.split(',').map(str::to_string).collect();
@@ -403,8 +405,8 @@ fn the_update_recovers_the_gain_of_a_full_recalibration() {
     let setup = setup();
     let truth = drifted();
     let check = check_postures(&setup);
-    let full_postures = stiffid::design::random_group(&setup, 50, 11);
-    let held_postures = stiffid::design::random_group(&setup, 200, 12);
+    let full_postures = stiffid::internal::design::random_group(&setup, 50, 11);
+    let held_postures = stiffid::internal::design::random_group(&setup, 200, 12);
     let mut figures = Vec::new();
     for draw in 0..5 {
         let seed = 100 + 10 * draw;
@@ -436,14 +438,15 @@ fn the_update_recovers_the_gain_of_a_full_recalibration() {
 fn an_update_without_reflectors_keeps_the_located_part() {
     let part = "\n[part]\nxyz_mm = [1200.0, -300.0, 400.0]\nrpy_deg = [0.0, 0.0, 30.0]\n";
     let robot =
-        stiffid::robot::file::parse(&(robot_text(&OFFSETS) + part), "calibrated.toml").unwrap();
+        stiffid::internal::robot::file::parse(&(robot_text(&OFFSETS) + part), "calibrated.toml")
+            .unwrap();
     let located = *robot.part().unwrap();
     let setup = setup().to_builder().with_robot(robot).build().unwrap();
-    let postures = stiffid::design::random_group(&setup, 10, 3);
+    let postures = stiffid::internal::design::random_group(&setup, 10, 3);
     let data = readings(&drifted(), &setup, &postures, "C", 0.0, 4);
     let report = update(&setup, &data, None).unwrap();
     let file = report.robot_toml.as_ref().unwrap();
-    let updated = stiffid::robot::file::parse(file, "updated.toml").unwrap();
+    let updated = stiffid::internal::robot::file::parse(file, "updated.toml").unwrap();
     let kept = updated.part().expect("the updated file keeps [part]");
     assert!((kept.translation.vector - located.translation.vector).norm() < 1e-12);
     assert!(kept.rotation.angle_to(&located.rotation) < 1e-12);

@@ -38,7 +38,7 @@ fn cell_robot(offsets: &[f64; 6], track: f64, table: f64) -> Robot {
         + &CELL
             .replace("TRACK", &format!("{track:?}"))
             .replace("TABLE", &format!("{table:?}"));
-    stiffid::robot::file::parse(&text, "calibrated.toml").unwrap()
+    stiffid::internal::robot::file::parse(&text, "calibrated.toml").unwrap()
 }
 
 /// The cell's setup: the setup of [`crate::calibration_update`] on the calibrated cell.
@@ -130,12 +130,12 @@ fn value(report: &Report, name: &str) -> f64 {
 fn noise_free_drift_of_a_cell_is_recovered_by_the_update() {
     let setup = cell_setup();
     let truth = drifted();
-    let postures = stiffid::design::random_group(&setup, 12, 5);
+    let postures = stiffid::internal::design::random_group(&setup, 12, 5);
     let data = readings(&truth, &setup, &postures, true);
     let held = readings(
         &truth,
         &setup,
-        &stiffid::design::random_group(&setup, 20, 9),
+        &stiffid::internal::design::random_group(&setup, 20, 9),
         false,
     );
     let report = update(&setup, &data, Some(&held), "offsets,base,tool,external").unwrap();
@@ -170,7 +170,7 @@ fn noise_free_drift_of_a_cell_is_recovered_by_the_update() {
         assert!(held.contains(&name), "{held:?}");
     }
     let file = report.robot_toml.as_ref().unwrap();
-    let updated = stiffid::robot::file::parse(file, "updated.toml").unwrap();
+    let updated = stiffid::internal::robot::file::parse(file, "updated.toml").unwrap();
     let axis = &updated.external().unwrap().axes()[0];
     assert!((axis.offset * 1e3 - TRACK_DRIFT).abs() < 1e-6, "{file}");
     let motions = &axis.errors.coefficients()[1];
@@ -184,7 +184,7 @@ fn noise_free_drift_of_a_cell_is_recovered_by_the_update() {
 fn a_track_offset_without_table_reflectors_is_refused() {
     let setup = cell_setup();
     let truth = drifted();
-    let postures = stiffid::design::random_group(&setup, 12, 5);
+    let postures = stiffid::internal::design::random_group(&setup, 12, 5);
     let data = readings(&truth, &setup, &postures, false);
     let e = update(&setup, &data, None, "offsets,base,tool,external")
         .unwrap_err()
@@ -205,7 +205,7 @@ fn a_track_offset_without_table_reflectors_is_refused() {
 #[test]
 fn the_check_designed_on_the_cell_updates_it() {
     use stiffid::app::select;
-    use stiffid::robot::external::ExternalValues;
+    use stiffid::internal::robot::external::ExternalValues;
     let setup = cell_setup();
     let stations: Vec<ExternalValues> = [0.5, 2.0, 3.5]
         .iter()
@@ -213,7 +213,7 @@ fn the_check_designed_on_the_cell_updates_it() {
         .collect();
     let report = select::run(&select::Request {
         setup: &setup,
-        criterion: stiffid::design::Criterion::RelativeA,
+        criterion: stiffid::internal::design::Criterion::RelativeA,
         purpose: stiffid::app::purpose::Purpose::Check,
         calibration: Default::default(),
         method: select::Method::Global,
@@ -221,7 +221,7 @@ fn the_check_designed_on_the_cell_updates_it() {
         pool: None,
         postures: stiffid::app::purpose::Purpose::Check.default_postures(),
         target_pct: None,
-        options: stiffid::design::SearchOptions {
+        options: stiffid::internal::design::SearchOptions {
             starts: 2,
             ..Default::default()
         },
@@ -242,7 +242,7 @@ fn the_check_designed_on_the_cell_updates_it() {
     let held = readings(
         &truth,
         &setup,
-        &stiffid::design::random_group(&setup, 20, 9),
+        &stiffid::internal::design::random_group(&setup, 20, 9),
         false,
     );
     let updated = update(&setup, &data, Some(&held), "offsets,base,tool,external").unwrap();

@@ -9,8 +9,8 @@ use super::calibration_update::{
 };
 use nalgebra::{DVector, Vector6};
 use stiffid::app::calibrate::{self, Refit, Refits, Report};
-use stiffid::metrology::calibration::gravity::Terms;
-use stiffid::model::OwnWeight;
+use stiffid::internal::metrology::calibration::gravity::Terms;
+use stiffid::internal::model::OwnWeight;
 use stiffid::{Coordinates, Setup};
 
 /// The lumped gravity terms of three bodies on the calibrated robot (the torques on its
@@ -87,7 +87,7 @@ fn the_update_keeps_the_calibrations_sag() {
     let data = sagging(&setup, &check, 1.0, ("C", 1));
     let held = sagging(
         &setup,
-        &stiffid::design::random_group(&setup, 20, 7),
+        &stiffid::internal::design::random_group(&setup, 20, 7),
         1.0,
         ("H", 2),
     );
@@ -105,7 +105,7 @@ fn the_update_keeps_the_calibrations_sag() {
         .all(|m| !m.name.starts_with("gravity.")));
     // The updated robot file carries the terms, unchanged.
     let written = report.robot_toml.as_ref().unwrap();
-    let written = stiffid::robot::file::parse(written, "updated.toml").unwrap();
+    let written = stiffid::internal::robot::file::parse(written, "updated.toml").unwrap();
     let carried = written.own_weight().unwrap();
     assert_eq!(carried.gravity, own.gravity);
     for ((n, v), (m, w)) in carried.terms.iter().zip(&own.terms) {
@@ -153,11 +153,11 @@ fn the_update_keeps_the_calibrations_sag() {
 #[test]
 fn an_update_with_gravity_refits_the_sag() {
     let setup = setup();
-    let postures = stiffid::design::random_group(&setup, 60, 5);
+    let postures = stiffid::internal::design::random_group(&setup, 60, 5);
     let data = sagging(&setup, &postures, 1.3, ("C", 1));
     let held = sagging(
         &setup,
-        &stiffid::design::random_group(&setup, 20, 7),
+        &stiffid::internal::design::random_group(&setup, 20, 7),
         1.3,
         ("H", 2),
     );

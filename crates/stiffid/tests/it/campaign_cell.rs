@@ -18,14 +18,14 @@ use crate::true_robot::{
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector6};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use stiffid::machining::compensate::Compensated;
-use stiffid::machining::program::cartesian::Frame;
-use stiffid::machining::program::generate::{written_targets, Targets};
-use stiffid::machining::program::Dialect;
-use stiffid::machining::Language;
-use stiffid::metrology::calibration::gravity::Gravity;
-use stiffid::robot::ik;
-use stiffid::setup::{Controller, Kinematics, Pulses};
+use stiffid::internal::machining::compensate::Compensated;
+use stiffid::internal::machining::program::cartesian::Frame;
+use stiffid::internal::machining::program::generate::{written_targets, Targets};
+use stiffid::internal::machining::program::Dialect;
+use stiffid::internal::machining::Language;
+use stiffid::internal::metrology::calibration::gravity::Gravity;
+use stiffid::internal::robot::ik;
+use stiffid::internal::setup::{Controller, Kinematics, Pulses};
 use stiffid::{Robot, Setup};
 
 /// The station the part is milled at, m.
@@ -129,7 +129,7 @@ pub(crate) struct Campaign {
     truth: Truth,
     frame: Isometry3<f64>,
     setup: Setup,
-    compliance: stiffid::model::Compliance,
+    compliance: stiffid::internal::model::Compliance,
     held_rms: f64,
     q0: Vector6<f64>,
     part: Isometry3<f64>,
@@ -209,7 +209,7 @@ fn a_track_cell_campaign_with_external_values_lands_on_the_true_cell() {
         .map(|r| (r.q_compensated, r.external.as_slice()[0]))
         .collect();
     let joint = errors(&truth, &frame, &results, (&joint, 1e-9));
-    let g = stiffid::machining::gcode::parse(&text, 1e-5).unwrap();
+    let g = stiffid::internal::machining::gcode::parse(&text, 1e-5).unwrap();
     assert_eq!(g.external.0, vec!['U']);
     assert_eq!(g.points.len(), results.len());
     let mut previous = results[0].q;
@@ -265,7 +265,7 @@ fn read_back(text: &str, dialect: Dialect) -> Vec<ReadBack> {
         per_deg: PULSES_PER_DEG,
         external: vec![PULSES_PER_MM],
     };
-    let context = stiffid::machining::program::Context {
+    let context = stiffid::internal::machining::program::Context {
         home_deg: None,
         backup: &[],
         pulses: Some(&pulses),
@@ -273,7 +273,7 @@ fn read_back(text: &str, dialect: Dialect) -> Vec<ReadBack> {
         data: None,
         machine: None,
     };
-    let program = stiffid::machining::program::parse_in(text, dialect, &context).unwrap();
+    let program = stiffid::internal::machining::program::parse_in(text, dialect, &context).unwrap();
     assert_eq!(program.axes.len(), 1, "{:?}", program.axes);
     (program.targets.iter())
         .map(|t| {
@@ -309,7 +309,7 @@ fn robot_programs_for_the_track_cell_land_on_the_true_cell() {
     let gcode = rectangle_on_track();
     let tcp = c.setup.tool().tcp;
     // RAPID's tooldata states the tool's mass (joint targets move with it too): a light spindle.
-    let payload = stiffid::setup::Payload {
+    let payload = stiffid::internal::setup::Payload {
         mass: 1e-3,
         centre: tcp,
         inertia: nalgebra::Matrix3::zeros(),
@@ -394,8 +394,8 @@ fn the_controllers_pulses_are_read_and_checked_against_the_cell() {
         + "\n[[external_axis]]\nname = \"track\"\nrole = \"carrier\"\ndirection = [1.0, 0.0, 0.0]\nlimits_mm = [0.0, 6000.0]\n";
     let read = |controller: &str| {
         let text = true_robot::setup_text("robot.toml", "") + "\n[controller]\n" + controller;
-        stiffid::setup::parse(&text, "cell.toml", |_, _| {
-            stiffid::robot::file::parse(&robot, "robot.toml")
+        stiffid::internal::setup::parse(&text, "cell.toml", |_, _| {
+            stiffid::internal::robot::file::parse(&robot, "robot.toml")
         })
     };
     let setup = read("pulses_per_deg = [1341.25, 1341.25, 1150.5, 873.4, 873.4, 532.7]\nexternal_pulses = [1000]\n").unwrap();

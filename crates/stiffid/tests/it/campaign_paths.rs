@@ -12,9 +12,9 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use stiffid::app::identify::{self as identify, Request};
 use stiffid::app::measurements::Data;
-use stiffid::metrology::calibration::gravity::Gravity;
-use stiffid::model::Compliance;
-use stiffid::setup::{Controller, Kinematics, Tracker};
+use stiffid::internal::metrology::calibration::gravity::Gravity;
+use stiffid::internal::model::Compliance;
+use stiffid::internal::setup::{Controller, Kinematics, Tracker};
 
 /// The six drives identified from load-step readings `text` (tracker frame) on `setup`.
 pub(crate) fn identified(setup: &stiffid::Setup, text: &str) -> Compliance {
@@ -172,7 +172,8 @@ fn an_update_on_another_day_keeps_the_older_stiffness() {
     ))
     .unwrap();
     let robot =
-        stiffid::robot::file::parse(report.robot_toml.as_ref().unwrap(), "updated.toml").unwrap();
+        stiffid::internal::robot::file::parse(report.robot_toml.as_ref().unwrap(), "updated.toml")
+            .unwrap();
     assert_eq!(robot.own_weight(), setup.robot().own_weight());
     let frame2 = report.fit.estimate.frame;
     let held_rms = report.validation.as_ref().unwrap().calibrated.rms;

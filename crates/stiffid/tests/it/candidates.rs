@@ -6,11 +6,11 @@ use nalgebra::{DVector, Vector3, Vector6};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
-use stiffid::design::random_group;
-use stiffid::identify::compare::{compare, default_pool, pool_by_name};
-use stiffid::identify::svd::fit;
-use stiffid::observation::{posture_block, Measurement, Observations};
-use stiffid::setup::Setup;
+use stiffid::internal::design::random_group;
+use stiffid::internal::identify::compare::{compare, default_pool, pool_by_name};
+use stiffid::internal::identify::svd::fit;
+use stiffid::internal::observation::{posture_block, Measurement, Observations};
+use stiffid::internal::setup::Setup;
 
 /// A bending spring of the forearm about the z axis of link 3's frame through a point 600 mm
 /// along its x axis (the paper's COMAU cell; as a new user would declare an elbow spring).
@@ -28,9 +28,12 @@ nominal_stiffness_nm_per_rad = 4e6
 pub fn paper_with(extra: &str) -> Setup {
     let text = format!(
         "{}\n{extra}",
-        stiffid::setup::builtin_text("zhang2021-comau-nj165").unwrap()
+        stiffid::internal::setup::builtin_text("zhang2021-comau-nj165").unwrap()
     );
-    stiffid::setup::parse(&text, "test setup", |r, _| stiffid::robot::presets::get(r)).unwrap()
+    stiffid::internal::setup::parse(&text, "test setup", |r, _| {
+        stiffid::internal::robot::presets::get(r)
+    })
+    .unwrap()
 }
 
 /// Measurements of `postures` under the rope load with compliance `h` of `truth`'s model, plus
@@ -139,7 +142,7 @@ fn the_recommended_model_holds_the_true_declared_candidate() {
 /// alone says why it is not a candidate.
 #[test]
 fn axes_along_a_joints_own_are_dropped_with_the_reason() {
-    let fanuc = stiffid::setup::builtin("fanuc-r2000ic-165f").unwrap();
+    let fanuc = stiffid::internal::setup::builtin("fanuc-r2000ic-165f").unwrap();
     let pool = default_pool(&fanuc);
     let reason = |name: &str| {
         pool.dropped
@@ -194,20 +197,22 @@ fn axes_along_a_joints_own_are_dropped_with_the_reason() {
 /// share a name with the model's springs.
 #[test]
 fn candidates_are_refused_where_they_do_not_belong() {
-    let fanuc = stiffid::setup::builtin("fanuc-r2000ic-165f").unwrap();
+    let fanuc = stiffid::internal::setup::builtin("fanuc-r2000ic-165f").unwrap();
     let fragment = ELBOW.replace("rotation\"", "rotation\"\ncandidate = true");
-    let err = stiffid::model::parse_fragment(&fragment, "model.toml", fanuc.robot())
+    let err = stiffid::internal::model::parse_fragment(&fragment, "model.toml", fanuc.robot())
         .unwrap_err()
         .to_string();
     assert!(err.contains("model.spring[1].candidate"), "{err}");
     let text = format!(
         "{}\n{ELBOW}\n{}",
-        stiffid::setup::builtin_text("zhang2021-comau-nj165").unwrap(),
+        stiffid::internal::setup::builtin_text("zhang2021-comau-nj165").unwrap(),
         fragment
     );
-    let err = stiffid::setup::parse(&text, "s.toml", |r, _| stiffid::robot::presets::get(r))
-        .unwrap_err()
-        .to_string();
+    let err = stiffid::internal::setup::parse(&text, "s.toml", |r, _| {
+        stiffid::internal::robot::presets::get(r)
+    })
+    .unwrap_err()
+    .to_string();
     assert!(
         err.contains("model.spring[2].name") && err.contains("unique"),
         "{err}"
@@ -220,7 +225,7 @@ fn candidates_are_refused_where_they_do_not_belong() {
 /// over the `lost` and `load` candidates adds `lost3` first and says the data separate them.
 #[test]
 fn a_lost_motion_is_recovered_from_load_steps() {
-    let paper = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let paper = stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap();
     let pool = pool_by_name(&paper, &["lost".to_string(), "load".to_string()]).unwrap();
     assert_eq!(pool.candidates.len(), 12);
     let lost3 = pool
@@ -278,15 +283,17 @@ fn a_lost_motion_is_recovered_from_load_steps() {
 /// dropped, has a name the check knows, and a name of the user's own passes.
 #[test]
 fn a_declared_candidate_named_like_a_family_is_refused() {
-    use stiffid::model::is_family_name;
+    use stiffid::internal::model::is_family_name;
     let named = ELBOW
         .replace("elbow_z", "tilt3_z")
         .replace("rotation\"", "rotation\"\ncandidate = true");
     let text = format!(
         "{}\n{named}",
-        stiffid::setup::builtin_text("zhang2021-comau-nj165").unwrap()
+        stiffid::internal::setup::builtin_text("zhang2021-comau-nj165").unwrap()
     );
-    let parsed = stiffid::setup::parse(&text, "test setup", |r, _| stiffid::robot::presets::get(r));
+    let parsed = stiffid::internal::setup::parse(&text, "test setup", |r, _| {
+        stiffid::internal::robot::presets::get(r)
+    });
     let Err(e) = parsed else {
         panic!("not refused")
     };

@@ -6,15 +6,17 @@
 //! central differences.
 
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3, Vector6};
-use stiffid::cell::{bodies, body_box, capsule_box, capsules, Capsule, CheckKind, Checker, Part};
-use stiffid::machining::compensate::PathPoint;
-use stiffid::machining::compensate::{
+use stiffid::internal::cell::{
+    bodies, body_box, capsule_box, capsules, Capsule, CheckKind, Checker, Part,
+};
+use stiffid::internal::machining::compensate::PathPoint;
+use stiffid::internal::machining::compensate::{
     self, Compensated, Free, FreeRange, FreeVariables, Options, Variable,
 };
-use stiffid::robot::external::{ExternalAxes, ExternalAxis, ExternalValues};
-use stiffid::robot::presets;
-use stiffid::setup::Obstacle;
-use stiffid::{setup, Setup};
+use stiffid::internal::robot::external::{ExternalAxes, ExternalAxis, ExternalValues};
+use stiffid::internal::robot::presets;
+use stiffid::internal::setup::Obstacle;
+use stiffid::{internal::setup, Setup};
 
 use crate::track_collisions::{assert_avoided, in_cell, line_at};
 
@@ -308,7 +310,7 @@ fn a_turned_box_margin_gradient_matches_finite_differences() {
     let s = on_table(vec![o]);
     let checker = Checker::new(&s);
     let (margins, gradients) = checker.margins_and_gradients(&q);
-    let obstacle = |m: &[stiffid::cell::Margin]| -> Vec<usize> {
+    let obstacle = |m: &[stiffid::internal::cell::Margin]| -> Vec<usize> {
         (0..m.len())
             .filter(|&i| m[i].kind == CheckKind::Obstacles && m[i].margin < 0.05)
             .collect()

@@ -5,30 +5,34 @@
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3, Vector6};
 use stiffid::app::place::{self, Effort, Region, Request, Work};
-use stiffid::machining::compensate::{self, Aggregate, Options};
-use stiffid::machining::program::generate::{generate, Move, Plan, Settings, Target, Tool};
-use stiffid::machining::program::Dialect;
-use stiffid::machining::{self, Language, Program};
-use stiffid::observation::deflection::Frame;
-use stiffid::robot::{ik, presets};
+use stiffid::internal::machining::compensate::{self, Aggregate, Options};
+use stiffid::internal::machining::program::generate::{
+    generate, Move, Plan, Settings, Target, Tool,
+};
+use stiffid::internal::machining::program::Dialect;
+use stiffid::internal::machining::{self, Language, Program};
+use stiffid::internal::observation::deflection::Frame;
+use stiffid::internal::robot::{ik, presets};
 use stiffid::{Error, Setup};
 
 const SETUP: &str = include_str!("../../../../examples/milling/fanuc-milling.toml");
 const PROCESS: &str = include_str!("../../../../examples/milling/aluminium.toml");
 
 fn setup() -> Setup {
-    stiffid::setup::parse(SETUP, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap()
+    stiffid::internal::setup::parse(SETUP, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap()
 }
 
 fn compliance(s: &Setup) -> compensate::Compliance {
-    stiffid::io::stiffness::parse(include_str!("../../../../examples/milling/stiffness.json"))
-        .unwrap()
-        .compliance(s.model())
-        .unwrap()
+    stiffid::internal::io::stiffness::parse(include_str!(
+        "../../../../examples/milling/stiffness.json"
+    ))
+    .unwrap()
+    .compliance(s.model())
+    .unwrap()
 }
 
-fn process() -> stiffid::machining::process::Process {
-    stiffid::machining::process::file::parse(PROCESS, "aluminium.toml").unwrap()
+fn process() -> stiffid::internal::machining::process::Process {
+    stiffid::internal::machining::process::file::parse(PROCESS, "aluminium.toml").unwrap()
 }
 
 /// A straight cut along the part's x at depth 4 mm, the tool down the part's -z: `n` poses
@@ -129,7 +133,7 @@ fn positions_in_user_frame(s: &Setup, text: &str) -> String {
 
 /// A generated file as one text (a KRL program's points put back from its `.dat`): these tests
 /// read and edit single files.
-fn one_text(f: stiffid::machining::program::generate::File) -> String {
+fn one_text(f: stiffid::internal::machining::program::generate::File) -> String {
     crate::common::inlined(&f.text, f.data.as_deref())
 }
 
@@ -630,7 +634,7 @@ fn position_line(text: &str, n: usize) -> u64 {
 /// `tools` as `table` gives them.
 fn with_table(table: &str) -> Setup {
     let text = format!("{SETUP}\n[controller]\n{table}\n");
-    stiffid::setup::parse(&text, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap()
+    stiffid::internal::setup::parse(&text, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap()
 }
 
 /// The axis angles of the LS program `text` resolved on `s`.

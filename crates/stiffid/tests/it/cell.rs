@@ -2,8 +2,8 @@
 
 use approx::assert_relative_eq;
 use nalgebra::Vector3;
-use stiffid::cell::{self, Body, Capsule, CheckKind, Checker, Part};
-use stiffid::setup::Obstacle;
+use stiffid::internal::cell::{self, Body, Capsule, CheckKind, Checker, Part};
+use stiffid::internal::setup::Obstacle;
 use stiffid::Error;
 
 use crate::common;
@@ -173,7 +173,7 @@ fn an_obstacle_and_a_tracker_block_and_name() {
 
 #[test]
 fn impossible_constraints_are_reported() {
-    // 100 m: the highest the limits accept (stiffid::common::limits::LENGTH_MM), far out of reach.
+    // 100 m: the highest the limits accept (stiffid::internal::common::limits::LENGTH_MM), far out of reach.
     let setup = paper_with("\n[constraints]\nloading_point_min_z_mm = 1e5\n").unwrap();
     let checker = Checker::new(&setup);
     let f = checker.feasibility(&deg(&[0.0, 0.0, -90.0, 0.0, 0.0, 0.0]));
@@ -227,8 +227,8 @@ fn bad_cell_fields_are_named_with_their_values() {
 
 /// The paper setup in the cell with three reflectors 40 mm off the flange axis, below the loading
 /// point, and `extra` appended.
-fn close_reflectors(extra: &str) -> stiffid::setup::Setup {
-    let text = stiffid::setup::builtin_text("zhang2021-comau-nj165").unwrap();
+fn close_reflectors(extra: &str) -> stiffid::internal::setup::Setup {
+    let text = stiffid::internal::setup::builtin_text("zhang2021-comau-nj165").unwrap();
     let start = text.find("measuring_points_mm = [").unwrap();
     let end = start + text[start..].find("\n]\n").unwrap() + 3;
     let points = "measuring_points_mm = [[40.0, 0.0, 150.0], [-20.0, 34.641, 150.0], [-20.0, -34.641, 150.0]]\n";
@@ -238,7 +238,10 @@ fn close_reflectors(extra: &str) -> stiffid::setup::Setup {
         &text[end..],
         common::PAPER_CELL
     );
-    stiffid::setup::parse(&text, "close.toml", |r, _| stiffid::robot::presets::get(r)).unwrap()
+    stiffid::internal::setup::parse(&text, "close.toml", |r, _| {
+        stiffid::internal::robot::presets::get(r)
+    })
+    .unwrap()
 }
 
 /// The default tool body is half as wide as the nearest reflector is off the flange axis: no
@@ -249,7 +252,7 @@ fn the_default_tool_body_leaves_the_reflectors_outside() {
     let setup = close_reflectors("");
     assert_relative_eq!(setup.geometry().tool_radius, 0.02, epsilon = 1e-6);
     let wide = close_reflectors("[robot_geometry]\ntool_radius_mm = 150.0\n");
-    let seen = |s: &stiffid::setup::Setup| {
+    let seen = |s: &stiffid::internal::setup::Setup| {
         let checker = Checker::new(s);
         let mut rng = <rand_chacha::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(7);
         (0..500)

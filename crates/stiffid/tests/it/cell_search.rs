@@ -3,8 +3,8 @@
 //! the thread count.
 
 use stiffid::app::select::{self, PoolInput, Request};
-use stiffid::cell::{CheckKind, Checker, Thing};
-use stiffid::design::{self, Criterion, SearchOptions};
+use stiffid::internal::cell::{CheckKind, Checker, Thing};
+use stiffid::internal::design::{self, Criterion, SearchOptions};
 use stiffid::{Error, Setup};
 
 use crate::common;
@@ -92,7 +92,7 @@ fn global_search_in_a_cell_is_feasible_and_thread_independent() {
 
 #[test]
 fn impossible_constraints_are_an_error_naming_the_check() {
-    // 100 m: the highest the limits accept (stiffid::common::limits::LENGTH_MM), far out of reach.
+    // 100 m: the highest the limits accept (stiffid::internal::common::limits::LENGTH_MM), far out of reach.
     let setup = paper_with("\n[constraints]\nloading_point_min_z_mm = 1e5\n").unwrap();
     let start = design::random_group(&setup, 6, 1);
     let global = design::global(&setup, Criterion::RelativeA, 6, &small(200, 2), &|_| {});

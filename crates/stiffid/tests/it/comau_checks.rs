@@ -1,7 +1,7 @@
 //! The COMAU SMART5 NJ 165-3.0 flange check positions of docs/model.md section 4.
 
 use nalgebra::{Vector3, Vector6};
-use stiffid::robot::presets;
+use stiffid::internal::robot::presets;
 
 fn q_deg(q: [f64; 6]) -> Vector6<f64> {
     Vector6::from_iterator(q.iter().map(|v| v.to_radians()))

@@ -5,9 +5,9 @@ use nalgebra::{Vector3, Vector6};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
-use stiffid::identify::Identification;
-use stiffid::observation::Measurement;
-use stiffid::{observation::stiffness, Setup};
+use stiffid::internal::identify::Identification;
+use stiffid::internal::observation::Measurement;
+use stiffid::{internal::observation::stiffness, Setup};
 
 /// Six spread postures (deg) inside the paper setup's Table 1 bounds.
 pub const PAPER_POSTURES_DEG: [[f64; 6]; 6] = [
@@ -31,8 +31,10 @@ position_mm = [3000.0, -2000.0, 1500.0]
 
 /// The paper setup with extra TOML appended (cell tables, constraints).
 pub fn paper_with(extra: &str) -> stiffid::Result<Setup> {
-    let text = stiffid::setup::builtin_text("zhang2021-comau-nj165")?.to_string() + extra;
-    stiffid::setup::parse(&text, "cell.toml", |r, _| stiffid::robot::presets::get(r))
+    let text = stiffid::internal::setup::builtin_text("zhang2021-comau-nj165")?.to_string() + extra;
+    stiffid::internal::setup::parse(&text, "cell.toml", |r, _| {
+        stiffid::internal::robot::presets::get(r)
+    })
 }
 
 /// Degrees to radians.
@@ -77,9 +79,9 @@ pub fn paper_measurements(setup: &Setup) -> Vec<Measurement> {
 /// The built-in FANUC setup and the real FANUC measurements (examples/data/fanuc-r2000ic-165f),
 /// in its base frame.
 pub fn fanuc() -> (Setup, Vec<Measurement>) {
-    let setup = stiffid::setup::builtin("fanuc-r2000ic-165f").unwrap();
+    let setup = stiffid::internal::setup::builtin("fanuc-r2000ic-165f").unwrap();
     let text = include_str!("../../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
-    let mut file = stiffid::io::measurements::parse(text).unwrap();
+    let mut file = stiffid::internal::io::measurements::parse(text).unwrap();
     file.to_base_frame(&setup).unwrap();
     (setup, file.measurements)
 }
@@ -253,16 +255,18 @@ pub fn pocket_krl() -> &'static str {
 
 /// The milling example's stiffness file (the FANUC's real data) as the compliance of `setup`'s
 /// model.
-pub fn milling_compliance(setup: &Setup) -> stiffid::machining::compensate::Compliance {
-    stiffid::io::stiffness::parse(include_str!("../../../../examples/milling/stiffness.json"))
-        .unwrap()
-        .compliance(setup.model())
-        .unwrap()
+pub fn milling_compliance(setup: &Setup) -> stiffid::internal::machining::compensate::Compliance {
+    stiffid::internal::io::stiffness::parse(include_str!(
+        "../../../../examples/milling/stiffness.json"
+    ))
+    .unwrap()
+    .compliance(setup.model())
+    .unwrap()
 }
 
 /// The milling example's process file (aluminium).
-pub fn milling_process() -> stiffid::machining::process::Process {
-    stiffid::machining::process::file::parse(
+pub fn milling_process() -> stiffid::internal::machining::process::Process {
+    stiffid::internal::machining::process::file::parse(
         include_str!("../../../../examples/milling/aluminium.toml"),
         "aluminium.toml",
     )

@@ -8,14 +8,17 @@ use nalgebra::{
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
-use stiffid::machining::compensate::{
+use stiffid::internal::machining::compensate::{
     self, Free, FreeRange, FreeVariables, Objective, Options, PathPoint, Target, Variable,
 };
-use stiffid::observation::deflection::{base_wrench, Frame, Points};
-use stiffid::robot::ik::{self, pose_error, tool_pose};
-use stiffid::robot::kinematics::Coordinates;
-use stiffid::robot::presets;
-use stiffid::{observation::cartesian, observation::stiffness, setup, Error, Setup};
+use stiffid::internal::observation::deflection::{base_wrench, Frame, Points};
+use stiffid::internal::robot::ik::{self, pose_error, tool_pose};
+use stiffid::internal::robot::kinematics::Coordinates;
+use stiffid::internal::robot::presets;
+use stiffid::{
+    internal::{observation::cartesian, observation::stiffness, setup},
+    Error, Setup,
+};
 
 /// Six values as a vector of any length (the compliance of the drives alone).
 fn dv(h: &Vector6<f64>) -> DVector<f64> {
@@ -228,7 +231,7 @@ pub(crate) fn line_path(s: &Setup, n: usize) -> Vec<PathPoint> {
                 target: Target::Pose(shift * start),
                 wrench: Vector6::new(200.0, 0.0, -100.0, 0.0, 0.0, 0.0),
                 frame: Frame::Tool,
-                external: stiffid::robot::external::ExternalValues::NONE,
+                external: stiffid::internal::robot::external::ExternalValues::NONE,
             }
         })
         .collect()
@@ -415,7 +418,7 @@ fn every_point_that_cannot_be_compensated_is_named() {
         target: Target::Posture(q),
         wrench: Vector6::new(fz.abs(), fz.abs(), fz, 0.0, 0.0, 0.0),
         frame: Frame::Base,
-        external: stiffid::robot::external::ExternalValues::NONE,
+        external: stiffid::internal::robot::external::ExternalValues::NONE,
     };
     // A zero wrench needs no compensation; the others leave axis 2.
     let path = [
@@ -472,7 +475,7 @@ fn inverse_kinematics_refuses_a_configuration_change_naming_the_point() {
         target: Target::Pose(target),
         wrench: Vector6::zeros(),
         frame: Frame::Base,
-        external: stiffid::robot::external::ExternalValues::NONE,
+        external: stiffid::internal::robot::external::ExternalValues::NONE,
     }];
     let mut o = Options::for_setup(&s);
     o.q0 = deg([-60.0, 0.0, -20.0, 0.0, -40.0, 0.0]);
@@ -496,7 +499,7 @@ fn the_streamed_compensate_document_is_the_whole_one() {
     use stiffid::app::compensate::document::values;
     use stiffid::app::compensate::stream::{Points as Stored, Rows};
     use stiffid::app::compensate::{run, Input, Request};
-    use stiffid::machining::dynamics::Dynamics;
+    use stiffid::internal::machining::dynamics::Dynamics;
     let paper = setup::builtin("zhang2021-comau-nj165").unwrap();
     let s = paper
         .to_builder()
@@ -561,8 +564,12 @@ fn the_streamed_compensate_document_is_the_whole_one() {
 /// through the true robot by the geometric errors (over 0.1 mm).
 #[test]
 fn a_compensation_on_the_calibrated_robot_lands_on_the_target() {
-    use stiffid::metrology::calibration::error_model::{Component, MeasuredIn, Target as Moved};
-    use stiffid::metrology::calibration::{gravity, robot_file, ErrorModel, Estimate, Geometry};
+    use stiffid::internal::metrology::calibration::error_model::{
+        Component, MeasuredIn, Target as Moved,
+    };
+    use stiffid::internal::metrology::calibration::{
+        gravity, robot_file, ErrorModel, Estimate, Geometry,
+    };
     let s = loaded_at_tcp("fanuc-r2000ic-165f");
     let points = &s.tool().measuring_points;
     let model = ErrorModel::new(
@@ -591,7 +598,7 @@ fn a_compensation_on_the_calibrated_robot_lands_on_the_target() {
         values,
     };
     let text = robot_file::robot_toml(&model, &estimate).unwrap();
-    let calibrated = stiffid::robot::file::parse(&text, "calibrated.toml").unwrap();
+    let calibrated = stiffid::internal::robot::file::parse(&text, "calibrated.toml").unwrap();
     // The robot file reproduces the calibrated positions.
     for q in s.test_postures() {
         for (k, point) in points.iter().enumerate() {

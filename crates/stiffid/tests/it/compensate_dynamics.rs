@@ -5,19 +5,19 @@
 
 use nalgebra::{Isometry3, UnitQuaternion, Vector3};
 use stiffid::app::compensate::{run, Input, Request};
-use stiffid::common::warning::WarningKind;
-use stiffid::machining::compensate::{
+use stiffid::internal::common::warning::WarningKind;
+use stiffid::internal::machining::compensate::{
     Compensated, Free, FreeVariables, Objective, Options, PathPoint,
 };
-use stiffid::machining::dynamics::Dynamics;
-use stiffid::machining::process::file;
-use stiffid::machining::program::generate::Settings;
-use stiffid::machining::Language;
-use stiffid::observation::dynamics;
-use stiffid::robot::dynamics::{held_mass, operational_inertia};
-use stiffid::{setup, Coordinates, Setup};
+use stiffid::internal::machining::dynamics::Dynamics;
+use stiffid::internal::machining::process::file;
+use stiffid::internal::machining::program::generate::Settings;
+use stiffid::internal::machining::Language;
+use stiffid::internal::observation::dynamics;
+use stiffid::internal::robot::dynamics::{held_mass, operational_inertia};
+use stiffid::{internal::setup, Coordinates, Setup};
 
-const FANUC: &str = include_str!("../../presets/fanuc-r2000ic-165f.toml");
+const FANUC: &str = include_str!("../../../stiffid-core/presets/fanuc-r2000ic-165f.toml");
 const HEADER: &str = "(stiffid: tool_rpy_deg = 180 0 0)\n";
 
 /// A drilling operation (thrust `k_f f D / 2` = 1000 N) on `T2` and a three-flute milling one
@@ -52,7 +52,7 @@ fn massive_with_tcp(tcp: Vector3<f64>) -> Setup {
             m * 0.015
         );
     }
-    let robot = stiffid::robot::file::parse(&text, "fanuc-masses.toml").unwrap();
+    let robot = stiffid::internal::robot::file::parse(&text, "fanuc-masses.toml").unwrap();
     setup::builtin("fanuc-r2000ic-165f")
         .unwrap()
         .to_builder()
@@ -94,7 +94,7 @@ fn compensate_with(
             chord_tolerance: 1e-5,
             // A rotation about the tool axis reaches the controller in a robot program only.
             output: match options.free.tool_rotation() {
-                Some(_) => Language::Robot(stiffid::machining::program::Dialect::Krl),
+                Some(_) => Language::Robot(stiffid::internal::machining::program::Dialect::Krl),
                 None => Language::GCode,
             },
             out_name: "p.src".into(),
@@ -141,7 +141,7 @@ fn each_drilling_exit_gets_the_surge_of_its_thrust_along_the_tool_axis() {
         assert!((surge.mass - mass).abs() < 1e-9 * mass);
         // c from the model's deflection under a pure 1 N force along the drill.
         let unit = nalgebra::Vector6::new(-tool_z.x, -tool_z.y, -tool_z.z, 0.0, 0.0, 0.0);
-        let points = stiffid::observation::deflection::Points {
+        let points = stiffid::internal::observation::deflection::Points {
             arm: s.arm(),
             frames: &frames,
             loaded: &tcp,
@@ -257,9 +257,10 @@ fn surge_turned(s: &Setup, r: &Compensated, phi: f64) -> Option<f64> {
     let target = own * z(phi);
     let start = r.q_before.expect("the path's posture");
     let tcp = s.tool().tcp;
-    let q = stiffid::robot::ik::solve(s.robot(), &tcp, &target, &start, &Default::default())
-        .ok()?
-        .q;
+    let q =
+        stiffid::internal::robot::ik::solve(s.robot(), &tcp, &target, &start, &Default::default())
+            .ok()?
+            .q;
     let frames = s.robot().frames(&q);
     let masses = dynamics::mass_model(s.arm()).0.unwrap();
     let m = masses.mass_matrix(s.robot(), &frames, Coordinates::Axis);

@@ -10,15 +10,15 @@ use crate::free_configuration::{fanuc, WIDE};
 use nalgebra::{Translation3, Vector6};
 use stiffid::app::compensate::configurations::ConfigurationsDocument;
 use stiffid::app::compensate::{self as job, Input};
-use stiffid::common::limits::JointBox;
-use stiffid::machining::compensate::{
+use stiffid::internal::common::limits::JointBox;
+use stiffid::internal::machining::compensate::{
     self, path_runs, Aggregate, Compensated, Free, FreeVariables, Objective, Options, PathPoint,
     Scope, Target,
 };
-use stiffid::machining::program::generate::Settings;
-use stiffid::machining::program::Dialect;
-use stiffid::machining::Language;
-use stiffid::robot::presets;
+use stiffid::internal::machining::program::generate::Settings;
+use stiffid::internal::machining::program::Dialect;
+use stiffid::internal::machining::Language;
+use stiffid::internal::robot::presets;
 use stiffid::{Error, JobOption, Setup};
 
 /// Two runs: `line_path`'s six points, then the same line moved by 0.3, -0.5, 0.2 m under
@@ -152,7 +152,8 @@ fn each_run_takes_the_exhaustive_best_pair_of_configurations_and_beats_one_for_t
 /// The FANUC milling example with every axis within +-300 deg.
 fn wide_milling() -> Setup {
     let text = include_str!("../../../../examples/milling/fanuc-milling.toml");
-    let s = stiffid::setup::parse(text, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap();
+    let s = stiffid::internal::setup::parse(text, "fanuc-milling.toml", |n, _| presets::get(n))
+        .unwrap();
     let wide = Vector6::repeat(300f64.to_radians());
     let robot = (s.robot().clone()).with_limits(JointBox::new(-wide, wide));
     on_robot(&s, robot.unwrap(), s.springs())
@@ -196,12 +197,13 @@ fn drill_with(
     output: Language,
     options: Options,
 ) -> Result<job::Report, Error> {
-    let compliance =
-        stiffid::io::stiffness::parse(include_str!("../../../../examples/milling/stiffness.json"))
-            .unwrap()
-            .compliance(s.model())
-            .unwrap();
-    let process = stiffid::machining::process::file::parse(
+    let compliance = stiffid::internal::io::stiffness::parse(include_str!(
+        "../../../../examples/milling/stiffness.json"
+    ))
+    .unwrap()
+    .compliance(s.model())
+    .unwrap();
+    let process = stiffid::internal::machining::process::file::parse(
         include_str!("../../../../examples/milling/drilling.toml"),
         "drilling.toml",
     )
@@ -237,7 +239,7 @@ fn a_gcode_program_runs_between_rapid_moves_and_its_gcode_is_refused_naming_the_
     // 20 holes: each run the retract of the hole before, the approach and the drilling feed;
     // the last retract ends the last run.
     assert_eq!(doc.runs.len(), 20);
-    let g = stiffid::machining::gcode::parse(
+    let g = stiffid::internal::machining::gcode::parse(
         include_str!("../../../../examples/milling/panel.nc"),
         1e-5,
     )

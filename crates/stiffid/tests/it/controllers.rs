@@ -6,15 +6,15 @@
 
 use nalgebra::{Isometry3, Vector3, Vector6};
 use stiffid::app::compensate::certify;
-use stiffid::machining::program::generate::{
+use stiffid::internal::machining::program::generate::{
     check_name, default_name_length, generate, max_name_length, written_targets, Move, Plan,
     Settings, Target, Targets, Tool,
 };
-use stiffid::machining::program::{self, rename, Dialect};
-use stiffid::machining::Language;
-use stiffid::robot::configuration::Configuration;
-use stiffid::robot::external::{ExternalAxes, ExternalAxis};
-use stiffid::setup::Pulses;
+use stiffid::internal::machining::program::{self, rename, Dialect};
+use stiffid::internal::machining::Language;
+use stiffid::internal::robot::configuration::Configuration;
+use stiffid::internal::robot::external::{ExternalAxes, ExternalAxis};
+use stiffid::internal::setup::Pulses;
 
 /// One controller and what its small program must give.
 struct Row {
@@ -260,7 +260,7 @@ fn plan<'a>(
 #[test]
 fn each_generating_controller_writes_the_cells_external_axes_in_its_form() {
     let axes = track_and_table();
-    let robot = stiffid::robot::presets::get("comau-smart5-nj165-3.0").unwrap();
+    let robot = stiffid::internal::robot::presets::get("comau-smart5-nj165-3.0").unwrap();
     let q = Vector6::new(1.0, 2.0, 3.0, 4.0, 5.0, 6.0).map(f64::to_radians);
     let target = [Target {
         q_deg: [1.0, 2.0, 3.0, 4.0, 5.0, 6.0],

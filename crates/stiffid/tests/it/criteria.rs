@@ -1,11 +1,11 @@
 //! The design criteria against independent formulas, their units, and rank deficiency.
 
 use nalgebra::{DMatrix, Matrix6, Vector6};
-use stiffid::common::limits::JointBox;
-use stiffid::design::{self, criteria, Criterion, Evaluator};
-use stiffid::observation::{posture_block, rope_observation_matrix};
-use stiffid::robot::AxisMap;
-use stiffid::setup::{self, Noise, RopeLoad, Setup};
+use stiffid::internal::common::limits::JointBox;
+use stiffid::internal::design::{self, criteria, Criterion, Evaluator};
+use stiffid::internal::observation::{posture_block, rope_observation_matrix};
+use stiffid::internal::robot::AxisMap;
+use stiffid::internal::setup::{self, Noise, RopeLoad, Setup};
 use stiffid::Robot;
 
 fn paper() -> Setup {

@@ -1,17 +1,17 @@
-//! Design for the candidates of the model comparison (stiffid::design::candidates): the verdict
+//! Design for the candidates of the model comparison (stiffid::internal::design::candidates): the verdict
 //! per candidate against an independent rank by SVD, and a group designed for the candidates.
 
 use nalgebra::{DMatrix, Vector6};
 use stiffid::app::{evaluate, select};
-use stiffid::design::candidates::{design_setup, verdicts};
-use stiffid::design::{random_group, SearchOptions};
-use stiffid::identify::compare::{compare, default_pool, pool_by_name};
-use stiffid::model::Spring;
-use stiffid::observation::posture_block;
-use stiffid::setup::Setup;
+use stiffid::internal::design::candidates::{design_setup, verdicts};
+use stiffid::internal::design::{random_group, SearchOptions};
+use stiffid::internal::identify::compare::{compare, default_pool, pool_by_name};
+use stiffid::internal::model::Spring;
+use stiffid::internal::observation::posture_block;
+use stiffid::internal::setup::Setup;
 
 fn paper() -> Setup {
-    stiffid::setup::builtin("zhang2021-comau-nj165").unwrap()
+    stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap()
 }
 
 /// The observation matrix of `postures` under the rope load, at each of `scales` times it, of
@@ -182,7 +182,7 @@ fn evaluate_reports_the_candidates() {
 fn global<'a>(setup: &'a Setup, n: usize, for_candidates: bool) -> select::Request<'a> {
     select::Request {
         setup,
-        criterion: stiffid::design::Criterion::RelativeA,
+        criterion: stiffid::internal::design::Criterion::RelativeA,
         purpose: Default::default(),
         calibration: Default::default(),
         method: select::Method::Global,
@@ -241,8 +241,9 @@ fn a_design_for_the_candidates_identifies_them_and_the_comparison_recovers_one()
         evaluate_design(&design, &chosen.postures),
         evaluate_design(&design, &plain.postures),
     );
-    let worst =
-        |e: &stiffid::design::Evaluation| e.spring_relative_std.iter().copied().fold(0.0, f64::max);
+    let worst = |e: &stiffid::internal::design::Evaluation| {
+        e.spring_relative_std.iter().copied().fold(0.0, f64::max)
+    };
     eprintln!(
         "relative-a over the model and the candidates: {} designed for them, {} the stiffness design; worst candidate's relative std {} vs {}",
         for_them.relative_a,
@@ -293,8 +294,11 @@ fn a_design_for_the_candidates_identifies_them_and_the_comparison_recovers_one()
 }
 
 /// Every criterion of `group` on `design`.
-fn evaluate_design(design: &Setup, group: &[Vector6<f64>]) -> stiffid::design::Evaluation {
-    stiffid::design::evaluate(design, group)
+fn evaluate_design(
+    design: &Setup,
+    group: &[Vector6<f64>],
+) -> stiffid::internal::design::Evaluation {
+    stiffid::internal::design::evaluate(design, group)
 }
 
 /// A design for the candidates is refused with too few postures (naming the count needed), for

@@ -3,14 +3,14 @@
 
 use nalgebra::Vector6;
 use std::f64::consts::PI;
-use stiffid::design::distinct::{near_pairs, JOINT_TOLERANCE};
+use stiffid::internal::design::distinct::{near_pairs, JOINT_TOLERANCE};
 
 /// On the paper's robot (a spherical wrist): a posture repeated 0.5 deg away and a wrist flip
 /// (`q4 + pi`, `-q5`, `q6 + pi`: the same flange pose) are flagged, the flip as another branch
 /// with its flanges within 1e-6 mm; the other pairs of a spread group are not.
 #[test]
 fn duplicate_postures_and_wrist_flips_are_flagged() {
-    let setup = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let setup = stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap();
     let robot = setup.robot();
     let a = Vector6::new(0.2, -0.3, 0.4, 0.5, 0.6, -0.7);
     let b = Vector6::new(-0.8, 0.1, -0.2, -1.0, 1.1, 0.9);
@@ -39,11 +39,11 @@ fn duplicate_postures_and_wrist_flips_are_flagged() {
 #[test]
 fn a_pool_choice_with_distinct_has_no_near_postures() {
     use stiffid::app::select::{self, Method, PoolInput, Request};
-    use stiffid::design::distinct::Distinctness;
-    let setup = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    use stiffid::internal::design::distinct::Distinctness;
+    let setup = stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap();
     let bounds = setup.bounds();
     let middle = (bounds.lower + bounds.upper) / 2.0;
-    let spread = stiffid::design::random_group(&setup, 6, 3);
+    let spread = stiffid::internal::design::random_group(&setup, 6, 3);
     let step = 0.5_f64.to_radians();
     let mut pool = spread.clone();
     pool.extend(
@@ -54,7 +54,7 @@ fn a_pool_choice_with_distinct_has_no_near_postures() {
     let run = |n: usize, distinct: Option<Distinctness>| {
         select::run(&Request {
             setup: &setup,
-            criterion: stiffid::design::Criterion::RelativeA,
+            criterion: stiffid::internal::design::Criterion::RelativeA,
             purpose: Default::default(),
             calibration: Default::default(),
             method: Method::Pool,
@@ -101,7 +101,7 @@ fn a_pool_choice_with_distinct_has_no_near_postures() {
 fn the_plan_flags_near_postures() {
     use stiffid::app::plan::{self, Request};
     use stiffid::app::WarningKind;
-    let setup = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let setup = stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap();
     let a = Vector6::new(0.2, -0.3, 0.4, 0.5, 0.6, -0.7);
     let b = Vector6::new(-0.8, 0.1, -0.2, -1.0, 1.1, 0.9);
     let c = Vector6::new(1.0, 0.4, 0.1, 0.3, -0.9, 0.2);
@@ -110,7 +110,7 @@ fn the_plan_flags_near_postures() {
         let request = Request {
             scene: false,
             setup: &setup,
-            criterion: stiffid::design::Criterion::RelativeA,
+            criterion: stiffid::internal::design::Criterion::RelativeA,
             postures: group,
             target_pct: None,
             external: &[],

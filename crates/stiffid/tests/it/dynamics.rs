@@ -4,9 +4,9 @@
 
 use nalgebra::{Isometry3, Matrix3, Matrix3x6, Matrix6, Point3, Translation3, UnitQuaternion};
 use nalgebra::{Vector3, Vector6};
-use stiffid::observation::dynamics;
-use stiffid::robot::dynamics::{self as mass, body, modes, MassModel};
-use stiffid::robot::LinkMass;
+use stiffid::internal::observation::dynamics;
+use stiffid::internal::robot::dynamics::{self as mass, body, modes, MassModel};
+use stiffid::internal::robot::LinkMass;
 use stiffid::{Coordinates, Robot};
 
 /// A URDF 6R arm (`tests/data/pinocchio/arm.urdf`) with turned joint origins, axes along x, y and -z, full inertia tensors in
@@ -94,7 +94,7 @@ fn arm_bodies() -> Vec<Body> {
 }
 
 fn arm() -> Robot {
-    stiffid::robot::urdf::parse(ARM_URDF, "mass-test.urdf", Some("tool0")).unwrap()
+    stiffid::internal::robot::urdf::parse(ARM_URDF, "mass-test.urdf", Some("tool0")).unwrap()
 }
 
 /// `d f / d q_k` by central differences with one Richardson step (error O(h^4)).
@@ -283,8 +283,9 @@ fn dh_arm(axis_map: &str) -> (Robot, Robot) {
         );
     }
     urdf += "</robot>\n";
-    let from_toml = stiffid::robot::file::parse(&(toml + axis_map), "dh-arm.toml").unwrap();
-    let from_urdf = stiffid::robot::urdf::parse(&urdf, "dh-arm.urdf", None).unwrap();
+    let from_toml =
+        stiffid::internal::robot::file::parse(&(toml + axis_map), "dh-arm.toml").unwrap();
+    let from_urdf = stiffid::internal::robot::urdf::parse(&urdf, "dh-arm.urdf", None).unwrap();
     (from_toml, from_urdf)
 }
 
@@ -360,7 +361,7 @@ fn two_link(l1: f64, l2: f64, bodies: [(f64, f64); 6]) -> Robot {
             a * 1e3
         );
     }
-    stiffid::robot::file::parse(&toml, "two-link.toml").unwrap()
+    stiffid::internal::robot::file::parse(&toml, "two-link.toml").unwrap()
 }
 
 #[test]
@@ -446,7 +447,12 @@ fn the_surge_gives_the_held_mass_the_stored_energy() {
     let s = s.unwrap();
     assert!((0.5 * s.mass * s.speed * s.speed - s.energy).abs() < 1e-12 * s.energy);
     // c is the Cartesian compliance along the thrust, m the held mass along it.
-    let cx = stiffid::observation::cartesian::compliance(setup.arm(), &frames, &tcp, &compliance.h);
+    let cx = stiffid::internal::observation::cartesian::compliance(
+        setup.arm(),
+        &frames,
+        &tcp,
+        &compliance.h,
+    );
     let u = force.normalize();
     let c = (u.transpose() * cx.fixed_view::<3, 3>(0, 0) * u)[0];
     assert!((s.compliance - c).abs() < 1e-12 * c);
@@ -462,13 +468,13 @@ fn the_mass_models_uncertainty_matches_draws_of_the_masses() {
     use rand::SeedableRng;
     use rand_distr::{Distribution, StandardNormal};
     let (robot, _) = dh_arm("");
-    let spindle = stiffid::setup::Payload {
+    let spindle = stiffid::internal::setup::Payload {
         mass: 40.0,
         centre: Vector3::new(0.05, 0.0, 0.12),
         inertia: body::tensor([0.4, 0.4, 0.1, 0.0, 0.0, 0.0]),
     };
     let setup = crate::common::paper_with("").unwrap();
-    let build = |robot: Robot, spindle: stiffid::setup::Payload| {
+    let build = |robot: Robot, spindle: stiffid::internal::setup::Payload| {
         (setup.to_builder())
             .with_bounds(*robot.limits())
             .with_test_postures(Vec::new())
@@ -484,7 +490,7 @@ fn the_mass_models_uncertainty_matches_draws_of_the_masses() {
     let (frames, tcp) = (nominal.robot().frames(&q), nominal.tool().tcp);
     let force = Vector3::new(100.0, -250.0, -1800.0);
     let u = force.normalize();
-    let surge = |s: &stiffid::setup::Setup| {
+    let surge = |s: &stiffid::internal::setup::Setup| {
         let masses = dynamics::mass_model(s.arm()).0.unwrap();
         dynamics::tcp_surge(&masses, s.arm(), &frames, &compliance, &force).unwrap()
     };
@@ -517,7 +523,7 @@ fn the_mass_models_uncertainty_matches_draws_of_the_masses() {
             inertia: b.inertia * f,
         };
         let drawn_links: [LinkMass; 6] = std::array::from_fn(|k| scale(&links[k], s[k]));
-        let drawn_spindle = stiffid::setup::Payload {
+        let drawn_spindle = stiffid::internal::setup::Payload {
             mass: spindle.mass * s[6],
             inertia: spindle.inertia * s[6],
             ..spindle
@@ -581,7 +587,8 @@ fn placeholder_inertials_are_refused_with_the_way_to_give_them() {
             _ => format!("<mass value=\"1{}", &part[part.find('"').unwrap()..]),
         })
         .collect::<String>();
-    let robot = stiffid::robot::urdf::parse(&placeholder, "p.urdf", Some("tool0")).unwrap();
+    let robot =
+        stiffid::internal::robot::urdf::parse(&placeholder, "p.urdf", Some("tool0")).unwrap();
     // The spindle folds into link 6: link 6 weighs 2 kg, the others 1 kg: not all equal.
     assert_eq!(robot.masses().unwrap()[5].mass, 2.0);
     let equal = robot.masses().unwrap().map(|l| LinkMass { mass: 1.0, ..l });
@@ -608,7 +615,7 @@ fn an_inertia_tensor_no_body_has_is_an_error_naming_the_field() {
     let _ = robot;
     let bad = "name = \"x\"\nconvention = \"modified-dh\"\n".to_string()
         + &"[[joint]]\na_mm = 100.0\nalpha_deg = 90.0\nd_mm = 0.0\nlower_deg = -170.0\nupper_deg = 170.0\nmass_kg = 5.0\ncom_mm = [0, 0, 0]\ninertia_kg_m2 = [1, 1, 3, 0, 0, 0]\n".repeat(6);
-    let message = stiffid::robot::file::parse(&bad, "bad.toml")
+    let message = stiffid::internal::robot::file::parse(&bad, "bad.toml")
         .unwrap_err()
         .to_string();
     assert!(
@@ -616,7 +623,7 @@ fn an_inertia_tensor_no_body_has_is_an_error_naming_the_field() {
         "{message}"
     );
     let urdf = ARM_URDF.replacen("ixx=\"9\"", "ixx=\"-9\"", 1);
-    let message = stiffid::robot::urdf::parse(&urdf, "bad.urdf", None)
+    let message = stiffid::internal::robot::urdf::parse(&urdf, "bad.urdf", None)
         .unwrap_err()
         .to_string();
     assert!(

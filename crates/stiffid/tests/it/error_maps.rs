@@ -2,7 +2,7 @@
 //! axis angle plus the map's error, computed here term by term.
 
 use nalgebra::{Vector3, Vector6};
-use stiffid::robot::file;
+use stiffid::internal::robot::file;
 
 const TABLE: &str = r#"
 name = "six"
@@ -164,7 +164,7 @@ fn a_bad_error_map_is_refused_naming_the_joint() {
 
 #[test]
 fn a_maps_list_gives_each_joint_once_in_digits() {
-    use stiffid::metrology::calibration::maps::{name, JointMaps, Spec};
+    use stiffid::internal::metrology::calibration::maps::{name, JointMaps, Spec};
     let fixed = Spec::parse("J2, j3:8").unwrap();
     assert_eq!(fixed, Spec::Fixed(JointMaps::from([0, 16, 8, 0, 0, 0])));
     // A backlash term: `b` after the count, `:b` alone; named back the same way.
@@ -198,8 +198,10 @@ fn a_maps_list_gives_each_joint_once_in_digits() {
 /// the two approaches) as they are, and the calibrated robot file writes it back.
 #[test]
 fn a_backlash_survives_the_robot_file_round_trip() {
-    use stiffid::metrology::calibration::error_model::MeasuredIn;
-    use stiffid::metrology::calibration::{gravity, robot_file, ErrorModel, Estimate, Geometry};
+    use stiffid::internal::metrology::calibration::error_model::MeasuredIn;
+    use stiffid::internal::metrology::calibration::{
+        gravity, robot_file, ErrorModel, Estimate, Geometry,
+    };
     let text = TABLE
         .replace(
             "ERROR1",
@@ -261,8 +263,10 @@ fn a_backlash_survives_the_robot_file_round_trip() {
 /// joint.
 #[test]
 fn a_map_tapers_to_zero_beyond_its_range_in_the_robot_file() {
-    use stiffid::metrology::calibration::error_model::MeasuredIn;
-    use stiffid::metrology::calibration::{gravity, robot_file, ErrorModel, Estimate, Geometry};
+    use stiffid::internal::metrology::calibration::error_model::MeasuredIn;
+    use stiffid::internal::metrology::calibration::{
+        gravity, robot_file, ErrorModel, Estimate, Geometry,
+    };
     let with = |line: &str| {
         let map = format!(
             "error_map = {{ cos_deg = {}, sin_deg = {}{line} }}",
@@ -287,7 +291,7 @@ fn a_map_tapers_to_zero_beyond_its_range_in_the_robot_file() {
             "{deg}"
         );
     }
-    let ramp = stiffid::robot::error_map::TAPER_DEG;
+    let ramp = stiffid::internal::robot::error_map::TAPER_DEG;
     for deg in [-30.0 - ramp, 50.0 + ramp, 150.0] {
         assert_eq!(
             ranged.frames(&at(deg)).flange,

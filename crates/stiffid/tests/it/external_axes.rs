@@ -4,7 +4,7 @@
 
 use nalgebra::{Isometry3, Matrix3, Matrix4, Vector3, Vector6};
 use stiffid::app::kinematics;
-use stiffid::robot::{presets, Robot};
+use stiffid::internal::robot::{presets, Robot};
 
 const ARM: &str = "comau-smart5-nj165-3.0";
 
@@ -39,12 +39,12 @@ limits_deg = [-360.0, 360.0]
 
 fn robot(tables: &str) -> Robot {
     let text = format!("{}\n{tables}", presets::text(ARM).unwrap());
-    stiffid::robot::file::parse(&text, "cell.toml").unwrap()
+    stiffid::internal::robot::file::parse(&text, "cell.toml").unwrap()
 }
 
 fn refusal(tables: &str) -> String {
     let text = format!("{}\n{tables}", presets::text(ARM).unwrap());
-    stiffid::robot::file::parse(&text, "cell.toml")
+    stiffid::internal::robot::file::parse(&text, "cell.toml")
         .unwrap_err()
         .to_string()
 }
@@ -391,7 +391,7 @@ fn external_axis_tables_are_refused_naming_the_file_table_and_field() {
 /// and the table, and no position in the JSON text the caller never wrote.
 #[test]
 fn external_axis_tables_from_json_are_refused_naming_the_table_not_a_column() {
-    use stiffid::robot::external::file::from_json;
+    use stiffid::internal::robot::external::file::from_json;
     let track =
         r#"{"name": "track", "role": "carrier", "direction": [0, 1, 0], "limits_mm": [0, 4000]}"#;
     let cases = [
@@ -425,7 +425,7 @@ fn assert_bodies_ride_on_the_track(setup: &stiffid::Setup) {
     let axes = setup.robot().external().unwrap();
     let at = |s_mm: f64| {
         let frames = setup.robot().frames_at(&q, &axes.to_si(&[s_mm]));
-        stiffid::cell::capsules(setup.arm(), &frames)
+        stiffid::internal::cell::capsules(setup.arm(), &frames)
     };
     let (home, far) = (at(0.0), at(4000.0));
     assert_eq!(home.len(), far.len());
@@ -454,7 +454,7 @@ fn assert_axes_written_back() {
         TRACK.trim_end()
     ));
     let axes = with_errors.external().unwrap();
-    let written = stiffid::robot::external::file::toml(axes);
+    let written = stiffid::internal::robot::external::file::toml(axes);
     let back = robot(&written);
     assert_eq!(back.external().unwrap().len(), 3);
     for (a, b) in axes.axes().iter().zip(back.external().unwrap().axes()) {
@@ -486,7 +486,7 @@ fn a_setups_tables_replace_the_robot_files_and_the_files_write_them_back() {
     std::fs::create_dir_all(&dir).unwrap();
     let robot_text = format!("{}\n{TRACK}", presets::text(ARM).unwrap());
     std::fs::write(dir.join("cell-robot.toml"), &robot_text).unwrap();
-    let builtin = stiffid::setup::builtin_text("zhang2021-comau-nj165").unwrap();
+    let builtin = stiffid::internal::setup::builtin_text("zhang2021-comau-nj165").unwrap();
     let setup_text = builtin.replacen(
         "robot = \"comau-smart5-nj165-3.0\"",
         "robot = \"cell-robot.toml\"",
@@ -494,9 +494,9 @@ fn a_setups_tables_replace_the_robot_files_and_the_files_write_them_back() {
     );
     assert_ne!(setup_text, builtin);
     let read = |text: &str| {
-        stiffid::setup::parse(text, "cell-setup.toml", |r, _| {
+        stiffid::internal::setup::parse(text, "cell-setup.toml", |r, _| {
             let text = std::fs::read_to_string(dir.join(r)).unwrap();
-            stiffid::robot::file::parse(&text, r)
+            stiffid::internal::robot::file::parse(&text, r)
         })
     };
     let setup = read(&setup_text).unwrap();
@@ -544,7 +544,7 @@ fn a_setups_tables_replace_the_robot_files_and_the_files_write_them_back() {
 
 #[test]
 fn inverse_kinematics_reaches_a_point_of_the_part_with_the_carrier_where_it_is() {
-    use stiffid::robot::ik;
+    use stiffid::internal::robot::ik;
     let robot = robot(&format!("{TRACK}{POSITIONER}"));
     let axes = robot.external().unwrap();
     let point = Vector3::new(0.1, 0.0, 0.2);
@@ -618,7 +618,7 @@ fn cell_urdf(track_limit: &str) -> String {
 
 #[test]
 fn a_urdf_holds_the_track_before_the_arm_and_the_positioner_as_a_second_chain() {
-    use stiffid::robot::urdf;
+    use stiffid::internal::robot::urdf;
     let limit = r#"<limit lower="0" upper="6" effort="1" velocity="1"/>"#;
     let cell = urdf::parse(&cell_urdf(limit), "cell.urdf", None).unwrap();
     let plain_text = std::fs::read_to_string(format!(
@@ -691,7 +691,7 @@ fn a_urdf_holds_the_track_before_the_arm_and_the_positioner_as_a_second_chain() 
 
 #[test]
 fn a_urdf_positioner_hanging_from_the_arm_is_refused_naming_the_joint_and_link() {
-    use stiffid::robot::urdf;
+    use stiffid::internal::robot::urdf;
     let limit = r#"<limit lower="0" upper="6" effort="1" velocity="1"/>"#;
     let tilt_on = |link: &str| {
         let from = "<joint name=\"tilt\" type=\"revolute\">\n    <parent link=\"world\"/>";
@@ -730,8 +730,8 @@ fn a_urdf_positioner_hanging_from_the_arm_is_refused_naming_the_joint_and_link()
 fn a_setups_positioner_axis_through_the_tool_is_refused() {
     let text = include_str!("../../../../examples/track/track-cell.toml");
     let parse = |text: &str| {
-        stiffid::setup::parse(text, "track-cell.toml", |r, _| {
-            stiffid::robot::presets::get(r)
+        stiffid::internal::setup::parse(text, "track-cell.toml", |r, _| {
+            stiffid::internal::robot::presets::get(r)
         })
     };
     let setup = parse(text).unwrap();

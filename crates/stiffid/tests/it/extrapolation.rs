@@ -10,18 +10,18 @@ use stiffid::app::compensate::{self, Input};
 use stiffid::app::identify::{self, Options};
 use stiffid::app::measurements::Data;
 use stiffid::app::{predict, validate};
-use stiffid::common::warning::{Warning, WarningKind};
-use stiffid::io::stiffness;
-use stiffid::machining::compensate::{Compensated, PathPoint};
-use stiffid::machining::dynamics::Dynamics;
-use stiffid::model::{Compliance, Region};
-use stiffid::observation::deflection::Frame;
+use stiffid::internal::common::warning::{Warning, WarningKind};
+use stiffid::internal::io::stiffness;
+use stiffid::internal::machining::compensate::{Compensated, PathPoint};
+use stiffid::internal::machining::dynamics::Dynamics;
+use stiffid::internal::model::{Compliance, Region};
+use stiffid::internal::observation::deflection::Frame;
 use stiffid::{Error, Setup};
 
 const DATA: &str = include_str!("../../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
 
 fn fanuc() -> Setup {
-    let s = stiffid::setup::builtin("fanuc-r2000ic-165f").unwrap();
+    let s = stiffid::internal::setup::builtin("fanuc-r2000ic-165f").unwrap();
     s.to_builder().with_tcp(s.tool().tcp).build().unwrap()
 }
 
@@ -304,7 +304,7 @@ fn compensate_flags_each_path_point_beyond_the_identification_range() {
     let request = compensate::Request {
         names: Default::default(),
         setup: &setup,
-        options: stiffid::machining::compensate::Options::for_setup(&setup),
+        options: stiffid::internal::machining::compensate::Options::for_setup(&setup),
         compliance: c,
         input: Input::Path {
             name: "path.csv".into(),

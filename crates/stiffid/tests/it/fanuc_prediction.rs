@@ -8,13 +8,13 @@
 use crate::common::fanuc;
 use nalgebra::Vector3;
 use stiffid::app::identify::noise_floor;
-use stiffid::identify::compare::pool_by_name;
-use stiffid::identify::cross_validation::{cross_validate_model, Method};
-use stiffid::identify::prediction::calibrate;
-use stiffid::identify::svd::fit;
-use stiffid::model::prediction::inside;
-use stiffid::observation::{Measurement, Observations};
-use stiffid::setup::Setup;
+use stiffid::internal::identify::compare::pool_by_name;
+use stiffid::internal::identify::cross_validation::{cross_validate_model, Method};
+use stiffid::internal::identify::prediction::calibrate;
+use stiffid::internal::identify::svd::fit;
+use stiffid::internal::model::prediction::inside;
+use stiffid::internal::observation::{Measurement, Observations};
+use stiffid::internal::setup::Setup;
 
 /// The shares of the held-out coordinates inside their intervals at each of `levels`.
 fn coverage(setup: &Setup, data: &[Measurement], levels: &[f64]) -> Vec<f64> {

@@ -4,11 +4,11 @@
 
 use crate::compensate::{line_path, options};
 use nalgebra::{Vector3, Vector6};
-use stiffid::cell::{capsules, CheckKind, Checker, Part, Thing};
-use stiffid::machining::compensate::{self, Compensated, Removed};
-use stiffid::robot::kinematics::Coordinates;
-use stiffid::robot::presets;
-use stiffid::{setup, Setup};
+use stiffid::internal::cell::{capsules, CheckKind, Checker, Part, Thing};
+use stiffid::internal::machining::compensate::{self, Compensated, Removed};
+use stiffid::internal::robot::kinematics::Coordinates;
+use stiffid::internal::robot::presets;
+use stiffid::{internal::setup, Setup};
 
 /// The FANUC preset with `cell` appended and its TCP 300 mm off the flange axis (a turn about
 /// tool z then swings the flange and the tool's body around the TCP).

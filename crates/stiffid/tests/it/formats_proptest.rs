@@ -13,8 +13,8 @@ use crate::mutate;
 
 use mutate::{apply, edit, hostile_number, Edit, Tally};
 use proptest::prelude::*;
-use stiffid::common::limits::STIFFNESS_NM_PER_RAD;
-use stiffid::io::{measurements, postures, stiffness};
+use stiffid::internal::common::limits::STIFFNESS_NM_PER_RAD;
+use stiffid::internal::io::{measurements, postures, stiffness};
 use stiffid::Setup;
 
 const CASES: u32 = 128;
@@ -29,11 +29,11 @@ const LEAST_HOSTILE_NUMBERS_IN_POSTURES: u32 = 15;
 const LEAST_HOSTILE_NUMBERS_IN_STIFFNESS: u32 = 6;
 
 fn comau() -> Setup {
-    stiffid::setup::builtin("zhang2021-comau-nj165").unwrap()
+    stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap()
 }
 
 fn fanuc() -> Setup {
-    stiffid::setup::builtin("fanuc-r2000ic-165f").unwrap()
+    stiffid::internal::setup::builtin("fanuc-r2000ic-165f").unwrap()
 }
 
 fn measurements_text() -> &'static str {
@@ -62,7 +62,7 @@ fn check_measurements(text: &str, setup: &Setup) -> bool {
             .chain(&m.displacement)
             .all(|v| v.is_finite()));
     }
-    if let Ok(id) = stiffid::identify::least_squares(setup.arm(), &d.measurements) {
+    if let Ok(id) = stiffid::internal::identify::least_squares(setup.arm(), &d.measurements) {
         assert!(
             id.compliance.iter().all(|h| h.is_finite()),
             "{:?}",
@@ -88,7 +88,7 @@ fn check_stiffness(text: &str) -> bool {
     let Ok(k) = stiffness::parse(text) else {
         return false;
     };
-    let Ok(c) = k.compliance(&stiffid::model::Model::default()) else {
+    let Ok(c) = k.compliance(&stiffid::internal::model::Model::default()) else {
         return false;
     };
     assert!(c

@@ -4,7 +4,7 @@
 use crate::common;
 
 use nalgebra::{DVector, Vector6};
-use stiffid::{
+use stiffid::internal::{
     math::lsq::Factor, observation::rope_observation_matrix, observation::stiffness, setup,
 };
 
@@ -14,7 +14,7 @@ fn postures() -> Vec<Vector6<f64>> {
 
 #[test]
 fn observation_matrix_times_compliance_is_the_forward_displacement() {
-    for name in stiffid::setup::builtin_names() {
+    for name in stiffid::internal::setup::builtin_names() {
         let setup = setup::builtin(name).unwrap();
         let qs: Vec<_> = postures()
             .iter()

@@ -6,13 +6,13 @@
 use crate::common::on_robot;
 use crate::compensate::{line_path, options};
 use nalgebra::{Translation3, UnitQuaternion, Vector3, Vector6};
-use stiffid::common::limits::JointBox;
-use stiffid::machining::compensate::{
+use stiffid::internal::common::limits::JointBox;
+use stiffid::internal::machining::compensate::{
     self, path_configurations, posed, Aggregate, Compensated, Configurations, Free, FreeVariables,
     Objective, Options, PathPoint, Scope, Target,
 };
-use stiffid::robot::ik::tool_pose;
-use stiffid::{setup, Coordinates, Error, JobOption, Setup};
+use stiffid::internal::robot::ik::tool_pose;
+use stiffid::{internal::setup, Coordinates, Error, JobOption, Setup};
 
 /// The FANUC preset with its TCP on the flange axis, 250 mm out, and joint limits `limits_deg`
 /// (lower, upper per axis).
@@ -168,8 +168,8 @@ fn turning_path(s: &Setup) -> Vec<PathPoint> {
                 line: i as u64 + 2,
                 target: Target::Pose(Translation3::identity() * start * turn),
                 wrench: Vector6::new(200.0, 0.0, -100.0, 0.0, 0.0, 0.0),
-                frame: stiffid::observation::deflection::Frame::Tool,
-                external: stiffid::robot::external::ExternalValues::NONE,
+                frame: stiffid::internal::observation::deflection::Frame::Tool,
+                external: stiffid::internal::robot::external::ExternalValues::NONE,
             }
         })
         .collect()

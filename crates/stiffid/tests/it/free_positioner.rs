@@ -5,14 +5,14 @@
 //! where the table turned it; a cell without a positioner is refused naming the option.
 
 use nalgebra::{Isometry3, Rotation3, UnitQuaternion, Vector3, Vector6};
-use stiffid::machining::compensate::{
+use stiffid::internal::machining::compensate::{
     self, Aggregate, Compensated, Free, FreeRange, FreeVariables, Model, Objective, Options,
     PathPoint, Target, Variable,
 };
-use stiffid::observation::deflection::Frame;
-use stiffid::robot::external::{ExternalAxes, ExternalAxis, ExternalValues};
-use stiffid::robot::presets;
-use stiffid::{setup, Setup};
+use stiffid::internal::observation::deflection::Frame;
+use stiffid::internal::robot::external::{ExternalAxes, ExternalAxis, ExternalValues};
+use stiffid::internal::robot::presets;
+use stiffid::{internal::setup, Setup};
 
 /// The table's axis: vertical through (2.7, -0.4, 0) m.
 const TABLE: [f64; 3] = [2.7, -0.4, 0.0];
@@ -154,7 +154,7 @@ fn no_point_rises_and_the_tool_lands_on_the_turned_part() {
     let compliance = s.model_compliance("test").unwrap();
     let results = compensate::path_on_track(s.arm(), &compliance, &points, &options).unwrap();
     let results: Vec<Compensated> =
-        stiffid::machining::cell::path_to_cell(s.robot(), &points, results);
+        stiffid::internal::machining::cell::path_to_cell(s.robot(), &points, results);
     let cell = s.robot().external().unwrap();
     let model = Model::new(s.arm(), &compliance).unwrap();
     let mut turned_any = false;

@@ -4,14 +4,16 @@
 //! point's bound rises; the loaded tool lands on the part from the chosen station.
 
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
-use stiffid::machining::compensate::{
+use stiffid::internal::machining::compensate::{
     self, Aggregate, Compensated, Free, FreeRange, FreeVariables, Model, Objective, Options,
     PathPoint, Target, Variable,
 };
-use stiffid::observation::deflection::Frame;
-use stiffid::robot::external::{ErrorMotions, ExternalAxes, ExternalAxis, ExternalValues};
-use stiffid::robot::presets;
-use stiffid::{setup, Setup};
+use stiffid::internal::observation::deflection::Frame;
+use stiffid::internal::robot::external::{
+    ErrorMotions, ExternalAxes, ExternalAxis, ExternalValues,
+};
+use stiffid::internal::robot::presets;
+use stiffid::{internal::setup, Setup};
 
 /// The FANUC milling example on a track along x (0 to 6 m, pitching 0.2 mrad at its end).
 pub(crate) fn on_track() -> Setup {
@@ -183,7 +185,7 @@ fn no_point_rises_and_the_tool_lands_from_the_chosen_station() {
     let compliance = s.model_compliance("test").unwrap();
     let results = compensate::path_on_track(s.arm(), &compliance, &points, &options).unwrap();
     let results: Vec<Compensated> =
-        stiffid::machining::cell::path_to_cell(s.robot(), &points, results);
+        stiffid::internal::machining::cell::path_to_cell(s.robot(), &points, results);
     let cell = s.robot().external().unwrap();
     let model = Model::new(s.arm(), &compliance).unwrap();
     let mut moved_any = false;

@@ -5,7 +5,7 @@
 
 use approx::assert_relative_eq;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
-use stiffid::machining::gcode::{self, Machine, ProgramFrames};
+use stiffid::internal::machining::gcode::{self, Machine, ProgramFrames};
 use stiffid::Error;
 
 const DOWN: &str = "(stiffid: tool_rpy_deg = 180 0 0)\n";

@@ -7,8 +7,8 @@
 
 use approx::assert_relative_eq;
 use nalgebra::Vector3;
-use stiffid::machining::gcode::{self, Machine};
-use stiffid::machining::process::file as process_file;
+use stiffid::internal::machining::gcode::{self, Machine};
+use stiffid::internal::machining::process::file as process_file;
 use stiffid::Error;
 
 const SETUP: &str = include_str!("../../../../examples/milling/fanuc-milling.toml");
@@ -26,8 +26,10 @@ fn corpus(name: &str) -> String {
 pub(crate) fn machine(workpiece: &str, process: &str) -> Machine {
     let start = SETUP.find("[workpiece]").unwrap();
     let text = format!("{}{}", &SETUP[..start], corpus(workpiece));
-    let setup =
-        stiffid::setup::parse(&text, "setup.toml", |n, _| stiffid::robot::presets::get(n)).unwrap();
+    let setup = stiffid::internal::setup::parse(&text, "setup.toml", |n, _| {
+        stiffid::internal::robot::presets::get(n)
+    })
+    .unwrap();
     let process_text = match process {
         "aluminium.toml" => include_str!("../../../../examples/milling/aluminium.toml").to_string(),
         other => corpus(other),

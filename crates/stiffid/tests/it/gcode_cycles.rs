@@ -4,11 +4,11 @@
 //! `crates/stiffid-machining/src/gcode/cycles_tests.rs`).
 
 use nalgebra::{Isometry3, Vector3};
-use stiffid::machining::compensate::Options;
-use stiffid::machining::gcode;
-use stiffid::machining::process::file;
-use stiffid::machining::{self, Language};
-use stiffid::{setup, Error};
+use stiffid::internal::machining::compensate::Options;
+use stiffid::internal::machining::gcode;
+use stiffid::internal::machining::process::file;
+use stiffid::internal::machining::{self, Language};
+use stiffid::{internal::setup, Error};
 
 const HEADER: &str = "(stiffid: tool_rpy_deg = 180 0 0)\n";
 
@@ -216,8 +216,8 @@ fn a_drilling_cycle_is_compensated_under_its_drilling_operation() {
 /// re-approach, the retracts) is unloaded and commanded at its nominal posture.
 #[test]
 fn a_drilling_feed_runs_along_the_compensated_hole_axis() {
-    use stiffid::machining::compensate::Model;
-    use stiffid::robot::ik;
+    use stiffid::internal::machining::compensate::Model;
+    use stiffid::internal::robot::ik;
     let s = drilling_setup();
     let compliance = s.model_compliance("test").unwrap();
     let model = Model::new(s.arm(), &compliance).unwrap();

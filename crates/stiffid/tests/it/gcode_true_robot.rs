@@ -11,10 +11,10 @@ use crate::true_robot::{
 use nalgebra::{Point3, UnitQuaternion};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use stiffid::machining::gcode::ProgramFrames;
-use stiffid::machining::program::generate::Targets;
-use stiffid::machining::program::Dialect;
-use stiffid::machining::Language;
+use stiffid::internal::machining::gcode::ProgramFrames;
+use stiffid::internal::machining::program::generate::Targets;
+use stiffid::internal::machining::program::Dialect;
+use stiffid::internal::machining::Language;
 
 pub(crate) fn corpus(name: &str) -> String {
     let path = format!(
@@ -30,7 +30,7 @@ pub(crate) fn corpus(name: &str) -> String {
 pub(crate) struct Prepared {
     pub(crate) truth: Truth,
     pub(crate) setup: stiffid::Setup,
-    pub(crate) compliance: stiffid::model::Compliance,
+    pub(crate) compliance: stiffid::internal::model::Compliance,
     pub(crate) frame: nalgebra::Isometry3<f64>,
     pub(crate) q0: nalgebra::Vector6<f64>,
     pub(crate) held_rms: f64,

@@ -7,11 +7,11 @@ use crate::common;
 use nalgebra::{DMatrix, Matrix6, MatrixXx6, Vector3, Vector6};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use stiffid::design::{Criterion, Evaluator};
-use stiffid::observation::{posture_block, rope_block_gradient};
-use stiffid::robot::presets;
-use stiffid::setup::{self, Setup};
-use stiffid::{dexterity, robot::kinematics, Coordinates, Frames, Robot};
+use stiffid::internal::design::{Criterion, Evaluator};
+use stiffid::internal::observation::{posture_block, rope_block_gradient};
+use stiffid::internal::robot::presets;
+use stiffid::internal::setup::{self, Setup};
+use stiffid::{dexterity, internal::robot::kinematics, Coordinates, Frames, Robot};
 
 /// Step of the fourth-order central differences, rad: truncation ~ h^4, round-off ~ 1e-16 / h,
 /// both far below 1e-6 relative for the smooth functions tested.
@@ -170,7 +170,7 @@ fn every_criterion_gradient_matches_central_differences() {
 fn gradient_of_a_rank_deficient_group_is_zero_not_nan() {
     // q5 = 0 in every posture: axes 4 and 6 are collinear, so their columns of Psi are equal.
     let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
-    let group: Vec<Vector6<f64>> = stiffid::design::random_group(&setup, 6, 5)
+    let group: Vec<Vector6<f64>> = stiffid::internal::design::random_group(&setup, 6, 5)
         .into_iter()
         .map(|mut q| {
             q[4] = 0.0;
@@ -199,13 +199,13 @@ fn gradient_of_a_rank_deficient_group_is_zero_not_nan() {
 /// broad-phase switch or witness tie within the step).
 #[test]
 fn cell_constraint_gradients_match_central_differences() {
-    use stiffid::cell::Checker;
-    use stiffid::design::search::cell_constraints;
+    use stiffid::internal::cell::Checker;
+    use stiffid::internal::design::search::cell_constraints;
     let text = setup::builtin_text("zhang2021-comau-nj165").unwrap().to_string()
         + "\n[cell]\nfloor_z_mm = 0.0\nclearance_mm = 50.0\n[[cell.obstacle]]\nname = \"table\"\nmin_mm = [1800, -500, 0]\nmax_mm = [2600, 500, 900]\n[tracker]\nposition_mm = [3000.0, -2000.0, 1500.0]\nmax_incidence_deg = 60.0\n[constraints]\nloading_point_min_z_mm = 300.0\n";
     let setup = setup::parse(&text, "cell.toml", |r, _| presets::get(r)).unwrap();
     let checker = Checker::new(&setup);
-    let postures = stiffid::design::random_group(&setup, 40, 5);
+    let postures = stiffid::internal::design::random_group(&setup, 40, 5);
     let mut checked = vec![0; checker.kinds().len() - 1];
     for q in &postures {
         let c = cell_constraints(&checker, q);

@@ -4,13 +4,13 @@
 //! recovery of the stiffness from a generated measurement file of many postures.
 
 use crate::common;
-use stiffid::identify::Identify;
+use stiffid::internal::identify::Identify;
 
 use common::{assert_close, measurement_csv, noisy, synthetic};
-use stiffid::identify::{self, BLOCK};
-use stiffid::io::measurements;
-use stiffid::observation::Observations;
-use stiffid::setup;
+use stiffid::internal::identify::{self, BLOCK};
+use stiffid::internal::io::measurements;
+use stiffid::internal::observation::Observations;
+use stiffid::internal::setup;
 
 #[test]
 fn blocks_equal_the_one_shot_qr_to_rounding() {

@@ -3,7 +3,7 @@
 //! and every accepted combination passes.
 
 use stiffid::app::identify::Options;
-use stiffid::identify::Loss;
+use stiffid::internal::identify::Loss;
 use stiffid::{Error, JobOption as O};
 
 fn refusal(options: Options) -> (O, Vec<O>, bool) {

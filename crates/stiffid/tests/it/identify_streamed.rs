@@ -4,13 +4,13 @@
 //! bits with 1 and 2 threads; errors that name the line and column of a row far into the file.
 
 use crate::common;
-use stiffid::identify::Identify;
+use stiffid::internal::identify::Identify;
 
 use common::{assert_close, measurement_csv, noisy};
-use stiffid::identify::{self, streamed, Identification};
-use stiffid::io::measurements::{self, Labels};
-use stiffid::observation::Observations;
-use stiffid::{setup, ColumnProblem, Error, Setup};
+use stiffid::internal::identify::{self, streamed, Identification};
+use stiffid::internal::io::measurements::{self, Labels};
+use stiffid::internal::observation::Observations;
+use stiffid::{internal::setup, ColumnProblem, Error, Setup};
 
 const FANUC: &str = include_str!("../../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
 

@@ -10,11 +10,11 @@ use nalgebra::{Point3, Translation3, Vector6};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use stiffid::app::compensate::{self as compensate, Input};
-use stiffid::machining::compensate::{Compensated, Options};
-use stiffid::machining::program::generate::{Settings, Targets};
-use stiffid::machining::program::Dialect;
-use stiffid::machining::Language;
-use stiffid::setup::{Controller, NumberedFrames, Pulses};
+use stiffid::internal::machining::compensate::{Compensated, Options};
+use stiffid::internal::machining::program::generate::{Settings, Targets};
+use stiffid::internal::machining::program::Dialect;
+use stiffid::internal::machining::Language;
+use stiffid::internal::setup::{Controller, NumberedFrames, Pulses};
 use stiffid::Setup;
 
 /// A GP-sized robot's pulses per degree (S, L, U, R, B, T).
@@ -61,11 +61,11 @@ fn positions(text: &str) -> Vec<Vector6<f64>> {
 /// `job` compensated on `setup` and written back: its text and every target's result.
 fn compensated(
     setup: &Setup,
-    compliance: &stiffid::model::Compliance,
+    compliance: &stiffid::internal::model::Compliance,
     q0: &Vector6<f64>,
     job: &str,
 ) -> (String, Vec<Compensated>) {
-    let process = stiffid::machining::process::file::parse(
+    let process = stiffid::internal::machining::process::file::parse(
         include_str!("../../../../examples/milling/aluminium.toml"),
         "aluminium.toml",
     )

@@ -4,7 +4,7 @@
 use nalgebra::{Matrix6, Vector3, Vector6};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use stiffid::robot::presets;
+use stiffid::internal::robot::presets;
 use stiffid::{dexterity, AxisMap, Coordinates, Robot};
 
 /// Finite-difference step, rad: truncation ~ h^2, round-off ~ 1e-16 / h, both far below 1e-6.

@@ -3,10 +3,10 @@
 
 use nalgebra::Vector6;
 use proptest::prelude::*;
-use stiffid::common::limits::JointBox;
-use stiffid::design::{self, Criterion, SearchOptions};
-use stiffid::io::postures;
-use stiffid::{setup, Error};
+use stiffid::internal::common::limits::JointBox;
+use stiffid::internal::design::{self, Criterion, SearchOptions};
+use stiffid::internal::io::postures;
+use stiffid::{internal::setup, Error};
 
 fn unit_box() -> JointBox {
     JointBox::new(Vector6::repeat(-1.0), Vector6::repeat(1.0))

@@ -11,14 +11,14 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Uniform};
 use stiffid::app::calibrate::{self, GravitySpec, Report};
-use stiffid::metrology::calibration::gravity::Gravity;
-use stiffid::metrology::calibration::maps::Spec;
-use stiffid::metrology::calibration::Geometry;
+use stiffid::internal::metrology::calibration::gravity::Gravity;
+use stiffid::internal::metrology::calibration::maps::Spec;
+use stiffid::internal::metrology::calibration::Geometry;
 use stiffid::Setup;
 
 /// The FANUC preset's robot file, with the link masses of the true robot when `with_masses`.
 fn robot_text(with_masses: bool) -> String {
-    let preset = include_str!("../../presets/fanuc-r2000ic-165f.toml");
+    let preset = include_str!("../../../stiffid-core/presets/fanuc-r2000ic-165f.toml");
     if !with_masses {
         return preset.to_string();
     }
@@ -54,8 +54,8 @@ fn setup_with(with_masses: bool, one_point: bool, more: &str) -> Setup {
         text = text.replace(four, "measuring_points_mm = [[80.0, 80.0, 260.0]]");
     }
     let robot = robot_text(with_masses);
-    stiffid::setup::parse(&text, "setup.toml", |_, _| {
-        stiffid::robot::file::parse(&robot, "robot.toml")
+    stiffid::internal::setup::parse(&text, "setup.toml", |_, _| {
+        stiffid::internal::robot::file::parse(&robot, "robot.toml")
     })
     .unwrap()
 }

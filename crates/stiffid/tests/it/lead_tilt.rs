@@ -6,14 +6,14 @@
 //! streamed path's grid too large is refused naming its states per point and the most points.
 
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
-use stiffid::machining::compensate::{
+use stiffid::internal::machining::compensate::{
     self, Aggregate, Free, FreeVariables, LeadTilt, Model, Objective, Options, PathPoint, Target,
 };
-use stiffid::machining::{self, process, Language};
-use stiffid::observation::deflection::Frame;
-use stiffid::robot::external::ExternalValues;
-use stiffid::robot::presets;
-use stiffid::{setup, Error, JobOption, Setup};
+use stiffid::internal::machining::{self, process, Language};
+use stiffid::internal::observation::deflection::Frame;
+use stiffid::internal::robot::external::ExternalValues;
+use stiffid::internal::robot::presets;
+use stiffid::{internal::setup, Error, JobOption, Setup};
 
 /// The FANUC milling example (a fixed base).
 pub(crate) fn milling() -> Setup {

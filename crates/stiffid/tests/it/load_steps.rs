@@ -10,7 +10,7 @@ use rand_distr::{Distribution, Normal};
 use stiffid::app::identify::drives::Report;
 use stiffid::app::identify::{self as job, Options, Request};
 use stiffid::app::measurements::Data;
-use stiffid::observation::stiffness::rope_displacements;
+use stiffid::internal::observation::stiffness::rope_displacements;
 use stiffid::Setup;
 
 /// A simulated campaign: loads (N) applied in order at every posture after the unloaded
@@ -105,7 +105,7 @@ fn identify(setup: &Setup, text: &str, offsets: bool) -> stiffid::Result<Report>
 }
 
 fn paper() -> Setup {
-    stiffid::setup::builtin("zhang2021-comau-nj165").unwrap()
+    stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap()
 }
 
 const RISING_FALLING: [f64; 9] = [
@@ -415,7 +415,7 @@ fn offsets_with_a_robust_nonnegative_or_cross_validated_fit_are_refused_saying_w
         .to_string()
     };
     let huber = run(Options {
-        robust: Some(stiffid::identify::robust::Loss::Huber),
+        robust: Some(stiffid::internal::identify::robust::Loss::Huber),
         ..Options::default()
     });
     assert!(

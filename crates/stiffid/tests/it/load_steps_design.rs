@@ -7,15 +7,15 @@ use nalgebra::{DMatrix, DVector, Vector6};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
-use stiffid::design::evaluate;
-use stiffid::observation::rope_observation_matrix;
-use stiffid::study::simulate::{monte_carlo, Options};
+use stiffid::internal::design::evaluate;
+use stiffid::internal::observation::rope_observation_matrix;
+use stiffid::internal::study::simulate::{monte_carlo, Options};
 use stiffid::Setup;
 
 const STEPS_N: [f64; 5] = [100.0, 200.0, 300.0, 400.0, 500.0];
 
 fn paper() -> Setup {
-    stiffid::setup::builtin("zhang2021-comau-nj165").unwrap()
+    stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap()
 }
 
 fn stepped() -> Setup {
@@ -139,11 +139,13 @@ fn an_independent_least_squares_over_every_steps_rows_matches_the_prediction() {
 
 #[test]
 fn steps_are_read_from_the_setup_file_and_checked() {
-    let text = stiffid::setup::builtin_text("zhang2021-comau-nj165").unwrap();
+    let text = stiffid::internal::setup::builtin_text("zhang2021-comau-nj165").unwrap();
     let with = |steps: &str| {
         let t = text.replace("[loading]\n", &format!("[loading]\nsteps_n = {steps}\n"));
         assert_ne!(t, text, "the built-in setup has a [loading] table");
-        stiffid::setup::parse(&t, "s.toml", |r, _| stiffid::robot::presets::get(r))
+        stiffid::internal::setup::parse(&t, "s.toml", |r, _| {
+            stiffid::internal::robot::presets::get(r)
+        })
     };
     assert_eq!(
         with("[100.0, 250.0, 500.0]").unwrap().load_steps(),

@@ -5,12 +5,12 @@
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use stiffid::app::compensate::{self, Input};
-use stiffid::machining::compensate::{Compensated, Options};
-use stiffid::machining::program::generate::Settings;
-use stiffid::machining::program::speed::Speed;
-use stiffid::machining::program::Dialect;
-use stiffid::machining::Language;
-use stiffid::robot::{ik, presets};
+use stiffid::internal::machining::compensate::{Compensated, Options};
+use stiffid::internal::machining::program::generate::Settings;
+use stiffid::internal::machining::program::speed::Speed;
+use stiffid::internal::machining::program::Dialect;
+use stiffid::internal::machining::Language;
+use stiffid::internal::robot::{ik, presets};
 use stiffid::{Error, Setup};
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/programs/ls/");
@@ -26,7 +26,8 @@ bases = [{ number = 1, xyz_mm = [200, 0, -1200], rpy_deg = [0, 0, 0] }]
 /// The FANUC R-2000iC/165F milling cell with [`CONTROLLER`].
 fn setup() -> Setup {
     let text = include_str!("../../../../examples/milling/fanuc-milling.toml").to_string();
-    stiffid::setup::parse(&(text + CONTROLLER), "cell.toml", |n, _| presets::get(n)).unwrap()
+    stiffid::internal::setup::parse(&(text + CONTROLLER), "cell.toml", |n, _| presets::get(n))
+        .unwrap()
 }
 
 /// The same cell with a straight spindle 200 mm long, tool 1 on the controller.
@@ -35,7 +36,7 @@ fn straight_spindle() -> Setup {
     let text = include_str!("../../../../examples/milling/fanuc-milling.toml");
     let text = text.replacen(&format!("tcp_mm = {from}"), &format!("tcp_mm = {to}"), 1);
     let text = text + &CONTROLLER.replace(from, to);
-    stiffid::setup::parse(&text, "cell.toml", |n, _| presets::get(n)).unwrap()
+    stiffid::internal::setup::parse(&text, "cell.toml", |n, _| presets::get(n)).unwrap()
 }
 
 /// What stiffid does with a corpus file.
@@ -100,11 +101,12 @@ const CORPUS: [(&str, Outcome); 13] = [
 /// `text` (the corpus file `name`) compensated on `s` with the milling example's stiffness, LS
 /// in and out: the program written and each target's compensation.
 fn compensated(s: &Setup, name: &str, text: &str) -> stiffid::Result<(String, Vec<Compensated>)> {
-    let compliance =
-        stiffid::io::stiffness::parse(include_str!("../../../../examples/milling/stiffness.json"))
-            .unwrap()
-            .compliance(s.model())
-            .unwrap();
+    let compliance = stiffid::internal::io::stiffness::parse(include_str!(
+        "../../../../examples/milling/stiffness.json"
+    ))
+    .unwrap()
+    .compliance(s.model())
+    .unwrap();
     compensated_with(s, &compliance, Options::for_setup(s), (name, text))
 }
 
@@ -112,11 +114,11 @@ fn compensated(s: &Setup, name: &str, text: &str) -> stiffid::Result<(String, Ve
 /// in and out: the program written and each target's compensation.
 pub(crate) fn compensated_with(
     s: &Setup,
-    compliance: &stiffid::model::Compliance,
+    compliance: &stiffid::internal::model::Compliance,
     options: Options,
     (name, text): (&str, &str),
 ) -> stiffid::Result<(String, Vec<Compensated>)> {
-    let process = stiffid::machining::process::file::parse(
+    let process = stiffid::internal::machining::process::file::parse(
         include_str!("../../../../examples/milling/aluminium.toml"),
         "aluminium.toml",
     )
@@ -270,7 +272,7 @@ pub(crate) fn pose(v: &[f64; 6]) -> Isometry3<f64> {
 /// position's user frame).
 fn check(s: &Setup, name: &str, (text, out): (&str, &str), results: &[Compensated]) {
     let found = independent(text);
-    let read = stiffid::machining::program::parse(text, Dialect::FanucLs).unwrap();
+    let read = stiffid::internal::machining::program::parse(text, Dialect::FanucLs).unwrap();
     assert_eq!(read.targets.len(), found.len(), "{name}");
     assert_eq!(results.len(), found.len(), "{name}");
     for (t, f) in read.targets.iter().zip(&found) {
@@ -375,7 +377,7 @@ fn a_circular_motion_is_compensated_at_its_via_point_and_its_end() {
     let text = found.replacen("'N D B, 0, 0, 0'", "'N U T, 0, 0, 0'", 1);
     let (out, results) = compensated(&s, "rpi_example.ls", &text).unwrap();
     check(&s, "rpi_example.ls", (&text, &out), &results);
-    let read = stiffid::machining::program::parse(&text, Dialect::FanucLs).unwrap();
+    let read = stiffid::internal::machining::program::parse(&text, Dialect::FanucLs).unwrap();
     let line = |i: usize| read.targets[i].line;
     // J P[1], J P[2], L P[3], C P[4] P[5], L P[6]: the via point and the end on the C's line.
     assert_eq!((line(3), line(4)), (30, 30));

@@ -13,16 +13,16 @@ use nalgebra::{Isometry3, Point3, Translation3};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use std::fmt::Write;
-use stiffid::machining::compensate::Options;
-use stiffid::machining::program::cartesian::flags::ConfigurationData;
-use stiffid::machining::program::generate::Targets;
-use stiffid::machining::program::ls::Config;
-use stiffid::machining::program::Dialect;
-use stiffid::machining::Language;
-use stiffid::model::Compliance;
-use stiffid::robot::configuration::Configuration;
-use stiffid::robot::ik;
-use stiffid::setup::{Controller, NumberedFrames};
+use stiffid::internal::machining::compensate::Options;
+use stiffid::internal::machining::program::cartesian::flags::ConfigurationData;
+use stiffid::internal::machining::program::generate::Targets;
+use stiffid::internal::machining::program::ls::Config;
+use stiffid::internal::machining::program::Dialect;
+use stiffid::internal::machining::Language;
+use stiffid::internal::model::Compliance;
+use stiffid::internal::robot::configuration::Configuration;
+use stiffid::internal::robot::ik;
+use stiffid::internal::setup::{Controller, NumberedFrames};
 use stiffid::Setup;
 
 /// The user frame the controller holds as number 1, in its world: the fixture, a little off the

@@ -5,7 +5,7 @@
 use nalgebra::{DMatrix, DVector, Matrix6, Vector6};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use stiffid::math::lsq::{Factor, Reduced};
+use stiffid::internal::math::lsq::{Factor, Reduced};
 use stiffid::Error;
 
 /// A random m x 6 matrix whose columns have the given scales.

@@ -3,6 +3,7 @@
 //! `mod NAME;` below; `common` holds the shared helpers, `mutate` the property tests' mutations.
 
 mod active_set;
+mod api;
 mod app;
 mod arcs_true_robot;
 mod bodies;

@@ -6,15 +6,15 @@
 
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 use stiffid::app::compensate::{run, Input, Request};
-use stiffid::machining::cell::on_carriage;
-use stiffid::machining::compensate::{
+use stiffid::internal::machining::cell::on_carriage;
+use stiffid::internal::machining::compensate::{
     self, Aggregate, ChosenValues, Compensated, Free, FreeVariables, LeadTilt, MapVariable,
     Objective, Options, PathPoint, Target,
 };
-use stiffid::observation::deflection::Frame;
-use stiffid::robot::external::{ExternalAxes, ExternalAxis, ExternalValues};
-use stiffid::robot::presets;
-use stiffid::{setup, Error, Setup};
+use stiffid::internal::observation::deflection::Frame;
+use stiffid::internal::robot::external::{ExternalAxes, ExternalAxis, ExternalValues};
+use stiffid::internal::robot::presets;
+use stiffid::{internal::setup, Error, Setup};
 
 /// The FANUC milling example; on a track along x (1.45 to 6 m) when `track`.
 fn milling(track: bool) -> Setup {

@@ -5,13 +5,13 @@
 use nalgebra::DVector;
 use stiffid::app::identify::{self, Options, Report, Request};
 use stiffid::app::measurements::Data;
-use stiffid::design::random_group;
-use stiffid::identify::cross_validation::{cross_validate, cross_validate_model, Method};
-use stiffid::identify::svd::{fit_by, held_out};
-use stiffid::identify::Loss;
-use stiffid::model::Family;
-use stiffid::observation::{posture_block, Measurement, Observations};
-use stiffid::setup::Setup;
+use stiffid::internal::design::random_group;
+use stiffid::internal::identify::cross_validation::{cross_validate, cross_validate_model, Method};
+use stiffid::internal::identify::svd::{fit_by, held_out};
+use stiffid::internal::identify::Loss;
+use stiffid::internal::model::Family;
+use stiffid::internal::observation::{posture_block, Measurement, Observations};
+use stiffid::internal::setup::Setup;
 
 const METHODS: [Method; 4] = [
     Method::LeastSquares,
@@ -23,7 +23,7 @@ const METHODS: [Method; 4] = [
 /// The paper's cell with an elbow tilt spring about x of joint 3's frame, 5e6 Nm/rad: seven
 /// parameters, and their nominal compliance.
 fn elbow_truth() -> (Setup, DVector<f64>) {
-    let paper = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let paper = stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap();
     let mut tilt = Family::Tilt
         .springs(paper.robot(), &[3], Some(5e6), None, "test")
         .unwrap();
@@ -110,7 +110,7 @@ fn a_robust_fit_over_seven_parameters_rejects_an_outlier() {
     data[9].displacement.y += 2e-3;
     let obs = Observations::from_measurements(truth.arm(), &data).unwrap();
     let parameters = truth.model().parameters();
-    let error = |f: &stiffid::identify::svd::Fit| {
+    let error = |f: &stiffid::internal::identify::svd::Fit| {
         (0..7)
             .map(|j| (f.compliance[j] / h[j] - 1.0).abs())
             .fold(0.0, f64::max)
@@ -134,7 +134,7 @@ fn a_robust_fit_over_seven_parameters_rejects_an_outlier() {
 /// On the drives alone, the cross-validation over a model equals the six-parameter one.
 #[test]
 fn the_model_cross_validation_of_the_drives_is_the_six_parameter_one() {
-    let setup = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let setup = stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap();
     let h = setup.model_nominal_compliance().unwrap();
     let mut data = noise_free(&setup, &h, 10, 2);
     for (i, m) in data.iter_mut().enumerate() {
@@ -160,7 +160,7 @@ fn the_model_cross_validation_of_the_drives_is_the_six_parameter_one() {
 /// error of the model comparison; the drives alone explain 76.5%.
 #[test]
 fn leave_one_posture_out_on_the_fanuc_data_explains_84_percent() {
-    let fanuc = stiffid::setup::builtin("fanuc-r2000ic-165f").unwrap();
+    let fanuc = stiffid::internal::setup::builtin("fanuc-r2000ic-165f").unwrap();
     let robot = fanuc.robot();
     let mut springs = Family::Tilt
         .springs(robot, &[3], None, None, "test")
@@ -201,7 +201,7 @@ fn leave_one_posture_out_on_the_fanuc_data_explains_84_percent() {
     let cv = report.cross_validation.as_ref().unwrap();
     assert_eq!(cv.folds.len(), 43);
     assert!((cv.explained() - 0.843).abs() < 5e-4, "{}", cv.explained());
-    let mut file = stiffid::io::measurements::parse(text).unwrap();
+    let mut file = stiffid::internal::io::measurements::parse(text).unwrap();
     file.to_base_frame(&model).unwrap();
     let obs = Observations::from_measurements(model.arm(), &file.measurements).unwrap();
     let press = held_out(&obs).unwrap();

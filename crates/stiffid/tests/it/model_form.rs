@@ -9,14 +9,16 @@ use std::io::Empty;
 use stiffid::app::compensate::ranking::{Ranking, RankingDocument};
 use stiffid::app::identify::{run, Options, Report, Request};
 use stiffid::app::measurements::Data;
-use stiffid::design::random_group;
-use stiffid::identify::compare::bootstrap::percentile;
-use stiffid::identify::compare::{bootstrap, compare, Resampling};
-use stiffid::machining::compensate::{self, Options as CompensateOptions, PathPoint, Target};
-use stiffid::observation::deflection::{Frame, Points};
-use stiffid::observation::Measurement;
-use stiffid::robot::ik::tool_pose;
-use stiffid::setup::Setup;
+use stiffid::internal::design::random_group;
+use stiffid::internal::identify::compare::bootstrap::percentile;
+use stiffid::internal::identify::compare::{bootstrap, compare, Resampling};
+use stiffid::internal::machining::compensate::{
+    self, Options as CompensateOptions, PathPoint, Target,
+};
+use stiffid::internal::observation::deflection::{Frame, Points};
+use stiffid::internal::observation::Measurement;
+use stiffid::internal::robot::ik::tool_pose;
+use stiffid::internal::setup::Setup;
 
 /// The truth: the drives and an elbow spring 3 times stiffer than `ELBOW`'s, measured with 10
 /// times the tracker noise, so that the drives alone and the drives with the elbow fit the data
@@ -114,7 +116,7 @@ fn the_model_form_part_is_the_spread_over_the_resamples() {
     };
     let file = report.stiffness_file().unwrap();
     let text = serde_json::to_string(&file.document()).unwrap();
-    let compliance = stiffid::io::stiffness::parse(&text)
+    let compliance = stiffid::internal::io::stiffness::parse(&text)
         .unwrap()
         .compliance(s.model())
         .unwrap();
@@ -122,7 +124,7 @@ fn the_model_form_part_is_the_spread_over_the_resamples() {
     // A set's value beyond any robot's compliance (or not a number) is refused, naming it.
     let mut bad: serde_json::Value = serde_json::from_str(&text).unwrap();
     bad["model_form"]["models"][0]["compliance_si"][0][0] = serde_json::json!(1e300);
-    let error = stiffid::io::stiffness::parse(&bad.to_string())
+    let error = stiffid::internal::io::stiffness::parse(&bad.to_string())
         .and_then(|f| f.compliance(s.model()))
         .unwrap_err()
         .to_string();
@@ -138,7 +140,7 @@ fn the_model_form_part_is_the_spread_over_the_resamples() {
     let two = bad["model_form"]["recommended"]["compliance_si"][0].clone();
     let mut bad: serde_json::Value = serde_json::from_str(&text).unwrap();
     bad["model_form"]["recommended"]["compliance_si"] = serde_json::json!([two.clone(), two]);
-    let error = stiffid::io::stiffness::parse(&bad.to_string())
+    let error = stiffid::internal::io::stiffness::parse(&bad.to_string())
         .and_then(|f| f.compliance(s.model()))
         .unwrap_err()
         .to_string();
@@ -158,7 +160,7 @@ fn the_model_form_part_is_the_spread_over_the_resamples() {
         target: Target::Posture(q),
         wrench,
         frame: Frame::Base,
-        external: stiffid::robot::external::ExternalValues::NONE,
+        external: stiffid::internal::robot::external::ExternalValues::NONE,
     };
     let options = CompensateOptions::for_setup(&s);
     let r =
@@ -181,7 +183,7 @@ fn the_model_form_part_is_the_spread_over_the_resamples() {
         .hypot(b.calibration.unwrap_or(0.0));
     assert!((b.bound - (b.left + b.force + part + random)).abs() < 1e-15);
     // Without the section the part is absent, as before.
-    let plain = stiffid::model::Compliance {
+    let plain = stiffid::internal::model::Compliance {
         model_form: None,
         ..compliance.clone()
     };
@@ -196,11 +198,11 @@ fn fanuc(
     resamples: usize,
 ) -> (
     Setup,
-    stiffid::model::Compliance,
+    stiffid::internal::model::Compliance,
     Setup,
-    stiffid::model::Compliance,
+    stiffid::internal::model::Compliance,
 ) {
-    let s = stiffid::setup::builtin("fanuc-r2000ic-165f").unwrap();
+    let s = stiffid::internal::setup::builtin("fanuc-r2000ic-165f").unwrap();
     let path = concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/../../examples/data/fanuc-r2000ic-165f/measurements.csv"
@@ -224,7 +226,7 @@ fn fanuc(
         panic!("not a comparison")
     };
     let text = serde_json::to_string(&report.stiffness_file().unwrap().document()).unwrap();
-    let drives = stiffid::io::stiffness::parse(&text)
+    let drives = stiffid::internal::io::stiffness::parse(&text)
         .unwrap()
         .compliance(s.model())
         .unwrap();
@@ -235,7 +237,7 @@ fn fanuc(
         .build()
         .unwrap();
     let h = c.recommended_fit.compliance.clone();
-    let compliance = stiffid::model::Compliance {
+    let compliance = stiffid::internal::model::Compliance {
         h,
         covariance: None,
         prediction: None,
@@ -276,7 +278,7 @@ fn the_drives_and_the_recommended_model_rank_a_holes_postures_in_opposite_order(
     let start = tool_pose(&s.robot().frames(&q), &s.tool().tcp);
     let mut options = CompensateOptions::for_setup(&s);
     options.q0 = q;
-    let at = |setup: &Setup, c: &stiffid::model::Compliance, deg: f64| {
+    let at = |setup: &Setup, c: &stiffid::internal::model::Compliance, deg: f64| {
         let rotation =
             nalgebra::UnitQuaternion::from_axis_angle(&Vector3::z_axis(), deg.to_radians());
         let point = PathPoint {
@@ -284,7 +286,7 @@ fn the_drives_and_the_recommended_model_rank_a_holes_postures_in_opposite_order(
             target: Target::Pose(start * rotation),
             wrench: Vector6::new(0.0, 0.0, 600.0, 0.0, 0.0, 0.0),
             frame: Frame::Tool,
-            external: stiffid::robot::external::ExternalValues::NONE,
+            external: stiffid::internal::robot::external::ExternalValues::NONE,
         };
         compensate::path(setup.arm(), c, &[point], &options)
             .unwrap()
@@ -335,9 +337,12 @@ fn the_drives_and_the_recommended_model_rank_a_holes_postures_in_opposite_order(
 /// with `compliance` on `s`, and its warning.
 fn ranked(
     s: &Setup,
-    compliance: &stiffid::model::Compliance,
+    compliance: &stiffid::internal::model::Compliance,
     results: &[compensate::Compensated],
-) -> (RankingDocument, Option<stiffid::common::warning::Warning>) {
+) -> (
+    RankingDocument,
+    Option<stiffid::internal::common::warning::Warning>,
+) {
     let mut ranking = Ranking::new(s.arm(), compliance.model_form.as_ref()).unwrap();
     for (k, r) in results.iter().enumerate() {
         ranking.add(s.arm(), k as u64 + 1, r);
@@ -367,7 +372,7 @@ fn the_drives_and_the_recommended_model_rank_growing_thrusts_alike() {
                 target: Target::Pose(towards * start),
                 wrench: Vector6::new(0.0, 0.0, 100.0 * (k + 1) as f64, 0.0, 0.0, 0.0),
                 frame: Frame::Tool,
-                external: stiffid::robot::external::ExternalValues::NONE,
+                external: stiffid::internal::robot::external::ExternalValues::NONE,
             }
         })
         .collect();
@@ -379,7 +384,7 @@ fn the_drives_and_the_recommended_model_rank_growing_thrusts_alike() {
     assert!(warning.is_none());
     let mut form = drives.model_form.clone().unwrap();
     assert!(Ranking::new(s.arm(), Some(&form)).is_some());
-    form.recommended = Some(stiffid::model::FormModel {
+    form.recommended = Some(stiffid::internal::model::FormModel {
         model: s.model().clone(),
         sets: vec![drives.h.clone()],
     });

@@ -9,9 +9,9 @@ use nalgebra::Vector6;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use stiffid::app::calibrate::{self, GravitySpec, Report};
-use stiffid::metrology::calibration::gravity::Gravity;
-use stiffid::metrology::calibration::maps::Spec;
-use stiffid::metrology::calibration::Geometry;
+use stiffid::internal::metrology::calibration::gravity::Gravity;
+use stiffid::internal::metrology::calibration::maps::Spec;
+use stiffid::internal::metrology::calibration::Geometry;
 
 /// The unloaded readings of `n` postures of the true robot of `seed`, its drives rigid with
 /// `rigid` (the sag under its weight gone).

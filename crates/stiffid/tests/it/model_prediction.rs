@@ -5,22 +5,22 @@
 
 use approx::assert_relative_eq;
 use nalgebra::{DMatrix, DVector, Matrix6, Vector3, Vector6};
-use stiffid::design::random_group;
-use stiffid::identify::compare::document::fit_doc;
-use stiffid::identify::svd::fit;
-use stiffid::io::stiffness;
-use stiffid::machining::compensate;
-use stiffid::model::{link_frame, Compliance, Family, Kind};
-use stiffid::observation::deflection::Points;
-use stiffid::observation::{posture_block, Measurement, Observations};
-use stiffid::robot::ik::tool_pose;
-use stiffid::setup::Setup;
-use stiffid::{identify::validate, observation::cartesian};
+use stiffid::internal::design::random_group;
+use stiffid::internal::identify::compare::document::fit_doc;
+use stiffid::internal::identify::svd::fit;
+use stiffid::internal::io::stiffness;
+use stiffid::internal::machining::compensate;
+use stiffid::internal::model::{link_frame, Compliance, Family, Kind};
+use stiffid::internal::observation::deflection::Points;
+use stiffid::internal::observation::{posture_block, Measurement, Observations};
+use stiffid::internal::robot::ik::tool_pose;
+use stiffid::internal::setup::Setup;
+use stiffid::internal::{identify::validate, observation::cartesian};
 
 /// The paper's cell with an elbow tilt spring (about x of joint 3's frame, 4e6 Nm/rad) and a
 /// tool translation along the flange y axis (2e4 N/mm).
 fn extended() -> Setup {
-    let paper = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let paper = stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap();
     let robot = paper.robot();
     let mut springs = Family::Tilt
         .springs(robot, &[3], Some(4e6), None, "test")
@@ -85,7 +85,7 @@ fn cartesian_compliance_over_the_model_is_j_k_inverse_j_transposed_by_hand() {
             }
         }
         // The springs add compliance: C_x minus the drives' part is sum_s c_s J_s J_s^T.
-        let drives = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+        let drives = stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap();
         let hd = h.rows(0, 6).into_owned();
         let c_drives = cartesian::compliance(drives.arm(), &frames, &tcp, &hd);
         let springs = j.columns(6, 2)
@@ -107,7 +107,7 @@ fn cartesian_compliance_over_the_model_is_j_k_inverse_j_transposed_by_hand() {
 /// `C_x`.
 #[test]
 fn the_cartesian_stiffness_at_a_wrist_singularity_is_none() {
-    let drives = stiffid::setup::builtin("fanuc-r2000ic-165f").unwrap();
+    let drives = stiffid::internal::setup::builtin("fanuc-r2000ic-165f").unwrap();
     let h = drives.model_compliance("test").unwrap().h;
     let tcp = drives.tool().tcp;
     let singular = Vector6::new(0.0, 10f64.to_radians(), -10f64.to_radians(), 0.0, 0.0, 0.0);
@@ -190,7 +190,7 @@ fn compensation_uses_the_virtual_springs() {
         "{moved} vs {first_order}"
     );
     // The springs' share is visible: without them the TCP moves measurably less or otherwise.
-    let drives = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let drives = stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap();
     let drives = drives.to_builder().with_loading_point(tcp).build().unwrap();
     let hd = Compliance::drives(compliance.drives_h(), None);
     let without = compensate::Model::new(drives.arm(), &hd)
@@ -273,7 +273,7 @@ fn the_stiffness_file_carries_every_parameter_of_the_model() {
     assert!(exact.rms < 1e-12, "{}", exact.rms);
     let v = validate::compare(s.arm(), &c, &data).unwrap();
     assert!(v.rms < 1e-5, "{}", v.rms);
-    let drives = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let drives = stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap();
     let e = file.compliance(drives.model()).unwrap_err().to_string();
     assert!(
         e.contains("8 parameters") && e.contains("tilt3_x, tool_y"),
@@ -299,7 +299,7 @@ fn the_compensate_document_lists_every_parameter_of_the_model() {
         input: Input::Path {
             name: "path.csv".into(),
             text,
-            frame: stiffid::observation::deflection::Frame::Base,
+            frame: stiffid::internal::observation::deflection::Frame::Base,
         },
         options: compensate::Options::for_setup(&s),
     };

@@ -5,14 +5,14 @@ use nalgebra::{DVector, Vector3, Vector6};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
-use stiffid::design::{local, random_group, Criterion, SearchOptions};
-use stiffid::identify::compare::compare;
-use stiffid::identify::cross_validation::{cross_validate_model, Method};
-use stiffid::identify::svd::fit;
-use stiffid::identify::Identify;
-use stiffid::model::{Family, Kind, Spring};
-use stiffid::observation::{posture_block, Measurement, Observations};
-use stiffid::setup::Setup;
+use stiffid::internal::design::{local, random_group, Criterion, SearchOptions};
+use stiffid::internal::identify::compare::compare;
+use stiffid::internal::identify::cross_validation::{cross_validate_model, Method};
+use stiffid::internal::identify::svd::fit;
+use stiffid::internal::identify::Identify;
+use stiffid::internal::model::{Family, Kind, Spring};
+use stiffid::internal::observation::{posture_block, Measurement, Observations};
+use stiffid::internal::setup::Setup;
 
 /// `setup` with the virtual springs `springs` added after its own.
 fn with_springs(setup: &Setup, springs: Vec<Spring>) -> Setup {
@@ -58,7 +58,7 @@ fn measure(
 
 /// The paper's cell with an elbow tilt spring (about x of joint 3's frame) of `k` Nm/rad.
 fn elbow_truth(k: f64) -> (Setup, DVector<f64>) {
-    let paper = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let paper = stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap();
     let mut tilt = Family::Tilt
         .springs(paper.robot(), &[3], Some(k), None, "test")
         .unwrap();
@@ -104,7 +104,7 @@ fn an_elbow_spring_is_recovered_and_the_drives_alone_fail_the_check() {
         );
     }
     assert_eq!(f.parameters[6].name, "tilt3_x");
-    let drives = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let drives = stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap();
     let id = Observations::from_measurements(drives.arm(), &data)
         .unwrap()
         .least_squares()
@@ -119,7 +119,7 @@ fn an_elbow_spring_is_recovered_and_the_drives_alone_fail_the_check() {
 /// separate them; the combination is named and neither gets an interval.
 #[test]
 fn a_flange_compliance_from_one_point_and_forces_is_named_unidentifiable() {
-    let fanuc = stiffid::setup::builtin("fanuc-r2000ic-165f").unwrap();
+    let fanuc = stiffid::internal::setup::builtin("fanuc-r2000ic-165f").unwrap();
     let r = fanuc.robot().flange().rotation;
     let flange = |name: &str, kind, i: usize| Spring {
         name: name.into(),
@@ -128,7 +128,7 @@ fn a_flange_compliance_from_one_point_and_forces_is_named_unidentifiable() {
         axis: nalgebra::Unit::new_normalize(r * Vector3::ith(i, 1.0)),
         point: fanuc.robot().flange().translation.vector,
         nominal_stiffness: Some(1e7),
-        law: stiffid::model::Law::Linear,
+        law: stiffid::internal::model::Law::Linear,
     };
     let springs = vec![
         flange("flange_rx", Kind::Rotation, 0),
@@ -178,7 +178,7 @@ fn a_flange_compliance_from_one_point_and_forces_is_named_unidentifiable() {
 #[test]
 fn forward_selection_finds_the_true_spring_and_rarely_a_false_one() {
     let (truth, h) = elbow_truth(2e7);
-    let paper = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let paper = stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap();
     let robot = paper.robot();
     let mut candidates = Family::Tilt
         .springs(robot, &[2, 3], None, None, "test")
@@ -208,7 +208,7 @@ fn forward_selection_finds_the_true_spring_and_rarely_a_false_one() {
 /// Data the drives explain to the tracker noise: the comparison says no extension is needed.
 #[test]
 fn on_data_the_model_fits_no_extension_is_needed() {
-    let paper = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let paper = stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap();
     let h = paper.model_nominal_compliance().unwrap();
     let postures = random_group(&paper, 12, 5);
     let data = measure(
@@ -218,7 +218,7 @@ fn on_data_the_model_fits_no_extension_is_needed() {
         paper.noise().displacement_sd(),
         &mut ChaCha8Rng::seed_from_u64(3),
     );
-    let candidates = stiffid::identify::compare::default_candidates(&paper);
+    let candidates = stiffid::internal::identify::compare::default_candidates(&paper);
     let c = compare(&paper, &data, &candidates, false).unwrap();
     assert!(c.model_fits);
     assert_eq!(c.recommended, 0);
@@ -237,7 +237,7 @@ fn on_data_the_model_fits_no_extension_is_needed() {
 #[test]
 fn fanuc_data_choose_a_larger_model() {
     let (setup, measurements) = crate::common::fanuc();
-    let pool = stiffid::identify::compare::default_pool(&setup);
+    let pool = stiffid::internal::identify::compare::default_pool(&setup);
     // 18 tilt, 12 bend (links 1, 2, 3 and 5), 6 base, 3 tool, 6 lost, 6 load; 12 dropped.
     assert_eq!((pool.candidates.len(), pool.dropped.len()), (39, 12));
     let candidates = pool.candidates;

@@ -3,8 +3,8 @@
 
 use approx::assert_relative_eq;
 use nalgebra::{Vector3, Vector6};
-use stiffid::robot::{file, presets};
-use stiffid::setup;
+use stiffid::internal::robot::{file, presets};
+use stiffid::internal::setup;
 
 const PRESET: &str = "comau-smart5-nj165-3.0";
 const BASE: &str = "xyz_mm = [100.0, -50.0, 500.0]\nrpy_deg = [0.0, 0.0, 30.0]\n";
@@ -122,7 +122,7 @@ fn a_urdf_robot_takes_the_controllers_coupled_axes_from_the_setup() {
     let on_urdf = |extra: &str| {
         let with = text.replacen("\n[tool]", &format!("\n{extra}\n[tool]"), 1);
         setup::parse(&with, "urdf.toml", |_, _| {
-            stiffid::robot::urdf::parse(R2000IC_URDF, "r2000ic.urdf", None)
+            stiffid::internal::robot::urdf::parse(R2000IC_URDF, "r2000ic.urdf", None)
         })
         .unwrap()
     };
@@ -149,7 +149,7 @@ fn a_urdf_robot_takes_the_controllers_coupled_axes_from_the_setup() {
         1,
     );
     let e = setup::parse(&with, "urdf.toml", |_, _| {
-        stiffid::robot::urdf::parse(R2000IC_URDF, "r2000ic.urdf", None)
+        stiffid::internal::robot::urdf::parse(R2000IC_URDF, "r2000ic.urdf", None)
     })
     .unwrap_err();
     assert!(
@@ -192,19 +192,19 @@ fn ls_plausibility(setup: &stiffid::Setup) -> Vec<String> {
             name: "two.ls".into(),
             text: &text,
             data: None,
-            language: stiffid::machining::Language::Robot(
-                stiffid::machining::program::Dialect::FanucLs,
+            language: stiffid::internal::machining::Language::Robot(
+                stiffid::internal::machining::program::Dialect::FanucLs,
             ),
             process_name: "aluminium.toml".into(),
             process,
             chord_tolerance: 1e-5,
-            output: stiffid::machining::Language::Robot(
-                stiffid::machining::program::Dialect::FanucLs,
+            output: stiffid::internal::machining::Language::Robot(
+                stiffid::internal::machining::program::Dialect::FanucLs,
             ),
             out_name: "two.ls".into(),
             settings: Default::default(),
         },
-        options: stiffid::machining::compensate::Options::for_setup(setup),
+        options: stiffid::internal::machining::compensate::Options::for_setup(setup),
     };
     let report = compensate::run(request, |_, _: &[_], _: &[_], _: &[_]| {
         Ok::<(), stiffid::Error>(())
@@ -226,7 +226,7 @@ fn ls_joint_positions_on_an_uncoupled_urdf_robot_warn() {
     let on = |extra: &str, urdf: bool| {
         let with = text.replacen("\n[tool]", &format!("\n{extra}\n[tool]"), 1);
         setup::parse(&with, "cell.toml", |r, _| match urdf {
-            true => stiffid::robot::urdf::parse(R2000IC_URDF, "r2000ic.urdf", None),
+            true => stiffid::internal::robot::urdf::parse(R2000IC_URDF, "r2000ic.urdf", None),
             false => presets::get(r),
         })
         .unwrap()
@@ -291,7 +291,7 @@ fn a_controllers_robot_of_its_own_axis_map_keeps_it() {
     let on = |controller: &str| {
         let with = format!("{text}\n[controller]\nrobot = \"{controller}\"\n");
         setup::parse(&with, "cell.toml", |r, _| match r {
-            "r2000ic.urdf" => stiffid::robot::urdf::parse(&urdf, r, Some("tool0")),
+            "r2000ic.urdf" => stiffid::internal::robot::urdf::parse(&urdf, r, Some("tool0")),
             _ => presets::get(r),
         })
         .unwrap()

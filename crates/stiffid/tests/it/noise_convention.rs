@@ -10,9 +10,9 @@ use rand_distr::StandardNormal;
 use stiffid::app::identify::{self, Options, Report, Request};
 use stiffid::app::measurements::Data;
 use stiffid::app::WarningKind;
-use stiffid::identify::adequacy::Verdict;
-use stiffid::setup::plausibility::warnings;
-use stiffid::{setup, Error, Setup};
+use stiffid::internal::identify::adequacy::Verdict;
+use stiffid::internal::setup::plausibility::warnings;
+use stiffid::{internal::setup, Error, Setup};
 
 const PAPER_NOISE: &str = "reading_sd_mm = 0.006793379129711516";
 
@@ -24,7 +24,9 @@ fn paper_text(noise: &str, extra: &str) -> String {
 }
 
 fn parse(text: &str) -> stiffid::Result<Setup> {
-    setup::parse(text, "noise.toml", |r, _| stiffid::robot::presets::get(r))
+    setup::parse(text, "noise.toml", |r, _| {
+        stiffid::internal::robot::presets::get(r)
+    })
 }
 
 #[test]

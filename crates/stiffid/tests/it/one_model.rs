@@ -6,13 +6,13 @@
 
 use crate::own_weight::{file_with, heavy_on, masses_section, sag};
 use nalgebra::{Vector3, Vector6};
-use stiffid::machining::compensate::{self, Options, PathPoint, Target};
-use stiffid::machining::weight::tool_load;
-use stiffid::metrology::calibration::gravity::{self, Terms};
-use stiffid::model::{Compliance, OwnWeight};
-use stiffid::observation::deflection::Frame;
-use stiffid::robot::ik::tool_pose;
-use stiffid::{setup, Coordinates, Error};
+use stiffid::internal::machining::compensate::{self, Options, PathPoint, Target};
+use stiffid::internal::machining::weight::tool_load;
+use stiffid::internal::metrology::calibration::gravity::{self, Terms};
+use stiffid::internal::model::{Compliance, OwnWeight};
+use stiffid::internal::observation::deflection::Frame;
+use stiffid::internal::robot::ik::tool_pose;
+use stiffid::{internal::setup, Coordinates, Error};
 
 const STIFFNESS: [f64; 6] = [950000.0, 3000000.0, 900000.0, 250000.0, 200000.0, 150000.0];
 const TOOL: &str = "mass_kg = 40.0\ncentre_of_mass_mm = [0.0, 0.0, 150.0]\n";
@@ -21,7 +21,7 @@ const TOOL: &str = "mass_kg = 40.0\ncentre_of_mass_mm = [0.0, 0.0, 150.0]\n";
 fn calibrated_text(more: &str) -> String {
     let text: Vec<String> = (crate::true_robot::dh_robot_text().lines())
         .map(|l| match l.starts_with("name = ") {
-            true => format!("name = \"COMAU{}\"", stiffid::robot::CALIBRATED),
+            true => format!("name = \"COMAU{}\"", stiffid::internal::robot::CALIBRATED),
             false => l.to_string(),
         })
         .collect();
@@ -43,7 +43,7 @@ fn masses(scale: f64, tool_mass: Option<f64>) -> OwnWeight {
 /// The setup's nominal stiffness, without gravity terms.
 fn plain(setup: &stiffid::Setup) -> Compliance {
     let text = format!(r#"{{"stiffness_nm_per_rad": {STIFFNESS:?}}}"#);
-    let file = stiffid::io::stiffness::parse(&text).unwrap();
+    let file = stiffid::internal::io::stiffness::parse(&text).unwrap();
     file.compliance(setup.model()).unwrap()
 }
 
@@ -53,7 +53,7 @@ fn point(q: Vector6<f64>, wrench: Vector6<f64>) -> PathPoint {
         target: Target::Posture(q),
         wrench,
         frame: Frame::Base,
-        external: stiffid::robot::external::ExternalValues::NONE,
+        external: stiffid::internal::robot::external::ExternalValues::NONE,
     }
 }
 
@@ -66,7 +66,7 @@ fn point(q: Vector6<f64>, wrench: Vector6<f64>) -> PathPoint {
 #[test]
 fn the_calibrated_robot_carries_the_sag_and_the_tool_once() {
     let own = masses(1.0, Some(40.0));
-    let robot_text = calibrated_text(&stiffid::robot::weight_file::toml(&own));
+    let robot_text = calibrated_text(&stiffid::internal::robot::weight_file::toml(&own));
     let s = heavy_on("", TOOL, &robot_text).unwrap();
     assert_eq!(s.robot().own_weight(), Some(&own));
     let compliance = plain(&s);
@@ -100,7 +100,7 @@ fn the_calibrated_robot_carries_the_sag_and_the_tool_once() {
     // The same terms from an older stiffness file on the robot without them.
     let bare = s.robot().clone().with_own_weight(None);
     let old = s.to_builder().with_robot(bare).build().unwrap();
-    let file = stiffid::io::stiffness::parse(&file_with(&masses_section())).unwrap();
+    let file = stiffid::internal::io::stiffness::parse(&file_with(&masses_section())).unwrap();
     let legacy = file.compliance(old.model()).unwrap();
     let again = compensate::path(old.arm(), &legacy, &at, &options).unwrap();
     assert!((again[0].q_compensated - qc).amax() < 1e-12);
@@ -134,7 +134,7 @@ fn lumped_terms_hold_the_tool_of_the_calibration() {
         tool_mass: Some(40.0),
         tool_centre: None,
     };
-    let robot_text = calibrated_text(&stiffid::robot::weight_file::toml(&own));
+    let robot_text = calibrated_text(&stiffid::internal::robot::weight_file::toml(&own));
     let s = heavy_on("", TOOL, &robot_text).unwrap();
     let compliance = plain(&s);
     assert!(tool_load(s.arm(), &compliance).is_none());
@@ -166,7 +166,7 @@ fn lumped_terms_hold_the_tools_centre_of_the_calibration() {
         tool_mass: Some(40.0),
         tool_centre: Some(Vector3::new(0.0, 0.0, 0.15)),
     };
-    let robot_text = calibrated_text(&stiffid::robot::weight_file::toml(&own));
+    let robot_text = calibrated_text(&stiffid::internal::robot::weight_file::toml(&own));
     let s = heavy_on("", TOOL, &robot_text).unwrap();
     let compliance = plain(&s);
     let at = [point(s.test_postures()[0], Vector6::zeros())];
@@ -186,7 +186,10 @@ fn lumped_terms_hold_the_tools_centre_of_the_calibration() {
         text.contains("tool.centre_of_mass_mm")
             && text.contains("[0, 0, 262] mm")
             && text.contains("[0, 0, 150] mm")
-            && text.contains(&format!("{} N m", stiffid::common::words::number(moment))),
+            && text.contains(&format!(
+                "{} N m",
+                stiffid::internal::common::words::number(moment)
+            )),
         "{text}"
     );
 }
@@ -197,7 +200,7 @@ fn lumped_terms_hold_the_tools_centre_of_the_calibration() {
 #[test]
 fn a_setup_does_not_repeat_the_calibrated_robot() {
     let riser = "[robot_base]\nxyz_mm = [0.0, 0.0, 300.0]";
-    let file = stiffid::robot::file::parse(&calibrated_text(""), "robot.toml").unwrap();
+    let file = stiffid::internal::robot::file::parse(&calibrated_text(""), "robot.toml").unwrap();
     let at = file.base().translation.vector;
     let nominal = heavy_on(riser, "", &crate::true_robot::dh_robot_text()).unwrap();
     let lift = nominal.robot().base().translation.vector - at;
@@ -208,7 +211,8 @@ fn a_setup_does_not_repeat_the_calibrated_robot() {
     let s = heavy_on(riser, "", &calibrated_text("")).unwrap();
     assert_eq!(s.robot().base(), file.base());
     assert!(
-        (s.notes().iter()).any(|n| n.kind == stiffid::common::warning::WarningKind::Calibrated),
+        (s.notes().iter())
+            .any(|n| n.kind == stiffid::internal::common::warning::WarningKind::Calibrated),
         "{:?}",
         s.notes()
     );
@@ -249,7 +253,7 @@ fn the_calibrated_mount_is_recorded_and_not_given_twice() {
     let mount = "[mount]\nxyz_mm = [0.0, 0.0, 300.0]\nrpy_deg = [0.0, 0.0, 0.0]\n[base]\nxyz_mm = [0.0, 0.0, 300.0]\n";
     let riser = "[robot_base]\nxyz_mm = [0.0, 0.0, 300.0]";
     let recorded = calibrated_text(mount);
-    let file = stiffid::robot::file::parse(&recorded, "robot.toml").unwrap();
+    let file = stiffid::internal::robot::file::parse(&recorded, "robot.toml").unwrap();
     let lift = Vector3::new(0.0, 0.0, 0.3);
     assert!((file.mount().unwrap().translation.vector - lift).norm() < 1e-15);
     let e = heavy_on(riser, "", &recorded).unwrap_err().to_string();
@@ -275,14 +279,14 @@ fn the_calibrated_mount_is_recorded_and_not_given_twice() {
         .collect();
     let nominal_text = nominal_text.join("\n");
     let s = setup::parse(&text, "mounted.toml", |name, _| match name {
-        "nominal" => stiffid::robot::file::parse(&nominal_text, "nominal.toml"),
-        _ => stiffid::robot::file::parse(&recorded, "robot.toml"),
+        "nominal" => stiffid::internal::robot::file::parse(&nominal_text, "nominal.toml"),
+        _ => stiffid::internal::robot::file::parse(&recorded, "robot.toml"),
     })
     .unwrap();
     let c = s.workcell().controller();
     assert!((c.mount.translation.vector - lift).norm() < 1e-15);
     assert_eq!(s.robot().base(), file.base());
-    let nominal = stiffid::robot::file::parse(&nominal_text, "nominal.toml").unwrap();
+    let nominal = stiffid::internal::robot::file::parse(&nominal_text, "nominal.toml").unwrap();
     let controller = c.robot.as_ref().unwrap();
     let raised = controller.base().translation.vector - nominal.base().translation.vector;
     assert!((raised - lift).norm() < 1e-12, "{raised}");
@@ -296,7 +300,7 @@ fn the_calibrated_mount_is_recorded_and_not_given_twice() {
 fn the_located_part_is_taken_not_contradicted() {
     let part = "[part]\nxyz_mm = [1500.0, -200.0, 400.0]\nrpy_deg = [0.0, 0.0, 30.0]\n";
     let recorded = calibrated_text(part);
-    let file = stiffid::robot::file::parse(&recorded, "robot.toml").unwrap();
+    let file = stiffid::internal::robot::file::parse(&recorded, "robot.toml").unwrap();
     let located = *file.part().unwrap();
     assert!((located.translation.vector - Vector3::new(1.5, -0.2, 0.4)).norm() < 1e-15);
     let taken = heavy_on("", "", &recorded).unwrap();
@@ -304,7 +308,10 @@ fn the_located_part_is_taken_not_contradicted() {
     let note = (taken.notes().iter())
         .find(|n| n.message.contains("[part]"))
         .unwrap();
-    assert_eq!(note.kind, stiffid::common::warning::WarningKind::Calibrated);
+    assert_eq!(
+        note.kind,
+        stiffid::internal::common::warning::WarningKind::Calibrated
+    );
     let given = |yaw: f64| {
         format!("[workpiece]\nbase_from_part = {{ xyz_mm = [1500.0, -200.0, 400.0], rpy_deg = [0.0, 0.0, {yaw:?}] }}")
     };

@@ -2,22 +2,28 @@
 //! computations that do not use them work as with them, the others fail naming the field and what
 //! needs it.
 
-use stiffid::design::{self, target, Criterion, Evaluator, SearchOptions};
-use stiffid::{study, study::simulate, Error, Setup};
+use stiffid::internal::design::{self, target, Criterion, Evaluator, SearchOptions};
+use stiffid::{
+    internal::{study, study::simulate},
+    Error, Setup,
+};
 
 /// The paper setup without the line of `field`.
 fn paper_without(field: &str) -> Setup {
-    let text: String = stiffid::setup::builtin_text("zhang2021-comau-nj165")
+    let text: String = stiffid::internal::setup::builtin_text("zhang2021-comau-nj165")
         .unwrap()
         .lines()
         .filter(|l| !l.starts_with(field))
         .map(|l| format!("{l}\n"))
         .collect();
-    stiffid::setup::parse(&text, "cell.toml", |r, _| stiffid::robot::presets::get(r)).unwrap()
+    stiffid::internal::setup::parse(&text, "cell.toml", |r, _| {
+        stiffid::internal::robot::presets::get(r)
+    })
+    .unwrap()
 }
 
 fn paper() -> Setup {
-    stiffid::setup::builtin("zhang2021-comau-nj165").unwrap()
+    stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap()
 }
 
 /// The field and what needed it, of a [`Error::MissingField`].
@@ -60,7 +66,7 @@ fn without_a_characteristic_length_only_classical_and_zhang2021_are_missing() {
         .is_nan());
     for c in [Criterion::Classical, Criterion::Zhang2021] {
         let err = design::local(&setup, c, &group, &small()).unwrap_err();
-        assert_eq!(err.to_string(), format!("the setup has no characteristic_length_mm: criterion {c} needs it (the length that minimises the robot's median dexterity will do (the robot's own characteristic length, stiffid::setup::prior::robot_characteristic_length))"));
+        assert_eq!(err.to_string(), format!("the setup has no characteristic_length_mm: criterion {c} needs it (the length that minimises the robot's median dexterity will do (the robot's own characteristic length, stiffid::internal::setup::prior::robot_characteristic_length))"));
     }
     // relative-a needs no characteristic length: the same search, the same group.
     let without = design::local(&setup, Criterion::RelativeA, &group, &small()).unwrap();
@@ -150,14 +156,16 @@ fn without_a_nominal_stiffness_the_scaled_criteria_and_the_simulation_are_missin
 
 #[test]
 fn the_fields_given_are_still_checked() {
-    let text = stiffid::setup::builtin_text("zhang2021-comau-nj165")
+    let text = stiffid::internal::setup::builtin_text("zhang2021-comau-nj165")
         .unwrap()
         .replace(
             "characteristic_length_mm = 1200.0",
             "characteristic_length_mm = 0.0",
         );
-    let e = stiffid::setup::parse(&text, "cell.toml", |r, _| stiffid::robot::presets::get(r))
-        .unwrap_err();
+    let e = stiffid::internal::setup::parse(&text, "cell.toml", |r, _| {
+        stiffid::internal::robot::presets::get(r)
+    })
+    .unwrap_err();
     assert!(e.to_string().contains("characteristic_length_mm"), "{e}");
     let built = paper()
         .to_builder()

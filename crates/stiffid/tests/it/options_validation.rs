@@ -3,11 +3,14 @@
 //! an error naming the field with the value and the range, never a panic or a hang.
 
 use nalgebra::{Isometry3, Vector3};
-use stiffid::design::{self, Criterion, Pool, PoolOptions, SearchOptions};
-use stiffid::machining::compensate::{self, Free, FreeRange, Variable};
-use stiffid::observation::stiffness::joint_torques;
-use stiffid::observation::{point_rows, posture_block};
-use stiffid::{robot::ik, setup, study, study::simulate, Error, Setup};
+use stiffid::internal::design::{self, Criterion, Pool, PoolOptions, SearchOptions};
+use stiffid::internal::machining::compensate::{self, Free, FreeRange, Variable};
+use stiffid::internal::observation::stiffness::joint_torques;
+use stiffid::internal::observation::{point_rows, posture_block};
+use stiffid::{
+    internal::{robot::ik, setup, study, study::simulate},
+    Error, Setup,
+};
 
 fn paper() -> Setup {
     setup::builtin("zhang2021-comau-nj165").unwrap()
@@ -59,7 +62,7 @@ fn search_options_out_of_range_are_refused_by_local_and_global() {
         ];
         for (field, o) in cases {
             let field = format!("SearchOptions.{field}");
-            let shown = stiffid::common::words::number(v);
+            let shown = stiffid::internal::common::words::number(v);
             rejected(
                 design::local(&setup, Criterion::DOptimal, &start, &o),
                 &field,
@@ -164,7 +167,7 @@ fn ik_and_compensate_options_out_of_range_are_refused() {
         rejected(
             solve(o),
             "ik::Options.position_tolerance",
-            &stiffid::common::words::number(v),
+            &stiffid::internal::common::words::number(v),
         );
         let o = ik::Options {
             rotation_tolerance: v,
@@ -173,7 +176,7 @@ fn ik_and_compensate_options_out_of_range_are_refused() {
         rejected(
             solve(o),
             "ik::Options.rotation_tolerance",
-            &stiffid::common::words::number(v),
+            &stiffid::internal::common::words::number(v),
         );
     }
     let o = ik::Options {
@@ -319,7 +322,7 @@ fn calibration_tolerances_out_of_range_are_refused() {
 /// value as given (1e9, not its round trip through radians).
 #[test]
 fn distinct_distances_out_of_range_are_refused_as_options() {
-    use stiffid::design::distinct::Distinctness;
+    use stiffid::internal::design::distinct::Distinctness;
     let cases = [
         (
             Some(1e9),
@@ -409,7 +412,7 @@ fn select_cases(
 )> {
     use stiffid::app::purpose::{CalibrationOptions, Purpose};
     use stiffid::app::select;
-    use stiffid::design::observability::CalibrationCriterion;
+    use stiffid::internal::design::observability::CalibrationCriterion;
     use stiffid::JobOption;
     let search = select::Request {
         setup,
@@ -495,7 +498,7 @@ fn select_cases(
 fn options_that_mean_nothing_where_given_are_refused_by_the_jobs() {
     use stiffid::app::purpose::{CalibrationOptions, Purpose};
     use stiffid::app::{evaluate, predict, register, select, WarningKind};
-    use stiffid::metrology::calibration::gravity::Gravity;
+    use stiffid::internal::metrology::calibration::gravity::Gravity;
     use stiffid::JobOption;
     let setup = paper();
     let cases = select_cases(&setup);
@@ -536,7 +539,7 @@ fn options_that_mean_nothing_where_given_are_refused_by_the_jobs() {
         setup: &setup,
         q: group[0],
         wrench: nalgebra::Vector6::new(0.0, 0.0, -500.0, 0.0, 0.0, 0.0),
-        frame: stiffid::observation::deflection::Frame::Base,
+        frame: stiffid::internal::observation::deflection::Frame::Base,
         at: None,
         compliance: None,
         level,

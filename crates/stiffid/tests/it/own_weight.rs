@@ -4,10 +4,10 @@
 //! `[controller]` read and refused where it means nothing.
 
 use nalgebra::{Point3, Vector3, Vector6};
-use stiffid::machining::compensate::{self, Options, PathPoint, Target};
-use stiffid::observation::deflection::Frame;
-use stiffid::robot::ik::tool_pose;
-use stiffid::{setup, Error};
+use stiffid::internal::machining::compensate::{self, Options, PathPoint, Target};
+use stiffid::internal::observation::deflection::Frame;
+use stiffid::internal::robot::ik::tool_pose;
+use stiffid::{internal::setup, Error};
 
 const SETUP: &str = "zhang2021-comau-nj165";
 
@@ -32,8 +32,8 @@ pub(crate) fn heavy_on(
         )
         .replacen("\n[tool]", &format!("\n{extra}\n[tool]"), 1);
     setup::parse(&text, "heavy.toml", |name, _| match name {
-        "comau-smart5-nj165-3.0" => stiffid::robot::file::parse(robot_text, "robot.toml"),
-        other => stiffid::robot::presets::get(other),
+        "comau-smart5-nj165-3.0" => stiffid::internal::robot::file::parse(robot_text, "robot.toml"),
+        other => stiffid::internal::robot::presets::get(other),
     })
 }
 
@@ -62,7 +62,11 @@ pub(crate) fn masses_section() -> String {
 /// p_l(q)` by central differences: `dq = c .* (-dV/dq)`.
 pub(crate) fn sag(robot: &stiffid::Robot, c: &Vector6<f64>, q: &Vector6<f64>) -> Vector6<f64> {
     let masses = robot.masses().unwrap();
-    let g = Vector3::new(0.0, 0.0, -stiffid::metrology::calibration::gravity::G);
+    let g = Vector3::new(
+        0.0,
+        0.0,
+        -stiffid::internal::metrology::calibration::gravity::G,
+    );
     let energy = |q: &Vector6<f64>| {
         let f = robot.frames(q);
         (0..6)
@@ -85,7 +89,7 @@ pub(crate) fn sag(robot: &stiffid::Robot, c: &Vector6<f64>, q: &Vector6<f64>) ->
 #[test]
 fn compensation_adds_the_sag_under_the_robots_weight() {
     let s = heavy_setup("");
-    let file = stiffid::io::stiffness::parse(&file_with(&masses_section())).unwrap();
+    let file = stiffid::internal::io::stiffness::parse(&file_with(&masses_section())).unwrap();
     let compliance = file.compliance(s.model()).unwrap();
     assert!(compliance.own_weight.is_some());
     let q = s.test_postures()[0];
@@ -95,12 +99,12 @@ fn compensation_adds_the_sag_under_the_robots_weight() {
         target: Target::Posture(q),
         wrench,
         frame: Frame::Base,
-        external: stiffid::robot::external::ExternalValues::NONE,
+        external: stiffid::internal::robot::external::ExternalValues::NONE,
     };
     let options = Options::for_setup(&s);
     let with =
         compensate::path(s.arm(), &compliance, std::slice::from_ref(&point), &options).unwrap();
-    let plain = stiffid::model::Compliance {
+    let plain = stiffid::internal::model::Compliance {
         own_weight: None,
         ..compliance.clone()
     };
@@ -140,9 +144,9 @@ fn compensation_adds_the_sag_under_the_robots_weight() {
 fn a_wrong_gravity_section_is_refused() {
     let text =
         file_with(r#"{"model": "masses", "terms": [{"name": "gravity.c1", "value_si": "NaN"}]}"#);
-    assert!(stiffid::io::stiffness::parse(&text).is_err());
+    assert!(stiffid::internal::io::stiffness::parse(&text).is_err());
     let text = file_with(r#"{"model": "masses", "terms": []}"#);
-    let e = stiffid::io::stiffness::parse(&text)
+    let e = stiffid::internal::io::stiffness::parse(&text)
         .unwrap_err()
         .to_string();
     assert!(e.contains("gravity.terms"), "{e}");
@@ -153,7 +157,7 @@ fn a_wrong_gravity_section_is_refused() {
         target: Target::Posture(s.test_postures()[0]),
         wrench: Vector6::zeros(),
         frame: Frame::Base,
-        external: stiffid::robot::external::ExternalValues::NONE,
+        external: stiffid::internal::robot::external::ExternalValues::NONE,
     };
     for (section, field) in [
         (
@@ -165,7 +169,7 @@ fn a_wrong_gravity_section_is_refused() {
             "gravity.terms",
         ),
     ] {
-        let file = stiffid::io::stiffness::parse(&file_with(&section)).unwrap();
+        let file = stiffid::internal::io::stiffness::parse(&file_with(&section)).unwrap();
         let c = file.compliance(s.model()).unwrap();
         let e = compensate::path(s.arm(), &c, std::slice::from_ref(&point), &options).unwrap_err();
         assert!(
@@ -185,15 +189,16 @@ fn the_controller_kinematics_are_read_and_checked() {
     assert_eq!(s.controller_robot().unwrap(), s.robot());
     let plain = heavy_setup("");
     assert_eq!(plain.controller_robot().unwrap(), plain.robot());
-    let text: Vec<String> = include_str!("../../presets/comau-smart5-nj165-3.0.toml")
-        .lines()
-        .map(|l| match l.starts_with("name = ") {
-            true => format!("name = \"COMAU{}\"", stiffid::robot::CALIBRATED),
-            false => l.to_string(),
-        })
-        .collect();
+    let text: Vec<String> =
+        include_str!("../../../stiffid-core/presets/comau-smart5-nj165-3.0.toml")
+            .lines()
+            .map(|l| match l.starts_with("name = ") {
+                true => format!("name = \"COMAU{}\"", stiffid::internal::robot::CALIBRATED),
+                false => l.to_string(),
+            })
+            .collect();
     let text = text.join("\n");
-    let calibrated = stiffid::robot::file::parse(&text, "c.toml").unwrap();
+    let calibrated = stiffid::internal::robot::file::parse(&text, "c.toml").unwrap();
     assert!(calibrated.is_calibrated(), "{}", calibrated.name());
     let setup = plain.to_builder().with_robot(calibrated).build().unwrap();
     let e = setup.controller_robot().unwrap_err().to_string();
@@ -222,9 +227,11 @@ fn the_controller_kinematics_are_read_and_checked() {
             &format!("\n{extra}\n[tool]"),
             1,
         );
-        let e = setup::parse(&text, "s.toml", |r, _| stiffid::robot::presets::get(r))
-            .unwrap_err()
-            .to_string();
+        let e = setup::parse(&text, "s.toml", |r, _| {
+            stiffid::internal::robot::presets::get(r)
+        })
+        .unwrap_err()
+        .to_string();
         assert!(e.contains(field), "{e}");
     }
 }

@@ -13,9 +13,9 @@ use crate::mutate;
 use mutate::{apply, edit, hostile_number, Edit, Tally};
 use nalgebra::Vector6;
 use proptest::prelude::*;
-use stiffid::design::{evaluate, random_group};
-use stiffid::robot::{file, presets, urdf};
-use stiffid::{dexterity, setup, Coordinates, Robot, Setup};
+use stiffid::internal::design::{evaluate, random_group};
+use stiffid::internal::robot::{file, presets, urdf};
+use stiffid::{dexterity, internal::setup, Coordinates, Robot, Setup};
 
 const ARBITRARY: u32 = 128;
 const MUTATED: u32 = 192;

@@ -5,13 +5,13 @@
 
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 use stiffid::app::compensate::{run, Input, Request};
-use stiffid::machining::compensate::{Compensated, Model, Options, PathPoint};
-use stiffid::machining::{cell, path};
-use stiffid::observation::deflection::Frame;
-use stiffid::robot::external::{ErrorMotions, ExternalAxes, ExternalAxis};
-use stiffid::robot::ik::{self, tool_pose};
-use stiffid::robot::presets;
-use stiffid::{setup, Error, Setup};
+use stiffid::internal::machining::compensate::{Compensated, Model, Options, PathPoint};
+use stiffid::internal::machining::{cell, path};
+use stiffid::internal::observation::deflection::Frame;
+use stiffid::internal::robot::external::{ErrorMotions, ExternalAxes, ExternalAxis};
+use stiffid::internal::robot::ik::{self, tool_pose};
+use stiffid::internal::robot::presets;
+use stiffid::{internal::setup, Error, Setup};
 
 /// The FANUC R-2000iC/165F on a track along x (0 to 6 m, pitching 0.2 mrad and sagging 0.3 mm
 /// at its ends) beside a turntable about z through (2.5, 0, 0) m.

@@ -3,9 +3,9 @@
 
 use approx::assert_relative_eq;
 use nalgebra::{UnitQuaternion, Vector3, Vector6};
-use stiffid::machining::compensate::Target;
-use stiffid::machining::path::parse;
-use stiffid::observation::deflection::Frame;
+use stiffid::internal::machining::compensate::Target;
+use stiffid::internal::machining::path::parse;
+use stiffid::internal::observation::deflection::Frame;
 use stiffid::Error;
 
 #[test]
@@ -130,9 +130,9 @@ fn lines_are_right_after_crlf_blank_and_comment_lines() {
 
 #[test]
 fn a_posture_file_names_the_line_of_a_crlf_row() {
-    let robot = stiffid::robot::presets::get("comau-smart5-nj165-3.0").unwrap();
+    let robot = stiffid::internal::robot::presets::get("comau-smart5-nj165-3.0").unwrap();
     let text = "posture,q1_deg,q2_deg,q3_deg,q4_deg,q5_deg,q6_deg\r\n1,0,0,-90,0,30,0\r\n\r\n2,0,0,-90,0,30,x\r\n";
-    match stiffid::io::postures::parse(text, &robot, None) {
+    match stiffid::internal::io::postures::parse(text, &robot, None) {
         Err(Error::Column { line, name, .. }) => assert_eq!((line, name.as_str()), (4, "q6_deg")),
         other => panic!("{other:?}"),
     }

@@ -4,12 +4,12 @@
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3, Vector6};
 use stiffid::app::place::{self, Effort, Region, Request, Work};
-use stiffid::machining::compensate::{Aggregate, Compliance, Options, PathPoint, Target};
-use stiffid::machining::process::Process;
-use stiffid::machining::program::Dialect;
-use stiffid::machining::{self, Language, Program};
-use stiffid::observation::deflection::Frame;
-use stiffid::robot::presets;
+use stiffid::internal::machining::compensate::{Aggregate, Compliance, Options, PathPoint, Target};
+use stiffid::internal::machining::process::Process;
+use stiffid::internal::machining::program::Dialect;
+use stiffid::internal::machining::{self, Language, Program};
+use stiffid::internal::observation::deflection::Frame;
+use stiffid::internal::robot::presets;
 use stiffid::{Error, Setup};
 
 const SETUP: &str = include_str!("../../../../examples/milling/fanuc-milling.toml");
@@ -26,13 +26,16 @@ struct Inputs {
 }
 
 fn inputs(program: &str) -> Inputs {
-    let setup = stiffid::setup::parse(SETUP, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap();
-    let compliance =
-        stiffid::io::stiffness::parse(include_str!("../../../../examples/milling/stiffness.json"))
-            .unwrap()
-            .compliance(setup.model())
+    let setup =
+        stiffid::internal::setup::parse(SETUP, "fanuc-milling.toml", |n, _| presets::get(n))
             .unwrap();
-    let process = stiffid::machining::process::file::parse(
+    let compliance = stiffid::internal::io::stiffness::parse(include_str!(
+        "../../../../examples/milling/stiffness.json"
+    ))
+    .unwrap()
+    .compliance(setup.model())
+    .unwrap();
+    let process = stiffid::internal::machining::process::file::parse(
         include_str!("../../../../examples/milling/aluminium.toml"),
         "aluminium.toml",
     )
@@ -149,7 +152,8 @@ fn the_placement_is_the_same_whatever_the_threads_and_the_setup_reads_back() {
     assert_eq!(one.reach, many.reach);
     assert_eq!(one.setup_text, many.setup_text);
     let written =
-        stiffid::setup::parse(&one.setup_text, "placed.toml", |n, _| presets::get(n)).unwrap();
+        stiffid::internal::setup::parse(&one.setup_text, "placed.toml", |n, _| presets::get(n))
+            .unwrap();
     let w = written.workpiece().unwrap();
     let p = &one.placed.base_from_part;
     assert!((w.translation.vector - p.translation.vector).norm() < 1e-8);
@@ -307,14 +311,15 @@ fn robot_programs_and_axis_angle_rows_are_refused_naming_why() {
 
 #[test]
 fn a_built_in_setup_is_written_with_the_workpiece_appended() {
-    let text = stiffid::setup::builtin_text("fanuc-r2000ic-165f").unwrap();
+    let text = stiffid::internal::setup::builtin_text("fanuc-r2000ic-165f").unwrap();
     let pose = Isometry3::from_parts(
         Translation3::new(1.2, -0.3, 0.45),
         UnitQuaternion::from_euler_angles(0.0, 0.0, -20f64.to_radians()),
     );
     let out = place::with_workpiece(text, &pose);
     assert!(out.starts_with(text));
-    let read = stiffid::setup::parse(&out, "placed.toml", |n, _| presets::get(n)).unwrap();
+    let read =
+        stiffid::internal::setup::parse(&out, "placed.toml", |n, _| presets::get(n)).unwrap();
     let w = read.workpiece().unwrap();
     assert!((w.translation.vector - pose.translation.vector).norm() < 1e-12);
     assert!(w.rotation.angle_to(&pose.rotation) < 1e-9);

@@ -6,13 +6,13 @@
 
 use crate::carried_obstacles::{arm_to_box, track_cell, PLATE};
 use stiffid::app::plan::{self, Request};
-use stiffid::cell::CheckKind;
-use stiffid::robot::external::ExternalValues;
+use stiffid::internal::cell::CheckKind;
+use stiffid::internal::robot::external::ExternalValues;
 
 #[test]
 fn a_plans_postures_stand_where_they_are_read() {
     let setup = track_cell(&PLATE.replace("AXIS", "rotate")).unwrap();
-    let q = stiffid::design::random_group(&setup.without_cell(), 3, 5);
+    let q = stiffid::internal::design::random_group(&setup.without_cell(), 3, 5);
     let e: Vec<Vec<f64>> = (0..3)
         .map(|k| {
             vec![
@@ -26,7 +26,7 @@ fn a_plans_postures_stand_where_they_are_read() {
         plan::run(&Request {
             scene: false,
             setup: &setup,
-            criterion: stiffid::design::Criterion::RelativeA,
+            criterion: stiffid::internal::design::Criterion::RelativeA,
             postures: &q,
             target_pct: None,
             external,
@@ -38,7 +38,7 @@ fn a_plans_postures_stand_where_they_are_read() {
     let none = plan::run(&Request {
         scene: false,
         setup: &setup,
-        criterion: stiffid::design::Criterion::RelativeA,
+        criterion: stiffid::internal::design::Criterion::RelativeA,
         postures: &q,
         target_pct: None,
         external: &[],

@@ -2,12 +2,14 @@
 //! and the smallest group size for a target accuracy.
 
 use nalgebra::Vector6;
-use stiffid::design::target::{self, smallest_group};
-use stiffid::design::{random_group, Criterion, Evaluator, Pool, PoolMethod, PoolOptions};
+use stiffid::internal::design::target::{self, smallest_group};
+use stiffid::internal::design::{
+    random_group, Criterion, Evaluator, Pool, PoolMethod, PoolOptions,
+};
 use stiffid::Setup;
 
 fn paper() -> Setup {
-    stiffid::setup::builtin("zhang2021-comau-nj165").unwrap()
+    stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap()
 }
 
 /// The best group of `n` of `pool` by evaluating every group with the QR-based evaluator.
@@ -125,7 +127,7 @@ fn exchange_is_seeded_and_independent_of_the_thread_count() {
     // The exchange's group beats every random group of the pool it started from.
     let evaluator = Evaluator::new(&setup);
     for seed in 0..20 {
-        let random = stiffid::design::random_group(&setup, 6, seed);
+        let random = stiffid::internal::design::random_group(&setup, 6, seed);
         assert!(one.value < evaluator.value(Criterion::RelativeA, &random));
     }
 }
@@ -188,7 +190,8 @@ fn stopping_early_keeps_the_smallest_size_of_a_reachable_target() {
     let worst: Vec<f64> = (2..=40)
         .map(|n| {
             let e = evaluator.evaluation(&choose(n).unwrap());
-            let rates = stiffid::design::criteria::predicted_deviation_pct(&e.relative_std, 1.0);
+            let rates =
+                stiffid::internal::design::criteria::predicted_deviation_pct(&e.relative_std, 1.0);
             rates.iter().copied().fold(f64::NEG_INFINITY, f64::max)
         })
         .collect();

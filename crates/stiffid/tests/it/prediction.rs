@@ -1,4 +1,4 @@
-//! Prediction intervals (jackknife+ over the postures, `stiffid::identify::prediction`) on seeded
+//! Prediction intervals (jackknife+ over the postures, `stiffid::internal::identify::prediction`) on seeded
 //! simulations: with a compliance the fitted model lacks they still cover at their level, and
 //! with the true model the parameter intervals and the prediction intervals both cover at 95%.
 //!
@@ -11,16 +11,16 @@ use nalgebra::{DVector, Vector3, Vector6};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
-use stiffid::identify::compare::pool_by_name;
-use stiffid::identify::cross_validation::{cross_validate, cross_validate_model, Method};
-use stiffid::identify::prediction::calibrate;
-use stiffid::identify::svd::fit;
-use stiffid::identify::validate::compare_at;
-use stiffid::identify::Identify;
-use stiffid::model::prediction::{inside, Calibration};
-use stiffid::model::{Compliance, Family};
-use stiffid::observation::{posture_block, Measurement, Observations};
-use stiffid::setup::Setup;
+use stiffid::internal::identify::compare::pool_by_name;
+use stiffid::internal::identify::cross_validation::{cross_validate, cross_validate_model, Method};
+use stiffid::internal::identify::prediction::calibrate;
+use stiffid::internal::identify::svd::fit;
+use stiffid::internal::identify::validate::compare_at;
+use stiffid::internal::identify::Identify;
+use stiffid::internal::model::prediction::{inside, Calibration};
+use stiffid::internal::model::{Compliance, Family};
+use stiffid::internal::observation::{posture_block, Measurement, Observations};
+use stiffid::internal::setup::Setup;
 
 const DATA_SETS: u64 = 200;
 const TRAIN: usize = 12;
@@ -29,7 +29,7 @@ const TEST: usize = 4;
 /// The paper's cell with an elbow spring about x of joint 3's frame (lateral bending) of
 /// `k` Nm/rad.
 fn with_elbow(k: f64) -> Setup {
-    let paper = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let paper = stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap();
     let mut springs = Family::Tilt
         .springs(paper.robot(), &[3], Some(k), None, "test")
         .unwrap();
@@ -99,7 +99,7 @@ fn covered_by_hand(s: &Setup, p: &Calibration, test: &[Measurement], level: f64)
 /// compliance of every parameter: the drives' nominal, then `values` (rad/Nm, m/N, or rad for a
 /// lost motion).
 fn with_candidates(names: &[&str], values: &[f64]) -> (Setup, DVector<f64>) {
-    let paper = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let paper = stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap();
     let names: Vec<String> = names.iter().map(|n| n.to_string()).collect();
     let springs = pool_by_name(&paper, &names).unwrap().candidates;
     assert_eq!(springs.len(), values.len());
@@ -122,7 +122,7 @@ fn with_candidates(names: &[&str], values: &[f64]) -> (Setup, DVector<f64>) {
 /// the coordinates in every case, while the drives' parameter intervals miss.
 #[test]
 fn prediction_intervals_cover_compliances_the_model_lacks() {
-    let drives = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let drives = stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap();
     let cases: [(&[&str], &[f64]); 4] = [
         (&["tilt3_x"], &[1.0 / 1.5e6]),
         (&["bend3_x"], &[1.0 / 1.5e6]),
@@ -254,7 +254,7 @@ fn deflection_covered(
 /// noise scaled with the deflection.
 #[test]
 fn deflection_intervals_cover_the_true_deflection() {
-    let drives = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let drives = stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap();
     let elbow = with_elbow(1.5e6);
     let cases: [(&[&str], &[f64], bool); 3] = [
         (&["tilt3_x"], &[1.0 / 1.5e6], true),

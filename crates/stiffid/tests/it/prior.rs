@@ -3,8 +3,8 @@
 use nalgebra::{Matrix6, Vector6};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use stiffid::robot::kinematics::{dexterity, Coordinates};
-use stiffid::{setup, setup::prior};
+use stiffid::internal::robot::kinematics::{dexterity, Coordinates};
+use stiffid::internal::{setup, setup::prior};
 
 /// The median dexterity of the paper setup's TCP over 2000 postures of its own seeded sample.
 fn median_at(jacobians: &[Matrix6<f64>], l: f64) -> f64 {

@@ -4,15 +4,15 @@
 //! `9E9` in a used axis; a program that moves the track compensated with the track where it says.
 
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
-use stiffid::machining::compensate::{self, Model, Options};
-use stiffid::machining::process::file;
-use stiffid::machining::program::{self, external::cell_values, Dialect};
-use stiffid::machining::{self, Language};
-use stiffid::machining::{cell, gcode};
-use stiffid::robot::external::{ExternalAxes, ExternalAxis};
-use stiffid::robot::ik;
-use stiffid::robot::ik::tool_pose;
-use stiffid::{setup, Error};
+use stiffid::internal::machining::compensate::{self, Model, Options};
+use stiffid::internal::machining::process::file;
+use stiffid::internal::machining::program::{self, external::cell_values, Dialect};
+use stiffid::internal::machining::{self, Language};
+use stiffid::internal::machining::{cell, gcode};
+use stiffid::internal::robot::external::{ExternalAxes, ExternalAxis};
+use stiffid::internal::robot::ik;
+use stiffid::internal::robot::ik::tool_pose;
+use stiffid::{internal::setup, Error};
 
 const KRL: &str = "DEF track( )\nPTP {A1 10, A2 -80, A3 95, A4 0, A5 30, A6 -5, E1 1500.5, E2 0, E3 0, E4 0, E5 0, E6 0}\nDECL E6AXIS XP2={A1 11,A2 -79,A3 94,A4 0,A5 31,A6 -5,E1 1600,E2 45.25}\nLIN XP2 C_DIS\nEND\n";
 

@@ -1,7 +1,7 @@
 //! Every motion form of KRL, RAPID and FANUC LS: read (in the order of the motions, round-tripping
 //! byte for byte and taking changed values back) or refused naming its line and what to do.
 
-use stiffid::machining::program::{self, Dialect};
+use stiffid::internal::machining::program::{self, Dialect};
 use stiffid::Error;
 
 /// How a program reads: its targets (motion line, axis angles), or refused (line, a word of the

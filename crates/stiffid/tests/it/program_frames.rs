@@ -6,11 +6,11 @@
 
 use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector6};
 use stiffid::app::compensate::{self, Input};
-use stiffid::machining::compensate::{Compensated, Options};
-use stiffid::machining::program::generate::{Settings, Targets};
-use stiffid::machining::program::Dialect;
-use stiffid::machining::Language;
-use stiffid::robot::presets;
+use stiffid::internal::machining::compensate::{Compensated, Options};
+use stiffid::internal::machining::program::generate::{Settings, Targets};
+use stiffid::internal::machining::program::Dialect;
+use stiffid::internal::machining::Language;
+use stiffid::internal::robot::presets;
 
 const PEDESTAL: &str =
     "[robot_base]\nxyz_mm = [250.0, -120.0, 500.0]\nrpy_deg = [0.0, 0.0, 20.0]\n";
@@ -73,7 +73,7 @@ fn mounted_setup_with(tool: &str) -> stiffid::Setup {
             "mass_kg = 12.0\ncentre_of_mass_mm = [10.0, 0.0, 150.0]\n\n[loading]",
             1,
         );
-    stiffid::setup::parse(&text, "mounted.toml", |name, _| presets::get(name)).unwrap()
+    stiffid::internal::setup::parse(&text, "mounted.toml", |name, _| presets::get(name)).unwrap()
 }
 
 /// The milling example's pocket with each arc a straight move to its end: every point of the
@@ -263,8 +263,8 @@ fn programs_state_the_tool_and_positions_in_the_controllers_frames() {
 /// pedestal, the adapter plate, the work object and the tool of the mounted cell.
 #[test]
 fn written_cartesian_programs_read_back_to_their_targets() {
-    use stiffid::machining::program::cartesian::{Cartesian, Flags, Frame};
-    use stiffid::robot::configuration::Configuration;
+    use stiffid::internal::machining::program::cartesian::{Cartesian, Flags, Frame};
+    use stiffid::internal::robot::configuration::Configuration;
     for (setup, turn) in [
         (mounted_setup(), UnitQuaternion::identity()),
         (turned_setup(), tool_turn()),
@@ -274,10 +274,12 @@ fn written_cartesian_programs_read_back_to_their_targets() {
         let world = setup.program_world();
         for dialect in [Dialect::Krl, Dialect::Rapid, Dialect::FanucLs] {
             let (text, results) = program(&setup, dialect);
-            let read = stiffid::machining::read(&text, Language::Robot(dialect), 1e-4).unwrap();
+            let read =
+                stiffid::internal::machining::read(&text, Language::Robot(dialect), 1e-4).unwrap();
             let options = Options::for_setup(&setup);
-            let resolved = stiffid::machining::resolve(&read, &setup, None, &options).unwrap();
-            let stiffid::machining::Program::Robot(p) = resolved.as_ref() else {
+            let resolved =
+                stiffid::internal::machining::resolve(&read, &setup, None, &options).unwrap();
+            let stiffid::internal::machining::Program::Robot(p) = resolved.as_ref() else {
                 panic!("a robot program")
             };
             assert_eq!(p.targets.len(), results.len(), "{dialect:?}");
@@ -292,7 +294,7 @@ fn written_cartesian_programs_read_back_to_their_targets() {
                 let stated = frame * c.pose();
                 // The tool's axes: the flange's turned by the tool's turn.
                 let mut written =
-                    stiffid::robot::ik::tool_pose(&robot.frames(&r.q_compensated), &tcp);
+                    stiffid::internal::robot::ik::tool_pose(&robot.frames(&r.q_compensated), &tcp);
                 written.rotation *= turn;
                 pose_error = pose_error
                     .max((stated.translation.vector - written.translation.vector).norm() * 1e3);
@@ -334,10 +336,11 @@ fn written_cartesian_programs_read_back_to_their_targets() {
 #[test]
 fn an_ls_position_is_in_fanucs_world_at_the_height_of_axis_2() {
     use nalgebra::Vector3;
-    use stiffid::machining::program::generate::{generate, Move, Plan, Target, Tool};
+    use stiffid::internal::machining::program::generate::{generate, Move, Plan, Target, Tool};
     let text = include_str!("../../../../examples/milling/fanuc-milling.toml")
         .replace("tcp_mm = [6.9, 245.3, 319.3]", "tcp_mm = [0, 0, 0]");
-    let setup = stiffid::setup::parse(&text, "flange.toml", |n, _| presets::get(n)).unwrap();
+    let setup =
+        stiffid::internal::setup::parse(&text, "flange.toml", |n, _| presets::get(n)).unwrap();
     assert_eq!(
         setup.program_world(),
         Isometry3::translation(0.0, 0.0, 0.670)
@@ -371,10 +374,12 @@ fn an_ls_position_is_in_fanucs_world_at_the_height_of_axis_2() {
         ls.contains("X = 1592.000000000 mm,\tY = 0.000000000 mm,\tZ = 1085.000000000 mm,"),
         "{ls}"
     );
-    let read = stiffid::machining::read(&ls, Language::Robot(Dialect::FanucLs), 1e-4).unwrap();
+    let read =
+        stiffid::internal::machining::read(&ls, Language::Robot(Dialect::FanucLs), 1e-4).unwrap();
     let resolved =
-        stiffid::machining::resolve(&read, &setup, None, &Options::for_setup(&setup)).unwrap();
-    let stiffid::machining::Program::Robot(p) = resolved.as_ref() else {
+        stiffid::internal::machining::resolve(&read, &setup, None, &Options::for_setup(&setup))
+            .unwrap();
+    let stiffid::internal::machining::Program::Robot(p) = resolved.as_ref() else {
         panic!("a robot program")
     };
     let back = Vector6::from(p.targets[0].q_deg).map(f64::to_radians);

@@ -8,17 +8,17 @@
 
 use nalgebra::Vector6;
 use stiffid::app::compensate::{self, Input, Report};
-use stiffid::machining::compensate::{
+use stiffid::internal::machining::compensate::{
     Compensated, Free, FreeVariables, Objective, Options, PathPoint,
 };
-use stiffid::machining::dynamics::Dynamics;
-use stiffid::machining::gcode::{self, Motion};
-use stiffid::machining::program::speed::Speed;
-use stiffid::machining::program::{self, Dialect};
-use stiffid::machining::{Language, Program};
-use stiffid::robot::ik::tool_pose;
-use stiffid::robot::presets;
-use stiffid::{setup, Error, Setup};
+use stiffid::internal::machining::dynamics::Dynamics;
+use stiffid::internal::machining::gcode::{self, Motion};
+use stiffid::internal::machining::program::speed::Speed;
+use stiffid::internal::machining::program::{self, Dialect};
+use stiffid::internal::machining::{Language, Program};
+use stiffid::internal::robot::ik::tool_pose;
+use stiffid::internal::robot::presets;
+use stiffid::{internal::setup, Error, Setup};
 
 const POCKET: &str = include_str!("../../../../examples/milling/pocket.nc");
 const LS: &str = include_str!("../../../../examples/milling/pocket.ls");
@@ -46,7 +46,8 @@ fn the_written_programs_state_the_feed_of_every_move() {
             _ => krl(String::new()),
         };
         let (s, read) = (cell(&case, None), Program::Robot(p.clone()));
-        let resolved = stiffid::machining::resolve(&read, &s, None, &Options::for_setup(&s));
+        let resolved =
+            stiffid::internal::machining::resolve(&read, &s, None, &Options::for_setup(&s));
         assert!(resolved.is_ok(), "{dialect:?}: {:?}", resolved.err());
         // The speeds in path order, each run of one speed once: the G-code's rapids and feeds.
         let runs = |speeds: Vec<Option<f64>>| {
@@ -140,7 +141,7 @@ fn rotated(case: &Case, s: &Setup) -> Result<(Report, Postures), Error> {
         ..Options::for_setup(s)
     };
     let (text, dialect, name) = &case.program;
-    let stiffness = stiffid::io::stiffness::parse(case.stiffness).unwrap();
+    let stiffness = stiffid::internal::io::stiffness::parse(case.stiffness).unwrap();
     let request = compensate::Request {
         names: Default::default(),
         setup: s,
@@ -152,7 +153,8 @@ fn rotated(case: &Case, s: &Setup) -> Result<(Report, Postures), Error> {
             data: None,
             language: Language::Robot(*dialect),
             process_name: "aluminium.toml".into(),
-            process: stiffid::machining::process::file::parse(PROCESS, "aluminium.toml").unwrap(),
+            process: stiffid::internal::machining::process::file::parse(PROCESS, "aluminium.toml")
+                .unwrap(),
             chord_tolerance: 1e-5,
             output: Language::Robot(*dialect),
             out_name: name.to_string(),
@@ -179,7 +181,7 @@ fn shares(case: &Case, s: &Setup, q: &[Vector6<f64>]) -> Vec<Option<f64>> {
     let (text, dialect, _) = &case.program;
     let p = Program::Robot(program::parse(text, *dialect).unwrap());
     let options = Options::for_setup(s);
-    let resolved = stiffid::machining::resolve(&p, s, None, &options).unwrap();
+    let resolved = stiffid::internal::machining::resolve(&p, s, None, &options).unwrap();
     let Program::Robot(p) = resolved.into_owned() else {
         unreachable!()
     };

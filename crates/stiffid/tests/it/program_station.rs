@@ -5,11 +5,11 @@
 //! 0.1 micrometre; no point's bound above its bound at the program's own station.
 
 use nalgebra::{Isometry3, Vector3};
-use stiffid::machining::compensate::{Free, FreeVariables, Model, Options};
-use stiffid::machining::process::file;
-use stiffid::machining::{self, gcode, Language};
-use stiffid::robot::external::{ExternalAxes, ExternalAxis};
-use stiffid::setup;
+use stiffid::internal::machining::compensate::{Free, FreeVariables, Model, Options};
+use stiffid::internal::machining::process::file;
+use stiffid::internal::machining::{self, gcode, Language};
+use stiffid::internal::robot::external::{ExternalAxes, ExternalAxis};
+use stiffid::internal::setup;
 
 const GCODE: &str = "(stiffid: tool_rpy_deg = 180 0 0)\n(stiffid: external = U C)\nG0 X0 Y0 Z5 U1500 C0\nG1 Z0 F600\nG1 X40\nG1 X80\nG91 G1 X20 C5\nG90 G1 Y30\n";
 
@@ -117,7 +117,7 @@ fn a_gcode_program_is_written_back_at_the_stations_chosen() {
 /// A result's wrench in the arm's frame on the carriage at its station: the result's (cell
 /// frame) turned back by the carriage.
 fn arm_wrench(
-    r: &stiffid::machining::compensate::Compensated,
+    r: &stiffid::internal::machining::compensate::Compensated,
     cell: &ExternalAxes,
 ) -> nalgebra::Vector6<f64> {
     let turn = cell.carrier_pose(r.external.as_slice()).rotation.inverse();

@@ -13,11 +13,11 @@
 
 use nalgebra::Isometry3;
 use stiffid::app::place::{self, Region, Request, Work};
-use stiffid::machining::compensate::{Aggregate, Compliance, Options};
-use stiffid::machining::process::{file, Process};
-use stiffid::machining::program::Dialect;
-use stiffid::machining::{self, Language, Program, Report};
-use stiffid::robot::presets;
+use stiffid::internal::machining::compensate::{Aggregate, Compliance, Options};
+use stiffid::internal::machining::process::{file, Process};
+use stiffid::internal::machining::program::Dialect;
+use stiffid::internal::machining::{self, Language, Program, Report};
+use stiffid::internal::robot::presets;
 use stiffid::Setup;
 
 const POCKET: &str = include_str!("../../../../examples/milling/pocket.nc");
@@ -38,8 +38,8 @@ const ALUMINIUM: &str = include_str!("../../../../examples/milling/aluminium.tom
 const DRILL: &str = include_str!("../../../../examples/milling/drilling.toml");
 
 fn cell(text: &'static str, name: &str, stiffness: &str) -> Cell {
-    let setup = stiffid::setup::parse(text, name, |r, _| presets::get(r)).unwrap();
-    let compliance = stiffid::io::stiffness::parse(stiffness)
+    let setup = stiffid::internal::setup::parse(text, name, |r, _| presets::get(r)).unwrap();
+    let compliance = stiffid::internal::io::stiffness::parse(stiffness)
         .unwrap()
         .compliance(setup.model())
         .unwrap();

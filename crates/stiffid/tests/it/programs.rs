@@ -4,14 +4,14 @@
 
 use approx::assert_relative_eq;
 use nalgebra::{Isometry3, Point3, UnitQuaternion, Vector3, Vector6};
-use stiffid::machining::compensate::{self, Compliance, Options};
-use stiffid::machining::gcode;
-use stiffid::machining::process::file;
-use stiffid::machining::program::{self, Dialect};
-use stiffid::machining::{self, Language, Program};
-use stiffid::observation::deflection::Frame;
-use stiffid::robot::ik::{self, tool_pose};
-use stiffid::{setup, Error};
+use stiffid::internal::machining::compensate::{self, Compliance, Options};
+use stiffid::internal::machining::gcode;
+use stiffid::internal::machining::process::file;
+use stiffid::internal::machining::program::{self, Dialect};
+use stiffid::internal::machining::{self, Language, Program};
+use stiffid::internal::observation::deflection::Frame;
+use stiffid::internal::robot::ik::{self, tool_pose};
+use stiffid::{internal::setup, Error};
 
 const KRL: &str = "&ACCESS RVP\nDEF pocket( )\n; a comment {A1 99}\nPTP {A1 10.5, A2 -80, A3 95.25, A4 0, A5 30, A6 -5.0, E1 0}\r\nLIN {E6AXIS: A1 11, A2 -79.5, A3 95, A4 0.0, A5 31, A6 -5}  ; cut\nDECL E6AXIS XP3={A1 12,A2 -79,A3 94.5,A4 1E-1,A5 32,A6 -5}\nPTP XP3\nEND\n";
 
@@ -611,7 +611,7 @@ fn a_compensated_gcode_program_is_sent_where_the_loaded_tool_lands_on_the_progra
 /// robot.
 #[test]
 fn a_gcode_path_written_as_a_robot_program_moves_at_its_feed() {
-    use stiffid::machining::program::generate::{
+    use stiffid::internal::machining::program::generate::{
         generate, moves, Move, Plan, Settings, Target, Tool,
     };
     let text = format!("{HEADER}G21 G0 X0 Y0 Z5\nG1 Z0 F600\nG1 X40\nG20 G1 X2 F12\nG0 Z1\n");
@@ -693,7 +693,7 @@ fn a_gcode_path_written_as_a_robot_program_moves_at_its_feed() {
 /// 5 mm).
 #[test]
 fn a_linear_move_between_compensated_targets_stays_within_the_chord_tolerance() {
-    use stiffid::machining::program::generate::Target;
+    use stiffid::internal::machining::program::generate::Target;
     let (s, compliance) = fanuc();
     let process = file::parse(PROCESS, "p.toml").unwrap();
     let path = |step: usize| {
@@ -737,7 +737,7 @@ fn a_linear_move_between_compensated_targets_stays_within_the_chord_tolerance() 
 /// program calls); names that only begin like them are taken.
 #[test]
 fn device_names_and_krl_bas_are_refused_as_program_names() {
-    use stiffid::machining::program::generate::check_name;
+    use stiffid::internal::machining::program::generate::check_name;
     for dialect in [Dialect::Krl, Dialect::Rapid, Dialect::FanucLs] {
         for name in ["CON", "con", "Nul", "AUX", "PRN", "COM1", "lpt9"] {
             let e = check_name(dialect, name, 24).unwrap_err().to_string();

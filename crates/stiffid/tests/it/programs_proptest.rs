@@ -11,8 +11,8 @@ use crate::mutate;
 
 use mutate::{apply, edit, hostile_number, Tally};
 use proptest::prelude::*;
-use stiffid::machining::program::speed::{Speed, MAX_DURATION_S, MAX_PATH_SPEED_MM_S};
-use stiffid::machining::program::{self, Dialect};
+use stiffid::internal::machining::program::speed::{Speed, MAX_DURATION_S, MAX_PATH_SPEED_MM_S};
+use stiffid::internal::machining::program::{self, Dialect};
 
 const CASES: u32 = 48;
 // The least accepted of each test's inputs, about a third of what a run accepts (seen: 6 to 20

@@ -13,10 +13,10 @@ use crate::mutate;
 
 use mutate::{apply, edit, hostile_number, Edit, Tally};
 use proptest::prelude::*;
-use stiffid::machining::gcode::{self, MAX_FEED, MAX_POINTS};
-use stiffid::machining::process;
-use stiffid::observation::deflection::Frame;
-use stiffid::robot::presets;
+use stiffid::internal::machining::gcode::{self, MAX_FEED, MAX_POINTS};
+use stiffid::internal::machining::process;
+use stiffid::internal::observation::deflection::Frame;
+use stiffid::internal::robot::presets;
 
 const CASES: u32 = 64;
 // The least accepted of each reader's inputs, about a third of what a run accepts (seen: 5, 7, 5,
@@ -60,10 +60,10 @@ fn check_gcode(text: &str) -> bool {
 
 /// Whether `text` is read as a path file; what is read must be finite.
 fn check_path(text: &str) -> bool {
-    let Ok(points) = stiffid::machining::path::parse(text, Frame::Base) else {
+    let Ok(points) = stiffid::internal::machining::path::parse(text, Frame::Base) else {
         return false;
     };
-    assert!(!points.is_empty() && points.len() <= stiffid::machining::path::MAX_POINTS);
+    assert!(!points.is_empty() && points.len() <= stiffid::internal::machining::path::MAX_POINTS);
     assert!(!holds_non_finite(&format!("{points:?}")), "{text}");
     true
 }
@@ -71,7 +71,7 @@ fn check_path(text: &str) -> bool {
 /// Whether `text` is read as tracker readings of the paper's robot; what is read must be finite.
 fn check_readings(text: &str) -> bool {
     let robot = presets::get("comau-smart5-nj165-3.0").unwrap();
-    let Ok(r) = stiffid::io::readings::parse(text, &robot, 1) else {
+    let Ok(r) = stiffid::internal::io::readings::parse(text, &robot, 1) else {
         return false;
     };
     assert!(!r.readings.is_empty());

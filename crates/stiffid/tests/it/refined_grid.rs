@@ -3,11 +3,11 @@
 //! largest step given, its values on the halved steps; on a smooth case one level reaches the
 //! optimum of a uniform grid of the halved step; bad values refused naming the option.
 
-use stiffid::machining::compensate::{
+use stiffid::internal::machining::compensate::{
     self, refine, Aggregate, Compensated, Free, FreeVariables, Objective, Options, PathPoint,
 };
-use stiffid::machining::path;
-use stiffid::observation::deflection::Frame;
+use stiffid::internal::machining::path;
+use stiffid::internal::observation::deflection::Frame;
 use stiffid::{Error, JobOption, Setup};
 
 /// The aggregate of the points' bounds, m.

@@ -7,9 +7,9 @@ use nalgebra::{Isometry3, Point3, Vector3, Vector6};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
-use stiffid::cell::Checker;
-use stiffid::design::registration::{design, Options, LOAD_CHECKS};
-use stiffid::metrology::register::{self, Correspondence};
+use stiffid::internal::cell::Checker;
+use stiffid::internal::design::registration::{design, Options, LOAD_CHECKS};
+use stiffid::internal::metrology::register::{self, Correspondence};
 use stiffid::Setup;
 
 fn cell() -> Setup {
@@ -44,7 +44,7 @@ fn proposed_postures_beat_random_feasible_ones_and_pass_the_checks() {
     // Twenty random feasible groups of five (Latin hypercube, redrawn until they pass the cell).
     let random: Vec<f64> = (1..=20)
         .map(|seed| {
-            let group = stiffid::design::random_group(&setup, 5, 100 + seed);
+            let group = stiffid::internal::design::random_group(&setup, 5, 100 + seed);
             sigma * register::rotation_std_per_noise(&base_points(&setup, &group))
         })
         .collect();
@@ -127,7 +127,7 @@ fn impossible_requests_are_refused_with_the_field() {
     };
     let e = design(&setup, 5, &few).unwrap_err().to_string();
     assert!(e.contains("5 asked for, but only"), "{e}");
-    let one_point = stiffid::setup::builtin("zhang2021-comau-nj165")
+    let one_point = stiffid::internal::setup::builtin("zhang2021-comau-nj165")
         .unwrap()
         .to_builder()
         .with_measuring_points(vec![Vector3::new(0.08, 0.08, 0.26)])
@@ -144,7 +144,7 @@ fn impossible_requests_are_refused_with_the_field() {
 #[test]
 fn the_template_of_a_cell_with_external_axes_registers() {
     use stiffid::app::register as job;
-    use stiffid::robot::external::{ExternalAxes, ExternalAxis};
+    use stiffid::internal::robot::external::{ExternalAxes, ExternalAxis};
     let base = cell();
     let axes = ExternalAxes::new(vec![
         ExternalAxis::linear("track", Vector3::x_axis(), 0.2, 4.0),

@@ -8,7 +8,7 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 use stiffid::app::register::{run, Request};
-use stiffid::design::registration::{design, Options};
+use stiffid::internal::design::registration::{design, Options};
 use stiffid::Setup;
 
 /// The tracker frame in the base frame.

@@ -10,9 +10,10 @@ fn robot(mass: &str, inertia: &str) -> String {
 
 #[test]
 fn a_massless_link_with_an_inertia_tensor_is_an_error_naming_the_field() {
-    let message = stiffid::robot::file::parse(&robot("0", "[1, 1, 1, 0, 0, 0]"), "m.toml")
-        .unwrap_err()
-        .to_string();
+    let message =
+        stiffid::internal::robot::file::parse(&robot("0", "[1, 1, 1, 0, 0, 0]"), "m.toml")
+            .unwrap_err()
+            .to_string();
     assert!(
         message.contains("m.toml")
             && message.contains("joint[1].inertia_kg_m2")
@@ -20,13 +21,16 @@ fn a_massless_link_with_an_inertia_tensor_is_an_error_naming_the_field() {
         "{message}"
     );
     // A product of inertia alone is an inertia too.
-    let message = stiffid::robot::file::parse(&robot("0.0", "[0, 0, 0, 0, 0, 1e-9]"), "m.toml")
-        .unwrap_err()
-        .to_string();
+    let message =
+        stiffid::internal::robot::file::parse(&robot("0.0", "[0, 0, 0, 0, 0, 1e-9]"), "m.toml")
+            .unwrap_err()
+            .to_string();
     assert!(message.contains("joint[1].inertia_kg_m2"), "{message}");
     // A massless link without a tensor, and a light link with one, are bodies.
-    let massless = stiffid::robot::file::parse(&robot("0", "[0, 0, 0, 0, 0, 0]"), "m.toml");
+    let massless =
+        stiffid::internal::robot::file::parse(&robot("0", "[0, 0, 0, 0, 0, 0]"), "m.toml");
     assert_eq!(massless.unwrap().masses().unwrap()[2].mass, 0.0);
-    let light = stiffid::robot::file::parse(&robot("1e-6", "[1, 1, 1, 0, 0, 0]"), "m.toml");
+    let light =
+        stiffid::internal::robot::file::parse(&robot("1e-6", "[1, 1, 1, 0, 0, 0]"), "m.toml");
     assert_eq!(light.unwrap().masses().unwrap()[2].inertia[(0, 0)], 1.0);
 }

@@ -9,13 +9,16 @@ use nalgebra::{Matrix3, Point3, UnitQuaternion, Vector3, Vector6};
 use stiffid::app::document::scene::{self, glb, page, Extras, PathPoint, Scene};
 use stiffid::app::measurements::Data;
 use stiffid::app::{identify, kinematics};
-use stiffid::robot::kinematics::Coordinates;
+use stiffid::internal::robot::kinematics::Coordinates;
 use stiffid::Setup;
 
 fn tracker_setup() -> Setup {
-    let text = stiffid::setup::builtin_text("zhang2021-comau-nj165").unwrap().to_string()
+    let text = stiffid::internal::setup::builtin_text("zhang2021-comau-nj165").unwrap().to_string()
         + "[cell]\nfloor_z_mm = 0.0\n[[cell.obstacle]]\nname = \"table\"\nmin_mm = [1200, -400, 0]\nmax_mm = [1800, 400, 750]\n[tracker]\nposition_mm = [3000.0, -2000.0, 1500.0]\n";
-    stiffid::setup::parse(&text, "cell.toml", |r, _| stiffid::robot::presets::get(r)).unwrap()
+    stiffid::internal::setup::parse(&text, "cell.toml", |r, _| {
+        stiffid::internal::robot::presets::get(r)
+    })
+    .unwrap()
 }
 
 fn vector(a: [f64; 3]) -> Vector3<f64> {
@@ -35,7 +38,7 @@ fn with_nominal(setup: &Setup, postures: &[Vector6<f64>]) -> Scene {
 #[test]
 fn joint_positions_equal_the_kinematics_job_and_link_frames_carry_the_chain() {
     for setup in [tracker_setup(), mesh_setup()] {
-        let postures = stiffid::design::random_group(&setup.without_cell(), 6, 11);
+        let postures = stiffid::internal::design::random_group(&setup.without_cell(), 6, 11);
         let s = with_nominal(&setup, &postures);
         assert_eq!(s.postures.len(), 6);
         for (p, q) in s.postures.iter().zip(&postures) {
@@ -74,10 +77,10 @@ fn joint_positions_equal_the_kinematics_job_and_link_frames_carry_the_chain() {
 #[test]
 fn posed_geometry_lies_in_the_cell_bodies_bounds() {
     let setup = mesh_setup();
-    let q = stiffid::design::random_group(&setup.without_cell(), 1, 5)[0];
+    let q = stiffid::internal::design::random_group(&setup.without_cell(), 1, 5)[0];
     let s = with_nominal(&setup, &[q]);
     let frames = setup.robot().frames(&q);
-    let bodies = stiffid::cell::bodies(setup.arm(), &frames);
+    let bodies = stiffid::internal::cell::bodies(setup.arm(), &frames);
     let names: Vec<&str> = s.links.iter().map(|l| l.name.as_str()).collect();
     assert_eq!(
         names,
@@ -126,7 +129,7 @@ fn posed_geometry_lies_in_the_cell_bodies_bounds() {
 #[test]
 fn ellipsoid_axes_are_the_eigen_decomposition_of_the_translational_compliance() {
     let setup = tracker_setup();
-    let postures = stiffid::design::random_group(&setup.without_cell(), 4, 3);
+    let postures = stiffid::internal::design::random_group(&setup.without_cell(), 4, 3);
     let s = with_nominal(&setup, &postures);
     let k = setup.nominal_stiffness().unwrap();
     assert_eq!(s.ellipsoid_force_n, 500.0);
@@ -168,7 +171,7 @@ fn assert_ellipsoid(e: &scene::Ellipsoid, c: &Matrix3<f64>, force: f64) {
 /// posture and point, the ellipsoid that of the identified compliance under the setup's load.
 #[test]
 fn identification_scene_draws_the_documents_displacements_and_compliance() {
-    let s = stiffid::setup::builtin("fanuc-r2000ic-165f").unwrap();
+    let s = stiffid::internal::setup::builtin("fanuc-r2000ic-165f").unwrap();
     let setup = s.to_builder().with_tcp(s.tool().tcp).build().unwrap();
     let request = identify::Request {
         progress: &(),
@@ -236,7 +239,7 @@ fn identification_scene_draws_the_documents_displacements_and_compliance() {
 #[test]
 fn sights_arrows_and_path_are_the_inputs() {
     let setup = tracker_setup();
-    let postures = stiffid::design::random_group(&setup.without_cell(), 3, 8);
+    let postures = stiffid::internal::design::random_group(&setup.without_cell(), 3, 8);
     let measured: Vec<Vec<Vector3<f64>>> = (0..3)
         .map(|i| {
             (0..4)
@@ -305,7 +308,7 @@ fn sights_arrows_and_path_are_the_inputs() {
 #[test]
 fn glb_reads_back_with_one_node_per_posture_and_link() {
     let setup = mesh_setup();
-    let postures = stiffid::design::random_group(&setup.without_cell(), 3, 2);
+    let postures = stiffid::internal::design::random_group(&setup.without_cell(), 3, 2);
     let s = with_nominal(&setup, &postures);
     let bytes = glb::glb(&s);
     // gltf validates the document as it reads it (its `Validate` rules).
@@ -360,7 +363,7 @@ fn glb_reads_back_with_one_node_per_posture_and_link() {
 #[test]
 fn the_page_embeds_everything_and_fetches_nothing() {
     let setup = tracker_setup();
-    let postures = stiffid::design::random_group(&setup.without_cell(), 2, 4);
+    let postures = stiffid::internal::design::random_group(&setup.without_cell(), 2, 4);
     let html = page::page(&with_nominal(&setup, &postures), "a <scene>");
     assert!(html.contains("<title>a &lt;scene&gt;</title>"));
     // No element loads anything: no src, href or CSS url().
@@ -398,12 +401,12 @@ fn the_page_embeds_everything_and_fetches_nothing() {
 #[test]
 fn track_and_positioner_stand_at_each_postures_station() {
     let text = include_str!("../../../../examples/track/track-cell.toml");
-    let setup = stiffid::setup::parse(text, "track-cell.toml", |r, _| {
-        stiffid::robot::presets::get(r)
+    let setup = stiffid::internal::setup::parse(text, "track-cell.toml", |r, _| {
+        stiffid::internal::robot::presets::get(r)
     })
     .unwrap();
     let axes = setup.robot().external().unwrap();
-    let postures = stiffid::design::random_group(&setup.without_cell(), 3, 6);
+    let postures = stiffid::internal::design::random_group(&setup.without_cell(), 3, 6);
     let d = f64::to_radians;
     let stations = vec![
         vec![0.5, d(20.0), d(45.0)],

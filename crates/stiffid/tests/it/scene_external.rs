@@ -9,20 +9,20 @@ use nalgebra::{Isometry3, Point3, Quaternion, Translation3, UnitQuaternion, Vect
 use stiffid::app::document::scene::Scene;
 use stiffid::app::measurements::Data;
 use stiffid::app::{calibrate, compensate, identify, kinematics};
-use stiffid::metrology::calibration::gravity::Gravity;
-use stiffid::metrology::calibration::maps::Spec;
-use stiffid::metrology::calibration::Geometry;
-use stiffid::observation::Measurement;
-use stiffid::robot::external::ExternalValues;
-use stiffid::robot::kinematics::Coordinates;
+use stiffid::internal::metrology::calibration::gravity::Gravity;
+use stiffid::internal::metrology::calibration::maps::Spec;
+use stiffid::internal::metrology::calibration::Geometry;
+use stiffid::internal::observation::Measurement;
+use stiffid::internal::robot::external::ExternalValues;
+use stiffid::internal::robot::kinematics::Coordinates;
 use stiffid::Setup;
 
 use crate::carried_obstacles::{track_cell as track_cell_with, turn, PLATE};
 
 fn track_cell() -> Setup {
     let text = include_str!("../../../../examples/track/track-cell.toml");
-    stiffid::setup::parse(text, "track-cell.toml", |r, _| {
-        stiffid::robot::presets::get(r)
+    stiffid::internal::setup::parse(text, "track-cell.toml", |r, _| {
+        stiffid::internal::robot::presets::get(r)
     })
     .unwrap()
 }
@@ -30,7 +30,7 @@ fn track_cell() -> Setup {
 /// `n` postures of the cell's arm (seeded) and a station per posture along the rail with the
 /// table tilted and turned (SI).
 fn postures(setup: &Setup, n: usize) -> (Vec<Vector6<f64>>, Vec<Vec<f64>>) {
-    let q = stiffid::design::random_group(&setup.without_cell(), n, 17);
+    let q = stiffid::internal::design::random_group(&setup.without_cell(), n, 17);
     let e = (0..n)
         .map(|i| {
             let k = i as f64;
@@ -78,7 +78,7 @@ fn assert_at_kinematics(setup: &Setup, scene: &Scene, q: &[Vector6<f64>], e: &[V
 /// The readings of the cell's measuring points (cell frame, as the tracker's at the identity)
 /// at each posture and station, noise-free.
 fn readings(setup: &Setup, q: &[Vector6<f64>], e: &[Vec<f64>]) -> String {
-    let header = stiffid::io::readings::header();
+    let header = stiffid::internal::io::readings::header();
     let mut text = header.replace("q6_deg,", "q6_deg,e1_mm,e2_deg,e3_deg,") + "\n";
     for (i, (q, e)) in q.iter().zip(e).enumerate() {
         let frames = setup.robot().frames_at(q, e);
@@ -228,9 +228,9 @@ fn a_compensations_scene_stands_at_the_path_points_stations() {
         input: compensate::Input::Path {
             name: "path.csv".into(),
             text: &text,
-            frame: stiffid::observation::deflection::Frame::Base,
+            frame: stiffid::internal::observation::deflection::Frame::Base,
         },
-        options: stiffid::machining::compensate::Options::for_setup(&setup),
+        options: stiffid::internal::machining::compensate::Options::for_setup(&setup),
     };
     let mut results = Vec::new();
     let mut report = compensate::run::<stiffid::Error, _>(request, |_, _, r, _| {

@@ -1,8 +1,8 @@
 //! Posture search: bounds, monotonicity, determinism, rank deficiency, and the paper setup.
 
 use nalgebra::Vector6;
-use stiffid::design::{self, Criterion, SearchOptions};
-use stiffid::setup::{self, CellConstraints, Setup};
+use stiffid::internal::design::{self, Criterion, SearchOptions};
+use stiffid::internal::setup::{self, CellConstraints, Setup};
 
 fn paper() -> Setup {
     setup::builtin("zhang2021-comau-nj165").unwrap()
@@ -193,7 +193,7 @@ fn cell_constraints_are_respected() {
             "loading point at {} m, floor {floor}",
             height(q)
         );
-        assert!(stiffid::cell::feasibility(&setup, q).feasible());
+        assert!(stiffid::internal::cell::feasibility(&setup, q).feasible());
     }
 }
 
@@ -302,7 +302,7 @@ fn searches_say_why_they_stopped() {
 fn exact_constraint_gradients_end_no_worse_than_finite_differences_in_a_cell() {
     let text = include_str!("../../../../examples/cell/zhang2021-tracker.toml");
     let setup = setup::parse(text, "zhang2021-tracker.toml", |r, _| {
-        stiffid::robot::presets::get(r)
+        stiffid::internal::robot::presets::get(r)
     })
     .unwrap();
     let fd = SearchOptions {
@@ -330,7 +330,7 @@ fn exact_constraint_gradients_end_no_worse_than_finite_differences_in_a_cell() {
         );
         for q in &exact.postures {
             assert!(
-                stiffid::cell::feasibility(&setup, q).feasible(),
+                stiffid::internal::cell::feasibility(&setup, q).feasible(),
                 "start {seed}"
             );
         }

@@ -2,9 +2,9 @@
 //! never a panic later, and the builder and the TOML path give the same setup.
 
 use nalgebra::{Vector3, Vector6};
-use stiffid::common::limits::JointBox;
-use stiffid::robot::presets;
-use stiffid::setup::{self, Noise, RopeLoad, Setup, SetupBuilder, Tracker};
+use stiffid::internal::common::limits::JointBox;
+use stiffid::internal::robot::presets;
+use stiffid::internal::setup::{self, Noise, RopeLoad, Setup, SetupBuilder, Tracker};
 use stiffid::Error;
 
 fn mm(x: f64, y: f64, z: f64) -> Vector3<f64> {
@@ -216,8 +216,8 @@ fn box_errors_show_the_value_beside_the_range() {
 /// the paper's setup and its postures are not.
 #[test]
 fn unit_slips_get_a_plausibility_warning() {
-    use stiffid::setup::plausibility::{radians_as_degrees, warnings};
-    let paper = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    use stiffid::internal::setup::plausibility::{radians_as_degrees, warnings};
+    let paper = stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap();
     assert!(warnings(&paper).is_empty(), "{:?}", warnings(&paper));
     let tool = paper.tool();
     let metres: Vec<_> = tool.measuring_points.iter().map(|p| p * 1e-3).collect();
@@ -257,12 +257,13 @@ fn the_tools_weight_is_a_wrench_at_the_tcp() {
         "/../../examples/milling/kuka-milling.toml"
     ))
     .unwrap();
-    let s = stiffid::setup::parse(&base, "kuka-milling.toml", |r, _| presets::get(r)).unwrap();
+    let s = stiffid::internal::setup::parse(&base, "kuka-milling.toml", |r, _| presets::get(r))
+        .unwrap();
     let p = *s.payload().unwrap();
     assert_eq!(p.mass, 25.0);
     let tcp = s.tool().tcp;
     let down = p.wrench(&nalgebra::UnitQuaternion::identity(), &tcp);
-    let g = 25.0 * stiffid::setup::GRAVITY;
+    let g = 25.0 * stiffid::internal::setup::GRAVITY;
     assert_eq!(down, nalgebra::Vector6::new(0.0, 0.0, -g, 0.0, 0.0, 0.0));
     // The tool axis horizontal (the flange turned 90 deg about x): the centre of mass sits
     // 130 mm along +y of the TCP, its weight a moment of -0.13 g m about x.
@@ -273,7 +274,7 @@ fn the_tools_weight_is_a_wrench_at_the_tcp() {
         "{w}"
     );
     let alone = base.replace("centre_of_mass_mm = [0, 0, 120]\n", "");
-    let e = stiffid::setup::parse(&alone, "k.toml", |r, _| presets::get(r))
+    let e = stiffid::internal::setup::parse(&alone, "k.toml", |r, _| presets::get(r))
         .unwrap_err()
         .to_string();
     assert!(
@@ -281,12 +282,12 @@ fn the_tools_weight_is_a_wrench_at_the_tcp() {
         "{e}"
     );
     let heavy = base.replace("mass_kg = 25", "mass_kg = 1e9");
-    let e = stiffid::setup::parse(&heavy, "k.toml", |r, _| presets::get(r))
+    let e = stiffid::internal::setup::parse(&heavy, "k.toml", |r, _| presets::get(r))
         .unwrap_err()
         .to_string();
     assert!(e.contains("tool.mass_kg"), "{e}");
     assert!(s.tcp_given());
-    assert!(!stiffid::setup::builtin("fanuc-r2000ic-165f")
+    assert!(!stiffid::internal::setup::builtin("fanuc-r2000ic-165f")
         .unwrap()
         .tcp_given());
 }

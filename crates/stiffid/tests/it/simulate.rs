@@ -2,9 +2,9 @@
 //! independence of the thread count.
 
 use nalgebra::Vector6;
-use stiffid::common::limits;
-use stiffid::setup::{self, Noise};
-use stiffid::study::simulate::{monte_carlo, monte_carlo_with_predictions, Options};
+use stiffid::internal::common::limits;
+use stiffid::internal::setup::{self, Noise};
+use stiffid::internal::study::simulate::{monte_carlo, monte_carlo_with_predictions, Options};
 
 /// Six spread postures within the paper's Table 1 bounds, deg.
 fn group() -> Vec<Vector6<f64>> {
@@ -148,7 +148,7 @@ fn predictions_given_are_kept_and_must_match_the_groups() {
 #[test]
 fn a_seven_parameter_model_agrees_with_the_prediction_at_2000_runs() {
     let paper = setup::builtin("zhang2021-comau-nj165").unwrap();
-    let mut tilt = stiffid::model::Family::Tilt
+    let mut tilt = stiffid::internal::model::Family::Tilt
         .springs(paper.robot(), &[3], Some(5e6), None, "test")
         .unwrap();
     tilt.truncate(1);
@@ -157,7 +157,7 @@ fn a_seven_parameter_model_agrees_with_the_prediction_at_2000_runs() {
         .with_virtual_springs(tilt)
         .build()
         .unwrap();
-    let group = stiffid::design::random_group(&model, 12, 3);
+    let group = stiffid::internal::design::random_group(&model, 12, 3);
     let options = Options {
         runs: 2000,
         seed: 11,
@@ -212,7 +212,7 @@ fn a_seven_parameter_model_agrees_with_the_prediction_at_2000_runs() {
 #[test]
 fn at_the_smallest_noise_a_virtual_spring_is_recovered() {
     let paper = setup::builtin("zhang2021-comau-nj165").unwrap();
-    let mut tilt = stiffid::model::Family::Tilt
+    let mut tilt = stiffid::internal::model::Family::Tilt
         .springs(paper.robot(), &[3], Some(5e6), None, "test")
         .unwrap();
     tilt.truncate(1);
@@ -225,7 +225,7 @@ fn at_the_smallest_noise_a_virtual_spring_is_recovered() {
         })
         .build()
         .unwrap();
-    let group = stiffid::design::random_group(&model, 10, 2);
+    let group = stiffid::internal::design::random_group(&model, 10, 2);
     let sim = &monte_carlo(&model, &[group], &Options { runs: 3, seed: 1 }).unwrap()[0];
     assert!(
         sim.spring_mean_deviation_pct[0][0] < 1e-6,

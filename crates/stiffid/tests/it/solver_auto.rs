@@ -2,9 +2,9 @@
 //! SLSQP on the maximum-type ones and `scaled-cond`, in local and global searches and in the
 //! study, bit for bit.
 
-use stiffid::design::{self, Criterion, SearchOptions, Solver};
-use stiffid::setup;
-use stiffid::study::{self, Options};
+use stiffid::internal::design::{self, Criterion, SearchOptions, Solver};
+use stiffid::internal::setup;
+use stiffid::internal::study::{self, Options};
 
 fn with(solver: Solver) -> SearchOptions {
     SearchOptions {

@@ -9,15 +9,15 @@
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 use std::sync::Arc;
 use stiffid::app::compensate::{self, document::Document, Input, Report};
-use stiffid::machining::compensate::{
+use stiffid::internal::machining::compensate::{
     self as comp, speed_shares, Aggregate, Compensated, Free, FreeVariables, Objective, Options,
     PathPoint, Target,
 };
-use stiffid::machining::dynamics::Dynamics;
-use stiffid::observation::deflection::Frame;
-use stiffid::robot::external::ExternalValues;
-use stiffid::robot::presets;
-use stiffid::{setup, Error, Setup};
+use stiffid::internal::machining::dynamics::Dynamics;
+use stiffid::internal::observation::deflection::Frame;
+use stiffid::internal::robot::external::ExternalValues;
+use stiffid::internal::robot::presets;
+use stiffid::{internal::setup, Error, Setup};
 
 const TRACK: &str = include_str!("../../../../examples/track/track-cell.toml");
 
@@ -226,7 +226,7 @@ fn the_paths_own_moves_are_kept_when_they_break_the_limit() {
 
 #[test]
 fn bad_speeds_and_feeds_are_refused_naming_the_file_and_the_field() {
-    let robot = include_str!("../../presets/kuka-kr210-robond.toml");
+    let robot = include_str!("../../../stiffid-core/presets/kuka-kr210-robond.toml");
     let with = |v: &str| {
         robot.replacen(
             "convention =",
@@ -235,17 +235,17 @@ fn bad_speeds_and_feeds_are_refused_naming_the_file_and_the_field() {
         )
     };
     let err = |r: stiffid::Result<stiffid::Robot>| r.unwrap_err().to_string();
-    let zero = err(stiffid::robot::file::parse(
+    let zero = err(stiffid::internal::robot::file::parse(
         &with("[0, 100, 100, 100, 100, 100]"),
         "kr210.toml",
     ));
     assert!(zero.contains("kr210.toml: max_speed_deg_s[1]"), "{zero}");
-    let high = err(stiffid::robot::file::parse(
+    let high = err(stiffid::internal::robot::file::parse(
         &with("[100, 100, 100, 100, 100, 2e4]"),
         "kr210.toml",
     ));
     assert!(high.contains("max_speed_deg_s[6]"), "{high}");
-    let five = err(stiffid::robot::file::parse(
+    let five = err(stiffid::internal::robot::file::parse(
         &with("[100, 100, 100, 100, 100]"),
         "kr210.toml",
     ));
@@ -253,7 +253,10 @@ fn bad_speeds_and_feeds_are_refused_naming_the_file_and_the_field() {
         five.contains("kr210.toml") && five.contains("max_speed_deg_s"),
         "{five}"
     );
-    let ok = stiffid::robot::file::parse(&with("[100, 100, 100, 100, 100, 360]"), "kr210.toml");
+    let ok = stiffid::internal::robot::file::parse(
+        &with("[100, 100, 100, 100, 100, 360]"),
+        "kr210.toml",
+    );
     assert!((ok.unwrap().max_speeds()[5] - 2.0 * std::f64::consts::PI).abs() < 1e-12);
     // A rotary speed on the linear track.
     let wrong = TRACK.replacen(
@@ -279,7 +282,7 @@ fn bad_speeds_and_feeds_are_refused_naming_the_file_and_the_field() {
     );
     // A feed of 0 in a path file: its line and column.
     let (text, _) = trim(0.0);
-    let feeds = stiffid::machining::path::feeds(&text)
+    let feeds = stiffid::internal::machining::path::feeds(&text)
         .unwrap_err()
         .to_string();
     assert!(
@@ -294,8 +297,10 @@ fn bad_speeds_and_feeds_are_refused_naming_the_file_and_the_field() {
 /// axis.
 #[test]
 fn partial_urdf_speeds_survive_the_calibrated_robot_file() {
-    use stiffid::metrology::calibration::error_model::MeasuredIn;
-    use stiffid::metrology::calibration::{gravity, robot_file, ErrorModel, Estimate, Geometry};
+    use stiffid::internal::metrology::calibration::error_model::MeasuredIn;
+    use stiffid::internal::metrology::calibration::{
+        gravity, robot_file, ErrorModel, Estimate, Geometry,
+    };
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/comau-nj165.urdf");
     let urdf = std::fs::read_to_string(path).unwrap();
     let parts: Vec<&str> = urdf.split(r#"velocity="2""#).collect();
@@ -305,7 +310,7 @@ fn partial_urdf_speeds_survive_the_calibrated_robot_file() {
         text += &format!(r#"velocity="{v}""#);
         text += part;
     }
-    let robot = stiffid::robot::urdf::parse(&text, "partial.urdf", None).unwrap();
+    let robot = stiffid::internal::robot::urdf::parse(&text, "partial.urdf", None).unwrap();
     let want = [1.5, 2.0, 2.5, f64::INFINITY, f64::INFINITY, f64::INFINITY];
     assert_eq!(robot.max_speeds().as_slice(), want);
     let points = [Vector3::new(0.1, 0.0, 0.2)];
@@ -317,7 +322,7 @@ fn partial_urdf_speeds_survive_the_calibrated_robot_file() {
     };
     let file = robot_file::robot_toml(&model, &estimate).unwrap();
     assert!(file.contains("max_speed_deg_s = ["), "{file}");
-    let back = stiffid::robot::file::parse(&file, "calibrated.toml").unwrap();
+    let back = stiffid::internal::robot::file::parse(&file, "calibrated.toml").unwrap();
     for (got, want) in back.max_speeds().iter().zip(want) {
         match want.is_finite() {
             true => assert!((got - want).abs() < 1e-12 * want, "{got} {want}"),
@@ -325,10 +330,13 @@ fn partial_urdf_speeds_survive_the_calibrated_robot_file() {
         }
     }
     // In a robot file: inf is no limit; NaN, -inf, 0, negatives and above 10 000 are refused.
-    let robot = include_str!("../../presets/kuka-kr210-robond.toml");
+    let robot = include_str!("../../../stiffid-core/presets/kuka-kr210-robond.toml");
     let with = |v: &str| {
         let line = format!("max_speed_deg_s = [100, 100, {v}, 100, 100, 100]\nconvention =");
-        stiffid::robot::file::parse(&robot.replacen("convention =", &line, 1), "kr210.toml")
+        stiffid::internal::robot::file::parse(
+            &robot.replacen("convention =", &line, 1),
+            "kr210.toml",
+        )
     };
     assert_eq!(with("inf").unwrap().max_speeds()[2], f64::INFINITY);
     for bad in ["nan", "-inf", "0", "-5", "10001"] {

@@ -6,14 +6,14 @@
 
 use nalgebra::{Isometry3, Vector3, Vector6};
 use stiffid::app::compensate::{run, Input, Report, Request};
-use stiffid::common::stop::Stop;
-use stiffid::common::warning::WarningKind;
-use stiffid::machining::compensate::{self, Compensated, Options, PathPoint};
-use stiffid::machining::dynamics::Dynamics;
-use stiffid::observation::deflection::Frame;
-use stiffid::robot::ik::{self, tool_pose};
-use stiffid::robot::presets;
-use stiffid::{setup, Error, Setup};
+use stiffid::internal::common::stop::Stop;
+use stiffid::internal::common::warning::WarningKind;
+use stiffid::internal::machining::compensate::{self, Compensated, Options, PathPoint};
+use stiffid::internal::machining::dynamics::Dynamics;
+use stiffid::internal::observation::deflection::Frame;
+use stiffid::internal::robot::ik::{self, tool_pose};
+use stiffid::internal::robot::presets;
+use stiffid::{internal::setup, Error, Setup};
 
 #[test]
 fn the_nonnegative_fit_says_why_it_stopped_in_the_identify_document() {
@@ -28,7 +28,7 @@ fn the_nonnegative_fit_says_why_it_stopped_in_the_identify_document() {
             m
         })
         .collect();
-    let run = |data: &[stiffid::observation::Measurement], nonnegative: bool| {
+    let run = |data: &[stiffid::internal::observation::Measurement], nonnegative: bool| {
         let report = identify::run(Request::<&[u8]> {
             progress: &(),
             setup_name: "paper".into(),

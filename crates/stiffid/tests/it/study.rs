@@ -3,10 +3,10 @@
 
 use nalgebra::Vector6;
 use std::sync::Mutex;
-use stiffid::design::{Criterion, Evaluation};
-use stiffid::study::simulate::GroupSimulation;
-use stiffid::study::{self, Group, Options, Origin, StartTrial, Study};
-use stiffid::{setup, Error, Progress, Setup};
+use stiffid::internal::design::{Criterion, Evaluation};
+use stiffid::internal::study::simulate::GroupSimulation;
+use stiffid::internal::study::{self, Group, Options, Origin, StartTrial, Study};
+use stiffid::{internal::setup, Error, Progress, Setup};
 
 fn paper() -> Setup {
     setup::builtin("zhang2021-comau-nj165").unwrap()
@@ -47,7 +47,7 @@ fn group(origin: Origin, rates: [f64; 6], classical: f64, levels: usize) -> Grou
             relative_std: Vector6::zeros(),
             spring_relative_std: Vec::new(),
             predicted_deviation_pct: predicted.clone(),
-            identifiability: stiffid::identify::svd::Identifiability {
+            identifiability: stiffid::internal::identify::svd::Identifiability {
                 rank: 6,
                 scaled_cond: 1.0,
                 unidentifiable: Vec::new(),

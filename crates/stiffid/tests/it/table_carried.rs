@@ -6,8 +6,8 @@
 use nalgebra::Vector6;
 use stiffid::app::purpose::{self, CalibrationOptions};
 use stiffid::app::select::CANDIDATE_ANGLES;
-use stiffid::design::observability::Placed;
-use stiffid::robot::external::ExternalValues;
+use stiffid::internal::design::observability::Placed;
+use stiffid::internal::robot::external::ExternalValues;
 use stiffid::Setup;
 
 use crate::carried_obstacles::arm_to_box;
@@ -21,8 +21,8 @@ const CELL: &str = "\n[cell]\nclearance_mm = 20\n[tracker]\nposition_mm = [3000,
 
 fn cell() -> Setup {
     let text = SETUP.to_string() + CELL;
-    stiffid::setup::parse(&text, "table.toml", |name, _| {
-        stiffid::robot::presets::get(name)
+    stiffid::internal::setup::parse(&text, "table.toml", |name, _| {
+        stiffid::internal::robot::presets::get(name)
     })
     .unwrap()
 }

@@ -10,13 +10,13 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use stiffid::app::purpose::{self, CalibrationOptions, Purpose};
 use stiffid::app::select::{self, Method, Request};
-use stiffid::design::observability::{CalibrationCriterion, CalibrationDesign, Placed};
-use stiffid::design::{Criterion, SearchOptions};
-use stiffid::metrology::calibration::error_model::{Observation, Target};
-use stiffid::metrology::calibration::fit::{self, Options};
-use stiffid::metrology::calibration::validation::validate;
-use stiffid::metrology::calibration::{ErrorModel, Estimate};
-use stiffid::robot::external::ExternalValues;
+use stiffid::internal::design::observability::{CalibrationCriterion, CalibrationDesign, Placed};
+use stiffid::internal::design::{Criterion, SearchOptions};
+use stiffid::internal::metrology::calibration::error_model::{Observation, Target};
+use stiffid::internal::metrology::calibration::fit::{self, Options};
+use stiffid::internal::metrology::calibration::validation::validate;
+use stiffid::internal::metrology::calibration::{ErrorModel, Estimate};
+use stiffid::internal::robot::external::ExternalValues;
 use stiffid::Setup;
 
 /// A KUKA KR 210 on a fixed base, a tilt-rotate positioner beside it with three reflectors on
@@ -63,8 +63,8 @@ const POSTURES: usize = 16;
 const NOISE: f64 = 2e-5;
 
 fn setup() -> Setup {
-    stiffid::setup::parse(SETUP, "table.toml", |name, _| {
-        stiffid::robot::presets::get(name)
+    stiffid::internal::setup::parse(SETUP, "table.toml", |name, _| {
+        stiffid::internal::robot::presets::get(name)
     })
     .unwrap()
 }
@@ -319,7 +319,7 @@ fn designed_angles_beat_random_angles() {
     // Held out: the table's reflectors at 40 random angles (points of the part where the
     // positioner puts them). Each campaign is read with the same noise draws (the arm's readings
     // alike), over ten draws.
-    let held_q = stiffid::design::random_group(&setup, 40, 11);
+    let held_q = stiffid::internal::design::random_group(&setup, 40, 11);
     let held: Vec<Placed> = held_q
         .iter()
         .map(|q| (*q, random_angle(&mut rng)))
@@ -365,8 +365,8 @@ fn reflectors_without_a_positioner_are_on_a_fixed_part() {
         })
         .collect::<String>();
     let parse = |text: &str| {
-        stiffid::setup::parse(text, "table.toml", |name, _| {
-            stiffid::robot::presets::get(name)
+        stiffid::internal::setup::parse(text, "table.toml", |name, _| {
+            stiffid::internal::robot::presets::get(name)
         })
     };
     let setup = parse(&without).unwrap();

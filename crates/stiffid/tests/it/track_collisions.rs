@@ -5,15 +5,15 @@
 //! above its own.
 
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
-use stiffid::cell::{capsules, CheckKind, Checker};
-use stiffid::machining::compensate::{
+use stiffid::internal::cell::{capsules, CheckKind, Checker};
+use stiffid::internal::machining::compensate::{
     self, Aggregate, Compensated, Free, FreeVariables, Options, PathPoint, Target,
 };
-use stiffid::observation::deflection::Frame;
-use stiffid::robot::external::{ExternalAxes, ExternalAxis, ExternalValues};
-use stiffid::robot::presets;
-use stiffid::setup::{Cell, Obstacle};
-use stiffid::{setup, Setup};
+use stiffid::internal::observation::deflection::Frame;
+use stiffid::internal::robot::external::{ExternalAxes, ExternalAxis, ExternalValues};
+use stiffid::internal::robot::presets;
+use stiffid::internal::setup::{Cell, Obstacle};
+use stiffid::{internal::setup, Setup};
 
 /// The FANUC milling example on a track along x (0 to 6 m) in a cell with `obstacles` and a
 /// clearance of 10 mm.

@@ -13,9 +13,9 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Uniform};
 use stiffid::app::purpose::{CalibrationOptions, Purpose};
 use stiffid::app::select::{self, Method, Request};
-use stiffid::design::{Criterion, SearchOptions};
-use stiffid::metrology::calibration::gravity::Gravity;
-use stiffid::robot::external::ExternalValues;
+use stiffid::internal::design::{Criterion, SearchOptions};
+use stiffid::internal::metrology::calibration::gravity::Gravity;
+use stiffid::internal::robot::external::ExternalValues;
 
 /// The tracker, fixed in the cell beside the middle of the rail (mm): every posture is read
 /// with its line of sight clear from wherever the carriage stands.
@@ -66,8 +66,8 @@ fn fixed_case() -> Case {
         "[bounds]\nlower_deg = [-90.0, -60.0, -180.0, -180.0, -90.0, -180.0]\nupper_deg = [90.0, 40.0, -40.0, 180.0, 90.0, 180.0]",
     ) + TRACKER;
     let robot = true_robot::dh_robot_text();
-    let setup = stiffid::setup::parse(&text, "setup.toml", |_, _| {
-        stiffid::robot::file::parse(&robot, "robot.toml")
+    let setup = stiffid::internal::setup::parse(&text, "setup.toml", |_, _| {
+        stiffid::internal::robot::file::parse(&robot, "robot.toml")
     })
     .unwrap();
     Case {

@@ -6,16 +6,16 @@
 //! station.
 
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
-use stiffid::cell::{CheckKind, Checker};
-use stiffid::machining::cell::on_carriage;
-use stiffid::machining::compensate::{
+use stiffid::internal::cell::{CheckKind, Checker};
+use stiffid::internal::machining::cell::on_carriage;
+use stiffid::internal::machining::compensate::{
     self, ChosenValues, Free, FreeVariables, MapVariable, Options, PathPoint, Target,
 };
-use stiffid::observation::deflection::Frame;
-use stiffid::robot::external::{ExternalAxes, ExternalAxis, ExternalValues};
-use stiffid::robot::presets;
-use stiffid::setup::{Cell, Obstacle};
-use stiffid::{setup, Setup};
+use stiffid::internal::observation::deflection::Frame;
+use stiffid::internal::robot::external::{ExternalAxes, ExternalAxis, ExternalValues};
+use stiffid::internal::robot::presets;
+use stiffid::internal::setup::{Cell, Obstacle};
+use stiffid::{internal::setup, Setup};
 
 /// A floor 0.3 m below the base and a box beside the path, in the cell frame.
 fn cell_at(shift: f64) -> Cell {
@@ -138,7 +138,7 @@ fn every_cell_of_the_track_map_is_a_compensation_at_its_station() {
             assert!((m.deflection[(i, k)] - deflection).abs() <= 1e-12 + 1e-9 * deflection);
             // The checker of a fixed-base robot, its cell moved back by the station.
             let fixed = milling(false, station);
-            let f = stiffid::cell::feasibility(&fixed, &r.q);
+            let f = stiffid::internal::cell::feasibility(&fixed, &r.q);
             let clearance = (f.checks.iter())
                 .filter(|c| matches!(c.kind, CheckKind::Floor | CheckKind::Obstacles))
                 .filter_map(|c| c.clearance)

@@ -5,16 +5,18 @@
 use nalgebra::{DVector, Unit, Vector3, Vector6};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use stiffid::identify::svd::fit;
-use stiffid::model::Family;
-use stiffid::observation::{posture_block, Measurement, Observations};
-use stiffid::robot::external::{ErrorMotions, ExternalAxes, ExternalAxis, ExternalValues};
+use stiffid::internal::identify::svd::fit;
+use stiffid::internal::model::Family;
+use stiffid::internal::observation::{posture_block, Measurement, Observations};
+use stiffid::internal::robot::external::{
+    ErrorMotions, ExternalAxes, ExternalAxis, ExternalValues,
+};
 use stiffid::Setup;
 
 /// The paper's COMAU on a 6 m track along (1, 0.1, 0) with a pitch and a straightness error,
 /// its model the drives and the carriage's three springs.
 fn on_track() -> (Setup, DVector<f64>) {
-    let paper = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let paper = stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap();
     let track = ExternalAxis {
         errors: ErrorMotions::new(vec![[0.0, 1e-4, 0.0, 0.0, 2e-4, 0.0], [0.0; 6]]).unwrap(),
         ..ExternalAxis::linear(
@@ -107,9 +109,11 @@ fn the_comparison_of_models_finds_the_carriage() {
         .with_virtual_springs(Vec::new())
         .build()
         .unwrap();
-    let pool =
-        stiffid::identify::compare::pool_by_name(&drives, &["carriage".into(), "base".into()])
-            .unwrap();
+    let pool = stiffid::internal::identify::compare::pool_by_name(
+        &drives,
+        &["carriage".into(), "base".into()],
+    )
+    .unwrap();
     let names: Vec<&str> = pool.candidates.iter().map(|s| s.name.as_str()).collect();
     assert_eq!(&names[..3], ["carriage_x", "carriage_rx", "carriage_ry"]);
     // base_x and base_rx lie on the carriage's lines only when the track runs along x: here it
@@ -121,9 +125,10 @@ fn the_comparison_of_models_finds_the_carriage() {
     let dropped: Vec<&str> = pool.dropped.iter().map(|d| d.name.as_str()).collect();
     assert_eq!(dropped, ["base_rz"]);
     let others = ["carriage".to_string(), "tool".to_string()];
-    let pool = stiffid::identify::compare::pool_by_name(&drives, &others).unwrap();
+    let pool = stiffid::internal::identify::compare::pool_by_name(&drives, &others).unwrap();
     let comparison =
-        stiffid::identify::compare::compare(&drives, &data, &pool.candidates, false).unwrap();
+        stiffid::internal::identify::compare::compare(&drives, &data, &pool.candidates, false)
+            .unwrap();
     let mut chosen: Vec<&str> = (comparison.recommended_springs.iter())
         .map(|s| s.name.as_str())
         .collect();
@@ -157,22 +162,22 @@ fn measurements_with_the_track_are_read_and_checked() {
             d.join(",")
         );
     }
-    let file = stiffid::io::measurements::parse(&csv).unwrap();
+    let file = stiffid::internal::io::measurements::parse(&csv).unwrap();
     assert!((file.measurements[0].e.as_slice()[0] - 2.0).abs() < 1e-15);
     let obs = Observations::from_measurements(setup.arm(), &file.measurements).unwrap();
     let reference = Observations::from_measurements(setup.arm(), &data).unwrap();
     assert!((&obs.psi - &reference.psi).amax() < 1e-12 * reference.psi.amax());
 
     let outside = csv.replace(",2000,", ",6500,");
-    let file = stiffid::io::measurements::parse(&outside).unwrap();
+    let file = stiffid::internal::io::measurements::parse(&outside).unwrap();
     let e = Observations::from_measurements(setup.arm(), &file.measurements).unwrap_err();
     assert!(
         e.to_string().contains("e1_mm (track)") && e.to_string().contains("6500"),
         "{e}"
     );
 
-    let paper = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
-    let file = stiffid::io::measurements::parse(&csv).unwrap();
+    let paper = stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let file = stiffid::internal::io::measurements::parse(&csv).unwrap();
     let e = Observations::from_measurements(paper.arm(), &file.measurements).unwrap_err();
     assert!(e.to_string().contains("no external axes"), "{e}");
 }
@@ -181,7 +186,7 @@ fn measurements_with_the_track_are_read_and_checked() {
 fn at(setup: &Setup, stations: Vec<ExternalValues>) -> stiffid::app::select::Request<'_> {
     stiffid::app::select::Request {
         setup,
-        criterion: stiffid::design::Criterion::RelativeA,
+        criterion: stiffid::internal::design::Criterion::RelativeA,
         purpose: Default::default(),
         calibration: Default::default(),
         method: stiffid::app::select::Method::Global,
@@ -189,7 +194,7 @@ fn at(setup: &Setup, stations: Vec<ExternalValues>) -> stiffid::app::select::Req
         pool: None,
         postures: 6,
         target_pct: None,
-        options: stiffid::design::SearchOptions {
+        options: stiffid::internal::design::SearchOptions {
             starts: 6,
             ..Default::default()
         },
@@ -245,7 +250,7 @@ fn a_design_on_a_track_keeps_the_best_station() {
     let outside = vec![ExternalValues::new(&[6.5]).unwrap()];
     let e = refused(outside, &setup);
     assert!(e.contains("e1_mm (track)") && e.contains("6500"), "{e}");
-    let paper = stiffid::setup::builtin("zhang2021-comau-nj165").unwrap();
+    let paper = stiffid::internal::setup::builtin("zhang2021-comau-nj165").unwrap();
     assert!(refused(stations, &paper).contains("no external axes"));
 }
 
@@ -258,8 +263,8 @@ fn a_design_on_a_positioner_cell_needs_no_station() {
     let start = text.find("[[external_axis]]\nname = \"track\"").unwrap();
     let end = text.find("# The positioner: e2").unwrap();
     let positioner_only = format!("{}{}", &text[..start], &text[end..]);
-    let setup = stiffid::setup::parse(&positioner_only, "cell.toml", |r, _| {
-        stiffid::robot::presets::get(r)
+    let setup = stiffid::internal::setup::parse(&positioner_only, "cell.toml", |r, _| {
+        stiffid::internal::robot::presets::get(r)
     })
     .unwrap();
     let axes = setup.robot().external().unwrap();

@@ -13,16 +13,16 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 use stiffid::app::compensate::{self, Input};
-use stiffid::identify::svd::fit;
-use stiffid::machining::compensate::{
+use stiffid::internal::identify::svd::fit;
+use stiffid::internal::machining::compensate::{
     Aggregate, Compensated, Free, FreeVariables, Objective, Options, PathPoint,
 };
-use stiffid::metrology::calibration::error_model::Observation;
-use stiffid::metrology::calibration::gravity::Gravity;
-use stiffid::observation::deflection::Frame;
-use stiffid::observation::{Measurement, Observations};
-use stiffid::robot::external::{ExternalAxes, ExternalValues};
-use stiffid::robot::ik;
+use stiffid::internal::metrology::calibration::error_model::Observation;
+use stiffid::internal::metrology::calibration::gravity::Gravity;
+use stiffid::internal::observation::deflection::Frame;
+use stiffid::internal::observation::{Measurement, Observations};
+use stiffid::internal::robot::external::{ExternalAxes, ExternalValues};
+use stiffid::internal::robot::ik;
 
 /// The track's travel, m.
 const TRAVEL: f64 = 6.0;
@@ -56,8 +56,8 @@ pub(crate) fn track_case_with(more: &str) -> true_robot::Case {
     ) + more;
     let robot = true_robot::dh_robot_text()
         + "\n[[external_axis]]\nname = \"track\"\nrole = \"carrier\"\ndirection = [1.0, 0.0, 0.0]\nlimits_mm = [0.0, 6000.0]\n";
-    let setup = stiffid::setup::parse(&text, "setup.toml", |_, _| {
-        stiffid::robot::file::parse(&robot, "robot.toml")
+    let setup = stiffid::internal::setup::parse(&text, "setup.toml", |_, _| {
+        stiffid::internal::robot::file::parse(&robot, "robot.toml")
     })
     .unwrap();
     true_robot::Case { setup, ..arm }
@@ -86,7 +86,7 @@ pub(crate) fn readings_with(
     rng: &mut ChaCha8Rng,
 ) -> String {
     let noise = Normal::new(0.0, noise).unwrap();
-    let header = stiffid::io::readings::header_with_loads();
+    let header = stiffid::internal::io::readings::header_with_loads();
     let mut text = match s {
         Some(_) => header.replace("q6_deg,", "q6_deg,e1_mm,"),
         None => header,
@@ -166,7 +166,7 @@ fn identified(
     qs: &[Vector6<f64>],
     s: &[f64],
     wrenches: &[Vector6<f64>],
-) -> stiffid::model::Compliance {
+) -> stiffid::internal::model::Compliance {
     let mut data = Vec::new();
     for (i, (q, s)) in qs.iter().zip(s).enumerate() {
         for (j, w) in wrenches.iter().enumerate() {
@@ -231,7 +231,7 @@ fn path(setup: &stiffid::Setup, q0: &Vector6<f64>) -> String {
 /// Compensates `text` (a path with `e1_mm`) on `setup` with `options`.
 pub(crate) fn compensated(
     setup: &stiffid::Setup,
-    compliance: &stiffid::model::Compliance,
+    compliance: &stiffid::internal::model::Compliance,
     options: &Options,
     text: &str,
 ) -> (Vec<PathPoint>, Vec<Compensated>) {

@@ -15,11 +15,11 @@ use nalgebra::{Isometry3, Point3, Vector3, Vector6};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
-use stiffid::machining::program::generate::Targets;
-use stiffid::machining::Language;
-use stiffid::metrology::calibration::error_model::Observation;
-use stiffid::metrology::calibration::gravity::Gravity;
-use stiffid::robot::external::ExternalValues;
+use stiffid::internal::machining::program::generate::Targets;
+use stiffid::internal::machining::Language;
+use stiffid::internal::metrology::calibration::error_model::Observation;
+use stiffid::internal::metrology::calibration::gravity::Gravity;
+use stiffid::internal::robot::external::ExternalValues;
 use stiffid::Setup;
 
 /// The fixed cell: the COMAU of [`true_robot::dh_case`] with the part where its tool is at
@@ -40,7 +40,7 @@ fn fixed_case() -> (Case, Isometry3<f64>) {
 /// rectangle compensated on `setup` with the part at its `[workpiece]`, joint targets.
 fn landing(
     truth: &Truth,
-    (setup, compliance): (&Setup, &stiffid::model::Compliance),
+    (setup, compliance): (&Setup, &stiffid::internal::model::Compliance),
     q0: &Vector6<f64>,
     part: &Isometry3<f64>,
 ) -> Row {
@@ -112,7 +112,7 @@ fn the_part_on_a_fixed_cell_located_by_the_calibration_lands_on_the_true_part() 
     // The nominal setup's part frame, repeated there, is refused naming both places.
     let (c, [r, p, y]) = (
         part.translation.vector * 1e3,
-        stiffid::robot::file::rpy(&part.rotation).map(f64::to_degrees),
+        stiffid::internal::robot::file::rpy(&part.rotation).map(f64::to_degrees),
     );
     let repeated = format!(
         "base_from_part = {{ xyz_mm = [{:?}, {:?}, {:?}], rpy_deg = [{r:?}, {p:?}, {y:?}] }}",
@@ -157,7 +157,8 @@ fn track_readings(
     rng: &mut ChaCha8Rng,
 ) -> String {
     let noise = Normal::new(0.0, true_cell::NOISE).unwrap();
-    let mut text = stiffid::io::readings::header().replace("q6_deg,", "q6_deg,e1_mm,") + "\n";
+    let mut text =
+        stiffid::internal::io::readings::header().replace("q6_deg,", "q6_deg,e1_mm,") + "\n";
     let mut row = |label: String, point: String, i: usize, cell: Point3<f64>| {
         let t = (truth.estimate.frame.inverse() * cell).coords;
         let t = t + Vector3::from_fn(|_, _| noise.sample(rng));
@@ -282,7 +283,7 @@ fn reflectors_no_rigid_transform_explains_are_refused() {
                 text: &data,
                 force: false,
             },
-            geometry: stiffid::metrology::calibration::Geometry::Full,
+            geometry: stiffid::internal::metrology::calibration::Geometry::Full,
             gravity: stiffid::app::calibrate::GravitySpec::Fixed(Gravity::None),
             gravity_bound: None,
             validate: None,
@@ -290,7 +291,7 @@ fn reflectors_no_rigid_transform_explains_are_refused() {
             cross_validate: false,
             priors: None,
             progress: &(),
-            maps: stiffid::metrology::calibration::maps::Spec::None,
+            maps: stiffid::internal::metrology::calibration::maps::Spec::None,
             error_motions: Default::default(),
             level: None,
             update: false,

@@ -10,8 +10,8 @@ use crate::true_table::{on_table, readings, reflectors_mm, table_case, Table, OV
 use nalgebra::{Isometry3, Point3, Translation3, Vector3, Vector6};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use stiffid::machining::compensate::Options;
-use stiffid::metrology::calibration::gravity::Gravity;
+use stiffid::internal::machining::compensate::Options;
+use stiffid::internal::metrology::calibration::gravity::Gravity;
 use stiffid::{Robot, Setup};
 
 /// The milled points (the part's frame, m): a circle of 150 mm about its origin with the tool
@@ -57,14 +57,14 @@ pub(crate) fn pointing(robot: &Robot, workpiece: &str) -> stiffid::Result<Setup>
     ) + "\n[workpiece]\n"
         + workpiece
         + "\n";
-    stiffid::setup::parse(&text, "setup.toml", |_, _| Ok(robot.clone()))
+    stiffid::internal::setup::parse(&text, "setup.toml", |_, _| Ok(robot.clone()))
 }
 
 /// The TCP error on the true cell (the true `table`, the part truly at `part`, true base frame)
 /// of `points` compensated on `setup` with the part at its `[workpiece]`.
 fn landing(
     (truth, table): (&Truth, &Table),
-    (setup, compliance): (&Setup, &stiffid::model::Compliance),
+    (setup, compliance): (&Setup, &stiffid::internal::model::Compliance),
     points: &[(Isometry3<f64>, f64)],
     part: &Isometry3<f64>,
 ) -> Row {

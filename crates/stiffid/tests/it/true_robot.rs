@@ -15,18 +15,18 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal, Uniform};
 use stiffid::app::calibrate::{self, document::Document};
 use stiffid::app::compensate::{self as compensate, Input};
-use stiffid::machining::compensate::{Compensated, Options};
-use stiffid::machining::program::cartesian::flags::ConfigurationData;
-use stiffid::machining::program::generate::{Settings, Targets};
-use stiffid::machining::program::krl::StatusTurn;
-use stiffid::machining::program::Dialect;
-use stiffid::machining::Language;
-use stiffid::metrology::calibration::error_model::{MeasuredIn, Observation, Target};
-use stiffid::metrology::calibration::gravity::{self, Gravity, LinkMass};
-use stiffid::metrology::calibration::{robot_file, ErrorModel, Estimate, Geometry};
-use stiffid::robot::configuration::Configuration;
-use stiffid::robot::ik;
-use stiffid::setup::{Controller, Kinematics};
+use stiffid::internal::machining::compensate::{Compensated, Options};
+use stiffid::internal::machining::program::cartesian::flags::ConfigurationData;
+use stiffid::internal::machining::program::generate::{Settings, Targets};
+use stiffid::internal::machining::program::krl::StatusTurn;
+use stiffid::internal::machining::program::Dialect;
+use stiffid::internal::machining::Language;
+use stiffid::internal::metrology::calibration::error_model::{MeasuredIn, Observation, Target};
+use stiffid::internal::metrology::calibration::gravity::{self, Gravity, LinkMass};
+use stiffid::internal::metrology::calibration::{robot_file, ErrorModel, Estimate, Geometry};
+use stiffid::internal::robot::configuration::Configuration;
+use stiffid::internal::robot::ik;
+use stiffid::internal::setup::{Controller, Kinematics};
 use stiffid::{Robot, Setup};
 
 /// The tracker's noise per coordinate, m.
@@ -74,7 +74,7 @@ pub(crate) fn masses() -> [LinkMass; 6] {
 pub(crate) fn dh_robot_text() -> String {
     let mut text = String::new();
     let m = masses();
-    for (i, part) in include_str!("../../presets/comau-smart5-nj165-3.0.toml")
+    for (i, part) in include_str!("../../../stiffid-core/presets/comau-smart5-nj165-3.0.toml")
         .split("[[joint]]\n")
         .enumerate()
     {
@@ -106,7 +106,7 @@ pub(crate) fn preset_angles(q: &Vector6<f64>) -> Vector6<f64> {
 }
 
 fn kinematic_angles(q: &Vector6<f64>) -> Vector6<f64> {
-    let preset = stiffid::robot::presets::get("comau-smart5-nj165-3.0").unwrap();
+    let preset = stiffid::internal::robot::presets::get("comau-smart5-nj165-3.0").unwrap();
     let map = preset.axis_map();
     map.matrix * q + map.offset
 }
@@ -117,8 +117,8 @@ pub(crate) fn dh_case() -> Case {
         "[bounds]\nlower_deg = [-90.0, -60.0, -180.0, -180.0, -90.0, -180.0]\nupper_deg = [90.0, 40.0, -40.0, 180.0, 90.0, 180.0]",
     );
     let robot = dh_robot_text();
-    let setup = stiffid::setup::parse(&text, "setup.toml", |_, _| {
-        stiffid::robot::file::parse(&robot, "robot.toml")
+    let setup = stiffid::internal::setup::parse(&text, "setup.toml", |_, _| {
+        stiffid::internal::robot::file::parse(&robot, "robot.toml")
     })
     .unwrap();
     Case {
@@ -134,8 +134,8 @@ fn urdf_case() -> Case {
         "[bounds]\nlower_deg = [-180.0, -180.0, -180.0, -180.0, -180.0, -180.0]\nupper_deg = [180.0, 180.0, 180.0, 180.0, 180.0, 180.0]",
     );
     let urdf = include_str!("../data/comau-nj165.urdf");
-    let setup = stiffid::setup::parse(&text, "setup.toml", |name, tip| {
-        stiffid::robot::urdf::parse(urdf, name, tip)
+    let setup = stiffid::internal::setup::parse(&text, "setup.toml", |name, tip| {
+        stiffid::internal::robot::urdf::parse(urdf, name, tip)
     })
     .unwrap();
     Case {
@@ -219,7 +219,7 @@ impl Truth {
         for (c, p) in self.model.parameters().iter().enumerate() {
             if let Target::Joint {
                 joint,
-                component: stiffid::metrology::calibration::error_model::Component::Theta,
+                component: stiffid::internal::metrology::calibration::error_model::Component::Theta,
             } = p.target
             {
                 estimate.values[c] += drift[joint];
@@ -243,7 +243,7 @@ impl Truth {
         rng: &mut ChaCha8Rng,
     ) -> String {
         let noise = Normal::new(0.0, NOISE).unwrap();
-        let mut text = stiffid::io::readings::header_with_loads() + "\n";
+        let mut text = stiffid::internal::io::readings::header_with_loads() + "\n";
         for (i, q) in qs.iter().enumerate() {
             for (step, w) in wrenches.iter().enumerate() {
                 for k in 0..self.model.points() {
@@ -253,7 +253,7 @@ impl Truth {
                         q: *q,
                         measured: Vector3::zeros(),
                         wrench: *w,
-                        e: stiffid::robot::external::ExternalValues::NONE,
+                        e: stiffid::internal::robot::external::ExternalValues::NONE,
                         table: false,
                         direction: Vector6::zeros(),
                     };
@@ -468,7 +468,7 @@ pub(crate) fn calibrated(
     held: &str,
 ) -> (
     Setup,
-    Option<stiffid::model::Compliance>,
+    Option<stiffid::internal::model::Compliance>,
     Isometry3<f64>,
     f64,
     Isometry3<f64>,
@@ -490,7 +490,7 @@ pub(crate) fn calibrated(
         cross_validate: false,
         priors: None,
         progress: &(),
-        maps: stiffid::metrology::calibration::maps::Spec::None,
+        maps: stiffid::internal::metrology::calibration::maps::Spec::None,
         error_motions: Default::default(),
         level: None,
         update: false,
@@ -503,7 +503,7 @@ pub(crate) fn calibrated(
     assert_eq!(held_points(&document), read_points(held), "held-out points");
     let compliance = document.stiffness_file.as_ref().map(|file| {
         let file = serde_json::to_string(file).unwrap();
-        let compliance = stiffid::io::stiffness::parse(&file)
+        let compliance = stiffid::internal::io::stiffness::parse(&file)
             .unwrap()
             .compliance(setup.model())
             .unwrap();
@@ -512,8 +512,11 @@ pub(crate) fn calibrated(
         compliance
     });
     // The calibrated robot as its file gives it: the one model of the robot.
-    let robot = stiffid::robot::file::parse(report.robot_toml.as_ref().unwrap(), "calibrated.toml")
-        .unwrap();
+    let robot = stiffid::internal::robot::file::parse(
+        report.robot_toml.as_ref().unwrap(),
+        "calibrated.toml",
+    )
+    .unwrap();
     assert_eq!(robot.own_weight().is_some(), gravity != Gravity::None);
     // It records the mount it was calibrated on.
     assert_eq!(robot.mount(), Some(&setup.workcell().controller().mount));
@@ -549,7 +552,7 @@ pub(crate) fn calibrated(
     }
     eprintln!(
         "calibration ({}): residual {:.4} mm, noise ratio {:.2}, held out {:.4} mm, nominal {:.4} mm",
-        stiffid::common::choice::Choice::name(gravity),
+        stiffid::internal::common::choice::Choice::name(gravity),
         report.fit.rms * 1e3,
         report.noise_ratio,
         held_rms * 1e3,
@@ -568,7 +571,7 @@ pub(crate) fn calibrated(
 /// and every point's result.
 fn program(
     setup: &Setup,
-    compliance: &stiffid::model::Compliance,
+    compliance: &stiffid::internal::model::Compliance,
     q0: &Vector6<f64>,
     targets: Targets,
 ) -> (String, Vec<Compensated>) {
@@ -584,7 +587,7 @@ fn program(
 /// program and every point's result.
 fn written(
     setup: &Setup,
-    compliance: &stiffid::model::Compliance,
+    compliance: &stiffid::internal::model::Compliance,
     q0: &Vector6<f64>,
     output: (Language, Targets),
 ) -> (String, Vec<Compensated>) {
@@ -595,7 +598,7 @@ fn written(
 /// `targets`: the program and every point's result.
 pub(crate) fn written_from(
     setup: &Setup,
-    compliance: &stiffid::model::Compliance,
+    compliance: &stiffid::internal::model::Compliance,
     (q0, gcode): (&Vector6<f64>, &str),
     output: (Language, Targets),
 ) -> (String, Vec<Compensated>) {
@@ -606,11 +609,12 @@ pub(crate) fn written_from(
 /// [`written_from`] under the process file `process` (its text).
 pub(crate) fn written_with(
     setup: &Setup,
-    compliance: &stiffid::model::Compliance,
+    compliance: &stiffid::internal::model::Compliance,
     (q0, gcode, process): (&Vector6<f64>, &str, &str),
     (output, targets): (Language, Targets),
 ) -> (String, Vec<Compensated>) {
-    let process = stiffid::machining::process::file::parse(process, "process.toml").unwrap();
+    let process =
+        stiffid::internal::machining::process::file::parse(process, "process.toml").unwrap();
     let mut options = Options::for_setup(setup);
     options.q0 = *q0;
     let request = compensate::Request {
@@ -681,7 +685,7 @@ pub(crate) fn with_part(setup: &Setup, q0: &Vector6<f64>) -> (Setup, Isometry3<f
 pub(crate) fn landing(
     truth: &Truth,
     nominal: &Robot,
-    (setup, compliance): (&Setup, &stiffid::model::Compliance),
+    (setup, compliance): (&Setup, &stiffid::internal::model::Compliance),
     q0: &Vector6<f64>,
     frame: &Isometry3<f64>,
 ) -> (Row, Row, Vec<Compensated>, f64) {
@@ -742,13 +746,13 @@ pub(crate) fn landing(
 pub(crate) fn gcode_landing(
     truth: &Truth,
     nominal: &Robot,
-    (setup, compliance): (&Setup, &stiffid::model::Compliance),
+    (setup, compliance): (&Setup, &stiffid::internal::model::Compliance),
     q0: &Vector6<f64>,
     frame: &Isometry3<f64>,
 ) -> Row {
     let part = *setup.workpiece().unwrap();
     let (text, results) = written(setup, compliance, q0, (Language::GCode, Targets::Joint));
-    let g = stiffid::machining::gcode::parse(&text, 1e-5).unwrap();
+    let g = stiffid::internal::machining::gcode::parse(&text, 1e-5).unwrap();
     assert_eq!(g.points.len(), results.len());
     let mut previous = results[0].q;
     let errors: Vec<f64> = (g.points.iter().zip(&results))

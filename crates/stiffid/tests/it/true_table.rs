@@ -14,11 +14,13 @@ use nalgebra::{Isometry3, Point3, Translation3, Unit, UnitQuaternion, Vector3, V
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
-use stiffid::machining::compensate::{Aggregate, Free, FreeVariables, Objective, Options};
-use stiffid::metrology::calibration::error_model::Observation;
-use stiffid::metrology::calibration::gravity::Gravity;
-use stiffid::robot::external::ExternalValues;
-use stiffid::robot::ik;
+use stiffid::internal::machining::compensate::{
+    Aggregate, Free, FreeVariables, Objective, Options,
+};
+use stiffid::internal::metrology::calibration::error_model::Observation;
+use stiffid::internal::metrology::calibration::gravity::Gravity;
+use stiffid::internal::robot::external::ExternalValues;
+use stiffid::internal::robot::ik;
 
 /// The tracker's noise per coordinate, m.
 const NOISE: f64 = 1.5e-5;
@@ -79,8 +81,8 @@ pub(crate) fn table_case() -> (true_robot::Case, Table, Isometry3<f64>) {
             c.y,
             c.z - 200.0
         );
-    let setup = stiffid::setup::parse(&text, "setup.toml", |_, _| {
-        stiffid::robot::file::parse(&robot, "robot.toml")
+    let setup = stiffid::internal::setup::parse(&text, "setup.toml", |_, _| {
+        stiffid::internal::robot::file::parse(&robot, "robot.toml")
     })
     .unwrap();
     (true_robot::Case { setup, ..arm }, table, over)
@@ -118,8 +120,8 @@ pub(crate) fn readings(
 ) -> String {
     let noise = Normal::new(0.0, NOISE).unwrap();
     let mut text = match table {
-        Some(_) => stiffid::io::readings::header().replace("q6_deg,", "q6_deg,e1_deg,"),
-        None => stiffid::io::readings::header(),
+        Some(_) => stiffid::internal::io::readings::header().replace("q6_deg,", "q6_deg,e1_deg,"),
+        None => stiffid::internal::io::readings::header(),
     } + "\n";
     let mut row = |label: String, point: String, q: &Vector6<f64>, e: f64, base: Vector3<f64>| {
         let t = truth.estimate.frame.inverse() * Point3::from(base);

@@ -3,19 +3,19 @@
 //! measurement frames, the unit check and the share of the deflection explained.
 
 use crate::common;
-use stiffid::identify::Identify;
-use stiffid::model::Compliance;
+use stiffid::internal::identify::Identify;
+use stiffid::internal::model::Compliance;
 
 use common::{deg, paper_measurements, synthetic, with_noise, PAPER_POSTURES_DEG};
 use nalgebra::{DMatrix, DVector, Isometry3, Matrix6, Translation3, UnitQuaternion, Vector6};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use stiffid::identify::cross_validation::Method;
-use stiffid::identify::validate;
-use stiffid::identify::{cross_validate, least_squares, nonnegative};
-use stiffid::io::measurements;
-use stiffid::observation::{Measurement, Observations};
-use stiffid::{setup, Error, Setup};
+use stiffid::internal::identify::cross_validation::Method;
+use stiffid::internal::identify::validate;
+use stiffid::internal::identify::{cross_validate, least_squares, nonnegative};
+use stiffid::internal::io::measurements;
+use stiffid::internal::observation::{Measurement, Observations};
+use stiffid::{internal::setup, Error, Setup};
 
 const FANUC_CSV: &str =
     include_str!("../../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
@@ -107,7 +107,7 @@ fn nonnegative_least_squares_matches_the_enumeration_of_active_sets() {
         });
         let b = Vector6::from_fn(|_, _| rng.random_range(-1.0..1.0));
         let fit = nonnegative::solve(&a, &b);
-        assert_eq!(fit.stop, stiffid::common::stop::Stop::Converged);
+        assert_eq!(fit.stop, stiffid::internal::common::stop::Stop::Converged);
         let truth = nnls_by_enumeration(&a, &b);
         assert!((fit.h - truth).amax() < 1e-10, "{} vs {}", fit.h, truth);
         assert!(fit.h.iter().all(|v| *v >= 0.0));
@@ -160,7 +160,7 @@ fn nonnegative_fit_of_a_negative_least_squares_solution_holds_it_at_zero() {
     assert_eq!(bounded.active_bounds, Some([true; 6]));
     assert_eq!(
         (plain.nonnegative_stop, bounded.nonnegative_stop),
-        (None, Some(stiffid::common::stop::Stop::Converged))
+        (None, Some(stiffid::internal::common::stop::Stop::Converged))
     );
     assert_eq!(bounded.compliance, Vector6::zeros());
     assert_eq!(bounded.physical(), [false; 6]);
@@ -273,7 +273,7 @@ fn tool_frame_forces_and_tracker_frame_displacements_give_the_base_frame_stiffne
     ));
     let setup = setup
         .to_builder()
-        .with_tracker(stiffid::setup::Tracker {
+        .with_tracker(stiffid::internal::setup::Tracker {
             position: tracker.translation.vector,
             max_incidence: None,
             measuring_normals: vec![nalgebra::Vector3::z()],
@@ -296,7 +296,10 @@ fn the_setup_reads_the_tracker_transform() {
         .unwrap()
         .to_string()
         + "\n[tracker]\nbase_from_tracker = { xyz_mm = [3000, 0, 500], rpy_deg = [0, 0, 90] }\n";
-    let s = setup::parse(&text, "t.toml", |r, _| stiffid::robot::presets::get(r)).unwrap();
+    let s = setup::parse(&text, "t.toml", |r, _| {
+        stiffid::internal::robot::presets::get(r)
+    })
+    .unwrap();
     let tracker = s.tracker().unwrap();
     let t = tracker.base_from_tracker.unwrap();
     assert!((t.translation.vector - nalgebra::Vector3::new(3.0, 0.0, 0.5)).norm() < 1e-12);
@@ -309,7 +312,11 @@ fn the_setup_reads_the_tracker_transform() {
         (x - nalgebra::Vector3::y()).norm() < 1e-12,
         "yaw 90 deg turns x into y: {x}"
     );
-    let parse = |text: &str| setup::parse(text, "t.toml", |r, _| stiffid::robot::presets::get(r));
+    let parse = |text: &str| {
+        setup::parse(text, "t.toml", |r, _| {
+            stiffid::internal::robot::presets::get(r)
+        })
+    };
     let bad = text.replace("rpy_deg = [0, 0, 90]", "rpy_deg = [0, nan, 90]");
     let e = parse(&bad).unwrap_err();
     assert!(
@@ -414,7 +421,7 @@ fn validation_reports_the_share_of_the_deflection_explained() {
 /// same method refitted by hand without the fold's measurements.
 #[test]
 fn bounded_and_robust_folds_are_refits_with_the_full_fits_method() {
-    use stiffid::identify::Loss;
+    use stiffid::internal::identify::Loss;
     let setup = paper();
     let data = noisy_paper_data(&setup, 1, 5);
     let obs = Observations::from_measurements(setup.arm(), &data).unwrap();

@@ -4,7 +4,7 @@
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3, Vector6};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use stiffid::robot::{presets, urdf};
+use stiffid::internal::robot::{presets, urdf};
 use stiffid::{AxisMap, Coordinates, Error, Robot};
 
 fn data(name: &str) -> String {
@@ -254,10 +254,10 @@ fn the_tip_defaults_to_the_leaf_ending_six_revolute_joints_else_tool0() {
 
 #[test]
 fn a_tip_link_is_refused_for_a_robot_without_a_choice_of_tip() {
-    use stiffid::setup::reference;
+    use stiffid::internal::setup::reference;
     let urdf_text = data("comau-nj165-two-leaves.urdf");
     let presets = format!(
-        "{}/presets/comau-smart5-nj165-3.0.toml",
+        "{}/../stiffid-core/presets/comau-smart5-nj165-3.0.toml",
         env!("CARGO_MANIFEST_DIR")
     );
     let robot_toml = std::fs::read_to_string(presets).unwrap();
@@ -283,7 +283,7 @@ fn a_tip_link_is_refused_for_a_robot_without_a_choice_of_tip() {
     // A URDF that is not there is not found, tip or not.
     let e = reference::robot("cell/none.urdf", Some("tool0"), read).unwrap_err();
     assert!(matches!(e, Error::NotFound { .. }), "{e}");
-    let paper = stiffid::setup::builtin_text("zhang2021-comau-nj165").unwrap();
+    let paper = stiffid::internal::setup::builtin_text("zhang2021-comau-nj165").unwrap();
     let setup = paper.replacen("\n[tool]", "\nrobot_tip = \"tool0\"\n[tool]", 1);
     let e = reference::setup_text(&setup, "s.toml", std::path::Path::new(""), read).unwrap_err();
     assert!(e.to_string().contains("robot_tip: 'tool0' given"), "{e}");

@@ -12,8 +12,8 @@ use anyhow::Result;
 use std::path::PathBuf;
 use stiffid::app::identify::{self as job, Options, Report, Request};
 use stiffid::app::measurements::Data;
-use stiffid_core::Progress;
-use stiffid_identify::Loss;
+use stiffid::internal::identify::Loss;
+use stiffid::Progress;
 
 mod models;
 mod text;

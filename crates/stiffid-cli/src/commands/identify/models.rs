@@ -1,16 +1,18 @@
 //! `stiffid identify` over a model with virtual springs, and `--compare-models`: the library's
-//! fits ([`stiffid_identify::svd`], [`stiffid_identify::compare`]) rendered as text.
+//! fits ([`stiffid::internal::identify::svd`], [`stiffid::internal::identify::compare`]) rendered as text.
 
 use super::text;
 use stiffid::app::document::mm;
 use stiffid::app::identify::document::springs::{CrossValidationDoc, Document};
 use stiffid::app::identify::springs::Report;
-use stiffid_core::common::words::count;
-use stiffid_core::Setup;
-use stiffid_identify::adequacy::Verdict;
-use stiffid_identify::compare::document::{BootstrapDoc, Document as CompareDocument, ModelDoc};
-use stiffid_identify::compare::{parameter_docs, Comparison};
-use stiffid_identify::svd::Fit;
+use stiffid::internal::common::words::count;
+use stiffid::internal::identify::adequacy::Verdict;
+use stiffid::internal::identify::compare::document::{
+    BootstrapDoc, Document as CompareDocument, ModelDoc,
+};
+use stiffid::internal::identify::compare::{parameter_docs, Comparison};
+use stiffid::internal::identify::svd::Fit;
+use stiffid::Setup;
 
 /// The bootstrap's table from its document.
 fn bootstrap_text(b: &BootstrapDoc) -> String {

@@ -7,10 +7,10 @@ use stiffid::app::identify::document::drives::{
 };
 use stiffid::app::identify::drives::Report;
 use stiffid::app::identify::Fit;
-use stiffid_core::io::stiffness::PredictionSection;
-use stiffid_core::robot::kinematics::Coordinates;
-use stiffid_core::Setup;
-use stiffid_identify::adequacy::{Verdict, SIGNIFICANCE};
+use stiffid::internal::identify::adequacy::{Verdict, SIGNIFICANCE};
+use stiffid::internal::io::stiffness::PredictionSection;
+use stiffid::internal::robot::kinematics::Coordinates;
+use stiffid::Setup;
 
 /// `v` with `decimals` decimals, or `n/a` if it is not finite.
 fn num(v: f64, decimals: usize) -> String {
@@ -66,7 +66,7 @@ pub fn human(run: &Report, doc: &Document, setup_name: &str, setup: &Setup) -> S
         setup_name,
         run.data_name,
         id.rows,
-        stiffid_core::common::words::count(id.postures, "posture"),
+        stiffid::internal::common::words::count(id.postures, "posture"),
         num(id.cond_psi, 4),
         num(mm(doc.residual_rms), 4)
     );
@@ -136,7 +136,7 @@ load steps (* beyond the tracker noise, p < 0.01):
         s += &format!(
             "{:<16}  {:>5}  {:>11}  {:>9}{} {:<10}{} {:>9}{}
 ",
-            stiffid_core::common::limits::short(l.posture),
+            stiffid::internal::common::limits::short(l.posture),
             l.levels,
             opt(l.slope_mm_per_kn, 4),
             opt(l.zero_load_offset.map(mm), 4),
@@ -165,7 +165,7 @@ offsets fitted beside the compliances (base frame):
         s += &format!(
             "{:<16}  {:>5}  {:>11}  {:>8}  {:>8}
 ",
-            stiffid_core::common::limits::short(o.posture),
+            stiffid::internal::common::limits::short(o.posture),
             o.point,
             num(x, 4),
             num(y, 4),
@@ -314,7 +314,7 @@ fn down_weighted(robust: &Robust) -> String {
         mm(robust.scale),
         robust.iterations,
         if robust.converged { "" } else { " (not converged)" },
-        stiffid_identify::robust::DOWN_WEIGHTED
+        stiffid::internal::identify::robust::DOWN_WEIGHTED
     );
     for row in rows.iter().take(shown) {
         s += &format!(
@@ -421,7 +421,7 @@ pub fn prediction(p: &PredictionSection) -> String {
         "prediction intervals ({}, {} held-out coordinates of {}): in the --out file for validate, predict and compensate; 95% of the held-out errors are within {}% of the predicted displacement plus {:.4} mm{model}\n",
         p.method,
         scores,
-        stiffid_core::common::words::count(p.postures, "posture"),
+        stiffid::internal::common::words::count(p.postures, "posture"),
         opt(p.score_q95_pct, 1),
         p.noise_floor_mm
     )

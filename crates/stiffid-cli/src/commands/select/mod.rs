@@ -16,12 +16,12 @@ use std::path::PathBuf;
 use stiffid::app::document::mm;
 use stiffid::app::select::document::{Document, Free, Pool};
 use stiffid::app::select::{self as job, Method, PoolInput, Report, Request};
-use stiffid_core::common::limits::{self, short};
-use stiffid_core::common::words::{as_given, count};
-use stiffid_core::{io::postures, Setup};
-use stiffid_design::distinct::Distinctness;
-use stiffid_design::observability::CalibrationCriterion;
-use stiffid_design::{Criterion, Gradient, SearchOptions, Solver};
+use stiffid::internal::common::limits::{self, short};
+use stiffid::internal::common::words::{as_given, count};
+use stiffid::internal::design::distinct::Distinctness;
+use stiffid::internal::design::observability::CalibrationCriterion;
+use stiffid::internal::design::{Criterion, Gradient, SearchOptions, Solver};
+use stiffid::{internal::io::postures, Setup};
 
 /// Arguments of `stiffid select`.
 #[derive(clap::Args)]
@@ -278,7 +278,7 @@ fn write_plan(
 }
 
 /// The distances of `--distinct`: the flagging's defaults, overridden by the arguments.
-fn distinctness(args: &Args) -> stiffid_core::Result<Distinctness> {
+fn distinctness(args: &Args) -> stiffid::Result<Distinctness> {
     Distinctness::try_from_deg_mm(args.distinct_deg, args.distinct_mm)
 }
 
@@ -410,7 +410,7 @@ fn cost_text(criterion: &str, r: &Report, free_value: f64, free: &Free) -> Strin
         number(shown(r, free_value)),
         percent(free.cost_pct),
     );
-    // None only for a setup without a nominal stiffness (stiffid_design::Evaluation).
+    // None only for a setup without a nominal stiffness (stiffid::internal::design::Evaluation).
     if let (Some(feasible), Some(unconstrained)) = (
         free.feasible_predicted_average_pct,
         free.predicted_average_pct,
@@ -426,7 +426,7 @@ fn cost_text(criterion: &str, r: &Report, free_value: f64, free: &Free) -> Strin
 /// The value the search minimised, in words: the stiffness criterion, the calibration
 /// criterion's loss in the text's units ([`shown`]), or both.
 fn objective(r: &Report) -> String {
-    use stiffid_core::common::choice::Choice;
+    use stiffid::internal::common::choice::Choice;
     let loss = |c: CalibrationCriterion| match c {
         CalibrationCriterion::TestPose => "calibration test-pose (predicted RMS error, mm)".into(),
         CalibrationCriterion::DOptimality => "calibration 1/d-optimality (1/mm^2)".into(),
@@ -497,10 +497,13 @@ fn outcome_text(setup: &Setup, r: &Report) -> String {
 
 /// Why the search stopped: the reason of the search that found the group, and for several
 /// searches how many stopped for each reason.
-fn termination_text(t: stiffid_design::Termination, all: &[stiffid_design::Termination]) -> String {
+fn termination_text(
+    t: stiffid::internal::design::Termination,
+    all: &[stiffid::internal::design::Termination],
+) -> String {
     let mut s = t.name().to_string();
     if all.len() > 1 {
-        let counts: Vec<String> = (stiffid_design::Termination::ALL.iter())
+        let counts: Vec<String> = (stiffid::internal::design::Termination::ALL.iter())
             .filter(|r| r.count(all) > 0)
             .map(|r| format!("{} {r}", r.count(all)))
             .collect();
@@ -512,8 +515,8 @@ fn termination_text(t: stiffid_design::Termination, all: &[stiffid_design::Termi
 /// The `--station` values (mm, deg, the cell's order) in SI.
 fn stations(
     given: &[String],
-    setup: &stiffid_core::Setup,
-) -> Result<Vec<stiffid_core::robot::external::ExternalValues>> {
+    setup: &stiffid::Setup,
+) -> Result<Vec<stiffid::internal::robot::external::ExternalValues>> {
     let Some(axes) = setup.robot().external() else {
         if !given.is_empty() {
             bail!("--station: the robot has no external axes: give no station");
@@ -532,12 +535,12 @@ fn stations(
                 .ok_or_else(|| {
                     anyhow::anyhow!(
                         "--station: '{}': expected {} comma-separated numbers ({})",
-                        stiffid_core::common::limits::short(text),
+                        stiffid::internal::common::limits::short(text),
                         axes.len(),
                         axes.column_names().join(", ")
                     )
                 })?;
-            Ok(stiffid_core::robot::external::ExternalValues::new(
+            Ok(stiffid::internal::robot::external::ExternalValues::new(
                 &axes.to_si(&values),
             )?)
         })

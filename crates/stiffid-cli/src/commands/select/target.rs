@@ -4,7 +4,7 @@ use crate::output::OutFile;
 use crate::report::figures::{render, Png};
 use anyhow::Result;
 use std::path::Path;
-use stiffid_design::target::TargetOutcome;
+use stiffid::internal::design::target::TargetOutcome;
 
 /// The figure files beside `--out` without `--report` (`OUT.target.svg`, `OUT.target.png`),
 /// checked before the search.

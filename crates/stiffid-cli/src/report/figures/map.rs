@@ -2,8 +2,8 @@
 //! number and distances to the joint limits and the cell's bodies of every path point at every
 //! rotation about the spindle or track station (its figure: [`stiffid_figures::compensate::map`]).
 
+use stiffid::internal::machining::compensate::{Map, MapVariable};
 use stiffid_figures::compensate::map::axis;
-use stiffid_machining::compensate::{Map, MapVariable};
 
 /// The CSV of `map` (`map.csv`): one row per path point and value of the variable (the
 /// rotation, `tool_rotation_deg`, or the station's offset, `station_offset_mm`), units in the

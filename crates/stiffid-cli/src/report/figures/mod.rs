@@ -84,7 +84,7 @@ pub fn is_ours(dir: &Path, rel: &Path) -> bool {
         _ => return false,
     };
     let mut head = [0u8; 256];
-    stiffid_core::io::input::open(&dir.join(svg))
+    stiffid::internal::io::input::open(&dir.join(svg))
         .and_then(|mut f| std::io::Read::read(&mut f, &mut head))
         .is_ok_and(|n| String::from_utf8_lossy(&head[..n]).contains(stiffid_figures::MARK))
 }

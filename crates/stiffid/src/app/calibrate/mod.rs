@@ -611,7 +611,7 @@ fn fragment(model: &ErrorModel, fit: &Fit, tcp: Option<&Vector3<f64>>) -> String
     if model.measured_in() == MeasuredIn::Tracker {
         let t = &fit.estimate.frame;
         let p = t.translation.vector * 1e3;
-        let [r, pi, y] = crate::robot::file::rpy(&t.rotation);
+        let [r, pi, y] = stiffid_core::robot::file::rpy(&t.rotation);
         text += &format!(
             "[tracker]\nbase_from_tracker = {{ xyz_mm = [{:.6}, {:.6}, {:.6}], rpy_deg = [{:.8}, {:.8}, {:.8}] }}\n",
             p.x,

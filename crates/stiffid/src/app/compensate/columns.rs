@@ -65,7 +65,7 @@ pub const DYNAMICS: [&str; 6] = [
 /// cell.
 pub fn values(i: usize, line: u64, r: &Compensated, dynamics: &Dynamics) -> Vec<Option<f64>> {
     let deg = |q: &Vector6<f64>| q.iter().map(|v| Some(v.to_degrees())).collect::<Vec<_>>();
-    let [rx, ry, rz] = crate::robot::file::rpy(&r.pose.rotation);
+    let [rx, ry, rz] = stiffid_core::robot::file::rpy(&r.pose.rotation);
     let p = r.pose.translation.vector * 1e3;
     let d = &r.deflection;
     let mut v = vec![Some(i as f64 + 1.0), Some(line as f64)];

@@ -22,7 +22,7 @@ pub struct Transform {
 impl Transform {
     /// `base_from_tracker` (SI) with the standard deviations `std` (m, then rad).
     pub(crate) fn new(base_from_tracker: &Isometry3<f64>, std: [f64; 6]) -> Self {
-        let [r, p, y] = crate::robot::file::rpy(&base_from_tracker.rotation);
+        let [r, p, y] = stiffid_core::robot::file::rpy(&base_from_tracker.rotation);
         Transform {
             xyz_mm: mm3(&base_from_tracker.translation.vector),
             rpy_deg: [r, p, y].map(f64::to_degrees),

@@ -76,7 +76,7 @@ pub struct Placement<'a> {
 impl<'a> Placement<'a> {
     /// The placement `base_from_part`, with none of the figures.
     fn at(base_from_part: &Isometry3<f64>) -> Self {
-        let [r, p, y] = crate::robot::file::rpy(&base_from_part.rotation);
+        let [r, p, y] = stiffid_core::robot::file::rpy(&base_from_part.rotation);
         Placement {
             xyz: base_from_part.translation.vector,
             rpy_deg: [r, p, y].map(|a| a.to_degrees() + 0.0),

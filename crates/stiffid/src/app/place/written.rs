@@ -11,7 +11,7 @@ pub fn with_workpiece(text: &str, pose: &Isometry3<f64>) -> String {
     // Rounded to the digits written, `+ 0.0` turning a negative zero into 0.
     let round = |v: f64, digits: f64| (v * digits).round() / digits + 0.0;
     let t = pose.translation.vector.map(|v| round(v * 1e3, 1e6));
-    let [r, p, y] = crate::robot::file::rpy(&pose.rotation);
+    let [r, p, y] = stiffid_core::robot::file::rpy(&pose.rotation);
     let [r, p, y] = [r, p, y].map(|a| round(a.to_degrees(), 1e8));
     let body = format!(
         "base_from_part = {{ xyz_mm = [{:.6}, {:.6}, {:.6}], rpy_deg = [{:.8}, {:.8}, {:.8}] }}\n",

@@ -3,19 +3,22 @@
 //! (Eq. 22) and the errors.
 
 use crate::common;
-use stiffid::identify::Identify;
-use stiffid::model::Compliance;
+use stiffid::internal::identify::Identify;
+use stiffid::internal::model::Compliance;
 
 use common::{deg, on_robot, paper_measurements, synthetic, with_noise, PAPER_POSTURES_DEG};
 use nalgebra::{Vector3, Vector6};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use stiffid::identify::validate;
-use stiffid::identify::{least_squares, Loss};
-use stiffid::observation::{Measurement, Observations};
-use stiffid::robot::kinematics::Coordinates;
+use stiffid::internal::identify::validate;
+use stiffid::internal::identify::{least_squares, Loss};
+use stiffid::internal::observation::{Measurement, Observations};
+use stiffid::internal::robot::kinematics::Coordinates;
 use stiffid::MeasurementField;
-use stiffid::{robot::presets, setup, Error};
+use stiffid::{
+    internal::{robot::presets, setup},
+    Error,
+};
 
 fn max_relative_error(a: &Vector6<f64>, truth: &Vector6<f64>) -> f64 {
     (a - truth).component_div(truth).amax()

@@ -4,8 +4,8 @@
 use nalgebra::Vector6;
 use stiffid::app::calibrate::fit_bound::half_width;
 use stiffid::app::calibrate::region::{region, SAMPLES};
-use stiffid::common::limits::JointBox;
-use stiffid::metrology::calibration::gravity::SPANNING_POSTURES;
+use stiffid::internal::common::limits::JointBox;
+use stiffid::internal::metrology::calibration::gravity::SPANNING_POSTURES;
 
 fn deg(v: [f64; 6]) -> Vector6<f64> {
     Vector6::from(v).map(f64::to_radians)

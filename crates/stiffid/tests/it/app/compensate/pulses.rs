@@ -5,31 +5,31 @@
 use nalgebra::Vector6;
 use stiffid::app::compensate::resolution::rounding;
 use stiffid::app::compensate::{self, Input};
-use stiffid::machining::compensate::Options;
-use stiffid::machining::program::generate::Settings;
-use stiffid::machining::program::Dialect;
-use stiffid::machining::Language;
-use stiffid::robot::ik::tool_pose;
-use stiffid::robot::presets;
+use stiffid::internal::machining::compensate::Options;
+use stiffid::internal::machining::program::generate::Settings;
+use stiffid::internal::machining::program::Dialect;
+use stiffid::internal::machining::Language;
+use stiffid::internal::robot::ik::tool_pose;
+use stiffid::internal::robot::presets;
 use stiffid::Error;
 
 /// The milling example's cell with the controller's `pulses_per_deg`.
 fn setup(per_deg: &str) -> stiffid::Setup {
     let text = include_str!("../../../../../../examples/milling/fanuc-milling.toml");
     let text = format!("{text}\n[controller]\npulses_per_deg = {per_deg}\n");
-    stiffid::setup::parse(&text, "cell.toml", |name, _| presets::get(name)).unwrap()
+    stiffid::internal::setup::parse(&text, "cell.toml", |name, _| presets::get(name)).unwrap()
 }
 
 /// The milling example's pocket compensated on `setup` and written as an INFORM job: its bounds
 /// (m), or the error.
 fn job(setup: &stiffid::Setup) -> stiffid::Result<Vec<f64>> {
-    let compliance = stiffid::io::stiffness::parse(include_str!(
+    let compliance = stiffid::internal::io::stiffness::parse(include_str!(
         "../../../../../../examples/milling/stiffness.json"
     ))
     .unwrap()
     .compliance(setup.model())
     .unwrap();
-    let process = stiffid::machining::process::file::parse(
+    let process = stiffid::internal::machining::process::file::parse(
         include_str!("../../../../../../examples/milling/aluminium.toml"),
         "aluminium.toml",
     )

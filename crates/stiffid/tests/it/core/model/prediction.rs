@@ -42,7 +42,7 @@ fn one_fold_of_constant_prediction_gives_the_empirical_quantile() {
 /// conformal rank fits among them: 19 at 95%, 333 at 99.7%; one fewer gives an infinite end.
 #[test]
 fn a_finite_bound_needs_the_held_out_values_the_level_asks() {
-    use stiffid::model::prediction::{held_out_needed, ranks};
+    use stiffid::internal::model::prediction::{held_out_needed, ranks};
     for (level, needed) in [(0.95, 19), (0.997, 333), (0.9, 9), (0.5, 1)] {
         assert_eq!(held_out_needed(level), needed, "{level}");
         assert!(ranks(needed, level)[1].is_some(), "{level}");

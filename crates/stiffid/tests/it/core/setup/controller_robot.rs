@@ -1,7 +1,7 @@
 //! `[controller] robot` is the setup's robot as the controller knows it: another robot model, or a
 //! calibrated file run as the nominal one, is refused naming both, calibrated setup or not.
 
-use stiffid::setup;
+use stiffid::internal::setup;
 
 /// The paper setup (a COMAU NJ 165 preset) with `[controller]` lines `controller`; `robot.toml`
 /// resolves to `robot_file`.
@@ -12,8 +12,8 @@ fn read(controller: &str, robot_file: &str) -> stiffid::Result<stiffid::Setup> {
         + "\n[controller]\n"
         + controller;
     setup::parse(&text, "cell.toml", |r, _| match r {
-        "robot.toml" => stiffid::robot::file::parse(robot_file, "robot.toml"),
-        preset => stiffid::robot::presets::get(preset),
+        "robot.toml" => stiffid::internal::robot::file::parse(robot_file, "robot.toml"),
+        preset => stiffid::internal::robot::presets::get(preset),
     })
 }
 
@@ -29,7 +29,7 @@ fn refused(controller: &str, robot_file: &str) -> String {
 
 /// The COMAU preset's robot file with `suffix` after its name and `from` replaced by `to`.
 fn comau(suffix: &str, from: &str, to: &str) -> String {
-    let text = stiffid::robot::presets::text("comau-smart5-nj165-3.0").unwrap();
+    let text = stiffid::internal::robot::presets::text("comau-smart5-nj165-3.0").unwrap();
     let name = text.lines().find(|l| l.starts_with("name = ")).unwrap();
     let renamed = format!("{}{suffix}\"", name.trim_end_matches('"'));
     assert!(text.contains(from), "{from}");
@@ -59,7 +59,11 @@ fn a_controller_of_another_robot_is_refused_naming_both() {
 
 #[test]
 fn a_calibrated_file_as_the_nominal_controller_is_refused() {
-    let calibrated = comau(stiffid::robot::CALIBRATED, "a_mm = 1175.0", "a_mm = 1175.0");
+    let calibrated = comau(
+        stiffid::internal::robot::CALIBRATED,
+        "a_mm = 1175.0",
+        "a_mm = 1175.0",
+    );
     let m = refused("robot = \"robot.toml\"\n", &calibrated);
     assert!(m.contains("is a calibrated robot file"), "{m}");
     assert!(m.contains("kinematics = \"calibrated\""), "{m}");

@@ -4,9 +4,9 @@
 //! written and read back to the targets written.
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3, Vector6};
-use stiffid::machining::compensate::Options;
-use stiffid::machining::{self, Language, Program};
-use stiffid::robot::{ik, presets};
+use stiffid::internal::machining::compensate::Options;
+use stiffid::internal::machining::{self, Language, Program};
+use stiffid::internal::robot::{ik, presets};
 use stiffid::Setup;
 use stiffid_core::setup::Pulses;
 use stiffid_machining::gcode::ArcBlock;
@@ -21,7 +21,7 @@ fn bare(p: &Vector3<f64>, external: f64) -> Target {
     Target {
         q_deg: [0.0; 6],
         pose: Isometry3::from(Translation3::from(*p)),
-        arm: stiffid::robot::configuration::Configuration {
+        arm: stiffid::internal::robot::configuration::Configuration {
             q_deg: [0.0; 6],
             front: 1.0,
             elbow: 1.0,
@@ -183,7 +183,7 @@ fn inform_teaches_the_start_and_separates_two_arcs_by_a_linear_step() {
 const SETUP: &str = include_str!("../../../../../../examples/milling/fanuc-milling.toml");
 
 fn setup() -> Setup {
-    stiffid::setup::parse(SETUP, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap()
+    stiffid::internal::setup::parse(SETUP, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap()
 }
 
 /// The targets of the setup's robot at the part-frame points `points` (the tool down), by its

@@ -3,7 +3,7 @@
 //! what the language's comment takes.
 
 use super::process::{corpus, motion_lines, plan, router, targets, PULSES};
-use stiffid::machining::gcode::{self, Comment};
+use stiffid::internal::machining::gcode::{self, Comment};
 use stiffid_core::setup::Pulses;
 use stiffid_machining::program::generate::*;
 use stiffid_machining::program::Dialect;

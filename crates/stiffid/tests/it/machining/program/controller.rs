@@ -7,11 +7,11 @@
 //! `Val3 => val3::Val3,`.
 
 use nalgebra::{UnitQuaternion, Vector3, Vector6};
-use stiffid::machining::program::cartesian::flags::{ConfigurationData, Posture};
-use stiffid::machining::program::{
+use stiffid::internal::machining::program::cartesian::flags::{ConfigurationData, Posture};
+use stiffid::internal::machining::program::{
     AxisNames, BoundComment, Controller, Descriptor, DynController, FileName, NameRules, Read,
 };
-use stiffid::robot::configuration::Configuration;
+use stiffid::internal::robot::configuration::Configuration;
 use stiffid::{Error, Result};
 
 /// The test's language.
@@ -99,7 +99,7 @@ fn a_language_with_only_the_required_items_has_every_method() {
     let n = c.pose_numbers(&Vector3::new(1.0, 2.0, 3.0), &r);
     assert!(c.rotation(&n).angle_to(&r) < 1e-12);
     // Its configuration data: the posture's shoulder, elbow and wrist.
-    let robot = stiffid::robot::presets::get("fanuc-r2000ic-165f").unwrap();
+    let robot = stiffid::internal::robot::presets::get("fanuc-r2000ic-165f").unwrap();
     let q = Vector6::new(-23.2, 3.9, -48.1, 0.0, -41.9, 23.2).map(f64::to_radians);
     let arm = Configuration::of(&robot, &q);
     assert_eq!(c.flags(&arm).branch(), (false, false, true));
@@ -177,10 +177,10 @@ fn the_generator_trait_requires_the_writing_and_its_data() {
 /// written (each from its controller's manual, as the language's `WRITING` says).
 #[test]
 fn each_generator_reads_its_writing() {
-    use stiffid::machining::program::generate::arcs::Form;
-    use stiffid::machining::program::generate::Targets;
-    use stiffid::machining::program::Dialect;
-    use stiffid::robot::external::Role;
+    use stiffid::internal::machining::program::generate::arcs::Form;
+    use stiffid::internal::machining::program::generate::Targets;
+    use stiffid::internal::machining::program::Dialect;
+    use stiffid::internal::robot::external::Role;
     type Row = (
         Dialect,
         Option<usize>,

@@ -4,7 +4,7 @@
 
 use super::arcs::robot_targets;
 use nalgebra::{Isometry3, Translation3, Vector3};
-use stiffid::robot::presets;
+use stiffid::internal::robot::presets;
 use stiffid_core::setup::Pulses;
 use stiffid_machining::program::generate::{generate, Move, Plan, Settings, Tool};
 use stiffid_machining::program::{parse_in, Context, Dialect};
@@ -13,7 +13,8 @@ const SETUP: &str = include_str!("../../../../../../examples/milling/fanuc-milli
 
 /// Each language's program of two targets and, for KRL, its `.dat`.
 fn texts() -> Vec<(Dialect, String, Option<String>)> {
-    let s = stiffid::setup::parse(SETUP, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap();
+    let s = stiffid::internal::setup::parse(SETUP, "fanuc-milling.toml", |n, _| presets::get(n))
+        .unwrap();
     let points = [
         Vector3::new(0.0, 0.0, -0.004),
         Vector3::new(0.05, 0.0, -0.004),

@@ -5,9 +5,9 @@
 
 use super::arcs::robot_targets;
 use nalgebra::{Isometry3, Translation3, Vector3, Vector6};
-use stiffid::machining::compensate::Options;
-use stiffid::machining::{self, Language, Program};
-use stiffid::robot::presets;
+use stiffid::internal::machining::compensate::Options;
+use stiffid::internal::machining::{self, Language, Program};
+use stiffid::internal::robot::presets;
 use stiffid::Setup;
 use stiffid_core::setup::Pulses;
 use stiffid_machining::program::generate::numbered::Numbers;
@@ -21,7 +21,7 @@ const SETUP: &str = include_str!("../../../../../../examples/milling/fanuc-milli
 /// 670 mm above the setup's base frame, so the part's origin at z 400 mm is at z -270 mm).
 pub(super) fn setup(tool: &str, base: &str) -> Setup {
     let text = format!("{SETUP}\n[controller]\ntools = [{{ number = 1, xyz_mm = [0, 0, 100] }}, {{ number = 3, xyz_mm = {tool} }}]\nbases = [{{ number = 2, xyz_mm = {base} }}]\n");
-    stiffid::setup::parse(&text, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap()
+    stiffid::internal::setup::parse(&text, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap()
 }
 
 pub(super) fn plan<'a>(
@@ -201,7 +201,8 @@ fn frames_the_controller_does_not_hold_are_stated() {
     let text = format!(
         "{SETUP}\n[controller]\ntools = [{{ number = 20, xyz_mm = [6.9, 245.3, 319.3] }}]\n"
     );
-    let high = stiffid::setup::parse(&text, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap();
+    let high = stiffid::internal::setup::parse(&text, "fanuc-milling.toml", |n, _| presets::get(n))
+        .unwrap();
     for (dialect, form) in [
         (Dialect::Krl, "$TOOL = {X 6.9,"),
         (Dialect::FanucLs, "UTOOL_NUM=1 ;"),
@@ -223,7 +224,8 @@ fn frames_the_controller_does_not_hold_are_stated() {
         .map(|n| format!("{{ number = {n}, xyz_mm = [0, 0, {}] }}", 10 * n))
         .collect();
     let text = format!("{SETUP}\n[controller]\ntools = [{}]\n", tools.join(", "));
-    let full = stiffid::setup::parse(&text, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap();
+    let full = stiffid::internal::setup::parse(&text, "fanuc-milling.toml", |n, _| presets::get(n))
+        .unwrap();
     for dialect in [Dialect::FanucLs, Dialect::Inform] {
         let e = generate(&plan(&full, dialect, &t, &m, &pulses))
             .unwrap_err()

@@ -3,8 +3,8 @@
 //! every writer emits.
 
 use nalgebra::{Isometry3, Vector3, Vector6};
-use stiffid::machining::gcode::{self, ProcessWord};
-use stiffid::setup::program_io::{Io, ProcessEvent};
+use stiffid::internal::machining::gcode::{self, ProcessWord};
+use stiffid::internal::setup::program_io::{Io, ProcessEvent};
 use stiffid_core::setup::Pulses;
 use stiffid_core::Error;
 use stiffid_machining::program::generate::*;
@@ -431,7 +431,9 @@ const SETUP: &str = include_str!("../../../../../../examples/milling/fanuc-milli
 
 fn setup_with(controller: &str) -> stiffid::Result<stiffid::Setup> {
     let text = format!("{SETUP}\n[controller]\n{controller}\n");
-    stiffid::setup::parse(&text, "setup.toml", |n, _| stiffid::robot::presets::get(n))
+    stiffid::internal::setup::parse(&text, "setup.toml", |n, _| {
+        stiffid::internal::robot::presets::get(n)
+    })
 }
 
 #[test]

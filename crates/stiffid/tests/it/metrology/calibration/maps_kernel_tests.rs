@@ -208,7 +208,7 @@ fn the_nested_figure_of_the_choices_given_is_the_nested_figure() {
 /// its own.
 #[test]
 fn maps_chosen_at_another_fit_have_their_ridge_chosen_again() {
-    use stiffid::metrology::calibration::judgement::maps::{fit_maps, Assessed, Maps};
+    use stiffid::internal::metrology::calibration::judgement::maps::{fit_maps, Assessed, Maps};
     let (geometry, data, fitted) = campaign(60, 3);
     let linear = Linear::at(&geometry, &fitted, &data, 1.0, Spec::Auto.candidates(false)).unwrap();
     let all: Vec<usize> = (0..60).collect();

@@ -8,17 +8,17 @@ use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3, Vector6
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use stiffid::app::compensate::{self, Input};
-use stiffid::machining::compensate::{Compensated, Options};
-use stiffid::machining::program::cartesian::flags::ConfigurationData;
-use stiffid::machining::program::generate::Settings;
-use stiffid::machining::program::generate::Targets;
-use stiffid::machining::program::krl::StatusTurn;
-use stiffid::machining::program::Dialect;
-use stiffid::machining::Language;
-use stiffid::robot::configuration::Configuration;
-use stiffid::robot::ik;
-use stiffid::robot::presets;
-use stiffid::setup::NumberedFrames;
+use stiffid::internal::machining::compensate::{Compensated, Options};
+use stiffid::internal::machining::program::cartesian::flags::ConfigurationData;
+use stiffid::internal::machining::program::generate::Settings;
+use stiffid::internal::machining::program::generate::Targets;
+use stiffid::internal::machining::program::krl::StatusTurn;
+use stiffid::internal::machining::program::Dialect;
+use stiffid::internal::machining::Language;
+use stiffid::internal::robot::configuration::Configuration;
+use stiffid::internal::robot::ik;
+use stiffid::internal::robot::presets;
+use stiffid::internal::setup::NumberedFrames;
 
 const MILLING: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/milling");
 
@@ -27,7 +27,8 @@ const MILLING: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/milli
 fn setup() -> stiffid::Setup {
     let text = std::fs::read_to_string(format!("{MILLING}/kuka-milling.toml")).unwrap();
     let text = format!("{text}\n[controller]\ntools = [{{ number = 1, xyz_mm = [0, 0, 250] }}]\nbases = [{{ number = 1, xyz_mm = [2000, 0, 550] }}]\n");
-    stiffid::setup::parse(&text, "kuka-milling.toml", |name, _| presets::get(name)).unwrap()
+    stiffid::internal::setup::parse(&text, "kuka-milling.toml", |name, _| presets::get(name))
+        .unwrap()
 }
 
 /// The first `n` motions of the pocket with its literal frames, and its end.
@@ -82,8 +83,8 @@ fn stored(literal: &str) -> (String, String) {
 }
 
 /// The milling example's KR 210 stiffness on `setup`.
-fn kuka_compliance(setup: &stiffid::Setup) -> stiffid::model::Compliance {
-    stiffid::io::stiffness::parse(
+fn kuka_compliance(setup: &stiffid::Setup) -> stiffid::internal::model::Compliance {
+    stiffid::internal::io::stiffness::parse(
         &std::fs::read_to_string(format!("{MILLING}/kuka-stiffness.json")).unwrap(),
     )
     .unwrap()
@@ -96,7 +97,7 @@ fn kuka_compliance(setup: &stiffid::Setup) -> stiffid::model::Compliance {
 fn compensated(
     (setup, compliance, q0): (
         &stiffid::Setup,
-        stiffid::model::Compliance,
+        stiffid::internal::model::Compliance,
         Option<Vector6<f64>>,
     ),
     (text, data): (&str, Option<&str>),
@@ -105,7 +106,7 @@ fn compensated(
     if let Some(q0) = q0 {
         options.q0 = q0;
     }
-    let process = stiffid::machining::process::file::parse(
+    let process = stiffid::internal::machining::process::file::parse(
         &std::fs::read_to_string(format!("{MILLING}/aluminium.toml")).unwrap(),
         "aluminium.toml",
     )

@@ -4,10 +4,10 @@
 //! that line (and each enclosing construct on the line the message gives it).
 
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
-use stiffid::machining::compensate::Options;
-use stiffid::machining::program::{self, Dialect};
-use stiffid::machining::{self, Language};
-use stiffid::robot::presets;
+use stiffid::internal::machining::compensate::Options;
+use stiffid::internal::machining::program::{self, Dialect};
+use stiffid::internal::machining::{self, Language};
+use stiffid::internal::robot::presets;
 use stiffid::{Error, Setup};
 use stiffid_machining::program::cartesian::{flags::Flags, Frame};
 use stiffid_machining::program::rapid::ConfData;
@@ -232,7 +232,7 @@ fn setup_with_t_example() -> Setup {
     const SETUP: &str = include_str!("../../../../../../../examples/milling/fanuc-milling.toml");
     let text = SETUP.replacen("tcp_mm = [6.9, 245.3, 319.3]", "tcp_mm = [0, 0, 300]", 1);
     assert_ne!(text, SETUP);
-    stiffid::setup::parse(&text, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap()
+    stiffid::internal::setup::parse(&text, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap()
 }
 
 #[test]

@@ -2,7 +2,7 @@
 //! they hold, its line and every construct around it with its line; a construct that holds no
 //! motion leaves the motions as read.
 
-use stiffid::machining::program::{self, Dialect};
+use stiffid::internal::machining::program::{self, Dialect};
 use stiffid::Error;
 
 const EXT: &str = "[9E9,9E9,9E9,9E9,9E9,9E9]";

@@ -4,13 +4,13 @@
 //! the same (`tcp_rpy_deg`).
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector6};
-use stiffid::machining::compensate::Options;
-use stiffid::machining::program::cartesian::flags::ConfigurationData;
-use stiffid::machining::program::cartesian::Frame;
-use stiffid::machining::program::rapid::ConfData;
-use stiffid::machining::{self, Language, Program};
-use stiffid::robot::configuration::Configuration;
-use stiffid::robot::{ik, presets};
+use stiffid::internal::machining::compensate::Options;
+use stiffid::internal::machining::program::cartesian::flags::ConfigurationData;
+use stiffid::internal::machining::program::cartesian::Frame;
+use stiffid::internal::machining::program::rapid::ConfData;
+use stiffid::internal::machining::{self, Language, Program};
+use stiffid::internal::robot::configuration::Configuration;
+use stiffid::internal::robot::{ik, presets};
 use stiffid::Setup;
 
 const SETUP: &str = include_str!("../../../../../../../examples/milling/fanuc-milling.toml");
@@ -27,7 +27,7 @@ pub(super) fn setup(rpy_deg: [f64; 3]) -> Setup {
     );
     let text = SETUP.replacen("tcp_mm = [6.9, 245.3, 319.3]", &line, 1);
     assert_ne!(text, SETUP);
-    stiffid::setup::parse(&text, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap()
+    stiffid::internal::setup::parse(&text, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap()
 }
 
 /// The turn of roll, pitch, yaw (deg) about the fixed x, y, z axes: `Rz(yaw) Ry(pitch) Rx(roll)`.
@@ -120,7 +120,7 @@ pub(super) fn robtarget(setup: &Setup, pose_m: &Isometry3<f64>, q: &Vector6<f64>
 pub(super) fn resolved(setup: &Setup, text: &str) -> stiffid::Result<Program> {
     let p = machining::read(
         text,
-        Language::Robot(stiffid::machining::program::Dialect::Rapid),
+        Language::Robot(stiffid::internal::machining::program::Dialect::Rapid),
         1e-4,
     )?;
     Ok(machining::resolve(&p, setup, None, &Options::for_setup(setup))?.into_owned())
@@ -133,7 +133,10 @@ pub(super) fn resolved(setup: &Setup, text: &str) -> stiffid::Result<Program> {
 fn a_literal_nested_deeper_than_any_data_type_is_refused_naming_its_line() {
     let deep = format!("{}1{}", "[".repeat(1_000_000), "]".repeat(1_000_000));
     let text = format!("MODULE M\n  CONST robtarget p1 := {deep};\n  PROC main()\n    MoveL p1, v100, fine, tool0;\n  ENDPROC\nENDMODULE\n");
-    match stiffid::machining::program::parse(&text, stiffid::machining::program::Dialect::Rapid) {
+    match stiffid::internal::machining::program::parse(
+        &text,
+        stiffid::internal::machining::program::Dialect::Rapid,
+    ) {
         Err(stiffid::Error::Program { line, message }) => {
             assert_eq!(line, 2, "{message}");
             assert!(
@@ -159,7 +162,10 @@ fn data_beyond_the_limits_or_declared_twice_is_refused_naming_its_line() {
         format!("  PERS wobjdata wp := [FALSE,TRUE,\"\",[[{xyz}],[1,0,0,0]],[[0,0,0],[1,0,0,0]]];")
     };
     let parse = |text: &str| {
-        stiffid::machining::program::parse(text, stiffid::machining::program::Dialect::Rapid)
+        stiffid::internal::machining::program::parse(
+            text,
+            stiffid::internal::machining::program::Dialect::Rapid,
+        )
     };
     // The work object is refused by the motion in it, when its frame is resolved.
     let p = parse(&module(&wobj("1e308,0,550"), target)).unwrap();

@@ -5,8 +5,8 @@
 
 use super::module::{data, in_wobj, postures, resolved, robtarget, rpy, setup, TOOL_RPY_DEG};
 use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3, Vector6};
-use stiffid::machining::program::{self, speed::Speed, Dialect};
-use stiffid::machining::Program;
+use stiffid::internal::machining::program::{self, speed::Speed, Dialect};
+use stiffid::internal::machining::Program;
 use stiffid::Error;
 
 const EXT: &str = "[9E9,9E9,9E9,9E9,9E9,9E9]";
@@ -272,14 +272,14 @@ fn tools_work_objects_and_arguments_the_module_cannot_state_are_refused_naming_t
 fn the_setups_tool_turn_is_roll_pitch_yaw_about_fixed_axes_within_its_limits() {
     let s = setup(TOOL_RPY_DEG);
     assert!(s.tool().rotation.angle_to(&rpy(TOOL_RPY_DEG)) < 1e-12);
-    let message = match stiffid::setup::parse(
+    let message = match stiffid::internal::setup::parse(
         &include_str!("../../../../../../../examples/milling/fanuc-milling.toml").replacen(
             "tcp_mm = [6.9, 245.3, 319.3]",
             "tcp_mm = [6.9, 245.3, 319.3]\ntcp_rpy_deg = [0, 20000, 0]",
             1,
         ),
         "fanuc-milling.toml",
-        |n, _| stiffid::robot::presets::get(n),
+        |n, _| stiffid::internal::robot::presets::get(n),
     ) {
         Err(e) => e.to_string(),
         Ok(_) => panic!("a turn of 20000 deg read"),

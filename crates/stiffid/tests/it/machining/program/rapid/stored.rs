@@ -9,14 +9,14 @@ use super::module::{pose, rpy};
 use crate::true_robot::{row, Row, Truth};
 use nalgebra::{Isometry3, Point3, Quaternion, Translation3, UnitQuaternion, Vector3, Vector6};
 use stiffid::app::compensate::{self, Input};
-use stiffid::machining::compensate::{Compensated, Options};
-use stiffid::machining::program::cartesian::flags::ConfigurationData;
-use stiffid::machining::program::generate::Settings;
-use stiffid::machining::program::rapid::ConfData;
-use stiffid::machining::program::Dialect;
-use stiffid::machining::Language;
-use stiffid::robot::configuration::Configuration;
-use stiffid::robot::ik;
+use stiffid::internal::machining::compensate::{Compensated, Options};
+use stiffid::internal::machining::program::cartesian::flags::ConfigurationData;
+use stiffid::internal::machining::program::generate::Settings;
+use stiffid::internal::machining::program::rapid::ConfData;
+use stiffid::internal::machining::program::Dialect;
+use stiffid::internal::machining::Language;
+use stiffid::internal::robot::configuration::Configuration;
+use stiffid::internal::robot::ik;
 use stiffid::{Robot, Setup};
 
 /// The tool's turn on the flange (roll, pitch, yaw, deg).
@@ -164,11 +164,11 @@ fn controller_view(text: &str) -> (Isometry3<f64>, Vec<Read>) {
 /// `compliance`: the compensated module and every target's result.
 fn compensated(
     setup: &Setup,
-    compliance: &stiffid::model::Compliance,
+    compliance: &stiffid::internal::model::Compliance,
     q0: &Vector6<f64>,
     text: &str,
 ) -> (String, Vec<Compensated>) {
-    let process = stiffid::machining::process::file::parse(
+    let process = stiffid::internal::machining::process::file::parse(
         include_str!("../../../../../../../examples/milling/aluminium.toml"),
         "aluminium.toml",
     )
@@ -209,7 +209,7 @@ fn compensated(
 pub(crate) fn stored_landing(
     truth: &Truth,
     nominal: &Robot,
-    (setup, compliance): (&Setup, &stiffid::model::Compliance),
+    (setup, compliance): (&Setup, &stiffid::internal::model::Compliance),
     q0: &Vector6<f64>,
     frame: &Isometry3<f64>,
 ) -> Row {
