@@ -303,7 +303,7 @@ fn text_of(d: &Document) -> String {
         d.gravity,
         d.gravity_prior.map_or(String::new(), |b| format!(
             " bounded by {} mrad",
-            stiffid_core::common::words::number(b * 1e3)
+            stiffid::internal::common::words::number(b * 1e3)
         )),
         d.iterations,
         mm(d.residual_rms),

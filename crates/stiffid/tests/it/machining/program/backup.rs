@@ -4,9 +4,9 @@
 
 use super::numbered::{plan, setup, square};
 use nalgebra::Vector6;
-use stiffid::machining::compensate::Options;
-use stiffid::machining::{self, Language, Program};
-use stiffid::robot::presets;
+use stiffid::internal::machining::compensate::Options;
+use stiffid::internal::machining::{self, Language, Program};
+use stiffid::internal::robot::presets;
 use stiffid::Setup;
 use stiffid_core::setup::Pulses;
 use stiffid_core::Error;
@@ -78,7 +78,9 @@ fn sysframe_va_gives_the_frames_the_setups_tables_would() {
         .remove(0)
         .text;
     assert!(text.contains("UF : 2, UT : 3,"), "{text}");
-    let plain = stiffid::setup::parse(SETUP, "fanuc-milling.toml", |n, _| presets::get(n)).unwrap();
+    let plain =
+        stiffid::internal::setup::parse(SETUP, "fanuc-milling.toml", |n, _| presets::get(n))
+            .unwrap();
     let va = sysframe(
         [1300.0, -700.0, -270.0, 0.0, 0.0, 0.0],
         [6.9, 245.3, 319.3, 0.0, 0.0, 0.0],
