@@ -6,7 +6,7 @@
 
 use approx::assert_relative_eq;
 use nalgebra::Vector3;
-use stiffid::machining::gcode::{self, GcodeDialect, Machine, ProgramFrames};
+use stiffid::internal::machining::gcode::{self, GcodeDialect, Machine, ProgramFrames};
 use stiffid::Error;
 
 const DOWN: &str = "(stiffid: tool_rpy_deg = 180 0 0)\n";
