@@ -202,11 +202,54 @@ fn motion(line: u64, word: &str, words: &[&str]) -> Result<Motion> {
         speed: Speed::Joint,
         tool: None,
     };
-    for w in &words[1..] {
+    let split = (words.iter())
+        .position(|w| w.to_ascii_uppercase().starts_with("+MOV"))
+        .unwrap_or(words.len());
+    let (own, station) = words.split_at(split);
+    for w in &own[1..] {
         tag(line, word, w, &mut m)?;
     }
-    m.speed = super::speed::speed(line, word, &words[1..])?;
+    if !station.is_empty() {
+        station_motion(line, word, station, &mut m)?;
+    }
+    m.speed = super::speed::speed(line, word, &own[1..])?;
     Ok(m)
+}
+
+/// The station group's own motion on the line of a robot's motion `word` (`MOVL C00003 BC00003
+/// V=5.0  +MOVJ EC00003 VJ=80.00`, `words` from `+MOVJ`): the two start together and the next
+/// line runs when both have arrived, so the station's position is the target's, as `EC` in the
+/// robot's motion; its speed and level tags are the station's own.
+fn station_motion(line: u64, word: &str, words: &[&str], m: &mut Motion) -> Result<()> {
+    let refuse = |what: &str| {
+        Err(at(line, format!("{word} .. {}: {what}; stiffid reads a station's own motion as +MOVJ EC00000 and its tags VJ=, PL=, ACC=, DEC=", words.join(" "))))
+    };
+    let position = words
+        .get(1)
+        .and_then(|w| index(&w.to_ascii_uppercase(), "EC"));
+    let (true, Some(index)) = (words[0].eq_ignore_ascii_case("+MOVJ"), position) else {
+        return refuse("another group's own motion stiffid does not follow");
+    };
+    if m.station.is_some() {
+        return refuse("a second station position in one motion");
+    }
+    m.station = Some(index);
+    for w in &words[2..] {
+        let upper = w.to_ascii_uppercase();
+        match upper.split_once('=') {
+            Some((name, value)) if ["VJ", "PL", "ACC", "DEC"].contains(&name) => {
+                value_tag(line, "+MOVJ", (name, value), w)?;
+            }
+            _ if upper == "NWAIT" => {}
+            _ => {
+                return refuse(&format!(
+                    "{}: a tag of the station's motion stiffid does not follow",
+                    short(w)
+                ))
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The number of a position named `prefix` then digits (`C00001`), if `w` is one.

@@ -56,7 +56,7 @@
 //!   controller, not in the job;
 //! - `MOVS` (spline), `IMOV` (incremental from where the robot is), `SMOVL` and `SMOVC` (a
 //!   motion on a conveyor), a motion with `UNTIL` (a search) or with another group's own motion
-//!   (`+MOVJ`), a shift (`SFTON`, `SFTOF`, `MSHIFT`), any tag outside the list above, and any
+//!   (`+MOVL`; a station's `+MOVJ EC00000 VJ=..` is read as the target's station values), a shift (`SFTON`, `SFTOF`, `MSHIFT`), any tag outside the list above, and any
 //!   instruction stiffid does not know;
 //! - `WVON` with a motion after it before `WVOF`: weaving moves the tool across the path;
 //! - `JUMP`, `CALL`, `MACRO`, `IF`, `IFTHEN`, `FOR`, `WHILE`, `SWITCH` in a job with motions

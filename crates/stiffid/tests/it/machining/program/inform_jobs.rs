@@ -278,6 +278,45 @@ fn a_call_of_a_job_that_moves_nothing_is_passed_over() {
     assert!(message.contains("JOB:SPINDLE_ON calls itself"), "{message}");
 }
 
+/// A station's own motion beside the robot's (`+MOVJ EC00000 VJ=10.00`, as a YRC1000 welding
+/// cell's job moves its positioner) is read as the station's values of the target, as `EC` in
+/// the robot's motion; another group's motion or a tag the station's motion does not take is
+/// refused naming the line.
+#[test]
+fn a_stations_own_motion_gives_the_targets_station_values() {
+    let p = Pulses {
+        per_deg: PER_DEG,
+        external: vec![100.0, 200.0],
+    };
+    let station = STORED.replace("///NPOS 5,0,0", "///NPOS 5,0,1").replace(
+        "//INST",
+        "///POSTYPE PULSE\r\n///PULSE\r\nEC00000=1000,-2000\r\n//INST",
+    );
+    let own = station.replace(
+        "VJ=25.00 PL=0",
+        "VJ=25.00 PL=0  +MOVJ EC00000 VJ=10.00 DEC=20",
+    );
+    let inline = station.replace("MOVJ C00000 VJ=25.00", "MOVJ C00000 EC00000 VJ=25.00");
+    let read = |text: &str| parse_in(text, Dialect::Inform, &with(&p));
+    let (a, b) = (read(&own).unwrap(), read(&inline).unwrap());
+    assert_eq!(a.axes, ["EC1", "EC2"]);
+    assert_eq!(a.targets[0].external, [Some(10.0), Some(-10.0)]);
+    assert_eq!(a.targets, b.targets);
+    for (tags, words) in [
+        ("+MOVL EC00000 V=10.0", "another group's own motion"),
+        (
+            "+MOVJ EC00000 V=10.0",
+            "V=10.0: a tag of the station's motion",
+        ),
+        ("+MOVJ C00001 VJ=10.00", "another group's own motion"),
+    ] {
+        let text = station.replace("VJ=25.00 PL=0", &format!("VJ=25.00 PL=0  {tags}"));
+        let (line, message) = refused(read(&text));
+        assert_eq!(line, 22, "{message}");
+        assert!(message.contains(words), "{message}");
+    }
+}
+
 /// The job's `'stiffid:` pulses are used when the setup gives none and refused, naming both,
 /// when they contradict the setup's or each other.
 #[test]
@@ -439,8 +478,8 @@ fn the_real_jobs_are_refused_naming_line_and_construct() {
         ),
         (
             "MQCIA_ROBOT_CELL_000.JBI",
-            74,
-            "+MOVJ: another group's own motion",
+            79,
+            "WVON WEV#(25): weaving (WVON) moves the tool across the path",
         ),
         ("TSHIKINA_TEST1.JBI", 32, "IMOV: an increment"),
         (
