@@ -174,6 +174,7 @@ fn refused(line: u64, word: &str, t: &str) -> stiffid_core::Error {
     let why = match word {
         "MOVS" => "a spline; its path bends through all its points, not along the compensated ones: write it as MOVL or MOVJ motions".to_string(),
         "IMOV" => "an increment from where the robot is, which the job does not say: write the absolute position".to_string(),
+        "FORMCUT" => "a form cut: the controller moves the tool around a circle or a rectangle its condition file (FORMCUT.CND) gives, not through the job's positions: write the cut as MOVL and MOVC motions".to_string(),
         "SFTON" | "SFTOF" | "MSHIFT" => "a shift moves the path by an amount held on the controller, which the job does not say: compensate the path without it (teach or post the shifted positions)".to_string(),
         w if w.starts_with("SMOV") || w.starts_with("+MOV") || w.starts_with("SYMOV") => {
             "a motion stiffid does not follow (on a conveyor, or of another group alone); write the path as MOVJ, MOVL and MOVC to C positions".to_string()

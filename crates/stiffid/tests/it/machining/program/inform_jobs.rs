@@ -421,6 +421,11 @@ fn what_can_change_the_path_is_refused_naming_the_line() {
             "an instruction stiffid does not know",
         ),
         (
+            STORED.replace("SET B000 1", "FORMCUT FCF#(9)"),
+            27,
+            "FORMCUT: a form cut",
+        ),
+        (
             STORED.replace("V=10.0 PL=0 NWAIT", "V=nan PL=0"),
             22,
             "V=nan: expected a number",
