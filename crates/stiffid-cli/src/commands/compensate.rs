@@ -647,7 +647,7 @@ fn written(args: &Args, report: &Report, doc: &Document<'_>) -> String {
     let (names, mut text) = (&report.names, String::new());
     if let Some(p) = &doc.program {
         text += &format!(
-            "program ({}, process {}): {}, process force up to {:.1} N\n",
+            "program ({}, process {}): {}, force on the tool up to {:.1} N (the process's and the tool's weight)\n",
             p.language,
             p.process,
             count(p.segments.len(), "segment"),

@@ -141,6 +141,10 @@ pub fn commit() -> Result<()> {
         discard();
         return Err(e);
     }
+    // The report directories' locks give way to the directories' own for the commit (one open
+    // of a directory would wait for another of the same process).
+    release();
+    let _dirs = lock_dirs(&steps);
     let mut first: Option<anyhow::Error> = None;
     for step in steps {
         let done = match &step {
@@ -164,6 +168,33 @@ pub fn commit() -> Result<()> {
     }
     release();
     first.map_or(Ok(()), Err)
+}
+
+/// Exclusive locks on the directories the staged files of `steps` go into, taken in the
+/// directories' order and waited for: runs that put files into one directory (a split program's
+/// `P.src`, `P_01.src`, `P_01.dat`) do it one after the other, each its whole set, so the
+/// directory never holds one run's file beside another's. Held as long as the handles; a
+/// directory that cannot be opened is not locked (its files' own errors name it).
+pub fn lock_dirs(steps: &[Step]) -> Vec<std::fs::File> {
+    let mut dirs: Vec<PathBuf> = (steps.iter())
+        .filter_map(|step| match step {
+            Step::Replace { target, .. } | Step::Create { target, .. } => target.parent(),
+            _ => None,
+        })
+        .map(|d| match d.as_os_str().is_empty() {
+            true => PathBuf::from("."),
+            false => d.to_path_buf(),
+        })
+        .collect();
+    dirs.sort();
+    dirs.dedup();
+    dirs.iter().filter_map(|d| lock_dir(d)).collect()
+}
+
+/// An exclusive lock on the directory `dir` (`flock` on Unix), waited for.
+fn lock_dir(dir: &Path) -> Option<std::fs::File> {
+    let handle = std::fs::File::open(dir).ok()?;
+    handle.lock().ok().map(|()| handle)
 }
 
 /// The last guard of "never write over an input": a staged file whose target is a file the run

@@ -673,7 +673,9 @@ fn the_free_tool_axis_gain_and_the_largest_force_are_the_documents() {
     assert_eq!(program["max_force_n"].as_f64().unwrap(), largest);
     assert!(largest > 0.0);
     assert!(
-        text.contains(&format!("process force up to {largest:.1} N")),
+        text.contains(&format!(
+            "force on the tool up to {largest:.1} N (the process's and the tool's weight)"
+        )),
         "{text}"
     );
 }

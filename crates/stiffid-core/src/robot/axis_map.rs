@@ -36,3 +36,27 @@ impl AxisMap {
         self.matrix.try_inverse().map(|m| m * (theta - self.offset))
     }
 }
+
+impl AxisMap {
+    /// The axes' limits (rad) of a robot whose limits `joints` bound its kinematic angles (a
+    /// URDF's joint positions): an axis `k` that a row `j` maps alone (`theta_j = m q_k + c_j`:
+    /// a sign, an offset) is bounded by `(joints_j - c_j) / m`; an axis that no row maps alone
+    /// (coupled into its joint, FANUC's J3 in joint 3 = J2 + J3) keeps joint `k`'s limits as its
+    /// own.
+    pub(crate) fn axis_limits(
+        &self,
+        joints: &crate::common::limits::JointBox,
+    ) -> crate::common::limits::JointBox {
+        let mut out = *joints;
+        for j in 0..6 {
+            let row = self.matrix.row(j);
+            let nonzero: Vec<usize> = (0..6).filter(|&k| row[k] != 0.0).collect();
+            let [k] = nonzero[..] else { continue };
+            let (m, c) = (row[k], self.offset[j]);
+            let (a, b) = ((joints.lower[j] - c) / m, (joints.upper[j] - c) / m);
+            out.lower[k] = a.min(b);
+            out.upper[k] = a.max(b);
+        }
+        out
+    }
+}

@@ -128,31 +128,3 @@ pub(super) fn words(m: &Isometry3<f64>) -> String {
         short(y.to_degrees())
     )
 }
-
-/// Refuses `[controller] robot` naming another robot than the calibrated `robot` was
-/// calibrated from (its name without [`crate::robot::CALIBRATED`]).
-///
-/// # Errors
-/// [`Error::InvalidField`] (`controller.robot`) naming both robots.
-pub(super) fn same_robot(
-    robot: &Robot,
-    controller: Option<&Robot>,
-    reference: &str,
-    src: &str,
-) -> Result<()> {
-    let Some(c) = controller.filter(|_| robot.is_calibrated()) else {
-        return Ok(());
-    };
-    let calibrated = robot.name().trim_end_matches(crate::robot::CALIBRATED);
-    match c.name().trim_end_matches(crate::robot::CALIBRATED) == calibrated {
-        true => Ok(()),
-        false => Err(Error::InvalidField {
-            field: format!("{src}: controller.robot"),
-            message: format!(
-                "'{}' where the setup's robot '{reference}' is '{}' calibrated: the controller runs the nominal robot of the one calibrated",
-                c.name(),
-                calibrated
-            ),
-        }),
-    }
-}

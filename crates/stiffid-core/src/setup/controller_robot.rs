@@ -76,7 +76,7 @@ pub(super) fn check(robot: &Robot, controller: &Robot, reference: &str, src: &st
 
 /// The 13 postures the robots are compared at: the centre of `robot`'s joint limits, and each
 /// axis at a quarter and three quarters of its range.
-fn postures(robot: &Robot) -> Vec<Vector6<f64>> {
+pub(super) fn postures(robot: &Robot) -> Vec<Vector6<f64>> {
     let (lower, upper) = (robot.limits().lower, robot.limits().upper);
     let centre = (lower + upper) / 2.0;
     let mut postures = vec![centre];

@@ -346,15 +346,15 @@ where
         robot,
         &file,
         source_name,
-        (mount, file.robot_axis_map.as_ref()),
+        (mount, file.robot_axis_map.as_ref(), true),
     )?;
     let mut controller = match file.controller.take() {
         None => super::Controller::default(),
         Some(c) => controller(c, &file, source_name, &mut resolve_robot, mount)?,
     };
-    calibrated::same_robot(&robot, controller.robot.as_ref(), &file.robot, source_name)?;
     if let Some(c) = &controller.robot {
         super::controller_robot::check(&robot, c, &file.robot, source_name)?;
+        super::controller_axes::check(&robot, c, &file.robot, source_name)?;
     }
     controller.mount = mount.unwrap_or_default();
     controller.adapter = transform(file.robot_flange, "robot_flange", source_name)?;
@@ -434,7 +434,10 @@ where
             // setup's map (a URDF robot's) is not applied to it again.
             let own_map = *robot.axis_map() != crate::robot::AxisMap::default();
             let map = file.robot_axis_map.as_ref().filter(|_| !own_map);
-            Some(mounted(robot, file, source_name, (mount, map))?)
+            // The controller moves the cell's external axes by its own model: its robot file's
+            // [[external_axis]] (compared with the setup's, `controller_axes`), never the setup's
+            // tables put in their place.
+            Some(mounted(robot, file, source_name, (mount, map, false))?)
         }
     };
     Ok(super::Controller {
@@ -504,14 +507,17 @@ fn in_file(e: Error, source_name: &str) -> Error {
 /// (`external_axis = []` takes them away: the arm on a fixed base); its `max_speed_deg_s`
 /// replaces the robot's axis speeds. `mount` is `[robot_base]`, or the mount a calibrated
 /// robot's file records; a calibrated robot file holds its mount, which is not applied to it
-/// again ([`calibrated::mount`]). `map` is the setup's `[robot_axis_map]` where it applies.
+/// again ([`calibrated::mount`]). `map` is the setup's `[robot_axis_map]` where it applies;
+/// `tables`: whether the setup's `[[external_axis]]` apply (not to `[controller] robot`, whose
+/// own model of the axes the controller runs).
 fn mounted(
     mut robot: Robot,
     f: &SetupFile,
     src: &str,
-    (mount, map): (
+    (mount, map, tables): (
         Option<Isometry3<f64>>,
         Option<&crate::robot::file::AxisMapFile>,
+        bool,
     ),
 ) -> Result<Robot> {
     if let Some(m) = map {
@@ -520,7 +526,7 @@ fn mounted(
     if let Some(v) = &f.max_speed_deg_s {
         robot = robot.with_max_speeds(crate::robot::file::max_speeds(Some(v), src)?)?;
     }
-    if let Some(tables) = &f.external_axis {
+    if let Some(tables) = f.external_axis.as_ref().filter(|_| tables) {
         robot = robot.with_external(crate::robot::external::file::build(tables, src)?);
     }
     if let Some(mount) = mount.filter(|_| !robot.is_calibrated()) {
@@ -562,8 +568,14 @@ fn axis_mapped(robot: Robot, m: &crate::robot::file::AxisMapFile, src: &str) -> 
         },
         other => other,
     };
+    // A URDF's limits bound its joint positions: through the map they bound the axes.
+    let limits = match robot.urdf_source() {
+        Some(_) => map.axis_limits(robot.limits()),
+        None => *robot.limits(),
+    };
     robot
         .with_axis_map(map)
+        .and_then(|r| r.with_limits(limits))
         .map_err(|e| in_file(renamed(e), src))
 }
 

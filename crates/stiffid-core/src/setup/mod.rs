@@ -80,6 +80,7 @@ mod carried;
 mod cell;
 mod cell_file;
 mod checks;
+mod controller_axes;
 mod controller_robot;
 mod experiment;
 mod file;

@@ -427,7 +427,7 @@ fn may_move(line: u64, s: &State) -> Result<UnitQuaternion<f64>> {
             format!("a motion after the end of the program (M2/M30 on line {end})"),
         ));
     }
-    s.tool.ok_or_else(|| at(line, "no tool orientation: state it in a header comment before the first motion, e.g. (stiffid: tool_rpy_deg = 180 0 0)".into()))
+    s.tool.ok_or_else(|| at(line, "no tool orientation: state it in the setup, [workpiece] tool_rpy_deg = [180, 0, 0] (the tool frame in the part frame), or in a header comment before the first motion, (stiffid: tool_rpy_deg = 180 0 0)".into()))
 }
 
 #[cfg(test)]

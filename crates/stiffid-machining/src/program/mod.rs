@@ -59,6 +59,7 @@
 pub mod cartesian;
 mod controller;
 mod descriptor;
+mod ends;
 pub mod external;
 pub mod generate;
 pub mod inform;
@@ -385,8 +386,10 @@ pub fn parse_with_data(text: &str, data: Option<&str>, dialect: Dialect) -> Resu
 /// [`Error::Program`] naming the line: every motion instruction outside the subset (module docs), a
 /// joint target with a missing, repeated or non-numeric axis value, a Cartesian target with a
 /// missing or malformed member or configuration data ([`cartesian`]), no motion to a target at all,
-/// or more than 1 000 000.
+/// or more than 1 000 000; a program cut off before its closing word or whose lines end with a
+/// lone CR (`ends`).
 pub fn parse_in(text: &str, dialect: Dialect, context: &Context) -> Result<JointProgram> {
+    ends::check(text, dialect)?;
     let Read {
         mut targets,
         axes,
@@ -401,7 +404,7 @@ pub fn parse_in(text: &str, dialect: Dialect, context: &Context) -> Result<Joint
         let hint = dialect.controller().motions();
         return Err(at(
             1,
-            format!("no motion to a target found (expected {hint})"),
+            format!("no motion to a target found (expected {hint}); a program that only calls others (the main program of a split one) moves in those: give each of them"),
         ));
     }
     if targets.len() > MAX_TARGETS {

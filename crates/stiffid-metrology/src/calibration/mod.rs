@@ -40,6 +40,7 @@ pub mod motions;
 mod reflections;
 pub mod robot_file;
 pub(crate) mod spread;
+pub mod track_notes;
 pub mod validation;
 
 pub use error_model::{

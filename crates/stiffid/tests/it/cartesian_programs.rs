@@ -943,3 +943,34 @@ fn ls_german_frame_selections_are_read_as_the_english_ones() {
         other => panic!("{other:?}"),
     }
 }
+
+/// A program's own frame statement and the setup's table combine by one rule: an LS remark
+/// `! stiffid: user_frame = 1 ;` declares user frame 1 the part frame, and where the setup's
+/// `[controller] bases` also gives number 1, it must be that frame (the part frame in the
+/// controller's world, within 1 µm); another one (10 mm off) is refused naming the remark's
+/// line, both frames and how far apart they are, never the remark's silently.
+#[test]
+fn ls_a_remark_and_the_setups_table_giving_one_number_two_frames_is_refused() {
+    let (_, _, part) = ls_frames_case();
+    let named = named_part_frame(&part);
+    let tcp = "tools = [{ number = 1, xyz_mm = [6.9, 245.3, 319.3], rpy_deg = [0, 0, 0] }]";
+    let table = |base: &str| {
+        with_table(&format!(
+            "bases = [{{ number = 1, xyz_mm = {base}, rpy_deg = [0, 0, 0] }}]\n{tcp}"
+        ))
+    };
+    let agreed = ls_resolved(&table("[1300, -700, -270]"), &named).unwrap();
+    assert_eq!(agreed.len(), 3);
+    match ls_resolved(&table("[1300, -690, -270]"), &named) {
+        Err(stiffid::Error::Program { line, message }) => {
+            assert_eq!(line, line_of(&named, "stiffid: user_frame"), "{message}");
+            assert!(
+                message.contains("frame number 1 the part frame")
+                    && message.contains("[controller] bases gives number 1 another frame")
+                    && message.contains("10.000 mm"),
+                "{message}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+}

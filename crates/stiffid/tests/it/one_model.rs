@@ -290,6 +290,15 @@ fn the_calibrated_mount_is_recorded_and_not_given_twice() {
     let controller = c.robot.as_ref().unwrap();
     let raised = controller.base().translation.vector - nominal.base().translation.vector;
     assert!((raised - lift).norm() < 1e-12, "{raised}");
+    // The same nominal robot under another name (a controller's file renamed) is the same
+    // robot: compared by its kinematics, not its name.
+    let renamed = nominal_text.replacen("name = \"COMAU\"", "name = \"cell 4 controller\"", 1);
+    let s = setup::parse(&text, "mounted.toml", |name, _| match name {
+        "nominal" => stiffid::internal::robot::file::parse(&renamed, "nominal.toml"),
+        _ => stiffid::internal::robot::file::parse(&recorded, "robot.toml"),
+    })
+    .unwrap();
+    assert_eq!(s.controller_robot().unwrap().name(), "cell 4 controller");
 }
 
 /// A calibrated robot file records the part's frame its calibration located (`[part]`): a setup

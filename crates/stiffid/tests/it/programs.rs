@@ -220,7 +220,11 @@ fn malformed_gcode_is_refused_naming_the_line() {
             3,
             "off its circle",
         ),
-        ("G1 X10\n".to_string(), 1, "no tool orientation"),
+        (
+            "G1 X10\n".to_string(),
+            1,
+            "no tool orientation: state it in the setup, [workpiece] tool_rpy_deg",
+        ),
         (format!("{HEADER}G1 X10 A30\n"), 2, "rotary"),
         (format!("{HEADER}G1 X1Q\n"), 2, "Q: expected a number"),
         (format!("{HEADER}G1 X10 (open\n"), 2, "')'"),

@@ -270,7 +270,17 @@ fn reflectors_no_rigid_transform_explains_are_refused() {
     swapped.swap(0, 1);
     let mut far = on_table();
     far[2].x = 50.0;
-    for (placed, named) in [(swapped, "lies"), (far, "T3 lies")] {
+    // T2 placed 3 mm off: a rigid transform explains it within the 10 mm limit after the fit
+    // spreads it, so the part is located, with the fit's residuals warned of (never silently).
+    let mut off = on_table();
+    off[1].y += 3e-3;
+    let cases = [
+        (swapped, "lies"),
+        (far, "T3 lies"),
+        (off, "misfit"),
+        (on_table(), "placed"),
+    ];
+    for (placed, named) in cases {
         let setup = (case.setup.to_builder())
             .with_table_reflectors(placed)
             .build()
@@ -308,6 +318,31 @@ fn reflectors_no_rigid_transform_explains_are_refused() {
                 );
             }
             Err(other) => panic!("{other}"),
+            Ok(outcome) if named == "placed" => {
+                let reflectors = |w: &&stiffid::internal::common::warning::Warning| {
+                    w.message.contains("the part located from the reflectors")
+                        && w.kind == stiffid::internal::common::warning::WarningKind::Misfit
+                };
+                assert!(
+                    !outcome.warnings.iter().any(|w| reflectors(&w)),
+                    "{:?}",
+                    outcome.warnings
+                );
+            }
+            Ok(outcome) if named == "misfit" => {
+                let w = (outcome.warnings.iter())
+                    .find(|w| {
+                        w.kind == stiffid::internal::common::warning::WarningKind::Misfit
+                            && w.message.contains("the part located from the reflectors")
+                    })
+                    .unwrap_or_else(|| panic!("{:?}", outcome.warnings));
+                assert!(
+                    w.message.contains("mm RMS, the longest")
+                        && w.message.contains("times what the tracker noise leaves"),
+                    "{}",
+                    w.message
+                );
+            }
             Ok(_) => panic!("{named}: accepted"),
         }
     }

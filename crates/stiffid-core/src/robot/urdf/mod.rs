@@ -200,7 +200,9 @@ fn chain_to<'a>(
 
 /// The controller's world frame in the root link's frame: the ROS-Industrial `base` link
 /// ("base_link to <vendor> World Coordinates", REP 199's `base`), when it hangs from the root
-/// through fixed joints only; the identity otherwise (no such link, or the root itself).
+/// through fixed joints and a track's prismatic joints (taken at zero: the world where the
+/// carriage stands at 0, as a robot file's `[controller_world]` on a track); the identity
+/// otherwise (no such link, the root itself, or a revolute joint on the way).
 fn controller_world(
     by_child: &HashMap<&str, &urdf_rs::Joint>,
     joint_count: usize,
@@ -208,7 +210,7 @@ fn controller_world(
     let path = chain_to("base", by_child, joint_count)?;
     if path
         .iter()
-        .any(|j| !matches!(j.joint_type, JointType::Fixed))
+        .any(|j| !matches!(j.joint_type, JointType::Fixed | JointType::Prismatic))
     {
         return Ok(Isometry3::identity());
     }

@@ -109,9 +109,10 @@ pub enum Frame {
     /// `[controller]` table gives that number another frame.
     Held(u64, u32, Isometry3<f64>, String),
     /// The setup's own frame of its role (its `[workpiece]` part frame for a base, its `[tool]`
-    /// for a tool), which the program declares on `line` that it moves in (an LS remark
-    /// `! stiffid: user_frame = n ;` or `tool_frame = n`).
-    Declared(u64),
+    /// for a tool), which the program declares on `line` that its frame number `n` holds (an
+    /// LS remark `! stiffid: user_frame = n ;` or `tool_frame = n`): where the setup's
+    /// `[controller]` table gives `n` another frame, refused naming both.
+    Declared(u64, u32),
     /// A frame the program leaves to the controller (not set, a variable, a number of the
     /// controller's table): the line of the motion and why.
     Unknown(u64, String),

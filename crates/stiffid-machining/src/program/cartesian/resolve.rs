@@ -276,7 +276,9 @@ fn on_truth(
 /// Refuses a tool that is not the setup's (module docs of [`resolve`]).
 fn check_tool(tool: &Frame, line: u64, controller: &Controller) -> Result<()> {
     let (stated, on) = match tool {
-        Frame::Declared(_) => return Ok(()),
+        Frame::Declared(l, n) => {
+            return declared_agrees(controller.tools, (*l, *n), &controller.tool, "tools")
+        }
         Frame::Unknown(l, why) => return Err(at(*l, why.clone())),
         Frame::World => (Isometry3::identity(), line),
         Frame::Stated(l, f) => (*f, *l),
@@ -330,10 +332,45 @@ fn base_frame(
             let f = held(c.bases, (*l, *n), (f, source), "bases")?;
             base_frame(&Frame::Stated(*l, f), line, (c, dialect), placed)
         }
-        Frame::Declared(l) => placed.copied().or(c.part).ok_or_else(|| {
-            at(*l, "the program declares its user frame the part frame, and the setup gives none ([workpiece] base_from_part)".into())
-        }),
+        Frame::Declared(l, n) => {
+            if let Some(part) = c.part {
+                // The table's frames are in the controller's world, the part in the setup's base.
+                declared_agrees(c.bases, (*l, *n), &(c.world.inverse() * part), "bases")?;
+            }
+            placed.copied().or(c.part).ok_or_else(|| {
+                at(*l, "the program declares its user frame the part frame, and the setup gives none ([workpiece] base_from_part)".into())
+            })
+        }
     }
+}
+
+/// The program's own statement and the setup's table agree: a frame number `n` the program
+/// declares on `line` holds the setup's own frame `own` (its part frame in the controller's
+/// world, its tool in the flange) is either absent from the setup's `[controller]` table
+/// `table` or that same frame there.
+///
+/// # Errors
+/// [`stiffid_core::Error::Program`] on `line` naming both frames and how far apart they are.
+fn declared_agrees(
+    frames: &NumberedFrames,
+    (line, n): (u64, u32),
+    own: &Isometry3<f64>,
+    table: &str,
+) -> Result<()> {
+    let Some(f) = frames.get(n).filter(|f| !same(f, own)) else {
+        return Ok(());
+    };
+    let (role, field) = match table {
+        "bases" => ("the part frame", "[workpiece] base_from_part"),
+        _ => ("the tool", "[tool] tcp_mm, tcp_rpy_deg"),
+    };
+    Err(at(line, format!(
+        "the program declares its frame number {n} {role} (the setup's {field}: {}), and the setup's [controller] {table} gives number {n} another frame ({}), {:.3} mm and {:.3} deg apart: one number holds one frame on the controller; give the table the frame the controller holds, or drop the one that is not",
+        words(own),
+        words(f),
+        (f.translation.vector - own.translation.vector).norm() * 1e3,
+        f.rotation.angle_to(&own.rotation).to_degrees()
+    )))
 }
 
 /// The frame numbered `n` (on `line`) the controller's backup gives as `frame` (stated at

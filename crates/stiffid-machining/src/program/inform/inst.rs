@@ -190,6 +190,7 @@ fn motion(line: u64, word: &str, words: &[&str]) -> Result<Motion> {
     let robot = index(target, "C").ok_or_else(|| {
         let why = match target.chars().next() {
             Some('P' | 'L') => "a position variable holds its value on the controller, not in this job; teach the position in the job (C)",
+            Some('B' | 'E') if index(target, "BC").or(index(target, "EC")).is_some() => "a motion of the base axes or the station alone, without the robot's position C: the robot holds its posture while the part or the carriage moves, so this job's robot motions are the others' (stiffid compensates the robot's positions C; a job that moves only the station has none to compensate)",
             _ => "expected a teaching position C00000",
         };
         at(line, format!("{word} {}: {why}", short(target)))

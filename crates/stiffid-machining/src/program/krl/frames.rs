@@ -85,6 +85,20 @@ pub(super) fn fdat(value: &str) -> FdatRead {
     })
 }
 
+/// The correction switch `c` (compact) sets: base (`true`) or tool, and on or off
+/// (`BASE_CORR_ON=TRUE`); `None` for any other statement.
+fn correction_switch(c: &str) -> Option<(bool, bool)> {
+    let (base, value) = match (
+        c.strip_prefix("TOOL_CORR_ON="),
+        c.strip_prefix("BASE_CORR_ON="),
+    ) {
+        (Some(v), _) => (false, v),
+        (_, Some(v)) => (true, v),
+        _ => return None,
+    };
+    Some((base, value != "FALSE"))
+}
+
 /// A whole number written as a literal.
 fn whole(v: &str, name: &str) -> Result<i64, String> {
     v.trim()
@@ -110,6 +124,10 @@ pub(super) struct Frames {
     /// Per tool (0) and base (1), why every entry of its table is the controller's from a line
     /// on: an assignment to an entry whose index is not a number.
     any_entry: [Option<Frame>; 2],
+    /// Per tool (0) and base (1), why a frame selected now is the controller's: the BAS
+    /// package's correction frame switched on (`TOOL_CORR_ON = TRUE`), which `TOOL(n)`,
+    /// `BASE(n)` and the inline forms link to every frame they select until it is off again.
+    corrected: [Option<String>; 2],
 }
 
 /// `code` upper case without blanks.
@@ -142,6 +160,7 @@ impl Frames {
             external: None,
             table: HashMap::new(),
             any_entry: [None, None],
+            corrected: [None, None],
         }
     }
 
@@ -176,7 +195,22 @@ impl Frames {
         if self.tool != before.1 {
             self.tool = self.as_assigned(self.tool.clone(), false);
         }
+        self.base = self.corrected(line, self.base.clone(), before.0 != self.base, true);
+        self.tool = self.corrected(line, self.tool.clone(), before.1 != self.tool, false);
         set
+    }
+
+    /// `frame`, newly selected (`changed`) on `line` as a tool or `base`, as the BAS package's
+    /// correction frame in force leaves it: a frame selected by number or an inline form while
+    /// `TOOL_CORR_ON`/`BASE_CORR_ON` is TRUE is linked to the correction, which stiffid does
+    /// not apply (a literal frame assigned is not).
+    fn corrected(&self, line: u64, frame: Frame, changed: bool, base: bool) -> Frame {
+        match (&self.corrected[usize::from(base)], &frame) {
+            (Some(why), Frame::Numbered(..) | Frame::World) if changed => {
+                Frame::Unknown(line, why.clone())
+            }
+            _ => frame,
+        }
     }
 
     /// A numbered frame (`base` or tool) as the program's own assignment of its table entry
@@ -243,6 +277,10 @@ impl Frames {
                 )),
             };
             *(if base { &mut self.base } else { &mut self.tool }) = frame;
+        } else if let Some((base, on)) = correction_switch(c) {
+            self.corrected[usize::from(base)] = on.then(|| format!("the BAS package's correction frame is switched on (line {line}: {}) and links {} selected after it to the correction, which stiffid does not apply; switch it off before the motions or apply the correction to the frames in the setup's [controller] tables", short(code.trim()), if base { "every base" } else { "every tool" }));
+            let why = format!("line {line} sets a correction frame of the BAS package ({}), which stiffid does not apply", short(code.trim()));
+            (self.base, self.tool) = (held(&why), held(&why));
         } else if c.starts_with("TOOL_CORR") || c.starts_with("BASE_CORR") {
             let why = format!("line {line} sets a correction frame of the BAS package ({}), which stiffid does not apply", short(code.trim()));
             (self.base, self.tool) = (held(&why), held(&why));
@@ -308,9 +346,13 @@ impl Frames {
             };
             match name {
                 "$TOOL" => {
-                    tool = self.as_assigned(self.with_frame(line, value, false, fdats), false)
+                    let t = self.as_assigned(self.with_frame(line, value, false, fdats), false);
+                    tool = self.corrected(line, t, true, false);
                 }
-                "$BASE" => base = self.as_assigned(self.with_frame(line, value, true, fdats), true),
+                "$BASE" => {
+                    let b = self.as_assigned(self.with_frame(line, value, true, fdats), true);
+                    base = self.corrected(line, b, true, true);
+                }
                 "$IPO_MODE" => {
                     external = match with_ipo(value, fdats) {
                         Some(false) => None,

@@ -103,7 +103,7 @@ fn frame(
     }
     match (n, declared) {
         (0, _) => Frame::World,
-        (n, Some((_, d))) if d == n => Frame::Declared(l),
+        (n, Some((remark, d))) if d == n => Frame::Declared(remark, n),
         (n, _) => Frame::Numbered(l, n),
     }
 }

@@ -369,6 +369,11 @@ fn find(request: &Request<'_>) -> Result<Report> {
     if let Some(w) = warnings.iter_mut().find(|w| w.kind == WarningKind::Misfit) {
         w.message += &largest_residual(&data, &fitted.residuals);
     }
+    warnings.extend(stiffid_metrology::calibration::track_notes::notes(
+        setup,
+        chosen.error_motions.as_ref(),
+        noise_ratio,
+    ));
     let held = (validation.as_ref(), cross_validation.as_ref());
     let files = files::files(request, &chosen, held, &mut warnings)?;
     Ok(Report {

@@ -78,7 +78,11 @@ fn locate(
     match fit(&pairs) {
         Ok(r) => {
             explained(&r, setup.noise().reading_sd())?;
-            warnings.extend(moved(part, &r.base_from_tracker, n));
+            warnings.extend(moved(part, &r.base_from_tracker, n).map(|mut w| {
+                w.message += &format!(" (the fit's {})", residuals(&r));
+                w
+            }));
+            warnings.extend(misfit(&r, setup.noise().reading_sd(), n));
             Ok(Some(r.base_from_tracker))
         }
         Err(e) => {
@@ -112,6 +116,40 @@ fn explained(r: &Registration, sigma: f64) -> Result<()> {
     Err(Error::InvalidField {
         field: "workpiece.reflectors_mm".into(),
         message: format!("{why}; the part is not located from them"),
+    })
+}
+
+/// The noise ratio above which the reflectors' fit is warned of, as the calibration's is
+/// (`stiffid_metrology::calibration::judgement`): residuals three times what the tracker's
+/// noise leaves.
+const MISFIT_RATIO: f64 = 3.0;
+
+/// The fit's residuals in words: their RMS and the longest, naming its reflector.
+fn residuals(r: &Registration) -> String {
+    let (k, longest) = (r.residuals.iter().map(|v| v.norm()).enumerate())
+        .fold((0, 0.0), |w, (i, l)| if l > w.1 { (i, l) } else { w });
+    format!(
+        "residuals: {:.4} mm RMS, the longest {:.4} mm at T{}",
+        r.rms * 1e3,
+        longest * 1e3,
+        k + 1
+    )
+}
+
+/// The warning that the reflectors' fit `r` leaves residuals (RMS of their lengths) more than
+/// [`MISFIT_RATIO`] times what the tracker noise `sigma` (m per coordinate) leaves on a point,
+/// `sqrt(3) sigma`: a reflector placed off in the setup (`[workpiece] reflectors_mm`) or read
+/// as another, which moves the located part by a share of it.
+fn misfit(r: &Registration, sigma: f64, n: usize) -> Option<Warning> {
+    let ratio = r.rms / (3f64.sqrt() * sigma);
+    (ratio > MISFIT_RATIO).then(|| {
+        Warning::new(
+            WarningKind::Misfit,
+            format!(
+                "the part located from the reflectors T1..T{n} leaves {} ({ratio:.1} times what the tracker noise leaves): a reflector is off its place in [workpiece] reflectors_mm or its T rows read another, and the fit spreads its error over the part's frame; check the reflectors' coordinates and numbers",
+                residuals(r)
+            ),
+        )
     })
 }
 

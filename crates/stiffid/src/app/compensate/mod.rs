@@ -454,7 +454,7 @@ where
     let compensated = machining::compensate_for(controller, at, &program, &process, options)
         .map_err(|e| in_input(&name, e))?;
     output::check_runs(compensated.configurations.as_ref(), output)?;
-    resolution::check(setup, (&program, output), &compensated.results)?;
+    let rounded = resolution::check(setup, (&program, output), &compensated.results)?;
     let mut out = Computed::named(name);
     out.mapped = options.map.then(|| match &compensated.configurations {
         Some(c) => c.in_chosen(setup.arm(), &compensated.points),
@@ -463,7 +463,7 @@ where
     out.configurations = compensated.configurations.clone();
     let (dynamics, warnings) = program_dynamics(setup, compliance, &process, &compensated, add)?;
     out.warnings = warnings;
-    out.warnings.extend(assumed);
+    out.warnings.extend(assumed.into_iter().chain(rounded));
     let mut data = compensated.data.as_ref().map(|d| match &written_name {
         Some(to) => stiffid_machining::program::rename::renamed_data(d, to),
         None => d.clone(),

@@ -4,6 +4,7 @@
 //! GP-sized arm) could not keep a bound of tenths of a mm however well it is compensated.
 
 use nalgebra::{Vector3, Vector6};
+use stiffid_core::common::warning::{Warning, WarningKind};
 use stiffid_core::robot::ik::tool_pose;
 use stiffid_core::{Error, Result, Robot, Setup};
 use stiffid_machining::compensate::Compensated;
@@ -47,10 +48,17 @@ fn written_pulses(setup: &Setup, program: &Program, output: Language) -> Option<
     }
 }
 
-/// Refuses a program in pulses whose whole pulses move the TCP, at some target, by more than the
-/// most the compensation does or claims anywhere in the program: the largest of the targets'
-/// finite bounds and of their corrections (the TCP's motion from each target's posture to its
-/// compensated one). The rounding then swamps what the job was compensated for.
+/// The most whole pulses may move the TCP and the job still be written, m: a controller's own
+/// pulses (about 500 to 1500 per degree on a GP-sized arm) round by hundredths of a mm, one pulse
+/// per degree (a slip in the axis parameters) by tens of mm.
+const COARSE_M: f64 = 1e-4;
+
+/// A program in pulses whose whole pulses move the TCP, at some target, by more than the most
+/// the compensation does or claims anywhere in the program (the largest of the targets' finite
+/// bounds and of their corrections, the TCP's motion from each target's posture to its
+/// compensated one): refused where the rounding is also more than [`COARSE_M`] (coarser than a
+/// controller's resolution: the pulses are wrong); written with a warning stating the rounding
+/// otherwise (a light cut on a real controller: the job is as close as its pulses allow).
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`controller.pulses_per_deg`) naming the target, both lengths and
@@ -59,9 +67,9 @@ pub(super) fn check(
     setup: &Setup,
     (program, output): (&Program, Language),
     results: &[Compensated],
-) -> Result<()> {
+) -> Result<Option<Warning>> {
     let Some(per_deg) = written_pulses(setup, program, output) else {
-        return Ok(());
+        return Ok(None);
     };
     let (robot, tcp) = (setup.robot(), setup.tool().tcp);
     let at = |q: &Vector6<f64>| tool_pose(&robot.frames(q), &tcp).translation.vector;
@@ -81,11 +89,15 @@ pub(super) fn check(
         .enumerate()
         .fold((0, 0.0), |w, (i, m)| if m > w.1 { (i, m) } else { w });
     if worst.1 <= most {
-        return Ok(());
+        return Ok(None);
     }
     let list: Vec<String> = per_deg.iter().map(f64::to_string).collect();
+    let what = format!("[{}]: rounding the axes to whole pulses moves the TCP by {:.4} mm at target {} of the program, more than the most the compensation corrects or bounds anywhere in it ({:.4} mm)", list.join(", "), worst.1 * 1e3, worst.0 + 1, most * 1e3);
+    if worst.1 <= COARSE_M {
+        return Ok(Some(Warning::new(WarningKind::LeftOut, format!("controller.pulses_per_deg {what}, within a controller's resolution ({} mm): the job is written as close to the compensated path as whole pulses go, each position within that rounding of it", COARSE_M * 1e3))));
+    }
     Err(Error::InvalidField {
         field: "controller.pulses_per_deg".into(),
-        message: format!("[{}]: rounding the axes to whole pulses moves the TCP by {:.4} mm at target {} of the program, more than the most the compensation corrects or bounds anywhere in it ({:.4} mm): the job could not keep what it was compensated for; give the controller's pulses per degree (its axis parameters, S to T)", list.join(", "), worst.1 * 1e3, worst.0 + 1, most * 1e3),
+        message: format!("{what}, and more than a controller's resolution rounds ({} mm): the job could not keep what it was compensated for; give the controller's pulses per degree (its axis parameters, S to T)", COARSE_M * 1e3),
     })
 }

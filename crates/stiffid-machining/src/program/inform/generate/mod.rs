@@ -46,11 +46,12 @@ pub(crate) fn pulses<'a>(plan: &Plan<'a>) -> Result<&'a Pulses> {
     plan.pulses.ok_or_else(missing_pulses)
 }
 
-/// A feed (m/s) as `V=` in tenths of a mm/s, whether exact; `None` below 0.1 mm/s.
+/// A feed (m/s) as `V=` in tenths of a mm/s, whether exact; `None` below 0.1 mm/s (the
+/// slowest `V=`: a slower feed written as it would run up to twice as fast, `F5` mm/min 20 %).
 pub fn speed(feed: f64) -> Option<(String, bool)> {
     let steps = feed * 1e3 / SPEED_STEP_MM_S;
     let exact = (steps - steps.round()).abs() <= 1e-9 * steps.max(1.0);
-    (steps.round() >= 1.0).then(|| (format!("V={:.1}", steps.round() * SPEED_STEP_MM_S), exact))
+    (steps >= 1.0 - 1e-9).then(|| (format!("V={:.1}", steps.round() * SPEED_STEP_MM_S), exact))
 }
 
 /// Whether the cell of `plan` has a base axis group (carrier axes) and a station group

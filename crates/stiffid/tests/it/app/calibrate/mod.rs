@@ -4,3 +4,4 @@ mod document;
 mod extrapolation;
 mod ladder;
 mod region;
+mod track_fit;

@@ -23,6 +23,11 @@ fn setup(per_deg: &str) -> stiffid::Setup {
 /// The milling example's pocket compensated on `setup` and written as an INFORM job: its bounds
 /// (m), or the error.
 fn job(setup: &stiffid::Setup) -> stiffid::Result<Vec<f64>> {
+    job_warned(setup, "4").map(|(b, _)| b)
+}
+
+/// [`job`] at the axial depth `depth_mm` (the example's 4), with the job's warnings.
+fn job_warned(setup: &stiffid::Setup, depth_mm: &str) -> stiffid::Result<(Vec<f64>, Vec<String>)> {
     let compliance = stiffid::internal::io::stiffness::parse(include_str!(
         "../../../../../../examples/milling/stiffness.json"
     ))
@@ -30,7 +35,11 @@ fn job(setup: &stiffid::Setup) -> stiffid::Result<Vec<f64>> {
     .compliance(setup.model())
     .unwrap();
     let process = stiffid::internal::machining::process::file::parse(
-        include_str!("../../../../../../examples/milling/aluminium.toml"),
+        &include_str!("../../../../../../examples/milling/aluminium.toml").replacen(
+            "axial_depth_mm = 4",
+            &format!("axial_depth_mm = {depth_mm}"),
+            1,
+        ),
         "aluminium.toml",
     )
     .unwrap();
@@ -54,11 +63,12 @@ fn job(setup: &stiffid::Setup) -> stiffid::Result<Vec<f64>> {
         options: Options::for_setup(setup),
     };
     let mut bounds = Vec::new();
-    compensate::run::<stiffid::Error, _>(request, |_, _, r, _| {
+    let outcome = compensate::run::<stiffid::Error, _>(request, |_, _, r, _| {
         bounds.extend(r.iter().map(|r| r.budget.bound));
         Ok(())
     })?;
-    Ok(bounds)
+    let warnings = outcome.warnings.iter().map(|w| w.message.clone()).collect();
+    Ok((bounds, warnings))
 }
 
 /// The TCP motion of writing a posture in whole pulses: within the sum of each axis's half pulse
@@ -113,4 +123,42 @@ fn coarse_pulses_are_refused_naming_the_field() {
             other => panic!("{coarse}: {other:?}"),
         }
     }
+}
+
+/// Pulses finer than a tenth of a mm at the TCP but coarser than what the compensation moves
+/// (a light cut on a real controller's resolution) write the job with a warning stating the
+/// rounding, never refuse it: somewhere between one pulse per degree (refused) and the
+/// controller's 1341 (written silently) lies such a resolution.
+#[test]
+fn pulses_finer_than_a_controllers_resolution_are_written_with_the_rounding_stated() {
+    let mut stated = None;
+    // A light cut: 0.02 mm deep, the tool's weight and a few newtons of the process.
+    for per_deg in [20.0, 40.0, 80.0, 160.0, 320.0, 640.0, 1280.0, 2560.0] {
+        let s = setup(&format!("{:?}", [per_deg; 6]));
+        let Ok((bounds, warnings)) = job_warned(&s, "0.02") else {
+            continue;
+        };
+        assert!(!bounds.is_empty());
+        if let Some(w) = warnings
+            .iter()
+            .find(|w| w.contains("rounding the axes to whole pulses"))
+        {
+            stated = Some((per_deg, w.clone()));
+        }
+    }
+    let (per_deg, w) = stated.expect("a resolution between the compensation and 0.1 mm");
+    assert!(
+        w.contains("within a controller's resolution (0.1 mm)"),
+        "{per_deg}: {w}"
+    );
+    let mm: f64 = w
+        .split("moves the TCP by ")
+        .nth(1)
+        .unwrap()
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(mm > 0.0 && mm <= 0.1, "{w}");
 }

@@ -1,3 +1,4 @@
+mod controller_axes;
 mod controller_robot;
 mod numbered;
 mod reference;

@@ -131,6 +131,11 @@ fn a_job_without_pulses_or_with_a_feed_it_cannot_state_is_refused() {
     assert_eq!(speed(0.03), Some(("V=30.0".into(), true)));
     assert_eq!(speed(0.12345), Some(("V=123.5".into(), false)));
     assert_eq!(speed(0.04e-3), None);
+    // F5 and F5.99 (mm/min): below the slowest V=, refused as the reference says, never
+    // written as V=0.1 (20 % and 0.2 % fast); F6 is V=0.1 exactly.
+    assert_eq!(speed(5.0 / 60e3), None);
+    assert_eq!(speed(5.99 / 60e3), None);
+    assert_eq!(speed(6.0 / 60e3), Some(("V=0.1".into(), true)));
     let p = pulses(Vec::new());
     let slow = [Move::Rapid, Move::Feed(0.04e-3), Move::Feed(0.03)];
     assert!(matches!(

@@ -558,3 +558,20 @@ fn a_base_axis_takes_the_setups_external_pulses() {
         "{message}"
     );
 }
+
+/// A job whose motions move the station alone (`MOVJ EC00000`, no robot position `C`) is refused
+/// saying so, on the motion's line, not as a position of another form.
+#[test]
+fn a_station_only_job_is_refused_saying_what_it_is() {
+    let job = "/JOB\r\n//NAME T\r\n//POS\r\n///NPOS 0,0,1,0,0,0\r\n///POSTYPE PULSE\r\n///PULSE\r\nEC00000=1500\r\n//INST\r\n///ATTR SC,RW\r\n///GROUP1 ST1\r\nNOP\r\nMOVJ EC00000 VJ=10.00\r\nEND\r\n";
+    let p = Pulses {
+        per_deg: PER_DEG,
+        external: vec![100.0],
+    };
+    let (line, message) = refused(parse_in(job, Dialect::Inform, &with(&p)));
+    assert_eq!(line, 12, "{message}");
+    assert!(
+        message.contains("the station alone, without the robot's position C"),
+        "{message}"
+    );
+}

@@ -4,6 +4,7 @@ mod arcs;
 mod backup;
 mod comments;
 mod controller;
+mod ends;
 mod generate;
 mod headers;
 mod inform;

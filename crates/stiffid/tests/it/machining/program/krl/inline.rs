@@ -417,3 +417,44 @@ fn a_literal_frame_beyond_the_limits_is_refused_naming_its_member() {
         }
     }
 }
+
+/// The BAS package's correction frames switched on before the inline forms (`TOOL_CORR_ON =
+/// TRUE`, `BASE_CORR_ON = TRUE`): every tool or base `BAS(#FRAMES)`, `BAS(#PTP_PARAMS)`, `TOOL(n)`
+/// or `STOOL2` selects after it is linked to the correction, which stiffid does not apply:
+/// refused naming the switch's line, never read without the correction; switched off again, the
+/// numbers are read.
+#[test]
+fn a_correction_frame_switched_on_before_the_inline_forms_is_refused() {
+    let init = ";ENDFOLD (INI)\r\n";
+    for (switch, base) in [
+        ("TOOL_CORR_ON = TRUE", false),
+        ("BASE_CORR_ON = TRUE", true),
+    ] {
+        let src = SRC.replacen(init, &format!("{init}{switch}\r\n"), 1);
+        let p = parse_with_data(&src, Some(DAT), Dialect::Krl).unwrap();
+        let on = line_of(&src, switch);
+        for i in [0, 1, 4] {
+            let (b, t) = frames(&p, i);
+            let (corrected, other) = if base { (b, t) } else { (t, b) };
+            assert!(
+                matches!(&corrected, Frame::Unknown(_, why) if why.contains(&format!("line {on}"))),
+                "{switch} target {i}: {corrected:?}"
+            );
+            assert!(
+                !matches!(other, Frame::Unknown(..)),
+                "{switch} {i}: {other:?}"
+            );
+        }
+        let off = SRC.replacen(
+            init,
+            &format!("{init}{switch}\r\n{}\r\n", switch.replace("TRUE", "FALSE")),
+            1,
+        );
+        let p = parse_with_data(&off, Some(DAT), Dialect::Krl).unwrap();
+        let bas = line_of(&off, "BAS(#PTP_PARAMS");
+        assert_eq!(
+            frames(&p, 0),
+            (Frame::Numbered(bas, 2), Frame::Numbered(bas, 1))
+        );
+    }
+}
