@@ -285,6 +285,13 @@ pub trait Generator: Sync {
     fn writes_cartesian(&self) -> bool {
         self.writing().cartesian
     }
+    /// A written file `text` of program `name` split into the program and the data file the
+    /// controller stores beside it (KRL: the `.src` naming its points and the `.dat` declaring
+    /// them); `None`: the language keeps one file.
+    fn data_file(&self, name: &str, text: &str) -> Option<(String, String)> {
+        let _ = (name, text);
+        None
+    }
     /// Whether a program states its axes in encoder pulses, which the setup must give
     /// (`[controller] pulses_per_deg`; [`Writing::pulses`]).
     fn needs_pulses(&self) -> bool {

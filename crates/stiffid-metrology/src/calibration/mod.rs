@@ -26,6 +26,7 @@
 //!
 //! Equations and sources: docs/model.md, section "Calibration".
 
+mod acceptance;
 pub mod drift;
 #[cfg(test)]
 mod drift_tests;

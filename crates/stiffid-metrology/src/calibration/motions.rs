@@ -99,9 +99,9 @@ impl Scored {
 }
 
 /// Whether `candidate` lowers the held-out error of `current` by [`ACCEPT`] standard errors
-/// ([`super::maps::lowers`]).
+/// ([`super::acceptance::lowers`]).
 fn better(current: &Scored, candidate: &Scored) -> bool {
-    super::maps::lowers(
+    super::acceptance::lowers(
         (&current.errors, current.total),
         (&candidate.errors, candidate.total),
         ACCEPT,

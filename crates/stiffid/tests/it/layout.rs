@@ -551,6 +551,69 @@ fn no_import_circle_between_files() {
     }
 }
 
+/// The import graph between the folders of crate `name`: every file of [`file_graph`] stands for
+/// its folder (a folder's `mod.rs` and the files directly in it are one node), so that a circle
+/// running through a folder's `mod.rs` and its files, which the file graph leaves out, is seen.
+/// A folder and the folders inside it are left out of each other's edges, as at the file level.
+fn folder_graph(files: &BTreeMap<String, BTreeSet<String>>) -> BTreeMap<String, BTreeSet<String>> {
+    let folder = |f: &String| -> String {
+        let prefix = format!("{f}/");
+        match files.keys().any(|k| k.starts_with(&prefix)) {
+            true => f.clone(),
+            false => f
+                .rsplit_once('/')
+                .map_or(String::new(), |(p, _)| p.to_string()),
+        }
+    };
+    let nested = |a: &str, b: &str| {
+        a.is_empty()
+            || b.is_empty()
+            || a.starts_with(&format!("{b}/"))
+            || b.starts_with(&format!("{a}/"))
+    };
+    let mut graph: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for (from, to) in files {
+        let a = folder(from);
+        let edges = graph.entry(a.clone()).or_default();
+        for b in to.iter().map(folder) {
+            if a != b && !nested(&a, &b) {
+                edges.insert(b);
+            }
+        }
+    }
+    let ends: Vec<String> = graph.values().flatten().cloned().collect();
+    for end in ends {
+        graph.entry(end).or_default();
+    }
+    graph
+}
+
+#[test]
+fn no_import_circle_between_folders() {
+    for name in CRATES {
+        let found = circles(&folder_graph(&file_graph(name)));
+        assert!(
+            found.is_empty(),
+            "import circles between the folders of {name}: {found:?}"
+        );
+    }
+    // A circle through a folder's mod.rs and its file, which the file graph does not see.
+    let files: BTreeMap<String, BTreeSet<String>> = [
+        ("c/fit", vec![]),
+        ("c/fit/strength", vec!["c/maps"]),
+        ("c/maps", vec![]),
+        ("c/maps/linear", vec!["c/fit"]),
+    ]
+    .into_iter()
+    .map(|(a, b)| (a.to_string(), b.into_iter().map(String::from).collect()))
+    .collect();
+    assert!(circles(&files).is_empty());
+    assert_eq!(
+        circles(&folder_graph(&files)),
+        vec![vec!["c/fit".to_string(), "c/maps".to_string()]]
+    );
+}
+
 #[test]
 fn file_circles_are_found() {
     let g = |edges: &[(&str, &str)]| {

@@ -424,20 +424,13 @@ pub fn generate_with(plan: &Plan, process: &Process) -> Result<Written> {
             });
         }
     }
-    if plan.dialect == Dialect::Krl {
-        with_data(&mut written.files);
+    for f in &mut written.files {
+        // A language that stores its points beside the program (KRL's `.dat`).
+        if let Some((text, data)) = generator.data_file(&f.name, &f.text) {
+            (f.text, f.data) = (text, Some(data));
+        }
     }
     Ok(written)
-}
-
-/// Each KRL program of `files` split as KUKA System Software stores a module: its `.src`
-/// naming its points and the `.dat` declaring them ([`crate::program::krl::data::split`]).
-fn with_data(files: &mut [File]) {
-    for f in files {
-        let (src, dat) = crate::program::krl::data::split(&f.name, &f.text);
-        f.text = src;
-        f.data = Some(dat);
-    }
 }
 
 /// A run of targets written into one file.

@@ -192,4 +192,7 @@ impl Generator for super::Krl {
     fn writing(&self) -> &'static Writing {
         &WRITING
     }
+    fn data_file(&self, name: &str, text: &str) -> Option<(String, String)> {
+        Some(super::data::split(name, text))
+    }
 }

@@ -2,8 +2,8 @@
 //! *Thin readings*).
 
 use super::{factor, not_converged, prior_weights, Fit, Options, Problem};
+use crate::calibration::acceptance::lowers;
 use crate::calibration::error_model::{ErrorModel, Observation, Target};
-use crate::calibration::maps::lowers;
 use nalgebra::{DMatrix, DVector};
 use stiffid_core::math::linalg::CappedSvd;
 use stiffid_core::Result;

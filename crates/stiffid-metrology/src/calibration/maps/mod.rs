@@ -46,6 +46,7 @@
 mod inner;
 pub(crate) mod linear;
 
+pub use super::acceptance::lowers;
 pub use super::error_model::JointMaps;
 pub use linear::{extended, Linear};
 
@@ -101,9 +102,6 @@ pub const ACCEPT: f64 = 3.0;
 /// no map on a robot without one in 9 seeds of 10 or more from 50 postures (`maps_tests.rs`;
 /// at 2 standard errors, in 34 of 40).
 pub const MAP_ACCEPT: f64 = 2.5;
-
-/// The least share of the held-out squared error a map must remove to be kept.
-pub(crate) const LEAST_GAIN: f64 = 0.02;
 
 /// The fewest distinct postures with which `--maps auto` considers maps (below it, none): five
 /// folds of at least six postures.
@@ -245,30 +243,14 @@ pub struct Nested {
 }
 
 /// Whether `candidate` lowers the held-out error of `current` by more than [`MAP_ACCEPT`]
-/// standard errors of the paired per-posture differences and by [`LEAST_GAIN`] of it.
+/// standard errors of the paired per-posture differences and by
+/// [`super::acceptance::LEAST_GAIN`] of it.
 fn better(current: &Scored, candidate: &Scored) -> bool {
     lowers(
         (&current.errors, current.total),
         (&candidate.errors, candidate.total),
         MAP_ACCEPT,
     )
-}
-
-/// Whether the candidate's held-out errors (per held-out posture, and their total) lower the
-/// current ones by more than `accept` standard errors of the paired per-posture differences and by
-/// 2 % of the total: the acceptance rule of every choice by cross-validation in the calibration
-/// (the maps at [`MAP_ACCEPT`], the error motions' orders at [`ACCEPT`]).
-pub fn lowers(current: (&[f64], f64), candidate: (&[f64], f64), accept: f64) -> bool {
-    let n = current.0.len();
-    if n < 2 {
-        return false;
-    }
-    let d: Vec<f64> = (current.0.iter().zip(candidate.0))
-        .map(|(a, b)| a - b)
-        .collect();
-    let mean = d.iter().sum::<f64>() / n as f64;
-    let var = d.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
-    mean > accept * (var / n as f64).sqrt() && candidate.1 < (1.0 - LEAST_GAIN) * current.1
 }
 
 /// Chooses the maps of `spec` by cross-validation over the postures `postures` of `linear`
