@@ -46,6 +46,10 @@ pub(super) struct Given {
     g4: bool,
     /// The `H` word.
     h: Option<f64>,
+    /// `G40`, `G41` or `G42`, and the span of a `G41`/`G42` word (dropped when written).
+    comp: Option<(u8, Option<Range<usize>>)>,
+    /// The `D` word and its span.
+    d: Option<(f64, Range<usize>)>,
 }
 
 pub(super) fn block(
@@ -78,6 +82,9 @@ pub(super) fn block(
         return Err(g53_outside_g0_g1(line, &given, s));
     }
     super::dialect::before_motion(line, &given, s)?;
+    if given.home.is_some() || given.g53 || s.motion >= 81 && s.motion != NO_MOTION {
+        super::cutter::refuse_while_on(line, "G28, G30, G53 or a canned cycle", s)?;
+    }
     if let Some(code) = given.home {
         let other = given.centre_given() || given.radius.is_some() || given.abc || given.external;
         let named = given.target.map(|t| t.is_some());
@@ -148,7 +155,8 @@ impl Given {
             }
             'P' => self.cycle.dwell = Some((v, w.span.clone())),
             'H' => self.h = Some(v),
-            'S' | 'M' | 'N' | 'O' | 'D' => {}
+            'D' => self.d = Some((v, w.span.clone())),
+            'S' | 'M' | 'N' | 'O' => {}
             other => return Err(at(line, format!("'{other}': not a word of the supported subset (G M T F S N O P Q X Y Z I J K R, A B C with rotary = abc, U V W A B C mapped by external = LETTERS)"))),
         }
         Ok(())
@@ -185,14 +193,20 @@ impl Given {
                 self.drop.push(w.span.clone());
             }
             80 if s.motion >= 81 => s.motion = NO_MOTION,
-            g @ (41 | 42) => return Err(at(line, format!("G{g}: cutter radius compensation belongs to the CAM post: post the path of the tool centre (compensation in the computer, G40)"))),
-            g @ 17..=19 => s.plane = g,
+            g @ (41 | 42) => self.comp = Some((g, Some(w.span.clone()))),
+            40 => self.comp = Some((40, None)),
+            g @ 17..=19 => {
+                if g != s.plane {
+                    super::cutter::refuse_while_on(line, &format!("G{g}: a change of plane"), s)?;
+                }
+                s.plane = g;
+            }
             20 => (s.inch, s.units_stated) = (true, true),
             21 => (s.inch, s.units_stated) = (false, true),
             90 => s.incremental = false,
             91 => s.incremental = true,
             4 => self.g4 = true,
-            40 | 80 | 94 => {}
+            80 | 94 => {}
             g => return Err(unsupported(line, &format!("G{g}"))),
         }
         Ok(())
@@ -221,6 +235,19 @@ impl Given {
             self.cycle.dwell = None;
         } else if let Some(q) = self.q_span.take() {
             self.drop.push(q);
+        }
+        if self.offset.is_some() {
+            super::cutter::refuse_while_on(line, "a work offset selected", s)?;
+        }
+        if self.length.is_some() {
+            super::cutter::refuse_while_on(line, "a tool length offset changed", s)?;
+        }
+        if let Some((code, span)) = self.comp.clone() {
+            super::cutter::set(line, code, self.d.as_ref().map(|d| d.0), s)?;
+            s.dropped.extend(span);
+            if code != 40 {
+                s.dropped.extend(self.d.as_ref().map(|d| d.1.clone()));
+            }
         }
         if let Some(code) = self.offset {
             let name = match code {
@@ -456,6 +483,10 @@ fn motion(
     } else {
         vec![end]
     };
+    if !here.1.iter().all(|k| *k) {
+        super::cutter::refuse_while_on(line, "a move from a place not known", s)?;
+    }
+    let positions = super::cutter::apply(line, here.0, positions, tolerance, s, out)?;
     let motion = if s.motion == 0 {
         Motion::Rapid
     } else {

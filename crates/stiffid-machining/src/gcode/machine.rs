@@ -26,6 +26,10 @@ pub struct Machine {
     /// tip, m; a `None` number is the length of every tool (a process of one operation
     /// without a `tool_number`). Empty: no tool length offsets (module docs).
     pub tool_lengths: Vec<(Option<u32>, f64)>,
+    /// Per tool number its radius, m (the process's `[tool] diameter_mm` / 2; a `None` number
+    /// every tool's): what cutter radius compensation `G41`/`G42` offsets by. Empty: `G41`/`G42`
+    /// refused.
+    pub tool_radii: Vec<(Option<u32>, f64)>,
     /// The controller the program is written for (`[controller] dialect`), where controllers
     /// read the same words differently (module `dialect`); `None`: the setup does not say, and
     /// a block whose reading depends on it is refused.
@@ -38,6 +42,7 @@ impl Machine {
         Machine {
             frames: setup.workcell().program_frames().clone(),
             tool_lengths: process.map(|p| p.tool_lengths()).unwrap_or_default(),
+            tool_radii: process.map(|p| p.tool_radii()).unwrap_or_default(),
             dialect: setup.workcell().controller().dialect,
         }
     }

@@ -69,6 +69,7 @@
 
 mod arc;
 mod block;
+mod cutter;
 mod cycles;
 mod dialect;
 mod groups;
@@ -193,6 +194,8 @@ pub struct GCode {
     /// spindle's gauge line's, the tip that length below them.
     pub no_length_offset: Option<(u64, f64)>,
     blocks: Vec<Block>,
+    /// Words dropped when written (`G41`, `G42` and their `D`: the path is the tool centre's).
+    dropped: Vec<Range<usize>>,
     text: String,
     /// The tip at the start (the setup's), `G54` part frame, m: where an incremental first
     /// block is written from.
@@ -266,6 +269,10 @@ struct State {
     /// The line of a `G28` made with a tool length offset in force, on a dialect whose rule is
     /// not known (module `dialect`).
     home_cancel: Option<u64>,
+    /// Cutter radius compensation (module `cutter`).
+    comp: cutter::Comp,
+    /// The spans of words dropped when the program is written (`G41`, `G42` and their `D`).
+    dropped: Vec<Range<usize>>,
     /// The part's surface a canned cycle drills into, part frame `Z`, m (`(stiffid: surface_mm
     /// = Z)`, default 0).
     surface: f64,
@@ -310,6 +317,8 @@ impl State {
             offset_change: None,
             take_up: 0.0,
             home_cancel: None,
+            comp: Default::default(),
+            dropped: Vec::new(),
             machine: machine.clone(),
         }
     }
@@ -357,6 +366,7 @@ pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<G
         unplaced_g53: Vec::new(),
         no_length_offset: None,
         blocks: Vec::new(),
+        dropped: Vec::new(),
         text: text.to_string(),
         start: machine.frames.start,
     };
@@ -404,6 +414,7 @@ pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<G
     out.external = s.external;
     out.process = s.process;
     out.comments = s.comments;
+    out.dropped = s.dropped;
     Ok(out)
 }
 

@@ -65,8 +65,10 @@ impl GCode {
         let mut out = String::with_capacity(self.text.len() * 2);
         let mut at = 0;
         for b in &self.blocks {
-            out.push_str(&self.text[at..b.line.start]);
+            self.push_dropping(at..b.line.start, &mut out);
             let mut drop = b.drop.clone();
+            let within = |r: &&Range<usize>| r.start >= b.line.start && r.end <= b.line.end;
+            drop.extend(self.dropped.iter().filter(within).cloned());
             if external.is_some() {
                 drop.extend(b.external_words.iter().cloned());
             }
@@ -86,8 +88,20 @@ impl GCode {
             }
             at = b.line.end;
         }
-        out.push_str(&self.text[at..]);
+        self.push_dropping(at..self.text.len(), &mut out);
         Ok(out)
+    }
+
+    /// The text of `range` with the dropped words in it left out ([`GCode::dropped`]).
+    fn push_dropping(&self, range: Range<usize>, out: &mut String) {
+        let mut from = range.start;
+        let inside = |r: &&Range<usize>| r.start >= range.start && r.end <= range.end;
+        for r in self.dropped.iter().filter(inside) {
+            let r = blanks_before(&self.text, r, from);
+            out.push_str(&self.text[from..r.start]);
+            from = r.end;
+        }
+        out.push_str(&self.text[from..range.end]);
     }
 
     /// A canned cycle's block: its own words kept, each point a `G0`/`G1` block of its own, the

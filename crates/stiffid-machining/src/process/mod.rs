@@ -69,6 +69,20 @@ impl Process {
             .filter_map(|o| Some((o.selector.tool_number, o.tool_length?)))
             .collect()
     }
+
+    /// Each operation's tool number and its tool's radius (half its `diameter_mm`), m: what
+    /// a G-code's cutter radius compensation (`G41`/`G42`) offsets the path by.
+    pub fn tool_radii(&self) -> Vec<(Option<u32>, f64)> {
+        (self.operations.iter())
+            .map(|o| {
+                let d = match &o.kind {
+                    Kind::Milling(m) => m.diameter,
+                    Kind::Drilling(d) => d.diameter,
+                };
+                (o.selector.tool_number, d / 2.0)
+            })
+            .collect()
+    }
 }
 
 /// The process of an operation.

@@ -62,12 +62,12 @@ fn cutter_compensation_unit_changes_under_a_feed_and_malformed_cycles_are_refuse
         (
             "G41 G1 X10 D1 F100",
             4,
-            "G41: cutter radius compensation belongs to the CAM post",
+            "G41: controllers enter cutter radius compensation and turn its corners differently",
         ),
         (
             "G42 G1 X10 D1 F100",
             4,
-            "G42: cutter radius compensation belongs to the CAM post",
+            "G42: controllers enter cutter radius compensation and turn its corners differently",
         ),
         ("G1 X5 F600\nG20 G1 X1", 5, "F of line 4 is in force"),
         ("G91 G81 X10 Y0 Z-5 R2 F100", 4, "G91"),

@@ -24,6 +24,7 @@ fn haas_tool(dialect: Option<GcodeDialect>) -> Machine {
         },
         tool_lengths: vec![(Some(1), 0.0762)],
         dialect,
+        ..Default::default()
     }
 }
 
@@ -244,9 +245,16 @@ fn hostile_sequences_of_offsets_homes_and_g53_never_panic_and_name_a_line() {
         "G43 H99999999",
         "G3 X1 Y1 I1 K1 F10",
         "G18 G2 X1 Z1 I1 J0 F10",
+        "G41 D1",
+        "G42",
+        "G40",
+        "G1 X5 Y5 F10",
+        "G1 X5.001 Y5 F10",
+        "G54",
     ];
     let mut m = haas_tool(None);
     m.tool_lengths.push((Some(2), 0.3));
+    m.tool_radii = vec![(Some(1), 0.003)];
     m.frames.offsets = vec![(
         "G53".into(),
         nalgebra::Isometry3::translation(0.0, 0.0, 0.5),
@@ -284,4 +292,147 @@ fn hostile_sequences_of_offsets_homes_and_g53_never_panic_and_name_a_line() {
     }
     assert_eq!(read + refused, 5 * blocks.len().pow(2));
     assert!(read > 0 && refused > 0);
+}
+
+/// A 10 mm square cut clockwise from (0, 0), entered from (10, -10), left by G40 back there.
+fn square(code: &str) -> String {
+    format!("G21 G90 G17\nT1 M6\nG0 X10 Y-10 Z5\nG1 Z-1 F100\n{code} D1\nX0 Y0\nY10\nX10\nY0\nX0\nG40\nX10 Y-10\n")
+}
+
+/// The distance from `p` (mm) to the boundary of the square [0, 10]^2.
+fn to_square(p: &Vector3<f64>) -> f64 {
+    let (x, y) = (p.x * 1e3, p.y * 1e3);
+    let dx = (-x).max(x - 10.0).max(0.0);
+    let dy = (-y).max(y - 10.0).max(0.0);
+    if dx > 0.0 || dy > 0.0 {
+        dx.hypot(dy)
+    } else {
+        x.min(10.0 - x).min(y).min(10.0 - y)
+    }
+}
+
+#[test]
+fn cutter_radius_compensation_offsets_a_square_by_the_tool_radius_as_linuxcnc() {
+    let m = radius;
+    // G41 (left) on a clockwise square: outside, every corner turned on an arc of 5 mm around
+    // the square's corner: every point of the sides and corners is 5 mm from the square.
+    let g = read(&square("G41"), &m(5.0, Some(GcodeDialect::LinuxCnc)));
+    let lines: Vec<u64> = g.points.iter().map(|p| p.line).collect();
+    let side = |l: u64| g.points.iter().filter(|p| p.line == l).collect::<Vec<_>>();
+    for l in 8..=11 {
+        for p in side(l) {
+            assert_relative_eq!(to_square(&p.position), 5.0, epsilon = 1e-9);
+        }
+    }
+    let ends: Vec<Vector3<f64>> = (8..=11).map(|l| side(l).last().unwrap().position).collect();
+    let want = [
+        mm(-5.0, 10.0, -1.0),
+        mm(10.0, 15.0, -1.0),
+        mm(15.0, 0.0, -1.0),
+        mm(0.0, -5.0, -1.0),
+    ];
+    for (a, b) in ends.iter().zip(want) {
+        assert_relative_eq!(*a, b, epsilon = 1e-12);
+    }
+    // The corner of each side starts where the last one ended, on the corner's circle: the
+    // side's first arc point turns around the programmed corner.
+    assert!(
+        side(9).len() > 1 && side(9)[0].position.y * 1e3 > 10.0,
+        "{lines:?}"
+    );
+    // The entry ends tangent to the circle of 5 mm around (0, 0), seen from (10, -10).
+    let entry = side(7)[0].position * 1e3;
+    assert_relative_eq!(entry.x.hypot(entry.y), 5.0, epsilon = 1e-9);
+    let from = Vector3::new(10.0, -10.0, -1.0);
+    assert_relative_eq!(
+        (entry - from).dot(&entry.xy().push(0.0)),
+        0.0,
+        epsilon = 1e-9
+    );
+    // G40: the next move goes to its programmed end.
+    assert_relative_eq!(
+        g.points.last().unwrap().position,
+        mm(10.0, -10.0, -1.0),
+        epsilon = 1e-12
+    );
+    // G42 (right) of 2 mm: inside, each side ends where the offset sides meet.
+    let g = read(&square("G42"), &m(2.0, Some(GcodeDialect::LinuxCnc)));
+    let ends: Vec<Vector3<f64>> = (8..=11)
+        .map(|l| g.points.iter().rfind(|p| p.line == l).unwrap().position)
+        .collect();
+    let want = [
+        mm(2.0, 8.0, -1.0),
+        mm(8.0, 8.0, -1.0),
+        mm(8.0, 2.0, -1.0),
+        mm(0.0, 2.0, -1.0),
+    ];
+    for (a, b) in ends.iter().zip(want) {
+        assert_relative_eq!(*a, b, epsilon = 1e-12);
+    }
+    // Written back: the tool centre's path, G41/G42 and D dropped; read back, the same.
+    let positions: Vec<_> = g.points.iter().map(|p| p.position).collect();
+    let written = g.write(&positions).unwrap();
+    assert!(
+        !written.contains("G42") && !written.contains("D1"),
+        "{written}"
+    );
+    let again = gcode::parse_on(&written, 1e-5, &m(2.0, Some(GcodeDialect::LinuxCnc))).unwrap();
+    assert_eq!(again.points.len(), g.points.len());
+    for (a, b) in again.points.iter().zip(&g.points) {
+        assert_relative_eq!(a.position, b.position, epsilon = 1e-9);
+    }
+}
+
+/// A machine whose tool 1 has radius `r` mm, on `dialect`.
+fn radius(r: f64, dialect: Option<GcodeDialect>) -> Machine {
+    Machine {
+        tool_radii: vec![(Some(1), r * 1e-3)],
+        dialect,
+        ..Default::default()
+    }
+}
+
+#[test]
+fn cutter_radius_compensation_outside_what_is_read_is_refused_naming_the_line() {
+    let m = radius;
+    // Refused naming the line: without the dialect, on Haas, an arc, a tool that does not fit,
+    // an entry shorter than the radius.
+    let t = square("G41");
+    refused(
+        &t,
+        &m(5.0, None),
+        6,
+        &["[controller] dialect = \"linuxcnc\""],
+    );
+    refused(&t, &m(5.0, Some(GcodeDialect::Haas)), 6, &["\"haas\""]);
+    refused(
+        &t.replace("Y10\n", "G2 Y10 I0 J5\n"),
+        &m(5.0, Some(GcodeDialect::LinuxCnc)),
+        8,
+        &["an arc under cutter radius compensation"],
+    );
+    refused(
+        &square("G42"),
+        &m(6.0, Some(GcodeDialect::LinuxCnc)),
+        10,
+        &["does not fit"],
+    );
+    refused(
+        &t,
+        &m(20.0, Some(GcodeDialect::LinuxCnc)),
+        7,
+        &["not longer than the tool radius"],
+    );
+    refused(
+        "G41 D1\nG41 D1\n",
+        &m(5.0, Some(GcodeDialect::LinuxCnc)),
+        3,
+        &["on already"],
+    );
+    refused(
+        "G41 D7\n",
+        &m(5.0, Some(GcodeDialect::LinuxCnc)),
+        2,
+        &["radius of tool 7"],
+    );
 }
