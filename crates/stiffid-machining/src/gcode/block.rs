@@ -11,7 +11,7 @@ use stiffid_core::common::limits::LENGTH_MM;
 use stiffid_core::common::words::number;
 use stiffid_core::Result;
 
-pub(super) const SUBSET: &str = "G0-G4, G17-G21, G28, G30, G40, G43, G44, G49, G53-G59.3, G54.1, G61, G61.1, G64, G80-G83, G90, G90.1, G91, G91.1, G94, G98, G99";
+pub(super) const SUBSET: &str = "G0-G4, G17-G21, G28, G30, G40-G42, G43, G44, G49, G53-G59.3, G54.1, G61, G61.1, G64, G80-G83, G90, G90.1, G91, G91.1, G94, G98, G99";
 
 /// `s.motion` after `G80` ended a canned cycle: no motion in force until `G0`-`G3`.
 pub(super) const NO_MOTION: u8 = 80;

@@ -43,8 +43,12 @@
 //!   from one arc block is kept ([`GCode::arcs`]), so that a robot program written from the
 //!   path may write the arc as a circular move ([`crate::program::generate::arcs`]).
 //!
-//! Any other G code or letter is refused naming its line (cutter radius compensation `G41`/`G42`
-//! saying it belongs to the CAM post; `G92`, `G93`, `G95`, `G28.1` saying why), as are parameters
+//! Cutter radius compensation `G41`/`G42` is read as LinuxCNC runs it on the LinuxCNC dialect
+//! (module `cutter`); where controllers differ the setup's `[controller] dialect` says how
+//! (module `dialect`), else the block is refused naming the line.
+//!
+//! Any other G code or letter is refused naming its line (`G92`, `G93`, `G95`, `G28.1` saying
+//! why), as are parameters
 //! and expressions (`#`, `[`), O-word subprograms and loops, block delete `/`, polar words `@ ^`,
 //! an arc whose end is off its circle beyond 0.005 mm, an arc of radius below 1 um, a letter given
 //! twice in one block (but `G` and `M`), two codes of one modal group in one block (`G0 G1`, `G90
