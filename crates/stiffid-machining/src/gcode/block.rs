@@ -13,8 +13,7 @@ use stiffid_core::Result;
 
 pub(super) const SUBSET: &str = "G0-G4, G17-G21, G28, G30, G40-G42, G43, G44, G49, G53-G59.3, G54.1, G61, G61.1, G64, G80-G83, G90, G90.1, G91, G91.1, G94, G98, G99";
 
-/// `s.motion` after `G80` ended a canned cycle: no motion in force until `G0`-`G3`.
-pub(super) const NO_MOTION: u8 = 80;
+use super::NO_MOTION;
 
 /// The words of one block, gathered before it moves anything (the block's units).
 #[derive(Default)]
@@ -81,7 +80,7 @@ pub(super) fn block(
     if given.g53 && (given.home.is_some() || s.motion >= 81 && s.motion != NO_MOTION) {
         return Err(g53_outside_g0_g1(line, &given, s));
     }
-    super::dialect::before_motion(line, &given, s)?;
+    super::dialect::before_motion(line, &given.moves(s), s)?;
     if given.home.is_some() || given.g53 || s.motion >= 81 && s.motion != NO_MOTION {
         super::cutter::refuse_while_on(line, "G28, G30, G53 or a canned cycle", s)?;
     }
@@ -330,6 +329,17 @@ impl Given {
     /// Whether the block gives an axis word (X Y Z, a rotary or an external axis).
     fn moves_an_axis(&self) -> bool {
         self.target.iter().any(Option::is_some) || self.abc || self.external
+    }
+
+    /// What the dialect's rules need to know of the block's motion (module `dialect`).
+    fn moves(&self, s: &State) -> super::dialect::Moves {
+        let arc = (2..=3).contains(&s.motion) && (self.centre_given() || self.radius.is_some());
+        super::dialect::Moves {
+            target: self.target,
+            home: self.home.is_some(),
+            g53: self.g53,
+            other: self.abc || self.external || arc,
+        }
     }
 
     pub(super) fn centre_given(&self) -> bool {

@@ -14,8 +14,7 @@
 //! - `G53` under `G91`: LinuxCNC and grbl read its words as absolute machine coordinates;
 //!   FANUC, Haas and an unstated dialect are refused (module `block`).
 
-use super::block::Given;
-use super::{at, State};
+use super::{at, State, NO_MOTION};
 use stiffid_core::setup::GcodeDialect;
 use stiffid_core::Result;
 
@@ -37,31 +36,37 @@ impl State {
 
 /// Whether a canned cycle is in force: the block drills from where the tool is.
 fn in_cycle(s: &State) -> bool {
-    s.motion >= 81 && s.motion != super::block::NO_MOTION
+    s.motion >= 81 && s.motion != NO_MOTION
+}
+
+/// What the rules need to know of a block's motion.
+pub(super) struct Moves {
+    /// Its `X Y Z` words.
+    pub(super) target: [Option<f64>; 3],
+    /// `G28` or `G30`.
+    pub(super) home: bool,
+    /// `G53`.
+    pub(super) g53: bool,
+    /// A rotary or external axis word, or an arc's centre or radius.
+    pub(super) other: bool,
 }
 
 /// Whether the block moves the tool (an axis word, a home return, an arc's centre, a canned
 /// cycle's hole).
-fn moves(given: &Given, s: &State) -> bool {
-    let arc = (2..=3).contains(&s.motion) && (given.centre_given() || given.radius.is_some());
-    given.target.iter().any(Option::is_some)
-        || given.home.is_some()
-        || given.abc
-        || given.external
-        || arc
-        || in_cycle(s)
+fn moves(given: &Moves, s: &State) -> bool {
+    given.target.iter().any(Option::is_some) || given.home || given.other || in_cycle(s)
 }
 
 /// The block's `Z` given absolutely: its own `Z` in `G90` or under `G53`, or a home return of
 /// every axis.
-fn absolute_z(given: &Given, s: &State) -> bool {
-    let all_home = given.home.is_some() && given.target.iter().all(Option::is_none);
+fn absolute_z(given: &Moves, s: &State) -> bool {
+    let all_home = given.home && given.target.iter().all(Option::is_none);
     given.target[2].is_some() && (!s.incremental || given.g53) || all_home
 }
 
 /// Applies the dialect's reading of a changed tool length offset and of a `G28` with an offset
 /// in force to the block on `line` before it moves (module docs), or refuses it.
-pub(super) fn before_motion(line: u64, given: &Given, s: &mut State) -> Result<()> {
+pub(super) fn before_motion(line: u64, given: &Moves, s: &mut State) -> Result<()> {
     s.take_up = 0.0;
     if !moves(given, s) {
         return Ok(());
@@ -89,7 +94,7 @@ pub(super) fn before_motion(line: u64, given: &Given, s: &mut State) -> Result<(
         }
         // A home return's intermediate point where the tool is (`G28 G91 Z0`): Z goes home
         // from there in every reading.
-        None if given.home.is_some() && given.target[2] == Some(0.0) => {}
+        None if given.home && given.target[2] == Some(0.0) => {}
         None => {
             let what = if cycle {
                 "a canned cycle (it starts from the level where the tool is)"
@@ -105,11 +110,11 @@ pub(super) fn before_motion(line: u64, given: &Given, s: &mut State) -> Result<(
 
 /// A `G28` with a tool length offset in force: refused at the next absolute `Z` where the
 /// dialect's rule is not known (module docs).
-fn home_cancel(line: u64, given: &Given, s: &mut State) -> Result<()> {
+fn home_cancel(line: u64, given: &Moves, s: &mut State) -> Result<()> {
     let Some(home) = s.home_cancel else {
         return Ok(());
     };
-    if given.home.is_some() || !(absolute_z(given, s) || in_cycle(s)) {
+    if given.home || !(absolute_z(given, s) || in_cycle(s)) {
         return Ok(());
     }
     let who = match s.machine.dialect {

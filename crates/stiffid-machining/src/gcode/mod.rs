@@ -97,6 +97,9 @@ use stiffid_core::common::error::JobOption;
 use stiffid_core::{Error, Result};
 use words::words;
 
+/// `State::motion` after `G80` ended a canned cycle: no motion in force until `G0`-`G3`.
+pub(super) const NO_MOTION: u8 = 80;
+
 /// The most path points (after splitting arcs).
 pub const MAX_POINTS: usize = 1_000_000;
 /// The most blocks (lines).
