@@ -34,6 +34,8 @@ pub struct Read {
     pub pulses: Vec<Option<f64>>,
     /// Per external axis, the unit written (`mm`, `deg`) and the line of its first value.
     pub units: Units,
+    /// The motions left as found ([`super::Context::leave_refused`]).
+    pub left: Vec<super::Left>,
 }
 
 /// How a target's bound is written as a comment (`app::compensate::certify`).

@@ -53,8 +53,16 @@
 //! declared point moved to twice is one target per visit. [`JointProgram::write`] replaces the six
 //! numbers (a Cartesian target: its pose's numbers and, where they changed, its configuration data)
 //! of each target whose value changed (with 9 decimals, INFORM in whole pulses) and nothing else
-//! ([`JointProgram::write_with_external`] the external values too); a point visited twice takes one
-//! value, so the two visits' compensations must agree.
+//! ([`JointProgram::write_with_external`] the external values too); a declared point visited by
+//! motions whose compensations differ is written as several points, each other value declared
+//! beside the first under a free name ([`points`]; where the reader does not say where the point
+//! is declared, the visits must agree).
+//!
+//! Statements that set what the motions use (frames, tools, speeds) are followed through
+//! branches and loops along every path ([`paths`]); with [`Context::leave_refused`], a motion
+//! refused for what only the run decides is left as found, not compensated, and named in
+//! [`JointProgram::left`]; the controller backup's files given with a program
+//! ([`Context::backup`]) hold the data it declares elsewhere.
 
 pub mod cartesian;
 mod controller;
@@ -65,6 +73,8 @@ pub mod generate;
 pub mod inform;
 pub mod krl;
 pub mod ls;
+pub mod paths;
+mod points;
 pub mod rapid;
 pub mod rename;
 pub mod speed;
@@ -164,6 +174,9 @@ pub struct JointTarget {
     /// A point the controller holds, not the file (KRL's `XHOME`, from the setup's
     /// `[controller] home_deg`): compensated as every target, never written back.
     held: bool,
+    /// A declared point's declaration and name there, and where the motion names it
+    /// ([`points`]): where a second point is declared when two visits' compensations differ.
+    point: Option<Box<points::Point>>,
 }
 
 impl JointTarget {
@@ -174,6 +187,25 @@ impl JointTarget {
             incremental,
             ..self.clone()
         }
+    }
+
+    /// The target declared by the statement at `declaration` (bytes of the text, whole lines)
+    /// whose name there is at `name`.
+    pub(crate) fn declared_at(mut self, declaration: Range<usize>, name: Range<usize>) -> Self {
+        self.point = Some(Box::new(points::Point {
+            declaration,
+            name,
+            reference: None,
+        }));
+        self
+    }
+
+    /// The declared target named at `reference` (bytes of the text) by its motion.
+    pub(crate) fn named_at(mut self, reference: Range<usize>) -> Self {
+        if let Some(p) = self.point.as_deref_mut() {
+            p.reference = Some(reference);
+        }
+        self
     }
 
     /// The point the controller holds at axis angles `q_deg` (deg), moved to by a joint motion
@@ -190,6 +222,7 @@ impl JointTarget {
             cartesian: None,
             speed: speed::Speed::Joint,
             held: true,
+            point: None,
         }
     }
 
@@ -212,6 +245,7 @@ impl JointTarget {
             cartesian: Some(Box::new(c)),
             speed: speed::Speed::Unread(NOT_READ.into()),
             held: false,
+            point: None,
         }
     }
 
@@ -252,6 +286,8 @@ pub struct JointProgram {
     text: String,
     /// Where the data file's text begins in `text`, when one was read.
     data_at: Option<usize>,
+    /// The motions left as found ([`Context::leave_refused`]), in the order of their lines.
+    pub left: Vec<Left>,
 }
 
 /// What the setup says of a program that the program itself does not: the controller's
@@ -279,9 +315,23 @@ pub struct Context<'a> {
     pub home_deg: Option<[f64; 6]>,
     /// The files of the controller's backup given with the program (a front end reads them;
     /// the library lists no folder): each file's name as given (its last component names it:
-    /// FANUC `SYSFRAME.VA`, Yaskawa `TOOL.CND`) and its text. Each language reads the files it
-    /// knows ([`Context::backup_file`], [`Context::backup_with`]); empty: none given.
+    /// FANUC `SYSFRAME.VA`, Yaskawa `TOOL.CND`, KRL `$config.dat`, a RAPID module `BASE.sys`)
+    /// and its text. Each language reads the
+    /// files it knows ([`Context::backup_file`], [`Context::backup_with`]); empty: none given.
     pub backup: &'a [(String, String)],
+    /// Leave as found the motions refused for what only the run decides (paths that set
+    /// different frames, a value assigned at run time): each is then not compensated, written
+    /// back as read, and named in [`JointProgram::left`] instead of refusing the program.
+    pub leave_refused: bool,
+}
+
+/// A motion left as found ([`Context::leave_refused`]): its line and why it was not compensated.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Left {
+    /// The motion's line, 1-based.
+    pub line: u64,
+    /// Why it is not compensated (the refusal it would have been).
+    pub why: String,
 }
 
 /// The text of the program at `path`, of its `.dat` when it is a KRL program with one beside it
@@ -318,6 +368,7 @@ impl<'a> Context<'a> {
             machine: None,
             home_deg: c.program.home_deg,
             backup: &[],
+            leave_refused: false,
         }
     }
 
@@ -354,6 +405,29 @@ impl<'a> Context<'a> {
     /// The context with the data file `data` beside the program (KRL's `.dat`).
     pub fn with_data(self, data: Option<&'a str>) -> Self {
         Context { data, ..self }
+    }
+
+    /// The context that leaves refused motions as found (`leave`, [`Context::leave_refused`]).
+    pub fn with_leave_refused(self, leave: bool) -> Self {
+        Context {
+            leave_refused: leave,
+            ..self
+        }
+    }
+
+    /// The refusal `error` of a motion (an [`Error::Program`] naming its line) as a motion left
+    /// as found in `left` when [`Context::leave_refused`]; else the error.
+    ///
+    /// # Errors
+    /// `error`, unless it is a program's error and the context leaves refused motions.
+    pub fn leave(&self, left: &mut Vec<Left>, error: Error) -> Result<()> {
+        match error {
+            Error::Program { line, message } if self.leave_refused => {
+                left.push(Left { line, why: message });
+                Ok(())
+            }
+            other => Err(other),
+        }
     }
 }
 
@@ -395,7 +469,9 @@ pub fn parse_in(text: &str, dialect: Dialect, context: &Context) -> Result<Joint
         axes,
         pulses,
         units,
+        mut left,
     } = dialect.controller().read_in(text, context)?;
+    left.sort_by_key(|l| l.line);
     for t in &mut targets {
         t.external.resize(axes.len(), None);
         t.external_spans.resize(axes.len(), None);
@@ -422,6 +498,7 @@ pub fn parse_in(text: &str, dialect: Dialect, context: &Context) -> Result<Joint
         writer: None,
         text: [text, context.data.unwrap_or("")].concat(),
         data_at: context.data.map(|_| text.len()),
+        left,
     })
 }
 
@@ -510,8 +587,7 @@ impl JointProgram {
             });
         }
         // Each number to write: its span, the target, its text, whether it changed.
-        let mut edits: Vec<(Range<usize>, usize, String, bool)> =
-            Vec::with_capacity(6 * self.targets.len());
+        let mut edits: Vec<points::Edit> = Vec::with_capacity(6 * self.targets.len());
         for (i, t) in self.targets.iter().enumerate().filter(|(_, t)| !t.held) {
             let values = |j: usize| {
                 let e = external[j].iter().map(|v| v.unwrap_or(0.0));
@@ -546,6 +622,7 @@ impl JointProgram {
                 edits.push((span, i, self.number(k, value), changed));
             }
         }
+        points::split(self, &mut edits)?;
         edits.sort_by_key(|e| e.0.start);
         let mut out = String::with_capacity(self.text.len() + self.targets.len() * 24);
         let mut at = 0;
@@ -662,6 +739,7 @@ pub(crate) fn six(
         cartesian: None,
         speed: speed::Speed::Unread(NOT_READ.into()),
         held: false,
+        point: None,
     })
 }
 

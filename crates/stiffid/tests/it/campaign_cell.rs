@@ -272,6 +272,7 @@ fn read_back(text: &str, dialect: Dialect) -> Vec<ReadBack> {
         tool: None,
         data: None,
         machine: None,
+        ..Default::default()
     };
     let program = stiffid::internal::machining::program::parse_in(text, dialect, &context).unwrap();
     assert_eq!(program.axes.len(), 1, "{:?}", program.axes);

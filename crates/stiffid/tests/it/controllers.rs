@@ -290,6 +290,7 @@ fn each_generating_controller_writes_the_cells_external_axes_in_its_form() {
             tool: None,
             data,
             machine: None,
+            ..Default::default()
         };
         let p = program::parse_in(text, d, &context).unwrap();
         assert_eq!(p.axes.len(), 2, "{d:?}: {:?}", p.axes);

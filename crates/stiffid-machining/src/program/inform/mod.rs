@@ -147,6 +147,7 @@ pub(crate) fn targets(text: &str, context: &Context) -> Result<Read> {
         axes,
         pulses,
         units: Vec::new(),
+        left: Vec::new(),
     })
 }
 

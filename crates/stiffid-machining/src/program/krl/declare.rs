@@ -98,7 +98,7 @@ fn read(
                         "{name} is declared {on} without a value (set at run time)"
                     )),
                     Some(open) => match (aggregate_at(line, start + offset, code, open), place) {
-                        (Ok(t), _) => Ok(t),
+                        (Ok(t), _) => Ok(declared_at(t, text, (start, offset), code, &name)),
                         (Err(e), Place::Src) => return Err(e),
                         (Err(e), Place::Dat(_)) => {
                             Err(format!("{name}, declared {on}: {}", message(e)))
@@ -133,6 +133,27 @@ fn read(
         }
     }
     Ok(())
+}
+
+/// The point `t` declared on the line at byte `start` of `text` (`offset`: where `text` begins
+/// in the program's), `code` the line's code, `name` its upper-case name.
+fn declared_at(
+    t: JointTarget,
+    text: &str,
+    (start, offset): (usize, usize),
+    code: &str,
+    name: &str,
+) -> JointTarget {
+    let upper = code.to_ascii_uppercase();
+    let at = upper.find('{').unwrap_or(upper.len());
+    let Some(n) = upper[..at].rfind(name) else {
+        return t;
+    };
+    let end = text[start..]
+        .find('\n')
+        .map_or(text.len(), |e| start + e + 1);
+    let name = start + offset + n..start + offset + n + name.len();
+    t.declared_at(start + offset..end + offset, name)
 }
 
 /// An error's message without its line.

@@ -107,7 +107,7 @@ fn one(
         return Err(at(line, format!("{first} {name}: {name} is assigned on line {assigned_on}, so its value at the motion is the controller's, not the file's: give the motion its own declared point")));
     }
     let target = match declared.points.get(&upper) {
-        Some((_, Ok(t))) => t.moved_to(line, false),
+        Some((_, Ok(t))) => t.moved_to(line, false).named_at(start + open..start + open + name.len()),
         Some((_, Err(why))) => return Err(at(line, format!("{first} {name}: {why}"))),
         None if name.is_empty() => return Err(at(line, format!("{first}: expected a point or an aggregate {{..}}"))),
         None if upper == "XHOME" => match context.home {

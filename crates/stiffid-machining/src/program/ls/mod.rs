@@ -433,6 +433,7 @@ impl Controller for FanucLs {
             axes,
             pulses: Vec::new(),
             units,
+            left: Vec::new(),
         })
     }
     /// `R = Rz(R) Ry(P) Rx(W)`.
