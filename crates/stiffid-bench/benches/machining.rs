@@ -90,6 +90,7 @@ fn benches(c: &mut Criterion) {
                     compliance: compliance.clone(),
                     input: Input::Program {
                         encoding: Default::default(),
+                        reading: Default::default(),
                         name: "raster.nc".into(),
                         text: &text,
                         data: None,

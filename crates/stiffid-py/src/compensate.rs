@@ -102,8 +102,12 @@ use stiffid::internal::observation::deflection::Frame;
 /// from G-code has its points in ``data``, its ``.dat`` (``DEFDAT``, ``DECL E6POS XP1=..``), to be
 /// written beside it, and each sub-program's in ``subprogram_data`` (name: text). Points
 /// without a process force are warned about (``UserWarning``) as the command does.
+/// ``backup=`` (a path or a list: files of the controller's backup, or folders whose files of the
+/// program's language are read) gives what a robot program declares elsewhere (KUKA the
+/// module's ``.dat`` and ``$config.dat``; ABB the task's modules); ``leave_refused=True`` leaves
+/// as found the motions refused for what only the run decides, each named in a warning.
 #[pyfunction]
-#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, frame="base", q0_deg=None, free=None, minimise=None, program_name=None, targets=None, max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_pct=20.0, objective=None, map=None, margin_deg=None, max_condition=None, refine=None, figures=false, **retired))]
+#[pyo3(signature = (setup, path=None, stiffness=None, *, program=None, process=None, output=None, chord_tolerance_mm=0.01, backup=None, leave_refused=false, frame="base", q0_deg=None, free=None, minimise=None, program_name=None, targets=None, max_tcp_speed_mm_s=2000.0, name_length=None, moves_per_file=10000, level=0.95, max_error_mm=None, force_tolerance_pct=20.0, objective=None, map=None, margin_deg=None, max_condition=None, refine=None, figures=false, **retired))]
 #[allow(clippy::too_many_arguments)]
 pub fn compensate<'py>(
     py: Python<'py>,
@@ -114,6 +118,8 @@ pub fn compensate<'py>(
     process: Option<PathBuf>,
     output: Option<&str>,
     #[pyo3(from_py_with = crate::count::number)] chord_tolerance_mm: f64,
+    backup: Option<&Bound<'py, PyAny>>,
+    leave_refused: bool,
     frame: &str,
     q0_deg: Option<&Bound<'py, PyAny>>,
     free: Option<&Bound<'py, PyAny>>,
@@ -174,15 +180,10 @@ pub fn compensate<'py>(
         frame,
         encoding,
     );
-    let input = input_of(texts, (&program, &process), how, settings)?;
-    let names = Names {
-        setup: setup.given.clone(),
-        stiffness: stiffness
-            .extract::<PathBuf>()
-            .map_or("arrays".into(), |p| p.display().to_string()),
-        out: String::new(),
-        program_out: String::new(),
-    };
+    let mut input = input_of(texts, (&program, &process), how, settings)?;
+    let backup = backup_files(backup, &input, &name)?;
+    read_with(&mut input, &backup, leave_refused)?;
+    let names = names_of(setup, stiffness);
     let request = Request {
         setup: s,
         compliance,
@@ -323,6 +324,62 @@ fn file_text(text: &str, encoding: Encoding) -> PyResult<String> {
     }
 }
 
+/// The names the document states: the setup as given, the stiffness file (or `arrays`).
+fn names_of(setup: &Setup, stiffness: &Bound<'_, PyAny>) -> Names {
+    Names {
+        setup: setup.given.clone(),
+        stiffness: stiffness
+            .extract::<PathBuf>()
+            .map_or("arrays".into(), |p| p.display().to_string()),
+        out: String::new(),
+        program_out: String::new(),
+    }
+}
+
+/// The files of the controller's backup `backup=` gives with the program `input` (named `name`).
+fn backup_files(
+    backup: Option<&Bound<'_, PyAny>>,
+    input: &Input,
+    name: &str,
+) -> PyResult<Vec<(String, String)>> {
+    match (backup, input) {
+        (None, _) => Ok(Vec::new()),
+        (Some(b), Input::Program { .. }) => error::read_backup(&backup_paths(b)?, name),
+        (Some(_), _) => Err(error::value("backup: only with program= and process=")),
+    }
+}
+
+/// The program `input` read with the backup's files `backup` and `leave_refused`.
+fn read_with<'t>(
+    input: &mut Input<'t>,
+    backup: &'t [(String, String)],
+    leave_refused: bool,
+) -> PyResult<()> {
+    match input {
+        Input::Program { reading, .. } => {
+            *reading = stiffid::app::compensate::Reading {
+                backup,
+                leave_refused,
+            };
+            Ok(())
+        }
+        _ if leave_refused => Err(error::value(
+            "leave_refused: only with program= and process=",
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// The paths `backup=` gives: one path (a file or a folder), or a list of them.
+fn backup_paths(backup: &Bound<'_, PyAny>) -> PyResult<Vec<PathBuf>> {
+    match backup.extract::<PathBuf>() {
+        Ok(one) => Ok(vec![one]),
+        Err(_) => backup.extract::<Vec<PathBuf>>().map_err(|_| {
+            error::value("backup: expected a path (a file or a folder of the controller's backup) or a list of paths")
+        }),
+    }
+}
+
 /// The path (`program` and `process` `None`) or the program to compensate, named `name`, and
 /// how its output is written.
 #[allow(clippy::type_complexity)]
@@ -388,6 +445,7 @@ fn input_of<'t>(
             };
             Input::Program {
                 encoding,
+                reading: Default::default(),
                 name: name.to_string(),
                 text,
                 data,

@@ -5,7 +5,7 @@ use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::{PyErr, Python};
 use std::fs::File;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use stiffid::internal::io::{self, Capped};
 use stiffid::Error;
 
@@ -137,6 +137,20 @@ pub fn read_program(path: &Path) -> Result<(String, Option<String>, io::Encoding
     let read =
         |p: &Path| io::read_bytes(&p.display().to_string(), open(p)?.into_inner()).map_err(raise);
     stiffid::internal::machining::program::read_files(path, read, raise)
+}
+
+/// The files of the controller's backup given with the robot program `program` (`paths`: files,
+/// or folders whose files of its language are read,
+/// [`stiffid_machining::program::read_backup`]); the errors of [`read`], and `ValueError` for a
+/// program without a controller (G-code).
+pub fn read_backup(paths: &[PathBuf], program: &str) -> Result<Vec<(String, String)>, PyErr> {
+    let dialect = match stiffid_machining::Language::of_file(program) {
+        Ok(stiffid_machining::Language::Robot(d)) => d,
+        _ => return Err(value(format!("backup: only with a robot program (KRL, RAPID, LS, INFORM): {program} has no controller backup"))),
+    };
+    let read =
+        |p: &Path| io::read_bytes(&p.display().to_string(), open(p)?.into_inner()).map_err(raise);
+    stiffid_machining::program::read_backup(paths, dialect, read, raise)
 }
 
 /// The file at `path` opened for reading, the path in the error (`FileNotFoundError` or

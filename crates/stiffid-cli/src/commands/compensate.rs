@@ -57,6 +57,16 @@ pub struct Args {
     /// (1e-6 <= value <= 10).
     #[arg(long, default_value_t = 0.01, requires = "program")]
     chord_tolerance_mm: f64,
+    /// With a robot --program: files of the controller's backup that hold what the program
+    /// declares elsewhere, or folders whose files of the program's language are read (KUKA the
+    /// module's .dat and $config.dat; ABB the task's modules, .mod and .sys).
+    #[arg(long, num_args = 1.., value_name = "PATH", requires = "program")]
+    backup: Vec<PathBuf>,
+    /// With a robot --program: leave as found the motions refused for what only the run decides
+    /// (a frame that depends on the path, a point assigned at run time), not compensated and
+    /// each named in a warning, instead of refusing the program.
+    #[arg(long, requires = "program")]
+    leave_refused: bool,
     /// With --path: the CSV written, one row per path point, units in the header. With
     /// --program: the compensated program, in the program's own language, or for G-code a robot
     /// program of the compensated targets (.src KRL, .mod RAPID, .ls FANUC LS, .jbi Yaskawa
@@ -215,7 +225,9 @@ pub fn run(args: &Args) -> Result<()> {
         None => (load::read(&input_path)?, None, Encoding::Utf8),
         Some(_) => load::read_program(&input_path)?,
     };
+    let backup = load::read_backup(&args.backup, &name)?;
     let input = input(args, name.clone(), (&text, data.as_deref()), encoding)?;
+    let input = with_reading(input, &backup, args.leave_refused);
     let out = OutFile::prepare(&args.out, "--out")?;
     // A G-code path written as a KRL program has its points' .dat beside it too.
     let krl_out = (args.out.extension().and_then(|e| e.to_str()))
@@ -279,6 +291,21 @@ pub fn run(args: &Args) -> Result<()> {
     Ok(())
 }
 
+/// The program input `input` read with the backup's files `backup` and `leave_refused`.
+fn with_reading<'t>(
+    mut input: Input<'t>,
+    backup: &'t [(String, String)],
+    leave_refused: bool,
+) -> Input<'t> {
+    if let Input::Program { reading, .. } = &mut input {
+        *reading = job::Reading {
+            backup,
+            leave_refused,
+        };
+    }
+    input
+}
+
 /// Why a wrench frame other than the default is refused with a program.
 pub(crate) const FRAME_WITHOUT_PATH: &str = "only with --path (the frame of a path CSV's wrenches): a program's wrench is its process file's, where the tool cuts";
 
@@ -310,6 +337,7 @@ fn input<'t>(
     let parsed = file::parse(&load::read(process)?, &process_name)?;
     Ok(Input::Program {
         encoding,
+        reading: job::Reading::default(),
         name,
         text,
         data,

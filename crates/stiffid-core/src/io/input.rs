@@ -51,3 +51,65 @@ fn options() -> std::fs::OpenOptions {
     }
     options
 }
+
+/// The most files a folder given as a controller's backup lists ([`files_under`]).
+pub const MAX_BACKUP_FILES: usize = 10_000;
+
+/// How deep [`files_under`] looks into a folder (a KUKA backup's `KRC/R1/System/$config.dat` is
+/// 3 folders down).
+pub const MAX_BACKUP_DEPTH: usize = 8;
+
+/// The files a path given as a controller's backup stands for: the path itself when it is a file
+/// (whatever its name), else the regular files under the folder, at most [`MAX_BACKUP_DEPTH`]
+/// folders down, whose name `wanted` takes, in path order. One rule for both front ends (the
+/// command's `--backup`, Python's `backup=`); symbolic links to folders are not followed.
+///
+/// # Errors
+/// The operating system's error for a path that cannot be read, naming what it could not read;
+/// `ErrorKind::InvalidInput` when the folder holds more than [`MAX_BACKUP_FILES`] such files.
+pub fn files_under(
+    path: &Path,
+    wanted: &dyn Fn(&str) -> bool,
+) -> std::io::Result<Vec<std::path::PathBuf>> {
+    if !std::fs::metadata(path)?.is_dir() {
+        return Ok(vec![path.to_path_buf()]);
+    }
+    let mut out = Vec::new();
+    let mut folders = vec![(path.to_path_buf(), 0usize)];
+    while let Some((folder, depth)) = folders.pop() {
+        for entry in std::fs::read_dir(&folder)? {
+            let entry = entry?;
+            let kind = entry.file_type()?;
+            let name = entry.file_name();
+            if kind.is_dir() && depth < MAX_BACKUP_DEPTH {
+                folders.push((entry.path(), depth + 1));
+            } else if kind.is_file() && wanted(&name.to_string_lossy()) {
+                out.push(entry.path());
+                if out.len() > MAX_BACKUP_FILES {
+                    return Err(Error::new(ErrorKind::InvalidInput, format!("holds more than {MAX_BACKUP_FILES} files of the program's language: give the backup's folder of the robot (KUKA KRC/R1, ABB RAPID/TASK1) or the files themselves")));
+                }
+            }
+        }
+    }
+    out.sort();
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn a_folder_lists_its_wanted_files_below_it_and_a_file_is_itself() {
+        let dir = std::env::temp_dir().join(format!("stiffid-backup-{}", std::process::id()));
+        let deep = dir.join("KRC/R1/System");
+        std::fs::create_dir_all(&deep).unwrap();
+        std::fs::write(deep.join("$config.dat"), "DEFDAT $CONFIG\n").unwrap();
+        std::fs::write(dir.join("notes.txt"), "").unwrap();
+        let dat = |n: &str| n.ends_with(".dat");
+        let found = super::files_under(&dir, &dat).unwrap();
+        assert_eq!(found, vec![deep.join("$config.dat")]);
+        let one = super::files_under(&dir.join("notes.txt"), &dat).unwrap();
+        assert_eq!(one, vec![dir.join("notes.txt")]);
+        assert!(super::files_under(&dir.join("missing"), &dat).is_err());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

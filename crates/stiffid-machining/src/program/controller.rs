@@ -110,6 +110,18 @@ pub trait Controller: Sync + 'static {
     fn generator(&self) -> Option<&'static dyn Generator> {
         None
     }
+    /// The extensions (lowercase) of the files of a controller's backup the language reads
+    /// beside a program ([`super::Context::backup`]); by default its programs' own.
+    fn backup_extensions(&self) -> &'static [&'static str] {
+        Self::LANGUAGE.extensions
+    }
+    /// The program `text`'s data file among the backup's files of `context` (KRL's `.dat` of
+    /// the module), read and written as one beside it ([`super::Context::data`]); by default
+    /// none.
+    fn data_file<'a>(&self, text: &str, context: &super::Context<'a>) -> Option<&'a str> {
+        let _ = (text, context);
+        None
+    }
 }
 
 /// A [`Controller`] as the registry holds it ([`super::Dialect::controller`]): its
@@ -142,6 +154,10 @@ pub trait DynController: Sync {
     fn motion_lines(&self, text: &str) -> Vec<u64>;
     /// [`Controller::generator`].
     fn generator(&self) -> Option<&'static dyn Generator>;
+    /// [`Controller::backup_extensions`].
+    fn backup_extensions(&self) -> &'static [&'static str];
+    /// [`Controller::data_file`].
+    fn data_file<'a>(&self, text: &str, context: &super::Context<'a>) -> Option<&'a str>;
 
     /// The language's name in documents and options (`krl`, `rapid`, `ls`, `inform`).
     fn key(&self) -> &'static str {
@@ -243,6 +259,12 @@ impl<C: Controller> DynController for C {
     }
     fn generator(&self) -> Option<&'static dyn Generator> {
         Controller::generator(self)
+    }
+    fn backup_extensions(&self) -> &'static [&'static str] {
+        Controller::backup_extensions(self)
+    }
+    fn data_file<'a>(&self, text: &str, context: &super::Context<'a>) -> Option<&'a str> {
+        Controller::data_file(self, text, context)
     }
 }
 

@@ -44,10 +44,11 @@
 //! aside, whose via point and end are both targets), a relative
 //! motion the file cannot resolve exactly, an offset or target held in a register on the
 //! controller (LS `Offset,PR[]`, `Tool_Offset`, `PR[]`), a point declared outside the file or
-//! assigned at run time, a search or triggered motion (RAPID `SearchL`, `TriggL`, `MoveLDO`),
-//! motions in more than one routine, and jumps, loops, branches and calls in a program with
-//! motions (the order the controller runs would not be the file's; RAPID refuses the ones that
-//! hold a motion, or jump in the routine of the motions, [`rapid`]).
+//! assigned at run time (unless the backup's files, [`Context::backup`], declare it), a search
+//! or triggered motion (RAPID `SearchL`, `TriggL`, `MoveLDO`). KRL and RAPID read a motion inside
+//! a loop or branch, or in another routine of the file, where it is (what it moves with followed
+//! along every path, [`paths`]); LS and INFORM refuse jumps, loops, branches and calls in a
+//! program with motions (the order the controller runs would not be the file's).
 //!
 //! The targets come in the order of the motion instructions, which is the order the path follows; a
 //! declared point moved to twice is one target per visit. [`JointProgram::write`] replaces the six
@@ -196,6 +197,25 @@ impl JointTarget {
             declaration,
             name,
             reference: None,
+            foreign: None,
+        }));
+        self
+    }
+
+    /// The target as declared in another file of the controller (`foreign`: its declaration,
+    /// as the program declares its copy, and the name's bytes in it), the program's copy going
+    /// at byte `insert` of the program's text ([`points::Foreign`]).
+    pub(crate) fn declared_elsewhere(
+        mut self,
+        foreign: points::Foreign,
+        name: Range<usize>,
+        insert: usize,
+    ) -> Self {
+        self.point = Some(Box::new(points::Point {
+            declaration: insert..insert,
+            name,
+            reference: None,
+            foreign: Some(Box::new(foreign)),
         }));
         self
     }
@@ -206,24 +226,6 @@ impl JointTarget {
             p.reference = Some(reference);
         }
         self
-    }
-
-    /// The point the controller holds at axis angles `q_deg` (deg), moved to by a joint motion
-    /// on `line` (KRL's `XHOME`): not in the file, never written back.
-    pub(crate) fn held(line: u64, q_deg: [f64; 6]) -> Self {
-        JointTarget {
-            line,
-            q_deg,
-            external: Vec::new(),
-            spans: Default::default(),
-            external_spans: Vec::new(),
-            origin: line,
-            incremental: false,
-            cartesian: None,
-            speed: speed::Speed::Joint,
-            held: true,
-            point: None,
-        }
     }
 
     /// Whether the controller holds the point, not the file (KRL's `XHOME`): it is never
@@ -304,14 +306,17 @@ pub struct Context<'a> {
     /// `[robot_flange]`), m, and the tools the controller holds by number (`[controller]
     /// tools`, in its flange frame).
     pub tool: Option<(Isometry3<f64>, &'a NumberedFrames)>,
+    /// The bases (user frames) the controller holds by number, in its world frame (`[controller]
+    /// bases`), against which a backup's own tables are checked.
+    pub bases: Option<&'a NumberedFrames>,
     /// The data file beside the program (KRL's `.dat`: its points and frame data), whose
     /// targets there are written back into it (`JointProgram::write_pair`).
     pub data: Option<&'a str>,
     /// A G-code program's controller: its work offsets, start and home positions and tool
     /// lengths ([`crate::gcode::Machine::of`]); `None`: none of them known.
     pub machine: Option<&'a crate::gcode::Machine>,
-    /// The controller's home posture, deg (`[controller] home_deg`): where a KRL program's
-    /// `PTP XHOME` goes (the controller's `$config.dat` holds it); `None`: not known.
+    /// The controller's home posture, deg (`[controller] home_deg`), where the language reads
+    /// it (a KRL program's `PTP XHOME` passes through whatever it says); `None`: not known.
     pub home_deg: Option<[f64; 6]>,
     /// The files of the controller's backup given with the program (a front end reads them;
     /// the library lists no folder): each file's name as given (its last component names it:
@@ -332,6 +337,29 @@ pub struct Left {
     pub line: u64,
     /// Why it is not compensated (the refusal it would have been).
     pub why: String,
+    /// The declared point it moves to, whose declaration its compensated visits leave as read.
+    pub(crate) point: Option<points::Point>,
+}
+
+impl Left {
+    /// The motion on `line` passed through as found, for the reason `why` (a motion to the home
+    /// position).
+    pub(crate) fn passed(line: u64, why: String) -> Self {
+        Left {
+            line,
+            why,
+            point: None,
+        }
+    }
+
+    /// The motion of `target` left as found, for the reason `why`.
+    pub(crate) fn of(target: &JointTarget, why: String) -> Self {
+        Left {
+            line: target.line,
+            why,
+            point: target.point.as_deref().cloned(),
+        }
+    }
 }
 
 /// The text of the program at `path`, of its `.dat` when it is a KRL program with one beside it
@@ -357,6 +385,47 @@ pub fn read_files<E>(
     Ok((texts.remove(0), data, encoding))
 }
 
+/// The files of a controller's backup given with a program of `dialect` (`paths`: files, or
+/// folders whose files of the language's backup extensions are read,
+/// [`stiffid_core::io::input::files_under`]), each named as found and its text (UTF-8, else
+/// Latin-1). `read` gives a file's bytes (a front end's reading, with the file's name in its
+/// error); `wrap` turns a listing's or a text's error into the caller's.
+///
+/// # Errors
+/// Those of `read`; a path that cannot be listed, or a file that is not text, through `wrap`.
+pub fn read_backup<E>(
+    paths: &[std::path::PathBuf],
+    dialect: Dialect,
+    mut read: impl FnMut(&std::path::Path) -> std::result::Result<Vec<u8>, E>,
+    wrap: impl Fn(Error) -> E,
+) -> std::result::Result<Vec<(String, String)>, E> {
+    let extensions = dialect.controller().backup_extensions();
+    let wanted = |name: &str| {
+        let e = name
+            .rsplit_once('.')
+            .map_or("", |(_, e)| e)
+            .to_ascii_lowercase();
+        extensions.contains(&e.as_str())
+    };
+    let mut out = Vec::new();
+    for path in paths {
+        let files = stiffid_core::io::input::files_under(path, &wanted).map_err(|e| {
+            wrap(Error::Parse {
+                source_name: path.display().to_string(),
+                message: format!("the controller's backup: {e}"),
+            })
+        })?;
+        for file in files {
+            let name = file.display().to_string();
+            let bytes = read(&file)?;
+            let (mut texts, _) =
+                stiffid_core::io::program_texts(vec![(name.as_str(), bytes)]).map_err(&wrap)?;
+            out.push((name, texts.remove(0)));
+        }
+    }
+    Ok(out)
+}
+
 impl<'a> Context<'a> {
     /// What `setup` says of its programs.
     pub fn of(setup: &'a Setup) -> Self {
@@ -364,6 +433,7 @@ impl<'a> Context<'a> {
         Context {
             pulses: c.pulses.as_ref(),
             tool: Some((c.adapter * Translation3::from(setup.tool().tcp), &c.tools)),
+            bases: Some(&c.bases),
             data: None,
             machine: None,
             home_deg: c.program.home_deg,
@@ -423,7 +493,11 @@ impl<'a> Context<'a> {
     pub fn leave(&self, left: &mut Vec<Left>, error: Error) -> Result<()> {
         match error {
             Error::Program { line, message } if self.leave_refused => {
-                left.push(Left { line, why: message });
+                left.push(Left {
+                    line,
+                    why: message,
+                    point: None,
+                });
                 Ok(())
             }
             other => Err(other),
@@ -464,6 +538,9 @@ pub fn parse_with_data(text: &str, data: Option<&str>, dialect: Dialect) -> Resu
 /// lone CR (`ends`).
 pub fn parse_in(text: &str, dialect: Dialect, context: &Context) -> Result<JointProgram> {
     ends::check(text, dialect)?;
+    // The data file the backup holds, where none is given beside the program.
+    let data = (context.data).or_else(|| dialect.controller().data_file(text, context));
+    let context = &Context { data, ..*context };
     let Read {
         mut targets,
         axes,
@@ -475,6 +552,19 @@ pub fn parse_in(text: &str, dialect: Dialect, context: &Context) -> Result<Joint
     for t in &mut targets {
         t.external.resize(axes.len(), None);
         t.external_spans.resize(axes.len(), None);
+    }
+    if let (true, Some(first)) = (targets.is_empty(), left.first()) {
+        let listed: Vec<String> = (left.iter().take(5))
+            .map(|l| format!("line {}: {}", l.line, l.why))
+            .collect();
+        return Err(at(
+            first.line,
+            format!(
+                "no motion to compensate: each motion passes through or is left as found ({}{})",
+                listed.join("; "),
+                if left.len() > 5 { "; .." } else { "" }
+            ),
+        ));
     }
     if targets.is_empty() {
         let hint = dialect.controller().motions();

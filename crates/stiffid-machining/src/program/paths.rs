@@ -17,6 +17,20 @@ pub trait Join: Clone {
     /// another, where they meet after the construct `word` opened on `line`: a value both
     /// leave alike stays, one they leave differently becomes unknown, naming the lines.
     fn join(&mut self, other: &Self, construct: (&str, u64));
+    /// Whether `other` holds the same values as `self` (the lines that set them aside).
+    fn agrees(&self, other: &Self) -> bool;
+}
+
+/// What a construct is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    /// Its body is its first branch (`IF .. THEN`): others follow ([`Paths::branch`]).
+    Branches,
+    /// Its branches start at the first branch word (`SWITCH` then `CASE`, `TEST` then
+    /// `CASE`): the lines before it are no path.
+    Cases,
+    /// Its body runs any number of times (`FOR`, `WHILE`, `LOOP`, `REPEAT`).
+    Loop,
 }
 
 /// A construct open: its word and line, the state before it, the ends of its branches so far,
@@ -29,7 +43,9 @@ struct Open<S> {
     entry: S,
     ends: Vec<S>,
     exhaustive: bool,
-    repeats: bool,
+    kind: Kind,
+    /// Whether a branch has begun (a [`Kind::Cases`] has none before its first case).
+    started: bool,
     mark: usize,
 }
 
@@ -59,17 +75,18 @@ impl<S> Default for Paths<S> {
     }
 }
 
-impl<S: Join + PartialEq> Paths<S> {
-    /// A construct `word` opens on `line` with `state` in force; `repeats`: a loop; `mark`: the
+impl<S: Join> Paths<S> {
+    /// A construct `word` of `kind` opens on `line` with `state` in force; `mark`: the
     /// caller's (the number of targets read so far), given back by [`Paths::close`].
-    pub fn open(&mut self, (word, line): (&str, u64), state: &S, repeats: bool, mark: usize) {
+    pub fn open(&mut self, (word, line): (&str, u64), state: &S, kind: Kind, mark: usize) {
         self.open.push(Open {
             word: word.to_string(),
             line,
             entry: state.clone(),
             ends: Vec::new(),
             exhaustive: false,
-            repeats,
+            kind,
+            started: kind != Kind::Cases,
             mark,
         });
     }
@@ -79,7 +96,11 @@ impl<S: Join + PartialEq> Paths<S> {
     /// branch is taken when no other is (`ELSE`, `DEFAULT`). Outside a construct, nothing.
     pub fn branch(&mut self, state: &mut S, exhaustive: bool) {
         if let Some(o) = self.open.last_mut() {
-            o.ends.push(std::mem::replace(state, o.entry.clone()));
+            let end = std::mem::replace(state, o.entry.clone());
+            if o.started {
+                o.ends.push(end);
+            }
+            o.started = true;
             o.exhaustive |= exhaustive;
         }
     }
@@ -90,8 +111,11 @@ impl<S: Join + PartialEq> Paths<S> {
         let o = self.open.pop()?;
         let end = state.clone();
         let mut paths = o.ends;
-        paths.push(end.clone());
-        if !o.exhaustive || o.repeats {
+        if o.started {
+            paths.push(end.clone());
+        }
+        let repeats = o.kind == Kind::Loop;
+        if !o.exhaustive || repeats {
             paths.push(o.entry.clone());
         }
         let mut joined = paths[0].clone();
@@ -99,7 +123,7 @@ impl<S: Join + PartialEq> Paths<S> {
             joined.join(p, (&o.word, o.line));
         }
         *state = joined;
-        let changed = (o.repeats && end != o.entry).then_some((o.entry, end));
+        let changed = (repeats && !end.agrees(&o.entry)).then_some((o.entry, end));
         Some(Closed {
             word: o.word,
             line: o.line,
@@ -138,13 +162,19 @@ mod tests {
                 _ => *self = V::Unknown(vec![]),
             }
         }
+        fn agrees(&self, other: &Self) -> bool {
+            match (self, other) {
+                (V::Set(_, a), V::Set(_, b)) => a == b,
+                _ => false,
+            }
+        }
     }
 
     #[test]
     fn a_value_set_in_one_branch_only_is_unknown_after_it_naming_both_lines() {
         let mut p = Paths::default();
         let mut s = V::Set(1, 0);
-        p.open(("IF", 2), &s, false, 0);
+        p.open(("IF", 2), &s, Kind::Branches, 0);
         s = V::Set(3, 7);
         let closed = p.close(&mut s).unwrap();
         assert_eq!(s, V::Unknown(vec![3, 1]));
@@ -156,7 +186,7 @@ mod tests {
     fn branches_that_agree_keep_the_value_and_else_excludes_the_entry() {
         let mut p = Paths::default();
         let mut s = V::Set(1, 0);
-        p.open(("IF", 2), &s, false, 0);
+        p.open(("IF", 2), &s, Kind::Branches, 0);
         s = V::Set(3, 7);
         p.branch(&mut s, true);
         assert_eq!(s, V::Set(1, 0), "the ELSE branch starts from the entry");
@@ -169,7 +199,7 @@ mod tests {
     fn a_loop_that_changes_a_value_says_so_with_its_mark() {
         let mut p = Paths::default();
         let mut s = V::Set(1, 0);
-        p.open(("LOOP", 2), &s, true, 4);
+        p.open(("LOOP", 2), &s, Kind::Loop, 4);
         assert_eq!(p.inside(), Some(("LOOP", 2)));
         s = V::Set(3, 7);
         let closed = p.close(&mut s).unwrap();
@@ -177,5 +207,18 @@ mod tests {
         assert_eq!(closed.changed, Some((V::Set(1, 0), V::Set(3, 7))));
         assert_eq!(s, V::Unknown(vec![3, 1]));
         assert!(p.close(&mut s).is_none());
+    }
+
+    #[test]
+    fn cases_with_a_default_that_all_set_one_value_keep_it() {
+        let mut p = Paths::default();
+        let mut s = V::Set(1, 0);
+        p.open(("SWITCH", 2), &s, Kind::Cases, 0);
+        p.branch(&mut s, false);
+        s = V::Set(4, 7);
+        p.branch(&mut s, true);
+        s = V::Set(6, 7);
+        p.close(&mut s).unwrap();
+        assert_eq!(s, V::Set(4, 7));
     }
 }

@@ -18,6 +18,9 @@ pub(super) type Edit = (Range<usize>, usize, String, bool);
 /// A visit's texts in its point's declaration: span and text, in order.
 type Texts = Vec<(Range<usize>, String)>;
 
+/// A visit of a point: its target (`None`: a motion left as found) and its texts.
+type Visit = (Option<usize>, Texts);
+
 /// Where a declared point is: its declaration (whole lines, bytes of the text), its name there,
 /// and where the motion names it.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -28,6 +31,20 @@ pub(crate) struct Point {
     pub name: Range<usize>,
     /// The name's bytes at the motion, once the motion is read.
     pub reference: Option<Range<usize>>,
+    /// For a point declared in another file of the controller (a module of its backup): that
+    /// declaration, which the program declares again as its own (`declaration` is then the empty
+    /// range where the program's copy goes, `name` the name's bytes in [`Foreign::text`]).
+    pub foreign: Option<Box<Foreign>>,
+}
+
+/// A point declared in another file, as the program declares its own copy ([`Point::foreign`]).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) struct Foreign {
+    /// The copy's text (whole lines), its values as read.
+    pub text: String,
+    /// Where [`Foreign::text`]'s first byte was in its file, less what the copy adds before
+    /// the values (a target's spans minus it are its spans in the text).
+    pub at: usize,
 }
 
 /// Splits the declared points whose visits take different values (module docs) in `edits`: the
@@ -37,63 +54,142 @@ pub(crate) struct Point {
 /// [`stiffid_core::Error::Program`] naming the line of a visit whose point has no name the
 /// controller takes beside it (every name up to the language's length taken).
 pub(super) fn split(program: &JointProgram, edits: &mut Vec<Edit>) -> Result<()> {
-    // Per declaration (its start), the visits in order and each one's texts in it.
-    let mut visits: BTreeMap<usize, Vec<(usize, Texts)>> = BTreeMap::new();
-    for (i, t) in program.targets.iter().enumerate() {
-        let Some(p) = t.point.as_deref().filter(|p| p.reference.is_some()) else {
-            continue;
-        };
-        let inside =
-            |r: &Range<usize>| p.declaration.start <= r.start && r.end <= p.declaration.end;
-        let mut texts: Texts = (edits.iter())
-            .filter(|e| e.1 == i && inside(&e.0))
-            .map(|e| (e.0.clone(), e.2.clone()))
-            .collect();
-        texts.sort_by_key(|(r, _)| r.start);
-        visits
-            .entry(p.declaration.start)
-            .or_default()
-            .push((i, texts));
-    }
+    let visits = visits(program, edits);
     let mut taken: Vec<String> = Vec::new();
-    for list in visits.values() {
+    for (point, list) in visits.values() {
         let mut values: Vec<&Texts> = Vec::new();
         for (_, texts) in list {
             if !values.contains(&texts) {
                 values.push(texts);
             }
         }
-        if values.len() < 2 {
+        // A point of another file: every value is a copy in the program, the first under the
+        // point's own name (the program's declaration hides the other file's).
+        let foreign = point.foreign.as_deref();
+        let first = usize::from(foreign.is_none());
+        let ours = |e: &Edit| list.iter().any(|v| v.0 == Some(e.1));
+        if foreign.is_some() && !edits.iter().any(|e| ours(e) && e.3) {
+            // Unchanged: the other file's declaration holds, nothing to write.
+            edits.retain(|e| !ours(e));
             continue;
         }
-        let point = program.targets[list[0].0].point.as_deref().cloned();
-        let Some(point) = point else { continue };
+        if values.len() <= first {
+            continue;
+        }
+        let line = (list.iter().find_map(|v| v.0)).map_or(0, |i| program.targets[i].line);
         let mut copies = String::new();
         let mut names = vec![String::new()];
-        for texts in &values[1..] {
-            let name = fresh(program, &point, &taken).ok_or_else(|| at(program.targets[list[0].0].line, format!("the point of line {} is visited with different compensations, and no name beside it is free to declare the second", program.targets[list[0].0].origin)))?;
-            copies.push_str(&copy(&program.text, &point, texts, &name));
+        for (k, texts) in values.iter().enumerate().skip(first) {
+            let name = match (k, foreign) {
+                (0, Some(f)) => f.text[point.name.clone()].to_string(),
+                _ => fresh(program, point, &taken).ok_or_else(|| at(line, "the point of this motion is visited with different compensations, and no name beside it is free to declare the second".into()))?,
+            };
+            copies.push_str(&match foreign {
+                None => copy(&program.text, point, texts, &name),
+                Some(f) => {
+                    let rebased: Texts = (texts.iter())
+                        .map(|(r, t)| (r.start - f.at..r.end - f.at, t.clone()))
+                        .collect();
+                    let whole = Point {
+                        declaration: 0..f.text.len(),
+                        ..point.clone()
+                    };
+                    copy(&f.text, &whole, &rebased, &name)
+                }
+            });
             taken.push(name.to_ascii_uppercase());
             names.push(name);
         }
+        if foreign.is_some() {
+            names.remove(0);
+        }
         for (i, texts) in list {
             let k = values.iter().position(|v| v == &texts).unwrap_or(0);
+            let Some(i) = i.filter(|_| k > 0 || foreign.is_some()) else {
+                continue;
+            };
+            edits.retain(|e| !(e.1 == i && texts.iter().any(|(r, _)| *r == e.0)));
             if k == 0 {
                 continue;
             }
-            edits.retain(|e| !(e.1 == *i && texts.iter().any(|(r, _)| *r == e.0)));
-            let reference = program.targets[*i]
+            let reference = program.targets[i]
                 .point
                 .as_deref()
                 .and_then(|p| p.reference.clone());
             if let Some(r) = reference {
-                edits.push((r, *i, names[k].clone(), true));
+                edits.push((r, i, names[k].clone(), true));
             }
         }
         let end = point.declaration.end;
-        edits.push((end..end, list[0].0, copies, true));
+        let owner = list.iter().find_map(|v| v.0).unwrap_or(0);
+        edits.push((end..end, owner, copies, true));
     }
+    joined_insertions(edits);
     Ok(())
+}
+
+/// The visits of each declared point (by its declaration's start, and its place in another file):
+/// the point, and its visits in order, each with its target (`None`: a motion left as found,
+/// whose point stays as read) and its texts in the declaration.
+fn visits(program: &JointProgram, edits: &[Edit]) -> BTreeMap<(usize, usize), (Point, Vec<Visit>)> {
+    let mut visits: BTreeMap<(usize, usize), (Point, Vec<Visit>)> = BTreeMap::new();
+    let key = |p: &Point| {
+        (
+            p.declaration.start,
+            p.foreign.as_ref().map_or(usize::MAX, |f| f.at),
+        )
+    };
+    for l in &program.left {
+        if let Some(p) = l.point.as_ref().filter(|p| p.reference.is_some()) {
+            let entry = visits.entry(key(p));
+            entry
+                .or_insert_with(|| (p.clone(), Vec::new()))
+                .1
+                .push((None, Vec::new()));
+        }
+    }
+    for (i, t) in program.targets.iter().enumerate() {
+        let Some(p) = t.point.as_deref().filter(|p| p.reference.is_some()) else {
+            continue;
+        };
+        let inside = |r: &Range<usize>| {
+            p.foreign.is_some() || (p.declaration.start <= r.start && r.end <= p.declaration.end)
+        };
+        let mut texts: Texts = (edits.iter())
+            .filter(|e| e.1 == i && inside(&e.0))
+            .map(|e| (e.0.clone(), e.2.clone()))
+            .collect();
+        texts.sort_by_key(|(r, _)| r.start);
+        let entry = visits.entry(key(p));
+        entry
+            .or_insert_with(|| (p.clone(), Vec::new()))
+            .1
+            .push((Some(i), texts));
+    }
+    visits
+}
+
+/// The insertions (empty spans) at one byte joined into one, in the order they came.
+fn joined_insertions(edits: &mut Vec<Edit>) {
+    let mut at: BTreeMap<usize, usize> = BTreeMap::new();
+    let mut k = 0;
+    while k < edits.len() {
+        let e = &edits[k];
+        if !e.0.is_empty() {
+            k += 1;
+            continue;
+        }
+        match at.get(&e.0.start) {
+            Some(&first) => {
+                let text = edits.remove(k).2;
+                edits[first].2.push_str(&text);
+            }
+            None => {
+                at.insert(e.0.start, k);
+                k += 1;
+            }
+        }
+    }
 }
 
 /// The declaration of `point` in `text` with the texts `texts` (absolute spans in it) written
@@ -121,7 +217,10 @@ fn copy(text: &str, point: &Point, texts: &[(Range<usize>, String)], name: &str)
 /// other copy took (`taken`, upper case): the point's name and `_2`, `_3`.., shortened to the
 /// language's longest name; `None` when none is free.
 fn fresh(program: &JointProgram, point: &Point, taken: &[String]) -> Option<String> {
-    let base = &program.text[point.name.clone()];
+    let base = match &point.foreign {
+        Some(f) => &f.text[point.name.clone()],
+        None => &program.text[point.name.clone()],
+    };
     let most = program.dialect.controller().max_name_length();
     (2..10_000).find_map(|k| {
         let suffix = format!("_{k}");

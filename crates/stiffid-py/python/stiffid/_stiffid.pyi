@@ -294,6 +294,8 @@ def compensate(
     process: Optional[Union[str, os.PathLike[str]]] = None,
     output: Optional[Literal["gcode", "krl", "rapid", "ls", "inform"]] = None,
     chord_tolerance_mm: float = 0.01,
+    backup: Optional[Union[str, os.PathLike[str], list[Union[str, os.PathLike[str]]]]] = None,
+    leave_refused: bool = False,
     frame: Literal["base", "tool"] = "base",
     q0_deg: Optional[ArrayLike] = None,
     free: Optional[list[Union[str, dict[str, Any]]]] = None,

@@ -421,6 +421,7 @@ fn refused_by_the_job(s: &Setup, options: Options, text: &str, line: u64) {
         compliance: compliance(s),
         input: stiffid::app::compensate::Input::Program {
             encoding: Default::default(),
+            reading: Default::default(),
             name: "cut.src".into(),
             text,
             data: None,

@@ -85,6 +85,7 @@ fn compensate_with(
         compliance: s.model_compliance("test").unwrap(),
         input: Input::Program {
             encoding: Default::default(),
+            reading: Default::default(),
             name: "p.nc".into(),
             text: program,
             data: None,

@@ -214,6 +214,7 @@ fn drill_with(
         compliance,
         input: Input::Program {
             encoding: Default::default(),
+            reading: Default::default(),
             name: "drill.nc".into(),
             text,
             data: None,

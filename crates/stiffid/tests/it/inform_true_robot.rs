@@ -79,6 +79,7 @@ fn compensated(
         compliance: compliance.clone(),
         input: Input::Program {
             encoding: Default::default(),
+            reading: Default::default(),
             name: "weld.jbi".into(),
             text: job,
             data: None,

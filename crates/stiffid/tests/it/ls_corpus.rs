@@ -129,6 +129,7 @@ pub(crate) fn compensated_with(
         compliance: compliance.clone(),
         input: Input::Program {
             encoding: Default::default(),
+            reading: Default::default(),
             name: name.into(),
             text,
             data: None,

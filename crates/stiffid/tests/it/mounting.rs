@@ -189,6 +189,7 @@ fn ls_plausibility(setup: &stiffid::Setup) -> Vec<String> {
         compliance,
         input: Input::Program {
             encoding: Default::default(),
+            reading: Default::default(),
             name: "two.ls".into(),
             text: &text,
             data: None,

@@ -146,37 +146,31 @@ fn every_dialect_reads_its_external_axes_and_writes_back_only_what_changed() {
     }
 }
 
-/// `PTP XHOME` goes to the setup's `[controller] home_deg`, six axis angles: in a cell with
-/// external axes its missing values are refused naming the line and where to give them (the
-/// home position declared in the `.dat`, as `$config.dat` holds it with its `E1`..), not asked
-/// of "every target", which the program cannot do for a point the controller holds; declared in
-/// the `.dat`, it is read there with its external values.
+/// `PTP XHOME` passes through as the controller holds it, in a cell with external axes too:
+/// no target (its values are the controller's, whether `home_deg` or the `.dat` gives them),
+/// named as passed through; the motion after it is read with its external values.
 #[test]
-fn xhome_in_a_cell_with_external_axes_names_where_its_values_go() {
+fn xhome_in_a_cell_with_external_axes_passes_through() {
     let text = "DEF track( )\nPTP XHOME\nPTP {A1 10, A2 -80, A3 95, A4 0, A5 30, A6 -5, E1 1500.5, E2 0}\nEND\n";
     let home = program::Context {
         home_deg: Some([0.0, -90.0, 90.0, 0.0, 30.0, 0.0]),
         ..Default::default()
     };
-    let p = program::parse_in(text, Dialect::Krl, &home).unwrap();
-    match cell_values(&p, Some(&cell(false))) {
-        Err(Error::Program { line, message }) => {
-            assert_eq!(line, 2);
-            for part in [
-                "E1",
-                "(track) at the home position",
-                "home_deg gives the six axis angles only",
-                "DECL E6AXIS XHOME",
-            ] {
-                assert!(message.contains(part), "{part}: {message}");
-            }
-        }
-        other => panic!("{other:?}"),
-    }
     let dat = "DEFDAT track\nDECL E6AXIS XHOME={A1 0,A2 -90,A3 90,A4 0,A5 30,A6 0,E1 2000,E2 90}\nENDDAT\n";
-    let p = program::parse_in(text, Dialect::Krl, &home.with_data(Some(dat))).unwrap();
-    let e = cell_values(&p, Some(&cell(false))).unwrap();
-    assert_eq!(e[0], vec![2.0, 90f64.to_radians()]);
+    for context in [home, home.with_data(Some(dat))] {
+        let p = program::parse_in(text, Dialect::Krl, &context).unwrap();
+        assert_eq!(p.targets.len(), 1);
+        assert_eq!(p.targets[0].line, 3);
+        assert_eq!(p.left.len(), 1);
+        assert_eq!(p.left[0].line, 2);
+        assert!(
+            p.left[0].why.contains("home position, passed through"),
+            "{}",
+            p.left[0].why
+        );
+        let e = cell_values(&p, Some(&cell(false))).unwrap();
+        assert_eq!(e[0], vec![1.5005, 0.0]);
+    }
 }
 
 #[test]

@@ -42,8 +42,9 @@ fn krl_cases() -> Vec<(String, Reads)> {
         (krl(&format!("{KRL_DECLS}\nPTP XP1 : {{A1 5}}")), Refused(4, "':'")),
         (krl(&format!("{KRL_DECLS}\nXP1.A1 = 7\nPTP XP1")), Refused(5, "assigned on line 4")),
         (krl("DECL E6AXIS XP1\nPTP XP1"), Refused(3, "without a value")),
-        (krl(&format!("FOR I = 1 TO 3\nPTP {lit1}\nENDFOR")), Refused(3, "inside FOR (line 2)")),
-        (format!("DEF a( )\nPTP {lit1}\nEND\nDEF b( )\nPTP {lit1}\nEND\n"), Refused(5, "DEF B (line 4), a routine the program's DEF A (line 1)")),
+        // Motions in a loop and in a second routine, each read where it is.
+        (krl(&format!("FOR I = 1 TO 3\nPTP {lit1}\nENDFOR")), Targets(&[(3, Q1)])),
+        (format!("DEF a( )\nPTP {lit1}\nEND\nDEF b( )\nPTP {lit1}\nEND\n"), Targets(&[(2, Q1), (5, Q1)])),
         ("DEFDAT p\nDECL E6AXIS XP1={A1 1,A2 2,A3 3,A4 4,A5 5,A6 6}\nENDDAT\n".to_string(), Refused(1, "give the .src")),
     ]
 }
@@ -77,8 +78,8 @@ fn rapid_cases() -> Vec<(String, Reads)> {
         (rapid("", "    MoveAbsJ jx, v100, fine, tool0;"), Refused(4, "not a jointtarget declared")),
         (rapid("  VAR jointtarget j1;", "    MoveAbsJ j1, v100, fine, tool0;"), Refused(4, "without a value")),
         (rapid(&format!("  VAR jointtarget j1 := {lit1};"), "    j1.robax.rax_1 := 7;\n    MoveAbsJ j1, v100, fine, tool0;"), Refused(5, "assigned on line 4")),
-        (rapid("", &format!("    FOR i FROM 1 TO 3 DO\n      MoveAbsJ {lit1}, v100, fine, tool0;\n    ENDFOR")), Refused(5, "MoveAbsJ inside FOR (line 4)")),
-        (format!("MODULE M\n  PROC a()\n    MoveAbsJ {lit1}, v1, fine, tool0;\n  ENDPROC\n  PROC b()\n    MoveAbsJ {lit1}, v1, fine, tool0;\n  ENDPROC\nENDMODULE\n"), Refused(6, "PROC a (line 2) and PROC b (line 5)")),
+        (rapid("", &format!("    FOR i FROM 1 TO 3 DO\n      MoveAbsJ {lit1}, v100, fine, tool0;\n    ENDFOR")), Targets(&[(5, Q1)])),
+        (format!("MODULE M\n  PROC a()\n    MoveAbsJ {lit1}, v1, fine, tool0;\n  ENDPROC\n  PROC b()\n    MoveAbsJ {lit1}, v1, fine, tool0;\n  ENDPROC\nENDMODULE\n"), Targets(&[(3, Q1), (6, Q1)])),
     ]
 }
 

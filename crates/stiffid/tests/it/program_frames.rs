@@ -103,6 +103,7 @@ fn program(setup: &stiffid::Setup, dialect: Dialect) -> (String, Vec<Compensated
         compliance,
         input: Input::Program {
             encoding: Default::default(),
+            reading: Default::default(),
             name: "pocket.nc".into(),
             text: &straight(),
             data: None,

@@ -148,6 +148,7 @@ fn rotated(case: &Case, s: &Setup) -> Result<(Report, Postures), Error> {
         compliance: stiffness.compliance(s.model()).unwrap(),
         input: Input::Program {
             encoding: Default::default(),
+            reading: Default::default(),
             name: name.to_string(),
             text,
             data: None,

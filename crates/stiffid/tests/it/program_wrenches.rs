@@ -195,6 +195,7 @@ fn written(c: &Cell, gcode: &'static str, dialect: Dialect) -> String {
         compliance: zero,
         input: Input::Program {
             encoding: Default::default(),
+            reading: Default::default(),
             name: "pocket.nc".into(),
             text: gcode,
             data: None,

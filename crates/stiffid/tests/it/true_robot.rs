@@ -623,6 +623,7 @@ pub(crate) fn written_with(
         compliance: compliance.clone(),
         input: Input::Program {
             encoding: Default::default(),
+            reading: Default::default(),
             name: "rectangle.nc".into(),
             text: gcode,
             data: None,

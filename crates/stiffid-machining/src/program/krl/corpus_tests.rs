@@ -22,8 +22,12 @@ const REFUSED: [(&str, u64, &str); 10] = [
     // kroshu's drivers: iiQKA.OS2 and the KSS driver with no motion of its own before RSI.
     ("rsi_iiqka_os2.src", 85, "RSI_MOVECORR"),
     ("rsi_axis_corr_kss.src", 81, "RSI_MOVECORR"),
-    // KR C2 RSI: a PTP to the axes where the robot stands.
-    ("rsi_kr_c2.src", 106, "HOME is assigned on line 68"),
+    // KR C2 RSI: a PTP to the axes where the robot stands, then home: no motion to compensate.
+    (
+        "rsi_kr_c2.src",
+        106,
+        "PTP HOME: the home position, passed through",
+    ),
     // EKI drivers: targets received at run time.
     ("kuka_eki_hw_interface.src", 67, "joint_pos_tgt"),
     ("motion_eki.src", 79, "$axis_act_meas: a system variable"),

@@ -21,6 +21,18 @@ pub(super) struct Declarations {
     pub fdats: Fdats,
     /// The line of the `.src` that last assigns each declared point at run time.
     pub assigned: HashMap<String, u64>,
+    /// The points each routine after the first sees: its own declarations, then the `.dat`'s.
+    pub subs: Vec<Declared>,
+}
+
+impl Declarations {
+    /// The points the routine `routine` sees (1 the first, 2 the next..; 0 before any).
+    pub(super) fn of(&self, routine: usize) -> &Declared {
+        match routine.checked_sub(2).and_then(|k| self.subs.get(k)) {
+            Some(d) => d,
+            None => &self.points,
+        }
+    }
 }
 
 /// Where a text is: the `.src` (its points read or refused as they are found), or its `.dat`
@@ -46,6 +58,11 @@ pub(super) fn declarations(text: &str, data: Option<&str>) -> Result<Declaration
     if let Some(d) = data {
         let mut own = Declarations::default();
         read(d, Place::Dat(text.len()), &mut own, &mut Vec::new())?;
+        for sub in &mut out.subs {
+            for (k, v) in &own.points {
+                sub.entry(k.clone()).or_insert_with(|| v.clone());
+            }
+        }
         for (k, v) in own.points {
             out.points.entry(k).or_insert(v);
         }
@@ -80,9 +97,17 @@ fn read(
         let words = words(code);
         let first = words.iter().find(|w| *w != "GLOBAL").map(String::as_str);
         routines += usize::from(matches!(first, Some("DEF" | "DEFFCT")));
-        if routines > 1 && matches!(place, Place::Src) {
-            continue;
+        let sub = match place {
+            Place::Src if routines > 1 => Some(routines - 2),
+            _ => None,
+        };
+        if let Some(k) = sub {
+            out.subs.resize_with(k + 1, Declared::new);
         }
+        let points = match sub {
+            Some(k) => &mut out.subs[k],
+            None => &mut out.points,
+        };
         let w: Vec<&str> = words
             .iter()
             .map(String::as_str)
@@ -105,7 +130,7 @@ fn read(
                         }
                     },
                 };
-                let value = match out.points.get(&name) {
+                let value = match points.get(&name) {
                     // KRL refuses a name declared twice in one module: neither value is sure.
                     Some((first, _)) => {
                         let why = format!("{name} is declared twice, {first} and {on}: the controller refuses a name declared twice in one module; declare it once");
@@ -116,7 +141,7 @@ fn read(
                     }
                     None => value,
                 };
-                out.points.insert(name, (on, value));
+                points.insert(name, (on, value));
             }
             ["FDAT", name, ..] => {
                 let value = match code.split_once('=') {

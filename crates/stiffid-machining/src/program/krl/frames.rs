@@ -114,20 +114,20 @@ pub(super) struct Frames {
     /// `$TOOL`.
     pub tool: Frame,
     /// `FDAT_ACT`: the line that set it and the record, `None` before any.
-    act: Option<(u64, FdatRead)>,
+    pub(super) act: Option<(u64, FdatRead)>,
     /// The line of `$IPO_MODE = #TCP` in force (an external TCP).
-    external: Option<u64>,
+    pub(super) external: Option<u64>,
     /// The entries of the controller's tables the program assigns (`BASE_DATA[n] = {..}`,
     /// `TOOL_DATA[n] = {..}`, or a member of one): by base (`true`) or tool and number, the
     /// frame a later selection of the number takes instead of the setup's.
-    table: HashMap<(bool, u32), Frame>,
+    pub(super) table: HashMap<(bool, u32), Frame>,
     /// Per tool (0) and base (1), why every entry of its table is the controller's from a line
     /// on: an assignment to an entry whose index is not a number.
-    any_entry: [Option<Frame>; 2],
+    pub(super) any_entry: [Option<Frame>; 2],
     /// Per tool (0) and base (1), why a frame selected now is the controller's: the BAS
     /// package's correction frame switched on (`TOOL_CORR_ON = TRUE`), which `TOOL(n)`,
     /// `BASE(n)` and the inline forms link to every frame they select until it is off again.
-    corrected: [Option<String>; 2],
+    pub(super) corrected: [Option<String>; 2],
 }
 
 /// `code` upper case without blanks.
@@ -414,7 +414,7 @@ impl Frames {
 /// literal frame of `BASE_DATA[n] = {..}` as `$BASE = {..}` reads it, or a frame refused naming
 /// the line (a member assigned, `BASE_DATA[n].X = ..`; a value or index the program does not
 /// state).
-fn table_entry(line: u64, c: &str, code: &str) -> Option<(bool, Option<u32>, Frame)> {
+pub(super) fn table_entry(line: u64, c: &str, code: &str) -> Option<(bool, Option<u32>, Frame)> {
     let (base, rest) = match c {
         _ if c.starts_with("BASE_DATA[") => (true, &c["BASE_DATA[".len()..]),
         _ if c.starts_with("TOOL_DATA[") => (false, &c["TOOL_DATA[".len()..]),

@@ -15,13 +15,14 @@
 //! `data_beside`) declares its points and frame data (`declare`); inline forms (`;FOLD PTP P1
 //! .. Tool[1] Base[2]` with `FDAT_ACT = FP1` and `BAS(#PTP_PARAMS, ..)`, KSS 8's `SPTP .. WITH
 //! $TOOL = STOOL2(FP1), ..`) are read from their bodies; `CIRC` gives its auxiliary and end points
-//! (`motion`); loops and branches are refused only where they hold a motion (`flow`). The guide's
+//! (`motion`); what is in force at each motion is followed through loops, branches and the
+//! routines of the file (`read`, `state`). The guide's
 //! page `docs/programs/krl.md` lists each rule with its source.
 
+mod backup;
 pub(crate) mod cartesian;
 pub(crate) mod data;
 mod declare;
-mod flow;
 mod frames;
 mod generate;
 pub use generate::KSS_HEADER;
@@ -30,6 +31,7 @@ mod names;
 mod process;
 mod read;
 pub(crate) mod speed;
+mod state;
 pub(crate) mod status;
 pub use status::{StatusPart, StatusTurn};
 
@@ -121,12 +123,7 @@ impl Controller for Krl {
         self.read_in(text, &super::Context::default())
     }
     fn read_in(&self, text: &str, context: &super::Context) -> Result<Read> {
-        let (targets, axes) = read::targets(text, (context.data, context.home_deg))?;
-        Ok(Read {
-            targets,
-            axes,
-            ..Read::default()
-        })
+        read::targets(text, context)
     }
     fn rotation(&self, n: &[f64]) -> UnitQuaternion<f64> {
         abc(n[3], n[4], n[5])
@@ -147,6 +144,21 @@ impl Controller for Krl {
     }
     fn generator(&self) -> Option<&'static dyn Generator> {
         Some(&Krl)
+    }
+    /// A KUKA backup's modules (`.src`, `.dat`: `$config.dat`, the module's data list).
+    fn backup_extensions(&self) -> &'static [&'static str] {
+        &["src", "dat"]
+    }
+    /// The module's `.dat` in the backup: the file named after the `.src`'s first `DEF` (KSS
+    /// names a module's two files and its routine alike), `.dat` in any case.
+    fn data_file<'a>(&self, text: &str, context: &super::Context<'a>) -> Option<&'a str> {
+        let name = (text.lines()).find_map(|l| {
+            Controller::declares_name(self, l.trim_start())
+                .map(|at| l.trim_start()[at..].to_string())
+        })?;
+        let name = name.trim_start().split(['(', ' ']).next()?.to_string();
+        let file = format!("{name}.dat");
+        context.backup_file(&file).map(|(_, t)| t)
     }
 }
 

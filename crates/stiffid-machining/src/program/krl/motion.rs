@@ -3,6 +3,7 @@
 //! every other motion refused naming the line.
 
 use super::declare::{aggregate_at, Declarations};
+use crate::program::points::Point;
 use crate::program::{at, JointTarget};
 use stiffid_core::common::limits::short;
 use stiffid_core::Result;
@@ -13,19 +14,34 @@ pub(super) struct Context<'a> {
     pub declared: &'a Declarations,
     /// Whether the `.dat` was read.
     pub data: bool,
-    /// The controller's home posture, deg (`[controller] home_deg`): `XHOME`'s value.
-    pub home: Option<[f64; 6]>,
+    /// The routine of the line: 1 the module's first (`DEF`), 2 the next..
+    pub routine: usize,
 }
 
+/// What a line moves to.
+pub(super) enum Found {
+    /// No motion.
+    Nothing,
+    /// The motion's targets.
+    Targets(Vec<JointTarget>),
+    /// A motion to a point whose value only the run gives: why, and the point when declared.
+    RunTime(String, Option<Point>),
+    /// A joint motion to the home position, passed through: what it is.
+    Home(String),
+}
+
+/// A target, or why only the run gives it (and its declared point).
+type Target = std::result::Result<(JointTarget, usize), (String, Option<Point>)>;
+
 /// The targets of a motion line (one, or for `CIRC` the auxiliary point then the end point),
-/// `None` for a line that is no motion; every motion outside the subset refused naming the
-/// line.
+/// [`Found::Nothing`] for a line that is no motion; every motion outside the subset refused
+/// naming the line.
 pub(super) fn motion(
     (line, start): (u64, usize),
     code: &str,
     first: &str,
     context: &Context,
-) -> Result<Option<Vec<JointTarget>>> {
+) -> Result<Found> {
     let refuse = |what: &str| Err(at(line, format!("{first}: {what}")));
     let circle = match first {
         "PTP" | "LIN" | "SPTP" | "SLIN" => false,
@@ -42,7 +58,7 @@ pub(super) fn motion(
         "RSI_MOVECORR" | "ST_MOVECORR" => {
             return refuse("a motion the Robot Sensor Interface commands from its sensor, not the program's targets; stiffid does not compensate it: write the path as PTP/LIN motions")
         }
-        _ => return Ok(None),
+        _ => return Ok(Found::Nothing),
     };
     // `PTP $AXIS_ACT` (RoboDK's KUKA posts begin with it) and `LIN $POS_ACT`: a motion to where
     // the robot stands, which moves nothing.
@@ -52,12 +68,28 @@ pub(super) fn motion(
             .iter()
             .any(|v| target.eq_ignore_ascii_case(v))
     {
-        return Ok(None);
+        return Ok(Found::Nothing);
+    }
+    // The home position (`XHOME`, `HOME` of the inline forms and `$config.dat`, `$H_POS`): a
+    // joint motion there passes through as the controller holds it, not compensated.
+    let name = target
+        .split(|c: char| c.is_whitespace() || c == ',')
+        .next()
+        .unwrap_or("");
+    if matches!(first, "PTP" | "SPTP")
+        && ["XHOME", "HOME", "$H_POS"]
+            .iter()
+            .any(|h| name.eq_ignore_ascii_case(h))
+    {
+        return Ok(Found::Home(format!("{first} {name}: the home position, passed through as the controller holds it: not compensated, not checked")));
     }
     let mut from = code.len() - code.trim_start()[first.len()..].len();
     let mut out = Vec::with_capacity(2);
     for k in 0..=usize::from(circle) {
-        let (target, after) = one((line, start), code, from, (first, context))?;
+        let (target, after) = match one((line, start), code, from, (first, context))? {
+            Ok(found) => found,
+            Err((why, point)) => return Ok(Found::RunTime(format!("{first} {why}"), point)),
+        };
         out.push(target);
         from = after;
         if circle && k == 0 {
@@ -77,7 +109,7 @@ pub(super) fn motion(
             "a circle through axis angles; KRL's CIRC takes Cartesian points (POS, E6POS, FRAME)",
         );
     }
-    Ok(Some(out))
+    Ok(Found::Targets(out))
 }
 
 /// The target at or after blanks from byte `from` of `code`: an aggregate or a declared point,
@@ -87,7 +119,7 @@ fn one(
     code: &str,
     from: usize,
     (first, context): (&str, &Context),
-) -> Result<(JointTarget, usize)> {
+) -> Result<Target> {
     let rest = code[from..].trim_start();
     let open = code.len() - rest.len();
     if rest.starts_with('{') {
@@ -95,7 +127,7 @@ fn one(
             .find('}')
             .map(|c| open + c)
             .ok_or_else(|| at(line, "aggregate without its closing '}' on the line".into()))?;
-        return Ok((aggregate_at(line, start, code, open)?, close + 1));
+        return Ok(Ok((aggregate_at(line, start, code, open)?, close + 1)));
     }
     let name: String = rest
         .chars()
@@ -103,23 +135,24 @@ fn one(
         .collect();
     let upper = name.to_ascii_uppercase();
     let declared = context.declared;
+    let points = declared.of(context.routine);
     if let Some(assigned_on) = declared.assigned.get(&upper) {
-        return Err(at(line, format!("{first} {name}: {name} is assigned on line {assigned_on}, so its value at the motion is the controller's, not the file's: give the motion its own declared point")));
+        let point = match points.get(&upper) {
+            Some((_, Ok(t))) => t.point.as_deref().cloned(),
+            _ => None,
+        };
+        return Ok(Err((format!("{name}: {name} is assigned on line {assigned_on}, so its value at the motion is the controller's, not the file's: give the motion its own declared point"), point)));
     }
-    let target = match declared.points.get(&upper) {
+    let target = match points.get(&upper) {
         Some((_, Ok(t))) => t.moved_to(line, false).named_at(start + open..start + open + name.len()),
         Some((_, Err(why))) => return Err(at(line, format!("{first} {name}: {why}"))),
         None if name.is_empty() => return Err(at(line, format!("{first}: expected a point or an aggregate {{..}}"))),
-        None if upper == "XHOME" => match context.home {
-            Some(q) if matches!(first, "PTP" | "SPTP") => JointTarget::held(line, q),
-            Some(_) => return Err(at(line, format!("{first} {name}: a path motion to the home position, which the controller holds and stiffid does not compensate: move there with PTP"))),
-            None => return Err(at(line, format!("{first} {name}: the home position, which the controller's $config.dat holds: give it in the setup ([controller] home_deg), or declare {name} in the program's .dat as E6AXIS"))),
-        },
-        None if name.starts_with('$') => return Err(at(line, format!("{first} {name}: a system variable, whose value is the controller's at run time: give the motion a point declared in the .src or its .dat"))),
+        None if upper == "XHOME" => return Err(at(line, format!("{first} {name}: a path motion to the home position, which the controller holds and stiffid does not compensate: move there with PTP"))),
+        None if name.starts_with('$') => return Ok(Err((format!("{name}: a system variable, whose value is the controller's at run time: give the motion a point declared in the .src or its .dat"), None))),
         None if context.data => return Err(at(line, format!("{first} {name}: not a point declared in the .src or its .dat ($config.dat or a system variable holds it, which stiffid cannot know): declare it in the .dat as E6POS or E6AXIS"))),
         None => return Err(at(line, format!("{first} {name}: not a point declared in the .src, and no .dat beside it (the .src's stem with .dat) declares it: give the .dat beside the .src, or declare the point in it as E6POS or E6AXIS"))),
     };
-    Ok((target, open + name.len()))
+    Ok(Ok((target, open + name.len())))
 }
 
 /// Refuses a word after a motion's target(s), up to its `WITH` clause, that is not an

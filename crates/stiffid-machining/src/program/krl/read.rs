@@ -1,83 +1,108 @@
 //! A KRL program read line by line (module docs of [`super`]): its motions in order, each with
 //! its frames ([`super::frames`]) and speed ([`super::speed`]), its points from the `.src` or its
-//! `.dat` ([`super::declare`]), loops and branches around motions refused ([`super::flow`]).
+//! `.dat` ([`super::declare`]), what is in force at each followed through loops, branches and
+//! the routines of the file ([`super::state`], [`crate::program::paths`]).
 
 use super::declare::{declarations, words, Declarations};
-use super::flow::Flow;
 use super::frames::{compact, Frames};
-use super::motion::{motion, Context};
+use super::motion::{motion, Context, Found};
 use super::speed;
+use super::state::{same, State};
 use crate::program::cartesian::Frame;
-use crate::program::{at, JointTarget};
+use crate::program::controller::Read;
+use crate::program::paths::{Closed, Join, Kind, Paths};
+use crate::program::speed::Speed;
+use crate::program::{at, JointTarget, Left};
 use std::collections::HashMap;
 use stiffid_core::common::limits::short;
 use stiffid_core::Result;
 
-/// Every joint target of the `.src` `text` (with its `.dat` `data` when given; `XHOME` the
-/// controller's `home` posture, deg, when known), in the order of its motions (module docs), and
-/// the program's external axes: `E1` to the highest `E`n any
-/// target gives.
+/// Every joint target of the `.src` `text` (with its `.dat` and the controller's home posture
+/// from `context`), in the order of its motions (module docs), the program's external axes
+/// (`E1` to the highest `E`n any target gives) and the motions left as found
+/// ([`crate::program::Context::leave_refused`]).
 ///
 /// # Errors
 /// [`stiffid_core::Error::Program`] naming the line: a motion outside the subset, to a point
-/// neither file declares, inside a loop or branch, in a routine other than the program's first,
-/// a `GOTO` in a program with motions.
-pub(crate) fn targets(
-    text: &str,
-    (data, home): (Option<&str>, Option<[f64; 6]>),
-) -> Result<(Vec<JointTarget>, Vec<String>)> {
+/// neither file declares, a `GOTO` in a program with motions; a motion whose frames or point
+/// only the run decides (paths that set different frames, a value assigned at run time), unless
+/// the context leaves it as found.
+pub(crate) fn targets(text: &str, context: &crate::program::Context) -> Result<Read> {
+    let data = context.data;
     let declared = declarations(text, data)?;
-    let context = Context {
+    let mut at_motion = Context {
         declared: &declared,
         data: data.is_some(),
-        home,
+        routine: 0,
     };
     let setters = frame_routines(text, &declared);
+    let local = routines(text);
+    let call_lines = call_lines(text, &local);
     let mut out = Vec::new();
-    // The program's own routine (its first DEF) and the one of the line.
-    let mut main: Option<Routine> = None;
-    let mut current: Option<Routine> = None;
-    let mut flow = Flow::default();
-    let unset = |name: &str| {
-        Frame::Unknown(0, format!("no {name} set before this Cartesian motion: its frame is the controller's, which the program does not state; set it in the program (an inline form's FDAT, {name} = {{X .., Y .., Z .., A .., B .., C ..}} or {}_DATA[n])", &name[1..]))
+    let mut left = Vec::new();
+    let tables = super::backup::tables(context)?;
+    let mut state = State {
+        frames: Frames::new(unset),
+        speed: speed::Krl::new(),
     };
-    let mut frames = Frames::new(unset);
-    let mut speed = speed::Krl::new();
+    state.frames.table = tables.clone();
+    let mut paths: Paths<State> = Paths::default();
+    // The state at each call of a routine of the file, by its upper-case name.
+    let mut calls: HashMap<String, Vec<(u64, State)>> = HashMap::new();
+    let mut jump: Option<u64> = None;
     for (line, start, l) in crate::program::lines(text) {
         let code = l.split(';').next().unwrap_or("");
         let words = words(code);
         let first = words.first().map(String::as_str).unwrap_or("");
         well_formed(line, first)?;
         if let Some(name) = routine_name(&words) {
-            main.get_or_insert_with(|| (name.clone(), line));
-            current = Some((name, line));
-            flow.line(line, "DEF");
+            at_motion.routine += 1;
+            paths.clear();
+            if at_motion.routine > 1 {
+                state = entry(&name, line, &calls, &call_lines);
+                for (k, f) in &tables {
+                    state.frames.table.entry(*k).or_insert_with(|| f.clone());
+                }
+            }
             continue;
         }
-        flow.line(line, first);
-        let framed = frames.set(line, code, &declared.fdats);
-        if let (true, Some((word, l))) = (framed, flow.inside()) {
-            frames.unsettle(line, format!("a frame is set on line {line} inside {word} (line {l}), so the one in force after it depends on the run: set it outside loops and branches"));
+        if flow(line, first, (&mut paths, &mut state), &mut out) {
+            continue;
         }
+        if first == "GOTO" {
+            jump.get_or_insert(line);
+        }
+        if let Some((name, _)) = called(code, &local) {
+            calls
+                .entry(name.to_string())
+                .or_default()
+                .push((line, state.clone()));
+        }
+        let framed = state.frames.set(line, code, &declared.fdats);
         if let Some((name, l)) = called(code, &setters) {
-            frames.unsettle(line, format!("line {line} calls {name}, which sets a frame (line {l}) in an order the file does not show: set the frames in the program's own routine"));
+            state.frames.unsettle(line, format!("line {line} calls {name}, which sets a frame (line {l}): the frames after the call are the ones it leaves, which stiffid does not follow; set them again after the call"));
         }
-        if speed.set(line, code)? || framed {
+        if state.speed.set(line, code)? || framed {
             continue;
         }
-        let Some(targets) = motion((line, start), code, first, &context)? else {
-            continue;
+        let targets = match motion((line, start), code, first, &at_motion)? {
+            Found::Nothing => continue,
+            Found::RunTime(why, point) => {
+                let error = at(line, why);
+                context.leave(&mut left, error)?;
+                if let (Some(l), Some(p)) = (left.last_mut(), point) {
+                    l.point = Some(p);
+                }
+                continue;
+            }
+            Found::Home(what) => {
+                left.push(Left::passed(line, what));
+                continue;
+            }
+            Found::Targets(t) => t,
         };
-        if let Some((word, l)) = flow.inside() {
-            return Err(at(line, format!("{first} inside {word} (line {l}): a motion in a loop or branch runs as many times as the run decides, not as the file reads: write the path as straight-line code")));
-        }
-        if let (Some((a, a_line)), Some((b, b_line))) = (&main, &current)
-            && a != b
-        {
-            return Err(at(line, format!("{first} in DEF {b} (line {b_line}), a routine the program's DEF {a} (line {a_line}) may call: the order and number of times the controller runs it depend on the calls; put the path in the program's own routine")));
-        }
-        let (base, tool) = frames.motion(line, code, &declared.fdats);
-        let speed = speed.motion(line, first, code)?;
+        let (base, tool) = state.frames.motion(line, code, &declared.fdats);
+        let speed = state.speed.motion(line, first, code)?;
         for mut target in targets {
             target.speed = speed.clone();
             if let Some(c) = target.cartesian.as_deref_mut() {
@@ -91,13 +116,115 @@ pub(crate) fn targets(
             out.push(target);
         }
     }
-    if let (Some(line), false) = (flow.jump, out.is_empty()) {
+    if let (Some(line), false) = (jump, out.is_empty()) {
         return Err(at(line, "GOTO: a jump in a program with motions; the order the controller runs them would not be the file's: write the path as straight-line code".into()));
     }
+    if context.leave_refused {
+        out = leave_unknown(out, &mut left);
+    }
     let n = out.iter().map(|t| t.external.len()).max().unwrap_or(0);
-    Ok((out, (1..=n).map(|k| format!("E{k}")).collect()))
+    Ok(Read {
+        targets: out,
+        axes: (1..=n).map(|k| format!("E{k}")).collect(),
+        left,
+        ..Read::default()
+    })
 }
 
+/// A frame not set before a motion: the controller's.
+fn unset(name: &str) -> Frame {
+    Frame::Unknown(0, format!("no {name} set before this Cartesian motion: its frame is the controller's, which the program does not state; set it in the program (an inline form's FDAT, {name} = {{X .., Y .., Z .., A .., B .., C ..}} or {}_DATA[n])", &name[1..]))
+}
+
+/// Takes a line whose first word (upper case) is `first` that opens, divides or closes a loop
+/// or branch ([`crate::program::paths`]); whether it did. A loop whose body ends with other
+/// frames than it began makes the frames of its motions before the change unknown.
+fn flow(
+    line: u64,
+    first: &str,
+    (paths, state): (&mut Paths<State>, &mut State),
+    out: &mut [JointTarget],
+) -> bool {
+    let kind = match first {
+        "IF" => Some(Kind::Branches),
+        "SWITCH" => Some(Kind::Cases),
+        "FOR" | "WHILE" | "REPEAT" | "LOOP" => Some(Kind::Loop),
+        _ => None,
+    };
+    if let Some(kind) = kind {
+        paths.open((first, line), state, kind, out.len());
+        return false;
+    }
+    match first {
+        "ELSE" | "DEFAULT" => paths.branch(state, true),
+        "CASE" => paths.branch(state, false),
+        "ENDIF" | "ENDSWITCH" | "ENDFOR" | "ENDWHILE" | "UNTIL" | "ENDLOOP" => {
+            if let Some(closed) = paths.close(state) {
+                repeated(&closed, &mut out[closed.mark..]);
+            }
+        }
+        _ => return false,
+    }
+    true
+}
+
+/// The frames and speed of the motions of a loop's body (`targets`) whose body ends with other
+/// ones than it began ([`Closed::changed`]): a motion that moves with the first run's value
+/// moves with the other on the next run, so that frame is unknown there.
+fn repeated(closed: &Closed<State>, targets: &mut [JointTarget]) {
+    let Some((entry, end)) = &closed.changed else {
+        return;
+    };
+    let (word, l) = (&closed.word, closed.line);
+    let why = |name: &str, line: u64| {
+        format!("the {name} of the motion on line {line} in {word} (line {l}) is another on the loop's next run (the body ends with another than it began with): set it before the loop or at the start of its body")
+    };
+    for t in targets.iter_mut() {
+        let line = t.line;
+        if let Some(c) = t.cartesian.as_deref_mut() {
+            let pairs = [
+                (&mut c.frame, &entry.frames.base, &end.frames.base, "$BASE"),
+                (&mut c.tool, &entry.frames.tool, &end.frames.tool, "$TOOL"),
+            ];
+            for (f, a, b, name) in pairs {
+                if !same(a, b) && !same(f, b) {
+                    *f = Frame::Unknown(line, why(name, line));
+                }
+            }
+        }
+        if entry.speed.in_force != end.speed.in_force && t.speed == entry.speed.in_force {
+            t.speed = Speed::Unread(why("path speed", line));
+        }
+    }
+}
+
+/// The state at the start of the routine `name` (upper case) whose `DEF` is on `line`: the
+/// states at its calls before it in the file, joined; unknown frames where it is called after
+/// its `DEF` (by a routine below it) or not at all (its caller is another module's).
+fn entry(
+    name: &str,
+    line: u64,
+    calls: &HashMap<String, Vec<(u64, State)>>,
+    late: &HashMap<String, Vec<u64>>,
+) -> State {
+    let unknown = |why: String| State {
+        frames: Frames::new(|n| Frame::Unknown(0, format!("{n}: {why}"))),
+        speed: speed::Krl::unread(why.clone()),
+    };
+    if let Some(l) = (late.get(name).into_iter().flatten()).find(|l| **l > line) {
+        return unknown(format!("DEF {name} (line {line}) is called on line {l}, below it, by a routine whose frames stiffid reads after it; put the routine after its callers, or set the frames and speed in it"));
+    }
+    match calls.get(name).map(Vec::as_slice) {
+        None | Some([]) => unknown(format!("DEF {name} (line {line}) is not called before it in this file, so what is in force at its motions is its caller's, which stiffid does not see; set the frames and speed in the routine")),
+        Some([(_, first), rest @ ..]) => {
+            let mut state = first.clone();
+            for (l, other) in rest {
+                state.join(other, (&format!("the calls of {name}"), *l));
+            }
+            state
+        }
+    }
+}
 /// Refuses a statement whose first word (`first`) KRL cannot read: a character outside ASCII
 /// (but a byte-order mark),
 /// a quote, a backslash or a closing bracket without its opening one (`LIN]`, `LI\N`, `LIéN`),
@@ -111,9 +238,6 @@ fn well_formed(line: u64, first: &str) -> Result<()> {
         false => Ok(()),
     }
 }
-
-/// A routine of the file: its upper-case name and the line of its `DEF`.
-type Routine = (String, u64);
 
 /// The routines after the program's first that set a frame or the frame data, by upper-case
 /// name, with the line of the first they set.
@@ -156,4 +280,52 @@ fn routine_name(words: &[String]) -> Option<String> {
         ["DEFFCT", _, name, ..] => Some(name.to_string()),
         _ => None,
     }
+}
+
+/// The routines of the file after its first (`DEF`, `DEFFCT`), by upper-case name, with their
+/// line.
+fn routines(text: &str) -> HashMap<String, u64> {
+    let mut out = HashMap::new();
+    let mut seen = 0usize;
+    for (line, _, l) in crate::program::lines(text) {
+        let code = l.split(';').next().unwrap_or("");
+        if let Some(name) = routine_name(&words(code)) {
+            seen += 1;
+            if seen > 1 {
+                out.entry(name).or_insert(line);
+            }
+        }
+    }
+    out
+}
+
+/// The targets of `out` whose frame or tool is unknown moved to `left` (left as found).
+fn leave_unknown(out: Vec<JointTarget>, left: &mut Vec<Left>) -> Vec<JointTarget> {
+    let mut kept = Vec::with_capacity(out.len());
+    for t in out {
+        let unknown = t
+            .cartesian
+            .as_deref()
+            .and_then(|c| match (&c.frame, &c.tool) {
+                (Frame::Unknown(_, why), _) | (_, Frame::Unknown(_, why)) => Some(why.clone()),
+                _ => None,
+            });
+        match unknown {
+            Some(why) => left.push(Left::of(&t, why)),
+            None => kept.push(t),
+        }
+    }
+    kept
+}
+
+/// The lines that call each routine of `local`, by its name.
+fn call_lines(text: &str, local: &HashMap<String, u64>) -> HashMap<String, Vec<u64>> {
+    let mut out: HashMap<String, Vec<u64>> = HashMap::new();
+    for (line, _, l) in crate::program::lines(text) {
+        let code = l.split(';').next().unwrap_or("");
+        if let Some((name, _)) = called(code, local) {
+            out.entry(name.to_string()).or_default().push(line);
+        }
+    }
+    out
 }

@@ -6,8 +6,9 @@ use stiffid_core::common::limits::short;
 use stiffid_core::Result;
 
 /// The KRL path speed in force while a program is read line by line (module docs).
+#[derive(Debug, Clone)]
 pub(crate) struct Krl {
-    in_force: Speed,
+    pub(super) in_force: Speed,
 }
 
 impl Default for Krl {
@@ -22,6 +23,13 @@ impl Krl {
         let why = "no $VEL.CP set before it in the program: its speed is the controller's";
         Krl {
             in_force: Speed::Unread(why.into()),
+        }
+    }
+
+    /// A speed the program does not state, for the reason `why`.
+    pub(crate) fn unread(why: String) -> Self {
+        Krl {
+            in_force: Speed::Unread(why),
         }
     }
 

@@ -132,26 +132,33 @@ pub(crate) fn frame(kind: &str, name: &str, line: u64, code: &str, from: usize) 
 
 /// The targets of a `MoveL`/`MoveJ` (`points` 1) or `MoveC` (`points` 2: the circle point, then
 /// the end point) statement, with its tool and work object, from its arguments `args` (the text
-/// after the instruction's name and switches, without `;`, at byte `from` of `code`); `named`
+/// after the instruction's name and switches, without `;`, at byte `from` of `code`), `process`
+/// arguments between its speed and zone (an arc welding motion's seam and weld data); `named`
 /// gives a declared `robtarget` by name.
 pub(crate) fn motion(
     line: u64,
     (code, from, args): (&str, usize, &str),
-    points: usize,
+    (points, process): (usize, usize),
     named: &dyn Fn(&str) -> Result<JointTarget>,
     frames: &HashMap<String, Frame>,
 ) -> Result<Vec<JointTarget>> {
     let joined = super::arguments::switches_joined(args);
     let args = joined.as_str();
     let parts = super::arguments::top_level(args);
-    let Some(tool) = parts.get(points + 2).filter(|_| parts.len() >= points + 3) else {
+    let at_tool = points + 2 + process;
+    let Some(tool) = parts.get(at_tool).filter(|_| parts.len() > at_tool) else {
         let what = match points {
             1 => "a target",
             _ => "a circle point, an end point",
         };
+        let data = if process > 0 {
+            ", its seam and weld data"
+        } else {
+            ""
+        };
         return Err(at(
             line,
-            format!("expected {what}, a speed, a zone and a tool"),
+            format!("expected {what}, a speed{data}, a zone and a tool"),
         ));
     };
     let tool_text = &args[tool.clone()];
@@ -207,7 +214,8 @@ fn point(
         .collect();
     let next = text[ident.len()..].trim_start();
     if !ident.is_empty() && (next.is_empty() || next.starts_with('\\')) {
-        return named(&ident);
+        let at = from + lead;
+        return named(&ident).map(|t| t.named_at(at..at + ident.len()));
     }
     if let Some(f) = super::offset::Function::of(&ident).filter(|_| next.starts_with('(')) {
         let open = from + lead + text.len() - next.len();
@@ -235,7 +243,7 @@ fn lookup(
         return Frame::World;
     }
     frames.get(&key).cloned().unwrap_or_else(|| {
-        Frame::Unknown(line, format!("{kind} {name}: not declared in this module with a value; stiffid reads the {kind} the module states"))
+        Frame::Unknown(line, format!("{kind} {name}: not declared with a value in this module or the backup's modules given; give the task's modules (--backup, Python backup=), or declare it in the module"))
     })
 }
 

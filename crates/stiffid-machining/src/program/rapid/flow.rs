@@ -1,11 +1,8 @@
 //! RAPID's program flow around motions (ABB, *Technical reference manual - RAPID Instructions,
 //! Functions and Data types*: `IF`, `WHILE`, `FOR`, `TEST`, `GOTO`, and the `ERROR` handler of
-//! *RAPID overview*): a motion a loop, a branch or an error handler holds runs as often and in
-//! the order the controller decides at run time, so the file's order is not the path's. Such a
-//! motion is refused naming its line, the instruction and every construct around it with its
-//! line; a `GOTO` in the routine that holds the motions, or a `RETURN`, `EXIT`, `ExitCycle` or
-//! `RAISE` a construct holds there, is refused naming its line and the routine's first motion. The one-line `IF cond instruction;` (the *compact IF*) is a branch
-//! of one statement: a motion in it is refused likewise.
+//! *RAPID overview*): which words are motions, the constructs open at a statement, and the
+//! routine's jumps (a `GOTO`, or a `RETURN`, `EXIT`, `ExitCycle` or `RAISE` a construct holds),
+//! which the reader refuses where a state it follows would depend on them (module `read`).
 
 use crate::program::at;
 use stiffid_core::Result;
@@ -107,27 +104,6 @@ impl Flow {
         }
     }
 
-    /// Refuses the motion `name` on `line` when a construct is open around it (module docs);
-    /// `compact` the line of a compact `IF` that holds it.
-    pub(super) fn check(&self, name: &str, line: u64, compact: Option<u64>) -> Result<()> {
-        let mut around: Vec<String> = (self.open.iter().rev())
-            .map(|(c, l)| format!("{c} (line {l})"))
-            .collect();
-        if let Some(l) = compact {
-            around.insert(0, format!("IF (line {l})"));
-        }
-        if around.is_empty() {
-            return Ok(());
-        }
-        Err(at(
-            line,
-            format!(
-                "{name} inside {}: a loop, branch or error handler decides at run time whether, how often and in which order its motions run, so the file's order is not the path's; write the path as straight-line code",
-                around.join(" inside ")
-            ),
-        ))
-    }
-
     /// Takes a jump (`GOTO`, a conditional `RETURN`..) on `line`.
     pub(super) fn jump(&mut self, name: &str, line: u64) {
         self.jumps.push((name.to_string(), line));
@@ -157,12 +133,12 @@ pub(super) fn is_jump(word: &str) -> bool {
 
 /// The first word of a compact `IF` statement (`statement`, its text, starting on `line`)
 /// outside parentheses, brackets and strings, not an operand (followed by an operator), that
-/// `wanted` (lower case) takes, and its line.
+/// `wanted` (lower case) takes, its line and its byte in `statement`.
 pub(super) fn in_compact_if(
     statement: &str,
     line: u64,
     wanted: fn(&str) -> bool,
-) -> Option<(String, u64)> {
+) -> Option<(String, u64, usize)> {
     let (mut depth, mut in_string, mut start) = (0i32, false, None::<usize>);
     let end = std::iter::once((statement.len(), ' '));
     for (i, c) in statement.char_indices().chain(end) {
@@ -176,7 +152,7 @@ pub(super) fn in_compact_if(
                 .starts_with(['=', '<', '>', '+', '-', '*', '/', ',', ')', ':']);
             if depth == 0 && !operand && wanted(&word.to_ascii_lowercase()) {
                 let on = line + statement[..s].matches('\n').count() as u64;
-                return Some((word.to_string(), on));
+                return Some((word.to_string(), on, s));
             }
         }
         match c {

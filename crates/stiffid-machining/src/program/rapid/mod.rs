@@ -14,11 +14,12 @@
 //! between is the circle through the compensated points). A point may also be `Offs` or
 //! `RelTool` of one with constant arguments (module `offset`).
 //!
-//! A motion inside a loop, a branch or an error handler, and a jump in the routine of the
-//! motions, are refused naming the line and the construct (module `flow`); docs/programs/rapid.md
-//! is the guide, with ABB's manuals as the source of each rule.
+//! Every motion of every routine is read where it is, inside loops, branches and error handlers
+//! too (module `read`); docs/programs/rapid.md is the guide, with ABB's manuals as the source of
+//! each rule.
 
 mod arguments;
+mod backup;
 mod cartesian;
 pub(crate) mod confdata;
 mod flow;
@@ -26,6 +27,7 @@ mod generate;
 mod names;
 mod offset;
 mod process;
+mod read;
 pub(crate) mod speed;
 pub use confdata::ConfData;
 
@@ -55,106 +57,6 @@ struct Data {
 struct Statement {
     line: u64,
     span: std::ops::Range<usize>,
-}
-
-/// Every joint target of `text`, in the order of its motions (module docs), and the program's
-/// external axes: `eax_a` to the last one any target gives a value (not `9E9`).
-pub(crate) fn targets(text: &str) -> Result<(Vec<JointTarget>, Vec<String>)> {
-    let code = without_comments(text);
-    let statements = statements(&code);
-    let data = declarations(&code, &statements)?;
-    let mut out = Vec::new();
-    let mut routines: Vec<(String, u64)> = Vec::new();
-    let mut routine: Option<(String, u64)> = None;
-    let mut current: Option<(String, u64)> = None;
-    let mut flow = flow::Flow::default();
-    let mut flow_of_motions: Option<flow::Flow> = None;
-    // `ConfJ \Off`, `ConfL \Off` in force (joint, linear): the controller does not hold the
-    // motions to their confdata (*RAPID Instructions*, ConfJ, ConfL).
-    let mut conf_off = [false, false];
-    for s in &statements {
-        let body = &code[s.span.clone()];
-        let first = first_word(body);
-        well_formed(s.line, &body.trim_start()[..first.len()])?;
-        let words: Vec<String> = body
-            .split_whitespace()
-            .take(3)
-            .map(str::to_ascii_lowercase)
-            .collect();
-        let w: Vec<&str> = words
-            .iter()
-            .map(String::as_str)
-            .skip_while(|w| matches!(*w, "local" | "task"))
-            .collect();
-        if let ["proc" | "trap", name, ..] | ["func", _, name, ..] = w.as_slice() {
-            let name = name.split('(').next().unwrap_or(name).to_string();
-            routines.push((name.clone(), s.line));
-            current = Some((name, s.line));
-            if let (Some(_), None) = (&routine, &flow_of_motions) {
-                flow_of_motions = Some(std::mem::take(&mut flow));
-            }
-            flow.routine();
-            continue;
-        }
-        flow.statement(&first, is_header(body), s.line);
-        if first == "if" && !is_header(body) {
-            if let Some((name, line)) = flow::in_compact_if(body, s.line, flow::is_motion) {
-                flow.check(&name, line, Some(s.line))?;
-            }
-            if let Some((name, line)) = flow::in_compact_if(body, s.line, flow::is_jump) {
-                flow.jump(
-                    &format!("IF (line {}) {}", s.line, name.to_uppercase()),
-                    line,
-                );
-            }
-        }
-        let rest = body.trim_start()[first.len()..].trim_start();
-        if rest.starts_with([':', '.', '{']) {
-            // An assignment (`name := ..`, `name.x := ..`, `name{i} := ..`): no motion.
-            continue;
-        }
-        if flow::is_motion(&first) {
-            let name = &body.trim_start()[..first.len()];
-            flow.check(name, s.line, None)?;
-        }
-        if let Some(k) = ["confj", "confl"].iter().position(|c| *c == first) {
-            conf_off[k] = rest.to_ascii_lowercase().starts_with("\\off");
-        }
-        let mut found = motion(s, &code, &first, &data)?;
-        if found.is_empty() {
-            continue;
-        }
-        let linear = matches!(first.as_str(), "movel" | "movec");
-        if conf_off[usize::from(linear)] && (linear || first == "movej") {
-            // Configuration monitoring off: the motion keeps the arm's configuration from the
-            // posture before it, whatever its confdata says.
-            for c in found.iter_mut().filter_map(|t| t.cartesian.as_deref_mut()) {
-                c.follows = true;
-            }
-        }
-        match (&routine, &current) {
-            (Some((a, a_line)), Some((b, b_line))) if a != b => {
-                return Err(at(s.line, format!("motions in PROC {a} (line {a_line}) and PROC {b} (line {b_line}): the order the controller runs them depends on the calls; put the path in one PROC")));
-            }
-            (None, _) => routine = current.clone(),
-            _ => {}
-        }
-        out.extend(found);
-    }
-    if out.is_empty() {
-        return Err(at(1, no_motion(&routines)));
-    }
-    if let (Some(first), Some(r)) = (out.first(), &routine) {
-        let flow = flow_of_motions.as_ref().unwrap_or(&flow);
-        flow.check_jumps(&format!("PROC {}", r.0), first.line)?;
-    }
-    let n = out
-        .iter()
-        .filter_map(|t| t.external.iter().rposition(Option::is_some))
-        .max()
-        .map_or(0, |k| k + 1);
-    let axes = (0..n).map(|k| format!("eax_{}", (b'a' + k as u8) as char));
-    Ok((out, axes.collect()))
 }
 
 /// Why a module without motions gives no target: what it holds instead.
@@ -362,7 +264,7 @@ fn declarations(code: &str, statements: &[Statement]) -> Result<Data> {
                 let value = match (array, body.find(":=")) {
                     (true, _) => Err(format!("{name} is an array of jointtargets (line {}): declare each target on its own or write it as a literal", s.line)),
                     (false, None) => Err(format!("{name} is declared on line {} without a value (set at run time)", s.line)),
-                    (false, Some(eq)) => Ok(literal(s.line, code, s.span.start + eq + 2)?),
+                    (false, Some(eq)) => Ok(declared_at(literal(s.line, code, s.span.start + eq + 2)?, code, s, name)),
                 };
                 declared.insert(name.to_string(), value);
             }
@@ -391,6 +293,7 @@ fn declarations(code: &str, statements: &[Statement]) -> Result<Data> {
                 match *kind {
                     "robtarget" => {
                         let target = cartesian::robtarget(s.line, code, from)?;
+                        let target = declared_at(target, code, s, name);
                         declared.insert(name.to_string(), Ok(target));
                     }
                     _ => {
@@ -436,6 +339,25 @@ fn declarations(code: &str, statements: &[Statement]) -> Result<Data> {
         speeds,
         assigned,
     })
+}
+
+/// `t` declared by the statement `s` of `code` as `name` (lower case), where the statement has
+/// its lines to itself (its declaration then copied whole when a second point is needed).
+fn declared_at(t: JointTarget, code: &str, s: &Statement, name: &str) -> JointTarget {
+    let begin = code[..s.span.start].rfind('\n').map_or(0, |i| i + 1);
+    let end = (code[s.span.end..].find('\n')).map_or(code.len(), |i| s.span.end + i + 1);
+    if !code[begin..s.span.start].trim().is_empty() || !code[s.span.end..end].trim().is_empty() {
+        return t;
+    }
+    let lower = code[s.span.clone()].to_ascii_lowercase();
+    let eq = lower.find(":=").unwrap_or(lower.len());
+    match lower[..eq].rfind(name) {
+        Some(at) => {
+            let n = s.span.start + at;
+            t.declared_at(begin..end, n..n + name.len())
+        }
+        None => t,
+    }
 }
 
 /// The joint target of the literal `[[j1,..,j6],[..]]` at or after byte `from` of `code`.
@@ -502,11 +424,29 @@ fn literal(line: u64, code: &str, from: usize) -> Result<JointTarget> {
     Ok(target.with_external(external))
 }
 
+/// The motion instruction (lower case) an arc welding instruction moves as (*Application manual
+/// - Arc and Arc Sensor*: `ArcL`, `ArcLStart`, `ArcLEnd` linear as `MoveL`, `ArcC`, `ArcCStart`,
+/// `ArcCEnd` circular as `MoveC`, each with its seam and weld data after the speed); any other
+/// as it is.
+pub(super) fn as_move(first: &str) -> &str {
+    match first {
+        "arcl" | "arclstart" | "arclend" => "movel",
+        "arcc" | "arccstart" | "arccend" => "movec",
+        other => other,
+    }
+}
+
 /// The targets of a motion statement (`MoveC`: its circle point then its end point), none for
 /// a statement that is no motion; every motion outside the subset refused naming the line.
 fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Vec<JointTarget>> {
     let line = s.line;
     let name = &code[s.span.clone()].trim_start()[..first.len()];
+    // An arc welding motion (its seam and weld data between the speed and the zone): the linear
+    // or circular motion it is, the process on.
+    let (first, process) = match as_move(first) {
+        m if m != first => (m, 2),
+        m => (m, 0),
+    };
     let cartesian = matches!(first, "movel" | "movej" | "movec");
     if first != "moveabsj" && !cartesian {
         if !flow::is_motion(first) {
@@ -555,7 +495,7 @@ fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Vec<Joi
             Some(Ok(t)) if t.cartesian.is_some() == cartesian => Ok(t.moved_to(line, false)),
             Some(Ok(_)) => Err(at(line, format!("{name} {ident}: not a {kind}"))),
             Some(Err(why)) => Err(at(line, format!("{name} {ident}: {why}"))),
-            None => Err(at(line, format!("{name} {ident}: not a {kind} declared in this module; stiffid compensates one file: declare it in the module or write the target as a literal"))),
+            None => Err(at(line, format!("{name} {ident}: not a {kind} declared in this module or the backup's modules given; give the task's modules (--backup, Python backup=), declare it in the module or write the target as a literal"))),
         }
     };
     if cartesian {
@@ -566,13 +506,19 @@ fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Vec<Joi
         let argument = arguments::top_level(&joined)
             .get(points)
             .map(|r| &joined[r.clone()]);
-        let mut targets = cartesian::motion(line, (code, from, args), points, &named, &data.frames)
-            .map_err(|e| match e {
-                stiffid_core::Error::Program { line, message } if !message.starts_with(name) => {
-                    at(line, format!("{name}: {message}"))
-                }
-                other => other,
-            })?;
+        let mut targets = cartesian::motion(
+            line,
+            (code, from, args),
+            (points, process),
+            &named,
+            &data.frames,
+        )
+        .map_err(|e| match e {
+            stiffid_core::Error::Program { line, message } if !message.starts_with(name) => {
+                at(line, format!("{name}: {message}"))
+            }
+            other => other,
+        })?;
         let speed = match speed::speed(line, first, argument, &data.speeds)? {
             super::speed::Speed::Duration(_) if points == 2 => super::speed::Speed::Unread(format!("{name} \\T: the time of the whole circle, which stiffid does not share between its two points")),
             other => other,
@@ -600,7 +546,8 @@ fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Vec<Joi
         };
         return Err(at(line, format!("{name}: the target is {what} the controller computes; stiffid compensates literals and jointtargets declared in the module")));
     }
-    named(&ident).map(|t| vec![joint(t)])
+    let at = s.span.end - target_text.len();
+    named(&ident).map(|t| vec![joint(t.named_at(at..at + ident.len()))])
 }
 
 /// A `MoveAbsJ`'s target: a joint motion.
@@ -614,6 +561,11 @@ fn joint(target: JointTarget) -> JointTarget {
 /// ABB RAPID (module docs).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Rapid;
+
+impl Rapid {
+    /// The extensions of a task's modules in an ABB backup.
+    pub(crate) const BACKUP: &'static [&'static str] = &["mod", "modx", "sys", "sysx", "prg"];
+}
 
 impl Controller for Rapid {
     type Flags = ConfData;
@@ -645,12 +597,10 @@ impl Controller for Rapid {
     };
 
     fn read(&self, text: &str) -> Result<Read> {
-        let (targets, axes) = targets(text)?;
-        Ok(Read {
-            targets,
-            axes,
-            ..Read::default()
-        })
+        read::targets(text, &super::Context::default())
+    }
+    fn read_in(&self, text: &str, context: &super::Context) -> Result<Read> {
+        read::targets(text, context)
     }
     fn rotation(&self, n: &[f64]) -> UnitQuaternion<f64> {
         UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(n[3], n[4], n[5], n[6]))
@@ -663,5 +613,9 @@ impl Controller for Rapid {
     }
     fn generator(&self) -> Option<&'static dyn Generator> {
         Some(&Rapid)
+    }
+    /// The modules of an ABB backup's task (`RAPID/TASK1/PROGMOD/*.mod`, `SYSMOD/*.sys`).
+    fn backup_extensions(&self) -> &'static [&'static str] {
+        Rapid::BACKUP
     }
 }

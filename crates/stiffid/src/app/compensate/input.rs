@@ -37,6 +37,7 @@ pub(super) fn read_checked(
         output,
         settings,
         process,
+        reading,
         ..
     } = input
     else {
@@ -53,7 +54,9 @@ pub(super) fn read_checked(
         generate::check_pulses(d, setup.workcell().controller().pulses.as_ref())?;
     }
     let machine = stiffid_machining::gcode::Machine::of(setup, Some(process));
-    let context = Context::of(setup).with_data(*data).with_machine(&machine);
+    let context = (Context::of(setup).with_data(*data).with_machine(&machine))
+        .with_backup(reading.backup)
+        .with_leave_refused(reading.leave_refused);
     let program = read_program_in(name, text, language, *chord_tolerance, &context)?;
     // A Cartesian program's targets as the controller moves to them (a copy only then).
     match machining::resolve(&program, setup, None, options) {
@@ -215,6 +218,24 @@ pub(super) fn held_warning(lines: &[u64]) -> Option<Warning> {
         Warning::new(
             WarningKind::LeftOut,
             format!("the motions to XHOME (lines {}) go to the controller's home position, which its $config.dat holds and the setup gives ([controller] home_deg): they are read at the home posture, and written as read, not compensated (no bound)", shown.join(", ")),
+        )
+    })
+}
+
+/// The warning that the motions the program's reader left as found (a motion to the home
+/// position; with `--leave-refused`, the motions refused for what only the run decides) are not
+/// compensated: each line and why, written back as read.
+pub(super) fn left_warning(program: &Program) -> Option<Warning> {
+    let Program::Robot(p) = program else {
+        return None;
+    };
+    let listed: Vec<String> = (p.left.iter())
+        .map(|l| format!("line {}: {}", l.line, l.why))
+        .collect();
+    (!listed.is_empty()).then(|| {
+        Warning::new(
+            WarningKind::LeftOut,
+            format!("{} motion{} left as found, not compensated (no bound) and written back as read: {}", listed.len(), if listed.len() == 1 { "" } else { "s" }, listed.join("; ")),
         )
     })
 }

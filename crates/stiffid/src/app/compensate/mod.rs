@@ -40,7 +40,7 @@ mod written;
 use crate::app::compensate::document::{Names, Summary};
 use crate::app::{Warning, WarningKind};
 use input::{
-    check_tcp, encoding_warning, held_lines, held_warning, no_length_offset, read_checked,
+    check_tcp, encoding_warning, held_lines, held_warning, left_warning, no_length_offset, read_checked,
     uncoupled_ls, unplaced_g53, unstated_units,
 };
 pub use input::{read_program, read_program_in};
@@ -98,7 +98,22 @@ pub enum Input<'t> {
         /// The encoding its files were read in ([`stiffid_core::io::program_texts`]), which the
         /// compensated program is written in ([`ProgramReport::encoding`]).
         encoding: Encoding,
+        /// How it is read beyond its own files: its controller backup's, and whether refused
+        /// motions are left as found.
+        reading: Reading<'t>,
     },
+}
+
+/// How a robot program is read beyond its own files (by default: nothing more).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Reading<'t> {
+    /// The files of the controller's backup given with the program, each its name and text
+    /// (a front end lists a folder with [`stiffid_core::io::input::files_under`]): the data the
+    /// program declares elsewhere ([`stiffid_machining::program::Context::backup`]).
+    pub backup: &'t [(String, String)],
+    /// Leave as found the motions refused for what only the run decides, each named in a
+    /// warning ([`stiffid_machining::program::Context::leave_refused`]).
+    pub leave_refused: bool,
 }
 
 /// What to compensate and how.
@@ -437,6 +452,7 @@ where
         encoding,
         text: source,
         data: source_data,
+        ..
     } = input
     else {
         unreachable!("a program's input")
@@ -484,6 +500,7 @@ where
             };
             let held = held_lines(&program);
             out.warnings.extend(held_warning(&held));
+            out.warnings.extend(left_warning(&program));
             let lines: Vec<(u64, f64)> = (compensated.points.iter())
                 .zip(&compensated.results)
                 .filter(|(p, _)| !held.contains(&p.line))

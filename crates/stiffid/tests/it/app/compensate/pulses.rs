@@ -49,6 +49,7 @@ fn job_warned(setup: &stiffid::Setup, depth_mm: &str) -> stiffid::Result<(Vec<f6
         compliance,
         input: Input::Program {
             encoding: Default::default(),
+            reading: Default::default(),
             name: "pocket.nc".into(),
             text: include_str!("../../../../../../examples/milling/pocket.nc"),
             data: None,

@@ -298,6 +298,7 @@ fn each_language_writes_its_circular_moves_and_reads_them_back() {
                     tool: None,
                     data: None,
                     machine: None,
+                    ..Default::default()
                 };
                 parse_in(&text, dialect, &context).unwrap().targets
             }

@@ -107,6 +107,7 @@ fn generated_programs_carry_the_headers_their_controllers_write() {
         tool: None,
         data: None,
         machine: None,
+        ..Default::default()
     };
     assert_eq!(
         parse_in(jbi, Dialect::Inform, &context)

@@ -20,6 +20,7 @@ fn with(p: &Pulses) -> Context<'_> {
         tool: None,
         data: None,
         machine: None,
+        ..Default::default()
     }
 }
 

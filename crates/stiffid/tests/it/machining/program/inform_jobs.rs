@@ -26,6 +26,7 @@ fn with(p: &Pulses) -> Context<'_> {
         tool: None,
         data: None,
         machine: None,
+        ..Default::default()
     }
 }
 
@@ -370,6 +371,7 @@ fn tool_files_are_checked_against_the_setups_tool() {
         tool: Some((tool, tools)),
         data: None,
         machine: None,
+        ..Default::default()
     };
     assert!(parse_in(STORED, Dialect::Inform, &context(&held)).is_ok());
     let (line, message) = refused(parse_in(STORED, Dialect::Inform, &context(&other)));

@@ -89,6 +89,7 @@ fn read_back(
                 tool: Some((tool, &c.tools)),
                 data: None,
                 machine: None,
+                ..Default::default()
             };
             parse_in(text, dialect, &context).unwrap().targets
         }

@@ -6,7 +6,7 @@
 use nalgebra::Vector3;
 use stiffid_core::Error;
 use stiffid_machining::program::cartesian::Frame;
-use stiffid_machining::program::{parse_with_data, Dialect, JointProgram};
+use stiffid_machining::program::{self, parse_with_data, Dialect, JointProgram};
 
 /// A `.src` with KSS 8.3 inline forms: a literal `$BASE` first (which the inline forms must
 /// replace), PTP P1 and LIN P2 in tool 1 and base 2, CIRC P3 P4 in base 0, SLIN P5 with its own
@@ -341,27 +341,45 @@ fn a_motion_krl_cannot_read_is_refused_not_passed_over() {
 }
 
 #[test]
-fn motions_outside_loops_and_branches_run_and_inside_are_refused() {
+fn motions_in_loops_branches_and_routines_are_read_where_they_are() {
     let wrapped = SRC
         .replace("$BWDSTART=FALSE\r\nPDAT_ACT=PPDAT1", "IF $IN[1] THEN\r\n  WAIT SEC 1\r\nENDIF\r\nLOOP\r\n  $OUT[2] = TRUE\r\n  EXIT\r\nENDLOOP\r\n$BWDSTART=FALSE\r\nPDAT_ACT=PPDAT1");
     let p = parse_with_data(&wrapped, Some(DAT), Dialect::Krl).unwrap();
     assert_eq!(p.targets.len(), 5);
     let inside = SRC.replace("LIN XP2 \r\n", "LOOP\r\nLIN XP2 \r\nENDLOOP\r\n");
-    match parse_with_data(&inside, Some(DAT), Dialect::Krl) {
-        Err(Error::Program { line, message }) => {
-            assert_eq!(line, line_of(&inside, "LIN XP2"));
-            let l = line_of(&inside, "LOOP");
-            assert!(message.contains(&format!("LOOP (line {l})")), "{message}");
-        }
-        other => panic!("{other:?}"),
-    }
+    let p = parse_with_data(&inside, Some(DAT), Dialect::Krl).unwrap();
+    let straight = parse_with_data(SRC, Some(DAT), Dialect::Krl).unwrap();
+    assert_eq!(p.targets.len(), straight.targets.len());
+    assert_eq!(p.targets[1].line, line_of(&inside, "LIN XP2"));
+    assert_eq!(frames(&p, 1), frames(&straight, 1));
     // A frame set inside a branch leaves the next motion's frame to the run.
     let branch = SRC.replace(
         "FDAT_ACT=FP1\r\n",
         "IF $IN[2] THEN\r\nFDAT_ACT=FP1\r\nENDIF\r\n",
     );
     let p = parse_with_data(&branch, Some(DAT), Dialect::Krl).unwrap();
-    assert!(matches!(frames(&p, 0).0, Frame::Unknown(_, why) if why.contains("IF")));
+    let (set, open) = (
+        line_of(&branch, "FDAT_ACT=FP1"),
+        line_of(&branch, "IF $IN[2]"),
+    );
+    match frames(&p, 0).0 {
+        Frame::Unknown(l, why) => {
+            assert_eq!(l, line_of(&branch, "BAS(#PTP_PARAMS"), "{why}");
+            for part in [format!("IF (line {open})"), format!("line {set}")] {
+                assert!(why.contains(&part), "{part}: {why}");
+            }
+        }
+        other => panic!("{other:?}"),
+    }
+    // Left as found on request: that motion named, the others read.
+    let leave = program::Context::default()
+        .with_data(Some(DAT))
+        .with_leave_refused(true);
+    let p = program::parse_in(&branch, Dialect::Krl, &leave).unwrap();
+    assert_eq!(p.left.len(), 1);
+    assert_eq!(p.left[0].line, line_of(&branch, "PTP XP1"));
+    assert!(p.left[0].why.contains("IF"), "{}", p.left[0].why);
+    assert!(p.targets.iter().all(|t| t.line != p.left[0].line));
     // A routine of the file that sets a frame, called before a motion.
     let called = SRC
         .replace("LIN XP2 \r\n", "set_base( )\r\nLIN XP2 \r\n")
@@ -380,12 +398,15 @@ fn motions_outside_loops_and_branches_run_and_inside_are_refused() {
         parse_with_data(&jump, Some(DAT), Dialect::Krl),
         Err(Error::Program { line, .. }) if line == line_of(&jump, "GOTO")
     ));
-    // Motions in a routine the program calls.
+    // Motions in a routine no line of the file calls: its frames are its caller's.
     let called = SRC.replace("END\r\n", "END\r\nDEF sub( )\r\nPTP XP1\r\nEND\r\n");
-    assert!(matches!(
-        parse_with_data(&called, Some(DAT), Dialect::Krl),
-        Err(Error::Program { message, .. }) if message.contains("DEF SUB")
-    ));
+    let p = parse_with_data(&called, Some(DAT), Dialect::Krl).unwrap();
+    let last = p.targets.len() - 1;
+    assert!(
+        matches!(frames(&p, last).0, Frame::Unknown(_, why) if why.contains("DEF SUB") && why.contains("not called")),
+        "{:?}",
+        frames(&p, last)
+    );
 }
 
 /// A literal `$BASE` or `$TOOL` beyond the limits (a position beyond 100 m, an angle beyond 1e4

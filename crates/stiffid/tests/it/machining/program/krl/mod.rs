@@ -1,3 +1,4 @@
 //! KUKA's KRL (`stiffid_machining::program::krl`).
+mod backup;
 mod inline;
 mod stored;

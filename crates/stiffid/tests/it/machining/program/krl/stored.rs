@@ -117,6 +117,7 @@ fn compensated(
         compliance,
         input: Input::Program {
             encoding: Default::default(),
+            reading: Default::default(),
             name: "POCKET.src".into(),
             text,
             data,
@@ -316,4 +317,45 @@ fn a_stored_krl_program_compensated_lands_on_the_true_robot() {
         row.max * 1e3
     );
     assert!(row.mean <= 0.05e-3, "{row:?}");
+}
+
+/// The stored program with its 3rd to 5th motions inside `IF $IN[1] THEN .. ENDIF` and its
+/// motions from the 9th on in a routine of the file, `DEF sub( )`, that the program calls where
+/// they were: each motion is compensated where it is, to the values of the straight-line
+/// program, and written back in place (the `.src` keeps every byte but the bounds' comments).
+#[test]
+fn motions_in_a_branch_and_in_a_called_routine_compensate_as_the_straight_program() {
+    let s = setup();
+    let (src, dat) = stored(&literal(12));
+    let folds: Vec<usize> = src.match_indices(";FOLD").map(|(i, _)| i).collect();
+    let ends: Vec<usize> = (src.match_indices(";ENDFOLD\n"))
+        .map(|(i, _)| i + ";ENDFOLD\n".len())
+        .collect();
+    assert_eq!(folds.len(), 12);
+    let end = src.rfind("END\n").unwrap();
+    let tail = &src[folds[8]..ends[11]];
+    let flowing = format!(
+        "{}IF $IN[1] THEN\n{}ENDIF\n{}sub( )\n{}END\nDEF sub( )\n{tail}END\n",
+        &src[..folds[2]],
+        &src[folds[2]..ends[4]],
+        &src[ends[4]..folds[8]],
+        &src[ends[11]..end],
+    );
+    let how = (&s, kuka_compliance(&s), None);
+    let (_, straight_dat, straight) = compensated(how.clone(), (&src, Some(&dat)));
+    let (out, flowing_dat, results) = compensated(how, (&flowing, Some(&dat)));
+    assert_eq!(results.len(), 12);
+    for (a, b) in straight.iter().zip(&results) {
+        assert!((a.q_compensated - b.q_compensated).amax() < 1e-12);
+    }
+    assert_eq!(flowing_dat, straight_dat);
+    let strip = |t: &str| {
+        t.lines()
+            .map(|l| l.split(" ; bound").next().unwrap().to_string())
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(
+        strip(&out),
+        strip(&flowing.replace("DEF POCKET( )", "DEF POCKET_C( )"))
+    );
 }

@@ -23,27 +23,33 @@ struct Refusal {
 
 /// The modules read without a refusal: checked point by point in
 /// [`a_generated_path_is_read_point_by_point_as_the_file_states_it`].
-const READ: [&str; 1] = ["VInRoS_DP.mod"];
+const READ: [&str; 2] = ["VInRoS_DP.mod", "Tutorial-Simple_Module1.mod"];
 
 /// The modules refused as read (`program::parse`), without a setup.
-const REFUSED: [Refusal; 18] = [
+const REFUSED: [Refusal; 17] = [
     Refusal {
         file: "ROS_motion.mod",
         line: 66,
-        says: &["MoveAbsJ inside IF (line 65) inside FOR (line 55) inside IF (line 54) inside WHILE (line 48)"],
-        holds: &[(66, "MoveAbsJ target"), (65, "IF (NOT skip_move)"), (55, "FOR current_index"), (54, "IF (trajectory_size > 0) THEN"), (48, "WHILE true DO")],
+        says: &["MoveAbsJ target: target is assigned on line 56"],
+        holds: &[
+            (66, "MoveAbsJ target"),
+            (56, "target.robax := trajectory{current_index}"),
+        ],
     },
     Refusal {
         file: "motion.mod",
         line: 43,
-        says: &["MOVEABSJ inside IF (line 42) inside WHILE (line 40)"],
-        holds: &[(43, "MOVEABSJ target"), (42, "IF motion_trajectory"), (40, "WHILE true DO")],
+        says: &["MOVEABSJ target: target is assigned on line 41"],
+        holds: &[
+            (43, "MOVEABSJ target"),
+            (41, "target.robax := motion_trajectory"),
+        ],
     },
     Refusal {
         file: "motion_program_exec.mod",
         line: 299,
-        says: &["MoveAbsJ inside IF (line 298)"],
-        holds: &[(299, "MoveAbsJ j,"), (298, "IF IsSyncMoveOn() THEN")],
+        says: &["MoveAbsJ j: j is declared on line 288 without a value"],
+        holds: &[(299, "MoveAbsJ j,"), (288, "VAR jointtarget j;")],
     },
     Refusal {
         file: "Axxx_Motion_Procs_21.mod",
@@ -54,26 +60,66 @@ const REFUSED: [Refusal; 18] = [
     Refusal {
         file: "ROS_motionServer.mod",
         line: 1,
-        says: &["no motion instruction", "main (line 38)", "trajectory_pt_callback (line 64)", "add_traj_pt (line 100)", "activate_trajectory (line 110)"],
-        holds: &[(38, "PROC main()"), (64, "PROC trajectory_pt_callback("), (100, "PROC add_traj_pt("), (110, "PROC activate_trajectory()")],
+        says: &[
+            "no motion instruction",
+            "main (line 38)",
+            "trajectory_pt_callback (line 64)",
+            "add_traj_pt (line 100)",
+            "activate_trajectory (line 110)",
+        ],
+        holds: &[
+            (38, "PROC main()"),
+            (64, "PROC trajectory_pt_callback("),
+            (100, "PROC add_traj_pt("),
+            (110, "PROC activate_trajectory()"),
+        ],
     },
     Refusal {
         file: "ROS_stateServer.mod",
         line: 1,
-        says: &["no motion instruction", "main (line 37)", "send_joints (line 60)", "send_status (line 87)"],
-        holds: &[(37, "PROC main()"), (60, "PROC send_joints()"), (87, "PROC send_status()")],
+        says: &[
+            "no motion instruction",
+            "main (line 37)",
+            "send_joints (line 60)",
+            "send_status (line 87)",
+        ],
+        holds: &[
+            (37, "PROC main()"),
+            (60, "PROC send_joints()"),
+            (87, "PROC send_status()"),
+        ],
     },
     Refusal {
         file: "ROS_socket.sys",
         line: 1,
-        says: &["no motion instruction", "ros_init_socket (line 30)", "ros_wait_for_client (line 39)", "ros_receive_msg (line 55)", "ros_send_msg (line 89)"],
-        holds: &[(30, "PROC ROS_init_socket("), (39, "PROC ROS_wait_for_client("), (55, "PROC ROS_receive_msg("), (89, "PROC ROS_send_msg(")],
+        says: &[
+            "no motion instruction",
+            "ros_init_socket (line 30)",
+            "ros_wait_for_client (line 39)",
+            "ros_receive_msg (line 55)",
+            "ros_send_msg (line 89)",
+        ],
+        holds: &[
+            (30, "PROC ROS_init_socket("),
+            (39, "PROC ROS_wait_for_client("),
+            (55, "PROC ROS_receive_msg("),
+            (89, "PROC ROS_send_msg("),
+        ],
     },
     Refusal {
         file: "ROS_messages.sys",
         line: 1,
-        says: &["no motion instruction", "ros_receive_msg_joint_traj_pt (line 100)", "ros_send_msg_joint_data (line 153)", "ros_send_msg_robot_status (line 187)"],
-        holds: &[(100, "PROC ROS_receive_msg_joint_traj_pt("), (153, "PROC ROS_send_msg_joint_data("), (187, "PROC ROS_send_msg_robot_status(")],
+        says: &[
+            "no motion instruction",
+            "ros_receive_msg_joint_traj_pt (line 100)",
+            "ros_send_msg_joint_data (line 153)",
+            "ros_send_msg_robot_status (line 187)",
+        ],
+        holds: &[
+            (100, "PROC ROS_receive_msg_joint_traj_pt("),
+            (153, "PROC ROS_send_msg_joint_data("),
+            (187, "PROC ROS_send_msg_robot_status("),
+        ],
     },
     Refusal {
         file: "ROS_common.sys",
@@ -84,14 +130,11 @@ const REFUSED: [Refusal; 18] = [
     Refusal {
         file: "EGM_IRB_120_Module1.mod",
         line: 74,
-        says: &["EGMRunJoint inside WHILE (line 58)"],
-        holds: &[(74, "EGMRunJoint egm_id, EGM_STOP_HOLD"), (58, "WHILE TRUE DO")],
-    },
-    Refusal {
-        file: "Tutorial-Simple_Module1.mod",
-        line: 48,
-        says: &["motions in PROC main (line 37) and PROC path_10 (line 47)"],
-        holds: &[(37, "PROC main()"), (39, "MoveAbsJ [[0,0,0,0,90,0]"), (47, "PROC Path_10()"), (48, "MoveL Target_10")],
+        says: &["EGMRunJoint: an Externally Guided Motion"],
+        holds: &[
+            (74, "EGMRunJoint egm_id, EGM_STOP_HOLD"),
+            (58, "WHILE TRUE DO"),
+        ],
     },
     Refusal {
         file: "Tutorial-Simple_CalibData.mod",
@@ -102,20 +145,30 @@ const REFUSED: [Refusal; 18] = [
     Refusal {
         file: "data_processing_Module1.mod",
         line: 14,
-        says: &["MoveAbsJ inside FOR (line 13) inside TEST (line 7)"],
-        holds: &[(14, "MoveAbsJ J_Orientation_Target{i}"), (13, "FOR i FROM 1 TO 5 DO"), (7, "TEST main_state")],
+        says: &["MoveAbsJ: the target is J_Orientation_Target{..}, an array element"],
+        holds: &[
+            (14, "MoveAbsJ J_Orientation_Target{i}"),
+            (13, "FOR i FROM 1 TO 5 DO"),
+            (7, "TEST main_state"),
+        ],
     },
     Refusal {
         file: "SortingLine_IRB_1200_T_ROB1_Module1.mod",
-        line: 67,
-        says: &["MoveAbsJ inside TEST (line 57)"],
-        holds: &[(67, "MoveAbsJ [[0,0,0,0,90,0]"), (57, "TEST r_str.actual_state")],
+        line: 164,
+        says: &["Offs: x = '0 + offset_T_x' is not a number written in the call"],
+        holds: &[
+            (164, "MoveL Offs(Target_INIT_AP1,0 + offset_T_x"),
+            (57, "TEST r_str.actual_state"),
+        ],
     },
     Refusal {
         file: "mfc_test_path1.mod",
         line: 39,
         says: &["FCPress1LStart: a force-controlled motion"],
-        holds: &[(39, "FCPress1LStart T1Process1, v50"), (8, "generated by RobotWare Machining FC V3.000")],
+        holds: &[
+            (39, "FCPress1LStart T1Process1, v50"),
+            (8, "generated by RobotWare Machining FC V3.000"),
+        ],
     },
     Refusal {
         file: "mfc_rMach_path1.mod",
@@ -126,13 +179,25 @@ const REFUSED: [Refusal; 18] = [
     Refusal {
         file: "MFCUserData.sys",
         line: 1,
-        says: &["no motion instruction", "spindleon (line 21)", "spindleoff (line 25)"],
-        holds: &[(21, "PROC SpindleOn()"), (25, "PROC SpindleOff()"), (8, "TASK PERS tooldata mfcTool1")],
+        says: &[
+            "no motion instruction",
+            "spindleon (line 21)",
+            "spindleoff (line 25)",
+        ],
+        holds: &[
+            (21, "PROC SpindleOn()"),
+            (25, "PROC SpindleOff()"),
+            (8, "TASK PERS tooldata mfcTool1"),
+        ],
     },
     Refusal {
         file: "error_reporter.mod",
         line: 1,
-        says: &["no motion instruction", "main (line 5)", "motion_program_trap_err (line 14)"],
+        says: &[
+            "no motion instruction",
+            "main (line 5)",
+            "motion_program_trap_err (line 14)",
+        ],
         holds: &[(5, "PROC main()"), (14, "TRAP motion_program_trap_err")],
     },
 ];
@@ -224,6 +289,10 @@ fn the_stored_modules_are_refused_naming_their_line_and_construct() {
     for r in &REFUSED {
         check(r, program::parse(&text(r.file), Dialect::Rapid).map(drop));
     }
+    // Motions in several routines, each read where it is: main's, then Path_10's.
+    let p = program::parse(&text(READ[1]), Dialect::Rapid).unwrap();
+    assert_eq!(p.targets.len(), 29);
+    assert_eq!((p.targets[0].line, p.targets[1].line), (39, 48));
 }
 
 /// The milling example's setup with the module's own tool, `tExample`: 300 mm along the

@@ -1,6 +1,6 @@
-//! RAPID's loops, branches, jumps and handlers around motions: refused naming the first motion
-//! they hold, its line and every construct around it with its line; a construct that holds no
-//! motion leaves the motions as read.
+//! RAPID's loops, branches, jumps, handlers and routines around motions: each motion read where
+//! it is; what a statement sets for the motions after it (configuration monitoring) followed
+//! along every path, refused naming the line and the construct where the paths disagree.
 
 use stiffid::internal::machining::program::{self, Dialect};
 use stiffid::Error;
@@ -24,33 +24,57 @@ fn refused(text: &str) -> (u64, String) {
     }
 }
 
+/// The motions of `text` read: line and first axis.
+fn read(text: &str) -> Vec<(u64, f64)> {
+    let p = program::parse(text, Dialect::Rapid).unwrap_or_else(|e| panic!("{e}\n{text}"));
+    p.targets.iter().map(|t| (t.line, t.q_deg[0])).collect()
+}
+
 #[test]
-fn a_motion_inside_a_construct_is_refused_naming_it_its_line_and_the_constructs() {
+fn a_motion_inside_a_construct_or_a_second_routine_is_read_where_it_is() {
     let m = motion(1.0);
-    let cases = [
+    let cases: [(String, &[(u64, f64)]); 8] = [
         // A compact IF over two lines around a motion, inside a FOR inside a WHILE.
         (
             format!("    WHILE TRUE DO\n      FOR i FROM 1 TO 3 DO\n        IF (NOT skip)\n          {m}\n      ENDFOR\n    ENDWHILE"),
-            6,
-            "MoveAbsJ inside IF (line 5) inside FOR (line 4) inside WHILE (line 3)",
+            &[(6, 1.0)],
         ),
-        (format!("    {}\n    IF di1 = 1 THEN\n      {m}\n    ENDIF", motion(2.0)), 5, "MoveAbsJ inside IF (line 4)"),
-        (format!("    IF di1 = 1 THEN\n      SetDO do1, 1;\n    ELSE\n      {m}\n    ENDIF"), 6, "MoveAbsJ inside IF (line 3)"),
-        (format!("    TEST n\n    CASE 1:\n      {m}\n    ENDTEST"), 5, "MoveAbsJ inside TEST (line 3)"),
-        (format!("    {m}\n  ERROR\n    MoveL p1, v10, fine, tool0;"), 5, "MoveL inside ERROR handler (line 4)"),
-        // A construct the motion is not in, then a jump or a conditional leave: refused there.
-        (format!("    {m}\n    IF di1 = 1 GOTO skip;\n    {m}\n  skip:"), 4, "IF (line 4) GOTO in PROC main, whose motions start on line 3"),
-        (format!("    {m}\n    IF di1 = 1 THEN\n      RETURN;\n    ENDIF\n    {m}"), 5, "RETURN in PROC main, whose motions start on line 3"),
-        (format!("    {m}\n    IF di1 = 1 RETURN;\n    {m}"), 4, "IF (line 4) RETURN in PROC main"),
-        // A motion the reader refuses anyway: the construct comes first.
-        ("    FOR i FROM 1 TO 3 DO\n      ArcLStart p1, v100, seam1, weld1, fine, tool1;\n    ENDFOR".to_string(), 4, "ArcLStart inside FOR (line 3)"),
+        (format!("    {}\n    IF di1 = 1 THEN\n      {m}\n    ENDIF", motion(2.0)), &[(3, 2.0), (5, 1.0)]),
+        (format!("    IF di1 = 1 THEN\n      SetDO do1, 1;\n    ELSE\n      {m}\n    ENDIF"), &[(6, 1.0)]),
+        (format!("    TEST n\n    CASE 1:\n      {m}\n    ENDTEST"), &[(5, 1.0)]),
+        (format!("    {m}\n  ERROR\n    {}", motion(3.0)), &[(3, 1.0), (5, 3.0)]),
+        // Jumps and conditional leaves: each motion still where it is.
+        (format!("    {m}\n    IF di1 = 1 GOTO skip;\n    {m}\n  skip:"), &[(3, 1.0), (5, 1.0)]),
+        (format!("    {m}\n    IF di1 = 1 THEN\n      RETURN;\n    ENDIF\n    {m}"), &[(3, 1.0), (7, 1.0)]),
+        (format!("    {m}\n    IF di1 = 1 RETURN;\n    {m}"), &[(3, 1.0), (5, 1.0)]),
     ];
-    for (body, line, words) in cases {
-        let text = module(&body);
-        let (l, message) = refused(&text);
-        assert_eq!(l, line, "{message}\n{text}");
-        assert!(message.contains(words), "{message}\n{text}");
+    for (body, want) in cases {
+        assert_eq!(read(&module(&body)), want, "{body}");
     }
+    // Motions in two routines of the module, in the order of the text.
+    let text = format!("MODULE M\n  PROC main()\n    {m}\n    side;\n  ENDPROC\n  PROC side()\n    {}\n  ENDPROC\nENDMODULE\n", motion(4.0));
+    assert_eq!(read(&text), [(3, 1.0), (7, 4.0)]);
+}
+
+/// Configuration monitoring switched off on one path only: the linear motion after the branch
+/// is refused naming its line and the construct, or left as found on request.
+#[test]
+fn configuration_monitoring_set_in_one_branch_only_refuses_the_motions_after_it() {
+    let robtarget = format!("[[500,0,400],[0,0,1,0],[0,0,0,0],{EXT}]");
+    let body = format!("    ConfL \\On;\n    IF di1 = 1 THEN\n      ConfL \\Off;\n    ENDIF\n    MoveL {robtarget}, v100, fine, tool0;\n    {}", motion(1.0));
+    let text = module(&body);
+    let (line, message) = refused(&text);
+    assert_eq!(line, 7, "{message}");
+    assert!(
+        message.contains("ConfL \\Off is in force on one path through IF (line 4)"),
+        "{message}"
+    );
+    let leave = program::Context::default().with_leave_refused(true);
+    let p = program::parse_in(&text, Dialect::Rapid, &leave).unwrap();
+    assert_eq!(p.left.len(), 1);
+    assert_eq!(p.left[0].line, 7);
+    assert_eq!(p.targets.len(), 1);
+    assert_eq!(p.targets[0].line, 8);
 }
 
 #[test]
@@ -90,7 +114,7 @@ fn motions_whose_path_the_program_does_not_hold_are_refused_naming_them() {
         // path is the sensor's (Externally Guided Motion), so it is refused, not read as one point.
         (format!("    {m}\n    EGMRunJoint egm_id, EGM_STOP_HOLD, \\J1 \\J2 \\J3 \\J4 \\J5 \\J6 \\CondTime:=1.0;"), 4, "EGMRunJoint: an Externally Guided Motion"),
         (format!("    {m}\n    EGMMoveL egm_id, {robtarget}, v10, fine, tool0;"), 4, "EGMMoveL: an Externally Guided Motion"),
-        (format!("    {m}\n    WHILE TRUE DO\n      EGMRunPose egm_id, EGM_STOP_HOLD;\n    ENDWHILE"), 5, "EGMRunPose inside WHILE (line 4)"),
+        (format!("    {m}\n    WHILE TRUE DO\n      EGMRunPose egm_id, EGM_STOP_HOLD;\n    ENDWHILE"), 5, "EGMRunPose: an Externally Guided Motion"),
         (format!("    {m}\n    IndAMove Station_A, 2\\ToAbsNum:=90, 20;"), 4, "IndAMove: an independent axis motion"),
         (format!("    {m}\n    ContactL \\DesiredTorque:=2.5, {robtarget}, v10, tool0;"), 4, "ContactL: a motion that stops where contact is made"),
         (format!("    {m}\n    PathRecMoveBwd \\ID:=fixture_id;"), 4, "PathRecMoveBwd: a motion along a path the controller recorded"),
@@ -127,4 +151,26 @@ fn a_statement_rapid_cannot_read_is_refused_not_passed_over() {
             "{message}"
         );
     }
+}
+
+/// Arc welding motions are the linear and circular motions they are: `ArcLStart`, `ArcL`,
+/// `ArcC` (circle point, end point) and `ArcLEnd`, their seam and weld data passed over.
+#[test]
+fn arc_welding_motions_are_read_as_the_motions_they_are() {
+    let p = |x: f64| format!("[[{x},0,400],[0,0,1,0],[0,0,0,0],{EXT}]");
+    let body = format!(
+        "    ArcLStart {}, v100, seam1, weld1, fine, tool0;\n    ArcL {}, v20, seam1, weld1\\Weave:=weave1, z1, tool0;\n    ArcC {}, {}, v20, seam1, weld1, z1, tool0;\n    ArcLEnd {}, v20, seam1, weld1, fine, tool0;",
+        p(500.0), p(510.0), p(520.0), p(530.0), p(540.0)
+    );
+    let text = module(&body);
+    let read = program::parse(&text, Dialect::Rapid).unwrap();
+    let x: Vec<(u64, f64)> = (read.targets.iter())
+        .map(|t| (t.line, t.cartesian.as_deref().unwrap().position_mm.x))
+        .collect();
+    assert_eq!(
+        x,
+        [(3, 500.0), (4, 510.0), (5, 520.0), (5, 530.0), (6, 540.0)]
+    );
+    // The path speed of each linear motion, m/s.
+    assert_eq!(read.targets[1].speed, program::speed::Speed::Path(0.02));
 }

@@ -1,5 +1,6 @@
 //! ABB's RAPID (`stiffid_machining::program::rapid`).
 
+mod backup;
 mod corpus;
 mod flow;
 mod module;

@@ -181,6 +181,7 @@ fn compensated(
         compliance: compliance.clone(),
         input: Input::Program {
             encoding: Default::default(),
+            reading: Default::default(),
             name: "Rect.mod".into(),
             text,
             data: None,

@@ -1,0 +1,96 @@
+//! The other modules of the task, from the controller's backup ([`Context::backup`]): the
+//! `robtarget`s, `jointtarget`s, `tooldata`, `wobjdata` and `speeddata` they declare, which a
+//! module's motions name without declaring (ABB, *Technical reference manual - RAPID kernel*:
+//! a task's modules share their global data). The module's own declarations hide theirs. A
+//! target of another module is compensated and declared again in the module, `LOCAL` (which hides
+//! the other module's within it), on the line after `MODULE`, its values the compensated ones;
+//! the other module is never written.
+
+use super::{declarations, statements, without_comments, Data};
+use crate::program::points::Foreign;
+use crate::program::{Context, JointTarget};
+use stiffid_core::{Error, Result};
+
+/// `data`, the module `text`'s own, with the data of the backup's other modules that it does not
+/// declare (module docs); `code` is `text` with its comments blanked.
+///
+/// # Errors
+/// [`Error::Parse`] naming a backup module whose declarations cannot be read.
+pub(super) fn merge(mut data: Data, (text, code): (&str, &str), context: &Context) -> Result<Data> {
+    let extensions = super::Rapid::BACKUP;
+    let modules = context.backup_with(|n| {
+        let e = n
+            .rsplit_once('.')
+            .map_or("", |(_, e)| e)
+            .to_ascii_lowercase();
+        extensions.contains(&e.as_str())
+    });
+    let insert = after_module_line(code);
+    for (file, other) in modules.into_iter().filter(|(_, t)| *t != text) {
+        let other_code = without_comments(other);
+        let found =
+            declarations(&other_code, &statements(&other_code)).map_err(|e| Error::Parse {
+                source_name: file.to_string(),
+                message: format!("a module of the controller's backup: {e}"),
+            })?;
+        for (k, v) in found.frames {
+            data.frames.entry(k).or_insert(v);
+        }
+        for (k, v) in found.speeds {
+            data.speeds.entry(k).or_insert(v);
+        }
+        for (k, v) in found.targets {
+            if data.targets.contains_key(&k) {
+                continue;
+            }
+            if let Some(l) = found.assigned.get(&k) {
+                data.assigned.entry(k.clone()).or_insert(*l);
+            }
+            let v = v.and_then(|t| elsewhere(t, (file, other), insert));
+            data.targets.insert(k, v);
+        }
+    }
+    Ok(data)
+}
+
+/// The byte of `code` after the line that opens the module (`MODULE name`), 0 without one.
+fn after_module_line(code: &str) -> usize {
+    let mut at = 0;
+    for line in code.split_inclusive('\n') {
+        at += line.len();
+        if line.trim_start().to_ascii_lowercase().starts_with("module") {
+            return at;
+        }
+    }
+    0
+}
+
+/// The target `t` of the module `file` (its text `other`) as the program declares its copy at
+/// byte `insert` (module docs), or why it cannot.
+fn elsewhere(
+    t: JointTarget,
+    (file, other): (&str, &str),
+    insert: usize,
+) -> std::result::Result<JointTarget, String> {
+    let Some(p) = t.point.as_deref().cloned() else {
+        return Err(format!("declared in {file} on a line it shares with another statement: declare it on a line of its own, or in this module"));
+    };
+    let decl = &other[p.declaration.clone()];
+    let lead = decl.len() - decl.trim_start().len();
+    let body = &decl[lead..];
+    let lower = body.to_ascii_lowercase();
+    let (prefix, skip) = match () {
+        _ if lower.starts_with("local") => ("", 0),
+        _ if lower.starts_with("task") => ("LOCAL", 4),
+        _ => ("LOCAL ", 0),
+    };
+    let text = format!("{}{prefix}{}", &decl[..lead], &body[skip..]);
+    let grown = prefix.len() - skip;
+    let Some(at) = p.declaration.start.checked_sub(grown) else {
+        return Err(format!(
+            "declared in {file} on its first line: declare it in this module"
+        ));
+    };
+    let name = p.name.start - at..p.name.end - at;
+    Ok(t.declared_elsewhere(Foreign { text, at }, name, insert))
+}

@@ -1,0 +1,80 @@
+//! A RAPID module with the other modules of its task (the controller's backup): the targets,
+//! tools and work objects they declare read there; a target of another module compensated is
+//! declared again in the module, `LOCAL`, after its `MODULE` line; the other module never
+//! written.
+
+use stiffid::machining::program::{self, cartesian::Frame, Dialect};
+use stiffid::Error;
+
+const EXT: &str = "[9E9,9E9,9E9,9E9,9E9,9E9]";
+
+fn program_text() -> String {
+    "MODULE Cut\n  PROC main()\n    MoveAbsJ home1, v100, fine, tool0;\n    MoveAbsJ j1, v100, fine, tool0;\n    MoveL p10, v100, fine, tSpindle\\WObj:=wTable;\n  ENDPROC\nENDMODULE\n".to_string()
+}
+
+fn data_module() -> String {
+    format!("MODULE CellData(SYSMODULE)\n  TASK PERS jointtarget j1 := [[1,2,3,4,5,6],{EXT}]; ! taught\n  CONST jointtarget home1 := [[0,0,0,0,30,0],{EXT}];\n  PERS tooldata tSpindle := [TRUE,[[0,0,250],[1,0,0,0]],[5,[0,0,100],[1,0,0,0],0,0,0]];\n  PERS wobjdata wTable := [FALSE,TRUE,\"\",[[1000,0,500],[1,0,0,0]],[[0,0,0],[1,0,0,0]]];\n  CONST robtarget p10 := [[100,0,50],[0,0,1,0],[0,0,0,0],{EXT}];\nENDMODULE\n")
+}
+
+#[test]
+fn data_of_another_module_is_read_there_and_a_changed_target_declared_locally() {
+    let text = program_text();
+    // Alone: refused naming the line and where to give the data.
+    match program::parse(&text, Dialect::Rapid) {
+        Err(Error::Program { line, message }) => {
+            assert_eq!(line, 3);
+            assert!(message.contains("--backup"), "{message}");
+        }
+        other => panic!("{other:?}"),
+    }
+    let backup = vec![("TASK1/SYSMOD/CellData.sys".to_string(), data_module())];
+    let context = program::Context::default().with_backup(&backup);
+    let p = program::parse_in(&text, Dialect::Rapid, &context).unwrap();
+    assert_eq!(p.targets.len(), 3);
+    assert_eq!(p.targets[0].q_deg, [0.0, 0.0, 0.0, 0.0, 30.0, 0.0]);
+    assert_eq!(p.targets[1].q_deg, [1.0, 2.0, 3.0, 4.0, 5.0, 6.0]);
+    let c = p.targets[2].cartesian.as_deref().unwrap();
+    assert!((c.position_mm - nalgebra::Vector3::new(100.0, 0.0, 50.0)).norm() < 1e-12);
+    // The tool and work object of the other module: its lines 4 and 5.
+    assert!(matches!(&c.tool, Frame::Stated(4, f) if (f.translation.z - 0.25).abs() < 1e-12));
+    assert!(matches!(&c.frame, Frame::Stated(5, f) if (f.translation.x - 1.0).abs() < 1e-12));
+    // j1 compensated: declared again in the module, LOCAL instead of TASK, its comment kept;
+    // home1 unchanged: not declared again.
+    let joint = program::parse_in(
+        &text.replace("    MoveL p10, v100, fine, tSpindle\\WObj:=wTable;\n", ""),
+        Dialect::Rapid,
+        &context,
+    )
+    .unwrap();
+    let q = [joint.targets[0].q_deg, [1.0, 2.5, 3.0, 4.0, 5.0, 6.0]];
+    let out = joint.write(&q).unwrap();
+    assert_eq!(
+        out,
+        format!("MODULE Cut\n  LOCAL PERS jointtarget j1 := [[1.000000000,2.500000000,3.000000000,4.000000000,5.000000000,6.000000000],{EXT}]; ! taught\n  PROC main()\n    MoveAbsJ home1, v100, fine, tool0;\n    MoveAbsJ j1, v100, fine, tool0;\n  ENDPROC\nENDMODULE\n")
+    );
+    let back = program::parse_in(&out, Dialect::Rapid, &context).unwrap();
+    assert_eq!(back.targets[1].q_deg, q[1]);
+}
+
+/// A real RobotStudio task (`Tutorial-Simple_Module1.mod`, SOURCES.md): its tool `smc_gripper`
+/// is declared in the task's other module, `CalibData.mod`; alone the tool is the controller's,
+/// with that module as the backup it is the one stated there (its line 2).
+#[test]
+fn a_real_task_reads_its_tool_from_its_other_module() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/programs/rapid");
+    let text = std::fs::read_to_string(format!("{dir}/Tutorial-Simple_Module1.mod")).unwrap();
+    let calib = std::fs::read_to_string(format!("{dir}/Tutorial-Simple_CalibData.mod")).unwrap();
+    let alone = program::parse(&text, Dialect::Rapid).unwrap();
+    let c = alone.targets[1].cartesian.as_deref().unwrap();
+    assert!(
+        matches!(&c.tool, Frame::Unknown(_, why) if why.contains("smc_gripper") && why.contains("--backup")),
+        "{:?}",
+        c.tool
+    );
+    let backup = vec![("CalibData.mod".to_string(), calib)];
+    let context = program::Context::default().with_backup(&backup);
+    let p = program::parse_in(&text, Dialect::Rapid, &context).unwrap();
+    assert_eq!(p.targets.len(), alone.targets.len());
+    let c = p.targets[1].cartesian.as_deref().unwrap();
+    assert!(matches!(&c.tool, Frame::Stated(2, _)), "{:?}", c.tool);
+}
