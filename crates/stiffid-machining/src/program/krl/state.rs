@@ -22,7 +22,9 @@ pub(super) struct State {
 fn set_on(f: &Frame) -> String {
     match f {
         Frame::World => "the world frame".into(),
-        Frame::Stated(l, _) | Frame::Numbered(l, _) | Frame::Declared(l) => format!("line {l}"),
+        Frame::Stated(l, _) | Frame::Numbered(l, _) | Frame::Declared(l) | Frame::Held(l, ..) => {
+            format!("line {l}")
+        }
         Frame::Unknown(0, _) => "none set".into(),
         Frame::Unknown(l, _) => format!("the controller's from line {l}"),
     }
@@ -34,6 +36,7 @@ pub(super) fn same(a: &Frame, b: &Frame) -> bool {
         (Frame::World, Frame::World) => true,
         (Frame::Stated(_, x), Frame::Stated(_, y)) => x == y,
         (Frame::Numbered(_, m), Frame::Numbered(_, n)) => m == n,
+        (Frame::Held(_, m, x, _), Frame::Held(_, n, y, _)) => m == n && x == y,
         (Frame::Declared(_), Frame::Declared(_)) => true,
         (Frame::Unknown(l, x), Frame::Unknown(m, y)) => l == m && x == y,
         _ => false,
@@ -59,7 +62,7 @@ fn describe(f: &Frame) -> String {
     match f {
         Frame::World => "$WORLD".into(),
         Frame::Stated(..) => "a literal frame".into(),
-        Frame::Numbered(_, n) => format!("number {n}"),
+        Frame::Numbered(_, n) | Frame::Held(_, n, ..) => format!("number {n}"),
         Frame::Declared(_) => "the setup's".into(),
         Frame::Unknown(..) => "an unknown frame".into(),
     }

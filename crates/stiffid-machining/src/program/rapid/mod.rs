@@ -424,10 +424,29 @@ fn literal(line: u64, code: &str, from: usize) -> Result<JointTarget> {
     Ok(target.with_external(external))
 }
 
-/// The motion instruction (lower case) an arc welding instruction moves as (*Application manual
-/// - Arc and Arc Sensor*: `ArcL`, `ArcLStart`, `ArcLEnd` linear as `MoveL`, `ArcC`, `ArcCStart`,
-/// `ArcCEnd` circular as `MoveC`, each with its seam and weld data after the speed); any other
-/// as it is.
+/// Why a motion instruction (lower case) other than `MoveAbsJ`, `MoveL`, `MoveJ`, `MoveC` and the
+/// arc welding ones is not read.
+fn unfollowed(first: &str) -> &'static str {
+    match first {
+        "movelsync" | "movejsync" | "movecsync" | "moveldo"
+        | "movejdo" | "movecdo" | "movelgo" | "movejgo" | "movecgo" | "movelao"
+        | "movejao" | "movecao" => "a motion stiffid does not follow (a circle, or a signal set on the way); write the path as MoveL, MoveJ or MoveAbsJ",
+        "moveextj" => "a motion of external axes only; not compensated: remove it",
+        f if f.starts_with("trigg") => "a motion with triggered events (robtarget); not compensated: write the path as MoveL or MoveAbsJ and set the events apart",
+        f if f.starts_with("search") => "a search motion stops where a sensor fires, which the program does not say; not compensated",
+        f if f.starts_with("egm") => "an Externally Guided Motion: the robot follows the positions a sensor sends at run time, which the program does not hold; not compensated",
+        f if f.starts_with("ind") => "an independent axis motion: the axis moves apart from the path, as the controller decides; not compensated",
+        f if f.starts_with("fcpress") => "a force-controlled motion: the robot presses with the programmed force and its path follows the contact, which the program does not hold; not compensated",
+        "contactl" => "a motion that stops where contact is made, which the program does not say; not compensated",
+        "pathrecmovebwd" | "pathrecmovefwd" | "stepbwdpath" => "a motion along a path the controller recorded at run time; not compensated",
+        _ => "a motion instruction stiffid does not follow; write the path as MoveL, MoveJ or MoveAbsJ",
+    }
+}
+
+/// The motion instruction (lower case) an arc welding instruction moves as (the *Application
+/// manual, Arc and Arc Sensor*: `ArcL`, `ArcLStart`, `ArcLEnd` linear as `MoveL`, `ArcC`,
+/// `ArcCStart`, `ArcCEnd` circular as `MoveC`, each with its seam and weld data after the
+/// speed); any other as it is.
 pub(super) fn as_move(first: &str) -> &str {
     match first {
         "arcl" | "arclstart" | "arclend" => "movel",
@@ -452,26 +471,13 @@ fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Vec<Joi
         if !flow::is_motion(first) {
             return Ok(Vec::new());
         }
-        let why = match first {
-            "movelsync" | "movejsync" | "movecsync" | "moveldo"
-            | "movejdo" | "movecdo" | "movelgo" | "movejgo" | "movecgo" | "movelao"
-            | "movejao" | "movecao" => "a motion stiffid does not follow (a circle, or a signal set on the way); write the path as MoveL, MoveJ or MoveAbsJ",
-            "moveextj" => "a motion of external axes only; not compensated: remove it",
-            f if f.starts_with("trigg") => "a motion with triggered events (robtarget); not compensated: write the path as MoveL or MoveAbsJ and set the events apart",
-            f if f.starts_with("search") => "a search motion stops where a sensor fires, which the program does not say; not compensated",
-            f if f.starts_with("egm") => "an Externally Guided Motion: the robot follows the positions a sensor sends at run time, which the program does not hold; not compensated",
-            f if f.starts_with("ind") => "an independent axis motion: the axis moves apart from the path, as the controller decides; not compensated",
-            f if f.starts_with("fcpress") => "a force-controlled motion: the robot presses with the programmed force and its path follows the contact, which the program does not hold; not compensated",
-            "contactl" => "a motion that stops where contact is made, which the program does not say; not compensated",
-            "pathrecmovebwd" | "pathrecmovefwd" | "stepbwdpath" => "a motion along a path the controller recorded at run time; not compensated",
-            _ => "a motion instruction stiffid does not follow; write the path as MoveL, MoveJ or MoveAbsJ",
-        };
+        let why = unfollowed(first);
         return Err(at(line, format!("{name}: {why}")));
     }
     // Past the name: an optional switch such as `\Conc`, then the target.
     let mut from = s.span.start + code[s.span.clone()].len()
         - code[s.span.clone()].trim_start().len()
-        + first.len();
+        + name.len();
     let after_name = code[from..s.span.end].trim_start();
     if after_name.starts_with('\\') {
         let comma = after_name
