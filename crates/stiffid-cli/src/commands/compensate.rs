@@ -298,7 +298,7 @@ fn with_reading<'t>(
     leave_refused: bool,
 ) -> Input<'t> {
     if let Input::Program { reading, .. } = &mut input {
-        *reading = job::Reading {
+        *reading = stiffid_machining::program::Reading {
             backup,
             leave_refused,
         };
@@ -337,7 +337,7 @@ fn input<'t>(
     let parsed = file::parse(&load::read(process)?, &process_name)?;
     Ok(Input::Program {
         encoding,
-        reading: job::Reading::default(),
+        reading: Default::default(),
         name,
         text,
         data,

@@ -330,6 +330,19 @@ pub struct Context<'a> {
     pub leave_refused: bool,
 }
 
+/// How a robot program is read beyond its own files (by default: nothing more), as a job takes
+/// it from a front end ([`Context::with_reading`]).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Reading<'a> {
+    /// The files of the controller's backup given with the program, each its name and text (a
+    /// front end lists a folder with [`stiffid_core::io::input::files_under`],
+    /// [`read_backup`]): [`Context::backup`].
+    pub backup: &'a [(String, String)],
+    /// Leave as found the motions refused for what only the run decides, each named in a
+    /// warning: [`Context::leave_refused`].
+    pub leave_refused: bool,
+}
+
 /// A motion left as found ([`Context::leave_refused`]): its line and why it was not compensated.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Left {
@@ -475,6 +488,16 @@ impl<'a> Context<'a> {
     /// The context with the data file `data` beside the program (KRL's `.dat`).
     pub fn with_data(self, data: Option<&'a str>) -> Self {
         Context { data, ..self }
+    }
+
+    /// The context with what `reading` gives: the backup's files and whether refused motions
+    /// are left as found.
+    pub fn with_reading(self, reading: Reading<'a>) -> Self {
+        Context {
+            backup: reading.backup,
+            leave_refused: reading.leave_refused,
+            ..self
+        }
     }
 
     /// The context that leaves refused motions as found (`leave`, [`Context::leave_refused`]).

@@ -72,7 +72,7 @@ fn rapid_cases() -> Vec<(String, Reads)> {
         (rapid("", "    MoveLDO p1, v100, z10, tool0, do1, 1;"), Refused(4, "does not follow")),
         (rapid("", "    SearchL\\Stop, di1, sp, p1, v100, tool0;"), Refused(4, "search")),
         (rapid("", "    ArcLStart p1, v100, seam1, weld1, fine, tool1;"), Refused(4, "ArcLStart p1: not a robtarget declared in this module")),
-        (rapid("", "    ArcC p1, p2, v100, seam1, weld1, z10, tool1;"), Refused(4, "ArcC: a motion instruction stiffid does not follow")),
+        (rapid("", "    ArcC p1, p2, v100, seam1, weld1, z10, tool1;"), Refused(4, "ArcC p1: not a robtarget declared in this module")),
         (rapid("", "    MoveExtJ j1, v100, fine;"), Refused(4, "external axes")),
         (rapid("", "    MoveAbsJ CalcJointT(p1, tool0), v100, fine, tool0;"), Refused(4, "CalcJointT(..), a function the controller computes")),
         (rapid("", "    MoveAbsJ jx, v100, fine, tool0;"), Refused(4, "not a jointtarget declared")),

@@ -54,9 +54,8 @@ pub(super) fn read_checked(
         generate::check_pulses(d, setup.workcell().controller().pulses.as_ref())?;
     }
     let machine = stiffid_machining::gcode::Machine::of(setup, Some(process));
-    let context = (Context::of(setup).with_data(*data).with_machine(&machine))
-        .with_backup(reading.backup)
-        .with_leave_refused(reading.leave_refused);
+    let context =
+        (Context::of(setup).with_data(*data).with_machine(&machine)).with_reading(*reading);
     let program = read_program_in(name, text, language, *chord_tolerance, &context)?;
     // A Cartesian program's targets as the controller moves to them (a copy only then).
     match machining::resolve(&program, setup, None, options) {

@@ -100,20 +100,8 @@ pub enum Input<'t> {
         encoding: Encoding,
         /// How it is read beyond its own files: its controller backup's, and whether refused
         /// motions are left as found.
-        reading: Reading<'t>,
+        reading: stiffid_machining::program::Reading<'t>,
     },
-}
-
-/// How a robot program is read beyond its own files (by default: nothing more).
-#[derive(Debug, Clone, Copy, Default)]
-pub struct Reading<'t> {
-    /// The files of the controller's backup given with the program, each its name and text
-    /// (a front end lists a folder with [`stiffid_core::io::input::files_under`]): the data the
-    /// program declares elsewhere ([`stiffid_machining::program::Context::backup`]).
-    pub backup: &'t [(String, String)],
-    /// Leave as found the motions refused for what only the run decides, each named in a
-    /// warning ([`stiffid_machining::program::Context::leave_refused`]).
-    pub leave_refused: bool,
 }
 
 /// What to compensate and how.
