@@ -132,15 +132,15 @@ pub fn read_program(path: &Path) -> Result<(String, Option<String>, io::Encoding
 }
 
 /// The files of a controller's backup given with the robot program `program` (`paths`: files, or
-/// folders whose files of its language are read, [`stiffid_machining::program::read_backup`]),
+/// folders whose files of its language are read, [`stiffid::internal::machining::program::read_backup`]),
 /// each named and its text; none without paths. Each file is remembered as an input
 /// ([`input_at`]).
 pub fn read_backup(paths: &[PathBuf], program: &str) -> Result<Vec<(String, String)>> {
     if paths.is_empty() {
         return Ok(Vec::new());
     }
-    let dialect = match stiffid_machining::Language::of_file(program) {
-        Ok(stiffid_machining::Language::Robot(d)) => d,
+    let dialect = match stiffid::internal::machining::Language::of_file(program) {
+        Ok(stiffid::internal::machining::Language::Robot(d)) => d,
         _ => anyhow::bail!("--backup: only with a robot --program (KRL, RAPID, LS, INFORM): {program} has no controller backup"),
     };
     let read = |p: &Path| -> Result<Vec<u8>> {
@@ -149,7 +149,7 @@ pub fn read_backup(paths: &[PathBuf], program: &str) -> Result<Vec<(String, Stri
             open(p)?.into_inner(),
         )?)
     };
-    stiffid_machining::program::read_backup(paths, dialect, read, anyhow::Error::from)
+    stiffid::internal::machining::program::read_backup(paths, dialect, read, anyhow::Error::from)
         .map_err(|e| e.context("--backup"))
 }
 

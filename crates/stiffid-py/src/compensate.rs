@@ -357,7 +357,7 @@ fn read_with<'t>(
 ) -> PyResult<()> {
     match input {
         Input::Program { reading, .. } => {
-            *reading = stiffid_machining::program::Reading {
+            *reading = stiffid::internal::machining::program::Reading {
                 backup,
                 leave_refused,
             };

@@ -141,16 +141,16 @@ pub fn read_program(path: &Path) -> Result<(String, Option<String>, io::Encoding
 
 /// The files of the controller's backup given with the robot program `program` (`paths`: files,
 /// or folders whose files of its language are read,
-/// [`stiffid_machining::program::read_backup`]); the errors of [`read`], and `ValueError` for a
+/// [`stiffid::internal::machining::program::read_backup`]); the errors of [`read`], and `ValueError` for a
 /// program without a controller (G-code).
 pub fn read_backup(paths: &[PathBuf], program: &str) -> Result<Vec<(String, String)>, PyErr> {
-    let dialect = match stiffid_machining::Language::of_file(program) {
-        Ok(stiffid_machining::Language::Robot(d)) => d,
+    let dialect = match stiffid::internal::machining::Language::of_file(program) {
+        Ok(stiffid::internal::machining::Language::Robot(d)) => d,
         _ => return Err(value(format!("backup: only with a robot program (KRL, RAPID, LS, INFORM): {program} has no controller backup"))),
     };
     let read =
         |p: &Path| io::read_bytes(&p.display().to_string(), open(p)?.into_inner()).map_err(raise);
-    stiffid_machining::program::read_backup(paths, dialect, read, raise)
+    stiffid::internal::machining::program::read_backup(paths, dialect, read, raise)
 }
 
 /// The file at `path` opened for reading, the path in the error (`FileNotFoundError` or

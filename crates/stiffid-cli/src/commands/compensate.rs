@@ -298,7 +298,7 @@ fn with_reading<'t>(
     leave_refused: bool,
 ) -> Input<'t> {
     if let Input::Program { reading, .. } = &mut input {
-        *reading = stiffid_machining::program::Reading {
+        *reading = stiffid::internal::machining::program::Reading {
             backup,
             leave_refused,
         };

@@ -40,8 +40,8 @@ mod written;
 use crate::app::compensate::document::{Names, Summary};
 use crate::app::{Warning, WarningKind};
 use input::{
-    check_tcp, encoding_warning, held_lines, held_warning, left_warning, no_length_offset, read_checked,
-    uncoupled_ls, unplaced_g53, unstated_units,
+    check_tcp, encoding_warning, held_lines, held_warning, left_warning, no_length_offset,
+    read_checked, uncoupled_ls, unplaced_g53, unstated_units,
 };
 pub use input::{read_program, read_program_in};
 use stiffid_core::io::Encoding;

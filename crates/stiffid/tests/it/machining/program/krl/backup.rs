@@ -2,8 +2,8 @@
 //! base tables read from it; a table entry the setup gives otherwise refused naming both.
 
 use nalgebra::{Isometry3, Vector3};
-use stiffid::machining::program::{self, cartesian::Frame, Dialect};
-use stiffid::setup::NumberedFrames;
+use stiffid::internal::machining::program::{self, cartesian::Frame, Dialect};
+use stiffid::internal::setup::NumberedFrames;
 use stiffid::Error;
 
 const SRC: &str = "DEF cell( )\nFDAT_ACT = FP1\nBAS(#PTP_PARAMS, 100)\nPTP XP1\nEND\n";

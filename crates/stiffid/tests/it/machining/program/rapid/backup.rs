@@ -3,7 +3,7 @@
 //! declared again in the module, `LOCAL`, after its `MODULE` line; the other module never
 //! written.
 
-use stiffid::machining::program::{self, cartesian::Frame, Dialect};
+use stiffid::internal::machining::program::{self, cartesian::Frame, Dialect};
 use stiffid::Error;
 
 const EXT: &str = "[9E9,9E9,9E9,9E9,9E9,9E9]";
