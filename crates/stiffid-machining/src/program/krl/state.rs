@@ -22,7 +22,10 @@ pub(super) struct State {
 fn set_on(f: &Frame) -> String {
     match f {
         Frame::World => "the world frame".into(),
-        Frame::Stated(l, _) | Frame::Numbered(l, _) | Frame::Declared(l) | Frame::Held(l, ..) => {
+        Frame::Stated(l, _)
+        | Frame::Numbered(l, _)
+        | Frame::Declared(l, _)
+        | Frame::Held(l, ..) => {
             format!("line {l}")
         }
         Frame::Unknown(0, _) => "none set".into(),
@@ -37,7 +40,7 @@ pub(super) fn same(a: &Frame, b: &Frame) -> bool {
         (Frame::Stated(_, x), Frame::Stated(_, y)) => x == y,
         (Frame::Numbered(_, m), Frame::Numbered(_, n)) => m == n,
         (Frame::Held(_, m, x, _), Frame::Held(_, n, y, _)) => m == n && x == y,
-        (Frame::Declared(_), Frame::Declared(_)) => true,
+        (Frame::Declared(_, m), Frame::Declared(_, n)) => m == n,
         (Frame::Unknown(l, x), Frame::Unknown(m, y)) => l == m && x == y,
         _ => false,
     }
@@ -63,7 +66,7 @@ fn describe(f: &Frame) -> String {
         Frame::World => "$WORLD".into(),
         Frame::Stated(..) => "a literal frame".into(),
         Frame::Numbered(_, n) | Frame::Held(_, n, ..) => format!("number {n}"),
-        Frame::Declared(_) => "the setup's".into(),
+        Frame::Declared(..) => "the setup's".into(),
         Frame::Unknown(..) => "an unknown frame".into(),
     }
 }
