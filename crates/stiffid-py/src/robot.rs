@@ -221,7 +221,7 @@ impl Robot {
 
     /// The robot's own characteristic length (mm) for the point ``point_mm`` (flange frame, mm;
     /// default the flange origin): the length that minimises the point's median dexterity over
-    /// 512 seeded postures within the joint limits (``stiffid::internal::setup::prior``; about 1200 mm for the
+    /// 512 seeded postures within the joint limits (``stiffid_core::setup::prior``; about 1200 mm for the
     /// paper's COMAU and tool). What ``dexterity`` uses when no length is given; a setup's
     /// ``characteristic_length_mm`` is the one to give where there is a setup. ``ValueError`` for
     /// a robot singular at most postures.
@@ -243,7 +243,7 @@ impl Robot {
     /// the base frame, translation in mm (the point's position) and the rotation of the flange,
     /// as ``flange_pose`` returns it for the flange origin; shape ``(4, 4)``, or ``(n, 4, 4)`` for
     /// a path. Damped least squares on the point's Jacobian within the joint limits
-    /// (``stiffid::internal::robot::ik``), from ``q0_deg`` (shape ``(6,)``, deg, within the joint limits), each
+    /// (``stiffid_core::robot::ik``), from ``q0_deg`` (shape ``(6,)``, deg, within the joint limits), each
     /// next pose from the previous solution (one branch along a path); if a start fails,
     /// ``restarts`` seeded random postures (default 8, ``seed``). Converged when the point is
     /// within ``position_tolerance_mm`` (default 1e-7 mm) and the rotation within

@@ -119,7 +119,7 @@ impl Setup {
     /// bodies and lines that must not touch; ``None`` without ``[cell]`` or ``[tracker]``) and
     /// ``violations`` (the failing checks: ``check``, e.g. ``"floor"``, ``margin_mm`` or
     /// ``margin_deg``, negative, and ``between``, the tightest pair, e.g. ``["link 3",
-    /// "floor"]``). Source: ``stiffid::internal::cell``, docs/model.md.
+    /// "floor"]``). Source: ``stiffid_core::cell``, docs/model.md.
     fn feasibility<'py>(
         &self,
         py: Python<'py>,

@@ -445,7 +445,8 @@ fn missing_hint(field: &str) -> &'static str {
         }
         _ => {
             "the length that minimises the robot's median dexterity will do (the robot's own \
-             characteristic length, stiffid::setup::prior::robot_characteristic_length)"
+             characteristic length: Python's Robot.characteristic_length_mm, or the one \
+             `stiffid setups new` writes)"
         }
     }
 }

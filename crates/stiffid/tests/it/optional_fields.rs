@@ -66,7 +66,7 @@ fn without_a_characteristic_length_only_classical_and_zhang2021_are_missing() {
         .is_nan());
     for c in [Criterion::Classical, Criterion::Zhang2021] {
         let err = design::local(&setup, c, &group, &small()).unwrap_err();
-        assert_eq!(err.to_string(), format!("the setup has no characteristic_length_mm: criterion {c} needs it (the length that minimises the robot's median dexterity will do (the robot's own characteristic length, stiffid::internal::setup::prior::robot_characteristic_length))"));
+        assert_eq!(err.to_string(), format!("the setup has no characteristic_length_mm: criterion {c} needs it (the length that minimises the robot's median dexterity will do (the robot's own characteristic length: Python's Robot.characteristic_length_mm, or the one `stiffid setups new` writes))"));
     }
     // relative-a needs no characteristic length: the same search, the same group.
     let without = design::local(&setup, Criterion::RelativeA, &group, &small()).unwrap();
