@@ -56,7 +56,7 @@
 //! of each target whose value changed (with 9 decimals, INFORM in whole pulses) and nothing else
 //! ([`JointProgram::write_with_external`] the external values too); a declared point visited by
 //! motions whose compensations differ is written as several points, each other value declared
-//! beside the first under a free name ([`points`]; where the reader does not say where the point
+//! beside the first under a free name (where the reader does not say where the point
 //! is declared, the visits must agree).
 //!
 //! Statements that set what the motions use (frames, tools, speeds) are followed through

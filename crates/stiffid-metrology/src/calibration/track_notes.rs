@@ -14,10 +14,10 @@ const MISFIT_RATIO: f64 = 3.0;
 const MAX_ORDER: usize = super::motions::MAX_ORDER_TRIED;
 
 /// The warnings of the error motions' `choice` on `setup`'s robot: the held-out RMS error (a
-/// 3D length per reading) more than [`MISFIT_RATIO`] times what the tracker noise leaves,
+/// 3D length per reading) more than 3 times what the tracker noise leaves,
 /// `sqrt(3)` times `reading_sd`, where the fit's own residuals are `noise_ratio` times it; and per
 /// linear axis whose chosen order is the highest its distinct positions allowed (two fewer
-/// than them) below [`MAX_ORDER`], a note that the stations capped it.
+/// than them) below the highest order tried, a note that the stations capped it.
 pub fn notes(setup: &Setup, choice: Option<&Choice>, noise_ratio: f64) -> Vec<Warning> {
     let (Some(c), Some(axes)) = (choice, setup.robot().external()) else {
         return Vec::new();

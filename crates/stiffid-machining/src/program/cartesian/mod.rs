@@ -104,7 +104,7 @@ pub enum Frame {
     /// (`stiffid_core::setup::numbered`), refused where the setup does not give it.
     Numbered(u64, u32),
     /// A frame held on the controller by number whose value the controller's backup gives
-    /// (FANUC `SYSFRAME.VA`, [`crate::program::backup`]): the line, the number, the frame (as
+    /// (FANUC `SYSFRAME.VA`): the line, the number, the frame (as
     /// [`Frame::Stated`]) and where the backup states it; refused where the setup's
     /// `[controller]` table gives that number another frame.
     Held(u64, u32, Isometry3<f64>, String),
