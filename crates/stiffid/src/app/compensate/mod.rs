@@ -23,6 +23,7 @@ mod columns;
 pub mod configurations;
 pub mod document;
 pub mod dynamics;
+mod failure;
 pub(crate) mod feasibility;
 mod free;
 mod home;
@@ -39,6 +40,7 @@ mod written;
 
 use crate::app::compensate::document::{Names, Summary};
 use crate::app::{Warning, WarningKind};
+use failure::{in_input, Failure};
 use input::{
     check_tcp, encoding_warning, held_lines, held_warning, left_warning, no_length_offset,
     read_checked, uncoupled_ls, unplaced_g53, unstated_units,
@@ -669,37 +671,4 @@ where
         add(k * CHUNK, p, r, &vec![Dynamics::default(); p.len()]).map_err(Failure::Sink)?;
     }
     Ok(())
-}
-
-/// A failure of the streamed path: the library's, or the sink's.
-enum Failure<E> {
-    Library(Error),
-    Sink(E),
-}
-
-impl<E> From<Error> for Failure<E> {
-    fn from(e: Error) -> Self {
-        Failure::Library(e)
-    }
-}
-
-impl<E: From<Error>> Failure<E> {
-    fn into_error(self, name: &str) -> E {
-        match self {
-            Failure::Library(e) => in_input(name, e).into(),
-            Failure::Sink(e) => e,
-        }
-    }
-}
-
-/// `error` placed in the input `name`; an option's error (the free tool axis' grid, the program's
-/// name) as it is.
-fn in_input(name: &str, error: Error) -> Error {
-    match error {
-        e @ Error::InvalidOption { .. } => e,
-        e => Error::Input {
-            source_name: name.to_string(),
-            error: Box::new(e),
-        },
-    }
 }

@@ -1,0 +1,176 @@
+//! A program's targets read and written back: [`JointProgram`]'s methods.
+
+use super::{at, points, whole_pulses, JointProgram, JointTarget, DECIMALS};
+use stiffid_core::{Error, Result};
+
+impl JointProgram {
+    /// The program with the axis angles of target `i` replaced by `q_deg[i]` (deg) where they
+    /// differ from the ones read; the external values and every other byte as read.
+    ///
+    /// # Errors
+    /// Those of [`JointProgram::write_with_external`].
+    pub fn write(&self, q_deg: &[[f64; 6]]) -> Result<String> {
+        let external: Vec<Vec<Option<f64>>> =
+            self.targets.iter().map(|t| t.external.clone()).collect();
+        self.write_with_external(q_deg, &external)
+    }
+
+    /// The program with the axis angles of target `i` replaced by `q_deg[i]` (deg) and its
+    /// external values by `external[i]` (mm or deg, in the order of [`JointProgram::axes`]) where
+    /// they differ from the ones read; every other byte as read. A value the target does not
+    /// give (`None` in [`JointTarget::external`]) stays `None`: nothing is added to a target.
+    ///
+    /// # Errors
+    /// [`Error::InvalidField`] (`q_deg`, `external`) when a list has another length than the
+    /// targets, a row of `external` another shape than the target's values, or a value is not
+    /// finite; [`Error::Program`] naming the line where two motions to one declared point would
+    /// take different values, or of a Cartesian target of a program not resolved
+    /// ([`cartesian::resolve`]); [`Error::InvalidField`] (`data`) for a program whose data file
+    /// changes, which only `JointProgram::write_pair` writes.
+    pub fn write_with_external(
+        &self,
+        q_deg: &[[f64; 6]],
+        external: &[Vec<Option<f64>>],
+    ) -> Result<String> {
+        match self.write_pair(q_deg, external)? {
+            (program, None) => Ok(program),
+            (program, Some(data)) if Some(data.as_str()) == self.data() => Ok(program),
+            _ => Err(Error::InvalidField {
+                field: "data".into(),
+                message: "targets of the program live in its data file (KRL's .dat), which changes with them: write both (JointProgram::write_pair)".into(),
+            }),
+        }
+    }
+
+    /// The data file's text as read (KRL's `.dat`), if one was.
+    pub(crate) fn data(&self) -> Option<&str> {
+        self.data_at.map(|at| &self.text[at..])
+    }
+
+    /// The program and its data file (when one was read: KRL's `.dat`), the targets written as
+    /// [`JointProgram::write_with_external`] does: every number of a target in its file, every
+    /// other byte of both as read.
+    ///
+    /// # Errors
+    /// Those of [`JointProgram::write_with_external`] but the data file's.
+    pub(crate) fn write_pair(
+        &self,
+        q_deg: &[[f64; 6]],
+        external: &[Vec<Option<f64>>],
+    ) -> Result<(String, Option<String>)> {
+        if q_deg.len() != self.targets.len() || q_deg.iter().flatten().any(|v| !v.is_finite()) {
+            return Err(Error::InvalidField {
+                field: "q_deg".into(),
+                message: format!(
+                    "expected {} rows of 6 finite axis angles, one per target",
+                    self.targets.len()
+                ),
+            });
+        }
+        let shaped = |(t, e): (&JointTarget, &Vec<Option<f64>>)| {
+            e.len() == t.external.len()
+                && e.iter()
+                    .zip(&t.external)
+                    .all(|(a, b)| a.is_some() == b.is_some() && a.is_none_or(|v| v.is_finite()))
+        };
+        if external.len() != self.targets.len() || !self.targets.iter().zip(external).all(shaped) {
+            return Err(Error::InvalidField {
+                field: "external".into(),
+                message: format!(
+                    "expected {} rows of finite external values, one per target, each with a value exactly where the target read has one ({})",
+                    self.targets.len(),
+                    self.axes.join(", ")
+                ),
+            });
+        }
+        // Each number to write: its span, the target, its text, whether it changed.
+        let mut edits: Vec<points::Edit> = Vec::with_capacity(6 * self.targets.len());
+        for (i, t) in self.targets.iter().enumerate().filter(|(_, t)| !t.held) {
+            let values = |j: usize| {
+                let e = external[j].iter().map(|v| v.unwrap_or(0.0));
+                q_deg[j].iter().copied().chain(e).collect::<Vec<f64>>()
+            };
+            let (now, read) = (values(i), t.values());
+            if let Some(c) = &t.cartesian {
+                let writer = self.writer.as_ref().ok_or_else(|| {
+                    at(t.line, "a Cartesian target not resolved with the setup's controller (program::cartesian::resolve)".into())
+                })?;
+                let q = nalgebra::Vector6::from(q_deg[i]).map(f64::to_radians);
+                let changed = now[..6] != read[..6];
+                for (span, text) in writer.texts(self.dialect, c, &q) {
+                    edits.push((span, i, text, changed));
+                }
+            }
+            let joint = t.cartesian.is_none();
+            let spans = t.spans.iter().map(|s| joint.then(|| s.clone()));
+            let spans = spans.chain(t.external_spans.iter().cloned());
+            for (k, span) in spans.enumerate() {
+                let Some(span) = span else { continue };
+                let (value, changed) = match (t.incremental, i.checked_sub(1)) {
+                    (true, Some(p)) => {
+                        let (before, before_read) = (values(p), self.targets[p].values());
+                        (
+                            now[k] - before[k],
+                            now[k] != read[k] || before[k] != before_read[k],
+                        )
+                    }
+                    _ => (now[k], now[k] != read[k]),
+                };
+                edits.push((span, i, self.number(k, value), changed));
+            }
+        }
+        points::split(self, &mut edits)?;
+        edits.sort_by_key(|e| e.0.start);
+        let mut out = String::with_capacity(self.text.len() + self.targets.len() * 24);
+        let mut at = 0;
+        // How much the program's own text grew, to find where the data file's begins.
+        let mut grown: isize = 0;
+        for (j, (span, i, text, changed)) in edits.iter().enumerate() {
+            if let Some((_, first, other, _)) = edits[..j].last().filter(|e| e.0 == *span) {
+                if other != text {
+                    let (a, b) = (&self.targets[*first], &self.targets[*i]);
+                    return Err(Error::Program {
+                        line: b.line,
+                        message: format!(
+                            "the motions of lines {} and {} go to the one point of line {}, but their compensated targets differ ({other} and {text}): give each visit its own point",
+                            a.line, b.line, b.origin
+                        ),
+                    });
+                }
+                continue;
+            }
+            let shared_change = edits[j..].iter().take_while(|e| e.0 == *span).any(|e| e.3);
+            if *changed || shared_change {
+                out.push_str(&self.text[at..span.start]);
+                out.push_str(text);
+                at = span.end;
+                if self.data_at.is_some_and(|d| span.end <= d) {
+                    grown += text.len() as isize - span.len() as isize;
+                }
+            }
+        }
+        out.push_str(&self.text[at..]);
+        Ok(match self.data_at {
+            None => (out, None),
+            Some(d) => {
+                let data = out.split_off((d as isize + grown) as usize);
+                (out, Some(data))
+            }
+        })
+    }
+
+    /// Per value (the six axes, then the external ones), the pulses per degree or mm of a value
+    /// written in whole encoder pulses (INFORM), `None` for a decimal value.
+    pub fn pulses(&self) -> &[Option<f64>] {
+        &self.pulses
+    }
+
+    /// Value `k` of a target (the six axes, then the external ones) as the program writes it:
+    /// [`DECIMALS`] decimals, or a whole number of pulses (INFORM's pulse form).
+    fn number(&self, k: usize, value: f64) -> String {
+        match self.pulses.get(k).copied().flatten() {
+            Some(per_unit) => whole_pulses(value, per_unit).to_string(),
+            None => format!("{value:.DECIMALS$}"),
+        }
+    }
+}
