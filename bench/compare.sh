@@ -12,7 +12,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 setup_name=zhang2021-comau-nj165
-setup=crates/stiffid/setups/$setup_name.toml
+setup=crates/stiffid-core/setups/$setup_name.toml
 start=bench/inputs/start-group.csv
 data=bench/inputs/measurements.csv
 out=target/compare

@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 from scipy.optimize import minimize
 
-PRESETS = Path(__file__).resolve().parents[2] / "crates" / "stiffid" / "presets"
+PRESETS = Path(__file__).resolve().parents[2] / "crates" / "stiffid-core" / "presets"
 
 
 # ---------------------------------------------------------------- robot and setup files

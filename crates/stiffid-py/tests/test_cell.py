@@ -7,7 +7,7 @@ import pytest
 import stiffid
 from conftest import REPO, plain, write_postures
 
-PAPER_TOML = (REPO / "crates" / "stiffid" / "setups" / "zhang2021-comau-nj165.toml").read_text()
+PAPER_TOML = (REPO / "crates" / "stiffid-core" / "setups" / "zhang2021-comau-nj165.toml").read_text()
 FLOOR = "\n[cell]\nfloor_z_mm = 0.0\nclearance_mm = 50.0\n"
 # Upper arm tilted 40 deg forward, forearm pointing 100 deg down: the tool is in the floor.
 IN_THE_FLOOR = [0, 40, -170, 0, 0, 0]

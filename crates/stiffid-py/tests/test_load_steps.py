@@ -59,7 +59,7 @@ def test_a_loaded_first_reading_is_named(paper, tmp_path):
 
 
 def test_load_steps_in_the_setup_scale_the_predicted_rates(paper):
-    text = (REPO / "crates" / "stiffid" / "setups" / "zhang2021-comau-nj165.toml").read_text()
+    text = (REPO / "crates" / "stiffid-core" / "setups" / "zhang2021-comau-nj165.toml").read_text()
     stepped = stiffid.Setup.from_toml(text.replace("[loading]\n", "[loading]\nsteps_n = [100, 200, 300, 400, 500]\n"))
     assert paper.load_steps_n == [] and stepped.load_steps_n == [100.0, 200.0, 300.0, 400.0, 500.0]
     group = paper.random_group(6, 1)

@@ -426,6 +426,7 @@ def calibrate(
     *,
     geometry: Literal["none", "offsets", "full"] = "full",
     gravity: Literal["auto", "none", "arm", "masses", "lumped", "lumped-links"] = "auto",
+    gravity_bound_mrad: float = 3.0,
     validate: Optional[_PathLike] = None,
     reregister: bool = False,
     cross_validate: bool = False,
