@@ -25,7 +25,7 @@ pub mod study;
 pub mod target;
 
 pub use criteria::{Criterion, Evaluation, ParameterQuality};
-pub use evaluator::{evaluate, Evaluator, PostureTerms};
+pub use evaluator::{evaluate, Evaluator};
 pub use exchange::{PoolMethod, PoolOptions};
 pub use identifiable::{identifiable, unidentifiable};
 pub use pool::{Pool, PoolChoice};

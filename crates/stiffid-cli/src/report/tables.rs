@@ -293,7 +293,7 @@ pub fn trials(study: &Study) -> Table {
     }
 }
 
-/// The paper's Table 4 ([`stiffid::internal::design::study::TABLE4`], `[joint][group]`) beside this study's means for
+/// The paper's Table 4 (`stiffid::internal::design::study::paper_table4`, `[joint][group]`) beside this study's means for
 /// Groups 1-3 at the same level.
 pub fn paper_table4(study: &Study, paper: &[[f64; 3]; 6]) -> Table {
     let l = study.validation_level;

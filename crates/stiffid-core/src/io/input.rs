@@ -53,11 +53,11 @@ fn options() -> std::fs::OpenOptions {
 }
 
 /// The most files a folder given as a controller's backup lists ([`files_under`]).
-pub const MAX_BACKUP_FILES: usize = 10_000;
+const MAX_BACKUP_FILES: usize = 10_000;
 
 /// How deep [`files_under`] looks into a folder (a KUKA backup's `KRC/R1/System/$config.dat` is
 /// 3 folders down).
-pub const MAX_BACKUP_DEPTH: usize = 8;
+const MAX_BACKUP_DEPTH: usize = 8;
 
 /// The files a path given as a controller's backup stands for: the path itself when it is a file
 /// (whatever its name), else the regular files under the folder, at most [`MAX_BACKUP_DEPTH`]

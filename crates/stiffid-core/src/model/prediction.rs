@@ -57,7 +57,8 @@ pub(crate) const MAX_FOLDS: usize = 100_000;
 /// The most scores (held-out coordinates) a calibration holds.
 pub(crate) const MAX_SCORES: usize = 3_000_000;
 /// The level accepted: `[0.5, 0.999]`.
-pub const LEVEL: crate::common::limits::Range = crate::common::limits::Range::new(0.5, 0.999, "");
+pub(crate) const LEVEL: crate::common::limits::Range =
+    crate::common::limits::Range::new(0.5, 0.999, "");
 /// The default level of the prediction intervals.
 pub const DEFAULT_LEVEL: f64 = 0.95;
 

@@ -25,7 +25,7 @@ use crate::common::warning::{Warning, WarningKind};
 use nalgebra::Vector6;
 
 /// The margin that widens the identification postures' range of every axis, deg.
-pub const MARGIN_DEG: f64 = 5.0;
+pub(crate) const MARGIN_DEG: f64 = 5.0;
 
 /// The largest margin a stiffness file may state, deg.
 pub(crate) const MAX_MARGIN_DEG: f64 = 360.0;

@@ -67,7 +67,7 @@ struct Wide {
 /// What one posture contributes to a group: its compact block of `Psi` (module docs) and its TCP
 /// dexterity.
 #[derive(Debug, Clone)]
-pub struct PostureTerms {
+pub(crate) struct PostureTerms {
     frames: Frames,
     compact: Matrix6<f64>,
     /// The compact columns of the model's virtual springs (column-major, six rows each; empty for

@@ -114,7 +114,8 @@ fn predicted_error_matches_a_monte_carlo_of_calibrations() {
         frame,
         values: truth,
     };
-    let held_out = study::read(model, &truth, &test, 0.0, &mut rng).unwrap();
+    let held_out =
+        crate::study::observability_tests::read(model, &truth, &test, 0.0, &mut rng).unwrap();
     let options = fit::Options {
         length: LENGTH,
         priors: None,
@@ -124,7 +125,9 @@ fn predicted_error_matches_a_monte_carlo_of_calibrations() {
     let runs = 100;
     let mut squares = 0.0;
     for _ in 0..runs {
-        let readings = study::read(model, &truth, &group, noise, &mut rng).unwrap();
+        let readings =
+            crate::study::observability_tests::read(model, &truth, &group, noise, &mut rng)
+                .unwrap();
         let start = fit::start(model, &readings).unwrap();
         let f = fit::fit(model, &readings, &start, &options).unwrap();
         // The same rank (a family of lumped terms may keep another member: the same span).

@@ -13,7 +13,7 @@ mod trials;
 
 pub use findings::{criterion_values, findings, Findings, StartCheck, Versus, CRITERION_VALUES};
 pub use stiffid_core::math::spearman;
-pub use table4::{paper_table4, TABLE4};
+pub use table4::paper_table4;
 pub use trials::StartTrial;
 use trials::{judge, paper_searches};
 
@@ -355,4 +355,4 @@ fn validation_error(setup: &Setup, truth: &[Vec<Vector3<f64>>], k: &Vector6<f64>
 }
 
 #[cfg(test)]
-mod observability_tests;
+pub(crate) mod observability_tests;

@@ -4,7 +4,7 @@ use super::Study;
 
 /// The paper's Table 4: deviation rates (%) of one simulation run at noise level 2 (variance
 /// multiple 1), [joint 1-6][Group 1-3] (Zhang et al. 2021, Section IV-A).
-pub const TABLE4: [[f64; 3]; 6] = [
+const TABLE4: [[f64; 3]; 6] = [
     [0.726, 0.339, 0.268],
     [1.413, 9.845, 0.820],
     [0.251, 0.488, 0.002],
@@ -16,7 +16,7 @@ pub const TABLE4: [[f64; 3]; 6] = [
 /// The built-in setup of the paper's study.
 const PAPER_SETUP: &str = "zhang2021-comau-nj165";
 
-/// The paper's [`TABLE4`] if the study compares with it: the study ran on the paper's setup
+/// The paper's Table 4 if the study compares with it: the study ran on the paper's setup
 /// (`zhang2021-comau-nj165`) and validates at the paper's level 2; `None` otherwise. Only orders
 /// of magnitude compare: the paper's table is one run, the study's numbers are means over runs.
 pub fn paper_table4(study: &Study) -> Option<&'static [[f64; 3]; 6]> {

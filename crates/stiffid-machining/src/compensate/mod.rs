@@ -224,11 +224,11 @@ pub(crate) use variables::{CONFIGURATION_SEEDS, LEAD_TILT_MAX_CONE_DEG, MAX_GRID
 /// The residual the Newton steps aim at, m.
 pub const TOLERANCE_M: f64 = 1e-10;
 /// The residual rotation the Newton steps aim at, rad.
-pub const TOLERANCE_RAD: f64 = 1e-10;
+pub(crate) const TOLERANCE_RAD: f64 = 1e-10;
 /// The residual a compensated point must reach: 0.1 micrometre.
 pub const REQUIRED_M: f64 = 1e-7;
 /// The residual rotation a compensated point must reach: 1 microradian.
-pub const REQUIRED_RAD: f64 = 1e-6;
+pub(crate) const REQUIRED_RAD: f64 = 1e-6;
 /// Newton steps at most per point, and the default of [`Options::max_iterations`].
 pub const MAX_ITERATIONS: usize = 30;
 /// The relative weight of the free tool axis' tie-breaking cost (module docs).

@@ -45,7 +45,7 @@ pub struct Options {
     pub free: super::FreeVariables,
     /// The level of the prediction intervals of the deflection (with a compliance that carries
     /// a prediction calibration, [`stiffid_core::model::prediction`]), within
-    /// [`stiffid_core::model::prediction::LEVEL`].
+    /// 0.5 to 0.999.
     pub level: f64,
     /// Newton steps at most per point, 1 to [`super::MAX_ITERATIONS`] (the default).
     pub max_iterations: usize,

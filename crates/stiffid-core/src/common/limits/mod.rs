@@ -149,7 +149,7 @@ pub(crate) const MASS_SD_PERCENT: Range = Range::new(0.0, 100.0, "%");
 pub(crate) const FRAME_SD: Range = Range::new(0.0, 100.0, "");
 
 /// The rope load of a setup.
-pub const LOAD_N: Range = Range::new(1e-3, 1e7, "N");
+pub(crate) const LOAD_N: Range = Range::new(1e-3, 1e7, "N");
 
 /// Forces and moments on the command line, per component (measurement files: the magnitude limits
 /// of 1e6 N and 1e6 Nm).
@@ -195,7 +195,7 @@ pub(crate) const MAX_AXIS_MAP_COND: f64 = 1e8;
 /// Largest input file accepted, bytes (256 MiB): room for a measurement file of 2 million rows
 /// (1e6 rows take about 119 MB), and a bound on the memory one file (or `/dev/zero`) can take.
 /// Both front ends read at most one byte more and hand the bytes to `crate::io::text`.
-pub const MAX_INPUT_BYTES: u64 = 256 << 20;
+pub(crate) const MAX_INPUT_BYTES: u64 = 256 << 20;
 
 /// Most noise levels of a setup (with [`MAX_RUNS`], a bound on a simulation's memory: levels x
 /// runs results of one group at a time).

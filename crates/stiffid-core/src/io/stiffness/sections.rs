@@ -295,7 +295,7 @@ pub struct RegionSection {
     /// `lower_deg`.
     pub upper_deg: [f64; 6],
     /// The margin that widens every axis' range at both ends, deg, within [0, 360] (written as
-    /// [`crate::model::region::MARGIN_DEG`], 5).
+    /// the default margin, 5).
     pub margin_deg: f64,
 }
 

@@ -74,7 +74,7 @@ pub use noise::{fit_at_stated_noise, fit_choosing_strength};
 pub const MAX_ITERATIONS: usize = 100;
 
 /// Most readings a calibration fits.
-pub const MAX_READINGS: usize = 100_000;
+const MAX_READINGS: usize = 100_000;
 
 /// The scaled step length below which the fit has converged.
 pub(crate) const STEP_TOLERANCE: f64 = 1e-13;

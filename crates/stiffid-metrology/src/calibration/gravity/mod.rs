@@ -124,7 +124,7 @@ pub use stiffid_core::robot::LinkMass;
 
 /// Whether [`Gravity::Arm`] holds on `robot`: an anthropomorphic arm (joint 1 vertical, joints 2
 /// and 3 horizontal and parallel; the `arm` module's check).
-pub fn takes_arm(robot: &Robot) -> bool {
+pub(crate) fn takes_arm(robot: &Robot) -> bool {
     arm::axes(robot).is_ok()
 }
 

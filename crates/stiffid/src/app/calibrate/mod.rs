@@ -133,7 +133,7 @@ pub struct Request<'a> {
     pub error_motions: stiffid_metrology::calibration::motions::Spec,
     /// The level of the held-out readings' prediction intervals
     /// ([`stiffid_metrology::calibration::intervals`]), within
-    /// [`stiffid_core::model::prediction::LEVEL`], only with `validate`; `None` for
+    /// 0.5 to 0.999, only with `validate`; `None` for
     /// [`stiffid_core::model::prediction::DEFAULT_LEVEL`]; with `update` also the level of the check's
     /// bound ([`drift`]).
     pub level: Option<f64>,
@@ -304,7 +304,7 @@ pub(crate) type Outcome = crate::app::Outcome<Report>;
 /// [`Error::Input`] naming the file; [`Error::InvalidField`] (`cross_validate`) beyond 5000
 /// postures, (`validate`) when the held-out readings are in another frame than the fitted;
 /// [`Error::InvalidOption`] ([`JobOption::Level`]) for a level outside
-/// [`stiffid_core::model::prediction::LEVEL`] or without `validate`.
+/// 0.5 to 0.999 or without `validate`.
 pub fn run(request: &Request<'_>) -> Result<Outcome> {
     Ok(Outcome {
         report: find(request)?,

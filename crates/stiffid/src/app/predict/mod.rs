@@ -43,7 +43,7 @@ pub struct Request<'a> {
     /// standard deviations, and its prediction calibration, for the prediction intervals);
     /// `None`: the setup's nominal.
     pub compliance: Option<Compliance>,
-    /// The level of the prediction intervals, within [`stiffid_core::model::prediction::LEVEL`], only
+    /// The level of the prediction intervals, within 0.5 to 0.999, only
     /// with a compliance that carries a prediction calibration; `None` for
     /// [`stiffid_core::model::prediction::DEFAULT_LEVEL`].
     pub level: Option<f64>,
@@ -130,7 +130,7 @@ pub(crate) type Outcome = crate::app::Outcome<Report>;
 /// Runs the predict job.
 ///
 /// # Errors
-/// Those of [`requested_level`] (a level outside [`stiffid_core::model::prediction::LEVEL`], or
+/// Those of [`requested_level`] (a level outside 0.5 to 0.999, or
 /// without a prediction calibration);
 /// [`stiffid_core::Error::OutsideBox`] (field `q_deg[i]`) for an axis angle outside the robot's limits;
 /// without a compliance, those of [`stiffid_core::Setup::model_compliance`] (no nominal stiffness); with one, those

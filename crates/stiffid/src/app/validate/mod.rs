@@ -26,7 +26,7 @@ pub struct Request<'a, R> {
     /// The measurements (as for [`super::identify`]), ideally postures not used to identify.
     pub data: Data<R>,
     /// The level of the prediction intervals (with the compliance's prediction calibration),
-    /// within [`stiffid_core::model::prediction::LEVEL`], only with a compliance that carries one;
+    /// within 0.5 to 0.999, only with a compliance that carries one;
     /// `None` for [`stiffid_core::model::prediction::DEFAULT_LEVEL`].
     pub level: Option<f64>,
 }

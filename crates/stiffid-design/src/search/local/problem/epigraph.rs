@@ -13,10 +13,11 @@
 use super::super::PENALTY;
 use super::{log_value, postures, Problem};
 use crate::evaluator::MaxSplit;
+use crate::evaluator::PostureTerms;
 use crate::search::sqp::{self, violation, Gradients, Nlp, Tolerances, Values, FEASIBLE};
 use crate::search::termination::Termination;
 use crate::search::Gradient;
-use crate::{Criterion, PostureTerms};
+use crate::Criterion;
 use std::cell::RefCell;
 
 /// The epigraph problem over a local search's [`Problem`]: the angles, then `t`.

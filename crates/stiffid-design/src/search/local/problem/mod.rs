@@ -7,11 +7,11 @@ mod nlp;
 use epigraph::Epigraph;
 
 use super::{evals_per_step, PENALTY};
+use crate::evaluator::PostureTerms;
 use crate::search::constraints::{kinds, violation};
 use crate::search::sqp::{self, Nlp};
 use crate::search::termination::{from_slsqp, Termination};
 use crate::search::{combine, Goal, Gradient, SearchOptions, SearchOutcome, Solver};
-use crate::PostureTerms;
 use crate::{Criterion, Evaluator};
 use nalgebra::Vector6;
 use std::cell::RefCell;

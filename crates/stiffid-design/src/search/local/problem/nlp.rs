@@ -3,11 +3,11 @@
 
 use super::super::PENALTY;
 use super::{log_value, posture, postures, PostureConstraints, Problem};
+use crate::evaluator::PostureTerms;
 use crate::search::constraints::{inequalities, inequalities_and_gradients, CellConstraints};
 use crate::search::local::evals_per_step;
 use crate::search::sqp::{Gradients, Nlp, SparseRows, Values};
 use crate::search::Gradient;
-use crate::PostureTerms;
 use nalgebra::Vector6;
 
 impl Problem<'_> {
