@@ -96,7 +96,7 @@ pub fn setup_text_as_written(text: &str, source_name: &str, dir: &Path) -> Resul
 }
 
 /// The bytes of the file at `path` (a URDF's mesh), `None` if nothing exists there: at most
-/// [`limits::MAX_INPUT_BYTES`], remembered as an input; the error names the file.
+/// 256 MiB (`MAX_INPUT_BYTES`), remembered as an input; the error names the file.
 fn bytes(path: &Path) -> Option<stiffid::Result<Vec<u8>>> {
     use std::io::Read;
     if !path.exists() {
@@ -153,7 +153,7 @@ pub fn read_backup(paths: &[PathBuf], program: &str) -> Result<Vec<(String, Stri
         .map_err(|e| e.context("--backup"))
 }
 
-/// The text of a file, with its name in the error: at most [`limits::MAX_INPUT_BYTES`], UTF-8
+/// The text of a file, with its name in the error: at most 256 MiB (`MAX_INPUT_BYTES`), UTF-8
 /// ([`io::read_text`]). The file is remembered as an input ([`input_at`]).
 pub fn read(path: &Path) -> Result<String> {
     let name = path.display().to_string();
@@ -162,7 +162,7 @@ pub fn read(path: &Path) -> Result<String> {
 
 /// The file at `path` opened for reading, a regular file ([`io::input::open`]: never a wait on
 /// a FIFO), remembered as an input
-/// ([`input_at`]); reading more than [`limits::MAX_INPUT_BYTES`] from it fails.
+/// ([`input_at`]); reading more than 256 MiB (`MAX_INPUT_BYTES`) from it fails.
 pub fn open(path: &Path) -> Result<Capped<File>> {
     let name = path.display();
     let file = io::input::open(path).map_err(|e| match e.kind() {

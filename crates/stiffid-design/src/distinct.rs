@@ -4,7 +4,7 @@
 //! and are flagged in the plan.
 //!
 //! Two postures `a`, `b` are *near* when `max_j |q_a,j - q_b,j|` is below the joint distance
-//! ([`Distinctness::joint`], default [`JOINT_TOLERANCE`]) or when their flange origins lie within
+//! ([`Distinctness::joint`], default 2 deg) or when their flange origins lie within
 //! [`Distinctness::position`] (default 10 mm) and their flange orientations within
 //! [`Distinctness::angle`] (default 2 deg) of each other. A pool choice can forbid them
 //! ([`distinct_pool`]): it keeps the first of every near pair in pool order.
@@ -16,7 +16,7 @@ use stiffid_core::common::warning::{Warning, WarningKind};
 use stiffid_core::{Result, Robot};
 
 /// Axis angles closer than this in every joint make two postures near, rad (2 deg).
-pub const JOINT_TOLERANCE: f64 = 2.0 * std::f64::consts::PI / 180.0;
+pub(crate) const JOINT_TOLERANCE: f64 = 2.0 * std::f64::consts::PI / 180.0;
 /// Flange origins closer than this (with [`ANGLE_TOLERANCE`]) make two postures near, m (10 mm).
 pub(crate) const POSITION_TOLERANCE: f64 = 0.010;
 /// Flange orientations closer than this (with [`POSITION_TOLERANCE`]) make two postures near,
@@ -24,7 +24,7 @@ pub(crate) const POSITION_TOLERANCE: f64 = 0.010;
 pub(crate) const ANGLE_TOLERANCE: f64 = 2.0 * std::f64::consts::PI / 180.0;
 
 /// How far apart two postures must be to count as distinct (module docs); the default is the
-/// flagging's ([`JOINT_TOLERANCE`], 10 mm, 2 deg).
+/// flagging's (`JOINT_TOLERANCE`, 10 mm, 2 deg).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Distinctness {
     /// Axis angles closer than this in every joint make two postures near, rad.

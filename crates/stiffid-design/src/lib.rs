@@ -32,7 +32,7 @@ pub use pool::{Pool, PoolChoice};
 pub(crate) use search::local_for;
 pub use search::{
     global, global_for, local, random_group, CalibrationGoal, Goal, Gradient, SearchOptions,
-    SearchOutcome, Solver, Termination, PROBE_DRAWS,
+    SearchOutcome, Solver, Termination,
 };
 
 #[cfg(test)]

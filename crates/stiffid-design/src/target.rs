@@ -8,7 +8,7 @@
 //! A target out of reach is seen early: the information of a well-chosen group grows about in
 //! proportion to its size N, so its predicted rate falls about as `1/sqrt(N)` (on the paper's setup
 //! `rate * sqrt(N)` stays within 5% from 2 to 60 postures). The search stops as soon as 2 sizes in
-//! a row extrapolate, by that law, to a rate at the largest size allowed above [`STOP_MARGIN`]
+//! a row extrapolate, by that law, to a rate at the largest size allowed above `STOP_MARGIN`
 //! times the target ([`TargetOutcome::extrapolated_pct`]), instead of trying every size up to
 //! [`MAX_POSTURES`].
 
@@ -28,7 +28,7 @@ pub const MAX_POSTURES: usize = 60;
 /// How far above the target the `1/sqrt(N)` extrapolation to the largest size must be before the
 /// search stops early: 1.25 (the law is approximate; a target within 25% of the extrapolation is
 /// still searched for size by size).
-pub const STOP_MARGIN: f64 = 1.25;
+pub(crate) const STOP_MARGIN: f64 = 1.25;
 
 /// Consecutive sizes whose extrapolation must say "out of reach" before the search stops early (one
 /// poorly chosen group must not end it).
@@ -79,7 +79,7 @@ pub struct TargetOutcome {
     pub max_postures: usize,
     /// When the search stopped early: the worst rate (%) the last step extrapolates to at
     /// [`TargetOutcome::max_postures`] by the `1/sqrt(N)` law (`extrapolate`), above
-    /// [`STOP_MARGIN`] times the target. `None` when every size up to the largest was tried or
+    /// `STOP_MARGIN` times the target. `None` when every size up to the largest was tried or
     /// the target was reached.
     pub extrapolated_pct: Option<f64>,
 }

@@ -193,7 +193,7 @@ pub fn least_squares(arm: &Arm, measurements: &[Measurement]) -> Result<Identifi
 }
 
 /// Measurements per block of `InBlocks`: 3072 rows of `Psi`, 147 kB.
-pub const BLOCK: usize = 1024;
+pub(crate) const BLOCK: usize = 1024;
 
 /// Least squares over measurements given a part at a time (a file read in chunks), in bounded
 /// memory: the rows of `Psi` are made and reduced by QR in blocks of [`BLOCK`] measurements

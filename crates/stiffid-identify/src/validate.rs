@@ -96,7 +96,7 @@ pub fn compare(
 /// calibration).
 ///
 /// # Errors
-/// [`Error::InvalidField`] (`level`) outside [`stiffid_core::model::prediction::LEVEL`];
+/// [`Error::InvalidField`] (`level`) outside 0.5 to 0.999;
 /// Those of [`Compliance::check`]; [`Error::InvalidField`] (`stiffness`) unless every compliance
 /// is positive, or (`measurements`) for an empty list; those of
 /// [`Observations::from_measurements`].

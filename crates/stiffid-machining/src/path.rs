@@ -24,7 +24,7 @@
 //!   of the free variables' moves within its largest speed at it ([`feeds`]); without the
 //!   column no speed is checked.
 //!
-//! Columns may come in any order; lines starting with `#` are comments. At most [`MAX_POINTS`]
+//! Columns may come in any order; lines starting with `#` are comments. At most `MAX_POINTS`
 //! rows. Errors name the line and column ([`Error::Column`]).
 
 use crate::compensate::{PathPoint, Target};
@@ -36,7 +36,7 @@ use stiffid_core::robot::external::{ExternalAxes, ExternalValues};
 use stiffid_core::{Error, Result};
 
 /// The most path points a file may hold.
-pub const MAX_POINTS: usize = 1_000_000;
+pub(crate) const MAX_POINTS: usize = 1_000_000;
 
 const Q: [&str; 6] = ["q1_deg", "q2_deg", "q3_deg", "q4_deg", "q5_deg", "q6_deg"];
 const POSE: [&str; 6] = ["x_mm", "y_mm", "z_mm", "rx_deg", "ry_deg", "rz_deg"];
@@ -77,7 +77,7 @@ struct Columns {
 /// row with another number of fields than the header, a value that is not a finite number (the
 /// value shown, shortened), a frame other than `base` or `tool`, an external axis column
 /// ([`stiffid_core::io::external::Columns::against`]: the robot has none), no rows, or more than
-/// [`MAX_POINTS`].
+/// `MAX_POINTS`.
 ///
 /// # Examples
 /// ```

@@ -231,7 +231,7 @@ impl<'a> Checker<'a> {
     /// The signed margin of every pair every active check tests at posture `q` (axis angles,
     /// rad), in [`Checker::kinds`] order; the same pairs in every posture. The broad phase: a
     /// pair of bodies (or a body and an obstacle, the floor, the rope or a line of sight) whose
-    /// bounding spheres are more than [`FAR_MARGIN`] beyond what the check requires apart gets
+    /// bounding spheres are more than `FAR_MARGIN` beyond what the check requires apart gets
     /// the spheres' gap as its margin (a lower bound of its distance, never failing) instead of
     /// the exact distance ([`Checker::feasibility`] works every distance out).
     pub fn margins(&self, q: &Vector6<f64>) -> Vec<Margin> {
@@ -518,7 +518,7 @@ fn adjacent(bodies: &[Body], p: Part, q: Part) -> bool {
 /// smoothing of the searches' constraints, so that where a check's smallest margin is within
 /// 17 mm of failing such a pair weighs less than `2^-60` in its smooth minimum (and the
 /// constraint's value and gradient are those of the exact distances, to the rounding).
-pub const FAR_MARGIN: f64 = 0.1;
+pub(crate) const FAR_MARGIN: f64 = 0.1;
 
 /// The gap `|b - a| - radii` between two spheres (centres `a`, `b`) and its witness, when the
 /// broad phase is on and it exceeds `required` by more than [`FAR_MARGIN`].

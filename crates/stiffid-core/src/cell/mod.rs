@@ -30,4 +30,4 @@ mod motion;
 pub use bodies::{bodies, capsules, Body, Capsule, Part, Solid};
 pub use check::{CheckKind, Margin, Thing};
 pub use distance::{body_body, body_box, body_floor, capsule_box};
-pub use feasibility::{feasibility, Check, Checker, Feasibility, FAR_MARGIN};
+pub use feasibility::{feasibility, Check, Checker, Feasibility};

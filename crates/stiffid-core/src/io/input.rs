@@ -60,13 +60,13 @@ const MAX_BACKUP_FILES: usize = 10_000;
 const MAX_BACKUP_DEPTH: usize = 8;
 
 /// The files a path given as a controller's backup stands for: the path itself when it is a file
-/// (whatever its name), else the regular files under the folder, at most [`MAX_BACKUP_DEPTH`]
+/// (whatever its name), else the regular files under the folder, at most `MAX_BACKUP_DEPTH`
 /// folders down, whose name `wanted` takes, in path order. One rule for both front ends (the
 /// command's `--backup`, Python's `backup=`); symbolic links to folders are not followed.
 ///
 /// # Errors
 /// The operating system's error for a path that cannot be read, naming what it could not read;
-/// `ErrorKind::InvalidInput` when the folder holds more than [`MAX_BACKUP_FILES`] such files.
+/// `ErrorKind::InvalidInput` when the folder holds more than `MAX_BACKUP_FILES` such files.
 pub fn files_under(
     path: &Path,
     wanted: &dyn Fn(&str) -> bool,

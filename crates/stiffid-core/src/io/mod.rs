@@ -30,7 +30,7 @@ use crate::{Error, Result};
 use std::io::Read;
 
 /// The text of an input file from its bytes as read: the reader stops after
-/// [`MAX_INPUT_BYTES`] + 1 bytes (`Read::take`), so more than the limit means the file is larger.
+/// `MAX_INPUT_BYTES` + 1 bytes (`Read::take`), so more than the limit means the file is larger.
 ///
 /// # Errors
 /// [`Error::Parse`] naming `source_name`: larger than the input limit, or not UTF-8 text (with
@@ -202,7 +202,7 @@ fn not_utf8(bytes: &[u8], at: usize) -> String {
 }
 
 /// The text of an input read from `reader` (a file the caller opened): at most
-/// [`MAX_INPUT_BYTES`] + 1 bytes are read, then `text`.
+/// `MAX_INPUT_BYTES` + 1 bytes are read, then `text`.
 ///
 /// # Errors
 /// [`Error::Parse`] naming `source_name`: a read error (`cannot read: ...`), and those of `text`.
@@ -217,7 +217,7 @@ pub fn read_text(source_name: &str, reader: impl Read) -> Result<String> {
 }
 
 /// The bytes of an input read from `reader` (a file the caller opened): at most
-/// [`MAX_INPUT_BYTES`] + 1, so that more than the limit tells the file is larger (`text`,
+/// `MAX_INPUT_BYTES` + 1, so that more than the limit tells the file is larger (`text`,
 /// [`program_texts`] refuse it).
 ///
 /// # Errors
@@ -243,7 +243,7 @@ fn too_large() -> String {
 }
 
 /// A reader of an input (a file the caller opened) that fails with "larger than the input limit"
-/// once more than [`MAX_INPUT_BYTES`] have been read from it: the limit of `text` for inputs
+/// once more than `MAX_INPUT_BYTES` have been read from it: the limit of `text` for inputs
 /// read in pieces (`identify::streamed`).
 ///
 /// # Examples

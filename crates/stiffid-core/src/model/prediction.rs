@@ -305,7 +305,7 @@ fn smallest(values: &mut [f64], k: usize) -> f64 {
 /// Checks a level of prediction intervals, named `field`.
 ///
 /// # Errors
-/// [`Error::InvalidField`] naming `field` unless `level` is in [`LEVEL`].
+/// [`Error::InvalidField`] naming `field` unless `level` is in 0.5 to 0.999.
 pub fn check_level(field: &str, level: f64) -> Result<()> {
     match LEVEL.contains(level) {
         true => Ok(()),
@@ -322,7 +322,7 @@ pub fn check_level(field: &str, level: f64) -> Result<()> {
 /// The level of a job's prediction intervals: `level` as given, else [`DEFAULT_LEVEL`].
 ///
 /// # Errors
-/// [`Error::InvalidOption`] ([`JobOption::Level`]) for a level outside [`LEVEL`], or for one
+/// [`Error::InvalidOption`] ([`JobOption::Level`]) for a level outside 0.5 to 0.999, or for one
 /// given where the compliance carries no prediction calibration (`calibrated` false): no
 /// interval would use it.
 pub fn requested_level(level: Option<f64>, calibrated: bool) -> Result<f64> {

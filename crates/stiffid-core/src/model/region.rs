@@ -4,7 +4,7 @@
 //! ## The region
 //! The identification postures' range of every axis, `[min_i q_i, max_i q_i]` over the postures
 //! the stiffness (or the calibration) was fitted to, widened by a margin at both ends
-//! ([`MARGIN_DEG`], 5 degrees, unless the stiffness file states another). A posture extrapolates
+//! (`MARGIN_DEG`, 5 degrees, unless the stiffness file states another). A posture extrapolates
 //! when any of its six axis angles lies outside its widened range.
 //!
 //! Why per axis: the model's compliance is constant, but what it misses is not (a joint's
@@ -58,7 +58,7 @@ pub struct PostureRange {
 }
 
 impl PostureRange {
-    /// The range of `postures` (axis angles, rad) with the default margin [`MARGIN_DEG`];
+    /// The range of `postures` (axis angles, rad) with the default margin `MARGIN_DEG`;
     /// `None` without postures.
     pub fn of<'a>(postures: impl IntoIterator<Item = &'a Vector6<f64>>) -> Option<Self> {
         let mut n = 0;

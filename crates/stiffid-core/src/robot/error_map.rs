@@ -13,7 +13,7 @@
 //! half the backlash (rad): `e(q, d) = e(q) + b d` (`ErrorMap::angle_from`); without a direction
 //! the robot stands at the mean of the two approaches, `e(q)`. A map fitted over a range of its
 //! axis's angles ([`ErrorMap::with_range`], the calibrated robot file's `range_deg`) holds its
-//! series there only: beyond it the series tapers to zero over [`TAPER_DEG`] by a cosine ramp,
+//! series there only: beyond it the series tapers to zero over `TAPER_DEG` by a cosine ramp,
 //! `e(q) w(d)` with `d` the distance beyond the range and `w(d) = (1 + cos(pi d / W)) / 2` for
 //! `d < W`, 0 beyond ([`taper`]), rather than extrapolating a Fourier series fitted elsewhere
 //! (the backlash term, a property of the gear, is kept everywhere). A robot with maps ([`crate::Robot::with_error_maps`])
@@ -33,11 +33,11 @@ pub(crate) const MAX_COEFFICIENT: f64 = 10.0 * std::f64::consts::PI / 180.0;
 
 /// The width `W` of the ramp over which a map's series tapers to zero beyond its fitted range,
 /// deg ([`taper`]).
-pub const TAPER_DEG: f64 = 20.0;
+pub(crate) const TAPER_DEG: f64 = 20.0;
 
 /// The factor `w(d)` of a map's series at the axis angle `q` (rad) with the fitted range
 /// `(lo, hi)` (rad): exactly 1 within it, `(1 + cos(pi d / W)) / 2` at the distance `d` beyond it
-/// within the ramp `W` ([`TAPER_DEG`]), exactly 0 past the ramp. Continuous with its slope (0 at
+/// within the ramp `W` (`TAPER_DEG`), exactly 0 past the ramp. Continuous with its slope (0 at
 /// both ends of the ramp).
 #[inline]
 pub fn taper(q: f64, (lo, hi): (f64, f64)) -> f64 {

@@ -85,7 +85,7 @@ pub struct Controller {
 
 /// How many encoder pulses make a unit of each axis on the controller (its axis parameters): a
 /// program in pulses (a Yaskawa INFORM job's `///PULSE` positions) writes an axis value as the
-/// nearest whole number of its pulses. Each number within [`crate::common::limits::PULSES`].
+/// nearest whole number of its pulses. Each number within `PULSES`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Pulses {
     /// Pulses per degree of the robot's six axes (S, L, U, R, B, T), in the order of its

@@ -39,7 +39,7 @@ use stiffid_core::Result;
 /// than 2 postures, or the `test-pose` criterion on a setup without test postures;
 /// [`stiffid_core::Error::MissingField`] for a criterion the setup lacks a field for ([`Criterion::check`]);
 /// [`stiffid_core::Error::Infeasible`] naming the check failed by the most postures and the setup
-/// fields that decide it: at once when none of [`super::PROBE_DRAWS`] uniform postures passes
+/// fields that decide it: at once when none of 2000 (`PROBE_DRAWS`) uniform postures passes
 /// every check, else when none of the starts' results does.
 ///
 /// # Examples

@@ -32,7 +32,7 @@ pub use global::{global, global_for};
 pub(super) use local::check_count;
 pub use local::local;
 pub(crate) use local::local_for;
-pub use sample::{random_group, PROBE_DRAWS};
+pub use sample::random_group;
 pub use termination::Termination;
 
 use crate::observability::{CalibrationCriterion, CalibrationDesign};

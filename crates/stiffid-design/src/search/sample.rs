@@ -16,9 +16,9 @@ pub(crate) const CONSTRAINT_TRIES: usize = 1000;
 
 /// Uniform postures a global search draws before it starts, to stop at once when none of them
 /// passes the cell's checks.
-pub const PROBE_DRAWS: usize = 2000;
+const PROBE_DRAWS: usize = 2000;
 
-/// `Ok` if one of [`PROBE_DRAWS`] uniform postures within the bounds (stream `u64::MAX` of
+/// `Ok` if one of 2000 (`PROBE_DRAWS`) uniform postures within the bounds (stream `u64::MAX` of
 /// `seed`) passes every check of `checker`, or if it constrains nothing.
 ///
 /// # Errors

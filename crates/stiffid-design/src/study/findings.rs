@@ -6,7 +6,7 @@ use super::{spearman, Group, Origin, Study};
 use crate::{Criterion, Evaluation};
 
 /// How many values [`criterion_values`] gives.
-pub const CRITERION_VALUES: usize = Criterion::ALL.len() + 1;
+pub(crate) const CRITERION_VALUES: usize = Criterion::ALL.len() + 1;
 
 /// The values a group's accuracy is ranked against: every criterion of [`Criterion::ALL`] in that
 /// order ([`Criterion::TestPose`] in m), then `cond_2(Psi)` (SI units).

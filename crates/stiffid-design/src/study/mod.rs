@@ -11,7 +11,7 @@ pub mod simulate;
 mod table4;
 mod trials;
 
-pub use findings::{criterion_values, findings, Findings, StartCheck, Versus, CRITERION_VALUES};
+pub use findings::{criterion_values, findings, Findings, StartCheck, Versus};
 pub use stiffid_core::math::spearman;
 pub use table4::paper_table4;
 pub use trials::StartTrial;

@@ -4,9 +4,11 @@
 //! paper's Fig. 8, for calibration).
 //!
 //! The simulation: the FANUC R-2000iC/165F preset with three measuring points, every parameter
-//! of the full geometric error model ([`Geometry::Full`]: frame, points, six errors a joint)
+//! of the full geometric error model ([`stiffid_metrology::calibration::Geometry::Full`]: frame,
+//! points, six errors a joint)
 //! drawn uniformly within +-1 mm or +-1 mrad, readings in a tracker frame with Gaussian noise
-//! (`noise` per coordinate), fitted by [`fit::fit`] from the registered nominal; the truth of a
+//! (`noise` per coordinate), fitted by [`stiffid_metrology::calibration::fit::fit`] from the
+//! registered nominal; the truth of a
 //! group is the RMS position error, at test postures, of its calibrated model against the true
 //! positions (the square root of the mean over `draws` noise draws of the squared RMS). Postures
 //! are drawn uniformly in the middle 60% of the joint ranges (at most +-150 deg), every stream

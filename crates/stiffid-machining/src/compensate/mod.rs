@@ -15,9 +15,9 @@
 //! weight too when the compliance carries a calibration's gravity terms
 //! ([`crate::weight`]), by Newton steps `q += J^-1 e` from the nominal posture
 //! (the first step is the classical `q - J^-1 J dq`), until the residual is below
-//! [`TOLERANCE_M`] and [`TOLERANCE_RAD`] ([`Stop::Converged`]) or for at most
+//! 1e-10 m and 1e-10 rad ([`Stop::Converged`]) or for at most
 //! [`Options::max_iterations`] steps ([`Stop::IterationLimit`]; success needs 0.1 micrometre and
-//! 1 microradian, [`REQUIRED_M`] and [`REQUIRED_RAD`]: a point stopped at the limit within them
+//! 1 microradian: a point stopped at the limit within them
 //! is kept, and the compensate job warns). The Jacobian neglects `d(dq)/dq`, so the convergence
 //! is linear with a rate of about `|dq|`: three or four steps.
 //!
@@ -66,7 +66,7 @@
 //! ## Refining the grid
 //! The grid's step is also the largest change between points, and a fine grid everywhere costs
 //! `states^2` transitions per point and a column of inverse kinematics per state. With
-//! [`Options::refine`] `= L` (at most [`refine::MAX_LEVELS`]) the line the dynamic programming
+//! [`Options::refine`] `= L` (at most 4) the line the dynamic programming
 //! chose on the grid is refined `L` times ([`refine`]): at each level every free axis' step is
 //! halved and the states at each point are the previous level's values plus `k` halved steps, `|k|
 //! <= 2` on every axis (a band of +-1 of the previous level's cells), within each axis' range, the
@@ -218,15 +218,16 @@ pub(crate) use stream::path_in_cones;
 pub use stream::{path, stream, CHUNK};
 pub use variables::{
     Aggregate, Free, FreeRange, FreeVariables, LeadTilt, Limits, Objective, Variable,
-    MAX_CONFIGURATION_POINTS,
 };
-pub(crate) use variables::{CONFIGURATION_SEEDS, LEAD_TILT_MAX_CONE_DEG, MAX_GRID_CELLS};
+pub(crate) use variables::{
+    CONFIGURATION_SEEDS, LEAD_TILT_MAX_CONE_DEG, MAX_CONFIGURATION_POINTS, MAX_GRID_CELLS,
+};
 /// The residual the Newton steps aim at, m.
-pub const TOLERANCE_M: f64 = 1e-10;
+pub(crate) const TOLERANCE_M: f64 = 1e-10;
 /// The residual rotation the Newton steps aim at, rad.
 pub(crate) const TOLERANCE_RAD: f64 = 1e-10;
 /// The residual a compensated point must reach: 0.1 micrometre.
-pub const REQUIRED_M: f64 = 1e-7;
+pub(crate) const REQUIRED_M: f64 = 1e-7;
 /// The residual rotation a compensated point must reach: 1 microradian.
 pub(crate) const REQUIRED_RAD: f64 = 1e-6;
 /// Newton steps at most per point, and the default of [`Options::max_iterations`].

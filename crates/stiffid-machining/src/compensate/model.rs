@@ -40,10 +40,10 @@ pub struct Newton {
     pub residual_rotation: f64,
     /// Newton steps taken.
     pub iterations: usize,
-    /// Why they stopped: [`Stop::Converged`], the residual below [`TOLERANCE_M`] and
-    /// [`TOLERANCE_RAD`]; or [`Stop::IterationLimit`], the most steps taken with the residual
-    /// above them (the point is accepted when it is within [`super::REQUIRED_M`] and
-    /// [`super::REQUIRED_RAD`], with a warning).
+    /// Why they stopped: [`Stop::Converged`], the residual below 1e-10 m and
+    /// 1e-10 rad; or [`Stop::IterationLimit`], the most steps taken with the residual
+    /// above them (the point is accepted when it is within 0.1 micrometre and
+    /// 1 microradian, with a warning).
     pub stop: Stop,
 }
 

@@ -66,7 +66,7 @@ pub struct Options {
     /// The variable of the map: the rotation about tool z (the default) or the track station.
     pub map_over: MapVariable,
     /// Levels of refinement of the free variables' grid around the line chosen on it, 0 to
-    /// [`super::refine::MAX_LEVELS`] (module docs of [`super`], "Refining the grid"); 0: the
+    /// 4 (module docs of [`super`], "Refining the grid"); 0: the
     /// grid alone.
     pub refine: usize,
 }

@@ -13,7 +13,7 @@ use stiffid_core::{Error, Result};
 
 /// The most levels of refinement (`--refine`): each halves the step, so 4 levels take a 5 deg
 /// grid to 0.3125 deg.
-pub const MAX_LEVELS: usize = 4;
+pub(crate) const MAX_LEVELS: usize = 4;
 /// Each level's band: the previous level's line plus or minus this many of its cells, on every
 /// axis (`4 BAND + 1` values of the halved step per axis).
 pub(crate) const BAND: usize = 1;
@@ -72,7 +72,7 @@ pub(crate) struct Line {
     pub external: Vec<ExternalValues>,
 }
 
-/// Refuses more than [`MAX_LEVELS`] levels, and a band of more cells than 5 000 000 or more
+/// Refuses more than 4 levels (`MAX_LEVELS`), and a band of more cells than 5 000 000 or more
 /// transitions than 2e9 on a grid of `axes` axes over `points` points.
 ///
 /// # Errors

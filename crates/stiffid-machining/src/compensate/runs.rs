@@ -31,7 +31,7 @@ pub fn starts(joint: &[bool]) -> Vec<usize> {
 /// `options` ([`super::path_on_track`]'s dynamic programming): [`path_runs`] with one run.
 ///
 /// # Errors
-/// [`Error::InvalidOption`](stiffid_core::Error::InvalidOption) for more than [`super::MAX_CONFIGURATION_POINTS`] points; [`Error::InvalidField`](stiffid_core::Error::InvalidField) (`free_configuration`)
+/// [`Error::InvalidOption`](stiffid_core::Error::InvalidOption) for more than 100 000 points; [`Error::InvalidField`](stiffid_core::Error::InvalidField) (`free_configuration`)
 /// without [`super::FreeVariables::configuration`]; when no configuration takes the path, the error of
 /// the path's own (those of [`super::path`] and [`super::path_on_track`]).
 pub fn path_configurations(

@@ -19,7 +19,7 @@ impl Options {
     /// [`Error::InvalidField`] naming the field, the value and the range;
     /// [`Error::InvalidOption`] for the free variables' ranges, steps and objective
     /// ([`super::FreeVariables::validate`]) and the feasibility's;
-    /// ([`JobOption::Refine`]) for more than [`super::refine::MAX_LEVELS`] levels, or levels
+    /// ([`JobOption::Refine`]) for more than 4 levels, or levels
     /// without a free variable whose grid they refine.
     pub fn validate(&self) -> Result<()> {
         limits::check(

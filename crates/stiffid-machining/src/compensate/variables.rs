@@ -298,7 +298,7 @@ pub(crate) const MAX_GRID_CELLS: f64 = 5e6;
 
 /// The most path points a free configuration evaluates (every configuration holds the whole
 /// path).
-pub const MAX_CONFIGURATION_POINTS: usize = 100_000;
+pub(crate) const MAX_CONFIGURATION_POINTS: usize = 100_000;
 
 /// Random starts of inverse kinematics that look for the configurations of the first point.
 pub(crate) const CONFIGURATION_SEEDS: usize = 128;

@@ -56,7 +56,7 @@
 //! rate `F` outside `(0, MAX_FEED]`, a spindle speed `S` outside `[0, 100000]` rev/min, an `M` code
 //! not a whole number from 0 to 999, a subprogram call or return (`M97`, `M98`, `M99`), a motion
 //! after the program's end (`M2`, `M30`), a work offset, home position or tool length the
-//! [`Machine`] does not give, and more than [`MAX_POINTS`] points.
+//! [`Machine`] does not give, and more than 1 000 000 points.
 //!
 //! ## What is written
 //! [`GCode::write`] keeps every line byte for byte but the motion blocks, where the `X Y Z I J K R`
@@ -88,7 +88,6 @@ pub use arc::ArcBlock;
 pub(crate) use cycles::Cycle;
 pub use machine::{GcodeDialect, Machine, ProgramFrames};
 pub use process::{Comment, ProcessWord};
-pub use words::MAX_FEED;
 
 use block::block;
 use nalgebra::{UnitQuaternion, Vector3};
@@ -101,7 +100,7 @@ use words::words;
 pub(super) const NO_MOTION: u8 = 80;
 
 /// The most path points (after splitting arcs).
-pub const MAX_POINTS: usize = 1_000_000;
+pub(crate) const MAX_POINTS: usize = 1_000_000;
 /// The most blocks (lines).
 pub(crate) const MAX_BLOCKS: usize = 1_000_000;
 /// The accepted chord tolerance, mm.
@@ -353,7 +352,7 @@ pub fn parse(text: &str, chord_tolerance: f64) -> Result<GCode> {
 /// the line for anything outside the subset, a malformed word, an arc off its circle, no tool
 /// orientation in the header or the setup, rotary words without `rotary = abc`, a work offset, home
 /// position or tool length `machine` lacks, a feed motion before every axis is known, no motion at
-/// all, or more than 1 000 000 lines or [`MAX_POINTS`] points.
+/// all, or more than 1 000 000 lines or `MAX_POINTS` points.
 pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<GCode> {
     stiffid_core::common::limits::check(
         "chord_tolerance_mm",

@@ -224,7 +224,7 @@ pub(super) fn comment(line: u64, text: &str, s: &mut State) -> Result<()> {
 }
 
 /// The largest feed rate `F` accepted (mm/min, or inch/min after `G20`).
-pub const MAX_FEED: f64 = 1e6;
+pub(crate) const MAX_FEED: f64 = 1e6;
 
 /// The largest spindle speed `S` accepted (rev/min), the process file's `spindle_rpm`'s.
 const MAX_SPINDLE_RPM: f64 = 1e5;

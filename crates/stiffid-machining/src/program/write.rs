@@ -25,7 +25,7 @@ impl JointProgram {
     /// targets, a row of `external` another shape than the target's values, or a value is not
     /// finite; [`Error::Program`] naming the line where two motions to one declared point would
     /// take different values, or of a Cartesian target of a program not resolved
-    /// ([`cartesian::resolve`]); [`Error::InvalidField`] (`data`) for a program whose data file
+    /// ([`crate::program::cartesian::resolve`]); [`Error::InvalidField`] (`data`) for a program whose data file
     /// changes, which only `JointProgram::write_pair` writes.
     pub fn write_with_external(
         &self,

@@ -137,7 +137,7 @@ fn feasibility_uses_the_hulls_and_the_broad_phase_keeps_every_smallest_margin() 
                 c.kind,
                 c.margin
             );
-            if c.margin < cell::FAR_MARGIN {
+            if c.margin < 0.1 {
                 assert_eq!(smallest, c.margin, "{} at {q:?}", c.kind);
                 exact_checks += 1;
             }

@@ -256,7 +256,7 @@ fn the_free_configuration_refuses_the_surge_and_too_long_paths_naming_itself() {
     let o = free_options(&s, Aggregate::Max);
     let compliance = s.model_compliance("test").unwrap();
     let one = line_path(&s, 1);
-    let long = vec![one[0].clone(); compensate::MAX_CONFIGURATION_POINTS + 1];
+    let long = vec![one[0].clone(); 100_000 + 1];
     match path_configurations(s.arm(), &compliance, &long, &o).unwrap_err() {
         Error::InvalidOption { option, message } => {
             assert_eq!(option, JobOption::Configuration);

@@ -7,7 +7,7 @@ use crate::common;
 use stiffid::internal::identify::Identify;
 
 use common::{assert_close, measurement_csv, noisy, synthetic};
-use stiffid::internal::identify::{self, BLOCK};
+use stiffid::internal::identify;
 use stiffid::internal::io::measurements;
 use stiffid::internal::observation::Observations;
 use stiffid::internal::setup;
@@ -17,6 +17,7 @@ fn blocks_equal_the_one_shot_qr_to_rounding() {
     let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
     // 1500 postures x 4 points: six blocks, the last one partial.
     let data = noisy(&setup, 1500, 1);
+    const BLOCK: usize = 1024; // the rows least squares takes a block at a time
     assert!(data.len() > 5 * BLOCK && !data.len().is_multiple_of(BLOCK));
     let blocks = identify::least_squares(setup.arm(), &data).unwrap();
     let whole = Observations::from_measurements(setup.arm(), &data)

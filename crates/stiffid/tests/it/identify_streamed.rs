@@ -12,6 +12,9 @@ use stiffid::internal::io::measurements::{self, Labels};
 use stiffid::internal::observation::Observations;
 use stiffid::{internal::setup, ColumnProblem, Error, Setup};
 
+/// The piece the measurement reader reads at a time, bytes (512 KiB).
+const PIECE_BYTES: usize = 1 << 19;
+
 const FANUC: &str = include_str!("../../../../examples/data/fanuc-r2000ic-165f/measurements.csv");
 
 /// The streamed identification of `text`.
@@ -70,7 +73,7 @@ fn a_file_of_many_chunks_streamed_equals_the_one_shot_qr_with_one_and_two_thread
     let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
     let text = synthetic_file(&setup, 6000, 5);
     // Several chunks of several pieces.
-    assert!(text.len() > 12 * measurements::PIECE_BYTES);
+    assert!(text.len() > 12 * PIECE_BYTES);
     let run = |threads: usize| {
         rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
@@ -163,7 +166,7 @@ fn labels_are_numbered_in_order_of_first_appearance() {
 fn a_chunk_of_nothing_but_comments_does_not_end_the_file() {
     let setup = setup::builtin("fanuc-r2000ic-165f").unwrap();
     // More than a chunk (8 pieces) of comment lines between rows 10 and 11.
-    let comments = "# a comment\n".repeat(10 * measurements::PIECE_BYTES / 12);
+    let comments = "# a comment\n".repeat(10 * PIECE_BYTES / 12);
     let mut lines: Vec<&str> = FANUC.lines().collect();
     lines.insert(11, comments.trim_end());
     let text = lines.join("\n") + "\n";

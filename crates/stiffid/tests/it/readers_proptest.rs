@@ -13,7 +13,12 @@ use crate::mutate;
 
 use mutate::{apply, edit, hostile_number, Edit, Tally};
 use proptest::prelude::*;
-use stiffid::internal::machining::gcode::{self, MAX_FEED, MAX_POINTS};
+use stiffid::internal::machining::gcode;
+
+/// The most points a G-code program or a path file gives, and the highest feed rate read
+/// (mm/min), as the reference states them.
+const MAX_POINTS: usize = 1_000_000;
+const MAX_FEED: f64 = 1e6;
 use stiffid::internal::machining::process;
 use stiffid::internal::observation::deflection::Frame;
 use stiffid::internal::robot::presets;
@@ -63,7 +68,7 @@ fn check_path(text: &str) -> bool {
     let Ok(points) = stiffid::internal::machining::path::parse(text, Frame::Base) else {
         return false;
     };
-    assert!(!points.is_empty() && points.len() <= stiffid::internal::machining::path::MAX_POINTS);
+    assert!(!points.is_empty() && points.len() <= MAX_POINTS);
     assert!(!holds_non_finite(&format!("{points:?}")), "{text}");
     true
 }

@@ -2,7 +2,6 @@
 //! independence of the thread count.
 
 use nalgebra::Vector6;
-use stiffid::internal::common::limits;
 use stiffid::internal::setup::{self, Noise};
 use stiffid::internal::study::simulate::{monte_carlo, monte_carlo_with_predictions, Options};
 
@@ -63,8 +62,8 @@ fn at_the_smallest_noise_the_stiffness_is_recovered_to_1e_7() {
         .unwrap()
         .to_builder()
         .with_noise(Noise {
-            reading_variance: (limits::READING_SD_MM.min * 1e-3).powi(2),
-            levels: vec![limits::LEVEL_MULTIPLE.min],
+            reading_variance: (1e-6f64 * 1e-3).powi(2), // the least reading sd, mm
+            levels: vec![1e-6],                         // the least level multiple
         })
         .build()
         .unwrap();
@@ -220,8 +219,8 @@ fn at_the_smallest_noise_a_virtual_spring_is_recovered() {
         .to_builder()
         .with_virtual_springs(tilt)
         .with_noise(Noise {
-            reading_variance: (limits::READING_SD_MM.min * 1e-3).powi(2),
-            levels: vec![limits::LEVEL_MULTIPLE.min],
+            reading_variance: (1e-6f64 * 1e-3).powi(2), // the least reading sd, mm
+            levels: vec![1e-6],                         // the least level multiple
         })
         .build()
         .unwrap();

@@ -58,7 +58,7 @@ impl std::fmt::Display for Range {
 
 /// Encoder pulses per degree (or per mm) of a controller's axis (`[controller] pulses_per_deg`,
 /// `external_pulses`; an INFORM job's `'stiffid:` comments): from 1e-6 to 1e9.
-pub const PULSES: Range = Range::new(1e-6, 1e9, "pulses per deg or mm");
+pub(crate) const PULSES: Range = Range::new(1e-6, 1e9, "pulses per deg or mm");
 
 /// An axis's largest speed in a robot, setup or URDF file (`max_speed_deg_s`, `max_speed_mm_s`):
 /// above 0, at most 10 000 deg/s or mm/s (`check_speeds`).
@@ -156,7 +156,7 @@ pub(crate) const LOAD_N: Range = Range::new(1e-3, 1e7, "N");
 pub const WRENCH: Range = Range::new(-1e7, 1e7, "N or Nm");
 
 /// The standard deviation of one coordinate of one tracker reading (`[noise] reading_sd_mm`).
-pub const READING_SD_MM: Range = Range::new(1e-6, 1e2, "mm");
+pub(crate) const READING_SD_MM: Range = Range::new(1e-6, 1e2, "mm");
 
 /// A calibration prior's nominal tolerance of the joints' length errors (`--tolerance-mm`).
 pub const TOLERANCE_MM: Range = Range::new(1e-6, 1e3, "mm");
@@ -176,7 +176,7 @@ pub const MARGIN_MM: Range = Range::new(0.0, 1e3, "mm");
 pub(crate) const VARIANCE_MM2: Range = Range::new(1e-12, 1e4, "mm^2");
 
 /// A noise level, as a multiple of the variance.
-pub const LEVEL_MULTIPLE: Range = Range::new(1e-6, 1e6, "");
+pub(crate) const LEVEL_MULTIPLE: Range = Range::new(1e-6, 1e6, "");
 
 /// The characteristic length `L` of the dexterity index (Eq. 20).
 pub const CHARACTERISTIC_LENGTH_MM: Range = Range::new(1.0, 1e5, "mm");
@@ -290,9 +290,9 @@ pub(crate) const MAX_XML_DEPTH: usize = 64;
 
 /// Longest text of a value quoted in an error message, in characters; longer ones are cut with
 /// an ellipsis.
-pub const MAX_QUOTED_CHARS: usize = 60;
+pub(crate) const MAX_QUOTED_CHARS: usize = 60;
 
-/// `text` cut to [`MAX_QUOTED_CHARS`] characters with an ellipsis, for error messages.
+/// `text` cut to `MAX_QUOTED_CHARS` characters with an ellipsis, for error messages.
 pub fn short(text: &str) -> String {
     cut(text, MAX_QUOTED_CHARS)
 }
@@ -301,7 +301,7 @@ pub fn short(text: &str) -> String {
 pub(crate) const MAX_MESSAGE_CHARS: usize = 600;
 
 /// A (parser's) multi-line message on one line for people: blank and `|` lines dropped, every word
-/// longer than [`MAX_QUOTED_CHARS`] cut ([`short`]), the whole at most `MAX_MESSAGE_CHARS`, so a
+/// longer than `MAX_QUOTED_CHARS` cut ([`short`]), the whole at most `MAX_MESSAGE_CHARS`, so a
 /// 5 MB field never becomes a 5 MB message.
 pub fn one_line(message: &str) -> String {
     one_line_within(message, MAX_QUOTED_CHARS, MAX_MESSAGE_CHARS)

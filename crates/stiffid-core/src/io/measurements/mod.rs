@@ -24,7 +24,7 @@
 //!
 //! [`Reader`] reads a file of any size from a [`BufRead`] chunk by chunk (`Reader::next_chunk`):
 //! the text is never whole, and the lines of a chunk are parsed in parallel (pieces of
-//! [`PIECE_BYTES`] at line boundaries, results in file order: the same whatever the number of
+//! `PIECE_BYTES` at line boundaries, results in file order: the same whatever the number of
 //! threads). [`parse`] is the reader over a `&str`.
 
 mod columns;
@@ -45,7 +45,7 @@ use std::io::BufRead;
 
 /// Bytes of text parsed by one task: a chunk's text is cut into pieces of about this size, each
 /// ending at a line end, parsed in parallel.
-pub const PIECE_BYTES: usize = 1 << 19;
+pub(crate) const PIECE_BYTES: usize = 1 << 19;
 
 /// Pieces per chunk ([`Reader::next_chunk`]): a chunk holds about 4 MiB of text.
 const PIECES: usize = 4;

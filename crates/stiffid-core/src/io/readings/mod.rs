@@ -27,7 +27,7 @@
 //!   tracker already registered).
 //! - Load steps (optional, for identification: `stiffid_identify::steps`): `load_step` (the step's number,
 //!   an integer in `0..=1000`, 0 unloaded) or `load_n` (the nominal load, N, within
-//!   `[0, `[`crate::common::limits::LOAD_N`]`]`, 0 unloaded), with the wrench at the loading point
+//!   `[0, 1e7]` N, 0 unloaded), with the wrench at the loading point
 //!   `fx_n,fy_n,fz_n[,mx_nm,my_nm,mz_nm]` in the base frame or `fx_tool_n,...[,mx_tool_nm,...]` in
 //!   the tool (flange) frame (moments optional, zero when absent; forces and moments within
 //!   [`crate::common::limits::WRENCH`]). Load and force columns come together.
@@ -201,7 +201,7 @@ pub fn has_load_column(header_line: &str) -> bool {
 /// suggestion), repeated, missing or conflicting columns, a row with another field count, a value
 /// that is not a finite number, an empty label, a point that is not 1..=`points`, an angle outside
 /// the joint limits, a coordinate outside [`limits::LENGTH_MM`], a load step that is not an integer
-/// in `0..=1000`, a load outside `[0, `[`limits::LOAD_N`]`]`, a force or moment outside
+/// in `0..=1000`, a load outside `[0, 1e7]` N, a force or moment outside
 /// [`limits::WRENCH`], a posture label at two sets of axis angles, a point read twice in one
 /// posture (without load steps), no rows or more than [`MAX_READINGS`].
 ///

@@ -193,7 +193,7 @@ pub struct Fit {
 /// Fits `model` to `observations` from `start` (module docs).
 ///
 /// # Errors
-/// [`Error::InvalidField`] (`readings`) with no reading, more than [`MAX_READINGS`], a
+/// [`Error::InvalidField`] (`readings`) with no reading, more than 100 000, a
 /// non-finite reading, or fewer coordinates than fitted parameters plus one;
 /// [`Error::InvalidField`] (`options`) for a non-positive length or prior; those of
 /// [`ErrorModel::jacobian`] and [`identifiability::analyse`]; [`Error::NotFinite`] when the fit

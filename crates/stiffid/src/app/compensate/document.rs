@@ -556,11 +556,8 @@ impl Summary {
     }
 
     /// A warning ([`WarningKind::NotConverged`]) when some point's Newton steps stopped at their
-    /// limit of `max_iterations` before the residual fell below
-    /// [`stiffid_machining::compensate::TOLERANCE_M`] and
-    /// 1e-10 rad: the points are kept (within
-    /// [`stiffid_machining::compensate::REQUIRED_M`] and
-    /// 1 microradian), their compensation less exact.
+    /// limit of `max_iterations` before the residual fell below 1e-10 m and 1e-10 rad: the
+    /// points are kept (within 0.1 micrometre and 1 microradian), their compensation less exact.
     pub(crate) fn stop_warning(&self, max_iterations: usize) -> Option<Warning> {
         let (n, lines) = (self.not_converged, &self.not_converged_lines);
         (n > 0).then(|| {

@@ -125,7 +125,7 @@ fn kept_margins_are_the_plain_ones_less_the_margin_with_exact_gradients() {
             let obstacle = matches!(a.between.1, stiffid_core::cell::Thing::Obstacle(_));
             let exact = a.kind.is_angle()
                 || (line && obstacle)
-                || a.margin < stiffid_core::cell::FAR_MARGIN
+                || a.margin < 0.1
                 || matches!(
                     a.kind,
                     CheckKind::LoadingPointHeight | CheckKind::AnchorBelow
