@@ -11,6 +11,7 @@ mod commands;
 mod common;
 mod compensate_cli;
 mod completions;
+mod doc_tables;
 mod documents_renamed;
 mod extrapolation_cli;
 mod fixed_part_cli;
