@@ -293,6 +293,10 @@ pub struct Report {
     /// Its data file compensated, for a robot program read with one whose targets may live
     /// there (KRL's `.dat`, [`program::parse_with_data`]): written beside the program, together.
     pub data: Option<String>,
+    /// The programs of the controller's backup it calls that move (an LS `CALL`), each
+    /// compensated in place: the file's name as given and its text, to be written beside the
+    /// program under its name.
+    pub called: Vec<(String, String)>,
     /// What the user should know: plunges without a milling force, points no operation covers.
     pub warnings: Vec<String>,
     /// With a free configuration ([`compensate::FreeVariables::configuration`]): every
@@ -416,7 +420,7 @@ pub fn compensate_for(
         _ => placements,
     };
     let at = (arm, workpiece);
-    let (program, data) = write_back(
+    let (program, data, called) = write_back(
         controller,
         at,
         program,
@@ -432,6 +436,7 @@ pub fn compensate_for(
         operations: indices,
         program,
         data,
+        called,
         warnings,
         configurations,
     })
@@ -447,7 +452,7 @@ fn write_back(
     program: &Program,
     results: &[Compensated],
     (placements, free): (Option<&[cell::Placement]>, bool),
-) -> Result<(String, Option<String>)> {
+) -> Result<program::Written> {
     Ok(match program {
         Program::Robot(p) => {
             let q: Vec<[f64; 6]> = results
@@ -460,12 +465,12 @@ fn write_back(
                         .iter()
                         .map(|p| p.external.as_slice().to_vec())
                         .collect();
-                    p.write_pair(&q, &program::external::program_values(p, &e, axes))?
+                    p.write_files(&q, &program::external::program_values(p, &e, axes))?
                 }
                 _ => {
                     let e: Vec<Vec<Option<f64>>> =
                         p.targets.iter().map(|t| t.external.clone()).collect();
-                    p.write_pair(&q, &e)?
+                    p.write_files(&q, &e)?
                 }
             }
         }
@@ -496,9 +501,9 @@ fn write_back(
                     let e: Vec<Vec<f64>> = (placements.into_iter().flatten())
                         .map(|p| axes.to_display(p.external.as_slice()))
                         .collect();
-                    (g.write_with_external(&positions, &e)?, None)
+                    (g.write_with_external(&positions, &e)?, None, Vec::new())
                 }
-                _ => (g.write(&positions)?, None),
+                _ => (g.write(&positions)?, None, Vec::new()),
             }
         }
     })

@@ -36,6 +36,10 @@ pub struct Read {
     pub units: Units,
     /// The motions left as found ([`super::Context::leave_refused`]).
     pub left: Vec<super::Left>,
+    /// The programs of the controller's backup the program calls that move (LS `CALL`): each
+    /// file's name as given and its text, in the order their texts follow the program's (and its
+    /// data file's) in the spans of `targets` ([`super::JointProgram::called`]).
+    pub called: Vec<(String, String)>,
 }
 
 /// How a target's bound is written as a comment (`app::compensate::certify`).

@@ -47,8 +47,9 @@
 //! assigned at run time (unless the backup's files, [`Context::backup`], declare it), a search
 //! or triggered motion (RAPID `SearchL`, `TriggL`, `MoveLDO`). KRL and RAPID read a motion inside
 //! a loop or branch, or in another routine of the file, where it is (what it moves with followed
-//! along every path, [`paths`]); LS and INFORM refuse jumps, loops, branches and calls in a
-//! program with motions (the order the controller runs would not be the file's).
+//! along every path, [`paths`]); LS and INFORM follow their labels, jumps, branches and loops
+//! the same way (LS over its order of run, [`ls`]) and refuse a call of a program that may move
+//! between two motions.
 //!
 //! The targets come in the order of the motion instructions, which is the order the path follows; a
 //! declared point moved to twice is one target per visit. [`JointProgram::write`] replaces the six
@@ -70,6 +71,7 @@ mod controller;
 mod descriptor;
 mod ends;
 pub mod external;
+mod files;
 pub mod generate;
 pub mod inform;
 pub mod krl;
@@ -80,6 +82,8 @@ pub mod rapid;
 pub mod rename;
 pub mod speed;
 mod write;
+pub use files::{read_backup, read_files};
+pub use write::Written;
 
 pub(crate) use super::text::lines;
 pub use super::text::number_at;
@@ -291,6 +295,10 @@ pub struct JointProgram {
     data_at: Option<usize>,
     /// The motions left as found ([`Context::leave_refused`]), in the order of their lines.
     pub left: Vec<Left>,
+    /// The programs of the controller's backup it calls that move, each compensated in place in
+    /// its own file: the file's name as given and where its text begins in `text` (after the
+    /// program's and its data file's).
+    called: Vec<(String, usize)>,
 }
 
 /// What the setup says of a program that the program itself does not: the controller's
@@ -374,70 +382,6 @@ impl Left {
             point: target.point.as_deref().cloned(),
         }
     }
-}
-
-/// The text of the program at `path`, of its `.dat` when it is a KRL program with one beside it
-/// (`krl::data_beside`), and the encoding they were read in: UTF-8, else Latin-1
-/// ([`stiffid_core::io::program_texts`]). `read` gives a file's bytes (a front end's reading,
-/// with the file's name in its error); `wrap` turns a text's error into the caller's.
-///
-/// # Errors
-/// Those of `read`, and of [`stiffid_core::io::program_texts`] through `wrap`.
-pub fn read_files<E>(
-    path: &std::path::Path,
-    mut read: impl FnMut(&std::path::Path) -> std::result::Result<Vec<u8>, E>,
-    wrap: impl Fn(Error) -> E,
-) -> std::result::Result<(String, Option<String>, stiffid_core::io::Encoding), E> {
-    let data = krl::data_beside(path);
-    let mut files = Vec::new();
-    for p in [Some(path), data.as_deref()].into_iter().flatten() {
-        files.push((p.display().to_string(), read(p)?));
-    }
-    let named = files.iter().map(|(n, b)| (n.as_str(), b.clone())).collect();
-    let (mut texts, encoding) = stiffid_core::io::program_texts(named).map_err(wrap)?;
-    let data = (texts.len() == 2).then(|| texts.remove(1));
-    Ok((texts.remove(0), data, encoding))
-}
-
-/// The files of a controller's backup given with a program of `dialect` (`paths`: files, or
-/// folders whose files of the language's backup extensions are read,
-/// [`stiffid_core::io::input::files_under`]), each named as found and its text (UTF-8, else
-/// Latin-1). `read` gives a file's bytes (a front end's reading, with the file's name in its
-/// error); `wrap` turns a listing's or a text's error into the caller's.
-///
-/// # Errors
-/// Those of `read`; a path that cannot be listed, or a file that is not text, through `wrap`.
-pub fn read_backup<E>(
-    paths: &[std::path::PathBuf],
-    dialect: Dialect,
-    mut read: impl FnMut(&std::path::Path) -> std::result::Result<Vec<u8>, E>,
-    wrap: impl Fn(Error) -> E,
-) -> std::result::Result<Vec<(String, String)>, E> {
-    let extensions = dialect.controller().backup_extensions();
-    let wanted = |name: &str| {
-        let e = name
-            .rsplit_once('.')
-            .map_or("", |(_, e)| e)
-            .to_ascii_lowercase();
-        extensions.contains(&e.as_str())
-    };
-    let mut out = Vec::new();
-    for path in paths {
-        let files = stiffid_core::io::input::files_under(path, &wanted).map_err(|e| {
-            wrap(Error::Parse {
-                source_name: path.display().to_string(),
-                message: format!("the controller's backup: {e}"),
-            })
-        })?;
-        for file in files {
-            let name = file.display().to_string();
-            let bytes = read(&file)?;
-            let (mut texts, _) =
-                stiffid_core::io::program_texts(vec![(name.as_str(), bytes)]).map_err(&wrap)?;
-            out.push((name, texts.remove(0)));
-        }
-    }
-    Ok(out)
 }
 
 impl<'a> Context<'a> {
@@ -571,6 +515,7 @@ pub fn parse_in(text: &str, dialect: Dialect, context: &Context) -> Result<Joint
         pulses,
         units,
         mut left,
+        called,
     } = dialect.controller().read_in(text, context)?;
     left.sort_by_key(|l| l.line);
     for t in &mut targets {
@@ -603,6 +548,12 @@ pub fn parse_in(text: &str, dialect: Dialect, context: &Context) -> Result<Joint
             format!("more than {MAX_TARGETS} joint targets"),
         ));
     }
+    let mut all = [text, context.data.unwrap_or("")].concat();
+    let mut starts = Vec::with_capacity(called.len());
+    for (name, t) in called {
+        starts.push((name, all.len()));
+        all.push_str(&t);
+    }
     Ok(JointProgram {
         dialect,
         targets,
@@ -610,9 +561,10 @@ pub fn parse_in(text: &str, dialect: Dialect, context: &Context) -> Result<Joint
         pulses,
         units,
         writer: None,
-        text: [text, context.data.unwrap_or("")].concat(),
+        text: all,
         data_at: context.data.map(|_| text.len()),
         left,
+        called: starts,
     })
 }
 

@@ -1,6 +1,10 @@
 //! A program's targets read and written back: [`JointProgram`]'s methods.
 
 use super::{at, points, whole_pulses, JointProgram, JointTarget, DECIMALS};
+
+/// A program written back: its text, its data file's (KRL's `.dat`), and each program of the
+/// backup it calls that moves, its file's name as given and its text.
+pub type Written = (String, Option<String>, Vec<(String, String)>);
 use stiffid_core::{Error, Result};
 
 impl JointProgram {
@@ -58,6 +62,21 @@ impl JointProgram {
         q_deg: &[[f64; 6]],
         external: &[Vec<Option<f64>>],
     ) -> Result<(String, Option<String>)> {
+        let (program, data, _) = self.write_files(q_deg, external)?;
+        Ok((program, data))
+    }
+
+    /// [`JointProgram::write_pair`], and each program of the backup it calls that moves
+    /// ([`JointProgram::called_in`]): its file's name as given and its text, compensated in
+    /// place.
+    ///
+    /// # Errors
+    /// Those of [`JointProgram::write_pair`].
+    pub fn write_files(
+        &self,
+        q_deg: &[[f64; 6]],
+        external: &[Vec<Option<f64>>],
+    ) -> Result<Written> {
         if q_deg.len() != self.targets.len() || q_deg.iter().flatten().any(|v| !v.is_finite()) {
             return Err(Error::InvalidField {
                 field: "q_deg".into(),
@@ -123,8 +142,12 @@ impl JointProgram {
         edits.sort_by_key(|e| e.0.start);
         let mut out = String::with_capacity(self.text.len() + self.targets.len() * 24);
         let mut at = 0;
-        // How much the program's own text grew, to find where the data file's begins.
-        let mut grown: isize = 0;
+        // Where each file after the program's begins (its data file's, each called program's)
+        // and how much the text before it grew.
+        let mut files: Vec<(usize, isize)> = (self.data_at.into_iter())
+            .chain(self.called.iter().map(|(_, a)| *a))
+            .map(|a| (a, 0))
+            .collect();
         for (j, (span, i, text, changed)) in edits.iter().enumerate() {
             if let Some((_, first, other, _)) = edits[..j].last().filter(|e| e.0 == *span) {
                 if other != text {
@@ -144,19 +167,29 @@ impl JointProgram {
                 out.push_str(&self.text[at..span.start]);
                 out.push_str(text);
                 at = span.end;
-                if self.data_at.is_some_and(|d| span.end <= d) {
-                    grown += text.len() as isize - span.len() as isize;
+                for (_, grown) in files.iter_mut().filter(|(a, _)| span.end <= *a) {
+                    *grown += text.len() as isize - span.len() as isize;
                 }
             }
         }
         out.push_str(&self.text[at..]);
-        Ok(match self.data_at {
-            None => (out, None),
-            Some(d) => {
-                let data = out.split_off((d as isize + grown) as usize);
-                (out, Some(data))
-            }
-        })
+        Ok(self.split_files(out, &files))
+    }
+
+    /// The text written `out` split into its files: the program's, its data file's, each called
+    /// program's (`files`: where each file after the program's began in the text read, and how
+    /// much the text before it grew).
+    fn split_files(&self, mut out: String, files: &[(usize, isize)]) -> Written {
+        let mut called = Vec::with_capacity(self.called.len());
+        for (k, (name, _)) in self.called.iter().enumerate().rev() {
+            let (start, grown) = files[files.len() - self.called.len() + k];
+            let text = out.split_off((start as isize + grown) as usize);
+            called.push((name.clone(), text));
+        }
+        called.reverse();
+        let data = (self.data_at.map(|d| files[0].1 + d as isize))
+            .map(|start| out.split_off(start as usize));
+        (out, data, called)
     }
 
     /// Per value (the six axes, then the external ones), the pulses per degree or mm of a value

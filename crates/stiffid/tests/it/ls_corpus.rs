@@ -87,9 +87,10 @@ const CORPUS: [(&str, Outcome); 13] = [
             "UFRAME[9:STRIP_DRILL]=PR[9]: the program sets a frame's value",
         ),
     ),
+    // Its loop is followed; its tool frame 2 is not in the setup's table.
     (
         "wilder_robot_repeatability.ls",
-        Refused(29, "JMP LBL[1]: a jump"),
+        Refused(31, "frame number 2 of the controller's tools"),
     ),
     // A tool frame the setup's table does not give.
     (
@@ -118,6 +119,20 @@ pub(crate) fn compensated_with(
     options: Options,
     (name, text): (&str, &str),
 ) -> stiffid::Result<(String, Vec<Compensated>)> {
+    let (out, results, _) = compensated_in(s, compliance, options, (name, text), &[])?;
+    Ok((out, results))
+}
+
+/// [`compensated_with`] with the controller backup's files `backup`: the program written, each
+/// target's compensation, and the programs it calls written beside it (name and text).
+#[allow(clippy::type_complexity)]
+pub(crate) fn compensated_in(
+    s: &Setup,
+    compliance: &stiffid::internal::model::Compliance,
+    options: Options,
+    (name, text): (&str, &str),
+    backup: &[(String, String)],
+) -> stiffid::Result<(String, Vec<Compensated>, Vec<(String, String)>)> {
     let process = stiffid::internal::machining::process::file::parse(
         include_str!("../../../../examples/milling/aluminium.toml"),
         "aluminium.toml",
@@ -129,7 +144,10 @@ pub(crate) fn compensated_with(
         compliance: compliance.clone(),
         input: Input::Program {
             encoding: Default::default(),
-            reading: Default::default(),
+            reading: stiffid::internal::machining::program::Reading {
+                backup,
+                leave_refused: false,
+            },
             name: name.into(),
             text,
             data: None,
@@ -148,10 +166,11 @@ pub(crate) fn compensated_with(
         results.extend_from_slice(r);
         Ok(())
     })?;
-    Ok((
-        crate::common::program_text(report.report.program.unwrap()),
-        results,
-    ))
+    let program = report.report.program.unwrap();
+    let called = (program.subprograms.iter())
+        .map(|f| (f.name.clone(), f.text.clone()))
+        .collect();
+    Ok((crate::common::program_text(program), results, called))
 }
 
 /// A position of `/POS` as the file gives it: its frame numbers and its six numbers (`X`..`R`
@@ -385,5 +404,128 @@ fn a_circular_motion_is_compensated_at_its_via_point_and_its_end() {
     assert!(
         out.contains("   9:C P[4]    \n    :  P[5] 100mm/sec CNT100    ;\n"),
         "{out}"
+    );
+}
+
+/// `rpi_tmpa.ls` with its motions inside a loop and a branch (`LBL`, `IF ..,JMP`, `IF .. THEN`,
+/// `ELSE`, `ENDIF`): each motion compensated where it is, to the very posture the same motion
+/// takes in the straight program; every line but the numbers of its positions written as read.
+#[test]
+fn a_motion_inside_a_branch_or_loop_is_compensated_as_the_same_motion_outside_it() {
+    let s = setup();
+    let straight = std::fs::read_to_string(format!("{DIR}rpi_tmpa.ls")).unwrap();
+    let branched = straight
+        .replace(
+            "   3:J P[1] 100% FINE ;",
+            "   3:  LBL[1] ;\n   4:  IF R[1]=1,JMP LBL[2] ;\n   5:J P[1] 100% FINE ;\n   6:  IF (DI[1]=ON) THEN ;",
+        )
+        .replace(
+            "   5:L P[3] 50mm/sec FINE ;",
+            "   7:L P[3] 50mm/sec FINE ;\n   8:  ELSE ;\n   9:  WAIT 1.00(sec) ;\n  10:  ENDIF ;\n  11:  JMP LBL[1] ;\n  12:  LBL[2] ;",
+        );
+    assert_ne!(straight, branched);
+    let (out_a, a) = compensated(&s, "TMPA.ls", &straight).unwrap();
+    let (out_b, b) = compensated(&s, "TMPA.ls", &branched).unwrap();
+    assert_eq!(a.len(), 3);
+    let q = |r: &[Compensated]| -> Vec<_> { r.iter().map(|c| c.q_compensated).collect() };
+    assert_eq!(q(&a), q(&b));
+    assert!(
+        a.iter().any(|c| c.q_compensated != c.q),
+        "a loaded path moves"
+    );
+    let pos = |t: &str| t[t.find("/POS").unwrap()..].to_string();
+    assert_eq!(pos(&out_a), pos(&out_b));
+    assert!(out_b.contains("  11:  JMP LBL[1] ;"));
+}
+
+/// A user frame selected on one path only: the Cartesian position after the paths meet is
+/// refused naming both selections; `--leave-refused` leaves those as found, named, and reads
+/// the others.
+#[test]
+fn a_frame_selected_on_one_path_only_is_refused_naming_both_lines() {
+    let s = setup();
+    let straight = std::fs::read_to_string(format!("{DIR}rpi_tmpa.ls")).unwrap();
+    let text = straight.replace(
+        "   4:L P[2] 50mm/sec CNT100 ;",
+        "   4:  IF R[1]=1,JMP LBL[1] ;\n   4:  UFRAME_NUM=0 ;\n   4:  LBL[1] ;\n   4:L P[2] 50mm/sec CNT100 ;",
+    );
+    let e = compensated(&s, "TMPA.ls", &text).unwrap_err();
+    let (line, why) = refusal(&e);
+    assert_eq!(line, 11, "{why}");
+    assert!(
+        why.contains("UFRAME_NUM=1 (line 5)") && why.contains("UFRAME_NUM=0 (line 9)"),
+        "{why}"
+    );
+    let backup = [];
+    let context = stiffid::internal::machining::program::Context::of(&s)
+        .with_backup(&backup)
+        .with_leave_refused(true);
+    let p =
+        stiffid::internal::machining::program::parse_in(&text, Dialect::FanucLs, &context).unwrap();
+    // Both Cartesian positions after the paths meet are in the frame the path decides.
+    assert_eq!(p.left.iter().map(|l| l.line).collect::<Vec<_>>(), [11, 12]);
+    assert_eq!(p.targets.iter().map(|t| t.line).collect::<Vec<_>>(), [7]);
+}
+
+/// The files of the drilling cell's controller backup kept beside the corpus: `SYSFRAME.VA` and
+/// the program `PLCHANDSHAKE.LS` its programs call.
+fn wilder_backup() -> Vec<(String, String)> {
+    ["plchandshake.ls", "sysframe.va"]
+        .iter()
+        .map(|f| {
+            let name = format!("wilder-backup/{f}");
+            (
+                name.clone(),
+                std::fs::read_to_string(format!("{DIR}{name}")).unwrap(),
+            )
+        })
+        .collect()
+}
+
+/// A program of the drilling cell read with its controller's backup: its user frame 4 and tool
+/// frame 2 taken from `SYSFRAME.VA` as the controller holds them, the program it calls after its
+/// last motion (`PLCHANDSHAKE.LS`, I/O) passed over; compensation refused naming the position's
+/// line, since the cell's tool 2 is not the setup's.
+#[test]
+fn the_drilling_cells_backup_gives_its_frames_and_its_called_program() {
+    use stiffid::internal::machining::program::{cartesian::Frame, parse_in, Context};
+    let s = setup();
+    let backup = wilder_backup();
+    let name = "wilder_tool_1_dropoff_aproach.ls";
+    let text = std::fs::read_to_string(format!("{DIR}{name}")).unwrap();
+    let p = parse_in(
+        &text,
+        Dialect::FanucLs,
+        &Context::of(&s).with_backup(&backup),
+    )
+    .unwrap();
+    assert_eq!(p.targets.len(), 4);
+    for t in &p.targets {
+        let c = t.cartesian.as_deref().unwrap();
+        let (Frame::Held(_, 4, user, _), Frame::Held(_, 2, tool, _)) = (&c.frame, &c.tool) else {
+            panic!("{:?} {:?}", c.frame, c.tool);
+        };
+        // SYSFRAME.VA's $MNUFRAME[1,4] and $MNUTOOL[1,2], m.
+        let (u, k) = (user.translation.vector * 1e3, tool.translation.vector * 1e3);
+        assert!(
+            (u - Vector3::new(-819.252, -3360.795, -643.547)).norm() < 1e-9,
+            "{u}"
+        );
+        assert!((k - Vector3::new(0.0, -250.8, 152.8)).norm() < 1e-9, "{k}");
+        assert_eq!(p.called_in(0), None);
+    }
+    let compliance = stiffid::internal::io::stiffness::parse(include_str!(
+        "../../../../examples/milling/stiffness.json"
+    ))
+    .unwrap()
+    .compliance(s.model())
+    .unwrap();
+    let options = Options::for_setup(&s);
+    let e = compensated_in(&s, &compliance, options, (name, &text), &backup).unwrap_err();
+    let (line, why) = refusal(&e);
+    assert_eq!(line, 40, "{why}");
+    assert!(
+        why.contains("the program's tool (X 0 mm, Y -250.8 mm, Z 152.8 mm"),
+        "{why}"
     );
 }

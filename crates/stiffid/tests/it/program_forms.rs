@@ -142,13 +142,15 @@ fn ls_cases() -> Vec<(String, Reads)> {
         (ls("   1:  UFRAME[1]=PR[1] ;\n   2:J P[1] 100% FINE ;", &pos), Refused(4, "sets a frame's value")),
         (ls("   1:J P[1] 100% FINE ;\n   2:  END ;\n   3:L P[2] 50mm/sec FINE ;", &pos), Refused(5, "the program ends here")),
         (ls("   1:J P[1] 100% FINE ;\n   2:  Weave Sine[1] ;\n   3:L P[2] 50mm/sec FINE ;\n   4:  Weave End ;", &pos), Refused(5, "weave across the path")),
-        (ls("   1:LBL[1] ;\n   2:J P[1] 100% FINE ;\n   3:JMP LBL[1] ;", &pos), Refused(6, "jump")),
+        // A loop: its motion read where it is.
+        (ls("   1:LBL[1] ;\n   2:J P[1] 100% FINE ;\n   3:JMP LBL[1] ;", &pos), Targets(&[(5, Q1)])),
+        (ls("   1:J P[1] 100% FINE ;\n   2:  JMP LBL[1] ;\n   3:L P[2] 50mm/sec FINE ;\n   4:  LBL[1] ;", &pos), Refused(5, "JMP LBL[1]: the motion on line 6 after it is reached by no path")),
         // ArcTool touch sensing shifts the motions up to its end by an offset found at run time.
         (ls("   1:J P[1] 100% FINE ;\n   2:  Touch Offset PR[20] ;\n   3:L P[2] 50mm/sec FINE ;\n   4:  Touch Offset End ;", &pos), Refused(5, "Touch Offset PR[20]: touch sensing (ArcTool) shifts every motion after it")),
         (ls("   1:J P[1] 100% FINE ;\n   2:L P[2] 50mm/sec FINE ;\n   3:  Touch Offset End ;", &pos), Targets(&[(4, Q1), (5, Q2)])),
         // A program in German: its keywords read as their English twins.
-        (ls("   1:  LABEL[1] ;\n   2:J P[1] 100% FINE ;\n   3:L P[2] 500mm/sek FINE ;\n   4:  WENN (F[1]),SPRUNG LABEL[1] ;", &pos), Refused(7, "WENN (F[1]),SPRUNG LABEL[1]: a jump")),
-        (ls("   1:J P[1] 100% FINE ;\n   2:  SONST,SPRUNG LABEL[2] ;\n   3:L P[2] 50mm/sec FINE ;", &pos), Refused(5, "a jump")),
+        (ls("   1:  LABEL[1] ;\n   2:J P[1] 100% FINE ;\n   3:L P[2] 500mm/sek FINE ;\n   4:  WENN (F[1]),SPRUNG LABEL[1] ;", &pos), Targets(&[(5, Q1), (6, Q2)])),
+        (ls("   1:J P[1] 100% FINE ;\n   2:  SONST,SPRUNG LABEL[2] ;\n   3:L P[2] 50mm/sec FINE ;", &pos), Refused(5, "no LBL[2] in the program")),
         (ls("   1:J P[1] 100% FINE ;\n   2:  AUFRUF MAKRO000 ;\n   3:L P[2] 50mm/sec FINE ;", &pos), Refused(5, "AUFRUF MAKRO000: a call between two motions")),
         (ls("   1:J P[1] 100% FINE ;\n   2:  ENDE ;\n   3:L P[2] 50mm/sec FINE ;", &pos), Refused(5, "the program ends here")),
         (ls("   1:J P[1] 100% FINE ;\n   2:L P[2] 10mm/sek CNT0 ACC250 Interrupt,LABEL[1] ;", &pos), Refused(5, "INTERRUPT,LABEL[1]: a jump")),

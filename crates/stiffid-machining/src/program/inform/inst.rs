@@ -20,12 +20,15 @@ pub(super) struct Motion {
     pub tool: Option<u32>,
 }
 
-/// What `//INST` holds: the `'stiffid:` comments, the motions, and the jumps, calls, loops and
-/// branches (each its line, word and text).
+/// What `//INST` holds: the `'stiffid:` comments, the motions, the jumps, calls, loops and
+/// branches (each its line, word and text), the labels (`*NAME`, upper case, and line) and the
+/// first `WVON`'s line.
 pub(super) struct Instructions {
     pub directives: Directives,
     pub motions: Vec<Motion>,
     pub control: Vec<(u64, String, String)>,
+    pub labels: Vec<(String, u64)>,
+    pub weaves: Option<u64>,
 }
 
 /// Instructions that cannot move the robot or change a frame: input and output, timers and
@@ -76,6 +79,8 @@ pub(super) fn instructions(text: &str) -> Result<Instructions> {
         directives: Directives::default(),
         motions: Vec::new(),
         control: Vec::new(),
+        labels: Vec::new(),
+        weaves: None,
     };
     let (mut in_inst, mut last) = (false, None::<(u64, String)>);
     let mut weaving: Option<(u64, String)> = None;
@@ -104,7 +109,8 @@ pub(super) fn instructions(text: &str) -> Result<Instructions> {
             continue;
         }
         if first.starts_with('*') {
-            // A label: where a JUMP goes, refused below when the job has one.
+            // A label: where a JUMP goes ([`super::calls`]).
+            out.labels.push((first, line));
             continue;
         }
         if CONTROL.contains(&first.as_str()) || first.starts_with("MACRO") {
@@ -119,6 +125,7 @@ pub(super) fn instructions(text: &str) -> Result<Instructions> {
                 out.motions.push(motion(line, &first, &words[1..])?);
             }
             "WVON" => {
+                out.weaves.get_or_insert(line);
                 weaving.get_or_insert((line, t.to_string()));
             }
             "WVOF" => weaving = None,

@@ -43,7 +43,7 @@
 //! `PULSE`, `AOUT`), `TIMER`, arithmetic on B, I, D, R and S variables (`SET`, `ADD`, ..),
 //! arc welding (`ARCON`, `ARCOF`, `ARCSET`), weaving switched on and off with no motion between
 //! (`WVON`, `WVOF`), `SPEED`, `MSG`, user alarms and dialogs (`SETUALM`, `DIALOG`), `TSYNC`,
-//! labels (`*LABEL`) in a job without a `JUMP`, comments (`'..`), an instruction's comment
+//! labels (`*LABEL`), comments (`'..`), an instruction's comment
 //! (`MOVJ C00000 VJ=65.00  //FROM LEFT`: the text after `//`) and lines commented out on the
 //! pendant (`COMM CALL JOB:..`, `COMM MOVL C00003 ..`: the controller skips them, and so does
 //! stiffid; a position only such a line names is written back as found).
@@ -59,9 +59,10 @@
 //!   (`+MOVL`; a station's `+MOVJ EC00000 VJ=..` is read as the target's station values), a shift (`SFTON`, `SFTOF`, `MSHIFT`), any tag outside the list above, and any
 //!   instruction stiffid does not know;
 //! - `WVON` with a motion after it before `WVOF`: weaving moves the tool across the path;
-//! - `JUMP`, `CALL`, `MACRO`, `IF`, `IFTHEN`, `FOR`, `WHILE`, `SWITCH` in a job with motions
-//!   (the order the controller runs, or the motions of the job it calls, would not be the
-//!   file's);
+//! - a `CALL` or `MACRO` in a job with motions (the motions of the job it calls would not be the
+//!   file's), but a call of a job of the backup that moves nothing; a `JUMP` to a label the job
+//!   does not hold, to another job or to a variable's label; weaving in a job with jumps
+//!   ([`calls`]: labels, jumps, branches and loops are followed);
 //! - a job of another robot than the controller's first (`RB2` in a `///GROUP` line);
 //! - a job that does not end with `END` (cut off), a control character (a NUL) anywhere;
 //! - a position named in a motion that `//POS` does not hold, one defined twice, a count that
@@ -71,6 +72,7 @@
 //! ## Written
 //! A G-code path is written as a new job in pulses ([`generate`]) with the setup's pulses.
 
+mod called;
 mod calls;
 pub mod generate;
 mod inst;
@@ -98,6 +100,11 @@ use stiffid_core::Result;
 /// # Errors
 /// [`stiffid_core::Error::Program`] naming the line (module docs).
 pub(crate) fn targets(text: &str, context: &Context) -> Result<Read> {
+    read_job(text, context, &mut Vec::new())
+}
+
+/// [`targets`] of the job `text`, called through the jobs of `chain` (their names).
+fn read_job(text: &str, context: &Context, chain: &mut Vec<String>) -> Result<Read> {
     control_characters(text)?;
     let section = pos::section(text)?;
     let positions = &section.positions;
@@ -115,7 +122,7 @@ pub(crate) fn targets(text: &str, context: &Context) -> Result<Read> {
         form(positions, Kind::Station)?,
     ];
     let inst = inst::instructions(text)?;
-    calls::check(&inst, context)?;
+    let moving = calls::check(&inst, context)?;
     let first = inst.motions.first().map_or(1, |m| m.line);
     let mut pulses: Vec<Option<f64>> = vec![None; 6 + nb + ne];
     let used = |kind: Kind| inst.motions.iter().any(|m| m.uses(kind));
@@ -142,13 +149,15 @@ pub(crate) fn targets(text: &str, context: &Context) -> Result<Read> {
         .collect::<Result<Vec<_>>>()?;
     let axes = (1..=nb).map(|k| format!("BC{k}"));
     let axes = axes.chain((1..=ne).map(|k| format!("EC{k}"))).collect();
-    Ok(Read {
+    let read = Read {
         targets: out,
         axes,
         pulses,
         units: Vec::new(),
         left: Vec::new(),
-    })
+        called: Vec::new(),
+    };
+    called::read(read, (text, &moving), context, chain)
 }
 
 /// Refuses a control character (a NUL, ..) anywhere in the job, naming its line: no

@@ -4,7 +4,7 @@
 //! calls in turn the same (followed [`DEPTH`] deep); the controller runs it between the motions
 //! and the path is the file's.
 
-use super::statements::{english, macro_call, sets_frame};
+use super::statements::{conditional_call, english, macro_call, sets_frame};
 use crate::program::Context;
 
 /// How deep calls are followed: a longer chain (or one that loops) is not passed over.
@@ -16,11 +16,49 @@ pub(super) fn passed_over(t: &str, context: &Context) -> bool {
     called(t).is_some_and(|name| moves_nothing(&name, context, &mut Vec::new()))
 }
 
-/// The program instruction `t` calls by name (`CALL NAME ..`, a macro `NAME(..)`), upper case.
+/// The program of the `context`'s backup instruction `t` calls, when it holds one that may move
+/// (not [`passed_over`]): its name (upper case), its file's name as given and its text.
+pub(super) fn moving<'a>(t: &str, context: &Context<'a>) -> Option<(String, &'a str, &'a str)> {
+    let name = called(t)?;
+    let (file, text) = context.backup_file(&format!("{name}.LS"))?;
+    (!moves_nothing(&name, context, &mut Vec::new())).then_some((name, file, text))
+}
+
+/// The lines of the first `UFRAME_NUM=` and `UTOOL_NUM=` of program `text` or of a program of the
+/// `context`'s backup it calls (followed [`DEPTH`] deep), if any: the frames it may leave
+/// selected.
+pub(super) fn selections(
+    text: &str,
+    context: &Context,
+    depth: usize,
+) -> (Option<u64>, Option<u64>) {
+    let mut out = (None, None);
+    let Ok(instructions) = super::instructions(text) else {
+        return out;
+    };
+    for (line, t) in &instructions {
+        let upper = english(&t.trim().to_ascii_uppercase());
+        if upper.starts_with("UFRAME_NUM") {
+            out.0 = out.0.or(Some(*line));
+        }
+        if upper.starts_with("UTOOL_NUM") {
+            out.1 = out.1.or(Some(*line));
+        }
+        let callee = called(t).and_then(|n| context.backup_file(&format!("{n}.LS")));
+        if let (Some((_, inner)), true) = (callee, depth < DEPTH) {
+            let (u, k) = selections(inner, context, depth + 1);
+            out = (out.0.or(u.map(|_| *line)), out.1.or(k.map(|_| *line)));
+        }
+    }
+    out
+}
+
+/// The program instruction `t` calls by name (`CALL NAME ..`, a branch's `IF ..,CALL NAME`, a
+/// macro `NAME(..)`), upper case.
 fn called(t: &str) -> Option<String> {
     let upper = english(&t.trim().to_ascii_uppercase());
-    let name = match upper.strip_prefix("CALL ") {
-        Some(rest) => rest.trim_start(),
+    let name = match conditional_call(&upper) {
+        Some(rest) => rest,
         None if macro_call(&upper) => upper.as_str(),
         None => return None,
     };

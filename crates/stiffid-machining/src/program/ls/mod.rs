@@ -17,12 +17,14 @@
 mod calls;
 mod cartesian;
 pub(crate) mod config;
+mod flow;
 pub mod generate;
 mod motion;
 mod names;
 mod numbered;
 mod options;
 mod process;
+mod read;
 pub(crate) mod speed;
 mod statements;
 mod sysframe;
@@ -37,53 +39,8 @@ use super::generate::zyx_deg;
 use super::{at, number_at, six, Found, JointTarget, Units};
 use cartesian::Value;
 use nalgebra::{UnitQuaternion, Vector3};
-use statements::{Place, Selected};
 use std::collections::{HashMap, HashSet};
 use stiffid_core::Result;
-
-/// Every joint target of `text`, in the order of the `/MN` motions (module docs), and the
-/// program's external axes; the frames the `context`'s backup holds by number taken from it
-/// (`sysframe`).
-pub(crate) fn targets(
-    text: &str,
-    context: &super::Context,
-) -> Result<(Vec<JointTarget>, Vec<String>, Units)> {
-    let (positions, axes, units) = positions(text)?;
-    let instructions = instructions(text)?;
-    let motions: Vec<bool> = (instructions.iter())
-        .map(|(_, t)| motion::rest(t.trim()).is_some())
-        .collect();
-    let (first, last) = (
-        motions.iter().position(|m| *m),
-        motions.iter().rposition(|m| *m),
-    );
-    let mut out: Vec<JointTarget> = Vec::new();
-    // Per target, the frame numbers in force at its motion.
-    let mut in_force: Vec<Selected> = Vec::new();
-    let mut selected = Selected::default();
-    let mut previous_fine = false;
-    for (k, (line, instruction)) in instructions.iter().enumerate() {
-        let t = instruction.trim();
-        if !motions[k] {
-            if calls::passed_over(t, context) {
-                continue;
-            }
-            let place = Place {
-                after_first: first.is_some_and(|f| f < k),
-                before_last: last.is_some_and(|l| l > k),
-            };
-            statements::instruction(*line, t, place, &mut selected)?;
-            continue;
-        }
-        let (targets, fine) = motion::targets(*line, t, &positions, (&out, previous_fine))?;
-        in_force.extend(std::iter::repeat_n(selected.clone(), targets.len()));
-        out.extend(targets);
-        previous_fine = fine;
-    }
-    numbered::apply(text, &mut out, &in_force)?;
-    sysframe::apply(context, &mut out)?;
-    Ok((out, axes, units))
-}
 
 /// The `/MN` instructions: the line of each and its text (continuation lines `   :` joined),
 /// without the line number and the closing `;`; comments (`!`, `//`) dropped. A line without a
@@ -427,13 +384,20 @@ impl Controller for FanucLs {
         self.read_in(text, &super::Context::default())
     }
     fn read_in(&self, text: &str, context: &super::Context) -> Result<Read> {
-        let (targets, axes, units) = targets(text, context)?;
+        let read::Program {
+            targets,
+            axes,
+            units,
+            left,
+            called,
+        } = read::targets(text, context)?;
         Ok(Read {
             targets,
             axes,
             pulses: Vec::new(),
             units,
-            left: Vec::new(),
+            left,
+            called,
         })
     }
     /// `R = Rz(R) Ry(P) Rx(W)`.

@@ -85,10 +85,13 @@ fn frame(
         Frame::World => (line, 0),
         other => return other.clone(),
     };
+    if let Some(Number::Paths(why)) = selected {
+        return Frame::Unknown(line, format!("{word} : {}: {why}", shown(n)));
+    }
     if n == IN_FORCE {
         match selected {
             Some(Number::Literal(_, m)) => n = *m,
-            Some(Number::Unread(..)) => {}
+            Some(Number::Unread(..) | Number::Paths(_)) => {}
             None => return Frame::Unknown(line, format!("{word} : F: the position is in the frame in force where it runs, and no {instruction}=n before this motion selects one: the controller's, which the program does not say; select it by number ({instruction}=n) before the motion")),
         }
     }
@@ -105,6 +108,14 @@ fn frame(
         (0, _) => Frame::World,
         (n, Some((remark, d))) if d == n => Frame::Declared(remark, n),
         (n, _) => Frame::Numbered(l, n),
+    }
+}
+
+/// A position's frame number as written (`F`: the one in force).
+fn shown(n: u32) -> String {
+    match n {
+        IN_FORCE => "F".into(),
+        n => n.to_string(),
     }
 }
 

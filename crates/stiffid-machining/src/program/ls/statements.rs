@@ -16,14 +16,14 @@
 //! - Followed: `UFRAME_NUM=n` and `UTOOL_NUM=n` (also `UFRAME_NUM[GP1]=n`, naming the robot's
 //!   motion group), the user and tool frame numbers in force for the motions after them
 //!   ([`Selected`]); another group's (`UTOOL_NUM[GP2]=n`) is refused naming the line.
-//! - Refused naming the line, in a program with motions: a jump, branch or loop (`JMP`, `IF`,
-//!   `SELECT`, `FOR`, `WAIT .. TIMEOUT,LBL[..]`, any instruction naming a label but the label
-//!   itself: the order the controller runs would not be the file's); a `CALL` between two
+//! - Jumps, branches and loops are the order of run's ([`super::flow`]); where an instruction
+//!   sits among the motions is on that order ([`Place`]).
+//! - Refused naming the line, in a program with motions: a `CALL` (also a branch's, `IF
+//!   ..,CALL`) between two
 //!   motions (the called program may move the robot between them), and so a macro instruction
 //!   there (a program run by its name alone, `GO_HOME`, or with arguments, `OPEN_GRIP(1)`),
 //!   but one of a program the controller's backup holds that moves nothing ([`super::calls`]);
-//!   `END` or `ABORT` before a
-//!   motion; `Weave ..` and `Track ..` (ArcTool: weaving and seam tracking move the tool off
+//!   `Weave ..` and `Track ..` (ArcTool: weaving and seam tracking move the tool off
 //!   the programmed path) before a motion; `Touch Offset PR[i]` (ArcTool touch sensing: the
 //!   motions up to `Touch Offset End` are shifted by the offset it finds at run time, held in
 //!   the register on the controller) before a motion; a frame's value set by the program
@@ -47,6 +47,9 @@ pub(super) enum Number {
     Literal(u64, u32),
     /// A number held on the controller: the line and the instruction.
     Unread(u64, String),
+    /// A number the paths that reach the motion leave differently: why, naming their lines
+    /// ([`Selected::join`]).
+    Paths(String),
 }
 
 /// The user and tool frame numbers in force (`None`: none selected yet in the program).
@@ -56,6 +59,58 @@ pub(super) struct Selected {
     pub user: Option<Number>,
     /// `UTOOL_NUM`.
     pub tool: Option<Number>,
+}
+
+impl Number {
+    /// Whether `self` and `other` select one frame (the lines aside).
+    fn same(&self, other: &Number) -> bool {
+        match (self, other) {
+            (Number::Literal(_, m), Number::Literal(_, n)) => m == n,
+            (a, b) => a == b,
+        }
+    }
+
+    /// The selection in words, for the instruction `word` (`UFRAME_NUM`).
+    fn describe(&self, word: &str) -> String {
+        match self {
+            Number::Literal(l, n) => format!("{word}={n} (line {l})"),
+            Number::Unread(l, t) => format!("{t} (line {l})"),
+            Number::Paths(why) => why.clone(),
+        }
+    }
+}
+
+/// `a` joined with `b` where two paths meet on `line`, for the instruction `word`; whether `a`
+/// changed.
+fn join_number(a: &mut Option<Number>, b: &Option<Number>, word: &str, line: u64) -> bool {
+    let describe = |n: &Option<Number>| match n {
+        Some(n) => n.describe(word),
+        None => format!("none (the controller's {word})"),
+    };
+    match (&*a, b) {
+        (None, None) | (Some(Number::Paths(_)), _) => false,
+        (Some(x), Some(y)) if x.same(y) => false,
+        (_, Some(Number::Paths(_))) => {
+            *a = b.clone();
+            true
+        }
+        _ => {
+            let why = format!("the {word} in force here depends on the path taken to line {line}: one path leaves {}, another {}; select it alike on every path", describe(a), describe(b));
+            *a = Some(Number::Paths(why));
+            true
+        }
+    }
+}
+
+impl Selected {
+    /// `self` joined with `other` where two paths meet on `line`: a number both select alike
+    /// stays, one they select differently becomes [`Number::Paths`] naming both; whether
+    /// `self` changed.
+    pub(super) fn join(&mut self, other: &Selected, line: u64) -> bool {
+        let user = join_number(&mut self.user, &other.user, "UFRAME_NUM", line);
+        let tool = join_number(&mut self.tool, &other.tool, "UTOOL_NUM", line);
+        user || tool
+    }
 }
 
 /// Where an instruction sits among the program's motions.
@@ -77,7 +132,6 @@ pub(super) fn instruction(line: u64, t: &str, place: Place, selected: &mut Selec
         .split(|c: char| c.is_whitespace() || c == '[' || c == '(' || c == '=')
         .next()
         .unwrap_or("");
-    let any_motion = place.after_first || place.before_last;
     let refuse = |why: &str| Err(at(line, format!("{}: {why}", short(t.trim()))));
     if names_a_position(&upper) {
         return refuse("names a position P[i] but is no motion stiffid reads (J, L or C P[i] ..); passed over, its target would be lost");
@@ -90,12 +144,7 @@ pub(super) fn instruction(line: u64, t: &str, place: Place, selected: &mut Selec
         selected.tool = Some(number(line, t, n)?);
         return Ok(());
     }
-    let jump = matches!(first, "JMP" | "IF" | "SELECT" | "FOR" | "ENDFOR")
-        || (upper.contains("LBL[") && first != "LBL");
-    if jump && any_motion {
-        return refuse("a jump, call, loop or branch in a program with motions; the order the controller runs them would not be the file's: write the path as straight-line motions");
-    }
-    if first == "CALL" && place.after_first && place.before_last {
+    if conditional_call(&upper).is_some() && place.after_first && place.before_last {
         return refuse("a call between two motions; the called program may move the robot between them, off the path the file gives: call it before the first motion or after the last, or give the controller's backup holding the program called (its .LS) if it moves nothing");
     }
     if macro_call(&upper) && place.after_first && place.before_last {
@@ -108,15 +157,28 @@ pub(super) fn instruction(line: u64, t: &str, place: Place, selected: &mut Selec
     if touch_offset(&upper) && place.before_last {
         return refuse("touch sensing (ArcTool) shifts every motion after it, up to Touch Offset End, by the offset the sensing finds at run time, held in a position register on the controller, not in this program; apply the offset to the positions and remove the Touch Offset lines");
     }
-    if matches!(first, "END" | "ABORT") && place.before_last {
-        return refuse(
-            "the program ends here, before the motions after it: remove them or the instruction",
-        );
-    }
     if sets_frame(&upper) && place.before_last {
         return refuse("the program sets a frame's value, which stiffid reads from the setup's [controller] tools and bases (as the controller holds them before the program runs): set the frame on the controller and give it in the setup");
     }
     Ok(())
+}
+
+/// The program an instruction (upper case, English) calls: `CALL NAME ..`, or a branch's
+/// action `IF R[1]=1,CALL NAME`, `SELECT R[1]=1,CALL NAME`, `=2,CALL NAME`, `ELSE,CALL NAME`;
+/// the text after `CALL `.
+pub(super) fn conditional_call(upper: &str) -> Option<&str> {
+    let t = upper.trim();
+    if let Some(rest) = t.strip_prefix("CALL ") {
+        return Some(rest.trim_start());
+    }
+    let branch = ["IF ", "IF(", "SELECT ", "=", "ELSE"]
+        .iter()
+        .any(|w| t.starts_with(w));
+    let (_, action) = t.rsplit_once(',').filter(|_| branch)?;
+    action
+        .trim_start()
+        .strip_prefix("CALL ")
+        .map(str::trim_start)
 }
 
 /// The instructions of one word alone (no macro, though written as one).

@@ -209,6 +209,33 @@ pub(super) fn held_lines(program: &Program) -> Vec<u64> {
     }
 }
 
+/// Whether target `i` of `program` is a motion of the program's own file, not of a program of
+/// the backup it calls (whose motions are on lines of their own file).
+pub(super) fn own_motion(program: &Program, i: usize) -> bool {
+    match program {
+        Program::Robot(p) => p.called_in(i).is_none(),
+        Program::GCode(_) => true,
+    }
+}
+
+/// The programs of the backup a program calls that move, compensated, as the files to write
+/// beside it: each under its own name (the stem of its file as given).
+pub(super) fn called_files(
+    called: &[(String, String)],
+) -> Vec<stiffid_machining::program::generate::File> {
+    (called.iter())
+        .map(|(file, text)| {
+            let name = file.rsplit(['/', '\\']).next().unwrap_or(file);
+            let stem = name.rsplit_once('.').map_or(name, |(s, _)| s);
+            stiffid_machining::program::generate::File {
+                name: stem.to_string(),
+                text: text.clone(),
+                data: None,
+            }
+        })
+        .collect()
+}
+
 /// The warning that the motions on `lines` go to the controller's home (KRL's `XHOME`, at the
 /// setup's `[controller] home_deg`), which the program does not hold: not compensated.
 pub(super) fn held_warning(lines: &[u64]) -> Option<Warning> {

@@ -42,8 +42,8 @@ use crate::app::compensate::document::{Names, Summary};
 use crate::app::{Warning, WarningKind};
 use failure::{in_input, Failure};
 use input::{
-    check_tcp, encoding_warning, held_lines, held_warning, left_warning, no_length_offset,
-    read_checked, uncoupled_ls, unplaced_g53, unstated_units,
+    called_files, check_tcp, encoding_warning, held_lines, held_warning, left_warning,
+    no_length_offset, own_motion, read_checked, uncoupled_ls, unplaced_g53, unstated_units,
 };
 pub use input::{read_program, read_program_in};
 use stiffid_core::io::Encoding;
@@ -491,14 +491,16 @@ where
             let held = held_lines(&program);
             out.warnings.extend(held_warning(&held));
             out.warnings.extend(left_warning(&program));
+            let own = |i: usize| own_motion(&program, i);
             let lines: Vec<(u64, f64)> = (compensated.points.iter())
                 .zip(&compensated.results)
-                .filter(|(p, _)| !held.contains(&p.line))
-                .map(|(p, r)| (p.line, r.budget.bound))
+                .enumerate()
+                .filter(|(i, (p, _))| !held.contains(&p.line) && own(*i))
+                .map(|(_, (p, r))| (p.line, r.budget.bound))
                 .collect();
             (
                 certify::at_lines(d, &text, &lines, options.level),
-                Vec::new(),
+                called_files(&compensated.called),
             )
         }
         _ => (compensated.program.clone(), Vec::new()),

@@ -193,14 +193,79 @@ fn an_ls_call_of_a_program_that_moves_nothing_is_passed_over() {
             [-10.0, 20.5, -30.0, 0.0, 45.0, -60.0]
         ]
     );
-    for (then, line) in [
-        ("L P[7] 10mm/sec FINE", 7),
-        ("UTOOL_NUM=2", 7),
-        ("CALL SPINDLE_ON", 7),
-    ] {
-        let backup = [io("GRIP", "R[1]=R[1]+1"), io("SPINDLE_ON", then)];
-        let (at, why) = message(read(&backup).unwrap_err());
-        assert_eq!(at, line, "{then}: {why}");
-        assert!(why.contains("SPINDLE_ON: a macro"), "{then}: {why}");
-    }
+    // A called program that calls itself: refused naming the call and the loop.
+    let backup = [
+        io("GRIP", "R[1]=R[1]+1"),
+        io("SPINDLE_ON", "CALL SPINDLE_ON"),
+    ];
+    let (at, why) = message(read(&backup).unwrap_err());
+    assert_eq!(at, 7, "{why}");
+    assert!(
+        why.contains("the program calls itself through SPINDLE_ON"),
+        "{why}"
+    );
+    // One that moves is read where it is, in its own file; one that selects a tool frame moves
+    // no joint position.
+    let moves = [
+        io("GRIP", "R[1]=R[1]+1"),
+        io("SPINDLE_ON", "L P[7] 10mm/sec FINE"),
+    ];
+    let p = read(&moves).unwrap();
+    assert_eq!(p.targets.len(), 3);
+    assert_eq!(p.targets[2].q_deg, [1.0, 2.0, 3.0, 4.0, 5.0, 6.0]);
+    assert_eq!(p.called_in(2), Some("backup/SPINDLE_ON.LS"));
+    assert_eq!(p.called_in(1), None);
+    let selects = [io("GRIP", "R[1]=R[1]+1"), io("SPINDLE_ON", "UTOOL_NUM=2")];
+    assert_eq!(read(&selects).unwrap().targets.len(), 2);
+}
+
+/// A `CALL` of a program of the backup that moves: its motions compensated in place in its own
+/// file, written beside the program; every other byte of both as read; a refusal inside it names
+/// the call's line, the file and its own line.
+#[test]
+fn an_ls_call_of_a_program_that_moves_is_compensated_in_its_own_file() {
+    let main = ls_program(
+        "MAIN",
+        "   1:J P[1] 100% FINE ;\n   2:  IF R[1]=1,CALL PICK ;\n   3:L P[2] 50mm/sec FINE ;",
+    );
+    let pick = ls_program(
+        "PICK",
+        "   1:  UTOOL_NUM=1 ;\n   2:L P[2] 20mm/sec FINE ;\n   3:J P[1] 50% FINE ;",
+    );
+    let backup = [("backup/PICK.LS".to_string(), pick.clone())];
+    let context = Context::default().with_backup(&backup);
+    let p = stiffid_machining::program::parse_in(&main, Dialect::FanucLs, &context).unwrap();
+    let lines: Vec<(u64, Option<&str>)> = (0..4)
+        .map(|i| (p.targets[i].line, p.called_in(i)))
+        .collect();
+    let file = Some("backup/PICK.LS");
+    assert_eq!(lines, [(5, None), (7, None), (6, file), (7, file)]);
+    let mut q: Vec<[f64; 6]> = p.targets.iter().map(|t| t.q_deg).collect();
+    q[2][0] += 1.0;
+    q[3][5] -= 0.5;
+    let external = vec![Vec::new(); 4];
+    let (written, data, called) = p.write_files(&q[..], &external).unwrap();
+    assert_eq!((written.as_str(), data), (main.as_str(), None));
+    assert_eq!(called.len(), 1);
+    assert_eq!(called[0].0, "backup/PICK.LS");
+    let expected = pick
+        .replacen("J1= -10.000 deg", "J1= -9.000000000 deg", 1)
+        .replacen("J6= 6.000 deg", "J6= 5.500000000 deg", 1);
+    assert_eq!(called[0].1, expected);
+    // A refusal inside the called program names the call, the file and its line.
+    let bad = [(
+        "backup/PICK.LS".to_string(),
+        pick.replace("L P[2] 20mm/sec FINE", "L PR[2] 20mm/sec FINE"),
+    )];
+    let e = stiffid_machining::program::parse_in(
+        &main,
+        Dialect::FanucLs,
+        &Context::default().with_backup(&bad),
+    );
+    let (at, why) = message(e.unwrap_err());
+    assert_eq!(at, 6, "{why}");
+    assert!(
+        why.starts_with("CALL PICK: backup/PICK.LS line 6: L PR[..]: a position register"),
+        "{why}"
+    );
 }

@@ -231,8 +231,8 @@ fn io_job(name: &str, then: &str) -> String {
 }
 
 /// A `CALL JOB:` between motions is passed over when the backup holds the job called and it
-/// (and every job it calls) moves nothing; refused naming the line without the backup, when the
-/// called job moves, and for a chain of calls that loops.
+/// (and every job it calls) moves nothing; refused naming the line without the backup, and for
+/// a chain of calls that loops; a called job that moves is read (its refusal named).
 #[test]
 fn a_call_of_a_job_that_moves_nothing_is_passed_over() {
     let p = pulses();
@@ -266,9 +266,12 @@ fn a_call_of_a_job_that_moves_nothing_is_passed_over() {
         ("SPINDLE_ON.JBI".to_string(), moving),
         lamp.clone(),
     ]));
+    // A called job that moves is read where it is called: this one names a position it does not
+    // hold.
     assert_eq!(line, 27);
     assert!(
-        message.contains("(JOB:SPINDLE_ON, SPINDLE_ON.JBI line 10: MOVJ, a motion)"),
+        message
+            .contains("CALL JOB:SPINDLE_ON: SPINDLE_ON.JBI line 10: MOVJ C00000: no such position"),
         "{message}"
     );
     let looping = (
@@ -276,7 +279,10 @@ fn a_call_of_a_job_that_moves_nothing_is_passed_over() {
         io_job("LAMP", "CALL JOB:SPINDLE_ON\r\n"),
     );
     let (_, message) = refused(read(&[on("CALL JOB:LAMP\r\n"), looping]));
-    assert!(message.contains("JOB:SPINDLE_ON calls itself"), "{message}");
+    assert!(
+        message.contains("CALL JOB:LAMP: LAMP.JBI line 12: CALL JOB:SPINDLE_ON: the job calls itself through SPINDLE_ON, LAMP"),
+        "{message}"
+    );
 }
 
 /// A station's own motion beside the robot's (`+MOVJ EC00000 VJ=10.00`, as a YRC1000 welding
@@ -413,9 +419,27 @@ fn what_can_change_the_path_is_refused_naming_the_line() {
             "MOVL P001: a position variable",
         ),
         (
-            STORED.replace("SET B000 1", "JUMP *START"),
+            STORED.replace("SET B000 1", "JUMP *FINISH"),
             27,
-            "JUMP: a jump",
+            "JUMP *FINISH: a jump to a label the job does not hold (*FINISH)",
+        ),
+        (
+            STORED.replace("SET B000 1", "JUMP JOB:OTHER"),
+            27,
+            "a jump to another job, which does not come back",
+        ),
+        (
+            STORED.replace("SET B000 1", "JUMP *START IF IN#(1)=ON\r\n*START"),
+            28,
+            "*START: the label is also on line 16",
+        ),
+        (
+            STORED.replace(
+                "ARCON ASF#(1)",
+                "ARCON ASF#(1)\r\nWVON WEV#(1)\r\nWVOF\r\n*A\r\nJUMP *A IF IN#(2)=ON",
+            ),
+            22,
+            "WVON: weaving in a job with jumps, loops or branches (line 25)",
         ),
         (
             STORED.replace("SET B000 1", "FROBNICATE 3"),
@@ -469,6 +493,65 @@ fn what_can_change_the_path_is_refused_naming_the_line() {
     let idle = STORED.replace("ARCON ASF#(1)", "ARCON ASF#(1)\r\nWVON WEV#(1)\r\nWVOF");
     let read = parse_in(&idle, Dialect::Inform, &with(&p)).unwrap();
     assert_eq!(read.targets.len(), 5);
+}
+
+/// A `CALL JOB:NAME` of a job of the backup that moves: its motions read after the caller's,
+/// compensated in place in its own file; every other byte of both as read.
+#[test]
+fn a_call_of_a_job_that_moves_is_compensated_in_its_own_file() {
+    let p = pulses();
+    let main = STORED.replace("SET B000 1", "CALL JOB:PICK IF IN#(1)=ON");
+    let pick = STORED.replace("//NAME WELD", "//NAME PICK");
+    let backup = [("backup/PICK.JBI".to_string(), pick.clone())];
+    let read = parse_in(&main, Dialect::Inform, &with(&p).with_backup(&backup)).unwrap();
+    assert_eq!(read.targets.len(), 10);
+    let q: Vec<[f64; 6]> = read.targets.iter().map(|t| t.q_deg).collect();
+    assert_eq!(q[..5], q[5..]);
+    assert_eq!(read.called_in(4), None);
+    assert_eq!(read.called_in(5), Some("backup/PICK.JBI"));
+    let mut moved = q.clone();
+    moved[5][0] += 1.0;
+    let (written, _, called) = read.write_files(&moved, &vec![Vec::new(); 10]).unwrap();
+    assert_eq!(written, main);
+    // 1 deg of axis S is 1341.25 pulses: -48629 + 1341.25, to the nearest whole pulse.
+    let expected = pick.replacen("C00000=-48629,", "C00000=-47288,", 1);
+    assert_eq!(called, [("backup/PICK.JBI".to_string(), expected)]);
+    // A job that calls itself is refused naming the call.
+    let looped = [(
+        "backup/PICK.JBI".to_string(),
+        pick.replace("SET B000 1", "CALL JOB:PICK"),
+    )];
+    let (line, message) = refused(parse_in(
+        &main,
+        Dialect::Inform,
+        &with(&p).with_backup(&looped),
+    ));
+    assert_eq!(line, 27, "{message}");
+    assert!(
+        message.contains("the job calls itself through PICK"),
+        "{message}"
+    );
+}
+
+/// A job's jumps, branches and loops are followed: each motion read where it is, to the very
+/// target it has in the straight job (pulses change with no path).
+#[test]
+fn motions_inside_jumps_branches_and_loops_are_read_where_they_are() {
+    let p = pulses();
+    let straight = parse_in(STORED, Dialect::Inform, &with(&p)).unwrap();
+    let looped = STORED
+        .replacen("MOVL C00001", "*TOP\r\nIFTHEN IN#(1)=ON\r\nMOVL C00001", 1)
+        .replace(
+            "SET B000 1",
+            "ELSE\r\nTIMER T=1.00\r\nENDIF\r\nJUMP *TOP IF IN#(2)=ON\r\nSET B000 1",
+        );
+    let read = parse_in(&looped, Dialect::Inform, &with(&p)).unwrap();
+    let q = |r: &stiffid_machining::program::JointProgram| -> Vec<[f64; 6]> {
+        r.targets.iter().map(|t| t.q_deg).collect()
+    };
+    assert_eq!(read.targets.len(), 5);
+    assert_eq!(q(&read), q(&straight));
+    assert_eq!(read.targets[1].line, straight.targets[1].line + 2);
 }
 
 /// The real jobs of the corpus (tests/data/programs/inform, SOURCES.md): each refused naming

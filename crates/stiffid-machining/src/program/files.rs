@@ -1,0 +1,101 @@
+//! A program's files: those it is read from (its own, KRL's `.dat` beside it, the controller
+//! backup's), and the programs of the backup it calls, whose texts follow its own
+//! ([`Read::called`](super::Read::called)).
+
+use super::{krl, Dialect, JointProgram, JointTarget};
+use std::ops::Range;
+use stiffid_core::Error;
+
+/// The text of the program at `path`, of its `.dat` when it is a KRL program with one beside it
+/// (`krl::data_beside`), and the encoding they were read in: UTF-8, else Latin-1
+/// ([`stiffid_core::io::program_texts`]). `read` gives a file's bytes (a front end's reading,
+/// with the file's name in its error); `wrap` turns a text's error into the caller's.
+///
+/// # Errors
+/// Those of `read`, and of [`stiffid_core::io::program_texts`] through `wrap`.
+pub fn read_files<E>(
+    path: &std::path::Path,
+    mut read: impl FnMut(&std::path::Path) -> std::result::Result<Vec<u8>, E>,
+    wrap: impl Fn(Error) -> E,
+) -> std::result::Result<(String, Option<String>, stiffid_core::io::Encoding), E> {
+    let data = krl::data_beside(path);
+    let mut files = Vec::new();
+    for p in [Some(path), data.as_deref()].into_iter().flatten() {
+        files.push((p.display().to_string(), read(p)?));
+    }
+    let named = files.iter().map(|(n, b)| (n.as_str(), b.clone())).collect();
+    let (mut texts, encoding) = stiffid_core::io::program_texts(named).map_err(wrap)?;
+    let data = (texts.len() == 2).then(|| texts.remove(1));
+    Ok((texts.remove(0), data, encoding))
+}
+
+/// The files of a controller's backup given with a program of `dialect` (`paths`: files, or
+/// folders whose files of the language's backup extensions are read,
+/// [`stiffid_core::io::input::files_under`]), each named as found and its text (UTF-8, else
+/// Latin-1). `read` gives a file's bytes (a front end's reading, with the file's name in its
+/// error); `wrap` turns a listing's or a text's error into the caller's.
+///
+/// # Errors
+/// Those of `read`; a path that cannot be listed, or a file that is not text, through `wrap`.
+pub fn read_backup<E>(
+    paths: &[std::path::PathBuf],
+    dialect: Dialect,
+    mut read: impl FnMut(&std::path::Path) -> std::result::Result<Vec<u8>, E>,
+    wrap: impl Fn(Error) -> E,
+) -> std::result::Result<Vec<(String, String)>, E> {
+    let extensions = dialect.controller().backup_extensions();
+    let wanted = |name: &str| {
+        let e = name
+            .rsplit_once('.')
+            .map_or("", |(_, e)| e)
+            .to_ascii_lowercase();
+        extensions.contains(&e.as_str())
+    };
+    let mut out = Vec::new();
+    for path in paths {
+        let files = stiffid_core::io::input::files_under(path, &wanted).map_err(|e| {
+            wrap(Error::Parse {
+                source_name: path.display().to_string(),
+                message: format!("the controller's backup: {e}"),
+            })
+        })?;
+        for file in files {
+            let name = file.display().to_string();
+            let bytes = read(&file)?;
+            let (mut texts, _) =
+                stiffid_core::io::program_texts(vec![(name.as_str(), bytes)]).map_err(&wrap)?;
+            out.push((name, texts.remove(0)));
+        }
+    }
+    Ok(out)
+}
+
+impl JointProgram {
+    /// The file of the backup (its name as given) whose motion target `i` is: a program the
+    /// program calls ([`Read::called`](super::Read::called)); `None` for the program's own.
+    pub fn called_in(&self, i: usize) -> Option<&str> {
+        let start = self.targets.get(i)?.spans[0].start;
+        let start = match &self.targets[i].cartesian {
+            Some(c) => c.spans.first().map_or(start, |s| s.start),
+            None => start,
+        };
+        (self.called.iter().rev())
+            .find(|(_, at)| *at <= start)
+            .map(|(name, _)| name.as_str())
+    }
+}
+
+impl JointTarget {
+    /// The target with every span moved `offset` bytes on: read in a text that follows others
+    /// (a called program's, [`Read::called`](super::Read::called)).
+    pub(crate) fn shifted(mut self, offset: usize) -> Self {
+        let shift = |r: &mut Range<usize>| *r = r.start + offset..r.end + offset;
+        self.spans.iter_mut().for_each(shift);
+        self.external_spans.iter_mut().flatten().for_each(shift);
+        if let Some(c) = self.cartesian.as_deref_mut() {
+            c.spans.iter_mut().for_each(shift);
+            c.flag_spans.iter_mut().for_each(|(r, _)| shift(r));
+        }
+        self
+    }
+}

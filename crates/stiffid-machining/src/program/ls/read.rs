@@ -1,0 +1,354 @@
+//! An LS program's targets read along its order of run ([`super::flow`]): each motion where it
+//! is in the file, with the frame numbers in force on every path that reaches it (joined where
+//! paths meet: numbers the paths select differently refuse the Cartesian positions that use them,
+//! naming the lines, or leave them as found with [`crate::program::Context::leave_refused`]) and
+//! the motion before it (an `INC` motion's start: one motion on every path, ending `FINE`).
+
+use super::flow::{self, Graph};
+use super::statements::{self, Number, Place, Selected};
+use super::{calls, instructions, motion, numbered, positions, sysframe};
+use crate::program::cartesian::Frame;
+use crate::program::{at, Context, JointTarget, Left, Units};
+use std::collections::HashMap;
+use stiffid_core::common::limits::short;
+use stiffid_core::{Error, Result};
+
+/// The motion that ran before an instruction on every path to it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Previous {
+    /// None: the program's start.
+    Start,
+    /// The motion instruction of this index.
+    Motion(usize),
+    /// Paths come from different motions (or from the start and a motion).
+    Many,
+}
+
+/// What is in force before an instruction.
+#[derive(Debug, Clone)]
+struct State {
+    selected: Selected,
+    previous: Previous,
+}
+
+/// What an LS program holds ([`targets`]): its targets (then those of the programs it calls),
+/// its external axes and their units, the motions left as found, and the programs of the backup
+/// it calls that move (each file's name as given and its text).
+pub(super) struct Program {
+    pub targets: Vec<JointTarget>,
+    pub axes: Vec<String>,
+    pub units: Units,
+    pub left: Vec<Left>,
+    pub called: Vec<(String, String)>,
+}
+
+/// One program read: its own targets (spans in its text), those of the programs it calls
+/// (spans in the whole text), its axes and units, the motions left.
+struct One {
+    own: Vec<JointTarget>,
+    nested: Vec<JointTarget>,
+    axes: Vec<String>,
+    units: Units,
+    left: Vec<Left>,
+}
+
+/// The programs of the backup called so far: their files in the order their texts follow the
+/// program's, each one's frames in force where it is called and the first call's line, the
+/// length of every text so far, and the chain of calls being read.
+struct Calls {
+    files: Vec<(String, String)>,
+    read: HashMap<String, (Selected, u64)>,
+    total: usize,
+    chain: Vec<String>,
+}
+
+/// A call of a program of the backup that moves: its name, file and text, and what it leaves
+/// selected after it (a frame number it selects, which stiffid does not follow out of it).
+struct Call<'a> {
+    name: String,
+    file: &'a str,
+    text: &'a str,
+    leaves: Selected,
+}
+
+/// Every joint target of `text`, in the order of the `/MN` motions, then those of the programs
+/// of the backup it calls that move (module docs), each compensated in place in its own file;
+/// the frames the `context`'s backup holds by number taken from it (`sysframe`).
+///
+/// # Errors
+/// Naming the line: a construct refused ([`flow`], [`statements`], [`motion`]), a motion no path
+/// reaches; in a called program, naming the call's line, the program's file and its line.
+pub(super) fn targets(text: &str, context: &Context) -> Result<Program> {
+    let mut calls = Calls {
+        files: Vec::new(),
+        read: HashMap::new(),
+        total: text.len(),
+        chain: Vec::new(),
+    };
+    let one = read_one(text, context, Selected::default(), &mut calls)?;
+    let mut targets = one.own;
+    targets.extend(one.nested);
+    Ok(Program {
+        targets,
+        axes: one.axes,
+        units: one.units,
+        left: one.left,
+        called: calls.files,
+    })
+}
+
+/// The program `text` read with `entry` in force at its start (module docs).
+fn read_one(text: &str, context: &Context, entry: Selected, calls: &mut Calls) -> Result<One> {
+    let (positions, axes, units) = positions(text)?;
+    let instructions = instructions(text)?;
+    let motions: Vec<bool> = (instructions.iter())
+        .map(|(_, t)| motion::rest(t.trim()).is_some())
+        .collect();
+    let graph = flow::graph(&instructions, &motions)?;
+    let (effects, called) = effects(&instructions, &motions, &graph, context)?;
+    let reached = graph.reached();
+    if let Some(k) = (0..motions.len()).find(|&k| motions[k] && !reached[k]) {
+        return Err(never_run(&instructions, &graph, k));
+    }
+    let step = |k: usize, s: &State| {
+        let mut s = s.clone();
+        if motions[k] {
+            s.previous = Previous::Motion(k);
+        }
+        let e: &Selected = match &called[k] {
+            Some(c) => {
+                s.previous = Previous::Many;
+                &c.leaves
+            }
+            None => &effects[k],
+        };
+        s.selected.user = e.user.clone().or(s.selected.user);
+        s.selected.tool = e.tool.clone().or(s.selected.tool);
+        s
+    };
+    let join = |a: &mut State, b: &State, k: usize| {
+        let changed = a.selected.join(&b.selected, instructions[k].0);
+        let many = a.previous != b.previous && a.previous != Previous::Many;
+        if many {
+            a.previous = Previous::Many;
+        }
+        changed || many
+    };
+    let start = State {
+        selected: entry,
+        previous: Previous::Start,
+    };
+    let states = graph.states(start, step, join);
+    let (mut own, in_force) = motions_read(&instructions, &motions, &states, &positions)?;
+    numbered::apply(text, &mut own, &in_force)?;
+    sysframe::apply(context, &mut own)?;
+    let mut left = Vec::new();
+    if context.leave_refused {
+        own = leave_paths(own, &in_force, &mut left);
+    }
+    let mut one = One {
+        own,
+        nested: Vec::new(),
+        axes,
+        units,
+        left,
+    };
+    for (k, call) in called.iter().enumerate() {
+        let (Some(call), Some(state)) = (call, states[k].as_ref()) else {
+            continue;
+        };
+        // The frames in force at every call of the program, joined.
+        let mut entry = state.selected.clone();
+        for (j, other) in called.iter().enumerate().skip(k + 1) {
+            if let (Some(o), Some(s)) = (other, states[j].as_ref())
+                && o.name == call.name
+            {
+                entry.join(&s.selected, instructions[j].0);
+            }
+        }
+        read_called(instructions[k].0, call, entry, context, calls, &mut one)?;
+    }
+    Ok(one)
+}
+
+/// The targets of the motions of `instructions` (`motions` says which), each with the state
+/// before it (`states`), to the `/POS` `positions`; per target, the frame numbers in force.
+fn motions_read(
+    instructions: &[(u64, String)],
+    motions: &[bool],
+    states: &[Option<State>],
+    positions: &HashMap<u64, JointTarget>,
+) -> Result<(Vec<JointTarget>, Vec<Selected>)> {
+    let mut out: Vec<JointTarget> = Vec::new();
+    let mut in_force: Vec<Selected> = Vec::new();
+    // Per motion read, the end of its targets in `out` and whether it ended `FINE`.
+    let mut read: HashMap<usize, (usize, bool)> = HashMap::new();
+    for (k, (line, instruction)) in instructions.iter().enumerate() {
+        let Some(state) = states[k].as_ref().filter(|_| motions[k]) else {
+            continue;
+        };
+        let before = match state.previous {
+            Previous::Motion(j) => read.get(&j).copied(),
+            _ => None,
+        };
+        let (before, fine) = before.map_or((&[][..], false), |(end, f)| (&out[..end], f));
+        let (targets, fine) =
+            motion::targets(*line, instruction.trim(), positions, (before, fine))?;
+        in_force.extend(std::iter::repeat_n(state.selected.clone(), targets.len()));
+        out.extend(targets);
+        read.insert(k, (out.len(), fine));
+    }
+    Ok((out, in_force))
+}
+
+/// The program `call` called on `line` with `entry` in force, read into `one` (its targets after
+/// the caller's, its text after every text so far), once: called again with other frames in
+/// force, or in a loop of calls, refused naming the line.
+fn read_called(
+    line: u64,
+    call: &Call,
+    entry: Selected,
+    context: &Context,
+    calls: &mut Calls,
+    one: &mut One,
+) -> Result<()> {
+    let name = &call.name;
+    if calls.chain.contains(name) || calls.chain.len() >= 16 {
+        return Err(at(
+            line,
+            format!(
+                "CALL {name}: the program calls itself through {}; stiffid follows calls that end",
+                calls.chain.join(", ")
+            ),
+        ));
+    }
+    if let Some((first, first_line)) = calls.read.get(name) {
+        let mut same = first.clone();
+        return match same.join(&entry, line) {
+            false => Ok(()),
+            true => Err(at(line, format!("CALL {name}: called on line {first_line} too, with other frame numbers in force; its Cartesian positions would be in other frames on each: select UFRAME_NUM and UTOOL_NUM alike before every call, or in {name}"))),
+        };
+    }
+    let offset = calls.total;
+    calls.total += call.text.len();
+    calls
+        .files
+        .push((call.file.to_string(), call.text.to_string()));
+    calls.read.insert(name.clone(), (entry.clone(), line));
+    calls.chain.push(name.clone());
+    let within = |e: Error| match e {
+        Error::Program { line: l, message } => at(
+            line,
+            format!("CALL {name}: {} line {l}: {message}", call.file),
+        ),
+        other => other,
+    };
+    let inner = read_one(call.text, context, entry, calls).map_err(within)?;
+    calls.chain.pop();
+    if inner.axes != one.axes {
+        return Err(at(line, format!("CALL {name}: {} moves the external axes [{}], this program [{}]; stiffid compensates one set of axes: give both programs the same groups and extended axes", call.file, inner.axes.join(", "), one.axes.join(", "))));
+    }
+    one.nested
+        .extend(inner.own.into_iter().map(|t| t.shifted(offset)));
+    one.nested.extend(inner.nested);
+    one.left.extend(inner.left.into_iter().map(|l| Left {
+        line,
+        why: format!("CALL {name}: {} line {}: {}", call.file, l.line, l.why),
+        point: None,
+    }));
+    Ok(())
+}
+
+/// Per instruction, the frame numbers it selects (its own only) and, through
+/// [`statements::instruction`], the refusal of what it may not do where it runs: after a motion
+/// on some path, before one on some path ([`Place`]); and the calls of programs of the backup
+/// that move ([`calls::moving`]). A call of a program of the backup that moves nothing is
+/// passed over ([`calls`]).
+fn effects<'a>(
+    instructions: &[(u64, String)],
+    motions: &[bool],
+    graph: &Graph,
+    context: &Context<'a>,
+) -> Result<(Vec<Selected>, Vec<Option<Call<'a>>>)> {
+    let after = graph.after(motions);
+    let leads = graph.leads_to(motions);
+    let mut out = vec![Selected::default(); instructions.len()];
+    let mut called: Vec<Option<Call>> = (0..instructions.len()).map(|_| None).collect();
+    for (k, (line, instruction)) in instructions.iter().enumerate() {
+        let t = instruction.trim();
+        if motions[k] || calls::passed_over(t, context) {
+            continue;
+        }
+        if let Some((name, file, text)) = calls::moving(t, context) {
+            let leaves = leaves(*line, &name, calls::selections(text, context, 0));
+            called[k] = Some(Call {
+                name,
+                file,
+                text,
+                leaves,
+            });
+            continue;
+        }
+        let place = Place {
+            after_first: after[k],
+            before_last: leads[k],
+        };
+        statements::instruction(*line, t, place, &mut out[k])?;
+    }
+    Ok((out, called))
+}
+
+/// What a call on `line` of program `name` leaves selected: each frame number it selects (its
+/// lines `selects`: user, tool) unknown after it, saying why.
+fn leaves(line: u64, name: &str, selects: (Option<u64>, Option<u64>)) -> Selected {
+    let why = |word: &str, l: u64| {
+        Number::Paths(format!("line {line} calls {name}, which selects {word} (its line {l}): the frame in force after the call is the one it leaves, which stiffid does not follow; select {word} again after the call"))
+    };
+    Selected {
+        user: selects.0.map(|l| why("UFRAME_NUM", l)),
+        tool: selects.1.map(|l| why("UTOOL_NUM", l)),
+    }
+}
+
+/// The refusal of the motion `k` that no path from the program's start reaches: naming the
+/// instruction before it that ends the program or jumps away (`END`, `ABORT`, `JMP`).
+fn never_run(instructions: &[(u64, String)], graph: &Graph, k: usize) -> Error {
+    let motion_line = instructions[k].0;
+    match (0..k).rev().find(|&j| graph.stops[j]) {
+        Some(j) => {
+            let (line, t) = &instructions[j];
+            let jump = t.trim().to_ascii_uppercase().contains("LBL[");
+            match jump {
+                true => at(*line, format!("{}: the motion on line {motion_line} after it is reached by no path (no label leads to it): the controller never runs it; remove it", short(t.trim()))),
+                false => at(*line, format!("{}: the program ends here, before the motions after it: remove them or the instruction", short(t.trim()))),
+            }
+        }
+        None => at(motion_line, "the motion is reached by no path from the program's start: the controller never runs it; remove it".into()),
+    }
+}
+
+/// The targets of `out` whose frame or tool is unknown because the paths that reach their motion
+/// select it differently (`in_force`) moved to `left`, left as found.
+fn leave_paths(
+    out: Vec<JointTarget>,
+    in_force: &[Selected],
+    left: &mut Vec<Left>,
+) -> Vec<JointTarget> {
+    let mut kept = Vec::with_capacity(out.len());
+    for (t, s) in out.into_iter().zip(in_force) {
+        let paths = |n: &Option<Number>| matches!(n, Some(Number::Paths(_)));
+        let why = t
+            .cartesian
+            .as_deref()
+            .and_then(|c| match (&c.frame, &c.tool) {
+                (Frame::Unknown(_, why), _) if paths(&s.user) => Some(why.clone()),
+                (_, Frame::Unknown(_, why)) if paths(&s.tool) => Some(why.clone()),
+                _ => None,
+            });
+        match why {
+            Some(why) => left.push(Left::of(&t, why)),
+            None => kept.push(t),
+        }
+    }
+    kept
+}
