@@ -60,7 +60,8 @@
 //!   instruction stiffid does not know;
 //! - `WVON` with a motion after it before `WVOF`: weaving moves the tool across the path;
 //! - a `CALL` or `MACRO` in a job with motions (the motions of the job it calls would not be the
-//!   file's), but a call of a job of the backup that moves nothing; a `JUMP` to a label the job
+//!   file's), but a call of a job of the backup, passed over when it moves nothing and read where
+//!   it is called (compensated in its own file) when it moves; a `JUMP` to a label the job
 //!   does not hold, to another job or to a variable's label; weaving in a job with jumps
 //!   ([`calls`]: labels, jumps, branches and loops are followed);
 //! - a job of another robot than the controller's first (`RB2` in a `///GROUP` line);
