@@ -49,7 +49,7 @@ pub struct TargetStep {
 
 impl TargetStep {
     /// The worst parameter's predicted deviation rate, %: of the joints and virtual springs.
-    pub fn worst_pct(&self) -> f64 {
+    pub(crate) fn worst_pct(&self) -> f64 {
         let springs = self.spring_deviation_pct.iter().copied();
         springs.fold(self.worst_joint().1, f64::max)
     }

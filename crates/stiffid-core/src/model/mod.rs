@@ -232,7 +232,7 @@ impl Spring {
 ///
 /// # Panics
 /// If `link > 6`.
-pub fn link_frame(frames: &Frames, link: usize) -> &Isometry3<f64> {
+pub(crate) fn link_frame(frames: &Frames, link: usize) -> &Isometry3<f64> {
     match link {
         0 => &frames.base,
         k => &frames.joints[k - 1],

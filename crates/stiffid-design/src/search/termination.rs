@@ -59,7 +59,8 @@ impl Termination {
 
     /// Whether the search stopped at a point a step no longer improves
     /// ([`Termination::Converged`] or [`Termination::StepTolerance`]).
-    pub fn is_converged(self) -> bool {
+    #[cfg(test)]
+    pub(crate) fn is_converged(self) -> bool {
         matches!(self, Termination::Converged | Termination::StepTolerance)
     }
 

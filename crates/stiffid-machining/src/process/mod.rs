@@ -72,7 +72,7 @@ impl Process {
 
     /// Each operation's tool number and its tool's radius (half its `diameter_mm`), m: what
     /// a G-code's cutter radius compensation (`G41`/`G42`) offsets the path by.
-    pub fn tool_radii(&self) -> Vec<(Option<u32>, f64)> {
+    pub(crate) fn tool_radii(&self) -> Vec<(Option<u32>, f64)> {
         (self.operations.iter())
             .map(|o| {
                 let d = match &o.kind {

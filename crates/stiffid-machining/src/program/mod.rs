@@ -47,7 +47,7 @@
 //! assigned at run time (unless the backup's files, [`Context::backup`], declare it), a search
 //! or triggered motion (RAPID `SearchL`, `TriggL`, `MoveLDO`). KRL and RAPID read a motion inside
 //! a loop or branch, or in another routine of the file, where it is (what it moves with followed
-//! along every path, [`paths`]); LS and INFORM follow their labels, jumps, branches and loops
+//! along every path, `paths`); LS and INFORM follow their labels, jumps, branches and loops
 //! the same way (LS over its order of run, [`ls`]) and refuse a call of a program that may move
 //! between two motions.
 //!
@@ -61,7 +61,7 @@
 //! is declared, the visits must agree).
 //!
 //! Statements that set what the motions use (frames, tools, speeds) are followed through
-//! branches and loops along every path ([`paths`]); with [`Context::leave_refused`], a motion
+//! branches and loops along every path (`paths`); with [`Context::leave_refused`], a motion
 //! refused for what only the run decides is left as found, not compensated, and named in
 //! [`JointProgram::left`]; the controller backup's files given with a program
 //! ([`Context::backup`]) hold the data it declares elsewhere.
@@ -76,7 +76,7 @@ pub mod generate;
 pub mod inform;
 pub mod krl;
 pub mod ls;
-pub mod paths;
+pub(crate) mod paths;
 mod points;
 pub mod rapid;
 pub mod rename;
@@ -331,7 +331,7 @@ pub struct Context<'a> {
     /// the library lists no folder): each file's name as given (its last component names it:
     /// FANUC `SYSFRAME.VA`, Yaskawa `TOOL.CND`, KRL `$config.dat`, a RAPID module `BASE.sys`)
     /// and its text. Each language reads the
-    /// files it knows ([`Context::backup_file`], [`Context::backup_with`]); empty: none given.
+    /// files it knows (`Context::backup_file`, `Context::backup_with`); empty: none given.
     pub backup: &'a [(String, String)],
     /// Leave as found the motions refused for what only the run decides (paths that set
     /// different frames, a value assigned at run time): each is then not compensated, written
@@ -407,14 +407,14 @@ impl<'a> Context<'a> {
 
     /// The backup's file named `file` (its last path component, case-insensitive): its name as
     /// given and its text.
-    pub fn backup_file(&self, file: &str) -> Option<(&'a str, &'a str)> {
+    pub(crate) fn backup_file(&self, file: &str) -> Option<(&'a str, &'a str)> {
         self.backup_with(|name| name.eq_ignore_ascii_case(file))
             .into_iter()
             .next()
     }
 
     /// The backup's files whose name (last path component) `wanted` takes, in the order given.
-    pub fn backup_with(&self, wanted: impl Fn(&str) -> bool) -> Vec<(&'a str, &'a str)> {
+    pub(crate) fn backup_with(&self, wanted: impl Fn(&str) -> bool) -> Vec<(&'a str, &'a str)> {
         let backup: &'a [(String, String)] = self.backup;
         (backup.iter())
             .filter(|(name, _)| wanted(file_name(name)))

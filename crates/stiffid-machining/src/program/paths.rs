@@ -12,7 +12,7 @@
 //! run after the first, which [`Closed::changed`] lets the reader check.
 
 /// A state that joins another: the value after two paths that meet.
-pub trait Join: Clone {
+pub(crate) trait Join: Clone {
     /// `self`, the state at the end of one path, joined with `other`'s, the state at the end of
     /// another, where they meet after the construct `word` opened on `line`: a value both
     /// leave alike stays, one they leave differently becomes unknown, naming the lines.
@@ -23,7 +23,7 @@ pub trait Join: Clone {
 
 /// What a construct is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Kind {
+pub(crate) enum Kind {
     /// Its body is its first branch (`IF .. THEN`): others follow ([`Paths::branch`]).
     Branches,
     /// Its branches start at the first branch word (`SWITCH` then `CASE`, `TEST` then
@@ -51,7 +51,7 @@ struct Open<S> {
 
 /// A construct closed ([`Paths::close`]).
 #[derive(Debug, Clone)]
-pub struct Closed<S> {
+pub(crate) struct Closed<S> {
     /// Its word and line.
     pub word: String,
     /// The line that opened it.
@@ -65,7 +65,7 @@ pub struct Closed<S> {
 
 /// The constructs open at a statement, outermost first (module docs).
 #[derive(Debug, Clone)]
-pub struct Paths<S> {
+pub(crate) struct Paths<S> {
     open: Vec<Open<S>>,
 }
 
@@ -78,7 +78,7 @@ impl<S> Default for Paths<S> {
 impl<S: Join> Paths<S> {
     /// A construct `word` of `kind` opens on `line` with `state` in force; `mark`: the
     /// caller's (the number of targets read so far), given back by [`Paths::close`].
-    pub fn open(&mut self, (word, line): (&str, u64), state: &S, kind: Kind, mark: usize) {
+    pub(crate) fn open(&mut self, (word, line): (&str, u64), state: &S, kind: Kind, mark: usize) {
         self.open.push(Open {
             word: word.to_string(),
             line,
@@ -94,7 +94,7 @@ impl<S: Join> Paths<S> {
     /// The branch before ends and another begins (`ELSEIF`, `ELSE`, `CASE`, `DEFAULT`) in the
     /// innermost construct: `state` becomes the construct's entry state; `exhaustive`: the new
     /// branch is taken when no other is (`ELSE`, `DEFAULT`). Outside a construct, nothing.
-    pub fn branch(&mut self, state: &mut S, exhaustive: bool) {
+    pub(crate) fn branch(&mut self, state: &mut S, exhaustive: bool) {
         if let Some(o) = self.open.last_mut() {
             let end = std::mem::replace(state, o.entry.clone());
             if o.started {
@@ -107,7 +107,7 @@ impl<S: Join> Paths<S> {
 
     /// The innermost construct closes: `state` becomes every path's joined (the branches' ends,
     /// and the entry where no branch may be taken or the body may not run); `None` outside one.
-    pub fn close(&mut self, state: &mut S) -> Option<Closed<S>> {
+    pub(crate) fn close(&mut self, state: &mut S) -> Option<Closed<S>> {
         let o = self.open.pop()?;
         let end = state.clone();
         let mut paths = o.ends;
@@ -133,12 +133,13 @@ impl<S: Join> Paths<S> {
     }
 
     /// The outermost construct open, if any: its word and line.
-    pub fn inside(&self) -> Option<(&str, u64)> {
+    #[cfg(test)]
+    pub(crate) fn inside(&self) -> Option<(&str, u64)> {
         self.open.first().map(|o| (o.word.as_str(), o.line))
     }
 
     /// Every construct closes (a routine ends): nothing open.
-    pub fn clear(&mut self) {
+    pub(crate) fn clear(&mut self) {
         self.open.clear();
     }
 }

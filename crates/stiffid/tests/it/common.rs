@@ -272,3 +272,13 @@ pub fn milling_process() -> stiffid::internal::machining::process::Process {
     )
     .unwrap()
 }
+
+/// Whether a search stopped where a step no longer improves (converged or at the step
+/// tolerance).
+pub fn converged(t: stiffid::internal::design::Termination) -> bool {
+    matches!(
+        t,
+        stiffid::internal::design::Termination::Converged
+            | stiffid::internal::design::Termination::StepTolerance
+    )
+}

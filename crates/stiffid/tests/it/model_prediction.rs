@@ -10,7 +10,7 @@ use stiffid::internal::identify::compare::document::fit_doc;
 use stiffid::internal::identify::svd::fit;
 use stiffid::internal::io::stiffness;
 use stiffid::internal::machining::compensate;
-use stiffid::internal::model::{link_frame, Compliance, Family, Kind};
+use stiffid::internal::model::{Compliance, Family, Kind};
 use stiffid::internal::observation::deflection::Points;
 use stiffid::internal::observation::{posture_block, Measurement, Observations};
 use stiffid::internal::robot::ik::tool_pose;
@@ -49,7 +49,10 @@ fn jacobian_by_hand(s: &Setup, q: &Vector6<f64>, point: &Vector3<f64>) -> DMatri
     j.view_mut((0, 0), (6, 6)).copy_from(&drives);
     let p = frames.flange * nalgebra::Point3::from(*point);
     for (k, spring) in s.model().springs().iter().enumerate() {
-        let frame = link_frame(&frames, spring.link);
+        let frame = match spring.link {
+            0 => &frames.base,
+            k => &frames.joints[k - 1],
+        };
         let u = frame.rotation * spring.axis.into_inner();
         let o = frame * nalgebra::Point3::from(spring.point);
         let (v, w) = match spring.kind {

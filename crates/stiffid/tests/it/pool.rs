@@ -170,7 +170,11 @@ fn the_smallest_group_for_a_target_is_monotone_and_fails_when_out_of_reach() {
     assert_eq!(out_of_reach.steps.len(), 2, "stopped early");
     let last = &out_of_reach.steps[1];
     let extrapolated = out_of_reach.extrapolated_pct.unwrap();
-    assert_eq!(extrapolated, last.worst_pct() * (3.0f64 / 12.0).sqrt());
+    assert_eq!(
+        extrapolated,
+        (last.spring_deviation_pct.iter().copied()).fold(last.worst_joint().1, f64::max)
+            * (3.0f64 / 12.0).sqrt()
+    );
     assert!(extrapolated > 0.01 * 1.25);
     let e = smallest_group(&setup, f64::NAN, 12, choose).unwrap_err();
     assert!(e.to_string().contains("target_pct"), "{e}");

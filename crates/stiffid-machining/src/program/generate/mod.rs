@@ -105,7 +105,7 @@ pub use names::{
     check_name, check_plan, default_name_length, max_name_length, moves_per_file, LS_MAX_LINES,
 };
 pub use process::{place, place_comments, Process, ProcessForm};
-pub use settings::{Settings, RAPID_SPEED_MM_S};
+pub use settings::Settings;
 pub(crate) use settings::{MIN_FEED, MOVES_PER_FILE, RAPID_PERCENT};
 
 use super::{Dialect, DECIMALS};

@@ -7,7 +7,7 @@ use stiffid_core::{Error, Result};
 
 /// The default rapid speed ([`Settings::rapid_speed`]) of RAPID's `vrapid`, mm/s, or
 /// [`Settings::max_tcp_speed`] when slower.
-pub const RAPID_SPEED_MM_S: f64 = 200.0;
+const RAPID_SPEED_MM_S: f64 = 200.0;
 /// The default joint speed of rapid moves ([`Settings::rapid_joint_pct`]: KRL `BAS(#VEL_PTP)`,
 /// LS `J`, INFORM `VJ=`), percent of the axes' top speed; KRL's `BAS(#ACC_PTP)` always.
 pub(crate) const RAPID_PERCENT: u32 = 20;
@@ -46,7 +46,7 @@ pub struct Settings {
 
 impl Default for Settings {
     /// Cartesian targets (not asked), 2000 mm/s, the dialect's name length, 10 000 moves per file,
-    /// rapids at [`RAPID_SPEED_MM_S`] and 20 %.
+    /// rapids at 200 mm/s and 20 %.
     fn default() -> Self {
         Self {
             targets: Targets::Cartesian,

@@ -49,7 +49,7 @@ impl JointMaps {
     }
 
     /// Whether any joint has a backlash term.
-    pub fn any_backlash(&self) -> bool {
+    pub(crate) fn any_backlash(&self) -> bool {
         self.backlash.contains(&true)
     }
 

@@ -155,7 +155,7 @@ fn choose(b: f64, seed: u64) -> maps::Choice {
 fn the_choice_keeps_no_backlash_on_a_robot_without_one() {
     let seeds = 20usize;
     let none = (0..seeds as u64)
-        .filter(|&s| !choose(0.0, s).maps.any_backlash())
+        .filter(|&s| !choose(0.0, s).maps.backlash.contains(&true))
         .count();
     eprintln!("no backlash in {none} of {seeds} seeds");
     assert!(
