@@ -12,6 +12,9 @@ module and `pub use` line; `pub(crate)` is not public), the users of its name, f
               (`crates/stiffid/public-api.txt`: its source file and its name)
     jobs      the jobs crate (`crates/stiffid/src/app/`) names it, and no one above: the seam
               between the science and the jobs
+    interface no one outside names it, but the signature or a public field of a used item of
+              its crate, or a trait implementation's associated type, carries it (a type a used
+              function returns)
     tests     only tests outside its crate name it (`crates/*/tests/`, other crates' unit tests)
     crate     nothing outside its crate names it (its own code or unit tests, or nothing)
 
@@ -40,6 +43,7 @@ DECLARATION = re.compile(
     r"^\s*pub\s+(?:(?:async|unsafe|const|extern\s+\"C\")\s+)*"
     r"(fn|struct|enum|trait|type|const|static|mod|use)\b\s*(?:mut\s+)?(.*)")
 WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+ASSOCIATED = re.compile(r"^\s+type\s+\w+\s*=")
 
 
 def strip(text):
@@ -171,6 +175,7 @@ class Workspace:
         self.items = []  # (crate, file, line, kind, names)
         self.code = defaultdict(Counter)  # group -> word counts
         self.dependencies = {crate: dependencies(root, crate) for crate in SCIENCE}
+        self.associated = defaultdict(set)  # crate -> names of trait impls' associated types
         for crate in SCIENCE:
             self.read_science(crate)
         self.read_others()
@@ -192,6 +197,9 @@ class Workspace:
 
     def declarations(self, crate, path, code):
         lines = code.split("\n")
+        # A trait implementation's associated type is as public as the trait and the type.
+        self.associated[crate] |= {w for l in lines if ASSOCIATED.match(l)
+                                   for w in WORD.findall(l.split("=", 1)[1])}
         starts = [0]
         for line in lines:
             starts.append(starts[-1] + len(line) + 1)
@@ -271,7 +279,7 @@ def classify(workspace):
     changed = True
     while changed:
         changed = False
-        faces = defaultdict(set)
+        faces = defaultdict(set, {c: set(n) for c, n in workspace.associated.items()})
         for item in workspace.items:
             if item.user not in ("tests", "crate"):
                 faces[item.crate] |= item.face - set(item.names)
