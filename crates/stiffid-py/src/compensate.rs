@@ -371,7 +371,7 @@ fn read_with<'t>(
 }
 
 /// The paths `backup=` gives: one path (a file or a folder), or a list of them.
-fn backup_paths(backup: &Bound<'_, PyAny>) -> PyResult<Vec<PathBuf>> {
+pub(crate) fn backup_paths(backup: &Bound<'_, PyAny>) -> PyResult<Vec<PathBuf>> {
     match backup.extract::<PathBuf>() {
         Ok(one) => Ok(vec![one]),
         Err(_) => backup.extract::<Vec<PathBuf>>().map_err(|_| {

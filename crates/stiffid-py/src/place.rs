@@ -15,7 +15,8 @@ use stiffid::internal::machining::Language;
 use stiffid::internal::observation::deflection::Frame;
 
 /// The placement of the part that minimises the error bound of the G-code ``program`` (cut with
-/// the process file ``process``), or of the path CSV ``path`` (each row's TCP pose in the part
+/// the process file ``process``; a robot program's controller backup ``backup``, a path or a
+/// list of files or folders, as ``compensate`` reads it), or of the path CSV ``path`` (each row's TCP pose in the part
 /// frame, a wrench in ``frame`` ``"base"``, the part frame, or ``"tool"`` where the row gives
 /// none; not with ``program``), on the setup file ``setup`` (a ``.toml`` path with its
 /// ``[workpiece] base_from_part``, the part's own placement) with the stiffness ``stiffness``
@@ -36,7 +37,7 @@ use stiffid::internal::observation::deflection::Frame;
 /// ``gain_vs_reach_only_pct``, ``evaluations``) and ``setup_text``: the setup file's text
 /// with the chosen ``[workpiece]``, as ``stiffid place --out`` writes it.
 #[pyfunction]
-#[pyo3(signature = (setup, stiffness, *, program=None, process=None, path=None, frame="base", region_mm, rotation_deg=(-180.0, 180.0), free=None, objective="max", margin_deg=5.0, max_condition=1000.0, seed=1, grid=5, samples=32, starts=3, chord_tolerance_mm=0.01, level=0.95, force_tolerance_pct=20.0, q0_deg=None, **retired))]
+#[pyo3(signature = (setup, stiffness, *, program=None, process=None, backup=None, path=None, frame="base", region_mm, rotation_deg=(-180.0, 180.0), free=None, objective="max", margin_deg=5.0, max_condition=1000.0, seed=1, grid=5, samples=32, starts=3, chord_tolerance_mm=0.01, level=0.95, force_tolerance_pct=20.0, q0_deg=None, **retired))]
 #[allow(clippy::too_many_arguments)]
 pub fn place<'py>(
     py: Python<'py>,
@@ -44,6 +45,7 @@ pub fn place<'py>(
     stiffness: &Bound<'py, PyAny>,
     program: Option<PathBuf>,
     process: Option<PathBuf>,
+    backup: Option<&Bound<'py, PyAny>>,
     path: Option<PathBuf>,
     frame: &str,
     region_mm: [f64; 4],
@@ -71,7 +73,7 @@ pub fn place<'py>(
     let mut options = crate::compensate::options(py, s, q0_deg)?;
     options.level = level;
     options.force_tolerance = force_tolerance_pct / 100.0;
-    let (read, parsed, points);
+    let (read, parsed, points, files);
     let work = match (&program, &process, &path) {
         (Some(_), Some(_), None) if frame.parse::<Frame>().map_err(raise)? != Frame::Base => {
             return Err(error::value(
@@ -83,16 +85,23 @@ pub fn place<'py>(
             let language = Language::of_file(&name).map_err(raise)?;
             // A KRL program's .dat beside it, read with it as compensate does.
             let (text, data, _) = error::read_program(program)?;
+            files = match backup {
+                Some(b) => error::read_backup(&crate::compensate::backup_paths(b)?, &name)?,
+                None => Vec::new(),
+            };
             let tolerance = chord_tolerance_mm * 1e-3;
             let process_name = process_path.display().to_string();
             parsed = file::parse(&error::read(process_path)?, &process_name).map_err(raise)?;
             let how = (tolerance, &parsed);
-            read = job::read_program_with(s, &name, (&text, data.as_deref()), language, how)
-                .map_err(raise)?;
+            let files = (text.as_str(), data.as_deref(), files.as_slice());
+            read = job::read_program_with(s, &name, files, language, how).map_err(raise)?;
             Work::Program {
                 program: &read,
                 process: &parsed,
             }
+        }
+        (None, None, Some(_)) if backup.is_some() => {
+            return Err(error::value("backup: only with program= and process="))
         }
         (None, None, Some(p)) => {
             let frame = frame.parse::<Frame>().map_err(raise)?;

@@ -37,6 +37,12 @@ pub struct Args {
     /// With --program: the process file (TOML) that gives every point its cutting force.
     #[arg(long, requires = "program")]
     process: Option<PathBuf>,
+    /// With a robot --program: files of the controller's backup that hold what the program
+    /// declares elsewhere, or folders whose files of the program's language are read (KUKA the
+    /// module's .dat and $config.dat; ABB the task's modules, .mod and .sys), as compensate
+    /// reads them.
+    #[arg(long, num_args = 1.., value_name = "PATH", requires = "program")]
+    backup: Vec<PathBuf>,
     /// A path CSV instead of a program, as compensate reads it but each TCP pose (x_mm, y_mm,
     /// z_mm, rx_deg, ry_deg, rz_deg) in the part frame and a `base` wrench in the part frame
     /// (turning with it); rows of axis angles are refused.
@@ -114,7 +120,7 @@ pub fn run(args: &Args) -> Result<()> {
         false => stiffid::internal::setup::builtin_text(&args.setup)?.to_string(),
     };
     let compliance = args.stiffness.load(&setup)?;
-    let (program, process, path);
+    let (program, process, path, backup);
     let work = match (&args.program, &args.process, &args.path) {
         (Some(_), Some(_), None) if args.frame != Frame::Base => bail!(
             "--frame: {}",
@@ -125,13 +131,19 @@ pub fn run(args: &Args) -> Result<()> {
             let language = Language::of_file(&name).map_err(|e| anyhow!("--program {e}"))?;
             // A KRL program's .dat beside it, read with it as compensate does.
             let (text, data, _) = load::read_program(program_path)?;
+            backup = load::read_backup(&args.backup, &name)?;
             let tolerance = args.chord_tolerance_mm * 1e-3;
             let process_name = process_path.display().to_string();
             process = file::parse(&load::read(process_path)?, &process_name)?;
             let how = (tolerance, &process);
-            program =
-                place::read_program_with(&setup, &name, (&text, data.as_deref()), language, how)
-                    .map_err(option_error)?;
+            program = place::read_program_with(
+                &setup,
+                &name,
+                (&text, data.as_deref(), &backup),
+                language,
+                how,
+            )
+            .map_err(option_error)?;
             Work::Program {
                 program: &program,
                 process: &process,

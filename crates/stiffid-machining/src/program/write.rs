@@ -115,8 +115,9 @@ impl JointProgram {
                     at(t.line, "a Cartesian target not resolved with the setup's controller (program::cartesian::resolve)".into())
                 })?;
                 let q = nalgebra::Vector6::from(q_deg[i]).map(f64::to_radians);
-                let changed = now[..6] != read[..6];
-                for (span, text) in writer.texts(self.dialect, c, &q) {
+                // The pose moves with the arm and with its track.
+                let changed = now != read;
+                for (span, text) in writer.texts(self.dialect, c, (&q, &external[i])) {
                     edits.push((span, i, text, changed));
                 }
             }

@@ -339,6 +339,7 @@ def place(
     *,
     program: Optional[Union[str, os.PathLike[str]]] = None,
     process: Optional[Union[str, os.PathLike[str]]] = None,
+    backup: Optional[Union[str, os.PathLike[str], list[Union[str, os.PathLike[str]]]]] = None,
     path: Optional[Union[str, os.PathLike[str]]] = None,
     frame: Literal["base", "tool"] = "base",
     region_mm: Sequence[float],

@@ -256,6 +256,67 @@ pub(crate) fn compensated(
     (points, results)
 }
 
+/// The true track cell calibrated as the guide says, with what the tests on it need: the
+/// campaign's case and the arm's, the truth, the calibrated setup (the nominal controller
+/// named), the drives' compliance with the own weight's sag, the tracker's registration on the
+/// calibrated and on the nominal robot, the held-out RMS (m).
+pub(crate) struct Calibrated {
+    pub(crate) case: true_robot::Case,
+    pub(crate) arm: true_robot::Case,
+    pub(crate) truth: Truth,
+    pub(crate) setup: stiffid::Setup,
+    pub(crate) compliance: stiffid::internal::model::Compliance,
+    pub(crate) frame: Isometry3<f64>,
+    pub(crate) nominal_frame: Isometry3<f64>,
+    pub(crate) held_rms: f64,
+}
+
+/// The true cell calibrated from 30 unloaded postures over the rail (6 stations) with 0.015 mm
+/// of noise, its drives identified from load tests at 4 stations (12 postures, two wrenches
+/// each, noise-free): built once, for every test that runs on it.
+pub(crate) fn calibrated_cell() -> &'static Calibrated {
+    static CELL: std::sync::OnceLock<Calibrated> = std::sync::OnceLock::new();
+    CELL.get_or_init(|| {
+        let case = track_case();
+        let arm = true_robot::dh_case();
+        let mut rng = ChaCha8Rng::seed_from_u64(3);
+        let truth = Truth::new(&arm.setup, &mut rng);
+        let wrenches = [
+            Vector6::zeros(),
+            Vector6::new(800.0, -300.0, -1200.0, 0.0, 0.0, 0.0),
+            Vector6::new(-500.0, 900.0, 400.0, 0.0, 0.0, 0.0),
+        ];
+        let fit = true_robot::postures(30, &mut rng, case.angles);
+        let data = readings(&truth, &fit, &stations(30, 5), &wrenches[..1], &mut rng);
+        let held_q = true_robot::postures(12, &mut rng, case.angles);
+        let held_s: Vec<f64> = (0..12).map(|i| 0.25 + 0.5 * i as f64).collect();
+        let held = readings(&truth, &held_q, &held_s, &wrenches[..1], &mut rng);
+        // A cell is calibrated from unloaded readings; its drives from load tests at stations.
+        let (setup, weight, frame, held_rms, nominal_frame) =
+            true_robot::calibrated(&case, Gravity::Masses, &data, &held);
+        let load_q = true_robot::postures(12, &mut rng, case.angles);
+        let mut compliance = identified(&truth, &setup, &load_q, &stations(12, 3), &wrenches[1..]);
+        // The drives 30 % more compliant than nominal, found as such.
+        let nominal_h = case.setup.nominal_compliance().unwrap() * 1.3;
+        for j in 0..6 {
+            let relative = compliance.h[j] / nominal_h[j] - 1.0;
+            assert!(relative.abs() < 0.01, "drive {}: {relative:e}", j + 1);
+        }
+        // The own weight's sag as the calibration with the masses found it.
+        compliance.own_weight = weight.and_then(|w| w.own_weight);
+        Calibrated {
+            case,
+            arm,
+            truth,
+            setup,
+            compliance,
+            frame,
+            nominal_frame,
+            held_rms,
+        }
+    })
+}
+
 /// The true cell calibrated from 30 unloaded postures over the rail (6 stations) with 0.015 mm
 /// of noise, its drives identified from load tests at 4 stations (12 postures, two wrenches
 /// each, noise-free): the compensated path lands on the true robot within 0.05 mm
@@ -267,44 +328,28 @@ pub(crate) fn compensated(
 /// 100 mm/s, on the grid refined once, 0.0110 mm and 0.0182 mm, joint 2 within its limit.
 #[test]
 fn a_path_along_the_track_lands_on_the_true_cell() {
-    let case = track_case();
-    let arm = true_robot::dh_case();
-    let mut rng = ChaCha8Rng::seed_from_u64(3);
-    let truth = Truth::new(&arm.setup, &mut rng);
-    let wrenches = [
-        Vector6::zeros(),
-        Vector6::new(800.0, -300.0, -1200.0, 0.0, 0.0, 0.0),
-        Vector6::new(-500.0, 900.0, 400.0, 0.0, 0.0, 0.0),
-    ];
-    let fit = true_robot::postures(30, &mut rng, case.angles);
-    let data = readings(&truth, &fit, &stations(30, 5), &wrenches[..1], &mut rng);
-    let held_q = true_robot::postures(12, &mut rng, case.angles);
-    let held_s: Vec<f64> = (0..12).map(|i| 0.25 + 0.5 * i as f64).collect();
-    let held = readings(&truth, &held_q, &held_s, &wrenches[..1], &mut rng);
-    // A cell is calibrated from unloaded readings; its drives from load tests at stations.
-    let (setup, weight, frame, held_rms, nominal_frame) =
-        true_robot::calibrated(&case, Gravity::Masses, &data, &held);
-    let load_q = true_robot::postures(12, &mut rng, case.angles);
-    let mut compliance = identified(&truth, &setup, &load_q, &stations(12, 3), &wrenches[1..]);
-    // The drives 30 % more compliant than nominal, found as such.
-    let nominal_h = case.setup.nominal_compliance().unwrap() * 1.3;
-    for j in 0..6 {
-        let relative = compliance.h[j] / nominal_h[j] - 1.0;
-        assert!(relative.abs() < 0.01, "drive {}: {relative:e}", j + 1);
-    }
-    // The own weight's sag as the calibration with the masses found it.
-    compliance.own_weight = weight.and_then(|w| w.own_weight);
+    let Calibrated {
+        case,
+        arm,
+        truth,
+        setup,
+        compliance,
+        frame,
+        nominal_frame,
+        held_rms,
+    } = calibrated_cell();
+    let (frame, nominal_frame, held_rms) = (*frame, *nominal_frame, *held_rms);
     let q0 = Vector6::from_fn(|i, _| [10.0f64, 10.0, -110.0, 20.0, -50.0, 40.0][i].to_radians());
-    let text = path(&setup, &q0);
-    let mut options = Options::for_setup(&setup);
+    let text = path(setup, &q0);
+    let mut options = Options::for_setup(setup);
     options.q0 = q0;
     let frames = (frame, nominal_frame);
     let own_options = options.clone();
     let (own, own_nominal) = errors(
-        &truth,
-        (&case, &arm),
+        truth,
+        (case, arm),
         frames,
-        compensated(&setup, &compliance, &options, &text),
+        compensated(setup, compliance, &options, &text),
     );
     eprintln!("track: held out {:.4} mm", held_rms * 1e3);
     check(own, own_nominal);
@@ -317,21 +362,21 @@ fn a_path_along_the_track_lands_on_the_true_cell() {
         minimise: Objective::Deflection,
         aggregate: Aggregate::Max,
     };
-    let (points, results) = compensated(&setup, &compliance, &options, &text);
+    let (points, results) = compensated(setup, compliance, &options, &text);
     let moved = (points.iter().zip(&results))
         .filter(|(p, r)| (p.external.as_slice()[0] - r.external.as_slice()[0]).abs() > 1e-9)
         .count();
     eprintln!("track: {moved} of 6 stations moved");
     assert!(moved > 0, "no station moved");
     let free_speeds = speeds(&text, &results);
-    let (chosen, chosen_nominal) = errors(&truth, (&case, &arm), frames, (points, results));
+    let (chosen, chosen_nominal) = errors(truth, (case, arm), frames, (points, results));
     check(chosen, chosen_nominal);
     // The axes' speed limits at the feed: of the axes the path's own moves, the one the free
     // choice drives fastest against the own is limited between the two; the choice (on the grid
     // refined once) keeps every move within the limit and still lands on the true cell.
     let own_speeds = speeds(
         &text,
-        &compensated(&setup, &compliance, &own_options, &text).1,
+        &compensated(setup, compliance, &own_options, &text).1,
     );
     eprintln!("track: highest speeds own {own_speeds:.4?}, free {free_speeds:.4?}");
     let (k, ratio) = (0..7)
@@ -344,10 +389,10 @@ fn a_path_along_the_track_lands_on_the_true_cell() {
         "the free choice drives no axis faster: {ratio}"
     );
     let limit = (free_speeds[k] * own_speeds[k]).sqrt();
-    let limited = limited(&setup, k, limit);
+    let limited = limited(setup, k, limit);
     // The grid refined once: the band's moves are held to the limit too.
     options.refine = 1;
-    let (points, results) = compensated(&limited, &compliance, &options, &text);
+    let (points, results) = compensated(&limited, compliance, &options, &text);
     let limited_speeds = speeds(&text, &results);
     eprintln!(
         "track: axis {} at most {limit:.4e} (own {:.4e}, free {:.4e}): limited {:.4e}",
@@ -360,7 +405,7 @@ fn a_path_along_the_track_lands_on_the_true_cell() {
         limited_speeds[k] <= limit * (1.0 + 1e-9),
         "{limited_speeds:?}"
     );
-    let (speed_limited, speed_nominal) = errors(&truth, (&case, &arm), frames, (points, results));
+    let (speed_limited, speed_nominal) = errors(truth, (case, arm), frames, (points, results));
     check(speed_limited, speed_nominal);
 }
 

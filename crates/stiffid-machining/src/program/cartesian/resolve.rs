@@ -3,10 +3,11 @@
 
 use super::solve::{configured, Miss};
 use super::{words, Cartesian, Flags, Frame};
-use crate::program::{at, Dialect, JointProgram};
+use crate::program::{at, external, Dialect, JointProgram};
 use nalgebra::{Isometry3, UnitQuaternion, Vector3, Vector6};
 use stiffid_core::robot::configuration::Configuration;
 use stiffid_core::robot::ik::{self, tool_pose};
+use stiffid_core::robot::ExternalAxes;
 use stiffid_core::setup::NumberedFrames;
 use stiffid_core::{Result, Robot, Setup};
 
@@ -70,17 +71,26 @@ pub(crate) struct Writer {
     pub robot: Robot,
     pub tcp: Vector3<f64>,
     pub tcp_rotation: UnitQuaternion<f64>,
+    /// The controller's external axes: its track carries the arm.
+    pub axes: Option<ExternalAxes>,
 }
 
 impl Writer {
-    /// The texts of Cartesian target `c` at axis angles `q` (rad), with their spans.
+    /// The texts of Cartesian target `c` at axis angles `q` (rad) with the external values `e`
+    /// (the program's, mm or deg, in its order: the first are the cell's), with their spans.
     pub(crate) fn texts(
         &self,
         dialect: Dialect,
         c: &Cartesian,
-        q: &Vector6<f64>,
+        (q, e): (&Vector6<f64>, &[Option<f64>]),
     ) -> Vec<(std::ops::Range<usize>, String)> {
-        let mut pose = tool_pose(&self.robot.frames(q), &self.tcp);
+        let carrier = self.axes.as_ref().map_or_else(Isometry3::identity, |axes| {
+            let shown: Vec<f64> = (0..axes.len())
+                .map(|k| e.get(k).copied().flatten().unwrap_or(0.0))
+                .collect();
+            axes.carrier_pose(&axes.to_si(&shown))
+        });
+        let mut pose = carrier * tool_pose(&self.robot.frames(q), &self.tcp);
         pose.rotation *= self.tcp_rotation;
         let local = c.base_from_frame.unwrap_or_default().inverse() * pose;
         c.texts(
@@ -106,8 +116,10 @@ pub(crate) fn is_cartesian(program: &JointProgram) -> bool {
 /// states the frame): a frame the program leaves to the controller (KRL without `$BASE` or `$TOOL`,
 /// `BASE_DATA[n]`), a tool that is not the setup's (1 micrometre, 1 microradian), an LS user frame
 /// without the setup's `[workpiece]`, the first target without configuration data, a pose out of
-/// reach in the configuration it names (with the configurations it is reached in), a robot with
-/// external axes (not read with Cartesian targets yet).
+/// reach in the configuration it names (with the configurations it is reached in); on a cell
+/// with external axes, those of [`external::cell_values`] (a target without the value of an
+/// axis of the cell, a value outside its travel). A target's external values place the arm on
+/// its track (the controller's and the setup's robot's each their own).
 pub fn resolve(
     program: &JointProgram,
     controller: &Controller,
@@ -169,11 +181,12 @@ fn resolve_in(
         return Ok(program.clone());
     }
     let dialect = program.dialect;
+    let (carriers, axes) = carriers(program, controller)?;
     let mut out = program.clone();
     let mut previous = *start;
     let mut flags: Option<Flags> = None;
     let mut previous_arm: Option<Configuration> = None;
-    for t in &mut out.targets {
+    for (t, (on_controller, on_truth_carrier)) in out.targets.iter_mut().zip(carriers) {
         let line = t.line;
         let Some(c) = t.cartesian.as_deref_mut() else {
             previous = Vector6::from(t.q_deg).map(f64::to_radians);
@@ -181,14 +194,13 @@ fn resolve_in(
             (flags, previous_arm) = (Some(Flags::of(dialect, &arm)), Some(arm));
             continue;
         };
-        if controller.truth.external().is_some() {
-            return Err(at(line, "a Cartesian target on a robot with external axes: stiffid reads those as joint targets only; write the program with joint targets".into()));
-        }
         check_tool(&c.tool, line, controller)?;
         let frame = base_frame(&c.frame, line, (controller, dialect), placed)?;
-        // The flange's axes at the TCP: the tool's turned back by the tool's rotation.
-        let mut target = frame * c.pose();
-        target.rotation *= controller.tcp_rotation.inverse();
+        // The flange's axes at the TCP: the tool's turned back by the tool's rotation; in the
+        // frame of the arm on its carriage (the cell's when it has no track).
+        let mut in_cell = frame * c.pose();
+        in_cell.rotation *= controller.tcp_rotation.inverse();
+        let target = on_controller.inverse() * in_cell;
         let kept = previous_arm.filter(|_| c.follows || c.flags.is_none());
         let wanted = c.flags.clone().or(flags.clone()).ok_or_else(|| at(line, format!("a Cartesian target without configuration data ({}), and no target before it to keep the configuration of: the pose has up to eight solutions; give them", dialect.controller().flags_name())))?;
         let accept = |arm: &Configuration| match (&kept, placed) {
@@ -210,7 +222,9 @@ fn resolve_in(
                 missed(&wanted, kept.is_some().then_some(c.follows), miss),
             )
         })?;
-        let q = on_truth(controller, &target, q, options).map_err(|why| at(line, why))?;
+        let truth_target = on_truth_carrier.inverse() * in_cell;
+        let q = on_truth(controller, (&target, &truth_target), q, options)
+            .map_err(|why| at(line, why))?;
         c.base_from_frame = Some(frame);
         t.q_deg = q.map(f64::to_degrees).into();
         previous = q;
@@ -221,8 +235,46 @@ fn resolve_in(
         robot: controller.robot.clone(),
         tcp: controller.tcp,
         tcp_rotation: controller.tcp_rotation,
+        axes,
     }));
     Ok(out)
+}
+
+/// A target's carriers: the controller's and the setup's robot's (the cell frame from the
+/// arm's base frame).
+type Carriers = (Isometry3<f64>, Isometry3<f64>);
+
+/// Each target's carrier (the cell frame from the arm's base frame on its track, at the
+/// target's external values: [`external::cell_values`]) on the controller and on the setup's
+/// robot, and the controller's external axes. The controller runs its own robot's axes (a
+/// nominal straight track), or the cell's where its robot has none; the setup's robot its
+/// own (a calibrated track's error motions). A positioner carries the part, not the arm: a
+/// target in a fixed frame is where the program says whatever the table's angle. Without
+/// external axes, every carrier is the identity.
+///
+/// # Errors
+/// Those of [`external::cell_values`] (naming the line and the axis); [`Error::Program`](stiffid_core::Error::Program) naming
+/// the first target's line when the controller's robot has other external axes than the cell.
+fn carriers(
+    program: &JointProgram,
+    controller: &Controller,
+) -> Result<(Vec<Carriers>, Option<ExternalAxes>)> {
+    // Without external axes the targets' values are checked where they are compensated.
+    let Some(cell) = controller.truth.external().filter(|c| !c.is_empty()) else {
+        let none = (Isometry3::identity(), Isometry3::identity());
+        return Ok((vec![none; program.targets.len()], None));
+    };
+    let values = external::cell_values(program, Some(cell))?;
+    let own = controller.robot.external().filter(|c| !c.is_empty());
+    if let Some(own) = own.filter(|own| own.len() != cell.len()) {
+        let line = program.targets.first().map_or(1, |t| t.line);
+        return Err(at(line, format!("the controller's robot ([controller] robot) has {} external axes and the cell {}: give the controller's robot the cell's axes, in its order", own.len(), cell.len())));
+    }
+    let run = own.unwrap_or(cell);
+    let carriers = (values.iter())
+        .map(|e| (run.carrier_pose(e), cell.carrier_pose(e)))
+        .collect();
+    Ok((carriers, Some(run.clone())))
 }
 
 /// The message of a pose not reached in the configuration `wanted`, or (`kept`: whether the
@@ -252,11 +304,11 @@ fn missed(wanted: &Flags, kept: Option<bool>, miss: Miss) -> String {
 /// from it (the same when both are one robot).
 fn on_truth(
     controller: &Controller,
-    target: &Isometry3<f64>,
+    (target, truth_target): (&Isometry3<f64>, &Isometry3<f64>),
     q: Vector6<f64>,
     options: &ik::Options,
 ) -> std::result::Result<Vector6<f64>, String> {
-    if std::ptr::eq(controller.robot, controller.truth) {
+    if std::ptr::eq(controller.robot, controller.truth) && target == truth_target {
         return Ok(q);
     }
     let one = ik::Options {
@@ -264,7 +316,7 @@ fn on_truth(
         ..*options
     };
     let truth = controller.truth;
-    let s = ik::solve(truth, &controller.tcp, target, &q, &one).map_err(|e| {
+    let s = ik::solve(truth, &controller.tcp, truth_target, &q, &one).map_err(|e| {
         format!("the setup's robot does not reach the pose near the controller's posture: {e}")
     })?;
     match Configuration::of(truth, &s.q).change_from(&Configuration::of(controller.robot, &q)) {

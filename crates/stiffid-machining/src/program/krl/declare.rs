@@ -44,14 +44,23 @@ pub(super) enum Place {
     Src,
     /// Its `.dat`, from this byte of the program's text (the `.src` then the `.dat`).
     Dat(usize),
+    /// The controller's `$config.dat` (its global data list), read from its own first byte.
+    Config,
 }
 
-/// The declarations of the `.src` `text` and of its `.dat` `data` (a name declared in both is
-/// the `.src`'s, as KRL's local declaration hides the module's).
+/// The declarations of the `.src` `text`, of its `.dat` `data` and of the controller's
+/// `$config.dat` `config` (its name as given and its text): a name declared in more than one is
+/// the `.src`'s, else the `.dat`'s, as KRL's local declaration hides the module's and the
+/// module's the global one. A point of `$config.dat` is compensated as any; its compensated
+/// value is declared in the module ([`global`]), never in `$config.dat`.
 ///
 /// # Errors
 /// A malformed point of the `.src`, naming its line.
-pub(super) fn declarations(text: &str, data: Option<&str>) -> Result<Declarations> {
+pub(super) fn declarations(
+    text: &str,
+    data: Option<&str>,
+    config: Option<(&str, &str)>,
+) -> Result<Declarations> {
     let mut out = Declarations::default();
     let mut assignments = Vec::new();
     read(text, Place::Src, &mut out, &mut assignments)?;
@@ -69,6 +78,9 @@ pub(super) fn declarations(text: &str, data: Option<&str>) -> Result<Declaration
         for (k, v) in own.fdats {
             out.fdats.entry(k).or_insert(v);
         }
+    }
+    if let Some(config) = config {
+        global(&mut out, (text, data), config)?;
     }
     out.assigned = assignments
         .into_iter()
@@ -88,6 +100,7 @@ fn read(
     let (offset, file) = match place {
         Place::Src => (0, ""),
         Place::Dat(o) => (o, " of the .dat"),
+        Place::Config => (0, " of $config.dat"),
     };
     // The routines of the .src met so far: a declaration in one after the first (the module's
     // main routine, whose motions are read) is local to it, seen by none of those motions.
@@ -125,9 +138,7 @@ fn read(
                     Some(open) => match (aggregate_at(line, start + offset, code, open), place) {
                         (Ok(t), _) => Ok(declared_at(t, text, (start, offset), code, &name)),
                         (Err(e), Place::Src) => return Err(e),
-                        (Err(e), Place::Dat(_)) => {
-                            Err(format!("{name}, declared {on}: {}", message(e)))
-                        }
+                        (Err(e), _) => Err(format!("{name}, declared {on}: {}", message(e))),
                     },
                 };
                 let value = match points.get(&name) {
@@ -136,7 +147,7 @@ fn read(
                         let why = format!("{name} is declared twice, {first} and {on}: the controller refuses a name declared twice in one module; declare it once");
                         match place {
                             Place::Src => return Err(at(line, why)),
-                            Place::Dat(_) => Err(why),
+                            _ => Err(why),
                         }
                     }
                     None => value,
@@ -158,6 +169,82 @@ fn read(
         }
     }
     Ok(())
+}
+
+/// The points and frame data records of the controller's `$config.dat` (`file`, its name as
+/// given, and its `text`) that the program (`src` and its `.dat`) does not declare itself, into
+/// `out`. Each point is the program's own copy once compensated: a local declaration of the
+/// same line without `GLOBAL` (KSS 8.x SI manual, "Data lists": a module's own data hides the
+/// global data of that name), in the module's `.dat` after its `DEFDAT` line, or without a
+/// `.dat` in the `.src` after its first `DEF` line (the routine's declaration part);
+/// unchanged, it is not declared.
+///
+/// # Errors
+/// Those of [`read`] (none for a data list read as `$config.dat`).
+fn global(
+    out: &mut Declarations,
+    (src, data): (&str, Option<&str>),
+    (file, text): (&str, &str),
+) -> Result<()> {
+    let mut found = Declarations::default();
+    read(text, Place::Config, &mut found, &mut Vec::new())?;
+    let insert = match data {
+        Some(d) => src.len() + after_line(d, "DEFDAT"),
+        None => after_line(src, "DEF"),
+    };
+    for (k, (on, v)) in found.points {
+        let v = v.and_then(|t| copied(t, (file, text), insert));
+        for sub in &mut out.subs {
+            sub.entry(k.clone())
+                .or_insert_with(|| (on.clone(), v.clone()));
+        }
+        out.points.entry(k).or_insert((on, v));
+    }
+    for (k, v) in found.fdats {
+        out.fdats.entry(k).or_insert(v);
+    }
+    Ok(())
+}
+
+/// The byte of `text` after the first line whose first word is `word` (case-insensitive), 0
+/// without one.
+fn after_line(text: &str, word: &str) -> usize {
+    let mut at = 0;
+    for line in text.split_inclusive('\n') {
+        at += line.len();
+        let first = line.split_whitespace().next().unwrap_or("");
+        if first.eq_ignore_ascii_case(word) {
+            return at;
+        }
+    }
+    0
+}
+
+/// The point `t` of `$config.dat` (`file`, its `text`) as the program declares its copy at byte
+/// `insert` ([`global`]): its declaration's line without the word `GLOBAL`.
+fn copied(
+    t: JointTarget,
+    (file, text): (&str, &str),
+    insert: usize,
+) -> std::result::Result<JointTarget, String> {
+    let Some(p) = t.point.as_deref().cloned() else {
+        return Err(format!("declared in {file} on a line whose name stiffid does not find before its value: declare it in the module's .dat"));
+    };
+    let line = &text[p.declaration.clone()];
+    let upper = line.to_ascii_uppercase();
+    let name_at = p.name.start - p.declaration.start;
+    let (copy, removed) = match upper[..name_at].find("GLOBAL ") {
+        Some(g) => (format!("{}{}", &line[..g], &line[g + 7..]), 7),
+        None => (line.to_string(), 0),
+    };
+    let copy = match copy.ends_with('\n') {
+        true => copy,
+        false => copy + "\n",
+    };
+    let at = p.declaration.start + removed;
+    let name = p.name.start - at..p.name.end - at;
+    let foreign = crate::program::points::Foreign { text: copy, at };
+    Ok(t.declared_elsewhere(foreign, name, insert))
 }
 
 /// The point `t` declared on the line at byte `start` of `text` (`offset`: where `text` begins

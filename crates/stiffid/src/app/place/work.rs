@@ -68,21 +68,23 @@ pub fn read_program(
     read_program_with(
         setup,
         name,
-        (text, None),
+        (text, None, &[]),
         language,
         (chord_tolerance, process),
     )
 }
 
 /// [`read_program`] with the data file beside the program (KRL's `.dat`: its points and frame
-/// data), as the controller pairs them.
+/// data), as the controller pairs them, and the files of the controller's backup given with it
+/// (each its name and text: KRL the module's `.dat` and `$config.dat`, RAPID the task's other
+/// modules, as `compensate` reads them, [`stiffid_machining::program::Context::backup`]).
 ///
 /// # Errors
 /// Those of [`read_program`].
 pub fn read_program_with(
     setup: &Setup,
     name: &str,
-    (text, data): (&str, Option<&str>),
+    (text, data, backup): (&str, Option<&str>, &[(String, String)]),
     language: Language,
     (chord_tolerance, process): (f64, &Process),
 ) -> Result<Program> {
@@ -95,7 +97,8 @@ pub fn read_program_with(
         e => e,
     };
     let machine = stiffid_machining::gcode::Machine::of(setup, Some(process));
-    let mut context = stiffid_machining::program::Context::of(setup).with_machine(&machine);
+    let mut context =
+        (stiffid_machining::program::Context::of(setup).with_machine(&machine)).with_backup(backup);
     context.data = data;
     let program =
         stiffid_machining::read_in(text, language, chord_tolerance, &context).map_err(in_file)?;

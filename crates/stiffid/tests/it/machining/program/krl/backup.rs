@@ -59,3 +59,121 @@ fn the_module_dat_and_config_tables_come_from_the_backup() {
         other => panic!("{other:?}"),
     }
 }
+
+/// A milling program whose cut starts at a point of `$config.dat` (a global `E6POS`), with its
+/// module's `.dat`.
+const MILL_SRC: &str = "DEF mill( )\n$TOOL = {X 0, Y 0, Z 250, A 0, B 0, C 0}\n$BASE = {X 2000, Y 0, Z 550, A 0, B 0, C 0}\nPTP XP1\n$VEL.CP = 0.03\nLIN XCUT C_DIS\nLIN XP2 C_DIS\nLIN XSAFE\nEND\n";
+const MILL_DAT: &str = "DEFDAT mill\nDECL E6POS XP1={X 0, Y -100, Z 5, A 0, B 0, C 180, S 'B010', T 'B101001'}\nDECL E6POS XP2={X 60, Y -100, Z -4, A 0, B 0, C 180, S 'B010', T 'B101001'}\nENDDAT\n";
+const MILL_CONFIG: &str = "DEFDAT $CONFIG PUBLIC\n;FOLD USER GLOBALS\nDECL GLOBAL E6POS XCUT={X 0, Y -100, Z -4, A 0, B 0, C 180, S 'B010', T 'B101001', E1 0}\nDECL E6POS XSAFE={X 60, Y -100, Z -4, A 0, B 0, C 180, S 'B010', T 'B101001'}\n;ENDFOLD\nENDDAT\n";
+
+/// Compensates [`MILL_SRC`] with its `.dat` and the backup `files` on the KR 210 milling
+/// setup: the program and its `.dat`.
+fn mill(files: &[(String, String)]) -> stiffid::Result<(String, Option<String>)> {
+    use stiffid::app::compensate::{self, Input};
+    use stiffid::internal::machining::{compensate::Options, Language};
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/milling");
+    let text = std::fs::read_to_string(format!("{dir}/kuka-milling.toml")).unwrap();
+    let setup = stiffid::internal::setup::parse(&text, "kuka-milling.toml", |name, _| {
+        stiffid::internal::robot::presets::get(name)
+    })
+    .unwrap();
+    let stiffness = std::fs::read_to_string(format!("{dir}/kuka-stiffness.json")).unwrap();
+    let compliance = (stiffid::internal::io::stiffness::parse(&stiffness).unwrap())
+        .compliance(setup.model())
+        .unwrap();
+    let process = std::fs::read_to_string(format!("{dir}/aluminium.toml")).unwrap();
+    let process = stiffid::internal::machining::process::file::parse(&process, "p.toml").unwrap();
+    let request = compensate::Request {
+        names: Default::default(),
+        setup: &setup,
+        compliance,
+        input: Input::Program {
+            encoding: Default::default(),
+            reading: program::Reading {
+                backup: files,
+                leave_refused: false,
+            },
+            name: "mill.src".into(),
+            text: MILL_SRC,
+            data: Some(MILL_DAT),
+            language: Language::Robot(Dialect::Krl),
+            process_name: "aluminium.toml".into(),
+            process,
+            chord_tolerance: 1e-5,
+            output: Language::Robot(Dialect::Krl),
+            out_name: "mill_c.src".into(),
+            settings: Default::default(),
+        },
+        options: Options::for_setup(&setup),
+    };
+    let report = compensate::run::<stiffid::Error, _>(request, |_, _, _, _| Ok(()))?;
+    let p = report.report.program.unwrap();
+    Ok((p.text, p.data))
+}
+
+/// The members `X` to `C` of the `E6POS` declared as `name` in `text`.
+fn members(text: &str, name: &str) -> Vec<f64> {
+    let l = text
+        .lines()
+        .find(|l| l.contains(&format!("E6POS {name}=")))
+        .unwrap();
+    let inner = &l[l.find('{').unwrap() + 1..l.find(", S").unwrap()];
+    inner
+        .split(',')
+        .map(|m| m.split_whitespace().nth(1).unwrap().parse().unwrap())
+        .collect()
+}
+
+#[test]
+fn points_of_config_dat_are_read_from_the_backup_and_written_into_the_module_dat() {
+    // Without $config.dat, XCUT is declared nowhere the program gives: refused on its line.
+    match mill(&[]) {
+        Err(Error::Input { error, .. }) => match *error {
+            Error::Program { line, message } => {
+                assert_eq!(line, 6);
+                assert!(
+                    message.contains("XCUT") && message.contains("--backup"),
+                    "{message}"
+                );
+            }
+            other => panic!("{other:?}"),
+        },
+        other => panic!("{other:?}"),
+    }
+    let files = vec![(
+        "KRC/R1/System/$config.dat".to_string(),
+        MILL_CONFIG.to_string(),
+    )];
+    let (src, dat) = mill(&files).unwrap();
+    let dat = dat.unwrap();
+    // The .src as read; the global points compensated as local declarations of the module's
+    // .dat, on the lines after DEFDAT, GLOBAL dropped, in the order they are visited.
+    let unbound: Vec<&str> = src
+        .lines()
+        .map(|l| l.split(" ; bound").next().unwrap())
+        .collect();
+    assert_eq!(
+        unbound.join("\n") + "\n",
+        MILL_SRC.replace("DEF mill( )", "DEF mill_c( )")
+    );
+    let lines: Vec<&str> = dat.lines().collect();
+    assert_eq!(lines[0], "DEFDAT mill_c");
+    assert!(lines[1].starts_with("DECL E6POS XCUT={X "), "{dat}");
+    assert!(lines[1].contains(", S 'B010', T 'B101001', E1 0"), "{dat}");
+    assert!(lines[2].starts_with("DECL E6POS XSAFE={X "), "{dat}");
+    assert_eq!(lines.len(), MILL_DAT.lines().count() + 2);
+    // Compensated: moved by the deflection under the cut and the spindle, not by more than 5 mm.
+    for (name, read) in [
+        ("XCUT", [0.0, -100.0, -4.0]),
+        ("XSAFE", [60.0, -100.0, -4.0]),
+    ] {
+        let m = members(&dat, name);
+        let moved = (0..3).map(|k| (m[k] - read[k]).powi(2)).sum::<f64>().sqrt();
+        assert!(moved > 1e-3 && moved < 5.0, "{name}: {moved} mm");
+    }
+    // The module's own points written in place.
+    assert_ne!(
+        members(&dat, "XP2"),
+        vec![60.0, -100.0, -4.0, 0.0, 0.0, 180.0]
+    );
+}

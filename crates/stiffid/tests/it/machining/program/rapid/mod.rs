@@ -6,3 +6,4 @@ mod flow;
 mod module;
 mod offsets;
 pub(crate) mod stored;
+pub(crate) mod track;
