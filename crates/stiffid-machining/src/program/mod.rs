@@ -474,7 +474,7 @@ impl<'a> Context<'a> {
 }
 
 /// The last component of a file's name as given (`a/b/$config.dat`: `$config.dat`).
-fn file_name(name: &str) -> &str {
+pub(crate) fn file_name(name: &str) -> &str {
     name.rsplit(['/', '\\']).next().unwrap_or(name)
 }
 

@@ -36,30 +36,33 @@ impl Declarations {
 }
 
 /// Where a text is: the `.src` (its points read or refused as they are found), or its `.dat`
-/// from byte `offset` of the program's text (a point there that cannot be read is refused
-/// only by a motion to it).
+/// from byte `offset` of the program's text, or a global data list of the backup (a point there
+/// that cannot be read is refused only by a motion to it).
 #[derive(Debug, Clone, Copy)]
-pub(super) enum Place {
+pub(super) enum Place<'a> {
     /// The program.
     Src,
     /// Its `.dat`, from this byte of the program's text (the `.src` then the `.dat`).
     Dat(usize),
-    /// The controller's `$config.dat` (its global data list), read from its own first byte.
-    Config,
+    /// A global data list of the controller's backup, named as given, read from its own first
+    /// byte: `$config.dat` (every declaration global, `true`), or another module's public data
+    /// list (`DEFDAT name PUBLIC`: its `GLOBAL` declarations only, `false`).
+    Global(&'a str, bool),
 }
 
-/// The declarations of the `.src` `text`, of its `.dat` `data` and of the controller's
-/// `$config.dat` `config` (its name as given and its text): a name declared in more than one is
-/// the `.src`'s, else the `.dat`'s, as KRL's local declaration hides the module's and the
-/// module's the global one. A point of `$config.dat` is compensated as any; its compensated
-/// value is declared in the module ([`global`]), never in `$config.dat`.
+/// The declarations of the `.src` `text`, of its `.dat` `data` and of the controller's global
+/// data lists `globals` (each its name as given and its text: `$config.dat`, then the other
+/// modules' public data lists, [`global_lists`]): a name declared in more than one is the
+/// `.src`'s, else the `.dat`'s, else the first global list's, as KRL's local declaration hides
+/// the module's and the module's the global one. A global point is compensated as any; its
+/// compensated value is declared in the module ([`global`]), never in the global list.
 ///
 /// # Errors
 /// A malformed point of the `.src`, naming its line.
 pub(super) fn declarations(
     text: &str,
     data: Option<&str>,
-    config: Option<(&str, &str)>,
+    globals: &[(&str, &str)],
 ) -> Result<Declarations> {
     let mut out = Declarations::default();
     let mut assignments = Vec::new();
@@ -79,8 +82,8 @@ pub(super) fn declarations(
             out.fdats.entry(k).or_insert(v);
         }
     }
-    if let Some(config) = config {
-        global(&mut out, (text, data), config)?;
+    for list in globals {
+        global(&mut out, (text, data), *list)?;
     }
     out.assigned = assignments
         .into_iter()
@@ -98,9 +101,9 @@ fn read(
     assignments: &mut Vec<(String, u64)>,
 ) -> Result<()> {
     let (offset, file) = match place {
-        Place::Src => (0, ""),
-        Place::Dat(o) => (o, " of the .dat"),
-        Place::Config => (0, " of $config.dat"),
+        Place::Src => (0, String::new()),
+        Place::Dat(o) => (o, " of the .dat".to_string()),
+        Place::Global(name, _) => (0, format!(" of {}", crate::program::file_name(name))),
     };
     // The routines of the .src met so far: a declaration in one after the first (the module's
     // main routine, whose motions are read) is local to it, seen by none of those motions.
@@ -127,6 +130,10 @@ fn read(
             .skip_while(|w| matches!(*w, "DECL" | "GLOBAL" | "CONST"))
             .collect();
         let declares = words.first().is_some_and(|f| f == "DECL") || w.len() < words.len();
+        // A module's public data list gives the task its GLOBAL declarations only.
+        if matches!(place, Place::Global(_, false)) && !words.iter().any(|w| w == "GLOBAL") {
+            continue;
+        }
         let on = format!("on line {line}{file}");
         match w.as_slice() {
             ["E6AXIS" | "AXIS" | "E6POS" | "POS" | "FRAME", name, ..] => {
@@ -171,8 +178,40 @@ fn read(
     Ok(())
 }
 
-/// The points and frame data records of the controller's `$config.dat` (`file`, its name as
-/// given, and its `text`) that the program (`src` and its `.dat`) does not declare itself, into
+/// The global data lists of the controller's backup in `context` (each its name as given and
+/// its text), but the module's own `.dat` `data`: `$config.dat` first, then every other `.dat`
+/// that opens `DEFDAT name PUBLIC` (KSS 8.x SI manual, "Data lists": a public data list's
+/// `GLOBAL` declarations are the task's), in the order given.
+pub(super) fn global_lists<'a>(
+    context: &crate::program::Context<'a>,
+    data: Option<&str>,
+) -> Vec<(&'a str, &'a str)> {
+    let mut lists: Vec<(&'a str, &'a str)> =
+        context.backup_file("$config.dat").into_iter().collect();
+    let public = |text: &str| {
+        (text.lines().map(|l| l.split(';').next().unwrap_or("")))
+            .find(|l| {
+                l.split_whitespace()
+                    .next()
+                    .is_some_and(|w| w.eq_ignore_ascii_case("DEFDAT"))
+            })
+            .is_some_and(|l| {
+                l.split_whitespace()
+                    .any(|w| w.eq_ignore_ascii_case("PUBLIC"))
+            })
+    };
+    for (name, text) in context.backup_with(|n| n.to_ascii_lowercase().ends_with(".dat")) {
+        let own = data.is_some_and(|d| d == text);
+        if !own && !name.to_ascii_lowercase().ends_with("$config.dat") && public(text) {
+            lists.push((name, text));
+        }
+    }
+    lists
+}
+
+/// The points and frame data records of a global data list of the controller (`file`, its
+/// name as given, and its `text`: `$config.dat`, or another module's public data list, whose
+/// `GLOBAL` declarations only) that the program (`src` and its `.dat`) does not declare itself, into
 /// `out`. Each point is the program's own copy once compensated: a local declaration of the
 /// same line without `GLOBAL` (KSS 8.x SI manual, "Data lists": a module's own data hides the
 /// global data of that name), in the module's `.dat` after its `DEFDAT` line, or without a
@@ -187,7 +226,13 @@ fn global(
     (file, text): (&str, &str),
 ) -> Result<()> {
     let mut found = Declarations::default();
-    read(text, Place::Config, &mut found, &mut Vec::new())?;
+    let config = crate::program::file_name(file).eq_ignore_ascii_case("$config.dat");
+    read(
+        text,
+        Place::Global(file, config),
+        &mut found,
+        &mut Vec::new(),
+    )?;
     let insert = match data {
         Some(d) => src.len() + after_line(d, "DEFDAT"),
         None => after_line(src, "DEF"),
@@ -220,7 +265,7 @@ fn after_line(text: &str, word: &str) -> usize {
     0
 }
 
-/// The point `t` of `$config.dat` (`file`, its `text`) as the program declares its copy at byte
+/// The point `t` of a global data list (`file`, its `text`) as the program declares its copy at byte
 /// `insert` ([`global`]): its declaration's line without the word `GLOBAL`.
 fn copied(
     t: JointTarget,

@@ -149,8 +149,8 @@ fn one(
         None if name.is_empty() => return Err(at(line, format!("{first}: expected a point or an aggregate {{..}}"))),
         None if upper == "XHOME" => return Err(at(line, format!("{first} {name}: a path motion to the home position, which the controller holds and stiffid does not compensate: move there with PTP"))),
         None if name.starts_with('$') => return Ok(Err((format!("{name}: a system variable, whose value is the controller's at run time: give the motion a point declared in the .src or its .dat"), None))),
-        None if context.data => return Err(at(line, format!("{first} {name}: not a point declared in the .src, its .dat or a $config.dat given with the program (another module's GLOBAL point, or $config.dat not given): give the controller's $config.dat with the program (--backup), or declare the point in the .dat as E6POS or E6AXIS"))),
-        None => return Err(at(line, format!("{first} {name}: not a point declared in the .src, and no .dat beside it (the .src's stem with .dat) declares it: give the .dat beside the .src, or declare the point in it as E6POS or E6AXIS"))),
+        None if context.data => return Err(at(line, format!("{first} {name}: not a point declared in the .src, its .dat or a global data list of the backup given with the program ($config.dat, another module's PUBLIC .dat: none declares it, or none was given): give the controller's backup with the program (--backup), or declare the point in the .dat as E6POS or E6AXIS"))),
+        None => return Err(at(line, format!("{first} {name}: not a point declared in the .src, and no .dat beside it (the .src's stem with .dat) nor a global data list of the backup ($config.dat, another module's PUBLIC .dat) declares it: give the .dat beside the .src or the controller's backup (--backup), or declare the point in the .dat as E6POS or E6AXIS"))),
     };
     Ok(Ok((target, open + name.len())))
 }

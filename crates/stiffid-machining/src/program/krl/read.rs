@@ -29,7 +29,7 @@ use stiffid_core::Result;
 /// the context leaves it as found.
 pub(crate) fn targets(text: &str, context: &crate::program::Context) -> Result<Read> {
     let data = context.data;
-    let declared = declarations(text, data, context.backup_file("$config.dat"))?;
+    let declared = declarations(text, data, &super::declare::global_lists(context, data))?;
     let mut at_motion = Context {
         declared: &declared,
         data: data.is_some(),
