@@ -7,13 +7,16 @@
 //! the known masses where the robot gives them) without joint error maps and then with the maps of
 //! `--maps` (chosen by [`crate::calibration::maps`] inside every training set; where `auto` keeps
 //! no map on every posture, the rungs with maps are the ones without and are skipped saying so). A
-//! fixed `--gravity` is a ladder of one gravity model, `--maps none` or fixed maps one maps
-//! variant; a ladder of one rung is not climbed.
+//! named `--gravity` other than `none` is a ladder of the geometry and that model, judged as the
+//! ladder judges its rung and refused where it would be skipped ([`super::named`]; not with
+//! `--update`, whose model is the calibrated robot's: a ladder of one); `--maps none` or fixed
+//! maps is one maps variant; a ladder of one rung is not climbed.
 //!
 //! # The held-out figure
 //! Each rung is fitted to every reading (its gravity terms bounded by
-//! [`crate::calibration::fit::GravityPrior`]); a rung whose fit does not converge or whose scaled
-//! Jacobian's condition exceeds 1e6 is skipped (the simpler model kept), and so is a rung that
+//! [`crate::calibration::fit::GravityPrior`]); a rung whose fit does not converge, whose scaled
+//! Jacobian's condition exceeds 1e6 or that deflects a joint beyond the physically possible
+//! ([`super::named::beyond_sag`]) is skipped (the simpler model kept), and so is a rung that
 //! extrapolates: one whose expected error where the robot is used ([`super::region`]: the
 //! joint-space hull of the postures of the campaign and of the setup) exceeds that of the geometry
 //! with the same maps variant by more than the held-out figures resolve, the expected error being
@@ -219,7 +222,7 @@ pub struct Climbed {
 /// skipped).
 pub fn climb(
     (gravity, maps): (GravitySpec, Spec),
-    masses: bool,
+    (masses, judge_named): (bool, bool),
     (obs, region): (&[Observation], &Region),
     options: &Options,
     (fit, check): (
@@ -227,7 +230,6 @@ pub fn climb(
         impl Fn(&Fitted) -> Result<()>,
     ),
 ) -> Result<Climbed> {
-    let gravities = gravity.rungs(masses);
     let variants: &[bool] = match maps {
         Spec::Auto => &[false, true],
         Spec::None => &[false],
@@ -236,33 +238,28 @@ pub fn climb(
     let mut postures: Vec<usize> = obs.iter().map(|o| o.posture).collect();
     postures.sort_unstable();
     postures.dedup();
+    // A named gravity model judged as its rung, beside the geometry (module docs).
+    let named = match gravity {
+        GravitySpec::Fixed(g) if judge_named && g != Gravity::None => {
+            Some(g).filter(|_| postures.len() >= MIN_POSTURES)
+        }
+        _ => None,
+    };
+    let gravities = match named {
+        Some(g) => vec![Gravity::None, g],
+        None => gravity.rungs(masses),
+    };
     let climbed = gravities.len() * variants.len() > 1 && postures.len() >= MIN_POSTURES;
     let first = fit(gravities[0])?;
     check(&first)?;
     let assessed = assess(maps, (&first.model, &first.fit), obs, options, climbed)?;
     if !climbed {
-        let ladder = (gravities.len() * variants.len() > 1).then(|| Ladder {
-            folds: 0,
-            rungs: vec![unscored(gravities[0], variants[0], None)],
-            chosen: 0,
-            region: region.bounds,
-        });
-        let keep = match ladder {
-            Some(_) => Err(format!(
-                "{} distinct postures, fewer than the {MIN_POSTURES} with which the model is chosen",
-                postures.len()
-            )),
-            None => Ok(()),
-        };
-        return Ok(Climbed {
-            fitted: first,
-            assessed,
-            keep: keep.and(match variants[0] {
-                true => Ok(()),
-                false => Err("--maps none".into()),
-            }),
-            ladder,
-        });
+        return Ok(unclimbed(
+            (first, assessed),
+            (&gravities, variants),
+            postures.len(),
+            region,
+        ));
     }
     // The maps chosen for the first gravity model, on every posture and in each outer fold
     // (with their ridges), kept for the others.
@@ -272,8 +269,8 @@ pub fn climb(
                 let a = assess_given((&f.model, &f.fit), obs, options, &assessed)?;
                 Ok((f, a))
             });
-            tried.map_err(|e| e.to_string()).and_then(|(f, a)| {
-                judged(&f.fit)?;
+            (tried.map_err(|e| e.to_string())).and_then(|(f, a)| {
+                judged(&f, named.is_some())?;
                 Ok((f, a))
             })
         })
@@ -299,8 +296,17 @@ pub fn climb(
         })
         .collect();
     diverged(&mut rungs, &order);
-    extrapolating(&mut rungs, &order);
-    let chosen = choose(&rungs);
+    if named.is_none() {
+        extrapolating(&mut rungs, &order);
+    }
+    let chosen = match named {
+        None => choose(&rungs),
+        Some(named) => named_chosen(&rungs, named).map_err(|why| {
+            let fitted =
+                (fits.get(1).and_then(|f| f.as_ref().ok())).map(|(f, _)| (&f.model, &f.fit));
+            super::named::refusal(named, &why, fitted, options)
+        })?,
+    };
     let (g, with_maps) = order[chosen];
     // Where `auto` keeps no map, the maps' choice says so, not the ladder.
     let why = (!with_maps && !kept_none).then(|| {
@@ -314,13 +320,38 @@ pub fn climb(
         fitted,
         assessed,
         keep: why.map_or(Ok(()), Err),
-        ladder: Some(Ladder {
+        // A named model's ladder is not reported: the model was given.
+        ladder: named.is_none().then_some(Ladder {
             folds: FOLDS.min(postures.len()),
             rungs,
             chosen,
             region: region.bounds,
         }),
     })
+}
+
+/// The rung fitted for the named gravity model `gravity` among `rungs` (the geometry's and its,
+/// without and with maps), by the ladder's rule among its own rungs alone; `Err` with the
+/// reasons its rungs were skipped when every one was.
+fn named_chosen(rungs: &[Rung], gravity: Gravity) -> std::result::Result<usize, String> {
+    let own: Vec<Rung> = (rungs.iter())
+        .map(|r| match r.gravity == gravity {
+            true => r.clone(),
+            false => Rung {
+                skipped: Some("not the named model".into()),
+                ..r.clone()
+            },
+        })
+        .collect();
+    let i = choose(&own);
+    match own[i].gravity == gravity && own[i].skipped.is_none() && !own[i].errors.is_empty() {
+        true => Ok(i),
+        false => Err((rungs.iter())
+            .filter(|r| r.gravity == gravity)
+            .filter_map(|r| r.skipped.clone())
+            .collect::<Vec<_>>()
+            .join("; with maps: ")),
+    }
 }
 
 /// Skips the rungs (`order`: each one's gravity model's index and whether it fits maps) that
@@ -395,9 +426,48 @@ fn resolution(a: &Rung, b: &Rung) -> f64 {
     (n as f64 * var).sqrt() / readings
 }
 
-/// `Err` why a gravity model's fit is not a rung: it did not converge, or its scaled Jacobian's
-/// condition exceeds [`WEAK_CONDITION`].
-fn judged(fit: &Fit) -> std::result::Result<(), String> {
+/// The ladder of one rung, or not climbed for too few postures: the first gravity model's fit
+/// (`first`, its maps assessed) of `gravities` and the maps `variants`, `postures` distinct.
+fn unclimbed(
+    (first, assessed): (Fitted, Assessed),
+    (gravities, variants): (&[Gravity], &[bool]),
+    postures: usize,
+    region: &Region,
+) -> Climbed {
+    let ladder = (gravities.len() * variants.len() > 1).then(|| Ladder {
+        folds: 0,
+        rungs: vec![unscored(gravities[0], variants[0], None)],
+        chosen: 0,
+        region: region.bounds,
+    });
+    let keep = match ladder {
+        Some(_) => Err(format!(
+            "{postures} distinct postures, fewer than the {MIN_POSTURES} with which the model is chosen"
+        )),
+        None => Ok(()),
+    };
+    Climbed {
+        fitted: first,
+        assessed,
+        keep: keep.and(match variants[0] {
+            true => Ok(()),
+            false => Err("--maps none".into()),
+        }),
+        ladder,
+    }
+}
+
+/// `Err` why a gravity model's fit is not a rung: its terms deflect a joint beyond the physically
+/// possible ([`super::named::beyond_sag`]); unless it is a `named` model, its fit did not converge
+/// or its scaled Jacobian's condition exceeds [`WEAK_CONDITION`].
+fn judged(fitted: &Fitted, named: bool) -> std::result::Result<(), String> {
+    if let Some(why) = super::named::beyond_sag(&fitted.model, &fitted.fit.estimate.values) {
+        return Err(why);
+    }
+    let fit = &fitted.fit;
+    if named {
+        return Ok(());
+    }
     if let Some(w) = stop_warning(fit.stop, fit.iterations) {
         return Err(w.message);
     }

@@ -12,6 +12,7 @@ pub mod fit_bound;
 pub mod judge;
 pub mod ladder;
 pub mod maps;
+pub mod named;
 pub mod region;
 pub mod why;
 

@@ -74,7 +74,7 @@ pub(super) fn choose(
     let region = super::region::of(setup, obs, held.as_deref());
     let climbed = ladder::climb(
         (gravity, maps_spec),
-        setup.robot().masses().is_some(),
+        (setup.robot().masses().is_some(), !request.update),
         (obs, &region),
         &options,
         (

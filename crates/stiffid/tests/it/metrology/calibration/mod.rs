@@ -13,5 +13,6 @@ mod intervals_tests;
 mod loaded_tests;
 mod maps_kernel_tests;
 mod maps_tests;
+mod masses_tests;
 mod tests;
 mod thin_tests;
