@@ -78,7 +78,10 @@ const CORPUS: [(&str, Outcome); 13] = [
     ),
     (
         "rosi_ros_movesm.ls",
-        Refused(43, "J PR[..]: a position register"),
+        Refused(
+            43,
+            "J PR[2]: the position register is set on line 36 as the program runs",
+        ),
     ),
     (
         "wilder_a10defaste.ls",

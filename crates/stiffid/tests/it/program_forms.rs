@@ -113,6 +113,7 @@ fn ls_cases() -> Vec<(String, Reads)> {
         (ls("   1:J P[1] 100% FINE ;\n   2:L P[2] 50mm/sec FINE Offset,PR[1] ;", &pos), Refused(5, "OFFSET,PR[1]: the offset is held on the controller")),
         (ls("   1:J P[1] 100% FINE ;\n   2:L P[2] 50mm/sec FINE Tool_Offset ;", &pos), Refused(5, "offset is held on the controller")),
         (ls("   1:J PR[1] 100% FINE ;", &pos), Refused(4, "position register")),
+        (ls("   1:  PR[1:pick]=LPOS ;\n   2:J PR[1:pick] 100% FINE ;", &pos), Refused(5, "J PR[1]: the position register is set on line 4 as the program runs (PR[1:pick]=LPOS)")),
         (ls("   1:L P[R[1]] 100mm/sec FINE ;", &pos), Refused(4, "computed on the controller")),
         // A circular motion: its via point then its end, both on its line.
         (ls("   1:J P[1] 100% FINE ;\n   2:C P[2]\n    :  P[1] 100mm/sec FINE ;", &pos), Targets(&[(4, Q1), (5, Q2), (5, Q1)])),

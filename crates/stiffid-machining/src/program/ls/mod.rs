@@ -25,6 +25,7 @@ mod numbered;
 mod options;
 mod process;
 mod read;
+mod registers;
 pub(crate) mod speed;
 mod statements;
 mod sysframe;

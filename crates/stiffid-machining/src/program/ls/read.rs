@@ -6,7 +6,7 @@
 
 use super::flow::{self, Graph};
 use super::statements::{self, Number, Place, Selected};
-use super::{calls, instructions, motion, numbered, positions, sysframe};
+use super::{calls, instructions, motion, numbered, positions, registers, sysframe};
 use crate::program::cartesian::Frame;
 use crate::program::{at, Context, JointTarget, Left, Units};
 use std::collections::HashMap;
@@ -139,6 +139,7 @@ fn read_one(text: &str, context: &Context, entry: Selected, calls: &mut Calls) -
         previous: Previous::Start,
     };
     let states = graph.states(start, step, join);
+    registers::check(&instructions, &motions, context)?;
     let (mut own, in_force) = motions_read(&instructions, &motions, &states, &positions)?;
     numbered::apply(text, &mut own, &in_force)?;
     sysframe::apply(context, &mut own)?;

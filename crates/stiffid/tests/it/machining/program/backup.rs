@@ -265,7 +265,26 @@ fn an_ls_call_of_a_program_that_moves_is_compensated_in_its_own_file() {
     let (at, why) = message(e.unwrap_err());
     assert_eq!(at, 6, "{why}");
     assert!(
-        why.starts_with("CALL PICK: backup/PICK.LS line 6: L PR[..]: a position register"),
+        why.starts_with("CALL PICK: backup/PICK.LS line 6: L PR[2]: a position register"),
         "{why}"
     );
+}
+
+/// A motion to a position register whose value the backup's `POSREG.VA` holds is refused
+/// saying why: the register is the controller's, shared by every program on it.
+#[test]
+fn an_ls_motion_to_a_position_register_of_posreg_va_is_refused_saying_why() {
+    let main = ls_program(
+        "MAIN",
+        "   1:J P[1] 100% FINE ;\n   2:L PR[3:home] 50mm/sec FINE ;",
+    );
+    let backup = [("backup/POSREG.VA".to_string(), String::new())];
+    let e = stiffid_machining::program::parse_in(
+        &main,
+        Dialect::FanucLs,
+        &Context::default().with_backup(&backup),
+    );
+    let (at, why) = message(e.unwrap_err());
+    assert_eq!(at, 6, "{why}");
+    assert!(why.starts_with("L PR[3]: a position register is the controller's, shared by every program on it (backup/POSREG.VA holds its value)"), "{why}");
 }
