@@ -90,6 +90,8 @@ struct ControllerFile {
     home_deg: Option<[f64; 6]>,
     #[serde(default)]
     io: std::collections::BTreeMap<String, super::program_io::IoValue>,
+    #[serde(default)]
+    radius_wear_mm: std::collections::BTreeMap<String, f64>,
 }
 
 /// `[workpiece]`: where a G-code program's part frame sits in the robot base frame.
@@ -458,6 +460,8 @@ where
         .map_err(|e| in_file(e, source_name))?,
         dialect: (c.dialect.as_deref().map(str::parse::<super::GcodeDialect>))
             .transpose()
+            .map_err(|e| in_file(e, source_name))?,
+        radius_wear: super::radius_wear::read(&c.radius_wear_mm)
             .map_err(|e| in_file(e, source_name))?,
         ..Default::default()
     })

@@ -91,6 +91,7 @@ pub mod plausibility;
 pub mod prior;
 mod program_frames;
 pub mod program_io;
+mod radius_wear;
 pub mod reference;
 mod workcell;
 

@@ -81,6 +81,9 @@ pub struct Controller {
     /// `[controller] dialect`: the controller a G-code program is written for, where
     /// controllers read the same words differently; `None` when the setup does not say.
     pub dialect: Option<super::GcodeDialect>,
+    /// `[controller] radius_wear_mm`: the controller's wear offsets of the tools' radii by the
+    /// number a G-code's `D` names, m, in number order; empty without.
+    pub radius_wear: Vec<(u32, f64)>,
 }
 
 /// How many encoder pulses make a unit of each axis on the controller (its axis parameters): a

@@ -61,7 +61,8 @@ fn on_circle(r0: f64, r1: f64) -> bool {
         || (off <= ARC_END_MAX_MM * 1e-3 && off <= ARC_END_RELATIVE * r0.max(r1))
 }
 
-/// The points of an arc from `s.position` to `end` (the end included), chords within `tolerance`.
+/// The points of an arc from `s.position` to `end` (the end included), chords within `tolerance`,
+/// and its centre in the plane's coordinates.
 pub(super) fn arc(
     line: u64,
     s: &State,
@@ -69,7 +70,7 @@ pub(super) fn arc(
     ijk: [Option<f64>; 3],
     radius: Option<f64>,
     tolerance: f64,
-) -> Result<Vec<Vector3<f64>>> {
+) -> Result<(Vec<Vector3<f64>>, [f64; 2])> {
     let (u, v, n) = plane_axes(s.plane);
     if ijk[n].is_some() {
         let letter = ['I', 'J', 'K'][n];
@@ -120,7 +121,7 @@ pub(super) fn arc(
             format!("the arc needs more than {MAX_POINTS} chords at this tolerance"),
         ));
     }
-    Ok((1..=count)
+    let points = (1..=count)
         .map(|i| {
             if i == count {
                 return end;
@@ -138,7 +139,8 @@ pub(super) fn arc(
             p[n] = start[n] + (end[n] - start[n]) * t;
             p
         })
-        .collect())
+        .collect();
+    Ok((points, [cu, cv]))
 }
 
 /// The centre of an `R` arc: on the chord's perpendicular bisector, to the left of the chord for

@@ -489,9 +489,10 @@ fn motion(
         return Ok(());
     }
     let positions = if s.motion >= 2 {
-        positions(line, &given, end, s, tolerance)?
+        let (points, centre) = positions(line, &given, end, s, tolerance)?;
+        (points, Some(centre))
     } else {
-        vec![end]
+        (vec![end], None)
     };
     if !here.1.iter().all(|k| *k) {
         super::cutter::refuse_while_on(line, "a move from a place not known", s)?;
@@ -582,14 +583,14 @@ fn refuse_unknown(line: u64, what: &str, known: [bool; 3], s: &State) -> stiffid
     )
 }
 
-/// The positions the move passes, in m: its end point, or an arc's points within `tolerance`.
+/// The positions an arc passes, in m, within `tolerance`, and its centre in the plane.
 fn positions(
     line: u64,
     given: &Given,
     end: Vector3<f64>,
     s: &State,
     tolerance: f64,
-) -> Result<Vec<Vector3<f64>>> {
+) -> Result<(Vec<Vector3<f64>>, [f64; 2])> {
     if let Some((p, _)) = &given.cycle.dwell {
         return Err(at(line, format!("P{}: an arc's number of turns (LinuxCNC's G2/G3 P) is not read: write each turn as an arc of its own", number(*p))));
     }

@@ -30,6 +30,9 @@ pub struct Machine {
     /// every tool's): what cutter radius compensation `G41`/`G42` offsets by. Empty: `G41`/`G42`
     /// refused.
     pub tool_radii: Vec<(Option<u32>, f64)>,
+    /// The controller's wear offsets of the tools' radii, by the number `D` names (the setup's
+    /// `[controller] radius_wear_mm`), m: added to the process's radius under `G41`/`G42`.
+    pub radius_wear: Vec<(u32, f64)>,
     /// The controller the program is written for (`[controller] dialect`), where controllers
     /// read the same words differently (module `dialect`); `None`: the setup does not say, and
     /// a block whose reading depends on it is refused.
@@ -43,6 +46,7 @@ impl Machine {
             frames: setup.workcell().program_frames().clone(),
             tool_lengths: process.map(|p| p.tool_lengths()).unwrap_or_default(),
             tool_radii: process.map(|p| p.tool_radii()).unwrap_or_default(),
+            radius_wear: setup.workcell().controller().radius_wear.clone(),
             dialect: setup.workcell().controller().dialect,
         }
     }

@@ -47,16 +47,19 @@
 //! (module `cutter`); where controllers differ the setup's `[controller] dialect` says how
 //! (module `dialect`), else the block is refused naming the line.
 //!
+//! Subprograms of the same file, parameters, expressions and control flow (LinuxCNC's O-words,
+//! FANUC's and Haas's `M98`/`M97`/`G65` and macro B) are expanded first into the blocks the
+//! controller runs (module `expand`; [`GCode::expanded`]): the points name the program's lines.
+//!
 //! Any other G code or letter is refused naming its line (`G92`, `G93`, `G95`, `G28.1` saying
-//! why), as are parameters
-//! and expressions (`#`, `[`), O-word subprograms and loops, block delete `/`, polar words `@ ^`,
+//! why), as are block delete `/`, polar words `@ ^`,
 //! an arc whose end is off its circle beyond 0.005 mm, an arc of radius below 1 um, a letter given
 //! twice in one block (but `G` and `M`), two codes of one modal group in one block (`G0 G1`, `G90
 //! G91`, `M3 M4`), an arc with a number of turns `P` or a centre or radius beyond 100 m, a feed
 //! rate `F` outside `(0, MAX_FEED]`, a spindle speed `S` outside `[0, 100000]` rev/min, an `M` code
-//! not a whole number from 0 to 999, a subprogram call or return (`M97`, `M98`, `M99`), a motion
-//! after the program's end (`M2`, `M30`), a work offset, home position or tool length the
-//! [`Machine`] does not give, and more than 1 000 000 points.
+//! not a whole number from 0 to 999, a motion after the program's end (`M2`, `M30`), a work
+//! offset, home position or tool length the [`Machine`] does not give, and more than 1 000 000
+//! points.
 //!
 //! ## What is written
 //! [`GCode::write`] keeps every line byte for byte but the motion blocks, where the `X Y Z I J K R`
@@ -76,6 +79,7 @@ mod block;
 mod cutter;
 mod cycles;
 mod dialect;
+mod expand;
 mod groups;
 mod home;
 mod machine;
@@ -199,6 +203,10 @@ pub struct GCode {
     /// (`G43`) is in force, and that length (m): the program's coordinates are read as the
     /// spindle's gauge line's, the tip that length below them.
     pub no_length_offset: Option<(u64, f64)>,
+    /// The program has subprograms, parameters or control flow: it was read as the blocks its
+    /// controller runs, in their order, each point naming the program's line; it is written
+    /// back so, expanded (module `expand`).
+    pub expanded: bool,
     blocks: Vec<Block>,
     /// Words dropped when written (`G41`, `G42` and their `D`: the path is the tool centre's).
     dropped: Vec<Range<usize>>,
@@ -360,6 +368,11 @@ pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<G
         &CHORD_TOLERANCE_MM,
     )
     .map_err(|e| e.for_option(JobOption::ChordToleranceMm))?;
+    let expanded = expand::expand(text, machine.dialect)?;
+    let (text, map) = match &expanded {
+        Some(e) => (e.text.as_str(), Some(e.lines.as_slice())),
+        None => (text, None),
+    };
     let mut s = State::new(machine);
     s.start();
     let mut out = GCode {
@@ -371,15 +384,18 @@ pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<G
         unstated_units: None,
         unplaced_g53: Vec::new(),
         no_length_offset: None,
+        expanded: expanded.is_some(),
         blocks: Vec::new(),
         dropped: Vec::new(),
         text: text.to_string(),
         start: machine.frames.start,
     };
-    for (line, start, l) in super::text::lines(text) {
-        if line as usize > MAX_BLOCKS {
-            return Err(at(line, format!("more than {MAX_BLOCKS} lines")));
+    for (n, start, l) in super::text::lines(text) {
+        if n as usize > MAX_BLOCKS {
+            return Err(at(n, format!("more than {MAX_BLOCKS} lines")));
         }
+        // The program's own line of an expanded block.
+        let line = map.map_or(n, |m| m.get(n as usize - 1).copied().unwrap_or(n));
         if l.contains('\r') {
             return Err(at(line, "a carriage return inside the line: the file ends its lines with a carriage return alone (an old Mac's) or mixes line ends, and a controller ends a block at a line feed, so what follows it would be read as part of this block (inside a comment, dropped); convert the line ends to LF or CR LF".into()));
         }

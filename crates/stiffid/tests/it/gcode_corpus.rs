@@ -43,7 +43,7 @@ pub(crate) fn machine(workpiece: &str, process: &str) -> Machine {
 /// A compensated file: name, workpiece, process, first point's line, position, unit (mm).
 pub(crate) type Read = (&'static str, &'static str, &'static str, u64, [f64; 3], f64);
 
-pub(crate) const READ: [Read; 8] = [
+pub(crate) const READ: [Read; 10] = [
     (
         "fusion360-personal-contour.nc",
         "workpiece-fusion360.toml",
@@ -100,6 +100,23 @@ pub(crate) const READ: [Read; 8] = [
         [0.9, -0.45, 0.08],
         25.4,
     ),
+    // LinuxCNC's interpreter tests (subs, loops): expanded as LinuxCNC runs them.
+    (
+        "linuxcnc-interp-test-sub.ngc",
+        "workpiece-linuxcnc.toml",
+        "aluminium.toml",
+        8,
+        [2.1, 3.2, 4.3],
+        1.0,
+    ),
+    (
+        "linuxcnc-interp-test-loop.ngc",
+        "workpiece-linuxcnc.toml",
+        "aluminium.toml",
+        3,
+        [0.0, 0.0, 0.0],
+        1.0,
+    ),
     (
         "pcb2gcode-outline.ngc",
         "workpiece-linuxcnc.toml",
@@ -113,7 +130,8 @@ pub(crate) const READ: [Read; 8] = [
 /// Each refused file: the line and the construct its error names.
 const REFUSED: [(&str, u64, &str); 2] = [
     ("linuxcnc-hole-circle.ngc", 10, "'^': polar coordinates"),
-    ("linuxcnc-g20sub.ngc", 3, "O-word 'O<g20sub> sub'"),
+    // Its sub is never called: the program runs no motion.
+    ("linuxcnc-g20sub.ngc", 1, "no motion block"),
 ];
 
 #[test]
@@ -194,4 +212,68 @@ fn fusion_files_need_what_their_controller_knows() {
         }
         other => panic!("{other:?}"),
     }
+}
+
+/// LinuxCNC's comp-g1.ngc on the LinuxCNC dialect with its tool 4 (1 inch): its part outline
+/// cut again under `G41`, every point of the compensated arcs 0.5 inch outside the programmed
+/// ones (concentric), the sides 0.5 inch outside theirs.
+#[test]
+fn linuxcnc_comp_g1_offsets_its_arcs_and_sides_by_the_tool_radius() {
+    let mut m = machine("workpiece-linuxcnc.toml", "process-comp-g1.toml");
+    m.dialect = Some(gcode::GcodeDialect::LinuxCnc);
+    let g = gcode::parse_on(&corpus("linuxcnc-comp-g1.ngc"), 1e-5, &m).unwrap();
+    let inch = 25.4e-3;
+    let on = |line: u64| {
+        g.points
+            .iter()
+            .filter(move |p| p.line == line)
+            .map(|p| p.position / inch)
+    };
+    // The arcs (lines 29, 31, 34) about (2, 2), (2, -1), (2, 2) of radius 1: 1.5 with the tool,
+    // after the outside corner's arc of 0.5 about their start (none at the tangent one, 31).
+    let arcs = [
+        (29, [2.0, 2.0], [2.0, 3.0]),
+        (31, [2.0, -1.0], [3.0, -1.0]),
+        (34, [2.0, 2.0], [1.4, 2.8]),
+    ];
+    for (line, c, start) in arcs {
+        let from = |p: &Vector3<f64>, c: [f64; 2]| (p.x - c[0]).hypot(p.y - c[1]);
+        let on_arc = on(line)
+            .filter(|p| (from(p, c) - 1.5).abs() < 1e-9 / 25.4)
+            .count();
+        let on_corner = on(line)
+            .filter(|p| (from(p, start) - 0.5).abs() < 1e-12)
+            .count();
+        assert!(on_arc > 3, "{line}");
+        // The entry along Y3.5 ends tangent to arc 29 at (2, 3.5), the arc 29 meets the side 30
+        // and the side 30 the arc 31 tangentially: no corner; the slanted side 33 meets arc 34
+        // at an outside corner (its last point, the arc's start, on both circles).
+        let corner = usize::from(line == 34);
+        assert_eq!(on_arc + on_corner, on(line).count() + corner, "{line}");
+        assert!(
+            on_corner >= 2 * corner && (corner == 1 || on_corner == 0),
+            "{line}"
+        );
+    }
+    assert_relative_eq!(
+        on(28).next_back().unwrap(),
+        Vector3::new(2.0, 3.5, 0.0),
+        epsilon = 1e-12
+    );
+    // The sides X3 (line 30) and Y-2 (line 32), the tool on their left.
+    assert!(on(30).all(|p| (p.x - 3.5).abs() < 1e-12));
+    assert!(on(32).all(|p| (p.y + 2.5).abs() < 1e-12));
+    // The slanted side (line 33) from (-3, -2) to (1.4, 2.8): its end 0.5 to its left, after
+    // the outside corner's arc about (-3, -2).
+    let d = Vector3::new(4.4, 4.8, 0.0).normalize();
+    let end = on(33).next_back().unwrap();
+    assert_relative_eq!(end.x, 1.4 - 0.5 * d.y, epsilon = 1e-12);
+    assert_relative_eq!(end.y, 2.8 + 0.5 * d.x, epsilon = 1e-12);
+    let corner: Vec<_> = on(33).collect();
+    for p in &corner[..corner.len() - 1] {
+        assert_relative_eq!((p.x + 3.0).hypot(p.y + 2.0), 0.5, epsilon = 1e-12);
+    }
+    // G40: the exit goes to its programmed end (3, 3.5).
+    let exit = on(36).next_back().unwrap();
+    assert_relative_eq!(exit, Vector3::new(3.0, 3.5, 0.0), epsilon = 1e-12);
 }

@@ -383,6 +383,87 @@ fn cutter_radius_compensation_offsets_a_square_by_the_tool_radius_as_linuxcnc() 
     }
 }
 
+/// A circle of radius 20 about the origin cut counter-clockwise from (20, 0) under `code`,
+/// entered from (50, 0), left by `G40` back there.
+fn circle(code: &str) -> String {
+    format!("G21 G90 G17\nT1 M6\nG0 X50 Y0 Z5\nG1 Z-1 F100\n{code} D1\nG1 X20 Y0\nG3 X20 Y0 I-20 J0\nG40\nG1 X50 Y0\n")
+}
+
+#[test]
+fn cutter_radius_compensation_offsets_arcs_concentrically_with_the_wear() {
+    // The tool's radius 5 mm (less its wear of 0.1 mm): inside the circle under G41 (15 and
+    // 15.1 mm), outside under G42 (25); the corner from the entry an arc of the radius about
+    // (20, 0).
+    let mut worn = radius(5.0, Some(GcodeDialect::LinuxCnc));
+    worn.radius_wear = vec![(1, -0.1e-3)];
+    for (code, m, r, want) in [
+        ("G41", radius(5.0, Some(GcodeDialect::LinuxCnc)), 5.0, 15.0),
+        ("G42", radius(5.0, Some(GcodeDialect::LinuxCnc)), 5.0, 25.0),
+        ("G41", worn, 4.9, 15.1),
+    ] {
+        let g = read(&circle(code), &m);
+        let arc: Vec<_> = g
+            .points
+            .iter()
+            .filter(|p| p.line == 8)
+            .map(|p| p.position * 1e3)
+            .collect();
+        let on_circle = arc
+            .iter()
+            .filter(|p| (p.x.hypot(p.y) - want).abs() < 1e-9)
+            .count();
+        let on_corner = arc
+            .iter()
+            .filter(|p| ((p.x - 20.0).hypot(p.y) - r).abs() < 1e-9)
+            .count();
+        assert!(on_circle > 50, "{code}: {on_circle}");
+        // G41: an outside corner from the entry, its last point the circle's first (and last,
+        // (15, 0), 5 from (20, 0) too); G42: an inside one, the circle from where the entry meets
+        // it, its last point (25, 0) 5 from (20, 0) too.
+        let (both, corner_only) = if code == "G42" { (1, 0) } else { (2, 1) };
+        assert_eq!(on_circle + on_corner, arc.len() + both, "{code}");
+        assert!(on_corner - both >= corner_only, "{code}: {on_corner}");
+        assert_relative_eq!(
+            arc[arc.len() - 1],
+            Vector3::new(want, 0.0, -1.0),
+            epsilon = 1e-12
+        );
+    }
+}
+
+#[test]
+fn cutter_radius_compensation_meets_an_arc_at_an_inside_corner_as_linuxcnc() {
+    // G42 of 2 mm along Y = 0 to (0, 0), then counter-clockwise about (10, 0) to (10, -10): the
+    // tool on the arc's outside (radius 12), the corner inside: the side ends where Y = -2 meets
+    // that circle, X = 10 - sqrt(12^2 - 2^2).
+    let text = "G21 G90 G17\nT1 M6\nG0 X-30 Y20 Z5\nG1 Z-1 F100\nG42 D1\nG1 X-30 Y0\nG1 X0 Y0\nG3 X10 Y-10 I10 J0\nG40\nG1 X30 Y-30\n";
+    let g = read(text, &radius(2.0, Some(GcodeDialect::LinuxCnc)));
+    // (The program's lines 7 and 8 are 8 and 9 after the header `read` puts first.)
+    let side = g.points.iter().rfind(|p| p.line == 8).unwrap().position * 1e3;
+    assert_relative_eq!(
+        side,
+        Vector3::new(10.0 - 140f64.sqrt(), -2.0, -1.0),
+        epsilon = 1e-12
+    );
+    let arc: Vec<_> = g
+        .points
+        .iter()
+        .filter(|p| p.line == 9)
+        .map(|p| p.position * 1e3)
+        .collect();
+    assert!(arc.len() > 10);
+    for p in &arc {
+        assert_relative_eq!((p.x - 10.0).hypot(p.y), 12.0, epsilon = 1e-9);
+    }
+    assert_relative_eq!(
+        arc[arc.len() - 1],
+        Vector3::new(10.0, -12.0, -1.0),
+        epsilon = 1e-12
+    );
+    // From the corner on: the arc's first point is past it, counter-clockwise.
+    assert!(arc[0].y < side.y && arc[0].x > side.x);
+}
+
 /// A machine whose tool 1 has radius `r` mm, on `dialect`.
 fn radius(r: f64, dialect: Option<GcodeDialect>) -> Machine {
     Machine {
@@ -406,10 +487,10 @@ fn cutter_radius_compensation_outside_what_is_read_is_refused_naming_the_line() 
     );
     refused(&t, &m(5.0, Some(GcodeDialect::Haas)), 6, &["\"haas\""]);
     refused(
-        &t.replace("Y10\n", "G2 Y10 I0 J5\n"),
+        &t.replace("Y10\n", "G3 Y10 I0 J5\n"),
         &m(5.0, Some(GcodeDialect::LinuxCnc)),
         8,
-        &["an arc under cutter radius compensation"],
+        &["is not less than the arc's"],
     );
     refused(
         &square("G42"),

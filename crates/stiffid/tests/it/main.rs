@@ -48,6 +48,7 @@ mod gcode_controller;
 mod gcode_corpus;
 mod gcode_cycles;
 mod gcode_dialect;
+mod gcode_expand;
 mod gcode_true_robot;
 mod gradients;
 mod identify;

@@ -259,7 +259,7 @@ fn malformed_gcode_is_refused_naming_the_line() {
         (
             format!("{HEADER}G0 X10 Y0 Z0\nM98 P100\n"),
             3,
-            "M98: subprogram",
+            "P100: the program O100 is not in this file",
         ),
         (
             format!("{HEADER}G0 X10 Y0 Z0\nM30\nG1 X20\n"),

@@ -1,24 +1,35 @@
 //! Cutter radius compensation `G41` (the tool left of the programmed path) and `G42` (right),
 //! ended by `G40`, as LinuxCNC's interpreter runs it (LinuxCNC manual, "Cutter Compensation"
-//! and G40-G42; `interp_convert.cc`, `convert_straight_comp1`/`comp2`), in the `G17` plane with
-//! straight moves (`G0`, `G1`): the radius is the process's tool radius (`[tool] diameter_mm` /
-//! 2) of the tool `D` names (LinuxCNC's `D` is a tool number), else of the tool in use.
-//! - The entry, the first move in X or Y after `G41`/`G42`, ends where it is tangent to the
-//!   circle of the radius around its programmed end (it must be longer than the radius).
-//! - Each following move is its programmed line offset by the radius to its side. At an outside
-//!   corner the tool goes around the programmed corner on an arc of the radius; at an inside
-//!   corner the previous move ends, and this one starts, where the two offset lines meet (refused
-//!   where they meet outside either move: the tool does not fit, LinuxCNC's gouging error).
+//! and G40-G42; `interp_convert.cc`, `convert_straight_comp1`/`comp2`, `convert_arc_comp2`), in
+//! the `G17` plane: the radius is the process's tool radius (`[tool] diameter_mm` / 2) of the
+//! tool `D` names (LinuxCNC's `D` is a tool number), else of the tool in use, plus the wear the
+//! setup's `[controller] radius_wear_mm` gives for that number (a controller's wear offset).
+//! - The entry, the first move in X or Y after `G41`/`G42`, is straight and ends where it is
+//!   tangent to the circle of the radius around its programmed end (it must be longer than the
+//!   radius).
+//! - Each following straight move is its programmed line offset by the radius to its side; an
+//!   arc is its programmed arc offset by the radius (concentric: its radius less the tool's where
+//!   the tool is on the centre's side, `G41` with `G3`, `G42` with `G2`, else more; refused where
+//!   the tool's radius is not less than the arc's). At an outside corner the tool goes around the
+//!   programmed corner on an arc of the radius; at an inside corner the previous move ends, and
+//!   this one starts, where the two offset paths meet (line and line, line and circle, circle and
+//!   circle; refused where they meet outside either move: the tool does not fit, LinuxCNC's
+//!   gouging error). A previous arc ended early keeps its number of points along its shorter
+//!   sweep (module `piece`).
 //! - A move along `Z` alone keeps the tool where it is in X and Y.
 //! - The move after `G40` goes from where the tool is to its programmed end (a straight move).
 //!
 //! Refused naming the line: `G41`/`G42` on a dialect other than LinuxCNC or without one (FANUC
-//! and Haas start and turn corners their own ways, by settings), outside `G17`, an arc, a work
-//! offset, tool length offset or plane changed, a canned cycle, `G28`/`G30` or `G53` while it is
-//! on, `G41`/`G42` while it is on, a tool without a radius in the process.
+//! and Haas start and turn corners their own ways, by settings), outside `G17`, an arc as the
+//! entry or right after `G40`, a work offset, tool length offset or plane changed, a canned
+//! cycle, `G28`/`G30` or `G53` while it is on, `G41`/`G42` while it is on, a tool without a
+//! radius in the process.
+
+mod piece;
 
 use super::{at, GCode, State};
 use nalgebra::Vector3;
+use piece::{Piece, Shape};
 use stiffid_core::setup::GcodeDialect;
 use stiffid_core::Result;
 
@@ -45,16 +56,18 @@ pub(super) enum Comp {
 pub(super) struct Tool {
     xy: [f64; 2],
     z: f64,
-    /// The direction of the last move in X Y (unit).
+    /// The direction of the last move in X Y at its end (unit).
     dir: [f64; 2],
     /// Where that move started.
     from: [f64; 2],
     /// The index of its end point in the path, and whether a move along Z alone followed it.
     point: usize,
     z_since: bool,
+    /// The last move's offset path (a line, or an arc and its points).
+    shape: Shape,
 }
 
-/// The tool radius of tool `d` (else the tool in use), m.
+/// The radius of tool `d` (else the tool in use) with its wear, m (module docs).
 fn radius(line: u64, d: Option<f64>, s: &State) -> Result<f64> {
     let n = match d {
         Some(d) if d.fract() == 0.0 && (0.0..=1e6).contains(&d) => Some(d as u32),
@@ -69,7 +82,19 @@ fn radius(line: u64, d: Option<f64>, s: &State) -> Result<f64> {
     let radii = &s.machine.tool_radii;
     let exact = n.and_then(|n| radii.iter().find(|(t, _)| *t == Some(n)));
     let found = exact.or_else(|| radii.iter().find(|(t, _)| t.is_none()));
-    found.map(|(_, r)| *r).ok_or_else(|| at(line, format!("cutter radius compensation needs the radius of tool {}: give the process an operation with its tool_number and [tool] diameter_mm", n.map_or("in use".to_string(), |n| n.to_string()))))
+    let r = found.map(|(_, r)| *r).ok_or_else(|| at(line, format!("cutter radius compensation needs the radius of tool {}: give the process an operation with its tool_number and [tool] diameter_mm", n.map_or("in use".to_string(), |n| n.to_string()))))?;
+    let wear = n.and_then(|n| s.machine.radius_wear.iter().find(|(t, _)| *t == n));
+    let r = r + wear.map_or(0.0, |(_, w)| *w);
+    if r <= 0.0 {
+        return Err(at(
+            line,
+            format!(
+                "the tool's radius with its wear is {:.4} mm: not a radius to offset by",
+                r * 1e3
+            ),
+        ));
+    }
+    Ok(r)
 }
 
 /// A `G40`, `G41` or `G42` (`code`) with its `D` on `line`.
@@ -111,18 +136,18 @@ pub(super) fn refuse_while_on(line: u64, what: &str, s: &State) -> Result<()> {
     }
 }
 
-fn unit(a: [f64; 2]) -> Option<[f64; 2]> {
+pub(super) fn unit(a: [f64; 2]) -> Option<[f64; 2]> {
     let n = a[0].hypot(a[1]);
     (n > 1e-12).then(|| [a[0] / n, a[1] / n])
 }
 
-/// The move from `start` to `positions` (its programmed end, program coordinates, m) as the
-/// compensated tool makes it (module docs): the positions to push, an earlier point moved for an
-/// inside corner.
+/// The move from `start` to `positions` (its programmed end, program coordinates, m; an arc
+/// about `centre`, program coordinates of the plane) as the compensated tool makes it (module
+/// docs): the positions to push, an earlier move's end moved for an inside corner.
 pub(super) fn apply(
     line: u64,
     start: Vector3<f64>,
-    positions: Vec<Vector3<f64>>,
+    (positions, centre): (Vec<Vector3<f64>>, Option<[f64; 2]>),
     tolerance: f64,
     s: &mut State,
     out: &mut GCode,
@@ -140,13 +165,10 @@ pub(super) fn apply(
             side, radius, tool, ..
         } => (*side, *radius, tool.clone()),
     };
-    if s.motion >= 2 {
-        return Err(at(line, "an arc under cutter radius compensation (G41/G42): not read yet; post the path of the tool centre (G40)".into()));
-    }
     let end = positions[positions.len() - 1];
     let (p, q) = ([start.x, start.y], [end.x, end.y]);
     let next = out.points.len();
-    let Some(u) = unit([q[0] - p[0], q[1] - p[1]]) else {
+    if centre.is_none() && unit([q[0] - p[0], q[1] - p[1]]).is_none() {
         // Along Z alone: the tool stays where it is in X and Y.
         let Some(mut t) = tool else {
             return Ok(positions);
@@ -155,10 +177,14 @@ pub(super) fn apply(
         let xy = t.xy;
         set_tool(s, t);
         return Ok(vec![Vector3::new(xy[0], xy[1], end.z)]);
-    };
+    }
     let Some(t) = tool else {
+        if centre.is_some() {
+            return Err(at(line, "an arc as the move entering cutter radius compensation: not read (LinuxCNC's arc entry changes the arc's radius); enter with a straight move".into()));
+        }
         let e = entry(line, p, q, side, r)?;
-        let dir = unit([e[0] - p[0], e[1] - p[1]]).unwrap_or(u);
+        let dir = unit([e[0] - p[0], e[1] - p[1]]).unwrap_or([1.0, 0.0]);
+        let shape = Shape::Line;
         set_tool(
             s,
             Tool {
@@ -168,53 +194,78 @@ pub(super) fn apply(
                 from: p,
                 point: next,
                 z_since: false,
+                shape,
             },
         );
         return Ok(vec![Vector3::new(e[0], e[1], end.z)]);
     };
-    let t = &t;
-    let n = [-u[1] * side * r, u[0] * side * r];
-    let s0 = [p[0] + n[0], p[1] + n[1]];
-    let q1 = [q[0] + n[0], q[1] + n[1]];
-    let cross = t.dir[0] * u[1] - t.dir[1] * u[0];
-    let dot = t.dir[0] * u[0] + t.dir[1] * u[1];
-    let mut out_positions = Vec::new();
-    let mut from = s0;
-    if cross.abs() < 1e-9 && dot > 0.0 {
-        // Straight on.
-    } else if side * cross < 0.0 || cross.abs() < 1e-9 {
-        // Outside: around the programmed corner on an arc of the radius.
-        corner(
-            p,
-            (t.xy, s0),
-            (side, r),
-            tolerance,
-            start.z,
-            &mut out_positions,
-        );
-    } else {
-        let x = inside(line, t, (s0, u), q1)?;
-        if t.z_since {
-            return Err(at(line, "an inside corner after a move along Z alone under cutter radius compensation: not read; give the corner's moves in X Y together".into()));
-        }
-        let moved = Vector3::new(x[0], x[1], t.z);
-        out.points[t.point].position = s.tip(line, &moved, (&s.frame, s.lift()))?;
-        from = x;
-    }
-    out_positions.push(Vector3::new(q1[0], q1[1], end.z));
-    let point = next + out_positions.len() - 1;
+    let piece = match centre {
+        Some(c) => Piece::arc(line, (p, q, c), s.motion == 3, (side, r))?,
+        None => Piece::line(p, q, (side, r)),
+    };
+    let mut pts = Vec::new();
+    let from = turn(
+        line,
+        &t,
+        &piece,
+        (p, start.z),
+        (side, r, tolerance),
+        s,
+        out,
+        &mut pts,
+    )?;
+    let first = next + pts.len();
+    let shape = piece.points(from, (start.z, end.z), tolerance, &mut pts);
+    let shape = shape.with_first(first);
+    let point = next + pts.len() - 1;
+    let (xy, dir) = (piece.end_point(), piece.end_tangent());
     set_tool(
         s,
         Tool {
-            xy: q1,
+            xy,
             z: end.z,
-            dir: u,
+            dir,
             from,
             point,
             z_since: false,
+            shape,
         },
     );
-    Ok(out_positions)
+    Ok(pts)
+}
+
+/// The corner from the last move `t` into `piece` at the programmed corner `p` (its `z`): an
+/// outside corner's arc pushed to `pts`, an inside corner's earlier end moved; where the piece
+/// starts.
+#[allow(clippy::too_many_arguments)]
+fn turn(
+    line: u64,
+    t: &Tool,
+    piece: &Piece,
+    (p, z): ([f64; 2], f64),
+    (side, r, tolerance): (f64, f64, f64),
+    s: &mut State,
+    out: &mut GCode,
+    pts: &mut Vec<Vector3<f64>>,
+) -> Result<[f64; 2]> {
+    let (u, s0) = (piece.start_tangent(), piece.start_point());
+    let cross = t.dir[0] * u[1] - t.dir[1] * u[0];
+    let dot = t.dir[0] * u[0] + t.dir[1] * u[1];
+    if cross.abs() < 1e-9 && dot > 0.0 {
+        // Straight on (a tangent junction).
+        return Ok(s0);
+    }
+    if side * cross < 0.0 || cross.abs() < 1e-9 {
+        // Outside: around the programmed corner on an arc of the radius.
+        piece::corner(p, (t.xy, s0), (side, r), tolerance, z, pts);
+        return Ok(s0);
+    }
+    if t.z_since {
+        return Err(at(line, "an inside corner after a move along Z alone under cutter radius compensation: not read; give the corner's moves in X Y together".into()));
+    }
+    let x = piece::meet(line, t, piece, p)?;
+    piece::move_end(line, t, x, s, out)?;
+    Ok(x)
 }
 
 /// Where the compensated tool is now.
@@ -234,50 +285,4 @@ fn entry(line: u64, c: [f64; 2], p: [f64; 2], side: f64, r: f64) -> Result<[f64;
     let theta = (r / d).acos();
     let alpha = (c[1] - p[1]).atan2(c[0] - p[0]) - side * theta;
     Ok([p[0] + r * alpha.cos(), p[1] + r * alpha.sin()])
-}
-
-/// The arc of radius `r` around `p` from `a` to `b` (the tool outside the corner: clockwise on
-/// the left side), chords within `tolerance`, at height `z`; `b` included.
-fn corner(
-    p: [f64; 2],
-    (a, b): ([f64; 2], [f64; 2]),
-    (side, r): (f64, f64),
-    tolerance: f64,
-    z: f64,
-    out: &mut Vec<Vector3<f64>>,
-) {
-    let two_pi = 2.0 * std::f64::consts::PI;
-    let a0 = (a[1] - p[1]).atan2(a[0] - p[0]);
-    let a1 = (b[1] - p[1]).atan2(b[0] - p[0]);
-    let sweep = if side > 0.0 {
-        -(a0 - a1).rem_euclid(two_pi)
-    } else {
-        (a1 - a0).rem_euclid(two_pi)
-    };
-    let step = 2.0 * (1.0 - (tolerance / r).min(1.0)).acos();
-    let count = ((sweep.abs() / step.max(1e-6)).ceil() as usize).clamp(1, 100_000);
-    for k in 1..=count {
-        let angle = a0 + sweep * k as f64 / count as f64;
-        let at = match k == count {
-            true => b,
-            false => [p[0] + r * angle.cos(), p[1] + r * angle.sin()],
-        };
-        out.push(Vector3::new(at[0], at[1], z));
-    }
-}
-
-/// Where the previous offset line (through `t`, along its direction) meets this one (through
-/// `s0` along `u`, to `q1`): refused outside either move.
-fn inside(line: u64, t: &Tool, (s0, u): ([f64; 2], [f64; 2]), q1: [f64; 2]) -> Result<[f64; 2]> {
-    let d = t.dir;
-    let det = d[0] * (-u[1]) - d[1] * (-u[0]);
-    let w = [s0[0] - t.xy[0], s0[1] - t.xy[1]];
-    let a = (w[0] * (-u[1]) - w[1] * (-u[0])) / det;
-    let b = (d[0] * w[1] - d[1] * w[0]) / det;
-    let back = (t.xy[0] - t.from[0]).hypot(t.xy[1] - t.from[1]);
-    let ahead = (q1[0] - s0[0]).hypot(q1[1] - s0[1]);
-    if !(a.is_finite() && b.is_finite()) || a < -back - 1e-12 || b > ahead + 1e-12 {
-        return Err(at(line, "the tool does not fit this inside corner under cutter radius compensation (the offset moves meet outside them: LinuxCNC's gouging error)".into()));
-    }
-    Ok([t.xy[0] + a * d[0], t.xy[1] + a * d[1]])
 }
