@@ -20,7 +20,7 @@ use stiffid::internal::machining::compensate::{
 };
 use stiffid::internal::machining::dynamics::Dynamics;
 use stiffid::internal::machining::process::file;
-use stiffid::internal::machining::program::generate::{Settings, Targets};
+use stiffid::internal::machining::program::generate::{date, Settings, Targets};
 use stiffid::internal::machining::Language;
 use stiffid::internal::observation::deflection::Frame;
 
@@ -441,6 +441,7 @@ fn input_of<'t>(
                 max_tcp_speed: max_tcp_speed_mm_s * 1e-3,
                 name_length,
                 moves_per_file,
+                date_s: source_date()?,
                 ..Settings::default()
             };
             Input::Program {
@@ -695,4 +696,12 @@ fn table<'py>(
         }
     }
     Ok(out)
+}
+
+/// The date of generated programs: `SOURCE_DATE_EPOCH`'s when the environment sets it, else 0.
+fn source_date() -> PyResult<i64> {
+    match std::env::var(date::VARIABLE) {
+        Err(_) => Ok(0),
+        Ok(text) => date::epoch(&text).map_err(raise),
+    }
 }

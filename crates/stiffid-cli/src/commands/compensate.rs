@@ -25,7 +25,8 @@ use stiffid::internal::machining::compensate::{
 };
 use stiffid::internal::machining::dynamics::Dynamics;
 use stiffid::internal::machining::process::file;
-use stiffid::internal::machining::program::generate::{Settings, Targets};
+use stiffid::internal::machining::program;
+use stiffid::internal::machining::program::generate::{date, Settings, Targets};
 use stiffid::internal::machining::Language;
 use stiffid::internal::observation::deflection::Frame;
 use stiffid::internal::robot::ExternalAxes;
@@ -229,17 +230,9 @@ pub fn run(args: &Args) -> Result<()> {
     let input = input(args, name.clone(), (&text, data.as_deref()), encoding)?;
     let input = with_reading(input, &backup, args.leave_refused);
     let out = OutFile::prepare(&args.out, "--out")?;
-    // A G-code path written as a KRL program has its points' .dat beside it too.
-    let krl_out = (args.out.extension().and_then(|e| e.to_str()))
-        .is_some_and(|e| e.eq_ignore_ascii_case("src"));
-    let data_out = (data.is_some() || krl_out)
-        .then(|| {
-            OutFile::prepare(
-                &stiffid::internal::machining::program::krl::data_out(&args.out),
-                "--out",
-            )
-        })
-        .transpose()?;
+    // A program whose language keeps data beside it (KRL's .dat) has it written there too.
+    let data_out =
+        (program::data_out(&args.out).map(|p| OutFile::prepare(&p, "--out"))).transpose()?;
     let csv_out = args
         .csv
         .as_deref()
@@ -353,9 +346,18 @@ fn input<'t>(
             max_tcp_speed: args.max_tcp_speed_mm_s * 1e-3,
             name_length: args.name_length,
             moves_per_file: args.moves_per_file,
+            date_s: source_date()?,
             ..Settings::default()
         },
     })
+}
+
+/// The date of generated programs: `SOURCE_DATE_EPOCH`'s when the environment sets it, else 0.
+fn source_date() -> Result<i64> {
+    match std::env::var(date::VARIABLE) {
+        Err(_) => Ok(0),
+        Ok(text) => Ok(date::epoch(&text)?),
+    }
 }
 
 fn names(args: &Args) -> Names {
@@ -474,13 +476,11 @@ fn write_subprograms(out: &Path, program: &ProgramReport) -> Result<()> {
         .collect::<Result<Vec<_>>>()?;
     let data = files
         .iter()
-        .filter_map(|f| f.data.as_ref().map(|d| (f, d)))
-        .map(|(f, d)| {
-            let path = stiffid::internal::machining::program::krl::data_out(
-                &dir.join(format!("{}.{extension}", f.name)),
-            );
-            OutFile::prepare(&path, "--out").map(|o| (o, d))
+        .filter_map(|f| {
+            let path = program::data_out(&dir.join(format!("{}.{extension}", f.name)))?;
+            Some((path, f.data.as_ref()?))
         })
+        .map(|(path, d)| OutFile::prepare(&path, "--out").map(|o| (o, d)))
         .collect::<Result<Vec<_>>>()?;
     for (o, f) in prepared {
         o.write(&program.bytes(&f.text))?;
@@ -690,9 +690,8 @@ fn written(args: &Args, report: &Report, doc: &Document<'_>) -> String {
             text += &format!("written: {written}\n");
         }
     }
-    if report.program.as_ref().is_some_and(|p| p.data.is_some()) && !names.program_out.is_empty() {
-        let dat =
-            stiffid::internal::machining::program::krl::data_out(Path::new(&names.program_out));
+    let dat = program::data_out(Path::new(&names.program_out));
+    if let Some(dat) = dat.filter(|_| report.program.as_ref().is_some_and(|p| p.data.is_some())) {
         text += &format!(
             "written: {} beside it (its points and data)\n",
             dat.display()

@@ -48,7 +48,7 @@ fn program(c: &ConfigurationsDocument) -> String {
         text += &format!(
             "  {:<34} {:<16} {:>12} {:>12}  {}\n",
             r.name,
-            r.fanuc,
+            r.configuration_data.get("ls").map_or("", String::as_str),
             value(r.sum_mm),
             value(r.max_mm),
             [mark, &refused]

@@ -52,6 +52,38 @@ fn options() -> std::fs::OpenOptions {
     options
 }
 
+/// The file of `path`'s folder and stem whose extension is `extension` in any case, as a
+/// controller pairs a program with its data (KUKA's `X.src` and `X.dat`); where several are
+/// (`X.dat` and `X.DAT` on a case-sensitive file system: a program and the one a compensation
+/// wrote as `X.SRC`), the one whose extension's case follows `path`'s (upper case where all of
+/// `path`'s extension is), else the first in path order. `None` where there is none or the
+/// folder cannot be listed. One rule for both front ends.
+pub fn beside(path: &Path, extension: &str) -> Option<std::path::PathBuf> {
+    let stem = path.file_stem()?;
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let named = |p: &Path| {
+        p.file_stem() == Some(stem)
+            && (p.extension().and_then(|e| e.to_str()))
+                .is_some_and(|e| e.eq_ignore_ascii_case(extension))
+    };
+    let mut found: Vec<_> = (std::fs::read_dir(dir).ok()?.flatten())
+        .map(|e| e.path())
+        .filter(|p| named(p))
+        .collect();
+    found.sort();
+    let upper = (path.extension().and_then(|e| e.to_str()))
+        .is_some_and(|e| !e.is_empty() && e.chars().all(|c| c.is_ascii_uppercase()));
+    let wanted = match upper {
+        true => extension.to_ascii_uppercase(),
+        false => extension.to_ascii_lowercase(),
+    };
+    let paired = (found.iter()).position(|p| p.extension().is_some_and(|e| *e == *wanted));
+    (!found.is_empty()).then(|| found.swap_remove(paired.unwrap_or(0)))
+}
+
 /// The most files a folder given as a controller's backup lists ([`files_under`]).
 const MAX_BACKUP_FILES: usize = 10_000;
 

@@ -14,6 +14,7 @@ use super::cartesian::flags::{ConfigurationData, Flags};
 pub use super::descriptor::{
     Arcs, AxisNames, Descriptor, ExternalGroup, FileName, NameRules, Writing,
 };
+use super::generate::date::Stamp;
 use super::generate::{Part, Plan, Targets};
 use super::{JointTarget, Units};
 use nalgebra::{UnitQuaternion, Vector3};
@@ -286,8 +287,9 @@ pub trait Generator: Sync {
     fn body(&self, plan: &Plan, part: &Part, warnings: &mut Vec<String>) -> Result<String>;
     /// The main program's calls of its sub-programs `subs`, in order.
     fn calls(&self, subs: &[String]) -> String;
-    /// The whole file of program `name` (`main`: the main program).
-    fn wrap(&self, name: &str, header: &str, body: &str, main: bool) -> String;
+    /// The whole file of program `name` (`main`: the main program), dated `date` where the
+    /// language states a date.
+    fn wrap(&self, name: &str, header: &str, body: &str, main: bool, date: Stamp) -> String;
     /// What its programs can hold and how they write it, as data.
     fn writing(&self) -> &'static Writing;
 

@@ -43,6 +43,10 @@ pub struct Descriptor {
     /// entry beyond them is stated instead ([`super::generate::numbered`]); `(0, 0)`: the
     /// language states its frames.
     pub frame_numbers: (u32, u32),
+    /// Whether the controller measures axis 3 from the horizontal (FANUC's J2/J3 interaction),
+    /// so that its joint positions on a URDF robot need the setup's `robot_axis_map` to couple
+    /// joint 3 with joint 2 (warned where the setup does not).
+    pub axis_3_from_horizontal: bool,
 }
 
 /// The rules of a language's program names.

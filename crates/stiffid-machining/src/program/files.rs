@@ -2,12 +2,49 @@
 //! backup's), and the programs of the backup it calls, whose texts follow its own
 //! ([`Read::called`](super::Read::called)).
 
-use super::{krl, Dialect, JointProgram, JointTarget};
+use super::{Dialect, JointProgram, JointTarget};
 use std::ops::Range;
 use stiffid_core::Error;
 
-/// The text of the program at `path`, of its `.dat` when it is a KRL program with one beside it
-/// (`krl::data_beside`), and the encoding they were read in: UTF-8, else Latin-1
+/// The data file a program at `path` keeps beside it: the first of its language's
+/// [`super::Descriptor::data_files`] (KRL's `.dat`) of the same folder and stem
+/// ([`stiffid_core::io::input::beside`]); `None` for a language without one, for a data file
+/// itself, or where there is none.
+pub(crate) fn data_beside(path: &std::path::Path) -> Option<std::path::PathBuf> {
+    let extension = path.extension()?.to_str()?.to_ascii_lowercase();
+    let Some(crate::Language::Robot(dialect)) = crate::Language::from_extension(&extension) else {
+        return None;
+    };
+    let controller = dialect.controller();
+    if controller.refuses_output(&extension).is_some() {
+        return None;
+    }
+    let (data, _) = controller.descriptor().data_files.first()?;
+    stiffid_core::io::input::beside(path, data)
+}
+
+/// The data file a program written to `out` keeps beside it: of its language's first
+/// [`super::Descriptor::data_files`] extension (KRL's `.dat`), in upper case where all of
+/// `out`'s extension is (`X.SRC` with `X.DAT`); `None` for a language without one.
+pub fn data_out(out: &std::path::Path) -> Option<std::path::PathBuf> {
+    let extension = out.extension()?.to_str()?;
+    let Some(crate::Language::Robot(dialect)) = crate::Language::from_extension(extension) else {
+        return None;
+    };
+    let controller = dialect.controller();
+    if controller.refuses_output(&extension.to_ascii_lowercase()).is_some() {
+        return None;
+    }
+    let (data, _) = controller.descriptor().data_files.first()?;
+    let upper = extension.chars().all(|c| c.is_ascii_uppercase());
+    Some(out.with_extension(match upper {
+        true => data.to_ascii_uppercase(),
+        false => data.to_string(),
+    }))
+}
+
+/// The text of the program at `path`, of the data file its language keeps beside it where
+/// there is one ([`data_beside`]: KRL's `.dat` of a `.src`), and the encoding they were read in: UTF-8, else Latin-1
 /// ([`stiffid_core::io::program_texts`]). `read` gives a file's bytes (a front end's reading,
 /// with the file's name in its error); `wrap` turns a text's error into the caller's.
 ///
@@ -18,7 +55,7 @@ pub fn read_files<E>(
     mut read: impl FnMut(&std::path::Path) -> std::result::Result<Vec<u8>, E>,
     wrap: impl Fn(Error) -> E,
 ) -> std::result::Result<(String, Option<String>, stiffid_core::io::Encoding), E> {
-    let data = krl::data_beside(path);
+    let data = data_beside(path);
     let mut files = Vec::new();
     for p in [Some(path), data.as_deref()].into_iter().flatten() {
         files.push((p.display().to_string(), read(p)?));

@@ -82,7 +82,7 @@ pub mod rapid;
 pub mod rename;
 pub mod speed;
 mod write;
-pub use files::{read_backup, read_files};
+pub use files::{data_out, read_backup, read_files};
 pub use write::Written;
 
 pub(crate) use super::text::lines;

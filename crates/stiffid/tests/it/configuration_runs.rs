@@ -282,9 +282,9 @@ fn a_gcode_program_runs_between_rapid_moves_and_its_gcode_is_refused_naming_the_
     let text = &report.program.as_ref().unwrap().text;
     for r in [first, other] {
         assert!(
-            text.contains(&format!("CONFIG : '{}'", r.fanuc)),
-            "{}",
-            r.fanuc
+            text.contains(&format!("CONFIG : {}", r.configuration_data["ls"])),
+            "{:?}",
+            r.configuration_data
         );
     }
     match drill(&s, &far, Language::GCode).unwrap_err() {

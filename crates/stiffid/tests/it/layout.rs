@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 
 /// The library crates, from the ground up: core, the science, the views, and this facade (the
 /// jobs) last.
-const CRATES: [&str; 7] = [
+pub(crate) const CRATES: [&str; 7] = [
     "stiffid-core",
     "stiffid-metrology",
     "stiffid-identify",
@@ -201,7 +201,7 @@ fn a_circle_is_found() {
 
 /// Every library file: its path under `src/` and its code before the first `#[cfg(test)]`
 /// (test files, `tests.rs` and `tests/`, left out).
-fn library_files(name: &str) -> Vec<(PathBuf, String)> {
+pub(crate) fn library_files(name: &str) -> Vec<(PathBuf, String)> {
     let mut files = Vec::new();
     sources(&src_of(name), &mut files);
     files.sort();
@@ -308,7 +308,7 @@ fn no_library_file_is_over_700_lines() {
 }
 
 /// `text` with comments, strings and character literals blanked (lifetimes kept).
-fn strip(text: &str) -> String {
+pub(crate) fn strip(text: &str) -> String {
     let c: Vec<char> = text.chars().collect();
     let (mut out, mut i) = (String::new(), 0);
     let at = |i: usize, s: &str| c[i..].iter().take(s.len()).copied().eq(s.chars());

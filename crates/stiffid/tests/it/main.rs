@@ -20,6 +20,7 @@ mod carried_obstacles;
 mod cartesian_programs;
 mod cell;
 mod cell_search;
+mod claims;
 mod comau_checks;
 mod common;
 mod compensate;

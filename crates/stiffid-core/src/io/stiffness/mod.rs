@@ -62,12 +62,9 @@ use nalgebra::{DMatrix, Matrix6, Vector6};
 use serde::{Deserialize, Serialize};
 
 /// The keys of the identify documents (`stiffid identify --json`, over the drives or over a model
-/// with virtual springs) and of the stiffness file `stiffid calibrate --stiffness-out` writes
-/// (`fitted`: which joints the calibration fitted) that a stiffness file may hold beside
-/// [`StiffnessFile`]'s: read and ignored. Any other key is refused ([`parse`]): a misspelt key would otherwise be dropped
+/// with virtual springs) that a stiffness file may hold beside [`StiffnessFile`]'s: read and ignored. Any other key is refused ([`parse`]): a misspelt key would otherwise be dropped
 /// silently.
 pub const DOCUMENT_KEYS: &[&str] = &[
-    "kind",
     "setup",
     "data",
     "springs",
@@ -83,7 +80,6 @@ pub const DOCUMENT_KEYS: &[&str] = &[
     "std_error_pct",
     "poorly_determined_above_pct",
     "poorly_determined",
-    "fitted",
     "ci95_nm_per_rad",
     "ci95_from_compliance_nm_per_rad",
     "compliance_std_error_rad_per_nm",
@@ -118,9 +114,15 @@ pub(crate) const FORMER_KEYS: &[&str] = &["std_error_percent", "poorly_determine
 
 /// What a stiffness file holds, as its JSON keys (the identify document's others,
 /// [`DOCUMENT_KEYS`], are ignored).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
 pub struct StiffnessFile {
+    /// Optional: what wrote the file, first where it is written: `stiffness` (a stiffness file
+    /// `calibrate --stiffness-out` or `identify --stiffness-out` writes), `identify-drives` or
+    /// `identify-springs` (an identify document, read as a stiffness file); another document's
+    /// kind is refused naming it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kind: Option<FileKind>,
     /// Every parameter of the model, drives first (`k1` .. `k6`), then the virtual springs in the
     /// order of the setup's `[model]`; required unless `stiffness_nm_per_rad` is given.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -150,6 +152,10 @@ pub struct StiffnessFile {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[serde(deserialize_with = "crate::common::exact::option_matrix")]
     pub compliance_covariance_rad2_per_nm2: Option<[[f64; 6]; 6]>,
+    /// Optional, with `parameters`, ignored by the readers: which parameters a calibration
+    /// fitted (the others are the setup's nominal), as `calibrate --stiffness-out` writes it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fitted: Option<Vec<bool>>,
     /// Optional, with `parameters`: the held-out residuals of a cross-validation over postures,
     /// what prediction intervals are built from.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -173,6 +179,19 @@ pub struct StiffnessFile {
     /// part. A file without it is read, and the part is absent.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub model_form: Option<ModelFormSection>,
+}
+
+/// What wrote a stiffness file ([`StiffnessFile::kind`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
+#[serde(rename_all = "kebab-case")]
+pub enum FileKind {
+    /// A stiffness file (`calibrate --stiffness-out`, `identify --stiffness-out`).
+    Stiffness,
+    /// The document of `identify` over the six drives.
+    IdentifyDrives,
+    /// The document of `identify` over a model with virtual springs.
+    IdentifySprings,
 }
 
 /// One parameter's stiffness in a stiffness file.
@@ -261,6 +280,8 @@ pub fn parse(text: &str) -> Result<StiffnessFile> {
     let keys: std::collections::BTreeMap<String, serde::de::IgnoredAny> =
         serde_json::from_str(text).unwrap_or_default();
     let ours = [
+        "kind",
+        "fitted",
         "parameters",
         "compliance_covariance_si",
         "stiffness_nm_per_rad",

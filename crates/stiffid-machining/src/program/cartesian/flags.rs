@@ -85,8 +85,8 @@ impl Flags {
         self.0.branch()
     }
 
-    /// As the program writes them, for messages.
-    pub(crate) fn text(&self) -> String {
+    /// As the program writes them (LS `N U T, 0, 0, 0`, RAPID `[0,-1,0,1]`).
+    pub fn text(&self) -> String {
         self.0.text()
     }
 }

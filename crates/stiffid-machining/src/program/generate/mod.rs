@@ -92,7 +92,7 @@
 
 pub mod arcs;
 mod checks;
-pub(crate) mod date;
+pub mod date;
 mod names;
 pub mod numbered;
 mod process;
@@ -366,7 +366,7 @@ pub fn generate_with(plan: &Plan, process: &Process) -> Result<Written> {
     let (inserted, left_out) = process::inserted(plan, form, process)?;
     let settings = room_for(generator, &plan.settings, &inserted)?;
     let names = check_plan(plan.dialect, plan.name, &settings, plan.targets.len())?;
-    date::stamp()?;
+    let date = date::Stamp::at(settings.date_s);
     check_targets(plan)?;
     generator.check_settings(&plan.settings)?;
     let per_file = moves_per_file(plan.dialect, &settings);
@@ -405,7 +405,7 @@ pub fn generate_with(plan: &Plan, process: &Process) -> Result<Written> {
     if chunks.len() == 1 {
         let (name, text) = bodies.pop().unwrap_or_default();
         written.files.push(File {
-            text: generator.wrap(&name, &header, &text, true),
+            text: generator.wrap(&name, &header, &text, true, date),
             name,
             data: None,
         });
@@ -413,12 +413,12 @@ pub fn generate_with(plan: &Plan, process: &Process) -> Result<Written> {
         let calls = generator.calls(&names[1..]);
         written.files.push(File {
             name: names[0].clone(),
-            text: generator.wrap(&names[0], &header, &calls, true),
+            text: generator.wrap(&names[0], &header, &calls, true, date),
             data: None,
         });
         for (name, text) in bodies {
             written.files.push(File {
-                text: generator.wrap(&name, "", &text, false),
+                text: generator.wrap(&name, "", &text, false, date),
                 name,
                 data: None,
             });

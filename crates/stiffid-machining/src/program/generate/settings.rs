@@ -42,11 +42,16 @@ pub struct Settings {
     /// of the axes' top speed, within [`stiffid_core::setup::program_io::RAPID_JOINT_PCT`] (the
     /// setup's `[controller] rapid_joint_pct`); LS states whole percents, INFORM hundredths.
     pub rapid_joint_pct: f64,
+    /// The date the written programs state (LS `CREATE`/`MODIFIED`, INFORM `///DATE`), whole
+    /// seconds since 1970-01-01 00:00 UTC, 0 to [`super::date::MAX_EPOCH_S`]: the front ends
+    /// give `SOURCE_DATE_EPOCH`'s ([`super::date::epoch`]), else 0, so the same input writes
+    /// the same bytes.
+    pub date_s: i64,
 }
 
 impl Default for Settings {
     /// Cartesian targets (not asked), 2000 mm/s, the dialect's name length, 10 000 moves per file,
-    /// rapids at 200 mm/s and 20 %.
+    /// rapids at 200 mm/s and 20 %, dated 1970-01-01.
     fn default() -> Self {
         Self {
             targets: Targets::Cartesian,
@@ -56,6 +61,7 @@ impl Default for Settings {
             moves_per_file: 10_000,
             rapid_speed: RAPID_SPEED_MM_S * 1e-3,
             rapid_joint_pct: RAPID_PERCENT as f64,
+            date_s: 0,
         }
     }
 }
@@ -65,7 +71,8 @@ impl Settings {
     ///
     /// # Errors
     /// [`Error::InvalidOption`] naming the option ([`JobOption::MaxTcpSpeedMmS`],
-    /// [`JobOption::NameLength`], [`JobOption::MovesPerFile`]), the value and the range.
+    /// [`JobOption::NameLength`], [`JobOption::MovesPerFile`]), the value and the range;
+    /// [`Error::InvalidField`] (`SOURCE_DATE_EPOCH`) for a date outside its range.
     pub fn validate(&self) -> Result<()> {
         let bad = |option, message: String| Err(Error::InvalidOption { option, message });
         if !(self.max_tcp_speed > 0.0 && self.max_tcp_speed <= 10.0) {
@@ -88,6 +95,7 @@ impl Settings {
             );
         }
         self.validate_rapids()?;
+        super::date::epoch(&self.date_s.to_string())?;
         if !MOVES_PER_FILE.contains(&self.moves_per_file) {
             return bad(
                 JobOption::MovesPerFile,

@@ -305,6 +305,7 @@ impl Controller for Inform {
         bound_comment: BoundComment::LineBefore { marker: '\'' },
         motion_words: &["MOVJ ", "MOVL ", "MOVC "],
         frame_numbers: (63, 63),
+        axis_3_from_horizontal: false,
     };
 
     fn read(&self, text: &str) -> Result<Read> {

@@ -2,6 +2,7 @@
 
 use crate::program::cartesian::flags::ConfigurationData;
 use crate::program::generate::arcs::Form;
+use crate::program::generate::date::Stamp;
 use crate::program::generate::{
     in_work, number, v, zyx_deg, Move, Part, Plan, Target, Targets, RAPID_PERCENT,
 };
@@ -186,7 +187,7 @@ impl Generator for super::Krl {
     fn calls(&self, subs: &[String]) -> String {
         calls(subs)
     }
-    fn wrap(&self, name: &str, header: &str, body: &str, _main: bool) -> String {
+    fn wrap(&self, name: &str, header: &str, body: &str, _main: bool, _date: Stamp) -> String {
         wrap(name, header, body)
     }
     fn writing(&self) -> &'static Writing {

@@ -12,7 +12,7 @@
 //! the BAS package select it (`frames`).
 //!
 //! As KUKA System Software stores a program: the `.dat` beside the `.src` (same folder and stem,
-//! `data_beside`) declares its points and frame data (`declare`); inline forms (`;FOLD PTP P1
+//! `program::data_beside`) declares its points and frame data (`declare`); inline forms (`;FOLD PTP P1
 //! .. Tool[1] Base[2]` with `FDAT_ACT = FP1` and `BAS(#PTP_PARAMS, ..)`, KSS 8's `SPTP .. WITH
 //! $TOOL = STOOL2(FP1), ..`) are read from their bodies; `CIRC` gives its auxiliary and end points
 //! (`motion`); what is in force at each motion is followed through loops, branches and the
@@ -40,49 +40,6 @@ use super::descriptor::{AxisNames, Descriptor, FileName, NameRules};
 use super::generate::zyx_deg;
 use nalgebra::{UnitQuaternion, Vector3};
 use stiffid_core::Result;
-
-/// The `.dat` beside the KRL program `src` (a `.src`, any case): the file of the same folder
-/// and stem whose extension is `dat` in any case, as KUKA System Software pairs them; where
-/// several are (`X.dat` and `X.DAT` on a case-sensitive file system: a program and the one
-/// compensate wrote as `X.SRC`), the one whose case follows the `.src`'s as [`data_out`] names
-/// it (`X.src` with `X.dat`, `X.SRC` with `X.DAT`); `None` for another file or where there is
-/// none.
-pub(crate) fn data_beside(src: &std::path::Path) -> Option<std::path::PathBuf> {
-    let extension = src.extension()?.to_str()?;
-    if !extension.eq_ignore_ascii_case("src") {
-        return None;
-    }
-    let stem = src.file_stem()?;
-    let dir = match src.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => std::path::Path::new("."),
-    };
-    let mut found: Vec<std::path::PathBuf> = (std::fs::read_dir(dir).ok()?.flatten())
-        .map(|e| e.path())
-        .filter(|p| {
-            p.file_stem() == Some(stem)
-                && p.extension()
-                    .and_then(|e| e.to_str())
-                    .is_some_and(|e| e.eq_ignore_ascii_case("dat"))
-        })
-        .collect();
-    found.sort();
-    let paired = data_out(src);
-    let paired = found
-        .iter()
-        .position(|p| p.file_name() == paired.file_name());
-    (!found.is_empty()).then(|| found.swap_remove(paired.unwrap_or(0)))
-}
-
-/// The path the compensated `.dat` of a KRL program written to `out` takes: beside it, its
-/// stem, `DAT` where `out`'s extension is upper case (`X.SRC`), else `dat`.
-pub fn data_out(out: &std::path::Path) -> std::path::PathBuf {
-    let upper = out
-        .extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| !e.is_empty() && e.chars().all(|c| c.is_ascii_uppercase()));
-    out.with_extension(if upper { "DAT" } else { "dat" })
-}
 
 /// KUKA KRL (module docs).
 #[derive(Debug, Clone, Copy)]
@@ -117,6 +74,7 @@ impl Controller for Krl {
         },
         motion_words: &["PTP ", "LIN ", "CIRC "],
         frame_numbers: (16, 32),
+        axis_3_from_horizontal: false,
     };
 
     fn read(&self, text: &str) -> Result<Read> {

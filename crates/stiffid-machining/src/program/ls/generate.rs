@@ -2,6 +2,7 @@
 
 use crate::program::cartesian::flags::ConfigurationData;
 use crate::program::generate::arcs::Form;
+use crate::program::generate::date::Stamp;
 use crate::program::generate::LS_MAX_LINES;
 use crate::program::generate::{
     in_world, number, stated_feed, v, zyx_deg, Move, Part, Plan, Settings, Target, Targets,
@@ -170,7 +171,7 @@ pub(crate) fn calls(subs: &[String]) -> String {
 }
 
 /// A whole `.ls` file: the `/MN` lines numbered.
-pub(crate) fn wrap(name: &str, header: &str, body: &str) -> String {
+pub(crate) fn wrap(name: &str, header: &str, body: &str, date: Stamp) -> String {
     let (mn, pos) = body.split_once("/POS\n").unwrap_or((body, ""));
     // A positioner's group 2 joins the default motion group mask.
     let groups = match pos.contains("\n   GP2:") {
@@ -194,7 +195,7 @@ pub(crate) fn wrap(name: &str, header: &str, body: &str) -> String {
     }
     format!(
         "/PROG  {name}\n{}/MN\n{lines}/POS\n{pos}/END\n",
-        attributes(groups, number)
+        attributes(groups, number, date)
     )
 }
 
@@ -204,9 +205,7 @@ pub(crate) fn wrap(name: &str, header: &str, body: &str) -> String {
 /// ([`crate::program::generate::date`]), `LINE_COUNT` the numbered lines, `PROTECT =
 /// READ_WRITE`, the task attributes (`TCD`) at their defaults, the motion group mask `groups`,
 /// `CONTROL_CODE` zero.
-fn attributes(groups: &str, lines: usize) -> String {
-    let d = crate::program::generate::date::stamp()
-        .unwrap_or(crate::program::generate::date::Stamp::at(0));
+fn attributes(groups: &str, lines: usize, d: Stamp) -> String {
     let date = format!(
         "DATE {:02}-{:02}-{:02}  TIME {:02}:{:02}:{:02}",
         d.year.rem_euclid(100),
@@ -255,8 +254,8 @@ impl Generator for super::FanucLs {
     fn calls(&self, subs: &[String]) -> String {
         calls(subs)
     }
-    fn wrap(&self, name: &str, header: &str, body: &str, _main: bool) -> String {
-        wrap(name, header, body)
+    fn wrap(&self, name: &str, header: &str, body: &str, _main: bool, date: Stamp) -> String {
+        wrap(name, header, body, date)
     }
     /// [`LS_MAX_LINES`] numbered lines, the main program's header included.
     /// A carrier in group 1's extended axes `E1` to `E3`, a positioner in group 2's `J1`..

@@ -379,6 +379,7 @@ impl Controller for FanucLs {
         // The motion lines are those of `/MN` only (`motion_lines`).
         motion_words: &[],
         frame_numbers: (10, 9),
+        axis_3_from_horizontal: true,
     };
 
     fn read(&self, text: &str) -> Result<Read> {

@@ -3,6 +3,7 @@
 
 use crate::program::cartesian::flags::ConfigurationData;
 use crate::program::generate::arcs::Form;
+use crate::program::generate::date::Stamp;
 use crate::program::generate::{in_work, number, v, Move, Part, Plan, Target, Targets};
 use crate::program::{Arcs, ExternalGroup, Generator, Writing};
 use std::fmt::Write;
@@ -188,7 +189,7 @@ impl Generator for super::Rapid {
     fn calls(&self, subs: &[String]) -> String {
         calls(subs)
     }
-    fn wrap(&self, name: &str, header: &str, body: &str, main: bool) -> String {
+    fn wrap(&self, name: &str, header: &str, body: &str, main: bool, _date: Stamp) -> String {
         wrap(name, header, body, main)
     }
     fn writing(&self) -> &'static Writing {

@@ -600,6 +600,7 @@ impl Controller for Rapid {
         },
         motion_words: &["MoveJ ", "MoveL ", "MoveC ", "MoveAbsJ "],
         frame_numbers: (0, 0),
+        axis_3_from_horizontal: false,
     };
 
     fn read(&self, text: &str) -> Result<Read> {

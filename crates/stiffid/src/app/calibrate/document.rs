@@ -2,13 +2,14 @@
 //! calibrate --json`, Python's `calibrate(...)`.
 
 use super::{Held, Report};
-use crate::app::document::parameters::{stiffness, ParameterStiffness};
+use crate::app::document::parameters::stiffness;
 use crate::app::document::{finite, units};
 use crate::app::Warning;
 use nalgebra::Vector3;
 use serde::Serialize;
 use stiffid_core::common::choice::Choice;
 use stiffid_core::io::readings::point_name;
+use stiffid_core::io::stiffness::{FileKind, StiffnessFile};
 use stiffid_metrology::calibration::error_model::Target;
 use stiffid_metrology::calibration::gravity::Gravity;
 use stiffid_metrology::calibration::identifiability::CORRELATION_INSEPARABLE;
@@ -144,29 +145,11 @@ pub struct Document<'a> {
     /// --stiffness-out` writes, `predict` and `compensate --stiffness` read); the fitted
     /// parameters at their fitted compliance, the others at the setup's nominal stiffness with
     /// zero variance; `null` otherwise.
-    pub stiffness_file: Option<StiffnessSection>,
+    pub stiffness_file: Option<StiffnessFile>,
     /// Why there is no stiffness file with loaded readings or `masses`.
     pub stiffness_file_error: Option<&'a str>,
     /// Results to look at before trusting the calibration.
     pub warnings: &'a [Warning],
-}
-
-/// The calibrated compliance as a stiffness file ([`stiffid_core::io::stiffness`]), `kind` first.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[cfg_attr(feature = "schema", derive(schemars::JsonSchema), schemars(transform = crate::app::document::schema::Kind("stiffness")))]
-#[serde(tag = "kind", rename = "stiffness")]
-pub struct StiffnessSection {
-    /// Every parameter of the setup's model with its stiffness.
-    pub parameters: Vec<ParameterStiffness>,
-    /// `Cov(h)` of the compliance of every parameter, SI, row-major.
-    pub compliance_covariance_si: Vec<Vec<f64>>,
-    /// Whether the calibration fitted each parameter (the others are the setup's nominal).
-    pub fitted: Vec<bool>,
-    /// The region of axis angles the fitted readings' postures span, widened by a margin:
-    /// what `predict`, `validate` and `compensate` flag a posture outside of
-    /// ([`stiffid_core::io::stiffness::RegionSection`]).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub region: Option<stiffid_core::io::stiffness::RegionSection>,
 }
 
 /// One parameter.
@@ -411,18 +394,22 @@ fn merged(report: &Report) -> Vec<Merged> {
 }
 
 /// The fitted compliance as a stiffness file, when there is one.
-fn stiffness_section(report: &Report) -> Option<StiffnessSection> {
+fn stiffness_section(report: &Report) -> Option<StiffnessFile> {
     let Some(Ok(c)) = &report.compliance else {
         return None;
     };
-    Some(StiffnessSection {
-        parameters: stiffness(&c.parameters, &c.h),
-        compliance_covariance_si: (c.covariance.row_iter())
-            .map(|r| r.iter().copied().collect())
-            .collect(),
-        fitted: c.fitted.clone(),
+    Some(StiffnessFile {
+        kind: Some(FileKind::Stiffness),
+        parameters: Some(stiffness(&c.parameters, &c.h)),
+        compliance_covariance_si: Some(
+            (c.covariance.row_iter())
+                .map(|r| r.iter().copied().collect())
+                .collect(),
+        ),
+        fitted: Some(c.fitted.clone()),
         region: stiffid_core::model::PostureRange::of(&report.postures)
             .map(|r| stiffid_core::io::stiffness::RegionSection::new(&r)),
+        ..StiffnessFile::default()
     })
 }
 

@@ -4,10 +4,11 @@
 //! chosen; with one configuration per run (`--free configuration=run`), each run's.
 
 use serde::Serialize;
+use std::collections::BTreeMap;
 use stiffid_core::common::choice::Choice;
+use stiffid_core::robot::configuration::Configuration;
 use stiffid_machining::compensate::{Aggregate, Branch, Configurations, Run};
-use stiffid_machining::program::cartesian::flags::ConfigurationData;
-use stiffid_machining::program::{krl::StatusTurn, ls::Config, rapid::ConfData};
+use stiffid_machining::program::Dialect;
 
 /// Every configuration of the arm evaluated over the path, and the one chosen.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -51,8 +52,9 @@ pub struct RunRow {
     pub points: usize,
     /// The configuration chosen (a `name` as in `configurations`).
     pub chosen: String,
-    /// FANUC's `CONFIG` of the chosen configuration at the run's first point.
-    pub fanuc: String,
+    /// The chosen configuration's data at the run's first point as each robot language writes
+    /// them, by language (`krl`, `rapid`, `ls`, `inform`): [`ConfigurationRow::configuration_data`].
+    pub configuration_data: BTreeMap<String, String>,
     /// The posture that starts the run in the chosen configuration, deg.
     pub q_first_deg: [f64; 6],
     /// The program's own configuration at the run's first point (the one the path's own
@@ -83,13 +85,10 @@ pub struct ConfigurationRow {
     /// `front` or `back` (the wrist centre before or behind axis 1), `elbow up` or `elbow
     /// down`, `axis 5 positive` or `axis 5 negative`, e.g. `front, elbow up, axis 5 negative`.
     pub name: String,
-    /// FANUC's `CONFIG` at the first point (`N U T, 0, 0, 0`).
-    pub fanuc: String,
-    /// KUKA's status `S` at the first point (bit 0 behind axis 1, bit 1 elbow up, bit 2 axis 5
-    /// <= 0).
-    pub kuka_status: u8,
-    /// ABB's `cfx` at the first point (4 behind axis 1 + 2 elbow down + 1 axis 5 negative).
-    pub abb_cfx: i64,
+    /// Its configuration data at the first point as each robot language writes them, by
+    /// language: `krl` (`S` and `T`), `rapid` (`confdata` `[cf1,cf4,cf6,cfx]`), `ls` (`CONFIG`
+    /// `N U T, 0, 0, 0`), `inform` (the shoulder, elbow and wrist).
+    pub configuration_data: BTreeMap<String, String>,
     /// The posture that starts the path in it: the axis angles at the first point, deg.
     pub q_first_deg: [f64; 6],
     /// Whether it is the path's own configuration.
@@ -159,7 +158,7 @@ fn run_row(k: usize, r: &Run, aggregate: Aggregate) -> RunRow {
         last_line: r.last_line,
         points: r.points.len(),
         chosen: name(&b.configuration),
-        fanuc: Config::of(&b.configuration).to_string(),
+        configuration_data: configuration_data(&b.configuration),
         q_first_deg: b.configuration.q_deg,
         own: own.map(|o| name(&o.configuration)),
         chosen_own: b.own,
@@ -172,8 +171,20 @@ fn run_row(k: usize, r: &Run, aggregate: Aggregate) -> RunRow {
     }
 }
 
+/// The configuration data of `a` as each robot language writes them, by language key.
+fn configuration_data(a: &Configuration) -> BTreeMap<String, String> {
+    (Dialect::ALL.iter())
+        .map(|d| {
+            (
+                d.controller().key().to_string(),
+                d.controller().flags(a).text(),
+            )
+        })
+        .collect()
+}
+
 /// The name of a configuration ([`ConfigurationRow::name`]).
-pub(crate) fn name(c: &stiffid_core::robot::configuration::Configuration) -> String {
+pub(crate) fn name(c: &Configuration) -> String {
     format!(
         "{}, elbow {}, axis 5 {}",
         if c.behind() { "back" } else { "front" },
@@ -200,9 +211,7 @@ fn row(b: &Branch, chosen: bool, c: &Configurations) -> ConfigurationRow {
     };
     ConfigurationRow {
         name: name(a),
-        fanuc: Config::of(a).to_string(),
-        kuka_status: StatusTurn::of(a).status,
-        abb_cfx: ConfData::of(a).0[3],
+        configuration_data: configuration_data(a),
         q_first_deg: a.q_deg,
         own: b.own,
         chosen,

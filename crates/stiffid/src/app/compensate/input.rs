@@ -10,7 +10,7 @@ use crate::app::{Warning, WarningKind};
 use stiffid_core::io::Encoding;
 use stiffid_core::{Error, Result, Setup};
 use stiffid_machining::compensate::Options;
-use stiffid_machining::program::{Context, Dialect};
+use stiffid_machining::program::Context;
 use stiffid_machining::{self as machining, Language, Program};
 
 /// The program of a program input, checked against its output and options, read and its
@@ -180,9 +180,11 @@ pub(super) fn unplaced_g53(program: &Program) -> Option<Warning> {
     })
 }
 
-/// The warning that an LS program's joint positions are read on a URDF robot whose axes the
-/// setup does not couple (no `robot_axis_map`): a FANUC measures J3 from the horizontal, a URDF's
-/// joint 3 turns relative to link 2.
+/// The warning that the joint positions of a program whose controller measures axis 3 from the
+/// horizontal (FANUC's LS: [`Descriptor::axis_3_from_horizontal`]) are read on a URDF robot whose
+/// axes the setup does not couple (no `robot_axis_map`): a URDF's joint 3 turns relative to link 2.
+///
+/// [`Descriptor::axis_3_from_horizontal`]: stiffid_machining::program::Descriptor::axis_3_from_horizontal
 pub(super) fn uncoupled_ls(setup: &Setup, program: &Program) -> Option<Warning> {
     let Program::Robot(p) = program else {
         return None;
@@ -190,7 +192,8 @@ pub(super) fn uncoupled_ls(setup: &Setup, program: &Program) -> Option<Warning> 
     let robot = setup.robot();
     let joint = p.targets.iter().find(|t| t.cartesian.is_none())?;
     let uncoupled = *robot.axis_map() == stiffid_core::robot::AxisMap::default();
-    (p.dialect == Dialect::FanucLs && robot.urdf_source().is_some() && uncoupled).then(|| {
+    let horizontal = p.dialect.controller().descriptor().axis_3_from_horizontal;
+    (horizontal && robot.urdf_source().is_some() && uncoupled).then(|| {
         Warning::new(
             WarningKind::Plausibility,
             format!("the LS program's joint positions (line {} the first) are read as the URDF robot's joint positions: a FANUC measures J3 from the horizontal (the J2/J3 interaction), a URDF's joint 3 from link 2, so on a FANUC each J3 is another posture unless the setup couples the axes (robot_axis_map, joint 3 = J2 + J3 for ROS-Industrial's FANUC URDFs)", joint.line),

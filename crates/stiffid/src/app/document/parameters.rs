@@ -2,23 +2,9 @@
 
 use super::finite;
 use nalgebra::DVector;
-use serde::Serialize;
-use stiffid_core::model::{Parameter, ParameterKind};
+use stiffid_core::model::Parameter;
 
-/// One parameter's stiffness, in its unit: the key `stiffness` with `unit` beside it, as the
-/// stiffness file has it ([`stiffid_core::io::stiffness::ParameterStiffness`]).
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[cfg_attr(feature = "schema", derive(schemars::JsonSchema))]
-pub struct ParameterStiffness {
-    /// `k1` .. `k6` for the drives, the virtual spring's name otherwise.
-    pub name: String,
-    /// `drive`, `rotation` or `translation`.
-    pub kind: ParameterKind,
-    /// `Nm/rad` (drives, rotations) or `N/mm` (translations).
-    pub unit: &'static str,
-    /// The stiffness in `unit`; `null` if not finite.
-    pub stiffness: Option<f64>,
-}
+pub use stiffid_core::io::stiffness::ParameterStiffness;
 
 /// The parameters with their stiffness `1 / h` in their units, from the compliance `h` (SI).
 pub fn stiffness(parameters: &[Parameter], h: &DVector<f64>) -> Vec<ParameterStiffness> {
@@ -28,8 +14,10 @@ pub fn stiffness(parameters: &[Parameter], h: &DVector<f64>) -> Vec<ParameterSti
         .map(|(p, h)| ParameterStiffness {
             name: p.name.clone(),
             kind: p.kind,
-            unit: p.unit.symbol(),
+            unit: p.unit.symbol().into(),
             stiffness: finite(p.unit.per_si() / h),
+            identified: None,
+            ci95: None,
         })
         .collect()
 }

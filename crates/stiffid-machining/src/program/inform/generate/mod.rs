@@ -217,7 +217,7 @@ impl Generator for super::Inform {
     /// A whole `.jbi` file (CR LF line ends, as the controllers write them): `//POS` from the body,
     /// `//INST` with its date ([`crate::program::generate::date`]), comment ([`COMM`]), the motion group (the robot `RB1`, a base `BS1`, a station `ST1`), `NOP`, the
     /// header's and the body's lines, `END`.
-    fn wrap(&self, name: &str, header: &str, body: &str, _main: bool) -> String {
+    fn wrap(&self, name: &str, header: &str, body: &str, _main: bool, d: Stamp) -> String {
         let (inst, pos) = body.split_once("//POS\n").unwrap_or((body, ""));
         let mut group = String::from("RB1");
         if pos.contains("\nBC00000=") {
@@ -226,7 +226,6 @@ impl Generator for super::Inform {
         if pos.contains("\nEC00000=") {
             group += ",ST1";
         }
-        let d = crate::program::generate::date::stamp().unwrap_or(Stamp::at(0));
         let text = format!(
             "/JOB\n//NAME {name}\n//POS\n{pos}//INST\n///DATE {:04}/{:02}/{:02} {:02}:{:02}\n///COMM {COMM}\n///ATTR SC,RW\n///GROUP1 {group}\nNOP\n{header}{inst}END\n",
             d.year, d.month, d.day, d.time.0, d.time.1

@@ -46,6 +46,7 @@ impl Controller for Val3 {
         },
         motion_words: &["movej(", "movel("],
         frame_numbers: (0, 0),
+        axis_3_from_horizontal: false,
     };
 
     /// Refuses every program naming its first line: the test reads none.
