@@ -90,13 +90,22 @@ fn every_document_has_a_kind() {
     unique.dedup();
     assert_eq!(unique.len(), kinds.len(), "{kinds:?}");
     assert_eq!(kinds.len(), 18, "{kinds:?}");
-    // The file `calibrate --stiffness-out` writes (the document's `stiffness_file`) names itself
-    // too; the stiffness file's reader takes a file without it, as written before.
+    // The file `calibrate --stiffness-out` writes (the document's `stiffness_file`) is the
+    // stiffness file's one type, which names itself (`kind`, optional: the reader takes a file
+    // without it, as written before).
     let text = std::fs::read_to_string(schema_path("calibrate")).unwrap();
     let schema: serde_json::Value = serde_json::from_str(&text).unwrap();
-    let file = &schema["$defs"]["stiffness"];
-    assert_eq!(file["properties"]["kind"]["const"], "stiffness");
-    assert_eq!(file["required"][0], "kind");
+    let file = &schema["$defs"]["StiffnessFile"];
+    assert_eq!(
+        file["properties"]["kind"]["anyOf"][0]["$ref"],
+        "#/$defs/FileKind"
+    );
+    let kinds = &schema["$defs"]["FileKind"]["oneOf"];
+    assert_eq!(kinds[0]["const"], "stiffness");
+    assert_eq!(
+        keys("stiffness", None),
+        keys("calibrate", Some("StiffnessFile"))
+    );
 }
 
 /// The top-level keys of the shipped schema `name`, or of its definition `def`.
@@ -129,7 +138,7 @@ fn a_stiffness_file_reads_every_key_the_documents_write() {
     assert_eq!(forms.len(), 3, "{forms:?}");
     let mut written = keys("identify", Some(forms[0]));
     written.extend(keys("identify", Some(forms[1])));
-    written.extend(keys("calibrate", Some("stiffness")));
+    written.extend(keys("calibrate", Some("StiffnessFile")));
     let mut read = keys("stiffness", None);
     let ignored = ::stiffid::internal::io::stiffness::DOCUMENT_KEYS;
     read.extend(ignored.iter().map(|k| k.to_string()));

@@ -9,7 +9,7 @@ use stiffid_core::{Error, Result};
 /// The environment variable of the date ([module docs](self)).
 pub const VARIABLE: &str = "SOURCE_DATE_EPOCH";
 /// The latest date taken, seconds since 1970 (9999-12-31 23:59:59 UTC).
-pub const MAX_EPOCH_S: i64 = 253_402_300_799;
+pub(crate) const MAX_EPOCH_S: i64 = 253_402_300_799;
 
 /// A date and time, UTC.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -25,7 +25,7 @@ pub struct Stamp {
 }
 
 impl Stamp {
-    /// The date `seconds` after 1970-01-01 00:00 UTC (0 to [`MAX_EPOCH_S`]).
+    /// The date `seconds` after 1970-01-01 00:00 UTC (0 to 253 402 300 799).
     pub fn at(seconds: i64) -> Self {
         let (days, s) = (seconds.div_euclid(86_400), seconds.rem_euclid(86_400));
         // Howard Hinnant's days-to-civil algorithm.
@@ -54,7 +54,7 @@ impl Stamp {
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`SOURCE_DATE_EPOCH`) for a value that is not a whole number of
-/// seconds from 0 to [`MAX_EPOCH_S`].
+/// seconds from 0 to 253 402 300 799 (9999-12-31 23:59:59 UTC).
 pub fn epoch(text: &str) -> Result<i64> {
     match text.trim().parse::<i64>() {
         Ok(s) if (0..=MAX_EPOCH_S).contains(&s) => Ok(s),

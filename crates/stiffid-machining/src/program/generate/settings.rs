@@ -43,7 +43,7 @@ pub struct Settings {
     /// setup's `[controller] rapid_joint_pct`); LS states whole percents, INFORM hundredths.
     pub rapid_joint_pct: f64,
     /// The date the written programs state (LS `CREATE`/`MODIFIED`, INFORM `///DATE`), whole
-    /// seconds since 1970-01-01 00:00 UTC, 0 to [`super::date::MAX_EPOCH_S`]: the front ends
+    /// seconds since 1970-01-01 00:00 UTC, 0 to 253 402 300 799 (9999-12-31 23:59:59): the front ends
     /// give `SOURCE_DATE_EPOCH`'s ([`super::date::epoch`]), else 0, so the same input writes
     /// the same bytes.
     pub date_s: i64,

@@ -38,8 +38,9 @@ const REFUSED: [(&str, u64, &str); 10] = [
 fn every_real_krl_program_is_refused_naming_its_line_and_construct() {
     for (file, line, needle) in REFUSED {
         let src = std::fs::read_to_string(format!("{DIR}/{file}")).unwrap();
-        let dat = crate::program::data_beside(std::path::Path::new(&format!("{DIR}/{file}")))
-            .map(|p| std::fs::read_to_string(p).unwrap());
+        let dat =
+            crate::program::files::data_beside(std::path::Path::new(&format!("{DIR}/{file}")))
+                .map(|p| std::fs::read_to_string(p).unwrap());
         assert_eq!(dat.is_some(), file == "kuka_eki_hw_interface.src", "{file}");
         match parse_with_data(&src, dat.as_deref(), Dialect::Krl) {
             Err(Error::Program { line: l, message }) => {

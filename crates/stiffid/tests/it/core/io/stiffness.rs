@@ -215,9 +215,20 @@ fn a_file_with_its_kind_reads_as_one_without_as_written_before() {
         r#"{{"kind": "stiffness", "parameters": {params}}}"#
     ))
     .unwrap();
-    assert_eq!(old, new);
+    assert_eq!((old.kind, new.kind), (None, Some(FileKind::Stiffness)));
+    assert_eq!(
+        old,
+        StiffnessFile {
+            kind: None,
+            ..new.clone()
+        }
+    );
     let h = new.compliance(&Model::default()).unwrap().h;
     assert_eq!(h[1], 1.0 / 3_000_000.0);
+    // Another document given as the stiffness file is refused naming its kind.
+    let plan = format!(r#"{{"kind": "plan", "parameters": {params}}}"#);
+    let e = parse(&plan).unwrap_err().to_string();
+    assert!(e.contains("plan") && e.contains("identify-springs"), "{e}");
 }
 
 #[test]
