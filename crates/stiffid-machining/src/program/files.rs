@@ -32,7 +32,10 @@ pub fn data_out(out: &std::path::Path) -> Option<std::path::PathBuf> {
         return None;
     };
     let controller = dialect.controller();
-    if controller.refuses_output(&extension.to_ascii_lowercase()).is_some() {
+    if controller
+        .refuses_output(&extension.to_ascii_lowercase())
+        .is_some()
+    {
         return None;
     }
     let (data, _) = controller.descriptor().data_files.first()?;

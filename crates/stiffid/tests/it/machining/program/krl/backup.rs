@@ -181,9 +181,13 @@ fn points_of_config_dat_are_read_from_the_backup_and_written_into_the_module_dat
 #[test]
 fn global_points_of_another_modules_public_data_list_are_read_its_local_ones_not() {
     let points = "&ACCESS RV\nDEFDAT  XPOINTS PUBLIC\nDECL GLOBAL E6AXIS XAPP={A1 10,A2 -80,A3 100,A4 0,A5 30,A6 0}\nDECL E6AXIS XLOCAL={A1 20,A2 -80,A3 100,A4 0,A5 30,A6 0}\nENDDAT\n";
-    let private = "DEFDAT OTHER\nDECL GLOBAL E6AXIS XOTHER={A1 30,A2 -80,A3 100,A4 0,A5 30,A6 0}\nENDDAT\n";
+    let private =
+        "DEFDAT OTHER\nDECL GLOBAL E6AXIS XOTHER={A1 30,A2 -80,A3 100,A4 0,A5 30,A6 0}\nENDDAT\n";
     let files = vec![
-        ("KRC/R1/Program/Dat/xPoints.dat".to_string(), points.to_string()),
+        (
+            "KRC/R1/Program/Dat/xPoints.dat".to_string(),
+            points.to_string(),
+        ),
         ("KRC/R1/Program/other.dat".to_string(), private.to_string()),
     ];
     let context = program::Context::default().with_backup(&files);
@@ -194,7 +198,10 @@ fn global_points_of_another_modules_public_data_list_are_read_its_local_ones_not
     for name in ["XLOCAL", "XOTHER"] {
         match program::parse_in(&src(name), Dialect::Krl, &context) {
             Err(Error::Program { line: 2, message }) => {
-                assert!(message.contains(name) && message.contains("PUBLIC"), "{message}")
+                assert!(
+                    message.contains(name) && message.contains("PUBLIC"),
+                    "{message}"
+                )
             }
             other => panic!("{name}: {other:?}"),
         }
