@@ -19,6 +19,7 @@
 
 use crate::gcode::Motion;
 use crate::process::{Kind, Operation};
+use crate::program::generate::arcs::Circle;
 use crate::Program;
 use nalgebra::{Isometry3, Vector3};
 
@@ -69,19 +70,43 @@ pub(crate) fn feeds(poses: &[Isometry3<f64>]) -> Vec<Option<Vector3<f64>>> {
         .collect()
 }
 
+/// Each point's feed ([`feeds`]), a robot program's circular motion's via point and end fed
+/// along the circle through its start, via point and end (its tangent there, the direction the
+/// tool moves: as a G-code arc's chord points are, each fed along the arc), not along the chord
+/// from the point before; `poses` in the frame the feed is measured in.
+pub(crate) fn feeds_of(program: &Program, poses: &[Isometry3<f64>]) -> Vec<Option<Vector3<f64>>> {
+    let mut feeds = feeds(poses);
+    let Program::Robot(r) = program else {
+        return feeds;
+    };
+    let p = |i: usize| poses[i].translation.vector;
+    for (i, t) in r.targets.iter().enumerate() {
+        if !t.via || i == 0 || i + 1 >= poses.len() {
+            continue;
+        }
+        let Some(circle) = Circle::through(&p(i - 1), &p(i), &p(i + 1)) else {
+            continue;
+        };
+        feeds[i] = Some(circle.tangent(&p(i)) * (p(i) - p(i - 1)).norm());
+        feeds[i + 1] = Some(circle.tangent(&p(i + 1)) * (p(i + 1) - p(i)).norm());
+    }
+    feeds
+}
+
 /// The operation each point cuts under (module docs), from `covered`, the operation covering
 /// each point: `None` at a joint move (`joint`) and at a drilling point not fed into the part;
-/// `poses` the TCP poses in the frame the feed is measured in (the part's when the part moves).
+/// `poses` the TCP poses in the frame the feed is measured in (the part's when the part moves),
+/// `feeds` their feeds ([`feeds_of`]).
 ///
 /// # Panics
-/// If `joint`, `poses` and `covered` differ in length.
+/// If `joint`, `poses`, `feeds` and `covered` differ in length.
 pub(crate) fn cutting<'a>(
     joint: &[bool],
-    poses: &[Isometry3<f64>],
+    (poses, feeds): (&[Isometry3<f64>], &[Option<Vector3<f64>>]),
     covered: Vec<Option<(usize, &'a Operation)>>,
 ) -> Vec<Option<(usize, &'a Operation)>> {
     assert!(joint.len() == poses.len() && poses.len() == covered.len());
-    let feeds = feeds(poses);
+    assert_eq!(feeds.len(), poses.len());
     let cos = DRILL_CONE_DEG.to_radians().cos();
     covered
         .into_iter()

@@ -252,11 +252,14 @@ pub fn read_in(
 /// `program` with its Cartesian targets' axis angles ([`program::cartesian`]: the controller's
 /// inverse kinematics in the configuration each names, from `options`' start posture), on
 /// `setup`'s controller; with `placed`, the part frame at that pose (the setup's base frame)
-/// carries the targets (`program::cartesian::resolve_placed`). Any other program as it is.
+/// carries the targets (`program::cartesian::resolve_placed`). Its joint targets as the setup
+/// says they were made (`[controller] joint_targets`: taught, or computed by the controller's
+/// inverse kinematics). Any other program as it is.
 ///
 /// # Errors
 /// Those of [`stiffid_core::Setup::controller_robot`], [`program::cartesian::resolve`] and
-/// `program::cartesian::resolve_placed` (naming the line).
+/// `program::cartesian::resolve_placed` (naming the line); [`Error::InvalidField`] naming
+/// `controller.joint_targets` for joint targets it leaves unsaid where the two robots differ.
 pub fn resolve<'a>(
     program: &'a Program,
     setup: &stiffid_core::Setup,
@@ -264,11 +267,17 @@ pub fn resolve<'a>(
     options: &compensate::Options,
 ) -> Result<std::borrow::Cow<'a, Program>> {
     use program::cartesian;
-    let Program::Robot(p) = program else {
-        return Ok(std::borrow::Cow::Borrowed(program));
+    use std::borrow::Cow;
+    let Program::Robot(read) = program else {
+        return Ok(Cow::Borrowed(program));
     };
+    let computed = match placed {
+        None => cartesian::computed::joint_targets(read, setup, &options.ik)?,
+        Some(_) => None,
+    };
+    let p = computed.as_ref().unwrap_or(read);
     if placed.is_none() && !cartesian::is_cartesian(p) {
-        return Ok(std::borrow::Cow::Borrowed(program));
+        return Ok(computed.map_or(Cow::Borrowed(program), |c| Cow::Owned(Program::Robot(c))));
     }
     let controller = cartesian::Controller::of(setup)?;
     let start = (&options.q0, &options.ik);
@@ -276,7 +285,7 @@ pub fn resolve<'a>(
         Some(part) => cartesian::resolve_placed(p, &controller, part, start)?,
         None => cartesian::resolve(p, &controller, start.0, start.1)?,
     };
-    Ok(std::borrow::Cow::Owned(Program::Robot(resolved)))
+    Ok(Cow::Owned(Program::Robot(resolved)))
 }
 
 /// The compensation of a program.
@@ -332,8 +341,7 @@ pub fn compensate(
 /// controller's forward kinematics of the compensated axis angles (its inverse kinematics then
 /// returns them), in the part frame; on a cell with external axes, with the arm on the
 /// controller's track and the part on the controller's positioner at the point's values (those
-/// of the cell when the controller's robot has no external axes). Robot programs' joint targets
-/// are the angles themselves.
+/// of the cell when the controller's robot has no external axes); robot programs' angles.
 ///
 /// # Errors
 /// Those of [`compensate()`].
@@ -360,9 +368,10 @@ pub fn compensate_for(
     let on_part = on_part(&poses, placements.as_deref());
     let joint = cutting::joint_moves(program);
     let idle = cutting::idle(program, &joint);
+    let feeds = cutting::feeds_of(program, &on_part);
     let operations = cutting::cutting(
         &idle,
-        &on_part,
+        (&on_part, &feeds),
         process::covering::operations(program, process)?,
     );
     let tool = weight::tool_load(arm, compliance);
@@ -374,8 +383,8 @@ pub fn compensate_for(
             )
         })
     };
-    let (points, warnings) =
-        path_points(&poses, &on_part, placements.as_deref(), &operations, weight);
+    let at = (on_part.as_slice(), feeds.as_slice());
+    let (points, warnings) = path_points(&poses, at, placements.as_deref(), &operations, weight);
     let indices: Vec<Option<usize>> = operations.iter().map(|o| o.map(|(i, _)| i)).collect();
     let nominal: Vec<Isometry3<f64>> = poses.iter().map(|p| p.2).collect();
     let thrusts = dynamics::exit_thrusts(process, &nominal, &indices);
@@ -573,19 +582,19 @@ fn on_part(
     }
 }
 
-/// The path points with their base-frame wrenches, and the warnings. With `placements` (a
-/// program that moves the cell's external axes, [`cell`]) the feed is the tool's motion over
-/// the part (`on_part`, [`on_part`]) and the weight pulls along the cell's `-z`, each turned
-/// into the arm's frame.
+/// The path points with their base-frame wrenches, and the warnings; `feeds` those of
+/// `on_part` ([`cutting::feeds_of`]). With `placements` (a program that moves the cell's
+/// external axes, [`cell`]) the feed is the tool's motion over the part (`on_part`) and the
+/// weight pulls along the cell's `-z`, each turned into the arm's frame.
 fn path_points(
     poses: &[(u64, Target, Isometry3<f64>)],
-    on_part: &[Isometry3<f64>],
+    (on_part, feeds): (&[Isometry3<f64>], &[Option<Vector3<f64>>]),
     placements: Option<&[cell::Placement]>,
     operations: &[Option<(usize, &Operation)>],
     weight: impl Fn(&Isometry3<f64>) -> Vector6<f64>,
 ) -> (Vec<PathPoint>, Vec<String>) {
     let lines: Vec<u64> = poses.iter().map(|p| p.0).collect();
-    let (mut process, warnings) = process_wrenches(&lines, on_part, operations);
+    let (mut process, warnings) = process_wrenches(&lines, (on_part, feeds), operations);
     if let Some(placed) = placements {
         for (w, p) in process.iter_mut().zip(placed) {
             *w = cell::turned(&p.part.rotation.inverse().to_rotation_matrix(), w);
@@ -619,15 +628,14 @@ fn path_points(
 }
 
 /// Each point's process wrench (base frame), and the warnings: `lines` each point's line,
-/// `poses` its TCP pose in the frame the feed is measured in ([`on_part`]).
+/// `poses` its TCP pose in the frame the feed is measured in ([`on_part`]) and `feeds` its feed.
 fn process_wrenches(
     lines: &[u64],
-    poses: &[Isometry3<f64>],
+    (poses, feeds): (&[Isometry3<f64>], &[Option<Vector3<f64>>]),
     operations: &[Option<(usize, &Operation)>],
 ) -> (Vec<Vector6<f64>>, Vec<String>) {
     let mut plunges = Vec::new();
     let mut uncovered = 0;
-    let feeds = cutting::feeds(poses);
     let wrenches = (0..poses.len())
         .map(|i| {
             let tool_z = poses[i].rotation * Vector3::z();

@@ -74,6 +74,7 @@ struct MassesFile {
 #[serde(deny_unknown_fields)]
 struct ControllerFile {
     kinematics: Option<String>,
+    joint_targets: Option<String>,
     dialect: Option<String>,
     robot: Option<String>,
     robot_tip: Option<String>,
@@ -462,6 +463,8 @@ where
             .transpose()
             .map_err(|e| in_file(e, source_name))?,
         radius_wear: super::radius_wear::read(&c.radius_wear_mm)
+            .map_err(|e| in_file(e, source_name))?,
+        joint_targets: (c.joint_targets.as_deref().map(str::parse).transpose())
             .map_err(|e| in_file(e, source_name))?,
         ..Default::default()
     })

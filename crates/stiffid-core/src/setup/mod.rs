@@ -108,7 +108,7 @@ pub use gcode_dialect::GcodeDialect;
 pub use numbered::NumberedFrames;
 pub use program_frames::ProgramFrames;
 pub(crate) use program_io::ProgramSettings;
-pub use workcell::{CellConstraints, Controller, Kinematics, Pulses, Workcell};
+pub use workcell::{CellConstraints, Controller, JointTargets, Kinematics, Pulses, Workcell};
 
 use crate::common::limits::JointBox;
 use crate::model::{Compliance, Model, Spring};

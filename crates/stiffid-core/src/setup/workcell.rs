@@ -37,6 +37,41 @@ impl crate::common::choice::Choice for Kinematics {
 
 crate::common::choice::by_name!(Kinematics);
 
+/// What a program's joint targets are (`[controller] joint_targets`): where they came from
+/// decides what compensating them corrects on a robot whose geometry is not the controller's.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum JointTargets {
+    /// Taught on this robot (jogged to and recorded): the pose is wherever the real robot went,
+    /// so only the deflection is corrected.
+    Taught,
+    /// Computed by the controller's inverse kinematics (an offline program, a CAM post, a
+    /// conversion from Cartesian targets) with its own, nominal geometry: the pose meant is the
+    /// controller's forward kinematics of the angles, which the setup's robot is solved for
+    /// (geometry and deflection corrected, as for a Cartesian target).
+    Computed,
+}
+
+impl crate::common::choice::Choice for JointTargets {
+    const FIELD: &'static str = "controller.joint_targets";
+    const ALL: &'static [Self] = &[JointTargets::Taught, JointTargets::Computed];
+    fn name(self) -> &'static str {
+        match self {
+            JointTargets::Taught => "taught",
+            JointTargets::Computed => "computed",
+        }
+    }
+    fn help(self) -> &'static str {
+        match self {
+            JointTargets::Taught => "Taught on this robot: the deflection only is corrected",
+            JointTargets::Computed => {
+                "Computed by the controller's inverse kinematics: geometry and deflection corrected"
+            }
+        }
+    }
+}
+
+crate::common::choice::by_name!(JointTargets);
+
 /// `[controller]`: the kinematics of the controller that runs a generated program. Its
 /// Cartesian targets are the controller's own forward kinematics of the compensated axis angles
 /// (the calibration "filters" them), so that its inverse kinematics returns those angles.
@@ -84,6 +119,10 @@ pub struct Controller {
     /// `[controller] radius_wear_mm`: the controller's wear offsets of the tools' radii by the
     /// number a G-code's `D` names, m, in number order; empty without.
     pub radius_wear: Vec<(u32, f64)>,
+    /// `[controller] joint_targets`: whether a program's joint targets were taught on this
+    /// robot or computed by the controller's inverse kinematics; `None` when the setup does not
+    /// say (refused where it matters: a robot whose geometry is not the controller's).
+    pub joint_targets: Option<JointTargets>,
 }
 
 /// How many encoder pulses make a unit of each axis on the controller (its axis parameters): a

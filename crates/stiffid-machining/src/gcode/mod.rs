@@ -80,6 +80,7 @@ mod cutter;
 mod cycles;
 mod dialect;
 mod expand;
+mod dwell;
 mod groups;
 mod home;
 mod machine;
@@ -414,6 +415,7 @@ pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<G
             &mut out,
             chord_tolerance,
         )?;
+        dwell::gather(line, (&words, text), &mut s);
         if first && !out.points.is_empty() && !s.units_stated {
             out.unstated_units = Some(line);
         }

@@ -24,6 +24,9 @@ pub struct ProcessWord {
     pub rpm: Option<f64>,
     /// The last tool selected (the last `T`, which an `M6` loads): the tool a tool event names.
     pub tool: Option<u32>,
+    /// A dwell (`G4 P..`, [`super::dwell`]): its time in seconds as the setup's controller reads
+    /// it, or why the controller's reading is not known; `None`: no dwell.
+    pub dwell: Option<std::result::Result<f64, String>>,
 }
 
 /// A comment on a line of its own (no word in its block), kept to be written in the robot
@@ -106,5 +109,6 @@ fn push(s: &mut State, line: u64, event: Option<ProcessEvent>, words: String) {
         words,
         rpm,
         tool,
+        dwell: None,
     });
 }

@@ -180,6 +180,9 @@ pub struct JointTarget {
     /// A point the controller holds, not the file (KRL's `XHOME`, from the setup's
     /// `[controller] home_deg`): compensated as every target, never written back.
     held: bool,
+    /// The via point of a circular motion (KRL `CIRC`, RAPID `MoveC`, LS `C`): the next target
+    /// is its end, the target before its start.
+    pub(crate) via: bool,
     /// A declared point's declaration and name there, and where the motion names it
     /// ([`points`]): where a second point is declared when two visits' compensations differ.
     point: Option<Box<points::Point>>,
@@ -252,6 +255,7 @@ impl JointTarget {
             cartesian: Some(Box::new(c)),
             speed: speed::Speed::Unread(NOT_READ.into()),
             held: false,
+            via: false,
             point: None,
         }
     }
@@ -299,6 +303,9 @@ pub struct JointProgram {
     /// its own file: the file's name as given and where its text begins in `text` (after the
     /// program's and its data file's).
     called: Vec<(String, usize)>,
+    /// Per target, the axis angles read where [`JointTarget::q_deg`] holds others (joint
+    /// targets computed by a nominal controller, [`cartesian::computed`]); empty: as read.
+    read_deg: Vec<[f64; 6]>,
 }
 
 /// What the setup says of a program that the program itself does not: the controller's
@@ -565,20 +572,13 @@ pub fn parse_in(text: &str, dialect: Dialect, context: &Context) -> Result<Joint
         data_at: context.data.map(|_| text.len()),
         left,
         called: starts,
+        read_deg: Vec::new(),
     })
 }
 
 /// Per external axis of a program (its order), the unit its values are written in (`mm` or
 /// `deg`) and the line of the first, where the language says (LS).
 pub(crate) type Units = Vec<Option<(&'static str, u64)>>;
-
-impl JointTarget {
-    /// The six axis values then the external ones given (absent ones as 0).
-    fn values(&self) -> Vec<f64> {
-        let e = self.external.iter().map(|v| v.unwrap_or(0.0));
-        self.q_deg.iter().copied().chain(e).collect()
-    }
-}
 
 /// A value (deg or mm) as the nearest whole number of pulses at `per_unit` pulses per unit
 /// (INFORM's pulse form): exact to half a pulse.
@@ -633,6 +633,7 @@ pub(crate) fn six(
         cartesian: None,
         speed: speed::Speed::Unread(NOT_READ.into()),
         held: false,
+        via: false,
         point: None,
     })
 }

@@ -109,7 +109,7 @@ impl JointProgram {
                 let e = external[j].iter().map(|v| v.unwrap_or(0.0));
                 q_deg[j].iter().copied().chain(e).collect::<Vec<f64>>()
             };
-            let (now, read) = (values(i), t.values());
+            let (now, read) = (values(i), self.read_values(i));
             if let Some(c) = &t.cartesian {
                 let writer = self.writer.as_ref().ok_or_else(|| {
                     at(t.line, "a Cartesian target not resolved with the setup's controller (program::cartesian::resolve)".into())
@@ -128,7 +128,7 @@ impl JointProgram {
                 let Some(span) = span else { continue };
                 let (value, changed) = match (t.incremental, i.checked_sub(1)) {
                     (true, Some(p)) => {
-                        let (before, before_read) = (values(p), self.targets[p].values());
+                        let (before, before_read) = (values(p), self.read_values(p));
                         (
                             now[k] - before[k],
                             now[k] != read[k] || before[k] != before_read[k],
@@ -206,5 +206,23 @@ impl JointProgram {
             Some(per_unit) => whole_pulses(value, per_unit).to_string(),
             None => format!("{value:.DECIMALS$}"),
         }
+    }
+
+    /// Target `i`'s six axis values then its external ones (absent ones as 0), as read.
+    fn read_values(&self, i: usize) -> Vec<f64> {
+        let t = &self.targets[i];
+        let q = self.read_deg.get(i).unwrap_or(&t.q_deg);
+        let e = t.external.iter().map(|v| v.unwrap_or(0.0));
+        q.iter().copied().chain(e).collect()
+    }
+
+    /// The program with other axis angles in its targets than `read`'s (the same program as
+    /// read), whose read values it keeps: a value written back is compared with the program's
+    /// text, not with the angles it holds now.
+    pub(crate) fn with_read_kept(mut self, read: &JointProgram) -> Self {
+        self.read_deg = (read.targets.iter().enumerate())
+            .map(|(i, t)| *read.read_deg.get(i).unwrap_or(&t.q_deg))
+            .collect();
+        self
     }
 }

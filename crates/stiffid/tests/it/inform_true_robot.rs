@@ -14,7 +14,7 @@ use stiffid::internal::machining::compensate::{Compensated, Options};
 use stiffid::internal::machining::program::generate::{Settings, Targets};
 use stiffid::internal::machining::program::Dialect;
 use stiffid::internal::machining::Language;
-use stiffid::internal::setup::{Controller, NumberedFrames, Pulses};
+use stiffid::internal::setup::{Controller, JointTargets, NumberedFrames, Pulses};
 use stiffid::Setup;
 
 /// A GP-sized robot's pulses per degree (S, L, U, R, B, T).
@@ -131,6 +131,8 @@ fn a_stored_inform_job_lands_on_the_true_robot() {
             external: Vec::new(),
         }),
         tools: NumberedFrames::new("controller.tools", &[(1, tool)]).unwrap(),
+        // The job holds postures of the true robot (the calibrated one's, as taught on it).
+        joint_targets: Some(JointTargets::Taught),
         ..c.clone()
     };
     let setup = setup

@@ -41,6 +41,7 @@
 //! target's frame) with the configuration data of the compensated posture, as the programs
 //! written from G-code state it ([`super::generate`]).
 
+pub(crate) mod computed;
 pub mod flags;
 pub(crate) mod literal;
 mod resolve;

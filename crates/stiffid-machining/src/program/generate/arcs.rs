@@ -93,7 +93,7 @@ enum Chords {
 }
 
 /// A circle through three points, the arc from the first through the second to the third.
-struct Circle {
+pub(crate) struct Circle {
     centre: Vector3<f64>,
     /// The unit normal, the arc turning about it right-handed.
     axis: Vector3<f64>,
@@ -103,7 +103,9 @@ struct Circle {
 }
 
 impl Circle {
-    fn through(a: &Vector3<f64>, b: &Vector3<f64>, c: &Vector3<f64>) -> Option<Circle> {
+    /// The circle through `a`, `b` and `c`, turning from `a` through `b` to `c`; `None` when
+    /// they are on a line (or two are one point).
+    pub(crate) fn through(a: &Vector3<f64>, b: &Vector3<f64>, c: &Vector3<f64>) -> Option<Circle> {
         let (x, y) = (a - c, b - c);
         let xy = x.cross(&y);
         let turn = (b - a).cross(&(c - b));
@@ -119,6 +121,11 @@ impl Circle {
             radius,
             start: (a - centre) / radius,
         })
+    }
+
+    /// The unit tangent at `p` (a point of the circle), in the direction the arc turns.
+    pub(crate) fn tangent(&self, p: &Vector3<f64>) -> Vector3<f64> {
+        self.axis.cross(&(p - self.centre)).normalize()
     }
 
     /// The distance of `p` from the circle, m.

@@ -31,6 +31,8 @@ pub struct ProcessForm {
     pub call: fn(name: &str, arguments: &[String]) -> std::result::Result<String, String>,
     /// A digital output set on or off, or why the language cannot write it.
     pub output: fn(signal: &Signal, on: bool) -> std::result::Result<String, String>,
+    /// A wait of `seconds` (a G-code dwell, `G4`), a whole instruction.
+    pub wait: fn(seconds: f64) -> String,
 }
 
 /// The process words of a program and where they go.
@@ -124,6 +126,18 @@ pub(crate) fn inserted(
     let mut placed: Vec<(usize, u64, String)> = Vec::new();
     let mut unmapped: Vec<(&str, &ProcessWord)> = Vec::new();
     for (w, &at) in process.words.iter().zip(process.before) {
+        if let Some(dwell) = &w.dwell {
+            let seconds = dwell.clone().map_err(|why| Error::Program {
+                line: w.line,
+                message: format!("{why}: a robot program written from it waits as long"),
+            })?;
+            placed.push((
+                at.min(n),
+                w.line,
+                format!("{}{}\n", form.indent, (form.wait)(seconds)),
+            ));
+            continue;
+        }
         let actions = w.event.and_then(|e| process.io.and_then(|io| io.get(e)));
         let Some(actions) = actions else {
             let key = w

@@ -12,6 +12,7 @@ pub(crate) static FORM: ProcessForm = ProcessForm {
     indent: "",
     call,
     output,
+    wait,
 };
 
 /// `CALL JOB:NAME`; a call with arguments is refused.
@@ -28,4 +29,10 @@ fn output(signal: &Signal, on: bool) -> Result<String, String> {
         Signal::Number(n) => Ok(format!("DOUT OT#({n}) {}", if on { "ON" } else { "OFF" })),
         Signal::Name(name) => Err(format!("out[{name}]: an INFORM job sets a general output by its number, DOUT OT#(n): give out[n] = on")),
     }
+}
+
+/// `TIMER T=2.50` (INFORM's timer instruction, DX200 / YRC1000 INFORM manual, "TIMER": a time
+/// in steps of 0.01 s, at most 655.35 s).
+fn wait(seconds: f64) -> String {
+    format!("TIMER T={:.2}", seconds)
 }

@@ -104,6 +104,7 @@ pub(super) fn motion(
         }
     }
     check_after(line, first, &code[from..])?;
+    out[0].via = circle;
     if circle && out.iter().any(|t| t.cartesian.is_none()) {
         return refuse(
             "a circle through axis angles; KRL's CIRC takes Cartesian points (POS, E6POS, FRAME)",

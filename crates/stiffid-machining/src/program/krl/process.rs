@@ -13,6 +13,7 @@ pub(crate) static FORM: ProcessForm = ProcessForm {
     indent: "",
     call,
     output,
+    wait,
 };
 
 /// `NAME(a, b)`, `NAME( )` without arguments.
@@ -30,4 +31,10 @@ fn output(signal: &Signal, on: bool) -> Result<String, String> {
         Signal::Number(n) => format!("$OUT[{n}]={state}"),
         Signal::Name(name) => format!("{name}={state}"),
     })
+}
+
+/// `WAIT SEC 2.5`: the advance run stops until the time is over (KRL's wait, KUKA System
+/// Software 8 manual, "WAIT SEC").
+fn wait(seconds: f64) -> String {
+    format!("WAIT SEC {}", crate::program::generate::number(seconds))
 }

@@ -89,6 +89,7 @@ fn circular(
         t.speed = speed.clone();
         out.push(t);
     }
+    out[0].via = true;
     Ok((out, o.fine))
 }
 

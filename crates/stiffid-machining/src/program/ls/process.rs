@@ -13,6 +13,7 @@ pub(crate) static FORM: ProcessForm = ProcessForm {
     indent: "",
     call,
     output,
+    wait,
 };
 
 /// `CALL NAME ;`, `CALL NAME(a,b) ;`.
@@ -29,4 +30,10 @@ fn output(signal: &Signal, on: bool) -> Result<String, String> {
         Signal::Number(n) => Ok(format!("DO[{n}]={} ;", if on { "ON" } else { "OFF" })),
         Signal::Name(name) => Err(format!("out[{name}]: an LS program sets a digital output by its number, DO[n]: give out[n] = on")),
     }
+}
+
+/// `WAIT 2.50(sec) ;` (LS's wait instruction, FANUC R-30iB Operator's Manual, "WAIT
+/// instruction": a time in steps of 0.01 s).
+fn wait(seconds: f64) -> String {
+    format!("WAIT {:.2}(sec) ;", seconds)
 }

@@ -191,6 +191,7 @@ pub(crate) fn motion(
         };
         out.push(t);
     }
+    out[0].via = points == 2;
     Ok(out)
 }
 

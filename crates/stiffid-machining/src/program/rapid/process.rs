@@ -12,6 +12,7 @@ pub(crate) static FORM: ProcessForm = ProcessForm {
     indent: "    ",
     call,
     output,
+    wait,
 };
 
 /// `NAME;`, `NAME a, b;`.
@@ -28,4 +29,13 @@ fn output(signal: &Signal, on: bool) -> Result<String, String> {
         Signal::Name(name) => Ok(format!("SetDO {name}, {};", u8::from(on))),
         Signal::Number(n) => Err(format!("out[{n}]: a RAPID digital output is a named signal (SetDO signal, value): name it, out[doName] = on")),
     }
+}
+
+/// `WaitTime 2.5;` (RAPID's wait, ABB Technical reference manual RAPID Instructions,
+/// "WaitTime"; the robot stands still at a fine point before it).
+fn wait(seconds: f64) -> String {
+    format!(
+        "WaitTime \\InPos, {};",
+        crate::program::generate::number(seconds)
+    )
 }

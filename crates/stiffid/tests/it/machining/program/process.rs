@@ -700,6 +700,7 @@ fn an_ls_files_process_lines_count_toward_the_pendants_line_numbers() {
             words: format!("S{}", 1000 + i),
             rpm: Some(1000.0 + i as f64),
             tool: None,
+            dwell: None,
         })
         .collect();
     let before: Vec<usize> = (0..300).map(|i| i * 33).collect();
