@@ -303,6 +303,9 @@ pub struct JointProgram {
     /// its own file: the file's name as given and where its text begins in `text` (after the
     /// program's and its data file's).
     called: Vec<(String, usize)>,
+    /// What reading the program on its setup found the user should know (a frame taught in the
+    /// nominal cell, [`cartesian::resolve`]), one sentence each.
+    pub notes: Vec<String>,
     /// Per target, the axis angles read where [`JointTarget::q_deg`] holds others (joint
     /// targets computed by a nominal controller, [`cartesian::computed`]); empty: as read.
     read_deg: Vec<[f64; 6]>,
@@ -572,6 +575,7 @@ pub fn parse_in(text: &str, dialect: Dialect, context: &Context) -> Result<Joint
         data_at: context.data.map(|_| text.len()),
         left,
         called: starts,
+        notes: Vec::new(),
         read_deg: Vec::new(),
     })
 }

@@ -44,6 +44,7 @@
 pub(crate) mod computed;
 pub mod flags;
 pub(crate) mod literal;
+mod relocate;
 mod resolve;
 mod solve;
 

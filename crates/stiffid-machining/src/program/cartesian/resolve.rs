@@ -41,6 +41,12 @@ pub struct Controller<'a> {
     pub tools: &'a NumberedFrames,
     /// The bases the controller holds by number, in its world (`[controller] bases`).
     pub bases: &'a NumberedFrames,
+    /// Whether the setup's robot is a calibrated one and the controller's another (its nominal
+    /// robot): the program's own frames were taught in the nominal cell (module `relocate`).
+    pub nominal_cell: bool,
+    /// The part's frame the calibration located, the setup's base frame, m
+    /// ([`stiffid_core::Robot::part`]), if it did.
+    pub located: Option<Isometry3<f64>>,
 }
 
 impl<'a> Controller<'a> {
@@ -50,8 +56,9 @@ impl<'a> Controller<'a> {
     /// Those of [`Setup::controller_robot`].
     pub fn of(setup: &'a Setup) -> Result<Self> {
         let c = setup.workcell().controller();
+        let robot = setup.controller_robot()?;
         Ok(Controller {
-            robot: setup.controller_robot()?,
+            robot,
             truth: setup.robot(),
             tcp: setup.tool().tcp,
             tcp_rotation: setup.tool().rotation,
@@ -60,6 +67,8 @@ impl<'a> Controller<'a> {
             part: setup.workpiece().copied(),
             tools: &c.tools,
             bases: &c.bases,
+            nominal_cell: setup.robot().is_calibrated() && !std::ptr::eq(robot, setup.robot()),
+            located: setup.robot().part().copied(),
         })
     }
 }
@@ -186,6 +195,7 @@ fn resolve_in(
     let mut previous = *start;
     let mut flags: Option<Flags> = None;
     let mut previous_arm: Option<Configuration> = None;
+    let mut notes = Vec::new();
     for (t, (on_controller, on_truth_carrier)) in out.targets.iter_mut().zip(carriers) {
         let line = t.line;
         let Some(c) = t.cartesian.as_deref_mut() else {
@@ -196,6 +206,17 @@ fn resolve_in(
         };
         check_tool(&c.tool, line, controller)?;
         let frame = base_frame(&c.frame, line, (controller, dialect), placed)?;
+        let frame = match placed {
+            None => {
+                let cell = (
+                    controller.nominal_cell,
+                    controller.located,
+                    controller.world,
+                );
+                super::relocate::relocated(cell, &c.frame, frame, &mut notes)
+            }
+            Some(_) => frame,
+        };
         // The flange's axes at the TCP: the tool's turned back by the tool's rotation; in the
         // frame of the arm on its carriage (the cell's when it has no track).
         let mut in_cell = frame * c.pose();
@@ -231,6 +252,7 @@ fn resolve_in(
         let arm = Configuration::of(controller.robot, &q);
         (flags, previous_arm) = (Some(Flags::of(dialect, &arm)), Some(arm));
     }
+    out.notes.extend(notes);
     out.writer = Some(Box::new(Writer {
         robot: controller.robot.clone(),
         tcp: controller.tcp,

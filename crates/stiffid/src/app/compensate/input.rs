@@ -268,3 +268,12 @@ pub(super) fn left_warning(program: &Program) -> Option<Warning> {
         )
     })
 }
+
+/// The warning naming what reading a robot program on its setup found (a frame taught in the
+/// nominal cell, re-located to the part the calibration located or read as stated).
+pub(super) fn notes_warning(program: &Program) -> Option<Warning> {
+    let Program::Robot(p) = program else {
+        return None;
+    };
+    (!p.notes.is_empty()).then(|| Warning::new(WarningKind::Calibrated, p.notes.join("; ")))
+}

@@ -43,7 +43,8 @@ use crate::app::{Warning, WarningKind};
 use failure::{in_input, Failure};
 use input::{
     called_files, check_tcp, encoding_warning, held_lines, held_warning, left_warning,
-    no_length_offset, own_motion, read_checked, uncoupled_ls, unplaced_g53, unstated_units,
+    no_length_offset, notes_warning, own_motion, read_checked, uncoupled_ls, unplaced_g53,
+    unstated_units,
 };
 pub use input::{read_program, read_program_in};
 use stiffid_core::io::Encoding;
@@ -491,6 +492,7 @@ where
             let held = held_lines(&program);
             out.warnings.extend(held_warning(&held));
             out.warnings.extend(left_warning(&program));
+            out.warnings.extend(notes_warning(&program));
             let own = |i: usize| own_motion(&program, i);
             let lines: Vec<(u64, f64)> = (compensated.points.iter())
                 .zip(&compensated.results)

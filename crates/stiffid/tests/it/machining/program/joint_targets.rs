@@ -21,19 +21,29 @@ use stiffid::{Coordinates, Error, Robot, Setup};
 /// The KUKA milling example's setup, its robot a calibrated one and its controller the nominal
 /// preset, `more` added to `[controller]`.
 fn setup(more: &str) -> Setup {
-    let text = include_str!("../../../../../../examples/milling/kuka-milling.toml").replacen(
+    setup_on(&calibrated(), more, true)
+}
+
+/// [`setup`] with the calibrated robot file `robot`, with or without the example's
+/// `[workpiece]`.
+fn setup_on(robot: &str, more: &str, workpiece: bool) -> Setup {
+    let text = include_str!("../../../../../../examples/milling/kuka-milling.toml");
+    let text = match workpiece {
+        true => text.to_string(),
+        false => text[..text.find("[workpiece]").unwrap()].to_string(),
+    };
+    let text = text.replacen(
         "robot = \"kuka-kr210-robond\"",
         "robot = \"calibrated.toml\"",
         1,
     ) + "\n[controller]\nkinematics = \"nominal\"\nrobot = \"kuka-kr210-robond\"\n"
         + more;
     stiffid::internal::setup::parse(&text, "cell.toml", |name, _| match name {
-        "calibrated.toml" => stiffid::internal::robot::file::parse(&calibrated(), name),
+        "calibrated.toml" => stiffid::internal::robot::file::parse(robot, name),
         other => presets::get(other),
     })
     .unwrap()
 }
-
 /// The KR 210 preset as a calibrated robot file: lengths 0.6 to 1.2 mm and one twist 1 mrad off.
 fn calibrated() -> String {
     let text = include_str!("../../../../../stiffid-core/presets/kuka-kr210-robond.toml");
@@ -205,4 +215,76 @@ fn joint_targets_computed_by_a_nominal_controller_land_on_its_poses() {
         eprintln!("joint_targets = {choice}: the true tool {worst:e} m from its aim, {:.3} to {:.3} mm from the nominal poses at the program's angles", off.iter().copied().fold(f64::INFINITY, f64::min) * 1e3, off.iter().copied().fold(0.0, f64::max) * 1e3);
         assert!(worst < 1e-9, "{choice}: {worst:e} m");
     }
+}
+
+/// A KRL program cutting along the part's x in the frame `base` (its `$BASE`, KRL's X Y Z A B
+/// C), after a joint move to the example's start posture.
+fn in_base(base: &str) -> String {
+    format!("DEF cut( )\n$TOOL = {{X 0, Y 0, Z 250, A 0, B 0, C 0}}\n$BASE = {{{base}}}\nPTP {{A1 0, A2 30, A3 0, A4 0, A5 60, A6 0}}\nLIN {{X -40, Y 0, Z 0, A 0, B 0, C 180}}\nLIN {{X 0, Y 0, Z 0, A 0, B 0, C 180}}\nLIN {{X 40, Y 0, Z 0, A 0, B 0, C 180}}\nEND\n")
+}
+
+/// A frame taught in the nominal cell (the example's part frame as a KRL `$BASE`) on a
+/// calibrated robot whose file locates the part 2.081 mm and 0.02 deg from it: its targets are
+/// read in the located part's frame (as the same program stating that frame), and a note names
+/// the frame's line and distance; a frame 100 mm away (another fixture) is read as stated, named
+/// too.
+#[test]
+fn a_frame_taught_in_the_nominal_cell_is_read_where_the_calibration_located_the_part() {
+    use stiffid::internal::machining::{self, Program};
+    let located = "\n[part]\nxyz_mm = [2000.8, -1.2, 551.5]\nrpy_deg = [0.0, 0.0, 0.02]\n";
+    let s = setup_on(
+        &(calibrated() + located),
+        "joint_targets = \"taught\"\n",
+        false,
+    );
+    let read = |text: &str| {
+        let p = machining::read(text, Language::Robot(Dialect::Krl), 1e-4).unwrap();
+        match machining::resolve(&p, &s, None, &Options::for_setup(&s))
+            .unwrap()
+            .into_owned()
+        {
+            Program::Robot(r) => r,
+            Program::GCode(_) => unreachable!(),
+        }
+    };
+    let angles = |p: &stiffid::internal::machining::program::JointProgram| -> Vec<[f64; 6]> {
+        p.targets.iter().map(|t| t.q_deg).collect()
+    };
+    let taught = read(&in_base("X 2000, Y 0, Z 550, A 0, B 0, C 0"));
+    let there = read(&in_base("X 2000.8, Y -1.2, Z 551.5, A 0.02, B 0, C 0"));
+    assert!(there.notes.is_empty(), "{:?}", there.notes);
+    let apart = (angles(&taught).iter().zip(angles(&there)))
+        .flat_map(|(a, b)| {
+            a.iter()
+                .zip(b)
+                .map(|(x, y)| (x - y).abs())
+                .collect::<Vec<_>>()
+        })
+        .fold(0.0, f64::max);
+    assert!(apart < 1e-9, "{apart} deg");
+    assert_eq!(taught.notes.len(), 1, "{:?}", taught.notes);
+    for word in [
+        "line 3",
+        "2.081 mm",
+        "0.0200 deg",
+        "taught in the nominal cell",
+        "located part's frame",
+    ] {
+        assert!(
+            taught.notes[0].contains(word),
+            "{word}: {}",
+            taught.notes[0]
+        );
+    }
+    // Another fixture, 100 mm along x: read as stated (its targets 100 mm further), named.
+    let far = read(&in_base("X 2100, Y 0, Z 550, A 0, B 0, C 0"));
+    assert!(
+        far.notes[0].contains("not the part's frame"),
+        "{:?}",
+        far.notes
+    );
+    let moved = (angles(&far)[1].iter().zip(&angles(&there)[1]))
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    assert!(moved > 0.5, "{moved} deg");
 }
