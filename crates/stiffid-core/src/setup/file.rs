@@ -14,6 +14,7 @@ use crate::robot::kinematics::Coordinates;
 use crate::{Error, Result, Robot};
 use nalgebra::{Isometry3, Vector3, Vector6};
 use serde::Deserialize;
+use std::collections::BTreeMap;
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -90,9 +91,9 @@ struct ControllerFile {
     #[serde(default, deserialize_with = "crate::common::exact::option")]
     home_deg: Option<[f64; 6]>,
     #[serde(default)]
-    io: std::collections::BTreeMap<String, super::program_io::IoValue>,
+    io: BTreeMap<String, super::program_io::IoValue>,
     #[serde(default)]
-    radius_wear_mm: std::collections::BTreeMap<String, f64>,
+    radius_wear_mm: BTreeMap<String, f64>,
 }
 
 /// `[workpiece]`: where a G-code program's part frame sits in the robot base frame.
@@ -103,7 +104,7 @@ struct WorkpieceFile {
     #[serde(default, deserialize_with = "crate::common::exact::arrays")]
     reflectors_mm: Vec<[f64; 3]>,
     #[serde(default)]
-    offsets: std::collections::BTreeMap<String, TransformFile>,
+    offsets: BTreeMap<String, TransformFile>,
     #[serde(default, deserialize_with = "crate::common::exact::option")]
     start_mm: Option<[f64; 3]>,
     #[serde(default, deserialize_with = "crate::common::exact::option")]
@@ -443,29 +444,23 @@ where
             Some(mounted(robot, file, source_name, (mount, map, false))?)
         }
     };
+    let here = |e| in_file(e, source_name);
     Ok(super::Controller {
         kinematics,
         robot,
-        pulses: super::Pulses::read(c.pulses_per_deg, c.external_pulses)
-            .map_err(|e| in_file(e, source_name))?,
-        tools: super::numbered::read("controller.tools", &c.tools)
-            .map_err(|e| in_file(e, source_name))?,
-        bases: super::numbered::read("controller.bases", &c.bases)
-            .map_err(|e| in_file(e, source_name))?,
+        pulses: super::Pulses::read(c.pulses_per_deg, c.external_pulses).map_err(here)?,
+        tools: super::numbered::read("controller.tools", &c.tools).map_err(here)?,
+        bases: super::numbered::read("controller.bases", &c.bases).map_err(here)?,
         program: super::ProgramSettings::read(
             c.rapid_speed_mm_s,
             c.rapid_joint_pct,
             c.home_deg,
             &c.io,
         )
-        .map_err(|e| in_file(e, source_name))?,
-        dialect: (c.dialect.as_deref().map(str::parse::<super::GcodeDialect>))
-            .transpose()
-            .map_err(|e| in_file(e, source_name))?,
-        radius_wear: super::radius_wear::read(&c.radius_wear_mm)
-            .map_err(|e| in_file(e, source_name))?,
-        joint_targets: (c.joint_targets.as_deref().map(str::parse).transpose())
-            .map_err(|e| in_file(e, source_name))?,
+        .map_err(here)?,
+        dialect: (c.dialect.as_deref().map(str::parse).transpose()).map_err(here)?,
+        radius_wear: super::radius_wear::read(&c.radius_wear_mm).map_err(here)?,
+        joint_targets: (c.joint_targets.as_deref().map(str::parse).transpose()).map_err(here)?,
         ..Default::default()
     })
 }

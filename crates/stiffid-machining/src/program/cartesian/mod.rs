@@ -46,12 +46,14 @@ pub mod flags;
 pub(crate) mod literal;
 mod relocate;
 mod resolve;
+mod same;
 mod solve;
 
 pub use flags::Flags;
+pub(crate) use resolve::Writer;
 pub use resolve::{check_placed, resolve, Controller};
 pub(crate) use resolve::{is_cartesian, resolve_placed};
-pub(crate) use resolve::{same, Writer, SAME_M};
+pub(crate) use same::{same, SAME_M};
 
 use super::generate::{number, v, zyx_deg};
 use super::Dialect;

@@ -13,7 +13,8 @@
 //! away (another fixture), or any taught frame where the part is not located, is read as stated
 //! with a note that its place in the calibrated cell is not known.
 
-use super::{same, words, Frame};
+use super::same::same;
+use super::{words, Frame};
 use nalgebra::Isometry3;
 
 /// The farthest a program's frame may lie from the located part and be the part's frame taught

@@ -1,6 +1,7 @@
 //! A program's Cartesian targets turned into the axis angles the controller moves to (module
 //! docs of [`super`]).
 
+use super::same::same;
 use super::solve::{configured, Miss};
 use super::{words, Cartesian, Flags, Frame};
 use crate::program::{at, external, Dialect, JointProgram};
@@ -10,12 +11,6 @@ use stiffid_core::robot::ik::{self, tool_pose};
 use stiffid_core::robot::ExternalAxes;
 use stiffid_core::setup::NumberedFrames;
 use stiffid_core::{Result, Robot, Setup};
-
-/// How far a frame the program states may be from the setup's (its tool, its `[workpiece]`)
-/// and still be it: 1 micrometre.
-pub(crate) const SAME_M: f64 = 1e-6;
-/// The same for the frames' orientations: 1 microradian.
-pub(crate) const SAME_RAD: f64 = 1e-6;
 
 /// What a Cartesian target is resolved against: the controller's kinematics and frames, and
 /// the setup's robot.
@@ -365,12 +360,6 @@ fn check_tool(tool: &Frame, line: u64, controller: &Controller) -> Result<()> {
         return Ok(());
     }
     Err(at(on, format!("the program's tool ({}) is not the setup's ({}: its [tool] tcp_mm and tcp_rpy_deg, after [robot_flange]); compensation moves the setup's tool: write the program for it", words(&stated), words(&controller.tool))))
-}
-
-/// Whether two frames are one within [`SAME_M`] and [`SAME_RAD`].
-pub(crate) fn same(a: &Isometry3<f64>, b: &Isometry3<f64>) -> bool {
-    (a.translation.vector - b.translation.vector).norm() <= SAME_M
-        && a.rotation.angle_to(&b.rotation) <= SAME_RAD
 }
 
 /// The frame of a target in the setup's base frame; with `placed`, the part's at that pose.
