@@ -24,7 +24,7 @@ pub struct ProcessWord {
     pub rpm: Option<f64>,
     /// The last tool selected (the last `T`, which an `M6` loads): the tool a tool event names.
     pub tool: Option<u32>,
-    /// A dwell (`G4 P..`, [`super::dwell`]): its time in seconds as the setup's controller reads
+    /// A dwell (`G4 P..`, the G-code reader's `dwell`): its time in seconds as the setup's controller reads
     /// it, or why the controller's reading is not known; `None`: no dwell.
     pub dwell: Option<std::result::Result<f64, String>>,
 }

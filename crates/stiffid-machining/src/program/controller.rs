@@ -39,7 +39,7 @@ pub struct Read {
     pub left: Vec<super::Left>,
     /// The programs of the controller's backup the program calls that move (LS `CALL`): each
     /// file's name as given and its text, in the order their texts follow the program's (and its
-    /// data file's) in the spans of `targets` ([`super::JointProgram::called`]).
+    /// data file's) in the spans of `targets` (the program's `called` texts).
     pub called: Vec<(String, String)>,
 }
 

@@ -47,7 +47,7 @@ pub fn data_out(out: &std::path::Path) -> Option<std::path::PathBuf> {
 }
 
 /// The text of the program at `path`, of the data file its language keeps beside it where
-/// there is one ([`data_beside`]: KRL's `.dat` of a `.src`), and the encoding they were read in: UTF-8, else Latin-1
+/// there is one (`data_beside`: KRL's `.dat` of a `.src`), and the encoding they were read in: UTF-8, else Latin-1
 /// ([`stiffid_core::io::program_texts`]). `read` gives a file's bytes (a front end's reading,
 /// with the file's name in its error); `wrap` turns a text's error into the caller's.
 ///

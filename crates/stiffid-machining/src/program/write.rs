@@ -66,12 +66,12 @@ impl JointProgram {
         Ok((program, data))
     }
 
-    /// [`JointProgram::write_pair`], and each program of the backup it calls that moves
+    /// `JointProgram::write_pair`, and each program of the backup it calls that moves
     /// ([`JointProgram::called_in`]): its file's name as given and its text, compensated in
     /// place.
     ///
     /// # Errors
-    /// Those of [`JointProgram::write_pair`].
+    /// Those of `JointProgram::write_pair`.
     pub fn write_files(
         &self,
         q_deg: &[[f64; 6]],

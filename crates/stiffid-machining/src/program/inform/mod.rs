@@ -63,7 +63,7 @@
 //!   file's), but a call of a job of the backup, passed over when it moves nothing and read where
 //!   it is called (compensated in its own file) when it moves; a `JUMP` to a label the job
 //!   does not hold, to another job or to a variable's label; weaving in a job with jumps
-//!   ([`calls`]: labels, jumps, branches and loops are followed);
+//!   (`calls`: labels, jumps, branches and loops are followed);
 //! - a job of another robot than the controller's first (`RB2` in a `///GROUP` line);
 //! - a job that does not end with `END` (cut off), a control character (a NUL) anywhere;
 //! - a position named in a motion that `//POS` does not hold, one defined twice, a count that
