@@ -66,7 +66,7 @@ CalibrateDocument = TypedDict("CalibrateDocument", {
     "robot_file": Optional[str],
     "robot_file_error": Optional[str],
     "setup": str,
-    "stiffness_file": Optional[StiffnessDocument],
+    "stiffness_file": Optional[CalibrateStiffnessFile],
     "stiffness_file_error": Optional[str],
     "stop_reason": CalibrateStop,
     "tcp_mm": NotRequired[Optional[list[float]]],
@@ -114,6 +114,40 @@ CalibrateCorrelation = TypedDict("CalibrateCorrelation", {
     "rho": float,
 })
 
+CalibrateFileKind = Literal["stiffness", "identify-drives", "identify-springs"]
+
+CalibrateFoldSection = TypedDict("CalibrateFoldSection", {
+    "compliance_si": list[float],
+    "postures": list[str],
+    "scores": list[float],
+})
+
+CalibrateFormLaw = Literal["linear", "lost-motion", "load-dependent"]
+
+CalibrateFormModelSection = TypedDict("CalibrateFormModelSection", {
+    "compliance_si": list[list[float]],
+    "springs": list[str],
+})
+
+CalibrateFormSpring = TypedDict("CalibrateFormSpring", {
+    "axis": list[float],
+    "kind": CalibrateKind,
+    "law": CalibrateFormLaw,
+    "link": int,
+    "name": str,
+    "point_mm": list[float],
+})
+
+CalibrateGravitySection = TypedDict("CalibrateGravitySection", {
+    "model": str,
+    "terms": list[CalibrateGravityTerm],
+})
+
+CalibrateGravityTerm = TypedDict("CalibrateGravityTerm", {
+    "name": str,
+    "value_si": float,
+})
+
 CalibrateIntervalsDocument = TypedDict("CalibrateIntervalsDocument", {
     "assumption": Optional[str],
     "coordinates": int,
@@ -127,6 +161,8 @@ CalibrateIntervalsDocument = TypedDict("CalibrateIntervalsDocument", {
     "median_width_mm": Optional[float],
     "method": str,
 })
+
+CalibrateKind = Literal["rotation", "translation"]
 
 CalibrateLadderDocument = TypedDict("CalibrateLadderDocument", {
     "best": Optional[int],
@@ -170,6 +206,14 @@ CalibrateMerged = TypedDict("CalibrateMerged", {
     "reason": str,
 })
 
+CalibrateModelFormSection = TypedDict("CalibrateModelFormSection", {
+    "models": list[CalibrateFormModelSection],
+    "recommended": NotRequired[Optional[CalibrateFormModelSection]],
+    "resamples": int,
+    "seed": int,
+    "springs": list[CalibrateFormSpring],
+})
+
 CalibrateOutsideRange = TypedDict("CalibrateOutsideRange", {
     "distance_deg": float,
     "joints": list[int],
@@ -190,6 +234,8 @@ CalibrateParameter = TypedDict("CalibrateParameter", {
 CalibrateParameterKind = Literal["drive", "rotation", "translation", "lost-motion", "load-dependent"]
 
 CalibrateParameterStiffness = TypedDict("CalibrateParameterStiffness", {
+    "ci95": NotRequired[Optional[list[Optional[float]]]],
+    "identified": NotRequired[Optional[bool]],
     "kind": CalibrateParameterKind,
     "name": str,
     "stiffness": Optional[float],
@@ -205,6 +251,17 @@ CalibratePointError = TypedDict("CalibratePointError", {
     "point": int,
     "point_name": str,
     "posture": str,
+})
+
+CalibratePredictionSection = TypedDict("CalibratePredictionSection", {
+    "deflection_scores": Optional[list[float]],
+    "folds": list[CalibrateFoldSection],
+    "method": str,
+    "model_error_pct": Optional[float],
+    "noise_floor_mm": float,
+    "postures": int,
+    "score_q95": Optional[float],
+    "score_q95_pct": Optional[float],
 })
 
 CalibrateRegionSection = TypedDict("CalibrateRegionSection", {
@@ -225,6 +282,20 @@ CalibrateRungDocument = TypedDict("CalibrateRungDocument", {
 CalibrateStance = TypedDict("CalibrateStance", {
     "label": str,
     "q_deg": list[float],
+})
+
+CalibrateStiffnessFile = TypedDict("CalibrateStiffnessFile", {
+    "compliance_covariance_rad2_per_nm2": NotRequired[Optional[list[list[float]]]],
+    "compliance_covariance_si": NotRequired[Optional[list[list[float]]]],
+    "fitted": NotRequired[Optional[list[bool]]],
+    "gravity": NotRequired[Optional[CalibrateGravitySection]],
+    "kind": NotRequired[Optional[CalibrateFileKind]],
+    "model_form": NotRequired[Optional[CalibrateModelFormSection]],
+    "parameters": NotRequired[Optional[list[CalibrateParameterStiffness]]],
+    "prediction": NotRequired[Optional[CalibratePredictionSection]],
+    "region": NotRequired[Optional[CalibrateRegionSection]],
+    "stiffness_nm_per_rad": NotRequired[Optional[list[float]]],
+    "unidentifiable": NotRequired[Optional[list[str]]],
 })
 
 CalibrateStop = Literal["converged", "stalled", "damping-exhausted", "iteration-limit"]
@@ -248,14 +319,6 @@ CalibrateWarning = TypedDict("CalibrateWarning", {
 })
 
 CalibrateWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed", "calibrated", "model-form", "encoding"]
-
-StiffnessDocument = TypedDict("StiffnessDocument", {
-    "compliance_covariance_si": list[list[float]],
-    "fitted": list[bool],
-    "kind": Literal["stiffness"],
-    "parameters": list[CalibrateParameterStiffness],
-    "region": NotRequired[Optional[CalibrateRegionSection]],
-})
 
 # compensate: docs/schemas/compensate.schema.json
 
@@ -311,13 +374,11 @@ CompensateBudgetSummary = TypedDict("CompensateBudgetSummary", {
 })
 
 CompensateConfigurationRow = TypedDict("CompensateConfigurationRow", {
-    "abb_cfx": int,
     "chosen": bool,
+    "configuration_data": dict[str, str],
     "failed_because": Optional[str],
     "failed_line": Optional[int],
-    "fanuc": str,
     "feasible": bool,
-    "kuka_status": int,
     "max_mm": Optional[float],
     "name": str,
     "objective_mm": Optional[float],
@@ -398,6 +459,8 @@ CompensateOperationDynamics = TypedDict("CompensateOperationDynamics", {
 CompensateParameterKind = Literal["drive", "rotation", "translation", "lost-motion", "load-dependent"]
 
 CompensateParameterStiffness = TypedDict("CompensateParameterStiffness", {
+    "ci95": NotRequired[Optional[list[Optional[float]]]],
+    "identified": NotRequired[Optional[bool]],
     "kind": CompensateParameterKind,
     "name": str,
     "stiffness": Optional[float],
@@ -517,7 +580,7 @@ CompensateRow = TypedDict("CompensateRow", {
 CompensateRunRow = TypedDict("CompensateRunRow", {
     "chosen": str,
     "chosen_own": bool,
-    "fanuc": str,
+    "configuration_data": dict[str, str],
     "feasible": int,
     "first_line": int,
     "found": int,
@@ -887,6 +950,8 @@ IdentifyParameterDoc = TypedDict("IdentifyParameterDoc", {
 IdentifyParameterKind = Literal["drive", "rotation", "translation", "lost-motion", "load-dependent"]
 
 IdentifyParameterStiffness = TypedDict("IdentifyParameterStiffness", {
+    "ci95": NotRequired[Optional[list[Optional[float]]]],
+    "identified": NotRequired[Optional[bool]],
     "kind": IdentifyParameterKind,
     "name": str,
     "stiffness": Optional[float],
@@ -1685,7 +1750,9 @@ SimulateNamed = TypedDict("SimulateNamed", {
 StiffnessDocument = TypedDict("StiffnessDocument", {
     "compliance_covariance_rad2_per_nm2": NotRequired[Optional[list[list[float]]]],
     "compliance_covariance_si": NotRequired[Optional[list[list[float]]]],
+    "fitted": NotRequired[Optional[list[bool]]],
     "gravity": NotRequired[Optional[StiffnessGravitySection]],
+    "kind": NotRequired[Optional[StiffnessFileKind]],
     "model_form": NotRequired[Optional[StiffnessModelFormSection]],
     "parameters": NotRequired[Optional[list[StiffnessParameterStiffness]]],
     "prediction": NotRequired[Optional[StiffnessPredictionSection]],
@@ -1693,6 +1760,8 @@ StiffnessDocument = TypedDict("StiffnessDocument", {
     "stiffness_nm_per_rad": NotRequired[Optional[list[float]]],
     "unidentifiable": NotRequired[Optional[list[str]]],
 })
+
+StiffnessFileKind = Literal["stiffness", "identify-drives", "identify-springs"]
 
 StiffnessFoldSection = TypedDict("StiffnessFoldSection", {
     "compliance_si": list[float],
@@ -1800,6 +1869,8 @@ ValidateCheck = TypedDict("ValidateCheck", {
 ValidateParameterKind = Literal["drive", "rotation", "translation", "lost-motion", "load-dependent"]
 
 ValidateParameterStiffness = TypedDict("ValidateParameterStiffness", {
+    "ci95": NotRequired[Optional[list[Optional[float]]]],
+    "identified": NotRequired[Optional[bool]],
     "kind": ValidateParameterKind,
     "name": str,
     "stiffness": Optional[float],
