@@ -137,7 +137,8 @@ pub struct Program<'a> {
     pub subprograms: Vec<&'a str>,
     /// One entry per segment (a program line with at least one point), in program order.
     pub segments: &'a [Segment],
-    /// The largest process force on the tool over the program (of `segments`), N.
+    /// The largest force on the tool over the program (of `segments`: the process's and the
+    /// tool's weight), N.
     pub max_force_n: f64,
     /// Each operation's breakthrough surge (drilling: the largest over its exits) or first
     /// natural frequency against its tooth-passing frequency (milling); empty when the robot

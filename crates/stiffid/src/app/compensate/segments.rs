@@ -95,7 +95,7 @@ pub struct Segment {
     pub operation: Option<String>,
     /// Path points of the segment.
     pub points: usize,
-    /// The largest process force on the tool over the segment, N.
+    /// The largest force on the tool over the segment (the process's and the tool's weight), N.
     #[serde(rename = "force_n")]
     pub force: f64,
     /// The largest TCP deflection under the force, uncompensated: m, written in mm.
