@@ -400,7 +400,11 @@ fn finish(
     }
     if let Some(p) = &report.program {
         out.write(&p.bytes(&p.text))?;
-        write_subprograms(&args.out, p)?;
+        let parts = write_subprograms(&args.out, p)?;
+        // A generated program's earlier split: its parts not written again go at the commit.
+        if p.language == Language::GCode && p.output != Language::GCode {
+            output::staged::parts(out.target().to_path_buf(), parts);
+        }
     }
     // The document without its points, which the library writes from the rows stored.
     let rows_path = rows.as_ref().map(|r| r.path().to_path_buf());
@@ -462,8 +466,8 @@ fn check_subprogram_files(out: &Path) -> Result<()> {
 }
 
 /// A split program's sub-programs, each beside the main program in a file of its name with the
-/// main program's extension (and a KRL sub-program's `.dat` beside it).
-fn write_subprograms(out: &Path, program: &ProgramReport) -> Result<()> {
+/// main program's extension (and a KRL sub-program's `.dat` beside it); the files written.
+fn write_subprograms(out: &Path, program: &ProgramReport) -> Result<Vec<PathBuf>> {
     let files = &program.subprograms;
     let extension = out.extension().and_then(|e| e.to_str()).unwrap_or("");
     let dir = out.parent().unwrap_or(Path::new(""));
@@ -482,13 +486,16 @@ fn write_subprograms(out: &Path, program: &ProgramReport) -> Result<()> {
         })
         .map(|(path, d)| OutFile::prepare(&path, "--out").map(|o| (o, d)))
         .collect::<Result<Vec<_>>>()?;
+    let mut written = Vec::new();
     for (o, f) in prepared {
         o.write(&program.bytes(&f.text))?;
+        written.push(o.target().to_path_buf());
     }
     for (o, d) in data {
         o.write(&program.bytes(d))?;
+        written.push(o.target().to_path_buf());
     }
-    Ok(())
+    Ok(written)
 }
 
 fn options(args: &Args, setup: &Setup) -> Result<Options> {

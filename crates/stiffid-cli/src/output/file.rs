@@ -51,6 +51,11 @@ impl OutFile {
         })
     }
 
+    /// Where the bytes go (resolved: the symlink's target for a symlink).
+    pub fn target(&self) -> &Path {
+        &self.target
+    }
+
     /// Writes `bytes` as the whole file, put in place when the run succeeds
     /// ([`super::staged`]).
     ///

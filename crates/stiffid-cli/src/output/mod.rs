@@ -10,6 +10,7 @@
 
 mod dir;
 mod file;
+mod parts;
 pub mod staged;
 mod target;
 

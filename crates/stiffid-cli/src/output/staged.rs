@@ -20,6 +20,13 @@ pub enum Step {
     TempDir(PathBuf),
     /// Failure: remove this directory the run created.
     Created(PathBuf),
+    /// Success: remove the sub-programs of the split program `main` replaces (the files beside
+    /// it named `STEM_NN.EXT` and their `.dat`, that the file at `main` calls when the commit
+    /// starts) which this run did not write (`written`): a set is one run's whole set.
+    Parts {
+        main: PathBuf,
+        written: Vec<PathBuf>,
+    },
 }
 
 static STEPS: Mutex<Vec<Step>> = Mutex::new(Vec::new());
@@ -117,6 +124,12 @@ pub fn stale(path: PathBuf) {
     push(Step::Stale(path));
 }
 
+/// Stages the removal, at [`commit`], of the sub-programs of the program at `main` that this
+/// run replaces and does not write again (`written`: the sub-programs it writes, [`Step::Parts`]).
+pub fn parts(main: PathBuf, written: Vec<PathBuf>) {
+    push(Step::Parts { main, written });
+}
+
 /// Stages the removal of the temporary directory `dir` at the end of the run.
 pub fn temp_dir(dir: PathBuf) {
     push(Step::TempDir(dir));
@@ -144,7 +157,23 @@ pub fn commit() -> Result<()> {
     // The report directories' locks give way to the directories' own for the commit (one open
     // of a directory would wait for another of the same process).
     release();
+    let done = put_in_place(steps);
+    release();
+    done
+}
+
+/// Puts the files of `steps` in place, in order, under exclusive locks on their directories
+/// ([`lock_dirs`]), then removes the stale files and the temporary directories and, when every
+/// file is in place, the earlier parts of a split program ([`Step::Parts`]): what [`commit`]
+/// does with the run's steps once checked; concurrent calls (runs) into one directory each put
+/// their whole set, one after the other.
+///
+/// # Errors
+/// As [`commit`].
+pub fn put_in_place(steps: Vec<Step>) -> Result<()> {
     let _dirs = lock_dirs(&steps);
+    // Read under the locks, before the main programs are replaced: the parts they call now.
+    let earlier = super::parts::earlier(&steps);
     let mut first: Option<anyhow::Error> = None;
     for step in steps {
         let done = match &step {
@@ -160,13 +189,15 @@ pub fn commit() -> Result<()> {
                 let _ = std::fs::remove_dir_all(dir);
                 Ok(())
             }
-            Step::Created(_) => Ok(()),
+            Step::Created(_) | Step::Parts { .. } => Ok(()),
         };
         if let Err(e) = done {
             first.get_or_insert(e);
         }
     }
-    release();
+    if first.is_none() {
+        first = super::parts::remove(&earlier).err();
+    }
     first.map_or(Ok(()), Err)
 }
 
@@ -230,7 +261,7 @@ pub fn discard() {
             Step::TempDir(dir) | Step::Created(dir) => {
                 let _ = std::fs::remove_dir_all(dir);
             }
-            Step::Stale(_) => {}
+            Step::Stale(_) | Step::Parts { .. } => {}
         }
     }
     release();
