@@ -41,6 +41,9 @@ pub struct Read {
     /// file's name as given and its text, in the order their texts follow the program's (and its
     /// data file's) in the spans of `targets` (the program's `called` texts).
     pub called: Vec<(String, String)>,
+    /// What the reader took from the controller's backup that the user should know (a motion
+    /// to an LS position register read from its `POSREG.VA`), one sentence each.
+    pub notes: Vec<String>,
 }
 
 /// How a target's bound is written as a comment (`app::compensate::certify`).

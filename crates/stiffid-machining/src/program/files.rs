@@ -115,9 +115,12 @@ impl JointProgram {
     /// program calls ([`Read::called`](super::Read::called)); `None` for the program's own.
     pub fn called_in(&self, i: usize) -> Option<&str> {
         let start = self.targets.get(i)?.spans[0].start;
-        let start = match &self.targets[i].cartesian {
-            Some(c) => c.spans.first().map_or(start, |s| s.start),
-            None => start,
+        let t = &self.targets[i];
+        let start = match (&t.cartesian, t.point.as_deref()) {
+            // A copy of another file's point goes where its declaration does.
+            (_, Some(p)) if p.foreign.is_some() => p.declaration.start,
+            (Some(c), _) => c.spans.first().map_or(start, |s| s.start),
+            (None, _) => start,
         };
         (self.called.iter().rev())
             .find(|(_, at)| *at <= start)
@@ -135,6 +138,15 @@ impl JointTarget {
         if let Some(c) = self.cartesian.as_deref_mut() {
             c.spans.iter_mut().for_each(shift);
             c.flag_spans.iter_mut().for_each(|(r, _)| shift(r));
+        }
+        if let Some(p) = self.point.as_deref_mut() {
+            shift(&mut p.declaration);
+            p.reference.iter_mut().for_each(shift);
+            // A point of another file: its name is in the copy's text, the spans' base moves.
+            match p.foreign.as_deref_mut() {
+                Some(f) => f.at += offset,
+                None => shift(&mut p.name),
+            }
         }
         self
     }

@@ -43,7 +43,8 @@
 //! circular or spline motion (the path between the points is not the compensated one; LS `C`
 //! aside, whose via point and end are both targets), a relative
 //! motion the file cannot resolve exactly, an offset or target held in a register on the
-//! controller (LS `Offset,PR[]`, `Tool_Offset`, `PR[]`), a point declared outside the file or
+//! controller (LS `Offset,PR[]`, `Tool_Offset`; a `PR[]` the program sets, or without the
+//! backup's `POSREG.VA`), a point declared outside the file or
 //! assigned at run time (unless the backup's files, [`Context::backup`], declare it), a search
 //! or triggered motion (RAPID `SearchL`, `TriggL`, `MoveLDO`). KRL and RAPID read a motion inside
 //! a loop or branch, or in another routine of the file, where it is (what it moves with followed
@@ -306,6 +307,9 @@ pub struct JointProgram {
     /// What reading the program on its setup found the user should know (a frame taught in the
     /// nominal cell, [`cartesian::resolve`]), one sentence each.
     pub notes: Vec<String>,
+    /// The positions the reader copied into the program from the controller's backup (an LS
+    /// motion to a position register, read from `POSREG.VA`), one sentence each naming the line.
+    pub copied: Vec<String>,
     /// Per target, the axis angles read where [`JointTarget::q_deg`] holds others (joint
     /// targets computed by a nominal controller, [`cartesian::computed`]); empty: as read.
     read_deg: Vec<[f64; 6]>,
@@ -526,6 +530,7 @@ pub fn parse_in(text: &str, dialect: Dialect, context: &Context) -> Result<Joint
         units,
         mut left,
         called,
+        notes,
     } = dialect.controller().read_in(text, context)?;
     left.sort_by_key(|l| l.line);
     for t in &mut targets {
@@ -576,6 +581,7 @@ pub fn parse_in(text: &str, dialect: Dialect, context: &Context) -> Result<Joint
         left,
         called: starts,
         notes: Vec::new(),
+        copied: notes,
         read_deg: Vec::new(),
     })
 }

@@ -4,7 +4,9 @@
 //! does not hold: `XP1_2`, `p10_2`), and the motions that take it name the copy. Every language
 //! whose readers say where a point is declared and named ([`super::JointTarget::declared_at`],
 //! [`super::JointTarget::named_at`]) is written so; a target without them (a literal, a
-//! position of an LS `/POS`) keeps the refusal of two values in one place.
+//! position of an LS `/POS`) keeps the refusal of two values in one place. A point of another
+//! file copied under another name than the motion gives it (an LS position register `PR[i]`,
+//! copied as the program's `P[n]`) is renamed at the motion.
 
 use super::{at, JointProgram};
 use std::collections::BTreeMap;
@@ -109,14 +111,14 @@ pub(super) fn split(program: &JointProgram, edits: &mut Vec<Edit>) -> Result<()>
                 continue;
             };
             edits.retain(|e| !(e.1 == i && texts.iter().any(|(r, _)| *r == e.0)));
-            if k == 0 {
-                continue;
-            }
             let reference = program.targets[i]
                 .point
                 .as_deref()
                 .and_then(|p| p.reference.clone());
-            if let Some(r) = reference {
+            // The copy of another file's point under another name (an LS position register's
+            // copy, `P[n]` for `PR[i]`): the motion names the copy.
+            let renamed = |r: &Range<usize>| program.text[r.clone()] != names[k];
+            if let Some(r) = reference.filter(|r| k > 0 || (foreign.is_some() && renamed(r))) {
                 edits.push((r, i, names[k].clone(), true));
             }
         }

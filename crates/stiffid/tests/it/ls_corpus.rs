@@ -24,7 +24,7 @@ bases = [{ number = 1, xyz_mm = [200, 0, -1200], rpy_deg = [0, 0, 0] }]
 ";
 
 /// The FANUC R-2000iC/165F milling cell with [`CONTROLLER`].
-fn setup() -> Setup {
+pub(crate) fn setup() -> Setup {
     let text = include_str!("../../../../examples/milling/fanuc-milling.toml").to_string();
     stiffid::internal::setup::parse(&(text + CONTROLLER), "cell.toml", |n, _| presets::get(n))
         .unwrap()
@@ -104,7 +104,11 @@ const CORPUS: [(&str, Outcome); 13] = [
 
 /// `text` (the corpus file `name`) compensated on `s` with the milling example's stiffness, LS
 /// in and out: the program written and each target's compensation.
-fn compensated(s: &Setup, name: &str, text: &str) -> stiffid::Result<(String, Vec<Compensated>)> {
+pub(crate) fn compensated(
+    s: &Setup,
+    name: &str,
+    text: &str,
+) -> stiffid::Result<(String, Vec<Compensated>)> {
     let compliance = stiffid::internal::io::stiffness::parse(include_str!(
         "../../../../examples/milling/stiffness.json"
     ))
@@ -270,7 +274,7 @@ pub(crate) fn independent(text: &str) -> Vec<Position> {
 }
 
 /// The line and message of a program's refusal.
-fn refusal(e: &Error) -> (u64, String) {
+pub(crate) fn refusal(e: &Error) -> (u64, String) {
     match e {
         Error::Program { line, message } => (*line, message.clone()),
         Error::Input { error, .. } => refusal(error),

@@ -66,6 +66,7 @@ mod load_steps;
 mod load_steps_design;
 mod ls_corpus;
 mod ls_landing;
+mod ls_registers;
 mod lsq;
 mod machining;
 mod map_chosen;

@@ -157,6 +157,7 @@ fn read_job(text: &str, context: &Context, chain: &mut Vec<String>) -> Result<Re
         units: Vec::new(),
         left: Vec::new(),
         called: Vec::new(),
+        notes: Vec::new(),
     };
     called::read(read, (text, &moving), context, chain)
 }

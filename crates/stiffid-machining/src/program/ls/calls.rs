@@ -55,7 +55,7 @@ pub(super) fn selections(
 
 /// The program instruction `t` calls by name (`CALL NAME ..`, a branch's `IF ..,CALL NAME`, a
 /// macro `NAME(..)`), upper case.
-fn called(t: &str) -> Option<String> {
+pub(super) fn called(t: &str) -> Option<String> {
     let upper = english(&t.trim().to_ascii_uppercase());
     let name = match conditional_call(&upper) {
         Some(rest) => rest,

@@ -17,6 +17,7 @@
 mod calls;
 mod cartesian;
 pub(crate) mod config;
+mod copies;
 mod flow;
 pub mod generate;
 mod motion;
@@ -392,6 +393,7 @@ impl Controller for FanucLs {
             units,
             left,
             called,
+            notes,
         } = read::targets(text, context)?;
         Ok(Read {
             targets,
@@ -400,6 +402,7 @@ impl Controller for FanucLs {
             units,
             left,
             called,
+            notes,
         })
     }
     /// `R = Rz(R) Ry(P) Rx(W)`.

@@ -25,7 +25,8 @@ pub(super) fn rest(t: &str) -> Option<&str> {
 
 /// The targets of the motion `t` on `line` (one, two for `C`: the via point then the end) to
 /// the `/POS` `positions`, after the targets `before` (the last of which ended `FINE` when
-/// `previous_fine`), and whether the motion ends `FINE`.
+/// `previous_fine`), and whether the motion ends `FINE`. A motion to a position register goes
+/// to `copy`, the position of `positions` holding its copy ([`super::copies`]), if given.
 ///
 /// # Errors
 /// Naming the line: a motion outside the subset (module docs of [`super`], [`options`]), a
@@ -35,6 +36,7 @@ pub(super) fn targets(
     t: &str,
     positions: &HashMap<u64, JointTarget>,
     (before, previous_fine): (&[JointTarget], bool),
+    copy: Option<u64>,
 ) -> Result<(Vec<JointTarget>, bool)> {
     let Some(rest) = rest(t) else {
         return Ok((Vec::new(), previous_fine));
@@ -43,7 +45,10 @@ pub(super) fn targets(
     if letter == "A" {
         return Err(at(line, "A: a circular arc motion (R-30iB), whose path blends the arcs through the A points around it; stiffid does not follow it: write the path as C or L motions".into()));
     }
-    let (index, after) = target(line, letter, rest)?;
+    let (index, after) = match (copy, rest.strip_prefix("PR[")) {
+        (Some(n), Some(inside)) => (n, inside.split_once(']').map_or("", |(_, a)| a)),
+        _ => target(line, letter, rest)?,
+    };
     if letter == "C" {
         let (options, end) = after.split_once('P').map_or((after, ""), |(o, e)| (o, e));
         if let Some(word) = options.split_whitespace().next() {

@@ -4,6 +4,7 @@
 //! naming the lines, or leave them as found with [`crate::program::Context::leave_refused`]) and
 //! the motion before it (an `INC` motion's start: one motion on every path, ending `FINE`).
 
+use super::copies::{self, Copies};
 use super::flow::{self, Graph};
 use super::statements::{self, Number, Place, Selected};
 use super::{calls, instructions, motion, numbered, positions, registers, sysframe};
@@ -40,6 +41,7 @@ pub(super) struct Program {
     pub units: Units,
     pub left: Vec<Left>,
     pub called: Vec<(String, String)>,
+    pub notes: Vec<String>,
 }
 
 /// One program read: its own targets (spans in its text), those of the programs it calls
@@ -50,6 +52,7 @@ struct One {
     axes: Vec<String>,
     units: Units,
     left: Vec<Left>,
+    notes: Vec<String>,
 }
 
 /// The programs of the backup called so far: their files in the order their texts follow the
@@ -94,12 +97,13 @@ pub(super) fn targets(text: &str, context: &Context) -> Result<Program> {
         units: one.units,
         left: one.left,
         called: calls.files,
+        notes: one.notes,
     })
 }
 
 /// The program `text` read with `entry` in force at its start (module docs).
 fn read_one(text: &str, context: &Context, entry: Selected, calls: &mut Calls) -> Result<One> {
-    let (positions, axes, units) = positions(text)?;
+    let (mut positions, mut axes, mut units) = positions(text)?;
     let instructions = instructions(text)?;
     let motions: Vec<bool> = (instructions.iter())
         .map(|(_, t)| motion::rest(t.trim()).is_some())
@@ -139,20 +143,32 @@ fn read_one(text: &str, context: &Context, entry: Selected, calls: &mut Calls) -
         previous: Previous::Start,
     };
     let states = graph.states(start, step, join);
-    registers::check(&instructions, &motions, context)?;
-    let (mut own, in_force) = motions_read(&instructions, &motions, &states, &positions)?;
+    let registers = registers::read(&instructions, &motions, context)?;
+    let largest = positions.keys().max().copied().unwrap_or(0);
+    let selected = |k: usize| states[k].as_ref().map(|s| s.selected.clone());
+    let copies = copies::build(text, &instructions, &registers, selected, largest)?;
+    let own_positions = !positions.is_empty();
+    (axes, units) = copies::axes(&instructions, &copies, (own_positions, axes, units))?;
+    positions.extend(copies.positions.iter().map(|(k, t)| (*k, t.clone())));
+    let (mut own, in_force) =
+        motions_read(&instructions, &motions, &states, (&positions, &copies))?;
     numbered::apply(text, &mut own, &in_force)?;
     sysframe::apply(context, &mut own)?;
     let mut left = Vec::new();
     if context.leave_refused {
         own = leave_paths(own, &in_force, &mut left);
     }
+    let mut notes: Vec<(usize, String)> = (copies.by_motion.iter())
+        .map(|(k, c)| (*k, c.note.clone()))
+        .collect();
+    notes.sort();
     let mut one = One {
         own,
         nested: Vec::new(),
         axes,
         units,
         left,
+        notes: notes.into_iter().map(|(_, n)| n).collect(),
     };
     for (k, call) in called.iter().enumerate() {
         let (Some(call), Some(state)) = (call, states[k].as_ref()) else {
@@ -173,12 +189,13 @@ fn read_one(text: &str, context: &Context, entry: Selected, calls: &mut Calls) -
 }
 
 /// The targets of the motions of `instructions` (`motions` says which), each with the state
-/// before it (`states`), to the `/POS` `positions`; per target, the frame numbers in force.
+/// before it (`states`), to the `/POS` `positions` (a motion to a position register: to its
+/// copy among `copies`); per target, the frame numbers in force.
 fn motions_read(
     instructions: &[(u64, String)],
     motions: &[bool],
     states: &[Option<State>],
-    positions: &HashMap<u64, JointTarget>,
+    (positions, copies): (&HashMap<u64, JointTarget>, &Copies),
 ) -> Result<(Vec<JointTarget>, Vec<Selected>)> {
     let mut out: Vec<JointTarget> = Vec::new();
     let mut in_force: Vec<Selected> = Vec::new();
@@ -193,8 +210,17 @@ fn motions_read(
             _ => None,
         };
         let (before, fine) = before.map_or((&[][..], false), |(end, f)| (&out[..end], f));
-        let (targets, fine) =
-            motion::targets(*line, instruction.trim(), positions, (before, fine))?;
+        let copy = copies.by_motion.get(&k);
+        let (mut targets, fine) = motion::targets(
+            *line,
+            instruction.trim(),
+            positions,
+            (before, fine),
+            copy.map(|c| c.index),
+        )?;
+        if let (Some(c), Some(first)) = (copy, targets.first_mut()) {
+            *first = c.attach(first.clone());
+        }
         in_force.extend(std::iter::repeat_n(state.selected.clone(), targets.len()));
         out.extend(targets);
         read.insert(k, (out.len(), fine));
@@ -252,6 +278,13 @@ fn read_called(
     one.nested
         .extend(inner.own.into_iter().map(|t| t.shifted(offset)));
     one.nested.extend(inner.nested);
+    let file = call.file;
+    (one.notes).extend(
+        inner
+            .notes
+            .iter()
+            .map(|n| format!("CALL {name}: {file} {n}")),
+    );
     one.left.extend(inner.left.into_iter().map(|l| Left {
         line,
         why: format!("CALL {name}: {} line {}: {}", call.file, l.line, l.why),

@@ -4,12 +4,12 @@
 //! `Y`, `Z` (mm) and `W`, `P`, `R` (deg, `Rz(R) Ry(P) Rx(W)`, as an LS position's). A position
 //! in frame `n` the file gives takes it ([`Frame::Held`]); an entry `Uninitialized` gives none.
 
-use super::va::{entries, Entry};
+use super::va::{entries, Value};
 use crate::program::cartesian::Frame;
 use crate::program::{Context, JointTarget};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
 use std::collections::BTreeMap;
-use stiffid_core::Result;
+use stiffid_core::{Error, Result};
 
 /// The file's name in a backup.
 pub(crate) const FILE: &str = "SYSFRAME.VA";
@@ -21,7 +21,8 @@ type Held = BTreeMap<u32, (Isometry3<f64>, String)>;
 /// number held ([`Frame::Held`]); as they are without a backup or without the file.
 ///
 /// # Errors
-/// Those of [`entries`], naming the file and line.
+/// [`Error::Parse`] naming the file and line of an entry that is neither `Uninitialized` nor
+/// six finite numbers `X:` to `R:` (a file cut off or edited), or a position in joint form.
 pub(super) fn apply(context: &Context, targets: &mut [JointTarget]) -> Result<()> {
     let Some(file) = context.backup_file(FILE) else {
         return Ok(());
@@ -51,16 +52,19 @@ fn taken(frame: &Frame, held: &Held) -> Frame {
 /// The frames of motion group 1 of variable `variable` in `file`, by number.
 fn held((name, text): (&str, &str), variable: &str) -> Result<Held> {
     let mut out = Held::new();
-    for e in entries(name, text, variable)? {
-        let Entry {
-            group: 1,
-            number,
-            line,
-            pose: Some(p),
-        } = e
-        else {
-            continue;
+    let failed = |line: u64, message: String| Error::Parse {
+        source_name: name.to_string(),
+        message: format!("line {line}: {message}"),
+    };
+    for e in entries(text, variable) {
+        let p = match e.value.map_err(|(line, why)| failed(line, why))? {
+            Some(Value::Cartesian(p, _)) => p,
+            Some(Value::Joint(_)) => return Err(failed(e.line, format!("{variable}[{},{}]: a position in joint form; stiffid reads these frames as X, Y, Z, W, P, R", e.group, e.number))),
+            None => continue,
         };
+        if e.group != 1 {
+            continue;
+        }
         let rotation = UnitQuaternion::from_euler_angles(
             p[3].to_radians(),
             p[4].to_radians(),
@@ -68,8 +72,8 @@ fn held((name, text): (&str, &str), variable: &str) -> Result<Held> {
         );
         let position = Translation3::new(p[0] * 1e-3, p[1] * 1e-3, p[2] * 1e-3);
         let frame = Isometry3::from_parts(position, rotation);
-        let source = format!("{name} line {line} ({variable}[1,{number}])");
-        out.insert(number, (frame, source));
+        let source = format!("{name} line {} ({variable}[1,{}])", e.line, e.number);
+        out.insert(e.number, (frame, source));
     }
     Ok(out)
 }

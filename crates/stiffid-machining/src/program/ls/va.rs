@@ -1,58 +1,97 @@
 //! FANUC ASCII variable files (`.VA`, the text a controller's backup writes beside each binary
 //! variable file: `SYSFRAME.VA`, `POSREG.VA`): the entries of one position array, as a
 //! controller of the R-30iA and R-30iB families writes them. A variable opens with a line
-//! `[*SYSTEM*]$MNUTOOL  Storage: CMOS  Access: RW  : ARRAY[1,10] OF POSITION`; each of its
-//! entries with `[g,n] =` (motion group `g`, number `n`), a comment in quotes, and either
-//! `Uninitialized` or the position: `Group: g`, `Config: N U T, 0, 0, 0`, then `X: .. Y: ..
-//! Z: ..` (mm) and `W: .. P: .. R: ..` (deg) over the lines after it (numbers as FANUC writes
-//! them: `-.364`).
+//! `[*SYSTEM*]$MNUTOOL  Storage: CMOS  Access: RW  : ARRAY[1,10] OF POSITION` (`[*POSREG*]$POSREG
+//! .. OF Position Reg`); each of its entries with `[g,n] =` (motion group `g`, number `n`), a
+//! comment in quotes, and either `Uninitialized` or the position: in Cartesian form `Group: g`,
+//! `Config: N U T, 0, 0, 0`, then `X: .. Y: .. Z: ..` (mm) and `W: .. P: .. R: ..` (deg) over
+//! the lines after it; in joint form `Group: g` on the entry's line, then `J1 = .. deg` to
+//! `J6 = .. deg`; in either, the group's extended axes `EXT1: .. mm` (or `deg`) after them
+//! (numbers as FANUC writes them: `-.364`). An entry's values that are not all numbers (`EXT1:
+//! ******** mm`, a file cut off) are said in [`Entry::value`]: only a reader that uses the entry
+//! refuses it.
 
-use stiffid_core::{Error, Result};
+/// A position of an entry: Cartesian (`X`..`R`, mm and deg, and its `Config` text) or joint
+/// (`J1`..`J6`, deg); then its extended axes `EXT1`.., each its value and unit.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Value {
+    /// `X`, `Y`, `Z` (mm), `W`, `P`, `R` (deg), the `Config` text (`N U T, 0, 0, 0`).
+    Cartesian([f64; 6], String),
+    /// `J1`..`J6`, deg.
+    Joint([f64; 6]),
+}
 
-/// One entry of a position array: its motion group and number, the line it opens on, and its
-/// `X`, `Y`, `Z` (mm), `W`, `P`, `R` (deg); `None` for an entry `Uninitialized`.
+/// One entry of a position array: its motion group and number, the line it opens on, its
+/// value (`None`: `Uninitialized`; the error: the line where its values do not read and why)
+/// and its extended axes' values with their units.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Entry {
     pub group: u32,
     pub number: u32,
     pub line: u64,
-    pub pose: Option<[f64; 6]>,
+    pub value: Result<Option<Value>, (u64, String)>,
+    pub extended: Vec<(f64, &'static str)>,
 }
 
-/// The names of the six values, in order.
+/// The names of the six Cartesian values, in order.
 const NAMES: [&str; 6] = ["X:", "Y:", "Z:", "W:", "P:", "R:"];
 
-/// The entries of variable `variable` (`$MNUTOOL`) in the file `name` of text `text`, in the
-/// file's order; none when it does not hold the variable.
-///
-/// # Errors
-/// [`Error::Parse`] naming the file and line of an entry that is neither `Uninitialized` nor
-/// six finite numbers `X:` to `R:` (a file cut off or edited), or a position in joint form.
-pub(crate) fn entries(name: &str, text: &str, variable: &str) -> Result<Vec<Entry>> {
+/// An entry being read: the entry, its values so far (six Cartesian, six joint), whether it is
+/// `Uninitialized`, its `Config` text, its extended axes, the first value that did not read.
+#[derive(Default)]
+struct Open {
+    group: u32,
+    number: u32,
+    line: u64,
+    cartesian: [Option<f64>; 6],
+    joint: [Option<f64>; 6],
+    uninitialized: bool,
+    config: Option<String>,
+    extended: Vec<(f64, &'static str)>,
+    bad: Option<(u64, String)>,
+}
+
+impl Open {
+    /// The entry read, saying why where its values do not read (`variable` names it).
+    fn close(self, variable: &str) -> Entry {
+        let whole = |v: &[Option<f64>; 6]| {
+            let all: Option<Vec<f64>> = v.iter().copied().collect();
+            all.filter(|a| a.iter().all(|x| x.is_finite()))
+                .map(|a| [a[0], a[1], a[2], a[3], a[4], a[5]])
+        };
+        let given = |v: &[Option<f64>; 6]| v.iter().any(Option::is_some);
+        let name = format!("{variable}[{},{}]", self.group, self.number);
+        let value = match (&self.bad, self.uninitialized) {
+            (Some((line, why)), _) => Err((*line, format!("{name}: {why}"))),
+            (None, true) => Ok(None),
+            (None, false) if given(&self.joint) => whole(&self.joint)
+                .map(|j| Some(Value::Joint(j)))
+                .ok_or_else(|| (self.line, format!("{name}: expected J1 to J6 (deg), each a number (is the file cut off?)"))),
+            (None, false) => whole(&self.cartesian)
+                .map(|p| Some(Value::Cartesian(p, self.config.clone().unwrap_or_default())))
+                .ok_or_else(|| (self.line, format!("{name}: expected X:, Y:, Z: (mm) and W:, P:, R: (deg), each a number, or Uninitialized (is the file cut off?)"))),
+        };
+        Entry {
+            group: self.group,
+            number: self.number,
+            line: self.line,
+            value,
+            extended: self.extended,
+        }
+    }
+}
+
+/// The entries of variable `variable` (`$MNUTOOL`, `$POSREG`) in `text`, in the file's order;
+/// none when it does not hold the variable. An entry whose values do not read says why in
+/// [`Entry::value`].
+pub(crate) fn entries(text: &str, variable: &str) -> Vec<Entry> {
     let mut out: Vec<Entry> = Vec::new();
     let mut inside = false;
-    let mut open: Option<(Entry, [Option<f64>; 6], bool)> = None;
-    let failed = |line: u64, message: String| Error::Parse {
-        source_name: name.to_string(),
-        message: format!("line {line}: {message}"),
-    };
-    let mut close = |open: Option<(Entry, [Option<f64>; 6], bool)>| -> Result<()> {
-        let Some((mut e, values, uninitialized)) = open else {
-            return Ok(());
-        };
-        if !uninitialized {
-            let pose = values.iter().copied().collect::<Option<Vec<f64>>>();
-            let pose = pose.filter(|p| p.iter().all(|v| v.is_finite()));
-            let pose = pose.ok_or_else(|| failed(e.line, format!("{variable}[{},{}]: expected X:, Y:, Z: (mm) and W:, P:, R: (deg), each a number, or Uninitialized (is the file cut off?)", e.group, e.number)))?;
-            e.pose = Some([pose[0], pose[1], pose[2], pose[3], pose[4], pose[5]]);
-        }
-        out.push(e);
-        Ok(())
-    };
+    let mut open: Option<Open> = None;
     for (line, _, l) in crate::program::lines(text) {
         let t = l.trim();
         if t.starts_with("[*") || (t.starts_with('[') && t.contains("]$")) {
-            close(open.take())?;
+            out.extend(open.take().map(|o| o.close(variable)));
             let declared = t.split_once(']').map(|(_, r)| r).unwrap_or("");
             inside = declared.split_whitespace().next() == Some(variable);
             continue;
@@ -61,26 +100,25 @@ pub(crate) fn entries(name: &str, text: &str, variable: &str) -> Result<Vec<Entr
             continue;
         }
         if let Some((group, number, rest)) = index(t) {
-            close(open.take())?;
-            let entry = Entry {
+            out.extend(open.take().map(|o| o.close(variable)));
+            open = Some(Open {
                 group,
                 number,
                 line,
-                pose: None,
-            };
-            open = Some((entry, [None; 6], rest.contains("Uninitialized")));
+                uninitialized: rest.contains("Uninitialized"),
+                ..Open::default()
+            });
             continue;
         }
-        let Some((e, values, _)) = open.as_mut() else {
+        let Some(o) = open.as_mut() else {
             continue;
         };
-        if t.starts_with("J1") || t.contains(" J1 ") {
-            return Err(failed(line, format!("{variable}[{},{}]: a position in joint form; stiffid reads these frames as X, Y, Z, W, P, R", e.group, e.number)));
+        if let Err(why) = read_line(t, o) {
+            o.bad.get_or_insert((line, why));
         }
-        read_values(t, values).map_err(|why| failed(line, why))?;
     }
-    close(open.take())?;
-    Ok(out)
+    out.extend(open.take().map(|o| o.close(variable)));
+    out
 }
 
 /// The group, number and the rest of an entry's opening line `[g,n] = ..`, if `t` is one.
@@ -92,22 +130,58 @@ fn index(t: &str) -> Option<(u32, u32, &str)> {
     Some((g.trim().parse().ok()?, n.trim().parse().ok()?, rest))
 }
 
-/// The values `X:` .. `R:` of line `t` into `values`.
-fn read_values(t: &str, values: &mut [Option<f64>; 6]) -> std::result::Result<(), String> {
-    let words: Vec<&str> = t.split_whitespace().collect();
-    for (i, w) in words.iter().enumerate() {
-        let Some(k) = NAMES.iter().position(|n| w.starts_with(n)) else {
-            continue;
-        };
-        let glued = &w[2..];
-        let number = match glued.is_empty() {
+/// The values of line `t` into the entry `o`: `Config: ..`, `X:` .. `R:`, `J1 =` .. `J6 =`,
+/// `EXTn:`.
+fn read_values_into(words: &[&str], o: &mut Open) -> std::result::Result<(), String> {
+    let number = |i: usize, glued: &str| -> std::result::Result<f64, String> {
+        let text = match glued.is_empty() {
             true => words.get(i + 1).copied().unwrap_or(""),
             false => glued,
         };
-        let v = number
-            .parse::<f64>()
-            .map_err(|_| format!("{}: expected a number, found '{number}'", NAMES[k]))?;
-        values[k] = Some(v);
+        text.parse::<f64>()
+            .map_err(|_| format!("{}: expected a number, found '{text}'", words[i]))
+    };
+    for (i, w) in words.iter().enumerate() {
+        if let Some(k) = NAMES.iter().position(|n| w.starts_with(n)) {
+            o.cartesian[k] = Some(number(i, &w[2..])?);
+        } else if let Some(k) = joint_axis(w).filter(|_| words.get(i + 1) == Some(&"=")) {
+            o.joint[k] = Some(number(i + 1, "")?);
+        } else if let Some(k) = (w.strip_prefix("EXT"))
+            .and_then(|r| r.strip_suffix(':'))
+            .and_then(|d| d.parse::<usize>().ok())
+        {
+            let v = number(i, "")?;
+            let unit = match words.get(i + 2).copied() {
+                Some("mm") => "mm",
+                Some("deg") => "deg",
+                other => {
+                    return Err(format!(
+                        "{w}: expected a value in mm or deg, found '{}'",
+                        other.unwrap_or("")
+                    ))
+                }
+            };
+            if o.extended.len() + 1 != k {
+                return Err(format!("{w}: expected EXT{}", o.extended.len() + 1));
+            }
+            o.extended.push((v, unit));
+        }
     }
     Ok(())
+}
+
+/// The index (0-based) of a joint axis word `J1`..`J6`.
+fn joint_axis(w: &str) -> Option<usize> {
+    let k: usize = w.strip_prefix('J')?.parse().ok()?;
+    (1..=6).contains(&k).then(|| k - 1)
+}
+
+/// Line `t` of an entry read into `o`: its `Config` (to the end of the line) or its values.
+fn read_line(t: &str, o: &mut Open) -> std::result::Result<(), String> {
+    if let Some((_, config)) = t.split_once("Config:") {
+        o.config = Some(config.trim().to_string());
+        return Ok(());
+    }
+    let words: Vec<&str> = t.split_whitespace().collect();
+    read_values_into(&words, o)
 }

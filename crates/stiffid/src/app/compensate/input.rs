@@ -269,6 +269,16 @@ pub(super) fn left_warning(program: &Program) -> Option<Warning> {
     })
 }
 
+/// The warning naming the positions the reader copied into the program from the controller's
+/// backup (an LS position register read from `POSREG.VA`: the register left as it is, the motion
+/// written to the program's copy where compensating moves it).
+pub(super) fn copied_warning(program: &Program) -> Option<Warning> {
+    let Program::Robot(p) = program else {
+        return None;
+    };
+    (!p.copied.is_empty()).then(|| Warning::new(WarningKind::LeftOut, p.copied.join("; ")))
+}
+
 /// The warning naming what reading a robot program on its setup found (a frame taught in the
 /// nominal cell, re-located to the part the calibration located or read as stated).
 pub(super) fn notes_warning(program: &Program) -> Option<Warning> {

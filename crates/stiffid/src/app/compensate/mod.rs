@@ -42,9 +42,9 @@ use crate::app::compensate::document::{Names, Summary};
 use crate::app::{Warning, WarningKind};
 use failure::{in_input, Failure};
 use input::{
-    called_files, check_tcp, encoding_warning, held_lines, held_warning, left_warning,
-    no_length_offset, notes_warning, own_motion, read_checked, uncoupled_ls, unplaced_g53,
-    unstated_units,
+    called_files, check_tcp, copied_warning, encoding_warning, held_lines, held_warning,
+    left_warning, no_length_offset, notes_warning, own_motion, read_checked, uncoupled_ls,
+    unplaced_g53, unstated_units,
 };
 pub use input::{read_program, read_program_in};
 use stiffid_core::io::Encoding;
@@ -493,6 +493,7 @@ where
             out.warnings.extend(held_warning(&held));
             out.warnings.extend(left_warning(&program));
             out.warnings.extend(notes_warning(&program));
+            out.warnings.extend(copied_warning(&program));
             let own = |i: usize| own_motion(&program, i);
             let lines: Vec<(u64, f64)> = (compensated.points.iter())
                 .zip(&compensated.results)

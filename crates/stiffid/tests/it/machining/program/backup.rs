@@ -270,10 +270,10 @@ fn an_ls_call_of_a_program_that_moves_is_compensated_in_its_own_file() {
     );
 }
 
-/// A motion to a position register whose value the backup's `POSREG.VA` holds is refused
-/// saying why: the register is the controller's, shared by every program on it.
+/// A motion to a position register the backup's `POSREG.VA` does not hold is refused naming the
+/// file.
 #[test]
-fn an_ls_motion_to_a_position_register_of_posreg_va_is_refused_saying_why() {
+fn an_ls_motion_to_a_position_register_posreg_va_does_not_hold_is_refused_saying_why() {
     let main = ls_program(
         "MAIN",
         "   1:J P[1] 100% FINE ;\n   2:L PR[3:home] 50mm/sec FINE ;",
@@ -286,5 +286,8 @@ fn an_ls_motion_to_a_position_register_of_posreg_va_is_refused_saying_why() {
     );
     let (at, why) = message(e.unwrap_err());
     assert_eq!(at, 6, "{why}");
-    assert!(why.starts_with("L PR[3]: a position register is the controller's, shared by every program on it (backup/POSREG.VA holds its value)"), "{why}");
+    assert_eq!(
+        why,
+        "L PR[3]: backup/POSREG.VA holds no PR[3] of motion group 1"
+    );
 }

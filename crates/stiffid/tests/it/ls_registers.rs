@@ -1,0 +1,143 @@
+//! LS motions to position registers, read from the controller backup's `POSREG.VA` as the real
+//! backups write it: compensated to the very target the same position inline in `/POS` takes,
+//! written to a new position of the program (the register, shared by every program, left as it
+//! is); refused naming the line where the program sets the register or calls a program the
+//! backup does not hold.
+
+use crate::ls_corpus::{compensated, compensated_in, independent, refusal, setup};
+use stiffid::internal::machining::compensate::{Compensated, Options};
+use stiffid::internal::machining::program::{parse_in, Context, Dialect};
+use stiffid::Setup;
+
+const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/programs/ls/");
+
+/// A `POSREG.VA` as an R-30iB backup writes it (the format of the drilling cell's backup,
+/// `wilder-backup/`: CRLF, three decimals, no zero before the point): PR[5] a Cartesian register
+/// holding `rpi_tmpa.ls`'s `P[3]`, PR[7] a joint one holding its `P[1]`, PR[1] never set.
+const POSREG: &str = "[*POSREG*]$POSREG  Storage: SHADOW  Access: RW  : ARRAY[1,200] OF Position Reg\r\n    [1,1] =   '' Uninitialized\r\n    [1,5] =   'PROBE' \r\n  Group: 1   Config: N U T, 0, 0, 0\r\n  X:  1620.000   Y:      .000   Z:  1930.000\r\n  W:   180.000   P:      .000   R:      .000\r\n    [1,7] =   'PARK'   Group: 1\r\n  J1 =    38.300 deg   J2 =    23.300 deg   J3 =   -34.000 deg \r\n  J4 =    45.700 deg   J5 =  -101.900 deg   J6 =   -48.300 deg \r\n\r\n[*POSREG*]$MAXPREGNUM  Storage: CMOS  Access: RW  : INTEGER = 200\r\n";
+
+/// The program with its two motions to `P[1]` and `P[3]` going to the registers holding them.
+fn with_registers(straight: &str) -> String {
+    straight
+        .replace("   3:J P[1] 100% FINE ;", "   3:J PR[7:PARK] 100% FINE ;")
+        .replace(
+            "   5:L P[3] 50mm/sec FINE ;",
+            "   5:L PR[5:PROBE] 50mm/sec FINE ;",
+        )
+}
+
+/// `text` compensated on `s` with the backup `backup` (the milling example's stiffness).
+fn run(
+    s: &Setup,
+    text: &str,
+    backup: &[(String, String)],
+) -> stiffid::Result<(String, Vec<Compensated>)> {
+    let compliance = stiffid::internal::io::stiffness::parse(include_str!(
+        "../../../../examples/milling/stiffness.json"
+    ))
+    .unwrap()
+    .compliance(s.model())
+    .unwrap();
+    let options = Options::for_setup(s);
+    compensated_in(s, &compliance, options, ("TMPA.ls", text), backup).map(|(o, r, _)| (o, r))
+}
+
+#[test]
+fn a_position_register_of_posreg_va_compensates_as_the_same_position_inline() {
+    let s = setup();
+    let straight = std::fs::read_to_string(format!("{DIR}rpi_tmpa.ls")).unwrap();
+    let text = with_registers(&straight);
+    let backup = vec![("backup/POSREG.VA".to_string(), POSREG.to_string())];
+    let (out_p, p) = compensated(&s, "TMPA.ls", &straight).unwrap();
+    let (out_r, r) = run(&s, &text, &backup).unwrap();
+    assert_eq!(p.len(), 3);
+    for (a, b) in p.iter().zip(&r) {
+        assert_eq!(a.q, b.q);
+        let most = (a.q_compensated - b.q_compensated).amax();
+        assert!(most < 1e-12, "{most} rad");
+    }
+    // The loaded linear motion moves: it goes to the program's new position P[5] (numbered on
+    // from P[3], one per motion to a register), written before /END with its bound; the
+    // unloaded joint motion keeps its register.
+    assert!(out_r.contains("   3:J PR[7:PARK] 100% FINE ;\n"), "{out_r}");
+    assert!(out_r.contains("   5:L P[5] 50mm/sec FINE ;\n"), "{out_r}");
+    assert!(
+        out_r.contains("};\nP[5:\"0.1644 mm\"]{\n   GP1:\n\tUF : 1, UT : 1,\t\tCONFIG : 'N U T, 0, 0, 0',\n\tX = 1619."),
+        "{out_r}"
+    );
+    assert!(out_r.ends_with("};\n/END\n"), "{out_r}");
+    // P[5] written holds what the straight program's P[3] is written as, to 1e-9 mm.
+    let (inline, copied) = (independent(&out_p), independent(&out_r));
+    assert_eq!((inline.len(), copied.len()), (3, 2));
+    assert_eq!(copied[1].frames, inline[2].frames);
+    for (a, b) in inline[2].values.iter().zip(&copied[1].values) {
+        assert!((a - b).abs() < 1e-9, "{a} {b}");
+    }
+    assert_ne!(inline[2].values, [1620.0, 0.0, 1930.0, 180.0, 0.0, 0.0]);
+    // The warning names the line and the register.
+    let context = Context::of(&s).with_backup(&backup);
+    let read = parse_in(&text, Dialect::FanucLs, &context).unwrap();
+    assert_eq!(read.copied.len(), 2);
+    assert!(
+        read.copied[1].starts_with("line 9: L PR[5] read as backup/POSREG.VA line 3 holds it"),
+        "{:?}",
+        read.copied
+    );
+}
+
+#[test]
+fn a_position_register_the_run_sets_or_a_program_not_given_may_set_is_refused_naming_the_line() {
+    let s = setup();
+    let straight = std::fs::read_to_string(format!("{DIR}rpi_tmpa.ls")).unwrap();
+    let backup = vec![("backup/POSREG.VA".to_string(), POSREG.to_string())];
+    let read = |text: &str, backup: &[(String, String)]| {
+        parse_in(text, Dialect::FanucLs, &Context::of(&s).with_backup(backup)).map(|_| ())
+    };
+    let why = |text: &str, backup: &[(String, String)]| refusal(&read(text, backup).unwrap_err());
+    let text = with_registers(&straight);
+    // Set by the program after the motion (its next run starts from it).
+    let set = text.replace("   6:  DO[103]=OFF ;", "   6:  PR[5,3:PROBE]=PR[5,3]+10 ;");
+    let (line, message) = why(&set, &backup);
+    assert_eq!(line, 9, "{message}");
+    assert!(
+        message.contains("the position register is set on line 10"),
+        "{message}"
+    );
+    // By a skip option's capture.
+    let skip = text.replace(
+        "   6:  DO[103]=OFF ;",
+        "   6:L P[2] 50mm/sec FINE Skip,LBL[1],PR[5]=LPOS ;",
+    );
+    assert!(why(&skip, &backup).1.contains("set on line 10"));
+    // A program called that the backup holds sets it; one it does not hold may.
+    let call = text.replace("   6:  DO[103]=OFF ;", "   6:  CALL PROBE ;");
+    let (line, message) = why(&call, &backup);
+    assert_eq!(line, 7, "{message}");
+    assert!(
+        message.contains("line 10 calls PROBE, which the backup does not hold as PROBE.LS"),
+        "{message}"
+    );
+    let probe = "/PROG  PROBE\n/ATTR\n/MN\n   1:  PR[5]=LPOS ;\n/POS\n/END\n".to_string();
+    let mut held = backup.clone();
+    held.push(("backup/PROBE.LS".into(), probe.clone()));
+    let (_, message) = why(&call, &held);
+    assert!(
+        message.contains(
+            "line 10 calls PROBE: backup/PROBE.LS: the position register is set on line 4"
+        ),
+        "{message}"
+    );
+    held[1].1 = probe.replace("PR[5]=LPOS", "R[1]=1");
+    assert!(read(&call, &held).is_ok());
+    // No POSREG.VA; a register never set.
+    assert!(why(&text, &[])
+        .1
+        .contains("give the controller's backup with its POSREG.VA"));
+    let unset = text.replace("PR[5:PROBE]", "PR[1]");
+    let (line, message) = why(&unset, &backup);
+    assert_eq!(line, 9);
+    assert!(
+        message.contains("backup/POSREG.VA line 2 gives PR[1] no value (Uninitialized)"),
+        "{message}"
+    );
+}
