@@ -67,6 +67,7 @@ mod load_steps_design;
 mod ls_corpus;
 mod ls_landing;
 mod ls_registers;
+mod ls_track;
 mod lsq;
 mod machining;
 mod map_chosen;
