@@ -345,7 +345,7 @@ fn partial(arcs: &[(u64, Chords)], tolerance: f64) -> Option<String> {
 }
 
 /// The warning of a program that keeps its arcs' points (joint targets), `None` without arcs.
-pub fn kept_as_points(arcs: &[ArcBlock], why: &str) -> Option<String> {
+pub(crate) fn kept_as_points(arcs: &[ArcBlock], why: &str) -> Option<String> {
     (!arcs.is_empty()).then(|| {
         format!(
             "{} arcs written as their chord points ({why}): no circular move",

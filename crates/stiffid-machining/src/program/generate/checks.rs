@@ -19,7 +19,11 @@ use stiffid_core::{Error, Result};
 /// [`Error::InvalidField`] (`external_axis`) naming the first axis past the language's;
 /// [`Error::InvalidOption`] ([`JobOption::Targets`]) naming the positioner's axis for
 /// Cartesian targets.
-pub fn check_cell(dialect: Dialect, targets: Targets, axes: Option<&ExternalAxes>) -> Result<()> {
+pub(crate) fn check_cell(
+    dialect: Dialect,
+    targets: Targets,
+    axes: Option<&ExternalAxes>,
+) -> Result<()> {
     let Some(axes) = axes.filter(|a| !a.is_empty()) else {
         return Ok(());
     };
@@ -64,7 +68,7 @@ fn role_name(role: Role) -> &'static str {
 ///
 /// # Errors
 /// [`Error::InvalidField`] (`tool.mass_kg`) when the program needs them and `tool` has none.
-pub fn check_payload(dialect: Dialect, targets: Targets, tool: &Tool) -> Result<()> {
+pub(crate) fn check_payload(dialect: Dialect, targets: Targets, tool: &Tool) -> Result<()> {
     let needs_mass = (dialect.controller().generator()).is_some_and(|g| g.needs_mass(targets));
     if needs_mass && tool.payload.is_none() {
         return Err(invalid("tool.mass_kg", "a RAPID tooldata needs the tool's mass and centre of mass (the controller refuses a tool of no mass): [tool] mass_kg and centre_of_mass_mm in the setup".into()));
@@ -78,7 +82,7 @@ pub fn check_payload(dialect: Dialect, targets: Targets, tool: &Tool) -> Result<
 /// # Errors
 /// [`Error::InvalidField`] (`controller.pulses_per_deg`) when the program needs them and the
 /// setup gives none.
-pub fn check_pulses(dialect: Dialect, pulses: Option<&Pulses>) -> Result<()> {
+pub(crate) fn check_pulses(dialect: Dialect, pulses: Option<&Pulses>) -> Result<()> {
     let needs = (dialect.controller().generator()).is_some_and(|g| g.needs_pulses());
     match needs && pulses.is_none() {
         true => Err(missing_pulses()),

@@ -48,7 +48,7 @@ pub fn moves_per_file(dialect: Dialect, settings: &Settings) -> usize {
 /// controller's, [`JobOption::MovesPerFile`] for too many sub-programs,
 /// [`JobOption::ProgramName`] for a name the controller does not take; those of
 /// [`Settings::validate`].
-pub fn check_plan(
+pub(crate) fn check_plan(
     dialect: Dialect,
     name: &str,
     settings: &Settings,

@@ -4,7 +4,6 @@
 //! unstated units and unplaced G53 rapids, an LS program's uncoupled axes, the points the
 //! controller holds).
 
-use super::written::program_tool;
 use super::{generate, in_input, output, Input};
 use crate::app::{Warning, WarningKind};
 use stiffid_core::io::Encoding;
@@ -20,7 +19,7 @@ use stiffid_machining::{self as machining, Language, Program};
 /// # Errors
 /// Those of [`output::check_output`], [`output::check_lean`], [`output::check_tool_axis`],
 /// [`Settings::validate`], [`output::check_settings`],
-/// [`generate::check_payload`], [`machining::read_in`] (with the setup's pulses and tools) and
+/// [`generate::compensated::check`], [`machining::read_in`] (with the setup's pulses and tools) and
 /// [`machining::resolve`] (the program's
 /// as [`Error::Input`] naming its file).
 pub(super) fn read_checked(
@@ -50,8 +49,7 @@ pub(super) fn read_checked(
     settings.validate()?;
     output::check_settings(language, output, settings)?;
     if let (Language::GCode, Language::Robot(d)) = (language, output) {
-        generate::check_payload(d, settings.targets, &program_tool(setup))?;
-        generate::check_pulses(d, setup.workcell().controller().pulses.as_ref())?;
+        generate::compensated::check(setup, d, settings.targets)?;
     }
     let machine = stiffid_machining::gcode::Machine::of(setup, Some(process));
     let context =

@@ -18,7 +18,6 @@
 
 pub mod budget;
 pub mod certify;
-mod circles;
 mod columns;
 pub mod configurations;
 pub mod document;
@@ -26,7 +25,6 @@ pub mod dynamics;
 mod failure;
 pub(crate) mod feasibility;
 mod free;
-mod home;
 mod input;
 mod output;
 pub mod ranking;
@@ -54,11 +52,12 @@ use stiffid_core::{Coordinates, Error, Result, Setup};
 use stiffid_machining::compensate::{self, Compensated, Compliance, Options, PathPoint, CHUNK};
 use stiffid_machining::dynamics::Dynamics;
 use stiffid_machining::process::Process;
+use stiffid_machining::program::generate::compensated::{gcode_controller, written_name};
 use stiffid_machining::program::generate::{self, generate, Settings};
 use stiffid_machining::program::rename::renamed;
 use stiffid_machining::{self as machining, Language, Program};
 use stiffid_machining::{cell, path};
-use written::{generated, written_name};
+use written::generated;
 
 /// The path to compensate.
 pub enum Input<'t> {
@@ -454,7 +453,7 @@ where
     let written_name = written_name(&program, output, &out_name, (&settings, cell))?;
     // A G-code program is written for the controller's kinematics.
     let (controller, assumed) = match (&program, output) {
-        (Program::GCode(_), Language::GCode) => written::gcode_controller(setup)?,
+        (Program::GCode(_), Language::GCode) => gcode_controller(setup)?,
         _ => (setup.robot(), None),
     };
     let at = (setup.arm(), setup.workpiece(), compliance);

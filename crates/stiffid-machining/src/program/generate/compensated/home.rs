@@ -6,9 +6,9 @@
 //! a cell's external axes keep the first (last) target's values. The home posture is checked
 //! against the robot's joint limits when the setup is read.
 
+use super::super::{Move, Target};
 use nalgebra::Vector6;
 use stiffid_core::{Robot, Setup};
-use stiffid_machining::program::generate::{Move, Target};
 
 /// Adds the home posture of `setup` (if any) before the first and after the last of `targets`
 /// (with a rapid move and no G-code line); whether it did.

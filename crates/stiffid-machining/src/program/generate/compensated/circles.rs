@@ -1,13 +1,14 @@
-//! The arcs of a compensated G-code path as the robot program's circular moves
-//! ([`stiffid_machining::program::generate::arcs`]): which targets are written and how, in the
-//! controller's kinematics, and the bound of each motion written.
+//! The arcs of a compensated G-code path as the robot program's circular moves ([`arcs`]): which
+//! targets are written and how, in the controller's kinematics.
 
+use super::super::{arcs, written_targets, Move, Settings, Target, Targets};
+use crate::compensate::{Compensated, PathPoint};
+use crate::gcode::ArcBlock;
+use crate::program::Dialect;
+use crate::Report;
+use arcs::{Circular, Form};
 use nalgebra::Vector3;
 use stiffid_core::{Result, Robot};
-use stiffid_machining::gcode::ArcBlock;
-use stiffid_machining::program::generate::arcs::{self, Circular, Form};
-use stiffid_machining::program::generate::{Move, Settings, Target};
-use stiffid_machining::program::Dialect;
 
 /// The targets and moves a program of `dialect` is written with, the arcs `arcs` as circular
 /// moves where they stay within `tolerance` (m, the chord tolerance), with what each written
@@ -18,13 +19,11 @@ pub(super) fn circular(
     (dialect, settings): (Dialect, &Settings),
     arcs: &[ArcBlock],
     (targets, moves): (Vec<Target>, Vec<Move>),
-    (tcp, compensated, controller): (&Vector3<f64>, &stiffid_machining::Report, Result<&Robot>),
+    (tcp, compensated, controller): (&Vector3<f64>, &Report, Result<&Robot>),
     tolerance: f64,
 ) -> (Vec<Target>, Vec<Move>, Circular, Option<Form>) {
     let form = (dialect.controller().generator()).and_then(|g| g.circular(settings.targets));
-    let cartesian =
-        stiffid_machining::program::generate::written_targets(dialect, settings.targets)
-            == stiffid_machining::program::generate::Targets::Cartesian;
+    let cartesian = written_targets(dialect, settings.targets) == Targets::Cartesian;
     let positions: Option<Vec<Vector3<f64>>> = match (cartesian, controller) {
         (true, _) => Some(targets.iter().map(|t| t.pose.translation.vector).collect()),
         (false, Ok(robot)) => Some(
@@ -67,10 +66,7 @@ fn identity(n: usize, moves: &[Move]) -> Circular {
 
 /// The external axes' values of a compensated point (SI): those the compensation chose (a free
 /// station), else the program's.
-pub(super) fn values<'a>(
-    r: &'a stiffid_machining::compensate::Compensated,
-    p: &'a stiffid_machining::compensate::PathPoint,
-) -> &'a [f64] {
+pub(super) fn values<'a>(r: &'a Compensated, p: &'a PathPoint) -> &'a [f64] {
     match r.external.is_empty() {
         true => p.external.as_slice(),
         false => r.external.as_slice(),
