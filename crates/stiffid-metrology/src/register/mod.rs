@@ -56,14 +56,15 @@ pub(crate) const COLLINEAR_M: f64 = 1e-6;
 /// absolute positioning error of uncalibrated industrial robots (0.5 to 5 mm over the workspace;
 /// Nubiola and Bonev 2013, Robotics and Computer-Integrated Manufacturing 29(1): 2.16 mm at most
 /// on an ABB IRB 1600), so only readings of another point or posture reach it.
-pub const RESIDUAL_LIMIT: f64 = 10e-3;
+pub(crate) const RESIDUAL_LIMIT: f64 = 10e-3;
 
 /// The residual limit in units of the tracker noise per coordinate: a residual this many times
 /// the noise is refused even where the noise is large ([`residual_limit`]).
-pub const RESIDUAL_NOISE_MULTIPLE: f64 = 1000.0;
+pub(crate) const RESIDUAL_NOISE_MULTIPLE: f64 = 1000.0;
 
-/// The longest residual a registration accepts without being forced, m: the larger of
-/// [`RESIDUAL_LIMIT`] and [`RESIDUAL_NOISE_MULTIPLE`] times the tracker noise `sigma` (m).
+/// The longest residual a registration accepts without being forced, m: the larger of 10 mm
+/// (twice the largest unloaded absolute positioning error of uncalibrated industrial robots) and
+/// 1000 times the tracker noise `sigma` (m).
 pub fn residual_limit(sigma: f64) -> f64 {
     RESIDUAL_LIMIT.max(RESIDUAL_NOISE_MULTIPLE * sigma)
 }
@@ -121,7 +122,7 @@ pub fn suspect(
 /// either direction that is a robot's own size: a real robot's lengths are within a few per cent of
 /// its model's; millimetres read as centimetres (0.1), metres (0.001) or inches (1/25.4) are
 /// far outside.
-pub const SPREAD_RATIO_LIMIT: f64 = 1.25;
+pub(crate) const SPREAD_RATIO_LIMIT: f64 = 1.25;
 
 /// The robot's points must spread at least this far (RMS distance from their centroid, m) for
 /// [`spread_ratio`] to judge the readings' scale: one posture, or postures close together, say
@@ -133,7 +134,7 @@ pub(crate) const MIN_SPREAD_M: f64 = 0.05;
 /// their centroid over that of the robot's points from theirs, with the points' spread (m). 1
 /// within the robot's errors for readings in mm as labelled, 0.001 for readings in metres. `None`
 /// when the points spread less than 5 cm.
-pub fn spread_ratio(points: &[Correspondence]) -> Option<(f64, f64)> {
+pub(crate) fn spread_ratio(points: &[Correspondence]) -> Option<(f64, f64)> {
     let spread = |v: &[Vector3<f64>]| {
         let n = v.len().max(1) as f64;
         let mean = v.iter().sum::<Vector3<f64>>() / n;
@@ -467,6 +468,126 @@ fn not_converged() -> Error {
     Error::NotFinite {
         what: "the registration's singular value decomposition (did not converge)".into(),
     }
+}
+
+/// Refuses readings (any frame, loaded or not) whose spread is not the robot's: the RMS distance
+/// of the readings from their centroid against that of the setup's measuring points through the
+/// nominal robot at the same axis angles, beyond 1.25 either way. Readings in metres or centimetres under `_mm`
+/// names would otherwise calibrate a robot shrunk to their scale with a residual of zero. Nothing
+/// forces them: no robot is a tenth of its model's size.
+///
+/// # Errors
+/// [`Error::InvalidField`] (`readings`) with both spreads and the likely unit.
+pub fn refuse_other_scale(setup: &Setup, data: &Readings) -> Result<()> {
+    let points = &setup.tool().measuring_points;
+    let pairs: Vec<Correspondence> = (data.readings.iter())
+        .filter(|r| !r.table)
+        .map(|r| Correspondence {
+            base: setup
+                .robot()
+                .frames_at(&r.q, r.e.as_slice())
+                .point(&points[r.point]),
+            tracker: r.position,
+        })
+        .collect();
+    let Some((ratio, spread)) = spread_ratio(&pairs) else {
+        return Ok(());
+    };
+    let limit = SPREAD_RATIO_LIMIT;
+    if ratio.is_finite() && ratio <= limit && ratio >= 1.0 / limit {
+        return Ok(());
+    }
+    let units = [
+        (1e-3, "metres"),
+        (1e-2, "decimetres"),
+        (0.1, "centimetres"),
+        (1.0 / 25.4, "inches"),
+        (1e3, "micrometres"),
+    ];
+    let (_, unit) = units
+        .iter()
+        .min_by(|a, b| {
+            (a.0 / ratio)
+                .ln()
+                .abs()
+                .total_cmp(&(b.0 / ratio).ln().abs())
+        })
+        .expect("units");
+    Err(Error::InvalidField {
+        field: "readings".into(),
+        message: format!(
+            "the readings spread {:.4} mm about their centroid (RMS) where the robot's measuring points at the same axis angles spread {:.1} mm: {ratio:.4} times the robot's size, readings in {unit}? expected millimetres ({}) of this robot and tool",
+            ratio * spread * 1e3,
+            spread * 1e3,
+            data.columns[1]
+        ),
+    })
+}
+
+/// Refuses readings that no rigid transform explains ([`suspect`] at the setup's tracker noise):
+/// tracker readings that are a mirror image of the nominal robot's points (by `registration`, or
+/// the registration of `data` when `None`), or a fitted residual (`residuals`, m, one per unloaded
+/// reading of `data` in file order, or per unloaded reading of the arm's points: the table's
+/// reflectors left out) beyond [`residual_limit`].
+///
+/// # Errors
+/// [`Error::InvalidField`]: `readings` for a mirror image (both RMS), or the reading's line,
+/// posture and point with `residual_norm_mm` (its length and the limit).
+pub fn refuse_implausible(
+    setup: &Setup,
+    data: &Readings,
+    registration: Option<&Registration>,
+    residuals: &[Vector3<f64>],
+) -> Result<()> {
+    let sigma = setup.noise().reading_sd();
+    let registered = match registration {
+        Some(r) => Some(r.clone()),
+        // Readings in the base frame, or too few: the job says so itself.
+        None => correspondences(setup, data)
+            .and_then(|points| fit(&points))
+            .ok(),
+    };
+    let mirrored = registered.and_then(|r| suspect(&[], r.rms, r.mirror_rms, sigma));
+    let error = match mirrored.or_else(|| suspect(residuals, 0.0, f64::INFINITY, sigma)) {
+        None => return Ok(()),
+        Some(Suspect::Mirrored { rms, mirror_rms }) => Error::InvalidField {
+            field: "readings".into(),
+            message: format!(
+                "the tracker's readings are a mirror image of the robot's points: the best rotation leaves a residual RMS of {:.3} mm, a reflection {:.3} mm; expected readings in a right-handed tracker frame (an axis flipped, or two coordinate columns swapped?); --force (Python force=True) fits the best rotation anyway",
+                rms * 1e3,
+                mirror_rms * 1e3
+            ),
+        },
+        Some(Suspect::Residual {
+            index,
+            length,
+            limit,
+        }) => {
+            // One residual per unloaded reading, or (the tracker's registration) per unloaded
+            // reading of the arm's points, the table's reflectors left out.
+            let unloaded = data.readings.iter().filter(|r| r.unloaded()).count();
+            let (reading, line) = (data.readings.iter().zip(&data.lines))
+                .filter(|(r, _)| r.unloaded() && (residuals.len() == unloaded || !r.table))
+                .nth(index)
+                .expect("one residual per unloaded reading");
+            Error::InvalidField {
+                field: format!(
+                    "line {line} (posture {}, point {}), residual_norm_mm",
+                    stiffid_core::common::limits::short(&data.labels[reading.posture]),
+                    stiffid_core::io::readings::point_name(reading.point, reading.table)
+                ),
+                message: format!(
+                    "{:.3}: expected at most {:.3} mm (the larger of {} mm, twice a robot's unloaded absolute error, and {} times the tracker noise {:.4} mm): a reading of another point or posture, or axis angles that are not the robot's; --force (Python force=True) fits the readings anyway",
+                    length * 1e3,
+                    limit * 1e3,
+                    RESIDUAL_LIMIT * 1e3,
+                    RESIDUAL_NOISE_MULTIPLE,
+                    sigma * 1e3
+                ),
+            }
+        }
+    };
+    Err(error)
 }
 
 #[cfg(test)]

@@ -214,7 +214,7 @@ impl Loaded {
     /// Readings in another unit fit a robot of another size: refused whatever a fit found
     /// (after it, so that a file's own errors come first).
     pub(crate) fn check_scale(&self, setup: &Setup, name: &str) -> Result<()> {
-        crate::app::readings::refuse_other_scale(setup, &self.readings)
+        stiffid_metrology::register::refuse_other_scale(setup, &self.readings)
             .map_err(|e| in_data(name, e))
     }
 }
