@@ -136,8 +136,18 @@ fn read(
         }
         let on = format!("on line {line}{file}");
         match w.as_slice() {
-            ["E6AXIS" | "AXIS" | "E6POS" | "POS" | "FRAME", name, ..] => {
+            [kind @ ("E6AXIS" | "AXIS" | "E6POS" | "POS" | "FRAME"), name, ..] => {
                 let name = name.split(['[', ',']).next().unwrap_or(name).to_string();
+                // `DECL POS a, b, c`: every name of a list declared without a value.
+                if !code.contains('{') {
+                    for name in listed(code, kind) {
+                        let why =
+                            format!("{name} is declared {on} without a value (set at run time)");
+                        let value = twice(points, &name, &on, place, line)?.unwrap_or(Err(why));
+                        points.insert(name, (on.clone(), value));
+                    }
+                    continue;
+                }
                 let value = match code.find('{') {
                     None => Err(format!(
                         "{name} is declared {on} without a value (set at run time)"
@@ -148,17 +158,7 @@ fn read(
                         (Err(e), _) => Err(format!("{name}, declared {on}: {}", message(e))),
                     },
                 };
-                let value = match points.get(&name) {
-                    // KRL refuses a name declared twice in one module: neither value is sure.
-                    Some((first, _)) => {
-                        let why = format!("{name} is declared twice, {first} and {on}: the controller refuses a name declared twice in one module; declare it once");
-                        match place {
-                            Place::Src => return Err(at(line, why)),
-                            _ => Err(why),
-                        }
-                    }
-                    None => value,
-                };
+                let value = twice(points, &name, &on, place, line)?.unwrap_or(value);
                 points.insert(name, (on, value));
             }
             ["FDAT", name, ..] => {
@@ -176,6 +176,61 @@ fn read(
         }
     }
     Ok(())
+}
+
+/// Why `name`, declared `on` `line` of `place`, has no sure value when `points` holds it
+/// already: KRL refuses a name declared twice in one module, so neither value is sure.
+///
+/// # Errors
+/// A name of the `.src` declared twice, naming the line.
+fn twice(
+    points: &Declared,
+    name: &str,
+    on: &str,
+    place: Place,
+    line: u64,
+) -> Result<Option<std::result::Result<JointTarget, String>>> {
+    let Some((first, _)) = points.get(name) else {
+        return Ok(None);
+    };
+    let why = format!("{name} is declared twice, {first} and {on}: the controller refuses a name declared twice in one module; declare it once");
+    match place {
+        Place::Src => Err(at(line, why)),
+        _ => Ok(Some(Err(why))),
+    }
+}
+
+/// The names a declaration without a value lists after its type word `kind` (`DECL POS a, b[3],
+/// c`: `A`, `B`, `C`), upper case; a comma inside an array's brackets parts no names.
+fn listed(code: &str, kind: &str) -> Vec<String> {
+    let upper = code.to_ascii_uppercase();
+    let Some(at) = find_word(&upper, kind) else {
+        return Vec::new();
+    };
+    let (mut names, mut depth, mut current) = (Vec::new(), 0usize, String::new());
+    for c in upper[at + kind.len()..].chars() {
+        match c {
+            '[' => depth += 1,
+            ']' => depth = depth.saturating_sub(1),
+            ',' if depth == 0 => names.push(std::mem::take(&mut current)),
+            _ if depth == 0 => current.push(c),
+            _ => {}
+        }
+    }
+    names.push(current);
+    names
+        .into_iter()
+        .map(|n| n.trim().to_string())
+        .filter(|n| n.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_' || c == '$'))
+        .collect()
+}
+
+/// The byte of the first whole word `word` in `text`.
+fn find_word(text: &str, word: &str) -> Option<usize> {
+    let ident = |c: char| c.is_ascii_alphanumeric() || c == '_' || c == '$';
+    text.match_indices(word)
+        .map(|(i, _)| i)
+        .find(|&i| !text[..i].ends_with(ident) && !text[i + word.len()..].starts_with(ident))
 }
 
 /// The global data lists of the controller's backup in `context` (each its name as given and

@@ -7,6 +7,7 @@
 //! the other module is never written.
 
 use super::{declarations, statements, without_comments, Data};
+use crate::program::cartesian::Frame;
 use crate::program::points::Foreign;
 use crate::program::{Context, JointTarget};
 use stiffid_core::{Error, Result};
@@ -34,7 +35,7 @@ pub(super) fn merge(mut data: Data, (text, code): (&str, &str), context: &Contex
                 message: format!("a module of the controller's backup: {e}"),
             })?;
         for (k, v) in found.frames {
-            data.frames.entry(k).or_insert(v);
+            data.frames.entry(k).or_insert_with(|| foreign(v, file));
         }
         for (k, v) in found.speeds {
             data.speeds.entry(k).or_insert(v);
@@ -51,6 +52,18 @@ pub(super) fn merge(mut data: Data, (text, code): (&str, &str), context: &Contex
         }
     }
     Ok(data)
+}
+
+/// A tool or work object `frame` of the backup's module `file`, as the module's motions read it:
+/// its line is none of the module's (0: the motion that names it stands for it, `lookup` of
+/// `cartesian`), and a frame refused names its own file and line.
+fn foreign(frame: Frame, file: &str) -> Frame {
+    let name = crate::program::file_name(file);
+    match frame {
+        Frame::Stated(_, f) => Frame::Stated(0, f),
+        Frame::Unknown(l, why) => Frame::Unknown(0, format!("{why} ({name}, line {l})")),
+        other => other,
+    }
 }
 
 /// The byte of `code` after the line that opens the module (`MODULE name`), 0 without one.

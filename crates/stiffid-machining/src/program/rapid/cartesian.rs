@@ -243,9 +243,14 @@ fn lookup(
     if key == flange {
         return Frame::World;
     }
-    frames.get(&key).cloned().unwrap_or_else(|| {
+    let mut frame = frames.get(&key).cloned().unwrap_or_else(|| {
         Frame::Unknown(line, format!("{kind} {name}: not declared with a value in this module or the backup's modules given; give the task's modules (--backup, Python backup=), or declare it in the module"))
-    })
+    });
+    // A frame of another module of the task (line 0, `backup::foreign`): the motion's line.
+    if let Frame::Stated(l @ 0, _) | Frame::Unknown(l @ 0, _) = &mut frame {
+        *l = line;
+    }
+    frame
 }
 
 /// Whether a declared type is one of the Cartesian data (`robtarget`, `tooldata`, `wobjdata`).

@@ -35,9 +35,26 @@ fn data_of_another_module_is_read_there_and_a_changed_target_declared_locally() 
     assert_eq!(p.targets[1].q_deg, [1.0, 2.0, 3.0, 4.0, 5.0, 6.0]);
     let c = p.targets[2].cartesian.as_deref().unwrap();
     assert!((c.position_mm - nalgebra::Vector3::new(100.0, 0.0, 50.0)).norm() < 1e-12);
-    // The tool and work object of the other module: its lines 4 and 5.
-    assert!(matches!(&c.tool, Frame::Stated(4, f) if (f.translation.z - 0.25).abs() < 1e-12));
+    // The tool and work object of the other module, named by the motion that uses them (its
+    // line 5): a line of the other module would name another line of this one.
+    assert!(matches!(&c.tool, Frame::Stated(5, f) if (f.translation.z - 0.25).abs() < 1e-12));
     assert!(matches!(&c.frame, Frame::Stated(5, f) if (f.translation.x - 1.0).abs() < 1e-12));
+    // A tool of the other module refused: at the motion, naming the module and its line.
+    let stationary = data_module().replace("tSpindle := [TRUE", "tSpindle := [FALSE");
+    let held = vec![("TASK1/SYSMOD/CellData.sys".to_string(), stationary)];
+    let p = program::parse_in(
+        &text,
+        Dialect::Rapid,
+        &program::Context::default().with_backup(&held),
+    );
+    let tool = p.map(|p| p.targets[2].cartesian.as_deref().unwrap().tool.clone());
+    match tool {
+        Ok(Frame::Unknown(5, why)) => assert!(
+            why.contains("robhold FALSE") && why.contains("(CellData.sys, line 4)"),
+            "{why}"
+        ),
+        other => panic!("{other:?}"),
+    }
     // j1 compensated: declared again in the module, LOCAL instead of TASK, its comment kept;
     // home1 unchanged: not declared again.
     let joint = program::parse_in(
@@ -76,5 +93,6 @@ fn a_real_task_reads_its_tool_from_its_other_module() {
     let p = program::parse_in(&text, Dialect::Rapid, &context).unwrap();
     assert_eq!(p.targets.len(), alone.targets.len());
     let c = p.targets[1].cartesian.as_deref().unwrap();
-    assert!(matches!(&c.tool, Frame::Stated(2, _)), "{:?}", c.tool);
+    // CalibData.mod's line 2, named by the motion (line 48) that uses it.
+    assert!(matches!(&c.tool, Frame::Stated(48, _)), "{:?}", c.tool);
 }

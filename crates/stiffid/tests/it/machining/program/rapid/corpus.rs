@@ -23,10 +23,15 @@ struct Refusal {
 
 /// The modules read without a refusal: checked point by point in
 /// [`a_generated_path_is_read_point_by_point_as_the_file_states_it`].
-const READ: [&str; 2] = ["VInRoS_DP.mod", "Tutorial-Simple_Module1.mod"];
+const READ: [&str; 4] = [
+    "VInRoS_DP.mod",
+    "Tutorial-Simple_Module1.mod",
+    "SortingLine_IRB_1200_T_ROB2_Module1.mod",
+    "SortingLine_GoFa_Controller2_Module1.mod",
+];
 
 /// The modules refused as read (`program::parse`), without a setup.
-const REFUSED: [Refusal; 17] = [
+const REFUSED: [Refusal; 22] = [
     Refusal {
         file: "ROS_motion.mod",
         line: 66,
@@ -135,6 +140,36 @@ const REFUSED: [Refusal; 17] = [
             (74, "EGMRunJoint egm_id, EGM_STOP_HOLD"),
             (58, "WHILE TRUE DO"),
         ],
+    },
+    Refusal {
+        file: "SortingLine_GoFa_Controller1_Module1.mod",
+        line: 166,
+        says: &["Offs: x = '0 + offset_T_x' is not a number written in the call"],
+        holds: &[(166, "MoveJ Offs(Target_INIT_AP1,0 + offset_T_x")],
+    },
+    Refusal {
+        file: "SortingLine_IRB_1200_T_ROB1_CalibData.mod",
+        line: 1,
+        says: &["no motion instruction", "holds no routine"],
+        holds: &[(2, "PERS tooldata smc_gripper")],
+    },
+    Refusal {
+        file: "SortingLine_IRB_1200_T_ROB2_CalibData.mod",
+        line: 1,
+        says: &["no motion instruction", "holds no routine"],
+        holds: &[(2, "PERS tooldata Servo"), (3, "PERS tooldata VaccumOne")],
+    },
+    Refusal {
+        file: "SortingLine_GoFa_Controller1_CalibData.mod",
+        line: 1,
+        says: &["no motion instruction", "holds no routine"],
+        holds: &[(2, "PERS tooldata smc_gripper")],
+    },
+    Refusal {
+        file: "SortingLine_GoFa_Controller2_CalibData.mod",
+        line: 1,
+        says: &["no motion instruction", "holds no routine"],
+        holds: &[(2, "PERS tooldata Servo")],
     },
     Refusal {
         file: "Tutorial-Simple_CalibData.mod",
@@ -290,6 +325,14 @@ fn the_stored_modules_are_refused_naming_their_line_and_construct() {
         check(r, program::parse(&text(r.file), Dialect::Rapid).map(drop));
     }
     // Motions in several routines, each read where it is: main's, then Path_10's.
+    // The sorting line's second robot and second GoFa: every motion read (their tools are
+    // the task's other module's: `robots.rs` runs them with it).
+    for file in &READ[2..] {
+        assert!(
+            program::parse(&text(file), Dialect::Rapid).is_ok(),
+            "{file}"
+        );
+    }
     let p = program::parse(&text(READ[1]), Dialect::Rapid).unwrap();
     assert_eq!(p.targets.len(), 29);
     assert_eq!((p.targets[0].line, p.targets[1].line), (39, 48));

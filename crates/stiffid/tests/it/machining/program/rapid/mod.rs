@@ -5,5 +5,6 @@ mod corpus;
 mod flow;
 mod module;
 mod offsets;
+pub(crate) mod robots;
 pub(crate) mod stored;
 pub(crate) mod track;
