@@ -78,3 +78,5 @@ pub fn model(
 
 #[cfg(test)]
 mod reflections_tests;
+#[cfg(test)]
+mod spread_tests;

@@ -164,6 +164,11 @@ pub struct Fit {
     pub sd: Vec<Option<f64>>,
     /// The covariance of the fitted parameters (SI, `fitted` order).
     pub covariance: DMatrix<f64>,
+    /// The precision its prior rows add to the inverse of [`Fit::covariance`] (SI, `fitted`
+    /// order, the diagonal): `w^2 / sigma_t^2` of a parameter with the prior row weight `w`
+    /// ([`Priors`], [`GravityPrior`], the maps' ridge), 0 for one without; what the readings
+    /// determine is the rest of the inverse ([`crate::calibration::spread`]).
+    pub prior_precision: DVector<f64>,
     /// The residuals at the solution, 3 per reading, base frame, m.
     pub residuals: DVector<f64>,
     /// The effective number of fitted parameters: the trace of the hat matrix
@@ -555,6 +560,8 @@ impl Problem<'_> {
         let covariance = DMatrix::from_fn(n, n, |a, b| {
             unit[(a, b)] * self.scales[a] * self.scales[b] * noise2
         });
+        let prior_precision =
+            (self.priors.as_ref()).map_or_else(|| DVector::zeros(n), |w| w.map(|v| v * v / noise2));
         let mut sd = vec![None; self.model.parameters().len()];
         for (i, &c) in self.fitted.iter().enumerate() {
             sd[c] = Some(covariance[(i, i)].sqrt());
@@ -567,6 +574,7 @@ impl Problem<'_> {
             fitted: self.fitted.to_vec(),
             sd,
             covariance,
+            prior_precision,
             residuals,
             effective_parameters,
             rms,

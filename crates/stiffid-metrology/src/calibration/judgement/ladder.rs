@@ -21,8 +21,9 @@
 //! joint-space hull of the postures of the campaign and of the setup) exceeds that of the geometry
 //! with the same maps variant by more than the held-out figures resolve, the expected error being
 //! the rung's own held-out error (below: with maps, the error with its maps) and the RMS standard
-//! deviation of its gravity model's predictions over that region (`postures_sd`, where the readings
-//! leave the terms to their prior, at the noise of the fit without maps) in quadrature: bias and
+//! deviation of its gravity model's predictions over that region (`postures_sds`, where the readings
+//! leave the terms to their prior; with maps at the noise the maps leave, the fit without maps'
+//! scaled by the ratio of the two held-out errors: `crate::calibration::spread`) in quadrature: bias and
 //! variance; its square may exceed the geometry's by one standard error of the difference of their
 //! held-out mean squared errors (the paired per-posture differences), as the choice below allows: a
 //! difference the groups cannot resolve does not turn a model down. A gravity model that
@@ -50,7 +51,7 @@ use crate::calibration::error_model::Observation;
 use crate::calibration::fit::{stop_warning, Fit, Options};
 use crate::calibration::gravity::Gravity;
 use crate::calibration::maps::{Spec, FOLDS};
-use crate::calibration::spread::postures_sd;
+use crate::calibration::spread::postures_sds;
 use crate::calibration::{motions, ErrorModel, Estimate};
 use stiffid_core::common::choice::Choice;
 use stiffid_core::common::limits::JointBox;
@@ -133,7 +134,8 @@ pub struct Rung {
     /// extrapolates).
     pub skipped: Option<String>,
     /// The RMS standard deviation of its gravity model's predictions over the region where the
-    /// robot is used ([`Ladder::region`], `postures_sd`), m; `None` when not computed.
+    /// robot is used ([`Ladder::region`], `postures_sds`; with maps at the noise they leave), m;
+    /// `None` when not computed.
     pub spread: Option<f64>,
     /// Per held-out posture (the groups' in order), its sum of squared errors, m^2; empty when
     /// not scored.
@@ -282,20 +284,12 @@ pub fn climb(
     let order: Vec<(usize, bool)> = (variants.iter())
         .flat_map(|&v| (0..gravities.len()).map(move |g| (g, v)))
         .collect();
-    let like = obs.iter().find(|o| !o.table).unwrap_or(&obs[0]);
-    let spreads: Vec<Option<f64>> = (fits.iter())
-        .map(|f| {
-            (f.as_ref().ok())
-                .and_then(|(f, _)| postures_sd(&f.model, &f.fit, like, &region.postures).ok())
-        })
-        .collect();
     let mut rungs: Vec<Rung> = (order.iter())
-        .map(|&(g, v)| Rung {
-            spread: spreads[g],
-            ..rung(gravities[g], v, &fits[g])
-        })
+        .map(|&(g, v)| rung(gravities[g], v, &fits[g]))
         .collect();
     diverged(&mut rungs, &order);
+    let like = obs.iter().find(|o| !o.table).unwrap_or(&obs[0]);
+    spread(&mut rungs, &order, &fits, (like, region));
     if named.is_none() {
         extrapolating(&mut rungs, &order);
     }
@@ -351,6 +345,44 @@ fn named_chosen(rungs: &[Rung], gravity: Gravity) -> std::result::Result<usize, 
             .filter_map(|r| r.skipped.clone())
             .collect::<Vec<_>>()
             .join("; with maps: ")),
+    }
+}
+
+/// Sets each rung's spread over the `region` (`postures_sds` for a reading `like`) from its
+/// gravity model's fit of `fits` (`order` as [`extrapolating`]'s): a rung without maps at its fit's
+/// noise, a rung with maps at the noise its maps leave, the fit's scaled by the ratio of the
+/// rung's held-out RMS to its gravity model's without maps (at most 1; 1 where either is not
+/// scored): the fit without maps counts what the maps hold as noise, and with them the readings
+/// determine the terms as much better (`crate::calibration::spread`, *At another noise*).
+fn spread<A>(
+    rungs: &mut [Rung],
+    order: &[(usize, bool)],
+    fits: &[std::result::Result<(Fitted, A), String>],
+    (like, region): (&Observation, &Region),
+) {
+    let scale = |i: usize| -> f64 {
+        let (g, maps) = order[i];
+        let without = (maps)
+            .then(|| order.iter().position(|&o| o == (g, false)))
+            .flatten();
+        match (rungs[i].rms, without.and_then(|w| rungs[w].rms)) {
+            (Some(with), Some(without)) if without > 0.0 => (with / without).min(1.0),
+            _ => 1.0,
+        }
+    };
+    let scales: Vec<f64> = (0..order.len()).map(scale).collect();
+    for (g, fit) in fits.iter().enumerate() {
+        let Ok((f, _)) = fit else {
+            continue;
+        };
+        let mine: Vec<usize> = (0..order.len()).filter(|&i| order[i].0 == g).collect();
+        let wanted: Vec<f64> = mine.iter().map(|&i| scales[i]).collect();
+        let Ok(sds) = postures_sds(&f.model, &f.fit, like, &region.postures, &wanted) else {
+            continue;
+        };
+        for (&i, sd) in mine.iter().zip(sds) {
+            rungs[i].spread = Some(sd);
+        }
     }
 }
 
