@@ -90,6 +90,12 @@ pub trait Controller: Sync + 'static {
     /// The numbers that state a pose (position `p`, mm, and rotation `r`), in the order
     /// [`Controller::rotation`] reads them.
     fn pose_numbers(&self, p: &Vector3<f64>, r: &UnitQuaternion<f64>) -> Vec<f64>;
+    /// The text of a pose's `k`-th number (in [`Controller::pose_numbers`]' order) as the
+    /// language writes it; by default with [`super::DECIMALS`] decimals.
+    fn pose_text(&self, k: usize, value: f64) -> String {
+        let _ = k;
+        super::generate::v(value)
+    }
 
     /// [`Controller::read`] with what the setup says in `context` and the data file beside the
     /// program (KRL's `.dat`, `context.data`); by default, a language whose programs state
@@ -152,6 +158,8 @@ pub trait DynController: Sync {
     fn rotation(&self, numbers: &[f64]) -> UnitQuaternion<f64>;
     /// [`Controller::pose_numbers`].
     fn pose_numbers(&self, p: &Vector3<f64>, r: &UnitQuaternion<f64>) -> Vec<f64>;
+    /// [`Controller::pose_text`].
+    fn pose_text(&self, k: usize, value: f64) -> String;
     /// The configuration data of the posture `arm` as the controller writes them.
     fn flags(&self, arm: &Configuration) -> Flags;
     /// The configuration data's name in the language, for messages (`S and T`).
@@ -252,6 +260,9 @@ impl<C: Controller> DynController for C {
     }
     fn pose_numbers(&self, p: &Vector3<f64>, r: &UnitQuaternion<f64>) -> Vec<f64> {
         Controller::pose_numbers(self, p, r)
+    }
+    fn pose_text(&self, k: usize, value: f64) -> String {
+        Controller::pose_text(self, k, value)
     }
     fn flags(&self, arm: &Configuration) -> Flags {
         Flags::new(C::Flags::of(arm))

@@ -115,6 +115,9 @@ impl JointProgram {
                     at(t.line, "a Cartesian target not resolved with the setup's controller (program::cartesian::resolve)".into())
                 })?;
                 let q = nalgebra::Vector6::from(q_deg[i]).map(f64::to_radians);
+                if let Some(why) = writer.stale_flags(self.dialect, c, &q) {
+                    return Err(at(t.line, why));
+                }
                 // The pose moves with the arm and with its track.
                 let changed = now != read;
                 for (span, text) in writer.texts(self.dialect, c, (&q, &external[i])) {

@@ -55,7 +55,7 @@ pub use resolve::{check_placed, resolve, Controller};
 pub(crate) use resolve::{is_cartesian, resolve_placed};
 pub(crate) use same::{same, SAME_M};
 
-use super::generate::{number, v, zyx_deg};
+use super::generate::{number, zyx_deg};
 use super::Dialect;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use std::ops::Range;
@@ -192,7 +192,8 @@ impl Cartesian {
     }
 
     /// The texts that state `pose` (in the target's frame, m) with the configuration `arm`, each
-    /// with its span: the pose's numbers with [`super::DECIMALS`] decimals, the configuration
+    /// with its span: the pose's numbers as the language writes them (by default with
+    /// [`super::DECIMALS`] decimals), the configuration
     /// data where they differ from the ones read.
     pub(crate) fn texts(
         &self,
@@ -201,10 +202,11 @@ impl Cartesian {
         arm: &Configuration,
     ) -> Vec<(Range<usize>, String)> {
         let p = pose.translation.vector * 1e3;
-        let values = dialect.controller().pose_numbers(&p, &pose.rotation);
-        let mut out: Vec<(Range<usize>, String)> = (self.spans.iter().cloned())
-            .zip(values.iter().map(|x| v(*x)))
-            .collect();
+        let controller = dialect.controller();
+        let values = controller.pose_numbers(&p, &pose.rotation);
+        let texts = (values.iter().enumerate()).map(|(k, x)| controller.pose_text(k, *x));
+        let mut out: Vec<(Range<usize>, String)> =
+            (self.spans.iter().cloned()).zip(texts).collect();
         let now = Flags::of(dialect, arm);
         if self.flags.as_ref() != Some(&now) {
             out.extend(

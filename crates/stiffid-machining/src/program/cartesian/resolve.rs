@@ -103,6 +103,27 @@ impl Writer {
             &Configuration::of(&self.robot, q),
         )
     }
+
+    /// Why Cartesian target `c` cannot be written at axis angles `q` (rad): the posture's
+    /// configuration data are not the ones read, and the program states them where the target
+    /// cannot change them alone (INFORM's `///RCONF`, a line every position after it shares);
+    /// `None` when it can be written.
+    pub(crate) fn stale_flags(
+        &self,
+        dialect: Dialect,
+        c: &Cartesian,
+        q: &Vector6<f64>,
+    ) -> Option<String> {
+        let read = c.flags.as_ref().filter(|_| c.flag_spans.is_empty())?;
+        let now = Flags::of(dialect, &Configuration::of(&self.robot, q));
+        (now != *read).then(|| {
+            format!(
+                "the compensated posture's configuration data are {}, the position's {}, which a line of the program states for every position after it: move the target away from the configuration's boundary, or give the position its own configuration line",
+                now.text(),
+                read.text()
+            )
+        })
+    }
 }
 
 /// Whether a program has Cartesian targets.

@@ -23,13 +23,20 @@
 //!   is written as the nearest whole pulse (the round trip is exact to half a pulse).
 //! - `///POSTYPE ANGLE` then `///ANGLE` (base and station axes): deg for a rotary axis, mm for a
 //!   linear one, written with 9 decimals.
+//! - `///POSTYPE BASE`, `ROBOT` or `USER` then `///RECTAN` (robot positions): Cartesian targets
+//!   ([`rectan`]) in base coordinates, robot coordinates (the same without a base axis) or the
+//!   user frame of `///USER n` (the backup's `UFRAME.CND` or the setup's `[controller] bases`),
+//!   of the tool file's point, in the manipulator type of `///RCONF` ([`rconf`]); written back
+//!   as the pose the controller must be told, mm with 3 decimals and deg with 4, the
+//!   `///RCONF` line as read.
 //!
 //! ## Motions
 //! `MOVJ` (joint), `MOVL` (linear) and `MOVC` (circular: the controller moves on the circle
 //! through each three consecutive `MOVC` points) are targets in the job's order; a compensated
 //! `MOVC` point is written back as a `MOVC` point, so the controller draws its circle through
 //! the compensated points (each point compensated; between them the circle of the compensated
-//! points, not the compensation of the arc).
+//! points, not the compensation of the arc); a `MOVC` point between two others is a circle's
+//! via point, fed along the circle's tangent.
 //!
 //! ## The tool file
 //! A position's tool file is the `///TOOL n` before it in `//POS`, or a motion's `TOOL#(n)`
@@ -49,9 +56,9 @@
 //! stiffid; a position only such a line names is written back as found).
 //!
 //! ## Refused, naming the line
-//! - a motion to a Cartesian position (`///RECTAN` under `///POSTYPE BASE`, `ROBOT`, `USER`,
-//!   `TOOL`, `MTOOL`): its axis angles depend on the controller's configuration (`///RCONF`),
-//!   kinematics and frames; a base or station position in Cartesian form too;
+//! - a Cartesian position in tool coordinates (`///POSTYPE TOOL`, `MTOOL`), in robot
+//!   coordinates on a base axis, in a user frame or with a tool file neither the backup nor the
+//!   setup gives; a base or station position in Cartesian form;
 //! - a motion to a position variable (`P000`, `LP000`, `BP`, `EX`): it holds its value on the
 //!   controller, not in the job;
 //! - `MOVS` (spline), `IMOV` (incremental from where the robot is), `SMOVL` and `SMOVC` (a
@@ -80,11 +87,13 @@ mod inst;
 mod pos;
 mod process;
 mod pulses;
+mod rconf;
+mod rectan;
 pub(crate) mod speed;
 mod tool;
 mod toolcnd;
+mod uframe;
 
-use super::cartesian::flags::Posture;
 use super::controller::{BoundComment, Controller, Generator};
 use super::descriptor::{AxisNames, Descriptor, FileName, NameRules};
 use super::{at, six, Context, Read};
@@ -145,9 +154,11 @@ fn read_job(text: &str, context: &Context, chain: &mut Vec<String>) -> Result<Re
         pulses[6 + k] = Some(per);
     }
     tool::check(&inst.motions, positions, context)?;
-    let out = (inst.motions.iter())
-        .map(|m| target(m, positions, &pulses, (nb, ne)))
+    let held = rectan::Held::of(context)?;
+    let mut out = (inst.motions.iter())
+        .map(|m| target(m, positions, (&pulses, &held), (nb, ne)))
         .collect::<Result<Vec<_>>>()?;
+    circles(&inst.motions, &mut out);
     let axes = (1..=nb).map(|k| format!("BC{k}"));
     let axes = axes.chain((1..=ne).map(|k| format!("EC{k}"))).collect();
     let read = Read {
@@ -160,6 +171,17 @@ fn read_job(text: &str, context: &Context, chain: &mut Vec<String>) -> Result<Re
         notes: Vec::new(),
     };
     called::read(read, (text, &moving), context, chain)
+}
+
+/// Marks the via points of the job's circles: the controller moves on the circle through each
+/// three consecutive `MOVC` points (INFORM manual, `MOVC`), so each `MOVC` target between two
+/// others is a circle's via point, fed along its tangent ([`crate::program::JointTarget`]'s
+/// `via`, as KRL's `CIRC`, RAPID's `MoveC` and LS's `C`).
+fn circles(motions: &[inst::Motion], targets: &mut [super::JointTarget]) {
+    let circular = |k: usize| motions.get(k).is_some_and(|m| m.word == "MOVC");
+    for (k, t) in targets.iter_mut().enumerate().skip(1) {
+        t.via = circular(k - 1) && circular(k) && circular(k + 1);
+    }
 }
 
 /// Refuses a control character (a NUL, ..) anywhere in the job, naming its line: no
@@ -221,11 +243,12 @@ impl inst::Motion {
 }
 
 /// The target of motion `m`: its robot position in pulses converted by `pulses` (per value, the
-/// six axes then the `nb` base and `ne` station axes), its base and station positions.
+/// six axes then the `nb` base and `ne` station axes), or in Cartesian form ([`rectan`], the
+/// frames the backup gives in `held`), its base and station positions.
 fn target(
     m: &inst::Motion,
     positions: &HashMap<(Kind, u64), Position>,
-    pulses: &[Option<f64>],
+    (pulses, held): (&[Option<f64>], &rectan::Held),
     (nb, ne): (usize, usize),
 ) -> Result<super::JointTarget> {
     let get = |kind: Kind, index: u64| {
@@ -238,9 +261,26 @@ fn target(
         })
     };
     let robot = get(Kind::Robot, m.robot)?;
-    if robot.form == Form::Rectan {
-        return Err(at(m.line, format!("{} C{:05}: a Cartesian position (line {}, ///POSTYPE {}), which the controller turns into axis angles with its configuration (///RCONF), kinematics and frames; stiffid compensates positions in pulses: teach or post the job in pulses (///POSTYPE PULSE)", m.word, m.robot, robot.line, robot.frame)));
-    }
+    let external = external(m, &get, pulses, (nb, ne))?;
+    let mut target = match robot.form {
+        Form::Rectan => {
+            let c = rectan::target(m, robot, held)?;
+            super::JointTarget::cartesian(m.line, c).with_external(external)
+        }
+        _ => six(m.line, robot_values(m, robot, pulses)?, "C")?.with_external(external),
+    };
+    target.origin = robot.line;
+    target.speed = m.speed.clone();
+    Ok(target)
+}
+
+/// The six axis values of the robot position `robot` of motion `m` in pulses (or degrees),
+/// converted by `pulses`.
+fn robot_values(
+    m: &inst::Motion,
+    robot: &Position,
+    pulses: &[Option<f64>],
+) -> Result<super::Found> {
     if robot.values.len() != 6 {
         let n = robot.values.len();
         return Err(at(
@@ -252,7 +292,21 @@ fn target(
     for (k, (v, span)) in robot.values.iter().enumerate() {
         found[k] = Some((v / pulses[k].unwrap_or(1.0), span.clone()));
     }
-    let mut external: Vec<Option<(f64, Range<usize>)>> = vec![None; nb + ne];
+    Ok(found)
+}
+
+/// A value read and its span, if the position gives it.
+type Value = Option<(f64, Range<usize>)>;
+
+/// A motion's external values: its base and station positions' (`nb` and `ne` axes, in pulses
+/// converted by `pulses` or `///ANGLE`), each with its span.
+fn external<'p>(
+    m: &inst::Motion,
+    get: &dyn Fn(Kind, u64) -> Result<&'p Position>,
+    pulses: &[Option<f64>],
+    (nb, ne): (usize, usize),
+) -> Result<Vec<Value>> {
+    let mut external: Vec<Value> = vec![None; nb + ne];
     for (kind, index, offset) in [(Kind::Base, m.base, 0), (Kind::Station, m.station, nb)] {
         let Some(index) = index else { continue };
         let p = get(kind, index)?;
@@ -271,10 +325,7 @@ fn target(
             external[offset + k] = Some((v, span.clone()));
         }
     }
-    let mut target = six(m.line, found, "C")?.with_external(external);
-    target.origin = robot.line;
-    target.speed = m.speed.clone();
-    Ok(target)
+    Ok(external)
 }
 
 /// Yaskawa INFORM (module docs).
@@ -282,17 +333,16 @@ fn target(
 pub(crate) struct Inform;
 
 impl Controller for Inform {
-    /// No Cartesian target is read from a job: the posture's shoulder, elbow and wrist.
-    type Flags = Posture;
+    /// `///RCONF` ([`rconf`]).
+    type Flags = rconf::Rconf;
     const LANGUAGE: &'static Descriptor = &Descriptor {
         key: "inform",
         title: "Yaskawa INFORM",
         extensions: &["jbi"],
         data_files: &[],
-        motions: "MOVJ, MOVL or MOVC to a C position of //POS in pulses",
+        motions: "MOVJ, MOVL or MOVC to a C position of //POS",
         joint_forms: "pulse positions",
-        // Its rectangular positions are not read.
-        part_forms: None,
+        part_forms: Some("positions in user coordinates (///POSTYPE USER) of the user frame that is the part frame"),
         external_axes: AxisNames::Numbered("external axis "),
         unused_axis: "",
         zero_is_no_axis: false,
@@ -315,17 +365,30 @@ impl Controller for Inform {
     fn read_in(&self, text: &str, context: &Context) -> Result<Read> {
         targets(text, context)
     }
-    /// No Cartesian target is read from a job: KUKA's A, B, C order, never used.
+    /// `X,Y,Z,Rx,Ry,Rz`: `Rz Ry Rx` ([`rectan`]).
     fn rotation(&self, n: &[f64]) -> UnitQuaternion<f64> {
-        UnitQuaternion::from_euler_angles(n[5].to_radians(), n[4].to_radians(), n[3].to_radians())
+        UnitQuaternion::from_euler_angles(n[3].to_radians(), n[4].to_radians(), n[5].to_radians())
     }
-    /// No Cartesian target is written to a job: KUKA's order, never used.
     fn pose_numbers(&self, p: &Vector3<f64>, r: &UnitQuaternion<f64>) -> Vec<f64> {
         let [a, b, c] = super::generate::zyx_deg(r);
-        vec![p.x, p.y, p.z, a, b, c]
+        vec![p.x, p.y, p.z, c, b, a]
+    }
+    /// As the controller writes a position: mm with 3 decimals, deg with 4 (its resolution).
+    fn pose_text(&self, k: usize, value: f64) -> String {
+        let s = match k < 3 {
+            true => format!("{value:.3}"),
+            false => format!("{value:.4}"),
+        };
+        match s.strip_prefix('-') {
+            Some(rest) if rest.chars().all(|c| c == '0' || c == '.') => rest.to_string(),
+            _ => s,
+        }
     }
     /// Jobs in pulses ([`generate`]).
     fn generator(&self) -> Option<&'static dyn Generator> {
         Some(&Inform)
     }
 }
+
+#[cfg(test)]
+mod circles_tests;

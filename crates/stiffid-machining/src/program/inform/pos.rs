@@ -1,6 +1,7 @@
 //! The `//POS` section of a job: its teaching positions, the form and tool file each was taught
 //! in, and `///NPOS` (module docs of [`super`]).
 
+use super::rconf::Rconf;
 use crate::program::{at, number_at};
 use std::collections::HashMap;
 use std::ops::Range;
@@ -34,13 +35,17 @@ impl Kind {
 }
 
 /// A teaching position: its line, form, values with their spans, the tool file it was taught
-/// with (`///TOOL n` before it, with its line) and, in Cartesian form, the frame it names.
+/// with (`///TOOL n` before it, with its line) and, in Cartesian form, the frame it names
+/// (`///POSTYPE`), its user frame (`///USER n`, with its line) and its manipulator type
+/// (`///RCONF`, with its line).
 pub(super) struct Position {
     pub line: u64,
     pub form: Form,
     pub values: Vec<(f64, Range<usize>)>,
     pub tool: Option<(u64, u32)>,
     pub frame: String,
+    pub user: Option<(u64, u32)>,
+    pub rconf: Option<(u64, Rconf)>,
 }
 
 /// The positions by kind and number, and `///NPOS`'s line and counts.
@@ -49,11 +54,14 @@ pub(super) struct Section {
     pub npos: Option<(u64, Vec<usize>)>,
 }
 
-/// The state of the `//POS` lines read so far: the form, tool file and frame in force.
+/// The state of the `//POS` lines read so far: the form, tool file, frame, user frame and
+/// manipulator type in force.
 struct Block {
     form: Form,
     tool: Option<(u64, u32)>,
     frame: String,
+    user: Option<(u64, u32)>,
+    rconf: Option<(u64, Rconf)>,
 }
 
 /// The `//POS` section of `text`. A block with no `///POSTYPE` and form line holds pulses, the
@@ -68,6 +76,8 @@ pub(super) fn section(text: &str) -> Result<Section> {
         form: Form::Pulse,
         tool: None,
         frame: "PULSE".into(),
+        user: None,
+        rconf: None,
     };
     for (line, start, l) in crate::program::lines(text) {
         let t = l.trim();
@@ -100,10 +110,17 @@ fn pseudo_line(line: u64, pseudo: &str, block: &mut Block, out: &mut Section) ->
         "ANGLE" => block.form = Form::Angle,
         "RECTAN" => block.form = Form::Rectan,
         "POSTYPE" => block.frame = rest.join(" "),
-        "TOOL" => {
+        "TOOL" | "USER" => {
             let n = rest.first().and_then(|n| n.parse::<u32>().ok());
-            let n = n.ok_or_else(|| at(line, "///TOOL: expected a tool file number".into()))?;
-            block.tool = Some((line, n));
+            let n = n.ok_or_else(|| at(line, format!("///{word}: expected a number")))?;
+            match word {
+                "TOOL" => block.tool = Some((line, n)),
+                _ => block.user = Some((line, n)),
+            }
+        }
+        "RCONF" => {
+            let r = Rconf::parse(&rest.join(" ")).map_err(|why| at(line, why))?;
+            block.rconf = Some((line, r));
         }
         "NPOS" => {
             let counts = pseudo[4..]
@@ -165,6 +182,8 @@ fn position(
         values,
         tool: block.tool,
         frame: block.frame.clone(),
+        user: block.user,
+        rconf: block.rconf,
     };
     if let Some(first) = out.positions.insert((kind, index), position) {
         let first = first.line;

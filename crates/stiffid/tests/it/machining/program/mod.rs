@@ -10,6 +10,7 @@ mod generate;
 mod headers;
 mod inform;
 mod inform_jobs;
+mod inform_rectan;
 mod joint_targets;
 mod krl;
 mod numbered;
