@@ -17,14 +17,15 @@
 //! modes move with the posture along the path; with the operation's spindle speed it is set
 //! against the tooth-passing frequency `f_t = N n` and its harmonics `k f_t`: the nearest
 //! harmonic `k = max(1, round(f_1 / f_t))` and the relative distance `|f_1 - k f_t| / (k f_t)`,
-//! within [`CLOSE`] a chatter risk (Altintas 2012, ch. 3). Points of no operation, rapid moves
+//! within `CLOSE` (10%) a chatter risk (Altintas 2012, ch. 3). Points of no operation, rapid moves
 //! and the non-exit drilling points get nothing, so the modes are computed only where needed.
 //!
 //! Every posture is the point's nominal one (`q`: where the loaded robot holds the tool).
 
-use crate::compensate::{Compensated, Compliance};
+use crate::compensate::{Compensated, Compliance, PathPoint};
 use crate::process::{Kind, Process};
 use nalgebra::{Isometry3, Vector3, Vector6};
+use stiffid_core::common::warning::{Warning, WarningKind};
 use stiffid_core::observation::dynamics::{self, Surge};
 use stiffid_core::robot::dynamics::{modes, MassModel};
 use stiffid_core::robot::kinematics::Coordinates;
@@ -32,7 +33,7 @@ use stiffid_core::setup::Arm;
 
 /// The relative distance of the first frequency to a tooth-passing harmonic below which a
 /// milling point is a chatter risk (10%).
-pub const CLOSE: f64 = 0.1;
+pub(crate) const CLOSE: f64 = 0.1;
 
 /// The dynamics of one path point; all `None` for a point that is neither a drilling exit nor
 /// a milling point, or without a mass model.
@@ -134,6 +135,107 @@ pub fn program(
             }
         })
         .collect()
+}
+
+/// What one operation of a program meets along its points ([`per_operation`]), SI.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OperationSummary {
+    /// The operation's index in the process.
+    pub index: usize,
+    /// Whether it drills (else it mills).
+    pub drilling: bool,
+    /// Drilling: its exits with a surge; milling: its points.
+    pub points: usize,
+    /// Drilling: the largest breakthrough surge over its exits, with that exit's line.
+    pub max_surge: Option<(u64, Surge)>,
+    /// Drilling with the free tool axis: the largest surge over its exits at the path's own
+    /// rotation about tool z, m/s.
+    pub max_surge_before: Option<f64>,
+    /// Milling: the lowest and highest first natural frequency over its points, Hz.
+    pub first_frequency: Option<[f64; 2]>,
+    /// Milling with the operation's spindle speed: the tooth-passing frequency, Hz.
+    pub tooth_passing: Option<f64>,
+    /// Milling: the point whose first frequency is nearest a harmonic of the tooth-passing
+    /// frequency: its line and that harmonic.
+    pub nearest_harmonic: Option<(u64, Harmonic)>,
+}
+
+/// The dynamics of every operation of `process` that cuts a point of `points` (`operations`:
+/// each point's operation, `dynamics`: each point's, [`program`]), in process order, and a
+/// [`WarningKind::Chatter`] warning for each milling operation with a point within `CLOSE` (10%) of
+/// a harmonic of its tooth-passing frequency.
+pub fn per_operation(
+    process: &Process,
+    points: &[PathPoint],
+    operations: &[Option<usize>],
+    dynamics: &[Dynamics],
+) -> (Vec<OperationSummary>, Vec<Warning>) {
+    let mut out = Vec::new();
+    let mut warnings = Vec::new();
+    for (index, op) in process.operations.iter().enumerate() {
+        let mine = || {
+            (points.iter().zip(operations).zip(dynamics))
+                .filter(move |((_, o), _)| **o == Some(index))
+                .map(|((p, _), d)| (p.line, d))
+        };
+        let mut summary = OperationSummary {
+            index,
+            drilling: false,
+            points: 0,
+            max_surge: None,
+            max_surge_before: None,
+            first_frequency: None,
+            tooth_passing: None,
+            nearest_harmonic: None,
+        };
+        match &op.kind {
+            Kind::Drilling(_) => {
+                summary.drilling = true;
+                let surges: Vec<_> = mine()
+                    .filter_map(|(l, d)| d.surge.map(|s| (l, s)))
+                    .collect();
+                summary.points = surges.len();
+                summary.max_surge =
+                    (surges.into_iter()).max_by(|a, b| a.1.speed.total_cmp(&b.1.speed));
+                summary.max_surge_before = mine()
+                    .filter_map(|(_, d)| d.surge_before.map(|s| s.speed))
+                    .reduce(f64::max);
+            }
+            Kind::Milling(m) => {
+                summary.points = mine().count();
+                summary.tooth_passing = m.tooth_passing_frequency();
+                let firsts: Vec<f64> = mine().filter_map(|(_, d)| d.first_frequency).collect();
+                summary.first_frequency = (!firsts.is_empty()).then(|| {
+                    let low = firsts.iter().copied().fold(f64::INFINITY, f64::min);
+                    let high = firsts.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                    [low, high]
+                });
+                let nearest = mine()
+                    .filter_map(|(l, d)| d.harmonic.zip(d.first_frequency).map(|(h, f)| (l, h, f)))
+                    .min_by(|a, b| a.1.distance.total_cmp(&b.1.distance));
+                if let Some((line, h, f)) = nearest {
+                    summary.nearest_harmonic = Some((line, h));
+                    if h.distance <= CLOSE {
+                        let t = summary.tooth_passing.unwrap_or(f64::NAN);
+                        warnings.push(Warning::new(
+                            WarningKind::Chatter,
+                            format!(
+                                "milling operation '{}': at line {line} the first natural frequency {f:.1} Hz is within {:.1}% of {} x the tooth-passing frequency {t:.1} Hz ({} flutes): chatter is likely there; change the spindle speed or the posture",
+                                op.name,
+                                h.distance * 100.0,
+                                h.order,
+                                m.flutes
+                            ),
+                        ));
+                    }
+                }
+            }
+        }
+        if summary.points > 0 {
+            out.push(summary);
+        }
+    }
+    (out, warnings)
 }
 
 /// The thrust `-F z_tool` (N, base frame) released at each drilling exit of a path (module

@@ -90,14 +90,14 @@ pub struct Milling {
     /// The material's cutting and edge coefficients.
     pub coefficients: Coefficients,
     /// The spindle speed, rev/s, when the process gives it (`cut.spindle_rpm`): the tooth-passing
-    /// frequency is `N` times it ([`Milling::tooth_passing_frequency`]).
+    /// frequency is `N` times it (`Milling::tooth_passing_frequency`).
     pub spindle_speed: Option<f64>,
 }
 
 impl Milling {
     /// The tooth-passing frequency `N n` (Hz, `n` the spindle speed in rev/s) that excites the
     /// structure (Altintas 2012, ch. 3.2), when the spindle speed is given.
-    pub fn tooth_passing_frequency(&self) -> Option<f64> {
+    pub(crate) fn tooth_passing_frequency(&self) -> Option<f64> {
         self.spindle_speed.map(|n| n * self.flutes as f64)
     }
 

@@ -51,7 +51,7 @@ mod solve;
 
 pub use flags::Flags;
 pub(crate) use resolve::Writer;
-pub use resolve::{check_placed, resolve, Controller};
+pub use resolve::{check_part, resolve, Controller};
 pub(crate) use resolve::{is_cartesian, resolve_placed};
 pub(crate) use same::{same, SAME_M};
 

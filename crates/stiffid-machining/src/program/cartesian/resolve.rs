@@ -176,6 +176,17 @@ pub(crate) fn resolve_placed(
     resolve_in(program, controller, Some(base_from_part), (start, options))
 }
 
+/// Refuses, before any placement is tried, a program whose targets cannot move with the part
+/// on `setup`'s controller (`check_placed`: every target a Cartesian one, for the setup's tool,
+/// in the part frame).
+///
+/// # Errors
+/// Those of [`Controller::of`]; [`Error::Program`](stiffid_core::Error::Program) naming the line
+/// of the first target (or of the frame it states) that fails.
+pub fn check_part(program: &JointProgram, setup: &Setup) -> Result<()> {
+    check_placed(program, &Controller::of(setup)?)
+}
+
 /// The checks of `resolve_placed` that hold wherever the part is placed: every target a
 /// Cartesian one, for the setup's tool, in the part frame. A placement search runs them once,
 /// before it tries any placement.
@@ -184,7 +195,7 @@ pub(crate) fn resolve_placed(
 /// [`Error::Program`](stiffid_core::Error::Program) naming the line of the first target (or of the frame it states) that
 /// fails: a joint target, a tool that is not the setup's or that the program leaves to the
 /// controller, a frame that is not the part's (as `resolve_placed`).
-pub fn check_placed(program: &JointProgram, controller: &Controller) -> Result<()> {
+pub(crate) fn check_placed(program: &JointProgram, controller: &Controller) -> Result<()> {
     let part = Isometry3::identity();
     for t in &program.targets {
         let Some(c) = t.cartesian.as_deref() else {

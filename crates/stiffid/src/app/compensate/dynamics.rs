@@ -1,14 +1,14 @@
 //! The surge and chatter of a compensated program per operation ([`stiffid_machining::dynamics`]
 //! per point): the largest drilling surge and its line, the range of the milling points' first
-//! natural frequency, and a [`WarningKind::Chatter`] warning for an operation with a point
-//! within [`CLOSE`] of a tooth-passing harmonic.
+//! natural frequency, and a chatter warning for an operation with a point near a tooth-passing
+//! harmonic ([`stiffid_machining::dynamics::per_operation`]).
 
 use crate::app::document::finite;
 use serde::Serialize;
-use stiffid_core::common::warning::{Warning, WarningKind};
+use stiffid_core::common::warning::Warning;
 use stiffid_machining::compensate::PathPoint;
-use stiffid_machining::dynamics::{Dynamics, CLOSE};
-use stiffid_machining::process::{Kind, Process};
+use stiffid_machining::dynamics::{per_operation, Dynamics};
+use stiffid_machining::process::Process;
 
 /// The dynamics of one operation of a program. Units in the key names.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -46,93 +46,33 @@ pub struct OperationDynamics {
 }
 
 /// The dynamics of every operation of `process` that cuts a point, in process order, and a
-/// chatter warning for each milling operation with a point within [`CLOSE`] of a harmonic.
+/// chatter warning for each milling operation with a point near a harmonic
+/// ([`stiffid_machining::dynamics::per_operation`]).
 pub(crate) fn operations(
     process: &Process,
     points: &[PathPoint],
     operations: &[Option<usize>],
     dynamics: &[Dynamics],
 ) -> (Vec<OperationDynamics>, Vec<Warning>) {
-    let mut out = Vec::new();
-    let mut warnings = Vec::new();
-    for (index, op) in process.operations.iter().enumerate() {
-        let mine = || {
-            points
-                .iter()
-                .zip(operations)
-                .zip(dynamics)
-                .filter(move |((_, o), _)| **o == Some(index))
-                .map(|((p, _), d)| (p.line, d))
-        };
-        let mut doc = OperationDynamics {
-            operation: op.name.clone(),
-            kind: "milling",
-            points: 0,
-            max_surge_mm_s: None,
-            max_surge_std_mm_s: None,
-            max_surge_effective_mass_kg: None,
-            max_surge_line: None,
-            max_surge_before_mm_s: None,
-            first_frequency_hz: None,
-            tooth_passing_hz: None,
-            nearest_harmonic_pct: None,
-            nearest_harmonic_order: None,
-            nearest_harmonic_line: None,
-        };
-        match &op.kind {
-            Kind::Drilling(_) => {
-                doc.kind = "drilling";
-                let surges: Vec<_> = mine()
-                    .filter_map(|(l, d)| d.surge.map(|s| (l, s)))
-                    .collect();
-                doc.points = surges.len();
-                if let Some((line, s)) =
-                    surges.iter().max_by(|a, b| a.1.speed.total_cmp(&b.1.speed))
-                {
-                    doc.max_surge_mm_s = Some(s.speed * 1e3);
-                    doc.max_surge_std_mm_s = s.speed_std.map(|v| v * 1e3);
-                    doc.max_surge_effective_mass_kg = Some(s.mass);
-                    doc.max_surge_line = Some(*line);
-                }
-                doc.max_surge_before_mm_s = mine()
-                    .filter_map(|(_, d)| d.surge_before.map(|s| s.speed * 1e3))
-                    .reduce(f64::max);
-            }
-            Kind::Milling(m) => {
-                doc.points = mine().count();
-                doc.tooth_passing_hz = m.tooth_passing_frequency();
-                let firsts: Vec<f64> = mine().filter_map(|(_, d)| d.first_frequency).collect();
-                doc.first_frequency_hz = (!firsts.is_empty()).then(|| {
-                    let low = firsts.iter().copied().fold(f64::INFINITY, f64::min);
-                    let high = firsts.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-                    [low, high]
-                });
-                let nearest = mine()
-                    .filter_map(|(l, d)| d.harmonic.zip(d.first_frequency).map(|(h, f)| (l, h, f)))
-                    .min_by(|a, b| a.1.distance.total_cmp(&b.1.distance));
-                if let Some((line, h, f)) = nearest {
-                    doc.nearest_harmonic_pct = finite(h.distance * 100.0);
-                    doc.nearest_harmonic_order = Some(h.order);
-                    doc.nearest_harmonic_line = Some(line);
-                    if h.distance <= CLOSE {
-                        let t = doc.tooth_passing_hz.unwrap_or(f64::NAN);
-                        warnings.push(Warning::new(
-                            WarningKind::Chatter,
-                            format!(
-                                "milling operation '{}': at line {line} the first natural frequency {f:.1} Hz is within {:.1}% of {} x the tooth-passing frequency {t:.1} Hz ({} flutes): chatter is likely there; change the spindle speed or the posture",
-                                op.name,
-                                h.distance * 100.0,
-                                h.order,
-                                m.flutes
-                            ),
-                        ));
-                    }
-                }
-            }
-        }
-        if doc.points > 0 {
-            out.push(doc);
-        }
-    }
-    (out, warnings)
+    let (summaries, warnings) = per_operation(process, points, operations, dynamics);
+    let documents = (summaries.into_iter())
+        .map(|s| OperationDynamics {
+            operation: process.operations[s.index].name.clone(),
+            kind: if s.drilling { "drilling" } else { "milling" },
+            points: s.points,
+            max_surge_mm_s: s.max_surge.map(|(_, m)| m.speed * 1e3),
+            max_surge_std_mm_s: s.max_surge.and_then(|(_, m)| m.speed_std.map(|v| v * 1e3)),
+            max_surge_effective_mass_kg: s.max_surge.map(|(_, m)| m.mass),
+            max_surge_line: s.max_surge.map(|(line, _)| line),
+            max_surge_before_mm_s: s.max_surge_before.map(|v| v * 1e3),
+            first_frequency_hz: s.first_frequency,
+            tooth_passing_hz: s.tooth_passing,
+            nearest_harmonic_pct: s
+                .nearest_harmonic
+                .and_then(|(_, h)| finite(h.distance * 100.0)),
+            nearest_harmonic_order: s.nearest_harmonic.map(|(_, h)| h.order),
+            nearest_harmonic_line: s.nearest_harmonic.map(|(line, _)| line),
+        })
+        .collect();
+    (documents, warnings)
 }

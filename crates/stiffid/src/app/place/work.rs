@@ -114,14 +114,14 @@ fn check_program(setup: &Setup, program: &Program) -> Result<()> {
     };
     match p.targets.iter().find(|t| t.cartesian.is_none()) {
         Some(t) => Err(Error::InvalidField { field: "program".into(), message: format!("a {} program's targets are joint targets ({}, line {} the first), and axis angles do not move with the part: give its targets as Cartesian ones in the part frame ({}), or the program as G-code, or its TCP poses in the part frame as a path file", program.language().help(), joint_form(p.dialect), t.line, part_form(p.dialect)) }),
-        None => cartesian::check_placed(p, &cartesian::Controller::of(setup)?),
+        None => cartesian::check_part(p, setup),
     }
 }
 
 impl Work<'_> {
     /// Refuses what the part cannot carry: a robot program with joint targets (axis angles stay
     /// where they are) or whose Cartesian targets are not for the setup's tool or not in the
-    /// part frame ([`stiffid_machining::program::cartesian::check_placed`]), a path file's
+    /// part frame ([`stiffid_machining::program::cartesian::check_part`]), a path file's
     /// axis-angle rows, a path file on a robot with external axes.
     ///
     /// # Errors
