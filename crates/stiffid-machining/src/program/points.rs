@@ -70,7 +70,14 @@ pub(super) fn split(program: &JointProgram, edits: &mut Vec<Edit>) -> Result<()>
         let foreign = point.foreign.as_deref();
         let first = usize::from(foreign.is_none());
         let ours = |e: &Edit| list.iter().any(|v| v.0 == Some(e.1));
-        if foreign.is_some() && !edits.iter().any(|e| ours(e) && e.3) {
+        // A text the copy already holds at its place changes nothing there.
+        let same = |e: &Edit| {
+            foreign.is_some_and(|f| {
+                let at = e.0.start.checked_sub(f.at).zip(e.0.end.checked_sub(f.at));
+                at.and_then(|(a, b)| f.text.get(a..b)) == Some(e.2.as_str())
+            })
+        };
+        if foreign.is_some() && !edits.iter().any(|e| ours(e) && e.3 && !same(e)) {
             // Unchanged: the other file's declaration holds, nothing to write.
             edits.retain(|e| !ours(e));
             continue;

@@ -65,6 +65,7 @@ mod lead_tilt;
 mod load_steps;
 mod load_steps_design;
 mod ls_corpus;
+mod ls_drilling;
 mod ls_landing;
 mod ls_registers;
 mod ls_track;

@@ -1,6 +1,8 @@
 //! The program's own copy of each position register a motion moves to ([`super::registers`]):
 //! a new position `P[n]` of `/POS` (after the positions the program holds, numbered on from
-//! its largest), its values the register's as the backup holds them, in the frame numbers in
+//! its largest), its values the register's as the backup holds them (with the 9 decimals a
+//! compensated value is written with: a value that does not move is the same text), in the
+//! frame numbers in
 //! force at the motion (`UFRAME_NUM`, `UTOOL_NUM`: a Cartesian register is in the frames in
 //! force where it is used, FANUC's `UF : F, UT : F`; where the program selects none, the
 //! position keeps `F` and is refused as such). Compensated, the motion names the copy (`J PR[3]`
@@ -10,6 +12,7 @@
 use super::registers::Register;
 use super::statements::{Number, Selected};
 use super::va::Value;
+use crate::program::generate::v as v_text;
 use crate::program::points::Foreign;
 use crate::program::{at, lines, JointTarget, Units};
 use std::collections::HashMap;
@@ -170,19 +173,21 @@ fn block(index: u64, r: &Register, s: &Selected, eol: &str) -> String {
             lines.push(format!("\tUF : {uf}, UT : {ut},\t\tCONFIG : '{config}',"));
             let names = ["X", "Y", "Z", "W", "P", "R"];
             (names.iter().zip(p).enumerate())
-                .map(|(k, (n, v))| format!("{n} = {v} {}", if k < 3 { "mm" } else { "deg" }))
+                .map(|(k, (n, v))| {
+                    format!("{n} = {} {}", v_text(*v), if k < 3 { "mm" } else { "deg" })
+                })
                 .collect()
         }
         Ok(Some(Value::Joint(q))) => {
             lines.push(format!("\tUF : {uf}, UT : {ut},"));
             (q.iter().enumerate())
-                .map(|(k, v)| format!("J{}= {v} deg", k + 1))
+                .map(|(k, v)| format!("J{}= {v:.9} deg", k + 1))
                 .collect()
         }
         _ => Vec::new(),
     };
     let extended =
-        (r.entry.extended.iter().enumerate()).map(|(k, (v, u))| format!("E{}= {v} {u}", k + 1));
+        (r.entry.extended.iter().enumerate()).map(|(k, (v, u))| format!("E{}= {v:.9} {u}", k + 1));
     let values: Vec<String> = values.into_iter().chain(extended).collect();
     for (k, chunk) in values.chunks(3).enumerate() {
         let last = (k + 1) * 3 >= values.len();
