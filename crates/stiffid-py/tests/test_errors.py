@@ -108,3 +108,25 @@ def test_an_argument_of_the_wrong_type_or_value_is_an_input_error_naming_it(pape
     for call, message in cases:
         with pytest.raises(stiffid.InputError, match=message):
             call()
+
+
+def test_a_missing_file_is_an_input_error_naming_the_argument_and_a_file_not_found_error(tmp_path):
+    from test_compensate import PATH, SETUP, STIFFNESS
+
+    setup, missing = stiffid.Setup.from_file(SETUP), tmp_path / "nope.json"
+    for call, name in [
+        (lambda: stiffid.compensate(setup, PATH, missing), "stiffness"),
+        (lambda: stiffid.compensate(setup, tmp_path / "nope.csv", STIFFNESS), "path"),
+        (lambda: stiffid.Setup.from_file(str(missing)), "path"),
+    ]:
+        with pytest.raises(stiffid.MissingFileError) as caught:
+            call()
+        error = caught.value
+        assert isinstance(error, stiffid.InputError) and isinstance(error, FileNotFoundError)
+        assert str(error).startswith(f"{name}: {tmp_path}"), str(error)
+        assert error.filename.endswith(("nope.json", "nope.csv")) and error.errno == 2
+    # `except FileNotFoundError` still catches it.
+    try:
+        stiffid.compensate(setup, PATH, missing)
+    except FileNotFoundError as error:
+        assert "stiffness: " in str(error)

@@ -19,7 +19,8 @@ Errors are ``stiffid.Error`` (a ``ValueError``) with the library's message, as o
 subclasses: ``InputError`` (bad input), ``InfeasibleError`` (a search that finds no feasible group,
 a pose out of reach), ``UnidentifiableError`` (data that cannot identify every parameter) or
 ``GateError`` (a result beyond a bound the caller set, such as ``compensate``'s ``max_error_mm``).
-Missing files raise ``FileNotFoundError``. Results to look at before trusting them (a stiffness
+A missing file raises ``MissingFileError``, both an ``InputError`` naming the argument
+(``setup: cell.toml: no such file``) and a ``FileNotFoundError``. Results to look at before trusting them (a stiffness
 that is not physical, a likely unit mistake) raise ``UserWarning``, as the command prints
 ``warning: ...``.
 """
@@ -60,6 +61,7 @@ __all__ = [
     "GateError",
     "InfeasibleError",
     "InputError",
+    "MissingFileError",
     "Robot",
     "Scene",
     "Setup",
@@ -88,6 +90,7 @@ __all__ = [
 
 # Every error in reading an argument names it (``_arguments``).
 from . import _arguments  # noqa: E402
+from ._arguments import MissingFileError  # noqa: E402
 
 for _function in __all__:
     if type(globals()[_function]).__name__ == "builtin_function_or_method":

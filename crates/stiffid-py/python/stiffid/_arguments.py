@@ -7,7 +7,10 @@ type as an ``InputError``, as the library's own checks of an argument do
 versions have no exception notes: the error is PyO3's own there).
 """
 
+import errno
 import functools
+import inspect
+import os
 import re
 
 from ._stiffid import Error, InputError
@@ -23,12 +26,62 @@ def naming(function):
         try:
             return function(*args, **kwargs)
         except Exception as error:
-            named = _named(error)
+            named = _missing(error, function, args, kwargs)
+            named = _named(named) if named is error else named
             if named is error:
                 raise
             raise named from error
 
     return call
+
+
+class MissingFileError(InputError, FileNotFoundError):
+    """A file that does not exist: an ``InputError`` whose message begins with the argument that
+    names it (``setup: cell.toml: no such file``; a file another file names: its path alone), and
+    a ``FileNotFoundError`` (``except FileNotFoundError`` catches it), ``filename`` the path."""
+
+    def __str__(self):
+        return str(self.args[0]) if self.args else ""
+
+
+_MISSING = re.compile(r"(.*): no such file", re.S)
+
+
+def _missing(error, function, args, kwargs):
+    """``error`` as a ``MissingFileError`` naming the argument whose path it is, when it is the
+    module's ``FileNotFoundError``; else ``error`` itself."""
+    if type(error) is not FileNotFoundError or len(error.args) != 1:
+        return error
+    found = _MISSING.fullmatch(str(error.args[0]))
+    if not found:
+        return error
+    path = found[1]
+    name = _argument_of(function, args, kwargs, path)
+    missing = MissingFileError(f"{name}: {error.args[0]}" if name else error.args[0])
+    missing.errno, missing.strerror, missing.filename = errno.ENOENT, "no such file", path
+    return missing
+
+
+def _argument_of(function, args, kwargs, path):
+    """The name of the argument of the call ``function(*args, **kwargs)`` that gives ``path`` (a
+    path, or a list of them), or None."""
+    try:
+        given = inspect.signature(function).bind_partial(*args, **kwargs).arguments
+    except (TypeError, ValueError):
+        given = kwargs
+    for name, value in given.items():
+        values = value if isinstance(value, (list, tuple)) else [value]
+        for v in values:
+            if isinstance(v, (str, os.PathLike)) and _same(v, path):
+                return name
+    return None
+
+
+def _same(value, path):
+    try:
+        return os.fspath(value) == path or os.path.normpath(os.fspath(value)) == os.path.normpath(path)
+    except TypeError:
+        return False
 
 
 def name_arguments_of(cls):
