@@ -73,7 +73,12 @@ pub(super) fn block(
     }
     super::process::gather(line, words, s);
     if given.g4 && given.moves_an_axis() {
-        return Err(at(line, "G4 with an axis word: FANUC and Haas read G4 X as the dwell's time in seconds, LinuxCNC as a move in the motion mode in force; write the dwell as G4 P in a block without axis words".into()));
+        let why = match s.machine.dialect {
+            Some(super::GcodeDialect::Fanuc | super::GcodeDialect::Haas) => "only X is the dwell's time (seconds with a decimal point) on FANUC and Haas, another axis word a move",
+            Some(_) => "LinuxCNC and grbl read an axis word beside G4 as a move in the motion mode in force",
+            None => "FANUC and Haas read G4 X as the dwell's time, LinuxCNC and grbl as a move in the motion mode in force, and the setup names no controller ([controller] dialect)",
+        };
+        return Err(at(line, format!("G4 with an axis word: {why}; write the dwell as G4 P in a block without axis words")));
     }
     given.modes(line, s)?;
     motion_and_feed(line, &given, inch_before, s)?;

@@ -385,6 +385,9 @@ fn push(
     if let Some((p, _)) = moves.last() {
         (s.position, s.known) = (*p, [true; 3]);
     }
+    if let Some((p, written)) = &hole.dwell {
+        super::dwell::at_bottom(line, (*p, written), first + bottom_index, s);
+    }
     block.points = first..out.points.len();
     block.cycle = Some(hole.dwell.map(|(_, text)| (bottom_index, text)));
     out.blocks.push(block);

@@ -401,6 +401,7 @@ pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<G
             return Err(at(line, "a carriage return inside the line: the file ends its lines with a carriage return alone (an old Mac's) or mixes line ends, and a controller ends a block at a line feed, so what follows it would be read as part of this block (inside a comment, dropped); convert the line ends to LF or CR LF".into()));
         }
         let words = words(line, start, l, &mut s)?;
+        let (words, x_dwell) = dwell::time_in_x(line, words, text, s.machine.dialect)?;
         let comments = std::mem::take(&mut s.line_comments);
         if words.is_empty() {
             let kept = comments.into_iter().map(|text| Comment { line, text });
@@ -415,7 +416,7 @@ pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<G
             &mut out,
             chord_tolerance,
         )?;
-        dwell::gather(line, (&words, text), &mut s);
+        dwell::gather(line, (&words, text), x_dwell, &mut s);
         if first && !out.points.is_empty() && !s.units_stated {
             out.unstated_units = Some(line);
         }

@@ -27,6 +27,10 @@ pub struct ProcessWord {
     /// A dwell (`G4 P..`, the G-code reader's `dwell`): its time in seconds as the setup's controller reads
     /// it, or why the controller's reading is not known; `None`: no dwell.
     pub dwell: Option<std::result::Result<f64, String>>,
+    /// The path point a dwell follows (a `G82`'s at the hole's bottom, the index into
+    /// [`super::GCode::points`]): written after that point's target; `None`: before its block's
+    /// motion, as every other word.
+    pub point: Option<usize>,
 }
 
 /// A comment on a line of its own (no word in its block), kept to be written in the robot
@@ -110,5 +114,6 @@ fn push(s: &mut State, line: u64, event: Option<ProcessEvent>, words: String) {
         rpm,
         tool,
         dwell: None,
+        point: None,
     });
 }

@@ -104,7 +104,7 @@ pub(crate) use checks::{check_cell, check_payload, check_pulses, missing_pulses}
 pub(crate) use names::check_plan;
 use names::room_for;
 pub use names::{check_name, default_name_length, max_name_length, moves_per_file, LS_MAX_LINES};
-pub use process::{place, place_comments, Process, ProcessForm};
+pub use process::{after_points, place, place_comments, Process, ProcessForm};
 pub use settings::Settings;
 pub(crate) use settings::{MIN_FEED, MOVES_PER_FILE, RAPID_PERCENT};
 

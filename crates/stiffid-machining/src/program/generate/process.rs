@@ -109,6 +109,24 @@ pub fn place(words: &[ProcessWord], lines: &[Option<u64>]) -> Vec<usize> {
         .collect()
 }
 
+/// Moves the place (`before`, [`place`]) of each of `words` that follows a path point (a
+/// `G82`'s dwell at the hole's bottom, [`ProcessWord::point`]) to just after that point's
+/// target: before the first target of a later point (`points`: each target's path point,
+/// `None` for one of no G-code point, the home posture), else after the path's last target.
+pub fn after_points(words: &[ProcessWord], points: &[Option<usize>], before: &mut [usize]) {
+    let after_path = points
+        .iter()
+        .rposition(Option::is_some)
+        .map_or(points.len(), |i| i + 1);
+    for (w, at) in words.iter().zip(before.iter_mut()) {
+        if let Some(i) = w.point {
+            *at = (points.iter())
+                .position(|p| p.is_some_and(|p| p > i))
+                .unwrap_or(after_path);
+        }
+    }
+}
+
 /// The lines written before each target of `plan` (and, at the targets' count, after the last),
 /// and the warning naming the words no event of `io` maps.
 ///

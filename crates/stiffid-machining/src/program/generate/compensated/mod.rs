@@ -7,7 +7,9 @@
 mod circles;
 mod home;
 
-use super::{arcs, check_name, check_plan, max_name_length, numbered, place, place_comments};
+use super::{
+    after_points, arcs, check_name, check_plan, max_name_length, numbered, place, place_comments,
+};
 use super::{generate_with, moves, written_targets, File, Plan, Process, Settings, Target};
 use super::{Targets, Tool};
 use crate::gcode::GCode;
@@ -89,8 +91,14 @@ pub fn robot_program(
     let mut lines: Vec<Option<u64>> = (circular.index.iter())
         .map(|&i| Some(points[i].line))
         .collect();
+    let mut points: Vec<Option<usize>> = circular.index.iter().map(|&i| Some(i)).collect();
     let home = home::add(setup, controller, (&mut targets, &mut moves, &mut lines));
-    let before = place(&gcode.process, &lines);
+    if home {
+        points.insert(0, None);
+        points.push(None);
+    }
+    let mut before = place(&gcode.process, &lines);
+    after_points(&gcode.process, &points, &mut before);
     let comments_before = place_comments(&gcode.comments, &lines);
     let process = Process {
         words: &gcode.process,

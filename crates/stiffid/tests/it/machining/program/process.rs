@@ -701,6 +701,7 @@ fn an_ls_files_process_lines_count_toward_the_pendants_line_numbers() {
             rpm: Some(1000.0 + i as f64),
             tool: None,
             dwell: None,
+            point: None,
         })
         .collect();
     let before: Vec<usize> = (0..300).map(|i| i * 33).collect();
