@@ -75,8 +75,12 @@ pub fn read_files<E>(
 /// Latin-1). `read` gives a file's bytes (a front end's reading, with the file's name in its
 /// error); `wrap` turns a listing's or a text's error into the caller's.
 ///
+/// A file of a folder that is not text (an encrypted module, a stray control byte) is passed
+/// over; a file given by name must be text.
+///
 /// # Errors
-/// Those of `read`; a path that cannot be listed, or a file that is not text, through `wrap`.
+/// Those of `read`; a path that cannot be listed, or a file given by name that is not text,
+/// through `wrap`.
 pub fn read_backup<E>(
     paths: &[std::path::PathBuf],
     dialect: Dialect,
@@ -99,12 +103,19 @@ pub fn read_backup<E>(
                 message: format!("the controller's backup: {e}"),
             })
         })?;
+        // The path itself (a file given by name) or the files of a folder.
+        let listed = files.as_slice() != std::slice::from_ref(path);
         for file in files {
             let name = file.display().to_string();
             let bytes = read(&file)?;
-            let (mut texts, _) =
-                stiffid_core::io::program_texts(vec![(name.as_str(), bytes)]).map_err(&wrap)?;
-            out.push((name, texts.remove(0)));
+            match stiffid_core::io::program_texts(vec![(name.as_str(), bytes)]) {
+                Ok((mut texts, _)) => out.push((name, texts.remove(0))),
+                // A folder's module that is no text (encrypted, or a control byte the
+                // controller's editor left) declares nothing stiffid can read: a point the
+                // program takes from it is refused as declared nowhere.
+                Err(_) if listed => {}
+                Err(e) => return Err(wrap(e)),
+            }
         }
     }
     Ok(out)

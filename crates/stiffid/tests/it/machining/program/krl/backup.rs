@@ -207,3 +207,41 @@ fn global_points_of_another_modules_public_data_list_are_read_its_local_ones_not
         }
     }
 }
+
+/// A KSS backup's folder with a module that is no text (a KR C4 milling cell's `HoldersPos.src`
+/// holds a control byte, 0x05, in a comment): it is passed over and the folder's other files read;
+/// the same file given by name is refused naming it.
+#[test]
+fn a_folder_module_that_is_no_text_is_passed_over() {
+    let dir = std::env::temp_dir().join(format!("stiffid-krl-backup-{}", std::process::id()));
+    let program = dir.join("R1/Program");
+    std::fs::create_dir_all(&program).unwrap();
+    std::fs::write(program.join("cell.dat"), DAT).unwrap();
+    std::fs::write(
+        program.join("holders.src"),
+        b"DEF holders( )\n; lapy\x05\nEND\n",
+    )
+    .unwrap();
+    let read = |p: &std::path::Path| {
+        std::fs::read(p).map_err(|e| Error::Parse {
+            source_name: p.display().to_string(),
+            message: e.to_string(),
+        })
+    };
+    let files = program::read_backup(std::slice::from_ref(&dir), Dialect::Krl, read, |e| e);
+    let names: Vec<String> = files.unwrap().into_iter().map(|(n, _)| n).collect();
+    assert_eq!(names.len(), 1);
+    assert!(names[0].ends_with("cell.dat"), "{names:?}");
+    let named = program::read_backup(&[program.join("holders.src")], Dialect::Krl, read, |e| e);
+    match named {
+        Err(Error::Parse {
+            source_name,
+            message,
+        }) => {
+            assert!(source_name.ends_with("holders.src"), "{source_name}");
+            assert!(message.contains("control byte 0x05"), "{message}");
+        }
+        other => panic!("{other:?}"),
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
