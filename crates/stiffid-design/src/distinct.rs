@@ -146,7 +146,11 @@ pub fn near_pairs(robot: &Robot, postures: &[Vector6<f64>]) -> Vec<Near> {
 
 /// Every near pair of `postures` (axis angles, rad) on `robot` by the distances `d`, in the
 /// order `(a, b)`, `a < b`.
-pub fn near_pairs_by(robot: &Robot, postures: &[Vector6<f64>], d: &Distinctness) -> Vec<Near> {
+pub(crate) fn near_pairs_by(
+    robot: &Robot,
+    postures: &[Vector6<f64>],
+    d: &Distinctness,
+) -> Vec<Near> {
     let flanges: Vec<_> = postures.iter().map(|q| robot.frames(q).flange).collect();
     let mut out = Vec::new();
     for a in 0..postures.len() {

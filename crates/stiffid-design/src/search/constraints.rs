@@ -8,7 +8,7 @@ use stiffid_core::setup::Setup;
 /// The margin a design keeps to every constraint of the cell, m: `margin` when stated
 /// ([`super::SearchOptions::margin`]), else the tracker's registration uncertainty
 /// ([`stiffid_core::setup::Tracker::registration_uncertainty`]), else 0.
-pub fn design_margin(setup: &Setup, margin: Option<f64>) -> f64 {
+pub(crate) fn design_margin(setup: &Setup, margin: Option<f64>) -> f64 {
     margin
         .or_else(|| setup.tracker().and_then(|t| t.registration_uncertainty))
         .unwrap_or(0.0)
@@ -16,7 +16,7 @@ pub fn design_margin(setup: &Setup, margin: Option<f64>) -> f64 {
 
 /// The checker of a design on `setup`: every check but the bounds keeps [`design_margin`]
 /// ([`Checker::keeping`]). The searches, the start groups and a pool's filter use it.
-pub fn design_checker(setup: &Setup, margin: Option<f64>) -> Checker<'_> {
+pub(crate) fn design_checker(setup: &Setup, margin: Option<f64>) -> Checker<'_> {
     Checker::new(setup).keeping(design_margin(setup, margin))
 }
 

@@ -27,7 +27,7 @@ pub(crate) mod sqp;
 mod termination;
 
 pub use constraints::{cell_constraints, CellConstraints};
-pub use constraints::{design_checker, design_margin};
+pub(crate) use constraints::{design_checker, design_margin};
 pub use global::{global, global_for};
 pub(super) use local::check_count;
 pub use local::local;

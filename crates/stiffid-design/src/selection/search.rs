@@ -1,8 +1,11 @@
 //! The group chosen by a search or from a screened pool ([`choose`]), the smallest group for a
 //! target accuracy ([`smallest`]), and the same search without the cell's checks
-//! ([`unconstrained`]).
+//! ([`unconstrained`]), and how the cell holds the group chosen ([`in_cell`]).
 
 use super::pool::Screened;
+use super::station;
+use crate::distinct::{near_pairs_by, Distinctness, Near};
+use crate::search::{design_checker, design_margin};
 use crate::target::{smallest_group, TargetOutcome};
 use crate::{self as design, evaluate, Evaluation, Goal, PoolMethod, PoolOptions};
 use crate::{SearchOptions, SearchOutcome, Termination};
@@ -10,6 +13,7 @@ use nalgebra::Vector6;
 use stiffid_core::cell::Checker;
 use stiffid_core::common::error::JobOption;
 use stiffid_core::common::progress::Progress;
+use stiffid_core::robot::external::ExternalValues;
 use stiffid_core::{Error, Result, Setup};
 
 /// How a group is chosen.
@@ -210,4 +214,61 @@ pub fn unconstrained(
         value: free.value,
         termination: free.termination,
     }))
+}
+
+/// How the cell holds a chosen group ([`in_cell`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct InCell {
+    /// The pairs of postures that are not distinct, indices into the whole group.
+    pub near: Vec<Near>,
+    /// The margin the design kept the cell's lengths beyond, m (`design_margin`).
+    pub margin: f64,
+    /// Each posture's smallest margin to a constraint of the cell's lengths, m, as the design
+    /// with the margin kept it (the tool, where the rope and the lines of sight start, beyond the
+    /// margin: `design_checker`); `None` where no constraint applies.
+    pub min_margins: Vec<Option<f64>>,
+}
+
+/// How the cell holds `groups`, chosen on `setup` with the design's `margin` (m; `None`: the
+/// setup's): group `k` with the arm standing at `stations[k]` ([`station::setup_at`]), or as
+/// the setup stands where no station is given; the pairs of postures within `distances` of each
+/// other (`near_pairs_by`), counted over the whole group.
+///
+/// # Errors
+/// Those of [`station::setup_at`].
+pub fn in_cell(
+    setup: &Setup,
+    groups: &[Vec<Vector6<f64>>],
+    stations: &[ExternalValues],
+    margin: Option<f64>,
+    distances: &Distinctness,
+) -> Result<InCell> {
+    let (mut near, mut min_margins, mut offset) = (Vec::new(), Vec::new(), 0);
+    for (k, group) in groups.iter().enumerate() {
+        let owned;
+        let at = match stations.get(k) {
+            Some(e) => {
+                owned = station::setup_at(setup, e)?;
+                &owned
+            }
+            None => setup,
+        };
+        near.extend(
+            (near_pairs_by(at.robot(), group, distances).into_iter()).map(|p| Near {
+                a: p.a + offset,
+                b: p.b + offset,
+                ..p
+            }),
+        );
+        let checker = design_checker(at, margin);
+        let keep = checker.keep();
+        let of = |q| checker.feasibility(q).min_margin().map(|c| c.margin + keep);
+        min_margins.extend(group.iter().map(of));
+        offset += group.len();
+    }
+    Ok(InCell {
+        near,
+        margin: design_margin(setup, margin),
+        min_margins,
+    })
 }

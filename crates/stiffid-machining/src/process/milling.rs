@@ -226,4 +226,7 @@ impl Milling {
 }
 
 /// The finest angular resolution of the peak force, deg (at most 36 000 spindle angles).
-pub const MIN_RESOLUTION_DEG: f64 = 0.01;
+pub(crate) const MIN_RESOLUTION_DEG: f64 = 0.01;
+
+/// The coarsest angular resolution of a peak, deg.
+pub(crate) const MAX_RESOLUTION_DEG: f64 = 10.0;

@@ -20,11 +20,12 @@
 pub(crate) mod covering;
 pub(crate) mod drilling;
 pub mod file;
-pub mod milling;
+pub(crate) mod milling;
 pub(crate) mod presets;
 
 use nalgebra::{Matrix3, Rotation3, Vector3, Vector6};
 use serde::Serialize;
+use stiffid_core::{Error, Result};
 
 /// The operations of a machining job (a parsed process file).
 #[derive(Debug, Clone, PartialEq)]
@@ -166,10 +167,25 @@ pub struct OperationForce {
     pub peak_force_n: Option<[f64; 3]>,
 }
 
-/// The forces of every operation; with `peak_resolution` (rad) also the milling peak
-/// (`Milling::peak_force`).
-pub fn forces(process: &Process, peak_resolution: Option<f64>) -> Vec<OperationForce> {
-    process
+/// The forces of every operation; with `peak_resolution_deg` (the grid of spindle angles, deg,
+/// 0.01 to 10) also the milling peak (`Milling::peak_force`).
+///
+/// # Errors
+/// [`Error::InvalidField`] (`peak_resolution_deg`) for a resolution outside its range.
+pub fn forces(process: &Process, peak_resolution_deg: Option<f64>) -> Result<Vec<OperationForce>> {
+    use milling::{MAX_RESOLUTION_DEG, MIN_RESOLUTION_DEG};
+    if let Some(deg) = peak_resolution_deg
+        && !(MIN_RESOLUTION_DEG..=MAX_RESOLUTION_DEG).contains(&deg)
+    {
+        return Err(Error::InvalidField {
+            field: "peak_resolution_deg".into(),
+            message: format!(
+                "{deg}: expected a number >= {MIN_RESOLUTION_DEG} and <= {MAX_RESOLUTION_DEG}"
+            ),
+        });
+    }
+    let peak_resolution = peak_resolution_deg.map(f64::to_radians);
+    Ok(process
         .operations
         .iter()
         .map(|o| {
@@ -189,7 +205,7 @@ pub fn forces(process: &Process, peak_resolution: Option<f64>) -> Vec<OperationF
                 peak_force_n: peak,
             }
         })
-        .collect()
+        .collect())
 }
 
 #[cfg(test)]

@@ -3,12 +3,8 @@
 //! Automation*, 2nd ed., ch. 2.4, for milling; the specific-energy model for drilling).
 
 use serde::Serialize;
-use stiffid_core::{Error, Result};
-use stiffid_machining::process::milling::MIN_RESOLUTION_DEG;
+use stiffid_core::Result;
 use stiffid_machining::process::{self, OperationForce, Process};
-
-/// The most a peak's angular resolution may be, deg.
-pub(crate) const MAX_RESOLUTION_DEG: f64 = 10.0;
 
 /// The forces to compute.
 pub struct Request<'a> {
@@ -17,7 +13,7 @@ pub struct Request<'a> {
     /// The process.
     pub process: &'a Process,
     /// The peak force over one revolution on a grid of spindle angles this far apart, deg
-    /// ([`MIN_RESOLUTION_DEG`] to 10; in degrees as the process file and the document state it);
+    /// (0.01 to 10; in degrees as the process file and the document state it);
     /// `None` for none.
     pub peak_resolution_deg: Option<f64>,
 }
@@ -47,25 +43,13 @@ pub(crate) type Outcome = crate::app::Outcome<Report>;
 /// Runs the force job.
 ///
 /// # Errors
-/// [`Error::InvalidField`] (`peak_resolution_deg`) for a resolution outside its range.
+/// Those of [`process::forces`]: [`stiffid_core::Error::InvalidField`] (`peak_resolution_deg`)
+/// for a resolution outside its range.
 pub fn run(request: &Request<'_>) -> Result<Outcome> {
-    if let Some(deg) = request.peak_resolution_deg
-        && !(MIN_RESOLUTION_DEG..=MAX_RESOLUTION_DEG).contains(&deg)
-    {
-        return Err(Error::InvalidField {
-            field: "peak_resolution_deg".into(),
-            message: format!(
-                "{deg}: expected a number >= {MIN_RESOLUTION_DEG} and <= {MAX_RESOLUTION_DEG}"
-            ),
-        });
-    }
     let report = Report {
         name: request.name.clone(),
         peak_resolution_deg: request.peak_resolution_deg,
-        operations: process::forces(
-            request.process,
-            request.peak_resolution_deg.map(f64::to_radians),
-        ),
+        operations: process::forces(request.process, request.peak_resolution_deg)?,
     };
     Ok(Outcome {
         report,

@@ -5,16 +5,16 @@
 
 use super::choose::{how, name, searching};
 use super::station::setup_at;
-use super::{min_margins, size, CalibrationReport, Method, Report, Request, Station};
+use super::{size, CalibrationReport, Method, Report, Request, Station};
 use crate::app::purpose::{self, Purpose};
 use std::time::Instant;
 use stiffid_core::common::error::JobOption;
 use stiffid_core::{Error, Result};
-use stiffid_design::distinct::{near_pairs_by, Near};
+use stiffid_design::distinct::Near;
 use stiffid_design::evaluate;
 use stiffid_design::observability::{CalibrationDesign, Placed};
-use stiffid_design::search::design_margin;
 use stiffid_design::selection::campaign::{self, For};
+use stiffid_design::selection::search::in_cell;
 
 /// Whether `r` designs a campaign over its stations: a calibration (`--for calibration`) on a
 /// robot with a carrier, at two or more stations.
@@ -73,21 +73,10 @@ fn report(
     started: Instant,
 ) -> Result<Report> {
     let distances = r.distinct.unwrap_or_default();
-    let (mut near, mut margins, mut offset) = (Vec::new(), Vec::new(), 0);
-    for (group, e) in groups.iter().zip(&r.stations) {
-        let setup = setup_at(r, e)?;
-        near.extend(
-            near_pairs_by(setup.robot(), group, &distances)
-                .into_iter()
-                .map(|p| Near {
-                    a: p.a + offset,
-                    b: p.b + offset,
-                    ..p
-                }),
-        );
-        margins.extend(min_margins(&setup, r.options.margin, group));
-        offset += group.len();
-    }
+    // One group per station.
+    let n = groups.len().min(r.stations.len());
+    let (at, margin) = ((&groups[..n], &r.stations[..n]), r.options.margin);
+    let held = in_cell(r.setup, at.0, at.1, margin, &distances)?;
     let options = r.calibration.of(r.purpose);
     let postures: Vec<nalgebra::Vector6<f64>> = all.iter().map(|p| p.0).collect();
     Ok(Report {
@@ -115,12 +104,12 @@ fn report(
         pool: None,
         target: None,
         unconstrained: None,
-        warnings: near.iter().map(Near::warning).collect(),
+        warnings: held.near.iter().map(Near::warning).collect(),
         station: None,
         stations,
-        near,
-        margin: design_margin(r.setup, r.options.margin),
-        min_margins: margins,
+        near: held.near,
+        margin: held.margin,
+        min_margins: held.min_margins,
         placed: all.iter().map(|p| p.1).collect(),
         postures,
         candidates: None,

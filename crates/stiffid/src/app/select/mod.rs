@@ -27,10 +27,10 @@ use stiffid_core::common::error::JobOption;
 use stiffid_core::common::progress::Progress;
 use stiffid_core::{Error, Result, Setup};
 use stiffid_design::candidates::{self, Verdicts};
-use stiffid_design::distinct::{near_pairs_by, Distinctness, Near};
+use stiffid_design::distinct::{Distinctness, Near};
 use stiffid_design::identifiable;
 use stiffid_design::observability::{CalibrationCriteria, CalibrationCriterion, CalibrationDesign};
-use stiffid_design::search::{design_checker, design_margin};
+use stiffid_design::selection::search::in_cell;
 use stiffid_design::target::TargetOutcome;
 use stiffid_design::{
     evaluate, Criterion, Evaluation, Gradient, PoolMethod, SearchOptions, Solver, Termination,
@@ -439,7 +439,9 @@ fn run_on(request: &Request) -> Result<Report> {
         });
     }
     let distances = request.distinct.unwrap_or_default();
-    let near = near_pairs_by(request.setup.robot(), &found.postures, &distances);
+    let margin = request.options.margin;
+    let postures = std::slice::from_ref(&found.postures);
+    let held = in_cell(request.setup, postures, &[], margin, &distances)?;
     let unconstrained = match pool.is_none() && target.is_none() {
         true => unconstrained(request, &goal, found.postures.len())?,
         false => None,
@@ -466,13 +468,13 @@ fn run_on(request: &Request) -> Result<Report> {
         pool: pool.map(|p| pool::report(p, found.chosen)),
         target,
         unconstrained,
-        warnings: near.iter().map(Near::warning).collect(),
+        warnings: held.near.iter().map(Near::warning).collect(),
         station: None,
         stations: Vec::new(),
         placed: Vec::new(),
-        near,
-        margin: design_margin(request.setup, request.options.margin),
-        min_margins: min_margins(request.setup, request.options.margin, &found.postures),
+        near: held.near,
+        margin: held.margin,
+        min_margins: held.min_margins,
         postures: found.postures,
         candidates: None,
         // Named by `run`.
@@ -481,16 +483,6 @@ fn run_on(request: &Request) -> Result<Report> {
         out: None,
         report_dir: None,
     })
-}
-
-/// Each posture's smallest margin to a constraint of the cell's lengths, m
-/// ([`stiffid_core::cell::Feasibility::min_margin`]), as the design with `margin` kept it (the tool,
-/// where the rope and the lines of sight start, beyond the margin: [`design_checker`]).
-fn min_margins(setup: &Setup, margin: Option<f64>, postures: &[Vector6<f64>]) -> Vec<Option<f64>> {
-    let checker = design_checker(setup, margin);
-    let keep = checker.keep();
-    let margin = |q| checker.feasibility(q).min_margin().map(|c| c.margin + keep);
-    postures.iter().map(margin).collect()
 }
 
 /// The calibration criteria of `postures` under `design`.
