@@ -50,6 +50,7 @@
 use nalgebra::{DVectorView, Matrix6, Vector3, Vector6};
 
 mod arm;
+mod memo;
 use serde::Serialize;
 use stiffid_core::common::limits::JointBox;
 use stiffid_core::robot::kinematics::Coordinates;
@@ -236,6 +237,8 @@ pub struct Terms {
     axes: [Vector3<f64>; 6],
     /// Each term's largest regressor magnitude over [`spanning`] postures ([`Terms::peaks`]).
     peaks: Vec<f64>,
+    /// The regressors of the postures met ([`Terms::regressors`]).
+    memo: memo::Memo,
 }
 
 impl Terms {
@@ -244,7 +247,7 @@ impl Terms {
         Self::with_terms(
             (robot, Gravity::None),
             Coordinates::Axis,
-            None,
+            (None, [Vector3::zeros(); 6]),
             Vector6::zeros(),
             Vec::new(),
         )
@@ -310,7 +313,7 @@ impl Terms {
         Ok(Self::with_terms(
             (robot, Gravity::Masses),
             coordinates,
-            Some(masses),
+            (Some(masses), [Vector3::zeros(); 6]),
             nominal,
             terms,
         ))
@@ -347,16 +350,13 @@ impl Terms {
             Term::Arm { joint: 1, link: 2 },
             Term::Arm { joint: 2, link: 2 },
         ];
-        let mut made = Self::with_terms(
+        Ok(Self::with_terms(
             (robot, Gravity::Arm),
             coordinates,
-            None,
+            (None, axes),
             Vector6::zeros(),
             terms,
-        );
-        made.axes = axes;
-        made.peaks = made.peaks_over(&spanning(robot.limits()));
-        Ok(made)
+        ))
     }
 
     /// The unit axis, in link `link`'s frame, of its [`Term::Arm`] terms (module docs); zero
@@ -388,13 +388,21 @@ impl Terms {
                 }
             }
         }
-        Self::with_terms((robot, kind), coordinates, None, Vector6::zeros(), terms)
+        Self::with_terms(
+            (robot, kind),
+            coordinates,
+            (None, [Vector3::zeros(); 6]),
+            Vector6::zeros(),
+            terms,
+        )
     }
 
+    /// The terms `terms` of `kind` on `robot` with the known `masses` and the [`Term::Arm`]
+    /// terms' `axes` (zero for none), each term's peak over [`spanning`] postures.
     fn with_terms(
         (robot, kind): (&Robot, Gravity),
         coordinates: Coordinates,
-        masses: Option<[LinkMass; 6]>,
+        (masses, axes): (Option<[LinkMass; 6]>, [Vector3<f64>; 6]),
         nominal: Vector6<f64>,
         terms: Vec<Term>,
     ) -> Self {
@@ -410,8 +418,9 @@ impl Terms {
             masses,
             nominal,
             terms,
-            axes: [Vector3::zeros(); 6],
+            axes,
             peaks: Vec::new(),
+            memo: memo::Memo::default(),
         };
         made.peaks = made.peaks_over(&spanning(robot.limits()));
         made
@@ -489,6 +498,11 @@ impl Terms {
         if self.terms.is_empty() {
             return Vec::new();
         }
+        self.memo.at(q, || self.computed(q))
+    }
+
+    /// [`Terms::regressors`] computed.
+    fn computed(&self, q: &Vector6<f64>) -> Vec<f64> {
         let unit = self.unit_torques(q);
         let torque = self.masses.map(|masses| {
             let mut tau = Vector6::zeros();
@@ -614,3 +628,6 @@ fn invalid(link: usize, field: &str, message: &str) -> Error {
         message: message.into(),
     }
 }
+
+#[cfg(test)]
+mod memo_tests;
