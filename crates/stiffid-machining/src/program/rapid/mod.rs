@@ -93,7 +93,10 @@ fn well_formed(line: u64, first: &str) -> Result<()> {
     // A byte-order mark opening the file (editors on Windows write one) is no character of it.
     let word = first.trim_start_matches('\u{feff}');
     let allowed = |c: char| c.is_ascii_alphanumeric() || matches!(c, '_' | '.' | '{' | '}');
-    match word.starts_with('%') || word.chars().all(allowed) {
+    // `<SMT>`, the editor's placeholder of a statement: the controller loads a module holding
+    // one and stops where the run reaches it (RAPID kernel, "Placeholders"); it moves nothing.
+    let placeholder = word.trim_end_matches(';').eq_ignore_ascii_case("<SMT>");
+    match word.starts_with('%') || placeholder || word.chars().all(allowed) {
         true => Ok(()),
         false => Err(at(
             line,
@@ -177,18 +180,36 @@ fn is_header(line: &str) -> bool {
 fn statements(code: &str) -> Vec<Statement> {
     let mut out = Vec::new();
     let mut open: Option<(u64, usize)> = None;
+    // A routine's header whose parameter list runs on over the next lines: its line, first
+    // byte and the parentheses still open.
+    let mut header: Option<(u64, usize, i64)> = None;
+    let depth = |t: &str| t.matches('(').count() as i64 - t.matches(')').count() as i64;
     for (line, start, l) in super::lines(code) {
+        if let Some((first, from, open)) = header.take() {
+            match open + depth(l) {
+                left if left > 0 => header = Some((first, from, left)),
+                _ => out.push(Statement {
+                    line: first,
+                    span: from..start + l.len(),
+                }),
+            }
+            continue;
+        }
         let mut in_string = false;
         for (i, c) in l.char_indices() {
             if open.is_none() {
                 if c.is_whitespace() {
                     continue;
                 }
-                if is_header(&l[i..]) {
-                    out.push(Statement {
-                        line,
-                        span: start + i..start + l.len(),
-                    });
+                // An editor's statement placeholder stands alone on its line, without `;`.
+                if is_header(&l[i..]) || l[i..].trim().eq_ignore_ascii_case("<SMT>") {
+                    match depth(&l[i..]) {
+                        left if left > 0 => header = Some((line, start + i, left)),
+                        _ => out.push(Statement {
+                            line,
+                            span: start + i..start + l.len(),
+                        }),
+                    }
                     break;
                 }
                 open = Some((line, start + i));

@@ -174,3 +174,19 @@ fn arc_welding_motions_are_read_as_the_motions_they_are() {
     // The path speed of each linear motion, m/s.
     assert_eq!(read.targets[1].speed, program::speed::Speed::Path(0.02));
 }
+
+/// A routine's parameter list running on over the next lines (`VAR robtarget arcStart,` opening
+/// the second, as a welding cell's module writes it) is the header's, no declaration; and the
+/// editor's statement placeholder `<SMT>`, which the controller loads and stops at, moves nothing
+/// (RAPID kernel, "Placeholders"): the motions around both are read.
+#[test]
+fn a_header_over_two_lines_and_a_placeholder_are_read_as_the_controller_reads_them() {
+    let text = "MODULE Weld\n  CONST robtarget p10:=[[500,0,400],[0,0,1,0],[0,0,0,0],[9E9,9E9,9E9,9E9,9E9,9E9]];\n  PROC main()\n    MoveJ p10, v100, fine, tool0;\n    <SMT>\n  ENDPROC\n  PROC LoadSlot(num slot, VAR bool used,\n                VAR robtarget arcStart, VAR robtarget arcEnd)\n    MoveL Offs(p10, 0, 0, 50), v100, fine, tool0;\n  ENDPROC\nENDMODULE\n";
+    let p = stiffid::internal::machining::program::parse(
+        text,
+        stiffid::internal::machining::program::Dialect::Rapid,
+    )
+    .unwrap();
+    let lines: Vec<u64> = p.targets.iter().map(|t| t.line).collect();
+    assert_eq!(lines, [4, 9]);
+}
