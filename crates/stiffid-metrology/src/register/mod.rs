@@ -19,7 +19,7 @@
 //! are off the true robot's (by `s_p` per coordinate of each frame's position and `s_r` of its
 //! orientation, the setup's `[robot_accuracy]`; joints 1-6 and the flange, independent). Frame
 //! `k`'s error twist `[e_p; e_r]` moves point `i` by `e_p + e_r x (b_i - o_k)` (`G`, 3n x 42); the
-//! transform absorbs its least-squares part `J^+ G`, so [`robot_covariance`] adds
+//! transform absorbs its least-squares part `J^+ G`, so `robot_covariance` adds
 //! `(J^+ G) S (J^+ G)^T`, `S = diag(s_p^2, s_r^2, ...)`. Most of a nominal robot's error is of
 //! this kind: joint 1's and the base's errors move every point rigidly and leave no residual.
 //!
@@ -169,7 +169,7 @@ pub struct Registration {
     /// Covariance of `[dp (m); dtheta (rad)]` (module docs), base frame: from the residuals'
     /// noise ([`fit`]), with the robot model's error once [`Registration::with_robot`] adds it.
     pub covariance: Matrix6<f64>,
-    /// The robot model's part of the covariance ([`robot_covariance`]); zero from [`fit`].
+    /// The robot model's part of the covariance (`robot_covariance`); zero from [`fit`].
     pub robot_covariance: Matrix6<f64>,
     /// RMS of the residual lengths of the best transform with a reflection (`det R = -1`), m:
     /// far below `rms` when the readings are a mirror image ([`suspect`]).
@@ -177,7 +177,7 @@ pub struct Registration {
 }
 
 impl Registration {
-    /// This registration with the robot model's part `covariance` ([`robot_covariance`]) added.
+    /// This registration with the robot model's part `covariance` (`robot_covariance`) added.
     pub fn with_robot(mut self, covariance: Matrix6<f64>) -> Self {
         self.covariance += covariance;
         self.robot_covariance = covariance;
@@ -332,13 +332,26 @@ fn jacobian(rotated: &[Vector3<f64>]) -> DMatrix<f64> {
     j
 }
 
+/// The tracker registered to the robot base by `readings` on `setup`: the unloaded readings'
+/// points in both frames ([`correspondences`]), their rigid fit ([`fit`]) and its covariance
+/// with the robot model's own error ([`Registration::with_robot`], `robot_covariance`).
+///
+/// # Errors
+/// Those of [`correspondences`] (readings in the base frame), [`fit`] (fewer than
+/// [`MIN_POINTS`] points, collinear points) and `robot_covariance`.
+pub fn register(setup: &Setup, readings: &Readings) -> Result<Registration> {
+    let fitted = fit(&correspondences(setup, readings)?)?;
+    let robot = robot_covariance(setup, readings, &fitted)?;
+    Ok(fitted.with_robot(robot))
+}
+
 /// The covariance of `[dp (m); dtheta (rad)]` that the robot model's own error gives the
 /// registration `fit` of the unloaded `readings` (module docs), with the setup's
 /// [`stiffid_core::setup::Arm::frame_sd`].
 ///
 /// # Errors
 /// [`Error::NotFinite`] when the SVD does not converge.
-pub fn robot_covariance(
+pub(crate) fn robot_covariance(
     setup: &Setup,
     readings: &Readings,
     fit: &Registration,

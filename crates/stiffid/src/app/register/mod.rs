@@ -1,7 +1,7 @@
 //! The register job: the laser tracker's transform to the robot base from measuring points read
 //! by the tracker at known axis angles ([`stiffid_metrology::register`]: Umeyama's least-squares rigid
 //! transform), its residuals and standard deviation (the tracker noise's and the robot model's own
-//! error's, [`register::robot_covariance`]); or the postures to register in
+//! error's, [`register::register`]); or the postures to register in
 //! ([`propose`], [`stiffid_design::registration`]).
 
 pub mod document;
@@ -100,7 +100,7 @@ pub(crate) type Outcome = crate::app::Outcome<Report>;
 /// Runs the register job.
 ///
 /// # Errors
-/// Those of [`read`]; of [`register::correspondences`] and [`register::fit`] (readings in the
+/// Those of [`read`]; of [`register::register`] (readings in the
 /// base frame, fewer than [`register::MIN_POINTS`] unloaded readings, collinear points), as
 /// [`stiffid_core::Error::Input`] naming the file; unless [`Request::force`], readings that are a
 /// mirror image or leave a residual beyond [`register::residual_limit`] ([`register::suspect`]),
@@ -154,10 +154,7 @@ fn report(
 fn find(request: &Request<'_>) -> Result<Report> {
     let (data, warnings) = read(request)?;
     let name = &request.name;
-    let points = register::correspondences(request.setup, &data).map_err(|e| in_data(name, e))?;
-    let registration = register::fit(&points).map_err(|e| in_data(name, e))?;
-    let robot = register::robot_covariance(request.setup, &data, &registration);
-    let registration = registration.with_robot(robot.map_err(|e| in_data(name, e))?);
+    let registration = register::register(request.setup, &data).map_err(|e| in_data(name, e))?;
     refuse_implausible(request, &data, Some(&registration), &registration.residuals)?;
     let frame_sd = request.setup.arm().frame_sd();
     Ok(report(request, &data, registration, frame_sd, warnings))
