@@ -43,8 +43,8 @@
 //! circular or spline motion (the path between the points is not the compensated one; LS `C`
 //! aside, whose via point and end are both targets), a relative
 //! motion the file cannot resolve exactly, an offset or target held in a register on the
-//! controller (LS `Offset,PR[]`, `Tool_Offset`; a `PR[]` the program sets, or without the
-//! backup's `POSREG.VA`), a point declared outside the file or
+//! controller (LS `Offset`, `Tool_Offset` by a condition, a `PR[]` the program sets or without
+//! the backup's `POSREG.VA`), a point declared outside the file or
 //! assigned at run time (unless the backup's files, [`Context::backup`], declare it), a search
 //! or triggered motion (RAPID `SearchL`, `TriggL`, `MoveLDO`). KRL and RAPID read a motion inside
 //! a loop or branch, or in another routine of the file, where it is (what it moves with followed

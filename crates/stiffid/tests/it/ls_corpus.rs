@@ -73,7 +73,7 @@ const CORPUS: [(&str, Outcome); 13] = [
         "crs_surface_tool_offset.ls",
         Refused(
             24,
-            "TOOL_OFFSET,PR[15]: the offset is held on the controller",
+            "Tool_Offset,PR[15]: a position register holds its value on the controller",
         ),
     ),
     (

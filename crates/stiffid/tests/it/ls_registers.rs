@@ -4,7 +4,8 @@
 //! is); refused naming the line where the program sets the register or calls a program the
 //! backup does not hold.
 
-use crate::ls_corpus::{compensated, compensated_in, independent, refusal, setup};
+use crate::ls_corpus::{compensated, compensated_in, independent, pose, refusal, setup};
+use nalgebra::Translation3;
 use stiffid::internal::machining::compensate::{Compensated, Options};
 use stiffid::internal::machining::program::{parse_in, Context, Dialect};
 use stiffid::Setup;
@@ -14,7 +15,7 @@ const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/programs/ls/"
 /// A `POSREG.VA` as an R-30iB backup writes it (the format of the drilling cell's backup,
 /// `wilder-backup/`: CRLF, three decimals, no zero before the point): PR[5] a Cartesian register
 /// holding `rpi_tmpa.ls`'s `P[3]`, PR[7] a joint one holding its `P[1]`, PR[1] never set.
-const POSREG: &str = "[*POSREG*]$POSREG  Storage: SHADOW  Access: RW  : ARRAY[1,200] OF Position Reg\r\n    [1,1] =   '' Uninitialized\r\n    [1,5] =   'PROBE' \r\n  Group: 1   Config: N U T, 0, 0, 0\r\n  X:  1620.000   Y:      .000   Z:  1930.000\r\n  W:   180.000   P:      .000   R:      .000\r\n    [1,7] =   'PARK'   Group: 1\r\n  J1 =    38.300 deg   J2 =    23.300 deg   J3 =   -34.000 deg \r\n  J4 =    45.700 deg   J5 =  -101.900 deg   J6 =   -48.300 deg \r\n\r\n[*POSREG*]$MAXPREGNUM  Storage: CMOS  Access: RW  : INTEGER = 200\r\n";
+const POSREG: &str = "[*POSREG*]$POSREG  Storage: SHADOW  Access: RW  : ARRAY[1,200] OF Position Reg\r\n    [1,1] =   '' Uninitialized\r\n    [1,5] =   'PROBE' \r\n  Group: 1   Config: N U T, 0, 0, 0\r\n  X:  1620.000   Y:      .000   Z:  1930.000\r\n  W:   180.000   P:      .000   R:      .000\r\n    [1,7] =   'PARK'   Group: 1\r\n  J1 =    38.300 deg   J2 =    23.300 deg   J3 =   -34.000 deg \r\n  J4 =    45.700 deg   J5 =  -101.900 deg   J6 =   -48.300 deg \r\n\r\n    [1,9] =   'SHIFT' \r\n  Group: 1   Config: N U T, 0, 0, 0\r\n  X:    10.000   Y:    -5.000   Z:    20.000\r\n  W:      .000   P:      .000   R:      .000\r\n[*POSREG*]$MAXPREGNUM  Storage: CMOS  Access: RW  : INTEGER = 200\r\n";
 
 /// The program with its two motions to `P[1]` and `P[3]` going to the registers holding them.
 fn with_registers(straight: &str) -> String {
@@ -139,5 +140,84 @@ fn a_position_register_the_run_sets_or_a_program_not_given_may_set_is_refused_na
     assert!(
         message.contains("backup/POSREG.VA line 2 gives PR[1] no value (Uninitialized)"),
         "{message}"
+    );
+}
+
+/// `Offset,PR[9]` and `Tool_Offset,PR[9]` (a translation of 10, -5, 20 mm held in `POSREG.VA`)
+/// compensate as the position moved by it in the user frame, or in the tool frame: the same
+/// postures, and the position written is the one the offset lands on the compensated pose
+/// (to the 9 decimals written).
+#[test]
+fn an_offset_by_a_position_register_of_posreg_va_compensates_as_the_moved_position() {
+    let s = setup();
+    let straight = std::fs::read_to_string(format!("{DIR}rpi_tmpa.ls")).unwrap();
+    let backup = vec![("backup/POSREG.VA".to_string(), POSREG.to_string())];
+    let p3 = "   X = 1620.000 mm,  Y = 0.000 mm,  Z = 1930.000 mm,";
+    // P[3] is W = 180 deg: the tool frame's y and z are the user frame's -y and -z.
+    for (word, moved, shift) in [
+        (
+            "Offset",
+            "   X = 1630.000 mm,  Y = -5.000 mm,  Z = 1950.000 mm,",
+            false,
+        ),
+        (
+            "Tool_Offset",
+            "   X = 1630.000 mm,  Y = 5.000 mm,  Z = 1910.000 mm,",
+            true,
+        ),
+    ] {
+        let offset = straight.replace(
+            "   5:L P[3] 50mm/sec FINE ;",
+            &format!("   5:L P[3] 50mm/sec FINE {word},PR[9:SHIFT] ;"),
+        );
+        let shifted = straight.replacen(p3, moved, 1);
+        assert!(offset != straight && shifted != straight);
+        let (out_s, a) = compensated(&s, "TMPA.ls", &shifted).unwrap();
+        let (out_o, b) = run(&s, &offset, &backup).unwrap();
+        for (a, b) in a.iter().zip(&b) {
+            assert!((a.q_compensated - b.q_compensated).amax() < 1e-12, "{word}");
+        }
+        assert!(out_o.contains(&format!("{word},PR[9:SHIFT] ;")), "{out_o}");
+        let (w_s, w_o) = (independent(&out_s)[2].values, independent(&out_o)[2].values);
+        let t = Translation3::new(10e-3, -5e-3, 20e-3);
+        let landed = match shift {
+            true => pose(&w_o) * t,
+            false => t * pose(&w_o),
+        };
+        let d = (landed.translation.vector - pose(&w_s).translation.vector).norm();
+        // To the 9 decimals written (mm and deg).
+        assert!(d < 1e-11, "{word}: {d} m");
+        assert!(
+            landed.rotation.angle_to(&pose(&w_s).rotation) < 1e-9,
+            "{word}"
+        );
+    }
+    // A register that turns, or a joint position offset: refused naming the line.
+    let turning = POSREG.replace(
+        "W:      .000   P:      .000   R:      .000\r\n[*POSREG*]$MAX",
+        "W:      .000   P:      .000   R:     5.000\r\n[*POSREG*]$MAX",
+    );
+    let offset = straight.replace(
+        "   5:L P[3] 50mm/sec FINE ;",
+        "   5:L P[3] 50mm/sec FINE Offset,PR[9] ;",
+    );
+    let turned = vec![("POSREG.VA".to_string(), turning)];
+    let context = Context::of(&s).with_backup(&turned);
+    let (line, why) = refusal(&parse_in(&offset, Dialect::FanucLs, &context).unwrap_err());
+    assert_eq!(line, 9, "{why}");
+    assert!(
+        why.contains("Offset,PR[9] (POSREG.VA line 11): the register turns"),
+        "{why}"
+    );
+    let joint = straight.replace(
+        "   3:J P[1] 100% FINE ;",
+        "   3:J P[1] 100% FINE Offset,PR[9] ;",
+    );
+    let context = Context::of(&s).with_backup(&backup);
+    let (line, why) = refusal(&parse_in(&joint, Dialect::FanucLs, &context).unwrap_err());
+    assert_eq!(line, 7, "{why}");
+    assert!(
+        why.contains("an offset of a position in joint representation"),
+        "{why}"
     );
 }

@@ -23,6 +23,7 @@ pub mod generate;
 mod motion;
 mod names;
 mod numbered;
+mod offsets;
 mod options;
 mod process;
 mod read;

@@ -63,6 +63,9 @@ pub(super) fn targets(
     let o = options::read(line, &what, words.get(1..).unwrap_or(&[]))?;
     let mut target = position(line, letter, index, positions)?.moved_to(line, o.incremental);
     target.speed = speed::speed(line, letter, words.first().copied().unwrap_or(""))?;
+    if o.incremental && o.offset.is_some() {
+        return Err(at(line, format!("{what} INC: an incremental motion offset by a position register; write the position absolute")));
+    }
     if o.incremental {
         increment(
             line,
@@ -86,6 +89,9 @@ fn circular(
     let o = options::read(line, &what, words.get(1..).unwrap_or(&[]))?;
     if o.incremental {
         return Err(at(line, format!("{what} INC: an incremental circular motion; stiffid follows circular motions to absolute positions: write P[{via}] and P[{end}] absolute")));
+    }
+    if o.offset.is_some() {
+        return Err(at(line, format!("{what}: a circular motion offset by a position register; stiffid offsets linear and joint motions: apply the offset to P[{via}] and P[{end}]")));
     }
     let speed = speed::speed(line, "C", words.first().copied().unwrap_or(""))?;
     let mut out = Vec::with_capacity(2);

@@ -10,9 +10,12 @@
 //!   off at the point), `EVn%`/`Ind.EVn%` (extended axes' speed), `TB`/`TA`/`DB` with the
 //!   instruction they run early or late (an output, a point-logic or a program call: a program
 //!   called there runs without a motion group, so it cannot move the robot).
+//! - Offsets by a position register, `Offset,PR[i]` (in the user frame) and `Tool_Offset,PR[i]`
+//!   (in the tool frame; `WKZ_Offset,PR[i]` in a German program): read, the register's value
+//!   from the backup ([`super::registers`]).
 //! - Refused: `COORD` (coordinated motion: the path is relative to the leader group, a
-//!   positioner that moves during it), `Offset`, `Tool_Offset` (`WKZ_Offset` in a German
-//!   program), `VOFFSET` (an offset held on the controller), `Skip,LBL[..]` and any option naming
+//!   positioner that moves during it), `Offset` and `Tool_Offset` without a register (the
+//!   `OFFSET CONDITION` in force), `VOFFSET` (an offset held on the controller), `Skip,LBL[..]` and any option naming
 //!   a label (`Interrupt,LABEL[..]` in a German program: a jump), and every other option
 //!   (`Wjnt`, `RTCP`, `Weave`, `CTV`, ...): stiffid does not follow them.
 
@@ -27,6 +30,9 @@ pub(super) struct Options {
     pub fine: bool,
     /// The position holds the increment from the previous target (`INC`).
     pub incremental: bool,
+    /// `Offset,PR[i]` (`false`: in the user frame) or `Tool_Offset,PR[i]` (`true`: in the
+    /// tool frame), the register's number.
+    pub offset: Option<(bool, u32)>,
 }
 
 /// The termination and options of the motion `what` (`L P[3]`) on `line`, from the words after
@@ -56,6 +62,7 @@ pub(super) fn read(line: u64, what: &str, words: &[&str]) -> Result<Options> {
     let mut options = Options {
         fine,
         incremental: false,
+        offset: None,
     };
     let mut i = 0;
     while let Some(w) = rest.get(i) {
@@ -85,6 +92,7 @@ fn option(line: u64, what: &str, w: &str, after: &[String], o: &mut Options) -> 
             return refuse("coordinated motion: the path is relative to the leader group (a positioner) that moves during it; stiffid reads a positioner's axes as the program's targets, not a path relative to it: write the motion without COORD")
         }
         a if a.starts_with("ACC") || a.starts_with("EV") || a.starts_with("IND.EV") => {}
+        w if offset(w).is_some() => o.offset = offset(w),
         o if o.starts_with("OFFSET")
             || o.starts_with("TOOL_OFFSET")
             || o.starts_with("WKZ_OFFSET")
@@ -100,4 +108,18 @@ fn option(line: u64, what: &str, w: &str, after: &[String], o: &mut Options) -> 
         }
     }
     Ok(0)
+}
+
+/// The offset option `w` (upper case) names with its register: `OFFSET,PR[i]` (in the user frame,
+/// `false`) or `TOOL_OFFSET,PR[i]` (`WKZ_OFFSET,PR[i]` in a German program: in the tool frame,
+/// `true`), `i` a number.
+pub(super) fn offset(w: &str) -> Option<(bool, u32)> {
+    let (kind, register) = w.split_once(",PR[")?;
+    let tool = match kind {
+        "OFFSET" => false,
+        "TOOL_OFFSET" | "WKZ_OFFSET" => true,
+        _ => return None,
+    };
+    let n = register.split([']', ':']).next()?.trim().parse().ok()?;
+    Some((tool, n))
 }

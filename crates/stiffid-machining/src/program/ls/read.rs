@@ -6,8 +6,9 @@
 
 use super::copies::{self, Copies};
 use super::flow::{self, Graph};
+use super::registers::Used;
 use super::statements::{self, Number, Place, Selected};
-use super::{calls, instructions, motion, numbered, positions, registers, sysframe};
+use super::{calls, instructions, motion, numbered, offsets, positions, registers, sysframe};
 use crate::program::cartesian::Frame;
 use crate::program::{at, Context, JointTarget, Left, Units};
 use std::collections::HashMap;
@@ -146,12 +147,16 @@ fn read_one(text: &str, context: &Context, entry: Selected, calls: &mut Calls) -
     let registers = registers::read(&instructions, &motions, context)?;
     let largest = positions.keys().max().copied().unwrap_or(0);
     let selected = |k: usize| states[k].as_ref().map(|s| s.selected.clone());
-    let copies = copies::build(text, &instructions, &registers, selected, largest)?;
+    let copies = copies::build(text, &instructions, &registers.targets, selected, largest)?;
     let own_positions = !positions.is_empty();
     (axes, units) = copies::axes(&instructions, &copies, (own_positions, axes, units))?;
     positions.extend(copies.positions.iter().map(|(k, t)| (*k, t.clone())));
-    let (mut own, in_force) =
-        motions_read(&instructions, &motions, &states, (&positions, &copies))?;
+    let (mut own, in_force) = motions_read(
+        &instructions,
+        &motions,
+        &states,
+        (&positions, &copies, &registers),
+    )?;
     numbered::apply(text, &mut own, &in_force)?;
     sysframe::apply(context, &mut own)?;
     let mut left = Vec::new();
@@ -190,12 +195,13 @@ fn read_one(text: &str, context: &Context, entry: Selected, calls: &mut Calls) -
 
 /// The targets of the motions of `instructions` (`motions` says which), each with the state
 /// before it (`states`), to the `/POS` `positions` (a motion to a position register: to its
-/// copy among `copies`); per target, the frame numbers in force.
+/// copy among `copies`; offset by one: by its value, `registers`); per target, the frame
+/// numbers in force.
 fn motions_read(
     instructions: &[(u64, String)],
     motions: &[bool],
     states: &[Option<State>],
-    (positions, copies): (&HashMap<u64, JointTarget>, &Copies),
+    (positions, copies, registers): (&HashMap<u64, JointTarget>, &Copies, &Used),
 ) -> Result<(Vec<JointTarget>, Vec<Selected>)> {
     let mut out: Vec<JointTarget> = Vec::new();
     let mut in_force: Vec<Selected> = Vec::new();
@@ -220,6 +226,9 @@ fn motions_read(
         )?;
         if let (Some(c), Some(first)) = (copy, targets.first_mut()) {
             *first = c.attach(first.clone());
+        }
+        if let (Some(o), Some(first)) = (registers.offsets.get(&k), targets.first_mut()) {
+            offsets::apply(*line, first, o)?;
         }
         in_force.extend(std::iter::repeat_n(state.selected.clone(), targets.len()));
         out.extend(targets);

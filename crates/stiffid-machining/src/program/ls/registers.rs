@@ -32,48 +32,76 @@ pub(super) struct Register {
     pub source: String,
 }
 
-/// Per motion instruction of `instructions` (`motions` says which) to a position register, the
-/// register as the `context`'s backup holds it (module docs).
+/// The registers the motions use, by motion instruction: the one it moves to, and the one it
+/// is offset by (`Offset,PR[i]`: `false`, `Tool_Offset,PR[i]`: `true`).
+#[derive(Debug, Default)]
+pub(super) struct Used {
+    pub targets: HashMap<usize, Register>,
+    pub offsets: HashMap<usize, (bool, Register)>,
+}
+
+/// Per motion instruction of `instructions` (`motions` says which) to a position register or
+/// offset by one, the register as the `context`'s backup holds it (module docs).
 ///
 /// # Errors
-/// Naming the line (module docs): the first motion to a register refused.
+/// Naming the line (module docs): the first motion whose register is refused.
 pub(super) fn read(
     instructions: &[(u64, String)],
     motions: &[bool],
     context: &Context,
-) -> Result<HashMap<usize, Register>> {
-    let mut out = HashMap::new();
+) -> Result<Used> {
+    let mut out = Used::default();
     let file = context.backup_file(FILE);
-    let held = file.map(|(_, text)| entries(text, "$POSREG"));
-    for (k, (line, t)) in instructions.iter().enumerate() {
-        let Some(n) = motions[k].then(|| register(t)).flatten() else {
-            continue;
-        };
-        let what = format!("{} PR[{n}]", &t.trim()[..1]);
-        if let Some(why) = set_by(instructions, n, context, 0) {
-            return Err(at(*line, format!("{what}: {why}")));
+    let held = file.map(|(name, text)| (name, entries(text, "$POSREG")));
+    for (k, (line, t)) in instructions.iter().enumerate().filter(|(k, _)| motions[*k]) {
+        let letter = &t.trim()[..1];
+        let offset = english(&t.to_ascii_uppercase())
+            .split_whitespace()
+            .find_map(super::options::offset);
+        if let Some(n) = register(t) {
+            let what = format!("{letter} PR[{n}]");
+            let r = one(*line, &what, n, (instructions, context), held.as_ref())?;
+            out.targets.insert(k, r);
         }
-        let (Some((name, _)), Some(held)) = (file, held.as_ref()) else {
-            return Err(at(*line, format!("{what}: a position register holds its value on the controller, not in this program: give the controller's backup with its {FILE}, or copy the value into a P[] position")));
-        };
-        let entry = held.iter().find(|e| e.group == 1 && e.number == n);
-        let entry = match entry.map(|e| (e, &e.value)) {
-            Some((e, Ok(Some(_)))) => e.clone(),
-            Some((e, Ok(None))) => return Err(at(*line, format!("{what}: {name} line {} gives PR[{n}] no value (Uninitialized): the register is set as programs run; copy its value into a P[] position", e.line))),
-            Some((_, Err((l, why)))) => return Err(at(*line, format!("{what}: {name} line {l}: {why}"))),
-            None => return Err(at(*line, format!("{what}: {name} holds no PR[{n}] of motion group 1"))),
-        };
-        let source = format!("{name} line {}", entry.line);
-        out.insert(
-            k,
-            Register {
-                number: n,
-                entry,
-                source,
-            },
-        );
+        if let Some((tool, n)) = offset {
+            let word = if tool { "Tool_Offset" } else { "Offset" };
+            let what = format!("{letter} .. {word},PR[{n}]");
+            let r = one(*line, &what, n, (instructions, context), held.as_ref())?;
+            out.offsets.insert(k, (tool, r));
+        }
     }
     Ok(out)
+}
+
+/// Register `n` of the motion `what` on `line`, as `held` (the backup's `POSREG.VA`: its name
+/// and entries) holds it where nothing in `instructions` (and the programs they call, of the
+/// `context`'s backup) sets it.
+fn one(
+    line: u64,
+    what: &str,
+    n: u32,
+    (instructions, context): (&[(u64, String)], &Context),
+    held: Option<&(&str, Vec<Entry>)>,
+) -> Result<Register> {
+    if let Some(why) = set_by(instructions, n, context, 0) {
+        return Err(at(line, format!("{what}: {why}")));
+    }
+    let Some((name, held)) = held else {
+        return Err(at(line, format!("{what}: a position register holds its value on the controller, not in this program: give the controller's backup with its {FILE}, or copy the value into a P[] position")));
+    };
+    let entry = held.iter().find(|e| e.group == 1 && e.number == n);
+    let entry = match entry.map(|e| (e, &e.value)) {
+        Some((e, Ok(Some(_)))) => e.clone(),
+        Some((e, Ok(None))) => return Err(at(line, format!("{what}: {name} line {} gives PR[{n}] no value (Uninitialized): the register is set as programs run; copy its value into a P[] position", e.line))),
+        Some((_, Err((l, why)))) => return Err(at(line, format!("{what}: {name} line {l}: {why}"))),
+        None => return Err(at(line, format!("{what}: {name} holds no PR[{n}] of motion group 1"))),
+    };
+    let source = format!("{name} line {}", entry.line);
+    Ok(Register {
+        number: n,
+        entry,
+        source,
+    })
 }
 
 /// Why register `n`'s value is not the backup's where `instructions` run: the first line that
