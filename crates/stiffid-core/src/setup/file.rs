@@ -76,6 +76,7 @@ struct MassesFile {
 struct ControllerFile {
     kinematics: Option<String>,
     joint_targets: Option<String>,
+    robot_number: Option<u32>,
     dialect: Option<String>,
     robot: Option<String>,
     robot_tip: Option<String>,
@@ -461,6 +462,7 @@ where
         dialect: (c.dialect.as_deref().map(str::parse).transpose()).map_err(here)?,
         radius_wear: super::radius_wear::read(&c.radius_wear_mm).map_err(here)?,
         joint_targets: (c.joint_targets.as_deref().map(str::parse).transpose()).map_err(here)?,
+        robot_number: super::workcell::robot_number(c.robot_number).map_err(here)?,
         ..Default::default()
     })
 }

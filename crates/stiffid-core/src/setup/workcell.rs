@@ -123,6 +123,26 @@ pub struct Controller {
     /// robot or computed by the controller's inverse kinematics; `None` when the setup does not
     /// say (refused where it matters: a robot whose geometry is not the controller's).
     pub joint_targets: Option<JointTargets>,
+    /// `[controller] robot_number`: which of the controller's robots the setup's robot is (a
+    /// Yaskawa controller's `RB2`: 2), from 1 to 8; `None`: the first.
+    pub robot_number: Option<u32>,
+}
+
+/// The most robots one controller moves (a Yaskawa controller's `R1` to `R8`).
+pub(crate) const MAX_ROBOT_NUMBER: u32 = 8;
+
+/// `[controller] robot_number` checked.
+///
+/// # Errors
+/// [`crate::Error::InvalidField`] (`controller.robot_number`) outside 1 to [`MAX_ROBOT_NUMBER`].
+pub(super) fn robot_number(n: Option<u32>) -> crate::Result<Option<u32>> {
+    match n {
+        Some(k) if !(1..=MAX_ROBOT_NUMBER).contains(&k) => Err(crate::Error::InvalidField {
+            field: "controller.robot_number".into(),
+            message: format!("{k}: expected which of the controller's robots the setup's robot is, 1 to {MAX_ROBOT_NUMBER} (a Yaskawa job's RB1 to RB{MAX_ROBOT_NUMBER})"),
+        }),
+        other => Ok(other),
+    }
 }
 
 /// How many encoder pulses make a unit of each axis on the controller (its axis parameters): a

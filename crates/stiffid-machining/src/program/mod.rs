@@ -351,6 +351,9 @@ pub struct Context<'a> {
     /// different frames, a value assigned at run time): each is then not compensated, written
     /// back as read, and named in [`JointProgram::left`] instead of refusing the program.
     pub leave_refused: bool,
+    /// Which of the controller's robots the setup's robot is (`[controller] robot_number`, a
+    /// Yaskawa job's `RB2`: 2); `None`: the first.
+    pub robot_number: Option<u32>,
 }
 
 /// How a robot program is read beyond its own files (by default: nothing more), as a job takes
@@ -411,6 +414,7 @@ impl<'a> Context<'a> {
             home_deg: c.program.home_deg,
             backup: &[],
             leave_refused: false,
+            robot_number: c.robot_number,
         }
     }
 

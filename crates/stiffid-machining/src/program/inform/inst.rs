@@ -21,14 +21,22 @@ pub(super) struct Motion {
 }
 
 /// What `//INST` holds: the `'stiffid:` comments, the motions, the jumps, calls, loops and
-/// branches (each its line, word and text), the labels (`*NAME`, upper case, and line) and the
-/// first `WVON`'s line.
+/// branches (each its line, word and text), the labels (`*NAME`, upper case, and line), the
+/// first `WVON`'s line and the robots the `///GROUP` lines name.
 pub(super) struct Instructions {
     pub directives: Directives,
     pub motions: Vec<Motion>,
     pub control: Vec<(u64, String, String)>,
     pub labels: Vec<(String, u64)>,
     pub weaves: Option<u64>,
+    pub robots: Vec<Robot>,
+}
+
+/// A robot a `///GROUP` line names (`RB2`): its line, the line and the robot's word.
+pub(super) struct Robot {
+    pub line: u64,
+    pub text: String,
+    pub name: String,
 }
 
 /// Instructions that cannot move the robot or change a frame: input and output, timers and
@@ -81,6 +89,7 @@ pub(super) fn instructions(text: &str) -> Result<Instructions> {
         control: Vec::new(),
         labels: Vec::new(),
         weaves: None,
+        robots: Vec::new(),
     };
     let (mut in_inst, mut last) = (false, None::<(u64, String)>);
     let mut weaving: Option<(u64, String)> = None;
@@ -91,7 +100,11 @@ pub(super) fn instructions(text: &str) -> Result<Instructions> {
             continue;
         }
         if in_inst && t.starts_with("///GROUP") {
-            groups(line, t)?;
+            let words = t.split_whitespace().skip(1).flat_map(|w| w.split(','));
+            for name in words.map(str::trim).filter(|w| w.starts_with("RB")) {
+                let (text, name) = (t.to_string(), name.to_string());
+                out.robots.push(Robot { line, text, name });
+            }
         }
         if !in_inst || t.starts_with("///") || t.is_empty() {
             continue;
@@ -154,16 +167,6 @@ fn without_comment(t: &str) -> &str {
         }
     }
     t
-}
-
-/// Refuses a job that moves a robot other than the controller's first (`///GROUP1 RB2`, a
-/// second robot `RB2` in any group): the setup is one robot, whose positions are `RB1`'s.
-fn groups(line: u64, t: &str) -> Result<()> {
-    let words = t.split_whitespace().skip(1).flat_map(|w| w.split(','));
-    match words.map(str::trim).find(|w| w.starts_with("RB") && *w != "RB1") {
-        Some(robot) => Err(at(line, format!("{}: a job of robot {}; stiffid compensates one robot, the controller's first (RB1): compensate a job of that robot", short(t), short(robot)))),
-        None => Ok(()),
-    }
 }
 
 /// Refuses a job whose last instruction is not `END`: the controller loads no job without it,

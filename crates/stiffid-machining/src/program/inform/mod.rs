@@ -101,6 +101,7 @@ use nalgebra::{UnitQuaternion, Vector3};
 use pos::{Form, Kind, Position};
 use std::collections::HashMap;
 use std::ops::Range;
+use stiffid_core::common::limits::short;
 use stiffid_core::Result;
 
 /// Every joint target of `text`, in the order of its motions (module docs), the program's
@@ -132,6 +133,7 @@ fn read_job(text: &str, context: &Context, chain: &mut Vec<String>) -> Result<Re
         form(positions, Kind::Station)?,
     ];
     let inst = inst::instructions(text)?;
+    robots(&inst.robots, context)?;
     let moving = calls::check(&inst, context)?;
     let first = inst.motions.first().map_or(1, |m| m.line);
     let mut pulses: Vec<Option<f64>> = vec![None; 6 + nb + ne];
@@ -193,6 +195,17 @@ fn control_characters(text: &str) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// Refuses a job of another robot than the setup's, the controller's `RB1` or the one
+/// `[controller] robot_number` names (`///GROUP1 RB2`), and a job of two robots, naming the line.
+fn robots(robots: &[inst::Robot], context: &Context) -> Result<()> {
+    let number = context.robot_number.unwrap_or(1);
+    let own = format!("RB{number}");
+    match robots.iter().find(|r| r.name != own) {
+        Some(r) => Err(at(r.line, format!("{}: a job of robot {}; stiffid compensates the setup's robot, the controller's {own} ([controller] robot_number = {number}{}): compensate a job of that robot, or give the number of the robot the setup is", short(&r.text), short(&r.name), if context.robot_number.is_none() { ", unsaid: the first" } else { "" }))),
+        None => Ok(()),
+    }
 }
 
 /// Refuses counts of positions other than `///NPOS` declares.

@@ -208,3 +208,37 @@ fn the_backups_user_frame_and_tool_file_are_read_and_refusals_name_the_line() {
         assert!((Vector6::from(a.q_deg) - Vector6::from(b.q_deg)).amax() < 1e-6);
     }
 }
+
+/// A job of the controller's second robot (`///GROUP1 RB2`) is refused naming its line unless
+/// the setup says its robot is that one (`[controller] robot_number = 2`), then read as the
+/// same job of `RB1` is; a job of `RB1` is then refused; a number beyond 8 is refused naming the
+/// field.
+#[test]
+fn a_job_of_the_second_robot_is_read_when_the_setup_names_it() {
+    let in_pulses: Vec<String> = (pulses().iter())
+        .map(|p| p.map(|v| v.to_string()).join(","))
+        .collect();
+    let first = job("///TOOL 3\r\n", &in_pulses);
+    let second = first.replace("///GROUP1 RB1", "///GROUP1 RB2");
+    let with = |more: &str| {
+        let text = format!("{SETUP}\n[controller]\npulses_per_deg = {PER_DEG:?}\n{more}");
+        stiffid::internal::setup::parse(&text, "fanuc-milling.toml", |n, _| presets::get(n))
+    };
+    let (one, two) = (with("").unwrap(), with("robot_number = 2\n").unwrap());
+    let (line, message) = refused(parse_in(&second, Dialect::Inform, &Context::of(&one)));
+    assert_eq!(line, 12);
+    assert!(message.contains("a job of robot RB2"), "{message}");
+    let read = parse_in(&second, Dialect::Inform, &Context::of(&two)).unwrap();
+    let same = parse_in(&first, Dialect::Inform, &Context::of(&one)).unwrap();
+    assert_eq!(read.targets.len(), 3);
+    for (a, b) in read.targets.iter().zip(&same.targets) {
+        assert_eq!(a.q_deg, b.q_deg);
+    }
+    let (line, message) = refused(parse_in(&first, Dialect::Inform, &Context::of(&two)));
+    assert_eq!(line, 12);
+    assert!(message.contains("a job of robot RB1"), "{message}");
+    match with("robot_number = 9\n") {
+        Err(e) => assert!(e.to_string().contains("controller.robot_number"), "{e}"),
+        Ok(_) => panic!("robot_number = 9 read"),
+    }
+}
