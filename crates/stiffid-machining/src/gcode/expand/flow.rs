@@ -21,6 +21,7 @@ impl Run<'_> {
             "endsub" | "return" => return self.o_return(label),
             "call" => return self.o_call(label, rest),
             "if" => {
+                self.ends_at(|r| r.find(here, label, &["endif"], "endif"))?;
                 if self.condition(rest)? {
                     self.pc += 1;
                 } else {
@@ -36,13 +37,21 @@ impl Run<'_> {
                 };
             }
             "while" => {
+                self.ends_at(|r| r.find(here, label, &["endwhile"], "endwhile"))?;
                 self.pc = match self.condition(rest)? {
                     true => here + 1,
                     false => self.find(here, label, &["endwhile"], "endwhile")? + 1,
                 };
             }
             "endwhile" => self.pc = self.find_back(here, label, "while")?,
-            "repeat" => self.repeat(label, rest)?,
+            "repeat" => {
+                self.ends_at(|r| r.find(here, label, &["endrepeat"], "endrepeat"))?;
+                self.repeat(label, rest)?;
+            }
+            "do" => {
+                self.ends_at(|r| r.find(here, label, &["while"], "while"))?;
+                self.pc += 1;
+            }
             "endrepeat" => {
                 let key = (self.stack.len(), label.to_string());
                 if let Some(n) = self.repeats.get_mut(&key) {
@@ -57,6 +66,20 @@ impl Run<'_> {
             }
             "continue" => self.pc = self.loop_end(label)?,
             _ => self.pc += 1,
+        }
+        Ok(())
+    }
+
+    /// Refuses, the first time the loop or branch at the line in force is entered, one whose
+    /// end `find` does not find (a controller alarms on it; run through, the blocks after it
+    /// would be read as its body once).
+    fn ends_at(
+        &mut self,
+        find: impl FnOnce(&Self) -> std::result::Result<usize, String>,
+    ) -> Outcome {
+        if !self.ends_found.contains(&self.pc) {
+            find(self)?;
+            self.ends_found.insert(self.pc);
         }
         Ok(())
     }
@@ -155,6 +178,8 @@ impl Run<'_> {
                 let mut c = Cursor::new(rest, 0);
                 let holds = expr::expression(&mut c, &self.store, self.flavour)? != 0.0;
                 let m = do_number(&rest[c.at..], "DO")?;
+                let end = |s: &Stmt| matches!(s, Stmt::End(r) if do_number(r, "").ok() == Some(m));
+                self.ends_at(|r| r.fanuc_find(end, &format!("END {m}"), true))?;
                 self.pc = match holds {
                     true => self.pc + 1,
                     false => {

@@ -85,6 +85,9 @@ struct Run<'a> {
     subs: HashMap<String, usize>,
     /// The labels of LinuxCNC `do` loops (their `while` ends them).
     do_labels: HashSet<String>,
+    /// The loops and branches whose end was found when they were first entered (a loop or
+    /// branch without its end is refused naming it, module `flow`).
+    ends_found: HashSet<usize>,
     /// The main program's own number line (`O1000` before its first block).
     own_header: Option<usize>,
     ended: bool,
@@ -127,6 +130,7 @@ pub(crate) fn expand(text: &str, dialect: Option<GcodeDialect>) -> Result<Option
         programs: HashMap::new(),
         subs: HashMap::new(),
         do_labels: HashSet::new(),
+        ends_found: HashSet::new(),
         own_header: None,
         ended: false,
     };

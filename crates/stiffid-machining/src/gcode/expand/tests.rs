@@ -176,3 +176,31 @@ fn fanuc_and_linuxcnc_differ_where_they_should() {
         "G0 X1\nN5 G0 X2\n"
     );
 }
+
+/// A loop or branch without its end is refused naming its line (a controller alarms; run
+/// through, the blocks after it were read as its body once, exit 0).
+#[test]
+fn a_loop_or_branch_without_its_end_is_refused_naming_its_line() {
+    let cases = [
+        (
+            "#1 = 0\nWHILE [#1 LT 5] DO 1\nG0 X#1\n#1 = #1 + 1\nM30\n",
+            FANUC,
+            2,
+            "END 1",
+        ),
+        ("o100 while [1]\nG0 X1\nM2\n", LINUXCNC, 1, "endwhile"),
+        ("o100 if [1]\nG0 X1\nM2\n", LINUXCNC, 1, "endif"),
+        ("o100 repeat [3]\nG0 X1\nM2\n", LINUXCNC, 1, "endrepeat"),
+        ("o100 do\nG0 X1\nM2\n", LINUXCNC, 1, "while"),
+    ];
+    for (text, dialect, line, needle) in cases {
+        let (l, m) = err(text, dialect);
+        assert_eq!(l, line, "{text}: {m}");
+        assert!(m.contains(needle), "{text}: {m}");
+    }
+    // With their ends, they run.
+    assert_eq!(
+        run("o100 repeat [2]\nG0 X1\no100 endrepeat\n", LINUXCNC).0,
+        "G0 X1\nG0 X1\n"
+    );
+}
