@@ -26,6 +26,7 @@ mod flow;
 mod generate;
 mod names;
 mod offset;
+mod parameters;
 mod process;
 mod read;
 pub(crate) mod speed;
@@ -275,6 +276,7 @@ fn declarations(code: &str, statements: &[Statement]) -> Result<Data> {
             .skip_while(|w| matches!(*w, "local" | "task"))
             .collect();
         let twice = declared_twice(s.line, &words, &mut names);
+        parameters::declare(s.line, body, (&mut declared, &mut frames));
         match words.as_slice() {
             ["const" | "var" | "pers", "jointtarget", name, ..] => {
                 let name = name.trim_end_matches(';');

@@ -190,3 +190,21 @@ fn a_header_over_two_lines_and_a_placeholder_are_read_as_the_controller_reads_th
     let lines: Vec<u64> = p.targets.iter().map(|t| t.line).collect();
     assert_eq!(lines, [4, 9]);
 }
+
+/// A motion to a routine's parameter (`PROC Buffer_Out(robtarget pBuffer)`, as a cell's buffer
+/// routine takes its station's point) is refused for its value being the caller's, naming the
+/// routine and its line; it was refused as a target declared nowhere.
+#[test]
+fn a_motion_to_a_routines_parameter_is_refused_as_the_callers_value() {
+    let text = "MODULE Buffer\n  PROC Buffer_Out(num nBuffer, robtarget pBuffer)\n    MoveL pBuffer, v100, fine, tool0;\n  ENDPROC\nENDMODULE\n";
+    match program::parse(text, Dialect::Rapid) {
+        Err(Error::Program { line, message }) => {
+            assert_eq!(line, 3, "{message}");
+            assert!(
+                message.contains("pBuffer is a parameter of Buffer_Out (line 2)"),
+                "{message}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+}
