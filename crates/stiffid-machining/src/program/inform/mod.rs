@@ -405,3 +405,6 @@ impl Controller for Inform {
 
 #[cfg(test)]
 mod circles_tests;
+
+#[cfg(test)]
+mod rconf_tests;
