@@ -180,7 +180,7 @@ impl Family {
 
 /// Whether `name` is one of the names of the model comparison's candidates of the families
 /// (`stiffid_identify::compare::pool`'s module docs), on any robot.
-pub fn is_family_name(name: &str) -> bool {
+pub(crate) fn is_family_name(name: &str) -> bool {
     let index = |s: &str, most: u8| s.len() == 1 && (b'1'..=b'0' + most).contains(&s.as_bytes()[0]);
     let at = |prefix: &str, most: u8| {
         name.strip_prefix(prefix)

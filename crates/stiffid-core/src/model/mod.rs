@@ -33,7 +33,7 @@ pub mod region;
 pub use crate::robot::OwnWeight;
 pub use compliance::Compliance;
 pub(crate) use family::check_declared_names;
-pub use family::{is_family_name, Family};
+pub use family::Family;
 pub use file::{fragment, parse as parse_fragment};
 pub use form::{FormModel, ModelForm};
 pub use law::{Law, DEFAULT_SMOOTHING};
