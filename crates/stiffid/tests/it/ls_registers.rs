@@ -104,6 +104,17 @@ fn a_position_register_the_run_sets_or_a_program_not_given_may_set_is_refused_na
         message.contains("the position register is set on line 10"),
         "{message}"
     );
+    // With --leave-refused, that motion is left as found, named, the others read.
+    let context = Context::of(&s)
+        .with_backup(&backup)
+        .with_leave_refused(true);
+    let p = parse_in(&set, Dialect::FanucLs, &context).unwrap();
+    assert_eq!(p.targets.iter().map(|t| t.line).collect::<Vec<_>>(), [7, 8]);
+    assert_eq!(p.left.len(), 1);
+    assert_eq!(p.left[0].line, 9);
+    assert!(p.left[0]
+        .why
+        .starts_with("L PR[5]: the position register is set on line 10"));
     // By a skip option's capture.
     let skip = text.replace(
         "   6:  DO[103]=OFF ;",

@@ -151,15 +151,14 @@ fn read_one(text: &str, context: &Context, entry: Selected, calls: &mut Calls) -
     let own_positions = !positions.is_empty();
     (axes, units) = copies::axes(&instructions, &copies, (own_positions, axes, units))?;
     positions.extend(copies.positions.iter().map(|(k, t)| (*k, t.clone())));
-    let (mut own, in_force) = motions_read(
-        &instructions,
-        &motions,
-        &states,
-        (&positions, &copies, &registers),
-    )?;
+    // The motions left as found (their register set as the program runs) are not read.
+    let mut reading = motions.clone();
+    registers.left.iter().for_each(|(k, _)| reading[*k] = false);
+    let read = (&positions, &copies, &registers);
+    let (mut own, in_force) = motions_read(&instructions, &reading, &states, read)?;
     numbered::apply(text, &mut own, &in_force)?;
     sysframe::apply(context, &mut own)?;
-    let mut left = Vec::new();
+    let mut left: Vec<Left> = registers.left.iter().map(|(_, l)| l.clone()).collect();
     if context.leave_refused {
         own = leave_paths(own, &in_force, &mut left);
     }

@@ -8,11 +8,13 @@
 //! a motion's `Skip,LBL[..],PR[i]=LPOS`: its value is the run's), or a program it calls or runs
 //! sets (read from the backup's `PROG.LS`, followed 16 deep); a call or run of a program the
 //! backup does not hold as `PROG.LS` (a KAREL program: it may set the register); a register
-//! without `POSREG.VA`, or `Uninitialized` there.
+//! without `POSREG.VA`, or `Uninitialized` there. With `--leave-refused`
+//! ([`Context::leave_refused`]), a motion whose register the run sets is left as found instead,
+//! named with its line and why.
 
 use super::statements::english;
 use super::va::{entries, Entry};
-use crate::program::{at, Context};
+use crate::program::{at, Context, Left};
 use std::collections::HashMap;
 use stiffid_core::common::limits::short;
 use stiffid_core::Result;
@@ -38,10 +40,14 @@ pub(super) struct Register {
 pub(super) struct Used {
     pub targets: HashMap<usize, Register>,
     pub offsets: HashMap<usize, (bool, Register)>,
+    /// The motions left as found ([`Context::leave_refused`]): their register is set as the
+    /// program runs.
+    pub left: Vec<(usize, Left)>,
 }
 
 /// Per motion instruction of `instructions` (`motions` says which) to a position register or
-/// offset by one, the register as the `context`'s backup holds it (module docs).
+/// offset by one, the register as the `context`'s backup holds it (module docs); with
+/// [`Context::leave_refused`], a motion whose register the run sets is left as found instead.
 ///
 /// # Errors
 /// Naming the line (module docs): the first motion whose register is refused.
@@ -58,34 +64,37 @@ pub(super) fn read(
         let offset = english(&t.to_ascii_uppercase())
             .split_whitespace()
             .find_map(super::options::offset);
-        if let Some(n) = register(t) {
-            let what = format!("{letter} PR[{n}]");
-            let r = one(*line, &what, n, (instructions, context), held.as_ref())?;
-            out.targets.insert(k, r);
-        }
-        if let Some((tool, n)) = offset {
+        let target = register(t).map(|n| (None, n, format!("{letter} PR[{n}]")));
+        let offset = offset.map(|(tool, n)| {
             let word = if tool { "Tool_Offset" } else { "Offset" };
-            let what = format!("{letter} .. {word},PR[{n}]");
-            let r = one(*line, &what, n, (instructions, context), held.as_ref())?;
-            out.offsets.insert(k, (tool, r));
+            (Some(tool), n, format!("{letter} .. {word},PR[{n}]"))
+        });
+        for (tool, n, what) in target.into_iter().chain(offset) {
+            // A value the run sets: the motion left as found where the context says so.
+            if let Some(why) = set_by(instructions, n, context, 0) {
+                let why = format!("{what}: {why}");
+                match context.leave_refused {
+                    true => {
+                        out.targets.remove(&k);
+                        out.left.push((k, Left::passed(*line, why)));
+                    }
+                    false => return Err(at(*line, why)),
+                }
+                break;
+            }
+            let r = one(*line, &what, n, held.as_ref())?;
+            match tool {
+                None => out.targets.insert(k, r).map(|_| ()),
+                Some(tool) => out.offsets.insert(k, (tool, r)).map(|_| ()),
+            };
         }
     }
     Ok(out)
 }
 
 /// Register `n` of the motion `what` on `line`, as `held` (the backup's `POSREG.VA`: its name
-/// and entries) holds it where nothing in `instructions` (and the programs they call, of the
-/// `context`'s backup) sets it.
-fn one(
-    line: u64,
-    what: &str,
-    n: u32,
-    (instructions, context): (&[(u64, String)], &Context),
-    held: Option<&(&str, Vec<Entry>)>,
-) -> Result<Register> {
-    if let Some(why) = set_by(instructions, n, context, 0) {
-        return Err(at(line, format!("{what}: {why}")));
-    }
+/// and entries) holds it.
+fn one(line: u64, what: &str, n: u32, held: Option<&(&str, Vec<Entry>)>) -> Result<Register> {
     let Some((name, held)) = held else {
         return Err(at(line, format!("{what}: a position register holds its value on the controller, not in this program: give the controller's backup with its {FILE}, or copy the value into a P[] position")));
     };
