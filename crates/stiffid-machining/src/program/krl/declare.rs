@@ -82,8 +82,9 @@ pub(super) fn declarations(
             out.fdats.entry(k).or_insert(v);
         }
     }
+    let mut seen = HashMap::new();
     for list in globals {
-        global(&mut out, (text, data), *list)?;
+        global(&mut out, (text, data), *list, &mut seen)?;
     }
     out.assigned = assignments
         .into_iter()
@@ -271,7 +272,9 @@ pub(super) fn global_lists<'a>(
 /// same line without `GLOBAL` (KSS 8.x SI manual, "Data lists": a module's own data hides the
 /// global data of that name), in the module's `.dat` after its `DEFDAT` line, or without a
 /// `.dat` in the `.src` after its first `DEF` line (the routine's declaration part);
-/// unchanged, it is not declared.
+/// unchanged, it is not declared. A point two global lists declare (`seen`: where each global
+/// point read so far is declared) is ambiguous: the controller refuses the name declared twice,
+/// and a motion to it is refused naming both places (where the program does not hide it).
 ///
 /// # Errors
 /// Those of [`read`] (none for a data list read as `$config.dat`).
@@ -279,6 +282,7 @@ fn global(
     out: &mut Declarations,
     (src, data): (&str, Option<&str>),
     (file, text): (&str, &str),
+    seen: &mut HashMap<String, String>,
 ) -> Result<()> {
     let mut found = Declarations::default();
     let config = crate::program::file_name(file).eq_ignore_ascii_case("$config.dat");
@@ -293,6 +297,17 @@ fn global(
         None => after_line(src, "DEF"),
     };
     for (k, (on, v)) in found.points {
+        if let Some(first) = seen.get(&k) {
+            let why = format!("{k} is declared GLOBAL twice, {first} and {on}: the controller refuses a global name declared twice; give the backup one declaration of it");
+            let from_first = |d: &Declared| d.get(&k).is_some_and(|(o, _)| o == first);
+            for d in std::iter::once(&mut out.points).chain(out.subs.iter_mut()) {
+                if from_first(d) {
+                    d.insert(k.clone(), (on.clone(), Err(why.clone())));
+                }
+            }
+            continue;
+        }
+        seen.insert(k.clone(), on.clone());
         let v = v.and_then(|t| copied(t, (file, text), insert));
         for sub in &mut out.subs {
             sub.entry(k.clone())

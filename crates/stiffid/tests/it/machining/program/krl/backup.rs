@@ -208,6 +208,34 @@ fn global_points_of_another_modules_public_data_list_are_read_its_local_ones_not
     }
 }
 
+/// A point two public data lists of the backup declare GLOBAL is refused where a motion uses it,
+/// naming both (the controller refuses the name declared twice; it was the first list's, exit
+/// 0); the program's own declaration of it hides both.
+#[test]
+fn a_global_point_two_public_lists_declare_is_refused_naming_both() {
+    let list = |name: &str, a1: u32| {
+        format!("DEFDAT {name} PUBLIC\nDECL GLOBAL E6AXIS XAPP={{A1 {a1},A2 -80,A3 100,A4 0,A5 30,A6 0}}\nENDDAT\n")
+    };
+    let files = vec![
+        ("KRC/R1/Program/a.dat".to_string(), list("A", 10)),
+        ("KRC/R1/Program/b.dat".to_string(), list("B", 12)),
+    ];
+    let context = program::Context::default().with_backup(&files);
+    match program::parse_in("DEF move( )\nPTP XAPP\nEND\n", Dialect::Krl, &context) {
+        Err(Error::Program { line: 2, message }) => assert!(
+            message.contains("GLOBAL twice")
+                && message.contains("a.dat")
+                && message.contains("b.dat"),
+            "{message}"
+        ),
+        other => panic!("{other:?}"),
+    }
+    let own =
+        "DEF move( )\nDECL E6AXIS XAPP={A1 20,A2 -80,A3 100,A4 0,A5 30,A6 0}\nPTP XAPP\nEND\n";
+    let p = program::parse_in(own, Dialect::Krl, &context).unwrap();
+    assert_eq!(p.targets[0].q_deg[0], 20.0);
+}
+
 /// A KSS backup's folder with a module that is no text (a KR C4 milling cell's `HoldersPos.src`
 /// holds a control byte, 0x05, in a comment): it is passed over and the folder's other files read;
 /// the same file given by name is refused naming it.
