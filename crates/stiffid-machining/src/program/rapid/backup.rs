@@ -44,10 +44,11 @@ pub(super) fn merge(mut data: Data, (text, code): (&str, &str), context: &Contex
             if data.targets.contains_key(&k) {
                 continue;
             }
-            if let Some(l) = found.assigned.get(&k) {
-                data.assigned.entry(k.clone()).or_insert(*l);
-            }
-            let v = v.and_then(|t| elsewhere(t, (file, other), insert));
+            // Assigned in its own module: the line is that module's, named with it.
+            let v = match found.assigned.get(&k) {
+                Some(l) => Err(format!("assigned in {} on its line {l}, so its value at the motion is the controller's, not the module's", crate::program::file_name(file))),
+                None => v.and_then(|t| elsewhere(t, (file, other), insert)),
+            };
             data.targets.insert(k, v);
         }
     }

@@ -96,3 +96,25 @@ fn a_real_task_reads_its_tool_from_its_other_module() {
     // CalibData.mod's line 2, named by the motion (line 48) that uses it.
     assert!(matches!(&c.tool, Frame::Stated(48, _)), "{:?}", c.tool);
 }
+
+/// A target another module of the task assigns at run time (a welding cell's `pSafe := CRobT()`
+/// in its data module): the motion that uses it is refused naming that module and its line,
+/// never a line of the program's own.
+#[test]
+fn a_target_another_module_assigns_is_refused_naming_that_module() {
+    let data = format!("MODULE CellData\n  PERS robtarget pSafe := [[500,0,400],[0,0,1,0],[0,0,0,0],{EXT}];\n  PROC Teach()\n    pSafe := CRobT();\n  ENDPROC\nENDMODULE\n");
+    let text =
+        "MODULE Cut\n  PROC main()\n    MoveL pSafe, v100, fine, tool0;\n  ENDPROC\nENDMODULE\n";
+    let backup = vec![("TASK1/PROGMOD/CellData.mod".to_string(), data)];
+    let context = program::Context::default().with_backup(&backup);
+    match program::parse_in(text, Dialect::Rapid, &context) {
+        Err(Error::Program { line, message }) => {
+            assert_eq!(line, 3, "{message}");
+            assert!(
+                message.contains("assigned in CellData.mod on its line 4"),
+                "{message}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+}
