@@ -61,7 +61,7 @@ pub(crate) struct Chosen {
 
 impl<'a> Screened<'a> {
     /// The pool `postures` (axis angles, rad) of `setup` named `name`: the postures that fail a
-    /// check of the cell with the design's `margin` (m; [`design_checker`]) skipped, and with
+    /// check of the cell with the design's `margin` (m; `design_checker`) skipped, and with
     /// `distinct` those near one kept before them ([`distinct_pool`]).
     ///
     /// # Errors

@@ -13,7 +13,7 @@
 //! are not checked against these sights. With boxes the positioner carries
 //! (`[[cell.obstacle]] carried_by`), a posture is read only at a candidate where its arm, its
 //! rope and its lines of sight clear those boxes turned there, by the cell's checks with the
-//! design's margin ([`design_checker`]): the arm's postures are designed with the boxes at rest,
+//! design's margin (`design_checker`): the arm's postures are designed with the boxes at rest,
 //! the table's angles then keep them clear of the arm.
 
 use crate::observability::{CalibrationCriteria, CalibrationCriterion, CalibrationDesign, Placed};

@@ -1,7 +1,7 @@
 //! Process forces: the cutting force and moment a machining operation puts on the tool, from the
 //! tool, the cut and the material.
 //!
-//! - [`milling`]: the mechanistic model with linear edge forces (Altintas, *Manufacturing
+//! - `milling`: the mechanistic model with linear edge forces (Altintas, *Manufacturing
 //!   Automation*, 2nd ed., 2012, ch. 2.4): mean force over a revolution in closed form, the
 //!   instantaneous force and its peak.
 //! - `drilling`: thrust and torque from a specific-energy model.

@@ -91,7 +91,7 @@ pub trait Controller: Sync + 'static {
     /// [`Controller::rotation`] reads them.
     fn pose_numbers(&self, p: &Vector3<f64>, r: &UnitQuaternion<f64>) -> Vec<f64>;
     /// The text of a pose's `k`-th number (in [`Controller::pose_numbers`]' order) as the
-    /// language writes it; by default with [`super::DECIMALS`] decimals.
+    /// language writes it; by default with `DECIMALS` decimals.
     fn pose_text(&self, k: usize, value: f64) -> String {
         let _ = k;
         super::generate::v(value)

@@ -110,14 +110,14 @@ fn ls_cases() -> Vec<(String, Reads)> {
         (ls("   1:L P[2] 10mm/sec FINE INC ;", &inc), Refused(4, "INC")),
         // A joint increment from a Cartesian position: its start angles are the controller's.
         (ls("   1:J P[1] 100% FINE ;\n   2:J P[2] 50% FINE INC ;", &inc[1..]).replace("/POS\n", CARTESIAN_P1), Refused(5, "J P[2] INC: an increment of the axis angles from the previous target (line 4), a Cartesian position")),
-        (ls("   1:J P[1] 100% FINE ;\n   2:L P[2] 50mm/sec FINE Offset,PR[1] ;", &pos), Refused(5, "OFFSET,PR[1]: the offset is held on the controller")),
+        (ls("   1:J P[1] 100% FINE ;\n   2:L P[2] 50mm/sec FINE Offset,PR[1] ;", &pos), Refused(5, "Offset,PR[1]: a position register holds its value on the controller")),
         (ls("   1:J P[1] 100% FINE ;\n   2:L P[2] 50mm/sec FINE Tool_Offset ;", &pos), Refused(5, "offset is held on the controller")),
         (ls("   1:J PR[1] 100% FINE ;", &pos), Refused(4, "position register")),
         (ls("   1:  PR[1:pick]=LPOS ;\n   2:J PR[1:pick] 100% FINE ;", &pos), Refused(5, "J PR[1]: the position register is set on line 4 as the program runs (PR[1:pick]=LPOS)")),
         (ls("   1:L P[R[1]] 100mm/sec FINE ;", &pos), Refused(4, "computed on the controller")),
         // A circular motion: its via point then its end, both on its line.
         (ls("   1:J P[1] 100% FINE ;\n   2:C P[2]\n    :  P[1] 100mm/sec FINE ;", &pos), Targets(&[(4, Q1), (5, Q2), (5, Q1)])),
-        (ls("   1:J P[1] 100% FINE ;\n   2:C P[2] Tool_Offset,PR[3]\n    :  P[1] 100mm/sec FINE ;", &pos), Refused(5, "C P[2] Tool_Offset,: an option on the via point")),
+        (ls("   1:J P[1] 100% FINE ;\n   2:C P[2] Tool_Offset,PR[3]\n    :  P[1] 100mm/sec FINE ;", &pos), Refused(5, "Tool_Offset,PR[3]: a position register holds its value on the controller")),
         (ls("   1:J P[1] 100% FINE ;\n   2:C P[2]\n    :  PR[1] 100mm/sec FINE ;", &pos), Refused(5, "position register")),
         (ls("   1:J P[1] 100% FINE ;\n   2:A P[2] 100mm/sec CNT100 ;", &pos), Refused(5, "circular")),
         (ls("   1:J P[1] 100% FINE ;\n   2:L P[2] 50mm/sec FINE Skip,LBL[1] ;", &pos), Refused(5, "SKIP,LBL[1]: a jump")),

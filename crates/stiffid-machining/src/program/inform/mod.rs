@@ -24,9 +24,9 @@
 //! - `///POSTYPE ANGLE` then `///ANGLE` (base and station axes): deg for a rotary axis, mm for a
 //!   linear one, written with 9 decimals.
 //! - `///POSTYPE BASE`, `ROBOT` or `USER` then `///RECTAN` (robot positions): Cartesian targets
-//!   ([`rectan`]) in base coordinates, robot coordinates (the same without a base axis) or the
+//!   (`rectan`) in base coordinates, robot coordinates (the same without a base axis) or the
 //!   user frame of `///USER n` (the backup's `UFRAME.CND` or the setup's `[controller] bases`),
-//!   of the tool file's point, in the manipulator type of `///RCONF` ([`rconf`]); written back
+//!   of the tool file's point, in the manipulator type of `///RCONF` (`rconf`); written back
 //!   as the pose the controller must be told, mm with 3 decimals and deg with 4, the
 //!   `///RCONF` line as read.
 //!
@@ -256,7 +256,7 @@ impl inst::Motion {
 }
 
 /// The target of motion `m`: its robot position in pulses converted by `pulses` (per value, the
-/// six axes then the `nb` base and `ne` station axes), or in Cartesian form ([`rectan`], the
+/// six axes then the `nb` base and `ne` station axes), or in Cartesian form (`rectan`, the
 /// frames the backup gives in `held`), its base and station positions.
 fn target(
     m: &inst::Motion,
@@ -346,7 +346,7 @@ fn external<'p>(
 pub(crate) struct Inform;
 
 impl Controller for Inform {
-    /// `///RCONF` ([`rconf`]).
+    /// `///RCONF` (`rconf`).
     type Flags = rconf::Rconf;
     const LANGUAGE: &'static Descriptor = &Descriptor {
         key: "inform",
@@ -378,7 +378,7 @@ impl Controller for Inform {
     fn read_in(&self, text: &str, context: &Context) -> Result<Read> {
         targets(text, context)
     }
-    /// `X,Y,Z,Rx,Ry,Rz`: `Rz Ry Rx` ([`rectan`]).
+    /// `X,Y,Z,Rx,Ry,Rz`: `Rz Ry Rx` (`rectan`).
     fn rotation(&self, n: &[f64]) -> UnitQuaternion<f64> {
         UnitQuaternion::from_euler_angles(n[3].to_radians(), n[4].to_radians(), n[5].to_radians())
     }

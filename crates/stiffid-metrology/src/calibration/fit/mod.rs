@@ -167,7 +167,7 @@ pub struct Fit {
     /// The precision its prior rows add to the inverse of [`Fit::covariance`] (SI, `fitted`
     /// order, the diagonal): `w^2 / sigma_t^2` of a parameter with the prior row weight `w`
     /// ([`Priors`], [`GravityPrior`], the maps' ridge), 0 for one without; what the readings
-    /// determine is the rest of the inverse ([`crate::calibration::spread`]).
+    /// determine is the rest of the inverse (`calibration::spread`).
     pub prior_precision: DVector<f64>,
     /// The residuals at the solution, 3 per reading, base frame, m.
     pub residuals: DVector<f64>,
