@@ -61,7 +61,7 @@ struct One {
 /// length of every text so far, and the chain of calls being read.
 struct Calls {
     files: Vec<(String, String)>,
-    read: HashMap<String, (Selected, u64)>,
+    read: HashMap<String, (Selected, u64, Place)>,
     total: usize,
     chain: Vec<String>,
 }
@@ -73,6 +73,9 @@ struct Call<'a> {
     file: &'a str,
     text: &'a str,
     leaves: Selected,
+    /// Where the call sits among the motions of the path that reaches it (the callers'
+    /// included): its instructions sit there too.
+    place: Place,
 }
 
 /// Every joint target of `text`, in the order of the `/MN` motions, then those of the programs
@@ -89,7 +92,11 @@ pub(super) fn targets(text: &str, context: &Context) -> Result<Program> {
         total: text.len(),
         chain: Vec::new(),
     };
-    let one = read_one(text, context, Selected::default(), &mut calls)?;
+    let start = Place {
+        after_first: false,
+        before_last: false,
+    };
+    let one = read_one(text, context, Selected::default(), start, &mut calls)?;
     let mut targets = one.own;
     targets.extend(one.nested);
     Ok(Program {
@@ -103,14 +110,20 @@ pub(super) fn targets(text: &str, context: &Context) -> Result<Program> {
 }
 
 /// The program `text` read with `entry` in force at its start (module docs).
-fn read_one(text: &str, context: &Context, entry: Selected, calls: &mut Calls) -> Result<One> {
+fn read_one(
+    text: &str,
+    context: &Context,
+    entry: Selected,
+    outer: Place,
+    calls: &mut Calls,
+) -> Result<One> {
     let (mut positions, mut axes, mut units) = positions(text)?;
     let instructions = instructions(text)?;
     let motions: Vec<bool> = (instructions.iter())
         .map(|(_, t)| motion::rest(t.trim()).is_some())
         .collect();
     let graph = flow::graph(&instructions, &motions)?;
-    let (effects, called) = effects(&instructions, &motions, &graph, context)?;
+    let (effects, called) = effects(&instructions, &motions, &graph, context, outer)?;
     let reached = graph.reached();
     if let Some(k) = (0..motions.len()).find(|&k| motions[k] && !reached[k]) {
         return Err(never_run(&instructions, &graph, k));
@@ -257,10 +270,10 @@ fn read_called(
             ),
         ));
     }
-    if let Some((first, first_line)) = calls.read.get(name) {
+    if let Some((first, first_line, place)) = calls.read.get(name) {
         let mut same = first.clone();
         return match same.join(&entry, line) {
-            false => Ok(()),
+            false => again(call, *place, context).map_err(|e| within(line, call, e)),
             true => Err(at(line, format!("CALL {name}: called on line {first_line} too, with other frame numbers in force; its Cartesian positions would be in other frames on each: select UFRAME_NUM and UTOOL_NUM alike before every call, or in {name}"))),
         };
     }
@@ -269,16 +282,12 @@ fn read_called(
     calls
         .files
         .push((call.file.to_string(), call.text.to_string()));
-    calls.read.insert(name.clone(), (entry.clone(), line));
+    calls
+        .read
+        .insert(name.clone(), (entry.clone(), line, call.place));
     calls.chain.push(name.clone());
-    let within = |e: Error| match e {
-        Error::Program { line: l, message } => at(
-            line,
-            format!("CALL {name}: {} line {l}: {message}", call.file),
-        ),
-        other => other,
-    };
-    let inner = read_one(call.text, context, entry, calls).map_err(within)?;
+    let inner = read_one(call.text, context, entry, call.place, calls)
+        .map_err(|e| within(line, call, e))?;
     calls.chain.pop();
     if inner.axes != one.axes {
         return Err(at(line, format!("CALL {name}: {} moves the external axes [{}], this program [{}]; stiffid compensates one set of axes: give both programs the same groups and extended axes", call.file, inner.axes.join(", "), one.axes.join(", "))));
@@ -311,6 +320,7 @@ fn effects<'a>(
     motions: &[bool],
     graph: &Graph,
     context: &Context<'a>,
+    outer: Place,
 ) -> Result<(Vec<Selected>, Vec<Option<Call<'a>>>)> {
     let after = graph.after(motions);
     let leads = graph.leads_to(motions);
@@ -321,6 +331,10 @@ fn effects<'a>(
         if motions[k] || calls::passed_over(t, context) {
             continue;
         }
+        let place = Place {
+            after_first: after[k] || outer.after_first,
+            before_last: leads[k] || outer.before_last,
+        };
         if let Some((name, file, text)) = calls::moving(t, context) {
             let leaves = leaves(*line, &name, calls::selections(text, context, 0));
             called[k] = Some(Call {
@@ -328,16 +342,41 @@ fn effects<'a>(
                 file,
                 text,
                 leaves,
+                place,
             });
             continue;
         }
-        let place = Place {
-            after_first: after[k],
-            before_last: leads[k],
-        };
         statements::instruction(*line, t, place, &mut out[k])?;
     }
     Ok((out, called))
+}
+
+/// An error `e` of program `call` called on `line`, named as the call's.
+fn within(line: u64, call: &Call, e: Error) -> Error {
+    match e {
+        Error::Program { line: l, message } => at(
+            line,
+            format!("CALL {}: {} line {l}: {message}", call.name, call.file),
+        ),
+        other => other,
+    }
+}
+
+/// Program `call` called again where it was first called at `first`: where the call sits among
+/// the motions adds to what it was read with, its instructions checked there too (a call of a
+/// program the backup does not hold, at the start of a program first called before any
+/// motion, sits between two motions when it is called again between them).
+fn again(call: &Call, first: Place, context: &Context) -> Result<()> {
+    let place = call.place;
+    if (place.after_first && !first.after_first) || (place.before_last && !first.before_last) {
+        let instructions = instructions(call.text)?;
+        let motions: Vec<bool> = (instructions.iter())
+            .map(|(_, t)| motion::rest(t.trim()).is_some())
+            .collect();
+        let graph = flow::graph(&instructions, &motions)?;
+        effects(&instructions, &motions, &graph, context, place)?;
+    }
+    Ok(())
 }
 
 /// What a call on `line` of program `name` leaves selected: each frame number it selects (its

@@ -268,6 +268,23 @@ fn an_ls_call_of_a_program_that_moves_is_compensated_in_its_own_file() {
         why.starts_with("CALL PICK: backup/PICK.LS line 6: L PR[2]: a position register"),
         "{why}"
     );
+    // A call of a program the backup does not hold, before the called program's first motion,
+    // sits between the caller's two motions: refused naming the call, the file and its line.
+    let unheld = [(
+        "backup/PICK.LS".to_string(),
+        pick.replace("UTOOL_NUM=1", "CALL OPEN_GRIPPER"),
+    )];
+    let e = stiffid_machining::program::parse_in(
+        &main,
+        Dialect::FanucLs,
+        &Context::default().with_backup(&unheld),
+    );
+    let (at, why) = message(e.unwrap_err());
+    assert_eq!(at, 6, "{why}");
+    assert!(
+        why.starts_with("CALL PICK: backup/PICK.LS line 5: CALL OPEN_GRIPPER"),
+        "{why}"
+    );
 }
 
 /// A motion to a position register the backup's `POSREG.VA` does not hold is refused naming the
