@@ -223,62 +223,71 @@ fn resolve_in(
     let mut flags: Option<Flags> = None;
     let mut previous_arm: Option<Configuration> = None;
     let mut notes = Vec::new();
-    for (t, (on_controller, on_truth_carrier)) in out.targets.iter_mut().zip(carriers) {
-        let line = t.line;
-        let Some(c) = t.cartesian.as_deref_mut() else {
-            previous = Vector6::from(t.q_deg).map(f64::to_radians);
-            let arm = Configuration::of(controller.robot, &previous);
-            (flags, previous_arm) = (Some(Flags::of(dialect, &arm)), Some(arm));
-            continue;
-        };
-        check_tool(&c.tool, line, controller)?;
-        let frame = base_frame(&c.frame, line, (controller, dialect), placed)?;
-        let frame = match placed {
-            None => {
-                let cell = (
-                    controller.nominal_cell,
-                    controller.located,
-                    controller.world,
-                );
-                super::relocate::relocated(cell, &c.frame, frame, &mut notes)
-            }
-            Some(_) => frame,
-        };
-        // The flange's axes at the TCP: the tool's turned back by the tool's rotation; in the
-        // frame of the arm on its carriage (the cell's when it has no track).
-        let mut in_cell = frame * c.pose();
-        in_cell.rotation *= controller.tcp_rotation.inverse();
-        let target = on_controller.inverse() * in_cell;
-        let kept = previous_arm.filter(|_| c.follows || c.flags.is_none());
-        let wanted = c.flags.clone().or(flags.clone()).ok_or_else(|| at(line, format!("a Cartesian target without configuration data ({}), and no target before it to keep the configuration of: the pose has up to eight solutions; give them", dialect.controller().flags_name())))?;
-        let accept = |arm: &Configuration| match (&kept, placed) {
-            (Some(before), _) => arm.change_from(before).is_none(),
-            (None, Some(_)) => Flags::of(dialect, arm).branch() == wanted.branch(),
-            (None, None) => Flags::of(dialect, arm) == wanted,
-        };
-        let q = configured(
-            controller.robot,
-            &controller.tcp,
-            &target,
-            &previous,
-            (dialect, &accept),
-            options,
-        )
-        .map_err(|miss| {
-            at(
-                line,
-                missed(&wanted, kept.is_some().then_some(c.follows), miss),
+    // The target being resolved: a refusal of one of a called program's names its file.
+    let mut at_target = 0;
+    let each = || -> Result<()> {
+        for (k, (t, (on_controller, on_truth_carrier))) in
+            out.targets.iter_mut().zip(carriers).enumerate()
+        {
+            at_target = k;
+            let line = t.line;
+            let Some(c) = t.cartesian.as_deref_mut() else {
+                previous = Vector6::from(t.q_deg).map(f64::to_radians);
+                let arm = Configuration::of(controller.robot, &previous);
+                (flags, previous_arm) = (Some(Flags::of(dialect, &arm)), Some(arm));
+                continue;
+            };
+            check_tool(&c.tool, line, controller)?;
+            let frame = base_frame(&c.frame, line, (controller, dialect), placed)?;
+            let frame = match placed {
+                None => {
+                    let cell = (
+                        controller.nominal_cell,
+                        controller.located,
+                        controller.world,
+                    );
+                    super::relocate::relocated(cell, &c.frame, frame, &mut notes)
+                }
+                Some(_) => frame,
+            };
+            // The flange's axes at the TCP: the tool's turned back by the tool's rotation; in the
+            // frame of the arm on its carriage (the cell's when it has no track).
+            let mut in_cell = frame * c.pose();
+            in_cell.rotation *= controller.tcp_rotation.inverse();
+            let target = on_controller.inverse() * in_cell;
+            let kept = previous_arm.filter(|_| c.follows || c.flags.is_none());
+            let wanted = c.flags.clone().or(flags.clone()).ok_or_else(|| at(line, format!("a Cartesian target without configuration data ({}), and no target before it to keep the configuration of: the pose has up to eight solutions; give them", dialect.controller().flags_name())))?;
+            let accept = |arm: &Configuration| match (&kept, placed) {
+                (Some(before), _) => arm.change_from(before).is_none(),
+                (None, Some(_)) => Flags::of(dialect, arm).branch() == wanted.branch(),
+                (None, None) => Flags::of(dialect, arm) == wanted,
+            };
+            let q = configured(
+                controller.robot,
+                &controller.tcp,
+                &target,
+                &previous,
+                (dialect, &accept),
+                options,
             )
-        })?;
-        let truth_target = on_truth_carrier.inverse() * in_cell;
-        let q = on_truth(controller, (&target, &truth_target), q, options)
-            .map_err(|why| at(line, why))?;
-        c.base_from_frame = Some(frame);
-        t.q_deg = q.map(f64::to_degrees).into();
-        previous = q;
-        let arm = Configuration::of(controller.robot, &q);
-        (flags, previous_arm) = (Some(Flags::of(dialect, &arm)), Some(arm));
-    }
+            .map_err(|miss| {
+                at(
+                    line,
+                    missed(&wanted, kept.is_some().then_some(c.follows), miss),
+                )
+            })?;
+            let truth_target = on_truth_carrier.inverse() * in_cell;
+            let q = on_truth(controller, (&target, &truth_target), q, options)
+                .map_err(|why| at(line, why))?;
+            c.base_from_frame = Some(frame);
+            t.q_deg = q.map(f64::to_degrees).into();
+            previous = q;
+            let arm = Configuration::of(controller.robot, &q);
+            (flags, previous_arm) = (Some(Flags::of(dialect, &arm)), Some(arm));
+        }
+        Ok(())
+    };
+    each().map_err(|e| in_file(program, at_target, e))?;
     out.notes.extend(notes);
     out.writer = Some(Box::new(Writer {
         robot: controller.robot.clone(),
@@ -287,6 +296,17 @@ fn resolve_in(
         axes,
     }));
     Ok(out)
+}
+
+/// The refusal `e` of target `k` of `program`, naming the file of the backup it is in when it is
+/// a called program's (its line is that file's).
+fn in_file(program: &JointProgram, k: usize, e: stiffid_core::Error) -> stiffid_core::Error {
+    match (e, program.called_in(k)) {
+        (stiffid_core::Error::Program { line, message }, Some(file)) => {
+            at(line, format!("{file} line {line}: {message}"))
+        }
+        (e, _) => e,
+    }
 }
 
 /// A target's carriers: the controller's and the setup's robot's (the cell frame from the

@@ -186,7 +186,7 @@ pub(crate) fn wrap(name: &str, header: &str, body: &str, date: Stamp) -> String 
             continue;
         }
         number += 1;
-        let pad = if line.starts_with(['J', 'L', 'C']) {
+        let pad = if ["J P", "L P", "C P"].iter().any(|m| line.starts_with(m)) {
             ""
         } else {
             "  "

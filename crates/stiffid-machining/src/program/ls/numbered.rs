@@ -33,16 +33,58 @@ const USER_FRAME: &str = "stiffid: user_frame";
 /// The remark naming the tool frame that holds the setup's tool.
 const TOOL_FRAME: &str = "stiffid: tool_frame";
 
-/// The rule (module docs) applied to the Cartesian `targets` of the LS program `text`, each
-/// moved to with the frame numbers `selected` in force: a frame it refuses becomes
-/// [`Frame::Unknown`] saying why, which resolving the target reports on its line.
-///
-/// # Errors
-/// [`stiffid_core::Error::Program`] naming the line of a remark without a frame number, or of a
-/// second remark naming another frame.
-pub(crate) fn apply(text: &str, targets: &mut [JointTarget], selected: &[Selected]) -> Result<()> {
-    let user = declared(text, USER_FRAME)?;
-    let tool = declared(text, TOOL_FRAME)?.or_else(|| written_tool(text));
+/// The frame numbers a program's remarks declare the setup's own (module docs): the user frame
+/// holding the part frame and the tool frame holding the setup's tool, each with its remark's
+/// line. They are facts of the controller, so a program called from the backup takes its
+/// caller's ([`Declared::within`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub(super) struct Declared {
+    /// `! stiffid: user_frame = n ;`.
+    pub user: Option<(u64, u32)>,
+    /// `! stiffid: tool_frame = n ;`, or the writer's `! set UTOOL[n] to the tool: ;`.
+    pub tool: Option<(u64, u32)>,
+}
+
+impl Declared {
+    /// The declarations of the LS program `text`.
+    ///
+    /// # Errors
+    /// [`stiffid_core::Error::Program`] naming the line of a remark without a frame number, or
+    /// of a second remark naming another frame.
+    pub(super) fn of(text: &str) -> Result<Self> {
+        Ok(Declared {
+            user: declared(text, USER_FRAME)?,
+            tool: declared(text, TOOL_FRAME)?.or_else(|| written_tool(text)),
+        })
+    }
+
+    /// The declarations in force in the program `text` called on `line` by a program declaring
+    /// `self`: its own, else the caller's.
+    ///
+    /// # Errors
+    /// [`stiffid_core::Error::Program`] naming the call's line, a called program whose remark
+    /// declares another frame number than its caller's.
+    pub(super) fn within(self, text: &str, line: u64) -> Result<Self> {
+        let own = Declared::of(text)?;
+        let pick = |mine: Option<(u64, u32)>, theirs: Option<(u64, u32)>, key: &str| {
+            match (mine, theirs) {
+            (Some((l, m)), Some((_, n))) if m != n => Err(at(line, format!("{key} = {m} (the called program's line {l}): the caller declares {n}; one frame is the program's"))),
+            (Some(m), _) => Ok(Some(m)),
+            (None, t) => Ok(t),
+        }
+        };
+        Ok(Declared {
+            user: pick(own.user, self.user, USER_FRAME)?,
+            tool: pick(own.tool, self.tool, TOOL_FRAME)?,
+        })
+    }
+}
+
+/// The rule (module docs) applied to the Cartesian `targets` of an LS program declaring
+/// `declared`, each moved to with the frame numbers `selected` in force: a frame it refuses
+/// becomes [`Frame::Unknown`] saying why, which resolving the target reports on its line.
+pub(super) fn apply(declared: Declared, targets: &mut [JointTarget], selected: &[Selected]) {
+    let Declared { user, tool } = declared;
     for (t, s) in targets.iter_mut().zip(selected) {
         let line = t.line;
         let Some(c) = t.cartesian.as_deref_mut() else {
@@ -51,7 +93,6 @@ pub(crate) fn apply(text: &str, targets: &mut [JointTarget], selected: &[Selecte
         c.frame = frame(&c.frame, user, s.user.as_ref(), (line, Kind::User));
         c.tool = frame(&c.tool, tool, s.tool.as_ref(), (line, Kind::Tool));
     }
-    Ok(())
 }
 
 /// A user or a tool frame.

@@ -6,6 +6,7 @@
 
 use super::copies::{self, Copies};
 use super::flow::{self, Graph};
+use super::numbered::Declared;
 use super::registers::Used;
 use super::statements::{self, Number, Place, Selected};
 use super::{calls, instructions, motion, numbered, offsets, positions, registers, sysframe};
@@ -48,6 +49,8 @@ pub(super) struct Program {
 /// One program read: its own targets (spans in its text), those of the programs it calls
 /// (spans in the whole text), its axes and units, the motions left.
 struct One {
+    /// The frame numbers its remarks (or its callers') declare the setup's own.
+    declared: Declared,
     own: Vec<JointTarget>,
     nested: Vec<JointTarget>,
     axes: Vec<String>,
@@ -61,7 +64,7 @@ struct One {
 /// length of every text so far, and the chain of calls being read.
 struct Calls {
     files: Vec<(String, String)>,
-    read: HashMap<String, (Selected, u64, Place)>,
+    read: HashMap<String, (Selected, u64, Place, Declared)>,
     total: usize,
     chain: Vec<String>,
 }
@@ -96,7 +99,8 @@ pub(super) fn targets(text: &str, context: &Context) -> Result<Program> {
         after_first: false,
         before_last: false,
     };
-    let one = read_one(text, context, Selected::default(), start, &mut calls)?;
+    let entry = (Selected::default(), Declared::of(text)?);
+    let one = read_one(text, context, entry, start, &mut calls)?;
     let mut targets = one.own;
     targets.extend(one.nested);
     Ok(Program {
@@ -109,11 +113,12 @@ pub(super) fn targets(text: &str, context: &Context) -> Result<Program> {
     })
 }
 
-/// The program `text` read with `entry` in force at its start (module docs).
+/// The program `text` read with `entry` in force at its start (the frame numbers selected and
+/// declared; module docs).
 fn read_one(
     text: &str,
     context: &Context,
-    entry: Selected,
+    (entry, declared): (Selected, Declared),
     outer: Place,
     calls: &mut Calls,
 ) -> Result<One> {
@@ -169,7 +174,7 @@ fn read_one(
     registers.left.iter().for_each(|(k, _)| reading[*k] = false);
     let read = (&positions, &copies, &registers);
     let (mut own, in_force) = motions_read(&instructions, &reading, &states, read)?;
-    numbered::apply(text, &mut own, &in_force)?;
+    numbered::apply(declared, &mut own, &in_force);
     sysframe::apply(context, &mut own)?;
     let mut left: Vec<Left> = registers.left.iter().map(|(_, l)| l.clone()).collect();
     if context.leave_refused {
@@ -180,6 +185,7 @@ fn read_one(
         .collect();
     notes.sort();
     let mut one = One {
+        declared,
         own,
         nested: Vec::new(),
         axes,
@@ -270,11 +276,12 @@ fn read_called(
             ),
         ));
     }
-    if let Some((first, first_line, place)) = calls.read.get(name) {
+    let declared = one.declared.within(call.text, line)?;
+    if let Some((first, first_line, place, first_declared)) = calls.read.get(name) {
         let mut same = first.clone();
-        return match same.join(&entry, line) {
+        return match same.join(&entry, line) || *first_declared != declared {
             false => again(call, *place, context).map_err(|e| within(line, call, e)),
-            true => Err(at(line, format!("CALL {name}: called on line {first_line} too, with other frame numbers in force; its Cartesian positions would be in other frames on each: select UFRAME_NUM and UTOOL_NUM alike before every call, or in {name}"))),
+            true => Err(at(line, format!("CALL {name}: called on line {first_line} too, with other frame numbers in force or declared; its Cartesian positions would be in other frames on each: select UFRAME_NUM and UTOOL_NUM alike before every call, or in {name}"))),
         };
     }
     let offset = calls.total;
@@ -284,9 +291,9 @@ fn read_called(
         .push((call.file.to_string(), call.text.to_string()));
     calls
         .read
-        .insert(name.clone(), (entry.clone(), line, call.place));
+        .insert(name.clone(), (entry.clone(), line, call.place, declared));
     calls.chain.push(name.clone());
-    let inner = read_one(call.text, context, entry, call.place, calls)
+    let inner = read_one(call.text, context, (entry, declared), call.place, calls)
         .map_err(|e| within(line, call, e))?;
     calls.chain.pop();
     if inner.axes != one.axes {

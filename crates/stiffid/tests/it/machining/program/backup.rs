@@ -308,3 +308,94 @@ fn an_ls_motion_to_a_position_register_posreg_va_does_not_hold_is_refused_saying
         "L PR[3]: backup/POSREG.VA holds no PR[3] of motion group 1"
     );
 }
+
+/// An LS program of 201 moves stiffid wrote split (a main program selecting the frames and
+/// calling three parts), its parts given as the backup.
+fn split(s: &Setup, per_file: usize) -> Vec<(String, String)> {
+    let (t, m) = square(s);
+    let t: Vec<_> = t.iter().cycle().take(201).cloned().collect();
+    let m: Vec<_> = m.iter().cycle().take(201).cloned().collect();
+    let pulses = Pulses {
+        per_deg: [1.0; 6],
+        external: Vec::new(),
+    };
+    let mut p = plan(s, Dialect::FanucLs, &t, &m, &pulses);
+    p.settings.moves_per_file = per_file;
+    let w = generate(&p).unwrap();
+    (w.files.into_iter())
+        .map(|f| (format!("out/{}.ls", f.name), f.text))
+        .collect()
+}
+
+/// A split LS program stiffid wrote, its main file read back with its parts as the backup:
+/// each part's Cartesian positions in the tool and user frames the main program selects and
+/// declares, every posture the one of the same program written as one file, and compensated
+/// the same; without the main program, a part's tool frame is not declared. A tool number
+/// carried into the parts: positions in the frame in force (`UT : F`) take it, and a part's
+/// positions in another tool frame than the one in force are refused naming the call, the part
+/// and its line.
+#[test]
+fn a_split_ls_program_read_back_from_its_main_file_is_the_program_it_was() {
+    let plain =
+        stiffid::internal::setup::parse(SETUP, "fanuc-milling.toml", |n, _| presets::get(n))
+            .unwrap();
+    let tables = setup("[6.9, 245.3, 319.3]", "[1300, -700, -270]");
+    for s in [&plain, &tables] {
+        let parts = split(s, 100);
+        let whole = split(s, 1_000_000);
+        assert_eq!((parts.len(), whole.len()), (4, 1));
+        assert!(
+            parts[0].1.contains("  10:  CALL HELD_01 ;\n"),
+            "{}",
+            parts[0].1
+        );
+        let one = read(s, &whole[0].1, &[]).unwrap();
+        assert_eq!(one.len(), 201);
+        assert_eq!(read(s, &parts[0].1, &parts[1..]).unwrap(), one);
+        if std::ptr::eq(s, &plain) {
+            continue;
+        }
+        let compliance = s.model_compliance("test").unwrap();
+        let run = |(name, text): &(String, String), backup: &[(String, String)]| {
+            let (_, r, called) = crate::ls_corpus::compensated_in(
+                s,
+                &compliance,
+                Options::for_setup(s),
+                (name, text),
+                backup,
+            )
+            .unwrap();
+            let q: Vec<_> = r.iter().map(|c| c.q_compensated).collect();
+            (q, called.len())
+        };
+        let (q_whole, none) = run(&whole[0], &[]);
+        let (q_split, three) = run(&parts[0], &parts[1..]);
+        assert_eq!((none, three), (0, 3));
+        assert!(q_whole.iter().zip(&q_whole[1..]).any(|(a, b)| a != b));
+        for (a, b) in q_whole.iter().zip(&q_split) {
+            assert!((a - b).amax() < 1e-12, "{}", (a - b).amax());
+        }
+    }
+    // The part alone: its tool frame 1 is the main program's declaration.
+    let parts = split(&plain, 100);
+    let (_, why) = message(read(&plain, &parts[1].1, &[]).unwrap_err());
+    assert!(
+        why.contains("frame number 1 of the controller's tools"),
+        "{why}"
+    );
+    // The tool number in force carried into the parts.
+    let parts = split(&tables, 100);
+    let expected = read(&tables, &parts[0].1, &parts[1..]).unwrap();
+    let in_force: Vec<_> = (parts[1..].iter())
+        .map(|(n, t)| (n.clone(), t.replace("UT : 3,", "UT : F,")))
+        .collect();
+    assert_ne!(in_force[0].1, parts[1].1);
+    assert_eq!(read(&tables, &parts[0].1, &in_force).unwrap(), expected);
+    let other = parts[0].1.replace("UTOOL_NUM=3 ;", "UTOOL_NUM=1 ;");
+    let (line, why) = message(read(&tables, &other, &parts[1..]).unwrap_err());
+    assert_eq!(line, 22, "{why}");
+    assert!(
+        why.starts_with("out/HELD_01.ls line 22: UT : 3: the position is in frame 3, and UTOOL_NUM=1 on line 30"),
+        "{why}"
+    );
+}
