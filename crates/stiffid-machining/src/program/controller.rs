@@ -136,6 +136,13 @@ pub trait Controller: Sync + 'static {
         let _ = (text, context);
         None
     }
+    /// A file of the program `written` back from its text `read`, finished as the language
+    /// needs (an INFORM job's `///NPOS` counting the positions copied into it); by default as
+    /// it is.
+    fn written(&self, read: &str, written: String) -> String {
+        let _ = read;
+        written
+    }
 }
 
 /// A [`Controller`] as the registry holds it ([`super::Dialect::controller`]): its
@@ -174,6 +181,8 @@ pub trait DynController: Sync {
     fn backup_extensions(&self) -> &'static [&'static str];
     /// [`Controller::data_file`].
     fn data_file<'a>(&self, text: &str, context: &super::Context<'a>) -> Option<&'a str>;
+    /// [`Controller::written`].
+    fn written(&self, read: &str, written: String) -> String;
 
     /// The language's name in documents and options (`krl`, `rapid`, `ls`, `inform`).
     fn key(&self) -> &'static str {
@@ -284,6 +293,9 @@ impl<C: Controller> DynController for C {
     }
     fn data_file<'a>(&self, text: &str, context: &super::Context<'a>) -> Option<&'a str> {
         Controller::data_file(self, text, context)
+    }
+    fn written(&self, read: &str, written: String) -> String {
+        Controller::written(self, read, written)
     }
 }
 

@@ -177,7 +177,26 @@ impl JointProgram {
             }
         }
         out.push_str(&self.text[at..]);
-        Ok(self.split_files(out, &files))
+        Ok(self.finished(self.split_files(out, &files)))
+    }
+
+    /// Each file of `written` finished as its language needs, from its text as read
+    /// ([`super::controller::Controller::written`]).
+    fn finished(&self, (program, data, called): Written) -> Written {
+        let controller = self.dialect.controller();
+        let program_end = (self.data_at.into_iter())
+            .chain(self.called.iter().map(|(_, a)| *a))
+            .next()
+            .unwrap_or(self.text.len());
+        let program = controller.written(&self.text[..program_end], program);
+        let end = |k: usize| self.called.get(k + 1).map_or(self.text.len(), |c| c.1);
+        let called = (called.into_iter().enumerate())
+            .map(|(k, (name, t))| {
+                let read = &self.text[self.called[k].1..end(k)];
+                (name, controller.written(read, t))
+            })
+            .collect();
+        (program, data, called)
     }
 
     /// The text written `out` split into its files: the program's, its data file's, each called

@@ -20,7 +20,7 @@ use stiffid_core::{Error, Result};
 pub(super) fn read(
     mut read: Read,
     (text, moving): (&str, &[Call]),
-    context: &Context,
+    (context, sets): (&Context, &[super::variables::Set]),
     chain: &mut Vec<String>,
 ) -> Result<Read> {
     let mut total = text.len();
@@ -44,7 +44,7 @@ pub(super) fn read(
             }
             other => other,
         };
-        let inner = read_job(call.text, context, chain).map_err(within)?;
+        let inner = read_job(call.text, (context, sets), chain).map_err(within)?;
         chain.pop();
         if read.targets.is_empty() && read.axes.is_empty() {
             read.pulses.clone_from(&inner.pulses);
@@ -65,6 +65,7 @@ pub(super) fn read(
         }
         read.targets
             .extend(inner.targets.into_iter().map(|t| t.shifted(offset)));
+        (read.notes).extend(inner.notes.iter().map(|n| format!("{}: {n}", call.file)));
     }
     Ok(read)
 }

@@ -18,6 +18,9 @@ pub(super) struct Motion {
     pub station: Option<u64>,
     pub speed: Speed,
     pub tool: Option<u32>,
+    /// The position variable it moves to (`MOVJ P016`: 16), read from the backup's `VAR.DAT`
+    /// and copied into the job ([`super::variables`]); `robot` is then the copy's number.
+    pub variable: Option<u64>,
 }
 
 /// What `//INST` holds: the `'stiffid:` comments, the motions, the jumps, calls, loops and
@@ -154,7 +157,7 @@ pub(super) fn instructions(text: &str) -> Result<Instructions> {
 /// The instruction `t` without its instruction comment: the text from a `//` that follows a
 /// space outside a quoted string to the line's end (`MOVJ C00000 VJ=65.00  //FROM LEFT`, as
 /// the YRC1000 and DX200 store a comment given to an instruction on the pendant), trimmed.
-fn without_comment(t: &str) -> &str {
+pub(super) fn without_comment(t: &str) -> &str {
     let mut quoted = false;
     let bytes = t.as_bytes();
     for (i, b) in bytes.iter().enumerate() {
@@ -197,9 +200,11 @@ fn refused(line: u64, word: &str, t: &str) -> stiffid_core::Error {
 /// The positions and tags of a `MOVJ`, `MOVL` or `MOVC` line after its word.
 fn motion(line: u64, word: &str, words: &[&str]) -> Result<Motion> {
     let target = words.first().copied().unwrap_or("");
-    let robot = index(target, "C").ok_or_else(|| {
+    let variable = index(&target.to_ascii_uppercase(), "P");
+    let robot = index(target, "C").or(variable.map(|_| 0)).ok_or_else(|| {
         let why = match target.chars().next() {
-            Some('P' | 'L') => "a position variable holds its value on the controller, not in this job; teach the position in the job (C)",
+            Some('P') => "a position variable chosen by an index the job computes as it runs, which the job does not say: move to P000.. by its number",
+            Some('L') => "a local position variable, which the job sets as it runs: teach the position in the job (C)",
             Some('B' | 'E') if index(target, "BC").or(index(target, "EC")).is_some() => "a motion of the base axes or the station alone, without the robot's position C: the robot holds its posture while the part or the carriage moves, so this job's robot motions are the others' (stiffid compensates the robot's positions C; a job that moves only the station has none to compensate)",
             _ => "expected a teaching position C00000",
         };
@@ -213,6 +218,7 @@ fn motion(line: u64, word: &str, words: &[&str]) -> Result<Motion> {
         station: None,
         speed: Speed::Joint,
         tool: None,
+        variable,
     };
     let split = (words.iter())
         .position(|w| w.to_ascii_uppercase().starts_with("+MOV"))

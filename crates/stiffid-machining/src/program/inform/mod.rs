@@ -59,8 +59,9 @@
 //! - a Cartesian position in tool coordinates (`///POSTYPE TOOL`, `MTOOL`), in robot
 //!   coordinates on a base axis, in a user frame or with a tool file neither the backup nor the
 //!   setup gives; a base or station position in Cartesian form;
-//! - a motion to a position variable (`P000`, `LP000`, `BP`, `EX`): it holds its value on the
-//!   controller, not in the job;
+//! - a motion to a position variable (`P000`) but one the backup's `VAR.DAT` gives in pulses,
+//!   which is copied into the job (`variables`), a local one (`LP000`), base and station
+//!   variables (`BP`, `EX`): they hold their values on the controller, not in the job;
 //! - `MOVS` (spline), `IMOV` (incremental from where the robot is), `SMOVL` and `SMOVC` (a
 //!   motion on a conveyor), a motion with `UNTIL` (a search) or with another group's own motion
 //!   (`+MOVL`; a station's `+MOVJ EC00000 VJ=..` is read as the target's station values), a shift (`SFTON`, `SFTOF`, `MSHIFT`), any tag outside the list above, and any
@@ -93,6 +94,9 @@ pub(crate) mod speed;
 mod tool;
 mod toolcnd;
 mod uframe;
+mod var;
+mod variables;
+mod written;
 
 use super::controller::{BoundComment, Controller, Generator};
 use super::descriptor::{AxisNames, Descriptor, FileName, NameRules};
@@ -111,15 +115,24 @@ use stiffid_core::Result;
 /// # Errors
 /// [`stiffid_core::Error::Program`] naming the line (module docs).
 pub(crate) fn targets(text: &str, context: &Context) -> Result<Read> {
-    read_job(text, context, &mut Vec::new())
+    let sets = variables::sets(text, context);
+    read_job(text, (context, &sets), &mut Vec::new())
 }
 
-/// [`targets`] of the job `text`, called through the jobs of `chain` (their names).
-fn read_job(text: &str, context: &Context, chain: &mut Vec<String>) -> Result<Read> {
+/// [`targets`] of the job `text`, called through the jobs of `chain` (their names), with what
+/// sets position variables in the job first read and the jobs it calls (`sets`).
+fn read_job(
+    text: &str,
+    (context, sets): (&Context, &[variables::Set]),
+    chain: &mut Vec<String>,
+) -> Result<Read> {
     control_characters(text)?;
-    let section = pos::section(text)?;
-    let positions = &section.positions;
+    let mut section = pos::section(text)?;
     check_counts(&section)?;
+    let mut inst = inst::instructions(text)?;
+    robots(&inst.robots, context)?;
+    let copies = variables::build(text, &mut inst, &mut section, (context, sets))?;
+    let positions = &section.positions;
     let width = |kind: Kind| {
         (positions.iter().filter(|(k, _)| k.0 == kind))
             .map(|(_, p)| p.values.len())
@@ -132,8 +145,6 @@ fn read_job(text: &str, context: &Context, chain: &mut Vec<String>) -> Result<Re
         form(positions, Kind::Base)?,
         form(positions, Kind::Station)?,
     ];
-    let inst = inst::instructions(text)?;
-    robots(&inst.robots, context)?;
     let moving = calls::check(&inst, context)?;
     let first = inst.motions.first().map_or(1, |m| m.line);
     let mut pulses: Vec<Option<f64>> = vec![None; 6 + nb + ne];
@@ -160,6 +171,9 @@ fn read_job(text: &str, context: &Context, chain: &mut Vec<String>) -> Result<Re
     let mut out = (inst.motions.iter())
         .map(|m| target(m, positions, (&pulses, &held), (nb, ne)))
         .collect::<Result<Vec<_>>>()?;
+    for (k, copy) in &copies.by_motion {
+        out[*k] = copy.attach(out[*k].clone());
+    }
     circles(&inst.motions, &mut out);
     let axes = (1..=nb).map(|k| format!("BC{k}"));
     let axes = axes.chain((1..=ne).map(|k| format!("EC{k}"))).collect();
@@ -170,9 +184,9 @@ fn read_job(text: &str, context: &Context, chain: &mut Vec<String>) -> Result<Re
         units: Vec::new(),
         left: Vec::new(),
         called: Vec::new(),
-        notes: Vec::new(),
+        notes: copies.notes,
     };
-    called::read(read, (text, &moving), context, chain)
+    called::read(read, (text, &moving), (context, sets), chain)
 }
 
 /// Marks the via points of the job's circles: the controller moves on the circle through each
@@ -400,6 +414,15 @@ impl Controller for Inform {
     /// Jobs in pulses ([`generate`]).
     fn generator(&self) -> Option<&'static dyn Generator> {
         Some(&Inform)
+    }
+    /// The jobs a job calls (`jbi`) and the backup's condition and data files (`TOOL.CND`,
+    /// `UFRAME.CND`, `VAR.DAT`).
+    fn backup_extensions(&self) -> &'static [&'static str] {
+        &["jbi", "cnd", "dat"]
+    }
+    /// `///NPOS` counting the positions copied from position variables (`written`).
+    fn written(&self, read: &str, written: String) -> String {
+        written::finish(read, written)
     }
 }
 

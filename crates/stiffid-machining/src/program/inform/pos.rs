@@ -48,10 +48,20 @@ pub(super) struct Position {
     pub rconf: Option<(u64, Rconf)>,
 }
 
-/// The positions by kind and number, and `///NPOS`'s line and counts.
+/// The positions by kind and number, `///NPOS`'s line and counts, and the robot position
+/// variables the job lists (`P00016=..`: their values when it was saved) by number.
 pub(super) struct Section {
     pub positions: HashMap<(Kind, u64), Position>,
     pub npos: Option<(u64, Vec<usize>)>,
+    pub variables: HashMap<u64, Listed>,
+}
+
+/// A position variable as the job lists it: its line, form, tool file and values as written.
+pub(super) struct Listed {
+    pub line: u64,
+    pub form: Form,
+    pub tool: Option<u32>,
+    pub values: Vec<String>,
 }
 
 /// The state of the `//POS` lines read so far: the form, tool file, frame, user frame and
@@ -70,6 +80,7 @@ pub(super) fn section(text: &str) -> Result<Section> {
     let mut out = Section {
         positions: HashMap::new(),
         npos: None,
+        variables: HashMap::new(),
     };
     let mut in_pos = false;
     let mut block = Block {
@@ -147,7 +158,21 @@ fn position(
         n if n.starts_with("BC") => (Kind::Base, &n[2..]),
         n if n.starts_with("EC") => (Kind::Station, &n[2..]),
         n if n.starts_with('C') => (Kind::Robot, &n[1..]),
-        // Position variables' initial values: held on the controller.
+        // A robot position variable's value when the job was saved: the controller holds it.
+        n if n.starts_with('P') && n[1..].bytes().all(|b| b.is_ascii_digit()) => {
+            if let Ok(index) = n[1..].parse::<u64>() {
+                let values = l.split_once('=').map_or("", |(_, v)| v).split(',');
+                let listed = Listed {
+                    line,
+                    form: block.form,
+                    tool: block.tool.map(|(_, n)| n),
+                    values: values.map(|v| v.trim().to_string()).collect(),
+                };
+                out.variables.insert(index, listed);
+            }
+            return Ok(());
+        }
+        // Base and station variables' values: held on the controller.
         _ => return Ok(()),
     };
     let index: u64 = digits

@@ -11,6 +11,7 @@ mod headers;
 mod inform;
 mod inform_jobs;
 mod inform_rectan;
+mod inform_vars;
 mod joint_targets;
 mod krl;
 mod numbered;
