@@ -72,10 +72,16 @@ pub(super) fn block(
         (s.changed, s.tool_number) = (true, s.selected);
     }
     super::process::gather(line, words, s);
-    if given.g4 && given.moves_an_axis() {
+    // LinuxCNC and grbl read an axis word beside G4 P as a move in the motion mode in force,
+    // made after the dwell (LinuxCNC's order of execution; grbl's G4 takes no axis words).
+    let moves_after_dwell = matches!(
+        s.machine.dialect,
+        Some(super::GcodeDialect::LinuxCnc | super::GcodeDialect::Grbl)
+    ) && words.iter().any(|w| w.letter == 'P');
+    if given.g4 && given.moves_an_axis() && !moves_after_dwell {
         let why = match s.machine.dialect {
             Some(super::GcodeDialect::Fanuc | super::GcodeDialect::Haas) => "only X is the dwell's time (seconds with a decimal point) on FANUC and Haas, another axis word a move",
-            Some(_) => "LinuxCNC and grbl read an axis word beside G4 as a move in the motion mode in force",
+            Some(_) => "LinuxCNC and grbl refuse a G4 without its time P (an axis word beside G4 P is a move after the dwell)",
             None => "FANUC and Haas read G4 X as the dwell's time, LinuxCNC and grbl as a move in the motion mode in force, and the setup names no controller ([controller] dialect)",
         };
         return Err(at(line, format!("G4 with an axis word: {why}; write the dwell as G4 P in a block without axis words")));
@@ -150,6 +156,7 @@ impl Given {
                     // No tool change yet: the program's T is the tool in use (a machine
                     // without a tool changer).
                     s.tool_number = s.selected;
+                    s.first_tool_named();
                 }
             }
             'F' => self.feed = Some(v),

@@ -15,9 +15,11 @@
 //! Each feed's end (a peck's, the bottom) is stated twice as well: reached under the thrust,
 //! then the same point as a rapid, without it, from where the exit (`G82`'s dwell, the rapid
 //! out) starts: the drill stops feeding there, and a robot that held the loaded pose while
-//! its thrust goes would leave the hole's axis. `Z`, `R`, `Q` and `P` stay in force within a cycle. Refused naming the line: a cycle under
+//! its thrust goes would leave the hole's axis. `Z`, `R`, `Q` and `P` stay in force within a cycle.
+//! The hole is drilled in the work offset and tool length offset in force (its levels
+//! programmed there, its points the tip in the `G54` part frame). Refused naming the line: a cycle under
 //! `G91` (controllers differ on what an incremental `R` and `Z` count from), outside the `G17`
-//! plane, with the tool not pointing along the part's `-Z`, with `I J K` or rotary words, without
+//! plane, in a work offset that turns the part's `Z` axis, with the tool not pointing along the part's `-Z`, with `I J K` or rotary words, without
 //! `Z` or `R` or a feed rate `F` in force, a bottom not below `R` or not below the part's surface, a `G83` without a positive `Q`, `P` outside `G82` and `Q`
 //! outside `G83`, and a block of `R`, `Q` or `P` alone (controllers differ on whether it drills).
 
@@ -160,7 +162,7 @@ pub(super) fn block(
         arc_word: None,
         inch: s.inch,
         incremental: false,
-        to_program: nalgebra::Isometry3::identity(),
+        to_program: s.to_program().ok_or_else(|| s.no_length(line))?,
         verbatim: false,
         take_up: 0.0,
         cycle: None,
@@ -198,6 +200,10 @@ struct Hole {
     orientation: UnitQuaternion<f64>,
     /// Where the drill meets material ([`Cycle::entry`]).
     entry: f64,
+    /// The part's surface, programmed `Z`.
+    surface: f64,
+    /// From a programmed `Z` to the part frame's (`State::part_z_shift`), m.
+    shift: f64,
 }
 
 impl Hole {
@@ -224,13 +230,16 @@ fn hole(line: u64, w: &Words, other_geometry: bool, scale: f64, s: &State) -> Re
         // level the cycle starts from must be known (G98 returns to it).
         s.known(line, &format!("G{code}: a canned cycle"))?;
     }
-    s.plain(line, &format!("G{code}: a canned cycle"))?;
+    let shift = s.part_z_shift(line, &format!("G{code}: a canned cycle"))?;
+    let surface = s.surface - shift;
     let tool = may_move(line, s)?;
-    let orientation = UnitQuaternion::from_euler_angles(
-        s.abc[0].to_radians(),
-        s.abc[1].to_radians(),
-        s.abc[2].to_radians(),
-    ) * tool;
+    let orientation = s.frame.part_from.rotation
+        * UnitQuaternion::from_euler_angles(
+            s.abc[0].to_radians(),
+            s.abc[1].to_radians(),
+            s.abc[2].to_radians(),
+        )
+        * tool;
     if (orientation * Vector3::z() + Vector3::z()).norm() > 1e-9 {
         return refuse("a canned cycle drills along the part's -Z, and the tool does not point that way (tool_rpy_deg)");
     }
@@ -243,7 +252,7 @@ fn hole(line: u64, w: &Words, other_geometry: bool, scale: f64, s: &State) -> Re
     if s.feed.is_none() {
         return refuse("a canned cycle feeds to Z at the feed rate F in force, and none is: give F in this block or before");
     }
-    if depth >= s.surface {
+    if depth >= surface {
         return refuse(&format!("the bottom Z must lie below the part's surface (Z = {} mm of the part frame; state it with the comment (stiffid: surface_mm = Z))", s.surface * 1e3));
     }
     let peck = match (code, s.cycle.peck) {
@@ -277,7 +286,9 @@ fn hole(line: u64, w: &Words, other_geometry: bool, scale: f64, s: &State) -> Re
         peck,
         dwell,
         orientation,
-        entry: retract.min(s.surface),
+        entry: retract.min(surface),
+        surface,
+        shift,
     })
 }
 
@@ -303,7 +314,7 @@ fn moves(hole: &Hole, s: &State) -> (Vec<(Vector3<f64>, Motion)>, usize) {
     }
     go(hole.at_xy(above), Motion::Rapid, &mut moves);
     go(hole.at_xy(retract), Motion::Rapid, &mut moves);
-    let (mut reached, surface) = (retract, s.surface);
+    let (mut reached, surface) = (retract, hole.surface);
     let mut pecks = 0.0;
     let bottom_index = loop {
         // The n-th peck's level counted from R, not stepped from the last (six steps of 0.75
@@ -357,22 +368,24 @@ fn push(
     out: &mut GCode,
 ) -> Result<()> {
     let index = out.cycles.len();
+    let lift = s.lift();
+    let tip = |p: &Vector3<f64>| s.tip(line, p, (&s.frame, lift));
     out.cycles.push(super::Cycle {
         line,
         code: hole.code,
-        bottom: hole.at_xy(hole.depth),
-        retract: hole.retract,
-        clearance: hole.clearance,
+        bottom: tip(&hole.at_xy(hole.depth))?,
+        retract: hole.retract + hole.shift,
+        clearance: hole.clearance + hole.shift,
         dwell: hole.dwell.as_ref().map(|(v, _)| *v),
         peck: hole.peck,
-        entry: hole.entry,
+        entry: hole.entry + hole.shift,
     });
     let first = out.points.len();
     let external = super::external_values(line, s)?;
     for (p, m) in moves {
         out.points.push(Point {
             line,
-            position: *p,
+            position: tip(p)?,
             orientation: hole.orientation,
             motion: *m,
             tool_number: s.tool_number,

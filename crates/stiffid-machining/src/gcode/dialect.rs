@@ -12,7 +12,8 @@
 //!   keep it; FANUC's rule is a setting of the control, so an absolute `Z` after it is refused
 //!   until the program states `G43`/`G44`/`G49` again.
 //! - `G53` under `G91`: LinuxCNC and grbl read its words as absolute machine coordinates;
-//!   FANUC, Haas and an unstated dialect are refused (module `block`).
+//!   FANUC, Haas and an unstated dialect are refused (module `block`), but for a rapid the
+//!   setup gives no `G53` frame for, which leaves the axes it names unknown in every reading.
 
 use super::{at, State, NO_MOTION};
 use stiffid_core::setup::GcodeDialect;
@@ -155,9 +156,14 @@ pub(super) fn length_offset_allowed(line: u64, g: u8, s: &State) -> Result<()> {
     Ok(())
 }
 
-/// Whether `G53` under `G91` reads its words as absolute machine coordinates (LinuxCNC,
-/// grbl); `Err` naming the line otherwise.
+/// Whether `G53` under `G91` may be read as absolute machine coordinates: LinuxCNC and grbl
+/// read it so; a rapid the setup gives no `G53` frame for leaves the axes it names unknown in
+/// every reading (machine coordinates, or increments as Mitsubishi's M700V reads them: the
+/// next point is where the program gives them again); `Err` naming the line otherwise.
 pub(super) fn g53_in_g91(line: u64, s: &State) -> Result<()> {
+    if s.motion == 0 && s.machine.frames.offset("G53").is_none() {
+        return Ok(());
+    }
     match s.machine.dialect {
         Some(GcodeDialect::LinuxCnc | GcodeDialect::Grbl) => Ok(()),
         Some(d) => Err(at(line, format!("G53 in G91 on the dialect \"{d}\": stiffid does not know whether this controller reads the words as machine coordinates or increments (LinuxCNC and grbl read them absolute, Mitsubishi's M700V as increments); write G90 before it"))),

@@ -28,6 +28,21 @@ impl State {
         self.known = [true, true, lift.is_some()];
     }
 
+    /// The tool in use named by a `T` before the program's first tool change: the spindle has
+    /// held it since the start, so the start's `Z`, unknown for want of its length, is known
+    /// now (while no block has moved or left `Z` and the part frame `G54` is in force).
+    pub(super) fn first_tool_named(&mut self) {
+        let Some(tip) = self.machine.frames.start else {
+            return;
+        };
+        if self.known[2] || self.left_unknown[2].is_some() || self.frame.name != "G54" {
+            return;
+        }
+        if let Some(lift) = self.lift() {
+            (self.position.z, self.known[2]) = (tip.z - lift, true);
+        }
+    }
+
     /// The tip's lift from the programmed point in force (module docs of [`machine`]).
     pub(super) fn lift(&self) -> Lift {
         if self.machine.tool_lengths.is_empty() {
@@ -128,13 +143,17 @@ impl State {
         Some(machine::to_program(&self.frame, self.lift()?))
     }
 
-    /// Refuses what only the part frame `G54` without a tool length offset reads (a canned
-    /// cycle).
-    pub(super) fn plain(&self, line: u64, what: &str) -> Result<()> {
-        if self.frame.name != "G54" || self.lift() != Some(0.0) {
-            return Err(at(line, format!("{what} in the work offset {} or under a tool length offset: stiffid reads canned cycles in G54 with the tip programmed (G43 H of the tool in use, or no tool table)", self.frame.name)));
+    /// The shift from a programmed `Z` to the part frame's `Z` in the work offset and tool
+    /// length offset in force, m (a canned cycle drills along the part's `Z`), or the error
+    /// naming the line: the tool in use without a length, or a work offset that turns the
+    /// part's `Z` axis.
+    pub(super) fn part_z_shift(&self, line: u64, what: &str) -> Result<f64> {
+        let lift = self.lift().ok_or_else(|| self.no_length(line))?;
+        let part_from = &self.frame.part_from;
+        if (part_from.rotation * Vector3::z() - Vector3::z()).norm() > 1e-12 {
+            return Err(at(line, format!("{what} in the work offset {}, whose Z axis is not the part's: stiffid drills along the part's Z", self.frame.name)));
         }
-        Ok(())
+        Ok(part_from.translation.vector.z + lift)
     }
 }
 

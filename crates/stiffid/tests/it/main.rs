@@ -50,6 +50,7 @@ mod gcode_corpus;
 mod gcode_cycles;
 mod gcode_dialect;
 mod gcode_expand;
+mod gcode_shop;
 mod gcode_true_robot;
 mod gradients;
 mod identify;
