@@ -128,6 +128,8 @@ impl JointProgram {
         let start = self.targets.get(i)?.spans[0].start;
         let t = &self.targets[i];
         let start = match (&t.cartesian, t.point.as_deref()) {
+            // A motion whose numbers are another file's (a bound parameter): where it is.
+            _ if t.motion_at.is_some() => t.motion_at.unwrap_or(start),
             // A copy of another file's point goes where its declaration does.
             (_, Some(p)) if p.foreign.is_some() => p.declaration.start,
             (Some(c), _) => c.spans.first().map_or(start, |s| s.start),
@@ -144,6 +146,7 @@ impl JointTarget {
     /// (a called program's, [`Read::called`](super::Read::called)).
     pub(crate) fn shifted(mut self, offset: usize) -> Self {
         let shift = |r: &mut Range<usize>| *r = r.start + offset..r.end + offset;
+        self.motion_at = self.motion_at.map(|a| a + offset);
         self.spans.iter_mut().for_each(shift);
         self.external_spans.iter_mut().flatten().for_each(shift);
         if let Some(c) = self.cartesian.as_deref_mut() {

@@ -187,6 +187,10 @@ pub struct JointTarget {
     /// A declared point's declaration and name there, and where the motion names it
     /// ([`points`]): where a second point is declared when two visits' compensations differ.
     point: Option<Box<points::Point>>,
+    /// Where its motion is in the whole text, when its numbers are in another file's text (a
+    /// RAPID procedure's parameter bound to its caller's target): the file it is a motion of
+    /// ([`JointProgram::called_in`]).
+    motion_at: Option<usize>,
 }
 
 impl JointTarget {
@@ -258,6 +262,7 @@ impl JointTarget {
             held: false,
             via: false,
             point: None,
+            motion_at: None,
         }
     }
 
@@ -649,6 +654,7 @@ pub(crate) fn six(
         held: false,
         via: false,
         point: None,
+        motion_at: None,
     })
 }
 

@@ -112,8 +112,22 @@ pub(super) fn split(program: &JointProgram, edits: &mut Vec<Edit>) -> Result<()>
         if foreign.is_some() {
             names.remove(0);
         }
+        // One motion statement run for several visits (a procedure read at each of its calls)
+        // names one point: visits there that need two are refused.
+        let mut named: BTreeMap<usize, (String, u64)> = BTreeMap::new();
         for (i, texts) in list {
             let k = values.iter().position(|v| v == &texts).unwrap_or(0);
+            if let Some(i) = *i {
+                let t = &program.targets[i];
+                let reference = t.point.as_deref().and_then(|p| p.reference.clone());
+                if let Some(r) = reference {
+                    let name = names.get(k).cloned().unwrap_or_default();
+                    match named.get(&r.start) {
+                        Some((other, _)) if *other != name => return Err(at(t.line, format!("the motion{} is run at two calls of its procedure, whose compensations need two different points, and the motion names one: give each call its own procedure or point", program.called_in(i).map(|f| format!(" of {f}")).unwrap_or_default()))),
+                        _ => _ = named.insert(r.start, (name, t.line)),
+                    }
+                }
+            }
             let Some(i) = i.filter(|_| k > 0 || foreign.is_some()) else {
                 continue;
             };

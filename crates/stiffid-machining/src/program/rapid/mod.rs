@@ -15,18 +15,23 @@
 //! `RelTool` of one with constant arguments (module `offset`).
 //!
 //! Every motion of every routine is read where it is, inside loops, branches and error handlers
-//! too (module `read`); docs/programs/rapid.md is the guide, with ABB's manuals as the source of
-//! each rule.
+//! too (module `read`); a `PROC` of another module of the task is read where the module calls it
+//! (modules `calls`, `called`); docs/programs/rapid.md is the guide, with ABB's manuals as the
+//! source of each rule.
 
 mod arguments;
 mod backup;
+mod called;
+mod calls;
 mod cartesian;
 pub(crate) mod confdata;
 mod flow;
 mod generate;
+mod layout;
 mod names;
 mod offset;
 mod parameters;
+mod place;
 mod process;
 mod read;
 pub(crate) mod speed;

@@ -5,12 +5,16 @@
 //! `ConfJ`/`ConfL \Off` (configuration monitoring), is followed through the branches and loops
 //! ([`crate::program::paths`]) and is the caller's at a routine's start.
 
+use super::called::{Bindings, Task, MAX_READS};
+use super::calls::{self, routine};
+use super::layout::Layout;
+use super::place::Place;
 use super::{declarations, first_word, flow, is_header, motion, no_motion, statements};
-use super::{well_formed, without_comments, Statement};
+use super::{well_formed, without_comments, Data, Statement};
 use crate::program::controller::Read;
 use crate::program::paths::{Join, Kind, Paths};
-use crate::program::{at, Context, JointTarget};
-use stiffid_core::Result;
+use crate::program::{at, Context, JointTarget, Left};
+use stiffid_core::{Error, Result};
 
 /// Configuration monitoring in force for joint (0) and linear (1) motions: off (`\Off`), on, or
 /// why the file does not say.
@@ -35,27 +39,83 @@ impl Join for Conf {
 }
 
 /// Every target of `text`, in the order of its motions (module docs), the program's external
-/// axes (`eax_a` to the last one any target gives a value, not `9E9`) and the motions left as
-/// found ([`Context::leave_refused`]).
+/// axes (`eax_a` to the last one any target gives a value, not `9E9`), the motions left as
+/// found ([`Context::leave_refused`]) and the modules of the task it calls that move (module
+/// `called`).
 ///
 /// # Errors
 /// [`stiffid_core::Error::Program`] naming the line of a motion outside the subset, of a motion
 /// whose configuration monitoring depends on the path (unless left as found), of a jump in a
-/// module that switches configuration monitoring, or of a module without motions.
+/// module that switches configuration monitoring, of a call refused (module `calls`), or of a
+/// module without motions.
 pub(crate) fn targets(text: &str, context: &Context) -> Result<Read> {
-    let code = without_comments(text);
-    let statements = statements(&code);
-    let data = super::backup::merge(declarations(&code, &statements)?, (text, &code), context)?;
+    let mut task = Task {
+        procs: calls::procedures(context, text),
+        total: text.len(),
+        program: vec![("the program".to_string(), text.to_string())],
+        ..Task::default()
+    };
+    let module = module(text, 0, None, context, &mut task)?;
+    let (out, left) = (module.targets, module.left);
+    if out.is_empty() && left.is_empty() {
+        return Err(at(1, no_motion(&module.routines)));
+    }
+    let n = out
+        .iter()
+        .filter_map(|t| t.external.iter().rposition(Option::is_some))
+        .max()
+        .map_or(0, |k| k + 1);
+    let axes = (0..n).map(|k| format!("eax_{}", (b'a' + k as u8) as char));
+    Ok(Read {
+        targets: out,
+        axes: axes.collect(),
+        left,
+        called: task.files,
+        ..Read::default()
+    })
+}
+
+/// A procedure of the module called from another module: its name (lower case), what the call
+/// binds its parameters to, where the call sits among the motions, the configuration monitoring
+/// in force there.
+struct Entry {
+    name: String,
+    bindings: Bindings,
+    place: Place,
+    conf: Conf,
+}
+
+/// What a module read gives: its targets, the motions left, its routines, whether it switches
+/// configuration monitoring.
+struct Module {
+    targets: Vec<JointTarget>,
+    left: Vec<Left>,
+    routines: Vec<(String, u64)>,
+    switches_conf: bool,
+}
+
+/// The module `text`, its text at byte `offset` of the whole text: every routine's motions, or
+/// with `entry` the called procedure's and those of the module's routines it calls.
+fn module(
+    text: &str,
+    offset: usize,
+    entry: Option<&Entry>,
+    context: &Context,
+    task: &mut Task,
+) -> Result<Module> {
+    let (code, statements, data) = prepared(text, offset, entry, context, task)?;
     let switches_conf = statements.iter().find(|s| {
         matches!(
             first_word(&code[s.span.clone()]).as_str(),
             "confj" | "confl"
         )
     });
-    // The words that start a statement: a routine called by the module is among them.
-    let called: std::collections::HashSet<String> = (statements.iter())
-        .map(|s| first_word(&code[s.span.clone()]))
-        .collect();
+    let layout = Layout::of(
+        &code,
+        &statements,
+        task,
+        entry.map(|e| (e.name.as_str(), e.place)),
+    );
     let mut out = Vec::new();
     let mut left = Vec::new();
     let mut routines: Vec<(String, u64)> = Vec::new();
@@ -64,7 +124,10 @@ pub(crate) fn targets(text: &str, context: &Context) -> Result<Read> {
     let mut conf = Conf([Ok(false), Ok(false)]);
     // The first motion of the routine being read.
     let mut first_motion: Option<u64> = None;
-    for s in &statements {
+    for (k, s) in statements.iter().enumerate() {
+        if !layout.read[k] {
+            continue;
+        }
         let body = &code[s.span.clone()];
         let first = first_word(body);
         well_formed(s.line, &body.trim_start()[..first.len()])?;
@@ -73,36 +136,34 @@ pub(crate) fn targets(text: &str, context: &Context) -> Result<Read> {
             routines.push((name, s.line));
             flow.routine();
             paths.clear();
-            conf = entry(
-                switches_conf.filter(|_| called.contains(&name_of(&routines))),
-                s.line,
-            );
+            conf = match entry.filter(|e| e.name == name_of(&routines)) {
+                Some(e) => e.conf.clone(),
+                None => conf_at_start(
+                    switches_conf.filter(|_| layout.called.contains(&name_of(&routines))),
+                    s.line,
+                ),
+            };
             continue;
         }
         flow.statement(&first, is_header(body), s.line);
         if is_header(body) {
             branches(&first, s.line, &mut paths, &mut conf);
         }
+        let here = Here {
+            statement: s,
+            place: layout.places[k],
+        };
         if first == "if" && !is_header(body) {
-            if let Some((name, line, _)) = flow::in_compact_if(body, s.line, flow::is_jump) {
-                let jump = format!("IF (line {}) {}", s.line, name.to_uppercase());
-                flow.jump(&jump, line);
-            }
-            // A compact IF's motion: read where it is, a branch of one statement.
-            if let Some((name, line, at)) = flow::in_compact_if(body, s.line, flow::is_motion) {
-                let inner = Statement {
-                    line,
-                    span: s.span.start + at..s.span.end,
-                };
-                let name = name.to_ascii_lowercase();
-                match moves(&inner, &code, &name, &data, &conf) {
-                    Ok(found) => {
-                        first_motion.get_or_insert(line);
-                        out.extend(found);
-                    }
-                    Err(e) => context.leave(&mut left, e)?,
-                }
-            }
+            compact_if(
+                &here,
+                (&code, body),
+                (&data, &conf),
+                context,
+                (&mut out, &mut left),
+                &mut flow,
+                task,
+                &layout,
+            )?;
             continue;
         }
         let rest = body.trim_start()[first.len()..].trim_start();
@@ -112,6 +173,17 @@ pub(crate) fn targets(text: &str, context: &Context) -> Result<Read> {
         }
         if let Some(k) = ["confj", "confl"].iter().position(|c| *c == first) {
             conf.0[k] = Ok(rest.to_ascii_lowercase().starts_with("\\off"));
+        }
+        if let Some(name) = calls::called(body, &first) {
+            let call = (name, &body.trim_start()[name.len()..]);
+            let found = call_of(&here, call, (&data, &mut conf), context, task, &layout);
+            keep(found, context, (&mut out, &mut left))?;
+            continue;
+        }
+        if let (Some(why), true) = (calls::shifts(&first), here.place.before_last) {
+            let name = &body.trim_start()[..first.len()];
+            context.leave(&mut left, at(s.line, format!("{name}: {why}")))?;
+            continue;
         }
         let found = match moves(s, &code, &first, &data, &conf) {
             Ok(found) => found,
@@ -126,41 +198,203 @@ pub(crate) fn targets(text: &str, context: &Context) -> Result<Read> {
         out.extend(found);
     }
     check_jumps(&flow, &routines, first_motion, switches_conf)?;
-    if out.is_empty() && left.is_empty() {
-        return Err(at(1, no_motion(&routines)));
-    }
-    let n = out
-        .iter()
-        .filter_map(|t| t.external.iter().rposition(Option::is_some))
-        .max()
-        .map_or(0, |k| k + 1);
-    let axes = (0..n).map(|k| format!("eax_{}", (b'a' + k as u8) as char));
-    Ok(Read {
+    Ok(Module {
         targets: out,
-        axes: axes.collect(),
         left,
-        ..Read::default()
+        routines,
+        switches_conf: switches_conf.is_some(),
     })
 }
 
-/// The name of the routine a statement opens (`PROC name()`, `FUNC type name()`, `TRAP name`).
-fn routine(body: &str) -> Option<String> {
-    let words: Vec<String> = body
-        .split_whitespace()
-        .take(3)
-        .map(str::to_ascii_lowercase)
-        .collect();
-    let w: Vec<&str> = words
-        .iter()
-        .map(String::as_str)
-        .skip_while(|w| matches!(*w, "local" | "task"))
-        .collect();
-    match w.as_slice() {
-        ["proc" | "trap", name, ..] | ["func", _, name, ..] => {
-            Some(name.split('(').next().unwrap_or(name).to_string())
-        }
-        _ => None,
+/// The module `text` at byte `offset` of the whole text, its comments blanked and blank bytes
+/// before it (its spans are the whole text's), its statements and its data: its own, the task's
+/// other modules' (the program's too, for a module called) and, with `entry`, the call's
+/// arguments.
+fn prepared(
+    text: &str,
+    offset: usize,
+    entry: Option<&Entry>,
+    context: &Context,
+    task: &Task,
+) -> Result<(String, Vec<Statement>, Data)> {
+    let code = " ".repeat(offset) + &without_comments(text);
+    let statements = statements(&code);
+    let shown = match entry {
+        None => context.backup.to_vec(),
+        Some(_) => [context.backup, &task.program].concat(),
+    };
+    let seen_by = Context {
+        backup: &shown,
+        ..*context
+    };
+    let own = declarations(&code, &statements)?;
+    let mut data = super::backup::merge(own, (text, &code), &seen_by)?;
+    if let Some(e) = entry {
+        e.bindings.apply(&mut data);
     }
+    Ok((code, statements, data))
+}
+
+/// A statement being read and where it sits among the motions.
+struct Here<'s> {
+    statement: &'s Statement,
+    place: Place,
+}
+
+/// The targets and motions left `found` by a call, added to `out` and `left`; a refusal left as
+/// found where the context says.
+fn keep(
+    found: Result<(Vec<JointTarget>, Vec<Left>)>,
+    context: &Context,
+    (out, left): (&mut Vec<JointTarget>, &mut Vec<Left>),
+) -> Result<()> {
+    match found {
+        Ok((t, l)) => {
+            out.extend(t);
+            left.extend(l);
+            Ok(())
+        }
+        Err(e) => context.leave(left, e),
+    }
+}
+
+/// A compact `IF cond instruction;`: its motion read where it is (a branch of one statement),
+/// its call of a procedure of the module or the task as any call.
+#[allow(clippy::too_many_arguments)]
+fn compact_if(
+    here: &Here,
+    (code, body): (&str, &str),
+    (data, conf): (&Data, &Conf),
+    context: &Context,
+    (out, left): (&mut Vec<JointTarget>, &mut Vec<Left>),
+    flow: &mut flow::Flow,
+    task: &mut Task,
+    layout: &Layout,
+) -> Result<()> {
+    let s = here.statement;
+    if let Some((name, line, _)) = flow::in_compact_if(body, s.line, flow::is_jump) {
+        let jump = format!("IF (line {}) {}", s.line, name.to_uppercase());
+        flow.jump(&jump, line);
+    }
+    if let Some((name, line, at)) = flow::in_compact_if(body, s.line, flow::is_motion) {
+        let inner = Statement {
+            line,
+            span: s.span.start + at..s.span.end,
+        };
+        let name = name.to_ascii_lowercase();
+        return match moves(&inner, code, &name, data, conf) {
+            Ok(found) => {
+                out.extend(found);
+                Ok(())
+            }
+            Err(e) => context.leave(left, e),
+        };
+    }
+    if let Some((name, at)) = calls::in_compact_if(body, |w| layout.names(w, task)) {
+        let mut conf = conf.clone();
+        let call = (name, &body[at + name.len()..]);
+        let found = call_of(here, call, (data, &mut conf), context, task, layout);
+        keep(found, context, (out, left))?;
+    }
+    Ok(())
+}
+
+/// The call of procedure `name` (its arguments `args`, up to the `;`) at `here`: nothing for a
+/// routine of the module (read where it is); the targets of a `PROC` of the task's other modules
+/// (module `called`), with the configuration monitoring `conf` in force (unknown after it where
+/// that module switches it); a call refused where it runs between two motions (module `calls`).
+fn call_of(
+    here: &Here,
+    (name, args): (&str, &str),
+    (data, conf): (&Data, &mut Conf),
+    context: &Context,
+    task: &mut Task,
+    layout: &Layout,
+) -> Result<(Vec<JointTarget>, Vec<Left>)> {
+    let line = here.statement.line;
+    let key = name.to_ascii_lowercase();
+    if name == "%" {
+        return match here.place.between() {
+            true => Err(at(line, "a late-bound call (%name%, CallByVar): the procedure it runs is named at run time, and may move the robot between the motions around it, off the file's path; call the procedure by its name".into())),
+            false => Ok((Vec::new(), Vec::new())),
+        };
+    }
+    if layout.routines.contains(&key) {
+        return Ok((Vec::new(), Vec::new()));
+    }
+    let Some(&(file, text)) = task.procs.get(&key) else {
+        return match here.place.between() {
+            true => Err(at(line, format!("{name}: a call of a procedure neither this module nor the task's modules given declare (PROC {name}), between two motions: it may move the robot off the file's path; give the task's modules (--backup, Python backup=) holding it"))),
+            false => Ok((Vec::new(), Vec::new())),
+        };
+    };
+    let refuse = |why: String| at(line, format!("{name}: {why}"));
+    let link = format!("{}.{key}", crate::program::file_name(file));
+    if task.chain.contains(&link) || task.chain.len() >= 16 {
+        return Err(refuse(format!(
+            "the procedure calls itself through {}; stiffid follows calls that end",
+            task.chain.join(", ")
+        )));
+    }
+    task.reads += 1;
+    if task.reads > MAX_READS {
+        return Err(refuse(format!("more than {MAX_READS} calls of the task's procedures read: stiffid reads each where it is called")));
+    }
+    crate::program::ends::check(text, crate::program::Dialect::Rapid)
+        .map_err(|e| refuse(format!("{file}: {e}")))?;
+    let header = calls::header(text, &key);
+    let entry = Entry {
+        name: key,
+        bindings: Bindings::of(&header, (args, line), data),
+        place: here.place,
+        conf: conf.clone(),
+    };
+    let before = (task.files.len(), task.total);
+    let offset = match task.offsets.get(file) {
+        Some(at) => *at,
+        None => {
+            task.offsets.insert(file.to_string(), task.total);
+            task.total += text.len();
+            task.files.push((file.to_string(), text.to_string()));
+            before.1
+        }
+    };
+    task.chain.push(link);
+    let read = module(text, offset, Some(&entry), context, task);
+    task.chain.pop();
+    let within = |e: Error| match e {
+        Error::Program { line: l, message } => refuse(format!("{} line {l}: {message}", file)),
+        other => other,
+    };
+    let read = match read {
+        Ok(r) if !(r.targets.is_empty() && r.left.is_empty()) => r,
+        other => {
+            // Nothing moves (or refused): the modules first read here are not written.
+            for (f, _) in task.files.drain(before.0..) {
+                task.offsets.remove(&f);
+            }
+            task.total = before.1;
+            other.map_err(within)?
+        }
+    };
+    if read.switches_conf {
+        let why = format!("the call of {name} on line {line} may switch configuration monitoring ({file}), which stiffid does not follow out of it; set ConfJ and ConfL after the call");
+        *conf = Conf([Err(why.clone()), Err(why)]);
+    }
+    let targets = (read.targets.into_iter())
+        .map(|t| JointTarget {
+            motion_at: t.motion_at.or(Some(offset)),
+            ..t
+        })
+        .collect();
+    let left = (read.left.into_iter())
+        .map(|l| Left {
+            line,
+            why: format!("{name}: {file} line {}: {}", l.line, l.why),
+            point: l.point,
+        })
+        .collect();
+    Ok((targets, left))
 }
 
 /// The name (lower case) of the last routine of `routines`.
@@ -173,7 +407,7 @@ fn name_of(routines: &[(String, u64)]) -> String {
 /// Configuration monitoring at the start of the routine on `line`: on (the controller's
 /// default, as at the program's start) in a routine the module does not call or a module that
 /// never switches it (`switches` `None`); else the caller's, which the module does not say.
-fn entry(switches: Option<&Statement>, line: u64) -> Conf {
+fn conf_at_start(switches: Option<&Statement>, line: u64) -> Conf {
     match switches {
         None => Conf([Ok(false), Ok(false)]),
         Some(s) => {

@@ -83,3 +83,8 @@ pub(crate) fn speed(
         ))),
     }
 }
+
+/// Whether `v` mm/s is one of RAPID's predefined `speeddata` (`v100`).
+pub(super) fn is_predefined(v: u32) -> bool {
+    RAPID_PREDEFINED.contains(&v)
+}

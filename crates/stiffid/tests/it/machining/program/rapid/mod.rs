@@ -7,4 +7,5 @@ mod module;
 mod offsets;
 pub(crate) mod robots;
 pub(crate) mod stored;
+mod task;
 pub(crate) mod track;

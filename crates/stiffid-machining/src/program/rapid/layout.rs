@@ -1,0 +1,144 @@
+//! A RAPID module's routines as the reader takes them (module `read`): which statements it reads
+//! (every routine's, or a called procedure's and those of the module's routines it calls), the
+//! routines the module calls, and where each statement sits among the motions (module `place`).
+
+use super::calls::{self, routine};
+use super::place::{places, Place, Seen};
+use super::{first_word, flow, Statement};
+use crate::program::rapid::called::Task;
+use std::collections::{HashMap, HashSet};
+
+/// A module's routines and statements, as read (module docs).
+pub(super) struct Layout {
+    /// Per statement, whether it is read.
+    pub read: Vec<bool>,
+    /// Per statement, where it sits among the motions.
+    pub places: Vec<Place>,
+    /// The module's routines (lower case).
+    pub routines: HashSet<String>,
+    /// The routines the module calls (lower case).
+    pub called: HashSet<String>,
+}
+
+impl Layout {
+    /// The layout of the module `code` (its `statements`), the task's procedures in `task`;
+    /// `entry` the procedure another module calls, read alone with the routines it calls, and its
+    /// call's place.
+    pub(super) fn of(
+        code: &str,
+        statements: &[Statement],
+        task: &Task,
+        entry: Option<(&str, Place)>,
+    ) -> Layout {
+        let mut names: Vec<String> = Vec::new();
+        let mut seen = vec![Seen::default(); statements.len()];
+        let mut open = false;
+        for (k, s) in statements.iter().enumerate() {
+            let body = &code[s.span.clone()];
+            let first = first_word(body);
+            if let Some(name) = routine(body) {
+                names.push(name.to_ascii_lowercase());
+                open = true;
+                continue;
+            }
+            if matches!(first.as_str(), "endproc" | "endfunc" | "endtrap") {
+                open = false;
+                continue;
+            }
+            seen[k].routine = open.then(|| names.len() - 1);
+            seen[k].loop_step = match first.as_str() {
+                "while" | "for" => 1,
+                "endwhile" | "endfor" => -1,
+                _ => 0,
+            };
+            seen[k].moving = flow::is_motion(&first)
+                || (first == "if" && flow::in_compact_if(body, s.line, flow::is_motion).is_some());
+        }
+        let index: HashMap<&str, usize> = (names.iter().enumerate())
+            .map(|(k, n)| (n.as_str(), k))
+            .collect();
+        for (k, s) in statements.iter().enumerate() {
+            let body = &code[s.span.clone()];
+            let first = first_word(body);
+            let name = calls::called(body, &first).map(str::to_ascii_lowercase);
+            let name = name.or_else(|| {
+                let named = |w: &str| index.contains_key(w) || task.procs.contains_key(w);
+                (first == "if")
+                    .then(|| calls::in_compact_if(body, named))
+                    .flatten()
+                    .map(|(w, _)| w.to_ascii_lowercase())
+            });
+            match name.as_deref() {
+                Some(n) if index.contains_key(n) => seen[k].calls = Some(index[n]),
+                Some(n) if n == "%" || task.procs.contains_key(n) => seen[k].moving = true,
+                _ => {}
+            }
+        }
+        moving_calls(&mut seen, names.len());
+        let chosen = entry.map(|(name, _)| reached(name, &index, &seen));
+        let read = (seen.iter().enumerate())
+            .map(|(k, s)| match &chosen {
+                None => true,
+                Some(set) => {
+                    let header = routine(&code[statements[k].span.clone()]);
+                    let r = header.map_or(s.routine, |h| {
+                        index.get(h.to_ascii_lowercase().as_str()).copied()
+                    });
+                    r.is_some_and(|r| set.contains(&r))
+                }
+            })
+            .collect();
+        let at_entry: HashMap<usize, Place> = entry
+            .and_then(|(name, place)| index.get(name).map(|&r| (r, place)))
+            .into_iter()
+            .collect();
+        let called = (seen.iter().filter_map(|s| s.calls))
+            .map(|r| names[r].clone())
+            .collect();
+        Layout {
+            read,
+            places: places(&seen, &at_entry),
+            routines: names.into_iter().collect(),
+            called,
+        }
+    }
+
+    /// Whether `word` (lower case) names a procedure of the module or the task's `task`.
+    pub(super) fn names(&self, word: &str, task: &Task) -> bool {
+        self.routines.contains(word) || task.procs.contains_key(word)
+    }
+}
+
+/// Marks the calls of the module's routines that move (hold a motion, or call a procedure of the
+/// task or a routine that moves) as moving.
+fn moving_calls(seen: &mut [Seen], routines: usize) {
+    let mut moves = vec![false; routines];
+    loop {
+        let mut changed = false;
+        for s in seen.iter_mut() {
+            if s.calls.is_some_and(|c| moves[c]) {
+                s.moving = true;
+            }
+            if let Some(r) = s.routine.filter(|r| s.moving && !moves[*r]) {
+                moves[r] = true;
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+}
+
+/// The routines (indices) `name` reaches: itself and those it calls, in turn.
+fn reached(name: &str, index: &HashMap<&str, usize>, seen: &[Seen]) -> HashSet<usize> {
+    let mut out = HashSet::new();
+    let mut todo: Vec<usize> = index.get(name).copied().into_iter().collect();
+    while let Some(r) = todo.pop() {
+        if out.insert(r) {
+            let calls = seen.iter().filter(|s| s.routine == Some(r));
+            todo.extend(calls.filter_map(|s| s.calls));
+        }
+    }
+    out
+}
