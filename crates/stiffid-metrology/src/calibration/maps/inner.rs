@@ -147,6 +147,37 @@ impl<'a> Inner<'a> {
         Ok(s)
     }
 
+    /// [`Self::score`] where `choice` can matter: `None` once the held-out errors of the folds
+    /// scored so far, at every ridge, reach `bound` (m^2; errors are never negative, so its
+    /// total would too). The folds are scored one after the other, so a candidate that cannot
+    /// be kept costs the folds that show it; one scored in full is the same to the last bit as
+    /// [`Self::score`]'s, and kept.
+    pub(super) fn score_below(&self, choice: &JointMaps, bound: f64) -> Result<Option<Scored>> {
+        let memo = self.scored.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some((_, s)) = memo.iter().find(|(m, _)| m == choice) {
+            return Ok(Some(s.clone()));
+        }
+        drop(memo);
+        let mut per_fold = Vec::with_capacity(self.folds.len());
+        let mut partial = vec![0.0; RIDGES.len()];
+        for f in &self.folds {
+            let all = f.trained.errors(self.linear, choice)?;
+            let held: Vec<Vec<f64>> = all.iter().map(|e| e[f.held.clone()].to_vec()).collect();
+            // The same order of additions as the totals' below: a prefix of each sum.
+            for (p, e) in partial.iter_mut().zip(&held) {
+                *p = e.iter().fold(*p, |a, v| a + v);
+            }
+            per_fold.push(held);
+            if partial.iter().all(|&p| p >= bound) {
+                return Ok(None);
+            }
+        }
+        let s = self.totalled(&per_fold);
+        let mut memo = self.scored.lock().unwrap_or_else(|e| e.into_inner());
+        memo.push((*choice, s.clone()));
+        Ok(Some(s))
+    }
+
     /// [`Self::score`] computed.
     fn scored_anew(&self, choice: &JointMaps) -> Result<Scored> {
         let per_fold = (self.folds.par_iter())
@@ -155,17 +186,23 @@ impl<'a> Inner<'a> {
                 Ok(all.iter().map(|e| e[f.held.clone()].to_vec()).collect())
             })
             .collect::<Result<Vec<Vec<Vec<f64>>>>>()?;
+        Ok(self.totalled(&per_fold))
+    }
+
+    /// The candidate's score from its held-out errors per fold, per ridge, per posture: its best
+    /// ridge's.
+    fn totalled(&self, per_fold: &[Vec<Vec<f64>>]) -> Scored {
         let totals: Vec<f64> = (0..RIDGES.len())
             .map(|r| per_fold.iter().flat_map(|f| &f[r]).sum())
             .collect();
         let best = (0..RIDGES.len())
             .min_by(|&a, &b| totals[a].total_cmp(&totals[b]))
             .unwrap_or(0);
-        Ok(Scored {
+        Scored {
             ridge: RIDGES[best],
             errors: per_fold.iter().flat_map(|f| f[best].clone()).collect(),
             total: totals[best],
-        })
+        }
     }
 
     /// The held-out RMS error of `s`, m.

@@ -77,3 +77,28 @@ fn an_outer_folds_shared_inner_folds_score_as_its_own_splits() {
     // Fewer than three outer folds leave an outer fold no inner fold to train on: no pairs.
     assert!(Pairs::new(&linear, &[0, 1]).unwrap().is_none());
 }
+
+/// A candidate scored against a bound: where its held-out total at its best ridge reaches the
+/// bound it is dropped (`None`), below it the score is [`Inner::score`]'s to the last bit (the
+/// choice it serves keeps what it kept: the real UR10's ten draws give the same documents).
+#[test]
+fn a_candidate_that_cannot_be_kept_is_dropped_and_one_that_can_is_scored_in_full() {
+    let linear = linear();
+    let all: Vec<usize> = (0..23).collect();
+    let pairs = Pairs::new(&linear, &all).unwrap().unwrap();
+    for k in 0..5 {
+        let (pruned, full) = (pairs.inner(k), pairs.inner(k));
+        for c in [
+            JointMaps::from([1, 0, 0, 0, 0, 0]),
+            JointMaps::from([2, 0, 0, 0, 0, 0]),
+        ] {
+            let s = full.score(&c).unwrap();
+            assert!(pruned.score_below(&c, s.total).unwrap().is_none());
+            let below = pruned.score_below(&c, s.total * (1.0 + 1e-9)).unwrap();
+            let below = below.expect("below its bound");
+            assert_eq!(below.ridge, s.ridge);
+            assert_eq!(below.errors, s.errors);
+            assert_eq!(below.total.to_bits(), s.total.to_bits());
+        }
+    }
+}

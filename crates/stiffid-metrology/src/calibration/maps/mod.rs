@@ -34,7 +34,11 @@
 //! split: the held-out gain of choosing maps by cross-validation. Inside outer fold `k` the
 //! choice's inner folds are the other outer folds, each trained on the postures of neither: the two
 //! outer folds of a pair share its split and each candidate's steps on it, so the `K` choices cost
-//! `K (K - 1) / 2` splits, not `K^2` (with 3 outer folds or more). Folds run in parallel (rayon),
+//! `K (K - 1) / 2` splits, not `K^2` (with 3 outer folds or more). An outer fold's choice, whose
+//! candidates are not reported, scores a candidate of the forward or the joint step one inner
+//! fold after the other and drops it once its held-out error at every ridge reaches what it
+//! must beat to be kept (`Inner::score_below`): the same choice, at a fraction of the
+//! cost of the candidates that lose. Folds run in parallel (rayon),
 //! the result independent of the thread count. [`nested_given`] scores the choices and ridges
 //! another linearisation of the same postures made (a calibration's ladder chooses the maps once,
 //! at its first gravity model): one refit per outer fold. Where the maps are fixed (or none), the
@@ -47,6 +51,7 @@ mod inner;
 pub(crate) mod linear;
 
 pub use super::acceptance::lowers;
+use super::acceptance::LEAST_GAIN;
 pub use super::error_model::JointMaps;
 pub use linear::{extended, Linear};
 
@@ -263,6 +268,7 @@ pub fn choose(linear: &Linear, postures: &[usize], spec: Spec) -> Result<Choice>
     choose_on(
         &Inner::new(narrow.as_ref().unwrap_or(linear), postures)?,
         spec,
+        false,
     )
 }
 
@@ -276,8 +282,10 @@ fn narrowed(linear: &Linear, spec: Spec) -> Option<Linear> {
     }
 }
 
-/// [`choose`] on the inner cross-validation `inner`.
-fn choose_on(inner: &Inner, spec: Spec) -> Result<Choice> {
+/// [`choose`] on the inner cross-validation `inner`; with `prune`, a candidate of the forward or
+/// the joint step is scored only until its folds show it cannot be kept
+/// ([`Inner::score_below`]: the same choice and ridge, its `tried` without those candidates).
+fn choose_on(inner: &Inner, spec: Spec, prune: bool) -> Result<Choice> {
     let none = inner.score(&JointMaps::NONE)?;
     let none_rms = inner.rms(&none);
     let mut tried = Vec::new();
@@ -307,10 +315,14 @@ fn choose_on(inner: &Inner, spec: Spec) -> Result<Choice> {
             let best: [usize; 6] = std::array::from_fn(|j| {
                 alone.iter().map(|(m, _)| m.harmonics[j]).max().unwrap_or(0)
             });
-            // Forward: the terms in that order, each kept when it lowers the error enough.
+            // Forward: the terms in that order, each kept when it lowers the error enough (by
+            // `LEAST_GAIN` of it at least: `lowers`).
             for (term, _) in alone {
                 let choice = chosen.union(&term);
-                let s = inner.score(&choice)?;
+                let bound = (1.0 - LEAST_GAIN) * current.total;
+                let Some(s) = scored(inner, &choice, prune.then_some(bound))? else {
+                    continue;
+                };
                 let kept = better(&current, &s);
                 record(choice, &s, kept);
                 if kept {
@@ -329,7 +341,10 @@ fn choose_on(inner: &Inner, spec: Spec) -> Result<Choice> {
                     for &j in &order[..k] {
                         set.harmonics[j] = h;
                     }
-                    let s = inner.score(&set)?;
+                    let bound = current.total.min((1.0 - LEAST_GAIN) * none.total);
+                    let Some(s) = scored(inner, &set, prune.then_some(bound))? else {
+                        continue;
+                    };
                     let kept = s.total < current.total && better(&none, &s);
                     record(set, &s, kept);
                     if kept {
@@ -347,6 +362,15 @@ fn choose_on(inner: &Inner, spec: Spec) -> Result<Choice> {
         none_rms,
         tried,
     })
+}
+
+/// The score of `choice` on `inner`: in full, or with a `bound` `None` where it reaches it
+/// ([`Inner::score_below`]).
+fn scored(inner: &Inner, choice: &JointMaps, bound: Option<f64>) -> Result<Option<Scored>> {
+    match bound {
+        None => inner.score(choice).map(Some),
+        Some(b) => inner.score_below(choice, b),
+    }
 }
 
 /// Each joint's map alone at its best of [`HARMONICS`], and each candidate backlash term alone
@@ -389,7 +413,9 @@ pub fn nested(linear: &Linear, postures: &[usize], spec: Spec) -> Result<Nested>
     let pairs = Pairs::new(narrow.as_ref().unwrap_or(linear), postures)?;
     outer(linear, postures, |k, train| {
         let choice = match &pairs {
-            Some(pairs) => choose_on(&pairs.inner(k), spec)?,
+            // Each fold's `tried` is not reported: its candidates that cannot be kept are
+            // scored only as far as it takes to show it.
+            Some(pairs) => choose_on(&pairs.inner(k), spec, true)?,
             None => choose(linear, train, spec)?,
         };
         Ok((choice.maps, choice.ridge))
