@@ -232,3 +232,101 @@ fn an_offset_by_a_position_register_of_posreg_va_compensates_as_the_moved_positi
         "{why}"
     );
 }
+
+/// What a hostile backup or header holds is refused naming the file or line: a register given
+/// twice in `POSREG.VA`, two `POSREG.VA` that differ, a motion group mask (`DEFAULT_GROUP`)
+/// that does not hold the groups the program (or a program it calls) moves; a `FOR` loop's bound
+/// that is no number or register.
+#[test]
+fn a_hostile_backup_or_header_is_refused_naming_its_file_or_line() {
+    let straight = std::fs::read_to_string(format!("{DIR}rpi_tmpa.ls")).unwrap();
+    let text = with_registers(&straight);
+    let read = |text: &str, backup: &[(String, String)]| {
+        parse_in(
+            text,
+            Dialect::FanucLs,
+            &Context::default().with_backup(backup),
+        )
+    };
+    let one = |va: String| vec![("backup/POSREG.VA".to_string(), va)];
+    assert_eq!(read(&text, &one(POSREG.into())).unwrap().targets.len(), 3);
+    // PR[7] given twice: its lines 6 and 14.
+    let at = POSREG.find("    [1,9]").unwrap();
+    let seven = &POSREG[POSREG.find("    [1,7]").unwrap()..at];
+    let twice = format!("{}{seven}{}", &POSREG[..at], &POSREG[at..]);
+    let (line, why) = refusal(&read(&text, &one(twice)).unwrap_err());
+    assert_eq!(line, 7, "{why}");
+    assert!(
+        why.contains("$POSREG[1,7]: given on line 7 and again on line 11"),
+        "{why}"
+    );
+    // Two backups' POSREG.VA that differ.
+    let mut two = one(POSREG.into());
+    two.push((
+        "other/posreg.va".into(),
+        POSREG.replace("1620.000", "1600.000"),
+    ));
+    match read(&text, &two).unwrap_err() {
+        stiffid::Error::Parse {
+            source_name,
+            message,
+        } => {
+            assert_eq!(source_name, "other/posreg.va");
+            assert!(
+                message.contains("differs from backup/POSREG.VA"),
+                "{message}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+    two[1].1 = POSREG.into();
+    assert!(read(&text, &two).is_ok());
+    // A mask holding no group 1, or not the group 2 a position gives.
+    let mask = |m: &str| straight.replacen("= 1,*,*,*,*;", &format!("= {m};"), 1);
+    for (m, says) in [
+        ("*,1,*,*,*", "holds no motion group 1"),
+        ("*,*,*,*,*", "holds no motion group 1"),
+        ("1,x,*,*,*", "expected 1 or * for each motion group"),
+    ] {
+        let (line, why) = refusal(&read(&mask(m), &[]).unwrap_err());
+        assert_eq!(line, 3, "{m}: {why}");
+        assert!(why.contains(says), "{m}: {why}");
+    }
+    let second = straight.replacen(
+        "J6 = -48.300 deg\n};",
+        "J6 = -48.300 deg\n   GP2:\n   UF : 0, UT : 1,\n   J1 = 10.000 deg\n};",
+        1,
+    );
+    assert_eq!(
+        read(&second.replacen("= 1,*,*", "= 1,1,*", 1), &[])
+            .unwrap()
+            .axes,
+        ["GP2 J1"]
+    );
+    let (line, why) = refusal(&read(&second, &[]).unwrap_err());
+    assert_eq!(line, 3, "{why}");
+    assert!(why.contains("on line 17 gives GP2"), "{why}");
+    assert!(
+        why.contains("does not hold motion group 2, yet its position on line"),
+        "{why}"
+    );
+    // A called program whose mask holds no group 1: refused naming the call.
+    let main = straight.replacen("   6:  DO[103]=OFF ;", "   6:  CALL PICK ;", 1);
+    let pick = mask("*,1,*,*,*").replacen("/PROG  TMPA", "/PROG  PICK", 1);
+    let (line, why) = refusal(&read(&main, &[("b/PICK.LS".into(), pick)]).unwrap_err());
+    assert_eq!(line, 10, "{why}");
+    assert!(
+        why.starts_with("CALL PICK: b/PICK.LS line 3: DEFAULT_GROUP"),
+        "{why}"
+    );
+    // A FOR loop's bound.
+    let looped = straight
+        .replacen("   4:L P[2]", "   4:  FOR R[1]=1 TO abc ;\n   4:L P[2]", 1)
+        .replacen("   6:  DO[103]=OFF ;", "   6:  ENDFOR ;", 1);
+    let (line, why) = refusal(&read(&looped, &[]).unwrap_err());
+    assert_eq!(line, 8, "{why}");
+    assert!(
+        why.starts_with("FOR R[1]=1 TO abc: expected FOR R[i]=a TO b"),
+        "{why}"
+    );
+}

@@ -8,8 +8,11 @@
 //!   instruction naming a label may go there or on; a `SELECT`'s `ELSE,JMP LBL[i]` goes there.
 //! - `IF (..) THEN` runs on, or goes past its `ELSE` (or to its `ENDIF`); `ELSE` ends the first
 //!   branch, going to its `ENDIF`.
-//! - `FOR .. TO ..` runs its body or goes past its `ENDFOR` (no turn); `ENDFOR` goes back to the
-//!   body's start or on.
+//! - `FOR R[i]=a TO b` (or `DOWNTO b`; each bound a whole number, `R[j]` or `AR[j]`) runs its
+//!   body or goes past its `ENDFOR`: its body at least once where both bounds are numbers that
+//!   count through it, never where they count past it, either where a bound is a register's;
+//!   `ENDFOR` goes back to the body's start or on. Any other form (`FOR R[1]=1 TO abc`) is refused
+//!   naming the line: the controller does not load it.
 //! - `END` and `ABORT` end the program: nothing follows.
 //!
 //! A label's number taken from a register (`JMP LBL[R[1]]`), a jump to a label the program does
@@ -41,8 +44,8 @@ enum Kind {
     Else,
     /// `ENDIF`.
     EndIf,
-    /// `FOR`.
-    For,
+    /// `FOR`, with whether its body runs.
+    For(Runs),
     /// `ENDFOR`.
     EndFor,
 }
@@ -103,7 +106,9 @@ pub(super) fn graph(instructions: &[(u64, String)], motion: &[bool]) -> Result<G
             Kind::End => Vec::new(),
             Kind::Then => vec![k + 1, pairs[&k] + 1],
             Kind::Else => vec![pairs[&k]],
-            Kind::For => vec![k + 1, pairs[&k] + 1],
+            Kind::For(Runs::Maybe) => vec![k + 1, pairs[&k] + 1],
+            Kind::For(Runs::Always) => vec![k + 1],
+            Kind::For(Runs::Never) => vec![pairs[&k] + 1],
             Kind::EndFor => vec![pairs[&k] + 1, k + 1],
         });
     }
@@ -141,7 +146,7 @@ fn pairs(instructions: &[(u64, String)], kinds: &[Kind]) -> Result<HashMap<usize
     };
     for (k, kind) in kinds.iter().enumerate() {
         match kind {
-            Kind::Then | Kind::For => open.push((*kind, k, None)),
+            Kind::Then | Kind::For(_) => open.push((*kind, k, None)),
             Kind::Else => match open.last_mut() {
                 Some((Kind::Then, _, e @ None)) => *e = Some(k),
                 _ => return Err(unmatched(k, "an ELSE without its IF .. THEN")),
@@ -156,7 +161,7 @@ fn pairs(instructions: &[(u64, String)], kinds: &[Kind]) -> Result<HashMap<usize
                 _ => return Err(unmatched(k, "an ENDIF without its IF .. THEN")),
             },
             Kind::EndFor => match open.pop() {
-                Some((Kind::For, f, _)) => {
+                Some((Kind::For(_), f, _)) => {
                     out.insert(f, k);
                     out.insert(k, f);
                 }
@@ -166,7 +171,7 @@ fn pairs(instructions: &[(u64, String)], kinds: &[Kind]) -> Result<HashMap<usize
         }
     }
     match open.pop() {
-        Some((Kind::For, k, _)) => Err(unmatched(k, "a FOR without its ENDFOR")),
+        Some((Kind::For(_), k, _)) => Err(unmatched(k, "a FOR without its ENDFOR")),
         Some((_, k, _)) => Err(unmatched(k, "an IF .. THEN without its ENDIF")),
         None => Ok(out),
     }
@@ -186,7 +191,7 @@ fn kind(line: u64, t: &str) -> Result<Kind> {
         "IF" if upper.ends_with("THEN") => Kind::Then,
         "ELSE" if upper == "ELSE" => Kind::Else,
         "ENDIF" => Kind::EndIf,
-        "FOR" => Kind::For,
+        "FOR" => Kind::For(for_loop(line, t, &upper)?),
         "ENDFOR" => Kind::EndFor,
         _ => match label()? {
             None => Kind::On,
@@ -196,6 +201,69 @@ fn kind(line: u64, t: &str) -> Result<Kind> {
             },
         },
     })
+}
+
+/// Whether a `FOR` loop's body runs: at least once, never (both bounds numbers), or as the
+/// registers it counts with hold at run time.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Runs {
+    Always,
+    Never,
+    Maybe,
+}
+
+/// The `FOR` instruction `t` (`upper`: upper case, English) on `line`, `FOR R[i]=a TO b` or
+/// `FOR R[i]=a DOWNTO b`, each bound a whole number, `R[j]` or `AR[j]` (the forms the controller
+/// loads): whether its body runs.
+///
+/// # Errors
+/// Naming the line, any other form (`FOR R[1]=1 TO abc`).
+fn for_loop(line: u64, t: &str, upper: &str) -> Result<Runs> {
+    let refuse = || {
+        at(line, format!("{}: expected FOR R[i]=a TO b (or DOWNTO b), each bound a whole number, R[j] or AR[j], as the controller loads it", short(t.trim())))
+    };
+    let rest = upper
+        .trim()
+        .strip_prefix("FOR")
+        .ok_or_else(refuse)?
+        .trim_start();
+    let (counter, rest) = rest.split_once('=').ok_or_else(refuse)?;
+    if !register(counter.trim(), false) {
+        return Err(refuse());
+    }
+    let words: Vec<&str> = rest.split_whitespace().collect();
+    let at_word = words.iter().position(|w| *w == "TO" || *w == "DOWNTO");
+    let Some(k) = at_word else {
+        return Err(refuse());
+    };
+    let (from, to) = (words[..k].concat(), words[k + 1..].concat());
+    if !(bound(&from) && bound(&to)) {
+        return Err(refuse());
+    }
+    Ok(match (from.parse::<i64>(), to.parse::<i64>()) {
+        (Ok(a), Ok(b)) if (words[k] == "TO") == (a <= b) || a == b => Runs::Always,
+        (Ok(_), Ok(_)) => Runs::Never,
+        _ => Runs::Maybe,
+    })
+}
+
+/// Whether `w` is a `FOR` loop's bound: a whole number, `R[j]` or `AR[j]`.
+fn bound(w: &str) -> bool {
+    w.parse::<i64>().is_ok() || register(w, true)
+}
+
+/// Whether `w` is a register `R[j]` (`R[j:comment]`), or with `argument` an argument `AR[j]`.
+fn register(w: &str, argument: bool) -> bool {
+    let inner = match (w.strip_prefix("R["), w.strip_prefix("AR[")) {
+        (Some(i), _) => i,
+        (None, Some(i)) if argument => i,
+        _ => return false,
+    };
+    let Some(inner) = inner.strip_suffix(']') else {
+        return false;
+    };
+    let number = inner.split(':').next().unwrap_or("").trim();
+    !number.is_empty() && number.chars().all(|c| c.is_ascii_digit())
 }
 
 /// The label instruction `t` (`upper`: in upper case, English) names, `LBL[n]` or

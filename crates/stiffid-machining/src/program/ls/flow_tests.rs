@@ -42,7 +42,7 @@ fn jumps_branches_and_loops_have_their_successors() {
         vec![7],
         vec![7],
         vec![8],
-        vec![9, 11],
+        vec![9],
         vec![10],
         vec![9, 11],
         vec![12],
@@ -112,4 +112,45 @@ fn a_value_set_on_one_path_only_joins_where_paths_meet() {
     );
     assert_eq!(states[1], Some(Some(0)));
     assert_eq!(states[3], Some(None));
+}
+
+/// A `FOR` loop's bounds: numbers decide whether its body runs; a register's leave both; any
+/// other form is refused naming the line.
+#[test]
+fn a_for_loops_bounds_are_read_or_refused_naming_the_line() {
+    let next = |f: &str| {
+        let (i, m) = read(&["L P[1] 10mm/sec FINE", f, "L P[2] 10mm/sec FINE", "ENDFOR"]);
+        graph(&i, &m).map(|g| g.next[1].clone())
+    };
+    assert_eq!(next("FOR R[1]=1 TO 3").unwrap(), [2]);
+    assert_eq!(next("FOR R[1:count]=3 DOWNTO -2").unwrap(), [2]);
+    assert_eq!(next("FOR R[1]=5 TO 5").unwrap(), [2]);
+    assert_eq!(next("FOR R[1]=5 TO 4").unwrap(), [4]);
+    assert_eq!(next("FOR R[1]=1 DOWNTO 3").unwrap(), [4]);
+    assert_eq!(next("FOR R[1]=1 TO R[2:n]").unwrap(), [2, 4]);
+    assert_eq!(next("FOR R[1]=AR[1] DOWNTO 0").unwrap(), [2, 4]);
+    for bad in [
+        "FOR R[1]=1 TO abc",
+        "FOR R[1]=1 TO",
+        "FOR R[1]=1 UPTO 3",
+        "FOR P[1]=1 TO 3",
+        "FOR R[x]=1 TO 3",
+        "FOR R[1]=1.5 TO 3",
+        "FOR R[1]=AR[1 TO 3",
+        "FOR",
+    ] {
+        let e = next(bad).unwrap_err().to_string();
+        assert!(
+            e.contains("line 2") && e.contains("expected FOR R[i]=a TO b"),
+            "{bad}: {e}"
+        );
+    }
+    // A body that never runs: its motion is reached by no path.
+    let (i, m) = read(&[
+        "L P[1] 10mm/sec FINE",
+        "FOR R[1]=2 TO 1",
+        "L P[2] 10mm/sec FINE",
+        "ENDFOR",
+    ]);
+    assert_eq!(graph(&i, &m).unwrap().reached(), [true, true, false, false]);
 }

@@ -20,6 +20,7 @@ pub(crate) mod config;
 mod copies;
 mod flow;
 pub mod generate;
+mod mask;
 mod motion;
 mod names;
 mod numbered;

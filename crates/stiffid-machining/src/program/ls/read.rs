@@ -127,6 +127,7 @@ fn read_one(
     let motions: Vec<bool> = (instructions.iter())
         .map(|(_, t)| motion::rest(t.trim()).is_some())
         .collect();
+    super::mask::check(text, motions.iter().any(|m| *m))?;
     let graph = flow::graph(&instructions, &motions)?;
     let (effects, called) = effects(&instructions, &motions, &graph, context, outer)?;
     let reached = graph.reached();

@@ -57,7 +57,7 @@ pub(super) fn read(
     context: &Context,
 ) -> Result<Used> {
     let mut out = Used::default();
-    let file = context.backup_file(FILE);
+    let file = super::va::the_file(context, FILE)?;
     let held = file.map(|(name, text)| (name, entries(text, "$POSREG")));
     for (k, (line, t)) in instructions.iter().enumerate().filter(|(k, _)| motions[*k]) {
         let letter = &t.trim()[..1];

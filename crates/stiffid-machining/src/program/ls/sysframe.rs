@@ -24,7 +24,7 @@ type Held = BTreeMap<u32, (Isometry3<f64>, String)>;
 /// [`Error::Parse`] naming the file and line of an entry that is neither `Uninitialized` nor
 /// six finite numbers `X:` to `R:` (a file cut off or edited), or a position in joint form.
 pub(super) fn apply(context: &Context, targets: &mut [JointTarget]) -> Result<()> {
-    let Some(file) = context.backup_file(FILE) else {
+    let Some(file) = super::va::the_file(context, FILE)? else {
         return Ok(());
     };
     let (users, tools) = (held(file, "$MNUFRAME")?, held(file, "$MNUTOOL")?);

@@ -33,6 +33,26 @@ pub(crate) struct Entry {
     pub extended: Vec<(f64, &'static str)>,
 }
 
+/// The backup's file `file` (`SYSFRAME.VA`, `POSREG.VA`: its name as given and its text), if it
+/// holds one.
+///
+/// # Errors
+/// [`stiffid_core::Error::Parse`] naming both, two files of that name whose texts differ (two
+/// backups given together): which one the controller holds is not the backup's to say.
+pub(crate) fn the_file<'a>(
+    context: &crate::program::Context<'a>,
+    file: &str,
+) -> stiffid_core::Result<Option<(&'a str, &'a str)>> {
+    let found = context.backup_with(|name| name.eq_ignore_ascii_case(file));
+    match found.iter().find(|(_, t)| *t != found[0].1) {
+        Some((other, _)) => Err(stiffid_core::Error::Parse {
+            source_name: other.to_string(),
+            message: format!("a second {file} that differs from {}: one controller holds one; give the backup of the controller the program runs on", found[0].0),
+        }),
+        None => Ok(found.first().copied()),
+    }
+}
+
 /// The names of the six Cartesian values, in order.
 const NAMES: [&str; 6] = ["X:", "Y:", "Z:", "W:", "P:", "R:"];
 
@@ -118,7 +138,30 @@ pub(crate) fn entries(text: &str, variable: &str) -> Vec<Entry> {
         }
     }
     out.extend(open.take().map(|o| o.close(variable)));
+    twice(&mut out, variable);
     out
+}
+
+/// Each entry of `entries` whose group and number the file gives twice made a refusal naming
+/// both lines: which one the controller holds is not the file's to say (a file edited or two
+/// pasted together).
+fn twice(entries: &mut [Entry], variable: &str) {
+    let mut first: std::collections::HashMap<(u32, u32), u64> = Default::default();
+    let mut lines: Vec<Option<(u64, u64)>> = vec![None; entries.len()];
+    for (k, e) in entries.iter().enumerate() {
+        if let Some(f) = first.get(&(e.group, e.number)) {
+            lines[k] = Some((*f, e.line));
+        } else {
+            first.insert((e.group, e.number), e.line);
+        }
+    }
+    for (k, both) in lines.iter().enumerate() {
+        let Some((a, b)) = *both else { continue };
+        let (g, n) = (entries[k].group, entries[k].number);
+        for e in entries.iter_mut().filter(|e| (e.group, e.number) == (g, n)) {
+            e.value = Err((b, format!("{variable}[{g},{n}]: given on line {a} and again on line {b}; which one the controller holds is not the file's to say (a file edited or two files joined): keep one")));
+        }
+    }
 }
 
 /// The group, number and the rest of an entry's opening line `[g,n] = ..`, if `t` is one.
