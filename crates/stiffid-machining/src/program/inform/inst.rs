@@ -189,8 +189,11 @@ fn refused(line: u64, word: &str, t: &str) -> stiffid_core::Error {
         "IMOV" => "an increment from where the robot is, which the job does not say: write the absolute position".to_string(),
         "FORMCUT" => "a form cut: the controller moves the tool around a circle or a rectangle its condition file (FORMCUT.CND) gives, not through the job's positions: write the cut as MOVL and MOVC motions".to_string(),
         "SFTON" | "SFTOF" | "MSHIFT" => "a shift moves the path by an amount held on the controller, which the job does not say: compensate the path without it (teach or post the shifted positions)".to_string(),
-        w if w.starts_with("SMOV") || w.starts_with("+MOV") || w.starts_with("SYMOV") => {
-            "a motion stiffid does not follow (on a conveyor, or of another group alone); write the path as MOVJ, MOVL and MOVC to C positions".to_string()
+        w if w.starts_with("SMOV") || w.starts_with("SYMOV") => {
+            "a coordinated motion: the robot moves relative to the part on a moving station or conveyor, at a speed relative to it, and how the controller leads the groups along the way is not certain from public sources; write the path as MOVL and MOVC with the station's values in the motion (EC, or +MOVJ EC)".to_string()
+        }
+        w if w.starts_with("+MOV") => {
+            "a motion of another group alone, at its own speed; write the path as MOVJ, MOVL and MOVC to C positions".to_string()
         }
         _ => format!("an instruction stiffid does not know ('{}'); it may move the robot or change a frame, so the job is not compensated: remove it or write the path without it", short(t)),
     };

@@ -177,3 +177,67 @@ fn what_the_backup_does_not_say_of_a_variable_is_refused() {
         }
     }
 }
+
+/// The job as its controller's second robot runs it (`///GROUP1 RB2`), on ROS-Industrial's
+/// Motoman GP25 (tests/data/robots, SOURCES.md) with `[controller] robot_number = 2`: every
+/// motion (its own position and the variables of `VAR.DAT`) compensated, each target the
+/// file's pulses over the setup's pulses per degree, each result the very one of the job as
+/// the first robot's on a setup of that robot; the first robot's setup refuses the second's job
+/// naming its `///GROUP1` line.
+#[test]
+fn a_second_robots_job_runs_on_a_motoman_gp25_as_a_first_robots_does() {
+    use super::rapid::robots::{cell, inner, run};
+    use stiffid::internal::machining::compensate::Target;
+    let controller = |more: &str| {
+        let per: Vec<String> = PER_DEG.iter().map(f64::to_string).collect();
+        format!(
+            "[controller]\npulses_per_deg = [{}]\n{more}",
+            per.join(", ")
+        )
+    };
+    let gp25 = |more: &str| {
+        cell(
+            "motoman_gp25.urdf",
+            "tool0",
+            &controller(more),
+            [0.0, 0.0, 150.0],
+            3.0,
+        )
+    };
+    let (rb1, rb2) = (gp25(""), gp25("robot_number = 2\n"));
+    let files = backup(var_dat(P3, P5));
+    let second = JOB.replace("///GROUP1 RB1", "///GROUP1 RB2");
+    let one = run(&rb1, ("PICK.JBI", JOB, Dialect::Inform), &files, false).unwrap();
+    let two = run(&rb2, ("PICK.JBI", &second, Dialect::Inform), &files, false).unwrap();
+    let stated = [
+        (16, "-48629,112084,69901,4161,-52375,-4796"),
+        (17, P5),
+        (19, P3),
+        (20, P5),
+    ];
+    assert_eq!(two.len(), stated.len());
+    for (((p, c), (p1, c1)), (line, pulses)) in two.iter().zip(&one).zip(stated) {
+        assert_eq!(p.line, line);
+        let q: Vec<f64> = (pulses.split(',').zip(PER_DEG))
+            .map(|(v, per)| (v.parse::<f64>().unwrap() / per).to_radians())
+            .collect();
+        let Target::Posture(read) = &p.target else {
+            panic!("line {line}: {:?}", p.target)
+        };
+        let d = read
+            .iter()
+            .zip(&q)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        assert!(d < 1e-12, "line {line}: {d} rad");
+        assert_eq!((p, c), (p1, c1), "line {line}");
+        assert!((c.q_compensated - c.q).norm() > 1e-6, "line {line}");
+    }
+    match inner(run(&rb1, ("PICK.JBI", &second, Dialect::Inform), &files, false).unwrap_err()) {
+        Error::Program { line, message } => {
+            assert_eq!(line, 14, "{message}");
+            assert!(message.contains("a job of robot RB2"), "{message}");
+        }
+        other => panic!("{other:?}"),
+    }
+}

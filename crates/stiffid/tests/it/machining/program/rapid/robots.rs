@@ -63,7 +63,7 @@ pub(crate) fn run(
             process,
             chord_tolerance: 1e-5,
             output: Language::Robot(dialect),
-            out_name: format!("compensated-{name}"),
+            out_name: format!("compensated_{name}"),
             settings: Default::default(),
         },
         options: Options::for_setup(setup),
