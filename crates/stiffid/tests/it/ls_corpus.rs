@@ -297,7 +297,7 @@ pub(crate) fn pose(v: &[f64; 6]) -> Isometry3<f64> {
 /// target as the independent reading does, wrote back only `/POS`, and every position it wrote
 /// is the compensated posture (joint values, or the controller's forward kinematics in the
 /// position's user frame).
-fn check(s: &Setup, name: &str, (text, out): (&str, &str), results: &[Compensated]) {
+pub(crate) fn check(s: &Setup, name: &str, (text, out): (&str, &str), results: &[Compensated]) {
     let found = independent(text);
     let read = stiffid::internal::machining::program::parse(text, Dialect::FanucLs).unwrap();
     assert_eq!(read.targets.len(), found.len(), "{name}");
@@ -535,4 +535,56 @@ fn the_drilling_cells_backup_gives_its_frames_and_its_called_program() {
         why.contains("the program's tool (X 0 mm, Y -250.8 mm, Z 152.8 mm"),
         "{why}"
     );
+}
+
+/// The milling cell with ROS-Industrial's R-2000iC/165F URDF (`robots/r2000ic165f.urdf`) as its
+/// robot: its `base` link the controller's world, `tool0` its faceplate, J3 coupled to J2 as the
+/// controller counts it (the axis map), [`CONTROLLER`]'s frames.
+fn ros_industrial_165f() -> Setup {
+    let text = include_str!("../../../../examples/milling/fanuc-milling.toml").replacen(
+        "robot = \"fanuc-r2000ic-165f\"",
+        "robot = \"r2000ic165f.urdf\"\nrobot_tip = \"tool0\"\nrobot_axis_map = { matrix = [[1,0,0,0,0,0], [0,1,0,0,0,0], [0,1,1,0,0,0], [0,0,0,1,0,0], [0,0,0,0,1,0], [0,0,0,0,0,1]], offset_deg = [0,0,0,0,0,0] }",
+        1,
+    );
+    let urdf = std::fs::read_to_string(format!("{DIR}robots/r2000ic165f.urdf")).unwrap();
+    stiffid::internal::setup::parse(&(text + CONTROLLER), "cell.toml", |_, tip| {
+        stiffid::internal::robot::urdf::parse(&urdf, "r2000ic165f.urdf", tip)
+    })
+    .unwrap()
+}
+
+/// The sanding path of ROS-Industrial's collaborative robotic sanding (`crs_ws_surface.ls`) on
+/// the robot its repository models, ROS-Industrial's R-2000iC/165F: compensated, every target
+/// equal to the independent reading and every position written the compensated posture; the
+/// same postures as on the milling cell's preset of that robot (its DH model) to 1e-6 rad.
+#[test]
+fn the_sanding_path_runs_on_ros_industrials_r2000ic_165f() {
+    let s = ros_industrial_165f();
+    let name = "crs_ws_surface.ls";
+    let text = std::fs::read_to_string(format!("{DIR}{name}")).unwrap();
+    let compliance = s.model_compliance("test").unwrap();
+    let (out, results) =
+        compensated_with(&s, &compliance, Options::for_setup(&s), (name, &text)).unwrap();
+    assert_eq!(results.len(), 22);
+    check(&s, name, (&text, &out), &results);
+    let preset = setup();
+    let compliance = preset.model_compliance("test").unwrap();
+    let (_, on_preset) = compensated_with(
+        &preset,
+        &compliance,
+        Options::for_setup(&preset),
+        (name, &text),
+    )
+    .unwrap();
+    for (a, b) in results.iter().zip(&on_preset) {
+        assert!((a.q - b.q).amax() < 1e-6, "{}", (a.q - b.q).amax());
+    }
+    // The other fork's path: out of this arm's reach as on the preset.
+    let name = "crs_surface_cartesian.ls";
+    let text = std::fs::read_to_string(format!("{DIR}{name}")).unwrap();
+    let compliance = s.model_compliance("test").unwrap();
+    let e = compensated_with(&s, &compliance, Options::for_setup(&s), (name, &text)).unwrap_err();
+    let (line, why) = refusal(&e);
+    assert_eq!(line, 27, "{why}");
+    assert!(why.contains("the pose is out of reach"), "{why}");
 }
