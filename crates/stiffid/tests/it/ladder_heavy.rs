@@ -186,6 +186,18 @@ fn a_heavy_robot_measured_where_it_works_gets_gravity_terms() {
     assert!(ladder.region.upper[1] <= (17.0f64 + 1e-9).to_radians());
     let (a, g) = (held_out(&auto), held_out(&geometry));
     assert!(a < 0.8 * g, "{a} against {g}");
+    // On a robot without link masses too, the model the default chose, given by name
+    // (`--gravity <it> --maps none`), is fitted as its rung: one bound, the same fit and the
+    // same held-out figure.
+    let given = calibrated(&setup, &data, &held, GravitySpec::Fixed(auto.gravity));
+    let apart = (&auto.fit.estimate.values - &given.fit.estimate.values).amax();
+    assert!(apart <= 1e-12, "{apart:e}");
+    assert_eq!(auto.gravity_bound, given.gravity_bound);
+    assert!(
+        (held_out(&given) - a).abs() <= 1e-12 * a,
+        "{} {a}",
+        held_out(&given)
+    );
 }
 
 /// 24 postures read at four points give the jackknife+ 288 held-out values, fewer than the 333
