@@ -175,6 +175,14 @@ impl Io {
         self.actions.get(&event).map(Vec::as_slice)
     }
 
+    /// The names of the routines any event calls, as written in the setup.
+    pub fn routines(&self) -> impl Iterator<Item = &str> {
+        (self.actions.values().flatten()).filter_map(|a| match a {
+            Action::Call { name, .. } => Some(name.as_str()),
+            Action::Output { .. } => None,
+        })
+    }
+
     /// `io` with `event` mapped to `actions` (checked as on load).
     ///
     /// # Errors

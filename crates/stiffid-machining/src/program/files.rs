@@ -154,13 +154,22 @@ impl JointTarget {
             c.flag_spans.iter_mut().for_each(|(r, _)| shift(r));
         }
         if let Some(p) = self.point.as_deref_mut() {
-            shift(&mut p.declaration);
-            p.reference.iter_mut().for_each(shift);
-            // A point of another file: its name is in the copy's text, the spans' base moves.
-            match p.foreign.as_deref_mut() {
-                Some(f) => f.at += offset,
-                None => shift(&mut p.name),
-            }
+            *p = p.clone().shifted(offset);
+        }
+        self
+    }
+}
+
+impl super::points::Point {
+    /// The point with every span moved `offset` bytes on ([`JointTarget::shifted`]).
+    pub(crate) fn shifted(mut self, offset: usize) -> Self {
+        let shift = |r: &mut Range<usize>| *r = r.start + offset..r.end + offset;
+        shift(&mut self.declaration);
+        self.reference.iter_mut().for_each(shift);
+        // A point of another file: its name is in the copy's text, the spans' base moves.
+        match self.foreign.as_deref_mut() {
+            Some(f) => f.at += offset,
+            None => shift(&mut self.name),
         }
         self
     }

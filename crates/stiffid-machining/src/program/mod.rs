@@ -359,6 +359,9 @@ pub struct Context<'a> {
     /// Which of the controller's robots the setup's robot is (`[controller] robot_number`, a
     /// Yaskawa job's `RB2`: 2); `None`: the first.
     pub robot_number: Option<u32>,
+    /// The process's input and output routines (`[controller.io]`): a call of one of them (a
+    /// KRL `SPINDLE_ON(5000)`) moves nothing; `None`: none given.
+    pub io: Option<&'a stiffid_core::setup::program_io::Io>,
 }
 
 /// How a robot program is read beyond its own files (by default: nothing more), as a job takes
@@ -420,6 +423,7 @@ impl<'a> Context<'a> {
             backup: &[],
             leave_refused: false,
             robot_number: c.robot_number,
+            io: Some(&c.program.io),
         }
     }
 

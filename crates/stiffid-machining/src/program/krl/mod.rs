@@ -20,6 +20,8 @@
 //! page `docs/programs/krl.md` lists each rule with its source.
 
 mod backup;
+mod called;
+mod calls;
 pub(crate) mod cartesian;
 pub(crate) mod data;
 mod declare;

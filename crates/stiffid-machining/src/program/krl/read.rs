@@ -3,6 +3,8 @@
 //! `.dat` ([`super::declare`]), what is in force at each followed through loops, branches and
 //! the routines of the file ([`super::state`], [`crate::program::paths`]).
 
+use super::called::{Calls, One};
+use super::calls::{routine_name, EventKind, Events, Place};
 use super::declare::{declarations, words, Declarations};
 use super::frames::{compact, Frames};
 use super::motion::{motion, Context, Found};
@@ -18,91 +20,273 @@ use stiffid_core::common::limits::short;
 use stiffid_core::Result;
 
 /// Every joint target of the `.src` `text` (with its `.dat` and the controller's home posture
-/// from `context`), in the order of its motions (module docs), the program's external axes
-/// (`E1` to the highest `E`n any target gives) and the motions left as found
-/// ([`crate::program::Context::leave_refused`]).
+/// from `context`), in the order of its motions, then those of the modules of the backup it
+/// calls ([`super::called`]), the program's external axes (`E1` to the highest `E`n any target
+/// gives) and the motions left as found ([`crate::program::Context::leave_refused`]).
 ///
 /// # Errors
 /// [`stiffid_core::Error::Program`] naming the line: a motion outside the subset, to a point
 /// neither file declares, a `GOTO` in a program with motions; a motion whose frames or point
 /// only the run decides (paths that set different frames, a value assigned at run time), unless
-/// the context leaves it as found.
+/// the context leaves it as found; a call between two motions of a routine neither the files
+/// nor the backup hold ([`super::calls`]), unless the context leaves it.
 pub(crate) fn targets(text: &str, context: &crate::program::Context) -> Result<Read> {
-    let data = context.data;
-    let declared = declarations(text, data, &super::declare::global_lists(context, data))?;
-    let mut at_motion = Context {
-        declared: &declared,
-        data: data.is_some(),
-        routine: 0,
-    };
-    let setters = frame_routines(text, &declared);
-    let local = routines(text);
-    let call_lines = call_lines(text, &local);
-    let mut out = Vec::new();
-    let mut left = Vec::new();
-    let tables = super::backup::tables(context)?;
+    let main = (crate::program::lines(text))
+        .find_map(|(_, _, l)| routine_name(&words(l.split(';').next().unwrap_or(""))));
+    let mut calls = Calls::new(text.len() + context.data.map_or(0, str::len), main, module);
     let mut state = State {
         frames: Frames::new(unset),
         speed: speed::Krl::new(),
     };
-    state.frames.table = tables.clone();
-    let mut paths: Paths<State> = Paths::default();
-    // The state at each call of a routine of the file, by its upper-case name.
-    let mut calls: HashMap<String, Vec<(u64, State)>> = HashMap::new();
-    let mut jump: Option<u64> = None;
+    state.frames.table = super::backup::tables(context)?;
+    let one = module(text, context, state, &mut calls)?;
+    let (mut out, mut left) = (one.targets, one.left);
+    for (line, what) in one.events.between(Place::default()) {
+        let e = at(line, format!("{what}: a call between two motions of a routine neither the files nor the backup given hold; it may move the robot between them, off the path the file gives: give the controller's backup holding its module (its .src and .dat, --backup), or call it before the first motion or after the last"));
+        context.leave(&mut left, e)?;
+    }
+    let (nested, nested_left, called) = calls.finish();
+    out.extend(nested);
+    left.extend(nested_left);
+    let n = out.iter().map(|t| t.external.len()).max().unwrap_or(0);
+    Ok(Read {
+        targets: out,
+        axes: (1..=n).map(|k| format!("E{k}")).collect(),
+        left,
+        called,
+        ..Read::default()
+    })
+}
+
+/// The module `text` (with the `.dat` of `context`) read with `entry` in force at its start,
+/// the modules of the backup it calls read into `calls`.
+pub(super) fn module(
+    text: &str,
+    context: &crate::program::Context,
+    entry: State,
+    calls: &mut Calls,
+) -> Result<One> {
+    let data = context.data;
+    let declared = declarations(text, data, &super::declare::global_lists(context, data))?;
+    let mut r = Reader {
+        at_motion: Context {
+            declared: &declared,
+            data: data.is_some(),
+            routine: 0,
+        },
+        setters: frame_routines(text, &declared),
+        local: routines(text),
+        local_lines: HashMap::new(),
+        call_lines: HashMap::new(),
+        tables: super::backup::tables(context)?,
+        state: entry,
+        paths: Paths::default(),
+        calls: HashMap::new(),
+        out: Vec::new(),
+        left: Vec::new(),
+        events: Events::default(),
+        jump: None,
+        exit: None,
+        loops: Vec::new(),
+    };
+    r.local_lines = (r.local.iter())
+        .map(|(k, (l, _))| (k.clone(), *l))
+        .collect();
+    r.call_lines = call_lines(text, &r.local_lines);
     for (line, start, l) in crate::program::lines(text) {
+        r.statement((line, start), l, context, calls)?;
+    }
+    r.events.end_routine();
+    if let (Some(line), false) = (r.jump, r.out.is_empty()) {
+        return Err(at(line, "GOTO: a jump in a program with motions; the order the controller runs them would not be the file's: write the path as straight-line code".into()));
+    }
+    if context.leave_refused {
+        r.out = leave_unknown(r.out, &mut r.left);
+    }
+    Ok(One {
+        exit: r.exit.unwrap_or(r.state),
+        targets: r.out,
+        left: r.left,
+        events: r.events,
+    })
+}
+
+/// A module being read line by line ([`module`]).
+struct Reader<'d> {
+    at_motion: Context<'d>,
+    /// The routines after the first that set a frame, by name, with that line.
+    setters: HashMap<String, u64>,
+    /// The routines after the first, by name: their line and number.
+    local: HashMap<String, (u64, usize)>,
+    /// The same, with their line only.
+    local_lines: HashMap<String, u64>,
+    call_lines: HashMap<String, Vec<u64>>,
+    tables: HashMap<(bool, u32), Frame>,
+    state: State,
+    paths: Paths<State>,
+    /// The state at each call of a routine of the file, by its upper-case name.
+    calls: HashMap<String, Vec<(u64, State)>>,
+    out: Vec<JointTarget>,
+    left: Vec<Left>,
+    events: Events,
+    jump: Option<u64>,
+    /// The state where the first routine ended (its `END`, a `RETURN` in it unsettling it).
+    exit: Option<State>,
+    /// Per loop open, the modules of the backup its body calls.
+    loops: Vec<Vec<String>>,
+}
+
+impl Reader<'_> {
+    /// Reads the line `l` (number, first byte) of the module.
+    fn statement(
+        &mut self,
+        (line, start): (u64, usize),
+        l: &str,
+        context: &crate::program::Context,
+        calls: &mut Calls,
+    ) -> Result<()> {
         let code = l.split(';').next().unwrap_or("");
         let words = words(code);
         let first = words.first().map(String::as_str).unwrap_or("");
         well_formed(line, first)?;
+        let routine = self.at_motion.routine;
         if let Some(name) = routine_name(&words) {
-            at_motion.routine += 1;
-            paths.clear();
-            if at_motion.routine > 1 {
-                state = entry(&name, line, &calls, &call_lines);
-                for (k, f) in &tables {
-                    state.frames.table.entry(*k).or_insert_with(|| f.clone());
+            self.at_motion.routine += 1;
+            self.paths.clear();
+            self.events.end_routine();
+            if self.at_motion.routine > 1 {
+                let next = entry(&name, line, &self.calls, &self.call_lines);
+                let done = std::mem::replace(&mut self.state, next);
+                self.exit.get_or_insert(done);
+                for (k, f) in &self.tables {
+                    self.state
+                        .frames
+                        .table
+                        .entry(*k)
+                        .or_insert_with(|| f.clone());
                 }
             }
-            continue;
+            return Ok(());
         }
-        if flow(line, first, (&mut paths, &mut state), &mut out) {
-            continue;
+        let mut closed_loop = None;
+        match first {
+            "FOR" | "WHILE" | "REPEAT" | "LOOP" => {
+                self.events.open_loop();
+                self.loops.push(Vec::new());
+            }
+            "ENDFOR" | "ENDWHILE" | "UNTIL" | "ENDLOOP" => {
+                self.events.close_loop();
+                closed_loop = self.loops.pop();
+            }
+            "RETURN" if routine == 1 => {
+                let why = format!("its first routine returns on line {line} as well as at its END: which frames it leaves is the run's");
+                self.exit
+                    .get_or_insert_with(|| self.state.clone())
+                    .frames
+                    .unsettle(line, why);
+            }
+            _ => {}
+        }
+        if let Some(closed) = flow(
+            line,
+            first,
+            (&mut self.paths, &mut self.state),
+            &mut self.out,
+        ) {
+            // The modules the loop's body calls run again with what its end leaves.
+            if let (Some(c), Some(names)) = (closed, closed_loop)
+                && let Some((_, end)) = &c.changed
+            {
+                for name in names {
+                    super::called::again(&name, end, (&c.word, c.line), context, calls)?;
+                }
+            }
+            return Ok(());
         }
         if first == "GOTO" {
-            jump.get_or_insert(line);
+            self.jump.get_or_insert(line);
         }
-        if let Some((name, _)) = called(code, &local) {
-            calls
+        if let Some((name, _)) = called(code, &self.local_lines) {
+            self.calls
                 .entry(name.to_string())
                 .or_default()
-                .push((line, state.clone()));
+                .push((line, self.state.clone()));
+            let number = self.local.get(name).map_or(0, |(_, n)| *n);
+            self.events.push(line, routine, EventKind::Local(number));
         }
-        let framed = state.frames.set(line, code, &declared.fdats);
-        if let Some((name, l)) = called(code, &setters) {
-            state.frames.unsettle(line, format!("line {line} calls {name}, which sets a frame (line {l}): the frames after the call are the ones it leaves, which stiffid does not follow; set them again after the call"));
+        let framed = self
+            .state
+            .frames
+            .set(line, code, &self.at_motion.declared.fdats);
+        if let Some((name, l)) = called(code, &self.setters) {
+            self.state.frames.unsettle(line, format!("line {line} calls {name}, which sets a frame (line {l}): the frames after the call are the ones it leaves, which stiffid does not follow; set them again after the call"));
         }
-        if state.speed.set(line, code)? || framed {
-            continue;
+        if self.state.speed.set(line, code)? || framed {
+            return Ok(());
         }
-        let targets = match motion((line, start), code, first, &at_motion)? {
-            Found::Nothing => continue,
+        let targets = match motion((line, start), code, first, &self.at_motion)? {
+            Found::Nothing => return self.call((line, routine), code, context, calls),
             Found::RunTime(why, point) => {
-                let error = at(line, why);
-                context.leave(&mut left, error)?;
-                if let (Some(l), Some(p)) = (left.last_mut(), point) {
+                self.events.push(line, routine, EventKind::Motion);
+                context.leave(&mut self.left, at(line, why))?;
+                if let (Some(l), Some(p)) = (self.left.last_mut(), point) {
                     l.point = Some(p);
                 }
-                continue;
+                return Ok(());
             }
             Found::Home(what) => {
-                left.push(Left::passed(line, what));
-                continue;
+                self.events.push(line, routine, EventKind::Motion);
+                self.left.push(Left::passed(line, what));
+                return Ok(());
             }
             Found::Targets(t) => t,
         };
-        let (base, tool) = state.frames.motion(line, code, &declared.fdats);
-        let speed = state.speed.motion(line, first, code)?;
+        self.events.push(line, routine, EventKind::Motion);
+        self.moved(line, code, first, targets)
+    }
+
+    /// A statement on `line` of `routine` that is no motion: a call of a module of the backup,
+    /// read there ([`super::called`]), or of a routine no file holds, placed among the motions.
+    fn call(
+        &mut self,
+        (line, routine): (u64, usize),
+        code: &str,
+        context: &crate::program::Context,
+        calls: &mut Calls,
+    ) -> Result<()> {
+        let Some(name) = super::calls::called(code) else {
+            return Ok(());
+        };
+        let io = (context.io.into_iter())
+            .flat_map(|io| io.routines())
+            .any(|r| r.eq_ignore_ascii_case(&name));
+        if self.local.contains_key(&name) || super::calls::passed(&name) || io {
+            return Ok(());
+        }
+        match super::calls::module(&name, context) {
+            Some(m) => {
+                let (after, event) = super::called::call(line, &m, &self.state, context, calls)?;
+                self.state = after;
+                self.loops.iter_mut().for_each(|l| l.push(name.clone()));
+                self.events.push(line, routine, event);
+            }
+            None => self.events.push(line, routine, EventKind::Unheld(name)),
+        }
+        Ok(())
+    }
+
+    /// The `targets` of the motion on `line` (its code, first word), with the frames and speed
+    /// in force.
+    fn moved(
+        &mut self,
+        line: u64,
+        code: &str,
+        first: &str,
+        targets: Vec<JointTarget>,
+    ) -> Result<()> {
+        let fdats = &self.at_motion.declared.fdats;
+        let (base, tool) = self.state.frames.motion(line, code, fdats);
+        let speed = self.state.speed.motion(line, first, code)?;
         for mut target in targets {
             target.speed = speed.clone();
             if let Some(c) = target.cartesian.as_deref_mut() {
@@ -113,22 +297,10 @@ pub(crate) fn targets(text: &str, context: &crate::program::Context) -> Result<R
                 (c.frame, c.tool) = (at_motion(&base), at_motion(&tool));
                 c.follows = !matches!(first, "PTP" | "SPTP");
             }
-            out.push(target);
+            self.out.push(target);
         }
+        Ok(())
     }
-    if let (Some(line), false) = (jump, out.is_empty()) {
-        return Err(at(line, "GOTO: a jump in a program with motions; the order the controller runs them would not be the file's: write the path as straight-line code".into()));
-    }
-    if context.leave_refused {
-        out = leave_unknown(out, &mut left);
-    }
-    let n = out.iter().map(|t| t.external.len()).max().unwrap_or(0);
-    Ok(Read {
-        targets: out,
-        axes: (1..=n).map(|k| format!("E{k}")).collect(),
-        left,
-        ..Read::default()
-    })
 }
 
 /// A frame not set before a motion: the controller's.
@@ -137,14 +309,15 @@ fn unset(name: &str) -> Frame {
 }
 
 /// Takes a line whose first word (upper case) is `first` that opens, divides or closes a loop
-/// or branch ([`crate::program::paths`]); whether it did. A loop whose body ends with other
-/// frames than it began makes the frames of its motions before the change unknown.
+/// or branch ([`crate::program::paths`]); `None` where it does none, else the construct it
+/// closes, if any. A loop whose body ends with other frames than it began makes the frames of
+/// its motions before the change unknown.
 fn flow(
     line: u64,
     first: &str,
     (paths, state): (&mut Paths<State>, &mut State),
     out: &mut [JointTarget],
-) -> bool {
+) -> Option<Option<Closed<State>>> {
     let kind = match first {
         "IF" => Some(Kind::Branches),
         "SWITCH" => Some(Kind::Cases),
@@ -153,19 +326,21 @@ fn flow(
     };
     if let Some(kind) = kind {
         paths.open((first, line), state, kind, out.len());
-        return false;
+        return None;
     }
     match first {
         "ELSE" | "DEFAULT" => paths.branch(state, true),
         "CASE" => paths.branch(state, false),
         "ENDIF" | "ENDSWITCH" | "ENDFOR" | "ENDWHILE" | "UNTIL" | "ENDLOOP" => {
-            if let Some(closed) = paths.close(state) {
-                repeated(&closed, &mut out[closed.mark..]);
+            let closed = paths.close(state);
+            if let Some(closed) = &closed {
+                repeated(closed, &mut out[closed.mark..]);
             }
+            return Some(closed);
         }
-        _ => return false,
+        _ => return None,
     }
-    true
+    Some(None)
 }
 
 /// The frames and speed of the motions of a loop's body (`targets`) whose body ends with other
@@ -268,23 +443,9 @@ fn called<'a>(code: &str, setters: &'a HashMap<String, u64>) -> Option<(&'a str,
     setters.get_key_value(name).map(|(k, l)| (k.as_str(), *l))
 }
 
-/// The name of the routine a `DEF`/`DEFFCT` line opens (`GLOBAL DEF name( )`).
-fn routine_name(words: &[String]) -> Option<String> {
-    let w: Vec<&str> = words
-        .iter()
-        .map(String::as_str)
-        .skip_while(|w| *w == "GLOBAL")
-        .collect();
-    match w.as_slice() {
-        ["DEF", name, ..] => Some(name.to_string()),
-        ["DEFFCT", _, name, ..] => Some(name.to_string()),
-        _ => None,
-    }
-}
-
 /// The routines of the file after its first (`DEF`, `DEFFCT`), by upper-case name, with their
-/// line.
-fn routines(text: &str) -> HashMap<String, u64> {
+/// line and number (2 the second).
+fn routines(text: &str) -> HashMap<String, (u64, usize)> {
     let mut out = HashMap::new();
     let mut seen = 0usize;
     for (line, _, l) in crate::program::lines(text) {
@@ -292,7 +453,7 @@ fn routines(text: &str) -> HashMap<String, u64> {
         if let Some(name) = routine_name(&words(code)) {
             seen += 1;
             if seen > 1 {
-                out.entry(name).or_insert(line);
+                out.entry(name).or_insert((line, seen));
             }
         }
     }

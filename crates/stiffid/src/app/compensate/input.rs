@@ -220,21 +220,30 @@ pub(super) fn own_motion(program: &Program, i: usize) -> bool {
 }
 
 /// The programs of the backup a program calls that move, compensated, as the files to write
-/// beside it: each under its own name (the stem of its file as given).
+/// beside it: each under its own name (the stem of its file as given); a KRL module's `.dat`
+/// (after its `.src`, of the same stem) as that file's data.
 pub(super) fn called_files(
     called: &[(String, String)],
 ) -> Vec<stiffid_machining::program::generate::File> {
-    (called.iter())
-        .map(|(file, text)| {
-            let name = file.rsplit(['/', '\\']).next().unwrap_or(file);
-            let stem = name.rsplit_once('.').map_or(name, |(s, _)| s);
-            stiffid_machining::program::generate::File {
-                name: stem.to_string(),
-                text: text.clone(),
-                data: None,
-            }
-        })
-        .collect()
+    let mut out: Vec<stiffid_machining::program::generate::File> = Vec::new();
+    for (file, text) in called {
+        let name = file.rsplit(['/', '\\']).next().unwrap_or(file);
+        let (stem, extension) = name.rsplit_once('.').unwrap_or((name, ""));
+        if let Some(last) = out.last_mut()
+            && extension.eq_ignore_ascii_case("dat")
+            && last.name.eq_ignore_ascii_case(stem)
+            && last.data.is_none()
+        {
+            last.data = Some(text.clone());
+            continue;
+        }
+        out.push(stiffid_machining::program::generate::File {
+            name: stem.to_string(),
+            text: text.clone(),
+            data: None,
+        });
+    }
+    out
 }
 
 /// The warning that the motions on `lines` go to the controller's home (KRL's `XHOME`, at the

@@ -69,6 +69,16 @@ const MILL_CONFIG: &str = "DEFDAT $CONFIG PUBLIC\n;FOLD USER GLOBALS\nDECL GLOBA
 /// Compensates [`MILL_SRC`] with its `.dat` and the backup `files` on the KR 210 milling
 /// setup: the program and its `.dat`.
 fn mill(files: &[(String, String)]) -> stiffid::Result<(String, Option<String>)> {
+    let p = run((MILL_SRC, Some(MILL_DAT)), files)?;
+    Ok((p.text, p.data))
+}
+
+/// Compensates the program `src` with its `.dat` and the backup `files` on the KR 210 milling
+/// setup, written as `mill_c.src`.
+pub(super) fn run(
+    (src, dat): (&str, Option<&str>),
+    files: &[(String, String)],
+) -> stiffid::Result<stiffid::app::compensate::ProgramReport> {
     use stiffid::app::compensate::{self, Input};
     use stiffid::internal::machining::{compensate::Options, Language};
     let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/milling");
@@ -94,8 +104,8 @@ fn mill(files: &[(String, String)]) -> stiffid::Result<(String, Option<String>)>
                 leave_refused: false,
             },
             name: "mill.src".into(),
-            text: MILL_SRC,
-            data: Some(MILL_DAT),
+            text: src,
+            data: dat,
             language: Language::Robot(Dialect::Krl),
             process_name: "aluminium.toml".into(),
             process,
@@ -107,8 +117,7 @@ fn mill(files: &[(String, String)]) -> stiffid::Result<(String, Option<String>)>
         options: Options::for_setup(&setup),
     };
     let report = compensate::run::<stiffid::Error, _>(request, |_, _, _, _| Ok(()))?;
-    let p = report.report.program.unwrap();
-    Ok((p.text, p.data))
+    Ok(report.report.program.unwrap())
 }
 
 /// The members `X` to `C` of the `E6POS` declared as `name` in `text`.

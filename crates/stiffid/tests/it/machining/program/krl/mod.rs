@@ -1,5 +1,6 @@
 //! KUKA's KRL (`stiffid_machining::program::krl`).
 mod backup;
+mod calls;
 mod inline;
 mod lists;
 mod stored;
