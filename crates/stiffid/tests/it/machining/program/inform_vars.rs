@@ -145,6 +145,7 @@ fn what_the_backup_does_not_say_of_a_variable_is_refused() {
         (JOB.replace("MOVL P003", "MOVL LP003"), backup(good.clone()), 19, "a local position variable"),
         (JOB.replace("MOVL P003", "MOVL P[I001]"), backup(good.clone()), 19, "an index the job computes as it runs"),
         (JOB.replace("MOVL P003 V=50.0", "MOVL P003 BC00000 V=50.0"), backup(good.clone()), 19, "beside base or station positions"),
+        (JOB.replace("MOVL P003", "MOVL P4294967296"), backup(good.clone()), 19, "holds 6 position variables (P000 to P005)"),
     ];
     for (job, files, line, words) in cases {
         let (l, message) = refused(read(&job, &p, &files));
@@ -157,11 +158,15 @@ fn what_the_backup_does_not_say_of_a_variable_is_refused() {
         [backup(good.clone()), backup(var_dat(P5, P3))].concat(),
         backup(good.replace("PFNUM 6,", "PFNUM 7,")),
         backup(good.replace("///P\r\n", "///Q\r\n")),
+        backup(good.replace("0,0,-45969", "0,0,-45969.5")),
+        backup(good.replace("\r\n", "\r")),
     ];
     let says = [
         "line 12: P005",
         "two VAR.DAT files that differ",
         "a robot with 7 axes",
+        "no ///P section",
+        "'-45969.5': expected a whole number of pulses",
         "no ///P section",
     ];
     for (files, words) in bad.iter().zip(says) {
