@@ -49,6 +49,8 @@ pub(super) struct Given {
     comp: Option<(u8, Option<Range<usize>>)>,
     /// The `D` word and its span.
     d: Option<(f64, Range<usize>)>,
+    /// LinuxCNC's polar `@` (distance) and `^` (angle), the block's units (module `polar`).
+    polar: [Option<f64>; 2],
 }
 
 pub(super) fn block(
@@ -77,17 +79,20 @@ pub(super) fn block(
     let moves_after_dwell = matches!(
         s.machine.dialect,
         Some(super::GcodeDialect::LinuxCnc | super::GcodeDialect::Grbl)
-    ) && words.iter().any(|w| w.letter == 'P');
+    ) && words.iter().any(|w| w.letter == 'P' && w.value >= 0.0)
+        && given.home.is_none()
+        && !given.g53;
     if given.g4 && given.moves_an_axis() && !moves_after_dwell {
         let why = match s.machine.dialect {
             Some(super::GcodeDialect::Fanuc | super::GcodeDialect::Haas) => "only X is the dwell's time (seconds with a decimal point) on FANUC and Haas, another axis word a move",
-            Some(_) => "LinuxCNC and grbl refuse a G4 without its time P (an axis word beside G4 P is a move after the dwell)",
+            Some(_) => "LinuxCNC and grbl refuse a G4 without its time P of 0 or more, or beside G28, G30 or G53 (an axis word beside G4 P alone is a move after the dwell)",
             None => "FANUC and Haas read G4 X as the dwell's time, LinuxCNC and grbl as a move in the motion mode in force, and the setup names no controller ([controller] dialect)",
         };
         return Err(at(line, format!("G4 with an axis word: {why}; write the dwell as G4 P in a block without axis words")));
     }
     given.modes(line, s)?;
     motion_and_feed(line, &given, inch_before, s)?;
+    super::polar::resolve(line, given.polar, (&mut given.target, given.g53), s)?;
     if given.g53 && (given.home.is_some() || s.motion >= 81 && s.motion != NO_MOTION) {
         return Err(g53_outside_g0_g1(line, &given, s));
     }
@@ -158,6 +163,10 @@ impl Given {
                     s.tool_number = s.selected;
                     s.first_tool_named();
                 }
+            }
+            '@' | '^' => {
+                self.polar[usize::from(w.letter == '^')] = Some(v);
+                self.drop.push(w.span.clone());
             }
             'F' => self.feed = Some(v),
             'Q' => {

@@ -87,6 +87,11 @@ pub(super) fn before_motion(line: u64, given: &Moves, s: &mut State) -> Result<(
     }
     match s.machine.dialect {
         Some(GcodeDialect::LinuxCnc | GcodeDialect::Grbl) => {}
+        Some(d @ (GcodeDialect::Fanuc | GcodeDialect::Haas)) if cycle => {
+            // The cycle positions over the hole before its first Z move: whether the change
+            // is taken up there or at the rapid to R is not written in the manuals.
+            return Err(at(line, format!("a canned cycle after the tool length offset changed on line {changed} without a Z move, on the dialect \"{d}\": the controller takes the change up at the next Z move, and the cycle positions over the hole first; give Z (G0 Z..) after the G43/G44/G49")));
+        }
         Some(GcodeDialect::Fanuc | GcodeDialect::Haas) => {
             // The block counts from the programmed point before the change, and the
             // controller moves by the offset's change as well.

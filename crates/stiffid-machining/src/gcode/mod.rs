@@ -52,7 +52,7 @@
 //! controller runs (module `expand`; [`GCode::expanded`]): the points name the program's lines.
 //!
 //! Any other G code or letter is refused naming its line (`G92`, `G93`, `G95`, `G28.1` saying
-//! why), as are block delete `/`, polar words `@ ^`,
+//! why), as are block delete `/`, polar words `@ ^` but on LinuxCNC (module `polar`),
 //! an arc whose end is off its circle beyond 0.005 mm, an arc of radius below 1 um, a letter given
 //! twice in one block (but `G` and `M`), two codes of one modal group in one block (`G0 G1`, `G90
 //! G91`, `M3 M4`), an arc with a number of turns `P` or a centre or radius beyond 100 m, a feed
@@ -85,6 +85,7 @@ mod groups;
 mod home;
 mod machine;
 mod modal;
+mod polar;
 mod process;
 mod words;
 mod write;

@@ -50,9 +50,6 @@ pub(super) fn words(line: u64, start: usize, l: &str, s: &mut State) -> Result<V
             continue;
         }
         let letter = c.to_ascii_uppercase();
-        if c == '^' || c == '@' {
-            return Err(at(line, format!("'{c}': polar coordinates (LinuxCNC's @ distance and ^ angle) are not read; have the post write X Y")));
-        }
         if c == '#' || c == '[' {
             return Err(at(line, format!("'{c}': parameters and expressions (#1 = 2.5, #<name>, [#1 * 2]) are not evaluated; have the post write numbers")));
         }
@@ -61,7 +58,8 @@ pub(super) fn words(line: u64, start: usize, l: &str, s: &mut State) -> Result<V
             // block delete switch on; LinuxCNC reads block delete at a line's start only.
             return Err(at(line, "/ within the block: a block delete of the words after it on controls that read it there, an error on others (LinuxCNC), and whether they run depends on the block delete switch, which the program does not say; remove the '/' (run them) or the words".into()));
         }
-        if !letter.is_ascii_alphabetic() {
+        // `@` and `^`: LinuxCNC's polar distance and angle (module `polar`).
+        if !(letter.is_ascii_alphabetic() || c == '@' || c == '^') {
             return Err(at(
                 line,
                 format!("'{c}': expected a word (a letter and a number)"),

@@ -514,7 +514,7 @@ fn what_real_posts_write_is_read_or_refused_naming_the_line() {
         ("G92 X0 Y0\n", "G92: not in the supported subset"),
         ("G93\n", "G93: not in the supported subset"),
         ("G41 D1\n", "G41: controllers enter cutter radius compensation"),
-        ("G0 @10 ^45\n", "'@': polar coordinates"),
+        ("G0 @10 ^45\n", "polar coordinates (@ ^): LinuxCNC's words"),
         ("G28.1\n", "G28.1: not in the supported subset"),
         ("G1 X1e3 Y0 Z0 F100\n", "X1e3: a number with an exponent is no G-code number (a controller reads X1 and then a word E)"),
         ("G1 X10E-1 Y0 Z0 F100\n", "X10E-1: a number with an exponent"),

@@ -1,7 +1,7 @@
 //! What hand-written shop programs and CAM posts write that the corpus of real programs found
 //! refused or misread: canned cycles in another work offset and under a tool length offset, a
 //! dwell beside a move (LinuxCNC), a `G53` retract under `G91` on Haas, and a `T` that names the
-//! tool the spindle held from the start. Each read at known values or refused naming the line.
+//! tool the spindle held from the start, LinuxCNC's polar coordinates. Each read at known values or refused naming the line.
 
 use approx::assert_relative_eq;
 use nalgebra::{Isometry3, Vector3};
@@ -74,6 +74,14 @@ fn a_canned_cycle_drills_in_the_work_offset_and_tool_length_offset_in_force() {
     for (a, b) in again.points.iter().zip(&g.points) {
         assert_relative_eq!(a.position, b.position, epsilon = 1e-12);
     }
+    // On FANUC and Haas a changed offset is taken up at the next Z move, and a cycle positions
+    // over the hole first: a cycle right after G43 alone is refused naming both lines.
+    refused(
+        "T1 M6 G43 H1 G0 X0 Y0 Z10\nT2 M6\nG43 H2\nG81 X1 Y1 Z-30 R2 F100\n",
+        &haas(),
+        5,
+        "a canned cycle after the tool length offset changed on line 4 without a Z move",
+    );
     // A work offset that turns the part's Z axis: refused naming the line.
     let mut m = haas();
     m.frames.offsets = vec![(
@@ -100,12 +108,19 @@ fn a_dwell_beside_a_move_is_read_as_linuxcnc_runs_it() {
     assert_relative_eq!(g.points[1].position, mm(10.0, 20.0, 5.0), epsilon = 1e-12);
     assert_eq!(g.points[1].line, 3);
     // Without P LinuxCNC refuses the G4; FANUC and Haas read an X beside it as its time.
-    refused(
-        "G21 G0 X0 Y0 Z5\nG4 G0 X10\n",
-        &m,
-        3,
-        "refuse a G4 without its time P",
-    );
+    for bad in [
+        "G4 G0 X10",
+        "G4 P-1 G0 X10",
+        "G4 P1 G28 X0",
+        "G4 P1 G53 G0 Z0",
+    ] {
+        refused(
+            &format!("G21 G0 X0 Y0 Z5\n{bad}\n"),
+            &m,
+            3,
+            "refuse a G4 without its time P of 0 or more, or beside G28, G30 or G53",
+        );
+    }
     m.dialect = Some(GcodeDialect::Fanuc);
     refused(
         "G21 G0 X0 Y0 Z5\nG04 P1 G0 Y20\n",
@@ -174,4 +189,69 @@ fn a_t_before_the_first_tool_change_names_the_tool_held_since_the_start() {
     assert_relative_eq!(path[1].1, mm(0.0, 16.0, -13.0 - 80.0), epsilon = 1e-12);
     // After a Z move before the T, or in another work offset, the start no longer says.
     refused("G21\nG55\nT2\nG1 Z-13 F50\n", &m, 5, "Z has no value yet");
+}
+
+#[test]
+fn linuxcncs_polar_coordinates_give_x_and_y() {
+    let m = Machine {
+        dialect: Some(GcodeDialect::LinuxCnc),
+        ..Default::default()
+    };
+    // G90: the point at @ ^ from the origin, @ alone keeps the angle, ^ alone the distance;
+    // G91: @ adds to the distance and ^ to the angle (LinuxCNC's find_ends).
+    let text = "G21 G90 G0 X0 Y0 Z5\nG0 @10 ^90\nG91 G1 @5 F100\nG1 ^90\nG90 G0 ^0\nG0 @2\n";
+    let g = parse(text, &m).unwrap();
+    let want = [
+        mm(0.0, 0.0, 5.0),
+        mm(0.0, 10.0, 5.0),
+        mm(0.0, 15.0, 5.0),
+        mm(-15.0, 0.0, 5.0),
+        mm(15.0, 0.0, 5.0),
+        mm(2.0, 0.0, 5.0),
+    ];
+    assert_eq!(g.points.len(), want.len());
+    for (p, w) in g.points.iter().zip(want) {
+        assert_relative_eq!(p.position, w, epsilon = 1e-15);
+    }
+    // Written back as X Y (in G91 as increments), read back to the same points.
+    let positions: Vec<_> = g.points.iter().map(|p| p.position).collect();
+    let out = g.write(&positions).unwrap();
+    assert!(!out.contains('@') && !out.contains('^'), "{out}");
+    let again = parse(&out, &m).unwrap();
+    for (a, b) in again.points.iter().zip(&g.points) {
+        assert_relative_eq!(a.position, b.position, epsilon = 1e-12);
+    }
+    // A bolt circle by a computed angle, as LinuxCNC's examples write it.
+    let g = parse("G21 G0 X0 Y0 Z5\n#1 = 3\nG0 @20 ^[360 / #1]\n", &m).unwrap();
+    let t = 120f64.to_radians();
+    assert_relative_eq!(
+        g.points[1].position,
+        mm(20.0 * t.cos(), 20.0 * t.sin(), 5.0),
+        epsilon = 1e-15
+    );
+    for (text, line, construct) in [
+        ("G0 X0 Y0 Z5\nG0 X1 @2\n", 3, "X or Y beside them"),
+        ("G0 X0 Y0 Z5\nG91 G0 @1\n", 3, "G91 at the XY origin"),
+        ("G0 X0 Y0 Z5\nG0 @1\n", 3, "@ alone at the XY origin"),
+        (
+            "G0 Z5\nG0 ^30\n",
+            3,
+            "from a place not known: X Y has no value yet",
+        ),
+        ("G0 X1 Y0 Z5\nG53 G0 @1 ^2\n", 3, "with G53"),
+    ] {
+        refused(text, &m, line, construct);
+    }
+    let fanuc = Machine {
+        dialect: Some(GcodeDialect::Fanuc),
+        ..Default::default()
+    };
+    refused("G0 @1 ^2 Z5\n", &fanuc, 2, "LinuxCNC's words");
+    // LinuxCNC's hole-circle.ngc drills by ^ under G91: refused for the G91 cycle.
+    refused(
+        "G20 G17 G90\nG0 X1.5 Y0 Z0\nG91 G81 R.1 Z-.5 ^60 F10\n",
+        &m,
+        4,
+        "a canned cycle under G91",
+    );
 }

@@ -206,7 +206,7 @@ pub(super) fn substitute(line: &str, v: &dyn Values, f: Flavour) -> Result<Subst
                 c.at = value_cursor.at;
                 out.assignments.push((p, value));
             }
-            l if l.is_ascii_alphabetic() => {
+            l if l.is_ascii_alphabetic() || l == '@' || l == '^' => {
                 out.text.push(l);
                 c.at += 1;
                 let value =
