@@ -281,6 +281,14 @@ fn a_hostile_backup_or_header_is_refused_naming_its_file_or_line() {
     }
     two[1].1 = POSREG.into();
     assert!(read(&text, &two).is_ok());
+    // A motion to an element of a register (a number).
+    let element = text.replacen("J PR[7:PARK]", "J PR[7,1]", 1);
+    let (line, why) = refusal(&read(&element, &one(POSREG.into())).unwrap_err());
+    assert_eq!(line, 7, "{why}");
+    assert!(
+        why.starts_with("J PR[7,1]: an element of a position register"),
+        "{why}"
+    );
     // A mask holding no group 1, or not the group 2 a position gives.
     let mask = |m: &str| straight.replacen("= 1,*,*,*,*;", &format!("= {m};"), 1);
     for (m, says) in [

@@ -174,6 +174,12 @@ fn increment(
 /// The position index of a motion's target `P[i]` or `P[i:comment]` and the text after it;
 /// position registers and indirect indices refused.
 fn target<'a>(line: u64, letter: &str, rest: &'a str) -> Result<(u64, &'a str)> {
+    let inside = rest
+        .strip_prefix("PR[")
+        .map(|r| r.split([']', ':']).next().unwrap_or(""));
+    if inside.is_some_and(|i| i.contains(',')) {
+        return Err(at(line, format!("{letter} PR[{}]: an element of a position register is a number, not a target; the controller does not load such a motion: move to the register, PR[i]", short(inside.unwrap_or("")))));
+    }
     if rest.starts_with("PR[") {
         return Err(at(line, format!("{letter} PR[..]: a position register holds its value on the controller, not in this program; copy it into a P[] position")));
     }

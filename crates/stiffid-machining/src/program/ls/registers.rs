@@ -103,7 +103,7 @@ fn one(line: u64, what: &str, n: u32, held: Option<&(&str, Vec<Entry>)>) -> Resu
         Some((e, Ok(Some(_)))) => e.clone(),
         Some((e, Ok(None))) => return Err(at(line, format!("{what}: {name} line {} gives PR[{n}] no value (Uninitialized): the register is set as programs run; copy its value into a P[] position", e.line))),
         Some((_, Err((l, why)))) => return Err(at(line, format!("{what}: {name} line {l}: {why}"))),
-        None => return Err(at(line, format!("{what}: {name} holds no PR[{n}] of motion group 1"))),
+        None => return Err(at(line, format!("{what}: {name} holds no PR[{n}] of motion group 1 (a controller's backup lists every register up to its count, Uninitialized ones too: is the file cut off?)"))),
     };
     let source = format!("{name} line {}", entry.line);
     Ok(Register {
@@ -158,10 +158,12 @@ fn called(upper: &str) -> Option<String> {
     .filter(|n| !n.is_empty())
 }
 
-/// The register number of a motion `t` to a position register (`J PR[3:home] ..`), if it is one.
+/// The register number of a motion `t` to a position register (`J PR[3:home] ..`), if it is one;
+/// not an element of one (`J PR[3,1]`, a number: no motion the controller loads), which the
+/// motion's reader refuses.
 fn register(t: &str) -> Option<u32> {
     let rest = t.trim().get(1..)?.trim_start().strip_prefix("PR[")?;
-    rest.split([']', ':', ',']).next()?.trim().parse().ok()
+    rest.split([']', ':']).next()?.trim().parse().ok()
 }
 
 /// Whether instruction `upper` (upper case, English) sets a position register: `Some(Some(n))`

@@ -305,7 +305,7 @@ fn an_ls_motion_to_a_position_register_posreg_va_does_not_hold_is_refused_saying
     assert_eq!(at, 6, "{why}");
     assert_eq!(
         why,
-        "L PR[3]: backup/POSREG.VA holds no PR[3] of motion group 1"
+        "L PR[3]: backup/POSREG.VA holds no PR[3] of motion group 1 (a controller's backup lists every register up to its count, Uninitialized ones too: is the file cut off?)"
     );
 }
 
