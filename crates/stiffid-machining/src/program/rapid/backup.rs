@@ -40,6 +40,9 @@ pub(super) fn merge(mut data: Data, (text, code): (&str, &str), context: &Contex
         for (k, v) in found.speeds {
             data.speeds.entry(k).or_insert(v);
         }
+        for (k, v) in found.nums {
+            data.nums.entry(k).or_insert(v);
+        }
         for (k, v) in found.targets {
             if data.targets.contains_key(&k) {
                 continue;

@@ -10,6 +10,9 @@ use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion};
 use std::collections::HashMap;
 use stiffid_core::Result;
 
+/// A declared target by name (`named` of [`motion`]).
+type Named<'a> = &'a dyn Fn(&str) -> Result<JointTarget>;
+
 /// How far from 1 the norm of a quaternion the program gives may be.
 const UNIT: f64 = 1e-4;
 
@@ -140,7 +143,7 @@ pub(crate) fn motion(
     (code, from, args): (&str, usize, &str),
     (points, process): (usize, usize),
     named: &dyn Fn(&str) -> Result<JointTarget>,
-    frames: &HashMap<String, Frame>,
+    (frames, nums): (&HashMap<String, Frame>, &super::num::Nums),
 ) -> Result<Vec<JointTarget>> {
     let joined = super::arguments::switches_joined(args);
     let args = joined.as_str();
@@ -179,7 +182,13 @@ pub(crate) fn motion(
     }
     let mut out = Vec::with_capacity(points);
     for part in &parts[..points] {
-        let mut t = point(line, code, from + part.start, &args[part.clone()], named)?;
+        let mut t = point(
+            line,
+            code,
+            from + part.start,
+            &args[part.clone()],
+            (named, nums),
+        )?;
         let c = t
             .cartesian
             .as_deref_mut()
@@ -202,7 +211,7 @@ fn point(
     code: &str,
     from: usize,
     text: &str,
-    named: &dyn Fn(&str) -> Result<JointTarget>,
+    (named, nums): (Named, &super::num::Nums),
 ) -> Result<JointTarget> {
     let lead = text.len() - text.trim_start().len();
     let text = text.trim_start();
@@ -218,11 +227,18 @@ fn point(
         let at = from + lead;
         return named(&ident).map(|t| t.named_at(at..at + ident.len()));
     }
+    // An array's element (`pts{2}`), as the whole point.
+    let element = (next.starts_with('{').then(|| next.find('}')).flatten()).filter(|&c| {
+        next[c + 1..].trim().is_empty() || next[c + 1..].trim_start().starts_with('\\')
+    });
+    if let (Some(close), false) = (element, ident.is_empty()) {
+        return named(&text[..text.len() - next.len() + close + 1]);
+    }
     if let Some(f) = super::offset::Function::of(&ident).filter(|_| next.starts_with('(')) {
         let open = from + lead + text.len() - next.len();
         let end = from + lead + text.len();
-        let (base, args) = super::offset::arguments(line, f, code, (open, end))?;
-        let mut t = point(line, code, base.start, &code[base], named)?;
+        let (base, args) = super::offset::arguments(line, f, code, (open, end), nums)?;
+        let mut t = point(line, code, base.start, &code[base], (named, nums))?;
         if let Some(c) = t.cartesian.as_deref_mut() {
             f.apply(c, &args);
         }

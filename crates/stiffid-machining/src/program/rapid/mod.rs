@@ -20,6 +20,7 @@
 //! source of each rule.
 
 mod arguments;
+mod arrays;
 mod backup;
 mod called;
 mod calls;
@@ -28,13 +29,17 @@ pub(crate) mod confdata;
 mod flow;
 mod generate;
 mod layout;
+mod named;
 mod names;
+mod num;
 mod offset;
 mod parameters;
 mod place;
 mod process;
 mod read;
+mod refusals;
 pub(crate) mod speed;
+mod unroll;
 pub use confdata::ConfData;
 
 use super::cartesian::{literal, Frame};
@@ -57,6 +62,7 @@ struct Data {
     frames: HashMap<String, Frame>,
     speeds: RapidSpeeds,
     assigned: HashMap<String, u64>,
+    nums: num::Nums,
 }
 
 /// One statement: its line, and its bytes in the text.
@@ -242,29 +248,6 @@ fn statements(code: &str) -> Vec<Statement> {
     out
 }
 
-/// For a declaration of data a motion reads (`words`, lower case, of the statement on `line`: a
-/// `jointtarget`, `speeddata` or [`cartesian::is_data`]) of a name declared before (`names`:
-/// each name's first line), its kind, name and why a motion cannot read it: RAPID refuses a
-/// name declared twice in a module, and of two in two routines, which one a motion uses is
-/// the routine's scope, which the reader does not follow.
-fn declared_twice<'a>(
-    line: u64,
-    words: &[&'a str],
-    names: &mut HashMap<String, u64>,
-) -> Option<(&'a str, String, String)> {
-    let ["const" | "var" | "pers", kind, name, ..] = words else {
-        return None;
-    };
-    if !matches!(*kind, "jointtarget" | "speeddata") && !cartesian::is_data(kind) {
-        return None;
-    }
-    let name = name.trim_end_matches(';');
-    let name = name.split('{').next().unwrap_or(name);
-    let first = names.insert(name.to_string(), line)?;
-    let why = format!("{kind} {name} is declared twice, on line {first} and on line {line}: the controller refuses a name declared twice in a module, and of two in two routines which one a motion uses depends on the scope, which stiffid does not follow; give each its own name");
-    Some((kind, name.to_string(), why))
-}
-
 /// The data declared in the module ([`Data`]).
 fn declarations(code: &str, statements: &[Statement]) -> Result<Data> {
     let mut declared = Declared::new();
@@ -272,29 +255,18 @@ fn declarations(code: &str, statements: &[Statement]) -> Result<Data> {
     let mut speeds = RapidSpeeds::new();
     let mut assignments = Vec::new();
     let mut names = HashMap::new();
+    let mut numbers = num::Reading::default();
     for s in statements {
         let body = &code[s.span.clone()];
         let lower = body.to_ascii_lowercase();
-        let words: Vec<&str> = lower
-            .split(|c: char| c.is_whitespace() || c == ':' || c == '=')
-            .filter(|w| !w.is_empty())
-            .skip_while(|w| matches!(*w, "local" | "task"))
-            .collect();
-        let twice = declared_twice(s.line, &words, &mut names);
+        let words = words_of(&lower);
+        let twice = refusals::declared_twice(s.line, &words, &mut names);
+        numbers.statement(&words, body, s.line);
         parameters::declare(s.line, body, (&mut declared, &mut frames));
         match words.as_slice() {
             ["const" | "var" | "pers", "jointtarget", name, ..] => {
-                let name = name.trim_end_matches(';');
-                let (name, array) = match name.split_once('{') {
-                    Some((n, _)) => (n, true),
-                    None => (name, false),
-                };
-                let value = match (array, body.find(":=")) {
-                    (true, _) => Err(format!("{name} is an array of jointtargets (line {}): declare each target on its own or write it as a literal", s.line)),
-                    (false, None) => Err(format!("{name} is declared on line {} without a value (set at run time)", s.line)),
-                    (false, Some(eq)) => Ok(declared_at(literal(s.line, code, s.span.start + eq + 2)?, code, s, name)),
-                };
-                declared.insert(name.to_string(), value);
+                let (name, value) = joint_declared(code, s, name, &mut declared)?;
+                declared.insert(name, value);
             }
             ["const" | "var" | "pers", "speeddata", name, ..] => {
                 let name = name.trim_end_matches(';');
@@ -309,6 +281,12 @@ fn declarations(code: &str, statements: &[Statement]) -> Result<Data> {
             }
             ["const" | "var" | "pers", kind, name, ..] if cartesian::is_data(kind) => {
                 let name = name.trim_end_matches(';');
+                if let (Some((array, _)), Some(eq), "robtarget") =
+                    (name.split_once('{'), body.find(":="), *kind)
+                {
+                    arrays::declare((array, "robtarget"), (code, s, eq), &mut declared);
+                    continue;
+                }
                 let Some(eq) = body.find(":=").filter(|_| !name.contains('{')) else {
                     let why = format!("{kind} {name} is declared on line {} without a value or as an array: declare each with its value", s.line);
                     match *kind {
@@ -343,6 +321,7 @@ fn declarations(code: &str, statements: &[Statement]) -> Result<Data> {
             None => {}
         }
     }
+    let nums = numbers.finish(&assignments);
     let known = |name: &String| {
         declared.contains_key(name) || frames.contains_key(name) || speeds.contains_key(name)
     };
@@ -366,7 +345,56 @@ fn declarations(code: &str, statements: &[Statement]) -> Result<Data> {
         frames,
         speeds,
         assigned,
+        nums,
     })
+}
+
+/// The words of a statement (lower case), `LOCAL` and `TASK` skipped.
+fn words_of(lower: &str) -> Vec<&str> {
+    (lower.split(|c: char| c.is_whitespace() || c == ':' || c == '='))
+        .filter(|w| !w.is_empty())
+        .skip_while(|w| matches!(*w, "local" | "task"))
+        .collect()
+}
+
+/// The `jointtarget` `name` (lower case, as written after its type) the statement `s` of `code`
+/// declares: its name and its target, or why it has none (an array's elements into `declared`).
+fn joint_declared(
+    code: &str,
+    s: &Statement,
+    name: &str,
+    declared: &mut Declared,
+) -> Result<(String, std::result::Result<JointTarget, String>)> {
+    let body = &code[s.span.clone()];
+    let name = name.trim_end_matches(';');
+    let (name, array) = match name.split_once('{') {
+        Some((n, _)) => (n, true),
+        None => (name, false),
+    };
+    let value = match (array, body.find(":=")) {
+        (true, Some(eq)) => {
+            arrays::declare((name, "jointtarget"), (code, s, eq), declared);
+            Err(format!(
+                "{name} is an array of jointtargets (line {}): move to one of its elements",
+                s.line
+            ))
+        }
+        (true, None) => Err(format!(
+            "{name} is an array of jointtargets (line {}) declared without a value",
+            s.line
+        )),
+        (false, None) => Err(format!(
+            "{name} is declared on line {} without a value (set at run time)",
+            s.line
+        )),
+        (false, Some(eq)) => Ok(declared_at(
+            literal(s.line, code, s.span.start + eq + 2)?,
+            code,
+            s,
+            name,
+        )),
+    };
+    Ok((name.to_string(), value))
 }
 
 /// `t` declared by the statement `s` of `code` as `name` (lower case), where the statement has
@@ -452,25 +480,6 @@ fn literal(line: u64, code: &str, from: usize) -> Result<JointTarget> {
     Ok(target.with_external(external))
 }
 
-/// Why a motion instruction (lower case) other than `MoveAbsJ`, `MoveL`, `MoveJ`, `MoveC` and the
-/// arc welding ones is not read.
-fn unfollowed(first: &str) -> &'static str {
-    match first {
-        "movelsync" | "movejsync" | "movecsync" | "moveldo"
-        | "movejdo" | "movecdo" | "movelgo" | "movejgo" | "movecgo" | "movelao"
-        | "movejao" | "movecao" => "a motion stiffid does not follow (a circle, or a signal set on the way); write the path as MoveL, MoveJ or MoveAbsJ",
-        "moveextj" => "a motion of external axes only; not compensated: remove it",
-        f if f.starts_with("trigg") => "a motion with triggered events (robtarget); not compensated: write the path as MoveL or MoveAbsJ and set the events apart",
-        f if f.starts_with("search") => "a search motion stops where a sensor fires, which the program does not say; not compensated",
-        f if f.starts_with("egm") => "an Externally Guided Motion: the robot follows the positions a sensor sends at run time, which the program does not hold; not compensated",
-        f if f.starts_with("ind") => "an independent axis motion: the axis moves apart from the path, as the controller decides; not compensated",
-        f if f.starts_with("fcpress") => "a force-controlled motion: the robot presses with the programmed force and its path follows the contact, which the program does not hold; not compensated",
-        "contactl" => "a motion that stops where contact is made, which the program does not say; not compensated",
-        "pathrecmovebwd" | "pathrecmovefwd" | "stepbwdpath" => "a motion along a path the controller recorded at run time; not compensated",
-        _ => "a motion instruction stiffid does not follow; write the path as MoveL, MoveJ or MoveAbsJ",
-    }
-}
-
 /// The motion instruction (lower case) an arc welding instruction moves as (the *Application
 /// manual, Arc and Arc Sensor*: `ArcL`, `ArcLStart`, `ArcLEnd` linear as `MoveL`, `ArcC`,
 /// `ArcCStart`, `ArcCEnd` circular as `MoveC`, each with its seam and weld data after the
@@ -499,7 +508,7 @@ fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Vec<Joi
         if !flow::is_motion(first) {
             return Ok(Vec::new());
         }
-        let why = unfollowed(first);
+        let why = refusals::unfollowed(first);
         return Err(at(line, format!("{name}: {why}")));
     }
     // Past the name: an optional switch such as `\Conc`, then the target.
@@ -520,18 +529,7 @@ fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Vec<Joi
     } else {
         "jointtarget"
     };
-    let named = |ident: &str| -> Result<JointTarget> {
-        let key = ident.to_ascii_lowercase();
-        if let Some(assigned_on) = data.assigned.get(&key) {
-            return Err(at(line, format!("{name} {ident}: {ident} is assigned on line {assigned_on}, so its value at the motion is the controller's, not the file's: give the motion its own declared {kind}")));
-        }
-        match data.targets.get(&key) {
-            Some(Ok(t)) if t.cartesian.is_some() == cartesian => Ok(t.moved_to(line, false)),
-            Some(Ok(_)) => Err(at(line, format!("{name} {ident}: not a {kind}"))),
-            Some(Err(why)) => Err(at(line, format!("{name} {ident}: {why}"))),
-            None => Err(at(line, format!("{name} {ident}: not a {kind} declared in this module or the backup's modules given; give the task's modules (--backup, Python backup=), declare it in the module or write the target as a literal"))),
-        }
-    };
+    let named = |ident: &str| named::target(data, (line, name), (kind, cartesian), ident);
     if cartesian {
         let end = s.span.end - usize::from(code[..s.span.end].ends_with(';'));
         let args = &code[from..end];
@@ -545,7 +543,7 @@ fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Vec<Joi
             (code, from, args),
             (points, process),
             &named,
-            &data.frames,
+            (&data.frames, &data.nums),
         )
         .map_err(|e| match e {
             stiffid_core::Error::Program { line, message } if !message.starts_with(name) => {
@@ -571,6 +569,12 @@ fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Vec<Joi
         .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
         .collect();
     let next = target_text[ident.len()..].trim_start();
+    let element = (next.starts_with('{').then(|| next.find('}')).flatten())
+        .filter(|&c| next[c + 1..].trim_start().starts_with([',', '\\']));
+    if let (Some(close), false) = (element, ident.is_empty()) {
+        let text = &target_text[..target_text.len() - next.len() + close + 1];
+        return named(text).map(|t| vec![joint(t)]);
+    }
     if ident.is_empty() || next.starts_with(['{', '(', '.']) {
         let what = match next.chars().next() {
             Some('(') => format!("{ident}(..), a function"),

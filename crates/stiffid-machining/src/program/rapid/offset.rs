@@ -84,6 +84,7 @@ pub(super) fn arguments(
     f: Function,
     code: &str,
     (open, end): (usize, usize),
+    nums: &super::num::Nums,
 ) -> Result<(Range<usize>, Arguments)> {
     let name = f.name();
     let bad = |what: String| at(line, format!("{name}: {what}"));
@@ -107,7 +108,7 @@ pub(super) fn arguments(
     let texts = [&inner[x.clone()], &inner[y.clone()], z];
     for (k, text) in texts.into_iter().enumerate() {
         let axis = ["x", "y", "z"][k];
-        args.xyz_mm[k] = constant(text).ok_or_else(|| bad(not_constant(axis, text)))?;
+        args.xyz_mm[k] = number(text, nums).map_err(|why| bad(not_constant(axis, text, &why)))?;
     }
     limits::check(&format!("{name} x, y, z"), &args.xyz_mm, &LENGTH_MM)
         .map_err(|e| bad(e.to_string()))?;
@@ -125,7 +126,8 @@ pub(super) fn arguments(
             }
         };
         let what = format!("\\{}", key.trim());
-        args.rxyz_deg[k] = constant(value).ok_or_else(|| bad(not_constant(&what, value)))?;
+        args.rxyz_deg[k] =
+            number(value, nums).map_err(|why| bad(not_constant(&what, value, &why)))?;
     }
     limits::check(
         &format!("{name} \\Rx, \\Ry, \\Rz"),
@@ -142,11 +144,20 @@ pub(super) fn arguments(
 }
 
 /// Why an argument is refused.
-fn not_constant(what: &str, text: &str) -> String {
+fn not_constant(what: &str, text: &str, why: &str) -> String {
     format!(
-        "{what} = '{}' is not a number written in the call (a variable or an expression): its value is the controller's",
+        "{what} = '{}' is not a number written in the call nor arithmetic of num data the module states ({why}): its value is the controller's",
         text.trim()
     )
+}
+
+/// The value of an argument: a number written as is, or arithmetic of the module's `num` data
+/// ([`super::num`]); why not.
+fn number(text: &str, nums: &super::num::Nums) -> std::result::Result<f64, String> {
+    match constant(text) {
+        Some(v) => Ok(v),
+        None => super::num::value(text, &|n| nums.get(n).cloned()),
+    }
 }
 
 /// A number written as is (`-12.5`, `1E2`), `None` for anything else.

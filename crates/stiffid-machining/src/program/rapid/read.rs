@@ -103,13 +103,8 @@ fn module(
     context: &Context,
     task: &mut Task,
 ) -> Result<Module> {
-    let (code, statements, data) = prepared(text, offset, entry, context, task)?;
-    let switches_conf = statements.iter().find(|s| {
-        matches!(
-            first_word(&code[s.span.clone()]).as_str(),
-            "confj" | "confl"
-        )
-    });
+    let (code, statements, mut data) = prepared(text, offset, entry, context, task)?;
+    let switches_conf = switching(&code, &statements);
     let layout = Layout::of(
         &code,
         &statements,
@@ -124,7 +119,12 @@ fn module(
     let mut conf = Conf([Ok(false), Ok(false)]);
     // The first motion of the routine being read.
     let mut first_motion: Option<u64> = None;
-    for (k, s) in statements.iter().enumerate() {
+    let order = super::unroll::order(&code, &statements, &data.nums)?;
+    // The loop variables' values in force, and the data they hide.
+    let mut hidden: Vec<(String, Option<std::result::Result<f64, String>>)> = Vec::new();
+    for (k, values) in order {
+        let s = &statements[k];
+        loop_values(&mut data, &mut hidden, values);
         if !layout.read[k] {
             continue;
         }
@@ -233,6 +233,36 @@ fn prepared(
         e.bindings.apply(&mut data);
     }
     Ok((code, statements, data))
+}
+
+/// The loop variables `values` in force in `data`'s `num` data, the ones in force before
+/// (`hidden`: each name and the datum it hid) taken back.
+fn loop_values(
+    data: &mut Data,
+    hidden: &mut Vec<(String, Option<std::result::Result<f64, String>>)>,
+    values: Vec<(String, f64)>,
+) {
+    for (name, old) in hidden.drain(..) {
+        match old {
+            Some(o) => _ = data.nums.insert(name, o),
+            None => _ = data.nums.remove(&name),
+        }
+    }
+    for (name, v) in values {
+        let old = data.nums.insert(name.clone(), Ok(v));
+        hidden.push((name, old));
+    }
+}
+
+/// The first statement of `statements` (of `code`) that switches configuration monitoring
+/// (`ConfJ`, `ConfL`), if any.
+fn switching<'s>(code: &str, statements: &'s [Statement]) -> Option<&'s Statement> {
+    statements.iter().find(|s| {
+        matches!(
+            first_word(&code[s.span.clone()]).as_str(),
+            "confj" | "confl"
+        )
+    })
 }
 
 /// A statement being read and where it sits among the motions.

@@ -180,7 +180,7 @@ const REFUSED: [Refusal; 22] = [
     Refusal {
         file: "data_processing_Module1.mod",
         line: 14,
-        says: &["MoveAbsJ: the target is J_Orientation_Target{..}, an array element"],
+        says: &["MoveAbsJ J_Orientation_Target{i}: j_orientation_target is an array of jointtargets (line 2) declared without a value"],
         holds: &[
             (14, "MoveAbsJ J_Orientation_Target{i}"),
             (13, "FOR i FROM 1 TO 5 DO"),

@@ -1,6 +1,7 @@
 //! ABB's RAPID (`stiffid_machining::program::rapid`).
 
 mod backup;
+mod computed;
 mod corpus;
 mod flow;
 mod module;
