@@ -86,6 +86,7 @@ mod experiment;
 mod file;
 mod gcode_dialect;
 pub mod load_steps;
+mod noise_file;
 pub(crate) mod numbered;
 pub mod plausibility;
 pub mod prior;

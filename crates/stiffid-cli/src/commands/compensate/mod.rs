@@ -2,6 +2,9 @@
 //! CSV and JSON document ([`stiffid::app::compensate::document`]) written as the job computes them,
 //! then the compensated program, the text or JSON, and the report.
 
+mod files;
+mod text;
+
 use crate::commands::common::choice;
 use crate::commands::common::{Common, Stiffness};
 use crate::load;
@@ -9,16 +12,14 @@ use crate::output::{self, print, write_stdout_with, OutFile, Writer};
 use crate::progress::Bars;
 use crate::report::{self, compensation};
 use anyhow::{anyhow, bail, Result};
+use files::{check_subprogram_files, write_subprograms};
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use stiffid::app::compensate::document::{
-    csv_line, external_header, external_values, header, Document, Names, GENERATOR,
+    csv_line, external_header, external_values, header, Names, GENERATOR,
 };
-use stiffid::app::compensate::dynamics::OperationDynamics;
 use stiffid::app::compensate::stream::{chunk_values, Points};
-use stiffid::app::compensate::{self as job, Input, ProgramReport, Report, Request};
-use stiffid::app::document::{finite, mm};
-use stiffid::internal::common::words::{count, number};
+use stiffid::app::compensate::{self as job, Input, Report, Request};
 use stiffid::internal::io::Encoding;
 use stiffid::internal::machining::compensate::{
     Aggregate, Compensated, FreeOption, Freedom, MapVariable, Objective, Options, PathPoint,
@@ -31,6 +32,7 @@ use stiffid::internal::machining::Language;
 use stiffid::internal::observation::deflection::Frame;
 use stiffid::internal::robot::ExternalAxes;
 use stiffid::{Error, Progress, Setup};
+use text::human;
 
 /// Arguments of `stiffid compensate`.
 #[derive(clap::Args)]
@@ -432,72 +434,6 @@ fn finish(
     }
 }
 
-/// Refuses, before anything is computed, a file beside `out` named as one of the sub-programs a
-/// split program writes there (`NAME_01.EXT`, ..: the stem upper case, `out`'s extension) that
-/// `out` does not call: only an earlier run's sub-programs of the same `out` are replaced.
-fn check_subprogram_files(out: &Path) -> Result<()> {
-    let name = |p: Option<&std::ffi::OsStr>| p.and_then(|s| s.to_str()).unwrap_or("").to_string();
-    let (stem, extension) = (name(out.file_stem()), name(out.extension()));
-    let dir = match out.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    let Ok(entries) = std::fs::read_dir(dir) else {
-        return Ok(());
-    };
-    let main = std::fs::read_to_string(out).unwrap_or_default();
-    let prefix = format!("{}_", stem.to_ascii_uppercase());
-    for entry in entries.flatten() {
-        let file = name(Some(&entry.file_name()));
-        let Some(sub) = file.strip_suffix(&format!(".{extension}")) else {
-            continue;
-        };
-        let number = sub.strip_prefix(&prefix).unwrap_or("");
-        let numbered = !number.is_empty() && number.bytes().all(|b| b.is_ascii_digit());
-        if numbered && !main.contains(sub) {
-            bail!(
-                "--out {}: {file} beside it is named as one of its sub-programs (a program of more than --moves-per-file moves is split into {prefix}01.{extension}, ..), and {} does not call it as an earlier run's: move it away or choose another --out",
-                out.display(),
-                out.display()
-            );
-        }
-    }
-    Ok(())
-}
-
-/// A split program's sub-programs, each beside the main program in a file of its name with the
-/// main program's extension (and a KRL sub-program's `.dat` beside it); the files written.
-fn write_subprograms(out: &Path, program: &ProgramReport) -> Result<Vec<PathBuf>> {
-    let files = &program.subprograms;
-    let extension = out.extension().and_then(|e| e.to_str()).unwrap_or("");
-    let dir = out.parent().unwrap_or(Path::new(""));
-    let prepared = files
-        .iter()
-        .map(|f| {
-            let path = dir.join(format!("{}.{extension}", f.name));
-            OutFile::prepare(&path, "--out").map(|o| (o, f))
-        })
-        .collect::<Result<Vec<_>>>()?;
-    let data = files
-        .iter()
-        .filter_map(|f| {
-            let path = program::data_out(&dir.join(format!("{}.{extension}", f.name)))?;
-            Some((path, f.data.as_ref()?))
-        })
-        .map(|(path, d)| OutFile::prepare(&path, "--out").map(|o| (o, d)))
-        .collect::<Result<Vec<_>>>()?;
-    let mut written = Vec::new();
-    for (o, f) in prepared {
-        o.write(&program.bytes(&f.text))?;
-        written.push(o.target().to_path_buf());
-    }
-    for (o, d) in data {
-        o.write(&program.bytes(d))?;
-        written.push(o.target().to_path_buf());
-    }
-    Ok(written)
-}
-
 fn options(args: &Args, setup: &Setup) -> Result<Options> {
     let mut options = Options::for_setup(setup);
     stiffid::internal::model::prediction::check_level("--level", args.level)?;
@@ -524,232 +460,4 @@ fn options(args: &Args, setup: &Setup) -> Result<Options> {
     };
     freedom.apply(setup, &mut options)?;
     Ok(options)
-}
-
-/// What the error that remains is made of, and whether the program meets `--max-error-mm`.
-fn made_of(b: &stiffid::app::compensate::budget::BudgetSummary) -> String {
-    let parts: Vec<String> = (b.made_of.iter())
-        .filter(|p| p.part != "left")
-        .map(|p| match p.max_mm {
-            Some(m) => format!(
-                "{} {m:.4} mm (mean {:.4})",
-                p.part.replace('_', " "),
-                p.mean_mm.unwrap_or(m)
-            ),
-            None => format!("{} {}", p.part.replace('_', " "), b.no_value(p)),
-        })
-        .collect();
-    let mut text = format!(
-        "the error that remains at {}% is made of (largest along the path): {}\n",
-        100.0 * b.level,
-        parts.join(", ")
-    );
-    if let Some(m) = &b.meets {
-        text += &format!(
-            "meets {} mm at {}%: {}\n",
-            number(m.max_error_mm),
-            100.0 * m.level,
-            if m.meets { "yes" } else { "no" }
-        );
-    }
-    text
-}
-
-/// The text summary: what was compensated, the error bound, the free variables, what was
-/// written.
-fn human(args: &Args, setup: &Setup, report: &Report, doc: &Document<'_>) -> String {
-    let mut text = head(setup, report, doc);
-    text += &bound(doc);
-    text += &made_of(&doc.summary.budget);
-    text += &free(doc);
-    text += &written(args, report, doc);
-    text
-}
-
-/// The summary's first lines: the points, the deflection, the residual, the intervals.
-fn head(setup: &Setup, report: &Report, doc: &Document<'_>) -> String {
-    let d = &doc.summary;
-    let mut text = format!(
-        "{} path points of {} compensated (setup {}, stiffness {}{})\n\
-         TCP deflection under the path's wrench: largest {:.4} mm (line {}), mean {:.4} mm; largest tool rotation {:.4} mrad\n\
-         compensated axis angles: residual at most {:.2e} um and {:.2e} urad (required: 0.1 um, 1 urad), at most {} Newton steps ({})\n",
-        d.points,
-        report.input,
-        setup.name(),
-        doc.stiffness,
-        if report.compliance.covariance.is_some() { ", with its covariance: standard deviations in the CSV" } else { "" },
-        mm(d.max_deflection),
-        d.max_deflection_line,
-        mm(d.mean_deflection),
-        d.max_rotation * 1e3,
-        d.max_residual_position * 1e6,
-        d.max_residual_rotation * 1e6,
-        d.max_iterations,
-        d.stop_reason
-    );
-    if let Some(level) = report.prediction_level {
-        text += &format!(
-            "prediction intervals of the TCP deflection ({:.0}%, from the held-out residuals of the identification) in the CSV; the widest {}\n",
-            100.0 * level,
-            d.max_interval_width.and_then(|w| finite(mm(w)))
-                .map_or("is unbounded (too few held-out residuals for the level)".into(), |w| format!("is {w:.4} mm wide"))
-        );
-    }
-    text
-}
-
-/// The error bound's line.
-fn bound(doc: &Document<'_>) -> String {
-    let b = &doc.summary.budget;
-    format!(
-        "error bound at {}%: largest {} (line {}), mean {}{}{}\n",
-        100.0 * b.level,
-        b.max_bound_mm.map_or(
-            format!(
-                "infinite (a finite bound needs at least {} held-out calibration errors)",
-                stiffid::internal::model::prediction::held_out_needed(b.level)
-            ),
-            |m| format!("{m:.4} mm")
-        ),
-        b.max_bound_line.unwrap_or(0),
-        b.mean_bound_mm
-            .map_or("infinite".into(), |m| format!("{m:.4} mm")),
-        b.worst.first().map_or(String::new(), |w| format!(
-            ", mostly {} there",
-            w.dominant.replace('_', " ")
-        )),
-        match b.absent.is_empty() {
-            true => String::new(),
-            false => format!(
-                " ({} absent, counted as 0)",
-                b.absent.join(", ").replace('_', " ")
-            ),
-        }
-    )
-}
-
-/// The free variables' lines: the tool axis, lead and tilt, the feasibility, the speeds, the
-/// grid's refinement, the configurations.
-fn free(doc: &Document<'_>) -> String {
-    let (d, mut text) = (&doc.summary, String::new());
-    let rotation = doc.free.iter().any(|f| f.variable == "tool-rotation");
-    if let (Some(f), true, Some(minimise)) = (&d.free_tool_axis, rotation, doc.minimise) {
-        let [lo, hi] = f.tool_rotation_range.map(f64::to_degrees);
-        text += &format!(
-            "free tool axis (minimising the {}): mean TCP deflection {:.4} mm before, {:.4} mm after ({:+.1}%), tool rotation within [{lo:.1}, {hi:.1}] deg\n",
-            minimise,
-            mm(f.mean_deflection_before),
-            mm(f.mean_deflection_after),
-            f.mean_change_pct,
-        );
-    }
-    if let Some(l) = &d.free_lead_tilt {
-        text += &format!(
-            "lead and tilt: largest lead {:.2} deg, largest tilt {:.2} deg, largest lean {:.2} deg, mean lean {:.2} deg\n",
-            l.max_lead.to_degrees(),
-            l.max_tilt.to_degrees(),
-            l.max_lean.to_degrees(),
-            l.mean_lean.to_degrees()
-        );
-    }
-    if let Some(f) = &doc.feasibility {
-        text += &format!(
-            "moved postures kept {:.1} deg from the joint limits, condition number at most {}, the cell's collisions {}: states removed {} (limit margin), {} (singularity), {} (collision); moves refused {} (axis speed)\n",
-            f.margin_deg,
-            number(f.max_condition),
-            if f.collisions_checked { "checked" } else { "not checked" },
-            f.states_removed_limit_margin,
-            f.states_removed_singularity,
-            f.states_removed_collision,
-            f.moves_refused_speed,
-        );
-    }
-    // Why the speeds were not checked matters where a free variable moves the axes.
-    if doc.speed_limits.not_checked_because.is_none() || doc.feasibility.is_some() {
-        text += &crate::commands::speed_line::line(doc.speed_limits);
-    }
-    if let Some(levels) = doc.refine.filter(|&l| l > 0) {
-        text += &format!("the free variables' grid refined {levels} time(s) around the line chosen on it, each level halving every step\n");
-    }
-    if let Some(c) = &doc.configurations {
-        text += &crate::commands::configuration_table::table(c);
-    }
-    text
-}
-
-/// The program and the files written.
-fn written(args: &Args, report: &Report, doc: &Document<'_>) -> String {
-    let (names, mut text) = (&report.names, String::new());
-    if let Some(p) = &doc.program {
-        text += &format!(
-            "program ({}, process {}): {}, force on the tool up to {:.1} N (the process's and the tool's weight)\n",
-            p.language,
-            p.process,
-            count(p.segments.len(), "segment"),
-            p.max_force_n
-        );
-        for o in p.dynamics {
-            text += &dynamics_line(o);
-        }
-    }
-    for written in [&names.program_out, &names.out] {
-        if !written.is_empty() {
-            text += &format!("written: {written}\n");
-        }
-    }
-    let dat = program::data_out(Path::new(&names.program_out));
-    if let Some(dat) = dat.filter(|_| report.program.as_ref().is_some_and(|p| p.data.is_some())) {
-        text += &format!(
-            "written: {} beside it (its points and data)\n",
-            dat.display()
-        );
-    }
-    if let Some(p) = report
-        .program
-        .as_ref()
-        .filter(|p| !p.subprograms.is_empty())
-    {
-        let (first, last) = (
-            &p.subprograms[0].name,
-            &p.subprograms[p.subprograms.len() - 1].name,
-        );
-        text += &format!(
-            "written: {} beside it, {first} to {last}, which it calls in order\n",
-            count(p.subprograms.len(), "sub-program")
-        );
-    }
-    if let Some(dir) = &args.report {
-        text += &format!("report: {}\n", Path::new(dir).join("report.html").display());
-    }
-    text
-}
-
-/// One operation's surge (drilling) or first frequency against its tooth passing (milling).
-fn dynamics_line(o: &OperationDynamics) -> String {
-    let mut line = format!("  {} '{}': ", o.kind, o.operation);
-    if let (Some(v), Some(at)) = (o.max_surge_mm_s, o.max_surge_line) {
-        let std = o
-            .max_surge_std_mm_s
-            .map_or(String::new(), |s| format!(" +- {s:.1}"));
-        line += &format!(
-            "{} exits, breakthrough surge up to {v:.1}{std} mm/s (line {at}, held mass {:.1} kg)",
-            o.points,
-            o.max_surge_effective_mass_kg.unwrap_or(f64::NAN)
-        );
-        if let Some(b) = o.max_surge_before_mm_s {
-            line += &format!("; {b:.1} mm/s at the path's own tool rotation");
-        }
-    } else if let Some([lo, hi]) = o.first_frequency_hz {
-        line += &format!("first natural frequency {lo:.1}-{hi:.1} Hz");
-        if let (Some(t), Some(p), Some(k)) = (
-            o.tooth_passing_hz,
-            o.nearest_harmonic_pct,
-            o.nearest_harmonic_order,
-        ) {
-            line += &format!(", tooth passing {t:.1} Hz (nearest: {p:.1}% from harmonic {k})");
-        }
-    } else {
-        line += "no surge or frequency (a singular posture)";
-    }
-    line + "\n"
 }
