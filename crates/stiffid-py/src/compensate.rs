@@ -12,7 +12,7 @@ use pyo3::types::{PyAny, PyDict};
 use std::path::{Path, PathBuf};
 use stiffid::app::compensate::document::{Names, DYNAMICS};
 use stiffid::app::compensate::stream::{chunk_values, Rows};
-use stiffid::app::compensate::{self as job, Input, Request};
+use stiffid::app::compensate::{self as job, Given, Input, Request};
 use stiffid::internal::io::Encoding;
 use stiffid::internal::machining::compensate::{
     free, Aggregate, Compensated, FreeOption, Freedom, MapVariable, Objective, Options, PathPoint,
@@ -260,27 +260,32 @@ fn job_options<'py>(
         Option<i64>,
     ),
 ) -> PyResult<Options> {
-    let mut options = options(py, s, q0_deg)?;
-    options.level = level;
-    options.max_error = max_error_mm.map(|m| m * 1e-3);
-    options.force_tolerance = force_tolerance_pct / 100.0;
-    (options.map, options.map_over) = map_over(map)?;
-    let freedom = Freedom {
-        free: free_variables(free)?,
-        minimise: minimise
-            .map(str::parse::<Objective>)
-            .transpose()
-            .map_err(raise)?,
-        objective: objective
-            .map(str::parse::<Aggregate>)
-            .transpose()
-            .map_err(raise)?,
-        margin_deg,
-        max_condition,
-        refine: crate::count::optional("refine", refine)?,
+    let map = match map_over(map)? {
+        (true, over) => Some(over),
+        (false, _) => None,
     };
-    freedom.apply(s, &mut options).map_err(raise)?;
-    Ok(options)
+    let given = Given {
+        q0: q0(py, s, q0_deg)?,
+        level,
+        max_error_mm,
+        force_tolerance_pct,
+        map,
+        freedom: Freedom {
+            free: free_variables(free)?,
+            minimise: minimise
+                .map(str::parse::<Objective>)
+                .transpose()
+                .map_err(raise)?,
+            objective: objective
+                .map(str::parse::<Aggregate>)
+                .transpose()
+                .map_err(raise)?,
+            margin_deg,
+            max_condition,
+            refine: crate::count::optional("refine", refine)?,
+        },
+    };
+    given.options(s).map_err(raise)
 }
 
 /// A compensated program's items: `program`, its text, `encoding` (`utf-8`, or `latin-1` for
@@ -518,22 +523,36 @@ fn map_over(map: Option<&Bound<'_, PyAny>>) -> PyResult<(bool, MapVariable)> {
     Ok((true, name.parse::<MapVariable>().map_err(raise)?))
 }
 
-/// The compensation's options from the arguments.
+/// The compensation's options from the arguments: the setup's, inverse kinematics started at
+/// `q0_deg` when given.
 pub(crate) fn options(
     py: Python<'_>,
     s: &stiffid::Setup,
     q0_deg: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Options> {
     let mut options = Options::for_setup(s);
-    if let Some(q) = q0_deg {
-        let r = s.robot();
-        let within = (r.limits(), "the joint limits");
-        options.q0 = arrays::postures(q, "q0_deg", within, 1)?.0[0];
-        let warning =
-            stiffid::internal::setup::plausibility::radians_in_option("q0_deg", &options.q0);
-        warn(py, &Vec::from_iter(warning))?;
+    if let Some(q0) = q0(py, s, q0_deg)? {
+        options.q0 = q0;
     }
     Ok(options)
+}
+
+/// `q0_deg=`: where inverse kinematics starts, axis angles within the joint limits (rad), with
+/// the warning of a posture that looks like radians; `None` when not given.
+fn q0(
+    py: Python<'_>,
+    s: &stiffid::Setup,
+    q0_deg: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Option<Vector6<f64>>> {
+    let Some(q) = q0_deg else {
+        return Ok(None);
+    };
+    let r = s.robot();
+    let within = (r.limits(), "the joint limits");
+    let q0 = arrays::postures(q, "q0_deg", within, 1)?.0[0];
+    let warning = stiffid::internal::setup::plausibility::radians_in_option("q0_deg", &q0);
+    warn(py, &Vec::from_iter(warning))?;
+    Ok(Some(q0))
 }
 
 /// `free=`: a list of the texts of `compensate --free` (`"tool-rotation=-90..90/5"`) or of dicts

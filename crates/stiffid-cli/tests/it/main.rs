@@ -39,6 +39,7 @@ mod program_dates_cli;
 mod program_process_cli;
 mod program_readback_cli;
 mod program_speeds_cli;
+mod python_defaults;
 mod readable_files;
 mod refine_cli;
 mod refused_options;

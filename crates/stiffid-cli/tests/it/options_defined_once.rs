@@ -7,17 +7,18 @@
 //!   B`, `A <= value <= B`);
 //! - the Python keywords of the same jobs (their PyO3 signatures in `crates/stiffid-py/src`): a
 //!   keyword and an option of the same name (`margin_deg`, `--margin-deg`) have the same default,
-//!   and a name in one front end only is one of the differences listed here, each with why.
+//!   and a name in one front end only is one of the differences listed here, each with why
+//!   (the defaults are written there from the command's, `python_defaults`).
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
-fn repo() -> &'static Path {
+pub(crate) fn repo() -> &'static Path {
     Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
 }
 
 /// Every visible subcommand by its path (`compensate`, `setups new`).
-fn commands() -> Vec<(String, clap::Command)> {
+pub(crate) fn commands() -> Vec<(String, clap::Command)> {
     fn walk(prefix: &str, cmd: &clap::Command, out: &mut Vec<(String, clap::Command)>) {
         for sub in cmd.get_subcommands().filter(|s| !s.is_hide_set()) {
             let name = format!("{prefix}{}", sub.get_name());
@@ -31,7 +32,7 @@ fn commands() -> Vec<(String, clap::Command)> {
 }
 
 /// The visible options of `cmd` with a long name (positionals and `--help` left out).
-fn options(cmd: &clap::Command) -> Vec<&clap::Arg> {
+pub(crate) fn options(cmd: &clap::Command) -> Vec<&clap::Arg> {
     (cmd.get_arguments())
         .filter(|a| !a.is_hide_set() && !a.is_positional())
         .filter(|a| a.get_long().is_some_and(|l| l != "help" && l != "version"))
@@ -39,7 +40,7 @@ fn options(cmd: &clap::Command) -> Vec<&clap::Arg> {
 }
 
 /// The option's default as clap states it (`5`, `-180,180`), or `None`.
-fn default(arg: &clap::Arg) -> Option<String> {
+pub(crate) fn default(arg: &clap::Arg) -> Option<String> {
     let values: Vec<String> = (arg.get_default_values().iter())
         .map(|v| v.to_string_lossy().into_owned())
         .collect();
@@ -214,7 +215,7 @@ fn python_signatures() -> BTreeMap<String, Signature> {
 }
 
 /// The text up to the `)` that closes the signature's tuple.
-fn balanced(text: &str) -> &str {
+pub(crate) fn balanced(text: &str) -> &str {
     let (mut depth, mut quoted) = (0i32, false);
     for (i, c) in text.char_indices() {
         match c {
@@ -257,7 +258,7 @@ fn parameters(text: &str) -> Signature {
 /// Whether a Python default and the option's agree: numbers equal as numbers (tuples element by
 /// element against comma-separated values), texts equal, `false` for a switch, `None` for an
 /// option without a default.
-fn same_default(python: Option<&str>, option: &clap::Arg) -> bool {
+pub(crate) fn same_default(python: Option<&str>, option: &clap::Arg) -> bool {
     let clap = default(option);
     let switch = !option.get_action().takes_values();
     match (python, clap.as_deref()) {
@@ -281,13 +282,13 @@ fn same_default(python: Option<&str>, option: &clap::Arg) -> bool {
 /// The Python function of each command, and the names that are in one front end only: the
 /// keyword (or option, `--` spelt as `_`) and why.
 /// A command, its Python function and the names in one front end only, each with why.
-type FrontEnd = (
+pub(crate) type FrontEnd = (
     &'static str,
     &'static str,
     &'static [(&'static str, &'static str)],
 );
 
-const FRONT_ENDS: &[FrontEnd] = &[
+pub(crate) const FRONT_ENDS: &[FrontEnd] = &[
     (
         "compensate",
         "compensate",

@@ -19,7 +19,7 @@ use stiffid::app::compensate::document::{
     csv_line, external_header, external_values, header, Names, GENERATOR,
 };
 use stiffid::app::compensate::stream::{chunk_values, Points};
-use stiffid::app::compensate::{self as job, Input, Report, Request};
+use stiffid::app::compensate::{self as job, Given, Input, Report, Request};
 use stiffid::internal::io::Encoding;
 use stiffid::internal::machining::compensate::{
     Aggregate, Compensated, FreeOption, Freedom, MapVariable, Objective, Options, PathPoint,
@@ -435,29 +435,30 @@ fn finish(
 }
 
 fn options(args: &Args, setup: &Setup) -> Result<Options> {
-    let mut options = Options::for_setup(setup);
     stiffid::internal::model::prediction::check_level("--level", args.level)?;
-    options.level = args.level;
-    options.force_tolerance = args.force_tolerance_pct / 100.0;
-    options.max_error = args.max_error_mm.map(|m| m * 1e-3);
-    options.map = args.map.is_some();
-    options.map_over = args.map.unwrap_or_default();
-    if let Some(text) = &args.q0_deg {
-        options.q0 = load::posture(text, "--q0-deg", setup.robot())?.1;
-    }
+    let q0 = match &args.q0_deg {
+        Some(text) => Some(load::posture(text, "--q0-deg", setup.robot())?.1),
+        None => None,
+    };
     let free = args
         .free
         .iter()
         .map(|f| FreeOption::parse(f.as_str()))
         .collect::<stiffid::Result<Vec<_>>>()?;
-    let freedom = Freedom {
-        free,
-        minimise: args.minimise,
-        objective: args.objective,
-        margin_deg: args.margin_deg,
-        max_condition: args.max_condition,
-        refine: args.refine,
+    let given = Given {
+        q0,
+        level: args.level,
+        max_error_mm: args.max_error_mm,
+        force_tolerance_pct: args.force_tolerance_pct,
+        map: args.map,
+        freedom: Freedom {
+            free,
+            minimise: args.minimise,
+            objective: args.objective,
+            margin_deg: args.margin_deg,
+            max_condition: args.max_condition,
+            refine: args.refine,
+        },
     };
-    freedom.apply(setup, &mut options)?;
-    Ok(options)
+    Ok(given.options(setup)?)
 }

@@ -25,6 +25,7 @@ pub mod dynamics;
 mod failure;
 pub(crate) mod feasibility;
 mod free;
+mod given;
 mod input;
 mod output;
 pub mod ranking;
@@ -39,6 +40,7 @@ mod written;
 use crate::app::compensate::document::{Names, Summary};
 use crate::app::{Warning, WarningKind};
 use failure::{in_input, Failure};
+pub use given::Given;
 use input::{
     called_files, check_tcp, copied_warning, encoding_warning, held_lines, held_warning,
     left_warning, no_length_offset, notes_warning, own_motion, read_checked, uncoupled_ls,
