@@ -9,7 +9,10 @@ module and `pub use` line; `pub(crate)` is not public), the users of its name, f
     science   another science crate names it (its own crate's dependents below the jobs)
     front     the command, the Python package, the figures, the benches, the facade's
               `lib.rs` or its examples name it, or the facade's API lists it
-              (`crates/stiffid/public-api.txt`: its source file and its name)
+              (`crates/stiffid/public-api.txt`: its source file and its name; a module by
+              its own file), or it is a type the interface of an API item of the jobs crate
+              carries (a job's request, report or document: its public fields, a public
+              function's signature), which a library user meets there
     jobs      the jobs crate (`crates/stiffid/src/app/`) names it, and no one above: the seam
               between the science and the jobs
     interface no one outside names it, but the signature or a public field of a used item of
@@ -221,8 +224,10 @@ class Workspace:
 
     def read_others(self):
         crates = self.root / "crates"
+        self.jobs_api = []  # (file, kind, names, face) of the jobs crate's pub items
         for path in rust_files(crates / "stiffid" / "src"):
             code, tests = without_tests(strip(path.read_text()))
+            self.jobs_declarations(path, code)
             group = "front" if path.name == "lib.rs" and path.parent.name == "src" else "jobs"
             self.group(group, code)
             self.group("tests", tests)
@@ -238,6 +243,27 @@ class Workspace:
             for path in rust_files(crates / name / "tests"):
                 self.group("tests", strip(path.read_text()))
 
+    def jobs_declarations(self, path, code):
+        """The jobs crate's `pub` items in `code` with what their interface names."""
+        lines = code.split("\n")
+        starts = [0]
+        for line in lines:
+            starts.append(starts[-1] + len(line) + 1)
+        for number, line in enumerate(lines):
+            m = DECLARATION.match(line)
+            if not m or m.group(1) in ("use", "mod"):
+                continue
+            name = WORD.match(m.group(2))
+            if name:
+                face = set(WORD.findall(interface(m.group(1), code, starts[number])))
+                self.jobs_api.append((str(path.relative_to(self.root)), name.group(0), face))
+
+    def api_faces(self):
+        """What the interfaces of the facade's API items in the jobs crate name: the types a
+        library user meets in a job's request, report or document."""
+        return {w for f, name, face in self.jobs_api
+                if f in self.api_files and name in self.api_names for w in face - {name}}
+
     def read_api(self):
         """The facade's API (`crates/stiffid/public-api.txt`): its source files and the names
         of its items; an item of a science crate the API lists is used by a library user."""
@@ -246,7 +272,15 @@ class Workspace:
         self.api_names = {l.split()[-1].split("::")[-1] for l in listing if not l.startswith("#")}
 
     def in_api(self, item):
-        return str(item.path) in self.api_files and set(item.names) & self.api_names
+        """Whether the API lists `item`: by its file and name, a module by its own file
+        (rustdoc places a module where its text is, `name.rs` or `name/mod.rs` beside the file
+        that declares it)."""
+        files = {str(item.path)}
+        if item.kind == "mod":
+            folder = item.path.parent
+            files = {str(folder / f"{n}.rs") for n in item.names} | \
+                {str(folder / n / "mod.rs") for n in item.names}
+        return files & self.api_files and set(item.names) & self.api_names
 
     def uses(self, names, own):
         """How many times the code of each group names one of `names`: the groups that can
@@ -275,6 +309,10 @@ def classify(workspace):
     for item in workspace.items:
         item.user = workspace.user(item.crate, item.kind, item.names)
         if item.user not in ("science", "front") and workspace.in_api(item):
+            item.user = "front"
+    faces = workspace.api_faces()
+    for item in workspace.items:
+        if item.user == "jobs" and item.kind in TYPES and set(item.names) & faces:
             item.user = "front"
     changed = True
     while changed:

@@ -485,7 +485,7 @@ impl<'a> Context<'a> {
     ///
     /// # Errors
     /// `error`, unless it is a program's error and the context leaves refused motions.
-    pub fn leave(&self, left: &mut Vec<Left>, error: Error) -> Result<()> {
+    pub(crate) fn leave(&self, left: &mut Vec<Left>, error: Error) -> Result<()> {
         match error {
             Error::Program { line, message } if self.leave_refused => {
                 left.push(Left {

@@ -251,6 +251,33 @@ fn tabled(
     Ok((robot, convention, table, written))
 }
 
+/// The calibrated robot file's whole text: the robot ([`robot_toml`]), then `held_out` (its
+/// `[held_out]` table as the job writes it), the mount it was calibrated on (`[mount]`: `mount`,
+/// the calibration setup's `[robot_base]`, the identity without one, which its `[base]` holds),
+/// the part's frame a calibration located from the reflectors on the positioner's table
+/// (`[part]`: `part`, cell frame with every external axis at 0, m) and the sag under its own
+/// weight `own` with the gravity terms moved into the file's link frames (`[gravity]`).
+///
+/// # Errors
+/// Those of [`robot_toml`] and of the gravity terms' move into the table's frames.
+pub fn calibrated_file(
+    (model, estimate): (&ErrorModel, &Estimate),
+    held_out: &str,
+    mount: &Isometry3<f64>,
+    (own, part): (
+        Option<&stiffid_core::model::OwnWeight>,
+        Option<&Isometry3<f64>>,
+    ),
+) -> Result<String> {
+    let text = robot_toml(model, estimate)?;
+    let sag = (own.map(|w| own_weight_in_table(model, estimate, w))).transpose()?;
+    let sag = sag.map_or(String::new(), |w| {
+        stiffid_core::robot::weight_file::toml(&w)
+    });
+    let part = part.map_or(String::new(), part_table);
+    Ok(text + held_out + &mount_table(mount) + &part + &sag)
+}
+
 /// `own`, the gravity terms of `model` at `estimate`, in the link frames of the robot file's DH
 /// table ([`robot_toml`]), as the file carries them: a lumped term's first moment, fixed in its
 /// link's frame, moves with the frame as the masses' centres do, `c m s' = R (c m s) + t (c m)`
@@ -258,7 +285,7 @@ fn tabled(
 ///
 /// # Errors
 /// Those of [`robot_toml`]'s table.
-pub fn own_weight_in_table(
+fn own_weight_in_table(
     model: &ErrorModel,
     estimate: &Estimate,
     own: &stiffid_core::model::OwnWeight,
@@ -509,14 +536,14 @@ fn edited_urdf(nominal: &Robot, calibrated: &Robot, source: &UrdfSource) -> Resu
 /// The robot file's `[mount]` table: the mount `mount` (the calibration setup's `[robot_base]`,
 /// the identity without one) a robot was calibrated on, which its `[base]` holds
 /// ([`stiffid_core::Robot::mount`]).
-pub fn mount_table(mount: &Isometry3<f64>) -> String {
+fn mount_table(mount: &Isometry3<f64>) -> String {
     format!("\n[mount]\n{}", transform(mount))
 }
 
 /// The robot file's `[part]` table: the part's frame `part` a calibration located from the
 /// reflectors on the positioner's table (cell frame with every external axis at 0, m;
 /// [`stiffid_core::Robot::part`]).
-pub fn part_table(part: &Isometry3<f64>) -> String {
+fn part_table(part: &Isometry3<f64>) -> String {
     format!("\n[part]\n{}", transform(part))
 }
 

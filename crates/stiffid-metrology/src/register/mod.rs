@@ -27,7 +27,7 @@
 //! the rotation's standard deviation is what a registration design minimises
 //! ([`rotation_std_per_noise`], `stiffid_design::registration`).
 //!
-//! Readings that no rigid transform explains are flagged ([`suspect`]): a mirror image (the best
+//! Readings that no rigid transform explains are flagged (`suspect`): a mirror image (the best
 //! transform with a reflection, `R = U diag(1, 1, -det(U V^T)) V^T`, leaves less than a quarter of
 //! the residual RMS of the best rotation, which is beyond ten times the tracker noise: a tracker
 //! axis flipped, or two columns swapped), and a residual longer than [`residual_limit`] (wrong
@@ -36,6 +36,7 @@
 use nalgebra::{
     DMatrix, Isometry3, Matrix3, Matrix6, Rotation3, Translation3, UnitQuaternion, Vector3, Vector6,
 };
+use stiffid_core::common::words::number;
 use stiffid_core::io::readings::Readings;
 use stiffid_core::math::linalg::CappedSvd;
 use stiffid_core::observation::frames::DisplacementFrame;
@@ -69,9 +70,39 @@ pub fn residual_limit(sigma: f64) -> f64 {
     RESIDUAL_LIMIT.max(RESIDUAL_NOISE_MULTIPLE * sigma)
 }
 
-/// What makes readings implausible for a rigid transform ([`suspect`]).
+/// Refuses the location of a part from the reflectors on the positioner's table, `r` (the
+/// reflectors placed, in the part's frame, registered onto the ones a calibration fitted), that
+/// no rigid transform explains at the tracker noise `sigma` (m per coordinate): the
+/// registration's check (`suspect`).
+///
+/// # Errors
+/// [`Error::InvalidField`] (`workpiece.reflectors_mm`) for a mirror image or a reflector that
+/// lies farther from its place than [`residual_limit`], naming it and how far.
+pub fn refuse_unlocated(r: &Registration, sigma: f64) -> Result<()> {
+    let why = match suspect(&r.residuals, r.rms, r.mirror_rms, sigma) {
+        None => return Ok(()),
+        Some(Suspect::Mirrored { rms, mirror_rms }) => format!(
+            "the fitted reflectors are a mirror image of the ones placed (a rotation leaves {} mm RMS, a reflection {} mm): check the signs of the coordinates",
+            number(rms * 1e3),
+            number(mirror_rms * 1e3)
+        ),
+        Some(Suspect::Residual { index, length, limit }) => format!(
+            "no rigid transform puts the reflectors where the calibration fitted them: T{} lies {} mm from its place (at most {} mm; RMS of all {} mm): check its coordinates and that each T row reads the reflector of the same number",
+            index + 1,
+            number(length * 1e3),
+            number(limit * 1e3),
+            number(r.rms * 1e3)
+        ),
+    };
+    Err(Error::InvalidField {
+        field: "workpiece.reflectors_mm".into(),
+        message: format!("{why}; the part is not located from them"),
+    })
+}
+
+/// What makes readings implausible for a rigid transform (`suspect`).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Suspect {
+pub(crate) enum Suspect {
     /// The readings are a mirror image of the robot's points: the best transform with a
     /// reflection fits them far better than any rotation.
     Mirrored {
@@ -95,7 +126,7 @@ pub enum Suspect {
 /// image's RMS `mirror_rms` (m, [`Registration::mirror_rms`]) are implausible at the tracker
 /// noise `sigma` (m per coordinate, the setup's): a mirror image (module docs) first, else the
 /// longest residual beyond [`residual_limit`]; `None` when neither.
-pub fn suspect(
+pub(crate) fn suspect(
     residuals: &[Vector3<f64>],
     rms: f64,
     mirror_rms: f64,
@@ -172,7 +203,7 @@ pub struct Registration {
     /// The robot model's part of the covariance (`robot_covariance`); zero from [`fit`].
     pub robot_covariance: Matrix6<f64>,
     /// RMS of the residual lengths of the best transform with a reflection (`det R = -1`), m:
-    /// far below `rms` when the readings are a mirror image ([`suspect`]).
+    /// far below `rms` when the readings are a mirror image (`suspect`).
     pub mirror_rms: f64,
 }
 
@@ -233,7 +264,7 @@ impl Registration {
 /// # Errors
 /// [`Error::InvalidField`] (`readings`) when the readings are in the base frame (`x_mm`), not
 /// the tracker's.
-pub fn correspondences(setup: &Setup, readings: &Readings) -> Result<Vec<Correspondence>> {
+pub(crate) fn correspondences(setup: &Setup, readings: &Readings) -> Result<Vec<Correspondence>> {
     if readings.frame != DisplacementFrame::Tracker {
         return Err(Error::InvalidField {
             field: "readings".into(),
@@ -333,11 +364,11 @@ fn jacobian(rotated: &[Vector3<f64>]) -> DMatrix<f64> {
 }
 
 /// The tracker registered to the robot base by `readings` on `setup`: the unloaded readings'
-/// points in both frames ([`correspondences`]), their rigid fit ([`fit`]) and its covariance
+/// points in both frames (`correspondences`), their rigid fit ([`fit`]) and its covariance
 /// with the robot model's own error ([`Registration::with_robot`], `robot_covariance`).
 ///
 /// # Errors
-/// Those of [`correspondences`] (readings in the base frame), [`fit`] (fewer than
+/// Those of `correspondences` (readings in the base frame), [`fit`] (fewer than
 /// [`MIN_POINTS`] points, collinear points) and `robot_covariance`.
 pub fn register(setup: &Setup, readings: &Readings) -> Result<Registration> {
     let fitted = fit(&correspondences(setup, readings)?)?;
@@ -537,7 +568,7 @@ pub fn refuse_other_scale(setup: &Setup, data: &Readings) -> Result<()> {
     })
 }
 
-/// Refuses readings that no rigid transform explains ([`suspect`] at the setup's tracker noise):
+/// Refuses readings that no rigid transform explains (`suspect` at the setup's tracker noise):
 /// tracker readings that are a mirror image of the nominal robot's points (by `registration`, or
 /// the registration of `data` when `None`), or a fitted residual (`residuals`, m, one per unloaded
 /// reading of `data` in file order, or per unloaded reading of the arm's points: the table's

@@ -20,7 +20,7 @@ pub struct Request<'a> {
     /// ([`stiffid_core::io::readings`]; with load steps, only the unloaded readings are used), at
     /// most [`readings::MAX_READINGS`] rows.
     pub text: &'a str,
-    /// Fit readings that no rigid transform explains ([`stiffid_metrology::register::suspect`]: a
+    /// Fit readings that no rigid transform explains (`stiffid_metrology::register`'s check: a
     /// mirror image, a residual beyond [`stiffid_metrology::register::residual_limit`]) instead of
     /// refusing them.
     pub force: bool,
@@ -49,7 +49,7 @@ pub fn read(request: &Request<'_>) -> Result<(Readings, Vec<Warning>)> {
 }
 
 /// Refuses, unless `request.force`, readings that no rigid transform explains
-/// ([`stiffid_metrology::register::suspect`] at the setup's tracker noise): tracker readings that
+/// (`stiffid_metrology::register`'s check at the setup's tracker noise): tracker readings that
 /// are a mirror image of the nominal robot's points (by `registration`, or the registration of
 /// `data` when `None`), or a fitted residual (`residuals`, m, one per unloaded reading of `data`
 /// in file order, or per unloaded reading of the arm's points: the table's reflectors left out) beyond [`stiffid_metrology::register::residual_limit`].

@@ -13,9 +13,9 @@
 use super::{Warning, WarningKind};
 use nalgebra::{Isometry3, Point3};
 use stiffid_core::common::words::number;
-use stiffid_core::{Error, Result, Setup};
+use stiffid_core::{Result, Setup};
 use stiffid_metrology::calibration::error_model::{ErrorModel, Estimate, MeasuredIn};
-use stiffid_metrology::register::{fit, suspect, Correspondence, Registration, Suspect};
+use stiffid_metrology::register::{fit, Correspondence, Registration};
 
 /// The part's frame in the calibrated cell (m), located from the setup's reflectors and
 /// the model's fitted ones (paired by number, `T1` with the first): `None` without reflectors in
@@ -29,7 +29,7 @@ use stiffid_metrology::register::{fit, suspect, Correspondence, Registration, Su
 /// [`stiffid_core::Error::InvalidField`] (`workpiece.reflectors_mm`) when no rigid transform
 /// explains the reflectors as the setup places them and as the calibration fitted them: a mirror
 /// image, or a reflector farther from its place than the registration's residual limit
-/// ([`stiffid_metrology::register::suspect`]), naming it and how far.
+/// (`stiffid_metrology::register`'s check), naming it and how far.
 pub(super) fn located(
     setup: &Setup,
     (model, estimate): (&ErrorModel, &Estimate),
@@ -77,7 +77,7 @@ fn locate(
         .collect();
     match fit(&pairs) {
         Ok(r) => {
-            explained(&r, setup.noise().reading_sd())?;
+            stiffid_metrology::register::refuse_unlocated(&r, setup.noise().reading_sd())?;
             warnings.extend(moved(part, &r.base_from_tracker, n).map(|mut w| {
                 w.message += &format!(" (the fit's {})", residuals(&r));
                 w
@@ -93,30 +93,6 @@ fn locate(
             Ok(None)
         }
     }
-}
-
-/// Refuses a location `r` that no rigid transform explains at the tracker noise `sigma` (m):
-/// the registration's check ([`suspect`]).
-fn explained(r: &Registration, sigma: f64) -> Result<()> {
-    let why = match suspect(&r.residuals, r.rms, r.mirror_rms, sigma) {
-        None => return Ok(()),
-        Some(Suspect::Mirrored { rms, mirror_rms }) => format!(
-            "the fitted reflectors are a mirror image of the ones placed (a rotation leaves {} mm RMS, a reflection {} mm): check the signs of the coordinates",
-            number(rms * 1e3),
-            number(mirror_rms * 1e3)
-        ),
-        Some(Suspect::Residual { index, length, limit }) => format!(
-            "no rigid transform puts the reflectors where the calibration fitted them: T{} lies {} mm from its place (at most {} mm; RMS of all {} mm): check its coordinates and that each T row reads the reflector of the same number",
-            index + 1,
-            number(length * 1e3),
-            number(limit * 1e3),
-            number(r.rms * 1e3)
-        ),
-    };
-    Err(Error::InvalidField {
-        field: "workpiece.reflectors_mm".into(),
-        message: format!("{why}; the part is not located from them"),
-    })
 }
 
 /// The noise ratio above which the reflectors' fit is warned of, as the calibration's is

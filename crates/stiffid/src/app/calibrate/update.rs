@@ -493,33 +493,21 @@ pub(super) fn tool_load(
     })
 }
 
-/// The calibrated robot file's text ([`robot_file::robot_toml`]): the robot, its `[held_out]`
-/// ([`held_out`]), the mount it was calibrated on ([`robot_file::mount_table`]), the part's
-/// frame it located (`part`, [`robot_file::part_table`]) and its sag `own` in the file's link
-/// frames ([`robot_file::own_weight_in_table`]); or why there is none.
+/// The calibrated robot file's text ([`robot_file::calibrated_file`]): the robot, its
+/// `[held_out]` ([`held_out`]), the mount it was calibrated on, the part's frame it located
+/// (`part`) and its sag `own` in the file's link frames; or why there is none.
 pub(super) fn robot_file(
     request: &Request<'_>,
-    (model, estimate): (&ErrorModel, &stiffid_metrology::calibration::Estimate),
+    at: (&ErrorModel, &stiffid_metrology::calibration::Estimate),
     (validation, cross_validation): (Option<&super::Held>, Option<&super::Held>),
-    (own, part): (Option<&OwnWeight>, Option<&nalgebra::Isometry3<f64>>),
+    own_part: (Option<&OwnWeight>, Option<&nalgebra::Isometry3<f64>>),
 ) -> std::result::Result<String, String> {
     let setup = request.readings.setup;
-    robot_file::robot_toml(model, estimate)
-        .and_then(|t| {
-            let sag = own
-                .map(|w| robot_file::own_weight_in_table(model, estimate, w))
-                .transpose()?;
-            let sag = sag.map_or(String::new(), |w| {
-                stiffid_core::robot::weight_file::toml(&w)
-            });
-            // The mount it was calibrated on: the setup's, or the one its calibrated robot
-            // records (an update).
-            let mount = robot_file::mount_table(&setup.workcell().controller().mount);
-            let part = part.map_or(String::new(), robot_file::part_table);
-            let held = held_out(request, setup, validation, cross_validation);
-            Ok(t + &held + &mount + &part + &sag)
-        })
-        .map_err(|e| e.to_string())
+    let held = held_out(request, setup, validation, cross_validation);
+    // The mount it was calibrated on: the setup's, or the one its calibrated robot records (an
+    // update).
+    let mount = &setup.workcell().controller().mount;
+    robot_file::calibrated_file(at, &held, mount, own_part).map_err(|e| e.to_string())
 }
 
 /// The warning that a URDF written (`written`) of a robot with the gravity terms `own` leaves

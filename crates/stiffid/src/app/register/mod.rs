@@ -103,7 +103,7 @@ pub(crate) type Outcome = crate::app::Outcome<Report>;
 /// Those of [`read`]; of [`register::register`] (readings in the
 /// base frame, fewer than [`register::MIN_POINTS`] unloaded readings, collinear points), as
 /// [`stiffid_core::Error::Input`] naming the file; unless [`Request::force`], readings that are a
-/// mirror image or leave a residual beyond [`register::residual_limit`] ([`register::suspect`]),
+/// mirror image or leave a residual beyond [`register::residual_limit`] (the registration's check),
 /// naming the reading.
 pub fn run(request: &Request<'_>) -> Result<Outcome> {
     Ok(Outcome {
