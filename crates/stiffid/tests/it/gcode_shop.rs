@@ -255,3 +255,51 @@ fn linuxcncs_polar_coordinates_give_x_and_y() {
         "a canned cycle under G91",
     );
 }
+
+fn corpus(name: &str) -> String {
+    let path = format!(
+        "{}/tests/data/programs/gcode/{name}",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    std::fs::read_to_string(path).unwrap()
+}
+
+#[test]
+fn linuxcncs_spiral_and_camotics_cutout_read_as_found() {
+    let mut m = Machine {
+        dialect: Some(GcodeDialect::LinuxCnc),
+        ..Default::default()
+    };
+    // spiral.ngc: from X2 Y0 (inch), 800 repeats of "g91 g1 @-.0025 ^4.5": step k at radius
+    // 2 - 0.0025 k and angle 4.5 k deg (the header line before it shifts the lines by one).
+    let g = parse(&corpus("linuxcnc-spiral.ngc"), &m).unwrap();
+    let steps: Vec<Vector3<f64>> = (g.points.iter())
+        .filter(|p| p.line == 10)
+        .map(|p| p.position)
+        .collect();
+    assert_eq!(steps.len(), 800);
+    for (k, p) in (1..=800).zip(&steps) {
+        let (r, t) = (
+            2.0 - 0.0025 * f64::from(k),
+            (4.5 * f64::from(k)).to_radians(),
+        );
+        let want = Vector3::new(r * t.cos(), r * t.sin(), -0.1) * 0.0254;
+        assert_relative_eq!(*p, want, epsilon = 1e-12);
+    }
+    // cutout.ngc: "T2" without M6, then X Y and a feed down; the spindle held T2 (50 mm)
+    // from the start the setup states (the tip 100 mm up).
+    m.tool_lengths = vec![(Some(2), 0.05)];
+    m.frames.start = Some(mm(0.0, 0.0, 100.0));
+    let g = parse(&corpus("camotics-cutout.ngc"), &m).unwrap();
+    assert_eq!((g.points[0].line, g.points[1].line), (11, 12));
+    assert_relative_eq!(
+        g.points[0].position,
+        mm(0.0, 16.082887, 100.0),
+        epsilon = 1e-12
+    );
+    assert_relative_eq!(
+        g.points[1].position,
+        mm(0.0, 16.082887, -63.0),
+        epsilon = 1e-12
+    );
+}
