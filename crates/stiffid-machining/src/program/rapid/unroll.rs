@@ -14,6 +14,9 @@ use stiffid_core::Result;
 /// The most motions an unrolled loop gives (over every loop of the module).
 pub(super) const MOST: usize = 10_000;
 
+/// The most statements the unrolled loops give (motions or not).
+pub(super) const MOST_STEPS: usize = 200_000;
+
 /// A statement to read: its index, and the loop variables' values in force (name lower case).
 pub(super) type Step = (usize, Vec<(String, f64)>);
 
@@ -60,6 +63,10 @@ fn steps(
             return Err(at(line, format!("{}: unrolled, the loops give more than {MOST} motions; stiffid reads a loop's motions once per value of its variable up to that: split the path", body.trim())));
         }
         for v in values {
+            if out.len() > MOST_STEPS {
+                let line = statements[k].line;
+                return Err(at(line, format!("{}: unrolled, the loops give more than {MOST_STEPS} statements to read; split the path", body.trim())));
+            }
             let mut inner = outer.to_vec();
             inner.retain(|(n, _)| *n != var);
             inner.push((var.clone(), v));

@@ -149,6 +149,19 @@ fn a_for_loop_over_an_array_is_read_once_per_value_of_its_variable() {
     .unwrap();
     assert_eq!(p.targets.len(), 4);
     assert!((at_mm(&p, 2) - nalgebra::Vector3::new(600.0, 0.0, 400.0)).norm() < 1e-9);
+    // A loop of many statements around one motion: refused before it holds them all.
+    let many = "      WaitTime 0;\n".repeat(50);
+    let text = module(
+        &decl,
+        &body("FOR i FROM 1 TO 4900 DO")
+            .replace("      MoveL pts{i}", &(many + "      MoveL pts{1}")),
+    );
+    let (l, message) =
+        refused(&text.replace("Offs(pts{i}, 0, 0, i * 10)", "Offs(pts{1}, 0, 0, i)"));
+    assert!(
+        l == 7 && message.contains("more than 200000 statements"),
+        "{message}"
+    );
     // STEP 0, a loop beyond the limit, bounds the run gives: refused naming the line.
     for (head, line, said) in [
         ("FOR i FROM 1 TO 3 STEP 0 DO", 7, "STEP 0"),
