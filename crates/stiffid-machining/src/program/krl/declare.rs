@@ -23,6 +23,9 @@ pub(super) struct Declarations {
     pub assigned: HashMap<String, u64>,
     /// The points each routine after the first sees: its own declarations, then the `.dat`'s.
     pub subs: Vec<Declared>,
+    /// The arrays of points declared (`DECL E6POS XP[5]`), by upper-case name, with their size
+    /// where it is a literal.
+    pub arrays: HashMap<String, Option<usize>>,
 }
 
 impl Declarations {
@@ -80,6 +83,9 @@ pub(super) fn declarations(
         }
         for (k, v) in own.fdats {
             out.fdats.entry(k).or_insert(v);
+        }
+        for (k, v) in own.arrays {
+            out.arrays.entry(k).or_insert(v);
         }
     }
     let mut seen = HashMap::new();
@@ -141,6 +147,7 @@ fn read(
                 let name = name.split(['[', ',']).next().unwrap_or(name).to_string();
                 // `DECL POS a, b, c`: every name of a list declared without a value.
                 if !code.contains('{') {
+                    out.arrays.extend(arrays(code, kind));
                     for name in listed(code, kind) {
                         let why =
                             format!("{name} is declared {on} without a value (set at run time)");
@@ -170,6 +177,22 @@ fn read(
                 out.fdats.insert(name.to_string(), (on, value));
             }
             [name, ..] if !declares && code.contains('=') => {
+                // An element of an array of points given its value in the `.dat`:
+                // `XP[1]={X ..}` (a literal index), a point of its own.
+                if let (Place::Dat(_), Some(open)) = (place, code.find('{'))
+                    && let Some(element) = element(name, &out.arrays)
+                {
+                    let key = element.clone().unwrap_or_else(|_| name.to_string());
+                    let value = match element {
+                        Ok(key) => match aggregate_at(line, start + offset, code, open) {
+                            Ok(t) => Ok(declared_at(t, text, (start, offset), code, &key)),
+                            Err(e) => Err(format!("{key}, given {on}: {}", message(e))),
+                        },
+                        Err(why) => Err(format!("{name}, given {on}: {why}")),
+                    };
+                    out.points.insert(key, (on, value));
+                    continue;
+                }
                 let name = name.split(['.', '[']).next().unwrap_or(name).to_string();
                 assignments.push((name, line));
             }
@@ -224,6 +247,47 @@ fn listed(code: &str, kind: &str) -> Vec<String> {
         .map(|n| n.trim().to_string())
         .filter(|n| n.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_' || c == '$'))
         .collect()
+}
+
+/// The arrays a declaration without a value declares after its type word `kind` (`DECL E6POS
+/// XP[5], XQ`: `XP` of 5), upper case, each with its size where it is a literal.
+fn arrays(code: &str, kind: &str) -> Vec<(String, Option<usize>)> {
+    let upper = code.to_ascii_uppercase();
+    let Some(at) = find_word(&upper, kind) else {
+        return Vec::new();
+    };
+    let rest = &upper[at + kind.len()..];
+    let mut out = Vec::new();
+    for (open, _) in rest.match_indices('[') {
+        let name = rest[..open].trim_end();
+        let name = name.rsplit([',', ' ', '\t']).next().unwrap_or("").trim();
+        let size = rest[open + 1..].split(']').next().unwrap_or("").trim();
+        if !name.is_empty() && !name.contains(['[', ']']) {
+            out.push((name.to_string(), size.parse().ok()));
+        }
+    }
+    out
+}
+
+/// The point an element of a declared array names (`XP[1]`, as found in the upper-case word
+/// `word`): its key (`XP[1]`), or why it names none (an index that is no literal number or
+/// outside the array); `None` when `word` is no element of an array of `arrays`.
+pub(super) fn element(
+    word: &str,
+    arrays: &HashMap<String, Option<usize>>,
+) -> Option<std::result::Result<String, String>> {
+    let (base, rest) = word.split_once('[')?;
+    let size = arrays.get(base.trim())?;
+    let index = rest.split(']').next().unwrap_or("").trim();
+    Some(match (index.parse::<usize>(), size) {
+        (Ok(k), Some(n)) if k == 0 || k > *n => Err(format!(
+            "index {k} outside the array {base}[{n}] (KRL counts from 1)"
+        )),
+        (Ok(k), _) => Ok(format!("{}[{k}]", base.trim())),
+        (Err(_), _) => Err(format!(
+            "an element of the array {base} chosen by an index the run gives ({index}); its value is the controller's: move to an element by its number, or to a point of its own"
+        )),
+    })
 }
 
 /// The byte of the first whole word `word` in `text`.

@@ -137,13 +137,28 @@ fn one(
     let upper = name.to_ascii_uppercase();
     let declared = context.declared;
     let points = declared.of(context.routine);
-    if let Some(assigned_on) = declared.assigned.get(&upper) {
+    let element = super::declare::element(&upper, &declared.arrays);
+    let base = upper.split('[').next().unwrap_or(&upper);
+    let assigned = declared.assigned.get(&upper);
+    if let Some(assigned_on) =
+        assigned.or_else(|| element.as_ref().and(declared.assigned.get(base)))
+    {
         let point = match points.get(&upper) {
             Some((_, Ok(t))) => t.point.as_deref().cloned(),
             _ => None,
         };
         return Ok(Err((format!("{name}: {name} is assigned on line {assigned_on}, so its value at the motion is the controller's, not the file's: give the motion its own declared point"), point)));
     }
+    let upper = match element {
+        Some(Ok(key)) if !points.contains_key(&key) => {
+            return Err(at(line, format!("{first} {name}: the array {base} is declared, but no value of this element is given in the .dat (it is set at run time): give the element its value in the .dat")))
+        }
+        Some(Ok(key)) => key,
+        Some(Err(why)) if !points.contains_key(&upper) => {
+            return Ok(Err((format!("{name}: {why}"), None)))
+        }
+        _ => upper,
+    };
     let target = match points.get(&upper) {
         Some((_, Ok(t))) => t.moved_to(line, false).named_at(start + open..start + open + name.len()),
         Some((_, Err(why))) => return Err(at(line, format!("{first} {name}: {why}"))),

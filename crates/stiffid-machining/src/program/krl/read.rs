@@ -88,6 +88,7 @@ pub(super) fn module(
         jump: None,
         exit: None,
         loops: Vec::new(),
+        labels: HashMap::new(),
     };
     r.local_lines = (r.local.iter())
         .map(|(k, (l, _))| (k.clone(), *l))
@@ -134,6 +135,8 @@ struct Reader<'d> {
     exit: Option<State>,
     /// Per loop open, the modules of the backup its body calls.
     loops: Vec<Vec<String>>,
+    /// The labels (`NAME:`) of the routine read so far, by upper-case name, with their line.
+    labels: HashMap<String, u64>,
 }
 
 impl Reader<'_> {
@@ -150,7 +153,9 @@ impl Reader<'_> {
         let first = words.first().map(String::as_str).unwrap_or("");
         well_formed(line, first)?;
         let routine = self.at_motion.routine;
+        self.label(line, code)?;
         if let Some(name) = routine_name(&words) {
+            self.labels.clear();
             self.at_motion.routine += 1;
             self.paths.clear();
             self.events.end_routine();
@@ -243,6 +248,26 @@ impl Reader<'_> {
         };
         self.events.push(line, routine, EventKind::Motion);
         self.moved(line, code, first, targets)
+    }
+
+    /// Refuses a label (`NAME:` alone on its line, a `GOTO`'s target) its routine defines twice:
+    /// which line a `GOTO NAME` jumps to would not be sure (the controller refuses to load it).
+    fn label(&mut self, line: u64, code: &str) -> Result<()> {
+        let t = code.trim();
+        let Some(name) = t.strip_suffix(':') else {
+            return Ok(());
+        };
+        let word = |c: char| c.is_ascii_alphanumeric() || c == '_' || c == '$';
+        if name.is_empty()
+            || !name.chars().all(word)
+            || name.starts_with(|c: char| c.is_ascii_digit())
+        {
+            return Ok(());
+        }
+        match self.labels.insert(name.to_ascii_uppercase(), line) {
+            Some(first) => Err(at(line, format!("{name}: a label defined twice in one routine, on lines {first} and {line}; which one a GOTO {name} jumps to is not sure (the controller refuses the module): name each label once"))),
+            None => Ok(()),
+        }
     }
 
     /// A statement on `line` of `routine` that is no motion: a call of a module of the backup,

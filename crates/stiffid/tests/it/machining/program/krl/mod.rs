@@ -1,4 +1,5 @@
 //! KUKA's KRL (`stiffid_machining::program::krl`).
+mod arrays;
 mod backup;
 mod calls;
 mod inline;

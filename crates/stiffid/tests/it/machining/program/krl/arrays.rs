@@ -1,0 +1,76 @@
+//! Arrays of points given their values in the `.dat` (`DECL E6AXIS XJ[3]`, `XJ[1]={..}`), moved
+//! to by a literal index: each element a point, compensated in place; an index the run gives, one
+//! outside the array, or an element the program assigns refused naming the line. A label defined
+//! twice in a routine refused naming both lines.
+
+use stiffid::internal::machining::program::{self, Dialect};
+use stiffid::Error;
+
+const DAT: &str = "DEFDAT cell\nDECL E6AXIS XJ[3]\nXJ[1]={A1 1, A2 -85, A3 85, A4 0, A5 40, A6 0}\nXJ[2]={A1 2, A2 -80, A3 80, A4 0, A5 40, A6 0}\nENDDAT\n";
+
+fn parse(src: &str) -> stiffid::Result<program::JointProgram> {
+    let context = program::Context::default().with_data(Some(DAT));
+    program::parse_in(src, Dialect::Krl, &context)
+}
+
+#[test]
+fn elements_of_an_array_with_literal_indices_are_points_of_their_own() {
+    let src = "DEF cell( )\nPTP XJ[2]\nPTP XJ[1]\nPTP XJ[2]\nEND\n";
+    let p = parse(src).unwrap();
+    let a1: Vec<f64> = p.targets.iter().map(|t| t.q_deg[0]).collect();
+    assert_eq!(a1, [2.0, 1.0, 2.0]);
+    assert_eq!(p.targets[1].q_deg, [1.0, -85.0, 85.0, 0.0, 40.0, 0.0]);
+    let mut q: Vec<[f64; 6]> = p.targets.iter().map(|t| t.q_deg).collect();
+    q[1][1] = -85.5;
+    let (main, data, _) = p.write_files(&q, &vec![Vec::new(); 3]).unwrap();
+    assert_eq!(main, src);
+    assert_eq!(data.unwrap(), DAT.replace("A2 -85,", "A2 -85.500000000,"));
+}
+
+#[test]
+fn an_element_the_file_does_not_state_is_refused_naming_the_line() {
+    for (src, line, what) in [
+        (
+            "DEF cell( )\nPTP XJ[1]\nPTP XJ[4]\nEND\n",
+            3,
+            "outside the array XJ[3]",
+        ),
+        (
+            "DEF cell( )\nPTP XJ[1]\nPTP XJ[3]\nEND\n",
+            3,
+            "no value of this element",
+        ),
+        (
+            "DEF cell( )\nINT I\nI = 2\nPTP XJ[I]\nEND\n",
+            4,
+            "index the run gives",
+        ),
+        (
+            "DEF cell( )\nXJ[1] = XJ[2]\nPTP XJ[1]\nEND\n",
+            3,
+            "assigned on line 2",
+        ),
+    ] {
+        match parse(src) {
+            Err(Error::Program { line: l, message }) => {
+                assert_eq!(l, line, "{message}");
+                assert!(message.contains(what), "{src}: {message}");
+            }
+            other => panic!("{src}: {other:?}"),
+        }
+    }
+}
+
+#[test]
+fn a_label_defined_twice_in_a_routine_is_refused_naming_both_lines() {
+    let src = "DEF cell( )\nPTP XJ[1]\nTOP:\nPTP XJ[2]\ntop:\nEND\n";
+    match parse(src) {
+        Err(Error::Program { line: 5, message }) => {
+            assert!(message.contains("lines 3 and 5"), "{message}")
+        }
+        other => panic!("{other:?}"),
+    }
+    // One label per routine: two routines may each have theirs.
+    let two = "DEF cell( )\nTOP:\nPTP XJ[1]\nEND\nDEF other( )\nTOP:\nEND\n";
+    assert!(parse(two).is_ok());
+}
