@@ -129,6 +129,13 @@ pub trait Controller: Sync + 'static {
     fn backup_extensions(&self) -> &'static [&'static str] {
         Self::LANGUAGE.extensions
     }
+    /// Whether the controller holds one file of the backup's file name `name` (its last path
+    /// component): two different files of the name in one backup are then refused, as no one
+    /// controller holds both; by default every name.
+    fn held_once(&self, name: &str) -> bool {
+        let _ = name;
+        true
+    }
     /// The program `text`'s data file among the backup's files of `context` (KRL's `.dat` of
     /// the module), read and written as one beside it ([`super::Context::data`]); by default
     /// none.
@@ -179,6 +186,8 @@ pub trait DynController: Sync {
     fn generator(&self) -> Option<&'static dyn Generator>;
     /// [`Controller::backup_extensions`].
     fn backup_extensions(&self) -> &'static [&'static str];
+    /// [`Controller::held_once`].
+    fn held_once(&self, name: &str) -> bool;
     /// [`Controller::data_file`].
     fn data_file<'a>(&self, text: &str, context: &super::Context<'a>) -> Option<&'a str>;
     /// [`Controller::written`].
@@ -290,6 +299,9 @@ impl<C: Controller> DynController for C {
     }
     fn backup_extensions(&self) -> &'static [&'static str] {
         Controller::backup_extensions(self)
+    }
+    fn held_once(&self, name: &str) -> bool {
+        Controller::held_once(self, name)
     }
     fn data_file<'a>(&self, text: &str, context: &super::Context<'a>) -> Option<&'a str> {
         Controller::data_file(self, text, context)

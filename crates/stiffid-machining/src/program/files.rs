@@ -118,7 +118,27 @@ pub fn read_backup<E>(
             }
         }
     }
-    Ok(out)
+    twice(&out, dialect).map_or(Ok(out), |e| Err(wrap(e)))
+}
+
+/// The refusal of two different files of one name (case aside) in a backup where the
+/// controller holds one ([`Controller::held_once`](super::Controller::held_once)): which one
+/// it holds is not the files' to say (two controllers' backups given together, say).
+fn twice(files: &[(String, String)], dialect: Dialect) -> Option<Error> {
+    let controller = dialect.controller();
+    files.iter().enumerate().find_map(|(i, (name, text))| {
+        let short = super::file_name(name);
+        let other = files[..i].iter().find(|(n, t)| {
+            super::file_name(n).eq_ignore_ascii_case(short) && t != text
+        })?;
+        controller.held_once(short).then(|| Error::Parse {
+            source_name: name.clone(),
+            message: format!(
+                "the controller's backup holds two different files named {short}: {} and this one; a controller holds one: give one controller's backup",
+                other.0
+            ),
+        })
+    })
 }
 
 impl JointProgram {
@@ -172,5 +192,40 @@ impl super::points::Point {
             None => shift(&mut self.name),
         }
         self
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{twice, Dialect};
+
+    fn files(list: &[(&str, &str)]) -> Vec<(String, String)> {
+        (list.iter())
+            .map(|(n, t)| (n.to_string(), t.to_string()))
+            .collect()
+    }
+
+    #[test]
+    fn two_different_files_of_one_name_are_refused_naming_both() {
+        let two = files(&[("a/POSREG.VA", "x"), ("b/posreg.va", "y")]);
+        let message = twice(&two, Dialect::FanucLs).expect("refused").to_string();
+        assert!(
+            message.contains("b/posreg.va") && message.contains("a/POSREG.VA"),
+            "{message}"
+        );
+        // The same file given twice (a folder and a file of it) is one file.
+        assert!(twice(
+            &files(&[("a/P.LS", "x"), ("a/P.LS", "x")]),
+            Dialect::FanucLs
+        )
+        .is_none());
+        // A KSS backup's two `$machine.dat` (the controller's and the robot's) are the system's.
+        let kss = files(&[
+            ("STEU/Mada/$machine.dat", "x"),
+            ("R1/Mada/$machine.dat", "y"),
+        ]);
+        assert!(twice(&kss, Dialect::Krl).is_none());
+        let config = files(&[("R1/System/$config.dat", "x"), ("old/$CONFIG.DAT", "y")]);
+        assert!(twice(&config, Dialect::Krl).is_some());
     }
 }

@@ -109,6 +109,11 @@ impl Controller for Krl {
     fn backup_extensions(&self) -> &'static [&'static str] {
         &["src", "dat"]
     }
+    /// Every module and data list but the system's own `$` files other than `$config.dat` (a
+    /// KSS backup holds `$machine.dat` of the controller and of the robot, say).
+    fn held_once(&self, name: &str) -> bool {
+        !name.starts_with('$') || name.eq_ignore_ascii_case("$config.dat")
+    }
     /// The module's `.dat` in the backup: the file named after the `.src`'s first `DEF` (KSS
     /// names a module's two files and its routine alike), `.dat` in any case.
     fn data_file<'a>(&self, text: &str, context: &super::Context<'a>) -> Option<&'a str> {
