@@ -260,6 +260,14 @@ fn a_hostile_backup_or_header_is_refused_naming_its_file_or_line() {
         why.contains("$POSREG[1,7]: given on line 7 and again on line 11"),
         "{why}"
     );
+    // PR[7] beyond the array the file declares (a file edited, or cut and joined).
+    let small = POSREG.replacen("ARRAY[1,200]", "ARRAY[1,6]", 1);
+    let (line, why) = refusal(&read(&text, &one(small)).unwrap_err());
+    assert_eq!(line, 7, "{why}");
+    assert!(
+        why.contains("$POSREG[1,7]: beyond the ARRAY[1,6] line 1 declares"),
+        "{why}"
+    );
     // Two backups' POSREG.VA that differ.
     let mut two = one(POSREG.into());
     two.push((

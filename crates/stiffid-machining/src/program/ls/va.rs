@@ -108,12 +108,15 @@ pub(crate) fn entries(text: &str, variable: &str) -> Vec<Entry> {
     let mut out: Vec<Entry> = Vec::new();
     let mut inside = false;
     let mut open: Option<Open> = None;
+    // The array's size as its opening line declares it (`ARRAY[1,200]`: groups, numbers).
+    let mut size: Option<(u64, (u32, u32))> = None;
     for (line, _, l) in crate::program::lines(text) {
         let t = l.trim();
         if t.starts_with("[*") || (t.starts_with('[') && t.contains("]$")) {
             out.extend(open.take().map(|o| o.close(variable)));
             let declared = t.split_once(']').map(|(_, r)| r).unwrap_or("");
             inside = declared.split_whitespace().next() == Some(variable);
+            size = array_size(declared).map(|s| (line, s));
             continue;
         }
         if !inside {
@@ -121,11 +124,14 @@ pub(crate) fn entries(text: &str, variable: &str) -> Vec<Entry> {
         }
         if let Some((group, number, rest)) = index(t) {
             out.extend(open.take().map(|o| o.close(variable)));
+            let beyond =
+                size.filter(|(_, (g, n))| group == 0 || number == 0 || group > *g || number > *n);
             open = Some(Open {
                 group,
                 number,
                 line,
                 uninitialized: rest.contains("Uninitialized"),
+                bad: beyond.map(|(at, (g, n))| (line, format!("beyond the ARRAY[{g},{n}] line {at} declares (a file edited or cut and joined)"))),
                 ..Open::default()
             });
             continue;
@@ -162,6 +168,14 @@ fn twice(entries: &mut [Entry], variable: &str) {
             e.value = Err((b, format!("{variable}[{g},{n}]: given on line {a} and again on line {b}; which one the controller holds is not the file's to say (a file edited or two files joined): keep one")));
         }
     }
+}
+
+/// The groups and numbers of the array a variable's opening line declares (`: ARRAY[1,200] OF
+/// Position Reg`), if it says.
+fn array_size(declared: &str) -> Option<(u32, u32)> {
+    let (_, after) = declared.split_once("ARRAY[")?;
+    let (g, n) = after.split_once(']')?.0.split_once(',')?;
+    Some((g.trim().parse().ok()?, n.trim().parse().ok()?))
 }
 
 /// The group, number and the rest of an entry's opening line `[g,n] = ..`, if `t` is one.
