@@ -342,35 +342,13 @@ pub(super) fn header(text: &str, name: &str) -> String {
         .unwrap_or_default()
 }
 
-/// The first word at the top level of a compact `IF cond instruction;` (`statement`) that
-/// `names` takes (a procedure of the module or the task) and is no operand (not followed by an
-/// operator): its text and byte.
-pub(super) fn in_compact_if(
-    statement: &str,
-    names: impl Fn(&str) -> bool,
-) -> Option<(&str, usize)> {
-    let (mut depth, mut in_string, mut start) = (0i32, false, None::<usize>);
-    let end = std::iter::once((statement.len(), ' '));
-    for (i, c) in statement.char_indices().chain(end) {
-        let word_char = c.is_ascii_alphanumeric() || c == '_';
-        if let (Some(s), false) = (start, word_char) {
-            start = None;
-            let word = &statement[s..i];
-            let operand = (statement[i..].trim_start())
-                .starts_with(['=', '<', '>', '+', '-', '*', '/', ')', ':', '{', '.']);
-            if depth == 0 && !operand && names(&word.to_ascii_lowercase()) {
-                return Some((word, s));
-            }
-        }
-        match c {
-            '"' => in_string = !in_string,
-            '(' | '[' if !in_string => depth += 1,
-            ')' | ']' if !in_string => depth -= 1,
-            _ if word_char && start.is_none() && !in_string => start = Some(i),
-            _ => {}
-        }
-    }
-    None
+/// The procedure a compact `IF cond instruction;` (`statement`, from its `IF`) calls as its
+/// instruction (`IF ok Pick;`, `IF a > 1 AND ok Grip 2;`; [`called`]'s rules), whether or not
+/// the module or the task holds it: its name as written and its byte in `statement`.
+pub(super) fn in_compact_if(statement: &str) -> Option<(&str, usize)> {
+    let at = super::flow::compact_instruction(statement)?;
+    let inner = &statement[at..];
+    called(inner, &super::first_word(inner)).map(|name| (name, at))
 }
 
 /// The name of the routine a statement opens (`PROC name()`, `FUNC type name()`, `TRAP name`).

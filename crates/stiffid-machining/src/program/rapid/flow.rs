@@ -165,3 +165,109 @@ pub(super) fn in_compact_if(
     }
     None
 }
+
+/// The byte in a compact `IF cond instruction;` (`statement`, from its `IF`) where its
+/// instruction starts: the first word after a whole operand of the condition where an operator
+/// would continue it (*RAPID kernel*: the compact IF, expressions). `IF ok Pick;` gives
+/// `Pick`'s byte, `IF a > 1 AND NOT done Grip 2;` `Grip`'s; `None` where no instruction follows.
+pub(super) fn compact_instruction(statement: &str) -> Option<usize> {
+    let b = statement.as_bytes();
+    let mut i = statement.len() - statement.trim_start().len();
+    // Past the `IF`.
+    i += b[i..]
+        .iter()
+        .take_while(|c| c.is_ascii_alphanumeric())
+        .count();
+    let mut operand = true;
+    while i < b.len() {
+        let c = b[i];
+        let word = |k: usize| {
+            b[k..]
+                .iter()
+                .take_while(|c| c.is_ascii_alphanumeric() || **c == b'_')
+                .count()
+        };
+        match c {
+            c if c.is_ascii_whitespace() => i += 1,
+            b'+' | b'-' | b'*' | b'/' | b'=' | b'<' | b'>' => (operand, i) = (true, i + 1),
+            b'(' | b'[' | b'"' if operand => (operand, i) = (false, group(b, i)?),
+            // A string's doubled quote (`"say ""hi"""`) goes on with the string.
+            b'"' if b[i - 1] == b'"' => i = group(b, i)?,
+            b'0'..=b'9' | b'.' if operand => {
+                i += word(i);
+                // An exponent's sign and digits, a fraction's digits (`1.5E-3`).
+                while i < b.len()
+                    && matches!(b[i], b'.' | b'+' | b'-')
+                    && matches!(b[i - 1], b'.' | b'e' | b'E')
+                {
+                    i += 1 + word(i + 1);
+                }
+                operand = false;
+            }
+            c if c.is_ascii_alphabetic() || c == b'_' || c == b'%' => {
+                let n = word(i).max(1);
+                let w = statement[i..i + n].to_ascii_lowercase();
+                match (operand, w.as_str()) {
+                    (_, "and" | "or" | "xor" | "div" | "mod") | (true, "not") => operand = true,
+                    (false, _) => return Some(i),
+                    (true, _) => {
+                        operand = false;
+                        i = selectors(b, i + n)?;
+                        continue;
+                    }
+                }
+                i += n;
+            }
+            _ => return None,
+        }
+    }
+    None
+}
+
+/// The byte after the bracket, parenthesis or string opening at `b[i]` (`None`: it never
+/// closes).
+fn group(b: &[u8], i: usize) -> Option<usize> {
+    if b[i] == b'"' {
+        return b[i + 1..]
+            .iter()
+            .position(|c| *c == b'"')
+            .map(|k| i + k + 2);
+    }
+    let mut depth = 0i64;
+    let mut in_string = false;
+    for (k, c) in b.iter().enumerate().skip(i) {
+        match c {
+            b'"' => in_string = !in_string,
+            b'(' | b'[' | b'{' if !in_string => depth += 1,
+            b')' | b']' | b'}' if !in_string => depth -= 1,
+            _ => {}
+        }
+        if depth == 0 {
+            return Some(k + 1);
+        }
+    }
+    None
+}
+
+/// The byte after an operand's selectors from `i` (a call's `(..)`, an element's `{..}`, a
+/// component's `.name`).
+fn selectors(b: &[u8], mut i: usize) -> Option<usize> {
+    loop {
+        let k = i + b[i..]
+            .iter()
+            .take_while(|c| c.is_ascii_whitespace())
+            .count();
+        match b.get(k) {
+            Some(b'(' | b'{') => i = group(b, k)?,
+            Some(b'.') => {
+                i = k
+                    + 1
+                    + b[k + 1..]
+                        .iter()
+                        .take_while(|c| c.is_ascii_alphanumeric() || **c == b'_')
+                        .count();
+            }
+            _ => return Some(i),
+        }
+    }
+}

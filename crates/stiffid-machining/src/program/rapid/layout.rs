@@ -62,9 +62,8 @@ impl Layout {
             let first = first_word(body);
             let name = calls::called(body, &first).map(str::to_ascii_lowercase);
             let name = name.or_else(|| {
-                let named = |w: &str| index.contains_key(w) || task.procs.contains_key(w);
                 (first == "if")
-                    .then(|| calls::in_compact_if(body, named))
+                    .then(|| calls::in_compact_if(body))
                     .flatten()
                     .map(|(w, _)| w.to_ascii_lowercase())
             });
@@ -101,11 +100,6 @@ impl Layout {
             routines: names.into_iter().collect(),
             called,
         }
-    }
-
-    /// Whether `word` (lower case) names a procedure of the module or the task's `task`.
-    pub(super) fn names(&self, word: &str, task: &Task) -> bool {
-        self.routines.contains(word) || task.procs.contains_key(word)
     }
 }
 

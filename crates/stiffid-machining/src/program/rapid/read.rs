@@ -320,7 +320,7 @@ fn compact_if(
             Err(e) => context.leave(left, e),
         };
     }
-    if let Some((name, at)) = calls::in_compact_if(body, |w| layout.names(w, task)) {
+    if let Some((name, at)) = calls::in_compact_if(body) {
         let mut conf = conf.clone();
         let call = (name, &body[at + name.len()..]);
         let found = call_of(here, call, (data, &mut conf), context, task, layout);

@@ -156,6 +156,8 @@ fn calls_that_never_end_or_shift_the_path_are_refused_and_inert_ones_passed() {
         "SetDO do1, 1;",
         "TPWrite \"x\";",
         "AccSet 50, 100;",
+        "IF di1 = 1 AND NOT done SetDO do1, 1;",
+        "IF n > 1.5E-3 n := n - 1;",
     ] {
         let p = program::parse(&m(inert), Dialect::Rapid);
         assert!(p.is_ok(), "{inert}: {p:?}");
@@ -172,6 +174,11 @@ fn calls_that_never_end_or_shift_the_path_are_refused_and_inert_ones_passed() {
     for (between, said) in [
         ("PDispOn \\ExeP:=p1, p1, tool0;", "program displacement"),
         ("%\"proc\" + \"1\"%;", "late-bound"),
+        ("IF ok Unknown;", "Unknown: a call of a procedure neither"),
+        (
+            "IF a > 1 AND NOT (b = \"x\") GripperOpen 2;",
+            "GripperOpen: a call",
+        ),
     ] {
         match program::parse(&m(between), Dialect::Rapid) {
             Err(Error::Program { line, message }) => {
@@ -181,4 +188,8 @@ fn calls_that_never_end_or_shift_the_path_are_refused_and_inert_ones_passed() {
             other => panic!("{between}: {other:?}"),
         }
     }
+    // Left as found: named, the motions around it read.
+    let leave = program::Context::default().with_leave_refused(true);
+    let p = program::parse_in(&m("IF ok Unknown;"), Dialect::Rapid, &leave).unwrap();
+    assert_eq!((p.targets.len(), p.left.len(), p.left[0].line), (2, 1, 4));
 }
