@@ -98,7 +98,7 @@ pub enum Language {
 
 impl Language {
     /// The language of a file name's extension (case-insensitive).
-    pub fn from_extension(extension: &str) -> Option<Self> {
+    pub(crate) fn from_extension(extension: &str) -> Option<Self> {
         match extension.to_ascii_lowercase().as_str() {
             "nc" | "ngc" | "gcode" | "tap" | "cnc" | "g" => Some(Language::GCode),
             other => Dialect::from_extension(other).map(Language::Robot),
@@ -109,7 +109,7 @@ impl Language {
     /// the extensions known.
     ///
     /// # Errors
-    /// An extension that is none of [`Language::from_extension`]'s.
+    /// An extension that is none of `Language::from_extension`'s.
     pub fn of_file(name: &str) -> Result<Self> {
         let extension = std::path::Path::new(name)
             .extension()
@@ -133,7 +133,7 @@ impl Language {
     }
 
     /// The extension of a file written in the language where no file name says it (Python's
-    /// `output=`): `nc`, `src`, `mod`, `ls` or `jbi`; [`Language::from_extension`] of it is the
+    /// `output=`): `nc`, `src`, `mod`, `ls` or `jbi`; `Language::from_extension` of it is the
     /// language.
     pub fn extension(self) -> &'static str {
         match self {

@@ -5,7 +5,7 @@ use std::ops::Range;
 
 /// The number at the start of `text[from..]` after blanks (line ends included): its value and
 /// byte span.
-pub fn number_at(text: &str, from: usize) -> Option<(f64, Range<usize>)> {
+pub(crate) fn number_at(text: &str, from: usize) -> Option<(f64, Range<usize>)> {
     let bytes = text.as_bytes();
     let mut start = from;
     while start < bytes.len() && matches!(bytes[start], b' ' | b'\t' | b'\n' | b'\r') {

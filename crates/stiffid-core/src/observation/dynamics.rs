@@ -11,7 +11,7 @@
 //! **Surge.** When a drill breaks through, the thrust `F u` (N, base frame) that held the
 //! compliance `c = u^T C_x u` (m/N, the translational block at the tool point) vanishes; the
 //! stored energy `E = F^2 c / 2` goes into the mass the tool has along `u` while the hole holds the
-//! other five directions, `m = u^T Lambda_vv u` ([`crate::robot::dynamics::held_mass`]): the tool
+//! other five directions, `m = u^T Lambda_vv u` (`robot::dynamics::held_mass`): the tool
 //! surges at `v = sqrt(2 E / m) = F sqrt(c / m)`. `c` is linear in the parameters' compliance,
 //! `c = sum_p h_p (u^T J_p)^2`, so its variance is `g^T Cov(h) g` with `g_p = (u^T J_p)^2`; with
 //! the mass model's standard deviation `std(m)` (`MassModel::held_mass_sd`, from the setup's

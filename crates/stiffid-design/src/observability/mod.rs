@@ -55,7 +55,7 @@ mod station;
 mod table;
 
 pub use score::CalibrationCriterion;
-pub use table::{TableChoice, TableDesign};
+pub use table::TableDesign;
 
 /// A singular value below this share of the largest counts as zero: the group does not
 /// separate the kept parameters.

@@ -73,7 +73,7 @@ impl TableDesign {
 
 /// The positioner's angles chosen for a group.
 #[derive(Debug, Clone, PartialEq)]
-pub struct TableChoice {
+pub(crate) struct TableChoice {
     /// The candidates chosen (indices), one per reading of the table, in the order chosen.
     pub chosen: Vec<usize>,
     /// The loss of the group with the table read there (`CalibrationCriterion::loss`).
@@ -159,7 +159,7 @@ impl CalibrationDesign {
     /// [`Error::InvalidField`] (`table`) with no candidate or a count of 0, or `allowed` with
     /// another shape or a reading with no candidate allowed; those of
     /// `CalibrationDesign::table_rows` and `CalibrationDesign::jacobian_placed`.
-    pub fn choose_table_angles(
+    pub(crate) fn choose_table_angles(
         &self,
         criterion: CalibrationCriterion,
         postures: &[Placed],

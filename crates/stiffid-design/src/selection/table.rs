@@ -1,7 +1,7 @@
 //! The positioner's angles of a calibration group: with reflectors on the positioner's table
 //! (`[workpiece] reflectors_mm`), every posture of a calibration group also reads the table's
 //! reflectors, with the positioner at angles chosen for the group
-//! ([`CalibrationDesign::choose_table_angles`]) on the calibration design with the positioner's
+//! (`CalibrationDesign::choose_table_angles`) on the calibration design with the positioner's
 //! lines, offsets and the reflectors.
 //!
 //! The candidates are a grid of about [`CANDIDATE_ANGLES`] angles over the positioner's travel

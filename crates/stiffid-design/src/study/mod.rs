@@ -8,6 +8,8 @@
 mod findings;
 pub mod observability;
 pub mod simulate;
+#[cfg(test)]
+mod simulate_tests;
 mod table4;
 mod trials;
 

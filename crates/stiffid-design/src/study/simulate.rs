@@ -120,7 +120,7 @@ pub fn monte_carlo(
     monte_carlo_reporting(setup, groups, options, &())
 }
 
-/// [`monte_carlo`], reporting to `progress` as [`monte_carlo_with_predictions`] does.
+/// [`monte_carlo`], reporting to `progress` as `monte_carlo_with_predictions` does.
 ///
 /// # Errors
 /// As [`monte_carlo`].
@@ -146,7 +146,7 @@ pub fn monte_carlo_reporting(
 ///
 /// # Errors
 /// As [`monte_carlo`]; [`Error::InvalidField`] when `predicted` does not hold one entry per group.
-pub fn monte_carlo_with_predictions(
+pub(crate) fn monte_carlo_with_predictions(
     setup: &Setup,
     groups: &[Vec<Vector6<f64>>],
     predicted: &[Vec<[f64; 6]>],

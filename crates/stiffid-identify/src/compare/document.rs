@@ -409,7 +409,7 @@ impl Comparison {
     }
 
     /// The document of the posture bootstrap `b` of this comparison, in the parameters' units.
-    pub fn bootstrap_doc(&self, b: &Bootstrap) -> BootstrapDoc {
+    pub(crate) fn bootstrap_doc(&self, b: &Bootstrap) -> BootstrapDoc {
         let share = |n: usize| n as f64 / b.usable().max(1) as f64;
         BootstrapDoc {
             resamples: b.resampling.resamples,

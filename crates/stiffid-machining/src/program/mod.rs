@@ -87,7 +87,7 @@ pub use files::{data_out, read_backup, read_files};
 pub use write::Written;
 
 pub(crate) use super::text::lines;
-pub use super::text::number_at;
+pub(crate) use super::text::number_at;
 pub use controller::{
     Arcs, AxisNames, BoundComment, Controller, Descriptor, DynController, ExternalGroup, FileName,
     Generator, NameRules, Read, Writing,
@@ -143,7 +143,7 @@ registry! {
 
 impl Dialect {
     /// The dialect of a file name's extension (case-insensitive), if it is one of ours.
-    pub fn from_extension(extension: &str) -> Option<Self> {
+    pub(crate) fn from_extension(extension: &str) -> Option<Self> {
         let extension = extension.to_ascii_lowercase();
         (Dialect::ALL.into_iter())
             .find(|d| d.controller().extensions().contains(&extension.as_str()))

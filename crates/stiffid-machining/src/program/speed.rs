@@ -33,10 +33,10 @@ use stiffid_core::common::words::number;
 use stiffid_core::Result;
 
 /// The largest path speed read, mm/s (10 m/s: beyond every industrial arm's).
-pub const MAX_PATH_SPEED_MM_S: f64 = 10_000.0;
+pub(crate) const MAX_PATH_SPEED_MM_S: f64 = 10_000.0;
 
 /// The longest duration of one move read, s.
-pub const MAX_DURATION_S: f64 = 3_600.0;
+pub(crate) const MAX_DURATION_S: f64 = 3_600.0;
 
 /// How the program moves to a target (module docs).
 #[derive(Debug, Clone, PartialEq)]
@@ -54,7 +54,7 @@ pub enum Speed {
 impl JointProgram {
     /// Whether each target is reached by a joint motion ([`Speed::Joint`]), where the arm may
     /// change configuration; one per target.
-    pub fn joint_moves(&self) -> Vec<bool> {
+    pub(crate) fn joint_moves(&self) -> Vec<bool> {
         self.targets
             .iter()
             .map(|t| t.speed == Speed::Joint)

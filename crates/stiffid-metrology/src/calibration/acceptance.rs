@@ -10,8 +10,8 @@ pub(crate) const LEAST_GAIN: f64 = 0.02;
 /// Whether the candidate's held-out errors (per held-out posture, and their total) lower the
 /// current ones by more than `accept` standard errors of the paired per-posture differences and by
 /// 2 % of the total: the acceptance rule of every choice by cross-validation in the calibration
-/// (the maps at [`super::maps::MAP_ACCEPT`], the error motions' orders at [`super::maps::ACCEPT`]).
-pub fn lowers(current: (&[f64], f64), candidate: (&[f64], f64), accept: f64) -> bool {
+/// (the maps at `MAP_ACCEPT`, the error motions' orders at `ACCEPT`).
+pub(crate) fn lowers(current: (&[f64], f64), candidate: (&[f64], f64), accept: f64) -> bool {
     let n = current.0.len();
     if n < 2 {
         return false;

@@ -27,6 +27,8 @@
 //! Equations and sources: docs/model.md, section "Calibration".
 
 mod acceptance;
+#[cfg(test)]
+mod acceptance_tests;
 pub mod drift;
 #[cfg(test)]
 mod drift_tests;

@@ -9,13 +9,13 @@
 //! over folds of the errors of the fold's postures predicted by the fit of the others, refitted
 //! from the fit of all the readings (the same model, the same Levenberg-Marquardt). From `K = 0`
 //! for every axis, each axis in turn tries each higher order and keeps it when it lowers the
-//! held-out error by more than [`ACCEPT`] standard errors of the paired per-posture differences and
+//! held-out error by more than `ACCEPT` standard errors of the paired per-posture differences and
 //! by 2 % of it (a one-sided test at about 0.1 %): a straight, stiff rail keeps `K = 0`, its
 //! direction alone.
 //!
 //! Equations and sources: docs/model.md, section "Calibration", "External axes".
 
-pub use super::maps::ACCEPT;
+pub(crate) use super::maps::ACCEPT;
 pub(crate) use super::maps::FOLDS;
 
 use super::error_model::{ErrorModel, Observation};
@@ -98,8 +98,8 @@ impl Scored {
     }
 }
 
-/// Whether `candidate` lowers the held-out error of `current` by [`ACCEPT`] standard errors
-/// ([`super::acceptance::lowers`]).
+/// Whether `candidate` lowers the held-out error of `current` by `ACCEPT` standard errors
+/// (`acceptance::lowers`).
 fn better(current: &Scored, candidate: &Scored) -> bool {
     super::acceptance::lowers(
         (&current.errors, current.total),

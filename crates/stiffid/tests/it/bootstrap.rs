@@ -8,6 +8,7 @@ use stiffid::app::identify::{run, Options, Report, Request};
 use stiffid::app::measurements::Data;
 use stiffid::internal::design::random_group;
 use stiffid::internal::identify::compare::bootstrap::percentile;
+use stiffid::internal::identify::compare::document::BootstrapDoc;
 use stiffid::internal::identify::compare::{bootstrap, compare, Bootstrap, Comparison, Resampling};
 use stiffid::internal::observation::Measurement;
 use stiffid::internal::setup::Setup;
@@ -189,7 +190,7 @@ fn the_percentiles_and_shares_by_hand() {
     // The values are the stiffness of each resample's recommended fit, not the data's: they vary.
     assert!(x[4] > x[0]);
     // The document in Nm/rad: the same numbers, a share of the five.
-    let doc = c.bootstrap_doc(&b);
+    let doc = bootstrap_doc(&c, &b);
     let k2 = doc.parameters.iter().find(|p| p.name == "k2").unwrap();
     assert_eq!((k2.median, k2.chosen_share), (Some(x[2]), 1.0));
     assert_eq!(doc.recommended_share, same as f64 / 5.0);
@@ -213,7 +214,7 @@ fn resamples_that_cannot_identify_the_model_are_counted() {
         b.models.iter().filter(|m| m.is_none()).count(),
         b.unidentified
     );
-    let doc = c.bootstrap_doc(&b);
+    let doc = bootstrap_doc(&c, &b);
     assert_eq!(doc.unidentified, b.unidentified);
     assert_eq!(doc.parameters[0].chosen_share, 1.0);
 }
@@ -269,4 +270,9 @@ fn the_bootstrap_reports_each_resample_as_progress() {
     stiffid::app::identify::run(request).unwrap();
     let stages = heard.0.into_inner().unwrap();
     assert_eq!(stages, [("bootstrap resamples".to_string(), 12, 12)]);
+}
+
+/// The bootstrap's part of the comparison's document.
+fn bootstrap_doc(c: &Comparison, b: &Bootstrap) -> BootstrapDoc {
+    (c.document("setup", "data", 1e-10, &[], Some(b)).bootstrap).expect("the bootstrap's part")
 }

@@ -3,6 +3,7 @@
 //! natural frequency of each milling point against the tooth-passing frequency, with the
 //! chatter warning within 10%.
 
+use crate::dynamics::held_mass;
 use nalgebra::{Isometry3, UnitQuaternion, Vector3};
 use stiffid::app::compensate::{run, Input, Request};
 use stiffid::internal::common::warning::WarningKind;
@@ -14,7 +15,7 @@ use stiffid::internal::machining::process::file;
 use stiffid::internal::machining::program::generate::Settings;
 use stiffid::internal::machining::Language;
 use stiffid::internal::observation::dynamics;
-use stiffid::internal::robot::dynamics::{held_mass, operational_inertia};
+use stiffid::internal::robot::dynamics::operational_inertia;
 use stiffid::{internal::setup, Coordinates, Setup};
 
 const FANUC: &str = include_str!("../../../stiffid-core/presets/fanuc-r2000ic-165f.toml");

@@ -5,9 +5,20 @@
 use nalgebra::{Isometry3, Matrix3, Matrix3x6, Matrix6, Point3, Translation3, UnitQuaternion};
 use nalgebra::{Vector3, Vector6};
 use stiffid::internal::observation::dynamics;
-use stiffid::internal::robot::dynamics::{self as mass, body, modes, MassModel};
+use stiffid::internal::robot::dynamics::{self as mass, modes, MassModel};
 use stiffid::internal::robot::LinkMass;
 use stiffid::{Coordinates, Robot};
+
+/// The symmetric tensor of `[ixx, iyy, izz, ixy, ixz, iyz]` (kg m^2), a robot file's order.
+fn tensor([xx, yy, zz, xy, xz, yz]: [f64; 6]) -> Matrix3<f64> {
+    Matrix3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz)
+}
+
+/// The effective mass (kg) along the unit direction `u` of a point held in the other five
+/// directions: `u^T Lambda_vv u` (the reference's held mass).
+pub(crate) fn held_mass(lambda: &Matrix6<f64>, u: &Vector3<f64>) -> f64 {
+    (u.transpose() * lambda.fixed_view::<3, 3>(0, 0) * u)[0]
+}
 
 /// A URDF 6R arm (`tests/data/pinocchio/arm.urdf`) with turned joint origins, axes along x, y and -z, full inertia tensors in
 /// turned inertial frames, and a spindle link hung from the last joint by a fixed joint.
@@ -35,7 +46,7 @@ fn arm_bodies() -> Vec<Body> {
         link,
         frame: pose(xyz, rpy),
         mass,
-        inertia: body::tensor(six),
+        inertia: tensor(six),
     };
     let mount = pose([0.0, 0.0, 0.05], [0.0, 0.0, 0.3]);
     let mut spindle = b(
@@ -223,7 +234,7 @@ fn the_mass_matrix_and_lambda_of_a_urdf_arm_equal_the_body_jacobian_sums() {
         );
         // Held and free effective masses along a direction, against their definitions.
         let u = Vector3::new(0.3, -0.5, 0.8).normalize();
-        let held = mass::held_mass(&lambda, &u);
+        let held = held_mass(&lambda, &u);
         let block = lambda_ref.fixed_view::<3, 3>(0, 0);
         assert!(((u.transpose() * block * u)[0] - held).abs() < 1e-9 * held);
         let free = mass::free_mass(&lambda, &u).unwrap();
@@ -457,7 +468,7 @@ fn the_surge_gives_the_held_mass_the_stored_energy() {
     let c = (u.transpose() * cx.fixed_view::<3, 3>(0, 0) * u)[0];
     assert!((s.compliance - c).abs() < 1e-12 * c);
     assert!((s.energy - 0.5 * force.norm_squared() * c).abs() < 1e-12 * s.energy);
-    assert_eq!(s.mass, mass::held_mass(&lambda, &u));
+    assert_eq!(s.mass, held_mass(&lambda, &u));
 }
 
 /// The mass model's uncertainty: the held mass is exactly linear in the bodies (the scaled
@@ -471,7 +482,7 @@ fn the_mass_models_uncertainty_matches_draws_of_the_masses() {
     let spindle = stiffid::internal::setup::Payload {
         mass: 40.0,
         centre: Vector3::new(0.05, 0.0, 0.12),
-        inertia: body::tensor([0.4, 0.4, 0.1, 0.0, 0.0, 0.0]),
+        inertia: tensor([0.4, 0.4, 0.1, 0.0, 0.0, 0.0]),
     };
     let setup = crate::common::paper_with("").unwrap();
     let build = |robot: Robot, spindle: stiffid::internal::setup::Payload| {
@@ -640,7 +651,7 @@ fn urdf_inertials_in_turned_frames_fold_into_their_link() {
     let own = LinkMass {
         mass: 2.0,
         centre: Vector3::new(0.0, 0.0, 0.01),
-        inertia: body::tensor([0.004, 0.004, 0.006, 0.0, 0.0, 0.0]),
+        inertia: tensor([0.004, 0.004, 0.006, 0.0, 0.0, 0.0]),
     };
     let b = &arm_bodies()[6];
     let spindle = LinkMass {

@@ -3,7 +3,7 @@
 
 use nalgebra::Vector6;
 use stiffid::internal::setup::{self, Noise};
-use stiffid::internal::study::simulate::{monte_carlo, monte_carlo_with_predictions, Options};
+use stiffid::internal::study::simulate::{monte_carlo, Options};
 
 /// Six spread postures within the paper's Table 1 bounds, deg.
 fn group() -> Vec<Vector6<f64>> {
@@ -112,32 +112,6 @@ fn zero_runs_and_unidentifiable_groups_are_errors() {
         .unwrap();
     let e = monte_carlo(&setup, &[group()[..1].to_vec()], &Options::default()).unwrap_err();
     assert!(e.to_string().contains("3 observation rows"), "{e}");
-}
-
-#[test]
-fn predictions_given_are_kept_and_must_match_the_groups() {
-    let setup = setup::builtin("zhang2021-comau-nj165").unwrap();
-    let options = Options { runs: 20, seed: 4 };
-    let own = &monte_carlo(&setup, &[group()], &options).unwrap()[0];
-    let given = vec![[1.0; 6]; setup.noise().levels.len()];
-    let with = &monte_carlo_with_predictions(
-        &setup,
-        &[group()],
-        std::slice::from_ref(&given),
-        &options,
-        &(),
-    )
-    .unwrap()[0];
-    // The runs are the same; only the prediction is the one given.
-    assert_eq!(with.mean_deviation_pct, own.mean_deviation_pct);
-    assert_eq!(with.predicted_deviation_pct, given);
-    let e = monte_carlo_with_predictions(&setup, &[group(), group()], &[given], &options, &())
-        .unwrap_err();
-    assert!(
-        e.to_string()
-            .contains("one prediction per group (2), got 1"),
-        "{e}"
-    );
 }
 
 /// The paper's cell with an elbow tilt spring (about x of joint 3's frame, 5e6 Nm/rad): seven

@@ -6,11 +6,11 @@ use nalgebra::{Isometry3, Matrix3, Point3};
 
 /// The symmetric tensor of `[ixx, iyy, izz, ixy, ixz, iyz]` (kg m^2), the order of robot files
 /// and of URDF's `<inertia>`.
-pub fn tensor([xx, yy, zz, xy, xz, yz]: [f64; 6]) -> Matrix3<f64> {
+pub(crate) fn tensor([xx, yy, zz, xy, xz, yz]: [f64; 6]) -> Matrix3<f64> {
     Matrix3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz)
 }
 
-/// `[ixx, iyy, izz, ixy, ixz, iyz]` of a tensor (kg m^2), the inverse of [`tensor`].
+/// `[ixx, iyy, izz, ixy, ixz, iyz]` of a tensor (kg m^2), the inverse of `tensor`.
 pub fn components(i: &Matrix3<f64>) -> [f64; 6] {
     [
         i[(0, 0)],

@@ -106,7 +106,7 @@ impl MassModel {
         links.chain(tool).collect()
     }
 
-    /// The standard deviation (kg) of the [`held_mass`] along the unit direction `u` (base frame)
+    /// The standard deviation (kg) of the held mass (`held_mass`) along the unit direction `u` (base frame)
     /// at the point whose Jacobian is `jacobian` (6x6, base frame, axis coordinates), from the
     /// model's [`Self::relative_sd`] (module docs); `None` where the Jacobian is singular.
     pub(crate) fn held_mass_sd(
@@ -193,7 +193,7 @@ pub fn operational_inertia(m: &Matrix6<f64>, jacobian: &Matrix6<f64>) -> Option<
 /// The effective mass (kg) along the unit direction `u` (base frame) of a point held in the
 /// other five directions (a drill in its hole): `u^T Lambda_vv u`, `Lambda_vv` the translational
 /// block of the full 6x6 [`operational_inertia`].
-pub fn held_mass(lambda: &Matrix6<f64>, u: &Vector3<f64>) -> f64 {
+pub(crate) fn held_mass(lambda: &Matrix6<f64>, u: &Vector3<f64>) -> f64 {
     let block = lambda.fixed_view::<3, 3>(0, 0);
     (u.transpose() * block * u)[0]
 }

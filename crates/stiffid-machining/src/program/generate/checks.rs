@@ -100,7 +100,7 @@ pub(crate) fn missing_pulses() -> Error {
 
 /// The targets a program of `dialect` is written with when `targets` are asked: the joint
 /// targets of a language that writes no pose (INFORM's pulses), else `targets`.
-pub fn written_targets(dialect: Dialect, targets: Targets) -> Targets {
+pub(crate) fn written_targets(dialect: Dialect, targets: Targets) -> Targets {
     match (dialect.controller().generator()).is_some_and(|g| !g.writes_cartesian()) {
         true => Targets::Joint,
         false => targets,

@@ -31,7 +31,7 @@
 //!   its values in remarks.
 //! - Yaskawa INFORM (`.jbi`): joint targets only, in whole encoder pulses at the setup's
 //!   `[controller] pulses_per_deg` (stated in the job's `'stiffid:` comments; refused without
-//!   them), Cartesian targets written as their axis angles ([`written_targets`]); tool file 1
+//!   them), Cartesian targets written as their axis angles (`written_targets`); tool file 1
 //!   (`///TOOL 1`), whose values the job's comments state ([`super::inform::generate`]).
 //!
 //! A tool or part frame the controller holds by number (the setup's `[controller] tools` and
@@ -52,7 +52,7 @@
 //! Every rule comes from the controller's manual (docs/reference.md lists the sources):
 //! - the program's name is an identifier of the language, not a reserved word, within
 //!   [`Settings::name_length`] (default: KRL 24, RAPID 32, LS 8 as on R-30iA controllers; at
-//!   most [`max_name_length`]: KRL 24, RAPID 32, LS 36, INFORM 32);
+//!   most `max_name_length`: KRL 24, RAPID 32, LS 36, INFORM 32);
 //!   a generated program is called as its file is named, so the name is the file's stem;
 //! - motion is initialised before the first move: KRL `BAS(#INITMOV, 0)`, `$VEL`, `$ACC` and
 //!   `$APO`; RAPID `ConfJ \On`, `ConfL \On`; LS `UFRAME_NUM`, `UTOOL_NUM`; INFORM `NOP`;
@@ -67,7 +67,7 @@
 //!   else the nearest whole `cm/min` with a warning, INFORM `V=` in tenths of a mm/s (else the
 //!   nearest with a warning); a feed above [`Settings::max_tcp_speed`] or one an LS or INFORM
 //!   program cannot state (below 1 cm/min, 0.1 mm/s) is refused naming the G-code line;
-//! - the LS `COMMENT` is at most 16 characters, and an LS file at most [`LS_MAX_LINES`]
+//! - the LS `COMMENT` is at most 16 characters, and an LS file at most 9999
 //!   numbered lines (the pendant's four digits): its sub-programs hold fewer moves when needed;
 //!   an INFORM job at most 100 000 positions (five digits);
 //! - no move is faster than [`Settings::max_tcp_speed`], RAPID's rapids (`vrapid`) included;
@@ -99,11 +99,13 @@ pub mod numbered;
 mod process;
 mod settings;
 
-pub use checks::written_targets;
+pub(crate) use checks::written_targets;
 pub(crate) use checks::{check_cell, check_payload, check_pulses, missing_pulses};
 pub(crate) use names::check_plan;
+pub(crate) use names::max_name_length;
 use names::room_for;
-pub use names::{check_name, default_name_length, max_name_length, moves_per_file, LS_MAX_LINES};
+pub(crate) use names::LS_MAX_LINES;
+pub use names::{check_name, moves_per_file};
 pub use process::{after_points, place, place_comments, Process, ProcessForm};
 pub use settings::Settings;
 pub(crate) use settings::{MIN_FEED, MOVES_PER_FILE, RAPID_PERCENT};

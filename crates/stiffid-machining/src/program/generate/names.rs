@@ -1,7 +1,7 @@
 //! The names of generated programs: the main program's (its file's stem) and its
 //! sub-programs' (`NAME_01`, ...), each an identifier of the language, not a reserved word and
 //! within the controller's longest name; and the split into sub-programs (at most
-//! [`super::Settings::moves_per_file`] moves each, and for FANUC LS at most [`LS_MAX_LINES`]
+//! [`super::Settings::moves_per_file`] moves each, and for FANUC LS at most 9999
 //! numbered lines per file). [`check_plan`] checks them all from counts alone, before anything is
 //! computed.
 
@@ -15,23 +15,23 @@ pub(crate) const MAX_FILES: usize = 9999;
 
 /// The most numbered lines of an LS program's `/MN` section: the pendant numbers them with four
 /// digits (FANUC's line numbers run 1 to 9999).
-pub const LS_MAX_LINES: usize = 9999;
+pub(crate) const LS_MAX_LINES: usize = 9999;
 
 /// The longest program name of a dialect's controller and language: KRL 24 (KUKA System
 /// Software 8), RAPID 32 (RAPID identifiers), FANUC LS 36 (R-30iB Plus; R-30iA takes 8, the
 /// default, [`default_name_length`]). [`Settings::name_length`] may lower it, never raise it.
-pub fn max_name_length(dialect: Dialect) -> usize {
+pub(crate) fn max_name_length(dialect: Dialect) -> usize {
     dialect.controller().max_name_length()
 }
 
 /// The longest program name written by default: KRL 24, RAPID 32, LS 8 (R-30iA; later
 /// controllers take longer names: raise [`Settings::name_length`] up to [`max_name_length`]).
-pub fn default_name_length(dialect: Dialect) -> usize {
+pub(crate) fn default_name_length(dialect: Dialect) -> usize {
     dialect.controller().default_name_length()
 }
 
 /// The most moves one file of `dialect` holds with `settings`: [`Settings::moves_per_file`],
-/// and for LS what fits [`LS_MAX_LINES`] numbered lines with the main program's header.
+/// and for LS what fits its 9999 numbered lines with the main program's header.
 pub fn moves_per_file(dialect: Dialect, settings: &Settings) -> usize {
     let most = (dialect.controller().generator()).and_then(|g| g.lines_per_file());
     most.map_or(settings.moves_per_file, |n| settings.moves_per_file.min(n))
@@ -40,7 +40,7 @@ pub fn moves_per_file(dialect: Dialect, settings: &Settings) -> usize {
 /// Checks, before any computation, that a program `name` of `targets` targets can be written in
 /// `dialect` with `settings`: the settings within their limits ([`Settings::validate`], the name
 /// length within [`max_name_length`]), at most 9999 sub-programs (for LS, few enough for the main
-/// program's calls to fit [`LS_MAX_LINES`]) and every name the controller takes ([`check_name`]).
+/// program's calls to fit its 9999 lines) and every name the controller takes ([`check_name`]).
 /// Returns the names: the main program's, then its sub-programs'.
 ///
 /// # Errors

@@ -150,7 +150,7 @@ pub(crate) fn wrap(name: &str, header: &str, body: &str) -> String {
 /// The lines KSS writes before a program's `DEF` (KUKA System Software 8, "the file's
 /// attributes"): read-write access for the expert and operator (`&ACCESS RVP`), release 1, the
 /// template it was made from and the edit mask (`*`: every line editable).
-pub const KSS_HEADER: &str =
+pub(crate) const KSS_HEADER: &str =
     "&ACCESS RVP\n&REL 1\n&PARAM TEMPLATE = C:\\KRC\\Roboter\\Template\\vorgabe\n&PARAM EDITMASK = *\n";
 
 /// What a KRL program holds and how it writes it: `CIRC` with Cartesian targets, up to six

@@ -27,7 +27,6 @@ pub(crate) mod data;
 mod declare;
 mod frames;
 mod generate;
-pub use generate::KSS_HEADER;
 mod motion;
 mod names;
 mod process;

@@ -277,4 +277,4 @@ impl Generator for super::FanucLs {
 
 /// The lines an LS main program's header adds before its moves or calls (`! set UTOOL`, six
 /// remarks of the tool frame's values, `UFRAME_NUM`, `UTOOL_NUM`).
-pub const LS_HEADER_LINES: usize = 9;
+pub(crate) const LS_HEADER_LINES: usize = 9;

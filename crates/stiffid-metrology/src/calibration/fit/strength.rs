@@ -26,7 +26,7 @@ const FEWEST_POSTURES: usize = 10;
 /// each of [`STRENGTHS`] strengths, the joint errors' priors kept as they are; the strongest
 /// whose held-out squared error the best's does not lower by more than one standard error of
 /// the paired per-posture differences and 2 % (a one-standard-error rule, by the calibration's
-/// acceptance rule [`lowers`]). 1 with fewer than [`FEWEST_POSTURES`] distinct postures.
+/// acceptance rule `lowers`). 1 with fewer than [`FEWEST_POSTURES`] distinct postures.
 ///
 /// # Errors
 /// Those of [`ErrorModel::residuals`] and [`ErrorModel::jacobian_of`]; [`stiffid_core::Error::NotFinite`]

@@ -556,7 +556,7 @@ impl Terms {
     }
 
     /// Each term's largest regressor magnitude (N m, or N m per unit mass moment) over
-    /// [`SPANNING_POSTURES`] postures spread over the robot's joint limits ([`spanning`]): the
+    /// `SPANNING_POSTURES` postures spread over the robot's joint limits ([`spanning`]): the
     /// largest torque through which a term deflects its joint anywhere the robot can go.
     pub(crate) fn peaks(&self) -> &[f64] {
         &self.peaks
@@ -589,9 +589,9 @@ impl Terms {
 }
 
 /// The postures of `Terms::peaks`.
-pub const SPANNING_POSTURES: usize = 512;
+pub(crate) const SPANNING_POSTURES: usize = 512;
 
-/// [`SPANNING_POSTURES`] postures spread over `limits` (axis angles, rad): the Halton sequence
+/// `SPANNING_POSTURES` postures spread over `limits` (axis angles, rad): the Halton sequence
 /// in the first six primes (Halton 1960), its first point skipped; an axis with an infinite end
 /// spans one turn about 0 (the weight's torque repeats every turn).
 pub fn spanning(limits: &JointBox) -> Vec<Vector6<f64>> {

@@ -24,10 +24,10 @@ use stiffid_core::Error;
 /// milliradians at most under its own weight and rated payload (a 165 kg payload-class arm about
 /// 2 mrad at joint 2); a fit that puts more on a joint follows a misfit along what its postures
 /// cannot see, and its predictions away from them are no robot's.
-pub const SAG_LIMIT: f64 = 0.02;
+pub(crate) const SAG_LIMIT: f64 = 0.02;
 
 /// Why the gravity terms of `model` at `values` (SI, a fit's) are beyond the physically possible: the joint whose
-/// deflection under the weight exceeds [`SAG_LIMIT`] somewhere within the joint limits (the
+/// deflection under the weight exceeds `SAG_LIMIT` somewhere within the joint limits (the
 /// largest over the [`crate::calibration::gravity::spanning`] postures) and how far; `None`
 /// within it.
 pub fn beyond_sag(model: &ErrorModel, values: &nalgebra::DVector<f64>) -> Option<String> {

@@ -41,7 +41,7 @@ struct Trained {
     split: linear::Split,
     /// The training readings (the ridge's `n`).
     readings: usize,
-    /// Per candidate, per ridge of [`RIDGES`], per held-out posture, the sum of squared errors
+    /// Per candidate, per ridge of `RIDGES`, per held-out posture, the sum of squared errors
     /// (m^2).
     scored: Memo,
 }
@@ -55,7 +55,7 @@ impl Trained {
         })
     }
 
-    /// The held-out errors of `choice` at every ridge of [`RIDGES`], computed once (a caller
+    /// The held-out errors of `choice` at every ridge of `RIDGES`, computed once (a caller
     /// asking while another computes them waits for them).
     fn errors(&self, linear: &Linear, choice: &JointMaps) -> Result<Vec<Vec<f64>>> {
         let cell = {
@@ -131,7 +131,7 @@ impl<'a> Inner<'a> {
         })
     }
 
-    /// The held-out errors of `choice` at its best ridge of [`RIDGES`], scored once.
+    /// The held-out errors of `choice` at its best ridge of `RIDGES`, scored once.
     pub(super) fn score(&self, choice: &JointMaps) -> Result<Scored> {
         let known = |memo: &[(JointMaps, Scored)]| {
             (memo.iter().find(|(m, _)| m == choice)).map(|(_, s)| s.clone())

@@ -5,7 +5,7 @@
 //!
 //! # The candidates
 //! A joint's map ([`stiffid_core::robot::ErrorMap`]) of `H` harmonics, `H` in 4, 8, 16 or 32, with
-//! the ridge `mu` in [`RIDGES`] ([`crate::calibration::fit::Options::ridge`]: a penalty of `mu` per
+//! the ridge `mu` in `RIDGES` ([`crate::calibration::fit::Options::ridge`]: a penalty of `mu` per
 //! reading on a scaled coefficient). `--maps J1,J3:16` fixes the joints and harmonics (a bare joint
 //! takes 16) and chooses the ridge alone. Where the readings carry the directions of approach, a
 //! joint's backlash term is a candidate too (one column,
@@ -19,7 +19,7 @@
 //! range of an axis with that axis's map tapered as the calibrated robot's: [`Linear::split`]).
 //! First each joint alone, at each harmonic count, and each joint's backlash term alone (with
 //! directions); then, from no map, these in the order of their own held-out error, each kept when
-//! it lowers the held-out error by more than [`MAP_ACCEPT`] standard errors of the paired
+//! it lowers the held-out error by more than `MAP_ACCEPT` standard errors of the paired
 //! per-posture differences (a one-sided test at about 0.6 %) and by 2 % of it: the choice keeps no
 //! map on a robot without one. Then jointly: the first `k` joints of that order (`k` from 2)
 //! together at each harmonic count up to the largest any of them chose alone, the one with the
@@ -50,7 +50,7 @@
 mod inner;
 pub(crate) mod linear;
 
-pub use super::acceptance::lowers;
+pub(crate) use super::acceptance::lowers;
 use super::acceptance::LEAST_GAIN;
 pub use super::error_model::JointMaps;
 pub use linear::{extended, Linear};
@@ -89,7 +89,7 @@ pub(crate) const DEFAULT_HARMONICS: usize = 16;
 
 /// The ridges `mu` tried (dimensionless, per reading): up to 1, since from 50 postures a
 /// joint's 32 harmonics may need a stronger hold than from 100.
-pub const RIDGES: [f64; 11] = [
+pub(crate) const RIDGES: [f64; 11] = [
     1e-6, 1e-5, 1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2, 1e-1, 3e-1, 1.0,
 ];
 
@@ -98,15 +98,15 @@ pub(crate) const FOLDS: usize = 5;
 
 /// The standard errors of the paired per-posture differences by which a carrier's error motion
 /// order must lower the held-out error to be kept ([`super::motions`]).
-pub const ACCEPT: f64 = 3.0;
+pub(crate) const ACCEPT: f64 = 3.0;
 
 /// The standard errors of the paired per-posture differences by which a joint's map must lower
-/// the held-out error to be kept: fewer than [`ACCEPT`], since the per-posture errors of a
+/// the held-out error to be kept: fewer than `ACCEPT`, since the per-posture errors of a
 /// campaign of 50 postures are heavy-tailed (a map that cut the inner held-out squared error of
 /// the UR10's series C by a quarter stood 2.5 to 3 standard errors out); the choice still keeps
 /// no map on a robot without one in 9 seeds of 10 or more from 50 postures (`maps_tests.rs`;
 /// at 2 standard errors, in 34 of 40).
-pub const MAP_ACCEPT: f64 = 2.5;
+pub(crate) const MAP_ACCEPT: f64 = 2.5;
 
 /// The fewest distinct postures with which `--maps auto` considers maps (below it, none): five
 /// folds of at least six postures.
@@ -208,7 +208,7 @@ pub struct Tried {
     pub ridge: f64,
     /// Its held-out RMS error (inner cross-validation), m.
     pub rms: f64,
-    /// Whether the choice kept it (a step of the forward selection that passed [`ACCEPT`]).
+    /// Whether the choice kept it (a step of the forward selection that passed `ACCEPT`).
     pub kept: bool,
 }
 
@@ -238,7 +238,7 @@ pub struct Nested {
     pub rms: f64,
     /// The maps each outer fold chose.
     pub choices: Vec<JointMaps>,
-    /// The ridge each outer fold chose with its maps (`mu`, [`RIDGES`]).
+    /// The ridge each outer fold chose with its maps (`mu`, `RIDGES`).
     pub ridges: Vec<f64>,
     /// Per held-out posture (the outer folds' in order: fold `k` holds the postures `i` with
     /// `i mod K = k`), the sum of its squared errors without maps, m^2.
@@ -247,7 +247,7 @@ pub struct Nested {
     pub errors: Vec<f64>,
 }
 
-/// Whether `candidate` lowers the held-out error of `current` by more than [`MAP_ACCEPT`]
+/// Whether `candidate` lowers the held-out error of `current` by more than `MAP_ACCEPT`
 /// standard errors of the paired per-posture differences and by
 /// [`super::acceptance::LEAST_GAIN`] of it.
 fn better(current: &Scored, candidate: &Scored) -> bool {

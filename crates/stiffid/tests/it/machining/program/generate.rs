@@ -7,7 +7,6 @@ use stiffid_core::robot::presets;
 use stiffid_core::{Error, Robot};
 use stiffid_machining::program::cartesian::flags::ConfigurationData;
 use stiffid_machining::program::generate::*;
-use stiffid_machining::program::krl::KSS_HEADER;
 use stiffid_machining::program::ls::generate as ls;
 use stiffid_machining::program::Dialect;
 use stiffid_machining::program::{krl::StatusTurn, ls::Config, rapid::ConfData};
@@ -72,10 +71,19 @@ const MOVES: [Move; 3] = [Move::Rapid, Move::Feed(0.03), Move::Feed(100.0 / 6e4)
 /// The number after `key` in `line`.
 fn after(line: &str, key: &str) -> f64 {
     let at = line.find(key).unwrap_or_else(|| panic!("{key} in {line}")) + key.len();
-    let (value, _) =
-        stiffid_machining::program::number_at(line, at).unwrap_or_else(|| panic!("{line}"));
-    value
+    let text = line[at..].trim_start();
+    let end = text
+        .find(|c: char| !(c.is_ascii_digit() || matches!(c, '.' | '-' | '+' | 'e' | 'E')))
+        .unwrap_or(text.len());
+    text[..end].parse().unwrap_or_else(|_| panic!("{line}"))
 }
+
+/// The most numbered lines of an LS file (the pendant's four digits, the reference's).
+const LS_MAX_LINES: usize = 9999;
+
+/// The lines of an LS main program's header before its moves: `! set UTOOL`, six remarks of
+/// the tool's frame, `UFRAME_NUM`, `UTOOL_NUM`.
+const LS_HEADER_LINES: usize = 9;
 
 fn rotation_zyx(a: f64, b: f64, c: f64) -> UnitQuaternion<f64> {
     UnitQuaternion::from_euler_angles(c.to_radians(), b.to_radians(), a.to_radians())
@@ -212,7 +220,9 @@ fn the_programs_initialise_motion_end_exact_and_name_their_tool_and_work_object(
     // Its points put back from its .dat: the motions' lines as one text.
     let krl = &crate::common::inlined(&krl.text, krl.data.as_deref());
     // The lines KSS writes before DEF, then the program.
-    let krl = krl.strip_prefix(KSS_HEADER).unwrap();
+    let (header, krl) = krl.split_at(krl.find("DEF ").unwrap());
+    assert!(header.starts_with("&ACCESS RVP\n&REL 1\n"), "{header}");
+    assert!(header.lines().all(|l| l.starts_with('&')), "{header}");
     assert!(krl.starts_with("DEF POCKET( )\n"), "{krl}");
     for needed in [
         "BAS(#INITMOV, 0)",
@@ -437,7 +447,7 @@ fn a_million_moves_are_split_into_called_sub_programs() {
     let w = generate(&p).unwrap();
     // 10 000 moves per file, but an LS file numbers at most 9999 lines, nine of them the
     // header's: 9990 moves each.
-    let per_file = LS_MAX_LINES - ls::LS_HEADER_LINES;
+    let per_file = LS_MAX_LINES - LS_HEADER_LINES;
     let subs = 1_000_000_usize.div_ceil(per_file);
     assert_eq!((per_file, subs), (9990, 101));
     assert_eq!(w.files.len(), subs + 1);
@@ -554,7 +564,7 @@ fn an_ls_file_never_numbers_more_lines_than_the_pendant() {
         assert!(last <= LS_MAX_LINES as u32, "{}: {last} lines", file.name);
     }
     assert_eq!(
-        ls::LS_HEADER_LINES,
+        LS_HEADER_LINES,
         ls::header(&plan(Dialect::FanucLs, "P", &t, &m))
             .lines()
             .count()
@@ -601,7 +611,7 @@ fn every_name_a_krl_program_writes_is_within_the_controllers_length() {
     let t = targets(&q);
     let mut m = vec![Move::Feed(0.03); t.len()];
     m[0] = Move::Rapid;
-    let most = max_name_length(Dialect::Krl);
+    let most = Dialect::Krl.controller().max_name_length();
     assert_eq!(most, 24);
     // A name of 21 characters: its sub-programs' `_01` make 24, the longest KSS takes.
     let name = "A".repeat(most - 3);

@@ -10,6 +10,9 @@ use stiffid_core::Error;
 use stiffid_machining::program::generate::*;
 use stiffid_machining::program::Dialect;
 
+/// The most numbered lines of an LS file (the pendant's four digits, the reference's).
+const LS_MAX_LINES: usize = 9999;
+
 pub(super) fn corpus(name: &str) -> String {
     let path = format!(
         "{}/tests/data/programs/gcode/{name}",
@@ -627,7 +630,7 @@ fn every_name_written_in_every_language_is_within_the_controllers_length() {
         Dialect::FanucLs,
         Dialect::Inform,
     ] {
-        let most = max_name_length(dialect);
+        let most = dialect.controller().max_name_length();
         // The longest main name that leaves room for the sub-programs' (`_01`.. and RAPID's `r`).
         let room = most - 3 - usize::from(dialect == Dialect::Rapid);
         let name: String = "P".repeat(room);
