@@ -21,6 +21,38 @@ pub(super) struct Motion {
     /// The position variable it moves to (`MOVJ P016`: 16), read from the backup's `VAR.DAT`
     /// and copied into the job ([`super::variables`]); `robot` is then the copy's number.
     pub variable: Option<u64>,
+    /// The shift in force (its index in [`Instructions::shifts`]).
+    pub shift: Option<usize>,
+}
+
+/// A parallel shift, `SFTON P032` or `SFTON P001 UF#(2)` ([`super::shift`]): its line and text,
+/// the position variable of its amount and the coordinates its tag names.
+pub(super) struct Shift {
+    pub line: u64,
+    pub text: String,
+    pub variable: u64,
+    pub frame: ShiftFrame,
+}
+
+/// The coordinates an `SFTON` names: none, `BF`, `RF`, `UF#(n)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum ShiftFrame {
+    Unsaid,
+    Base,
+    Robot,
+    User(u32),
+}
+
+impl ShiftFrame {
+    /// In words, for a message.
+    pub(super) fn words(self) -> String {
+        match self {
+            ShiftFrame::Unsaid => "with no coordinates named".into(),
+            ShiftFrame::Base => "in base coordinates (BF)".into(),
+            ShiftFrame::Robot => "in robot coordinates (RF)".into(),
+            ShiftFrame::User(n) => format!("in user frame {n} (UF#({n}))"),
+        }
+    }
 }
 
 /// What `//INST` holds: the `'stiffid:` comments, the motions, the jumps, calls, loops and
@@ -33,6 +65,7 @@ pub(super) struct Instructions {
     pub labels: Vec<(String, u64)>,
     pub weaves: Option<u64>,
     pub robots: Vec<Robot>,
+    pub shifts: Vec<Shift>,
 }
 
 /// A robot a `///GROUP` line names (`RB2`): its line, the line and the robot's word.
@@ -93,7 +126,9 @@ pub(super) fn instructions(text: &str) -> Result<Instructions> {
         labels: Vec::new(),
         weaves: None,
         robots: Vec::new(),
+        shifts: Vec::new(),
     };
+    let mut shifting: Option<usize> = None;
     let (mut in_inst, mut last) = (false, None::<(u64, String)>);
     let mut weaving: Option<(u64, String)> = None;
     for (line, _, l) in crate::program::lines(text) {
@@ -124,12 +159,17 @@ pub(super) fn instructions(text: &str) -> Result<Instructions> {
             // A line commented out on the pendant: the controller skips it.
             continue;
         }
+        let control = CONTROL.contains(&first.as_str()) || first.starts_with("MACRO");
+        if let Some(s) = shifting.filter(|_| control || first.starts_with('*')) {
+            let s = &out.shifts[s];
+            return Err(at(line, format!("{}: a jump, call, branch or label while the shift of line {} ({}) is in force: which motions it shifts is decided as the job runs; end the shift (SFTOF) before it", short(t), s.line, short(&s.text))));
+        }
         if first.starts_with('*') {
             // A label: where a JUMP goes ([`super::calls`]).
             out.labels.push((first, line));
             continue;
         }
-        if CONTROL.contains(&first.as_str()) || first.starts_with("MACRO") {
+        if control {
             out.control.push((line, first, t.to_string()));
             continue;
         }
@@ -138,8 +178,19 @@ pub(super) fn instructions(text: &str) -> Result<Instructions> {
                 if let Some((w, text)) = &weaving {
                     return Err(at(*w, format!("{}: weaving (WVON) moves the tool across the path in the motions after it, up to WVOF, so the path the controller runs is not the job's: remove it or compensate the job without it", short(text))));
                 }
-                out.motions.push(motion(line, &first, &words[1..])?);
+                let mut m = motion(line, &first, &words[1..])?;
+                m.shift = shifting;
+                out.motions.push(m);
             }
+            "SFTON" => {
+                if let Some(s) = shifting {
+                    let s = &out.shifts[s];
+                    return Err(at(line, format!("{}: a second shift while the shift of line {} is in force (the two add up); end the first (SFTOF) before it", short(t), s.line)));
+                }
+                out.shifts.push(shift(line, t, &words[1..])?);
+                shifting = Some(out.shifts.len() - 1);
+            }
+            "SFTOF" => shifting = None,
             "WVON" => {
                 out.weaves.get_or_insert(line);
                 weaving.get_or_insert((line, t.to_string()));
@@ -150,8 +201,39 @@ pub(super) fn instructions(text: &str) -> Result<Instructions> {
             _ => return Err(refused(line, &first, t)),
         }
     }
+    if let Some(s) = shifting.map(|s| &out.shifts[s]) {
+        return Err(at(s.line, format!("{}: a shift with no SFTOF after it: it would hold in the job that called this one; end it (SFTOF) before END", short(&s.text))));
+    }
     check_end(last)?;
     Ok(out)
+}
+
+/// The shift `SFTON` on `line` (`t`, `words` after its word): a position variable `P000` and
+/// the coordinates `BF`, `RF` or `UF#(n)`, if named.
+fn shift(line: u64, t: &str, words: &[&str]) -> Result<Shift> {
+    let refuse = |why: &str| Err(at(line, format!("{}: {why}", short(t))));
+    let upper: Vec<String> = words.iter().map(|w| w.to_ascii_uppercase()).collect();
+    let Some(variable) = upper.first().and_then(|w| index(w, "P")) else {
+        return refuse("a shift whose amount is not a position variable P000.. by its number (a local, indexed, base or station variable, set as the job runs or held in another group): not computed");
+    };
+    let frame = match upper.get(1).map(String::as_str) {
+        None => ShiftFrame::Unsaid,
+        Some("BF") => ShiftFrame::Base,
+        Some("RF") => ShiftFrame::Robot,
+        Some(w) => match w.strip_prefix("UF#(").and_then(|r| r.strip_suffix(')')).map(str::parse::<u32>) {
+            Some(Ok(n)) => ShiftFrame::User(n),
+            _ => return refuse("a shift in tool coordinates (TF), a user frame from a variable or another tag: relative to where the tool is, or decided as the job runs; stiffid computes a shift in base (BF), robot (RF) or user coordinates (UF#(n))"),
+        },
+    };
+    if upper.len() > 2 {
+        return refuse("a word after the shift's coordinates stiffid does not follow");
+    }
+    Ok(Shift {
+        line,
+        text: t.to_string(),
+        variable,
+        frame,
+    })
 }
 
 /// The instruction `t` without its instruction comment: the text from a `//` that follows a
@@ -188,7 +270,7 @@ fn refused(line: u64, word: &str, t: &str) -> stiffid_core::Error {
         "MOVS" => "a spline; its path bends through all its points, not along the compensated ones: write it as MOVL or MOVJ motions".to_string(),
         "IMOV" => "an increment from where the robot is, which the job does not say: write the absolute position".to_string(),
         "FORMCUT" => "a form cut: the controller moves the tool around a circle or a rectangle its condition file (FORMCUT.CND) gives, not through the job's positions: write the cut as MOVL and MOVC motions".to_string(),
-        "SFTON" | "SFTOF" | "MSHIFT" => "a shift moves the path by an amount held on the controller, which the job does not say: compensate the path without it (teach or post the shifted positions)".to_string(),
+        "MSHIFT" => "a shift computed as the job runs, from positions the job does not say: compensate the path without it (teach or post the shifted positions)".to_string(),
         w if w.starts_with("SMOV") || w.starts_with("SYMOV") => {
             "a coordinated motion: the robot moves relative to the part on a moving station or conveyor, at a speed relative to it, and how the controller leads the groups along the way is not certain from public sources; write the path as MOVL and MOVC with the station's values in the motion (EC, or +MOVJ EC)".to_string()
         }
@@ -222,6 +304,7 @@ fn motion(line: u64, word: &str, words: &[&str]) -> Result<Motion> {
         speed: Speed::Joint,
         tool: None,
         variable,
+        shift: None,
     };
     let split = (words.iter())
         .position(|w| w.to_ascii_uppercase().starts_with("+MOV"))

@@ -59,13 +59,14 @@
 //! - a Cartesian position in tool coordinates (`///POSTYPE TOOL`, `MTOOL`), in robot
 //!   coordinates on a base axis, in a user frame or with a tool file neither the backup nor the
 //!   setup gives; a base or station position in Cartesian form;
-//! - a motion to a position variable (`P000`) but one the backup's `VAR.DAT` gives in pulses,
-//!   which is copied into the job (`variables`), a local one (`LP000`), base and station
+//! - a motion to a position variable (`P000`) but one the backup's `VAR.DAT` gives in pulses or
+//!   in Cartesian form, which is copied into the job (`variables`), a local one (`LP000`), base and station
 //!   variables (`BP`, `EX`): they hold their values on the controller, not in the job;
 //! - `MOVS` (spline), `IMOV` (incremental from where the robot is), `SMOVL` and `SMOVC` (a
 //!   motion on a conveyor), a motion with `UNTIL` (a search) or with another group's own motion
-//!   (`+MOVL`; a station's `+MOVJ EC00000 VJ=..` is read as the target's station values), a shift (`SFTON`, `SFTOF`, `MSHIFT`), any tag outside the list above, and any
-//!   instruction stiffid does not know;
+//!   (`+MOVL`; a station's `+MOVJ EC00000 VJ=..` is read as the target's station values), a
+//!   shift but a constant parallel one of Cartesian positions (`shift`), any tag outside the
+//!   list above, and any instruction stiffid does not know;
 //! - `WVON` with a motion after it before `WVOF`: weaving moves the tool across the path;
 //! - a `CALL` or `MACRO` in a job with motions (the motions of the job it calls would not be the
 //!   file's), but a call of a job of the backup, passed over when it moves nothing and read where
@@ -76,7 +77,7 @@
 //! - a job that does not end with `END` (cut off), a control character (a NUL) anywhere;
 //! - a position named in a motion that `//POS` does not hold, one defined twice, a count that
 //!   differs from `///NPOS`, pulses that are not whole numbers, pulses whose conversion neither
-//!   the setup nor the job gives, and a group's positions in two forms.
+//!   the setup nor the job gives, and a base or station group's positions in two forms.
 //!
 //! ## Written
 //! A G-code path is written as a new job in pulses ([`generate`]) with the setup's pulses.
@@ -90,12 +91,14 @@ mod process;
 mod pulses;
 mod rconf;
 mod rectan;
+mod shift;
 pub(crate) mod speed;
 mod tool;
 mod toolcnd;
 mod uframe;
 mod var;
 mod variables;
+mod varvalue;
 mod written;
 
 use super::controller::{BoundComment, Controller, Generator};
@@ -149,7 +152,10 @@ fn read_job(
     let first = inst.motions.first().map_or(1, |m| m.line);
     let mut pulses: Vec<Option<f64>> = vec![None; 6 + nb + ne];
     let used = |kind: Kind| inst.motions.iter().any(|m| m.uses(kind));
-    if forms[0] == Some(Form::Pulse) && used(Kind::Robot) {
+    let pulsed = |m: &inst::Motion| {
+        (positions.get(&(Kind::Robot, m.robot))).is_some_and(|p| p.form == Form::Pulse)
+    };
+    if forms[0].is_some() && inst.motions.iter().any(pulsed) {
         let per = pulses::robot(&inst.directives, context, first)?;
         for (p, r) in pulses.iter_mut().zip(per) {
             *p = Some(r);
@@ -174,6 +180,7 @@ fn read_job(
     for (k, copy) in &copies.by_motion {
         out[*k] = copy.attach(out[*k].clone());
     }
+    shift::apply(&inst, positions, &mut out, (context, sets))?;
     circles(&inst.motions, &mut out);
     let axes = (1..=nb).map(|k| format!("BC{k}"));
     let axes = axes.chain((1..=ne).map(|k| format!("EC{k}"))).collect();
@@ -238,13 +245,19 @@ fn check_counts(section: &pos::Section) -> Result<()> {
     Ok(())
 }
 
-/// The one form of the positions of `kind`, if it has any.
+/// The one form of the positions of `kind`, if it has any (a robot's may mix pulses and
+/// Cartesian form: the first's).
 fn form(positions: &HashMap<(Kind, u64), Position>, kind: Kind) -> Result<Option<Form>> {
     let mut of: Vec<&Position> = (positions.iter().filter(|(k, _)| k.0 == kind))
         .map(|(_, p)| p)
         .collect();
     of.sort_by_key(|p| p.line);
-    match of.iter().find(|p| p.form != of[0].form) {
+    // A robot's positions may be in pulses and in Cartesian form, each read in its own.
+    let mixed = |a: Form, b: Form| kind == Kind::Robot && a != Form::Angle && b != Form::Angle;
+    match of
+        .iter()
+        .find(|p| p.form != of[0].form && !mixed(p.form, of[0].form))
+    {
         Some(p) => Err(at(
             p.line,
             format!(

@@ -56,12 +56,16 @@ pub(super) struct Section {
     pub variables: HashMap<u64, Listed>,
 }
 
-/// A position variable as the job lists it: its line, form, tool file and values as written.
+/// A position variable as the job lists it: its line, form, tool file and values as written,
+/// and in Cartesian form its frame (`///POSTYPE`), user frame and manipulator type.
 pub(super) struct Listed {
     pub line: u64,
     pub form: Form,
     pub tool: Option<u32>,
     pub values: Vec<String>,
+    pub frame: String,
+    pub user: Option<u32>,
+    pub rconf: Option<Rconf>,
 }
 
 /// The state of the `//POS` lines read so far: the form, tool file, frame, user frame and
@@ -167,6 +171,9 @@ fn position(
                     form: block.form,
                     tool: block.tool.map(|(_, n)| n),
                     values: values.map(|v| v.trim().to_string()).collect(),
+                    frame: block.frame.clone(),
+                    user: block.user.map(|(_, n)| n),
+                    rconf: block.rconf.map(|(_, r)| r),
                 };
                 out.variables.insert(index, listed);
             }

@@ -4,9 +4,11 @@
 //! real and string variables, the section `///P` holds one line per position variable in
 //! order from `P000`: `"UNUSED"`, or the form in quotes and its fields,
 //! `"PULSE"0,0,4,000000000000000000000000,0,0,-112054,-2215,-42236,531,25813,-48404,0,0`.
-//! The third field is the variable's tool file number, the fourth its manipulator type
-//! (`///RCONF`'s bits), the sixth its coordinates (`0` for pulses, `16` base coordinates), then
-//! the axis values (six robot axes and two more). Read from public controller backups: the
+//! The second field is the variable's user frame number, the third its tool file number, the
+//! fourth its manipulator type (`///RCONF`'s numbers, one character each), the sixth its
+//! coordinates (`0` pulses, `16` base, `17` robot, `18` tool, `19` user coordinates: the codes
+//! of Yaskawa's Ethernet server for a position variable's data type), then the axis values (six
+//! robot axes and two more). Read from public controller backups: the
 //! same variables a job of the backup lists in its `//POS` (`///TOOL 4`, `P00008=-112054,..`)
 //! hold the same values and tool file there; OTHack1A/YASKAWA_Tools (`docs/posvar.py`) reads
 //! the file so.
@@ -28,7 +30,17 @@ pub(super) enum Variable {
         tool: u32,
         values: Vec<(i64, String)>,
     },
-    /// Another form (`"RECTAN"`, ..): the form and its coordinates field, not read further.
+    /// `"RECTAN"`: its user frame and tool file, manipulator type (the characters of its
+    /// fourth field), coordinates (its sixth) and axis values with their text (six, and the
+    /// two after them).
+    Rectan {
+        user: u32,
+        tool: u32,
+        config: String,
+        coordinates: u32,
+        values: Vec<(f64, String)>,
+    },
+    /// Another form: the form and its coordinates field, not read further.
     Other { form: String, coordinates: String },
 }
 
@@ -110,6 +122,9 @@ fn variable(t: &str) -> std::result::Result<Variable, String> {
             fields.len()
         ));
     }
+    if form == "RECTAN" {
+        return rectan(&fields);
+    }
     if form != "PULSE" {
         let coordinates = fields[5].to_string();
         return Ok(Variable::Other {
@@ -117,9 +132,7 @@ fn variable(t: &str) -> std::result::Result<Variable, String> {
             coordinates,
         });
     }
-    let tool = fields[2]
-        .parse::<u32>()
-        .map_err(|_| format!("'{}': expected a tool file number", short(fields[2])))?;
+    let tool = number(fields[2], "a tool file number")?;
     let mut values = Vec::with_capacity(fields.len() - 6);
     for f in &fields[6..] {
         let v = f
@@ -132,4 +145,37 @@ fn variable(t: &str) -> std::result::Result<Variable, String> {
     }
     values.truncate(6);
     Ok(Variable::Pulse { tool, values })
+}
+
+/// A whole number field, `Err` naming what was `expected`.
+fn number(field: &str, expected: &str) -> std::result::Result<u32, String> {
+    (field.parse::<u32>()).map_err(|_| format!("'{}': expected {expected}", short(field)))
+}
+
+/// The fields of a `"RECTAN"` line (module docs).
+fn rectan(fields: &[&str]) -> std::result::Result<Variable, String> {
+    let user = number(fields[1], "a user frame number")?;
+    let tool = number(fields[2], "a tool file number")?;
+    let coordinates = number(fields[5], "a coordinates code")?;
+    let config = fields[3];
+    if config.is_empty() || !config.bytes().all(|b| b == b'0' || b == b'1') {
+        return Err(format!(
+            "'{}': expected the manipulator type as 0 and 1",
+            short(config)
+        ));
+    }
+    let mut values = Vec::with_capacity(fields.len() - 6);
+    for f in &fields[6..] {
+        match f.parse::<f64>() {
+            Ok(v) if v.is_finite() => values.push((v, (*f).to_string())),
+            _ => return Err(format!("'{}': expected a number", short(f))),
+        }
+    }
+    Ok(Variable::Rectan {
+        user,
+        tool,
+        config: config.to_string(),
+        coordinates,
+        values,
+    })
 }

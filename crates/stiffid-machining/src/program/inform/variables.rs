@@ -1,22 +1,24 @@
 //! Motions to robot position variables (`MOVJ P016`, `MOVL P005 V=100.0`), read from the
 //! controller's backup's `VAR.DAT` ([`super::var`]) and copied into the job: each motion's own
 //! new position `C0nnnn` (numbered after the job's positions) at the end of `//POS`, after its
-//! tool file and form lines (`///TOOL n` as the variable holds it, `///POSTYPE PULSE`,
-//! `///PULSE`), its values the variable's. Compensated, the motion names the copy (`MOVJ P016`
+//! tool file and form lines (`///TOOL n` as the variable holds it, `///POSTYPE PULSE` and
+//! `///PULSE`, or a Cartesian variable's frame, `///RECTAN` and `///RCONF`: [`super::varvalue`]),
+//! its values the variable's. Compensated, the motion names the copy (`MOVJ P016`
 //! becomes `MOVJ C00002`), the copy is written, `///NPOS` counts it
 //! ([`super::written`]), and the variable, which every job on the controller shares, is left as
 //! it is; a motion whose target does not move keeps the variable. The copy mechanism is the
 //! language-neutral one of [`crate::program::points`] (an LS position register's `P[n]` too).
 //!
 //! Refused naming the motion's line: no `VAR.DAT` given; a variable the file does not hold
-//! (beyond its last line), `"UNUSED"`, or in another form than pulses; one the job or a job it
-//! calls sets as it runs (`SET P016 ..`, `ADD`, `SETE`, `GETS`, `CNVRT`, .., [`sets`]); one the
-//! job lists with other values than the file's; a variable beside base or station positions;
-//! a job whose own positions are not in pulses.
+//! (beyond its last line), `"UNUSED"`, or one [`super::varvalue`] does not read; one the job or
+//! a job it calls sets as it runs (`SET P016 ..`, `ADD`, `SETE`, `GETS`, `CNVRT`, .., [`sets`]);
+//! one the job lists with other values than the file's; a variable beside base or station
+//! positions.
 
 use super::inst::{without_comment, Instructions};
-use super::pos::{Form, Kind, Position, Section};
-use super::var::{self, Variable, Variables};
+use super::pos::{Kind, Position, Section};
+use super::var::{self, Variables};
+use super::varvalue;
 use crate::program::points::Foreign;
 use crate::program::{at, lines, Context, JointTarget};
 use std::collections::HashMap;
@@ -55,10 +57,10 @@ pub(super) struct Copies {
 /// An instruction that sets a robot position variable as the job runs: the variable (`None`:
 /// one chosen by an index), the job's file (`None`: the job read), the line and its text.
 pub(super) struct Set {
-    index: Option<u64>,
-    file: Option<String>,
-    line: u64,
-    text: String,
+    pub index: Option<u64>,
+    pub file: Option<String>,
+    pub line: u64,
+    pub text: String,
 }
 
 /// The copies of the variables the motions of `inst` move to (module docs), each added to
@@ -85,9 +87,6 @@ pub(super) fn build(
         return Err(at(m.line, format!("{name}: a position variable holds its value on the controller, not in this job: give the controller's backup holding its VAR.DAT with the job (--backup), or teach the position in the job (C)")));
     };
     let robot = (section.positions.iter()).filter(|(k, _)| k.0 == Kind::Robot);
-    if let Some((_, p)) = robot.clone().find(|(_, p)| p.form != Form::Pulse) {
-        return Err(at(m.line, format!("{name}: a position variable in pulses in a job whose positions are in another form (line {}); stiffid writes its copy beside them in one form: teach the job's positions in pulses", p.line)));
-    }
     let insert = (lines(text).find(|(_, _, l)| l.trim_start().starts_with("//INST")))
         .map_or(text.len(), |(_, s, _)| s);
     let eol = if text.contains("\r\n") { "\r\n" } else { "\n" };
@@ -100,27 +99,27 @@ pub(super) fn build(
         if m.base.is_some() || m.station.is_some() {
             return Err(at(line, format!("{word} P{index:03}: a position variable beside base or station positions; stiffid copies a robot's variable alone into the job: teach the position in the job (C)")));
         }
-        let (vline, tool, values) = pulses(&vars, (section, sets), (line, &word, index))?;
+        let (vline, value) = value(&vars, (section, sets), (line, &word, index), eol)?;
         let copy_name = format!("C{next:05}");
-        let head = format!("///TOOL {tool}{eol}///POSTYPE PULSE{eol}///PULSE{eol}");
-        let texts: Vec<&str> = values.iter().map(|(_, t)| t.as_str()).collect();
+        let head = value.head.clone();
+        let texts: Vec<&str> = value.values.iter().map(|(_, t)| t.as_str()).collect();
         let block = format!("{head}{copy_name}={}{eol}", texts.join(","));
         let mut from = offset + head.len() + copy_name.len() + 1;
         let mut read = Vec::with_capacity(6);
-        for (v, t) in &values {
-            read.push((*v as f64, from..from + t.len()));
+        for (v, t) in &value.values {
+            read.push((*v, from..from + t.len()));
             from += t.len() + 1;
         }
         section.positions.insert(
             (Kind::Robot, next),
             Position {
                 line,
-                form: Form::Pulse,
+                form: value.form,
                 values: read,
-                tool: Some((line, tool)),
-                frame: "PULSE".into(),
-                user: None,
-                rconf: None,
+                tool: Some((line, value.tool)),
+                frame: value.frame.into(),
+                user: value.user.map(|u| (line, u)),
+                rconf: value.rconf.map(|r| (line, r)),
             },
         );
         m.robot = next;
@@ -144,17 +143,15 @@ pub(super) fn build(
     Ok(out)
 }
 
-/// A variable's line in `VAR.DAT`, its tool file and six values in pulses (with their text).
-type Pulsed = (u64, u32, Vec<(i64, String)>);
-
-/// The variable's line in `vars`, its tool file and six values in pulses (with their text),
-/// for the motion `word` to variable `index` on `line`, checked against what sets it (`sets`)
-/// and the job's own listing of it (`section`).
-fn pulses(
+/// The variable's line in `vars` and its value as its copy declares it (line ends `eol`), for
+/// the motion `word` to variable `index` on `line`, checked against what sets it (`sets`) and
+/// the job's own listing of it (`section`).
+fn value(
     vars: &Variables,
     (section, sets): (&Section, &[Set]),
     (line, word, index): (u64, &str, u64),
-) -> Result<Pulsed> {
+    eol: &str,
+) -> Result<(u64, varvalue::Value)> {
     let refuse = |why: String| at(line, format!("{word} P{index:03}: {why}"));
     if let Some(s) = sets.iter().find(|s| s.index.is_none_or(|i| i == index)) {
         let file = s.file.as_ref().map_or(String::new(), |f| format!("{f} "));
@@ -165,27 +162,9 @@ fn pulses(
         let n = vars.list.len();
         return Err(refuse(format!("{file} holds {n} position variables (P000 to P{:03}): the variable is not in it (is the file cut off, or of another controller?)", n.saturating_sub(1))));
     };
-    let (tool, values) = match v {
-        Variable::Pulse { tool, values } => (*tool, values.clone()),
-        Variable::Unused => {
-            return Err(refuse(format!(
-                "{file} line {vline}: the variable is UNUSED, it holds no position"
-            )))
-        }
-        Variable::Other { form, coordinates } => {
-            return Err(refuse(format!("{file} line {vline}: a \"{}\" variable (coordinates {}); stiffid reads position variables in pulses: the frame and tool fields of a variable in another form are not documented, so its pose is not certain (teach it in pulses, or as a C position of the job)", short(form), short(coordinates))));
-        }
-    };
-    if let Some(l) = section.variables.get(&index) {
-        let same = l.form == Form::Pulse
-            && l.tool.is_none_or(|t| t == tool)
-            && l.values.len() == 6
-            && (l.values.iter().zip(&values)).all(|(a, (b, _))| a.parse::<i64>() == Ok(*b));
-        if !same {
-            return Err(refuse(format!("the job lists the variable (line {}, its value when the job was saved) with other values or another tool file than {file} line {vline}; which one the controller holds is not the files' to say: give the backup the job was saved with", l.line)));
-        }
-    }
-    Ok((*vline, tool, values))
+    let listed = section.variables.get(&index);
+    let value = varvalue::of(v, (file, *vline), listed, eol).map_err(refuse)?;
+    Ok((*vline, value))
 }
 
 /// The variable's name as the motion `word`'s line `l` (starting at byte `start` of the job)

@@ -404,9 +404,16 @@ fn what_can_change_the_path_is_refused_naming_the_line() {
     let p = pulses();
     let cases: Vec<(String, u64, &str)> = vec![
         (
-            STORED.replace("ARCOF AEF#(1)", "SFTON P001 UF#(1)"),
+            STORED.replace("ARCOF AEF#(1)", "SFTON P001 TF"),
             26,
-            "SFTON: a shift",
+            "SFTON P001 TF: a shift in tool coordinates (TF)",
+        ),
+        (
+            STORED
+                .replace("ARCON ASF#(1)", "SFTON P001")
+                .replace("ARCOF", "SFTOF\r\nARCOF"),
+            21,
+            "SFTON P001: the shift amount P001 holds its value on the controller",
         ),
         (
             STORED.replace("ARCON ASF#(1)", "ARCON ASF#(1)\r\nWVON WEV#(1)"),

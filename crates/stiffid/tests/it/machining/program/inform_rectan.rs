@@ -4,7 +4,7 @@
 //! `[controller]` tables or of the backup's `UFRAME.CND` and `TOOL.CND`, and is written back in
 //! its own form.
 
-use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector6};
+use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3, Vector6};
 use stiffid::internal::machining::compensate::Options;
 use stiffid::internal::machining::{self, Language, Program};
 use stiffid::internal::robot::presets;
@@ -240,5 +240,179 @@ fn a_job_of_the_second_robot_is_read_when_the_setup_names_it() {
     match with("robot_number = 9\n") {
         Err(e) => assert!(e.to_string().contains("controller.robot_number"), "{e}"),
         Ok(_) => panic!("robot_number = 9 read"),
+    }
+}
+
+/// A motion to a Cartesian position variable of the backup's `VAR.DAT` (`"RECTAN"` in user
+/// frame 2 with tool file 3, as a YRC1000 writes it) resolves to the posture of the same pose
+/// taught in the job; compensated, its copy is written as a Cartesian position of the job in
+/// the variable's frame, tool file and `///RCONF` (the job's listing of the variable), the
+/// variable left as it is. Refused naming the motion's line: a manipulator type neither all
+/// zero nor listed by the job, tool coordinates (a shift amount), a value of a seventh axis.
+#[test]
+fn a_cartesian_variable_is_read_in_its_frame_and_copied_into_the_job() {
+    let s = setup(true);
+    let taught = rectan(&s, "1,0,0,0,0,0,0,0");
+    let inline = resolved(&s, &taught, &[]).unwrap();
+    let pose_text = taught.lines().find(|l| l.starts_with("C00001=")).unwrap()[7..].to_string();
+    let listing = format!("///USER 2\r\n///TOOL 3\r\n///POSTYPE USER\r\n///RECTAN\r\n///RCONF 1,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0\r\nP00001={pose_text}\r\n");
+    let job = taught
+        .replace("MOVL C00001", "MOVL P001")
+        .replace(&format!("C00001={pose_text}\r\n"), "")
+        .replace("///NPOS 3,0,0,0,0,0", "///NPOS 2,0,0,1,0,0")
+        .replace("//INST", &format!("{listing}//INST"))
+        .replace("C00002=", "C00001=")
+        .replace("MOVL C00002", "MOVL C00001");
+    let var = |config: &str, coordinates: u32, more: &str| {
+        let line = format!("\"RECTAN\"0,2,3,{config},0,{coordinates},{pose_text},{more}");
+        let text = format!(
+            "//VAR\r\n///PFNUM 6,0,0,0\r\n///P\r\n\"UNUSED\"\r\n{line}\r\n///BP\r\n///EX\r\n"
+        );
+        vec![("backup/VAR.DAT".to_string(), text)]
+    };
+    let flags = "100000000000000000000000";
+    let read = resolved(&s, &job, &var(flags, 19, "0.0000,0.0000")).unwrap();
+    for (a, b) in read.targets.iter().zip(&inline.targets) {
+        assert!((Vector6::from(a.q_deg) - Vector6::from(b.q_deg)).amax() < 1e-6);
+    }
+    let mut q: Vec<[f64; 6]> = read.targets.iter().map(|t| t.q_deg).collect();
+    q[1][1] += 0.01;
+    let written = read.write(&q).unwrap();
+    let copy = format!("///TOOL 3\r\n///USER 2\r\n///POSTYPE USER\r\n///RECTAN\r\n///RCONF 1,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0\r\nC00002={}\r\n//INST", numbers(&pose(&s, &q[1]), [3, 4]));
+    assert!(written.contains(&copy), "{written}");
+    assert!(
+        written.contains("MOVL C00002 V=20.0\r\nMOVL C00001 V=20.0"),
+        "{written}"
+    );
+    assert!(
+        written.contains(&format!("P00001={pose_text}\r\n")),
+        "{written}"
+    );
+    let unlisted = job
+        .replace(&listing, "")
+        .replace("///NPOS 2,0,0,1", "///NPOS 2,0,0,0");
+    let cases = [
+        (
+            unlisted.as_str(),
+            var(flags, 19, "0,0"),
+            "in an order that is not public",
+        ),
+        (&job, var(flags, 18, "0,0"), "in tool coordinates (18)"),
+        (
+            &job,
+            var(flags, 19, "12.5000,0"),
+            "a value after X,Y,Z,Rx,Ry,Rz (12.5000)",
+        ),
+        (
+            &job,
+            var("000000000000000000000000", 19, "0,0"),
+            "the job lists the variable (line 17",
+        ),
+    ];
+    for (text, files, words) in cases {
+        let (line, message) = refused(resolved(&s, text, &files));
+        assert_eq!(line, if text == unlisted { 18 } else { 24 }, "{message}");
+        assert!(message.contains(words), "{words}: {message}");
+    }
+}
+
+/// A parallel shift of a constant amount (`SFTON P001 UF#(2)` .. `SFTOF`, the amount a
+/// Cartesian variable of `VAR.DAT` in user frame 2) moves the motions between to their
+/// positions displaced by it: the posture of the same job taught at the displaced position;
+/// written back, the position the controller displaces to the compensated pose. Refused naming
+/// the line: a shift that turns, one in other coordinates than the position's, a shift of a
+/// pulse position, one set as the job runs, a label under it, no `SFTOF`.
+#[test]
+fn a_constant_shift_is_computed_and_a_run_time_one_refused() {
+    let s = setup(true);
+    let taught = rectan(&s, "1,0,0,0,0,0,0,0");
+    let c1 = taught.lines().find(|l| l.starts_with("C00001=")).unwrap()[7..].to_string();
+    let mut n: Vec<f64> = c1.split(',').map(|v| v.parse().unwrap()).collect();
+    let job = taught.replace(
+        "MOVL C00001 V=20.0\r\n",
+        "SFTON P001 UF#(2)\r\nMOVL C00001 V=20.0\r\nSFTOF\r\n",
+    );
+    let var = |amount: &str| {
+        let text = format!("//VAR\r\n///PFNUM 6,0,0,0\r\n///P\r\n\"UNUSED\"\r\n\"RECTAN\"0,2,0,000000000000000000000000,0,19,{amount},0.0000,0.0000\r\n///BP\r\n///EX\r\n");
+        vec![("backup/VAR.DAT".to_string(), text)]
+    };
+    let d = [5.0, -3.0, 2.0];
+    let read = resolved(&s, &job, &var("5.000,-3.000,2.000,0.0000,0.0000,0.0000")).unwrap();
+    for k in 0..3 {
+        n[k] += d[k];
+    }
+    let moved: Vec<String> = n.iter().map(|v| format!("{v:.9}")).collect();
+    let displaced = resolved(&s, &taught.replace(&c1, &moved.join(",")), &[]).unwrap();
+    for (a, b) in read.targets.iter().zip(&displaced.targets) {
+        assert!((Vector6::from(a.q_deg) - Vector6::from(b.q_deg)).amax() < 1e-6);
+    }
+    let mut q: Vec<[f64; 6]> = read.targets.iter().map(|t| t.q_deg).collect();
+    q[1][1] += 0.01;
+    let written = read.write(&q).unwrap();
+    let mut back = pose(&s, &q[1]);
+    back.translation.vector -= Vector3::from(d) * 1e-3;
+    assert!(
+        written.contains(&format!("C00001={}\r\n", numbers(&back, [3, 4]))),
+        "{written}"
+    );
+    let pulses_job = job.replace(
+        "///POSTYPE USER\r\n///RECTAN\r\n///RCONF 1,0,0,0,0,0,0,0\r\n",
+        "",
+    );
+    let in_pulses: Vec<String> = (pulses().iter())
+        .map(|p| p.map(|v| v.to_string()).join(","))
+        .collect();
+    let mut pulses_job = pulses_job;
+    for (k, p) in in_pulses.iter().enumerate() {
+        let old = taught
+            .lines()
+            .find(|l| l.starts_with(&format!("C{k:05}=")))
+            .unwrap()
+            .to_string();
+        pulses_job = pulses_job.replace(&old, &format!("C{k:05}={p}"));
+    }
+    let amount = "5.000,-3.000,2.000,0.0000,0.0000,0.0000";
+    let cases = [
+        (
+            job.clone(),
+            var("5.000,-3.000,2.000,0.0000,0.0000,1.0000"),
+            19,
+            "a shift that turns the tool",
+        ),
+        (
+            job.replace("UF#(2)", "BF"),
+            var(amount),
+            19,
+            "a shift amount in coordinates 19 (user frame 2), shifted in base coordinates (BF)",
+        ),
+        (
+            pulses_job,
+            var(amount),
+            17,
+            "a position in pulses shifted by SFTON P001 UF#(2) (line 16)",
+        ),
+        (
+            job.replace("SFTOF", "ADD P001 P000\r\nSFTOF"),
+            var(amount),
+            19,
+            "set as the jobs run (line 21: ADD P001 P000)",
+        ),
+        (
+            job.replace("SFTOF", "*HERE\r\nSFTOF"),
+            var(amount),
+            21,
+            "a jump, call, branch or label while the shift of line 19",
+        ),
+        (
+            job.replace("SFTOF\r\n", ""),
+            var(amount),
+            19,
+            "a shift with no SFTOF after it",
+        ),
+    ];
+    for (text, files, line, words) in cases {
+        let (l, message) = refused(resolved(&s, &text, &files));
+        assert_eq!(l, line, "{words}: {message}");
+        assert!(message.contains(words), "{words}: {message}");
     }
 }

@@ -136,7 +136,7 @@ fn what_the_backup_does_not_say_of_a_variable_is_refused() {
     let cases: Vec<(String, Backup, u64, &str)> = vec![
         (JOB.into(), Vec::new(), 17, "give the controller's backup holding its VAR.DAT"),
         (JOB.into(), backup(good.split("\"PULSE\"0,0,1,000000000000000000000000,0,0,-45969").next().unwrap().to_string()), 17, "backup/VAR.DAT holds 5 position variables (P000 to P004)"),
-        (JOB.replace("MOVL P003", "MOVL P004"), backup(good.clone()), 19, "a \"RECTAN\" variable (coordinates 16)"),
+        (JOB.replace("MOVL P003", "MOVL P004"), backup(good.replace(",0,16,", ",0,18,")), 19, "a \"RECTAN\" variable in tool coordinates (18)"),
         (JOB.replace("MOVL P003", "MOVL P001"), backup(good.clone()), 19, "line 8: the variable is UNUSED"),
         (JOB.replace("DOUT OT#(2) ON", "ADD P005 P003"), backup(good.clone()), 17, "set as the jobs run (line 18: ADD P005 P003)"),
         (JOB.replace("DOUT OT#(2) ON", "SET P[I000] P003"), backup(good.clone()), 17, "set as the jobs run (line 18: SET P[I000] P003)"),
