@@ -62,6 +62,7 @@ use stiffid_core::math::householder;
 use stiffid_core::math::linalg::CappedSvd;
 use stiffid_core::{Error, Result};
 
+mod campaign;
 mod leave_one_out;
 mod noise;
 mod strength;
@@ -131,7 +132,7 @@ pub struct GravityPrior {
 /// The deflection of [`GravityPrior`] that the calibration uses by default (`--gravity-bound-mrad`): 3 mrad (0.17 deg), a heavy
 /// robot's sag at its joint 2 and more (about 2 mrad for a 165 kg payload-class arm at its
 /// nominal stiffness under its own weight, far less for a light one).
-pub const GRAVITY_DEFLECTION: f64 = 3e-3;
+pub(crate) const GRAVITY_DEFLECTION: f64 = 3e-3;
 
 /// What the fit needs besides the model and the readings.
 #[derive(Debug, Clone, Copy, PartialEq)]

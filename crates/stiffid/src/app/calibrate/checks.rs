@@ -6,7 +6,7 @@ use stiffid_core::common::error::JobOption;
 use stiffid_core::common::limits;
 use stiffid_core::{Error, Result, Setup};
 use stiffid_metrology::calibration::error_model::Observation;
-use stiffid_metrology::calibration::fit::{self, Fit};
+use stiffid_metrology::calibration::fit::Fit;
 use stiffid_metrology::calibration::ErrorModel;
 
 /// The level of the held-out readings' prediction intervals: `request.level`, else
@@ -29,17 +29,18 @@ pub(super) fn interval_level(request: &Request<'_>) -> Result<f64> {
     }
 }
 
-/// The bound on the gravity terms of `request` (rad): [`fit::GRAVITY_DEFLECTION`] unless given.
+/// The bound on the gravity terms `request` gives (rad), checked; `None` for the fit's default
+/// ([`stiffid_metrology::calibration::fit::Options::for_campaign`]).
 ///
 /// # Errors
 /// [`Error::InvalidOption`] ([`JobOption::GravityBoundMrad`]) outside
 /// [`limits::GRAVITY_BOUND_MRAD`].
-pub(super) fn gravity_bound(request: &Request<'_>) -> Result<f64> {
+pub(super) fn gravity_bound(request: &Request<'_>) -> Result<Option<f64>> {
     let Some(bound) = request.gravity_bound else {
-        return Ok(fit::GRAVITY_DEFLECTION);
+        return Ok(None);
     };
     match limits::GRAVITY_BOUND_MRAD.contains(bound * 1e3) {
-        true => Ok(bound),
+        true => Ok(Some(bound)),
         false => Err(Error::InvalidOption {
             option: JobOption::GravityBoundMrad,
             message: format!(

@@ -5,7 +5,7 @@ use super::{ladder, maps, update, Maps, Request};
 use crate::app::in_data;
 use stiffid_core::{Error, Result};
 use stiffid_metrology::calibration::error_model::{MeasuredIn, Observation};
-use stiffid_metrology::calibration::fit::{self, Fit, GravityPrior, Options, Priors};
+use stiffid_metrology::calibration::fit::{self, Fit, Options};
 use stiffid_metrology::calibration::gravity::Gravity;
 use stiffid_metrology::calibration::{model, motions, ErrorModel, Estimate, Geometry};
 
@@ -29,28 +29,20 @@ pub(super) struct Chosen {
     pub error_motions: Option<motions::Choice>,
 }
 
-/// The fit's options: the setup's characteristic length, the request's priors, no ridge, the
-/// gravity terms bounded ([`GravityPrior`]) by the request's bound
+/// The fit's options ([`Options::for_campaign`]): the setup's characteristic length, the
+/// request's priors, the gravity terms bounded by the request's bound
 /// ([`super::checks::gravity_bound`]), the same for every gravity model, chosen or given.
 ///
 /// # Errors
 /// Those of [`super::checks::gravity_bound`].
 fn options(request: &Request<'_>) -> Result<Options> {
     let setup = request.readings.setup;
-    let noise = setup.noise().reading_sd();
-    Ok(Options {
-        length: setup.characteristic_length().unwrap_or(1.0),
-        priors: request.priors.map(|t| Priors {
-            length: t.length,
-            angle: t.angle,
-            noise,
-        }),
-        ridge: 0.0,
-        gravity: Some(GravityPrior {
-            deflection: super::checks::gravity_bound(request)?,
-            noise,
-        }),
-    })
+    Ok(Options::for_campaign(
+        setup.characteristic_length().unwrap_or(1.0),
+        request.priors.map(|t| (t.length, t.angle)),
+        setup.noise().reading_sd(),
+        super::checks::gravity_bound(request)?,
+    ))
 }
 
 /// The model of `request` fitted to `obs` (in `measured_in`, with the cell's `tables`): the

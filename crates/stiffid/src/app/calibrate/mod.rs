@@ -112,7 +112,7 @@ pub struct Request<'a> {
     /// The bound on the gravity terms, rad: the prior standard deviation of each term's joint
     /// deflection at the largest torque it meets ([`fit::GravityPrior`]), the same for every
     /// gravity model, chosen by the ladder or given; within [`limits::GRAVITY_BOUND_MRAD`];
-    /// `None` for [`fit::GRAVITY_DEFLECTION`].
+    /// `None` for 3 mrad ([`fit::Options::for_campaign`]).
     pub gravity_bound: Option<f64>,
     /// Held-out readings (name, text), predicted by the calibration.
     pub validate: Option<(String, &'a str)>,
@@ -383,10 +383,8 @@ fn find(request: &Request<'_>) -> Result<Report> {
         readings: obs.len(),
         geometry: chosen.geometry,
         gravity: chosen.model.gravity().kind(),
-        gravity_bound: chosen
-            .options
-            .gravity
-            .map_or(fit::GRAVITY_DEFLECTION, |g| g.deflection),
+        // The campaign's options bound every gravity model ([`fit::Options::for_campaign`]).
+        gravity_bound: (chosen.options.gravity).map_or(f64::INFINITY, |g| g.deflection),
         start_frame: chosen.start.frame,
         model: chosen.model,
         fit: chosen.fit,

@@ -176,16 +176,15 @@ fn heavy_robot_gravity_terms_cut_held_out_error() {
     assert!(lumped < 1.5 * noise, "{lumped}");
 }
 
-/// The bound on the gravity terms (as `calibrate` fits them: [`fit::GRAVITY_DEFLECTION`], the
-/// tracker's noise) leaves what a campaign over the joint ranges determines: every model predicts
+/// The bound on the gravity terms (as `calibrate` fits them: its default, weighed against the
+/// tracker's noise, `fit::Options::for_campaign`) leaves what a campaign over the joint ranges determines: every model predicts
 /// the held-out readings as it does without it, within 2 %.
 #[test]
 fn the_bound_leaves_determined_gravity_terms() {
     let models = ["none", "lumped", "lumped-links", "masses"];
-    let prior = fit::GravityPrior {
-        deflection: fit::GRAVITY_DEFLECTION,
-        noise: NOISE,
-    };
+    let prior = Options::for_campaign(1.2, None, NOISE, None)
+        .gravity
+        .unwrap();
     let (free, bound) = (
         simulate(&models, 5, None),
         simulate(&models, 5, Some(prior)),

@@ -167,17 +167,9 @@ pub(super) fn model(robot: &Robot, name: &str, masses: [LinkMass; 6]) -> ErrorMo
 
 /// The options of `calibrate`'s fit: the default bound weighed against `noise`.
 pub(super) fn options(noise: f64) -> Options {
-    Options {
-        length: 1.2,
-        priors: None,
-        ridge: 0.0,
-        gravity: Some(fit::GravityPrior {
-            deflection: std::env::var("BOUND_MRAD").map_or(fit::GRAVITY_DEFLECTION, |s| {
-                s.parse::<f64>().unwrap() * 1e-3
-            }),
-            noise,
-        }),
-    }
+    let bound = std::env::var("BOUND_MRAD").ok();
+    let bound = bound.map(|s| s.parse::<f64>().unwrap() * 1e-3);
+    Options::for_campaign(1.2, None, noise, bound)
 }
 
 /// The held-out RMS (m) of gravity `name` on campaign `seed`, and the fit.

@@ -142,15 +142,7 @@ fn campaign(robot: &Robot, c: Campaign, seed: u64) -> (Vec<Observation>, Vec<Obs
 /// the readings (`fit::fit_choosing_strength`), the prior weighed against the residuals' noise
 /// (`fit::fit`) and against the stated noise only.
 fn held_out(robot: &Robot, name: &str, c: Campaign, seed: u64) -> [f64; 3] {
-    let options = Options {
-        length: 1.2,
-        priors: None,
-        ridge: 0.0,
-        gravity: Some(fit::GravityPrior {
-            deflection: fit::GRAVITY_DEFLECTION,
-            noise: NOISE,
-        }),
-    };
+    let options = Options::for_campaign(1.2, None, NOISE, None);
     let (data, held) = campaign(robot, c, seed);
     let model = model(robot, name, c);
     let start = fit::start(&model, &data).unwrap();
