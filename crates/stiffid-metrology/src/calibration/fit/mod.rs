@@ -327,9 +327,25 @@ pub fn start_at(
                     tracker: o.measured,
                 })
                 .collect();
-            crate::register::fit(&pairs)?.base_from_tracker
+            let registered = crate::register::fit(&pairs).map_err(|e| unregistered(e, &pairs));
+            registered?.base_from_tracker
         }
     })
+}
+
+/// The registration's refusal (`points`) in the readings' words: the tracker is registered on
+/// the tool's measuring points read (`pairs`), a reflector's `T` rows placed after it.
+fn unregistered(e: Error, pairs: &[Correspondence]) -> Error {
+    match e {
+        Error::InvalidField { field, message } if field == "points" => Error::InvalidField {
+            field: "readings".into(),
+            message: format!(
+                "the tracker is registered on the readings of the tool's measuring points (point 1, 2, ..; the reflectors' T rows are placed after it), {} here: {message}; read the measuring points at 3 or more postures whose points do not lie on one line",
+                pairs.len()
+            ),
+        },
+        other => other,
+    }
 }
 
 fn check(observations: &[Observation], options: &Options) -> Result<()> {

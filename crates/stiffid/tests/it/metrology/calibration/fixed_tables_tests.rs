@@ -159,5 +159,24 @@ fn fixed_reflectors_beyond_the_limit_or_twice_are_refused() {
         .unwrap()
         .with_external(&[0], 0);
     assert!(e.unwrap_err().to_string().contains("external_axis"));
-    assert_eq!(arm.with_tables(0).unwrap().tables(), 0);
+    assert_eq!(arm.clone().with_tables(0).unwrap().tables(), 0);
+    // Readings of the reflectors alone, or of the tool at two postures: the tracker is
+    // registered on the tool's measuring points, named in the readings' words.
+    let cell = arm.with_tables(2).unwrap();
+    let truth = Estimate {
+        frame: tracker(),
+        values: truth(&cell),
+    };
+    let obs = campaign(&cell, &truth);
+    let two = [&obs[..2], &obs[obs.len() - 2..]].concat();
+    for (some, n) in [
+        (obs.iter().filter(|o| o.table).cloned().collect(), 0),
+        (two, 2),
+    ] {
+        let e = fit::start(&cell, &some).unwrap_err().to_string();
+        assert!(
+            e.starts_with("readings: ") && e.contains(&format!("measuring points (point 1, 2, ..; the reflectors' T rows are placed after it), {n} here: {n} given")),
+            "{e}"
+        );
+    }
 }
