@@ -29,6 +29,7 @@ mod options;
 mod process;
 mod read;
 mod registers;
+mod set_frames;
 pub(crate) mod speed;
 mod statements;
 mod sysframe;

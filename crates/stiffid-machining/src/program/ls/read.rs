@@ -9,7 +9,8 @@ use super::flow::{self, Graph};
 use super::numbered::Declared;
 use super::registers::Used;
 use super::statements::{self, Number, Place, Selected};
-use super::{calls, instructions, motion, numbered, offsets, positions, registers, sysframe};
+use super::{calls, instructions, motion, numbered, offsets, positions, registers};
+use super::{set_frames, sysframe};
 use crate::program::cartesian::Frame;
 use crate::program::{at, Context, JointTarget, Left, Units};
 use std::collections::HashMap;
@@ -129,7 +130,18 @@ fn read_one(
         .collect();
     super::mask::check(text, motions.iter().any(|m| *m))?;
     let graph = flow::graph(&instructions, &motions)?;
-    let (effects, called) = effects(&instructions, &motions, &graph, context, outer)?;
+    // The frames the program sets at its start, read where no motion of a caller follows.
+    let set = match outer.after_first || outer.before_last {
+        true => set_frames::Set::default(),
+        false => set_frames::read(&instructions, context)?,
+    };
+    let (effects, called) = effects(
+        &instructions,
+        (&motions, &set.handled),
+        &graph,
+        context,
+        outer,
+    )?;
     let reached = graph.reached();
     if let Some(k) = (0..motions.len()).find(|&k| motions[k] && !reached[k]) {
         return Err(never_run(&instructions, &graph, k));
@@ -177,6 +189,7 @@ fn read_one(
     let (mut own, in_force) = motions_read(&instructions, &reading, &states, read)?;
     numbered::apply(declared, &mut own, &in_force);
     sysframe::apply(context, &mut own)?;
+    set_frames::apply(&set, &mut own);
     let mut left: Vec<Left> = registers.left.iter().map(|(_, l)| l.clone()).collect();
     if context.leave_refused {
         own = leave_paths(own, &in_force, &mut left);
@@ -322,10 +335,10 @@ fn read_called(
 /// [`statements::instruction`], the refusal of what it may not do where it runs: after a motion
 /// on some path, before one on some path ([`Place`]); and the calls of programs of the backup
 /// that move ([`calls::moving`]). A call of a program of the backup that moves nothing is
-/// passed over ([`calls`]).
+/// passed over ([`calls`]), and so are the instructions `handled` ([`set_frames`]).
 fn effects<'a>(
     instructions: &[(u64, String)],
-    motions: &[bool],
+    (motions, handled): (&[bool], &[usize]),
     graph: &Graph,
     context: &Context<'a>,
     outer: Place,
@@ -336,7 +349,7 @@ fn effects<'a>(
     let mut called: Vec<Option<Call>> = (0..instructions.len()).map(|_| None).collect();
     for (k, (line, instruction)) in instructions.iter().enumerate() {
         let t = instruction.trim();
-        if motions[k] || calls::passed_over(t, context) {
+        if motions[k] || handled.contains(&k) || calls::passed_over(t, context) {
             continue;
         }
         let place = Place {
@@ -382,7 +395,7 @@ fn again(call: &Call, first: Place, context: &Context) -> Result<()> {
             .map(|(_, t)| motion::rest(t.trim()).is_some())
             .collect();
         let graph = flow::graph(&instructions, &motions)?;
-        effects(&instructions, &motions, &graph, context, place)?;
+        effects(&instructions, (&motions, &[]), &graph, context, place)?;
     }
     Ok(())
 }
