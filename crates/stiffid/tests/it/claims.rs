@@ -4,14 +4,14 @@
 //! program; `io/temporaries.rs`: an output's leftovers); a controller language's folder is named
 //! outside it only by its registry line (the recipe for a new language).
 
-use crate::layout::{library_files, strip, CRATES};
+use crate::layout::{stripped_library_files, CRATES};
 
 /// The library files (`crate/path`) whose code, comments and strings blanked, holds `needle`.
 fn holding(needle: &str) -> Vec<String> {
     (CRATES.iter())
         .flat_map(|c| {
-            (library_files(c).into_iter())
-                .filter(|(_, code)| strip(code).contains(needle))
+            (stripped_library_files(c).into_iter())
+                .filter(|(_, code)| code.contains(needle))
                 .map(move |(path, _)| format!("{c}/{}", path.display()))
         })
         .collect()
@@ -50,9 +50,8 @@ fn a_language_is_named_outside_its_folder_only_by_its_registry_line() {
     ];
     let mut outside = Vec::new();
     for krate in CRATES {
-        for (path, code) in library_files(krate) {
+        for (path, code) in stripped_library_files(krate) {
             let file = path.display().to_string();
-            let code = strip(&code);
             for (folder, variant) in languages {
                 if file.starts_with(&format!("program/{folder}/")) {
                     continue;

@@ -199,20 +199,50 @@ fn a_circle_is_found() {
     assert_eq!(circle(&g(&[("a", "b"), ("b", "c"), ("a", "c")])), None);
 }
 
+/// A crate's files as `(path under src/, code)`.
+type Files = Vec<(PathBuf, String)>;
+
+/// `read(name)`, computed once per crate in `cache` for every test that asks (the sources do not
+/// change during a run; the layout tests read them again and again otherwise).
+fn once_per_crate(
+    cache: &std::sync::Mutex<BTreeMap<String, Files>>,
+    name: &str,
+    read: impl FnOnce() -> Files,
+) -> Files {
+    let mut read_already = cache.lock().unwrap_or_else(|e| e.into_inner());
+    read_already
+        .entry(name.to_string())
+        .or_insert_with(read)
+        .clone()
+}
+
 /// Every library file: its path under `src/` and its code before the first `#[cfg(test)]`
 /// (test files, `tests.rs` and `tests/`, left out).
-pub(crate) fn library_files(name: &str) -> Vec<(PathBuf, String)> {
-    let mut files = Vec::new();
-    sources(&src_of(name), &mut files);
-    files.sort();
-    files
-        .into_iter()
-        .map(|f| {
-            let text = std::fs::read_to_string(&f).unwrap();
-            let path = f.strip_prefix(src_of(name)).unwrap().to_path_buf();
-            (path, without_tests(&text))
-        })
-        .collect()
+pub(crate) fn library_files(name: &str) -> Files {
+    static READ: std::sync::Mutex<BTreeMap<String, Files>> = std::sync::Mutex::new(BTreeMap::new());
+    once_per_crate(&READ, name, || {
+        let mut files = Vec::new();
+        sources(&src_of(name), &mut files);
+        files.sort();
+        files
+            .into_iter()
+            .map(|f| {
+                let text = std::fs::read_to_string(&f).unwrap();
+                let path = f.strip_prefix(src_of(name)).unwrap().to_path_buf();
+                (path, without_tests(&text))
+            })
+            .collect()
+    })
+}
+
+/// [`library_files`] with their code [`strip`]ped.
+pub(crate) fn stripped_library_files(name: &str) -> Files {
+    static READ: std::sync::Mutex<BTreeMap<String, Files>> = std::sync::Mutex::new(BTreeMap::new());
+    once_per_crate(&READ, name, || {
+        (library_files(name).into_iter())
+            .map(|(path, code)| (path, strip(&code)))
+            .collect()
+    })
 }
 
 /// `text` without its `#[cfg(test)]` items: each such attribute with the item it marks, a
@@ -393,7 +423,7 @@ fn expand(tree: &str) -> Vec<String> {
 type Module = (Vec<String>, Vec<(String, bool)>);
 
 fn modules(name: &str) -> Vec<Module> {
-    library_files(name)
+    stripped_library_files(name)
         .into_iter()
         .map(|(file, code)| {
             let mut path: Vec<String> = (file.with_extension("").iter())
@@ -402,7 +432,6 @@ fn modules(name: &str) -> Vec<Module> {
             if matches!(path.last().map(String::as_str), Some("mod" | "lib")) {
                 path.pop();
             }
-            let code = strip(&code);
             let mut named = Vec::new();
             let mut rest = String::new();
             let mut tail = code.as_str();
@@ -917,8 +946,8 @@ fn public_items(name: &str) -> usize {
     let kinds = [
         "fn ", "struct ", "enum ", "trait ", "type ", "const ", "static ", "mod ", "use ",
     ];
-    (library_files(name).iter())
-        .flat_map(|(_, code)| strip(code).lines().map(str::to_string).collect::<Vec<_>>())
+    (stripped_library_files(name).iter())
+        .flat_map(|(_, code)| code.lines().map(str::to_string).collect::<Vec<_>>())
         .filter(|l| {
             let rest = l.trim_start().strip_prefix("pub ");
             let rest = rest.map(|r| r.trim_start_matches("async ").trim_start_matches("unsafe "));
@@ -1182,8 +1211,8 @@ fn every_field_written_through_a_unit_adapter_says_both_units() {
 #[test]
 fn angles_are_written_by_rpy_not_by_euler_angles() {
     let calls: Vec<String> = (CRATES.iter())
-        .flat_map(|c| library_files(c))
-        .filter(|(_, code)| strip(code).contains(".euler_angles()"))
+        .flat_map(|c| stripped_library_files(c))
+        .filter(|(_, code)| code.contains(".euler_angles()"))
         .map(|(path, _)| path.display().to_string())
         .collect();
     assert!(calls.is_empty(), "{calls:?}");

@@ -191,17 +191,24 @@ fn the_model_form_part_is_the_spread_over_the_resamples() {
     assert_eq!(r.budget.model_form, None);
 }
 
-/// The FANUC data's identification by the model comparison with `resamples` bootstrap resamples:
-/// the setup, the compliance of the six drives with the `model_form` the stiffness file carries,
-/// and the recommended model's setup and compliance.
-fn fanuc(
-    resamples: usize,
-) -> (
+/// The setup, the drives' compliance, the recommended model's setup and compliance.
+type Fanuc = (
     Setup,
     stiffid::internal::model::Compliance,
     Setup,
     stiffid::internal::model::Compliance,
-) {
+);
+
+/// The FANUC data's identification by the model comparison with 100 bootstrap resamples: the
+/// setup, the compliance of the six drives with the `model_form` the stiffness file carries, and
+/// the recommended model's setup and compliance (computed once for the tests that read it).
+fn fanuc() -> &'static Fanuc {
+    static FANUC: std::sync::OnceLock<Fanuc> = std::sync::OnceLock::new();
+    FANUC.get_or_init(|| fanuc_with(100))
+}
+
+/// As [`fanuc`], with `resamples` bootstrap resamples.
+fn fanuc_with(resamples: usize) -> Fanuc {
     let s = stiffid::internal::setup::builtin("fanuc-r2000ic-165f").unwrap();
     let path = concat!(
         env!("CARGO_MANIFEST_DIR"),
@@ -273,10 +280,10 @@ fn spearman(a: &[f64], b: &[f64]) -> f64 {
 /// the recommended model's best (0.21 mm).
 #[test]
 fn the_drives_and_the_recommended_model_rank_a_holes_postures_in_opposite_order() {
-    let (s, drives, rec, rec_c) = fanuc(100);
-    let q = random_group(&s, 300, 11)[196];
+    let (s, drives, rec, rec_c) = fanuc();
+    let q = random_group(s, 300, 11)[196];
     let start = tool_pose(&s.robot().frames(&q), &s.tool().tcp);
-    let mut options = CompensateOptions::for_setup(&s);
+    let mut options = CompensateOptions::for_setup(s);
     options.q0 = q;
     let at = |setup: &Setup, c: &stiffid::internal::model::Compliance, deg: f64| {
         let rotation =
@@ -293,8 +300,8 @@ fn the_drives_and_the_recommended_model_rank_a_holes_postures_in_opposite_order(
             .remove(0)
     };
     let angles = [-90.0, -60.0, -30.0, 0.0, 30.0, 60.0, 90.0];
-    let a: Vec<_> = angles.iter().map(|&g| at(&s, &drives, g)).collect();
-    let b: Vec<_> = angles.iter().map(|&g| at(&rec, &rec_c, g)).collect();
+    let a: Vec<_> = angles.iter().map(|&g| at(s, drives, g)).collect();
+    let b: Vec<_> = angles.iter().map(|&g| at(rec, rec_c, g)).collect();
     let norm = |r: &compensate::Compensated| r.deflection.fixed_rows::<3>(0).norm() * 1e3;
     let da: Vec<f64> = a.iter().map(norm).collect();
     let db: Vec<f64> = b.iter().map(norm).collect();
@@ -308,7 +315,7 @@ fn the_drives_and_the_recommended_model_rank_a_holes_postures_in_opposite_order(
     assert!(rho <= -0.5, "{rho}");
     // The compensation says so: the stiffness file's recommended model, set beside the drives at
     // every point, gives the recommended setup's own deflections and their rho, and a warning.
-    let (section, warning) = ranked(&s, &drives, &a);
+    let (section, warning) = ranked(s, drives, &a);
     assert!((section.rho.unwrap() - rho).abs() < 1e-12, "{section:?}");
     assert!(!section.agree && section.recommended_springs.len() == 2);
     for p in &section.largest_rank_differences {
@@ -357,10 +364,10 @@ fn ranked(
 /// model is its own, gives no ranking.
 #[test]
 fn the_drives_and_the_recommended_model_rank_growing_thrusts_alike() {
-    let (s, drives, _, _) = fanuc(10);
-    let q = random_group(&s, 300, 11)[196];
+    let (s, drives, _, _) = fanuc();
+    let q = random_group(s, 300, 11)[196];
     let start = tool_pose(&s.robot().frames(&q), &s.tool().tcp);
-    let mut options = CompensateOptions::for_setup(&s);
+    let mut options = CompensateOptions::for_setup(s);
     options.q0 = q;
     let points: Vec<PathPoint> = (0..7)
         .map(|k| {
@@ -376,8 +383,8 @@ fn the_drives_and_the_recommended_model_rank_growing_thrusts_alike() {
             }
         })
         .collect();
-    let results = compensate::path(s.arm(), &drives, &points, &options).unwrap();
-    let (section, warning) = ranked(&s, &drives, &results);
+    let results = compensate::path(s.arm(), drives, &points, &options).unwrap();
+    let (section, warning) = ranked(s, drives, &results);
     println!("{section:#?}");
     assert!(section.agree && section.rho.unwrap() >= 0.9, "{section:?}");
     assert_eq!(section.points, 7);

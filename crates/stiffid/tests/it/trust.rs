@@ -100,7 +100,7 @@ fn nnls_by_enumeration(a: &Matrix6<f64>, b: &Vector6<f64>) -> Vector6<f64> {
 fn nonnegative_least_squares_matches_the_enumeration_of_active_sets() {
     let mut rng = ChaCha8Rng::seed_from_u64(11);
     let mut some_active = 0;
-    for _ in 0..300 {
+    for _ in 0..100 {
         let a = Matrix6::from_fn(|i, j| match i <= j {
             true => rng.random_range(-1.0..1.0) + if i == j { 2.0 } else { 0.0 },
             false => 0.0,
@@ -117,7 +117,7 @@ fn nonnegative_least_squares_matches_the_enumeration_of_active_sets() {
         some_active += usize::from(fit.active.iter().any(|a| *a));
     }
     assert!(
-        some_active > 100,
+        some_active > 33,
         "the cases exercise the bounds: {some_active}"
     );
 }

@@ -437,9 +437,10 @@ fn settings_and_moves_outside_their_limits_are_refused() {
 }
 
 #[test]
-fn a_million_moves_are_split_into_called_sub_programs() {
+fn moves_beyond_one_files_lines_are_split_into_called_sub_programs() {
+    const N: usize = 120_000;
     let one = targets(&Q[..1]).pop().unwrap();
-    let t = vec![one; 1_000_000];
+    let t = vec![one; N];
     let mut m = vec![Move::Feed(0.03); t.len()];
     m[0] = Move::Rapid;
     let mut p = plan(Dialect::FanucLs, "PK", &t, &m);
@@ -448,21 +449,21 @@ fn a_million_moves_are_split_into_called_sub_programs() {
     // 10 000 moves per file, but an LS file numbers at most 9999 lines, nine of them the
     // header's: 9990 moves each.
     let per_file = LS_MAX_LINES - LS_HEADER_LINES;
-    let subs = 1_000_000_usize.div_ceil(per_file);
-    assert_eq!((per_file, subs), (9990, 101));
+    let subs = N.div_ceil(per_file);
+    assert_eq!((per_file, subs), (9990, 13));
     assert_eq!(w.files.len(), subs + 1);
     let main = &w.files[0];
     assert_eq!(main.name, "PK");
     let calls: Vec<&str> = main.text.lines().filter(|l| l.contains("CALL ")).collect();
     assert_eq!(calls.len(), subs);
-    assert!(calls[0].ends_with("CALL PK_001 ;") && calls[100].ends_with("CALL PK_101 ;"));
+    assert!(calls[0].ends_with("CALL PK_01 ;") && calls[12].ends_with("CALL PK_13 ;"));
     for (k, f) in w.files[1..].iter().enumerate() {
-        assert_eq!(f.name, format!("PK_{:03}", k + 1));
+        assert_eq!(f.name, format!("PK_{:02}", k + 1));
         assert!(f.text.starts_with(&format!("/PROG  {}\n", f.name)));
         let moves = if k + 1 < subs {
             per_file
         } else {
-            1_000_000 - 100 * per_file
+            N - 12 * per_file
         };
         assert_eq!(f.text.matches("GP1:").count(), moves);
     }
@@ -472,9 +473,22 @@ fn a_million_moves_are_split_into_called_sub_programs() {
         .iter()
         .map(|f| f.text.matches("CNT100 ;").count())
         .sum::<usize>();
-    assert_eq!(fine, 1_000_000 - 2);
-    // A name with no room for the sub-programs' numbers on an 8-character controller.
-    let long = plan(Dialect::FanucLs, "POCKET", &t, &m);
+    assert_eq!(fine, N - 2);
+    // More than 99 sub-programs are numbered with three digits (100 moves to a file here), and a
+    // name with no room for their numbers on an 8-character controller is refused.
+    let (t, m) = (&t[..10_050], &m[..10_050]);
+    p = plan(Dialect::FanucLs, "PK", t, m);
+    p.settings.moves_per_file = 100;
+    let names: Vec<String> = (generate(&p).unwrap().files.into_iter())
+        .map(|f| f.name)
+        .collect();
+    assert_eq!(names.len(), 102);
+    assert_eq!(
+        (names[1].as_str(), names[101].as_str()),
+        ("PK_001", "PK_101")
+    );
+    let mut long = plan(Dialect::FanucLs, "POCKET", t, m);
+    long.settings.moves_per_file = 100;
     assert!(
         matches!(generate(&long), Err(Error::InvalidOption { option: JobOption::ProgramName, message }) if message.contains("POCKET_001"))
     );
