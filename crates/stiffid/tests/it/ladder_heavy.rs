@@ -198,6 +198,19 @@ fn a_heavy_robot_measured_where_it_works_gets_gravity_terms() {
         "{} {a}",
         held_out(&given)
     );
+    // `masses` named on this robot without link masses: refused for that, not as a model the
+    // postures leave undetermined.
+    let e = try_bounded(
+        &setup,
+        (&data, &held),
+        GravitySpec::Fixed(Gravity::Masses),
+        None,
+    );
+    let e = e.err().map(|e| e.to_string()).unwrap_or_default();
+    assert!(
+        e.contains("gives no link masses") && !e.contains("do not determine"),
+        "{e}"
+    );
 }
 
 /// 24 postures read at four points give the jackknife+ 288 held-out values, fewer than the 333

@@ -265,18 +265,23 @@ pub fn climb(
     }
     // The maps chosen for the first gravity model, on every posture and in each outer fold
     // (with their ridges), kept for the others.
-    let later: Vec<std::result::Result<(Fitted, Assessed), String>> = (gravities[1..].iter())
-        .map(|&g| {
-            let tried = fit(g).and_then(|f| {
-                let a = assess_given((&f.model, &f.fit), obs, options, &assessed)?;
-                Ok((f, a))
-            });
-            (tried.map_err(|e| e.to_string())).and_then(|(f, a)| {
-                judged(&f, named.is_some())?;
-                Ok((f, a))
-            })
-        })
-        .collect();
+    let mut later: Vec<std::result::Result<(Fitted, Assessed), String>> = Vec::new();
+    for &g in &gravities[1..] {
+        let tried = fit(g).and_then(|f| {
+            let a = assess_given((&f.model, &f.fit), obs, options, &assessed)?;
+            Ok((f, a))
+        });
+        // A named model that cannot be fitted at all (a robot without link masses for
+        // `masses`) is refused for that reason, not as one the postures leave undetermined.
+        let tried = match (tried, named) {
+            (Err(e), Some(_)) => return Err(e),
+            (tried, _) => tried.map_err(|e| e.to_string()),
+        };
+        later.push(tried.and_then(|(f, a)| {
+            judged(&f, named.is_some())?;
+            Ok((f, a))
+        }));
+    }
     let kept_none = keeps_none(&assessed.maps);
     let mut fits = vec![Ok((first, assessed))];
     fits.extend(later);
