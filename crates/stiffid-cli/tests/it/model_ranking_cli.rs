@@ -18,7 +18,7 @@ fn compensate_sets_the_recommended_model_beside_the_drives() {
     let out = identify_fanuc(&[
         "--compare-models",
         "--bootstrap",
-        "20",
+        "5",
         "--stiffness-out",
         k.to_str().unwrap(),
     ]);
