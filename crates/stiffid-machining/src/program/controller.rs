@@ -150,6 +150,11 @@ pub trait Controller: Sync + 'static {
         let _ = read;
         written
     }
+    /// The characters a program's name may hold besides letters, digits and `_`; by default
+    /// none.
+    fn name_symbols(&self) -> &'static str {
+        ""
+    }
 }
 
 /// A [`Controller`] as the registry holds it ([`super::Dialect::controller`]): its
@@ -257,6 +262,8 @@ pub trait DynController: Sync {
     fn reserved_words(&self) -> &'static [&'static str] {
         self.descriptor().names.reserved
     }
+    /// The characters a program's name may hold besides letters, digits and `_` (INFORM `-`).
+    fn name_symbols(&self) -> &'static str;
     /// How a target's bound is written as a comment.
     fn bound_comment(&self) -> BoundComment {
         self.descriptor().bound_comment
@@ -308,6 +315,9 @@ impl<C: Controller> DynController for C {
     }
     fn written(&self, read: &str, written: String) -> String {
         Controller::written(self, read, written)
+    }
+    fn name_symbols(&self) -> &'static str {
+        Controller::name_symbols(self)
     }
 }
 

@@ -19,7 +19,11 @@ use super::Dialect;
 /// ```
 pub fn renamed(text: &str, dialect: Dialect, name: &str) -> String {
     let controller = dialect.controller();
-    let span = declared(text, |line| controller.declares_name(line));
+    let span = declared(
+        text,
+        |line| controller.declares_name(line),
+        controller.name_symbols(),
+    );
     match span {
         Some((start, end)) => format!("{}{name}{}", &text[..start], &text[end..]),
         None => text.to_string(),
@@ -44,7 +48,7 @@ pub fn renamed_data(text: &str, name: &str) -> String {
             .filter(|r| r.starts_with(char::is_whitespace))
             .map(|r| line.len() - r.len())
     };
-    match declared(text, keyword) {
+    match declared(text, keyword, "") {
         Some((start, end)) => format!("{}{name}{}", &text[..start], &text[end..]),
         None => text.to_string(),
     }
@@ -52,8 +56,13 @@ pub fn renamed_data(text: &str, name: &str) -> String {
 
 /// The byte span in `text` of the name on the first line where `keyword` finds the end of the
 /// declaring keyword (an offset in the line with its leading blanks, and a byte order mark,
-/// removed): the identifier after the blanks that follow it.
-fn declared(text: &str, keyword: impl Fn(&str) -> Option<usize>) -> Option<(usize, usize)> {
+/// removed): the identifier after the blanks that follow it (with the language's `symbols`:
+/// INFORM's `-`).
+fn declared(
+    text: &str,
+    keyword: impl Fn(&str) -> Option<usize>,
+    symbols: &str,
+) -> Option<(usize, usize)> {
     let mut offset = 0;
     for line in text.split_inclusive('\n') {
         let trimmed = line.trim_start_matches('\u{feff}').trim_start();
@@ -64,7 +73,9 @@ fn declared(text: &str, keyword: impl Fn(&str) -> Option<usize>) -> Option<(usiz
             let start = offset + indent + after + blanks;
             let length = rest
                 .trim_start()
-                .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_' || c == '$'))
+                .find(|c: char| {
+                    !(c.is_ascii_alphanumeric() || c == '_' || c == '$' || symbols.contains(c))
+                })
                 .unwrap_or(rest.trim_start().len());
             return (length > 0).then_some((start, start + length));
         }

@@ -757,4 +757,19 @@ fn device_names_and_krl_bas_are_refused_as_program_names() {
     let e = check_name(Dialect::Krl, "bas", 24).unwrap_err().to_string();
     assert!(e.contains("reserved word of KUKA KRL"), "{e}");
     assert!(check_name(Dialect::Rapid, "BAS", 24).is_ok());
+    // An INFORM job's name may hold `-` (a real YRC1000 backup's `R1_HAND-OFF.JBI`); KRL's not.
+    assert!(check_name(Dialect::Inform, "R1_HAND-OFF", 32).is_ok());
+    let renamed = stiffid::internal::machining::program::rename::renamed(
+        "/JOB\r\n//NAME R1_HAND-OFF\r\n",
+        Dialect::Inform,
+        "R1_HAND-OFF_C",
+    );
+    assert_eq!(renamed, "/JOB\r\n//NAME R1_HAND-OFF_C\r\n");
+    let e = check_name(Dialect::Krl, "R1_HAND-OFF", 24)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("expected letters, digits and _, starting"),
+        "{e}"
+    );
 }

@@ -102,13 +102,14 @@ fn names(dialect: Dialect, name: &str, settings: &Settings, files: usize) -> Res
 
 /// Refuses a program name the controller does not take (module docs).
 pub fn check_name(dialect: Dialect, name: &str, longest: usize) -> Result<()> {
+    let symbols = dialect.controller().name_symbols();
     let identifier = name.starts_with(|c: char| c.is_ascii_alphabetic())
-        && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+        && (name.chars()).all(|c| c.is_ascii_alphanumeric() || c == '_' || symbols.contains(c));
     let reserved = reserved_words(dialect)
         .iter()
         .any(|w| w.eq_ignore_ascii_case(name));
     let message = if !identifier {
-        "expected letters, digits and _, starting with a letter (the program is named after its file: rename the file)".to_string()
+        format!("expected letters, digits and _{}, starting with a letter (the program is named after its file: rename the file)", symbols.chars().map(|c| format!(" or {c}")).collect::<String>())
     } else if name.len() > longest {
         format!(
             "{} characters: the controller takes at most {longest} (a setting: name_length)",

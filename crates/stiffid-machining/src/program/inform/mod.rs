@@ -82,6 +82,7 @@
 //! ## Written
 //! A G-code path is written as a new job in pulses ([`generate`]) with the setup's pulses.
 
+mod backupfile;
 mod called;
 mod calls;
 pub mod generate;
@@ -423,6 +424,11 @@ impl Controller for Inform {
             Some(rest) if rest.chars().all(|c| c == '0' || c == '.') => rest.to_string(),
             _ => s,
         }
+    }
+    /// `-`: a job's name may hold it (real YRC1000 backups hold `R1_HAND-OFF.JBI`, `SHIP-R1.JBI`,
+    /// named so on the pendant).
+    fn name_symbols(&self) -> &'static str {
+        "-"
     }
     /// Jobs in pulses ([`generate`]).
     fn generator(&self) -> Option<&'static dyn Generator> {

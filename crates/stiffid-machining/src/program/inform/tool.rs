@@ -2,7 +2,7 @@
 //! checked against the setup's tool (module docs of [`super`]).
 
 use super::inst::Motion;
-use super::pos::{Kind, Position};
+use super::pos::{Form, Kind, Position};
 use super::Context;
 use crate::program::at;
 use crate::program::cartesian::{same, words, SAME_M};
@@ -27,7 +27,8 @@ fn held(
     }
 }
 
-/// Checks the tool file of each motion: one the backup's `TOOL.CND` or the setup's
+/// Checks the tool file of each motion but a `MOVJ` to a position in pulses (a joint motion to
+/// pulses does not use it): one the backup's `TOOL.CND` or the setup's
 /// `[controller] tools` gives has the setup's tool centre point (within 1 um: a job's pulse
 /// positions do not depend on the tool's orientation; refused otherwise); one neither gives is
 /// taken as the setup's tool only in a job that never changes its tool file (refused naming
@@ -43,7 +44,13 @@ pub(super) fn check(
     let backup = super::toolcnd::tools(context)?;
     let mut first: Option<(u64, u32, bool)> = None;
     for m in motions {
-        let taught = positions.get(&(Kind::Robot, m.robot)).and_then(|p| p.tool);
+        let position = positions.get(&(Kind::Robot, m.robot));
+        if m.word == "MOVJ" && position.is_some_and(|p| p.form == Form::Pulse) {
+            // A joint motion to pulses ends at the pulses and moves its axes, whatever the
+            // tool file: the controller does not use it.
+            continue;
+        }
+        let taught = position.and_then(|p| p.tool);
         let Some((line, n)) = m.tool.map(|n| (m.line, n)).or(taught) else {
             continue;
         };

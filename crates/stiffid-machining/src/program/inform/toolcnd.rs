@@ -24,6 +24,7 @@ pub(super) fn tools(context: &Context) -> Result<Tools> {
     let Some((name, text)) = context.backup_file(FILE) else {
         return Ok(Tools::new());
     };
+    super::backupfile::whole(name, text)?;
     let failed = |line: u64, message: String| Error::Parse {
         source_name: name.to_string(),
         message: format!("line {line}: {message}"),
@@ -60,7 +61,8 @@ pub(super) fn tools(context: &Context) -> Result<Tools> {
         );
         let position = Translation3::new(v[0] * 1e-3, v[1] * 1e-3, v[2] * 1e-3);
         let source = format!("{name} line {line} (tool file {n})");
-        out.insert(n, (Isometry3::from_parts(position, rotation), source));
+        let frame = Isometry3::from_parts(position, rotation);
+        super::backupfile::insert(&mut out, (name, line, "tool file"), (n, frame, source))?;
     }
     Ok(out)
 }

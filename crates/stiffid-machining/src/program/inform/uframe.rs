@@ -27,6 +27,7 @@ pub(super) fn frames(context: &Context) -> Result<Frames> {
     let Some((name, text)) = context.backup_file(FILE) else {
         return Ok(Frames::new());
     };
+    super::backupfile::whole(name, text)?;
     let failed = |line: u64, message: String| Error::Parse {
         source_name: name.to_string(),
         message: format!("line {line}: {message}"),
@@ -61,7 +62,8 @@ pub(super) fn frames(context: &Context) -> Result<Frames> {
         );
         let position = Translation3::new(v[0] * 1e-3, v[1] * 1e-3, v[2] * 1e-3);
         let source = format!("{name} line {line} (user frame {n})");
-        out.insert(n, (Isometry3::from_parts(position, rotation), source));
+        let frame = Isometry3::from_parts(position, rotation);
+        super::backupfile::insert(&mut out, (name, line, "user frame"), (n, frame, source))?;
     }
     Ok(out)
 }

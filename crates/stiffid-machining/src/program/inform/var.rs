@@ -69,8 +69,9 @@ pub(super) fn read<'a>(context: &Context<'a>) -> Result<Option<Variables<'a>>> {
     if let Some((other, _)) = files.iter().find(|(_, t)| *t != text) {
         return Err(failed(format!("the backup holds two VAR.DAT files that differ ({file} and {other}): one controller holds one set of variables; give the backup of the controller the job runs on")));
     }
+    super::backupfile::whole(file, text)?;
     let mut list = Vec::new();
-    let mut in_p = false;
+    let (mut in_p, mut after_p) = (false, false);
     for (line, _, l) in crate::program::lines(text) {
         let t = l.trim();
         if let Some(axes) = t.strip_prefix("///PFNUM") {
@@ -81,6 +82,7 @@ pub(super) fn read<'a>(context: &Context<'a>) -> Result<Option<Variables<'a>>> {
         }
         if t.starts_with("//") {
             if in_p {
+                after_p = true;
                 break;
             }
             in_p = t == "///P";
@@ -99,6 +101,9 @@ pub(super) fn read<'a>(context: &Context<'a>) -> Result<Option<Variables<'a>>> {
             "no ///P section (the position variables): not a whole VAR.DAT (is the file cut off?)"
                 .into(),
         ));
+    }
+    if !after_p {
+        return Err(failed("the file ends in its ///P section, without the sections a controller writes after it (///BP, ///EX): not a whole VAR.DAT (is the file cut off?)".into()));
     }
     Ok(Some(Variables { file, list }))
 }
@@ -158,9 +163,9 @@ fn rectan(fields: &[&str]) -> std::result::Result<Variable, String> {
     let tool = number(fields[2], "a tool file number")?;
     let coordinates = number(fields[5], "a coordinates code")?;
     let config = fields[3];
-    if config.is_empty() || !config.bytes().all(|b| b == b'0' || b == b'1') {
+    if config.is_empty() || config.len() > 24 || !config.bytes().all(|b| b == b'0' || b == b'1') {
         return Err(format!(
-            "'{}': expected the manipulator type as 0 and 1",
+            "'{}': expected the manipulator type as at most 24 characters 0 and 1",
             short(config)
         ));
     }

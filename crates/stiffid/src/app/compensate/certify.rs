@@ -72,6 +72,38 @@ pub fn at_lines(dialect: Dialect, text: &str, lines: &[(u64, f64)], level: f64) 
     }
 }
 
+/// `lines` (line numbers of the program read, `read`, with their bounds) as the lines of
+/// `written` they are: `written` holds `read`'s lines, some edited in place, with whole lines
+/// inserted (a point of another file declared anew in the program: an INFORM variable's copy in
+/// `//POS`), so a line after an insertion is further down.
+pub fn moved(read: &str, written: &str, lines: &[(u64, f64)]) -> Vec<(u64, f64)> {
+    let r: Vec<&str> = read.split('\n').collect();
+    let w: Vec<&str> = written.split('\n').collect();
+    let extra = w.len().saturating_sub(r.len());
+    if extra == 0 {
+        return lines.to_vec();
+    }
+    let mut at = Vec::with_capacity(r.len());
+    let mut j = 0;
+    for (i, line) in r.iter().enumerate() {
+        if w.get(j) != Some(line) {
+            // Inserted lines end where this line and the next follow each other again.
+            let follows =
+                |k: &usize| w[*k] == *line && r.get(i + 1).is_none_or(|n| w.get(k + 1) == Some(n));
+            if let Some(k) = (j + 1..w.len().min(j + extra + 1)).find(follows) {
+                j = k;
+            }
+        }
+        at.push(j as u64 + 1);
+        j += 1;
+    }
+    let place = |l: u64| (l.checked_sub(1)).and_then(|k| at.get(k as usize)).copied();
+    lines
+        .iter()
+        .map(|&(l, b)| (place(l).unwrap_or(l), b))
+        .collect()
+}
+
 /// `texts` (the files of a generated program, in call order) with the bounds (m) of its targets,
 /// in path order, as comments: each motion line, in file order, takes the next bound (`None`: a
 /// move of no bound, the home posture's, without a comment).

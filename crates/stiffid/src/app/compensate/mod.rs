@@ -502,6 +502,7 @@ where
                 .filter(|(i, (p, _))| !held.contains(&p.line) && own(*i))
                 .map(|(_, (p, r))| (p.line, r.budget.bound))
                 .collect();
+            let lines = certify::moved(source, &text, &lines);
             (
                 certify::at_lines(d, &text, &lines, options.level),
                 called_files(&compensated.called),

@@ -87,3 +87,16 @@ fn every_target_carries_its_bound() {
         generated[0]
     );
 }
+
+/// A job whose written text holds lines the read one does not (an INFORM variable's copy in
+/// `//POS`) takes each bound before its motion's line where it now is, never inside `//POS`.
+#[test]
+fn a_bound_goes_before_its_motion_after_inserted_lines() {
+    let read = "//POS\r\nC00000=1\r\n//INST\r\nMOVJ C00000\r\nMOVL P002\r\nMOVL P002\r\nEND\r\n";
+    let written = "//POS\r\nC00000=2\r\n///PULSE\r\nC00001=3\r\n//INST\r\nMOVJ C00000\r\nMOVL C00001\r\nMOVL P002\r\nEND\r\n";
+    let lines = moved(read, written, &[(4, 1e-5), (5, 2e-5), (6, 3e-5)]);
+    assert_eq!(lines, [(6, 1e-5), (7, 2e-5), (8, 3e-5)]);
+    let out = at_lines(Dialect::Inform, written, &lines, 0.95);
+    assert!(out.contains("C00001=3\r\n//INST\r\n'bound 0.0100 mm at 95%\r\nMOVJ C00000\r\n'bound 0.0200 mm at 95%\r\nMOVL C00001\r\n'bound 0.0300 mm at 95%\r\nMOVL P002\r\n"), "{out}");
+    assert_eq!(moved(read, read, &[(4, 1e-5)]), [(4, 1e-5)]);
+}

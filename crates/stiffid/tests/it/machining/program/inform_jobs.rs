@@ -209,18 +209,33 @@ fn tool_cnd_gives_the_tool_files() {
             && message.contains("the setup's [controller] tools X 0 mm, Y 0 mm, Z 260 mm"),
         "{message}"
     );
-    match read(STORED, tool_cnd("0.000,0.000,250.000,0.0000"), &empty) {
-        Err(Error::Parse {
-            source_name,
-            message,
-        }) => {
-            assert_eq!(source_name, "backup/TOOL.CND");
-            assert!(
-                message.starts_with("line 10: tool file 1 (line 8): expected its frame"),
-                "{message}"
-            );
+    // A frame line cut short, a tool file given twice otherwise, a file ending inside a line.
+    let twice = format!("{turned}//TOOL 1\r\n///NAME\r\n0.000,0.000,251.000,0,0,0\r\n");
+    let cases = [
+        (
+            tool_cnd("0.000,0.000,250.000,0.0000"),
+            "line 10: tool file 1 (line 8): expected its frame",
+        ),
+        (
+            twice,
+            "line 24: tool file 1 again, another frame than backup/TOOL.CND line 10",
+        ),
+        (
+            turned[..turned.len() - 2].to_string(),
+            "line 21: the file ends inside this line",
+        ),
+    ];
+    for (file, says) in cases {
+        match read(STORED, file, &empty) {
+            Err(Error::Parse {
+                source_name,
+                message,
+            }) => {
+                assert_eq!(source_name, "backup/TOOL.CND");
+                assert!(message.starts_with(says), "{says}: {message}");
+            }
+            other => panic!("{says}: {other:?}"),
         }
-        other => panic!("{other:?}"),
     }
 }
 
@@ -395,6 +410,9 @@ fn tool_files_are_checked_against_the_setups_tool() {
         message.contains("tool file 2 after tool file 1 (line 5)"),
         "{message}"
     );
+    // A joint motion to pulses does not use its tool file: another one there is not checked.
+    let joint = STORED.replace("VJ=25.00 PL=0", "VJ=25.00 PL=0 TOOL#(2)");
+    assert!(parse_in(&joint, Dialect::Inform, &context(&empty)).is_ok());
 }
 
 /// What changes the path or cannot be known is refused naming its line: a shift, weaving, a

@@ -135,7 +135,7 @@ fn what_the_backup_does_not_say_of_a_variable_is_refused() {
     let good = var_dat(P3, P5);
     let cases: Vec<(String, Backup, u64, &str)> = vec![
         (JOB.into(), Vec::new(), 17, "give the controller's backup holding its VAR.DAT"),
-        (JOB.into(), backup(good.split("\"PULSE\"0,0,1,000000000000000000000000,0,0,-45969").next().unwrap().to_string()), 17, "backup/VAR.DAT holds 5 position variables (P000 to P004)"),
+        (JOB.into(), backup(format!("{}///BP\r\n///EX\r\n", good.split("\"PULSE\"0,0,1,000000000000000000000000,0,0,-45969").next().unwrap())), 17, "backup/VAR.DAT holds 5 position variables (P000 to P004)"),
         (JOB.replace("MOVL P003", "MOVL P004"), backup(good.replace(",0,16,", ",0,18,")), 19, "a \"RECTAN\" variable in tool coordinates (18)"),
         (JOB.replace("MOVL P003", "MOVL P001"), backup(good.clone()), 19, "line 8: the variable is UNUSED"),
         (JOB.replace("DOUT OT#(2) ON", "ADD P005 P003"), backup(good.clone()), 17, "set as the jobs run (line 18: ADD P005 P003)"),
@@ -160,14 +160,16 @@ fn what_the_backup_does_not_say_of_a_variable_is_refused() {
         backup(good.replace("///P\r\n", "///Q\r\n")),
         backup(good.replace("0,0,-45969", "0,0,-45969.5")),
         backup(good.replace("\r\n", "\r")),
+        backup(good.replace("///BP\r\n///EX\r\n", "")),
     ];
     let says = [
-        "line 12: P005",
+        "line 12: the file ends inside this line",
         "two VAR.DAT files that differ",
         "a robot with 7 axes",
         "no ///P section",
         "'-45969.5': expected a whole number of pulses",
         "no ///P section",
+        "the file ends in its ///P section",
     ];
     for (files, words) in bad.iter().zip(says) {
         match read(JOB, &p, files) {
