@@ -67,6 +67,7 @@
 //! [`JointProgram::left`]; the controller backup's files given with a program
 //! ([`Context::backup`]) hold the data it declares elsewhere.
 
+mod arithmetic;
 pub mod cartesian;
 mod controller;
 mod descriptor;

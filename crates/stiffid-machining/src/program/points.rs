@@ -255,7 +255,7 @@ fn fresh(program: &JointProgram, point: &Point, taken: &[String]) -> Option<Stri
 }
 
 /// Whether `text` holds `word` (any case) as a whole word (letters, digits, `_` around it).
-fn holds_word(text: &str, word: &str) -> bool {
+pub(crate) fn holds_word(text: &str, word: &str) -> bool {
     let (t, w) = (text.to_ascii_lowercase(), word.to_ascii_lowercase());
     let part = |c: char| c.is_ascii_alphanumeric() || c == '_' || c == '$';
     t.match_indices(&w).any(|(i, _)| {

@@ -104,6 +104,36 @@ pub(super) fn module<'a>(name: &str, context: &Context<'a>) -> Option<Module<'a>
     })
 }
 
+/// A call of `name` (upper case) that no module of the `context`'s backup answers
+/// ([`module`]), in words: `NAME( )`, and where the backup holds the routine all the same (a
+/// `GLOBAL DEF` that is not its module's first routine, or `NAME.src` whose first routine has
+/// another name), which stiffid does not read.
+pub(super) fn unheld(name: &str, context: &Context) -> String {
+    let first = |text: &str| {
+        (crate::program::lines(text)).find_map(|(line, _, l)| {
+            routine_name(&super::declare::words(l.split(';').next().unwrap_or("")))
+                .map(|n| (line, n))
+        })
+    };
+    if let Some((file, text)) = context.backup_file(&format!("{name}.src"))
+        && let Some((line, other)) = first(text)
+    {
+        return format!("{name}( ) ({file} of the backup opens with the routine {other} on line {line}, not {name}: KSS names a module's first routine after its file, and stiffid reads a module so)");
+    }
+    for (file, text) in context.backup_with(|n| n.to_ascii_lowercase().ends_with(".src")) {
+        let global = (crate::program::lines(text)).find(|(_, _, l)| {
+            let w = super::declare::words(l.split(';').next().unwrap_or(""));
+            w.first().is_some_and(|g| g == "GLOBAL") && routine_name(&w).as_deref() == Some(name)
+        });
+        if let Some((line, ..)) =
+            global.filter(|(line, ..)| first(text).is_some_and(|f| f.0 != *line))
+        {
+            return format!("{name}( ) (a GLOBAL routine of {file}, line {line}, that is not its module's first: stiffid reads a module's first routine only)");
+        }
+    }
+    format!("{name}( )")
+}
+
 /// Where a statement sits among the motions of the paths that reach it (the callers' included):
 /// after a motion on some path, before one on some path.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -146,7 +176,7 @@ pub(super) enum EventKind {
     Motion,
     /// A call of a routine of the file (its routine number).
     Local(usize),
-    /// A call of a routine neither the files nor the backup hold (its name).
+    /// A call of a routine no file read holds, in words ([`unheld`]).
     Unheld(String),
     /// A call of a module of the backup, read: its name and file, the events of its text, and
     /// whether it moves.
@@ -253,8 +283,8 @@ impl Events {
                     EventKind::Local(callee) if *callee < places.len() => {
                         places[*callee] = Some(places[*callee].map_or(here, |p| p.or(here)));
                     }
-                    EventKind::Unheld(name) if here.between() => {
-                        out.push((e.line, format!("{name}( )")));
+                    EventKind::Unheld(what) if here.between() => {
+                        out.push((e.line, what.clone()));
                     }
                     EventKind::Held(name, file, inner, _) => {
                         for (l, what) in inner.between(here) {

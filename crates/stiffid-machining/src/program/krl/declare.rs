@@ -26,6 +26,9 @@ pub(super) struct Declarations {
     /// The arrays of points declared (`DECL E6POS XP[5]`), by upper-case name, with their size
     /// where it is a literal.
     pub arrays: HashMap<String, Option<usize>>,
+    /// The module's points declared with a value (not a routine's own), by upper-case name:
+    /// their type word and aggregate, as written.
+    pub raw: HashMap<String, (String, String)>,
 }
 
 impl Declarations {
@@ -86,6 +89,9 @@ pub(super) fn declarations(
         }
         for (k, v) in own.arrays {
             out.arrays.entry(k).or_insert(v);
+        }
+        for (k, v) in own.raw {
+            out.raw.entry(k).or_insert(v);
         }
     }
     let mut seen = HashMap::new();
@@ -149,6 +155,10 @@ fn read(
                 if !code.contains('{') {
                     out.arrays.extend(arrays(code, kind));
                     for name in listed(code, kind) {
+                        if sub.is_none() {
+                            let raw = (kind.to_string(), String::new());
+                            out.raw.entry(name.clone()).or_insert(raw);
+                        }
                         let why =
                             format!("{name} is declared {on} without a value (set at run time)");
                         let value = twice(points, &name, &on, place, line)?.unwrap_or(Err(why));
@@ -167,7 +177,12 @@ fn read(
                     },
                 };
                 let value = twice(points, &name, &on, place, line)?.unwrap_or(value);
+                let raw = (sub.is_none().then(|| code.find('{')).flatten())
+                    .map(|open| (name.clone(), (kind.to_string(), code[open..].to_string())));
                 points.insert(name, (on, value));
+                if let Some((name, raw)) = raw {
+                    out.raw.entry(name).or_insert(raw);
+                }
             }
             ["FDAT", name, ..] => {
                 let value = match code.split_once('=') {
@@ -382,12 +397,15 @@ fn global(
     for (k, v) in found.fdats {
         out.fdats.entry(k).or_insert(v);
     }
+    for (k, v) in found.raw {
+        out.raw.entry(k).or_insert(v);
+    }
     Ok(())
 }
 
 /// The byte of `text` after the first line whose first word is `word` (case-insensitive), 0
 /// without one.
-fn after_line(text: &str, word: &str) -> usize {
+pub(super) fn after_line(text: &str, word: &str) -> usize {
     let mut at = 0;
     for line in text.split_inclusive('\n') {
         at += line.len();

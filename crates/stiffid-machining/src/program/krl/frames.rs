@@ -336,7 +336,7 @@ impl Frames {
     pub(crate) fn motion(&mut self, line: u64, code: &str, fdats: &Fdats) -> (Frame, Frame) {
         let c = compact(code);
         let with = c.split_once("WITH").map_or("", |(_, w)| w);
-        let items = split_top(with);
+        let items = split_top(with, ',');
         let (mut base, mut tool, mut external) =
             (self.base.clone(), self.tool.clone(), self.external);
         let mut own = false;
@@ -472,15 +472,16 @@ fn with_ipo(value: &str, fdats: &Fdats) -> Option<bool> {
     }
 }
 
-/// The items of a `WITH` list (compact), split at the commas outside brackets.
-fn split_top(with: &str) -> Vec<String> {
+/// The items of a `WITH` list (compact) split at the commas outside brackets, or of any text at
+/// another separator `sep` (the operands of a geometric operator, `:`).
+pub(super) fn split_top(with: &str, sep: char) -> Vec<String> {
     let mut out = vec![String::new()];
     let mut depth = 0i32;
     for ch in with.chars() {
         match ch {
             '(' | '[' | '{' => depth += 1,
             ')' | ']' | '}' => depth -= 1,
-            ',' if depth == 0 => {
+            c if c == sep && depth == 0 => {
                 out.push(String::new());
                 continue;
             }

@@ -19,6 +19,7 @@
 //! routines of the file (`read`, `state`). The guide's
 //! page `docs/programs/krl.md` lists each rule with its source.
 
+mod assign;
 mod backup;
 mod called;
 mod calls;

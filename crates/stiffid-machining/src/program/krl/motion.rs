@@ -2,6 +2,7 @@
 //! an aggregate or a declared point, `CIRC`/`SCIRC` to an auxiliary point and an end point;
 //! every other motion refused naming the line.
 
+use super::assign::{Value, Values};
 use super::declare::{aggregate_at, Declarations};
 use crate::program::points::Point;
 use crate::program::{at, JointTarget};
@@ -40,7 +41,7 @@ pub(super) fn motion(
     (line, start): (u64, usize),
     code: &str,
     first: &str,
-    context: &Context,
+    (context, values): (&Context, &Values),
 ) -> Result<Found> {
     let refuse = |what: &str| Err(at(line, format!("{first}: {what}")));
     let circle = match first {
@@ -86,7 +87,7 @@ pub(super) fn motion(
     let mut from = code.len() - code.trim_start()[first.len()..].len();
     let mut out = Vec::with_capacity(2);
     for k in 0..=usize::from(circle) {
-        let (target, after) = match one((line, start), code, from, (first, context))? {
+        let (target, after) = match one((line, start), code, from, (first, context), values)? {
             Ok(found) => found,
             Err((why, point)) => return Ok(Found::RunTime(format!("{first} {why}"), point)),
         };
@@ -120,6 +121,7 @@ fn one(
     code: &str,
     from: usize,
     (first, context): (&str, &Context),
+    values: &Values,
 ) -> Result<Target> {
     let rest = code[from..].trim_start();
     let open = code.len() - rest.len();
@@ -139,15 +141,22 @@ fn one(
     let points = declared.of(context.routine);
     let element = super::declare::element(&upper, &declared.arrays);
     let base = upper.split('[').next().unwrap_or(&upper);
-    let assigned = declared.assigned.get(&upper);
-    if let Some(assigned_on) =
-        assigned.or_else(|| element.as_ref().and(declared.assigned.get(base)))
-    {
-        let point = match points.get(&upper) {
-            Some((_, Ok(t))) => t.point.as_deref().cloned(),
-            _ => None,
-        };
-        return Ok(Err((format!("{name}: {name} is assigned on line {assigned_on}, so its value at the motion is the controller's, not the file's: give the motion its own declared point"), point)));
+    let point = || match points.get(&upper) {
+        Some((_, Ok(t))) => t.point.as_deref().cloned(),
+        _ => None,
+    };
+    let assigned = match element {
+        Some(_) => declared.assigned.get(base).map(|l| Value::Assigned(*l)),
+        None => values.get(&upper).cloned(),
+    };
+    match assigned {
+        Some(Value::Assigned(on)) => return Ok(Err((format!("{name}: {name} is assigned on line {on}, so its value at the motion is the controller's, not the file's: give the motion its own declared point"), point()))),
+        Some(Value::Unknown(why)) => return Ok(Err((format!("{name}: {name} {why}"), point()))),
+        Some(Value::Known(_, _, t)) => {
+            let reference = start + open..start + open + name.len();
+            return Ok(Ok((t.moved_to(line, false).named_at(reference), open + name.len())));
+        }
+        None => {}
     }
     let upper = match element {
         Some(Ok(key)) if !points.contains_key(&key) => {

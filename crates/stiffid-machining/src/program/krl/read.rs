@@ -3,6 +3,7 @@
 //! `.dat` ([`super::declare`]), what is in force at each followed through loops, branches and
 //! the routines of the file ([`super::state`], [`crate::program::paths`]).
 
+use super::assign;
 use super::called::{Calls, One};
 use super::calls::{routine_name, EventKind, Events, Place};
 use super::declare::{declarations, words, Declarations};
@@ -37,12 +38,17 @@ pub(crate) fn targets(text: &str, context: &crate::program::Context) -> Result<R
     let mut state = State {
         frames: Frames::new(unset),
         speed: speed::Krl::new(),
+        points: Default::default(),
     };
     state.frames.table = super::backup::tables(context)?;
     let one = module(text, context, state, &mut calls)?;
     let (mut out, mut left) = (one.targets, one.left);
     for (line, what) in one.events.between(Place::default()) {
-        let e = at(line, format!("{what}: a call between two motions of a routine neither the files nor the backup given hold; it may move the robot between them, off the path the file gives: give the controller's backup holding its module (its .src and .dat, --backup), or call it before the first motion or after the last"));
+        let e = match what.ends_with(')') && !what.ends_with("( )") {
+            // Held in the backup, not as a module stiffid reads.
+            true => at(line, format!("{what}: a call between two motions of a routine stiffid does not read; it may move the robot between them, off the path the file gives: call it before the first motion or after the last, or give it a module of its own (NAME.src whose first routine is NAME)")),
+            false => at(line, format!("{what}: a call between two motions of a routine neither the files nor the backup given hold; it may move the robot between them, off the path the file gives: give the controller's backup holding its module (its .src and .dat, --backup), or call it before the first motion or after the last")),
+        };
         context.leave(&mut left, e)?;
     }
     let (nested, nested_left, called) = calls.finish();
@@ -68,7 +74,26 @@ pub(super) fn module(
 ) -> Result<One> {
     let data = context.data;
     let declared = declarations(text, data, &super::declare::global_lists(context, data))?;
+    let mut entry = entry;
+    entry.points = assign::initial(&declared.assigned);
+    let setters = assign::setters(text, &entry.points);
+    let insert = match data {
+        Some(d) => text.len() + super::declare::after_line(d, "DEFDAT"),
+        None => super::declare::after_line(text, "DEF"),
+    };
+    let eol = match data.unwrap_or(text).contains("\r\n") {
+        true => "\r\n",
+        false => "\n",
+    };
     let mut r = Reader {
+        writer: assign::Writer {
+            declared: &declared,
+            insert,
+            texts: [text, data.unwrap_or("")],
+            eol,
+            taken: Vec::new(),
+        },
+        point_setters: setters,
         at_motion: Context {
             declared: &declared,
             data: data.is_some(),
@@ -115,6 +140,10 @@ pub(super) fn module(
 /// A module being read line by line ([`module`]).
 struct Reader<'d> {
     at_motion: Context<'d>,
+    /// Computes the points the program assigns.
+    writer: assign::Writer<'d>,
+    /// The points each routine after the first and each loop assign.
+    point_setters: assign::Setters,
     /// The routines after the first that set a frame, by name, with that line.
     setters: HashMap<String, u64>,
     /// The routines after the first, by name: their line and number.
@@ -155,22 +184,7 @@ impl Reader<'_> {
         let routine = self.at_motion.routine;
         self.label(line, code)?;
         if let Some(name) = routine_name(&words) {
-            self.labels.clear();
-            self.at_motion.routine += 1;
-            self.paths.clear();
-            self.events.end_routine();
-            if self.at_motion.routine > 1 {
-                let next = entry(&name, line, &self.calls, &self.call_lines);
-                let done = std::mem::replace(&mut self.state, next);
-                self.exit.get_or_insert(done);
-                for (k, f) in &self.tables {
-                    self.state
-                        .frames
-                        .table
-                        .entry(*k)
-                        .or_insert_with(|| f.clone());
-                }
-            }
+            self.routine_starts(&name, line);
             return Ok(());
         }
         let mut closed_loop = None;
@@ -211,14 +225,15 @@ impl Reader<'_> {
         if first == "GOTO" {
             self.jump.get_or_insert(line);
         }
-        if let Some((name, _)) = called(code, &self.local_lines) {
-            self.calls
-                .entry(name.to_string())
-                .or_default()
-                .push((line, self.state.clone()));
-            let number = self.local.get(name).map_or(0, |(_, n)| *n);
-            self.events.push(line, routine, EventKind::Local(number));
+        if matches!(first, "FOR" | "WHILE" | "REPEAT" | "LOOP") {
+            self.assigned_in_loop(line, first);
         }
+        let values = &self.state.points;
+        if let Some((name, value)) = self.writer.assignment(line, code, routine, values) {
+            self.state.points.insert(name, value);
+            return Ok(());
+        }
+        self.local_call(line, routine, code);
         let framed = self
             .state
             .frames
@@ -229,7 +244,12 @@ impl Reader<'_> {
         if self.state.speed.set(line, code)? || framed {
             return Ok(());
         }
-        let targets = match motion((line, start), code, first, &self.at_motion)? {
+        let targets = match motion(
+            (line, start),
+            code,
+            first,
+            (&self.at_motion, &self.state.points),
+        )? {
             Found::Nothing => return self.call((line, routine), code, context, calls),
             Found::RunTime(why, point) => {
                 self.events.push(line, routine, EventKind::Motion);
@@ -248,6 +268,60 @@ impl Reader<'_> {
         };
         self.events.push(line, routine, EventKind::Motion);
         self.moved(line, code, first, targets)
+    }
+
+    /// The routine `name` whose `DEF` is on `line` starts: what is in force at its calls.
+    fn routine_starts(&mut self, name: &str, line: u64) {
+        self.labels.clear();
+        self.at_motion.routine += 1;
+        self.paths.clear();
+        self.events.end_routine();
+        if self.at_motion.routine > 1 {
+            let mut next = entry(name, line, &self.calls, &self.call_lines);
+            for (k, l) in &self.at_motion.declared.assigned {
+                (next.points.entry(k.clone())).or_insert(assign::Value::Assigned(*l));
+            }
+            let done = std::mem::replace(&mut self.state, next);
+            self.exit.get_or_insert(done);
+            for (k, f) in &self.tables {
+                self.state
+                    .frames
+                    .table
+                    .entry(*k)
+                    .or_insert_with(|| f.clone());
+            }
+        }
+    }
+
+    /// A call (`code`, on `line` of `routine`) of a routine of the file: the state at it kept
+    /// for the routine's start; the points the routine assigns are the run's after it.
+    fn local_call(&mut self, line: u64, routine: usize, code: &str) {
+        let Some((name, _)) = called(code, &self.local_lines) else {
+            return;
+        };
+        self.calls
+            .entry(name.to_string())
+            .or_default()
+            .push((line, self.state.clone()));
+        let number = self.local.get(name).map_or(0, |(_, n)| *n);
+        self.events.push(line, routine, EventKind::Local(number));
+        for (point, l) in self.point_setters.0.get(name).into_iter().flatten() {
+            let why = format!("is assigned on line {l} in {name}, which line {line} calls: the value it leaves is the run's, which stiffid does not follow; assign it again after the call");
+            self.state
+                .points
+                .insert(point.clone(), assign::Value::Unknown(why));
+        }
+    }
+
+    /// The points the loop opening on `line` (its word `first`) assigns: their value at its
+    /// motions before the assignment is the previous run's, so unknown from its start.
+    fn assigned_in_loop(&mut self, line: u64, first: &str) {
+        for (point, l) in self.point_setters.1.get(&line).into_iter().flatten() {
+            let why = format!("is assigned on line {l} in the {first} loop of line {line}: at a motion of the loop before that line it holds the previous run's value; assign it before the motion in the loop");
+            self.state
+                .points
+                .insert(point.clone(), assign::Value::Unknown(why));
+        }
     }
 
     /// Refuses a label (`NAME:` alone on its line, a `GOTO`'s target) its routine defines twice:
@@ -291,11 +365,17 @@ impl Reader<'_> {
         match super::calls::module(&name, context) {
             Some(m) => {
                 let (after, event) = super::called::call(line, &m, &self.state, context, calls)?;
+                // The module's own points are its own: the program's stay as they were.
+                let points = std::mem::take(&mut self.state.points);
                 self.state = after;
+                self.state.points = points;
                 self.loops.iter_mut().for_each(|l| l.push(name.clone()));
                 self.events.push(line, routine, event);
             }
-            None => self.events.push(line, routine, EventKind::Unheld(name)),
+            None => {
+                let what = super::calls::unheld(&name, context);
+                self.events.push(line, routine, EventKind::Unheld(what));
+            }
         }
         Ok(())
     }
@@ -410,6 +490,7 @@ fn entry(
     let unknown = |why: String| State {
         frames: Frames::new(|n| Frame::Unknown(0, format!("{n}: {why}"))),
         speed: speed::Krl::unread(why.clone()),
+        points: Default::default(),
     };
     if let Some(l) = (late.get(name).into_iter().flatten()).find(|l| **l > line) {
         return unknown(format!("DEF {name} (line {line}) is called on line {l}, below it, by a routine whose frames stiffid reads after it; put the routine after its callers, or set the frames and speed in it"));

@@ -16,6 +16,8 @@ pub(super) struct State {
     pub frames: Frames,
     /// `$VEL.CP`.
     pub speed: speed::Krl,
+    /// The points the program assigns, as the path read leaves them ([`super::assign`]).
+    pub points: super::assign::Values,
 }
 
 /// Where a frame's value was set, in words (`line 5`, `the world`).
@@ -109,6 +111,7 @@ impl Join for State {
                 a.any_entry[k] = e.clone();
             }
         }
+        super::assign::join(&mut self.points, &other.points, construct);
         if self.speed.in_force != other.speed.in_force {
             self.speed.in_force = Speed::Unread(format!(
                 "the path speed depends on the path taken through {word} (line {line})"

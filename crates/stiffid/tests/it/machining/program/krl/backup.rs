@@ -121,12 +121,13 @@ pub(super) fn run(
 }
 
 /// The members `X` to `C` of the `E6POS` declared as `name` in `text`.
-fn members(text: &str, name: &str) -> Vec<f64> {
+pub(super) fn members(text: &str, name: &str) -> Vec<f64> {
     let l = text
         .lines()
         .find(|l| l.contains(&format!("E6POS {name}=")))
         .unwrap();
-    let inner = &l[l.find('{').unwrap() + 1..l.find(", S").unwrap()];
+    let end = l.find(", S").or_else(|| l.find(",S")).unwrap();
+    let inner = &l[l.find('{').unwrap() + 1..end];
     inner
         .split(',')
         .map(|m| m.split_whitespace().nth(1).unwrap().parse().unwrap())

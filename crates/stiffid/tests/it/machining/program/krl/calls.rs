@@ -92,6 +92,32 @@ fn a_call_no_file_holds_between_two_motions_is_refused_naming_it() {
         }
         other => panic!("{other:?}"),
     }
+    // Held in the backup, but not as a module's first routine: said so.
+    let global = [
+        (
+            "cell/tools.src",
+            "DEF tools( )\nEND\nGLOBAL DEF my_path( )\nEND\n",
+            "a GLOBAL routine of cell/tools.src, line 3",
+        ),
+        (
+            "cell/my_path.src",
+            "DEF path2( )\nEND\n",
+            "opens with the routine PATH2 on line 1, not MY_PATH",
+        ),
+    ];
+    for (file, text, says) in global {
+        let files = vec![(file.to_string(), text.to_string())];
+        let context = program::Context::default().with_backup(&files);
+        match program::parse_in(MAIN, Dialect::Krl, &context) {
+            Err(Error::Program { line: 5, message }) => {
+                assert!(
+                    message.contains(says) && message.contains("a routine stiffid does not read"),
+                    "{message}"
+                );
+            }
+            other => panic!("{other:?}"),
+        }
+    }
     // Left as found, named.
     let left = p(MAIN, true).unwrap();
     assert_eq!(left.targets.len(), 2);

@@ -1,5 +1,6 @@
 //! KUKA's KRL (`stiffid_machining::program::krl`).
 mod arrays;
+mod assign;
 mod backup;
 mod calls;
 mod inline;
