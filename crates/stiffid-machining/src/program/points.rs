@@ -123,7 +123,9 @@ pub(super) fn split(program: &JointProgram, edits: &mut Vec<Edit>) -> Result<()>
                 if let Some(r) = reference {
                     let name = names.get(k).cloned().unwrap_or_default();
                     match named.get(&r.start) {
-                        Some((other, _)) if *other != name => return Err(at(t.line, format!("the motion{} is run at two calls of its procedure, whose compensations need two different points, and the motion names one: give each call its own procedure or point", program.called_in(i).map(|f| format!(" of {f}")).unwrap_or_default()))),
+                        Some((other, _)) if *other != name => {
+                            return Err(at(t.line, two_values(program, i, &r)))
+                        }
                         _ => _ = named.insert(r.start, (name, t.line)),
                     }
                 }
@@ -190,6 +192,19 @@ fn visits(program: &JointProgram, edits: &[Edit]) -> BTreeMap<(usize, usize), (P
             .push((Some(i), texts));
     }
     visits
+}
+
+/// Why the visit `i` of `program`, its point named at `reference` as another visit's is, cannot
+/// take a value of its own: a procedure's motion run at two calls, or one name (an assignment's,
+/// a loop's) for two values.
+fn two_values(program: &JointProgram, i: usize, reference: &Range<usize>) -> String {
+    match program.called_in(i) {
+        Some(f) => format!("the motion of {f} is run at two calls of its procedure, whose compensations need two different points, and the motion names one: give each call its own procedure or point"),
+        None => {
+            let line = program.text[..reference.start].matches('\n').count() + 1;
+            format!("the point named on line {line} is visited by motions whose compensations need two different points, and that line names one: give each motion its own point")
+        }
+    }
 }
 
 /// The insertions (empty spans) at one byte joined into one, in the order they came.

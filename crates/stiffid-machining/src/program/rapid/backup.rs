@@ -27,6 +27,8 @@ pub(super) fn merge(mut data: Data, (text, code): (&str, &str), context: &Contex
         extensions.contains(&e.as_str())
     });
     let insert = after_module_line(code);
+    // The backup module each tool and work object the module does not declare comes from.
+    let mut from: std::collections::HashMap<String, &str> = Default::default();
     for (file, other) in modules.into_iter().filter(|(_, t)| *t != text) {
         let other_code = without_comments(other);
         let found =
@@ -35,7 +37,20 @@ pub(super) fn merge(mut data: Data, (text, code): (&str, &str), context: &Contex
                 message: format!("a module of the controller's backup: {e}"),
             })?;
         for (k, v) in found.frames {
-            data.frames.entry(k).or_insert_with(|| foreign(v, file));
+            let v = foreign(v, file);
+            match (data.frames.get(&k), from.get(&k)) {
+                (None, _) => {
+                    from.insert(k.clone(), file);
+                    data.frames.insert(k, v);
+                }
+                // Declared alike in two modules (a `PERS` shared by the task): one value.
+                (Some(f), Some(_)) if *f == v => {}
+                (Some(_), Some(first)) => {
+                    let why = format!("{k} is declared in {first} and in {file} with two values: the controller holds one of them; give the task's modules one declaration");
+                    data.frames.insert(k, Frame::Unknown(0, why));
+                }
+                (Some(_), None) => {}
+            }
         }
         for (k, v) in found.speeds {
             data.speeds.entry(k).or_insert(v);

@@ -26,6 +26,8 @@ pub(super) const MAX_READS: usize = 1_000;
 pub(super) struct Task<'a> {
     /// The task's `PROC`s: name (lower case), module file and text ([`super::calls::procedures`]).
     pub procs: HashMap<String, (&'a str, &'a str)>,
+    /// The `PROC`s two modules of the task declare: name (lower case) and the second module.
+    pub twice: HashMap<String, &'a str>,
     /// The modules called that move, in the order their texts follow the program's: each one's
     /// name as given and its text.
     pub files: Vec<(String, String)>,

@@ -299,25 +299,36 @@ pub(super) fn called<'b>(body: &'b str, first: &str) -> Option<&'b str> {
 }
 
 /// The task's `PROC`s: each one's name (lower case), the backup's module that holds it (its name
-/// as given and its text); a module whose text is the program's (`own`) is not among them.
+/// as given and its text); a module whose text is the program's (`own`) is not among them. And
+/// each name two modules declare, with the second module's name (the controller refuses to load
+/// the task: *RAPID kernel*, scope rules).
+#[allow(clippy::type_complexity)]
 pub(super) fn procedures<'a>(
     context: &Context<'a>,
     own: &str,
-) -> HashMap<String, (&'a str, &'a str)> {
+) -> (
+    HashMap<String, (&'a str, &'a str)>,
+    HashMap<String, &'a str>,
+) {
     let modules = context.backup_with(|n| {
         let e = n.rsplit_once('.').map_or("", |(_, e)| e);
         Rapid::BACKUP.contains(&e.to_ascii_lowercase().as_str())
     });
-    let mut out = HashMap::new();
+    let mut out: HashMap<String, (&'a str, &'a str)> = HashMap::new();
+    let mut twice = HashMap::new();
     for (file, text) in modules.into_iter().filter(|(_, t)| *t != own) {
         let code = without_comments(text);
         for s in statements(&code) {
             if let Some(name) = procedure(&code[s.span]) {
-                out.entry(name).or_insert((file, text));
+                match out.get(&name) {
+                    Some((f, _)) if *f != file => _ = twice.insert(name, file),
+                    Some(_) => {}
+                    None => _ = out.insert(name, (file, text)),
+                }
             }
         }
     }
-    out
+    (out, twice)
 }
 
 /// The name (lower case) of the procedure a statement opens (`PROC name(..)`, also `LOCAL`),

@@ -164,8 +164,33 @@ pub(crate) fn motion(
             format!("expected {what}, a speed{data}, a zone and a tool"),
         ));
     };
+    // *RAPID Instructions*, MoveL: `.. Zone [\Z] [\Inpos] Tool [\WObj] [\Corr] [\TLoad]`.
+    let early = |r: &std::ops::Range<usize>| {
+        let t = args[r.clone()].to_ascii_lowercase();
+        ["\\wobj", "\\corr", "\\tload"]
+            .into_iter()
+            .find(|w| t.contains(w))
+    };
+    if let Some(w) = parts[..at_tool].iter().find_map(early) {
+        return Err(at(line, format!("{w} before the tool: the controller refuses the statement (the tool, then {w}); write it after the tool")));
+    }
     let tool_text = &args[tool.clone()];
     let (tool_name, switches) = tool_text.split_once('\\').unwrap_or((tool_text, ""));
+    let names: Vec<String> = (switches.split('\\'))
+        .map(|s| {
+            s.split(":=")
+                .next()
+                .unwrap_or("")
+                .trim()
+                .to_ascii_lowercase()
+        })
+        .collect();
+    if let Some(twice) =
+        (names.iter().enumerate()).find_map(|(k, n)| names[..k].contains(n).then_some(n))
+    {
+        // *RAPID kernel*, routine calls: an optional argument is given once.
+        return Err(at(line, format!("\\{twice} given twice after the tool: the controller refuses the statement; give it once")));
+    }
     let wobj = switches.split('\\').find_map(|s| {
         let (k, v) = s.split_once(":=")?;
         k.trim()
@@ -206,7 +231,7 @@ pub(crate) fn motion(
 
 /// One point argument `text` (at byte `from` of `code`): a `robtarget` literal, a declared one,
 /// or `Offs`/`RelTool` of one with constant displacements ([`super::offset`]).
-fn point(
+pub(super) fn point(
     line: u64,
     code: &str,
     from: usize,
@@ -225,7 +250,7 @@ fn point(
     let next = text[ident.len()..].trim_start();
     if !ident.is_empty() && (next.is_empty() || next.starts_with('\\')) {
         let at = from + lead;
-        return named(&ident).map(|t| t.named_at(at..at + ident.len()));
+        return named(&ident).map(|t| super::at_reference(t, at..at + ident.len()));
     }
     // An array's element (`pts{2}`), as the whole point.
     let element = (next.starts_with('{').then(|| next.find('}')).flatten()).filter(|&c| {

@@ -194,13 +194,15 @@ pub(super) fn compact_instruction(statement: &str) -> Option<usize> {
             // A string's doubled quote (`"say ""hi"""`) goes on with the string.
             b'"' if b[i - 1] == b'"' => i = group(b, i)?,
             b'0'..=b'9' | b'.' if operand => {
-                i += word(i);
-                // An exponent's sign and digits, a fraction's digits (`1.5E-3`).
-                while i < b.len()
-                    && matches!(b[i], b'.' | b'+' | b'-')
-                    && matches!(b[i - 1], b'.' | b'e' | b'E')
-                {
-                    i += 1 + word(i + 1);
+                // Digits and a point, then an exponent (`1.5E-3`).
+                i += b[i..]
+                    .iter()
+                    .take_while(|c| c.is_ascii_digit() || **c == b'.')
+                    .count();
+                if matches!(b.get(i), Some(b'e' | b'E')) {
+                    let sign = usize::from(matches!(b.get(i + 1), Some(b'+' | b'-')));
+                    let k = (i + 1 + sign).min(b.len());
+                    i = k + b[k..].iter().take_while(|c| c.is_ascii_digit()).count();
                 }
                 operand = false;
             }

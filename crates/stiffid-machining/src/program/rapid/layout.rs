@@ -136,3 +136,45 @@ fn reached(name: &str, index: &HashMap<&str, usize>, seen: &[Seen]) -> HashSet<u
     }
     out
 }
+
+/// Refuses a routine of the module `code` (its `statements`) that another routine's header or
+/// the module's end follows before its `ENDPROC` (`ENDFUNC`, `ENDTRAP`): the controller does not
+/// load the module (*RAPID kernel*: routine declarations), and read on, the next routine's
+/// motions would be read as this one's.
+pub(super) fn routines_closed(code: &str, statements: &[Statement]) -> stiffid_core::Result<()> {
+    let mut open: Option<(String, u64, &str)> = None;
+    for s in statements {
+        let body = &code[s.span.clone()];
+        let first = first_word(body);
+        let header = routine(body);
+        let ends = first == "endmodule" || header.is_some();
+        if let (Some((name, line, word)), true) = (&open, ends) {
+            return Err(crate::program::at(*line, format!("the routine {name} has no {word} before line {}: the controller does not load the module; close it", s.line)));
+        }
+        match (header, first.as_str()) {
+            (Some(name), _) => open = Some((name, s.line, closing(body))),
+            (None, "endproc" | "endfunc" | "endtrap") => open = None,
+            _ => {}
+        }
+    }
+    match open {
+        Some((name, line, word)) => Err(crate::program::at(line, format!("the routine {name} has no {word} before the file's end: the controller does not load the module; close it"))),
+        None => Ok(()),
+    }
+}
+
+/// The word that closes the routine whose header is `header` (`ENDPROC`, `ENDFUNC`, `ENDTRAP`).
+fn closing(header: &str) -> &'static str {
+    let words: Vec<String> = (header.split_whitespace().take(3))
+        .map(str::to_ascii_lowercase)
+        .collect();
+    match words
+        .iter()
+        .find(|w| !matches!(w.as_str(), "local" | "task"))
+        .map(String::as_str)
+    {
+        Some("func") => "ENDFUNC",
+        Some("trap") => "ENDTRAP",
+        _ => "ENDPROC",
+    }
+}

@@ -21,6 +21,7 @@
 
 mod arguments;
 mod arrays;
+mod assign;
 mod backup;
 mod called;
 mod calls;
@@ -63,6 +64,8 @@ struct Data {
     speeds: RapidSpeeds,
     assigned: HashMap<String, u64>,
     nums: num::Nums,
+    rebound: assign::Rebound,
+    bound: assign::Bound,
 }
 
 /// One statement: its line, and its bytes in the text.
@@ -154,7 +157,13 @@ fn is_header(line: &str) -> bool {
         .skip_while(|w| matches!(*w, "local" | "task"))
         .collect();
     let first = w.first().map_or("", |f| f.split('(').next().unwrap_or(f));
+    // A label (`skip:`, *RAPID kernel*: labels) is a statement of its own, without `;`.
+    let label = t.strip_suffix(':').is_some_and(|l| {
+        l.starts_with(|c: char| c.is_ascii_alphabetic())
+            && l.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+    });
     t.starts_with('%')
+        || label
         || t.to_ascii_uppercase().ends_with("THEN")
         || matches!(
             first,
@@ -346,6 +355,8 @@ fn declarations(code: &str, statements: &[Statement]) -> Result<Data> {
         speeds,
         assigned,
         nums,
+        rebound: assign::Rebound::default(),
+        bound: assign::Bound::new(),
     })
 }
 
@@ -585,7 +596,7 @@ fn motion(s: &Statement, code: &str, first: &str, data: &Data) -> Result<Vec<Joi
         return Err(at(line, format!("{name}: the target is {what} the controller computes; stiffid compensates literals and jointtargets declared in the module")));
     }
     let at = s.span.end - target_text.len();
-    named(&ident).map(|t| vec![joint(t.named_at(at..at + ident.len()))])
+    named(&ident).map(|t| vec![joint(at_reference(t, at..at + ident.len()))])
 }
 
 /// A `MoveAbsJ`'s target: a joint motion.
@@ -656,5 +667,15 @@ impl Controller for Rapid {
     /// The modules of an ABB backup's task (`RAPID/TASK1/PROGMOD/*.mod`, `SYSMOD/*.sys`).
     fn backup_extensions(&self) -> &'static [&'static str] {
         Rapid::BACKUP
+    }
+}
+
+/// `t` named at `reference` (bytes of the text) where no reference names it yet: a point an
+/// assignment gave (`p2 := p1;`) stays named where the assignment names it, so that a second
+/// value renames it there.
+fn at_reference(t: JointTarget, reference: std::ops::Range<usize>) -> JointTarget {
+    match t.point.as_ref().is_some_and(|p| p.reference.is_some()) {
+        true => t,
+        false => t.named_at(reference),
     }
 }

@@ -31,8 +31,17 @@ pub(super) fn target(
         false => ident.to_ascii_lowercase(),
     };
     let base = key.split('{').next().unwrap_or(&key);
+    // A point the module assigns whole: the value its assignments leave here (module `assign`).
+    if let Some(b) = data.bound.get(&key) {
+        return match &b.target {
+            Ok(t) if t.cartesian.is_some() == cartesian => Ok(t.moved_to(line, false)),
+            Ok(_) => Err(at(line, format!("{name} {ident}: not a {kind}"))),
+            Err(why) => Err(at(line, format!("{name} {ident}: {why}"))),
+        };
+    }
     if let Some(assigned_on) = data.assigned.get(base) {
-        return Err(at(line, format!("{name} {ident}: {base} is assigned on line {assigned_on}, so its value at the motion is the controller's, not the file's: give the motion its own declared {kind}")));
+        let written = ident.split('{').next().unwrap_or(ident).trim();
+        return Err(at(line, format!("{name} {ident}: {written} is assigned on line {assigned_on}, so its value at the motion is the controller's, not the file's: give the motion its own declared {kind}")));
     }
     if let (None, Some(Err(why))) = (data.targets.get(&key), data.targets.get(base)) {
         let beyond = match data.targets.contains_key(&format!("{base}{{1}}")) {

@@ -5,6 +5,7 @@
 //! `ConfJ`/`ConfL \Off` (configuration monitoring), is followed through the branches and loops
 //! ([`crate::program::paths`]) and is the caller's at a routine's start.
 
+use super::assign::{self, Bound};
 use super::called::{Bindings, Task, MAX_READS};
 use super::calls::{self, routine};
 use super::layout::Layout;
@@ -17,9 +18,9 @@ use crate::program::{at, Context, JointTarget, Left};
 use stiffid_core::{Error, Result};
 
 /// Configuration monitoring in force for joint (0) and linear (1) motions: off (`\Off`), on, or
-/// why the file does not say.
+/// why the file does not say; and the values of the points the module assigns (module `assign`).
 #[derive(Debug, Clone, PartialEq)]
-struct Conf([std::result::Result<bool, String>; 2]);
+struct Conf([std::result::Result<bool, String>; 2], Bound);
 
 impl Join for Conf {
     fn join(&mut self, other: &Self, (word, line): (&str, u64)) {
@@ -30,6 +31,15 @@ impl Join for Conf {
                     Err(why) => Err(why.clone()),
                     Ok(_) => Err(format!("{name} \\Off is in force on one path through {word} (line {line}) only: the controller holds this motion to its confdata on one path and not on the other; set {name} alike on every path, or before {word}")),
                 };
+            }
+        }
+        for (name, other) in &other.1 {
+            match self.1.get_mut(name) {
+                Some(mine) if mine == other => {}
+                Some(mine) => {
+                    mine.target = Err(format!("{name} is assigned differently on the paths through {word} (line {line}): its value at the motion is the run's; assign it alike on every path, or after {word}"));
+                }
+                None => {}
             }
         }
     }
@@ -49,8 +59,10 @@ impl Join for Conf {
 /// module that switches configuration monitoring, of a call refused (module `calls`), or of a
 /// module without motions.
 pub(crate) fn targets(text: &str, context: &Context) -> Result<Read> {
+    let (procs, twice) = calls::procedures(context, text);
     let mut task = Task {
-        procs: calls::procedures(context, text),
+        procs,
+        twice,
         total: text.len(),
         program: vec![("the program".to_string(), text.to_string())],
         ..Task::default()
@@ -111,12 +123,11 @@ fn module(
         task,
         entry.map(|e| (e.name.as_str(), e.place)),
     );
-    let mut out = Vec::new();
-    let mut left = Vec::new();
+    let (mut out, mut left) = (Vec::new(), Vec::new());
     let mut routines: Vec<(String, u64)> = Vec::new();
     let mut flow = flow::Flow::default();
     let mut paths: Paths<Conf> = Paths::default();
-    let mut conf = Conf([Ok(false), Ok(false)]);
+    let mut conf = Conf([Ok(false), Ok(false)], Bound::new());
     // The first motion of the routine being read.
     let mut first_motion: Option<u64> = None;
     let order = super::unroll::order(&code, &statements, &data.nums)?;
@@ -136,24 +147,21 @@ fn module(
             routines.push((name, s.line));
             flow.routine();
             paths.clear();
-            conf = match entry.filter(|e| e.name == name_of(&routines)) {
-                Some(e) => e.conf.clone(),
-                None => conf_at_start(
-                    switches_conf.filter(|_| layout.called.contains(&name_of(&routines))),
-                    s.line,
-                ),
-            };
+            let name = name_of(&routines);
+            conf = at_routine(entry, (switches_conf, &layout), &name, &data, s.line);
             continue;
         }
         flow.statement(&first, is_header(body), s.line);
-        if is_header(body) {
-            branches(&first, s.line, &mut paths, &mut conf);
-        }
+        let step = (k, first.as_str(), is_header(body));
+        let text = (code.as_str(), &statements[..]);
+        structure(step, text, &mut paths, (&mut data, &mut conf));
         let here = Here {
             statement: s,
             place: layout.places[k],
         };
         if first == "if" && !is_header(body) {
+            let called = calls::in_compact_if(body).map(|(n, _)| (n, s.line));
+            forget_called(called, (&layout, &routines), (&mut data, &mut conf));
             compact_if(
                 &here,
                 (&code, body),
@@ -168,13 +176,17 @@ fn module(
         }
         let rest = body.trim_start()[first.len()..].trim_start();
         if rest.starts_with([':', '.', '{']) {
-            // An assignment (`name := ..`, `name.x := ..`, `name{i} := ..`): no motion.
+            // An assignment: a point the module assigns whole takes its value (`assign`).
+            let read = (s, code.as_str(), first.as_str());
+            assign::statement(read, &name_of(&routines), &data, &mut conf.1);
             continue;
         }
         if let Some(k) = ["confj", "confl"].iter().position(|c| *c == first) {
             conf.0[k] = Ok(rest.to_ascii_lowercase().starts_with("\\off"));
         }
         if let Some(name) = calls::called(body, &first) {
+            let called = Some((name, s.line));
+            forget_called(called, (&layout, &routines), (&mut data, &mut conf));
             let call = (name, &body.trim_start()[name.len()..]);
             let found = call_of(&here, call, (&data, &mut conf), context, task, &layout);
             keep(found, context, (&mut out, &mut left))?;
@@ -206,6 +218,62 @@ fn module(
     })
 }
 
+/// What is in force at the start of the routine `name` (lower case) on `line`: the caller's
+/// configuration monitoring for the procedure another module calls (`entry`), else the start's
+/// (`switches`: where the module switches it; the `layout`'s routines it calls); the assigned
+/// points' values the run's ([`assign::Rebound::at_start`]).
+fn at_routine(
+    entry: Option<&Entry>,
+    (switches, layout): (Option<&Statement>, &Layout),
+    name: &str,
+    data: &Data,
+    line: u64,
+) -> Conf {
+    let mut conf = match entry.filter(|e| e.name == name) {
+        Some(e) => e.conf.clone(),
+        None => conf_at_start(switches.filter(|_| layout.called.contains(name)), line),
+    };
+    conf.1 = data.rebound.at_start(name, line);
+    conf
+}
+
+/// Follows the statement `k` of `statements` (`code`), its first word `first`, `header` whether
+/// a structure line: a branch or loop it opens, divides or closes ([`branches`]), the points a
+/// loop assigns ([`assign::Rebound::at_loop`]); the assigned points' values into `data`.
+fn structure(
+    (k, first, header): (usize, &str, bool),
+    (code, statements): (&str, &[Statement]),
+    paths: &mut Paths<Conf>,
+    (data, conf): (&mut Data, &mut Conf),
+) {
+    if header {
+        branches(first, statements[k].line, paths, conf);
+        if matches!(first, "while" | "for") {
+            data.rebound.at_loop((code, statements), k, &mut conf.1);
+        }
+    }
+    if !data.rebound.is_empty() {
+        data.bound.clone_from(&conf.1);
+    }
+}
+
+/// After a call of `called` (its name as written and its line) of a routine of the module (the
+/// `layout`'s, from the last of `routines`): the points another routine assigns are the run's.
+fn forget_called(
+    called: Option<(&str, u64)>,
+    (layout, routines): (&Layout, &[(String, u64)]),
+    (data, conf): (&mut Data, &mut Conf),
+) {
+    let Some((name, line)) = called else {
+        return;
+    };
+    let name = name.to_ascii_lowercase();
+    if layout.routines.contains(&name) {
+        (data.rebound).after_call((&name, line), &name_of(routines), &mut conf.1);
+        data.bound.clone_from(&conf.1);
+    }
+}
+
 /// The module `text` at byte `offset` of the whole text, its comments blanked and blank bytes
 /// before it (its spans are the whole text's), its statements and its data: its own, the task's
 /// other modules' (the program's too, for a module called) and, with `entry`, the call's
@@ -219,6 +287,7 @@ fn prepared(
 ) -> Result<(String, Vec<Statement>, Data)> {
     let code = " ".repeat(offset) + &without_comments(text);
     let statements = statements(&code);
+    super::layout::routines_closed(&code, &statements)?;
     let shown = match entry {
         None => context.backup.to_vec(),
         Some(_) => [context.backup, &task.program].concat(),
@@ -229,6 +298,8 @@ fn prepared(
     };
     let own = declarations(&code, &statements)?;
     let mut data = super::backup::merge(own, (text, &code), &seen_by)?;
+    data.rebound = assign::Rebound::of(&code, &statements);
+    data.rebound.refuse_others(&mut data.assigned);
     if let Some(e) = entry {
         e.bindings.apply(&mut data);
     }
@@ -302,6 +373,9 @@ fn compact_if(
     layout: &Layout,
 ) -> Result<()> {
     let s = here.statement;
+    if flow::compact_instruction(body).is_none() {
+        return Err(at(s.line, "IF: no instruction after its condition (a parenthesis, bracket or string left open?): the controller refuses the statement".into()));
+    }
     if let Some((name, line, _)) = flow::in_compact_if(body, s.line, flow::is_jump) {
         let jump = format!("IF (line {}) {}", s.line, name.to_uppercase());
         flow.jump(&jump, line);
@@ -359,6 +433,9 @@ fn call_of(
         };
     };
     let refuse = |why: String| at(line, format!("{name}: {why}"));
+    if let Some(second) = task.twice.get(&key) {
+        return Err(refuse(format!("PROC {name} is declared in {file} and in {second}: the controller does not load a task whose modules declare one routine twice; keep one")));
+    }
     let link = format!("{}.{key}", crate::program::file_name(file));
     if task.chain.contains(&link) || task.chain.len() >= 16 {
         return Err(refuse(format!(
@@ -409,7 +486,7 @@ fn call_of(
     };
     if read.switches_conf {
         let why = format!("the call of {name} on line {line} may switch configuration monitoring ({file}), which stiffid does not follow out of it; set ConfJ and ConfL after the call");
-        *conf = Conf([Err(why.clone()), Err(why)]);
+        conf.0 = [Err(why.clone()), Err(why)];
     }
     let targets = (read.targets.into_iter())
         .map(|t| JointTarget {
@@ -439,10 +516,10 @@ fn name_of(routines: &[(String, u64)]) -> String {
 /// never switches it (`switches` `None`); else the caller's, which the module does not say.
 fn conf_at_start(switches: Option<&Statement>, line: u64) -> Conf {
     match switches {
-        None => Conf([Ok(false), Ok(false)]),
+        None => Conf([Ok(false), Ok(false)], Bound::new()),
         Some(s) => {
             let why = format!("the module switches configuration monitoring (line {}), and at the start of the routine on line {line} it is in the state its caller leaves, which the module does not say; set ConfJ and ConfL at the routine's start", s.line);
-            Conf([Err(why.clone()), Err(why)])
+            Conf([Err(why.clone()), Err(why)], Bound::new())
         }
     }
 }

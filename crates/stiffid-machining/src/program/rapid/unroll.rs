@@ -107,11 +107,13 @@ fn loop_of(
     let Some(end) = closing(code, statements, k, to) else {
         return Ok(None);
     };
-    let reads = (k + 1..end).any(|j| {
-        let t = code[statements[j].span.clone()].to_ascii_lowercase();
-        flow::is_motion(&first_word(&t)) && holds_word(&t, &var)
-    });
-    if !reads {
+    // Its motions read the variable, or an assignment does (`p := Offs(p0, 0, 0, i * 10);`,
+    // module `assign`) in a loop that moves.
+    let text = |j: usize| code[statements[j].span.clone()].to_ascii_lowercase();
+    let moving = |j: &usize| flow::is_motion(&first_word(&text(*j)));
+    let reads =
+        (k + 1..end).any(|j| (moving(&j) || text(j).contains(":=")) && holds_word(&text(j), &var));
+    if !reads || !(k + 1..end).any(|j| moving(&j)) {
         return Ok(None);
     }
     let part = |from: &str, until: &[&str]| -> Option<String> {

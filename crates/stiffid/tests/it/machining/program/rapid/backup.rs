@@ -55,6 +55,26 @@ fn data_of_another_module_is_read_there_and_a_changed_target_declared_locally() 
         ),
         other => panic!("{other:?}"),
     }
+    // The tool declared in a second module too: alike, one value; with another value, refused
+    // at the motion naming both modules.
+    for (tcp, refused) in [("[0,0,250]", false), ("[0,0,260]", true)] {
+        let second = format!("MODULE Other\n  PERS tooldata tSpindle := [TRUE,[{tcp},[1,0,0,0]],[5,[0,0,100],[1,0,0,0],0,0,0]];\nENDMODULE\n");
+        let two = [backup.clone(), vec![("Other.mod".to_string(), second)]].concat();
+        let p = program::parse_in(
+            &text,
+            Dialect::Rapid,
+            &program::Context::default().with_backup(&two),
+        )
+        .unwrap();
+        match &p.targets[2].cartesian.as_deref().unwrap().tool {
+            Frame::Unknown(5, why) if refused => assert!(
+                why.contains("tspindle is declared in TASK1/SYSMOD/CellData.sys and in Other.mod"),
+                "{why}"
+            ),
+            Frame::Stated(5, _) if !refused => {}
+            other => panic!("{tcp}: {other:?}"),
+        }
+    }
     // j1 compensated: declared again in the module, LOCAL instead of TASK, its comment kept;
     // home1 unchanged: not declared again.
     let joint = program::parse_in(

@@ -33,7 +33,7 @@ fn read(text: &str) -> Vec<(u64, f64)> {
 #[test]
 fn a_motion_inside_a_construct_or_a_second_routine_is_read_where_it_is() {
     let m = motion(1.0);
-    let cases: [(String, &[(u64, f64)]); 8] = [
+    let cases: [(String, &[(u64, f64)]); 9] = [
         // A compact IF over two lines around a motion, inside a FOR inside a WHILE.
         (
             format!("    WHILE TRUE DO\n      FOR i FROM 1 TO 3 DO\n        IF (NOT skip)\n          {m}\n      ENDFOR\n    ENDWHILE"),
@@ -45,6 +45,9 @@ fn a_motion_inside_a_construct_or_a_second_routine_is_read_where_it_is() {
         (format!("    {m}\n  ERROR\n    {}", motion(3.0)), &[(3, 1.0), (5, 3.0)]),
         // Jumps and conditional leaves: each motion still where it is.
         (format!("    {m}\n    IF di1 = 1 GOTO skip;\n    {m}\n  skip:"), &[(3, 1.0), (5, 1.0)]),
+        // A label is a statement of its own: the motion on the next line is read (it was taken
+        // as the label's statement and passed over).
+        (format!("  again:\n    {m}\n    IF di1 = 1 GOTO again;\n    {}", motion(2.0)), &[(4, 1.0), (6, 2.0)]),
         (format!("    {m}\n    IF di1 = 1 THEN\n      RETURN;\n    ENDIF\n    {m}"), &[(3, 1.0), (7, 1.0)]),
         (format!("    {m}\n    IF di1 = 1 RETURN;\n    {m}"), &[(3, 1.0), (5, 1.0)]),
     ];

@@ -194,6 +194,29 @@ fn data_beyond_the_limits_or_declared_twice_is_refused_naming_its_line() {
             6,
             "robtarget p1 is declared twice, on line 3 and on line 4",
         ),
+        // An optional argument given twice (the first was read), a routine never closed (the
+        // next routine's motions were read as its own).
+        (
+            module(&wobj("0,0,0"), target).replace("\\WObj:=wp;", "\\WObj:=wp\\WObj:=wobj0;"),
+            4,
+            "\\wobj given twice after the tool",
+        ),
+        (
+            module(&wobj("0,0,0"), target)
+                .replace("fine, tool0\\WObj:=wp;", "fine \\WObj:=wp, tool0;"),
+            4,
+            "\\wobj before the tool",
+        ),
+        (
+            module(&wobj("0,0,0"), target).replace("  ENDPROC\n", "    IF (a Pick;\n  ENDPROC\n"),
+            5,
+            "IF: no instruction after its condition",
+        ),
+        (
+            module(&wobj("0,0,0"), target).replace("  ENDPROC\n", "  PROC second()\n"),
+            3,
+            "the routine main has no ENDPROC before line 5",
+        ),
     ];
     for (text, line, needle) in cases {
         match parse(&text) {

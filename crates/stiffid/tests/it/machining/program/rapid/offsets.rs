@@ -345,3 +345,74 @@ fn conf_l_off_keeps_the_configuration_of_the_posture_before() {
     });
     assert!(kept.is_none_or(|d| d > 1.0), "{kept:?}");
 }
+
+/// The line (1-based) of `text` that holds `needle` first.
+fn line_of(text: &str, needle: &str) -> u64 {
+    text.lines().position(|l| l.contains(needle)).unwrap() as u64 + 1
+}
+
+/// A point assigned whole (`pTmp := Offs(pAbove, ..);`, `pRel := pTurned;`) is at its motion the
+/// value its assignment gives: the same postures as the module that names the `Offs` at the
+/// motion, written back where the assignment names its point (a second value of `pAbove`
+/// declared as `pAbove_2` and named there); where the paths to the motion disagree, or the value
+/// is the run's, refused naming the lines.
+#[test]
+fn a_point_assigned_whole_is_read_where_its_assignment_names_it_and_refused_where_paths_disagree() {
+    let (s, text, _) = module_of_postures();
+    let motion = "    MoveL Offs(pAbove,0,0,50), v100, z1, tSpindle\\WObj:=wobjPart;\n";
+    let first = "    MoveJ pAbove, v500, fine, tSpindle\\WObj:=wobjPart;\n";
+    let direct = text.replacen(motion, &format!("{first}{motion}"), 1);
+    let assigned = direct
+        .replacen("MODULE Cell\n", "MODULE Cell\n  VAR robtarget pTmp;\n  PERS robtarget pRel:=[[0,0,0],[1,0,0,0],[0,0,0,0],[9E9,9E9,9E9,9E9,9E9,9E9]];\n", 1)
+        .replacen(motion, "    pTmp := Offs(pAbove,0,0,50);\n    MoveL pTmp, v100, z1, tSpindle\\WObj:=wobjPart;\n", 1)
+        .replacen("RelTool(pTurned,", "RelTool(pRel,", 1)
+        .replacen("  PROC main()\n", "  PROC main()\n    pRel := pTurned;\n", 1);
+    let q = |t: &str| match resolved(&s, t).unwrap() {
+        Program::Robot(p) => p,
+        _ => panic!("a robot program"),
+    };
+    let (a, b) = (q(&direct), q(&assigned));
+    assert_eq!(a.targets.len(), b.targets.len());
+    for (x, y) in a.targets.iter().zip(&b.targets) {
+        let d = (Vector6::from(x.q_deg) - Vector6::from(y.q_deg)).amax();
+        assert!(d < 1e-9, "line {}: {d} deg", y.line);
+    }
+    let moved: Vec<[f64; 6]> = (b.targets.iter().enumerate())
+        .map(|(k, t)| t.q_deg.map(|v| v + 0.01 * (k + 1) as f64))
+        .collect();
+    let out = b.write(&moved).unwrap();
+    assert!(
+        out.contains("    pTmp := Offs(pAbove_2,0,0,50);\n"),
+        "{out}"
+    );
+    assert!(
+        out.contains("    pRel := pTurned;\n") && out.contains("CONST robtarget pAbove_2:="),
+        "{out}"
+    );
+    for (t, m) in q(&out).targets.iter().zip(&moved) {
+        let d = (Vector6::from(t.q_deg) - Vector6::from(*m)).amax();
+        assert!(d < 1e-6, "line {}: {d} deg", t.line);
+    }
+    let at = "    MoveL pTmp,";
+    let set = "    pTmp := Offs(pAbove,0,0,50);\n";
+    for (from, to, said) in [
+        (set, "    IF di1 = 1 THEN\n      pTmp := Offs(pAbove,0,0,50);\n    ENDIF\n", "assigned differently on the paths through IF"),
+        (at, "    pTmp.trans.z := pTmp.trans.z + 10;\n    MoveL pTmp,", "pTmp is assigned on line"),
+        (at, "    IF di1 = 1 pTmp := pHome;\n    MoveL pTmp,", "pTmp is assigned on line"),
+        (set, "    Prep;\n", "the call of prep on line"),
+        (set, "    pTmp := CRobT();\n", "a value stiffid does not read"),
+        (set, "    pTmp := pHome;\n    WHILE di1 = 1 DO\n      MoveL pTmp, v100, z1, tSpindle;\n      pTmp := Offs(pAbove,0,0,50);\n    ENDWHILE\n", "inside the loop"),
+    ] {
+        // A routine that sets the point, called before the motion.
+        let prep = "  ENDPROC\n  PROC Prep()\n    pTmp := Offs(pAbove,0,0,50);\n  ENDPROC\nENDMODULE";
+        let t = assigned.replacen(from, to, 1).replacen("  ENDPROC\nENDMODULE", prep, 1);
+        let needle = if said == "inside the loop" { "      MoveL pTmp" } else { at };
+        match resolved(&s, &t) {
+            Err(Error::Program { line, message }) => {
+                assert_eq!(line, line_of(&t, needle), "{said}: {message}");
+                assert!(message.contains(said), "{said}: {message}");
+            }
+            other => panic!("{said}: {:?}", other.map(|_| ())),
+        }
+    }
+}

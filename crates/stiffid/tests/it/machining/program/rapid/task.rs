@@ -139,8 +139,28 @@ fn calls_that_never_end_or_shift_the_path_are_refused_and_inert_ones_passed() {
         ("A.mod".to_string(), ping),
         ("B.mod".to_string(), pong.to_string()),
     ];
-    let context = program::Context::default().with_backup(&backup);
+    // Two modules declaring one procedure: the task does not load.
+    let twice = [
+        backup.clone(),
+        vec![(
+            "C.mod".to_string(),
+            "MODULE C\n  PROC Ping()\n  ENDPROC\nENDMODULE\n".to_string(),
+        )],
+    ]
+    .concat();
+    let context = program::Context::default().with_backup(&twice);
     let text = "MODULE Cell\n  PROC main()\n    Ping;\n  ENDPROC\nENDMODULE\n";
+    match program::parse_in(text, Dialect::Rapid, &context) {
+        Err(Error::Program { line, message }) => {
+            assert_eq!(line, 3, "{message}");
+            assert!(
+                message.contains("PROC Ping is declared in A.mod and in C.mod"),
+                "{message}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+    let context = program::Context::default().with_backup(&backup);
     match program::parse_in(text, Dialect::Rapid, &context) {
         Err(Error::Program { line, message }) => {
             assert_eq!(line, 3, "{message}");

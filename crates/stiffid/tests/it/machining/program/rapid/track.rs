@@ -53,17 +53,24 @@ fn part_frame(nominal: &Robot, setup: &Setup, q0: &Vector6<f64>) -> Isometry3<f6
     setup.program_world().inverse() * part * along
 }
 
+/// The task's module that holds the tool (RobotStudio's `CalibData.mod`), given as the backup.
+fn calib_data(setup: &Setup) -> String {
+    let tcp = setup.tool().tcp * 1e3;
+    format!(
+        "MODULE CalibData\n  PERS tooldata tSpindle:=[TRUE,[[{:.9},{:.9},{:.9}],[1,0,0,0]],[35,[0,0,120],[1,0,0,0],0,0,0]];\nENDMODULE\n",
+        tcp.x, tcp.y, tcp.z
+    )
+}
+
 /// The module: an approach above the slot, the contour (its targets' `confdata` the nominal
-/// controller's postures, each `eax_a` the track following the tool along the world's x).
+/// controller's postures, each `eax_a` the track following the tool along the world's x); its
+/// tool declared in the task's other module ([`calib_data`]).
 fn module(setup: &Setup, nominal: &Robot, q0: &Vector6<f64>) -> String {
     let part = part_frame(nominal, setup, q0);
     let world = setup.program_world();
     let tcp = setup.tool().tcp;
     let mut text = format!(
-        "MODULE MILL_6660\n  !Module generated for IRB6660-205/1.9 on IRBT 6004 track\n  !Slot 8 x 450, 2 passes\n  PERS tooldata tSpindle:=[TRUE,[[{:.9},{:.9},{:.9}],[1,0,0,0]],[35,[0,0,120],[1,0,0,0],0,0,0]];\n  TASK PERS wobjdata wobjFixture:=[FALSE,TRUE,\"\",{},[[0,0,0],[1,0,0,0]]];\n  VAR num nPass:=0;\n  CONST num nPasses:=2;\n",
-        tcp.x * 1e3,
-        tcp.y * 1e3,
-        tcp.z * 1e3,
+        "MODULE MILL_6660\n  !Module generated for IRB6660-205/1.9 on IRBT 6004 track\n  !Slot 8 x 450, 2 passes\n  TASK PERS wobjdata wobjFixture:=[FALSE,TRUE,\"\",{},[[0,0,0],[1,0,0,0]]];\n  VAR num nPass:=0;\n  CONST num nPasses:=2;\n",
         pose(&part),
     );
     // The tool down the part's -z.
@@ -176,14 +183,14 @@ fn controller_view(text: &str) -> Vec<Read> {
     out
 }
 
-/// Compensates the module on `setup` with `compliance`: the compensated module and every
-/// target's result.
+/// Compensates the module on `setup` with `compliance`, the task's tool module as its backup:
+/// the compensated module and every target's result.
 fn compensated(
     setup: &Setup,
     compliance: &stiffid::internal::model::Compliance,
     q0: &Vector6<f64>,
     text: &str,
-) -> (String, Vec<Compensated>) {
+) -> stiffid::Result<(String, Vec<Compensated>)> {
     let process = stiffid::internal::machining::process::file::parse(
         include_str!("../../../../../../../examples/milling/aluminium.toml"),
         "aluminium.toml",
@@ -197,7 +204,10 @@ fn compensated(
         compliance: compliance.clone(),
         input: Input::Program {
             encoding: Default::default(),
-            reading: Default::default(),
+            reading: stiffid::internal::machining::program::Reading {
+                backup: &[("CalibData.mod".to_string(), calib_data(setup))],
+                leave_refused: false,
+            },
             name: "MILL_6660.mod".into(),
             text,
             data: None,
@@ -215,9 +225,8 @@ fn compensated(
     let report = compensate::run::<stiffid::Error, _>(request, |_, _, r, _| {
         results.extend_from_slice(r);
         Ok(())
-    })
-    .unwrap();
-    (report.report.program.unwrap().text, results)
+    })?;
+    Ok((report.report.program.unwrap().text, results))
 }
 
 /// The TCP errors (m) of the controller running `targets` (its nominal arm on its straight
@@ -272,7 +281,7 @@ fn a_milling_module_with_the_track_axis_lands_on_the_true_track_cell() {
     let nominal = cell.case.setup.robot();
     let q0 = Vector6::from_fn(|i, _| [10.0f64, 10.0, -110.0, 20.0, -50.0, 40.0][i].to_radians());
     let text = module(&cell.setup, nominal, &q0);
-    let (out, results) = compensated(&cell.setup, &cell.compliance, &q0, &text);
+    let (out, results) = compensated(&cell.setup, &cell.compliance, &q0, &text).unwrap();
     let (read, written) = (controller_view(&text), controller_view(&out));
     assert_eq!(read.len(), 10, "{text}");
     assert_eq!(written.len(), results.len(), "{out}");
@@ -311,4 +320,22 @@ fn a_milling_module_with_the_track_axis_lands_on_the_true_track_cell() {
     assert!(errors.mean <= 0.05e-3, "{errors:?}");
     assert!(errors.max <= 0.1e-3, "{errors:?}");
     assert!(found.mean > 1e-3, "{found:?}");
+    // Its approach as a joint target the nominal controller computed: on the calibrated track
+    // cell a joint target is taught or computed, which the setup must say (never read as either).
+    let q = q0.map(f64::to_degrees);
+    let joints = text.replacen(
+        "MoveJ Target_0,v1000",
+        &format!(
+            "MoveAbsJ [[{},{},{},{},{},{}],[{STATION_MM},9E9,9E9,9E9,9E9,9E9]],v1000",
+            q[0], q[1], q[2], q[3], q[4], q[5]
+        ),
+        1,
+    );
+    let e = compensated(&cell.setup, &cell.compliance, &q0, &joints)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("joint_targets") && e.contains("\"computed\""),
+        "{e}"
+    );
 }
