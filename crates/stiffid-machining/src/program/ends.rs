@@ -64,6 +64,32 @@ pub(crate) fn check(text: &str, dialect: Dialect) -> Result<()> {
     }
 }
 
+/// Refuses a KRL program's data list `data` (its `.dat`) that opens with `DEFDAT` and does not
+/// close with `ENDDAT` (KUKA System Software 8, "Data lists"): cut off, its last declarations
+/// missing, and written back so the controller would refuse it. Other languages: nothing.
+///
+/// # Errors
+/// [`stiffid_core::Error::Program`] on line 1, naming the `.dat`'s last line.
+pub(crate) fn check_data(data: &str, dialect: Dialect) -> Result<()> {
+    if dialect.controller().key() != "krl" {
+        return Ok(());
+    }
+    let code_lines = || {
+        (lines(data).map(|(n, _, l)| (n, l.split(';').next().unwrap_or("").trim())))
+            .filter(|(_, l)| !l.is_empty())
+    };
+    if !code_lines().any(|(_, l)| starts_with_word(l, "DEFDAT")) {
+        return Ok(());
+    }
+    match code_lines().last() {
+        Some((n, l)) if !starts_with_word(l, "ENDDAT") => Err(at(1, format!(
+            "the program's .dat ends on its line {n}, '{}', without ENDDAT: a KRL data list that opens with DEFDAT closes with ENDDAT, so the file is cut off (its last declarations missing); give the whole .dat",
+            stiffid_core::common::limits::short(l)
+        ))),
+        _ => Ok(()),
+    }
+}
+
 /// Whether `line` starts with the word `word` (any case), followed by nothing or a character
 /// that is not part of a name.
 fn starts_with_word(line: &str, word: &str) -> bool {

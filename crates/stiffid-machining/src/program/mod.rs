@@ -530,12 +530,15 @@ pub fn parse_with_data(text: &str, data: Option<&str>, dialect: Dialect) -> Resu
 /// [`Error::Program`] naming the line: every motion instruction outside the subset (module docs), a
 /// joint target with a missing, repeated or non-numeric axis value, a Cartesian target with a
 /// missing or malformed member or configuration data ([`cartesian`]), no motion to a target at all,
-/// or more than 1 000 000; a program cut off before its closing word or whose lines end with a
-/// lone CR (`ends`).
+/// or more than 1 000 000; a program (or a KRL program's `.dat`) cut off before its closing word
+/// or whose lines end with a lone CR (`ends`).
 pub fn parse_in(text: &str, dialect: Dialect, context: &Context) -> Result<JointProgram> {
     ends::check(text, dialect)?;
     // The data file the backup holds, where none is given beside the program.
     let data = (context.data).or_else(|| dialect.controller().data_file(text, context));
+    if let Some(d) = data {
+        ends::check_data(d, dialect)?;
+    }
     let context = &Context { data, ..*context };
     let Read {
         mut targets,

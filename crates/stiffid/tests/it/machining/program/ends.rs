@@ -4,7 +4,7 @@
 //! end with a lone CR is refused saying so.
 
 use stiffid_core::Error;
-use stiffid_machining::program::{parse, Dialect};
+use stiffid_machining::program::{parse, parse_with_data, Dialect};
 
 const KRL: &str = "&ACCESS RVP\nDEF cut( )\nPTP {A1 0, A2 -90, A3 90, A4 0, A5 30, A6 0}\nPTP {A1 1, A2 -90, A3 90, A4 0, A5 30, A6 0}\nPTP {A1 2, A2 -90, A3 90, A4 0, A5 30, A6 0}\nPTP {A1 3, A2 -90, A3 90, A4 0, A5 30, A6 0}\nEND ; of cut\n";
 
@@ -41,6 +41,19 @@ fn a_program_cut_off_at_a_line_boundary_is_refused_naming_its_last_line() {
         m.contains("without END or ENDFCT") && m.contains("cut off"),
         "{m}"
     );
+    // A KRL program's .dat cut off before ENDDAT.
+    let src = "DEF cut( )\nPTP XP1\nEND\n";
+    let dat = "DEFDAT cut\nDECL E6AXIS XP1={A1 0, A2 -90, A3 90, A4 0, A5 30, A6 0}\nENDDAT\n";
+    assert!(parse_with_data(src, Some(dat), Dialect::Krl).is_ok());
+    match parse_with_data(src, Some(&cut(dat, "ENDDAT")), Dialect::Krl) {
+        Err(Error::Program { line: 1, message }) => {
+            assert!(
+                message.contains("line 2, 'DECL E6AXIS XP1") && message.contains("without ENDDAT"),
+                "{message}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
     let ls = ls();
     assert_eq!(parse(&ls, Dialect::FanucLs).unwrap().targets.len(), 2);
     let (line, m) = refused(&cut(&ls, "/END"), Dialect::FanucLs);
