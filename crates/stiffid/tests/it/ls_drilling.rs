@@ -11,32 +11,14 @@ use nalgebra::Isometry3;
 use stiffid::internal::machining::compensate::Compensated;
 use stiffid::internal::machining::compensate::Options;
 use stiffid::internal::machining::program::cartesian::Frame;
-use stiffid::internal::machining::program::{parse_in, Context, Dialect};
+use stiffid::internal::machining::program::{
+    parse_in, read_backup, Context, Dialect, JointProgram,
+};
 use stiffid::internal::robot::ik;
 use stiffid::internal::setup;
 use stiffid::Setup;
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/programs/ls/");
-
-/// The backup's files kept beside the corpus.
-const BACKUP: [&str; 16] = [
-    "safe_position.ls",
-    "sysframe.va",
-    "posreg.va",
-    "plchandshake.ls",
-    "ahome.ls",
-    "azero.ls",
-    "alex_uf.ls",
-    "asdf.ls",
-    "transport_pos.ls",
-    "raik_conf_check.ls",
-    "config_change.ls",
-    "test.ls",
-    "tool_change.ls",
-    "clamp.ls",
-    "tool_offset.ls",
-    "norm_to_vis.ls",
-];
 
 /// The tool frames of the backup's `SYSFRAME.VA` (`$MNUTOOL[1,n]`), `X, Y, Z` mm and `W, P, R`
 /// deg: tool 0 the faceplate.
@@ -44,6 +26,7 @@ fn tool(n: u32) -> [f64; 6] {
     match n {
         0 | 1 => [0.0; 6],
         2 => [0.0, -250.8, 152.8, -90.0, -90.0, 0.0],
+        3 => [74.5, -301.7, 27.4, -90.0, -90.0, 0.0],
         4 => [19.5, -275.054, 25.5, -90.0, -90.0, 0.0],
         5 => [20.5, -306.6, 50.5, -90.0, -90.0, 0.0],
         other => panic!("tool {other}"),
@@ -77,16 +60,20 @@ fn cell(n: u32) -> Setup {
     .unwrap()
 }
 
-/// The backup's files, each named as in the backup.
+/// The backup's files kept beside the corpus, read as `--backup wilder-backup/` reads the
+/// folder (its programs and `.VA` files, not its `CURPOS.DG`), each named as in the backup.
 fn backup() -> Vec<(String, String)> {
-    (BACKUP.iter())
-        .map(|f| {
-            let name = format!("wilder-backup/{f}");
-            (
-                name.clone(),
-                std::fs::read_to_string(format!("{DIR}{name}")).unwrap(),
-            )
-        })
+    let read = |p: &std::path::Path| std::fs::read(p).map_err(|e| e.to_string());
+    let folder = std::path::PathBuf::from(format!("{DIR}wilder-backup"));
+    let files = read_backup(&[folder], Dialect::FanucLs, read, |e| e.to_string()).unwrap();
+    let names: Vec<&str> = files.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(files.len(), 16, "{names:?}");
+    assert!(
+        names.iter().any(|n| n.ends_with("sysframe.va")),
+        "{names:?}"
+    );
+    (files.into_iter())
+        .map(|(name, text)| (name.replacen(DIR, "", 1), text))
         .collect()
 }
 
@@ -100,7 +87,7 @@ use Outcome::{Compensated as Runs, Refused};
 
 /// The programs of the drilling cell kept beside the corpus (the backup's, then the `wilder_`
 /// files), the controller's tool each one's Cartesian positions name, and what stiffid does.
-const PROGRAMS: [(&str, u32, Outcome); 17] = [
+const PROGRAMS: [(&str, u32, Outcome); 21] = [
     ("wilder-backup/ahome.ls", 1, Runs),
     ("wilder-backup/azero.ls", 1, Runs),
     ("wilder-backup/alex_uf.ls", 5, Runs),
@@ -145,6 +132,16 @@ const PROGRAMS: [(&str, u32, Outcome); 17] = [
     // Tool 3 on its joint position, tool 4 (the setup's) on its Cartesian one.
     ("wilder_job_dbl_safe_1.ls", 4, Runs),
     ("wilder_tool_1_dropoff_aproach.ls", 2, Runs),
+    ("wilder_tool_3_dropoff_aproach.ls", 2, Runs),
+    // In the world (user frame 0); a joint motion in tool 5, a Cartesian one in tool 4.
+    ("wilder_job_dbl_safe_505.ls", 4, Runs),
+    ("wilder_job_dbl_safe_601.ls", 4, Runs),
+    // No user frame selected: the register's `UF : F` is the controller's.
+    (
+        "wilder_vis_normality.ls",
+        4,
+        Refused(29, "UF : F: the position is in the frame in force where it runs, and no UFRAME_NUM=n before this motion selects one"),
+    ),
 ];
 
 /// The independent reading of register `n` in the backup's `POSREG.VA` (string searches, not
@@ -183,9 +180,10 @@ fn registers(text: &str) -> Vec<u32> {
     .collect()
 }
 
-/// `text` read as the files state it: each motion to a register its `POSREG.VA` values and
+/// `text` read as the files state it (`runs`: each Cartesian position in a frame the backup or
+/// the program gives): each motion to a register its `POSREG.VA` values and
 /// `EXT1`, each other motion its `/POS` position (the independent readings).
-fn check_read(name: &str, text: &str, read: &stiffid::internal::machining::program::JointProgram) {
+fn check_read(name: &str, text: &str, read: &JointProgram, runs: bool) {
     let posreg = std::fs::read_to_string(format!("{DIR}wilder-backup/posreg.va")).unwrap();
     let from_registers = registers(text);
     let expected: Vec<([f64; 6], bool)> = match from_registers.is_empty() {
@@ -202,10 +200,9 @@ fn check_read(name: &str, text: &str, read: &stiffid::internal::machining::progr
             (Some(c), true) => {
                 let p = c.position_mm;
                 assert_eq!([p.x, p.y, p.z], [values[0], values[1], values[2]], "{name}");
-                assert!(
-                    matches!(c.frame, Frame::Held(..) | Frame::World | Frame::Stated(..)),
-                    "{name}"
-                );
+                // Where it runs, in a frame the backup or the program gives.
+                let given = matches!(c.frame, Frame::Held(..) | Frame::World | Frame::Stated(..));
+                assert!(given || !runs, "{name}");
             }
             (None, false) => assert_eq!(t.q_deg, *values, "{name}"),
             _ => panic!("{name}: line {}: another representation", t.line),
@@ -276,7 +273,7 @@ fn the_drilling_cells_programs_run_on_its_robot_with_their_registers() {
         let text = std::fs::read_to_string(format!("{DIR}{name}")).unwrap();
         let context = Context::of(s).with_backup(&backup);
         if let Ok(read) = parse_in(&text, Dialect::FanucLs, &context) {
-            check_read(name, &text, &read);
+            check_read(name, &text, &read, matches!(outcome, Runs));
         }
         let compliance = s.model_compliance("test").unwrap();
         let run = compensated_in(

@@ -431,6 +431,10 @@ impl Controller for FanucLs {
             .map(|(i, _)| i as u64 + 1)
             .collect()
     }
+    /// A backup folder's programs and its ASCII variable files (`SYSFRAME.VA`, `POSREG.VA`).
+    fn backup_extensions(&self) -> &'static [&'static str] {
+        &["ls", "va"]
+    }
     fn generator(&self) -> Option<&'static dyn Generator> {
         Some(&FanucLs)
     }
