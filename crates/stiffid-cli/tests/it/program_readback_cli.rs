@@ -213,7 +213,9 @@ fn every_dialect_reads_back_its_external_values_and_the_compensated_targets() {
 /// A free external axis `axis` (0: the track, mm; 1: the tilt, 2: the table, deg) compensated with `free`
 /// options of range `range` and step `step`, read back from every dialect.
 fn free_axis_is_written(free: &[&str], axis: usize, (range, step): (f64, f64)) {
-    let dir = temp_dir(&format!("readback-free-{axis}"));
+    // One folder per option (two tests free the table's axis, by its two names).
+    let named = free[1].split('=').next().unwrap();
+    let dir = temp_dir(&format!("readback-free-{named}"));
     let upper = [6000.0, 95.0, 360.0][axis];
     let lower = [0.0, -95.0, -360.0][axis];
     for (dialect, name, text, tolerance) in programs() {
