@@ -1,6 +1,7 @@
 //! One block applied to the state: modes, motions, canned cycles, the points it makes.
 
 use super::arc::arc;
+use super::g53::{g53_outside_g0_g1, machine_frame, unplaced_machine_move};
 use super::machine::convert;
 use super::modal::{end_point, push_points};
 use super::words::{check_words, Word};
@@ -11,7 +12,7 @@ use stiffid_core::common::limits::LENGTH_MM;
 use stiffid_core::common::words::number;
 use stiffid_core::Result;
 
-pub(super) const SUBSET: &str = "G0-G4, G17-G21, G28, G30, G40-G42, G43, G44, G49, G53-G59.3, G54.1, G61, G61.1, G64, G80-G83, G90, G90.1, G91, G91.1, G94, G98, G99";
+pub(super) const SUBSET: &str = "G0-G4, G10 L2, G10 L20, G17-G21, G28, G30, G40-G42, G43, G44, G49, G53-G59.3, G54.1, G61, G61.1, G64, G80-G83, G90, G90.1, G91, G91.1, G92.1, G92.2, G94, G98, G99";
 
 use super::NO_MOTION;
 
@@ -51,6 +52,10 @@ pub(super) struct Given {
     d: Option<(f64, Range<usize>)>,
     /// LinuxCNC's polar `@` (distance) and `^` (angle), the block's units (module `polar`).
     polar: [Option<f64>; 2],
+    /// The `L` word and its span (a canned cycle's repeats, `G10`'s kind).
+    l: Option<(f64, Range<usize>)>,
+    /// `G10`: a work offset set (module `g10`).
+    g10: bool,
 }
 
 pub(super) fn block(
@@ -74,6 +79,9 @@ pub(super) fn block(
         (s.changed, s.tool_number) = (true, s.selected);
     }
     super::process::gather(line, words, s);
+    if given.g10 {
+        return given.set_offset(line, s);
+    }
     // LinuxCNC and grbl read an axis word beside G4 P as a move in the motion mode in force,
     // made after the dwell (LinuxCNC's order of execution; grbl's G4 takes no axis words).
     let moves_after_dwell = matches!(
@@ -94,7 +102,7 @@ pub(super) fn block(
     motion_and_feed(line, &given, inch_before, s)?;
     super::polar::resolve(line, given.polar, (&mut given.target, given.g53), s)?;
     if given.g53 && (given.home.is_some() || s.motion >= 81 && s.motion != NO_MOTION) {
-        return Err(g53_outside_g0_g1(line, &given, s));
+        return Err(g53_outside_g0_g1(line, given.home, s));
     }
     super::dialect::before_motion(line, &given.moves(s), s)?;
     if given.home.is_some() || given.g53 || s.motion >= 81 && s.motion != NO_MOTION {
@@ -112,6 +120,15 @@ pub(super) fn block(
     }
     if given.cycle.peck.is_some() {
         return Err(at(line, "Q: a peck depth outside a G83 cycle".into()));
+    }
+    if let Some((l, _)) = given.l {
+        return Err(at(
+            line,
+            format!(
+                "L{}: a number of repeats outside a canned cycle (G81-G83)",
+                number(l)
+            ),
+        ));
     }
     if !moves(line, &given, s)? {
         return Ok(());
@@ -175,6 +192,7 @@ impl Given {
             }
             'P' => self.cycle.dwell = Some((v, w.span.clone())),
             'H' => self.h = Some(v),
+            'L' => self.l = Some((v, w.span.clone())),
             'D' => self.d = Some((v, w.span.clone())),
             'S' | 'M' | 'N' | 'O' => {}
             other => return Err(at(line, format!("'{other}': not a word of the supported subset (G M T F S N O P Q X Y Z I J K R, A B C with rotary = abc, U V W A B C mapped by external = LETTERS)"))),
@@ -215,6 +233,7 @@ impl Given {
             80 if s.motion >= 81 => s.motion = NO_MOTION,
             g @ (41 | 42) => self.comp = Some((g, Some(w.span.clone()))),
             40 => self.comp = Some((40, None)),
+            10 => self.g10 = true,
             g @ 17..=19 => {
                 if g != s.plane {
                     super::cutter::refuse_while_on(line, &format!("G{g}: a change of plane"), s)?;
@@ -237,6 +256,9 @@ impl Given {
         match tenths {
             541 | 591..=593 => self.offset = Some(tenths),
             611 => {}
+            // G92.1, G92.2: no G92 offset in force (none can be set: G92 is refused), as the
+            // setup's frames are read.
+            921 | 922 => {}
             901 => s.ij_absolute = true,
             911 => s.ij_absolute = false,
             _ => {
@@ -347,6 +369,31 @@ impl Given {
         Ok(())
     }
 
+    /// A `G10` block: a work offset set (module `g10`), nothing else in it.
+    fn set_offset(&self, line: u64, s: &mut State) -> Result<()> {
+        let other = self.motion.is_some()
+            || self.home.is_some()
+            || self.g53
+            || self.offset.is_some()
+            || self.length.is_some()
+            || self.comp.is_some()
+            || self.g4
+            || self.abc
+            || self.external
+            || self.centre_given()
+            || self.polar.iter().any(Option::is_some);
+        if other {
+            return Err(at(line, "G10 with a motion, a dwell, another offset or arc words in its block: write the G10 in a block of its own".into()));
+        }
+        let words = super::g10::Words {
+            l: self.l.as_ref().map(|(l, _)| *l),
+            p: self.cycle.dwell.as_ref().map(|(p, _)| *p),
+            xyz: self.target,
+            r: self.radius,
+        };
+        super::g10::apply(line, &words, s)
+    }
+
     /// Whether the block gives an axis word (X Y Z, a rotary or an external axis).
     fn moves_an_axis(&self) -> bool {
         self.target.iter().any(Option::is_some) || self.abc || self.external
@@ -418,11 +465,21 @@ fn cycle(
     s: &mut State,
     out: &mut GCode,
 ) -> Result<()> {
+    let mut given = given;
+    let mut w = std::mem::take(&mut given.cycle);
+    // FANUC's repeats are K (Series 0i; L in its FS15 format); K alone, no I or J, is read so on
+    // FANUC only (LinuxCNC's G81 takes no K).
+    let fanuc_k = s.machine.dialect == Some(super::GcodeDialect::Fanuc)
+        && given.centre[..2].iter().all(Option::is_none)
+        && given.l.is_none();
+    let k = given.centre[2].take_if(|_| fanuc_k);
     let other_geometry = given.centre_given() || given.abc || given.external;
-    let mut w = given.cycle;
     w.xyz = given.target;
     w.retract = given.radius;
     w.given = given.motion.is_some();
+    w.repeats = given.l.as_ref().map(|(l, _)| *l).or(k);
+    w.polar = given.polar;
+    given.drop.extend(given.l.map(|(_, span)| span));
     cycles::block(line, span, w, other_geometry, given.drop, s, out)
 }
 
@@ -471,7 +528,7 @@ fn motion(
                 let spindle = s.spindle_lift();
                 (frame, spindle, (spindle, s.length_offset))
             }
-            None => return unplaced_machine_move(line, &given, s, out),
+            None => return unplaced_machine_move(line, given.target.map(|t| t.is_some()), s, out),
         },
         false => (s.frame.clone(), lift, (lift, 0.0)),
     };
@@ -550,52 +607,6 @@ fn motion(
     Ok(())
 }
 
-/// `G53`'s frame: machine coordinates with `G0` or `G1` (LinuxCNC refuses it with an arc), its
-/// words absolute (in `G91` as the dialect says: module `dialect`). `None` for a rapid when the
-/// setup gives no `G53` frame ([`unplaced_machine_move`]).
-fn machine_frame(line: u64, s: &State) -> Result<Option<super::machine::Frame>> {
-    if s.motion >= 2 {
-        return Err(at(line, "G53: machine coordinates move with G0 or G1 only, not with an arc (LinuxCNC refuses it)".into()));
-    }
-    match s.machine.frames.offset("G53") {
-        Some(part_from) => Ok(Some(super::machine::Frame { name: "G53".into(), part_from })),
-        None if s.motion == 0 => Ok(None),
-        None => Err(at(line, "G53: the setup gives no frame for machine coordinates, which a feed (G1) to them needs: give it under [workpiece.offsets] (G53 = { xyz_mm = [..], rpy_deg = [..] }, its frame in the G54 part frame); a rapid (G0 or the G0 in force) to machine coordinates without it makes the axes it names unknown".into())),
-    }
-}
-
-/// A `G53` rapid the setup gives no frame for: the machine goes where the setup does not say
-/// (a retract to machine Z0, a park), so the axes it names are unknown until the program gives
-/// them again, as at the program's start (module docs of `modal`), and it makes no point. The
-/// line is kept ([`GCode::unplaced_g53`]): the robot goes from the point before it to the next
-/// one in one move.
-fn unplaced_machine_move(line: u64, given: &Given, s: &mut State, out: &mut GCode) -> Result<()> {
-    let named = given.target.map(|t| t.is_some());
-    s.leave_unknown(line, named, UNPLACED_G53);
-    s.pending.get_or_insert(line);
-    out.unplaced_g53.push(line);
-    Ok(())
-}
-
-/// The error for `G53` in a block `G0`/`G1` does not move: a canned cycle in force, `G28`,
-/// `G30` (LinuxCNC refuses `G53` unless `G0` or `G1` is in force).
-fn g53_outside_g0_g1(line: u64, given: &Given, s: &State) -> stiffid_core::Error {
-    let (what, fix) = match given.home {
-        Some(g) => (
-            format!("with G{g} in its block"),
-            format!("write the G{g} and the G53 move in blocks of their own"),
-        ),
-        None => (
-            format!("while the canned cycle G{} is in force", s.motion),
-            "end the cycle with G80 and write G53 G0 (or G53 G1) in a block of its own".to_string(),
-        ),
-    };
-    at(line, format!("G53 {what}: machine coordinates move with G0 or G1 only (LinuxCNC refuses G53 unless G0 or G1 is in force); {fix}"))
-}
-
-/// Why a `G53` rapid the setup does not place leaves the axes it names unknown.
-const UNPLACED_G53: &str = "a G53 rapid there went to machine coordinates, which the setup does not place: no [workpiece.offsets] G53";
-
 /// The error for a motion that needs every axis known and lacks one.
 fn refuse_unknown(line: u64, what: &str, known: [bool; 3], s: &State) -> stiffid_core::Error {
     at(
@@ -641,7 +652,7 @@ fn positions(
 /// The error for a `G` code outside the subset, saying why for those real posts write.
 fn unsupported(line: u64, g: &str) -> stiffid_core::Error {
     let why = match g {
-        "G92" | "G92.1" | "G92.2" | "G92.3" | "G10" => ": it sets an offset from the machine's position at run time, which stiffid cannot know; give the work offsets in the setup ([workpiece.offsets])",
+        "G92" | "G92.3" => ": it sets an offset from the machine's position at run time, which stiffid cannot know; give the work offsets in the setup ([workpiece.offsets])",
         "G93" | "G95" => ": the feed rate F would be per block (G93) or per revolution (G95); post the program in G94 (per minute)",
         "G28.1" | "G30.1" => ": it stores the machine's position at run time as the home position; give it in the setup ([workpiece] g28_mm, g30_mm)",
         "G68" | "G51" | "G50.1" | "G51.1" | "G15" | "G16" => ": a coordinate rotation, scaling, mirror or polar mode the path would pass through",

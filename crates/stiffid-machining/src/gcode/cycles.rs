@@ -17,13 +17,16 @@
 //! out) starts: the drill stops feeding there, and a robot that held the loaded pose while
 //! its thrust goes would leave the hole's axis. `Z`, `R`, `Q` and `P` stay in force within a cycle.
 //! The hole is drilled in the work offset and tool length offset in force (its levels
-//! programmed there, its points the tip in the `G54` part frame). Refused naming the line: a cycle under
-//! `G91` (controllers differ on what an incremental `R` and `Z` count from), outside the `G17`
+//! programmed there, its points the tip in the `G54` part frame). Under `G91`, `R` counts from
+//! the level the cycle started from and `Z` from `R`, the hole's `X Y` from where the tool is; a
+//! block's repeats `L` (FANUC's `K`) drill again, each from the last by its increments under
+//! `G91`, in one place under `G90` (LinuxCNC's `interp_cycles.cc`, `convert_cycle_xy` and
+//! `CYCLE_MACRO`, after NCMS page 98). Refused naming the line: a cycle outside the `G17`
 //! plane, in a work offset that turns the part's `Z` axis, with the tool not pointing along the part's `-Z`, with `I J K` or rotary words, without
 //! `Z` or `R` or a feed rate `F` in force, a bottom not below `R` or not below the part's surface, a `G83` without a positive `Q`, `P` outside `G82` and `Q`
 //! outside `G83`, and a block of `R`, `Q` or `P` alone (controllers differ on whether it drills).
 
-use super::{at, may_move, Block, GCode, Motion, Point, State, MAX_POINTS};
+use super::{at, may_move, Block, GCode, GcodeDialect, Motion, Point, State, MAX_POINTS};
 use nalgebra::{UnitQuaternion, Vector3};
 use std::ops::Range;
 use stiffid_core::Result;
@@ -96,7 +99,9 @@ impl GCode {
 pub(super) struct Modal {
     /// The `Z` level before the cycle's first block.
     initial: f64,
+    /// The `Z` word as written (absolute, or under `G91` from `R`), m.
     depth: Option<f64>,
+    /// The `R` word as written (absolute, or under `G91` from the initial level), m.
     retract: Option<f64>,
     peck: Option<f64>,
     /// `P`: its value and its text.
@@ -122,9 +127,15 @@ pub(super) struct Words {
     pub dwell: Option<(f64, Range<usize>)>,
     /// The block has the `G8x` word.
     pub given: bool,
+    /// The number of repeats (`L`, FANUC's `K`), as written.
+    pub repeats: Option<f64>,
+    /// LinuxCNC's polar `@` and `^` (module `polar`), the block's units: under `G91` added
+    /// again at each repeat.
+    pub polar: [Option<f64>; 2],
 }
 
-/// A block in a canned cycle (module docs): its hole's moves added to `out`.
+/// A block in a canned cycle (module docs): its holes' moves added to `out`, one hole per
+/// repeat (`L`, FANUC's `K`).
 pub(super) fn block(
     line: u64,
     span: Range<usize>,
@@ -139,35 +150,116 @@ pub(super) fn block(
         drop.push(r.clone());
     }
     keep_in_force(&w, scale, &out.text, s);
-    let drills = w.given || w.xyz.iter().any(Option::is_some);
+    let repeats = repeats(line, &w, s)?;
+    let drills = w.given || w.xyz.iter().any(Option::is_some) || w.repeats.is_some();
     if !drills {
         if w.retract.is_some() || w.peck.is_some() || w.dwell.is_some() {
             return Err(at(line, format!("G{}: R, Q or P without X, Y or Z: controllers differ on whether such a block drills; give the hole's X Y", s.motion)));
         }
         return Ok(());
     }
-    let hole = hole(line, &w, other_geometry, scale, s)?;
-    let (moves, bottom_index) = moves(&hole, s);
-    if !moves
-        .iter()
-        .all(|(p, _)| p.iter().all(|v| v.abs() <= 100.0))
-    {
-        return Err(at(line, "position beyond 100 m".into()));
+    if repeats == 0 {
+        if w.xyz[0].is_some() || w.xyz[1].is_some() || w.polar.iter().any(Option::is_some) {
+            return Err(at(line, format!("G{}: no repeat (L0 or K0) with X or Y: the cycle's words are kept without drilling, and controllers differ on whether the tool moves to X Y; give the X Y in a block of its own", s.motion)));
+        }
+        return Ok(());
     }
-    let block = Block {
+    let mut block = Block {
         line: span,
-        points: 0..0,
+        points: out.points.len()..out.points.len(),
         drop,
         external_words: Vec::new(),
         arc_word: None,
         inch: s.inch,
-        incremental: false,
+        incremental: s.incremental,
         to_program: s.to_program().ok_or_else(|| s.no_length(line))?,
         verbatim: false,
         take_up: 0.0,
         cycle: None,
     };
-    push(line, hole, &moves, bottom_index, block, s, out)
+    let (mut bottoms, mut dwell) = (Vec::new(), None);
+    for _ in 0..repeats {
+        let xy = hole_xy(line, &w, scale, s)?;
+        let hole = hole(line, xy, other_geometry, s)?;
+        let (moves, bottom_index) = moves(&hole, s);
+        if !moves
+            .iter()
+            .all(|(p, _)| p.iter().all(|v| v.abs() <= 100.0))
+        {
+            return Err(at(line, "position beyond 100 m".into()));
+        }
+        bottoms.push(out.points.len() - block.points.start + bottom_index);
+        dwell = hole.dwell.as_ref().map(|(_, text)| text.clone());
+        push(line, hole, &moves, bottom_index, s, out)?;
+        if out.points.len() > MAX_POINTS {
+            return Err(at(
+                line,
+                format!("more than {MAX_POINTS} path points (after the cycle's repeats)"),
+            ));
+        }
+    }
+    block.points.end = out.points.len();
+    block.cycle = Some(dwell.map(|text| (bottoms, text)));
+    out.blocks.push(block);
+    Ok(())
+}
+
+/// The number of holes the block drills: its `L` (FANUC's `K`, module docs), 1 without.
+fn repeats(line: u64, w: &Words, s: &State) -> Result<u32> {
+    let Some(l) = w.repeats else {
+        return Ok(1);
+    };
+    if l.fract() != 0.0 || !(0.0..=MAX_POINTS as f64).contains(&l) {
+        return Err(at(
+            line,
+            format!(
+                "L{}: expected a number of repeats, a whole number from 0 to {MAX_POINTS}",
+                stiffid_core::common::words::number(l)
+            ),
+        ));
+    }
+    if l == 0.0
+        && !matches!(
+            s.machine.dialect,
+            Some(GcodeDialect::Fanuc | GcodeDialect::Haas)
+        )
+    {
+        return Err(at(line, "L0: no repeat; LinuxCNC refuses it, FANUC and Haas keep the cycle's words without drilling, and the setup does not name FANUC or Haas ([controller] dialect)".into()));
+    }
+    Ok(l as u32)
+}
+
+/// The X Y (m, the frame in force) of the next hole: the block's (or the current ones) under
+/// `G90`; under `G91` the block's increments (or its polar ones) added to where the tool is, at
+/// each repeat (LinuxCNC's `interp_cycles.cc`, FANUC's and Haas's repeats).
+fn hole_xy(line: u64, w: &Words, scale: f64, s: &State) -> Result<(f64, f64)> {
+    if !s.incremental {
+        let x = w.xyz[0].map_or(s.position.x, |v| v * scale);
+        let y = w.xyz[1].map_or(s.position.y, |v| v * scale);
+        return Ok((x, y));
+    }
+    if !(s.known[0] && s.known[1]) {
+        let known = [s.known[0], s.known[1], true];
+        let why = format!(
+            "G{}: a canned cycle's increments (G91) from a place not known: {}",
+            s.motion,
+            s.unknown(known)
+        );
+        return Err(at(line, why));
+    }
+    let (mut x, mut y) = (s.position.x, s.position.y);
+    let [radius, angle] = w.polar;
+    if radius.is_none() && angle.is_none() {
+        x += w.xyz[0].unwrap_or(0.0) * scale;
+        y += w.xyz[1].unwrap_or(0.0) * scale;
+        return Ok((x, y));
+    }
+    if x == 0.0 && y == 0.0 {
+        return Err(at(line, "polar coordinates (@ ^): G91 at the XY origin has no angle to add to (LinuxCNC refuses the block)".into()));
+    }
+    let r = x.hypot(y) + radius.unwrap_or(0.0) * scale;
+    let t = y.atan2(x) + angle.unwrap_or(0.0).to_radians();
+    Ok((r * t.cos(), r * t.sin()))
 }
 
 /// The block's `Z`, `R`, `Q` and `P` kept in force for the cycle's next blocks.
@@ -213,12 +305,9 @@ impl Hole {
 }
 
 /// The hole a drilling block makes, or the reason (module docs) it is refused.
-fn hole(line: u64, w: &Words, other_geometry: bool, scale: f64, s: &State) -> Result<Hole> {
+fn hole(line: u64, (x, y): (f64, f64), other_geometry: bool, s: &State) -> Result<Hole> {
     let code = s.motion;
     let refuse = |why: &str| Err(at(line, format!("G{code}: {why}")));
-    if s.incremental {
-        return refuse("a canned cycle under G91: controllers differ on what R and Z count from; write it in G90");
-    }
     if s.plane != 17 {
         return refuse("a canned cycle outside the G17 plane; stiffid drills along the part's Z");
     }
@@ -245,6 +334,12 @@ fn hole(line: u64, w: &Words, other_geometry: bool, scale: f64, s: &State) -> Re
     }
     let (Some(depth), Some(retract)) = (s.cycle.depth, s.cycle.retract) else {
         return refuse("a canned cycle needs its depth Z and its retract level R");
+    };
+    // Under G91, R counts from the level the cycle started from and Z from R (LinuxCNC's
+    // `interp_cycles.cc` after [NCMS, page 98]; FANUC and Haas alike).
+    let (depth, retract) = match s.incremental {
+        true => (s.cycle.initial + retract + depth, s.cycle.initial + retract),
+        false => (depth, retract),
     };
     if depth >= retract {
         return refuse("the bottom Z must lie below the retract level R");
@@ -278,8 +373,8 @@ fn hole(line: u64, w: &Words, other_geometry: bool, scale: f64, s: &State) -> Re
     };
     Ok(Hole {
         code,
-        x: w.xyz[0].map_or(s.position.x, |v| v * scale),
-        y: w.xyz[1].map_or(s.position.y, |v| v * scale),
+        x,
+        y,
         depth,
         retract,
         clearance,
@@ -357,13 +452,12 @@ fn moves(hole: &Hole, s: &State) -> (Vec<(Vector3<f64>, Motion)>, usize) {
     (moves, bottom_index)
 }
 
-/// The hole in `out.cycles`, its moves in `out.points` and its block in `out.blocks`.
+/// The hole in `out.cycles` and its moves in `out.points`.
 fn push(
     line: u64,
     hole: Hole,
     moves: &[(Vector3<f64>, Motion)],
     bottom_index: usize,
-    mut block: Block,
     s: &mut State,
     out: &mut GCode,
 ) -> Result<()> {
@@ -401,8 +495,5 @@ fn push(
     if let Some((p, written)) = &hole.dwell {
         super::dwell::at_bottom(line, (*p, written), first + bottom_index, s);
     }
-    block.points = first..out.points.len();
-    block.cycle = Some(hole.dwell.map(|(_, text)| (bottom_index, text)));
-    out.blocks.push(block);
     Ok(())
 }

@@ -141,3 +141,66 @@ fn a_peck_cycle_ends_at_its_bottom_whatever_the_pecks_sum_to_in_floating_point()
     let g = gcode::parse(&text, 1e-5).unwrap();
     assert_eq!(g.points[g.points.len() - 2].position.z, -1.5e-3);
 }
+
+#[test]
+fn repeats_drill_again_each_shifted_by_the_increments_under_g91() {
+    // G91: R from the level the cycle started at (10 - 8 = 2), Z from R (2 - 7 = -5), each of
+    // the three holes X5 Y1 further on (LinuxCNC's `interp_cycles.cc`); FANUC's K the same;
+    // L2 in G90 drills one place twice; G82's dwell written after each bottom.
+    let fanuc = gcode::Machine {
+        dialect: Some(gcode::GcodeDialect::Fanuc),
+        ..Default::default()
+    };
+    let bottoms = |text: &str, m: &gcode::Machine| {
+        let g = gcode::parse_on(text, 1e-5, m).unwrap();
+        let b: Vec<[f64; 4]> = (g.cycles.iter())
+            .map(|c| {
+                let p = c.bottom * 1e3;
+                [p.x, p.y, p.z, c.clearance * 1e3].map(|v| (v * 1e9).round() / 1e9)
+            })
+            .collect();
+        (b, g)
+    };
+    let holes = [
+        [5.0, 1.0, -5.0, 10.0],
+        [10.0, 2.0, -5.0, 10.0],
+        [15.0, 3.0, -5.0, 10.0],
+    ];
+    for (k, words) in ["L3", "K3"].into_iter().enumerate() {
+        let text = format!(
+            "{HEADER}G21 G90 G17\nG0 X0 Y0 Z10\nG91 G98 G81 X5 Y1 Z-7 R-8 {words} F100\nG80\n"
+        );
+        let m = if k == 0 {
+            Default::default()
+        } else {
+            fanuc.clone()
+        };
+        let (b, g) = bottoms(&text, &m);
+        assert_eq!(b, holes, "{words}");
+        assert_eq!(g.points.iter().filter(|p| p.cycle == Some(2)).count(), 7);
+        // Written as increments in the block's G91, the L dropped.
+        let written = g
+            .write(&g.points.iter().map(|p| p.position).collect::<Vec<_>>())
+            .unwrap();
+        assert!(
+            written.contains("G91 F100\nG0 X5.000000 Y1.000000 Z0.000000\n"),
+            "{written}"
+        );
+    }
+    let text = format!("{HEADER}G21 G90 G17\nG0 X0 Y0 Z10\nG82 X4 Y4 Z-2 R1 P0.5 L2 F100\nG80\n");
+    let (b, g) = bottoms(&text, &Default::default());
+    assert_eq!(b, [[4.0, 4.0, -2.0, 10.0]; 2]);
+    let written = g
+        .write(&g.points.iter().map(|p| p.position).collect::<Vec<_>>())
+        .unwrap();
+    assert_eq!(written.matches("G4 P0.5").count(), 2, "{written}");
+    // K on another controller than FANUC, L outside a cycle: refused (L0 and L2.5: gcode_cycles).
+    for (bad, why) in [
+        ("G81 X1 Y1 Z-2 R1 K2 F100", "K"),
+        ("G1 X1 L2 F100", "outside a canned cycle"),
+    ] {
+        let text = format!("{HEADER}G21 G90 G17\nG0 X0 Y0 Z10\n{bad}\n");
+        let e = gcode::parse(&text, 1e-5).unwrap_err().to_string();
+        assert!(e.contains("line 4") && e.contains(why), "{bad}: {e}");
+    }
+}

@@ -166,7 +166,7 @@ pub(super) fn length_offset_allowed(line: u64, g: u8, s: &State) -> Result<()> {
 /// every reading (machine coordinates, or increments as Mitsubishi's M700V reads them: the
 /// next point is where the program gives them again); `Err` naming the line otherwise.
 pub(super) fn g53_in_g91(line: u64, s: &State) -> Result<()> {
-    if s.motion == 0 && s.machine.frames.offset("G53").is_none() {
+    if s.motion == 0 && s.offset("G53").is_none() {
         return Ok(());
     }
     match s.machine.dialect {

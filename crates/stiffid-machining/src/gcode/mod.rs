@@ -6,14 +6,16 @@
 //!   the positive end of the plane's normal) with `X Y Z`, the centre by `I J K` (incremental
 //!   from the start, in every distance mode) or the radius `R` (negative: the arc over 180 deg);
 //!   a helix moves linearly along the normal. `G17`/`G18`/`G19` choose the XY, ZX, YZ plane.
-//! - Drilling canned cycles `G81`, `G82`, `G83` with `G98`/`G99`, ended by `G80` or `G0`-`G3`:
+//! - Drilling canned cycles `G81`, `G82`, `G83` with `G98`/`G99`, under `G90` or `G91`, repeated
+//!   by `L` (FANUC's `K`), ended by `G80` or `G0`-`G3`:
 //!   each hole read as the moves it makes (`Cycle`, module `cycles`); after `G80` a motion
 //!   needs its `G0`-`G3`.
 //! - As the controller runs it ([`parse_on`] with a [`Machine`]: the setup's `[workpiece]` and the
 //!   process's tool lengths; `docs/programs/gcode.md` names each rule's source): an axis is
 //!   unknown until a block gives it or the setup states the start (rapids before make no point;
 //!   a feed, arc or cycle from there is refused, module `modal`); work offsets `G54`-`G59`,
-//!   `G59.1`-`G59.3`, `G54.1 Pn` and machine coordinates `G53` (of the spindle, the tool
+//!   `G59.1`-`G59.3`, `G54.1 Pn` (or as the program sets them, `G10 L2`/`L20`, module `g10`)
+//!   and machine coordinates `G53` (of the spindle, the tool
 //!   length offset not applied; `G0`/`G1` only) in the setup's frames (without the setup's
 //!   `G53` frame a `G53` rapid makes no point and the axes it names unknown, a feed is refused); `G28`/`G30`
 //!   to the setup's positions (module `home`); tool length offsets `G43 Hn`/`G44`/`G49` with the
@@ -81,6 +83,8 @@ mod cycles;
 mod dialect;
 mod dwell;
 mod expand;
+mod g10;
+mod g53;
 mod groups;
 mod home;
 mod machine;
@@ -174,8 +178,9 @@ struct Block {
     /// `dialect`): an incremental block's `Z` is written less it.
     take_up: f64,
     /// A canned cycle's block: its points written as `G0`/`G1` blocks of their own, and the dwell
-    /// `G4 P..` after the point of this index (within the block) with the `P` word as written.
-    cycle: Option<Option<(usize, String)>>,
+    /// `G4 P..` after the points of these indices (within the block: each hole's bottom) with the
+    /// `P` word as written.
+    cycle: Option<Option<(Vec<usize>, String)>>,
 }
 
 /// A G-code program and its tool path.
@@ -292,6 +297,8 @@ struct State {
     /// The part's surface a canned cycle drills into, part frame `Z`, m (`(stiffid: surface_mm
     /// = Z)`, default 0).
     surface: f64,
+    /// The work offsets the program set (`G10`, module `g10`).
+    set: g10::Set,
 }
 
 impl State {
@@ -323,6 +330,7 @@ impl State {
             retract_to_r: false,
             cycle: Default::default(),
             surface: 0.0,
+            set: Default::default(),
             known: [false; 3],
             pending: None,
             left_unknown: [None; 3],
@@ -469,3 +477,5 @@ fn may_move(line: u64, s: &State) -> Result<UnitQuaternion<f64>> {
 
 #[cfg(test)]
 mod cycles_tests;
+#[cfg(test)]
+mod g10_tests;

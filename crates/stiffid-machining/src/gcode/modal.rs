@@ -159,7 +159,7 @@ impl State {
 
 /// The frame of the work offset `name` the setup gives, or the error naming the line.
 pub(super) fn frame(line: u64, name: String, s: &State) -> Result<Frame> {
-    match s.machine.frames.offset(&name) {
+    match s.offset(&name) {
         Some(part_from) => Ok(Frame { name, part_from }),
         None => Err(at(line, format!("{name}: the setup gives no frame for this work offset: give it under [workpiece.offsets] ({} = {{ xyz_mm = [..], rpy_deg = [..] }}, its frame in the G54 part frame)", toml_key(&name)))),
     }

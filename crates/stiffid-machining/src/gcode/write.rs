@@ -110,7 +110,7 @@ impl GCode {
         &self,
         b: &Block,
         mut drop: Vec<Range<usize>>,
-        dwell: &Option<(usize, String)>,
+        dwell: &Option<(Vec<usize>, String)>,
         ending: &str,
         words: &mut Words,
         out: &mut String,
@@ -133,7 +133,7 @@ impl GCode {
                 Motion::Feed => "G1 ",
             });
             out.push_str(&words.point(k, b));
-            if let Some((_, p_word)) = dwell.as_ref().filter(|(after, _)| *after == j) {
+            if let Some((_, p_word)) = dwell.as_ref().filter(|(after, _)| after.contains(&j)) {
                 out.push_str(ending);
                 out.push_str("G4 ");
                 out.push_str(p_word);

@@ -70,7 +70,7 @@ fn cutter_compensation_unit_changes_under_a_feed_and_malformed_cycles_are_refuse
             "G42: controllers enter cutter radius compensation and turn its corners differently",
         ),
         ("G1 X5 F600\nG20 G1 X1", 5, "F of line 4 is in force"),
-        ("G91 G81 X10 Y0 Z-5 R2 F100", 4, "G91"),
+        ("G91 G81 X10 Y0 Z-15 R-8 L0 F100", 4, "L0"),
         ("G18 G81 X10 Y0 Z-5 R2 F100", 4, "G17"),
         ("G81 X10 Y0 Z-5 F100", 4, "R"),
         ("G81 X10 Y0 Z5 R2 F100", 4, "below the retract level"),
@@ -93,7 +93,7 @@ fn cutter_compensation_unit_changes_under_a_feed_and_malformed_cycles_are_refuse
         ("G81 X10 Y0 Z-5 R2 F100\nR3", 5, "controllers differ"),
         ("G81 X10 Y0 Z-5 R2 F100\nG80\nX20", 6, "after G80"),
         ("G1 X1 Q2 F100", 4, "Q: a peck depth outside"),
-        ("G81 X10 Y0 Z-5 R2 F100 L3", 4, "'L'"),
+        ("G81 X10 Y0 Z-5 R2 F100 L2.5", 4, "whole number"),
         // A dwell's X is its time on FANUC and Haas, a move on LinuxCNC.
         ("G1 X10 F100\nG04 X2.", 5, "G4 with an axis word"),
         ("G1 X10 F100\nG4 P2 Y20", 5, "G4 with an axis word"),

@@ -462,6 +462,32 @@ fn cutter_radius_compensation_meets_an_arc_at_an_inside_corner_as_linuxcnc() {
     );
     // From the corner on: the arc's first point is past it, counter-clockwise.
     assert!(arc[0].y < side.y && arc[0].x > side.x);
+    // An arc as the entry (LinuxCNC's convert_arc_comp1): from (30, 0) to its end (0, 30) moved
+    // 5 mm along its radius (G41 with G3: inside, to (0, 25); G42: to (0, 35)), on the circle
+    // through both about a centre on that radius: (0, -5.5) and (0, 325/70). In G18 the same
+    // in Z X (LinuxCNC's comp_get_current), Y the normal.
+    let g17 =
+        "G17\nT1 M6\nG0 X30 Y0 Z5\nG1 Z-1 F100\nGCOMP D1\nG3 X0 Y30 I-30 J0\nG40\nG1 X0 Y40\n";
+    let g18 =
+        "G18\nT1 M6\nG0 X0 Y5 Z30\nG1 Y-1 F100\nGCOMP D1\nG3 Z0 X30 K-30 I0\nG40\nG1 Z0 X40\n";
+    for (code, end, centre) in [("41", 25.0, -5.5), ("42", 35.0, 325.0 / 70.0)] {
+        for (plane, uvn) in [(g17, [0, 1, 2]), (g18, [2, 0, 1])] {
+            let text = format!("G21 G90 {}", plane.replace("COMP", code));
+            let g = read(&text, &radius(5.0, Some(GcodeDialect::LinuxCnc)));
+            let arc: Vec<_> = (g.points.iter().filter(|p| p.line == 7))
+                .map(|p| p.position * 1e3)
+                .map(|p| [p[uvn[0]], p[uvn[1]], p[uvn[2]]])
+                .collect();
+            assert!(arc.len() > 10, "G{code}: {text}");
+            for p in &arc {
+                assert_relative_eq!(p[0].hypot(p[1] - centre), end - centre, epsilon = 1e-9);
+            }
+            assert_eq!(
+                arc[arc.len() - 1].map(|v| (v * 1e9).round() / 1e9),
+                [0.0, end, -1.0]
+            );
+        }
+    }
 }
 
 /// A machine whose tool 1 has radius `r` mm, on `dialect`.
@@ -477,7 +503,7 @@ fn radius(r: f64, dialect: Option<GcodeDialect>) -> Machine {
 fn cutter_radius_compensation_outside_what_is_read_is_refused_naming_the_line() {
     let m = radius;
     // Refused naming the line: without the dialect, on Haas, an arc, a tool that does not fit,
-    // an entry shorter than the radius.
+    // an entry shorter than the radius (straight or an arc).
     let t = square("G41");
     refused(
         &t,
@@ -503,6 +529,18 @@ fn cutter_radius_compensation_outside_what_is_read_is_refused_naming_the_line() 
         &m(20.0, Some(GcodeDialect::LinuxCnc)),
         7,
         &["not longer than the tool radius"],
+    );
+    refused(
+        "G0 X0 Y0 Z0\nG41 D1\nG2 X3 Y0 I1.5 J0 F100\n",
+        &m(5.0, Some(GcodeDialect::LinuxCnc)),
+        4,
+        &["arc entering cutter radius compensation"],
+    );
+    refused(
+        "G19\nG41 D1\n",
+        &m(5.0, Some(GcodeDialect::LinuxCnc)),
+        3,
+        &["in G19"],
     );
     refused(
         "G41 D1\nG41 D1\n",

@@ -247,13 +247,15 @@ fn linuxcncs_polar_coordinates_give_x_and_y() {
         ..Default::default()
     };
     refused("G0 @1 ^2 Z5\n", &fanuc, 2, "LinuxCNC's words");
-    // LinuxCNC's hole-circle.ngc drills by ^ under G91: refused for the G91 cycle.
-    refused(
-        "G20 G17 G90\nG0 X1.5 Y0 Z0\nG91 G81 R.1 Z-.5 ^60 F10\n",
-        &m,
-        4,
-        "a canned cycle under G91",
-    );
+    // LinuxCNC's hole-circle.ngc drills by ^ under G91, L repeats: each hole 60 deg on, R from
+    // the starting level, Z from R (interp_cycles.cc, CYCLE_MACRO).
+    let g = parse(&corpus("linuxcnc-hole-circle.ngc"), &m).unwrap();
+    assert_eq!(g.cycles.len(), 6);
+    for (k, c) in (1..=6).zip(&g.cycles) {
+        let t = (60.0 * f64::from(k)).to_radians();
+        let want = Vector3::new(1.5 * t.cos(), 1.5 * t.sin(), -0.4) * 0.0254;
+        assert_relative_eq!(c.bottom, want, epsilon = 1e-12);
+    }
 }
 
 fn corpus(name: &str) -> String {

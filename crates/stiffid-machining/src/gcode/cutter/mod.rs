@@ -1,12 +1,14 @@
 //! Cutter radius compensation `G41` (the tool left of the programmed path) and `G42` (right),
 //! ended by `G40`, as LinuxCNC's interpreter runs it (LinuxCNC manual, "Cutter Compensation"
 //! and G40-G42; `interp_convert.cc`, `convert_straight_comp1`/`comp2`, `convert_arc_comp2`), in
-//! the `G17` plane: the radius is the process's tool radius (`[tool] diameter_mm` / 2) of the
+//! the `G17` plane and in `G18` (its `Z X` coordinates as LinuxCNC's `comp_get_current`): the radius is the process's tool radius (`[tool] diameter_mm` / 2) of the
 //! tool `D` names (LinuxCNC's `D` is a tool number), else of the tool in use, plus the wear the
 //! setup's `[controller] radius_wear_mm` gives for that number (a controller's wear offset).
-//! - The entry, the first move in X or Y after `G41`/`G42`, is straight and ends where it is
+//! - The entry, the first move in X or Y after `G41`/`G42`: a straight one ends where it is
 //!   tangent to the circle of the radius around its programmed end (it must be longer than the
-//!   radius).
+//!   radius); an arc (`convert_arc_comp1`) goes from where the tool is to its programmed end
+//!   moved by the radius along the arc's radius (toward the centre where the tool is inside the
+//!   arc), on the circle through both about a centre on that radius.
 //! - Each following straight move is its programmed line offset by the radius to its side; an
 //!   arc is its programmed arc offset by the radius (concentric: its radius less the tool's where
 //!   the tool is on the centre's side, `G41` with `G3`, `G42` with `G2`, else more; refused where
@@ -20,8 +22,8 @@
 //! - The move after `G40` goes from where the tool is to its programmed end (a straight move).
 //!
 //! Refused naming the line: `G41`/`G42` on a dialect other than LinuxCNC or without one (FANUC
-//! and Haas start and turn corners their own ways, by settings), outside `G17`, an arc as the
-//! entry or right after `G40`, a work offset, tool length offset or plane changed, a canned
+//! and Haas start and turn corners their own ways, by settings), in `G19`, an arc right
+//! after `G40`, a work offset, tool length offset or plane changed, a canned
 //! cycle, `G28`/`G30` or `G53` while it is on, `G41`/`G42` while it is on, a tool without a
 //! radius in the process.
 
@@ -114,8 +116,8 @@ pub(super) fn set(line: u64, code: u8, d: Option<f64>, s: &mut State) -> Result<
     if let Comp::On { line: on, .. } = s.comp {
         return Err(at(line, format!("G{code}: cutter radius compensation is on already (line {on}); LinuxCNC refuses it: G40 first")));
     }
-    if s.plane != 17 {
-        return Err(at(line, format!("G{code} in G{}: stiffid reads cutter radius compensation in the XY plane (G17) only", s.plane)));
+    if s.plane == 19 {
+        return Err(at(line, format!("G{code} in G19: LinuxCNC reads cutter radius compensation in the XY (G17) and ZX (G18) planes only, and refuses it in G19")));
     }
     let side = if code == 41 { 1.0 } else { -1.0 };
     let radius = radius(line, d, s)?;
@@ -152,6 +154,34 @@ pub(super) fn apply(
     s: &mut State,
     out: &mut GCode,
 ) -> Result<Vec<Vector3<f64>>> {
+    if matches!(s.comp, Comp::Off) {
+        return Ok(positions);
+    }
+    // In the plane's coordinates (G18: Z X, then Y), as LinuxCNC's comp_get_current.
+    let (u, v, n) = super::arc::plane_axes(s.plane);
+    let to = |p: &Vector3<f64>| Vector3::new(p[u], p[v], p[n]);
+    let positions = positions.iter().map(to).collect();
+    let pts = in_plane(line, to(&start), (positions, centre), tolerance, s, out)?;
+    Ok(pts.iter().map(|p| from_plane(s.plane, p)).collect())
+}
+
+/// A point of the plane's coordinates (`apply`) in the program's `X Y Z`.
+pub(super) fn from_plane(plane: u8, p: &Vector3<f64>) -> Vector3<f64> {
+    let (u, v, n) = super::arc::plane_axes(plane);
+    let mut q = Vector3::zeros();
+    (q[u], q[v], q[n]) = (p.x, p.y, p.z);
+    q
+}
+
+/// [`apply`] in the plane's coordinates.
+fn in_plane(
+    line: u64,
+    start: Vector3<f64>,
+    (positions, centre): (Vec<Vector3<f64>>, Option<[f64; 2]>),
+    tolerance: f64,
+    s: &mut State,
+    out: &mut GCode,
+) -> Result<Vec<Vector3<f64>>> {
     let (side, r, tool) = match &s.comp {
         Comp::Off => return Ok(positions),
         Comp::Exiting => {
@@ -179,8 +209,15 @@ pub(super) fn apply(
         return Ok(vec![Vector3::new(xy[0], xy[1], end.z)]);
     }
     let Some(t) = tool else {
-        if centre.is_some() {
-            return Err(at(line, "an arc as the move entering cutter radius compensation: not read (LinuxCNC's arc entry changes the arc's radius); enter with a straight move".into()));
+        if let Some(c) = centre {
+            return arc_entry(
+                line,
+                (p, q, c),
+                (start.z, end.z),
+                (side, r, tolerance),
+                s,
+                next,
+            );
         }
         let e = entry(line, p, q, side, r)?;
         let dir = unit([e[0] - p[0], e[1] - p[1]]).unwrap_or([1.0, 0.0]);
@@ -266,6 +303,34 @@ fn turn(
     let x = piece::meet(line, t, piece, p)?;
     piece::move_end(line, t, x, s, out)?;
     Ok(x)
+}
+
+/// LinuxCNC's arc entry (`Piece::entry`) from `p` to the programmed end `q` about `c`, its
+/// height from `z0` to `z1`: its points, the first of index `next` in the path.
+fn arc_entry(
+    line: u64,
+    (p, q, c): ([f64; 2], [f64; 2], [f64; 2]),
+    (z0, z1): (f64, f64),
+    (side, r, tolerance): (f64, f64, f64),
+    s: &mut State,
+    next: usize,
+) -> Result<Vec<Vector3<f64>>> {
+    let piece = Piece::entry(line, (p, q, c), s.motion == 3, (side, r))?;
+    let mut pts = Vec::new();
+    let shape = piece
+        .points(p, (z0, z1), tolerance, &mut pts)
+        .with_first(next);
+    let tool = Tool {
+        xy: piece.end_point(),
+        z: z1,
+        dir: piece.end_tangent(),
+        from: p,
+        point: next + pts.len() - 1,
+        z_since: false,
+        shape,
+    };
+    set_tool(s, tool);
+    Ok(pts)
 }
 
 /// Where the compensated tool is now.

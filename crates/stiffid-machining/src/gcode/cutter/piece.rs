@@ -142,6 +142,49 @@ impl Piece {
         })
     }
 
+    /// LinuxCNC's arc entering the compensation (`convert_arc_comp1`): from where the tool is,
+    /// `p`, to the programmed end `q` moved by `r` along its radius (toward the centre `c` where
+    /// the tool is inside the arc, `G41` with `G3`, `G42` with `G2`), about the centre on that
+    /// radius that is as far from both ends (a circle, its radius changed).
+    pub(super) fn entry(
+        line: u64,
+        (p, q, c): ([f64; 2], [f64; 2], [f64; 2]),
+        ccw: bool,
+        (side, r): (f64, f64),
+    ) -> Result<Self> {
+        if dist(p, q) <= r {
+            return Err(at(line, format!("the arc entering cutter radius compensation ({:.4} mm from its start to its end) is not longer than the tool radius ({:.4} mm): LinuxCNC refuses it", dist(p, q) * 1e3, r * 1e3)));
+        }
+        let inside = (side > 0.0) == ccw;
+        if inside && dist(p, c) <= r {
+            return Err(at(line, format!("the tool's radius ({:.4} mm) is not less than the entry arc's ({:.4} mm) on the side it cuts: LinuxCNC refuses it", r * 1e3, dist(p, c) * 1e3)));
+        }
+        let gamma = if inside { angle(q, c) } else { angle(c, q) };
+        let e = [q[0] + r * gamma.cos(), q[1] + r * gamma.sin()];
+        let (ab, a) = (angle(e, c), angle(e, p) - angle(e, c));
+        if a.cos().abs() < 1e-12 {
+            return Err(at(line, "the arc entering cutter radius compensation has no circle from where the tool is to its compensated end: LinuxCNC refuses it (tool radius not less than the arc radius)".into()));
+        }
+        let len = dist(p, e) / 2.0 / a.cos();
+        let n = [e[0] + len * ab.cos(), e[1] + len * ab.sin()];
+        let a0 = angle(n, p);
+        let mut sweep = along(a0, angle(n, e), ccw);
+        if sweep < 1e-12 {
+            sweep = TAU;
+        }
+        let rr = dist(n, e);
+        Ok(Piece::Arc {
+            c: n,
+            ccw,
+            a0,
+            sweep: if ccw { sweep } else { -sweep },
+            r0: dist(n, p),
+            r1: rr,
+            s0: p,
+            q1: e,
+        })
+    }
+
     pub(super) fn start_point(&self) -> [f64; 2] {
         match self {
             Piece::Line { s0, .. } | Piece::Arc { s0, .. } => *s0,
@@ -375,7 +418,7 @@ pub(super) fn move_end(line: u64, t: &Tool, x: [f64; 2], s: &State, out: &mut GC
         ..
     } = &t.shape
     else {
-        let moved = Vector3::new(x[0], x[1], t.z);
+        let moved = super::from_plane(s.plane, &Vector3::new(x[0], x[1], t.z));
         out.points[t.point].position = s.tip(line, &moved, frame)?;
         return Ok(());
     };
@@ -391,7 +434,7 @@ pub(super) fn move_end(line: u64, t: &Tool, x: [f64; 2], s: &State, out: &mut GC
         } else {
             [centre[0] + r * a.cos(), centre[1] + r * a.sin()]
         };
-        let moved = Vector3::new(xy[0], xy[1], z0 + (t.z - z0) * f);
+        let moved = super::from_plane(s.plane, &Vector3::new(xy[0], xy[1], z0 + (t.z - z0) * f));
         out.points[first + i - 1].position = s.tip(line, &moved, frame)?;
     }
     Ok(())
