@@ -155,6 +155,12 @@ pub trait Controller: Sync + 'static {
     fn name_symbols(&self) -> &'static str {
         ""
     }
+    /// The files of a backup the language reads by name (INFORM's `TOOL.CND`, `UFRAME.CND`,
+    /// `VAR.DAT`), upper case: one of a folder that is not text is refused, not passed over; by
+    /// default none.
+    fn backup_names(&self) -> &'static [&'static str] {
+        &[]
+    }
 }
 
 /// A [`Controller`] as the registry holds it ([`super::Dialect::controller`]): its
@@ -264,6 +270,8 @@ pub trait DynController: Sync {
     }
     /// The characters a program's name may hold besides letters, digits and `_` (INFORM `-`).
     fn name_symbols(&self) -> &'static str;
+    /// [`Controller::backup_names`].
+    fn backup_names(&self) -> &'static [&'static str];
     /// How a target's bound is written as a comment.
     fn bound_comment(&self) -> BoundComment {
         self.descriptor().bound_comment
@@ -318,6 +326,9 @@ impl<C: Controller> DynController for C {
     }
     fn name_symbols(&self) -> &'static str {
         Controller::name_symbols(self)
+    }
+    fn backup_names(&self) -> &'static [&'static str] {
+        Controller::backup_names(self)
     }
 }
 

@@ -76,7 +76,8 @@ pub fn read_files<E>(
 /// error); `wrap` turns a listing's or a text's error into the caller's.
 ///
 /// A file of a folder that is not text (an encrypted module, a stray control byte) is passed
-/// over; a file given by name must be text.
+/// over, but one the language reads by name (INFORM's `VAR.DAT`, `TOOL.CND`, `UFRAME.CND`); a
+/// file given by name must be text.
 ///
 /// # Errors
 /// Those of `read`; a path that cannot be listed, or a file given by name that is not text,
@@ -94,6 +95,14 @@ pub fn read_backup<E>(
             .map_or("", |(_, e)| e)
             .to_ascii_lowercase();
         extensions.contains(&e.as_str())
+    };
+    // A file the language reads by name (INFORM's `VAR.DAT`) that is no text is refused: passed
+    // over, what it holds would be asked for as if it were not given.
+    let by_name = |file: &std::path::Path| {
+        let name = file
+            .file_name()
+            .map_or(String::new(), |n| n.to_string_lossy().to_ascii_uppercase());
+        dialect.controller().backup_names().contains(&name.as_str())
     };
     let mut out = Vec::new();
     for path in paths {
@@ -113,7 +122,7 @@ pub fn read_backup<E>(
                 // A folder's module that is no text (encrypted, or a control byte the
                 // controller's editor left) declares nothing stiffid can read: a point the
                 // program takes from it is refused as declared nowhere.
-                Err(_) if listed => {}
+                Err(_) if listed && !by_name(&file) => {}
                 Err(e) => return Err(wrap(e)),
             }
         }

@@ -430,6 +430,10 @@ impl Controller for Inform {
     fn name_symbols(&self) -> &'static str {
         "-"
     }
+    /// The condition and data files read by name: `TOOL.CND`, `UFRAME.CND`, `VAR.DAT`.
+    fn backup_names(&self) -> &'static [&'static str] {
+        &[toolcnd::FILE, uframe::FILE, var::FILE]
+    }
     /// Jobs in pulses ([`generate`]).
     fn generator(&self) -> Option<&'static dyn Generator> {
         Some(&Inform)

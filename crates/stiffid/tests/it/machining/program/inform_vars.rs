@@ -248,3 +248,20 @@ fn a_second_robots_job_runs_on_a_motoman_gp25_as_a_first_robots_does() {
         other => panic!("{other:?}"),
     }
 }
+
+/// A backup folder's `VAR.DAT` that is no text (a NUL byte) is refused naming it, not passed over
+/// as a folder's stray binary file is (its variables would then be asked for as not given).
+#[test]
+fn a_var_dat_that_is_no_text_is_refused_naming_it() {
+    use stiffid::internal::machining::program::read_backup;
+    let dir = std::env::temp_dir().join(format!("stiffid-inform-var-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("VAR.DAT"), b"//VAR\r\n\0\r\n").unwrap();
+    std::fs::write(dir.join("ALMHIST.DAT"), b"\0\0").unwrap();
+    let read = |p: &std::path::Path| std::fs::read(p);
+    let wrap = |e: Error| std::io::Error::other(e.to_string());
+    let result = read_backup(std::slice::from_ref(&dir), Dialect::Inform, read, wrap);
+    std::fs::remove_dir_all(&dir).unwrap();
+    let e = result.unwrap_err().to_string();
+    assert!(e.contains("VAR.DAT"), "{e}");
+}
