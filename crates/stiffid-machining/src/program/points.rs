@@ -47,6 +47,10 @@ pub(crate) struct Foreign {
     /// Where [`Foreign::text`]'s first byte was in its file, less what the copy adds before
     /// the values (a target's spans minus it are its spans in the text).
     pub at: usize,
+    /// Whether the program computes the point as it runs (KRL's `XP2 = XP1 : {..}`): its copy is
+    /// written and named by the motion even where the compensation leaves its values, since the
+    /// run computes it from points the compensation may move.
+    pub computed: bool,
 }
 
 /// Splits the declared points whose visits take different values (module docs) in `edits`: the
@@ -77,7 +81,8 @@ pub(super) fn split(program: &JointProgram, edits: &mut Vec<Edit>) -> Result<()>
                 at.and_then(|(a, b)| f.text.get(a..b)) == Some(e.2.as_str())
             })
         };
-        if foreign.is_some() && !edits.iter().any(|e| ours(e) && e.3 && !same(e)) {
+        let computed = foreign.is_some_and(|f| f.computed);
+        if foreign.is_some() && !computed && !edits.iter().any(|e| ours(e) && e.3 && !same(e)) {
             // Unchanged: the other file's declaration holds, nothing to write.
             edits.retain(|e| !ours(e));
             continue;

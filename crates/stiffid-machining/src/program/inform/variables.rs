@@ -130,6 +130,7 @@ pub(super) fn build(
         let foreign = Foreign {
             text: block,
             at: offset,
+            computed: false,
         };
         offset += foreign.text.len();
         let copy = Copy {

@@ -382,7 +382,15 @@ impl Writer<'_> {
             other => other.to_string(),
         })?;
         let name_at = head.len() - 1 - fresh.len()..head.len() - 1;
-        let t = t.declared_elsewhere(Foreign { text, at }, name_at, self.insert);
+        let t = t.declared_elsewhere(
+            Foreign {
+                text,
+                at,
+                computed: true,
+            },
+            name_at,
+            self.insert,
+        );
         self.taken.push(fresh.to_ascii_uppercase());
         Ok((m, t))
     }

@@ -440,7 +440,11 @@ fn copied(
     };
     let at = p.declaration.start + removed;
     let name = p.name.start - at..p.name.end - at;
-    let foreign = crate::program::points::Foreign { text: copy, at };
+    let foreign = crate::program::points::Foreign {
+        text: copy,
+        at,
+        computed: false,
+    };
     Ok(t.declared_elsewhere(foreign, name, insert))
 }
 

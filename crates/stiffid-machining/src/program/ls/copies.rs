@@ -111,6 +111,7 @@ pub(super) fn build(
         let foreign = Foreign {
             text: block,
             at: offset,
+            computed: false,
         };
         by_motion.insert(
             k,

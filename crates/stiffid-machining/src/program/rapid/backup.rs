@@ -124,5 +124,13 @@ fn elsewhere(
         ));
     };
     let name = p.name.start - at..p.name.end - at;
-    Ok(t.declared_elsewhere(Foreign { text, at }, name, insert))
+    Ok(t.declared_elsewhere(
+        Foreign {
+            text,
+            at,
+            computed: false,
+        },
+        name,
+        insert,
+    ))
 }

@@ -45,6 +45,34 @@ fn an_assigned_point_is_computed_and_compensated_as_its_value_declared() {
     }
 }
 
+/// A rapid to a point computed from a cut point, on a spindle without mass: the cut point is
+/// compensated in the `.dat`, the rapid not at all; the motion still names the computed point's
+/// own declaration, since at run time the assignment reads the compensated cut point.
+#[test]
+fn a_computed_point_the_compensation_leaves_is_declared_as_computed() {
+    let src = "DEF mill( )\n$TOOL = {X 0, Y 0, Z 250, A 0, B 0, C 0}\n$BASE = {X 2000, Y 0, Z 550, A 0, B 0, C 0}\n$VEL.CP = 0.03\nLIN XP1\nXP3 = XP1\nXP3 = XP1 : {X 60, Y 0, Z 0, A 0, B 0, C 0}\nPTP XP3\nEND\n";
+    let massless = |setup: &str| {
+        (setup.lines())
+            .filter(|l| !l.starts_with("mass_kg") && !l.starts_with("centre_of_mass_mm"))
+            .map(|l| format!("{l}\n"))
+            .collect()
+    };
+    let p = super::backup::run_with(&massless, (src, Some(DAT)), &[]).unwrap();
+    let data = p.data.unwrap();
+    let cut = super::backup::members(&data, "XP1");
+    assert!((cut[2] - 5.0).abs() > 1e-6, "{data}");
+    assert!(p.text.contains("\nPTP XP3_S7 ;"), "{}", p.text);
+    let rapid = super::backup::members(&data, "XP3_S7");
+    let declared = [60.0, -100.0, 5.0, 0.0, 0.0, 180.0];
+    assert!(
+        rapid
+            .iter()
+            .zip(declared)
+            .all(|(u, v)| (u - v).abs() < 1e-6),
+        "{rapid:?}"
+    );
+}
+
 #[test]
 fn an_assigned_point_the_run_decides_is_refused_naming_the_line() {
     let cases = [

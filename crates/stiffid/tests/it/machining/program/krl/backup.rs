@@ -76,13 +76,22 @@ fn mill(files: &[(String, String)]) -> stiffid::Result<(String, Option<String>)>
 /// Compensates the program `src` with its `.dat` and the backup `files` on the KR 210 milling
 /// setup, written as `mill_c.src`.
 pub(super) fn run(
+    program: (&str, Option<&str>),
+    files: &[(String, String)],
+) -> stiffid::Result<stiffid::app::compensate::ProgramReport> {
+    run_with(&|setup| setup.to_string(), program, files)
+}
+
+/// [`run`] on the milling setup as `edit` changes its text.
+pub(super) fn run_with(
+    edit: &dyn Fn(&str) -> String,
     (src, dat): (&str, Option<&str>),
     files: &[(String, String)],
 ) -> stiffid::Result<stiffid::app::compensate::ProgramReport> {
     use stiffid::app::compensate::{self, Input};
     use stiffid::internal::machining::{compensate::Options, Language};
     let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/milling");
-    let text = std::fs::read_to_string(format!("{dir}/kuka-milling.toml")).unwrap();
+    let text = edit(&std::fs::read_to_string(format!("{dir}/kuka-milling.toml")).unwrap());
     let setup = stiffid::internal::setup::parse(&text, "kuka-milling.toml", |name, _| {
         stiffid::internal::robot::presets::get(name)
     })
