@@ -161,6 +161,13 @@ pub trait Controller: Sync + 'static {
     fn backup_names(&self) -> &'static [&'static str] {
         &[]
     }
+    /// What the program's external axis `name` ([`super::JointProgram::axes`]) carries where
+    /// the language says (INFORM: a base axis `BC` the arm, a station axis `EC` the part); by
+    /// default `None`: the program's axes are the cell's in order, whatever they carry.
+    fn axis_role(&self, name: &str) -> Option<Role> {
+        let _ = name;
+        None
+    }
 }
 
 /// A [`Controller`] as the registry holds it ([`super::Dialect::controller`]): its
@@ -203,6 +210,8 @@ pub trait DynController: Sync {
     fn data_file<'a>(&self, text: &str, context: &super::Context<'a>) -> Option<&'a str>;
     /// [`Controller::written`].
     fn written(&self, read: &str, written: String) -> String;
+    /// [`Controller::axis_role`].
+    fn axis_role(&self, name: &str) -> Option<Role>;
 
     /// The language's name in documents and options (`krl`, `rapid`, `ls`, `inform`).
     fn key(&self) -> &'static str {
@@ -323,6 +332,9 @@ impl<C: Controller> DynController for C {
     }
     fn written(&self, read: &str, written: String) -> String {
         Controller::written(self, read, written)
+    }
+    fn axis_role(&self, name: &str) -> Option<Role> {
+        Controller::axis_role(self, name)
     }
     fn name_symbols(&self) -> &'static str {
         Controller::name_symbols(self)

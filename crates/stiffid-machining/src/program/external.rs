@@ -19,6 +19,7 @@
 //!   for a rotary one: the controller takes the unit of the axis it drives).
 
 use super::{JointProgram, JointTarget};
+use stiffid_core::robot::external::Role;
 use stiffid_core::robot::ExternalAxes;
 use stiffid_core::{Error, Result};
 
@@ -30,6 +31,7 @@ use stiffid_core::{Error, Result};
 /// [`Error::Program`] naming the target's line and the axis (module docs).
 pub fn cell_values(program: &JointProgram, cell: Option<&ExternalAxes>) -> Result<Vec<Vec<f64>>> {
     check_units(program, cell)?;
+    check_roles(program, cell)?;
     program
         .targets
         .iter()
@@ -112,6 +114,37 @@ fn target_values(
         out.push(si);
     }
     Ok(out)
+}
+
+/// Each program axis whose language says what it carries (INFORM: base axes `BC` the arm,
+/// station axes `EC` the part) against the cell's axis in its place: a job of a cell without a
+/// track (no `BC`) on a setup with one would read its station's degrees as the track's mm.
+fn check_roles(program: &JointProgram, cell: Option<&ExternalAxes>) -> Result<()> {
+    let Some(cell) = cell else { return Ok(()) };
+    let controller = program.dialect.controller();
+    for (k, (axis, name)) in cell.axes().iter().zip(&program.axes).enumerate() {
+        let Some(role) = controller.axis_role(name).filter(|r| *r != axis.role) else {
+            continue;
+        };
+        let given =
+            (program.targets.iter()).find(|t| t.external.get(k).is_some_and(Option::is_some));
+        let carries = |r: Role| match r {
+            Role::Carrier => "the arm (a carrier's axis)",
+            Role::Positioner => "the part (a positioner's axis)",
+        };
+        return Err(Error::Program {
+            line: given.or(program.targets.first()).map_or(1, |t| t.line),
+            message: format!(
+                "{name}: the program's axis carrying {} stands where the cell's external axis {} ({}) carries {}: the cell's order is the carrier's axes, then the positioner's, and the program's the same ({}); give the setup the cell's axes the program was written for",
+                carries(role),
+                k + 1,
+                axis.name,
+                carries(axis.role),
+                program.axes.join(", ")
+            ),
+        });
+    }
+    Ok(())
 }
 
 /// Each unit the program writes an axis of the cell in (LS) against the axis's kind.

@@ -215,6 +215,21 @@ fn program_values_are_checked_against_the_cell() {
     let (line, m) = refused(INFORM, Dialect::Inform, None);
     assert_eq!(line, 23);
     assert!(m.contains("BC1 1500.5"), "{m}");
+    // A job without the track's base axis on a track cell: its station's first axis is no
+    // track value (it stood in the track's place, 0 and 45.25 deg read as mm).
+    let stations = INFORM
+        .replace("///NPOS 2,2,2", "///NPOS 2,0,2")
+        .replace("BC00000=150050\r\nBC00001=160000\r\n", "")
+        .replace(" BC0000", " X")
+        .replace(" X0 ", " ")
+        .replace(" X1 ", " ")
+        .replace("RB1,BS1,ST1", "RB1,ST1");
+    let (line, m) = refused(&stations, Dialect::Inform, Some(&three));
+    assert_eq!(line, 21, "{m}");
+    assert!(
+        m.contains("EC1: the program's axis carrying the part (a positioner's axis) stands where the cell's external axis 1 (track) carries the arm"),
+        "{m}"
+    );
     // 9E9 in a used axis.
     let (line, m) = refused(
         &RAPID.replace("[1500.5,0,", "[1500.5,9E9,"),
@@ -433,11 +448,51 @@ fn malformed_external_axes_and_inform_jobs_are_refused_naming_the_line() {
 const PROCESS: &str = "[tool]\ndiameter_mm = 20\nflutes = 3\nhelix_deg = 30\n[cut]\nfeed_per_tooth_mm = 0.1\n\
     axial_depth_mm = 4\nradial_depth_mm = 10\nmode = \"down\"\n[coefficients]\npreset = \"al7075-t6\"\n";
 
+/// The LS program of [`a_program_that_moves_the_track_is_compensated_with_the_track_where_it_says`]:
+/// the arm at `q` (deg) while the track carries it along `E1`; the same as an INFORM job in
+/// pulses (1e6 per deg, 1000 per mm) with the track's base axis `BC` and the table's station
+/// axis, coordinated (`SMOVL .. +MOVJ EC..`).
+fn track_programs(q: &Vector6<f64>) -> [(String, Dialect); 2] {
+    let mut ls = String::from("/PROG  TRACK\n/MN\n");
+    for i in 1..=3 {
+        ls += &format!("{i:>4}:L P[{i}] 10mm/sec FINE ;\n");
+    }
+    ls += "/POS\n";
+    for (i, e) in ["1500.000", "1560.000", "1620.000"].iter().enumerate() {
+        ls += &format!(
+            "P[{}]{{\n   GP1:\n\tUF : 0, UT : 1,\n\tJ1= {:.6} deg,\tJ2= {:.6} deg,\tJ3= {:.6} deg,\n\tJ4= {:.6} deg,\tJ5= {:.6} deg,\tJ6= {:.6} deg,\n\tE1= {e} mm\n   GP2:\n\tUF : 0, UT : 1,\n\tJ1= 0.000 deg\n}};\n",
+            i + 1, q[0], q[1], q[2], q[3], q[4], q[5]
+        );
+    }
+    ls += "/END\n";
+    let pulses: Vec<String> = q
+        .iter()
+        .map(|v| format!("{}", (v * 1e6).round() as i64))
+        .collect();
+    let mut jbi = String::from("/JOB\r\n//NAME TRACK\r\n//POS\r\n///NPOS 3,3,3,0,0,0\r\n///TOOL 1\r\n///POSTYPE PULSE\r\n///PULSE\r\n");
+    for i in 0..3 {
+        jbi += &format!("C0000{i}={}\r\n", pulses.join(","));
+    }
+    for (i, e) in ["1500000", "1560000", "1620000"].iter().enumerate() {
+        jbi += &format!("BC0000{i}={e}\r\n");
+    }
+    for i in 0..3 {
+        jbi += &format!("EC0000{i}=0\r\n");
+    }
+    jbi += "//INST\r\n///ATTR SC,RW\r\n///GROUP1 RB1,BS1\r\n///GROUP2 ST1\r\n'stiffid: pulses_per_deg = 1e6 1e6 1e6 1e6 1e6 1e6\r\n'stiffid: external_pulses = 1000 1000\r\nNOP\r\n";
+    for i in 0..3 {
+        jbi += &format!("SMOVL C0000{i} BC0000{i} V=10.0  +MOVJ EC0000{i}\r\n");
+    }
+    jbi += "END\r\n";
+    [(ls, Dialect::FanucLs), (jbi, Dialect::Inform)]
+}
+
 /// The arm holds one posture while the track carries it 60 mm at a time along x: the tool
 /// moves over the part along +x, so it cuts (on a fixed base it would stand still), and each
 /// target is compensated in the arm's frame on its carriage: the loaded tool lands on the
 /// nominal one in the cell to 0.1 micrometre, the posture is the fixed-base compensation under
-/// the same wrench, and the track's values are written back as read.
+/// the same wrench, and the track's values are written back as read. The same as an INFORM job
+/// (its base axis the track, in pulses); on a robot without the track, refused naming the line.
 #[test]
 fn a_program_that_moves_the_track_is_compensated_with_the_track_where_it_says() {
     let base = setup::builtin("fanuc-r2000ic-165f").unwrap();
@@ -459,70 +514,88 @@ fn a_program_that_moves_the_track_is_compensated_with_the_track_where_it_says() 
     .unwrap()
     .q
     .map(f64::to_degrees);
-    let mut text = String::from("/PROG  TRACK\n/MN\n");
-    for i in 1..=3 {
-        text += &format!("{i:>4}:L P[{i}] 10mm/sec FINE ;\n");
-    }
-    text += "/POS\n";
-    for (i, e) in ["1500.000", "1560.000", "1620.000"].iter().enumerate() {
-        text += &format!(
-            "P[{}]{{\n   GP1:\n\tUF : 0, UT : 1,\n\tJ1= {:.6} deg,\tJ2= {:.6} deg,\tJ3= {:.6} deg,\n\tJ4= {:.6} deg,\tJ5= {:.6} deg,\tJ6= {:.6} deg,\n\tE1= {e} mm\n   GP2:\n\tUF : 0, UT : 1,\n\tJ1= 0.000 deg\n}};\n",
-            i + 1, q[0], q[1], q[2], q[3], q[4], q[5]
-        );
-    }
-    text += "/END\n";
-    let program = machining::read(&text, Language::Robot(Dialect::FanucLs), 1e-5).unwrap();
     let process = file::parse(PROCESS, "p.toml").unwrap();
-    let report =
-        machining::compensate(s.arm(), None, &compliance, &program, &process, &options).unwrap();
     let model = Model::new(s.arm(), &compliance).unwrap();
-    for (i, (p, r)) in report.points.iter().zip(&report.results).enumerate() {
-        // The down-milling force, about 300 N, with +x along the feed (the track's motion).
-        let f = p.wrench.fixed_rows::<3>(0).norm();
-        assert!(
-            f > 100.0 && f < 1000.0 && p.wrench[0] > 0.0,
-            "{i}: {}",
-            p.wrench
-        );
-        // The nominal pose in the cell: on the carriage, 1.5 m + 60 mm per target along x.
-        let track = 1.5 + 0.06 * i as f64;
-        assert!(
-            (r.pose.translation.vector - pose.translation.vector - Vector3::new(track, 0.0, 0.0))
-                .norm()
-                < 1e-6
-        );
-        // The loaded tool on the carriage lands on the nominal one to 0.1 micrometre.
-        let loaded = model.loaded_pose(&r.q_compensated, &p.wrench);
-        let cell_loaded = Isometry3::translation(track, 0.0, 0.0) * loaded;
-        assert!((cell_loaded.translation.vector - r.pose.translation.vector).norm() < 1e-7);
-        // The fixed-base compensation under the same wrench.
-        let alone =
-            compensate::path(s.arm(), &compliance, std::slice::from_ref(p), &options).unwrap();
-        assert!((alone[0].q_compensated - r.q_compensated).amax() < 1e-12);
-        assert!((r.q_compensated - r.q).amax() > 1e-6, "compensated");
-    }
-    let written = program::parse(&report.program, Dialect::FanucLs).unwrap();
-    for (t, r) in written.targets.iter().zip(&report.results) {
-        assert!((Vector6::from(t.q_deg) - r.q_compensated.map(f64::to_degrees)).amax() <= 1e-9);
-    }
-    assert_eq!(written.targets[2].external, vec![Some(1620.0), Some(0.0)]);
-    assert!(report.program.contains("E1= 1620.000 mm"));
-    // Beyond the track's travel: refused naming the line and the axis, nothing compensated.
-    let beyond = machining::read(
-        &text.replace("1620.000", "6100.000"),
-        Language::Robot(Dialect::FanucLs),
-        1e-5,
-    )
-    .unwrap();
-    match machining::compensate(s.arm(), None, &compliance, &beyond, &process, &options) {
-        Err(Error::Program { line, message }) => {
-            assert_eq!(line, 5);
+    let cases = track_programs(&q).into_iter().zip([
+        (
+            "E1= 1620.000 mm",
+            "1620.000",
+            "6100.000",
+            5,
+            "E1 6100 mm",
+            3,
+        ),
+        (
+            "BC00002=1620000\r\n",
+            "1620000",
+            "6100000",
+            26,
+            "BC1 6100 mm",
+            24,
+        ),
+    ]);
+    for ((text, dialect), (kept, at, beyond, line, says, first)) in cases {
+        let program = machining::read(&text, Language::Robot(dialect), 1e-5).unwrap();
+        let report =
+            machining::compensate(s.arm(), None, &compliance, &program, &process, &options)
+                .unwrap();
+        for (i, (p, r)) in report.points.iter().zip(&report.results).enumerate() {
+            // The down-milling force, about 300 N, with +x along the feed (the track's motion).
+            let f = p.wrench.fixed_rows::<3>(0).norm();
             assert!(
-                message.contains("E1 6100 mm") && message.contains("track"),
-                "{message}"
+                f > 100.0 && f < 1000.0 && p.wrench[0] > 0.0,
+                "{dialect:?} {i}: {}",
+                p.wrench
             );
+            // The nominal pose in the cell: on the carriage, 1.5 m + 60 mm per target along x.
+            let track = 1.5 + 0.06 * i as f64;
+            assert!(
+                (r.pose.translation.vector
+                    - pose.translation.vector
+                    - Vector3::new(track, 0.0, 0.0))
+                .norm()
+                    < 1e-6,
+                "{dialect:?}"
+            );
+            // The loaded tool on the carriage lands on the nominal one to 0.1 micrometre.
+            let loaded = model.loaded_pose(&r.q_compensated, &p.wrench);
+            let cell_loaded = Isometry3::translation(track, 0.0, 0.0) * loaded;
+            assert!((cell_loaded.translation.vector - r.pose.translation.vector).norm() < 1e-7);
+            // The fixed-base compensation under the same wrench.
+            let alone =
+                compensate::path(s.arm(), &compliance, std::slice::from_ref(p), &options).unwrap();
+            assert!((alone[0].q_compensated - r.q_compensated).amax() < 1e-12);
+            assert!((r.q_compensated - r.q).amax() > 1e-6, "compensated");
         }
-        other => panic!("{other:?}"),
+        let written = program::parse(&report.program, dialect).unwrap();
+        // Written back in its resolution: 1e-6 deg in pulses, 1e-9 deg in LS.
+        for (t, r) in written.targets.iter().zip(&report.results) {
+            let q = Vector6::from(t.q_deg) - r.q_compensated.map(f64::to_degrees);
+            assert!(q.amax() <= 1e-6, "{dialect:?}");
+        }
+        assert_eq!(written.targets[2].external, vec![Some(1620.0), Some(0.0)]);
+        assert!(report.program.contains(kept), "{}", report.program);
+        // Beyond the track's travel: refused naming the line and the axis, nothing compensated.
+        let beyond =
+            machining::read(&text.replace(at, beyond), Language::Robot(dialect), 1e-5).unwrap();
+        let refusals = [
+            (s.arm(), &beyond, line, says),
+            (
+                base.arm(),
+                &program,
+                first,
+                "the robot has no external axes",
+            ),
+        ];
+        for (arm, program, line, says) in refusals {
+            match machining::compensate(arm, None, &compliance, program, &process, &options) {
+                Err(Error::Program { line: l, message }) => {
+                    assert_eq!(l, line, "{dialect:?}: {message}");
+                    assert!(message.contains(says), "{message}");
+                }
+                other => panic!("{other:?}"),
+            }
+        }
     }
 }
 

@@ -22,6 +22,23 @@ pub(super) fn whole(name: &str, text: &str) -> Result<()> {
     })
 }
 
+/// Refuses the backup file `name` when it holds no block of the frames it is read for
+/// (`blocks` 0: an empty file, or one of headers and comments only), saying what a block of
+/// `what` holds (`block`): a file given holds what the job is read with, and one that holds none was
+/// cut off or is another file.
+///
+/// # Errors
+/// [`Error::Parse`] naming the file.
+pub(super) fn some(name: &str, blocks: usize, (what, block): (&str, &str)) -> Result<()> {
+    match blocks {
+        0 => Err(Error::Parse {
+            source_name: name.to_string(),
+            message: format!("no {what}: the file is empty or holds no block (a file cut off, or another file); expected per {what} {block}: give the file as the controller's backup holds it, or leave it out"),
+        }),
+        _ => Ok(()),
+    }
+}
+
 /// Adds frame `n` read on `line` of `name` to `out`, refused where the file gave `n` another
 /// frame before (one controller holds one frame per number; a file edited or two joined).
 ///

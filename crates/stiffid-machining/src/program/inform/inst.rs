@@ -131,6 +131,7 @@ pub(super) fn instructions(text: &str) -> Result<Instructions> {
     let mut shifting: Option<usize> = None;
     let (mut in_inst, mut last) = (false, None::<(u64, String)>);
     let mut weaving: Option<(u64, String)> = None;
+    let mut groups: Vec<Robot> = Vec::new();
     for (line, _, l) in crate::program::lines(text) {
         let t = l.trim();
         if let Some(section) = t.strip_prefix("//").filter(|s| !s.starts_with('/')) {
@@ -139,13 +140,19 @@ pub(super) fn instructions(text: &str) -> Result<Instructions> {
         }
         if in_inst && t.starts_with("///GROUP") {
             let words = t.split_whitespace().skip(1).flat_map(|w| w.split(','));
-            for name in words.map(str::trim).filter(|w| w.starts_with("RB")) {
+            for name in words.map(str::trim).filter(|w| !w.is_empty()) {
                 let (text, name) = (t.to_string(), name.to_string());
-                out.robots.push(Robot { line, text, name });
+                match name.starts_with("RB") {
+                    true => out.robots.push(Robot { line, text, name }),
+                    false => groups.push(Robot { line, text, name }),
+                }
             }
         }
         if !in_inst || t.starts_with("///") || t.is_empty() {
             continue;
+        }
+        if last.is_none() {
+            no_robot(&out.robots, &groups)?;
         }
         last = Some((line, t.to_string()));
         if let Some(comment) = t.strip_prefix('\'') {
@@ -174,11 +181,14 @@ pub(super) fn instructions(text: &str) -> Result<Instructions> {
             continue;
         }
         match first.as_str() {
-            "MOVJ" | "MOVL" | "MOVC" => {
+            "MOVJ" | "MOVL" | "MOVC" | "SMOVL" | "SMOVC" => {
                 if let Some((w, text)) = &weaving {
                     return Err(at(*w, format!("{}: weaving (WVON) moves the tool across the path in the motions after it, up to WVOF, so the path the controller runs is not the job's: remove it or compensate the job without it", short(text))));
                 }
-                let mut m = motion(line, &first, &words[1..])?;
+                let mut m = match first.strip_prefix('S') {
+                    Some(word) => coordinated(line, word, &words[1..])?,
+                    None => motion(line, &first, &words[1..])?,
+                };
                 m.shift = shifting;
                 out.motions.push(m);
             }
@@ -206,6 +216,16 @@ pub(super) fn instructions(text: &str) -> Result<Instructions> {
     }
     check_end(last)?;
     Ok(out)
+}
+
+/// Refuses a job whose `///GROUP` lines name no robot but a station or base axes alone
+/// (`///GROUP1 ST1`: a positioner's own job), naming the line: it moves no robot, and its
+/// motions name the station's positions (`EC`) only.
+fn no_robot(robots: &[Robot], groups: &[Robot]) -> Result<()> {
+    match (robots.is_empty(), groups.first()) {
+        (true, Some(g)) => Err(at(g.line, format!("{}: a job of {} alone, no robot (RB) among its control groups: it moves the station or base axes, not a robot, so it holds no robot target to compensate; compensate the jobs of the robot (RB1..), where the station's positions beside the robot's (+MOVJ EC..) are read as the cell's positioner axes", short(&g.text), short(&g.name)))),
+        _ => Ok(()),
+    }
 }
 
 /// The shift `SFTON` on `line` (`t`, `words` after its word): a position variable `P000` and
@@ -272,7 +292,7 @@ fn refused(line: u64, word: &str, t: &str) -> stiffid_core::Error {
         "FORMCUT" => "a form cut: the controller moves the tool around a circle or a rectangle its condition file (FORMCUT.CND) gives, not through the job's positions: write the cut as MOVL and MOVC motions".to_string(),
         "MSHIFT" => "a shift computed as the job runs, from positions the job does not say: compensate the path without it (teach or post the shifted positions)".to_string(),
         w if w.starts_with("SMOV") || w.starts_with("SYMOV") => {
-            "a coordinated motion: the robot moves relative to the part on a moving station or conveyor, at a speed relative to it, and how the controller leads the groups along the way is not certain from public sources; write the path as MOVL and MOVC with the station's values in the motion (EC, or +MOVJ EC)".to_string()
+            "a coordinated motion stiffid does not read (on a conveyor, or other than SMOVL and SMOVC to a robot position with the station's, +MOVJ EC..): write the path as MOVL and MOVC with the station's values in the motion (EC, or +MOVJ EC)".to_string()
         }
         w if w.starts_with("+MOV") => {
             "a motion of another group alone, at its own speed; write the path as MOVJ, MOVL and MOVC to C positions".to_string()
@@ -354,6 +374,20 @@ fn station_motion(line: u64, word: &str, words: &[&str], m: &mut Motion) -> Resu
         }
     }
     Ok(())
+}
+
+/// A coordinated motion `SMOVL` or `SMOVC` (`word` `MOVL` or `MOVC`, `words` after it): the
+/// robot moves relative to the part on the moving station, at the speed `V=` relative to it,
+/// and both groups end together at their positions (`SMOVL C00008 BC00008 V=166.7  +MOVJ
+/// EC00008`, as RoboDK's Motoman post writes it); read as the motion `word` to the robot's
+/// position with the station's values, the feed along the part (as every target with the
+/// cell's positioner axes is fed). Refused naming the line without the station's position.
+fn coordinated(line: u64, word: &str, words: &[&str]) -> Result<Motion> {
+    let m = motion(line, word, words)?;
+    match m.station {
+        Some(_) => Ok(m),
+        None => Err(at(line, format!("S{word} {}: a coordinated motion without the station's position (+MOVJ EC00000 or EC00000 on the line): where the part is when the robot arrives is the controller's, which the job does not say", short(&words.join(" "))))),
+    }
 }
 
 /// The number of a position named `prefix` then digits (`C00001`), if `w` is one.

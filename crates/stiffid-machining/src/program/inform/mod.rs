@@ -62,8 +62,10 @@
 //! - a motion to a position variable (`P000`) but one the backup's `VAR.DAT` gives in pulses or
 //!   in Cartesian form, which is copied into the job (`variables`), a local one (`LP000`), base and station
 //!   variables (`BP`, `EX`): they hold their values on the controller, not in the job;
-//! - `MOVS` (spline), `IMOV` (incremental from where the robot is), `SMOVL` and `SMOVC` (a
-//!   motion on a conveyor), a motion with `UNTIL` (a search) or with another group's own motion
+//! - `MOVS` (spline), `IMOV` (incremental from where the robot is), `SMOVL` and `SMOVC`
+//!   without the station's position (with it, read as `MOVL` and `MOVC` with the station's
+//!   values: the robot's target where the part stands), `SYMOV` (a motion on a conveyor), a
+//!   motion with `UNTIL` (a search) or with another group's own motion
 //!   (`+MOVL`; a station's `+MOVJ EC00000 VJ=..` is read as the target's station values), a
 //!   shift but a constant parallel one of Cartesian positions (`shift`), any tag outside the
 //!   list above, and any instruction stiffid does not know;
@@ -73,7 +75,8 @@
 //!   it is called (compensated in its own file) when it moves; a `JUMP` to a label the job
 //!   does not hold, to another job or to a variable's label; weaving in a job with jumps
 //!   (`calls`: labels, jumps, branches and loops are followed);
-//! - a job of another robot than the controller's first (`RB2` in a `///GROUP` line);
+//! - a job of another robot than the controller's first (`RB2` in a `///GROUP` line), a job
+//!   of a station or base axes alone (`///GROUP1 ST1`);
 //! - a job that does not end with `END` (cut off), a control character (a NUL) anywhere;
 //! - a position named in a motion that `//POS` does not hold, one defined twice, a count that
 //!   differs from `///NPOS`, pulses that are not whole numbers, pulses whose conversion neither
@@ -442,6 +445,15 @@ impl Controller for Inform {
     /// `UFRAME.CND`, `VAR.DAT`).
     fn backup_extensions(&self) -> &'static [&'static str] {
         &["jbi", "cnd", "dat"]
+    }
+    /// A base axis (`BC1`..) carries the arm, a station axis (`EC1`..) the part.
+    fn axis_role(&self, name: &str) -> Option<stiffid_core::robot::external::Role> {
+        use stiffid_core::robot::external::Role;
+        match name.get(..2) {
+            Some("BC") => Some(Role::Carrier),
+            Some("EC") => Some(Role::Positioner),
+            _ => None,
+        }
     }
     /// `///NPOS` counting the positions copied from position variables (`written`).
     fn written(&self, read: &str, written: String) -> String {

@@ -58,7 +58,11 @@ pub(super) fn check(
         if let (Some((setup, _)), Some((held, said))) = (context.tool, &held) {
             let off = (setup.translation.vector - held.translation.vector).norm();
             if off > SAME_M {
-                return Err(at(line, format!("tool file {n}, which {said} gives as {}, is not the setup's tool ({}: its [tool] tcp_mm, after [robot_flange]); compensation moves the setup's tool: write the job for it", words(held), words(&setup))));
+                let before = match first {
+                    Some((at_line, was, _)) if was != n => format!(" after tool file {was} (line {at_line}), the setup's tool: a job moving with two tool files whose centre points differ holds two tools, and one setup compensates one; compensate the motions of each tool file with a setup of that tool"),
+                    _ => ": write the job for it".into(),
+                };
+                return Err(at(line, format!("tool file {n}, which {said} gives as {}, is not the setup's tool ({}: its [tool] tcp_mm, after [robot_flange]); compensation moves the setup's tool{before}", words(held), words(&setup))));
             }
         }
         match first {

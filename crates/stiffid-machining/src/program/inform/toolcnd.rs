@@ -31,9 +31,14 @@ pub(super) fn tools(context: &Context) -> Result<Tools> {
     };
     let mut out = Tools::new();
     let mut open: Option<(u32, u64)> = None;
+    let mut blocks = 0;
     for (line, _, l) in crate::program::lines(text) {
         let t = l.trim();
         if let Some(n) = t.strip_prefix("//TOOL") {
+            if let Some((n, at)) = open {
+                return Err(no_frame(name, n, at));
+            }
+            blocks += 1;
             let n = n.trim().parse::<u32>().map_err(|_| {
                 failed(
                     line,
@@ -64,5 +69,18 @@ pub(super) fn tools(context: &Context) -> Result<Tools> {
         let frame = Isometry3::from_parts(position, rotation);
         super::backupfile::insert(&mut out, (name, line, "tool file"), (n, frame, source))?;
     }
+    if let Some((n, at)) = open {
+        return Err(no_frame(name, n, at));
+    }
+    let block = "//TOOL n, ///NAME .., then its frame X,Y,Z,Rx,Ry,Rz (mm, deg)";
+    super::backupfile::some(name, blocks, ("tool file", block))?;
     Ok(out)
+}
+
+/// The error of tool file `n` of `name`, opened on line `at` with no frame line after it.
+fn no_frame(name: &str, n: u32, at: u64) -> Error {
+    Error::Parse {
+        source_name: name.to_string(),
+        message: format!("line {at}: tool file {n} with no frame line after its //TOOL and ///NAME lines: expected X,Y,Z,Rx,Ry,Rz (mm, deg), six numbers (a file cut off or edited)"),
+    }
 }

@@ -34,9 +34,11 @@ pub(super) fn frames(context: &Context) -> Result<Frames> {
     };
     let mut out = Frames::new();
     let mut open: Option<u32> = None;
+    let mut blocks = 0;
     for (line, _, l) in crate::program::lines(text) {
         let t = l.trim();
         if let Some(n) = t.strip_prefix("//UFRAME") {
+            blocks += 1;
             let n = n.trim().parse::<u32>().map_err(|_| {
                 failed(
                     line,
@@ -65,5 +67,7 @@ pub(super) fn frames(context: &Context) -> Result<Frames> {
         let frame = Isometry3::from_parts(position, rotation);
         super::backupfile::insert(&mut out, (name, line, "user frame"), (n, frame, source))?;
     }
+    let block = "//UFRAME n, ///NAME .. and its frame in base coordinates, ////BUSER X,Y,Z,Rx,Ry,Rz (mm, deg)";
+    super::backupfile::some(name, blocks, ("user frame", block))?;
     Ok(out)
 }

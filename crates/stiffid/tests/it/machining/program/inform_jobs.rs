@@ -224,6 +224,16 @@ fn tool_cnd_gives_the_tool_files() {
             turned[..turned.len() - 2].to_string(),
             "line 21: the file ends inside this line",
         ),
+        // Empty, headers only, a tool file with no frame line.
+        (String::new(), "no tool file: the file is empty"),
+        (
+            "///NAME SPINDLE\r\n".into(),
+            "no tool file: the file is empty",
+        ),
+        (
+            "//TOOL 1\r\n///NAME SPINDLE\r\n".into(),
+            "line 1: tool file 1 with no frame line",
+        ),
     ];
     for (file, says) in cases {
         match read(STORED, file, &empty) {
@@ -324,6 +334,34 @@ fn a_stations_own_motion_gives_the_targets_station_values() {
     assert_eq!(a.axes, ["EC1", "EC2"]);
     assert_eq!(a.targets[0].external, [Some(10.0), Some(-10.0)]);
     assert_eq!(a.targets, b.targets);
+    // A coordinated motion (`SMOVL .. +MOVJ EC..`, as RoboDK's Motoman post writes it) reads as
+    // the same motion with the station's values, and is written back as such; one without the
+    // station's position is refused on its line.
+    let linear = "MOVL C00001 V=10.0 PL=0 NWAIT";
+    let with_station = |word: &str| {
+        own.replace(
+            linear,
+            &format!("{word} C00001 V=10.0 PL=0 NWAIT  +MOVJ EC00000"),
+        )
+    };
+    let (smovl, movl) = (
+        read(&with_station("SMOVL")).unwrap(),
+        read(&with_station("MOVL")).unwrap(),
+    );
+    assert_eq!(smovl.targets, movl.targets);
+    assert_eq!(smovl.targets[1].external, [Some(10.0), Some(-10.0)]);
+    let q: Vec<[f64; 6]> = smovl.targets.iter().map(|t| t.q_deg).collect();
+    assert!(smovl
+        .write(&q)
+        .unwrap()
+        .contains("\r\nSMOVL C00001 V=10.0 PL=0 NWAIT  +MOVJ EC00000\r\n"));
+    let (line, message) = refused(read(&own.replace(linear, "SMOVL C00001 V=10.0")));
+    assert_eq!(line, 25, "{message}");
+    assert!(
+        message
+            .contains("SMOVL C00001 V=10.0: a coordinated motion without the station's position"),
+        "{message}"
+    );
     for (tags, words) in [
         ("+MOVL EC00000 V=10.0", "another group's own motion"),
         (
@@ -608,7 +646,7 @@ fn the_real_jobs_are_refused_naming_line_and_construct() {
             "///GROUP2 RB2: a job of robot RB2",
         ),
         ("ROSI_ROS_R1B1.JBI", 1, "no motion to a target found"),
-        ("ROSI_ROS_S1.JBI", 1, "no motion to a target found"),
+        ("ROSI_ROS_S1.JBI", 8, "///GROUP1 ST1: a job of ST1 alone"),
         (
             "ROSI_INIT_ROS_CALL_JOB_MAIN.JBI",
             1,
@@ -679,7 +717,15 @@ fn a_station_only_job_is_refused_saying_what_it_is() {
         external: vec![100.0],
     };
     let (line, message) = refused(parse_in(job, Dialect::Inform, &with(&p)));
-    assert_eq!(line, 12, "{message}");
+    assert_eq!(line, 10, "{message}");
+    assert!(
+        message.contains("///GROUP1 ST1: a job of ST1 alone, no robot (RB)"),
+        "{message}"
+    );
+    // In a job of the robot, a motion of the station alone is refused on its line.
+    let robot = job.replace("GROUP1 ST1", "GROUP1 RB1\r\n///GROUP2 ST1");
+    let (line, message) = refused(parse_in(&robot, Dialect::Inform, &with(&p)));
+    assert_eq!(line, 13, "{message}");
     assert!(
         message.contains("the station alone, without the robot's position C"),
         "{message}"

@@ -172,6 +172,23 @@ fn the_backups_user_frame_and_tool_file_are_read_and_refusals_name_the_line() {
     for (a, b) in held.targets.iter().zip(&tables.targets) {
         assert!((Vector6::from(a.q_deg) - Vector6::from(b.q_deg)).amax() < 1e-6);
     }
+    // A UFRAME.CND with no user frame block (empty, or headers only) names the file.
+    for empty in ["", "///NAME TABLE\r\n"] {
+        let given = [("CMOS/UFRAME.CND".to_string(), empty.to_string())];
+        match resolved(&bare, &text, &given) {
+            Err(Error::Parse {
+                source_name,
+                message,
+            }) => {
+                assert_eq!(source_name, "CMOS/UFRAME.CND");
+                assert!(
+                    message.starts_with("no user frame: the file is empty"),
+                    "{message}"
+                );
+            }
+            other => panic!("{other:?}"),
+        }
+    }
     let (line, message) = refused(resolved(&bare, &text, &backup[1..]));
     assert_eq!(line, 5, "{message}");
     assert!(
