@@ -13,7 +13,14 @@ with one measuring point 109 mm along the flange axis (the T-Mac) and a tracker 
 shuffled by Python's `random.Random(K)`, so a larger draw holds the smaller one of the same K)
 and `drawK/held.csv` (the others). Each draw is calibrated with `--validate` on its held-out
 poses and the options after `--`; the script prints each draw's held-out RMS, the model fitted,
-the intervals' coverage and the CPU time (user + system) of the run, then the mean and worst.
+the intervals' coverage (held-out coordinates inside their intervals), the widest interval's
+farthest end against the largest held-out error, and the CPU time (user + system) of the run,
+then the mean and worst and the coverage pooled over the draws' coordinates.
+
+With `--explicit N` it also calibrates each draw with the model fitted given explicitly
+(`--gravity` and `--maps` of the rung chosen, the same `--validate`), prints the largest
+difference of the two fits' parameters (SI) and of their held-out RMS, and then times both
+without `--validate`, alternated N times: the least CPU time of each and their ratio.
 """
 import argparse
 import csv
@@ -101,16 +108,47 @@ def draw(poses, work, k, n):
     return d
 
 
-def calibrate(stiffid, work, d, options):
+def calibrate(stiffid, work, d, options, validate=True):
     """The document of one run and its CPU time, s."""
+    held = ["--validate", os.path.join(d, "held.csv")] if validate else []
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     out = subprocess.run(
         [stiffid, "calibrate", "--setup", os.path.join(work, "setup.toml"), "--data", os.path.join(d, "fit.csv"),
-         "--validate", os.path.join(d, "held.csv"), "--json"] + options,
+         "--json"] + held + options,
         capture_output=True, text=True, check=True,
     ).stdout
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     return json.loads(out), (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+
+def farthest_end(validation):
+    """The farthest finite end of the held-out coordinates' intervals from zero, mm; None without."""
+    ends = [abs(e) for p in validation["errors"] for c in (p["interval_mm"] or []) for e in c if e is not None]
+    return max(ends, default=None)
+
+
+def without(options, names):
+    """`options` without the options `names` and their values."""
+    at = [j for j, o in enumerate(options) if o in names]
+    return [o for j, o in enumerate(options) if j not in at and j - 1 not in at]
+
+
+def explicit(stiffid, work, d, doc, options, repeats):
+    """The model `doc` fitted, given explicitly: its fit against `doc`'s, and both runs' least CPU
+    time without `--validate` over `repeats` alternated runs."""
+    given = without(options, ("--gravity", "--maps"))
+    model = ["--gravity", doc["gravity"], "--maps", doc["maps"]["chosen"]]
+    other, _ = calibrate(stiffid, work, d, given + model)
+    mine = {p["name"]: p["value"] for p in doc["parameters"]}
+    theirs = {p["name"]: p["value"] for p in other["parameters"]}
+    apart = max((abs(v - theirs[n]) for n, v in mine.items()), default=0.0) if mine.keys() == theirs.keys() else math.inf
+    cpu = [[], []]
+    for _ in range(repeats):
+        cpu[0].append(calibrate(stiffid, work, d, without(options, ("--level",)), validate=False)[1])
+        cpu[1].append(calibrate(stiffid, work, d, without(given, ("--level",)) + model, validate=False)[1])
+    held = abs(other["validation"]["rms_mm"] - doc["validation"]["rms_mm"])
+    return (f"; given explicitly ({' '.join(model)}): parameters apart by {apart:.3g} (SI), held-out RMS by {held:.2g} mm; "
+            f"CPU without --validate {min(cpu[0]):.2f} s against {min(cpu[1]):.2f} s, {min(cpu[0]) / min(cpu[1]):.2f} times")
 
 
 def main():
@@ -123,14 +161,16 @@ def main():
     p.add_argument("--poses", type=int, default=100)
     p.add_argument("--draws", type=int, default=10)
     p.add_argument("--stiffid", default="stiffid")
+    p.add_argument("--explicit", type=int, default=0)
     a = p.parse_args(argv)
     a.stiffid = os.path.abspath(a.stiffid) if os.sep in a.stiffid else a.stiffid
     os.makedirs(a.work_dir, exist_ok=True)
     setup(a.work_dir, a.stiffid)
     poses = list(rows(a.data_dir))
-    figures = []
+    figures, pooled = [], [0, 0]
     for k in range(1, a.draws + 1):
-        doc, cpu = calibrate(a.stiffid, a.work_dir, draw(poses, a.work_dir, k, a.poses), options)
+        d = draw(poses, a.work_dir, k, a.poses)
+        doc, cpu = calibrate(a.stiffid, a.work_dir, d, options)
         v = doc["validation"]
         i = v.get("intervals") or {}
         ladder = doc.get("ladder")
@@ -139,12 +179,18 @@ def main():
             r = ladder["rungs"][ladder["chosen"]]
             model = r["gravity"] + (" + maps" if r["maps"] else "")
         figures.append(v["rms_mm"])
+        pooled[0] += i.get("covered") or 0
+        pooled[1] += i.get("coordinates") or 0
+        end = farthest_end(v)
+        bound = f"farthest end {end:.3f} mm, {end / v['max_mm']:.2f} times the largest error" if end else "no finite end"
+        more = explicit(a.stiffid, a.work_dir, d, doc, options, a.explicit) if a.explicit else ""
         print(
             f"draw {k}: held out RMS {v['rms_mm']:.4f} mm (max {v['max_mm']:.3f}); {model}, maps {doc['maps'].get('chosen')}; "
-            f"{i.get('level')} intervals cover {i.get('covered')} of {i.get('coordinates')} coordinates; CPU {cpu:.2f} s",
+            f"{i.get('level')} intervals cover {i.get('covered')} of {i.get('coordinates')} coordinates ({bound}); CPU {cpu:.2f} s{more}",
             flush=True,
         )
-    print(f"mean {sum(figures) / len(figures):.4f} mm, worst {max(figures):.4f} mm over {len(figures)} draws")
+    print(f"mean {sum(figures) / len(figures):.4f} mm, worst {max(figures):.4f} mm over {len(figures)} draws", end="")
+    print(f"; intervals cover {pooled[0]} of {pooled[1]} held-out coordinates pooled ({100 * pooled[0] / pooled[1]:.2f} %)" if pooled[1] else "")
 
 
 if __name__ == "__main__":
