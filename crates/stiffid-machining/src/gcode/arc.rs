@@ -21,7 +21,7 @@ impl GCode {
     /// ([`crate::program::generate::arcs`]).
     pub fn arcs(&self) -> Vec<ArcBlock> {
         (self.blocks.iter())
-            .filter(|b| b.arc_word.is_some() && b.cycle.is_none())
+            .filter(|b| b.arc_word.is_some() && !b.spline && b.cycle.is_none())
             .filter(|b| b.points.start > 0 && !b.points.is_empty())
             .map(|b| ArcBlock {
                 line: self.points[b.points.start].line,
@@ -94,6 +94,23 @@ pub(super) fn arc(
         (None, true) => (su + ijk[u].unwrap_or(0.0), sv + ijk[v].unwrap_or(0.0)),
         (Some(r), false) => centre_from_radius(line, (su, sv), (eu, ev), r, ccw)?,
     };
+    let points = chords(line, (start, end), [cu, cv], ccw, s.plane, tolerance)?;
+    Ok((points, [cu, cv]))
+}
+
+/// The chord points of an arc in `plane` from `start` to `end` (the end included) around
+/// `centre` (the plane's coordinates), counter-clockwise or not, the chords' sagitta within
+/// `tolerance`; an end off the circle within [`ARC_END_TOLERANCE_MM`] is reached along a spiral.
+pub(super) fn chords(
+    line: u64,
+    (start, end): (Vector3<f64>, Vector3<f64>),
+    [cu, cv]: [f64; 2],
+    ccw: bool,
+    plane: u8,
+    tolerance: f64,
+) -> Result<Vec<Vector3<f64>>> {
+    let (u, v, n) = plane_axes(plane);
+    let (su, sv, eu, ev) = (start[u], start[v], end[u], end[v]);
     let r0 = ((su - cu).powi(2) + (sv - cv).powi(2)).sqrt();
     let r1 = ((eu - cu).powi(2) + (ev - cv).powi(2)).sqrt();
     if r0 < 1e-6 {
@@ -121,7 +138,7 @@ pub(super) fn arc(
             format!("the arc needs more than {MAX_POINTS} chords at this tolerance"),
         ));
     }
-    let points = (1..=count)
+    let points: Vec<Vector3<f64>> = (1..=count)
         .map(|i| {
             if i == count {
                 return end;
@@ -140,7 +157,7 @@ pub(super) fn arc(
             p
         })
         .collect();
-    Ok((points, [cu, cv]))
+    Ok(points)
 }
 
 /// The centre of an `R` arc: on the chord's perpendicular bisector, to the left of the chord for

@@ -12,8 +12,9 @@ use stiffid_core::common::limits::LENGTH_MM;
 use stiffid_core::common::words::number;
 use stiffid_core::Result;
 
-pub(super) const SUBSET: &str = "G0-G4, G10 L2, G10 L20, G17-G21, G28, G30, G40-G42, G43, G44, G49, G53-G59.3, G54.1, G61, G61.1, G64, G80-G83, G90, G90.1, G91, G91.1, G92.1, G92.2, G94, G98, G99";
+pub(super) const SUBSET: &str = "G0-G4, G5.1 (linuxcnc), G10 L2, G10 L20, G17-G21, G28, G30, G40-G42, G43, G44, G49, G53-G59.3, G54.1, G61, G61.1, G64, G80-G83, G90, G90.1, G91, G91.1, G92.1, G92.2, G94, G98, G99";
 
+use super::spline::SPLINE;
 use super::NO_MOTION;
 
 /// The words of one block, gathered before it moves anything (the block's units).
@@ -165,6 +166,9 @@ impl Given {
             l @ ('U' | 'V' | 'W' | 'A' | 'B' | 'C') if s.external.0.contains(&l) => {
                 self.external_axis(line, w, s)?;
             }
+            'A' | 'B' | 'C' if !s.rotary && w.value == 0.0 => {
+                s.zero_rotary.get_or_insert(line);
+            }
             'A' | 'B' | 'C' => {
                 rotary(line, w, s)?;
                 self.abc = true;
@@ -212,7 +216,7 @@ impl Given {
         }
         let tenths = tenths as u16;
         if !tenths.is_multiple_of(10) {
-            return self.g_decimal(line, tenths, s);
+            return self.g_decimal(line, (tenths, w.span.clone()), s);
         }
         match (tenths / 10) as u8 {
             g @ (54..=59) => self.offset = Some(u16::from(g) * 10),
@@ -251,9 +255,15 @@ impl Given {
         Ok(())
     }
 
-    /// A `G` word with a decimal: `G54.1`, `G59.1`-`G59.3`, `G61.1`, `G90.1`, `G91.1`.
-    fn g_decimal(&mut self, line: u64, tenths: u16, s: &mut State) -> Result<()> {
+    /// A `G` word with a decimal: `G5.1`, `G54.1`, `G59.1`-`G59.3`, `G61.1`, `G90.1`, `G91.1`.
+    fn g_decimal(
+        &mut self,
+        line: u64,
+        (tenths, span): (u16, Range<usize>),
+        s: &mut State,
+    ) -> Result<()> {
         match tenths {
+            51 => self.motion = Some((SPLINE, span)),
             541 | 591..=593 => self.offset = Some(tenths),
             611 => {}
             // G92.1, G92.2: no G92 offset in force (none can be set: G92 is refused), as the
@@ -410,6 +420,22 @@ impl Given {
         }
     }
 
+    /// What a `G5.1` block gives beside its end point (module `spline`).
+    fn spline(&self) -> super::spline::Words {
+        let other = [
+            (self.target[2].is_some(), "Z"),
+            (self.centre[2].is_some(), "K"),
+            (self.radius.is_some(), "R"),
+            (self.cycle.dwell.is_some(), "P"),
+            (self.abc || self.external, "a rotary or external axis word"),
+            (self.g53, "G53"),
+        ];
+        super::spline::Words {
+            ij: [0, 1].map(|k| self.centre[k]),
+            other: other.into_iter().find(|(o, _)| *o).map(|(_, w)| w),
+        }
+    }
+
     pub(super) fn centre_given(&self) -> bool {
         self.centre.iter().any(Option::is_some)
     }
@@ -421,8 +447,9 @@ fn rotary(line: u64, w: &Word, s: &mut State) -> Result<()> {
         return Err(at(
             line,
             format!(
-                "{}: rotary words need the header comment (stiffid: rotary = abc)",
-                w.letter
+                "{}{}: a rotary axis off its zero, and the cell has none for it (a program whose every A, B, C word is 0 is read without them): map the letter to the cell's positioner, (stiffid: external = ..), or let it turn the tool, (stiffid: rotary = abc)",
+                w.letter,
+                stiffid_core::common::words::number(w.value)
             ),
         ));
     }
@@ -444,7 +471,9 @@ fn rotary(line: u64, w: &Word, s: &mut State) -> Result<()> {
 fn motion_and_feed(line: u64, given: &Given, inch_before: bool, s: &mut State) -> Result<()> {
     if let Some((g, _)) = &given.motion {
         if *g >= 81 && s.motion < 81 {
-            s.cycle = cycles::Modal::starting_at(s.position.z);
+            s.cycle = cycles::Modal::starting_at(line, s.position.z);
+        } else if *g >= 81 && *g != s.motion {
+            s.cycle.other_code(line, s.machine.dialect);
         }
         s.motion = *g;
     }
@@ -566,7 +595,12 @@ fn motion(
         (s.position, s.known) = back(end, known, s);
         return Ok(());
     }
-    let positions = if s.motion >= 2 {
+    let positions = if s.motion == SPLINE {
+        (
+            super::spline::points(line, &given.spline(), end, s, tolerance)?,
+            None,
+        )
+    } else if s.motion >= 2 {
         let (points, centre) = positions(line, &given, end, s, tolerance)?;
         (points, Some(centre))
     } else {
@@ -592,6 +626,7 @@ fn motion(
         drop: given.drop,
         external_words: given.external_words,
         arc_word,
+        spline: s.motion == SPLINE,
         inch: s.inch,
         incremental: s.incremental,
         to_program,

@@ -106,16 +106,40 @@ pub(super) struct Modal {
     peck: Option<f64>,
     /// `P`: its value and its text.
     dwell: Option<(f64, String)>,
+    /// The line where the cycle (its code, on LinuxCNC) started: its words count from there.
+    start: u64,
 }
 
 impl Modal {
-    /// A cycle starting with the tool at `z`.
-    pub(super) fn starting_at(z: f64) -> Self {
+    /// A cycle starting on `line` with the tool at `z`.
+    pub(super) fn starting_at(line: u64, z: f64) -> Self {
         Modal {
             initial: z,
+            start: line,
             ..Default::default()
         }
     }
+
+    /// Another cycle code on `line` (`G81` then `G83`, no `G80` between): FANUC and Haas keep
+    /// `Z R Q P` until `G80`; LinuxCNC needs them again, from the level the cycle started from
+    /// (`interp_cycles.cc`: `convert_cycle` takes `cycle_r` only while `motion_mode` is the
+    /// block's, `convert_cycle_xy` likewise `Z`, `P` and `Q`), as does a reading without a
+    /// dialect (the two differ).
+    pub(super) fn other_code(&mut self, line: u64, dialect: Option<GcodeDialect>) {
+        if !matches!(dialect, Some(GcodeDialect::Fanuc | GcodeDialect::Haas)) {
+            *self = Modal::starting_at(line, self.initial);
+        }
+    }
+}
+
+/// Why a cycle without its `Z` or `R` in force is refused, per dialect.
+fn no_depth(start: u64, dialect: Option<GcodeDialect>) -> String {
+    let how = match dialect {
+        Some(GcodeDialect::Fanuc | GcodeDialect::Haas) => "FANUC and Haas keep Z and R until G80 and would drill to the levels the control holds from before, which the program does not state",
+        Some(GcodeDialect::LinuxCnc) => "LinuxCNC refuses the block (interp_cycles.cc: Z and R are needed when a cycle starts, or follows another cycle code)",
+        _ => "LinuxCNC refuses the block, FANUC and Haas would drill to the levels the control holds from before, which the program does not state",
+    };
+    format!("a canned cycle needs its depth Z and its retract level R, and neither this block nor one since the cycle started (line {start}) gives both: {how}; give them")
 }
 
 /// The words of one block that a cycle reads, as written (the block's units).
@@ -170,6 +194,7 @@ pub(super) fn block(
         drop,
         external_words: Vec::new(),
         arc_word: None,
+        spline: false,
         inch: s.inch,
         incremental: s.incremental,
         to_program: s.to_program().ok_or_else(|| s.no_length(line))?,
@@ -333,7 +358,7 @@ fn hole(line: u64, (x, y): (f64, f64), other_geometry: bool, s: &State) -> Resul
         return refuse("a canned cycle drills along the part's -Z, and the tool does not point that way (tool_rpy_deg)");
     }
     let (Some(depth), Some(retract)) = (s.cycle.depth, s.cycle.retract) else {
-        return refuse("a canned cycle needs its depth Z and its retract level R");
+        return refuse(&no_depth(s.cycle.start, s.machine.dialect));
     };
     // Under G91, R counts from the level the cycle started from and Z from R (LinuxCNC's
     // `interp_cycles.cc` after [NCMS, page 98]; FANUC and Haas alike).

@@ -20,7 +20,7 @@ fn group(letter: char, value: f64) -> Option<&'static str> {
         return None;
     }
     let name = match (letter, tenths as u16) {
-        ('G', 0 | 10 | 20 | 30 | 810 | 820 | 830) => "motion (G0-G3, G81-G83)",
+        ('G', 0 | 10 | 20 | 30 | 51 | 810 | 820 | 830) => "motion (G0-G3, G81-G83)",
         ('G', 170 | 180 | 190) => "plane (G17-G19)",
         ('G', 900 | 910) => "distance mode (G90, G91)",
         ('G', 901 | 911) => "arc centre mode (G90.1, G91.1)",

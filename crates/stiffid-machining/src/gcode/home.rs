@@ -65,6 +65,7 @@ pub(super) fn home(
         drop: Vec::new(),
         external_words: Vec::new(),
         arc_word: None,
+        spline: false,
         inch: s.inch,
         incremental: s.incremental,
         to_program,

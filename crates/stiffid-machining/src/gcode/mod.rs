@@ -91,6 +91,7 @@ mod machine;
 mod modal;
 mod polar;
 mod process;
+mod spline;
 mod words;
 mod write;
 
@@ -166,6 +167,8 @@ struct Block {
     /// are written anew ([`GCode::write_with_external`]).
     external_words: Vec<Range<usize>>,
     arc_word: Option<Range<usize>>,
+    /// A `G5.1` spline's block (its `arc_word` the `G5.1`): its points are no circle's.
+    spline: bool,
     inch: bool,
     incremental: bool,
     /// The programmed coordinates of a tip (`G54` part frame) in the block's frame and tool
@@ -210,6 +213,11 @@ pub struct GCode {
     /// (`G43`) is in force, and that length (m): the program's coordinates are read as the
     /// spindle's gauge line's, the tip that length below them.
     pub no_length_offset: Option<(u64, f64)>,
+    /// The line of the first rotary word (`A0`, `B0`, `C0`) of a program that neither turns the
+    /// tool (`rotary = abc`) nor maps the letter to an external axis: every such word is 0 (any
+    /// other value is refused), the axis never leaves its zero, and the words are read as no
+    /// motion (written back as found).
+    pub zero_rotary: Option<u64>,
     /// The program has subprograms, parameters or control flow: it was read as the blocks its
     /// controller runs, in their order, each point naming the program's line; it is written
     /// back so, expanded (module `expand`).
@@ -242,6 +250,8 @@ struct State {
     operation: Option<std::sync::Arc<str>>,
     tool: Option<UnitQuaternion<f64>>,
     rotary: bool,
+    /// The line of the first `A0`/`B0`/`C0` word read without `rotary = abc` or a mapping.
+    zero_rotary: Option<u64>,
     /// The letters mapped to the cell's external axes and the header's line.
     external: (Vec<char>, u64),
     /// Each mapped axis's value in force, mm or deg.
@@ -318,6 +328,7 @@ impl State {
             operation: None,
             tool: machine.frames.tool,
             rotary: false,
+            zero_rotary: None,
             external: (Vec::new(), 0),
             e: Vec::new(),
             ended: None,
@@ -394,6 +405,7 @@ pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<G
         unstated_units: None,
         unplaced_g53: Vec::new(),
         no_length_offset: None,
+        zero_rotary: None,
         expanded: expanded.is_some(),
         blocks: Vec::new(),
         dropped: Vec::new(),
@@ -446,6 +458,7 @@ pub fn parse_on(text: &str, chord_tolerance: f64, machine: &Machine) -> Result<G
         return Err(at(1, "no motion block (G0, G1, G2, G3) found".into()));
     }
     out.external = s.external;
+    out.zero_rotary = s.zero_rotary;
     out.process = s.process;
     out.comments = s.comments;
     out.dropped = s.dropped;

@@ -5,7 +5,7 @@
 
 use nalgebra::{Isometry3, Vector3};
 use stiffid::internal::machining::compensate::Options;
-use stiffid::internal::machining::gcode;
+use stiffid::internal::machining::gcode::{self, GcodeDialect, Machine};
 use stiffid::internal::machining::process::file;
 use stiffid::internal::machining::{self, Language};
 use stiffid::{internal::setup, Error};
@@ -73,6 +73,12 @@ fn cutter_compensation_unit_changes_under_a_feed_and_malformed_cycles_are_refuse
         ("G91 G81 X10 Y0 Z-15 R-8 L0 F100", 4, "L0"),
         ("G18 G81 X10 Y0 Z-5 R2 F100", 4, "G17"),
         ("G81 X10 Y0 Z-5 F100", 4, "R"),
+        // Another cycle code without G80: LinuxCNC needs Z and R again, FANUC keeps them.
+        (
+            "G81 X10 Y0 Z-5 R2 F100\nG83 X20 Q1",
+            5,
+            "since the cycle started (line 5)",
+        ),
         ("G81 X10 Y0 Z5 R2 F100", 4, "below the retract level"),
         (
             "(stiffid: surface_mm = -6)\nG81 X10 Y0 Z-5 R2 F100",
@@ -118,6 +124,15 @@ fn cutter_compensation_unit_changes_under_a_feed_and_malformed_cycles_are_refuse
             other => panic!("{body}: {other:?}"),
         }
     }
+    let fanuc = Machine {
+        dialect: Some(GcodeDialect::Fanuc),
+        ..Default::default()
+    };
+    let text = format!("{start}G81 X10 Y0 Z-5 R2 F100\nG83 X20 Q1\n");
+    let g = gcode::parse_on(&text, 1e-5, &fanuc).unwrap();
+    let c = &g.cycles[1];
+    assert_eq!(c.code, 83);
+    assert!((c.bottom.z + 5e-3).abs() < 1e-15 && (c.retract - 2e-3).abs() < 1e-15);
     // A tool not pointing down.
     let text = "(stiffid: tool_rpy_deg = 90 0 0)\nG0 X0 Y0 Z10\nG81 X1 Z-1 R1 F100\n";
     match gcode::parse(text, 1e-5) {

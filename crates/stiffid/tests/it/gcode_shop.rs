@@ -305,3 +305,50 @@ fn linuxcncs_spiral_and_camotics_cutout_read_as_found() {
         epsilon = 1e-12
     );
 }
+
+#[test]
+fn linuxcncs_quadratic_spline_runs_as_its_biarcs() {
+    let m = Machine {
+        dialect: Some(GcodeDialect::LinuxCnc),
+        ..Default::default()
+    };
+    // The manual's parabola y = x^2 from X-2 Y4 to X2 Y4: LinuxCNC joins its points at 12 equal
+    // steps of the parameter (x = -2 + k/3) by biarcs, each split into chords here.
+    let text = "G21 G90 G17\nG0 X-2 Y4 Z0\nG5.1 X2 I2 J-8 F100\nG1 X3\n";
+    let g = parse(text, &m).unwrap();
+    let curve: Vec<Vector3<f64>> = (g.points.iter())
+        .filter(|p| p.line == 4)
+        .map(|p| p.position * 1e3)
+        .collect();
+    assert!(curve.len() >= 24, "{}", curve.len());
+    for k in 1..=12 {
+        let x = -2.0 + f64::from(k) / 3.0;
+        let on = |p: &&Vector3<f64>| (p.x - x).abs() < 1e-9 && (p.y - x * x).abs() < 1e-9;
+        assert!(curve.iter().any(|p| on(&p)), "x = {x}");
+    }
+    // Between them the arcs stay within a micrometre of the parabola.
+    let off = curve
+        .iter()
+        .map(|p| (p.y - p.x * p.x).abs())
+        .fold(0.0, f64::max);
+    assert!(off < 1e-3 && curve.iter().all(|p| p.z == 0.0), "{off}");
+    let back = g.write(&g.points.iter().map(|p| p.position).collect::<Vec<_>>());
+    let again = gcode::parse_on(&back.unwrap(), 1e-5, &m).unwrap();
+    assert_eq!(again.points.len(), g.points.len());
+    for (a, b) in again.points.iter().zip(&g.points) {
+        assert!((a.position - b.position).norm() < 1e-9);
+    }
+    refused(
+        text,
+        &Machine::default(),
+        4,
+        "G5.1: LinuxCNC's quadratic spline",
+    );
+    refused(
+        "G0 X0 Y0 Z0\nG5.1 X2 Z1 I2 J-8 F9\n",
+        &m,
+        3,
+        "Z beside a spline",
+    );
+    refused("G0 X0 Y0 Z0\nG5.1 X2 I2 F9\n", &m, 3, "both I and J");
+}

@@ -226,6 +226,11 @@ fn malformed_gcode_is_refused_naming_the_line() {
             "no tool orientation: state it in the setup, [workpiece] tool_rpy_deg",
         ),
         (format!("{HEADER}G1 X10 A30\n"), 2, "rotary"),
+        (
+            format!("{HEADER}G0 X0 Y0 Z0 A0\nG1 X10 A-0.5 F100\n"),
+            3,
+            "A-0.5: a rotary axis off its zero, and the cell has none",
+        ),
         (format!("{HEADER}G1 X1Q\n"), 2, "Q: expected a number"),
         (format!("{HEADER}G1 X10 (open\n"), 2, "')'"),
         (
@@ -268,6 +273,13 @@ fn malformed_gcode_is_refused_naming_the_line() {
         ),
     ];
     refused_naming_the_line(&cases);
+    // Rotary words that never leave the axis's zero: read as no motion, the first named.
+    let zero = gcode::parse(
+        &format!("{HEADER}G0 X0 Y0 Z0\nG1 X10 A0 F9\nB-0. C0\n"),
+        1e-5,
+    );
+    let zero = zero.unwrap();
+    assert_eq!((zero.zero_rotary, zero.points.len()), (Some(3), 2));
     assert!(matches!(
         gcode::parse(&format!("{HEADER}G1 X1\n"), 0.0),
         Err(Error::InvalidOption {

@@ -154,6 +154,20 @@ pub(super) fn no_length_offset(program: &Program) -> Option<Warning> {
     })
 }
 
+/// The warning that a G-code program writes rotary words (`A0`) for an axis the cell lacks,
+/// every one of them 0: read as no motion.
+pub(super) fn zero_rotary(program: &Program) -> Option<Warning> {
+    let Program::GCode(g) = program else {
+        return None;
+    };
+    g.zero_rotary.map(|line| {
+        Warning::new(
+            WarningKind::LeftOut,
+            format!("line {line} and after: rotary axis words (A, B, C), every one 0, for an axis the cell does not have: read as no motion (the axis stays at its zero, where the setup places the part) and written back as found"),
+        )
+    })
+}
+
 /// The warning that a G-code program's `G53` rapids were read without the setup's `G53` frame:
 /// they make no point, and the robot goes from the point before each to the next in one move.
 pub(super) fn unplaced_g53(program: &Program) -> Option<Warning> {

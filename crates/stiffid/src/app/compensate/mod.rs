@@ -44,7 +44,7 @@ pub use given::Given;
 use input::{
     called_files, check_tcp, copied_warning, encoding_warning, held_lines, held_warning,
     left_warning, no_length_offset, notes_warning, own_motion, read_checked, uncoupled_ls,
-    unplaced_g53, unstated_units,
+    unplaced_g53, unstated_units, zero_rotary,
 };
 pub use input::{read_program, read_program_in};
 use stiffid_core::io::Encoding;
@@ -235,6 +235,7 @@ where
     let units = read.as_ref().and_then(unstated_units);
     let g53 = read.as_ref().and_then(unplaced_g53);
     let length = read.as_ref().and_then(no_length_offset);
+    let rotary = read.as_ref().and_then(zero_rotary);
     let coupling = read.as_ref().and_then(|p| uncoupled_ls(setup, p));
     let mut outcome = {
         let mut add = |first: usize, p: &[PathPoint], r: &[Compensated], d: &[Dynamics]| {
@@ -254,6 +255,7 @@ where
     outcome.warnings.extend(units);
     outcome.warnings.extend(g53);
     outcome.warnings.extend(length);
+    outcome.warnings.extend(rotary);
     outcome.warnings.extend(coupling);
     Ok(finish(setup, (compliance, names), options, tally, outcome)?)
 }
