@@ -1,5 +1,5 @@
 //! The arguments of a RAPID call or aggregate: split at the commas outside brackets,
-//! parentheses and strings.
+//! parentheses, an element's braces (`pts{i, j}`) and strings.
 
 /// The byte ranges of the comma-separated arguments of `args` outside brackets, parentheses
 /// and strings.
@@ -8,8 +8,8 @@ pub(crate) fn top_level(args: &str) -> Vec<std::ops::Range<usize>> {
     for (i, c) in args.char_indices() {
         match c {
             '"' => in_string = !in_string,
-            '[' | '(' if !in_string => depth += 1,
-            ']' | ')' if !in_string => depth -= 1,
+            '[' | '(' | '{' if !in_string => depth += 1,
+            ']' | ')' | '}' if !in_string => depth -= 1,
             ',' if !in_string && depth == 0 => {
                 out.push(from..i);
                 from = i + 1;
@@ -31,8 +31,8 @@ pub(crate) fn switches_joined(args: &str) -> String {
     for (i, c) in args.char_indices() {
         match c {
             '"' => in_string = !in_string,
-            '[' | '(' if !in_string => depth += 1,
-            ']' | ')' if !in_string => depth -= 1,
+            '[' | '(' | '{' if !in_string => depth += 1,
+            ']' | ')' | '}' if !in_string => depth -= 1,
             ',' if !in_string && depth == 0 && args[i + 1..].trim_start().starts_with('\\') => {
                 out.push(' ');
                 continue;

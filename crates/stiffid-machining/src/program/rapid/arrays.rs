@@ -1,5 +1,6 @@
 //! RAPID arrays of targets declared with their values (`CONST robtarget pts{3} := [[..],[..],
-//! [..]];`, also `jointtarget`): each element a target of its own (`pts{2}`), its numbers in
+//! [..]];`, also `jointtarget`, and two-dimensional: `pts{2,3} := [[[..],[..],[..]],[..]]`):
+//! each element a target of its own (`pts{2}`, `pts{1,3}`), its numbers in
 //! the array's declaration (*RAPID kernel*: arrays, aggregates). An element is written back in
 //! place; two visits of one element compensated apart are refused naming both lines (an element
 //! is not copied under another name).
@@ -27,13 +28,32 @@ pub(super) fn declare(
         return;
     };
     let inner = &code[open + 1..end - 1];
+    let element = |at: usize| match kind {
+        "robtarget" => cartesian::robtarget(line, code, at),
+        _ => super::literal(line, code, at),
+    };
     for (k, r) in arguments::top_level(inner).into_iter().enumerate() {
         let at = open + 1 + r.start;
-        let t = match kind {
-            "robtarget" => cartesian::robtarget(line, code, at),
-            _ => super::literal(line, code, at),
-        };
-        declared.insert(format!("{name}{{{}}}", k + 1), t.map_err(|e| e.to_string()));
+        let item = inner[r.clone()].trim_start();
+        // A row of a two-dimensional array (`pts{2,3}`): a list of targets.
+        if item.starts_with("[[[") {
+            let lead = inner[r.clone()].len() - item.len();
+            let item = item.trim_end();
+            let row_open = at + lead;
+            let Some(row) = item.strip_prefix('[').and_then(|i| i.strip_suffix(']')) else {
+                continue;
+            };
+            for (m, e) in arguments::top_level(row).into_iter().enumerate() {
+                let t = element(row_open + 1 + e.start);
+                let key = format!("{name}{{{},{}}}", k + 1, m + 1);
+                declared.insert(key, t.map_err(|e| e.to_string()));
+            }
+            continue;
+        }
+        declared.insert(
+            format!("{name}{{{}}}", k + 1),
+            element(at).map_err(|e| e.to_string()),
+        );
     }
     let why = format!("{name} is an array of {kind}s (line {line}): a motion moves to one of its elements, {name}{{1}} to {name}{{{n}}}");
     declared.insert(name.to_string(), Err(why));
@@ -50,15 +70,19 @@ pub(super) fn element(
     let Some(expr) = rest.strip_suffix('}') else {
         return Err(format!("{text}: expected an element name{{index}}"));
     };
-    let v = index(expr).map_err(|why| format!("{text}: its index {why}"))?;
-    if v.fract() != 0.0 || !(1.0..=1e9).contains(&v) {
-        return Err(format!(
-            "{text}: its index is {v}, not a whole number from 1"
-        ));
+    let mut at = Vec::new();
+    for r in arguments::top_level(expr) {
+        let v = index(&expr[r]).map_err(|why| format!("{text}: its index {why}"))?;
+        if v.fract() != 0.0 || !(1.0..=1e9).contains(&v) {
+            return Err(format!(
+                "{text}: its index is {v}, not a whole number from 1"
+            ));
+        }
+        at.push((v as u64).to_string());
     }
     Ok(format!(
         "{}{{{}}}",
         name.trim().to_ascii_lowercase(),
-        v as u64
+        at.join(",")
     ))
 }

@@ -6,7 +6,7 @@
 //! the other module's within it), on the line after `MODULE`, its values the compensated ones;
 //! the other module is never written.
 
-use super::{declarations, statements, without_comments, Data};
+use super::{declarations, shared, statements, without_comments, Data};
 use crate::program::cartesian::Frame;
 use crate::program::points::Foreign;
 use crate::program::{Context, JointTarget};
@@ -29,13 +29,20 @@ pub(super) fn merge(mut data: Data, (text, code): (&str, &str), context: &Contex
     let insert = after_module_line(code);
     // The backup module each tool and work object the module does not declare comes from.
     let mut from: std::collections::HashMap<String, &str> = Default::default();
+    let own = shared::values(code, &statements(code));
+    let mut others = Vec::new();
     for (file, other) in modules.into_iter().filter(|(_, t)| *t != text) {
         let other_code = without_comments(other);
-        let found =
-            declarations(&other_code, &statements(&other_code)).map_err(|e| Error::Parse {
-                source_name: file.to_string(),
-                message: format!("a module of the controller's backup: {e}"),
-            })?;
+        let unreadable = |e: Error| Error::Parse {
+            source_name: file.to_string(),
+            message: format!("a module of the controller's backup: {e}"),
+        };
+        crate::program::ends::check(other, crate::program::Dialect::Rapid).map_err(unreadable)?;
+        let other_statements = statements(&other_code);
+        let values = shared::values(&other_code, &other_statements);
+        let mut found = declarations(&other_code, &other_statements).map_err(unreadable)?;
+        hide_local(&mut found, &values);
+        others.push((file, values));
         for (k, v) in found.frames {
             let v = foreign(v, file);
             match (data.frames.get(&k), from.get(&k)) {
@@ -70,7 +77,41 @@ pub(super) fn merge(mut data: Data, (text, code): (&str, &str), context: &Contex
             data.targets.insert(k, v);
         }
     }
+    for (name, why) in shared::ambiguous(&own, &others) {
+        refuse(&mut data, &name, &why);
+    }
     Ok(data)
+}
+
+/// `found`, another module's data, without what it declares `LOCAL` (its `values`): seen by
+/// that module alone (*RAPID kernel*: scope rules).
+fn hide_local(found: &mut Data, values: &shared::Values) {
+    let local = |k: &String| {
+        let name = k.split('{').next().unwrap_or(k);
+        values.get(name).is_some_and(|v| v.2)
+    };
+    found.targets.retain(|k, _| !local(k));
+    found.frames.retain(|k, _| !local(k));
+    found.speeds.retain(|k, _| !local(k));
+    found.nums.retain(|k, _| !local(k));
+}
+
+/// `data`'s datum `name` (an array's elements too) refused for `why`: two modules of the task
+/// declare it with two values ([`shared::ambiguous`]).
+fn refuse(data: &mut Data, name: &str, why: &str) {
+    let mine = |k: &String| k == name || k.split('{').next() == Some(name);
+    for (_, t) in data.targets.iter_mut().filter(|(k, _)| mine(k)) {
+        *t = Err(why.to_string());
+    }
+    if let Some(f) = data.frames.get_mut(name) {
+        *f = Frame::Unknown(0, why.to_string());
+    }
+    if let Some(v) = data.speeds.get_mut(name) {
+        *v = Err(why.to_string());
+    }
+    if let Some(v) = data.nums.get_mut(name) {
+        *v = Err(why.to_string());
+    }
 }
 
 /// A tool or work object `frame` of the backup's module `file`, as the module's motions read it:

@@ -8,8 +8,10 @@
 //! `robtarget`, `jointtarget`, `tooldata`, `wobjdata` or `speeddata` argument that names a
 //! datum the caller reads (declared with a value, never assigned) is that datum, a target
 //! compensated in the caller's declaration (visits compensated apart are then refused, naming
-//! both lines); any other argument (an expression, `Offs(..)`, a literal, a datum assigned at
-//! run time) leaves the parameter the run's, refused at the motion that uses it, naming the call.
+//! both lines); a `num` argument whose value the caller states (a number, arithmetic of its `num`
+//! data) is that value; any other argument (an expression, `Offs(..)`, a literal, a datum
+//! assigned at run time) leaves the parameter the run's, refused at the motion that uses it,
+//! naming the call.
 
 use super::cartesian::is_data;
 use super::{arguments, Data};
@@ -50,6 +52,7 @@ pub(super) struct Bindings {
     targets: Vec<(String, std::result::Result<JointTarget, String>)>,
     frames: Vec<(String, Frame)>,
     speeds: Vec<(String, SpeedValue)>,
+    nums: Vec<(String, std::result::Result<f64, String>)>,
 }
 
 /// A `speeddata`'s `v_tcp` (mm/s) and line, or why it has none ([`super::speed::RapidSpeeds`]).
@@ -71,6 +74,15 @@ impl Bindings {
                 continue;
             };
             let key = arg.to_ascii_lowercase();
+            if kind == "num" {
+                let v = super::num::value(arg, &|n| data.nums.get(n).cloned());
+                let why = |w: String| {
+                    format!("{name} is the argument '{arg}' of the call on line {line}: {w}")
+                };
+                let v = v.map_err(why);
+                out.nums.push((name, v));
+                continue;
+            }
             let named = !key.is_empty()
                 && key.starts_with(|c: char| c.is_ascii_alphabetic())
                 && key.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
@@ -128,6 +140,9 @@ impl Bindings {
         for (name, s) in &self.speeds {
             data.speeds.insert(name.clone(), s.clone());
         }
+        for (name, v) in &self.nums {
+            data.nums.insert(name.clone(), v.clone());
+        }
     }
 }
 
@@ -158,7 +173,7 @@ fn predefined(key: &str, line: u64) -> Option<(f64, u64)> {
 
 /// The positional parameters (not `\` optional ones) of a routine's header, in order: each
 /// one's type when it is data a motion reads (`robtarget`, `jointtarget`, `tooldata`,
-/// `wobjdata`, `speeddata`; else `""`) and its name, lower case.
+/// `wobjdata`, `speeddata`, `num`; else `""`) and its name, lower case.
 fn parameters(header: &str) -> Vec<(&'static str, String)> {
     let (Some(open), Some(close)) = (header.find('('), header.rfind(')')) else {
         return Vec::new();
@@ -179,6 +194,7 @@ fn parameters(header: &str) -> Vec<(&'static str, String)> {
             .collect();
         let kind = words.first().map_or("", |w| match w.as_str() {
             "speeddata" => "speeddata",
+            "num" | "dnum" => "num",
             k if is_data(k) || k == "jointtarget" => {
                 ["robtarget", "tooldata", "wobjdata", "jointtarget"]
                     .into_iter()

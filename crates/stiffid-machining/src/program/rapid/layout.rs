@@ -18,25 +18,33 @@ pub(super) struct Layout {
     pub routines: HashSet<String>,
     /// The routines the module calls (lower case).
     pub called: HashSet<String>,
+    /// The routines with parameters that the module calls (lower case): each read at each of
+    /// its calls, with the call's arguments, not where it is.
+    pub per_call: HashSet<String>,
 }
 
 impl Layout {
     /// The layout of the module `code` (its `statements`), the task's procedures in `task`;
-    /// `entry` the procedure another module calls, read alone with the routines it calls, and its
-    /// call's place.
+    /// `entry` the procedure a call reads, its call's place, and whether it is read alone (a
+    /// routine with parameters of a module read whole) or with the routines it calls (a
+    /// procedure of another module); a routine with parameters it calls is read at that call.
     pub(super) fn of(
         code: &str,
         statements: &[Statement],
         task: &Task,
-        entry: Option<(&str, Place)>,
+        entry: Option<(&str, Place, bool)>,
     ) -> Layout {
         let mut names: Vec<String> = Vec::new();
+        let mut with_parameters: HashSet<usize> = HashSet::new();
         let mut seen = vec![Seen::default(); statements.len()];
         let mut open = false;
         for (k, s) in statements.iter().enumerate() {
             let body = &code[s.span.clone()];
             let first = first_word(body);
             if let Some(name) = routine(body) {
+                if has_parameters(body) && calls::procedure(body).is_some() {
+                    with_parameters.insert(names.len());
+                }
                 names.push(name.to_ascii_lowercase());
                 open = true;
                 continue;
@@ -74,21 +82,31 @@ impl Layout {
             }
         }
         moving_calls(&mut seen, names.len());
-        let chosen = entry.map(|(name, _)| reached(name, &index, &seen));
+        let per_call: HashSet<usize> = (seen.iter().filter_map(|s| s.calls))
+            .filter(|r| with_parameters.contains(r))
+            .collect();
+        let chosen = entry.map(|(name, _, alone)| {
+            let mut set = match alone {
+                true => index.get(name).copied().into_iter().collect(),
+                false => reached(name, &index, &seen),
+            };
+            set.retain(|r| !per_call.contains(r) || Some(r) == index.get(name));
+            set
+        });
         let read = (seen.iter().enumerate())
-            .map(|(k, s)| match &chosen {
-                None => true,
-                Some(set) => {
-                    let header = routine(&code[statements[k].span.clone()]);
-                    let r = header.map_or(s.routine, |h| {
-                        index.get(h.to_ascii_lowercase().as_str()).copied()
-                    });
-                    r.is_some_and(|r| set.contains(&r))
+            .map(|(k, s)| {
+                let header = routine(&code[statements[k].span.clone()]);
+                let r = header.map_or(s.routine, |h| {
+                    index.get(h.to_ascii_lowercase().as_str()).copied()
+                });
+                match &chosen {
+                    None => r.is_none_or(|r| !per_call.contains(&r)),
+                    Some(set) => r.is_some_and(|r| set.contains(&r)),
                 }
             })
             .collect();
         let at_entry: HashMap<usize, Place> = entry
-            .and_then(|(name, place)| index.get(name).map(|&r| (r, place)))
+            .and_then(|(name, place, _)| index.get(name).map(|&r| (r, place)))
             .into_iter()
             .collect();
         let called = (seen.iter().filter_map(|s| s.calls))
@@ -97,9 +115,18 @@ impl Layout {
         Layout {
             read,
             places: places(&seen, &at_entry),
+            per_call: per_call.iter().map(|&r| names[r].clone()).collect(),
             routines: names.into_iter().collect(),
             called,
         }
+    }
+}
+
+/// Whether the routine header `body` declares parameters (`PROC pick(robtarget p)`).
+fn has_parameters(body: &str) -> bool {
+    match (body.find('('), body.rfind(')')) {
+        (Some(open), Some(close)) if open < close => !body[open + 1..close].trim().is_empty(),
+        _ => false,
     }
 }
 

@@ -33,13 +33,17 @@ mod layout;
 mod named;
 mod names;
 mod num;
+mod numflow;
 mod offset;
 mod parameters;
+mod percall;
 mod place;
 mod process;
 mod read;
 mod refusals;
+mod shared;
 pub(crate) mod speed;
+mod state;
 mod unroll;
 pub use confdata::ConfData;
 
@@ -64,6 +68,7 @@ struct Data {
     speeds: RapidSpeeds,
     assigned: HashMap<String, u64>,
     nums: num::Nums,
+    renum: numflow::Renum,
     rebound: assign::Rebound,
     bound: assign::Bound,
 }
@@ -330,7 +335,7 @@ fn declarations(code: &str, statements: &[Statement]) -> Result<Data> {
             None => {}
         }
     }
-    let nums = numbers.finish(&assignments);
+    let (nums, renum) = numbers.finish(&assignments, (code, statements));
     let known = |name: &String| {
         declared.contains_key(name) || frames.contains_key(name) || speeds.contains_key(name)
     };
@@ -355,6 +360,7 @@ fn declarations(code: &str, statements: &[Statement]) -> Result<Data> {
         speeds,
         assigned,
         nums,
+        renum,
         rebound: assign::Rebound::default(),
         bound: assign::Bound::new(),
     })

@@ -101,6 +101,7 @@ pub(super) struct Reading {
 impl Reading {
     /// The statement `body` on `line`, its words `words` (lower case, `LOCAL`/`TASK` skipped).
     pub(super) fn statement(&mut self, words: &[&str], body: &str, line: u64) {
+        super::parameters::declare_nums(line, body, &mut self.nums);
         set_by(
             words.first().copied().unwrap_or(""),
             body,
@@ -117,14 +118,19 @@ impl Reading {
         }
     }
 
-    /// The module's `num` data, each one a statement sets (`assignments` too) the run's.
-    pub(super) fn finish(mut self, assignments: &[(String, u64)]) -> Nums {
+    /// The module's `num` data, each one a statement sets (`assignments` too) the run's; and
+    /// those its routines set, followed along their paths (module `numflow`), of the module
+    /// `code` (its `statements`).
+    pub(super) fn finish(
+        mut self,
+        assignments: &[(String, u64)],
+        (code, statements): (&str, &[super::Statement]),
+    ) -> (Nums, super::numflow::Renum) {
         let setters = std::mem::take(&mut self.setters);
-        set(
-            &mut self.nums,
-            &self.constants,
-            assignments.iter().chain(&setters),
-        );
-        self.nums
+        let all: Vec<(String, u64)> = assignments.iter().chain(&setters).cloned().collect();
+        let declared = (&self.nums, self.constants.as_slice());
+        let followed = super::numflow::Renum::of((code, statements), declared, &all);
+        set(&mut self.nums, &self.constants, all.iter());
+        (self.nums, followed)
     }
 }

@@ -1,12 +1,12 @@
 //! The parameters a routine's header declares (`PROC pick(robtarget pPick, PERS tooldata
-//! tGrip)`): a motion to one moves where its caller says, at run time.
+//! tGrip, num dz)`): a motion to one moves where its caller says, at run time.
 
 use super::Declared;
 use crate::program::cartesian::Frame;
 use std::collections::HashMap;
 
-/// The targets, tools and work objects a routine's header `lower` (lower case, on `line`) takes
-/// as parameters (`PROC pick(robtarget pPick, PERS tooldata tGrip)`): each one's type, name and
+/// The targets, tools, work objects and `num`s a routine's header `body` (on `line`) takes as
+/// parameters (`PROC pick(robtarget pPick, PERS tooldata tGrip)`): each one's type, name and
 /// why a motion cannot read it: its value is the caller's, at run time.
 fn parameters(line: u64, body: &str) -> Vec<(&'static str, String, String)> {
     let header = body.trim_start();
@@ -33,9 +33,16 @@ fn parameters(line: u64, body: &str) -> Vec<(&'static str, String, String)> {
             .collect();
         let Some(kind) = words.first().and_then(|w| {
             let w = w.to_ascii_lowercase();
-            ["robtarget", "jointtarget", "tooldata", "wobjdata"]
-                .into_iter()
-                .find(|k| *k == w)
+            [
+                "robtarget",
+                "jointtarget",
+                "tooldata",
+                "wobjdata",
+                "num",
+                "dnum",
+            ]
+            .into_iter()
+            .find(|k| *k == w)
         }) else {
             continue;
         };
@@ -57,8 +64,23 @@ pub(super) fn declare(
 ) {
     for (kind, name, why) in parameters(line, body) {
         match kind {
+            "num" | "dnum" => {}
             "robtarget" | "jointtarget" => _ = declared.entry(name).or_insert(Err(why)),
             _ => _ = frames.entry(name).or_insert(Frame::Unknown(line, why)),
+        }
+    }
+}
+
+/// The `num` parameters of the routine header `body` on `line` into `nums`, where the module
+/// declares no such name before it: each one's value is the caller's.
+pub(super) fn declare_nums(
+    line: u64,
+    body: &str,
+    nums: &mut HashMap<String, std::result::Result<f64, String>>,
+) {
+    for (kind, name, why) in parameters(line, body) {
+        if matches!(kind, "num" | "dnum") {
+            nums.entry(name).or_insert(Err(why));
         }
     }
 }

@@ -9,44 +9,14 @@ use super::assign::{self, Bound};
 use super::called::{Bindings, Task, MAX_READS};
 use super::calls::{self, routine};
 use super::layout::Layout;
-use super::place::Place;
+use super::numflow::Values;
+use super::state::{Conf, Entry, Here, Module};
 use super::{declarations, first_word, flow, is_header, motion, no_motion, statements};
 use super::{well_formed, without_comments, Data, Statement};
 use crate::program::controller::Read;
-use crate::program::paths::{Join, Kind, Paths};
+use crate::program::paths::{Kind, Paths};
 use crate::program::{at, Context, JointTarget, Left};
 use stiffid_core::{Error, Result};
-
-/// Configuration monitoring in force for joint (0) and linear (1) motions: off (`\Off`), on, or
-/// why the file does not say; and the values of the points the module assigns (module `assign`).
-#[derive(Debug, Clone, PartialEq)]
-struct Conf([std::result::Result<bool, String>; 2], Bound);
-
-impl Join for Conf {
-    fn join(&mut self, other: &Self, (word, line): (&str, u64)) {
-        for k in 0..2 {
-            if self.0[k] != other.0[k] && self.0[k].is_ok() {
-                let name = ["ConfJ", "ConfL"][k];
-                self.0[k] = match &other.0[k] {
-                    Err(why) => Err(why.clone()),
-                    Ok(_) => Err(format!("{name} \\Off is in force on one path through {word} (line {line}) only: the controller holds this motion to its confdata on one path and not on the other; set {name} alike on every path, or before {word}")),
-                };
-            }
-        }
-        for (name, other) in &other.1 {
-            match self.1.get_mut(name) {
-                Some(mine) if mine == other => {}
-                Some(mine) => {
-                    mine.target = Err(format!("{name} is assigned differently on the paths through {word} (line {line}): its value at the motion is the run's; assign it alike on every path, or after {word}"));
-                }
-                None => {}
-            }
-        }
-    }
-    fn agrees(&self, other: &Self) -> bool {
-        self == other
-    }
-}
 
 /// Every target of `text`, in the order of its motions (module docs), the program's external
 /// axes (`eax_a` to the last one any target gives a value, not `9E9`), the motions left as
@@ -87,25 +57,6 @@ pub(crate) fn targets(text: &str, context: &Context) -> Result<Read> {
     })
 }
 
-/// A procedure of the module called from another module: its name (lower case), what the call
-/// binds its parameters to, where the call sits among the motions, the configuration monitoring
-/// in force there.
-struct Entry {
-    name: String,
-    bindings: Bindings,
-    place: Place,
-    conf: Conf,
-}
-
-/// What a module read gives: its targets, the motions left, its routines, whether it switches
-/// configuration monitoring.
-struct Module {
-    targets: Vec<JointTarget>,
-    left: Vec<Left>,
-    routines: Vec<(String, u64)>,
-    switches_conf: bool,
-}
-
 /// The module `text`, its text at byte `offset` of the whole text: every routine's motions, or
 /// with `entry` the called procedure's and those of the module's routines it calls.
 fn module(
@@ -121,13 +72,13 @@ fn module(
         &code,
         &statements,
         task,
-        entry.map(|e| (e.name.as_str(), e.place)),
+        entry.map(|e| (e.name.as_str(), e.place, e.alone)),
     );
     let (mut out, mut left) = (Vec::new(), Vec::new());
     let mut routines: Vec<(String, u64)> = Vec::new();
     let mut flow = flow::Flow::default();
     let mut paths: Paths<Conf> = Paths::default();
-    let mut conf = Conf([Ok(false), Ok(false)], Bound::new());
+    let mut conf = Conf([Ok(false), Ok(false)], Bound::new(), Values::new());
     // The first motion of the routine being read.
     let mut first_motion: Option<u64> = None;
     let order = super::unroll::order(&code, &statements, &data.nums)?;
@@ -153,11 +104,12 @@ fn module(
         }
         flow.statement(&first, is_header(body), s.line);
         let step = (k, first.as_str(), is_header(body));
-        let text = (code.as_str(), &statements[..]);
-        structure(step, text, &mut paths, (&mut data, &mut conf));
+        let read = (code.as_str(), &statements[..]);
+        structure(step, read, &mut paths, (&mut data, &mut conf), &routines);
         let here = Here {
             statement: s,
             place: layout.places[k],
+            module: (text, offset),
         };
         if first == "if" && !is_header(body) {
             let called = calls::in_compact_if(body).map(|(n, _)| (n, s.line));
@@ -213,8 +165,9 @@ fn module(
     Ok(Module {
         targets: out,
         left,
-        routines,
+        routines: routines_of(&code, &statements),
         switches_conf: switches_conf.is_some(),
+        switches_own: switches_read(&code, &statements, &layout.read),
     })
 }
 
@@ -234,26 +187,37 @@ fn at_routine(
         None => conf_at_start(switches.filter(|_| layout.called.contains(name)), line),
     };
     conf.1 = data.rebound.at_start(name, line);
+    conf.2 = data.renum.at_start(name, line);
     conf
 }
 
 /// Follows the statement `k` of `statements` (`code`), its first word `first`, `header` whether
 /// a structure line: a branch or loop it opens, divides or closes ([`branches`]), the points a
-/// loop assigns ([`assign::Rebound::at_loop`]); the assigned points' values into `data`.
+/// loop assigns ([`assign::Rebound::at_loop`]), the `num` data it sets in `routine` (module
+/// `numflow`) in the last of `routines`; the assigned points' and `num` data's values into
+/// `data`.
 fn structure(
     (k, first, header): (usize, &str, bool),
     (code, statements): (&str, &[Statement]),
     paths: &mut Paths<Conf>,
     (data, conf): (&mut Data, &mut Conf),
+    routines: &[(String, u64)],
 ) {
     if header {
         branches(first, statements[k].line, paths, conf);
         if matches!(first, "while" | "for") {
             data.rebound.at_loop((code, statements), k, &mut conf.1);
+            data.renum.at_loop((code, statements), k, &mut conf.2);
         }
     }
     if !data.rebound.is_empty() {
         data.bound.clone_from(&conf.1);
+    }
+    if !data.renum.is_empty() {
+        let s = &statements[k];
+        let read = (&code[s.span.clone()], first, s.line);
+        (data.renum).statement(read, &name_of(routines), &data.nums, &mut conf.2);
+        data.renum.lay(&conf.2, &mut data.nums);
     }
 }
 
@@ -271,6 +235,8 @@ fn forget_called(
     if layout.routines.contains(&name) {
         (data.rebound).after_call((&name, line), &name_of(routines), &mut conf.1);
         data.bound.clone_from(&conf.1);
+        (data.renum).after_call((&name, line), &name_of(routines), &mut conf.2);
+        data.renum.lay(&conf.2, &mut data.nums);
     }
 }
 
@@ -325,6 +291,21 @@ fn loop_values(
     }
 }
 
+/// Every routine of the module `code` (its `statements`): name and line, those read at their
+/// calls too (module `percall`).
+fn routines_of(code: &str, statements: &[Statement]) -> Vec<(String, u64)> {
+    (statements.iter())
+        .filter_map(|s| routine(&code[s.span.clone()]).map(|name| (name, s.line)))
+        .collect()
+}
+
+/// Whether a statement of `statements` (of `code`) that is `read` switches configuration
+/// monitoring.
+fn switches_read(code: &str, statements: &[Statement], read: &[bool]) -> bool {
+    (statements.iter().zip(read))
+        .any(|(s, read)| *read && switching(code, std::slice::from_ref(s)).is_some())
+}
+
 /// The first statement of `statements` (of `code`) that switches configuration monitoring
 /// (`ConfJ`, `ConfL`), if any.
 fn switching<'s>(code: &str, statements: &'s [Statement]) -> Option<&'s Statement> {
@@ -334,12 +315,6 @@ fn switching<'s>(code: &str, statements: &'s [Statement]) -> Option<&'s Statemen
             "confj" | "confl"
         )
     })
-}
-
-/// A statement being read and where it sits among the motions.
-struct Here<'s> {
-    statement: &'s Statement,
-    place: Place,
 }
 
 /// The targets and motions left `found` by a call, added to `out` and `left`; a refusal left as
@@ -423,6 +398,9 @@ fn call_of(
             false => Ok((Vec::new(), Vec::new())),
         };
     }
+    if layout.per_call.contains(&key) {
+        return super::percall::read(here, (name, args), (data, conf), (context, task), module);
+    }
     if layout.routines.contains(&key) {
         return Ok((Vec::new(), Vec::new()));
     }
@@ -455,6 +433,7 @@ fn call_of(
         bindings: Bindings::of(&header, (args, line), data),
         place: here.place,
         conf: conf.clone(),
+        alone: false,
     };
     let before = (task.files.len(), task.total);
     let offset = match task.offsets.get(file) {
@@ -516,10 +495,10 @@ fn name_of(routines: &[(String, u64)]) -> String {
 /// never switches it (`switches` `None`); else the caller's, which the module does not say.
 fn conf_at_start(switches: Option<&Statement>, line: u64) -> Conf {
     match switches {
-        None => Conf([Ok(false), Ok(false)], Bound::new()),
+        None => Conf([Ok(false), Ok(false)], Bound::new(), Values::new()),
         Some(s) => {
             let why = format!("the module switches configuration monitoring (line {}), and at the start of the routine on line {line} it is in the state its caller leaves, which the module does not say; set ConfJ and ConfL at the routine's start", s.line);
-            Conf([Err(why.clone()), Err(why)], Bound::new())
+            Conf([Err(why.clone()), Err(why)], Bound::new(), Values::new())
         }
     }
 }

@@ -68,7 +68,7 @@ fn data_of_another_module_is_read_there_and_a_changed_target_declared_locally() 
         .unwrap();
         match &p.targets[2].cartesian.as_deref().unwrap().tool {
             Frame::Unknown(5, why) if refused => assert!(
-                why.contains("tspindle is declared in TASK1/SYSMOD/CellData.sys and in Other.mod"),
+                why.contains("tspindle is declared in TASK1/SYSMOD/CellData.sys (line 4) and in Other.mod (line 2) with two values"),
                 "{why}"
             ),
             Frame::Stated(5, _) if !refused => {}
@@ -91,6 +91,73 @@ fn data_of_another_module_is_read_there_and_a_changed_target_declared_locally() 
     );
     let back = program::parse_in(&out, Dialect::Rapid, &context).unwrap();
     assert_eq!(back.targets[1].q_deg, q[1]);
+}
+
+/// A datum declared global in two modules of the task with two values is ambiguous (the
+/// controller refuses the task, or holds one value of a `PERS`): refused at the motion naming
+/// both; alike, or `LOCAL` in one module (seen by it alone), read. A module cut off, refused.
+#[test]
+fn a_datum_two_modules_declare_with_two_values_is_refused_naming_both() {
+    let text = program_text();
+    let backup = vec![("TASK1/SYSMOD/CellData.sys".to_string(), data_module())];
+    // A target, speed or num declared global in two modules with two values is ambiguous:
+    // refused at the motion naming both; alike, or LOCAL in the other module (seen by it
+    // alone), read. The program's own global declaration counts as one of the two.
+    let p10 = format!("robtarget p10 := [[100,0,50],[0,0,1,0],[0,0,0,0],{EXT}];");
+    let moved = p10.replace("[100,0,50]", "[100,0,60]");
+    for (second, own, refused) in [
+        (format!("CONST {p10}"), "", None),
+        (format!("CONST {moved}"), "", Some("TASK1/SYSMOD/CellData.sys (line 6)")),
+        (format!("LOCAL CONST {moved}"), "", None),
+        (String::new(), "  CONST robtarget p10 := [[100,0,50],[0,0,1,0],[0,0,0,0],[9E9,9E9,9E9,9E9,9E9,9E9]];\n", None),
+        (String::new(), "  VAR robtarget p10 := [[100,0,60],[0,0,1,0],[0,0,0,0],[9E9,9E9,9E9,9E9,9E9,9E9]];\n", Some("this module (line 2)")),
+        (String::new(), "  LOCAL VAR robtarget p10 := [[100,0,60],[0,0,1,0],[0,0,0,0],[9E9,9E9,9E9,9E9,9E9,9E9]];\n", None),
+    ] {
+        let other = format!("MODULE Other\n  {second}\nENDMODULE\n");
+        let two = [backup.clone(), vec![("Other.mod".to_string(), other)]].concat();
+        let text = text.replace("MODULE Cut\n", &format!("MODULE Cut\n{own}"));
+        let p = program::parse_in(
+            &text,
+            Dialect::Rapid,
+            &program::Context::default().with_backup(&two),
+        );
+        match (p, refused) {
+            (Err(Error::Program { line, message }), Some(first)) => {
+                assert_eq!(line, 5 + u64::from(!own.is_empty()), "{message}");
+                let both = format!("p10 is declared in {first} and in Other.mod (line 2)");
+                let both = match own.is_empty() {
+                    true => both,
+                    false => format!("p10 is declared in {first} and in TASK1/SYSMOD/CellData.sys (line 6)"),
+                };
+                assert!(message.contains(&both), "{message}");
+            }
+            (Ok(p), None) => {
+                let c = p.targets[2].cartesian.as_deref().unwrap();
+                let z = if own.contains("60]") { 60.0 } else { 50.0 };
+                assert!((c.position_mm.z - z).abs() < 1e-12, "{second}{own}");
+            }
+            (other, _) => panic!("{second}{own}: {other:?}"),
+        }
+    }
+    // A module of the task cut off (no ENDMODULE): refused naming the file.
+    let cut = vec![(
+        "TASK1/SYSMOD/CellData.sys".to_string(),
+        data_module().replace("ENDMODULE\n", ""),
+    )];
+    match program::parse_in(
+        &text,
+        Dialect::Rapid,
+        &program::Context::default().with_backup(&cut),
+    ) {
+        Err(Error::Parse {
+            source_name,
+            message,
+        }) => {
+            assert_eq!(source_name, "TASK1/SYSMOD/CellData.sys");
+            assert!(message.contains("without ENDMODULE"), "{message}");
+        }
+        other => panic!("{other:?}"),
+    }
 }
 
 /// A real RobotStudio task (`Tutorial-Simple_Module1.mod`, SOURCES.md): its tool `smc_gripper`

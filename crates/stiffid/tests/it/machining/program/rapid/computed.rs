@@ -45,18 +45,34 @@ fn offs_of_num_data_the_module_states_is_read_and_data_the_run_sets_refused() {
         "{:?}",
         at_mm(&p, 1)
     );
-    // Set as the module runs: refused at the motion, naming the statement's line.
-    for (set, line) in [
-        ("    dx := 20;\n", 7),
-        ("    Incr dx;\n", 7),
-        ("    Nudge dx;\n", 7),
-    ] {
-        let (l, message) = refused(&module(decl, &(set.to_string() + body)));
-        assert_eq!(l, 8, "{set}: {message}");
-        assert!(
-            message.contains(&format!("dx is set on line {line}")),
-            "{set}: {message}"
-        );
+    // Set as the module runs: followed along every path where each gives it a value the module
+    // states; else refused at the motion, naming the line where the run's value enters.
+    let rows: [(&str, Result<f64, &str>); 8] = [
+        ("    dx := 20;\n", Ok(520.0)),
+        ("    dx := 20;\n    Incr dx;\n", Ok(521.0)),
+        ("    dx := half - 5;\n    IF di1 = 1 THEN\n      Add dx, 3;\n    ELSE\n      dx := 23;\n    ENDIF\n", Ok(523.0)),
+        ("    Incr dx;\n", Err("dx is set on line 7, and at the start of the routine on line 6")),
+        ("    Nudge dx;\n", Err("dx is set on line 7")),
+        ("    IF di1 = 1 dx := 30;\n", Err("dx is set on line 7")),
+        ("    dx := 20;\n    IF di1 = 1 THEN\n      dx := 30;\n    ENDIF\n", Err("set differently on the paths through IF (line 8)")),
+        ("    dx := 20;\n    WHILE di1 = 1 DO\n      MoveL p, v100, fine, tool0;\n      dx := dx + 1;\n    ENDWHILE\n", Err("set on line 10 inside the loop on line 8")),
+    ];
+    for (set, want) in rows {
+        let text = module(decl, &(set.to_string() + body));
+        let first = 7 + set.matches('\n').count() as u64;
+        match want {
+            Ok(x) => {
+                let p =
+                    program::parse(&text, Dialect::Rapid).unwrap_or_else(|e| panic!("{set}: {e}"));
+                let at = at_mm(&p, p.targets.len() - 2);
+                assert!((at.x - x).abs() < 1e-9, "{set}: {at:?}");
+            }
+            Err(said) => {
+                let (l, message) = refused(&text);
+                assert_eq!(l, first, "{set}: {message}");
+                assert!(message.contains(said), "{set}: {message}");
+            }
+        }
     }
     // A CONST passed to a procedure is not set by it.
     let p = program::parse(
@@ -111,6 +127,19 @@ fn an_array_of_targets_declared_with_values_is_read_by_element() {
         line == 8 && message.contains("n is not a num declared"),
         "{message}"
     );
+    // Two dimensions: a row of targets per first index.
+    let t = |x: f64, y: f64| format!("[[{x},{y},400],[0,0,1,0],[0,0,0,0],{EXT}]");
+    let grid = format!(
+        "  CONST num last := 3;\n  VAR robtarget grid{{2,2}} := [[{},{}],\n    [{},{}]];\n",
+        t(700.0, 0.0),
+        t(700.0, 50.0),
+        t(750.0, 0.0),
+        t(750.0, 50.0)
+    );
+    let body = "    MoveL grid{2,1}, v100, fine, tool0;\n    MoveL Offs(grid{1, last - 1}, 0, 0, 5), v100, fine, tool0;\n";
+    let p = program::parse(&module(&grid, body), Dialect::Rapid).unwrap();
+    assert!((at_mm(&p, 0) - nalgebra::Vector3::new(750.0, 0.0, 400.0)).norm() < 1e-9);
+    assert!((at_mm(&p, 1) - nalgebra::Vector3::new(700.0, 50.0, 405.0)).norm() < 1e-9);
 }
 
 #[test]

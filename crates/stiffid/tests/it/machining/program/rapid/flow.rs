@@ -196,18 +196,73 @@ fn a_header_over_two_lines_and_a_placeholder_are_read_as_the_controller_reads_th
 
 /// A motion to a routine's parameter (`PROC Buffer_Out(robtarget pBuffer)`, as a cell's buffer
 /// routine takes its station's point) is refused for its value being the caller's, naming the
-/// routine and its line; it was refused as a target declared nowhere.
+/// routine and its line, where the module never calls it; called, the routine is read at each
+/// call with that call's arguments (a declared target, `num` data the module states), and a
+/// call whose argument the run gives is refused naming the motion and the call.
 #[test]
-fn a_motion_to_a_routines_parameter_is_refused_as_the_callers_value() {
-    let text = "MODULE Buffer\n  PROC Buffer_Out(num nBuffer, robtarget pBuffer)\n    MoveL pBuffer, v100, fine, tool0;\n  ENDPROC\nENDMODULE\n";
-    match program::parse(text, Dialect::Rapid) {
-        Err(Error::Program { line, message }) => {
-            assert_eq!(line, 3, "{message}");
-            assert!(
-                message.contains("pBuffer is a parameter of Buffer_Out (line 2)"),
-                "{message}"
-            );
-        }
-        other => panic!("{other:?}"),
+fn a_routine_with_parameters_is_read_at_each_call_with_its_arguments() {
+    let routine = "  PROC Buffer_Out(num nBuffer, robtarget pBuffer)\n    MoveL Offs(pBuffer, 0, 0, nBuffer * 10), v100, fine, tool0;\n    MoveL pBuffer, v100, fine, tool0;\n  ENDPROC\n";
+    let text = format!("MODULE Buffer\n{routine}ENDMODULE\n");
+    let (line, message) = refused(&text);
+    assert_eq!(line, 3, "{message}");
+    assert!(
+        message.contains("is a parameter of Buffer_Out (line 2)"),
+        "{message}"
+    );
+    let data = format!("  CONST robtarget p1 := [[500,0,400],[0,0,1,0],[0,0,0,0],{EXT}];\n  CONST robtarget p2 := [[600,0,400],[0,0,1,0],[0,0,0,0],{EXT}];\n  CONST num n := 3;\n");
+    let main = "  PROC main()\n    Buffer_Out n, p1;\n    Buffer_Out n - 1, p2;\n  ENDPROC\n";
+    let text = format!("MODULE Buffer\n{data}{main}{routine}ENDMODULE\n");
+    let p = program::parse(&text, Dialect::Rapid).unwrap_or_else(|e| panic!("{e}"));
+    let read: Vec<(u64, f64, f64)> = (p.targets.iter())
+        .map(|t| {
+            let at = t.cartesian.as_deref().unwrap().pose().translation.vector * 1e3;
+            (t.line, at.x.round(), at.z.round())
+        })
+        .collect();
+    assert_eq!(
+        read,
+        [
+            (10, 500.0, 430.0),
+            (11, 500.0, 400.0),
+            (10, 600.0, 420.0),
+            (11, 600.0, 400.0)
+        ]
+    );
+    // Written: each call's point in its own declaration, the routine as read; one point at
+    // two calls compensated apart, refused naming the motion.
+    let joints = format!("MODULE J\n  CONST jointtarget j1 := [[1,0,0,0,30,0],{EXT}];\n  CONST jointtarget j2 := [[2,0,0,0,30,0],{EXT}];\n  PROC main()\n    Go j1;\n    Go j2;\n  ENDPROC\n  PROC Go(jointtarget j)\n    MoveAbsJ j, v100, fine, tool0;\n  ENDPROC\nENDMODULE\n");
+    let p = program::parse(&joints, Dialect::Rapid).unwrap();
+    let q = [
+        [1.5, 0.0, 0.0, 0.0, 30.0, 0.0],
+        [2.5, 0.0, 0.0, 0.0, 30.0, 0.0],
+    ];
+    let out = p.write(&q).unwrap();
+    assert_eq!(
+        out,
+        joints
+            .replace("[[1,0,0,0,30,0]", "[[1.500000000,0,0,0,30,0]")
+            .replace("[[2,0,0,0,30,0]", "[[2.500000000,0,0,0,30,0]")
+    );
+    let twice = program::parse(&joints.replace("Go j2;", "Go j1;"), Dialect::Rapid).unwrap();
+    let e = twice.write(&q).unwrap_err().to_string();
+    assert!(e.contains("line 9"), "{e}");
+    // An argument the run gives: refused at the motion, naming the call.
+    for (call, said) in [
+        (
+            "Buffer_Out nCount, p1;",
+            "nbuffer is the argument 'nCount' of the call on line 6",
+        ),
+        (
+            "Buffer_Out n, CRobT();",
+            "pbuffer is the argument 'CRobT()' of the call on line 6",
+        ),
+    ] {
+        let text = text.replace("Buffer_Out n, p1;", call);
+        let (line, message) = refused(&text);
+        assert_eq!(line, 10, "{message}");
+        assert!(
+            message.contains(said) && message.contains("called on line 6"),
+            "{message}"
+        );
     }
 }
