@@ -30,8 +30,8 @@ use stiffid_core::Setup;
 /// Most postures a scene draws.
 pub const MAX_POSTURES: usize = 500;
 
-/// Most path points a scene draws (a longer path is thinned evenly to this many).
-pub const MAX_PATH_POINTS: usize = 20_000;
+/// Most path points a scene draws (20 000; a longer path is thinned evenly to this many).
+pub(crate) const MAX_PATH_POINTS: usize = 20_000;
 
 /// What a scene shows.
 #[derive(Debug, Clone, PartialEq, Serialize)]

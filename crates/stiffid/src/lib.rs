@@ -46,10 +46,13 @@ pub use stiffid_core::{
 };
 
 /// Setups: the built-in ones ([`setup::builtin`], [`setup::builtin_names`]), a setup file's
-/// text read ([`setup::parse`]: its robot resolved by the caller), and the setup's parts,
-/// [`Setup`]'s accessors.
+/// text read ([`setup::parse`]: its robot resolved by the caller), a setup built in code from SI
+/// values ([`setup::SetupBuilder`], from [`Setup::builder`]), and the setup's parts, [`Setup`]'s
+/// accessors.
 pub mod setup {
-    pub use stiffid_core::setup::{builtin, builtin_names, parse, Arm, Experiment, Workcell};
+    pub use stiffid_core::setup::{
+        builtin, builtin_names, parse, Arm, Experiment, SetupBuilder, Workcell,
+    };
 }
 
 /// Robots: the built-in presets ([`robot::presets`]); a robot's kinematics are

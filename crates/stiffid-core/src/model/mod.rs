@@ -503,4 +503,6 @@ mod law_tests;
 #[cfg(test)]
 mod model_tests;
 #[cfg(test)]
+mod prediction_tests;
+#[cfg(test)]
 mod region_tests;

@@ -282,7 +282,7 @@ pub fn interval_of(folds: &[(Vector3<f64>, f64, &[f64])], level: f64) -> Interva
 }
 
 /// The 1-based ranks of `q-` and `q+` (P2) among `n` values at `level`; `None` for an infinite end.
-pub fn ranks(n: usize, level: f64) -> [Option<usize>; 2] {
+pub(crate) fn ranks(n: usize, level: f64) -> [Option<usize>; 2] {
     // A hair below the product, so that 0.9 * 10 = 9.000000000000002 gives 9, not 10.
     let slack = 1e-9;
     let hi = (level * (n + 1) as f64 - slack).ceil() as usize;
@@ -291,7 +291,7 @@ pub fn ranks(n: usize, level: f64) -> [Option<usize>; 2] {
 }
 
 /// The fewest held-out values that give a finite upper bound at `level` (split conformal and
-/// jackknife+, [`ranks`]: `ceil(level (n + 1)) <= n`, so `n >= level / (1 - level)`): 19 at
+/// jackknife+, `ranks`: `ceil(level (n + 1)) <= n`, so `n >= level / (1 - level)`): 19 at
 /// 95%, 333 at 99.7%.
 pub fn held_out_needed(level: f64) -> usize {
     (level / (1.0 - level) - 1e-9).ceil().max(1.0) as usize

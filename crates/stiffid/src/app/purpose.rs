@@ -80,7 +80,7 @@ stiffid_core::common::choice::by_name!(Purpose);
 
 /// Reference postures of a calibration design: a seeded Latin-hypercube campaign over the
 /// setup's bounds that fixes the kept parameters and the gravity terms' scaling.
-pub const REFERENCE_POSTURES: usize = 60;
+pub(crate) const REFERENCE_POSTURES: usize = 60;
 
 /// The seed of the reference postures (fixed, so that `select` and `evaluate` score a group on
 /// the same design whatever the search's seed).
@@ -193,7 +193,7 @@ pub fn check(purpose: Purpose, options: &CalibrationOptions) -> Result<()> {
 
 /// The calibration design of `setup`: the error model `calibrate` fits (readings in the tracker
 /// frame, the setup's measuring points, `options`' geometry and gravity), the characteristic length
-/// (1 m without one, as `calibrate`), [`REFERENCE_POSTURES`] reference postures ([`random_group`]
+/// (1 m without one, as `calibrate`), 60 reference postures ([`random_group`]
 /// of seed 1, within the bounds and the cell), the setup's test postures (the machining region; the
 /// reference postures without them) and the setup's noise per coordinate.
 ///

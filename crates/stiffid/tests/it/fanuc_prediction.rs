@@ -7,7 +7,6 @@
 
 use crate::common::fanuc;
 use nalgebra::Vector3;
-use stiffid::app::identify::noise_floor;
 use stiffid::internal::identify::compare::pool_by_name;
 use stiffid::internal::identify::cross_validation::{cross_validate_model, Method};
 use stiffid::internal::identify::prediction::calibrate;
@@ -27,7 +26,7 @@ fn coverage(setup: &Setup, data: &[Measurement], levels: &[f64]) -> Vec<f64> {
         let obs = Observations::from_measurements(setup.arm(), &train).unwrap();
         let f = fit(&obs, &setup.model().parameters()).unwrap();
         let cv = cross_validate_model(&obs, &f, obs.postures, Method::LeastSquares).unwrap();
-        let calibration = calibrate(&obs, &cv, noise_floor(setup.noise()));
+        let calibration = calibrate(&obs, &cv, setup.noise().displacement_sd());
         let held = Observations::from_measurements(setup.arm(), &test).unwrap();
         for (i, m) in test.iter().enumerate() {
             let rows = held.psi.rows(3 * i, 3).into_owned();

@@ -276,7 +276,8 @@ fn sights_arrows_and_path_are_the_inputs() {
     assert_eq!(s.anchor_m, None);
     assert_eq!(s.tracker_m, Some([3.0, -2.0, 1.5]));
     assert_eq!(s.obstacles[0].max_m, [1.8, 0.4, 0.75]);
-    assert_eq!(s.path.len(), scene::MAX_PATH_POINTS);
+    // The documented limit: 20 000 path points.
+    assert_eq!(s.path.len(), 20_000);
     assert_eq!(s.path[0], path[0]);
     assert_eq!(s.path.last(), path.last());
     assert!(s.notes.iter().any(|n| n.contains("50000")));

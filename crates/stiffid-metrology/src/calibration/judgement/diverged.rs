@@ -7,7 +7,7 @@
 //! Such a fold says that one posture holds up the fit, not how far a new posture's error lies;
 //! left in, it inflates every bound built from the folds: the jackknife+'s quantiles (one fold
 //! is `1 / n` of its values) and the variance of the fit's Gaussian bound (a mean square, which
-//! one fold can make as large as it likes). A fold whose held-out RMS exceeds [`DIVERGED`] times
+//! one fold can make as large as it likes). A fold whose held-out RMS exceeds `DIVERGED` (30) times
 //! the median fold's is left out of both, and the calibration says which and why (a `left-out` warning);
 //! the bounds rest on the other folds. A heavy-tailed but finite spread of the postures' errors
 //! stays in: on the real UR10 (series C, ten draws of 100 random poses, the default model) the
@@ -17,7 +17,7 @@ use crate::calibration::validation::Fold;
 use stiffid_core::common::warning::{Warning, WarningKind};
 
 /// The held-out RMS of a fold, as a multiple of the median fold's, beyond which it diverged.
-pub const DIVERGED: f64 = 30.0;
+pub(crate) const DIVERGED: f64 = 30.0;
 
 /// The folds of `folds` that did not diverge (module docs), and the warning naming those that
 /// did (postures numbered from 1, or by `labels` where given), `None` when none did.
@@ -32,7 +32,7 @@ pub fn kept(folds: Vec<Fold>, labels: &[String]) -> (Vec<Fold>, Option<Warning>)
 }
 
 /// Whether a fold of held-out RMS `rms` diverged from the median fold's `median` (m): beyond
-/// [`DIVERGED`] times it, or not finite.
+/// `DIVERGED` (30) times it, or not finite.
 fn diverges(rms: f64, median: f64) -> bool {
     matches!(
         rms.partial_cmp(&(DIVERGED * median)),

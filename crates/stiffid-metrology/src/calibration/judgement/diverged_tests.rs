@@ -34,7 +34,7 @@ fn fold(posture: usize, size: f64) -> Fold {
 
 /// 24 folds of about 0.2 mm, one of them diverged to 80 mm: it is left out, named with its
 /// figure, and the 99.7 % bound from the fit is the bound without it to 3 %, where with it the
-/// bound was more than 30 times wider. A spread within [`DIVERGED`] times the median stays.
+/// bound was more than 30 times wider. A spread within `DIVERGED` times the median stays.
 #[test]
 fn a_diverging_fold_does_not_widen_the_bound() {
     let normal: Vec<Fold> = (0..24).map(|p| fold(p, 2e-4)).collect();

@@ -42,7 +42,7 @@
 //! held-out squared error exceeds the best's by at most one standard error of their paired
 //! per-posture differences and by no more than any simpler rung's: a model is never chosen
 //! over a simpler one that predicts the held-out postures better. With fewer than
-//! [`MIN_POSTURES`] distinct postures the ladder is not climbed and its first rung is fitted.
+//! `MIN_POSTURES` (10) distinct postures the ladder is not climbed and its first rung is fitted.
 
 use super::maps::{assess, assess_given, keeps_none, Assessed};
 use super::region::Region;
@@ -67,8 +67,8 @@ pub(crate) const GRAVITY_RUNGS: [Gravity; 5] = [
     Gravity::Masses,
 ];
 
-/// The fewest distinct postures with which the ladder is climbed: two per group.
-pub const MIN_POSTURES: usize = 2 * FOLDS;
+/// The fewest distinct postures with which the ladder is climbed (10): two per fold.
+pub(crate) const MIN_POSTURES: usize = 2 * FOLDS;
 
 /// Which gravity terms a calibration fits: chosen by the ladder, or given.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

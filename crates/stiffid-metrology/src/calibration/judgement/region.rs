@@ -10,8 +10,8 @@
 //! The region is the joint-space hull of the postures the campaign and the setup name (the
 //! fitted postures, the held-out postures of `--validate`, the setup's test postures
 //! `[test] postures_deg`): those postures and the postures a joint-interpolated move between two
-//! of them passes through. It is sampled by [`SAMPLES`] postures drawn at random (seeded:
-//! [`SEED`]): half of them named postures, where the robot is measured or used, and half on the
+//! of them passes through. It is sampled by `SAMPLES` (512) postures drawn at random (seeded:
+//! `SEED`): half of them named postures, where the robot is measured or used, and half on the
 //! segment between two named postures at a uniform share of the way (a sample of the moves alone
 //! would weigh the hull's middle and leave its ends, the postures named, nearly unsampled), cut
 //! to the robot's joint limits and the setup's `[bounds]`. Not the box of each axis's range: its corners pair
@@ -28,10 +28,10 @@ use stiffid_core::common::limits::JointBox;
 use stiffid_core::Setup;
 
 /// The postures sampled over the region.
-pub const SAMPLES: usize = 512;
+pub(crate) const SAMPLES: usize = 512;
 
 /// The seed of the region's sample: the same postures give the same region.
-pub const SEED: u64 = 0x5E_ED_0F_2E_61;
+pub(crate) const SEED: u64 = 0x5E_ED_0F_2E_61;
 
 /// The region where the robot is used (module docs).
 #[derive(Debug, Clone, PartialEq)]

@@ -17,6 +17,9 @@ pub mod group;
 pub(crate) mod mass;
 pub mod parameters;
 pub(crate) mod transform;
+// Not API: the documents' own adapters, public for their test in tests/it (this crate has no
+// unit-test harness) and hidden from the documented API.
+#[doc(hidden)]
 pub mod units;
 
 pub use stiffid_view as scene;
@@ -83,7 +86,8 @@ pub(crate) fn degrees(postures: &[nalgebra::Vector6<f64>]) -> Vec<[f64; 6]> {
 
 /// A CSV text of `header` and `rows` (fields as they are, each row one record) written by
 /// [`csv::Writer`]: a field is quoted, its quotes doubled, when it holds a comma, quote or line
-/// break; lines end in `\n`.
+/// break; lines end in `\n`. Not API: public for its test in tests/it, hidden.
+#[doc(hidden)]
 pub fn csv_text<R, F>(header: &[String], rows: R) -> String
 where
     R: IntoIterator<Item = F>,

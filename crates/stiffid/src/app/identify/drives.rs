@@ -52,7 +52,7 @@ pub(super) struct Request<'a, R> {
 /// `per_reading` (offsets fitted, or readings under load steps), one reading's: the unloaded
 /// reading's error goes into the offset, or the fit is whitened for it
 /// ([`stiffid_identify::steps::generalised`]; docs/model.md, the noise convention).
-pub fn row_noise_variance(noise: &Noise, per_reading: bool) -> f64 {
+pub(crate) fn row_noise_variance(noise: &Noise, per_reading: bool) -> f64 {
     match per_reading {
         true => noise.reading_variance,
         false => noise.displacement_variance(),
@@ -62,7 +62,7 @@ pub fn row_noise_variance(noise: &Noise, per_reading: bool) -> f64 {
 /// The noise floor of the prediction intervals' scale: the standard deviation of one
 /// displacement coordinate from the tracker noise `noise`, m
 /// ([`stiffid_core::model::prediction`]).
-pub fn noise_floor(noise: &Noise) -> f64 {
+pub(crate) fn noise_floor(noise: &Noise) -> f64 {
     noise.displacement_sd()
 }
 

@@ -22,7 +22,6 @@ mod model_form;
 mod options;
 pub mod springs;
 
-pub use drives::{noise_floor, row_noise_variance};
 pub use options::Options;
 
 use crate::app::measurements::Data;

@@ -13,7 +13,7 @@ impl Free {
     /// The height and tilt freed by `texts` (`place --free`, Python's `place(free=[...])`): `z` or
     /// `z=LO..HI` (the part origin's height from its own `own_z`, m, within `LO..HI` mm; default
     /// +-100 mm) and `tilt` or `tilt=-T..T` (the tilt about the base x and y axes within +-T deg,
-    /// `0 < T <= 45`; default [`Region::DEFAULT_TILT_DEG`]), each at most once; a variable not
+    /// `0 < T <= 45`; default 10 deg), each at most once; a variable not
     /// given stays at its own (the height `own_z`, no tilt). `None` when `texts` is empty: x, y and
     /// the rotation alone.
     ///

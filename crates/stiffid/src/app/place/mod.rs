@@ -83,7 +83,7 @@ impl Region {
     /// How far the part may move up or down from its own height by default, mm.
     pub(crate) const DEFAULT_HEIGHT_MM: f64 = 100.0;
     /// The largest tilt by default (`--free tilt`), deg.
-    pub const DEFAULT_TILT_DEG: f64 = 10.0;
+    pub(crate) const DEFAULT_TILT_DEG: f64 = 10.0;
 
     /// The region in the front ends' units: `region_mm` `[x0, x1, y0, y1]`, `rotation_deg`
     /// `[a0, a1]`, and `free` the texts of `place --free` ([`Free::parse`]; `own_z` the part's

@@ -29,7 +29,7 @@ pub struct Request<'a> {
 }
 
 /// The paper's robot, whose Table 2 stiffness the prior scales.
-pub const REFERENCE_ROBOT: &str = "comau-smart5-nj165-3.0";
+pub(crate) const REFERENCE_ROBOT: &str = "comau-smart5-nj165-3.0";
 /// Bounds stay this far inside the joint limits, deg.
 const LIMIT_MARGIN_DEG: f64 = 5.0;
 /// The seed of the sampled postures behind the starting values (same robot, same file).

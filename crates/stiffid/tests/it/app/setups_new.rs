@@ -4,10 +4,10 @@ use stiffid_core::robot::presets;
 
 #[test]
 fn every_placeholder_of_the_template_is_filled() {
-    let robot = presets::get(REFERENCE_ROBOT).unwrap();
+    let robot = presets::get("comau-smart5-nj165-3.0").unwrap();
     let request = Request {
         robot: &robot,
-        robot_ref: REFERENCE_ROBOT,
+        robot_ref: "comau-smart5-nj165-3.0",
         tip: None,
         package_paths: &[],
         payload_kg: None,

@@ -3,7 +3,7 @@
 
 use nalgebra::Vector6;
 use stiffid::app::calibrate::fit_bound::half_width;
-use stiffid::app::calibrate::region::{region, SAMPLES};
+use stiffid::app::calibrate::region::region;
 use stiffid::internal::common::limits::JointBox;
 
 fn deg(v: [f64; 6]) -> Vector6<f64> {
@@ -24,7 +24,8 @@ fn the_region_is_the_postures_hull_within_the_limits_and_bounds() {
         deg([20.0, 0.0, 0.0, 30.0, 175.0, 0.0]),
     ];
     let r = region(&postures, &limits, &bounds);
-    assert_eq!(r.postures.len(), SAMPLES);
+    // The documented sample: 512 postures.
+    assert_eq!(r.postures.len(), 512);
     for q in &r.postures {
         let d = q.map(f64::to_degrees);
         // On a segment between two postures: joint 3 stays -joint 2, joint 4 within 0..30 deg.

@@ -1,7 +1,7 @@
 //! `place --free` (`stiffid::app::place::Free::parse`): the height and tilt in the
 //! grammar of `compensate --free`, each from the part's own.
 
-use stiffid::app::place::{Free, Region};
+use stiffid::app::place::Free;
 use stiffid_core::common::error::JobOption;
 use stiffid_core::Error;
 
@@ -23,7 +23,8 @@ fn the_height_and_tilt_are_ranges_from_the_parts_own_and_a_variable_not_given_st
     assert!(close(z.z, [0.35, 0.55]) && z.tilt == 0.0, "{z:?}");
     let t = parse(&["tilt"]).unwrap();
     assert!(close(t.z, [OWN_Z, OWN_Z]), "{t:?}");
-    assert!((t.tilt - Region::DEFAULT_TILT_DEG.to_radians()).abs() < 1e-15);
+    // The documented default: +-10 deg.
+    assert!((t.tilt - 10f64.to_radians()).abs() < 1e-15);
     let both = parse(&["tilt=-5..5", "z=0..20"]).unwrap();
     assert!(close(both.z, [0.4, 0.42]), "{both:?}");
     assert!((both.tilt - 5f64.to_radians()).abs() < 1e-15);
