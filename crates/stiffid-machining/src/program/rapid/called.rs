@@ -61,18 +61,26 @@ type SpeedValue = std::result::Result<(f64, u64), String>;
 impl Bindings {
     /// The parameters of the procedure whose header is `header` given the arguments of the
     /// call `args` (the text after its name) on `line`, from the caller's `data` (module docs).
-    pub(super) fn of(header: &str, (args, line): (&str, u64), data: &Data) -> Bindings {
+    pub(super) fn of(
+        header: &str,
+        (args, line, renamed): (&str, u64, Option<usize>),
+        data: &Data,
+    ) -> Bindings {
         let mut out = Bindings::default();
         let args = args.trim_end().trim_end_matches(';');
         let joined = arguments::switches_joined(args);
-        let given: Vec<&str> = (arguments::top_level(&joined).into_iter())
-            .map(|r| joined[r].trim())
-            .filter(|a| !a.is_empty() && !a.starts_with('\\'))
+        let given: Vec<(&str, usize)> = (arguments::top_level(&joined).into_iter())
+            .map(|r| {
+                let a = &joined[r.clone()];
+                (a.trim(), r.start + a.len() - a.trim_start().len())
+            })
+            .filter(|(a, _)| !a.is_empty() && !a.starts_with('\\'))
             .collect();
         for (k, (kind, name)) in parameters(header).into_iter().enumerate() {
-            let Some(arg) = given.get(k).copied().filter(|_| !kind.is_empty()) else {
+            let Some((arg, arg_at)) = given.get(k).copied().filter(|_| !kind.is_empty()) else {
                 continue;
             };
+            let reference = renamed.map(|at| at + arg_at..at + arg_at + arg.len());
             let key = arg.to_ascii_lowercase();
             if kind == "num" {
                 let v = super::num::value(arg, &|n| data.nums.get(n).cloned());
@@ -96,7 +104,7 @@ impl Bindings {
                 "robtarget" | "jointtarget" => {
                     let value = match &why {
                         Some(w) => Err(w.clone()),
-                        None => bound_target(data, &key, &run),
+                        None => bound_target(data, &key, &run, reference),
                     };
                     out.targets.push((name, value));
                 }
@@ -147,13 +155,22 @@ impl Bindings {
 }
 
 /// The caller's target `key` as a bound parameter: its declaration stays the caller's, its visit
-/// from the procedure writes there (never a copy under another name: the procedure names the
-/// parameter, not the datum).
-fn bound_target(data: &Data, key: &str, run: &str) -> std::result::Result<JointTarget, String> {
+/// from the procedure writes there; named at the call's argument (`reference`, bytes of the
+/// text) where the call may name a copy under another name (a routine of the module read at its
+/// call, module `percall`), else never copied (the procedure names the parameter, not the datum).
+fn bound_target(
+    data: &Data,
+    key: &str,
+    run: &str,
+    reference: Option<std::ops::Range<usize>>,
+) -> std::result::Result<JointTarget, String> {
     match data.targets.get(key) {
         Some(Ok(t)) if t.point.as_deref().is_some_and(|p| p.foreign.is_some()) => Err(format!(
             "{run}, declared in another module of the task: declare it in the caller's module"
         )),
+        Some(Ok(t)) if t.point.is_some() && reference.is_some() => {
+            Ok(t.clone().named_at(reference.unwrap_or_default()))
+        }
         Some(Ok(t)) => Ok(JointTarget {
             point: None,
             ..t.clone()

@@ -4,8 +4,9 @@
 //! names a datum the caller reads is that datum, a `num` argument whose value the module states
 //! (a number, arithmetic of `num` data, module `num`) is that value; any other argument leaves
 //! its parameter the run's, refused at the motion that uses it, naming the call. Each call's
-//! motions are compensated in place; where two calls need two values of one point the routine's
-//! motion names, the writing refuses naming the motion.
+//! motions are compensated in place: a target argument is compensated in its declaration, and
+//! where two calls need two values of it, the later call names a copy (`p1_2`) declared after it;
+//! where one call's motions need two values of its one argument, refused naming the call.
 
 use super::called::{Bindings, Task, MAX_READS};
 use super::state::{Conf, Entry, Here, Module};
@@ -42,9 +43,12 @@ pub(super) fn read(
         return Err(at(line, format!("{name}: more than {MAX_READS} calls of routines with parameters read: stiffid reads each where it is called")));
     }
     let header = super::calls::header(text, &key);
+    // The arguments end the call's statement: where they are in the text, so that a target
+    // argument the call's motions need twice is renamed there to its copy.
+    let renamed = here.statement.span.end - args.len();
     let entry = Entry {
         name: key,
-        bindings: Bindings::of(&header, (args, line), data),
+        bindings: Bindings::of(&header, (args, line, Some(renamed)), data),
         place: here.place,
         conf: conf.clone(),
         alone: true,

@@ -430,7 +430,7 @@ fn call_of(
     let header = calls::header(text, &key);
     let entry = Entry {
         name: key,
-        bindings: Bindings::of(&header, (args, line), data),
+        bindings: Bindings::of(&header, (args, line, None), data),
         place: here.place,
         conf: conf.clone(),
         alone: false,

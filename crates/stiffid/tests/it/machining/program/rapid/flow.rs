@@ -243,9 +243,26 @@ fn a_routine_with_parameters_is_read_at_each_call_with_its_arguments() {
             .replace("[[1,0,0,0,30,0]", "[[1.500000000,0,0,0,30,0]")
             .replace("[[2,0,0,0,30,0]", "[[2.500000000,0,0,0,30,0]")
     );
-    let twice = program::parse(&joints.replace("Go j2;", "Go j1;"), Dialect::Rapid).unwrap();
-    let e = twice.write(&q).unwrap_err().to_string();
-    assert!(e.contains("line 9"), "{e}");
+    // One point at two calls compensated apart: the later call names a copy declared after it.
+    let twice = joints.replace("Go j2;", "Go j1;");
+    let out = program::parse(&twice, Dialect::Rapid)
+        .unwrap()
+        .write(&q)
+        .unwrap();
+    assert!(out.contains("    Go j1;\n    Go j1_2;\n"), "{out}");
+    assert!(out.contains("CONST jointtarget j1_2 := [[2.5"), "{out}");
+    let back = program::parse(&out, Dialect::Rapid).unwrap();
+    let read: Vec<[f64; 6]> = back.targets.iter().map(|t| t.q_deg).collect();
+    assert_eq!(read, q);
+    // One call whose motions need two values of its one argument: refused naming the call.
+    let two = joints.replace(
+        "    MoveAbsJ j, v100, fine, tool0;\n",
+        "    MoveAbsJ j, v100, fine, tool0;\n    MoveAbsJ j, v100, fine, tool0;\n",
+    );
+    let two = program::parse(&two, Dialect::Rapid).unwrap();
+    let q4 = [q[0], [1.25, 0.0, 0.0, 0.0, 30.0, 0.0], q[1], q[1]];
+    let e = two.write(&q4).unwrap_err().to_string();
+    assert!(e.contains("the point named on line 5"), "{e}");
     // An argument the run gives: refused at the motion, naming the call.
     for (call, said) in [
         (
