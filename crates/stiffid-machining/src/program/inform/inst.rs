@@ -139,6 +139,9 @@ pub(super) fn instructions(text: &str) -> Result<Instructions> {
             continue;
         }
         if in_inst && t.starts_with("///GROUP") {
+            if let Some((first, _)) = &last {
+                return Err(at(line, format!("{}: a control group line after an instruction (line {first}): a job states its groups before its instructions; which groups it moves is not certain", short(t))));
+            }
             let words = t.split_whitespace().skip(1).flat_map(|w| w.split(','));
             for name in words.map(str::trim).filter(|w| !w.is_empty()) {
                 let (text, name) = (t.to_string(), name.to_string());
@@ -185,9 +188,9 @@ pub(super) fn instructions(text: &str) -> Result<Instructions> {
                 if let Some((w, text)) = &weaving {
                     return Err(at(*w, format!("{}: weaving (WVON) moves the tool across the path in the motions after it, up to WVOF, so the path the controller runs is not the job's: remove it or compensate the job without it", short(text))));
                 }
-                let mut m = match first.strip_prefix('S') {
-                    Some(word) => coordinated(line, word, &words[1..])?,
-                    None => motion(line, &first, &words[1..])?,
+                let mut m = match first.starts_with('S') {
+                    true => coordinated(line, &first, &words[1..])?,
+                    false => motion(line, &first, &words[1..])?,
                 };
                 m.shift = shifting;
                 out.motions.push(m);
@@ -376,7 +379,7 @@ fn station_motion(line: u64, word: &str, words: &[&str], m: &mut Motion) -> Resu
     Ok(())
 }
 
-/// A coordinated motion `SMOVL` or `SMOVC` (`word` `MOVL` or `MOVC`, `words` after it): the
+/// A coordinated motion `SMOVL` or `SMOVC` (`word`, `words` after it; read as `MOVL`, `MOVC`): the
 /// robot moves relative to the part on the moving station, at the speed `V=` relative to it,
 /// and both groups end together at their positions (`SMOVL C00008 BC00008 V=166.7  +MOVJ
 /// EC00008`, as RoboDK's Motoman post writes it); read as the motion `word` to the robot's
@@ -385,8 +388,11 @@ fn station_motion(line: u64, word: &str, words: &[&str], m: &mut Motion) -> Resu
 fn coordinated(line: u64, word: &str, words: &[&str]) -> Result<Motion> {
     let m = motion(line, word, words)?;
     match m.station {
-        Some(_) => Ok(m),
-        None => Err(at(line, format!("S{word} {}: a coordinated motion without the station's position (+MOVJ EC00000 or EC00000 on the line): where the part is when the robot arrives is the controller's, which the job does not say", short(&words.join(" "))))),
+        Some(_) => Ok(Motion {
+            word: word[1..].to_string(),
+            ..m
+        }),
+        None => Err(at(line, format!("{word} {}: a coordinated motion without the station's position (+MOVJ EC00000 or EC00000 on the line): where the part is when the robot arrives is the controller's, which the job does not say", short(&words.join(" "))))),
     }
 }
 

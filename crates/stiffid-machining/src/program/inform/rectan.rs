@@ -10,6 +10,7 @@ use super::pos::Position;
 use super::{toolcnd, uframe};
 use crate::program::cartesian::{within_limits, Cartesian, Flags, Frame};
 use crate::program::{at, Context, Dialect};
+use stiffid_core::setup::NumberedFrames;
 use stiffid_core::Result;
 
 /// The numbers of a position, in order.
@@ -17,33 +18,60 @@ const NAMES: [&str; 6] = ["X", "Y", "Z", "Rx", "Ry", "Rz"];
 
 /// The frames the controller's backup gives by number: its tool files (`TOOL.CND`) and user
 /// frames (`UFRAME.CND`).
-pub(super) struct Held {
-    tools: toolcnd::Tools,
-    users: uframe::Frames,
+pub(super) struct Held<'a> {
+    tools: Numbered<'a>,
+    users: Numbered<'a>,
 }
 
-impl Held {
+/// The frames of one kind by number: the backup's file's (its name when given) and the
+/// setup's `[controller]` table's, with their names for messages (`tool file`, `tools`).
+struct Numbered<'a> {
+    held: std::collections::BTreeMap<u32, (nalgebra::Isometry3<f64>, String)>,
+    file: Option<&'a str>,
+    table: Option<&'a NumberedFrames>,
+    names: (&'static str, &'static str),
+}
+
+impl<'a> Held<'a> {
     /// The frames of the `context`'s backup.
     ///
     /// # Errors
     /// Those of reading `TOOL.CND` and `UFRAME.CND`.
-    pub(super) fn of(context: &Context) -> Result<Self> {
+    pub(super) fn of(context: &Context<'a>) -> Result<Self> {
+        let file = |name: &str| context.backup_file(name).map(|(n, _)| n);
         Ok(Held {
-            tools: toolcnd::tools(context)?,
-            users: uframe::frames(context)?,
+            tools: Numbered {
+                held: toolcnd::tools(context)?,
+                file: file(toolcnd::FILE),
+                table: context.tool.map(|(_, t)| t),
+                names: ("tool file", "tools"),
+            },
+            users: Numbered {
+                held: uframe::frames(context)?,
+                file: file(uframe::FILE),
+                table: context.bases,
+                names: ("user frame", "bases"),
+            },
         })
     }
 }
 
 /// Frame number `n` selected on `line`: the backup's where it gives it, else one of the
-/// setup's `[controller]` tables (checked where the target is resolved).
-fn by_number(
-    held: &std::collections::BTreeMap<u32, (nalgebra::Isometry3<f64>, String)>,
-    (line, n): (u64, u32),
-) -> Frame {
-    match held.get(&n) {
-        Some((f, source)) => Frame::Held(line, n, *f, source.clone()),
-        None => Frame::Numbered(line, n),
+/// setup's `[controller]` tables (checked where the target is resolved); refused naming the
+/// backup's file where it is given and neither gives it.
+fn by_number(frames: &Numbered, (line, n): (u64, u32)) -> Frame {
+    match (frames.held.get(&n), frames.file) {
+        (Some((f, source)), _) => Frame::Held(line, n, *f, source.clone()),
+        (None, Some(file)) if frames.table.and_then(|t| t.get(n)).is_none() => {
+            let (what, key) = frames.names;
+            let list: Vec<String> = frames.held.keys().map(u32::to_string).collect();
+            let gives = match list.is_empty() {
+                true => format!("no {what}"),
+                false => format!("{what}s {} only", list.join(", ")),
+            };
+            Frame::Unknown(line, format!("{what} {n}: the backup's {file} gives {gives}, and the setup's [controller] {key} none: give the backup holding the controller's {what} {n}, or the frame in [controller] {key} ({{ number = {n}, xyz_mm = [..], rpy_deg = [..] }})"))
+        }
+        (None, _) => Frame::Numbered(line, n),
     }
 }
 

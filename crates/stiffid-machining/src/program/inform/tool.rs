@@ -59,7 +59,7 @@ pub(super) fn check(
             let off = (setup.translation.vector - held.translation.vector).norm();
             if off > SAME_M {
                 let before = match first {
-                    Some((at_line, was, _)) if was != n => format!(" after tool file {was} (line {at_line}), the setup's tool: a job moving with two tool files whose centre points differ holds two tools, and one setup compensates one; compensate the motions of each tool file with a setup of that tool"),
+                    Some((at_line, was, _)) if was != n => format!("; the job moved with tool file {was} (line {at_line}), the setup's tool, before it: a job with two tool files whose centre points differ moves two tools, and one setup compensates one; compensate the motions of each tool file with a setup of that tool"),
                     _ => ": write the job for it".into(),
                 };
                 return Err(at(line, format!("tool file {n}, which {said} gives as {}, is not the setup's tool ({}: its [tool] tcp_mm, after [robot_flange]); compensation moves the setup's tool{before}", words(held), words(&setup))));

@@ -730,4 +730,12 @@ fn a_station_only_job_is_refused_saying_what_it_is() {
         message.contains("the station alone, without the robot's position C"),
         "{message}"
     );
+    // A group line among the instructions: which groups the job moves is not certain.
+    let late = robot.replace("NOP\r\n", "NOP\r\n///GROUP3 ST2\r\n");
+    let (line, message) = refused(parse_in(&late, Dialect::Inform, &with(&p)));
+    assert_eq!(line, 13, "{message}");
+    assert!(
+        message.contains("///GROUP3 ST2: a control group line after an instruction (line 12)"),
+        "{message}"
+    );
 }

@@ -189,6 +189,20 @@ fn the_backups_user_frame_and_tool_file_are_read_and_refusals_name_the_line() {
             other => panic!("{other:?}"),
         }
     }
+    // One that holds other user frames names itself and the frames it gives.
+    let other = [
+        (
+            backup[0].0.clone(),
+            backup[0].1.replace("//UFRAME 2", "//UFRAME 7"),
+        ),
+        backup[1].clone(),
+    ];
+    let (line, message) = refused(resolved(&bare, &text, &other));
+    assert_eq!(line, 5, "{message}");
+    assert!(
+        message.contains("user frame 2: the backup's CMOS/UFRAME.CND gives user frames 7 only"),
+        "{message}"
+    );
     let (line, message) = refused(resolved(&bare, &text, &backup[1..]));
     assert_eq!(line, 5, "{message}");
     assert!(
