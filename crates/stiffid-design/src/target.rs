@@ -20,7 +20,7 @@ use stiffid_core::setup::Setup;
 use stiffid_core::Error;
 
 /// The smallest group size tried.
-pub const MIN_POSTURES: usize = 2;
+pub(crate) const MIN_POSTURES: usize = 2;
 
 /// The largest group size tried.
 pub const MAX_POSTURES: usize = 60;
@@ -70,7 +70,7 @@ impl TargetStep {
 pub struct TargetOutcome {
     /// The target, %.
     pub target_pct: f64,
-    /// One step per group size from [`MIN_POSTURES`] up: to the first that reaches the target, or
+    /// One step per group size from 2 up: to the first that reaches the target, or
     /// to the largest allowed.
     pub steps: Vec<TargetStep>,
     /// Whether the last step's worst joint is at most the target.
@@ -91,14 +91,14 @@ impl TargetOutcome {
     }
 }
 
-/// Tries group sizes `n` = [`MIN_POSTURES`], 3, ... up to `max_postures` (at most
+/// Tries group sizes `n` = 2, 3, ... up to `max_postures` (at most
 /// [`MAX_POSTURES`]), choosing each group with `choose(n)` (a search or a pool choice by some
 /// criterion), and stops at the first whose worst predicted deviation rate at noise multiple 1
 /// (of the joints and the model's virtual springs) is at most `target_pct` (%).
 ///
 /// # Errors
 /// [`Error::InvalidOption`] ([`JobOption::TargetPct`]) for a target that is not a finite number > 0,
-/// (`postures`) for `max_postures` below [`MIN_POSTURES`]; [`Error::MissingField`] for a setup
+/// (`postures`) for `max_postures` below 2; [`Error::MissingField`] for a setup
 /// without a nominal stiffness (the predicted deviation rates need it); whatever `choose` returns.
 pub fn smallest_group<E: From<Error>>(
     setup: &Setup,

@@ -9,7 +9,7 @@ use super::calibration_update::{
 };
 use nalgebra::{DVector, Vector6};
 use stiffid::app::calibrate::{self, Refit, Refits, Report};
-use stiffid::internal::metrology::calibration::gravity::Terms;
+use stiffid::internal::metrology::calibration::gravity::{Gravity, Terms};
 use stiffid::internal::model::OwnWeight;
 use stiffid::{Coordinates, Setup};
 
@@ -17,7 +17,13 @@ use stiffid::{Coordinates, Setup};
 /// nominal chain, as the calibration evaluates them), with values that sag the arm by about
 /// 0.1 to 1 mm, times `scale`.
 fn weight(scale: f64) -> (Terms, OwnWeight) {
-    let terms = Terms::lumped_bodies(&robot(&OFFSETS), Coordinates::Axis);
+    let terms = Terms::of(
+        &robot(&OFFSETS),
+        Gravity::Lumped,
+        Coordinates::Axis,
+        Vector6::zeros(),
+    )
+    .unwrap();
     let values: Vec<f64> = (0..terms.len())
         .map(|i| scale * [6e-5, 2e-5, -1e-5, 1.5e-5][i % 4] * (1.0 + 0.1 * (i / 4) as f64))
         .collect();

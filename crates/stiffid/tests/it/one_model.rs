@@ -125,7 +125,13 @@ fn the_calibrated_robot_carries_the_sag_and_the_tool_once() {
 #[test]
 fn lumped_terms_hold_the_tool_of_the_calibration() {
     let bare = heavy_on("", "", &calibrated_text("")).unwrap();
-    let terms = Terms::lumped_bodies(bare.robot(), Coordinates::Axis);
+    let terms = Terms::of(
+        bare.robot(),
+        gravity::Gravity::Lumped,
+        Coordinates::Axis,
+        Vector6::zeros(),
+    )
+    .unwrap();
     let own = OwnWeight {
         gravity: "lumped".into(),
         terms: (terms.terms().iter().enumerate())
@@ -157,7 +163,13 @@ fn lumped_terms_hold_the_tool_of_the_calibration() {
 #[test]
 fn lumped_terms_hold_the_tools_centre_of_the_calibration() {
     let bare = heavy_on("", "", &calibrated_text("")).unwrap();
-    let terms = Terms::lumped_bodies(bare.robot(), Coordinates::Axis);
+    let terms = Terms::of(
+        bare.robot(),
+        gravity::Gravity::Lumped,
+        Coordinates::Axis,
+        Vector6::zeros(),
+    )
+    .unwrap();
     let own = OwnWeight {
         gravity: "lumped".into(),
         terms: (terms.terms().iter().enumerate())

@@ -74,7 +74,7 @@ pub enum Gravity {
     /// Known masses and centres, unknown compliances.
     Masses,
     /// Unknown masses: compliance times mass moment of three bodies, the upper arm, the forearm
-    /// and the wrist ([`Terms::lumped_bodies`]).
+    /// and the wrist ([`Terms::of`] builds its terms).
     Lumped,
     /// Unknown masses: compliance times mass moment, for every spring and every link it carries
     /// ([`Terms::lumped`]).
@@ -255,7 +255,7 @@ impl Terms {
 
     /// The model `gravity` of `robot` with springs in `coordinates`: [`Terms::none`],
     /// [`Terms::masses`] of the robot's link masses (the compliances' nominal values `nominal`,
-    /// rad/(N m)), [`Terms::lumped_bodies`], [`Terms::lumped`] or [`Terms::arm`].
+    /// rad/(N m)), the lumped terms of three bodies, [`Terms::lumped`] or [`Terms::arm`].
     ///
     /// # Errors
     /// [`Error::InvalidField`] (`gravity`) for [`Gravity::Masses`] with a robot without masses;
@@ -331,7 +331,7 @@ impl Terms {
 
     /// Unknown masses, three bodies (module docs, [`Gravity::Lumped`]): the lumped terms of every
     /// spring (in `coordinates`) and every body of [`Gravity::Lumped`] it carries.
-    pub fn lumped_bodies(robot: &Robot, coordinates: Coordinates) -> Self {
+    pub(crate) fn lumped_bodies(robot: &Robot, coordinates: Coordinates) -> Self {
         Self::lumped_links((robot, Gravity::Lumped), coordinates, &BODIES)
     }
 

@@ -72,7 +72,13 @@ fn simulate(models: &[&str], splits: u64, gravity: Option<fit::GravityPrior>) ->
         .map(|m| {
             let g = match *m {
                 "none" => gravity::Terms::none(&robot),
-                "lumped" => gravity::Terms::lumped_bodies(&robot, Coordinates::Kinematic),
+                "lumped" => gravity::Terms::of(
+                    &robot,
+                    gravity::Gravity::Lumped,
+                    Coordinates::Kinematic,
+                    Vector6::zeros(),
+                )
+                .unwrap(),
                 "lumped-links" => gravity::Terms::lumped(&robot, Coordinates::Kinematic),
                 _ => gravity::Terms::masses(&robot, masses, Coordinates::Kinematic, compliance)
                     .unwrap(),

@@ -173,7 +173,13 @@ fn loaded_jacobian_matches_central_differences() {
     let setup = setup(SPRING);
     let robot = setup.robot();
     for g in [
-        gravity::Terms::lumped_bodies(robot, setup.springs()),
+        gravity::Terms::of(
+            robot,
+            gravity::Gravity::Lumped,
+            setup.springs(),
+            Vector6::zeros(),
+        )
+        .unwrap(),
         gravity::Terms::masses(
             robot,
             masses(),
@@ -200,7 +206,13 @@ fn loaded_jacobian_matches_central_differences() {
 #[test]
 fn geometry_gravity_and_drive_compliances_recovered() {
     let setup = setup("");
-    let g = gravity::Terms::lumped_bodies(setup.robot(), setup.springs());
+    let g = gravity::Terms::of(
+        setup.robot(),
+        gravity::Gravity::Lumped,
+        setup.springs(),
+        Vector6::zeros(),
+    )
+    .unwrap();
     let model = model(&setup, g);
     let fit = recovers(&model, 5e-5, &postures(setup.robot(), 30, 4));
     let names: Vec<&str> = (model.compliance_columns().unwrap().iter())

@@ -152,7 +152,13 @@ pub(super) fn model(robot: &Robot, name: &str, masses: [LinkMass; 6]) -> ErrorMo
     let g = match name {
         "none" => gravity::Terms::none(robot),
         "arm" => gravity::Terms::arm(robot, Coordinates::Kinematic).unwrap(),
-        "lumped" => gravity::Terms::lumped_bodies(robot, Coordinates::Kinematic),
+        "lumped" => gravity::Terms::of(
+            robot,
+            gravity::Gravity::Lumped,
+            Coordinates::Kinematic,
+            Vector6::zeros(),
+        )
+        .unwrap(),
         "lumped-links" => gravity::Terms::lumped(robot, Coordinates::Kinematic),
         _ => gravity::Terms::masses(
             robot,

@@ -348,7 +348,13 @@ fn gravity_lumped_recovered() {
 #[test]
 fn gravity_lumped_bodies_recovered() {
     let robot = fanuc();
-    let g = gravity::Terms::lumped_bodies(&robot, stiffid_core::Coordinates::Kinematic);
+    let g = gravity::Terms::of(
+        &robot,
+        gravity::Gravity::Lumped,
+        stiffid_core::Coordinates::Kinematic,
+        Vector6::zeros(),
+    )
+    .unwrap();
     let model = ErrorModel::new(&robot, &points(), MeasuredIn::Tracker, Geometry::Full, g).unwrap();
     let id = recovers(&model, &postures(&robot, 40, 4), 5e-5);
     let kept: Vec<&str> = (id.identified.iter())

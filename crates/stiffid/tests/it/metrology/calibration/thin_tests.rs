@@ -54,7 +54,13 @@ fn masses(share: f64) -> [LinkMass; 6] {
 fn model(robot: &Robot, name: &str, c: Campaign) -> ErrorModel {
     let g = match name {
         "none" => gravity::Terms::none(robot),
-        "lumped" => gravity::Terms::lumped_bodies(robot, Coordinates::Kinematic),
+        "lumped" => gravity::Terms::of(
+            robot,
+            gravity::Gravity::Lumped,
+            Coordinates::Kinematic,
+            Vector6::zeros(),
+        )
+        .unwrap(),
         "masses" => gravity::Terms::masses(
             robot,
             masses(c.mass),
