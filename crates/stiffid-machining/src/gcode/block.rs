@@ -12,9 +12,9 @@ use stiffid_core::common::limits::LENGTH_MM;
 use stiffid_core::common::words::number;
 use stiffid_core::Result;
 
-pub(super) const SUBSET: &str = "G0-G4, G5.1 (linuxcnc), G10 L2, G10 L20, G17-G21, G28, G30, G40-G42, G43, G44, G49, G53-G59.3, G54.1, G61, G61.1, G64, G80-G83, G90, G90.1, G91, G91.1, G92.1, G92.2, G94, G98, G99";
-
 use super::spline::SPLINE;
+use super::subset::unsupported;
+use super::subset::SUBSET;
 use super::NO_MOTION;
 
 /// The words of one block, gathered before it moves anything (the block's units).
@@ -57,6 +57,8 @@ pub(super) struct Given {
     l: Option<(f64, Range<usize>)>,
     /// `G10`: a work offset set (module `g10`).
     g10: bool,
+    /// `G92`: the coordinate system shifted (module `g92`).
+    g92: bool,
 }
 
 pub(super) fn block(
@@ -82,6 +84,13 @@ pub(super) fn block(
     super::process::gather(line, words, s);
     if given.g10 {
         return given.set_offset(line, s);
+    }
+    if given.g92 {
+        let other = given.with_other()
+            || given.l.is_some()
+            || given.radius.is_some()
+            || given.cycle.dwell.is_some();
+        return super::g92::set(line, (given.target, other), s);
     }
     // LinuxCNC and grbl read an axis word beside G4 P as a move in the motion mode in force,
     // made after the dwell (LinuxCNC's order of execution; grbl's G4 takes no axis words).
@@ -238,6 +247,7 @@ impl Given {
             g @ (41 | 42) => self.comp = Some((g, Some(w.span.clone()))),
             40 => self.comp = Some((40, None)),
             10 => self.g10 = true,
+            92 => self.g92 = true,
             g @ 17..=19 => {
                 if g != s.plane {
                     super::cutter::refuse_while_on(line, &format!("G{g}: a change of plane"), s)?;
@@ -266,9 +276,8 @@ impl Given {
             51 => self.motion = Some((SPLINE, span)),
             541 | 591..=593 => self.offset = Some(tenths),
             611 => {}
-            // G92.1, G92.2: no G92 offset in force (none can be set: G92 is refused), as the
-            // setup's frames are read.
-            921 | 922 => {}
+            // G92.1, G92.2: no G92 offset in force (module `g92`).
+            921 | 922 => super::g92::cancel(s),
             901 => s.ij_absolute = true,
             911 => s.ij_absolute = false,
             _ => {
@@ -334,9 +343,12 @@ impl Given {
             return Err(at(line, format!("G{g}: a tool length offset needs the tools' lengths: give [tool] length_mm in the process's operations (with their tool_number)")));
         }
         let n = match (self.h, s.tool_number) {
-            (Some(h), _) if h.fract() == 0.0 && (0.0..=1e6).contains(&h) => h as u32,
+            (Some(h), _) if h.fract() == 0.0 && (0.0..=1e6).contains(&h) => Some(h as u32),
             (Some(h), _) => return Err(at(line, format!("H{h}: expected a tool number"))),
-            (None, Some(t)) => t,
+            (None, Some(t)) => Some(t),
+            // One length for every tool (an operation without tool_number): whichever tool the
+            // spindle holds, that is its length.
+            (None, None) if s.machine.tool_lengths.iter().all(|(t, _)| t.is_none()) => None,
             (None, None) => {
                 return Err(at(
                     line,
@@ -346,7 +358,8 @@ impl Given {
                 ))
             }
         };
-        let Some(length) = s.machine.tool_length(Some(n)) else {
+        let Some(length) = s.machine.tool_length(n) else {
+            let n = n.unwrap_or(0);
             return Err(at(line, format!("G{g} H{n}: the process's tool table has no length for tool {n} (give [tool] length_mm in the operation with tool_number = {n})")));
         };
         let h = if g == 44 { -length } else { length };
@@ -381,18 +394,7 @@ impl Given {
 
     /// A `G10` block: a work offset set (module `g10`), nothing else in it.
     fn set_offset(&self, line: u64, s: &mut State) -> Result<()> {
-        let other = self.motion.is_some()
-            || self.home.is_some()
-            || self.g53
-            || self.offset.is_some()
-            || self.length.is_some()
-            || self.comp.is_some()
-            || self.g4
-            || self.abc
-            || self.external
-            || self.centre_given()
-            || self.polar.iter().any(Option::is_some);
-        if other {
+        if self.with_other() {
             return Err(at(line, "G10 with a motion, a dwell, another offset or arc words in its block: write the G10 in a block of its own".into()));
         }
         let words = super::g10::Words {
@@ -402,6 +404,22 @@ impl Given {
             r: self.radius,
         };
         super::g10::apply(line, &words, s)
+    }
+
+    /// Whether the block has a motion, a dwell, an offset or arc words beside a `G10` or `G92`.
+    fn with_other(&self) -> bool {
+        self.motion.is_some()
+            || self.home.is_some()
+            || self.g53
+            || self.offset.is_some()
+            || self.length.is_some()
+            || self.comp.is_some()
+            || self.g4
+            || self.abc
+            || self.external
+            || self.centre_given()
+            || self.polar.iter().any(Option::is_some)
+            || self.g10 && self.g92
     }
 
     /// Whether the block gives an axis word (X Y Z, a rotary or an external axis).
@@ -575,7 +593,7 @@ fn motion(
     if !known.iter().all(|k| *k) {
         if s.motion != 0 {
             let what = format!("G{}: a feed move", s.motion);
-            return Err(refuse_unknown(line, &what, known, s));
+            return Err(super::modal::refuse_unknown(line, &what, known, s));
         }
         s.pending.get_or_insert(line);
         (s.position, s.known) = back(end, known, s);
@@ -586,7 +604,7 @@ fn motion(
             1 => "G1: a feed move".to_string(),
             g => format!("G{g}: an arc"),
         };
-        return Err(refuse_unknown(line, &what, here.1, s));
+        return Err(super::modal::refuse_unknown(line, &what, here.1, s));
     }
     if s.motion == 0 && block_lift.is_none() && s.tool_number.is_none() {
         // Before any T the spindle holds whatever tool the machine holds, whose length the
@@ -642,14 +660,6 @@ fn motion(
     Ok(())
 }
 
-/// The error for a motion that needs every axis known and lacks one.
-fn refuse_unknown(line: u64, what: &str, known: [bool; 3], s: &State) -> stiffid_core::Error {
-    at(
-        line,
-        format!("{what} from or to a place not known: {}", s.unknown(known)),
-    )
-}
-
 /// The positions an arc passes, in m, within `tolerance`, and its centre in the plane.
 fn positions(
     line: u64,
@@ -681,20 +691,5 @@ fn positions(
         given.centre.map(|c| c.map(|v| v * scale)),
         given.radius.map(|r| r * scale),
         tolerance,
-    )
-}
-
-/// The error for a `G` code outside the subset, saying why for those real posts write.
-fn unsupported(line: u64, g: &str) -> stiffid_core::Error {
-    let why = match g {
-        "G92" | "G92.3" => ": it sets an offset from the machine's position at run time, which stiffid cannot know; give the work offsets in the setup ([workpiece.offsets])",
-        "G93" | "G95" => ": the feed rate F would be per block (G93) or per revolution (G95); post the program in G94 (per minute)",
-        "G28.1" | "G30.1" => ": it stores the machine's position at run time as the home position; give it in the setup ([workpiece] g28_mm, g30_mm)",
-        "G68" | "G51" | "G50.1" | "G51.1" | "G15" | "G16" => ": a coordinate rotation, scaling, mirror or polar mode the path would pass through",
-        _ => "",
-    };
-    at(
-        line,
-        format!("{g}: not in the supported subset ({SUBSET}){why}"),
     )
 }

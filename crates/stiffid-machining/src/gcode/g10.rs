@@ -56,6 +56,9 @@ impl State {
 
 /// A `G10` block (module docs).
 pub(super) fn apply(line: u64, w: &Words, s: &mut State) -> Result<()> {
+    if s.g92 != Vector3::zeros() {
+        return Err(at(line, "G10 while a G92 shift is in force: controllers differ on whether the offset set includes it; cancel it (G92.1) first".into()));
+    }
     let refuse = |why: String| Err(at(line, why));
     let l = match w.l {
         Some(l) if l == 2.0 || l == 20.0 => l as u8,

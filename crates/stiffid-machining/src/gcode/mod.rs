@@ -85,6 +85,7 @@ mod dwell;
 mod expand;
 mod g10;
 mod g53;
+mod g92;
 mod groups;
 mod home;
 mod machine;
@@ -92,6 +93,7 @@ mod modal;
 mod polar;
 mod process;
 mod spline;
+mod subset;
 mod words;
 mod write;
 
@@ -309,6 +311,8 @@ struct State {
     surface: f64,
     /// The work offsets the program set (`G10`, module `g10`).
     set: g10::Set,
+    /// The `G92` shift in force, along the frame's axes, m (module `g92`).
+    g92: Vector3<f64>,
 }
 
 impl State {
@@ -342,6 +346,7 @@ impl State {
             cycle: Default::default(),
             surface: 0.0,
             set: Default::default(),
+            g92: Vector3::zeros(),
             known: [false; 3],
             pending: None,
             left_unknown: [None; 3],

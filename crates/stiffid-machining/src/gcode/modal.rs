@@ -160,7 +160,11 @@ impl State {
 /// The frame of the work offset `name` the setup gives, or the error naming the line.
 pub(super) fn frame(line: u64, name: String, s: &State) -> Result<Frame> {
     match s.offset(&name) {
-        Some(part_from) => Ok(Frame { name, part_from }),
+        // A G92 shift in force shifts every work offset alike (module `g92`).
+        Some(part_from) => Ok(Frame {
+            name,
+            part_from: part_from * nalgebra::Translation3::from(s.g92),
+        }),
         None => Err(at(line, format!("{name}: the setup gives no frame for this work offset: give it under [workpiece.offsets] ({} = {{ xyz_mm = [..], rpy_deg = [..] }}, its frame in the G54 part frame)", toml_key(&name)))),
     }
 }
@@ -230,4 +234,17 @@ pub(super) fn push_points(
         });
     }
     Ok(())
+}
+
+/// The error for a motion that needs every axis known and lacks one.
+pub(super) fn refuse_unknown(
+    line: u64,
+    what: &str,
+    known: [bool; 3],
+    s: &State,
+) -> stiffid_core::Error {
+    at(
+        line,
+        format!("{what} from or to a place not known: {}", s.unknown(known)),
+    )
 }

@@ -201,6 +201,16 @@ fn tool_length_offsets_place_the_tip_with_the_process_tool_table() {
         "G43 H3: the process's tool table has no length for tool 3",
     );
     refused("G43 Z10\n", &m, 2, "G43 without H before any T");
+    // One length for every tool: G43 alone puts it in force, whichever tool the spindle holds.
+    let one = Machine {
+        tool_lengths: vec![(None, 0.05)],
+        ..Default::default()
+    };
+    let g = read("G43 G0 X0 Y0 Z10\nG1 Z-1 F100\n", &one);
+    assert_eq!(
+        (g.points[1].position, g.no_length_offset),
+        (mm(0.0, 0.0, -1.0), None)
+    );
     refused(
         "T1 G43 H1\n",
         &Machine::default(),
@@ -511,7 +521,7 @@ fn what_real_posts_write_is_read_or_refused_naming_the_line() {
         ("o100 sub\n", "O100: no endsub of the same label after it"),
         ("O<probe> call [1]\n", "O<probe> call: no O<probe> sub in this file"),
         ("M98 P100\n", "P100: the program O100 is not in this file"),
-        ("G92 X0 Y0\n", "G92: not in the supported subset"),
+        ("G92 X0 Y0\n", "G92: read with [controller] dialect"),
         ("G93\n", "G93: not in the supported subset"),
         ("G41 D1\n", "G41: controllers enter cutter radius compensation"),
         ("G0 @10 ^45\n", "polar coordinates (@ ^): LinuxCNC's words"),

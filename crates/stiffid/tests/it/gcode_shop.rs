@@ -352,3 +352,39 @@ fn linuxcncs_quadratic_spline_runs_as_its_biarcs() {
     );
     refused("G0 X0 Y0 Z0\nG5.1 X2 I2 F9\n", &m, 3, "both I and J");
 }
+
+#[test]
+fn linuxcncs_g92_shifts_every_offset_from_where_the_tool_is() {
+    let m = Machine {
+        dialect: Some(GcodeDialect::LinuxCnc),
+        frames: ProgramFrames {
+            offsets: vec![("G55".into(), Isometry3::translation(0.1, 0.0, 0.0))],
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    // G92 X0 at X1: X reads 1 less in G54 and in G55 alike, until G92.1.
+    let text = "G21\nG0 X1 Y0 Z5\nG92 X0\nG0 X2\nG55 G0 X0\nG92.1\nG0 X0\n";
+    let x: Vec<f64> = parse(text, &m)
+        .unwrap()
+        .points
+        .iter()
+        .map(|p| p.position.x * 1e3)
+        .collect();
+    assert_eq!(x.len(), 4);
+    for (a, b) in x.iter().zip([1.0, 3.0, 101.0, 100.0]) {
+        assert!((a - b).abs() < 1e-9, "{x:?}");
+    }
+    refused(
+        text,
+        &Machine::default(),
+        4,
+        "G92: read with [controller] dialect",
+    );
+    refused(
+        "G0 X1 Y0\nG92 Z0\n",
+        &m,
+        3,
+        "G92: the tool's position is not known",
+    );
+}
