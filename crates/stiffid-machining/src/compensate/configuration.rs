@@ -97,7 +97,7 @@ impl Configurations {
     }
 
     /// `points` as the configuration chosen takes them: as they are in the path's own, else
-    /// their poses ([`posed`]).
+    /// their poses (every posture target replaced by its TCP pose).
     pub fn in_chosen(&self, arm: &Arm, points: &[PathPoint]) -> Vec<PathPoint> {
         match self.branches[self.chosen].own {
             true => points.to_vec(),
@@ -108,7 +108,7 @@ impl Configurations {
 
 /// `points` with every posture target replaced by its TCP pose (forward kinematics at the arm's
 /// TCP), for inverse kinematics to solve in another configuration.
-pub fn posed(arm: &Arm, points: &[PathPoint]) -> Vec<PathPoint> {
+pub(crate) fn posed(arm: &Arm, points: &[PathPoint]) -> Vec<PathPoint> {
     let pose = |q: &Vector6<f64>| tool_pose(&arm.robot().frames(q), &arm.tool().tcp);
     (points.iter())
         .map(|p| match &p.target {
@@ -123,7 +123,7 @@ pub fn posed(arm: &Arm, points: &[PathPoint]) -> Vec<PathPoint> {
 
 /// The path compensated by `evaluate` in every configuration of the arm, the best kept (module
 /// docs of [`super`]): the path's own as given, every other from its posture at the first
-/// point with the points' poses ([`posed`]), refused where a point fails, a posture fails the
+/// point with the points' poses (each posture target replaced by its TCP pose), refused where a point fails, a posture fails the
 /// checks of [`Options::feasible`] or leaves the configuration; a peak below `floor` (m) counts
 /// as `floor` ([`Branch::value`]).
 ///

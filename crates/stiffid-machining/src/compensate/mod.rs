@@ -200,7 +200,7 @@ mod validate;
 pub(crate) mod variables;
 
 pub(crate) use budget::Budget;
-pub use configuration::{posed, Branch, Configurations, Run};
+pub use configuration::{Branch, Configurations, Run};
 pub use feasible::{Feasible, Removed};
 pub use free::{FreeOption, Freedom};
 pub(crate) use lead_tilt::cones;

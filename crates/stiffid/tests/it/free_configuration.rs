@@ -8,7 +8,7 @@ use crate::compensate::{line_path, options};
 use nalgebra::{Translation3, UnitQuaternion, Vector3, Vector6};
 use stiffid::internal::common::limits::JointBox;
 use stiffid::internal::machining::compensate::{
-    self, path_configurations, posed, Aggregate, Compensated, Configurations, Free, FreeVariables,
+    self, path_configurations, Aggregate, Compensated, Configurations, Free, FreeVariables,
     Objective, Options, PathPoint, Scope, Target,
 };
 use stiffid::internal::robot::ik::tool_pose;
@@ -66,7 +66,17 @@ fn alone(
     let compliance = s.model_compliance("test").unwrap();
     let mut plain = o.clone();
     plain.free = plain.free.keeping(|f| !matches!(f, Free::Configuration(_)));
-    let moved = posed(s.arm(), path);
+    // The points' poses: each posture target replaced by its TCP pose, by hand.
+    let pose = |q: &Vector6<f64>| tool_pose(&s.robot().frames(q), &s.tool().tcp);
+    let moved: Vec<PathPoint> = (path.iter())
+        .map(|p| match &p.target {
+            Target::Posture(q) => PathPoint {
+                target: Target::Pose(pose(q)),
+                ..p.clone()
+            },
+            Target::Pose(_) => p.clone(),
+        })
+        .collect();
     (c.branches.iter())
         .map(|b| {
             let q0 = Vector6::from(b.configuration.q_deg).map(f64::to_radians);
