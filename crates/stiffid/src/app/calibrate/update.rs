@@ -31,6 +31,7 @@
 //! positions on its table).
 
 use super::{GravitySpec, Request};
+use crate::app::purpose::REFERENCE_POSTURES;
 use stiffid_core::common::choice::{self, Choice};
 use stiffid_core::common::error::JobOption;
 use stiffid_core::model::OwnWeight;
@@ -44,10 +45,6 @@ use stiffid_metrology::calibration::{robot_file, ErrorModel, Geometry};
 /// The fewest distinct postures an update reads (the readings must separate the six offsets
 /// from the frame and the points).
 pub(crate) const MIN_POSTURES: usize = 5;
-
-/// The random postures of the generic campaign the check readings are compared with (module
-/// docs).
-pub(crate) const REFERENCE_POSTURES: usize = 60;
 
 /// What an update refits (module docs).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

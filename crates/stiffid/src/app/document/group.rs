@@ -7,6 +7,7 @@
 //! the crate's serde adapters here (`criteria`, `parameters`, `calibration`, `near`) write them
 //! as the parts below, so that the report serialises to its document itself.
 
+use crate::app::document::units::Written;
 use crate::app::document::{finite, mm};
 use crate::app::purpose::CalibrationOptions;
 use serde::{Serialize, Serializer};
@@ -324,9 +325,6 @@ impl Group {
         }
     }
 }
-
-/// What a serde serialiser returns.
-type Written<S> = Result<<S as Serializer>::Ok, <S as Serializer>::Error>;
 
 /// A group's evaluation written as its [`Criteria`] (flattened into a document). Schema:
 /// `Criteria`.

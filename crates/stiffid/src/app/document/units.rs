@@ -32,7 +32,7 @@ use serde::{Serialize, Serializer};
 use stiffid_core::model::prediction::Interval;
 
 /// What a serde serialiser returns.
-type Written<S> = Result<<S as Serializer>::Ok, <S as Serializer>::Error>;
+pub(crate) type Written<S> = Result<<S as Serializer>::Ok, <S as Serializer>::Error>;
 
 /// A length in m, written in mm. Schema: `f64`.
 ///

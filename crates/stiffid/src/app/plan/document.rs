@@ -4,6 +4,7 @@
 //! ([`Bodies`]), each posture's leave-one-out rates ([`Without`]) and checks ([`Checks`]).
 
 use crate::app::document::feasibility::describe;
+use crate::app::document::units::Written;
 use crate::app::document::{csv_text, finite, finite_each, mm, units};
 use crate::app::plan::Report;
 use serde::{Serialize, Serializer};
@@ -12,9 +13,6 @@ use stiffid_core::cell::Feasibility;
 use stiffid_core::Setup;
 use stiffid_design::Evaluation;
 use stiffid_view as scene;
-
-/// What a serde serialiser returns.
-type Written<S> = Result<<S as Serializer>::Ok, <S as Serializer>::Error>;
 
 /// The robot's bodies in the cell's checks and the drawings.
 #[derive(Debug, Clone, PartialEq, Serialize)]
