@@ -162,25 +162,33 @@ fn a_position_register_the_run_sets_or_a_program_not_given_may_set_is_refused_na
 fn an_offset_by_a_position_register_of_posreg_va_compensates_as_the_moved_position() {
     let s = setup();
     let straight = std::fs::read_to_string(format!("{DIR}rpi_tmpa.ls")).unwrap();
-    let backup = vec![("backup/POSREG.VA".to_string(), POSREG.to_string())];
     let p3 = "   X = 1620.000 mm,  Y = 0.000 mm,  Z = 1930.000 mm,";
     // P[3] is W = 180 deg: the tool frame's y and z are the user frame's -y and -z.
-    for (word, moved, shift) in [
-        (
-            "Offset",
-            "   X = 1630.000 mm,  Y = -5.000 mm,  Z = 1950.000 mm,",
-            false,
-        ),
-        (
-            "Tool_Offset",
-            "   X = 1630.000 mm,  Y = 5.000 mm,  Z = 1910.000 mm,",
-            true,
-        ),
+    let user = "   X = 1630.000 mm,  Y = -5.000 mm,  Z = 1950.000 mm,";
+    let tool = "   X = 1630.000 mm,  Y = 5.000 mm,  Z = 1910.000 mm,";
+    // The register's value as the program sets it on every path before the motion (the backup's
+    // X 99 mm replaced, Z kept), copied, or named by the offset condition in force.
+    let elements =
+        "   2:  UTOOL_NUM=1 ;\n  :  R[1]=5 ;\n  :  PR[9,1]=R[1]*2 ;\n  :  PR[9,2:SHIFT]=(-5) ;";
+    let copied = "   2:  UTOOL_NUM=1 ;\n  :  PR[2]=PR[9]+PR[9]-PR[9] ;\n  :  OFFSET CONDITION PR[2],UFRAME[1] ;";
+    let condition = "   2:  UTOOL_NUM=1 ;\n  :  TOOL_OFFSET CONDITION PR[9:SHIFT] ;";
+    let x99 = POSREG.replace("X:    10.000   Y:    -5.000", "X:    99.000   Y:    -5.000");
+    for (start, word, moved, shift, posreg) in [
+        ("", "Offset,PR[9:SHIFT]", user, false, POSREG),
+        ("", "Tool_Offset,PR[9:SHIFT]", tool, true, POSREG),
+        (elements, "Offset,PR[9]", user, false, &x99),
+        (copied, "Offset", user, false, POSREG),
+        (condition, "Tool_Offset", tool, true, POSREG),
     ] {
+        let backup = vec![("backup/POSREG.VA".to_string(), posreg.to_string())];
         let offset = straight.replace(
             "   5:L P[3] 50mm/sec FINE ;",
-            &format!("   5:L P[3] 50mm/sec FINE {word},PR[9:SHIFT] ;"),
+            &format!("   5:L P[3] 50mm/sec FINE {word} ;"),
         );
+        let offset = match start {
+            "" => offset,
+            s => offset.replace("   2:  UTOOL_NUM=1 ;", s),
+        };
         let shifted = straight.replacen(p3, moved, 1);
         assert!(offset != straight && shifted != straight);
         let (out_s, a) = compensated(&s, "TMPA.ls", &shifted).unwrap();
@@ -188,7 +196,7 @@ fn an_offset_by_a_position_register_of_posreg_va_compensates_as_the_moved_positi
         for (a, b) in a.iter().zip(&b) {
             assert!((a.q_compensated - b.q_compensated).amax() < 1e-12, "{word}");
         }
-        assert!(out_o.contains(&format!("{word},PR[9:SHIFT] ;")), "{out_o}");
+        assert!(out_o.contains(&format!("{word} ;")), "{out_o}");
         let (w_s, w_o) = (independent(&out_s)[2].values, independent(&out_o)[2].values);
         let t = Translation3::new(10e-3, -5e-3, 20e-3);
         let landed = match shift {
@@ -203,6 +211,7 @@ fn an_offset_by_a_position_register_of_posreg_va_compensates_as_the_moved_positi
             "{word}"
         );
     }
+    let backup = vec![("backup/POSREG.VA".to_string(), POSREG.to_string())];
     // A register that turns, or a joint position offset: refused naming the line.
     let turning = POSREG.replace(
         "W:      .000   P:      .000   R:      .000\r\n[*POSREG*]$MAX",
@@ -231,6 +240,22 @@ fn an_offset_by_a_position_register_of_posreg_va_compensates_as_the_moved_positi
         why.contains("an offset of a position in joint representation"),
         "{why}"
     );
+    // A bare Offset without a condition set in the program; a condition in another user frame;
+    // a register element that differs between the paths reaching the motion (a loop).
+    let looped = "   2:  UTOOL_NUM=1 ;\n  :  R[1]=0 ;\n  :  LBL[1] ;\n  :  PR[9,1]=R[1] ;\n  :  R[1]=R[1]+10 ;";
+    let other = "   2:  UTOOL_NUM=1 ;\n  :  OFFSET CONDITION PR[9],UFRAME[2] ;";
+    for (start, word, line, expected) in [
+        ("   2:  UTOOL_NUM=1 ;", "Offset", 9, "no OFFSET CONDITION before the motion"),
+        (other, "Offset", 10, "puts the offset in UFRAME[2], the position is in another (UF : 1)"),
+        (looped, "Offset,PR[9] ;\n  :  IF R[1]<50,JMP LBL[1]", 13, "set on line 9 as the program runs (PR[9,1]=R[1]) from a value the run gives (R[1] depends on the path taken to line 8: one path leaves 0 (line 7), another 10 (line 10)"),
+    ] {
+        let text = straight
+            .replace("   5:L P[3] 50mm/sec FINE ;", &format!("   5:L P[3] 50mm/sec FINE {word} ;"))
+            .replace("   2:  UTOOL_NUM=1 ;", start);
+        let (l, why) = refusal(&parse_in(&text, Dialect::FanucLs, &context).unwrap_err());
+        assert_eq!(l, line, "{why}");
+        assert!(why.contains(expected), "{why}");
+    }
 }
 
 /// What a hostile backup or header holds is refused naming the file or line: a register given

@@ -34,6 +34,7 @@ pub(crate) mod speed;
 mod statements;
 mod sysframe;
 mod va;
+mod values;
 
 pub use config::Config;
 

@@ -10,6 +10,7 @@
 
 use super::registers::Register;
 use super::va::Value;
+use crate::program::cartesian::Frame;
 use crate::program::{at, JointTarget};
 use nalgebra::{Isometry3, Translation3};
 use stiffid_core::Result;
@@ -23,6 +24,7 @@ pub(super) fn apply(
     line: u64,
     target: &mut JointTarget,
     (tool, r): &(bool, Register),
+    frame: Option<&(u32, u64)>,
 ) -> Result<()> {
     let word = if *tool { "Tool_Offset" } else { "Offset" };
     let what = format!("{word},PR[{}] ({})", r.number, r.source);
@@ -30,6 +32,17 @@ pub(super) fn apply(
     let Some(c) = target.cartesian.as_deref_mut() else {
         return refuse("an offset of a position in joint representation; stiffid offsets Cartesian positions: give the position in Cartesian representation, or apply the offset to it");
     };
+    let own = if *tool { &c.tool } else { &c.frame };
+    if let Some((n, l)) = frame
+        && number(own) != Some(*n)
+    {
+        let (word, frames) = if *tool {
+            ("UTOOL", "UT")
+        } else {
+            ("UFRAME", "UF")
+        };
+        return refuse(&format!("the offset condition on line {l} puts the offset in {word}[{n}], the position is in another ({frames} : {}); stiffid offsets in the position's own frame: name its frame in the condition, or none", number(own).map_or("F".into(), |m| m.to_string())));
+    }
     let p = match &r.entry.value {
         Ok(Some(Value::Cartesian(p, _))) => p,
         _ => return refuse(
@@ -48,4 +61,13 @@ pub(super) fn apply(
         false => c.before = shift,
     }
     Ok(())
+}
+
+/// The number of a position's frame `f` (`UF : n`, `UT : n`), 0 for the world or the flange.
+fn number(f: &Frame) -> Option<u32> {
+    match f {
+        Frame::World => Some(0),
+        Frame::Numbered(_, n) | Frame::Held(_, n, ..) | Frame::Declared(_, n) => Some(*n),
+        _ => None,
+    }
 }

@@ -93,6 +93,7 @@ fn option(line: u64, what: &str, w: &str, after: &[String], o: &mut Options) -> 
         }
         a if a.starts_with("ACC") || a.starts_with("EV") || a.starts_with("IND.EV") => {}
         w if offset(w).is_some() => o.offset = offset(w),
+        w if conditioned(w).is_some() => o.offset = conditioned(w).map(|tool| (tool, 0)),
         o if o.starts_with("OFFSET")
             || o.starts_with("TOOL_OFFSET")
             || o.starts_with("WKZ_OFFSET")
@@ -122,4 +123,15 @@ pub(super) fn offset(w: &str) -> Option<(bool, u32)> {
     };
     let n = register.split([']', ':']).next()?.trim().parse().ok()?;
     Some((tool, n))
+}
+
+/// The offset option `w` (upper case) names without a register, `OFFSET` (`false`) or
+/// `TOOL_OFFSET` (`WKZ_OFFSET`: `true`): by the register the `OFFSET CONDITION` (`TOOL_OFFSET
+/// CONDITION`) in force names ([`super::values`]).
+pub(super) fn conditioned(w: &str) -> Option<bool> {
+    match w {
+        "OFFSET" => Some(false),
+        "TOOL_OFFSET" | "WKZ_OFFSET" => Some(true),
+        _ => None,
+    }
 }

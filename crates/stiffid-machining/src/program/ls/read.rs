@@ -68,6 +68,9 @@ struct Calls {
     read: HashMap<String, (Selected, u64, Place, Declared)>,
     total: usize,
     chain: Vec<String>,
+    /// The position registers the programs being read set, and where: the run's in the programs
+    /// they call.
+    inherited: Vec<(u32, String)>,
 }
 
 /// A call of a program of the backup that moves: its name, file and text, and what it leaves
@@ -95,6 +98,7 @@ pub(super) fn targets(text: &str, context: &Context) -> Result<Program> {
         read: HashMap::new(),
         total: text.len(),
         chain: Vec::new(),
+        inherited: Vec::new(),
     };
     let start = Place {
         after_first: false,
@@ -175,7 +179,7 @@ fn read_one(
         previous: Previous::Start,
     };
     let states = graph.states(start, step, join);
-    let registers = registers::read(&instructions, &motions, context)?;
+    let registers = registers::read(&instructions, (&motions, &graph), &calls.inherited, context)?;
     let largest = positions.keys().max().copied().unwrap_or(0);
     let selected = |k: usize| states[k].as_ref().map(|s| s.selected.clone());
     let copies = copies::build(text, &instructions, &registers.targets, selected, largest)?;
@@ -207,6 +211,27 @@ fn read_one(
         left,
         notes: notes.into_iter().map(|(_, n)| n).collect(),
     };
+    read_calls(&instructions, (&called, &states), context, calls, &mut one)?;
+    Ok(one)
+}
+
+/// The programs `called` (per instruction of `instructions`, with the `states` before it) read
+/// into `one`, each with the frames in force at every call of it joined, and the registers
+/// `instructions` set the run's in them.
+fn read_calls(
+    instructions: &[(u64, String)],
+    (called, states): (&[Option<Call>], &[Option<State>]),
+    context: &Context,
+    calls: &mut Calls,
+    one: &mut One,
+) -> Result<()> {
+    let mark = calls.inherited.len();
+    let caller = calls
+        .chain
+        .last()
+        .map_or("the calling program", String::as_str);
+    let sets = registers::sets(instructions, caller);
+    calls.inherited.extend(sets);
     for (k, call) in called.iter().enumerate() {
         let (Some(call), Some(state)) = (call, states[k].as_ref()) else {
             continue;
@@ -220,9 +245,10 @@ fn read_one(
                 entry.join(&s.selected, instructions[j].0);
             }
         }
-        read_called(instructions[k].0, call, entry, context, calls, &mut one)?;
+        read_called(instructions[k].0, call, entry, context, calls, one)?;
     }
-    Ok(one)
+    calls.inherited.truncate(mark);
+    Ok(())
 }
 
 /// The targets of the motions of `instructions` (`motions` says which), each with the state
@@ -260,7 +286,7 @@ fn motions_read(
             *first = c.attach(first.clone());
         }
         if let (Some(o), Some(first)) = (registers.offsets.get(&k), targets.first_mut()) {
-            offsets::apply(*line, first, o)?;
+            offsets::apply(*line, first, o, registers.frames.get(&k))?;
         }
         in_force.extend(std::iter::repeat_n(state.selected.clone(), targets.len()));
         out.extend(targets);

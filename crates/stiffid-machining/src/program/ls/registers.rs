@@ -12,15 +12,16 @@
 //! ([`Context::leave_refused`]), a motion whose register the run sets is left as found instead,
 //! named with its line and why.
 
+use super::flow::Graph;
 use super::statements::english;
 use super::va::{entries, Entry};
+use super::values;
 use crate::program::{at, Context, Left};
 use std::collections::HashMap;
 use stiffid_core::common::limits::short;
 use stiffid_core::Result;
 
-/// The file's name in a backup.
-pub(super) const FILE: &str = "POSREG.VA";
+pub(super) use super::values::FILE;
 
 /// How deep the programs called are searched for an assignment.
 const DEPTH: usize = 16;
@@ -40,49 +41,74 @@ pub(super) struct Register {
 pub(super) struct Used {
     pub targets: HashMap<usize, Register>,
     pub offsets: HashMap<usize, (bool, Register)>,
+    /// The frame number an `OFFSET CONDITION PR[i],UFRAME[j]` (`TOOL_OFFSET CONDITION ..,
+    /// UTOOL[j]`) names for a motion's bare offset, and its line.
+    pub frames: HashMap<usize, (u32, u64)>,
     /// The motions left as found ([`Context::leave_refused`]): their register is set as the
     /// program runs.
     pub left: Vec<(usize, Left)>,
 }
 
-/// Per motion instruction of `instructions` (`motions` says which) to a position register or
-/// offset by one, the register as the `context`'s backup holds it (module docs); with
+/// Per motion instruction of `instructions` (`motions` says which, `graph` their order) to a
+/// position register or offset by one, the register as the program leaves it there
+/// ([`super::values`]) or else as the `context`'s backup holds it (module docs); `inherited`,
+/// the registers the programs calling this one set, and where. With
 /// [`Context::leave_refused`], a motion whose register the run sets is left as found instead.
 ///
 /// # Errors
 /// Naming the line (module docs): the first motion whose register is refused.
 pub(super) fn read(
     instructions: &[(u64, String)],
-    motions: &[bool],
+    (motions, graph): (&[bool], &Graph),
+    inherited: &[(u32, String)],
     context: &Context,
 ) -> Result<Used> {
     let mut out = Used::default();
     let file = super::va::the_file(context, FILE)?;
     let held = file.map(|(name, text)| (name, entries(text, "$POSREG")));
+    let states = values::states(
+        instructions,
+        graph,
+        held.as_ref().map(|(n, e)| (*n, &e[..])),
+        inherited,
+    );
     for (k, (line, t)) in instructions.iter().enumerate().filter(|(k, _)| motions[*k]) {
         let letter = &t.trim()[..1];
-        let offset = english(&t.to_ascii_uppercase())
-            .split_whitespace()
-            .find_map(super::options::offset);
+        let state = states[k].clone().unwrap_or_default();
         let target = register(t).map(|n| (None, n, format!("{letter} PR[{n}]")));
-        let offset = offset.map(|(tool, n)| {
-            let word = if tool { "Tool_Offset" } else { "Offset" };
-            (Some(tool), n, format!("{letter} .. {word},PR[{n}]"))
-        });
+        let offset = match offset_of(*line, t, &state) {
+            Ok(o) => o.map(|(tool, n, what, frame)| {
+                out.frames.extend(frame.map(|f| (k, f)));
+                (tool, n, what)
+            }),
+            Err(why) => {
+                leave_or_refuse(&mut out, (k, *line), why, context)?;
+                continue;
+            }
+        };
         for (tool, n, what) in target.into_iter().chain(offset) {
             // A value the run sets: the motion left as found where the context says so.
-            if let Some(why) = set_by(instructions, n, context, 0) {
-                let why = format!("{what}: {why}");
-                match context.leave_refused {
-                    true => {
-                        out.targets.remove(&k);
-                        out.left.push((k, Left::passed(*line, why)));
-                    }
-                    false => return Err(at(*line, why)),
+            let value = match set_by(instructions, n, context, 0) {
+                Some(why) => Err(format!("{what}: {why}")),
+                None => match values::register(&state, n) {
+                    None => Ok(one(*line, &what, n, held.as_ref())?),
+                    Some(r) => r
+                        .map(|(entry, source)| Register {
+                            number: n,
+                            entry,
+                            source,
+                        })
+                        .map_err(|why| format!("{what}: {why}")),
+                },
+            };
+            let r = match value {
+                Ok(r) => r,
+                Err(why) => {
+                    out.targets.remove(&k);
+                    leave_or_refuse(&mut out, (k, *line), why, context)?;
+                    break;
                 }
-                break;
-            }
-            let r = one(*line, &what, n, held.as_ref())?;
+            };
             match tool {
                 None => out.targets.insert(k, r).map(|_| ()),
                 Some(tool) => out.offsets.insert(k, (tool, r)).map(|_| ()),
@@ -90,6 +116,61 @@ pub(super) fn read(
         }
     }
     Ok(out)
+}
+
+/// A motion's offset: whether in the tool frame, the register, the motion's text naming it, the
+/// frame number its condition names and the condition's line.
+type Offset = (Option<bool>, u32, String, Option<(u32, u64)>);
+
+/// The motion `k` on `line` left as found for `why` where the `context` says so, else refused.
+fn leave_or_refuse(
+    out: &mut Used,
+    (k, line): (usize, u64),
+    why: String,
+    context: &Context,
+) -> Result<()> {
+    match context.leave_refused {
+        true => {
+            out.left.push((k, Left::passed(line, why)));
+            Ok(())
+        }
+        false => Err(at(line, why)),
+    }
+}
+
+/// The offset of the motion `t` on `line` with `state` in force: `Offset,PR[i]`, or a bare
+/// `Offset` by the `OFFSET CONDITION` in force (`Tool_Offset`: in the tool frame); whether in the
+/// tool frame, the register and the motion's text naming it. Why not, where the condition is the
+/// controller's or the run's. With the frame number the condition names, and its line.
+fn offset_of(
+    line: u64,
+    t: &str,
+    state: &values::State,
+) -> std::result::Result<Option<Offset>, String> {
+    let letter = &t.trim()[..1];
+    let upper = english(&t.to_ascii_uppercase());
+    let words = || upper.split_whitespace();
+    if let Some((tool, n)) = words().find_map(super::options::offset) {
+        let word = if tool { "Tool_Offset" } else { "Offset" };
+        return Ok(Some((
+            Some(tool),
+            n,
+            format!("{letter} .. {word},PR[{n}]"),
+            None,
+        )));
+    }
+    let Some(tool) = words().find_map(super::options::conditioned) else {
+        return Ok(None);
+    };
+    let (word, condition) = match tool {
+        true => ("Tool_Offset", "TOOL_OFFSET CONDITION"),
+        false => ("Offset", "OFFSET CONDITION"),
+    };
+    match &state.conditions[usize::from(tool)] {
+        values::Condition::Set { register, frame, line: l } => Ok(Some((Some(tool), *register, format!("{letter} .. {word} ({condition} PR[{register}] on line {l})"), frame.map(|f| (f, *l))))),
+        values::Condition::None => Err(format!("{letter} .. {word}: no {condition} before the motion on every path in this program: the offset is the register the controller's last {condition} named; set {condition} PR[i] before the motion (line {line})")),
+        values::Condition::Run(why) => Err(format!("{letter} .. {word}: {why}")),
+    }
 }
 
 /// Register `n` of the motion `what` on `line`, as `held` (the backup's `POSREG.VA`: its name
@@ -124,8 +205,9 @@ fn set_by(
 ) -> Option<String> {
     for (line, t) in instructions {
         let upper = english(&t.trim().to_ascii_uppercase());
-        match assigned(&upper) {
-            Some(Some(m)) if m == n => return Some(format!("the position register is set on line {line} as the program runs ({}): its value is the run's, not the file's; move to a P[] position", short(t.trim()))),
+        match values::assigned(&upper) {
+            // The program's own assignments are followed along its paths (`values`).
+            Some(Some(m)) if m == n && depth > 0 => return Some(format!("the position register is set on line {line} as the program runs ({}): its value is the run's, not the file's; move to a P[] position", short(t.trim()))),
             Some(None) => return Some(format!("line {line} sets a position register chosen as the program runs ({}), which may be PR[{n}]: its value is the run's; move to a P[] position", short(t.trim()))),
             _ => {}
         }
@@ -166,49 +248,14 @@ fn register(t: &str) -> Option<u32> {
     rest.split([']', ':']).next()?.trim().parse().ok()
 }
 
-/// Whether instruction `upper` (upper case, English) sets a position register: `Some(Some(n))`
-/// register `n` (or one of its elements), `Some(None)` one chosen at run time (`PR[R[1]]=`);
-/// `None` where it sets none. An assignment is a `PR[..]` followed by `=` outside a condition
-/// (`IF`, `WAIT`, `SELECT` and its cases compare): a statement `PR[1]=LPOS`, a motion's skip
-/// option `Skip,LBL[2],PR[6]=LPOS`.
-fn assigned(upper: &str) -> Option<Option<u32>> {
-    let compares = ["IF", "WAIT", "SELECT", "=", "ELSE"];
-    if compares.iter().any(|w| upper.starts_with(w)) {
-        return None;
-    }
-    let mut from = 0;
-    while let Some(i) = upper[from..].find("PR[").map(|i| from + i) {
-        from = i + 3;
-        if upper[..i].ends_with(|c: char| c.is_ascii_alphanumeric() || c == '_' || c == '$') {
-            continue;
-        }
-        let Some(close) = closing(&upper[i + 3..]).map(|c| i + 3 + c) else {
-            continue;
-        };
-        if !upper[close + 1..].trim_start().starts_with('=') {
-            continue;
-        }
-        let inside = upper[i + 3..close].trim();
-        let inside = match inside.strip_prefix("GP") {
-            Some(r) => r.split_once(':').map_or(r, |(_, r)| r),
-            None => inside,
-        };
-        let number = inside.split([':', ',']).next().map(str::trim);
-        return Some(number.and_then(|d| d.parse().ok()));
-    }
-    None
-}
-
-/// The byte of the `]` closing the bracket opened before `s`, brackets inside counted.
-fn closing(s: &str) -> Option<usize> {
-    let mut depth = 0usize;
-    for (i, c) in s.char_indices() {
-        match c {
-            '[' => depth += 1,
-            ']' if depth == 0 => return Some(i),
-            ']' => depth -= 1,
-            _ => {}
+/// The position registers `instructions` (of the program `name`) set, each with where: the run's
+/// in the programs they call.
+pub(super) fn sets(instructions: &[(u64, String)], name: &str) -> Vec<(u32, String)> {
+    let mut out = Vec::new();
+    for (line, t) in instructions {
+        if let Some(Some(n)) = values::assigned(&english(&t.trim().to_ascii_uppercase())) {
+            out.push((n, format!("PR[{n}] is set by {name} on its line {line} ({}) as the program runs: its value is the run's", short(t.trim()))));
         }
     }
-    None
+    out
 }
