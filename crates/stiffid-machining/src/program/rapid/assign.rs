@@ -65,7 +65,9 @@ impl Rebound {
             }
             match first.as_str() {
                 "error" | "undo" | "backward" if is_header(body) => plain = false,
-                "goto" => _ = out.jumping.insert(routine.clone()),
+                _ if super::numflow::jumps(body, &first, s.line) => {
+                    _ = out.jumping.insert(routine.clone())
+                }
                 _ => {}
             }
             let lower = body.to_ascii_lowercase();

@@ -65,6 +65,13 @@ pub(super) fn merge(mut data: Data, (text, code): (&str, &str), context: &Contex
         for (k, v) in found.nums {
             data.nums.entry(k).or_insert(v);
         }
+        for (k, line) in &found.renum.set_on {
+            let why = format!("num {k} is set in {} on its line {line}, so its value is the controller's as the task runs", crate::program::file_name(file));
+            if data.nums.contains_key(k) {
+                data.nums.insert(k.clone(), Err(why.clone()));
+                data.renum.set_elsewhere(k, &why);
+            }
+        }
         for (k, v) in found.targets {
             if data.targets.contains_key(&k) {
                 continue;

@@ -62,6 +62,7 @@ type Declared = HashMap<String, std::result::Result<JointTarget, String>>;
 
 /// The module's declared data: targets, tools and work objects, speeds (by lower-case name),
 /// and the statements that assign a declared target at run time.
+#[derive(Default)]
 struct Data {
     targets: Declared,
     frames: HashMap<String, Frame>,
@@ -71,6 +72,7 @@ struct Data {
     renum: numflow::Renum,
     rebound: assign::Rebound,
     bound: assign::Bound,
+    shadowed: parameters::Shadowed,
 }
 
 /// One statement: its line, and its bytes in the text.
@@ -361,8 +363,7 @@ fn declarations(code: &str, statements: &[Statement]) -> Result<Data> {
         assigned,
         nums,
         renum,
-        rebound: assign::Rebound::default(),
-        bound: assign::Bound::new(),
+        ..Data::default()
     })
 }
 

@@ -24,6 +24,8 @@ pub(super) struct Renum {
     names: HashMap<String, Vec<(u64, String)>>,
     base: HashMap<String, Result<f64, String>>,
     jumping: HashSet<String>,
+    /// Every datum a statement of the module sets, with the first such line.
+    pub(super) set_on: HashMap<String, u64>,
 }
 
 impl Renum {
@@ -50,7 +52,7 @@ impl Renum {
             }
             match first.as_str() {
                 "error" | "undo" | "backward" if is_header(body) => plain = false,
-                "goto" => _ = out.jumping.insert(routine.clone()),
+                _ if jumps(body, &first, s.line) => _ = out.jumping.insert(routine.clone()),
                 _ => {}
             }
             if let Some(at) = (first == "if" && !is_header(body))
@@ -83,6 +85,7 @@ impl Renum {
         for (name, line) in
             (set.iter().map(|(n, l)| (n, l))).chain(whole.iter().map(|(n, l, _)| (n, l)))
         {
+            out.set_on.entry(name.clone()).or_insert(*line);
             if constants.contains(name) || out.base.contains_key(name) {
                 continue;
             }
@@ -101,6 +104,12 @@ impl Renum {
             let v = values.get(name).unwrap_or(base);
             nums.insert(name.clone(), v.clone());
         }
+    }
+
+    /// The datum `name` set by another module of the task (`why`): the run's wherever it is read.
+    pub(super) fn set_elsewhere(&mut self, name: &str, why: &str) {
+        self.names.remove(name);
+        self.base.insert(name.to_string(), Err(why.to_string()));
     }
 
     /// Whether the module sets no `num`.
@@ -184,6 +193,18 @@ impl Renum {
         };
         values.insert(name, value);
     }
+}
+
+/// Whether the statement `body` on `line` (first word `first`) jumps or is a label one may jump
+/// to: a `GOTO`, also in a compact `IF`, or a label (`again:`).
+pub(super) fn jumps(body: &str, first: &str, line: u64) -> bool {
+    let t = body.trim();
+    let label = t
+        .strip_suffix(':')
+        .is_some_and(|l| !l.is_empty() && l.chars().all(|c| c.is_ascii_alphanumeric() || c == '_'));
+    first == "goto"
+        || label
+        || (first == "if" && super::flow::in_compact_if(body, line, |w| w == "goto").is_some())
 }
 
 /// The `num` a statement sets (lower case) and the expression of its new value, for a whole

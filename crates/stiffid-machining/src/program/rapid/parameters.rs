@@ -84,3 +84,43 @@ pub(super) fn declare_nums(
         }
     }
 }
+
+/// What a routine's parameters hide of the module's data while the routine is read: each
+/// parameter's name and the module's target or `num` of that name, if any.
+#[derive(Debug, Default)]
+pub(super) struct Shadowed {
+    targets: Vec<(String, Option<Result<crate::program::JointTarget, String>>)>,
+    nums: Vec<(String, Option<Result<f64, String>>)>,
+}
+
+/// Within the routine whose header is `body` on `line`, each target or `num` parameter hides the
+/// module's datum of its name (*RAPID kernel*: scope rules): its value is the caller's. What
+/// the routine before hid is the module's again.
+pub(super) fn shadow(line: u64, body: &str, data: &mut super::Data) {
+    let before = std::mem::take(&mut data.shadowed);
+    for (name, old) in before.targets {
+        match old {
+            Some(v) => _ = data.targets.insert(name, v),
+            None => _ = data.targets.remove(&name),
+        }
+    }
+    for (name, old) in before.nums {
+        match old {
+            Some(v) => _ = data.nums.insert(name, v),
+            None => _ = data.nums.remove(&name),
+        }
+    }
+    for (kind, name, why) in parameters(line, body) {
+        match kind {
+            "num" | "dnum" => {
+                let old = data.nums.insert(name.clone(), Err(why));
+                data.shadowed.nums.push((name, old));
+            }
+            "robtarget" | "jointtarget" => {
+                let old = data.targets.insert(name.clone(), Err(why));
+                data.shadowed.targets.push((name, old));
+            }
+            _ => {}
+        }
+    }
+}

@@ -74,6 +74,7 @@ fn module(
         task,
         entry.map(|e| (e.name.as_str(), e.place, e.alone)),
     );
+    let start = (switches_conf, &layout);
     let (mut out, mut left) = (Vec::new(), Vec::new());
     let mut routines: Vec<(String, u64)> = Vec::new();
     let mut flow = flow::Flow::default();
@@ -98,8 +99,7 @@ fn module(
             routines.push((name, s.line));
             flow.routine();
             paths.clear();
-            let name = name_of(&routines);
-            conf = at_routine(entry, (switches_conf, &layout), &name, &data, s.line);
+            conf = at_routine(entry, start, (&routines, body), &mut data, s.line);
             continue;
         }
         flow.statement(&first, is_header(body), s.line);
@@ -171,17 +171,24 @@ fn module(
     })
 }
 
-/// What is in force at the start of the routine `name` (lower case) on `line`: the caller's
+/// What is in force at the start of the routine on `line` (the last of `routines`): the caller's
 /// configuration monitoring for the procedure another module calls (`entry`), else the start's
 /// (`switches`: where the module switches it; the `layout`'s routines it calls); the assigned
-/// points' values the run's ([`assign::Rebound::at_start`]).
+/// points' values the run's ([`assign::Rebound::at_start`]); its parameters (its header `body`)
+/// hiding the module's data of their names, bound to the call's arguments for the `entry`.
 fn at_routine(
     entry: Option<&Entry>,
     (switches, layout): (Option<&Statement>, &Layout),
-    name: &str,
-    data: &Data,
+    (routines, body): (&[(String, u64)], &str),
+    data: &mut Data,
     line: u64,
 ) -> Conf {
+    let name = name_of(routines);
+    let name = name.as_str();
+    super::parameters::shadow(line, body, data);
+    if let Some(e) = entry.filter(|e| e.name == name) {
+        e.bindings.apply(data);
+    }
     let mut conf = match entry.filter(|e| e.name == name) {
         Some(e) => e.conf.clone(),
         None => conf_at_start(switches.filter(|_| layout.called.contains(name)), line),

@@ -139,6 +139,26 @@ fn a_datum_two_modules_declare_with_two_values_is_refused_naming_both() {
             (other, _) => panic!("{second}{own}: {other:?}"),
         }
     }
+    // A num another module sets as the task runs: the run's, refused naming that module.
+    let offs = text.replace("MoveL p10,", "MoveL Offs(p10, 0, 0, dz),");
+    let nums = |set: &str| {
+        let other =
+            format!("MODULE Other\n  PERS num dz := 5;\n  PROC s()\n{set}  ENDPROC\nENDMODULE\n");
+        [backup.clone(), vec![("Other.mod".to_string(), other)]].concat()
+    };
+    let (quiet, set) = (nums(""), nums("    dz := 7;\n"));
+    let context = |b| program::Context::default().with_backup(b);
+    assert!(program::parse_in(&offs, Dialect::Rapid, &context(&quiet)).is_ok());
+    match program::parse_in(&offs, Dialect::Rapid, &context(&set)) {
+        Err(Error::Program { line, message }) => {
+            assert_eq!(line, 5, "{message}");
+            assert!(
+                message.contains("dz is set in Other.mod on its line 4"),
+                "{message}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
     // A module of the task cut off (no ENDMODULE): refused naming the file.
     let cut = vec![(
         "TASK1/SYSMOD/CellData.sys".to_string(),

@@ -202,11 +202,13 @@ fn a_header_over_two_lines_and_a_placeholder_are_read_as_the_controller_reads_th
 #[test]
 fn a_routine_with_parameters_is_read_at_each_call_with_its_arguments() {
     let routine = "  PROC Buffer_Out(num nBuffer, robtarget pBuffer)\n    MoveL Offs(pBuffer, 0, 0, nBuffer * 10), v100, fine, tool0;\n    MoveL pBuffer, v100, fine, tool0;\n  ENDPROC\n";
-    let text = format!("MODULE Buffer\n{routine}ENDMODULE\n");
+    // Not called: read where it is, each parameter hiding the module's datum of its name.
+    let hidden = format!("  CONST robtarget pBuffer := [[1,0,400],[0,0,1,0],[0,0,0,0],{EXT}];\n  CONST num nBuffer := 2;\n");
+    let text = format!("MODULE Buffer\n{hidden}{routine}ENDMODULE\n");
     let (line, message) = refused(&text);
-    assert_eq!(line, 3, "{message}");
+    assert_eq!(line, 5, "{message}");
     assert!(
-        message.contains("is a parameter of Buffer_Out (line 2)"),
+        message.contains("is a parameter of Buffer_Out (line 4)"),
         "{message}"
     );
     let data = format!("  CONST robtarget p1 := [[500,0,400],[0,0,1,0],[0,0,0,0],{EXT}];\n  CONST robtarget p2 := [[600,0,400],[0,0,1,0],[0,0,0,0],{EXT}];\n  CONST num n := 3;\n");
