@@ -71,6 +71,9 @@ pub(super) fn block(
 ) -> Result<()> {
     check_words(line, words, s)?;
     super::groups::one_per_group(line, words)?;
+    if super::rotation::block(line, words, s)? {
+        return Ok(());
+    }
     let inch_before = s.inch;
     let mut given = Given::default();
     for w in words {
@@ -259,7 +262,7 @@ impl Given {
             90 => s.incremental = false,
             91 => s.incremental = true,
             4 => self.g4 = true,
-            80 | 94 => {}
+            69 | 80 | 94 => {}
             g => return Err(unsupported(line, &format!("G{g}"))),
         }
         Ok(())

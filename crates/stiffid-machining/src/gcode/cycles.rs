@@ -347,7 +347,7 @@ fn hole(line: u64, (x, y): (f64, f64), other_geometry: bool, s: &State) -> Resul
     let shift = s.part_z_shift(line, &format!("G{code}: a canned cycle"))?;
     let surface = s.surface - shift;
     let tool = may_move(line, s)?;
-    let orientation = s.frame.part_from.rotation
+    let orientation = super::rotation::tool_turn(&s.frame, s)
         * UnitQuaternion::from_euler_angles(
             s.abc[0].to_radians(),
             s.abc[1].to_radians(),

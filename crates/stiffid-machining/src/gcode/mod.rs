@@ -92,6 +92,7 @@ mod machine;
 mod modal;
 mod polar;
 mod process;
+mod rotation;
 mod spline;
 mod subset;
 mod words;
@@ -313,6 +314,10 @@ struct State {
     set: g10::Set,
     /// The `G92` shift in force, along the frame's axes, m (module `g92`).
     g92: Vector3<f64>,
+    /// The coordinate rotation `G68` in force (module `rotation`).
+    rotation: Option<rotation::Rotation>,
+    /// The line of a `G68`/`G69` whose first motion after it has not come yet.
+    rotated: Option<u64>,
 }
 
 impl State {
@@ -347,6 +352,8 @@ impl State {
             surface: 0.0,
             set: Default::default(),
             g92: Vector3::zeros(),
+            rotation: None,
+            rotated: None,
             known: [false; 3],
             pending: None,
             left_unknown: [None; 3],

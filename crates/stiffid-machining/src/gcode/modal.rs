@@ -217,8 +217,9 @@ pub(super) fn push_points(
     let external = external_values(line, s)?;
     let [a, b, c] = s.abc.map(f64::to_radians);
     let mut orientation = UnitQuaternion::from_euler_angles(a, b, c) * tool;
-    if frame.part_from.rotation != UnitQuaternion::identity() {
-        orientation = frame.part_from.rotation * orientation;
+    let turn = super::rotation::tool_turn(frame, s);
+    if turn != UnitQuaternion::identity() {
+        orientation = turn * orientation;
     }
     for p in positions {
         out.points.push(Point {

@@ -388,3 +388,46 @@ fn linuxcncs_g92_shifts_every_offset_from_where_the_tool_is() {
         "G92: the tool's position is not known",
     );
 }
+
+#[test]
+fn fanuc_and_haas_coordinate_rotation_turns_the_coordinates_not_the_tool() {
+    let fanuc = Machine {
+        dialect: Some(GcodeDialect::Fanuc),
+        ..Default::default()
+    };
+    // G68 R90 about the origin: X10 Y0 lands at X0 Y10; G69 back; the tool does not turn.
+    let text = "G21 G90\nG0 X10 Y0 Z5\nG68 X0 Y0 R90\nG1 X10 Y0 F100\nG69\nG0 X10 Y0\n";
+    let g = parse(text, &fanuc).unwrap();
+    let want = [mm(10.0, 0.0, 5.0), mm(0.0, 10.0, 5.0), mm(10.0, 0.0, 5.0)];
+    assert_eq!(g.points.len(), 3);
+    for (p, w) in g.points.iter().zip(want) {
+        assert!((p.position - w).norm() < 1e-15 && p.orientation == g.points[0].orientation);
+    }
+    // Haas: the centre by A B (the A axis word is no rotary word there).
+    let haas = Machine {
+        dialect: Some(GcodeDialect::Haas),
+        ..Default::default()
+    };
+    let g = parse("G21\nG0 X0 Y0 Z5\nG68 A10 B0 R180\nG1 X0 Y0 F9\n", &haas).unwrap();
+    assert!((g.points[1].position - mm(20.0, 0.0, 5.0)).norm() < 1e-15);
+    let rotated = "G0 X0 Y0 Z5\nG68 X0 Y0 R90\n";
+    refused(
+        rotated,
+        &Machine::default(),
+        3,
+        "G68: a coordinate rotation, read with",
+    );
+    refused(
+        &format!("{rotated}G1 X5 F9\n"),
+        &fanuc,
+        4,
+        "the first motion after the G68/G69 of line 3",
+    );
+    refused(
+        &format!("{rotated}G1 X5 Y0 F9\nG55\n"),
+        &fanuc,
+        5,
+        "a work offset while the coordinate rotation G68 of line 3",
+    );
+    refused("G0 X0 Y0 Z5\nG91\nG68 R90\n", &fanuc, 4, "under G91");
+}
