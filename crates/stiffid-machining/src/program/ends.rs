@@ -64,27 +64,40 @@ pub(crate) fn check(text: &str, dialect: Dialect) -> Result<()> {
     }
 }
 
-/// Refuses a KRL program's data list `data` (its `.dat`) that opens with `DEFDAT` and does not
-/// close with `ENDDAT` (KUKA System Software 8, "Data lists"): cut off, its last declarations
-/// missing, and written back so the controller would refuse it. Other languages: nothing.
+/// Refuses a KRL program's data list `data` (its `.dat`, named `file` in messages: `the
+/// program's .dat`, `my_path.dat`) that does not open with `DEFDAT` (not a data list: the
+/// controller refuses it) or does not close with `ENDDAT` (KUKA System Software 8, "Data
+/// lists"): cut off, its last declarations missing, and written back so the controller would
+/// refuse it. Other languages: nothing.
 ///
 /// # Errors
-/// [`stiffid_core::Error::Program`] on line 1, naming the `.dat`'s last line.
-pub(crate) fn check_data(data: &str, dialect: Dialect) -> Result<()> {
+/// [`stiffid_core::Error::Program`] on line 1, naming the file and its first or last line.
+pub(crate) fn check_data(data: &str, file: &str, dialect: Dialect) -> Result<()> {
     if dialect.controller().key() != "krl" {
         return Ok(());
     }
     let code_lines = || {
-        (lines(data).map(|(n, _, l)| (n, l.split(';').next().unwrap_or("").trim())))
-            .filter(|(_, l)| !l.is_empty())
+        (lines(data).map(|(n, _, l)| {
+            let l = l.trim_start_matches('\u{feff}');
+            (n, l.split(';').next().unwrap_or("").trim())
+        }))
+        .filter(|(_, l)| !l.is_empty() && !l.starts_with('&'))
     };
-    if !code_lines().any(|(_, l)| starts_with_word(l, "DEFDAT")) {
-        return Ok(());
+    let short = stiffid_core::common::limits::short;
+    match code_lines().next() {
+        Some((_, l)) if starts_with_word(l, "DEFDAT") => {}
+        Some((n, l)) => return Err(at(1, format!(
+            "{file} opens on its line {n} with '{}', not DEFDAT: a KRL data list opens with DEFDAT NAME and closes with ENDDAT (the controller refuses any other), so this is not the module's data list (another file, or one cut off before its start); give the module's .dat",
+            short(l)
+        ))),
+        None => return Err(at(1, format!(
+            "{file} holds no declaration, not even DEFDAT: a KRL data list opens with DEFDAT NAME and closes with ENDDAT; give the module's .dat"
+        ))),
     }
     match code_lines().last() {
         Some((n, l)) if !starts_with_word(l, "ENDDAT") => Err(at(1, format!(
-            "the program's .dat ends on its line {n}, '{}', without ENDDAT: a KRL data list that opens with DEFDAT closes with ENDDAT, so the file is cut off (its last declarations missing); give the whole .dat",
-            stiffid_core::common::limits::short(l)
+            "{file} ends on its line {n}, '{}', without ENDDAT: a KRL data list that opens with DEFDAT closes with ENDDAT, so the file is cut off (its last declarations missing); give the whole .dat",
+            short(l)
         ))),
         _ => Ok(()),
     }

@@ -537,7 +537,7 @@ pub fn parse_in(text: &str, dialect: Dialect, context: &Context) -> Result<Joint
     // The data file the backup holds, where none is given beside the program.
     let data = (context.data).or_else(|| dialect.controller().data_file(text, context));
     if let Some(d) = data {
-        ends::check_data(d, dialect)?;
+        ends::check_data(d, "the program's .dat", dialect)?;
     }
     let context = &Context { data, ..*context };
     let Read {

@@ -11,6 +11,13 @@
 //! the body's end; a value the body changes reaches its own motions before the change on every
 //! run after the first, which [`Closed::changed`] lets the reader check.
 
+/// The most motions the unrolled loops of a module give (over every loop; RAPID's and KRL's
+/// `FOR` loops whose motions read their variable).
+pub(crate) const MOST: usize = 10_000;
+
+/// The most statements the unrolled loops of a module give (motions or not).
+pub(crate) const MOST_STEPS: usize = 200_000;
+
 /// A state that joins another: the value after two paths that meet.
 pub(crate) trait Join: Clone {
     /// `self`, the state at the end of one path, joined with `other`'s, the state at the end of

@@ -52,6 +52,9 @@ pub(super) enum Value {
     Assigned(u64),
     /// Only the run gives it: why, the words after the point's name (`is assigned on ..`).
     Unknown(String),
+    /// A number ([`super::numbers`]) computed from the assignment on this line: its value and
+    /// whether it is an `INT`.
+    Number(u64, f64, bool),
 }
 
 impl Value {
@@ -61,6 +64,7 @@ impl Value {
             (Value::Known(_, a, _), Value::Known(_, b, _)) => a == b,
             (Value::Assigned(a), Value::Assigned(b)) => a == b,
             (Value::Unknown(a), Value::Unknown(b)) => a == b,
+            (Value::Number(_, a, _), Value::Number(_, b, _)) => a == b,
             _ => false,
         }
     }
@@ -68,7 +72,7 @@ impl Value {
     /// The value on one path, in words, for a refusal.
     fn describe(&self) -> String {
         match self {
-            Value::Known(l, ..) => format!("the value line {l} gives"),
+            Value::Known(l, ..) | Value::Number(l, ..) => format!("the value line {l} gives"),
             Value::Assigned(_) => "the value a previous run left".into(),
             Value::Unknown(_) => "a value only the run gives".into(),
         }
@@ -196,6 +200,15 @@ impl Writer<'_> {
     ) -> Option<(String, Value)> {
         let (name, (member, from)) = target_of(code).filter(|(n, _)| values.contains_key(n))?;
         let rhs = code[from..].trim();
+        if self.declared.num_types.contains_key(&name) && !self.declared.raw.contains_key(&name) {
+            let value = match member {
+                None => self.number_assigned(line, &name, rhs, routine, values),
+                Some(m) => Value::Unknown(format!(
+                    "is assigned on line {line} a member {m}, which a number has not"
+                )),
+            };
+            return Some((name, value));
+        }
         let computed = match &member {
             None => self.whole(&name, rhs, routine, values),
             Some(m) => self.member(&name, m, rhs, routine, values),
@@ -211,11 +224,17 @@ impl Writer<'_> {
 
     /// The members of the point `name` where it is read in `routine`: computed, or declared
     /// with a value in the module's data (not a routine's own declaration of that name).
-    fn current(&self, name: &str, routine: usize, values: &Values) -> Result<Members, String> {
+    pub(super) fn current(
+        &self,
+        name: &str,
+        routine: usize,
+        values: &Values,
+    ) -> Result<Members, String> {
         match values.get(name) {
             Some(Value::Known(_, m, _)) => return Ok(m.clone()),
             Some(Value::Assigned(l)) => return Err(format!("from {name}, which holds the value a previous run left (it is assigned on line {l})")),
             Some(Value::Unknown(w)) => return Err(format!("from {name}, which {w}")),
+            Some(Value::Number(..)) => return Err(format!("from {name}, a number, not a point")),
             None => {}
         }
         let d = self.declared;
@@ -328,13 +347,14 @@ impl Writer<'_> {
                 }
             };
             text.push_str(&before[..start]);
-            text.push_str(&format!("({v})"));
+            // A member is a REAL (`5.0`, never the INT `5`: KRL divides INTs as integers).
+            text.push_str(&format!("({v:?})"));
             rest = &after[len..];
         }
         text.push_str(rest);
-        let none = |n: &str| Some(Err(format!("{n} is no member of a point stiffid knows")));
-        let v = crate::program::arithmetic::value(&text, &none)
-            .map_err(|w| format!("from '{}' ({w})", short(rhs.trim())))?;
+        let v = (self.evaluate(&text, routine, values))
+            .map_err(|w| format!("from '{}' ({w})", short(rhs.trim())))?
+            .0;
         let allowed = member_of(&out.kind, m);
         match out.items.iter_mut().find(|(k, _)| k == m) {
             Some((_, item)) => *item = Item::Num(v),
@@ -356,7 +376,7 @@ impl Writer<'_> {
 
     /// The target a motion to the point `name` holding `m` (computed on `line`) takes: a new
     /// declaration ([`Foreign`]) of a fresh name, written where compensating moves it.
-    fn target(
+    pub(super) fn target(
         &mut self,
         line: u64,
         name: &str,
@@ -413,7 +433,7 @@ impl Writer<'_> {
 
 /// `from` assigned to a point of type `kind` whose members were `lhs`: a point's members as its
 /// type holds them, a literal aggregate's over the point's (the ones it leaves out kept).
-fn merged(kind: &str, lhs: Option<&Members>, from: &Members, literal: bool) -> Members {
+pub(super) fn merged(kind: &str, lhs: Option<&Members>, from: &Members, literal: bool) -> Members {
     let mut out = match (literal, lhs) {
         (true, Some(l)) => l.clone(),
         _ => Members {
@@ -478,7 +498,7 @@ pub(super) fn members(kind: &str, aggregate: &str) -> Option<Members> {
 }
 
 /// The frame of members `X`..`C` (mm, deg), m; `None` without all six.
-fn pose(m: &Members) -> Option<Isometry3<f64>> {
+pub(super) fn pose(m: &Members) -> Option<Isometry3<f64>> {
     let get = |k: &str| match m.items.iter().find(|(n, _)| n == k) {
         Some((_, Item::Num(v))) => Some(*v),
         _ => None,
@@ -494,7 +514,7 @@ fn pose(m: &Members) -> Option<Isometry3<f64>> {
 }
 
 /// `m`'s members `X`..`C` set to the frame `f` (m), in KUKA's A, B, C.
-fn set_pose(m: &mut Members, f: &Isometry3<f64>) {
+pub(super) fn set_pose(m: &mut Members, f: &Isometry3<f64>) {
     let [a, b, c] = crate::program::generate::zyx_deg(&f.rotation);
     let t = f.translation.vector * 1e3;
     for (k, v) in ["X", "Y", "Z", "A", "B", "C"]

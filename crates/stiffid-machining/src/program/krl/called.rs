@@ -186,6 +186,15 @@ fn read(
         ..*context
     };
     let file = crate::program::file_name(m.src.0);
+    let krl = crate::program::Dialect::Krl;
+    crate::program::ends::check(m.src.1, krl).map_err(|e| within(line, &m.name, file, e))?;
+    if let Some((dat, text)) = m.dat {
+        let dat = crate::program::file_name(dat);
+        crate::program::ends::check_data(text, dat, krl).map_err(|e| match e {
+            Error::Program { message, .. } => at(line, format!("{}( ): {message}", m.name)),
+            other => other,
+        })?;
+    }
     calls.chain.push(m.name.clone());
     let one = (calls.module)(m.src.1, &inner, entry.clone(), calls);
     calls.chain.pop();

@@ -12,6 +12,10 @@ use stiffid_core::{Error, Result};
 /// why it is none.
 pub(super) type Declared = HashMap<String, (String, std::result::Result<JointTarget, String>)>;
 
+/// A number declared (`REAL`, `INT`, `BOOL`): where (`on line 4 of the .dat`), and its value
+/// and whether an `INT`, or why it has none.
+pub(super) type Number = (String, std::result::Result<super::numbers::Typed, String>);
+
 /// What a program and its `.dat` declare.
 #[derive(Debug, Default)]
 pub(super) struct Declarations {
@@ -29,9 +33,31 @@ pub(super) struct Declarations {
     /// The module's points declared with a value (not a routine's own), by upper-case name:
     /// their type word and aggregate, as written.
     pub raw: HashMap<String, (String, String)>,
+    /// The numbers (`REAL`, `INT`, `BOOL`) of the module and the global data lists, by
+    /// upper-case name ([`super::numbers`]).
+    pub nums: HashMap<String, Number>,
+    /// The numbers each routine after the first declares itself (without a value).
+    pub local_nums: Vec<std::collections::HashSet<String>>,
+    /// Every number declared, by upper-case name: whether an `INT` (or `BOOL`), not a `REAL`.
+    pub num_types: HashMap<String, bool>,
 }
 
 impl Declarations {
+    /// The numbers the line `code` declares (its type word `kind`) `on` a line of the routine
+    /// `sub` after the first (its own), or of the module.
+    fn number(&mut self, code: &str, kind: &str, (on, sub): (&str, Option<usize>)) {
+        for (name, value) in numbers(code, kind, on) {
+            self.num_types.insert(name.clone(), kind != "REAL");
+            match sub {
+                Some(k) => {
+                    self.local_nums.resize_with(k + 1, Default::default);
+                    self.local_nums[k].insert(name);
+                }
+                None => _ = self.nums.entry(name).or_insert(value),
+            }
+        }
+    }
+
     /// The points the routine `routine` sees (1 the first, 2 the next..; 0 before any).
     pub(super) fn of(&self, routine: usize) -> &Declared {
         match routine.checked_sub(2).and_then(|k| self.subs.get(k)) {
@@ -93,6 +119,10 @@ pub(super) fn declarations(
         for (k, v) in own.raw {
             out.raw.entry(k).or_insert(v);
         }
+        for (k, v) in own.nums {
+            out.nums.entry(k).or_insert(v);
+        }
+        out.num_types.extend(own.num_types);
     }
     let mut seen = HashMap::new();
     for list in globals {
@@ -100,7 +130,7 @@ pub(super) fn declarations(
     }
     out.assigned = assignments
         .into_iter()
-        .filter(|(name, _)| out.points.contains_key(name))
+        .filter(|(name, _)| out.points.contains_key(name) || out.num_types.contains_key(name))
         .rev()
         .collect();
     Ok(out)
@@ -149,6 +179,7 @@ fn read(
         }
         let on = format!("on line {line}{file}");
         match w.as_slice() {
+            [kind @ ("REAL" | "INT" | "BOOL"), _, ..] => out.number(code, kind, (&on, sub)),
             [kind @ ("E6AXIS" | "AXIS" | "E6POS" | "POS" | "FRAME"), name, ..] => {
                 let name = name.split(['[', ',']).next().unwrap_or(name).to_string();
                 // `DECL POS a, b, c`: every name of a list declared without a value.
@@ -208,13 +239,24 @@ fn read(
                     out.points.insert(key, (on, value));
                     continue;
                 }
-                let name = name.split(['.', '[']).next().unwrap_or(name).to_string();
+                let name = assigned(&w);
                 assignments.push((name, line));
             }
             _ => {}
         }
     }
     Ok(())
+}
+
+/// The data a statement of words `w` (upper case) assigns (`XP1.Z = ..`: `XP1`; `FOR I = 1 TO
+/// 5`: `I`).
+fn assigned(w: &[&str]) -> String {
+    let name = match w {
+        ["FOR", var, ..] => var,
+        [name, ..] => name,
+        [] => "",
+    };
+    name.split(['.', '[']).next().unwrap_or(name).to_string()
 }
 
 /// Why `name`, declared `on` `line` of `place`, has no sure value when `points` holds it
@@ -241,7 +283,7 @@ fn twice(
 
 /// The names a declaration without a value lists after its type word `kind` (`DECL POS a, b[3],
 /// c`: `A`, `B`, `C`), upper case; a comma inside an array's brackets parts no names.
-fn listed(code: &str, kind: &str) -> Vec<String> {
+pub(super) fn listed(code: &str, kind: &str) -> Vec<String> {
     let upper = code.to_ascii_uppercase();
     let Some(at) = find_word(&upper, kind) else {
         return Vec::new();
@@ -396,6 +438,23 @@ fn global(
     }
     for (k, v) in found.fdats {
         out.fdats.entry(k).or_insert(v);
+    }
+    for (k, v) in found.nums {
+        let key = format!("={k}");
+        match seen.get(&key) {
+            Some(first) if out.nums.get(&k).is_some_and(|(o, _)| o == first) => {
+                let why = format!("{k} is declared GLOBAL twice, {first} and {}: the controller refuses a global name declared twice; give the backup one declaration of it", v.0);
+                out.nums.insert(k, (v.0.clone(), Err(why)));
+            }
+            Some(_) => {}
+            None => {
+                seen.insert(key, v.0.clone());
+                out.nums.entry(k).or_insert(v);
+            }
+        }
+    }
+    for (k, v) in found.num_types {
+        out.num_types.entry(k).or_insert(v);
     }
     for (k, v) in found.raw {
         out.raw.entry(k).or_insert(v);
@@ -576,4 +635,37 @@ pub(super) fn words(code: &str) -> Vec<String> {
         .filter(|w| !w.is_empty())
         .map(str::to_ascii_uppercase)
         .collect()
+}
+
+/// The numbers a declaration line (`code`, its type word `kind`: `REAL`, `INT`, `BOOL`)
+/// declares, by upper-case name, each with its value or why it has none (`on`: where).
+pub(super) fn numbers(code: &str, kind: &str, on: &str) -> Vec<(String, Number)> {
+    let Some((lhs, rhs)) = code.split_once('=') else {
+        return (listed(code, kind).into_iter())
+            .filter(|n| !n.contains('['))
+            .map(|n| {
+                let why = format!("{n} is declared {on} without a value (set at run time)");
+                (n, (on.to_string(), Err(why)))
+            })
+            .collect();
+    };
+    let name = lhs
+        .split_whitespace()
+        .last()
+        .unwrap_or("")
+        .to_ascii_uppercase();
+    if name.is_empty() || name.contains('[') {
+        return Vec::new();
+    }
+    let none = |_: &str| None;
+    let value = match (super::numbers::evaluate(rhs, &none), kind) {
+        (Ok((v, _)), "REAL") => Ok((v, false)),
+        (Ok((v, _)), "INT") if v.fract() == 0.0 => Ok((v, true)),
+        (Ok((v, true)), "BOOL") if v == 0.0 || v == 1.0 => Ok((v, true)),
+        _ => Err(format!(
+            "{name} is declared {on} with '{}', which stiffid does not read as a {kind}",
+            stiffid_core::common::limits::short(rhs.trim())
+        )),
+    };
+    vec![(name, (on.to_string(), value))]
 }

@@ -21,6 +21,7 @@
 
 mod assign;
 mod backup;
+mod branches;
 mod called;
 mod calls;
 pub(crate) mod cartesian;
@@ -28,13 +29,17 @@ pub(crate) mod data;
 mod declare;
 mod frames;
 mod generate;
+mod known;
 mod motion;
 mod names;
+mod numbers;
+mod operator;
 mod process;
 mod read;
 pub(crate) mod speed;
 mod state;
 pub(crate) mod status;
+mod unroll;
 pub use status::{StatusPart, StatusTurn};
 
 use super::controller::{BoundComment, Controller, Generator, Read};

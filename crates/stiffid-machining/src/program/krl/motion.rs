@@ -136,7 +136,7 @@ fn one(
         .chars()
         .take_while(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '$' | '[' | ']'))
         .collect();
-    let upper = name.to_ascii_uppercase();
+    let upper = indexed(&name.to_ascii_uppercase(), context, values);
     let declared = context.declared;
     let points = declared.of(context.routine);
     let element = super::declare::element(&upper, &declared.arrays);
@@ -152,6 +152,7 @@ fn one(
     match assigned {
         Some(Value::Assigned(on)) => return Ok(Err((format!("{name}: {name} is assigned on line {on}, so its value at the motion is the controller's, not the file's: give the motion its own declared point"), point()))),
         Some(Value::Unknown(why)) => return Ok(Err((format!("{name}: {name} {why}"), point()))),
+        Some(Value::Number(..)) => return Err(at(line, format!("{first} {name}: a number (REAL, INT, BOOL), not a point"))),
         Some(Value::Known(_, _, t)) => {
             let reference = start + open..start + open + name.len();
             return Ok(Ok((t.moved_to(line, false).named_at(reference), open + name.len())));
@@ -183,7 +184,7 @@ fn one(
 /// Refuses a word after a motion's target(s), up to its `WITH` clause, that is not an
 /// approximation: a geometric operator, an offset, a circle's angle (`CA`), or anything else
 /// (`LIN XP1 C_DIS XX`, which the controller refuses to load).
-fn check_after(line: u64, first: &str, after: &str) -> Result<()> {
+pub(super) fn check_after(line: u64, first: &str, after: &str) -> Result<()> {
     let extra = after
         .split(|c: char| c.is_whitespace() || c == ',')
         .filter(|w| !w.is_empty())
@@ -196,5 +197,27 @@ fn check_after(line: u64, first: &str, after: &str) -> Result<()> {
         Some(w) if w.eq_ignore_ascii_case("CA") => Err(at(line, format!("{first}: CA, a circular angle: the motion ends elsewhere than its end point, on the circle; write the end point the controller reaches"))),
         Some(w) => Err(at(line, format!("{first}: '{}' after the target is not followed (a geometric operator, an offset or an option): write the motion to its absolute target", short(w)))),
         None => Ok(()),
+    }
+}
+
+/// The element `upper` (`XP[I]`) of an array of points with its index a number known here (a
+/// `FOR` loop's variable unrolled, [`super::numbers`]) written as its literal (`XP[2]`); any
+/// other name as it is.
+fn indexed(upper: &str, context: &Context, values: &Values) -> String {
+    let Some((base, rest)) = upper.split_once('[') else {
+        return upper.to_string();
+    };
+    let index = rest.split(']').next().unwrap_or("").trim();
+    if index.parse::<usize>().is_ok() || !context.declared.arrays.contains_key(base.trim()) {
+        return upper.to_string();
+    }
+    let (declared, routine) = (context.declared, context.routine);
+    let lookup = |n: &str| {
+        let n = n.to_ascii_uppercase();
+        Some(super::known::number(declared, &n, routine, values))
+    };
+    match super::numbers::evaluate(index, &lookup) {
+        Ok((v, true)) if v >= 0.0 => format!("{}[{v}]", base.trim()),
+        _ => upper.to_string(),
     }
 }

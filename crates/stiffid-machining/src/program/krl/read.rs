@@ -114,14 +114,15 @@ pub(super) fn module(
         exit: None,
         loops: Vec::new(),
         labels: HashMap::new(),
+        branches: super::branches::Branches::new(text),
+        unrolled: (0, 0),
     };
     r.local_lines = (r.local.iter())
         .map(|(k, (l, _))| (k.clone(), *l))
         .collect();
     r.call_lines = call_lines(text, &r.local_lines);
-    for (line, start, l) in crate::program::lines(text) {
-        r.statement((line, start), l, context, calls)?;
-    }
+    let lines: Vec<(u64, usize, &str)> = crate::program::lines(text).collect();
+    r.run(&lines, (0, lines.len()), context, calls)?;
     r.events.end_routine();
     if let (Some(line), false) = (r.jump, r.out.is_empty()) {
         return Err(at(line, "GOTO: a jump in a program with motions; the order the controller runs them would not be the file's: write the path as straight-line code".into()));
@@ -166,9 +167,50 @@ struct Reader<'d> {
     loops: Vec<Vec<String>>,
     /// The labels (`NAME:`) of the routine read so far, by upper-case name, with their line.
     labels: HashMap<String, u64>,
+    /// The branches the files decide ([`super::branches`]).
+    branches: super::branches::Branches,
+    /// The motions and statements the loops unrolled so far give ([`super::unroll`]).
+    unrolled: (usize, usize),
 }
 
 impl Reader<'_> {
+    /// Reads the lines `from..to`, the `FOR` loops whose body reads their variable unrolled
+    /// ([`super::unroll`]).
+    fn run(
+        &mut self,
+        lines: &super::unroll::Lines,
+        (from, to): (usize, usize),
+        context: &crate::program::Context,
+        calls: &mut Calls,
+    ) -> Result<()> {
+        let mut k = from;
+        while k < to {
+            let (line, start, l) = lines[k];
+            let routine = self.at_motion.routine;
+            let eval = |t: &str| self.writer.evaluate(t, routine, &self.state.points);
+            let unrolled = match self.branches.dead() {
+                true => None,
+                false => super::unroll::at_line(lines, (k, to), &eval, self.unrolled)?,
+            };
+            let Some(u) = unrolled else {
+                self.statement((line, start), l, context, calls)?;
+                k += 1;
+                continue;
+            };
+            self.unrolled.0 += u.motions * u.values.len();
+            self.unrolled.1 += u.steps;
+            for v in &u.values {
+                let value = assign::Value::Number(line, *v, true);
+                self.state.points.insert(u.var.clone(), value);
+                self.run(lines, (k + 1, u.end), context, calls)?;
+            }
+            let why = format!("is the variable of the FOR loop on line {line}, whose value after the loop stiffid does not take; set it after the loop");
+            self.state.points.insert(u.var, assign::Value::Unknown(why));
+            k = u.end + 1;
+        }
+        Ok(())
+    }
+
     /// Reads the line `l` (number, first byte) of the module.
     fn statement(
         &mut self,
@@ -187,25 +229,11 @@ impl Reader<'_> {
             self.routine_starts(&name, line);
             return Ok(());
         }
-        let mut closed_loop = None;
-        match first {
-            "FOR" | "WHILE" | "REPEAT" | "LOOP" => {
-                self.events.open_loop();
-                self.loops.push(Vec::new());
-            }
-            "ENDFOR" | "ENDWHILE" | "UNTIL" | "ENDLOOP" => {
-                self.events.close_loop();
-                closed_loop = self.loops.pop();
-            }
-            "RETURN" if routine == 1 => {
-                let why = format!("its first routine returns on line {line} as well as at its END: which frames it leaves is the run's");
-                self.exit
-                    .get_or_insert_with(|| self.state.clone())
-                    .frames
-                    .unsettle(line, why);
-            }
-            _ => {}
+        let eval = |t: &str| self.writer.evaluate(t, routine, &self.state.points);
+        if self.branches.pass(line, first, code, &eval) {
+            return Ok(());
         }
+        let closed_loop = self.loop_word(line, first, &words, routine);
         if let Some(closed) = flow(
             line,
             first,
@@ -244,12 +272,17 @@ impl Reader<'_> {
         if self.state.speed.set(line, code)? || framed {
             return Ok(());
         }
-        let targets = match motion(
-            (line, start),
-            code,
-            first,
-            (&self.at_motion, &self.state.points),
-        )? {
+        let values = (routine, &self.state.points);
+        let found = match self.writer.operated((line, start), code, first, values)? {
+            Some(found) => found,
+            None => motion(
+                (line, start),
+                code,
+                first,
+                (&self.at_motion, &self.state.points),
+            )?,
+        };
+        let targets = match found {
             Found::Nothing => return self.call((line, routine), code, context, calls),
             Found::RunTime(why, point) => {
                 self.events.push(line, routine, EventKind::Motion);
@@ -270,9 +303,44 @@ impl Reader<'_> {
         self.moved(line, code, first, targets)
     }
 
+    /// A word (`first`, the line's `words`) on `line` of `routine` that opens or closes a
+    /// loop or returns: the modules the body of a loop it closes calls.
+    fn loop_word(
+        &mut self,
+        line: u64,
+        first: &str,
+        words: &[String],
+        routine: usize,
+    ) -> Option<Vec<String>> {
+        match first {
+            "FOR" | "WHILE" | "REPEAT" | "LOOP" => {
+                self.events.open_loop();
+                self.loops.push(Vec::new());
+                if let (Some(var), "FOR") = (words.get(1), first) {
+                    let why = format!("is the variable of the FOR loop on line {line}, another on each run of its body, which stiffid reads once");
+                    (self.state.points).insert(var.clone(), assign::Value::Unknown(why));
+                }
+            }
+            "ENDFOR" | "ENDWHILE" | "UNTIL" | "ENDLOOP" => {
+                self.events.close_loop();
+                return self.loops.pop();
+            }
+            "RETURN" if routine == 1 => {
+                let why = format!("its first routine returns on line {line} as well as at its END: which frames it leaves is the run's");
+                self.exit
+                    .get_or_insert_with(|| self.state.clone())
+                    .frames
+                    .unsettle(line, why);
+            }
+            _ => {}
+        }
+        None
+    }
+
     /// The routine `name` whose `DEF` is on `line` starts: what is in force at its calls.
     fn routine_starts(&mut self, name: &str, line: u64) {
         self.labels.clear();
+        self.branches.clear();
         self.at_motion.routine += 1;
         self.paths.clear();
         self.events.end_routine();
@@ -339,8 +407,8 @@ impl Reader<'_> {
             return Ok(());
         }
         match self.labels.insert(name.to_ascii_uppercase(), line) {
-            Some(first) => Err(at(line, format!("{name}: a label defined twice in one routine, on lines {first} and {line}; which one a GOTO {name} jumps to is not sure (the controller refuses the module): name each label once"))),
-            None => Ok(()),
+            Some(first) if first != line => Err(at(line, format!("{name}: a label defined twice in one routine, on lines {first} and {line}; which one a GOTO {name} jumps to is not sure (the controller refuses the module): name each label once"))),
+            _ => Ok(()),
         }
     }
 

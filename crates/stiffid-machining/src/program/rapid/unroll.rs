@@ -11,11 +11,7 @@ use super::{first_word, flow, Statement};
 use crate::program::at;
 use stiffid_core::Result;
 
-/// The most motions an unrolled loop gives (over every loop of the module).
-pub(super) const MOST: usize = 10_000;
-
-/// The most statements the unrolled loops give (motions or not).
-pub(super) const MOST_STEPS: usize = 200_000;
+pub(super) use crate::program::paths::{MOST, MOST_STEPS};
 
 /// A statement to read: its index, and the loop variables' values in force (name lower case).
 pub(super) type Step = (usize, Vec<(String, f64)>);

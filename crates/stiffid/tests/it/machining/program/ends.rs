@@ -54,6 +54,16 @@ fn a_program_cut_off_at_a_line_boundary_is_refused_naming_its_last_line() {
         }
         other => panic!("{other:?}"),
     }
+    // Without its DEFDAT (the data list's start lost, or another file): not a data list.
+    let headless = dat.replacen("DEFDAT cut\n", "", 1);
+    match parse_with_data(src, Some(&headless), Dialect::Krl) {
+        Err(Error::Program { line: 1, message }) => assert!(
+            message.starts_with("the program's .dat opens on its line 1 with 'DECL E6AXIS XP1")
+                && message.contains("not DEFDAT"),
+            "{message}"
+        ),
+        other => panic!("{other:?}"),
+    }
     let ls = ls();
     assert_eq!(parse(&ls, Dialect::FanucLs).unwrap().targets.len(), 2);
     let (line, m) = refused(&cut(&ls, "/END"), Dialect::FanucLs);

@@ -41,7 +41,7 @@ fn an_element_the_file_does_not_state_is_refused_naming_the_line() {
             "no value of this element",
         ),
         (
-            "DEF cell( )\nINT I\nI = 2\nPTP XJ[I]\nEND\n",
+            "DEF cell( )\nINT I\nI = $IN[2]\nPTP XJ[I]\nEND\n",
             4,
             "index the run gives",
         ),

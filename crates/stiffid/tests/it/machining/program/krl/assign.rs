@@ -25,15 +25,18 @@ fn an_assigned_point_is_computed_and_compensated_as_its_value_declared() {
         "{}",
         p.text
     );
-    // The same path with the values declared: the same compensated points.
+    // The same path with XP2's value declared and XP3's computed in the motion (`LIN XP1 :
+    // {..}`, a FRAME): the same compensated points, the motion naming its new point.
     let src = SRC.replace("XP2 = XP1\nXP2.Z = XP2.Z - 9\n", "");
     let src = src.replace(
-        "XP3 = XP1\nXP3 = XP1 : {X 60, Y 0, Z 0, A 0, B 0, C 0}\n",
-        "",
+        "XP3 = XP1\nXP3 = XP1 : {X 60, Y 0, Z 0, A 0, B 0, C 0}\nLIN XP3\n",
+        "LIN XP1 : {X 60, Y 0, Z 0, A 0, B 0, C 0} ; a cut\n",
     );
     let q = super::backup::run((&src, Some(DECLARED)), &[]).unwrap();
+    assert!(q.text.contains("\nLIN XP1_S7 ; a cut ;"), "{}", q.text);
     let declared = q.data.unwrap();
-    for (a, b) in [("XP2_S7", "XP2"), ("XP3_S10", "XP3")] {
+    assert!(declared.contains("DECL FRAME XP1_S7={X "), "{declared}");
+    for (a, b) in [("XP2_S7", "XP2"), ("XP3_S10", "XP1_S7")] {
         let (x, y) = (
             super::backup::members(&data, a),
             super::backup::members(&declared, b),
@@ -113,6 +116,50 @@ fn an_assigned_point_the_run_decides_is_refused_naming_the_line() {
                 assert!(message.contains(says), "{message}");
             }
             other => panic!("{to}: {other:?}"),
+        }
+    }
+}
+
+/// Numbers of the files (`REAL`, `INT`, `BOOL` of the `.dat` and `$config.dat`) read in point
+/// arithmetic and conditions where every path agrees (`INT / INT` as integers, an `IF` or
+/// `SWITCH` the files decide read down its taken branch only); refused naming the line where the
+/// run decides.
+#[test]
+fn numbers_of_the_files_are_read_where_every_path_agrees() {
+    let dat = DAT.replace(
+        "ENDDAT",
+        "DECL REAL rDepth=9.0\nDECL INT nCut=7\nDECL BOOL bDeep=TRUE\nDECL INT nRecipe=3\nENDDAT",
+    );
+    let config = "DEFDAT $CONFIG PUBLIC\nDECL GLOBAL REAL rGlobal=4.5\nENDDAT\n".to_string();
+    let files = [("KRC/R1/System/$config.dat".to_string(), config)];
+    let context = program::Context::default()
+        .with_data(Some(&dat))
+        .with_backup(&files);
+    let z = |p: &program::JointProgram| p.targets[1].cartesian.as_deref().unwrap().position_mm.z;
+    let cases: [(&str, Result<f64, (u64, &str)>); 11] = [
+        ("XP2.Z = XP2.Z - rDepth\n", Ok(-4.0)),
+        ("XP2.Z = XP2.Z - 2 * rGlobal\n", Ok(-4.0)),
+        // 7 / 2 is 3 in KRL.
+        ("XP2.Z = XP2.Z - nCut / 2 * 3\n", Ok(-4.0)),
+        ("IF bDeep AND (nCut > 6) THEN\nXP2.Z = XP2.Z - 9\nELSE\nXP2.Z = XP2.Z - 1\nENDIF\n", Ok(-4.0)),
+        ("SWITCH nRecipe\nCASE 1\nXP2.Z = XP2.Z - 1\nCASE 2, 3\nXP2.Z = XP2.Z - 9\nDEFAULT\nXP2.Z = 0\nENDSWITCH\n", Ok(-4.0)),
+        ("rDepth = $IN[3]\nXP2.Z = XP2.Z - rDepth\n", Err((9, "RDEPTH is assigned on line 7 from '$IN[3]'"))),
+        ("IF $IN[1] THEN\nrDepth = 2\nENDIF\nXP2.Z = XP2.Z - rDepth\n", Err((11, "depends on the path taken through IF (line 7)"))),
+        ("FOR nCut = 1 TO 3\nXP2.Z = XP2.Z - nCut\nENDFOR\n", Err((10, "in the FOR loop of line 7"))),
+        // A loop whose motions read its variable: unrolled, each run its own value.
+        ("FOR nCut = 3 TO 1 STEP -2\nXP2.Z = XP1.Z - nCut\nLIN XP2\nENDFOR\n", Ok(2.0)),
+        ("FOR nCut = 1 TO 3 STEP 0\nXP2.Z = XP1.Z - nCut\nLIN XP2\nENDFOR\n", Err((7, "STEP 0"))),
+        ("XP2.Z = XP2.Z - rNone\n", Err((8, "RNONE is no number declared"))),
+    ];
+    for (to, expected) in cases {
+        let src = SRC.replace("XP2.Z = XP2.Z - 9\n", to);
+        match (program::parse_in(&src, Dialect::Krl, &context), expected) {
+            (Ok(p), Ok(want)) => assert!((z(&p) - want).abs() < 1e-9, "{to}: {}", z(&p)),
+            (Err(Error::Program { line, message }), Err((l, says))) => {
+                assert_eq!(line, l, "{to}: {message}");
+                assert!(message.contains(says), "{to}: {message}");
+            }
+            (other, _) => panic!("{to}: {other:?}"),
         }
     }
 }

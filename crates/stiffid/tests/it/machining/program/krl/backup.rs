@@ -133,9 +133,9 @@ pub(super) fn run_with(
 pub(super) fn members(text: &str, name: &str) -> Vec<f64> {
     let l = text
         .lines()
-        .find(|l| l.contains(&format!("E6POS {name}=")))
+        .find(|l| l.contains(&format!(" {name}={{")))
         .unwrap();
-    let end = l.find(", S").or_else(|| l.find(",S")).unwrap();
+    let end = (l.find(", S").or_else(|| l.find(",S"))).unwrap_or(l.len() - 1);
     let inner = &l[l.find('{').unwrap() + 1..end];
     inner
         .split(',')

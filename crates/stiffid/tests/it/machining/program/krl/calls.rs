@@ -168,17 +168,31 @@ fn a_called_module_that_calls_itself_or_refuses_is_named_at_the_call() {
         }
         other => panic!("{other:?}"),
     }
-    // Without its .dat, the module's point is declared nowhere: named with its file and line.
-    let files = backup(PATH_SRC, None);
-    let context = program::Context::default().with_backup(&files);
-    match program::parse_in(MAIN, Dialect::Krl, &context) {
-        Err(Error::Program { line: 5, message }) => {
-            assert!(
-                message.starts_with("MY_PATH( ): my_path.src line 3: LIN XQ1"),
-                "{message}"
-            )
+    // Without its .dat, the module's point is declared nowhere: named with its file and line;
+    // its .src cut before END, or its .dat without DEFDAT: named with the file.
+    let cut = PATH_SRC.replace("END\n", "");
+    let headless = PATH_DAT.replace("DEFDAT MY_PATH\n", "");
+    for (src, dat, says) in [
+        (PATH_SRC, None, "MY_PATH( ): my_path.src line 3: LIN XQ1"),
+        (
+            &cut,
+            Some(PATH_DAT),
+            "MY_PATH( ): my_path.src line 5: the program ends on '$BASE",
+        ),
+        (
+            PATH_SRC,
+            Some(&headless),
+            "MY_PATH( ): my_path.dat opens on its line 1 with 'DECL",
+        ),
+    ] {
+        let files = backup(src, dat);
+        let context = program::Context::default().with_backup(&files);
+        match program::parse_in(MAIN, Dialect::Krl, &context) {
+            Err(Error::Program { line: 5, message }) => {
+                assert!(message.starts_with(says), "{message}")
+            }
+            other => panic!("{other:?}"),
         }
-        other => panic!("{other:?}"),
     }
 }
 
