@@ -115,6 +115,9 @@ pub(super) struct Writer<'a> {
     pub eol: &'static str,
     /// The names given so far (upper case), and a count that keeps each declaration's bytes apart.
     pub taken: Vec<String>,
+    /// The declarations written so far, by the line that computed them and their values: a
+    /// statement read again (a loop unrolled) with the same values names the same point.
+    pub computed: HashMap<(u64, String), JointTarget>,
 }
 
 /// The points the module `text` assigns (`assigned`: each with the first line that does), made
@@ -382,15 +385,19 @@ impl Writer<'_> {
         name: &str,
         m: Members,
     ) -> Result<(Members, JointTarget), String> {
-        let fresh = self
-            .fresh(name, line)
-            .ok_or("and no name for its compensated copy is free")?;
         let items: Vec<String> = (m.items.iter())
             .map(|(k, v)| match v {
                 Item::Num(x) => format!("{k} {x:.9}"),
                 Item::Text(t) => format!("{k} {t}"),
             })
             .collect();
+        let key = (line, format!("{} {}", m.kind, items.join(",")));
+        if let Some(t) = self.computed.get(&key) {
+            return Ok((m, t.clone()));
+        }
+        let fresh = self
+            .fresh(name, line)
+            .ok_or("and no name for its compensated copy is free")?;
         let head = format!("DECL {} {fresh}=", m.kind);
         let text = format!("{head}{{{}}}{}", items.join(","), self.eol);
         // Each declaration's bytes apart from every text's (called modules shift them on).
@@ -412,6 +419,7 @@ impl Writer<'_> {
             self.insert,
         );
         self.taken.push(fresh.to_ascii_uppercase());
+        self.computed.insert(key, t.clone());
         Ok((m, t))
     }
 

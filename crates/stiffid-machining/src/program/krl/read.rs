@@ -92,6 +92,7 @@ pub(super) fn module(
             texts: [text, data.unwrap_or("")],
             eol,
             taken: Vec::new(),
+            computed: HashMap::new(),
         },
         point_setters: setters,
         at_motion: Context {

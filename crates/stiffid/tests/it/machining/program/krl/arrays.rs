@@ -15,7 +15,17 @@ fn parse(src: &str) -> stiffid::Result<program::JointProgram> {
 
 #[test]
 fn elements_of_an_array_with_literal_indices_are_points_of_their_own() {
-    let src = "DEF cell( )\nPTP XJ[2]\nPTP XJ[1]\nPTP XJ[2]\nEND\n";
+    // By literal indices, and by a FOR loop's variable (unrolled).
+    let looped = "DEF cell( )\nINT I\nFOR I = 2 TO 1 STEP -1\nPTP XJ[I]\nENDFOR\nPTP XJ[2]\nEND\n";
+    for src in [
+        "DEF cell( )\nPTP XJ[2]\nPTP XJ[1]\nPTP XJ[2]\nEND\n",
+        looped,
+    ] {
+        elements_compensated_in_place(src);
+    }
+}
+
+fn elements_compensated_in_place(src: &str) {
     let p = parse(src).unwrap();
     let a1: Vec<f64> = p.targets.iter().map(|t| t.q_deg[0]).collect();
     assert_eq!(a1, [2.0, 1.0, 2.0]);
