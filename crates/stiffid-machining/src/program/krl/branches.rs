@@ -18,6 +18,8 @@ struct Open {
     taken: bool,
     /// The value a decided `SWITCH` selects on.
     value: f64,
+    /// Its line and word.
+    at: (u64, &'static str),
 }
 
 /// The branch constructs open in a routine, outermost first (module docs).
@@ -64,26 +66,38 @@ impl Branches {
         self.open.iter().any(|o| o.fixed && !o.taking)
     }
 
-    /// A routine starts: nothing open.
-    pub(super) fn clear(&mut self) {
+    /// A routine ends (`line`, the next `DEF` or the module's end): nothing open.
+    ///
+    /// # Errors
+    /// Naming the line of a construct the files decide that is still open: its lines after it
+    /// would be passed over (the controller refuses a module with it).
+    pub(super) fn close_all(&mut self) -> stiffid_core::Result<()> {
+        let open = self.open.iter().find(|o| o.fixed).map(|o| o.at);
         self.open.clear();
+        match open {
+            Some((line, word)) => Err(crate::program::at(line, format!("{word} without its END{word} before the routine ends (the controller refuses the module): close it"))),
+            None => Ok(()),
+        }
     }
 
     /// Whether the line (number `line`, code `code`, first word `first`) is taken here, not read
     /// further: a line of a branch that never runs, or a word of a construct the files decide.
     pub(super) fn pass(&mut self, line: u64, first: &str, code: &str, eval: Eval) -> bool {
         let dead = self.open.iter().any(|o| o.fixed && !o.taking);
+        let word = if first == "IF" { "IF" } else { "SWITCH" };
         let never = Open {
             fixed: true,
             taking: false,
             taken: true,
             value: 0.0,
+            at: (line, word),
         };
         let decided = |value: f64, taking: bool| Open {
             fixed: true,
             taking,
             taken: taking,
             value,
+            at: (line, word),
         };
         let open = match first {
             "IF" | "SWITCH" if dead => Some(never),

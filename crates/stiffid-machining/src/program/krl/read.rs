@@ -124,6 +124,7 @@ pub(super) fn module(
     r.call_lines = call_lines(text, &r.local_lines);
     let lines: Vec<(u64, usize, &str)> = crate::program::lines(text).collect();
     r.run(&lines, (0, lines.len()), context, calls)?;
+    r.branches.close_all()?;
     r.events.end_routine();
     if let (Some(line), false) = (r.jump, r.out.is_empty()) {
         return Err(at(line, "GOTO: a jump in a program with motions; the order the controller runs them would not be the file's: write the path as straight-line code".into()));
@@ -227,6 +228,7 @@ impl Reader<'_> {
         let routine = self.at_motion.routine;
         self.label(line, code)?;
         if let Some(name) = routine_name(&words) {
+            self.branches.close_all()?;
             self.routine_starts(&name, line);
             return Ok(());
         }
@@ -341,7 +343,6 @@ impl Reader<'_> {
     /// The routine `name` whose `DEF` is on `line` starts: what is in force at its calls.
     fn routine_starts(&mut self, name: &str, line: u64) {
         self.labels.clear();
-        self.branches.clear();
         self.at_motion.routine += 1;
         self.paths.clear();
         self.events.end_routine();

@@ -120,6 +120,9 @@ fn an_assigned_point_the_run_decides_is_refused_naming_the_line() {
     }
 }
 
+/// The `z` a case reads (mm), or the line and words of its refusal.
+type Expected = Result<f64, (u64, &'static str)>;
+
 /// Numbers of the files (`REAL`, `INT`, `BOOL` of the `.dat` and `$config.dat`) read in point
 /// arithmetic and conditions where every path agrees (`INT / INT` as integers, an `IF` or
 /// `SWITCH` the files decide read down its taken branch only); refused naming the line where the
@@ -136,7 +139,7 @@ fn numbers_of_the_files_are_read_where_every_path_agrees() {
         .with_data(Some(&dat))
         .with_backup(&files);
     let z = |p: &program::JointProgram| p.targets[1].cartesian.as_deref().unwrap().position_mm.z;
-    let cases: [(&str, Result<f64, (u64, &str)>); 11] = [
+    let cases: [(&str, Expected); 12] = [
         ("XP2.Z = XP2.Z - rDepth\n", Ok(-4.0)),
         ("XP2.Z = XP2.Z - 2 * rGlobal\n", Ok(-4.0)),
         // 7 / 2 is 3 in KRL.
@@ -150,6 +153,7 @@ fn numbers_of_the_files_are_read_where_every_path_agrees() {
         ("FOR nCut = 3 TO 1 STEP -2\nXP2.Z = XP1.Z - nCut\nLIN XP2\nENDFOR\n", Ok(2.0)),
         ("FOR nCut = 1 TO 3 STEP 0\nXP2.Z = XP1.Z - nCut\nLIN XP2\nENDFOR\n", Err((7, "STEP 0"))),
         ("XP2.Z = XP2.Z - rNone\n", Err((8, "RNONE is no number declared"))),
+        ("IF NOT bDeep THEN\nXP2.Z = XP2.Z - 9\n", Err((7, "IF without its ENDIF"))),
     ];
     for (to, expected) in cases {
         let src = SRC.replace("XP2.Z = XP2.Z - 9\n", to);
