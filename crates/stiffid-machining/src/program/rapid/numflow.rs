@@ -6,7 +6,8 @@
 //! assigns it (on every pass after the first it holds the last pass's value), at a routine's
 //! start or after a call of a routine that assigns it (the run's), in a routine with a `GOTO`,
 //! or set otherwise (a component, a procedure's parameter, a read from the pendant), its value
-//! is the run's: the motion that reads it is refused naming the line that sets it.
+//! is the run's: the motion that reads it is refused naming the line that sets it. A datum whose
+//! name a `FOR` loop's variable takes is not followed (the loop's variable hides it).
 
 use super::{calls, first_word, is_header, Statement};
 use std::collections::{BTreeMap, HashMap, HashSet};
@@ -42,6 +43,8 @@ impl Renum {
         let (mut routine, mut plain) = (String::new(), false);
         let mut whole: Vec<(String, u64, String)> = Vec::new();
         let mut set: Vec<(String, u64)> = set.to_vec();
+        // A `FOR` loop's variable hides a datum of its name within the loop (module `unroll`).
+        let mut loop_vars: Vec<String> = Vec::new();
         for s in statements {
             let body = &code[s.span.clone()];
             let first = first_word(body);
@@ -49,6 +52,10 @@ impl Renum {
                 routine = name.to_ascii_lowercase();
                 plain = calls::procedure(body).is_some();
                 continue;
+            }
+            if first == "for" {
+                let var = body.split_whitespace().nth(1).unwrap_or("");
+                loop_vars.push(var.to_ascii_lowercase());
             }
             match first.as_str() {
                 "error" | "undo" | "backward" if is_header(body) => plain = false,
@@ -94,6 +101,10 @@ impl Renum {
                 _ => Err(format!("num {name} is set on line {line}, so its value is the controller's as the module runs")),
             };
             out.base.insert(name.clone(), value);
+        }
+        for var in &loop_vars {
+            out.names.remove(var);
+            out.base.remove(var);
         }
         out
     }

@@ -47,13 +47,14 @@ fn offs_of_num_data_the_module_states_is_read_and_data_the_run_sets_refused() {
     );
     // Set as the module runs: followed along every path where each gives it a value the module
     // states; else refused at the motion, naming the line where the run's value enters.
-    let rows: [(&str, Result<f64, &str>); 9] = [
+    let rows: [(&str, Result<f64, &str>); 10] = [
         ("    dx := 20;\n", Ok(520.0)),
         ("    dx := 20;\n    Incr dx;\n", Ok(521.0)),
         ("    dx := half - 5;\n    IF di1 = 1 THEN\n      Add dx, 3;\n    ELSE\n      dx := 23;\n    ENDIF\n", Ok(523.0)),
         ("    Incr dx;\n", Err("dx is set on line 7, and at the start of the routine on line 6")),
         ("    Nudge dx;\n", Err("dx is set on line 7")),
         ("    IF di1 = 1 dx := 30;\n", Err("dx is set on line 7")),
+        ("    dx := 20;\n    FOR dx FROM 1 TO 2 DO\n      MoveL Offs(p, dx, 0, 0), v100, fine, tool0;\n    ENDFOR\n", Err("dx is set on line 7")),
         ("    dx := 20;\n  again:\n    dx := dx + 1;\n    IF dx < 30 GOTO again;\n", Err("in a routine with a GOTO")),
         ("    dx := 20;\n    IF di1 = 1 THEN\n      dx := 30;\n    ENDIF\n", Err("set differently on the paths through IF (line 8)")),
         ("    dx := 20;\n    WHILE di1 = 1 DO\n      MoveL p, v100, fine, tool0;\n      dx := dx + 1;\n    ENDWHILE\n", Err("set on line 10 inside the loop on line 8")),

@@ -144,7 +144,11 @@ const REFUSED: [Refusal; 22] = [
     Refusal {
         file: "SortingLine_GoFa_Controller1_Module1.mod",
         line: 166,
-        says: &["Offs: x = '0 + offset_T_x' is not a number written in the call"],
+        says: &[
+            "Offs: x = '0 + offset_T_x' is not a number written in the call",
+            "offset_t_x is the argument '(r_str.objec_type - 1)*r_str.env_param.tAB_offset_x' of the call on line 86",
+            "(in PP_TP_AB, called on line 86)",
+        ],
         holds: &[(166, "MoveJ Offs(Target_INIT_AP1,0 + offset_T_x")],
     },
     Refusal {
@@ -190,7 +194,11 @@ const REFUSED: [Refusal; 22] = [
     Refusal {
         file: "SortingLine_IRB_1200_T_ROB1_Module1.mod",
         line: 164,
-        says: &["Offs: x = '0 + offset_T_x' is not a number written in the call"],
+        says: &[
+            "Offs: x = '0 + offset_T_x' is not a number written in the call",
+            "offset_t_x is the argument 'r_str.tAB_actual_counter*r_str.env_param.tAB_offset_x' of the call on line 84",
+            "(in PP_TP_AB, called on line 84)",
+        ],
         holds: &[
             (164, "MoveL Offs(Target_INIT_AP1,0 + offset_T_x"),
             (57, "TEST r_str.actual_state"),
