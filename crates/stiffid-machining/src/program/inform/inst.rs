@@ -379,7 +379,8 @@ fn station_motion(line: u64, word: &str, words: &[&str], m: &mut Motion) -> Resu
     Ok(())
 }
 
-/// A coordinated motion `SMOVL` or `SMOVC` (`word`, `words` after it; read as `MOVL`, `MOVC`): the
+/// A coordinated motion `SMOVL` or `SMOVC` (`word`, `words` after it; read as `MOVL`, `MOVC`,
+/// as a circle's point there): the
 /// robot moves relative to the part on the moving station, at the speed `V=` relative to it,
 /// and both groups end together at their positions (`SMOVL C00008 BC00008 V=166.7  +MOVJ
 /// EC00008`, as RoboDK's Motoman post writes it); read as the motion `word` to the robot's
@@ -388,10 +389,7 @@ fn station_motion(line: u64, word: &str, words: &[&str], m: &mut Motion) -> Resu
 fn coordinated(line: u64, word: &str, words: &[&str]) -> Result<Motion> {
     let m = motion(line, word, words)?;
     match m.station {
-        Some(_) => Ok(Motion {
-            word: word[1..].to_string(),
-            ..m
-        }),
+        Some(_) => Ok(m),
         None => Err(at(line, format!("{word} {}: a coordinated motion without the station's position (+MOVJ EC00000 or EC00000 on the line): where the part is when the robot arrives is the controller's, which the job does not say", short(&words.join(" "))))),
     }
 }

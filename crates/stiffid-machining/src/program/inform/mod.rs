@@ -205,7 +205,7 @@ fn read_job(
 /// others is a circle's via point, fed along its tangent ([`crate::program::JointTarget`]'s
 /// `via`, as KRL's `CIRC`, RAPID's `MoveC` and LS's `C`).
 fn circles(motions: &[inst::Motion], targets: &mut [super::JointTarget]) {
-    let circular = |k: usize| motions.get(k).is_some_and(|m| m.word == "MOVC");
+    let circular = |k: usize| motions.get(k).is_some_and(inst::Motion::circular);
     for (k, t) in targets.iter_mut().enumerate().skip(1) {
         t.via = circular(k - 1) && circular(k) && circular(k + 1);
     }
@@ -276,6 +276,11 @@ fn form(positions: &HashMap<(Kind, u64), Position>, kind: Kind) -> Result<Option
 }
 
 impl inst::Motion {
+    /// Whether the motion is a circle's point (`MOVC`, or the coordinated `SMOVC`).
+    fn circular(&self) -> bool {
+        self.word == "MOVC" || self.word == "SMOVC"
+    }
+
     /// Whether the motion moves to a position of `kind`.
     fn uses(&self, kind: Kind) -> bool {
         match kind {

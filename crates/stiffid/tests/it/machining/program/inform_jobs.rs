@@ -355,6 +355,21 @@ fn a_stations_own_motion_gives_the_targets_station_values() {
         .write(&q)
         .unwrap()
         .contains("\r\nSMOVL C00001 V=10.0 PL=0 NWAIT  +MOVJ EC00000\r\n"));
+    // Three coordinated circle points are a circle's, as three MOVC points: its via point fed
+    // along the circle.
+    let circle = |word: &str| {
+        (2..=4).fold(own.clone(), |text, k| {
+            text.replace(
+                &format!("MOVC C0000{k} V=10.0"),
+                &format!("{word} C0000{k} V=10.0  +MOVJ EC00000"),
+            )
+        })
+    };
+    let (smovc, movc) = (
+        read(&circle("SMOVC")).unwrap(),
+        read(&circle("MOVC")).unwrap(),
+    );
+    assert_eq!(smovc.targets, movc.targets);
     let (line, message) = refused(read(&own.replace(linear, "SMOVL C00001 V=10.0")));
     assert_eq!(line, 25, "{message}");
     assert!(
