@@ -141,6 +141,7 @@ pub fn place<'py>(
         },
     };
     let outcome = py.detach(|| job::run(&request)).map_err(raise)?;
+    crate::documents::warn(py, &outcome.warnings)?;
     let out = to_python(py, outcome.written(), &[])?;
     out.set_item("setup_text", &outcome.setup_text)?;
     Ok(out)

@@ -194,6 +194,7 @@ pub fn run(args: &Args) -> Result<()> {
     let report = outcome.map_err(option_error)?.report;
     check_loads(&report.setup_text, &args.out)?;
     out.write(report.setup_text.as_bytes())?;
+    crate::output::warnings(&report.warnings);
     print_json_or(args.json, &report.document(), |d| human(d, &args.out))
 }
 

@@ -35,6 +35,9 @@ pub struct Document<'a> {
     pub gain_vs_reach_only_pct: f64,
     /// Placements evaluated (the program compensated at each).
     pub evaluations: usize,
+    /// What to look at before trusting the placement: other turns of the part within 0.5% of
+    /// the chosen one's objective, more than 2 deg from it (the program does not pin the turn).
+    pub warnings: &'a [stiffid_core::common::warning::Warning],
 }
 
 /// One placement of the part and its figures.
@@ -125,6 +128,7 @@ impl<'a> Document<'a> {
             gain_vs_own_pct: report.own.as_ref().ok().map(gain),
             gain_vs_reach_only_pct: gain(&report.reach),
             evaluations: report.evaluations,
+            warnings: &report.warnings,
         }
     }
 }

@@ -36,6 +36,7 @@
 pub mod document;
 mod evaluate;
 mod free;
+pub mod turns;
 mod work;
 pub mod written;
 
@@ -234,6 +235,9 @@ pub struct Report {
     pub evaluations: usize,
     /// The setup file's text with the chosen `[workpiece]` ([`with_workpiece`]).
     pub setup_text: String,
+    /// What to look at before trusting the placement: other turns of the part as good as the
+    /// chosen one ([`turns`]).
+    pub warnings: Vec<stiffid_core::common::warning::Warning>,
 }
 
 impl Report {
@@ -352,8 +356,23 @@ fn find(request: &Request<'_>) -> Result<Report> {
             placed = c;
         }
     }
-    let evaluations = cache.lock().unwrap_or_else(|e| e.into_inner()).len() + 1;
+    let cache = cache.into_inner().unwrap_or_else(|e| e.into_inner());
+    let tried = cache.len();
+    let searched: Vec<Evaluation> = cache.into_values().flatten().collect();
+    let turn_of = |p: &Isometry3<f64>| {
+        stiffid_core::robot::file::rpy(&(p.rotation * own.rotation.inverse()))[2]
+    };
+    let probes = turns::probes(&placed.base_from_part, turn_of, request.region.rotation);
+    let probed = turns::evaluated(&probes, |p| context.evaluate(p).ok());
+    let evaluations = tried + probes.len() + 1;
+    let others: Vec<Evaluation> = searched.into_iter().chain(probed).collect();
+    let what = match objective {
+        Aggregate::Max => "largest",
+        Aggregate::Sum => "summed",
+    };
+    let warnings = turns::warning(&placed, &others, |e| cost(objective, e), what);
     Ok(Report {
+        warnings: warnings.into_iter().collect(),
         setup_text: with_workpiece(request.setup_text, &placed.base_from_part),
         placed,
         own: own_evaluation,

@@ -210,27 +210,28 @@ fn fill(values: &[(&str, String)]) -> Result<String> {
         }))
 }
 
-/// Bounds inside the joint limits by [`LIMIT_MARGIN_DEG`], within +-180 deg, degrees.
+/// Bounds inside the joint limits by [`LIMIT_MARGIN_DEG`], degrees: the robot's own limits (a
+/// UR10's +-360 deg axes keep their whole travel); an unlimited joint (continuous, or a revolute
+/// URDF joint without `<limit>`) within +-180 deg, one limited on one side only a turn from it.
 fn bounds_deg(robot: &Robot) -> (Vector6<f64>, Vector6<f64>) {
-    let lower = robot
-        .limits()
-        .lower
-        .map(|l| (l.to_degrees() + LIMIT_MARGIN_DEG).max(-180.0));
-    let upper = robot
-        .limits()
-        .upper
-        .map(|u| (u.to_degrees() - LIMIT_MARGIN_DEG).min(180.0));
-    // A joint narrower than twice the margin keeps its full range.
-    let narrow = |a: usize| lower[a] > upper[a];
+    let limits = robot.limits();
+    let bound = |a: usize| -> (f64, f64) {
+        let (l, u) = (limits.lower[a].to_degrees(), limits.upper[a].to_degrees());
+        let (l, u) = match (l.is_finite(), u.is_finite()) {
+            (true, true) => (l, u),
+            (true, false) => (l, l + 360.0),
+            (false, true) => (u - 360.0, u),
+            (false, false) => return (-180.0, 180.0),
+        };
+        match u - l > 2.0 * LIMIT_MARGIN_DEG {
+            true => (l + LIMIT_MARGIN_DEG, u - LIMIT_MARGIN_DEG),
+            // A joint narrower than twice the margin keeps its full range.
+            false => (l, u),
+        }
+    };
     (
-        Vector6::from_fn(|a, _| match narrow(a) {
-            true => robot.limits().lower[a].to_degrees().max(-180.0),
-            false => lower[a],
-        }),
-        Vector6::from_fn(|a, _| match narrow(a) {
-            true => robot.limits().upper[a].to_degrees().min(180.0),
-            false => upper[a],
-        }),
+        Vector6::from_fn(|a, _| bound(a).0),
+        Vector6::from_fn(|a, _| bound(a).1),
     )
 }
 

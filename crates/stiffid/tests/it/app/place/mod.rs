@@ -1,4 +1,5 @@
 //! The place job's parts (`stiffid::app::place`).
 
 mod free;
+mod turns;
 mod written;
