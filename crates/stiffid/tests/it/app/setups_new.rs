@@ -41,13 +41,13 @@ fn the_bounds_are_the_robots_own_limits_less_the_margin() {
     ];
     let deg = |f: fn(&Row) -> f64| nalgebra::Vector6::from_fn(|a, _| f(&rows[a]).to_radians());
     let limits = stiffid::internal::common::limits::JointBox::new(deg(|r| r.0 .0), deg(|r| r.0 .1));
-    let robot = presets::get(REFERENCE_ROBOT)
+    let robot = presets::get("comau-smart5-nj165-3.0")
         .unwrap()
         .with_limits(limits)
         .unwrap();
     let request = Request {
         robot: &robot,
-        robot_ref: REFERENCE_ROBOT,
+        robot_ref: "comau-smart5-nj165-3.0",
         tip: None,
         package_paths: &[],
         payload_kg: None,
