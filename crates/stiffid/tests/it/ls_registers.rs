@@ -371,3 +371,42 @@ fn a_hostile_backup_or_header_is_refused_naming_its_file_or_line() {
         "{why}"
     );
 }
+
+/// An empty `SYSFRAME.VA` (or another file under the name) and a program called that is cut off
+/// (no `/END`: its last lines, and any motion in them, lost) are refused naming the file.
+#[test]
+fn an_empty_frame_file_or_a_called_program_cut_off_is_refused_naming_the_file() {
+    let straight = std::fs::read_to_string(format!("{DIR}rpi_tmpa.ls")).unwrap();
+    let read = |text: &str, backup: &[(String, String)]| {
+        parse_in(
+            text,
+            Dialect::FanucLs,
+            &Context::default().with_backup(backup),
+        )
+    };
+    let frames = vec![("backup/SYSFRAME.VA".to_string(), "\r\n".to_string())];
+    match read(&straight, &frames).unwrap_err() {
+        stiffid::Error::Parse {
+            source_name,
+            message,
+        } => {
+            assert_eq!(source_name, "backup/SYSFRAME.VA");
+            assert!(
+                message.contains("holds neither $MNUFRAME nor $MNUTOOL"),
+                "{message}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+    let call = straight.replacen("   6:  DO[103]=OFF ;", "   6:  CALL SUB ;", 1);
+    let cut = vec![(
+        "backup/SUB.LS".to_string(),
+        "/PROG  SUB\n/ATTR\n/MN\n   1:  DO[1]=ON ;\n".to_string(),
+    )];
+    let (line, why) = refusal(&read(&call, &cut).unwrap_err());
+    assert_eq!(line, 10, "{why}");
+    assert!(
+        why.starts_with("CALL SUB: backup/SUB.LS line 4: the program ends on"),
+        "{why}"
+    );
+}

@@ -74,7 +74,15 @@ fn moves_nothing(name: &str, context: &Context, chain: &mut Vec<String>) -> bool
     let Some((_, text)) = context.backup_file(&format!("{name}.LS")) else {
         return false;
     };
-    let Ok(instructions) = super::instructions(text) else {
+    // A program cut off may have lost its motions: not passed over (read, and refused).
+    let whole = crate::program::ends::check(text, crate::program::Dialect::FanucLs).is_ok();
+    let Ok(instructions) = super::instructions(text)
+        .map_err(|_| ())
+        .and_then(|i| match whole {
+            true => Ok(i),
+            false => Err(()),
+        })
+    else {
         return false;
     };
     chain.push(name.to_string());

@@ -436,6 +436,10 @@ impl Controller for FanucLs {
     fn backup_extensions(&self) -> &'static [&'static str] {
         &["ls", "va"]
     }
+    /// The variable files read by name: one of a folder that is not text is refused.
+    fn backup_names(&self) -> &'static [&'static str] {
+        &["SYSFRAME.VA", "POSREG.VA", "SYMOTN.VA"]
+    }
     fn generator(&self) -> Option<&'static dyn Generator> {
         Some(&FanucLs)
     }

@@ -316,6 +316,8 @@ fn read_called(
             ),
         ));
     }
+    crate::program::ends::check(call.text, crate::program::Dialect::FanucLs)
+        .map_err(|e| within(line, call, e))?;
     let declared = one.declared.within(call.text, line)?;
     if let Some((first, first_line, place, first_declared)) = calls.read.get(name) {
         let mut same = first.clone();

@@ -179,6 +179,9 @@ fn one(line: u64, what: &str, n: u32, held: Option<&(&str, Vec<Entry>)>) -> Resu
     let Some((name, held)) = held else {
         return Err(at(line, format!("{what}: a position register holds its value on the controller, not in this program: give the controller's backup with its {FILE}, or copy the value into a P[] position")));
     };
+    if held.is_empty() {
+        return Err(at(line, format!("{what}: {name} holds no $POSREG entry (empty, cut off, or another file): expected the ASCII variable file a controller's backup writes beside POSREG.SV, its registers under '[*POSREG*]$POSREG ..'; give the backup's {FILE}")));
+    }
     let entry = held.iter().find(|e| e.group == 1 && e.number == n);
     let entry = match entry.map(|e| (e, &e.value)) {
         Some((e, Ok(Some(_)))) => e.clone(),

@@ -27,6 +27,15 @@ pub(super) fn apply(context: &Context, targets: &mut [JointTarget]) -> Result<()
     let Some(file) = super::va::the_file(context, FILE)? else {
         return Ok(());
     };
+    if !["$MNUFRAME", "$MNUTOOL"]
+        .iter()
+        .any(|v| super::va::declares(file.1, v))
+    {
+        return Err(Error::Parse {
+            source_name: file.0.to_string(),
+            message: format!("holds neither $MNUFRAME nor $MNUTOOL (empty, cut off, or another file): expected the ASCII variable file a controller's backup writes beside SYSFRAME.SV, its user and tool frames under '[*SYSTEM*]$MNUFRAME ..' and '[*SYSTEM*]$MNUTOOL ..'; give the backup's {FILE}"),
+        });
+    }
     let (users, tools) = (held(file, "$MNUFRAME")?, held(file, "$MNUTOOL")?);
     for c in targets
         .iter_mut()

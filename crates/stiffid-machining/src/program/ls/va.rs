@@ -101,6 +101,17 @@ impl Open {
     }
 }
 
+/// Whether `text` opens variable `variable` (`$POSREG`, `$MNUTOOL`) on a line of its own, as a
+/// backup's ASCII variable file does.
+pub(crate) fn declares(text: &str, variable: &str) -> bool {
+    crate::program::lines(text).any(|(_, _, l)| {
+        let t = l.trim();
+        t.starts_with('[')
+            && t.split_once(']')
+                .is_some_and(|(_, r)| r.split_whitespace().next() == Some(variable))
+    })
+}
+
 /// The entries of variable `variable` (`$MNUTOOL`, `$POSREG`) in `text`, in the file's order;
 /// none when it does not hold the variable. An entry whose values do not read says why in
 /// [`Entry::value`].

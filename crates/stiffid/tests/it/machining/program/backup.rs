@@ -305,7 +305,7 @@ fn an_ls_motion_to_a_position_register_posreg_va_does_not_hold_is_refused_saying
     assert_eq!(at, 6, "{why}");
     assert_eq!(
         why,
-        "L PR[3]: backup/POSREG.VA holds no PR[3] of motion group 1 (a controller's backup lists every register up to its count, Uninitialized ones too: is the file cut off?)"
+        "L PR[3]: backup/POSREG.VA holds no $POSREG entry (empty, cut off, or another file): expected the ASCII variable file a controller's backup writes beside POSREG.SV, its registers under '[*POSREG*]$POSREG ..'; give the backup's POSREG.VA"
     );
 }
 
