@@ -471,9 +471,12 @@ pub(super) fn register(state: &State, n: u32) -> Option<Result<(Entry, String), 
 
 /// The register `reg` (number `n`) as a backup's entry, or why its value is the run's.
 fn value_of(reg: &Reg, n: u32) -> Result<(Entry, String), String> {
-    let known = |i: usize| match &reg.elements[i] {
-        Num::Known(v, l) => Ok((*v, *l)),
-        Num::Run(why) => Err(why.clone()),
+    let known = |i: usize| {
+        match reg.elements.get(i) {
+        Some(Num::Known(v, l)) => Ok((*v, *l)),
+        Some(Num::Run(why)) => Err(why.clone()),
+        None => Err(format!("PR[{n}] has more than 3 extended axes in the backup; a position register holds up to 3")),
+    }
     };
     let six: Vec<(f64, u64)> = (0..6).map(known).collect::<Result<_, _>>()?;
     let mut lines: Vec<u64> = six.iter().map(|(_, l)| *l).collect();
