@@ -158,10 +158,7 @@ impl JointProgram {
                     let (a, b) = (&self.targets[*first], &self.targets[*i]);
                     return Err(Error::Program {
                         line: b.line,
-                        message: format!(
-                            "the motions of lines {} and {} go to the one point of line {}, but their compensated targets differ ({other} and {text}): give each visit its own point",
-                            a.line, b.line, b.origin
-                        ),
+                        message: differ((a.line, b.line, b.origin), other, text),
                     });
                 }
                 continue;
@@ -246,5 +243,15 @@ impl JointProgram {
             .map(|(i, t)| *read.read_deg.get(i).unwrap_or(&t.q_deg))
             .collect();
         self
+    }
+}
+
+/// Why two visits (on lines `a` and `b`) of the point of line `origin` cannot be written: their
+/// compensated texts `other` and `text` differ.
+fn differ((a, b, origin): (u64, u64, u64), other: &str, text: &str) -> String {
+    match a == b {
+        // A loop read once per value of its variable.
+        true => format!("the motion of line {b} runs more than once (a loop read once per value of its variable) and its runs' compensated targets differ ({other} and {text}); one line holds one target: give each run its own point (an array of points, the motion to its element by the loop's variable)"),
+        false => format!("the motions of lines {a} and {b} go to the one point of line {origin}, but their compensated targets differ ({other} and {text}): give each visit its own point"),
     }
 }

@@ -37,6 +37,27 @@ fn elements_compensated_in_place(src: &str) {
     assert_eq!(data.unwrap(), DAT.replace("A2 -85,", "A2 -85.500000000,"));
 }
 
+/// A FOR loop whose motion goes to a point its body computes from the variable: each run a target
+/// of its own, which the motion's one line cannot hold once compensated apart: refused naming it.
+#[test]
+fn a_loop_whose_runs_need_apart_one_point_is_refused_naming_the_motion() {
+    let dat = "DEFDAT cell\nDECL E6AXIS XK={A1 0, A2 -85, A3 85, A4 0, A5 40, A6 0}\nENDDAT\n";
+    let src = "DEF cell( )\nINT I\nFOR I = 1 TO 2\nXK = {A1 0, A2 -85, A3 85, A4 0, A5 40, A6 0}\nXK.A1 = I\nPTP XK\nENDFOR\nEND\n";
+    let context = program::Context::default().with_data(Some(dat));
+    let p = program::parse_in(src, Dialect::Krl, &context).unwrap();
+    let a1: Vec<f64> = p.targets.iter().map(|t| t.q_deg[0]).collect();
+    assert_eq!(a1, [1.0, 2.0]);
+    let q: Vec<[f64; 6]> = (p.targets.iter())
+        .map(|t| [t.q_deg[0], -85.5, 85.0, 0.0, 40.0, 0.0])
+        .collect();
+    match p.write_files(&q, &vec![Vec::new(); 2]) {
+        Err(Error::Program { line: 6, message }) => {
+            assert!(message.contains("runs more than once"), "{message}")
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
 #[test]
 fn an_element_the_file_does_not_state_is_refused_naming_the_line() {
     for (src, line, what) in [
