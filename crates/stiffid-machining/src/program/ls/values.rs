@@ -286,18 +286,18 @@ fn step(line: u64, upper: &str, s: &mut State, held: Held) {
             }
         }
         Some(Assign::Whole(n, rhs)) => {
-            let value = whole(rhs, s, held).unwrap_or_else(|| Reg {
-                repr: Repr::Run(format!("PR[{n}] is set on line {line} as the program runs")),
-                elements: std::array::from_fn(|_| run(&format!("PR[{n}]"))),
-                units: Vec::new(),
-            });
-            let value = Reg {
+            let value = whole(rhs, s, held).map(|value| Reg {
                 elements: value.elements.map(|h| match h {
                     Num::Known(v, _) => Num::Known(v, line),
                     Num::Run(why) => Num::Run(format!("the position register is set on line {line} as the program runs ({text}) from a value not the file's ({why})")),
                 }),
                 ..value
-            };
+            });
+            let value = value.unwrap_or_else(|| Reg {
+                repr: Repr::Run(format!("PR[{n}] is set on line {line} as the program runs")),
+                elements: std::array::from_fn(|_| run(&format!("PR[{n}]"))),
+                units: Vec::new(),
+            });
             s.pr.insert(n, value);
         }
         Some(Assign::Condition(tool, register, frame)) => {
