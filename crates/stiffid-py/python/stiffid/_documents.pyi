@@ -1199,6 +1199,7 @@ PlaceDocument = TypedDict("PlaceDocument", {
     "own": PlacePlacement,
     "placed": PlacePlacement,
     "reach_only": PlacePlacement,
+    "warnings": list[PlaceWarning],
 })
 
 PlacePlacement = TypedDict("PlacePlacement", {
@@ -1213,6 +1214,13 @@ PlacePlacement = TypedDict("PlacePlacement", {
     "worst_line": Optional[int],
     "xyz_mm": list[float],
 })
+
+PlaceWarning = TypedDict("PlaceWarning", {
+    "kind": PlaceWarningKind,
+    "message": str,
+})
+
+PlaceWarningKind = Literal["all-negative", "negative", "rigid", "units", "plausibility", "load-steps", "no-force", "unidentifiable", "meshes", "misfit", "feed", "near-postures", "old-field", "not-converged", "masses", "chatter", "configuration", "left-out", "extrapolation", "speed", "calibrated", "model-form", "encoding"]
 
 # plan: docs/schemas/plan.schema.json
 

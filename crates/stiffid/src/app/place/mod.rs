@@ -36,6 +36,8 @@
 pub mod document;
 mod evaluate;
 mod free;
+// The turns probe's steps, public for their table test (not API).
+#[doc(hidden)]
 pub mod turns;
 mod work;
 pub mod written;

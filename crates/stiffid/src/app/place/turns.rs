@@ -1,9 +1,9 @@
 //! The turns a placement's program does not pin: a path near-symmetric under a turn about the
 //! table's normal (a rectangular pocket is the same path turned by 180 deg about its centre) or a
 //! flat optimum leaves several turns of the part equally good. The place job probes the chosen
-//! position at every [`PROBE_STEP_DEG`] of turn within the region's rotation, adds the
+//! position at every `PROBE_STEP_DEG` of turn within the region's rotation, adds the
 //! placements its searches evaluated at that position, and warns when those within
-//! [`TOLERANCE`] of the chosen one's objective turn the part more than [`SPREAD_DEG`] from it,
+//! `TOLERANCE` of the chosen one's objective turn the part more than `SPREAD_DEG` from it,
 //! naming their turns.
 
 use super::Evaluation;
@@ -25,7 +25,7 @@ pub(crate) const POSITION_M: f64 = 0.01;
 const GAP_DEG: f64 = PROBE_STEP_DEG + 0.5;
 
 /// The chosen placement `placed` turned about the base z axis through its origin by every
-/// [`PROBE_STEP_DEG`] whose turn from the own rotation (`turn_of`) stays within `rotation`
+/// `PROBE_STEP_DEG` whose turn from the own rotation (`turn_of`) stays within `rotation`
 /// (rad), the chosen one left out.
 pub fn probes(
     placed: &Isometry3<f64>,
@@ -46,7 +46,7 @@ pub fn probes(
 }
 
 /// The feasible evaluations of `poses` by `evaluate`, in parallel, in their order.
-pub fn evaluated(
+pub(crate) fn evaluated(
     poses: &[Isometry3<f64>],
     evaluate: impl Fn(&Isometry3<f64>) -> Option<Evaluation> + Sync + Send,
 ) -> Vec<Evaluation> {
@@ -60,8 +60,8 @@ fn yaw_deg(base_from_part: &Isometry3<f64>) -> f64 {
     rpy(&base_from_part.rotation)[2].to_degrees()
 }
 
-/// The warning that `others` at `placed`'s position (within [`POSITION_M`]) and within
-/// [`TOLERANCE`] of its objective (`cost`) turn the part more than [`SPREAD_DEG`] from it, naming
+/// The warning that `others` at `placed`'s position (within `POSITION_M`) and within
+/// `TOLERANCE` of its objective (`cost`) turn the part more than `SPREAD_DEG` from it, naming
 /// their turns' ranges; `None` when the turn is pinned.
 pub fn warning(
     placed: &Evaluation,
@@ -97,7 +97,7 @@ pub fn warning(
 }
 
 /// `yaws` (deg) as ranges in increasing yaw, `a to b` or `a`, joined by `, `: yaws closer than
-/// [`GAP_DEG`] are one range, across +-180 deg too (`170.00 to -175.00`).
+/// `GAP_DEG` are one range, across +-180 deg too (`170.00 to -175.00`).
 fn ranges(mut yaws: Vec<f64>) -> String {
     yaws.sort_by(f64::total_cmp);
     let mut groups: Vec<(f64, f64)> = Vec::new();
