@@ -39,7 +39,7 @@ fn krl_cases() -> Vec<(String, Reads)> {
         (krl("LIN {X 1, Y 2, Z 3, A 0, B 0}"), Refused(2, "no C")),
         (krl("LIN {X 1, Y 2, Z 3, A 0, B 0, C 0, A1 5}"), Refused(2, "both axis angles (A1..) and a Cartesian pose")),
         (krl("PTP {A1 5}"), Refused(2, "axis 2")),
-        (krl(&format!("{KRL_DECLS}\nPTP XP1 : {{A1 5}}")), Refused(4, "':'")),
+        (krl(&format!("{KRL_DECLS}\nPTP XP1 : {{A1 5}}")), Refused(4, "geometric operator")),
         (krl(&format!("{KRL_DECLS}\nXP1.A1 = 7\nPTP XP1")), Refused(5, "assigned on line 4")),
         (krl("DECL E6AXIS XP1\nPTP XP1"), Refused(3, "without a value")),
         // Motions in a loop and in a second routine, each read where it is.
