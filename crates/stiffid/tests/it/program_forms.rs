@@ -111,7 +111,7 @@ fn ls_cases() -> Vec<(String, Reads)> {
         // A joint increment from a Cartesian position: its start angles are the controller's.
         (ls("   1:J P[1] 100% FINE ;\n   2:J P[2] 50% FINE INC ;", &inc[1..]).replace("/POS\n", CARTESIAN_P1), Refused(5, "J P[2] INC: an increment of the axis angles from the previous target (line 4), a Cartesian position")),
         (ls("   1:J P[1] 100% FINE ;\n   2:L P[2] 50mm/sec FINE Offset,PR[1] ;", &pos), Refused(5, "Offset,PR[1]: a position register holds its value on the controller")),
-        (ls("   1:J P[1] 100% FINE ;\n   2:L P[2] 50mm/sec FINE Tool_Offset ;", &pos), Refused(5, "offset is held on the controller")),
+        (ls("   1:J P[1] 100% FINE ;\n   2:L P[2] 50mm/sec FINE Tool_Offset ;", &pos), Refused(5, "no TOOL_OFFSET CONDITION")),
         (ls("   1:J PR[1] 100% FINE ;", &pos), Refused(4, "position register")),
         (ls("   1:  PR[1:pick]=LPOS ;\n   2:J PR[1:pick] 100% FINE ;", &pos), Refused(5, "J PR[1]: the position register is set on line 4 as the program runs (PR[1:pick]=LPOS)")),
         (ls("   1:L P[R[1]] 100mm/sec FINE ;", &pos), Refused(4, "computed on the controller")),
@@ -155,7 +155,7 @@ fn ls_cases() -> Vec<(String, Reads)> {
         (ls("   1:J P[1] 100% FINE ;\n   2:  AUFRUF MAKRO000 ;\n   3:L P[2] 50mm/sec FINE ;", &pos), Refused(5, "AUFRUF MAKRO000: a call between two motions")),
         (ls("   1:J P[1] 100% FINE ;\n   2:  ENDE ;\n   3:L P[2] 50mm/sec FINE ;", &pos), Refused(5, "the program ends here")),
         (ls("   1:J P[1] 100% FINE ;\n   2:L P[2] 10mm/sek CNT0 ACC250 Interrupt,LABEL[1] ;", &pos), Refused(5, "INTERRUPT,LABEL[1]: a jump")),
-        (ls("   1:J P[1] 100% FINE ;\n   2:L P[2] 50mm/sec FINE WKZ_Offset ,PR[2] ;", &pos), Refused(5, "the offset is held on the controller")),
+        (ls("   1:J P[1] 100% FINE ;\n   2:L P[2] 50mm/sec FINE WKZ_Offset ,PR[2] ;", &pos), Refused(5, "a position register holds its value on the controller")),
         (ls("   1:  AUFRUF INIT ;\n   2:  LABEL[1] ;\n   3:J P[1] 100% FINE ;\n   4:L P[2] 50mm/sek CNT0 ;\n   5:  AUFRUF MAKRO000 ;\n   6:  ENDE ;", &pos), Targets(&[(6, Q1), (7, Q2)])),
         (ls("   1:J P[1] 100% FINE ;", &[]), Refused(4, "no position P[1]")),
         (ls("", &pos), Refused(1, "no motion to a target found")),

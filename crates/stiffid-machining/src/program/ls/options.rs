@@ -93,6 +93,14 @@ fn option(line: u64, what: &str, w: &str, after: &[String], o: &mut Options) -> 
         }
         a if a.starts_with("ACC") || a.starts_with("EV") || a.starts_with("IND.EV") => {}
         w if offset(w).is_some() => o.offset = offset(w),
+        // The register written apart from its option (`Tool_Offset ,PR[2]`): one option.
+        w if conditioned(w).is_some() && after.first().is_some_and(|a| a.starts_with(',')) => {
+            let Some(named) = offset(&format!("{w}{}", after[0])) else {
+                return refuse("the offset is held on the controller (a register stiffid cannot read), not in this program; apply it to the positions and remove it");
+            };
+            o.offset = Some(named);
+            return Ok(1);
+        }
         w if conditioned(w).is_some() => o.offset = conditioned(w).map(|tool| (tool, 0)),
         o if o.starts_with("OFFSET")
             || o.starts_with("TOOL_OFFSET")

@@ -148,7 +148,11 @@ fn offset_of(
     state: &values::State,
 ) -> std::result::Result<Option<Offset>, String> {
     let letter = &t.trim()[..1];
-    let upper = english(&t.to_ascii_uppercase());
+    // The register may be written apart from its option (`Tool_Offset ,PR[2]`).
+    let mut upper = english(&t.to_ascii_uppercase());
+    while upper.contains(" ,") {
+        upper = upper.replace(" ,", ",");
+    }
     let words = || upper.split_whitespace();
     if let Some((tool, n)) = words().find_map(super::options::offset) {
         let word = if tool { "Tool_Offset" } else { "Offset" };

@@ -119,7 +119,7 @@ pub(super) fn states(
     }
     let step = |k: usize, s: &State| {
         let mut s = s.clone();
-        step(instructions[k].0, &uppers[k], &mut s, held);
+        step(&instructions[k], &uppers[k], &mut s, held);
         s
     };
     let join = |a: &mut State, b: &State, k: usize| join(a, b, instructions[k].0);
@@ -252,9 +252,10 @@ fn index(inside: &str) -> Option<(u32, Option<usize>)> {
     Some((n, Some(e[..d].parse().ok()?)))
 }
 
-/// `s` after instruction `upper` on `line` runs.
-fn step(line: u64, upper: &str, s: &mut State, held: Held) {
-    let text = stiffid_core::common::limits::short(upper);
+/// `s` after the instruction `(line, as written)` runs; `upper` is its text in upper case, English.
+fn step((line, written): &(u64, String), upper: &str, s: &mut State, held: Held) {
+    let line = *line;
+    let text = stiffid_core::common::limits::short(written.trim());
     let run = |_: &str| {
         Num::Run(format!("the position register is set on line {line} as the program runs ({text}): its value is the run's, not the file's; move to a P[] position"))
     };
