@@ -454,6 +454,11 @@ fn non_finite_or_absurd_robot_geometry_is_refused() {
             "\n[flange]\nrpy_deg = [0, inf, 0]\n",
             "flange.rpy_deg[2]: inf",
         ),
+        // A direction has no unit: the range is named without one.
+        (
+            "\n[[external_axis]]\nname = \"track\"\nrole = \"carrier\"\ndirection = [1e308, 0, 0]\nlimits_mm = [0, 6000]\n",
+            "(track).direction[1]: 1e308 is outside [-100000, 100000]\n",
+        ),
     ] {
         write_file(&dir, "r.toml", &format!("{preset}{extra}"));
         kinematics_refused(&dir, "{dir}/r.toml", "0,0,-90,0,0,0", &["r.toml", mention]);

@@ -29,7 +29,8 @@ pub(super) fn read(table: &BTreeMap<String, f64>) -> Result<Vec<(u32, f64)>> {
             return Err(Error::InvalidField {
                 field,
                 message: format!(
-                    "expected a wear of the radius within +-{MAX_WEAR_MM} mm, got {wear}"
+                    "expected a wear of the radius within +-{MAX_WEAR_MM} mm, got {}",
+                    crate::common::words::number(*wear)
                 ),
             });
         }

@@ -107,6 +107,10 @@ pub(crate) const BODY_RADIUS_MM: Range = Range::new(1e-3, 1e4, "mm");
 /// at most 100 m from the origin.
 pub const LENGTH_MM: Range = Range::new(-1e5, 1e5, "mm");
 
+/// A direction's components in a robot or setup file (an external axis's `direction`, any
+/// length, normalised when read): each within +-1e5, no unit.
+pub(crate) const DIRECTION: Range = Range::new(-1e5, 1e5, "");
+
 /// An external axis's value on the command line (`kinematics --external`): mm for a linear axis,
 /// deg for a rotary one, before the axis's own travel is checked.
 pub const EXTERNAL_VALUE: Range = Range::new(-1e5, 1e5, "mm or deg");

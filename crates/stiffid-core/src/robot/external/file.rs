@@ -138,7 +138,7 @@ fn axis(t: &AxisFile, table: &str, source_name: &str) -> Result<ExternalAxis> {
         source_name,
         &field("direction"),
         &t.direction,
-        &limits::LENGTH_MM,
+        &limits::DIRECTION,
     )?;
     let direction = Unit::try_new(Vector3::from(t.direction), 1e-9).ok_or_else(|| {
         invalid(
